@@ -1,0 +1,168 @@
+"""Safe YAML loading that keeps file:line:col for every node.
+
+Scalars are resolved by YAML 1.2 core rules instead of PyYAML's YAML 1.1 rules,
+so `no`, `yes`, `on`, `off` stay strings (route has a field named `no`).
+Size, nesting depth and alias expansion are bounded so a hostile schema cannot
+exhaust memory.
+"""
+from __future__ import annotations
+
+import re
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+from .diagnostics import Diagnostic, Loc, SchemaError
+
+MAX_FILE_BYTES = 2 * 1024 * 1024
+MAX_DEPTH = 48
+MAX_NODES = 200_000  # after alias expansion
+
+Path_ = tuple  # a path into the document: keys and list indexes
+
+
+class _Loader(yaml.SafeLoader):
+    """SafeLoader whose implicit resolvers follow the YAML 1.2 core schema."""
+
+
+_Loader.yaml_implicit_resolvers = {}
+_CORE = [
+    ("tag:yaml.org,2002:null", r"^(?:~|null|Null|NULL|)$", list("~nN") + [""]),
+    ("tag:yaml.org,2002:bool", r"^(?:true|True|TRUE|false|False|FALSE)$", list("tTfF")),
+    ("tag:yaml.org,2002:int", r"^(?:[-+]?[0-9]+|0o[0-7]+|0x[0-9a-fA-F]+|0b[01]+)$",
+     list("-+0123456789")),
+    ("tag:yaml.org,2002:float",
+     r"^(?:[-+]?(?:\.[0-9]+|[0-9]+(?:\.[0-9]*)?)(?:[eE][-+]?[0-9]+)?|[-+]?\.(?:inf|Inf|INF)|\.(?:nan|NaN|NAN))$",
+     list("-+.0123456789")),
+]
+for _tag, _pattern, _first in _CORE:
+    _Loader.add_implicit_resolver(_tag, re.compile(_pattern), _first)
+
+_SCALAR_TAGS = {
+    "tag:yaml.org,2002:null", "tag:yaml.org,2002:bool", "tag:yaml.org,2002:int",
+    "tag:yaml.org,2002:float", "tag:yaml.org,2002:str",
+}
+
+
+def _scalar(node: yaml.ScalarNode) -> Any:
+    tag, text = node.tag, node.value
+    if tag == "tag:yaml.org,2002:null":
+        return None
+    if tag == "tag:yaml.org,2002:bool":
+        return text.lower() == "true"
+    if tag == "tag:yaml.org,2002:int":
+        return int(text, 0) if text[:2] in ("0x", "0o", "0b") else int(text)
+    if tag == "tag:yaml.org,2002:float":
+        low = text.lower()
+        if low.endswith("inf"):
+            return float("-inf") if low.startswith("-") else float("inf")
+        return float("nan") if low.endswith("nan") else float(text)
+    return text
+
+
+class Document:
+    """A loaded schema: plain data plus the location of every node by path."""
+
+    def __init__(self, file: str, data: Any, locs: dict[Path_, Loc], text: str):
+        self.file = file
+        self.data = data
+        self.locs = locs
+        self.text = text
+
+    def loc(self, path: Path_) -> Loc:
+        """Location of the node at path, or of its nearest located ancestor."""
+        path = tuple(path)
+        while path not in self.locs and path:
+            path = path[:-1]
+        return self.locs.get(path, Loc(self.file, 1, 1))
+
+
+def _loc(file: str, node: yaml.Node) -> Loc:
+    return Loc(file, node.start_mark.line + 1, node.start_mark.column + 1)
+
+
+def load_text(text: str, file: str) -> Document:
+    if len(text.encode("utf-8", "surrogatepass")) > MAX_FILE_BYTES:
+        raise SchemaError([Diagnostic(Loc(file, 1, 1),
+                                      f"schema is larger than {MAX_FILE_BYTES} bytes",
+                                      "split the protocol or remove generated content")])
+    try:
+        node = yaml.compose(text, Loader=_Loader)
+    except yaml.MarkedYAMLError as exc:
+        mark = exc.problem_mark or exc.context_mark
+        loc = Loc(file, mark.line + 1, mark.column + 1) if mark else Loc(file, 1, 1)
+        raise SchemaError([Diagnostic(loc, f"YAML syntax: {exc.problem or exc}",
+                                      "fix the YAML syntax at this position")]) from None
+    except yaml.YAMLError as exc:
+        raise SchemaError([Diagnostic(Loc(file, 1, 1), f"YAML: {exc}", "")]) from None
+    if node is None:
+        raise SchemaError([Diagnostic(Loc(file, 1, 1), "schema is empty",
+                                      "start with `codeword: 1` and `protocol: <name>`")])
+    locs: dict[Path_, Loc] = {}
+    errors: list[Diagnostic] = []
+    count = [0]
+
+    def build(n: yaml.Node, path: Path_, depth: int) -> Any:
+        count[0] += 1
+        if count[0] > MAX_NODES:
+            raise SchemaError([Diagnostic(_loc(file, n),
+                                          f"document expands to more than {MAX_NODES} nodes",
+                                          "aliases expand too much (YAML bomb?)")])
+        if depth > MAX_DEPTH:
+            raise SchemaError([Diagnostic(_loc(file, n), f"nesting deeper than {MAX_DEPTH}",
+                                          "flatten the schema")])
+        locs.setdefault(path, _loc(file, n))
+        if isinstance(n, yaml.ScalarNode):
+            if n.tag not in _SCALAR_TAGS:
+                errors.append(Diagnostic(_loc(file, n), f"YAML tag {n.tag!r} is not allowed",
+                                         "use plain YAML data without tags"))
+                return None
+            return _scalar(n)
+        if isinstance(n, yaml.SequenceNode):
+            if n.tag != "tag:yaml.org,2002:seq":
+                errors.append(Diagnostic(_loc(file, n), f"YAML tag {n.tag!r} is not allowed", ""))
+            return [build(item, path + (i,), depth + 1) for i, item in enumerate(n.value)]
+        if n.tag != "tag:yaml.org,2002:map":
+            errors.append(Diagnostic(_loc(file, n), f"YAML tag {n.tag!r} is not allowed",
+                                     "merge keys (<<) and tags are not supported"))
+            return {}
+        result: dict[Any, Any] = {}
+        for key_node, value_node in n.value:
+            if not isinstance(key_node, yaml.ScalarNode):
+                errors.append(Diagnostic(_loc(file, key_node), "mapping keys must be scalars", ""))
+                continue
+            key = _scalar(key_node)
+            if not isinstance(key, (str, int)) or isinstance(key, bool):
+                key = key_node.value
+            if key in result:
+                errors.append(Diagnostic(_loc(file, key_node), f"duplicate key {key!r}",
+                                         "each key may appear once in a mapping"))
+                continue
+            locs[path + (key,)] = _loc(file, value_node)
+            result[key] = build(value_node, path + (key,), depth + 1)
+            locs[path + (key,)] = _loc(file, key_node)
+        return result
+
+    data = build(node, (), 0)
+    if errors:
+        raise SchemaError(errors)
+    return Document(file, data, locs, text)
+
+
+def load_file(path: Path | str, display: str | None = None) -> Document:
+    path = Path(path)
+    name = display or str(path)
+    try:
+        raw = path.read_bytes()
+    except OSError as exc:
+        raise SchemaError([Diagnostic(Loc(name, 1, 1), f"cannot read schema: {exc.strerror}", "")]) from None
+    if len(raw) > MAX_FILE_BYTES:
+        raise SchemaError([Diagnostic(Loc(name, 1, 1),
+                                      f"schema is larger than {MAX_FILE_BYTES} bytes", "")])
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise SchemaError([Diagnostic(Loc(name, 1, 1), f"schema is not UTF-8 ({exc.reason})",
+                                      "save the file as UTF-8")]) from None
+    return load_text(text, name)

@@ -1,0 +1,422 @@
+"""The protocol model: one immutable, fully computed description of a protocol.
+
+The resolver builds it from a schema document; every backend reads only this.
+Sizes, bit offsets, checksum coverage and dispatch keys are computed here once.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Optional, Union
+
+from .diagnostics import Loc
+
+Scalar = Union[int, float, str, bool, None]
+
+
+@dataclass(frozen=True)
+class Text:
+    """English text with optional translations (ru, zh, pl …)."""
+
+    en: str
+    translations: tuple[tuple[str, str], ...] = ()
+
+    def __str__(self) -> str:
+        return self.en
+
+    def get(self, lang: str) -> Optional[str]:
+        return self.en if lang == "en" else dict(self.translations).get(lang)
+
+
+@dataclass(frozen=True)
+class Note:
+    id: str
+    text: Text
+
+
+@dataclass(frozen=True)
+class HistoryEntry:
+    version: str
+    date: str
+    author: str
+    changes: tuple[Text, ...]
+
+
+@dataclass(frozen=True)
+class Role:
+    name: str
+    doc: Optional[Text]
+
+
+@dataclass(frozen=True)
+class Direction:
+    name: str
+    source: str
+    target: str
+    doc: Optional[Text]
+
+
+@dataclass(frozen=True)
+class Transport:
+    name: str
+    kind: str
+    doc: Optional[Text]
+    params: tuple[tuple[str, Scalar], ...]
+
+
+@dataclass(frozen=True)
+class Parameter:
+    name: str
+    default: Optional[Union[int, float]]
+    range: Optional[tuple[float, float]]
+    unit: Optional[str]
+    doc: Optional[Text]
+
+
+@dataclass(frozen=True)
+class EnumMember:
+    name: str
+    value: Union[int, str]
+    doc: Optional[Text]
+
+
+@dataclass(frozen=True)
+class Enum:
+    name: str
+    kind: str  # "int" or "char"
+    bits: Optional[int]
+    members: tuple[EnumMember, ...]
+    doc: Optional[Text]
+
+    @property
+    def values(self) -> tuple:
+        return tuple(m.value for m in self.members)
+
+
+@dataclass(frozen=True)
+class FlagBit:
+    name: str
+    bit: int
+    doc: Optional[Text]
+
+
+@dataclass(frozen=True)
+class FlagSet:
+    name: str
+    bits: int
+    members: tuple[FlagBit, ...]
+    doc: Optional[Text]
+
+    @property
+    def mask(self) -> int:
+        mask = 0
+        for member in self.members:
+            mask |= 1 << member.bit
+        return mask
+
+
+@dataclass(frozen=True)
+class CrcParams:
+    """Rocksoft model parameters (Williams 1993), as in the RevEng catalogue."""
+
+    name: str
+    width: int
+    poly: int
+    init: int
+    refin: bool
+    refout: bool
+    xorout: int
+    check: Optional[int] = None
+
+
+@dataclass(frozen=True)
+class Checksum:
+    algorithm: str  # parity | sum | xor | crc
+    over: str  # fields | bytes | bits
+    covers: Optional[tuple[str, str]]  # (from, to) field names; None = every other field
+    parity: str = "even"
+    modulo: Optional[int] = None
+    crc: Optional[CrcParams] = None
+    # Byte range [start, end) of the frame covered, computed for bytes framing.
+    byte_span: Optional[tuple[int, int]] = None
+
+
+@dataclass(frozen=True)
+class Field:
+    """One field in its final place: type, constraints, and (binary) its bit offset."""
+
+    name: str
+    kind: str  # uint | int | bool | float | char | str | bytes | group
+    loc: Loc
+    bits: Optional[int] = None  # wire width; None for text-only kinds
+    doc: Optional[Text] = None
+    title: Optional[Text] = None
+    type_name: Optional[str] = None  # the named type it came from, if any
+    unit: Optional[str] = None
+    const: Scalar = None
+    reserved: bool = False
+    default: Any = None
+    has_default: bool = False
+    range: Optional[tuple[Union[int, float], Union[int, float]]] = None
+    values: Optional[tuple] = None
+    enum: Optional[Enum] = None
+    flags: Optional[FlagSet] = None
+    scale: Optional[float] = None
+    offset: Optional[Union[int, float]] = None
+    one_hot: bool = False
+    exactly_one: bool = False
+    byte_order: Optional[str] = None
+    length: Optional[int] = None
+    length_param: Optional[str] = None
+    max_length: Optional[int] = None
+    optional: bool = False
+    to_end: bool = False
+    dispatch: bool = False
+    length_of: Optional[tuple[str, str]] = None
+    checksum: Optional[Checksum] = None
+    fields: tuple["Field", ...] = ()
+    message: Optional[Text] = None
+    rule: Optional[str] = None
+    is_payload: bool = False
+    bit_offset: Optional[int] = None  # from the start of the frame/record
+    from_envelope: bool = False
+
+    @property
+    def is_member(self) -> bool:
+        """Whether the field is an attribute of the decoded object."""
+        return not (self.is_payload or self.reserved or self.checksum or self.length_of
+                    or self.const is not None)
+
+    @property
+    def signed(self) -> bool:
+        return self.kind == "int"
+
+    @property
+    def raw_range(self) -> Optional[tuple[int, int]]:
+        """The range of raw wire integers the width allows."""
+        if self.bits is None or self.kind not in ("uint", "int", "bool"):
+            return None
+        if self.kind == "int":
+            return (-(1 << (self.bits - 1)), (1 << (self.bits - 1)) - 1)
+        return (0, (1 << self.bits) - 1)
+
+
+@dataclass(frozen=True)
+class Condition:
+    """`path` compared with `op` (eq, ne, in, range, eq_var, eq_param …) to `value`."""
+
+    path: str
+    op: str
+    value: Any
+
+
+@dataclass(frozen=True)
+class Rule:
+    id: Optional[str]
+    when: tuple[Condition, ...]
+    require: tuple[Condition, ...]
+    message: Optional[Text]
+    loc: Loc
+
+
+@dataclass(frozen=True)
+class ExpectedError:
+    field: str
+    rule: str
+    line: Optional[int] = None
+
+
+@dataclass(frozen=True)
+class Example:
+    name: str
+    loc: Loc
+    values: Optional[dict] = None
+    hex: Optional[bytes] = None
+    word: Optional[int] = None
+    text: Optional[str] = None
+    direction: Optional[str] = None
+    decode_only: bool = False
+    errors: tuple[ExpectedError, ...] = ()
+    source: Optional[str] = None
+
+    def __hash__(self) -> int:  # values is a dict; identity is enough for a model node
+        return id(self)
+
+
+@dataclass(frozen=True)
+class Message:
+    name: str
+    loc: Loc
+    title: Optional[Text]
+    doc: Optional[Text]
+    ids: tuple  # values of the envelope's dispatch field (bytes/text framing)
+    direction: Optional[str]
+    role: Optional[str]
+    answered_by: tuple[str, ...]
+    fields: tuple[Field, ...]  # as declared, without the envelope
+    layout: tuple[Field, ...]  # the whole frame in wire order, offsets computed
+    bits: Optional[int]  # total bits of the frame (binary framings)
+    rules: tuple[Rule, ...]
+    examples: tuple[Example, ...]
+    dispatch_key: tuple[tuple[str, Any], ...]  # (field, value) pairs that identify it
+    layout_type: Optional[str] = None  # the shared group type its fields come from
+
+    @property
+    def size(self) -> Optional[int]:
+        return None if self.bits is None else (self.bits + 7) // 8
+
+    @property
+    def members(self) -> tuple[Field, ...]:
+        return tuple(f for f in self.layout if f.is_member)
+
+
+@dataclass(frozen=True)
+class TextForm:
+    """A bits protocol written as a line of decimal integers (route exchange file)."""
+
+    separator: str
+    comment: Optional[str]
+    checksum_unfilled: Optional[int]
+
+
+@dataclass(frozen=True)
+class Framing:
+    kind: str  # bits | bytes | text
+    byte_order: str = "big"
+    word_bits: Optional[int] = None
+    max_bits: Optional[int] = None
+    text_form: Optional[TextForm] = None
+    envelope: tuple[Field, ...] = ()  # bytes framing: layout with a payload item
+    prefix_separator: str = ":"
+    separator: str = ","
+    terminator: str = ";"
+    ignore_between: str = ""
+    trim: bool = False
+    float_format: str = "shortest"
+
+
+@dataclass(frozen=True)
+class SequenceItem:
+    name: str
+    loc: Loc
+    message: Optional[str] = None
+    count: Optional[str] = None  # "item.field" of an earlier item
+    repeat: bool = False
+    items: tuple["SequenceItem", ...] = ()
+    doc: Optional[Text] = None
+
+
+@dataclass(frozen=True)
+class SequenceRule:
+    id: Optional[str]
+    kind: str  # consecutive | equal | member | unique
+    path: str
+    loc: Loc
+    start: Optional[int] = None
+    to: Optional[str] = None
+    of: Optional[str] = None
+    key: tuple[str, ...] = ()
+    message: Optional[Text] = None
+
+
+@dataclass(frozen=True)
+class Sequence:
+    name: str
+    loc: Loc
+    doc: Optional[Text]
+    items: tuple[SequenceItem, ...]
+    rules: tuple[SequenceRule, ...]
+    examples: tuple[Example, ...]
+
+
+@dataclass(frozen=True)
+class Transition:
+    to: str
+    guard: tuple[Condition, ...]
+    actions: tuple[str, ...]
+
+
+@dataclass(frozen=True)
+class Handler:
+    event: str
+    kind: str  # ignore | error | transitions
+    transitions: tuple[Transition, ...] = ()
+
+
+@dataclass(frozen=True)
+class State:
+    name: str
+    doc: Optional[Text]
+    handlers: tuple[Handler, ...]
+
+
+@dataclass(frozen=True)
+class Variable:
+    name: str
+    bits: int
+    initial: int
+
+
+@dataclass(frozen=True)
+class Event:
+    name: str
+    message: Optional[str]
+    timer: bool
+    doc: Optional[Text]
+
+
+@dataclass(frozen=True)
+class Machine:
+    name: str
+    loc: Loc
+    role: Optional[str]
+    doc: Optional[Text]
+    parameters: tuple[str, ...]
+    variables: tuple[Variable, ...]
+    events: tuple[Event, ...]
+    initial: str
+    final: tuple[str, ...]
+    states: tuple[State, ...]
+
+
+@dataclass(frozen=True)
+class Protocol:
+    name: str
+    file: str
+    sha256: str
+    title: Text
+    version: Optional[str]
+    source: str
+    doc: Optional[Text]
+    notes: tuple[Note, ...]
+    history: tuple[HistoryEntry, ...]
+    roles: tuple[Role, ...]
+    directions: tuple[Direction, ...]
+    transports: tuple[Transport, ...]
+    parameters: tuple[Parameter, ...]
+    enums: tuple[Enum, ...]
+    flags: tuple[FlagSet, ...]
+    framing: Framing
+    messages: tuple[Message, ...]
+    sequences: tuple[Sequence, ...] = ()
+    machines: tuple[Machine, ...] = ()
+    group_types: tuple[tuple[str, Field], ...] = field(default=())
+
+    def message(self, name: str) -> Message:
+        for message in self.messages:
+            if message.name == name:
+                return message
+        raise KeyError(name)
+
+    @property
+    def dispatch_fields(self) -> tuple[str, ...]:
+        names: list[str] = []
+        for message in self.messages:
+            for name, _ in message.dispatch_key:
+                if name not in names:
+                    names.append(name)
+        return tuple(names)
+
+    @property
+    def self_identifying(self) -> bool:
+        """Whether a decoder can tell which message a frame holds."""
+        return all(m.dispatch_key for m in self.messages)

@@ -1,0 +1,59 @@
+"""Structural validation of a schema document against the language's JSON Schema."""
+from __future__ import annotations
+
+import json
+from functools import lru_cache
+from pathlib import Path
+
+import jsonschema
+
+from .diagnostics import Diagnostic
+from .loader import Document
+
+SCHEMA_FILE = Path(__file__).parent / "schema" / "codeword.schema.json"
+
+
+@lru_cache(maxsize=1)
+def _validator() -> jsonschema.Draft202012Validator:
+    return jsonschema.Draft202012Validator(json.loads(SCHEMA_FILE.read_text(encoding="utf-8")))
+
+
+def _deepest(error: jsonschema.ValidationError) -> jsonschema.ValidationError:
+    """For oneOf/anyOf failures, the alternative that got furthest explains best."""
+    best = error
+    for sub in error.context or ():
+        candidate = _deepest(sub)
+        if len(candidate.absolute_path) > len(best.absolute_path):
+            best = candidate
+    return best
+
+
+def _hint(error: jsonschema.ValidationError) -> str:
+    if error.validator == "additionalProperties":
+        allowed = sorted(error.schema.get("properties", {}))
+        return "allowed keys here: " + ", ".join(allowed) if allowed else ""
+    if error.validator == "required":
+        return "add the missing key"
+    if error.validator == "pattern" and "A-Za-z_" in str(error.validator_value):
+        return "names are identifiers: letters, digits and _, not starting with a digit"
+    if error.validator in ("oneOf", "anyOf") and isinstance(error.instance, dict):
+        return "a text is a string or a map of language codes with `en`; quote values that contain ', ' or ': '"
+    return "see docs/schema-language.md"
+
+
+def structure_errors(doc: Document) -> list[Diagnostic]:
+    found: list[Diagnostic] = []
+    seen: set[tuple] = set()
+    for error in _validator().iter_errors(doc.data):
+        error = _deepest(error)
+        path = tuple(error.absolute_path)
+        message = error.message
+        if len(message) > 200:
+            message = message[:200] + "…"
+        where = ".".join(str(p) for p in path) or "top level"
+        key = (path, message)
+        if key in seen:
+            continue
+        seen.add(key)
+        found.append(Diagnostic(doc.loc(path), f"{where}: {message}", _hint(error)))
+    return found
