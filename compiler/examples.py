@@ -1,0 +1,181 @@
+"""Check every schema example against the generated Python codec, both ways.
+
+An example's wire forms are written by hand from the seed or by hand
+calculation; decoding them must give the example's values and encoding the
+values must give them back. Error examples must fail with the named field/rule.
+"""
+from __future__ import annotations
+
+import types
+from typing import Any, Optional
+
+from .diagnostics import Diagnostic
+from .model import Example, Message, Protocol, Sequence, SequenceItem
+from .names import camel
+
+
+def _matches(error: Any, field: str, rule: str) -> bool:
+    fields = {error.field or "", (error.field or "").split(".")[-1]}
+    return field in fields and rule in (error.rule, error.decision)
+
+
+def _describe(error: BaseException) -> str:
+    return f"{type(error).__name__}: {error}"
+
+
+class ExampleChecker:
+    def __init__(self, p: Protocol, module: types.ModuleType):
+        self.p = p
+        self.mod = module
+        self.problems: list[Diagnostic] = []
+
+    def fail(self, ex: Example, message: str, hint: str = "") -> None:
+        self.problems.append(Diagnostic(ex.loc, f"example {ex.name!r}: {message}",
+                                        hint or "fix the example or the schema"))
+
+    # -- wire forms of one message ---------------------------------------------------------
+    def forms(self, m: Message, ex: Example) -> list[tuple[str, Any, Any, Any]]:
+        """(form, wire value, decoder, encoder) for each wire form the example gives."""
+        cls = self.mod.MESSAGES[m.name]
+        out = []
+        if ex.hex is not None:
+            decoder = (lambda d: self.mod.decode(d, ex.direction)) if self.p.self_identifying else cls.decode
+            out.append(("hex", ex.hex, decoder, self.mod.encode))
+        if ex.word is not None:
+            out.append(("word", ex.word, self.mod.decode_word, self.mod.encode_word))
+        if ex.text is not None:
+            if self.p.framing.kind == "text":
+                out.append(("text", ex.text, lambda t: self.mod.decode(t, ex.direction), self.mod.encode))
+            else:
+                out.append(("text", ex.text, self.mod.decode_text, self.mod.encode_text))
+        return out
+
+    def check_message(self, m: Message, ex: Example) -> None:
+        codec_error = self.mod.CodecError
+        if ex.errors:
+            expected = ex.errors[0]
+            for form, wire, decode, _ in self.forms(m, ex):
+                try:
+                    got = decode(wire)
+                except codec_error as exc:
+                    if not _matches(exc, expected.field, expected.rule):
+                        self.fail(ex, f"{form} fails with {_describe(exc)}, expected field "
+                                      f"{expected.field!r} rule {expected.rule!r}")
+                    continue
+                except Exception as exc:  # a crash is a codec bug, reported as such
+                    self.fail(ex, f"{form}: decoder crashed with {_describe(exc)}")
+                    continue
+                self.fail(ex, f"{form} decodes to {got!r} but should fail on {expected.field} "
+                              f"({expected.rule})")
+            return
+        try:
+            value = self.mod.from_dict(m.name, ex.values or {})
+        except Exception as exc:
+            self.fail(ex, f"values do not build a {m.name}: {_describe(exc)}")
+            return
+        for form, wire, decode, encode in self.forms(m, ex):
+            try:
+                got = decode(wire)
+            except Exception as exc:
+                self.fail(ex, f"{form} {self.show(wire)} does not decode: {_describe(exc)}")
+                continue
+            if got != value:
+                self.fail(ex, f"{form} {self.show(wire)} decodes to {got!r}, expected {value!r}")
+            if ex.decode_only:
+                continue
+            try:
+                out = encode(value)
+            except Exception as exc:
+                self.fail(ex, f"values do not encode: {_describe(exc)}")
+                continue
+            if out != wire:
+                self.fail(ex, f"values encode to {self.show(out)}, the example says {self.show(wire)}",
+                          "the wire form is written by hand: check the calculation and the schema")
+
+    @staticmethod
+    def show(wire: Any) -> str:
+        if isinstance(wire, (bytes, bytearray)):
+            return bytes(wire).hex(" ")
+        if isinstance(wire, int):
+            return hex(wire)
+        return repr(wire)
+
+    # -- sequences -------------------------------------------------------------------------
+    def sequence_value(self, s: Sequence, values: dict) -> Any:
+        def build(items: tuple[SequenceItem, ...], data: dict, cls_name: str) -> Any:
+            kwargs = {}
+            for item in items:
+                raw = data.get(item.name)
+                many = item.repeat or item.count is not None
+                if item.message:
+                    make = lambda v: self.mod.from_dict(item.message, v or {})  # noqa: E731
+                else:
+                    inner = cls_name + camel(item.name)
+                    make = lambda v, inner=inner, item=item: build(item.items, v or {}, inner)  # noqa: E731
+                kwargs[item.name] = [make(v) for v in raw or []] if many else make(raw)
+            return getattr(self.mod, cls_name)(**kwargs)
+        return build(s.items, values, camel(s.name))
+
+    def check_sequence(self, s: Sequence, ex: Example) -> None:
+        forms = []
+        if ex.hex is not None:
+            forms.append(("hex", ex.hex, getattr(self.mod, f"decode_{s.name}"),
+                          getattr(self.mod, f"encode_{s.name}")))
+        if ex.text is not None:
+            forms.append(("text", ex.text, getattr(self.mod, f"decode_{s.name}_text"),
+                          getattr(self.mod, f"encode_{s.name}_text")))
+        decoded = []
+        for form, wire, decode, encode in forms:
+            try:
+                got = decode(wire)
+            except self.mod.SequenceError as exc:
+                if ex.errors:
+                    want = sorted((e.line, e.field, e.rule) for e in ex.errors)
+                    have = sorted((getattr(e, "line", None), (e.field or "").split(".")[-1],
+                                   e.rule if e.rule in {x.rule for x in ex.errors} else e.decision)
+                                  for e in exc.errors)
+                    if want != have:
+                        self.fail(ex, f"{form} gives errors {have}, expected {want}")
+                else:
+                    self.fail(ex, f"{form} does not decode: {exc}")
+                continue
+            except Exception as exc:
+                self.fail(ex, f"{form}: decoder crashed with {_describe(exc)}")
+                continue
+            if ex.errors:
+                self.fail(ex, f"{form} decodes but should give {len(ex.errors)} error(s)")
+                continue
+            decoded.append(got)
+            if not ex.decode_only:
+                try:
+                    out = encode(got)
+                except Exception as exc:
+                    self.fail(ex, f"decoded {s.name} does not re-encode: {_describe(exc)}")
+                    continue
+                expected = wire if form == "hex" else "".join(l.strip() + "\n" for l in wire.splitlines() if l.strip())
+                if out != expected:
+                    self.fail(ex, f"re-encoding gives {self.show(out)}, the example says {self.show(wire)}")
+        if ex.values is not None and not ex.errors:
+            try:
+                value = self.sequence_value(s, ex.values)
+            except Exception as exc:
+                self.fail(ex, f"values do not build a {s.name}: {_describe(exc)}")
+                return
+            for got in decoded:
+                if got != value:
+                    self.fail(ex, f"decodes to {got!r}, expected {value!r}")
+        if len(decoded) > 1 and decoded[0] != decoded[1]:
+            self.fail(ex, "the hex and text forms decode to different sequences")
+
+    def run(self) -> list[Diagnostic]:
+        for m in self.p.messages:
+            for ex in m.examples:
+                self.check_message(m, ex)
+        for s in self.p.sequences:
+            for ex in s.examples:
+                self.check_sequence(s, ex)
+        return self.problems
+
+
+def check_examples(p: Protocol, module: types.ModuleType) -> list[Diagnostic]:
+    return ExampleChecker(p, module).run()

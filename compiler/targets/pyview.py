@@ -1,0 +1,975 @@
+"""View of a protocol for the Python target: names, leaves, wire chunks and the
+code fragments the template lays out. All decisions about generated Python live
+here; templates/python only arranges them."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any, Optional
+
+from ..model import Field, Message, Protocol, Rule, Sequence, SequenceItem
+from ..names import camel
+
+
+@dataclass(frozen=True)
+class Leaf:
+    """A field with a wire value of its own (groups are flattened into leaves)."""
+
+    field: Field
+    path: tuple[str, ...]  # attribute path from the message object (member fields)
+    var: str  # local variable holding its raw wire value
+
+    @property
+    def dotted(self) -> str:
+        return ".".join(self.path)
+
+
+def leaves_of(layout: tuple[Field, ...], prefix: tuple[str, ...] = ()) -> list[Leaf]:
+    out: list[Leaf] = []
+    for f in layout:
+        if f.is_payload:
+            continue
+        if f.kind == "group":
+            out.extend(leaves_of(f.fields, prefix + (f.name,)))
+        else:
+            path = prefix + (f.name,)
+            out.append(Leaf(f, path, "r_" + "_".join(path)))
+    return out
+
+
+def lit(value: Any) -> str:
+    if isinstance(value, float):
+        if math.isinf(value):
+            return "math.inf" if value > 0 else "-math.inf"
+        return repr(value)
+    return repr(value)
+
+
+class Code:
+    """Lines of Python with indentation."""
+
+    def __init__(self) -> None:
+        self.lines: list[str] = []
+        self.depth = 0
+
+    def __call__(self, line: str) -> "Code":
+        self.lines.append("    " * self.depth + line)
+        return self
+
+    def indent(self) -> "Code":
+        self.depth += 1
+        return self
+
+    def dedent(self) -> "Code":
+        self.depth -= 1
+        return self
+
+    def text(self, base: int = 0) -> str:
+        pad = "    " * base
+        return "\n".join(pad + line if line else line for line in self.lines)
+
+
+class PythonView:
+    def __init__(self, protocol: Protocol):
+        self.p = protocol
+        self.framing = protocol.framing
+
+    # -- names -----------------------------------------------------------------------------
+    def class_name(self, message: Message) -> str:
+        return camel(message.name)
+
+    def group_class(self, message: Message, path: tuple[str, ...]) -> str:
+        if message.layout_type:
+            return camel(message.layout_type) + "".join(camel(p) for p in path)
+        return camel(message.name) + "".join(camel(p) for p in path)
+
+    @staticmethod
+    def enum_class(name: str) -> str:
+        return camel(name)
+
+    # -- declarations ----------------------------------------------------------------------
+    def annotation(self, f: Field, message: Message, path: tuple[str, ...]) -> str:
+        if f.kind == "group":
+            return self.group_class(message, path)
+        if f.enum:
+            base = self.enum_class(f.enum.name)
+        elif f.flags:
+            base = self.enum_class(f.flags.name)
+        else:
+            base = {"uint": "int", "int": "int", "bool": "bool", "float": "float", "char": "str",
+                    "str": "str", "bytes": "bytes"}[f.kind]
+            if f.scale is not None:
+                base = "float"
+            elif f.offset is not None and not float(f.offset).is_integer():
+                base = "float"
+        if f.one_hot or f.optional:
+            base = f"Optional[{base}]"
+        return base
+
+    def default_expr(self, f: Field, message: Message, path: tuple[str, ...]) -> Optional[str]:
+        if f.kind == "group":
+            return f"field(default_factory={self.group_class(message, path)})" \
+                if all(self.default_expr(s, message, path + (s.name,)) is not None
+                       for s in f.fields if s.is_member) else None
+        if f.has_default:
+            return self.value_expr(f, f.default)
+        if f.optional:
+            return "None"
+        return None
+
+    def value_expr(self, f: Field, value: Any) -> str:
+        """A Python expression for a schema-written value of field f."""
+        if value is None:
+            return "None"
+        if f.enum:
+            member = next((m for m in f.enum.members if value in (m.name, m.value)), None)
+            return f"{self.enum_class(f.enum.name)}.{member.name}" if member else lit(value)
+        if f.flags and isinstance(value, list):
+            names = [f"{self.enum_class(f.flags.name)}.{n}" for n in value]
+            return " | ".join(names) if names else f"{self.enum_class(f.flags.name)}(0)"
+        if f.kind == "bool":
+            return "True" if value else "False"
+        if f.kind == "bytes" and isinstance(value, str):
+            return f"bytes.fromhex({value!r})"
+        return lit(value)
+
+    def dataclasses(self) -> list[dict]:
+        """Group classes first (inner before outer), then one class per message."""
+        out: list[dict] = []
+        seen: set[str] = set()
+
+        def visit(message: Message, fields: tuple[Field, ...], path: tuple[str, ...], name: str,
+                  doc: str, is_message: bool) -> None:
+            for f in fields:
+                if f.kind == "group" and f.is_member:
+                    visit(message, f.fields, path + (f.name,), self.group_class(message, path + (f.name,)),
+                          str(f.doc or f.title or f.name), False)
+            if name in seen:
+                return
+            seen.add(name)
+            members = [f for f in fields if f.is_member]
+            required = [f for f in members if self.default_expr(f, message, path + (f.name,)) is None]
+            optional = [f for f in members if f not in required]
+            out.append({
+                "name": name, "doc": doc, "message": message.name if is_message else None,
+                "fields": [{"name": f.name, "annotation": self.annotation(f, message, path + (f.name,)),
+                            "default": self.default_expr(f, message, path + (f.name,)),
+                            "doc": self.field_comment(f)}
+                           for f in required + optional],
+            })
+
+        for m in self.p.messages:
+            visit(m, m.layout, (), self.class_name(m), str(m.title or m.doc or m.name), True)
+        return out
+
+    def field_comment(self, f: Field) -> str:
+        parts = [str(f.doc)] if f.doc else []
+        if f.unit:
+            parts.append(f"[{f.unit}]")
+        if f.range:
+            parts.append(f"range {lit(f.range[0])}..{lit(f.range[1])}")
+        if f.rule:
+            parts.append(f"({f.rule})")
+        return " ".join(parts).replace("\n", " ")
+
+    # -- encode: logical value → raw wire integer (or bytes/float) -------------------------
+    def encode_leaf(self, c: Code, message: Message, leaf: Leaf) -> None:
+        """Emit code that reads leaf from `m`, checks it and stores its raw value in leaf.var."""
+        f, var = leaf.field, leaf.var
+        where = f"{message.name!r}, {leaf.dotted!r}"
+        if f.checksum or f.length_of or f.const is not None or f.reserved:
+            value = 0 if (f.checksum or f.reserved) else f.const
+            if f.enum and f.const is not None:
+                value = next(m.value for m in f.enum.members if f.const in (m.name, m.value))
+            c(f"{var} = {lit(value)}")
+            return
+        c(f"v = m.{leaf.dotted}")
+        if f.kind == "bool":
+            c("if v is not True and v is not False and v != 0 and v != 1:")
+            c(f"    raise _enc({where}, v, 'type', 'a bool')")
+            c(f"{var} = 1 if v else 0")
+        elif f.enum is not None and f.kind != "char":
+            c(f"if v not in _VALUES_{f.enum.name}:")
+            c(f"    raise _enc({where}, v, 'enum', {self.enum_class(f.enum.name)!r}{self.user(f)})")
+            c(f"{var} = int(v)")
+        elif f.flags is not None:
+            c(f"if v.__class__ is not int and not isinstance(v, int):")
+            c(f"    raise _enc({where}, v, 'type', 'an int or {self.enum_class(f.flags.name)}')")
+            c(f"if v < 0 or v & {~f.flags.mask & ((1 << f.bits) - 1):#x} or v > {(1 << f.bits) - 1:#x}:")
+            c(f"    raise _enc({where}, v, 'flags', 'only the bits of {f.flags.name}'{self.user(f)})")
+            if f.exactly_one:
+                c("if v == 0 or v & (v - 1):")
+                c(f"    raise _enc({where}, v, 'exactly_one', 'exactly one bit set', {f.rule!r}{self.user(f, False)})")
+            c(f"{var} = int(v)")
+        elif f.one_hot:
+            c("if v is None:")
+            c(f"    {var} = 0")
+            c("else:")
+            lo, hi = f.range or (0, f.bits - 1)
+            c(f"    if v.__class__ is not int and not isinstance(v, int) or not {lo} <= v <= {hi}:")
+            c(f"        raise _enc({where}, v, 'range', '{lo}..{hi} or None', {f.rule!r}{self.user(f, False)})")
+            c(f"    {var} = 1 << v")
+        elif f.kind in ("uint", "int"):
+            lo, hi = f.range if f.range else self.logical_limits(f)
+            numeric = "(int, float)" if f.scale is not None else "int"
+            c(f"if v.__class__ is not {'int' if numeric == 'int' else 'float'} and (not isinstance(v, {numeric}) or v.__class__ is bool):")
+            c(f"    raise _enc({where}, v, 'type', {'a number' if numeric != 'int' else 'an int'!r})")
+            c(f"if not {lit(lo)} <= v <= {lit(hi)}:")
+            c(f"    raise _enc({where}, v, 'range', '{lit(lo)}..{lit(hi)}', {f.rule!r}{self.user(f, False)})")
+            if f.values:
+                c(f"if v not in {lit(tuple(f.values))}:")
+                c(f"    raise _enc({where}, v, 'values', {', '.join(map(str, f.values))!r}, {f.rule!r}{self.user(f, False)})")
+            expr = "v"
+            if f.offset:
+                expr = f"(v - {lit(f.offset)})"
+            if f.scale is not None:
+                expr = f"_floor({expr} / {lit(f.scale)} + 0.5)"
+            elif f.offset and not float(f.offset).is_integer():
+                expr = f"_floor({expr} + 0.5)"
+            c(f"{var} = {expr}")
+        elif f.kind == "float":
+            c("if v.__class__ is not float and (not isinstance(v, (int, float)) or v.__class__ is bool):")
+            c(f"    raise _enc({where}, v, 'type', 'a number')")
+            c("if not _isfinite(v):")
+            c(f"    raise _enc({where}, v, 'finite', 'a finite number')")
+            if f.range:
+                c(f"if not {lit(f.range[0])} <= v <= {lit(f.range[1])}:")
+                c(f"    raise _enc({where}, v, 'range', '{lit(f.range[0])}..{lit(f.range[1])}', {f.rule!r}{self.user(f, False)})")
+            if f.bits == 32:
+                c(f"if v > 3.4028234663852886e38 or v < -3.4028234663852886e38:")
+                c(f"    raise _enc({where}, v, 'range', 'a binary32 value')")
+            c(f"{var} = v")
+        elif f.kind == "bytes":
+            c("if not isinstance(v, (bytes, bytearray)) or len(v) != %d:" % f.length)
+            c(f"    raise _enc({where}, v, 'length', 'bytes of length {f.length}')")
+            c(f"{var} = bytes(v)")
+        else:  # text kinds are encoded by the text writer
+            c(f"{var} = v")
+
+    def user(self, f: Field, with_rule: bool = True) -> str:
+        extra = ""
+        if with_rule:
+            extra += f", {f.rule!r}"
+        if f.message:
+            extra += f", {f.message.en!r}"
+            if f.message.translations:
+                extra = extra[:-1] + " / " + " / ".join(t for _, t in f.message.translations) + extra[-1]
+        return extra
+
+    @staticmethod
+    def logical_limits(f: Field) -> tuple:
+        lo, hi = f.raw_range
+        if f.scale is not None or f.offset is not None:
+            return (lo * (f.scale or 1) + (f.offset or 0), hi * (f.scale or 1) + (f.offset or 0))
+        return (lo, hi)
+
+    # -- decode: raw wire value → logical value --------------------------------------------
+    def decode_leaf(self, c: Code, message: Message, leaf: Leaf, offset_expr: str) -> Optional[str]:
+        """Emit checks of a raw value; return the expression of its logical value (members)."""
+        f, var = leaf.field, leaf.var
+        at = f"{message.name!r}, {leaf.dotted!r}, {var}"
+        off = offset_expr
+        if f.reserved:
+            c(f"if {var}:")
+            c(f"    raise _dec({at}, 'reserved', '0', {off}, {f.rule!r})")
+            return None
+        if f.length_of:
+            c(f"if {var} != {f.const}:")
+            c(f"    raise _dec({at}, 'length', '{f.const} for {message.name}', {off}, {f.rule!r})")
+            return None
+        if f.checksum:
+            return None  # verified after all fields are known
+        if f.const is not None and not f.values:
+            value = f.const
+            if f.enum:
+                value = next(m.value for m in f.enum.members if f.const in (m.name, m.value))
+            c(f"if {var} != {lit(value)}:")
+            c(f"    raise _dec({at}, 'const', {lit(value)!r}, {off}, {f.rule!r})")
+            return None
+        if f.kind == "bool":
+            return f"{var} == 1"
+        if f.enum is not None:
+            e = "e_" + var[2:]
+            c(f"{e} = _ENUM_{f.enum.name}.get({var})")
+            c(f"if {e} is None:")
+            c(f"    raise _dec({at}, 'enum', {self.enum_class(f.enum.name)!r}, {off}, {f.rule!r}{self.user(f, False)})")
+            expr = var_checked = e
+        elif f.flags is not None:
+            c(f"if {var} & {~f.flags.mask & ((1 << f.bits) - 1):#x}:")
+            c(f"    raise _dec({at}, 'flags', 'only the bits of {f.flags.name}', {off}, {f.rule!r})")
+            if f.exactly_one:
+                c(f"if {var} == 0 or {var} & ({var} - 1):")
+                c(f"    raise _dec({at}, 'exactly_one', 'exactly one bit set', {off}, {f.rule!r})")
+            return f"{self.enum_class(f.flags.name)}({var})"
+        elif f.one_hot:
+            lo, hi = f.range or (0, f.bits - 1)
+            c(f"if {var} & ({var} - 1) or {var} and not {1 << lo} <= {var} <= {1 << hi}:")
+            c(f"    raise _dec({at}, 'one_hot', 'one bit of {lo}..{hi}, or 0', {off}, {f.rule!r})")
+            return f"({var}.bit_length() - 1 if {var} else None)"
+        elif f.kind in ("uint", "int"):
+            expr = var
+            if f.scale is not None:
+                expr = f"{var} * {lit(f.scale)}"
+            if f.offset:
+                expr = f"{expr} + {lit(f.offset)}"
+            var_checked = expr
+        elif f.kind == "float":
+            c(f"if not _isfinite({var}):")
+            c(f"    raise _dec({at}, 'finite', 'a finite number', {off}, {f.rule!r})")
+            expr = var_checked = var
+        else:
+            return var
+        if f.range:
+            lo, hi = f.range
+            c(f"if not {lit(lo)} <= {var_checked} <= {lit(hi)}:")
+            c(f"    raise _dec({at}, 'range', '{lit(lo)}..{lit(hi)}', {off}, {f.rule!r}{self.user(f, False)})")
+        if f.values:
+            c(f"if {var_checked} not in {lit(tuple(f.values))}:")
+            c(f"    raise _dec({at}, 'values', {', '.join(map(str, f.values))!r}, {off}, {f.rule!r}{self.user(f, False)})")
+        return expr
+
+    # -- message rules (when/require) ------------------------------------------------------
+    def condition(self, cond, obj: str, message: Message) -> str:
+        f = self.find(message, cond.path)
+        left = f"{obj}.{cond.path}"
+        value = cond.value
+
+        def conv(v):
+            return self.value_expr(f, v) if f is not None else lit(v)
+        if cond.op == "eq":
+            return f"{left} is None" if value is None else f"{left} == {conv(value)}"
+        if cond.op == "ne":
+            return f"{left} is not None" if value is None else f"{left} != {conv(value)}"
+        if cond.op == "in":
+            return f"{left} in ({', '.join(conv(v) for v in value)},)"
+        if cond.op == "range":
+            return f"{lit(value[0])} <= {left} <= {lit(value[1])}"
+        raise ValueError(f"condition {cond.op} is for state machines")
+
+    @staticmethod
+    def find(message: Message, dotted: str) -> Optional[Field]:
+        fields, found = message.layout, None
+        for part in dotted.split("."):
+            found = next((f for f in fields if f.name == part), None)
+            if found is None:
+                return None
+            fields = found.fields
+        return found
+
+    def rule_checks(self, c: Code, message: Message, obj: str, err: str) -> None:
+        for rule in message.rules:
+            when = " and ".join(self.condition(x, obj, message) for x in rule.when) or "True"
+            need = " and ".join(self.condition(x, obj, message) for x in rule.require)
+            first = rule.require[0].path
+            text = self.rule_text(rule)
+            c(f"if {when} and not ({need}):" if rule.when else f"if not ({need}):")
+            c(f"    raise {err}({message.name!r}, {first!r}, {obj}.{first}, 'rule', {text!r}, "
+              f"decision={rule.id!r}{', user_message=' + repr(self.user_text(rule)) if rule.message else ''})")
+
+    def rule_text(self, rule: Rule) -> str:
+        def show(cs):
+            return " and ".join(f"{x.path} {'==' if x.op == 'eq' else x.op} {x.value if x.value is not None else 'None'}"
+                                for x in cs)
+        return (f"if {show(rule.when)} then " if rule.when else "") + show(rule.require)
+
+    @staticmethod
+    def user_text(rule: Rule) -> str:
+        return " / ".join([rule.message.en] + [t for _, t in rule.message.translations])
+
+
+@dataclass
+class Chunk:
+    """Bytes of the frame packed by one struct code: a lone byte-aligned field or a run of bit fields."""
+
+    start: int  # byte offset
+    nbytes: int
+    leaves: list  # [(Leaf, shift)]
+    code: str  # struct code, or "s" for an odd-sized run converted with int.to_bytes
+    order: Optional[str]  # byte order it needs, None when any will do
+    lone: bool  # a single field stored as is (float, bytes, whole integer)
+    signed: bool = False
+
+
+def chunks_of(leaves: list[Leaf], default_order: str) -> list[Chunk]:
+    out: list[Chunk] = []
+    pos = 0
+    run: Optional[Chunk] = None
+    for leaf in leaves:
+        f = leaf.field
+        bits = f.bits or 0
+        order = f.byte_order or default_order
+        whole = pos % 8 == 0 and bits % 8 == 0 and bits > 0
+        lone = run is None and whole and (f.kind in ("float", "bytes") or order == "little" and bits > 8
+                                          or bits in (8, 16, 32, 64))
+        if lone:
+            n = bits // 8
+            if f.kind == "float":
+                code = "f" if bits == 32 else "d"
+            elif f.kind == "bytes":
+                code = f"{n}s"
+            elif n in (1, 2, 4, 8):
+                code = {1: "B", 2: "H", 4: "I", 8: "Q"}[n]
+                code = code.lower() if f.kind == "int" else code
+            else:
+                code = "s"
+            out.append(Chunk(pos // 8, n, [(leaf, 0)], code, order if n > 1 else None, True,
+                             f.kind == "int"))
+        else:
+            if run is None:
+                run = Chunk(pos // 8, 0, [], "", "big", False)
+            run.leaves.append((leaf, pos))
+            if (pos + bits) % 8 == 0:
+                out.append(_close(run, pos + bits))
+                run = None
+        pos += bits
+    if run is not None:
+        out.append(_close(run, (pos + 7) // 8 * 8))
+    return out
+
+
+def _close(run: Chunk, end_bit: int) -> Chunk:
+    run.nbytes = end_bit // 8 - run.start
+    run.leaves = [(leaf, end_bit - start - (leaf.field.bits or 0)) for leaf, start in run.leaves]
+    run.code = {1: "B", 2: "H", 4: "I", 8: "Q"}.get(run.nbytes, "s")
+    run.order = "big" if run.nbytes > 1 else None
+    return run
+
+
+@dataclass
+class Segment:
+    start: int
+    chunks: list
+
+    @property
+    def fmt(self) -> str:
+        order = next((c.order for c in self.chunks if c.order), "big")
+        codes = "".join(f"{c.nbytes}s" if c.code == "s" else c.code for c in self.chunks)
+        return ("<" if order == "little" else ">") + codes
+
+
+def segments_of(chunks: list[Chunk]) -> list[Segment]:
+    out: list[Segment] = []
+    for chunk in chunks:
+        if out:
+            current = out[-1]
+            order = next((c.order for c in current.chunks if c.order), None)
+            if chunk.order is None or order is None or chunk.order == order:
+                current.chunks.append(chunk)
+                continue
+        out.append(Segment(chunk.start, [chunk]))
+    return out
+
+
+class MessageCode:
+    """The generated functions of one message."""
+
+    def __init__(self, view: PythonView, message: Message, index: int):
+        self.view = view
+        self.m = message
+        self.i = index
+        self.leaves = leaves_of(message.layout)
+        self.cls = view.class_name(message)
+        self.fn = message.name
+
+    # -- raw values (binary framings and the text form) ----------------------------------
+    def raw_function(self) -> str:
+        c = Code()
+        c(f"def _raw_{self.fn}(m):")
+        c.indent()
+        c(f'"""Check a {self.m.name} and return its raw wire values, in wire order."""')
+        self.view.rule_checks(c, self.m, "m", "_EncodeRule")
+        for leaf in self.leaves:
+            self.view.encode_leaf(c, self.m, leaf)
+        for leaf in self.leaves:
+            cs = leaf.field.checksum
+            if cs and cs.over != "bytes":
+                others = [x for x in self.leaves if x is not leaf]
+                terms = [self.unsigned(x) for x in others]
+                if cs.algorithm == "sum":
+                    c(f"{leaf.var} = ({' + '.join(terms)}) % {cs.modulo}")
+                elif cs.algorithm == "xor":
+                    c(f"{leaf.var} = ({' ^ '.join(terms)}) % {cs.modulo}")
+                else:
+                    flip = " ^ 1" if cs.parity == "odd" else ""
+                    c(f"{leaf.var} = ({' + '.join(f'{t}.bit_count()' for t in terms)}) & 1{flip}")
+        c(f"return ({', '.join(x.var for x in self.leaves)},)")
+        return c.text()
+
+    @staticmethod
+    def unsigned(leaf: Leaf) -> str:
+        if leaf.field.kind == "int":
+            return f"({leaf.var} & {(1 << leaf.field.bits) - 1:#x})"
+        return leaf.var
+
+    def build_function(self) -> str:
+        """_build_<msg>(raw values…, unfilled): checks raw values, returns the object."""
+        c = Code()
+        args = ", ".join(x.var for x in self.leaves)
+        c(f"def _build_{self.fn}({args}{', ' if args else ''}text_form=False):")
+        c.indent()
+        values: dict[tuple, str] = {}
+        offset = 0
+        for leaf in self.leaves:
+            expr = self.view.decode_leaf(c, self.m, leaf, str(offset))
+            if expr is not None:
+                values[leaf.path] = expr
+            offset += leaf.field.bits or 0
+        offset = 0
+        for leaf in self.leaves:
+            cs = leaf.field.checksum
+            if cs and cs.over != "bytes":
+                others = [x for x in self.leaves if x is not leaf]
+                terms = [self.unsigned(x) for x in others]
+                if cs.algorithm == "sum":
+                    expected = f"({' + '.join(terms)}) % {cs.modulo}"
+                elif cs.algorithm == "xor":
+                    expected = f"({' ^ '.join(terms)}) % {cs.modulo}"
+                else:
+                    flip = " ^ 1" if cs.parity == "odd" else ""
+                    expected = f"({' + '.join(f'{t}.bit_count()' for t in terms)}) & 1{flip}"
+                c(f"x = {expected}")
+                unfilled = self.view.p.framing.text_form.checksum_unfilled \
+                    if self.view.p.framing.text_form else None
+                cond = f"{leaf.var} != x"
+                if unfilled is not None:
+                    cond += f" and not (text_form and {leaf.var} == {unfilled})"
+                c(f"if {cond}:")
+                c(f"    raise _dec({self.m.name!r}, {leaf.dotted!r}, {leaf.var}, 'checksum', str(x), {offset}, {leaf.field.rule!r})")
+            offset += leaf.field.bits or 0
+        c(f"o = {self.construct(self.m.layout, (), values)}")
+        self.view.rule_checks(c, self.m, "o", "_DecodeRule")
+        c("return o")
+        return c.text()
+
+    def construct(self, fields: tuple[Field, ...], path: tuple, values: dict) -> str:
+        name = self.view.group_class(self.m, path) if path else self.cls
+        args = []
+        for f in fields:
+            if not f.is_member:
+                continue
+            if f.kind == "group":
+                args.append(f"{f.name}={self.construct(f.fields, path + (f.name,), values)}")
+            else:
+                args.append(f"{f.name}={values[path + (f.name,)]}")
+        return f"{name}({', '.join(args)})"
+
+    # -- bytes -----------------------------------------------------------------------------
+    def chunks(self) -> list[Chunk]:
+        return chunks_of(self.leaves, self.view.p.framing.byte_order)
+
+    def structs(self) -> list[tuple[str, str]]:
+        return [(f"_S_{self.fn}_{n}", s.fmt) for n, s in enumerate(segments_of(self.chunks()))]
+
+    def encode_bytes_function(self) -> str:
+        c = Code()
+        size = self.m.size
+        c(f"def _encode_{self.fn}(m):")
+        c.indent()
+        c(f"{', '.join(x.var for x in self.leaves)}, = _raw_{self.fn}(m)")
+        segments = segments_of(self.chunks())
+        crcs = [(leaf, leaf.field.checksum) for leaf in self.leaves
+                if leaf.field.checksum and leaf.field.checksum.over == "bytes"]
+        single = len(segments) == 1 and not crcs
+        if not single:
+            c(f"b = bytearray({size})")
+        for n, seg in enumerate(segments):
+            values = ", ".join(self.chunk_value(ch) for ch in seg.chunks)
+            if single:
+                c(f"return _S_{self.fn}_{n}.pack({values})")
+            else:
+                c(f"_S_{self.fn}_{n}.pack_into(b, {seg.start}, {values})")
+        for leaf, cs in crcs:
+            start, end = cs.byte_span
+            chunk = next(ch for ch in self.chunks() if ch.leaves[0][0] is leaf)
+            order = leaf.field.byte_order or self.view.p.framing.byte_order
+            c(f"b[{chunk.start}:{chunk.start + chunk.nbytes}] = _checksum_{self.view.checksum_name(cs)}(b[{start}:{end}])"
+              f".to_bytes({chunk.nbytes}, {order!r})")
+        if not single:
+            c("return bytes(b)")
+        return c.text()
+
+    def chunk_value(self, chunk: Chunk) -> str:
+        if chunk.lone:
+            leaf = chunk.leaves[0][0]
+            if chunk.code == "s":
+                order = leaf.field.byte_order or self.view.p.framing.byte_order
+                return f"{leaf.var}.to_bytes({chunk.nbytes}, {order!r}, signed={chunk.signed})"
+            return leaf.var
+        parts = []
+        for leaf, shift in chunk.leaves:
+            value = self.unsigned(leaf)
+            parts.append(f"{value} << {shift}" if shift else value)
+        expr = " | ".join(parts) if parts else "0"
+        if chunk.code == "s":
+            return f"({expr}).to_bytes({chunk.nbytes}, 'big')"
+        return expr
+
+    def decode_bytes_function(self) -> str:
+        c = Code()
+        size = self.m.size
+        c(f"def _decode_{self.fn}(d):")
+        c.indent()
+        c(f"if len(d) != {size}:")
+        c(f"    raise _dec({self.m.name!r}, None, len(d), 'length', '{size} bytes', 0)")
+        segments = segments_of(self.chunks())
+        names = []
+        for n, seg in enumerate(segments):
+            vars_ = [f"c{seg.start}_{k}" for k in range(len(seg.chunks))]
+            names.extend(zip(vars_, seg.chunks))
+            c(f"{', '.join(vars_)}, = _S_{self.fn}_{n}.unpack_from(d, {seg.start})")
+        for var, chunk in names:
+            if chunk.lone:
+                leaf = chunk.leaves[0][0]
+                if chunk.code == "s":
+                    order = leaf.field.byte_order or self.view.p.framing.byte_order
+                    c(f"{leaf.var} = int.from_bytes({var}, {order!r}, signed={chunk.signed})")
+                else:
+                    c(f"{leaf.var} = {var}")
+                continue
+            if chunk.code == "s":
+                c(f"{var} = int.from_bytes({var}, 'big')")
+            for leaf, shift in chunk.leaves:
+                bits = leaf.field.bits
+                c(f"{leaf.var} = ({var} >> {shift}) & {(1 << bits) - 1:#x}" if shift
+                  else f"{leaf.var} = {var} & {(1 << bits) - 1:#x}")
+                if leaf.field.kind == "int":
+                    c(f"if {leaf.var} & {1 << (bits - 1):#x}:")
+                    c(f"    {leaf.var} -= {1 << bits:#x}")
+        for leaf in self.leaves:
+            cs = leaf.field.checksum
+            if cs and cs.over == "bytes":
+                start, end = cs.byte_span
+                offset = sum(x.field.bits or 0 for x in self.leaves[:self.leaves.index(leaf)])
+                c(f"x = _checksum_{self.view.checksum_name(cs)}(d[{start}:{end}])")
+                c(f"if {leaf.var} != x:")
+                c(f"    raise _dec({self.m.name!r}, {leaf.dotted!r}, {leaf.var}, 'checksum', hex(x), {offset}, {leaf.field.rule!r})")
+        c(f"return _build_{self.fn}({', '.join(x.var for x in self.leaves)})")
+        return c.text()
+
+    # -- the text form of a bits protocol (route exchange file) ----------------------------
+    def text_form_functions(self) -> str:
+        sep = self.view.p.framing.text_form.separator
+        c = Code()
+        c(f"def _encode_text_{self.fn}(m):")
+        c(f"    return {sep!r}.join(map(str, _raw_{self.fn}(m)))")
+        c("")
+        c(f"def _decode_text_{self.fn}(tokens):")
+        c.indent()
+        c(f"if len(tokens) != {len(self.leaves)}:")
+        c(f"    raise _dec({self.m.name!r}, None, len(tokens), 'count', '{len(self.leaves)} values', 0)")
+        c(f"return _build_{self.fn}(*tokens, text_form=True)")
+        return c.text()
+
+    # -- text framing ----------------------------------------------------------------------
+    def text_encode_function(self) -> str:
+        fr = self.view.p.framing
+        c = Code()
+        c(f"def _encode_{self.fn}(m):")
+        c.indent()
+        self.view.rule_checks(c, self.m, "m", "_EncodeRule")
+        c(f"p = [{self.m.ids[0] + fr.prefix_separator!r}]")
+        members = [leaf for leaf in self.leaves]
+        for n, leaf in enumerate(members):
+            f = leaf.field
+            where = f"{self.m.name!r}, {leaf.dotted!r}"
+            if f.optional:
+                c(f"if m.{leaf.dotted} is not None:")
+                c.indent()
+            if f.kind in ("char", "str") and f.enum is None:
+                c(f"v = m.{leaf.dotted}")
+                c(f"if not isinstance(v, str){' or len(v) != 1' if f.kind == 'char' else ''}:")
+                c(f"    raise _enc({where}, v, 'type', {'one character' if f.kind == 'char' else 'a string'!r})")
+                forbidden = "" if f.to_end else fr.separator
+                c(f"bad = _text_problem(v, {forbidden!r}, {fr.trim})")
+                c("if bad:")
+                c(f"    raise _enc({where}, v, 'text', bad, {f.rule!r})")
+                if f.max_length is not None:
+                    c(f"if len(v) > {f.max_length}:")
+                    c(f"    raise _enc({where}, v, 'length', 'at most {f.max_length} characters')")
+                out = "v"
+            else:
+                self.view.encode_leaf(c, self.m, leaf)
+                if f.kind == "float":
+                    out = f"_format_float({leaf.var})"
+                elif f.enum is not None and f.enum.kind == "char":
+                    out = f"_ENUM_{f.enum.name}[{leaf.var}].value"
+                else:
+                    out = f"str({leaf.var})"
+            c(f"p.append({out})")
+            if f.optional:
+                c.dedent()
+        c(f"return p[0] + {fr.separator!r}.join(p[1:]) + {fr.terminator!r}")
+        return c.text()
+
+    def text_decode_function(self) -> str:
+        fr = self.view.p.framing
+        c = Code()
+        c(f"def _decode_{self.fn}(body, base):")
+        c.indent()
+        total = len(self.leaves)
+        required = sum(1 for x in self.leaves if not x.field.optional)
+        last_to_end = bool(self.leaves) and self.leaves[-1].field.to_end
+        if total == 0:
+            c("t = []" if True else "")
+            c("if body.strip():")
+            c(f"    raise _dec({self.m.name!r}, None, body, 'count', 'no fields', base)")
+        elif last_to_end:
+            c(f"t = body.split({fr.separator!r}, {total - 1})")
+        else:
+            c(f"t = body.split({fr.separator!r})")
+        c("at = _token_offsets(t, base)")
+        c(f"if not {required} <= len(t) <= {total}:")
+        c(f"    raise _dec({self.m.name!r}, None, len(t), 'count', '{required}..{total} fields' if {required} != {total} else '{total} fields', base)")
+        values: dict[tuple, str] = {}
+        for n, leaf in enumerate(self.leaves):
+            f = leaf.field
+            at = f"{self.m.name!r}, {leaf.dotted!r}"
+            if f.optional:
+                c(f"if len(t) > {n}:")
+                c.indent()
+            tok = f"t[{n}].strip()" if fr.trim and not f.to_end else f"t[{n}]"
+            if f.kind == "float":
+                c(f"{leaf.var} = _parse_float({tok}, {at}, at[{n}])")
+            elif f.kind in ("uint", "int") or (f.enum is not None and f.enum.kind == "int"):
+                c(f"{leaf.var} = _parse_int({tok}, {at}, at[{n}])")
+            elif f.kind == "char":
+                c(f"{leaf.var} = {tok}")
+                c(f"if len({leaf.var}) != 1:")
+                c(f"    raise _dec({at}, {leaf.var}, 'type', 'one character', at[{n}])")
+            else:
+                c(f"{leaf.var} = {tok}")
+            c("try:")
+            c.indent()
+            expr = self.view.decode_leaf(c, self.m, leaf, f"at[{n}]")
+            c("pass")
+            c.dedent()
+            c("except DecodeError as exc:")
+            c(f"    exc.offset = at[{n}]")
+            c("    raise")
+            if f.optional:
+                c.dedent()
+                c("else:")
+                c(f"    {leaf.var} = None")
+                expr = f"(None if {leaf.var} is None else {expr})" if expr != leaf.var else expr
+            values[leaf.path] = expr if expr is not None else leaf.var
+        c(f"o = {self.construct(self.m.layout, (), values)}")
+        self.view.rule_checks(c, self.m, "o", "_DecodeRule")
+        c("return o")
+        return c.text()
+
+
+def module_view(p: Protocol) -> dict:
+    """Everything the module template needs, computed."""
+    view = PythonView(p)
+    codes = [MessageCode(view, m, i) for i, m in enumerate(p.messages)]
+    fr = p.framing
+    functions: list[str] = []
+    structs: list[tuple[str, str]] = []
+    for mc in codes:
+        if fr.kind == "text":
+            functions += [mc.text_encode_function(), mc.text_decode_function()]
+            continue
+        functions += [mc.raw_function(), mc.build_function(), mc.encode_bytes_function(),
+                      mc.decode_bytes_function()]
+        if fr.text_form:
+            functions.append(mc.text_form_functions())
+        structs += mc.structs()
+    return {
+        "p": p, "view": view, "codes": codes, "functions": functions, "structs": structs,
+        "classes": view.dataclasses(), "checksums": view.checksum_functions(),
+        "dispatch": view.dispatch_table(), "sequences": [view.sequence_view(s) for s in p.sequences],
+        "stream": view.stream_view(),
+    }
+
+
+def _checksum_name(cs) -> str:
+    if cs.algorithm == "crc":
+        c = cs.crc
+        return (f"crc{c.width}_{c.poly:x}_{c.init:x}_{'r' if c.refin else 'n'}"
+                f"{'r' if c.refout else 'n'}_{c.xorout:x}")
+    return f"{cs.algorithm}{cs.modulo or ''}"
+
+
+def _checksum_code(cs) -> str:
+    name = _checksum_name(cs)
+    c = Code()
+    if cs.algorithm == "crc":
+        p = cs.crc
+        mask = (1 << p.width) - 1
+        c(f"# {p.name if p.name != 'custom' else 'CRC'}: width={p.width} poly={p.poly:#x} init={p.init:#x} "
+          f"refin={p.refin} refout={p.refout} xorout={p.xorout:#x}")
+        if p.refin:
+            # Reflected algorithm: shift right with the reflected polynomial.
+            rpoly = int(f"{p.poly:0{p.width}b}"[::-1], 2)
+            c(f"def _make_{name}():")
+            c("    table = []")
+            c("    for byte in range(256):")
+            c("        reg = byte")
+            c("        for _ in range(8):")
+            c(f"            reg = (reg >> 1) ^ {rpoly:#x} if reg & 1 else reg >> 1")
+            c("        table.append(reg)")
+            c("    return tuple(table)")
+            init = int(f"{p.init:0{p.width}b}"[::-1], 2)
+            c(f"_TABLE_{name} = _make_{name}()")
+            c(f"def _checksum_{name}(data):")
+            c(f"    reg = {init:#x}")
+            c(f"    table = _TABLE_{name}")
+            c("    for byte in data:")
+            c("        reg = table[(reg ^ byte) & 0xFF] ^ (reg >> 8)")
+            if not p.refout:
+                c(f"    reg = int(format(reg, '0{p.width}b')[::-1], 2)")
+            c(f"    return reg ^ {p.xorout:#x}")
+        else:
+            top = 1 << (p.width - 1)
+            shift = p.width - 8
+            c(f"def _make_{name}():")
+            c("    table = []")
+            c("    for byte in range(256):")
+            if p.width >= 8:
+                c(f"        reg = byte << {shift}")
+                c("        for _ in range(8):")
+                c(f"            reg = ((reg << 1) ^ {p.poly:#x}) & {mask:#x} if reg & {top:#x} else (reg << 1) & {mask:#x}")
+            else:
+                c(f"        reg = byte << {8 - p.width}  # widths under 8 run on a left-aligned register")
+                c("        for _ in range(8):")
+                c(f"            reg = ((reg << 1) ^ {p.poly << (8 - p.width):#x}) & 0xFF if reg & 0x80 else (reg << 1) & 0xFF")
+            c("        table.append(reg)")
+            c("    return tuple(table)")
+            c(f"_TABLE_{name} = _make_{name}()")
+            c(f"def _checksum_{name}(data):")
+            if p.width >= 8:
+                c(f"    reg = {p.init:#x}")
+                c(f"    table = _TABLE_{name}")
+                c("    for byte in data:")
+                c(f"        reg = table[((reg >> {shift}) ^ byte) & 0xFF] ^ ((reg << 8) & {mask:#x})")
+            else:
+                c(f"    reg = {p.init << (8 - p.width):#x}")
+                c(f"    table = _TABLE_{name}")
+                c("    for byte in data:")
+                c("        reg = table[reg ^ byte]")
+                c(f"    reg >>= {8 - p.width}")
+            if p.refout:
+                c(f"    reg = int(format(reg, '0{p.width}b')[::-1], 2)")
+            c(f"    return reg ^ {p.xorout:#x}")
+    elif cs.algorithm == "sum":
+        c(f"def _checksum_{name}(data):")
+        c(f"    return sum(data) % {cs.modulo}")
+    elif cs.algorithm == "xor":
+        c(f"def _checksum_{name}(data):")
+        c("    x = 0")
+        c("    for byte in data:")
+        c("        x ^= byte")
+        c(f"    return x % {cs.modulo}")
+    else:
+        c(f"def _checksum_{name}(data):")
+        flip = " ^ 1" if cs.parity == "odd" else ""
+        c(f"    return int.from_bytes(data, 'big').bit_count() & 1{flip}")
+    return c.text()
+
+
+def _checksum_functions(self) -> list[str]:
+    seen: dict[str, str] = {}
+    for m in self.p.messages:
+        for f in leaves_of(m.layout):
+            cs = f.field.checksum
+            if cs and cs.over == "bytes":
+                seen.setdefault(_checksum_name(cs), _checksum_code(cs))
+    return list(seen.values())
+
+
+def _dispatch_table(self) -> dict:
+    """How module-level decode finds the message a frame holds."""
+    p, fr = self.p, self.p.framing
+    if not p.self_identifying:
+        return {"kind": "none"}
+    if fr.kind == "text":
+        return {"kind": "text", "prefixes": [(m.ids[0], m.name, m.direction) for m in p.messages]}
+    if fr.kind == "bits":
+        entries = []
+        for m in p.messages:
+            tests = []
+            for leaf in leaves_of(m.layout):
+                pass
+            pos = 0
+            for leaf in leaves_of(m.layout):
+                f = leaf.field
+                if f.dispatch:
+                    tests.append((pos, f.bits, f.const))
+                pos += f.bits or 0
+            entries.append({"name": m.name, "size": m.size, "tests": tests})
+        head = max(pos + bits for e in entries for pos, bits, _ in e["tests"])
+        min_size = min(m.size for m in p.messages)
+        return {"kind": "bits", "entries": entries, "head_bytes": min_size,
+                "head_bits": 8 * min_size, "ok": head <= 8 * min_size}
+    # bytes: the envelope's dispatch field
+    env = [x for x in leaves_of(tuple(f for f in fr.envelope))]
+    pos = 0
+    field_pos = None
+    for leaf in env:
+        if leaf.field.dispatch:
+            field_pos = (pos, leaf.field.bits)
+        pos += leaf.field.bits or 0
+    start, bits = field_pos
+    first, last = start // 8, (start + bits - 1) // 8 + 1
+    shift = last * 8 - (start + bits)
+    keys = []
+    for m in p.messages:
+        for value in m.ids:
+            keys.append((value, m.size, m.direction, m.name))
+    return {"kind": "bytes", "first": first, "last": last, "shift": shift,
+            "mask": (1 << bits) - 1, "frames": keys}
+
+
+def _stream_view(self) -> dict:
+    p, fr = self.p, self.p.framing
+    if fr.kind != "bytes":
+        return {}
+    leaves = leaves_of(tuple(f for f in fr.envelope))
+    first = leaves[0].field
+    sync = first.const if first.const is not None and first.bits == 8 else None
+    length = None
+    pos = 0
+    for leaf in leaves_of(p.messages[0].layout):
+        if leaf.field.length_of:
+            span = next(x for x in p.messages[0].layout if x.name == leaf.field.name)
+            length = {"at": pos // 8, "overhead": p.messages[0].size - span.const}
+        pos += leaf.field.bits or 0
+    sizes = sorted({m.size for m in p.messages})
+    return {"sync": sync, "length": length, "sizes": sizes, "max": max(sizes), "min": min(sizes)}
+
+
+def _sequence_view(self, s: Sequence) -> dict:
+    classes: list[dict] = []
+
+    def item_spec(item: SequenceItem, owner: str) -> str:
+        if item.message:
+            cls = camel(item.message)
+            mode = "count" if item.count else "repeat" if item.repeat else "one"
+            return f"({item.name!r}, {mode!r}, {item.message!r}, {item.count!r}, None)"
+        cls = owner + camel(item.name)
+        children = ", ".join(item_spec(c, cls) for c in item.items)
+        classes.append({"name": cls, "fields": [(c.name, annotation(c, cls)) for c in item.items]})
+        mode = "repeat" if item.repeat else "one"
+        return f"({item.name!r}, {mode!r}, {cls}, {item.count!r}, ({children},))"
+
+    def annotation(item: SequenceItem, owner: str) -> str:
+        inner = camel(item.message) if item.message else owner + camel(item.name)
+        return f"list[{inner}]" if item.repeat or item.count else inner
+
+    cls = camel(s.name)
+    spec = ", ".join(item_spec(i, cls) for i in s.items)
+    classes.append({"name": cls, "fields": [(i.name, annotation(i, cls)) for i in s.items]})
+    rules = []
+    for r in s.rules:
+        rules.append(f"({r.kind!r}, {tuple(r.path.split('.'))!r}, "
+                     f"{r.start if r.kind == 'consecutive' else tuple((r.to or r.of or '').split('.')) if r.kind in ('equal', 'member') else r.key!r}, "
+                     f"{r.id!r})")
+    return {"name": s.name, "cls": cls, "classes": classes, "spec": f"({spec},)",
+            "rules": f"({', '.join(rules)}{',' if rules else ''})", "doc": str(s.doc or s.name)}
+
+
+PythonView.checksum_functions = _checksum_functions
+PythonView.checksum_name = staticmethod(_checksum_name)
+PythonView.dispatch_table = _dispatch_table
+PythonView.stream_view = _stream_view
+PythonView.sequence_view = _sequence_view

@@ -1,0 +1,33 @@
+"""The Jinja2 environment shared by every target: strict, with escaping filters."""
+from __future__ import annotations
+
+from functools import lru_cache
+from pathlib import Path
+
+import jinja2
+
+TEMPLATES = Path(__file__).resolve().parent.parent.parent / "templates"
+
+
+def pyrepr(value) -> str:
+    return repr(value)
+
+
+def comment(value) -> str:
+    """Text safe inside a one-line comment: no newlines."""
+    return " ".join(str(value).split())
+
+
+def docline(value) -> str:
+    """Text safe inside a triple-quoted docstring."""
+    text = " ".join(str(value).split())
+    return text.replace("\\", "\\\\").replace('"""', '\\"\\"\\"').rstrip('"')
+
+
+@lru_cache(maxsize=1)
+def environment() -> jinja2.Environment:
+    env = jinja2.Environment(loader=jinja2.FileSystemLoader(str(TEMPLATES)),
+                             undefined=jinja2.StrictUndefined, trim_blocks=True,
+                             lstrip_blocks=True, keep_trailing_newline=True, autoescape=False)
+    env.filters.update(pyrepr=pyrepr, comment=comment, docline=docline)
+    return env
