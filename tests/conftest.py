@@ -1,0 +1,58 @@
+"""Shared fixtures: the committed generated modules and the resolved models."""
+from __future__ import annotations
+
+import importlib.util
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+SCHEMAS = ROOT / "schemas"
+GENERATED = ROOT / "generated" / "python"
+DATA = Path(__file__).resolve().parent / "data"
+PROTOCOLS = ("route", "car", "tank", "mtv4", "tr24")
+
+sys.path.insert(0, str(ROOT))
+
+
+def load_generated(name: str):
+    """Import generated/python/<name>.py as a stand-alone module (no `compiler` import)."""
+    key = f"generated_{name}"
+    if key in sys.modules:
+        return sys.modules[key]
+    spec = importlib.util.spec_from_file_location(key, GENERATED / f"{name}.py")
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[key] = module
+    spec.loader.exec_module(module)
+    return module
+
+
+def load_model(name: str):
+    from compiler.build import compile_schema
+    return compile_schema(SCHEMAS / f"{name}.yaml")
+
+
+@pytest.fixture(scope="session")
+def route():
+    return load_generated("route")
+
+
+@pytest.fixture(scope="session")
+def car():
+    return load_generated("car")
+
+
+@pytest.fixture(scope="session")
+def tank():
+    return load_generated("tank")
+
+
+@pytest.fixture(scope="session")
+def mtv4():
+    return load_generated("mtv4")
+
+
+@pytest.fixture(scope="session")
+def tr24():
+    return load_generated("tr24")
