@@ -628,6 +628,14 @@ class MessageCode:
                 continue
             if chunk.code == "s":
                 c(f"{var} = int.from_bytes({var}, 'big')")
+            used = 0
+            for leaf, shift in chunk.leaves:
+                used |= ((1 << leaf.field.bits) - 1) << shift
+            padding = ((1 << (8 * chunk.nbytes)) - 1) & ~used
+            if padding:  # bits after the record that fill the last byte must be zero
+                c(f"if {var} & {padding:#x}:")
+                c(f"    raise _dec({self.m.name!r}, 'padding', {var} & {padding:#x}, 'reserved', '0', "
+                  f"{8 * (chunk.start + chunk.nbytes) - padding.bit_length()})")
             for leaf, shift in chunk.leaves:
                 bits = leaf.field.bits
                 c(f"{leaf.var} = ({var} >> {shift}) & {(1 << bits) - 1:#x}" if shift

@@ -64,8 +64,12 @@ class EncodeError(CodecError):
 class DecodeError(CodecError):
     """Wire data that is not a valid message."""
 
+    unit = "bit"  # offsets count bits in binary frames, characters in text lines
+
     def _where_offset(self):
-        return f"byte {self.offset // 8} bit {self.offset % 8}" if isinstance(self.offset, int) else str(self.offset)
+        if self.unit == "bit" and isinstance(self.offset, int):
+            return f"byte {self.offset // 8} bit {self.offset % 8}"
+        return f"character {self.offset}"
 
 
 class SequenceError(CodecError):
@@ -596,10 +600,14 @@ class _Unit:
 
 def _grammar_error(name, expected, unit, count):
     if unit is None:
-        return _dec(name, expected, None, 'grammar', f'a {expected} before the end', None)
-    e = _dec(name, expected, unit.kind, 'grammar', f'a {expected}', None)
+        return _dec(name, expected, None, 'grammar', f'{_article(expected)} before the end', None)
+    e = _dec(name, expected, unit.kind, 'grammar', _article(expected), None)
     e.index, e.line = unit.index, unit.line
     return e
+
+
+def _article(noun):
+    return ("an " if noun[:1] in "aeiou" else "a ") + noun
 
 
 def _first(items):

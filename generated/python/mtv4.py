@@ -64,8 +64,12 @@ class EncodeError(CodecError):
 class DecodeError(CodecError):
     """Wire data that is not a valid message."""
 
+    unit = "bit"  # offsets count bits in binary frames, characters in text lines
+
     def _where_offset(self):
-        return f"byte {self.offset // 8} bit {self.offset % 8}" if isinstance(self.offset, int) else str(self.offset)
+        if self.unit == "bit" and isinstance(self.offset, int):
+            return f"byte {self.offset // 8} bit {self.offset % 8}"
+        return f"character {self.offset}"
 
 
 class SequenceError(CodecError):

@@ -64,8 +64,12 @@ class EncodeError(CodecError):
 class DecodeError(CodecError):
     """Wire data that is not a valid message."""
 
+    unit = "bit"  # offsets count bits in binary frames, characters in text lines
+
     def _where_offset(self):
-        return f"byte {self.offset // 8} bit {self.offset % 8}" if isinstance(self.offset, int) else str(self.offset)
+        if self.unit == "bit" and isinstance(self.offset, int):
+            return f"byte {self.offset // 8} bit {self.offset % 8}"
+        return f"character {self.offset}"
 
 
 class SequenceError(CodecError):
@@ -332,6 +336,8 @@ def _decode_object(d):
     r_ns = (c0_0 >> 3) & 0x7
     r_nl = c0_0 & 0x7
     c0_1 = int.from_bytes(c0_1, 'big')
+    if c0_1 & 0x7:
+        raise _dec('object', 'padding', c0_1 & 0x7, 'reserved', '0', 29)
     r_no = (c0_1 >> 21) & 0x7
     r_na = (c0_1 >> 18) & 0x7
     r_dl = (c0_1 >> 15) & 0x7
@@ -411,6 +417,8 @@ def _decode_scene(d):
     r_ns = (c0_0 >> 3) & 0x7
     r_nl = c0_0 & 0x7
     c0_1 = int.from_bytes(c0_1, 'big')
+    if c0_1 & 0x7:
+        raise _dec('scene', 'padding', c0_1 & 0x7, 'reserved', '0', 29)
     r_db = (c0_1 >> 21) & 0x7
     r_nt = (c0_1 >> 6) & 0x7fff
     r_cs = (c0_1 >> 3) & 0x7
@@ -571,6 +579,7 @@ def decode_text(line):
     except DecodeError as exc:
         if isinstance(exc.offset, int) and exc.field:
             exc.offset = offsets[_TEXT_INDEX[text_fn].get(exc.field, 0)] if exc.field in _TEXT_INDEX[text_fn] else 0
+        exc.unit = "character"
         raise
 
 
@@ -725,10 +734,14 @@ class _Unit:
 
 def _grammar_error(name, expected, unit, count):
     if unit is None:
-        return _dec(name, expected, None, 'grammar', f'a {expected} before the end', None)
-    e = _dec(name, expected, unit.kind, 'grammar', f'a {expected}', None)
+        return _dec(name, expected, None, 'grammar', f'{_article(expected)} before the end', None)
+    e = _dec(name, expected, unit.kind, 'grammar', _article(expected), None)
     e.index, e.line = unit.index, unit.line
     return e
+
+
+def _article(noun):
+    return ("an " if noun[:1] in "aeiou" else "a ") + noun
 
 
 def _first(items):
