@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import importlib.util
 import sys
+from functools import lru_cache
 from pathlib import Path
 
 import pytest
@@ -28,6 +29,7 @@ def load_generated(name: str):
     return module
 
 
+@lru_cache(maxsize=None)
 def load_model(name: str):
     from compiler.build import compile_schema
     return compile_schema(SCHEMAS / f"{name}.yaml")
