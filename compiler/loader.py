@@ -92,8 +92,11 @@ def load_text(text: str, file: str) -> Document:
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
         loc = Loc(file, mark.line + 1, mark.column + 1) if mark else Loc(file, 1, 1)
-        raise SchemaError([Diagnostic(loc, f"YAML syntax: {exc.problem or exc}",
-                                      "fix the YAML syntax at this position")]) from None
+        context = ""
+        if exc.context and exc.context_mark and exc.context_mark is not mark:
+            context = f" ({exc.context} that starts at line {exc.context_mark.line + 1})"
+        raise SchemaError([Diagnostic(loc, f"YAML syntax: {exc.problem or exc}{context}",
+                                      "fix the YAML syntax here or where the enclosing block starts")]) from None
     except yaml.YAMLError as exc:
         raise SchemaError([Diagnostic(Loc(file, 1, 1), f"YAML: {exc}", "")]) from None
     if node is None:
@@ -121,7 +124,8 @@ def load_text(text: str, file: str) -> Document:
             return _scalar(n)
         if isinstance(n, yaml.SequenceNode):
             if n.tag != "tag:yaml.org,2002:seq":
-                errors.append(Diagnostic(_loc(file, n), f"YAML tag {n.tag!r} is not allowed", ""))
+                errors.append(Diagnostic(_loc(file, n), f"YAML tag {n.tag!r} is not allowed",
+                                         "use plain YAML data without tags"))
             return [build(item, path + (i,), depth + 1) for i, item in enumerate(n.value)]
         if n.tag != "tag:yaml.org,2002:map":
             errors.append(Diagnostic(_loc(file, n), f"YAML tag {n.tag!r} is not allowed",
@@ -130,7 +134,8 @@ def load_text(text: str, file: str) -> Document:
         result: dict[Any, Any] = {}
         for key_node, value_node in n.value:
             if not isinstance(key_node, yaml.ScalarNode):
-                errors.append(Diagnostic(_loc(file, key_node), "mapping keys must be scalars", ""))
+                errors.append(Diagnostic(_loc(file, key_node), "mapping keys must be scalars",
+                                         "use a plain name as the key"))
                 continue
             key = _scalar(key_node)
             if not isinstance(key, (str, int)) or isinstance(key, bool):

@@ -138,6 +138,7 @@ class Checksum:
     crc: Optional[CrcParams] = None
     # Byte range [start, end) of the frame covered, computed for bytes framing.
     byte_span: Optional[tuple[int, int]] = None
+    loc: Optional[Loc] = None
 
 
 @dataclass(frozen=True)

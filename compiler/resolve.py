@@ -31,6 +31,7 @@ MAX_BYTES_LENGTH = 4096
 FIELD_RULES = ("range", "const", "values", "enum", "flags", "exactly_one", "one_hot",
                "reserved", "checksum", "length", "type", "parity", "dispatch")
 SEQUENCE_RULES = ("grammar", "count")
+DEFAULT_HINT = "see docs/schema-language.md for what this key accepts"
 
 
 def text(value: Any) -> Optional[Text]:
@@ -56,7 +57,7 @@ class Resolver:
         return self.doc.loc(path)
 
     def error(self, path: tuple, message: str, hint: str = "") -> None:
-        self.report.error(self.doc.loc(path), message, hint)
+        self.report.error(self.doc.loc(path), message, hint or DEFAULT_HINT)
 
     def check_name(self, name: str, path: tuple, what: str) -> None:
         problem = name_problem(name)
@@ -91,6 +92,7 @@ class Resolver:
         for n, f in d.get("flags", {}).items():
             self.flags[n] = self.resolve_flags(n, f)
         self.check_type_cycles()
+        self.report.raise_if_any()  # a cyclic type would make every later error misleading
         group_types = tuple(
             (n, self.resolve_field({"name": n, **t}, ("types", n), allow_payload=False))
             for n, t in d.get("types", {}).items() if self.base_type(t, ("types", n)) == "group")
@@ -197,7 +199,6 @@ class Resolver:
                     self.error(("types", start, "type"),
                                f"type {start!r} refers to itself through {' → '.join(seen + [current])}",
                                "a type must end in a built-in type")
-                    types[start]["type"] = "u8"  # stop further resolution from looping
                     break
                 seen.append(current)
                 current = types[current].get("type")
@@ -460,7 +461,8 @@ class Resolver:
             self.error(path, f"a parity bit is 1 bit wide, not {bits}")
         if modulo is not None and bits and modulo > (1 << bits):
             self.error(path + ("modulo",), f"sum modulo {modulo} does not fit {bits} bits")
-        return Checksum(algorithm, over, covers, c.get("parity", "even"), modulo, params)
+        return Checksum(algorithm, over, covers, c.get("parity", "even"), modulo, params,
+                        loc=self.loc(*(path + ("covers",))) if "covers" in c else self.loc(*path))
 
     # -- framing ---------------------------------------------------------------------------
     def resolve_framing(self, fr: dict) -> Framing:
@@ -620,6 +622,10 @@ class Resolver:
         if bits is None:
             return
         listing = " + ".join(f"{f.name}={f.bits}" for f in layout if not f.is_payload)
+        if bits == 0:
+            self.error(path + ("fields",), f"message {name!r} has no fields: nothing on the wire",
+                       "give it at least one field")
+            return
         if "bits" in m and m["bits"] != bits:
             self.error(path + ("bits",), f"message {name!r}: fields add up to {bits} bits, "
                                          f"but the message declares {m['bits']} ({listing})",
@@ -647,8 +653,9 @@ class Resolver:
                 start_f, end_f = by_name.get(pair[0]), by_name.get(pair[1])
                 for end_name, end in zip(pair, (start_f, end_f)):
                     if end is None:
-                        self.error(path, f"message {name!r}: {f.name!r} covers unknown field {end_name!r}",
-                                   "name envelope fields or `payload`")
+                        self.report.error(f.checksum.loc if f.checksum else f.loc,
+                                          f"message {name!r}: {f.name!r} covers unknown field "
+                                                 f"{end_name!r}", "name envelope fields or `payload`")
                 if start_f and end_f:
                     start = start_f.bit_offset
                     stop = end_f.bit_offset + (end_f.bits or 0)
@@ -657,8 +664,8 @@ class Resolver:
                     if stop <= start:
                         self.error(path, f"message {name!r}: coverage of {f.name!r} is empty or reversed")
                     if f.checksum and start <= f.bit_offset < stop:
-                        self.error(path, f"message {name!r}: checksum {f.name!r} covers itself",
-                                   "a checksum cannot be part of what it checks")
+                        self.report.error(f.checksum.loc, f"message {name!r}: checksum {f.name!r} covers itself",
+                                          "a checksum cannot be part of what it checks")
                     span = (start // 8, stop // 8)
             if f.checksum:
                 if f.checksum.covers is None and framing.kind == "bytes":

@@ -30,32 +30,8 @@ EXPECT = re.compile(r"^# expect: (\d+): (.+?)\s*$")
 # fixed the test passes unexpectedly and fails, so whoever fixes it removes the
 # entry here. Location/message bugs and missing hints are tracked separately so
 # that a file with a missing hint still has its line checked.
-WRONG_ERROR: dict[str, str] = {
-    "checksum_covers_unknown_field.yaml":
-        "bug: the error names the message's line (26), not the checksum's `covers` (24) "
-        "in framing.layout where the unknown field is written",
-    "checksum_covers_itself.yaml":
-        "bug: the error names the message's line (26), not the checksum's `covers` (24) "
-        "in framing.layout where the self-covering range is written",
-    "yaml_unclosed_flow_mapping.yaml":
-        "bug: loader reports PyYAML's problem_mark (line 9, the next key) and drops the "
-        "context mark (line 8, where the unclosed `{` is) and its 'while parsing a flow mapping'",
-    "bits_message_without_fields.yaml":
-        "bug: a bits message with `fields: []` passes the checker and the generated Python "
-        "does not load (`return (,)`: SyntaxError), reported at 1:1 as a codeword bug",
-}
-MISSING_HINT: dict[str, str] = {
-    name: "bug: this diagnostic has an empty hint (no `hint:` line), against the documented "
-          "`file:line:col: error: message` + hint contract"
-    for name in (
-        "bytes_length_huge.yaml",
-        "duplicate_enum_member.yaml",
-        "machine_transition_to_unknown_state.yaml",
-        "machine_unreachable_state.yaml",
-        "string_in_bits_framing.yaml",
-        "unknown_enum.yaml",
-    )
-}
+WRONG_ERROR: dict[str, str] = {}
+MISSING_HINT: dict[str, str] = {}
 
 
 def expectations(path: Path) -> list[tuple[int, str]]:

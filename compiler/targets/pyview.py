@@ -492,7 +492,7 @@ class MessageCode:
                 else:
                     flip = " ^ 1" if cs.parity == "odd" else ""
                     c(f"{leaf.var} = ({' + '.join(f'{t}.bit_count()' for t in terms)}) & 1{flip}")
-        c(f"return ({', '.join(x.var for x in self.leaves)},)")
+        c(f"return ({''.join(x.var + ', ' for x in self.leaves)})")
         return c.text()
 
     @staticmethod

@@ -237,7 +237,7 @@ def _raw_header(m):
             raise _enc('header', 'h2_time', v, 'range', '0..7 or None', 'CAR-D3')
         r_h2_time = 1 << v
     r_h3 = 0
-    return (r_h1, r_h2_count, r_h2_time, r_h3,)
+    return (r_h1, r_h2_count, r_h2_time, r_h3, )
 
 
 def _build_header(r_h1, r_h2_count, r_h2_time, r_h3, text_form=False):
@@ -344,7 +344,7 @@ def _raw_master_control(m):
     r_reserved_bits = 0
     r_parity = 0
     r_parity = (r_accept_ir.bit_count() + r_forward_words.bit_count() + r_motor_enable.bit_count() + r_motor_direction.bit_count() + r_motor_speed.bit_count() + r_motor_duration.bit_count() + r_led_led.bit_count() + r_led_duration.bit_count() + r_ultrasonic_enable.bit_count() + r_ultrasonic_radius.bit_count() + r_ultrasonic_duration.bit_count() + r_voice.bit_count() + r_body_sensor.bit_count() + r_reserved_bits.bit_count()) & 1
-    return (r_accept_ir, r_forward_words, r_motor_enable, r_motor_direction, r_motor_speed, r_motor_duration, r_led_led, r_led_duration, r_ultrasonic_enable, r_ultrasonic_radius, r_ultrasonic_duration, r_voice, r_body_sensor, r_reserved_bits, r_parity,)
+    return (r_accept_ir, r_forward_words, r_motor_enable, r_motor_direction, r_motor_speed, r_motor_duration, r_led_led, r_led_duration, r_ultrasonic_enable, r_ultrasonic_radius, r_ultrasonic_duration, r_voice, r_body_sensor, r_reserved_bits, r_parity, )
 
 
 def _build_master_control(r_accept_ir, r_forward_words, r_motor_enable, r_motor_direction, r_motor_speed, r_motor_duration, r_led_led, r_led_duration, r_ultrasonic_enable, r_ultrasonic_radius, r_ultrasonic_duration, r_voice, r_body_sensor, r_reserved_bits, r_parity, text_form=False):
@@ -460,7 +460,7 @@ def _raw_slave_control(m):
     r_reserved_bits = 0
     r_parity = 0
     r_parity = (r_accept_ir.bit_count() + r_forward_words.bit_count() + r_motor_enable.bit_count() + r_motor_direction.bit_count() + r_motor_speed.bit_count() + r_motor_duration.bit_count() + r_led_led.bit_count() + r_led_duration.bit_count() + r_ultrasonic_enable.bit_count() + r_ultrasonic_radius.bit_count() + r_ultrasonic_duration.bit_count() + r_voice.bit_count() + r_body_sensor.bit_count() + r_reserved_bits.bit_count()) & 1
-    return (r_accept_ir, r_forward_words, r_motor_enable, r_motor_direction, r_motor_speed, r_motor_duration, r_led_led, r_led_duration, r_ultrasonic_enable, r_ultrasonic_radius, r_ultrasonic_duration, r_voice, r_body_sensor, r_reserved_bits, r_parity,)
+    return (r_accept_ir, r_forward_words, r_motor_enable, r_motor_direction, r_motor_speed, r_motor_duration, r_led_led, r_led_duration, r_ultrasonic_enable, r_ultrasonic_radius, r_ultrasonic_duration, r_voice, r_body_sensor, r_reserved_bits, r_parity, )
 
 
 def _build_slave_control(r_accept_ir, r_forward_words, r_motor_enable, r_motor_direction, r_motor_speed, r_motor_duration, r_led_led, r_led_duration, r_ultrasonic_enable, r_ultrasonic_radius, r_ultrasonic_duration, r_voice, r_body_sensor, r_reserved_bits, r_parity, text_form=False):

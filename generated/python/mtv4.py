@@ -306,7 +306,7 @@ def _raw_set_wheels_velocities(m):
         raise _enc('set_wheels_velocities', 'vr', v, 'range', '-4096..4095.875', 'MTV4-D5')
     r_vr = _floor(v / 0.125 + 0.5)
     r_crc = 0
-    return (r_sync, r_length, r_group, r_radio_crc_flag, r_command, r_robots, r_vl, r_vr, r_crc,)
+    return (r_sync, r_length, r_group, r_radio_crc_flag, r_command, r_robots, r_vl, r_vr, r_crc, )
 
 
 def _build_set_wheels_velocities(r_sync, r_length, r_group, r_radio_crc_flag, r_command, r_robots, r_vl, r_vr, r_crc, text_form=False):
@@ -409,7 +409,7 @@ def _raw_set_led(m):
         raise _enc('set_led', 'd4', v, 'range', '0..255', None)
     r_d4 = v
     r_crc = 0
-    return (r_sync, r_length, r_group, r_radio_crc_flag, r_command, r_robots, r_d1, r_d2, r_d3, r_d4, r_crc,)
+    return (r_sync, r_length, r_group, r_radio_crc_flag, r_command, r_robots, r_d1, r_d2, r_d3, r_d4, r_crc, )
 
 
 def _build_set_led(r_sync, r_length, r_group, r_radio_crc_flag, r_command, r_robots, r_d1, r_d2, r_d3, r_d4, r_crc, text_form=False):
@@ -528,7 +528,7 @@ def _raw_set_wheels_velocities_with_odometry(m):
         raise _enc('set_wheels_velocities_with_odometry', 'th', v, 'range', 'a binary32 value')
     r_th = v
     r_crc = 0
-    return (r_sync, r_length, r_group, r_radio_crc_flag, r_command, r_robots, r_status, r_vl, r_vr, r_x, r_y, r_th, r_crc,)
+    return (r_sync, r_length, r_group, r_radio_crc_flag, r_command, r_robots, r_status, r_vl, r_vr, r_x, r_y, r_th, r_crc, )
 
 
 def _build_set_wheels_velocities_with_odometry(r_sync, r_length, r_group, r_radio_crc_flag, r_command, r_robots, r_status, r_vl, r_vr, r_x, r_y, r_th, r_crc, text_form=False):
@@ -626,7 +626,7 @@ def _raw_ack(m):
         raise _enc('ack', 'robots', v, 'exactly_one', 'exactly one bit set', 'MTV4-D3', 'an individual command or reply addresses exactly one robot')
     r_robots = int(v)
     r_crc = 0
-    return (r_sync, r_length, r_group, r_radio_crc_flag, r_command, r_robots, r_crc,)
+    return (r_sync, r_length, r_group, r_radio_crc_flag, r_command, r_robots, r_crc, )
 
 
 def _build_ack(r_sync, r_length, r_group, r_radio_crc_flag, r_command, r_robots, r_crc, text_form=False):
@@ -729,7 +729,7 @@ def _raw_odometry_reply(m):
         raise _enc('odometry_reply', 'th', v, 'range', 'a binary32 value')
     r_th = v
     r_crc = 0
-    return (r_sync, r_length, r_group, r_radio_crc_flag, r_command, r_robots, r_status, r_x, r_y, r_th, r_crc,)
+    return (r_sync, r_length, r_group, r_radio_crc_flag, r_command, r_robots, r_status, r_x, r_y, r_th, r_crc, )
 
 
 def _build_odometry_reply(r_sync, r_length, r_group, r_radio_crc_flag, r_command, r_robots, r_status, r_x, r_y, r_th, r_crc, text_form=False):

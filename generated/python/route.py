@@ -202,7 +202,7 @@ def _raw_start(m):
     r_kind = 1
     r_cs = 0
     r_cs = (r_hdr + r_kind) % 8
-    return (r_hdr, r_kind, r_cs,)
+    return (r_hdr, r_kind, r_cs, )
 
 
 def _build_start(r_hdr, r_kind, r_cs, text_form=False):
@@ -294,7 +294,7 @@ def _raw_object(m):
     r_cm = v
     r_cs = 0
     r_cs = (r_hdr + r_ns + r_nl + r_no + r_na + r_dl + r_rc + r_dr + r_cm) % 8
-    return (r_hdr, r_ns, r_nl, r_no, r_na, r_dl, r_rc, r_dr, r_cm, r_cs,)
+    return (r_hdr, r_ns, r_nl, r_no, r_na, r_dl, r_rc, r_dr, r_cm, r_cs, )
 
 
 def _build_object(r_hdr, r_ns, r_nl, r_no, r_na, r_dl, r_rc, r_dr, r_cm, r_cs, text_form=False):
@@ -384,7 +384,7 @@ def _raw_scene(m):
     r_nt = v
     r_cs = 0
     r_cs = (r_hdr + r_ns + r_nl + r_db + r_nt) % 8
-    return (r_hdr, r_ns, r_nl, r_db, r_nt, r_cs,)
+    return (r_hdr, r_ns, r_nl, r_db, r_nt, r_cs, )
 
 
 def _build_scene(r_hdr, r_ns, r_nl, r_db, r_nt, r_cs, text_form=False):
@@ -440,7 +440,7 @@ def _raw_end(m):
     r_kind = 2
     r_cs = 0
     r_cs = (r_hdr + r_kind) % 8
-    return (r_hdr, r_kind, r_cs,)
+    return (r_hdr, r_kind, r_cs, )
 
 
 def _build_end(r_hdr, r_kind, r_cs, text_form=False):

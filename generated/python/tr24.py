@@ -179,7 +179,7 @@ def _raw_command(m):
         raise _enc('command', 'data', v, 'length', 'bytes of length 7')
     r_data = bytes(v)
     r_stop = 3
-    return (r_start, r_reserved, r_type, r_seq, r_sender, r_receiver, r_data, r_stop,)
+    return (r_start, r_reserved, r_type, r_seq, r_sender, r_receiver, r_data, r_stop, )
 
 
 def _build_command(r_start, r_reserved, r_type, r_seq, r_sender, r_receiver, r_data, r_stop, text_form=False):
@@ -243,7 +243,7 @@ def _raw_reply(m):
         raise _enc('reply', 'data', v, 'length', 'bytes of length 7')
     r_data = bytes(v)
     r_stop = 3
-    return (r_start, r_reserved, r_type, r_seq, r_sender, r_receiver, r_data, r_stop,)
+    return (r_start, r_reserved, r_type, r_seq, r_sender, r_receiver, r_data, r_stop, )
 
 
 def _build_reply(r_start, r_reserved, r_type, r_seq, r_sender, r_receiver, r_data, r_stop, text_form=False):
