@@ -420,7 +420,7 @@ def test_every_protocol_is_covered():
         assert set(mod.MESSAGES) == {m.name for m in proto.messages}, name
         for msg in proto.messages:
             fields = [f.name for f in dataclasses.fields(mod.MESSAGES[msg.name])]
-            assert fields == [f.name for f in msg.members] or set(fields) == {f.name for f in msg.members}, \
+            assert set(fields) == {f.name for f in msg.members}, \
                 f"{name}.{msg.name}: dataclass fields {fields} are not the model's members"
 
 
@@ -710,7 +710,7 @@ def test_accepted_words_reencode_to_the_same_word(proto_name, msg_name, data):
         obj = mod.decode_word(word)
     except mod.CodecError:
         return
-    if type(obj) is mod.MESSAGES[msg_name] or True:
+    if type(obj) is mod.MESSAGES[msg_name]:
         assert mod.encode_word(obj) == word, f"decode_word accepted {word:#x} as {obj}"
 
 

@@ -768,7 +768,7 @@ class MessageCode:
 
 def module_view(p: Protocol) -> dict:
     """Everything the module template needs, computed."""
-    view = PythonView(p)
+    view = ModuleView(p)
     codes = [MessageCode(view, m, i) for i, m in enumerate(p.messages)]
     fr = p.framing
     functions: list[str] = []
@@ -875,109 +875,105 @@ def _checksum_code(cs) -> str:
     return c.text()
 
 
-def _checksum_functions(self) -> list[str]:
-    seen: dict[str, str] = {}
-    for m in self.p.messages:
-        for f in leaves_of(m.layout):
-            cs = f.field.checksum
-            if cs and cs.over == "bytes":
-                seen.setdefault(_checksum_name(cs), _checksum_code(cs))
-    return list(seen.values())
+class ModuleView(PythonView):
+    """The module-level parts: checksum functions, dispatch, streams, sequences."""
+
+    checksum_name = staticmethod(_checksum_name)
+
+    def checksum_functions(self) -> list[str]:
+        seen: dict[str, str] = {}
+        for m in self.p.messages:
+            for f in leaves_of(m.layout):
+                cs = f.field.checksum
+                if cs and cs.over == "bytes":
+                    seen.setdefault(_checksum_name(cs), _checksum_code(cs))
+        return list(seen.values())
 
 
-def _dispatch_table(self) -> dict:
-    """How module-level decode finds the message a frame holds."""
-    p, fr = self.p, self.p.framing
-    if not p.self_identifying:
-        return {"kind": "none"}
-    if fr.kind == "text":
-        return {"kind": "text", "prefixes": [(m.ids[0], m.name, m.direction) for m in p.messages]}
-    if fr.kind == "bits":
-        entries = []
+    def dispatch_table(self) -> dict:
+        """How module-level decode finds the message a frame holds."""
+        p, fr = self.p, self.p.framing
+        if not p.self_identifying:
+            return {"kind": "none"}
+        if fr.kind == "text":
+            return {"kind": "text", "prefixes": [(m.ids[0], m.name, m.direction) for m in p.messages]}
+        if fr.kind == "bits":
+            entries = []
+            for m in p.messages:
+                tests = []
+                pos = 0
+                for leaf in leaves_of(m.layout):
+                    f = leaf.field
+                    if f.dispatch:
+                        tests.append((pos, f.bits, f.const))
+                    pos += f.bits or 0
+                entries.append({"name": m.name, "size": m.size, "tests": tests})
+            head = max(pos + bits for e in entries for pos, bits, _ in e["tests"])
+            min_size = min(m.size for m in p.messages)
+            return {"kind": "bits", "entries": entries, "head_bytes": min_size,
+                    "head_bits": 8 * min_size, "ok": head <= 8 * min_size}
+        # bytes: the envelope's dispatch field
+        env = [x for x in leaves_of(tuple(f for f in fr.envelope))]
+        pos = 0
+        field_pos = None
+        for leaf in env:
+            if leaf.field.dispatch:
+                field_pos = (pos, leaf.field.bits)
+            pos += leaf.field.bits or 0
+        start, bits = field_pos
+        first, last = start // 8, (start + bits - 1) // 8 + 1
+        shift = last * 8 - (start + bits)
+        keys = []
         for m in p.messages:
-            tests = []
-            for leaf in leaves_of(m.layout):
-                pass
-            pos = 0
-            for leaf in leaves_of(m.layout):
-                f = leaf.field
-                if f.dispatch:
-                    tests.append((pos, f.bits, f.const))
-                pos += f.bits or 0
-            entries.append({"name": m.name, "size": m.size, "tests": tests})
-        head = max(pos + bits for e in entries for pos, bits, _ in e["tests"])
-        min_size = min(m.size for m in p.messages)
-        return {"kind": "bits", "entries": entries, "head_bytes": min_size,
-                "head_bits": 8 * min_size, "ok": head <= 8 * min_size}
-    # bytes: the envelope's dispatch field
-    env = [x for x in leaves_of(tuple(f for f in fr.envelope))]
-    pos = 0
-    field_pos = None
-    for leaf in env:
-        if leaf.field.dispatch:
-            field_pos = (pos, leaf.field.bits)
-        pos += leaf.field.bits or 0
-    start, bits = field_pos
-    first, last = start // 8, (start + bits - 1) // 8 + 1
-    shift = last * 8 - (start + bits)
-    keys = []
-    for m in p.messages:
-        for value in m.ids:
-            keys.append((value, m.size, m.direction, m.name))
-    return {"kind": "bytes", "first": first, "last": last, "shift": shift,
-            "mask": (1 << bits) - 1, "frames": keys}
+            for value in m.ids:
+                keys.append((value, m.size, m.direction, m.name))
+        return {"kind": "bytes", "first": first, "last": last, "shift": shift,
+                "mask": (1 << bits) - 1, "frames": keys}
 
 
-def _stream_view(self) -> dict:
-    p, fr = self.p, self.p.framing
-    if fr.kind != "bytes":
-        return {}
-    leaves = leaves_of(tuple(f for f in fr.envelope))
-    first = leaves[0].field
-    sync = first.const if first.const is not None and first.bits == 8 else None
-    length = None
-    pos = 0
-    for leaf in leaves_of(p.messages[0].layout):
-        if leaf.field.length_of:
-            span = next(x for x in p.messages[0].layout if x.name == leaf.field.name)
-            length = {"at": pos // 8, "overhead": p.messages[0].size - span.const}
-        pos += leaf.field.bits or 0
-    sizes = sorted({m.size for m in p.messages})
-    return {"sync": sync, "length": length, "sizes": sizes, "max": max(sizes), "min": min(sizes)}
+    def stream_view(self) -> dict:
+        p, fr = self.p, self.p.framing
+        if fr.kind != "bytes":
+            return {}
+        leaves = leaves_of(tuple(f for f in fr.envelope))
+        first = leaves[0].field
+        sync = first.const if first.const is not None and first.bits == 8 else None
+        length = None
+        pos = 0
+        for leaf in leaves_of(p.messages[0].layout):
+            if leaf.field.length_of:
+                span = next(x for x in p.messages[0].layout if x.name == leaf.field.name)
+                length = {"at": pos // 8, "overhead": p.messages[0].size - span.const}
+            pos += leaf.field.bits or 0
+        sizes = sorted({m.size for m in p.messages})
+        return {"sync": sync, "length": length, "sizes": sizes, "max": max(sizes), "min": min(sizes)}
 
 
-def _sequence_view(self, s: Sequence) -> dict:
-    classes: list[dict] = []
+    def sequence_view(self, s: Sequence) -> dict:
+        classes: list[dict] = []
 
-    def item_spec(item: SequenceItem, owner: str) -> str:
-        if item.message:
-            cls = camel(item.message)
-            mode = "count" if item.count else "repeat" if item.repeat else "one"
-            return f"({item.name!r}, {mode!r}, {item.message!r}, {item.count!r}, None)"
-        cls = owner + camel(item.name)
-        children = ", ".join(item_spec(c, cls) for c in item.items)
-        classes.append({"name": cls, "fields": [(c.name, annotation(c, cls)) for c in item.items]})
-        mode = "repeat" if item.repeat else "one"
-        return f"({item.name!r}, {mode!r}, {cls}, {item.count!r}, ({children},))"
+        def item_spec(item: SequenceItem, owner: str) -> str:
+            if item.message:
+                cls = camel(item.message)
+                mode = "count" if item.count else "repeat" if item.repeat else "one"
+                return f"({item.name!r}, {mode!r}, {item.message!r}, {item.count!r}, None)"
+            cls = owner + camel(item.name)
+            children = ", ".join(item_spec(c, cls) for c in item.items)
+            classes.append({"name": cls, "fields": [(c.name, annotation(c, cls)) for c in item.items]})
+            mode = "repeat" if item.repeat else "one"
+            return f"({item.name!r}, {mode!r}, {cls}, {item.count!r}, ({children},))"
 
-    def annotation(item: SequenceItem, owner: str) -> str:
-        inner = camel(item.message) if item.message else owner + camel(item.name)
-        return f"list[{inner}]" if item.repeat or item.count else inner
+        def annotation(item: SequenceItem, owner: str) -> str:
+            inner = camel(item.message) if item.message else owner + camel(item.name)
+            return f"list[{inner}]" if item.repeat or item.count else inner
 
-    cls = camel(s.name)
-    spec = ", ".join(item_spec(i, cls) for i in s.items)
-    classes.append({"name": cls, "fields": [(i.name, annotation(i, cls)) for i in s.items]})
-    rules = []
-    for r in s.rules:
-        rules.append(f"({r.kind!r}, {tuple(r.path.split('.'))!r}, "
-                     f"{r.start if r.kind == 'consecutive' else tuple((r.to or r.of or '').split('.')) if r.kind in ('equal', 'member') else r.key!r}, "
-                     f"{r.id!r})")
-    return {"name": s.name, "cls": cls, "classes": classes, "spec": f"({spec},)",
-            "rules": f"({', '.join(rules)}{',' if rules else ''})", "doc": str(s.doc or s.name)}
-
-
-PythonView.checksum_functions = _checksum_functions
-PythonView.checksum_name = staticmethod(_checksum_name)
-PythonView.dispatch_table = _dispatch_table
-PythonView.stream_view = _stream_view
-PythonView.sequence_view = _sequence_view
+        cls = camel(s.name)
+        spec = ", ".join(item_spec(i, cls) for i in s.items)
+        classes.append({"name": cls, "fields": [(i.name, annotation(i, cls)) for i in s.items]})
+        rules = []
+        for r in s.rules:
+            rules.append(f"({r.kind!r}, {tuple(r.path.split('.'))!r}, "
+                         f"{r.start if r.kind == 'consecutive' else tuple((r.to or r.of or '').split('.')) if r.kind in ('equal', 'member') else r.key!r}, "
+                         f"{r.id!r})")
+        return {"name": s.name, "cls": cls, "classes": classes, "spec": f"({spec},)",
+                "rules": f"({', '.join(rules)}{',' if rules else ''})", "doc": str(s.doc or s.name)}
