@@ -200,6 +200,7 @@ class SlaveControl:
     @classmethod
     def decode(cls, data):
         return _decode_slave_control(_as_input(data))
+
 _S_header_0 = struct.Struct('>BBBB')
 _S_master_control_0 = struct.Struct('>HH')
 _S_slave_control_0 = struct.Struct('>HH')

@@ -233,6 +233,7 @@ class OdometryReply:
     @classmethod
     def decode(cls, data):
         return _decode_odometry_reply(_as_input(data))
+
 _S_set_wheels_velocities_0 = struct.Struct('<BBBBHhh')
 _S_set_wheels_velocities_1 = struct.Struct('>H')
 _S_set_led_0 = struct.Struct('<BBBBHBBBB')

@@ -184,6 +184,7 @@ class End:
     @classmethod
     def decode(cls, data):
         return _decode_end(_as_input(data))
+
 _S_start_0 = struct.Struct('>B')
 _S_object_0 = struct.Struct('>B3s')
 _S_scene_0 = struct.Struct('>B3s')

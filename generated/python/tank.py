@@ -185,7 +185,7 @@ class Telemetry:
 
     @classmethod
     def decode(cls, data):
-        return _decode_telemetry(_as_input(data))  # noqa
+        return _decode_as('telemetry', data)
 
 
 @dataclass(slots=True, kw_only=True)
@@ -209,7 +209,7 @@ class Command:
 
     @classmethod
     def decode(cls, data):
-        return _decode_command(_as_input(data))  # noqa
+        return _decode_as('command', data)
 
 
 @dataclass(slots=True, kw_only=True)
@@ -224,7 +224,7 @@ class PayloadCommand:
 
     @classmethod
     def decode(cls, data):
-        return _decode_payload_command(_as_input(data))  # noqa
+        return _decode_as('payload_command', data)
 
 
 @dataclass(slots=True, kw_only=True)
@@ -239,7 +239,7 @@ class PayloadReply:
 
     @classmethod
     def decode(cls, data):
-        return _decode_payload_reply(_as_input(data))  # noqa
+        return _decode_as('payload_reply', data)
 
 
 @dataclass(slots=True, kw_only=True)
@@ -257,7 +257,8 @@ class GpioConfig:
 
     @classmethod
     def decode(cls, data):
-        return _decode_gpio_config(_as_input(data))  # noqa
+        return _decode_as('gpio_config', data)
+
 
 _INT = re.compile(r"[+-]?[0-9]+\Z")
 _FLOAT = re.compile(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?\Z")
@@ -920,6 +921,18 @@ def _split(text):
 
 
 _PREFIXES = {'$': ('platform_to_computer', _decode_telemetry), '%': ('computer_to_platform', _decode_command), '*': ('computer_to_payload', _decode_payload_command), '^': ('payload_to_computer', _decode_payload_reply), '-': ('computer_to_platform', _decode_gpio_config), }
+
+
+_PREFIX_OF = {'telemetry': '$', 'command': '%', 'payload_command': '*', 'payload_reply': '^', 'gpio_config': '-', }
+
+
+def _decode_as(name, data):
+    """Decode text that must hold the message `name`."""
+    prefix, body, base = _split(_as_input(data))
+    expected = _PREFIX_OF[name]
+    if (prefix.strip() if True else prefix) != expected:
+        raise _dec(name, 'prefix', prefix, 'dispatch', expected, 0)
+    return _PREFIXES[expected][1](body, base)
 
 
 def decode(data, direction=None):

@@ -141,6 +141,7 @@ class Reply:
     @classmethod
     def decode(cls, data):
         return _decode_reply(_as_input(data))
+
 _S_command_0 = struct.Struct('<BBBB7sB')
 _S_reply_0 = struct.Struct('<BBBB7sB')
 
