@@ -188,10 +188,15 @@ class PythonView:
             c("if v is not True and v is not False and v != 0 and v != 1:")
             c(f"    raise _enc({where}, v, 'type', 'a bool')")
             c(f"{var} = 1 if v else 0")
-        elif f.enum is not None and f.kind != "char":
-            c(f"if v not in _VALUES_{f.enum.name}:")
+        elif f.enum is not None:
+            base = "str" if f.enum.kind == "char" else "int"
+            c(f"if not isinstance(v, {base}) or v not in _VALUES_{f.enum.name}:")
             c(f"    raise _enc({where}, v, 'enum', {self.enum_class(f.enum.name)!r}{self.user(f)})")
-            c(f"{var} = int(v)")
+            if f.values:
+                allowed = tuple(self.enum_value(f, x) for x in f.values)
+                c(f"if v not in {lit(allowed)}:")
+                c(f"    raise _enc({where}, v, 'values', {', '.join(map(str, allowed))!r}, {f.rule!r}{self.user(f, False)})")
+            c(f"{var} = {'v' if f.enum.kind == 'char' else 'int(v)'}")
         elif f.flags is not None:
             c(f"if v.__class__ is not int and not isinstance(v, int):")
             c(f"    raise _enc({where}, v, 'type', 'an int or {self.enum_class(f.flags.name)}')")
@@ -245,6 +250,11 @@ class PythonView:
             c(f"{var} = bytes(v)")
         else:  # text kinds are encoded by the text writer
             c(f"{var} = v")
+
+    @staticmethod
+    def enum_value(f: Field, value: Any) -> Any:
+        """The wire value of an enum member written by name or by value."""
+        return next((m.value for m in f.enum.members if value in (m.name, m.value)), value)
 
     def user(self, f: Field, with_rule: bool = True) -> str:
         extra = ""
@@ -324,7 +334,8 @@ class PythonView:
             c(f"if not {lit(lo)} <= {var_checked} <= {lit(hi)}:")
             c(f"    raise _dec({at}, 'range', '{lit(lo)}..{lit(hi)}', {off}, {f.rule!r}{self.user(f, False)})")
         if f.values:
-            c(f"if {var_checked} not in {lit(tuple(f.values))}:")
+            allowed = tuple(self.enum_value(f, x) for x in f.values) if f.enum else tuple(f.values)
+            c(f"if {var_checked} not in {lit(allowed)}:")
             c(f"    raise _dec({at}, 'values', {', '.join(map(str, f.values))!r}, {off}, {f.rule!r}{self.user(f, False)})")
         return expr
 

@@ -291,7 +291,7 @@ def _raw_master_control(m):
         raise _enc('master_control', 'motor.enable', v, 'type', 'a bool')
     r_motor_enable = 1 if v else 0
     v = m.motor.direction
-    if v not in _VALUES_motor_direction:
+    if not isinstance(v, int) or v not in _VALUES_motor_direction:
         raise _enc('master_control', 'motor.direction', v, 'enum', 'MotorDirection', None)
     r_motor_direction = int(v)
     v = m.motor.speed
@@ -407,7 +407,7 @@ def _raw_slave_control(m):
         raise _enc('slave_control', 'motor.enable', v, 'type', 'a bool')
     r_motor_enable = 1 if v else 0
     v = m.motor.direction
-    if v not in _VALUES_motor_direction:
+    if not isinstance(v, int) or v not in _VALUES_motor_direction:
         raise _enc('slave_control', 'motor.direction', v, 'enum', 'MotorDirection', None)
     r_motor_direction = int(v)
     v = m.motor.speed

@@ -374,7 +374,7 @@ def _raw_scene(m):
         raise _enc('scene', 'nl', v, 'range', '0..7', None)
     r_nl = v
     v = m.db
-    if v not in _VALUES_pass_side:
+    if not isinstance(v, int) or v not in _VALUES_pass_side:
         raise _enc('scene', 'db', v, 'enum', 'PassSide', None)
     r_db = int(v)
     v = m.nt

@@ -315,6 +315,8 @@ def _as_input(data):
 def _encode_telemetry(m):
     p = ['$:']
     v = m.move
+    if not isinstance(v, str) or v not in _VALUES_move:
+        raise _enc('telemetry', 'move', v, 'enum', 'Move', None)
     r_move = v
     p.append(_ENUM_move[r_move].value)
     v = m.speed
@@ -430,7 +432,7 @@ def _encode_telemetry(m):
     r_vbat = v
     p.append(_format_float(r_vbat))
     v = m.systemstatus
-    if v not in _VALUES_system_status:
+    if not isinstance(v, int) or v not in _VALUES_system_status:
         raise _enc('telemetry', 'systemstatus', v, 'enum', 'SystemStatus', None)
     r_systemstatus = int(v)
     p.append(str(r_systemstatus))
@@ -442,7 +444,7 @@ def _encode_telemetry(m):
     r_extid = v
     p.append(str(r_extid))
     v = m.extstatus
-    if v not in _VALUES_ext_status:
+    if not isinstance(v, int) or v not in _VALUES_ext_status:
         raise _enc('telemetry', 'extstatus', v, 'enum', 'ExtStatus', None)
     r_extstatus = int(v)
     p.append(str(r_extstatus))
@@ -622,6 +624,8 @@ def _decode_telemetry(body, base):
 def _encode_command(m):
     p = ['%:']
     v = m.move
+    if not isinstance(v, str) or v not in _VALUES_move:
+        raise _enc('command', 'move', v, 'enum', 'Move', None)
     r_move = v
     p.append(_ENUM_move[r_move].value)
     v = m.speed
@@ -674,8 +678,10 @@ def _encode_command(m):
     r_gpio4 = v
     p.append(_format_float(r_gpio4))
     v = m.systemstatus
-    if v not in _VALUES_system_status:
+    if not isinstance(v, int) or v not in _VALUES_system_status:
         raise _enc('command', 'systemstatus', v, 'enum', 'SystemStatus', 'TANK-D2', 'systemstatus 5 (Error) and 6 (Exception) are sent only by the platform / Только с платформы')
+    if v not in (0, 1, 2, 3, 4):
+        raise _enc('command', 'systemstatus', v, 'values', '0, 1, 2, 3, 4', 'TANK-D2', 'systemstatus 5 (Error) and 6 (Exception) are sent only by the platform / Только с платформы')
     r_systemstatus = int(v)
     p.append(str(r_systemstatus))
     if m.data is not None:
@@ -842,22 +848,22 @@ def _decode_payload_reply(body, base):
 def _encode_gpio_config(m):
     p = ['-:']
     v = m.gpio1
-    if v not in _VALUES_gpio_mode:
+    if not isinstance(v, int) or v not in _VALUES_gpio_mode:
         raise _enc('gpio_config', 'gpio1', v, 'enum', 'GpioMode', None)
     r_gpio1 = int(v)
     p.append(str(r_gpio1))
     v = m.gpio2
-    if v not in _VALUES_gpio_mode:
+    if not isinstance(v, int) or v not in _VALUES_gpio_mode:
         raise _enc('gpio_config', 'gpio2', v, 'enum', 'GpioMode', None)
     r_gpio2 = int(v)
     p.append(str(r_gpio2))
     v = m.gpio3
-    if v not in _VALUES_gpio_mode:
+    if not isinstance(v, int) or v not in _VALUES_gpio_mode:
         raise _enc('gpio_config', 'gpio3', v, 'enum', 'GpioMode', None)
     r_gpio3 = int(v)
     p.append(str(r_gpio3))
     v = m.gpio4
-    if v not in _VALUES_gpio_mode:
+    if not isinstance(v, int) or v not in _VALUES_gpio_mode:
         raise _enc('gpio_config', 'gpio4', v, 'enum', 'GpioMode', None)
     r_gpio4 = int(v)
     p.append(str(r_gpio4))
