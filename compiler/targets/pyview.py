@@ -676,6 +676,12 @@ class MessageCode:
         c.indent()
         c(f"if len(tokens) != {len(self.leaves)}:")
         c(f"    raise _dec({self.m.name!r}, None, len(tokens), 'count', '{len(self.leaves)} values', 0)")
+        # Text carries any integer; values without a declared range must still fit their width.
+        for n, leaf in enumerate(self.leaves):
+            if leaf.field.range is None:
+                top = (1 << leaf.field.bits) - 1
+                c(f"if tokens[{n}] > {top}:")
+                c(f"    raise _dec({self.m.name!r}, {leaf.dotted!r}, tokens[{n}], 'range', '0..{top}', 0)")
         c(f"return _build_{self.fn}(*tokens, text_form=True)")
         return c.text()
 
@@ -746,7 +752,7 @@ class MessageCode:
             if f.optional:
                 c(f"if len(t) > {n}:")
                 c.indent()
-            tok = f"t[{n}].strip()" if fr.trim and not f.to_end else f"t[{n}]"
+            tok = f"t[{n}].strip()" if fr.trim else f"t[{n}]"
             if f.kind == "float":
                 c(f"{leaf.var} = _parse_float({tok}, {at}, at[{n}])")
             elif f.kind in ("uint", "int") or (f.enum is not None and f.enum.kind == "int"):
@@ -757,6 +763,11 @@ class MessageCode:
                 c(f"    raise _dec({at}, {leaf.var}, 'type', 'one character', at[{n}])")
             else:
                 c(f"{leaf.var} = {tok}")
+            if f.kind in ("char", "str") and f.enum is None:
+                # what a writer may not emit, a reader does not accept either
+                c(f"bad = _text_problem({leaf.var}, {'' if f.to_end else fr.separator!r}, {fr.trim})")
+                c("if bad:")
+                c(f"    raise _dec({at}, {leaf.var}, 'text', bad, at[{n}], {f.rule!r})")
             c("try:")
             c.indent()
             expr = self.view.decode_leaf(c, self.m, leaf, f"at[{n}]")

@@ -239,6 +239,12 @@ def _encode_text_start(m):
 def _decode_text_start(tokens):
     if len(tokens) != 3:
         raise _dec('start', None, len(tokens), 'count', '3 values', 0)
+    if tokens[0] > 3:
+        raise _dec('start', 'hdr', tokens[0], 'range', '0..3', 0)
+    if tokens[1] > 7:
+        raise _dec('start', 'kind', tokens[1], 'range', '0..7', 0)
+    if tokens[2] > 7:
+        raise _dec('start', 'cs', tokens[2], 'range', '0..7', 0)
     return _build_start(*tokens, text_form=True)
 
 
@@ -355,6 +361,10 @@ def _encode_text_object(m):
 def _decode_text_object(tokens):
     if len(tokens) != 10:
         raise _dec('object', None, len(tokens), 'count', '10 values', 0)
+    if tokens[0] > 3:
+        raise _dec('object', 'hdr', tokens[0], 'range', '0..3', 0)
+    if tokens[9] > 7:
+        raise _dec('object', 'cs', tokens[9], 'range', '0..7', 0)
     return _build_object(*tokens, text_form=True)
 
 
@@ -432,6 +442,14 @@ def _encode_text_scene(m):
 def _decode_text_scene(tokens):
     if len(tokens) != 6:
         raise _dec('scene', None, len(tokens), 'count', '6 values', 0)
+    if tokens[0] > 3:
+        raise _dec('scene', 'hdr', tokens[0], 'range', '0..3', 0)
+    if tokens[3] > 7:
+        raise _dec('scene', 'db', tokens[3], 'range', '0..7', 0)
+    if tokens[4] > 32767:
+        raise _dec('scene', 'nt', tokens[4], 'range', '0..32767', 0)
+    if tokens[5] > 7:
+        raise _dec('scene', 'cs', tokens[5], 'range', '0..7', 0)
     return _build_scene(*tokens, text_form=True)
 
 
@@ -477,6 +495,12 @@ def _encode_text_end(m):
 def _decode_text_end(tokens):
     if len(tokens) != 3:
         raise _dec('end', None, len(tokens), 'count', '3 values', 0)
+    if tokens[0] > 3:
+        raise _dec('end', 'hdr', tokens[0], 'range', '0..3', 0)
+    if tokens[1] > 7:
+        raise _dec('end', 'kind', tokens[1], 'range', '0..7', 0)
+    if tokens[2] > 7:
+        raise _dec('end', 'cs', tokens[2], 'range', '0..7', 0)
     return _build_end(*tokens, text_form=True)
 
 

@@ -478,6 +478,9 @@ def _decode_telemetry(body, base):
     r_value = t[2].strip()
     if len(r_value) != 1:
         raise _dec('telemetry', 'value', r_value, 'type', 'one character', at[2])
+    bad = _text_problem(r_value, ',', True)
+    if bad:
+        raise _dec('telemetry', 'value', r_value, 'text', bad, at[2], 'TANK-D3')
     try:
         pass
     except DecodeError as exc:
@@ -572,12 +575,18 @@ def _decode_telemetry(body, base):
         exc.offset = at[13]
         raise
     r_lan = t[14].strip()
+    bad = _text_problem(r_lan, ',', True)
+    if bad:
+        raise _dec('telemetry', 'lan', r_lan, 'text', bad, at[14], 'TANK-D5')
     try:
         pass
     except DecodeError as exc:
         exc.offset = at[14]
         raise
     r_lon = t[15].strip()
+    bad = _text_problem(r_lon, ',', True)
+    if bad:
+        raise _dec('telemetry', 'lon', r_lon, 'text', bad, at[15], 'TANK-D5')
     try:
         pass
     except DecodeError as exc:
@@ -722,6 +731,9 @@ def _decode_command(body, base):
     r_value = t[2].strip()
     if len(r_value) != 1:
         raise _dec('command', 'value', r_value, 'type', 'one character', at[2])
+    bad = _text_problem(r_value, ',', True)
+    if bad:
+        raise _dec('command', 'value', r_value, 'text', bad, at[2], 'TANK-D3')
     try:
         pass
     except DecodeError as exc:
@@ -780,6 +792,9 @@ def _decode_command(body, base):
         raise
     if len(t) > 9:
         r_data = t[9].strip()
+        bad = _text_problem(r_data, ',', True)
+        if bad:
+            raise _dec('command', 'data', r_data, 'text', bad, at[9], 'TANK-D1')
         try:
             pass
         except DecodeError as exc:
@@ -808,7 +823,10 @@ def _decode_payload_command(body, base):
     at = _token_offsets(t, base)
     if not 1 <= len(t) <= 1:
         raise _dec('payload_command', None, len(t), 'count', '1..1 fields' if 1 != 1 else '1 fields', base)
-    r_command = t[0]
+    r_command = t[0].strip()
+    bad = _text_problem(r_command, '', True)
+    if bad:
+        raise _dec('payload_command', 'command', r_command, 'text', bad, at[0], 'TANK-D7')
     try:
         pass
     except DecodeError as exc:
@@ -835,7 +853,10 @@ def _decode_payload_reply(body, base):
     at = _token_offsets(t, base)
     if not 1 <= len(t) <= 1:
         raise _dec('payload_reply', None, len(t), 'count', '1..1 fields' if 1 != 1 else '1 fields', base)
-    r_command = t[0]
+    r_command = t[0].strip()
+    bad = _text_problem(r_command, '', True)
+    if bad:
+        raise _dec('payload_reply', 'command', r_command, 'text', bad, at[0], 'TANK-D7')
     try:
         pass
     except DecodeError as exc:
