@@ -201,6 +201,17 @@ class Field:
         return (0, (1 << self.bits) - 1)
 
 
+def field_at(fields: tuple[Field, ...], dotted: str) -> Optional[Field]:
+    """The field a dotted path names, walking into groups; None if there is none."""
+    found = None
+    for part in dotted.split("."):
+        found = next((f for f in fields if f.name == part), None)
+        if found is None:
+            return None
+        fields = found.fields
+    return found
+
+
 @dataclass(frozen=True)
 class Condition:
     """`path` compared with `op` (eq, ne, in, range, eq_var, eq_param …) to `value`."""

@@ -18,7 +18,7 @@ from .model import (Checksum, Condition, CrcParams, Direction, Enum, EnumMember,
                     Example, ExpectedError, Field, FlagBit, FlagSet, Framing, Handler,
                     HistoryEntry, Machine, Message, Note, Parameter, Protocol, Role, Rule,
                     Sequence, SequenceItem, SequenceRule, State, Text, TextForm, Transition,
-                    Transport, Variable)
+                    Transport, Variable, field_at)
 from .names import name_problem
 from .validate import structure_errors
 
@@ -694,15 +694,7 @@ class Resolver:
                 out.append(Condition(key, "eq", value))
         return tuple(out)
 
-    @staticmethod
-    def find_path(layout: tuple[Field, ...], dotted: str) -> Optional[Field]:
-        fields, found = layout, None
-        for part in dotted.split("."):
-            found = next((f for f in fields if f.name == part), None)
-            if found is None:
-                return None
-            fields = found.fields
-        return found
+    find_path = staticmethod(field_at)
 
     def resolve_rule(self, r: dict, path: tuple, layout: tuple[Field, ...]) -> Rule:
         return Rule(r.get("id"), self.conditions(r.get("when", {}), path + ("when",), layout),

@@ -7,7 +7,7 @@ import math
 from dataclasses import dataclass
 from typing import Any, Optional
 
-from ..model import Field, Message, Protocol, Rule, Sequence, SequenceItem
+from ..model import Field, Message, Protocol, Rule, Sequence, SequenceItem, field_at
 from ..names import camel
 
 
@@ -359,13 +359,7 @@ class PythonView:
 
     @staticmethod
     def find(message: Message, dotted: str) -> Optional[Field]:
-        fields, found = message.layout, None
-        for part in dotted.split("."):
-            found = next((f for f in fields if f.name == part), None)
-            if found is None:
-                return None
-            fields = found.fields
-        return found
+        return field_at(message.layout, dotted)
 
     def rule_checks(self, c: Code, message: Message, obj: str, err: str) -> None:
         for rule in message.rules:
@@ -494,17 +488,20 @@ class MessageCode:
         for leaf in self.leaves:
             cs = leaf.field.checksum
             if cs and cs.over != "bytes":
-                others = [x for x in self.leaves if x is not leaf]
-                terms = [self.unsigned(x) for x in others]
-                if cs.algorithm == "sum":
-                    c(f"{leaf.var} = ({' + '.join(terms)}) % {cs.modulo}")
-                elif cs.algorithm == "xor":
-                    c(f"{leaf.var} = ({' ^ '.join(terms)}) % {cs.modulo}")
-                else:
-                    flip = " ^ 1" if cs.parity == "odd" else ""
-                    c(f"{leaf.var} = ({' + '.join(f'{t}.bit_count()' for t in terms)}) & 1{flip}")
+                c(f"{leaf.var} = {self.field_checksum(leaf)}")
         c(f"return ({''.join(x.var + ', ' for x in self.leaves)})")
         return c.text()
+
+    def field_checksum(self, leaf: Leaf) -> str:
+        """Expression of a checksum over the raw values of every other field."""
+        cs = leaf.field.checksum
+        terms = [self.unsigned(x) for x in self.leaves if x is not leaf]
+        if cs.algorithm == "sum":
+            return f"({' + '.join(terms)}) % {cs.modulo}"
+        if cs.algorithm == "xor":
+            return f"({' ^ '.join(terms)}) % {cs.modulo}"
+        flip = " ^ 1" if cs.parity == "odd" else ""
+        return f"({' + '.join(f'{t}.bit_count()' for t in terms)}) & 1{flip}"
 
     @staticmethod
     def unsigned(leaf: Leaf) -> str:
@@ -529,16 +526,7 @@ class MessageCode:
         for leaf in self.leaves:
             cs = leaf.field.checksum
             if cs and cs.over != "bytes":
-                others = [x for x in self.leaves if x is not leaf]
-                terms = [self.unsigned(x) for x in others]
-                if cs.algorithm == "sum":
-                    expected = f"({' + '.join(terms)}) % {cs.modulo}"
-                elif cs.algorithm == "xor":
-                    expected = f"({' ^ '.join(terms)}) % {cs.modulo}"
-                else:
-                    flip = " ^ 1" if cs.parity == "odd" else ""
-                    expected = f"({' + '.join(f'{t}.bit_count()' for t in terms)}) & 1{flip}"
-                c(f"x = {expected}")
+                c(f"x = {self.field_checksum(leaf)}")
                 unfilled = self.view.p.framing.text_form.checksum_unfilled \
                     if self.view.p.framing.text_form else None
                 cond = f"{leaf.var} != x"
