@@ -216,13 +216,30 @@ def test_CAR_D4_most_significant_byte_first(car):
     assert car.encode(car.Header(h1=4, h2_count=0, h2_time=None)) == bytes([4, 0, 0, 0])
 
 
-def test_car_user_messages_from_the_seed(car):
+def test_car_h1_limit_uses_the_seed_message(car):
     with pytest.raises(car.EncodeError) as err:
         car.encode(car.Header(h1=256, h2_count=0, h2_time=None))
     assert "所用的并行模块数目已经大于255" in err.value.user_message
+
+
+def test_CAR_R1_master_never_accepts_infrared(car):
     with pytest.raises(car.EncodeError) as err:
         car.encode(_master(car, accept_ir=True))
-    assert "无法设置主机接受红外信息" in err.value.user_message
+    assert err.value.decision == "CAR-R1" and "无法设置主机接受红外信息" in err.value.user_message
+    # 1100 0000 ... 0000: c1 and c2 set, two ones, parity 0
+    with pytest.raises(car.DecodeError) as err:
+        car.MasterControl.decode(bytes.fromhex("c0000000"))
+    assert err.value.decision == "CAR-R1"
+    # the same word is a valid slave word
+    assert car.SlaveControl.decode(bytes.fromhex("c0000000")).accept_ir is True
+
+
+def test_CAR_R2_master_always_forwards(car):
+    # all zero: no ones, parity 0; c2 = 0 is refused in a master word only
+    with pytest.raises(car.DecodeError) as err:
+        car.MasterControl.decode(bytes.fromhex("00000000"))
+    assert err.value.decision == "CAR-R2"
+    assert car.SlaveControl.decode(bytes.fromhex("00000000")).forward_words is False
 
 
 def test_car_program_counts(car):
@@ -397,6 +414,15 @@ def test_MTV4_D7_code_3_per_direction(mtv4):
     assert type(reply) is mtv4.OdometryReply and (reply.x, reply.y, reply.th) == (1.5, -0.25, 3.140625)
 
 
+def test_MTV4_D8_odometry_command_is_answered_by_the_odometry_reply_only(mtv4):
+    model = load_model("mtv4")
+    assert model.message("set_wheels_velocities_with_odometry").answered_by == ("odometry_reply",)
+    # a 4-byte acknowledgement carrying code 0x03 is not a valid reply
+    with pytest.raises(mtv4.DecodeError) as err:
+        mtv4.decode(with_crc(bytes.fromhex("aa 04 03 03 20 00")), "robot_to_host")
+    assert err.value.rule == "dispatch"
+
+
 # ---------------------------------------------------------------- tr24
 
 def test_TR24_D1_packet_bytes(tr24):
@@ -444,3 +470,20 @@ def test_TR24_D4_retry_limit_reports_failure():
     rows = _actions(_machine("master"), "waiting", "timer")
     assert any("fail" in actions for _, actions in rows)
     assert any(guard.get("retries", ("",))[0] == "lt_param" for guard, _ in rows)
+
+
+def test_TR24_D5_machines_flip_sequence_bits_only_on_success():
+    """The structure the delivery guarantee rests on; the guarantee itself is
+    proved by running the machines over a lossy channel (generated machines)."""
+    master = _actions(_machine("master"), "waiting", "receive")
+    flips = [(guard, actions) for guard, actions in master if "flip_seq" in actions]
+    assert len(flips) == 1
+    guard, actions = flips[0]
+    assert guard["seq"] == ("eq_var", "seq") and guard["sender"] == ("eq_var", "peer")
+    assert "deliver_reply" in actions
+    slave = _actions(_machine("slave"), "listening", "receive")
+    executes = [(guard, actions) for guard, actions in slave if "execute" in actions]
+    assert len(executes) == 1 and executes[0][0]["seq"] == ("eq_var", "expected")
+    assert "flip_expected" in executes[0][1]
+    for guard, actions in _actions(_machine("master"), "waiting", "timer"):
+        assert "flip_seq" not in actions  # a resend keeps the same sequence number
