@@ -28,9 +28,6 @@ BASE_KINDS = {"bool": ("bool", 1), "f32": ("float", 32), "f64": ("float", 64),
               "group": ("group", None)}
 MAX_INT_BITS = 64
 MAX_BYTES_LENGTH = 4096
-FIELD_RULES = ("range", "const", "values", "enum", "flags", "exactly_one", "one_hot",
-               "reserved", "checksum", "length", "type", "parity", "dispatch")
-SEQUENCE_RULES = ("grammar", "count")
 DEFAULT_HINT = "see docs/schema-language.md for what this key accepts"
 
 
@@ -433,10 +430,7 @@ class Resolver:
                 return Checksum("crc", over, covers)
             params = CrcParams("custom", c["width"], c["poly"], c["init"], c["refin"],
                                c["refout"], c["xorout"])
-        elif algorithm in ("parity", "sum", "xor"):
-            if algorithm == "sum" and "modulo" not in c and bits:
-                pass
-        else:
+        elif algorithm not in ("parity", "sum", "xor"):
             params = crc.lookup(algorithm)
             if params is None:
                 self.error(path + ("algorithm",), f"unknown checksum algorithm {algorithm!r}",
