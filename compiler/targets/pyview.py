@@ -482,7 +482,7 @@ class MessageCode:
         c(f"def _raw_{self.fn}(m):")
         c.indent()
         c(f'"""Check a {self.m.name} and return its raw wire values, in wire order."""')
-        self.view.rule_checks(c, self.m, "m", "_EncodeRule")
+        self.view.rule_checks(c, self.m, "m", "_enc")
         for leaf in self.leaves:
             self.view.encode_leaf(c, self.m, leaf)
         for leaf in self.leaves:
@@ -536,7 +536,7 @@ class MessageCode:
                 c(f"    raise _dec({self.m.name!r}, {leaf.dotted!r}, {leaf.var}, 'checksum', str(x), {offset}, {leaf.field.rule!r})")
             offset += leaf.field.bits or 0
         c(f"o = {self.construct(self.m.layout, (), values)}")
-        self.view.rule_checks(c, self.m, "o", "_DecodeRule")
+        self.view.rule_checks(c, self.m, "o", "_dec")
         c("return o")
         return c.text()
 
@@ -679,7 +679,7 @@ class MessageCode:
         c = Code()
         c(f"def _encode_{self.fn}(m):")
         c.indent()
-        self.view.rule_checks(c, self.m, "m", "_EncodeRule")
+        self.view.rule_checks(c, self.m, "m", "_enc")
         c(f"p = [{self.m.ids[0] + fr.prefix_separator!r}]")
         members = [leaf for leaf in self.leaves]
         for n, leaf in enumerate(members):
@@ -771,7 +771,7 @@ class MessageCode:
                 expr = f"(None if {leaf.var} is None else {expr})" if expr != leaf.var else expr
             values[leaf.path] = expr if expr is not None else leaf.var
         c(f"o = {self.construct(self.m.layout, (), values)}")
-        self.view.rule_checks(c, self.m, "o", "_DecodeRule")
+        self.view.rule_checks(c, self.m, "o", "_dec")
         c("return o")
         return c.text()
 

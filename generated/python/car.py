@@ -99,14 +99,6 @@ def _dec(message, field, value, rule, allowed="", offset=None, decision=None, us
     return DecodeError(message, field, value, rule, allowed, offset, decision, user_message)
 
 
-def _EncodeRule(message, field, value, rule, allowed, decision=None, user_message=None):
-    return EncodeError(message, field, value, rule, allowed, None, decision, user_message)
-
-
-def _DecodeRule(message, field, value, rule, allowed, decision=None, user_message=None):
-    return DecodeError(message, field, value, rule, allowed, None, decision, user_message)
-
-
 class MotorDirection(enum.IntEnum):
     """c3 direction of travel (前进方向)"""
     forward = 0  # forward
@@ -215,9 +207,9 @@ def _as_input(data):
 def _raw_header(m):
     """Check a header and return its raw wire values, in wire order."""
     if m.h2_count == 0 and not (m.h2_time is None):
-        raise _EncodeRule('header', 'h2_time', m.h2_time, 'rule', 'if h2_count == 0 then h2_time == None', decision='CAR-D3', user_message='Without slave words (h2_count = 0) all of h2 is 0: h2_time must be absent / 如果用户没有选择让主机给从机发送控制字串，这16位默认为0')
+        raise _enc('header', 'h2_time', m.h2_time, 'rule', 'if h2_count == 0 then h2_time == None', decision='CAR-D3', user_message='Without slave words (h2_count = 0) all of h2 is 0: h2_time must be absent / 如果用户没有选择让主机给从机发送控制字串，这16位默认为0')
     if m.h2_count != 0 and not (m.h2_time is not None):
-        raise _EncodeRule('header', 'h2_time', m.h2_time, 'rule', 'if h2_count ne 0 then h2_time ne None', decision='CAR-D3', user_message='With slave words (h2_count > 0) h2_time must give one of the 8 send-time levels / 每个控制字的发送时长用独热码表示，共分8个档位')
+        raise _enc('header', 'h2_time', m.h2_time, 'rule', 'if h2_count ne 0 then h2_time ne None', decision='CAR-D3', user_message='With slave words (h2_count > 0) h2_time must give one of the 8 send-time levels / 每个控制字的发送时长用独热码表示，共分8个档位')
     v = m.h1
     if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
         raise _enc('header', 'h1', v, 'type', 'an int')
@@ -250,9 +242,9 @@ def _build_header(r_h1, r_h2_count, r_h2_time, r_h3, text_form=False):
         raise _dec('header', 'h3', r_h3, 'reserved', '0', 24, None)
     o = Header(h1=r_h1, h2_count=r_h2_count, h2_time=(r_h2_time.bit_length() - 1 if r_h2_time else None))
     if o.h2_count == 0 and not (o.h2_time is None):
-        raise _DecodeRule('header', 'h2_time', o.h2_time, 'rule', 'if h2_count == 0 then h2_time == None', decision='CAR-D3', user_message='Without slave words (h2_count = 0) all of h2 is 0: h2_time must be absent / 如果用户没有选择让主机给从机发送控制字串，这16位默认为0')
+        raise _dec('header', 'h2_time', o.h2_time, 'rule', 'if h2_count == 0 then h2_time == None', decision='CAR-D3', user_message='Without slave words (h2_count = 0) all of h2 is 0: h2_time must be absent / 如果用户没有选择让主机给从机发送控制字串，这16位默认为0')
     if o.h2_count != 0 and not (o.h2_time is not None):
-        raise _DecodeRule('header', 'h2_time', o.h2_time, 'rule', 'if h2_count ne 0 then h2_time ne None', decision='CAR-D3', user_message='With slave words (h2_count > 0) h2_time must give one of the 8 send-time levels / 每个控制字的发送时长用独热码表示，共分8个档位')
+        raise _dec('header', 'h2_time', o.h2_time, 'rule', 'if h2_count ne 0 then h2_time ne None', decision='CAR-D3', user_message='With slave words (h2_count > 0) h2_time must give one of the 8 send-time levels / 每个控制字的发送时长用独热码表示，共分8个档位')
     return o
 
 
@@ -275,9 +267,9 @@ def _decode_header(d):
 def _raw_master_control(m):
     """Check a master_control and return its raw wire values, in wire order."""
     if not (m.accept_ir == False):
-        raise _EncodeRule('master_control', 'accept_ir', m.accept_ir, 'rule', 'accept_ir == False', decision='CAR-R1', user_message='Cannot set the master to accept infrared information / 无法设置主机接受红外信息')
+        raise _enc('master_control', 'accept_ir', m.accept_ir, 'rule', 'accept_ir == False', decision='CAR-R1', user_message='Cannot set the master to accept infrared information / 无法设置主机接受红外信息')
     if not (m.forward_words == True):
-        raise _EncodeRule('master_control', 'forward_words', m.forward_words, 'rule', 'forward_words == True', decision='CAR-R2', user_message='c2 is always 1 in a master word (the master forwards the slave words); it is hidden from the user / 在用户编写主机的行为时，默认主机该位为1，即对用户隐藏')
+        raise _enc('master_control', 'forward_words', m.forward_words, 'rule', 'forward_words == True', decision='CAR-R2', user_message='c2 is always 1 in a master word (the master forwards the slave words); it is hidden from the user / 在用户编写主机的行为时，默认主机该位为1，即对用户隐藏')
     v = m.accept_ir
     if v is not True and v is not False and v != 0 and v != 1:
         raise _enc('master_control', 'accept_ir', v, 'type', 'a bool')
@@ -359,9 +351,9 @@ def _build_master_control(r_accept_ir, r_forward_words, r_motor_enable, r_motor_
         raise _dec('master_control', 'parity', r_parity, 'checksum', str(x), 31, 'CAR-D2')
     o = MasterControl(accept_ir=r_accept_ir == 1, forward_words=r_forward_words == 1, motor=ControlWordMotor(enable=r_motor_enable == 1, direction=e_motor_direction, speed=r_motor_speed, duration=r_motor_duration), led=ControlWordLed(led=r_led_led, duration=r_led_duration), ultrasonic=ControlWordUltrasonic(enable=r_ultrasonic_enable == 1, radius=r_ultrasonic_radius, duration=r_ultrasonic_duration), voice=r_voice == 1, body_sensor=r_body_sensor == 1)
     if not (o.accept_ir == False):
-        raise _DecodeRule('master_control', 'accept_ir', o.accept_ir, 'rule', 'accept_ir == False', decision='CAR-R1', user_message='Cannot set the master to accept infrared information / 无法设置主机接受红外信息')
+        raise _dec('master_control', 'accept_ir', o.accept_ir, 'rule', 'accept_ir == False', decision='CAR-R1', user_message='Cannot set the master to accept infrared information / 无法设置主机接受红外信息')
     if not (o.forward_words == True):
-        raise _DecodeRule('master_control', 'forward_words', o.forward_words, 'rule', 'forward_words == True', decision='CAR-R2', user_message='c2 is always 1 in a master word (the master forwards the slave words); it is hidden from the user / 在用户编写主机的行为时，默认主机该位为1，即对用户隐藏')
+        raise _dec('master_control', 'forward_words', o.forward_words, 'rule', 'forward_words == True', decision='CAR-R2', user_message='c2 is always 1 in a master word (the master forwards the slave words); it is hidden from the user / 在用户编写主机的行为时，默认主机该位为1，即对用户隐藏')
     return o
 
 

@@ -92,14 +92,6 @@ def _dec(message, field, value, rule, allowed="", offset=None, decision=None, us
     return DecodeError(message, field, value, rule, allowed, offset, decision, user_message)
 
 
-def _EncodeRule(message, field, value, rule, allowed, decision=None, user_message=None):
-    return EncodeError(message, field, value, rule, allowed, None, decision, user_message)
-
-
-def _DecodeRule(message, field, value, rule, allowed, decision=None, user_message=None):
-    return DecodeError(message, field, value, rule, allowed, None, decision, user_message)
-
-
 class Move(str, enum.Enum):
     """direction of motion"""
     forward = 'f'  # forward
