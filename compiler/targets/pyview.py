@@ -9,32 +9,7 @@ from typing import Any, Optional
 
 from ..model import Field, Message, Protocol, Rule, Sequence, SequenceItem, field_at
 from ..names import camel
-
-
-@dataclass(frozen=True)
-class Leaf:
-    """A field with a wire value of its own (groups are flattened into leaves)."""
-
-    field: Field
-    path: tuple[str, ...]  # attribute path from the message object (member fields)
-    var: str  # local variable holding its raw wire value
-
-    @property
-    def dotted(self) -> str:
-        return ".".join(self.path)
-
-
-def leaves_of(layout: tuple[Field, ...], prefix: tuple[str, ...] = ()) -> list[Leaf]:
-    out: list[Leaf] = []
-    for f in layout:
-        if f.is_payload:
-            continue
-        if f.kind == "group":
-            out.extend(leaves_of(f.fields, prefix + (f.name,)))
-        else:
-            path = prefix + (f.name,)
-            out.append(Leaf(f, path, "r_" + "_".join(path)))
-    return out
+from .wire import Leaf, dispatch_facts, leaves_of, stream_facts
 
 
 def lit(value: Any) -> str:
@@ -901,63 +876,10 @@ class ModuleView(PythonView):
 
 
     def dispatch_table(self) -> dict:
-        """How module-level decode finds the message a frame holds."""
-        p, fr = self.p, self.p.framing
-        if not p.self_identifying:
-            return {"kind": "none"}
-        if fr.kind == "text":
-            return {"kind": "text", "prefixes": [(m.ids[0], m.name, m.direction) for m in p.messages]}
-        if fr.kind == "bits":
-            entries = []
-            for m in p.messages:
-                tests = []
-                pos = 0
-                for leaf in leaves_of(m.layout):
-                    f = leaf.field
-                    if f.dispatch:
-                        tests.append((pos, f.bits, f.const))
-                    pos += f.bits or 0
-                entries.append({"name": m.name, "size": m.size, "tests": tests})
-            head = max(pos + bits for e in entries for pos, bits, _ in e["tests"])
-            min_size = min(m.size for m in p.messages)
-            return {"kind": "bits", "entries": entries, "head_bytes": min_size,
-                    "head_bits": 8 * min_size, "ok": head <= 8 * min_size}
-        # bytes: the envelope's dispatch field
-        env = [x for x in leaves_of(tuple(f for f in fr.envelope))]
-        pos = 0
-        field_pos = None
-        for leaf in env:
-            if leaf.field.dispatch:
-                field_pos = (pos, leaf.field.bits)
-            pos += leaf.field.bits or 0
-        start, bits = field_pos
-        first, last = start // 8, (start + bits - 1) // 8 + 1
-        shift = last * 8 - (start + bits)
-        keys = []
-        for m in p.messages:
-            for value in m.ids:
-                keys.append((value, m.size, m.direction, m.name))
-        return {"kind": "bytes", "first": first, "last": last, "shift": shift,
-                "mask": (1 << bits) - 1, "frames": keys}
-
+        return dispatch_facts(self.p)
 
     def stream_view(self) -> dict:
-        p, fr = self.p, self.p.framing
-        if fr.kind != "bytes":
-            return {}
-        leaves = leaves_of(tuple(f for f in fr.envelope))
-        first = leaves[0].field
-        sync = first.const if first.const is not None and first.bits == 8 else None
-        length = None
-        pos = 0
-        for leaf in leaves_of(p.messages[0].layout):
-            if leaf.field.length_of:
-                span = next(x for x in p.messages[0].layout if x.name == leaf.field.name)
-                length = {"at": pos // 8, "overhead": p.messages[0].size - span.const}
-            pos += leaf.field.bits or 0
-        sizes = sorted({m.size for m in p.messages})
-        return {"sync": sync, "length": length, "sizes": sizes, "max": max(sizes), "min": min(sizes)}
-
+        return stream_facts(self.p)
 
     def sequence_view(self, s: Sequence) -> dict:
         classes: list[dict] = []
