@@ -15,8 +15,9 @@ from .model import Protocol
 from .pyload import load_module
 from .resolve import resolve
 from .targets import python as python_target
+from .targets import c as c_target
 
-TARGETS = (python_target,)
+TARGETS = (python_target, c_target)
 
 
 def schema_files(directory: Path) -> list[Path]:

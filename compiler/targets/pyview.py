@@ -9,7 +9,8 @@ from typing import Any, Optional
 
 from ..model import Field, Message, Protocol, Rule, Sequence, SequenceItem, field_at
 from ..names import camel
-from .wire import Leaf, dispatch_facts, leaves_of, stream_facts
+from .code import Code
+from .wire import Leaf, checksum_name as _checksum_name, dispatch_facts, leaves_of, stream_facts
 
 
 def lit(value: Any) -> str:
@@ -18,30 +19,6 @@ def lit(value: Any) -> str:
             return "math.inf" if value > 0 else "-math.inf"
         return repr(value)
     return repr(value)
-
-
-class Code:
-    """Lines of Python with indentation."""
-
-    def __init__(self) -> None:
-        self.lines: list[str] = []
-        self.depth = 0
-
-    def __call__(self, line: str) -> "Code":
-        self.lines.append("    " * self.depth + line)
-        return self
-
-    def indent(self) -> "Code":
-        self.depth += 1
-        return self
-
-    def dedent(self) -> "Code":
-        self.depth -= 1
-        return self
-
-    def text(self, base: int = 0) -> str:
-        pad = "    " * base
-        return "\n".join(pad + line if line else line for line in self.lines)
 
 
 class PythonView:
@@ -731,6 +708,9 @@ class MessageCode:
                 c(f"bad = _text_problem({leaf.var}, {'' if f.to_end else fr.separator!r}, {fr.trim})")
                 c("if bad:")
                 c(f"    raise _dec({at}, {leaf.var}, 'text', bad, at[{n}], {f.rule!r})")
+                if f.max_length is not None:
+                    c(f"if len({leaf.var}) > {f.max_length}:")
+                    c(f"    raise _dec({at}, {leaf.var}, 'length', 'at most {f.max_length} characters', at[{n}])")
             c("try:")
             c.indent()
             expr = self.view.decode_leaf(c, self.m, leaf, f"at[{n}]")
@@ -773,14 +753,6 @@ def module_view(p: Protocol) -> dict:
         "dispatch": view.dispatch_table(), "sequences": [view.sequence_view(s) for s in p.sequences],
         "stream": view.stream_view(),
     }
-
-
-def _checksum_name(cs) -> str:
-    if cs.algorithm == "crc":
-        c = cs.crc
-        return (f"crc{c.width}_{c.poly:x}_{c.init:x}_{'r' if c.refin else 'n'}"
-                f"{'r' if c.refout else 'n'}_{c.xorout:x}")
-    return f"{cs.algorithm}{cs.modulo or ''}"
 
 
 def _checksum_code(cs) -> str:

@@ -91,3 +91,12 @@ def stream_facts(p: Protocol) -> dict:
         pos += leaf.field.bits or 0
     sizes = sorted({m.size for m in p.messages})
     return {"sync": sync, "length": length, "sizes": sizes, "max": max(sizes), "min": min(sizes)}
+
+
+def checksum_name(cs) -> str:
+    """A stable identifier for a checksum algorithm and its parameters."""
+    if cs.algorithm == "crc":
+        c = cs.crc
+        return (f"crc{c.width}_{c.poly:x}_{c.init:x}_{'r' if c.refin else 'n'}"
+                f"{'r' if c.refout else 'n'}_{c.xorout:x}")
+    return f"{cs.algorithm}{cs.modulo or ''}"

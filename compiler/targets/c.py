@@ -1,0 +1,110 @@
+"""C target: generated/c/codeword.h (shared runtime) and one header per protocol."""
+from __future__ import annotations
+
+from ..model import Protocol
+from .cview import CView, cchar, clit, comment, cstr
+from .render import environment
+from .wire import leaves_of
+
+
+def constants(v: CView) -> list[tuple[str, str, str]]:
+    p = v.p
+    out: list[tuple[str, str, str]] = []
+    for param in p.parameters:
+        if isinstance(param.default, int):
+            out.append((v.upper(param.name), clit(param.default), comment(param.doc or "")))
+    if p.framing.kind == "bytes":
+        first = leaves_of(p.framing.envelope)[0].field
+        if first.const is not None and first.bits == 8:
+            out.append((v.upper("SYNC"), f"{first.const:#04x}u", "first byte of every frame"))
+    for m in p.messages:
+        if m.size is not None:
+            out.append((v.upper(m.name, "SIZE"), f"{m.size}u", "bytes"))
+        elif v.text:
+            out.append((v.upper(m.name, "MAX_TEXT"), f"{v.max_text(m) + 1}u",
+                        "chars, with the NUL: buffer size for encode"))
+        for i, value in enumerate(m.ids):
+            name = v.upper(m.name, "ID") if len(m.ids) == 1 else v.upper(m.name, f"ID{i}")
+            out.append((name, cchar(value) if isinstance(value, str) else f"{value}u", ""))
+    sizes = [m.size for m in p.messages if m.size is not None]
+    if sizes:
+        out.append((v.upper("MAX_FRAME"), f"{max(sizes)}u", "bytes: largest frame"))
+    if v.text:
+        out.append((v.upper("MAX_TEXT"), f"{max(v.max_text(m) for m in p.messages) + 1}u",
+                    "chars, with the NUL: largest encoded message"))
+    if v.word_bits():
+        out.append((v.upper("WORD_BITS"), f"{v.word_bits()}u", "bits in a word"))
+    return out
+
+
+def enums(v: CView) -> list[dict]:
+    out = []
+    for e in v.p.enums:
+        out.append({"doc": comment(e.doc or e.name), "members": [
+            (v.enum_const(e.name, m.name), cchar(m.value) if isinstance(m.value, str) else str(m.value),
+             comment(m.doc or "")) for m in e.members]})
+    return out
+
+
+def flags(v: CView) -> list[dict]:
+    out = []
+    for fl in v.p.flags:
+        ctype = "uint8_t" if fl.bits <= 8 else "uint16_t" if fl.bits <= 16 else "uint32_t"
+        out.append({"doc": comment(fl.doc or fl.name), "ctype": ctype, "all": v.upper(fl.name, "ALL"),
+                    "mask": clit(fl.mask, True),
+                    "members": [(v.upper(fl.name, b.name), clit(1 << b.bit, True), comment(b.doc or ""))
+                                for b in fl.members]})
+    return out
+
+
+def message_views(v: CView) -> list[dict]:
+    out = []
+    for m in v.p.messages:
+        if v.text:
+            functions = [v.text_encode_function(m), v.text_body_function(m), v.text_decode_function(m)]
+        else:
+            functions = [v.raw_function(m), v.encode_function(m), v.check_raw_function(m),
+                         v.decode_function(m)]
+            if v.word_bits():
+                functions.append(v.word_functions(m))
+            if v.fr.text_form:
+                functions.append(v.text_form_functions(m))
+        out.append({"name": m.name, "tname": v.tname(m), "fn": f"{v.px}_{m.name}",
+                    "kind": v.upper("MSG", m.name), "doc": comment(m.title or m.doc or m.name),
+                    "struct": v.struct_lines(m.layout), "functions": [f for f in functions if f],
+                    "units": v.unit_helpers(m)})
+    return out
+
+
+def render(p: Protocol) -> dict[str, str]:
+    v = CView(p)
+    fr = p.framing
+    messages = message_views(v)
+    dispatch = v.dispatch() if p.self_identifying else {"kind": "none"}
+    text_form = None
+    if fr.text_form and dispatch["kind"] == "bits":
+        facts = v.text_form_facts()
+        text_form = {**facts, "separator": cchar(fr.text_form.separator),
+                     "unfilled": fr.text_form.checksum_unfilled}
+    ignore = " || ".join(f"*s == {cchar(ch)}" for ch in fr.ignore_between) or "false"
+    ignore_end = " || ".join(f"e[-1] == {cchar(ch)}" for ch in fr.ignore_between) or "false"
+    env = environment()
+    header = env.get_template("c/protocol.h.j2").render(
+        p=p, v=v, px=v.px, PX=v.PX, constants=constants(v), enums=enums(v), flags=flags(v),
+        directions=v.directions(), messages=messages, kinds={m["name"]: m["kind"] for m in messages},
+        checksums=v.byte_checksums(), text=v.text, dispatch=dispatch, stream=v.stream() if fr.kind == "bytes" else {},
+        word_bits=v.word_bits(), text_form=text_form, cstr=cstr, ignore=ignore, ignore_end=ignore_end,
+        terminator=cchar(fr.terminator), prefix_separator=cchar(fr.prefix_separator))
+    runtime = env.get_template("c/codeword.h.j2").render()
+    return {f"c/{p.name}.h": tidy(header), "c/codeword.h": runtime}
+
+
+def tidy(source: str) -> str:
+    """At most one blank line in a row; no trailing spaces."""
+    out: list[str] = []
+    for line in source.splitlines():
+        line = line.rstrip()
+        if not line and out and not out[-1]:
+            continue
+        out.append(line)
+    return "\n".join(out).strip("\n") + "\n"

@@ -1,0 +1,1075 @@
+"""View of a protocol for the C target: C names and types, and the function
+bodies the header template lays out. All decisions about generated C live
+here; templates/c only arranges them.
+
+Rules the generated code keeps (firmware on AVR and Cortex-M):
+- byte-wise, endian-explicit access through codeword.h; no packed structs,
+  no pointer casts;
+- every shift on an unsigned type at least 16 bits wide, cast before shifting;
+- no heap, no recursion, no VLAs; every identifier prefixed by the protocol.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from fractions import Fraction
+from typing import Any, Optional
+
+from ..model import Checksum, CrcParams, Field, Message, Protocol, field_at
+from .code import Code
+from .wire import Leaf, checksum_name, dispatch_facts, leaves_of, stream_facts
+
+ERR = {
+    "length": "CW_ERR_LENGTH", "const": "CW_ERR_CONST", "range": "CW_ERR_RANGE",
+    "values": "CW_ERR_VALUES", "enum": "CW_ERR_ENUM", "flags": "CW_ERR_FLAGS",
+    "exactly_one": "CW_ERR_EXACTLY_ONE", "one_hot": "CW_ERR_ONE_HOT",
+    "checksum": "CW_ERR_CHECKSUM", "reserved": "CW_ERR_RESERVED", "dispatch": "CW_ERR_DISPATCH",
+    "syntax": "CW_ERR_SYNTAX", "count": "CW_ERR_COUNT", "text": "CW_ERR_TEXT", "type": "CW_ERR_TYPE",
+    "finite": "CW_ERR_FINITE", "terminator": "CW_ERR_TERMINATOR", "prefix": "CW_ERR_PREFIX",
+    "rule": "CW_ERR_RULE", "precision": "CW_ERR_PRECISION",
+}
+
+INT_TYPES = [(8, "int8_t", "uint8_t"), (16, "int16_t", "uint16_t"), (32, "int32_t", "uint32_t"),
+             (64, "int64_t", "uint64_t")]
+
+
+class CTargetError(ValueError):
+    """A schema feature the C target cannot express yet."""
+
+
+def int_ctype(lo: int, hi: int) -> str:
+    for bits, signed, unsigned in INT_TYPES:
+        if lo >= 0 and hi < (1 << bits):
+            return unsigned
+        if lo < 0 and lo >= -(1 << (bits - 1)) and hi < (1 << (bits - 1)):
+            return signed
+    raise CTargetError(f"no C integer type holds {lo}..{hi}")
+
+
+def type_limits(ctype: str) -> tuple[int, int]:
+    for bits, signed, unsigned in INT_TYPES:
+        if ctype == unsigned:
+            return 0, (1 << bits) - 1
+        if ctype == signed:
+            return -(1 << (bits - 1)), (1 << (bits - 1)) - 1
+    if ctype == "char":
+        return 0, 127
+    raise KeyError(ctype)
+
+
+def clit(value: int, unsigned: bool = False) -> str:
+    """An integer literal that has the intended value on 16-bit-int targets."""
+    if value < 0:
+        return f"(-{-value - 1} - 1)" if value <= -32768 else str(value)
+    suffix = "u" if unsigned or value > 32767 else ""
+    if value > 0xFFFF:
+        suffix = "UL"
+    if value > 0xFFFFFFFF:
+        suffix = "ULL"
+    return f"{value:#x}{suffix}" if value > 255 else f"{value}{suffix}"
+
+
+def cstr(text: str) -> str:
+    out = []
+    for ch in text:
+        if ch in '"\\':
+            out.append("\\" + ch)
+        elif " " <= ch <= "~":
+            out.append(ch)
+        else:
+            out.append(f"\\x{ord(ch):02x}\"\"")
+    return '"' + "".join(out) + '"'
+
+
+def cchar(ch: str) -> str:
+    if ch in "'\\":
+        return "'\\" + ch + "'"
+    if " " <= ch <= "~":
+        return f"'{ch}'"
+    return f"'\\x{ord(ch):02x}'"
+
+
+def comment(text: Any) -> str:
+    return " ".join(str(text).split()).replace("*/", "* /")
+
+
+@dataclass(frozen=True)
+class Rep:
+    """How a leaf is stored in the C struct."""
+
+    ctype: str  # element type
+    array: Optional[int] = None  # char/uint8_t array length
+    has_flag: bool = False  # an extra `bool has_<name>` (optional / one-hot absent)
+    lo: Optional[int] = None  # integer values the stored type must hold
+    hi: Optional[int] = None
+
+
+class CView:
+    def __init__(self, protocol: Protocol):
+        self.p = protocol
+        self.px = protocol.name.lower()
+        self.PX = protocol.name.upper()
+        self.fr = protocol.framing
+        self.text = self.fr.kind == "text"
+
+    # -- names ---------------------------------------------------------------------------
+    def tname(self, m: Message) -> str:
+        return f"{self.px}_{m.name}_t"
+
+    def fn(self, m: Message, op: str) -> str:
+        return f"{self.px}_{m.name}_{op}"
+
+    def upper(self, *parts: str) -> str:
+        return "_".join([self.PX] + [p.upper() for p in parts])
+
+    def member(self, leaf: Leaf, obj: str = "m") -> str:
+        return f"{obj}->" + ".".join(leaf.path)
+
+    def has(self, leaf: Leaf, obj: str = "m") -> str:
+        path = list(leaf.path)
+        path[-1] = "has_" + path[-1]
+        return f"{obj}->" + ".".join(path)
+
+    def enum_const(self, enum_name: str, member: str) -> str:
+        return self.upper(enum_name, member)
+
+    # -- representation ------------------------------------------------------------------
+    def rep(self, f: Field) -> Rep:
+        if f.kind == "bool":
+            return Rep("bool")
+        if f.kind == "char":
+            return Rep("char")
+        if f.kind == "str":
+            if f.max_length is None:
+                raise CTargetError(f"{f.name}: a str field needs max_length for a C buffer")
+            return Rep("char", array=f.max_length + 1, has_flag=f.optional)
+        if f.kind == "bytes":
+            return Rep("uint8_t", array=f.length)
+        if f.kind == "float":
+            if self.text:
+                return Rep("cw_decimal_t", has_flag=f.optional)
+            if f.bits != 32:
+                raise CTargetError(f"{f.name}: binary f64 is not supported by the C target")
+            return Rep("float")
+        if f.one_hot:
+            lo, hi = f.range or (0, f.bits - 1)
+            return Rep("uint8_t", has_flag=True, lo=int(lo), hi=int(hi))
+        if f.enum is not None and f.enum.kind == "char":
+            return Rep("char", has_flag=f.optional)
+        lo, hi = self.stored_range(f)
+        return Rep(int_ctype(lo, hi), has_flag=f.optional, lo=lo, hi=hi)
+
+    def stored_range(self, f: Field) -> tuple[int, int]:
+        """The integers the struct member holds: raw when scaled, else logical."""
+        raw = f.raw_range or (-(1 << 31), (1 << 31) - 1)
+        if f.scale is not None:
+            return raw
+        off = int(f.offset or 0)
+        if f.range is not None and f.enum is None and f.flags is None:
+            return int(math.ceil(f.range[0])), int(math.floor(f.range[1]))
+        return raw[0] + off, raw[1] + off
+
+    def ctype_of(self, f: Field) -> str:
+        return self.rep(f).ctype
+
+    def raw_bounds(self, f: Field) -> tuple[int, int]:
+        """Bounds of the stored integer that the schema's range allows."""
+        lo, hi = f.range
+        scale = Fraction(f.scale) if f.scale is not None else Fraction(1)
+        off = Fraction(f.offset or 0) if f.scale is not None else Fraction(0)
+        return math.ceil((Fraction(lo) - off) / scale), math.floor((Fraction(hi) - off) / scale)
+
+    # -- declarations --------------------------------------------------------------------
+    def struct_lines(self, fields: tuple[Field, ...], depth: int = 1) -> list[str]:
+        pad = "    " * depth
+        out: list[str] = []
+        for f in fields:
+            if not f.is_member:
+                continue
+            note = self.field_note(f)
+            if f.kind == "group":
+                out.append(f"{pad}struct {{" + (f"  /* {note} */" if note else ""))
+                out.extend(self.struct_lines(f.fields, depth + 1))
+                out.append(f"{pad}}} {f.name};")
+                continue
+            r = self.rep(f)
+            if r.has_flag:
+                out.append(f"{pad}bool has_{f.name};  /* {'0 = absent' if f.optional else '0 = no bit set'} */")
+            arr = f"[{r.array}]" if r.array else ""
+            out.append(f"{pad}{r.ctype} {f.name}{arr};" + (f"  /* {note} */" if note else ""))
+        return out
+
+    def field_note(self, f: Field) -> str:
+        parts = [comment(f.doc or f.title)] if (f.doc or f.title) else []
+        if f.scale is not None:
+            parts.append(f"raw: value = raw * {f.scale:g}" + (f" + {f.offset:g}" if f.offset else "")
+                         + (f" {f.unit}" if f.unit else ""))
+        elif f.unit:
+            parts.append(f"[{f.unit}]")
+        if f.range is not None:
+            parts.append(f"range {f.range[0]:g}..{f.range[1]:g}")
+        if f.enum is not None:
+            parts.append(f"{self.upper(f.enum.name)}_*")
+        if f.flags is not None:
+            parts.append(f"mask of {self.upper(f.flags.name)}_*")
+        if f.kind == "str":
+            parts.append(f"NUL-terminated, at most {f.max_length} characters")
+        if f.rule:
+            parts.append(f"({f.rule})")
+        return comment("; ".join(parts))
+
+    # -- checks shared by binary and text decoders ----------------------------------------
+    def range_cond(self, expr: str, lo: int, hi: int, ctype: str) -> Optional[str]:
+        """`expr` outside lo..hi, leaving out comparisons the type makes always false."""
+        tlo, thi = type_limits(ctype) if ctype != "int32_t raw" else (-(1 << 31), (1 << 31) - 1)
+        unsigned = ctype.startswith("uint")
+        parts = []
+        if lo > tlo:
+            parts.append(f"{expr} < {clit(lo, unsigned)}")
+        if hi < thi:
+            parts.append(f"{expr} > {clit(hi, unsigned)}")
+        return " || ".join(parts) or None
+
+    def value_literal(self, f: Field, value: Any) -> str:
+        """A C expression for a schema-written value (enum names, flag lists, numbers)."""
+        if value is None:
+            return "0"
+        if f.enum is not None:
+            member = next((m for m in f.enum.members if value in (m.name, m.value)), None)
+            if member is not None:
+                return self.enum_const(f.enum.name, member.name)
+        if f.flags is not None and isinstance(value, list):
+            names = [self.upper(f.flags.name, n) for n in value]
+            return "(" + " | ".join(names) + ")" if names else "0u"
+        if isinstance(value, bool):
+            return "true" if value else "false"
+        if isinstance(value, str):
+            return cchar(value) if len(value) == 1 else cstr(value)
+        if f.scale is not None:
+            return clit(int((Fraction(value) - Fraction(f.offset or 0)) / Fraction(f.scale)))
+        return clit(int(value)) if float(value).is_integer() else repr(value)
+
+    def condition(self, cond, obj: str, m: Message) -> str:
+        f = field_at(m.layout, cond.path)
+        left = f"{obj}->{cond.path}"
+        leaf_has = f"{obj}->" + ".".join(cond.path.split(".")[:-1] + ["has_" + cond.path.split(".")[-1]])
+        value = cond.value
+        if cond.op in ("eq", "ne") and value is None:
+            return f"!{leaf_has}" if cond.op == "eq" else leaf_has
+        if cond.op in ("eq", "ne"):
+            if f is not None and f.kind == "bool":
+                want = bool(value) == (cond.op == "eq")
+                return left if want else f"!{left}"
+            op = "==" if cond.op == "eq" else "!="
+            return f"{left} {op} {self.value_literal(f, value)}"
+        if cond.op == "in":
+            return "(" + " || ".join(f"{left} == {self.value_literal(f, v)}" for v in value) + ")"
+        if cond.op == "range":
+            return f"({left} >= {self.value_literal(f, value[0])} && {left} <= {self.value_literal(f, value[1])})"
+        raise CTargetError(f"condition {cond.op} is for state machines")
+
+    def rule_checks(self, c: Code, m: Message, obj: str) -> None:
+        for rule in m.rules:
+            need = " && ".join(self.condition(x, obj, m) for x in rule.require)
+            when = " && ".join(self.condition(x, obj, m) for x in rule.when)
+            cond = f"({when}) && !({need})" if when else f"!({need})"
+            c(f"if ({cond}) {{  /* {rule.id or 'rule'}: {comment(rule.message or '')} */")
+            c("    return CW_ERR_RULE;")
+            c("}")
+
+    # -- encode side: struct member -> checked raw wire value -----------------------------
+    def encode_leaf(self, c: Code, leaf: Leaf, raw: str) -> None:
+        """Check the member of `leaf` and store its raw wire value in `raw` (uint32_t)."""
+        f = leaf.field
+        if f.checksum or f.reserved:
+            c(f"{raw} = 0u;")
+            return
+        if f.length_of or f.const is not None:
+            value = f.const
+            if f.enum is not None:
+                value = next(x.value for x in f.enum.members if f.const in (x.name, x.value))
+            c(f"{raw} = {clit(int(value), True)};")
+            return
+        v = self.member(leaf)
+        r = self.rep(f)
+        if f.kind == "bool":
+            c(f"{raw} = {v} ? 1u : 0u;")
+        elif f.kind == "float":
+            c(f"{raw} = cw_f32_to_bits({v});")
+            c(f"if (!cw_f32_bits_finite({raw})) {{")
+            c("    return CW_ERR_FINITE;")
+            c("}")
+            if f.range is not None:
+                c(f"if (!({v} >= {f.range[0]!r}f && {v} <= {f.range[1]!r}f)) {{")
+                c("    return CW_ERR_RANGE;")
+                c("}")
+        elif f.kind == "bytes":
+            return
+        elif f.one_hot:
+            c(f"if ({self.has(leaf)}) {{")
+            cond = self.range_cond(v, r.lo, r.hi, r.ctype)
+            if cond:
+                c(f"    if ({cond}) {{")
+                c("        return CW_ERR_RANGE;")
+                c("    }")
+            c(f"    {raw} = (uint32_t)1u << {v};")
+            c("} else {")
+            c(f"    {raw} = 0u;")
+            c("}")
+        elif f.enum is not None:
+            self.member_check(c, f, v, "enum")
+            c(f"{raw} = (uint32_t){v};")
+        elif f.flags is not None:
+            self.member_check(c, f, v, "flags")
+            c(f"{raw} = (uint32_t){v};")
+        else:
+            self.member_check(c, f, v, "int")
+            if f.kind == "int":
+                c(f"{raw} = (uint32_t)(int32_t){v} & {clit((1 << f.bits) - 1, True)};")
+            elif f.offset and f.scale is None:
+                c(f"{raw} = (uint32_t)({v} - {clit(int(f.offset))});")
+            else:
+                c(f"{raw} = (uint32_t){v};")
+
+    def member_check(self, c: Code, f: Field, v: str, what: str) -> None:
+        """Checks of an integer-like member (enum, flags, plain) before it is sent."""
+        r = self.rep(f)
+        if what == "enum":
+            values = [x.value for x in f.enum.members]
+            cond = " && ".join(f"{v} != {self.literal_of(x, r.ctype)}" for x in values)
+            c(f"if ({cond}) {{")
+            c("    return CW_ERR_ENUM;")
+            c("}")
+        elif what == "flags":
+            outside = ~f.flags.mask & ((1 << f.bits) - 1)
+            if outside:
+                c(f"if (({v} & {clit(outside, True)}) != 0u) {{")
+                c("    return CW_ERR_FLAGS;")
+                c("}")
+            if f.exactly_one:
+                c(f"if ({v} == 0u || ({v} & ({v} - 1u)) != 0u) {{")
+                c("    return CW_ERR_EXACTLY_ONE;")
+                c("}")
+            return
+        else:
+            lo, hi = self.raw_bounds(f) if f.range is not None else self.stored_range(f)
+            if f.range is None and f.raw_range and f.scale is None:
+                lo, hi = f.raw_range[0] + int(f.offset or 0), f.raw_range[1] + int(f.offset or 0)
+            cond = self.range_cond(v, lo, hi, r.ctype)
+            if cond:
+                c(f"if ({cond}) {{")
+                c("    return CW_ERR_RANGE;")
+                c("}")
+        if f.values:
+            allowed = [self.enum_wire(f, x) for x in f.values]
+            cond = " && ".join(f"{v} != {self.literal_of(x, r.ctype)}" for x in allowed)
+            c(f"if ({cond}) {{")
+            c("    return CW_ERR_VALUES;")
+            c("}")
+
+    @staticmethod
+    def enum_wire(f: Field, value: Any) -> Any:
+        if f.enum is None:
+            return value
+        return next((x.value for x in f.enum.members if value in (x.name, x.value)), value)
+
+    @staticmethod
+    def literal_of(value: Any, ctype: str) -> str:
+        if isinstance(value, str):
+            return cchar(value)
+        return clit(int(value), ctype.startswith("uint"))
+
+    # -- decode side: raw wire value -> checks -> struct member -----------------------------
+    def decode_leaf(self, c: Code, leaf: Leaf, raw: str, m: Message) -> None:
+        """Check the raw value (uint32_t) in Python's order and store the member."""
+        f = leaf.field
+        if f.reserved:
+            self.fail_if(c, f"{raw} != 0u", "reserved")
+            return
+        if f.length_of:
+            self.fail_if(c, f"{raw} != {clit(int(f.const), True)}", "length")
+            return
+        if f.checksum:
+            return
+        if f.const is not None and not f.values:
+            value = self.enum_wire(f, f.const)
+            self.fail_if(c, f"{raw} != {clit(int(value), True)}", "const")
+            return
+        v = self.member(leaf)
+        r = self.rep(f)
+        if f.kind == "bool":
+            c(f"{v} = {raw} != 0u;")
+            return
+        if f.kind == "bytes":
+            return
+        if f.kind == "float":
+            self.fail_if(c, f"!cw_f32_bits_finite({raw})", "finite")
+            c(f"{v} = cw_f32_from_bits({raw});")
+            if f.range is not None:
+                self.fail_if(c, f"!({v} >= {f.range[0]!r}f && {v} <= {f.range[1]!r}f)", "range")
+            return
+        if f.enum is not None:
+            cond = " && ".join(f"{raw} != {clit(int(x.value), True)}" for x in f.enum.members)
+            self.fail_if(c, cond, "enum")
+        elif f.flags is not None:
+            outside = ~f.flags.mask & ((1 << f.bits) - 1)
+            if outside:
+                self.fail_if(c, f"({raw} & {clit(outside, True)}) != 0u", "flags")
+            if f.exactly_one:
+                self.fail_if(c, f"{raw} == 0u || ({raw} & ({raw} - 1u)) != 0u", "exactly_one")
+            c(f"{v} = ({r.ctype}){raw};")
+            return
+        elif f.one_hot:
+            self.fail_if(c, f"({raw} & ({raw} - 1u)) != 0u || ({raw} != 0u && ({raw} < {clit(1 << r.lo, True)} || {raw} > {clit(1 << r.hi, True)}))", "one_hot")
+            c(f"{self.has(leaf)} = {raw} != 0u;")
+            c(f"{v} = cw_bit_index({raw});")
+            return
+        if f.kind == "int":
+            c(f"{v} = ({r.ctype})cw_sign_extend({raw}, {f.bits}u);")
+            checked = v
+        elif f.offset and f.scale is None:
+            c(f"{v} = ({r.ctype})({raw} + {clit(int(f.offset), True)});")
+            checked = v
+        else:
+            c(f"{v} = ({r.ctype}){raw};")
+            checked = v
+        if f.range is not None and f.enum is None:
+            lo, hi = self.raw_bounds(f)
+            cond = self.range_cond(checked, lo, hi, r.ctype)
+            if cond:
+                self.fail_if(c, cond, "range")
+        if f.values:
+            allowed = [self.enum_wire(f, x) for x in f.values]
+            self.fail_if(c, " && ".join(f"{checked} != {self.literal_of(x, r.ctype)}" for x in allowed),
+                         "values")
+
+    @staticmethod
+    def fail_if(c: Code, cond: str, kind: str) -> None:
+        c(f"if ({cond}) {{")
+        c(f"    return {ERR[kind]};")
+        c("}")
+
+    # -- byte layout -----------------------------------------------------------------------
+    def positioned(self, m: Message) -> list[tuple[Leaf, int]]:
+        out, pos = [], 0
+        for leaf in leaves_of(m.layout):
+            out.append((leaf, pos))
+            pos += leaf.field.bits or 0
+        return out
+
+    def order_of(self, f: Field) -> str:
+        return f.byte_order or self.fr.byte_order
+
+    def put(self, c: Code, leaf: Leaf, pos: int, raw: str) -> None:
+        f = leaf.field
+        if f.kind == "bytes":
+            if pos % 8:
+                raise CTargetError(f"{f.name}: bytes fields must start on a byte boundary")
+            c(f"memcpy(buf + {pos // 8}, {self.member(leaf)}, {f.length});")
+        elif pos % 8 == 0 and f.bits % 8 == 0 and f.bits <= 32:
+            order = "le" if self.order_of(f) == "little" else "be"
+            c(f"cw_put_{order}(buf + {pos // 8}, {f.bits // 8}u, {raw});")
+        else:
+            c(f"cw_put_bits(buf, {pos}u, {f.bits}u, {raw});")
+
+    def get(self, leaf: Leaf, pos: int) -> str:
+        f = leaf.field
+        if pos % 8 == 0 and f.bits % 8 == 0 and f.bits <= 32:
+            order = "le" if self.order_of(f) == "little" else "be"
+            return f"cw_get_{order}(buf + {pos // 8}, {f.bits // 8}u)"
+        return f"cw_get_bits(buf, {pos}u, {f.bits}u)"
+
+    # -- checksums ----------------------------------------------------------------------------
+    def checksum_fn(self, cs: Checksum) -> str:
+        return f"{self.px}_{checksum_name(cs)}"
+
+    def field_checksum(self, leaf: Leaf, others: list[str]) -> str:
+        cs = leaf.field.checksum
+        if cs.algorithm == "sum":
+            return f"({' + '.join(others)}) % {clit(cs.modulo, True)}"
+        if cs.algorithm == "xor":
+            return f"({' ^ '.join(others)}) % {clit(cs.modulo, True)}"
+        flip = " ^ 1u" if cs.parity == "odd" else ""
+        return f"(uint32_t)((cw_popcount32({' ^ '.join(others)}) & 1u){flip})"
+
+    def byte_checksums(self) -> list[str]:
+        seen: dict[str, str] = {}
+        for m in self.p.messages:
+            for leaf in leaves_of(m.layout):
+                cs = leaf.field.checksum
+                if cs and cs.over == "bytes":
+                    seen.setdefault(checksum_name(cs), checksum_code(self.checksum_fn(cs), cs, self.PX))
+        return list(seen.values())
+
+    # -- binary messages -----------------------------------------------------------------------
+    def wired(self, m: Message) -> tuple[list[tuple[Leaf, int]], dict[str, str]]:
+        """Leaves with wire bits and their offsets, and the r[] slot of each integer leaf."""
+        wired = [(leaf, pos) for leaf, pos in self.positioned(m) if leaf.field.bits]
+        slots = [leaf for leaf, _ in wired if leaf.field.kind != "bytes"]
+        return wired, {leaf.var: f"r[{i}]" for i, leaf in enumerate(slots)}
+
+    def raw_function(self, m: Message) -> str:
+        """<msg>_raw(m, r): checks a message and fills r[] with its raw wire values."""
+        c = Code()
+        wired, raws = self.wired(m)
+        c(f"static inline int {self.fn(m, 'raw')}(const {self.tname(m)} *m, uint32_t *r)")
+        c("{")
+        c.indent()
+        if not any(leaf.field.is_member for leaf, _ in wired):
+            c("(void)m;")
+        self.rule_checks(c, m, "m")
+        for leaf, _ in wired:
+            if leaf.var in raws:
+                self.encode_leaf(c, leaf, raws[leaf.var])
+        for leaf, _ in wired:
+            cs = leaf.field.checksum
+            if cs and cs.over != "bytes":
+                others = [raws[x.var] for x, _ in wired if x is not leaf and x.var in raws]
+                c(f"{raws[leaf.var]} = {self.field_checksum(leaf, others)};")
+        c("return CW_OK;")
+        c.dedent()
+        c("}")
+        return c.text()
+
+    def encode_function(self, m: Message) -> str:
+        c = Code()
+        wired, raws = self.wired(m)
+        c(f"static inline int {self.fn(m, 'encode')}(const {self.tname(m)} *m, uint8_t *buf, size_t cap)")
+        c("{")
+        c.indent()
+        c(f"uint32_t r[{max(1, len(raws))}];")
+        c(f"int rc = {self.fn(m, 'raw')}(m, r);")
+        c("if (rc != CW_OK) {")
+        c("    return rc;")
+        c("}")
+        c(f"if (cap < {m.size}u) {{")
+        c("    return CW_ERR_CAPACITY;")
+        c("}")
+        c(f"memset(buf, 0, {m.size}u);")
+        for leaf, pos in wired:
+            self.put(c, leaf, pos, raws.get(leaf.var, ""))
+        for leaf, pos in wired:
+            cs = leaf.field.checksum
+            if cs and cs.over == "bytes":
+                start, end = cs.byte_span
+                order = "le" if self.order_of(leaf.field) == "little" else "be"
+                c(f"cw_put_{order}(buf + {pos // 8}, {leaf.field.bits // 8}u, "
+                  f"(uint32_t){self.checksum_fn(cs)}(buf + {start}, {end - start}u));")
+        c(f"return {m.size};")
+        c.dedent()
+        c("}")
+        return c.text()
+
+    def decode_function(self, m: Message) -> str:
+        c = Code()
+        wired, raws = self.wired(m)
+        c(f"static inline int {self.fn(m, 'decode')}(const uint8_t *buf, size_t len, {self.tname(m)} *m)")
+        c("{")
+        c.indent()
+        c(f"uint32_t r[{max(1, len(raws))}];")
+        c(f"if (len != {m.size}u) {{")
+        c("    return CW_ERR_LENGTH;")
+        c("}")
+        pad = m.size * 8 - m.bits
+        if pad:
+            self.fail_if(c, f"cw_get_bits(buf, {m.bits}u, {pad}u) != 0u", "reserved")
+        for leaf, pos in wired:
+            if leaf.var in raws:
+                c(f"{raws[leaf.var]} = {self.get(leaf, pos)};")
+        for leaf, pos in wired:
+            cs = leaf.field.checksum
+            if cs and cs.over == "bytes":
+                start, end = cs.byte_span
+                self.fail_if(c, f"{raws[leaf.var]} != (uint32_t){self.checksum_fn(cs)}(buf + {start}, {end - start}u)",
+                             "checksum")
+        c(f"return {self.fn(m, 'check_raw')}(r, buf, m, false);")
+        c.dedent()
+        c("}")
+        return c.text()
+
+    def check_raw_function(self, m: Message) -> str:
+        """<msg>_check_raw(r, buf, m, text_form): field checks on raw values, in
+        Python's order; shared by the binary and the text-form decoders."""
+        c = Code()
+        wired, raws = self.wired(m)
+        c(f"static inline int {self.fn(m, 'check_raw')}(const uint32_t *r, const uint8_t *buf, "
+          f"{self.tname(m)} *m, bool text_form)")
+        c("{")
+        c.indent()
+        uses_buf = any(leaf.field.kind == "bytes" for leaf, _ in wired)
+        unfilled = self.fr.text_form.checksum_unfilled if self.fr.text_form else None
+        field_sums = [leaf for leaf, _ in wired if leaf.field.checksum and leaf.field.checksum.over != "bytes"]
+        if not uses_buf:
+            c("(void)buf;")
+        if not m.members:
+            c("(void)m;")
+        if unfilled is None or not field_sums:
+            c("(void)text_form;")
+        for leaf, pos in wired:
+            if leaf.field.kind == "bytes":
+                c(f"memcpy({self.member(leaf)}, buf + {pos // 8}, {leaf.field.length});")
+            else:
+                self.decode_leaf(c, leaf, raws[leaf.var], m)
+        for leaf in field_sums:
+            others = [raws[x.var] for x, _ in wired if x is not leaf and x.var in raws]
+            cond = f"{raws[leaf.var]} != {self.field_checksum(leaf, others)}"
+            if unfilled is not None:
+                cond = f"{cond} && !(text_form && {raws[leaf.var]} == {clit(unfilled, True)})"
+            self.fail_if(c, cond, "checksum")
+        self.rule_checks(c, m, "m")
+        c("return CW_OK;")
+        c.dedent()
+        c("}")
+        return c.text()
+
+    # -- physical units of scaled fields ----------------------------------------------------------
+    def unit_helpers(self, m: Message) -> list[dict]:
+        out = []
+        for leaf in leaves_of(m.layout):
+            f = leaf.field
+            if f.scale is None or not f.is_member:
+                continue
+            lo, hi = f.range if f.range is not None else (
+                f.raw_range[0] * f.scale + (f.offset or 0), f.raw_range[1] * f.scale + (f.offset or 0))
+            out.append({"name": "_".join(leaf.path), "path": leaf.dotted, "ctype": self.rep(f).ctype,
+                        "scale": repr(float(f.scale)), "offset": repr(float(f.offset or 0)),
+                        "lo": repr(float(lo)), "hi": repr(float(hi)), "unit": f.unit or "units"})
+        return out
+
+
+    # -- words (bit-packed protocols) -------------------------------------------------------------
+    def word_bits(self) -> Optional[int]:
+        return self.fr.word_bits or self.fr.max_bits
+
+    def word_functions(self, m: Message) -> str:
+        """<msg>_to_word / <msg>_from_word: the message left-aligned in a word."""
+        w = self.word_bits()
+        if m.size > 4:
+            return ""
+        bits = 8 * m.size
+        c = Code()
+        c(f"static inline int {self.fn(m, 'to_word')}(const {self.tname(m)} *m, uint32_t *word)")
+        c("{")
+        c(f"    uint8_t b[{m.size}];")
+        c(f"    int rc = {self.fn(m, 'encode')}(m, b, sizeof b);")
+        c("    if (rc < 0) {")
+        c("        return rc;")
+        c("    }")
+        shift = f" << {w - bits}" if bits < w else f" >> {bits - w}" if bits > w else ""
+        c(f"    *word = cw_get_be(b, {m.size}u){shift};")
+        c("    return CW_OK;")
+        c("}")
+        c("")
+        c(f"static inline int {self.fn(m, 'from_word')}(uint32_t word, {self.tname(m)} *m)")
+        c("{")
+        c(f"    uint8_t b[{m.size}];")
+        if w < 32:
+            self.fail_if(c.indent(), f"word > {clit((1 << w) - 1, True)}", "range")
+            c.dedent()
+        if bits < w:
+            self.fail_if(c.indent(), f"(word & {clit((1 << (w - bits)) - 1, True)}) != 0u", "reserved")
+            c.dedent()
+            c(f"    cw_put_be(b, {m.size}u, word >> {w - bits});")
+        else:
+            c(f"    cw_put_be(b, {m.size}u, word{' << ' + str(bits - w) if bits > w else ''});")
+        c(f"    return {self.fn(m, 'decode')}(b, sizeof b, m);")
+        c("}")
+        return c.text()
+
+    # -- text form of a bit-packed protocol (a line of decimal raw values) ------------------------
+    def text_form_functions(self, m: Message) -> str:
+        tf = self.fr.text_form
+        c = Code()
+        wired, raws = self.wired(m)
+        n = len(raws)
+        c(f"/* {m.name} as a text line: its {n} raw values in decimal, separated by {tf.separator!r}. */")
+        c(f"static inline int {self.fn(m, 'to_text')}(const {self.tname(m)} *m, char *buf, size_t cap)")
+        c("{")
+        c.indent()
+        c(f"uint32_t r[{max(1, n)}];")
+        c("cw_writer_t w;")
+        c("uint8_t i;")
+        c(f"int rc = {self.fn(m, 'raw')}(m, r);")
+        c("if (rc != CW_OK) {")
+        c("    return rc;")
+        c("}")
+        c("cw_writer_init(&w, buf, cap);")
+        c(f"for (i = 0; i < {n}u; i++) {{")
+        c("    if (i) {")
+        c(f"        cw_write_char(&w, {cchar(tf.separator)});")
+        c("    }")
+        c("    cw_write_int(&w, (int32_t)r[i]);")
+        c("}")
+        c("return cw_writer_finish(&w);")
+        c.dedent()
+        c("}")
+        c("")
+        c(f"static inline int {self.fn(m, 'from_values')}(const uint32_t *v, size_t count, {self.tname(m)} *m)")
+        c("{")
+        c.indent()
+        self.fail_if(c, f"count != {n}u", "count")
+        for leaf, _ in wired:
+            if leaf.var in raws and leaf.field.bits < 32:
+                self.fail_if(c, f"{raws[leaf.var].replace('r[', 'v[')} > {clit((1 << leaf.field.bits) - 1, True)}", "range")
+        c(f"return {self.fn(m, 'check_raw')}(v, NULL, m, true);")
+        c.dedent()
+        c("}")
+        return c.text()
+
+    def text_form_facts(self) -> dict:
+        """Leading raw-value widths that cover the dispatch bits (as the Python decoder)."""
+        d = dispatch_facts(self.p)
+        widths, used = [], 0
+        for leaf in leaves_of(self.p.messages[0].layout):
+            if used >= d["head_bits"]:
+                break
+            widths.append(leaf.field.bits)
+            used += leaf.field.bits
+        return {"widths": widths, "used": used,
+                "max_values": max(self.wired(m)[1].__len__() for m in self.p.messages)}
+
+    # -- text protocols ----------------------------------------------------------------------------
+    def text_leaves(self, m: Message) -> list[Leaf]:
+        return leaves_of(m.layout)
+
+    def max_text(self, m: Message) -> int:
+        """Longest line the encoder writes, without the NUL."""
+        fr = self.fr
+        n = len(m.ids[0]) + len(fr.prefix_separator) + len(fr.terminator)
+        leaves = self.text_leaves(m)
+        n += max(0, len(leaves) - 1) * len(fr.separator)
+        for leaf in leaves:
+            f = leaf.field
+            if f.kind == "float":
+                n += 26
+            elif f.kind == "char":
+                n += 1
+            elif f.kind == "str":
+                n += f.max_length
+            else:
+                n += 11
+        return n
+
+    def text_encode_function(self, m: Message) -> str:
+        fr = self.fr
+        c = Code()
+        c(f"static inline int {self.fn(m, 'encode')}(const {self.tname(m)} *m, char *buf, size_t cap)")
+        c("{")
+        c.indent()
+        c("cw_writer_t w;")
+        self.rule_checks(c, m, "m")
+        leaves = self.text_leaves(m)
+        for leaf in leaves:
+            self.text_check(c, leaf)
+        c("cw_writer_init(&w, buf, cap);")
+        c(f"cw_write_text(&w, {cstr(m.ids[0] + fr.prefix_separator)}, {len(m.ids[0] + fr.prefix_separator)}u);")
+        for i, leaf in enumerate(leaves):
+            f = leaf.field
+            v = self.member(leaf)
+            if f.optional:
+                c(f"if ({self.has(leaf)}) {{")
+                c.indent()
+            if i:
+                c(f"cw_write_char(&w, {cchar(fr.separator)});")
+            if f.kind == "float":
+                c(f"cw_write_decimal(&w, {v});")
+            elif f.kind == "char":
+                c(f"cw_write_char(&w, {v});")
+            elif f.kind == "str":
+                c(f"cw_write_text(&w, {v}, strlen({v}));")
+            else:
+                c(f"cw_write_int(&w, (int32_t){v});")
+            if f.optional:
+                c.dedent()
+                c("}")
+        c(f"cw_write_char(&w, {cchar(fr.terminator)});")
+        c("return cw_writer_finish(&w);")
+        c.dedent()
+        c("}")
+        return c.text()
+
+    def text_check(self, c: Code, leaf: Leaf) -> None:
+        f = leaf.field
+        v = self.member(leaf)
+        r = self.rep(f)
+        fr = self.fr
+        sep = "'\\0'" if f.to_end else cchar(fr.separator)
+        if f.optional:
+            c(f"if ({self.has(leaf)}) {{")
+            c.indent()
+        if f.kind == "float":
+            self.fail_if(c, f"cw_digit_count({v}.digits) > CW_DECIMAL_MAX_DIGITS", "precision")
+            if f.range is not None:
+                raise CTargetError(f"{f.name}: ranges on text floats are not supported by the C target")
+        elif f.kind == "char" and f.enum is not None:
+            self.member_check(c, f, v, "enum")
+        elif f.kind == "char":
+            self.fail_if(c, f"!cw_text_ok(&{v}, 1u, {sep}, {cchar(fr.terminator)}, {str(fr.trim).lower()})", "text")
+        elif f.kind == "str":
+            self.fail_if(c, f"cw_text_len({v}, {r.array}u) > {f.max_length}u", "length")
+            self.fail_if(c, f"!cw_text_ok({v}, strlen({v}), {sep}, {cchar(fr.terminator)}, {str(fr.trim).lower()})", "text")
+        elif f.enum is not None:
+            self.member_check(c, f, v, "enum")
+        else:
+            self.member_check(c, f, v, "int")
+        if f.optional:
+            c.dedent()
+            c("}")
+
+    def text_body_function(self, m: Message) -> str:
+        """<msg>_parse_body: the fields between prefix and terminator, checked in Python's order."""
+        fr = self.fr
+        c = Code()
+        leaves = self.text_leaves(m)
+        total = len(leaves)
+        required = sum(1 for x in leaves if not x.field.optional)
+        last_to_end = bool(leaves) and leaves[-1].field.to_end
+        c(f"static inline int {self.fn(m, 'parse_body')}(const char *s, const char *end, {self.tname(m)} *m)")
+        c("{")
+        c.indent()
+        if total == 0:
+            c("(void)m;")
+            c("cw_trim(&s, &end);")
+            self.fail_if(c, "s != end", "count")
+            c("return CW_OK;")
+            c.dedent()
+            c("}")
+            return c.text()
+        c(f"size_t count = cw_count_tokens(s, end, {cchar(fr.separator)}, {total if last_to_end else 'SIZE_MAX'});")
+        c("const char *b;")
+        c("const char *e;")
+        c("int rc;")
+        self.fail_if(c, f"count < {required}u || count > {total}u", "count")
+        c("rc = CW_OK;")
+        c("(void)rc;")
+        for i, leaf in enumerate(leaves):
+            f = leaf.field
+            v = self.member(leaf)
+            r = self.rep(f)
+            c(f"/* {leaf.dotted} */")
+            if f.optional:
+                c(f"{self.has(leaf)} = count > {i}u;")
+                c(f"if ({self.has(leaf)}) {{")
+                c.indent()
+            c("b = s;")
+            c("e = end;" if f.to_end else f"e = cw_token_end(s, end, {cchar(fr.separator)});")
+            c("s = e < end ? e + 1 : end;")
+            if fr.trim:
+                c("cw_trim(&b, &e);")
+            if f.kind == "float":
+                c(f"rc = cw_parse_decimal(b, e, &{v});")
+                c("if (rc != CW_OK) {")
+                c("    return rc;")
+                c("}")
+            elif f.kind == "char":
+                self.fail_if(c, "e - b != 1", "type")
+                if f.enum is None:
+                    self.fail_if(c, f"!cw_text_ok(b, 1u, {cchar(fr.separator)}, {cchar(fr.terminator)}, {str(fr.trim).lower()})", "text")
+                else:
+                    self.fail_if(c, " && ".join(f"*b != {cchar(x.value)}" for x in f.enum.members), "enum")
+                c(f"{v} = *b;")
+            elif f.kind == "str":
+                sep = "'\\0'" if f.to_end else cchar(fr.separator)
+                self.fail_if(c, f"!cw_text_ok(b, (size_t)(e - b), {sep}, {cchar(fr.terminator)}, {str(fr.trim).lower()})", "text")
+                self.fail_if(c, f"(size_t)(e - b) > {f.max_length}u", "length")
+                c(f"memcpy({v}, b, (size_t)(e - b));")
+                c(f"{v}[e - b] = '\\0';")
+            else:
+                c("{")
+                c.indent()
+                c("int32_t value;")
+                if f.enum is not None or f.range is None:
+                    lo, hi = (-(1 << 31), (1 << 31) - 1)
+                else:
+                    lo, hi = self.raw_bounds(f)
+                c(f"rc = cw_parse_int(b, e, {clit(lo) if lo > -(1 << 31) else 'INT32_MIN'}, {clit(hi) if hi < (1 << 31) - 1 else 'INT32_MAX'}, &value);")
+                if f.enum is not None:
+                    c("if (rc == CW_ERR_RANGE) {")
+                    c("    return CW_ERR_ENUM;")
+                    c("}")
+                c("if (rc != CW_OK) {")
+                c("    return rc;")
+                c("}")
+                if f.enum is not None:
+                    self.fail_if(c, " && ".join(f"value != {clit(int(x.value))}" for x in f.enum.members), "enum")
+                elif f.range is None:
+                    cond = self.range_cond("value", *self.stored_range(f), "int32_t")
+                    if cond:
+                        self.fail_if(c, cond, "range")
+                if f.values:
+                    allowed = [self.enum_wire(f, x) for x in f.values]
+                    self.fail_if(c, " && ".join(f"value != {clit(int(x))}" for x in allowed), "values")
+                c(f"{v} = ({r.ctype})value;")
+                c.dedent()
+                c("}")
+            if f.optional:
+                c.dedent()
+                c("}")
+        self.rule_checks(c, m, "m")
+        c("return CW_OK;")
+        c.dedent()
+        c("}")
+        return c.text()
+
+    def text_decode_function(self, m: Message) -> str:
+        c = Code()
+        prefix = m.ids[0]
+        c(f"static inline int {self.fn(m, 'decode')}(const char *text, size_t len, {self.tname(m)} *m)")
+        c("{")
+        c.indent()
+        c("const char *pb, *pe, *body, *end;")
+        c(f"int rc = {self.px}_split(text, len, &pb, &pe, &body, &end);")
+        c("if (rc != CW_OK) {")
+        c("    return rc;")
+        c("}")
+        self.fail_if(c, f"(size_t)(pe - pb) != {len(prefix)}u || memcmp(pb, {cstr(prefix)}, {len(prefix)}u) != 0", "dispatch")
+        c(f"return {self.fn(m, 'parse_body')}(body, end, m);")
+        c.dedent()
+        c("}")
+        return c.text()
+
+    # -- dispatch, stream ------------------------------------------------------------------------
+    def directions(self) -> list[tuple[str, str]]:
+        return [(self.upper("DIR", d.name), d.name) for d in self.p.directions]
+
+    def dispatch(self) -> dict:
+        return dispatch_facts(self.p)
+
+    def stream(self) -> dict:
+        return stream_facts(self.p)
+
+
+def crc_table(p: CrcParams) -> list[int]:
+    """The 256-entry lookup table of the byte-wise algorithm the C code runs."""
+    table = []
+    if p.refin:
+        rpoly = int(f"{p.poly:0{p.width}b}"[::-1], 2)
+        for byte in range(256):
+            reg = byte
+            for _ in range(8):
+                reg = (reg >> 1) ^ rpoly if reg & 1 else reg >> 1
+            table.append(reg)
+    elif p.width >= 8:
+        mask, top = (1 << p.width) - 1, 1 << (p.width - 1)
+        for byte in range(256):
+            reg = byte << (p.width - 8)
+            for _ in range(8):
+                reg = ((reg << 1) ^ p.poly) & mask if reg & top else (reg << 1) & mask
+            table.append(reg)
+    else:  # widths under 8 run on a register left-aligned in a byte
+        poly = p.poly << (8 - p.width)
+        for byte in range(256):
+            reg = byte
+            for _ in range(8):
+                reg = ((reg << 1) ^ poly) & 0xFF if reg & 0x80 else (reg << 1) & 0xFF
+            table.append(reg)
+    return table
+
+
+def crc_ctype(width: int) -> str:
+    return "uint8_t" if width <= 8 else "uint16_t" if width <= 16 else "uint32_t" if width <= 32 else "uint64_t"
+
+
+def checksum_code(name: str, cs: Checksum, guard: str) -> str:
+    """A C function `name(data, len)` computing a byte checksum; CRCs bitwise by
+    default and table-driven (table in flash on AVR) when <guard>_CRC_TABLE is defined."""
+    c = Code()
+    if cs.algorithm != "crc":
+        op = "+" if cs.algorithm == "sum" else "^"
+        c(f"static inline uint32_t {name}(const uint8_t *data, size_t len)")
+        c("{")
+        c("    uint32_t acc = 0;")
+        c("    size_t i;")
+        c("    for (i = 0; i < len; i++) {")
+        c(f"        acc = acc {op} data[i];")
+        c("    }")
+        c(f"    return acc % {clit(cs.modulo, True)};" if cs.modulo else "    return acc;")
+        c("}")
+        return c.text()
+    p = cs.crc
+    t = crc_ctype(p.width)
+    small = p.width <= 16  # promote through `unsigned` so shifts never hit a signed int
+    widen = "(unsigned)" if small else ""
+    mask = (1 << p.width) - 1
+    full = p.width in (8, 16, 32, 64)
+    left = not p.refin and p.width < 8
+    reg_init = (p.init << (8 - p.width)) if left else (int(f"{p.init:0{p.width}b}"[::-1], 2) if p.refin else p.init)
+    table = crc_table(p)
+    read = {"uint8_t": "CW_READ_U8", "uint16_t": "CW_READ_U16", "uint32_t": "CW_READ_U32"}.get(t)
+    c(f"/* {p.name}: width {p.width}, poly {p.poly:#x}, init {p.init:#x}, refin {str(p.refin).lower()}, "
+      f"refout {str(p.refout).lower()}, xorout {p.xorout:#x} */")
+    if read:
+        c(f"#ifdef {guard}_CRC_TABLE")
+        c(f"static const {t} {name}_table[256] CW_FLASH = {{")
+        per = 8 if p.width > 16 else 12
+        digits = (p.width + 3) // 4 if not left else 2
+        for i in range(0, 256, per):
+            c("    " + ", ".join(f"{clit_hex(v, digits, t)}" for v in table[i:i + per]) + ",")
+        c("};")
+        c("#endif")
+    c(f"static inline {t} {name}(const uint8_t *data, size_t len)")
+    c("{")
+    c.indent()
+    c(f"{t} reg = {clit_hex(reg_init, 1, t)};")
+    c("size_t i;")
+    if read:
+        c(f"#ifdef {guard}_CRC_TABLE")
+        c("for (i = 0; i < len; i++) {")
+        if p.refin:
+            shift = f"({t})({widen}reg >> 8)" if p.width > 8 else "0u"
+            c(f"    reg = ({t})({read}(&{name}_table[({widen}reg ^ data[i]) & 0xFFu]) ^ {shift});")
+        elif left or p.width == 8:
+            c(f"    reg = {read}(&{name}_table[({widen}reg ^ data[i]) & 0xFFu]);")
+        else:
+            keep = "" if full else f" & {clit_hex(mask, 1, t)}"
+            c(f"    reg = ({t})((({widen}reg << 8) ^ {read}(&{name}_table[(({widen}reg >> {p.width - 8}) ^ data[i]) & 0xFFu])){keep});")
+        c("}")
+        c("#else")
+    c("for (i = 0; i < len; i++) {")
+    c.indent()
+    c("uint8_t bit;")
+    if p.refin:
+        rpoly = int(f"{p.poly:0{p.width}b}"[::-1], 2)
+        c(f"reg = ({t})(reg ^ data[i]);")
+        c("for (bit = 0; bit < 8u; bit++) {")
+        c(f"    reg = (reg & 1u) ? ({t})(({widen}reg >> 1) ^ {clit_hex(rpoly, 1, t)}) : ({t})({widen}reg >> 1);")
+        c("}")
+    elif left:
+        poly = (p.poly << (8 - p.width)) & 0xFF
+        c("reg = (uint8_t)(reg ^ data[i]);")
+        c("for (bit = 0; bit < 8u; bit++) {")
+        c(f"    reg = (reg & 0x80u) ? (uint8_t)(({widen}reg << 1) ^ {poly:#x}u) : (uint8_t)({widen}reg << 1);")
+        c("}")
+    else:
+        top = 1 << (p.width - 1)
+        keep = "" if full else f" & {clit_hex(mask, 1, t)}"
+        data = f"({widen}data[i] << {p.width - 8})" if small else f"(({t})data[i] << {p.width - 8})"
+        c(f"reg = ({t})(reg ^ {data});" if p.width > 8 else f"reg = ({t})(reg ^ data[i]);")
+        c("for (bit = 0; bit < 8u; bit++) {")
+        c(f"    reg = (reg & {clit_hex(top, 1, t)}) ? ({t})((({widen}reg << 1) ^ {clit_hex(p.poly, 1, t)}){keep}) : ({t})(({widen}reg << 1){keep});")
+        c("}")
+    c.dedent()
+    c("}")
+    if read:
+        c("#endif")
+    if left:
+        c(f"reg = (uint8_t)({widen}reg >> {8 - p.width});")
+    if p.refin != p.refout:
+        c("{")
+        c(f"    {t} out = 0;")
+        c("    uint8_t n;")
+        c(f"    for (n = 0; n < {p.width}u; n++) {{")
+        c(f"        out = ({t})(({widen}out << 1) | ({widen}reg & 1u));")
+        c(f"        reg = ({t})({widen}reg >> 1);")
+        c("    }")
+        c("    reg = out;")
+        c("}")
+    c(f"return ({t})(reg ^ {clit_hex(p.xorout, 1, t)});")
+    c.dedent()
+    c("}")
+    return c.text()
+
+
+def clit_hex(value: int, digits: int, ctype: str) -> str:
+    suffix = {"uint8_t": "u", "uint16_t": "u", "uint32_t": "UL", "uint64_t": "ULL"}[ctype]
+    return f"0x{value:0{digits}X}{suffix}"
