@@ -16,6 +16,7 @@ from .pyload import load_module
 from .resolve import resolve
 from .targets import python as python_target
 from .targets import c as c_target
+from .vectors import vector_file
 
 TARGETS = (python_target, c_target)
 
@@ -35,8 +36,8 @@ def render_protocol(p: Protocol) -> dict[str, str]:
     return files
 
 
-def verify(p: Protocol, files: dict[str, str]) -> None:
-    """Load the generated Python codec and run every example through it."""
+def verify(p: Protocol, files: dict[str, str]):
+    """Load the generated Python codec, run every example through it, return it."""
     path = f"python/{p.name}.py"
     try:
         module = load_module(f"_codeword_check_{p.name}", files[path], path)
@@ -47,6 +48,7 @@ def verify(p: Protocol, files: dict[str, str]) -> None:
     problems = check_examples(p, module)
     if problems:
         raise SchemaError(problems)
+    return module
 
 
 @dataclass
@@ -66,7 +68,8 @@ def build(schemas: list[Path], out: Path, check: bool = False, root: Path | None
         try:
             protocol = compile_schema(path, display)
             files = render_protocol(protocol)
-            verify(protocol, files)
+            module = verify(protocol, files)
+            files[f"vectors/{protocol.name}.json"] = vector_file(protocol, module)
         except SchemaError as exc:
             result.errors.extend(exc.diagnostics)
             continue

@@ -1,0 +1,293 @@
+"""Conformance vectors: generated/vectors/<protocol>.json.
+
+Valid frames with their decoded values and invalid frames with the error kind
+the schema's codec reports, so that any other implementation (the generated C,
+a hand-written firmware, a ground station in another language) can be checked
+against the schema. The set holds the schema's hand-written examples, edge
+values (every field at its minimum and maximum, every enum value, every flag)
+and RANDOM_PER_MESSAGE random valid messages per message type, plus mutations
+of them (bit flips, truncation, bad checksums, wrong length bytes, unknown ids).
+Random choices come from a generator seeded by the protocol name, so the file
+is the same on every build. The format is documented in docs/vectors.md.
+"""
+from __future__ import annotations
+
+import dataclasses
+import enum
+import json
+import random
+import string
+import struct
+from typing import Any
+
+from .model import Field, Message, Protocol
+from .targets.wire import leaves_of
+
+FORMAT = "codeword-vectors/1"
+RANDOM_PER_MESSAGE = 200
+MUTATIONS_PER_MESSAGE = 24
+
+
+def plain(value: Any) -> Any:
+    """A decoded Python value as JSON data (enum names, flag name lists, hex bytes)."""
+    if dataclasses.is_dataclass(value):
+        return {f.name: plain(getattr(value, f.name)) for f in dataclasses.fields(value)}
+    if isinstance(value, enum.IntFlag):
+        return [m.name for m in type(value) if m in value]
+    if isinstance(value, enum.Enum):
+        return value.name
+    if isinstance(value, (bytes, bytearray)):
+        return value.hex()
+    return value
+
+
+class Generator:
+    def __init__(self, p: Protocol, module: Any):
+        self.p = p
+        self.mod = module
+        self.rng = random.Random(f"codeword:{p.name}")
+        self.text = p.framing.kind == "text"
+
+    # -- random values from the model ----------------------------------------------------
+    def value(self, f: Field, edge: str = "") -> Any:
+        rng = self.rng
+        if f.kind == "group":
+            return {s.name: self.value(s) for s in f.fields if s.is_member}
+        if f.optional and rng.random() < 0.3 and not edge:
+            return None
+        if f.kind == "bool":
+            return rng.random() < 0.5 if not edge else edge == "max"
+        if f.enum is not None:
+            members = [m for m in f.enum.members
+                       if not f.values or m.value in f.values or m.name in f.values]
+            return rng.choice(members).name
+        if f.flags is not None:
+            bits = [b.name for b in f.flags.members]
+            if f.exactly_one:
+                return [rng.choice(bits)]
+            return [b for b in bits if rng.random() < 0.5]
+        if f.one_hot:
+            lo, hi = f.range or (0, f.bits - 1)
+            if not edge and rng.random() < 0.2:
+                return None
+            return {"min": lo, "max": hi}.get(edge, rng.randint(int(lo), int(hi)))
+        if f.kind in ("uint", "int"):
+            return self.integer(f, edge)
+        if f.kind == "float":
+            return self.real(f, edge)
+        if f.kind == "char":
+            return rng.choice(self.alphabet(f))
+        if f.kind == "str":
+            n = {"min": 0, "max": f.max_length}.get(edge, rng.randint(0, f.max_length or 16))
+            chars = self.alphabet(f)
+            text = "".join(rng.choice(chars) for _ in range(n))
+            return text.strip() if self.p.framing.trim else text
+        if f.kind == "bytes":
+            return bytes(rng.randrange(256) for _ in range(f.length)).hex()
+        raise ValueError(f"no generator for {f.kind}")
+
+    def alphabet(self, f: Field) -> str:
+        fr = self.p.framing
+        banned = set(fr.terminator) | (set() if f.to_end else set(fr.separator))
+        chars = [c for c in string.printable if " " <= c <= "~" and c not in banned]
+        if f.kind == "char" and fr.trim:
+            chars = [c for c in chars if c != " "]
+        return "".join(chars)
+
+    def integer(self, f: Field, edge: str) -> Any:
+        if f.scale is not None:
+            lo, hi = f.range
+            raw_lo = -(-(lo - (f.offset or 0)) // f.scale)
+            raw_hi = (hi - (f.offset or 0)) // f.scale
+            raw = {"min": raw_lo, "max": raw_hi}.get(edge, self.rng.randint(int(raw_lo), int(raw_hi)))
+            return raw * f.scale + (f.offset or 0)
+        if f.range is not None:
+            lo, hi = int(f.range[0]), int(f.range[1])
+        else:
+            lo, hi = f.raw_range
+            lo, hi = lo + int(f.offset or 0), hi + int(f.offset or 0)
+        pick = {"min": lo, "max": hi, "zero": max(lo, min(hi, 0))}.get(edge)
+        if pick is not None:
+            return pick
+        if f.values:
+            return self.rng.choice(list(f.values))
+        return self.rng.randint(lo, hi)
+
+    def real(self, f: Field, edge: str) -> float:
+        rng = self.rng
+        if self.text:
+            shape = rng.random()
+            if edge == "zero" or shape < 0.1:
+                return 0.0
+            if shape < 0.2:
+                return rng.choice([1e-7, -2.5e-5, 1e16, 3.25e22, 12345678.9, 1e-4, 0.1 + 0.2])
+            if shape < 0.6:
+                return round(rng.uniform(-1000, 1000), rng.randint(0, 4))
+            return rng.uniform(-1e6, 1e6)
+        if edge == "zero":
+            return 0.0
+        while True:
+            x = struct.unpack("<f", struct.pack("<I", rng.getrandbits(32)))[0]
+            if rng.random() < 0.5:
+                x = struct.unpack("<f", struct.pack("<f", rng.uniform(-1e4, 1e4)))[0]
+            if x == x and abs(x) != float("inf"):
+                return x
+
+    def values(self, m: Message, edge: str = "", focus: str = "") -> dict:
+        out = {}
+        for f in m.layout:
+            if f.is_member:
+                out[f.name] = self.value(f, edge if (not focus or focus == f.name) else "")
+        return out
+
+    # -- vectors --------------------------------------------------------------------------------
+    def encode(self, m: Message, values: dict):
+        obj = self.mod.from_dict(m.name, values)
+        return obj, self.mod.encode(obj)
+
+    def wire(self, data) -> dict:
+        return {"text": data} if isinstance(data, str) else {"hex": data.hex()}
+
+    def valid_case(self, name: str, m: Message, obj, data, decode_only_input=None) -> dict:
+        case = {"name": name, "message": m.name}
+        if m.direction:
+            case["direction"] = m.direction
+        case.update(self.wire(decode_only_input if decode_only_input is not None else data))
+        if decode_only_input is not None:
+            case["canonical"] = self.wire(data)[("text" if self.text else "hex")]
+        case["values"] = plain(obj)
+        if self.p.framing.kind == "bits" and m.size <= 4:
+            encode_word = getattr(self.mod, "encode_word", None)
+            case["word"] = encode_word(obj) if encode_word else int.from_bytes(data, "big")
+        if self.p.framing.text_form:
+            case["text_form"] = self.mod.encode_text(obj)
+        return case
+
+    def decode(self, m: Message, data):
+        if self.p.self_identifying:
+            return self.mod.decode(data, m.direction) if m.direction else self.mod.decode(data)
+        return self.mod.MESSAGES[m.name].decode(data)
+
+    def outcome(self, m: Message, data) -> dict:
+        try:
+            obj = self.decode(m, data)
+        except self.mod.DecodeError as exc:
+            return {"error": exc.rule}
+        return {"message": type(obj).NAME, "values": plain(obj)}
+
+    def build(self) -> dict:
+        p = self.p
+        valid: list[dict] = []
+        invalid: list[dict] = []
+        for m in p.messages:
+            for ex in m.examples:
+                # binary protocols: the hex examples (text-form and word examples are
+                # covered by every valid case's `text_form` and `word`)
+                data = ex.text if self.text else ex.hex
+                if data is None or ex.values is None and not ex.errors:
+                    continue
+                if ex.errors:
+                    case = {"name": ex.name, "message": m.name, **self.wire(data),
+                            "error": self.outcome(m, data).get("error")}
+                    if m.direction:
+                        case["direction"] = m.direction
+                    invalid.append(case)
+                    continue
+                obj = self.decode(m, data)
+                canonical = self.mod.encode(obj)
+                valid.append(self.valid_case(ex.name, m, obj, canonical,
+                                             data if canonical != data else None))
+            made: list[tuple[str, Any, Any]] = []
+            for f in m.layout:
+                if not f.is_member:
+                    continue
+                for edge in ("min", "max", "zero"):
+                    made.append((f"{f.name} {edge}", "edge", (edge, f.name)))
+            for i in range(RANDOM_PER_MESSAGE):
+                made.append((f"random {i}", "random", None))
+            frames = []
+            for name, kind, arg in made:
+                for _attempt in range(50):
+                    values = self.values(m, *arg) if arg else self.values(m)
+                    try:
+                        obj, data = self.encode(m, values)
+                    except self.mod.EncodeError:
+                        continue
+                    decoded = self.decode(m, data)
+                    valid.append(self.valid_case(f"{m.name} {name}", m, decoded, data))
+                    frames.append(data)
+                    break
+            for i, data in enumerate(frames[:MUTATIONS_PER_MESSAGE]):
+                for label, bad in self.mutations(m, data):
+                    case = {"name": f"{m.name} {label} of {i}", "message": m.name, **self.wire(bad),
+                            **self.outcome(m, bad)}
+                    if m.direction:
+                        case["direction"] = m.direction
+                    (invalid if "error" in case else valid).append(case)
+        out = {"format": FORMAT, "protocol": p.name, "schema_sha256": p.sha256,
+               "framing": p.framing.kind, "valid": valid, "invalid": invalid}
+        if p.framing.kind == "bytes":
+            out["streams"] = self.streams(valid)
+        return out
+
+    def mutations(self, m: Message, data) -> list[tuple[str, Any]]:
+        rng = self.rng
+        out: list[tuple[str, Any]] = []
+        if isinstance(data, str):
+            pos = rng.randrange(len(data))
+            out.append(("character change", data[:pos] + rng.choice("09a-.;,: x") + data[pos + 1:]))
+            out.append(("no terminator", data[:-1]))
+            out.append(("field dropped", data.replace(self.p.framing.separator, "", 1)))
+            out.append(("field added", data[:-1] + self.p.framing.separator + "1" + data[-1]))
+            return out
+        b = bytearray(data)
+        bit = rng.randrange(len(b) * 8)
+        b[bit // 8] ^= 0x80 >> (bit % 8)
+        out.append((f"bit {bit} flipped", bytes(b)))
+        out.append(("truncated", data[:-1]))
+        out.append(("extended", data + b"\x00"))
+        if self.p.framing.kind == "bytes":
+            b = bytearray(data)
+            b[-1] ^= 0xFF
+            out.append(("last byte changed", bytes(b)))
+            b = bytearray(data)
+            b[1] = (b[1] + 1) & 0xFF
+            out.append(("second byte changed", bytes(b)))
+        return [(label, bad) for label, bad in out if bad != data]
+
+    def streams(self, valid: list[dict]) -> list[dict]:
+        """Byte streams mixing frames, garbage and damaged frames, with the events
+        the Python StreamDecoder gives when fed one byte at a time."""
+        rng = self.rng
+        frames = [bytes.fromhex(c["hex"]) for c in valid if "hex" in c and "canonical" not in c]
+        out = []
+        for n in range(8):
+            parts = []
+            for _ in range(rng.randint(3, 8)):
+                frame = rng.choice(frames)
+                shape = rng.random()
+                if shape < 0.2:
+                    parts.append(bytes(rng.randrange(256) for _ in range(rng.randint(1, 5))))
+                elif shape < 0.35:
+                    b = bytearray(frame)
+                    b[rng.randrange(1, len(b))] ^= 1 << rng.randrange(8)
+                    parts.append(bytes(b))
+                elif shape < 0.45:
+                    parts.append(frame[:rng.randint(1, len(frame) - 1)])
+                parts.append(frame)
+            stream = b"".join(parts)
+            decoder = self.mod.StreamDecoder()
+            events = []
+            for byte in stream:
+                for item in decoder.feed(bytes([byte])):
+                    if isinstance(item, self.mod.DecodeError):
+                        events.append({"error": item.rule})
+                    else:
+                        events.append({"message": type(item).NAME, "values": plain(item)})
+            out.append({"name": f"stream {n}", "hex": stream.hex(), "events": events})
+        return out
+
+
+def vector_file(p: Protocol, module: Any) -> str:
+    data = Generator(p, module).build()
+    return json.dumps(data, indent=1, ensure_ascii=True, sort_keys=False) + "\n"
