@@ -168,13 +168,6 @@ class Generator:
             return self.mod.decode(data, m.direction) if m.direction else self.mod.decode(data)
         return self.mod.MESSAGES[m.name].decode(data)
 
-    def outcome(self, m: Message, data) -> dict:
-        try:
-            obj = self.decode(m, data)
-        except self.mod.DecodeError as exc:
-            return {"error": exc.rule}
-        return {"message": type(obj).NAME, "values": plain(obj)}
-
     def build(self) -> dict:
         p = self.p
         valid: list[dict] = []
@@ -187,8 +180,11 @@ class Generator:
                 if data is None or ex.values is None and not ex.errors:
                     continue
                 if ex.errors:
-                    case = {"name": ex.name, "message": m.name, **self.wire(data),
-                            "error": self.outcome(m, data).get("error")}
+                    try:
+                        self.decode(m, data)
+                        raise ValueError(f"{ex.name}: error example decodes")
+                    except self.mod.DecodeError as exc:
+                        case = {"name": ex.name, "message": m.name, **self.wire(data), "error": exc.rule}
                     if m.direction:
                         case["direction"] = m.direction
                     invalid.append(case)
@@ -219,11 +215,18 @@ class Generator:
                     break
             for i, data in enumerate(frames[:MUTATIONS_PER_MESSAGE]):
                 for label, bad in self.mutations(m, data):
-                    case = {"name": f"{m.name} {label} of {i}", "message": m.name, **self.wire(bad),
-                            **self.outcome(m, bad)}
-                    if m.direction:
-                        case["direction"] = m.direction
-                    (invalid if "error" in case else valid).append(case)
+                    name = f"{m.name} {label} of {i}"
+                    try:
+                        obj = self.decode(m, bad)
+                    except self.mod.DecodeError as exc:
+                        case = {"name": name, "message": m.name, **self.wire(bad), "error": exc.rule}
+                        if m.direction:
+                            case["direction"] = m.direction
+                        invalid.append(case)
+                        continue
+                    canonical = self.mod.encode(obj)
+                    valid.append(self.valid_case(name, p.message(type(obj).NAME), obj, canonical,
+                                                 bad if canonical != bad else None))
         out = {"format": FORMAT, "protocol": p.name, "schema_sha256": p.sha256,
                "framing": p.framing.kind, "valid": valid, "invalid": invalid}
         if p.framing.kind == "bytes":

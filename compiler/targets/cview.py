@@ -72,7 +72,7 @@ def clit(value: int, unsigned: bool = False) -> str:
 def cstr(text: str) -> str:
     out = []
     for ch in text:
-        if ch in '"\\':
+        if ch in '"\\?':  # '?' escaped: "??>" would be a trigraph in ISO C
             out.append("\\" + ch)
         elif " " <= ch <= "~":
             out.append(ch)

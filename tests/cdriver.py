@@ -1,0 +1,173 @@
+"""Writes a C conformance driver for one protocol from its model and its vector
+file (generated/vectors/<protocol>.json). The same driver runs on the host,
+under simavr (ATmega32) and under qemu (Cortex-M3); it prints one line per
+failure and a final `CONFORMANCE <protocol> PASS <n>` or `... FAIL <n>`.
+
+Expected structs come from the vectors' decoded values (the Python codec's
+view), turned into C initialisers here; nothing is computed by the C code
+under test.
+"""
+from __future__ import annotations
+
+import json
+from decimal import Decimal
+from fractions import Fraction
+from pathlib import Path
+from typing import Any
+
+from compiler.model import Field, Message, Protocol
+from compiler.targets.cview import CView, cchar, cstr
+
+ROOT = Path(__file__).resolve().parent.parent
+TEMPLATE = Path(__file__).resolve().parent / "c" / "driver.c.j2"
+
+
+def load_vectors(name: str) -> dict:
+    return json.loads((ROOT / "generated" / "vectors" / f"{name}.json").read_text())
+
+
+class Driver:
+    def __init__(self, p: Protocol):
+        self.p = p
+        self.v = CView(p)
+        self.text = p.framing.kind == "text"
+
+    # -- expected values as C initialisers ------------------------------------------------
+    def init(self, fields: tuple[Field, ...], values: dict) -> str:
+        parts = []
+        for f in fields:
+            if not f.is_member:
+                continue
+            value = values.get(f.name)
+            if f.kind == "group":
+                parts.append(f".{f.name} = {self.init(f.fields, value)}")
+                continue
+            r = self.v.rep(f)
+            if r.has_flag:
+                parts.append(f".has_{f.name} = {'false' if value is None else 'true'}")
+                if value is None:
+                    continue
+            parts.append(f".{f.name} = {self.scalar(f, value)}")
+        return "{" + ", ".join(parts) + "}" if parts else "{0}"
+
+    def scalar(self, f: Field, value: Any) -> str:
+        if f.kind == "bool":
+            return "true" if value else "false"
+        if f.enum is not None:
+            member = next(m for m in f.enum.members if value in (m.name, m.value))
+            return self.v.enum_const(f.enum.name, member.name)
+        if f.flags is not None:
+            mask = 0
+            for name in value:
+                mask |= 1 << next(b.bit for b in f.flags.members if b.name == name)
+            return f"{mask:#x}u"
+        if f.kind == "float" and self.text:
+            d = Decimal(repr(float(value)))
+            sign, digits, exp = d.as_tuple()
+            number = int("".join(map(str, digits)) or "0")
+            while number and number % 10 == 0:
+                number //= 10
+                exp += 1
+            if number == 0:
+                exp = 0
+            return f"{{{number}ULL, {exp}, {'true' if sign else 'false'}}}"
+        if f.kind == "float":
+            return repr(float(value)) + "f"
+        if f.kind == "char":
+            return cchar(value)
+        if f.kind == "str":
+            return cstr(value)
+        if f.kind == "bytes":
+            return "{" + ", ".join(f"0x{b:02x}" for b in bytes.fromhex(value)) + "}"
+        if f.scale is not None:
+            raw = (Fraction(value) - Fraction(f.offset or 0)) / Fraction(f.scale)
+            assert raw.denominator == 1, (f.name, value)
+            return str(int(raw))
+        return str(int(value))
+
+    # -- equality of two decoded structs ----------------------------------------------------
+    def equal_lines(self, fields: tuple[Field, ...], prefix: str) -> list[str]:
+        out = []
+        for f in fields:
+            if not f.is_member:
+                continue
+            a, b = f"a->{prefix}{f.name}", f"b->{prefix}{f.name}"
+            if f.kind == "group":
+                out += self.equal_lines(f.fields, f"{prefix}{f.name}.")
+                continue
+            r = self.v.rep(f)
+            guard = ""
+            if r.has_flag:
+                out.append(f"if (a->{prefix}has_{f.name} != b->{prefix}has_{f.name}) return false;")
+                guard = f"a->{prefix}has_{f.name} && "
+            if f.kind == "float" and self.text:
+                cond = f"({a}.digits != {b}.digits || {a}.exp10 != {b}.exp10 || {a}.negative != {b}.negative)"
+            elif f.kind == "float":
+                cond = f"cw_f32_to_bits({a}) != cw_f32_to_bits({b})"
+            elif f.kind == "str":
+                cond = f"strcmp({a}, {b}) != 0"
+            elif f.kind == "bytes":
+                cond = f"memcmp({a}, {b}, {f.length}) != 0"
+            else:
+                cond = f"{a} != {b}"
+            out.append(f"if ({guard}{cond}) return false;")
+        return out
+
+    # -- vector tables ----------------------------------------------------------------------
+    def wire_bytes(self, case: dict, key: str = "") -> bytes:
+        if key == "canonical":
+            value = case.get("canonical")
+            if value is None:
+                return self.wire_bytes(case)
+            return value.encode("ascii") if self.text else bytes.fromhex(value)
+        return case["text"].encode("latin-1") if self.text else bytes.fromhex(case["hex"])
+
+    def direction(self, case: dict) -> str:
+        d = case.get("direction")
+        return self.v.upper("DIR", d) if d and self.v.p.directions else "0"
+
+    def source(self, vectors: dict, part: int = 0, parts: int = 1) -> str:
+        import jinja2
+        p = self.p
+
+        def mine(items: list) -> list:
+            return [x for i, x in enumerate(items) if i % parts == part]
+
+        messages = []
+        for m in p.messages:
+            cases = mine([c for c in vectors["valid"] if c["message"] == m.name])
+            messages.append({
+                "m": m, "t": self.v.tname(m), "fn": f"{p.name}_{m.name}",
+                "kind": self.v.upper("MSG", m.name),
+                "equal": self.equal_lines(m.layout, ""),
+                "cases": [{"wire": self.wire_bytes(c), "canon": self.wire_bytes(c, "canonical"),
+                           "expected": self.init(m.layout, c["values"]), "word": c.get("word"),
+                           "text_form": c.get("text_form"), "dir": self.direction(c),
+                           "name": c["name"]} for c in cases],
+            })
+        invalid = [{"wire": self.wire_bytes(c), "error": c["error"], "dir": self.direction(c),
+                    "kind": self.v.upper("MSG", c["message"]), "name": c["name"],
+                    "fn": f"{p.name}_{c['message']}"} for c in mine(vectors["invalid"])]
+        streams = []
+        for s in vectors.get("streams", []) if part == 0 else []:
+            events = []
+            for e in s["events"]:
+                if "error" in e:
+                    events.append({"error": e["error"]})
+                else:
+                    m = p.message(e["message"])
+                    events.append({"kind": self.v.upper("MSG", m.name), "name": m.name,
+                                   "expected": self.init(m.layout, e["values"])})
+            streams.append({"bytes": bytes.fromhex(s["hex"]), "events": events, "name": s["name"]})
+        env = jinja2.Environment(undefined=jinja2.StrictUndefined, trim_blocks=True, lstrip_blocks=True)
+        env.filters["cbytes"] = lambda b: "{" + ", ".join(f"0x{x:02x}" for x in b) + "}" if b else "{0}"
+        env.filters["cstr"] = cstr
+        wire_max = max([len(c["wire"]) for mm in messages for c in mm["cases"]]
+                       + [len(c["canon"]) for mm in messages for c in mm["cases"]]
+                       + [len(c["wire"]) for c in invalid] + [1])
+        return env.from_string(TEMPLATE.read_text()).render(
+            p=p, px=p.name, PX=p.name.upper(), messages=messages, invalid=invalid, streams=streams,
+            text=self.text, wire_max=wire_max + 1, self_identifying=p.self_identifying,
+            has_dir=bool(p.directions), word=self.v.word_bits() is not None and p.framing.kind == "bits",
+            text_form=p.framing.text_form is not None,
+            error_const={k: v for k, v in __import__("compiler.targets.cview", fromlist=["ERR"]).ERR.items()})
