@@ -66,19 +66,26 @@ void Fault_Handler(void)
 }
 
 /* Core exception vectors only; no peripheral interrupts are enabled. */
+struct vector_table {
+    void *initial_sp;
+    void (*handler[15])(void);
+};
+
 __attribute__((section(".isr_vector"), used))
-static void (*const vectors[16])(void) = {
-    (void (*)(void))&__stack, /* initial SP: top of RAM */
-    Reset_Handler,
-    Fault_Handler,            /* NMI */
-    Fault_Handler,            /* HardFault */
-    Fault_Handler,            /* MemManage */
-    Fault_Handler,            /* BusFault */
-    Fault_Handler,            /* UsageFault */
-    0, 0, 0, 0,               /* reserved */
-    Fault_Handler,            /* SVCall */
-    Fault_Handler,            /* DebugMon */
-    0,                        /* reserved */
-    Fault_Handler,            /* PendSV */
-    Fault_Handler,            /* SysTick */
+static const struct vector_table vectors = {
+    &__stack,                 /* initial SP: top of RAM */
+    {
+        Reset_Handler,
+        Fault_Handler,        /* NMI */
+        Fault_Handler,        /* HardFault */
+        Fault_Handler,        /* MemManage */
+        Fault_Handler,        /* BusFault */
+        Fault_Handler,        /* UsageFault */
+        0, 0, 0, 0,           /* reserved */
+        Fault_Handler,        /* SVCall */
+        Fault_Handler,        /* DebugMon */
+        0,                    /* reserved */
+        Fault_Handler,        /* PendSV */
+        Fault_Handler,        /* SysTick */
+    },
 };
