@@ -21,7 +21,6 @@ import struct
 from typing import Any
 
 from .model import Field, Message, Protocol
-from .targets.wire import leaves_of
 
 FORMAT = "codeword-vectors/1"
 RANDOM_PER_MESSAGE = 200

@@ -15,8 +15,8 @@ from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
-from compiler.model import Field, Message, Protocol
-from compiler.targets.cview import CView, cchar, cstr
+from compiler.model import Field, Protocol
+from compiler.targets.cview import ERR, CView, cchar, cstr
 
 ROOT = Path(__file__).resolve().parent.parent
 TEMPLATE = Path(__file__).resolve().parent / "c" / "driver.c.j2"
@@ -170,4 +170,4 @@ class Driver:
             text=self.text, wire_max=wire_max + 1, self_identifying=p.self_identifying,
             has_dir=bool(p.directions), word=self.v.word_bits() is not None and p.framing.kind == "bits",
             text_form=p.framing.text_form is not None,
-            error_const={k: v for k, v in __import__("compiler.targets.cview", fromlist=["ERR"]).ERR.items()})
+            error_const=ERR)

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 from ..model import Protocol
 from .cview import CView, cchar, clit, comment, cstr
-from .render import environment
+from .render import environment, tidy
 from .wire import leaves_of
 
 
@@ -96,15 +96,4 @@ def render(p: Protocol) -> dict[str, str]:
         word_bits=v.word_bits(), text_form=text_form, cstr=cstr, ignore=ignore, ignore_end=ignore_end,
         terminator=cchar(fr.terminator), prefix_separator=cchar(fr.prefix_separator))
     runtime = env.get_template("c/codeword.h.j2").render()
-    return {f"c/{p.name}.h": tidy(header), "c/codeword.h": runtime}
-
-
-def tidy(source: str) -> str:
-    """At most one blank line in a row; no trailing spaces."""
-    out: list[str] = []
-    for line in source.splitlines():
-        line = line.rstrip()
-        if not line and out and not out[-1]:
-            continue
-        out.append(line)
-    return "\n".join(out).strip("\n") + "\n"
+    return {f"c/{p.name}.h": tidy(header, max_blank=1), "c/codeword.h": runtime}

@@ -221,7 +221,7 @@ class CView:
     # -- checks shared by binary and text decoders ----------------------------------------
     def range_cond(self, expr: str, lo: int, hi: int, ctype: str) -> Optional[str]:
         """`expr` outside lo..hi, leaving out comparisons the type makes always false."""
-        tlo, thi = type_limits(ctype) if ctype != "int32_t raw" else (-(1 << 31), (1 << 31) - 1)
+        tlo, thi = type_limits(ctype)
         unsigned = ctype.startswith("uint")
         parts = []
         if lo > tlo:
@@ -726,17 +726,14 @@ class CView:
             widths.append(leaf.field.bits)
             used += leaf.field.bits
         return {"widths": widths, "used": used,
-                "max_values": max(self.wired(m)[1].__len__() for m in self.p.messages)}
+                "max_values": max(len(self.wired(m)[1]) for m in self.p.messages)}
 
     # -- text protocols ----------------------------------------------------------------------------
-    def text_leaves(self, m: Message) -> list[Leaf]:
-        return leaves_of(m.layout)
-
     def max_text(self, m: Message) -> int:
         """Longest line the encoder writes, without the NUL."""
         fr = self.fr
         n = len(m.ids[0]) + len(fr.prefix_separator) + len(fr.terminator)
-        leaves = self.text_leaves(m)
+        leaves = leaves_of(m.layout)
         n += max(0, len(leaves) - 1) * len(fr.separator)
         for leaf in leaves:
             f = leaf.field
@@ -758,7 +755,7 @@ class CView:
         c.indent()
         c("cw_writer_t w;")
         self.rule_checks(c, m, "m")
-        leaves = self.text_leaves(m)
+        leaves = leaves_of(m.layout)
         for leaf in leaves:
             self.text_check(c, leaf)
         c("cw_writer_init(&w, buf, cap);")
@@ -820,7 +817,7 @@ class CView:
         """<msg>_parse_body: the fields between prefix and terminator, checked in Python's order."""
         fr = self.fr
         c = Code()
-        leaves = self.text_leaves(m)
+        leaves = leaves_of(m.layout)
         total = len(leaves)
         required = sum(1 for x in leaves if not x.field.optional)
         last_to_end = bool(leaves) and leaves[-1].field.to_end

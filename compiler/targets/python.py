@@ -3,7 +3,7 @@ from __future__ import annotations
 
 from ..model import Protocol
 from .pyview import leaves_of, module_view
-from .render import environment
+from .render import environment, tidy
 
 
 def text_head(p: Protocol, head_bits: int) -> list[tuple[str, int]]:
@@ -30,18 +30,4 @@ def render(p: Protocol) -> dict[str, str]:
     source = environment().get_template("python/module.py.j2").render(
         docstring=docstring,
         text_head=text_head(p, head) if p.framing.text_form and head else [], **view)
-    return {f"python/{p.name}.py": tidy(source)}
-
-
-def tidy(source: str) -> str:
-    """Collapse the blank-line runs left by template control blocks (PEP 8: at most two)."""
-    out: list[str] = []
-    blank = 0
-    for line in source.splitlines():
-        line = line.rstrip()
-        blank = blank + 1 if not line else 0
-        if blank <= 2:
-            out.append(line)
-    while out and not out[-1]:
-        out.pop()
-    return "\n".join(out) + "\n"
+    return {f"python/{p.name}.py": tidy(source, max_blank=2)}

@@ -31,3 +31,19 @@ def environment() -> jinja2.Environment:
                              lstrip_blocks=True, keep_trailing_newline=True, autoescape=False)
     env.filters.update(pyrepr=pyrepr, comment=comment, docline=docline)
     return env
+
+
+def tidy(source: str, max_blank: int) -> str:
+    """Collapse the blank-line runs left by template control blocks; no trailing spaces."""
+    out: list[str] = []
+    blank = 0
+    for line in source.splitlines():
+        line = line.rstrip()
+        blank = blank + 1 if not line else 0
+        if blank <= max_blank:
+            out.append(line)
+    while out and not out[-1]:
+        out.pop()
+    while out and not out[0]:
+        out.pop(0)
+    return "\n".join(out) + "\n"
