@@ -1,0 +1,62 @@
+"""The `codeword check` command line: arguments, output format, exit status."""
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from ..diagnostics import SchemaError
+from .report import JsonReport, TextReport
+from .run import INPUT_FORMATS, Options, UsageError, check, load_codec
+
+
+def add_arguments(parser: argparse.ArgumentParser, func) -> None:
+    parser.description = ("Check data against a schema with its generated codec and report every "
+                          "violation. Exit 0 when all is valid, 1 when anything is invalid, 2 on usage "
+                          "or schema errors.")
+    parser.add_argument("schema", help="schema file, or the name of a schema in schemas/ (route, car, …)")
+    parser.add_argument("inputs", nargs="+", metavar="INPUT", help="files to check ('-' for standard input)")
+    parser.add_argument("--format", choices=("text", "json"), default="text", help="output format")
+    parser.add_argument("--input-format", choices=INPUT_FORMATS, default="auto",
+                        help="raw bytes, hex (one frame per line, or hex words), text; default: guess")
+    parser.add_argument("--direction", help="decode frames as sent in this direction of the schema")
+    parser.add_argument("--sequence", help="the sequence a bit-packed input holds (default: the schema's first)")
+    bar = parser.add_mutually_exclusive_group()
+    bar.add_argument("--progress", dest="progress", action="store_true", default=None,
+                     help="show a progress bar for large inputs even when stderr is not a terminal")
+    bar.add_argument("--no-progress", dest="progress", action="store_false")
+    parser.set_defaults(func=func)
+
+
+def _schema_path(name: str) -> Path:
+    path = Path(name)
+    if not path.exists() and "/" not in name and not name.endswith((".yaml", ".yml")):
+        candidate = Path("schemas") / f"{name}.yaml"
+        if candidate.exists():
+            return candidate
+    return path
+
+
+def run_check(args: argparse.Namespace) -> int:
+    path = _schema_path(args.schema)
+    if not path.is_file():
+        print(f"codeword check: no schema {args.schema!r}", file=sys.stderr)
+        return 2
+    try:
+        protocol, codec = load_codec(path, args.schema if path == Path(args.schema) else str(path))
+    except SchemaError as exc:
+        for diagnostic in exc.diagnostics:
+            print(diagnostic, file=sys.stderr)
+        print(f"codeword check: {path}: the schema has errors; nothing checked", file=sys.stderr)
+        return 2
+    report = JsonReport(sys.stdout) if args.format == "json" else TextReport(sys.stdout)
+    options = Options(args.input_format, args.direction, args.sequence, args.progress)
+    try:
+        findings = check(protocol, codec, args.inputs, report, options)
+    except UsageError as exc:
+        sys.stdout.flush()
+        print(f"codeword check: {exc}", file=sys.stderr)
+        return 2
+    except BrokenPipeError:
+        return 1
+    return 1 if findings else 0

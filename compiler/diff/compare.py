@@ -1,0 +1,360 @@
+"""Compare two protocol models and classify every change by what it does to
+the wire: breaking (old and new codecs disagree on some bytes), compatible
+(everything valid before is still valid and means the same) or docs-only."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Optional
+
+from ..fingerprint import fingerprint, wire_model
+from ..model import Field, Message, Protocol
+
+BREAKING, COMPATIBLE, DOCS = "breaking", "compatible", "docs"
+KINDS = (BREAKING, COMPATIBLE, DOCS)
+
+# Field attributes whose change alters the bytes or what a decoder accepts;
+# each is described on its own below when it changes.
+_WIRE_ATTRS = ("kind", "const", "scale", "offset", "byte_order", "one_hot", "exactly_one", "reserved",
+               "length", "length_param", "max_length", "to_end", "dispatch", "length_of")
+
+
+@dataclass
+class Change:
+    kind: str  # breaking | compatible | docs
+    subject: str  # what changed: "field motor.enable", "message ack", "framing", …
+    what: str
+    messages: list[str] = field(default_factory=list)  # the messages it applies to, if any
+
+
+@dataclass
+class Diff:
+    old: Protocol
+    new: Protocol
+    changes: list[Change]
+
+    @property
+    def old_fingerprint(self) -> str:
+        return fingerprint(self.old)
+
+    @property
+    def new_fingerprint(self) -> str:
+        return fingerprint(self.new)
+
+    @property
+    def breaking(self) -> bool:
+        return any(c.kind == BREAKING for c in self.changes)
+
+    def of_kind(self, kind: str) -> list[Change]:
+        return [c for c in self.changes if c.kind == kind]
+
+
+@dataclass(frozen=True)
+class Placed:
+    """A leaf field with its place in the frame: bit offset where every earlier
+    width is fixed, otherwise its position among the fields."""
+
+    path: str
+    field: Field
+    index: int
+    bit: Optional[int]
+
+    def place(self) -> str:
+        if self.bit is None or self.field.bits is None:
+            return f"position {self.index + 1}"
+        if self.field.bits == 1:
+            return f"bit {self.bit}"
+        return f"bits {self.bit}–{self.bit + self.field.bits - 1}"
+
+
+def placed_leaves(layout: tuple[Field, ...]) -> dict[str, Placed]:
+    out: dict[str, Placed] = {}
+    bit: Optional[int] = 0
+
+    def walk(fields, prefix):
+        nonlocal bit
+        for f in fields:
+            if f.is_payload:
+                continue
+            if f.kind == "group":
+                walk(f.fields, prefix + f.name + ".")
+                continue
+            path = prefix + f.name
+            out[path] = Placed(path, f, len(out), bit)
+            bit = bit + f.bits if bit is not None and f.bits is not None else None
+    walk(layout, "")
+    return out
+
+
+def _text(t) -> str:
+    """Comparable form of a Text (English and translations)."""
+    return "" if t is None else repr((t.en, t.translations))
+
+
+def _same_wire(a: Any, b: Any) -> bool:
+    return wire_model(a) == wire_model(b)
+
+
+def _fmt(v: Any) -> str:
+    if isinstance(v, tuple) and len(v) == 2:
+        return f"{v[0]}..{v[1]}"
+    return repr(v)
+
+
+class _Collector:
+    def __init__(self):
+        self.changes: list[Change] = []
+
+    def add(self, kind: str, subject: str, what: str, message: Optional[str] = None):
+        for c in self.changes:  # one entry for a change shared by several messages
+            if (c.kind, c.subject, c.what) == (kind, subject, what) and message and c.messages:
+                if message not in c.messages:
+                    c.messages.append(message)
+                return
+        self.changes.append(Change(kind, subject, what, [message] if message else []))
+
+
+def compare(old: Protocol, new: Protocol) -> Diff:
+    out = _Collector()
+    _framing(old, new, out)
+    _messages(old, new, out)
+    _sequences(old, new, out)
+    _parameters(old, new, out)
+    _machines(old, new, out)
+    _docs(old, new, out)
+    if fingerprint(old) != fingerprint(new) and not any(c.kind != DOCS for c in out.changes):
+        # never report a wire change as harmless because no rule above names it
+        out.add(BREAKING, "schema", "a wire-relevant part of the model changed (fingerprints differ)")
+    order = {k: i for i, k in enumerate(KINDS)}
+    changes = sorted(out.changes, key=lambda c: order[c.kind])
+    return Diff(old, new, changes)
+
+
+def _framing(old: Protocol, new: Protocol, out: _Collector) -> None:
+    a, b = old.framing, new.framing
+    for name in ("kind", "byte_order", "word_bits", "max_bits", "prefix_separator", "separator",
+                 "terminator", "ignore_between", "trim", "float_format"):
+        if getattr(a, name) != getattr(b, name):
+            out.add(BREAKING, "framing", f"{name} changed from {getattr(a, name)!r} to {getattr(b, name)!r}")
+    if not _same_wire(a.text_form, b.text_form):
+        out.add(BREAKING, "framing", "the text form changed")
+    if a.envelope or b.envelope:
+        _fields(placed_leaves(a.envelope), placed_leaves(b.envelope), out, "envelope", text=a.kind == "text")
+
+
+def _messages(old: Protocol, new: Protocol, out: _Collector) -> None:
+    before = {m.name: m for m in old.messages}
+    after = {m.name: m for m in new.messages}
+    for name, m in before.items():
+        if name not in after:
+            ids = f" (id {', '.join(map(str, m.ids))})" if m.ids else ""
+            out.add(BREAKING, f"message {name}", f"removed{ids}")
+    old_ids = {(m.direction, i) for m in old.messages for i in m.ids}
+    for name, m in after.items():
+        if name in before:
+            _message(before[name], m, out, text=new.framing.kind == "text")
+            continue
+        reused = [i for i in m.ids if (m.direction, i) in old_ids]
+        if reused:
+            out.add(BREAKING, f"message {name}", f"added with id {', '.join(map(str, reused))}, "
+                    "which an old message already uses")
+        else:
+            ids = f" with id {', '.join(map(str, m.ids))}" if m.ids else ""
+            out.add(COMPATIBLE, f"message {name}", f"added{ids}")
+
+
+def _message(a: Message, b: Message, out: _Collector, text: bool) -> None:
+    subject = f"message {a.name}"
+    if a.ids != b.ids:
+        out.add(BREAKING, subject, f"id changed from {_ids(a.ids)} to {_ids(b.ids)}")
+    if a.direction != b.direction:
+        out.add(BREAKING, subject, f"direction changed from {a.direction} to {b.direction}")
+    if a.role != b.role:
+        out.add(BREAKING, subject, f"role changed from {a.role} to {b.role}")
+    if a.bits != b.bits and a.bits is not None and b.bits is not None:
+        out.add(BREAKING, subject, f"size changed from {a.bits} to {b.bits} bits")
+    if not _same_wire(a.dispatch_key, b.dispatch_key) and a.ids == b.ids:
+        out.add(BREAKING, subject, "how a decoder recognises it changed")
+    _fields(placed_leaves(a.layout), placed_leaves(b.layout), out, a.name, text=text)
+    _rules(a, b, out)
+    if _text(a.title) != _text(b.title) or _text(a.doc) != _text(b.doc):
+        out.add(DOCS, subject, "title or description changed")
+    if [e.name for e in a.examples] != [e.name for e in b.examples] or \
+            [(e.hex, e.text, e.values) for e in a.examples] != [(e.hex, e.text, e.values) for e in b.examples]:
+        out.add(DOCS, subject, "examples changed")
+
+
+def _ids(ids: tuple) -> str:
+    return ", ".join(map(repr, ids)) or "none"
+
+
+def _fields(before: dict[str, Placed], after: dict[str, Placed], out: _Collector, message: str,
+            text: bool) -> None:
+    for path, old in before.items():
+        if path not in after:
+            out.add(BREAKING, f"field {path}", f"removed (was {old.place()}, {_width(old.field)})", message)
+    last = max((p.index for p in after.values()), default=-1)
+    for path, new in after.items():
+        if path in before:
+            _field(before[path], new, out, message)
+        elif text and new.field.optional and new.index == last:
+            out.add(COMPATIBLE, f"field {path}", "added as an optional last field", message)
+        else:
+            out.add(BREAKING, f"field {path}", f"added at {new.place()} ({_width(new.field)})", message)
+
+
+def _width(f: Field) -> str:
+    return f"{f.bits} bit{'s' if f.bits != 1 else ''}" if f.bits is not None else f.kind
+
+
+def _field(a: Placed, b: Placed, out: _Collector, message: str) -> None:
+    subject = f"field {b.path}"
+    fa, fb = a.field, b.field
+
+    def add(kind, what):
+        out.add(kind, subject, what, message)
+
+    if fa.bits != fb.bits:
+        add(BREAKING, f"resized from {_width(fa)} to {_width(fb)}")
+    moved = a.bit != b.bit if a.bit is not None and b.bit is not None else a.index != b.index
+    if moved:
+        add(BREAKING, f"moved from {a.place()} to {b.place()}")
+    for name in _WIRE_ATTRS:
+        va, vb = getattr(fa, name), getattr(fb, name)
+        if va != vb:
+            add(BREAKING, f"{name} changed from {va!r} to {vb!r}")
+    if fa.optional != fb.optional:
+        add(COMPATIBLE if fb.optional else BREAKING,
+            "now optional" if fb.optional else "now required")
+    if not _same_wire(fa.checksum, fb.checksum):
+        add(BREAKING, "checksum changed" if fa.checksum and fb.checksum else
+            "checksum added" if fb.checksum else "checksum removed")
+    _range(fa.range, fb.range, add)
+    _value_set(fa.values, fb.values, "allowed values", add)
+    if fa.enum or fb.enum:
+        _members({m.value: m.name for m in fa.enum.members} if fa.enum else {},
+                 {m.value: m.name for m in fb.enum.members} if fb.enum else {}, add)
+    if fa.flags or fb.flags:
+        _members({m.bit: m.name for m in fa.flags.members} if fa.flags else {},
+                 {m.bit: m.name for m in fb.flags.members} if fb.flags else {}, add, "flag bit")
+    if fa.default != fb.default or fa.has_default != fb.has_default:
+        add(COMPATIBLE, f"default changed from {fa.default!r} to {fb.default!r}")
+    if (_text(fa.doc), _text(fa.title), _text(fa.message), fa.unit, fa.rule) != \
+            (_text(fb.doc), _text(fb.title), _text(fb.message), fb.unit, fb.rule):
+        add(DOCS, "description, title, unit or cited rule changed")
+
+
+def _range(a, b, add) -> None:
+    if a == b:
+        return
+    if a is None:
+        add(BREAKING, f"range {_fmt(b)} added (narrowed)")
+    elif b is None:
+        add(COMPATIBLE, f"range {_fmt(a)} removed (widened)")
+    elif b[0] > a[0] or b[1] < a[1]:
+        add(BREAKING, f"range narrowed from {_fmt(a)} to {_fmt(b)}")
+    else:
+        add(COMPATIBLE, f"range widened from {_fmt(a)} to {_fmt(b)}")
+
+
+def _value_set(a, b, what: str, add) -> None:
+    if a == b:
+        return
+    sa, sb = set(a or ()), set(b or ())
+    if a is None or b is not None and not sa <= sb:
+        add(BREAKING, f"{what} narrowed: {sorted(map(str, sa - sb)) or 'now restricted'}")
+    else:
+        add(COMPATIBLE, f"{what} widened: {sorted(map(str, sb - sa)) or 'no longer restricted'}")
+
+
+def _members(a: dict, b: dict, add, noun: str = "value") -> None:
+    for value, name in a.items():
+        if value not in b:
+            add(BREAKING, f"{noun} {value!r} ({name}) removed")
+        elif b[value] != name:
+            add(BREAKING, f"{noun} {value!r} renamed from {name} to {b[value]}")
+    for value, name in b.items():
+        if value not in a:
+            add(COMPATIBLE, f"{noun} {value!r} ({name}) added in spare space")
+
+
+def _rules(a: Message, b: Message, out: _Collector) -> None:
+    ra = [wire_model(r) for r in a.rules]
+    rb = [wire_model(r) for r in b.rules]
+    for r in ra:
+        if r not in rb:
+            out.add(COMPATIBLE, f"message {a.name}", f"rule{_rule_id(r)} removed (accepts more)")
+    for r in rb:
+        if r not in ra:
+            out.add(BREAKING, f"message {a.name}", f"rule{_rule_id(r)} added or changed (accepts less)")
+    if ra == rb and [_text(r.message) for r in a.rules] != [_text(r.message) for r in b.rules]:
+        out.add(DOCS, f"message {a.name}", "rule messages changed")
+
+
+def _rule_id(rule: dict) -> str:
+    return f" {rule['id']}" if rule.get("id") else ""
+
+
+def _sequences(old: Protocol, new: Protocol, out: _Collector) -> None:
+    before = {s.name: s for s in old.sequences}
+    after = {s.name: s for s in new.sequences}
+    for name in before.keys() - after.keys():
+        out.add(BREAKING, f"sequence {name}", "removed")
+    for name in sorted(after.keys() - before.keys()):
+        out.add(COMPATIBLE, f"sequence {name}", "added")
+    for name in sorted(before.keys() & after.keys()):
+        a, b = before[name], after[name]
+        if not _same_wire(a.items, b.items):
+            out.add(BREAKING, f"sequence {name}", "items changed")
+        ra, rb = wire_model(a.rules), wire_model(b.rules)
+        if any(r not in ra for r in rb):
+            out.add(BREAKING, f"sequence {name}", "rules added or changed (accepts less)")
+        elif ra != rb:
+            out.add(COMPATIBLE, f"sequence {name}", "rules removed (accepts more)")
+
+
+def _parameters(old: Protocol, new: Protocol, out: _Collector) -> None:
+    before = {p.name: p for p in old.parameters}
+    after = {p.name: p for p in new.parameters}
+    for name in before.keys() - after.keys():
+        out.add(BREAKING, f"parameter {name}", "removed")
+    for name in sorted(after.keys() - before.keys()):
+        out.add(COMPATIBLE, f"parameter {name}", f"added (default {after[name].default!r})")
+    for name in sorted(before.keys() & after.keys()):
+        a, b = before[name], after[name]
+        if a.default != b.default:
+            out.add(BREAKING, f"parameter {name}", f"default changed from {a.default!r} to {b.default!r}")
+        if a.range != b.range:
+            out.add(BREAKING, f"parameter {name}", f"range changed from {_fmt(a.range)} to {_fmt(b.range)}")
+
+
+def _machines(old: Protocol, new: Protocol, out: _Collector) -> None:
+    before = {m.name: m for m in old.machines}
+    after = {m.name: m for m in new.machines}
+    for name in before.keys() - after.keys():
+        out.add(BREAKING, f"machine {name}", "removed")
+    for name in sorted(after.keys() - before.keys()):
+        out.add(COMPATIBLE, f"machine {name}", "added")
+    for name in sorted(before.keys() & after.keys()):
+        if not _same_wire(before[name], after[name]):
+            out.add(BREAKING, f"machine {name}", "states, events or transitions changed")
+
+
+def _docs(old: Protocol, new: Protocol, out: _Collector) -> None:
+    if old.version != new.version:
+        out.add(DOCS, "version", f"{old.version} → {new.version}")
+    if _text(old.title) != _text(new.title) or _text(old.doc) != _text(new.doc):
+        out.add(DOCS, "protocol", "title or description changed")
+    notes_a = {n.id: _text(n.text) for n in old.notes}
+    notes_b = {n.id: _text(n.text) for n in new.notes}
+    for nid in notes_a:
+        if nid not in notes_b:
+            out.add(DOCS, f"note {nid}", "removed")
+        elif notes_a[nid] != notes_b[nid]:
+            out.add(DOCS, f"note {nid}", "changed")
+    for nid in notes_b:
+        if nid not in notes_a:
+            out.add(DOCS, f"note {nid}", "added")
+    versions_a = [h.version for h in old.history]
+    for h in new.history:
+        if h.version not in versions_a:
+            out.add(DOCS, "history", f"version {h.version} added ({len(h.changes)} change(s) listed)")

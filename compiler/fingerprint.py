@@ -1,0 +1,65 @@
+"""The schema fingerprint: a hash of everything in a protocol model that affects
+the wire, and nothing that only documents it.
+
+Two schemas with the same fingerprint produce and accept the same bytes, so a
+host that reads a firmware's fingerprint can tell whether both were built from
+the same protocol. Docs, titles, user-facing messages, examples, notes,
+history, the version string and source locations are left out; names stay in,
+because they are the API of the generated codecs and what `codeword diff`
+matches on.
+"""
+from __future__ import annotations
+
+import dataclasses
+import enum
+import hashlib
+import json
+from typing import Any
+
+from .model import Protocol, Text
+
+# Model attributes that describe a protocol to people, not to a decoder.
+DOC_ONLY = frozenset({
+    "doc", "title", "message", "examples", "notes", "history", "version", "source",
+    "file", "sha256", "loc",
+})
+
+
+def wire_model(value: Any) -> Any:
+    """The model as plain JSON data without its documentation."""
+    if isinstance(value, Text):
+        return None
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        return {f.name: wire_model(getattr(value, f.name))
+                for f in dataclasses.fields(value) if f.name not in DOC_ONLY}
+    if isinstance(value, (tuple, list)):
+        return [wire_model(x) for x in value]
+    if isinstance(value, dict):
+        return {str(k): wire_model(v) for k, v in sorted(value.items(), key=lambda kv: str(kv[0]))}
+    if isinstance(value, enum.Enum):
+        return wire_model(value.value)
+    if isinstance(value, bytes):
+        return value.hex()
+    if value is None or isinstance(value, (bool, int, float, str)):
+        return value
+    return repr(value)
+
+
+def canonical_json(p: Protocol) -> str:
+    return json.dumps(wire_model(p), sort_keys=True, separators=(",", ":"), ensure_ascii=True)
+
+
+def fingerprint_digest(p: Protocol) -> str:
+    """SHA-256 (hex) of the canonical wire model."""
+    return hashlib.sha256(canonical_json(p).encode("ascii")).hexdigest()
+
+
+def fingerprint(p: Protocol) -> str:
+    """The fingerprint as 16 hex digits (the first 64 bits of the digest): what
+    generated code exposes as FINGERPRINT and the docs show."""
+    return fingerprint_digest(p)[:16]
+
+
+def fingerprint32(p: Protocol) -> int:
+    """The first 32 bits of the digest, for firmware that reports it as one word."""
+    return int(fingerprint_digest(p)[:8], 16)

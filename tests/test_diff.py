@@ -1,0 +1,123 @@
+"""`codeword diff`: car v0.2 (tests/data/car_v0.2.yaml, from the seed's version
+history) against v0.3, hand-made single changes, output forms and exit codes.
+
+v0.3 added the motor-enable bit at the top of c3 and the ultrasonic duration at
+the bottom of c5 (seed history, PROTOCOLS.md section 2). Bit positions count
+from the first bit of the word: c1 = 0, c2 = 1, c3 from 2.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+from compiler.build import compile_schema
+from compiler.cli import main
+from compiler.diff import BREAKING, COMPATIBLE, DOCS, compare
+from conftest import DATA, SCHEMAS
+
+V02 = DATA / "car_v0.2.yaml"
+V03 = SCHEMAS / "car.yaml"
+
+
+def changes(d, kind):
+    return {(c.subject, c.what) for c in d.of_kind(kind)}
+
+
+def test_car_v02_to_v03_names_every_field_and_breaks():
+    d = compare(compile_schema(V02), compile_schema(V03))
+    assert d.breaking
+    # v0.2: c1 c2 | c3 dir(2) speed(2) dur(2) = bits 2-7 | c4 bits 8-11 | c5 enable 12, radius 13-14
+    #       | c6 15 | c7 16 | c8 17-30 | c9 31
+    # v0.3: enable at 2 shifts c3..c5 by one; duration (2 bits) after radius at 16-17 shifts c6, c7 by three
+    assert changes(d, BREAKING) == {
+        ("field motor.enable", "added at bit 2 (1 bit)"),
+        ("field motor.direction", "moved from bits 2–3 to bits 3–4"),
+        ("field motor.speed", "moved from bits 4–5 to bits 5–6"),
+        ("field motor.duration", "moved from bits 6–7 to bits 7–8"),
+        ("field led.led", "moved from bits 8–9 to bits 9–10"),
+        ("field led.duration", "moved from bits 10–11 to bits 11–12"),
+        ("field ultrasonic.enable", "moved from bit 12 to bit 13"),
+        ("field ultrasonic.radius", "moved from bits 13–14 to bits 14–15"),
+        ("field ultrasonic.duration", "added at bits 16–17 (2 bits)"),
+        ("field voice", "moved from bit 15 to bit 18"),
+        ("field body_sensor", "moved from bit 16 to bit 19"),
+        ("field reserved_bits", "resized from 14 bits to 11 bits"),
+        ("field reserved_bits", "moved from bits 17–30 to bits 20–30"),
+    }
+    # the control word is shared: every field change applies to both messages that use it
+    assert {tuple(c.messages) for c in d.of_kind(BREAKING)} == {("master_control", "slave_control")}
+    assert ("version", "0.2 → 0.3") in changes(d, DOCS)
+    assert not d.of_kind(COMPATIBLE)
+    assert d.old_fingerprint != d.new_fingerprint
+
+
+def test_cli_exit_status_and_markdown(capsys):
+    assert main(["diff", str(V02), str(V03)]) == 1
+    out = capsys.readouterr().out
+    assert "fingerprint" in out and "(changed)" in out and "result: WIRE-BREAKING" in out
+    assert main(["diff", "--format", "markdown", str(V02), str(V03)]) == 1
+    md = capsys.readouterr().out
+    assert md.startswith("## car 0.3\n") and "### Wire-breaking" in md
+    assert "- `field motor.enable` in master_control, slave_control: added at bit 2 (1 bit)" in md
+    assert main(["diff", str(V03), str(V03)]) == 0
+    assert "unchanged" in capsys.readouterr().out
+
+
+def edited(tmp_path: Path, source: Path, old: str, new: str) -> Path:
+    text = source.read_text(encoding="utf-8")
+    assert text.count(old) == 1, old
+    path = tmp_path / source.name
+    path.write_text(text.replace(old, new), encoding="utf-8")
+    return path
+
+
+def diff_of(tmp_path, source, old, new):
+    return compare(compile_schema(source), compile_schema(edited(tmp_path, source, old, new)))
+
+
+def test_doc_change_is_docs_only_and_keeps_the_fingerprint(tmp_path):
+    d = diff_of(tmp_path, V03, "doc: {en: \"1 if the car runs voice recognition.\"",
+                "doc: {en: \"1 if the car listens for voice commands.\"")
+    assert not d.breaking and d.old_fingerprint == d.new_fingerprint
+    assert {c.kind for c in d.changes} == {DOCS}
+
+
+def test_range_narrowed_is_breaking_widened_is_compatible(tmp_path):
+    tank = SCHEMAS / "tank.yaml"
+    text = tank.read_text(encoding="utf-8")
+    assert "range: [0, 100]" in text  # speed 0..100 (TANK-D3)
+    narrowed = diff_of(tmp_path, tank, "range: [0, 100]", "range: [0, 90]")
+    assert ("field speed", "range narrowed from 0..100 to 0..90") in changes(narrowed, BREAKING)
+    widened = diff_of(tmp_path, tank, "range: [0, 100]", "range: [0, 120]")
+    assert not widened.breaking
+    assert ("field speed", "range widened from 0..100 to 0..120") in changes(widened, COMPATIBLE)
+
+
+def test_id_and_checksum_changes_are_breaking(tmp_path):
+    mtv4 = SCHEMAS / "mtv4.yaml"
+    # MTV4-D1: CRC-16/CMS; another catalogue CRC over the same bytes is a different wire
+    d = diff_of(tmp_path, mtv4, "algorithm: CRC-16/CMS,", "algorithm: CRC-16/MODBUS,")
+    assert any(s == "field crc" and w == "checksum changed" for s, w in changes(d, BREAKING))
+
+
+def test_enum_value_added_in_spare_space_is_compatible(tmp_path):
+    route = SCHEMAS / "route.yaml"
+    text = route.read_text(encoding="utf-8")
+    assert "{name: right, value: 3" in text  # pass_side (db) is u3: values 4..7 are spare
+    d = diff_of(tmp_path, route, "{name: right, value: 3", "{name: back, value: 4, doc: back}\n      - {name: right, value: 3")
+    assert not d.breaking
+    assert ("field db", "value 4 (back) added in spare space") in changes(d, COMPATIBLE)
+
+
+def test_git_revision_source_and_bad_sources(capsys):
+    assert main(["diff", "git:HEAD:schemas/route.yaml", str(SCHEMAS / "route.yaml")]) in (0, 1)
+    assert "git:HEAD:schemas/route.yaml" in capsys.readouterr().out
+    assert main(["diff", "git:no-such-rev:schemas/car.yaml", str(V03)]) == 2
+    assert main(["diff", "no/such.yaml", str(V03)]) == 2
+    assert main(["diff", str(V03), str(SCHEMAS / "tank.yaml")]) == 2  # different protocols
+
+
+def test_message_id_and_prefix_changes_are_breaking(tmp_path):
+    d = diff_of(tmp_path, SCHEMAS / "mtv4.yaml", "    id: 0x02\n", "    id: 0x04\n")  # SetLED 0x02 -> 0x04
+    assert ("message set_led", "id changed from 2 to 4") in changes(d, BREAKING)
+    d = diff_of(tmp_path, SCHEMAS / "tank.yaml", '    id: "*"\n', '    id: "&"\n')
+    assert ("message payload_command", "id changed from '*' to '&'") in changes(d, BREAKING)
