@@ -1,0 +1,282 @@
+"""Markdown target: generated/docs/<protocol>.md for each schema and an index.
+
+The pages are written for the people who implement or review a protocol:
+tables and bit layouts, every example produced by the generated Python codec
+(and checked against the schema's hand-written form), and every decision and
+seed error from the schema's notes.
+"""
+from __future__ import annotations
+
+import types
+from typing import Optional
+
+from ..diagnostics import Diagnostic, Loc, SchemaError
+from ..fingerprint import fingerprint, fingerprint32
+from ..model import Message, Protocol
+from ..pyload import load_module
+from . import python as python_target
+from .markdown_budget import longest_text_line, transport_views
+from .markdown_checksum import checksum_sections
+from .markdown_examples import checked, message_example, sequence_example
+from .markdown_layout import diagram, field_columns, field_rows, payload_note, slots, text_line
+from .markdown_machine import conditions, machine_view, sequence_view
+from .markdown_text import LANGUAGES, DecisionLinker, anchor, cell, code, en, number, originals, with_original
+from .render import environment, tidy
+from .wire import stream_facts
+
+
+def wire_fingerprint(p: Protocol) -> tuple[str, str]:
+    """The schema's wire fingerprint as the generated codecs expose it: 16 hex
+    digits, and the 32-bit word firmware reports."""
+    return fingerprint(p), f"{fingerprint32(p):#010x}"
+
+
+def load_codec(p: Protocol) -> types.ModuleType:
+    path = f"python/{p.name}.py"
+    source = python_target.render(p)[path]
+    try:
+        return load_module(f"_codeword_docs_{p.name}", source, path)
+    except Exception as exc:  # a generator bug, but report it against the schema
+        raise SchemaError([Diagnostic(Loc(p.file, 1, 1),
+                                      f"generated Python does not load: {type(exc).__name__}: {exc}",
+                                      "this is a codeword bug; please report it with the schema")]) from exc
+
+
+def direction_text(p: Protocol, name: Optional[str]) -> str:
+    d = next((x for x in p.directions if x.name == name), None)
+    return f"{d.source} → {d.target}" if d else ""
+
+
+def message_id(p: Protocol, m: Message) -> str:
+    if m.ids:
+        return ", ".join(code(v) if isinstance(v, str) else f"`{v:#04x}`" for v in m.ids)
+    if m.dispatch_key:
+        return ", ".join(f"{name} = {number(value)}" for name, value in m.dispatch_key)
+    return "by position"
+
+
+def message_size(p: Protocol, m: Message) -> str:
+    if p.framing.kind == "text":
+        longest = longest_text_line(p, m)
+        return f"≤ {longest} chars" if longest is not None else "unbounded"
+    if p.framing.kind == "bits":
+        return f"{m.bits} bits ({m.size} byte{'s' if m.size != 1 else ''})"
+    return f"{m.size} bytes"
+
+
+def link_msg(name: str) -> str:
+    return f"[{name}](#{anchor('msg', name)})"
+
+
+def message_rules(p: Protocol, m: Message, linker: DecisionLinker) -> list[dict]:
+    """Rules with their user-facing wording: the message's own, then field constraints that have one."""
+    out = []
+    for r in m.rules:
+        when = conditions(r.when)
+        text = ("when " + when + ": " if when else "") + conditions(r.require)
+        out.append({"id": linker.ref(r.id), "text": cell(text), "message": cell(en(r.message)) if r.message else "",
+                    "originals": [(l, cell(t)) for l, t in originals(r.message)]})
+    for s in slots(m):
+        f = s.field
+        if f.message is None:
+            continue
+        out.append({"id": linker.ref(f.rule), "text": f"{code(s.path)}: {cell(_constraint(f))}",
+                    "message": cell(en(f.message)), "originals": [(l, cell(t)) for l, t in originals(f.message)]})
+    return out
+
+
+def _constraint(f) -> str:
+    if f.exactly_one:
+        return "exactly one bit set"
+    if f.values is not None:
+        return "one of " + ", ".join(str(v) for v in f.values)
+    if f.range is not None:
+        return f"{number(f.range[0])} … {number(f.range[1])}"
+    return "checked"
+
+
+def message_view(p: Protocol, codec: types.ModuleType, m: Message, linker: DecisionLinker) -> dict:
+    cited = set()
+    for s in slots(m):
+        if s.field.rule:
+            cited.add(s.field.rule)
+        cited.update(linker.cited(" ".join([en(s.field.doc), en(s.field.title)])))
+    cited.update(r.id for r in m.rules if r.id)
+    cited.update(linker.cited(en(m.doc)))
+    rows = field_rows(p, m, linker)
+    facts = [("Id", message_id(p, m)), ("Size", message_size(p, m))]
+    if m.direction:
+        facts.append(("Direction", f"{direction_text(p, m.direction)} (`{m.direction}`)"))
+    if m.role:
+        facts.append(("Role", m.role))
+    if m.answered_by:
+        facts.append(("Answered by", ", ".join(link_msg(a) for a in m.answered_by)))
+    answers = [link_msg(x.name) for x in p.messages if m.name in x.answered_by]
+    if answers:
+        facts.append(("Answers", ", ".join(answers)))
+    decisions = [linker.ref(x) for x in sorted(c for c in cited if c in linker.ids)]
+    if decisions:
+        facts.append(("Decisions", ", ".join(decisions)))
+    return {
+        "name": m.name, "anchor": anchor("msg", m.name), "facts": facts, "title": cell(with_original(m.title)) if m.title else "",
+        "doc": linker.link(cell(en(m.doc))), "originals": [(l, cell(t)) for l, t in originals(m.doc)],
+        "id": message_id(p, m), "direction": direction_text(p, m.direction), "role": m.role,
+        "size": message_size(p, m), "answered_by": [link_msg(a) for a in m.answered_by],
+        "diagram": diagram(p, m), "line": text_line(p, m) if p.framing.kind == "text" else None,
+        "fields": rows, "columns": field_columns(p, rows), "payload_note": payload_note(p, m),
+        "rules": message_rules(p, m, linker),
+        "examples": [message_example(p, codec, m, ex, linker) for ex in m.examples],
+    }
+
+
+def framing_view(p: Protocol, linker: DecisionLinker) -> dict:
+    fr = p.framing
+    view = {"kind": fr.kind, "lines": []}
+    lines = view["lines"]
+    if fr.kind == "bits":
+        lines.append("Each message is one bit-packed record, most significant bit first: the first field "
+                     "takes the high bits.")
+        if fr.word_bits:
+            lines.append(f"Every message is one {fr.word_bits}-bit word, sent "
+                         + ("most significant byte first." if fr.byte_order == "big" else "least significant byte first."))
+        if fr.max_bits:
+            lines.append(f"A record is at most {fr.max_bits} bits. In a {fr.max_bits}-bit word it is left-aligned "
+                         "(the first field in the top bits) and the low bits are zero; as bytes it is left-aligned "
+                         "and zero-padded to whole bytes.")
+        if p.self_identifying:
+            keys = sorted({name for m in p.messages for name, _ in m.dispatch_key})
+            lines.append("A decoder tells the messages apart by " + ", ".join(code(k) for k in keys)
+                         + " (see the catalogue).")
+        else:
+            lines.append("Words carry no message type: what a word is follows from its position in a sequence "
+                         "(see [Sequences](#sequences)).")
+        if fr.text_form:
+            tf = fr.text_form
+            lines.append(f"Text form: one message a line, every field (constants and checksum included) as a "
+                         f"decimal wire value, separated by {code(tf.separator) if tf.separator != ' ' else 'single spaces'}.")
+            if tf.comment:
+                lines.append(f"Blank lines and lines starting with {code(tf.comment)} are ignored.")
+            if tf.checksum_unfilled is not None:
+                lines.append(f"In the text form a checksum of {tf.checksum_unfilled} means \"not filled in\" and is "
+                             "accepted by readers; writers always fill it in. In the bit form it must be correct.")
+    elif fr.kind == "bytes":
+        facts = stream_facts(p)
+        lines.append("Every frame has the same envelope; each message fills its payload. Multi-byte fields are "
+                     + ("little endian" if fr.byte_order == "little" else "big endian")
+                     + " unless the field table says otherwise; bits within a byte are numbered 7 (MSB) to 0.")
+        if facts.get("sync") is not None:
+            lines.append(f"A frame starts with the sync byte `{facts['sync']:#04x}`.")
+        if facts.get("length"):
+            at, overhead = facts["length"]["at"], facts["length"]["overhead"]
+            lines.append(f"Byte B{at} holds the length: the frame is length + {overhead} bytes. Known frame sizes: "
+                         + ", ".join(str(s) for s in facts["sizes"]) + " bytes.")
+        else:
+            lines.append("Frames have a fixed size for a link: " + ", ".join(str(s) for s in facts["sizes"])
+                         + " bytes with the default parameters.")
+        last = slots(p.messages[0])[-1].field
+        if last.const is not None:
+            lines.append(f"A frame ends with `{last.const:#04x}`.")
+        lines.append("**Stream resynchronisation.** A stream decoder skips bytes up to the next sync byte"
+                     + (", checks the length byte against the known frame sizes" if facts.get("length") else "")
+                     + ", and decodes a whole frame. After a bad frame (wrong length, checksum, constant or "
+                     "unknown id) it reports the error, drops one byte and searches for the next sync byte, so "
+                     "one damaged frame never hides the next good one. It holds at most one largest frame "
+                     f"({facts['max']} bytes).")
+    else:
+        lines.append(f"Every message is one ASCII line `<prefix>{fr.prefix_separator}<field>{fr.separator}"
+                     f"<field>…{fr.terminator}`: the prefix names the message, fields follow in table order.")
+        if fr.trim:
+            lines.append("Readers accept spaces around a value; writers emit none.")
+        if fr.ignore_between:
+            names = {"\r": "CR", "\n": "LF", " ": "space", "\t": "tab"}
+            lines.append("A message ends at " + code(fr.terminator) + "; "
+                         + "/".join(names.get(ch, ch) for ch in fr.ignore_between)
+                         + " between messages is ignored, so a stream resynchronises at the next terminator.")
+        if fr.float_format == "shortest":
+            lines.append("Decimal numbers are written in the shortest form that reads back to the same value "
+                         "(1.0 is written `1`).")
+    view["lines"] = [linker.link(x) for x in lines]
+    return view
+
+
+def protocol_view(p: Protocol, codec: types.ModuleType) -> dict:
+    linker = DecisionLinker(p)
+    languages = sorted({lang for lang, _ in p.title.translations} | {lang for n in p.notes for lang, _ in n.text.translations})
+    directions = []
+    for d in p.directions:
+        carried = [link_msg(m.name) for m in p.messages if m.direction == d.name]
+        directions.append({"name": d.name, "route": f"{d.source} → {d.target}", "messages": carried,
+                           "doc": cell(en(d.doc)), "originals": [(l, cell(t)) for l, t in originals(d.doc)]})
+    contents = ["[All protocols](index.md)", "[Overview](#overview)", "[Messages](#message-catalogue)"]
+    if p.enums or p.flags:
+        contents.append("[Enumerations and flags](#enumerations-and-flags)")
+    contents += ["[Checksum](#checksum)", "[Framing](#framing)"]
+    if p.sequences:
+        contents.append("[Sequences](#sequences)")
+    if p.machines:
+        contents.append("[State machines](#state-machines)")
+    contents.append("[Spec notes](#spec-notes)")
+    if p.history:
+        contents.append("[Version history](#version-history)")
+    return {
+        "p": p, "name": p.name, "title": cell(en(p.title)), "contents": contents,
+        "title_originals": [(LANGUAGES.get(l, l), cell(t)) for l, t in originals(p.title)],
+        "languages": [LANGUAGES.get(l, l) for l in languages],
+        "doc": linker.link(cell(en(p.doc))), "doc_originals": [(LANGUAGES.get(l, l), cell(t)) for l, t in originals(p.doc)],
+        "fingerprint": wire_fingerprint(p),
+        "roles": [{"name": r.name, "doc": cell(en(r.doc)), "originals": [(l, cell(t)) for l, t in originals(r.doc)]}
+                  for r in p.roles],
+        "directions": directions,
+        "transports": transport_views(p, codec),
+        "parameters": [{"name": x.name, "default": number(x.default) if x.default is not None else "per device",
+                        "range": f"{number(x.range[0])} … {number(x.range[1])}" if x.range else "",
+                        "unit": x.unit or "", "doc": linker.link(cell(en(x.doc)))} for x in p.parameters],
+        "messages": [message_view(p, codec, m, linker) for m in p.messages],
+        "enums": [{"name": e.name, "anchor": anchor("enum", e.name), "doc": cell(with_original(e.doc)),
+                   "wire": f"u{e.bits}" if e.bits else ("char" if e.kind == "char" else "integer"),
+                   "members": [{"value": code(x.value) if isinstance(x.value, str) else str(x.value),
+                                "name": code(x.name), "doc": cell(en(x.doc)),
+                                "original": "; ".join(cell(t) for _, t in originals(x.doc))} for x in e.members],
+                   "used_by": [link_msg(m.name) for m in p.messages if any(s.field.enum is e for s in slots(m))]}
+                  for e in p.enums],
+        "flags": [{"name": fl.name, "anchor": anchor("flags", fl.name), "doc": cell(with_original(fl.doc)),
+                   "bits": fl.bits, "mask": f"0x{fl.mask:0{(fl.bits + 3) // 4}x}",
+                   "members": [{"bit": b.bit, "value": f"0x{1 << b.bit:0{(fl.bits + 3) // 4}x}", "name": code(b.name),
+                                "doc": cell(en(b.doc)), "original": "; ".join(cell(t) for _, t in originals(b.doc))}
+                               for b in fl.members]}
+                  for fl in p.flags],
+        "checksums": checksum_sections(p, codec, linker),
+        "framing": framing_view(p, linker),
+        "sequences": [dict(sequence_view(s, linker),
+                           examples=[sequence_example(p, codec, s, ex, linker) for ex in s.examples])
+                      for s in p.sequences],
+        "machines": [machine_view(p, m, linker) for m in p.machines],
+        "notes": [{"id": n.id, "anchor": anchor("note", n.id), "text": linker.link(cell(en(n.text))),
+                   "originals": [(l, cell(t)) for l, t in originals(n.text)]} for n in p.notes],
+        "history": [{"version": h.version, "date": h.date, "author": cell(h.author),
+                     "changes": [(cell(en(c)), "; ".join(cell(t) for _, t in originals(c))) for c in h.changes]}
+                    for h in p.history],
+    }
+
+
+def render(p: Protocol, codec: Optional[types.ModuleType] = None) -> dict[str, str]:
+    codec = codec or load_codec(p)
+    checked(p, codec)
+    text = environment().get_template("docs/protocol.md.j2").render(**protocol_view(p, codec))
+    return {f"docs/{p.name}.md": tidy(text, max_blank=1)}
+
+
+def index_row(p: Protocol) -> dict:
+    return {"name": p.name, "title": cell(en(p.title)), "file": f"{p.name}.md",
+            "originals": "; ".join(cell(t) for _, t in originals(p.title)),
+            "framing": p.framing.kind, "transports": ", ".join(t.name for t in p.transports),
+            "messages": len(p.messages), "version": p.version or "", "source": p.source,
+            "schema": p.file}
+
+
+def render_index(protocols: list[Protocol]) -> dict[str, str]:
+    rows = [index_row(p) for p in sorted(protocols, key=lambda x: x.name)]
+    env = environment()
+    text = env.get_template("docs/index.md.j2").render(protocols=rows)
+    style = env.get_template("docs/codeword.css").render()
+    return {"docs/index.md": tidy(text, max_blank=1), "docs/codeword.css": style}

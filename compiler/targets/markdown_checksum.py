@@ -1,0 +1,180 @@
+"""The checksum section: algorithm, parameters, coverage per message, and a
+worked example recomputed step by step from a real example frame.
+
+The worked example is computed here from the frame's bits, independently of
+the generated codec, and must agree with the checksum the codec wrote.
+"""
+from __future__ import annotations
+
+import types
+from typing import Any, Optional
+
+from .. import crc as crc_reference
+from ..model import Checksum, Message, Protocol
+from .markdown_layout import Slot, position, slots
+from .markdown_text import DecisionLinker, anchor, cell, en, number
+from .wire import checksum_name
+
+
+def _bits_of(frame: bytes, offset: int, width: int) -> int:
+    value = int.from_bytes(frame, "big")
+    total = 8 * len(frame)
+    return (value >> (total - offset - width)) & ((1 << width) - 1)
+
+
+def _checksum_slot(m: Message) -> Optional[Slot]:
+    return next((s for s in slots(m) if s.field.checksum is not None), None)
+
+
+def _frame(p: Protocol, codec: types.ModuleType, m: Message) -> Optional[tuple[Any, bytes]]:
+    """The first example of `m` with values, encoded by the codec."""
+    for ex in m.examples:
+        if not ex.errors and not ex.decode_only and ex.values is not None:
+            return ex, codec.encode(codec.from_dict(m.name, ex.values))
+    return None
+
+
+def _coverage(p: Protocol, m: Message, cs: Checksum, slot: Slot) -> str:
+    if cs.byte_span is not None:
+        start, end = cs.byte_span
+        return f"bytes B{start}–B{end - 1} ({end - start} bytes: {cs.covers[0]} … {cs.covers[1]})" if cs.covers \
+            else f"bytes B{start}–B{end - 1}"
+    others = [s.path for s in slots(m) if s.depth == 0 and s.path != slot.path and s.field.kind != "group"] + \
+             [s.path for s in slots(m) if s.depth > 0]
+    if cs.over == "bits" or cs.algorithm == "parity":
+        return f"all {m.bits} bits of the word, the parity bit included"
+    return "the wire values of every other field: " + ", ".join(others)
+
+
+def _crc_steps(params, data: bytes) -> list[tuple[str, str]]:
+    """The register after each byte (Rocksoft model, bit at a time)."""
+    top, mask = 1 << (params.width - 1), (1 << params.width) - 1
+    reg = params.init
+    digits = (params.width + 3) // 4
+    steps = [("init", f"0x{reg:0{digits}x}")]
+    for byte in data:
+        b = crc_reference.reflect(byte, 8) if params.refin else byte
+        for i in range(7, -1, -1):
+            feedback = bool(reg & top) ^ ((b >> i) & 1)
+            reg = (reg << 1) & mask
+            if feedback:
+                reg ^= params.poly
+        steps.append((f"{byte:02x}", f"0x{reg:0{digits}x}"))
+    return steps
+
+
+def worked_example(p: Protocol, codec: types.ModuleType, m: Message, cs: Checksum, slot: Slot) -> Optional[dict]:
+    found = _frame(p, codec, m)
+    if found is None:
+        return None
+    ex, frame = found
+    field = slot.field
+    sent = _bits_of(frame, slot.offset, field.bits)
+    view = {"message": f"[{m.name}](#{anchor('msg', m.name)})", "example": cell(ex.name), "frame": frame.hex(" "),
+            "field": slot.path, "position": position(p, slot), "steps": [], "lines": []}
+    if cs.algorithm == "crc":
+        start, end = cs.byte_span
+        covered = frame[start:end]
+        steps = _crc_steps(cs.crc, covered)
+        raw = int(steps[-1][1], 16)
+        out = crc_reference.reflect(raw, cs.crc.width) if cs.crc.refout else raw
+        result = out ^ cs.crc.xorout
+        if result != crc_reference.compute(cs.crc, covered):
+            raise AssertionError("worked CRC example disagrees with the reference implementation")
+        digits = (cs.crc.width + 3) // 4
+        order = field.byte_order or p.framing.byte_order
+        sent_bytes = frame[slot.offset // 8:(slot.offset + field.bits) // 8]
+        sent = int.from_bytes(sent_bytes, "big" if order == "big" else "little")
+        view["steps"] = steps
+        view["lines"] = [
+            f"covered bytes B{start}–B{end - 1}: `{covered.hex(' ')}`",
+            f"register after the last byte: `0x{raw:0{digits}x}`"
+            + (f", reflected `0x{out:0{digits}x}`" if cs.crc.refout else "")
+            + f"; XOR `0x{cs.crc.xorout:0{digits}x}` → CRC `0x{result:0{digits}x}`",
+            f"sent {'high byte first' if order == 'big' else 'low byte first'} at {position(p, slot)}: "
+            f"`{sent_bytes.hex(' ')}`",
+        ]
+    elif cs.algorithm in ("sum", "xor"):
+        terms = []
+        for s in slots(m):
+            if s.path == slot.path or s.field.kind == "group" or s.field.bits is None:
+                continue
+            terms.append((s.path, _bits_of(frame, s.offset, s.field.bits)))
+        if cs.algorithm == "sum":
+            total = sum(v for _, v in terms)
+            result = total % cs.modulo if cs.modulo else total & ((1 << field.bits) - 1)
+            how = f"{total} mod {cs.modulo or 1 << field.bits} = {result}"
+            joined = " + ".join(str(v) for _, v in terms)
+        else:
+            result = 0
+            for _, v in terms:
+                result ^= v
+            how = str(result)
+            joined = " ⊕ ".join(str(v) for _, v in terms)
+        view["lines"] = [
+            "wire values: " + ", ".join(f"{name} = {v}" for name, v in terms),
+            f"{joined} = {how}",
+            f"sent in `{slot.path}` ({position(p, slot) or 'bits ' + str(slot.offset)}): {sent}",
+        ]
+    elif cs.algorithm == "parity":
+        word = int.from_bytes(frame, "big")
+        others = bin(word).count("1") - sent
+        result = others % 2 if cs.parity == "even" else 1 - others % 2
+        view["lines"] = [
+            f"word `0x{word:0{len(frame) * 2}x}` = `{word:0{8 * len(frame)}b}`",
+            f"ones outside the parity bit: {others} → parity bit {result} makes the total "
+            f"{others + result}, {'even' if cs.parity == 'even' else 'odd'}",
+            f"sent in `{slot.path}` ({position(p, slot)}): {sent}",
+        ]
+    else:
+        return None
+    if result != sent:
+        raise AssertionError(f"worked {cs.algorithm} example gives {result}, the frame carries {sent}")
+    return view
+
+
+def parameters(cs: Checksum) -> list[tuple[str, str]]:
+    if cs.algorithm == "crc":
+        c = cs.crc
+        digits = (c.width + 3) // 4
+        rows = [("name", c.name), ("width", str(c.width)), ("poly", f"0x{c.poly:0{digits}x}"),
+                ("init", f"0x{c.init:0{digits}x}"), ("refin", str(c.refin).lower()),
+                ("refout", str(c.refout).lower()), ("xorout", f"0x{c.xorout:0{digits}x}")]
+        if c.check is not None:
+            rows.append(("check (CRC of ASCII `123456789`)", f"0x{c.check:0{digits}x}"))
+        return rows
+    if cs.algorithm == "sum":
+        return [("algorithm", "sum of values"), ("modulo", number(cs.modulo) if cs.modulo else "field width")]
+    if cs.algorithm == "parity":
+        return [("algorithm", "parity"), ("parity", cs.parity)]
+    return [("algorithm", cs.algorithm)]
+
+
+def checksum_sections(p: Protocol, codec: types.ModuleType, linker: DecisionLinker) -> list[dict]:
+    """One section per distinct checksum (algorithm and parameters) of the protocol."""
+    groups: dict[str, dict] = {}
+    for m in p.messages:
+        slot = _checksum_slot(m)
+        if slot is None:
+            continue
+        cs = slot.field.checksum
+        key = checksum_name(cs)
+        group = groups.setdefault(key, {"title": cs.crc.name if cs.crc else cs.algorithm,
+                                        "params": parameters(cs), "coverage": [], "worked": None,
+                                        "field": slot.path, "doc": "", "decisions": []})
+        order = slot.field.byte_order or p.framing.byte_order
+        group["coverage"].append({
+            "message": f"[{m.name}](#{anchor('msg', m.name)})", "covers": cell(_coverage(p, m, cs, slot)),
+            "at": position(p, slot) or f"bits {slot.offset}–{slot.offset + slot.field.bits - 1}",
+            "order": ("high byte first" if order == "big" else "low byte first")
+            if slot.field.bits and slot.field.bits > 8 else "—"})
+        text = " ".join(filter(None, [en(slot.field.doc), en(slot.field.title)]))
+        cited = set(linker.cited(text)) | ({slot.field.rule} if slot.field.rule else set())
+        group["decisions"] = sorted(set(group["decisions"]) | {c for c in cited if c in linker.ids})
+        if not group["doc"]:
+            group["doc"] = f"Field `{slot.path}`: " + linker.link(cell(en(slot.field.doc) or "the checksum")).rstrip(".") + "."
+        if group["worked"] is None:
+            group["worked"] = worked_example(p, codec, m, cs, slot)
+    for group in groups.values():
+        group["decisions"] = [linker.ref(d) for d in group["decisions"]]
+    return list(groups.values())

@@ -1,0 +1,245 @@
+"""Where each field of a message sits on the wire, as the docs show it: the
+layout diagram (a table in the style of the seeds' `HDR|ns|nl|…` tables) and
+the field table (offset, width, type, range, unit, values, default, meaning)."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Optional
+
+from ..model import Field, Message, Protocol
+from .markdown_text import DecisionLinker, anchor, cell, code, en, number, originals
+
+
+@dataclass(frozen=True)
+class Slot:
+    """A field with its dotted path and its bit offset from the first bit sent."""
+
+    path: str
+    field: Field
+    offset: Optional[int]  # None in text framings
+    index: int  # 1-based position among the top-level fields (text framings: field number)
+    depth: int
+
+
+def slots(m: Message) -> list[Slot]:
+    """Every field of the frame in wire order, groups followed by their members.
+    Group members carry no offset in the model; it is the running sum from the group's."""
+    out: list[Slot] = []
+
+    def walk(fields: tuple[Field, ...], prefix: str, start: Optional[int], depth: int) -> None:
+        pos = start
+        for f in fields:
+            if f.is_payload:
+                continue
+            offset = f.bit_offset if f.bit_offset is not None else pos
+            index = len([s for s in out if s.depth == 0]) + 1 if depth == 0 else 0
+            out.append(Slot(prefix + f.name, f, offset, index, depth))
+            if f.kind == "group":
+                walk(f.fields, prefix + f.name + ".", offset, depth + 1)
+            if offset is not None and f.bits is not None:
+                pos = offset + f.bits
+
+    walk(m.layout, "", 0 if m.bits is not None else None, 0)
+    return out
+
+
+def bit_span(offset: int, bits: int) -> str:
+    return str(offset) if bits == 1 else f"{offset}–{offset + bits - 1}"
+
+
+def position(p: Protocol, slot: Slot) -> str:
+    """Where a reader finds the field: word bits (31 = MSB) or bytes (B0 first sent)."""
+    f, offset = slot.field, slot.offset
+    if offset is None or f.bits is None:
+        return ""
+    fr = p.framing
+    if fr.kind == "bits" and fr.word_bits:
+        high = fr.word_bits - 1 - offset
+        low = high - f.bits + 1
+        return str(high) if f.bits == 1 else f"{high}–{low}"
+    first, last = offset // 8, (offset + f.bits - 1) // 8
+    if offset % 8 == 0 and f.bits % 8 == 0:
+        return f"B{first}" if first == last else f"B{first}–B{last}"
+    high = 7 - offset % 8
+    low = high - f.bits + 1
+    if first == last:
+        return f"B{first} bit {high}" if f.bits == 1 else f"B{first} bits {high}–{low}"
+    return f"B{first} bit {high} – B{last} bit {7 - (offset + f.bits - 1) % 8}"
+
+
+def type_text(p: Protocol, f: Field) -> str:
+    kind = f.kind
+    if kind == "group":
+        text = "group"
+    elif kind in ("uint", "int", "float"):
+        text = {"uint": "u", "int": "i", "float": "f"}[kind] + str(f.bits)
+        if p.framing.kind == "bytes" and f.bits and f.bits > 8:
+            order = f.byte_order or p.framing.byte_order
+            text += " LE" if order == "little" else " BE"
+    elif kind == "bool":
+        text = "bool"
+    elif kind == "char":
+        text = "char"
+    elif kind == "str":
+        text = "string"
+        if f.max_length is not None:
+            text += f" ≤ {f.max_length} chars"
+        if f.to_end:
+            text += ", to the terminator"
+    elif kind == "bytes":
+        length = f.length_param or f.length
+        text = f"{length} bytes"
+    else:
+        text = kind
+    if p.framing.kind == "text" and kind in ("uint", "int"):
+        text = "integer (" + text + ")"
+    if p.framing.kind == "text" and kind == "float":
+        text = "decimal (" + text + ")"
+    if f.type_name:
+        text += f" · type {f.type_name}"
+    return text
+
+
+def range_text(f: Field) -> str:
+    """The allowed values in the units the user sees, and how they map to the wire."""
+    if f.const is not None:
+        value = f"{f.const:#04x}" if isinstance(f.const, int) and not isinstance(f.const, bool) and f.bits and f.bits >= 8 else number(f.const)
+        return f"= {value}"
+    if f.reserved:
+        return "0 (reserved)"
+    if f.checksum is not None:
+        return "computed (see [Checksum](#checksum))"
+    if f.length_of is not None:
+        return f"= bytes {f.length_of[0]} … {f.length_of[1]}"
+    if f.one_hot and f.range:
+        return f"level {number(f.range[0])}–{number(f.range[1])}, sent as 1 << level; 0 = absent"
+    parts = []
+    if f.range is not None:
+        parts.append(f"{number(f.range[0])} … {number(f.range[1])}")
+    elif f.raw_range is not None and f.enum is None and f.flags is None and f.kind != "bool":
+        parts.append(f"{number(f.raw_range[0])} … {number(f.raw_range[1])}")
+    if f.offset:
+        parts.append(f"sent as value − {number(f.offset)}")
+    if f.scale is not None:
+        parts.append(f"step {number(f.scale)}")
+    if f.kind == "float" and f.bits == 32:
+        parts.append("IEEE-754 binary32")
+    if f.kind == "float" and f.bits == 64 and not parts:
+        parts.append("any decimal number")
+    return "; ".join(parts)
+
+
+def values_text(f: Field) -> str:
+    out = []
+    if f.enum is not None:
+        out.append(f"enum [{f.enum.name}](#{anchor('enum', f.enum.name)})")
+    if f.flags is not None:
+        out.append(f"flags [{f.flags.name}](#{anchor('flags', f.flags.name)})")
+    if f.exactly_one:
+        out.append("exactly one bit set")
+    if f.kind == "bool":
+        out.append("0 false, 1 true")
+    if f.optional:
+        out.append("optional")
+    return "; ".join(out)
+
+
+def default_text(f: Field) -> str:
+    if not f.has_default:
+        return ""
+    value = f.default
+    if value is None:
+        return "absent"
+    if f.enum is not None:
+        member = next((x for x in f.enum.members if x.name == value or x.value == value), None)
+        return member.name if member else str(value)
+    return number(value)
+
+
+def meaning(f: Field, linker: DecisionLinker) -> str:
+    """English title and doc, the original-language wording beside them, the decision."""
+    parts = []
+    title, doc = en(f.title), en(f.doc)
+    if not title and not doc and (f.enum or f.flags):
+        doc = en((f.enum or f.flags).doc)
+    if title:
+        parts.append(f"**{cell(title)}**")
+    if doc and doc != title:
+        parts.append(cell(doc))
+    by_lang: dict[str, list[str]] = {}
+    for lang, text in originals(f.title) + originals(f.doc):
+        by_lang.setdefault(lang, []).append(cell(text))
+    for lang, texts in by_lang.items():
+        parts.append(f"*{lang}:* " + " — ".join(texts))
+    text = linker.link(" <br>".join(parts))
+    if f.rule and f.rule not in linker.cited(text):
+        text += (" " if text else "") + f"({linker.ref(f.rule)})"
+    return text
+
+
+def diagram(p: Protocol, m: Message) -> Optional[dict]:
+    """Columns of the layout diagram: top-level fields with width, offset and position."""
+    top = [s for s in slots(m) if s.depth == 0]
+    if p.framing.kind == "text":
+        return None
+    cols = [{"name": s.path, "bits": s.field.bits, "offset": bit_span(s.offset, s.field.bits),
+             "position": position(p, s)} for s in top]
+    return {"columns": cols, "word": bool(p.framing.word_bits), "bytes": p.framing.kind == "bytes"}
+
+
+def text_line(p: Protocol, m: Message) -> str:
+    """The shape of a text message: `%:move,speed,…[,data];`."""
+    fr = p.framing
+    names = []
+    for s in slots(m):
+        if s.depth:
+            continue
+        names.append(f"[{fr.separator}{s.path}]" if s.field.optional else s.path)
+    body = ""
+    for i, name in enumerate(names):
+        body += name if i == 0 or name.startswith("[") else fr.separator + name
+    return f"{m.ids[0]}{fr.prefix_separator}{body}{fr.terminator}"
+
+
+def field_rows(p: Protocol, m: Message, linker: DecisionLinker) -> list[dict]:
+    rows = []
+    for s in slots(m):
+        f = s.field
+        name = ("&nbsp;&nbsp;&nbsp;&nbsp;" * s.depth) + code(s.path)
+        rows.append({
+            "path": s.path, "name": name,
+            "bits": "" if f.bits is None or p.framing.kind == "text" else str(f.bits),
+            "offset": str(s.offset) if s.offset is not None else "",
+            "index": str(s.index) if s.depth == 0 else "",
+            "position": position(p, s),
+            "type": cell(type_text(p, f)), "range": range_text(f),
+            "unit": cell(f.unit or ""), "kinds": values_text(f), "default": cell(default_text(f)),
+            "meaning": meaning(f, linker),
+        })
+    return rows
+
+
+def payload_note(p: Protocol, m: Message) -> str:
+    """Positions depend on a link parameter when a field's length is one (tr24 data)."""
+    for s in slots(m):
+        if s.field.length_param:
+            param = next((x for x in p.parameters if x.name == s.field.length_param), None)
+            if param is not None and param.default is not None:
+                return (f"Positions assume `{param.name}` = {number(param.default)} (its default); "
+                        f"`{s.path}` is `{param.name}` bytes long and every byte after it moves with it.")
+    return ""
+
+
+def field_columns(p: Protocol, rows: list[dict]) -> list[tuple[str, str, str]]:
+    """(key, heading, alignment) of the field table: the framing's place columns,
+    then the descriptive ones that have a value in at least one row."""
+    fr = p.framing
+    if fr.kind == "text":
+        place = [("index", "#", "--:")]
+    else:
+        where = "word bits" if fr.word_bits else ("bytes" if fr.kind == "bytes" else "byte bits")
+        place = [("bits", "bits", "--:"), ("offset", "offset", "--:"), ("position", where, "---")]
+    optional = [("type", "type"), ("range", "range"), ("unit", "unit"), ("kinds", "values"),
+                ("default", "default")]
+    shown = [(key, title, "---") for key, title in optional if any(r[key] for r in rows)]
+    return [("name", "field", "---")] + place + shown + [("meaning", "meaning", "---")]
