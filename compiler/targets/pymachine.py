@@ -1,0 +1,205 @@
+"""Python target, machines: one sans-IO class per machine, appended to the codec module.
+
+The caller passes the current time, received packets and application requests;
+each call returns an `Outputs` with the packets to send, the data delivered,
+the commands executed and the failures. No clock, socket or thread inside.
+"""
+from __future__ import annotations
+
+from ..model import Action, Event, Machine, Protocol
+from .machine_lowering import Lowering
+from .machine_packets import PacketLayout, machine_messages
+
+
+def class_name(machine: Machine) -> str:
+    return "".join(part.capitalize() for part in machine.name.split("_")) + "Machine"
+
+
+def method_name(event: Event) -> str:
+    """send(…) for requests, receive(…) for packets, tick(…) for the timer."""
+    if event.timer:
+        return "tick"
+    return event.name
+
+
+def byte_expr(slot, value_of) -> str:
+    parts = [value_of(bp.field) if bp.shift == 0 else f"{value_of(bp.field)} << {bp.shift}"
+             for bp in slot.parts if bp.const is None]
+    if slot.const_value or not parts:
+        parts.insert(0, str(slot.const_value))
+    return " | ".join(parts)
+
+
+def pack_function(layout: PacketLayout) -> dict:
+    """`_machine_pack_<m>(lengths…, members…)`: the packet's bytes."""
+    pieces, run = [], []
+    for slot in layout.slots:
+        if slot.data_field:
+            if run:
+                pieces.append("bytes((" + ", ".join(run) + ",))")
+                run = []
+            pieces.append(slot.data_field)
+        else:
+            run.append(byte_expr(slot, lambda name: name))
+    if run:
+        pieces.append("bytes((" + ", ".join(run) + ",))")
+    return {"name": f"_machine_pack_{layout.message}",
+            "args": ", ".join(layout.members),
+            "expr": " + ".join(pieces)}
+
+
+def unpack_function(layout: PacketLayout) -> dict:
+    """`_machine_unpack_<m>(lengths…, b)`: the member values, or None if b is not this message."""
+    def at(slot) -> str:
+        return slot.at.expr(lambda name: name)
+
+    checks = [f"len(b) != {layout.size.expr(lambda name: name)}"]
+    values = {}
+    for slot in layout.slots:
+        if slot.data_field:
+            end = slot.at.plus_length(slot.length_param) if slot.length_param else slot.at.plus(slot.length)
+            values[slot.data_field] = f"bytes(b[{at(slot)}:{end.expr(lambda name: name)}])"
+            continue
+        if slot.const_mask == 0xff:
+            checks.append(f"b[{at(slot)}] != {slot.const_value:#04x}")
+        elif slot.const_mask:
+            checks.append(f"b[{at(slot)}] & {slot.const_mask:#04x} != {slot.const_value:#04x}")
+        for bp in slot.parts:
+            if bp.const is None:
+                v = f"b[{at(slot)}]" if bp.shift == 0 else f"(b[{at(slot)}] >> {bp.shift})"
+                values[bp.field] = v if bp.mask == 0xff >> bp.shift else f"{v} & {bp.mask:#x}"
+    return {"name": f"_machine_unpack_{layout.message}",
+            "args": ", ".join(layout.length_params() + ("b",)), "checks": checks,
+            "values": [values[name] for name in layout.members]}
+
+
+class PythonLowering(Lowering):
+    AND = " and "
+    OR = " or "
+
+    def var(self, name): return f"self.{name}"
+    def param(self, name): return f"self.{name}"
+    def packet(self, name): return f"p_{name}"
+    def request(self, name): return name
+    def result(self, name): return f"r_{name}"
+    def goto(self, state): return f"self.state = {state!r}"
+
+    def zero_bytes(self, message, field):
+        slot = next(s for s in self.layouts[message].slots if s.data_field == field)
+        return f"bytes({self.param(slot.length_param)})" if slot.length_param else f"bytes({slot.length})"
+
+    def action(self, a: Action, event: Event) -> list[str]:
+        if a.kind == "set":
+            return [f"{self.var(a.target)} = {self.source(a.value)}"]
+        if a.kind == "flip":
+            return [f"{self.var(a.target)} ^= 1"]
+        if a.kind == "increment":
+            bits = next(v.bits for v in self.m.variables if v.name == a.target)
+            return [f"{self.var(a.target)} = ({self.var(a.target)} + 1) & {(1 << bits) - 1:#x}"]
+        if a.kind == "keep":
+            layout = self.layouts[a.target]
+            given = dict(a.fields)
+            args = [self.source(given[n], a.target, n) for n in layout.members]
+            return [f"self.kept = _machine_pack_{a.target}({', '.join(args)})"]
+        if a.kind == "transmit":
+            return ["out.sent.append(self.kept)"]
+        if a.kind == "start_timer":
+            return [f"self.deadline = now + {self.param(a.target)}"]
+        if a.kind == "stop_timer":
+            return ["self.deadline = None"]
+        if a.kind == "deliver":
+            return [f"out.delivered.append({self.packet(a.target)})"]
+        if a.kind == "execute":
+            return [f"out.executed.append({self.packet(a.target)})",
+                    f"{self.result(a.target)} = self._execute_checked({self.packet(a.target)})"]
+        if a.kind == "fail":
+            return [f"out.failed.append({a.target!r})"]
+        raise ValueError(f"unknown action kind {a.kind!r}")
+
+
+def branches(case) -> list[dict]:
+    """if/elif/else heads with their bodies for the rows of one case."""
+    out = []
+    for i, row in enumerate(case.rows):
+        if not row.guard:
+            head = "else:" if i else None
+        else:
+            head = ("elif " if i else "if ") + row.guard + ":"
+        out.append({"head": head, "body": list(row.body) or ["pass"]})
+    return out
+
+
+def parameter_views(p: Protocol, machine: Machine) -> list[dict]:
+    out = []
+    for name in machine.parameters:
+        param = next(x for x in p.parameters if x.name == name)
+        out.append({"name": name, "default": param.default, "range": param.range,
+                    "doc": param.doc or name})
+    # required ones first, so the signature reads naturally
+    return sorted(out, key=lambda v: v["default"] is not None)
+
+
+def argument_checks(p: Protocol, event: Event, machine: Machine) -> list[dict]:
+    checks = []
+    message = p.message(event.request)
+    for arg in event.args:
+        f = next(x for x in message.members if x.name == arg)
+        if f.kind == "bytes":
+            size = f.length_param or str(f.length)
+            checks.append({"name": arg, "bytes": True, "size": f"self.{size}" if f.length_param else size})
+        else:
+            checks.append({"name": arg, "bytes": False, "max": (1 << f.bits) - 1})
+    return checks
+
+
+def machine_view(p: Protocol, machine: Machine) -> dict:
+    low = PythonLowering(p, machine)
+    events = []
+    for code in low.events():
+        e = code.event
+        view = {"name": e.name, "method": method_name(e), "doc": e.doc or e.name, "timer": e.timer,
+                "args": "", "checks": [], "unpack": None, "cases": []}
+        if e.request:
+            view["args"] = "".join(", " + a for a in e.args)
+            view["checks"] = argument_checks(p, e, machine)
+        if code.packet:
+            view["args"] = ", packet"
+            lengths = [low.param(n) for n in code.packet.length_params()]
+            view["unpack"] = {"fn": f"_machine_unpack_{code.packet.message}",
+                              "args": ", ".join(lengths + ["packet"]),
+                              "names": ", ".join(low.packet(n) for n in code.packet.members)}
+        for case in code.cases:
+            view["cases"].append({"state": case.state, "kind": case.kind, "branches": branches(case)})
+        events.append(view)
+    return {"cls": class_name(machine), "name": machine.name, "doc": machine.doc or machine.name,
+            "states": [s.name for s in machine.states], "initial": machine.initial,
+            "variables": machine.variables, "params": parameter_views(p, machine),
+            "events": events, "executes": low.uses("execute"),
+            "timer": any(e.timer for e in machine.events),
+            "execute_size": execute_size(low)}
+
+
+def execute_size(low: PythonLowering) -> str | None:
+    """The expected length of the application's result, as an expression."""
+    for a in low.m.actions:
+        if a.kind == "execute":
+            message = next(e.message for e in low.m.events if e.message)
+            slot = next(s for s in low.layouts[message].slots if s.data_field == a.target)
+            return low.param(slot.length_param) if slot.length_param else str(slot.length)
+    return None
+
+
+def machines_view(p: Protocol) -> dict:
+    """Everything the machines template needs; empty when the schema declares none."""
+    if not p.machines:
+        return {"machines": [], "packers": [], "unpackers": []}
+    from .machine_packets import packet_layout
+    built, received = set(), set()
+    for m in p.machines:
+        b, r = machine_messages(m)
+        built.update(b)
+        received.update(r)
+    ordered = [m.name for m in p.messages]
+    return {"machines": [machine_view(p, m) for m in p.machines],
+            "packers": [pack_function(packet_layout(p, p.message(n))) for n in ordered if n in built],
+            "unpackers": [unpack_function(packet_layout(p, p.message(n))) for n in ordered if n in received]}

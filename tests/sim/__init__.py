@@ -1,0 +1,279 @@
+"""A lossy shared radio channel for the generated tr24 machines.
+
+One master device and up to four slaves share one channel, as in the seed
+(three beacons, two locators). Every packet is heard by every other device;
+for each listener the channel independently loses it (per direction: commands
+master→slave, replies slave→master), duplicates it, or flips one bit in it, in
+which case the listener's radio finds a CRC mismatch and drops it, as the
+tr24a module does. Each copy is delayed by a bounded random time, never
+overtaking an earlier packet on the same sender→listener path.
+
+Everything is driven by one seeded random.Random, so a seed names a run; the
+run's inputs and outputs are recorded as a trace (`Trace`) that a C driver can
+replay against the generated C machines.
+"""
+from __future__ import annotations
+
+import binascii
+import heapq
+import importlib.util
+import random
+import sys
+from dataclasses import dataclass, field
+from pathlib import Path
+
+GENERATED = Path(__file__).resolve().parents[2] / "generated" / "python" / "tr24.py"
+MASTER_ID = 1
+SLAVE_IDS = (3, 4, 5, 6)  # the seed's example addresses a slave with ID 3
+
+
+def load_tr24():
+    """The committed generated module, imported without the compiler."""
+    name = "sim_generated_tr24"
+    if name not in sys.modules:
+        spec = importlib.util.spec_from_file_location(name, GENERATED)
+        module = importlib.util.module_from_spec(spec)
+        sys.modules[name] = module  # dataclasses look their module up while the class is built
+        spec.loader.exec_module(module)
+    return sys.modules[name]
+
+
+@dataclass(frozen=True)
+class Link:
+    """Channel behaviour; loss rates per direction, the rest for both."""
+
+    p_fwd: float = 0.0  # a command is lost
+    p_ack: float = 0.0  # a reply is lost
+    duplicate: float = 0.0  # a copy arrives twice
+    corrupt: float = 0.0  # one bit flipped: the radio's CRC drops it
+    delay: tuple[int, int] = (1, 5)  # ticks, inclusive
+
+    def check(self) -> None:
+        for name in ("p_fwd", "p_ack"):
+            if not 0.0 <= getattr(self, name) <= 0.5:
+                raise ValueError(f"{name} must be in 0..0.5")
+        for name in ("duplicate", "corrupt"):
+            if not 0.0 <= getattr(self, name) < 1.0:
+                raise ValueError(f"{name} must be in 0..1")
+        if not 0 <= self.delay[0] <= self.delay[1]:
+            raise ValueError("delay must be (min, max) with 0 <= min <= max")
+
+
+def reply_for(command: bytes, slave_id: int) -> bytes:
+    """What a slave's application answers: each byte plus the slave's ID, so a
+    reply names both its command and the slave that ran it."""
+    return bytes((b + slave_id) & 0xFF for b in command)
+
+
+@dataclass
+class Stats:
+    commands: int = 0
+    delivered: int = 0
+    failed: int = 0
+    command_packets: int = 0  # transmissions by the master
+    reply_packets: int = 0
+    lost: int = 0
+    corrupted: int = 0
+    duplicated: int = 0
+
+
+@dataclass
+class Trace:
+    """Every machine input in order and, per input, the outputs it produced."""
+
+    inputs: list[tuple[int, str, str, str]] = field(default_factory=list)  # time, machine, kind, hex
+    outputs: list[list[str]] = field(default_factory=list)
+
+    def script(self) -> str:
+        """The inputs alone, one per line: what a driver of other machines replays."""
+        return "".join(f"{t} {machine} {kind} {data}".rstrip() + "\n" for t, machine, kind, data in self.inputs)
+
+    def text(self) -> str:
+        """Each input followed by its outputs, indented."""
+        lines = []
+        for (t, machine, kind, data), outs in zip(self.inputs, self.outputs):
+            lines.append(f"{t} {machine} {kind} {data}".rstrip())
+            lines.extend("  " + line for line in outs)
+        return "".join(line + "\n" for line in lines)
+
+
+def crc(packet: bytes) -> int:
+    return binascii.crc_hqx(packet, 0xFFFF)
+
+
+class Simulation:
+    """One master device (a master machine per slave: the sequence bit belongs to a
+    link) and `slaves` slave devices; the application sends `commands` commands,
+    one at a time, each to a random slave, with random data."""
+
+    def __init__(self, seed: int, link: Link, *, slaves: int = 1, data_length: int = 7,
+                 timeout: int = 20, retry_limit: int = 0, module=None, trace: bool = False):
+        link.check()
+        if not 1 <= slaves <= len(SLAVE_IDS):
+            raise ValueError(f"slaves must be in 1..{len(SLAVE_IDS)}")
+        self.tr24 = module or load_tr24()
+        self.rng = random.Random(seed)
+        self.link = link
+        self.data_length = data_length
+        self.slave_ids = SLAVE_IDS[:slaves]
+        self.masters = {sid: self.tr24.MasterMachine(own_id=MASTER_ID, data_length=data_length, timeout=timeout,
+                                                     retry_limit=retry_limit) for sid in self.slave_ids}
+        self.slaves = {sid: self.tr24.SlaveMachine(own_id=sid, data_length=data_length,
+                                                   execute=lambda data, sid=sid: reply_for(data, sid))
+                       for sid in self.slave_ids}
+        self.devices = (MASTER_ID,) + self.slave_ids
+        self.queue: list = []
+        self.order = 0
+        self.last_arrival: dict[tuple[int, int], int] = {}
+        self.scheduled: dict[int, int] = {}  # machine id -> deadline a tick is queued for
+        self.stats = Stats()
+        self.trace = Trace() if trace else None
+        # what the property checks: commands per slave in order, what each slave ran
+        self.issued: dict[int, list[bytes]] = {sid: [] for sid in self.slave_ids}
+        self.executed: dict[int, list[bytes]] = {sid: [] for sid in self.slave_ids}
+        self.outcomes: list[tuple[int, bytes, str, bytes | None]] = []  # slave, command, delivered|failed, reply
+        self.pending: tuple[int, bytes] | None = None
+        self.now = 0
+
+    # -- scheduling ----------------------------------------------------------------
+    def at(self, time: int, kind: str, *args) -> None:
+        self.order += 1
+        heapq.heappush(self.queue, (time, self.order, kind, args))
+
+    def transmit(self, sender: int, packet: bytes) -> None:
+        link, rng = self.link, self.rng
+        from_master = sender == MASTER_ID
+        loss = link.p_fwd if from_master else link.p_ack
+        if from_master:
+            self.stats.command_packets += 1
+        else:
+            self.stats.reply_packets += 1
+        check = crc(packet)
+        for listener in self.devices:
+            if listener == sender:
+                continue
+            if rng.random() < loss:
+                self.stats.lost += 1
+                continue
+            copies = 2 if rng.random() < link.duplicate else 1
+            self.stats.duplicated += copies - 1
+            for _ in range(copies):
+                data = packet
+                if rng.random() < link.corrupt:
+                    bit = rng.randrange(8 * len(packet))
+                    data = bytearray(packet)
+                    data[bit // 8] ^= 1 << (bit % 8)
+                    data = bytes(data)
+                path = (sender, listener)
+                arrival = max(self.now + rng.randint(*link.delay), self.last_arrival.get(path, 0))
+                self.last_arrival[path] = arrival
+                self.at(arrival, "arrive", listener, data, check)
+
+    # -- machine calls, traced -----------------------------------------------------
+    def call(self, name: str, kind: str, fn, *args):
+        out = fn(self.now, *args)
+        if self.trace is not None:
+            data = args[-1].hex() if args and isinstance(args[-1], bytes) else ""
+            if kind == "send":
+                data = f"{args[0]:02x}{args[1].hex()}"
+            self.trace.inputs.append((self.now, name, kind, data))
+            self.trace.outputs.append(trace_lines(out))
+        return out
+
+    def handle(self, device: int, out, machine=None) -> None:
+        for packet in out.sent:
+            self.transmit(device, packet)
+        # one tick per new deadline; a stale tick would find nothing to do anyway
+        if machine is not None and machine.deadline is not None and \
+                self.scheduled.get(id(machine)) != machine.deadline:
+            self.scheduled[id(machine)] = machine.deadline
+            self.at(machine.deadline, "tick", device, machine)
+
+    # -- the application -----------------------------------------------------------
+    def next_command(self, count: int) -> None:
+        if self.stats.commands >= count:
+            return
+        number = self.stats.commands
+        self.stats.commands += 1
+        sid = self.rng.choice(self.slave_ids)
+        tail = bytes(self.rng.getrandbits(8) for _ in range(max(0, self.data_length - 4)))
+        data = (number.to_bytes(4, "big") + tail)[:self.data_length] if self.data_length >= 4 else \
+            bytes(self.rng.getrandbits(8) for _ in range(self.data_length))
+        self.issued[sid].append(data)
+        self.pending = (sid, data)
+        master = self.masters[sid]
+        out = self.call(f"m{sid}", "send", master.send, sid, data)
+        self.handle(MASTER_ID, out, master)
+
+    def finish_command(self, sid: int, out) -> None:
+        for reply in out.delivered:
+            self.stats.delivered += 1
+            self.outcomes.append((sid, self.pending[1], "delivered", reply))
+        for _ in out.failed:
+            self.stats.failed += 1
+            self.outcomes.append((sid, self.pending[1], "failed", None))
+
+    def run(self, commands: int, time_limit: int | None = None) -> Stats:
+        """Send `commands` commands; stop when all are answered or failed, or at `time_limit`."""
+        self.next_command(commands)
+        while self.queue:
+            time, _, kind, args = heapq.heappop(self.queue)
+            if time_limit is not None and time > time_limit:
+                break
+            self.now = time
+            if kind == "tick":
+                device, machine = args
+                sid = device if device != MASTER_ID else next(s for s, m in self.masters.items() if m is machine)
+                out = self.call(f"m{sid}", "tick", machine.tick)
+                self.handle(MASTER_ID, out, machine)
+                if out.failed:
+                    self.finish_command(sid, out)
+                    self.next_command(commands)
+                continue
+            listener, data, check = args
+            if crc(data) != check:
+                self.stats.corrupted += 1  # the radio drops it
+                continue
+            if listener == MASTER_ID:
+                for sid, master in self.masters.items():
+                    out = self.call(f"m{sid}", "receive", master.receive, data)
+                    self.handle(MASTER_ID, out, master)
+                    if out.delivered:
+                        self.finish_command(sid, out)
+                        self.next_command(commands)
+            else:
+                slave = self.slaves[listener]
+                out = self.call(f"s{listener}", "receive", slave.receive, data)
+                self.executed[listener].extend(out.executed)
+                self.handle(listener, out)
+        return self.stats
+
+    def idle(self) -> bool:
+        return all(m.state == "idle" for m in self.masters.values())
+
+
+def trace_lines(out) -> list[str]:
+    return ([f"sent {p.hex()}" for p in out.sent] + [f"delivered {d.hex()}" for d in out.delivered]
+            + [f"executed {d.hex()}" for d in out.executed] + [f"failed {r}" for r in out.failed]
+            + [f"dropped {d.hex()}" for d in out.dropped])
+
+
+def efficiency(p_fwd: float, p_ack: float, commands: int = 20000, seed: int = 1) -> tuple[float, float]:
+    """(measured, theoretical) transmissions per delivered command over a link with
+    these loss rates, no duplication or corruption, and a timeout longer than any
+    round trip; theory: attempts are independent and one succeeds when both the
+    command and its reply arrive, so their number is geometric with mean
+    1/((1-p_fwd)(1-p_ack))."""
+    sim = Simulation(seed, Link(p_fwd=p_fwd, p_ack=p_ack, delay=(1, 4)), timeout=10)
+    stats = sim.run(commands)
+    return stats.command_packets / stats.delivered, 1.0 / ((1.0 - p_fwd) * (1.0 - p_ack))
+
+
+def efficiency_table(rates=(0.0, 0.1, 0.3, 0.5), commands: int = 20000) -> list[dict]:
+    """Rows for the docs: the same loss rate p in both directions."""
+    rows = []
+    for p in rates:
+        measured, theory = efficiency(p, p, commands)
+        rows.append({"p": p, "measured": measured, "theory": theory,
+                     "error": abs(measured - theory) / theory})
+    return rows
