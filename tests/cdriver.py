@@ -17,6 +17,7 @@ from typing import Any
 
 from compiler.model import Field, Protocol
 from compiler.targets.cview import ERR, CView, cchar, cstr
+from compiler.targets.wire import leaves_of
 
 ROOT = Path(__file__).resolve().parent.parent
 TEMPLATE = Path(__file__).resolve().parent / "c" / "driver.c.j2"
@@ -101,7 +102,7 @@ class Driver:
                 out.append(f"if (a->{prefix}has_{f.name} != b->{prefix}has_{f.name}) return false;")
                 guard = f"a->{prefix}has_{f.name} && "
             if f.kind == "float" and self.text:
-                cond = f"({a}.digits != {b}.digits || {a}.exp10 != {b}.exp10 || {a}.negative != {b}.negative)"
+                cond = f"!eq_decimal(&{a}, &{b})"
             elif f.kind == "float":
                 cond = f"cw_f32_to_bits({a}) != cw_f32_to_bits({b})"
             elif f.kind == "str":
@@ -159,6 +160,9 @@ class Driver:
                     events.append({"kind": self.v.upper("MSG", m.name), "name": m.name,
                                    "expected": self.init(m.layout, e["values"])})
             streams.append({"bytes": bytes.fromhex(s["hex"]), "events": events, "name": s["name"]})
+        wires = list(dict.fromkeys([c["wire"] for mm in messages for c in mm["cases"]]
+                                   + [c["canon"] for mm in messages for c in mm["cases"]]
+                                   + [c["wire"] for c in invalid]))
         env = jinja2.Environment(undefined=jinja2.StrictUndefined, trim_blocks=True, lstrip_blocks=True)
         env.filters["cbytes"] = lambda b: "{" + ", ".join(f"0x{x:02x}" for x in b) + "}" if b else "{0}"
         env.filters["cstr"] = cstr
@@ -167,6 +171,8 @@ class Driver:
                        + [len(c["wire"]) for c in invalid] + [1])
         return env.from_string(TEMPLATE.read_text()).render(
             p=p, px=p.name, PX=p.name.upper(), messages=messages, invalid=invalid, streams=streams,
+            wires=wires, wire_index={w: i for i, w in enumerate(wires)},
+            decimals=self.text and any(leaf.field.kind == "float" for m in p.messages for leaf in leaves_of(m.layout)),
             text=self.text, wire_max=wire_max + 1, self_identifying=p.self_identifying,
             has_dir=bool(p.directions), word=self.v.word_bits() is not None and p.framing.kind == "bits",
             text_form=p.framing.text_form is not None,

@@ -1,7 +1,9 @@
 """C target: generated/c/codeword.h (shared runtime) and one header per protocol."""
 from __future__ import annotations
 
+from ..fingerprint import fingerprint, fingerprint32
 from ..model import Protocol
+from .cmachine import machines_view
 from .cview import CView, cchar, clit, comment, cstr
 from .render import environment, tidy
 from .wire import leaves_of
@@ -90,10 +92,11 @@ def render(p: Protocol) -> dict[str, str]:
     ignore_end = " || ".join(f"e[-1] == {cchar(ch)}" for ch in fr.ignore_between) or "false"
     env = environment()
     header = env.get_template("c/protocol.h.j2").render(
-        p=p, v=v, px=v.px, PX=v.PX, constants=constants(v), enums=enums(v), flags=flags(v),
+        p=p, v=v, px=v.px, PX=v.PX, fingerprint=fingerprint(p), fingerprint32=f"{fingerprint32(p):#010x}", constants=constants(v), enums=enums(v), flags=flags(v),
         directions=v.directions(), messages=messages, kinds={m["name"]: m["kind"] for m in messages},
         checksums=v.byte_checksums(), text=v.text, dispatch=dispatch, stream=v.stream() if fr.kind == "bytes" else {},
         word_bits=v.word_bits(), text_form=text_form, cstr=cstr, ignore=ignore, ignore_end=ignore_end,
-        terminator=cchar(fr.terminator), prefix_separator=cchar(fr.prefix_separator))
+        terminator=cchar(fr.terminator), prefix_separator=cchar(fr.prefix_separator),
+        machines=machines_view(p))
     runtime = env.get_template("c/codeword.h.j2").render()
     return {f"c/{p.name}.h": tidy(header, max_blank=1), "c/codeword.h": runtime}

@@ -11,12 +11,15 @@ Rules the generated code keeps (firmware on AVR and Cortex-M):
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any, Optional
 
 from ..model import Checksum, CrcParams, Field, Message, Protocol, field_at
 from .code import Code
+from . import cpack
+from .cpack import Span
 from .wire import Leaf, checksum_name, dispatch_facts, leaves_of, stream_facts
 
 ERR = {
@@ -90,7 +93,8 @@ def cchar(ch: str) -> str:
 
 
 def comment(text: Any) -> str:
-    return " ".join(str(text).split()).replace("*/", "* /")
+    # "/*" inside a comment is -Wcomment; "*/" would end it.
+    return " ".join(str(text).split()).replace("*/", "* /").replace("/*", "/ *").replace("??", "? ?")
 
 
 @dataclass(frozen=True)
@@ -278,9 +282,16 @@ class CView:
             c("}")
 
     # -- encode side: struct member -> checked raw wire value -----------------------------
-    def encode_leaf(self, c: Code, leaf: Leaf, raw: str) -> None:
-        """Check the member of `leaf` and store its raw wire value in `raw` (uint32_t)."""
+    def encode_leaf(self, c: Code, leaf: Leaf, raw: str, rt: str = "uint32_t") -> None:
+        """Check the member of `leaf` and store its raw wire value in `raw` (of type `rt`)."""
         f = leaf.field
+
+        def store(expr: str) -> None:
+            c(f"{raw} = {expr};" if rt == "uint32_t" else f"{raw} = ({rt})({expr});")
+
+        def store_member() -> None:
+            c(f"{raw} = ({rt}){self.member(leaf)};")
+
         if f.checksum or f.reserved:
             c(f"{raw} = 0u;")
             return
@@ -295,7 +306,7 @@ class CView:
         if f.kind == "bool":
             c(f"{raw} = {v} ? 1u : 0u;")
         elif f.kind == "float":
-            c(f"{raw} = cw_f32_to_bits({v});")
+            store(f"cw_f32_to_bits({v})")
             c(f"if (!cw_f32_bits_finite({raw})) {{")
             c("    return CW_ERR_FINITE;")
             c("}")
@@ -312,24 +323,28 @@ class CView:
                 c(f"    if ({cond}) {{")
                 c("        return CW_ERR_RANGE;")
                 c("    }")
-            c(f"    {raw} = (uint32_t)1u << {v};")
+            c(f"    {raw} = " + (f"(uint32_t)1u << {v};" if rt == "uint32_t" else f"({rt})((uint32_t)1u << {v});"))
             c("} else {")
             c(f"    {raw} = 0u;")
             c("}")
         elif f.enum is not None:
             self.member_check(c, f, v, "enum")
-            c(f"{raw} = (uint32_t){v};")
+            store_member()
         elif f.flags is not None:
             self.member_check(c, f, v, "flags")
-            c(f"{raw} = (uint32_t){v};")
+            store_member()
         else:
             self.member_check(c, f, v, "int")
-            if f.kind == "int":
-                c(f"{raw} = (uint32_t)(int32_t){v} & {clit((1 << f.bits) - 1, True)};")
+            if f.kind == "int" and f.bits == 16 and rt == "uint16_t":
+                c(f"{raw} = (uint16_t){v};")  # modular: two's complement, no 32-bit arithmetic
+            elif f.kind == "int" and f.bits < 16 and rt != "uint32_t":
+                store(f"(uint16_t){v} & {clit((1 << f.bits) - 1, True)}")
+            elif f.kind == "int":
+                store(f"(uint32_t)(int32_t){v} & {clit((1 << f.bits) - 1, True)}")
             elif f.offset and f.scale is None:
-                c(f"{raw} = (uint32_t)({v} - {clit(int(f.offset))});")
+                store(f"(uint32_t)({v} - {clit(int(f.offset))})")
             else:
-                c(f"{raw} = (uint32_t){v};")
+                store_member()
 
     def member_check(self, c: Code, f: Field, v: str, what: str) -> None:
         """Checks of an integer-like member (enum, flags, plain) before it is sent."""
@@ -424,15 +439,15 @@ class CView:
             c(f"{self.has(leaf)} = {raw} != 0u;")
             c(f"{v} = cw_bit_index({raw});")
             return
-        if f.kind == "int":
+        checked = v
+        if f.kind == "int" and f.bits <= 16 and r.ctype in ("int8_t", "int16_t"):
+            c(f"{v} = ({r.ctype})cw_sign_extend16((uint16_t){raw}, {f.bits}u);")
+        elif f.kind == "int":
             c(f"{v} = ({r.ctype})cw_sign_extend({raw}, {f.bits}u);")
-            checked = v
         elif f.offset and f.scale is None:
             c(f"{v} = ({r.ctype})({raw} + {clit(int(f.offset), True)});")
-            checked = v
         else:
             c(f"{v} = ({r.ctype}){raw};")
-            checked = v
         if f.range is not None and f.enum is None:
             lo, hi = self.raw_bounds(f)
             cond = self.range_cond(checked, lo, hi, r.ctype)
@@ -460,37 +475,48 @@ class CView:
     def order_of(self, f: Field) -> str:
         return f.byte_order or self.fr.byte_order
 
-    def put(self, c: Code, leaf: Leaf, pos: int, raw: str) -> None:
-        f = leaf.field
-        if f.kind == "bytes":
-            if pos % 8:
-                raise CTargetError(f"{f.name}: bytes fields must start on a byte boundary")
-            c(f"memcpy(buf + {pos // 8}, {self.member(leaf)}, {f.length});")
-        elif pos % 8 == 0 and f.bits % 8 == 0 and f.bits <= 32:
-            order = "le" if self.order_of(f) == "little" else "be"
-            c(f"cw_put_{order}(buf + {pos // 8}, {f.bits // 8}u, {raw});")
-        else:
-            c(f"cw_put_bits(buf, {pos}u, {f.bits}u, {raw});")
+    @staticmethod
+    def int_put(start: int, size: int, order: str, value: str) -> str:
+        """A statement writing the integer `value` to buf[start..start+size);
+        `order` is "big" or "little"."""
+        o = "le" if order == "little" else "be"
+        value = value if re.fullmatch(r"[\w\[\]]+", value) else f"({value})"
+        if size == 1:
+            return f"buf[{start}] = (uint8_t){value};"
+        if size in (2, 4):
+            return f"cw_put_{o}{8 * size}(buf + {start}, (uint{8 * size}_t){value});"
+        return f"cw_put_{o}(buf + {start}, {size}u, (uint32_t){value});"
 
-    def get(self, leaf: Leaf, pos: int) -> str:
-        f = leaf.field
-        if pos % 8 == 0 and f.bits % 8 == 0 and f.bits <= 32:
-            order = "le" if self.order_of(f) == "little" else "be"
-            return f"cw_get_{order}(buf + {pos // 8}, {f.bits // 8}u)"
-        return f"cw_get_bits(buf, {pos}u, {f.bits}u)"
+    @staticmethod
+    def int_get(start: int, size: int, order: str) -> str:
+        """An unsigned expression reading buf[start..start+size)."""
+        o = "le" if order == "little" else "be"
+        if size == 1:
+            return f"buf[{start}]"
+        if size in (2, 4):
+            return f"cw_get_{o}{8 * size}(buf + {start})"
+        return f"cw_get_{o}(buf + {start}, {size}u)"
+
+    def spans(self, m: Message) -> list[Span]:
+        try:
+            return cpack.spans(self.wired(m)[0], m.size)
+        except ValueError as err:
+            raise CTargetError(str(err)) from None
 
     # -- checksums ----------------------------------------------------------------------------
     def checksum_fn(self, cs: Checksum) -> str:
         return f"{self.px}_{checksum_name(cs)}"
 
-    def field_checksum(self, leaf: Leaf, others: list[str]) -> str:
+    def field_checksum(self, leaf: Leaf, others: list[str], rt: str = "uint32_t") -> str:
+        """The checksum of the other raw values, as an `rt`; arithmetic in 32 bits
+        (the first operand cast) so that narrow operands never promote to int."""
         cs = leaf.field.checksum
-        if cs.algorithm == "sum":
-            return f"({' + '.join(others)}) % {clit(cs.modulo, True)}"
-        if cs.algorithm == "xor":
-            return f"({' ^ '.join(others)}) % {clit(cs.modulo, True)}"
+        wide = ["(uint32_t)" + others[0]] + others[1:]
+        if cs.algorithm in ("sum", "xor"):
+            op = " + " if cs.algorithm == "sum" else " ^ "
+            return f"({rt})(({op.join(wide)}) % {clit(cs.modulo, True)})"
         flip = " ^ 1u" if cs.parity == "odd" else ""
-        return f"(uint32_t)((cw_popcount32({' ^ '.join(others)}) & 1u){flip})"
+        return f"({rt})((cw_popcount32({' ^ '.join(wide)}) & 1u){flip})"
 
     def byte_checksums(self) -> list[str]:
         seen: dict[str, str] = {}
@@ -501,43 +527,75 @@ class CView:
                     seen.setdefault(checksum_name(cs), checksum_code(self.checksum_fn(cs), cs, self.PX))
         return list(seen.values())
 
+    def byte_checksum_call(self, leaf: Leaf) -> str:
+        cs = leaf.field.checksum
+        start, end = cs.byte_span
+        return f"{self.checksum_fn(cs)}(buf + {start}, {end - start}u)"
+
     # -- binary messages -----------------------------------------------------------------------
+    @staticmethod
+    def is_byte_checksum(leaf: Leaf) -> bool:
+        cs = leaf.field.checksum
+        return bool(cs) and cs.over == "bytes"
+
     def wired(self, m: Message) -> tuple[list[tuple[Leaf, int]], dict[str, str]]:
-        """Leaves with wire bits and their offsets, and the r[] slot of each integer leaf."""
+        """Leaves with wire bits and their offsets, and the r[] slot of each
+        integer leaf (byte checksums have none: they are computed on the bytes)."""
         wired = [(leaf, pos) for leaf, pos in self.positioned(m) if leaf.field.bits]
-        slots = [leaf for leaf, _ in wired if leaf.field.kind != "bytes"]
+        slots = [leaf for leaf, _ in wired if leaf.field.kind != "bytes" and not self.is_byte_checksum(leaf)]
         return wired, {leaf.var: f"r[{i}]" for i, leaf in enumerate(slots)}
+
+    def raw_type(self, m: Message) -> str:
+        """The narrowest unsigned type that holds every raw value of `m`."""
+        wired, raws = self.wired(m)
+        widest = max([leaf.field.bits for leaf, _ in wired if leaf.var in raws] + [1])
+        return "uint8_t" if widest <= 8 else "uint16_t" if widest <= 16 else "uint32_t"
 
     def raw_function(self, m: Message) -> str:
         """<msg>_raw(m, r): checks a message and fills r[] with its raw wire values."""
         c = Code()
         wired, raws = self.wired(m)
-        c(f"static inline int {self.fn(m, 'raw')}(const {self.tname(m)} *m, uint32_t *r)")
+        rt = self.raw_type(m)
+        c(f"static inline int {self.fn(m, 'raw')}(const {self.tname(m)} *m, {rt} *r)")
         c("{")
         c.indent()
         if not any(leaf.field.is_member for leaf, _ in wired):
             c("(void)m;")
+        if not raws:
+            c("(void)r;")
         self.rule_checks(c, m, "m")
         for leaf, _ in wired:
             if leaf.var in raws:
-                self.encode_leaf(c, leaf, raws[leaf.var])
+                self.encode_leaf(c, leaf, raws[leaf.var], rt)
         for leaf, _ in wired:
             cs = leaf.field.checksum
             if cs and cs.over != "bytes":
                 others = [raws[x.var] for x, _ in wired if x is not leaf and x.var in raws]
-                c(f"{raws[leaf.var]} = {self.field_checksum(leaf, others)};")
+                c(f"{raws[leaf.var]} = {self.field_checksum(leaf, others, rt)};")
         c("return CW_OK;")
         c.dedent()
         c("}")
         return c.text()
 
+    def pack_value(self, span: Span, raws: dict[str, str]) -> str:
+        """The big-endian integer of a "pack" span, from the raw values of its pieces."""
+        wide = "unsigned" if span.size <= 2 else "uint32_t"  # unsigned: at least 16 bits
+        parts = []
+        for piece in span.pieces:
+            mask = clit((1 << piece.bits) - 1, True)
+            term = f"(({wide}){raws[piece.leaf.var]} & {mask})"
+            shift = span.shift(piece)
+            parts.append(f"({term} << {shift})" if shift else term)
+        return " | ".join(parts)
+
     def encode_function(self, m: Message) -> str:
         c = Code()
         wired, raws = self.wired(m)
+        layout = self.spans(m)
         c(f"static inline int {self.fn(m, 'encode')}(const {self.tname(m)} *m, uint8_t *buf, size_t cap)")
         c("{")
         c.indent()
-        c(f"uint32_t r[{max(1, len(raws))}];")
+        c(f"{self.raw_type(m)} r[{max(1, len(raws))}];")
         c(f"int rc = {self.fn(m, 'raw')}(m, r);")
         c("if (rc != CW_OK) {")
         c("    return rc;")
@@ -545,16 +603,24 @@ class CView:
         c(f"if (cap < {m.size}u) {{")
         c("    return CW_ERR_CAPACITY;")
         c("}")
-        c(f"memset(buf, 0, {m.size}u);")
-        for leaf, pos in wired:
-            self.put(c, leaf, pos, raws.get(leaf.var, ""))
-        for leaf, pos in wired:
-            cs = leaf.field.checksum
-            if cs and cs.over == "bytes":
-                start, end = cs.byte_span
-                order = "le" if self.order_of(leaf.field) == "little" else "be"
-                c(f"cw_put_{order}(buf + {pos // 8}, {leaf.field.bits // 8}u, "
-                  f"(uint32_t){self.checksum_fn(cs)}(buf + {start}, {end - start}u));")
+        sums = []
+        for span in layout:
+            leaf = span.pieces[0].leaf
+            if span.kind == "bytes":
+                c(f"memcpy(buf + {span.start}, {self.member(leaf)}, {leaf.field.length});")
+            elif span.kind == "int" and self.is_byte_checksum(leaf):
+                sums.append(span)  # written once the bytes it covers are
+            elif span.kind == "int":
+                c(self.int_put(span.start, span.size, self.order_of(leaf.field), raws[leaf.var]))
+            elif span.kind == "pack":
+                c(self.int_put(span.start, span.size, "big", self.pack_value(span, raws)))
+            else:
+                c(f"memset(buf + {span.start}, 0, {span.size}u);")
+                for piece in span.pieces:
+                    c(f"cw_put_bits(buf, {piece.pos}u, {piece.bits}u, {raws[piece.leaf.var]});")
+        for span in sums:
+            leaf = span.pieces[0].leaf
+            c(self.int_put(span.start, span.size, self.order_of(leaf.field), self.byte_checksum_call(leaf)))
         c(f"return {m.size};")
         c.dedent()
         c("}")
@@ -563,25 +629,46 @@ class CView:
     def decode_function(self, m: Message) -> str:
         c = Code()
         wired, raws = self.wired(m)
+        rt = self.raw_type(m)
+        layout = self.spans(m)
         c(f"static inline int {self.fn(m, 'decode')}(const uint8_t *buf, size_t len, {self.tname(m)} *m)")
         c("{")
         c.indent()
-        c(f"uint32_t r[{max(1, len(raws))}];")
+        c(f"{rt} r[{max(1, len(raws))}];")
+        if not raws:
+            c("(void)r;")
         c(f"if (len != {m.size}u) {{")
         c("    return CW_ERR_LENGTH;")
         c("}")
-        pad = m.size * 8 - m.bits
+        pad = m.size * 8 - m.bits  # always under 8: the padding fills the last byte
         if pad:
-            self.fail_if(c, f"cw_get_bits(buf, {m.bits}u, {pad}u) != 0u", "reserved")
-        for leaf, pos in wired:
-            if leaf.var in raws:
-                c(f"{raws[leaf.var]} = {self.get(leaf, pos)};")
-        for leaf, pos in wired:
-            cs = leaf.field.checksum
-            if cs and cs.over == "bytes":
-                start, end = cs.byte_span
-                self.fail_if(c, f"{raws[leaf.var]} != (uint32_t){self.checksum_fn(cs)}(buf + {start}, {end - start}u)",
-                             "checksum")
+            self.fail_if(c, f"(buf[{m.size - 1}] & {clit((1 << pad) - 1, True)}) != 0u", "reserved")
+        sums = []
+        for span in layout:
+            leaf = span.pieces[0].leaf
+            if span.kind == "bytes":
+                continue  # check_raw copies them
+            if span.kind == "int" and self.is_byte_checksum(leaf):
+                sums.append(span)
+            elif span.kind == "int":
+                c(f"{raws[leaf.var]} = ({rt}){self.int_get(span.start, span.size, self.order_of(leaf.field))};")
+            elif span.kind == "pack":
+                wide = "unsigned" if span.size <= 2 else "uint32_t"
+                c("{")
+                c(f"    {wide} word = {self.int_get(span.start, span.size, 'big')};")
+                for piece in span.pieces:
+                    shift = span.shift(piece)
+                    value = f"(word >> {shift})" if shift else "word"
+                    c(f"    {raws[piece.leaf.var]} = ({rt})({value} & {clit((1 << piece.bits) - 1, True)});")
+                c("}")
+            else:
+                for piece in span.pieces:
+                    c(f"{raws[piece.leaf.var]} = ({rt})cw_get_bits(buf, {piece.pos}u, {piece.bits}u);")
+        for span in sums:
+            leaf = span.pieces[0].leaf
+            got = self.int_get(span.start, span.size, self.order_of(leaf.field))
+            want = self.byte_checksum_call(leaf)
+            self.fail_if(c, f"{got} != {want}", "checksum")
         c(f"return {self.fn(m, 'check_raw')}(r, buf, m, false);")
         c.dedent()
         c("}")
@@ -592,7 +679,8 @@ class CView:
         Python's order; shared by the binary and the text-form decoders."""
         c = Code()
         wired, raws = self.wired(m)
-        c(f"static inline int {self.fn(m, 'check_raw')}(const uint32_t *r, const uint8_t *buf, "
+        rt = self.raw_type(m)
+        c(f"static inline int {self.fn(m, 'check_raw')}(const {rt} *r, const uint8_t *buf, "
           f"{self.tname(m)} *m, bool text_form)")
         c("{")
         c.indent()
@@ -601,6 +689,8 @@ class CView:
         field_sums = [leaf for leaf, _ in wired if leaf.field.checksum and leaf.field.checksum.over != "bytes"]
         if not uses_buf:
             c("(void)buf;")
+        if not raws:
+            c("(void)r;")
         if not m.members:
             c("(void)m;")
         if unfilled is None or not field_sums:
@@ -608,11 +698,11 @@ class CView:
         for leaf, pos in wired:
             if leaf.field.kind == "bytes":
                 c(f"memcpy({self.member(leaf)}, buf + {pos // 8}, {leaf.field.length});")
-            else:
+            elif leaf.var in raws:
                 self.decode_leaf(c, leaf, raws[leaf.var], m)
         for leaf in field_sums:
             others = [raws[x.var] for x, _ in wired if x is not leaf and x.var in raws]
-            cond = f"{raws[leaf.var]} != {self.field_checksum(leaf, others)}"
+            cond = f"{raws[leaf.var]} != {self.field_checksum(leaf, others, rt)}"
             if unfilled is not None:
                 cond = f"{cond} && !(text_form && {raws[leaf.var]} == {clit(unfilled, True)})"
             self.fail_if(c, cond, "checksum")
@@ -686,7 +776,7 @@ class CView:
         c(f"static inline int {self.fn(m, 'to_text')}(const {self.tname(m)} *m, char *buf, size_t cap)")
         c("{")
         c.indent()
-        c(f"uint32_t r[{max(1, n)}];")
+        c(f"{self.raw_type(m)} r[{max(1, n)}];")
         c("cw_writer_t w;")
         c("uint8_t i;")
         c(f"int rc = {self.fn(m, 'raw')}(m, r);")
@@ -707,11 +797,21 @@ class CView:
         c(f"static inline int {self.fn(m, 'from_values')}(const uint32_t *v, size_t count, {self.tname(m)} *m)")
         c("{")
         c.indent()
+        rt = self.raw_type(m)
+        if rt != "uint32_t":
+            c(f"{rt} r[{max(1, n)}];")
+            c("size_t i;")
         self.fail_if(c, f"count != {n}u", "count")
         for leaf, _ in wired:
             if leaf.var in raws and leaf.field.bits < 32:
                 self.fail_if(c, f"{raws[leaf.var].replace('r[', 'v[')} > {clit((1 << leaf.field.bits) - 1, True)}", "range")
-        c(f"return {self.fn(m, 'check_raw')}(v, NULL, m, true);")
+        if rt == "uint32_t":
+            c(f"return {self.fn(m, 'check_raw')}(v, NULL, m, true);")
+        else:  # every value fits its field, so it fits the narrower raw type
+            c(f"for (i = 0; i < {n}u; i++) {{")
+            c(f"    r[i] = ({rt})v[i];")
+            c("}")
+            c(f"return {self.fn(m, 'check_raw')}(r, NULL, m, true);")
         c.dedent()
         c("}")
         return c.text()
@@ -795,7 +895,7 @@ class CView:
             c(f"if ({self.has(leaf)}) {{")
             c.indent()
         if f.kind == "float":
-            self.fail_if(c, f"cw_digit_count({v}.digits) > CW_DECIMAL_MAX_DIGITS", "precision")
+            self.fail_if(c, f"!cw_decimal_fits(&{v})", "precision")
             if f.range is not None:
                 raise CTargetError(f"{f.name}: ranges on text floats are not supported by the C target")
         elif f.kind == "char" and f.enum is not None:
@@ -850,7 +950,8 @@ class CView:
                 c.indent()
             c("b = s;")
             c("e = end;" if f.to_end else f"e = cw_token_end(s, end, {cchar(fr.separator)});")
-            c("s = e < end ? e + 1 : end;")
+            if i < len(leaves) - 1:  # after the last value s is not read (cppcheck: dead store)
+                c("s = e < end ? e + 1 : end;")
             if fr.trim:
                 c("cw_trim(&b, &e);")
             if f.kind == "float":

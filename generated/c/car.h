@@ -17,6 +17,8 @@ extern "C" {
 #endif
 
 #define CAR_SCHEMA_SHA256 "39d261d9cbc110e2a0e1a1ab269d71a7951317049b1044d7cd99043988247492"
+#define CAR_FINGERPRINT "c44c8363b58b7ae7"  /* hash of the wire-relevant schema (codeword diff) */
+#define CAR_FINGERPRINT32 0xc44c8363u  /* its first 32 bits */
 #define CAR_HEADER_SIZE 4u  /* bytes */
 #define CAR_MASTER_CONTROL_SIZE 4u  /* bytes */
 #define CAR_SLAVE_CONTROL_SIZE 4u  /* bytes */
@@ -110,7 +112,7 @@ typedef struct {
 
 /* ---- header ---------------------------------------------------------- */
 
-static inline int car_header_raw(const car_header_t *m, uint32_t *r)
+static inline int car_header_raw(const car_header_t *m, uint8_t *r)
 {
     if ((m->h2_count == 0) && !(!m->has_h2_time)) {  /* CAR-D3: Without slave words (h2_count = 0) all of h2 is 0: h2_time must be absent */
         return CW_ERR_RULE;
@@ -118,13 +120,13 @@ static inline int car_header_raw(const car_header_t *m, uint32_t *r)
     if ((m->h2_count != 0) && !(m->has_h2_time)) {  /* CAR-D3: With slave words (h2_count > 0) h2_time must give one of the 8 send-time levels */
         return CW_ERR_RULE;
     }
-    r[0] = (uint32_t)m->h1;
-    r[1] = (uint32_t)m->h2_count;
+    r[0] = (uint8_t)m->h1;
+    r[1] = (uint8_t)m->h2_count;
     if (m->has_h2_time) {
         if (m->h2_time > 7u) {
             return CW_ERR_RANGE;
         }
-        r[2] = (uint32_t)1u << m->h2_time;
+        r[2] = (uint8_t)((uint32_t)1u << m->h2_time);
     } else {
         r[2] = 0u;
     }
@@ -134,7 +136,7 @@ static inline int car_header_raw(const car_header_t *m, uint32_t *r)
 
 static inline int car_header_encode(const car_header_t *m, uint8_t *buf, size_t cap)
 {
-    uint32_t r[4];
+    uint8_t r[4];
     int rc = car_header_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -142,15 +144,14 @@ static inline int car_header_encode(const car_header_t *m, uint8_t *buf, size_t 
     if (cap < 4u) {
         return CW_ERR_CAPACITY;
     }
-    memset(buf, 0, 4u);
-    cw_put_be(buf + 0, 1u, r[0]);
-    cw_put_be(buf + 1, 1u, r[1]);
-    cw_put_be(buf + 2, 1u, r[2]);
-    cw_put_be(buf + 3, 1u, r[3]);
+    buf[0] = (uint8_t)r[0];
+    buf[1] = (uint8_t)r[1];
+    buf[2] = (uint8_t)r[2];
+    buf[3] = (uint8_t)r[3];
     return 4;
 }
 
-static inline int car_header_check_raw(const uint32_t *r, const uint8_t *buf, car_header_t *m, bool text_form)
+static inline int car_header_check_raw(const uint8_t *r, const uint8_t *buf, car_header_t *m, bool text_form)
 {
     (void)buf;
     (void)text_form;
@@ -175,14 +176,14 @@ static inline int car_header_check_raw(const uint32_t *r, const uint8_t *buf, ca
 
 static inline int car_header_decode(const uint8_t *buf, size_t len, car_header_t *m)
 {
-    uint32_t r[4];
+    uint8_t r[4];
     if (len != 4u) {
         return CW_ERR_LENGTH;
     }
-    r[0] = cw_get_be(buf + 0, 1u);
-    r[1] = cw_get_be(buf + 1, 1u);
-    r[2] = cw_get_be(buf + 2, 1u);
-    r[3] = cw_get_be(buf + 3, 1u);
+    r[0] = (uint8_t)buf[0];
+    r[1] = (uint8_t)buf[1];
+    r[2] = (uint8_t)buf[2];
+    r[3] = (uint8_t)buf[3];
     return car_header_check_raw(r, buf, m, false);
 }
 
@@ -206,7 +207,7 @@ static inline int car_header_from_word(uint32_t word, car_header_t *m)
 
 /* ---- master_control ---------------------------------------------------------- */
 
-static inline int car_master_control_raw(const car_master_control_t *m, uint32_t *r)
+static inline int car_master_control_raw(const car_master_control_t *m, uint16_t *r)
 {
     if (!(!m->accept_ir)) {  /* CAR-R1: Cannot set the master to accept infrared information */
         return CW_ERR_RULE;
@@ -220,43 +221,43 @@ static inline int car_master_control_raw(const car_master_control_t *m, uint32_t
     if (m->motor.direction != 0u && m->motor.direction != 1u && m->motor.direction != 2u && m->motor.direction != 3u) {
         return CW_ERR_ENUM;
     }
-    r[3] = (uint32_t)m->motor.direction;
+    r[3] = (uint16_t)m->motor.direction;
     if (m->motor.speed > 3u) {
         return CW_ERR_RANGE;
     }
-    r[4] = (uint32_t)m->motor.speed;
+    r[4] = (uint16_t)m->motor.speed;
     if (m->motor.duration > 3u) {
         return CW_ERR_RANGE;
     }
-    r[5] = (uint32_t)m->motor.duration;
+    r[5] = (uint16_t)m->motor.duration;
     if (m->led.led > 3u) {
         return CW_ERR_RANGE;
     }
-    r[6] = (uint32_t)m->led.led;
+    r[6] = (uint16_t)m->led.led;
     if (m->led.duration > 3u) {
         return CW_ERR_RANGE;
     }
-    r[7] = (uint32_t)m->led.duration;
+    r[7] = (uint16_t)m->led.duration;
     r[8] = m->ultrasonic.enable ? 1u : 0u;
     if (m->ultrasonic.radius > 3u) {
         return CW_ERR_RANGE;
     }
-    r[9] = (uint32_t)m->ultrasonic.radius;
+    r[9] = (uint16_t)m->ultrasonic.radius;
     if (m->ultrasonic.duration > 3u) {
         return CW_ERR_RANGE;
     }
-    r[10] = (uint32_t)m->ultrasonic.duration;
+    r[10] = (uint16_t)m->ultrasonic.duration;
     r[11] = m->voice ? 1u : 0u;
     r[12] = m->body_sensor ? 1u : 0u;
     r[13] = 0u;
     r[14] = 0u;
-    r[14] = (uint32_t)((cw_popcount32(r[0] ^ r[1] ^ r[2] ^ r[3] ^ r[4] ^ r[5] ^ r[6] ^ r[7] ^ r[8] ^ r[9] ^ r[10] ^ r[11] ^ r[12] ^ r[13]) & 1u));
+    r[14] = (uint16_t)((cw_popcount32((uint32_t)r[0] ^ r[1] ^ r[2] ^ r[3] ^ r[4] ^ r[5] ^ r[6] ^ r[7] ^ r[8] ^ r[9] ^ r[10] ^ r[11] ^ r[12] ^ r[13]) & 1u));
     return CW_OK;
 }
 
 static inline int car_master_control_encode(const car_master_control_t *m, uint8_t *buf, size_t cap)
 {
-    uint32_t r[15];
+    uint16_t r[15];
     int rc = car_master_control_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -264,26 +265,12 @@ static inline int car_master_control_encode(const car_master_control_t *m, uint8
     if (cap < 4u) {
         return CW_ERR_CAPACITY;
     }
-    memset(buf, 0, 4u);
-    cw_put_bits(buf, 0u, 1u, r[0]);
-    cw_put_bits(buf, 1u, 1u, r[1]);
-    cw_put_bits(buf, 2u, 1u, r[2]);
-    cw_put_bits(buf, 3u, 2u, r[3]);
-    cw_put_bits(buf, 5u, 2u, r[4]);
-    cw_put_bits(buf, 7u, 2u, r[5]);
-    cw_put_bits(buf, 9u, 2u, r[6]);
-    cw_put_bits(buf, 11u, 2u, r[7]);
-    cw_put_bits(buf, 13u, 1u, r[8]);
-    cw_put_bits(buf, 14u, 2u, r[9]);
-    cw_put_bits(buf, 16u, 2u, r[10]);
-    cw_put_bits(buf, 18u, 1u, r[11]);
-    cw_put_bits(buf, 19u, 1u, r[12]);
-    cw_put_bits(buf, 20u, 11u, r[13]);
-    cw_put_bits(buf, 31u, 1u, r[14]);
+    cw_put_be16(buf + 0, (uint16_t)((((unsigned)r[0] & 1u) << 15) | (((unsigned)r[1] & 1u) << 14) | (((unsigned)r[2] & 1u) << 13) | (((unsigned)r[3] & 3u) << 11) | (((unsigned)r[4] & 3u) << 9) | (((unsigned)r[5] & 3u) << 7) | (((unsigned)r[6] & 3u) << 5) | (((unsigned)r[7] & 3u) << 3) | (((unsigned)r[8] & 1u) << 2) | ((unsigned)r[9] & 3u)));
+    cw_put_be16(buf + 2, (uint16_t)((((unsigned)r[10] & 3u) << 14) | (((unsigned)r[11] & 1u) << 13) | (((unsigned)r[12] & 1u) << 12) | (((unsigned)r[13] & 0x7ffu) << 1) | ((unsigned)r[14] & 1u)));
     return 4;
 }
 
-static inline int car_master_control_check_raw(const uint32_t *r, const uint8_t *buf, car_master_control_t *m, bool text_form)
+static inline int car_master_control_check_raw(const uint16_t *r, const uint8_t *buf, car_master_control_t *m, bool text_form)
 {
     (void)buf;
     (void)text_form;
@@ -306,7 +293,7 @@ static inline int car_master_control_check_raw(const uint32_t *r, const uint8_t 
     if (r[13] != 0u) {
         return CW_ERR_RESERVED;
     }
-    if (r[14] != (uint32_t)((cw_popcount32(r[0] ^ r[1] ^ r[2] ^ r[3] ^ r[4] ^ r[5] ^ r[6] ^ r[7] ^ r[8] ^ r[9] ^ r[10] ^ r[11] ^ r[12] ^ r[13]) & 1u))) {
+    if (r[14] != (uint16_t)((cw_popcount32((uint32_t)r[0] ^ r[1] ^ r[2] ^ r[3] ^ r[4] ^ r[5] ^ r[6] ^ r[7] ^ r[8] ^ r[9] ^ r[10] ^ r[11] ^ r[12] ^ r[13]) & 1u))) {
         return CW_ERR_CHECKSUM;
     }
     if (!(!m->accept_ir)) {  /* CAR-R1: Cannot set the master to accept infrared information */
@@ -320,25 +307,31 @@ static inline int car_master_control_check_raw(const uint32_t *r, const uint8_t 
 
 static inline int car_master_control_decode(const uint8_t *buf, size_t len, car_master_control_t *m)
 {
-    uint32_t r[15];
+    uint16_t r[15];
     if (len != 4u) {
         return CW_ERR_LENGTH;
     }
-    r[0] = cw_get_bits(buf, 0u, 1u);
-    r[1] = cw_get_bits(buf, 1u, 1u);
-    r[2] = cw_get_bits(buf, 2u, 1u);
-    r[3] = cw_get_bits(buf, 3u, 2u);
-    r[4] = cw_get_bits(buf, 5u, 2u);
-    r[5] = cw_get_bits(buf, 7u, 2u);
-    r[6] = cw_get_bits(buf, 9u, 2u);
-    r[7] = cw_get_bits(buf, 11u, 2u);
-    r[8] = cw_get_bits(buf, 13u, 1u);
-    r[9] = cw_get_bits(buf, 14u, 2u);
-    r[10] = cw_get_bits(buf, 16u, 2u);
-    r[11] = cw_get_bits(buf, 18u, 1u);
-    r[12] = cw_get_bits(buf, 19u, 1u);
-    r[13] = cw_get_bits(buf, 20u, 11u);
-    r[14] = cw_get_bits(buf, 31u, 1u);
+    {
+        unsigned word = cw_get_be16(buf + 0);
+        r[0] = (uint16_t)((word >> 15) & 1u);
+        r[1] = (uint16_t)((word >> 14) & 1u);
+        r[2] = (uint16_t)((word >> 13) & 1u);
+        r[3] = (uint16_t)((word >> 11) & 3u);
+        r[4] = (uint16_t)((word >> 9) & 3u);
+        r[5] = (uint16_t)((word >> 7) & 3u);
+        r[6] = (uint16_t)((word >> 5) & 3u);
+        r[7] = (uint16_t)((word >> 3) & 3u);
+        r[8] = (uint16_t)((word >> 2) & 1u);
+        r[9] = (uint16_t)(word & 3u);
+    }
+    {
+        unsigned word = cw_get_be16(buf + 2);
+        r[10] = (uint16_t)((word >> 14) & 3u);
+        r[11] = (uint16_t)((word >> 13) & 1u);
+        r[12] = (uint16_t)((word >> 12) & 1u);
+        r[13] = (uint16_t)((word >> 1) & 0x7ffu);
+        r[14] = (uint16_t)(word & 1u);
+    }
     return car_master_control_check_raw(r, buf, m, false);
 }
 
@@ -362,7 +355,7 @@ static inline int car_master_control_from_word(uint32_t word, car_master_control
 
 /* ---- slave_control ---------------------------------------------------------- */
 
-static inline int car_slave_control_raw(const car_slave_control_t *m, uint32_t *r)
+static inline int car_slave_control_raw(const car_slave_control_t *m, uint16_t *r)
 {
     r[0] = m->accept_ir ? 1u : 0u;
     r[1] = m->forward_words ? 1u : 0u;
@@ -370,43 +363,43 @@ static inline int car_slave_control_raw(const car_slave_control_t *m, uint32_t *
     if (m->motor.direction != 0u && m->motor.direction != 1u && m->motor.direction != 2u && m->motor.direction != 3u) {
         return CW_ERR_ENUM;
     }
-    r[3] = (uint32_t)m->motor.direction;
+    r[3] = (uint16_t)m->motor.direction;
     if (m->motor.speed > 3u) {
         return CW_ERR_RANGE;
     }
-    r[4] = (uint32_t)m->motor.speed;
+    r[4] = (uint16_t)m->motor.speed;
     if (m->motor.duration > 3u) {
         return CW_ERR_RANGE;
     }
-    r[5] = (uint32_t)m->motor.duration;
+    r[5] = (uint16_t)m->motor.duration;
     if (m->led.led > 3u) {
         return CW_ERR_RANGE;
     }
-    r[6] = (uint32_t)m->led.led;
+    r[6] = (uint16_t)m->led.led;
     if (m->led.duration > 3u) {
         return CW_ERR_RANGE;
     }
-    r[7] = (uint32_t)m->led.duration;
+    r[7] = (uint16_t)m->led.duration;
     r[8] = m->ultrasonic.enable ? 1u : 0u;
     if (m->ultrasonic.radius > 3u) {
         return CW_ERR_RANGE;
     }
-    r[9] = (uint32_t)m->ultrasonic.radius;
+    r[9] = (uint16_t)m->ultrasonic.radius;
     if (m->ultrasonic.duration > 3u) {
         return CW_ERR_RANGE;
     }
-    r[10] = (uint32_t)m->ultrasonic.duration;
+    r[10] = (uint16_t)m->ultrasonic.duration;
     r[11] = m->voice ? 1u : 0u;
     r[12] = m->body_sensor ? 1u : 0u;
     r[13] = 0u;
     r[14] = 0u;
-    r[14] = (uint32_t)((cw_popcount32(r[0] ^ r[1] ^ r[2] ^ r[3] ^ r[4] ^ r[5] ^ r[6] ^ r[7] ^ r[8] ^ r[9] ^ r[10] ^ r[11] ^ r[12] ^ r[13]) & 1u));
+    r[14] = (uint16_t)((cw_popcount32((uint32_t)r[0] ^ r[1] ^ r[2] ^ r[3] ^ r[4] ^ r[5] ^ r[6] ^ r[7] ^ r[8] ^ r[9] ^ r[10] ^ r[11] ^ r[12] ^ r[13]) & 1u));
     return CW_OK;
 }
 
 static inline int car_slave_control_encode(const car_slave_control_t *m, uint8_t *buf, size_t cap)
 {
-    uint32_t r[15];
+    uint16_t r[15];
     int rc = car_slave_control_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -414,26 +407,12 @@ static inline int car_slave_control_encode(const car_slave_control_t *m, uint8_t
     if (cap < 4u) {
         return CW_ERR_CAPACITY;
     }
-    memset(buf, 0, 4u);
-    cw_put_bits(buf, 0u, 1u, r[0]);
-    cw_put_bits(buf, 1u, 1u, r[1]);
-    cw_put_bits(buf, 2u, 1u, r[2]);
-    cw_put_bits(buf, 3u, 2u, r[3]);
-    cw_put_bits(buf, 5u, 2u, r[4]);
-    cw_put_bits(buf, 7u, 2u, r[5]);
-    cw_put_bits(buf, 9u, 2u, r[6]);
-    cw_put_bits(buf, 11u, 2u, r[7]);
-    cw_put_bits(buf, 13u, 1u, r[8]);
-    cw_put_bits(buf, 14u, 2u, r[9]);
-    cw_put_bits(buf, 16u, 2u, r[10]);
-    cw_put_bits(buf, 18u, 1u, r[11]);
-    cw_put_bits(buf, 19u, 1u, r[12]);
-    cw_put_bits(buf, 20u, 11u, r[13]);
-    cw_put_bits(buf, 31u, 1u, r[14]);
+    cw_put_be16(buf + 0, (uint16_t)((((unsigned)r[0] & 1u) << 15) | (((unsigned)r[1] & 1u) << 14) | (((unsigned)r[2] & 1u) << 13) | (((unsigned)r[3] & 3u) << 11) | (((unsigned)r[4] & 3u) << 9) | (((unsigned)r[5] & 3u) << 7) | (((unsigned)r[6] & 3u) << 5) | (((unsigned)r[7] & 3u) << 3) | (((unsigned)r[8] & 1u) << 2) | ((unsigned)r[9] & 3u)));
+    cw_put_be16(buf + 2, (uint16_t)((((unsigned)r[10] & 3u) << 14) | (((unsigned)r[11] & 1u) << 13) | (((unsigned)r[12] & 1u) << 12) | (((unsigned)r[13] & 0x7ffu) << 1) | ((unsigned)r[14] & 1u)));
     return 4;
 }
 
-static inline int car_slave_control_check_raw(const uint32_t *r, const uint8_t *buf, car_slave_control_t *m, bool text_form)
+static inline int car_slave_control_check_raw(const uint16_t *r, const uint8_t *buf, car_slave_control_t *m, bool text_form)
 {
     (void)buf;
     (void)text_form;
@@ -456,7 +435,7 @@ static inline int car_slave_control_check_raw(const uint32_t *r, const uint8_t *
     if (r[13] != 0u) {
         return CW_ERR_RESERVED;
     }
-    if (r[14] != (uint32_t)((cw_popcount32(r[0] ^ r[1] ^ r[2] ^ r[3] ^ r[4] ^ r[5] ^ r[6] ^ r[7] ^ r[8] ^ r[9] ^ r[10] ^ r[11] ^ r[12] ^ r[13]) & 1u))) {
+    if (r[14] != (uint16_t)((cw_popcount32((uint32_t)r[0] ^ r[1] ^ r[2] ^ r[3] ^ r[4] ^ r[5] ^ r[6] ^ r[7] ^ r[8] ^ r[9] ^ r[10] ^ r[11] ^ r[12] ^ r[13]) & 1u))) {
         return CW_ERR_CHECKSUM;
     }
     return CW_OK;
@@ -464,25 +443,31 @@ static inline int car_slave_control_check_raw(const uint32_t *r, const uint8_t *
 
 static inline int car_slave_control_decode(const uint8_t *buf, size_t len, car_slave_control_t *m)
 {
-    uint32_t r[15];
+    uint16_t r[15];
     if (len != 4u) {
         return CW_ERR_LENGTH;
     }
-    r[0] = cw_get_bits(buf, 0u, 1u);
-    r[1] = cw_get_bits(buf, 1u, 1u);
-    r[2] = cw_get_bits(buf, 2u, 1u);
-    r[3] = cw_get_bits(buf, 3u, 2u);
-    r[4] = cw_get_bits(buf, 5u, 2u);
-    r[5] = cw_get_bits(buf, 7u, 2u);
-    r[6] = cw_get_bits(buf, 9u, 2u);
-    r[7] = cw_get_bits(buf, 11u, 2u);
-    r[8] = cw_get_bits(buf, 13u, 1u);
-    r[9] = cw_get_bits(buf, 14u, 2u);
-    r[10] = cw_get_bits(buf, 16u, 2u);
-    r[11] = cw_get_bits(buf, 18u, 1u);
-    r[12] = cw_get_bits(buf, 19u, 1u);
-    r[13] = cw_get_bits(buf, 20u, 11u);
-    r[14] = cw_get_bits(buf, 31u, 1u);
+    {
+        unsigned word = cw_get_be16(buf + 0);
+        r[0] = (uint16_t)((word >> 15) & 1u);
+        r[1] = (uint16_t)((word >> 14) & 1u);
+        r[2] = (uint16_t)((word >> 13) & 1u);
+        r[3] = (uint16_t)((word >> 11) & 3u);
+        r[4] = (uint16_t)((word >> 9) & 3u);
+        r[5] = (uint16_t)((word >> 7) & 3u);
+        r[6] = (uint16_t)((word >> 5) & 3u);
+        r[7] = (uint16_t)((word >> 3) & 3u);
+        r[8] = (uint16_t)((word >> 2) & 1u);
+        r[9] = (uint16_t)(word & 3u);
+    }
+    {
+        unsigned word = cw_get_be16(buf + 2);
+        r[10] = (uint16_t)((word >> 14) & 3u);
+        r[11] = (uint16_t)((word >> 13) & 1u);
+        r[12] = (uint16_t)((word >> 12) & 1u);
+        r[13] = (uint16_t)((word >> 1) & 0x7ffu);
+        r[14] = (uint16_t)(word & 1u);
+    }
     return car_slave_control_check_raw(r, buf, m, false);
 }
 

@@ -127,6 +127,52 @@ static inline void cw_put_le(uint8_t *p, uint8_t n, uint32_t v)
     }
 }
 
+/* Fixed widths without loops: what generated codecs call for 16- and 32-bit
+ * fields (single bytes are plain array accesses). */
+static inline uint16_t cw_get_be16(const uint8_t *p)
+{
+    return (uint16_t)(((unsigned)p[0] << 8) | p[1]);
+}
+
+static inline uint16_t cw_get_le16(const uint8_t *p)
+{
+    return (uint16_t)(((unsigned)p[1] << 8) | p[0]);
+}
+
+static inline void cw_put_be16(uint8_t *p, uint16_t v)
+{
+    p[0] = (uint8_t)(v >> 8);
+    p[1] = (uint8_t)(v & 0xFFu);
+}
+
+static inline void cw_put_le16(uint8_t *p, uint16_t v)
+{
+    p[0] = (uint8_t)(v & 0xFFu);
+    p[1] = (uint8_t)(v >> 8);
+}
+
+static inline uint32_t cw_get_be32(const uint8_t *p)
+{
+    return ((uint32_t)cw_get_be16(p) << 16) | cw_get_be16(p + 2);
+}
+
+static inline uint32_t cw_get_le32(const uint8_t *p)
+{
+    return ((uint32_t)cw_get_le16(p + 2) << 16) | cw_get_le16(p);
+}
+
+static inline void cw_put_be32(uint8_t *p, uint32_t v)
+{
+    cw_put_be16(p, (uint16_t)(v >> 16));
+    cw_put_be16(p + 2, (uint16_t)(v & 0xFFFFu));
+}
+
+static inline void cw_put_le32(uint8_t *p, uint32_t v)
+{
+    cw_put_le16(p, (uint16_t)(v & 0xFFFFu));
+    cw_put_le16(p + 2, (uint16_t)(v >> 16));
+}
+
 /* Bit fields: `n` bits (1..32) at bit offset `off`, most significant bit
  * first, counted from the first bit of the frame. */
 static inline uint32_t cw_get_bits(const uint8_t *p, uint16_t off, uint8_t n)
@@ -162,6 +208,16 @@ static inline int32_t cw_sign_extend(uint32_t raw, uint8_t bits)
         return -(int32_t)(uint32_t)(((~raw) & (sign - 1u)) ) - 1;
     }
     return (int32_t)raw;
+}
+
+/* The same for 2..16 bits in 16-bit arithmetic (cheaper on 8-bit targets). */
+static inline int16_t cw_sign_extend16(uint16_t raw, uint8_t bits)
+{
+    uint16_t sign = (uint16_t)(1u << (uint8_t)(bits - 1u));
+    if (raw & sign) {
+        return (int16_t)(-(int16_t)(uint16_t)(~(unsigned)raw & (sign - 1u)) - 1);
+    }
+    return (int16_t)raw;
 }
 
 static inline uint8_t cw_popcount32(uint32_t v)
@@ -461,6 +517,12 @@ static inline uint8_t cw_digit_count(uint64_t v)
         n++;
     }
     return n;
+}
+
+/* At most CW_DECIMAL_MAX_DIGITS digits: one comparison, no 64-bit division. */
+static inline bool cw_decimal_fits(const cw_decimal_t *d)
+{
+    return d->digits <= 99999999999999999ULL;
 }
 
 /* Reads [+-]?([0-9]+(.[0-9]*)?|.[0-9]+)([eE][+-]?[0-9]+)? ; values whose

@@ -19,6 +19,8 @@ extern "C" {
 #endif
 
 #define MTV4_SCHEMA_SHA256 "320ca01ee8767b17a9e80a28eb2755e3358374793fcd5cd74658874ace8a7eb5"
+#define MTV4_FINGERPRINT "30e4a5109f06dfab"  /* hash of the wire-relevant schema (codeword diff) */
+#define MTV4_FINGERPRINT32 0x30e4a510u  /* its first 32 bits */
 #define MTV4_SYNC 0xaau  /* first byte of every frame */
 #define MTV4_SET_WHEELS_VELOCITIES_SIZE 12u  /* bytes */
 #define MTV4_SET_WHEELS_VELOCITIES_ID 1u
@@ -186,32 +188,31 @@ static inline uint16_t mtv4_crc16_8005_ffff_nn_0(const uint8_t *data, size_t len
 
 /* ---- set_wheels_velocities ---------------------------------------------------------- */
 
-static inline int mtv4_set_wheels_velocities_raw(const mtv4_set_wheels_velocities_t *m, uint32_t *r)
+static inline int mtv4_set_wheels_velocities_raw(const mtv4_set_wheels_velocities_t *m, uint16_t *r)
 {
     r[0] = 170u;
     r[1] = 8u;
     if (m->group > 15u) {
         return CW_ERR_RANGE;
     }
-    r[2] = (uint32_t)m->group;
+    r[2] = (uint16_t)m->group;
     if (m->radio_crc_flag > 1u) {
         return CW_ERR_RANGE;
     }
-    r[3] = (uint32_t)m->radio_crc_flag;
+    r[3] = (uint16_t)m->radio_crc_flag;
     r[4] = 1u;
     if (m->robots == 0u || (m->robots & (m->robots - 1u)) != 0u) {
         return CW_ERR_EXACTLY_ONE;
     }
-    r[5] = (uint32_t)m->robots;
-    r[6] = (uint32_t)(int32_t)m->vl & 0xffffu;
-    r[7] = (uint32_t)(int32_t)m->vr & 0xffffu;
-    r[8] = 0u;
+    r[5] = (uint16_t)m->robots;
+    r[6] = (uint16_t)m->vl;
+    r[7] = (uint16_t)m->vr;
     return CW_OK;
 }
 
 static inline int mtv4_set_wheels_velocities_encode(const mtv4_set_wheels_velocities_t *m, uint8_t *buf, size_t cap)
 {
-    uint32_t r[9];
+    uint16_t r[8];
     int rc = mtv4_set_wheels_velocities_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -219,21 +220,18 @@ static inline int mtv4_set_wheels_velocities_encode(const mtv4_set_wheels_veloci
     if (cap < 12u) {
         return CW_ERR_CAPACITY;
     }
-    memset(buf, 0, 12u);
-    cw_put_le(buf + 0, 1u, r[0]);
-    cw_put_le(buf + 1, 1u, r[1]);
-    cw_put_le(buf + 2, 1u, r[2]);
-    cw_put_bits(buf, 24u, 1u, r[3]);
-    cw_put_bits(buf, 25u, 7u, r[4]);
-    cw_put_le(buf + 4, 2u, r[5]);
-    cw_put_le(buf + 6, 2u, r[6]);
-    cw_put_le(buf + 8, 2u, r[7]);
-    cw_put_be(buf + 10, 2u, r[8]);
-    cw_put_be(buf + 10, 2u, (uint32_t)mtv4_crc16_8005_ffff_nn_0(buf + 1, 9u));
+    buf[0] = (uint8_t)r[0];
+    buf[1] = (uint8_t)r[1];
+    buf[2] = (uint8_t)r[2];
+    buf[3] = (uint8_t)((((unsigned)r[3] & 1u) << 7) | ((unsigned)r[4] & 127u));
+    cw_put_le16(buf + 4, (uint16_t)r[5]);
+    cw_put_le16(buf + 6, (uint16_t)r[6]);
+    cw_put_le16(buf + 8, (uint16_t)r[7]);
+    cw_put_be16(buf + 10, (uint16_t)(mtv4_crc16_8005_ffff_nn_0(buf + 1, 9u)));
     return 12;
 }
 
-static inline int mtv4_set_wheels_velocities_check_raw(const uint32_t *r, const uint8_t *buf, mtv4_set_wheels_velocities_t *m, bool text_form)
+static inline int mtv4_set_wheels_velocities_check_raw(const uint16_t *r, const uint8_t *buf, mtv4_set_wheels_velocities_t *m, bool text_form)
 {
     (void)buf;
     (void)text_form;
@@ -255,27 +253,29 @@ static inline int mtv4_set_wheels_velocities_check_raw(const uint32_t *r, const 
         return CW_ERR_EXACTLY_ONE;
     }
     m->robots = (uint16_t)r[5];
-    m->vl = (int16_t)cw_sign_extend(r[6], 16u);
-    m->vr = (int16_t)cw_sign_extend(r[7], 16u);
+    m->vl = (int16_t)cw_sign_extend16((uint16_t)r[6], 16u);
+    m->vr = (int16_t)cw_sign_extend16((uint16_t)r[7], 16u);
     return CW_OK;
 }
 
 static inline int mtv4_set_wheels_velocities_decode(const uint8_t *buf, size_t len, mtv4_set_wheels_velocities_t *m)
 {
-    uint32_t r[9];
+    uint16_t r[8];
     if (len != 12u) {
         return CW_ERR_LENGTH;
     }
-    r[0] = cw_get_le(buf + 0, 1u);
-    r[1] = cw_get_le(buf + 1, 1u);
-    r[2] = cw_get_le(buf + 2, 1u);
-    r[3] = cw_get_bits(buf, 24u, 1u);
-    r[4] = cw_get_bits(buf, 25u, 7u);
-    r[5] = cw_get_le(buf + 4, 2u);
-    r[6] = cw_get_le(buf + 6, 2u);
-    r[7] = cw_get_le(buf + 8, 2u);
-    r[8] = cw_get_be(buf + 10, 2u);
-    if (r[8] != (uint32_t)mtv4_crc16_8005_ffff_nn_0(buf + 1, 9u)) {
+    r[0] = (uint16_t)buf[0];
+    r[1] = (uint16_t)buf[1];
+    r[2] = (uint16_t)buf[2];
+    {
+        unsigned word = buf[3];
+        r[3] = (uint16_t)((word >> 7) & 1u);
+        r[4] = (uint16_t)(word & 127u);
+    }
+    r[5] = (uint16_t)cw_get_le16(buf + 4);
+    r[6] = (uint16_t)cw_get_le16(buf + 6);
+    r[7] = (uint16_t)cw_get_le16(buf + 8);
+    if (cw_get_be16(buf + 10) != mtv4_crc16_8005_ffff_nn_0(buf + 1, 9u)) {
         return CW_ERR_CHECKSUM;
     }
     return mtv4_set_wheels_velocities_check_raw(r, buf, m, false);
@@ -329,34 +329,33 @@ static inline int mtv4_set_wheels_velocities_set_vr_units(mtv4_set_wheels_veloci
 
 /* ---- set_led ---------------------------------------------------------- */
 
-static inline int mtv4_set_led_raw(const mtv4_set_led_t *m, uint32_t *r)
+static inline int mtv4_set_led_raw(const mtv4_set_led_t *m, uint16_t *r)
 {
     r[0] = 170u;
     r[1] = 8u;
     if (m->group > 15u) {
         return CW_ERR_RANGE;
     }
-    r[2] = (uint32_t)m->group;
+    r[2] = (uint16_t)m->group;
     if (m->radio_crc_flag > 1u) {
         return CW_ERR_RANGE;
     }
-    r[3] = (uint32_t)m->radio_crc_flag;
+    r[3] = (uint16_t)m->radio_crc_flag;
     r[4] = 2u;
     if (m->robots == 0u || (m->robots & (m->robots - 1u)) != 0u) {
         return CW_ERR_EXACTLY_ONE;
     }
-    r[5] = (uint32_t)m->robots;
-    r[6] = (uint32_t)m->d1;
-    r[7] = (uint32_t)m->d2;
-    r[8] = (uint32_t)m->d3;
-    r[9] = (uint32_t)m->d4;
-    r[10] = 0u;
+    r[5] = (uint16_t)m->robots;
+    r[6] = (uint16_t)m->d1;
+    r[7] = (uint16_t)m->d2;
+    r[8] = (uint16_t)m->d3;
+    r[9] = (uint16_t)m->d4;
     return CW_OK;
 }
 
 static inline int mtv4_set_led_encode(const mtv4_set_led_t *m, uint8_t *buf, size_t cap)
 {
-    uint32_t r[11];
+    uint16_t r[10];
     int rc = mtv4_set_led_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -364,23 +363,20 @@ static inline int mtv4_set_led_encode(const mtv4_set_led_t *m, uint8_t *buf, siz
     if (cap < 12u) {
         return CW_ERR_CAPACITY;
     }
-    memset(buf, 0, 12u);
-    cw_put_le(buf + 0, 1u, r[0]);
-    cw_put_le(buf + 1, 1u, r[1]);
-    cw_put_le(buf + 2, 1u, r[2]);
-    cw_put_bits(buf, 24u, 1u, r[3]);
-    cw_put_bits(buf, 25u, 7u, r[4]);
-    cw_put_le(buf + 4, 2u, r[5]);
-    cw_put_le(buf + 6, 1u, r[6]);
-    cw_put_le(buf + 7, 1u, r[7]);
-    cw_put_le(buf + 8, 1u, r[8]);
-    cw_put_le(buf + 9, 1u, r[9]);
-    cw_put_be(buf + 10, 2u, r[10]);
-    cw_put_be(buf + 10, 2u, (uint32_t)mtv4_crc16_8005_ffff_nn_0(buf + 1, 9u));
+    buf[0] = (uint8_t)r[0];
+    buf[1] = (uint8_t)r[1];
+    buf[2] = (uint8_t)r[2];
+    buf[3] = (uint8_t)((((unsigned)r[3] & 1u) << 7) | ((unsigned)r[4] & 127u));
+    cw_put_le16(buf + 4, (uint16_t)r[5]);
+    buf[6] = (uint8_t)r[6];
+    buf[7] = (uint8_t)r[7];
+    buf[8] = (uint8_t)r[8];
+    buf[9] = (uint8_t)r[9];
+    cw_put_be16(buf + 10, (uint16_t)(mtv4_crc16_8005_ffff_nn_0(buf + 1, 9u)));
     return 12;
 }
 
-static inline int mtv4_set_led_check_raw(const uint32_t *r, const uint8_t *buf, mtv4_set_led_t *m, bool text_form)
+static inline int mtv4_set_led_check_raw(const uint16_t *r, const uint8_t *buf, mtv4_set_led_t *m, bool text_form)
 {
     (void)buf;
     (void)text_form;
@@ -411,22 +407,24 @@ static inline int mtv4_set_led_check_raw(const uint32_t *r, const uint8_t *buf, 
 
 static inline int mtv4_set_led_decode(const uint8_t *buf, size_t len, mtv4_set_led_t *m)
 {
-    uint32_t r[11];
+    uint16_t r[10];
     if (len != 12u) {
         return CW_ERR_LENGTH;
     }
-    r[0] = cw_get_le(buf + 0, 1u);
-    r[1] = cw_get_le(buf + 1, 1u);
-    r[2] = cw_get_le(buf + 2, 1u);
-    r[3] = cw_get_bits(buf, 24u, 1u);
-    r[4] = cw_get_bits(buf, 25u, 7u);
-    r[5] = cw_get_le(buf + 4, 2u);
-    r[6] = cw_get_le(buf + 6, 1u);
-    r[7] = cw_get_le(buf + 7, 1u);
-    r[8] = cw_get_le(buf + 8, 1u);
-    r[9] = cw_get_le(buf + 9, 1u);
-    r[10] = cw_get_be(buf + 10, 2u);
-    if (r[10] != (uint32_t)mtv4_crc16_8005_ffff_nn_0(buf + 1, 9u)) {
+    r[0] = (uint16_t)buf[0];
+    r[1] = (uint16_t)buf[1];
+    r[2] = (uint16_t)buf[2];
+    {
+        unsigned word = buf[3];
+        r[3] = (uint16_t)((word >> 7) & 1u);
+        r[4] = (uint16_t)(word & 127u);
+    }
+    r[5] = (uint16_t)cw_get_le16(buf + 4);
+    r[6] = (uint16_t)buf[6];
+    r[7] = (uint16_t)buf[7];
+    r[8] = (uint16_t)buf[8];
+    r[9] = (uint16_t)buf[9];
+    if (cw_get_be16(buf + 10) != mtv4_crc16_8005_ffff_nn_0(buf + 1, 9u)) {
         return CW_ERR_CHECKSUM;
     }
     return mtv4_set_led_check_raw(r, buf, m, false);
@@ -469,13 +467,12 @@ static inline int mtv4_set_wheels_velocities_with_odometry_raw(const mtv4_set_wh
     if (!cw_f32_bits_finite(r[11])) {
         return CW_ERR_FINITE;
     }
-    r[12] = 0u;
     return CW_OK;
 }
 
 static inline int mtv4_set_wheels_velocities_with_odometry_encode(const mtv4_set_wheels_velocities_with_odometry_t *m, uint8_t *buf, size_t cap)
 {
-    uint32_t r[13];
+    uint32_t r[12];
     int rc = mtv4_set_wheels_velocities_with_odometry_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -483,21 +480,18 @@ static inline int mtv4_set_wheels_velocities_with_odometry_encode(const mtv4_set
     if (cap < 26u) {
         return CW_ERR_CAPACITY;
     }
-    memset(buf, 0, 26u);
-    cw_put_le(buf + 0, 1u, r[0]);
-    cw_put_le(buf + 1, 1u, r[1]);
-    cw_put_le(buf + 2, 1u, r[2]);
-    cw_put_bits(buf, 24u, 1u, r[3]);
-    cw_put_bits(buf, 25u, 7u, r[4]);
-    cw_put_le(buf + 4, 2u, r[5]);
-    cw_put_le(buf + 6, 2u, r[6]);
-    cw_put_le(buf + 8, 2u, r[7]);
-    cw_put_le(buf + 10, 2u, r[8]);
-    cw_put_le(buf + 12, 4u, r[9]);
-    cw_put_le(buf + 16, 4u, r[10]);
-    cw_put_le(buf + 20, 4u, r[11]);
-    cw_put_be(buf + 24, 2u, r[12]);
-    cw_put_be(buf + 24, 2u, (uint32_t)mtv4_crc16_8005_ffff_nn_0(buf + 1, 23u));
+    buf[0] = (uint8_t)r[0];
+    buf[1] = (uint8_t)r[1];
+    buf[2] = (uint8_t)r[2];
+    buf[3] = (uint8_t)((((unsigned)r[3] & 1u) << 7) | ((unsigned)r[4] & 127u));
+    cw_put_le16(buf + 4, (uint16_t)r[5]);
+    cw_put_le16(buf + 6, (uint16_t)r[6]);
+    cw_put_le16(buf + 8, (uint16_t)r[7]);
+    cw_put_le16(buf + 10, (uint16_t)r[8]);
+    cw_put_le32(buf + 12, (uint32_t)r[9]);
+    cw_put_le32(buf + 16, (uint32_t)r[10]);
+    cw_put_le32(buf + 20, (uint32_t)r[11]);
+    cw_put_be16(buf + 24, (uint16_t)(mtv4_crc16_8005_ffff_nn_0(buf + 1, 23u)));
     return 26;
 }
 
@@ -527,8 +521,8 @@ static inline int mtv4_set_wheels_velocities_with_odometry_check_raw(const uint3
         return CW_ERR_FLAGS;
     }
     m->status = (uint16_t)r[6];
-    m->vl = (int16_t)cw_sign_extend(r[7], 16u);
-    m->vr = (int16_t)cw_sign_extend(r[8], 16u);
+    m->vl = (int16_t)cw_sign_extend16((uint16_t)r[7], 16u);
+    m->vr = (int16_t)cw_sign_extend16((uint16_t)r[8], 16u);
     if (!cw_f32_bits_finite(r[9])) {
         return CW_ERR_FINITE;
     }
@@ -546,24 +540,26 @@ static inline int mtv4_set_wheels_velocities_with_odometry_check_raw(const uint3
 
 static inline int mtv4_set_wheels_velocities_with_odometry_decode(const uint8_t *buf, size_t len, mtv4_set_wheels_velocities_with_odometry_t *m)
 {
-    uint32_t r[13];
+    uint32_t r[12];
     if (len != 26u) {
         return CW_ERR_LENGTH;
     }
-    r[0] = cw_get_le(buf + 0, 1u);
-    r[1] = cw_get_le(buf + 1, 1u);
-    r[2] = cw_get_le(buf + 2, 1u);
-    r[3] = cw_get_bits(buf, 24u, 1u);
-    r[4] = cw_get_bits(buf, 25u, 7u);
-    r[5] = cw_get_le(buf + 4, 2u);
-    r[6] = cw_get_le(buf + 6, 2u);
-    r[7] = cw_get_le(buf + 8, 2u);
-    r[8] = cw_get_le(buf + 10, 2u);
-    r[9] = cw_get_le(buf + 12, 4u);
-    r[10] = cw_get_le(buf + 16, 4u);
-    r[11] = cw_get_le(buf + 20, 4u);
-    r[12] = cw_get_be(buf + 24, 2u);
-    if (r[12] != (uint32_t)mtv4_crc16_8005_ffff_nn_0(buf + 1, 23u)) {
+    r[0] = (uint32_t)buf[0];
+    r[1] = (uint32_t)buf[1];
+    r[2] = (uint32_t)buf[2];
+    {
+        unsigned word = buf[3];
+        r[3] = (uint32_t)((word >> 7) & 1u);
+        r[4] = (uint32_t)(word & 127u);
+    }
+    r[5] = (uint32_t)cw_get_le16(buf + 4);
+    r[6] = (uint32_t)cw_get_le16(buf + 6);
+    r[7] = (uint32_t)cw_get_le16(buf + 8);
+    r[8] = (uint32_t)cw_get_le16(buf + 10);
+    r[9] = (uint32_t)cw_get_le32(buf + 12);
+    r[10] = (uint32_t)cw_get_le32(buf + 16);
+    r[11] = (uint32_t)cw_get_le32(buf + 20);
+    if (cw_get_be16(buf + 24) != mtv4_crc16_8005_ffff_nn_0(buf + 1, 23u)) {
         return CW_ERR_CHECKSUM;
     }
     return mtv4_set_wheels_velocities_with_odometry_check_raw(r, buf, m, false);
@@ -617,36 +613,35 @@ static inline int mtv4_set_wheels_velocities_with_odometry_set_vr_units(mtv4_set
 
 /* ---- ack ---------------------------------------------------------- */
 
-static inline int mtv4_ack_raw(const mtv4_ack_t *m, uint32_t *r)
+static inline int mtv4_ack_raw(const mtv4_ack_t *m, uint16_t *r)
 {
     r[0] = 170u;
     r[1] = 4u;
     if (m->group > 15u) {
         return CW_ERR_RANGE;
     }
-    r[2] = (uint32_t)m->group;
+    r[2] = (uint16_t)m->group;
     if (m->radio_crc_flag > 1u) {
         return CW_ERR_RANGE;
     }
-    r[3] = (uint32_t)m->radio_crc_flag;
+    r[3] = (uint16_t)m->radio_crc_flag;
     if (m->command > 127u) {
         return CW_ERR_RANGE;
     }
     if (m->command != 1u && m->command != 2u) {
         return CW_ERR_VALUES;
     }
-    r[4] = (uint32_t)m->command;
+    r[4] = (uint16_t)m->command;
     if (m->robots == 0u || (m->robots & (m->robots - 1u)) != 0u) {
         return CW_ERR_EXACTLY_ONE;
     }
-    r[5] = (uint32_t)m->robots;
-    r[6] = 0u;
+    r[5] = (uint16_t)m->robots;
     return CW_OK;
 }
 
 static inline int mtv4_ack_encode(const mtv4_ack_t *m, uint8_t *buf, size_t cap)
 {
-    uint32_t r[7];
+    uint16_t r[6];
     int rc = mtv4_ack_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -654,19 +649,16 @@ static inline int mtv4_ack_encode(const mtv4_ack_t *m, uint8_t *buf, size_t cap)
     if (cap < 8u) {
         return CW_ERR_CAPACITY;
     }
-    memset(buf, 0, 8u);
-    cw_put_le(buf + 0, 1u, r[0]);
-    cw_put_le(buf + 1, 1u, r[1]);
-    cw_put_le(buf + 2, 1u, r[2]);
-    cw_put_bits(buf, 24u, 1u, r[3]);
-    cw_put_bits(buf, 25u, 7u, r[4]);
-    cw_put_le(buf + 4, 2u, r[5]);
-    cw_put_be(buf + 6, 2u, r[6]);
-    cw_put_be(buf + 6, 2u, (uint32_t)mtv4_crc16_8005_ffff_nn_0(buf + 1, 5u));
+    buf[0] = (uint8_t)r[0];
+    buf[1] = (uint8_t)r[1];
+    buf[2] = (uint8_t)r[2];
+    buf[3] = (uint8_t)((((unsigned)r[3] & 1u) << 7) | ((unsigned)r[4] & 127u));
+    cw_put_le16(buf + 4, (uint16_t)r[5]);
+    cw_put_be16(buf + 6, (uint16_t)(mtv4_crc16_8005_ffff_nn_0(buf + 1, 5u)));
     return 8;
 }
 
-static inline int mtv4_ack_check_raw(const uint32_t *r, const uint8_t *buf, mtv4_ack_t *m, bool text_form)
+static inline int mtv4_ack_check_raw(const uint16_t *r, const uint8_t *buf, mtv4_ack_t *m, bool text_form)
 {
     (void)buf;
     (void)text_form;
@@ -694,18 +686,20 @@ static inline int mtv4_ack_check_raw(const uint32_t *r, const uint8_t *buf, mtv4
 
 static inline int mtv4_ack_decode(const uint8_t *buf, size_t len, mtv4_ack_t *m)
 {
-    uint32_t r[7];
+    uint16_t r[6];
     if (len != 8u) {
         return CW_ERR_LENGTH;
     }
-    r[0] = cw_get_le(buf + 0, 1u);
-    r[1] = cw_get_le(buf + 1, 1u);
-    r[2] = cw_get_le(buf + 2, 1u);
-    r[3] = cw_get_bits(buf, 24u, 1u);
-    r[4] = cw_get_bits(buf, 25u, 7u);
-    r[5] = cw_get_le(buf + 4, 2u);
-    r[6] = cw_get_be(buf + 6, 2u);
-    if (r[6] != (uint32_t)mtv4_crc16_8005_ffff_nn_0(buf + 1, 5u)) {
+    r[0] = (uint16_t)buf[0];
+    r[1] = (uint16_t)buf[1];
+    r[2] = (uint16_t)buf[2];
+    {
+        unsigned word = buf[3];
+        r[3] = (uint16_t)((word >> 7) & 1u);
+        r[4] = (uint16_t)(word & 127u);
+    }
+    r[5] = (uint16_t)cw_get_le16(buf + 4);
+    if (cw_get_be16(buf + 6) != mtv4_crc16_8005_ffff_nn_0(buf + 1, 5u)) {
         return CW_ERR_CHECKSUM;
     }
     return mtv4_ack_check_raw(r, buf, m, false);
@@ -743,13 +737,12 @@ static inline int mtv4_odometry_reply_raw(const mtv4_odometry_reply_t *m, uint32
     if (!cw_f32_bits_finite(r[9])) {
         return CW_ERR_FINITE;
     }
-    r[10] = 0u;
     return CW_OK;
 }
 
 static inline int mtv4_odometry_reply_encode(const mtv4_odometry_reply_t *m, uint8_t *buf, size_t cap)
 {
-    uint32_t r[11];
+    uint32_t r[10];
     int rc = mtv4_odometry_reply_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -757,19 +750,16 @@ static inline int mtv4_odometry_reply_encode(const mtv4_odometry_reply_t *m, uin
     if (cap < 22u) {
         return CW_ERR_CAPACITY;
     }
-    memset(buf, 0, 22u);
-    cw_put_le(buf + 0, 1u, r[0]);
-    cw_put_le(buf + 1, 1u, r[1]);
-    cw_put_le(buf + 2, 1u, r[2]);
-    cw_put_bits(buf, 24u, 1u, r[3]);
-    cw_put_bits(buf, 25u, 7u, r[4]);
-    cw_put_le(buf + 4, 2u, r[5]);
-    cw_put_le(buf + 6, 2u, r[6]);
-    cw_put_le(buf + 8, 4u, r[7]);
-    cw_put_le(buf + 12, 4u, r[8]);
-    cw_put_le(buf + 16, 4u, r[9]);
-    cw_put_be(buf + 20, 2u, r[10]);
-    cw_put_be(buf + 20, 2u, (uint32_t)mtv4_crc16_8005_ffff_nn_0(buf + 1, 19u));
+    buf[0] = (uint8_t)r[0];
+    buf[1] = (uint8_t)r[1];
+    buf[2] = (uint8_t)r[2];
+    buf[3] = (uint8_t)((((unsigned)r[3] & 1u) << 7) | ((unsigned)r[4] & 127u));
+    cw_put_le16(buf + 4, (uint16_t)r[5]);
+    cw_put_le16(buf + 6, (uint16_t)r[6]);
+    cw_put_le32(buf + 8, (uint32_t)r[7]);
+    cw_put_le32(buf + 12, (uint32_t)r[8]);
+    cw_put_le32(buf + 16, (uint32_t)r[9]);
+    cw_put_be16(buf + 20, (uint16_t)(mtv4_crc16_8005_ffff_nn_0(buf + 1, 19u)));
     return 22;
 }
 
@@ -813,22 +803,24 @@ static inline int mtv4_odometry_reply_check_raw(const uint32_t *r, const uint8_t
 
 static inline int mtv4_odometry_reply_decode(const uint8_t *buf, size_t len, mtv4_odometry_reply_t *m)
 {
-    uint32_t r[11];
+    uint32_t r[10];
     if (len != 22u) {
         return CW_ERR_LENGTH;
     }
-    r[0] = cw_get_le(buf + 0, 1u);
-    r[1] = cw_get_le(buf + 1, 1u);
-    r[2] = cw_get_le(buf + 2, 1u);
-    r[3] = cw_get_bits(buf, 24u, 1u);
-    r[4] = cw_get_bits(buf, 25u, 7u);
-    r[5] = cw_get_le(buf + 4, 2u);
-    r[6] = cw_get_le(buf + 6, 2u);
-    r[7] = cw_get_le(buf + 8, 4u);
-    r[8] = cw_get_le(buf + 12, 4u);
-    r[9] = cw_get_le(buf + 16, 4u);
-    r[10] = cw_get_be(buf + 20, 2u);
-    if (r[10] != (uint32_t)mtv4_crc16_8005_ffff_nn_0(buf + 1, 19u)) {
+    r[0] = (uint32_t)buf[0];
+    r[1] = (uint32_t)buf[1];
+    r[2] = (uint32_t)buf[2];
+    {
+        unsigned word = buf[3];
+        r[3] = (uint32_t)((word >> 7) & 1u);
+        r[4] = (uint32_t)(word & 127u);
+    }
+    r[5] = (uint32_t)cw_get_le16(buf + 4);
+    r[6] = (uint32_t)cw_get_le16(buf + 6);
+    r[7] = (uint32_t)cw_get_le32(buf + 8);
+    r[8] = (uint32_t)cw_get_le32(buf + 12);
+    r[9] = (uint32_t)cw_get_le32(buf + 16);
+    if (cw_get_be16(buf + 20) != mtv4_crc16_8005_ffff_nn_0(buf + 1, 19u)) {
         return CW_ERR_CHECKSUM;
     }
     return mtv4_odometry_reply_check_raw(r, buf, m, false);

@@ -17,6 +17,8 @@ extern "C" {
 #endif
 
 #define ROUTE_SCHEMA_SHA256 "d94187a8818b0cb788982ae6a053947239ae31cc835af3ba25db442464e6667b"
+#define ROUTE_FINGERPRINT "3e65a8fa00f90c84"  /* hash of the wire-relevant schema (codeword diff) */
+#define ROUTE_FINGERPRINT32 0x3e65a8fau  /* its first 32 bits */
 #define ROUTE_START_SIZE 1u  /* bytes */
 #define ROUTE_OBJECT_SIZE 4u  /* bytes */
 #define ROUTE_SCENE_SIZE 4u  /* bytes */
@@ -87,19 +89,19 @@ typedef struct {
 
 /* ---- start ---------------------------------------------------------- */
 
-static inline int route_start_raw(const route_start_t *m, uint32_t *r)
+static inline int route_start_raw(const route_start_t *m, uint8_t *r)
 {
     (void)m;
     r[0] = 3u;
     r[1] = 1u;
     r[2] = 0u;
-    r[2] = (r[0] + r[1]) % 8u;
+    r[2] = (uint8_t)(((uint32_t)r[0] + r[1]) % 8u);
     return CW_OK;
 }
 
 static inline int route_start_encode(const route_start_t *m, uint8_t *buf, size_t cap)
 {
-    uint32_t r[3];
+    uint8_t r[3];
     int rc = route_start_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -107,14 +109,11 @@ static inline int route_start_encode(const route_start_t *m, uint8_t *buf, size_
     if (cap < 1u) {
         return CW_ERR_CAPACITY;
     }
-    memset(buf, 0, 1u);
-    cw_put_bits(buf, 0u, 2u, r[0]);
-    cw_put_bits(buf, 2u, 3u, r[1]);
-    cw_put_bits(buf, 5u, 3u, r[2]);
+    buf[0] = (uint8_t)((((unsigned)r[0] & 3u) << 6) | (((unsigned)r[1] & 7u) << 3) | ((unsigned)r[2] & 7u));
     return 1;
 }
 
-static inline int route_start_check_raw(const uint32_t *r, const uint8_t *buf, route_start_t *m, bool text_form)
+static inline int route_start_check_raw(const uint8_t *r, const uint8_t *buf, route_start_t *m, bool text_form)
 {
     (void)buf;
     (void)m;
@@ -124,7 +123,7 @@ static inline int route_start_check_raw(const uint32_t *r, const uint8_t *buf, r
     if (r[1] != 1u) {
         return CW_ERR_CONST;
     }
-    if (r[2] != (r[0] + r[1]) % 8u && !(text_form && r[2] == 0u)) {
+    if (r[2] != (uint8_t)(((uint32_t)r[0] + r[1]) % 8u) && !(text_form && r[2] == 0u)) {
         return CW_ERR_CHECKSUM;
     }
     return CW_OK;
@@ -132,13 +131,16 @@ static inline int route_start_check_raw(const uint32_t *r, const uint8_t *buf, r
 
 static inline int route_start_decode(const uint8_t *buf, size_t len, route_start_t *m)
 {
-    uint32_t r[3];
+    uint8_t r[3];
     if (len != 1u) {
         return CW_ERR_LENGTH;
     }
-    r[0] = cw_get_bits(buf, 0u, 2u);
-    r[1] = cw_get_bits(buf, 2u, 3u);
-    r[2] = cw_get_bits(buf, 5u, 3u);
+    {
+        unsigned word = buf[0];
+        r[0] = (uint8_t)((word >> 6) & 3u);
+        r[1] = (uint8_t)((word >> 3) & 7u);
+        r[2] = (uint8_t)(word & 7u);
+    }
     return route_start_check_raw(r, buf, m, false);
 }
 
@@ -169,7 +171,7 @@ static inline int route_start_from_word(uint32_t word, route_start_t *m)
 /* start as a text line: its 3 raw values in decimal, separated by ' '. */
 static inline int route_start_to_text(const route_start_t *m, char *buf, size_t cap)
 {
-    uint32_t r[3];
+    uint8_t r[3];
     cw_writer_t w;
     uint8_t i;
     int rc = route_start_raw(m, r);
@@ -188,6 +190,8 @@ static inline int route_start_to_text(const route_start_t *m, char *buf, size_t 
 
 static inline int route_start_from_values(const uint32_t *v, size_t count, route_start_t *m)
 {
+    uint8_t r[3];
+    size_t i;
     if (count != 3u) {
         return CW_ERR_COUNT;
     }
@@ -200,54 +204,57 @@ static inline int route_start_from_values(const uint32_t *v, size_t count, route
     if (v[2] > 7u) {
         return CW_ERR_RANGE;
     }
-    return route_start_check_raw(v, NULL, m, true);
+    for (i = 0; i < 3u; i++) {
+        r[i] = (uint8_t)v[i];
+    }
+    return route_start_check_raw(r, NULL, m, true);
 }
 
 /* ---- object ---------------------------------------------------------- */
 
-static inline int route_object_raw(const route_object_t *m, uint32_t *r)
+static inline int route_object_raw(const route_object_t *m, uint8_t *r)
 {
     r[0] = 1u;
     if (m->ns > 7u) {
         return CW_ERR_RANGE;
     }
-    r[1] = (uint32_t)m->ns;
+    r[1] = (uint8_t)m->ns;
     if (m->nl > 7u) {
         return CW_ERR_RANGE;
     }
-    r[2] = (uint32_t)m->nl;
+    r[2] = (uint8_t)m->nl;
     if (m->no > 7u) {
         return CW_ERR_RANGE;
     }
-    r[3] = (uint32_t)m->no;
+    r[3] = (uint8_t)m->no;
     if (m->na < 10u || m->na > 17u) {
         return CW_ERR_RANGE;
     }
-    r[4] = (uint32_t)(m->na - 10);
+    r[4] = (uint8_t)((uint32_t)(m->na - 10));
     if (m->dl < 1u || m->dl > 5u) {
         return CW_ERR_RANGE;
     }
-    r[5] = (uint32_t)m->dl;
+    r[5] = (uint8_t)m->dl;
     if (m->rc > 3u) {
         return CW_ERR_RANGE;
     }
-    r[6] = (uint32_t)m->rc;
+    r[6] = (uint8_t)m->rc;
     if (m->dr < 1u || m->dr > 5u) {
         return CW_ERR_RANGE;
     }
-    r[7] = (uint32_t)m->dr;
+    r[7] = (uint8_t)m->dr;
     if (m->cm < 1u || m->cm > 15u) {
         return CW_ERR_RANGE;
     }
-    r[8] = (uint32_t)m->cm;
+    r[8] = (uint8_t)m->cm;
     r[9] = 0u;
-    r[9] = (r[0] + r[1] + r[2] + r[3] + r[4] + r[5] + r[6] + r[7] + r[8]) % 8u;
+    r[9] = (uint8_t)(((uint32_t)r[0] + r[1] + r[2] + r[3] + r[4] + r[5] + r[6] + r[7] + r[8]) % 8u);
     return CW_OK;
 }
 
 static inline int route_object_encode(const route_object_t *m, uint8_t *buf, size_t cap)
 {
-    uint32_t r[10];
+    uint8_t r[10];
     int rc = route_object_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -255,21 +262,12 @@ static inline int route_object_encode(const route_object_t *m, uint8_t *buf, siz
     if (cap < 4u) {
         return CW_ERR_CAPACITY;
     }
-    memset(buf, 0, 4u);
-    cw_put_bits(buf, 0u, 2u, r[0]);
-    cw_put_bits(buf, 2u, 3u, r[1]);
-    cw_put_bits(buf, 5u, 3u, r[2]);
-    cw_put_bits(buf, 8u, 3u, r[3]);
-    cw_put_bits(buf, 11u, 3u, r[4]);
-    cw_put_bits(buf, 14u, 3u, r[5]);
-    cw_put_bits(buf, 17u, 2u, r[6]);
-    cw_put_bits(buf, 19u, 3u, r[7]);
-    cw_put_bits(buf, 22u, 4u, r[8]);
-    cw_put_bits(buf, 26u, 3u, r[9]);
+    buf[0] = (uint8_t)((((unsigned)r[0] & 3u) << 6) | (((unsigned)r[1] & 7u) << 3) | ((unsigned)r[2] & 7u));
+    cw_put_be(buf + 1, 3u, (uint32_t)((((uint32_t)r[3] & 7u) << 21) | (((uint32_t)r[4] & 7u) << 18) | (((uint32_t)r[5] & 7u) << 15) | (((uint32_t)r[6] & 3u) << 13) | (((uint32_t)r[7] & 7u) << 10) | (((uint32_t)r[8] & 15u) << 6) | (((uint32_t)r[9] & 7u) << 3)));
     return 4;
 }
 
-static inline int route_object_check_raw(const uint32_t *r, const uint8_t *buf, route_object_t *m, bool text_form)
+static inline int route_object_check_raw(const uint8_t *r, const uint8_t *buf, route_object_t *m, bool text_form)
 {
     (void)buf;
     if (r[0] != 1u) {
@@ -307,7 +305,7 @@ static inline int route_object_check_raw(const uint32_t *r, const uint8_t *buf, 
     if (m->cm < 1u || m->cm > 15u) {
         return CW_ERR_RANGE;
     }
-    if (r[9] != (r[0] + r[1] + r[2] + r[3] + r[4] + r[5] + r[6] + r[7] + r[8]) % 8u && !(text_form && r[9] == 0u)) {
+    if (r[9] != (uint8_t)(((uint32_t)r[0] + r[1] + r[2] + r[3] + r[4] + r[5] + r[6] + r[7] + r[8]) % 8u) && !(text_form && r[9] == 0u)) {
         return CW_ERR_CHECKSUM;
     }
     return CW_OK;
@@ -315,23 +313,29 @@ static inline int route_object_check_raw(const uint32_t *r, const uint8_t *buf, 
 
 static inline int route_object_decode(const uint8_t *buf, size_t len, route_object_t *m)
 {
-    uint32_t r[10];
+    uint8_t r[10];
     if (len != 4u) {
         return CW_ERR_LENGTH;
     }
-    if (cw_get_bits(buf, 29u, 3u) != 0u) {
+    if ((buf[3] & 7u) != 0u) {
         return CW_ERR_RESERVED;
     }
-    r[0] = cw_get_bits(buf, 0u, 2u);
-    r[1] = cw_get_bits(buf, 2u, 3u);
-    r[2] = cw_get_bits(buf, 5u, 3u);
-    r[3] = cw_get_bits(buf, 8u, 3u);
-    r[4] = cw_get_bits(buf, 11u, 3u);
-    r[5] = cw_get_bits(buf, 14u, 3u);
-    r[6] = cw_get_bits(buf, 17u, 2u);
-    r[7] = cw_get_bits(buf, 19u, 3u);
-    r[8] = cw_get_bits(buf, 22u, 4u);
-    r[9] = cw_get_bits(buf, 26u, 3u);
+    {
+        unsigned word = buf[0];
+        r[0] = (uint8_t)((word >> 6) & 3u);
+        r[1] = (uint8_t)((word >> 3) & 7u);
+        r[2] = (uint8_t)(word & 7u);
+    }
+    {
+        uint32_t word = cw_get_be(buf + 1, 3u);
+        r[3] = (uint8_t)((word >> 21) & 7u);
+        r[4] = (uint8_t)((word >> 18) & 7u);
+        r[5] = (uint8_t)((word >> 15) & 7u);
+        r[6] = (uint8_t)((word >> 13) & 3u);
+        r[7] = (uint8_t)((word >> 10) & 7u);
+        r[8] = (uint8_t)((word >> 6) & 15u);
+        r[9] = (uint8_t)((word >> 3) & 7u);
+    }
     return route_object_check_raw(r, buf, m, false);
 }
 
@@ -359,7 +363,7 @@ static inline int route_object_from_word(uint32_t word, route_object_t *m)
 /* object as a text line: its 10 raw values in decimal, separated by ' '. */
 static inline int route_object_to_text(const route_object_t *m, char *buf, size_t cap)
 {
-    uint32_t r[10];
+    uint8_t r[10];
     cw_writer_t w;
     uint8_t i;
     int rc = route_object_raw(m, r);
@@ -378,6 +382,8 @@ static inline int route_object_to_text(const route_object_t *m, char *buf, size_
 
 static inline int route_object_from_values(const uint32_t *v, size_t count, route_object_t *m)
 {
+    uint8_t r[10];
+    size_t i;
     if (count != 10u) {
         return CW_ERR_COUNT;
     }
@@ -411,38 +417,41 @@ static inline int route_object_from_values(const uint32_t *v, size_t count, rout
     if (v[9] > 7u) {
         return CW_ERR_RANGE;
     }
-    return route_object_check_raw(v, NULL, m, true);
+    for (i = 0; i < 10u; i++) {
+        r[i] = (uint8_t)v[i];
+    }
+    return route_object_check_raw(r, NULL, m, true);
 }
 
 /* ---- scene ---------------------------------------------------------- */
 
-static inline int route_scene_raw(const route_scene_t *m, uint32_t *r)
+static inline int route_scene_raw(const route_scene_t *m, uint16_t *r)
 {
     r[0] = 2u;
     if (m->ns > 7u) {
         return CW_ERR_RANGE;
     }
-    r[1] = (uint32_t)m->ns;
+    r[1] = (uint16_t)m->ns;
     if (m->nl > 7u) {
         return CW_ERR_RANGE;
     }
-    r[2] = (uint32_t)m->nl;
+    r[2] = (uint16_t)m->nl;
     if (m->db != 1u && m->db != 2u && m->db != 3u) {
         return CW_ERR_ENUM;
     }
-    r[3] = (uint32_t)m->db;
+    r[3] = (uint16_t)m->db;
     if (m->nt > 0x7fffu) {
         return CW_ERR_RANGE;
     }
-    r[4] = (uint32_t)m->nt;
+    r[4] = (uint16_t)m->nt;
     r[5] = 0u;
-    r[5] = (r[0] + r[1] + r[2] + r[3] + r[4]) % 8u;
+    r[5] = (uint16_t)(((uint32_t)r[0] + r[1] + r[2] + r[3] + r[4]) % 8u);
     return CW_OK;
 }
 
 static inline int route_scene_encode(const route_scene_t *m, uint8_t *buf, size_t cap)
 {
-    uint32_t r[6];
+    uint16_t r[6];
     int rc = route_scene_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -450,17 +459,12 @@ static inline int route_scene_encode(const route_scene_t *m, uint8_t *buf, size_
     if (cap < 4u) {
         return CW_ERR_CAPACITY;
     }
-    memset(buf, 0, 4u);
-    cw_put_bits(buf, 0u, 2u, r[0]);
-    cw_put_bits(buf, 2u, 3u, r[1]);
-    cw_put_bits(buf, 5u, 3u, r[2]);
-    cw_put_bits(buf, 8u, 3u, r[3]);
-    cw_put_bits(buf, 11u, 15u, r[4]);
-    cw_put_bits(buf, 26u, 3u, r[5]);
+    buf[0] = (uint8_t)((((unsigned)r[0] & 3u) << 6) | (((unsigned)r[1] & 7u) << 3) | ((unsigned)r[2] & 7u));
+    cw_put_be(buf + 1, 3u, (uint32_t)((((uint32_t)r[3] & 7u) << 21) | (((uint32_t)r[4] & 0x7fffu) << 6) | (((uint32_t)r[5] & 7u) << 3)));
     return 4;
 }
 
-static inline int route_scene_check_raw(const uint32_t *r, const uint8_t *buf, route_scene_t *m, bool text_form)
+static inline int route_scene_check_raw(const uint16_t *r, const uint8_t *buf, route_scene_t *m, bool text_form)
 {
     (void)buf;
     if (r[0] != 2u) {
@@ -479,7 +483,7 @@ static inline int route_scene_check_raw(const uint32_t *r, const uint8_t *buf, r
     }
     m->db = (uint8_t)r[3];
     m->nt = (uint16_t)r[4];
-    if (r[5] != (r[0] + r[1] + r[2] + r[3] + r[4]) % 8u && !(text_form && r[5] == 0u)) {
+    if (r[5] != (uint16_t)(((uint32_t)r[0] + r[1] + r[2] + r[3] + r[4]) % 8u) && !(text_form && r[5] == 0u)) {
         return CW_ERR_CHECKSUM;
     }
     return CW_OK;
@@ -487,19 +491,25 @@ static inline int route_scene_check_raw(const uint32_t *r, const uint8_t *buf, r
 
 static inline int route_scene_decode(const uint8_t *buf, size_t len, route_scene_t *m)
 {
-    uint32_t r[6];
+    uint16_t r[6];
     if (len != 4u) {
         return CW_ERR_LENGTH;
     }
-    if (cw_get_bits(buf, 29u, 3u) != 0u) {
+    if ((buf[3] & 7u) != 0u) {
         return CW_ERR_RESERVED;
     }
-    r[0] = cw_get_bits(buf, 0u, 2u);
-    r[1] = cw_get_bits(buf, 2u, 3u);
-    r[2] = cw_get_bits(buf, 5u, 3u);
-    r[3] = cw_get_bits(buf, 8u, 3u);
-    r[4] = cw_get_bits(buf, 11u, 15u);
-    r[5] = cw_get_bits(buf, 26u, 3u);
+    {
+        unsigned word = buf[0];
+        r[0] = (uint16_t)((word >> 6) & 3u);
+        r[1] = (uint16_t)((word >> 3) & 7u);
+        r[2] = (uint16_t)(word & 7u);
+    }
+    {
+        uint32_t word = cw_get_be(buf + 1, 3u);
+        r[3] = (uint16_t)((word >> 21) & 7u);
+        r[4] = (uint16_t)((word >> 6) & 0x7fffu);
+        r[5] = (uint16_t)((word >> 3) & 7u);
+    }
     return route_scene_check_raw(r, buf, m, false);
 }
 
@@ -527,7 +537,7 @@ static inline int route_scene_from_word(uint32_t word, route_scene_t *m)
 /* scene as a text line: its 6 raw values in decimal, separated by ' '. */
 static inline int route_scene_to_text(const route_scene_t *m, char *buf, size_t cap)
 {
-    uint32_t r[6];
+    uint16_t r[6];
     cw_writer_t w;
     uint8_t i;
     int rc = route_scene_raw(m, r);
@@ -546,6 +556,8 @@ static inline int route_scene_to_text(const route_scene_t *m, char *buf, size_t 
 
 static inline int route_scene_from_values(const uint32_t *v, size_t count, route_scene_t *m)
 {
+    uint16_t r[6];
+    size_t i;
     if (count != 6u) {
         return CW_ERR_COUNT;
     }
@@ -567,24 +579,27 @@ static inline int route_scene_from_values(const uint32_t *v, size_t count, route
     if (v[5] > 7u) {
         return CW_ERR_RANGE;
     }
-    return route_scene_check_raw(v, NULL, m, true);
+    for (i = 0; i < 6u; i++) {
+        r[i] = (uint16_t)v[i];
+    }
+    return route_scene_check_raw(r, NULL, m, true);
 }
 
 /* ---- end ---------------------------------------------------------- */
 
-static inline int route_end_raw(const route_end_t *m, uint32_t *r)
+static inline int route_end_raw(const route_end_t *m, uint8_t *r)
 {
     (void)m;
     r[0] = 3u;
     r[1] = 2u;
     r[2] = 0u;
-    r[2] = (r[0] + r[1]) % 8u;
+    r[2] = (uint8_t)(((uint32_t)r[0] + r[1]) % 8u);
     return CW_OK;
 }
 
 static inline int route_end_encode(const route_end_t *m, uint8_t *buf, size_t cap)
 {
-    uint32_t r[3];
+    uint8_t r[3];
     int rc = route_end_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -592,14 +607,11 @@ static inline int route_end_encode(const route_end_t *m, uint8_t *buf, size_t ca
     if (cap < 1u) {
         return CW_ERR_CAPACITY;
     }
-    memset(buf, 0, 1u);
-    cw_put_bits(buf, 0u, 2u, r[0]);
-    cw_put_bits(buf, 2u, 3u, r[1]);
-    cw_put_bits(buf, 5u, 3u, r[2]);
+    buf[0] = (uint8_t)((((unsigned)r[0] & 3u) << 6) | (((unsigned)r[1] & 7u) << 3) | ((unsigned)r[2] & 7u));
     return 1;
 }
 
-static inline int route_end_check_raw(const uint32_t *r, const uint8_t *buf, route_end_t *m, bool text_form)
+static inline int route_end_check_raw(const uint8_t *r, const uint8_t *buf, route_end_t *m, bool text_form)
 {
     (void)buf;
     (void)m;
@@ -609,7 +621,7 @@ static inline int route_end_check_raw(const uint32_t *r, const uint8_t *buf, rou
     if (r[1] != 2u) {
         return CW_ERR_CONST;
     }
-    if (r[2] != (r[0] + r[1]) % 8u && !(text_form && r[2] == 0u)) {
+    if (r[2] != (uint8_t)(((uint32_t)r[0] + r[1]) % 8u) && !(text_form && r[2] == 0u)) {
         return CW_ERR_CHECKSUM;
     }
     return CW_OK;
@@ -617,13 +629,16 @@ static inline int route_end_check_raw(const uint32_t *r, const uint8_t *buf, rou
 
 static inline int route_end_decode(const uint8_t *buf, size_t len, route_end_t *m)
 {
-    uint32_t r[3];
+    uint8_t r[3];
     if (len != 1u) {
         return CW_ERR_LENGTH;
     }
-    r[0] = cw_get_bits(buf, 0u, 2u);
-    r[1] = cw_get_bits(buf, 2u, 3u);
-    r[2] = cw_get_bits(buf, 5u, 3u);
+    {
+        unsigned word = buf[0];
+        r[0] = (uint8_t)((word >> 6) & 3u);
+        r[1] = (uint8_t)((word >> 3) & 7u);
+        r[2] = (uint8_t)(word & 7u);
+    }
     return route_end_check_raw(r, buf, m, false);
 }
 
@@ -654,7 +669,7 @@ static inline int route_end_from_word(uint32_t word, route_end_t *m)
 /* end as a text line: its 3 raw values in decimal, separated by ' '. */
 static inline int route_end_to_text(const route_end_t *m, char *buf, size_t cap)
 {
-    uint32_t r[3];
+    uint8_t r[3];
     cw_writer_t w;
     uint8_t i;
     int rc = route_end_raw(m, r);
@@ -673,6 +688,8 @@ static inline int route_end_to_text(const route_end_t *m, char *buf, size_t cap)
 
 static inline int route_end_from_values(const uint32_t *v, size_t count, route_end_t *m)
 {
+    uint8_t r[3];
+    size_t i;
     if (count != 3u) {
         return CW_ERR_COUNT;
     }
@@ -685,7 +702,10 @@ static inline int route_end_from_values(const uint32_t *v, size_t count, route_e
     if (v[2] > 7u) {
         return CW_ERR_RANGE;
     }
-    return route_end_check_raw(v, NULL, m, true);
+    for (i = 0; i < 3u; i++) {
+        r[i] = (uint8_t)v[i];
+    }
+    return route_end_check_raw(r, NULL, m, true);
 }
 
 /* Encodes any message by its kind. */

@@ -17,6 +17,8 @@ extern "C" {
 #endif
 
 #define TANK_SCHEMA_SHA256 "e27ac8570efe3316d3e13ee8a2768e4f1d70f6db80a4545a2913bf06b4c3b3a0"
+#define TANK_FINGERPRINT "efd374c2efe0a1e9"  /* hash of the wire-relevant schema (codeword diff) */
+#define TANK_FINGERPRINT32 0xefd374c2u  /* its first 32 bits */
 #define TANK_TELEMETRY_MAX_TEXT 445u  /* chars, with the NUL: buffer size for encode */
 #define TANK_TELEMETRY_ID '$'
 #define TANK_COMMAND_MAX_TEXT 216u  /* chars, with the NUL: buffer size for encode */
@@ -204,37 +206,37 @@ static inline int tank_telemetry_encode(const tank_telemetry_t *m, char *buf, si
     if (!cw_text_ok(&m->value, 1u, ',', ';', true)) {
         return CW_ERR_TEXT;
     }
-    if (cw_digit_count(m->lcurr.digits) > CW_DECIMAL_MAX_DIGITS) {
+    if (!cw_decimal_fits(&m->lcurr)) {
         return CW_ERR_PRECISION;
     }
-    if (cw_digit_count(m->rcurr.digits) > CW_DECIMAL_MAX_DIGITS) {
+    if (!cw_decimal_fits(&m->rcurr)) {
         return CW_ERR_PRECISION;
     }
-    if (cw_digit_count(m->accx.digits) > CW_DECIMAL_MAX_DIGITS) {
+    if (!cw_decimal_fits(&m->accx)) {
         return CW_ERR_PRECISION;
     }
-    if (cw_digit_count(m->accy.digits) > CW_DECIMAL_MAX_DIGITS) {
+    if (!cw_decimal_fits(&m->accy)) {
         return CW_ERR_PRECISION;
     }
-    if (cw_digit_count(m->accz.digits) > CW_DECIMAL_MAX_DIGITS) {
+    if (!cw_decimal_fits(&m->accz)) {
         return CW_ERR_PRECISION;
     }
-    if (cw_digit_count(m->gyrox.digits) > CW_DECIMAL_MAX_DIGITS) {
+    if (!cw_decimal_fits(&m->gyrox)) {
         return CW_ERR_PRECISION;
     }
-    if (cw_digit_count(m->gyroy.digits) > CW_DECIMAL_MAX_DIGITS) {
+    if (!cw_decimal_fits(&m->gyroy)) {
         return CW_ERR_PRECISION;
     }
-    if (cw_digit_count(m->gyroz.digits) > CW_DECIMAL_MAX_DIGITS) {
+    if (!cw_decimal_fits(&m->gyroz)) {
         return CW_ERR_PRECISION;
     }
-    if (cw_digit_count(m->magx.digits) > CW_DECIMAL_MAX_DIGITS) {
+    if (!cw_decimal_fits(&m->magx)) {
         return CW_ERR_PRECISION;
     }
-    if (cw_digit_count(m->magy.digits) > CW_DECIMAL_MAX_DIGITS) {
+    if (!cw_decimal_fits(&m->magy)) {
         return CW_ERR_PRECISION;
     }
-    if (cw_digit_count(m->magz.digits) > CW_DECIMAL_MAX_DIGITS) {
+    if (!cw_decimal_fits(&m->magz)) {
         return CW_ERR_PRECISION;
     }
     if (cw_text_len(m->lan, 33u) > 32u) {
@@ -249,7 +251,7 @@ static inline int tank_telemetry_encode(const tank_telemetry_t *m, char *buf, si
     if (!cw_text_ok(m->lon, strlen(m->lon), ',', ';', true)) {
         return CW_ERR_TEXT;
     }
-    if (cw_digit_count(m->vbat.digits) > CW_DECIMAL_MAX_DIGITS) {
+    if (!cw_decimal_fits(&m->vbat)) {
         return CW_ERR_PRECISION;
     }
     if (m->systemstatus != 0u && m->systemstatus != 1u && m->systemstatus != 2u && m->systemstatus != 3u && m->systemstatus != 4u && m->systemstatus != 5u && m->systemstatus != 6u) {
@@ -520,7 +522,6 @@ static inline int tank_telemetry_parse_body(const char *s, const char *end, tank
     /* extstatus */
     b = s;
     e = cw_token_end(s, end, ',');
-    s = e < end ? e + 1 : end;
     cw_trim(&b, &e);
     {
         int32_t value;
@@ -566,16 +567,16 @@ static inline int tank_command_encode(const tank_command_t *m, char *buf, size_t
     if (!cw_text_ok(&m->value, 1u, ',', ';', true)) {
         return CW_ERR_TEXT;
     }
-    if (cw_digit_count(m->gpio1.digits) > CW_DECIMAL_MAX_DIGITS) {
+    if (!cw_decimal_fits(&m->gpio1)) {
         return CW_ERR_PRECISION;
     }
-    if (cw_digit_count(m->gpio2.digits) > CW_DECIMAL_MAX_DIGITS) {
+    if (!cw_decimal_fits(&m->gpio2)) {
         return CW_ERR_PRECISION;
     }
-    if (cw_digit_count(m->gpio3.digits) > CW_DECIMAL_MAX_DIGITS) {
+    if (!cw_decimal_fits(&m->gpio3)) {
         return CW_ERR_PRECISION;
     }
-    if (cw_digit_count(m->gpio4.digits) > CW_DECIMAL_MAX_DIGITS) {
+    if (!cw_decimal_fits(&m->gpio4)) {
         return CW_ERR_PRECISION;
     }
     if (m->systemstatus != 0u && m->systemstatus != 1u && m->systemstatus != 2u && m->systemstatus != 3u && m->systemstatus != 4u && m->systemstatus != 5u && m->systemstatus != 6u) {
@@ -743,7 +744,6 @@ static inline int tank_command_parse_body(const char *s, const char *end, tank_c
     if (m->has_data) {
         b = s;
         e = cw_token_end(s, end, ',');
-        s = e < end ? e + 1 : end;
         cw_trim(&b, &e);
         if (!cw_text_ok(b, (size_t)(e - b), ',', ';', true)) {
             return CW_ERR_TEXT;
@@ -802,7 +802,6 @@ static inline int tank_payload_command_parse_body(const char *s, const char *end
     /* command */
     b = s;
     e = end;
-    s = e < end ? e + 1 : end;
     cw_trim(&b, &e);
     if (!cw_text_ok(b, (size_t)(e - b), '\0', ';', true)) {
         return CW_ERR_TEXT;
@@ -860,7 +859,6 @@ static inline int tank_payload_reply_parse_body(const char *s, const char *end, 
     /* command */
     b = s;
     e = end;
-    s = e < end ? e + 1 : end;
     cw_trim(&b, &e);
     if (!cw_text_ok(b, (size_t)(e - b), '\0', ';', true)) {
         return CW_ERR_TEXT;
@@ -987,7 +985,6 @@ static inline int tank_gpio_config_parse_body(const char *s, const char *end, ta
     /* gpio4 */
     b = s;
     e = cw_token_end(s, end, ',');
-    s = e < end ? e + 1 : end;
     cw_trim(&b, &e);
     {
         int32_t value;
