@@ -16,9 +16,11 @@ from .pyload import load_module
 from .resolve import resolve
 from .targets import python as python_target
 from .targets import c as c_target
+from .targets import markdown as markdown_target
 from .vectors import vector_file
 
-TARGETS = (python_target, c_target)
+# The Markdown target runs the generated Python codec to write its examples.
+TARGETS = (python_target, c_target, markdown_target)
 
 
 def schema_files(directory: Path) -> list[Path]:
@@ -63,6 +65,7 @@ class BuildResult:
 def build(schemas: list[Path], out: Path, check: bool = False, root: Path | None = None) -> BuildResult:
     result = BuildResult()
     expected: dict[str, str] = {}
+    protocols: list[Protocol] = []
     for path in schemas:
         display = str(path.relative_to(root)) if root and path.is_relative_to(root) else str(path)
         try:
@@ -74,8 +77,11 @@ def build(schemas: list[Path], out: Path, check: bool = False, root: Path | None
             result.errors.extend(exc.diagnostics)
             continue
         expected.update(files)
+        protocols.append(protocol)
     if result.errors:
         return result
+    if protocols:
+        expected.update(markdown_target.render_index(protocols))
     for rel, text in sorted(expected.items()):
         target = out / rel
         current = target.read_text(encoding="utf-8") if target.exists() else None

@@ -1,4 +1,4 @@
-"""Command line: `codeword build [--check]`, `codeword lint SCHEMA…`."""
+"""Command line: `codeword build [--check]`, `codeword lint SCHEMA…`, `codeword check`, `codeword diff`."""
 from __future__ import annotations
 
 import argparse
@@ -54,6 +54,16 @@ def cmd_lint(args: argparse.Namespace) -> int:
     return 1 if failed else 0
 
 
+def cmd_check(args: argparse.Namespace) -> int:
+    from .check.command import run_check
+    return run_check(args)
+
+
+def cmd_diff(args: argparse.Namespace) -> int:
+    from .diff.command import run_diff
+    return run_diff(args)
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="codeword", description="Protocol schemas → codecs and docs.")
     parser.add_argument("--debug", action="store_true", help="show tracebacks of internal errors")
@@ -68,6 +78,10 @@ def main(argv: list[str] | None = None) -> int:
     lint.add_argument("schemas", nargs="*")
     lint.add_argument("--schema-dir", default="schemas")
     lint.set_defaults(func=cmd_lint)
+    from .check.command import add_arguments as check_arguments
+    check_arguments(sub.add_parser("check", help="check data (files, captures, logs) against a schema"), cmd_check)
+    from .diff.command import add_arguments as diff_arguments
+    diff_arguments(sub.add_parser("diff", help="classify the changes between two versions of a schema"), cmd_diff)
     args = parser.parse_args(argv)
     try:
         return args.func(args)

@@ -371,9 +371,35 @@ class Variable:
 @dataclass(frozen=True)
 class Event:
     name: str
-    message: Optional[str]
+    message: Optional[str]  # receive events: the message a packet must decode as
     timer: bool
     doc: Optional[Text]
+    request: Optional[str] = None  # application requests: the message whose fields `args` name
+    args: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True)
+class Source:
+    """Where an action takes a value: var, param, packet (field), request (arg),
+    result (of execute) or const."""
+
+    kind: str
+    name: Optional[str] = None
+    value: Optional[int] = None
+
+
+@dataclass(frozen=True)
+class Action:
+    """A named step of a machine (set, flip, increment, keep, transmit, start_timer,
+    stop_timer, deliver, execute, fail) on `target`: a variable, message, parameter,
+    packet field or failure reason."""
+
+    name: str
+    kind: str
+    target: Optional[str]
+    value: Optional[Source] = None
+    fields: tuple[tuple[str, Source], ...] = ()
+    doc: Optional[Text] = None
 
 
 @dataclass(frozen=True)
@@ -388,6 +414,13 @@ class Machine:
     initial: str
     final: tuple[str, ...]
     states: tuple[State, ...]
+    actions: tuple[Action, ...] = ()
+
+    def action(self, name: str) -> Action:
+        return next(a for a in self.actions if a.name == name)
+
+    def event(self, name: str) -> Event:
+        return next(e for e in self.events if e.name == name)
 
 
 @dataclass(frozen=True)

@@ -14,12 +14,14 @@ from typing import Any, Optional
 from . import crc
 from .diagnostics import Loc, Reporter, SchemaError
 from .loader import Document
-from .model import (Checksum, Condition, CrcParams, Direction, Enum, EnumMember, Event,
-                    Example, ExpectedError, Field, FlagBit, FlagSet, Framing, Handler,
+from .model import (Checksum, Condition, CrcParams, Direction, Enum, EnumMember,
+                    Example, ExpectedError, Field, FlagBit, FlagSet, Framing,
                     HistoryEntry, Machine, Message, Note, Parameter, Protocol, Role, Rule,
-                    Sequence, SequenceItem, SequenceRule, State, Text, TextForm, Transition,
-                    Transport, Variable, field_at)
-from .names import name_problem
+                    Sequence, SequenceItem, SequenceRule, Text, TextForm,
+                    Transport, field_at)
+from .name_clashes import generated_name_clashes
+from .names import name_problem, protocol_name_problem
+from .resolve_machines import MachineResolver
 from .validate import structure_errors
 
 INT_TYPE = re.compile(r"^([ui])([0-9]+)$")
@@ -65,7 +67,12 @@ class Resolver:
     # -- top level -------------------------------------------------------------------------
     def resolve(self) -> Protocol:
         d = self.data
-        self.check_name(d["protocol"], ("protocol",), "protocol")
+        problem = protocol_name_problem(d["protocol"])
+        if problem:
+            self.error(("protocol",), f"protocol name {problem}",
+                       "rename it; it names the generated module and header")
+        for path, clash in generated_name_clashes(d):
+            self.error(path, clash, "rename one of them")
         roles = tuple(Role(n, text(r.get("doc"))) for n, r in d.get("roles", {}).items())
         for n in d.get("roles", {}):
             self.check_name(n, ("roles", n), "role")
@@ -188,17 +195,30 @@ class Resolver:
 
     def check_type_cycles(self) -> None:
         types = self.data.get("types", {})
+
+        def refs(body: Any) -> list[str]:
+            """Types a type uses: its own `type` and those of its group fields, nested."""
+            if not isinstance(body, dict):
+                return []
+            out = [body["type"]] if body.get("type") in types else []
+            for sub in body.get("fields", None) or ():
+                out.extend(refs(sub))
+            return out
+
         for start in types:
-            seen = [start]
-            current = types[start].get("type")
-            while current in types:
-                if current in seen:
+            stack, visited = [[start]], {start}
+            while stack:
+                chain = stack.pop()
+                uses = refs(types[chain[-1]])
+                if start in uses:
                     self.error(("types", start, "type"),
-                               f"type {start!r} refers to itself through {' → '.join(seen + [current])}",
-                               "a type must end in a built-in type")
+                               f"type {start!r} refers to itself through {' → '.join(chain + [start])}",
+                               "a type must end in a built-in type; a group may not contain itself")
                     break
-                seen.append(current)
-                current = types[current].get("type")
+                for used in uses:
+                    if used not in visited:
+                        visited.add(used)
+                        stack.append(chain + [used])
 
     def base_type(self, raw: dict, path: tuple) -> str:
         types = self.data.get("types", {})
@@ -295,6 +315,10 @@ class Resolver:
                 self.error(path + ("length",), f"field {name!r}: length {length} is outside 1..{MAX_BYTES_LENGTH}")
                 length = 1
             bits = 8 * length
+        elif kind == "str" and not 0 < (length or f.get("max_length") or 1) <= MAX_BYTES_LENGTH:
+            key = "length" if length else "max_length"
+            self.error(path + (key,), f"field {name!r}: {key} {length or f.get('max_length')} is outside "
+                                      f"1..{MAX_BYTES_LENGTH}")
         elif length is not None and kind != "str":
             self.error(path + ("length",), f"field {name!r}: `length` applies to bytes and str fields")
         field = Field(
@@ -338,6 +362,13 @@ class Resolver:
         if f.scale is not None or f.offset is not None:
             if kind not in ("uint", "int"):
                 self.error(path, f"field {name!r}: scale/offset apply to integer fields")
+            elif f.scale is None and isinstance(f.offset, int) and bits:
+                lo = (-(1 << (bits - 1)) if kind == "int" else 0) + f.offset
+                hi = ((1 << (bits - 1)) - 1 if kind == "int" else (1 << bits) - 1) + f.offset
+                if not (-(1 << 63) <= lo and hi < (1 << 63) or 0 <= lo and hi < (1 << 64)):
+                    self.error(path + ("offset",), f"field {name!r}: values {lo}..{hi} with offset "
+                                                   f"{f.offset} do not fit a 64-bit integer",
+                               "use a smaller offset or a narrower field")
         if f.one_hot and kind != "uint":
             self.error(path + ("one_hot",), f"field {name!r}: one_hot needs an unsigned type")
         if f.exactly_one and f.flags is None:
@@ -834,83 +865,7 @@ class Resolver:
 
     # -- machines --------------------------------------------------------------------------
     def resolve_machine(self, name: str, m: dict, messages: tuple[Message, ...]) -> Machine:
-        path = ("machines", name)
-        self.check_name(name, path, "machine")
-        states = m["states"]
-        events = m["events"]
-        message_names = {x.name for x in messages}
-        for p in m.get("parameters", []):
-            if p not in self.parameters:
-                self.error(path + ("parameters",), f"machine {name!r}: unknown parameter {p!r}")
-        variables = []
-        for vn, v in m.get("variables", {}).items():
-            kind, bits = self.scalar_type(v["type"], path + ("variables", vn, "type"))
-            if kind not in ("uint", "bool") or not bits:
-                self.error(path + ("variables", vn, "type"), f"variable {vn!r}: type must be unsigned")
-                bits = 8
-            initial = v.get("initial", 0)
-            if not self.int_fits(initial, "uint", bits):
-                self.error(path + ("variables", vn, "initial"),
-                           f"variable {vn!r}: initial value {initial} does not fit {v['type']}")
-            variables.append(Variable(vn, bits, initial))
-        for en, e in events.items():
-            if "message" in e and e["message"] not in message_names:
-                self.error(path + ("events", en, "message"), f"event {en!r}: unknown message {e['message']!r}")
-        if m["initial"] not in states:
-            self.error(path + ("initial",), f"machine {name!r}: initial state {m['initial']!r} is not declared")
-        final = tuple(m.get("final", []))
-        resolved_states = []
-        edges: dict[str, set[str]] = {s: set() for s in states}
-        for sn, st in states.items():
-            handlers = []
-            on = st.get("on", {})
-            for en in events:
-                if en not in on:
-                    self.error(path + ("states", sn), f"state {sn!r} does not handle event {en!r}",
-                               "handle it or write `" + en + ": ignore`")
-            for en, h in on.items():
-                hp = path + ("states", sn, "on", en)
-                if en not in events:
-                    self.error(hp, f"state {sn!r}: unknown event {en!r}")
-                if h in ("ignore", "error"):
-                    handlers.append(Handler(en, h))
-                    continue
-                transitions = []
-                for t in (h if isinstance(h, list) else [h]):
-                    if t["to"] not in states:
-                        self.error(hp, f"state {sn!r}: transition to unknown state {t['to']!r}")
-                    else:
-                        edges[sn].add(t["to"])
-                    guard = []
-                    for gk, gv in t.get("guard", {}).items():
-                        op, operand = next(iter(gv.items())) if isinstance(gv, dict) else ("eq", gv)
-                        if op.endswith("_var") and operand not in m.get("variables", {}):
-                            self.error(hp, f"guard names unknown variable {operand!r}")
-                        if op.endswith("_param") and operand not in self.parameters:
-                            self.error(hp, f"guard names unknown parameter {operand!r}")
-                        guard.append(Condition(gk, op, operand))
-                    transitions.append(Transition(t["to"], tuple(guard), tuple(t.get("actions", []))))
-                handlers.append(Handler(en, "transitions", tuple(transitions)))
-            resolved_states.append(State(sn, text(st.get("doc")), tuple(handlers)))
-        reachable, todo = set(), [m["initial"]]
-        while todo:
-            s = todo.pop()
-            if s in reachable or s not in edges:
-                continue
-            reachable.add(s)
-            todo.extend(edges[s])
-        for sn in states:
-            if sn not in reachable:
-                self.error(path + ("states", sn), f"state {sn!r} is unreachable from {m['initial']!r}")
-            if sn not in final and not (edges[sn] - {sn}) and len(states) > 1:
-                self.error(path + ("states", sn), f"state {sn!r} has no way out",
-                           "add a transition or list it under `final`")
-        return Machine(name, self.loc(*path), m.get("role"), text(m.get("doc")),
-                       tuple(m.get("parameters", [])), tuple(variables),
-                       tuple(Event(en, e.get("message"), bool(e.get("timer")), text(e.get("doc")))
-                             for en, e in events.items()),
-                       m["initial"], final, tuple(resolved_states))
-
+        return MachineResolver(self, name, m, messages).resolve()
 
 def resolve(doc: Document) -> Protocol:
     """Validate the structure, then resolve and check the meaning; raise SchemaError."""

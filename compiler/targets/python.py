@@ -1,9 +1,11 @@
 """Python target: one stand-alone module per protocol in generated/python/."""
 from __future__ import annotations
 
+from ..fingerprint import fingerprint, fingerprint32
 from ..model import Protocol
+from .pymachine import machines_view
 from .pyview import leaves_of, module_view
-from .render import environment, tidy
+from .render import docline, environment, tidy
 
 
 def text_head(p: Protocol, head_bits: int) -> list[tuple[str, int]]:
@@ -25,9 +27,10 @@ def text_head(p: Protocol, head_bits: int) -> list[tuple[str, int]]:
 
 def render(p: Protocol) -> dict[str, str]:
     view = module_view(p)
-    docstring = '"""' + f"{p.title.en}: codec generated from the {p.name} schema." + '"""'
+    docstring = '"""' + docline(f"{p.title.en}: codec generated from the {p.name} schema.") + '"""'
     head = view["dispatch"].get("head_bits")
     source = environment().get_template("python/module.py.j2").render(
-        docstring=docstring,
-        text_head=text_head(p, head) if p.framing.text_form and head else [], **view)
+        docstring=docstring, fingerprint=fingerprint(p), fingerprint32=f"{fingerprint32(p):#010x}",
+        text_head=text_head(p, head) if p.framing.text_form and head else [],
+        machines=machines_view(p), **view)
     return {f"python/{p.name}.py": tidy(source, max_blank=2)}

@@ -13,6 +13,8 @@ from typing import ClassVar, Optional, Union
 PROTOCOL = 'car'
 VERSION = '0.3'
 SCHEMA_SHA256 = '39d261d9cbc110e2a0e1a1ab269d71a7951317049b1044d7cd99043988247492'
+FINGERPRINT = 'c44c8363b58b7ae7'  # hash of the wire-relevant schema (codeword diff)
+FINGERPRINT32 = 0xc44c8363  # its first 32 bits
 
 _floor = math.floor
 _isfinite = math.isfinite
@@ -139,7 +141,7 @@ class ControlWordMotor:
 
 @dataclass(slots=True, kw_only=True)
 class ControlWordLed:
-    """Which LED the car lights and for how long. 4 bits (the section's "these 6 bits" is a copy slip, CAR-D1). All zero when unused."""
+    """Which LED the car lights and for how long. 4 bits (the section's \"these 6 bits\" is a copy slip, CAR-D1). All zero when unused."""
     led: int = 0  # High 2 bits: which LED (00-11, four LEDs).
     duration: int = 0  # Low 2 bits: how long, 4 levels: 0 shortest (0 s) ... 3 longest.
 
@@ -524,18 +526,31 @@ def from_dict(name, values):
     return _from_dict(MESSAGES[name], values)
 
 
-def _from_dict(cls, values):
+_FIELD_KINDS = {}  # class → ((field name, type), ...): resolving annotations is slow, do it once
+
+
+def _field_kinds(cls):
     import dataclasses
     import typing
     hints = typing.get_type_hints(cls)
-    kwargs = {}
+    kinds = []
     for f in dataclasses.fields(cls):
-        if f.name not in values:
-            continue
-        value = values[f.name]
         kind = hints[f.name]
         args = [a for a in typing.get_args(kind) if a is not type(None)]
-        kind = args[0] if args and typing.get_origin(kind) is Union else kind
+        kinds.append((f.name, args[0] if args and typing.get_origin(kind) is Union else kind))
+    return tuple(kinds)
+
+
+def _from_dict(cls, values):
+    import dataclasses
+    kinds = _FIELD_KINDS.get(cls)
+    if kinds is None:
+        kinds = _FIELD_KINDS[cls] = _field_kinds(cls)
+    kwargs = {}
+    for field_name, kind in kinds:
+        if field_name not in values:
+            continue
+        value = values[field_name]
         if value is None:
             pass
         elif dataclasses.is_dataclass(kind):
@@ -552,7 +567,7 @@ def _from_dict(cls, values):
             value = kind[value] if isinstance(value, str) and value in kind.__members__ else kind(value)
         elif kind is bytes and isinstance(value, str):
             value = bytes.fromhex(value)
-        kwargs[f.name] = value
+        kwargs[field_name] = value
     return cls(**kwargs)
 
 

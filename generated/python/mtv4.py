@@ -13,6 +13,8 @@ from typing import ClassVar, Optional, Union
 PROTOCOL = 'mtv4'
 VERSION = '2014.11.12'
 SCHEMA_SHA256 = '320ca01ee8767b17a9e80a28eb2755e3358374793fcd5cd74658874ace8a7eb5'
+FINGERPRINT = '30e4a5109f06dfab'  # hash of the wire-relevant schema (codeword diff)
+FINGERPRINT32 = 0x30e4a510  # its first 32 bits
 
 _floor = math.floor
 _isfinite = math.isfinite
@@ -281,6 +283,7 @@ def _raw_set_wheels_velocities(m):
     v = m.robots
     if v.__class__ is not int and not isinstance(v, int):
         raise _enc('set_wheels_velocities', 'robots', v, 'type', 'an int or Robots')
+    v = int(v)
     if v < 0 or v & 0x0 or v > 0xffff:
         raise _enc('set_wheels_velocities', 'robots', v, 'flags', 'only the bits of robots', 'MTV4-D3', 'an individual command or reply addresses exactly one robot')
     if v == 0 or v & (v - 1):
@@ -372,6 +375,7 @@ def _raw_set_led(m):
     v = m.robots
     if v.__class__ is not int and not isinstance(v, int):
         raise _enc('set_led', 'robots', v, 'type', 'an int or Robots')
+    v = int(v)
     if v < 0 or v & 0x0 or v > 0xffff:
         raise _enc('set_led', 'robots', v, 'flags', 'only the bits of robots', 'MTV4-D3', 'an individual command or reply addresses exactly one robot')
     if v == 0 or v & (v - 1):
@@ -473,6 +477,7 @@ def _raw_set_wheels_velocities_with_odometry(m):
     v = m.robots
     if v.__class__ is not int and not isinstance(v, int):
         raise _enc('set_wheels_velocities_with_odometry', 'robots', v, 'type', 'an int or Robots')
+    v = int(v)
     if v < 0 or v & 0x0 or v > 0xffff:
         raise _enc('set_wheels_velocities_with_odometry', 'robots', v, 'flags', 'only the bits of robots', 'MTV4-D3', 'an individual command or reply addresses exactly one robot')
     if v == 0 or v & (v - 1):
@@ -481,6 +486,7 @@ def _raw_set_wheels_velocities_with_odometry(m):
     v = m.status
     if v.__class__ is not int and not isinstance(v, int):
         raise _enc('set_wheels_velocities_with_odometry', 'status', v, 'type', 'an int or Status')
+    v = int(v)
     if v < 0 or v & 0xfff8 or v > 0xffff:
         raise _enc('set_wheels_velocities_with_odometry', 'status', v, 'flags', 'only the bits of status', None)
     r_status = int(v)
@@ -613,6 +619,7 @@ def _raw_ack(m):
     v = m.robots
     if v.__class__ is not int and not isinstance(v, int):
         raise _enc('ack', 'robots', v, 'type', 'an int or Robots')
+    v = int(v)
     if v < 0 or v & 0x0 or v > 0xffff:
         raise _enc('ack', 'robots', v, 'flags', 'only the bits of robots', 'MTV4-D3', 'an individual command or reply addresses exactly one robot')
     if v == 0 or v & (v - 1):
@@ -686,6 +693,7 @@ def _raw_odometry_reply(m):
     v = m.robots
     if v.__class__ is not int and not isinstance(v, int):
         raise _enc('odometry_reply', 'robots', v, 'type', 'an int or Robots')
+    v = int(v)
     if v < 0 or v & 0x0 or v > 0xffff:
         raise _enc('odometry_reply', 'robots', v, 'flags', 'only the bits of robots', 'MTV4-D3', 'an individual command or reply addresses exactly one robot')
     if v == 0 or v & (v - 1):
@@ -859,6 +867,15 @@ class StreamDecoder:
         self.offset += n
         del self._buffer[:n]
 
+    def finish(self):
+        """End of stream: a DecodeError for an incomplete frame left over, if any;
+        its bytes count as skipped."""
+        if not self._buffer:
+            return []
+        e = _dec(None, None, len(self._buffer), 'length', 'a whole frame before the end', self.offset * 8)
+        self._skip(len(self._buffer))
+        return [e]
+
 
 _ENCODERS = {SetWheelsVelocities: _encode_set_wheels_velocities, SetLed: _encode_set_led, SetWheelsVelocitiesWithOdometry: _encode_set_wheels_velocities_with_odometry, Ack: _encode_ack, OdometryReply: _encode_odometry_reply, }
 MESSAGES = {'set_wheels_velocities': SetWheelsVelocities, 'set_led': SetLed, 'set_wheels_velocities_with_odometry': SetWheelsVelocitiesWithOdometry, 'ack': Ack, 'odometry_reply': OdometryReply, }
@@ -882,18 +899,31 @@ def from_dict(name, values):
     return _from_dict(MESSAGES[name], values)
 
 
-def _from_dict(cls, values):
+_FIELD_KINDS = {}  # class → ((field name, type), ...): resolving annotations is slow, do it once
+
+
+def _field_kinds(cls):
     import dataclasses
     import typing
     hints = typing.get_type_hints(cls)
-    kwargs = {}
+    kinds = []
     for f in dataclasses.fields(cls):
-        if f.name not in values:
-            continue
-        value = values[f.name]
         kind = hints[f.name]
         args = [a for a in typing.get_args(kind) if a is not type(None)]
-        kind = args[0] if args and typing.get_origin(kind) is Union else kind
+        kinds.append((f.name, args[0] if args and typing.get_origin(kind) is Union else kind))
+    return tuple(kinds)
+
+
+def _from_dict(cls, values):
+    import dataclasses
+    kinds = _FIELD_KINDS.get(cls)
+    if kinds is None:
+        kinds = _FIELD_KINDS[cls] = _field_kinds(cls)
+    kwargs = {}
+    for field_name, kind in kinds:
+        if field_name not in values:
+            continue
+        value = values[field_name]
         if value is None:
             pass
         elif dataclasses.is_dataclass(kind):
@@ -910,5 +940,5 @@ def _from_dict(cls, values):
             value = kind[value] if isinstance(value, str) and value in kind.__members__ else kind(value)
         elif kind is bytes and isinstance(value, str):
             value = bytes.fromhex(value)
-        kwargs[f.name] = value
+        kwargs[field_name] = value
     return cls(**kwargs)

@@ -13,6 +13,8 @@ from typing import ClassVar, Optional, Union
 PROTOCOL = 'route'
 VERSION = None
 SCHEMA_SHA256 = 'd94187a8818b0cb788982ae6a053947239ae31cc835af3ba25db442464e6667b'
+FINGERPRINT = '3e65a8fa00f90c84'  # hash of the wire-relevant schema (codeword diff)
+FINGERPRINT32 = 0x3e65a8fa  # its first 32 bits
 
 _floor = math.floor
 _isfinite = math.isfinite
@@ -653,18 +655,31 @@ def from_dict(name, values):
     return _from_dict(MESSAGES[name], values)
 
 
-def _from_dict(cls, values):
+_FIELD_KINDS = {}  # class → ((field name, type), ...): resolving annotations is slow, do it once
+
+
+def _field_kinds(cls):
     import dataclasses
     import typing
     hints = typing.get_type_hints(cls)
-    kwargs = {}
+    kinds = []
     for f in dataclasses.fields(cls):
-        if f.name not in values:
-            continue
-        value = values[f.name]
         kind = hints[f.name]
         args = [a for a in typing.get_args(kind) if a is not type(None)]
-        kind = args[0] if args and typing.get_origin(kind) is Union else kind
+        kinds.append((f.name, args[0] if args and typing.get_origin(kind) is Union else kind))
+    return tuple(kinds)
+
+
+def _from_dict(cls, values):
+    import dataclasses
+    kinds = _FIELD_KINDS.get(cls)
+    if kinds is None:
+        kinds = _FIELD_KINDS[cls] = _field_kinds(cls)
+    kwargs = {}
+    for field_name, kind in kinds:
+        if field_name not in values:
+            continue
+        value = values[field_name]
         if value is None:
             pass
         elif dataclasses.is_dataclass(kind):
@@ -681,7 +696,7 @@ def _from_dict(cls, values):
             value = kind[value] if isinstance(value, str) and value in kind.__members__ else kind(value)
         elif kind is bytes and isinstance(value, str):
             value = bytes.fromhex(value)
-        kwargs[f.name] = value
+        kwargs[field_name] = value
     return cls(**kwargs)
 
 
