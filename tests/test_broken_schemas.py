@@ -99,9 +99,12 @@ def test_broken_schema_diagnostics_have_hints(path: Path):
 
 def test_alias_bomb_is_rejected_fast():
     path = BROKEN / "yaml_alias_bomb.yaml"
+    # A hang guard, not a speed check: an unbounded expansion of this file runs
+    # for hours and exhausts memory; the bounded loader stops within a second
+    # on an idle machine, so even a heavily loaded one stays far inside 30 s.
     started = time.monotonic()
     found = diagnostics_of(path)
-    assert time.monotonic() - started < 2.0
+    assert time.monotonic() - started < 30.0
     assert any("expan" in d.message for d in found)
 
 
