@@ -7,7 +7,9 @@ exhaust memory.
 """
 from __future__ import annotations
 
+import math
 import re
+import unicodedata
 from pathlib import Path
 from typing import Any
 
@@ -43,6 +45,28 @@ _SCALAR_TAGS = {
     "tag:yaml.org,2002:null", "tag:yaml.org,2002:bool", "tag:yaml.org,2002:int",
     "tag:yaml.org,2002:float", "tag:yaml.org,2002:str",
 }
+
+
+# Schema text flows into generated C and Python. Control characters (other than
+# tab, newline and carriage return), line/paragraph separators, lone surrogates
+# and invisible format characters (bidirectional overrides, zero-width spaces:
+# "Trojan Source") could hide code from a reviewer or break a generated file.
+_ALLOWED_CONTROLS = "\t\n\r"
+_BANNED_CATEGORIES = {"Cc": "a control character", "Cf": "an invisible format character",
+                      "Cs": "a lone surrogate", "Zl": "a line separator", "Zp": "a paragraph separator"}
+
+
+_ASCII_CONTROL = re.compile(r"[\x00-\x08\x0b\x0c\x0e-\x1f\x7f]")
+
+
+def _text_problem(text: str) -> str | None:
+    if text.isascii() and not _ASCII_CONTROL.search(text):
+        return None  # the common case, checked fast (alias expansion repeats scalars)
+    for i, ch in enumerate(text):
+        what = _BANNED_CATEGORIES.get(unicodedata.category(ch))
+        if what and ch not in _ALLOWED_CONTROLS:
+            return f"text contains {what} (U+{ord(ch):04X}) at character {i + 1}"
+    return None
 
 
 def _scalar(node: yaml.ScalarNode) -> Any:
@@ -121,7 +145,16 @@ def load_text(text: str, file: str) -> Document:
                 errors.append(Diagnostic(_loc(file, n), f"YAML tag {n.tag!r} is not allowed",
                                          "use plain YAML data without tags"))
                 return None
-            return _scalar(n)
+            value = _scalar(n)
+            if isinstance(value, str):
+                problem = _text_problem(value)
+                if problem:
+                    errors.append(Diagnostic(_loc(file, n), problem,
+                                             "remove it; write what it stands for in words"))
+            elif isinstance(value, float) and not math.isfinite(value):
+                errors.append(Diagnostic(_loc(file, n), f"number {n.value!r} is not finite",
+                                         "use a finite number"))
+            return value
         if isinstance(n, yaml.SequenceNode):
             if n.tag != "tag:yaml.org,2002:seq":
                 errors.append(Diagnostic(_loc(file, n), f"YAML tag {n.tag!r} is not allowed",
@@ -138,6 +171,9 @@ def load_text(text: str, file: str) -> Document:
                                          "use a plain name as the key"))
                 continue
             key = _scalar(key_node)
+            if isinstance(key, str) and _text_problem(key):
+                errors.append(Diagnostic(_loc(file, key_node), "key: " + _text_problem(key),
+                                         "remove it; keys are plain names"))
             if not isinstance(key, (str, int)) or isinstance(key, bool):
                 key = key_node.value
             if key in result:

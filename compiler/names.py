@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import keyword
 import re
+import sys
 
 IDENTIFIER = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*\Z")
 
@@ -24,6 +25,22 @@ PYTHON_KEYWORDS = frozenset(keyword.kwlist) | frozenset(keyword.softkwlist)
 # Names the generated code defines on every message class or module.
 GENERATED = frozenset({"encode", "decode", "validate", "self", "cls", "MESSAGE", "NAME"})
 
+# C99 guarantees 63 significant characters in an identifier; generated names
+# add a prefix, so schema names stay well below that.
+MAX_NAME_LENGTH = 40
+
+# Class names every generated Python module defines or imports: a message, enum
+# or flag set whose class name is one of these would replace it.
+GENERATED_CLASSES = frozenset({
+    "CodecError", "EncodeError", "DecodeError", "SequenceError", "StreamDecoder",
+    "ClassVar", "Optional", "Union", "Fraction", "Decimal",
+})
+
+# A protocol name becomes generated/python/<name>.py and generated/c/<name>.h: it
+# must not shadow a standard module for code that puts generated/python on
+# sys.path, nor replace the shared C runtime header codeword.h (prefix cw_).
+RESERVED_PROTOCOLS = frozenset(sys.stdlib_module_names) | {"codeword", "cw"}
+
 
 def name_problem(name: str) -> str | None:
     """Why `name` cannot be used as a schema name, or None if it can."""
@@ -31,6 +48,8 @@ def name_problem(name: str) -> str | None:
         return f"{name!r} is not an identifier (letters, digits and _, not starting with a digit)"
     if not name.isascii():
         return f"{name!r} must be ASCII"
+    if len(name) > MAX_NAME_LENGTH:
+        return f"{name[:20]!r}… is {len(name)} characters long (at most {MAX_NAME_LENGTH})"
     if name in PYTHON_KEYWORDS:
         return f"{name!r} is a Python keyword"
     if name in C_KEYWORDS:
@@ -40,6 +59,14 @@ def name_problem(name: str) -> str | None:
     if name in GENERATED:
         return f"{name!r} is used by the generated code"
     return None
+
+
+def protocol_name_problem(name: str) -> str | None:
+    """Why `name` cannot name a protocol (a module and a header), or None."""
+    problem = name_problem(name)
+    if problem is None and name in RESERVED_PROTOCOLS:
+        problem = f"{name!r} is a Python standard module or codeword's own runtime"
+    return problem
 
 
 def camel(name: str) -> str:

@@ -14,14 +14,16 @@ def pyrepr(value) -> str:
 
 
 def comment(value) -> str:
-    """Text safe inside a one-line comment: no newlines."""
-    return " ".join(str(value).split())
+    """Text safe inside a one-line comment, Python or C: no newlines, no C comment
+    delimiters, no trigraphs ("??/" at a line end would splice lines)."""
+    return " ".join(str(value).split()).replace("*/", "* /").replace("/*", "/ *").replace("??", "? ?")
 
 
 def docline(value) -> str:
     """Text safe inside a triple-quoted docstring."""
     text = " ".join(str(value).split())
-    return text.replace("\\", "\\\\").replace('"""', '\\"\\"\\"').rstrip('"')
+    # Every quote escaped: no run of them can close the string, even at its end.
+    return text.replace("\\", "\\\\").replace('"', '\\"')
 
 
 @lru_cache(maxsize=1)

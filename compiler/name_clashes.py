@@ -1,0 +1,54 @@
+"""Names that are distinct in a schema but the same in generated code.
+
+Python class names are CamelCase (`set_led` and `setLed` both give `SetLed`);
+C constants are upper case with a prefix (`left` and `LEFT` both give
+`P_SIDE_LEFT`; enum `side` member `left_x` and enum `side_left` member `x`
+both give `P_SIDE_LEFT_X`). A second definition would silently replace the
+first in Python and fail to compile in C, so such schemas are refused.
+"""
+from __future__ import annotations
+
+from typing import Any, Iterator
+
+from .names import GENERATED_CLASSES, camel
+
+Clash = tuple[tuple, str]  # (path into the document, message)
+
+
+def _classes(d: dict[str, Any]) -> Iterator[tuple[str, tuple, str]]:
+    for section, what in (("messages", "message"), ("enums", "enum"), ("flags", "flag set")):
+        for name in d.get(section, {}) or {}:
+            if isinstance(name, str):
+                yield camel(name), (section, name), f"{what} {name!r}"
+
+
+def _constants(d: dict[str, Any]) -> Iterator[tuple[str, tuple, str]]:
+    for name in d.get("messages", {}) or {}:
+        if isinstance(name, str):
+            yield f"MSG_{name}".upper(), ("messages", name), f"message {name!r}"
+    for name in d.get("directions", {}) or {}:
+        if isinstance(name, str):
+            yield f"DIR_{name}".upper(), ("directions", name), f"direction {name!r}"
+    for section, key in (("enums", "values"), ("flags", "bits")):
+        for set_name, body in (d.get(section, {}) or {}).items():
+            members = body.get(key, []) if isinstance(body, dict) else []
+            for i, member in enumerate(members):
+                if isinstance(member, dict) and isinstance(member.get("name"), str):
+                    yield (f"{set_name}_{member['name']}".upper(), (section, set_name, key, i, "name"),
+                           f"{set_name}.{member['name']}")
+
+
+def generated_name_clashes(d: dict[str, Any]) -> list[Clash]:
+    found: list[Clash] = []
+    for kind, names in (("Python class", _classes(d)), ("C constant", _constants(d))):
+        first: dict[str, str] = {}
+        for generated, path, what in names:
+            if kind == "Python class" and generated in GENERATED_CLASSES:
+                found.append((path, f"{what} would be the Python class {generated}, which the "
+                                    "generated module already defines"))
+            elif generated in first:
+                found.append((path, f"{what} and {first[generated]} would both be the {kind} "
+                                    f"{generated}"))
+            else:
+                first[generated] = what
+    return found
