@@ -17,10 +17,12 @@ from .resolve import resolve
 from .targets import python as python_target
 from .targets import c as c_target
 from .targets import markdown as markdown_target
+from .targets import promela as promela_target
 from .vectors import vector_file
 
 # The Markdown target runs the generated Python codec to write its examples.
-TARGETS = (python_target, c_target, markdown_target)
+# The Promela target writes a model only for schemas that declare machines.
+TARGETS = (python_target, c_target, markdown_target, promela_target)
 
 
 def schema_files(directory: Path) -> list[Path]:

@@ -17,6 +17,7 @@ from ..pyload import load_module
 from . import python as python_target
 from .markdown_budget import longest_text_line, transport_views
 from .markdown_checksum import checksum_sections
+from .markdown_delivery import delivery_view
 from .markdown_examples import checked, message_example, sequence_example
 from .markdown_layout import diagram, field_columns, field_rows, payload_note, slots, text_line
 from .markdown_machine import conditions, machine_view, sequence_view
@@ -213,8 +214,11 @@ def protocol_view(p: Protocol, codec: types.ModuleType) -> dict:
     contents += ["[Checksum](#checksum)", "[Framing](#framing)"]
     if p.sequences:
         contents.append("[Sequences](#sequences)")
+    delivery = delivery_view(p, codec, linker)
     if p.machines:
         contents.append("[State machines](#state-machines)")
+    if delivery:
+        contents.append("[Delivery guarantee](#delivery)")
     contents.append("[Spec notes](#spec-notes)")
     if p.history:
         contents.append("[Version history](#version-history)")
@@ -251,6 +255,7 @@ def protocol_view(p: Protocol, codec: types.ModuleType) -> dict:
                            examples=[sequence_example(p, codec, s, ex, linker) for ex in s.examples])
                       for s in p.sequences],
         "machines": [machine_view(p, m, linker) for m in p.machines],
+        "delivery": delivery,
         "notes": [{"id": n.id, "anchor": anchor("note", n.id), "text": linker.link(cell(en(n.text))),
                    "originals": [(l, cell(t)) for l, t in originals(n.text)]} for n in p.notes],
         "history": [{"version": h.version, "date": h.date, "author": cell(h.author),

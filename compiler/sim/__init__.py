@@ -11,6 +11,9 @@ overtaking an earlier packet on the same sender→listener path.
 Everything is driven by one seeded random.Random, so a seed names a run; the
 run's inputs and outputs are recorded as a trace (`Trace`) that a C driver can
 replay against the generated C machines.
+
+The machines come from the committed generated/python/tr24.py unless a module
+is passed (the docs build passes the codec it has just rendered).
 """
 from __future__ import annotations
 
@@ -258,22 +261,24 @@ def trace_lines(out) -> list[str]:
             + [f"dropped {d.hex()}" for d in out.dropped])
 
 
-def efficiency(p_fwd: float, p_ack: float, commands: int = 20000, seed: int = 1) -> tuple[float, float]:
+def efficiency(p_fwd: float, p_ack: float, commands: int = 20000, seed: int = 1,
+               module=None) -> tuple[float, float]:
     """(measured, theoretical) transmissions per delivered command over a link with
     these loss rates, no duplication or corruption, and a timeout longer than any
     round trip; theory: attempts are independent and one succeeds when both the
     command and its reply arrive, so their number is geometric with mean
     1/((1-p_fwd)(1-p_ack))."""
-    sim = Simulation(seed, Link(p_fwd=p_fwd, p_ack=p_ack, delay=(1, 4)), timeout=10)
+    sim = Simulation(seed, Link(p_fwd=p_fwd, p_ack=p_ack, delay=(1, 4)), timeout=10, module=module)
     stats = sim.run(commands)
     return stats.command_packets / stats.delivered, 1.0 / ((1.0 - p_fwd) * (1.0 - p_ack))
 
 
-def efficiency_table(rates=(0.0, 0.1, 0.3, 0.5), commands: int = 20000) -> list[dict]:
+def efficiency_table(rates=(0.0, 0.1, 0.3, 0.5), commands: int = 20000, seed: int = 1,
+                     module=None) -> list[dict]:
     """Rows for the docs: the same loss rate p in both directions."""
     rows = []
     for p in rates:
-        measured, theory = efficiency(p, p, commands)
+        measured, theory = efficiency(p, p, commands, seed, module)
         rows.append({"p": p, "measured": measured, "theory": theory,
                      "error": abs(measured - theory) / theory})
     return rows
