@@ -21,6 +21,7 @@ import struct
 from typing import Any
 
 from .model import Field, Message, Protocol
+from .vector_sequences import sequence_vectors
 
 FORMAT = "codeword-vectors/1"
 RANDOM_PER_MESSAGE = 200
@@ -230,6 +231,8 @@ class Generator:
                "framing": p.framing.kind, "valid": valid, "invalid": invalid}
         if p.framing.kind == "bytes":
             out["streams"] = self.streams(valid)
+        if p.sequences:
+            out["sequences"] = sequence_vectors(p, self.mod, self.rng, valid, plain)
         return out
 
     def mutations(self, m: Message, data) -> list[tuple[str, Any]]:

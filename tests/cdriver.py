@@ -160,15 +160,17 @@ class Driver:
                     events.append({"kind": self.v.upper("MSG", m.name), "name": m.name,
                                    "expected": self.init(m.layout, e["values"])})
             streams.append({"bytes": bytes.fromhex(s["hex"]), "events": events, "name": s["name"]})
+        sequences = self.sequences(mine(vectors.get("sequences", [])))
+        seq_wires = [c["wire"] for s in sequences for c in s["cases"]]
         wires = list(dict.fromkeys([c["wire"] for mm in messages for c in mm["cases"]]
                                    + [c["canon"] for mm in messages for c in mm["cases"]]
-                                   + [c["wire"] for c in invalid]))
+                                   + [c["wire"] for c in invalid] + seq_wires))
         env = jinja2.Environment(undefined=jinja2.StrictUndefined, trim_blocks=True, lstrip_blocks=True)
         env.filters["cbytes"] = lambda b: "{" + ", ".join(f"0x{x:02x}" for x in b) + "}" if b else "{0}"
         env.filters["cstr"] = cstr
         wire_max = max([len(c["wire"]) for mm in messages for c in mm["cases"]]
                        + [len(c["canon"]) for mm in messages for c in mm["cases"]]
-                       + [len(c["wire"]) for c in invalid] + [1])
+                       + [len(c["wire"]) for c in invalid] + [len(w) for w in seq_wires] + [1])
         return env.from_string(TEMPLATE.read_text()).render(
             p=p, px=p.name, PX=p.name.upper(), messages=messages, invalid=invalid, streams=streams,
             wires=wires, wire_index={w: i for i, w in enumerate(wires)},
@@ -176,4 +178,22 @@ class Driver:
             text=self.text, wire_max=wire_max + 1, self_identifying=p.self_identifying,
             has_dir=bool(p.directions), word=self.v.word_bits() is not None and p.framing.kind == "bits",
             text_form=p.framing.text_form is not None,
-            error_const=ERR)
+            error_const=ERR, sequences=sequences,
+            seq_cap=max([len(c["messages"]) for sq in sequences for c in sq["cases"]] + [0]) + 2)
+
+    def sequences(self, cases: list[dict]) -> list[dict]:
+        """Whole-sequence vectors by sequence; expected messages as initialisers of
+        the protocol's message union, laid out one after another."""
+        out = []
+        for s in self.p.sequences:
+            mine = []
+            for c in (c for c in cases if c["sequence"] == s.name):
+                messages = [{"kind": self.v.upper("MSG", u["message"]), "name": u["message"],
+                             "expected": self.init(self.p.message(u["message"]).layout, u["values"])}
+                            for u in c.get("messages", [])]
+                mine.append({"name": c["name"], "wire": bytes.fromhex(c["hex"]), "messages": messages,
+                             "error": c.get("error"), "index": c.get("index"),
+                             "rule": c.get("error") in ("consecutive", "equal", "member", "unique")})
+            if mine:
+                out.append({"name": s.name, "fn": f"{self.p.name}_{s.name}", "cases": mine})
+        return out

@@ -4,6 +4,7 @@ from __future__ import annotations
 from ..fingerprint import fingerprint, fingerprint32
 from ..model import Protocol
 from .cmachine import machines_view
+from .csequence import sequences_view
 from .cview import CView, cchar, clit, comment, cstr
 from .render import environment, tidy
 from .wire import leaves_of
@@ -97,6 +98,6 @@ def render(p: Protocol) -> dict[str, str]:
         checksums=v.byte_checksums(), text=v.text, dispatch=dispatch, stream=v.stream() if fr.kind == "bytes" else {},
         word_bits=v.word_bits(), text_form=text_form, cstr=cstr, ignore=ignore, ignore_end=ignore_end,
         terminator=cchar(fr.terminator), prefix_separator=cchar(fr.prefix_separator),
-        machines=machines_view(p))
+        machines=machines_view(p), sequences=sequences_view(v))
     runtime = env.get_template("c/codeword.h.j2").render()
     return {f"c/{p.name}.h": tidy(header, max_blank=1), "c/codeword.h": runtime}

@@ -29,7 +29,9 @@ ERR = {
     "checksum": "CW_ERR_CHECKSUM", "reserved": "CW_ERR_RESERVED", "dispatch": "CW_ERR_DISPATCH",
     "syntax": "CW_ERR_SYNTAX", "count": "CW_ERR_COUNT", "text": "CW_ERR_TEXT", "type": "CW_ERR_TYPE",
     "finite": "CW_ERR_FINITE", "terminator": "CW_ERR_TERMINATOR", "prefix": "CW_ERR_PREFIX",
-    "rule": "CW_ERR_RULE", "precision": "CW_ERR_PRECISION",
+    "rule": "CW_ERR_RULE", "precision": "CW_ERR_PRECISION", "grammar": "CW_ERR_GRAMMAR",
+    "consecutive": "CW_ERR_CONSECUTIVE", "equal": "CW_ERR_EQUAL", "member": "CW_ERR_MEMBER",
+    "unique": "CW_ERR_UNIQUE",
 }
 
 INT_TYPES = [(8, "int8_t", "uint8_t"), (16, "int16_t", "uint16_t"), (32, "int32_t", "uint32_t"),

@@ -504,6 +504,227 @@ static inline int car_encode(const car_message_t *msg, uint8_t *buf, size_t cap)
     }
 }
 
+/* ---- sequence program: A whole program as sent to the master: the header, then h1 master control words, then h2_count slave control words. ---- */
+
+/* Reads the messages of a program one by one from its bytes:
+ * car_program_iter_init, then car_program_iter_next until it returns 0 (the whole
+ * sequence read) or an error. The input is not copied: it must outlive the
+ * iterator. Cross-message rules need the whole sequence: run car_program_check
+ * on the messages read, or use car_program_decode. */
+typedef struct {
+    const uint8_t *buf;
+    size_t len;
+    size_t pos;  /* byte offset of the next unit */
+    size_t index;  /* the unit read next; after an error, the one it is about (the unit count: the end) */
+    uint32_t left[2];  /* messages a count item still takes */
+    int8_t status;  /* 0 running, 1 finished, negative: the error it stopped on */
+    uint8_t pc;  /* grammar slot */
+} car_program_iter_t;
+
+static inline void car_program_grammar_init(car_program_iter_t *it)
+{
+    memset(it, 0, sizeof *it);
+}
+
+/* Feeds the grammar the next message, or NULL for the end of the input.
+ * CW_OK: taken; 1: the end, accepted; else CW_ERR_GRAMMAR or CW_ERR_COUNT. */
+static inline int car_program_step(car_program_iter_t *it, const car_message_t *m)
+{
+    int kind = m ? (int)m->kind : 0;
+    for (;;) {
+        switch (it->pc) {
+        case 0u:  /* header: one header */
+            if (kind != CAR_MSG_HEADER) {
+                return CW_ERR_GRAMMAR;
+            }
+            it->left[0] = (uint32_t)m->as.header.h1;
+            it->left[1] = (uint32_t)m->as.header.h2_count;
+            it->pc = 1u;
+            return CW_OK;
+        case 1u:  /* master: count master_control */
+            if (it->left[0] == 0u) {
+                it->pc = 2u;
+                break;
+            }
+            if (kind == 0) {
+                return CW_ERR_COUNT;
+            }
+            if (kind != CAR_MSG_MASTER_CONTROL) {
+                return CW_ERR_GRAMMAR;
+            }
+            it->left[0]--;
+            return CW_OK;
+        case 2u:  /* slaves: count slave_control */
+            if (it->left[1] == 0u) {
+                it->pc = 3u;
+                break;
+            }
+            if (kind == 0) {
+                return CW_ERR_COUNT;
+            }
+            if (kind != CAR_MSG_SLAVE_CONTROL) {
+                return CW_ERR_GRAMMAR;
+            }
+            it->left[1]--;
+            return CW_OK;
+        case 3u:  /* the end of the input */
+            return kind == 0 ? 1 : CW_ERR_GRAMMAR;
+        default:
+            return CW_ERR_GRAMMAR;
+        }
+    }
+}
+
+/* Decodes one unit as the given kind. */
+static inline int car_program_unit(int kind, const uint8_t *buf, size_t len, car_message_t *out)
+{
+    out->kind = (uint8_t)kind;
+    switch (kind) {
+    case CAR_MSG_HEADER:
+        return car_header_decode(buf, len, &out->as.header);
+    case CAR_MSG_MASTER_CONTROL:
+        return car_master_control_decode(buf, len, &out->as.master_control);
+    case CAR_MSG_SLAVE_CONTROL:
+        return car_slave_control_decode(buf, len, &out->as.slave_control);
+    default:
+        return CW_ERR_DISPATCH;
+    }
+}
+
+/* The kind the grammar takes next without looking at the input (0: the end):
+ * program's messages do not say what they are. */
+static inline int car_program_expected(car_program_iter_t *it)
+{
+    for (;;) {
+        switch (it->pc) {
+        case 0u:
+            return CAR_MSG_HEADER;
+        case 1u:
+            if (it->left[0] == 0u) {
+                it->pc = 2u;
+                break;
+            }
+            return CAR_MSG_MASTER_CONTROL;
+        case 2u:
+            if (it->left[1] == 0u) {
+                it->pc = 3u;
+                break;
+            }
+            return CAR_MSG_SLAVE_CONTROL;
+        case 3u:
+            return 0;
+        default:
+            return 0;
+        }
+    }
+}
+
+static inline void car_program_iter_init(car_program_iter_t *it, const uint8_t *buf, size_t len)
+{
+    car_program_grammar_init(it);
+    it->buf = buf;
+    it->len = len;
+}
+
+/* 1: the next message in *out; 0: the end, the sequence complete; negative: the
+ * error, about unit it->index (the unit count for one at the end). */
+static inline int car_program_iter_next(car_program_iter_t *it, car_message_t *out)
+{
+    size_t size;
+    int kind;
+    int rc;
+    if (it->status != 0) {
+        return it->status > 0 ? 0 : it->status;
+    }
+    kind = car_program_expected(it);
+    if (it->pos >= it->len) {
+        rc = car_program_step(it, NULL);
+        it->status = (int8_t)rc;
+        return rc > 0 ? 0 : rc;
+    }
+    if (kind == 0) {
+        it->status = (int8_t)CW_ERR_GRAMMAR;  /* data after the sequence */
+        return CW_ERR_GRAMMAR;
+    }
+    size = it->len - it->pos < 4u ? it->len - it->pos : 4u;
+    rc = car_program_unit(kind, it->buf + it->pos, size, out);
+    if (rc >= 0) {
+        rc = car_program_step(it, out);
+    }
+    if (rc < 0) {
+        it->status = (int8_t)rc;
+        return rc;
+    }
+    it->pos += size;
+    it->index++;
+    return 1;
+}
+
+/* The cross-message rules of a grammatical program: CW_OK or the error
+ * of the first unit that breaks one (*at, if not NULL, gets its index). */
+static inline int car_program_rules(const car_message_t *m, size_t n, size_t *at)
+{
+    size_t first = SIZE_MAX;
+    int rc = CW_OK;
+    if (rc != CW_OK && at) {
+        *at = first;
+    }
+    (void)m;
+    (void)n;
+    return rc;
+}
+
+/* Checks messages as a whole program (before encoding them, say): the
+ * grammar, then the rules. CW_OK or the error; *at (if not NULL) gets the
+ * index of the message it is about (n for the end). */
+static inline int car_program_check(const car_message_t *m, size_t n, size_t *at)
+{
+    car_program_iter_t it;
+    int rc = CW_OK;
+    car_program_grammar_init(&it);
+    for (it.index = 0; it.index <= n; it.index++) {
+        rc = car_program_step(&it, it.index < n ? &m[it.index] : NULL);
+        if (rc < 0) {
+            if (at) {
+                *at = it.index;
+            }
+            return rc;
+        }
+    }
+    return car_program_rules(m, n, at);
+}
+
+/* Decodes and checks a whole program into out[0..cap): the number of
+ * messages (at most 32767), or the error (CW_ERR_CAPACITY if out is too small);
+ * *at (if not NULL) gets the index of the unit the error is about. */
+static inline int car_program_decode(const uint8_t *buf, size_t len, car_message_t *out, size_t cap, size_t *at)
+{
+    car_program_iter_t it;
+    car_message_t spare;  /* takes the message that does not fit, to tell a full out from an error */
+    size_t n = 0;
+    int rc;
+    car_program_iter_init(&it, buf, len);
+    for (;;) {
+        rc = car_program_iter_next(&it, n < cap && n < 32767u ? &out[n] : &spare);
+        if (rc <= 0) {
+            break;
+        }
+        if (n >= cap || n >= 32767u) {
+            rc = CW_ERR_CAPACITY;
+            break;
+        }
+        n++;
+    }
+    if (rc < 0) {
+        if (at) {
+            *at = it.index;
+        }
+        return rc;
+    }
+    rc = car_program_rules(out, n, at);
+    return rc < 0 ? rc : (int)n;
+}
+
 #ifdef __cplusplus
 }
 #endif

@@ -55,7 +55,12 @@ enum {
     CW_ERR_TERMINATOR = -18,  /* text message without its terminator */
     CW_ERR_PREFIX = -19,      /* text message without prefix separator */
     CW_ERR_RULE = -20,        /* a cross-field rule of the schema */
-    CW_ERR_PRECISION = -21    /* a decimal with more digits than a double keeps */
+    CW_ERR_PRECISION = -21,   /* a decimal with more digits than a double keeps */
+    CW_ERR_GRAMMAR = -22,     /* a sequence with a message out of place, missing or extra */
+    CW_ERR_CONSECUTIVE = -23, /* sequence rule: values not counting up from the start */
+    CW_ERR_EQUAL = -24,       /* sequence rule: a value unlike its group's */
+    CW_ERR_MEMBER = -25,      /* sequence rule: a value not among its group's */
+    CW_ERR_UNIQUE = -26       /* sequence rule: a key seen before */
 };
 
 static inline const char *cw_error_name(int code)
@@ -83,6 +88,11 @@ static inline const char *cw_error_name(int code)
     case CW_ERR_PREFIX: return "prefix";
     case CW_ERR_RULE: return "rule";
     case CW_ERR_PRECISION: return "precision";
+    case CW_ERR_GRAMMAR: return "grammar";
+    case CW_ERR_CONSECUTIVE: return "consecutive";
+    case CW_ERR_EQUAL: return "equal";
+    case CW_ERR_MEMBER: return "member";
+    case CW_ERR_UNIQUE: return "unique";
     default: return "unknown";
     }
 }

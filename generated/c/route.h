@@ -872,6 +872,392 @@ static inline int route_decode_text(const char *line, size_t len, route_message_
     }
 }
 
+/* ---- sequence route: a whole route, the unit sent over either transport ---- */
+
+/* Reads the messages of a route one by one from its bytes:
+ * route_route_iter_init, then route_route_iter_next until it returns 0 (the whole
+ * sequence read) or an error. The input is not copied: it must outlive the
+ * iterator. Cross-message rules need the whole sequence: run route_route_check
+ * on the messages read, or use route_route_decode. */
+typedef struct {
+    const uint8_t *buf;
+    size_t len;
+    size_t pos;  /* byte offset of the next unit */
+    size_t index;  /* the unit read next; after an error, the one it is about (the unit count: the end) */
+    size_t units;  /* units in the input, or where splitting it failed */
+    size_t begin[1];  /* first unit of the repeated group's current pass */
+    int8_t status;  /* 0 running, 1 finished, negative: the error it stopped on */
+    uint8_t pc;  /* grammar slot */
+} route_route_iter_t;
+
+static inline void route_route_grammar_init(route_route_iter_t *it)
+{
+    memset(it, 0, sizeof *it);
+    it->begin[0] = SIZE_MAX;
+}
+
+/* Feeds the grammar the next message, or NULL for the end of the input.
+ * CW_OK: taken; 1: the end, accepted; else CW_ERR_GRAMMAR or CW_ERR_COUNT. */
+static inline int route_route_step(route_route_iter_t *it, const route_message_t *m)
+{
+    int kind = m ? (int)m->kind : 0;
+    for (;;) {
+        switch (it->pc) {
+        case 0u:  /* start: one start */
+            if (kind != ROUTE_MSG_START) {
+                return CW_ERR_GRAMMAR;
+            }
+            it->pc = 1u;
+            return CW_OK;
+        case 1u:  /* scenes: repeated group */
+            if (kind == ROUTE_MSG_OBJECT || kind == ROUTE_MSG_SCENE) {
+                if (it->begin[0] == it->index) {
+                    return CW_ERR_GRAMMAR;  /* a pass that took nothing would never end */
+                }
+                it->begin[0] = it->index;
+                it->pc = 2u;
+            } else {
+                it->pc = 4u;
+            }
+            break;
+        case 2u:  /* scenes.objects: repeat object */
+            if (kind == ROUTE_MSG_OBJECT) {
+                return CW_OK;
+            }
+            it->pc = 3u;
+            break;
+        case 3u:  /* scenes.scene: one scene */
+            if (kind != ROUTE_MSG_SCENE) {
+                return CW_ERR_GRAMMAR;
+            }
+            it->pc = 1u;
+            return CW_OK;
+        case 4u:  /* end: one end */
+            if (kind != ROUTE_MSG_END) {
+                return CW_ERR_GRAMMAR;
+            }
+            it->pc = 5u;
+            return CW_OK;
+        case 5u:  /* the end of the input */
+            return kind == 0 ? 1 : CW_ERR_GRAMMAR;
+        default:
+            return CW_ERR_GRAMMAR;
+        }
+    }
+}
+
+/* Decodes one unit as the given kind. */
+static inline int route_route_unit(int kind, const uint8_t *buf, size_t len, route_message_t *out)
+{
+    out->kind = (uint8_t)kind;
+    switch (kind) {
+    case ROUTE_MSG_START:
+        return route_start_decode(buf, len, &out->as.start);
+    case ROUTE_MSG_OBJECT:
+        return route_object_decode(buf, len, &out->as.object);
+    case ROUTE_MSG_SCENE:
+        return route_scene_decode(buf, len, &out->as.scene);
+    case ROUTE_MSG_END:
+        return route_end_decode(buf, len, &out->as.end);
+    default:
+        return CW_ERR_DISPATCH;
+    }
+}
+
+/* The kind and size of the unit at pos; kind 0 if no message starts so. */
+static inline int route_route_split(const uint8_t *buf, size_t len, size_t pos, size_t *size)
+{
+    size_t avail = len - pos < 1u ? len - pos : 1u;
+    uint32_t head = cw_get_be(buf + pos, (uint8_t)avail) << (8u * (1u - avail));
+    int kind = route_find(head);
+    switch (kind) {
+    case ROUTE_MSG_START:
+        *size = 1u;
+        break;
+    case ROUTE_MSG_OBJECT:
+        *size = 4u;
+        break;
+    case ROUTE_MSG_SCENE:
+        *size = 4u;
+        break;
+    case ROUTE_MSG_END:
+        *size = 1u;
+        break;
+    default:
+        *size = 0;
+        return 0;
+    }
+    if (*size > len - pos) {
+        *size = len - pos;  /* a short last unit: its decode reports the length */
+    }
+    return kind;
+}
+
+static inline void route_route_iter_init(route_route_iter_t *it, const uint8_t *buf, size_t len)
+{
+    size_t pos = 0;
+    size_t units = 0;
+    size_t size;
+    route_route_grammar_init(it);
+    it->buf = buf;
+    it->len = len;
+    /* A unit that starts like no message stops the sequence before anything is decoded. */
+    while (pos < len) {
+        if (route_route_split(buf, len, pos, &size) == 0) {
+            it->status = (int8_t)CW_ERR_DISPATCH;
+            it->index = units;
+            return;
+        }
+        pos += size;
+        units++;
+    }
+    it->units = units;
+}
+
+/* 1: the next message in *out; 0: the end, the sequence complete; negative: the
+ * error, about unit it->index (the unit count for one at the end). */
+static inline int route_route_iter_next(route_route_iter_t *it, route_message_t *out)
+{
+    size_t size;
+    int kind;
+    int rc;
+    if (it->status != 0) {
+        return it->status > 0 ? 0 : it->status;
+    }
+    if (it->pos >= it->len) {
+        rc = route_route_step(it, NULL);
+        it->status = (int8_t)rc;
+        return rc > 0 ? 0 : rc;
+    }
+    kind = route_route_split(it->buf, it->len, it->pos, &size);
+    rc = route_route_unit(kind, it->buf + it->pos, size, out);
+    if (rc >= 0) {
+        rc = route_route_step(it, out);
+    }
+    if (rc < 0) {
+        it->status = (int8_t)rc;
+        return rc;
+    }
+    it->pos += size;
+    it->index++;
+    return 1;
+}
+
+/* ROUTE-D5: consecutive scenes.scene.ns: the first unit that breaks it, or SIZE_MAX. */
+static inline size_t route_route_rule0(const route_message_t *m, size_t n)
+{
+    size_t i;
+    int64_t next = 0;
+    for (i = 0; i < n; i++) {
+        if (m[i].kind != ROUTE_MSG_SCENE) {
+            continue;
+        }
+        if ((int64_t)m[i].as.scene.ns != next) {
+            return i;
+        }
+        next++;
+    }
+    return SIZE_MAX;
+}
+
+/* ROUTE-D5: equal scenes.objects.ns: the first unit that breaks it, or SIZE_MAX. */
+static inline size_t route_route_rule1_in(const route_message_t *m, size_t first, size_t end)
+{
+    size_t i;
+    size_t j;
+    for (i = first; i < end; i++) {
+        bool any = false;
+        bool found = false;
+        if (m[i].kind != ROUTE_MSG_OBJECT) {
+            continue;
+        }
+        for (j = first; j < end; j++) {
+            if (m[j].kind == ROUTE_MSG_SCENE) {
+                any = true;
+                found = found || (int64_t)m[i].as.object.ns == (int64_t)m[j].as.scene.ns;
+            }
+        }
+        if (any && !found) {
+            return i;
+        }
+    }
+    return SIZE_MAX;
+}
+
+static inline size_t route_route_rule1(const route_message_t *m, size_t n)
+{
+    /* Python compares within each pass of the group; the grammar marks where one starts. */
+    route_route_iter_t it;
+    size_t i;
+    route_route_grammar_init(&it);
+    for (i = 0; i <= n; i++) {
+        size_t was = it.begin[0];
+        size_t hit;
+        it.index = i;
+        if (i < n) {
+            (void)route_route_step(&it, &m[i]);
+        }
+        if (was != SIZE_MAX && (i == n || it.begin[0] != was)) {
+            hit = route_route_rule1_in(m, was, i);
+            if (hit != SIZE_MAX) {
+                return hit;
+            }
+        }
+    }
+    return SIZE_MAX;
+}
+
+/* ROUTE-D5: member scenes.scene.nl: the first unit that breaks it, or SIZE_MAX. */
+static inline size_t route_route_rule2_in(const route_message_t *m, size_t first, size_t end)
+{
+    size_t i;
+    size_t j;
+    for (i = first; i < end; i++) {
+        bool any = false;
+        bool found = false;
+        if (m[i].kind != ROUTE_MSG_SCENE) {
+            continue;
+        }
+        for (j = first; j < end; j++) {
+            if (m[j].kind == ROUTE_MSG_OBJECT) {
+                any = true;
+                found = found || (int64_t)m[i].as.scene.nl == (int64_t)m[j].as.object.nl;
+            }
+        }
+        (void)any;
+        if (!found) {
+            return i;
+        }
+    }
+    return SIZE_MAX;
+}
+
+static inline size_t route_route_rule2(const route_message_t *m, size_t n)
+{
+    /* Python compares within each pass of the group; the grammar marks where one starts. */
+    route_route_iter_t it;
+    size_t i;
+    route_route_grammar_init(&it);
+    for (i = 0; i <= n; i++) {
+        size_t was = it.begin[0];
+        size_t hit;
+        it.index = i;
+        if (i < n) {
+            (void)route_route_step(&it, &m[i]);
+        }
+        if (was != SIZE_MAX && (i == n || it.begin[0] != was)) {
+            hit = route_route_rule2_in(m, was, i);
+            if (hit != SIZE_MAX) {
+                return hit;
+            }
+        }
+    }
+    return SIZE_MAX;
+}
+
+/* ROUTE-D5: unique scenes.objects: the first unit that breaks it, or SIZE_MAX. */
+static inline size_t route_route_rule3(const route_message_t *m, size_t n)
+{
+    size_t i;
+    size_t j;
+    for (i = 0; i < n; i++) {
+        if (m[i].kind != ROUTE_MSG_OBJECT) {
+            continue;
+        }
+        for (j = 0; j < i; j++) {
+            if (m[j].kind == ROUTE_MSG_OBJECT && (int64_t)m[i].as.object.ns == (int64_t)m[j].as.object.ns && (int64_t)m[i].as.object.nl == (int64_t)m[j].as.object.nl && (int64_t)m[i].as.object.no == (int64_t)m[j].as.object.no) {
+                return i;
+            }
+        }
+    }
+    return SIZE_MAX;
+}
+
+/* The cross-message rules of a grammatical route: CW_OK or the error
+ * of the first unit that breaks one (*at, if not NULL, gets its index). */
+static inline int route_route_rules(const route_message_t *m, size_t n, size_t *at)
+{
+    size_t first = SIZE_MAX;
+    int rc = CW_OK;
+    size_t hit0 = route_route_rule0(m, n);
+    size_t hit1 = route_route_rule1(m, n);
+    size_t hit2 = route_route_rule2(m, n);
+    size_t hit3 = route_route_rule3(m, n);
+    if (hit0 < first) {
+        first = hit0;
+        rc = CW_ERR_CONSECUTIVE;
+    }
+    if (hit1 < first) {
+        first = hit1;
+        rc = CW_ERR_EQUAL;
+    }
+    if (hit2 < first) {
+        first = hit2;
+        rc = CW_ERR_MEMBER;
+    }
+    if (hit3 < first) {
+        first = hit3;
+        rc = CW_ERR_UNIQUE;
+    }
+    if (rc != CW_OK && at) {
+        *at = first;
+    }
+    (void)m;
+    (void)n;
+    return rc;
+}
+
+/* Checks messages as a whole route (before encoding them, say): the
+ * grammar, then the rules. CW_OK or the error; *at (if not NULL) gets the
+ * index of the message it is about (n for the end). */
+static inline int route_route_check(const route_message_t *m, size_t n, size_t *at)
+{
+    route_route_iter_t it;
+    int rc = CW_OK;
+    route_route_grammar_init(&it);
+    for (it.index = 0; it.index <= n; it.index++) {
+        rc = route_route_step(&it, it.index < n ? &m[it.index] : NULL);
+        if (rc < 0) {
+            if (at) {
+                *at = it.index;
+            }
+            return rc;
+        }
+    }
+    return route_route_rules(m, n, at);
+}
+
+/* Decodes and checks a whole route into out[0..cap): the number of
+ * messages (at most 32767), or the error (CW_ERR_CAPACITY if out is too small);
+ * *at (if not NULL) gets the index of the unit the error is about. */
+static inline int route_route_decode(const uint8_t *buf, size_t len, route_message_t *out, size_t cap, size_t *at)
+{
+    route_route_iter_t it;
+    route_message_t spare;  /* takes the message that does not fit, to tell a full out from an error */
+    size_t n = 0;
+    int rc;
+    route_route_iter_init(&it, buf, len);
+    for (;;) {
+        rc = route_route_iter_next(&it, n < cap && n < 32767u ? &out[n] : &spare);
+        if (rc <= 0) {
+            break;
+        }
+        if (n >= cap || n >= 32767u) {
+            rc = CW_ERR_CAPACITY;
+            break;
+        }
+        n++;
+    }
+    if (rc < 0) {
+        if (at) {
+            *at = it.index;
+        }
+        return rc;
+    }
+    rc = route_route_rules(out, n, at);
+    return rc < 0 ? rc : (int)n;
+}
+
 #ifdef __cplusplus
 }
 #endif
