@@ -152,6 +152,7 @@ class PythonView:
         elif f.flags is not None:
             c(f"if v.__class__ is not int and not isinstance(v, int):")
             c(f"    raise _enc({where}, v, 'type', 'an int or {self.enum_class(f.flags.name)}')")
+            c("v = int(v)")  # each operator on an IntFlag builds a new flag: checks on an int are far cheaper
             c(f"if v < 0 or v & {~f.flags.mask & ((1 << f.bits) - 1):#x} or v > {(1 << f.bits) - 1:#x}:")
             c(f"    raise _enc({where}, v, 'flags', 'only the bits of {f.flags.name}'{self.user(f)})")
             if f.exactly_one:
