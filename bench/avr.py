@@ -1,0 +1,181 @@
+"""C on AVR: flash and static RAM of one message's codec, codeword next to
+MAVLink's and cantools' generated C.
+
+The approach of scripts/size-report, applied to every row alike: a program
+reads its inputs from a `volatile` source and writes its results to a
+`volatile` sink so the optimiser keeps the codec; its cost is its avr-size
+figures minus those of an empty program with the same scaffolding. All are
+built with -Os and gc-sections for an ATmega1284P, the same AVR core as the
+ATmega32 of docs/c-size.md with more RAM: MAVLink's generated C for
+common.xml keeps its message table (CRC extras and lengths of every message)
+in `.data`, which overflows the ATmega32's 2 KB of RAM.
+"""
+
+import re
+import subprocess
+from pathlib import Path
+
+from bench.protocols import ROOT
+
+MCU = "atmega1284p"
+CFLAGS = ["-std=gnu99", "-Os", f"-mmcu={MCU}", "-ffunction-sections", "-fdata-sections",
+          "-Wl,--gc-sections", "-w"]
+
+PROGRAM = """\
+#include <stddef.h>
+#include <stdint.h>
+{include}
+volatile uint8_t src;
+volatile uint8_t snk;
+
+static void __attribute__((noinline)) fill(void *p, size_t n)
+{{
+    uint8_t *b = (uint8_t *)p;
+    while (n--) *b++ = src;
+}}
+
+static void __attribute__((noinline)) drain(const void *p, size_t n)
+{{
+    const uint8_t *b = (const uint8_t *)p;
+    while (n--) snk = *b++;
+}}
+
+int main(void)
+{{
+#ifdef EMPTY
+    uint8_t x[1];
+    fill(x, 1);
+    drain(x, 1);
+#else
+{body}
+#endif
+    return 0;
+}}
+"""
+
+ENCODE = """\
+    {type} m;
+    uint8_t buf[{size}];
+    int rc;
+    fill(&m, sizeof m);
+    rc = {encode};
+    drain(&rc, sizeof rc);
+    drain(buf, sizeof buf);
+"""
+
+DECODE = """\
+    size_t len;
+    fill(buf, sizeof buf);
+    fill(&len, sizeof len);
+    rc = {decode};
+    drain(&rc, sizeof rc);
+    drain(&m, sizeof m);
+"""
+
+MAVLINK_PACK = """\
+    mavlink_message_t msg;
+    uint8_t buf[MAVLINK_MAX_PACKET_LEN];
+    float f[6];
+    uint32_t t;
+    uint16_t n;
+    fill(f, sizeof f);
+    fill(&t, sizeof t);
+    mavlink_msg_attitude_pack(1, 1, &msg, t, f[0], f[1], f[2], f[3], f[4], f[5]);
+    n = mavlink_msg_to_send_buffer(buf, &msg);
+    drain(buf, n);
+"""
+
+MAVLINK_UNPACK = """\
+    mavlink_status_t st;
+    mavlink_attitude_t att;
+    size_t len;
+    fill(buf, sizeof buf);
+    fill(&len, sizeof len);
+    for (size_t k = 0; k < len; k++) {
+        if (mavlink_parse_char(MAVLINK_COMM_0, buf[k], &msg, &st)) {
+            mavlink_msg_attitude_decode(&msg, &att);
+            drain(&att, sizeof att);
+        }
+    }
+"""
+
+
+def _codeword(header, typ, size, encode, decode):
+    body = ENCODE.format(type=typ, size=size, encode=f"{encode}(&m, buf, sizeof buf)")
+    return {
+        "include": f'#include "{header}"',
+        "encode only": body,
+        "encode + decode": body + DECODE.format(decode=f"{decode}(buf, len, &m)"),
+        "flags": ["-I", str(ROOT / "generated" / "c")], "sources": [],
+    }
+
+
+def rows(mavlink_dir: Path, cantools_dir: Path):
+    """(label, what, program parts) for every measured row."""
+    cantools_route = ENCODE.format(type="struct route_car_route_object_t", size=4,
+                                   encode="route_car_route_object_pack(buf, &m, sizeof buf)")
+    return [
+        ("codeword route object (29-bit record)", _codeword(
+            "route.h", "route_object_t", "ROUTE_OBJECT_SIZE", "route_object_encode", "route_object_decode")),
+        ("cantools route object (same DBC record)", {
+            "include": '#include "route_car.h"', "encode only": cantools_route,
+            "encode + decode": cantools_route + DECODE.format(
+                decode="route_car_route_object_unpack(&m, buf, len)"),
+            "flags": ["-I", str(cantools_dir)], "sources": [str(cantools_dir / "route_car.c")]}),
+        ("codeword car master control word", _codeword(
+            "car.h", "car_master_control_t", "CAR_MASTER_CONTROL_SIZE", "car_master_control_encode",
+            "car_master_control_decode")),
+        ("codeword mtv4 SetWheelsVelocities (12 B)", _codeword(
+            "mtv4.h", "mtv4_set_wheels_velocities_t", "MTV4_SET_WHEELS_VELOCITIES_SIZE",
+            "mtv4_set_wheels_velocities_encode", "mtv4_set_wheels_velocities_decode")),
+        ("codeword mtv4 SetWheelsVelocitiesWithOdometry (26 B)", _codeword(
+            "mtv4.h", "mtv4_set_wheels_velocities_with_odometry_t",
+            "MTV4_SET_WHEELS_VELOCITIES_WITH_ODOMETRY_SIZE",
+            "mtv4_set_wheels_velocities_with_odometry_encode",
+            "mtv4_set_wheels_velocities_with_odometry_decode")),
+        ("MAVLink ATTITUDE (40 B, MAVLINK_NO_SIGN_PACKET)", {
+            "include": '#include "common/mavlink.h"', "encode only": MAVLINK_PACK,
+            "encode + decode": MAVLINK_PACK + MAVLINK_UNPACK,
+            "flags": ["-I", str(mavlink_dir), "-DMAVLINK_NO_SIGN_PACKET", "-DMAVLINK_COMM_NUM_BUFFERS=1"],
+            "sources": []}),
+        ("codeword tr24 command (12 B)", _codeword(
+            "tr24.h", "tr24_command_t", "TR24_COMMAND_SIZE", "tr24_command_encode", "tr24_command_decode")),
+    ]
+
+
+def _size(elf: Path):
+    out = subprocess.run(["avr-size", "-A", str(elf)], capture_output=True, text=True, check=True).stdout
+    sections = {}
+    for line in out.splitlines():
+        m = re.match(r"(\.\w+)\s+(\d+)", line)
+        if m:
+            sections[m.group(1)] = int(m.group(2))
+    text, data, bss = (sections.get(s, 0) for s in (".text", ".data", ".bss"))
+    return text + data, data + bss
+
+
+def _build(tmp: Path, name: str, include: str, body: str, flags, sources, empty=False):
+    src = tmp / f"{name}.c"
+    src.write_text(PROGRAM.format(include=include, body=body))
+    elf = tmp / f"{name}.elf"
+    subprocess.run(["avr-gcc", *CFLAGS, *flags, *(["-DEMPTY"] if empty else []), str(src), *sources,
+                    "-o", str(elf)], check=True, capture_output=True, text=True)
+    return _size(elf)
+
+
+def measure(tmp: Path, mavlink_dir: Path, cantools_dir: Path):
+    """[(label, mode, flash, ram)] above the empty program."""
+    tmp.mkdir(parents=True, exist_ok=True)
+    results = []
+    for n, (label, parts) in enumerate(rows(mavlink_dir, cantools_dir)):
+        base = _build(tmp, f"row{n}_empty", parts["include"], "", parts["flags"], parts["sources"], True)
+        for mode in ("encode only", "encode + decode"):
+            flash, ram = _build(tmp, f"row{n}_{mode.split()[-1]}", parts["include"], parts[mode],
+                                parts["flags"], parts["sources"])
+            results.append((label, mode, flash - base[0], ram - base[1]))
+    return results
+
+
+def compiler_version():
+    return subprocess.run(["avr-gcc", "--version"], capture_output=True, text=True,
+                          check=True).stdout.splitlines()[0]

@@ -1,0 +1,30 @@
+"""Peer C code generated at bench time into a temporary directory (never committed):
+MAVLink's C for common.xml (pymavlink's mavgen) and cantools' C for bench/route_car.dbc."""
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pymavlink
+
+from bench.peers import DBC
+
+COMMON_XML = Path(pymavlink.__file__).resolve().parent / "dialects" / "v20" / "common.xml"
+
+
+def generate_mavlink(out: Path) -> Path:
+    """MAVLink 2 C headers for common.xml in out/; returns the include directory."""
+    subprocess.run([sys.executable, "-m", "pymavlink.tools.mavgen", "--lang=C", "--wire-protocol=2.0",
+                    f"--output={out}", str(COMMON_XML)], check=True, capture_output=True)
+    if not (out / "common" / "mavlink.h").exists():
+        raise RuntimeError("mavgen wrote no common/mavlink.h")
+    return out
+
+
+def generate_cantools(out: Path) -> Path:
+    """route_car.c / route_car.h from bench/route_car.dbc in out/."""
+    out.mkdir(parents=True, exist_ok=True)
+    subprocess.run([sys.executable, "-m", "cantools", "generate_c_source", str(DBC)],
+                   check=True, capture_output=True, cwd=out, env=dict(os.environ))
+    return out

@@ -1,0 +1,212 @@
+"""Runs every benchmark in one process and renders bench/RESULTS.md."""
+
+import importlib.metadata
+import platform
+import sys
+import time
+from pathlib import Path
+
+from bench import avr, c_host, messages, peers_c, scaling, streams, timing
+
+# The issue's targets.
+FLOOR_MAX = 1.5  # codeword / hand-written, Python, encode and decode
+PYMAVLINK_MIN = 3.0  # pymavlink decode / codeword decode (comparable frame)
+CONSTRUCT_MIN = 5.0
+CANTOOLS_MIN = 2.0
+STREAM_MIN = 3.0  # codeword MB/s / pymavlink MB/s
+C_FLOOR_MAX = 1.2
+EXPONENT_MAX = 1.2  # "near-linear"
+SEEDS_MAX_S = 2.0
+
+
+def _progress(what, start):
+    print(f"[{time.perf_counter() - start:6.0f} s] {what}", file=sys.stderr, flush=True)
+
+
+def run(tmp: Path, repeats, stream_bytes, c_rounds, scaling_sizes, timing_target=timing.TARGET_SECONDS,
+        stream_repeats=1, scaling_repeats=1):
+    results = {"repeats": repeats, "stream_repeats": stream_repeats, "c_rounds": c_rounds,
+               "scaling_repeats": scaling_repeats}
+    start = time.perf_counter()
+    _progress("Python per message", start)
+    cases = messages.cases()
+    problems = [p for case in cases for p in messages.check(case)]
+    if problems:
+        raise AssertionError("contenders disagree:\n" + "\n".join(problems))
+    contenders = {}
+    for case in cases:
+        for name, c in case.contenders.items():
+            contenders[(case.key, name, "encode")] = c.encode
+            contenders[(case.key, name, "decode")] = c.decode
+    results["cases"] = cases
+    results["per_message"] = timing.interleaved(contenders, repeats, timing_target)
+    _progress("Python streams", start)
+    # MB/s does not depend on the stream's length: pymavlink's stream is capped to keep the run short
+    jobs = streams.contenders(stream_bytes, min(stream_bytes, 20_000_000))
+    seconds = timing.interleaved_once({k: v[0] for k, v in jobs.items()}, stream_repeats)
+    results["streams"] = {k: (jobs[k][1] / seconds[k] / 1e6, jobs[k][2] / seconds[k], jobs[k][1],
+                              jobs[k][2], min(jobs[k][3])) for k in jobs}
+    _progress("C on the host and on AVR", start)
+    mavlink_dir = peers_c.generate_mavlink(tmp / "mavlink")
+    cantools_dir = peers_c.generate_cantools(tmp / "cantools")
+    results["c_host"] = c_host.run(tmp, mavlink_dir, c_rounds, min(stream_bytes, 20_000_000))
+    results["c_host_bytes"] = min(stream_bytes, 20_000_000)
+    results["avr"] = avr.measure(tmp / "avr", mavlink_dir, cantools_dir)
+    _progress("compiler scaling", start)
+    results["scaling"] = scaling.scaling(tmp / "scaling", scaling_repeats, scaling_sizes)
+    results["seeds"] = scaling.seed_build(tmp, 3 if scaling_repeats > 1 else 1)
+    results["versions"] = versions()
+    _progress("done", start)
+    return results
+
+
+def versions():
+    out = {"Python": platform.python_version(), "machine": platform.machine(),
+           "CPU": _cpu(), "gcc": c_host.compiler_version(), "avr-gcc": avr.compiler_version()}
+    for pkg in ("construct", "cantools", "pymavlink", "bitstruct"):
+        out[pkg] = importlib.metadata.version(pkg)
+    return out
+
+
+def _cpu():
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor() or "unknown"
+
+
+def _met(ok):
+    return "met" if ok else "**NOT met**"
+
+
+def report(r):
+    pm = r["per_message"]
+    lines = ["# Benchmarks", "",
+             "Written by `python3 -m bench` (see the README); do not edit by hand, run it again.", "",
+             "Medians of interleaved repeats in one process; ratios compare medians of the same run. "
+             "The machine is shared, so absolute times vary between runs; ratios are the figures to read.",
+             "", "## Machine and versions", ""]
+    for k, v in r["versions"].items():
+        lines.append(f"- {k}: {v}")
+    lines += ["", f"Repeats: {r['repeats']} (per message), {r['stream_repeats']} (streams), "
+              f"{r['c_rounds']} (C), {r['scaling_repeats']} (compiler scaling).", ""]
+    verdicts = []
+
+    # 1
+    lines += ["## 1. Python, per message", "",
+              "Each call encodes one message object to bytes (text for tank) or decodes bytes to an object. "
+              "codeword and the hand-written floor (`bench/handwritten.py`) take and return the same message "
+              "objects and check the same rules. bitstruct, construct and cantools take and return their own "
+              "form (tuple, dict, Container) and check only what the library checks; the wrappers compute the "
+              "checksums the libraries cannot (`bench/peers.py`). Every contender's bytes and decoded values "
+              "are checked equal before timing. pymavlink encodes and decodes ATTITUDE, a MAVLink 2 frame "
+              "of 40 bytes, next to the 26-byte mtv4 frame.", "",
+              "| message | contender | encode ns | decode ns | encode × codeword | decode × codeword |",
+              "|---|---|---:|---:|---:|---:|"]
+    for case in r["cases"]:
+        cw_e, cw_d = pm[(case.key, "codeword", "encode")], pm[(case.key, "codeword", "decode")]
+        for name in case.contenders:
+            e, d = pm[(case.key, name, "encode")], pm[(case.key, name, "decode")]
+            lines.append(f"| {case.title} | {name} | {e:,.0f} | {d:,.0f} | {e / cw_e:.2f} | {d / cw_d:.2f} |")
+    lines += ["", "`× codeword` is the contender's time over codeword's: above 1, codeword is faster.", "",
+              "Targets:", ""]
+    for case in r["cases"]:
+        for op in ("encode", "decode"):
+            ratio = pm[(case.key, "codeword", op)] / pm[(case.key, "hand-written", op)]
+            ok = ratio <= FLOOR_MAX
+            verdicts.append(ok)
+            lines.append(f"- {case.key} {op}: codeword / hand-written = {ratio:.2f} (target ≤ {FLOOR_MAX}): {_met(ok)}")
+    mav = "pymavlink ATTITUDE (40 B)"
+    ratio = pm[("mtv4", mav, "decode")] / pm[("mtv4", "codeword", "decode")]
+    verdicts.append(ratio >= PYMAVLINK_MIN)
+    lines.append(f"- pymavlink decode / codeword decode (mtv4 frame) = {ratio:.2f} (target ≥ {PYMAVLINK_MIN}): "
+                 f"{_met(ratio >= PYMAVLINK_MIN)}")
+    for peer, target in (("construct", CONSTRUCT_MIN), ("cantools", CANTOOLS_MIN)):
+        for key in ("route", "car"):
+            for op in ("encode", "decode"):
+                ratio = pm[(key, peer, op)] / pm[(key, "codeword", op)]
+                verdicts.append(ratio >= target)
+                lines.append(f"- {peer} / codeword, {key} {op} = {ratio:.2f} (target ≥ {target}): {_met(ratio >= target)}")
+
+    # 2
+    s = r["streams"]
+    lines += ["", "## 2. Python, streams", "",
+              f"An mtv4 capture of {s['codeword'][2] / 1e6:.1f} MB (SetWheelsVelocitiesWithOdometry frames, "
+              "1% of the bytes garbage, 1% of the frames corrupted) fed in 4 KiB chunks to "
+              "`mtv4.StreamDecoder` and to a hand-written resynchronising reader; a MAVLink 2 stream of "
+              "ATTITUDE frames built the same way fed to pymavlink's `parse_buffer` (robust parsing on). "
+              "`bench/streams.py`.", "",
+              "| contender | MB/s | frames/s | stream bytes | good frames sent | found |",
+              "|---|---:|---:|---:|---:|---:|"]
+    for name, (mbs, fps, size, sent, found) in s.items():
+        lines.append(f"| {name} | {mbs:.2f} | {fps:,.0f} | {size:,} | {sent:,} | {found:,} |")
+    ratio = s["codeword"][0] / s["pymavlink parse_buffer"][0]
+    floor = s["codeword"][0] / s["hand-written"][0]
+    verdicts.append(ratio >= STREAM_MIN)
+    lines += ["", f"- codeword MB/s / pymavlink MB/s = {ratio:.2f} (target ≥ {STREAM_MIN}): {_met(ratio >= STREAM_MIN)}",
+              f"- codeword MB/s / hand-written MB/s = {floor:.2f}",
+              "- pymavlink finds fewer good frames than were sent: after a corrupted frame it can lose the next "
+              "one while resynchronising."]
+
+    # 3
+    c = r["c_host"]
+    lines += ["", "## 3. C on the host", "",
+              f"`bench/c/host_bench.c`, gcc -O2 ({' '.join(c_host.CFLAGS)}): one encode and one decode per "
+              "iteration over 64 prepared messages; the hand-written C (`bench/c/handwritten.h`) fills the "
+              "same structs and must write the same bytes, checked before timing. MAVLink: "
+              "`mavlink_msg_attitude_pack` + `mavlink_msg_to_send_buffer`, then `mavlink_parse_char` over "
+              f"the frame and `mavlink_msg_attitude_decode`. Parsers run over {r['c_host_bytes'] / 1e6:.0f} MB "
+              "captures built as in section 2.", "",
+              "| message | codeword ns | hand-written ns | codeword / hand-written |", "|---|---:|---:|---:|"]
+    for key in ("route", "car", "mtv4", "tr24"):
+        cw, hw = c[f"{key} codeword"], c[f"{key} hand-written"]
+        ok = cw / hw <= C_FLOOR_MAX
+        verdicts.append(ok)
+        lines.append(f"| {key} | {cw:.1f} | {hw:.1f} | {cw / hw:.2f} ({_met(ok)}, target ≤ {C_FLOOR_MAX}) |")
+    lines += [f"| MAVLink ATTITUDE | | | {c['mavlink ATTITUDE']:.1f} ns |", "",
+              "| stream parser | MB/s | good frames |", "|---|---:|---:|",
+              f"| codeword `mtv4_parser_feed`/`next` | {c['parser mtv4 codeword MB/s']:.1f} | {c['parser mtv4 codeword frames']:,.0f} |",
+              f"| MAVLink `mavlink_parse_char` | {c['parser mavlink_parse_char MB/s']:.1f} | {c['parser mavlink_parse_char frames']:,.0f} |",
+              ""]
+    ok = c["parser mtv4 codeword MB/s"] >= c["parser mavlink_parse_char MB/s"]
+    verdicts.append(ok)
+    lines.append(f"- parser throughput codeword ≥ MAVLink: {_met(ok)}")
+    lines.append("- The tank text line has no C row: its hand-written C counterpart is not written yet.")
+
+    # 4
+    lines += ["", "## 4. C on AVR", "", avr.__doc__.split("\n\n", 1)[1].replace("\n", " ").strip(), "",
+              f"Flags: `{' '.join(avr.CFLAGS)}`; {r['versions']['avr-gcc']}. Figures are bytes above the "
+              "empty program; static RAM = `.data` + `.bss`. These programs differ from docs/c-size.md's "
+              "(which subtract a baseline with the same struct scaffolding), so compare rows within this table.",
+              "", "| codec | what | flash (B) | static RAM (B) |", "|---|---|---:|---:|"]
+    for label, mode, flash, ram in r["avr"]:
+        lines.append(f"| {label} | {mode} | {flash:,} | {ram:,} |")
+
+    # 5
+    figures, exp, failures = r["scaling"]
+    lines += ["", "## 5. Compiler scaling", "",
+              "`codeword build` of synthetic byte-framed schemas (`bench/scaling.py`: n messages of four "
+              "fields each) in a new process each; CPU seconds are the primary figure (on a shared machine "
+              "wall time also counts waits for a core). The build writes Python, C, Markdown and the "
+              "conformance vectors.", "",
+              "| messages | CPU s | wall s | peak RSS MiB |", "|---:|---:|---:|---:|"]
+    for n, (cpu, wall, mib) in sorted(figures.items()):
+        lines.append(f"| {n:,} | {cpu:.2f} | {wall:.2f} | {mib:.0f} |")
+    for n, error in sorted(failures.items()):
+        lines.append(f"| {n:,} | build failed: {error} | | |")
+    if 5000 not in figures and 5000 not in failures:
+        lines.append("| 5,000 | not in the default run: one build was stopped after 13 CPU minutes at 2 GB RSS "
+                     "(`python3 -m bench --scaling-sizes 10,100,1000,5000` includes it) | | |")
+    ok = exp <= EXPONENT_MAX and not failures
+    verdicts.append(ok)
+    cpu, wall = r["seeds"]
+    ok_seeds = cpu < SEEDS_MAX_S
+    verdicts.append(ok_seeds)
+    lines += ["", f"- growth exponent of CPU time (fit over n ≥ 100) = {exp:.2f} (near-linear, target ≤ {EXPONENT_MAX}): {_met(ok)}",
+              f"- cold build of the five seed protocols: {cpu:.2f} s CPU, {wall:.2f} s wall (target < {SEEDS_MAX_S} s): {_met(ok_seeds)}"]
+    lines += ["", "## Summary", "", f"{sum(verdicts)} of {len(verdicts)} targets met; the misses are marked "
+              "**NOT met** above.", ""]
+    return "\n".join(lines)

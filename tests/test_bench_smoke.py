@@ -1,0 +1,56 @@
+"""One quick repetition of the benchmark harness (python3 -m bench runs the real thing).
+
+Checks that every contender of a benchmark does the same work as codeword:
+the same bytes out of the same message, the same values back, and, for the
+streams, the same good frames found; then that the timing and report code run.
+The expected frames are the schemas' hand-calculated examples (see bench/messages.py).
+"""
+
+import tempfile
+from pathlib import Path
+
+from bench import c_host, messages, peers_c, runner, streams, timing
+
+
+def test_every_contender_writes_the_expected_bytes_and_reads_back_the_same_values():
+    for case in messages.cases():
+        assert messages.check(case) == [], case.key
+
+
+def test_a_changed_field_is_noticed_by_the_agreement_check():
+    case = next(c for c in messages.cases() if c.key == "route")
+    # route object example with cm=4; a wire with cm=5 must be reported, not silently accepted
+    case.wire = bytes.fromhex("59116960")
+    assert any("route/hand-written: encodes" in p for p in messages.check(case))
+
+
+def test_one_round_of_interleaved_timing_gives_a_time_per_call():
+    case = messages.cases()[0]
+    calls = {name: c.decode for name, c in case.contenders.items()}
+    medians = timing.interleaved(calls, repeats=1, target=0.001)
+    assert set(medians) == set(calls) and all(t > 0 for t in medians.values())
+
+
+def test_stream_readers_find_every_good_frame_of_a_small_capture():
+    jobs = streams.contenders(100_000, 50_000)
+    for name, (job, size, sent, found) in jobs.items():
+        assert job() > 0
+        if name == "pymavlink parse_buffer":
+            assert 0.9 * sent <= found[0] <= sent  # it may lose a frame after a corrupted one
+        else:
+            assert found == [sent], name
+    # 1% of the frames are corrupted: roughly that share is missing from the good count
+    size, sent = jobs["codeword"][1], jobs["codeword"][2]
+    assert 0.95 * size / 26 < sent < size / 26
+
+
+def test_host_c_harness_builds_and_generated_and_hand_written_c_agree():
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = Path(tmp)
+        figures = c_host.run(tmp, peers_c.generate_mavlink(tmp / "mavlink"), 1, 20_000)
+    assert figures["mtv4 codeword"] > 0 and figures["parser mavlink_parse_char MB/s"] > 0
+
+
+def test_exponent_of_a_linear_and_a_quadratic_series():
+    assert abs(runner.scaling.exponent({10: 1.0, 100: 10.0, 1000: 100.0}) - 1.0) < 1e-9
+    assert abs(runner.scaling.exponent({100: 1.0, 1000: 100.0}) - 2.0) < 1e-9
