@@ -316,6 +316,14 @@ class SequenceItem:
     items: tuple["SequenceItem", ...] = ()
     doc: Optional[Text] = None
 
+    @property
+    def may_take_nothing(self) -> bool:
+        """Whether the item can match no message: a repeat takes zero or more, a
+        count may be zero, a group may hold only such items."""
+        if self.repeat or self.count is not None:
+            return True
+        return bool(self.items) and all(c.may_take_nothing for c in self.items)
+
 
 @dataclass(frozen=True)
 class SequenceRule:

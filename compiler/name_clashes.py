@@ -3,8 +3,10 @@
 Python class names are CamelCase (`set_led` and `setLed` both give `SetLed`);
 C constants are upper case with a prefix (`left` and `LEFT` both give
 `P_SIDE_LEFT`; enum `side` member `left_x` and enum `side_left` member `x`
-both give `P_SIDE_LEFT_X`). A second definition would silently replace the
-first in Python and fail to compile in C, so such schemas are refused.
+both give `P_SIDE_LEFT_X`). A sequence shares the class namespace with
+messages (and its C functions `p_<name>_…` with theirs). A second definition
+would silently replace the first in Python and fail to compile in C, so such
+schemas are refused.
 """
 from __future__ import annotations
 
@@ -16,10 +18,23 @@ Clash = tuple[tuple, str]  # (path into the document, message)
 
 
 def _classes(d: dict[str, Any]) -> Iterator[tuple[str, tuple, str]]:
-    for section, what in (("messages", "message"), ("enums", "enum"), ("flags", "flag set")):
+    for section, what in (("messages", "message"), ("enums", "enum"), ("flags", "flag set"),
+                          ("sequences", "sequence")):
         for name in d.get(section, {}) or {}:
             if isinstance(name, str):
                 yield camel(name), (section, name), f"{what} {name!r}"
+    for name, body in (d.get("sequences", {}) or {}).items():
+        if isinstance(name, str) and isinstance(body, dict):
+            yield from _group_classes(camel(name), body.get("items"), ("sequences", name), name)
+
+
+def _group_classes(owner: str, items: Any, path: tuple, dotted: str) -> Iterator[tuple[str, tuple, str]]:
+    """A sequence's groups of items are classes named after the path to them."""
+    for i, item in enumerate(items if isinstance(items, list) else []):
+        if isinstance(item, dict) and isinstance(item.get("name"), str) and "items" in item:
+            cls, where = owner + camel(item["name"]), f"{dotted}.{item['name']}"
+            yield cls, path + ("items", i, "name"), f"sequence group {where!r}"
+            yield from _group_classes(cls, item["items"], path + ("items", i), where)
 
 
 def _constants(d: dict[str, Any]) -> Iterator[tuple[str, tuple, str]]:

@@ -823,6 +823,13 @@ class Resolver:
                 self.error(p + ("repeat",), "`repeat` needs self-identifying messages (dispatch fields)",
                            "use `count` to say how many follow")
             children = tuple(item(c, p + ("items", i)) for i, c in enumerate(raw.get("items", [])))
+            if raw.get("repeat") and children and all(c.may_take_nothing for c in children):
+                # a pass that takes no message makes no progress: decoding would loop forever
+                self.error(p + ("repeat",), f"sequence {name!r}: repeated group {raw['name']!r} can "
+                                            "match no message at all (each of its items is a repeat, "
+                                            "a count or such a group), so its repetitions never end",
+                           "give the group an item taken exactly once (no `repeat` or `count`), "
+                           "or drop `repeat` from the group")
             if "message" in raw and raw["message"] in by_name:
                 earlier[raw["name"]] = by_name[raw["message"]]
             return SequenceItem(raw["name"], self.loc(*p), raw.get("message"), count,

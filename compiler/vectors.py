@@ -96,9 +96,12 @@ class Generator:
 
     def integer(self, f: Field, edge: str) -> Any:
         if f.scale is not None:
-            lo, hi = f.range
-            raw_lo = -(-(lo - (f.offset or 0)) // f.scale)
-            raw_hi = (hi - (f.offset or 0)) // f.scale
+            if f.range is None:  # the width alone limits the value
+                raw_lo, raw_hi = f.raw_range
+            else:
+                lo, hi = f.range
+                raw_lo = -(-(lo - (f.offset or 0)) // f.scale)
+                raw_hi = (hi - (f.offset or 0)) // f.scale
             raw = {"min": raw_lo, "max": raw_hi}.get(edge, self.rng.randint(int(raw_lo), int(raw_hi)))
             return raw * f.scale + (f.offset or 0)
         if f.range is not None:

@@ -7,7 +7,7 @@ import pytest
 from compiler import crc
 from compiler.model import Checksum
 from compiler.pyload import load_module
-from compiler.targets.pyview import _checksum_code, _checksum_name
+from compiler.targets.pyview import _checksum_code, _checksum_name, _positional_crc_code
 
 ENTRIES = sorted({p.name: p for p in crc.catalogue().values()}.values(), key=lambda p: p.name)
 
@@ -32,6 +32,20 @@ def test_generated_table_code_reproduces_check(params):
     assert fn(b"") == crc.compute(params, b"")
     sample = bytes(range(256)) * 2
     assert fn(sample) == crc.compute(params, sample)
+
+
+@pytest.mark.parametrize("params", ENTRIES, ids=lambda p: p.name)
+def test_generated_fixed_length_code_reproduces_check(params):
+    # the loop-free CRC over a fixed number of bytes that decoders of fixed frames call
+    cs = Checksum("crc", "bytes", ("a", "b"), crc=params)
+    name = _checksum_name(cs)
+    source = _checksum_code(cs) + "\n" + _positional_crc_code(name, [1, 9, 40])
+    module = load_module(f"_crc_fixed_{name}", source, "<crc>")
+    assert getattr(module, f"_checksum_{name}_9")(b"123456789") == params.check
+    sample = bytes(range(7, 47))
+    assert getattr(module, f"_checksum_{name}_40")(sample) == crc.compute(params, sample)
+    for byte in (0x00, 0x5A, 0xFF):
+        assert getattr(module, f"_checksum_{name}_1")(bytes((byte,))) == crc.compute(params, bytes((byte,)))
 
 
 def test_lookup_by_alias_is_case_insensitive():

@@ -4,6 +4,7 @@ here; templates/python only arranges them."""
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass
 from typing import Any, Optional
 
@@ -104,6 +105,7 @@ class PythonView:
             optional = [f for f in members if f not in required]
             out.append({
                 "name": name, "doc": doc, "message": message.name if is_message else None,
+                "members": [f.name for f in members],
                 "fields": [{"name": f.name, "annotation": self.annotation(f, message, path + (f.name,)),
                             "default": self.default_expr(f, message, path + (f.name,)),
                             "doc": self.field_comment(f)}
@@ -125,17 +127,28 @@ class PythonView:
         return " ".join(parts).replace("\n", " ")
 
     # -- encode: logical value → raw wire integer (or bytes/float) -------------------------
-    def encode_leaf(self, c: Code, message: Message, leaf: Leaf) -> None:
-        """Emit code that reads leaf from `m`, checks it and stores its raw value in leaf.var."""
+    @staticmethod
+    def fixed_raw(f: Field) -> Optional[int]:
+        """The raw value of a field the encoder does not take from the object, if fixed."""
+        if f.checksum:
+            return None
+        if f.reserved:
+            return 0
+        if f.length_of or f.const is not None:
+            if f.enum and f.const is not None:
+                return next(m.value for m in f.enum.members if f.const in (m.name, m.value))
+            return f.const
+        return None
+
+    def encode_leaf(self, c: Code, message: Message, leaf: Leaf, source: str = "") -> None:
+        """Emit code that reads leaf from `m` (or from `source`, its group already read), checks
+        it and stores its raw value in leaf.var."""
         f, var = leaf.field, leaf.var
         where = f"{message.name!r}, {leaf.dotted!r}"
-        if f.checksum or f.length_of or f.const is not None or f.reserved:
-            value = 0 if (f.checksum or f.reserved) else f.const
-            if f.enum and f.const is not None:
-                value = next(m.value for m in f.enum.members if f.const in (m.name, m.value))
-            c(f"{var} = {lit(value)}")
+        if f.checksum or self.fixed_raw(f) is not None:
+            c(f"{var} = {lit(self.fixed_raw(f) or 0)}")
             return
-        c(f"v = m.{leaf.dotted}")
+        c(f"v = {source}.{leaf.path[-1]}" if source else f"v = m.{leaf.dotted}")
         if f.kind == "bool":
             c("if v is not True and v is not False and v != 0 and v != 1:")
             c(f"    raise _enc({where}, v, 'type', 'a bool')")
@@ -227,8 +240,10 @@ class PythonView:
         return (lo, hi)
 
     # -- decode: raw wire value → logical value --------------------------------------------
-    def decode_leaf(self, c: Code, message: Message, leaf: Leaf, offset_expr: str) -> Optional[str]:
-        """Emit checks of a raw value; return the expression of its logical value (members)."""
+    def decode_leaf(self, c: Code, message: Message, leaf: Leaf, offset_expr: str,
+                    bounded: bool = False) -> Optional[str]:
+        """Emit checks of a raw value; return the expression of its logical value (members).
+        bounded: the raw value was read from its bits, so a range its width implies is not checked."""
         f, var = leaf.field, leaf.var
         at = f"{message.name!r}, {leaf.dotted!r}, {var}"
         off = offset_expr
@@ -258,12 +273,13 @@ class PythonView:
             c(f"    raise _dec({at}, 'enum', {self.enum_class(f.enum.name)!r}, {off}, {f.rule!r}{self.user(f, False)})")
             expr = var_checked = e
         elif f.flags is not None:
-            c(f"if {var} & {~f.flags.mask & ((1 << f.bits) - 1):#x}:")
-            c(f"    raise _dec({at}, 'flags', 'only the bits of {f.flags.name}', {off}, {f.rule!r})")
+            if ~f.flags.mask & ((1 << f.bits) - 1):
+                c(f"if {var} & {~f.flags.mask & ((1 << f.bits) - 1):#x}:")
+                c(f"    raise _dec({at}, 'flags', 'only the bits of {f.flags.name}', {off}, {f.rule!r})")
             if f.exactly_one:
                 c(f"if {var} == 0 or {var} & ({var} - 1):")
                 c(f"    raise _dec({at}, 'exactly_one', 'exactly one bit set', {off}, {f.rule!r})")
-            return f"{self.enum_class(f.flags.name)}({var})"
+            return f"_FLAGS_{f.flags.name}.get({var}) or _flag({self.enum_class(f.flags.name)}, _FLAGS_{f.flags.name}, {var})"
         elif f.one_hot:
             lo, hi = f.range or (0, f.bits - 1)
             c(f"if {var} & ({var} - 1) or {var} and not {1 << lo} <= {var} <= {1 << hi}:")
@@ -282,7 +298,7 @@ class PythonView:
             expr = var_checked = var
         else:
             return var
-        if f.range:
+        if f.range and not (bounded and self.width_implies_range(f)):
             lo, hi = f.range
             c(f"if not {lit(lo)} <= {var_checked} <= {lit(hi)}:")
             c(f"    raise _dec({at}, 'range', '{lit(lo)}..{lit(hi)}', {off}, {f.rule!r}{self.user(f, False)})")
@@ -291,6 +307,13 @@ class PythonView:
             c(f"if {var_checked} not in {lit(allowed)}:")
             c(f"    raise _dec({at}, 'values', {', '.join(map(str, f.values))!r}, {off}, {f.rule!r}{self.user(f, False)})")
         return expr
+
+    def width_implies_range(self, f: Field) -> bool:
+        """Every value the raw width can carry lies inside the declared range."""
+        if f.kind not in ("uint", "int") or f.raw_range is None or f.enum or f.flags or f.one_hot:
+            return False
+        lo, hi = sorted(self.logical_limits(f))
+        return f.range[0] <= lo and hi <= f.range[1]
 
     # -- message rules (when/require) ------------------------------------------------------
     def condition(self, cond, obj: str, message: Message) -> str:
@@ -430,18 +453,34 @@ class MessageCode:
         self.fn = message.name
 
     # -- raw values (binary framings and the text form) ----------------------------------
+    def raw_checks(self, c: Code, word: bool = False) -> None:
+        """Check the object `m` and set every leaf's raw wire value (leaf.var).
+        word: the caller packs one integer and computes parity bits from it."""
+        self.view.rule_checks(c, self.m, "m", "_enc")
+        groups: set[tuple] = set()
+        for leaf in self.leaves:
+            for depth in range(1, len(leaf.path)):  # each group object is read once
+                prefix = leaf.path[:depth]
+                if prefix not in groups:
+                    groups.add(prefix)
+                    c(f"{self.group_var(prefix)} = {self.group_var(prefix[:-1])}.{prefix[-1]}")
+            self.view.encode_leaf(c, self.m, leaf, self.group_var(leaf.path[:-1]))
+        for leaf in self.leaves:
+            cs = leaf.field.checksum
+            if cs and cs.over != "bytes" and not (word and cs.algorithm == "parity"):
+                c(f"{leaf.var} = {self.field_checksum(leaf)}")
+
+    @staticmethod
+    def group_var(path: tuple) -> str:
+        return "g_" + "_".join(path) if path else "m"
+
     def raw_function(self) -> str:
+        """_raw_<msg>(m): the raw values in wire order; the text form's writer."""
         c = Code()
         c(f"def _raw_{self.fn}(m):")
         c.indent()
         c(f'"""Check a {self.m.name} and return its raw wire values, in wire order."""')
-        self.view.rule_checks(c, self.m, "m", "_enc")
-        for leaf in self.leaves:
-            self.view.encode_leaf(c, self.m, leaf)
-        for leaf in self.leaves:
-            cs = leaf.field.checksum
-            if cs and cs.over != "bytes":
-                c(f"{leaf.var} = {self.field_checksum(leaf)}")
+        self.raw_checks(c)
         c(f"return ({''.join(x.var + ', ' for x in self.leaves)})")
         return c.text()
 
@@ -462,16 +501,14 @@ class MessageCode:
             return f"({leaf.var} & {(1 << leaf.field.bits) - 1:#x})"
         return leaf.var
 
-    def build_function(self) -> str:
-        """_build_<msg>(raw values…, unfilled): checks raw values, returns the object."""
-        c = Code()
-        args = ", ".join(x.var for x in self.leaves)
-        c(f"def _build_{self.fn}({args}{', ' if args else ''}text_form=False):")
-        c.indent()
+    def build_checks(self, c: Code, bounded: bool, text_form: bool, word: bool = False) -> None:
+        """Check the raw values (leaf.var) and build the object `o`.
+        bounded: the values were read from their bits (binary), not parsed from text;
+        word: they were read from the integer `w` (parity is then one bit count)."""
         values: dict[tuple, str] = {}
         offset = 0
         for leaf in self.leaves:
-            expr = self.view.decode_leaf(c, self.m, leaf, str(offset))
+            expr = self.view.decode_leaf(c, self.m, leaf, str(offset), bounded)
             if expr is not None:
                 values[leaf.path] = expr
             offset += leaf.field.bits or 0
@@ -479,45 +516,94 @@ class MessageCode:
         for leaf in self.leaves:
             cs = leaf.field.checksum
             if cs and cs.over != "bytes":
-                c(f"x = {self.field_checksum(leaf)}")
+                if word and cs.algorithm == "parity":
+                    others = sum(((1 << x.field.bits) - 1) << shift for x, shift in self.word_shifts()
+                                 if x is not leaf and x.field.bits)
+                    flip = " ^ 1" if cs.parity == "odd" else ""
+                    c(f"x = (w & {others:#x}).bit_count() & 1{flip}")
+                else:
+                    c(f"x = {self.field_checksum(leaf)}")
                 unfilled = self.view.p.framing.text_form.checksum_unfilled \
                     if self.view.p.framing.text_form else None
                 cond = f"{leaf.var} != x"
-                if unfilled is not None:
+                if text_form and unfilled is not None:
                     cond += f" and not (text_form and {leaf.var} == {unfilled})"
                 c(f"if {cond}:")
                 c(f"    raise _dec({self.m.name!r}, {leaf.dotted!r}, {leaf.var}, 'checksum', str(x), {offset}, {leaf.field.rule!r})")
             offset += leaf.field.bits or 0
         c(f"o = {self.construct(self.m.layout, (), values)}")
         self.view.rule_checks(c, self.m, "o", "_dec")
+
+    def build_function(self) -> str:
+        """_build_<msg>(raw values…): checks parsed raw values, returns the object (text form)."""
+        c = Code()
+        args = ", ".join(x.var for x in self.leaves)
+        c(f"def _build_{self.fn}({args}{', ' if args else ''}text_form=False):")
+        c.indent()
+        self.build_checks(c, bounded=False, text_form=True)
         c("return o")
         return c.text()
 
     def construct(self, fields: tuple[Field, ...], path: tuple, values: dict) -> str:
+        """The object, built by its positional constructor (keyword calls cost several times more)."""
         name = self.view.group_class(self.m, path) if path else self.cls
         args = []
         for f in fields:
             if not f.is_member:
                 continue
             if f.kind == "group":
-                args.append(f"{f.name}={self.construct(f.fields, path + (f.name,), values)}")
+                args.append(self.construct(f.fields, path + (f.name,), values))
             else:
-                args.append(f"{f.name}={values[path + (f.name,)]}")
-        return f"{name}({', '.join(args)})"
+                args.append(values[path + (f.name,)])
+        return f"_new_{name}({', '.join(args)})"
 
     # -- bytes -----------------------------------------------------------------------------
     def chunks(self) -> list[Chunk]:
         return chunks_of(self.leaves, self.view.p.framing.byte_order)
 
+    def one_word(self) -> bool:
+        """The frame is short and all integers, big-endian: it is read and written as one int."""
+        if self.m.size > 8:
+            return False
+        for ch in self.chunks():
+            f = ch.leaves[0][0].field
+            if f.kind in ("float", "bytes") or f.checksum and f.checksum.over == "bytes":
+                return False
+            if ch.lone and ch.nbytes > 1 and ch.order != "big":
+                return False
+        return True
+
     def structs(self) -> list[tuple[str, str]]:
+        if self.one_word():
+            return []
         return [(f"_S_{self.fn}_{n}", s.fmt) for n, s in enumerate(segments_of(self.chunks()))]
+
+    def word_shifts(self) -> list[tuple[Leaf, int]]:
+        """(leaf, shift) of every leaf in the frame read as one big-endian integer."""
+        out, pos = [], 0
+        for leaf in self.leaves:
+            bits = leaf.field.bits or 0
+            out.append((leaf, 8 * self.m.size - pos - bits))
+            pos += bits
+        return out
 
     def encode_bytes_function(self) -> str:
         c = Code()
         size = self.m.size
         c(f"def _encode_{self.fn}(m):")
         c.indent()
-        c(f"{', '.join(x.var for x in self.leaves)}, = _raw_{self.fn}(m)")
+        word = self.one_word()
+        self.raw_checks(c, word)
+        if word:
+            parity = [(leaf, shift) for leaf, shift in self.word_shifts()
+                      if leaf.field.checksum and leaf.field.checksum.algorithm == "parity"]
+            others = [x for x in self.word_shifts() if x not in parity]
+            c(f"w = {self.packed(others)}")
+            for leaf, shift in parity:  # parity of every other field is parity of the word
+                flip = " ^ 1" if leaf.field.checksum.parity == "odd" else ""
+                c(f"w |= (w.bit_count() & 1{flip}) << {shift}" if shift else f"w |= w.bit_count() & 1{flip}")
+            c(f"return w.to_bytes({size}, 'big')")
+            return c.text()
         segments = segments_of(self.chunks())
         crcs = [(leaf, leaf.field.checksum) for leaf in self.leaves
                 if leaf.field.checksum and leaf.field.checksum.over == "bytes"]
@@ -534,39 +620,83 @@ class MessageCode:
             start, end = cs.byte_span
             chunk = next(ch for ch in self.chunks() if ch.leaves[0][0] is leaf)
             order = leaf.field.byte_order or self.view.p.framing.byte_order
-            c(f"b[{chunk.start}:{chunk.start + chunk.nbytes}] = _checksum_{self.view.checksum_name(cs)}(b[{start}:{end}])"
+            c(f"b[{chunk.start}:{chunk.start + chunk.nbytes}] = {self.view.checksum_call(cs, end - start)}(b[{start}:{end}])"
               f".to_bytes({chunk.nbytes}, {order!r})")
         if not single:
             c("return bytes(b)")
         return c.text()
 
+    def packed(self, leaves: list[tuple[Leaf, int]]) -> str:
+        """Expression OR-ing (leaf, shift) pairs; fixed values are folded into one constant."""
+        fixed, parts = 0, []
+        for leaf, shift in leaves:
+            if not leaf.field.bits:
+                continue
+            value = self.view.fixed_raw(leaf.field)
+            if value is not None:
+                fixed |= (value & ((1 << leaf.field.bits) - 1)) << shift
+            else:
+                parts.append(f"{self.unsigned(leaf)} << {shift}" if shift else self.unsigned(leaf))
+        if fixed or not parts:
+            parts.append(f"{fixed:#x}")
+        return " | ".join(parts)
+
     def chunk_value(self, chunk: Chunk) -> str:
         if chunk.lone:
             leaf = chunk.leaves[0][0]
+            fixed = self.view.fixed_raw(leaf.field)
+            if fixed is not None and chunk.code not in ("s", "f", "d") and not chunk.code.endswith("s"):
+                return lit(fixed)
             if chunk.code == "s":
                 order = leaf.field.byte_order or self.view.p.framing.byte_order
                 return f"{leaf.var}.to_bytes({chunk.nbytes}, {order!r}, signed={chunk.signed})"
             return leaf.var
-        parts = []
-        for leaf, shift in chunk.leaves:
-            value = self.unsigned(leaf)
-            parts.append(f"{value} << {shift}" if shift else value)
-        expr = " | ".join(parts) if parts else "0"
+        expr = self.packed(chunk.leaves)
         if chunk.code == "s":
             return f"({expr}).to_bytes({chunk.nbytes}, 'big')"
         return expr
 
     def decode_bytes_function(self) -> str:
+        """_decode_<msg>(d): one straight-line function from bytes to the checked object."""
         c = Code()
         size = self.m.size
         c(f"def _decode_{self.fn}(d):")
         c.indent()
         c(f"if len(d) != {size}:")
         c(f"    raise _dec({self.m.name!r}, None, len(d), 'length', '{size} bytes', 0)")
+        if self.one_word():
+            self.read_word(c)
+        else:
+            self.read_chunks(c)
+        for leaf in self.leaves:
+            cs = leaf.field.checksum
+            if cs and cs.over == "bytes":
+                start, end = cs.byte_span
+                offset = sum(x.field.bits or 0 for x in self.leaves[:self.leaves.index(leaf)])
+                c(f"x = {self.view.checksum_call(cs, end - start)}(d[{start}:{end}])")
+                c(f"if {leaf.var} != x:")
+                c(f"    raise _dec({self.m.name!r}, {leaf.dotted!r}, {leaf.var}, 'checksum', hex(x), {offset}, {leaf.field.rule!r})")
+        self.build_checks(c, bounded=True, text_form=False, word=self.one_word())
+        c("return o")
+        return c.text()
+
+    def read_word(self, c: Code) -> None:
+        c("w = int.from_bytes(d, 'big')")
+        used = sum(leaf.field.bits or 0 for leaf in self.leaves)
+        padding = (1 << (8 * self.m.size - used)) - 1
+        if padding:  # bits after the record that fill the last byte must be zero
+            c(f"if w & {padding:#x}:")
+            c(f"    raise _dec({self.m.name!r}, 'padding', w & {padding:#x}, 'reserved', '0', {used})")
+        for leaf, shift in self.word_shifts():
+            self.extract(c, leaf, "w", shift)
+
+    def read_chunks(self, c: Code) -> None:
         segments = segments_of(self.chunks())
         names = []
         for n, seg in enumerate(segments):
-            vars_ = [f"c{seg.start}_{k}" for k in range(len(seg.chunks))]
+            # a field that fills its own struct item is unpacked straight into its variable
+            vars_ = [ch.leaves[0][0].var if ch.lone and ch.code != "s" else f"c{seg.start}_{k}"
+                     for k, ch in enumerate(seg.chunks)]
             names.extend(zip(vars_, seg.chunks))
             c(f"{', '.join(vars_)}, = _S_{self.fn}_{n}.unpack_from(d, {seg.start})")
         for var, chunk in names:
@@ -575,8 +705,6 @@ class MessageCode:
                 if chunk.code == "s":
                     order = leaf.field.byte_order or self.view.p.framing.byte_order
                     c(f"{leaf.var} = int.from_bytes({var}, {order!r}, signed={chunk.signed})")
-                else:
-                    c(f"{leaf.var} = {var}")
                 continue
             if chunk.code == "s":
                 c(f"{var} = int.from_bytes({var}, 'big')")
@@ -589,22 +717,18 @@ class MessageCode:
                 c(f"    raise _dec({self.m.name!r}, 'padding', {var} & {padding:#x}, 'reserved', '0', "
                   f"{8 * (chunk.start + chunk.nbytes) - padding.bit_length()})")
             for leaf, shift in chunk.leaves:
-                bits = leaf.field.bits
-                c(f"{leaf.var} = ({var} >> {shift}) & {(1 << bits) - 1:#x}" if shift
-                  else f"{leaf.var} = {var} & {(1 << bits) - 1:#x}")
-                if leaf.field.kind == "int":
-                    c(f"if {leaf.var} & {1 << (bits - 1):#x}:")
-                    c(f"    {leaf.var} -= {1 << bits:#x}")
-        for leaf in self.leaves:
-            cs = leaf.field.checksum
-            if cs and cs.over == "bytes":
-                start, end = cs.byte_span
-                offset = sum(x.field.bits or 0 for x in self.leaves[:self.leaves.index(leaf)])
-                c(f"x = _checksum_{self.view.checksum_name(cs)}(d[{start}:{end}])")
-                c(f"if {leaf.var} != x:")
-                c(f"    raise _dec({self.m.name!r}, {leaf.dotted!r}, {leaf.var}, 'checksum', hex(x), {offset}, {leaf.field.rule!r})")
-        c(f"return _build_{self.fn}({', '.join(x.var for x in self.leaves)})")
-        return c.text()
+                self.extract(c, leaf, var, shift)
+
+    @staticmethod
+    def extract(c: Code, leaf: Leaf, var: str, shift: int) -> None:
+        bits = leaf.field.bits
+        if not bits:
+            return
+        c(f"{leaf.var} = ({var} >> {shift}) & {(1 << bits) - 1:#x}" if shift
+          else f"{leaf.var} = {var} & {(1 << bits) - 1:#x}")
+        if leaf.field.kind == "int":
+            c(f"if {leaf.var} & {1 << (bits - 1):#x}:")
+            c(f"    {leaf.var} -= {1 << bits:#x}")
 
     # -- the text form of a bits protocol (route exchange file) ----------------------------
     def text_form_functions(self) -> str:
@@ -667,6 +791,48 @@ class MessageCode:
         c(f"return p[0] + {fr.separator!r}.join(p[1:]) + {fr.terminator!r}")
         return c.text()
 
+    def text_syntax(self) -> str:
+        """An expression for the regular expression a well-formed body matches: every number
+        well-formed, every text value printable without separators or spaces. A body that
+        matches needs no per-token syntax checks; one that does not takes the checked path,
+        which names the first bad token. Stricter than the checks it stands for, never looser."""
+        sep = repr(re.escape(self.view.p.framing.separator))
+        out, closing = [], ""
+        for n, leaf in enumerate(self.leaves):
+            f = leaf.field
+            if f.kind == "float":
+                tok = "_FLOAT_RE"
+            elif f.kind in ("uint", "int") or (f.enum is not None and f.enum.kind == "int"):
+                tok = "_INT_RE"
+            elif f.kind == "char":
+                tok = "_CHAR_RE"
+            else:
+                tok = "_REST_RE" if f.to_end else "_TEXT_RE"
+            if f.optional:
+                out.append("'(?:'")
+                closing += ")?"
+            if n:
+                out.append(sep)
+            out.append(tok)
+        if closing:
+            out.append(repr(closing))
+        return " + ".join(out)
+
+    @staticmethod
+    def text_classes(fr) -> dict:
+        """Character classes of text values: printable ASCII without space, terminator and
+        separator (the last field, which runs to the end, may hold separators)."""
+        def ranges(banned: set) -> str:
+            codes = [x for x in range(0x21, 0x7f) if chr(x) not in banned]
+            runs, start = [], codes[0]
+            for a, b in zip(codes, codes[1:] + [None]):
+                if b != a + 1:
+                    runs.append(re.escape(chr(start)) + ("-" + re.escape(chr(a)) if a > start else ""))
+                    start = b
+            return "[" + "".join(runs) + "]"
+        base = set(fr.terminator)
+        return {"char": ranges(base | set(fr.separator)), "rest": ranges(base)}
+
     def text_decode_function(self) -> str:
         fr = self.view.p.framing
         c = Code()
@@ -676,50 +842,47 @@ class MessageCode:
         required = sum(1 for x in self.leaves if not x.field.optional)
         last_to_end = bool(self.leaves) and self.leaves[-1].field.to_end
         if total == 0:
-            c("t = []" if True else "")
+            c("t = []")
             c("if body.strip():")
             c(f"    raise _dec({self.m.name!r}, None, body, 'count', 'no fields', base)")
         elif last_to_end:
             c(f"t = body.split({fr.separator!r}, {total - 1})")
         else:
             c(f"t = body.split({fr.separator!r})")
-        c("at = _token_offsets(t, base)")
         c(f"if not {required} <= len(t) <= {total}:")
         c(f"    raise _dec({self.m.name!r}, None, len(t), 'count', '{required}..{total} fields' if {required} != {total} else '{total} fields', base)")
+        if total:
+            c(f"ok = _SYNTAX_{self.fn}.fullmatch(body) is not None  # well-formed: token syntax checks are skipped")
         values: dict[tuple, str] = {}
         for n, leaf in enumerate(self.leaves):
             f = leaf.field
             at = f"{self.m.name!r}, {leaf.dotted!r}"
+            where = f"_token_offsets(t, base)[{n}]"  # computed only for an error
             if f.optional:
                 c(f"if len(t) > {n}:")
                 c.indent()
-            tok = f"t[{n}].strip()" if fr.trim else f"t[{n}]"
+            tok = f"(t[{n}] if ok else t[{n}].strip())" if fr.trim else f"t[{n}]"
+            slow_tok = f"t[{n}].strip()" if fr.trim else f"t[{n}]"
             if f.kind == "float":
-                c(f"{leaf.var} = _parse_float({tok}, {at}, at[{n}])")
+                c(f"{leaf.var} = float(t[{n}]) if ok else _parse_float({slow_tok}, {at}, {where})")
             elif f.kind in ("uint", "int") or (f.enum is not None and f.enum.kind == "int"):
-                c(f"{leaf.var} = _parse_int({tok}, {at}, at[{n}])")
+                c(f"{leaf.var} = int(t[{n}]) if ok else _parse_int({slow_tok}, {at}, {where})")
             elif f.kind == "char":
                 c(f"{leaf.var} = {tok}")
                 c(f"if len({leaf.var}) != 1:")
-                c(f"    raise _dec({at}, {leaf.var}, 'type', 'one character', at[{n}])")
+                c(f"    raise _dec({at}, {leaf.var}, 'type', 'one character', {where})")
             else:
                 c(f"{leaf.var} = {tok}")
             if f.kind in ("char", "str") and f.enum is None:
                 # what a writer may not emit, a reader does not accept either
-                c(f"bad = _text_problem({leaf.var}, {'' if f.to_end else fr.separator!r}, {fr.trim})")
-                c("if bad:")
-                c(f"    raise _dec({at}, {leaf.var}, 'text', bad, at[{n}], {f.rule!r})")
+                c("if not ok:")
+                c(f"    bad = _text_problem({leaf.var}, {'' if f.to_end else fr.separator!r}, {fr.trim})")
+                c("    if bad:")
+                c(f"        raise _dec({at}, {leaf.var}, 'text', bad, {where}, {f.rule!r})")
                 if f.max_length is not None:
                     c(f"if len({leaf.var}) > {f.max_length}:")
-                    c(f"    raise _dec({at}, {leaf.var}, 'length', 'at most {f.max_length} characters', at[{n}])")
-            c("try:")
-            c.indent()
-            expr = self.view.decode_leaf(c, self.m, leaf, f"at[{n}]")
-            c("pass")
-            c.dedent()
-            c("except DecodeError as exc:")
-            c(f"    exc.offset = at[{n}]")
-            c("    raise")
+                    c(f"    raise _dec({at}, {leaf.var}, 'length', 'at most {f.max_length} characters', {where})")
+            expr = self.view.decode_leaf(c, self.m, leaf, where)
             if f.optional:
                 c.dedent()
                 c("else:")
@@ -739,17 +902,20 @@ def module_view(p: Protocol) -> dict:
     fr = p.framing
     functions: list[str] = []
     structs: list[tuple[str, str]] = []
+    syntaxes: list[tuple[str, str]] = []
     for mc in codes:
         if fr.kind == "text":
             functions += [mc.text_encode_function(), mc.text_decode_function()]
+            if mc.leaves:
+                syntaxes.append((mc.fn, mc.text_syntax()))
             continue
-        functions += [mc.raw_function(), mc.build_function(), mc.encode_bytes_function(),
-                      mc.decode_bytes_function()]
+        functions += [mc.encode_bytes_function(), mc.decode_bytes_function()]
         if fr.text_form:
-            functions.append(mc.text_form_functions())
+            functions += [mc.raw_function(), mc.build_function(), mc.text_form_functions()]
         structs += mc.structs()
     return {
         "p": p, "view": view, "codes": codes, "functions": functions, "structs": structs,
+        "syntaxes": syntaxes, "text_classes": MessageCode.text_classes(fr) if fr.kind == "text" else {},
         "classes": view.dataclasses(), "checksums": view.checksum_functions(),
         "dispatch": view.dispatch_table(), "sequences": [view.sequence_view(s) for s in p.sequences],
         "stream": view.stream_view(),
@@ -833,6 +999,29 @@ def _checksum_code(cs) -> str:
     return c.text()
 
 
+def _positional_crc_code(name: str, lengths: list[int]) -> str:
+    """A CRC over a fixed number of bytes without a loop. A CRC is affine in its data:
+    crc(d) = crc(zeros) ^ XOR of one table lookup per byte, the table chosen by the
+    byte's distance from the end, so each length gets straight-line code."""
+    c = Code()
+    longest = max(lengths)
+    c(f"def _tables_{name}(longest):")
+    c("    zeros = [_checksum_" + name + "(bytes(n)) for n in range(longest + 1)]")
+    c("    tables = tuple(tuple(_checksum_" + name + "(bytes((b,)) + bytes(k)) ^ zeros[k + 1] for b in range(256))")
+    c("                   for k in range(longest))")
+    c("    return zeros, tables")
+    c(f"_ZEROS_{name}, _AT_{name} = _tables_{name}({longest})")
+    for k in range(longest):
+        c(f"_AT{k}_{name} = _AT_{name}[{k}]")
+    for n in lengths:
+        c(f"def _checksum_{name}_{n}(data):")
+        names = [f"b{i}" for i in range(n)]
+        c(f"    {', '.join(names)}, = data")
+        terms = " ^ ".join(f"_AT{n - 1 - i}_{name}[b{i}]" for i in range(n))
+        c(f"    return _ZEROS_{name}[{n}] ^ {terms}")
+    return c.text()
+
+
 class ModuleView(PythonView):
     """The module-level parts: checksum functions, dispatch, streams, sequences."""
 
@@ -840,16 +1029,41 @@ class ModuleView(PythonView):
 
     def checksum_functions(self) -> list[str]:
         seen: dict[str, str] = {}
+        spans: dict[str, set[int]] = {}
         for m in self.p.messages:
             for f in leaves_of(m.layout):
                 cs = f.field.checksum
                 if cs and cs.over == "bytes":
                     seen.setdefault(_checksum_name(cs), _checksum_code(cs))
-        return list(seen.values())
+                    if cs.algorithm == "crc":
+                        start, end = cs.byte_span
+                        spans.setdefault(_checksum_name(cs), set()).add(end - start)
+        out = list(seen.values())
+        for name, lengths in spans.items():
+            out.append(_positional_crc_code(name, sorted(lengths)))
+        return out
+
+    @staticmethod
+    def checksum_call(cs, length: int) -> str:
+        """The function that computes checksum cs over exactly `length` bytes."""
+        name = _checksum_name(cs)
+        return f"_checksum_{name}_{length}" if cs.algorithm == "crc" else f"_checksum_{name}"
 
 
     def dispatch_table(self) -> dict:
-        return dispatch_facts(self.p)
+        facts = dispatch_facts(self.p)
+        if facts["kind"] == "bytes":
+            first, last, shift, mask = facts["first"], facts["last"], facts["shift"], facts["mask"]
+            if last - first == 1:
+                value = f"d[{first}]"
+            else:
+                value = f"int.from_bytes(d[{first}:{last}], {facts.get('byte_order', 'big')!r})"
+            if shift:
+                value = f"({value} >> {shift})"
+            if mask != (1 << (8 * (last - first))) - 1 or shift:
+                value = f"{value} & {mask:#x}"
+            facts = dict(facts, value_expr=value)
+        return facts
 
     def stream_view(self) -> dict:
         return stream_facts(self.p)

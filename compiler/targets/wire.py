@@ -62,17 +62,20 @@ def dispatch_facts(p: Protocol) -> dict:
     field_pos = None
     for leaf in env:
         if leaf.field.dispatch:
-            field_pos = (pos, leaf.field.bits)
+            field_pos = (pos, leaf.field.bits, leaf.field.byte_order or fr.byte_order)
         pos += leaf.field.bits or 0
-    start, bits = field_pos
+    start, bits, order = field_pos
     first, last = start // 8, (start + bits - 1) // 8 + 1
     shift = last * 8 - (start + bits)
     keys = []
     for m in p.messages:
         for value in m.ids:
             keys.append((value, m.size, m.direction, m.name))
+    # The field is read in its own byte order; the resolver makes a multi-byte
+    # little-endian one whole, aligned bytes (shift 0). One byte reads alike.
     return {"kind": "bytes", "first": first, "last": last, "shift": shift,
-            "mask": (1 << bits) - 1, "frames": keys}
+            "mask": (1 << bits) - 1, "frames": keys,
+            "byte_order": order if bits > 8 else "big"}
 
 
 def stream_facts(p: Protocol) -> dict:

@@ -18,6 +18,7 @@ FINGERPRINT32 = 0xc44c8363  # its first 32 bits
 
 _floor = math.floor
 _isfinite = math.isfinite
+_object_new = object.__new__
 
 
 class CodecError(ValueError):
@@ -130,6 +131,15 @@ class Header:
         return _decode_header(_as_input(data))
 
 
+def _new_Header(v0, v1, v2):
+    """Header from its fields in layout order, without keyword matching (decoders)."""
+    o = _object_new(Header)
+    o.h1 = v0
+    o.h2_count = v1
+    o.h2_time = v2
+    return o
+
+
 @dataclass(slots=True, kw_only=True)
 class ControlWordMotor:
     """How the receiving car drives its motors: enable, direction, speed, duration. 7 bits (the summary table's 6 is wrong, CAR-D1). All zero when the user does not drive the motor."""
@@ -139,11 +149,29 @@ class ControlWordMotor:
     duration: int = 0  # Duration, 4 levels: 0 shortest (0 s) ... 3 longest; the seed gives no times.
 
 
+def _new_ControlWordMotor(v0, v1, v2, v3):
+    """ControlWordMotor from its fields in layout order, without keyword matching (decoders)."""
+    o = _object_new(ControlWordMotor)
+    o.enable = v0
+    o.direction = v1
+    o.speed = v2
+    o.duration = v3
+    return o
+
+
 @dataclass(slots=True, kw_only=True)
 class ControlWordLed:
     """Which LED the car lights and for how long. 4 bits (the section's \"these 6 bits\" is a copy slip, CAR-D1). All zero when unused."""
     led: int = 0  # High 2 bits: which LED (00-11, four LEDs).
     duration: int = 0  # Low 2 bits: how long, 4 levels: 0 shortest (0 s) ... 3 longest.
+
+
+def _new_ControlWordLed(v0, v1):
+    """ControlWordLed from its fields in layout order, without keyword matching (decoders)."""
+    o = _object_new(ControlWordLed)
+    o.led = v0
+    o.duration = v1
+    return o
 
 
 @dataclass(slots=True, kw_only=True)
@@ -152,6 +180,15 @@ class ControlWordUltrasonic:
     enable: bool = False  # High bit: 1 if the car does ultrasonic obstacle avoidance.
     radius: int = 0  # Middle 2 bits: avoidance radius, 4 levels (0-3); the seed gives no distances.
     duration: int = 0  # Low 2 bits: duration, 4 levels: 0 shortest (0 s) ... 3 longest.
+
+
+def _new_ControlWordUltrasonic(v0, v1, v2):
+    """ControlWordUltrasonic from its fields in layout order, without keyword matching (decoders)."""
+    o = _object_new(ControlWordUltrasonic)
+    o.enable = v0
+    o.radius = v1
+    o.duration = v2
+    return o
 
 
 @dataclass(slots=True, kw_only=True)
@@ -175,6 +212,19 @@ class MasterControl:
         return _decode_master_control(_as_input(data))
 
 
+def _new_MasterControl(v0, v1, v2, v3, v4, v5, v6):
+    """MasterControl from its fields in layout order, without keyword matching (decoders)."""
+    o = _object_new(MasterControl)
+    o.accept_ir = v0
+    o.forward_words = v1
+    o.motor = v2
+    o.led = v3
+    o.ultrasonic = v4
+    o.voice = v5
+    o.body_sensor = v6
+    return o
+
+
 @dataclass(slots=True, kw_only=True)
 class SlaveControl:
     """Slave control word"""
@@ -195,9 +245,18 @@ class SlaveControl:
     def decode(cls, data):
         return _decode_slave_control(_as_input(data))
 
-_S_header_0 = struct.Struct('>BBBB')
-_S_master_control_0 = struct.Struct('>HH')
-_S_slave_control_0 = struct.Struct('>HH')
+
+def _new_SlaveControl(v0, v1, v2, v3, v4, v5, v6):
+    """SlaveControl from its fields in layout order, without keyword matching (decoders)."""
+    o = _object_new(SlaveControl)
+    o.accept_ir = v0
+    o.forward_words = v1
+    o.motor = v2
+    o.led = v3
+    o.ultrasonic = v4
+    o.voice = v5
+    o.body_sensor = v6
+    return o
 
 
 def _as_input(data):
@@ -206,8 +265,7 @@ def _as_input(data):
     return data
 
 
-def _raw_header(m):
-    """Check a header and return its raw wire values, in wire order."""
+def _encode_header(m):
     if m.h2_count == 0 and not (m.h2_time is None):
         raise _enc('header', 'h2_time', m.h2_time, 'rule', 'if h2_count == 0 then h2_time == None', decision='CAR-D3', user_message='Without slave words (h2_count = 0) all of h2 is 0: h2_time must be absent / 如果用户没有选择让主机给从机发送控制字串，这16位默认为0')
     if m.h2_count != 0 and not (m.h2_time is not None):
@@ -232,17 +290,23 @@ def _raw_header(m):
             raise _enc('header', 'h2_time', v, 'range', '0..7 or None', 'CAR-D3')
         r_h2_time = 1 << v
     r_h3 = 0
-    return (r_h1, r_h2_count, r_h2_time, r_h3, )
+    w = r_h1 << 24 | r_h2_count << 16 | r_h2_time << 8
+    return w.to_bytes(4, 'big')
 
 
-def _build_header(r_h1, r_h2_count, r_h2_time, r_h3, text_form=False):
-    if not 0 <= r_h1 <= 255:
-        raise _dec('header', 'h1', r_h1, 'range', '0..255', 0, None, 'The number of parallel modules used already exceeds 255 / 所用的并行模块数目已经大于255')
+def _decode_header(d):
+    if len(d) != 4:
+        raise _dec('header', None, len(d), 'length', '4 bytes', 0)
+    w = int.from_bytes(d, 'big')
+    r_h1 = (w >> 24) & 0xff
+    r_h2_count = (w >> 16) & 0xff
+    r_h2_time = (w >> 8) & 0xff
+    r_h3 = w & 0xff
     if r_h2_time & (r_h2_time - 1) or r_h2_time and not 1 <= r_h2_time <= 128:
         raise _dec('header', 'h2_time', r_h2_time, 'one_hot', 'one bit of 0..7, or 0', 16, 'CAR-D3')
     if r_h3:
         raise _dec('header', 'h3', r_h3, 'reserved', '0', 24, None)
-    o = Header(h1=r_h1, h2_count=r_h2_count, h2_time=(r_h2_time.bit_length() - 1 if r_h2_time else None))
+    o = _new_Header(r_h1, r_h2_count, (r_h2_time.bit_length() - 1 if r_h2_time else None))
     if o.h2_count == 0 and not (o.h2_time is None):
         raise _dec('header', 'h2_time', o.h2_time, 'rule', 'if h2_count == 0 then h2_time == None', decision='CAR-D3', user_message='Without slave words (h2_count = 0) all of h2 is 0: h2_time must be absent / 如果用户没有选择让主机给从机发送控制字串，这16位默认为0')
     if o.h2_count != 0 and not (o.h2_time is not None):
@@ -250,24 +314,7 @@ def _build_header(r_h1, r_h2_count, r_h2_time, r_h3, text_form=False):
     return o
 
 
-def _encode_header(m):
-    r_h1, r_h2_count, r_h2_time, r_h3, = _raw_header(m)
-    return _S_header_0.pack(r_h1, r_h2_count, r_h2_time, r_h3)
-
-
-def _decode_header(d):
-    if len(d) != 4:
-        raise _dec('header', None, len(d), 'length', '4 bytes', 0)
-    c0_0, c0_1, c0_2, c0_3, = _S_header_0.unpack_from(d, 0)
-    r_h1 = c0_0
-    r_h2_count = c0_1
-    r_h2_time = c0_2
-    r_h3 = c0_3
-    return _build_header(r_h1, r_h2_count, r_h2_time, r_h3)
-
-
-def _raw_master_control(m):
-    """Check a master_control and return its raw wire values, in wire order."""
+def _encode_master_control(m):
     if not (m.accept_ir == False):
         raise _enc('master_control', 'accept_ir', m.accept_ir, 'rule', 'accept_ir == False', decision='CAR-R1', user_message='Cannot set the master to accept infrared information / 无法设置主机接受红外信息')
     if not (m.forward_words == True):
@@ -280,49 +327,52 @@ def _raw_master_control(m):
     if v is not True and v is not False and v != 0 and v != 1:
         raise _enc('master_control', 'forward_words', v, 'type', 'a bool')
     r_forward_words = 1 if v else 0
-    v = m.motor.enable
+    g_motor = m.motor
+    v = g_motor.enable
     if v is not True and v is not False and v != 0 and v != 1:
         raise _enc('master_control', 'motor.enable', v, 'type', 'a bool')
     r_motor_enable = 1 if v else 0
-    v = m.motor.direction
+    v = g_motor.direction
     if not isinstance(v, int) or v not in _VALUES_motor_direction:
         raise _enc('master_control', 'motor.direction', v, 'enum', 'MotorDirection', None)
     r_motor_direction = int(v)
-    v = m.motor.speed
+    v = g_motor.speed
     if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
         raise _enc('master_control', 'motor.speed', v, 'type', 'an int')
     if not 0 <= v <= 3:
         raise _enc('master_control', 'motor.speed', v, 'range', '0..3', None)
     r_motor_speed = v
-    v = m.motor.duration
+    v = g_motor.duration
     if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
         raise _enc('master_control', 'motor.duration', v, 'type', 'an int')
     if not 0 <= v <= 3:
         raise _enc('master_control', 'motor.duration', v, 'range', '0..3', None)
     r_motor_duration = v
-    v = m.led.led
+    g_led = m.led
+    v = g_led.led
     if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
         raise _enc('master_control', 'led.led', v, 'type', 'an int')
     if not 0 <= v <= 3:
         raise _enc('master_control', 'led.led', v, 'range', '0..3', None)
     r_led_led = v
-    v = m.led.duration
+    v = g_led.duration
     if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
         raise _enc('master_control', 'led.duration', v, 'type', 'an int')
     if not 0 <= v <= 3:
         raise _enc('master_control', 'led.duration', v, 'range', '0..3', None)
     r_led_duration = v
-    v = m.ultrasonic.enable
+    g_ultrasonic = m.ultrasonic
+    v = g_ultrasonic.enable
     if v is not True and v is not False and v != 0 and v != 1:
         raise _enc('master_control', 'ultrasonic.enable', v, 'type', 'a bool')
     r_ultrasonic_enable = 1 if v else 0
-    v = m.ultrasonic.radius
+    v = g_ultrasonic.radius
     if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
         raise _enc('master_control', 'ultrasonic.radius', v, 'type', 'an int')
     if not 0 <= v <= 3:
         raise _enc('master_control', 'ultrasonic.radius', v, 'range', '0..3', None)
     r_ultrasonic_radius = v
-    v = m.ultrasonic.duration
+    v = g_ultrasonic.duration
     if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
         raise _enc('master_control', 'ultrasonic.duration', v, 'type', 'an int')
     if not 0 <= v <= 3:
@@ -338,20 +388,39 @@ def _raw_master_control(m):
     r_body_sensor = 1 if v else 0
     r_reserved_bits = 0
     r_parity = 0
-    r_parity = (r_accept_ir.bit_count() + r_forward_words.bit_count() + r_motor_enable.bit_count() + r_motor_direction.bit_count() + r_motor_speed.bit_count() + r_motor_duration.bit_count() + r_led_led.bit_count() + r_led_duration.bit_count() + r_ultrasonic_enable.bit_count() + r_ultrasonic_radius.bit_count() + r_ultrasonic_duration.bit_count() + r_voice.bit_count() + r_body_sensor.bit_count() + r_reserved_bits.bit_count()) & 1
-    return (r_accept_ir, r_forward_words, r_motor_enable, r_motor_direction, r_motor_speed, r_motor_duration, r_led_led, r_led_duration, r_ultrasonic_enable, r_ultrasonic_radius, r_ultrasonic_duration, r_voice, r_body_sensor, r_reserved_bits, r_parity, )
+    w = r_accept_ir << 31 | r_forward_words << 30 | r_motor_enable << 29 | r_motor_direction << 27 | r_motor_speed << 25 | r_motor_duration << 23 | r_led_led << 21 | r_led_duration << 19 | r_ultrasonic_enable << 18 | r_ultrasonic_radius << 16 | r_ultrasonic_duration << 14 | r_voice << 13 | r_body_sensor << 12
+    w |= w.bit_count() & 1
+    return w.to_bytes(4, 'big')
 
 
-def _build_master_control(r_accept_ir, r_forward_words, r_motor_enable, r_motor_direction, r_motor_speed, r_motor_duration, r_led_led, r_led_duration, r_ultrasonic_enable, r_ultrasonic_radius, r_ultrasonic_duration, r_voice, r_body_sensor, r_reserved_bits, r_parity, text_form=False):
+def _decode_master_control(d):
+    if len(d) != 4:
+        raise _dec('master_control', None, len(d), 'length', '4 bytes', 0)
+    w = int.from_bytes(d, 'big')
+    r_accept_ir = (w >> 31) & 0x1
+    r_forward_words = (w >> 30) & 0x1
+    r_motor_enable = (w >> 29) & 0x1
+    r_motor_direction = (w >> 27) & 0x3
+    r_motor_speed = (w >> 25) & 0x3
+    r_motor_duration = (w >> 23) & 0x3
+    r_led_led = (w >> 21) & 0x3
+    r_led_duration = (w >> 19) & 0x3
+    r_ultrasonic_enable = (w >> 18) & 0x1
+    r_ultrasonic_radius = (w >> 16) & 0x3
+    r_ultrasonic_duration = (w >> 14) & 0x3
+    r_voice = (w >> 13) & 0x1
+    r_body_sensor = (w >> 12) & 0x1
+    r_reserved_bits = (w >> 1) & 0x7ff
+    r_parity = w & 0x1
     e_motor_direction = _ENUM_motor_direction.get(r_motor_direction)
     if e_motor_direction is None:
         raise _dec('master_control', 'motor.direction', r_motor_direction, 'enum', 'MotorDirection', 3, None)
     if r_reserved_bits:
         raise _dec('master_control', 'reserved_bits', r_reserved_bits, 'reserved', '0', 20, 'CAR-D1')
-    x = (r_accept_ir.bit_count() + r_forward_words.bit_count() + r_motor_enable.bit_count() + r_motor_direction.bit_count() + r_motor_speed.bit_count() + r_motor_duration.bit_count() + r_led_led.bit_count() + r_led_duration.bit_count() + r_ultrasonic_enable.bit_count() + r_ultrasonic_radius.bit_count() + r_ultrasonic_duration.bit_count() + r_voice.bit_count() + r_body_sensor.bit_count() + r_reserved_bits.bit_count()) & 1
+    x = (w & 0xfffffffe).bit_count() & 1
     if r_parity != x:
         raise _dec('master_control', 'parity', r_parity, 'checksum', str(x), 31, 'CAR-D2')
-    o = MasterControl(accept_ir=r_accept_ir == 1, forward_words=r_forward_words == 1, motor=ControlWordMotor(enable=r_motor_enable == 1, direction=e_motor_direction, speed=r_motor_speed, duration=r_motor_duration), led=ControlWordLed(led=r_led_led, duration=r_led_duration), ultrasonic=ControlWordUltrasonic(enable=r_ultrasonic_enable == 1, radius=r_ultrasonic_radius, duration=r_ultrasonic_duration), voice=r_voice == 1, body_sensor=r_body_sensor == 1)
+    o = _new_MasterControl(r_accept_ir == 1, r_forward_words == 1, _new_ControlWordMotor(r_motor_enable == 1, e_motor_direction, r_motor_speed, r_motor_duration), _new_ControlWordLed(r_led_led, r_led_duration), _new_ControlWordUltrasonic(r_ultrasonic_enable == 1, r_ultrasonic_radius, r_ultrasonic_duration), r_voice == 1, r_body_sensor == 1)
     if not (o.accept_ir == False):
         raise _dec('master_control', 'accept_ir', o.accept_ir, 'rule', 'accept_ir == False', decision='CAR-R1', user_message='Cannot set the master to accept infrared information / 无法设置主机接受红外信息')
     if not (o.forward_words == True):
@@ -359,35 +428,7 @@ def _build_master_control(r_accept_ir, r_forward_words, r_motor_enable, r_motor_
     return o
 
 
-def _encode_master_control(m):
-    r_accept_ir, r_forward_words, r_motor_enable, r_motor_direction, r_motor_speed, r_motor_duration, r_led_led, r_led_duration, r_ultrasonic_enable, r_ultrasonic_radius, r_ultrasonic_duration, r_voice, r_body_sensor, r_reserved_bits, r_parity, = _raw_master_control(m)
-    return _S_master_control_0.pack(r_accept_ir << 15 | r_forward_words << 14 | r_motor_enable << 13 | r_motor_direction << 11 | r_motor_speed << 9 | r_motor_duration << 7 | r_led_led << 5 | r_led_duration << 3 | r_ultrasonic_enable << 2 | r_ultrasonic_radius, r_ultrasonic_duration << 14 | r_voice << 13 | r_body_sensor << 12 | r_reserved_bits << 1 | r_parity)
-
-
-def _decode_master_control(d):
-    if len(d) != 4:
-        raise _dec('master_control', None, len(d), 'length', '4 bytes', 0)
-    c0_0, c0_1, = _S_master_control_0.unpack_from(d, 0)
-    r_accept_ir = (c0_0 >> 15) & 0x1
-    r_forward_words = (c0_0 >> 14) & 0x1
-    r_motor_enable = (c0_0 >> 13) & 0x1
-    r_motor_direction = (c0_0 >> 11) & 0x3
-    r_motor_speed = (c0_0 >> 9) & 0x3
-    r_motor_duration = (c0_0 >> 7) & 0x3
-    r_led_led = (c0_0 >> 5) & 0x3
-    r_led_duration = (c0_0 >> 3) & 0x3
-    r_ultrasonic_enable = (c0_0 >> 2) & 0x1
-    r_ultrasonic_radius = c0_0 & 0x3
-    r_ultrasonic_duration = (c0_1 >> 14) & 0x3
-    r_voice = (c0_1 >> 13) & 0x1
-    r_body_sensor = (c0_1 >> 12) & 0x1
-    r_reserved_bits = (c0_1 >> 1) & 0x7ff
-    r_parity = c0_1 & 0x1
-    return _build_master_control(r_accept_ir, r_forward_words, r_motor_enable, r_motor_direction, r_motor_speed, r_motor_duration, r_led_led, r_led_duration, r_ultrasonic_enable, r_ultrasonic_radius, r_ultrasonic_duration, r_voice, r_body_sensor, r_reserved_bits, r_parity)
-
-
-def _raw_slave_control(m):
-    """Check a slave_control and return its raw wire values, in wire order."""
+def _encode_slave_control(m):
     v = m.accept_ir
     if v is not True and v is not False and v != 0 and v != 1:
         raise _enc('slave_control', 'accept_ir', v, 'type', 'a bool')
@@ -396,49 +437,52 @@ def _raw_slave_control(m):
     if v is not True and v is not False and v != 0 and v != 1:
         raise _enc('slave_control', 'forward_words', v, 'type', 'a bool')
     r_forward_words = 1 if v else 0
-    v = m.motor.enable
+    g_motor = m.motor
+    v = g_motor.enable
     if v is not True and v is not False and v != 0 and v != 1:
         raise _enc('slave_control', 'motor.enable', v, 'type', 'a bool')
     r_motor_enable = 1 if v else 0
-    v = m.motor.direction
+    v = g_motor.direction
     if not isinstance(v, int) or v not in _VALUES_motor_direction:
         raise _enc('slave_control', 'motor.direction', v, 'enum', 'MotorDirection', None)
     r_motor_direction = int(v)
-    v = m.motor.speed
+    v = g_motor.speed
     if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
         raise _enc('slave_control', 'motor.speed', v, 'type', 'an int')
     if not 0 <= v <= 3:
         raise _enc('slave_control', 'motor.speed', v, 'range', '0..3', None)
     r_motor_speed = v
-    v = m.motor.duration
+    v = g_motor.duration
     if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
         raise _enc('slave_control', 'motor.duration', v, 'type', 'an int')
     if not 0 <= v <= 3:
         raise _enc('slave_control', 'motor.duration', v, 'range', '0..3', None)
     r_motor_duration = v
-    v = m.led.led
+    g_led = m.led
+    v = g_led.led
     if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
         raise _enc('slave_control', 'led.led', v, 'type', 'an int')
     if not 0 <= v <= 3:
         raise _enc('slave_control', 'led.led', v, 'range', '0..3', None)
     r_led_led = v
-    v = m.led.duration
+    v = g_led.duration
     if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
         raise _enc('slave_control', 'led.duration', v, 'type', 'an int')
     if not 0 <= v <= 3:
         raise _enc('slave_control', 'led.duration', v, 'range', '0..3', None)
     r_led_duration = v
-    v = m.ultrasonic.enable
+    g_ultrasonic = m.ultrasonic
+    v = g_ultrasonic.enable
     if v is not True and v is not False and v != 0 and v != 1:
         raise _enc('slave_control', 'ultrasonic.enable', v, 'type', 'a bool')
     r_ultrasonic_enable = 1 if v else 0
-    v = m.ultrasonic.radius
+    v = g_ultrasonic.radius
     if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
         raise _enc('slave_control', 'ultrasonic.radius', v, 'type', 'an int')
     if not 0 <= v <= 3:
         raise _enc('slave_control', 'ultrasonic.radius', v, 'range', '0..3', None)
     r_ultrasonic_radius = v
-    v = m.ultrasonic.duration
+    v = g_ultrasonic.duration
     if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
         raise _enc('slave_control', 'ultrasonic.duration', v, 'type', 'an int')
     if not 0 <= v <= 3:
@@ -454,48 +498,40 @@ def _raw_slave_control(m):
     r_body_sensor = 1 if v else 0
     r_reserved_bits = 0
     r_parity = 0
-    r_parity = (r_accept_ir.bit_count() + r_forward_words.bit_count() + r_motor_enable.bit_count() + r_motor_direction.bit_count() + r_motor_speed.bit_count() + r_motor_duration.bit_count() + r_led_led.bit_count() + r_led_duration.bit_count() + r_ultrasonic_enable.bit_count() + r_ultrasonic_radius.bit_count() + r_ultrasonic_duration.bit_count() + r_voice.bit_count() + r_body_sensor.bit_count() + r_reserved_bits.bit_count()) & 1
-    return (r_accept_ir, r_forward_words, r_motor_enable, r_motor_direction, r_motor_speed, r_motor_duration, r_led_led, r_led_duration, r_ultrasonic_enable, r_ultrasonic_radius, r_ultrasonic_duration, r_voice, r_body_sensor, r_reserved_bits, r_parity, )
-
-
-def _build_slave_control(r_accept_ir, r_forward_words, r_motor_enable, r_motor_direction, r_motor_speed, r_motor_duration, r_led_led, r_led_duration, r_ultrasonic_enable, r_ultrasonic_radius, r_ultrasonic_duration, r_voice, r_body_sensor, r_reserved_bits, r_parity, text_form=False):
-    e_motor_direction = _ENUM_motor_direction.get(r_motor_direction)
-    if e_motor_direction is None:
-        raise _dec('slave_control', 'motor.direction', r_motor_direction, 'enum', 'MotorDirection', 3, None)
-    if r_reserved_bits:
-        raise _dec('slave_control', 'reserved_bits', r_reserved_bits, 'reserved', '0', 20, 'CAR-D1')
-    x = (r_accept_ir.bit_count() + r_forward_words.bit_count() + r_motor_enable.bit_count() + r_motor_direction.bit_count() + r_motor_speed.bit_count() + r_motor_duration.bit_count() + r_led_led.bit_count() + r_led_duration.bit_count() + r_ultrasonic_enable.bit_count() + r_ultrasonic_radius.bit_count() + r_ultrasonic_duration.bit_count() + r_voice.bit_count() + r_body_sensor.bit_count() + r_reserved_bits.bit_count()) & 1
-    if r_parity != x:
-        raise _dec('slave_control', 'parity', r_parity, 'checksum', str(x), 31, 'CAR-D2')
-    o = SlaveControl(accept_ir=r_accept_ir == 1, forward_words=r_forward_words == 1, motor=ControlWordMotor(enable=r_motor_enable == 1, direction=e_motor_direction, speed=r_motor_speed, duration=r_motor_duration), led=ControlWordLed(led=r_led_led, duration=r_led_duration), ultrasonic=ControlWordUltrasonic(enable=r_ultrasonic_enable == 1, radius=r_ultrasonic_radius, duration=r_ultrasonic_duration), voice=r_voice == 1, body_sensor=r_body_sensor == 1)
-    return o
-
-
-def _encode_slave_control(m):
-    r_accept_ir, r_forward_words, r_motor_enable, r_motor_direction, r_motor_speed, r_motor_duration, r_led_led, r_led_duration, r_ultrasonic_enable, r_ultrasonic_radius, r_ultrasonic_duration, r_voice, r_body_sensor, r_reserved_bits, r_parity, = _raw_slave_control(m)
-    return _S_slave_control_0.pack(r_accept_ir << 15 | r_forward_words << 14 | r_motor_enable << 13 | r_motor_direction << 11 | r_motor_speed << 9 | r_motor_duration << 7 | r_led_led << 5 | r_led_duration << 3 | r_ultrasonic_enable << 2 | r_ultrasonic_radius, r_ultrasonic_duration << 14 | r_voice << 13 | r_body_sensor << 12 | r_reserved_bits << 1 | r_parity)
+    w = r_accept_ir << 31 | r_forward_words << 30 | r_motor_enable << 29 | r_motor_direction << 27 | r_motor_speed << 25 | r_motor_duration << 23 | r_led_led << 21 | r_led_duration << 19 | r_ultrasonic_enable << 18 | r_ultrasonic_radius << 16 | r_ultrasonic_duration << 14 | r_voice << 13 | r_body_sensor << 12
+    w |= w.bit_count() & 1
+    return w.to_bytes(4, 'big')
 
 
 def _decode_slave_control(d):
     if len(d) != 4:
         raise _dec('slave_control', None, len(d), 'length', '4 bytes', 0)
-    c0_0, c0_1, = _S_slave_control_0.unpack_from(d, 0)
-    r_accept_ir = (c0_0 >> 15) & 0x1
-    r_forward_words = (c0_0 >> 14) & 0x1
-    r_motor_enable = (c0_0 >> 13) & 0x1
-    r_motor_direction = (c0_0 >> 11) & 0x3
-    r_motor_speed = (c0_0 >> 9) & 0x3
-    r_motor_duration = (c0_0 >> 7) & 0x3
-    r_led_led = (c0_0 >> 5) & 0x3
-    r_led_duration = (c0_0 >> 3) & 0x3
-    r_ultrasonic_enable = (c0_0 >> 2) & 0x1
-    r_ultrasonic_radius = c0_0 & 0x3
-    r_ultrasonic_duration = (c0_1 >> 14) & 0x3
-    r_voice = (c0_1 >> 13) & 0x1
-    r_body_sensor = (c0_1 >> 12) & 0x1
-    r_reserved_bits = (c0_1 >> 1) & 0x7ff
-    r_parity = c0_1 & 0x1
-    return _build_slave_control(r_accept_ir, r_forward_words, r_motor_enable, r_motor_direction, r_motor_speed, r_motor_duration, r_led_led, r_led_duration, r_ultrasonic_enable, r_ultrasonic_radius, r_ultrasonic_duration, r_voice, r_body_sensor, r_reserved_bits, r_parity)
+    w = int.from_bytes(d, 'big')
+    r_accept_ir = (w >> 31) & 0x1
+    r_forward_words = (w >> 30) & 0x1
+    r_motor_enable = (w >> 29) & 0x1
+    r_motor_direction = (w >> 27) & 0x3
+    r_motor_speed = (w >> 25) & 0x3
+    r_motor_duration = (w >> 23) & 0x3
+    r_led_led = (w >> 21) & 0x3
+    r_led_duration = (w >> 19) & 0x3
+    r_ultrasonic_enable = (w >> 18) & 0x1
+    r_ultrasonic_radius = (w >> 16) & 0x3
+    r_ultrasonic_duration = (w >> 14) & 0x3
+    r_voice = (w >> 13) & 0x1
+    r_body_sensor = (w >> 12) & 0x1
+    r_reserved_bits = (w >> 1) & 0x7ff
+    r_parity = w & 0x1
+    e_motor_direction = _ENUM_motor_direction.get(r_motor_direction)
+    if e_motor_direction is None:
+        raise _dec('slave_control', 'motor.direction', r_motor_direction, 'enum', 'MotorDirection', 3, None)
+    if r_reserved_bits:
+        raise _dec('slave_control', 'reserved_bits', r_reserved_bits, 'reserved', '0', 20, 'CAR-D1')
+    x = (w & 0xfffffffe).bit_count() & 1
+    if r_parity != x:
+        raise _dec('slave_control', 'parity', r_parity, 'checksum', str(x), 31, 'CAR-D2')
+    o = _new_SlaveControl(r_accept_ir == 1, r_forward_words == 1, _new_ControlWordMotor(r_motor_enable == 1, e_motor_direction, r_motor_speed, r_motor_duration), _new_ControlWordLed(r_led_led, r_led_duration), _new_ControlWordUltrasonic(r_ultrasonic_enable == 1, r_ultrasonic_radius, r_ultrasonic_duration), r_voice == 1, r_body_sensor == 1)
+    return o
 
 
 _ENCODERS = {Header: _encode_header, MasterControl: _encode_master_control, SlaveControl: _encode_slave_control, }

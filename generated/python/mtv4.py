@@ -18,6 +18,7 @@ FINGERPRINT32 = 0x30e4a510  # its first 32 bits
 
 _floor = math.floor
 _isfinite = math.isfinite
+_object_new = object.__new__
 
 
 class CodecError(ValueError):
@@ -120,11 +121,25 @@ class Robots(enum.IntFlag):
     robot14 = 0x4000  # robot 14
     robot15 = 0x8000  # robot 15
 
+
+_FLAGS_robots = {}
+
 class Status(enum.IntFlag):
     """quick settings and how to read the other fields of command 0x03"""
     speed_control = 0x1  # 1 = velocity setting active, 0 = drive controllers off
     power_amplifiers = 0x2  # 1 = power amplifiers on, 0 = motors disconnected (idle)
     overwrite_odometry = 0x4  # 1 = set the robot's odometry from X, Y, Th; 0 = leave it
+
+
+_FLAGS_status = {}
+
+
+def _flag(cls, cache, value):
+    """The flag value, built once: constructing an IntFlag costs far more than a lookup."""
+    flag = cls(value)
+    if len(cache) < 4096:
+        cache[value] = flag
+    return flag
 
 
 @dataclass(slots=True, kw_only=True)
@@ -146,6 +161,17 @@ class SetWheelsVelocities:
         return _decode_set_wheels_velocities(_as_input(data))
 
 
+def _new_SetWheelsVelocities(v0, v1, v2, v3, v4):
+    """SetWheelsVelocities from its fields in layout order, without keyword matching (decoders)."""
+    o = _object_new(SetWheelsVelocities)
+    o.group = v0
+    o.radio_crc_flag = v1
+    o.robots = v2
+    o.vl = v3
+    o.vr = v4
+    return o
+
+
 @dataclass(slots=True, kw_only=True)
 class SetLed:
     """set LEDs"""
@@ -165,6 +191,19 @@ class SetLed:
     @classmethod
     def decode(cls, data):
         return _decode_set_led(_as_input(data))
+
+
+def _new_SetLed(v0, v1, v2, v3, v4, v5, v6):
+    """SetLed from its fields in layout order, without keyword matching (decoders)."""
+    o = _object_new(SetLed)
+    o.group = v0
+    o.radio_crc_flag = v1
+    o.robots = v2
+    o.d1 = v3
+    o.d2 = v4
+    o.d3 = v5
+    o.d4 = v6
+    return o
 
 
 @dataclass(slots=True, kw_only=True)
@@ -190,6 +229,21 @@ class SetWheelsVelocitiesWithOdometry:
         return _decode_set_wheels_velocities_with_odometry(_as_input(data))
 
 
+def _new_SetWheelsVelocitiesWithOdometry(v0, v1, v2, v3, v4, v5, v6, v7, v8):
+    """SetWheelsVelocitiesWithOdometry from its fields in layout order, without keyword matching (decoders)."""
+    o = _object_new(SetWheelsVelocitiesWithOdometry)
+    o.group = v0
+    o.radio_crc_flag = v1
+    o.robots = v2
+    o.status = v3
+    o.vl = v4
+    o.vr = v5
+    o.x = v6
+    o.y = v7
+    o.th = v8
+    return o
+
+
 @dataclass(slots=True, kw_only=True)
 class Ack:
     """standard acknowledgement"""
@@ -206,6 +260,16 @@ class Ack:
     @classmethod
     def decode(cls, data):
         return _decode_ack(_as_input(data))
+
+
+def _new_Ack(v0, v1, v2, v3):
+    """Ack from its fields in layout order, without keyword matching (decoders)."""
+    o = _object_new(Ack)
+    o.group = v0
+    o.radio_crc_flag = v1
+    o.command = v2
+    o.robots = v3
+    return o
 
 
 @dataclass(slots=True, kw_only=True)
@@ -228,6 +292,18 @@ class OdometryReply:
     def decode(cls, data):
         return _decode_odometry_reply(_as_input(data))
 
+
+def _new_OdometryReply(v0, v1, v2, v3, v4, v5, v6):
+    """OdometryReply from its fields in layout order, without keyword matching (decoders)."""
+    o = _object_new(OdometryReply)
+    o.group = v0
+    o.radio_crc_flag = v1
+    o.robots = v2
+    o.status = v3
+    o.x = v4
+    o.y = v5
+    o.th = v6
+    return o
 _S_set_wheels_velocities_0 = struct.Struct('<BBBBHhh')
 _S_set_wheels_velocities_1 = struct.Struct('>H')
 _S_set_led_0 = struct.Struct('<BBBBHBBBB')
@@ -256,6 +332,48 @@ def _checksum_crc16_8005_ffff_nn_0(data):
         reg = table[((reg >> 8) ^ byte) & 0xFF] ^ ((reg << 8) & 0xffff)
     return reg ^ 0x0
 
+def _tables_crc16_8005_ffff_nn_0(longest):
+    zeros = [_checksum_crc16_8005_ffff_nn_0(bytes(n)) for n in range(longest + 1)]
+    tables = tuple(tuple(_checksum_crc16_8005_ffff_nn_0(bytes((b,)) + bytes(k)) ^ zeros[k + 1] for b in range(256))
+                   for k in range(longest))
+    return zeros, tables
+_ZEROS_crc16_8005_ffff_nn_0, _AT_crc16_8005_ffff_nn_0 = _tables_crc16_8005_ffff_nn_0(23)
+_AT0_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[0]
+_AT1_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[1]
+_AT2_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[2]
+_AT3_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[3]
+_AT4_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[4]
+_AT5_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[5]
+_AT6_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[6]
+_AT7_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[7]
+_AT8_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[8]
+_AT9_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[9]
+_AT10_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[10]
+_AT11_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[11]
+_AT12_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[12]
+_AT13_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[13]
+_AT14_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[14]
+_AT15_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[15]
+_AT16_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[16]
+_AT17_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[17]
+_AT18_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[18]
+_AT19_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[19]
+_AT20_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[20]
+_AT21_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[21]
+_AT22_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[22]
+def _checksum_crc16_8005_ffff_nn_0_5(data):
+    b0, b1, b2, b3, b4, = data
+    return _ZEROS_crc16_8005_ffff_nn_0[5] ^ _AT4_crc16_8005_ffff_nn_0[b0] ^ _AT3_crc16_8005_ffff_nn_0[b1] ^ _AT2_crc16_8005_ffff_nn_0[b2] ^ _AT1_crc16_8005_ffff_nn_0[b3] ^ _AT0_crc16_8005_ffff_nn_0[b4]
+def _checksum_crc16_8005_ffff_nn_0_9(data):
+    b0, b1, b2, b3, b4, b5, b6, b7, b8, = data
+    return _ZEROS_crc16_8005_ffff_nn_0[9] ^ _AT8_crc16_8005_ffff_nn_0[b0] ^ _AT7_crc16_8005_ffff_nn_0[b1] ^ _AT6_crc16_8005_ffff_nn_0[b2] ^ _AT5_crc16_8005_ffff_nn_0[b3] ^ _AT4_crc16_8005_ffff_nn_0[b4] ^ _AT3_crc16_8005_ffff_nn_0[b5] ^ _AT2_crc16_8005_ffff_nn_0[b6] ^ _AT1_crc16_8005_ffff_nn_0[b7] ^ _AT0_crc16_8005_ffff_nn_0[b8]
+def _checksum_crc16_8005_ffff_nn_0_19(data):
+    b0, b1, b2, b3, b4, b5, b6, b7, b8, b9, b10, b11, b12, b13, b14, b15, b16, b17, b18, = data
+    return _ZEROS_crc16_8005_ffff_nn_0[19] ^ _AT18_crc16_8005_ffff_nn_0[b0] ^ _AT17_crc16_8005_ffff_nn_0[b1] ^ _AT16_crc16_8005_ffff_nn_0[b2] ^ _AT15_crc16_8005_ffff_nn_0[b3] ^ _AT14_crc16_8005_ffff_nn_0[b4] ^ _AT13_crc16_8005_ffff_nn_0[b5] ^ _AT12_crc16_8005_ffff_nn_0[b6] ^ _AT11_crc16_8005_ffff_nn_0[b7] ^ _AT10_crc16_8005_ffff_nn_0[b8] ^ _AT9_crc16_8005_ffff_nn_0[b9] ^ _AT8_crc16_8005_ffff_nn_0[b10] ^ _AT7_crc16_8005_ffff_nn_0[b11] ^ _AT6_crc16_8005_ffff_nn_0[b12] ^ _AT5_crc16_8005_ffff_nn_0[b13] ^ _AT4_crc16_8005_ffff_nn_0[b14] ^ _AT3_crc16_8005_ffff_nn_0[b15] ^ _AT2_crc16_8005_ffff_nn_0[b16] ^ _AT1_crc16_8005_ffff_nn_0[b17] ^ _AT0_crc16_8005_ffff_nn_0[b18]
+def _checksum_crc16_8005_ffff_nn_0_23(data):
+    b0, b1, b2, b3, b4, b5, b6, b7, b8, b9, b10, b11, b12, b13, b14, b15, b16, b17, b18, b19, b20, b21, b22, = data
+    return _ZEROS_crc16_8005_ffff_nn_0[23] ^ _AT22_crc16_8005_ffff_nn_0[b0] ^ _AT21_crc16_8005_ffff_nn_0[b1] ^ _AT20_crc16_8005_ffff_nn_0[b2] ^ _AT19_crc16_8005_ffff_nn_0[b3] ^ _AT18_crc16_8005_ffff_nn_0[b4] ^ _AT17_crc16_8005_ffff_nn_0[b5] ^ _AT16_crc16_8005_ffff_nn_0[b6] ^ _AT15_crc16_8005_ffff_nn_0[b7] ^ _AT14_crc16_8005_ffff_nn_0[b8] ^ _AT13_crc16_8005_ffff_nn_0[b9] ^ _AT12_crc16_8005_ffff_nn_0[b10] ^ _AT11_crc16_8005_ffff_nn_0[b11] ^ _AT10_crc16_8005_ffff_nn_0[b12] ^ _AT9_crc16_8005_ffff_nn_0[b13] ^ _AT8_crc16_8005_ffff_nn_0[b14] ^ _AT7_crc16_8005_ffff_nn_0[b15] ^ _AT6_crc16_8005_ffff_nn_0[b16] ^ _AT5_crc16_8005_ffff_nn_0[b17] ^ _AT4_crc16_8005_ffff_nn_0[b18] ^ _AT3_crc16_8005_ffff_nn_0[b19] ^ _AT2_crc16_8005_ffff_nn_0[b20] ^ _AT1_crc16_8005_ffff_nn_0[b21] ^ _AT0_crc16_8005_ffff_nn_0[b22]
+
 
 def _as_input(data):
     if not isinstance(data, (bytes, bytearray, memoryview)):
@@ -263,8 +381,7 @@ def _as_input(data):
     return data
 
 
-def _raw_set_wheels_velocities(m):
-    """Check a set_wheels_velocities and return its raw wire values, in wire order."""
+def _encode_set_wheels_velocities(m):
     r_sync = 170
     r_length = 8
     v = m.group
@@ -302,10 +419,23 @@ def _raw_set_wheels_velocities(m):
         raise _enc('set_wheels_velocities', 'vr', v, 'range', '-4096..4095.875', 'MTV4-D5')
     r_vr = _floor(v / 0.125 + 0.5)
     r_crc = 0
-    return (r_sync, r_length, r_group, r_radio_crc_flag, r_command, r_robots, r_vl, r_vr, r_crc, )
+    b = bytearray(12)
+    _S_set_wheels_velocities_0.pack_into(b, 0, 170, 8, r_group, r_radio_crc_flag << 7 | 0x1, r_robots, r_vl, r_vr)
+    _S_set_wheels_velocities_1.pack_into(b, 10, r_crc)
+    b[10:12] = _checksum_crc16_8005_ffff_nn_0_9(b[1:10]).to_bytes(2, 'big')
+    return bytes(b)
 
 
-def _build_set_wheels_velocities(r_sync, r_length, r_group, r_radio_crc_flag, r_command, r_robots, r_vl, r_vr, r_crc, text_form=False):
+def _decode_set_wheels_velocities(d):
+    if len(d) != 12:
+        raise _dec('set_wheels_velocities', None, len(d), 'length', '12 bytes', 0)
+    r_sync, r_length, r_group, c0_3, r_robots, r_vl, r_vr, = _S_set_wheels_velocities_0.unpack_from(d, 0)
+    r_crc, = _S_set_wheels_velocities_1.unpack_from(d, 10)
+    r_radio_crc_flag = (c0_3 >> 7) & 0x1
+    r_command = c0_3 & 0x7f
+    x = _checksum_crc16_8005_ffff_nn_0_9(d[1:10])
+    if r_crc != x:
+        raise _dec('set_wheels_velocities', 'crc', r_crc, 'checksum', hex(x), 80, 'MTV4-D1')
     if r_sync != 170:
         raise _dec('set_wheels_velocities', 'sync', r_sync, 'const', '170', 0, None)
     if r_length != 8:
@@ -314,49 +444,13 @@ def _build_set_wheels_velocities(r_sync, r_length, r_group, r_radio_crc_flag, r_
         raise _dec('set_wheels_velocities', 'group', r_group, 'range', '0..15', 16, None)
     if r_command != 1:
         raise _dec('set_wheels_velocities', 'command', r_command, 'const', '1', 25, 'MTV4-D4')
-    if r_robots & 0x0:
-        raise _dec('set_wheels_velocities', 'robots', r_robots, 'flags', 'only the bits of robots', 32, 'MTV4-D3')
     if r_robots == 0 or r_robots & (r_robots - 1):
         raise _dec('set_wheels_velocities', 'robots', r_robots, 'exactly_one', 'exactly one bit set', 32, 'MTV4-D3')
-    if not -4096 <= r_vl * 0.125 <= 4095.875:
-        raise _dec('set_wheels_velocities', 'vl', r_vl, 'range', '-4096..4095.875', 48, 'MTV4-D5')
-    if not -4096 <= r_vr * 0.125 <= 4095.875:
-        raise _dec('set_wheels_velocities', 'vr', r_vr, 'range', '-4096..4095.875', 64, 'MTV4-D5')
-    o = SetWheelsVelocities(group=r_group, radio_crc_flag=r_radio_crc_flag, robots=Robots(r_robots), vl=r_vl * 0.125, vr=r_vr * 0.125)
+    o = _new_SetWheelsVelocities(r_group, r_radio_crc_flag, _FLAGS_robots.get(r_robots) or _flag(Robots, _FLAGS_robots, r_robots), r_vl * 0.125, r_vr * 0.125)
     return o
 
 
-def _encode_set_wheels_velocities(m):
-    r_sync, r_length, r_group, r_radio_crc_flag, r_command, r_robots, r_vl, r_vr, r_crc, = _raw_set_wheels_velocities(m)
-    b = bytearray(12)
-    _S_set_wheels_velocities_0.pack_into(b, 0, r_sync, r_length, r_group, r_radio_crc_flag << 7 | r_command, r_robots, r_vl, r_vr)
-    _S_set_wheels_velocities_1.pack_into(b, 10, r_crc)
-    b[10:12] = _checksum_crc16_8005_ffff_nn_0(b[1:10]).to_bytes(2, 'big')
-    return bytes(b)
-
-
-def _decode_set_wheels_velocities(d):
-    if len(d) != 12:
-        raise _dec('set_wheels_velocities', None, len(d), 'length', '12 bytes', 0)
-    c0_0, c0_1, c0_2, c0_3, c0_4, c0_5, c0_6, = _S_set_wheels_velocities_0.unpack_from(d, 0)
-    c10_0, = _S_set_wheels_velocities_1.unpack_from(d, 10)
-    r_sync = c0_0
-    r_length = c0_1
-    r_group = c0_2
-    r_radio_crc_flag = (c0_3 >> 7) & 0x1
-    r_command = c0_3 & 0x7f
-    r_robots = c0_4
-    r_vl = c0_5
-    r_vr = c0_6
-    r_crc = c10_0
-    x = _checksum_crc16_8005_ffff_nn_0(d[1:10])
-    if r_crc != x:
-        raise _dec('set_wheels_velocities', 'crc', r_crc, 'checksum', hex(x), 80, 'MTV4-D1')
-    return _build_set_wheels_velocities(r_sync, r_length, r_group, r_radio_crc_flag, r_command, r_robots, r_vl, r_vr, r_crc)
-
-
-def _raw_set_led(m):
-    """Check a set_led and return its raw wire values, in wire order."""
+def _encode_set_led(m):
     r_sync = 170
     r_length = 8
     v = m.group
@@ -406,10 +500,23 @@ def _raw_set_led(m):
         raise _enc('set_led', 'd4', v, 'range', '0..255', None)
     r_d4 = v
     r_crc = 0
-    return (r_sync, r_length, r_group, r_radio_crc_flag, r_command, r_robots, r_d1, r_d2, r_d3, r_d4, r_crc, )
+    b = bytearray(12)
+    _S_set_led_0.pack_into(b, 0, 170, 8, r_group, r_radio_crc_flag << 7 | 0x2, r_robots, r_d1, r_d2, r_d3, r_d4)
+    _S_set_led_1.pack_into(b, 10, r_crc)
+    b[10:12] = _checksum_crc16_8005_ffff_nn_0_9(b[1:10]).to_bytes(2, 'big')
+    return bytes(b)
 
 
-def _build_set_led(r_sync, r_length, r_group, r_radio_crc_flag, r_command, r_robots, r_d1, r_d2, r_d3, r_d4, r_crc, text_form=False):
+def _decode_set_led(d):
+    if len(d) != 12:
+        raise _dec('set_led', None, len(d), 'length', '12 bytes', 0)
+    r_sync, r_length, r_group, c0_3, r_robots, r_d1, r_d2, r_d3, r_d4, = _S_set_led_0.unpack_from(d, 0)
+    r_crc, = _S_set_led_1.unpack_from(d, 10)
+    r_radio_crc_flag = (c0_3 >> 7) & 0x1
+    r_command = c0_3 & 0x7f
+    x = _checksum_crc16_8005_ffff_nn_0_9(d[1:10])
+    if r_crc != x:
+        raise _dec('set_led', 'crc', r_crc, 'checksum', hex(x), 80, 'MTV4-D1')
     if r_sync != 170:
         raise _dec('set_led', 'sync', r_sync, 'const', '170', 0, None)
     if r_length != 8:
@@ -418,47 +525,13 @@ def _build_set_led(r_sync, r_length, r_group, r_radio_crc_flag, r_command, r_rob
         raise _dec('set_led', 'group', r_group, 'range', '0..15', 16, None)
     if r_command != 2:
         raise _dec('set_led', 'command', r_command, 'const', '2', 25, 'MTV4-D4')
-    if r_robots & 0x0:
-        raise _dec('set_led', 'robots', r_robots, 'flags', 'only the bits of robots', 32, 'MTV4-D3')
     if r_robots == 0 or r_robots & (r_robots - 1):
         raise _dec('set_led', 'robots', r_robots, 'exactly_one', 'exactly one bit set', 32, 'MTV4-D3')
-    o = SetLed(group=r_group, radio_crc_flag=r_radio_crc_flag, robots=Robots(r_robots), d1=r_d1, d2=r_d2, d3=r_d3, d4=r_d4)
+    o = _new_SetLed(r_group, r_radio_crc_flag, _FLAGS_robots.get(r_robots) or _flag(Robots, _FLAGS_robots, r_robots), r_d1, r_d2, r_d3, r_d4)
     return o
 
 
-def _encode_set_led(m):
-    r_sync, r_length, r_group, r_radio_crc_flag, r_command, r_robots, r_d1, r_d2, r_d3, r_d4, r_crc, = _raw_set_led(m)
-    b = bytearray(12)
-    _S_set_led_0.pack_into(b, 0, r_sync, r_length, r_group, r_radio_crc_flag << 7 | r_command, r_robots, r_d1, r_d2, r_d3, r_d4)
-    _S_set_led_1.pack_into(b, 10, r_crc)
-    b[10:12] = _checksum_crc16_8005_ffff_nn_0(b[1:10]).to_bytes(2, 'big')
-    return bytes(b)
-
-
-def _decode_set_led(d):
-    if len(d) != 12:
-        raise _dec('set_led', None, len(d), 'length', '12 bytes', 0)
-    c0_0, c0_1, c0_2, c0_3, c0_4, c0_5, c0_6, c0_7, c0_8, = _S_set_led_0.unpack_from(d, 0)
-    c10_0, = _S_set_led_1.unpack_from(d, 10)
-    r_sync = c0_0
-    r_length = c0_1
-    r_group = c0_2
-    r_radio_crc_flag = (c0_3 >> 7) & 0x1
-    r_command = c0_3 & 0x7f
-    r_robots = c0_4
-    r_d1 = c0_5
-    r_d2 = c0_6
-    r_d3 = c0_7
-    r_d4 = c0_8
-    r_crc = c10_0
-    x = _checksum_crc16_8005_ffff_nn_0(d[1:10])
-    if r_crc != x:
-        raise _dec('set_led', 'crc', r_crc, 'checksum', hex(x), 80, 'MTV4-D1')
-    return _build_set_led(r_sync, r_length, r_group, r_radio_crc_flag, r_command, r_robots, r_d1, r_d2, r_d3, r_d4, r_crc)
-
-
-def _raw_set_wheels_velocities_with_odometry(m):
-    """Check a set_wheels_velocities_with_odometry and return its raw wire values, in wire order."""
+def _encode_set_wheels_velocities_with_odometry(m):
     r_sync = 170
     r_length = 22
     v = m.group
@@ -527,10 +600,23 @@ def _raw_set_wheels_velocities_with_odometry(m):
         raise _enc('set_wheels_velocities_with_odometry', 'th', v, 'range', 'a binary32 value')
     r_th = v
     r_crc = 0
-    return (r_sync, r_length, r_group, r_radio_crc_flag, r_command, r_robots, r_status, r_vl, r_vr, r_x, r_y, r_th, r_crc, )
+    b = bytearray(26)
+    _S_set_wheels_velocities_with_odometry_0.pack_into(b, 0, 170, 22, r_group, r_radio_crc_flag << 7 | 0x3, r_robots, r_status, r_vl, r_vr, r_x, r_y, r_th)
+    _S_set_wheels_velocities_with_odometry_1.pack_into(b, 24, r_crc)
+    b[24:26] = _checksum_crc16_8005_ffff_nn_0_23(b[1:24]).to_bytes(2, 'big')
+    return bytes(b)
 
 
-def _build_set_wheels_velocities_with_odometry(r_sync, r_length, r_group, r_radio_crc_flag, r_command, r_robots, r_status, r_vl, r_vr, r_x, r_y, r_th, r_crc, text_form=False):
+def _decode_set_wheels_velocities_with_odometry(d):
+    if len(d) != 26:
+        raise _dec('set_wheels_velocities_with_odometry', None, len(d), 'length', '26 bytes', 0)
+    r_sync, r_length, r_group, c0_3, r_robots, r_status, r_vl, r_vr, r_x, r_y, r_th, = _S_set_wheels_velocities_with_odometry_0.unpack_from(d, 0)
+    r_crc, = _S_set_wheels_velocities_with_odometry_1.unpack_from(d, 24)
+    r_radio_crc_flag = (c0_3 >> 7) & 0x1
+    r_command = c0_3 & 0x7f
+    x = _checksum_crc16_8005_ffff_nn_0_23(d[1:24])
+    if r_crc != x:
+        raise _dec('set_wheels_velocities_with_odometry', 'crc', r_crc, 'checksum', hex(x), 192, 'MTV4-D1')
     if r_sync != 170:
         raise _dec('set_wheels_velocities_with_odometry', 'sync', r_sync, 'const', '170', 0, None)
     if r_length != 22:
@@ -539,61 +625,21 @@ def _build_set_wheels_velocities_with_odometry(r_sync, r_length, r_group, r_radi
         raise _dec('set_wheels_velocities_with_odometry', 'group', r_group, 'range', '0..15', 16, None)
     if r_command != 3:
         raise _dec('set_wheels_velocities_with_odometry', 'command', r_command, 'const', '3', 25, 'MTV4-D4')
-    if r_robots & 0x0:
-        raise _dec('set_wheels_velocities_with_odometry', 'robots', r_robots, 'flags', 'only the bits of robots', 32, 'MTV4-D3')
     if r_robots == 0 or r_robots & (r_robots - 1):
         raise _dec('set_wheels_velocities_with_odometry', 'robots', r_robots, 'exactly_one', 'exactly one bit set', 32, 'MTV4-D3')
     if r_status & 0xfff8:
         raise _dec('set_wheels_velocities_with_odometry', 'status', r_status, 'flags', 'only the bits of status', 48, None)
-    if not -4096 <= r_vl * 0.125 <= 4095.875:
-        raise _dec('set_wheels_velocities_with_odometry', 'vl', r_vl, 'range', '-4096..4095.875', 64, 'MTV4-D5')
-    if not -4096 <= r_vr * 0.125 <= 4095.875:
-        raise _dec('set_wheels_velocities_with_odometry', 'vr', r_vr, 'range', '-4096..4095.875', 80, 'MTV4-D5')
     if not _isfinite(r_x):
         raise _dec('set_wheels_velocities_with_odometry', 'x', r_x, 'finite', 'a finite number', 96, 'MTV4-D5')
     if not _isfinite(r_y):
         raise _dec('set_wheels_velocities_with_odometry', 'y', r_y, 'finite', 'a finite number', 128, 'MTV4-D5')
     if not _isfinite(r_th):
         raise _dec('set_wheels_velocities_with_odometry', 'th', r_th, 'finite', 'a finite number', 160, 'MTV4-D5')
-    o = SetWheelsVelocitiesWithOdometry(group=r_group, radio_crc_flag=r_radio_crc_flag, robots=Robots(r_robots), status=Status(r_status), vl=r_vl * 0.125, vr=r_vr * 0.125, x=r_x, y=r_y, th=r_th)
+    o = _new_SetWheelsVelocitiesWithOdometry(r_group, r_radio_crc_flag, _FLAGS_robots.get(r_robots) or _flag(Robots, _FLAGS_robots, r_robots), _FLAGS_status.get(r_status) or _flag(Status, _FLAGS_status, r_status), r_vl * 0.125, r_vr * 0.125, r_x, r_y, r_th)
     return o
 
 
-def _encode_set_wheels_velocities_with_odometry(m):
-    r_sync, r_length, r_group, r_radio_crc_flag, r_command, r_robots, r_status, r_vl, r_vr, r_x, r_y, r_th, r_crc, = _raw_set_wheels_velocities_with_odometry(m)
-    b = bytearray(26)
-    _S_set_wheels_velocities_with_odometry_0.pack_into(b, 0, r_sync, r_length, r_group, r_radio_crc_flag << 7 | r_command, r_robots, r_status, r_vl, r_vr, r_x, r_y, r_th)
-    _S_set_wheels_velocities_with_odometry_1.pack_into(b, 24, r_crc)
-    b[24:26] = _checksum_crc16_8005_ffff_nn_0(b[1:24]).to_bytes(2, 'big')
-    return bytes(b)
-
-
-def _decode_set_wheels_velocities_with_odometry(d):
-    if len(d) != 26:
-        raise _dec('set_wheels_velocities_with_odometry', None, len(d), 'length', '26 bytes', 0)
-    c0_0, c0_1, c0_2, c0_3, c0_4, c0_5, c0_6, c0_7, c0_8, c0_9, c0_10, = _S_set_wheels_velocities_with_odometry_0.unpack_from(d, 0)
-    c24_0, = _S_set_wheels_velocities_with_odometry_1.unpack_from(d, 24)
-    r_sync = c0_0
-    r_length = c0_1
-    r_group = c0_2
-    r_radio_crc_flag = (c0_3 >> 7) & 0x1
-    r_command = c0_3 & 0x7f
-    r_robots = c0_4
-    r_status = c0_5
-    r_vl = c0_6
-    r_vr = c0_7
-    r_x = c0_8
-    r_y = c0_9
-    r_th = c0_10
-    r_crc = c24_0
-    x = _checksum_crc16_8005_ffff_nn_0(d[1:24])
-    if r_crc != x:
-        raise _dec('set_wheels_velocities_with_odometry', 'crc', r_crc, 'checksum', hex(x), 192, 'MTV4-D1')
-    return _build_set_wheels_velocities_with_odometry(r_sync, r_length, r_group, r_radio_crc_flag, r_command, r_robots, r_status, r_vl, r_vr, r_x, r_y, r_th, r_crc)
-
-
-def _raw_ack(m):
-    """Check a ack and return its raw wire values, in wire order."""
+def _encode_ack(m):
     r_sync = 170
     r_length = 4
     v = m.group
@@ -626,10 +672,23 @@ def _raw_ack(m):
         raise _enc('ack', 'robots', v, 'exactly_one', 'exactly one bit set', 'MTV4-D3', 'an individual command or reply addresses exactly one robot')
     r_robots = int(v)
     r_crc = 0
-    return (r_sync, r_length, r_group, r_radio_crc_flag, r_command, r_robots, r_crc, )
+    b = bytearray(8)
+    _S_ack_0.pack_into(b, 0, 170, 4, r_group, r_radio_crc_flag << 7 | r_command, r_robots)
+    _S_ack_1.pack_into(b, 6, r_crc)
+    b[6:8] = _checksum_crc16_8005_ffff_nn_0_5(b[1:6]).to_bytes(2, 'big')
+    return bytes(b)
 
 
-def _build_ack(r_sync, r_length, r_group, r_radio_crc_flag, r_command, r_robots, r_crc, text_form=False):
+def _decode_ack(d):
+    if len(d) != 8:
+        raise _dec('ack', None, len(d), 'length', '8 bytes', 0)
+    r_sync, r_length, r_group, c0_3, r_robots, = _S_ack_0.unpack_from(d, 0)
+    r_crc, = _S_ack_1.unpack_from(d, 6)
+    r_radio_crc_flag = (c0_3 >> 7) & 0x1
+    r_command = c0_3 & 0x7f
+    x = _checksum_crc16_8005_ffff_nn_0_5(d[1:6])
+    if r_crc != x:
+        raise _dec('ack', 'crc', r_crc, 'checksum', hex(x), 48, 'MTV4-D1')
     if r_sync != 170:
         raise _dec('ack', 'sync', r_sync, 'const', '170', 0, None)
     if r_length != 4:
@@ -638,43 +697,13 @@ def _build_ack(r_sync, r_length, r_group, r_radio_crc_flag, r_command, r_robots,
         raise _dec('ack', 'group', r_group, 'range', '0..15', 16, None)
     if r_command not in (1, 2):
         raise _dec('ack', 'command', r_command, 'values', '1, 2', 25, 'MTV4-D4')
-    if r_robots & 0x0:
-        raise _dec('ack', 'robots', r_robots, 'flags', 'only the bits of robots', 32, 'MTV4-D3')
     if r_robots == 0 or r_robots & (r_robots - 1):
         raise _dec('ack', 'robots', r_robots, 'exactly_one', 'exactly one bit set', 32, 'MTV4-D3')
-    o = Ack(group=r_group, radio_crc_flag=r_radio_crc_flag, command=r_command, robots=Robots(r_robots))
+    o = _new_Ack(r_group, r_radio_crc_flag, r_command, _FLAGS_robots.get(r_robots) or _flag(Robots, _FLAGS_robots, r_robots))
     return o
 
 
-def _encode_ack(m):
-    r_sync, r_length, r_group, r_radio_crc_flag, r_command, r_robots, r_crc, = _raw_ack(m)
-    b = bytearray(8)
-    _S_ack_0.pack_into(b, 0, r_sync, r_length, r_group, r_radio_crc_flag << 7 | r_command, r_robots)
-    _S_ack_1.pack_into(b, 6, r_crc)
-    b[6:8] = _checksum_crc16_8005_ffff_nn_0(b[1:6]).to_bytes(2, 'big')
-    return bytes(b)
-
-
-def _decode_ack(d):
-    if len(d) != 8:
-        raise _dec('ack', None, len(d), 'length', '8 bytes', 0)
-    c0_0, c0_1, c0_2, c0_3, c0_4, = _S_ack_0.unpack_from(d, 0)
-    c6_0, = _S_ack_1.unpack_from(d, 6)
-    r_sync = c0_0
-    r_length = c0_1
-    r_group = c0_2
-    r_radio_crc_flag = (c0_3 >> 7) & 0x1
-    r_command = c0_3 & 0x7f
-    r_robots = c0_4
-    r_crc = c6_0
-    x = _checksum_crc16_8005_ffff_nn_0(d[1:6])
-    if r_crc != x:
-        raise _dec('ack', 'crc', r_crc, 'checksum', hex(x), 48, 'MTV4-D1')
-    return _build_ack(r_sync, r_length, r_group, r_radio_crc_flag, r_command, r_robots, r_crc)
-
-
-def _raw_odometry_reply(m):
-    """Check a odometry_reply and return its raw wire values, in wire order."""
+def _encode_odometry_reply(m):
     r_sync = 170
     r_length = 18
     v = m.group
@@ -730,10 +759,23 @@ def _raw_odometry_reply(m):
         raise _enc('odometry_reply', 'th', v, 'range', 'a binary32 value')
     r_th = v
     r_crc = 0
-    return (r_sync, r_length, r_group, r_radio_crc_flag, r_command, r_robots, r_status, r_x, r_y, r_th, r_crc, )
+    b = bytearray(22)
+    _S_odometry_reply_0.pack_into(b, 0, 170, 18, r_group, r_radio_crc_flag << 7 | 0x3, r_robots, r_status, r_x, r_y, r_th)
+    _S_odometry_reply_1.pack_into(b, 20, r_crc)
+    b[20:22] = _checksum_crc16_8005_ffff_nn_0_19(b[1:20]).to_bytes(2, 'big')
+    return bytes(b)
 
 
-def _build_odometry_reply(r_sync, r_length, r_group, r_radio_crc_flag, r_command, r_robots, r_status, r_x, r_y, r_th, r_crc, text_form=False):
+def _decode_odometry_reply(d):
+    if len(d) != 22:
+        raise _dec('odometry_reply', None, len(d), 'length', '22 bytes', 0)
+    r_sync, r_length, r_group, c0_3, r_robots, r_status, r_x, r_y, r_th, = _S_odometry_reply_0.unpack_from(d, 0)
+    r_crc, = _S_odometry_reply_1.unpack_from(d, 20)
+    r_radio_crc_flag = (c0_3 >> 7) & 0x1
+    r_command = c0_3 & 0x7f
+    x = _checksum_crc16_8005_ffff_nn_0_19(d[1:20])
+    if r_crc != x:
+        raise _dec('odometry_reply', 'crc', r_crc, 'checksum', hex(x), 160, 'MTV4-D1')
     if r_sync != 170:
         raise _dec('odometry_reply', 'sync', r_sync, 'const', '170', 0, None)
     if r_length != 18:
@@ -742,8 +784,6 @@ def _build_odometry_reply(r_sync, r_length, r_group, r_radio_crc_flag, r_command
         raise _dec('odometry_reply', 'group', r_group, 'range', '0..15', 16, None)
     if r_command != 3:
         raise _dec('odometry_reply', 'command', r_command, 'const', '3', 25, 'MTV4-D4')
-    if r_robots & 0x0:
-        raise _dec('odometry_reply', 'robots', r_robots, 'flags', 'only the bits of robots', 32, 'MTV4-D3')
     if r_robots == 0 or r_robots & (r_robots - 1):
         raise _dec('odometry_reply', 'robots', r_robots, 'exactly_one', 'exactly one bit set', 32, 'MTV4-D3')
     if not _isfinite(r_x):
@@ -752,39 +792,8 @@ def _build_odometry_reply(r_sync, r_length, r_group, r_radio_crc_flag, r_command
         raise _dec('odometry_reply', 'y', r_y, 'finite', 'a finite number', 96, 'MTV4-D5')
     if not _isfinite(r_th):
         raise _dec('odometry_reply', 'th', r_th, 'finite', 'a finite number', 128, 'MTV4-D5')
-    o = OdometryReply(group=r_group, radio_crc_flag=r_radio_crc_flag, robots=Robots(r_robots), status=r_status, x=r_x, y=r_y, th=r_th)
+    o = _new_OdometryReply(r_group, r_radio_crc_flag, _FLAGS_robots.get(r_robots) or _flag(Robots, _FLAGS_robots, r_robots), r_status, r_x, r_y, r_th)
     return o
-
-
-def _encode_odometry_reply(m):
-    r_sync, r_length, r_group, r_radio_crc_flag, r_command, r_robots, r_status, r_x, r_y, r_th, r_crc, = _raw_odometry_reply(m)
-    b = bytearray(22)
-    _S_odometry_reply_0.pack_into(b, 0, r_sync, r_length, r_group, r_radio_crc_flag << 7 | r_command, r_robots, r_status, r_x, r_y, r_th)
-    _S_odometry_reply_1.pack_into(b, 20, r_crc)
-    b[20:22] = _checksum_crc16_8005_ffff_nn_0(b[1:20]).to_bytes(2, 'big')
-    return bytes(b)
-
-
-def _decode_odometry_reply(d):
-    if len(d) != 22:
-        raise _dec('odometry_reply', None, len(d), 'length', '22 bytes', 0)
-    c0_0, c0_1, c0_2, c0_3, c0_4, c0_5, c0_6, c0_7, c0_8, = _S_odometry_reply_0.unpack_from(d, 0)
-    c20_0, = _S_odometry_reply_1.unpack_from(d, 20)
-    r_sync = c0_0
-    r_length = c0_1
-    r_group = c0_2
-    r_radio_crc_flag = (c0_3 >> 7) & 0x1
-    r_command = c0_3 & 0x7f
-    r_robots = c0_4
-    r_status = c0_5
-    r_x = c0_6
-    r_y = c0_7
-    r_th = c0_8
-    r_crc = c20_0
-    x = _checksum_crc16_8005_ffff_nn_0(d[1:20])
-    if r_crc != x:
-        raise _dec('odometry_reply', 'crc', r_crc, 'checksum', hex(x), 160, 'MTV4-D1')
-    return _build_odometry_reply(r_sync, r_length, r_group, r_radio_crc_flag, r_command, r_robots, r_status, r_x, r_y, r_th, r_crc)
 
 
 _KEYS = {(1, 12): ('host_to_robot', _decode_set_wheels_velocities), (2, 12): ('host_to_robot', _decode_set_led), (3, 26): ('host_to_robot', _decode_set_wheels_velocities_with_odometry), (1, 8): ('robot_to_host', _decode_ack), (2, 8): ('robot_to_host', _decode_ack), (3, 22): ('robot_to_host', _decode_odometry_reply), }
@@ -796,12 +805,19 @@ for _key, (_direction, _fn) in _KEYS.items():
     _ALL.setdefault(_key, []).append(_fn)
 
 
+_UNIQUE = {key: fns[0] for key, fns in _ALL.items() if len(fns) == 1}
+
+
 def decode(data, direction=None):
     """Decode one frame; `direction` is needed only when ids are reused across directions."""
-    d = _as_input(data)
+    d = data if data.__class__ is bytes else _as_input(data)
+    if direction is None and len(d) >= 4:
+        fn = _UNIQUE.get((d[3] & 0x7f, len(d)))
+        if fn is not None:
+            return fn(d)
     if len(d) < 4:
         raise _dec(None, None, len(d), 'length', 'a whole frame', 0)
-    value = (int.from_bytes(d[3:4], 'big') >> 0) & 127
+    value = d[3] & 0x7f
     key = (value, len(d))
     if direction is not None:
         fn = _KEYS_BY_DIRECTION.get(direction, {}).get(key)

@@ -18,6 +18,7 @@ FINGERPRINT32 = 0x3e65a8fa  # its first 32 bits
 
 _floor = math.floor
 _isfinite = math.isfinite
+_object_new = object.__new__
 
 
 class CodecError(ValueError):
@@ -126,6 +127,12 @@ class Start:
         return _decode_start(_as_input(data))
 
 
+def _new_Start():
+    """Start from its fields in layout order, without keyword matching (decoders)."""
+    o = _object_new(Start)
+    return o
+
+
 @dataclass(slots=True, kw_only=True)
 class Object:
     """object description"""
@@ -148,6 +155,20 @@ class Object:
         return _decode_object(_as_input(data))
 
 
+def _new_Object(v0, v1, v2, v3, v4, v5, v6, v7):
+    """Object from its fields in layout order, without keyword matching (decoders)."""
+    o = _object_new(Object)
+    o.ns = v0
+    o.nl = v1
+    o.no = v2
+    o.na = v3
+    o.dl = v4
+    o.rc = v5
+    o.dr = v6
+    o.cm = v7
+    return o
+
+
 @dataclass(slots=True, kw_only=True)
 class Scene:
     """scene description"""
@@ -166,6 +187,16 @@ class Scene:
         return _decode_scene(_as_input(data))
 
 
+def _new_Scene(v0, v1, v2, v3):
+    """Scene from its fields in layout order, without keyword matching (decoders)."""
+    o = _object_new(Scene)
+    o.ns = v0
+    o.nl = v1
+    o.db = v2
+    o.nt = v3
+    return o
+
+
 @dataclass(slots=True, kw_only=True)
 class End:
     """end of packet"""
@@ -179,16 +210,44 @@ class End:
     def decode(cls, data):
         return _decode_end(_as_input(data))
 
-_S_start_0 = struct.Struct('>B')
-_S_object_0 = struct.Struct('>B3s')
-_S_scene_0 = struct.Struct('>B3s')
-_S_end_0 = struct.Struct('>B')
+
+def _new_End():
+    """End from its fields in layout order, without keyword matching (decoders)."""
+    o = _object_new(End)
+    return o
 
 
 def _as_input(data):
     if not isinstance(data, (bytes, bytearray, memoryview)):
         raise _dec(None, None, type(data).__name__, 'type', 'bytes')
     return data
+
+
+def _encode_start(m):
+    r_hdr = 3
+    r_kind = 1
+    r_cs = 0
+    r_cs = (r_hdr + r_kind) % 8
+    w = r_cs | 0xc8
+    return w.to_bytes(1, 'big')
+
+
+def _decode_start(d):
+    if len(d) != 1:
+        raise _dec('start', None, len(d), 'length', '1 bytes', 0)
+    w = int.from_bytes(d, 'big')
+    r_hdr = (w >> 6) & 0x3
+    r_kind = (w >> 3) & 0x7
+    r_cs = w & 0x7
+    if r_hdr != 3:
+        raise _dec('start', 'hdr', r_hdr, 'const', '3', 0, None)
+    if r_kind != 1:
+        raise _dec('start', 'kind', r_kind, 'const', '1', 2, None)
+    x = (r_hdr + r_kind) % 8
+    if r_cs != x:
+        raise _dec('start', 'cs', r_cs, 'checksum', str(x), 5, 'ROUTE-D1')
+    o = _new_Start()
+    return o
 
 
 def _raw_start(m):
@@ -208,23 +267,8 @@ def _build_start(r_hdr, r_kind, r_cs, text_form=False):
     x = (r_hdr + r_kind) % 8
     if r_cs != x and not (text_form and r_cs == 0):
         raise _dec('start', 'cs', r_cs, 'checksum', str(x), 5, 'ROUTE-D1')
-    o = Start()
+    o = _new_Start()
     return o
-
-
-def _encode_start(m):
-    r_hdr, r_kind, r_cs, = _raw_start(m)
-    return _S_start_0.pack(r_hdr << 6 | r_kind << 3 | r_cs)
-
-
-def _decode_start(d):
-    if len(d) != 1:
-        raise _dec('start', None, len(d), 'length', '1 bytes', 0)
-    c0_0, = _S_start_0.unpack_from(d, 0)
-    r_hdr = (c0_0 >> 6) & 0x3
-    r_kind = (c0_0 >> 3) & 0x7
-    r_cs = c0_0 & 0x7
-    return _build_start(r_hdr, r_kind, r_cs)
 
 
 def _encode_text_start(m):
@@ -240,6 +284,93 @@ def _decode_text_start(tokens):
     if tokens[2] > 7:
         raise _dec('start', 'cs', tokens[2], 'range', '0..7', 0)
     return _build_start(*tokens, text_form=True)
+
+
+def _encode_object(m):
+    r_hdr = 1
+    v = m.ns
+    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
+        raise _enc('object', 'ns', v, 'type', 'an int')
+    if not 0 <= v <= 7:
+        raise _enc('object', 'ns', v, 'range', '0..7', None)
+    r_ns = v
+    v = m.nl
+    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
+        raise _enc('object', 'nl', v, 'type', 'an int')
+    if not 0 <= v <= 7:
+        raise _enc('object', 'nl', v, 'range', '0..7', None)
+    r_nl = v
+    v = m.no
+    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
+        raise _enc('object', 'no', v, 'type', 'an int')
+    if not 0 <= v <= 7:
+        raise _enc('object', 'no', v, 'range', '0..7', None)
+    r_no = v
+    v = m.na
+    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
+        raise _enc('object', 'na', v, 'type', 'an int')
+    if not 10 <= v <= 17:
+        raise _enc('object', 'na', v, 'range', '10..17', 'ROUTE-D6')
+    r_na = (v - 10)
+    v = m.dl
+    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
+        raise _enc('object', 'dl', v, 'type', 'an int')
+    if not 1 <= v <= 5:
+        raise _enc('object', 'dl', v, 'range', '1..5', None)
+    r_dl = v
+    v = m.rc
+    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
+        raise _enc('object', 'rc', v, 'type', 'an int')
+    if not 0 <= v <= 3:
+        raise _enc('object', 'rc', v, 'range', '0..3', 'ROUTE-D3')
+    r_rc = v
+    v = m.dr
+    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
+        raise _enc('object', 'dr', v, 'type', 'an int')
+    if not 1 <= v <= 5:
+        raise _enc('object', 'dr', v, 'range', '1..5', None)
+    r_dr = v
+    v = m.cm
+    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
+        raise _enc('object', 'cm', v, 'type', 'an int')
+    if not 1 <= v <= 15:
+        raise _enc('object', 'cm', v, 'range', '1..15', None)
+    r_cm = v
+    r_cs = 0
+    r_cs = (r_hdr + r_ns + r_nl + r_no + r_na + r_dl + r_rc + r_dr + r_cm) % 8
+    w = r_ns << 27 | r_nl << 24 | r_no << 21 | r_na << 18 | r_dl << 15 | r_rc << 13 | r_dr << 10 | r_cm << 6 | r_cs << 3 | 0x40000000
+    return w.to_bytes(4, 'big')
+
+
+def _decode_object(d):
+    if len(d) != 4:
+        raise _dec('object', None, len(d), 'length', '4 bytes', 0)
+    w = int.from_bytes(d, 'big')
+    if w & 0x7:
+        raise _dec('object', 'padding', w & 0x7, 'reserved', '0', 29)
+    r_hdr = (w >> 30) & 0x3
+    r_ns = (w >> 27) & 0x7
+    r_nl = (w >> 24) & 0x7
+    r_no = (w >> 21) & 0x7
+    r_na = (w >> 18) & 0x7
+    r_dl = (w >> 15) & 0x7
+    r_rc = (w >> 13) & 0x3
+    r_dr = (w >> 10) & 0x7
+    r_cm = (w >> 6) & 0xf
+    r_cs = (w >> 3) & 0x7
+    if r_hdr != 1:
+        raise _dec('object', 'hdr', r_hdr, 'const', '1', 0, None)
+    if not 1 <= r_dl <= 5:
+        raise _dec('object', 'dl', r_dl, 'range', '1..5', 14, None)
+    if not 1 <= r_dr <= 5:
+        raise _dec('object', 'dr', r_dr, 'range', '1..5', 19, None)
+    if not 1 <= r_cm <= 15:
+        raise _dec('object', 'cm', r_cm, 'range', '1..15', 22, None)
+    x = (r_hdr + r_ns + r_nl + r_no + r_na + r_dl + r_rc + r_dr + r_cm) % 8
+    if r_cs != x:
+        raise _dec('object', 'cs', r_cs, 'checksum', str(x), 26, 'ROUTE-D1')
+    o = _new_Object(r_ns, r_nl, r_no, r_na + 10, r_dl, r_rc, r_dr, r_cm)
+    return o
 
 
 def _raw_object(m):
@@ -320,33 +451,8 @@ def _build_object(r_hdr, r_ns, r_nl, r_no, r_na, r_dl, r_rc, r_dr, r_cm, r_cs, t
     x = (r_hdr + r_ns + r_nl + r_no + r_na + r_dl + r_rc + r_dr + r_cm) % 8
     if r_cs != x and not (text_form and r_cs == 0):
         raise _dec('object', 'cs', r_cs, 'checksum', str(x), 26, 'ROUTE-D1')
-    o = Object(ns=r_ns, nl=r_nl, no=r_no, na=r_na + 10, dl=r_dl, rc=r_rc, dr=r_dr, cm=r_cm)
+    o = _new_Object(r_ns, r_nl, r_no, r_na + 10, r_dl, r_rc, r_dr, r_cm)
     return o
-
-
-def _encode_object(m):
-    r_hdr, r_ns, r_nl, r_no, r_na, r_dl, r_rc, r_dr, r_cm, r_cs, = _raw_object(m)
-    return _S_object_0.pack(r_hdr << 6 | r_ns << 3 | r_nl, (r_no << 21 | r_na << 18 | r_dl << 15 | r_rc << 13 | r_dr << 10 | r_cm << 6 | r_cs << 3).to_bytes(3, 'big'))
-
-
-def _decode_object(d):
-    if len(d) != 4:
-        raise _dec('object', None, len(d), 'length', '4 bytes', 0)
-    c0_0, c0_1, = _S_object_0.unpack_from(d, 0)
-    r_hdr = (c0_0 >> 6) & 0x3
-    r_ns = (c0_0 >> 3) & 0x7
-    r_nl = c0_0 & 0x7
-    c0_1 = int.from_bytes(c0_1, 'big')
-    if c0_1 & 0x7:
-        raise _dec('object', 'padding', c0_1 & 0x7, 'reserved', '0', 29)
-    r_no = (c0_1 >> 21) & 0x7
-    r_na = (c0_1 >> 18) & 0x7
-    r_dl = (c0_1 >> 15) & 0x7
-    r_rc = (c0_1 >> 13) & 0x3
-    r_dr = (c0_1 >> 10) & 0x7
-    r_cm = (c0_1 >> 6) & 0xf
-    r_cs = (c0_1 >> 3) & 0x7
-    return _build_object(r_hdr, r_ns, r_nl, r_no, r_na, r_dl, r_rc, r_dr, r_cm, r_cs)
 
 
 def _encode_text_object(m):
@@ -360,6 +466,60 @@ def _decode_text_object(tokens):
     if tokens[9] > 7:
         raise _dec('object', 'cs', tokens[9], 'range', '0..7', 0)
     return _build_object(*tokens, text_form=True)
+
+
+def _encode_scene(m):
+    r_hdr = 2
+    v = m.ns
+    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
+        raise _enc('scene', 'ns', v, 'type', 'an int')
+    if not 0 <= v <= 7:
+        raise _enc('scene', 'ns', v, 'range', '0..7', None)
+    r_ns = v
+    v = m.nl
+    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
+        raise _enc('scene', 'nl', v, 'type', 'an int')
+    if not 0 <= v <= 7:
+        raise _enc('scene', 'nl', v, 'range', '0..7', None)
+    r_nl = v
+    v = m.db
+    if not isinstance(v, int) or v not in _VALUES_pass_side:
+        raise _enc('scene', 'db', v, 'enum', 'PassSide', None)
+    r_db = int(v)
+    v = m.nt
+    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
+        raise _enc('scene', 'nt', v, 'type', 'an int')
+    if not 0 <= v <= 32767:
+        raise _enc('scene', 'nt', v, 'range', '0..32767', None)
+    r_nt = v
+    r_cs = 0
+    r_cs = (r_hdr + r_ns + r_nl + r_db + r_nt) % 8
+    w = r_ns << 27 | r_nl << 24 | r_db << 21 | r_nt << 6 | r_cs << 3 | 0x80000000
+    return w.to_bytes(4, 'big')
+
+
+def _decode_scene(d):
+    if len(d) != 4:
+        raise _dec('scene', None, len(d), 'length', '4 bytes', 0)
+    w = int.from_bytes(d, 'big')
+    if w & 0x7:
+        raise _dec('scene', 'padding', w & 0x7, 'reserved', '0', 29)
+    r_hdr = (w >> 30) & 0x3
+    r_ns = (w >> 27) & 0x7
+    r_nl = (w >> 24) & 0x7
+    r_db = (w >> 21) & 0x7
+    r_nt = (w >> 6) & 0x7fff
+    r_cs = (w >> 3) & 0x7
+    if r_hdr != 2:
+        raise _dec('scene', 'hdr', r_hdr, 'const', '2', 0, None)
+    e_db = _ENUM_pass_side.get(r_db)
+    if e_db is None:
+        raise _dec('scene', 'db', r_db, 'enum', 'PassSide', 8, None)
+    x = (r_hdr + r_ns + r_nl + r_db + r_nt) % 8
+    if r_cs != x:
+        raise _dec('scene', 'cs', r_cs, 'checksum', str(x), 26, 'ROUTE-D1')
+    o = _new_Scene(r_ns, r_nl, e_db, r_nt)
+    return o
 
 
 def _raw_scene(m):
@@ -405,29 +565,8 @@ def _build_scene(r_hdr, r_ns, r_nl, r_db, r_nt, r_cs, text_form=False):
     x = (r_hdr + r_ns + r_nl + r_db + r_nt) % 8
     if r_cs != x and not (text_form and r_cs == 0):
         raise _dec('scene', 'cs', r_cs, 'checksum', str(x), 26, 'ROUTE-D1')
-    o = Scene(ns=r_ns, nl=r_nl, db=e_db, nt=r_nt)
+    o = _new_Scene(r_ns, r_nl, e_db, r_nt)
     return o
-
-
-def _encode_scene(m):
-    r_hdr, r_ns, r_nl, r_db, r_nt, r_cs, = _raw_scene(m)
-    return _S_scene_0.pack(r_hdr << 6 | r_ns << 3 | r_nl, (r_db << 21 | r_nt << 6 | r_cs << 3).to_bytes(3, 'big'))
-
-
-def _decode_scene(d):
-    if len(d) != 4:
-        raise _dec('scene', None, len(d), 'length', '4 bytes', 0)
-    c0_0, c0_1, = _S_scene_0.unpack_from(d, 0)
-    r_hdr = (c0_0 >> 6) & 0x3
-    r_ns = (c0_0 >> 3) & 0x7
-    r_nl = c0_0 & 0x7
-    c0_1 = int.from_bytes(c0_1, 'big')
-    if c0_1 & 0x7:
-        raise _dec('scene', 'padding', c0_1 & 0x7, 'reserved', '0', 29)
-    r_db = (c0_1 >> 21) & 0x7
-    r_nt = (c0_1 >> 6) & 0x7fff
-    r_cs = (c0_1 >> 3) & 0x7
-    return _build_scene(r_hdr, r_ns, r_nl, r_db, r_nt, r_cs)
 
 
 def _encode_text_scene(m):
@@ -447,6 +586,33 @@ def _decode_text_scene(tokens):
     return _build_scene(*tokens, text_form=True)
 
 
+def _encode_end(m):
+    r_hdr = 3
+    r_kind = 2
+    r_cs = 0
+    r_cs = (r_hdr + r_kind) % 8
+    w = r_cs | 0xd0
+    return w.to_bytes(1, 'big')
+
+
+def _decode_end(d):
+    if len(d) != 1:
+        raise _dec('end', None, len(d), 'length', '1 bytes', 0)
+    w = int.from_bytes(d, 'big')
+    r_hdr = (w >> 6) & 0x3
+    r_kind = (w >> 3) & 0x7
+    r_cs = w & 0x7
+    if r_hdr != 3:
+        raise _dec('end', 'hdr', r_hdr, 'const', '3', 0, None)
+    if r_kind != 2:
+        raise _dec('end', 'kind', r_kind, 'const', '2', 2, None)
+    x = (r_hdr + r_kind) % 8
+    if r_cs != x:
+        raise _dec('end', 'cs', r_cs, 'checksum', str(x), 5, 'ROUTE-D1')
+    o = _new_End()
+    return o
+
+
 def _raw_end(m):
     """Check a end and return its raw wire values, in wire order."""
     r_hdr = 3
@@ -464,23 +630,8 @@ def _build_end(r_hdr, r_kind, r_cs, text_form=False):
     x = (r_hdr + r_kind) % 8
     if r_cs != x and not (text_form and r_cs == 0):
         raise _dec('end', 'cs', r_cs, 'checksum', str(x), 5, 'ROUTE-D1')
-    o = End()
+    o = _new_End()
     return o
-
-
-def _encode_end(m):
-    r_hdr, r_kind, r_cs, = _raw_end(m)
-    return _S_end_0.pack(r_hdr << 6 | r_kind << 3 | r_cs)
-
-
-def _decode_end(d):
-    if len(d) != 1:
-        raise _dec('end', None, len(d), 'length', '1 bytes', 0)
-    c0_0, = _S_end_0.unpack_from(d, 0)
-    r_hdr = (c0_0 >> 6) & 0x3
-    r_kind = (c0_0 >> 3) & 0x7
-    r_cs = c0_0 & 0x7
-    return _build_end(r_hdr, r_kind, r_cs)
 
 
 def _encode_text_end(m):
@@ -516,13 +667,25 @@ def _find_bits(head):
     raise _dec(None, None, head, 'dispatch', 'a known header', 0)
 
 
+def _bits_entry(head):
+    try:
+        return _find_bits(head)
+    except DecodeError:
+        return None
+
+
+_BY_FIRST_BYTE = tuple(_bits_entry(head) for head in range(256))  # each message's decoder, by first byte
+
+
 def decode(data, direction=None):
     """Decode one sentence from its bytes (left-aligned, zero-padded)."""
-    d = _as_input(data)
-    if len(d) < 1:
-        raise _dec(None, None, len(d), 'length', 'at least 1 bytes', 0)
-    size, fn, *_ = _find_bits(int.from_bytes(d[:1], 'big'))
-    return fn(d)
+    d = data if data.__class__ is bytes else _as_input(data)
+    if not d:
+        raise _dec(None, None, 0, 'length', 'at least 1 bytes', 0)
+    entry = _BY_FIRST_BYTE[d[0]]
+    if entry is None:
+        raise _dec(None, None, d[0], 'dispatch', 'a known header', 0)
+    return entry[1](d)
 
 
 def decode_all(data):

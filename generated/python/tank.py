@@ -18,6 +18,7 @@ FINGERPRINT32 = 0xefd374c2  # its first 32 bits
 
 _floor = math.floor
 _isfinite = math.isfinite
+_object_new = object.__new__
 
 
 class CodecError(ValueError):
@@ -182,6 +183,32 @@ class Telemetry:
         return _decode_as('telemetry', data)
 
 
+def _new_Telemetry(v0, v1, v2, v3, v4, v5, v6, v7, v8, v9, v10, v11, v12, v13, v14, v15, v16, v17, v18, v19):
+    """Telemetry from its fields in layout order, without keyword matching (decoders)."""
+    o = _object_new(Telemetry)
+    o.move = v0
+    o.speed = v1
+    o.value = v2
+    o.lcurr = v3
+    o.rcurr = v4
+    o.accx = v5
+    o.accy = v6
+    o.accz = v7
+    o.gyrox = v8
+    o.gyroy = v9
+    o.gyroz = v10
+    o.magx = v11
+    o.magy = v12
+    o.magz = v13
+    o.lan = v14
+    o.lon = v15
+    o.vbat = v16
+    o.systemstatus = v17
+    o.extid = v18
+    o.extstatus = v19
+    return o
+
+
 @dataclass(slots=True, kw_only=True)
 class Command:
     """Command"""
@@ -206,6 +233,22 @@ class Command:
         return _decode_as('command', data)
 
 
+def _new_Command(v0, v1, v2, v3, v4, v5, v6, v7, v8, v9):
+    """Command from its fields in layout order, without keyword matching (decoders)."""
+    o = _object_new(Command)
+    o.move = v0
+    o.speed = v1
+    o.value = v2
+    o.azimutloc = v3
+    o.gpio1 = v4
+    o.gpio2 = v5
+    o.gpio3 = v6
+    o.gpio4 = v7
+    o.systemstatus = v8
+    o.data = v9
+    return o
+
+
 @dataclass(slots=True, kw_only=True)
 class PayloadCommand:
     """Payload command"""
@@ -221,6 +264,13 @@ class PayloadCommand:
         return _decode_as('payload_command', data)
 
 
+def _new_PayloadCommand(v0):
+    """PayloadCommand from its fields in layout order, without keyword matching (decoders)."""
+    o = _object_new(PayloadCommand)
+    o.command = v0
+    return o
+
+
 @dataclass(slots=True, kw_only=True)
 class PayloadReply:
     """Payload message"""
@@ -234,6 +284,13 @@ class PayloadReply:
     @classmethod
     def decode(cls, data):
         return _decode_as('payload_reply', data)
+
+
+def _new_PayloadReply(v0):
+    """PayloadReply from its fields in layout order, without keyword matching (decoders)."""
+    o = _object_new(PayloadReply)
+    o.command = v0
+    return o
 
 
 @dataclass(slots=True, kw_only=True)
@@ -254,8 +311,22 @@ class GpioConfig:
         return _decode_as('gpio_config', data)
 
 
-_INT = re.compile(r"[+-]?[0-9]+\Z")
-_FLOAT = re.compile(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?\Z")
+def _new_GpioConfig(v0, v1, v2, v3):
+    """GpioConfig from its fields in layout order, without keyword matching (decoders)."""
+    o = _object_new(GpioConfig)
+    o.gpio1 = v0
+    o.gpio2 = v1
+    o.gpio3 = v2
+    o.gpio4 = v3
+    return o
+
+_INT_RE = r"[+-]?[0-9]+"
+_FLOAT_RE = r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?"
+_CHAR_RE = '[!-\\+\\--:<-\\~]'  # printable, no space, separator or terminator
+_TEXT_RE = _CHAR_RE + "*"
+_REST_RE = '[!-:<-\\~]' + "*"  # a last field running to the end may hold separators
+_INT = re.compile(_INT_RE + r"\Z")
+_FLOAT = re.compile(_FLOAT_RE + r"\Z")
 
 
 def _parse_int(token, message, field, offset):
@@ -293,6 +364,21 @@ def _token_offsets(tokens, base):
         offsets.append(base)
         base += len(token) + 1
     return offsets
+
+
+_SYNTAX_telemetry = re.compile(_CHAR_RE + ',' + _INT_RE + ',' + _CHAR_RE + ',' + _FLOAT_RE + ',' + _FLOAT_RE + ',' + _FLOAT_RE + ',' + _FLOAT_RE + ',' + _FLOAT_RE + ',' + _FLOAT_RE + ',' + _FLOAT_RE + ',' + _FLOAT_RE + ',' + _FLOAT_RE + ',' + _FLOAT_RE + ',' + _FLOAT_RE + ',' + _TEXT_RE + ',' + _TEXT_RE + ',' + _FLOAT_RE + ',' + _INT_RE + ',' + _INT_RE + ',' + _INT_RE)
+
+
+_SYNTAX_command = re.compile(_CHAR_RE + ',' + _INT_RE + ',' + _CHAR_RE + ',' + _INT_RE + ',' + _FLOAT_RE + ',' + _FLOAT_RE + ',' + _FLOAT_RE + ',' + _FLOAT_RE + ',' + _INT_RE + '(?:' + ',' + _TEXT_RE + ')?')
+
+
+_SYNTAX_payload_command = re.compile(_REST_RE)
+
+
+_SYNTAX_payload_reply = re.compile(_REST_RE)
+
+
+_SYNTAX_gpio_config = re.compile(_INT_RE + ',' + _INT_RE + ',' + _INT_RE + ',' + _INT_RE)
 
 
 def _as_input(data):
@@ -451,184 +537,87 @@ def _encode_telemetry(m):
 
 def _decode_telemetry(body, base):
     t = body.split(',')
-    at = _token_offsets(t, base)
     if not 20 <= len(t) <= 20:
         raise _dec('telemetry', None, len(t), 'count', '20..20 fields' if 20 != 20 else '20 fields', base)
-    r_move = t[0].strip()
+    ok = _SYNTAX_telemetry.fullmatch(body) is not None  # well-formed: token syntax checks are skipped
+    r_move = (t[0] if ok else t[0].strip())
     if len(r_move) != 1:
-        raise _dec('telemetry', 'move', r_move, 'type', 'one character', at[0])
-    try:
-        e_move = _ENUM_move.get(r_move)
-        if e_move is None:
-            raise _dec('telemetry', 'move', r_move, 'enum', 'Move', at[0], None)
-        pass
-    except DecodeError as exc:
-        exc.offset = at[0]
-        raise
-    r_speed = _parse_int(t[1].strip(), 'telemetry', 'speed', at[1])
-    try:
-        if not 0 <= r_speed <= 100:
-            raise _dec('telemetry', 'speed', r_speed, 'range', '0..100', at[1], 'TANK-D3')
-        pass
-    except DecodeError as exc:
-        exc.offset = at[1]
-        raise
-    r_value = t[2].strip()
+        raise _dec('telemetry', 'move', r_move, 'type', 'one character', _token_offsets(t, base)[0])
+    e_move = _ENUM_move.get(r_move)
+    if e_move is None:
+        raise _dec('telemetry', 'move', r_move, 'enum', 'Move', _token_offsets(t, base)[0], None)
+    r_speed = int(t[1]) if ok else _parse_int(t[1].strip(), 'telemetry', 'speed', _token_offsets(t, base)[1])
+    if not 0 <= r_speed <= 100:
+        raise _dec('telemetry', 'speed', r_speed, 'range', '0..100', _token_offsets(t, base)[1], 'TANK-D3')
+    r_value = (t[2] if ok else t[2].strip())
     if len(r_value) != 1:
-        raise _dec('telemetry', 'value', r_value, 'type', 'one character', at[2])
-    bad = _text_problem(r_value, ',', True)
-    if bad:
-        raise _dec('telemetry', 'value', r_value, 'text', bad, at[2], 'TANK-D3')
-    try:
-        pass
-    except DecodeError as exc:
-        exc.offset = at[2]
-        raise
-    r_lcurr = _parse_float(t[3].strip(), 'telemetry', 'lcurr', at[3])
-    try:
-        if not _isfinite(r_lcurr):
-            raise _dec('telemetry', 'lcurr', r_lcurr, 'finite', 'a finite number', at[3], None)
-        pass
-    except DecodeError as exc:
-        exc.offset = at[3]
-        raise
-    r_rcurr = _parse_float(t[4].strip(), 'telemetry', 'rcurr', at[4])
-    try:
-        if not _isfinite(r_rcurr):
-            raise _dec('telemetry', 'rcurr', r_rcurr, 'finite', 'a finite number', at[4], None)
-        pass
-    except DecodeError as exc:
-        exc.offset = at[4]
-        raise
-    r_accx = _parse_float(t[5].strip(), 'telemetry', 'accx', at[5])
-    try:
-        if not _isfinite(r_accx):
-            raise _dec('telemetry', 'accx', r_accx, 'finite', 'a finite number', at[5], None)
-        pass
-    except DecodeError as exc:
-        exc.offset = at[5]
-        raise
-    r_accy = _parse_float(t[6].strip(), 'telemetry', 'accy', at[6])
-    try:
-        if not _isfinite(r_accy):
-            raise _dec('telemetry', 'accy', r_accy, 'finite', 'a finite number', at[6], None)
-        pass
-    except DecodeError as exc:
-        exc.offset = at[6]
-        raise
-    r_accz = _parse_float(t[7].strip(), 'telemetry', 'accz', at[7])
-    try:
-        if not _isfinite(r_accz):
-            raise _dec('telemetry', 'accz', r_accz, 'finite', 'a finite number', at[7], None)
-        pass
-    except DecodeError as exc:
-        exc.offset = at[7]
-        raise
-    r_gyrox = _parse_float(t[8].strip(), 'telemetry', 'gyrox', at[8])
-    try:
-        if not _isfinite(r_gyrox):
-            raise _dec('telemetry', 'gyrox', r_gyrox, 'finite', 'a finite number', at[8], None)
-        pass
-    except DecodeError as exc:
-        exc.offset = at[8]
-        raise
-    r_gyroy = _parse_float(t[9].strip(), 'telemetry', 'gyroy', at[9])
-    try:
-        if not _isfinite(r_gyroy):
-            raise _dec('telemetry', 'gyroy', r_gyroy, 'finite', 'a finite number', at[9], None)
-        pass
-    except DecodeError as exc:
-        exc.offset = at[9]
-        raise
-    r_gyroz = _parse_float(t[10].strip(), 'telemetry', 'gyroz', at[10])
-    try:
-        if not _isfinite(r_gyroz):
-            raise _dec('telemetry', 'gyroz', r_gyroz, 'finite', 'a finite number', at[10], None)
-        pass
-    except DecodeError as exc:
-        exc.offset = at[10]
-        raise
-    r_magx = _parse_float(t[11].strip(), 'telemetry', 'magx', at[11])
-    try:
-        if not _isfinite(r_magx):
-            raise _dec('telemetry', 'magx', r_magx, 'finite', 'a finite number', at[11], None)
-        pass
-    except DecodeError as exc:
-        exc.offset = at[11]
-        raise
-    r_magy = _parse_float(t[12].strip(), 'telemetry', 'magy', at[12])
-    try:
-        if not _isfinite(r_magy):
-            raise _dec('telemetry', 'magy', r_magy, 'finite', 'a finite number', at[12], None)
-        pass
-    except DecodeError as exc:
-        exc.offset = at[12]
-        raise
-    r_magz = _parse_float(t[13].strip(), 'telemetry', 'magz', at[13])
-    try:
-        if not _isfinite(r_magz):
-            raise _dec('telemetry', 'magz', r_magz, 'finite', 'a finite number', at[13], None)
-        pass
-    except DecodeError as exc:
-        exc.offset = at[13]
-        raise
-    r_lan = t[14].strip()
-    bad = _text_problem(r_lan, ',', True)
-    if bad:
-        raise _dec('telemetry', 'lan', r_lan, 'text', bad, at[14], 'TANK-D5')
+        raise _dec('telemetry', 'value', r_value, 'type', 'one character', _token_offsets(t, base)[2])
+    if not ok:
+        bad = _text_problem(r_value, ',', True)
+        if bad:
+            raise _dec('telemetry', 'value', r_value, 'text', bad, _token_offsets(t, base)[2], 'TANK-D3')
+    r_lcurr = float(t[3]) if ok else _parse_float(t[3].strip(), 'telemetry', 'lcurr', _token_offsets(t, base)[3])
+    if not _isfinite(r_lcurr):
+        raise _dec('telemetry', 'lcurr', r_lcurr, 'finite', 'a finite number', _token_offsets(t, base)[3], None)
+    r_rcurr = float(t[4]) if ok else _parse_float(t[4].strip(), 'telemetry', 'rcurr', _token_offsets(t, base)[4])
+    if not _isfinite(r_rcurr):
+        raise _dec('telemetry', 'rcurr', r_rcurr, 'finite', 'a finite number', _token_offsets(t, base)[4], None)
+    r_accx = float(t[5]) if ok else _parse_float(t[5].strip(), 'telemetry', 'accx', _token_offsets(t, base)[5])
+    if not _isfinite(r_accx):
+        raise _dec('telemetry', 'accx', r_accx, 'finite', 'a finite number', _token_offsets(t, base)[5], None)
+    r_accy = float(t[6]) if ok else _parse_float(t[6].strip(), 'telemetry', 'accy', _token_offsets(t, base)[6])
+    if not _isfinite(r_accy):
+        raise _dec('telemetry', 'accy', r_accy, 'finite', 'a finite number', _token_offsets(t, base)[6], None)
+    r_accz = float(t[7]) if ok else _parse_float(t[7].strip(), 'telemetry', 'accz', _token_offsets(t, base)[7])
+    if not _isfinite(r_accz):
+        raise _dec('telemetry', 'accz', r_accz, 'finite', 'a finite number', _token_offsets(t, base)[7], None)
+    r_gyrox = float(t[8]) if ok else _parse_float(t[8].strip(), 'telemetry', 'gyrox', _token_offsets(t, base)[8])
+    if not _isfinite(r_gyrox):
+        raise _dec('telemetry', 'gyrox', r_gyrox, 'finite', 'a finite number', _token_offsets(t, base)[8], None)
+    r_gyroy = float(t[9]) if ok else _parse_float(t[9].strip(), 'telemetry', 'gyroy', _token_offsets(t, base)[9])
+    if not _isfinite(r_gyroy):
+        raise _dec('telemetry', 'gyroy', r_gyroy, 'finite', 'a finite number', _token_offsets(t, base)[9], None)
+    r_gyroz = float(t[10]) if ok else _parse_float(t[10].strip(), 'telemetry', 'gyroz', _token_offsets(t, base)[10])
+    if not _isfinite(r_gyroz):
+        raise _dec('telemetry', 'gyroz', r_gyroz, 'finite', 'a finite number', _token_offsets(t, base)[10], None)
+    r_magx = float(t[11]) if ok else _parse_float(t[11].strip(), 'telemetry', 'magx', _token_offsets(t, base)[11])
+    if not _isfinite(r_magx):
+        raise _dec('telemetry', 'magx', r_magx, 'finite', 'a finite number', _token_offsets(t, base)[11], None)
+    r_magy = float(t[12]) if ok else _parse_float(t[12].strip(), 'telemetry', 'magy', _token_offsets(t, base)[12])
+    if not _isfinite(r_magy):
+        raise _dec('telemetry', 'magy', r_magy, 'finite', 'a finite number', _token_offsets(t, base)[12], None)
+    r_magz = float(t[13]) if ok else _parse_float(t[13].strip(), 'telemetry', 'magz', _token_offsets(t, base)[13])
+    if not _isfinite(r_magz):
+        raise _dec('telemetry', 'magz', r_magz, 'finite', 'a finite number', _token_offsets(t, base)[13], None)
+    r_lan = (t[14] if ok else t[14].strip())
+    if not ok:
+        bad = _text_problem(r_lan, ',', True)
+        if bad:
+            raise _dec('telemetry', 'lan', r_lan, 'text', bad, _token_offsets(t, base)[14], 'TANK-D5')
     if len(r_lan) > 32:
-        raise _dec('telemetry', 'lan', r_lan, 'length', 'at most 32 characters', at[14])
-    try:
-        pass
-    except DecodeError as exc:
-        exc.offset = at[14]
-        raise
-    r_lon = t[15].strip()
-    bad = _text_problem(r_lon, ',', True)
-    if bad:
-        raise _dec('telemetry', 'lon', r_lon, 'text', bad, at[15], 'TANK-D5')
+        raise _dec('telemetry', 'lan', r_lan, 'length', 'at most 32 characters', _token_offsets(t, base)[14])
+    r_lon = (t[15] if ok else t[15].strip())
+    if not ok:
+        bad = _text_problem(r_lon, ',', True)
+        if bad:
+            raise _dec('telemetry', 'lon', r_lon, 'text', bad, _token_offsets(t, base)[15], 'TANK-D5')
     if len(r_lon) > 32:
-        raise _dec('telemetry', 'lon', r_lon, 'length', 'at most 32 characters', at[15])
-    try:
-        pass
-    except DecodeError as exc:
-        exc.offset = at[15]
-        raise
-    r_vbat = _parse_float(t[16].strip(), 'telemetry', 'vbat', at[16])
-    try:
-        if not _isfinite(r_vbat):
-            raise _dec('telemetry', 'vbat', r_vbat, 'finite', 'a finite number', at[16], None)
-        pass
-    except DecodeError as exc:
-        exc.offset = at[16]
-        raise
-    r_systemstatus = _parse_int(t[17].strip(), 'telemetry', 'systemstatus', at[17])
-    try:
-        e_systemstatus = _ENUM_system_status.get(r_systemstatus)
-        if e_systemstatus is None:
-            raise _dec('telemetry', 'systemstatus', r_systemstatus, 'enum', 'SystemStatus', at[17], None)
-        pass
-    except DecodeError as exc:
-        exc.offset = at[17]
-        raise
-    r_extid = _parse_int(t[18].strip(), 'telemetry', 'extid', at[18])
-    try:
-        if not 0 <= r_extid <= 255:
-            raise _dec('telemetry', 'extid', r_extid, 'range', '0..255', at[18], None)
-        pass
-    except DecodeError as exc:
-        exc.offset = at[18]
-        raise
-    r_extstatus = _parse_int(t[19].strip(), 'telemetry', 'extstatus', at[19])
-    try:
-        e_extstatus = _ENUM_ext_status.get(r_extstatus)
-        if e_extstatus is None:
-            raise _dec('telemetry', 'extstatus', r_extstatus, 'enum', 'ExtStatus', at[19], None)
-        pass
-    except DecodeError as exc:
-        exc.offset = at[19]
-        raise
-    o = Telemetry(move=e_move, speed=r_speed, value=r_value, lcurr=r_lcurr, rcurr=r_rcurr, accx=r_accx, accy=r_accy, accz=r_accz, gyrox=r_gyrox, gyroy=r_gyroy, gyroz=r_gyroz, magx=r_magx, magy=r_magy, magz=r_magz, lan=r_lan, lon=r_lon, vbat=r_vbat, systemstatus=e_systemstatus, extid=r_extid, extstatus=e_extstatus)
+        raise _dec('telemetry', 'lon', r_lon, 'length', 'at most 32 characters', _token_offsets(t, base)[15])
+    r_vbat = float(t[16]) if ok else _parse_float(t[16].strip(), 'telemetry', 'vbat', _token_offsets(t, base)[16])
+    if not _isfinite(r_vbat):
+        raise _dec('telemetry', 'vbat', r_vbat, 'finite', 'a finite number', _token_offsets(t, base)[16], None)
+    r_systemstatus = int(t[17]) if ok else _parse_int(t[17].strip(), 'telemetry', 'systemstatus', _token_offsets(t, base)[17])
+    e_systemstatus = _ENUM_system_status.get(r_systemstatus)
+    if e_systemstatus is None:
+        raise _dec('telemetry', 'systemstatus', r_systemstatus, 'enum', 'SystemStatus', _token_offsets(t, base)[17], None)
+    r_extid = int(t[18]) if ok else _parse_int(t[18].strip(), 'telemetry', 'extid', _token_offsets(t, base)[18])
+    if not 0 <= r_extid <= 255:
+        raise _dec('telemetry', 'extid', r_extid, 'range', '0..255', _token_offsets(t, base)[18], None)
+    r_extstatus = int(t[19]) if ok else _parse_int(t[19].strip(), 'telemetry', 'extstatus', _token_offsets(t, base)[19])
+    e_extstatus = _ENUM_ext_status.get(r_extstatus)
+    if e_extstatus is None:
+        raise _dec('telemetry', 'extstatus', r_extstatus, 'enum', 'ExtStatus', _token_offsets(t, base)[19], None)
+    o = _new_Telemetry(e_move, r_speed, r_value, r_lcurr, r_rcurr, r_accx, r_accy, r_accz, r_gyrox, r_gyroy, r_gyroz, r_magx, r_magy, r_magz, r_lan, r_lon, r_vbat, e_systemstatus, r_extid, e_extstatus)
     return o
 
 
@@ -710,105 +699,57 @@ def _encode_command(m):
 
 def _decode_command(body, base):
     t = body.split(',')
-    at = _token_offsets(t, base)
     if not 9 <= len(t) <= 10:
         raise _dec('command', None, len(t), 'count', '9..10 fields' if 9 != 10 else '10 fields', base)
-    r_move = t[0].strip()
+    ok = _SYNTAX_command.fullmatch(body) is not None  # well-formed: token syntax checks are skipped
+    r_move = (t[0] if ok else t[0].strip())
     if len(r_move) != 1:
-        raise _dec('command', 'move', r_move, 'type', 'one character', at[0])
-    try:
-        e_move = _ENUM_move.get(r_move)
-        if e_move is None:
-            raise _dec('command', 'move', r_move, 'enum', 'Move', at[0], None)
-        pass
-    except DecodeError as exc:
-        exc.offset = at[0]
-        raise
-    r_speed = _parse_int(t[1].strip(), 'command', 'speed', at[1])
-    try:
-        if not 0 <= r_speed <= 100:
-            raise _dec('command', 'speed', r_speed, 'range', '0..100', at[1], 'TANK-D3')
-        pass
-    except DecodeError as exc:
-        exc.offset = at[1]
-        raise
-    r_value = t[2].strip()
+        raise _dec('command', 'move', r_move, 'type', 'one character', _token_offsets(t, base)[0])
+    e_move = _ENUM_move.get(r_move)
+    if e_move is None:
+        raise _dec('command', 'move', r_move, 'enum', 'Move', _token_offsets(t, base)[0], None)
+    r_speed = int(t[1]) if ok else _parse_int(t[1].strip(), 'command', 'speed', _token_offsets(t, base)[1])
+    if not 0 <= r_speed <= 100:
+        raise _dec('command', 'speed', r_speed, 'range', '0..100', _token_offsets(t, base)[1], 'TANK-D3')
+    r_value = (t[2] if ok else t[2].strip())
     if len(r_value) != 1:
-        raise _dec('command', 'value', r_value, 'type', 'one character', at[2])
-    bad = _text_problem(r_value, ',', True)
-    if bad:
-        raise _dec('command', 'value', r_value, 'text', bad, at[2], 'TANK-D3')
-    try:
-        pass
-    except DecodeError as exc:
-        exc.offset = at[2]
-        raise
-    r_azimutloc = _parse_int(t[3].strip(), 'command', 'azimutloc', at[3])
-    try:
-        if not -32768 <= r_azimutloc <= 32767:
-            raise _dec('command', 'azimutloc', r_azimutloc, 'range', '-32768..32767', at[3], None)
-        pass
-    except DecodeError as exc:
-        exc.offset = at[3]
-        raise
-    r_gpio1 = _parse_float(t[4].strip(), 'command', 'gpio1', at[4])
-    try:
-        if not _isfinite(r_gpio1):
-            raise _dec('command', 'gpio1', r_gpio1, 'finite', 'a finite number', at[4], None)
-        pass
-    except DecodeError as exc:
-        exc.offset = at[4]
-        raise
-    r_gpio2 = _parse_float(t[5].strip(), 'command', 'gpio2', at[5])
-    try:
-        if not _isfinite(r_gpio2):
-            raise _dec('command', 'gpio2', r_gpio2, 'finite', 'a finite number', at[5], None)
-        pass
-    except DecodeError as exc:
-        exc.offset = at[5]
-        raise
-    r_gpio3 = _parse_float(t[6].strip(), 'command', 'gpio3', at[6])
-    try:
-        if not _isfinite(r_gpio3):
-            raise _dec('command', 'gpio3', r_gpio3, 'finite', 'a finite number', at[6], None)
-        pass
-    except DecodeError as exc:
-        exc.offset = at[6]
-        raise
-    r_gpio4 = _parse_float(t[7].strip(), 'command', 'gpio4', at[7])
-    try:
-        if not _isfinite(r_gpio4):
-            raise _dec('command', 'gpio4', r_gpio4, 'finite', 'a finite number', at[7], None)
-        pass
-    except DecodeError as exc:
-        exc.offset = at[7]
-        raise
-    r_systemstatus = _parse_int(t[8].strip(), 'command', 'systemstatus', at[8])
-    try:
-        e_systemstatus = _ENUM_system_status.get(r_systemstatus)
-        if e_systemstatus is None:
-            raise _dec('command', 'systemstatus', r_systemstatus, 'enum', 'SystemStatus', at[8], 'TANK-D2', 'systemstatus 5 (Error) and 6 (Exception) are sent only by the platform / Только с платформы')
-        if e_systemstatus not in (0, 1, 2, 3, 4):
-            raise _dec('command', 'systemstatus', r_systemstatus, 'values', '0, 1, 2, 3, 4', at[8], 'TANK-D2', 'systemstatus 5 (Error) and 6 (Exception) are sent only by the platform / Только с платформы')
-        pass
-    except DecodeError as exc:
-        exc.offset = at[8]
-        raise
-    if len(t) > 9:
-        r_data = t[9].strip()
-        bad = _text_problem(r_data, ',', True)
+        raise _dec('command', 'value', r_value, 'type', 'one character', _token_offsets(t, base)[2])
+    if not ok:
+        bad = _text_problem(r_value, ',', True)
         if bad:
-            raise _dec('command', 'data', r_data, 'text', bad, at[9], 'TANK-D1')
+            raise _dec('command', 'value', r_value, 'text', bad, _token_offsets(t, base)[2], 'TANK-D3')
+    r_azimutloc = int(t[3]) if ok else _parse_int(t[3].strip(), 'command', 'azimutloc', _token_offsets(t, base)[3])
+    if not -32768 <= r_azimutloc <= 32767:
+        raise _dec('command', 'azimutloc', r_azimutloc, 'range', '-32768..32767', _token_offsets(t, base)[3], None)
+    r_gpio1 = float(t[4]) if ok else _parse_float(t[4].strip(), 'command', 'gpio1', _token_offsets(t, base)[4])
+    if not _isfinite(r_gpio1):
+        raise _dec('command', 'gpio1', r_gpio1, 'finite', 'a finite number', _token_offsets(t, base)[4], None)
+    r_gpio2 = float(t[5]) if ok else _parse_float(t[5].strip(), 'command', 'gpio2', _token_offsets(t, base)[5])
+    if not _isfinite(r_gpio2):
+        raise _dec('command', 'gpio2', r_gpio2, 'finite', 'a finite number', _token_offsets(t, base)[5], None)
+    r_gpio3 = float(t[6]) if ok else _parse_float(t[6].strip(), 'command', 'gpio3', _token_offsets(t, base)[6])
+    if not _isfinite(r_gpio3):
+        raise _dec('command', 'gpio3', r_gpio3, 'finite', 'a finite number', _token_offsets(t, base)[6], None)
+    r_gpio4 = float(t[7]) if ok else _parse_float(t[7].strip(), 'command', 'gpio4', _token_offsets(t, base)[7])
+    if not _isfinite(r_gpio4):
+        raise _dec('command', 'gpio4', r_gpio4, 'finite', 'a finite number', _token_offsets(t, base)[7], None)
+    r_systemstatus = int(t[8]) if ok else _parse_int(t[8].strip(), 'command', 'systemstatus', _token_offsets(t, base)[8])
+    e_systemstatus = _ENUM_system_status.get(r_systemstatus)
+    if e_systemstatus is None:
+        raise _dec('command', 'systemstatus', r_systemstatus, 'enum', 'SystemStatus', _token_offsets(t, base)[8], 'TANK-D2', 'systemstatus 5 (Error) and 6 (Exception) are sent only by the platform / Только с платформы')
+    if e_systemstatus not in (0, 1, 2, 3, 4):
+        raise _dec('command', 'systemstatus', r_systemstatus, 'values', '0, 1, 2, 3, 4', _token_offsets(t, base)[8], 'TANK-D2', 'systemstatus 5 (Error) and 6 (Exception) are sent only by the platform / Только с платформы')
+    if len(t) > 9:
+        r_data = (t[9] if ok else t[9].strip())
+        if not ok:
+            bad = _text_problem(r_data, ',', True)
+            if bad:
+                raise _dec('command', 'data', r_data, 'text', bad, _token_offsets(t, base)[9], 'TANK-D1')
         if len(r_data) > 64:
-            raise _dec('command', 'data', r_data, 'length', 'at most 64 characters', at[9])
-        try:
-            pass
-        except DecodeError as exc:
-            exc.offset = at[9]
-            raise
+            raise _dec('command', 'data', r_data, 'length', 'at most 64 characters', _token_offsets(t, base)[9])
     else:
         r_data = None
-    o = Command(move=e_move, speed=r_speed, value=r_value, azimutloc=r_azimutloc, gpio1=r_gpio1, gpio2=r_gpio2, gpio3=r_gpio3, gpio4=r_gpio4, systemstatus=e_systemstatus, data=r_data)
+    o = _new_Command(e_move, r_speed, r_value, r_azimutloc, r_gpio1, r_gpio2, r_gpio3, r_gpio4, e_systemstatus, r_data)
     return o
 
 
@@ -828,21 +769,17 @@ def _encode_payload_command(m):
 
 def _decode_payload_command(body, base):
     t = body.split(',', 0)
-    at = _token_offsets(t, base)
     if not 1 <= len(t) <= 1:
         raise _dec('payload_command', None, len(t), 'count', '1..1 fields' if 1 != 1 else '1 fields', base)
-    r_command = t[0].strip()
-    bad = _text_problem(r_command, '', True)
-    if bad:
-        raise _dec('payload_command', 'command', r_command, 'text', bad, at[0], 'TANK-D7')
+    ok = _SYNTAX_payload_command.fullmatch(body) is not None  # well-formed: token syntax checks are skipped
+    r_command = (t[0] if ok else t[0].strip())
+    if not ok:
+        bad = _text_problem(r_command, '', True)
+        if bad:
+            raise _dec('payload_command', 'command', r_command, 'text', bad, _token_offsets(t, base)[0], 'TANK-D7')
     if len(r_command) > 200:
-        raise _dec('payload_command', 'command', r_command, 'length', 'at most 200 characters', at[0])
-    try:
-        pass
-    except DecodeError as exc:
-        exc.offset = at[0]
-        raise
-    o = PayloadCommand(command=r_command)
+        raise _dec('payload_command', 'command', r_command, 'length', 'at most 200 characters', _token_offsets(t, base)[0])
+    o = _new_PayloadCommand(r_command)
     return o
 
 
@@ -862,21 +799,17 @@ def _encode_payload_reply(m):
 
 def _decode_payload_reply(body, base):
     t = body.split(',', 0)
-    at = _token_offsets(t, base)
     if not 1 <= len(t) <= 1:
         raise _dec('payload_reply', None, len(t), 'count', '1..1 fields' if 1 != 1 else '1 fields', base)
-    r_command = t[0].strip()
-    bad = _text_problem(r_command, '', True)
-    if bad:
-        raise _dec('payload_reply', 'command', r_command, 'text', bad, at[0], 'TANK-D7')
+    ok = _SYNTAX_payload_reply.fullmatch(body) is not None  # well-formed: token syntax checks are skipped
+    r_command = (t[0] if ok else t[0].strip())
+    if not ok:
+        bad = _text_problem(r_command, '', True)
+        if bad:
+            raise _dec('payload_reply', 'command', r_command, 'text', bad, _token_offsets(t, base)[0], 'TANK-D7')
     if len(r_command) > 200:
-        raise _dec('payload_reply', 'command', r_command, 'length', 'at most 200 characters', at[0])
-    try:
-        pass
-    except DecodeError as exc:
-        exc.offset = at[0]
-        raise
-    o = PayloadReply(command=r_command)
+        raise _dec('payload_reply', 'command', r_command, 'length', 'at most 200 characters', _token_offsets(t, base)[0])
+    o = _new_PayloadReply(r_command)
     return o
 
 
@@ -907,46 +840,26 @@ def _encode_gpio_config(m):
 
 def _decode_gpio_config(body, base):
     t = body.split(',')
-    at = _token_offsets(t, base)
     if not 4 <= len(t) <= 4:
         raise _dec('gpio_config', None, len(t), 'count', '4..4 fields' if 4 != 4 else '4 fields', base)
-    r_gpio1 = _parse_int(t[0].strip(), 'gpio_config', 'gpio1', at[0])
-    try:
-        e_gpio1 = _ENUM_gpio_mode.get(r_gpio1)
-        if e_gpio1 is None:
-            raise _dec('gpio_config', 'gpio1', r_gpio1, 'enum', 'GpioMode', at[0], None)
-        pass
-    except DecodeError as exc:
-        exc.offset = at[0]
-        raise
-    r_gpio2 = _parse_int(t[1].strip(), 'gpio_config', 'gpio2', at[1])
-    try:
-        e_gpio2 = _ENUM_gpio_mode.get(r_gpio2)
-        if e_gpio2 is None:
-            raise _dec('gpio_config', 'gpio2', r_gpio2, 'enum', 'GpioMode', at[1], None)
-        pass
-    except DecodeError as exc:
-        exc.offset = at[1]
-        raise
-    r_gpio3 = _parse_int(t[2].strip(), 'gpio_config', 'gpio3', at[2])
-    try:
-        e_gpio3 = _ENUM_gpio_mode.get(r_gpio3)
-        if e_gpio3 is None:
-            raise _dec('gpio_config', 'gpio3', r_gpio3, 'enum', 'GpioMode', at[2], None)
-        pass
-    except DecodeError as exc:
-        exc.offset = at[2]
-        raise
-    r_gpio4 = _parse_int(t[3].strip(), 'gpio_config', 'gpio4', at[3])
-    try:
-        e_gpio4 = _ENUM_gpio_mode.get(r_gpio4)
-        if e_gpio4 is None:
-            raise _dec('gpio_config', 'gpio4', r_gpio4, 'enum', 'GpioMode', at[3], None)
-        pass
-    except DecodeError as exc:
-        exc.offset = at[3]
-        raise
-    o = GpioConfig(gpio1=e_gpio1, gpio2=e_gpio2, gpio3=e_gpio3, gpio4=e_gpio4)
+    ok = _SYNTAX_gpio_config.fullmatch(body) is not None  # well-formed: token syntax checks are skipped
+    r_gpio1 = int(t[0]) if ok else _parse_int(t[0].strip(), 'gpio_config', 'gpio1', _token_offsets(t, base)[0])
+    e_gpio1 = _ENUM_gpio_mode.get(r_gpio1)
+    if e_gpio1 is None:
+        raise _dec('gpio_config', 'gpio1', r_gpio1, 'enum', 'GpioMode', _token_offsets(t, base)[0], None)
+    r_gpio2 = int(t[1]) if ok else _parse_int(t[1].strip(), 'gpio_config', 'gpio2', _token_offsets(t, base)[1])
+    e_gpio2 = _ENUM_gpio_mode.get(r_gpio2)
+    if e_gpio2 is None:
+        raise _dec('gpio_config', 'gpio2', r_gpio2, 'enum', 'GpioMode', _token_offsets(t, base)[1], None)
+    r_gpio3 = int(t[2]) if ok else _parse_int(t[2].strip(), 'gpio_config', 'gpio3', _token_offsets(t, base)[2])
+    e_gpio3 = _ENUM_gpio_mode.get(r_gpio3)
+    if e_gpio3 is None:
+        raise _dec('gpio_config', 'gpio3', r_gpio3, 'enum', 'GpioMode', _token_offsets(t, base)[2], None)
+    r_gpio4 = int(t[3]) if ok else _parse_int(t[3].strip(), 'gpio_config', 'gpio4', _token_offsets(t, base)[3])
+    e_gpio4 = _ENUM_gpio_mode.get(r_gpio4)
+    if e_gpio4 is None:
+        raise _dec('gpio_config', 'gpio4', r_gpio4, 'enum', 'GpioMode', _token_offsets(t, base)[3], None)
+    o = _new_GpioConfig(e_gpio1, e_gpio2, e_gpio3, e_gpio4)
     return o
 
 

@@ -18,6 +18,7 @@ FINGERPRINT32 = 0x2e76da09  # its first 32 bits
 DATA_LENGTH = 7  # number of data bytes in every packet of a link, fixed per link (the firmware's template parameter dataLength); at most 59 so that a packet fits the 64-byte FIFO (TR24-D1)TIMEOUT = 100  # how long the master waits for a reply before sending the command again (TR24-D4)RETRY_LIMIT = 0  # how many times the master resends one command before it reports failure; 0 = unlimited, the original behaviour (TR24-D4)OWN_ID = None  # this device's unique ID, set per device; packets for other IDs are ignored (TR24-D3)
 _floor = math.floor
 _isfinite = math.isfinite
+_object_new = object.__new__
 
 
 class CodecError(ValueError):
@@ -119,6 +120,16 @@ class Command:
         return _decode_command(_as_input(data))
 
 
+def _new_Command(v0, v1, v2, v3):
+    """Command from its fields in layout order, without keyword matching (decoders)."""
+    o = _object_new(Command)
+    o.seq = v0
+    o.sender = v1
+    o.receiver = v2
+    o.data = v3
+    return o
+
+
 @dataclass(slots=True, kw_only=True)
 class Reply:
     """reply"""
@@ -136,6 +147,15 @@ class Reply:
     def decode(cls, data):
         return _decode_reply(_as_input(data))
 
+
+def _new_Reply(v0, v1, v2, v3):
+    """Reply from its fields in layout order, without keyword matching (decoders)."""
+    o = _object_new(Reply)
+    o.seq = v0
+    o.sender = v1
+    o.receiver = v2
+    o.data = v3
+    return o
 _S_command_0 = struct.Struct('<BBBB7sB')
 _S_reply_0 = struct.Struct('<BBBB7sB')
 
@@ -146,8 +166,7 @@ def _as_input(data):
     return data
 
 
-def _raw_command(m):
-    """Check a command and return its raw wire values, in wire order."""
+def _encode_command(m):
     r_start = 2
     r_reserved = 0
     r_type = 0
@@ -174,10 +193,16 @@ def _raw_command(m):
         raise _enc('command', 'data', v, 'length', 'bytes of length 7')
     r_data = bytes(v)
     r_stop = 3
-    return (r_start, r_reserved, r_type, r_seq, r_sender, r_receiver, r_data, r_stop, )
+    return _S_command_0.pack(2, r_seq, r_sender, r_receiver, r_data, 3)
 
 
-def _build_command(r_start, r_reserved, r_type, r_seq, r_sender, r_receiver, r_data, r_stop, text_form=False):
+def _decode_command(d):
+    if len(d) != 12:
+        raise _dec('command', None, len(d), 'length', '12 bytes', 0)
+    r_start, c0_1, r_sender, r_receiver, r_data, r_stop, = _S_command_0.unpack_from(d, 0)
+    r_reserved = (c0_1 >> 2) & 0x3f
+    r_type = (c0_1 >> 1) & 0x1
+    r_seq = c0_1 & 0x1
     if r_start != 2:
         raise _dec('command', 'start', r_start, 'const', '2', 0, 'TR24-D1')
     if r_reserved:
@@ -186,32 +211,11 @@ def _build_command(r_start, r_reserved, r_type, r_seq, r_sender, r_receiver, r_d
         raise _dec('command', 'type', r_type, 'const', '0', 14, 'TR24-D1')
     if r_stop != 3:
         raise _dec('command', 'stop', r_stop, 'const', '3', 88, 'TR24-D1')
-    o = Command(seq=r_seq, sender=r_sender, receiver=r_receiver, data=r_data)
+    o = _new_Command(r_seq, r_sender, r_receiver, r_data)
     return o
 
 
-def _encode_command(m):
-    r_start, r_reserved, r_type, r_seq, r_sender, r_receiver, r_data, r_stop, = _raw_command(m)
-    return _S_command_0.pack(r_start, r_reserved << 2 | r_type << 1 | r_seq, r_sender, r_receiver, r_data, r_stop)
-
-
-def _decode_command(d):
-    if len(d) != 12:
-        raise _dec('command', None, len(d), 'length', '12 bytes', 0)
-    c0_0, c0_1, c0_2, c0_3, c0_4, c0_5, = _S_command_0.unpack_from(d, 0)
-    r_start = c0_0
-    r_reserved = (c0_1 >> 2) & 0x3f
-    r_type = (c0_1 >> 1) & 0x1
-    r_seq = c0_1 & 0x1
-    r_sender = c0_2
-    r_receiver = c0_3
-    r_data = c0_4
-    r_stop = c0_5
-    return _build_command(r_start, r_reserved, r_type, r_seq, r_sender, r_receiver, r_data, r_stop)
-
-
-def _raw_reply(m):
-    """Check a reply and return its raw wire values, in wire order."""
+def _encode_reply(m):
     r_start = 2
     r_reserved = 0
     r_type = 1
@@ -238,10 +242,16 @@ def _raw_reply(m):
         raise _enc('reply', 'data', v, 'length', 'bytes of length 7')
     r_data = bytes(v)
     r_stop = 3
-    return (r_start, r_reserved, r_type, r_seq, r_sender, r_receiver, r_data, r_stop, )
+    return _S_reply_0.pack(2, r_seq | 0x2, r_sender, r_receiver, r_data, 3)
 
 
-def _build_reply(r_start, r_reserved, r_type, r_seq, r_sender, r_receiver, r_data, r_stop, text_form=False):
+def _decode_reply(d):
+    if len(d) != 12:
+        raise _dec('reply', None, len(d), 'length', '12 bytes', 0)
+    r_start, c0_1, r_sender, r_receiver, r_data, r_stop, = _S_reply_0.unpack_from(d, 0)
+    r_reserved = (c0_1 >> 2) & 0x3f
+    r_type = (c0_1 >> 1) & 0x1
+    r_seq = c0_1 & 0x1
     if r_start != 2:
         raise _dec('reply', 'start', r_start, 'const', '2', 0, 'TR24-D1')
     if r_reserved:
@@ -250,28 +260,8 @@ def _build_reply(r_start, r_reserved, r_type, r_seq, r_sender, r_receiver, r_dat
         raise _dec('reply', 'type', r_type, 'const', '1', 14, 'TR24-D1')
     if r_stop != 3:
         raise _dec('reply', 'stop', r_stop, 'const', '3', 88, 'TR24-D1')
-    o = Reply(seq=r_seq, sender=r_sender, receiver=r_receiver, data=r_data)
+    o = _new_Reply(r_seq, r_sender, r_receiver, r_data)
     return o
-
-
-def _encode_reply(m):
-    r_start, r_reserved, r_type, r_seq, r_sender, r_receiver, r_data, r_stop, = _raw_reply(m)
-    return _S_reply_0.pack(r_start, r_reserved << 2 | r_type << 1 | r_seq, r_sender, r_receiver, r_data, r_stop)
-
-
-def _decode_reply(d):
-    if len(d) != 12:
-        raise _dec('reply', None, len(d), 'length', '12 bytes', 0)
-    c0_0, c0_1, c0_2, c0_3, c0_4, c0_5, = _S_reply_0.unpack_from(d, 0)
-    r_start = c0_0
-    r_reserved = (c0_1 >> 2) & 0x3f
-    r_type = (c0_1 >> 1) & 0x1
-    r_seq = c0_1 & 0x1
-    r_sender = c0_2
-    r_receiver = c0_3
-    r_data = c0_4
-    r_stop = c0_5
-    return _build_reply(r_start, r_reserved, r_type, r_seq, r_sender, r_receiver, r_data, r_stop)
 
 
 _KEYS = {(0, 12): ('master_to_slave', _decode_command), (1, 12): ('slave_to_master', _decode_reply), }
@@ -283,12 +273,19 @@ for _key, (_direction, _fn) in _KEYS.items():
     _ALL.setdefault(_key, []).append(_fn)
 
 
+_UNIQUE = {key: fns[0] for key, fns in _ALL.items() if len(fns) == 1}
+
+
 def decode(data, direction=None):
     """Decode one frame; `direction` is needed only when ids are reused across directions."""
-    d = _as_input(data)
+    d = data if data.__class__ is bytes else _as_input(data)
+    if direction is None and len(d) >= 2:
+        fn = _UNIQUE.get(((d[1] >> 1) & 0x1, len(d)))
+        if fn is not None:
+            return fn(d)
     if len(d) < 2:
         raise _dec(None, None, len(d), 'length', 'a whole frame', 0)
-    value = (int.from_bytes(d[1:2], 'big') >> 1) & 1
+    value = (d[1] >> 1) & 0x1
     key = (value, len(d))
     if direction is not None:
         fn = _KEYS_BY_DIRECTION.get(direction, {}).get(key)
