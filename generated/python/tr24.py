@@ -305,49 +305,50 @@ class StreamDecoder:
     stream order; after garbage or a bad frame it resynchronises on the next
     sync byte. Memory is bounded by one maximum frame."""
 
+    _SIZES = frozenset([12])
+
     def __init__(self, direction=None):
         self.direction = direction
-        self._buffer = bytearray()
+        self._buffer = b""  # bytes not yet consumed
         self.offset = 0  # stream offset of the buffer's first byte
         self.skipped = 0  # bytes dropped while resynchronising
 
     def feed(self, data):
-        buf = self._buffer
-        buf += data
-        out = []
+        # One immutable buffer walked by index: frames are sliced out once, and the
+        # consumed head is dropped once per call rather than once per frame.
+        buf = self._buffer + bytes(data) if self._buffer else bytes(data)
+        pos, end, out = 0, len(buf), []
+        base, skipped, direction = self.offset, 0, self.direction
         while True:
-            start = buf.find(2)
+            start = buf.find(2, pos)
             if start < 0:
-                self.skipped += len(buf)
-                self.offset += len(buf)
-                buf.clear()
-                return out
-            if start:
-                self.skipped += start
-                self.offset += start
-                del buf[:start]
+                skipped += end - pos
+                pos = end
+                break
+            skipped += start - pos
+            pos = start
             size = 12
-            if size not in [12]:
-                out.append(_dec(None, 'length', size, 'length', 'a known frame size', self.offset * 8))
-                self._skip(1)
+            if size not in self._SIZES:
+                out.append(_dec(None, 'length', size, 'length', 'a known frame size', (base + pos) * 8))
+                skipped += 1
+                pos += 1
                 continue
-            if len(buf) < size:
-                return out
-            frame = bytes(buf[:size])
+            if end - pos < size:
+                break
+            self.offset = base + pos  # at the frame's first byte while it is decoded
             try:
-                out.append(decode(frame, self.direction))
+                out.append(decode(buf[pos:pos + size], direction))
             except DecodeError as exc:
-                exc.offset = (self.offset * 8) + (exc.offset or 0)
+                exc.offset = (base + pos) * 8 + (exc.offset or 0)
                 out.append(exc)
-                self._skip(1)
+                skipped += 1
+                pos += 1
                 continue
-            self.offset += size
-            del buf[:size]
-
-    def _skip(self, n):
-        self.skipped += n
-        self.offset += n
-        del self._buffer[:n]
+            pos += size
+        self._buffer = buf[pos:]
+        self.offset = base + pos
+        self.skipped += skipped
+        return out
 
     def finish(self):
         """End of stream: a DecodeError for an incomplete frame left over, if any;
@@ -355,7 +356,9 @@ class StreamDecoder:
         if not self._buffer:
             return []
         e = _dec(None, None, len(self._buffer), 'length', 'a whole frame before the end', self.offset * 8)
-        self._skip(len(self._buffer))
+        self.skipped += len(self._buffer)
+        self.offset += len(self._buffer)
+        self._buffer = b""
         return [e]
 
 
