@@ -1014,11 +1014,17 @@ def _positional_crc_code(name: str, lengths: list[int]) -> str:
     for k in range(longest):
         c(f"_AT{k}_{name} = _AT_{name}[{k}]")
     for n in lengths:
+        c("")
+        c("")
         c(f"def _checksum_{name}_{n}(data):")
         names = [f"b{i}" for i in range(n)]
         c(f"    {', '.join(names)}, = data")
-        terms = " ^ ".join(f"_AT{n - 1 - i}_{name}[b{i}]" for i in range(n))
-        c(f"    return _ZEROS_{name}[{n}] ^ {terms}")
+        terms = [f"_ZEROS_{name}[{n}]"] + [f"_AT{n - 1 - i}_{name}[b{i}]" for i in range(n)]
+        lines = [" ^ ".join(terms[k:k + 4]) for k in range(0, len(terms), 4)]
+        c(f"    return ({lines[0]}")
+        for line in lines[1:]:
+            c(f"            ^ {line}")
+        c("            )")
     return c.text()
 
 

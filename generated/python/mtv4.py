@@ -361,18 +361,42 @@ _AT19_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[19]
 _AT20_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[20]
 _AT21_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[21]
 _AT22_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[22]
+
+
 def _checksum_crc16_8005_ffff_nn_0_5(data):
     b0, b1, b2, b3, b4, = data
-    return _ZEROS_crc16_8005_ffff_nn_0[5] ^ _AT4_crc16_8005_ffff_nn_0[b0] ^ _AT3_crc16_8005_ffff_nn_0[b1] ^ _AT2_crc16_8005_ffff_nn_0[b2] ^ _AT1_crc16_8005_ffff_nn_0[b3] ^ _AT0_crc16_8005_ffff_nn_0[b4]
+    return (_ZEROS_crc16_8005_ffff_nn_0[5] ^ _AT4_crc16_8005_ffff_nn_0[b0] ^ _AT3_crc16_8005_ffff_nn_0[b1] ^ _AT2_crc16_8005_ffff_nn_0[b2]
+            ^ _AT1_crc16_8005_ffff_nn_0[b3] ^ _AT0_crc16_8005_ffff_nn_0[b4]
+            )
+
+
 def _checksum_crc16_8005_ffff_nn_0_9(data):
     b0, b1, b2, b3, b4, b5, b6, b7, b8, = data
-    return _ZEROS_crc16_8005_ffff_nn_0[9] ^ _AT8_crc16_8005_ffff_nn_0[b0] ^ _AT7_crc16_8005_ffff_nn_0[b1] ^ _AT6_crc16_8005_ffff_nn_0[b2] ^ _AT5_crc16_8005_ffff_nn_0[b3] ^ _AT4_crc16_8005_ffff_nn_0[b4] ^ _AT3_crc16_8005_ffff_nn_0[b5] ^ _AT2_crc16_8005_ffff_nn_0[b6] ^ _AT1_crc16_8005_ffff_nn_0[b7] ^ _AT0_crc16_8005_ffff_nn_0[b8]
+    return (_ZEROS_crc16_8005_ffff_nn_0[9] ^ _AT8_crc16_8005_ffff_nn_0[b0] ^ _AT7_crc16_8005_ffff_nn_0[b1] ^ _AT6_crc16_8005_ffff_nn_0[b2]
+            ^ _AT5_crc16_8005_ffff_nn_0[b3] ^ _AT4_crc16_8005_ffff_nn_0[b4] ^ _AT3_crc16_8005_ffff_nn_0[b5] ^ _AT2_crc16_8005_ffff_nn_0[b6]
+            ^ _AT1_crc16_8005_ffff_nn_0[b7] ^ _AT0_crc16_8005_ffff_nn_0[b8]
+            )
+
+
 def _checksum_crc16_8005_ffff_nn_0_19(data):
     b0, b1, b2, b3, b4, b5, b6, b7, b8, b9, b10, b11, b12, b13, b14, b15, b16, b17, b18, = data
-    return _ZEROS_crc16_8005_ffff_nn_0[19] ^ _AT18_crc16_8005_ffff_nn_0[b0] ^ _AT17_crc16_8005_ffff_nn_0[b1] ^ _AT16_crc16_8005_ffff_nn_0[b2] ^ _AT15_crc16_8005_ffff_nn_0[b3] ^ _AT14_crc16_8005_ffff_nn_0[b4] ^ _AT13_crc16_8005_ffff_nn_0[b5] ^ _AT12_crc16_8005_ffff_nn_0[b6] ^ _AT11_crc16_8005_ffff_nn_0[b7] ^ _AT10_crc16_8005_ffff_nn_0[b8] ^ _AT9_crc16_8005_ffff_nn_0[b9] ^ _AT8_crc16_8005_ffff_nn_0[b10] ^ _AT7_crc16_8005_ffff_nn_0[b11] ^ _AT6_crc16_8005_ffff_nn_0[b12] ^ _AT5_crc16_8005_ffff_nn_0[b13] ^ _AT4_crc16_8005_ffff_nn_0[b14] ^ _AT3_crc16_8005_ffff_nn_0[b15] ^ _AT2_crc16_8005_ffff_nn_0[b16] ^ _AT1_crc16_8005_ffff_nn_0[b17] ^ _AT0_crc16_8005_ffff_nn_0[b18]
+    return (_ZEROS_crc16_8005_ffff_nn_0[19] ^ _AT18_crc16_8005_ffff_nn_0[b0] ^ _AT17_crc16_8005_ffff_nn_0[b1] ^ _AT16_crc16_8005_ffff_nn_0[b2]
+            ^ _AT15_crc16_8005_ffff_nn_0[b3] ^ _AT14_crc16_8005_ffff_nn_0[b4] ^ _AT13_crc16_8005_ffff_nn_0[b5] ^ _AT12_crc16_8005_ffff_nn_0[b6]
+            ^ _AT11_crc16_8005_ffff_nn_0[b7] ^ _AT10_crc16_8005_ffff_nn_0[b8] ^ _AT9_crc16_8005_ffff_nn_0[b9] ^ _AT8_crc16_8005_ffff_nn_0[b10]
+            ^ _AT7_crc16_8005_ffff_nn_0[b11] ^ _AT6_crc16_8005_ffff_nn_0[b12] ^ _AT5_crc16_8005_ffff_nn_0[b13] ^ _AT4_crc16_8005_ffff_nn_0[b14]
+            ^ _AT3_crc16_8005_ffff_nn_0[b15] ^ _AT2_crc16_8005_ffff_nn_0[b16] ^ _AT1_crc16_8005_ffff_nn_0[b17] ^ _AT0_crc16_8005_ffff_nn_0[b18]
+            )
+
+
 def _checksum_crc16_8005_ffff_nn_0_23(data):
     b0, b1, b2, b3, b4, b5, b6, b7, b8, b9, b10, b11, b12, b13, b14, b15, b16, b17, b18, b19, b20, b21, b22, = data
-    return _ZEROS_crc16_8005_ffff_nn_0[23] ^ _AT22_crc16_8005_ffff_nn_0[b0] ^ _AT21_crc16_8005_ffff_nn_0[b1] ^ _AT20_crc16_8005_ffff_nn_0[b2] ^ _AT19_crc16_8005_ffff_nn_0[b3] ^ _AT18_crc16_8005_ffff_nn_0[b4] ^ _AT17_crc16_8005_ffff_nn_0[b5] ^ _AT16_crc16_8005_ffff_nn_0[b6] ^ _AT15_crc16_8005_ffff_nn_0[b7] ^ _AT14_crc16_8005_ffff_nn_0[b8] ^ _AT13_crc16_8005_ffff_nn_0[b9] ^ _AT12_crc16_8005_ffff_nn_0[b10] ^ _AT11_crc16_8005_ffff_nn_0[b11] ^ _AT10_crc16_8005_ffff_nn_0[b12] ^ _AT9_crc16_8005_ffff_nn_0[b13] ^ _AT8_crc16_8005_ffff_nn_0[b14] ^ _AT7_crc16_8005_ffff_nn_0[b15] ^ _AT6_crc16_8005_ffff_nn_0[b16] ^ _AT5_crc16_8005_ffff_nn_0[b17] ^ _AT4_crc16_8005_ffff_nn_0[b18] ^ _AT3_crc16_8005_ffff_nn_0[b19] ^ _AT2_crc16_8005_ffff_nn_0[b20] ^ _AT1_crc16_8005_ffff_nn_0[b21] ^ _AT0_crc16_8005_ffff_nn_0[b22]
+    return (_ZEROS_crc16_8005_ffff_nn_0[23] ^ _AT22_crc16_8005_ffff_nn_0[b0] ^ _AT21_crc16_8005_ffff_nn_0[b1] ^ _AT20_crc16_8005_ffff_nn_0[b2]
+            ^ _AT19_crc16_8005_ffff_nn_0[b3] ^ _AT18_crc16_8005_ffff_nn_0[b4] ^ _AT17_crc16_8005_ffff_nn_0[b5] ^ _AT16_crc16_8005_ffff_nn_0[b6]
+            ^ _AT15_crc16_8005_ffff_nn_0[b7] ^ _AT14_crc16_8005_ffff_nn_0[b8] ^ _AT13_crc16_8005_ffff_nn_0[b9] ^ _AT12_crc16_8005_ffff_nn_0[b10]
+            ^ _AT11_crc16_8005_ffff_nn_0[b11] ^ _AT10_crc16_8005_ffff_nn_0[b12] ^ _AT9_crc16_8005_ffff_nn_0[b13] ^ _AT8_crc16_8005_ffff_nn_0[b14]
+            ^ _AT7_crc16_8005_ffff_nn_0[b15] ^ _AT6_crc16_8005_ffff_nn_0[b16] ^ _AT5_crc16_8005_ffff_nn_0[b17] ^ _AT4_crc16_8005_ffff_nn_0[b18]
+            ^ _AT3_crc16_8005_ffff_nn_0[b19] ^ _AT2_crc16_8005_ffff_nn_0[b20] ^ _AT1_crc16_8005_ffff_nn_0[b21] ^ _AT0_crc16_8005_ffff_nn_0[b22]
+            )
 
 
 def _as_input(data):
