@@ -128,7 +128,7 @@ class Header:
 
     @classmethod
     def decode(cls, data):
-        return _decode_header(_as_input(data))
+        return _decode_header(data if data.__class__ is bytes else _as_input(data))
 
 
 def _new_Header(v0, v1, v2):
@@ -209,7 +209,7 @@ class MasterControl:
 
     @classmethod
     def decode(cls, data):
-        return _decode_master_control(_as_input(data))
+        return _decode_master_control(data if data.__class__ is bytes else _as_input(data))
 
 
 def _new_MasterControl(v0, v1, v2, v3, v4, v5, v6):
@@ -243,7 +243,7 @@ class SlaveControl:
 
     @classmethod
     def decode(cls, data):
-        return _decode_slave_control(_as_input(data))
+        return _decode_slave_control(data if data.__class__ is bytes else _as_input(data))
 
 
 def _new_SlaveControl(v0, v1, v2, v3, v4, v5, v6):

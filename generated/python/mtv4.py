@@ -158,7 +158,7 @@ class SetWheelsVelocities:
 
     @classmethod
     def decode(cls, data):
-        return _decode_set_wheels_velocities(_as_input(data))
+        return _decode_set_wheels_velocities(data if data.__class__ is bytes else _as_input(data))
 
 
 def _new_SetWheelsVelocities(v0, v1, v2, v3, v4):
@@ -190,7 +190,7 @@ class SetLed:
 
     @classmethod
     def decode(cls, data):
-        return _decode_set_led(_as_input(data))
+        return _decode_set_led(data if data.__class__ is bytes else _as_input(data))
 
 
 def _new_SetLed(v0, v1, v2, v3, v4, v5, v6):
@@ -226,7 +226,7 @@ class SetWheelsVelocitiesWithOdometry:
 
     @classmethod
     def decode(cls, data):
-        return _decode_set_wheels_velocities_with_odometry(_as_input(data))
+        return _decode_set_wheels_velocities_with_odometry(data if data.__class__ is bytes else _as_input(data))
 
 
 def _new_SetWheelsVelocitiesWithOdometry(v0, v1, v2, v3, v4, v5, v6, v7, v8):
@@ -259,7 +259,7 @@ class Ack:
 
     @classmethod
     def decode(cls, data):
-        return _decode_ack(_as_input(data))
+        return _decode_ack(data if data.__class__ is bytes else _as_input(data))
 
 
 def _new_Ack(v0, v1, v2, v3):
@@ -290,7 +290,7 @@ class OdometryReply:
 
     @classmethod
     def decode(cls, data):
-        return _decode_odometry_reply(_as_input(data))
+        return _decode_odometry_reply(data if data.__class__ is bytes else _as_input(data))
 
 
 def _new_OdometryReply(v0, v1, v2, v3, v4, v5, v6):

@@ -124,7 +124,7 @@ class Start:
 
     @classmethod
     def decode(cls, data):
-        return _decode_start(_as_input(data))
+        return _decode_start(data if data.__class__ is bytes else _as_input(data))
 
 
 def _new_Start():
@@ -152,7 +152,7 @@ class Object:
 
     @classmethod
     def decode(cls, data):
-        return _decode_object(_as_input(data))
+        return _decode_object(data if data.__class__ is bytes else _as_input(data))
 
 
 def _new_Object(v0, v1, v2, v3, v4, v5, v6, v7):
@@ -184,7 +184,7 @@ class Scene:
 
     @classmethod
     def decode(cls, data):
-        return _decode_scene(_as_input(data))
+        return _decode_scene(data if data.__class__ is bytes else _as_input(data))
 
 
 def _new_Scene(v0, v1, v2, v3):
@@ -208,7 +208,7 @@ class End:
 
     @classmethod
     def decode(cls, data):
-        return _decode_end(_as_input(data))
+        return _decode_end(data if data.__class__ is bytes else _as_input(data))
 
 
 def _new_End():

@@ -117,7 +117,7 @@ class Command:
 
     @classmethod
     def decode(cls, data):
-        return _decode_command(_as_input(data))
+        return _decode_command(data if data.__class__ is bytes else _as_input(data))
 
 
 def _new_Command(v0, v1, v2, v3):
@@ -145,7 +145,7 @@ class Reply:
 
     @classmethod
     def decode(cls, data):
-        return _decode_reply(_as_input(data))
+        return _decode_reply(data if data.__class__ is bytes else _as_input(data))
 
 
 def _new_Reply(v0, v1, v2, v3):
