@@ -144,78 +144,79 @@ class PythonView:
         """Emit code that reads leaf from `m` (or from `source`, its group already read), checks
         it and stores its raw value in leaf.var."""
         f, var = leaf.field, leaf.var
+        v = var  # the value is read into the variable that then holds its raw form
         where = f"{message.name!r}, {leaf.dotted!r}"
         if f.checksum or self.fixed_raw(f) is not None:
             c(f"{var} = {lit(self.fixed_raw(f) or 0)}")
             return
-        c(f"v = {source}.{leaf.path[-1]}" if source else f"v = m.{leaf.dotted}")
+        c(f"{v} = {source}.{leaf.path[-1]}" if source else f"{v} = m.{leaf.dotted}")
         if f.kind == "bool":
-            c("if v is not True and v is not False and v != 0 and v != 1:")
-            c(f"    raise _enc({where}, v, 'type', 'a bool')")
-            c(f"{var} = 1 if v else 0")
+            c(f"if {v} is not True and {v} is not False and {v} != 0 and {v} != 1:")
+            c(f"    raise _enc({where}, {v}, 'type', 'a bool')")
+            c(f"{var} = 1 if {v} else 0")
         elif f.enum is not None:
             base = "str" if f.enum.kind == "char" else "int"
-            c(f"if not isinstance(v, {base}) or v not in _VALUES_{f.enum.name}:")
-            c(f"    raise _enc({where}, v, 'enum', {self.enum_class(f.enum.name)!r}{self.user(f)})")
+            c(f"if not isinstance({v}, {base}) or {v} not in _VALUES_{f.enum.name}:")
+            c(f"    raise _enc({where}, {v}, 'enum', {self.enum_class(f.enum.name)!r}{self.user(f)})")
             if f.values:
                 allowed = tuple(self.enum_value(f, x) for x in f.values)
-                c(f"if v not in {lit(allowed)}:")
-                c(f"    raise _enc({where}, v, 'values', {', '.join(map(str, allowed))!r}, {f.rule!r}{self.user(f, False)})")
-            c(f"{var} = {'v' if f.enum.kind == 'char' else 'int(v)'}")
+                c(f"if {v} not in {lit(allowed)}:")
+                c(f"    raise _enc({where}, {v}, 'values', {', '.join(map(str, allowed))!r}, {f.rule!r}{self.user(f, False)})")
+            if f.enum.kind != "char":
+                c(f"{var} = int({v})")
         elif f.flags is not None:
-            c(f"if v.__class__ is not int and not isinstance(v, int):")
-            c(f"    raise _enc({where}, v, 'type', 'an int or {self.enum_class(f.flags.name)}')")
-            c("v = int(v)")  # each operator on an IntFlag builds a new flag: checks on an int are far cheaper
-            c(f"if v < 0 or v & {~f.flags.mask & ((1 << f.bits) - 1):#x} or v > {(1 << f.bits) - 1:#x}:")
-            c(f"    raise _enc({where}, v, 'flags', 'only the bits of {f.flags.name}'{self.user(f)})")
+            c(f"if {v}.__class__ is not int and not isinstance({v}, int):")
+            c(f"    raise _enc({where}, {v}, 'type', 'an int or {self.enum_class(f.flags.name)}')")
+            c(f"{v} = int({v})")  # each operator on an IntFlag builds a new flag: checks on an int are far cheaper
+            c(f"if {v} < 0 or {v} & {~f.flags.mask & ((1 << f.bits) - 1):#x} or {v} > {(1 << f.bits) - 1:#x}:")
+            c(f"    raise _enc({where}, {v}, 'flags', 'only the bits of {f.flags.name}'{self.user(f)})")
             if f.exactly_one:
-                c("if v == 0 or v & (v - 1):")
-                c(f"    raise _enc({where}, v, 'exactly_one', 'exactly one bit set', {f.rule!r}{self.user(f, False)})")
-            c(f"{var} = int(v)")
+                c(f"if {v} == 0 or {v} & ({v} - 1):")
+                c(f"    raise _enc({where}, {v}, 'exactly_one', 'exactly one bit set', {f.rule!r}{self.user(f, False)})")
         elif f.one_hot:
-            c("if v is None:")
+            c(f"if {v} is None:")
             c(f"    {var} = 0")
             c("else:")
             lo, hi = f.range or (0, f.bits - 1)
-            c(f"    if v.__class__ is not int and not isinstance(v, int) or not {lo} <= v <= {hi}:")
-            c(f"        raise _enc({where}, v, 'range', '{lo}..{hi} or None', {f.rule!r}{self.user(f, False)})")
-            c(f"    {var} = 1 << v")
+            c(f"    if {v}.__class__ is not int and not isinstance({v}, int) or not {lo} <= {v} <= {hi}:")
+            c(f"        raise _enc({where}, {v}, 'range', '{lo}..{hi} or None', {f.rule!r}{self.user(f, False)})")
+            c(f"    {var} = 1 << {v}")
         elif f.kind in ("uint", "int"):
             lo, hi = f.range if f.range else self.logical_limits(f)
             numeric = "(int, float)" if f.scale is not None else "int"
-            c(f"if v.__class__ is not {'int' if numeric == 'int' else 'float'} and (not isinstance(v, {numeric}) or v.__class__ is bool):")
-            c(f"    raise _enc({where}, v, 'type', {'a number' if numeric != 'int' else 'an int'!r})")
-            c(f"if not {lit(lo)} <= v <= {lit(hi)}:")
-            c(f"    raise _enc({where}, v, 'range', '{lit(lo)}..{lit(hi)}', {f.rule!r}{self.user(f, False)})")
+            c(f"if {v}.__class__ is not {'int' if numeric == 'int' else 'float'} and (not isinstance({v}, {numeric}) or {v}.__class__ is bool):")
+            c(f"    raise _enc({where}, {v}, 'type', {'a number' if numeric != 'int' else 'an int'!r})")
+            c(f"if not {lit(lo)} <= {v} <= {lit(hi)}:")
+            c(f"    raise _enc({where}, {v}, 'range', '{lit(lo)}..{lit(hi)}', {f.rule!r}{self.user(f, False)})")
             if f.values:
-                c(f"if v not in {lit(tuple(f.values))}:")
-                c(f"    raise _enc({where}, v, 'values', {', '.join(map(str, f.values))!r}, {f.rule!r}{self.user(f, False)})")
-            expr = "v"
+                c(f"if {v} not in {lit(tuple(f.values))}:")
+                c(f"    raise _enc({where}, {v}, 'values', {', '.join(map(str, f.values))!r}, {f.rule!r}{self.user(f, False)})")
+            expr = v
             if f.offset:
-                expr = f"(v - {lit(f.offset)})"
+                expr = f"({v} - {lit(f.offset)})"
             if f.scale is not None:
                 expr = f"_floor({expr} / {lit(f.scale)} + 0.5)"
             elif f.offset and not float(f.offset).is_integer():
                 expr = f"_floor({expr} + 0.5)"
-            c(f"{var} = {expr}")
+            if expr != var:
+                c(f"{var} = {expr}")
         elif f.kind == "float":
-            c("if v.__class__ is not float and (not isinstance(v, (int, float)) or v.__class__ is bool):")
-            c(f"    raise _enc({where}, v, 'type', 'a number')")
-            c("if not _isfinite(v):")
-            c(f"    raise _enc({where}, v, 'finite', 'a finite number')")
+            c(f"if {v}.__class__ is not float and (not isinstance({v}, (int, float)) or {v}.__class__ is bool):")
+            c(f"    raise _enc({where}, {v}, 'type', 'a number')")
+            c(f"if not _isfinite({v}):")
+            c(f"    raise _enc({where}, {v}, 'finite', 'a finite number')")
             if f.range:
-                c(f"if not {lit(f.range[0])} <= v <= {lit(f.range[1])}:")
-                c(f"    raise _enc({where}, v, 'range', '{lit(f.range[0])}..{lit(f.range[1])}', {f.rule!r}{self.user(f, False)})")
+                c(f"if not {lit(f.range[0])} <= {v} <= {lit(f.range[1])}:")
+                c(f"    raise _enc({where}, {v}, 'range', '{lit(f.range[0])}..{lit(f.range[1])}', {f.rule!r}{self.user(f, False)})")
             if f.bits == 32:
-                c(f"if v > 3.4028234663852886e38 or v < -3.4028234663852886e38:")
-                c(f"    raise _enc({where}, v, 'range', 'a binary32 value')")
-            c(f"{var} = v")
+                c(f"if {v} > 3.4028234663852886e38 or {v} < -3.4028234663852886e38:")
+                c(f"    raise _enc({where}, {v}, 'range', 'a binary32 value')")
         elif f.kind == "bytes":
-            c("if not isinstance(v, (bytes, bytearray)) or len(v) != %d:" % f.length)
-            c(f"    raise _enc({where}, v, 'length', 'bytes of length {f.length}')")
-            c(f"{var} = bytes(v)")
-        else:  # text kinds are encoded by the text writer
-            c(f"{var} = v")
+            c(f"if not isinstance({v}, (bytes, bytearray)) or len({v}) != %d:" % f.length)
+            c(f"    raise _enc({where}, {v}, 'length', 'bytes of length {f.length}')")
+            c(f"if {v}.__class__ is not bytes:")
+            c(f"    {var} = bytes({v})")
+        # text kinds are checked and written by the text writer
 
     @staticmethod
     def enum_value(f: Field, value: Any) -> Any:

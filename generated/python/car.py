@@ -270,25 +270,23 @@ def _encode_header(m):
         raise _enc('header', 'h2_time', m.h2_time, 'rule', 'if h2_count == 0 then h2_time == None', decision='CAR-D3', user_message='Without slave words (h2_count = 0) all of h2 is 0: h2_time must be absent / 如果用户没有选择让主机给从机发送控制字串，这16位默认为0')
     if m.h2_count != 0 and not (m.h2_time is not None):
         raise _enc('header', 'h2_time', m.h2_time, 'rule', 'if h2_count ne 0 then h2_time ne None', decision='CAR-D3', user_message='With slave words (h2_count > 0) h2_time must give one of the 8 send-time levels / 每个控制字的发送时长用独热码表示，共分8个档位')
-    v = m.h1
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('header', 'h1', v, 'type', 'an int')
-    if not 0 <= v <= 255:
-        raise _enc('header', 'h1', v, 'range', '0..255', None, 'The number of parallel modules used already exceeds 255 / 所用的并行模块数目已经大于255')
-    r_h1 = v
-    v = m.h2_count
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('header', 'h2_count', v, 'type', 'an int')
-    if not 0 <= v <= 255:
-        raise _enc('header', 'h2_count', v, 'range', '0..255', None)
-    r_h2_count = v
-    v = m.h2_time
-    if v is None:
+    r_h1 = m.h1
+    if r_h1.__class__ is not int and (not isinstance(r_h1, int) or r_h1.__class__ is bool):
+        raise _enc('header', 'h1', r_h1, 'type', 'an int')
+    if not 0 <= r_h1 <= 255:
+        raise _enc('header', 'h1', r_h1, 'range', '0..255', None, 'The number of parallel modules used already exceeds 255 / 所用的并行模块数目已经大于255')
+    r_h2_count = m.h2_count
+    if r_h2_count.__class__ is not int and (not isinstance(r_h2_count, int) or r_h2_count.__class__ is bool):
+        raise _enc('header', 'h2_count', r_h2_count, 'type', 'an int')
+    if not 0 <= r_h2_count <= 255:
+        raise _enc('header', 'h2_count', r_h2_count, 'range', '0..255', None)
+    r_h2_time = m.h2_time
+    if r_h2_time is None:
         r_h2_time = 0
     else:
-        if v.__class__ is not int and not isinstance(v, int) or not 0 <= v <= 7:
-            raise _enc('header', 'h2_time', v, 'range', '0..7 or None', 'CAR-D3')
-        r_h2_time = 1 << v
+        if r_h2_time.__class__ is not int and not isinstance(r_h2_time, int) or not 0 <= r_h2_time <= 7:
+            raise _enc('header', 'h2_time', r_h2_time, 'range', '0..7 or None', 'CAR-D3')
+        r_h2_time = 1 << r_h2_time
     r_h3 = 0
     w = r_h1 << 24 | r_h2_count << 16 | r_h2_time << 8
     return w.to_bytes(4, 'big')
@@ -319,73 +317,67 @@ def _encode_master_control(m):
         raise _enc('master_control', 'accept_ir', m.accept_ir, 'rule', 'accept_ir == False', decision='CAR-R1', user_message='Cannot set the master to accept infrared information / 无法设置主机接受红外信息')
     if not (m.forward_words == True):
         raise _enc('master_control', 'forward_words', m.forward_words, 'rule', 'forward_words == True', decision='CAR-R2', user_message='c2 is always 1 in a master word (the master forwards the slave words); it is hidden from the user / 在用户编写主机的行为时，默认主机该位为1，即对用户隐藏')
-    v = m.accept_ir
-    if v is not True and v is not False and v != 0 and v != 1:
-        raise _enc('master_control', 'accept_ir', v, 'type', 'a bool')
-    r_accept_ir = 1 if v else 0
-    v = m.forward_words
-    if v is not True and v is not False and v != 0 and v != 1:
-        raise _enc('master_control', 'forward_words', v, 'type', 'a bool')
-    r_forward_words = 1 if v else 0
+    r_accept_ir = m.accept_ir
+    if r_accept_ir is not True and r_accept_ir is not False and r_accept_ir != 0 and r_accept_ir != 1:
+        raise _enc('master_control', 'accept_ir', r_accept_ir, 'type', 'a bool')
+    r_accept_ir = 1 if r_accept_ir else 0
+    r_forward_words = m.forward_words
+    if r_forward_words is not True and r_forward_words is not False and r_forward_words != 0 and r_forward_words != 1:
+        raise _enc('master_control', 'forward_words', r_forward_words, 'type', 'a bool')
+    r_forward_words = 1 if r_forward_words else 0
     g_motor = m.motor
-    v = g_motor.enable
-    if v is not True and v is not False and v != 0 and v != 1:
-        raise _enc('master_control', 'motor.enable', v, 'type', 'a bool')
-    r_motor_enable = 1 if v else 0
-    v = g_motor.direction
-    if not isinstance(v, int) or v not in _VALUES_motor_direction:
-        raise _enc('master_control', 'motor.direction', v, 'enum', 'MotorDirection', None)
-    r_motor_direction = int(v)
-    v = g_motor.speed
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('master_control', 'motor.speed', v, 'type', 'an int')
-    if not 0 <= v <= 3:
-        raise _enc('master_control', 'motor.speed', v, 'range', '0..3', None)
-    r_motor_speed = v
-    v = g_motor.duration
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('master_control', 'motor.duration', v, 'type', 'an int')
-    if not 0 <= v <= 3:
-        raise _enc('master_control', 'motor.duration', v, 'range', '0..3', None)
-    r_motor_duration = v
+    r_motor_enable = g_motor.enable
+    if r_motor_enable is not True and r_motor_enable is not False and r_motor_enable != 0 and r_motor_enable != 1:
+        raise _enc('master_control', 'motor.enable', r_motor_enable, 'type', 'a bool')
+    r_motor_enable = 1 if r_motor_enable else 0
+    r_motor_direction = g_motor.direction
+    if not isinstance(r_motor_direction, int) or r_motor_direction not in _VALUES_motor_direction:
+        raise _enc('master_control', 'motor.direction', r_motor_direction, 'enum', 'MotorDirection', None)
+    r_motor_direction = int(r_motor_direction)
+    r_motor_speed = g_motor.speed
+    if r_motor_speed.__class__ is not int and (not isinstance(r_motor_speed, int) or r_motor_speed.__class__ is bool):
+        raise _enc('master_control', 'motor.speed', r_motor_speed, 'type', 'an int')
+    if not 0 <= r_motor_speed <= 3:
+        raise _enc('master_control', 'motor.speed', r_motor_speed, 'range', '0..3', None)
+    r_motor_duration = g_motor.duration
+    if r_motor_duration.__class__ is not int and (not isinstance(r_motor_duration, int) or r_motor_duration.__class__ is bool):
+        raise _enc('master_control', 'motor.duration', r_motor_duration, 'type', 'an int')
+    if not 0 <= r_motor_duration <= 3:
+        raise _enc('master_control', 'motor.duration', r_motor_duration, 'range', '0..3', None)
     g_led = m.led
-    v = g_led.led
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('master_control', 'led.led', v, 'type', 'an int')
-    if not 0 <= v <= 3:
-        raise _enc('master_control', 'led.led', v, 'range', '0..3', None)
-    r_led_led = v
-    v = g_led.duration
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('master_control', 'led.duration', v, 'type', 'an int')
-    if not 0 <= v <= 3:
-        raise _enc('master_control', 'led.duration', v, 'range', '0..3', None)
-    r_led_duration = v
+    r_led_led = g_led.led
+    if r_led_led.__class__ is not int and (not isinstance(r_led_led, int) or r_led_led.__class__ is bool):
+        raise _enc('master_control', 'led.led', r_led_led, 'type', 'an int')
+    if not 0 <= r_led_led <= 3:
+        raise _enc('master_control', 'led.led', r_led_led, 'range', '0..3', None)
+    r_led_duration = g_led.duration
+    if r_led_duration.__class__ is not int and (not isinstance(r_led_duration, int) or r_led_duration.__class__ is bool):
+        raise _enc('master_control', 'led.duration', r_led_duration, 'type', 'an int')
+    if not 0 <= r_led_duration <= 3:
+        raise _enc('master_control', 'led.duration', r_led_duration, 'range', '0..3', None)
     g_ultrasonic = m.ultrasonic
-    v = g_ultrasonic.enable
-    if v is not True and v is not False and v != 0 and v != 1:
-        raise _enc('master_control', 'ultrasonic.enable', v, 'type', 'a bool')
-    r_ultrasonic_enable = 1 if v else 0
-    v = g_ultrasonic.radius
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('master_control', 'ultrasonic.radius', v, 'type', 'an int')
-    if not 0 <= v <= 3:
-        raise _enc('master_control', 'ultrasonic.radius', v, 'range', '0..3', None)
-    r_ultrasonic_radius = v
-    v = g_ultrasonic.duration
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('master_control', 'ultrasonic.duration', v, 'type', 'an int')
-    if not 0 <= v <= 3:
-        raise _enc('master_control', 'ultrasonic.duration', v, 'range', '0..3', None)
-    r_ultrasonic_duration = v
-    v = m.voice
-    if v is not True and v is not False and v != 0 and v != 1:
-        raise _enc('master_control', 'voice', v, 'type', 'a bool')
-    r_voice = 1 if v else 0
-    v = m.body_sensor
-    if v is not True and v is not False and v != 0 and v != 1:
-        raise _enc('master_control', 'body_sensor', v, 'type', 'a bool')
-    r_body_sensor = 1 if v else 0
+    r_ultrasonic_enable = g_ultrasonic.enable
+    if r_ultrasonic_enable is not True and r_ultrasonic_enable is not False and r_ultrasonic_enable != 0 and r_ultrasonic_enable != 1:
+        raise _enc('master_control', 'ultrasonic.enable', r_ultrasonic_enable, 'type', 'a bool')
+    r_ultrasonic_enable = 1 if r_ultrasonic_enable else 0
+    r_ultrasonic_radius = g_ultrasonic.radius
+    if r_ultrasonic_radius.__class__ is not int and (not isinstance(r_ultrasonic_radius, int) or r_ultrasonic_radius.__class__ is bool):
+        raise _enc('master_control', 'ultrasonic.radius', r_ultrasonic_radius, 'type', 'an int')
+    if not 0 <= r_ultrasonic_radius <= 3:
+        raise _enc('master_control', 'ultrasonic.radius', r_ultrasonic_radius, 'range', '0..3', None)
+    r_ultrasonic_duration = g_ultrasonic.duration
+    if r_ultrasonic_duration.__class__ is not int and (not isinstance(r_ultrasonic_duration, int) or r_ultrasonic_duration.__class__ is bool):
+        raise _enc('master_control', 'ultrasonic.duration', r_ultrasonic_duration, 'type', 'an int')
+    if not 0 <= r_ultrasonic_duration <= 3:
+        raise _enc('master_control', 'ultrasonic.duration', r_ultrasonic_duration, 'range', '0..3', None)
+    r_voice = m.voice
+    if r_voice is not True and r_voice is not False and r_voice != 0 and r_voice != 1:
+        raise _enc('master_control', 'voice', r_voice, 'type', 'a bool')
+    r_voice = 1 if r_voice else 0
+    r_body_sensor = m.body_sensor
+    if r_body_sensor is not True and r_body_sensor is not False and r_body_sensor != 0 and r_body_sensor != 1:
+        raise _enc('master_control', 'body_sensor', r_body_sensor, 'type', 'a bool')
+    r_body_sensor = 1 if r_body_sensor else 0
     r_reserved_bits = 0
     r_parity = 0
     w = r_accept_ir << 31 | r_forward_words << 30 | r_motor_enable << 29 | r_motor_direction << 27 | r_motor_speed << 25 | r_motor_duration << 23 | r_led_led << 21 | r_led_duration << 19 | r_ultrasonic_enable << 18 | r_ultrasonic_radius << 16 | r_ultrasonic_duration << 14 | r_voice << 13 | r_body_sensor << 12
@@ -429,73 +421,67 @@ def _decode_master_control(d):
 
 
 def _encode_slave_control(m):
-    v = m.accept_ir
-    if v is not True and v is not False and v != 0 and v != 1:
-        raise _enc('slave_control', 'accept_ir', v, 'type', 'a bool')
-    r_accept_ir = 1 if v else 0
-    v = m.forward_words
-    if v is not True and v is not False and v != 0 and v != 1:
-        raise _enc('slave_control', 'forward_words', v, 'type', 'a bool')
-    r_forward_words = 1 if v else 0
+    r_accept_ir = m.accept_ir
+    if r_accept_ir is not True and r_accept_ir is not False and r_accept_ir != 0 and r_accept_ir != 1:
+        raise _enc('slave_control', 'accept_ir', r_accept_ir, 'type', 'a bool')
+    r_accept_ir = 1 if r_accept_ir else 0
+    r_forward_words = m.forward_words
+    if r_forward_words is not True and r_forward_words is not False and r_forward_words != 0 and r_forward_words != 1:
+        raise _enc('slave_control', 'forward_words', r_forward_words, 'type', 'a bool')
+    r_forward_words = 1 if r_forward_words else 0
     g_motor = m.motor
-    v = g_motor.enable
-    if v is not True and v is not False and v != 0 and v != 1:
-        raise _enc('slave_control', 'motor.enable', v, 'type', 'a bool')
-    r_motor_enable = 1 if v else 0
-    v = g_motor.direction
-    if not isinstance(v, int) or v not in _VALUES_motor_direction:
-        raise _enc('slave_control', 'motor.direction', v, 'enum', 'MotorDirection', None)
-    r_motor_direction = int(v)
-    v = g_motor.speed
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('slave_control', 'motor.speed', v, 'type', 'an int')
-    if not 0 <= v <= 3:
-        raise _enc('slave_control', 'motor.speed', v, 'range', '0..3', None)
-    r_motor_speed = v
-    v = g_motor.duration
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('slave_control', 'motor.duration', v, 'type', 'an int')
-    if not 0 <= v <= 3:
-        raise _enc('slave_control', 'motor.duration', v, 'range', '0..3', None)
-    r_motor_duration = v
+    r_motor_enable = g_motor.enable
+    if r_motor_enable is not True and r_motor_enable is not False and r_motor_enable != 0 and r_motor_enable != 1:
+        raise _enc('slave_control', 'motor.enable', r_motor_enable, 'type', 'a bool')
+    r_motor_enable = 1 if r_motor_enable else 0
+    r_motor_direction = g_motor.direction
+    if not isinstance(r_motor_direction, int) or r_motor_direction not in _VALUES_motor_direction:
+        raise _enc('slave_control', 'motor.direction', r_motor_direction, 'enum', 'MotorDirection', None)
+    r_motor_direction = int(r_motor_direction)
+    r_motor_speed = g_motor.speed
+    if r_motor_speed.__class__ is not int and (not isinstance(r_motor_speed, int) or r_motor_speed.__class__ is bool):
+        raise _enc('slave_control', 'motor.speed', r_motor_speed, 'type', 'an int')
+    if not 0 <= r_motor_speed <= 3:
+        raise _enc('slave_control', 'motor.speed', r_motor_speed, 'range', '0..3', None)
+    r_motor_duration = g_motor.duration
+    if r_motor_duration.__class__ is not int and (not isinstance(r_motor_duration, int) or r_motor_duration.__class__ is bool):
+        raise _enc('slave_control', 'motor.duration', r_motor_duration, 'type', 'an int')
+    if not 0 <= r_motor_duration <= 3:
+        raise _enc('slave_control', 'motor.duration', r_motor_duration, 'range', '0..3', None)
     g_led = m.led
-    v = g_led.led
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('slave_control', 'led.led', v, 'type', 'an int')
-    if not 0 <= v <= 3:
-        raise _enc('slave_control', 'led.led', v, 'range', '0..3', None)
-    r_led_led = v
-    v = g_led.duration
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('slave_control', 'led.duration', v, 'type', 'an int')
-    if not 0 <= v <= 3:
-        raise _enc('slave_control', 'led.duration', v, 'range', '0..3', None)
-    r_led_duration = v
+    r_led_led = g_led.led
+    if r_led_led.__class__ is not int and (not isinstance(r_led_led, int) or r_led_led.__class__ is bool):
+        raise _enc('slave_control', 'led.led', r_led_led, 'type', 'an int')
+    if not 0 <= r_led_led <= 3:
+        raise _enc('slave_control', 'led.led', r_led_led, 'range', '0..3', None)
+    r_led_duration = g_led.duration
+    if r_led_duration.__class__ is not int and (not isinstance(r_led_duration, int) or r_led_duration.__class__ is bool):
+        raise _enc('slave_control', 'led.duration', r_led_duration, 'type', 'an int')
+    if not 0 <= r_led_duration <= 3:
+        raise _enc('slave_control', 'led.duration', r_led_duration, 'range', '0..3', None)
     g_ultrasonic = m.ultrasonic
-    v = g_ultrasonic.enable
-    if v is not True and v is not False and v != 0 and v != 1:
-        raise _enc('slave_control', 'ultrasonic.enable', v, 'type', 'a bool')
-    r_ultrasonic_enable = 1 if v else 0
-    v = g_ultrasonic.radius
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('slave_control', 'ultrasonic.radius', v, 'type', 'an int')
-    if not 0 <= v <= 3:
-        raise _enc('slave_control', 'ultrasonic.radius', v, 'range', '0..3', None)
-    r_ultrasonic_radius = v
-    v = g_ultrasonic.duration
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('slave_control', 'ultrasonic.duration', v, 'type', 'an int')
-    if not 0 <= v <= 3:
-        raise _enc('slave_control', 'ultrasonic.duration', v, 'range', '0..3', None)
-    r_ultrasonic_duration = v
-    v = m.voice
-    if v is not True and v is not False and v != 0 and v != 1:
-        raise _enc('slave_control', 'voice', v, 'type', 'a bool')
-    r_voice = 1 if v else 0
-    v = m.body_sensor
-    if v is not True and v is not False and v != 0 and v != 1:
-        raise _enc('slave_control', 'body_sensor', v, 'type', 'a bool')
-    r_body_sensor = 1 if v else 0
+    r_ultrasonic_enable = g_ultrasonic.enable
+    if r_ultrasonic_enable is not True and r_ultrasonic_enable is not False and r_ultrasonic_enable != 0 and r_ultrasonic_enable != 1:
+        raise _enc('slave_control', 'ultrasonic.enable', r_ultrasonic_enable, 'type', 'a bool')
+    r_ultrasonic_enable = 1 if r_ultrasonic_enable else 0
+    r_ultrasonic_radius = g_ultrasonic.radius
+    if r_ultrasonic_radius.__class__ is not int and (not isinstance(r_ultrasonic_radius, int) or r_ultrasonic_radius.__class__ is bool):
+        raise _enc('slave_control', 'ultrasonic.radius', r_ultrasonic_radius, 'type', 'an int')
+    if not 0 <= r_ultrasonic_radius <= 3:
+        raise _enc('slave_control', 'ultrasonic.radius', r_ultrasonic_radius, 'range', '0..3', None)
+    r_ultrasonic_duration = g_ultrasonic.duration
+    if r_ultrasonic_duration.__class__ is not int and (not isinstance(r_ultrasonic_duration, int) or r_ultrasonic_duration.__class__ is bool):
+        raise _enc('slave_control', 'ultrasonic.duration', r_ultrasonic_duration, 'type', 'an int')
+    if not 0 <= r_ultrasonic_duration <= 3:
+        raise _enc('slave_control', 'ultrasonic.duration', r_ultrasonic_duration, 'range', '0..3', None)
+    r_voice = m.voice
+    if r_voice is not True and r_voice is not False and r_voice != 0 and r_voice != 1:
+        raise _enc('slave_control', 'voice', r_voice, 'type', 'a bool')
+    r_voice = 1 if r_voice else 0
+    r_body_sensor = m.body_sensor
+    if r_body_sensor is not True and r_body_sensor is not False and r_body_sensor != 0 and r_body_sensor != 1:
+        raise _enc('slave_control', 'body_sensor', r_body_sensor, 'type', 'a bool')
+    r_body_sensor = 1 if r_body_sensor else 0
     r_reserved_bits = 0
     r_parity = 0
     w = r_accept_ir << 31 | r_forward_words << 30 | r_motor_enable << 29 | r_motor_direction << 27 | r_motor_speed << 25 | r_motor_duration << 23 | r_led_led << 21 | r_led_duration << 19 | r_ultrasonic_enable << 18 | r_ultrasonic_radius << 16 | r_ultrasonic_duration << 14 | r_voice << 13 | r_body_sensor << 12

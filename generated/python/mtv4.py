@@ -408,40 +408,37 @@ def _as_input(data):
 def _encode_set_wheels_velocities(m):
     r_sync = 170
     r_length = 8
-    v = m.group
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('set_wheels_velocities', 'group', v, 'type', 'an int')
-    if not 0 <= v <= 15:
-        raise _enc('set_wheels_velocities', 'group', v, 'range', '0..15', None)
-    r_group = v
-    v = m.radio_crc_flag
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('set_wheels_velocities', 'radio_crc_flag', v, 'type', 'an int')
-    if not 0 <= v <= 1:
-        raise _enc('set_wheels_velocities', 'radio_crc_flag', v, 'range', '0..1', 'MTV4-D4')
-    r_radio_crc_flag = v
+    r_group = m.group
+    if r_group.__class__ is not int and (not isinstance(r_group, int) or r_group.__class__ is bool):
+        raise _enc('set_wheels_velocities', 'group', r_group, 'type', 'an int')
+    if not 0 <= r_group <= 15:
+        raise _enc('set_wheels_velocities', 'group', r_group, 'range', '0..15', None)
+    r_radio_crc_flag = m.radio_crc_flag
+    if r_radio_crc_flag.__class__ is not int and (not isinstance(r_radio_crc_flag, int) or r_radio_crc_flag.__class__ is bool):
+        raise _enc('set_wheels_velocities', 'radio_crc_flag', r_radio_crc_flag, 'type', 'an int')
+    if not 0 <= r_radio_crc_flag <= 1:
+        raise _enc('set_wheels_velocities', 'radio_crc_flag', r_radio_crc_flag, 'range', '0..1', 'MTV4-D4')
     r_command = 1
-    v = m.robots
-    if v.__class__ is not int and not isinstance(v, int):
-        raise _enc('set_wheels_velocities', 'robots', v, 'type', 'an int or Robots')
-    v = int(v)
-    if v < 0 or v & 0x0 or v > 0xffff:
-        raise _enc('set_wheels_velocities', 'robots', v, 'flags', 'only the bits of robots', 'MTV4-D3', 'an individual command or reply addresses exactly one robot')
-    if v == 0 or v & (v - 1):
-        raise _enc('set_wheels_velocities', 'robots', v, 'exactly_one', 'exactly one bit set', 'MTV4-D3', 'an individual command or reply addresses exactly one robot')
-    r_robots = int(v)
-    v = m.vl
-    if v.__class__ is not float and (not isinstance(v, (int, float)) or v.__class__ is bool):
-        raise _enc('set_wheels_velocities', 'vl', v, 'type', 'a number')
-    if not -4096 <= v <= 4095.875:
-        raise _enc('set_wheels_velocities', 'vl', v, 'range', '-4096..4095.875', 'MTV4-D5')
-    r_vl = _floor(v / 0.125 + 0.5)
-    v = m.vr
-    if v.__class__ is not float and (not isinstance(v, (int, float)) or v.__class__ is bool):
-        raise _enc('set_wheels_velocities', 'vr', v, 'type', 'a number')
-    if not -4096 <= v <= 4095.875:
-        raise _enc('set_wheels_velocities', 'vr', v, 'range', '-4096..4095.875', 'MTV4-D5')
-    r_vr = _floor(v / 0.125 + 0.5)
+    r_robots = m.robots
+    if r_robots.__class__ is not int and not isinstance(r_robots, int):
+        raise _enc('set_wheels_velocities', 'robots', r_robots, 'type', 'an int or Robots')
+    r_robots = int(r_robots)
+    if r_robots < 0 or r_robots & 0x0 or r_robots > 0xffff:
+        raise _enc('set_wheels_velocities', 'robots', r_robots, 'flags', 'only the bits of robots', 'MTV4-D3', 'an individual command or reply addresses exactly one robot')
+    if r_robots == 0 or r_robots & (r_robots - 1):
+        raise _enc('set_wheels_velocities', 'robots', r_robots, 'exactly_one', 'exactly one bit set', 'MTV4-D3', 'an individual command or reply addresses exactly one robot')
+    r_vl = m.vl
+    if r_vl.__class__ is not float and (not isinstance(r_vl, (int, float)) or r_vl.__class__ is bool):
+        raise _enc('set_wheels_velocities', 'vl', r_vl, 'type', 'a number')
+    if not -4096 <= r_vl <= 4095.875:
+        raise _enc('set_wheels_velocities', 'vl', r_vl, 'range', '-4096..4095.875', 'MTV4-D5')
+    r_vl = _floor(r_vl / 0.125 + 0.5)
+    r_vr = m.vr
+    if r_vr.__class__ is not float and (not isinstance(r_vr, (int, float)) or r_vr.__class__ is bool):
+        raise _enc('set_wheels_velocities', 'vr', r_vr, 'type', 'a number')
+    if not -4096 <= r_vr <= 4095.875:
+        raise _enc('set_wheels_velocities', 'vr', r_vr, 'range', '-4096..4095.875', 'MTV4-D5')
+    r_vr = _floor(r_vr / 0.125 + 0.5)
     r_crc = 0
     b = bytearray(12)
     _S_set_wheels_velocities_0.pack_into(b, 0, 170, 8, r_group, r_radio_crc_flag << 7 | 0x1, r_robots, r_vl, r_vr)
@@ -477,52 +474,45 @@ def _decode_set_wheels_velocities(d):
 def _encode_set_led(m):
     r_sync = 170
     r_length = 8
-    v = m.group
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('set_led', 'group', v, 'type', 'an int')
-    if not 0 <= v <= 15:
-        raise _enc('set_led', 'group', v, 'range', '0..15', None)
-    r_group = v
-    v = m.radio_crc_flag
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('set_led', 'radio_crc_flag', v, 'type', 'an int')
-    if not 0 <= v <= 1:
-        raise _enc('set_led', 'radio_crc_flag', v, 'range', '0..1', 'MTV4-D4')
-    r_radio_crc_flag = v
+    r_group = m.group
+    if r_group.__class__ is not int and (not isinstance(r_group, int) or r_group.__class__ is bool):
+        raise _enc('set_led', 'group', r_group, 'type', 'an int')
+    if not 0 <= r_group <= 15:
+        raise _enc('set_led', 'group', r_group, 'range', '0..15', None)
+    r_radio_crc_flag = m.radio_crc_flag
+    if r_radio_crc_flag.__class__ is not int and (not isinstance(r_radio_crc_flag, int) or r_radio_crc_flag.__class__ is bool):
+        raise _enc('set_led', 'radio_crc_flag', r_radio_crc_flag, 'type', 'an int')
+    if not 0 <= r_radio_crc_flag <= 1:
+        raise _enc('set_led', 'radio_crc_flag', r_radio_crc_flag, 'range', '0..1', 'MTV4-D4')
     r_command = 2
-    v = m.robots
-    if v.__class__ is not int and not isinstance(v, int):
-        raise _enc('set_led', 'robots', v, 'type', 'an int or Robots')
-    v = int(v)
-    if v < 0 or v & 0x0 or v > 0xffff:
-        raise _enc('set_led', 'robots', v, 'flags', 'only the bits of robots', 'MTV4-D3', 'an individual command or reply addresses exactly one robot')
-    if v == 0 or v & (v - 1):
-        raise _enc('set_led', 'robots', v, 'exactly_one', 'exactly one bit set', 'MTV4-D3', 'an individual command or reply addresses exactly one robot')
-    r_robots = int(v)
-    v = m.d1
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('set_led', 'd1', v, 'type', 'an int')
-    if not 0 <= v <= 255:
-        raise _enc('set_led', 'd1', v, 'range', '0..255', None)
-    r_d1 = v
-    v = m.d2
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('set_led', 'd2', v, 'type', 'an int')
-    if not 0 <= v <= 255:
-        raise _enc('set_led', 'd2', v, 'range', '0..255', None)
-    r_d2 = v
-    v = m.d3
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('set_led', 'd3', v, 'type', 'an int')
-    if not 0 <= v <= 255:
-        raise _enc('set_led', 'd3', v, 'range', '0..255', None)
-    r_d3 = v
-    v = m.d4
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('set_led', 'd4', v, 'type', 'an int')
-    if not 0 <= v <= 255:
-        raise _enc('set_led', 'd4', v, 'range', '0..255', None)
-    r_d4 = v
+    r_robots = m.robots
+    if r_robots.__class__ is not int and not isinstance(r_robots, int):
+        raise _enc('set_led', 'robots', r_robots, 'type', 'an int or Robots')
+    r_robots = int(r_robots)
+    if r_robots < 0 or r_robots & 0x0 or r_robots > 0xffff:
+        raise _enc('set_led', 'robots', r_robots, 'flags', 'only the bits of robots', 'MTV4-D3', 'an individual command or reply addresses exactly one robot')
+    if r_robots == 0 or r_robots & (r_robots - 1):
+        raise _enc('set_led', 'robots', r_robots, 'exactly_one', 'exactly one bit set', 'MTV4-D3', 'an individual command or reply addresses exactly one robot')
+    r_d1 = m.d1
+    if r_d1.__class__ is not int and (not isinstance(r_d1, int) or r_d1.__class__ is bool):
+        raise _enc('set_led', 'd1', r_d1, 'type', 'an int')
+    if not 0 <= r_d1 <= 255:
+        raise _enc('set_led', 'd1', r_d1, 'range', '0..255', None)
+    r_d2 = m.d2
+    if r_d2.__class__ is not int and (not isinstance(r_d2, int) or r_d2.__class__ is bool):
+        raise _enc('set_led', 'd2', r_d2, 'type', 'an int')
+    if not 0 <= r_d2 <= 255:
+        raise _enc('set_led', 'd2', r_d2, 'range', '0..255', None)
+    r_d3 = m.d3
+    if r_d3.__class__ is not int and (not isinstance(r_d3, int) or r_d3.__class__ is bool):
+        raise _enc('set_led', 'd3', r_d3, 'type', 'an int')
+    if not 0 <= r_d3 <= 255:
+        raise _enc('set_led', 'd3', r_d3, 'range', '0..255', None)
+    r_d4 = m.d4
+    if r_d4.__class__ is not int and (not isinstance(r_d4, int) or r_d4.__class__ is bool):
+        raise _enc('set_led', 'd4', r_d4, 'type', 'an int')
+    if not 0 <= r_d4 <= 255:
+        raise _enc('set_led', 'd4', r_d4, 'range', '0..255', None)
     r_crc = 0
     b = bytearray(12)
     _S_set_led_0.pack_into(b, 0, 170, 8, r_group, r_radio_crc_flag << 7 | 0x2, r_robots, r_d1, r_d2, r_d3, r_d4)
@@ -558,71 +548,64 @@ def _decode_set_led(d):
 def _encode_set_wheels_velocities_with_odometry(m):
     r_sync = 170
     r_length = 22
-    v = m.group
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('set_wheels_velocities_with_odometry', 'group', v, 'type', 'an int')
-    if not 0 <= v <= 15:
-        raise _enc('set_wheels_velocities_with_odometry', 'group', v, 'range', '0..15', None)
-    r_group = v
-    v = m.radio_crc_flag
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('set_wheels_velocities_with_odometry', 'radio_crc_flag', v, 'type', 'an int')
-    if not 0 <= v <= 1:
-        raise _enc('set_wheels_velocities_with_odometry', 'radio_crc_flag', v, 'range', '0..1', 'MTV4-D4')
-    r_radio_crc_flag = v
+    r_group = m.group
+    if r_group.__class__ is not int and (not isinstance(r_group, int) or r_group.__class__ is bool):
+        raise _enc('set_wheels_velocities_with_odometry', 'group', r_group, 'type', 'an int')
+    if not 0 <= r_group <= 15:
+        raise _enc('set_wheels_velocities_with_odometry', 'group', r_group, 'range', '0..15', None)
+    r_radio_crc_flag = m.radio_crc_flag
+    if r_radio_crc_flag.__class__ is not int and (not isinstance(r_radio_crc_flag, int) or r_radio_crc_flag.__class__ is bool):
+        raise _enc('set_wheels_velocities_with_odometry', 'radio_crc_flag', r_radio_crc_flag, 'type', 'an int')
+    if not 0 <= r_radio_crc_flag <= 1:
+        raise _enc('set_wheels_velocities_with_odometry', 'radio_crc_flag', r_radio_crc_flag, 'range', '0..1', 'MTV4-D4')
     r_command = 3
-    v = m.robots
-    if v.__class__ is not int and not isinstance(v, int):
-        raise _enc('set_wheels_velocities_with_odometry', 'robots', v, 'type', 'an int or Robots')
-    v = int(v)
-    if v < 0 or v & 0x0 or v > 0xffff:
-        raise _enc('set_wheels_velocities_with_odometry', 'robots', v, 'flags', 'only the bits of robots', 'MTV4-D3', 'an individual command or reply addresses exactly one robot')
-    if v == 0 or v & (v - 1):
-        raise _enc('set_wheels_velocities_with_odometry', 'robots', v, 'exactly_one', 'exactly one bit set', 'MTV4-D3', 'an individual command or reply addresses exactly one robot')
-    r_robots = int(v)
-    v = m.status
-    if v.__class__ is not int and not isinstance(v, int):
-        raise _enc('set_wheels_velocities_with_odometry', 'status', v, 'type', 'an int or Status')
-    v = int(v)
-    if v < 0 or v & 0xfff8 or v > 0xffff:
-        raise _enc('set_wheels_velocities_with_odometry', 'status', v, 'flags', 'only the bits of status', None)
-    r_status = int(v)
-    v = m.vl
-    if v.__class__ is not float and (not isinstance(v, (int, float)) or v.__class__ is bool):
-        raise _enc('set_wheels_velocities_with_odometry', 'vl', v, 'type', 'a number')
-    if not -4096 <= v <= 4095.875:
-        raise _enc('set_wheels_velocities_with_odometry', 'vl', v, 'range', '-4096..4095.875', 'MTV4-D5')
-    r_vl = _floor(v / 0.125 + 0.5)
-    v = m.vr
-    if v.__class__ is not float and (not isinstance(v, (int, float)) or v.__class__ is bool):
-        raise _enc('set_wheels_velocities_with_odometry', 'vr', v, 'type', 'a number')
-    if not -4096 <= v <= 4095.875:
-        raise _enc('set_wheels_velocities_with_odometry', 'vr', v, 'range', '-4096..4095.875', 'MTV4-D5')
-    r_vr = _floor(v / 0.125 + 0.5)
-    v = m.x
-    if v.__class__ is not float and (not isinstance(v, (int, float)) or v.__class__ is bool):
-        raise _enc('set_wheels_velocities_with_odometry', 'x', v, 'type', 'a number')
-    if not _isfinite(v):
-        raise _enc('set_wheels_velocities_with_odometry', 'x', v, 'finite', 'a finite number')
-    if v > 3.4028234663852886e38 or v < -3.4028234663852886e38:
-        raise _enc('set_wheels_velocities_with_odometry', 'x', v, 'range', 'a binary32 value')
-    r_x = v
-    v = m.y
-    if v.__class__ is not float and (not isinstance(v, (int, float)) or v.__class__ is bool):
-        raise _enc('set_wheels_velocities_with_odometry', 'y', v, 'type', 'a number')
-    if not _isfinite(v):
-        raise _enc('set_wheels_velocities_with_odometry', 'y', v, 'finite', 'a finite number')
-    if v > 3.4028234663852886e38 or v < -3.4028234663852886e38:
-        raise _enc('set_wheels_velocities_with_odometry', 'y', v, 'range', 'a binary32 value')
-    r_y = v
-    v = m.th
-    if v.__class__ is not float and (not isinstance(v, (int, float)) or v.__class__ is bool):
-        raise _enc('set_wheels_velocities_with_odometry', 'th', v, 'type', 'a number')
-    if not _isfinite(v):
-        raise _enc('set_wheels_velocities_with_odometry', 'th', v, 'finite', 'a finite number')
-    if v > 3.4028234663852886e38 or v < -3.4028234663852886e38:
-        raise _enc('set_wheels_velocities_with_odometry', 'th', v, 'range', 'a binary32 value')
-    r_th = v
+    r_robots = m.robots
+    if r_robots.__class__ is not int and not isinstance(r_robots, int):
+        raise _enc('set_wheels_velocities_with_odometry', 'robots', r_robots, 'type', 'an int or Robots')
+    r_robots = int(r_robots)
+    if r_robots < 0 or r_robots & 0x0 or r_robots > 0xffff:
+        raise _enc('set_wheels_velocities_with_odometry', 'robots', r_robots, 'flags', 'only the bits of robots', 'MTV4-D3', 'an individual command or reply addresses exactly one robot')
+    if r_robots == 0 or r_robots & (r_robots - 1):
+        raise _enc('set_wheels_velocities_with_odometry', 'robots', r_robots, 'exactly_one', 'exactly one bit set', 'MTV4-D3', 'an individual command or reply addresses exactly one robot')
+    r_status = m.status
+    if r_status.__class__ is not int and not isinstance(r_status, int):
+        raise _enc('set_wheels_velocities_with_odometry', 'status', r_status, 'type', 'an int or Status')
+    r_status = int(r_status)
+    if r_status < 0 or r_status & 0xfff8 or r_status > 0xffff:
+        raise _enc('set_wheels_velocities_with_odometry', 'status', r_status, 'flags', 'only the bits of status', None)
+    r_vl = m.vl
+    if r_vl.__class__ is not float and (not isinstance(r_vl, (int, float)) or r_vl.__class__ is bool):
+        raise _enc('set_wheels_velocities_with_odometry', 'vl', r_vl, 'type', 'a number')
+    if not -4096 <= r_vl <= 4095.875:
+        raise _enc('set_wheels_velocities_with_odometry', 'vl', r_vl, 'range', '-4096..4095.875', 'MTV4-D5')
+    r_vl = _floor(r_vl / 0.125 + 0.5)
+    r_vr = m.vr
+    if r_vr.__class__ is not float and (not isinstance(r_vr, (int, float)) or r_vr.__class__ is bool):
+        raise _enc('set_wheels_velocities_with_odometry', 'vr', r_vr, 'type', 'a number')
+    if not -4096 <= r_vr <= 4095.875:
+        raise _enc('set_wheels_velocities_with_odometry', 'vr', r_vr, 'range', '-4096..4095.875', 'MTV4-D5')
+    r_vr = _floor(r_vr / 0.125 + 0.5)
+    r_x = m.x
+    if r_x.__class__ is not float and (not isinstance(r_x, (int, float)) or r_x.__class__ is bool):
+        raise _enc('set_wheels_velocities_with_odometry', 'x', r_x, 'type', 'a number')
+    if not _isfinite(r_x):
+        raise _enc('set_wheels_velocities_with_odometry', 'x', r_x, 'finite', 'a finite number')
+    if r_x > 3.4028234663852886e38 or r_x < -3.4028234663852886e38:
+        raise _enc('set_wheels_velocities_with_odometry', 'x', r_x, 'range', 'a binary32 value')
+    r_y = m.y
+    if r_y.__class__ is not float and (not isinstance(r_y, (int, float)) or r_y.__class__ is bool):
+        raise _enc('set_wheels_velocities_with_odometry', 'y', r_y, 'type', 'a number')
+    if not _isfinite(r_y):
+        raise _enc('set_wheels_velocities_with_odometry', 'y', r_y, 'finite', 'a finite number')
+    if r_y > 3.4028234663852886e38 or r_y < -3.4028234663852886e38:
+        raise _enc('set_wheels_velocities_with_odometry', 'y', r_y, 'range', 'a binary32 value')
+    r_th = m.th
+    if r_th.__class__ is not float and (not isinstance(r_th, (int, float)) or r_th.__class__ is bool):
+        raise _enc('set_wheels_velocities_with_odometry', 'th', r_th, 'type', 'a number')
+    if not _isfinite(r_th):
+        raise _enc('set_wheels_velocities_with_odometry', 'th', r_th, 'finite', 'a finite number')
+    if r_th > 3.4028234663852886e38 or r_th < -3.4028234663852886e38:
+        raise _enc('set_wheels_velocities_with_odometry', 'th', r_th, 'range', 'a binary32 value')
     r_crc = 0
     b = bytearray(26)
     _S_set_wheels_velocities_with_odometry_0.pack_into(b, 0, 170, 22, r_group, r_radio_crc_flag << 7 | 0x3, r_robots, r_status, r_vl, r_vr, r_x, r_y, r_th)
@@ -666,35 +649,31 @@ def _decode_set_wheels_velocities_with_odometry(d):
 def _encode_ack(m):
     r_sync = 170
     r_length = 4
-    v = m.group
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('ack', 'group', v, 'type', 'an int')
-    if not 0 <= v <= 15:
-        raise _enc('ack', 'group', v, 'range', '0..15', None)
-    r_group = v
-    v = m.radio_crc_flag
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('ack', 'radio_crc_flag', v, 'type', 'an int')
-    if not 0 <= v <= 1:
-        raise _enc('ack', 'radio_crc_flag', v, 'range', '0..1', 'MTV4-D4')
-    r_radio_crc_flag = v
-    v = m.command
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('ack', 'command', v, 'type', 'an int')
-    if not 0 <= v <= 127:
-        raise _enc('ack', 'command', v, 'range', '0..127', 'MTV4-D4')
-    if v not in (1, 2):
-        raise _enc('ack', 'command', v, 'values', '1, 2', 'MTV4-D4')
-    r_command = v
-    v = m.robots
-    if v.__class__ is not int and not isinstance(v, int):
-        raise _enc('ack', 'robots', v, 'type', 'an int or Robots')
-    v = int(v)
-    if v < 0 or v & 0x0 or v > 0xffff:
-        raise _enc('ack', 'robots', v, 'flags', 'only the bits of robots', 'MTV4-D3', 'an individual command or reply addresses exactly one robot')
-    if v == 0 or v & (v - 1):
-        raise _enc('ack', 'robots', v, 'exactly_one', 'exactly one bit set', 'MTV4-D3', 'an individual command or reply addresses exactly one robot')
-    r_robots = int(v)
+    r_group = m.group
+    if r_group.__class__ is not int and (not isinstance(r_group, int) or r_group.__class__ is bool):
+        raise _enc('ack', 'group', r_group, 'type', 'an int')
+    if not 0 <= r_group <= 15:
+        raise _enc('ack', 'group', r_group, 'range', '0..15', None)
+    r_radio_crc_flag = m.radio_crc_flag
+    if r_radio_crc_flag.__class__ is not int and (not isinstance(r_radio_crc_flag, int) or r_radio_crc_flag.__class__ is bool):
+        raise _enc('ack', 'radio_crc_flag', r_radio_crc_flag, 'type', 'an int')
+    if not 0 <= r_radio_crc_flag <= 1:
+        raise _enc('ack', 'radio_crc_flag', r_radio_crc_flag, 'range', '0..1', 'MTV4-D4')
+    r_command = m.command
+    if r_command.__class__ is not int and (not isinstance(r_command, int) or r_command.__class__ is bool):
+        raise _enc('ack', 'command', r_command, 'type', 'an int')
+    if not 0 <= r_command <= 127:
+        raise _enc('ack', 'command', r_command, 'range', '0..127', 'MTV4-D4')
+    if r_command not in (1, 2):
+        raise _enc('ack', 'command', r_command, 'values', '1, 2', 'MTV4-D4')
+    r_robots = m.robots
+    if r_robots.__class__ is not int and not isinstance(r_robots, int):
+        raise _enc('ack', 'robots', r_robots, 'type', 'an int or Robots')
+    r_robots = int(r_robots)
+    if r_robots < 0 or r_robots & 0x0 or r_robots > 0xffff:
+        raise _enc('ack', 'robots', r_robots, 'flags', 'only the bits of robots', 'MTV4-D3', 'an individual command or reply addresses exactly one robot')
+    if r_robots == 0 or r_robots & (r_robots - 1):
+        raise _enc('ack', 'robots', r_robots, 'exactly_one', 'exactly one bit set', 'MTV4-D3', 'an individual command or reply addresses exactly one robot')
     r_crc = 0
     b = bytearray(8)
     _S_ack_0.pack_into(b, 0, 170, 4, r_group, r_radio_crc_flag << 7 | r_command, r_robots)
@@ -730,58 +709,51 @@ def _decode_ack(d):
 def _encode_odometry_reply(m):
     r_sync = 170
     r_length = 18
-    v = m.group
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('odometry_reply', 'group', v, 'type', 'an int')
-    if not 0 <= v <= 15:
-        raise _enc('odometry_reply', 'group', v, 'range', '0..15', None)
-    r_group = v
-    v = m.radio_crc_flag
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('odometry_reply', 'radio_crc_flag', v, 'type', 'an int')
-    if not 0 <= v <= 1:
-        raise _enc('odometry_reply', 'radio_crc_flag', v, 'range', '0..1', 'MTV4-D4')
-    r_radio_crc_flag = v
+    r_group = m.group
+    if r_group.__class__ is not int and (not isinstance(r_group, int) or r_group.__class__ is bool):
+        raise _enc('odometry_reply', 'group', r_group, 'type', 'an int')
+    if not 0 <= r_group <= 15:
+        raise _enc('odometry_reply', 'group', r_group, 'range', '0..15', None)
+    r_radio_crc_flag = m.radio_crc_flag
+    if r_radio_crc_flag.__class__ is not int and (not isinstance(r_radio_crc_flag, int) or r_radio_crc_flag.__class__ is bool):
+        raise _enc('odometry_reply', 'radio_crc_flag', r_radio_crc_flag, 'type', 'an int')
+    if not 0 <= r_radio_crc_flag <= 1:
+        raise _enc('odometry_reply', 'radio_crc_flag', r_radio_crc_flag, 'range', '0..1', 'MTV4-D4')
     r_command = 3
-    v = m.robots
-    if v.__class__ is not int and not isinstance(v, int):
-        raise _enc('odometry_reply', 'robots', v, 'type', 'an int or Robots')
-    v = int(v)
-    if v < 0 or v & 0x0 or v > 0xffff:
-        raise _enc('odometry_reply', 'robots', v, 'flags', 'only the bits of robots', 'MTV4-D3', 'an individual command or reply addresses exactly one robot')
-    if v == 0 or v & (v - 1):
-        raise _enc('odometry_reply', 'robots', v, 'exactly_one', 'exactly one bit set', 'MTV4-D3', 'an individual command or reply addresses exactly one robot')
-    r_robots = int(v)
-    v = m.status
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('odometry_reply', 'status', v, 'type', 'an int')
-    if not 0 <= v <= 65535:
-        raise _enc('odometry_reply', 'status', v, 'range', '0..65535', None)
-    r_status = v
-    v = m.x
-    if v.__class__ is not float and (not isinstance(v, (int, float)) or v.__class__ is bool):
-        raise _enc('odometry_reply', 'x', v, 'type', 'a number')
-    if not _isfinite(v):
-        raise _enc('odometry_reply', 'x', v, 'finite', 'a finite number')
-    if v > 3.4028234663852886e38 or v < -3.4028234663852886e38:
-        raise _enc('odometry_reply', 'x', v, 'range', 'a binary32 value')
-    r_x = v
-    v = m.y
-    if v.__class__ is not float and (not isinstance(v, (int, float)) or v.__class__ is bool):
-        raise _enc('odometry_reply', 'y', v, 'type', 'a number')
-    if not _isfinite(v):
-        raise _enc('odometry_reply', 'y', v, 'finite', 'a finite number')
-    if v > 3.4028234663852886e38 or v < -3.4028234663852886e38:
-        raise _enc('odometry_reply', 'y', v, 'range', 'a binary32 value')
-    r_y = v
-    v = m.th
-    if v.__class__ is not float and (not isinstance(v, (int, float)) or v.__class__ is bool):
-        raise _enc('odometry_reply', 'th', v, 'type', 'a number')
-    if not _isfinite(v):
-        raise _enc('odometry_reply', 'th', v, 'finite', 'a finite number')
-    if v > 3.4028234663852886e38 or v < -3.4028234663852886e38:
-        raise _enc('odometry_reply', 'th', v, 'range', 'a binary32 value')
-    r_th = v
+    r_robots = m.robots
+    if r_robots.__class__ is not int and not isinstance(r_robots, int):
+        raise _enc('odometry_reply', 'robots', r_robots, 'type', 'an int or Robots')
+    r_robots = int(r_robots)
+    if r_robots < 0 or r_robots & 0x0 or r_robots > 0xffff:
+        raise _enc('odometry_reply', 'robots', r_robots, 'flags', 'only the bits of robots', 'MTV4-D3', 'an individual command or reply addresses exactly one robot')
+    if r_robots == 0 or r_robots & (r_robots - 1):
+        raise _enc('odometry_reply', 'robots', r_robots, 'exactly_one', 'exactly one bit set', 'MTV4-D3', 'an individual command or reply addresses exactly one robot')
+    r_status = m.status
+    if r_status.__class__ is not int and (not isinstance(r_status, int) or r_status.__class__ is bool):
+        raise _enc('odometry_reply', 'status', r_status, 'type', 'an int')
+    if not 0 <= r_status <= 65535:
+        raise _enc('odometry_reply', 'status', r_status, 'range', '0..65535', None)
+    r_x = m.x
+    if r_x.__class__ is not float and (not isinstance(r_x, (int, float)) or r_x.__class__ is bool):
+        raise _enc('odometry_reply', 'x', r_x, 'type', 'a number')
+    if not _isfinite(r_x):
+        raise _enc('odometry_reply', 'x', r_x, 'finite', 'a finite number')
+    if r_x > 3.4028234663852886e38 or r_x < -3.4028234663852886e38:
+        raise _enc('odometry_reply', 'x', r_x, 'range', 'a binary32 value')
+    r_y = m.y
+    if r_y.__class__ is not float and (not isinstance(r_y, (int, float)) or r_y.__class__ is bool):
+        raise _enc('odometry_reply', 'y', r_y, 'type', 'a number')
+    if not _isfinite(r_y):
+        raise _enc('odometry_reply', 'y', r_y, 'finite', 'a finite number')
+    if r_y > 3.4028234663852886e38 or r_y < -3.4028234663852886e38:
+        raise _enc('odometry_reply', 'y', r_y, 'range', 'a binary32 value')
+    r_th = m.th
+    if r_th.__class__ is not float and (not isinstance(r_th, (int, float)) or r_th.__class__ is bool):
+        raise _enc('odometry_reply', 'th', r_th, 'type', 'a number')
+    if not _isfinite(r_th):
+        raise _enc('odometry_reply', 'th', r_th, 'finite', 'a finite number')
+    if r_th > 3.4028234663852886e38 or r_th < -3.4028234663852886e38:
+        raise _enc('odometry_reply', 'th', r_th, 'range', 'a binary32 value')
     r_crc = 0
     b = bytearray(22)
     _S_odometry_reply_0.pack_into(b, 0, 170, 18, r_group, r_radio_crc_flag << 7 | 0x3, r_robots, r_status, r_x, r_y, r_th)

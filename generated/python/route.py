@@ -288,54 +288,47 @@ def _decode_text_start(tokens):
 
 def _encode_object(m):
     r_hdr = 1
-    v = m.ns
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('object', 'ns', v, 'type', 'an int')
-    if not 0 <= v <= 7:
-        raise _enc('object', 'ns', v, 'range', '0..7', None)
-    r_ns = v
-    v = m.nl
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('object', 'nl', v, 'type', 'an int')
-    if not 0 <= v <= 7:
-        raise _enc('object', 'nl', v, 'range', '0..7', None)
-    r_nl = v
-    v = m.no
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('object', 'no', v, 'type', 'an int')
-    if not 0 <= v <= 7:
-        raise _enc('object', 'no', v, 'range', '0..7', None)
-    r_no = v
-    v = m.na
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('object', 'na', v, 'type', 'an int')
-    if not 10 <= v <= 17:
-        raise _enc('object', 'na', v, 'range', '10..17', 'ROUTE-D6')
-    r_na = (v - 10)
-    v = m.dl
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('object', 'dl', v, 'type', 'an int')
-    if not 1 <= v <= 5:
-        raise _enc('object', 'dl', v, 'range', '1..5', None)
-    r_dl = v
-    v = m.rc
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('object', 'rc', v, 'type', 'an int')
-    if not 0 <= v <= 3:
-        raise _enc('object', 'rc', v, 'range', '0..3', 'ROUTE-D3')
-    r_rc = v
-    v = m.dr
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('object', 'dr', v, 'type', 'an int')
-    if not 1 <= v <= 5:
-        raise _enc('object', 'dr', v, 'range', '1..5', None)
-    r_dr = v
-    v = m.cm
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('object', 'cm', v, 'type', 'an int')
-    if not 1 <= v <= 15:
-        raise _enc('object', 'cm', v, 'range', '1..15', None)
-    r_cm = v
+    r_ns = m.ns
+    if r_ns.__class__ is not int and (not isinstance(r_ns, int) or r_ns.__class__ is bool):
+        raise _enc('object', 'ns', r_ns, 'type', 'an int')
+    if not 0 <= r_ns <= 7:
+        raise _enc('object', 'ns', r_ns, 'range', '0..7', None)
+    r_nl = m.nl
+    if r_nl.__class__ is not int and (not isinstance(r_nl, int) or r_nl.__class__ is bool):
+        raise _enc('object', 'nl', r_nl, 'type', 'an int')
+    if not 0 <= r_nl <= 7:
+        raise _enc('object', 'nl', r_nl, 'range', '0..7', None)
+    r_no = m.no
+    if r_no.__class__ is not int and (not isinstance(r_no, int) or r_no.__class__ is bool):
+        raise _enc('object', 'no', r_no, 'type', 'an int')
+    if not 0 <= r_no <= 7:
+        raise _enc('object', 'no', r_no, 'range', '0..7', None)
+    r_na = m.na
+    if r_na.__class__ is not int and (not isinstance(r_na, int) or r_na.__class__ is bool):
+        raise _enc('object', 'na', r_na, 'type', 'an int')
+    if not 10 <= r_na <= 17:
+        raise _enc('object', 'na', r_na, 'range', '10..17', 'ROUTE-D6')
+    r_na = (r_na - 10)
+    r_dl = m.dl
+    if r_dl.__class__ is not int and (not isinstance(r_dl, int) or r_dl.__class__ is bool):
+        raise _enc('object', 'dl', r_dl, 'type', 'an int')
+    if not 1 <= r_dl <= 5:
+        raise _enc('object', 'dl', r_dl, 'range', '1..5', None)
+    r_rc = m.rc
+    if r_rc.__class__ is not int and (not isinstance(r_rc, int) or r_rc.__class__ is bool):
+        raise _enc('object', 'rc', r_rc, 'type', 'an int')
+    if not 0 <= r_rc <= 3:
+        raise _enc('object', 'rc', r_rc, 'range', '0..3', 'ROUTE-D3')
+    r_dr = m.dr
+    if r_dr.__class__ is not int and (not isinstance(r_dr, int) or r_dr.__class__ is bool):
+        raise _enc('object', 'dr', r_dr, 'type', 'an int')
+    if not 1 <= r_dr <= 5:
+        raise _enc('object', 'dr', r_dr, 'range', '1..5', None)
+    r_cm = m.cm
+    if r_cm.__class__ is not int and (not isinstance(r_cm, int) or r_cm.__class__ is bool):
+        raise _enc('object', 'cm', r_cm, 'type', 'an int')
+    if not 1 <= r_cm <= 15:
+        raise _enc('object', 'cm', r_cm, 'range', '1..15', None)
     r_cs = 0
     r_cs = (r_hdr + r_ns + r_nl + r_no + r_na + r_dl + r_rc + r_dr + r_cm) % 8
     w = r_ns << 27 | r_nl << 24 | r_no << 21 | r_na << 18 | r_dl << 15 | r_rc << 13 | r_dr << 10 | r_cm << 6 | r_cs << 3 | 0x40000000
@@ -376,54 +369,47 @@ def _decode_object(d):
 def _raw_object(m):
     """Check a object and return its raw wire values, in wire order."""
     r_hdr = 1
-    v = m.ns
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('object', 'ns', v, 'type', 'an int')
-    if not 0 <= v <= 7:
-        raise _enc('object', 'ns', v, 'range', '0..7', None)
-    r_ns = v
-    v = m.nl
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('object', 'nl', v, 'type', 'an int')
-    if not 0 <= v <= 7:
-        raise _enc('object', 'nl', v, 'range', '0..7', None)
-    r_nl = v
-    v = m.no
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('object', 'no', v, 'type', 'an int')
-    if not 0 <= v <= 7:
-        raise _enc('object', 'no', v, 'range', '0..7', None)
-    r_no = v
-    v = m.na
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('object', 'na', v, 'type', 'an int')
-    if not 10 <= v <= 17:
-        raise _enc('object', 'na', v, 'range', '10..17', 'ROUTE-D6')
-    r_na = (v - 10)
-    v = m.dl
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('object', 'dl', v, 'type', 'an int')
-    if not 1 <= v <= 5:
-        raise _enc('object', 'dl', v, 'range', '1..5', None)
-    r_dl = v
-    v = m.rc
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('object', 'rc', v, 'type', 'an int')
-    if not 0 <= v <= 3:
-        raise _enc('object', 'rc', v, 'range', '0..3', 'ROUTE-D3')
-    r_rc = v
-    v = m.dr
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('object', 'dr', v, 'type', 'an int')
-    if not 1 <= v <= 5:
-        raise _enc('object', 'dr', v, 'range', '1..5', None)
-    r_dr = v
-    v = m.cm
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('object', 'cm', v, 'type', 'an int')
-    if not 1 <= v <= 15:
-        raise _enc('object', 'cm', v, 'range', '1..15', None)
-    r_cm = v
+    r_ns = m.ns
+    if r_ns.__class__ is not int and (not isinstance(r_ns, int) or r_ns.__class__ is bool):
+        raise _enc('object', 'ns', r_ns, 'type', 'an int')
+    if not 0 <= r_ns <= 7:
+        raise _enc('object', 'ns', r_ns, 'range', '0..7', None)
+    r_nl = m.nl
+    if r_nl.__class__ is not int and (not isinstance(r_nl, int) or r_nl.__class__ is bool):
+        raise _enc('object', 'nl', r_nl, 'type', 'an int')
+    if not 0 <= r_nl <= 7:
+        raise _enc('object', 'nl', r_nl, 'range', '0..7', None)
+    r_no = m.no
+    if r_no.__class__ is not int and (not isinstance(r_no, int) or r_no.__class__ is bool):
+        raise _enc('object', 'no', r_no, 'type', 'an int')
+    if not 0 <= r_no <= 7:
+        raise _enc('object', 'no', r_no, 'range', '0..7', None)
+    r_na = m.na
+    if r_na.__class__ is not int and (not isinstance(r_na, int) or r_na.__class__ is bool):
+        raise _enc('object', 'na', r_na, 'type', 'an int')
+    if not 10 <= r_na <= 17:
+        raise _enc('object', 'na', r_na, 'range', '10..17', 'ROUTE-D6')
+    r_na = (r_na - 10)
+    r_dl = m.dl
+    if r_dl.__class__ is not int and (not isinstance(r_dl, int) or r_dl.__class__ is bool):
+        raise _enc('object', 'dl', r_dl, 'type', 'an int')
+    if not 1 <= r_dl <= 5:
+        raise _enc('object', 'dl', r_dl, 'range', '1..5', None)
+    r_rc = m.rc
+    if r_rc.__class__ is not int and (not isinstance(r_rc, int) or r_rc.__class__ is bool):
+        raise _enc('object', 'rc', r_rc, 'type', 'an int')
+    if not 0 <= r_rc <= 3:
+        raise _enc('object', 'rc', r_rc, 'range', '0..3', 'ROUTE-D3')
+    r_dr = m.dr
+    if r_dr.__class__ is not int and (not isinstance(r_dr, int) or r_dr.__class__ is bool):
+        raise _enc('object', 'dr', r_dr, 'type', 'an int')
+    if not 1 <= r_dr <= 5:
+        raise _enc('object', 'dr', r_dr, 'range', '1..5', None)
+    r_cm = m.cm
+    if r_cm.__class__ is not int and (not isinstance(r_cm, int) or r_cm.__class__ is bool):
+        raise _enc('object', 'cm', r_cm, 'type', 'an int')
+    if not 1 <= r_cm <= 15:
+        raise _enc('object', 'cm', r_cm, 'range', '1..15', None)
     r_cs = 0
     r_cs = (r_hdr + r_ns + r_nl + r_no + r_na + r_dl + r_rc + r_dr + r_cm) % 8
     return (r_hdr, r_ns, r_nl, r_no, r_na, r_dl, r_rc, r_dr, r_cm, r_cs, )
@@ -470,28 +456,25 @@ def _decode_text_object(tokens):
 
 def _encode_scene(m):
     r_hdr = 2
-    v = m.ns
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('scene', 'ns', v, 'type', 'an int')
-    if not 0 <= v <= 7:
-        raise _enc('scene', 'ns', v, 'range', '0..7', None)
-    r_ns = v
-    v = m.nl
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('scene', 'nl', v, 'type', 'an int')
-    if not 0 <= v <= 7:
-        raise _enc('scene', 'nl', v, 'range', '0..7', None)
-    r_nl = v
-    v = m.db
-    if not isinstance(v, int) or v not in _VALUES_pass_side:
-        raise _enc('scene', 'db', v, 'enum', 'PassSide', None)
-    r_db = int(v)
-    v = m.nt
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('scene', 'nt', v, 'type', 'an int')
-    if not 0 <= v <= 32767:
-        raise _enc('scene', 'nt', v, 'range', '0..32767', None)
-    r_nt = v
+    r_ns = m.ns
+    if r_ns.__class__ is not int and (not isinstance(r_ns, int) or r_ns.__class__ is bool):
+        raise _enc('scene', 'ns', r_ns, 'type', 'an int')
+    if not 0 <= r_ns <= 7:
+        raise _enc('scene', 'ns', r_ns, 'range', '0..7', None)
+    r_nl = m.nl
+    if r_nl.__class__ is not int and (not isinstance(r_nl, int) or r_nl.__class__ is bool):
+        raise _enc('scene', 'nl', r_nl, 'type', 'an int')
+    if not 0 <= r_nl <= 7:
+        raise _enc('scene', 'nl', r_nl, 'range', '0..7', None)
+    r_db = m.db
+    if not isinstance(r_db, int) or r_db not in _VALUES_pass_side:
+        raise _enc('scene', 'db', r_db, 'enum', 'PassSide', None)
+    r_db = int(r_db)
+    r_nt = m.nt
+    if r_nt.__class__ is not int and (not isinstance(r_nt, int) or r_nt.__class__ is bool):
+        raise _enc('scene', 'nt', r_nt, 'type', 'an int')
+    if not 0 <= r_nt <= 32767:
+        raise _enc('scene', 'nt', r_nt, 'range', '0..32767', None)
     r_cs = 0
     r_cs = (r_hdr + r_ns + r_nl + r_db + r_nt) % 8
     w = r_ns << 27 | r_nl << 24 | r_db << 21 | r_nt << 6 | r_cs << 3 | 0x80000000
@@ -525,28 +508,25 @@ def _decode_scene(d):
 def _raw_scene(m):
     """Check a scene and return its raw wire values, in wire order."""
     r_hdr = 2
-    v = m.ns
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('scene', 'ns', v, 'type', 'an int')
-    if not 0 <= v <= 7:
-        raise _enc('scene', 'ns', v, 'range', '0..7', None)
-    r_ns = v
-    v = m.nl
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('scene', 'nl', v, 'type', 'an int')
-    if not 0 <= v <= 7:
-        raise _enc('scene', 'nl', v, 'range', '0..7', None)
-    r_nl = v
-    v = m.db
-    if not isinstance(v, int) or v not in _VALUES_pass_side:
-        raise _enc('scene', 'db', v, 'enum', 'PassSide', None)
-    r_db = int(v)
-    v = m.nt
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('scene', 'nt', v, 'type', 'an int')
-    if not 0 <= v <= 32767:
-        raise _enc('scene', 'nt', v, 'range', '0..32767', None)
-    r_nt = v
+    r_ns = m.ns
+    if r_ns.__class__ is not int and (not isinstance(r_ns, int) or r_ns.__class__ is bool):
+        raise _enc('scene', 'ns', r_ns, 'type', 'an int')
+    if not 0 <= r_ns <= 7:
+        raise _enc('scene', 'ns', r_ns, 'range', '0..7', None)
+    r_nl = m.nl
+    if r_nl.__class__ is not int and (not isinstance(r_nl, int) or r_nl.__class__ is bool):
+        raise _enc('scene', 'nl', r_nl, 'type', 'an int')
+    if not 0 <= r_nl <= 7:
+        raise _enc('scene', 'nl', r_nl, 'range', '0..7', None)
+    r_db = m.db
+    if not isinstance(r_db, int) or r_db not in _VALUES_pass_side:
+        raise _enc('scene', 'db', r_db, 'enum', 'PassSide', None)
+    r_db = int(r_db)
+    r_nt = m.nt
+    if r_nt.__class__ is not int and (not isinstance(r_nt, int) or r_nt.__class__ is bool):
+        raise _enc('scene', 'nt', r_nt, 'type', 'an int')
+    if not 0 <= r_nt <= 32767:
+        raise _enc('scene', 'nt', r_nt, 'range', '0..32767', None)
     r_cs = 0
     r_cs = (r_hdr + r_ns + r_nl + r_db + r_nt) % 8
     return (r_hdr, r_ns, r_nl, r_db, r_nt, r_cs, )

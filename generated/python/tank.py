@@ -394,17 +394,15 @@ def _as_input(data):
 
 def _encode_telemetry(m):
     p = ['$:']
-    v = m.move
-    if not isinstance(v, str) or v not in _VALUES_move:
-        raise _enc('telemetry', 'move', v, 'enum', 'Move', None)
-    r_move = v
+    r_move = m.move
+    if not isinstance(r_move, str) or r_move not in _VALUES_move:
+        raise _enc('telemetry', 'move', r_move, 'enum', 'Move', None)
     p.append(_ENUM_move[r_move].value)
-    v = m.speed
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('telemetry', 'speed', v, 'type', 'an int')
-    if not 0 <= v <= 100:
-        raise _enc('telemetry', 'speed', v, 'range', '0..100', 'TANK-D3')
-    r_speed = v
+    r_speed = m.speed
+    if r_speed.__class__ is not int and (not isinstance(r_speed, int) or r_speed.__class__ is bool):
+        raise _enc('telemetry', 'speed', r_speed, 'type', 'an int')
+    if not 0 <= r_speed <= 100:
+        raise _enc('telemetry', 'speed', r_speed, 'range', '0..100', 'TANK-D3')
     p.append(str(r_speed))
     v = m.value
     if not isinstance(v, str) or len(v) != 1:
@@ -413,82 +411,71 @@ def _encode_telemetry(m):
     if bad:
         raise _enc('telemetry', 'value', v, 'text', bad, 'TANK-D3')
     p.append(v)
-    v = m.lcurr
-    if v.__class__ is not float and (not isinstance(v, (int, float)) or v.__class__ is bool):
-        raise _enc('telemetry', 'lcurr', v, 'type', 'a number')
-    if not _isfinite(v):
-        raise _enc('telemetry', 'lcurr', v, 'finite', 'a finite number')
-    r_lcurr = v
+    r_lcurr = m.lcurr
+    if r_lcurr.__class__ is not float and (not isinstance(r_lcurr, (int, float)) or r_lcurr.__class__ is bool):
+        raise _enc('telemetry', 'lcurr', r_lcurr, 'type', 'a number')
+    if not _isfinite(r_lcurr):
+        raise _enc('telemetry', 'lcurr', r_lcurr, 'finite', 'a finite number')
     p.append(_format_float(r_lcurr))
-    v = m.rcurr
-    if v.__class__ is not float and (not isinstance(v, (int, float)) or v.__class__ is bool):
-        raise _enc('telemetry', 'rcurr', v, 'type', 'a number')
-    if not _isfinite(v):
-        raise _enc('telemetry', 'rcurr', v, 'finite', 'a finite number')
-    r_rcurr = v
+    r_rcurr = m.rcurr
+    if r_rcurr.__class__ is not float and (not isinstance(r_rcurr, (int, float)) or r_rcurr.__class__ is bool):
+        raise _enc('telemetry', 'rcurr', r_rcurr, 'type', 'a number')
+    if not _isfinite(r_rcurr):
+        raise _enc('telemetry', 'rcurr', r_rcurr, 'finite', 'a finite number')
     p.append(_format_float(r_rcurr))
-    v = m.accx
-    if v.__class__ is not float and (not isinstance(v, (int, float)) or v.__class__ is bool):
-        raise _enc('telemetry', 'accx', v, 'type', 'a number')
-    if not _isfinite(v):
-        raise _enc('telemetry', 'accx', v, 'finite', 'a finite number')
-    r_accx = v
+    r_accx = m.accx
+    if r_accx.__class__ is not float and (not isinstance(r_accx, (int, float)) or r_accx.__class__ is bool):
+        raise _enc('telemetry', 'accx', r_accx, 'type', 'a number')
+    if not _isfinite(r_accx):
+        raise _enc('telemetry', 'accx', r_accx, 'finite', 'a finite number')
     p.append(_format_float(r_accx))
-    v = m.accy
-    if v.__class__ is not float and (not isinstance(v, (int, float)) or v.__class__ is bool):
-        raise _enc('telemetry', 'accy', v, 'type', 'a number')
-    if not _isfinite(v):
-        raise _enc('telemetry', 'accy', v, 'finite', 'a finite number')
-    r_accy = v
+    r_accy = m.accy
+    if r_accy.__class__ is not float and (not isinstance(r_accy, (int, float)) or r_accy.__class__ is bool):
+        raise _enc('telemetry', 'accy', r_accy, 'type', 'a number')
+    if not _isfinite(r_accy):
+        raise _enc('telemetry', 'accy', r_accy, 'finite', 'a finite number')
     p.append(_format_float(r_accy))
-    v = m.accz
-    if v.__class__ is not float and (not isinstance(v, (int, float)) or v.__class__ is bool):
-        raise _enc('telemetry', 'accz', v, 'type', 'a number')
-    if not _isfinite(v):
-        raise _enc('telemetry', 'accz', v, 'finite', 'a finite number')
-    r_accz = v
+    r_accz = m.accz
+    if r_accz.__class__ is not float and (not isinstance(r_accz, (int, float)) or r_accz.__class__ is bool):
+        raise _enc('telemetry', 'accz', r_accz, 'type', 'a number')
+    if not _isfinite(r_accz):
+        raise _enc('telemetry', 'accz', r_accz, 'finite', 'a finite number')
     p.append(_format_float(r_accz))
-    v = m.gyrox
-    if v.__class__ is not float and (not isinstance(v, (int, float)) or v.__class__ is bool):
-        raise _enc('telemetry', 'gyrox', v, 'type', 'a number')
-    if not _isfinite(v):
-        raise _enc('telemetry', 'gyrox', v, 'finite', 'a finite number')
-    r_gyrox = v
+    r_gyrox = m.gyrox
+    if r_gyrox.__class__ is not float and (not isinstance(r_gyrox, (int, float)) or r_gyrox.__class__ is bool):
+        raise _enc('telemetry', 'gyrox', r_gyrox, 'type', 'a number')
+    if not _isfinite(r_gyrox):
+        raise _enc('telemetry', 'gyrox', r_gyrox, 'finite', 'a finite number')
     p.append(_format_float(r_gyrox))
-    v = m.gyroy
-    if v.__class__ is not float and (not isinstance(v, (int, float)) or v.__class__ is bool):
-        raise _enc('telemetry', 'gyroy', v, 'type', 'a number')
-    if not _isfinite(v):
-        raise _enc('telemetry', 'gyroy', v, 'finite', 'a finite number')
-    r_gyroy = v
+    r_gyroy = m.gyroy
+    if r_gyroy.__class__ is not float and (not isinstance(r_gyroy, (int, float)) or r_gyroy.__class__ is bool):
+        raise _enc('telemetry', 'gyroy', r_gyroy, 'type', 'a number')
+    if not _isfinite(r_gyroy):
+        raise _enc('telemetry', 'gyroy', r_gyroy, 'finite', 'a finite number')
     p.append(_format_float(r_gyroy))
-    v = m.gyroz
-    if v.__class__ is not float and (not isinstance(v, (int, float)) or v.__class__ is bool):
-        raise _enc('telemetry', 'gyroz', v, 'type', 'a number')
-    if not _isfinite(v):
-        raise _enc('telemetry', 'gyroz', v, 'finite', 'a finite number')
-    r_gyroz = v
+    r_gyroz = m.gyroz
+    if r_gyroz.__class__ is not float and (not isinstance(r_gyroz, (int, float)) or r_gyroz.__class__ is bool):
+        raise _enc('telemetry', 'gyroz', r_gyroz, 'type', 'a number')
+    if not _isfinite(r_gyroz):
+        raise _enc('telemetry', 'gyroz', r_gyroz, 'finite', 'a finite number')
     p.append(_format_float(r_gyroz))
-    v = m.magx
-    if v.__class__ is not float and (not isinstance(v, (int, float)) or v.__class__ is bool):
-        raise _enc('telemetry', 'magx', v, 'type', 'a number')
-    if not _isfinite(v):
-        raise _enc('telemetry', 'magx', v, 'finite', 'a finite number')
-    r_magx = v
+    r_magx = m.magx
+    if r_magx.__class__ is not float and (not isinstance(r_magx, (int, float)) or r_magx.__class__ is bool):
+        raise _enc('telemetry', 'magx', r_magx, 'type', 'a number')
+    if not _isfinite(r_magx):
+        raise _enc('telemetry', 'magx', r_magx, 'finite', 'a finite number')
     p.append(_format_float(r_magx))
-    v = m.magy
-    if v.__class__ is not float and (not isinstance(v, (int, float)) or v.__class__ is bool):
-        raise _enc('telemetry', 'magy', v, 'type', 'a number')
-    if not _isfinite(v):
-        raise _enc('telemetry', 'magy', v, 'finite', 'a finite number')
-    r_magy = v
+    r_magy = m.magy
+    if r_magy.__class__ is not float and (not isinstance(r_magy, (int, float)) or r_magy.__class__ is bool):
+        raise _enc('telemetry', 'magy', r_magy, 'type', 'a number')
+    if not _isfinite(r_magy):
+        raise _enc('telemetry', 'magy', r_magy, 'finite', 'a finite number')
     p.append(_format_float(r_magy))
-    v = m.magz
-    if v.__class__ is not float and (not isinstance(v, (int, float)) or v.__class__ is bool):
-        raise _enc('telemetry', 'magz', v, 'type', 'a number')
-    if not _isfinite(v):
-        raise _enc('telemetry', 'magz', v, 'finite', 'a finite number')
-    r_magz = v
+    r_magz = m.magz
+    if r_magz.__class__ is not float and (not isinstance(r_magz, (int, float)) or r_magz.__class__ is bool):
+        raise _enc('telemetry', 'magz', r_magz, 'type', 'a number')
+    if not _isfinite(r_magz):
+        raise _enc('telemetry', 'magz', r_magz, 'finite', 'a finite number')
     p.append(_format_float(r_magz))
     v = m.lan
     if not isinstance(v, str):
@@ -508,29 +495,27 @@ def _encode_telemetry(m):
     if len(v) > 32:
         raise _enc('telemetry', 'lon', v, 'length', 'at most 32 characters')
     p.append(v)
-    v = m.vbat
-    if v.__class__ is not float and (not isinstance(v, (int, float)) or v.__class__ is bool):
-        raise _enc('telemetry', 'vbat', v, 'type', 'a number')
-    if not _isfinite(v):
-        raise _enc('telemetry', 'vbat', v, 'finite', 'a finite number')
-    r_vbat = v
+    r_vbat = m.vbat
+    if r_vbat.__class__ is not float and (not isinstance(r_vbat, (int, float)) or r_vbat.__class__ is bool):
+        raise _enc('telemetry', 'vbat', r_vbat, 'type', 'a number')
+    if not _isfinite(r_vbat):
+        raise _enc('telemetry', 'vbat', r_vbat, 'finite', 'a finite number')
     p.append(_format_float(r_vbat))
-    v = m.systemstatus
-    if not isinstance(v, int) or v not in _VALUES_system_status:
-        raise _enc('telemetry', 'systemstatus', v, 'enum', 'SystemStatus', None)
-    r_systemstatus = int(v)
+    r_systemstatus = m.systemstatus
+    if not isinstance(r_systemstatus, int) or r_systemstatus not in _VALUES_system_status:
+        raise _enc('telemetry', 'systemstatus', r_systemstatus, 'enum', 'SystemStatus', None)
+    r_systemstatus = int(r_systemstatus)
     p.append(str(r_systemstatus))
-    v = m.extid
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('telemetry', 'extid', v, 'type', 'an int')
-    if not 0 <= v <= 255:
-        raise _enc('telemetry', 'extid', v, 'range', '0..255', None)
-    r_extid = v
+    r_extid = m.extid
+    if r_extid.__class__ is not int and (not isinstance(r_extid, int) or r_extid.__class__ is bool):
+        raise _enc('telemetry', 'extid', r_extid, 'type', 'an int')
+    if not 0 <= r_extid <= 255:
+        raise _enc('telemetry', 'extid', r_extid, 'range', '0..255', None)
     p.append(str(r_extid))
-    v = m.extstatus
-    if not isinstance(v, int) or v not in _VALUES_ext_status:
-        raise _enc('telemetry', 'extstatus', v, 'enum', 'ExtStatus', None)
-    r_extstatus = int(v)
+    r_extstatus = m.extstatus
+    if not isinstance(r_extstatus, int) or r_extstatus not in _VALUES_ext_status:
+        raise _enc('telemetry', 'extstatus', r_extstatus, 'enum', 'ExtStatus', None)
+    r_extstatus = int(r_extstatus)
     p.append(str(r_extstatus))
     return p[0] + ','.join(p[1:]) + ';'
 
@@ -623,17 +608,15 @@ def _decode_telemetry(body, base):
 
 def _encode_command(m):
     p = ['%:']
-    v = m.move
-    if not isinstance(v, str) or v not in _VALUES_move:
-        raise _enc('command', 'move', v, 'enum', 'Move', None)
-    r_move = v
+    r_move = m.move
+    if not isinstance(r_move, str) or r_move not in _VALUES_move:
+        raise _enc('command', 'move', r_move, 'enum', 'Move', None)
     p.append(_ENUM_move[r_move].value)
-    v = m.speed
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('command', 'speed', v, 'type', 'an int')
-    if not 0 <= v <= 100:
-        raise _enc('command', 'speed', v, 'range', '0..100', 'TANK-D3')
-    r_speed = v
+    r_speed = m.speed
+    if r_speed.__class__ is not int and (not isinstance(r_speed, int) or r_speed.__class__ is bool):
+        raise _enc('command', 'speed', r_speed, 'type', 'an int')
+    if not 0 <= r_speed <= 100:
+        raise _enc('command', 'speed', r_speed, 'range', '0..100', 'TANK-D3')
     p.append(str(r_speed))
     v = m.value
     if not isinstance(v, str) or len(v) != 1:
@@ -642,47 +625,42 @@ def _encode_command(m):
     if bad:
         raise _enc('command', 'value', v, 'text', bad, 'TANK-D3')
     p.append(v)
-    v = m.azimutloc
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('command', 'azimutloc', v, 'type', 'an int')
-    if not -32768 <= v <= 32767:
-        raise _enc('command', 'azimutloc', v, 'range', '-32768..32767', None)
-    r_azimutloc = v
+    r_azimutloc = m.azimutloc
+    if r_azimutloc.__class__ is not int and (not isinstance(r_azimutloc, int) or r_azimutloc.__class__ is bool):
+        raise _enc('command', 'azimutloc', r_azimutloc, 'type', 'an int')
+    if not -32768 <= r_azimutloc <= 32767:
+        raise _enc('command', 'azimutloc', r_azimutloc, 'range', '-32768..32767', None)
     p.append(str(r_azimutloc))
-    v = m.gpio1
-    if v.__class__ is not float and (not isinstance(v, (int, float)) or v.__class__ is bool):
-        raise _enc('command', 'gpio1', v, 'type', 'a number')
-    if not _isfinite(v):
-        raise _enc('command', 'gpio1', v, 'finite', 'a finite number')
-    r_gpio1 = v
+    r_gpio1 = m.gpio1
+    if r_gpio1.__class__ is not float and (not isinstance(r_gpio1, (int, float)) or r_gpio1.__class__ is bool):
+        raise _enc('command', 'gpio1', r_gpio1, 'type', 'a number')
+    if not _isfinite(r_gpio1):
+        raise _enc('command', 'gpio1', r_gpio1, 'finite', 'a finite number')
     p.append(_format_float(r_gpio1))
-    v = m.gpio2
-    if v.__class__ is not float and (not isinstance(v, (int, float)) or v.__class__ is bool):
-        raise _enc('command', 'gpio2', v, 'type', 'a number')
-    if not _isfinite(v):
-        raise _enc('command', 'gpio2', v, 'finite', 'a finite number')
-    r_gpio2 = v
+    r_gpio2 = m.gpio2
+    if r_gpio2.__class__ is not float and (not isinstance(r_gpio2, (int, float)) or r_gpio2.__class__ is bool):
+        raise _enc('command', 'gpio2', r_gpio2, 'type', 'a number')
+    if not _isfinite(r_gpio2):
+        raise _enc('command', 'gpio2', r_gpio2, 'finite', 'a finite number')
     p.append(_format_float(r_gpio2))
-    v = m.gpio3
-    if v.__class__ is not float and (not isinstance(v, (int, float)) or v.__class__ is bool):
-        raise _enc('command', 'gpio3', v, 'type', 'a number')
-    if not _isfinite(v):
-        raise _enc('command', 'gpio3', v, 'finite', 'a finite number')
-    r_gpio3 = v
+    r_gpio3 = m.gpio3
+    if r_gpio3.__class__ is not float and (not isinstance(r_gpio3, (int, float)) or r_gpio3.__class__ is bool):
+        raise _enc('command', 'gpio3', r_gpio3, 'type', 'a number')
+    if not _isfinite(r_gpio3):
+        raise _enc('command', 'gpio3', r_gpio3, 'finite', 'a finite number')
     p.append(_format_float(r_gpio3))
-    v = m.gpio4
-    if v.__class__ is not float and (not isinstance(v, (int, float)) or v.__class__ is bool):
-        raise _enc('command', 'gpio4', v, 'type', 'a number')
-    if not _isfinite(v):
-        raise _enc('command', 'gpio4', v, 'finite', 'a finite number')
-    r_gpio4 = v
+    r_gpio4 = m.gpio4
+    if r_gpio4.__class__ is not float and (not isinstance(r_gpio4, (int, float)) or r_gpio4.__class__ is bool):
+        raise _enc('command', 'gpio4', r_gpio4, 'type', 'a number')
+    if not _isfinite(r_gpio4):
+        raise _enc('command', 'gpio4', r_gpio4, 'finite', 'a finite number')
     p.append(_format_float(r_gpio4))
-    v = m.systemstatus
-    if not isinstance(v, int) or v not in _VALUES_system_status:
-        raise _enc('command', 'systemstatus', v, 'enum', 'SystemStatus', 'TANK-D2', 'systemstatus 5 (Error) and 6 (Exception) are sent only by the platform / Только с платформы')
-    if v not in (0, 1, 2, 3, 4):
-        raise _enc('command', 'systemstatus', v, 'values', '0, 1, 2, 3, 4', 'TANK-D2', 'systemstatus 5 (Error) and 6 (Exception) are sent only by the platform / Только с платформы')
-    r_systemstatus = int(v)
+    r_systemstatus = m.systemstatus
+    if not isinstance(r_systemstatus, int) or r_systemstatus not in _VALUES_system_status:
+        raise _enc('command', 'systemstatus', r_systemstatus, 'enum', 'SystemStatus', 'TANK-D2', 'systemstatus 5 (Error) and 6 (Exception) are sent only by the platform / Только с платформы')
+    if r_systemstatus not in (0, 1, 2, 3, 4):
+        raise _enc('command', 'systemstatus', r_systemstatus, 'values', '0, 1, 2, 3, 4', 'TANK-D2', 'systemstatus 5 (Error) and 6 (Exception) are sent only by the platform / Только с платформы')
+    r_systemstatus = int(r_systemstatus)
     p.append(str(r_systemstatus))
     if m.data is not None:
         v = m.data
@@ -815,25 +793,25 @@ def _decode_payload_reply(body, base):
 
 def _encode_gpio_config(m):
     p = ['-:']
-    v = m.gpio1
-    if not isinstance(v, int) or v not in _VALUES_gpio_mode:
-        raise _enc('gpio_config', 'gpio1', v, 'enum', 'GpioMode', None)
-    r_gpio1 = int(v)
+    r_gpio1 = m.gpio1
+    if not isinstance(r_gpio1, int) or r_gpio1 not in _VALUES_gpio_mode:
+        raise _enc('gpio_config', 'gpio1', r_gpio1, 'enum', 'GpioMode', None)
+    r_gpio1 = int(r_gpio1)
     p.append(str(r_gpio1))
-    v = m.gpio2
-    if not isinstance(v, int) or v not in _VALUES_gpio_mode:
-        raise _enc('gpio_config', 'gpio2', v, 'enum', 'GpioMode', None)
-    r_gpio2 = int(v)
+    r_gpio2 = m.gpio2
+    if not isinstance(r_gpio2, int) or r_gpio2 not in _VALUES_gpio_mode:
+        raise _enc('gpio_config', 'gpio2', r_gpio2, 'enum', 'GpioMode', None)
+    r_gpio2 = int(r_gpio2)
     p.append(str(r_gpio2))
-    v = m.gpio3
-    if not isinstance(v, int) or v not in _VALUES_gpio_mode:
-        raise _enc('gpio_config', 'gpio3', v, 'enum', 'GpioMode', None)
-    r_gpio3 = int(v)
+    r_gpio3 = m.gpio3
+    if not isinstance(r_gpio3, int) or r_gpio3 not in _VALUES_gpio_mode:
+        raise _enc('gpio_config', 'gpio3', r_gpio3, 'enum', 'GpioMode', None)
+    r_gpio3 = int(r_gpio3)
     p.append(str(r_gpio3))
-    v = m.gpio4
-    if not isinstance(v, int) or v not in _VALUES_gpio_mode:
-        raise _enc('gpio_config', 'gpio4', v, 'enum', 'GpioMode', None)
-    r_gpio4 = int(v)
+    r_gpio4 = m.gpio4
+    if not isinstance(r_gpio4, int) or r_gpio4 not in _VALUES_gpio_mode:
+        raise _enc('gpio_config', 'gpio4', r_gpio4, 'enum', 'GpioMode', None)
+    r_gpio4 = int(r_gpio4)
     p.append(str(r_gpio4))
     return p[0] + ','.join(p[1:]) + ';'
 

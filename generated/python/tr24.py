@@ -170,28 +170,26 @@ def _encode_command(m):
     r_start = 2
     r_reserved = 0
     r_type = 0
-    v = m.seq
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('command', 'seq', v, 'type', 'an int')
-    if not 0 <= v <= 1:
-        raise _enc('command', 'seq', v, 'range', '0..1', 'TR24-D1')
-    r_seq = v
-    v = m.sender
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('command', 'sender', v, 'type', 'an int')
-    if not 0 <= v <= 255:
-        raise _enc('command', 'sender', v, 'range', '0..255', 'TR24-D3')
-    r_sender = v
-    v = m.receiver
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('command', 'receiver', v, 'type', 'an int')
-    if not 0 <= v <= 255:
-        raise _enc('command', 'receiver', v, 'range', '0..255', 'TR24-D3')
-    r_receiver = v
-    v = m.data
-    if not isinstance(v, (bytes, bytearray)) or len(v) != 7:
-        raise _enc('command', 'data', v, 'length', 'bytes of length 7')
-    r_data = bytes(v)
+    r_seq = m.seq
+    if r_seq.__class__ is not int and (not isinstance(r_seq, int) or r_seq.__class__ is bool):
+        raise _enc('command', 'seq', r_seq, 'type', 'an int')
+    if not 0 <= r_seq <= 1:
+        raise _enc('command', 'seq', r_seq, 'range', '0..1', 'TR24-D1')
+    r_sender = m.sender
+    if r_sender.__class__ is not int and (not isinstance(r_sender, int) or r_sender.__class__ is bool):
+        raise _enc('command', 'sender', r_sender, 'type', 'an int')
+    if not 0 <= r_sender <= 255:
+        raise _enc('command', 'sender', r_sender, 'range', '0..255', 'TR24-D3')
+    r_receiver = m.receiver
+    if r_receiver.__class__ is not int and (not isinstance(r_receiver, int) or r_receiver.__class__ is bool):
+        raise _enc('command', 'receiver', r_receiver, 'type', 'an int')
+    if not 0 <= r_receiver <= 255:
+        raise _enc('command', 'receiver', r_receiver, 'range', '0..255', 'TR24-D3')
+    r_data = m.data
+    if not isinstance(r_data, (bytes, bytearray)) or len(r_data) != 7:
+        raise _enc('command', 'data', r_data, 'length', 'bytes of length 7')
+    if r_data.__class__ is not bytes:
+        r_data = bytes(r_data)
     r_stop = 3
     return _S_command_0.pack(2, r_seq, r_sender, r_receiver, r_data, 3)
 
@@ -219,28 +217,26 @@ def _encode_reply(m):
     r_start = 2
     r_reserved = 0
     r_type = 1
-    v = m.seq
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('reply', 'seq', v, 'type', 'an int')
-    if not 0 <= v <= 1:
-        raise _enc('reply', 'seq', v, 'range', '0..1', 'TR24-D1')
-    r_seq = v
-    v = m.sender
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('reply', 'sender', v, 'type', 'an int')
-    if not 0 <= v <= 255:
-        raise _enc('reply', 'sender', v, 'range', '0..255', 'TR24-D3')
-    r_sender = v
-    v = m.receiver
-    if v.__class__ is not int and (not isinstance(v, int) or v.__class__ is bool):
-        raise _enc('reply', 'receiver', v, 'type', 'an int')
-    if not 0 <= v <= 255:
-        raise _enc('reply', 'receiver', v, 'range', '0..255', 'TR24-D3')
-    r_receiver = v
-    v = m.data
-    if not isinstance(v, (bytes, bytearray)) or len(v) != 7:
-        raise _enc('reply', 'data', v, 'length', 'bytes of length 7')
-    r_data = bytes(v)
+    r_seq = m.seq
+    if r_seq.__class__ is not int and (not isinstance(r_seq, int) or r_seq.__class__ is bool):
+        raise _enc('reply', 'seq', r_seq, 'type', 'an int')
+    if not 0 <= r_seq <= 1:
+        raise _enc('reply', 'seq', r_seq, 'range', '0..1', 'TR24-D1')
+    r_sender = m.sender
+    if r_sender.__class__ is not int and (not isinstance(r_sender, int) or r_sender.__class__ is bool):
+        raise _enc('reply', 'sender', r_sender, 'type', 'an int')
+    if not 0 <= r_sender <= 255:
+        raise _enc('reply', 'sender', r_sender, 'range', '0..255', 'TR24-D3')
+    r_receiver = m.receiver
+    if r_receiver.__class__ is not int and (not isinstance(r_receiver, int) or r_receiver.__class__ is bool):
+        raise _enc('reply', 'receiver', r_receiver, 'type', 'an int')
+    if not 0 <= r_receiver <= 255:
+        raise _enc('reply', 'receiver', r_receiver, 'range', '0..255', 'TR24-D3')
+    r_data = m.data
+    if not isinstance(r_data, (bytes, bytearray)) or len(r_data) != 7:
+        raise _enc('reply', 'data', r_data, 'length', 'bytes of length 7')
+    if r_data.__class__ is not bytes:
+        r_data = bytes(r_data)
     r_stop = 3
     return _S_reply_0.pack(2, r_seq | 0x2, r_sender, r_receiver, r_data, 3)
 
