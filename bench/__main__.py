@@ -3,6 +3,7 @@
     python3 -m bench                  # full run (about 10-15 minutes on 2 cores)
     python3 -m bench --smoke          # one repetition of everything, small inputs, no file written
     python3 -m bench --no-install     # skip `pip install -e .[bench]`
+    python3 -m bench --profile        # cProfile of codeword's encode and decode calls, printed
 """
 
 import argparse
@@ -23,6 +24,7 @@ def main(argv=None):
     parser = argparse.ArgumentParser(prog="python3 -m bench", description=__doc__.splitlines()[0])
     parser.add_argument("--smoke", action="store_true", help="one repetition, small inputs, print only")
     parser.add_argument("--no-install", action="store_true", help="do not pip install the bench extra")
+    parser.add_argument("--profile", action="store_true", help="profile codeword's per-message calls, print")
     parser.add_argument("--out", default=str(ROOT / "bench" / "RESULTS.md"))
     parser.add_argument("--stream-mb", type=float, default=50.0, help="size of the mtv4 capture")
     # 5000 messages take over 13 CPU minutes today (see RESULTS.md): pass 10,100,1000,5000 to include it
@@ -30,6 +32,10 @@ def main(argv=None):
     args = parser.parse_args(argv)
     if not args.no_install:
         install()
+    if args.profile:
+        from bench import profile
+        print(profile.profile())
+        return 0
     from bench import runner  # imports the peers, so only after installing them
     with tempfile.TemporaryDirectory(prefix="codeword-bench-") as tmp:
         if args.smoke:

@@ -54,3 +54,11 @@ def test_host_c_harness_builds_and_generated_and_hand_written_c_agree():
 def test_exponent_of_a_linear_and_a_quadratic_series():
     assert abs(runner.scaling.exponent({10: 1.0, 100: 10.0, 1000: 100.0}) - 1.0) < 1e-9
     assert abs(runner.scaling.exponent({100: 1.0, 1000: 100.0}) - 2.0) < 1e-9
+
+
+def test_the_profile_names_the_generated_function_of_every_message():
+    from bench import profile
+    text = profile.profile(top=5, calls=50)
+    for fn in ("_encode_object", "_decode_object", "_encode_master_control", "_decode_master_control",
+               "_decode_set_wheels_velocities_with_odometry", "_decode_telemetry", "_encode_command"):
+        assert fn in text, fn
