@@ -1073,7 +1073,24 @@ class ModuleView(PythonView):
         return facts
 
     def stream_view(self) -> dict:
-        return stream_facts(self.p)
+        facts = stream_facts(self.p)
+        if facts.get("length"):
+            facts = dict(facts, length=dict(facts["length"], value_expr=self.length_expr(facts["length"])))
+        return facts
+
+    @staticmethod
+    def length_expr(length: dict) -> str:
+        """The length field of the frame starting at buf[pos]."""
+        at, last, shift, mask = length["at"], length["last"], length["shift"], length["mask"]
+        if last - at == 1:
+            value = f"buf[pos + {at}]"
+        else:
+            value = f"int.from_bytes(buf[pos + {at}:pos + {last}], {length['byte_order']!r})"
+        if shift:
+            value = f"({value} >> {shift})"
+        if shift or mask != (1 << (8 * (last - at))) - 1:
+            value = f"({value} & {mask:#x})"
+        return value
 
     def sequence_view(self, s: Sequence) -> dict:
         classes: list[dict] = []

@@ -90,7 +90,13 @@ def stream_facts(p: Protocol) -> dict:
     for leaf in leaves_of(p.messages[0].layout):
         if leaf.field.length_of:
             span = next(x for x in p.messages[0].layout if x.name == leaf.field.name)
-            length = {"at": pos // 8, "overhead": p.messages[0].size - span.const}
+            bits = leaf.field.bits
+            first, last = pos // 8, (pos + bits - 1) // 8 + 1
+            whole = pos % 8 == 0 and bits % 8 == 0
+            length = {"at": first, "last": last, "shift": last * 8 - (pos + bits),
+                      "mask": (1 << bits) - 1, "overhead": p.messages[0].size - span.const,
+                      # a field of whole bytes is read in its byte order, bits inside bytes big-endian
+                      "byte_order": (leaf.field.byte_order or fr.byte_order) if whole and bits > 8 else "big"}
         pos += leaf.field.bits or 0
     sizes = sorted({m.size for m in p.messages})
     return {"sync": sync, "length": length, "sizes": sizes, "max": max(sizes), "min": min(sizes)}

@@ -947,10 +947,7 @@ static inline int mtv4_parser_next(mtv4_parser_t *p, mtv4_message_t *out)
         p->skipped += start;
         mtv4_parser_drop(p, start);
     }
-    if (p->len == 0u) {
-        return 0;
-    }
-    if (p->len <= 1u) {
+    if (p->len < 2u) {
         return 0;
     }
     size = (size_t)p->buf[1] + 4u;

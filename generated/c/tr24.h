@@ -315,9 +315,6 @@ static inline int tr24_parser_next(tr24_parser_t *p, tr24_message_t *out)
         p->skipped += start;
         tr24_parser_drop(p, start);
     }
-    if (p->len == 0u) {
-        return 0;
-    }
     size = 12u;
     if (p->len < size) {
         return 0;

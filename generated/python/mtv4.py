@@ -855,7 +855,7 @@ class StreamDecoder:
                 break
             skipped += start - pos
             pos = start
-            if end - pos <= 1:
+            if end - pos < 2:
                 break
             size = buf[pos + 1] + 4
             if size not in self._SIZES:
