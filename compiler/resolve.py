@@ -585,9 +585,14 @@ class Resolver:
                                            "`dispatch: true` const fields, not `id`")
             frame = own
             key = tuple((f.name, f.const) for f in own if f.dispatch)
-            for f in own:
+            for i, f in enumerate(own):
                 if f.dispatch and f.const is None:
                     self.error(path, f"message {name!r}: dispatch field {f.name!r} needs a const value")
+                if f.dispatch and (f.bits or 0) > 8 and (f.byte_order or framing.byte_order) == "little":
+                    # header tests read the leading bits most significant first
+                    self.error(path + ("fields", i), f"message {name!r}: dispatch field {f.name!r} is "
+                               "little-endian; bits framing dispatches on big-endian header bits",
+                               "declare it `byte_order: big`, or split it into dispatch fields of 8 bits")
         else:
             frame = []
             key = ()
