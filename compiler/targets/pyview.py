@@ -923,10 +923,33 @@ def module_view(p: Protocol) -> dict:
     }
 
 
+def _stdlib_crc(p) -> Optional[tuple[str, str]]:
+    """(import, call expression on `data`) for a CRC the standard library computes in C:
+    binascii.crc_hqx is poly 0x1021 unreflected from any start value, zlib.crc32 is poly
+    0x04C11DB7 reflected and inverted on the way in and out. None for any other CRC."""
+    if p.width == 16 and p.poly == 0x1021 and not p.refin and not p.refout:
+        return "from binascii import crc_hqx as _crc_hqx", f"_crc_hqx(data, {p.init:#x}) ^ {p.xorout:#x}"
+    if p.width == 32 and p.poly == 0x04C11DB7 and p.refin and p.refout:
+        start = int(f"{p.init:032b}"[::-1], 2) ^ 0xFFFFFFFF
+        return ("from zlib import crc32 as _crc32",
+                f"_crc32(data, {start:#x}) ^ {0xFFFFFFFF ^ p.xorout:#x}")
+    return None
+
+
 def _checksum_code(cs) -> str:
     name = _checksum_name(cs)
     c = Code()
-    if cs.algorithm == "crc":
+    fast = _stdlib_crc(cs.crc) if cs.algorithm == "crc" else None
+    if fast:
+        p = cs.crc
+        c(f"# {p.name if p.name != 'custom' else 'CRC'}: width={p.width} poly={p.poly:#x} init={p.init:#x} "
+          f"refin={p.refin} refout={p.refout} xorout={p.xorout:#x}, computed by the standard library in C")
+        c(fast[0])
+        c("")
+        c("")
+        c(f"def _checksum_{name}(data):")
+        c(f"    return {fast[1]}")
+    elif cs.algorithm == "crc":
         p = cs.crc
         mask = (1 << p.width) - 1
         c(f"# {p.name if p.name != 'custom' else 'CRC'}: width={p.width} poly={p.poly:#x} init={p.init:#x} "
@@ -1042,7 +1065,7 @@ class ModuleView(PythonView):
                 cs = f.field.checksum
                 if cs and cs.over == "bytes":
                     seen.setdefault(_checksum_name(cs), _checksum_code(cs))
-                    if cs.algorithm == "crc":
+                    if cs.algorithm == "crc" and not _stdlib_crc(cs.crc):
                         start, end = cs.byte_span
                         spans.setdefault(_checksum_name(cs), set()).add(end - start)
         out = list(seen.values())
@@ -1054,7 +1077,8 @@ class ModuleView(PythonView):
     def checksum_call(cs, length: int) -> str:
         """The function that computes checksum cs over exactly `length` bytes."""
         name = _checksum_name(cs)
-        return f"_checksum_{name}_{length}" if cs.algorithm == "crc" else f"_checksum_{name}"
+        loop_free = cs.algorithm == "crc" and not _stdlib_crc(cs.crc)
+        return f"_checksum_{name}_{length}" if loop_free else f"_checksum_{name}"
 
 
     def dispatch_table(self) -> dict:
