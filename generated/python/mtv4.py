@@ -332,71 +332,80 @@ def _checksum_crc16_8005_ffff_nn_0(data):
         reg = table[((reg >> 8) ^ byte) & 0xFF] ^ ((reg << 8) & 0xffff)
     return reg ^ 0x0
 
-def _tables_crc16_8005_ffff_nn_0(longest):
-    zeros = [_checksum_crc16_8005_ffff_nn_0(bytes(n)) for n in range(longest + 1)]
-    tables = tuple(tuple(_checksum_crc16_8005_ffff_nn_0(bytes((b,)) + bytes(k)) ^ zeros[k + 1] for b in range(256))
-                   for k in range(longest))
-    return zeros, tables
-_ZEROS_crc16_8005_ffff_nn_0, _AT_crc16_8005_ffff_nn_0 = _tables_crc16_8005_ffff_nn_0(23)
-_AT0_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[0]
-_AT1_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[1]
-_AT2_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[2]
-_AT3_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[3]
-_AT4_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[4]
-_AT5_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[5]
-_AT6_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[6]
-_AT7_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[7]
-_AT8_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[8]
-_AT9_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[9]
-_AT10_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[10]
-_AT11_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[11]
-_AT12_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[12]
-_AT13_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[13]
-_AT14_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[14]
-_AT15_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[15]
-_AT16_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[16]
-_AT17_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[17]
-_AT18_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[18]
-_AT19_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[19]
-_AT20_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[20]
-_AT21_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[21]
-_AT22_crc16_8005_ffff_nn_0 = _AT_crc16_8005_ffff_nn_0[22]
+def _make16_crc16_8005_ffff_nn_0():
+    t = _TABLE_crc16_8005_ffff_nn_0
+    return tuple([t[((t[x >> 8] >> 8) ^ x) & 0xFF] ^ ((t[x >> 8] << 8) & 0xffff) for x in range(65536)])
+_TABLE16_crc16_8005_ffff_nn_0 = _make16_crc16_8005_ffff_nn_0()
 
 
-def _checksum_crc16_8005_ffff_nn_0_5(data):
-    b0, b1, b2, b3, b4, = data
-    return (_ZEROS_crc16_8005_ffff_nn_0[5] ^ _AT4_crc16_8005_ffff_nn_0[b0] ^ _AT3_crc16_8005_ffff_nn_0[b1] ^ _AT2_crc16_8005_ffff_nn_0[b2]
-            ^ _AT1_crc16_8005_ffff_nn_0[b3] ^ _AT0_crc16_8005_ffff_nn_0[b4]
-            )
+_WORDS_crc16_8005_ffff_nn_0_5 = struct.Struct('>2HB')
 
 
-def _checksum_crc16_8005_ffff_nn_0_9(data):
-    b0, b1, b2, b3, b4, b5, b6, b7, b8, = data
-    return (_ZEROS_crc16_8005_ffff_nn_0[9] ^ _AT8_crc16_8005_ffff_nn_0[b0] ^ _AT7_crc16_8005_ffff_nn_0[b1] ^ _AT6_crc16_8005_ffff_nn_0[b2]
-            ^ _AT5_crc16_8005_ffff_nn_0[b3] ^ _AT4_crc16_8005_ffff_nn_0[b4] ^ _AT3_crc16_8005_ffff_nn_0[b5] ^ _AT2_crc16_8005_ffff_nn_0[b6]
-            ^ _AT1_crc16_8005_ffff_nn_0[b7] ^ _AT0_crc16_8005_ffff_nn_0[b8]
-            )
+def _checksum_crc16_8005_ffff_nn_0_5(data, start):
+    w0, w1, b, = _WORDS_crc16_8005_ffff_nn_0_5.unpack_from(data, start)
+    t = _TABLE16_crc16_8005_ffff_nn_0
+    r = 0xffff
+    r = t[r ^ w0]
+    r = t[r ^ w1]
+    r = _TABLE_crc16_8005_ffff_nn_0[((r >> 8) ^ b) & 0xFF] ^ ((r << 8) & 0xffff)
+    return r
 
 
-def _checksum_crc16_8005_ffff_nn_0_19(data):
-    b0, b1, b2, b3, b4, b5, b6, b7, b8, b9, b10, b11, b12, b13, b14, b15, b16, b17, b18, = data
-    return (_ZEROS_crc16_8005_ffff_nn_0[19] ^ _AT18_crc16_8005_ffff_nn_0[b0] ^ _AT17_crc16_8005_ffff_nn_0[b1] ^ _AT16_crc16_8005_ffff_nn_0[b2]
-            ^ _AT15_crc16_8005_ffff_nn_0[b3] ^ _AT14_crc16_8005_ffff_nn_0[b4] ^ _AT13_crc16_8005_ffff_nn_0[b5] ^ _AT12_crc16_8005_ffff_nn_0[b6]
-            ^ _AT11_crc16_8005_ffff_nn_0[b7] ^ _AT10_crc16_8005_ffff_nn_0[b8] ^ _AT9_crc16_8005_ffff_nn_0[b9] ^ _AT8_crc16_8005_ffff_nn_0[b10]
-            ^ _AT7_crc16_8005_ffff_nn_0[b11] ^ _AT6_crc16_8005_ffff_nn_0[b12] ^ _AT5_crc16_8005_ffff_nn_0[b13] ^ _AT4_crc16_8005_ffff_nn_0[b14]
-            ^ _AT3_crc16_8005_ffff_nn_0[b15] ^ _AT2_crc16_8005_ffff_nn_0[b16] ^ _AT1_crc16_8005_ffff_nn_0[b17] ^ _AT0_crc16_8005_ffff_nn_0[b18]
-            )
+_WORDS_crc16_8005_ffff_nn_0_9 = struct.Struct('>4HB')
 
 
-def _checksum_crc16_8005_ffff_nn_0_23(data):
-    b0, b1, b2, b3, b4, b5, b6, b7, b8, b9, b10, b11, b12, b13, b14, b15, b16, b17, b18, b19, b20, b21, b22, = data
-    return (_ZEROS_crc16_8005_ffff_nn_0[23] ^ _AT22_crc16_8005_ffff_nn_0[b0] ^ _AT21_crc16_8005_ffff_nn_0[b1] ^ _AT20_crc16_8005_ffff_nn_0[b2]
-            ^ _AT19_crc16_8005_ffff_nn_0[b3] ^ _AT18_crc16_8005_ffff_nn_0[b4] ^ _AT17_crc16_8005_ffff_nn_0[b5] ^ _AT16_crc16_8005_ffff_nn_0[b6]
-            ^ _AT15_crc16_8005_ffff_nn_0[b7] ^ _AT14_crc16_8005_ffff_nn_0[b8] ^ _AT13_crc16_8005_ffff_nn_0[b9] ^ _AT12_crc16_8005_ffff_nn_0[b10]
-            ^ _AT11_crc16_8005_ffff_nn_0[b11] ^ _AT10_crc16_8005_ffff_nn_0[b12] ^ _AT9_crc16_8005_ffff_nn_0[b13] ^ _AT8_crc16_8005_ffff_nn_0[b14]
-            ^ _AT7_crc16_8005_ffff_nn_0[b15] ^ _AT6_crc16_8005_ffff_nn_0[b16] ^ _AT5_crc16_8005_ffff_nn_0[b17] ^ _AT4_crc16_8005_ffff_nn_0[b18]
-            ^ _AT3_crc16_8005_ffff_nn_0[b19] ^ _AT2_crc16_8005_ffff_nn_0[b20] ^ _AT1_crc16_8005_ffff_nn_0[b21] ^ _AT0_crc16_8005_ffff_nn_0[b22]
-            )
+def _checksum_crc16_8005_ffff_nn_0_9(data, start):
+    w0, w1, w2, w3, b, = _WORDS_crc16_8005_ffff_nn_0_9.unpack_from(data, start)
+    t = _TABLE16_crc16_8005_ffff_nn_0
+    r = 0xffff
+    r = t[r ^ w0]
+    r = t[r ^ w1]
+    r = t[r ^ w2]
+    r = t[r ^ w3]
+    r = _TABLE_crc16_8005_ffff_nn_0[((r >> 8) ^ b) & 0xFF] ^ ((r << 8) & 0xffff)
+    return r
+
+
+_WORDS_crc16_8005_ffff_nn_0_19 = struct.Struct('>9HB')
+
+
+def _checksum_crc16_8005_ffff_nn_0_19(data, start):
+    w0, w1, w2, w3, w4, w5, w6, w7, w8, b, = _WORDS_crc16_8005_ffff_nn_0_19.unpack_from(data, start)
+    t = _TABLE16_crc16_8005_ffff_nn_0
+    r = 0xffff
+    r = t[r ^ w0]
+    r = t[r ^ w1]
+    r = t[r ^ w2]
+    r = t[r ^ w3]
+    r = t[r ^ w4]
+    r = t[r ^ w5]
+    r = t[r ^ w6]
+    r = t[r ^ w7]
+    r = t[r ^ w8]
+    r = _TABLE_crc16_8005_ffff_nn_0[((r >> 8) ^ b) & 0xFF] ^ ((r << 8) & 0xffff)
+    return r
+
+
+_WORDS_crc16_8005_ffff_nn_0_23 = struct.Struct('>11HB')
+
+
+def _checksum_crc16_8005_ffff_nn_0_23(data, start):
+    w0, w1, w2, w3, w4, w5, w6, w7, w8, w9, w10, b, = _WORDS_crc16_8005_ffff_nn_0_23.unpack_from(data, start)
+    t = _TABLE16_crc16_8005_ffff_nn_0
+    r = 0xffff
+    r = t[r ^ w0]
+    r = t[r ^ w1]
+    r = t[r ^ w2]
+    r = t[r ^ w3]
+    r = t[r ^ w4]
+    r = t[r ^ w5]
+    r = t[r ^ w6]
+    r = t[r ^ w7]
+    r = t[r ^ w8]
+    r = t[r ^ w9]
+    r = t[r ^ w10]
+    r = _TABLE_crc16_8005_ffff_nn_0[((r >> 8) ^ b) & 0xFF] ^ ((r << 8) & 0xffff)
+    return r
 
 
 def _as_input(data):
@@ -443,7 +452,7 @@ def _encode_set_wheels_velocities(m):
     b = bytearray(12)
     _S_set_wheels_velocities_0.pack_into(b, 0, 170, 8, r_group, r_radio_crc_flag << 7 | 0x1, r_robots, r_vl, r_vr)
     _S_set_wheels_velocities_1.pack_into(b, 10, r_crc)
-    b[10:12] = _checksum_crc16_8005_ffff_nn_0_9(b[1:10]).to_bytes(2, 'big')
+    b[10:12] = _checksum_crc16_8005_ffff_nn_0_9(b, 1).to_bytes(2, 'big')
     return bytes(b)
 
 
@@ -454,7 +463,7 @@ def _decode_set_wheels_velocities(d):
     r_crc, = _S_set_wheels_velocities_1.unpack_from(d, 10)
     r_radio_crc_flag = (c0_3 >> 7) & 0x1
     r_command = c0_3 & 0x7f
-    x = _checksum_crc16_8005_ffff_nn_0_9(d[1:10])
+    x = _checksum_crc16_8005_ffff_nn_0_9(d, 1)
     if r_crc != x:
         raise _dec('set_wheels_velocities', 'crc', r_crc, 'checksum', hex(x), 80, 'MTV4-D1')
     if r_sync != 170:
@@ -517,7 +526,7 @@ def _encode_set_led(m):
     b = bytearray(12)
     _S_set_led_0.pack_into(b, 0, 170, 8, r_group, r_radio_crc_flag << 7 | 0x2, r_robots, r_d1, r_d2, r_d3, r_d4)
     _S_set_led_1.pack_into(b, 10, r_crc)
-    b[10:12] = _checksum_crc16_8005_ffff_nn_0_9(b[1:10]).to_bytes(2, 'big')
+    b[10:12] = _checksum_crc16_8005_ffff_nn_0_9(b, 1).to_bytes(2, 'big')
     return bytes(b)
 
 
@@ -528,7 +537,7 @@ def _decode_set_led(d):
     r_crc, = _S_set_led_1.unpack_from(d, 10)
     r_radio_crc_flag = (c0_3 >> 7) & 0x1
     r_command = c0_3 & 0x7f
-    x = _checksum_crc16_8005_ffff_nn_0_9(d[1:10])
+    x = _checksum_crc16_8005_ffff_nn_0_9(d, 1)
     if r_crc != x:
         raise _dec('set_led', 'crc', r_crc, 'checksum', hex(x), 80, 'MTV4-D1')
     if r_sync != 170:
@@ -610,7 +619,7 @@ def _encode_set_wheels_velocities_with_odometry(m):
     b = bytearray(26)
     _S_set_wheels_velocities_with_odometry_0.pack_into(b, 0, 170, 22, r_group, r_radio_crc_flag << 7 | 0x3, r_robots, r_status, r_vl, r_vr, r_x, r_y, r_th)
     _S_set_wheels_velocities_with_odometry_1.pack_into(b, 24, r_crc)
-    b[24:26] = _checksum_crc16_8005_ffff_nn_0_23(b[1:24]).to_bytes(2, 'big')
+    b[24:26] = _checksum_crc16_8005_ffff_nn_0_23(b, 1).to_bytes(2, 'big')
     return bytes(b)
 
 
@@ -621,7 +630,7 @@ def _decode_set_wheels_velocities_with_odometry(d):
     r_crc, = _S_set_wheels_velocities_with_odometry_1.unpack_from(d, 24)
     r_radio_crc_flag = (c0_3 >> 7) & 0x1
     r_command = c0_3 & 0x7f
-    x = _checksum_crc16_8005_ffff_nn_0_23(d[1:24])
+    x = _checksum_crc16_8005_ffff_nn_0_23(d, 1)
     if r_crc != x:
         raise _dec('set_wheels_velocities_with_odometry', 'crc', r_crc, 'checksum', hex(x), 192, 'MTV4-D1')
     if r_sync != 170:
@@ -678,7 +687,7 @@ def _encode_ack(m):
     b = bytearray(8)
     _S_ack_0.pack_into(b, 0, 170, 4, r_group, r_radio_crc_flag << 7 | r_command, r_robots)
     _S_ack_1.pack_into(b, 6, r_crc)
-    b[6:8] = _checksum_crc16_8005_ffff_nn_0_5(b[1:6]).to_bytes(2, 'big')
+    b[6:8] = _checksum_crc16_8005_ffff_nn_0_5(b, 1).to_bytes(2, 'big')
     return bytes(b)
 
 
@@ -689,7 +698,7 @@ def _decode_ack(d):
     r_crc, = _S_ack_1.unpack_from(d, 6)
     r_radio_crc_flag = (c0_3 >> 7) & 0x1
     r_command = c0_3 & 0x7f
-    x = _checksum_crc16_8005_ffff_nn_0_5(d[1:6])
+    x = _checksum_crc16_8005_ffff_nn_0_5(d, 1)
     if r_crc != x:
         raise _dec('ack', 'crc', r_crc, 'checksum', hex(x), 48, 'MTV4-D1')
     if r_sync != 170:
@@ -758,7 +767,7 @@ def _encode_odometry_reply(m):
     b = bytearray(22)
     _S_odometry_reply_0.pack_into(b, 0, 170, 18, r_group, r_radio_crc_flag << 7 | 0x3, r_robots, r_status, r_x, r_y, r_th)
     _S_odometry_reply_1.pack_into(b, 20, r_crc)
-    b[20:22] = _checksum_crc16_8005_ffff_nn_0_19(b[1:20]).to_bytes(2, 'big')
+    b[20:22] = _checksum_crc16_8005_ffff_nn_0_19(b, 1).to_bytes(2, 'big')
     return bytes(b)
 
 
@@ -769,7 +778,7 @@ def _decode_odometry_reply(d):
     r_crc, = _S_odometry_reply_1.unpack_from(d, 20)
     r_radio_crc_flag = (c0_3 >> 7) & 0x1
     r_command = c0_3 & 0x7f
-    x = _checksum_crc16_8005_ffff_nn_0_19(d[1:20])
+    x = _checksum_crc16_8005_ffff_nn_0_19(d, 1)
     if r_crc != x:
         raise _dec('odometry_reply', 'crc', r_crc, 'checksum', hex(x), 160, 'MTV4-D1')
     if r_sync != 170:
