@@ -99,12 +99,14 @@ def report(r):
     lines += ["## 1. Python, per message", "",
               "Each call encodes one message object to bytes (text for tank) or decodes bytes to an object. "
               "codeword and the hand-written floor (`bench/handwritten.py`) take and return the same message "
-              "objects and check the same rules. bitstruct, construct and cantools take and return their own "
+              "objects and check the same rules; both are called per message (codeword's `obj.encode()` and "
+              "`Cls.decode(data)`), and the row `codeword, any message` times `mtv4.encode`/`mtv4.decode`, "
+              "which find the message by its id first, as pymavlink's `decode` does. bitstruct, construct and cantools take and return their own "
               "form (tuple, dict, Container) and check only what the library checks; the wrappers compute the "
               "checksums the libraries cannot (`bench/peers.py`). Every contender's bytes and decoded values "
               "are checked equal before timing. pymavlink encodes and decodes ATTITUDE, a MAVLink 2 frame "
               "of 40 bytes, next to the 26-byte mtv4 frame. codeword's decoders build objects with a "
-              "positional constructor and compute a CRC over a fixed span without a loop (README, "
+              "positional constructor and compute a CRC over a fixed span two bytes per lookup (README, "
               "\"How the generated Python is fast\"); the hand-written floor uses the public keyword "
               "constructor and a table-driven CRC loop, as a hand-written codec would, so codeword can "
               "come out ahead of it.", "",
@@ -124,10 +126,10 @@ def report(r):
             verdicts.append(ok)
             lines.append(f"- {case.key} {op}: codeword / hand-written = {ratio:.2f} (target ≤ {FLOOR_MAX}): {_met(ok)}")
     mav = "pymavlink ATTITUDE (40 B)"
-    ratio = pm[("mtv4", mav, "decode")] / pm[("mtv4", "codeword", "decode")]
+    ratio = pm[("mtv4", mav, "decode")] / pm[("mtv4", messages.DISPATCHING, "decode")]
     verdicts.append(ratio >= PYMAVLINK_MIN)
-    lines.append(f"- pymavlink decode / codeword decode (mtv4 frame) = {ratio:.2f} (target ≥ {PYMAVLINK_MIN}): "
-                 f"{_met(ratio >= PYMAVLINK_MIN)}")
+    lines.append(f"- pymavlink decode / codeword `mtv4.decode` (both find the message by its id) = {ratio:.2f} "
+                 f"(target ≥ {PYMAVLINK_MIN}): {_met(ratio >= PYMAVLINK_MIN)}")
     for peer, target in (("construct", CONSTRUCT_MIN), ("cantools", CANTOOLS_MIN)):
         for key in ("route", "car"):
             for op in ("encode", "decode"):
