@@ -105,7 +105,6 @@ class PythonView:
             optional = [f for f in members if f not in required]
             out.append({
                 "name": name, "doc": doc, "message": message.name if is_message else None,
-                "members": [f.name for f in members],
                 "fields": [{"name": f.name, "annotation": self.annotation(f, message, path + (f.name,)),
                             "default": self.default_expr(f, message, path + (f.name,)),
                             "doc": self.field_comment(f)}
@@ -280,6 +279,8 @@ class PythonView:
             if f.exactly_one:
                 c(f"if {var} == 0 or {var} & ({var} - 1):")
                 c(f"    raise _dec({at}, 'exactly_one', 'exactly one bit set', {off}, {f.rule!r})")
+            if f.exactly_one or self.all_flag_values(f.flags):  # every value it can take is in the table
+                return f"_FLAGS_{f.flags.name}[{var}]"
             return f"_FLAGS_{f.flags.name}.get({var}) or _flag({self.enum_class(f.flags.name)}, _FLAGS_{f.flags.name}, {var})"
         elif f.one_hot:
             lo, hi = f.range or (0, f.bits - 1)
@@ -308,6 +309,11 @@ class PythonView:
             c(f"if {var_checked} not in {lit(allowed)}:")
             c(f"    raise _dec({at}, 'values', {', '.join(map(str, f.values))!r}, {off}, {f.rule!r}{self.user(f, False)})")
         return expr
+
+    @staticmethod
+    def all_flag_values(flags) -> bool:
+        """Whether the flag table holds every combination of the set's bits (up to 256)."""
+        return len(flags.members) <= 8
 
     def width_implies_range(self, f: Field) -> bool:
         """Every value the raw width can carry lies inside the declared range."""
@@ -532,7 +538,7 @@ class MessageCode:
                 c(f"if {cond}:")
                 c(f"    raise _dec({self.m.name!r}, {leaf.dotted!r}, {leaf.var}, 'checksum', str(x), {offset}, {leaf.field.rule!r})")
             offset += leaf.field.bits or 0
-        c(f"o = {self.construct(self.m.layout, (), values)}")
+        self.construct(c, self.m.layout, (), values)
         self.view.rule_checks(c, self.m, "o", "_dec")
 
     def build_function(self) -> str:
@@ -545,18 +551,18 @@ class MessageCode:
         c("return o")
         return c.text()
 
-    def construct(self, fields: tuple[Field, ...], path: tuple, values: dict) -> str:
-        """The object, built by its positional constructor (keyword calls cost several times more)."""
-        name = self.view.group_class(self.m, path) if path else self.cls
-        args = []
-        for f in fields:
-            if not f.is_member:
-                continue
+    def construct(self, c: Code, fields: tuple[Field, ...], path: tuple, values: dict, var: str = "o") -> None:
+        """Build the object in `var` by setting its slots: a keyword call to the dataclass
+        __init__ costs several times more. Groups are built first, into g_<path>."""
+        members = [f for f in fields if f.is_member]
+        for f in members:
             if f.kind == "group":
-                args.append(self.construct(f.fields, path + (f.name,), values))
-            else:
-                args.append(values[path + (f.name,)])
-        return f"_new_{name}({', '.join(args)})"
+                self.construct(c, f.fields, path + (f.name,), values, "g_" + "_".join(path + (f.name,)))
+        name = self.view.group_class(self.m, path) if path else self.cls
+        c(f"{var} = _object_new({name})")
+        for f in members:
+            value = "g_" + "_".join(path + (f.name,)) if f.kind == "group" else values[path + (f.name,)]
+            c(f"{var}.{f.name} = {value}")
 
     # -- bytes -----------------------------------------------------------------------------
     def chunks(self) -> list[Chunk]:
@@ -890,7 +896,7 @@ class MessageCode:
                 c(f"    {leaf.var} = None")
                 expr = f"(None if {leaf.var} is None else {expr})" if expr != leaf.var else expr
             values[leaf.path] = expr if expr is not None else leaf.var
-        c(f"o = {self.construct(self.m.layout, (), values)}")
+        self.construct(c, self.m.layout, (), values)
         self.view.rule_checks(c, self.m, "o", "_dec")
         c("return o")
         return c.text()

@@ -131,15 +131,6 @@ class Header:
         return _decode_header(data if data.__class__ is bytes else _as_input(data))
 
 
-def _new_Header(v0, v1, v2):
-    """Header from its fields in layout order, without keyword matching (decoders)."""
-    o = _object_new(Header)
-    o.h1 = v0
-    o.h2_count = v1
-    o.h2_time = v2
-    return o
-
-
 @dataclass(slots=True, kw_only=True)
 class ControlWordMotor:
     """How the receiving car drives its motors: enable, direction, speed, duration. 7 bits (the summary table's 6 is wrong, CAR-D1). All zero when the user does not drive the motor."""
@@ -149,29 +140,11 @@ class ControlWordMotor:
     duration: int = 0  # Duration, 4 levels: 0 shortest (0 s) ... 3 longest; the seed gives no times.
 
 
-def _new_ControlWordMotor(v0, v1, v2, v3):
-    """ControlWordMotor from its fields in layout order, without keyword matching (decoders)."""
-    o = _object_new(ControlWordMotor)
-    o.enable = v0
-    o.direction = v1
-    o.speed = v2
-    o.duration = v3
-    return o
-
-
 @dataclass(slots=True, kw_only=True)
 class ControlWordLed:
     """Which LED the car lights and for how long. 4 bits (the section's \"these 6 bits\" is a copy slip, CAR-D1). All zero when unused."""
     led: int = 0  # High 2 bits: which LED (00-11, four LEDs).
     duration: int = 0  # Low 2 bits: how long, 4 levels: 0 shortest (0 s) ... 3 longest.
-
-
-def _new_ControlWordLed(v0, v1):
-    """ControlWordLed from its fields in layout order, without keyword matching (decoders)."""
-    o = _object_new(ControlWordLed)
-    o.led = v0
-    o.duration = v1
-    return o
 
 
 @dataclass(slots=True, kw_only=True)
@@ -180,15 +153,6 @@ class ControlWordUltrasonic:
     enable: bool = False  # High bit: 1 if the car does ultrasonic obstacle avoidance.
     radius: int = 0  # Middle 2 bits: avoidance radius, 4 levels (0-3); the seed gives no distances.
     duration: int = 0  # Low 2 bits: duration, 4 levels: 0 shortest (0 s) ... 3 longest.
-
-
-def _new_ControlWordUltrasonic(v0, v1, v2):
-    """ControlWordUltrasonic from its fields in layout order, without keyword matching (decoders)."""
-    o = _object_new(ControlWordUltrasonic)
-    o.enable = v0
-    o.radius = v1
-    o.duration = v2
-    return o
 
 
 @dataclass(slots=True, kw_only=True)
@@ -212,19 +176,6 @@ class MasterControl:
         return _decode_master_control(data if data.__class__ is bytes else _as_input(data))
 
 
-def _new_MasterControl(v0, v1, v2, v3, v4, v5, v6):
-    """MasterControl from its fields in layout order, without keyword matching (decoders)."""
-    o = _object_new(MasterControl)
-    o.accept_ir = v0
-    o.forward_words = v1
-    o.motor = v2
-    o.led = v3
-    o.ultrasonic = v4
-    o.voice = v5
-    o.body_sensor = v6
-    return o
-
-
 @dataclass(slots=True, kw_only=True)
 class SlaveControl:
     """Slave control word"""
@@ -244,19 +195,6 @@ class SlaveControl:
     @classmethod
     def decode(cls, data):
         return _decode_slave_control(data if data.__class__ is bytes else _as_input(data))
-
-
-def _new_SlaveControl(v0, v1, v2, v3, v4, v5, v6):
-    """SlaveControl from its fields in layout order, without keyword matching (decoders)."""
-    o = _object_new(SlaveControl)
-    o.accept_ir = v0
-    o.forward_words = v1
-    o.motor = v2
-    o.led = v3
-    o.ultrasonic = v4
-    o.voice = v5
-    o.body_sensor = v6
-    return o
 
 
 def _as_input(data):
@@ -304,7 +242,10 @@ def _decode_header(d):
         raise _dec('header', 'h2_time', r_h2_time, 'one_hot', 'one bit of 0..7, or 0', 16, 'CAR-D3')
     if r_h3:
         raise _dec('header', 'h3', r_h3, 'reserved', '0', 24, None)
-    o = _new_Header(r_h1, r_h2_count, (r_h2_time.bit_length() - 1 if r_h2_time else None))
+    o = _object_new(Header)
+    o.h1 = r_h1
+    o.h2_count = r_h2_count
+    o.h2_time = (r_h2_time.bit_length() - 1 if r_h2_time else None)
     if o.h2_count == 0 and not (o.h2_time is None):
         raise _dec('header', 'h2_time', o.h2_time, 'rule', 'if h2_count == 0 then h2_time == None', decision='CAR-D3', user_message='Without slave words (h2_count = 0) all of h2 is 0: h2_time must be absent / 如果用户没有选择让主机给从机发送控制字串，这16位默认为0')
     if o.h2_count != 0 and not (o.h2_time is not None):
@@ -412,7 +353,26 @@ def _decode_master_control(d):
     x = (w & 0xfffffffe).bit_count() & 1
     if r_parity != x:
         raise _dec('master_control', 'parity', r_parity, 'checksum', str(x), 31, 'CAR-D2')
-    o = _new_MasterControl(r_accept_ir == 1, r_forward_words == 1, _new_ControlWordMotor(r_motor_enable == 1, e_motor_direction, r_motor_speed, r_motor_duration), _new_ControlWordLed(r_led_led, r_led_duration), _new_ControlWordUltrasonic(r_ultrasonic_enable == 1, r_ultrasonic_radius, r_ultrasonic_duration), r_voice == 1, r_body_sensor == 1)
+    g_motor = _object_new(ControlWordMotor)
+    g_motor.enable = r_motor_enable == 1
+    g_motor.direction = e_motor_direction
+    g_motor.speed = r_motor_speed
+    g_motor.duration = r_motor_duration
+    g_led = _object_new(ControlWordLed)
+    g_led.led = r_led_led
+    g_led.duration = r_led_duration
+    g_ultrasonic = _object_new(ControlWordUltrasonic)
+    g_ultrasonic.enable = r_ultrasonic_enable == 1
+    g_ultrasonic.radius = r_ultrasonic_radius
+    g_ultrasonic.duration = r_ultrasonic_duration
+    o = _object_new(MasterControl)
+    o.accept_ir = r_accept_ir == 1
+    o.forward_words = r_forward_words == 1
+    o.motor = g_motor
+    o.led = g_led
+    o.ultrasonic = g_ultrasonic
+    o.voice = r_voice == 1
+    o.body_sensor = r_body_sensor == 1
     if not (o.accept_ir == False):
         raise _dec('master_control', 'accept_ir', o.accept_ir, 'rule', 'accept_ir == False', decision='CAR-R1', user_message='Cannot set the master to accept infrared information / 无法设置主机接受红外信息')
     if not (o.forward_words == True):
@@ -516,7 +476,26 @@ def _decode_slave_control(d):
     x = (w & 0xfffffffe).bit_count() & 1
     if r_parity != x:
         raise _dec('slave_control', 'parity', r_parity, 'checksum', str(x), 31, 'CAR-D2')
-    o = _new_SlaveControl(r_accept_ir == 1, r_forward_words == 1, _new_ControlWordMotor(r_motor_enable == 1, e_motor_direction, r_motor_speed, r_motor_duration), _new_ControlWordLed(r_led_led, r_led_duration), _new_ControlWordUltrasonic(r_ultrasonic_enable == 1, r_ultrasonic_radius, r_ultrasonic_duration), r_voice == 1, r_body_sensor == 1)
+    g_motor = _object_new(ControlWordMotor)
+    g_motor.enable = r_motor_enable == 1
+    g_motor.direction = e_motor_direction
+    g_motor.speed = r_motor_speed
+    g_motor.duration = r_motor_duration
+    g_led = _object_new(ControlWordLed)
+    g_led.led = r_led_led
+    g_led.duration = r_led_duration
+    g_ultrasonic = _object_new(ControlWordUltrasonic)
+    g_ultrasonic.enable = r_ultrasonic_enable == 1
+    g_ultrasonic.radius = r_ultrasonic_radius
+    g_ultrasonic.duration = r_ultrasonic_duration
+    o = _object_new(SlaveControl)
+    o.accept_ir = r_accept_ir == 1
+    o.forward_words = r_forward_words == 1
+    o.motor = g_motor
+    o.led = g_led
+    o.ultrasonic = g_ultrasonic
+    o.voice = r_voice == 1
+    o.body_sensor = r_body_sensor == 1
     return o
 
 

@@ -102,6 +102,22 @@ def _dec(message, field, value, rule, allowed="", offset=None, decision=None, us
     return DecodeError(message, field, value, rule, allowed, offset, decision, user_message)
 
 
+def _flag_table(cls, bits, combinations):
+    """The flag values a decoder meets, each built once (building an IntFlag costs far more
+    than a lookup): every combination of the bits, or, for many bits, none and each alone."""
+    values = {0}
+    for bit in bits:
+        values |= {v | bit for v in values} if combinations else {bit}
+    return {v: cls(v) for v in values}
+
+
+def _flag(cls, cache, value):
+    """A flag value outside the table, built once."""
+    flag = cls(value)
+    if len(cache) < 4096:
+        cache[value] = flag
+    return flag
+
 class Robots(enum.IntFlag):
     """robot bitmask, bit n = robot n of the group (MTV4-D3)"""
     robot0 = 0x1  # robot 0
@@ -122,7 +138,7 @@ class Robots(enum.IntFlag):
     robot15 = 0x8000  # robot 15
 
 
-_FLAGS_robots = {}
+_FLAGS_robots = _flag_table(Robots, (0x1, 0x2, 0x4, 0x8, 0x10, 0x20, 0x40, 0x80, 0x100, 0x200, 0x400, 0x800, 0x1000, 0x2000, 0x4000, 0x8000, ), False)
 
 class Status(enum.IntFlag):
     """quick settings and how to read the other fields of command 0x03"""
@@ -131,15 +147,7 @@ class Status(enum.IntFlag):
     overwrite_odometry = 0x4  # 1 = set the robot's odometry from X, Y, Th; 0 = leave it
 
 
-_FLAGS_status = {}
-
-
-def _flag(cls, cache, value):
-    """The flag value, built once: constructing an IntFlag costs far more than a lookup."""
-    flag = cls(value)
-    if len(cache) < 4096:
-        cache[value] = flag
-    return flag
+_FLAGS_status = _flag_table(Status, (0x1, 0x2, 0x4, ), True)
 
 
 @dataclass(slots=True, kw_only=True)
@@ -161,17 +169,6 @@ class SetWheelsVelocities:
         return _decode_set_wheels_velocities(data if data.__class__ is bytes else _as_input(data))
 
 
-def _new_SetWheelsVelocities(v0, v1, v2, v3, v4):
-    """SetWheelsVelocities from its fields in layout order, without keyword matching (decoders)."""
-    o = _object_new(SetWheelsVelocities)
-    o.group = v0
-    o.radio_crc_flag = v1
-    o.robots = v2
-    o.vl = v3
-    o.vr = v4
-    return o
-
-
 @dataclass(slots=True, kw_only=True)
 class SetLed:
     """set LEDs"""
@@ -191,19 +188,6 @@ class SetLed:
     @classmethod
     def decode(cls, data):
         return _decode_set_led(data if data.__class__ is bytes else _as_input(data))
-
-
-def _new_SetLed(v0, v1, v2, v3, v4, v5, v6):
-    """SetLed from its fields in layout order, without keyword matching (decoders)."""
-    o = _object_new(SetLed)
-    o.group = v0
-    o.radio_crc_flag = v1
-    o.robots = v2
-    o.d1 = v3
-    o.d2 = v4
-    o.d3 = v5
-    o.d4 = v6
-    return o
 
 
 @dataclass(slots=True, kw_only=True)
@@ -229,21 +213,6 @@ class SetWheelsVelocitiesWithOdometry:
         return _decode_set_wheels_velocities_with_odometry(data if data.__class__ is bytes else _as_input(data))
 
 
-def _new_SetWheelsVelocitiesWithOdometry(v0, v1, v2, v3, v4, v5, v6, v7, v8):
-    """SetWheelsVelocitiesWithOdometry from its fields in layout order, without keyword matching (decoders)."""
-    o = _object_new(SetWheelsVelocitiesWithOdometry)
-    o.group = v0
-    o.radio_crc_flag = v1
-    o.robots = v2
-    o.status = v3
-    o.vl = v4
-    o.vr = v5
-    o.x = v6
-    o.y = v7
-    o.th = v8
-    return o
-
-
 @dataclass(slots=True, kw_only=True)
 class Ack:
     """standard acknowledgement"""
@@ -260,16 +229,6 @@ class Ack:
     @classmethod
     def decode(cls, data):
         return _decode_ack(data if data.__class__ is bytes else _as_input(data))
-
-
-def _new_Ack(v0, v1, v2, v3):
-    """Ack from its fields in layout order, without keyword matching (decoders)."""
-    o = _object_new(Ack)
-    o.group = v0
-    o.radio_crc_flag = v1
-    o.command = v2
-    o.robots = v3
-    return o
 
 
 @dataclass(slots=True, kw_only=True)
@@ -292,18 +251,6 @@ class OdometryReply:
     def decode(cls, data):
         return _decode_odometry_reply(data if data.__class__ is bytes else _as_input(data))
 
-
-def _new_OdometryReply(v0, v1, v2, v3, v4, v5, v6):
-    """OdometryReply from its fields in layout order, without keyword matching (decoders)."""
-    o = _object_new(OdometryReply)
-    o.group = v0
-    o.radio_crc_flag = v1
-    o.robots = v2
-    o.status = v3
-    o.x = v4
-    o.y = v5
-    o.th = v6
-    return o
 _S_set_wheels_velocities_0 = struct.Struct('<BBBBHhh')
 _S_set_wheels_velocities_1 = struct.Struct('>H')
 _S_set_led_0 = struct.Struct('<BBBBHBBBB')
@@ -476,7 +423,12 @@ def _decode_set_wheels_velocities(d):
         raise _dec('set_wheels_velocities', 'command', r_command, 'const', '1', 25, 'MTV4-D4')
     if r_robots == 0 or r_robots & (r_robots - 1):
         raise _dec('set_wheels_velocities', 'robots', r_robots, 'exactly_one', 'exactly one bit set', 32, 'MTV4-D3')
-    o = _new_SetWheelsVelocities(r_group, r_radio_crc_flag, _FLAGS_robots.get(r_robots) or _flag(Robots, _FLAGS_robots, r_robots), r_vl * 0.125, r_vr * 0.125)
+    o = _object_new(SetWheelsVelocities)
+    o.group = r_group
+    o.radio_crc_flag = r_radio_crc_flag
+    o.robots = _FLAGS_robots[r_robots]
+    o.vl = r_vl * 0.125
+    o.vr = r_vr * 0.125
     return o
 
 
@@ -550,7 +502,14 @@ def _decode_set_led(d):
         raise _dec('set_led', 'command', r_command, 'const', '2', 25, 'MTV4-D4')
     if r_robots == 0 or r_robots & (r_robots - 1):
         raise _dec('set_led', 'robots', r_robots, 'exactly_one', 'exactly one bit set', 32, 'MTV4-D3')
-    o = _new_SetLed(r_group, r_radio_crc_flag, _FLAGS_robots.get(r_robots) or _flag(Robots, _FLAGS_robots, r_robots), r_d1, r_d2, r_d3, r_d4)
+    o = _object_new(SetLed)
+    o.group = r_group
+    o.radio_crc_flag = r_radio_crc_flag
+    o.robots = _FLAGS_robots[r_robots]
+    o.d1 = r_d1
+    o.d2 = r_d2
+    o.d3 = r_d3
+    o.d4 = r_d4
     return o
 
 
@@ -651,7 +610,16 @@ def _decode_set_wheels_velocities_with_odometry(d):
         raise _dec('set_wheels_velocities_with_odometry', 'y', r_y, 'finite', 'a finite number', 128, 'MTV4-D5')
     if not _isfinite(r_th):
         raise _dec('set_wheels_velocities_with_odometry', 'th', r_th, 'finite', 'a finite number', 160, 'MTV4-D5')
-    o = _new_SetWheelsVelocitiesWithOdometry(r_group, r_radio_crc_flag, _FLAGS_robots.get(r_robots) or _flag(Robots, _FLAGS_robots, r_robots), _FLAGS_status.get(r_status) or _flag(Status, _FLAGS_status, r_status), r_vl * 0.125, r_vr * 0.125, r_x, r_y, r_th)
+    o = _object_new(SetWheelsVelocitiesWithOdometry)
+    o.group = r_group
+    o.radio_crc_flag = r_radio_crc_flag
+    o.robots = _FLAGS_robots[r_robots]
+    o.status = _FLAGS_status[r_status]
+    o.vl = r_vl * 0.125
+    o.vr = r_vr * 0.125
+    o.x = r_x
+    o.y = r_y
+    o.th = r_th
     return o
 
 
@@ -711,7 +679,11 @@ def _decode_ack(d):
         raise _dec('ack', 'command', r_command, 'values', '1, 2', 25, 'MTV4-D4')
     if r_robots == 0 or r_robots & (r_robots - 1):
         raise _dec('ack', 'robots', r_robots, 'exactly_one', 'exactly one bit set', 32, 'MTV4-D3')
-    o = _new_Ack(r_group, r_radio_crc_flag, r_command, _FLAGS_robots.get(r_robots) or _flag(Robots, _FLAGS_robots, r_robots))
+    o = _object_new(Ack)
+    o.group = r_group
+    o.radio_crc_flag = r_radio_crc_flag
+    o.command = r_command
+    o.robots = _FLAGS_robots[r_robots]
     return o
 
 
@@ -797,7 +769,14 @@ def _decode_odometry_reply(d):
         raise _dec('odometry_reply', 'y', r_y, 'finite', 'a finite number', 96, 'MTV4-D5')
     if not _isfinite(r_th):
         raise _dec('odometry_reply', 'th', r_th, 'finite', 'a finite number', 128, 'MTV4-D5')
-    o = _new_OdometryReply(r_group, r_radio_crc_flag, _FLAGS_robots.get(r_robots) or _flag(Robots, _FLAGS_robots, r_robots), r_status, r_x, r_y, r_th)
+    o = _object_new(OdometryReply)
+    o.group = r_group
+    o.radio_crc_flag = r_radio_crc_flag
+    o.robots = _FLAGS_robots[r_robots]
+    o.status = r_status
+    o.x = r_x
+    o.y = r_y
+    o.th = r_th
     return o
 
 

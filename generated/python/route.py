@@ -127,12 +127,6 @@ class Start:
         return _decode_start(data if data.__class__ is bytes else _as_input(data))
 
 
-def _new_Start():
-    """Start from its fields in layout order, without keyword matching (decoders)."""
-    o = _object_new(Start)
-    return o
-
-
 @dataclass(slots=True, kw_only=True)
 class Object:
     """object description"""
@@ -155,20 +149,6 @@ class Object:
         return _decode_object(data if data.__class__ is bytes else _as_input(data))
 
 
-def _new_Object(v0, v1, v2, v3, v4, v5, v6, v7):
-    """Object from its fields in layout order, without keyword matching (decoders)."""
-    o = _object_new(Object)
-    o.ns = v0
-    o.nl = v1
-    o.no = v2
-    o.na = v3
-    o.dl = v4
-    o.rc = v5
-    o.dr = v6
-    o.cm = v7
-    return o
-
-
 @dataclass(slots=True, kw_only=True)
 class Scene:
     """scene description"""
@@ -187,16 +167,6 @@ class Scene:
         return _decode_scene(data if data.__class__ is bytes else _as_input(data))
 
 
-def _new_Scene(v0, v1, v2, v3):
-    """Scene from its fields in layout order, without keyword matching (decoders)."""
-    o = _object_new(Scene)
-    o.ns = v0
-    o.nl = v1
-    o.db = v2
-    o.nt = v3
-    return o
-
-
 @dataclass(slots=True, kw_only=True)
 class End:
     """end of packet"""
@@ -209,12 +179,6 @@ class End:
     @classmethod
     def decode(cls, data):
         return _decode_end(data if data.__class__ is bytes else _as_input(data))
-
-
-def _new_End():
-    """End from its fields in layout order, without keyword matching (decoders)."""
-    o = _object_new(End)
-    return o
 
 
 def _as_input(data):
@@ -246,7 +210,7 @@ def _decode_start(d):
     x = (r_hdr + r_kind) % 8
     if r_cs != x:
         raise _dec('start', 'cs', r_cs, 'checksum', str(x), 5, 'ROUTE-D1')
-    o = _new_Start()
+    o = _object_new(Start)
     return o
 
 
@@ -267,7 +231,7 @@ def _build_start(r_hdr, r_kind, r_cs, text_form=False):
     x = (r_hdr + r_kind) % 8
     if r_cs != x and not (text_form and r_cs == 0):
         raise _dec('start', 'cs', r_cs, 'checksum', str(x), 5, 'ROUTE-D1')
-    o = _new_Start()
+    o = _object_new(Start)
     return o
 
 
@@ -362,7 +326,15 @@ def _decode_object(d):
     x = (r_hdr + r_ns + r_nl + r_no + r_na + r_dl + r_rc + r_dr + r_cm) % 8
     if r_cs != x:
         raise _dec('object', 'cs', r_cs, 'checksum', str(x), 26, 'ROUTE-D1')
-    o = _new_Object(r_ns, r_nl, r_no, r_na + 10, r_dl, r_rc, r_dr, r_cm)
+    o = _object_new(Object)
+    o.ns = r_ns
+    o.nl = r_nl
+    o.no = r_no
+    o.na = r_na + 10
+    o.dl = r_dl
+    o.rc = r_rc
+    o.dr = r_dr
+    o.cm = r_cm
     return o
 
 
@@ -437,7 +409,15 @@ def _build_object(r_hdr, r_ns, r_nl, r_no, r_na, r_dl, r_rc, r_dr, r_cm, r_cs, t
     x = (r_hdr + r_ns + r_nl + r_no + r_na + r_dl + r_rc + r_dr + r_cm) % 8
     if r_cs != x and not (text_form and r_cs == 0):
         raise _dec('object', 'cs', r_cs, 'checksum', str(x), 26, 'ROUTE-D1')
-    o = _new_Object(r_ns, r_nl, r_no, r_na + 10, r_dl, r_rc, r_dr, r_cm)
+    o = _object_new(Object)
+    o.ns = r_ns
+    o.nl = r_nl
+    o.no = r_no
+    o.na = r_na + 10
+    o.dl = r_dl
+    o.rc = r_rc
+    o.dr = r_dr
+    o.cm = r_cm
     return o
 
 
@@ -501,7 +481,11 @@ def _decode_scene(d):
     x = (r_hdr + r_ns + r_nl + r_db + r_nt) % 8
     if r_cs != x:
         raise _dec('scene', 'cs', r_cs, 'checksum', str(x), 26, 'ROUTE-D1')
-    o = _new_Scene(r_ns, r_nl, e_db, r_nt)
+    o = _object_new(Scene)
+    o.ns = r_ns
+    o.nl = r_nl
+    o.db = e_db
+    o.nt = r_nt
     return o
 
 
@@ -545,7 +529,11 @@ def _build_scene(r_hdr, r_ns, r_nl, r_db, r_nt, r_cs, text_form=False):
     x = (r_hdr + r_ns + r_nl + r_db + r_nt) % 8
     if r_cs != x and not (text_form and r_cs == 0):
         raise _dec('scene', 'cs', r_cs, 'checksum', str(x), 26, 'ROUTE-D1')
-    o = _new_Scene(r_ns, r_nl, e_db, r_nt)
+    o = _object_new(Scene)
+    o.ns = r_ns
+    o.nl = r_nl
+    o.db = e_db
+    o.nt = r_nt
     return o
 
 
@@ -589,7 +577,7 @@ def _decode_end(d):
     x = (r_hdr + r_kind) % 8
     if r_cs != x:
         raise _dec('end', 'cs', r_cs, 'checksum', str(x), 5, 'ROUTE-D1')
-    o = _new_End()
+    o = _object_new(End)
     return o
 
 
@@ -610,7 +598,7 @@ def _build_end(r_hdr, r_kind, r_cs, text_form=False):
     x = (r_hdr + r_kind) % 8
     if r_cs != x and not (text_form and r_cs == 0):
         raise _dec('end', 'cs', r_cs, 'checksum', str(x), 5, 'ROUTE-D1')
-    o = _new_End()
+    o = _object_new(End)
     return o
 
 

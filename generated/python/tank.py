@@ -183,32 +183,6 @@ class Telemetry:
         return _decode_as('telemetry', data)
 
 
-def _new_Telemetry(v0, v1, v2, v3, v4, v5, v6, v7, v8, v9, v10, v11, v12, v13, v14, v15, v16, v17, v18, v19):
-    """Telemetry from its fields in layout order, without keyword matching (decoders)."""
-    o = _object_new(Telemetry)
-    o.move = v0
-    o.speed = v1
-    o.value = v2
-    o.lcurr = v3
-    o.rcurr = v4
-    o.accx = v5
-    o.accy = v6
-    o.accz = v7
-    o.gyrox = v8
-    o.gyroy = v9
-    o.gyroz = v10
-    o.magx = v11
-    o.magy = v12
-    o.magz = v13
-    o.lan = v14
-    o.lon = v15
-    o.vbat = v16
-    o.systemstatus = v17
-    o.extid = v18
-    o.extstatus = v19
-    return o
-
-
 @dataclass(slots=True, kw_only=True)
 class Command:
     """Command"""
@@ -233,22 +207,6 @@ class Command:
         return _decode_as('command', data)
 
 
-def _new_Command(v0, v1, v2, v3, v4, v5, v6, v7, v8, v9):
-    """Command from its fields in layout order, without keyword matching (decoders)."""
-    o = _object_new(Command)
-    o.move = v0
-    o.speed = v1
-    o.value = v2
-    o.azimutloc = v3
-    o.gpio1 = v4
-    o.gpio2 = v5
-    o.gpio3 = v6
-    o.gpio4 = v7
-    o.systemstatus = v8
-    o.data = v9
-    return o
-
-
 @dataclass(slots=True, kw_only=True)
 class PayloadCommand:
     """Payload command"""
@@ -264,13 +222,6 @@ class PayloadCommand:
         return _decode_as('payload_command', data)
 
 
-def _new_PayloadCommand(v0):
-    """PayloadCommand from its fields in layout order, without keyword matching (decoders)."""
-    o = _object_new(PayloadCommand)
-    o.command = v0
-    return o
-
-
 @dataclass(slots=True, kw_only=True)
 class PayloadReply:
     """Payload message"""
@@ -284,13 +235,6 @@ class PayloadReply:
     @classmethod
     def decode(cls, data):
         return _decode_as('payload_reply', data)
-
-
-def _new_PayloadReply(v0):
-    """PayloadReply from its fields in layout order, without keyword matching (decoders)."""
-    o = _object_new(PayloadReply)
-    o.command = v0
-    return o
 
 
 @dataclass(slots=True, kw_only=True)
@@ -310,15 +254,6 @@ class GpioConfig:
     def decode(cls, data):
         return _decode_as('gpio_config', data)
 
-
-def _new_GpioConfig(v0, v1, v2, v3):
-    """GpioConfig from its fields in layout order, without keyword matching (decoders)."""
-    o = _object_new(GpioConfig)
-    o.gpio1 = v0
-    o.gpio2 = v1
-    o.gpio3 = v2
-    o.gpio4 = v3
-    return o
 
 _INT_RE = r"[+-]?[0-9]+"
 _FLOAT_RE = r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?"
@@ -602,7 +537,27 @@ def _decode_telemetry(body, base):
     e_extstatus = _ENUM_ext_status.get(r_extstatus)
     if e_extstatus is None:
         raise _dec('telemetry', 'extstatus', r_extstatus, 'enum', 'ExtStatus', _token_offsets(t, base)[19], None)
-    o = _new_Telemetry(e_move, r_speed, r_value, r_lcurr, r_rcurr, r_accx, r_accy, r_accz, r_gyrox, r_gyroy, r_gyroz, r_magx, r_magy, r_magz, r_lan, r_lon, r_vbat, e_systemstatus, r_extid, e_extstatus)
+    o = _object_new(Telemetry)
+    o.move = e_move
+    o.speed = r_speed
+    o.value = r_value
+    o.lcurr = r_lcurr
+    o.rcurr = r_rcurr
+    o.accx = r_accx
+    o.accy = r_accy
+    o.accz = r_accz
+    o.gyrox = r_gyrox
+    o.gyroy = r_gyroy
+    o.gyroz = r_gyroz
+    o.magx = r_magx
+    o.magy = r_magy
+    o.magz = r_magz
+    o.lan = r_lan
+    o.lon = r_lon
+    o.vbat = r_vbat
+    o.systemstatus = e_systemstatus
+    o.extid = r_extid
+    o.extstatus = e_extstatus
     return o
 
 
@@ -727,7 +682,17 @@ def _decode_command(body, base):
             raise _dec('command', 'data', r_data, 'length', 'at most 64 characters', _token_offsets(t, base)[9])
     else:
         r_data = None
-    o = _new_Command(e_move, r_speed, r_value, r_azimutloc, r_gpio1, r_gpio2, r_gpio3, r_gpio4, e_systemstatus, r_data)
+    o = _object_new(Command)
+    o.move = e_move
+    o.speed = r_speed
+    o.value = r_value
+    o.azimutloc = r_azimutloc
+    o.gpio1 = r_gpio1
+    o.gpio2 = r_gpio2
+    o.gpio3 = r_gpio3
+    o.gpio4 = r_gpio4
+    o.systemstatus = e_systemstatus
+    o.data = r_data
     return o
 
 
@@ -757,7 +722,8 @@ def _decode_payload_command(body, base):
             raise _dec('payload_command', 'command', r_command, 'text', bad, _token_offsets(t, base)[0], 'TANK-D7')
     if len(r_command) > 200:
         raise _dec('payload_command', 'command', r_command, 'length', 'at most 200 characters', _token_offsets(t, base)[0])
-    o = _new_PayloadCommand(r_command)
+    o = _object_new(PayloadCommand)
+    o.command = r_command
     return o
 
 
@@ -787,7 +753,8 @@ def _decode_payload_reply(body, base):
             raise _dec('payload_reply', 'command', r_command, 'text', bad, _token_offsets(t, base)[0], 'TANK-D7')
     if len(r_command) > 200:
         raise _dec('payload_reply', 'command', r_command, 'length', 'at most 200 characters', _token_offsets(t, base)[0])
-    o = _new_PayloadReply(r_command)
+    o = _object_new(PayloadReply)
+    o.command = r_command
     return o
 
 
@@ -837,7 +804,11 @@ def _decode_gpio_config(body, base):
     e_gpio4 = _ENUM_gpio_mode.get(r_gpio4)
     if e_gpio4 is None:
         raise _dec('gpio_config', 'gpio4', r_gpio4, 'enum', 'GpioMode', _token_offsets(t, base)[3], None)
-    o = _new_GpioConfig(e_gpio1, e_gpio2, e_gpio3, e_gpio4)
+    o = _object_new(GpioConfig)
+    o.gpio1 = e_gpio1
+    o.gpio2 = e_gpio2
+    o.gpio3 = e_gpio3
+    o.gpio4 = e_gpio4
     return o
 
 

@@ -120,16 +120,6 @@ class Command:
         return _decode_command(data if data.__class__ is bytes else _as_input(data))
 
 
-def _new_Command(v0, v1, v2, v3):
-    """Command from its fields in layout order, without keyword matching (decoders)."""
-    o = _object_new(Command)
-    o.seq = v0
-    o.sender = v1
-    o.receiver = v2
-    o.data = v3
-    return o
-
-
 @dataclass(slots=True, kw_only=True)
 class Reply:
     """reply"""
@@ -147,15 +137,6 @@ class Reply:
     def decode(cls, data):
         return _decode_reply(data if data.__class__ is bytes else _as_input(data))
 
-
-def _new_Reply(v0, v1, v2, v3):
-    """Reply from its fields in layout order, without keyword matching (decoders)."""
-    o = _object_new(Reply)
-    o.seq = v0
-    o.sender = v1
-    o.receiver = v2
-    o.data = v3
-    return o
 _S_command_0 = struct.Struct('<BBBB7sB')
 _S_reply_0 = struct.Struct('<BBBB7sB')
 
@@ -209,7 +190,11 @@ def _decode_command(d):
         raise _dec('command', 'type', r_type, 'const', '0', 14, 'TR24-D1')
     if r_stop != 3:
         raise _dec('command', 'stop', r_stop, 'const', '3', 88, 'TR24-D1')
-    o = _new_Command(r_seq, r_sender, r_receiver, r_data)
+    o = _object_new(Command)
+    o.seq = r_seq
+    o.sender = r_sender
+    o.receiver = r_receiver
+    o.data = r_data
     return o
 
 
@@ -256,7 +241,11 @@ def _decode_reply(d):
         raise _dec('reply', 'type', r_type, 'const', '1', 14, 'TR24-D1')
     if r_stop != 3:
         raise _dec('reply', 'stop', r_stop, 'const', '3', 88, 'TR24-D1')
-    o = _new_Reply(r_seq, r_sender, r_receiver, r_data)
+    o = _object_new(Reply)
+    o.seq = r_seq
+    o.sender = r_sender
+    o.receiver = r_receiver
+    o.data = r_data
     return o
 
 
