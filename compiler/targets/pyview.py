@@ -764,38 +764,49 @@ class MessageCode:
         c(f"def _encode_{self.fn}(m):")
         c.indent()
         self.view.rule_checks(c, self.m, "m", "_enc")
-        c(f"p = [{self.m.ids[0] + fr.prefix_separator!r}]")
-        members = [leaf for leaf in self.leaves]
-        for n, leaf in enumerate(members):
+        outs: list[str] = []  # the text of each required field, joined once at the end
+        optional = False
+        for leaf in self.leaves:
             f = leaf.field
             where = f"{self.m.name!r}, {leaf.dotted!r}"
             if f.optional:
+                if not optional:  # optional fields are the last ones
+                    c(f"p = [{', '.join(outs)}]")
+                    optional = True
                 c(f"if m.{leaf.dotted} is not None:")
                 c.indent()
             if f.kind in ("char", "str") and f.enum is None:
-                c(f"v = m.{leaf.dotted}")
-                c(f"if not isinstance(v, str){' or len(v) != 1' if f.kind == 'char' else ''}:")
-                c(f"    raise _enc({where}, v, 'type', {'one character' if f.kind == 'char' else 'a string'!r})")
+                v = leaf.var
+                c(f"{v} = m.{leaf.dotted}")
+                c(f"if not isinstance({v}, str){f' or len({v}) != 1' if f.kind == 'char' else ''}:")
+                c(f"    raise _enc({where}, {v}, 'type', {'one character' if f.kind == 'char' else 'a string'!r})")
                 forbidden = "" if f.to_end else fr.separator
-                c(f"bad = _text_problem(v, {forbidden!r}, {fr.trim})")
-                c("if bad:")
-                c(f"    raise _enc({where}, v, 'text', bad, {f.rule!r})")
+                c(f"if not {'_REST_OK' if f.to_end else '_TEXT_OK'}.fullmatch({v}):  # else look closer")
+                c(f"    bad = _text_problem({v}, {forbidden!r}, {fr.trim})")
+                c("    if bad:")
+                c(f"        raise _enc({where}, {v}, 'text', bad, {f.rule!r})")
                 if f.max_length is not None:
-                    c(f"if len(v) > {f.max_length}:")
-                    c(f"    raise _enc({where}, v, 'length', 'at most {f.max_length} characters')")
-                out = "v"
+                    c(f"if len({v}) > {f.max_length}:")
+                    c(f"    raise _enc({where}, {v}, 'length', 'at most {f.max_length} characters')")
+                out = v
             else:
                 self.view.encode_leaf(c, self.m, leaf)
                 if f.kind == "float":
                     out = f"_format_float({leaf.var})"
                 elif f.enum is not None and f.enum.kind == "char":
-                    out = f"_ENUM_{f.enum.name}[{leaf.var}].value"
+                    out = f"_ENUM_{f.enum.name}[{leaf.var}]._value_"
                 else:
                     out = f"str({leaf.var})"
-            c(f"p.append({out})")
-            if f.optional:
+            if optional:
+                c(f"p.append({out})")
                 c.dedent()
-        c(f"return p[0] + {fr.separator!r}.join(p[1:]) + {fr.terminator!r}")
+            else:
+                outs.append(out)
+        head, sep, term = repr(self.m.ids[0] + fr.prefix_separator), repr(fr.separator), repr(fr.terminator)
+        if optional:
+            c(f"return {head} + {sep}.join(p) + {term}")
+        else:
+            c(f"return {head} + {sep}.join(({''.join(x + ', ' for x in outs)})) + {term}")
         return c.text()
 
     def text_syntax(self) -> str:

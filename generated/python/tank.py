@@ -260,6 +260,8 @@ _FLOAT_RE = r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?"
 _CHAR_RE = '[!-\\+\\--:<-\\~]'  # printable, no space, separator or terminator
 _TEXT_RE = _CHAR_RE + "*"
 _REST_RE = '[!-:<-\\~]' + "*"  # a last field running to the end may hold separators
+_TEXT_OK = re.compile(_TEXT_RE)  # a text value that needs no closer look
+_REST_OK = re.compile(_REST_RE)
 _INT = re.compile(_INT_RE + r"\Z")
 _FLOAT = re.compile(_FLOAT_RE + r"\Z")
 
@@ -328,131 +330,113 @@ def _as_input(data):
 
 
 def _encode_telemetry(m):
-    p = ['$:']
     r_move = m.move
     if not isinstance(r_move, str) or r_move not in _VALUES_move:
         raise _enc('telemetry', 'move', r_move, 'enum', 'Move', None)
-    p.append(_ENUM_move[r_move].value)
     r_speed = m.speed
     if r_speed.__class__ is not int and (not isinstance(r_speed, int) or r_speed.__class__ is bool):
         raise _enc('telemetry', 'speed', r_speed, 'type', 'an int')
     if not 0 <= r_speed <= 100:
         raise _enc('telemetry', 'speed', r_speed, 'range', '0..100', 'TANK-D3')
-    p.append(str(r_speed))
-    v = m.value
-    if not isinstance(v, str) or len(v) != 1:
-        raise _enc('telemetry', 'value', v, 'type', 'one character')
-    bad = _text_problem(v, ',', True)
-    if bad:
-        raise _enc('telemetry', 'value', v, 'text', bad, 'TANK-D3')
-    p.append(v)
+    r_value = m.value
+    if not isinstance(r_value, str) or len(r_value) != 1:
+        raise _enc('telemetry', 'value', r_value, 'type', 'one character')
+    if not _TEXT_OK.fullmatch(r_value):  # else look closer
+        bad = _text_problem(r_value, ',', True)
+        if bad:
+            raise _enc('telemetry', 'value', r_value, 'text', bad, 'TANK-D3')
     r_lcurr = m.lcurr
     if r_lcurr.__class__ is not float and (not isinstance(r_lcurr, (int, float)) or r_lcurr.__class__ is bool):
         raise _enc('telemetry', 'lcurr', r_lcurr, 'type', 'a number')
     if not _isfinite(r_lcurr):
         raise _enc('telemetry', 'lcurr', r_lcurr, 'finite', 'a finite number')
-    p.append(_format_float(r_lcurr))
     r_rcurr = m.rcurr
     if r_rcurr.__class__ is not float and (not isinstance(r_rcurr, (int, float)) or r_rcurr.__class__ is bool):
         raise _enc('telemetry', 'rcurr', r_rcurr, 'type', 'a number')
     if not _isfinite(r_rcurr):
         raise _enc('telemetry', 'rcurr', r_rcurr, 'finite', 'a finite number')
-    p.append(_format_float(r_rcurr))
     r_accx = m.accx
     if r_accx.__class__ is not float and (not isinstance(r_accx, (int, float)) or r_accx.__class__ is bool):
         raise _enc('telemetry', 'accx', r_accx, 'type', 'a number')
     if not _isfinite(r_accx):
         raise _enc('telemetry', 'accx', r_accx, 'finite', 'a finite number')
-    p.append(_format_float(r_accx))
     r_accy = m.accy
     if r_accy.__class__ is not float and (not isinstance(r_accy, (int, float)) or r_accy.__class__ is bool):
         raise _enc('telemetry', 'accy', r_accy, 'type', 'a number')
     if not _isfinite(r_accy):
         raise _enc('telemetry', 'accy', r_accy, 'finite', 'a finite number')
-    p.append(_format_float(r_accy))
     r_accz = m.accz
     if r_accz.__class__ is not float and (not isinstance(r_accz, (int, float)) or r_accz.__class__ is bool):
         raise _enc('telemetry', 'accz', r_accz, 'type', 'a number')
     if not _isfinite(r_accz):
         raise _enc('telemetry', 'accz', r_accz, 'finite', 'a finite number')
-    p.append(_format_float(r_accz))
     r_gyrox = m.gyrox
     if r_gyrox.__class__ is not float and (not isinstance(r_gyrox, (int, float)) or r_gyrox.__class__ is bool):
         raise _enc('telemetry', 'gyrox', r_gyrox, 'type', 'a number')
     if not _isfinite(r_gyrox):
         raise _enc('telemetry', 'gyrox', r_gyrox, 'finite', 'a finite number')
-    p.append(_format_float(r_gyrox))
     r_gyroy = m.gyroy
     if r_gyroy.__class__ is not float and (not isinstance(r_gyroy, (int, float)) or r_gyroy.__class__ is bool):
         raise _enc('telemetry', 'gyroy', r_gyroy, 'type', 'a number')
     if not _isfinite(r_gyroy):
         raise _enc('telemetry', 'gyroy', r_gyroy, 'finite', 'a finite number')
-    p.append(_format_float(r_gyroy))
     r_gyroz = m.gyroz
     if r_gyroz.__class__ is not float and (not isinstance(r_gyroz, (int, float)) or r_gyroz.__class__ is bool):
         raise _enc('telemetry', 'gyroz', r_gyroz, 'type', 'a number')
     if not _isfinite(r_gyroz):
         raise _enc('telemetry', 'gyroz', r_gyroz, 'finite', 'a finite number')
-    p.append(_format_float(r_gyroz))
     r_magx = m.magx
     if r_magx.__class__ is not float and (not isinstance(r_magx, (int, float)) or r_magx.__class__ is bool):
         raise _enc('telemetry', 'magx', r_magx, 'type', 'a number')
     if not _isfinite(r_magx):
         raise _enc('telemetry', 'magx', r_magx, 'finite', 'a finite number')
-    p.append(_format_float(r_magx))
     r_magy = m.magy
     if r_magy.__class__ is not float and (not isinstance(r_magy, (int, float)) or r_magy.__class__ is bool):
         raise _enc('telemetry', 'magy', r_magy, 'type', 'a number')
     if not _isfinite(r_magy):
         raise _enc('telemetry', 'magy', r_magy, 'finite', 'a finite number')
-    p.append(_format_float(r_magy))
     r_magz = m.magz
     if r_magz.__class__ is not float and (not isinstance(r_magz, (int, float)) or r_magz.__class__ is bool):
         raise _enc('telemetry', 'magz', r_magz, 'type', 'a number')
     if not _isfinite(r_magz):
         raise _enc('telemetry', 'magz', r_magz, 'finite', 'a finite number')
-    p.append(_format_float(r_magz))
-    v = m.lan
-    if not isinstance(v, str):
-        raise _enc('telemetry', 'lan', v, 'type', 'a string')
-    bad = _text_problem(v, ',', True)
-    if bad:
-        raise _enc('telemetry', 'lan', v, 'text', bad, 'TANK-D5')
-    if len(v) > 32:
-        raise _enc('telemetry', 'lan', v, 'length', 'at most 32 characters')
-    p.append(v)
-    v = m.lon
-    if not isinstance(v, str):
-        raise _enc('telemetry', 'lon', v, 'type', 'a string')
-    bad = _text_problem(v, ',', True)
-    if bad:
-        raise _enc('telemetry', 'lon', v, 'text', bad, 'TANK-D5')
-    if len(v) > 32:
-        raise _enc('telemetry', 'lon', v, 'length', 'at most 32 characters')
-    p.append(v)
+    r_lan = m.lan
+    if not isinstance(r_lan, str):
+        raise _enc('telemetry', 'lan', r_lan, 'type', 'a string')
+    if not _TEXT_OK.fullmatch(r_lan):  # else look closer
+        bad = _text_problem(r_lan, ',', True)
+        if bad:
+            raise _enc('telemetry', 'lan', r_lan, 'text', bad, 'TANK-D5')
+    if len(r_lan) > 32:
+        raise _enc('telemetry', 'lan', r_lan, 'length', 'at most 32 characters')
+    r_lon = m.lon
+    if not isinstance(r_lon, str):
+        raise _enc('telemetry', 'lon', r_lon, 'type', 'a string')
+    if not _TEXT_OK.fullmatch(r_lon):  # else look closer
+        bad = _text_problem(r_lon, ',', True)
+        if bad:
+            raise _enc('telemetry', 'lon', r_lon, 'text', bad, 'TANK-D5')
+    if len(r_lon) > 32:
+        raise _enc('telemetry', 'lon', r_lon, 'length', 'at most 32 characters')
     r_vbat = m.vbat
     if r_vbat.__class__ is not float and (not isinstance(r_vbat, (int, float)) or r_vbat.__class__ is bool):
         raise _enc('telemetry', 'vbat', r_vbat, 'type', 'a number')
     if not _isfinite(r_vbat):
         raise _enc('telemetry', 'vbat', r_vbat, 'finite', 'a finite number')
-    p.append(_format_float(r_vbat))
     r_systemstatus = m.systemstatus
     if not isinstance(r_systemstatus, int) or r_systemstatus not in _VALUES_system_status:
         raise _enc('telemetry', 'systemstatus', r_systemstatus, 'enum', 'SystemStatus', None)
     r_systemstatus = int(r_systemstatus)
-    p.append(str(r_systemstatus))
     r_extid = m.extid
     if r_extid.__class__ is not int and (not isinstance(r_extid, int) or r_extid.__class__ is bool):
         raise _enc('telemetry', 'extid', r_extid, 'type', 'an int')
     if not 0 <= r_extid <= 255:
         raise _enc('telemetry', 'extid', r_extid, 'range', '0..255', None)
-    p.append(str(r_extid))
     r_extstatus = m.extstatus
     if not isinstance(r_extstatus, int) or r_extstatus not in _VALUES_ext_status:
         raise _enc('telemetry', 'extstatus', r_extstatus, 'enum', 'ExtStatus', None)
     r_extstatus = int(r_extstatus)
-    p.append(str(r_extstatus))
-    return p[0] + ','.join(p[1:]) + ';'
+    return '$:' + ','.join((_ENUM_move[r_move]._value_, str(r_speed), r_value, _format_float(r_lcurr), _format_float(r_rcurr), _format_float(r_accx), _format_float(r_accy), _format_float(r_accz), _format_float(r_gyrox), _format_float(r_gyroy), _format_float(r_gyroz), _format_float(r_magx), _format_float(r_magy), _format_float(r_magz), r_lan, r_lon, _format_float(r_vbat), str(r_systemstatus), str(r_extid), str(r_extstatus), )) + ';'
 
 
 def _decode_telemetry(body, base):
@@ -562,72 +546,65 @@ def _decode_telemetry(body, base):
 
 
 def _encode_command(m):
-    p = ['%:']
     r_move = m.move
     if not isinstance(r_move, str) or r_move not in _VALUES_move:
         raise _enc('command', 'move', r_move, 'enum', 'Move', None)
-    p.append(_ENUM_move[r_move].value)
     r_speed = m.speed
     if r_speed.__class__ is not int and (not isinstance(r_speed, int) or r_speed.__class__ is bool):
         raise _enc('command', 'speed', r_speed, 'type', 'an int')
     if not 0 <= r_speed <= 100:
         raise _enc('command', 'speed', r_speed, 'range', '0..100', 'TANK-D3')
-    p.append(str(r_speed))
-    v = m.value
-    if not isinstance(v, str) or len(v) != 1:
-        raise _enc('command', 'value', v, 'type', 'one character')
-    bad = _text_problem(v, ',', True)
-    if bad:
-        raise _enc('command', 'value', v, 'text', bad, 'TANK-D3')
-    p.append(v)
+    r_value = m.value
+    if not isinstance(r_value, str) or len(r_value) != 1:
+        raise _enc('command', 'value', r_value, 'type', 'one character')
+    if not _TEXT_OK.fullmatch(r_value):  # else look closer
+        bad = _text_problem(r_value, ',', True)
+        if bad:
+            raise _enc('command', 'value', r_value, 'text', bad, 'TANK-D3')
     r_azimutloc = m.azimutloc
     if r_azimutloc.__class__ is not int and (not isinstance(r_azimutloc, int) or r_azimutloc.__class__ is bool):
         raise _enc('command', 'azimutloc', r_azimutloc, 'type', 'an int')
     if not -32768 <= r_azimutloc <= 32767:
         raise _enc('command', 'azimutloc', r_azimutloc, 'range', '-32768..32767', None)
-    p.append(str(r_azimutloc))
     r_gpio1 = m.gpio1
     if r_gpio1.__class__ is not float and (not isinstance(r_gpio1, (int, float)) or r_gpio1.__class__ is bool):
         raise _enc('command', 'gpio1', r_gpio1, 'type', 'a number')
     if not _isfinite(r_gpio1):
         raise _enc('command', 'gpio1', r_gpio1, 'finite', 'a finite number')
-    p.append(_format_float(r_gpio1))
     r_gpio2 = m.gpio2
     if r_gpio2.__class__ is not float and (not isinstance(r_gpio2, (int, float)) or r_gpio2.__class__ is bool):
         raise _enc('command', 'gpio2', r_gpio2, 'type', 'a number')
     if not _isfinite(r_gpio2):
         raise _enc('command', 'gpio2', r_gpio2, 'finite', 'a finite number')
-    p.append(_format_float(r_gpio2))
     r_gpio3 = m.gpio3
     if r_gpio3.__class__ is not float and (not isinstance(r_gpio3, (int, float)) or r_gpio3.__class__ is bool):
         raise _enc('command', 'gpio3', r_gpio3, 'type', 'a number')
     if not _isfinite(r_gpio3):
         raise _enc('command', 'gpio3', r_gpio3, 'finite', 'a finite number')
-    p.append(_format_float(r_gpio3))
     r_gpio4 = m.gpio4
     if r_gpio4.__class__ is not float and (not isinstance(r_gpio4, (int, float)) or r_gpio4.__class__ is bool):
         raise _enc('command', 'gpio4', r_gpio4, 'type', 'a number')
     if not _isfinite(r_gpio4):
         raise _enc('command', 'gpio4', r_gpio4, 'finite', 'a finite number')
-    p.append(_format_float(r_gpio4))
     r_systemstatus = m.systemstatus
     if not isinstance(r_systemstatus, int) or r_systemstatus not in _VALUES_system_status:
         raise _enc('command', 'systemstatus', r_systemstatus, 'enum', 'SystemStatus', 'TANK-D2', 'systemstatus 5 (Error) and 6 (Exception) are sent only by the platform / Только с платформы')
     if r_systemstatus not in (0, 1, 2, 3, 4):
         raise _enc('command', 'systemstatus', r_systemstatus, 'values', '0, 1, 2, 3, 4', 'TANK-D2', 'systemstatus 5 (Error) and 6 (Exception) are sent only by the platform / Только с платформы')
     r_systemstatus = int(r_systemstatus)
-    p.append(str(r_systemstatus))
+    p = [_ENUM_move[r_move]._value_, str(r_speed), r_value, str(r_azimutloc), _format_float(r_gpio1), _format_float(r_gpio2), _format_float(r_gpio3), _format_float(r_gpio4), str(r_systemstatus)]
     if m.data is not None:
-        v = m.data
-        if not isinstance(v, str):
-            raise _enc('command', 'data', v, 'type', 'a string')
-        bad = _text_problem(v, ',', True)
-        if bad:
-            raise _enc('command', 'data', v, 'text', bad, 'TANK-D1')
-        if len(v) > 64:
-            raise _enc('command', 'data', v, 'length', 'at most 64 characters')
-        p.append(v)
-    return p[0] + ','.join(p[1:]) + ';'
+        r_data = m.data
+        if not isinstance(r_data, str):
+            raise _enc('command', 'data', r_data, 'type', 'a string')
+        if not _TEXT_OK.fullmatch(r_data):  # else look closer
+            bad = _text_problem(r_data, ',', True)
+            if bad:
+                raise _enc('command', 'data', r_data, 'text', bad, 'TANK-D1')
+        if len(r_data) > 64:
+            raise _enc('command', 'data', r_data, 'length', 'at most 64 characters')
+        p.append(r_data)
+    return '%:' + ','.join(p) + ';'
 
 
 def _decode_command(body, base):
@@ -697,17 +674,16 @@ def _decode_command(body, base):
 
 
 def _encode_payload_command(m):
-    p = ['*:']
-    v = m.command
-    if not isinstance(v, str):
-        raise _enc('payload_command', 'command', v, 'type', 'a string')
-    bad = _text_problem(v, '', True)
-    if bad:
-        raise _enc('payload_command', 'command', v, 'text', bad, 'TANK-D7')
-    if len(v) > 200:
-        raise _enc('payload_command', 'command', v, 'length', 'at most 200 characters')
-    p.append(v)
-    return p[0] + ','.join(p[1:]) + ';'
+    r_command = m.command
+    if not isinstance(r_command, str):
+        raise _enc('payload_command', 'command', r_command, 'type', 'a string')
+    if not _REST_OK.fullmatch(r_command):  # else look closer
+        bad = _text_problem(r_command, '', True)
+        if bad:
+            raise _enc('payload_command', 'command', r_command, 'text', bad, 'TANK-D7')
+    if len(r_command) > 200:
+        raise _enc('payload_command', 'command', r_command, 'length', 'at most 200 characters')
+    return '*:' + ','.join((r_command, )) + ';'
 
 
 def _decode_payload_command(body, base):
@@ -728,17 +704,16 @@ def _decode_payload_command(body, base):
 
 
 def _encode_payload_reply(m):
-    p = ['^:']
-    v = m.command
-    if not isinstance(v, str):
-        raise _enc('payload_reply', 'command', v, 'type', 'a string')
-    bad = _text_problem(v, '', True)
-    if bad:
-        raise _enc('payload_reply', 'command', v, 'text', bad, 'TANK-D7')
-    if len(v) > 200:
-        raise _enc('payload_reply', 'command', v, 'length', 'at most 200 characters')
-    p.append(v)
-    return p[0] + ','.join(p[1:]) + ';'
+    r_command = m.command
+    if not isinstance(r_command, str):
+        raise _enc('payload_reply', 'command', r_command, 'type', 'a string')
+    if not _REST_OK.fullmatch(r_command):  # else look closer
+        bad = _text_problem(r_command, '', True)
+        if bad:
+            raise _enc('payload_reply', 'command', r_command, 'text', bad, 'TANK-D7')
+    if len(r_command) > 200:
+        raise _enc('payload_reply', 'command', r_command, 'length', 'at most 200 characters')
+    return '^:' + ','.join((r_command, )) + ';'
 
 
 def _decode_payload_reply(body, base):
@@ -759,28 +734,23 @@ def _decode_payload_reply(body, base):
 
 
 def _encode_gpio_config(m):
-    p = ['-:']
     r_gpio1 = m.gpio1
     if not isinstance(r_gpio1, int) or r_gpio1 not in _VALUES_gpio_mode:
         raise _enc('gpio_config', 'gpio1', r_gpio1, 'enum', 'GpioMode', None)
     r_gpio1 = int(r_gpio1)
-    p.append(str(r_gpio1))
     r_gpio2 = m.gpio2
     if not isinstance(r_gpio2, int) or r_gpio2 not in _VALUES_gpio_mode:
         raise _enc('gpio_config', 'gpio2', r_gpio2, 'enum', 'GpioMode', None)
     r_gpio2 = int(r_gpio2)
-    p.append(str(r_gpio2))
     r_gpio3 = m.gpio3
     if not isinstance(r_gpio3, int) or r_gpio3 not in _VALUES_gpio_mode:
         raise _enc('gpio_config', 'gpio3', r_gpio3, 'enum', 'GpioMode', None)
     r_gpio3 = int(r_gpio3)
-    p.append(str(r_gpio3))
     r_gpio4 = m.gpio4
     if not isinstance(r_gpio4, int) or r_gpio4 not in _VALUES_gpio_mode:
         raise _enc('gpio_config', 'gpio4', r_gpio4, 'enum', 'GpioMode', None)
     r_gpio4 = int(r_gpio4)
-    p.append(str(r_gpio4))
-    return p[0] + ','.join(p[1:]) + ';'
+    return '-:' + ','.join((str(r_gpio1), str(r_gpio2), str(r_gpio3), str(r_gpio4), )) + ';'
 
 
 def _decode_gpio_config(body, base):
