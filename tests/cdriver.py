@@ -179,7 +179,15 @@ class Driver:
             has_dir=bool(p.directions), word=self.v.word_bits() is not None and p.framing.kind == "bits",
             text_form=p.framing.text_form is not None,
             error_const=ERR, sequences=sequences,
-            seq_cap=max([len(c["messages"]) for sq in sequences for c in sq["cases"]] + [0]) + 2)
+            seq_cap=self.seq_cap(sequences))
+
+    def seq_cap(self, sequences: list[dict]) -> int:
+        """Room for the messages of any sequence vector: a rejected one is decoded up to
+        its error, which can be its last unit, and has at most a unit per smallest message."""
+        smallest = min([m.size for m in self.p.messages if m.size] or [1])
+        counts = [len(c["wire"]) // smallest if c["error"] else len(c["messages"])
+                  for sq in sequences for c in sq["cases"]]
+        return max(counts + [0]) + 2
 
     def sequences(self, cases: list[dict]) -> list[dict]:
         """Whole-sequence vectors by sequence; expected messages as initialisers of

@@ -169,4 +169,294 @@ static inline int hw_tr24_command_decode(const uint8_t *b, size_t len, tr24_comm
     return 0;
 }
 
+/* tank telemetry line: "$:" then 20 comma-separated fields and ';' (TANK-D3, TANK-D5).
+ * Decimals stay decimal, as the struct holds them (cw_decimal_t: digits and a
+ * power of ten): read digit by digit, written back as Python's repr writes
+ * the float (positional for exponents -4..15, else d.ddde+XX). */
+#define HW_TANK_TEXT_MAX 32
+
+static inline int hw_tank_clean(const char *s, size_t n) /* no ',' or ';', printable ASCII, no edge spaces */
+{
+    size_t i;
+    if (n > HW_TANK_TEXT_MAX || (n && (s[0] == ' ' || s[n - 1] == ' '))) {
+        return 0;
+    }
+    for (i = 0; i < n; i++) {
+        if (s[i] == ',' || s[i] == ';' || s[i] < ' ' || s[i] > '~') {
+            return 0;
+        }
+    }
+    return 1;
+}
+
+static inline int hw_tank_decimal_ok(const cw_decimal_t *d) { return d->digits <= 99999999999999999ULL; }
+
+static inline char *hw_tank_put_uint(char *b, unsigned v)
+{
+    if (v >= 100u) {
+        *b++ = (char)('0' + v / 100u);
+    }
+    if (v >= 10u) {
+        *b++ = (char)('0' + v / 10u % 10u);
+    }
+    *b++ = (char)('0' + v % 10u);
+    return b;
+}
+
+static inline char *hw_tank_put_decimal(char *b, const cw_decimal_t *d)
+{
+    char t[20]; /* digits, least significant first */
+    int n = 0, top, i;
+    uint64_t v = d->digits;
+    do {
+        t[n++] = (char)('0' + (int)(v % 10u));
+        v /= 10u;
+    } while (v);
+    if (d->negative) {
+        *b++ = '-';
+    }
+    if (d->digits == 0) {
+        *b++ = '0';
+        return b;
+    }
+    top = d->exp10 + n - 1; /* exponent of the leading digit */
+    if (top < -4 || top > 15) {
+        int e = top < 0 ? -top : top;
+        *b++ = t[n - 1];
+        if (n > 1) {
+            *b++ = '.';
+            for (i = n - 2; i >= 0; i--) {
+                *b++ = t[i];
+            }
+        }
+        *b++ = 'e';
+        *b++ = top < 0 ? '-' : '+';
+        if (e >= 100) {
+            *b++ = (char)('0' + e / 100);
+        }
+        *b++ = (char)('0' + e / 10 % 10);
+        *b++ = (char)('0' + e % 10);
+    } else if (top < 0) { /* 0.000ddd */
+        *b++ = '0';
+        *b++ = '.';
+        for (i = -1; i > top; i--) {
+            *b++ = '0';
+        }
+        for (i = n - 1; i >= 0; i--) {
+            *b++ = t[i];
+        }
+    } else {
+        for (i = n - 1; i >= 0; i--) {
+            *b++ = t[i];
+            if (i == -d->exp10 && i > 0) {
+                *b++ = '.';
+            }
+        }
+        for (i = 0; i < d->exp10; i++) { /* trailing zeros of an integer */
+            *b++ = '0';
+        }
+    }
+    return b;
+}
+
+/* [+-]digits[.digits][e[+-]digits], at most 17 significant digits, |value| < 1e309 */
+static inline int hw_tank_get_decimal(const char *s, const char *e, cw_decimal_t *d)
+{
+    uint64_t v = 0;
+    int exp10 = 0, n = 0, any = 0;
+    d->negative = s < e && *s == '-';
+    if (s < e && (*s == '-' || *s == '+')) {
+        s++;
+    }
+    for (; s < e && *s >= '0' && *s <= '9'; s++, any = 1) {
+        if (v || *s != '0') {
+            if (++n > 17) {
+                return -1;
+            }
+            v = v * 10u + (uint64_t)(*s - '0');
+        }
+    }
+    if (s < e && *s == '.') {
+        for (s++; s < e && *s >= '0' && *s <= '9'; s++, any = 1) {
+            if (v || *s != '0') {
+                if (++n > 17) {
+                    return -1;
+                }
+                v = v * 10u + (uint64_t)(*s - '0');
+            }
+            exp10--;
+        }
+    }
+    if (!any) {
+        return -1;
+    }
+    if (s < e && (*s == 'e' || *s == 'E')) {
+        int neg, x = 0;
+        s++;
+        neg = s < e && *s == '-';
+        if (s < e && (*s == '-' || *s == '+')) {
+            s++;
+        }
+        if (s == e) {
+            return -1;
+        }
+        for (; s < e && *s >= '0' && *s <= '9'; s++) {
+            if (x < 10000) {
+                x = x * 10 + (*s - '0');
+            }
+        }
+        exp10 += neg ? -x : x;
+    }
+    if (s != e) {
+        return -1;
+    }
+    if (v == 0) {
+        exp10 = 0;
+    } else if (exp10 + n > 309) { /* 1e309 or more: beyond the largest double */
+        return -1;
+    }
+    while (v && v % 10u == 0) {
+        v /= 10u;
+        exp10++;
+    }
+    d->digits = v;
+    d->exp10 = (int16_t)exp10;
+    return 0;
+}
+
+static inline int hw_tank_get_uint(const char *s, const char *e, unsigned max, unsigned *out)
+{
+    unsigned v = 0;
+    if (s == e || e - s > 3) {
+        return -1;
+    }
+    for (; s < e; s++) {
+        if (*s < '0' || *s > '9') {
+            return -1;
+        }
+        v = v * 10u + (unsigned)(*s - '0');
+    }
+    if (v > max) {
+        return -1;
+    }
+    *out = v;
+    return 0;
+}
+
+static inline int hw_tank_move_ok(char c)
+{
+    return c == 'f' || c == 'b' || c == 'l' || c == 'r' || c == 'a' || c == 'c' || c == 'd' || c == 'e';
+}
+
+/* Writes the line and a NUL into b (TANK_TELEMETRY_MAX_TEXT chars); the length, or -1. */
+static inline int hw_tank_telemetry_encode(const tank_telemetry_t *m, char *b)
+{
+    const cw_decimal_t *f[11] = {&m->lcurr, &m->rcurr, &m->accx, &m->accy, &m->accz, &m->gyrox,
+                                 &m->gyroy, &m->gyroz, &m->magx, &m->magy, &m->magz};
+    size_t lan = strlen(m->lan), lon = strlen(m->lon);
+    char *p = b;
+    int i;
+    if (!hw_tank_move_ok(m->move) || m->speed > 100 || m->systemstatus > 6 || m->extstatus > 5
+        || !hw_tank_clean(&m->value, 1) || !hw_tank_clean(m->lan, lan) || !hw_tank_clean(m->lon, lon)
+        || !hw_tank_decimal_ok(&m->vbat)) {
+        return -1;
+    }
+    for (i = 0; i < 11; i++) {
+        if (!hw_tank_decimal_ok(f[i])) {
+            return -1;
+        }
+    }
+    *p++ = '$';
+    *p++ = ':';
+    *p++ = m->move;
+    *p++ = ',';
+    p = hw_tank_put_uint(p, m->speed);
+    *p++ = ',';
+    *p++ = m->value;
+    for (i = 0; i < 11; i++) {
+        *p++ = ',';
+        p = hw_tank_put_decimal(p, f[i]);
+    }
+    *p++ = ',';
+    memcpy(p, m->lan, lan);
+    p += lan;
+    *p++ = ',';
+    memcpy(p, m->lon, lon);
+    p += lon;
+    *p++ = ',';
+    p = hw_tank_put_decimal(p, &m->vbat);
+    *p++ = ',';
+    p = hw_tank_put_uint(p, m->systemstatus);
+    *p++ = ',';
+    p = hw_tank_put_uint(p, m->extid);
+    *p++ = ',';
+    p = hw_tank_put_uint(p, m->extstatus);
+    *p++ = ';';
+    *p = '\0';
+    return (int)(p - b);
+}
+
+static inline int hw_tank_telemetry_decode(const char *line, size_t len, tank_telemetry_t *m)
+{
+    cw_decimal_t *f[11] = {&m->lcurr, &m->rcurr, &m->accx, &m->accy, &m->accz, &m->gyrox,
+                           &m->gyroy, &m->gyroz, &m->magx, &m->magy, &m->magz};
+    const char *t[21]; /* field k is [t[k], t[k + 1] - 1) */
+    const char *s = line + 2, *end = line + len - 1;
+    unsigned v;
+    int n = 1, i;
+    if (len < 3 || line[0] != '$' || line[1] != ':' || *end != ';') {
+        return -1;
+    }
+    t[0] = s;
+    for (; s < end; s++) {
+        if (*s == ',') {
+            if (n == 20) {
+                return -1;
+            }
+            t[n++] = s + 1;
+        }
+    }
+    if (n != 20) {
+        return -1;
+    }
+    t[20] = end + 1;
+    if (t[1] - t[0] != 2 || !hw_tank_move_ok(*t[0]) || t[3] - t[2] != 2 || !hw_tank_clean(t[2], 1)) {
+        return -1;
+    }
+    m->move = *t[0];
+    m->value = *t[2];
+    if (hw_tank_get_uint(t[1], t[2] - 1, 100, &v)) {
+        return -1;
+    }
+    m->speed = (uint8_t)v;
+    for (i = 0; i < 11; i++) {
+        if (hw_tank_get_decimal(t[3 + i], t[4 + i] - 1, f[i])) {
+            return -1;
+        }
+    }
+    if (!hw_tank_clean(t[14], (size_t)(t[15] - 1 - t[14])) || !hw_tank_clean(t[15], (size_t)(t[16] - 1 - t[15]))) {
+        return -1;
+    }
+    memcpy(m->lan, t[14], (size_t)(t[15] - 1 - t[14]));
+    m->lan[t[15] - 1 - t[14]] = '\0';
+    memcpy(m->lon, t[15], (size_t)(t[16] - 1 - t[15]));
+    m->lon[t[16] - 1 - t[15]] = '\0';
+    if (hw_tank_get_decimal(t[16], t[17] - 1, &m->vbat)) {
+        return -1;
+    }
+    if (hw_tank_get_uint(t[17], t[18] - 1, 6, &v)) {
+        return -1;
+    }
+    m->systemstatus = (uint8_t)v;
+    if (hw_tank_get_uint(t[18], t[19] - 1, 255, &v)) {
+        return -1;
+    }
+    m->extid = (uint8_t)v;
+    if (hw_tank_get_uint(t[19], t[20] - 1, 5, &v)) {
+        return -1;
+    }
+    m->extstatus = (uint8_t)v;
+    return 0;
+}
+
 #endif

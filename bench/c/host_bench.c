@@ -14,6 +14,7 @@
 #include "car.h"
 #include "mtv4.h"
 #include "tr24.h"
+#include "tank.h"
 #include "common/mavlink.h"
 #include "handwritten.h"
 
@@ -24,6 +25,10 @@ static route_object_t route_msgs[N_MSGS];
 static car_master_control_t car_msgs[N_MSGS];
 static mtv4_set_wheels_velocities_with_odometry_t odo_msgs[N_MSGS];
 static tr24_command_t tr24_msgs[N_MSGS];
+static tank_telemetry_t tank_msgs[N_MSGS];
+
+/* schemas/tank.yaml example "driving forward-left, fractional and negative readings" */
+static const char TANK_LINE[] = "$:a,50,s,1.25,-0.5,0.01,-0.02,9.81,0,0,-1.5,23,-7,41.5,55.7558,37.6173,12.6,1,0,1;";
 
 static double now(void)
 {
@@ -32,7 +37,7 @@ static double now(void)
     return ts.tv_sec + ts.tv_nsec * 1e-9;
 }
 
-static void fill(void)
+static int fill(void)
 {
     for (int i = 0; i < N_MSGS; i++) {
         route_object_t *r = &route_msgs[i];
@@ -51,26 +56,62 @@ static void fill(void)
         tr24_command_t *t = &tr24_msgs[i];
         t->seq = i & 1; t->sender = i; t->receiver = 255 - i;
         for (int k = 0; k < 7; k++) t->data[k] = (uint8_t)(i * 7 + k);
+        tank_telemetry_t *k = &tank_msgs[i];
+        memset(k, 0, sizeof *k);
+        if (tank_telemetry_decode(TANK_LINE, sizeof TANK_LINE - 1, k) != CW_OK) return 0;
+        k->move = "fblracde"[i & 7]; k->speed = (uint8_t)(i * 3 % 101);
+        k->lcurr = cw_decimal_from_scaled(125 + 7 * i, 2); k->accx = cw_decimal_from_scaled(-13 * i, 3);
+        k->gyroz = cw_decimal_from_scaled(15 + i, 6); /* 1.5e-05: the exponent form */
+        k->magx = cw_decimal_from_scaled(230 - 11 * i, 1); k->vbat = cw_decimal_from_scaled(126 - i % 20, 1);
+        k->systemstatus = (uint8_t)(i % 7); k->extid = (uint8_t)i; k->extstatus = (uint8_t)(i % 6);
     }
+    return 1;
 }
 
-/* Both sides must write the same bytes for every message (equal work). */
+static int same_decimal(const cw_decimal_t *a, const cw_decimal_t *b)
+{
+    return a->digits == b->digits && a->exp10 == b->exp10 && a->negative == b->negative;
+}
+
+static int same_tank(const tank_telemetry_t *a, const tank_telemetry_t *b)
+{
+    const cw_decimal_t *x[12] = {&a->lcurr, &a->rcurr, &a->accx, &a->accy, &a->accz, &a->gyrox, &a->gyroy,
+                                 &a->gyroz, &a->magx, &a->magy, &a->magz, &a->vbat};
+    const cw_decimal_t *y[12] = {&b->lcurr, &b->rcurr, &b->accx, &b->accy, &b->accz, &b->gyrox, &b->gyroy,
+                                 &b->gyroz, &b->magx, &b->magy, &b->magz, &b->vbat};
+    for (int k = 0; k < 12; k++) {
+        if (!same_decimal(x[k], y[k])) return 0;
+    }
+    return a->move == b->move && a->speed == b->speed && a->value == b->value && !strcmp(a->lan, b->lan)
+           && !strcmp(a->lon, b->lon) && a->systemstatus == b->systemstatus && a->extid == b->extid
+           && a->extstatus == b->extstatus;
+}
+
+/* Both sides must write the same bytes for every message (equal work); for
+ * the tank line also read back the same values. */
 static int agree(void)
 {
     uint8_t a[64], b[64];
+    char ta[TANK_TELEMETRY_MAX_TEXT], tb[TANK_TELEMETRY_MAX_TEXT];
+    tank_telemetry_t ka, kb;
     for (int i = 0; i < N_MSGS; i++) {
         if (route_object_encode(&route_msgs[i], a, sizeof a) != hw_route_object_encode(&route_msgs[i], b) || memcmp(a, b, 4)) return 0;
         if (car_master_control_encode(&car_msgs[i], a, sizeof a) != hw_car_master_encode(&car_msgs[i], b) || memcmp(a, b, 4)) return 0;
         if (mtv4_set_wheels_velocities_with_odometry_encode(&odo_msgs[i], a, sizeof a) != hw_odometry_encode(&odo_msgs[i], b) || memcmp(a, b, 26)) return 0;
         if (tr24_command_encode(&tr24_msgs[i], a, sizeof a) != hw_tr24_command_encode(&tr24_msgs[i], b) || memcmp(a, b, 12)) return 0;
+        int n = tank_telemetry_encode(&tank_msgs[i], ta, sizeof ta);
+        if (n <= 0 || n != hw_tank_telemetry_encode(&tank_msgs[i], tb) || memcmp(ta, tb, (size_t)n + 1)) return 0;
+        if (tank_telemetry_decode(ta, (size_t)n, &ka) != CW_OK || hw_tank_telemetry_decode(ta, (size_t)n, &kb) != 0
+            || !same_tank(&ka, &kb) || !same_tank(&ka, &tank_msgs[i])) return 0;
     }
     return 1;
 }
 
-#define ROUNDTRIP(NAME, MSGS, T, ENC, DEC, FIELD)                                  \
+#define ROUNDTRIP(NAME, MSGS, T, ENC, DEC, FIELD) ROUNDTRIP_IN(NAME, T, uint8_t, 64, ENC, DEC, FIELD)
+#define ROUNDTRIP_IN(NAME, T, BUF_T, BUF_N, ENC, DEC, FIELD)                       \
     static __attribute__((noinline)) uint32_t NAME(long n)                        \
     {                                                                              \
-        uint8_t buf[64];                                                           \
+        BUF_T buf[BUF_N];                                                          \
         T out;                                                                     \
         uint32_t acc = 0;                                                          \
         for (long i = 0; i < n; i++) {                                             \
@@ -90,6 +131,8 @@ ROUNDTRIP(cw_odo, odo_msgs, mtv4_set_wheels_velocities_with_odometry_t, mtv4_set
 ROUNDTRIP(hw_odo, odo_msgs, mtv4_set_wheels_velocities_with_odometry_t, hw_odometry_encode(M(odo_msgs), buf), hw_odometry_decode(buf, (size_t)len, &out), vl)
 ROUNDTRIP(cw_tr24, tr24_msgs, tr24_command_t, tr24_command_encode(M(tr24_msgs), buf, sizeof buf), tr24_command_decode(buf, (size_t)len, &out), sender)
 ROUNDTRIP(hw_tr24, tr24_msgs, tr24_command_t, hw_tr24_command_encode(M(tr24_msgs), buf), hw_tr24_command_decode(buf, (size_t)len, &out), sender)
+ROUNDTRIP_IN(cw_tank, tank_telemetry_t, char, TANK_TELEMETRY_MAX_TEXT, tank_telemetry_encode(M(tank_msgs), buf, sizeof buf), tank_telemetry_decode(buf, (size_t)len, &out), speed)
+ROUNDTRIP_IN(hw_tank, tank_telemetry_t, char, TANK_TELEMETRY_MAX_TEXT, hw_tank_telemetry_encode(M(tank_msgs), buf), hw_tank_telemetry_decode(buf, (size_t)len, &out), speed)
 
 /* MAVLink ATTITUDE: pack and serialise, then parse the bytes back and decode. */
 static __attribute__((noinline)) uint32_t mav_attitude(long n)
@@ -168,6 +211,7 @@ static const struct { const char *key; roundtrip_fn fn; } CASES[] = {
     {"car codeword", cw_car}, {"car hand-written", hw_car},
     {"mtv4 codeword", cw_odo}, {"mtv4 hand-written", hw_odo},
     {"tr24 codeword", cw_tr24}, {"tr24 hand-written", hw_tr24},
+    {"tank codeword", cw_tank}, {"tank hand-written", hw_tank},
     {"mavlink ATTITUDE", mav_attitude},
 };
 #define N_CASES (sizeof CASES / sizeof CASES[0])
@@ -194,7 +238,10 @@ int main(int argc, char **argv)
         return 2;
     }
     hw_crc_init();
-    fill();
+    if (!fill()) {
+        fprintf(stderr, "the tank example line does not decode\n");
+        return 1;
+    }
     if (!agree()) {
         fprintf(stderr, "hand-written and generated encoders disagree\n");
         return 1;

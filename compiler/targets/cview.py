@@ -18,7 +18,7 @@ from typing import Any, Optional
 
 from ..model import Checksum, CrcParams, Field, Message, Protocol, field_at
 from .code import Code
-from . import cpack
+from . import cpack, cword
 from .cpack import Span
 from .wire import Leaf, checksum_name, dispatch_facts, leaves_of, stream_facts
 
@@ -306,7 +306,7 @@ class CView:
         v = self.member(leaf)
         r = self.rep(f)
         if f.kind == "bool":
-            c(f"{raw} = {v} ? 1u : 0u;")
+            c(f"{raw} = ({rt}){v};")  # a bool is 0 or 1
         elif f.kind == "float":
             store(f"cw_f32_to_bits({v})")
             c(f"if (!cw_f32_bits_finite({raw})) {{")
@@ -353,10 +353,15 @@ class CView:
         r = self.rep(f)
         if what == "enum":
             values = [x.value for x in f.enum.members]
-            cond = " && ".join(f"{v} != {self.literal_of(x, r.ctype)}" for x in values)
-            c(f"if ({cond}) {{")
-            c("    return CW_ERR_ENUM;")
-            c("}")
+            span = enum_span(values)
+            if span:  # one range test instead of a test per member
+                cond = self.range_cond(v, span[0], span[1], r.ctype)
+            else:
+                cond = " && ".join(f"{v} != {self.literal_of(x, r.ctype)}" for x in values)
+            if cond:
+                c(f"if ({cond}) {{")
+                c("    return CW_ERR_ENUM;")
+                c("}")
         elif what == "flags":
             outside = ~f.flags.mask & ((1 << f.bits) - 1)
             if outside:
@@ -369,9 +374,7 @@ class CView:
                 c("}")
             return
         else:
-            lo, hi = self.raw_bounds(f) if f.range is not None else self.stored_range(f)
-            if f.range is None and f.raw_range and f.scale is None:
-                lo, hi = f.raw_range[0] + int(f.offset or 0), f.raw_range[1] + int(f.offset or 0)
+            lo, hi = self.int_bounds(f)
             cond = self.range_cond(v, lo, hi, r.ctype)
             if cond:
                 c(f"if ({cond}) {{")
@@ -383,6 +386,14 @@ class CView:
             c(f"if ({cond}) {{")
             c("    return CW_ERR_VALUES;")
             c("}")
+
+    def int_bounds(self, f: Field) -> tuple[int, int]:
+        """The values of a plain integer member that member_check lets through
+        (together with its C type's limits)."""
+        lo, hi = self.raw_bounds(f) if f.range is not None else self.stored_range(f)
+        if f.range is None and f.raw_range and f.scale is None:
+            lo, hi = f.raw_range[0] + int(f.offset or 0), f.raw_range[1] + int(f.offset or 0)
+        return lo, hi
 
     @staticmethod
     def enum_wire(f: Field, value: Any) -> Any:
@@ -426,8 +437,14 @@ class CView:
                 self.fail_if(c, f"!({v} >= {f.range[0]!r}f && {v} <= {f.range[1]!r}f)", "range")
             return
         if f.enum is not None:
-            cond = " && ".join(f"{raw} != {clit(int(x.value), True)}" for x in f.enum.members)
-            self.fail_if(c, cond, "enum")
+            span = enum_span([x.value for x in f.enum.members])
+            if span and span[0] >= 0:  # the raw value has f.bits bits: test only the ends it can pass
+                cond = " || ".join(([f"{raw} < {clit(span[0], True)}"] if span[0] > 0 else [])
+                                   + ([f"{raw} > {clit(span[1], True)}"] if span[1] < (1 << f.bits) - 1 else []))
+            else:
+                cond = " && ".join(f"{raw} != {clit(int(x.value), True)}" for x in f.enum.members)
+            if cond:
+                self.fail_if(c, cond, "enum")
         elif f.flags is not None:
             outside = ~f.flags.mask & ((1 << f.bits) - 1)
             if outside:
@@ -511,14 +528,17 @@ class CView:
 
     def field_checksum(self, leaf: Leaf, others: list[str], rt: str = "uint32_t") -> str:
         """The checksum of the other raw values, as an `rt`; arithmetic in 32 bits
-        (the first operand cast) so that narrow operands never promote to int."""
+        (the first operand cast) so that narrow operands never promote to int,
+        or in `unsigned` (16 bits on 8-bit targets) when the modulo is a power
+        of two that divides 2**16: wrapping there keeps the sum's residue."""
         cs = leaf.field.checksum
-        wide = ["(uint32_t)" + others[0]] + others[1:]
+        small = cs.algorithm in ("sum", "xor") and cs.modulo & (cs.modulo - 1) == 0 and cs.modulo <= 1 << 16
+        wide = [("(unsigned)" if small else "(uint32_t)") + others[0]] + others[1:]
         if cs.algorithm in ("sum", "xor"):
             op = " + " if cs.algorithm == "sum" else " ^ "
             return f"({rt})(({op.join(wide)}) % {clit(cs.modulo, True)})"
         flip = " ^ 1u" if cs.parity == "odd" else ""
-        return f"({rt})((cw_popcount32({' ^ '.join(wide)}) & 1u){flip})"
+        return f"({rt})(cw_parity32({' ^ '.join(wide)}){flip})"
 
     def byte_checksums(self) -> list[str]:
         seen: dict[str, str] = {}
@@ -591,6 +611,9 @@ class CView:
         return " | ".join(parts)
 
     def encode_function(self, m: Message) -> str:
+        word = cword.container(self, m)
+        if word is not None:
+            return cword.encode_function(self, m, word)
         c = Code()
         wired, raws = self.wired(m)
         layout = self.spans(m)
@@ -629,6 +652,9 @@ class CView:
         return c.text()
 
     def decode_function(self, m: Message) -> str:
+        word = cword.container(self, m)
+        if word is not None:
+            return cword.decode_function(self, m, word)
         c = Code()
         wired, raws = self.wired(m)
         rt = self.raw_type(m)
@@ -1037,6 +1063,14 @@ class CView:
 
     def stream(self) -> dict:
         return stream_facts(self.p)
+
+
+def enum_span(values: list) -> Optional[tuple[int, int]]:
+    """(lo, hi) when the integer enum values are exactly lo..hi, else None."""
+    if not values or not all(isinstance(x, int) and not isinstance(x, bool) for x in values):
+        return None
+    lo, hi = min(values), max(values)
+    return (lo, hi) if hi - lo + 1 == len(set(values)) else None
 
 
 def crc_table(p: CrcParams) -> list[int]:

@@ -136,18 +136,33 @@ static inline int car_header_raw(const car_header_t *m, uint8_t *r)
 
 static inline int car_header_encode(const car_header_t *m, uint8_t *buf, size_t cap)
 {
-    uint8_t r[4];
-    int rc = car_header_raw(m, r);
-    if (rc != CW_OK) {
-        return rc;
+    uint8_t r_h1;
+    uint8_t r_h2_count;
+    uint8_t r_h2_time;
+    uint8_t r_h3;
+    uint32_t word;
+    if ((m->h2_count == 0) && !(!m->has_h2_time)) {  /* CAR-D3: Without slave words (h2_count = 0) all of h2 is 0: h2_time must be absent */
+        return CW_ERR_RULE;
     }
+    if ((m->h2_count != 0) && !(m->has_h2_time)) {  /* CAR-D3: With slave words (h2_count > 0) h2_time must give one of the 8 send-time levels */
+        return CW_ERR_RULE;
+    }
+    r_h1 = (uint8_t)m->h1;
+    r_h2_count = (uint8_t)m->h2_count;
+    if (m->has_h2_time) {
+        if (m->h2_time > 7u) {
+            return CW_ERR_RANGE;
+        }
+        r_h2_time = (uint8_t)((uint32_t)1u << m->h2_time);
+    } else {
+        r_h2_time = 0u;
+    }
+    r_h3 = 0u;
     if (cap < 4u) {
         return CW_ERR_CAPACITY;
     }
-    buf[0] = (uint8_t)r[0];
-    buf[1] = (uint8_t)r[1];
-    buf[2] = (uint8_t)r[2];
-    buf[3] = (uint8_t)r[3];
+    word = ((uint32_t)r_h1 << 24) | ((uint32_t)r_h2_count << 16) | ((uint32_t)r_h2_time << 8) | (uint32_t)r_h3;
+    cw_put_be32(buf + 0, (uint32_t)word);
     return 4;
 }
 
@@ -176,15 +191,36 @@ static inline int car_header_check_raw(const uint8_t *r, const uint8_t *buf, car
 
 static inline int car_header_decode(const uint8_t *buf, size_t len, car_header_t *m)
 {
-    uint8_t r[4];
+    uint8_t r_h1;
+    uint8_t r_h2_count;
+    uint8_t r_h2_time;
+    uint8_t r_h3;
+    uint32_t word;
     if (len != 4u) {
         return CW_ERR_LENGTH;
     }
-    r[0] = (uint8_t)buf[0];
-    r[1] = (uint8_t)buf[1];
-    r[2] = (uint8_t)buf[2];
-    r[3] = (uint8_t)buf[3];
-    return car_header_check_raw(r, buf, m, false);
+    word = cw_get_be32(buf + 0);
+    r_h1 = (uint8_t)(word >> 24);
+    r_h2_count = (uint8_t)(word >> 16);
+    r_h2_time = (uint8_t)(word >> 8);
+    r_h3 = (uint8_t)word;
+    m->h1 = (uint8_t)r_h1;
+    m->h2_count = (uint8_t)r_h2_count;
+    if ((r_h2_time & (r_h2_time - 1u)) != 0u || (r_h2_time != 0u && (r_h2_time < 1u || r_h2_time > 128u))) {
+        return CW_ERR_ONE_HOT;
+    }
+    m->has_h2_time = r_h2_time != 0u;
+    m->h2_time = cw_bit_index(r_h2_time);
+    if (r_h3 != 0u) {
+        return CW_ERR_RESERVED;
+    }
+    if ((m->h2_count == 0) && !(!m->has_h2_time)) {  /* CAR-D3: Without slave words (h2_count = 0) all of h2 is 0: h2_time must be absent */
+        return CW_ERR_RULE;
+    }
+    if ((m->h2_count != 0) && !(m->has_h2_time)) {  /* CAR-D3: With slave words (h2_count > 0) h2_time must give one of the 8 send-time levels */
+        return CW_ERR_RULE;
+    }
+    return CW_OK;
 }
 
 static inline int car_header_to_word(const car_header_t *m, uint32_t *word)
@@ -215,10 +251,10 @@ static inline int car_master_control_raw(const car_master_control_t *m, uint16_t
     if (!(m->forward_words)) {  /* CAR-R2: c2 is always 1 in a master word (the master forwards the slave words); it is hidden from the user */
         return CW_ERR_RULE;
     }
-    r[0] = m->accept_ir ? 1u : 0u;
-    r[1] = m->forward_words ? 1u : 0u;
-    r[2] = m->motor.enable ? 1u : 0u;
-    if (m->motor.direction != 0u && m->motor.direction != 1u && m->motor.direction != 2u && m->motor.direction != 3u) {
+    r[0] = (uint16_t)m->accept_ir;
+    r[1] = (uint16_t)m->forward_words;
+    r[2] = (uint16_t)m->motor.enable;
+    if (m->motor.direction > 3u) {
         return CW_ERR_ENUM;
     }
     r[3] = (uint16_t)m->motor.direction;
@@ -238,7 +274,7 @@ static inline int car_master_control_raw(const car_master_control_t *m, uint16_t
         return CW_ERR_RANGE;
     }
     r[7] = (uint16_t)m->led.duration;
-    r[8] = m->ultrasonic.enable ? 1u : 0u;
+    r[8] = (uint16_t)m->ultrasonic.enable;
     if (m->ultrasonic.radius > 3u) {
         return CW_ERR_RANGE;
     }
@@ -247,26 +283,81 @@ static inline int car_master_control_raw(const car_master_control_t *m, uint16_t
         return CW_ERR_RANGE;
     }
     r[10] = (uint16_t)m->ultrasonic.duration;
-    r[11] = m->voice ? 1u : 0u;
-    r[12] = m->body_sensor ? 1u : 0u;
+    r[11] = (uint16_t)m->voice;
+    r[12] = (uint16_t)m->body_sensor;
     r[13] = 0u;
     r[14] = 0u;
-    r[14] = (uint16_t)((cw_popcount32((uint32_t)r[0] ^ r[1] ^ r[2] ^ r[3] ^ r[4] ^ r[5] ^ r[6] ^ r[7] ^ r[8] ^ r[9] ^ r[10] ^ r[11] ^ r[12] ^ r[13]) & 1u));
+    r[14] = (uint16_t)(cw_parity32((uint32_t)r[0] ^ r[1] ^ r[2] ^ r[3] ^ r[4] ^ r[5] ^ r[6] ^ r[7] ^ r[8] ^ r[9] ^ r[10] ^ r[11] ^ r[12] ^ r[13]));
     return CW_OK;
 }
 
 static inline int car_master_control_encode(const car_master_control_t *m, uint8_t *buf, size_t cap)
 {
-    uint16_t r[15];
-    int rc = car_master_control_raw(m, r);
-    if (rc != CW_OK) {
-        return rc;
+    uint8_t r_accept_ir;
+    uint8_t r_forward_words;
+    uint8_t r_motor_enable;
+    uint8_t r_motor_direction;
+    uint8_t r_motor_speed;
+    uint8_t r_motor_duration;
+    uint8_t r_led_led;
+    uint8_t r_led_duration;
+    uint8_t r_ultrasonic_enable;
+    uint8_t r_ultrasonic_radius;
+    uint8_t r_ultrasonic_duration;
+    uint8_t r_voice;
+    uint8_t r_body_sensor;
+    uint16_t r_reserved_bits;
+    uint8_t r_parity;
+    uint32_t word;
+    if (!(!m->accept_ir)) {  /* CAR-R1: Cannot set the master to accept infrared information */
+        return CW_ERR_RULE;
     }
+    if (!(m->forward_words)) {  /* CAR-R2: c2 is always 1 in a master word (the master forwards the slave words); it is hidden from the user */
+        return CW_ERR_RULE;
+    }
+    r_accept_ir = (uint8_t)m->accept_ir;
+    r_forward_words = (uint8_t)m->forward_words;
+    r_motor_enable = (uint8_t)m->motor.enable;
+    if (m->motor.direction > 3u) {
+        return CW_ERR_ENUM;
+    }
+    r_motor_direction = (uint8_t)m->motor.direction;
+    if (m->motor.speed > 3u) {
+        return CW_ERR_RANGE;
+    }
+    r_motor_speed = (uint8_t)m->motor.speed;
+    if (m->motor.duration > 3u) {
+        return CW_ERR_RANGE;
+    }
+    r_motor_duration = (uint8_t)m->motor.duration;
+    if (m->led.led > 3u) {
+        return CW_ERR_RANGE;
+    }
+    r_led_led = (uint8_t)m->led.led;
+    if (m->led.duration > 3u) {
+        return CW_ERR_RANGE;
+    }
+    r_led_duration = (uint8_t)m->led.duration;
+    r_ultrasonic_enable = (uint8_t)m->ultrasonic.enable;
+    if (m->ultrasonic.radius > 3u) {
+        return CW_ERR_RANGE;
+    }
+    r_ultrasonic_radius = (uint8_t)m->ultrasonic.radius;
+    if (m->ultrasonic.duration > 3u) {
+        return CW_ERR_RANGE;
+    }
+    r_ultrasonic_duration = (uint8_t)m->ultrasonic.duration;
+    r_voice = (uint8_t)m->voice;
+    r_body_sensor = (uint8_t)m->body_sensor;
+    r_reserved_bits = 0u;
+    r_parity = 0u;
     if (cap < 4u) {
         return CW_ERR_CAPACITY;
     }
-    cw_put_be16(buf + 0, (uint16_t)((((unsigned)r[0] & 1u) << 15) | (((unsigned)r[1] & 1u) << 14) | (((unsigned)r[2] & 1u) << 13) | (((unsigned)r[3] & 3u) << 11) | (((unsigned)r[4] & 3u) << 9) | (((unsigned)r[5] & 3u) << 7) | (((unsigned)r[6] & 3u) << 5) | (((unsigned)r[7] & 3u) << 3) | (((unsigned)r[8] & 1u) << 2) | ((unsigned)r[9] & 3u)));
-    cw_put_be16(buf + 2, (uint16_t)((((unsigned)r[10] & 3u) << 14) | (((unsigned)r[11] & 1u) << 13) | (((unsigned)r[12] & 1u) << 12) | (((unsigned)r[13] & 0x7ffu) << 1) | ((unsigned)r[14] & 1u)));
+    word = ((uint32_t)(((unsigned)r_accept_ir << 15) | ((unsigned)r_forward_words << 14) | ((unsigned)r_motor_enable << 13) | ((unsigned)r_motor_direction << 11) | ((unsigned)r_motor_speed << 9) | ((unsigned)r_motor_duration << 7) | ((unsigned)r_led_led << 5) | ((unsigned)r_led_duration << 3) | ((unsigned)r_ultrasonic_enable << 2) | (unsigned)r_ultrasonic_radius) << 16) | (uint32_t)(((unsigned)r_ultrasonic_duration << 14) | ((unsigned)r_voice << 13) | ((unsigned)r_body_sensor << 12) | ((unsigned)r_reserved_bits << 1));
+    r_parity = (uint8_t)(cw_parity32(word));
+    word |= (uint32_t)r_parity;
+    cw_put_be32(buf + 0, (uint32_t)word);
     return 4;
 }
 
@@ -277,9 +368,6 @@ static inline int car_master_control_check_raw(const uint16_t *r, const uint8_t 
     m->accept_ir = r[0] != 0u;
     m->forward_words = r[1] != 0u;
     m->motor.enable = r[2] != 0u;
-    if (r[3] != 0u && r[3] != 1u && r[3] != 2u && r[3] != 3u) {
-        return CW_ERR_ENUM;
-    }
     m->motor.direction = (uint8_t)r[3];
     m->motor.speed = (uint8_t)r[4];
     m->motor.duration = (uint8_t)r[5];
@@ -293,7 +381,7 @@ static inline int car_master_control_check_raw(const uint16_t *r, const uint8_t 
     if (r[13] != 0u) {
         return CW_ERR_RESERVED;
     }
-    if (r[14] != (uint16_t)((cw_popcount32((uint32_t)r[0] ^ r[1] ^ r[2] ^ r[3] ^ r[4] ^ r[5] ^ r[6] ^ r[7] ^ r[8] ^ r[9] ^ r[10] ^ r[11] ^ r[12] ^ r[13]) & 1u))) {
+    if (r[14] != (uint16_t)(cw_parity32((uint32_t)r[0] ^ r[1] ^ r[2] ^ r[3] ^ r[4] ^ r[5] ^ r[6] ^ r[7] ^ r[8] ^ r[9] ^ r[10] ^ r[11] ^ r[12] ^ r[13]))) {
         return CW_ERR_CHECKSUM;
     }
     if (!(!m->accept_ir)) {  /* CAR-R1: Cannot set the master to accept infrared information */
@@ -307,32 +395,69 @@ static inline int car_master_control_check_raw(const uint16_t *r, const uint8_t 
 
 static inline int car_master_control_decode(const uint8_t *buf, size_t len, car_master_control_t *m)
 {
-    uint16_t r[15];
+    uint8_t r_accept_ir;
+    uint8_t r_forward_words;
+    uint8_t r_motor_enable;
+    uint8_t r_motor_direction;
+    uint8_t r_motor_speed;
+    uint8_t r_motor_duration;
+    uint8_t r_led_led;
+    uint8_t r_led_duration;
+    uint8_t r_ultrasonic_enable;
+    uint8_t r_ultrasonic_radius;
+    uint8_t r_ultrasonic_duration;
+    uint8_t r_voice;
+    uint8_t r_body_sensor;
+    uint16_t r_reserved_bits;
+    uint32_t word;
+    unsigned w0;
+    unsigned w1;
     if (len != 4u) {
         return CW_ERR_LENGTH;
     }
-    {
-        unsigned word = cw_get_be16(buf + 0);
-        r[0] = (uint16_t)((word >> 15) & 1u);
-        r[1] = (uint16_t)((word >> 14) & 1u);
-        r[2] = (uint16_t)((word >> 13) & 1u);
-        r[3] = (uint16_t)((word >> 11) & 3u);
-        r[4] = (uint16_t)((word >> 9) & 3u);
-        r[5] = (uint16_t)((word >> 7) & 3u);
-        r[6] = (uint16_t)((word >> 5) & 3u);
-        r[7] = (uint16_t)((word >> 3) & 3u);
-        r[8] = (uint16_t)((word >> 2) & 1u);
-        r[9] = (uint16_t)(word & 3u);
+    word = cw_get_be32(buf + 0);
+    w0 = (unsigned)(word >> 16);
+    w1 = (unsigned)word;
+    r_accept_ir = (uint8_t)((w0 >> 15) & 1u);
+    r_forward_words = (uint8_t)((w0 >> 14) & 1u);
+    r_motor_enable = (uint8_t)((w0 >> 13) & 1u);
+    r_motor_direction = (uint8_t)((w0 >> 11) & 3u);
+    r_motor_speed = (uint8_t)((w0 >> 9) & 3u);
+    r_motor_duration = (uint8_t)((w0 >> 7) & 3u);
+    r_led_led = (uint8_t)((w0 >> 5) & 3u);
+    r_led_duration = (uint8_t)((w0 >> 3) & 3u);
+    r_ultrasonic_enable = (uint8_t)((w0 >> 2) & 1u);
+    r_ultrasonic_radius = (uint8_t)(w0 & 3u);
+    r_ultrasonic_duration = (uint8_t)((w1 >> 14) & 3u);
+    r_voice = (uint8_t)((w1 >> 13) & 1u);
+    r_body_sensor = (uint8_t)((w1 >> 12) & 1u);
+    r_reserved_bits = (uint16_t)((w1 >> 1) & 0x7ffu);
+    m->accept_ir = r_accept_ir != 0u;
+    m->forward_words = r_forward_words != 0u;
+    m->motor.enable = r_motor_enable != 0u;
+    m->motor.direction = (uint8_t)r_motor_direction;
+    m->motor.speed = (uint8_t)r_motor_speed;
+    m->motor.duration = (uint8_t)r_motor_duration;
+    m->led.led = (uint8_t)r_led_led;
+    m->led.duration = (uint8_t)r_led_duration;
+    m->ultrasonic.enable = r_ultrasonic_enable != 0u;
+    m->ultrasonic.radius = (uint8_t)r_ultrasonic_radius;
+    m->ultrasonic.duration = (uint8_t)r_ultrasonic_duration;
+    m->voice = r_voice != 0u;
+    m->body_sensor = r_body_sensor != 0u;
+    if (r_reserved_bits != 0u) {
+        return CW_ERR_RESERVED;
     }
-    {
-        unsigned word = cw_get_be16(buf + 2);
-        r[10] = (uint16_t)((word >> 14) & 3u);
-        r[11] = (uint16_t)((word >> 13) & 1u);
-        r[12] = (uint16_t)((word >> 12) & 1u);
-        r[13] = (uint16_t)((word >> 1) & 0x7ffu);
-        r[14] = (uint16_t)(word & 1u);
+    if (cw_parity32(word) != 0u) {
+        return CW_ERR_CHECKSUM;
     }
-    return car_master_control_check_raw(r, buf, m, false);
+    if (!(!m->accept_ir)) {  /* CAR-R1: Cannot set the master to accept infrared information */
+        return CW_ERR_RULE;
+    }
+    if (!(m->forward_words)) {  /* CAR-R2: c2 is always 1 in a master word (the master forwards the slave words); it is hidden from the user */
+        return CW_ERR_RULE;
+    }
+    return CW_OK;
 }
 
 static inline int car_master_control_to_word(const car_master_control_t *m, uint32_t *word)
@@ -357,10 +482,10 @@ static inline int car_master_control_from_word(uint32_t word, car_master_control
 
 static inline int car_slave_control_raw(const car_slave_control_t *m, uint16_t *r)
 {
-    r[0] = m->accept_ir ? 1u : 0u;
-    r[1] = m->forward_words ? 1u : 0u;
-    r[2] = m->motor.enable ? 1u : 0u;
-    if (m->motor.direction != 0u && m->motor.direction != 1u && m->motor.direction != 2u && m->motor.direction != 3u) {
+    r[0] = (uint16_t)m->accept_ir;
+    r[1] = (uint16_t)m->forward_words;
+    r[2] = (uint16_t)m->motor.enable;
+    if (m->motor.direction > 3u) {
         return CW_ERR_ENUM;
     }
     r[3] = (uint16_t)m->motor.direction;
@@ -380,7 +505,7 @@ static inline int car_slave_control_raw(const car_slave_control_t *m, uint16_t *
         return CW_ERR_RANGE;
     }
     r[7] = (uint16_t)m->led.duration;
-    r[8] = m->ultrasonic.enable ? 1u : 0u;
+    r[8] = (uint16_t)m->ultrasonic.enable;
     if (m->ultrasonic.radius > 3u) {
         return CW_ERR_RANGE;
     }
@@ -389,26 +514,75 @@ static inline int car_slave_control_raw(const car_slave_control_t *m, uint16_t *
         return CW_ERR_RANGE;
     }
     r[10] = (uint16_t)m->ultrasonic.duration;
-    r[11] = m->voice ? 1u : 0u;
-    r[12] = m->body_sensor ? 1u : 0u;
+    r[11] = (uint16_t)m->voice;
+    r[12] = (uint16_t)m->body_sensor;
     r[13] = 0u;
     r[14] = 0u;
-    r[14] = (uint16_t)((cw_popcount32((uint32_t)r[0] ^ r[1] ^ r[2] ^ r[3] ^ r[4] ^ r[5] ^ r[6] ^ r[7] ^ r[8] ^ r[9] ^ r[10] ^ r[11] ^ r[12] ^ r[13]) & 1u));
+    r[14] = (uint16_t)(cw_parity32((uint32_t)r[0] ^ r[1] ^ r[2] ^ r[3] ^ r[4] ^ r[5] ^ r[6] ^ r[7] ^ r[8] ^ r[9] ^ r[10] ^ r[11] ^ r[12] ^ r[13]));
     return CW_OK;
 }
 
 static inline int car_slave_control_encode(const car_slave_control_t *m, uint8_t *buf, size_t cap)
 {
-    uint16_t r[15];
-    int rc = car_slave_control_raw(m, r);
-    if (rc != CW_OK) {
-        return rc;
+    uint8_t r_accept_ir;
+    uint8_t r_forward_words;
+    uint8_t r_motor_enable;
+    uint8_t r_motor_direction;
+    uint8_t r_motor_speed;
+    uint8_t r_motor_duration;
+    uint8_t r_led_led;
+    uint8_t r_led_duration;
+    uint8_t r_ultrasonic_enable;
+    uint8_t r_ultrasonic_radius;
+    uint8_t r_ultrasonic_duration;
+    uint8_t r_voice;
+    uint8_t r_body_sensor;
+    uint16_t r_reserved_bits;
+    uint8_t r_parity;
+    uint32_t word;
+    r_accept_ir = (uint8_t)m->accept_ir;
+    r_forward_words = (uint8_t)m->forward_words;
+    r_motor_enable = (uint8_t)m->motor.enable;
+    if (m->motor.direction > 3u) {
+        return CW_ERR_ENUM;
     }
+    r_motor_direction = (uint8_t)m->motor.direction;
+    if (m->motor.speed > 3u) {
+        return CW_ERR_RANGE;
+    }
+    r_motor_speed = (uint8_t)m->motor.speed;
+    if (m->motor.duration > 3u) {
+        return CW_ERR_RANGE;
+    }
+    r_motor_duration = (uint8_t)m->motor.duration;
+    if (m->led.led > 3u) {
+        return CW_ERR_RANGE;
+    }
+    r_led_led = (uint8_t)m->led.led;
+    if (m->led.duration > 3u) {
+        return CW_ERR_RANGE;
+    }
+    r_led_duration = (uint8_t)m->led.duration;
+    r_ultrasonic_enable = (uint8_t)m->ultrasonic.enable;
+    if (m->ultrasonic.radius > 3u) {
+        return CW_ERR_RANGE;
+    }
+    r_ultrasonic_radius = (uint8_t)m->ultrasonic.radius;
+    if (m->ultrasonic.duration > 3u) {
+        return CW_ERR_RANGE;
+    }
+    r_ultrasonic_duration = (uint8_t)m->ultrasonic.duration;
+    r_voice = (uint8_t)m->voice;
+    r_body_sensor = (uint8_t)m->body_sensor;
+    r_reserved_bits = 0u;
+    r_parity = 0u;
     if (cap < 4u) {
         return CW_ERR_CAPACITY;
     }
-    cw_put_be16(buf + 0, (uint16_t)((((unsigned)r[0] & 1u) << 15) | (((unsigned)r[1] & 1u) << 14) | (((unsigned)r[2] & 1u) << 13) | (((unsigned)r[3] & 3u) << 11) | (((unsigned)r[4] & 3u) << 9) | (((unsigned)r[5] & 3u) << 7) | (((unsigned)r[6] & 3u) << 5) | (((unsigned)r[7] & 3u) << 3) | (((unsigned)r[8] & 1u) << 2) | ((unsigned)r[9] & 3u)));
-    cw_put_be16(buf + 2, (uint16_t)((((unsigned)r[10] & 3u) << 14) | (((unsigned)r[11] & 1u) << 13) | (((unsigned)r[12] & 1u) << 12) | (((unsigned)r[13] & 0x7ffu) << 1) | ((unsigned)r[14] & 1u)));
+    word = ((uint32_t)(((unsigned)r_accept_ir << 15) | ((unsigned)r_forward_words << 14) | ((unsigned)r_motor_enable << 13) | ((unsigned)r_motor_direction << 11) | ((unsigned)r_motor_speed << 9) | ((unsigned)r_motor_duration << 7) | ((unsigned)r_led_led << 5) | ((unsigned)r_led_duration << 3) | ((unsigned)r_ultrasonic_enable << 2) | (unsigned)r_ultrasonic_radius) << 16) | (uint32_t)(((unsigned)r_ultrasonic_duration << 14) | ((unsigned)r_voice << 13) | ((unsigned)r_body_sensor << 12) | ((unsigned)r_reserved_bits << 1));
+    r_parity = (uint8_t)(cw_parity32(word));
+    word |= (uint32_t)r_parity;
+    cw_put_be32(buf + 0, (uint32_t)word);
     return 4;
 }
 
@@ -419,9 +593,6 @@ static inline int car_slave_control_check_raw(const uint16_t *r, const uint8_t *
     m->accept_ir = r[0] != 0u;
     m->forward_words = r[1] != 0u;
     m->motor.enable = r[2] != 0u;
-    if (r[3] != 0u && r[3] != 1u && r[3] != 2u && r[3] != 3u) {
-        return CW_ERR_ENUM;
-    }
     m->motor.direction = (uint8_t)r[3];
     m->motor.speed = (uint8_t)r[4];
     m->motor.duration = (uint8_t)r[5];
@@ -435,7 +606,7 @@ static inline int car_slave_control_check_raw(const uint16_t *r, const uint8_t *
     if (r[13] != 0u) {
         return CW_ERR_RESERVED;
     }
-    if (r[14] != (uint16_t)((cw_popcount32((uint32_t)r[0] ^ r[1] ^ r[2] ^ r[3] ^ r[4] ^ r[5] ^ r[6] ^ r[7] ^ r[8] ^ r[9] ^ r[10] ^ r[11] ^ r[12] ^ r[13]) & 1u))) {
+    if (r[14] != (uint16_t)(cw_parity32((uint32_t)r[0] ^ r[1] ^ r[2] ^ r[3] ^ r[4] ^ r[5] ^ r[6] ^ r[7] ^ r[8] ^ r[9] ^ r[10] ^ r[11] ^ r[12] ^ r[13]))) {
         return CW_ERR_CHECKSUM;
     }
     return CW_OK;
@@ -443,32 +614,63 @@ static inline int car_slave_control_check_raw(const uint16_t *r, const uint8_t *
 
 static inline int car_slave_control_decode(const uint8_t *buf, size_t len, car_slave_control_t *m)
 {
-    uint16_t r[15];
+    uint8_t r_accept_ir;
+    uint8_t r_forward_words;
+    uint8_t r_motor_enable;
+    uint8_t r_motor_direction;
+    uint8_t r_motor_speed;
+    uint8_t r_motor_duration;
+    uint8_t r_led_led;
+    uint8_t r_led_duration;
+    uint8_t r_ultrasonic_enable;
+    uint8_t r_ultrasonic_radius;
+    uint8_t r_ultrasonic_duration;
+    uint8_t r_voice;
+    uint8_t r_body_sensor;
+    uint16_t r_reserved_bits;
+    uint32_t word;
+    unsigned w0;
+    unsigned w1;
     if (len != 4u) {
         return CW_ERR_LENGTH;
     }
-    {
-        unsigned word = cw_get_be16(buf + 0);
-        r[0] = (uint16_t)((word >> 15) & 1u);
-        r[1] = (uint16_t)((word >> 14) & 1u);
-        r[2] = (uint16_t)((word >> 13) & 1u);
-        r[3] = (uint16_t)((word >> 11) & 3u);
-        r[4] = (uint16_t)((word >> 9) & 3u);
-        r[5] = (uint16_t)((word >> 7) & 3u);
-        r[6] = (uint16_t)((word >> 5) & 3u);
-        r[7] = (uint16_t)((word >> 3) & 3u);
-        r[8] = (uint16_t)((word >> 2) & 1u);
-        r[9] = (uint16_t)(word & 3u);
+    word = cw_get_be32(buf + 0);
+    w0 = (unsigned)(word >> 16);
+    w1 = (unsigned)word;
+    r_accept_ir = (uint8_t)((w0 >> 15) & 1u);
+    r_forward_words = (uint8_t)((w0 >> 14) & 1u);
+    r_motor_enable = (uint8_t)((w0 >> 13) & 1u);
+    r_motor_direction = (uint8_t)((w0 >> 11) & 3u);
+    r_motor_speed = (uint8_t)((w0 >> 9) & 3u);
+    r_motor_duration = (uint8_t)((w0 >> 7) & 3u);
+    r_led_led = (uint8_t)((w0 >> 5) & 3u);
+    r_led_duration = (uint8_t)((w0 >> 3) & 3u);
+    r_ultrasonic_enable = (uint8_t)((w0 >> 2) & 1u);
+    r_ultrasonic_radius = (uint8_t)(w0 & 3u);
+    r_ultrasonic_duration = (uint8_t)((w1 >> 14) & 3u);
+    r_voice = (uint8_t)((w1 >> 13) & 1u);
+    r_body_sensor = (uint8_t)((w1 >> 12) & 1u);
+    r_reserved_bits = (uint16_t)((w1 >> 1) & 0x7ffu);
+    m->accept_ir = r_accept_ir != 0u;
+    m->forward_words = r_forward_words != 0u;
+    m->motor.enable = r_motor_enable != 0u;
+    m->motor.direction = (uint8_t)r_motor_direction;
+    m->motor.speed = (uint8_t)r_motor_speed;
+    m->motor.duration = (uint8_t)r_motor_duration;
+    m->led.led = (uint8_t)r_led_led;
+    m->led.duration = (uint8_t)r_led_duration;
+    m->ultrasonic.enable = r_ultrasonic_enable != 0u;
+    m->ultrasonic.radius = (uint8_t)r_ultrasonic_radius;
+    m->ultrasonic.duration = (uint8_t)r_ultrasonic_duration;
+    m->voice = r_voice != 0u;
+    m->body_sensor = r_body_sensor != 0u;
+    if (r_reserved_bits != 0u) {
+        return CW_ERR_RESERVED;
     }
-    {
-        unsigned word = cw_get_be16(buf + 2);
-        r[10] = (uint16_t)((word >> 14) & 3u);
-        r[11] = (uint16_t)((word >> 13) & 1u);
-        r[12] = (uint16_t)((word >> 12) & 1u);
-        r[13] = (uint16_t)((word >> 1) & 0x7ffu);
-        r[14] = (uint16_t)(word & 1u);
+    if (cw_parity32(word) != 0u) {
+        return CW_ERR_CHECKSUM;
     }
-    return car_slave_control_check_raw(r, buf, m, false);
+    return CW_OK;
 }
 
 static inline int car_slave_control_to_word(const car_slave_control_t *m, uint32_t *word)

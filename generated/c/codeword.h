@@ -155,10 +155,17 @@ static inline void cw_put_be16(uint8_t *p, uint16_t v)
     p[1] = (uint8_t)(v & 0xFFu);
 }
 
+/* On a little-endian target a little-endian store is a plain copy. Written
+ * byte by byte, a run of such stores is merged by gcc -O2 into 64-bit words
+ * built with shifts, several times slower than the copies. */
 static inline void cw_put_le16(uint8_t *p, uint16_t v)
 {
+#if defined(__BYTE_ORDER__) && defined(__ORDER_LITTLE_ENDIAN__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+    memcpy(p, &v, sizeof v);
+#else
     p[0] = (uint8_t)(v & 0xFFu);
     p[1] = (uint8_t)(v >> 8);
+#endif
 }
 
 static inline uint32_t cw_get_be32(const uint8_t *p)
@@ -179,8 +186,12 @@ static inline void cw_put_be32(uint8_t *p, uint32_t v)
 
 static inline void cw_put_le32(uint8_t *p, uint32_t v)
 {
+#if defined(__BYTE_ORDER__) && defined(__ORDER_LITTLE_ENDIAN__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+    memcpy(p, &v, sizeof v);
+#else
     cw_put_le16(p, (uint16_t)(v & 0xFFFFu));
     cw_put_le16(p + 2, (uint16_t)(v >> 16));
+#endif
 }
 
 /* Bit fields: `n` bits (1..32) at bit offset `off`, most significant bit
@@ -230,14 +241,19 @@ static inline int16_t cw_sign_extend16(uint16_t raw, uint8_t bits)
     return (int16_t)raw;
 }
 
-static inline uint8_t cw_popcount32(uint32_t v)
+/* 1 if an odd number of bits of v is set. x86 has a parity flag, which the
+ * compiler's builtin uses; elsewhere the four bytes are folded into one (byte
+ * moves on 8-bit targets), that byte onto its low 4 bits, whose parity is a
+ * bit of the constant 0x6996 (no loop, no table). */
+static inline uint8_t cw_parity32(uint32_t v)
 {
-    uint8_t n = 0;
-    while (v) {
-        v &= v - 1u;
-        n++;
-    }
-    return n;
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+    return (uint8_t)__builtin_parityl(v);
+#else
+    uint8_t b = (uint8_t)(v ^ (v >> 8) ^ (v >> 16) ^ (v >> 24));
+    b = (uint8_t)(b ^ ((unsigned)b >> 4));
+    return (uint8_t)((0x6996u >> (b & 0xFu)) & 1u);
+#endif
 }
 
 static inline float cw_f32_from_bits(uint32_t bits)

@@ -95,21 +95,26 @@ static inline int route_start_raw(const route_start_t *m, uint8_t *r)
     r[0] = 3u;
     r[1] = 1u;
     r[2] = 0u;
-    r[2] = (uint8_t)(((uint32_t)r[0] + r[1]) % 8u);
+    r[2] = (uint8_t)(((unsigned)r[0] + r[1]) % 8u);
     return CW_OK;
 }
 
 static inline int route_start_encode(const route_start_t *m, uint8_t *buf, size_t cap)
 {
-    uint8_t r[3];
-    int rc = route_start_raw(m, r);
-    if (rc != CW_OK) {
-        return rc;
-    }
+    uint8_t r_hdr;
+    uint8_t r_kind;
+    uint8_t r_cs;
+    unsigned word;
+    (void)m;
+    r_hdr = 3u;
+    r_kind = 1u;
+    r_cs = 0u;
     if (cap < 1u) {
         return CW_ERR_CAPACITY;
     }
-    buf[0] = (uint8_t)((((unsigned)r[0] & 3u) << 6) | (((unsigned)r[1] & 7u) << 3) | ((unsigned)r[2] & 7u));
+    r_cs = (uint8_t)(((unsigned)r_hdr + r_kind) % 8u);
+    word = (((unsigned)r_hdr & 3u) << 6) | (((unsigned)r_kind & 7u) << 3) | (unsigned)r_cs;
+    buf[0] = (uint8_t)word;
     return 1;
 }
 
@@ -123,7 +128,7 @@ static inline int route_start_check_raw(const uint8_t *r, const uint8_t *buf, ro
     if (r[1] != 1u) {
         return CW_ERR_CONST;
     }
-    if (r[2] != (uint8_t)(((uint32_t)r[0] + r[1]) % 8u) && !(text_form && r[2] == 0u)) {
+    if (r[2] != (uint8_t)(((unsigned)r[0] + r[1]) % 8u) && !(text_form && r[2] == 0u)) {
         return CW_ERR_CHECKSUM;
     }
     return CW_OK;
@@ -131,17 +136,28 @@ static inline int route_start_check_raw(const uint8_t *r, const uint8_t *buf, ro
 
 static inline int route_start_decode(const uint8_t *buf, size_t len, route_start_t *m)
 {
-    uint8_t r[3];
+    uint8_t r_hdr;
+    uint8_t r_kind;
+    uint8_t r_cs;
+    unsigned word;
+    (void)m;
     if (len != 1u) {
         return CW_ERR_LENGTH;
     }
-    {
-        unsigned word = buf[0];
-        r[0] = (uint8_t)((word >> 6) & 3u);
-        r[1] = (uint8_t)((word >> 3) & 7u);
-        r[2] = (uint8_t)(word & 7u);
+    word = buf[0];
+    r_hdr = (uint8_t)((word >> 6) & 3u);
+    r_kind = (uint8_t)((word >> 3) & 7u);
+    r_cs = (uint8_t)(word & 7u);
+    if (r_hdr != 3u) {
+        return CW_ERR_CONST;
     }
-    return route_start_check_raw(r, buf, m, false);
+    if (r_kind != 1u) {
+        return CW_ERR_CONST;
+    }
+    if (r_cs != (uint8_t)(((unsigned)r_hdr + r_kind) % 8u)) {
+        return CW_ERR_CHECKSUM;
+    }
+    return CW_OK;
 }
 
 static inline int route_start_to_word(const route_start_t *m, uint32_t *word)
@@ -248,22 +264,63 @@ static inline int route_object_raw(const route_object_t *m, uint8_t *r)
     }
     r[8] = (uint8_t)m->cm;
     r[9] = 0u;
-    r[9] = (uint8_t)(((uint32_t)r[0] + r[1] + r[2] + r[3] + r[4] + r[5] + r[6] + r[7] + r[8]) % 8u);
+    r[9] = (uint8_t)(((unsigned)r[0] + r[1] + r[2] + r[3] + r[4] + r[5] + r[6] + r[7] + r[8]) % 8u);
     return CW_OK;
 }
 
 static inline int route_object_encode(const route_object_t *m, uint8_t *buf, size_t cap)
 {
-    uint8_t r[10];
-    int rc = route_object_raw(m, r);
-    if (rc != CW_OK) {
-        return rc;
+    uint8_t r_hdr;
+    uint8_t r_ns;
+    uint8_t r_nl;
+    uint8_t r_no;
+    uint8_t r_na;
+    uint8_t r_dl;
+    uint8_t r_rc;
+    uint8_t r_dr;
+    uint8_t r_cm;
+    uint8_t r_cs;
+    uint32_t word;
+    r_hdr = 1u;
+    if (m->ns > 7u) {
+        return CW_ERR_RANGE;
     }
+    r_ns = (uint8_t)m->ns;
+    if (m->nl > 7u) {
+        return CW_ERR_RANGE;
+    }
+    r_nl = (uint8_t)m->nl;
+    if (m->no > 7u) {
+        return CW_ERR_RANGE;
+    }
+    r_no = (uint8_t)m->no;
+    if (m->na < 10u || m->na > 17u) {
+        return CW_ERR_RANGE;
+    }
+    r_na = (uint8_t)((uint32_t)(m->na - 10));
+    if (m->dl < 1u || m->dl > 5u) {
+        return CW_ERR_RANGE;
+    }
+    r_dl = (uint8_t)m->dl;
+    if (m->rc > 3u) {
+        return CW_ERR_RANGE;
+    }
+    r_rc = (uint8_t)m->rc;
+    if (m->dr < 1u || m->dr > 5u) {
+        return CW_ERR_RANGE;
+    }
+    r_dr = (uint8_t)m->dr;
+    if (m->cm < 1u || m->cm > 15u) {
+        return CW_ERR_RANGE;
+    }
+    r_cm = (uint8_t)m->cm;
+    r_cs = 0u;
     if (cap < 4u) {
         return CW_ERR_CAPACITY;
     }
-    buf[0] = (uint8_t)((((unsigned)r[0] & 3u) << 6) | (((unsigned)r[1] & 7u) << 3) | ((unsigned)r[2] & 7u));
-    cw_put_be(buf + 1, 3u, (uint32_t)((((uint32_t)r[3] & 7u) << 21) | (((uint32_t)r[4] & 7u) << 18) | (((uint32_t)r[5] & 7u) << 15) | (((uint32_t)r[6] & 3u) << 13) | (((uint32_t)r[7] & 7u) << 10) | (((uint32_t)r[8] & 15u) << 6) | (((uint32_t)r[9] & 7u) << 3)));
+    r_cs = (uint8_t)(((unsigned)r_hdr + r_ns + r_nl + r_no + r_na + r_dl + r_rc + r_dr + r_cm) % 8u);
+    word = ((uint32_t)((((unsigned)r_hdr & 3u) << 6) | ((unsigned)r_ns << 3) | (unsigned)r_nl) << 24) | ((uint32_t)r_no << 21) | ((uint32_t)r_na << 18) | ((uint32_t)r_dl << 15) | ((uint32_t)r_rc << 13) | ((uint32_t)r_dr << 10) | ((uint32_t)r_cm << 6) | ((uint32_t)r_cs << 3);
+    cw_put_be32(buf + 0, (uint32_t)word);
     return 4;
 }
 
@@ -305,7 +362,7 @@ static inline int route_object_check_raw(const uint8_t *r, const uint8_t *buf, r
     if (m->cm < 1u || m->cm > 15u) {
         return CW_ERR_RANGE;
     }
-    if (r[9] != (uint8_t)(((uint32_t)r[0] + r[1] + r[2] + r[3] + r[4] + r[5] + r[6] + r[7] + r[8]) % 8u) && !(text_form && r[9] == 0u)) {
+    if (r[9] != (uint8_t)(((unsigned)r[0] + r[1] + r[2] + r[3] + r[4] + r[5] + r[6] + r[7] + r[8]) % 8u) && !(text_form && r[9] == 0u)) {
         return CW_ERR_CHECKSUM;
     }
     return CW_OK;
@@ -313,30 +370,75 @@ static inline int route_object_check_raw(const uint8_t *r, const uint8_t *buf, r
 
 static inline int route_object_decode(const uint8_t *buf, size_t len, route_object_t *m)
 {
-    uint8_t r[10];
+    uint8_t r_hdr;
+    uint8_t r_ns;
+    uint8_t r_nl;
+    uint8_t r_no;
+    uint8_t r_na;
+    uint8_t r_dl;
+    uint8_t r_rc;
+    uint8_t r_dr;
+    uint8_t r_cm;
+    uint8_t r_cs;
+    uint32_t word;
+    unsigned w0;
     if (len != 4u) {
         return CW_ERR_LENGTH;
     }
-    if ((buf[3] & 7u) != 0u) {
+    word = cw_get_be32(buf + 0);
+    if ((word & 7u) != 0u) {
         return CW_ERR_RESERVED;
     }
-    {
-        unsigned word = buf[0];
-        r[0] = (uint8_t)((word >> 6) & 3u);
-        r[1] = (uint8_t)((word >> 3) & 7u);
-        r[2] = (uint8_t)(word & 7u);
+    w0 = (unsigned)(word >> 24);
+    r_hdr = (uint8_t)((w0 >> 6) & 3u);
+    r_ns = (uint8_t)((w0 >> 3) & 7u);
+    r_nl = (uint8_t)(w0 & 7u);
+    r_no = (uint8_t)((word >> 21) & 7u);
+    r_na = (uint8_t)((word >> 18) & 7u);
+    r_dl = (uint8_t)((word >> 15) & 7u);
+    r_rc = (uint8_t)((word >> 13) & 3u);
+    r_dr = (uint8_t)((word >> 10) & 7u);
+    r_cm = (uint8_t)((word >> 6) & 15u);
+    r_cs = (uint8_t)((word >> 3) & 7u);
+    if (r_hdr != 1u) {
+        return CW_ERR_CONST;
     }
-    {
-        uint32_t word = cw_get_be(buf + 1, 3u);
-        r[3] = (uint8_t)((word >> 21) & 7u);
-        r[4] = (uint8_t)((word >> 18) & 7u);
-        r[5] = (uint8_t)((word >> 15) & 7u);
-        r[6] = (uint8_t)((word >> 13) & 3u);
-        r[7] = (uint8_t)((word >> 10) & 7u);
-        r[8] = (uint8_t)((word >> 6) & 15u);
-        r[9] = (uint8_t)((word >> 3) & 7u);
+    m->ns = (uint8_t)r_ns;
+    if (m->ns > 7u) {
+        return CW_ERR_RANGE;
     }
-    return route_object_check_raw(r, buf, m, false);
+    m->nl = (uint8_t)r_nl;
+    if (m->nl > 7u) {
+        return CW_ERR_RANGE;
+    }
+    m->no = (uint8_t)r_no;
+    if (m->no > 7u) {
+        return CW_ERR_RANGE;
+    }
+    m->na = (uint8_t)(r_na + 10u);
+    if (m->na < 10u || m->na > 17u) {
+        return CW_ERR_RANGE;
+    }
+    m->dl = (uint8_t)r_dl;
+    if (m->dl < 1u || m->dl > 5u) {
+        return CW_ERR_RANGE;
+    }
+    m->rc = (uint8_t)r_rc;
+    if (m->rc > 3u) {
+        return CW_ERR_RANGE;
+    }
+    m->dr = (uint8_t)r_dr;
+    if (m->dr < 1u || m->dr > 5u) {
+        return CW_ERR_RANGE;
+    }
+    m->cm = (uint8_t)r_cm;
+    if (m->cm < 1u || m->cm > 15u) {
+        return CW_ERR_RANGE;
+    }
+    if (r_cs != (uint8_t)(((unsigned)r_hdr + r_ns + r_nl + r_no + r_na + r_dl + r_rc + r_dr + r_cm) % 8u)) {
+        return CW_ERR_CHECKSUM;
+    }
+    return CW_OK;
 }
 
 static inline int route_object_to_word(const route_object_t *m, uint32_t *word)
@@ -436,7 +538,7 @@ static inline int route_scene_raw(const route_scene_t *m, uint16_t *r)
         return CW_ERR_RANGE;
     }
     r[2] = (uint16_t)m->nl;
-    if (m->db != 1u && m->db != 2u && m->db != 3u) {
+    if (m->db < 1u || m->db > 3u) {
         return CW_ERR_ENUM;
     }
     r[3] = (uint16_t)m->db;
@@ -445,22 +547,43 @@ static inline int route_scene_raw(const route_scene_t *m, uint16_t *r)
     }
     r[4] = (uint16_t)m->nt;
     r[5] = 0u;
-    r[5] = (uint16_t)(((uint32_t)r[0] + r[1] + r[2] + r[3] + r[4]) % 8u);
+    r[5] = (uint16_t)(((unsigned)r[0] + r[1] + r[2] + r[3] + r[4]) % 8u);
     return CW_OK;
 }
 
 static inline int route_scene_encode(const route_scene_t *m, uint8_t *buf, size_t cap)
 {
-    uint16_t r[6];
-    int rc = route_scene_raw(m, r);
-    if (rc != CW_OK) {
-        return rc;
+    uint8_t r_hdr;
+    uint8_t r_ns;
+    uint8_t r_nl;
+    uint8_t r_db;
+    uint16_t r_nt;
+    uint8_t r_cs;
+    uint32_t word;
+    r_hdr = 2u;
+    if (m->ns > 7u) {
+        return CW_ERR_RANGE;
     }
+    r_ns = (uint8_t)m->ns;
+    if (m->nl > 7u) {
+        return CW_ERR_RANGE;
+    }
+    r_nl = (uint8_t)m->nl;
+    if (m->db < 1u || m->db > 3u) {
+        return CW_ERR_ENUM;
+    }
+    r_db = (uint8_t)m->db;
+    if (m->nt > 0x7fffu) {
+        return CW_ERR_RANGE;
+    }
+    r_nt = (uint16_t)m->nt;
+    r_cs = 0u;
     if (cap < 4u) {
         return CW_ERR_CAPACITY;
     }
-    buf[0] = (uint8_t)((((unsigned)r[0] & 3u) << 6) | (((unsigned)r[1] & 7u) << 3) | ((unsigned)r[2] & 7u));
-    cw_put_be(buf + 1, 3u, (uint32_t)((((uint32_t)r[3] & 7u) << 21) | (((uint32_t)r[4] & 0x7fffu) << 6) | (((uint32_t)r[5] & 7u) << 3)));
+    r_cs = (uint8_t)(((unsigned)r_hdr + r_ns + r_nl + r_db + r_nt) % 8u);
+    word = ((uint32_t)((((unsigned)r_hdr & 3u) << 6) | ((unsigned)r_ns << 3) | (unsigned)r_nl) << 24) | ((uint32_t)r_db << 21) | ((uint32_t)r_nt << 6) | ((uint32_t)r_cs << 3);
+    cw_put_be32(buf + 0, (uint32_t)word);
     return 4;
 }
 
@@ -478,12 +601,12 @@ static inline int route_scene_check_raw(const uint16_t *r, const uint8_t *buf, r
     if (m->nl > 7u) {
         return CW_ERR_RANGE;
     }
-    if (r[3] != 1u && r[3] != 2u && r[3] != 3u) {
+    if (r[3] < 1u || r[3] > 3u) {
         return CW_ERR_ENUM;
     }
     m->db = (uint8_t)r[3];
     m->nt = (uint16_t)r[4];
-    if (r[5] != (uint16_t)(((uint32_t)r[0] + r[1] + r[2] + r[3] + r[4]) % 8u) && !(text_form && r[5] == 0u)) {
+    if (r[5] != (uint16_t)(((unsigned)r[0] + r[1] + r[2] + r[3] + r[4]) % 8u) && !(text_form && r[5] == 0u)) {
         return CW_ERR_CHECKSUM;
     }
     return CW_OK;
@@ -491,26 +614,48 @@ static inline int route_scene_check_raw(const uint16_t *r, const uint8_t *buf, r
 
 static inline int route_scene_decode(const uint8_t *buf, size_t len, route_scene_t *m)
 {
-    uint16_t r[6];
+    uint8_t r_hdr;
+    uint8_t r_ns;
+    uint8_t r_nl;
+    uint8_t r_db;
+    uint16_t r_nt;
+    uint8_t r_cs;
+    uint32_t word;
+    unsigned w0;
     if (len != 4u) {
         return CW_ERR_LENGTH;
     }
-    if ((buf[3] & 7u) != 0u) {
+    word = cw_get_be32(buf + 0);
+    if ((word & 7u) != 0u) {
         return CW_ERR_RESERVED;
     }
-    {
-        unsigned word = buf[0];
-        r[0] = (uint16_t)((word >> 6) & 3u);
-        r[1] = (uint16_t)((word >> 3) & 7u);
-        r[2] = (uint16_t)(word & 7u);
+    w0 = (unsigned)(word >> 24);
+    r_hdr = (uint8_t)((w0 >> 6) & 3u);
+    r_ns = (uint8_t)((w0 >> 3) & 7u);
+    r_nl = (uint8_t)(w0 & 7u);
+    r_db = (uint8_t)((word >> 21) & 7u);
+    r_nt = (uint16_t)((word >> 6) & 0x7fffu);
+    r_cs = (uint8_t)((word >> 3) & 7u);
+    if (r_hdr != 2u) {
+        return CW_ERR_CONST;
     }
-    {
-        uint32_t word = cw_get_be(buf + 1, 3u);
-        r[3] = (uint16_t)((word >> 21) & 7u);
-        r[4] = (uint16_t)((word >> 6) & 0x7fffu);
-        r[5] = (uint16_t)((word >> 3) & 7u);
+    m->ns = (uint8_t)r_ns;
+    if (m->ns > 7u) {
+        return CW_ERR_RANGE;
     }
-    return route_scene_check_raw(r, buf, m, false);
+    m->nl = (uint8_t)r_nl;
+    if (m->nl > 7u) {
+        return CW_ERR_RANGE;
+    }
+    if (r_db < 1u || r_db > 3u) {
+        return CW_ERR_ENUM;
+    }
+    m->db = (uint8_t)r_db;
+    m->nt = (uint16_t)r_nt;
+    if (r_cs != (uint8_t)(((unsigned)r_hdr + r_ns + r_nl + r_db + r_nt) % 8u)) {
+        return CW_ERR_CHECKSUM;
+    }
+    return CW_OK;
 }
 
 static inline int route_scene_to_word(const route_scene_t *m, uint32_t *word)
@@ -593,21 +738,26 @@ static inline int route_end_raw(const route_end_t *m, uint8_t *r)
     r[0] = 3u;
     r[1] = 2u;
     r[2] = 0u;
-    r[2] = (uint8_t)(((uint32_t)r[0] + r[1]) % 8u);
+    r[2] = (uint8_t)(((unsigned)r[0] + r[1]) % 8u);
     return CW_OK;
 }
 
 static inline int route_end_encode(const route_end_t *m, uint8_t *buf, size_t cap)
 {
-    uint8_t r[3];
-    int rc = route_end_raw(m, r);
-    if (rc != CW_OK) {
-        return rc;
-    }
+    uint8_t r_hdr;
+    uint8_t r_kind;
+    uint8_t r_cs;
+    unsigned word;
+    (void)m;
+    r_hdr = 3u;
+    r_kind = 2u;
+    r_cs = 0u;
     if (cap < 1u) {
         return CW_ERR_CAPACITY;
     }
-    buf[0] = (uint8_t)((((unsigned)r[0] & 3u) << 6) | (((unsigned)r[1] & 7u) << 3) | ((unsigned)r[2] & 7u));
+    r_cs = (uint8_t)(((unsigned)r_hdr + r_kind) % 8u);
+    word = (((unsigned)r_hdr & 3u) << 6) | (((unsigned)r_kind & 7u) << 3) | (unsigned)r_cs;
+    buf[0] = (uint8_t)word;
     return 1;
 }
 
@@ -621,7 +771,7 @@ static inline int route_end_check_raw(const uint8_t *r, const uint8_t *buf, rout
     if (r[1] != 2u) {
         return CW_ERR_CONST;
     }
-    if (r[2] != (uint8_t)(((uint32_t)r[0] + r[1]) % 8u) && !(text_form && r[2] == 0u)) {
+    if (r[2] != (uint8_t)(((unsigned)r[0] + r[1]) % 8u) && !(text_form && r[2] == 0u)) {
         return CW_ERR_CHECKSUM;
     }
     return CW_OK;
@@ -629,17 +779,28 @@ static inline int route_end_check_raw(const uint8_t *r, const uint8_t *buf, rout
 
 static inline int route_end_decode(const uint8_t *buf, size_t len, route_end_t *m)
 {
-    uint8_t r[3];
+    uint8_t r_hdr;
+    uint8_t r_kind;
+    uint8_t r_cs;
+    unsigned word;
+    (void)m;
     if (len != 1u) {
         return CW_ERR_LENGTH;
     }
-    {
-        unsigned word = buf[0];
-        r[0] = (uint8_t)((word >> 6) & 3u);
-        r[1] = (uint8_t)((word >> 3) & 7u);
-        r[2] = (uint8_t)(word & 7u);
+    word = buf[0];
+    r_hdr = (uint8_t)((word >> 6) & 3u);
+    r_kind = (uint8_t)((word >> 3) & 7u);
+    r_cs = (uint8_t)(word & 7u);
+    if (r_hdr != 3u) {
+        return CW_ERR_CONST;
     }
-    return route_end_check_raw(r, buf, m, false);
+    if (r_kind != 2u) {
+        return CW_ERR_CONST;
+    }
+    if (r_cs != (uint8_t)(((unsigned)r_hdr + r_kind) % 8u)) {
+        return CW_ERR_CHECKSUM;
+    }
+    return CW_OK;
 }
 
 static inline int route_end_to_word(const route_end_t *m, uint32_t *word)

@@ -254,10 +254,10 @@ static inline int tank_telemetry_encode(const tank_telemetry_t *m, char *buf, si
     if (!cw_decimal_fits(&m->vbat)) {
         return CW_ERR_PRECISION;
     }
-    if (m->systemstatus != 0u && m->systemstatus != 1u && m->systemstatus != 2u && m->systemstatus != 3u && m->systemstatus != 4u && m->systemstatus != 5u && m->systemstatus != 6u) {
+    if (m->systemstatus > 6u) {
         return CW_ERR_ENUM;
     }
-    if (m->extstatus != 0u && m->extstatus != 1u && m->extstatus != 2u && m->extstatus != 3u && m->extstatus != 4u && m->extstatus != 5u) {
+    if (m->extstatus > 5u) {
         return CW_ERR_ENUM;
     }
     cw_writer_init(&w, buf, cap);
@@ -579,7 +579,7 @@ static inline int tank_command_encode(const tank_command_t *m, char *buf, size_t
     if (!cw_decimal_fits(&m->gpio4)) {
         return CW_ERR_PRECISION;
     }
-    if (m->systemstatus != 0u && m->systemstatus != 1u && m->systemstatus != 2u && m->systemstatus != 3u && m->systemstatus != 4u && m->systemstatus != 5u && m->systemstatus != 6u) {
+    if (m->systemstatus > 6u) {
         return CW_ERR_ENUM;
     }
     if (m->systemstatus != 0u && m->systemstatus != 1u && m->systemstatus != 2u && m->systemstatus != 3u && m->systemstatus != 4u) {
@@ -889,16 +889,16 @@ static inline int tank_payload_reply_decode(const char *text, size_t len, tank_p
 static inline int tank_gpio_config_encode(const tank_gpio_config_t *m, char *buf, size_t cap)
 {
     cw_writer_t w;
-    if (m->gpio1 != 0u && m->gpio1 != 1u && m->gpio1 != 2u && m->gpio1 != 3u) {
+    if (m->gpio1 > 3u) {
         return CW_ERR_ENUM;
     }
-    if (m->gpio2 != 0u && m->gpio2 != 1u && m->gpio2 != 2u && m->gpio2 != 3u) {
+    if (m->gpio2 > 3u) {
         return CW_ERR_ENUM;
     }
-    if (m->gpio3 != 0u && m->gpio3 != 1u && m->gpio3 != 2u && m->gpio3 != 3u) {
+    if (m->gpio3 > 3u) {
         return CW_ERR_ENUM;
     }
-    if (m->gpio4 != 0u && m->gpio4 != 1u && m->gpio4 != 2u && m->gpio4 != 3u) {
+    if (m->gpio4 > 3u) {
         return CW_ERR_ENUM;
     }
     cw_writer_init(&w, buf, cap);
