@@ -4,9 +4,12 @@ Python class names are CamelCase (`set_led` and `setLed` both give `SetLed`);
 C constants are upper case with a prefix (`left` and `LEFT` both give
 `P_SIDE_LEFT`; enum `side` member `left_x` and enum `side_left` member `x`
 both give `P_SIDE_LEFT_X`). A sequence shares the class namespace with
-messages (and its C functions `p_<name>_…` with theirs). A second definition
-would silently replace the first in Python and fail to compile in C, so such
-schemas are refused.
+messages (and its C functions `p_<name>_…` with theirs). C functions and
+types are `p_<name>_<suffix>` for messages, sequences and machines next to the
+protocol's own `p_<suffix>` (a message `parser` would define `p_parser_t`, the
+stream parser's type; a message `route_iter` the iterator type of a sequence
+`route`). A second definition would silently replace the first in Python and
+fail to compile in C, so such schemas are refused.
 """
 from __future__ import annotations
 
@@ -53,8 +56,38 @@ def _constants(d: dict[str, Any]) -> Iterator[tuple[str, tuple, str]]:
                            f"{set_name}.{member['name']}")
 
 
+# What templates/c defines for each kind of schema entity, after `p_<name>`.
+C_SUFFIXES = {
+    "messages": ("t", "encode", "decode", "raw", "check_raw", "from_word", "to_word", "from_values",
+                 "to_text", "parse_body"),
+    "sequences": ("check", "decode", "expected", "grammar_init", "iter_init", "iter_next", "iter_t",
+                  "rules", "split", "step", "unit"),
+    "machines": ("t", "init", "receive", "reset", "send", "tick"),
+}
+# ... and for the protocol itself, after `p_`.
+C_PROTOCOL = ("encode", "decode", "decode_kind", "decode_text", "decode_word", "find", "split",
+              "message_t", "parser_t", "parser_init", "parser_feed", "parser_drop", "parser_next",
+              "machine_out_t", "machine_out_clear")
+
+
+def _c_names(d: dict[str, Any]) -> Iterator[tuple[str, tuple, str]]:
+    for name in C_PROTOCOL:
+        yield name, (), "the protocol's own definitions"
+    for section, suffixes in C_SUFFIXES.items():
+        what = section[:-1]
+        for name in d.get(section, {}) or {}:
+            if isinstance(name, str):
+                for suffix in suffixes:
+                    yield f"{name}_{suffix}", (section, name), f"{what} {name!r}"
+
+
 def generated_name_clashes(d: dict[str, Any]) -> list[Clash]:
     found: list[Clash] = []
+    first_c: dict[str, str] = {}
+    for generated, path, what in _c_names(d):
+        other = first_c.setdefault(generated, what)
+        if other != what and path:
+            found.append((path, f"{what} and {other} would both define the C name <p>_{generated}"))
     for kind, names in (("Python class", _classes(d)), ("C constant", _constants(d))):
         first: dict[str, str] = {}
         for generated, path, what in names:
