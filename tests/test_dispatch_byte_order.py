@@ -4,15 +4,12 @@ frames written out by hand below, and the Python and C decoders, which find the
 message by that field, read each back as the message it holds."""
 from __future__ import annotations
 
-import importlib.util
-import shutil
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
-from compiler.build import compile_schema, render_protocol
+import scratch
+
 
 SCHEMA = """\
 codeword: 1
@@ -93,27 +90,12 @@ def c_array(spaced_hex: str) -> str:
 
 @pytest.fixture(params=sorted(FRAMES))
 def built(request, tmp_path: Path):
-    order = request.param
-    schema = tmp_path / "ledis.yaml"
-    schema.write_text(SCHEMA.format(order=order), encoding="utf-8")
-    files = render_protocol(compile_schema(schema))
-    for rel in ("python/ledis.py", "c/ledis.h", "c/codeword.h"):
-        (tmp_path / Path(rel).name).write_text(files[rel], encoding="utf-8")
-    return order, tmp_path
-
-
-def load(path: Path):
-    key = f"ledis_{path.parent.name}"
-    spec = importlib.util.spec_from_file_location(key, path)
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[key] = module  # dataclasses look their module up while the class is made
-    spec.loader.exec_module(module)
-    return module
+    return request.param, scratch.render(tmp_path, "ledis", SCHEMA.format(order=request.param))
 
 
 def test_python_writes_the_id_in_the_declared_order(built):
     order, where = built
-    ledis = load(where / "ledis.py")
+    ledis = scratch.load(where / "ledis.py")
     ping, pong = (bytes.fromhex(h) for h in FRAMES[order])
     assert ledis.encode(ledis.Ping(v=0x1234)) == ping
     assert ledis.encode(ledis.Pong(w=0xABCD)) == pong
@@ -123,7 +105,7 @@ def test_python_writes_the_id_in_the_declared_order(built):
 
 def test_python_dispatch_reads_the_id_in_the_declared_order(built):
     order, where = built
-    ledis = load(where / "ledis.py")
+    ledis = scratch.load(where / "ledis.py")
     ping, pong = (bytes.fromhex(h) for h in FRAMES[order])
     assert ledis.decode(ping) == ledis.Ping(v=0x1234)
     assert ledis.decode(pong) == ledis.Pong(w=0xABCD)
@@ -133,20 +115,8 @@ def test_python_dispatch_reads_the_id_in_the_declared_order(built):
 
 def test_c_dispatch_reads_the_id_in_the_declared_order(built):
     order, where = built
-    gcc = shutil.which("gcc")
-    assert gcc, "gcc is not installed (.ci/run installs it)"
     ping, pong = FRAMES[order]
-    src = where / "driver.c"
-    src.write_text(DRIVER.replace("{PING}", c_array(ping)).replace("{PONG}", c_array(pong)),
-                   encoding="utf-8")
-    exe = where / "driver"
-    build = subprocess.run([gcc, "-std=c99", "-g", "-O1", "-fsanitize=address,undefined",
-                            "-fno-sanitize-recover=all", "-Wall", "-Wextra", "-Werror", "-I", str(where), str(src), "-o", str(exe)],
-                           capture_output=True, text=True, timeout=300)
-    assert build.returncode == 0, build.stderr
-    run = subprocess.run([str(exe)], capture_output=True, text=True, timeout=60)
-    assert run.returncode == 0, run.stdout + run.stderr
-    assert run.stdout.splitlines() == [
+    assert scratch.run_c(where, DRIVER.replace("{PING}", c_array(ping)).replace("{PONG}", c_array(pong))) == [
         "ping_frame ping 1234",
         "pong_frame pong abcd",
         f"encoded {ping}",

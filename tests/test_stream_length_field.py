@@ -4,15 +4,12 @@ longer than 255 bytes; the Python StreamDecoder and the C parser find the
 same frames, written out by hand below, in a stream with garbage around them."""
 from __future__ import annotations
 
-import importlib.util
-import shutil
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
-from compiler.build import compile_schema, render_protocol
+import scratch
+
 
 SCHEMA = """\
 codeword: 1
@@ -92,27 +89,12 @@ int main(void)
 
 @pytest.fixture(params=sorted(FRAMES))
 def built(request, tmp_path: Path):
-    order = request.param
-    schema = tmp_path / "lenf.yaml"
-    schema.write_text(SCHEMA.format(order=order), encoding="utf-8")
-    files = render_protocol(compile_schema(schema))
-    for rel in ("python/lenf.py", "c/lenf.h", "c/codeword.h"):
-        (tmp_path / Path(rel).name).write_text(files[rel], encoding="utf-8")
-    return order, tmp_path
-
-
-def load(path: Path):
-    key = f"lenf_{path.parent.name}"
-    spec = importlib.util.spec_from_file_location(key, path)
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[key] = module
-    spec.loader.exec_module(module)
-    return module
+    return request.param, scratch.render(tmp_path, "lenf", SCHEMA.format(order=request.param))
 
 
 def test_python_stream_decoder_reads_the_two_byte_length(built):
     order, where = built
-    lenf = load(where / "lenf.py")
+    lenf = scratch.load(where / "lenf.py")
     small, large = FRAMES[order]
     assert lenf.encode(lenf.Small(a=0x42)) == small
     assert lenf.encode(lenf.Large(b=0x11223344, blob=BLOB)) == large
@@ -127,17 +109,6 @@ def test_python_stream_decoder_reads_the_two_byte_length(built):
 
 def test_c_parser_reads_the_two_byte_length(built):
     order, where = built
-    gcc = shutil.which("gcc")
-    assert gcc, "gcc is not installed (.ci/run installs it)"
-    src = where / "driver.c"
-    src.write_text(DRIVER.replace("{STREAM}", "{" + ", ".join(f"0x{b:02x}" for b in stream(order)) + "}"),
-                   encoding="utf-8")
-    exe = where / "driver"
-    build = subprocess.run([gcc, "-std=c99", "-g", "-O1", "-fsanitize=address,undefined",
-                            "-fno-sanitize-recover=all", "-Wall", "-Wextra", "-Werror", "-I", str(where),
-                            str(src), "-o", str(exe)], capture_output=True, text=True, timeout=300)
-    assert build.returncode == 0, build.stderr
-    run = subprocess.run([str(exe)], capture_output=True, text=True, timeout=60)
-    assert run.returncode == 0, run.stdout + run.stderr
-    assert run.stdout.splitlines() == ["small 42", "large 11223344 38", "small 42",
-                                       f"skipped {len(GARBAGE) + 2}"]
+    driver = DRIVER.replace("{STREAM}", "{" + ", ".join(f"0x{b:02x}" for b in stream(order)) + "}")
+    assert scratch.run_c(where, driver) == ["small 42", "large 11223344 38", "small 42",
+                                            f"skipped {len(GARBAGE) + 2}"]

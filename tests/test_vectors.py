@@ -3,11 +3,10 @@ vector decodes to its values and its values encode to its bytes in the
 generated Python."""
 from __future__ import annotations
 
-import importlib.util
 import json
-import sys
 from pathlib import Path
 
+import scratch
 from compiler.build import build, schema_files
 
 SCALED = """\
@@ -39,12 +38,7 @@ def built(tmp_path: Path, name: str, text: str):
     result = build(schema_files(tmp_path / "schemas"), out, root=tmp_path)
     assert not result.errors, "\n".join(map(str, result.errors))
     vectors = json.loads((out / "vectors" / f"{name}.json").read_text(encoding="utf-8"))
-    key = f"vectors_{name}_{tmp_path.name}"
-    spec = importlib.util.spec_from_file_location(key, out / "python" / f"{name}.py")
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[key] = module  # dataclasses look their module up while the class is made
-    spec.loader.exec_module(module)
-    return vectors, module
+    return vectors, scratch.load(out / "python" / f"{name}.py")
 
 
 def test_scaled_fields_without_range_take_their_limits_from_the_width(tmp_path):

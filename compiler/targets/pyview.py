@@ -1159,35 +1159,28 @@ class ModuleView(PythonView):
     def dispatch_table(self) -> dict:
         facts = dispatch_facts(self.p)
         if facts["kind"] == "bytes":
-            first, last, shift, mask = facts["first"], facts["last"], facts["shift"], facts["mask"]
-            if last - first == 1:
-                value = f"d[{first}]"
-            else:
-                value = f"int.from_bytes(d[{first}:{last}], {facts.get('byte_order', 'big')!r})"
-            if shift:
-                value = f"({value} >> {shift})"
-            if mask != (1 << (8 * (last - first))) - 1 or shift:
-                value = f"{value} & {mask:#x}"
-            facts = dict(facts, value_expr=value)
+            facts = dict(facts, value_expr=self.read_expr("d", "", facts))
         return facts
 
     def stream_view(self) -> dict:
         facts = stream_facts(self.p)
         if facts.get("length"):
-            facts = dict(facts, length=dict(facts["length"], value_expr=self.length_expr(facts["length"])))
+            length = facts["length"]
+            facts = dict(facts, length=dict(length, value_expr=self.read_expr("buf", "pos + ", dict(length, first=length["at"]))))
         return facts
 
     @staticmethod
-    def length_expr(length: dict) -> str:
-        """The length field of the frame starting at buf[pos]."""
-        at, last, shift, mask = length["at"], length["last"], length["shift"], length["mask"]
-        if last - at == 1:
-            value = f"buf[pos + {at}]"
+    def read_expr(buf: str, base: str, where: dict) -> str:
+        """The integer in bytes first..last of `buf` (after `base`), shifted and masked: a
+        whole multi-byte field is read in its byte order, bits inside bytes big-endian."""
+        first, last, shift, mask = where["first"], where["last"], where["shift"], where["mask"]
+        if last - first == 1:
+            value = f"{buf}[{base}{first}]"
         else:
-            value = f"int.from_bytes(buf[pos + {at}:pos + {last}], {length['byte_order']!r})"
+            value = f"int.from_bytes({buf}[{base}{first}:{base}{last}], {where.get('byte_order', 'big')!r})"
         if shift:
             value = f"({value} >> {shift})"
-        if shift or mask != (1 << (8 * (last - at))) - 1:
+        if shift or mask != (1 << (8 * (last - first))) - 1:
             value = f"({value} & {mask:#x})"
         return value
 

@@ -796,12 +796,12 @@ def decode(data, direction=None):
     """Decode one frame; `direction` is needed only when ids are reused across directions."""
     d = data if data.__class__ is bytes else _as_input(data)
     if direction is None and len(d) >= 4:
-        fn = _UNIQUE.get((d[3] & 0x7f, len(d)))
+        fn = _UNIQUE.get(((d[3] & 0x7f), len(d)))
         if fn is not None:
             return fn(d)
     if len(d) < 4:
         raise _dec(None, None, len(d), 'length', 'a whole frame', 0)
-    value = d[3] & 0x7f
+    value = (d[3] & 0x7f)
     key = (value, len(d))
     if direction is not None:
         fn = _KEYS_BY_DIRECTION.get(direction, {}).get(key)

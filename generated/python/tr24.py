@@ -265,12 +265,12 @@ def decode(data, direction=None):
     """Decode one frame; `direction` is needed only when ids are reused across directions."""
     d = data if data.__class__ is bytes else _as_input(data)
     if direction is None and len(d) >= 2:
-        fn = _UNIQUE.get(((d[1] >> 1) & 0x1, len(d)))
+        fn = _UNIQUE.get((((d[1] >> 1) & 0x1), len(d)))
         if fn is not None:
             return fn(d)
     if len(d) < 2:
         raise _dec(None, None, len(d), 'length', 'a whole frame', 0)
-    value = (d[1] >> 1) & 0x1
+    value = ((d[1] >> 1) & 0x1)
     key = (value, len(d))
     if direction is not None:
         fn = _KEYS_BY_DIRECTION.get(direction, {}).get(key)

@@ -1,0 +1,48 @@
+"""Schemas written by a test: build one into a temporary folder, import its
+Python codec, compile and run a C driver against its header."""
+from __future__ import annotations
+
+import importlib.util
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+from compiler.build import compile_schema, render_protocol
+
+C_FLAGS = ["-std=c99", "-g", "-O1", "-fsanitize=address,undefined", "-fno-sanitize-recover=all",
+           "-Wall", "-Wextra", "-Werror"]
+
+
+def render(where: Path, name: str, schema: str) -> Path:
+    """Write the schema and its Python module and C headers into `where`."""
+    path = where / f"{name}.yaml"
+    path.write_text(schema, encoding="utf-8")
+    files = render_protocol(compile_schema(path))
+    for rel in (f"python/{name}.py", f"c/{name}.h", "c/codeword.h"):
+        (where / Path(rel).name).write_text(files[rel], encoding="utf-8")
+    return where
+
+
+def load(path: Path):
+    """Import a generated module from its file, under a name unique to its folder."""
+    key = f"{path.stem}_{path.parent.name}"
+    spec = importlib.util.spec_from_file_location(key, path)
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[key] = module  # dataclasses look their module up while the class is made
+    spec.loader.exec_module(module)
+    return module
+
+
+def run_c(where: Path, driver: str) -> list[str]:
+    """Compile `driver` against the headers in `where` with the sanitizers; its output lines."""
+    gcc = shutil.which("gcc")
+    assert gcc, "gcc is not installed (.ci/run installs it)"
+    src, exe = where / "driver.c", where / "driver"
+    src.write_text(driver, encoding="utf-8")
+    build = subprocess.run([gcc, *C_FLAGS, "-I", str(where), str(src), "-o", str(exe)],
+                           capture_output=True, text=True, timeout=300)
+    assert build.returncode == 0, build.stderr
+    run = subprocess.run([str(exe)], capture_output=True, text=True, timeout=60)
+    assert run.returncode == 0, run.stdout + run.stderr
+    return run.stdout.splitlines()
