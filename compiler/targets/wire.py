@@ -48,8 +48,8 @@ def dispatch_facts(p: Protocol) -> dict:
             pos = 0
             for leaf in leaves_of(m.layout):
                 f = leaf.field
-                if f.dispatch:
-                    tests.append((pos, f.bits, f.const))
+                if f.dispatch:  # compared with the raw bits: a negative constant as its two's complement
+                    tests.append((pos, f.bits, f.const & ((1 << f.bits) - 1)))
                 pos += f.bits or 0
             entries.append({"name": m.name, "size": m.size, "tests": tests})
         head = max(pos + bits for e in entries for pos, bits, _ in e["tests"])
