@@ -739,22 +739,31 @@ class MessageCode:
 
     # -- the text form of a bits protocol (route exchange file) ----------------------------
     def text_form_functions(self) -> str:
+        """The exchange-file form: the raw wire values in decimal, a signed field as its
+        bit pattern (as the C writes it), so every token is a plain unsigned number."""
         sep = self.view.p.framing.text_form.separator
+        names = ", ".join(x.var for x in self.leaves)
         c = Code()
         c(f"def _encode_text_{self.fn}(m):")
-        c(f"    return {sep!r}.join(map(str, _raw_{self.fn}(m)))")
+        c(f"    {names}, = _raw_{self.fn}(m)")
+        c(f"    return {sep!r}.join(map(str, ({''.join(self.unsigned(x) + ', ' for x in self.leaves)})))")
         c("")
         c(f"def _decode_text_{self.fn}(tokens):")
         c.indent()
         c(f"if len(tokens) != {len(self.leaves)}:")
         c(f"    raise _dec({self.m.name!r}, None, len(tokens), 'count', '{len(self.leaves)} values', 0)")
-        # Text carries any integer; values without a declared range must still fit their width.
-        for n, leaf in enumerate(self.leaves):
-            if leaf.field.range is None:
-                top = (1 << leaf.field.bits) - 1
-                c(f"if tokens[{n}] > {top}:")
-                c(f"    raise _dec({self.m.name!r}, {leaf.dotted!r}, tokens[{n}], 'range', '0..{top}', 0)")
-        c(f"return _build_{self.fn}(*tokens, text_form=True)")
+        c(f"{names}, = tokens")
+        # Text carries any integer: each must fit its width, then a signed one is sign-extended.
+        for leaf in self.leaves:
+            f, var = leaf.field, leaf.var
+            if f.range is None or f.kind == "int":
+                top = (1 << f.bits) - 1
+                c(f"if {var} > {top}:")
+                c(f"    raise _dec({self.m.name!r}, {leaf.dotted!r}, {var}, 'range', '0..{top}', 0)")
+            if f.kind == "int":
+                c(f"if {var} & {1 << (f.bits - 1):#x}:")
+                c(f"    {var} -= {1 << f.bits:#x}")
+        c(f"return _build_{self.fn}({names}, text_form=True)")
         return c.text()
 
     # -- text framing ----------------------------------------------------------------------

@@ -236,18 +236,20 @@ def _build_start(r_hdr, r_kind, r_cs, text_form=False):
 
 
 def _encode_text_start(m):
-    return ' '.join(map(str, _raw_start(m)))
+    r_hdr, r_kind, r_cs, = _raw_start(m)
+    return ' '.join(map(str, (r_hdr, r_kind, r_cs, )))
 
 def _decode_text_start(tokens):
     if len(tokens) != 3:
         raise _dec('start', None, len(tokens), 'count', '3 values', 0)
-    if tokens[0] > 3:
-        raise _dec('start', 'hdr', tokens[0], 'range', '0..3', 0)
-    if tokens[1] > 7:
-        raise _dec('start', 'kind', tokens[1], 'range', '0..7', 0)
-    if tokens[2] > 7:
-        raise _dec('start', 'cs', tokens[2], 'range', '0..7', 0)
-    return _build_start(*tokens, text_form=True)
+    r_hdr, r_kind, r_cs, = tokens
+    if r_hdr > 3:
+        raise _dec('start', 'hdr', r_hdr, 'range', '0..3', 0)
+    if r_kind > 7:
+        raise _dec('start', 'kind', r_kind, 'range', '0..7', 0)
+    if r_cs > 7:
+        raise _dec('start', 'cs', r_cs, 'range', '0..7', 0)
+    return _build_start(r_hdr, r_kind, r_cs, text_form=True)
 
 
 def _encode_object(m):
@@ -422,16 +424,18 @@ def _build_object(r_hdr, r_ns, r_nl, r_no, r_na, r_dl, r_rc, r_dr, r_cm, r_cs, t
 
 
 def _encode_text_object(m):
-    return ' '.join(map(str, _raw_object(m)))
+    r_hdr, r_ns, r_nl, r_no, r_na, r_dl, r_rc, r_dr, r_cm, r_cs, = _raw_object(m)
+    return ' '.join(map(str, (r_hdr, r_ns, r_nl, r_no, r_na, r_dl, r_rc, r_dr, r_cm, r_cs, )))
 
 def _decode_text_object(tokens):
     if len(tokens) != 10:
         raise _dec('object', None, len(tokens), 'count', '10 values', 0)
-    if tokens[0] > 3:
-        raise _dec('object', 'hdr', tokens[0], 'range', '0..3', 0)
-    if tokens[9] > 7:
-        raise _dec('object', 'cs', tokens[9], 'range', '0..7', 0)
-    return _build_object(*tokens, text_form=True)
+    r_hdr, r_ns, r_nl, r_no, r_na, r_dl, r_rc, r_dr, r_cm, r_cs, = tokens
+    if r_hdr > 3:
+        raise _dec('object', 'hdr', r_hdr, 'range', '0..3', 0)
+    if r_cs > 7:
+        raise _dec('object', 'cs', r_cs, 'range', '0..7', 0)
+    return _build_object(r_hdr, r_ns, r_nl, r_no, r_na, r_dl, r_rc, r_dr, r_cm, r_cs, text_form=True)
 
 
 def _encode_scene(m):
@@ -538,20 +542,22 @@ def _build_scene(r_hdr, r_ns, r_nl, r_db, r_nt, r_cs, text_form=False):
 
 
 def _encode_text_scene(m):
-    return ' '.join(map(str, _raw_scene(m)))
+    r_hdr, r_ns, r_nl, r_db, r_nt, r_cs, = _raw_scene(m)
+    return ' '.join(map(str, (r_hdr, r_ns, r_nl, r_db, r_nt, r_cs, )))
 
 def _decode_text_scene(tokens):
     if len(tokens) != 6:
         raise _dec('scene', None, len(tokens), 'count', '6 values', 0)
-    if tokens[0] > 3:
-        raise _dec('scene', 'hdr', tokens[0], 'range', '0..3', 0)
-    if tokens[3] > 7:
-        raise _dec('scene', 'db', tokens[3], 'range', '0..7', 0)
-    if tokens[4] > 32767:
-        raise _dec('scene', 'nt', tokens[4], 'range', '0..32767', 0)
-    if tokens[5] > 7:
-        raise _dec('scene', 'cs', tokens[5], 'range', '0..7', 0)
-    return _build_scene(*tokens, text_form=True)
+    r_hdr, r_ns, r_nl, r_db, r_nt, r_cs, = tokens
+    if r_hdr > 3:
+        raise _dec('scene', 'hdr', r_hdr, 'range', '0..3', 0)
+    if r_db > 7:
+        raise _dec('scene', 'db', r_db, 'range', '0..7', 0)
+    if r_nt > 32767:
+        raise _dec('scene', 'nt', r_nt, 'range', '0..32767', 0)
+    if r_cs > 7:
+        raise _dec('scene', 'cs', r_cs, 'range', '0..7', 0)
+    return _build_scene(r_hdr, r_ns, r_nl, r_db, r_nt, r_cs, text_form=True)
 
 
 def _encode_end(m):
@@ -603,18 +609,20 @@ def _build_end(r_hdr, r_kind, r_cs, text_form=False):
 
 
 def _encode_text_end(m):
-    return ' '.join(map(str, _raw_end(m)))
+    r_hdr, r_kind, r_cs, = _raw_end(m)
+    return ' '.join(map(str, (r_hdr, r_kind, r_cs, )))
 
 def _decode_text_end(tokens):
     if len(tokens) != 3:
         raise _dec('end', None, len(tokens), 'count', '3 values', 0)
-    if tokens[0] > 3:
-        raise _dec('end', 'hdr', tokens[0], 'range', '0..3', 0)
-    if tokens[1] > 7:
-        raise _dec('end', 'kind', tokens[1], 'range', '0..7', 0)
-    if tokens[2] > 7:
-        raise _dec('end', 'cs', tokens[2], 'range', '0..7', 0)
-    return _build_end(*tokens, text_form=True)
+    r_hdr, r_kind, r_cs, = tokens
+    if r_hdr > 3:
+        raise _dec('end', 'hdr', r_hdr, 'range', '0..3', 0)
+    if r_kind > 7:
+        raise _dec('end', 'kind', r_kind, 'range', '0..7', 0)
+    if r_cs > 7:
+        raise _dec('end', 'cs', r_cs, 'range', '0..7', 0)
+    return _build_end(r_hdr, r_kind, r_cs, text_form=True)
 
 
 _BITS_DISPATCH = (
