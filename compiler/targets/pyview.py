@@ -572,13 +572,11 @@ class MessageCode:
         """The frame is short and all integers, big-endian: it is read and written as one int."""
         if self.m.size > 8:
             return False
-        for ch in self.chunks():
-            f = ch.leaves[0][0].field
+        for leaf in self.leaves:  # a checksum over bytes needs the bytes first
+            f = leaf.field
             if f.kind in ("float", "bytes") or f.checksum and f.checksum.over == "bytes":
                 return False
-            if ch.lone and ch.nbytes > 1 and ch.order != "big":
-                return False
-        return True
+        return not any(ch.lone and ch.nbytes > 1 and ch.order != "big" for ch in self.chunks())
 
     def structs(self) -> list[tuple[str, str]]:
         if self.one_word():
@@ -625,10 +623,14 @@ class MessageCode:
                 c(f"_S_{self.fn}_{n}.pack_into(b, {seg.start}, {values})")
         for leaf, cs in crcs:
             start, end = cs.byte_span
-            chunk = next(ch for ch in self.chunks() if ch.leaves[0][0] is leaf)
-            order = leaf.field.byte_order or self.view.p.framing.byte_order
-            c(f"b[{chunk.start}:{chunk.start + chunk.nbytes}] = {self.view.checksum_call(cs, 'b', start, end)}"
-              f".to_bytes({chunk.nbytes}, {order!r})")
+            chunk, shift = next((ch, sh) for ch in self.chunks() for x, sh in ch.leaves if x is leaf)
+            at = f"b[{chunk.start}:{chunk.start + chunk.nbytes}]"
+            value = self.view.checksum_call(cs, "b", start, end)
+            if chunk.lone:
+                order = leaf.field.byte_order or self.view.p.framing.byte_order
+                c(f"{at} = {value}.to_bytes({chunk.nbytes}, {order!r})")
+            else:  # a checksum sharing bytes with other fields goes into its bits
+                c(f"{at} = (int.from_bytes({at}, 'big') | {value} << {shift}).to_bytes({chunk.nbytes}, 'big')")
         if not single:
             c("return bytes(b)")
         return c.text()
