@@ -1,10 +1,12 @@
 """Build: schemas → model → rendered files → (check examples) → write or compare.
 
-Rendering is pure (returns {path: text}); writing is separate so that
-`--check` can compare instead of writing.
+Rendering is pure (returns {path: text}; the vectors, much the largest output,
+go to a temporary file); writing is separate so that `--check` can compare
+instead of writing.
 """
 from __future__ import annotations
 
+import types
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -14,15 +16,13 @@ from .loader import load_file
 from .model import Protocol
 from .pyload import load_module
 from .resolve import resolve
+from .spool import Spool
 from .targets import python as python_target
 from .targets import c as c_target
+from .targets.cview import CTargetError
 from .targets import markdown as markdown_target
 from .targets import promela as promela_target
-from .vectors import vector_file
-
-# The Markdown target runs the generated Python codec to write its examples.
-# The Promela target writes a model only for schemas that declare machines.
-TARGETS = (python_target, c_target, markdown_target, promela_target)
+from .vectors import write_vectors
 
 
 def schema_files(directory: Path) -> list[Path]:
@@ -34,25 +34,55 @@ def compile_schema(path: Path, display: str | None = None) -> Protocol:
 
 
 def render_protocol(p: Protocol) -> dict[str, str]:
+    return render_with_codec(p)[0]
+
+
+def render_with_codec(p: Protocol) -> tuple[dict[str, str], types.ModuleType]:
+    """Every target's files and the generated Python codec, loaded once: the docs
+    run it for their examples and the build for its checks and vectors. The
+    Promela target writes a model only for schemas that declare machines."""
     files: dict[str, str] = {}
-    for target in TARGETS:
-        files.update(target.render(p))
-    return files
+    files.update(python_target.render(p))
+    try:
+        files.update(c_target.render(p))
+    except CTargetError as exc:  # a schema the C target cannot serve: say so against the schema
+        raise SchemaError([Diagnostic(exc.loc or Loc(p.file, 1, 1), f"C target: {exc}",
+                                      "change the schema as the message says; every schema must "
+                                      "also build for C")]) from None
+    codec = load_codec(p, files)
+    files.update(markdown_target.render(p, codec))
+    files.update(promela_target.render(p))
+    return files, codec
 
 
-def verify(p: Protocol, files: dict[str, str]):
-    """Load the generated Python codec, run every example through it, return it."""
+def load_codec(p: Protocol, files: dict[str, str]) -> types.ModuleType:
     path = f"python/{p.name}.py"
     try:
-        module = load_module(f"_codeword_check_{p.name}", files[path], path)
+        return load_module(f"_codeword_check_{p.name}", files[path], path)
     except Exception as exc:  # a generator bug, but report it against the schema
         raise SchemaError([Diagnostic(Loc(p.file, 1, 1),
                                       f"generated Python does not load: {type(exc).__name__}: {exc}",
                                       "this is a codeword bug; please report it with the schema")]) from exc
+
+
+def checked(p: Protocol, module: types.ModuleType) -> types.ModuleType:
     problems = check_examples(p, module)
     if problems:
         raise SchemaError(problems)
     return module
+
+
+def verify(p: Protocol, files: dict[str, str]):
+    """Load the generated Python codec, run every example through it, return it."""
+    return checked(p, load_codec(p, files))
+
+
+def vector_spool(p: Protocol, codec: types.ModuleType) -> Spool:
+    """The conformance vectors, written to a temporary file as they are made: for a
+    large protocol they are far larger than every other output together."""
+    spool = Spool()
+    write_vectors(p, codec, spool.file)
+    return spool
 
 
 @dataclass
@@ -66,35 +96,42 @@ class BuildResult:
 
 def build(schemas: list[Path], out: Path, check: bool = False, root: Path | None = None) -> BuildResult:
     result = BuildResult()
-    expected: dict[str, str] = {}
+    expected: dict[str, str | Spool] = {}
     protocols: list[Protocol] = []
     for path in schemas:
         display = str(path.relative_to(root)) if root and path.is_relative_to(root) else str(path)
         try:
             protocol = compile_schema(path, display)
-            files = render_protocol(protocol)
-            module = verify(protocol, files)
-            files[f"vectors/{protocol.name}.json"] = vector_file(protocol, module)
+            files, codec = render_with_codec(protocol)
+            files[f"vectors/{protocol.name}.json"] = vector_spool(protocol, checked(protocol, codec))
         except SchemaError as exc:
             result.errors.extend(exc.diagnostics)
             continue
         expected.update(files)
         protocols.append(protocol)
     if result.errors:
+        _close(expected)
         return result
     if protocols:
         expected.update(markdown_target.render_index(protocols))
     for rel, text in sorted(expected.items()):
         target = out / rel
-        current = target.read_text(encoding="utf-8") if target.exists() else None
-        if current == text:
+        if isinstance(text, Spool):
+            same = text.same_as(target)
+        else:
+            same = (target.read_text(encoding="utf-8") if target.exists() else None) == text
+        if same:
             result.unchanged.append(rel)
         elif check:
             result.stale.append(rel)
         else:
             target.parent.mkdir(parents=True, exist_ok=True)
-            target.write_text(text, encoding="utf-8")
+            if isinstance(text, Spool):
+                text.write_to(target)
+            else:
+                target.write_text(text, encoding="utf-8")
             result.written.append(rel)
+    _close(expected)
     if check and out.exists():
         known = set(expected)
         for existing in sorted(out.rglob("*")):
@@ -102,3 +139,9 @@ def build(schemas: list[Path], out: Path, check: bool = False, root: Path | None
             if existing.is_file() and rel not in known and "__pycache__" not in rel:
                 result.extra.append(rel)
     return result
+
+
+def _close(expected: dict[str, str | Spool]) -> None:
+    for text in expected.values():
+        if isinstance(text, Spool):
+            text.close()

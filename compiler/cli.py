@@ -5,7 +5,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from .build import build, compile_schema, render_protocol, schema_files, verify
+from .build import build, checked, compile_schema, render_with_codec, schema_files
 from .diagnostics import SchemaError
 
 
@@ -44,7 +44,7 @@ def cmd_lint(args: argparse.Namespace) -> int:
     for path in _schemas(args):
         try:
             protocol = compile_schema(path)
-            verify(protocol, render_protocol(protocol))
+            checked(protocol, render_with_codec(protocol)[1])
         except SchemaError as exc:
             for diagnostic in exc.diagnostics:
                 print(diagnostic, file=sys.stderr)

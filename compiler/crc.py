@@ -15,7 +15,9 @@ CATALOGUE = Path(__file__).parent / "data" / "crc_catalogue.yaml"
 @lru_cache(maxsize=1)
 def catalogue() -> dict[str, CrcParams]:
     """Catalogue entries by upper-case name and alias."""
-    data = yaml.safe_load(CATALOGUE.read_text(encoding="utf-8"))
+    # libyaml when PyYAML has it: the same data, several times faster
+    loader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
+    data = yaml.load(CATALOGUE.read_text(encoding="utf-8"), Loader=loader)
     entries: dict[str, CrcParams] = {}
     for entry in data["entries"]:
         params = CrcParams(

@@ -14,6 +14,7 @@ import dataclasses
 import enum
 import hashlib
 import json
+from functools import lru_cache
 from typing import Any
 
 from .model import Protocol, Text
@@ -25,13 +26,17 @@ DOC_ONLY = frozenset({
 })
 
 
+@lru_cache(maxsize=None)
+def _wire_fields(cls: type) -> tuple[str, ...]:
+    return tuple(f.name for f in dataclasses.fields(cls) if f.name not in DOC_ONLY)
+
+
 def wire_model(value: Any) -> Any:
     """The model as plain JSON data without its documentation."""
     if isinstance(value, Text):
         return None
-    if dataclasses.is_dataclass(value) and not isinstance(value, type):
-        return {f.name: wire_model(getattr(value, f.name))
-                for f in dataclasses.fields(value) if f.name not in DOC_ONLY}
+    if hasattr(type(value), "__dataclass_fields__") and not isinstance(value, type):
+        return {name: wire_model(getattr(value, name)) for name in _wire_fields(type(value))}
     if isinstance(value, (tuple, list)):
         return [wire_model(x) for x in value]
     if isinstance(value, dict):
@@ -51,7 +56,12 @@ def canonical_json(p: Protocol) -> str:
 
 def fingerprint_digest(p: Protocol) -> str:
     """SHA-256 (hex) of the canonical wire model."""
-    return hashlib.sha256(canonical_json(p).encode("ascii")).hexdigest()
+    # Every target asks; the model is immutable, so the digest is kept on it.
+    memo = getattr(p, "__dict__", {})
+    digest = memo.get("_wire_digest")
+    if digest is None:
+        digest = memo["_wire_digest"] = hashlib.sha256(canonical_json(p).encode("ascii")).hexdigest()
+    return digest
 
 
 def fingerprint(p: Protocol) -> str:

@@ -41,6 +41,18 @@ _CORE = [
 for _tag, _pattern, _first in _CORE:
     _Loader.add_implicit_resolver(_tag, re.compile(_pattern), _first)
 
+# libyaml builds the same nodes, marks included, many times faster. Its error
+# messages differ, so a document it rejects is parsed again by _Loader, whose
+# messages the diagnostics quote; so is one nested deeper than MAX_DEPTH, which
+# libyaml's recursive composer could take to a stack overflow.
+if getattr(yaml, "__with_libyaml__", False):
+    class _FastLoader(yaml.CSafeLoader):
+        """libyaml's parser with _Loader's resolvers."""
+
+    _FastLoader.yaml_implicit_resolvers = _Loader.yaml_implicit_resolvers
+else:
+    _FastLoader = None
+
 _SCALAR_TAGS = {
     "tag:yaml.org,2002:null", "tag:yaml.org,2002:bool", "tag:yaml.org,2002:int",
     "tag:yaml.org,2002:float", "tag:yaml.org,2002:str",
@@ -102,6 +114,29 @@ class Document:
         return self.locs.get(path, Loc(self.file, 1, 1))
 
 
+def _shallow(text: str) -> bool:
+    """Whether libyaml reads the text without error and finds it no deeper than
+    MAX_DEPTH, counted on its event stream (which does not recurse)."""
+    depth = 0
+    try:
+        for event in yaml.parse(text, Loader=_FastLoader):
+            if isinstance(event, yaml.CollectionStartEvent):
+                depth += 1
+                if depth > MAX_DEPTH:
+                    return False
+            elif isinstance(event, yaml.CollectionEndEvent):
+                depth -= 1
+    except yaml.YAMLError:
+        return False
+    return True
+
+
+def _compose(text: str) -> yaml.Node | None:
+    if _FastLoader is not None and _shallow(text):
+        return yaml.compose(text, Loader=_FastLoader)
+    return yaml.compose(text, Loader=_Loader)
+
+
 def _loc(file: str, node: yaml.Node) -> Loc:
     return Loc(file, node.start_mark.line + 1, node.start_mark.column + 1)
 
@@ -112,7 +147,7 @@ def load_text(text: str, file: str) -> Document:
                                       f"schema is larger than {MAX_FILE_BYTES} bytes",
                                       "split the protocol or remove generated content")])
     try:
-        node = yaml.compose(text, Loader=_Loader)
+        node = _compose(text)
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
         loc = Loc(file, mark.line + 1, mark.column + 1) if mark else Loc(file, 1, 1)

@@ -13,6 +13,7 @@ from typing import Any, Optional
 
 from . import crc
 from .diagnostics import Loc, Reporter, SchemaError
+from .dispatch_pairs import candidate_pairs
 from .loader import Document
 from .model import (Checksum, Condition, CrcParams, Direction, Enum, EnumMember,
                     Example, ExpectedError, Field, FlagBit, FlagSet, Framing,
@@ -479,6 +480,13 @@ class Resolver:
                            f"declare the field as u{params.width}")
             if over != "bytes":
                 self.error(path + ("over",), "a CRC is computed over bytes")
+        elif over != "bytes" and covers is not None:
+            # the codecs and docs take a checksum over fields from every other field
+            self.error(path + ("covers",), "a checksum over fields covers every other field "
+                                           "of the message; `covers: {from, to}` is the byte "
+                                           "range of a checksum over bytes",
+                       "drop `covers` (or write `covers: all`); to check part of the frame, use "
+                       "a CRC over whole bytes, e.g. {algorithm: CRC-8/SMBUS, covers: {from, to}}")
         modulo = c.get("modulo")
         if algorithm in ("sum", "xor") and modulo is None and bits:
             modulo = 1 << bits
@@ -561,6 +569,7 @@ class Resolver:
             bits = sum(widths) if all(w is not None for w in widths) else None
             self.check_size(name, m, layout, bits, framing, path)
             layout = self.bind_checksums(name, layout, framing, path)
+            self.check_field_checksums(name, layout)
         rules = tuple(self.resolve_rule(r, path + ("rules", i), layout)
                       for i, r in enumerate(m.get("rules", [])))
         examples = tuple(self.resolve_example(e, path + ("examples", i))
@@ -689,16 +698,20 @@ class Resolver:
                 if start_f and end_f:
                     start = start_f.bit_offset
                     stop = end_f.bit_offset + (end_f.bits or 0)
-                    if start % 8 or stop % 8:
+                    refused = f.checksum and f.checksum.over != "bytes"  # resolve_checksum refuses its range
+                    if (start % 8 or stop % 8) and not refused:
                         self.error(path, f"message {name!r}: coverage of {f.name!r} is not whole bytes")
                     if stop <= start:
                         self.error(path, f"message {name!r}: coverage of {f.name!r} is empty or reversed")
                     if f.checksum and start <= f.bit_offset < stop:
                         self.report.error(f.checksum.loc, f"message {name!r}: checksum {f.name!r} covers itself",
                                           "a checksum cannot be part of what it checks")
+                    if f.checksum:
+                        self.check_later_checksums(name, f, (start, stop), layout)
                     span = (start // 8, stop // 8)
             if f.checksum:
-                if f.checksum.covers is None and framing.kind == "bytes":
+                if f.checksum.covers is None and f.checksum.over == "bytes" \
+                        and framing.kind == "bytes":
                     self.error(path, f"checksum {f.name!r}: give `covers: {{from, to}}` in bytes framing")
                 f = replace(f, checksum=replace(f.checksum, byte_span=span))
             elif f.length_of and span:
@@ -708,6 +721,39 @@ class Resolver:
                 f = replace(f, const=value)
             out.append(f)
         return tuple(out)
+
+    def check_later_checksums(self, name: str, f: Field, bits: tuple[int, int],
+                              layout: tuple[Field, ...]) -> None:
+        """The codecs fill checksums in wire order: one whose bits cover a later checksum
+        would be computed while that one is still 0, and fail once it is filled in."""
+        start, stop = bits
+        for other in layout:
+            if other.checksum and f.bit_offset < other.bit_offset < stop \
+                    and other.bit_offset + (other.bits or 0) > start:
+                self.report.error(f.checksum.loc, f"message {name!r}: checksum {f.name!r} covers "
+                                                  f"checksum {other.name!r}, which comes after it",
+                                  f"end the coverage of {f.name!r} before {other.name!r}, or place "
+                                  f"{f.name!r} after {other.name!r} (checksums are filled in wire order)")
+
+    def check_field_checksums(self, name: str, layout: tuple[Field, ...]) -> None:
+        """A checksum over fields takes every other field, so another checksum among them
+        would have to be computed before it and after it: the two cannot both hold."""
+        def walk(fields: tuple[Field, ...]):
+            for f in fields:
+                yield f
+                yield from walk(f.fields)
+
+        sums = [f for f in walk(layout) if f.checksum]
+        for f in sums:
+            if f.checksum.over == "bytes":
+                continue
+            for other in sums:
+                if other is not f:
+                    self.report.error(f.checksum.loc or f.loc,
+                                      f"message {name!r}: checksum {f.name!r} over every other "
+                                      f"field covers checksum {other.name!r}, so the two cannot "
+                                      "both be right",
+                                      "a checksum over fields must be the message's only checksum")
 
     # -- rules -----------------------------------------------------------------------------
     def conditions(self, raw: dict, path: tuple, layout: tuple[Field, ...]) -> tuple[Condition, ...]:
@@ -779,15 +825,15 @@ class Resolver:
                         self.error(("messages", m.name), f"dispatch field {f.name!r} is at bit "
                                    f"{f.bit_offset} here but at bit {first[0]} in {first[1]!r}",
                                    "dispatch fields must sit at the same place in every message")
-        for i, a in enumerate(keyed):
-            for b in keyed[i + 1:]:
-                if a.direction and b.direction and a.direction != b.direction:
-                    continue
-                if self.ambiguous(a, b, framing):
-                    self.error(("messages", b.name),
-                               f"ambiguous dispatch: messages {a.name!r} and {b.name!r} cannot be "
-                               f"told apart ({self.describe_key(a)} / {self.describe_key(b)})",
-                               "give them different ids/constants, directions or sizes")
+        for i, j in candidate_pairs(keyed, framing):
+            a, b = keyed[i], keyed[j]
+            if a.direction and b.direction and a.direction != b.direction:
+                continue
+            if self.ambiguous(a, b, framing):
+                self.error(("messages", b.name),
+                           f"ambiguous dispatch: messages {a.name!r} and {b.name!r} cannot be "
+                           f"told apart ({self.describe_key(a)} / {self.describe_key(b)})",
+                           "give them different ids/constants, directions or sizes")
 
     @staticmethod
     def describe_key(m: Message) -> str:

@@ -14,11 +14,16 @@ from __future__ import annotations
 
 import dataclasses
 import enum
-import json
+import io
 import random
+import shutil
 import string
 import struct
-from typing import Any
+import tempfile
+from functools import lru_cache
+from typing import Any, TextIO
+
+from . import jsontext
 
 from .model import Field, Message, Protocol
 from .vector_sequences import sequence_vectors
@@ -26,17 +31,44 @@ from .vector_sequences import sequence_vectors
 FORMAT = "codeword-vectors/1"
 RANDOM_PER_MESSAGE = 200
 MUTATIONS_PER_MESSAGE = 24
+SPOOL_BYTES = 1 << 22  # invalid cases wait in memory up to this, then on disk
+
+
+_SCALARS = frozenset({int, float, str, bool, type(None)})
+
+
+@lru_cache(maxsize=None)
+def _kind(cls: type) -> tuple[str, tuple[str, ...]]:
+    """How plain() treats an instance of cls (the checks in its order, made once
+    per class: a failed attribute lookup on an enum class is slow)."""
+    if hasattr(cls, "__dataclass_fields__"):
+        return "dataclass", tuple(f.name for f in dataclasses.fields(cls))
+    if issubclass(cls, enum.IntFlag):
+        return "flags", ()
+    if issubclass(cls, enum.Enum):
+        return "enum", ()
+    if issubclass(cls, (bytes, bytearray)):
+        return "bytes", ()
+    return "other", ()
 
 
 def plain(value: Any) -> Any:
     """A decoded Python value as JSON data (enum names, flag name lists, hex bytes)."""
-    if dataclasses.is_dataclass(value):
-        return {f.name: plain(getattr(value, f.name)) for f in dataclasses.fields(value)}
-    if isinstance(value, enum.IntFlag):
-        return [m.name for m in type(value) if m in value]
-    if isinstance(value, enum.Enum):
+    cls = type(value)
+    if cls in _SCALARS:  # most values
+        return value
+    if isinstance(value, type):  # a class: only a dataclass one is taken apart
+        if dataclasses.is_dataclass(value):
+            return {f.name: plain(getattr(value, f.name)) for f in dataclasses.fields(value)}
+        return value
+    kind, names = _kind(cls)
+    if kind == "dataclass":
+        return {name: plain(getattr(value, name)) for name in names}
+    if kind == "flags":
+        return [m.name for m in cls if m in value]
+    if kind == "enum":
         return value.name
-    if isinstance(value, (bytes, bytearray)):
+    if kind == "bytes":
         return value.hex()
     return value
 
@@ -47,6 +79,12 @@ class Generator:
         self.mod = module
         self.rng = random.Random(f"codeword:{p.name}")
         self.text = p.framing.kind == "text"
+        # asked for every frame: looked up once (both walk every message)
+        self.self_identifying = p.self_identifying
+        self.messages = {m.name: m for m in p.messages}
+        self.members: dict[str, list[Field]] = {}  # per message: the fields values() fills
+        self.alphabets: dict[tuple[bool, bool], str] = {}
+        self.choices: dict[int, list] = {}  # per enum field (by id: the model outlives this)
 
     # -- random values from the model ----------------------------------------------------
     def value(self, f: Field, edge: str = "") -> Any:
@@ -58,8 +96,10 @@ class Generator:
         if f.kind == "bool":
             return rng.random() < 0.5 if not edge else edge == "max"
         if f.enum is not None:
-            members = [m for m in f.enum.members
-                       if not f.values or m.value in f.values or m.name in f.values]
+            members = self.choices.get(id(f))
+            if members is None:
+                members = self.choices[id(f)] = [m for m in f.enum.members
+                                                 if not f.values or m.value in f.values or m.name in f.values]
             return rng.choice(members).name
         if f.flags is not None:
             bits = [b.name for b in f.flags.members]
@@ -87,6 +127,13 @@ class Generator:
         raise ValueError(f"no generator for {f.kind}")
 
     def alphabet(self, f: Field) -> str:
+        key = (bool(f.to_end), f.kind == "char")  # all the field decides (asked per character)
+        chars = self.alphabets.get(key)
+        if chars is None:
+            chars = self.alphabets[key] = self._alphabet(f)
+        return chars
+
+    def _alphabet(self, f: Field) -> str:
         fr = self.p.framing
         banned = set(fr.terminator) | (set() if f.to_end else set(fr.separator))
         chars = [c for c in string.printable if " " <= c <= "~" and c not in banned]
@@ -137,10 +184,12 @@ class Generator:
                 return x
 
     def values(self, m: Message, edge: str = "", focus: str = "") -> dict:
+        members = self.members.get(m.name)
+        if members is None:
+            members = self.members[m.name] = [f for f in m.layout if f.is_member]
         out = {}
-        for f in m.layout:
-            if f.is_member:
-                out[f.name] = self.value(f, edge if (not focus or focus == f.name) else "")
+        for f in members:
+            out[f.name] = self.value(f, edge if (not focus or focus == f.name) else "")
         return out
 
     # -- vectors --------------------------------------------------------------------------------
@@ -167,76 +216,104 @@ class Generator:
         return case
 
     def decode(self, m: Message, data):
-        if self.p.self_identifying:
+        if self.self_identifying:
             return self.mod.decode(data, m.direction) if m.direction else self.mod.decode(data)
         return self.mod.MESSAGES[m.name].decode(data)
 
-    def build(self) -> dict:
+    def write(self, out: TextIO) -> None:
+        """The vector file, written message by message: only the frames the
+        streams are cut from (and, for sequences, the valid values) are kept."""
         p = self.p
+        head = {"format": FORMAT, "protocol": p.name, "schema_sha256": p.sha256, "framing": p.framing.kind}
+        out.write("{\n" + "".join(f" {jsontext.dumps(k)}: {jsontext.dumps(v, 1)},\n" for k, v in head.items()))
+        frames: list[bytes] = []
+        pool: list[dict] = []
+        # every valid case comes before the first invalid one: those wait in `later`
+        with tempfile.SpooledTemporaryFile(SPOOL_BYTES, "w+", encoding="utf-8", newline="") as later:
+            out.write(' "valid": ')
+            valid_list, invalid_list = jsontext.ListWriter(out, 1), jsontext.ListWriter(later, 1)
+            for m in p.messages:
+                valid, invalid = self.message_cases(m)
+                for case in valid:
+                    valid_list.item(case)
+                    if "canonical" not in case:
+                        if "hex" in case and p.framing.kind == "bytes":
+                            frames.append(bytes.fromhex(case["hex"]))
+                        if p.sequences:
+                            pool.append({"message": case["message"], "values": case["values"]})
+                for case in invalid:
+                    invalid_list.item(case)
+            valid_list.close()
+            invalid_list.close()
+            out.write(',\n "invalid": ')
+            later.seek(0)
+            shutil.copyfileobj(later, out)
+        if p.framing.kind == "bytes":
+            out.write(',\n "streams": ' + jsontext.dumps(self.streams(frames), 1))
+        if p.sequences:
+            sequences = sequence_vectors(p, self.mod, self.rng, pool, plain)
+            out.write(',\n "sequences": ' + jsontext.dumps(sequences, 1))
+        out.write("\n}\n")
+
+    def message_cases(self, m: Message) -> tuple[list[dict], list[dict]]:
+        """The valid and the invalid cases of one message."""
         valid: list[dict] = []
         invalid: list[dict] = []
-        for m in p.messages:
-            for ex in m.examples:
-                # binary protocols: the hex examples (text-form and word examples are
-                # covered by every valid case's `text_form` and `word`)
-                data = ex.text if self.text else ex.hex
-                if data is None or ex.values is None and not ex.errors:
+        for ex in m.examples:
+            # binary protocols: the hex examples (text-form and word examples are
+            # covered by every valid case's `text_form` and `word`)
+            data = ex.text if self.text else ex.hex
+            if data is None or ex.values is None and not ex.errors:
+                continue
+            if ex.errors:
+                try:
+                    self.decode(m, data)
+                    raise ValueError(f"{ex.name}: error example decodes")
+                except self.mod.DecodeError as exc:
+                    case = {"name": ex.name, "message": m.name, **self.wire(data), "error": exc.rule}
+                if m.direction:
+                    case["direction"] = m.direction
+                invalid.append(case)
+                continue
+            obj = self.decode(m, data)
+            canonical = self.mod.encode(obj)
+            valid.append(self.valid_case(ex.name, m, obj, canonical,
+                                         data if canonical != data else None))
+        made: list[tuple[str, Any, Any]] = []
+        for f in m.layout:
+            if not f.is_member:
+                continue
+            for edge in ("min", "max", "zero"):
+                made.append((f"{f.name} {edge}", "edge", (edge, f.name)))
+        for i in range(RANDOM_PER_MESSAGE):
+            made.append((f"random {i}", "random", None))
+        frames = []
+        for name, kind, arg in made:
+            for _attempt in range(50):
+                values = self.values(m, *arg) if arg else self.values(m)
+                try:
+                    obj, data = self.encode(m, values)
+                except self.mod.EncodeError:
                     continue
-                if ex.errors:
-                    try:
-                        self.decode(m, data)
-                        raise ValueError(f"{ex.name}: error example decodes")
-                    except self.mod.DecodeError as exc:
-                        case = {"name": ex.name, "message": m.name, **self.wire(data), "error": exc.rule}
+                decoded = self.decode(m, data)
+                valid.append(self.valid_case(f"{m.name} {name}", m, decoded, data))
+                frames.append(data)
+                break
+        for i, data in enumerate(frames[:MUTATIONS_PER_MESSAGE]):
+            for label, bad in self.mutations(m, data):
+                name = f"{m.name} {label} of {i}"
+                try:
+                    obj = self.decode(m, bad)
+                except self.mod.DecodeError as exc:
+                    case = {"name": name, "message": m.name, **self.wire(bad), "error": exc.rule}
                     if m.direction:
                         case["direction"] = m.direction
                     invalid.append(case)
                     continue
-                obj = self.decode(m, data)
                 canonical = self.mod.encode(obj)
-                valid.append(self.valid_case(ex.name, m, obj, canonical,
-                                             data if canonical != data else None))
-            made: list[tuple[str, Any, Any]] = []
-            for f in m.layout:
-                if not f.is_member:
-                    continue
-                for edge in ("min", "max", "zero"):
-                    made.append((f"{f.name} {edge}", "edge", (edge, f.name)))
-            for i in range(RANDOM_PER_MESSAGE):
-                made.append((f"random {i}", "random", None))
-            frames = []
-            for name, kind, arg in made:
-                for _attempt in range(50):
-                    values = self.values(m, *arg) if arg else self.values(m)
-                    try:
-                        obj, data = self.encode(m, values)
-                    except self.mod.EncodeError:
-                        continue
-                    decoded = self.decode(m, data)
-                    valid.append(self.valid_case(f"{m.name} {name}", m, decoded, data))
-                    frames.append(data)
-                    break
-            for i, data in enumerate(frames[:MUTATIONS_PER_MESSAGE]):
-                for label, bad in self.mutations(m, data):
-                    name = f"{m.name} {label} of {i}"
-                    try:
-                        obj = self.decode(m, bad)
-                    except self.mod.DecodeError as exc:
-                        case = {"name": name, "message": m.name, **self.wire(bad), "error": exc.rule}
-                        if m.direction:
-                            case["direction"] = m.direction
-                        invalid.append(case)
-                        continue
-                    canonical = self.mod.encode(obj)
-                    valid.append(self.valid_case(name, p.message(type(obj).NAME), obj, canonical,
-                                                 bad if canonical != bad else None))
-        out = {"format": FORMAT, "protocol": p.name, "schema_sha256": p.sha256,
-               "framing": p.framing.kind, "valid": valid, "invalid": invalid}
-        if p.framing.kind == "bytes":
-            out["streams"] = self.streams(valid)
-        if p.sequences:
-            out["sequences"] = sequence_vectors(p, self.mod, self.rng, valid, plain)
-        return out
+                valid.append(self.valid_case(name, self.messages[type(obj).NAME], obj, canonical,
+                                             bad if canonical != bad else None))
+        return valid, invalid
 
     def mutations(self, m: Message, data) -> list[tuple[str, Any]]:
         rng = self.rng
@@ -263,11 +340,11 @@ class Generator:
             out.append(("second byte changed", bytes(b)))
         return [(label, bad) for label, bad in out if bad != data]
 
-    def streams(self, valid: list[dict]) -> list[dict]:
-        """Byte streams mixing frames, garbage and damaged frames, with the events
-        the Python StreamDecoder gives when fed one byte at a time."""
+    def streams(self, frames: list[bytes]) -> list[dict]:
+        """Byte streams mixing valid frames (canonical ones, in vector order), garbage
+        and damaged frames, with the events the Python StreamDecoder gives when fed
+        one byte at a time."""
         rng = self.rng
-        frames = [bytes.fromhex(c["hex"]) for c in valid if "hex" in c and "canonical" not in c]
         out = []
         for n in range(8):
             parts = []
@@ -296,6 +373,11 @@ class Generator:
         return out
 
 
+def write_vectors(p: Protocol, module: Any, out: TextIO) -> None:
+    Generator(p, module).write(out)
+
+
 def vector_file(p: Protocol, module: Any) -> str:
-    data = Generator(p, module).build()
-    return json.dumps(data, indent=1, ensure_ascii=True, sort_keys=False) + "\n"
+    out = io.StringIO()
+    write_vectors(p, module, out)
+    return out.getvalue()

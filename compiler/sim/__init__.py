@@ -23,6 +23,7 @@ import importlib.util
 import random
 import sys
 from dataclasses import dataclass, field
+from functools import lru_cache
 from pathlib import Path
 
 GENERATED = Path(__file__).resolve().parents[2] / "generated" / "python" / "tr24.py"
@@ -65,7 +66,13 @@ class Link:
 def reply_for(command: bytes, slave_id: int) -> bytes:
     """What a slave's application answers: each byte plus the slave's ID, so a
     reply names both its command and the slave that ran it."""
-    return bytes((b + slave_id) & 0xFF for b in command)
+    return bytes(command).translate(_plus(slave_id))
+
+
+@lru_cache(maxsize=None)
+def _plus(n: int) -> bytes:
+    """The byte table that adds n to every byte, modulo 256."""
+    return bytes((b + n) & 0xFF for b in range(256))
 
 
 @dataclass
@@ -100,8 +107,11 @@ class Trace:
         return "".join(line + "\n" for line in lines)
 
 
+CRC_INIT = 0xFFFF
+
+
 def crc(packet: bytes) -> int:
-    return binascii.crc_hqx(packet, 0xFFFF)
+    return binascii.crc_hqx(packet, CRC_INIT)
 
 
 class Simulation:
@@ -125,6 +135,7 @@ class Simulation:
                                                    execute=lambda data, sid=sid: reply_for(data, sid))
                        for sid in self.slave_ids}
         self.devices = (MASTER_ID,) + self.slave_ids
+        self.listeners = {d: tuple(x for x in self.devices if x != d) for d in self.devices}
         self.queue: list = []
         self.order = 0
         self.last_arrival: dict[tuple[int, int], int] = {}
@@ -144,33 +155,35 @@ class Simulation:
         heapq.heappush(self.queue, (time, self.order, kind, args))
 
     def transmit(self, sender: int, packet: bytes) -> None:
-        link, rng = self.link, self.rng
-        from_master = sender == MASTER_ID
-        loss = link.p_fwd if from_master else link.p_ack
-        if from_master:
-            self.stats.command_packets += 1
+        # The docs build runs this some 50,000 times: attributes are read once.
+        link, rng, stats, last_arrival = self.link, self.rng, self.stats, self.last_arrival
+        chance = rng.random
+        if sender == MASTER_ID:
+            loss = link.p_fwd
+            stats.command_packets += 1
         else:
-            self.stats.reply_packets += 1
-        check = crc(packet)
-        for listener in self.devices:
-            if listener == sender:
+            loss = link.p_ack
+            stats.reply_packets += 1
+        check = binascii.crc_hqx(packet, CRC_INIT)
+        now, (slowest, fastest) = self.now, link.delay
+        for listener in self.listeners[sender]:
+            if chance() < loss:
+                stats.lost += 1
                 continue
-            if rng.random() < loss:
-                self.stats.lost += 1
-                continue
-            copies = 2 if rng.random() < link.duplicate else 1
-            self.stats.duplicated += copies - 1
+            copies = 2 if chance() < link.duplicate else 1
+            stats.duplicated += copies - 1
             for _ in range(copies):
                 data = packet
-                if rng.random() < link.corrupt:
+                if chance() < link.corrupt:
                     bit = rng.randrange(8 * len(packet))
                     data = bytearray(packet)
                     data[bit // 8] ^= 1 << (bit % 8)
                     data = bytes(data)
                 path = (sender, listener)
-                arrival = max(self.now + rng.randint(*link.delay), self.last_arrival.get(path, 0))
-                self.last_arrival[path] = arrival
-                self.at(arrival, "arrive", listener, data, check)
+                arrival = max(now + rng.randint(slowest, fastest), last_arrival.get(path, 0))
+                last_arrival[path] = arrival
+                self.order += 1
+                heapq.heappush(self.queue, (arrival, self.order, "arrive", (listener, data, check)))
 
     # -- machine calls, traced -----------------------------------------------------
     def call(self, name: str, kind: str, fn, *args):
@@ -187,10 +200,11 @@ class Simulation:
         for packet in out.sent:
             self.transmit(device, packet)
         # one tick per new deadline; a stale tick would find nothing to do anyway
-        if machine is not None and machine.deadline is not None and \
-                self.scheduled.get(id(machine)) != machine.deadline:
-            self.scheduled[id(machine)] = machine.deadline
-            self.at(machine.deadline, "tick", device, machine)
+        if machine is not None:
+            deadline = machine.deadline
+            if deadline is not None and self.scheduled.get(id(machine)) != deadline:
+                self.scheduled[id(machine)] = deadline
+                self.at(deadline, "tick", device, machine)
 
     # -- the application -----------------------------------------------------------
     def next_command(self, count: int) -> None:
@@ -199,13 +213,17 @@ class Simulation:
         number = self.stats.commands
         self.stats.commands += 1
         sid = self.rng.choice(self.slave_ids)
-        tail = bytes(self.rng.getrandbits(8) for _ in range(max(0, self.data_length - 4)))
+        byte = self.rng.getrandbits
+        tail = bytes([byte(8) for _ in range(max(0, self.data_length - 4))])
         data = (number.to_bytes(4, "big") + tail)[:self.data_length] if self.data_length >= 4 else \
-            bytes(self.rng.getrandbits(8) for _ in range(self.data_length))
+            bytes([byte(8) for _ in range(self.data_length)])
         self.issued[sid].append(data)
         self.pending = (sid, data)
         master = self.masters[sid]
-        out = self.call(f"m{sid}", "send", master.send, sid, data)
+        if self.trace is None:
+            out = master.send(self.now, sid, data)
+        else:
+            out = self.call(f"m{sid}", "send", master.send, sid, data)
         self.handle(MASTER_ID, out, master)
 
     def finish_command(self, sid: int, out) -> None:
@@ -218,37 +236,43 @@ class Simulation:
 
     def run(self, commands: int, time_limit: int | None = None) -> Stats:
         """Send `commands` commands; stop when all are answered or failed, or at `time_limit`."""
+        # Untraced runs (the docs' efficiency table) call the machines directly.
+        traced = self.trace is not None
+        queue, masters, handle = self.queue, self.masters, self.handle
+        sid_of = {id(m): sid for sid, m in masters.items()}
         self.next_command(commands)
-        while self.queue:
-            time, _, kind, args = heapq.heappop(self.queue)
+        while queue:
+            time, _, kind, args = heapq.heappop(queue)
             if time_limit is not None and time > time_limit:
                 break
             self.now = time
             if kind == "tick":
                 device, machine = args
-                sid = device if device != MASTER_ID else next(s for s, m in self.masters.items() if m is machine)
-                out = self.call(f"m{sid}", "tick", machine.tick)
-                self.handle(MASTER_ID, out, machine)
+                sid = device if device != MASTER_ID else sid_of[id(machine)]
+                out = self.call(f"m{sid}", "tick", machine.tick) if traced else machine.tick(time)
+                handle(MASTER_ID, out, machine)
                 if out.failed:
                     self.finish_command(sid, out)
                     self.next_command(commands)
                 continue
             listener, data, check = args
-            if crc(data) != check:
+            if binascii.crc_hqx(data, CRC_INIT) != check:
                 self.stats.corrupted += 1  # the radio drops it
                 continue
             if listener == MASTER_ID:
-                for sid, master in self.masters.items():
-                    out = self.call(f"m{sid}", "receive", master.receive, data)
-                    self.handle(MASTER_ID, out, master)
+                for sid, master in masters.items():
+                    out = self.call(f"m{sid}", "receive", master.receive, data) if traced \
+                        else master.receive(time, data)
+                    handle(MASTER_ID, out, master)
                     if out.delivered:
                         self.finish_command(sid, out)
                         self.next_command(commands)
             else:
                 slave = self.slaves[listener]
-                out = self.call(f"s{listener}", "receive", slave.receive, data)
+                out = self.call(f"s{listener}", "receive", slave.receive, data) if traced \
+                    else slave.receive(time, data)
                 self.executed[listener].extend(out.executed)
-                self.handle(listener, out)
+                handle(listener, out)
         return self.stats
 
     def idle(self) -> bool:

@@ -6,6 +6,7 @@ from ..model import Protocol
 from .cmachine import machines_view
 from .csequence import sequences_view
 from .cview import CView, cchar, clit, comment, cstr
+from .cwordform import word_type
 from .render import environment, tidy
 from .wire import leaves_of
 
@@ -96,8 +97,9 @@ def render(p: Protocol) -> dict[str, str]:
         p=p, v=v, px=v.px, PX=v.PX, fingerprint=fingerprint(p), fingerprint32=f"{fingerprint32(p):#010x}", constants=constants(v), enums=enums(v), flags=flags(v),
         directions=v.directions(), messages=messages, kinds={m["name"]: m["kind"] for m in messages},
         checksums=v.byte_checksums(), text=v.text, dispatch=dispatch, stream=v.stream() if fr.kind == "bytes" else {},
-        word_bits=v.word_bits(), text_form=text_form, cstr=cstr, ignore=ignore, ignore_end=ignore_end,
+        word_bits=v.word_bits(), word_type=word_type(v.word_bits() or 32), text_form=text_form, cstr=cstr, ignore=ignore, ignore_end=ignore_end,
         terminator=cchar(fr.terminator), prefix_separator=cchar(fr.prefix_separator),
+        text_ascii=v.text and v.text_ascii(),
         machines=machines_view(p), sequences=sequences_view(v))
     runtime = env.get_template("c/codeword.h.j2").render()
     return {f"c/{p.name}.h": tidy(header, max_blank=1), "c/codeword.h": runtime}

@@ -20,7 +20,6 @@ from dataclasses import dataclass, field
 from ..model import Sequence, SequenceItem, SequenceRule, field_at
 from ..diagnostics import Diagnostic, Loc, SchemaError
 from .cview import CView, comment
-from .wire import dispatch_facts
 
 RULE_ERROR = {"consecutive": "CW_ERR_CONSECUTIVE", "equal": "CW_ERR_EQUAL",
               "member": "CW_ERR_MEMBER", "unique": "CW_ERR_UNIQUE"}
@@ -174,7 +173,7 @@ class SequenceView:
         return out
 
     def view(self) -> dict:
-        dispatch = dispatch_facts(self.p)
+        dispatch = self.v.dispatch()  # the head the C reads, as <proto>_find takes it
         sizes = {m.size for m in self.p.messages}
         if dispatch["kind"] not in ("none", "bits") or None in sizes:
             raise self.unsupported(f"sequence {self.s.name}: the C target splits sequences of fixed-size "

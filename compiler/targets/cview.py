@@ -16,10 +16,11 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any, Optional
 
+from ..diagnostics import Diagnostic, SchemaError
 from ..model import Checksum, CrcParams, Field, Message, Protocol, field_at
 from .code import Code
-from . import cpack, cword
-from .cpack import Span
+from . import cpack, cword, cwordform
+from .cpack import Piece, Span
 from .wire import Leaf, checksum_name, dispatch_facts, leaves_of, stream_facts
 
 ERR = {
@@ -39,7 +40,11 @@ INT_TYPES = [(8, "int8_t", "uint8_t"), (16, "int16_t", "uint16_t"), (32, "int32_
 
 
 class CTargetError(ValueError):
-    """A schema feature the C target cannot express yet."""
+    """A schema feature the C target cannot express yet; loc is where the schema asks for it."""
+
+    def __init__(self, message: str, loc=None):
+        super().__init__(message)
+        self.loc = loc
 
 
 def int_ctype(lo: int, hi: int) -> str:
@@ -147,7 +152,7 @@ class CView:
             return Rep("char")
         if f.kind == "str":
             if f.max_length is None:
-                raise CTargetError(f"{f.name}: a str field needs max_length for a C buffer")
+                raise CTargetError(f"{f.name}: a str field needs max_length for a C buffer", f.loc)
             return Rep("char", array=f.max_length + 1, has_flag=f.optional)
         if f.kind == "bytes":
             return Rep("uint8_t", array=f.length)
@@ -155,7 +160,7 @@ class CView:
             if self.text:
                 return Rep("cw_decimal_t", has_flag=f.optional)
             if f.bits != 32:
-                raise CTargetError(f"{f.name}: binary f64 is not supported by the C target")
+                raise CTargetError(f"{f.name}: binary f64 is not supported by the C target", f.loc)
             return Rep("float")
         if f.one_hot:
             lo, hi = f.range or (0, f.bits - 1)
@@ -294,6 +299,14 @@ class CView:
         def store_member() -> None:
             c(f"{raw} = ({rt}){self.member(leaf)};")
 
+        def store_signed() -> None:  # two's complement cut to the field's bits
+            if f.bits == 16 and rt == "uint16_t":
+                c(f"{raw} = (uint16_t){v};")  # modular: no 32-bit arithmetic
+            elif f.bits < 16 and rt != "uint32_t":
+                store(f"(uint16_t){v} & {clit((1 << f.bits) - 1, True)}")
+            else:
+                store(f"(uint32_t)(int32_t){v} & {clit((1 << f.bits) - 1, True)}")
+
         if f.checksum or f.reserved:
             c(f"{raw} = 0u;")
             return
@@ -301,7 +314,7 @@ class CView:
             value = f.const
             if f.enum is not None:
                 value = next(x.value for x in f.enum.members if f.const in (x.name, x.value))
-            c(f"{raw} = {clit(int(value), True)};")
+            c(f"{raw} = {clit(self.wire_bits(f, value), True)};")
             return
         v = self.member(leaf)
         r = self.rep(f)
@@ -331,18 +344,17 @@ class CView:
             c("}")
         elif f.enum is not None:
             self.member_check(c, f, v, "enum")
-            store_member()
+            if f.kind == "int":
+                store_signed()
+            else:
+                store_member()
         elif f.flags is not None:
             self.member_check(c, f, v, "flags")
             store_member()
         else:
             self.member_check(c, f, v, "int")
-            if f.kind == "int" and f.bits == 16 and rt == "uint16_t":
-                c(f"{raw} = (uint16_t){v};")  # modular: two's complement, no 32-bit arithmetic
-            elif f.kind == "int" and f.bits < 16 and rt != "uint32_t":
-                store(f"(uint16_t){v} & {clit((1 << f.bits) - 1, True)}")
-            elif f.kind == "int":
-                store(f"(uint32_t)(int32_t){v} & {clit((1 << f.bits) - 1, True)}")
+            if f.kind == "int":
+                store_signed()
             elif f.offset and f.scale is None:
                 store(f"(uint32_t)({v} - {clit(int(f.offset))})")
             else:
@@ -352,12 +364,7 @@ class CView:
         """Checks of an integer-like member (enum, flags, plain) before it is sent."""
         r = self.rep(f)
         if what == "enum":
-            values = [x.value for x in f.enum.members]
-            span = enum_span(values)
-            if span:  # one range test instead of a test per member
-                cond = self.range_cond(v, span[0], span[1], r.ctype)
-            else:
-                cond = " && ".join(f"{v} != {self.literal_of(x, r.ctype)}" for x in values)
+            cond = self.enum_cond(v, [x.value for x in f.enum.members], r.ctype)
             if cond:
                 c(f"if ({cond}) {{")
                 c("    return CW_ERR_ENUM;")
@@ -387,6 +394,13 @@ class CView:
             c("    return CW_ERR_VALUES;")
             c("}")
 
+    def enum_cond(self, v: str, values: list, ctype: str) -> Optional[str]:
+        """`v` (of C type `ctype`) is none of the enum's values."""
+        span = enum_span(values)
+        if span:  # one range test instead of a test per member
+            return self.range_cond(v, span[0], span[1], ctype)
+        return " && ".join(f"{v} != {self.literal_of(x, ctype)}" for x in values)
+
     def int_bounds(self, f: Field) -> tuple[int, int]:
         """The values of a plain integer member that member_check lets through
         (together with its C type's limits)."""
@@ -394,6 +408,11 @@ class CView:
         if f.range is None and f.raw_range and f.scale is None:
             lo, hi = f.raw_range[0] + int(f.offset or 0), f.raw_range[1] + int(f.offset or 0)
         return lo, hi
+
+    @staticmethod
+    def wire_bits(f: Field, value: Any) -> int:
+        """The raw bits of a fixed integer value: a signed one in two's complement."""
+        return int(value) & ((1 << f.bits) - 1) if f.kind == "int" and f.bits else int(value)
 
     @staticmethod
     def enum_wire(f: Field, value: Any) -> Any:
@@ -421,7 +440,7 @@ class CView:
             return
         if f.const is not None and not f.values:
             value = self.enum_wire(f, f.const)
-            self.fail_if(c, f"{raw} != {clit(int(value), True)}", "const")
+            self.fail_if(c, f"{raw} != {clit(self.wire_bits(f, value), True)}", "const")
             return
         v = self.member(leaf)
         r = self.rep(f)
@@ -436,7 +455,8 @@ class CView:
             if f.range is not None:
                 self.fail_if(c, f"!({v} >= {f.range[0]!r}f && {v} <= {f.range[1]!r}f)", "range")
             return
-        if f.enum is not None:
+        # a signed field's raw bits are two's complement: its enum is tested once sign-extended
+        if f.enum is not None and f.kind != "int":
             span = enum_span([x.value for x in f.enum.members])
             if span and span[0] >= 0:  # the raw value has f.bits bits: test only the ends it can pass
                 cond = " || ".join(([f"{raw} < {clit(span[0], True)}"] if span[0] > 0 else [])
@@ -467,6 +487,10 @@ class CView:
             c(f"{v} = ({r.ctype})({raw} + {clit(int(f.offset), True)});")
         else:
             c(f"{v} = ({r.ctype}){raw};")
+        if f.enum is not None and f.kind == "int":
+            cond = self.enum_cond(v, [x.value for x in f.enum.members], r.ctype)
+            if cond:
+                self.fail_if(c, cond, "enum")
         if f.range is not None and f.enum is None:
             lo, hi = self.raw_bounds(f)
             cond = self.range_cond(checked, lo, hi, r.ctype)
@@ -600,15 +624,23 @@ class CView:
         return c.text()
 
     def pack_value(self, span: Span, raws: dict[str, str]) -> str:
-        """The big-endian integer of a "pack" span, from the raw values of its pieces."""
+        """The big-endian integer of a "pack" span, from the raw values of its pieces
+        (a checksum over bytes has none: its bits stay 0 until its bytes are written)."""
         wide = "unsigned" if span.size <= 2 else "uint32_t"  # unsigned: at least 16 bits
         parts = []
         for piece in span.pieces:
+            if piece.leaf.var not in raws:
+                continue
             mask = clit((1 << piece.bits) - 1, True)
             term = f"(({wide}){raws[piece.leaf.var]} & {mask})"
             shift = span.shift(piece)
             parts.append(f"({term} << {shift})" if shift else term)
-        return " | ".join(parts)
+        return " | ".join(parts) or "0u"
+
+    def byte_sums(self, layout: list[Span]) -> list[tuple[Span, Piece]]:
+        """The checksums over bytes, in wire order: the order the encoder fills them in."""
+        return [(span, piece) for span in layout for piece in span.pieces
+                if self.is_byte_checksum(piece.leaf)]
 
     def encode_function(self, m: Message) -> str:
         word = cword.container(self, m)
@@ -628,13 +660,12 @@ class CView:
         c(f"if (cap < {m.size}u) {{")
         c("    return CW_ERR_CAPACITY;")
         c("}")
-        sums = []
         for span in layout:
             leaf = span.pieces[0].leaf
             if span.kind == "bytes":
                 c(f"memcpy(buf + {span.start}, {self.member(leaf)}, {leaf.field.length});")
             elif span.kind == "int" and self.is_byte_checksum(leaf):
-                sums.append(span)  # written once the bytes it covers are
+                continue  # written once the bytes it covers are
             elif span.kind == "int":
                 c(self.int_put(span.start, span.size, self.order_of(leaf.field), raws[leaf.var]))
             elif span.kind == "pack":
@@ -642,10 +673,14 @@ class CView:
             else:
                 c(f"memset(buf + {span.start}, 0, {span.size}u);")
                 for piece in span.pieces:
-                    c(f"cw_put_bits(buf, {piece.pos}u, {piece.bits}u, {raws[piece.leaf.var]});")
-        for span in sums:
-            leaf = span.pieces[0].leaf
-            c(self.int_put(span.start, span.size, self.order_of(leaf.field), self.byte_checksum_call(leaf)))
+                    if piece.leaf.var in raws:
+                        c(f"cw_put_bits(buf, {piece.pos}u, {piece.bits}u, {raws[piece.leaf.var]});")
+        for span, piece in self.byte_sums(layout):
+            call = self.byte_checksum_call(piece.leaf)
+            if span.kind == "int":
+                c(self.int_put(span.start, span.size, self.order_of(piece.leaf.field), call))
+            else:  # sharing its bytes, whose bits for it are still 0
+                c(f"cw_put_bits(buf, {piece.pos}u, {piece.bits}u, {call});")
         c(f"return {m.size};")
         c.dedent()
         c("}")
@@ -671,32 +706,31 @@ class CView:
         pad = m.size * 8 - m.bits  # always under 8: the padding fills the last byte
         if pad:
             self.fail_if(c, f"(buf[{m.size - 1}] & {clit((1 << pad) - 1, True)}) != 0u", "reserved")
-        sums = []
         for span in layout:
             leaf = span.pieces[0].leaf
-            if span.kind == "bytes":
-                continue  # check_raw copies them
-            if span.kind == "int" and self.is_byte_checksum(leaf):
-                sums.append(span)
-            elif span.kind == "int":
+            pieces = [piece for piece in span.pieces if piece.leaf.var in raws]
+            if span.kind == "bytes" or not pieces:
+                continue  # check_raw copies bytes; checksums over bytes are checked below
+            if span.kind == "int":
                 c(f"{raws[leaf.var]} = ({rt}){self.int_get(span.start, span.size, self.order_of(leaf.field))};")
             elif span.kind == "pack":
                 wide = "unsigned" if span.size <= 2 else "uint32_t"
                 c("{")
                 c(f"    {wide} word = {self.int_get(span.start, span.size, 'big')};")
-                for piece in span.pieces:
+                for piece in pieces:
                     shift = span.shift(piece)
                     value = f"(word >> {shift})" if shift else "word"
                     c(f"    {raws[piece.leaf.var]} = ({rt})({value} & {clit((1 << piece.bits) - 1, True)});")
                 c("}")
             else:
-                for piece in span.pieces:
+                for piece in pieces:
                     c(f"{raws[piece.leaf.var]} = ({rt})cw_get_bits(buf, {piece.pos}u, {piece.bits}u);")
-        for span in sums:
-            leaf = span.pieces[0].leaf
-            got = self.int_get(span.start, span.size, self.order_of(leaf.field))
-            want = self.byte_checksum_call(leaf)
-            self.fail_if(c, f"{got} != {want}", "checksum")
+        for span, piece in self.byte_sums(layout):
+            if span.kind == "int":
+                got = self.int_get(span.start, span.size, self.order_of(piece.leaf.field))
+            else:
+                got = f"cw_get_bits(buf, {piece.pos}u, {piece.bits}u)"
+            self.fail_if(c, f"{got} != {self.byte_checksum_call(piece.leaf)}", "checksum")
         c(f"return {self.fn(m, 'check_raw')}(r, buf, m, false);")
         c.dedent()
         c("}")
@@ -761,38 +795,7 @@ class CView:
 
     def word_functions(self, m: Message) -> str:
         """<msg>_to_word / <msg>_from_word: the message left-aligned in a word."""
-        w = self.word_bits()
-        if m.size > 4:
-            return ""
-        bits = 8 * m.size
-        c = Code()
-        c(f"static inline int {self.fn(m, 'to_word')}(const {self.tname(m)} *m, uint32_t *word)")
-        c("{")
-        c(f"    uint8_t b[{m.size}];")
-        c(f"    int rc = {self.fn(m, 'encode')}(m, b, sizeof b);")
-        c("    if (rc < 0) {")
-        c("        return rc;")
-        c("    }")
-        shift = f" << {w - bits}" if bits < w else f" >> {bits - w}" if bits > w else ""
-        c(f"    *word = cw_get_be(b, {m.size}u){shift};")
-        c("    return CW_OK;")
-        c("}")
-        c("")
-        c(f"static inline int {self.fn(m, 'from_word')}(uint32_t word, {self.tname(m)} *m)")
-        c("{")
-        c(f"    uint8_t b[{m.size}];")
-        if w < 32:
-            self.fail_if(c.indent(), f"word > {clit((1 << w) - 1, True)}", "range")
-            c.dedent()
-        if bits < w:
-            self.fail_if(c.indent(), f"(word & {clit((1 << (w - bits)) - 1, True)}) != 0u", "reserved")
-            c.dedent()
-            c(f"    cw_put_be(b, {m.size}u, word >> {w - bits});")
-        else:
-            c(f"    cw_put_be(b, {m.size}u, word{' << ' + str(bits - w) if bits > w else ''});")
-        c(f"    return {self.fn(m, 'decode')}(b, sizeof b, m);")
-        c("}")
-        return c.text()
+        return cwordform.word_functions(self, m)
 
     # -- text form of a bit-packed protocol (a line of decimal raw values) ------------------------
     def text_form_functions(self, m: Message) -> str:
@@ -846,7 +849,7 @@ class CView:
 
     def text_form_facts(self) -> dict:
         """Leading raw-value widths that cover the dispatch bits (as the Python decoder)."""
-        d = dispatch_facts(self.p)
+        d = self.dispatch()
         widths, used = [], 0
         for leaf in leaves_of(self.p.messages[0].layout):
             if used >= d["head_bits"]:
@@ -876,42 +879,66 @@ class CView:
         return n
 
     def text_encode_function(self, m: Message) -> str:
+        """<msg>_encode: every check first, in Python's order, then the line. The
+        prefix separator leads the first value and a separator each next one, so
+        each value costs one capacity check."""
         fr = self.fr
         c = Code()
         c(f"static inline int {self.fn(m, 'encode')}(const {self.tname(m)} *m, char *buf, size_t cap)")
         c("{")
         c.indent()
         c("cw_writer_t w;")
-        self.rule_checks(c, m, "m")
         leaves = leaves_of(m.layout)
         for leaf in leaves:
+            if leaf.field.kind == "str":
+                c(f"size_t {self.text_len(leaf)} = 0;")
+        self.rule_checks(c, m, "m")
+        for leaf in leaves:
             self.text_check(c, leaf)
+        head = m.ids[0] + fr.prefix_separator
+        lead_first = bool(leaves) and not leaves[0].field.optional
+        if lead_first:
+            head = head[:-len(fr.prefix_separator)]
         c("cw_writer_init(&w, buf, cap);")
-        c(f"cw_write_text(&w, {cstr(m.ids[0] + fr.prefix_separator)}, {len(m.ids[0] + fr.prefix_separator)}u);")
+        if head:
+            c(f"cw_write_text(&w, {cstr(head)}, {len(head)}u);")
         for i, leaf in enumerate(leaves):
             f = leaf.field
             v = self.member(leaf)
             if f.optional:
                 c(f"if ({self.has(leaf)}) {{")
                 c.indent()
-            if i:
-                c(f"cw_write_char(&w, {cchar(fr.separator)});")
-            if f.kind == "float":
-                c(f"cw_write_decimal(&w, {v});")
-            elif f.kind == "char":
-                c(f"cw_write_char(&w, {v});")
-            elif f.kind == "str":
-                c(f"cw_write_text(&w, {v}, strlen({v}));")
+            if i == 0 and not lead_first:  # an optional first value: nothing leads it
+                if f.kind == "float":
+                    c(f"cw_write_decimal(&w, {v});")
+                elif f.kind == "char":
+                    c(f"cw_write_char(&w, {v});")
+                elif f.kind == "str":
+                    c(f"cw_write_text(&w, {v}, {self.text_len(leaf)});")
+                else:
+                    c(f"cw_write_int(&w, (int32_t){v});")
             else:
-                c(f"cw_write_int(&w, (int32_t){v});")
+                lead = cchar(fr.separator if i else fr.prefix_separator)
+                if f.kind == "float":
+                    c(f"cw_write_decimal_field(&w, {lead}, &{v});")
+                elif f.kind == "char":
+                    c(f"cw_write_text_field(&w, {lead}, &{v}, 1u);")
+                elif f.kind == "str":
+                    c(f"cw_write_text_field(&w, {lead}, {v}, {self.text_len(leaf)});")
+                else:
+                    c(f"cw_write_int_field(&w, {lead}, (int32_t){v});")
             if f.optional:
                 c.dedent()
                 c("}")
-        c(f"cw_write_char(&w, {cchar(fr.terminator)});")
-        c("return cw_writer_finish(&w);")
+        c(f"return cw_writer_end(&w, {cchar(fr.terminator)});")
         c.dedent()
         c("}")
         return c.text()
+
+    @staticmethod
+    def text_len(leaf: Leaf) -> str:
+        """The local holding a str member's length, measured once by its check."""
+        return f"{leaf.var}_len"
 
     def text_check(self, c: Code, leaf: Leaf) -> None:
         f = leaf.field
@@ -925,14 +952,16 @@ class CView:
         if f.kind == "float":
             self.fail_if(c, f"!cw_decimal_fits(&{v})", "precision")
             if f.range is not None:
-                raise CTargetError(f"{f.name}: ranges on text floats are not supported by the C target")
+                raise CTargetError(f"{f.name}: ranges on text floats are not supported by the C target", f.loc)
         elif f.kind == "char" and f.enum is not None:
             self.member_check(c, f, v, "enum")
         elif f.kind == "char":
             self.fail_if(c, f"!cw_text_ok(&{v}, 1u, {sep}, {cchar(fr.terminator)}, {str(fr.trim).lower()})", "text")
         elif f.kind == "str":
-            self.fail_if(c, f"cw_text_len({v}, {r.array}u) > {f.max_length}u", "length")
-            self.fail_if(c, f"!cw_text_ok({v}, strlen({v}), {sep}, {cchar(fr.terminator)}, {str(fr.trim).lower()})", "text")
+            n = self.text_len(leaf)
+            c(f"{n} = cw_text_len({v}, {r.array}u);")
+            self.fail_if(c, f"{n} > {f.max_length}u", "length")
+            self.fail_if(c, f"!cw_text_ok({v}, {n}, {sep}, {cchar(fr.terminator)}, {str(fr.trim).lower()})", "text")
         elif f.enum is not None:
             self.member_check(c, f, v, "enum")
         else:
@@ -941,14 +970,27 @@ class CView:
             c.dedent()
             c("}")
 
+    def text_ascii(self) -> bool:
+        """Whether every character the framing, the prefixes and the char enums
+        accept is 7-bit ASCII. Then a message that reads well is ASCII throughout
+        (its readers accept no other byte), and the check for a byte above 0x7F,
+        Python's first, is needed only on the way to another error."""
+        chars = self.fr.prefix_separator + self.fr.separator + self.fr.terminator + self.fr.ignore_between
+        chars += "".join(x for m in self.p.messages for x in m.ids if isinstance(x, str))
+        chars += "".join(str(x.value) for e in self.p.enums if e.kind == "char" for x in e.members)
+        return all(ord(ch) < 0x80 for ch in chars)
+
     def text_body_function(self, m: Message) -> str:
-        """<msg>_parse_body: the fields between prefix and terminator, checked in Python's order."""
+        """<msg>_parse_body: the fields between prefix and terminator, checked in Python's order.
+        One pass over the body finds where every value ends; each value is then trimmed
+        and read once. Bytes above 0x7F are left to the caller (see text_ascii)."""
         fr = self.fr
         c = Code()
         leaves = leaves_of(m.layout)
         total = len(leaves)
         required = sum(1 for x in leaves if not x.field.optional)
         last_to_end = bool(leaves) and leaves[-1].field.to_end
+        trim = str(fr.trim).lower()
         c(f"static inline int {self.fn(m, 'parse_body')}(const char *s, const char *end, {self.tname(m)} *m)")
         c("{")
         c.indent()
@@ -960,46 +1002,49 @@ class CView:
             c.dedent()
             c("}")
             return c.text()
-        c(f"size_t count = cw_count_tokens(s, end, {cchar(fr.separator)}, {total if last_to_end else 'SIZE_MAX'});")
-        c("const char *b;")
-        c("const char *e;")
-        c("int rc;")
-        self.fail_if(c, f"count < {required}u || count > {total}u", "count")
-        c("rc = CW_OK;")
-        c("(void)rc;")
+        c(f"const char *ends[{total}];  /* where each value ends: cw_value */")
+        c("cw_span_t v;")
+        if any(x.field.kind not in ("char", "str") for x in leaves):
+            c("int rc;")
+        if total == 1 and last_to_end and required == 1:
+            c("ends[0] = end;  /* the one value runs to the end */")
+        else:
+            c(f"size_t count = cw_split_values(s, end, {cchar(fr.separator)}, ends, {total}u, "
+              f"{'true' if last_to_end else 'false'});")
+            if required == total and not last_to_end:
+                self.fail_if(c, f"count != {total}u", "count")
+            else:
+                conds = ([f"count < {required}u"] if required > 1 else []) + ([] if last_to_end else [f"count > {total}u"])
+                if conds:
+                    self.fail_if(c, " || ".join(conds), "count")
         for i, leaf in enumerate(leaves):
             f = leaf.field
-            v = self.member(leaf)
+            t = self.member(leaf)
             r = self.rep(f)
             c(f"/* {leaf.dotted} */")
             if f.optional:
                 c(f"{self.has(leaf)} = count > {i}u;")
                 c(f"if ({self.has(leaf)}) {{")
                 c.indent()
-            c("b = s;")
-            c("e = end;" if f.to_end else f"e = cw_token_end(s, end, {cchar(fr.separator)});")
-            if i < len(leaves) - 1:  # after the last value s is not read (cppcheck: dead store)
-                c("s = e < end ? e + 1 : end;")
-            if fr.trim:
-                c("cw_trim(&b, &e);")
+            c(f"v = cw_value(s, ends, {i}u, {trim});")
             if f.kind == "float":
-                c(f"rc = cw_parse_decimal(b, e, &{v});")
+                c(f"rc = cw_read_decimal(v.b, v.e, &{t});")
                 c("if (rc != CW_OK) {")
                 c("    return rc;")
                 c("}")
             elif f.kind == "char":
-                self.fail_if(c, "e - b != 1", "type")
-                if f.enum is None:
-                    self.fail_if(c, f"!cw_text_ok(b, 1u, {cchar(fr.separator)}, {cchar(fr.terminator)}, {str(fr.trim).lower()})", "text")
+                self.fail_if(c, "v.e - v.b != 1", "type")
+                if f.enum is None:  # split at separators and trimmed: left to check are the characters and the terminator
+                    self.fail_if(c, f"!cw_text_ok(v.b, 1u, '\\0', {cchar(fr.terminator)}, false)", "text")
                 else:
-                    self.fail_if(c, " && ".join(f"*b != {cchar(x.value)}" for x in f.enum.members), "enum")
-                c(f"{v} = *b;")
+                    self.fail_if(c, " && ".join(f"*v.b != {cchar(x.value)}" for x in f.enum.members), "enum")
+                c(f"{t} = *v.b;")
             elif f.kind == "str":
-                sep = "'\\0'" if f.to_end else cchar(fr.separator)
-                self.fail_if(c, f"!cw_text_ok(b, (size_t)(e - b), {sep}, {cchar(fr.terminator)}, {str(fr.trim).lower()})", "text")
-                self.fail_if(c, f"(size_t)(e - b) > {f.max_length}u", "length")
-                c(f"memcpy({v}, b, (size_t)(e - b));")
-                c(f"{v}[e - b] = '\\0';")
+                # split at separators (a to_end value may hold them) and trimmed: left to check are the characters and the terminator
+                self.fail_if(c, f"!cw_text_ok(v.b, (size_t)(v.e - v.b), '\\0', {cchar(fr.terminator)}, false)", "text")
+                self.fail_if(c, f"(size_t)(v.e - v.b) > {f.max_length}u", "length")
+                c(f"memcpy({t}, v.b, (size_t)(v.e - v.b));")
+                c(f"{t}[v.e - v.b] = '\\0';")
             else:
                 c("{")
                 c.indent()
@@ -1008,7 +1053,7 @@ class CView:
                     lo, hi = (-(1 << 31), (1 << 31) - 1)
                 else:
                     lo, hi = self.raw_bounds(f)
-                c(f"rc = cw_parse_int(b, e, {clit(lo) if lo > -(1 << 31) else 'INT32_MIN'}, {clit(hi) if hi < (1 << 31) - 1 else 'INT32_MAX'}, &value);")
+                c(f"rc = cw_parse_int(v.b, v.e, {clit(lo) if lo > -(1 << 31) else 'INT32_MIN'}, {clit(hi) if hi < (1 << 31) - 1 else 'INT32_MAX'}, &value);")
                 if f.enum is not None:
                     c("if (rc == CW_ERR_RANGE) {")
                     c("    return CW_ERR_ENUM;")
@@ -1025,7 +1070,7 @@ class CView:
                 if f.values:
                     allowed = [self.enum_wire(f, x) for x in f.values]
                     self.fail_if(c, " && ".join(f"value != {clit(int(x))}" for x in allowed), "values")
-                c(f"{v} = ({r.ctype})value;")
+                c(f"{t} = ({r.ctype})value;")
                 c.dedent()
                 c("}")
             if f.optional:
@@ -1045,11 +1090,12 @@ class CView:
         c.indent()
         c("const char *pb, *pe, *body, *end;")
         c(f"int rc = {self.px}_split(text, len, &pb, &pe, &body, &end);")
-        c("if (rc != CW_OK) {")
-        c("    return rc;")
+        c(f"if (rc == CW_OK && ((size_t)(pe - pb) != {len(prefix)}u || memcmp(pb, {cstr(prefix)}, {len(prefix)}u) != 0)) {{")
+        c("    rc = CW_ERR_DISPATCH;")
+        c("} else if (rc == CW_OK) {")
+        c(f"    rc = {self.fn(m, 'parse_body')}(body, end, m);")
         c("}")
-        self.fail_if(c, f"(size_t)(pe - pb) != {len(prefix)}u || memcmp(pb, {cstr(prefix)}, {len(prefix)}u) != 0", "dispatch")
-        c(f"return {self.fn(m, 'parse_body')}(body, end, m);")
+        c("return cw_text_verdict(text, len, rc);")
         c.dedent()
         c("}")
         return c.text()
@@ -1059,7 +1105,22 @@ class CView:
         return [(self.upper("DIR", d.name), d.name) for d in self.p.directions]
 
     def dispatch(self) -> dict:
-        return dispatch_facts(self.p)
+        """How decode finds the message. In bits framing the C reads the head that
+        holds the dispatch fields into a uint32_t: at most its first 4 bytes."""
+        d = dispatch_facts(self.p)
+        if d["kind"] != "bits" or d["head_bytes"] <= 4:
+            return d
+        for m in self.p.messages:
+            pos = 0
+            for leaf in leaves_of(m.layout):
+                if leaf.field.dispatch and pos + leaf.field.bits > 32:
+                    raise SchemaError([Diagnostic(
+                        leaf.field.loc or m.loc,
+                        f"message {m.name!r}: dispatch field {leaf.field.name!r} ends past bit 32; "
+                        "the C target reads dispatch fields from a message's first 32 bits",
+                        "move the dispatch fields to the front of the message")])
+                pos += leaf.field.bits or 0
+        return dict(d, head_bytes=4, head_bits=32)
 
     def stream(self) -> dict:
         return stream_facts(self.p)
@@ -1117,7 +1178,10 @@ def checksum_code(name: str, cs: Checksum, guard: str) -> str:
         c("    for (i = 0; i < len; i++) {")
         c(f"        acc = acc {op} data[i];")
         c("    }")
-        c(f"    return acc % {clit(cs.modulo, True)};" if cs.modulo else "    return acc;")
+        if cs.algorithm == "parity":  # the bytes' XOR has the parity of all their bits
+            c("    return cw_parity32(acc)" + (" ^ 1u;" if cs.parity == "odd" else ";"))
+        else:
+            c(f"    return acc % {clit(cs.modulo, True)};" if cs.modulo else "    return acc;")
         c("}")
         return c.text()
     p = cs.crc

@@ -1,8 +1,11 @@
 """How the C target codes a binary message that fits one word of at most 32
 bits: the message is built in one unsigned integer with shifts and written
 with one big-endian store, and read back with one load, as hand-written
-firmware does. A parity bit is then the parity of that word, not of the
-fields one by one.
+firmware does. A parity bit over fields is then the parity of that word,
+not of the fields one by one; a parity, sum or xor over bytes that shares its
+bytes with other fields is taken over the word's covered bytes. A message
+with a CRC (it runs over bytes in memory) or a checksum in whole bytes of its
+own is left to the byte-wise codec.
 
 Inside the word the fields keep cpack's byte-aligned parts: each part is
 packed in the narrowest integer that holds it (16 bits where it fits) and
@@ -65,13 +68,17 @@ def mask(bits: int) -> str:
 
 def container(v: "CView", m: "Message") -> Optional[Word]:
     """The message as one big-endian word, or None when it does not fit one:
-    over 4 bytes, a `bytes` field, a byte checksum or a multi-byte
+    over 4 bytes, a `bytes` field, a CRC, a checksum over bytes in whole bytes
+    of its own (the byte-wise loop is smaller on AVR) or a multi-byte
     little-endian integer."""
     if v.text or m.size is None or not 1 <= m.size <= 4:
         return None
     spans = v.spans(m)
     for span in spans:
         leaf = span.pieces[0].leaf
+        if any(v.is_byte_checksum(p.leaf) and p.leaf.field.checksum.algorithm == "crc"
+               for p in span.pieces):
+            return None
         if span.kind == "pack":
             continue
         if span.kind != "int" or v.is_byte_checksum(leaf):
@@ -82,7 +89,34 @@ def container(v: "CView", m: "Message") -> Optional[Word]:
 
 
 def field_sums(word: Word) -> list[Leaf]:
+    """Every checksum, in wire order (over fields or over bytes: never both, the resolver
+    refuses a checksum over fields beside another checksum)."""
     return [p.leaf for p in word.pieces if p.leaf.field.checksum]
+
+
+def over_bytes(leaf: Leaf) -> bool:
+    return leaf.field.checksum.over == "bytes"
+
+
+def bytes_checksum(word: Word, leaf: Leaf) -> str:
+    """A parity, sum or xor over the covered bytes of `word`, as the leaf's type. The
+    encoder calls it with the checksums after `leaf` still 0 (none is covered)."""
+    cs = leaf.field.checksum
+    rt = leaf_type(leaf)
+    start, end = cs.byte_span
+    if cs.algorithm == "parity":
+        covered = ((1 << 8 * (end - start)) - 1) << 8 * (word.size - end)
+        value = "word" if covered == (1 << 8 * word.size) - 1 else f"word & {cview.clit(covered, True)}"
+        flip = " ^ 1u" if cs.parity == "odd" else ""
+        return f"({rt})(cw_parity32({value}){flip})"
+    shifts = [8 * (word.size - 1 - i) for i in range(start, end)]
+    data = [f"(uint8_t)(word >> {s})" if s else "(uint8_t)word" for s in shifts]
+    data[0] = f"(unsigned){data[0]}"  # at most 4 bytes: the sum fits 16 bits
+    op = " + " if cs.algorithm == "sum" else " ^ "
+    value = f"({op.join(data)})"
+    if cs.modulo:
+        value = f"({value} % {cview.clit(cs.modulo, True)})"
+    return f"({rt}){value}"
 
 
 def fills_type(piece: Piece) -> bool:
@@ -98,10 +132,10 @@ def fits_field(v: "CView", leaf: Leaf) -> bool:
         return True
     if f.const is not None or f.length_of or f.flags is not None or f.one_hot:
         return False
+    if f.kind == "int":
+        return True  # encode_leaf masks two's complement to the field, enum or not
     if f.enum is not None:  # checked to be a member
         return f.enum.kind == "int" and all(0 <= x.value < (1 << f.bits) for x in f.enum.members)
-    if f.kind == "int":
-        return True  # encode_leaf masks two's complement to the field
     if f.kind != "uint":
         return False
     lo, hi = v.int_bounds(f)
@@ -139,6 +173,8 @@ def place(v: "CView", word: Word, pieces: list[Piece]) -> str:
 def checksum_value(v: "CView", word: Word, leaf: Leaf) -> str:
     cs = leaf.field.checksum
     rt = leaf_type(leaf)
+    if over_bytes(leaf):
+        return bytes_checksum(word, leaf)
     if cs.algorithm == "parity":  # the other fields' parity is the word's: the bit is still 0 in it
         flip = " ^ 1u" if cs.parity == "odd" else ""
         return f"({rt})(cw_parity32(word){flip})"
@@ -162,14 +198,15 @@ def encode_function(v: "CView", m: "Message", word: Word) -> str:
     c("    return CW_ERR_CAPACITY;")
     c("}")
     # Checksums in wire order, each over the others with the later ones still 0,
-    # as <msg>_raw. A sum is taken over the values; a parity over the word, so
-    # the word is built before the first parity and the sums before it go in.
+    # as <msg>_raw. A sum over fields is taken over the values; a parity, or any
+    # checksum over bytes, over the word, so the word is built before the first
+    # of those and the sums before it go in.
     sums = field_sums(word)
     done: list[Leaf] = []
     built = False
     for leaf in sums:
         piece = next(p for p in word.pieces if p.leaf is leaf)
-        if leaf.field.checksum.algorithm == "parity" and not built:
+        if (leaf.field.checksum.algorithm == "parity" or over_bytes(leaf)) and not built:
             ready = [p for p in word.pieces if p.leaf not in sums or p.leaf in done]
             c(f"word = {place(v, word, ready)};")
             built = True
@@ -204,8 +241,9 @@ def read(word: Word, piece: Piece, local: dict) -> str:
 
 def decode_function(v: "CView", m: "Message", word: Word) -> str:
     sums = field_sums(word)
-    # a parity bit is checked on the word: its own value is read only for a sum over it
-    parity_only = all(leaf.field.checksum.algorithm == "parity" for leaf in sums)
+    # a parity bit over fields is checked on the word: its own value is read only
+    # for a sum over it; a checksum over bytes is compared with its bits
+    parity_only = all(leaf.field.checksum.algorithm == "parity" and not over_bytes(leaf) for leaf in sums)
     pieces = [p for p in word.pieces if not (parity_only and p.leaf in sums)]
     # a narrower part read for several pieces gets a local of its width (16-bit shifts on 8-bit targets)
     parts = [part for part in word.parts
@@ -234,10 +272,15 @@ def decode_function(v: "CView", m: "Message", word: Word) -> str:
         c(f"{local[part.start]} = ({int_type(part.size)})" + (f"(word >> {shift});" if shift else "word;"))
     for piece in pieces:
         c(read(word, piece, local))
+    for leaf in sums:  # before the fields' checks, as the byte-wise decoder
+        if over_bytes(leaf):
+            v.fail_if(c, f"{leaf.var} != {bytes_checksum(word, leaf)}", "checksum")
     for piece in word.pieces:
         v.decode_leaf(c, piece.leaf, piece.leaf.var, m)
     for leaf in sums:
         cs = leaf.field.checksum
+        if over_bytes(leaf):
+            continue
         if cs.algorithm == "parity":  # the padding is 0: the word's parity is that of its fields
             v.fail_if(c, f"cw_parity32(word) != {1 if cs.parity == 'odd' else 0}u", "checksum")
         else:

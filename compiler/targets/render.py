@@ -6,6 +6,8 @@ from pathlib import Path
 
 import jinja2
 
+from .template_cache import TemplateCache
+
 TEMPLATES = Path(__file__).resolve().parent.parent.parent / "templates"
 
 
@@ -26,13 +28,27 @@ def docline(value) -> str:
     return text.replace("\\", "\\\\").replace('"', '\\"')
 
 
+OPTIONS = dict(undefined=jinja2.StrictUndefined, trim_blocks=True, lstrip_blocks=True,
+               keep_trailing_newline=True, autoescape=False)
+FILTERS = dict(pyrepr=pyrepr, comment=comment, docline=docline)
+
+
 @lru_cache(maxsize=1)
 def environment() -> jinja2.Environment:
+    settings = repr((sorted(OPTIONS.items()), sorted(FILTERS)))
     env = jinja2.Environment(loader=jinja2.FileSystemLoader(str(TEMPLATES)),
-                             undefined=jinja2.StrictUndefined, trim_blocks=True,
-                             lstrip_blocks=True, keep_trailing_newline=True, autoescape=False)
-    env.filters.update(pyrepr=pyrepr, comment=comment, docline=docline)
+                             bytecode_cache=TemplateCache(TEMPLATES / "__pycache__", settings), **OPTIONS)
+    env.filters.update(FILTERS)
     return env
+
+
+def compile_templates() -> None:
+    """Compile every template into the cache, whatever PYTHONDONTWRITEBYTECODE says
+    (scripts/setup, next to byte-compiling the package)."""
+    env = environment()
+    env.bytecode_cache.write = True
+    for name in env.list_templates(filter_func=lambda name: "__pycache__" not in name.split("/")):
+        env.get_template(name)
 
 
 def tidy(source: str, max_blank: int) -> str:

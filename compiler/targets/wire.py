@@ -108,4 +108,6 @@ def checksum_name(cs) -> str:
         c = cs.crc
         return (f"crc{c.width}_{c.poly:x}_{c.init:x}_{'r' if c.refin else 'n'}"
                 f"{'r' if c.refout else 'n'}_{c.xorout:x}")
+    if cs.algorithm == "parity":
+        return "parity_odd" if cs.parity == "odd" else "parity"
     return f"{cs.algorithm}{cs.modulo or ''}"

@@ -287,10 +287,92 @@ static inline uint8_t cw_bit_index(uint32_t v)
     return n;
 }
 
-/* The characters Python's str.strip() removes, restricted to ASCII. */
+/* The characters Python's str.strip() removes, restricted to ASCII. All of
+ * them are at most ' ', so any other character costs one comparison. */
 static inline bool cw_is_space(char c)
 {
-    return c == ' ' || (c >= '\t' && c <= '\r') || (c >= '\x1c' && c <= '\x1f');
+    return (unsigned char)c <= (unsigned char)' '
+           && (c == ' ' || (c >= '\t' && c <= '\r') || (c >= '\x1c' && c <= '\x1f'));
+}
+
+static inline bool cw_is_digit(char c)
+{
+    return c >= '0' && c <= '9';
+}
+
+/* ---- decimal numbers ----------------------------------------------------- */
+
+/* A decimal number exactly as written: (-1)^negative * digits * 10^exp10.
+ * Text floats use it instead of double: AVR's double is 32 bits and its
+ * printf has no float support, yet firmware must read and write the same
+ * text as a 64-bit peer. Normalised: no trailing zeros in digits; zero is
+ * digits 0, exp10 0. Up to 17 significant digits, as many as a double needs
+ * to round-trip. */
+typedef struct {
+    uint64_t digits;
+    int16_t exp10;
+    bool negative;
+} cw_decimal_t;
+
+#define CW_DECIMAL_MAX_DIGITS 17
+/* Longest text written for a decimal of at most CW_DECIMAL_MAX_DIGITS digits:
+ * sign, 17 digits, a point and "e-32768". */
+#define CW_DECIMAL_MAX_TEXT 26
+/* Longest text written for any cw_decimal_t (20 digits). */
+#define CW_DECIMAL_ANY_TEXT 29
+
+/* Drops the trailing zeros of d.digits into its exponent (for decimals built
+ * by hand; the codecs' own come out normalised). */
+static inline void cw_decimal_normalise(cw_decimal_t *d)
+{
+    if (d->digits == 0u) {
+        d->exp10 = 0;
+        return;
+    }
+    while (d->digits % 10u == 0u) {
+        d->digits /= 10u;
+        d->exp10++;
+    }
+}
+
+/* value / 10^decimals, e.g. cw_decimal_from_scaled(-125, 2) is -1.25:
+ * how integer firmware readings become text values. */
+static inline cw_decimal_t cw_decimal_from_scaled(int32_t value, uint8_t decimals)
+{
+    cw_decimal_t d;
+    uint32_t digits = value < 0 ? (uint32_t)0u - (uint32_t)value : (uint32_t)value;
+    int16_t exp10 = (int16_t)-(int16_t)decimals;
+    while (digits != 0u && digits % 10u == 0u) {
+        digits /= 10u;
+        exp10++;
+    }
+    d.negative = value < 0;
+    d.digits = digits;
+    d.exp10 = digits != 0u ? exp10 : 0;
+    return d;
+}
+
+/* The value as a double (the nearest one on hosts with IEEE binary64; on AVR
+ * double is binary32). */
+static inline double cw_decimal_to_double(cw_decimal_t d)
+{
+    double v = (double)d.digits;
+    int16_t e = d.exp10;
+    while (e > 0) {
+        v *= 10.0;
+        e--;
+    }
+    while (e < 0) {
+        v /= 10.0;
+        e++;
+    }
+    return d.negative ? -v : v;
+}
+
+/* At most CW_DECIMAL_MAX_DIGITS digits: one comparison, no 64-bit division. */
+static inline bool cw_decimal_fits(const cw_decimal_t *d)
+{
+    return d->digits <= 99999999999999999ULL;
 }
 
 /* ---- text writer: bounded, NUL-terminated ------------------------------- */
@@ -335,6 +417,220 @@ static inline int cw_writer_finish(cw_writer_t *w)
     return (int)w->len;
 }
 
+/* The terminator and the NUL, with one check: the line's length, or
+ * CW_ERR_CAPACITY if it did not fit. */
+static inline int cw_writer_end(cw_writer_t *w, char terminator)
+{
+    if (w->overflow || w->cap - w->len < 2u) {
+        return CW_ERR_CAPACITY;
+    }
+    w->buf[w->len] = terminator;
+    w->len++;
+    w->buf[w->len] = '\0';
+    return (int)w->len;
+}
+
+/* Where a value of at most n chars is formatted: in place when the buffer
+ * has room for n (the value's one capacity check), else in `spare`, which
+ * cw_writer_take then copies with an exact check (a value near the end of a
+ * small buffer may still fit). */
+static inline char *cw_writer_slot(cw_writer_t *w, size_t n, char *spare)
+{
+    return !w->overflow && w->cap - w->len >= n ? w->buf + w->len : spare;
+}
+
+/* Takes the chars [slot, end) formatted at cw_writer_slot's answer. */
+static inline void cw_writer_take(cw_writer_t *w, const char *slot, const char *end, const char *spare)
+{
+    if (slot == spare) {
+        cw_write_text(w, spare, (size_t)(end - spare));
+    } else {
+        w->len += (size_t)(end - slot);
+    }
+}
+
+/* ---- formatting numbers ---------------------------------------------------- */
+
+/* How many decimal digits v has (1..20): a multiply-by-10 loop. */
+static inline uint8_t cw_digit_count(uint64_t v)
+{
+    uint64_t power = 10u;
+    uint8_t n = 1;
+    while (n < 20u && v >= power) {
+        power *= 10u;
+        n++;
+    }
+    return n;
+}
+
+/* Writes the decimal digits of v backwards, ending at `end`, with a point
+ * after the last `point` of them (none for 0). Divides by constants in 32 bits
+ * only (64-bit division is a large, slow library routine on 8-bit targets):
+ * while v needs more than 32 bits, a digit comes from dividing it by 10 in
+ * 16-bit steps. */
+static inline void cw_put_digits_back(char *end, uint64_t v, uint8_t point)
+{
+    uint32_t hi = (uint32_t)(v >> 32);
+    uint32_t lo = (uint32_t)(v & 0xFFFFFFFFUL);
+    uint8_t k = 0;
+    while (hi != 0u) {
+        uint32_t part = ((hi % 10u) << 16) | (lo >> 16);
+        uint32_t low = ((part % 10u) << 16) | (lo & 0xFFFFu);
+        hi /= 10u;
+        lo = ((part / 10u) << 16) | (low / 10u);
+        *--end = (char)('0' + (char)(low % 10u));
+        if (++k == point) {
+            *--end = '.';
+        }
+    }
+    do {
+        *--end = (char)('0' + (char)(lo % 10u));
+        lo /= 10u;
+        if (++k == point) {
+            *--end = '.';
+        }
+    } while (lo != 0u);
+}
+
+/* Writes the decimal digits of v at out; returns their end. */
+static inline char *cw_put_u32(char *out, uint32_t v)
+{
+    uint32_t power = 10u;
+    uint8_t n = 1;
+    while (n < 10u && v >= power) {
+        power *= 10u;
+        n++;
+    }
+    out += n;
+    cw_put_digits_back(out, v, 0u);
+    return out;
+}
+
+static inline char *cw_put_int(char *out, int32_t v)
+{
+    if (v < 0) {
+        *out++ = '-';
+        return cw_put_u32(out, (uint32_t)0u - (uint32_t)v);
+    }
+    return cw_put_u32(out, (uint32_t)v);
+}
+
+/* Writes d like Python's repr(float) with a trailing ".0" removed:
+ * positional for decimal exponents -4..15, otherwise d.ddde+XX; returns the
+ * end. At most CW_DECIMAL_ANY_TEXT chars (CW_DECIMAL_MAX_TEXT when d fits).
+ * The digits are counted first, then written straight to their places. */
+static inline char *cw_put_decimal(char *out, const cw_decimal_t *d)
+{
+    uint8_t n = cw_digit_count(d->digits);
+    int32_t top = (int32_t)d->exp10 + (int32_t)n - 1;  /* exponent of the first digit */
+    if (d->negative) {
+        *out++ = '-';
+    }
+    if (d->digits == 0u) {
+        *out++ = '0';
+    } else if (top < -4 || top > 15) {
+        uint32_t e = top < 0 ? (uint32_t)-top : (uint32_t)top;
+        out += n + (n > 1u ? 1u : 0u);
+        cw_put_digits_back(out, d->digits, (uint8_t)(n - 1u));
+        *out++ = 'e';
+        *out++ = top < 0 ? '-' : '+';
+        if (e < 10u) {
+            *out++ = '0';
+        }
+        out = cw_put_u32(out, e);
+    } else if (top < 0) {
+        int32_t z;
+        *out++ = '0';
+        *out++ = '.';
+        for (z = -1; z > top; z--) {
+            *out++ = '0';
+        }
+        out += n;
+        cw_put_digits_back(out, d->digits, 0u);
+    } else if (d->exp10 < 0) {
+        /* 0 <= top <= 15: -exp10 < n digits after the point */
+        out += n + 1u;
+        cw_put_digits_back(out, d->digits, (uint8_t)-d->exp10);
+    } else {
+        int16_t z;
+        out += n;
+        cw_put_digits_back(out, d->digits, 0u);
+        for (z = d->exp10; z > 0; z--) {
+            *out++ = '0';
+        }
+    }
+    return out;
+}
+
+/* Writes the decimal digits of v; returns the count, or 0 if cap is short. */
+static inline size_t cw_format_int(int32_t v, char *out, size_t cap)
+{
+    char text[11];
+    size_t n = (size_t)(cw_put_int(text, v) - text);
+    if (n > cap) {
+        return 0;
+    }
+    memcpy(out, text, n);
+    return n;
+}
+
+/* cw_put_decimal into out; returns the length, or 0 if cap is too small. */
+static inline size_t cw_format_decimal(cw_decimal_t d, char *out, size_t cap)
+{
+    char text[CW_DECIMAL_ANY_TEXT];
+    size_t n = (size_t)(cw_put_decimal(text, &d) - text);
+    if (n > cap) {
+        return 0;
+    }
+    memcpy(out, text, n);
+    return n;
+}
+
+static inline void cw_write_int(cw_writer_t *w, int32_t v)
+{
+    char text[11];
+    size_t n = (size_t)(cw_put_int(text, v) - text);
+    cw_write_text(w, text, n);
+}
+
+static inline void cw_write_decimal(cw_writer_t *w, cw_decimal_t d)
+{
+    char text[CW_DECIMAL_ANY_TEXT];
+    size_t n = (size_t)(cw_put_decimal(text, &d) - text);
+    cw_write_text(w, text, n);
+}
+
+/* A value of a line after the separator that leads it (for the first value,
+ * the prefix separator), each with one capacity check. */
+static inline void cw_write_text_field(cw_writer_t *w, char lead, const char *s, size_t n)
+{
+    if (w->overflow || n >= w->cap - w->len) {
+        w->overflow = true;
+        return;
+    }
+    w->buf[w->len] = lead;
+    memcpy(w->buf + w->len + 1u, s, n);
+    w->len += n + 1u;
+}
+
+static inline void cw_write_int_field(cw_writer_t *w, char lead, int32_t v)
+{
+    char spare[12];
+    char *slot = cw_writer_slot(w, sizeof spare, spare);
+    char *p = slot;
+    *p++ = lead;
+    cw_writer_take(w, slot, cw_put_int(p, v), spare);
+}
+
+static inline void cw_write_decimal_field(cw_writer_t *w, char lead, const cw_decimal_t *d)
+{
+    char spare[1 + CW_DECIMAL_ANY_TEXT];
+    char *slot = cw_writer_slot(w, sizeof spare, spare);
+    char *p = slot;
+    *p++ = lead;
+    cw_writer_take(w, slot, cw_put_decimal(p, d), spare);
+}
+
 /* ---- text reader helpers ----------------------------------------------- */
 
 /* Length of a NUL-terminated string held in an array of `cap` chars; `cap`
@@ -354,11 +650,12 @@ static inline size_t cw_text_len(const char *s, size_t cap)
 static inline bool cw_text_ok(const char *s, size_t n, char separator, char terminator, bool trim)
 {
     size_t i;
+    if (separator == '\0') {
+        separator = terminator;  /* none to look for: one comparison fewer per character */
+    }
     for (i = 0; i < n; i++) {
-        if (s[i] == terminator || (separator != '\0' && s[i] == separator)) {
-            return false;
-        }
-        if (s[i] < ' ' || s[i] > '~') {
+        char c = s[i];
+        if ((unsigned char)(c - ' ') > (unsigned char)('~' - ' ') || c == terminator || c == separator) {
             return false;
         }
     }
@@ -368,19 +665,17 @@ static inline bool cw_text_ok(const char *s, size_t n, char separator, char term
     return true;
 }
 
-/* Tokens of [s, end) split at `separator`, at most max_tokens (the last one
- * then runs to the end), as Python's str.split(separator, max_tokens - 1). */
-static inline size_t cw_count_tokens(const char *s, const char *end, char separator, size_t max_tokens)
+/* True when no byte of [s, end) is above 0x7F. */
+static inline bool cw_ascii(const char *s, const char *end)
 {
-    size_t n = 1;
-    for (; s < end && n < max_tokens; s++) {
-        if (*s == separator) {
-            n++;
-        }
+    unsigned high = 0;
+    for (; s < end; s++) {
+        high |= (unsigned char)*s;
     }
-    return n;
+    return high < 0x80u;
 }
 
+/* The first `separator` in [s, end), or end. */
 static inline const char *cw_token_end(const char *s, const char *end, char separator)
 {
     while (s < end && *s != separator) {
@@ -389,7 +684,89 @@ static inline const char *cw_token_end(const char *s, const char *end, char sepa
     return s;
 }
 
-/* ---- text values ------------------------------------------------------------ */
+/* The values of a message body [s, end) in one pass: where each ends (at its
+ * separator, the last at `end`) into ends[0..count-1]; value i starts after
+ * ends[i - 1], the first at s. At most `max` values: with `to_end` the last
+ * one runs to the end, separators and all; otherwise more give max + 1.
+ * Returns the count. On 64-bit little-endian hosts eight bytes are looked at
+ * at once: the separators among them are the zero bytes of their XOR with the
+ * separator, found exactly (no carry between bytes) and taken lowest first. */
+static inline size_t cw_split_values(const char *s, const char *end, char separator, const char **ends,
+                                     size_t max, bool to_end)
+{
+    size_t count = 1;
+#if defined(__BYTE_ORDER__) && defined(__ORDER_LITTLE_ENDIAN__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__ \
+    && defined(UINTPTR_MAX) && UINTPTR_MAX > 0xFFFFFFFFu
+    const uint64_t low7 = 0x7F7F7F7F7F7F7F7FULL;
+    const uint64_t seps = 0x0101010101010101ULL * (unsigned char)separator;
+    for (; end - s >= 8; s += 8) {
+        uint64_t word;
+        uint64_t hits;
+        memcpy(&word, s, sizeof word);
+        word ^= seps;
+        hits = ~(((word & low7) + low7) | word | low7);  /* 0x80 in each zero byte */
+        while (hits != 0u) {
+            uint64_t lowest = hits & (0u - hits);
+            /* index of that byte: 1 << 8k times 0x0001020304050607 has k in its top byte */
+            size_t k = (size_t)(((lowest >> 7) * 0x0001020304050607ULL) >> 56);
+            if (count < max) {
+                ends[count - 1u] = s + k;
+                count++;
+            } else if (!to_end) {
+                count = max + 1u;
+            }
+            hits ^= lowest;
+        }
+    }
+#endif
+    for (; s < end; s++) {
+        if (*s == separator) {
+            if (count < max) {
+                ends[count - 1u] = s;
+                count++;
+            } else if (!to_end) {
+                count = max + 1u;
+            }
+        }
+    }
+    if (count <= max) {
+        ends[count - 1u] = end;
+    }
+    return count;
+}
+
+/* A value of a text line: [b, e). */
+typedef struct {
+    const char *b;
+    const char *e;
+} cw_span_t;
+
+/* Value i of a body split by cw_split_values (the first starts at s), when
+ * `trim` without the whitespace around it. Returned by value, so that the
+ * caller's pointers stay in registers. */
+static inline cw_span_t cw_value(const char *s, const char *const *ends, size_t i, bool trim)
+{
+    cw_span_t v;
+    v.b = i != 0u ? ends[i - 1u] + 1 : s;
+    v.e = ends[i];
+    if (trim) {
+        while (v.b < v.e && cw_is_space(*v.b)) {
+            v.b++;
+        }
+        while (v.e > v.b && cw_is_space(v.e[-1])) {
+            v.e--;
+        }
+    }
+    return v;
+}
+
+/* rc, or CW_ERR_TEXT when rc is an error and the text holds a byte above
+ * 0x7F: Python reports that before any other error. A text that decodes well
+ * holds none (its readers accept no such byte), so only failures look. */
+static inline int cw_text_verdict(const char *text, size_t len, int rc)
+{
+    return rc != CW_OK && !cw_ascii(text, text + len) ? CW_ERR_TEXT : rc;
+}
 
 /* Narrows [*begin, *end) by whitespace on both sides. */
 static inline void cw_trim(const char **begin, const char **end)
@@ -402,10 +779,7 @@ static inline void cw_trim(const char **begin, const char **end)
     }
 }
 
-static inline bool cw_is_digit(char c)
-{
-    return c >= '0' && c <= '9';
-}
+/* ---- reading numbers --------------------------------------------------------- */
 
 /* A decimal integer ([+-]?[0-9]+) within [lo, hi]: CW_ERR_SYNTAX or
  * CW_ERR_RANGE otherwise (overflowing text is out of range, not wrapped). */
@@ -428,13 +802,10 @@ static inline int cw_parse_int(const char *s, const char *end, int32_t lo, int32
         if (magnitude > 214748364UL) {
             overflow = true;
         } else {
-            magnitude = magnitude * 10u + (uint32_t)(*s - '0');
-            if (magnitude > 2147483648UL) {
-                overflow = true;
-            }
+            magnitude = magnitude * 10u + (uint32_t)(*s - '0');  /* at most 2147483649 */
         }
     }
-    if (overflow) {
+    if (overflow || magnitude > 2147483648UL) {
         return CW_ERR_RANGE;
     }
     {
@@ -454,159 +825,43 @@ static inline int cw_parse_int(const char *s, const char *end, int32_t lo, int32
     return CW_OK;
 }
 
-/* Writes the decimal digits of v; returns the count, or 0 if cap is short. */
-static inline size_t cw_format_int(int32_t v, char *out, size_t cap)
-{
-    char digits[11];
-    size_t n = 0;
-    size_t i = 0;
-    uint32_t magnitude = v < 0 ? (uint32_t)0u - (uint32_t)v : (uint32_t)v;
-    do {
-        digits[n++] = (char)('0' + (char)(magnitude % 10u));
-        magnitude /= 10u;
-    } while (magnitude);
-    if (n + (v < 0 ? 1u : 0u) > cap) {
-        return 0;
-    }
-    if (v < 0) {
-        out[i++] = '-';
-    }
-    while (n) {
-        out[i++] = digits[--n];
-    }
-    return i;
-}
-
-/* A decimal number exactly as written: (-1)^negative * digits * 10^exp10.
- * Text floats use it instead of double: AVR's double is 32 bits and its
- * printf has no float support, yet firmware must read and write the same
- * text as a 64-bit peer. Normalised: no trailing zeros in digits; zero is
- * digits 0, exp10 0. Up to 17 significant digits, as many as a double needs
- * to round-trip. */
-typedef struct {
-    uint64_t digits;
-    int16_t exp10;
-    bool negative;
-} cw_decimal_t;
-
-#define CW_DECIMAL_MAX_DIGITS 17
-/* Longest text cw_format_decimal writes: sign, "0.000" and 17 digits, or
- * 17 digits with a point and "e-308". */
-#define CW_DECIMAL_MAX_TEXT 26
-
-static inline void cw_decimal_normalise(cw_decimal_t *d)
-{
-    if (d->digits == 0u) {
-        d->exp10 = 0;
-        return;
-    }
-    while (d->digits % 10u == 0u) {
-        d->digits /= 10u;
-        d->exp10++;
-    }
-}
-
-/* value / 10^decimals, e.g. cw_decimal_from_scaled(-125, 2) is -1.25:
- * how integer firmware readings become text values. */
-static inline cw_decimal_t cw_decimal_from_scaled(int32_t value, uint8_t decimals)
-{
-    cw_decimal_t d;
-    d.negative = value < 0;
-    d.digits = value < 0 ? (uint64_t)((uint32_t)0u - (uint32_t)value) : (uint64_t)value;
-    d.exp10 = (int16_t)-(int16_t)decimals;
-    cw_decimal_normalise(&d);
-    return d;
-}
-
-/* The value as a double (the nearest one on hosts with IEEE binary64; on AVR
- * double is binary32). */
-static inline double cw_decimal_to_double(cw_decimal_t d)
-{
-    double v = (double)d.digits;
-    int16_t e = d.exp10;
-    while (e > 0) {
-        v *= 10.0;
-        e--;
-    }
-    while (e < 0) {
-        v /= 10.0;
-        e++;
-    }
-    return d.negative ? -v : v;
-}
-
-static inline uint8_t cw_digit_count(uint64_t v)
-{
-    uint8_t n = 1;
-    while (v >= 10u) {
-        v /= 10u;
-        n++;
-    }
-    return n;
-}
-
-/* At most CW_DECIMAL_MAX_DIGITS digits: one comparison, no 64-bit division. */
-static inline bool cw_decimal_fits(const cw_decimal_t *d)
-{
-    return d->digits <= 99999999999999999ULL;
-}
-
-/* Reads [+-]?([0-9]+(.[0-9]*)?|.[0-9]+)([eE][+-]?[0-9]+)? ; values whose
- * magnitude overflows a double give CW_ERR_FINITE, those below its smallest
- * subnormal read as zero, as Python's float() does. */
+/* Reads [+-]?([0-9]+(.[0-9]*)?|.[0-9]+)([eE][+-]?[0-9]+)? ; more than 17
+ * significant digits give CW_ERR_PRECISION, values whose magnitude overflows
+ * a double CW_ERR_FINITE, those below its smallest subnormal read as zero, as
+ * Python's float() does. The text is checked first; then only its digits
+ * from the first nonzero one to the last are multiplied in, so the result
+ * comes out normalised without any division. */
 static inline int cw_parse_decimal(const char *s, const char *end, cw_decimal_t *out)
 {
-    cw_decimal_t d;
-    uint8_t significant = 0;
-    bool any_digit = false;
-    bool dropped_nonzero = false;
-    int32_t exp10 = 0;
-    d.digits = 0;
-    d.exp10 = 0;
-    d.negative = false;
+    const char *first;  /* the first digit, then the first nonzero one */
+    const char *point;  /* the point, or where it would be: after the integer digits */
+    const char *last;   /* after the last digit, then after the last nonzero one */
+    int32_t e = 0;
+    bool negative = false;
     if (s < end && (*s == '+' || *s == '-')) {
-        d.negative = *s == '-';
+        negative = *s == '-';
         s++;
     }
-    for (; s < end && cw_is_digit(*s); s++) {
-        any_digit = true;
-        if (d.digits == 0u && *s == '0') {
-            continue;
-        }
-        if (significant < 19u) {
-            d.digits = d.digits * 10u + (uint64_t)(*s - '0');
-            significant++;
-        } else {
-            exp10++;
-            dropped_nonzero = dropped_nonzero || *s != '0';
-        }
+    first = s;
+    while (s < end && cw_is_digit(*s)) {
+        s++;
     }
+    point = s;
     if (s < end && *s == '.') {
         s++;
-        for (; s < end && cw_is_digit(*s); s++) {
-            any_digit = true;
-            if (d.digits == 0u && *s == '0') {
-                exp10--;
-                continue;
-            }
-            if (significant < 19u) {
-                d.digits = d.digits * 10u + (uint64_t)(*s - '0');
-                significant++;
-                exp10--;
-            } else {
-                dropped_nonzero = dropped_nonzero || *s != '0';
-            }
+        while (s < end && cw_is_digit(*s)) {
+            s++;
         }
     }
-    if (!any_digit) {
-        return CW_ERR_SYNTAX;
+    last = s;
+    if (last - first == (point < last ? 1 : 0)) {
+        return CW_ERR_SYNTAX;  /* no digit */
     }
     if (s < end && (*s == 'e' || *s == 'E')) {
-        bool exp_negative = false;
-        int32_t e = 0;
+        bool minus = false;
         s++;
         if (s < end && (*s == '+' || *s == '-')) {
-            exp_negative = *s == '-';
+            minus = *s == '-';
             s++;
         }
         if (s == end) {
@@ -617,136 +872,138 @@ static inline int cw_parse_decimal(const char *s, const char *end, cw_decimal_t 
                 e = e * 10 + (int32_t)(*s - '0');
             }
         }
-        exp10 += exp_negative ? -e : e;
+        if (minus) {
+            e = -e;
+        }
     }
     if (s != end) {
         return CW_ERR_SYNTAX;
     }
-    if (d.digits == 0u) {
-        d.exp10 = 0;
-        *out = d;
-        return CW_OK;
+    out->negative = negative;
+    out->digits = 0;
+    out->exp10 = 0;
+    while (first < last && (*first == '0' || *first == '.')) {
+        first++;
     }
-    while (d.digits % 10u == 0u) {
-        d.digits /= 10u;
-        exp10++;
+    if (first == last) {
+        return CW_OK;  /* zero */
     }
-    if (dropped_nonzero || cw_digit_count(d.digits) > CW_DECIMAL_MAX_DIGITS) {
-        return CW_ERR_PRECISION;
+    while (last[-1] == '0' || last[-1] == '.') {
+        last--;
     }
     {
-        int32_t top = exp10 + (int32_t)cw_digit_count(d.digits) - 1;
+        /* a digit at q stands for 10^(point - q - 1) before the point, 10^(point - q) after it */
+        int32_t top = (int32_t)(point - first) - (first < point ? 1 : 0);
+        int32_t bottom = (int32_t)(point - last) + (last <= point ? 0 : 1);
+        uint64_t digits = 0;
+        if (top - bottom >= CW_DECIMAL_MAX_DIGITS) {
+            return CW_ERR_PRECISION;
+        }
+        top += e;
         if (top > 308) {
             return CW_ERR_FINITE;
         }
+        if (top < -324) {
+            return CW_OK;  /* below the smallest subnormal: zero */
+        }
+        for (; first < last; first++) {
+            if (*first != '.') {
+                digits = digits * 10u + (uint64_t)(*first - '0');
+            }
+        }
         if (top == 308) {
             /* 1.7976931348623157e308 is the largest double */
-            uint64_t limit = 17976931348623157ULL;
-            uint64_t v = d.digits;
-            uint8_t n = cw_digit_count(v);
-            while (n < 17u) {
+            uint64_t v = digits;
+            int32_t n;
+            for (n = top - bottom - e; n < CW_DECIMAL_MAX_DIGITS - 1; n++) {
                 v *= 10u;
-                n++;
             }
-            if (v > limit) {
+            if (v > 17976931348623157ULL) {
                 return CW_ERR_FINITE;
             }
         }
-        if (top < -324) {
-            d.digits = 0;
-            d.exp10 = 0;
-            *out = d;
-            return CW_OK;
-        }
+        out->digits = digits;
+        out->exp10 = (int16_t)(bottom + e);
     }
-    d.exp10 = (int16_t)exp10;
-    *out = d;
     return CW_OK;
 }
 
-/* Formats like Python's repr(float) with a trailing ".0" removed: positional
- * for decimal exponents -4..15, otherwise d.ddde+XX. Returns the length, or 0
- * if cap is too small. */
-static inline size_t cw_format_decimal(cw_decimal_t d, char *out, size_t cap)
+/* The common case of cw_parse_decimal in 32-bit arithmetic: at most 9
+ * digits with an optional sign and point, and at most a two-digit exponent,
+ * so that no precision or range question can arise. Anything else goes to
+ * cw_parse_decimal, and so does everything when optimising for size (-Os):
+ * the results are the same. */
+static inline int cw_read_decimal(const char *s, const char *end, cw_decimal_t *out)
 {
-    char digits[20];
-    char text[CW_DECIMAL_MAX_TEXT + 8];
-    uint8_t n = 0;
-    uint8_t i;
-    size_t len = 0;
-    int16_t top;
-    uint64_t v = d.digits;
-    do {
-        digits[n++] = (char)('0' + (char)(v % 10u));
-        v /= 10u;
-    } while (v);
-    /* digits[] holds them least significant first */
-    top = (int16_t)(d.exp10 + (int16_t)n - 1);
-    if (d.negative) {
-        text[len++] = '-';
+#if defined(__OPTIMIZE_SIZE__)
+    return cw_parse_decimal(s, end, out);
+#else
+    const char *p = s;
+    const char *first;
+    const char *last;  /* after the last digit */
+    uint32_t digits = 0;
+    unsigned d;
+    size_t n;
+    size_t after_point = 0;
+    int16_t exp10;
+    bool negative = false;
+    if (p < end && (*p == '+' || *p == '-')) {
+        negative = *p == '-';
+        p++;
     }
-    if (d.digits == 0u) {
-        text[len++] = '0';
-    } else if (top >= -4 && top < 16) {
-        if (top < 0) {
-            int16_t z;
-            text[len++] = '0';
-            text[len++] = '.';
-            for (z = -1; z > top; z--) {
-                text[len++] = '0';
-            }
-            for (i = n; i > 0; i--) {
-                text[len++] = digits[i - 1u];
-            }
-        } else {
-            int16_t pos;
-            for (pos = top; pos >= 0 || pos >= d.exp10; pos--) {
-                if (pos == -1) {
-                    text[len++] = '.';
-                }
-                /* digit of weight 10^pos */
-                {
-                    int16_t index = (int16_t)(pos - d.exp10);
-                    text[len++] = index >= 0 && index < (int16_t)n ? digits[index] : '0';
-                }
-            }
-        }
-    } else {
-        uint16_t e = (uint16_t)(top < 0 ? -top : top);
-        text[len++] = digits[n - 1u];
-        if (n > 1u) {
-            text[len++] = '.';
-            for (i = (uint8_t)(n - 1u); i > 0; i--) {
-                text[len++] = digits[i - 1u];
-            }
-        }
-        text[len++] = 'e';
-        text[len++] = top < 0 ? '-' : '+';
-        if (e >= 100u) {
-            text[len++] = (char)('0' + (char)(e / 100u));
-        }
-        text[len++] = (char)('0' + (char)((e / 10u) % 10u));
-        text[len++] = (char)('0' + (char)(e % 10u));
+    /* more than 9 digits may wrap `digits` (unsigned): such text is read again below */
+    for (first = p; p < end && (d = (unsigned)(unsigned char)*p - (unsigned)'0') <= 9u; p++) {
+        digits = digits * 10u + d;
     }
-    if (len > cap) {
-        return 0;
+    n = (size_t)(p - first);
+    if (p < end && *p == '.') {
+        for (first = ++p; p < end && (d = (unsigned)(unsigned char)*p - (unsigned)'0') <= 9u; p++) {
+            digits = digits * 10u + d;
+        }
+        after_point = (size_t)(p - first);
+        n += after_point;
     }
-    memcpy(out, text, len);
-    return len;
-}
-
-static inline void cw_write_int(cw_writer_t *w, int32_t v)
-{
-    char digits[12];
-    size_t n = cw_format_int(v, digits, sizeof digits);
-    cw_write_text(w, digits, n);
-}
-
-static inline void cw_write_decimal(cw_writer_t *w, cw_decimal_t d)
-{
-    char text[CW_DECIMAL_MAX_TEXT + 8];
-    size_t n = cw_format_decimal(d, text, sizeof text);
-    cw_write_text(w, text, n);
+    if (n == 0u || n > 9u) {
+        return cw_parse_decimal(s, end, out);
+    }
+    last = p;
+    exp10 = (int16_t)-(int16_t)after_point;
+    if (p < end && (*p == 'e' || *p == 'E')) {
+        bool minus;
+        unsigned e = 0;
+        p++;
+        minus = p < end && *p == '-';
+        if (p < end && (*p == '+' || *p == '-')) {
+            p++;
+        }
+        if (end - p < 1 || end - p > 2) {
+            return cw_parse_decimal(s, end, out);
+        }
+        for (; p < end; p++) {
+            d = (unsigned)(unsigned char)*p - (unsigned)'0';
+            if (d > 9u) {
+                return cw_parse_decimal(s, end, out);
+            }
+            e = e * 10u + d;
+        }
+        exp10 = (int16_t)(minus ? exp10 - (int16_t)e : exp10 + (int16_t)e);
+    }
+    if (p != end) {
+        return cw_parse_decimal(s, end, out);
+    }
+    if (digits == 0u) {
+        exp10 = 0;
+    } else if (last[-1] == '0' || last[-1] == '.') {  /* trailing zeros (rare: writers drop them) */
+        while (digits % 10u == 0u) {
+            digits /= 10u;
+            exp10++;
+        }
+    }
+    out->digits = digits;
+    out->exp10 = exp10;
+    out->negative = negative;
+    return CW_OK;
+#endif
 }
 
 #ifdef __cplusplus

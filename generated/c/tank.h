@@ -158,19 +158,14 @@ typedef struct {
     } as;
 } tank_message_t;
 
-/* One message: strips "\r\n" around it, needs the terminator and the prefix separator. */
+/* One message: strips "\r\n" around it, needs the terminator and the prefix separator.
+ * Bytes above 0x7F are for the caller's cw_text_verdict. */
 static inline int tank_split(const char *text, size_t len, const char **pb, const char **pe,
                                  const char **body, const char **end)
 {
     const char *s = text;
     const char *e = text + len;
     const char *colon;
-    size_t i;
-    for (i = 0; i < len; i++) {
-        if ((unsigned char)text[i] > 0x7Fu) {
-            return CW_ERR_TEXT;
-        }
-    }
     while (s < e && (*s == '\x0d' || *s == '\x0a')) {
         s++;
     }
@@ -197,6 +192,8 @@ static inline int tank_split(const char *text, size_t len, const char **pb, cons
 static inline int tank_telemetry_encode(const tank_telemetry_t *m, char *buf, size_t cap)
 {
     cw_writer_t w;
+    size_t r_lan_len = 0;
+    size_t r_lon_len = 0;
     if (m->move != 'f' && m->move != 'b' && m->move != 'l' && m->move != 'r' && m->move != 'a' && m->move != 'c' && m->move != 'd' && m->move != 'e') {
         return CW_ERR_ENUM;
     }
@@ -239,16 +236,18 @@ static inline int tank_telemetry_encode(const tank_telemetry_t *m, char *buf, si
     if (!cw_decimal_fits(&m->magz)) {
         return CW_ERR_PRECISION;
     }
-    if (cw_text_len(m->lan, 33u) > 32u) {
+    r_lan_len = cw_text_len(m->lan, 33u);
+    if (r_lan_len > 32u) {
         return CW_ERR_LENGTH;
     }
-    if (!cw_text_ok(m->lan, strlen(m->lan), ',', ';', true)) {
+    if (!cw_text_ok(m->lan, r_lan_len, ',', ';', true)) {
         return CW_ERR_TEXT;
     }
-    if (cw_text_len(m->lon, 33u) > 32u) {
+    r_lon_len = cw_text_len(m->lon, 33u);
+    if (r_lon_len > 32u) {
         return CW_ERR_LENGTH;
     }
-    if (!cw_text_ok(m->lon, strlen(m->lon), ',', ';', true)) {
+    if (!cw_text_ok(m->lon, r_lon_len, ',', ';', true)) {
         return CW_ERR_TEXT;
     }
     if (!cw_decimal_fits(&m->vbat)) {
@@ -261,240 +260,164 @@ static inline int tank_telemetry_encode(const tank_telemetry_t *m, char *buf, si
         return CW_ERR_ENUM;
     }
     cw_writer_init(&w, buf, cap);
-    cw_write_text(&w, "$:", 2u);
-    cw_write_char(&w, m->move);
-    cw_write_char(&w, ',');
-    cw_write_int(&w, (int32_t)m->speed);
-    cw_write_char(&w, ',');
-    cw_write_char(&w, m->value);
-    cw_write_char(&w, ',');
-    cw_write_decimal(&w, m->lcurr);
-    cw_write_char(&w, ',');
-    cw_write_decimal(&w, m->rcurr);
-    cw_write_char(&w, ',');
-    cw_write_decimal(&w, m->accx);
-    cw_write_char(&w, ',');
-    cw_write_decimal(&w, m->accy);
-    cw_write_char(&w, ',');
-    cw_write_decimal(&w, m->accz);
-    cw_write_char(&w, ',');
-    cw_write_decimal(&w, m->gyrox);
-    cw_write_char(&w, ',');
-    cw_write_decimal(&w, m->gyroy);
-    cw_write_char(&w, ',');
-    cw_write_decimal(&w, m->gyroz);
-    cw_write_char(&w, ',');
-    cw_write_decimal(&w, m->magx);
-    cw_write_char(&w, ',');
-    cw_write_decimal(&w, m->magy);
-    cw_write_char(&w, ',');
-    cw_write_decimal(&w, m->magz);
-    cw_write_char(&w, ',');
-    cw_write_text(&w, m->lan, strlen(m->lan));
-    cw_write_char(&w, ',');
-    cw_write_text(&w, m->lon, strlen(m->lon));
-    cw_write_char(&w, ',');
-    cw_write_decimal(&w, m->vbat);
-    cw_write_char(&w, ',');
-    cw_write_int(&w, (int32_t)m->systemstatus);
-    cw_write_char(&w, ',');
-    cw_write_int(&w, (int32_t)m->extid);
-    cw_write_char(&w, ',');
-    cw_write_int(&w, (int32_t)m->extstatus);
-    cw_write_char(&w, ';');
-    return cw_writer_finish(&w);
+    cw_write_text(&w, "$", 1u);
+    cw_write_text_field(&w, ':', &m->move, 1u);
+    cw_write_int_field(&w, ',', (int32_t)m->speed);
+    cw_write_text_field(&w, ',', &m->value, 1u);
+    cw_write_decimal_field(&w, ',', &m->lcurr);
+    cw_write_decimal_field(&w, ',', &m->rcurr);
+    cw_write_decimal_field(&w, ',', &m->accx);
+    cw_write_decimal_field(&w, ',', &m->accy);
+    cw_write_decimal_field(&w, ',', &m->accz);
+    cw_write_decimal_field(&w, ',', &m->gyrox);
+    cw_write_decimal_field(&w, ',', &m->gyroy);
+    cw_write_decimal_field(&w, ',', &m->gyroz);
+    cw_write_decimal_field(&w, ',', &m->magx);
+    cw_write_decimal_field(&w, ',', &m->magy);
+    cw_write_decimal_field(&w, ',', &m->magz);
+    cw_write_text_field(&w, ',', m->lan, r_lan_len);
+    cw_write_text_field(&w, ',', m->lon, r_lon_len);
+    cw_write_decimal_field(&w, ',', &m->vbat);
+    cw_write_int_field(&w, ',', (int32_t)m->systemstatus);
+    cw_write_int_field(&w, ',', (int32_t)m->extid);
+    cw_write_int_field(&w, ',', (int32_t)m->extstatus);
+    return cw_writer_end(&w, ';');
 }
 
 static inline int tank_telemetry_parse_body(const char *s, const char *end, tank_telemetry_t *m)
 {
-    size_t count = cw_count_tokens(s, end, ',', SIZE_MAX);
-    const char *b;
-    const char *e;
+    const char *ends[20];  /* where each value ends: cw_value */
+    cw_span_t v;
     int rc;
-    if (count < 20u || count > 20u) {
+    size_t count = cw_split_values(s, end, ',', ends, 20u, false);
+    if (count != 20u) {
         return CW_ERR_COUNT;
     }
-    rc = CW_OK;
-    (void)rc;
     /* move */
-    b = s;
-    e = cw_token_end(s, end, ',');
-    s = e < end ? e + 1 : end;
-    cw_trim(&b, &e);
-    if (e - b != 1) {
+    v = cw_value(s, ends, 0u, true);
+    if (v.e - v.b != 1) {
         return CW_ERR_TYPE;
     }
-    if (*b != 'f' && *b != 'b' && *b != 'l' && *b != 'r' && *b != 'a' && *b != 'c' && *b != 'd' && *b != 'e') {
+    if (*v.b != 'f' && *v.b != 'b' && *v.b != 'l' && *v.b != 'r' && *v.b != 'a' && *v.b != 'c' && *v.b != 'd' && *v.b != 'e') {
         return CW_ERR_ENUM;
     }
-    m->move = *b;
+    m->move = *v.b;
     /* speed */
-    b = s;
-    e = cw_token_end(s, end, ',');
-    s = e < end ? e + 1 : end;
-    cw_trim(&b, &e);
+    v = cw_value(s, ends, 1u, true);
     {
         int32_t value;
-        rc = cw_parse_int(b, e, 0, 100, &value);
+        rc = cw_parse_int(v.b, v.e, 0, 100, &value);
         if (rc != CW_OK) {
             return rc;
         }
         m->speed = (uint8_t)value;
     }
     /* value */
-    b = s;
-    e = cw_token_end(s, end, ',');
-    s = e < end ? e + 1 : end;
-    cw_trim(&b, &e);
-    if (e - b != 1) {
+    v = cw_value(s, ends, 2u, true);
+    if (v.e - v.b != 1) {
         return CW_ERR_TYPE;
     }
-    if (!cw_text_ok(b, 1u, ',', ';', true)) {
+    if (!cw_text_ok(v.b, 1u, '\0', ';', false)) {
         return CW_ERR_TEXT;
     }
-    m->value = *b;
+    m->value = *v.b;
     /* lcurr */
-    b = s;
-    e = cw_token_end(s, end, ',');
-    s = e < end ? e + 1 : end;
-    cw_trim(&b, &e);
-    rc = cw_parse_decimal(b, e, &m->lcurr);
+    v = cw_value(s, ends, 3u, true);
+    rc = cw_read_decimal(v.b, v.e, &m->lcurr);
     if (rc != CW_OK) {
         return rc;
     }
     /* rcurr */
-    b = s;
-    e = cw_token_end(s, end, ',');
-    s = e < end ? e + 1 : end;
-    cw_trim(&b, &e);
-    rc = cw_parse_decimal(b, e, &m->rcurr);
+    v = cw_value(s, ends, 4u, true);
+    rc = cw_read_decimal(v.b, v.e, &m->rcurr);
     if (rc != CW_OK) {
         return rc;
     }
     /* accx */
-    b = s;
-    e = cw_token_end(s, end, ',');
-    s = e < end ? e + 1 : end;
-    cw_trim(&b, &e);
-    rc = cw_parse_decimal(b, e, &m->accx);
+    v = cw_value(s, ends, 5u, true);
+    rc = cw_read_decimal(v.b, v.e, &m->accx);
     if (rc != CW_OK) {
         return rc;
     }
     /* accy */
-    b = s;
-    e = cw_token_end(s, end, ',');
-    s = e < end ? e + 1 : end;
-    cw_trim(&b, &e);
-    rc = cw_parse_decimal(b, e, &m->accy);
+    v = cw_value(s, ends, 6u, true);
+    rc = cw_read_decimal(v.b, v.e, &m->accy);
     if (rc != CW_OK) {
         return rc;
     }
     /* accz */
-    b = s;
-    e = cw_token_end(s, end, ',');
-    s = e < end ? e + 1 : end;
-    cw_trim(&b, &e);
-    rc = cw_parse_decimal(b, e, &m->accz);
+    v = cw_value(s, ends, 7u, true);
+    rc = cw_read_decimal(v.b, v.e, &m->accz);
     if (rc != CW_OK) {
         return rc;
     }
     /* gyrox */
-    b = s;
-    e = cw_token_end(s, end, ',');
-    s = e < end ? e + 1 : end;
-    cw_trim(&b, &e);
-    rc = cw_parse_decimal(b, e, &m->gyrox);
+    v = cw_value(s, ends, 8u, true);
+    rc = cw_read_decimal(v.b, v.e, &m->gyrox);
     if (rc != CW_OK) {
         return rc;
     }
     /* gyroy */
-    b = s;
-    e = cw_token_end(s, end, ',');
-    s = e < end ? e + 1 : end;
-    cw_trim(&b, &e);
-    rc = cw_parse_decimal(b, e, &m->gyroy);
+    v = cw_value(s, ends, 9u, true);
+    rc = cw_read_decimal(v.b, v.e, &m->gyroy);
     if (rc != CW_OK) {
         return rc;
     }
     /* gyroz */
-    b = s;
-    e = cw_token_end(s, end, ',');
-    s = e < end ? e + 1 : end;
-    cw_trim(&b, &e);
-    rc = cw_parse_decimal(b, e, &m->gyroz);
+    v = cw_value(s, ends, 10u, true);
+    rc = cw_read_decimal(v.b, v.e, &m->gyroz);
     if (rc != CW_OK) {
         return rc;
     }
     /* magx */
-    b = s;
-    e = cw_token_end(s, end, ',');
-    s = e < end ? e + 1 : end;
-    cw_trim(&b, &e);
-    rc = cw_parse_decimal(b, e, &m->magx);
+    v = cw_value(s, ends, 11u, true);
+    rc = cw_read_decimal(v.b, v.e, &m->magx);
     if (rc != CW_OK) {
         return rc;
     }
     /* magy */
-    b = s;
-    e = cw_token_end(s, end, ',');
-    s = e < end ? e + 1 : end;
-    cw_trim(&b, &e);
-    rc = cw_parse_decimal(b, e, &m->magy);
+    v = cw_value(s, ends, 12u, true);
+    rc = cw_read_decimal(v.b, v.e, &m->magy);
     if (rc != CW_OK) {
         return rc;
     }
     /* magz */
-    b = s;
-    e = cw_token_end(s, end, ',');
-    s = e < end ? e + 1 : end;
-    cw_trim(&b, &e);
-    rc = cw_parse_decimal(b, e, &m->magz);
+    v = cw_value(s, ends, 13u, true);
+    rc = cw_read_decimal(v.b, v.e, &m->magz);
     if (rc != CW_OK) {
         return rc;
     }
     /* lan */
-    b = s;
-    e = cw_token_end(s, end, ',');
-    s = e < end ? e + 1 : end;
-    cw_trim(&b, &e);
-    if (!cw_text_ok(b, (size_t)(e - b), ',', ';', true)) {
+    v = cw_value(s, ends, 14u, true);
+    if (!cw_text_ok(v.b, (size_t)(v.e - v.b), '\0', ';', false)) {
         return CW_ERR_TEXT;
     }
-    if ((size_t)(e - b) > 32u) {
+    if ((size_t)(v.e - v.b) > 32u) {
         return CW_ERR_LENGTH;
     }
-    memcpy(m->lan, b, (size_t)(e - b));
-    m->lan[e - b] = '\0';
+    memcpy(m->lan, v.b, (size_t)(v.e - v.b));
+    m->lan[v.e - v.b] = '\0';
     /* lon */
-    b = s;
-    e = cw_token_end(s, end, ',');
-    s = e < end ? e + 1 : end;
-    cw_trim(&b, &e);
-    if (!cw_text_ok(b, (size_t)(e - b), ',', ';', true)) {
+    v = cw_value(s, ends, 15u, true);
+    if (!cw_text_ok(v.b, (size_t)(v.e - v.b), '\0', ';', false)) {
         return CW_ERR_TEXT;
     }
-    if ((size_t)(e - b) > 32u) {
+    if ((size_t)(v.e - v.b) > 32u) {
         return CW_ERR_LENGTH;
     }
-    memcpy(m->lon, b, (size_t)(e - b));
-    m->lon[e - b] = '\0';
+    memcpy(m->lon, v.b, (size_t)(v.e - v.b));
+    m->lon[v.e - v.b] = '\0';
     /* vbat */
-    b = s;
-    e = cw_token_end(s, end, ',');
-    s = e < end ? e + 1 : end;
-    cw_trim(&b, &e);
-    rc = cw_parse_decimal(b, e, &m->vbat);
+    v = cw_value(s, ends, 16u, true);
+    rc = cw_read_decimal(v.b, v.e, &m->vbat);
     if (rc != CW_OK) {
         return rc;
     }
     /* systemstatus */
-    b = s;
-    e = cw_token_end(s, end, ',');
-    s = e < end ? e + 1 : end;
-    cw_trim(&b, &e);
+    v = cw_value(s, ends, 17u, true);
     {
         int32_t value;
-        rc = cw_parse_int(b, e, INT32_MIN, INT32_MAX, &value);
+        rc = cw_parse_int(v.b, v.e, INT32_MIN, INT32_MAX, &value);
         if (rc == CW_ERR_RANGE) {
             return CW_ERR_ENUM;
         }
@@ -507,25 +430,20 @@ static inline int tank_telemetry_parse_body(const char *s, const char *end, tank
         m->systemstatus = (uint8_t)value;
     }
     /* extid */
-    b = s;
-    e = cw_token_end(s, end, ',');
-    s = e < end ? e + 1 : end;
-    cw_trim(&b, &e);
+    v = cw_value(s, ends, 18u, true);
     {
         int32_t value;
-        rc = cw_parse_int(b, e, 0, 255, &value);
+        rc = cw_parse_int(v.b, v.e, 0, 255, &value);
         if (rc != CW_OK) {
             return rc;
         }
         m->extid = (uint8_t)value;
     }
     /* extstatus */
-    b = s;
-    e = cw_token_end(s, end, ',');
-    cw_trim(&b, &e);
+    v = cw_value(s, ends, 19u, true);
     {
         int32_t value;
-        rc = cw_parse_int(b, e, INT32_MIN, INT32_MAX, &value);
+        rc = cw_parse_int(v.b, v.e, INT32_MIN, INT32_MAX, &value);
         if (rc == CW_ERR_RANGE) {
             return CW_ERR_ENUM;
         }
@@ -544,13 +462,12 @@ static inline int tank_telemetry_decode(const char *text, size_t len, tank_telem
 {
     const char *pb, *pe, *body, *end;
     int rc = tank_split(text, len, &pb, &pe, &body, &end);
-    if (rc != CW_OK) {
-        return rc;
+    if (rc == CW_OK && ((size_t)(pe - pb) != 1u || memcmp(pb, "$", 1u) != 0)) {
+        rc = CW_ERR_DISPATCH;
+    } else if (rc == CW_OK) {
+        rc = tank_telemetry_parse_body(body, end, m);
     }
-    if ((size_t)(pe - pb) != 1u || memcmp(pb, "$", 1u) != 0) {
-        return CW_ERR_DISPATCH;
-    }
-    return tank_telemetry_parse_body(body, end, m);
+    return cw_text_verdict(text, len, rc);
 }
 
 /* ---- command ---------------------------------------------------------- */
@@ -558,6 +475,7 @@ static inline int tank_telemetry_decode(const char *text, size_t len, tank_telem
 static inline int tank_command_encode(const tank_command_t *m, char *buf, size_t cap)
 {
     cw_writer_t w;
+    size_t r_data_len = 0;
     if (m->move != 'f' && m->move != 'b' && m->move != 'l' && m->move != 'r' && m->move != 'a' && m->move != 'c' && m->move != 'd' && m->move != 'e') {
         return CW_ERR_ENUM;
     }
@@ -586,145 +504,107 @@ static inline int tank_command_encode(const tank_command_t *m, char *buf, size_t
         return CW_ERR_VALUES;
     }
     if (m->has_data) {
-        if (cw_text_len(m->data, 65u) > 64u) {
+        r_data_len = cw_text_len(m->data, 65u);
+        if (r_data_len > 64u) {
             return CW_ERR_LENGTH;
         }
-        if (!cw_text_ok(m->data, strlen(m->data), ',', ';', true)) {
+        if (!cw_text_ok(m->data, r_data_len, ',', ';', true)) {
             return CW_ERR_TEXT;
         }
     }
     cw_writer_init(&w, buf, cap);
-    cw_write_text(&w, "%:", 2u);
-    cw_write_char(&w, m->move);
-    cw_write_char(&w, ',');
-    cw_write_int(&w, (int32_t)m->speed);
-    cw_write_char(&w, ',');
-    cw_write_char(&w, m->value);
-    cw_write_char(&w, ',');
-    cw_write_int(&w, (int32_t)m->azimutloc);
-    cw_write_char(&w, ',');
-    cw_write_decimal(&w, m->gpio1);
-    cw_write_char(&w, ',');
-    cw_write_decimal(&w, m->gpio2);
-    cw_write_char(&w, ',');
-    cw_write_decimal(&w, m->gpio3);
-    cw_write_char(&w, ',');
-    cw_write_decimal(&w, m->gpio4);
-    cw_write_char(&w, ',');
-    cw_write_int(&w, (int32_t)m->systemstatus);
+    cw_write_text(&w, "%", 1u);
+    cw_write_text_field(&w, ':', &m->move, 1u);
+    cw_write_int_field(&w, ',', (int32_t)m->speed);
+    cw_write_text_field(&w, ',', &m->value, 1u);
+    cw_write_int_field(&w, ',', (int32_t)m->azimutloc);
+    cw_write_decimal_field(&w, ',', &m->gpio1);
+    cw_write_decimal_field(&w, ',', &m->gpio2);
+    cw_write_decimal_field(&w, ',', &m->gpio3);
+    cw_write_decimal_field(&w, ',', &m->gpio4);
+    cw_write_int_field(&w, ',', (int32_t)m->systemstatus);
     if (m->has_data) {
-        cw_write_char(&w, ',');
-        cw_write_text(&w, m->data, strlen(m->data));
+        cw_write_text_field(&w, ',', m->data, r_data_len);
     }
-    cw_write_char(&w, ';');
-    return cw_writer_finish(&w);
+    return cw_writer_end(&w, ';');
 }
 
 static inline int tank_command_parse_body(const char *s, const char *end, tank_command_t *m)
 {
-    size_t count = cw_count_tokens(s, end, ',', SIZE_MAX);
-    const char *b;
-    const char *e;
+    const char *ends[10];  /* where each value ends: cw_value */
+    cw_span_t v;
     int rc;
+    size_t count = cw_split_values(s, end, ',', ends, 10u, false);
     if (count < 9u || count > 10u) {
         return CW_ERR_COUNT;
     }
-    rc = CW_OK;
-    (void)rc;
     /* move */
-    b = s;
-    e = cw_token_end(s, end, ',');
-    s = e < end ? e + 1 : end;
-    cw_trim(&b, &e);
-    if (e - b != 1) {
+    v = cw_value(s, ends, 0u, true);
+    if (v.e - v.b != 1) {
         return CW_ERR_TYPE;
     }
-    if (*b != 'f' && *b != 'b' && *b != 'l' && *b != 'r' && *b != 'a' && *b != 'c' && *b != 'd' && *b != 'e') {
+    if (*v.b != 'f' && *v.b != 'b' && *v.b != 'l' && *v.b != 'r' && *v.b != 'a' && *v.b != 'c' && *v.b != 'd' && *v.b != 'e') {
         return CW_ERR_ENUM;
     }
-    m->move = *b;
+    m->move = *v.b;
     /* speed */
-    b = s;
-    e = cw_token_end(s, end, ',');
-    s = e < end ? e + 1 : end;
-    cw_trim(&b, &e);
+    v = cw_value(s, ends, 1u, true);
     {
         int32_t value;
-        rc = cw_parse_int(b, e, 0, 100, &value);
+        rc = cw_parse_int(v.b, v.e, 0, 100, &value);
         if (rc != CW_OK) {
             return rc;
         }
         m->speed = (uint8_t)value;
     }
     /* value */
-    b = s;
-    e = cw_token_end(s, end, ',');
-    s = e < end ? e + 1 : end;
-    cw_trim(&b, &e);
-    if (e - b != 1) {
+    v = cw_value(s, ends, 2u, true);
+    if (v.e - v.b != 1) {
         return CW_ERR_TYPE;
     }
-    if (!cw_text_ok(b, 1u, ',', ';', true)) {
+    if (!cw_text_ok(v.b, 1u, '\0', ';', false)) {
         return CW_ERR_TEXT;
     }
-    m->value = *b;
+    m->value = *v.b;
     /* azimutloc */
-    b = s;
-    e = cw_token_end(s, end, ',');
-    s = e < end ? e + 1 : end;
-    cw_trim(&b, &e);
+    v = cw_value(s, ends, 3u, true);
     {
         int32_t value;
-        rc = cw_parse_int(b, e, (-32767 - 1), 0x7fff, &value);
+        rc = cw_parse_int(v.b, v.e, (-32767 - 1), 0x7fff, &value);
         if (rc != CW_OK) {
             return rc;
         }
         m->azimutloc = (int16_t)value;
     }
     /* gpio1 */
-    b = s;
-    e = cw_token_end(s, end, ',');
-    s = e < end ? e + 1 : end;
-    cw_trim(&b, &e);
-    rc = cw_parse_decimal(b, e, &m->gpio1);
+    v = cw_value(s, ends, 4u, true);
+    rc = cw_read_decimal(v.b, v.e, &m->gpio1);
     if (rc != CW_OK) {
         return rc;
     }
     /* gpio2 */
-    b = s;
-    e = cw_token_end(s, end, ',');
-    s = e < end ? e + 1 : end;
-    cw_trim(&b, &e);
-    rc = cw_parse_decimal(b, e, &m->gpio2);
+    v = cw_value(s, ends, 5u, true);
+    rc = cw_read_decimal(v.b, v.e, &m->gpio2);
     if (rc != CW_OK) {
         return rc;
     }
     /* gpio3 */
-    b = s;
-    e = cw_token_end(s, end, ',');
-    s = e < end ? e + 1 : end;
-    cw_trim(&b, &e);
-    rc = cw_parse_decimal(b, e, &m->gpio3);
+    v = cw_value(s, ends, 6u, true);
+    rc = cw_read_decimal(v.b, v.e, &m->gpio3);
     if (rc != CW_OK) {
         return rc;
     }
     /* gpio4 */
-    b = s;
-    e = cw_token_end(s, end, ',');
-    s = e < end ? e + 1 : end;
-    cw_trim(&b, &e);
-    rc = cw_parse_decimal(b, e, &m->gpio4);
+    v = cw_value(s, ends, 7u, true);
+    rc = cw_read_decimal(v.b, v.e, &m->gpio4);
     if (rc != CW_OK) {
         return rc;
     }
     /* systemstatus */
-    b = s;
-    e = cw_token_end(s, end, ',');
-    s = e < end ? e + 1 : end;
-    cw_trim(&b, &e);
+    v = cw_value(s, ends, 8u, true);
     {
         int32_t value;
-        rc = cw_parse_int(b, e, INT32_MIN, INT32_MAX, &value);
+        rc = cw_parse_int(v.b, v.e, INT32_MIN, INT32_MAX, &value);
         if (rc == CW_ERR_RANGE) {
             return CW_ERR_ENUM;
         }
@@ -742,17 +622,15 @@ static inline int tank_command_parse_body(const char *s, const char *end, tank_c
     /* data */
     m->has_data = count > 9u;
     if (m->has_data) {
-        b = s;
-        e = cw_token_end(s, end, ',');
-        cw_trim(&b, &e);
-        if (!cw_text_ok(b, (size_t)(e - b), ',', ';', true)) {
+        v = cw_value(s, ends, 9u, true);
+        if (!cw_text_ok(v.b, (size_t)(v.e - v.b), '\0', ';', false)) {
             return CW_ERR_TEXT;
         }
-        if ((size_t)(e - b) > 64u) {
+        if ((size_t)(v.e - v.b) > 64u) {
             return CW_ERR_LENGTH;
         }
-        memcpy(m->data, b, (size_t)(e - b));
-        m->data[e - b] = '\0';
+        memcpy(m->data, v.b, (size_t)(v.e - v.b));
+        m->data[v.e - v.b] = '\0';
     }
     return CW_OK;
 }
@@ -761,13 +639,12 @@ static inline int tank_command_decode(const char *text, size_t len, tank_command
 {
     const char *pb, *pe, *body, *end;
     int rc = tank_split(text, len, &pb, &pe, &body, &end);
-    if (rc != CW_OK) {
-        return rc;
+    if (rc == CW_OK && ((size_t)(pe - pb) != 1u || memcmp(pb, "%", 1u) != 0)) {
+        rc = CW_ERR_DISPATCH;
+    } else if (rc == CW_OK) {
+        rc = tank_command_parse_body(body, end, m);
     }
-    if ((size_t)(pe - pb) != 1u || memcmp(pb, "%", 1u) != 0) {
-        return CW_ERR_DISPATCH;
-    }
-    return tank_command_parse_body(body, end, m);
+    return cw_text_verdict(text, len, rc);
 }
 
 /* ---- payload_command ---------------------------------------------------------- */
@@ -775,42 +652,35 @@ static inline int tank_command_decode(const char *text, size_t len, tank_command
 static inline int tank_payload_command_encode(const tank_payload_command_t *m, char *buf, size_t cap)
 {
     cw_writer_t w;
-    if (cw_text_len(m->command, 201u) > 200u) {
+    size_t r_command_len = 0;
+    r_command_len = cw_text_len(m->command, 201u);
+    if (r_command_len > 200u) {
         return CW_ERR_LENGTH;
     }
-    if (!cw_text_ok(m->command, strlen(m->command), '\0', ';', true)) {
+    if (!cw_text_ok(m->command, r_command_len, '\0', ';', true)) {
         return CW_ERR_TEXT;
     }
     cw_writer_init(&w, buf, cap);
-    cw_write_text(&w, "*:", 2u);
-    cw_write_text(&w, m->command, strlen(m->command));
-    cw_write_char(&w, ';');
-    return cw_writer_finish(&w);
+    cw_write_text(&w, "*", 1u);
+    cw_write_text_field(&w, ':', m->command, r_command_len);
+    return cw_writer_end(&w, ';');
 }
 
 static inline int tank_payload_command_parse_body(const char *s, const char *end, tank_payload_command_t *m)
 {
-    size_t count = cw_count_tokens(s, end, ',', 1);
-    const char *b;
-    const char *e;
-    int rc;
-    if (count < 1u || count > 1u) {
-        return CW_ERR_COUNT;
-    }
-    rc = CW_OK;
-    (void)rc;
+    const char *ends[1];  /* where each value ends: cw_value */
+    cw_span_t v;
+    ends[0] = end;  /* the one value runs to the end */
     /* command */
-    b = s;
-    e = end;
-    cw_trim(&b, &e);
-    if (!cw_text_ok(b, (size_t)(e - b), '\0', ';', true)) {
+    v = cw_value(s, ends, 0u, true);
+    if (!cw_text_ok(v.b, (size_t)(v.e - v.b), '\0', ';', false)) {
         return CW_ERR_TEXT;
     }
-    if ((size_t)(e - b) > 200u) {
+    if ((size_t)(v.e - v.b) > 200u) {
         return CW_ERR_LENGTH;
     }
-    memcpy(m->command, b, (size_t)(e - b));
-    m->command[e - b] = '\0';
+    memcpy(m->command, v.b, (size_t)(v.e - v.b));
+    m->command[v.e - v.b] = '\0';
     return CW_OK;
 }
 
@@ -818,13 +688,12 @@ static inline int tank_payload_command_decode(const char *text, size_t len, tank
 {
     const char *pb, *pe, *body, *end;
     int rc = tank_split(text, len, &pb, &pe, &body, &end);
-    if (rc != CW_OK) {
-        return rc;
+    if (rc == CW_OK && ((size_t)(pe - pb) != 1u || memcmp(pb, "*", 1u) != 0)) {
+        rc = CW_ERR_DISPATCH;
+    } else if (rc == CW_OK) {
+        rc = tank_payload_command_parse_body(body, end, m);
     }
-    if ((size_t)(pe - pb) != 1u || memcmp(pb, "*", 1u) != 0) {
-        return CW_ERR_DISPATCH;
-    }
-    return tank_payload_command_parse_body(body, end, m);
+    return cw_text_verdict(text, len, rc);
 }
 
 /* ---- payload_reply ---------------------------------------------------------- */
@@ -832,42 +701,35 @@ static inline int tank_payload_command_decode(const char *text, size_t len, tank
 static inline int tank_payload_reply_encode(const tank_payload_reply_t *m, char *buf, size_t cap)
 {
     cw_writer_t w;
-    if (cw_text_len(m->command, 201u) > 200u) {
+    size_t r_command_len = 0;
+    r_command_len = cw_text_len(m->command, 201u);
+    if (r_command_len > 200u) {
         return CW_ERR_LENGTH;
     }
-    if (!cw_text_ok(m->command, strlen(m->command), '\0', ';', true)) {
+    if (!cw_text_ok(m->command, r_command_len, '\0', ';', true)) {
         return CW_ERR_TEXT;
     }
     cw_writer_init(&w, buf, cap);
-    cw_write_text(&w, "^:", 2u);
-    cw_write_text(&w, m->command, strlen(m->command));
-    cw_write_char(&w, ';');
-    return cw_writer_finish(&w);
+    cw_write_text(&w, "^", 1u);
+    cw_write_text_field(&w, ':', m->command, r_command_len);
+    return cw_writer_end(&w, ';');
 }
 
 static inline int tank_payload_reply_parse_body(const char *s, const char *end, tank_payload_reply_t *m)
 {
-    size_t count = cw_count_tokens(s, end, ',', 1);
-    const char *b;
-    const char *e;
-    int rc;
-    if (count < 1u || count > 1u) {
-        return CW_ERR_COUNT;
-    }
-    rc = CW_OK;
-    (void)rc;
+    const char *ends[1];  /* where each value ends: cw_value */
+    cw_span_t v;
+    ends[0] = end;  /* the one value runs to the end */
     /* command */
-    b = s;
-    e = end;
-    cw_trim(&b, &e);
-    if (!cw_text_ok(b, (size_t)(e - b), '\0', ';', true)) {
+    v = cw_value(s, ends, 0u, true);
+    if (!cw_text_ok(v.b, (size_t)(v.e - v.b), '\0', ';', false)) {
         return CW_ERR_TEXT;
     }
-    if ((size_t)(e - b) > 200u) {
+    if ((size_t)(v.e - v.b) > 200u) {
         return CW_ERR_LENGTH;
     }
-    memcpy(m->command, b, (size_t)(e - b));
-    m->command[e - b] = '\0';
+    memcpy(m->command, v.b, (size_t)(v.e - v.b));
+    m->command[v.e - v.b] = '\0';
     return CW_OK;
 }
 
@@ -875,13 +737,12 @@ static inline int tank_payload_reply_decode(const char *text, size_t len, tank_p
 {
     const char *pb, *pe, *body, *end;
     int rc = tank_split(text, len, &pb, &pe, &body, &end);
-    if (rc != CW_OK) {
-        return rc;
+    if (rc == CW_OK && ((size_t)(pe - pb) != 1u || memcmp(pb, "^", 1u) != 0)) {
+        rc = CW_ERR_DISPATCH;
+    } else if (rc == CW_OK) {
+        rc = tank_payload_reply_parse_body(body, end, m);
     }
-    if ((size_t)(pe - pb) != 1u || memcmp(pb, "^", 1u) != 0) {
-        return CW_ERR_DISPATCH;
-    }
-    return tank_payload_reply_parse_body(body, end, m);
+    return cw_text_verdict(text, len, rc);
 }
 
 /* ---- gpio_config ---------------------------------------------------------- */
@@ -902,37 +763,28 @@ static inline int tank_gpio_config_encode(const tank_gpio_config_t *m, char *buf
         return CW_ERR_ENUM;
     }
     cw_writer_init(&w, buf, cap);
-    cw_write_text(&w, "-:", 2u);
-    cw_write_int(&w, (int32_t)m->gpio1);
-    cw_write_char(&w, ',');
-    cw_write_int(&w, (int32_t)m->gpio2);
-    cw_write_char(&w, ',');
-    cw_write_int(&w, (int32_t)m->gpio3);
-    cw_write_char(&w, ',');
-    cw_write_int(&w, (int32_t)m->gpio4);
-    cw_write_char(&w, ';');
-    return cw_writer_finish(&w);
+    cw_write_text(&w, "-", 1u);
+    cw_write_int_field(&w, ':', (int32_t)m->gpio1);
+    cw_write_int_field(&w, ',', (int32_t)m->gpio2);
+    cw_write_int_field(&w, ',', (int32_t)m->gpio3);
+    cw_write_int_field(&w, ',', (int32_t)m->gpio4);
+    return cw_writer_end(&w, ';');
 }
 
 static inline int tank_gpio_config_parse_body(const char *s, const char *end, tank_gpio_config_t *m)
 {
-    size_t count = cw_count_tokens(s, end, ',', SIZE_MAX);
-    const char *b;
-    const char *e;
+    const char *ends[4];  /* where each value ends: cw_value */
+    cw_span_t v;
     int rc;
-    if (count < 4u || count > 4u) {
+    size_t count = cw_split_values(s, end, ',', ends, 4u, false);
+    if (count != 4u) {
         return CW_ERR_COUNT;
     }
-    rc = CW_OK;
-    (void)rc;
     /* gpio1 */
-    b = s;
-    e = cw_token_end(s, end, ',');
-    s = e < end ? e + 1 : end;
-    cw_trim(&b, &e);
+    v = cw_value(s, ends, 0u, true);
     {
         int32_t value;
-        rc = cw_parse_int(b, e, INT32_MIN, INT32_MAX, &value);
+        rc = cw_parse_int(v.b, v.e, INT32_MIN, INT32_MAX, &value);
         if (rc == CW_ERR_RANGE) {
             return CW_ERR_ENUM;
         }
@@ -945,13 +797,10 @@ static inline int tank_gpio_config_parse_body(const char *s, const char *end, ta
         m->gpio1 = (uint8_t)value;
     }
     /* gpio2 */
-    b = s;
-    e = cw_token_end(s, end, ',');
-    s = e < end ? e + 1 : end;
-    cw_trim(&b, &e);
+    v = cw_value(s, ends, 1u, true);
     {
         int32_t value;
-        rc = cw_parse_int(b, e, INT32_MIN, INT32_MAX, &value);
+        rc = cw_parse_int(v.b, v.e, INT32_MIN, INT32_MAX, &value);
         if (rc == CW_ERR_RANGE) {
             return CW_ERR_ENUM;
         }
@@ -964,13 +813,10 @@ static inline int tank_gpio_config_parse_body(const char *s, const char *end, ta
         m->gpio2 = (uint8_t)value;
     }
     /* gpio3 */
-    b = s;
-    e = cw_token_end(s, end, ',');
-    s = e < end ? e + 1 : end;
-    cw_trim(&b, &e);
+    v = cw_value(s, ends, 2u, true);
     {
         int32_t value;
-        rc = cw_parse_int(b, e, INT32_MIN, INT32_MAX, &value);
+        rc = cw_parse_int(v.b, v.e, INT32_MIN, INT32_MAX, &value);
         if (rc == CW_ERR_RANGE) {
             return CW_ERR_ENUM;
         }
@@ -983,12 +829,10 @@ static inline int tank_gpio_config_parse_body(const char *s, const char *end, ta
         m->gpio3 = (uint8_t)value;
     }
     /* gpio4 */
-    b = s;
-    e = cw_token_end(s, end, ',');
-    cw_trim(&b, &e);
+    v = cw_value(s, ends, 3u, true);
     {
         int32_t value;
-        rc = cw_parse_int(b, e, INT32_MIN, INT32_MAX, &value);
+        rc = cw_parse_int(v.b, v.e, INT32_MIN, INT32_MAX, &value);
         if (rc == CW_ERR_RANGE) {
             return CW_ERR_ENUM;
         }
@@ -1007,13 +851,12 @@ static inline int tank_gpio_config_decode(const char *text, size_t len, tank_gpi
 {
     const char *pb, *pe, *body, *end;
     int rc = tank_split(text, len, &pb, &pe, &body, &end);
-    if (rc != CW_OK) {
-        return rc;
+    if (rc == CW_OK && ((size_t)(pe - pb) != 1u || memcmp(pb, "-", 1u) != 0)) {
+        rc = CW_ERR_DISPATCH;
+    } else if (rc == CW_OK) {
+        rc = tank_gpio_config_parse_body(body, end, m);
     }
-    if ((size_t)(pe - pb) != 1u || memcmp(pb, "-", 1u) != 0) {
-        return CW_ERR_DISPATCH;
-    }
-    return tank_gpio_config_parse_body(body, end, m);
+    return cw_text_verdict(text, len, rc);
 }
 
 /* Encodes any message by its kind. */
@@ -1042,30 +885,28 @@ static inline int tank_decode(const char *text, size_t len, int direction, tank_
     size_t n;
     int rc = tank_split(text, len, &pb, &pe, &body, &end);
     if (rc != CW_OK) {
-        return rc;
+        return cw_text_verdict(text, len, rc);
     }
     n = (size_t)(pe - pb);
     if (n == 1u && memcmp(pb, "$", 1u) == 0 && (direction == TANK_DIR_ANY || direction == TANK_DIR_PLATFORM_TO_COMPUTER)) {
         out->kind = TANK_MSG_TELEMETRY;
-        return tank_telemetry_parse_body(body, end, &out->as.telemetry);
-    }
-    if (n == 1u && memcmp(pb, "%", 1u) == 0 && (direction == TANK_DIR_ANY || direction == TANK_DIR_COMPUTER_TO_PLATFORM)) {
+        rc = tank_telemetry_parse_body(body, end, &out->as.telemetry);
+    } else if (n == 1u && memcmp(pb, "%", 1u) == 0 && (direction == TANK_DIR_ANY || direction == TANK_DIR_COMPUTER_TO_PLATFORM)) {
         out->kind = TANK_MSG_COMMAND;
-        return tank_command_parse_body(body, end, &out->as.command);
-    }
-    if (n == 1u && memcmp(pb, "*", 1u) == 0 && (direction == TANK_DIR_ANY || direction == TANK_DIR_COMPUTER_TO_PAYLOAD)) {
+        rc = tank_command_parse_body(body, end, &out->as.command);
+    } else if (n == 1u && memcmp(pb, "*", 1u) == 0 && (direction == TANK_DIR_ANY || direction == TANK_DIR_COMPUTER_TO_PAYLOAD)) {
         out->kind = TANK_MSG_PAYLOAD_COMMAND;
-        return tank_payload_command_parse_body(body, end, &out->as.payload_command);
-    }
-    if (n == 1u && memcmp(pb, "^", 1u) == 0 && (direction == TANK_DIR_ANY || direction == TANK_DIR_PAYLOAD_TO_COMPUTER)) {
+        rc = tank_payload_command_parse_body(body, end, &out->as.payload_command);
+    } else if (n == 1u && memcmp(pb, "^", 1u) == 0 && (direction == TANK_DIR_ANY || direction == TANK_DIR_PAYLOAD_TO_COMPUTER)) {
         out->kind = TANK_MSG_PAYLOAD_REPLY;
-        return tank_payload_reply_parse_body(body, end, &out->as.payload_reply);
-    }
-    if (n == 1u && memcmp(pb, "-", 1u) == 0 && (direction == TANK_DIR_ANY || direction == TANK_DIR_COMPUTER_TO_PLATFORM)) {
+        rc = tank_payload_reply_parse_body(body, end, &out->as.payload_reply);
+    } else if (n == 1u && memcmp(pb, "-", 1u) == 0 && (direction == TANK_DIR_ANY || direction == TANK_DIR_COMPUTER_TO_PLATFORM)) {
         out->kind = TANK_MSG_GPIO_CONFIG;
-        return tank_gpio_config_parse_body(body, end, &out->as.gpio_config);
+        rc = tank_gpio_config_parse_body(body, end, &out->as.gpio_config);
+    } else {
+        rc = CW_ERR_DISPATCH;
     }
-    return CW_ERR_DISPATCH;
+    return cw_text_verdict(text, len, rc);
 }
 
 #ifdef __cplusplus
