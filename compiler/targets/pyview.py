@@ -139,9 +139,11 @@ class PythonView:
             return f.const
         return None
 
-    def encode_leaf(self, c: Code, message: Message, leaf: Leaf, source: str = "") -> None:
+    def encode_leaf(self, c: Code, message: Message, leaf: Leaf, source: str = "",
+                    keep_bool: bool = False) -> None:
         """Emit code that reads leaf from `m` (or from `source`, its group already read), checks
-        it and stores its raw value in leaf.var."""
+        it and stores its raw value in leaf.var. keep_bool: a True or False is left as it is
+        (binary packing shifts and sums bools as 1 and 0; text would write "True")."""
         f, var = leaf.field, leaf.var
         v = var  # the value is read into the variable that then holds its raw form
         where = f"{message.name!r}, {leaf.dotted!r}"
@@ -149,20 +151,27 @@ class PythonView:
             c(f"{var} = {lit(self.fixed_raw(f) or 0)}")
             return
         c(f"{v} = {source}.{leaf.path[-1]}" if source else f"{v} = m.{leaf.dotted}")
-        if f.kind == "bool":
+        if f.kind == "bool" and keep_bool:
+            c(f"if {v} is not True and {v} is not False:")
+            c(f"    if {v} != 0 and {v} != 1:")
+            c(f"        raise _enc({where}, {v}, 'type', 'a bool')")
+            c(f"    {var} = 1 if {v} else 0")
+        elif f.kind == "bool":
             c(f"if {v} is not True and {v} is not False and {v} != 0 and {v} != 1:")
             c(f"    raise _enc({where}, {v}, 'type', 'a bool')")
             c(f"{var} = 1 if {v} else 0")
         elif f.enum is not None:
             base = "str" if f.enum.kind == "char" else "int"
-            c(f"if not isinstance({v}, {base}) or {v} not in _VALUES_{f.enum.name}:")
-            c(f"    raise _enc({where}, {v}, 'enum', {self.enum_class(f.enum.name)!r}{self.user(f)})")
+            cls = self.enum_class(f.enum.name)
+            # a member of the enum class is valid by construction: no membership test
+            c(f"if {v}.__class__ is not {cls} and (not isinstance({v}, {base}) or {v} not in _VALUES_{f.enum.name}):")
+            c(f"    raise _enc({where}, {v}, 'enum', {cls!r}{self.user(f)})")
             if f.values:
                 allowed = tuple(self.enum_value(f, x) for x in f.values)
                 c(f"if {v} not in {lit(allowed)}:")
                 c(f"    raise _enc({where}, {v}, 'values', {', '.join(map(str, allowed))!r}, {f.rule!r}{self.user(f, False)})")
             if f.enum.kind != "char":
-                c(f"{var} = int({v})")
+                c(f"{var} = {v}._value_ if {v}.__class__ is {cls} else int({v})")
         elif f.flags is not None:
             c(f"if {v}.__class__ is not int and not isinstance({v}, int):")
             c(f"    raise _enc({where}, {v}, 'type', 'an int or {self.enum_class(f.flags.name)}')")
@@ -241,9 +250,10 @@ class PythonView:
 
     # -- decode: raw wire value → logical value --------------------------------------------
     def decode_leaf(self, c: Code, message: Message, leaf: Leaf, offset_expr: str,
-                    bounded: bool = False) -> Optional[str]:
+                    bounded: bool = False, finite_if: str = "") -> Optional[str]:
         """Emit checks of a raw value; return the expression of its logical value (members).
-        bounded: the raw value was read from its bits, so a range its width implies is not checked."""
+        bounded: the raw value was read from its bits, so a range its width implies is not checked;
+        finite_if: a condition under which a float is known to be finite (its text was short)."""
         f, var = leaf.field, leaf.var
         at = f"{message.name!r}, {leaf.dotted!r}, {var}"
         off = offset_expr
@@ -295,7 +305,7 @@ class PythonView:
                 expr = f"{expr} + {lit(f.offset)}"
             var_checked = expr
         elif f.kind == "float":
-            c(f"if not _isfinite({var}):")
+            c(f"if {'not ' + finite_if + ' and ' if finite_if else ''}not _isfinite({var}):")
             c(f"    raise _dec({at}, 'finite', 'a finite number', {off}, {f.rule!r})")
             expr = var_checked = var
         else:
@@ -471,7 +481,7 @@ class MessageCode:
                 if prefix not in groups:
                     groups.add(prefix)
                     c(f"{self.group_var(prefix)} = {self.group_var(prefix[:-1])}.{prefix[-1]}")
-            self.view.encode_leaf(c, self.m, leaf, self.group_var(leaf.path[:-1]))
+            self.view.encode_leaf(c, self.m, leaf, self.group_var(leaf.path[:-1]), keep_bool=word)
         for leaf in self.leaves:
             cs = leaf.field.checksum
             if cs and cs.over != "bytes" and not (word and cs.algorithm == "parity"):
@@ -830,7 +840,7 @@ class MessageCode:
         for n, leaf in enumerate(self.leaves):
             f = leaf.field
             if f.kind == "float":
-                tok = "_FLOAT_RE"
+                tok = "_FINITE_RE"
             elif f.kind in ("uint", "int") or (f.enum is not None and f.enum.kind == "int"):
                 tok = "_INT_RE"
             elif f.kind == "char":
@@ -911,7 +921,7 @@ class MessageCode:
                 if f.max_length is not None:
                     c(f"if len({leaf.var}) > {f.max_length}:")
                     c(f"    raise _dec({at}, {leaf.var}, 'length', 'at most {f.max_length} characters', {where})")
-            expr = self.view.decode_leaf(c, self.m, leaf, where)
+            expr = self.view.decode_leaf(c, self.m, leaf, where, finite_if="ok")
             if f.optional:
                 c.dedent()
                 c("else:")

@@ -259,22 +259,25 @@ def _encode_master_control(m):
     if not (m.forward_words == True):
         raise _enc('master_control', 'forward_words', m.forward_words, 'rule', 'forward_words == True', decision='CAR-R2', user_message='c2 is always 1 in a master word (the master forwards the slave words); it is hidden from the user / 在用户编写主机的行为时，默认主机该位为1，即对用户隐藏')
     r_accept_ir = m.accept_ir
-    if r_accept_ir is not True and r_accept_ir is not False and r_accept_ir != 0 and r_accept_ir != 1:
-        raise _enc('master_control', 'accept_ir', r_accept_ir, 'type', 'a bool')
-    r_accept_ir = 1 if r_accept_ir else 0
+    if r_accept_ir is not True and r_accept_ir is not False:
+        if r_accept_ir != 0 and r_accept_ir != 1:
+            raise _enc('master_control', 'accept_ir', r_accept_ir, 'type', 'a bool')
+        r_accept_ir = 1 if r_accept_ir else 0
     r_forward_words = m.forward_words
-    if r_forward_words is not True and r_forward_words is not False and r_forward_words != 0 and r_forward_words != 1:
-        raise _enc('master_control', 'forward_words', r_forward_words, 'type', 'a bool')
-    r_forward_words = 1 if r_forward_words else 0
+    if r_forward_words is not True and r_forward_words is not False:
+        if r_forward_words != 0 and r_forward_words != 1:
+            raise _enc('master_control', 'forward_words', r_forward_words, 'type', 'a bool')
+        r_forward_words = 1 if r_forward_words else 0
     g_motor = m.motor
     r_motor_enable = g_motor.enable
-    if r_motor_enable is not True and r_motor_enable is not False and r_motor_enable != 0 and r_motor_enable != 1:
-        raise _enc('master_control', 'motor.enable', r_motor_enable, 'type', 'a bool')
-    r_motor_enable = 1 if r_motor_enable else 0
+    if r_motor_enable is not True and r_motor_enable is not False:
+        if r_motor_enable != 0 and r_motor_enable != 1:
+            raise _enc('master_control', 'motor.enable', r_motor_enable, 'type', 'a bool')
+        r_motor_enable = 1 if r_motor_enable else 0
     r_motor_direction = g_motor.direction
-    if not isinstance(r_motor_direction, int) or r_motor_direction not in _VALUES_motor_direction:
+    if r_motor_direction.__class__ is not MotorDirection and (not isinstance(r_motor_direction, int) or r_motor_direction not in _VALUES_motor_direction):
         raise _enc('master_control', 'motor.direction', r_motor_direction, 'enum', 'MotorDirection', None)
-    r_motor_direction = int(r_motor_direction)
+    r_motor_direction = r_motor_direction._value_ if r_motor_direction.__class__ is MotorDirection else int(r_motor_direction)
     r_motor_speed = g_motor.speed
     if r_motor_speed.__class__ is not int and (not isinstance(r_motor_speed, int) or r_motor_speed.__class__ is bool):
         raise _enc('master_control', 'motor.speed', r_motor_speed, 'type', 'an int')
@@ -298,9 +301,10 @@ def _encode_master_control(m):
         raise _enc('master_control', 'led.duration', r_led_duration, 'range', '0..3', None)
     g_ultrasonic = m.ultrasonic
     r_ultrasonic_enable = g_ultrasonic.enable
-    if r_ultrasonic_enable is not True and r_ultrasonic_enable is not False and r_ultrasonic_enable != 0 and r_ultrasonic_enable != 1:
-        raise _enc('master_control', 'ultrasonic.enable', r_ultrasonic_enable, 'type', 'a bool')
-    r_ultrasonic_enable = 1 if r_ultrasonic_enable else 0
+    if r_ultrasonic_enable is not True and r_ultrasonic_enable is not False:
+        if r_ultrasonic_enable != 0 and r_ultrasonic_enable != 1:
+            raise _enc('master_control', 'ultrasonic.enable', r_ultrasonic_enable, 'type', 'a bool')
+        r_ultrasonic_enable = 1 if r_ultrasonic_enable else 0
     r_ultrasonic_radius = g_ultrasonic.radius
     if r_ultrasonic_radius.__class__ is not int and (not isinstance(r_ultrasonic_radius, int) or r_ultrasonic_radius.__class__ is bool):
         raise _enc('master_control', 'ultrasonic.radius', r_ultrasonic_radius, 'type', 'an int')
@@ -312,13 +316,15 @@ def _encode_master_control(m):
     if not 0 <= r_ultrasonic_duration <= 3:
         raise _enc('master_control', 'ultrasonic.duration', r_ultrasonic_duration, 'range', '0..3', None)
     r_voice = m.voice
-    if r_voice is not True and r_voice is not False and r_voice != 0 and r_voice != 1:
-        raise _enc('master_control', 'voice', r_voice, 'type', 'a bool')
-    r_voice = 1 if r_voice else 0
+    if r_voice is not True and r_voice is not False:
+        if r_voice != 0 and r_voice != 1:
+            raise _enc('master_control', 'voice', r_voice, 'type', 'a bool')
+        r_voice = 1 if r_voice else 0
     r_body_sensor = m.body_sensor
-    if r_body_sensor is not True and r_body_sensor is not False and r_body_sensor != 0 and r_body_sensor != 1:
-        raise _enc('master_control', 'body_sensor', r_body_sensor, 'type', 'a bool')
-    r_body_sensor = 1 if r_body_sensor else 0
+    if r_body_sensor is not True and r_body_sensor is not False:
+        if r_body_sensor != 0 and r_body_sensor != 1:
+            raise _enc('master_control', 'body_sensor', r_body_sensor, 'type', 'a bool')
+        r_body_sensor = 1 if r_body_sensor else 0
     r_reserved_bits = 0
     r_parity = 0
     w = r_accept_ir << 31 | r_forward_words << 30 | r_motor_enable << 29 | r_motor_direction << 27 | r_motor_speed << 25 | r_motor_duration << 23 | r_led_led << 21 | r_led_duration << 19 | r_ultrasonic_enable << 18 | r_ultrasonic_radius << 16 | r_ultrasonic_duration << 14 | r_voice << 13 | r_body_sensor << 12
@@ -382,22 +388,25 @@ def _decode_master_control(d):
 
 def _encode_slave_control(m):
     r_accept_ir = m.accept_ir
-    if r_accept_ir is not True and r_accept_ir is not False and r_accept_ir != 0 and r_accept_ir != 1:
-        raise _enc('slave_control', 'accept_ir', r_accept_ir, 'type', 'a bool')
-    r_accept_ir = 1 if r_accept_ir else 0
+    if r_accept_ir is not True and r_accept_ir is not False:
+        if r_accept_ir != 0 and r_accept_ir != 1:
+            raise _enc('slave_control', 'accept_ir', r_accept_ir, 'type', 'a bool')
+        r_accept_ir = 1 if r_accept_ir else 0
     r_forward_words = m.forward_words
-    if r_forward_words is not True and r_forward_words is not False and r_forward_words != 0 and r_forward_words != 1:
-        raise _enc('slave_control', 'forward_words', r_forward_words, 'type', 'a bool')
-    r_forward_words = 1 if r_forward_words else 0
+    if r_forward_words is not True and r_forward_words is not False:
+        if r_forward_words != 0 and r_forward_words != 1:
+            raise _enc('slave_control', 'forward_words', r_forward_words, 'type', 'a bool')
+        r_forward_words = 1 if r_forward_words else 0
     g_motor = m.motor
     r_motor_enable = g_motor.enable
-    if r_motor_enable is not True and r_motor_enable is not False and r_motor_enable != 0 and r_motor_enable != 1:
-        raise _enc('slave_control', 'motor.enable', r_motor_enable, 'type', 'a bool')
-    r_motor_enable = 1 if r_motor_enable else 0
+    if r_motor_enable is not True and r_motor_enable is not False:
+        if r_motor_enable != 0 and r_motor_enable != 1:
+            raise _enc('slave_control', 'motor.enable', r_motor_enable, 'type', 'a bool')
+        r_motor_enable = 1 if r_motor_enable else 0
     r_motor_direction = g_motor.direction
-    if not isinstance(r_motor_direction, int) or r_motor_direction not in _VALUES_motor_direction:
+    if r_motor_direction.__class__ is not MotorDirection and (not isinstance(r_motor_direction, int) or r_motor_direction not in _VALUES_motor_direction):
         raise _enc('slave_control', 'motor.direction', r_motor_direction, 'enum', 'MotorDirection', None)
-    r_motor_direction = int(r_motor_direction)
+    r_motor_direction = r_motor_direction._value_ if r_motor_direction.__class__ is MotorDirection else int(r_motor_direction)
     r_motor_speed = g_motor.speed
     if r_motor_speed.__class__ is not int and (not isinstance(r_motor_speed, int) or r_motor_speed.__class__ is bool):
         raise _enc('slave_control', 'motor.speed', r_motor_speed, 'type', 'an int')
@@ -421,9 +430,10 @@ def _encode_slave_control(m):
         raise _enc('slave_control', 'led.duration', r_led_duration, 'range', '0..3', None)
     g_ultrasonic = m.ultrasonic
     r_ultrasonic_enable = g_ultrasonic.enable
-    if r_ultrasonic_enable is not True and r_ultrasonic_enable is not False and r_ultrasonic_enable != 0 and r_ultrasonic_enable != 1:
-        raise _enc('slave_control', 'ultrasonic.enable', r_ultrasonic_enable, 'type', 'a bool')
-    r_ultrasonic_enable = 1 if r_ultrasonic_enable else 0
+    if r_ultrasonic_enable is not True and r_ultrasonic_enable is not False:
+        if r_ultrasonic_enable != 0 and r_ultrasonic_enable != 1:
+            raise _enc('slave_control', 'ultrasonic.enable', r_ultrasonic_enable, 'type', 'a bool')
+        r_ultrasonic_enable = 1 if r_ultrasonic_enable else 0
     r_ultrasonic_radius = g_ultrasonic.radius
     if r_ultrasonic_radius.__class__ is not int and (not isinstance(r_ultrasonic_radius, int) or r_ultrasonic_radius.__class__ is bool):
         raise _enc('slave_control', 'ultrasonic.radius', r_ultrasonic_radius, 'type', 'an int')
@@ -435,13 +445,15 @@ def _encode_slave_control(m):
     if not 0 <= r_ultrasonic_duration <= 3:
         raise _enc('slave_control', 'ultrasonic.duration', r_ultrasonic_duration, 'range', '0..3', None)
     r_voice = m.voice
-    if r_voice is not True and r_voice is not False and r_voice != 0 and r_voice != 1:
-        raise _enc('slave_control', 'voice', r_voice, 'type', 'a bool')
-    r_voice = 1 if r_voice else 0
+    if r_voice is not True and r_voice is not False:
+        if r_voice != 0 and r_voice != 1:
+            raise _enc('slave_control', 'voice', r_voice, 'type', 'a bool')
+        r_voice = 1 if r_voice else 0
     r_body_sensor = m.body_sensor
-    if r_body_sensor is not True and r_body_sensor is not False and r_body_sensor != 0 and r_body_sensor != 1:
-        raise _enc('slave_control', 'body_sensor', r_body_sensor, 'type', 'a bool')
-    r_body_sensor = 1 if r_body_sensor else 0
+    if r_body_sensor is not True and r_body_sensor is not False:
+        if r_body_sensor != 0 and r_body_sensor != 1:
+            raise _enc('slave_control', 'body_sensor', r_body_sensor, 'type', 'a bool')
+        r_body_sensor = 1 if r_body_sensor else 0
     r_reserved_bits = 0
     r_parity = 0
     w = r_accept_ir << 31 | r_forward_words << 30 | r_motor_enable << 29 | r_motor_direction << 27 | r_motor_speed << 25 | r_motor_duration << 23 | r_led_led << 21 | r_led_duration << 19 | r_ultrasonic_enable << 18 | r_ultrasonic_radius << 16 | r_ultrasonic_duration << 14 | r_voice << 13 | r_body_sensor << 12

@@ -451,9 +451,9 @@ def _encode_scene(m):
     if not 0 <= r_nl <= 7:
         raise _enc('scene', 'nl', r_nl, 'range', '0..7', None)
     r_db = m.db
-    if not isinstance(r_db, int) or r_db not in _VALUES_pass_side:
+    if r_db.__class__ is not PassSide and (not isinstance(r_db, int) or r_db not in _VALUES_pass_side):
         raise _enc('scene', 'db', r_db, 'enum', 'PassSide', None)
-    r_db = int(r_db)
+    r_db = r_db._value_ if r_db.__class__ is PassSide else int(r_db)
     r_nt = m.nt
     if r_nt.__class__ is not int and (not isinstance(r_nt, int) or r_nt.__class__ is bool):
         raise _enc('scene', 'nt', r_nt, 'type', 'an int')
@@ -507,9 +507,9 @@ def _raw_scene(m):
     if not 0 <= r_nl <= 7:
         raise _enc('scene', 'nl', r_nl, 'range', '0..7', None)
     r_db = m.db
-    if not isinstance(r_db, int) or r_db not in _VALUES_pass_side:
+    if r_db.__class__ is not PassSide and (not isinstance(r_db, int) or r_db not in _VALUES_pass_side):
         raise _enc('scene', 'db', r_db, 'enum', 'PassSide', None)
-    r_db = int(r_db)
+    r_db = r_db._value_ if r_db.__class__ is PassSide else int(r_db)
     r_nt = m.nt
     if r_nt.__class__ is not int and (not isinstance(r_nt, int) or r_nt.__class__ is bool):
         raise _enc('scene', 'nt', r_nt, 'type', 'an int')

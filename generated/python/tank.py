@@ -257,6 +257,8 @@ class GpioConfig:
 
 _INT_RE = r"[+-]?[0-9]+"
 _FLOAT_RE = r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?"
+# a number short enough to be finite (below 1e115): a line of such numbers needs no finiteness checks
+_FINITE_RE = r"[+-]?(?:[0-9]{1,15}(?:\.[0-9]{0,15})?|\.[0-9]{1,15})(?:[eE][+-]?[0-9]{1,2})?"
 _CHAR_RE = '[!-\\+\\--:<-\\~]'  # printable, no space, separator or terminator
 _TEXT_RE = _CHAR_RE + "*"
 _REST_RE = '[!-:<-\\~]' + "*"  # a last field running to the end may hold separators
@@ -303,10 +305,10 @@ def _token_offsets(tokens, base):
     return offsets
 
 
-_SYNTAX_telemetry = re.compile(_CHAR_RE + ',' + _INT_RE + ',' + _CHAR_RE + ',' + _FLOAT_RE + ',' + _FLOAT_RE + ',' + _FLOAT_RE + ',' + _FLOAT_RE + ',' + _FLOAT_RE + ',' + _FLOAT_RE + ',' + _FLOAT_RE + ',' + _FLOAT_RE + ',' + _FLOAT_RE + ',' + _FLOAT_RE + ',' + _FLOAT_RE + ',' + _TEXT_RE + ',' + _TEXT_RE + ',' + _FLOAT_RE + ',' + _INT_RE + ',' + _INT_RE + ',' + _INT_RE)
+_SYNTAX_telemetry = re.compile(_CHAR_RE + ',' + _INT_RE + ',' + _CHAR_RE + ',' + _FINITE_RE + ',' + _FINITE_RE + ',' + _FINITE_RE + ',' + _FINITE_RE + ',' + _FINITE_RE + ',' + _FINITE_RE + ',' + _FINITE_RE + ',' + _FINITE_RE + ',' + _FINITE_RE + ',' + _FINITE_RE + ',' + _FINITE_RE + ',' + _TEXT_RE + ',' + _TEXT_RE + ',' + _FINITE_RE + ',' + _INT_RE + ',' + _INT_RE + ',' + _INT_RE)
 
 
-_SYNTAX_command = re.compile(_CHAR_RE + ',' + _INT_RE + ',' + _CHAR_RE + ',' + _INT_RE + ',' + _FLOAT_RE + ',' + _FLOAT_RE + ',' + _FLOAT_RE + ',' + _FLOAT_RE + ',' + _INT_RE + '(?:' + ',' + _TEXT_RE + ')?')
+_SYNTAX_command = re.compile(_CHAR_RE + ',' + _INT_RE + ',' + _CHAR_RE + ',' + _INT_RE + ',' + _FINITE_RE + ',' + _FINITE_RE + ',' + _FINITE_RE + ',' + _FINITE_RE + ',' + _INT_RE + '(?:' + ',' + _TEXT_RE + ')?')
 
 
 _SYNTAX_payload_command = re.compile(_REST_RE)
@@ -331,7 +333,7 @@ def _as_input(data):
 
 def _encode_telemetry(m):
     r_move = m.move
-    if not isinstance(r_move, str) or r_move not in _VALUES_move:
+    if r_move.__class__ is not Move and (not isinstance(r_move, str) or r_move not in _VALUES_move):
         raise _enc('telemetry', 'move', r_move, 'enum', 'Move', None)
     r_speed = m.speed
     if r_speed.__class__ is not int and (not isinstance(r_speed, int) or r_speed.__class__ is bool):
@@ -424,18 +426,18 @@ def _encode_telemetry(m):
     if not _isfinite(r_vbat):
         raise _enc('telemetry', 'vbat', r_vbat, 'finite', 'a finite number')
     r_systemstatus = m.systemstatus
-    if not isinstance(r_systemstatus, int) or r_systemstatus not in _VALUES_system_status:
+    if r_systemstatus.__class__ is not SystemStatus and (not isinstance(r_systemstatus, int) or r_systemstatus not in _VALUES_system_status):
         raise _enc('telemetry', 'systemstatus', r_systemstatus, 'enum', 'SystemStatus', None)
-    r_systemstatus = int(r_systemstatus)
+    r_systemstatus = r_systemstatus._value_ if r_systemstatus.__class__ is SystemStatus else int(r_systemstatus)
     r_extid = m.extid
     if r_extid.__class__ is not int and (not isinstance(r_extid, int) or r_extid.__class__ is bool):
         raise _enc('telemetry', 'extid', r_extid, 'type', 'an int')
     if not 0 <= r_extid <= 255:
         raise _enc('telemetry', 'extid', r_extid, 'range', '0..255', None)
     r_extstatus = m.extstatus
-    if not isinstance(r_extstatus, int) or r_extstatus not in _VALUES_ext_status:
+    if r_extstatus.__class__ is not ExtStatus and (not isinstance(r_extstatus, int) or r_extstatus not in _VALUES_ext_status):
         raise _enc('telemetry', 'extstatus', r_extstatus, 'enum', 'ExtStatus', None)
-    r_extstatus = int(r_extstatus)
+    r_extstatus = r_extstatus._value_ if r_extstatus.__class__ is ExtStatus else int(r_extstatus)
     return '$:' + ','.join((_ENUM_move[r_move]._value_, str(r_speed), r_value, _format_float(r_lcurr), _format_float(r_rcurr), _format_float(r_accx), _format_float(r_accy), _format_float(r_accz), _format_float(r_gyrox), _format_float(r_gyroy), _format_float(r_gyroz), _format_float(r_magx), _format_float(r_magy), _format_float(r_magz), r_lan, r_lon, _format_float(r_vbat), str(r_systemstatus), str(r_extid), str(r_extstatus), )) + ';'
 
 
@@ -461,37 +463,37 @@ def _decode_telemetry(body, base):
         if bad:
             raise _dec('telemetry', 'value', r_value, 'text', bad, _token_offsets(t, base)[2], 'TANK-D3')
     r_lcurr = float(t[3]) if ok else _parse_float(t[3].strip(), 'telemetry', 'lcurr', _token_offsets(t, base)[3])
-    if not _isfinite(r_lcurr):
+    if not ok and not _isfinite(r_lcurr):
         raise _dec('telemetry', 'lcurr', r_lcurr, 'finite', 'a finite number', _token_offsets(t, base)[3], None)
     r_rcurr = float(t[4]) if ok else _parse_float(t[4].strip(), 'telemetry', 'rcurr', _token_offsets(t, base)[4])
-    if not _isfinite(r_rcurr):
+    if not ok and not _isfinite(r_rcurr):
         raise _dec('telemetry', 'rcurr', r_rcurr, 'finite', 'a finite number', _token_offsets(t, base)[4], None)
     r_accx = float(t[5]) if ok else _parse_float(t[5].strip(), 'telemetry', 'accx', _token_offsets(t, base)[5])
-    if not _isfinite(r_accx):
+    if not ok and not _isfinite(r_accx):
         raise _dec('telemetry', 'accx', r_accx, 'finite', 'a finite number', _token_offsets(t, base)[5], None)
     r_accy = float(t[6]) if ok else _parse_float(t[6].strip(), 'telemetry', 'accy', _token_offsets(t, base)[6])
-    if not _isfinite(r_accy):
+    if not ok and not _isfinite(r_accy):
         raise _dec('telemetry', 'accy', r_accy, 'finite', 'a finite number', _token_offsets(t, base)[6], None)
     r_accz = float(t[7]) if ok else _parse_float(t[7].strip(), 'telemetry', 'accz', _token_offsets(t, base)[7])
-    if not _isfinite(r_accz):
+    if not ok and not _isfinite(r_accz):
         raise _dec('telemetry', 'accz', r_accz, 'finite', 'a finite number', _token_offsets(t, base)[7], None)
     r_gyrox = float(t[8]) if ok else _parse_float(t[8].strip(), 'telemetry', 'gyrox', _token_offsets(t, base)[8])
-    if not _isfinite(r_gyrox):
+    if not ok and not _isfinite(r_gyrox):
         raise _dec('telemetry', 'gyrox', r_gyrox, 'finite', 'a finite number', _token_offsets(t, base)[8], None)
     r_gyroy = float(t[9]) if ok else _parse_float(t[9].strip(), 'telemetry', 'gyroy', _token_offsets(t, base)[9])
-    if not _isfinite(r_gyroy):
+    if not ok and not _isfinite(r_gyroy):
         raise _dec('telemetry', 'gyroy', r_gyroy, 'finite', 'a finite number', _token_offsets(t, base)[9], None)
     r_gyroz = float(t[10]) if ok else _parse_float(t[10].strip(), 'telemetry', 'gyroz', _token_offsets(t, base)[10])
-    if not _isfinite(r_gyroz):
+    if not ok and not _isfinite(r_gyroz):
         raise _dec('telemetry', 'gyroz', r_gyroz, 'finite', 'a finite number', _token_offsets(t, base)[10], None)
     r_magx = float(t[11]) if ok else _parse_float(t[11].strip(), 'telemetry', 'magx', _token_offsets(t, base)[11])
-    if not _isfinite(r_magx):
+    if not ok and not _isfinite(r_magx):
         raise _dec('telemetry', 'magx', r_magx, 'finite', 'a finite number', _token_offsets(t, base)[11], None)
     r_magy = float(t[12]) if ok else _parse_float(t[12].strip(), 'telemetry', 'magy', _token_offsets(t, base)[12])
-    if not _isfinite(r_magy):
+    if not ok and not _isfinite(r_magy):
         raise _dec('telemetry', 'magy', r_magy, 'finite', 'a finite number', _token_offsets(t, base)[12], None)
     r_magz = float(t[13]) if ok else _parse_float(t[13].strip(), 'telemetry', 'magz', _token_offsets(t, base)[13])
-    if not _isfinite(r_magz):
+    if not ok and not _isfinite(r_magz):
         raise _dec('telemetry', 'magz', r_magz, 'finite', 'a finite number', _token_offsets(t, base)[13], None)
     r_lan = (t[14] if ok else t[14].strip())
     if not ok:
@@ -508,7 +510,7 @@ def _decode_telemetry(body, base):
     if len(r_lon) > 32:
         raise _dec('telemetry', 'lon', r_lon, 'length', 'at most 32 characters', _token_offsets(t, base)[15])
     r_vbat = float(t[16]) if ok else _parse_float(t[16].strip(), 'telemetry', 'vbat', _token_offsets(t, base)[16])
-    if not _isfinite(r_vbat):
+    if not ok and not _isfinite(r_vbat):
         raise _dec('telemetry', 'vbat', r_vbat, 'finite', 'a finite number', _token_offsets(t, base)[16], None)
     r_systemstatus = int(t[17]) if ok else _parse_int(t[17].strip(), 'telemetry', 'systemstatus', _token_offsets(t, base)[17])
     e_systemstatus = _ENUM_system_status.get(r_systemstatus)
@@ -547,7 +549,7 @@ def _decode_telemetry(body, base):
 
 def _encode_command(m):
     r_move = m.move
-    if not isinstance(r_move, str) or r_move not in _VALUES_move:
+    if r_move.__class__ is not Move and (not isinstance(r_move, str) or r_move not in _VALUES_move):
         raise _enc('command', 'move', r_move, 'enum', 'Move', None)
     r_speed = m.speed
     if r_speed.__class__ is not int and (not isinstance(r_speed, int) or r_speed.__class__ is bool):
@@ -587,11 +589,11 @@ def _encode_command(m):
     if not _isfinite(r_gpio4):
         raise _enc('command', 'gpio4', r_gpio4, 'finite', 'a finite number')
     r_systemstatus = m.systemstatus
-    if not isinstance(r_systemstatus, int) or r_systemstatus not in _VALUES_system_status:
+    if r_systemstatus.__class__ is not SystemStatus and (not isinstance(r_systemstatus, int) or r_systemstatus not in _VALUES_system_status):
         raise _enc('command', 'systemstatus', r_systemstatus, 'enum', 'SystemStatus', 'TANK-D2', 'systemstatus 5 (Error) and 6 (Exception) are sent only by the platform / Только с платформы')
     if r_systemstatus not in (0, 1, 2, 3, 4):
         raise _enc('command', 'systemstatus', r_systemstatus, 'values', '0, 1, 2, 3, 4', 'TANK-D2', 'systemstatus 5 (Error) and 6 (Exception) are sent only by the platform / Только с платформы')
-    r_systemstatus = int(r_systemstatus)
+    r_systemstatus = r_systemstatus._value_ if r_systemstatus.__class__ is SystemStatus else int(r_systemstatus)
     p = [_ENUM_move[r_move]._value_, str(r_speed), r_value, str(r_azimutloc), _format_float(r_gpio1), _format_float(r_gpio2), _format_float(r_gpio3), _format_float(r_gpio4), str(r_systemstatus)]
     if m.data is not None:
         r_data = m.data
@@ -632,16 +634,16 @@ def _decode_command(body, base):
     if not -32768 <= r_azimutloc <= 32767:
         raise _dec('command', 'azimutloc', r_azimutloc, 'range', '-32768..32767', _token_offsets(t, base)[3], None)
     r_gpio1 = float(t[4]) if ok else _parse_float(t[4].strip(), 'command', 'gpio1', _token_offsets(t, base)[4])
-    if not _isfinite(r_gpio1):
+    if not ok and not _isfinite(r_gpio1):
         raise _dec('command', 'gpio1', r_gpio1, 'finite', 'a finite number', _token_offsets(t, base)[4], None)
     r_gpio2 = float(t[5]) if ok else _parse_float(t[5].strip(), 'command', 'gpio2', _token_offsets(t, base)[5])
-    if not _isfinite(r_gpio2):
+    if not ok and not _isfinite(r_gpio2):
         raise _dec('command', 'gpio2', r_gpio2, 'finite', 'a finite number', _token_offsets(t, base)[5], None)
     r_gpio3 = float(t[6]) if ok else _parse_float(t[6].strip(), 'command', 'gpio3', _token_offsets(t, base)[6])
-    if not _isfinite(r_gpio3):
+    if not ok and not _isfinite(r_gpio3):
         raise _dec('command', 'gpio3', r_gpio3, 'finite', 'a finite number', _token_offsets(t, base)[6], None)
     r_gpio4 = float(t[7]) if ok else _parse_float(t[7].strip(), 'command', 'gpio4', _token_offsets(t, base)[7])
-    if not _isfinite(r_gpio4):
+    if not ok and not _isfinite(r_gpio4):
         raise _dec('command', 'gpio4', r_gpio4, 'finite', 'a finite number', _token_offsets(t, base)[7], None)
     r_systemstatus = int(t[8]) if ok else _parse_int(t[8].strip(), 'command', 'systemstatus', _token_offsets(t, base)[8])
     e_systemstatus = _ENUM_system_status.get(r_systemstatus)
@@ -735,21 +737,21 @@ def _decode_payload_reply(body, base):
 
 def _encode_gpio_config(m):
     r_gpio1 = m.gpio1
-    if not isinstance(r_gpio1, int) or r_gpio1 not in _VALUES_gpio_mode:
+    if r_gpio1.__class__ is not GpioMode and (not isinstance(r_gpio1, int) or r_gpio1 not in _VALUES_gpio_mode):
         raise _enc('gpio_config', 'gpio1', r_gpio1, 'enum', 'GpioMode', None)
-    r_gpio1 = int(r_gpio1)
+    r_gpio1 = r_gpio1._value_ if r_gpio1.__class__ is GpioMode else int(r_gpio1)
     r_gpio2 = m.gpio2
-    if not isinstance(r_gpio2, int) or r_gpio2 not in _VALUES_gpio_mode:
+    if r_gpio2.__class__ is not GpioMode and (not isinstance(r_gpio2, int) or r_gpio2 not in _VALUES_gpio_mode):
         raise _enc('gpio_config', 'gpio2', r_gpio2, 'enum', 'GpioMode', None)
-    r_gpio2 = int(r_gpio2)
+    r_gpio2 = r_gpio2._value_ if r_gpio2.__class__ is GpioMode else int(r_gpio2)
     r_gpio3 = m.gpio3
-    if not isinstance(r_gpio3, int) or r_gpio3 not in _VALUES_gpio_mode:
+    if r_gpio3.__class__ is not GpioMode and (not isinstance(r_gpio3, int) or r_gpio3 not in _VALUES_gpio_mode):
         raise _enc('gpio_config', 'gpio3', r_gpio3, 'enum', 'GpioMode', None)
-    r_gpio3 = int(r_gpio3)
+    r_gpio3 = r_gpio3._value_ if r_gpio3.__class__ is GpioMode else int(r_gpio3)
     r_gpio4 = m.gpio4
-    if not isinstance(r_gpio4, int) or r_gpio4 not in _VALUES_gpio_mode:
+    if r_gpio4.__class__ is not GpioMode and (not isinstance(r_gpio4, int) or r_gpio4 not in _VALUES_gpio_mode):
         raise _enc('gpio_config', 'gpio4', r_gpio4, 'enum', 'GpioMode', None)
-    r_gpio4 = int(r_gpio4)
+    r_gpio4 = r_gpio4._value_ if r_gpio4.__class__ is GpioMode else int(r_gpio4)
     return '-:' + ','.join((str(r_gpio1), str(r_gpio2), str(r_gpio3), str(r_gpio4), )) + ';'
 
 
