@@ -114,27 +114,34 @@ class Document:
         return self.locs.get(path, Loc(self.file, 1, 1))
 
 
-def _shallow(text: str) -> bool:
-    """Whether libyaml reads the text without error and finds it no deeper than
-    MAX_DEPTH, counted on its event stream (which does not recurse)."""
+def _too_deep(text: str, loader) -> yaml.Event | None:
+    """The first collection nested deeper than MAX_DEPTH, counted on the parser's
+    event stream, which does not recurse (the composers do, into a stack overflow)."""
     depth = 0
+    for event in yaml.parse(text, Loader=loader):
+        if isinstance(event, yaml.CollectionStartEvent):
+            depth += 1
+            if depth > MAX_DEPTH:
+                return event
+        elif isinstance(event, yaml.CollectionEndEvent):
+            depth -= 1
+    return None
+
+
+def _compose(text: str, file: str) -> yaml.Node | None:
+    loader = _FastLoader or _Loader
     try:
-        for event in yaml.parse(text, Loader=_FastLoader):
-            if isinstance(event, yaml.CollectionStartEvent):
-                depth += 1
-                if depth > MAX_DEPTH:
-                    return False
-            elif isinstance(event, yaml.CollectionEndEvent):
-                depth -= 1
+        deep = _too_deep(text, loader)
     except yaml.YAMLError:
-        return False
-    return True
-
-
-def _compose(text: str) -> yaml.Node | None:
-    if _FastLoader is not None and _shallow(text):
-        return yaml.compose(text, Loader=_FastLoader)
-    return yaml.compose(text, Loader=_Loader)
+        if loader is _Loader:
+            raise
+        loader = _Loader  # the pure parser's messages are the ones the diagnostics quote
+        deep = _too_deep(text, loader)
+    if deep is not None:
+        mark = deep.start_mark
+        raise SchemaError([Diagnostic(Loc(file, mark.line + 1, mark.column + 1),
+                                      f"nesting deeper than {MAX_DEPTH}", "flatten the schema")])
+    return yaml.compose(text, Loader=loader)
 
 
 def _loc(file: str, node: yaml.Node) -> Loc:
@@ -147,7 +154,7 @@ def load_text(text: str, file: str) -> Document:
                                       f"schema is larger than {MAX_FILE_BYTES} bytes",
                                       "split the protocol or remove generated content")])
     try:
-        node = _compose(text)
+        node = _compose(text, file)
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
         loc = Loc(file, mark.line + 1, mark.column + 1) if mark else Loc(file, 1, 1)

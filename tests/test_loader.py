@@ -42,6 +42,19 @@ def test_depth_and_size_are_bounded():
         load_text("a: " + "x" * MAX_FILE_BYTES + "\n", "big.yaml")
 
 
+@pytest.mark.parametrize("opening, closing", [("[", "]"), ("{a: ", "}")])
+def test_nesting_far_past_the_bound_is_a_diagnostic_not_a_recursion_error(opening, closing):
+    # a recursive composer overflows Python's stack long before 5,000 levels
+    deep = "a: " + opening * 5000 + "1" * (opening == "{a: ") + closing * 5000 + "\n"
+    with pytest.raises(SchemaError) as err:
+        load_text(deep, "deep.yaml")
+    (diagnostic,) = err.value.diagnostics
+    assert diagnostic.message == f"nesting deeper than {MAX_DEPTH}"
+    # the top-level mapping is the first collection, so the one past the bound is the
+    # MAX_DEPTH-th opening after `a: `
+    assert (diagnostic.loc.line, diagnostic.loc.col) == (1, 4 + (MAX_DEPTH - 1) * len(opening))
+
+
 def test_tags_and_duplicate_keys_are_rejected():
     with pytest.raises(SchemaError, match="tag"):
         load_text("a: !!python/object/apply:os.system ['true']\n", "t.yaml")
