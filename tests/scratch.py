@@ -8,17 +8,20 @@ import subprocess
 import sys
 from pathlib import Path
 
-from compiler.build import compile_schema, render_protocol
+from compiler.build import compile_schema, render_protocol, verify
 
 C_FLAGS = ["-std=c99", "-g", "-O1", "-fsanitize=address,undefined", "-fno-sanitize-recover=all",
            "-Wall", "-Wextra", "-Werror"]
 
 
 def render(where: Path, name: str, schema: str) -> Path:
-    """Write the schema and its Python module and C headers into `where`."""
+    """Write the schema and its Python module and C headers into `where`; the schema's
+    own examples must hold."""
     path = where / f"{name}.yaml"
     path.write_text(schema, encoding="utf-8")
-    files = render_protocol(compile_schema(path))
+    protocol = compile_schema(path)
+    files = render_protocol(protocol)
+    verify(protocol, files)
     for rel in (f"python/{name}.py", f"c/{name}.h", "c/codeword.h"):
         (where / Path(rel).name).write_text(files[rel], encoding="utf-8")
     return where
@@ -34,15 +37,23 @@ def load(path: Path):
     return module
 
 
-def run_c(where: Path, driver: str) -> list[str]:
+def run_c(where: Path, driver: str, extra_flags: tuple[str, ...] = ()) -> list[str]:
     """Compile `driver` against the headers in `where` with the sanitizers; its output lines."""
     gcc = shutil.which("gcc")
     assert gcc, "gcc is not installed (.ci/run installs it)"
     src, exe = where / "driver.c", where / "driver"
     src.write_text(driver, encoding="utf-8")
-    build = subprocess.run([gcc, *C_FLAGS, "-I", str(where), str(src), "-o", str(exe)],
+    build = subprocess.run([gcc, *C_FLAGS, *extra_flags, "-I", str(where), str(src), "-o", str(exe)],
                            capture_output=True, text=True, timeout=300)
     assert build.returncode == 0, build.stderr
     run = subprocess.run([str(exe)], capture_output=True, text=True, timeout=60)
     assert run.returncode == 0, run.stdout + run.stderr
     return run.stdout.splitlines()
+
+
+def show_calls(frames: list[str]) -> str:
+    """C statements that pass each frame (spaced hex) to the driver's show(hex, bytes, length)."""
+    return "\n".join(
+        f"    {{ static const uint8_t f[] = {{{', '.join(f'0x{b:02x}' for b in bytes.fromhex(h))}}};"
+        f" show(\"{h}\", f, sizeof f); }}"
+        for h in frames)

@@ -5,15 +5,12 @@ see tests/broken/field_checksum_covers_range.yaml). The generated Python and C
 codecs write and check the sums worked out by hand below."""
 from __future__ import annotations
 
-import importlib.util
-import shutil
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
-from compiler.build import compile_schema, render_protocol, verify
+import scratch
+
 
 SCHEMA = """\
 codeword: 1
@@ -74,22 +71,11 @@ FRAMES
 
 @pytest.fixture(scope="module")
 def built(tmp_path_factory) -> Path:
-    where = tmp_path_factory.mktemp("fsum")
-    schema = where / "fsum.yaml"
-    schema.write_text(SCHEMA, encoding="utf-8")
-    p = compile_schema(schema)
-    files = render_protocol(p)
-    verify(p, files)
-    for rel in ("python/fsum.py", "c/fsum.h", "c/codeword.h"):
-        (where / Path(rel).name).write_text(files[rel], encoding="utf-8")
-    return where
+    return scratch.render(tmp_path_factory.mktemp("fsum"), "fsum", SCHEMA)
 
 
 def test_python_sums_every_other_field(built):
-    spec = importlib.util.spec_from_file_location("fsum_field_checksum", built / "fsum.py")
-    fsum = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = fsum  # dataclasses look their module up while the class is made
-    spec.loader.exec_module(fsum)
+    fsum = scratch.load(built / "fsum.py")
     for hex_, (a, b) in GOOD.items():
         frame = bytes.fromhex(hex_)
         assert fsum.encode(fsum.Reading(a=a, b=b)) == frame
@@ -100,21 +86,6 @@ def test_python_sums_every_other_field(built):
 
 
 def test_c_sums_every_other_field(built):
-    gcc = shutil.which("gcc")
-    assert gcc, "gcc is not installed (.ci/run installs it)"
-    frames = "\n".join(
-        f"    {{ static const uint8_t f[] = {{{', '.join(f'0x{b:02x}' for b in bytes.fromhex(h))}}};"
-        f" show(\"{h}\", f, sizeof f); }}"
-        for h in [*GOOD, BAD])
-    src = built / "driver.c"
-    src.write_text(DRIVER.replace("FRAMES", frames), encoding="utf-8")
-    exe = built / "driver"
-    build = subprocess.run([gcc, "-std=c99", "-g", "-O1", "-fsanitize=address,undefined",
-                            "-fno-sanitize-recover=all", "-Wall", "-Wextra", "-Werror",
-                            "-I", str(built), str(src), "-o", str(exe)],
-                           capture_output=True, text=True, timeout=300)
-    assert build.returncode == 0, build.stderr
-    run = subprocess.run([str(exe)], capture_output=True, text=True, timeout=60)
-    assert run.returncode == 0, run.stdout + run.stderr
-    assert run.stdout.splitlines() == [
+    frames = scratch.show_calls([*GOOD, BAD])
+    assert scratch.run_c(built, DRIVER.replace("FRAMES", frames)) == [
         f"{h} {a} {b} encoded {h}" for h, (a, b) in GOOD.items()] + [f"{BAD} error checksum"]

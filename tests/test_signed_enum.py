@@ -8,15 +8,12 @@ negative constant that does not match).
 raw values in an array: both C paths are exercised."""
 from __future__ import annotations
 
-import importlib.util
-import shutil
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
-from compiler.build import compile_schema, render_protocol, verify
+import scratch
+
 
 SCHEMA = """\
 codeword: 1
@@ -137,24 +134,12 @@ VALUES = {"down": -1, "flat": 0, "up": 1, "low": -100, "mid": 5, "high": 100,
 
 @pytest.fixture(scope="module")
 def built(tmp_path_factory) -> Path:
-    where = tmp_path_factory.mktemp("senum")
-    schema = where / "senum.yaml"
-    schema.write_text(SCHEMA, encoding="utf-8")
-    p = compile_schema(schema)
-    files = render_protocol(p)
-    verify(p, files)
-    for rel in ("python/senum.py", "c/senum.h", "c/codeword.h"):
-        (where / Path(rel).name).write_text(files[rel], encoding="utf-8")
-    return where
+    return scratch.render(tmp_path_factory.mktemp("senum"), "senum", SCHEMA)
 
 
 @pytest.fixture(scope="module")
 def senum(built):
-    spec = importlib.util.spec_from_file_location("senum_signed_enum", built / "senum.py")
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module  # dataclasses look their module up while the class is made
-    spec.loader.exec_module(module)
-    return module
+    return scratch.load(built / "senum.py")
 
 
 def test_python_encodes_and_decodes_negative_members(senum):
@@ -179,26 +164,12 @@ def test_python_refuses_what_is_no_member(senum):
 
 
 def test_c_encodes_and_decodes_negative_members(built):
-    gcc = shutil.which("gcc")
-    assert gcc, "gcc is not installed (.ci/run installs it)"
-    frames = "\n".join(
-        f"    {{ static const uint8_t f[] = {{{', '.join(f'0x{b:02x}' for b in bytes.fromhex(h))}}};"
-        f" show(\"{h}\", f, sizeof f); }}"
-        for h in [*GOOD, *BAD])
-    src = built / "driver.c"
-    src.write_text(DRIVER.replace("FRAMES", frames), encoding="utf-8")
-    exe = built / "driver"
-    build = subprocess.run([gcc, "-std=c99", "-g", "-O1", "-fsanitize=address,undefined",
-                            "-fno-sanitize-recover=all", "-Wall", "-Wextra", "-Wtype-limits",
-                            "-Werror", "-I", str(built), str(src), "-o", str(exe)],
-                           capture_output=True, text=True, timeout=300)
-    assert build.returncode == 0, build.stderr
-    run = subprocess.run([str(exe)], capture_output=True, text=True, timeout=60)
-    assert run.returncode == 0, run.stdout + run.stderr
+    frames = scratch.show_calls([*GOOD, *BAD])
+    lines = scratch.run_c(built, DRIVER.replace("FRAMES", frames), ("-Wtype-limits",))
     want = []
     for hex_, (kind, *names) in GOOD.items():
         want.append(f"{hex_} {kind} {VALUES[names[0]]} {VALUES[names[1]]}")
     want += [f"{hex_} error {rule}" for hex_, rule in BAD.items()]
     want += ["encoded 7e 9c ae", "encoded error enum",
              "encoded b0 d4 fe d9", "encoded error enum"]
-    assert run.stdout.splitlines() == want
+    assert lines == want
