@@ -825,6 +825,17 @@ class Resolver:
                         self.error(("messages", m.name), f"dispatch field {f.name!r} is at bit "
                                    f"{f.bit_offset} here but at bit {first[0]} in {first[1]!r}",
                                    "dispatch fields must sit at the same place in every message")
+        if framing == "bits" and keyed and all(m.size for m in keyed):
+            # the decoder reads the dispatch fields before it knows the message: every one
+            # must lie inside the shortest message
+            shortest = min(keyed, key=lambda m: m.size)
+            for name, (offset, owner) in offsets.items():
+                field = next(f for f in next(m for m in keyed if m.name == owner).layout if f.name == name)
+                if offset + (field.bits or 0) > 8 * shortest.size:
+                    self.error(("messages", owner), f"dispatch field {name!r} ends at bit "
+                               f"{offset + (field.bits or 0)}, past the end of the shortest message "
+                               f"{shortest.name!r} ({8 * shortest.size} bits)",
+                               "put the dispatch fields first, where every message has them")
         for i, j in candidate_pairs(keyed, framing):
             a, b = keyed[i], keyed[j]
             if a.direction and b.direction and a.direction != b.direction:

@@ -52,10 +52,8 @@ def dispatch_facts(p: Protocol) -> dict:
                     tests.append((pos, f.bits, f.const & ((1 << f.bits) - 1)))
                 pos += f.bits or 0
             entries.append({"name": m.name, "size": m.size, "tests": tests})
-        head = max(pos + bits for e in entries for pos, bits, _ in e["tests"])
-        min_size = min(m.size for m in p.messages)
-        return {"kind": "bits", "entries": entries, "head_bytes": min_size,
-                "head_bits": 8 * min_size, "ok": head <= 8 * min_size}
+        min_size = min(m.size for m in p.messages)  # the resolver keeps dispatch fields inside it
+        return {"kind": "bits", "entries": entries, "head_bytes": min_size, "head_bits": 8 * min_size}
     # bytes: the envelope's dispatch field
     env = [x for x in leaves_of(tuple(f for f in fr.envelope))]
     pos = 0
