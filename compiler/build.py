@@ -20,6 +20,7 @@ from .spool import Spool
 from .targets import python as python_target
 from .targets import c as c_target
 from .targets.cview import CTargetError
+from .targets.machine_packets import MachineTargetError
 from .targets import markdown as markdown_target
 from .targets import promela as promela_target
 from .vectors import write_vectors
@@ -42,13 +43,15 @@ def render_with_codec(p: Protocol) -> tuple[dict[str, str], types.ModuleType]:
     run it for their examples and the build for its checks and vectors. The
     Promela target writes a model only for schemas that declare machines."""
     files: dict[str, str] = {}
-    files.update(python_target.render(p))
     try:
+        files.update(python_target.render(p))
         files.update(c_target.render(p))
-    except CTargetError as exc:  # a schema the C target cannot serve: say so against the schema
-        raise SchemaError([Diagnostic(exc.loc or Loc(p.file, 1, 1), f"C target: {exc}",
+    except (CTargetError, MachineTargetError) as exc:  # a shape a target cannot serve: say so against the schema
+        target = "C target" if isinstance(exc, CTargetError) else "machines"
+        fallback = p.machines[0].loc if isinstance(exc, MachineTargetError) and p.machines else Loc(p.file, 1, 1)
+        raise SchemaError([Diagnostic(exc.loc or fallback, f"{target}: {exc}",
                                       "change the schema as the message says; every schema must "
-                                      "also build for C")]) from None
+                                      "build for every target")]) from None
     codec = load_codec(p, files)
     files.update(markdown_target.render(p, codec))
     files.update(promela_target.render(p))

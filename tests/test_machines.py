@@ -86,3 +86,20 @@ def test_machines_are_in_the_model():
     assert [s.name for s in master.states] == ["idle", "waiting"]
     assert master.event("timer").timer and master.event("send").args == ("receiver", "data")
     assert {a.kind for a in slave.actions} >= {"execute", "keep", "transmit", "flip"}
+
+
+def test_a_shape_the_machine_targets_cannot_generate_is_a_schema_error(tmp_path):
+    # two transmits in one step: the generated machines send at most one packet per call
+    from pathlib import Path
+
+    from compiler.build import compile_schema, render_protocol
+    from compiler.diagnostics import SchemaError
+    seed = (Path(__file__).resolve().parent.parent / "schemas" / "tr24.yaml").read_text(encoding="utf-8")
+    schema = tmp_path / "tr24.yaml"
+    schema.write_text(seed.replace("actions: [send_kept, start_timer]",
+                                   "actions: [send_kept, send_kept, start_timer]", 1), encoding="utf-8")
+    with pytest.raises(SchemaError) as err:
+        render_protocol(compile_schema(schema))
+    (diagnostic,) = err.value.diagnostics
+    assert "more than one transmit in a step" in diagnostic.message
+    assert diagnostic.loc.file == str(schema) and diagnostic.loc.line > 1

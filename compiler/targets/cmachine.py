@@ -90,7 +90,7 @@ def check_single_outputs(machine: Machine) -> None:
                 kinds = [machine.action(a).kind for a in t.actions]
                 for kind in ("transmit", "deliver", "execute", "fail"):
                     if kinds.count(kind) > 1:
-                        raise MachineTargetError(f"{machine.name}: state {state.name}: more than one {kind} in a step")
+                        raise MachineTargetError(f"{machine.name}: state {state.name}: more than one {kind} in a step", machine.loc)
 
 
 def pack_view(p: Protocol, layout: PacketLayout, px: str) -> dict:

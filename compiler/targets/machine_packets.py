@@ -15,7 +15,12 @@ from .wire import leaves_of
 
 
 class MachineTargetError(ValueError):
-    """A machine uses a packet shape the machine targets cannot generate."""
+    """A machine uses a packet shape the machine targets cannot generate; loc is where the
+    schema asks for it, when known."""
+
+    def __init__(self, message: str, loc=None):
+        super().__init__(message)
+        self.loc = loc
 
 
 @dataclass(frozen=True)
@@ -92,9 +97,9 @@ def packet_layout(p: Protocol, m: Message) -> PacketLayout:
             continue
         if f.kind == "bytes":
             if used:
-                raise MachineTargetError(f"{m.name}.{f.name}: data bytes must start on a byte boundary")
+                raise MachineTargetError(f"{m.name}.{f.name}: data bytes must start on a byte boundary", f.loc)
             if f.length_param is None and f.length is None:
-                raise MachineTargetError(f"{m.name}.{f.name}: data bytes need a fixed or parameter length")
+                raise MachineTargetError(f"{m.name}.{f.name}: data bytes need a fixed or parameter length", f.loc)
             slots.append(Slot(at, data_field=f.name, length=None if f.length_param else f.length,
                               length_param=f.length_param))
             at = at.plus_length(f.length_param) if f.length_param else at.plus(f.length)
@@ -102,7 +107,7 @@ def packet_layout(p: Protocol, m: Message) -> PacketLayout:
             data_members.append(f.name)
             continue
         if f.kind not in ("uint", "bool") or f.bits is None or f.bits > 8:
-            raise MachineTargetError(f"{m.name}.{f.name}: machines handle unsigned fields of at most 8 bits")
+            raise MachineTargetError(f"{m.name}.{f.name}: machines handle unsigned fields of at most 8 bits", f.loc)
         const = 0 if f.reserved else f.const
         if f.dispatch and const is None:
             const = m.dispatch_key and dict(m.dispatch_key).get(f.name)
@@ -111,7 +116,7 @@ def packet_layout(p: Protocol, m: Message) -> PacketLayout:
             members.append(f.name)
         used += f.bits
         if used > 8:
-            raise MachineTargetError(f"{m.name}.{f.name}: a field crosses a byte boundary")
+            raise MachineTargetError(f"{m.name}.{f.name}: a field crosses a byte boundary", f.loc)
         if used == 8:
             slots.append(Slot(at, tuple(pending)))
             at, pending, used = at.plus(1), [], 0
