@@ -232,13 +232,10 @@ class PythonView:
         return next((m.value for m in f.enum.members if value in (m.name, m.value)), value)
 
     def user(self, f: Field, with_rule: bool = True) -> str:
-        extra = ""
-        if with_rule:
-            extra += f", {f.rule!r}"
+        """The trailing arguments of an error: the field's decision and its own message."""
+        extra = f", {f.rule!r}" if with_rule else ""
         if f.message:
-            extra += f", {f.message.en!r}"
-            if f.message.translations:
-                extra = extra[:-1] + " / " + " / ".join(t for _, t in f.message.translations) + extra[-1]
+            extra += f", {self.user_text(f.message)!r}"
         return extra
 
     @staticmethod
@@ -362,7 +359,7 @@ class PythonView:
             text = self.rule_text(rule)
             c(f"if {when} and not ({need}):" if rule.when else f"if not ({need}):")
             c(f"    raise {err}({message.name!r}, {first!r}, {obj}.{first}, 'rule', {text!r}, "
-              f"decision={rule.id!r}{', user_message=' + repr(self.user_text(rule)) if rule.message else ''})")
+              f"decision={rule.id!r}{', user_message=' + repr(self.user_text(rule.message)) if rule.message else ''})")
 
     def rule_text(self, rule: Rule) -> str:
         def show(cs):
@@ -371,8 +368,9 @@ class PythonView:
         return (f"if {show(rule.when)} then " if rule.when else "") + show(rule.require)
 
     @staticmethod
-    def user_text(rule: Rule) -> str:
-        return " / ".join([rule.message.en] + [t for _, t in rule.message.translations])
+    def user_text(message) -> str:
+        """A schema message in English, then its translations."""
+        return " / ".join([message.en] + [t for _, t in message.translations])
 
 
 @dataclass
