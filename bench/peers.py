@@ -29,8 +29,8 @@ def route_checksum(raw):
 
 
 def car_parity(raw):
-    """CAR-D2: even parity over the 31 other bits."""
-    return sum(raw[k] for k in CAR_FIELDS[:-1] if k != "reserved_bits") & 1
+    """CAR-D2: even parity over the 31 other bits (a count of set bits, not a sum of values)."""
+    return sum(raw[k].bit_count() for k in CAR_FIELDS[:-1]) & 1
 
 
 # -- bitstruct (C extension) --------------------------------------------------------------
@@ -49,7 +49,7 @@ def bitstruct_route_decode(data):
 
 
 def bitstruct_car_encode(raw):
-    return _CAR_BITS.pack(*raw, sum(raw) & 1)
+    return _CAR_BITS.pack(*raw, sum(v.bit_count() for v in raw) & 1)
 
 
 def bitstruct_car_decode(data):

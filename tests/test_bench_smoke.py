@@ -62,3 +62,15 @@ def test_the_profile_names_the_generated_function_of_every_message():
     for fn in ("_encode_object", "_decode_object", "_encode_master_control", "_decode_master_control",
                "_decode_set_wheels_velocities_with_odometry", "_decode_telemetry", "_encode_command"):
         assert fn in text, fn
+
+
+def test_peer_wrappers_count_parity_bits_rather_than_add_field_values():
+    from bench import peers
+    # master word: forward_words, motor enable, speed 2 (binary 10), duration 0:
+    # bits 30, 29 and 26 set = 0x64000000, three ones, so even parity sets bit 0 -> 64 00 00 01
+    raw = dict.fromkeys(peers.CAR_FIELDS[:-1], 0)
+    raw.update(forward_words=1, motor_enable=1, motor_speed=2)
+    expected = bytes.fromhex("64000001")
+    assert peers.bitstruct_car_encode(tuple(raw.values())) == expected
+    assert peers.construct_car_encode(raw) == expected
+    assert peers.cantools_car_encode(raw) == expected
