@@ -129,19 +129,21 @@ def _too_deep(text: str, loader) -> yaml.Event | None:
 
 
 def _compose(text: str, file: str) -> yaml.Node | None:
-    loader = _FastLoader or _Loader
-    try:
-        deep = _too_deep(text, loader)
-    except yaml.YAMLError:
-        if loader is _Loader:
-            raise
-        loader = _Loader  # the pure parser's messages are the ones the diagnostics quote
-        deep = _too_deep(text, loader)
-    if deep is not None:
+    # libyaml first where it is built in; on any error the pure parser runs again, since
+    # its messages are the ones the diagnostics quote
+    loaders = [_FastLoader, _Loader] if _FastLoader is not None else [_Loader]
+    for loader in loaders:
+        try:
+            deep = _too_deep(text, loader)
+            if deep is None:
+                return yaml.compose(text, Loader=loader)
+        except yaml.YAMLError:
+            if loader is _Loader:
+                raise
+            continue
         mark = deep.start_mark
         raise SchemaError([Diagnostic(Loc(file, mark.line + 1, mark.column + 1),
                                       f"nesting deeper than {MAX_DEPTH}", "flatten the schema")])
-    return yaml.compose(text, Loader=loader)
 
 
 def _loc(file: str, node: yaml.Node) -> Loc:

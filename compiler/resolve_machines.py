@@ -14,8 +14,6 @@ from .model import (Action, Condition, Event, Field, Handler, Machine, Message, 
 
 ACTION_KINDS = ("set", "flip", "increment", "keep", "transmit", "start_timer", "stop_timer",
                 "deliver", "execute", "fail")
-GUARD_OPS = ("eq", "ne", "in", "range", "eq_var", "ne_var", "eq_param", "ne_param", "lt_param",
-             "ge_param")
 
 
 def bits_for(high: int) -> int:

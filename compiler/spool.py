@@ -23,9 +23,6 @@ class Spool:
         while chunk := self.file.read(CHUNK):
             yield chunk
 
-    def text(self) -> str:
-        return "".join(self.chunks())
-
     def same_as(self, path: Path) -> bool:
         if not path.exists():
             return False

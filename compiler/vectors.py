@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import dataclasses
 import enum
-import io
 import random
 import shutil
 import string
@@ -376,8 +375,3 @@ class Generator:
 def write_vectors(p: Protocol, module: Any, out: TextIO) -> None:
     Generator(p, module).write(out)
 
-
-def vector_file(p: Protocol, module: Any) -> str:
-    out = io.StringIO()
-    write_vectors(p, module, out)
-    return out.getvalue()

@@ -69,3 +69,11 @@ def test_syntax_error_names_the_line():
         load_text("a: 1\nb: {c: 2\n", "s.yaml")
     assert err.value.diagnostics[0].loc.file == "s.yaml"
     assert err.value.diagnostics[0].loc.line >= 2
+
+
+def test_an_error_libyaml_finds_is_reported_in_the_pure_parsers_words():
+    with pytest.raises(SchemaError) as err:
+        load_text("codeword: 1\na: *x\n", "alias.yaml")
+    (diagnostic,) = err.value.diagnostics
+    assert "found undefined alias 'x'" in diagnostic.message
+    assert (diagnostic.loc.line, diagnostic.loc.col) == (2, 4)

@@ -19,10 +19,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from ..model import Sequence, SequenceItem, SequenceRule, field_at
 from ..diagnostics import Diagnostic, Loc, SchemaError
-from .cview import CView, comment
+from .cview import ERR, CView, comment
 
-RULE_ERROR = {"consecutive": "CW_ERR_CONSECUTIVE", "equal": "CW_ERR_EQUAL",
-              "member": "CW_ERR_MEMBER", "unique": "CW_ERR_UNIQUE"}
 
 
 @dataclass
@@ -148,7 +146,7 @@ class SequenceView:
         return f"(int64_t)m[%s].as.{message}.{dotted}"
 
     def rule_view(self, i: int, r: SequenceRule) -> dict:
-        out = {"index": i, "kind": r.kind, "error": RULE_ERROR[r.kind],
+        out = {"index": i, "kind": r.kind, "error": ERR[r.kind],
                "note": comment(f"{r.id + ': ' if r.id else ''}{r.kind} {r.path}")}
         message, names, inside = self.leaf(r.path, r)
         out["mkind"] = self.kind(message)

@@ -17,6 +17,7 @@ from fractions import Fraction
 from typing import Any, Optional
 
 from ..diagnostics import Diagnostic, SchemaError
+from ..crc import reflect
 from ..model import Checksum, CrcParams, Field, Message, Protocol, field_at
 from .code import Code
 from . import cpack, cword, cwordform
@@ -179,9 +180,6 @@ class CView:
         if f.range is not None and f.enum is None and f.flags is None:
             return int(math.ceil(f.range[0])), int(math.floor(f.range[1]))
         return raw[0] + off, raw[1] + off
-
-    def ctype_of(self, f: Field) -> str:
-        return self.rep(f).ctype
 
     def raw_bounds(self, f: Field) -> tuple[int, int]:
         """Bounds of the stored integer that the schema's range allows."""
@@ -1138,7 +1136,7 @@ def crc_table(p: CrcParams) -> list[int]:
     """The 256-entry lookup table of the byte-wise algorithm the C code runs."""
     table = []
     if p.refin:
-        rpoly = int(f"{p.poly:0{p.width}b}"[::-1], 2)
+        rpoly = reflect(p.poly, p.width)
         for byte in range(256):
             reg = byte
             for _ in range(8):
@@ -1191,7 +1189,7 @@ def checksum_code(name: str, cs: Checksum, guard: str) -> str:
     mask = (1 << p.width) - 1
     full = p.width in (8, 16, 32, 64)
     left = not p.refin and p.width < 8
-    reg_init = (p.init << (8 - p.width)) if left else (int(f"{p.init:0{p.width}b}"[::-1], 2) if p.refin else p.init)
+    reg_init = (p.init << (8 - p.width)) if left else (reflect(p.init, p.width) if p.refin else p.init)
     table = crc_table(p)
     read = {"uint8_t": "CW_READ_U8", "uint16_t": "CW_READ_U16", "uint32_t": "CW_READ_U32"}.get(t)
     c(f"/* {p.name}: width {p.width}, poly {p.poly:#x}, init {p.init:#x}, refin {str(p.refin).lower()}, "
@@ -1227,7 +1225,7 @@ def checksum_code(name: str, cs: Checksum, guard: str) -> str:
     c.indent()
     c("uint8_t bit;")
     if p.refin:
-        rpoly = int(f"{p.poly:0{p.width}b}"[::-1], 2)
+        rpoly = reflect(p.poly, p.width)
         c(f"reg = ({t})(reg ^ data[i]);")
         c("for (bit = 0; bit < 8u; bit++) {")
         c(f"    reg = (reg & 1u) ? ({t})(({widen}reg >> 1) ^ {clit_hex(rpoly, 1, t)}) : ({t})({widen}reg >> 1);")

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from ..model import Action, Event, Machine, Protocol
 from .machine_lowering import Lowering
-from .machine_packets import PacketLayout, machine_messages
+from .machine_packets import PacketLayout, machine_messages, packet_layout
 
 
 def class_name(machine: Machine) -> str:
@@ -74,9 +74,6 @@ def unpack_function(layout: PacketLayout) -> dict:
 
 
 class PythonLowering(Lowering):
-    AND = " and "
-    OR = " or "
-
     def var(self, name): return f"self.{name}"
     def param(self, name): return f"self.{name}"
     def packet(self, name): return f"p_{name}"
@@ -193,7 +190,6 @@ def machines_view(p: Protocol) -> dict:
     """Everything the machines template needs; empty when the schema declares none."""
     if not p.machines:
         return {"machines": [], "packers": [], "unpackers": []}
-    from .machine_packets import packet_layout
     built, received = set(), set()
     for m in p.machines:
         b, r = machine_messages(m)

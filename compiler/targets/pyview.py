@@ -8,6 +8,7 @@ import re
 from dataclasses import dataclass
 from typing import Any, Optional
 
+from ..crc import reflect
 from ..model import Field, Message, Protocol, Rule, Sequence, SequenceItem, field_at
 from ..names import camel
 from .code import Code
@@ -459,10 +460,9 @@ def segments_of(chunks: list[Chunk]) -> list[Segment]:
 class MessageCode:
     """The generated functions of one message."""
 
-    def __init__(self, view: PythonView, message: Message, index: int):
+    def __init__(self, view: PythonView, message: Message):
         self.view = view
         self.m = message
-        self.i = index
         self.leaves = leaves_of(message.layout)
         self.cls = view.class_name(message)
         self.fn = message.name
@@ -935,7 +935,7 @@ class MessageCode:
 def module_view(p: Protocol) -> dict:
     """Everything the module template needs, computed."""
     view = ModuleView(p)
-    codes = [MessageCode(view, m, i) for i, m in enumerate(p.messages)]
+    codes = [MessageCode(view, m) for m in p.messages]
     fr = p.framing
     functions: list[str] = []
     structs: list[tuple[str, str]] = []
@@ -966,7 +966,7 @@ def _stdlib_crc(p) -> Optional[tuple[str, str]]:
     if p.width == 16 and p.poly == 0x1021 and not p.refin and not p.refout:
         return "from binascii import crc_hqx as _crc_hqx", f"_crc_hqx(data, {p.init:#x}) ^ {p.xorout:#x}"
     if p.width == 32 and p.poly == 0x04C11DB7 and p.refin and p.refout:
-        start = int(f"{p.init:032b}"[::-1], 2) ^ 0xFFFFFFFF
+        start = reflect(p.init, 32) ^ 0xFFFFFFFF
         return ("from zlib import crc32 as _crc32",
                 f"_crc32(data, {start:#x}) ^ {0xFFFFFFFF ^ p.xorout:#x}")
     return None
@@ -992,7 +992,7 @@ def _checksum_code(cs) -> str:
           f"refin={p.refin} refout={p.refout} xorout={p.xorout:#x}")
         if p.refin:
             # Reflected algorithm: shift right with the reflected polynomial.
-            rpoly = int(f"{p.poly:0{p.width}b}"[::-1], 2)
+            rpoly = reflect(p.poly, p.width)
             c(f"def _make_{name}():")
             c("    table = []")
             c("    for byte in range(256):")
@@ -1001,7 +1001,7 @@ def _checksum_code(cs) -> str:
             c(f"            reg = (reg >> 1) ^ {rpoly:#x} if reg & 1 else reg >> 1")
             c("        table.append(reg)")
             c("    return tuple(table)")
-            init = int(f"{p.init:0{p.width}b}"[::-1], 2)
+            init = reflect(p.init, p.width)
             c(f"_TABLE_{name} = _make_{name}()")
             c(f"def _checksum_{name}(data):")
             c(f"    reg = {init:#x}")
@@ -1095,7 +1095,7 @@ def _pairwise_crc_code(cs, name: str, lengths: list[int]) -> str:
     p = cs.crc
     width, mask = p.width, (1 << p.width) - 1
 
-    def reflect(expr: str) -> str:
+    def reflected(expr: str) -> str:  # generated code that bit-reverses expr
         return f"int(format({expr}, '0{width}b')[::-1], 2)"
     c = Code()
     c(f"def _make16_{name}():")
@@ -1106,7 +1106,7 @@ def _pairwise_crc_code(cs, name: str, lengths: list[int]) -> str:
         c(f"    return tuple([t[((t[x >> 8] >> {width - 8}) ^ x) & 0xFF] ^ ((t[x >> 8] << 8) & {mask:#x})"
           " for x in range(65536)])")
     c(f"_TABLE16_{name} = _make16_{name}()")
-    init = int(f"{p.init:0{width}b}"[::-1], 2) if p.refin else p.init
+    init = reflect(p.init, width) if p.refin else p.init
     for n in lengths:
         words, odd = divmod(n, 2)
         c("")
@@ -1133,7 +1133,7 @@ def _pairwise_crc_code(cs, name: str, lengths: list[int]) -> str:
             else:
                 c(f"r = _TABLE_{name}[((r >> {width - 8}) ^ b) & 0xFF] ^ ((r << 8) & {mask:#x})")
         if p.refin != p.refout:
-            c(f"r = {reflect('r')}")
+            c(f"r = {reflected('r')}")
         c(f"return r ^ {p.xorout:#x}" if p.xorout else "return r")
         c.dedent()
     return c.text()
@@ -1146,7 +1146,6 @@ def _fixed_span_crc_code(cs, name: str, lengths: list[int]) -> str:
 class ModuleView(PythonView):
     """The module-level parts: checksum functions, dispatch, streams, sequences."""
 
-    checksum_name = staticmethod(_checksum_name)
 
     def checksum_functions(self) -> list[str]:
         seen: dict[str, str] = {}
