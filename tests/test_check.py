@@ -261,3 +261,33 @@ def test_progress_bar_only_when_asked_or_on_a_terminal(tmp_path, capsys):
     assert "B/s" in err or "%" in err
     small = write(tmp_path, "small.bin", SET_WHEELS)
     assert run(capsys, "mtv4", "--progress", small)[2] == ""
+
+
+def test_hex_words_take_the_schemas_word_width(tmp_path, capsys):
+    # a protocol of 16-bit words: a sequence of a head word and item words
+    schema = write(tmp_path, "w16.yaml", """\
+codeword: 1
+protocol: w16
+title: 16-bit words
+source: hand-written
+framing: {kind: bits, word_bits: 16, byte_order: big}
+messages:
+  head:
+    fields:
+      - {name: tag, type: u2, const: 1, dispatch: true}
+      - {name: n, type: u14}
+  item:
+    fields:
+      - {name: tag, type: u2, const: 2, dispatch: true}
+      - {name: v, type: u14}
+sequences:
+  list:
+    items:
+      - {name: head, message: head}
+      - {name: items, message: item, repeat: true}
+""".encode())
+    # head n=1: 01 000000 00000001 = 4001; item v=2: 10 ... 10 = 8002
+    assert run(capsys, schema, write(tmp_path, "good.hex", b"4001 8002\n"))[0] == 0
+    status, doc = run_json(capsys, schema, write(tmp_path, "bad.hex", b"4001 80020000\n"))
+    assert status == 1 and doc["findings"][0]["rule"] == "syntax"
+    assert doc["findings"][0]["allowed"] == "4 hex digits"

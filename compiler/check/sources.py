@@ -22,7 +22,6 @@ MAX_DOCUMENT = 16 * 1024 * 1024  # sequence documents (route files, car programs
 
 _NON_ASCII = re.compile(rb"[\x80-\xff]+")
 _HEX_SEPARATORS = re.compile(r"[\s:,]+")
-_HEX_WORD = re.compile(r"(?:0[xX])?([0-9a-fA-F]{8})\Z")
 
 
 @dataclass
@@ -225,11 +224,12 @@ def word_sequence(codec, sequence: str, fh: BinaryIO, file: str, tally: Tally, p
         return
     places: list[dict] = []  # per word: where it is in the file
     if hex_words:
+        hex_word = re.compile(rf"(?:0[xX])?([0-9a-fA-F]{{{word_bytes * 2}}})\Z")
         words = bytearray()
         for number, line in enumerate(data.decode("latin-1").splitlines(), 1):
             line = line.split("#", 1)[0]
             for m in re.finditer(r"\S+", line):
-                word = _HEX_WORD.match(m.group())
+                word = hex_word.match(m.group())
                 if not word:
                     yield _problem(file, "syntax", f"not a {word_bytes * 8}-bit word in hex",
                                    line=number, column=m.start() + 1, actual=m.group()[:40],
