@@ -15,9 +15,6 @@ BITS_PER_CHAR = 10
 # A rate for serial links whose seed names none: 9600 baud is the rate the
 # route seed gives for its XBee serial link, and a common UART default.
 REFERENCE_BAUD = 9600
-# TI CC2500 datasheet: 64-byte TX and RX FIFOs. The schema names the radio
-# but carries no FIFO size for it.
-KNOWN_FIFO_BYTES = {"cc2500": 64}
 # The longest shortest-round-trip text of an IEEE-754 binary64 is 24 characters
 # (-2.2250738585072014e-308); a double with no bound is counted at that.
 LONGEST_DOUBLE = 24
@@ -137,8 +134,7 @@ def serial_lines(p: Protocol, t: Transport, codec: types.ModuleType, baud: int, 
 
 
 def fifo(p: Protocol, t: Transport, size: int) -> list[tuple[str, str, str]]:
-    rows = [("radio FIFO", f"{size} bytes", "from the transport's parameters" if _param(t, "fifo_bytes")
-             else "CC2500 datasheet (not in the seed)")]
+    rows = [("radio FIFO", f"{size} bytes", "from the transport's parameters")]
     for m in p.messages:
         if m.size is None:
             continue
@@ -161,7 +157,7 @@ def transport_views(p: Protocol, codec: types.ModuleType) -> list[dict]:
     out = []
     for t in p.transports:
         rows: list[tuple[str, str, str]] = []
-        fifo_bytes = _param(t, "fifo_bytes") or KNOWN_FIFO_BYTES.get(t.name)
+        fifo_bytes = _param(t, "fifo_bytes")
         if _param(t, "word_bits") and _param(t, "repeat_s") and _param(t, "rate_hz"):
             rows = repeated_words(p, t, codec)
         elif _param(t, "baud"):
