@@ -39,9 +39,10 @@ def render_protocol(p: Protocol) -> dict[str, str]:
 
 
 def render_with_codec(p: Protocol) -> tuple[dict[str, str], types.ModuleType]:
-    """Every target's files and the generated Python codec, loaded once: the docs
-    run it for their examples and the build for its checks and vectors. The
-    Promela target writes a model only for schemas that declare machines."""
+    """Every target's files and the generated Python codec, loaded once and the
+    schema's examples checked with it: the docs run it for their examples and the
+    build for its vectors. The Promela target writes a model only for schemas that
+    declare machines."""
     files: dict[str, str] = {}
     try:
         files.update(python_target.render(p))
@@ -52,7 +53,7 @@ def render_with_codec(p: Protocol) -> tuple[dict[str, str], types.ModuleType]:
         raise SchemaError([Diagnostic(exc.loc or fallback, f"{target}: {exc}",
                                       "change the schema as the message says; every schema must "
                                       "build for every target")]) from None
-    codec = load_codec(p, files)
+    codec = checked(p, load_codec(p, files))  # the docs show only examples that hold
     files.update(markdown_target.render(p, codec))
     files.update(promela_target.render(p))
     return files, codec
@@ -106,7 +107,7 @@ def build(schemas: list[Path], out: Path, check: bool = False, root: Path | None
         try:
             protocol = compile_schema(path, display)
             files, codec = render_with_codec(protocol)
-            files[f"vectors/{protocol.name}.json"] = vector_spool(protocol, checked(protocol, codec))
+            files[f"vectors/{protocol.name}.json"] = vector_spool(protocol, codec)
         except SchemaError as exc:
             result.errors.extend(exc.diagnostics)
             continue

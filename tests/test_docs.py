@@ -12,7 +12,7 @@ import sys
 
 import pytest
 
-from compiler.build import build, compile_schema, schema_files
+from compiler.build import build, compile_schema, render_with_codec
 from compiler.targets import markdown
 from conftest import PROTOCOLS, ROOT, SCHEMAS, load_generated, load_model
 
@@ -80,8 +80,9 @@ def test_six_pages_generated_deterministic_and_current():
     assert expected <= {p.name for p in DOCS.iterdir()}
     protocols = [compile_schema(SCHEMAS / f"{name}.yaml", f"schemas/{name}.yaml") for name in PROTOCOLS]
     for p in protocols:
-        first = markdown.render(p)
-        assert first == markdown.render(p)
+        codec = render_with_codec(p)[1]
+        first = markdown.render(p, codec)
+        assert first == markdown.render(p, codec)
         assert first[f"docs/{p.name}.md"] == page(p.name), f"generated/docs/{p.name}.md is stale"
     index = markdown.render_index(protocols)["docs/index.md"]
     assert index == (DOCS / "index.md").read_text(encoding="utf-8")

@@ -10,15 +10,12 @@ from __future__ import annotations
 import types
 from typing import Optional
 
-from ..diagnostics import Diagnostic, Loc, SchemaError
 from ..fingerprint import fingerprint, fingerprint32
 from ..model import Message, Protocol
-from ..pyload import load_module
-from . import python as python_target
 from .markdown_budget import longest_text_line, transport_views
 from .markdown_checksum import checksum_sections
 from .markdown_delivery import delivery_view
-from .markdown_examples import checked, message_example, sequence_example
+from .markdown_examples import message_example, sequence_example
 from .markdown_layout import diagram, field_columns, field_rows, payload_note, slots, text_line
 from .markdown_machine import conditions, machine_view, sequence_view
 from .markdown_text import LANGUAGES, DecisionLinker, anchor, cell, code, en, number, originals, with_original
@@ -30,17 +27,6 @@ def wire_fingerprint(p: Protocol) -> tuple[str, str]:
     """The schema's wire fingerprint as the generated codecs expose it: 16 hex
     digits, and the 32-bit word firmware reports."""
     return fingerprint(p), f"{fingerprint32(p):#010x}"
-
-
-def load_codec(p: Protocol) -> types.ModuleType:
-    path = f"python/{p.name}.py"
-    source = python_target.render(p)[path]
-    try:
-        return load_module(f"_codeword_docs_{p.name}", source, path)
-    except Exception as exc:  # a generator bug, but report it against the schema
-        raise SchemaError([Diagnostic(Loc(p.file, 1, 1),
-                                      f"generated Python does not load: {type(exc).__name__}: {exc}",
-                                      "this is a codeword bug; please report it with the schema")]) from exc
 
 
 def direction_text(p: Protocol, name: Optional[str]) -> str:
@@ -264,9 +250,8 @@ def protocol_view(p: Protocol, codec: types.ModuleType) -> dict:
     }
 
 
-def render(p: Protocol, codec: Optional[types.ModuleType] = None) -> dict[str, str]:
-    codec = codec or load_codec(p)
-    checked(p, codec)
+def render(p: Protocol, codec: types.ModuleType) -> dict[str, str]:
+    """The protocol's page; `codec` is its generated Python module, its examples checked."""
     text = environment().get_template("docs/protocol.md.j2").render(**protocol_view(p, codec))
     return {f"docs/{p.name}.md": tidy(text, max_blank=1)}
 

@@ -10,15 +10,9 @@ import types
 from typing import Any
 
 from ..diagnostics import Diagnostic, SchemaError
-from ..examples import ExampleChecker, check_examples
+from ..examples import ExampleChecker
 from ..model import Example, Message, Protocol, Sequence
 from .markdown_text import DecisionLinker, cell, code, decoded_fields
-
-
-def checked(p: Protocol, codec: types.ModuleType) -> None:
-    problems = check_examples(p, codec)
-    if problems:
-        raise SchemaError(problems)
 
 
 def _wire_text(form: str, wire: Any, p: Protocol) -> str:
