@@ -40,6 +40,8 @@ GENERATED_CLASSES = frozenset({
 # must not shadow a standard module for code that puts generated/python on
 # sys.path, nor replace the shared C runtime header codeword.h (prefix cw_).
 RESERVED_PROTOCOLS = frozenset(sys.stdlib_module_names) | {"codeword", "cw"}
+# It is also generated/docs/<name>.md: `index` would overwrite the list of protocols.
+RESERVED_PAGES = frozenset({"index"})
 
 
 def name_problem(name: str) -> str | None:
@@ -66,6 +68,8 @@ def protocol_name_problem(name: str) -> str | None:
     problem = name_problem(name)
     if problem is None and name in RESERVED_PROTOCOLS:
         problem = f"{name!r} is a Python standard module or codeword's own runtime"
+    if problem is None and name in RESERVED_PAGES:
+        problem = f"{name!r} would replace the docs page {name}.md"
     return problem
 
 

@@ -121,3 +121,13 @@ def test_message_id_and_prefix_changes_are_breaking(tmp_path):
     assert ("message set_led", "id changed from 2 to 4") in changes(d, BREAKING)
     d = diff_of(tmp_path, SCHEMAS / "tank.yaml", '    id: "*"\n', '    id: "&"\n')
     assert ("message payload_command", "id changed from '*' to '&'") in changes(d, BREAKING)
+
+
+def test_git_revision_is_never_read_as_a_git_option(tmp_path, capsys, monkeypatch):
+    """`git:--output=FILE:x` once made `git show` write FILE; a REV must name a revision."""
+    monkeypatch.chdir(SCHEMAS.parent)
+    target = tmp_path / "written"
+    for rev in (f"--output={target}", f"-o{target}", "--help"):
+        assert main(["diff", f"git:{rev}:schemas/route.yaml", str(SCHEMAS / "route.yaml")]) == 2
+        assert "cannot start with '-'" in capsys.readouterr().err
+    assert not any(tmp_path.iterdir())

@@ -247,7 +247,7 @@ def test_route_page_shows_the_seed_file_breaking_rc():
     example = text[start:text.index("#### Example", start + 1)]
     # ROUTE-D3: rc=5, 4, 5, 5 on the object lines 2, 4, 6 and 8 of the seed's file, nothing else.
     assert re.findall(r"^- (.*)$", example, re.M) == [
-        f"line {line}: object.rc: {rc} breaks rule range (expected 0..3) [[ROUTE-D3](#note-route-d3)] at character 12"
+        f"line {line}: object.rc: {rc} breaks rule range (expected 0..3) \\[[ROUTE-D3](#note-route-d3)\\] at character 12"
         for line, rc in [(2, 5), (4, 4), (6, 5), (8, 5)]]
 
 

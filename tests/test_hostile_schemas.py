@@ -159,3 +159,18 @@ def test_allowed_schema_c_keeps_schema_text_inside_comments(allowed_build: Path)
     code = proc.stdout  # comments removed: what the compiler reads
     for prose in ("Zażółć", "7*7", "Съешь", "скорость", "быстро", "int x;"):
         assert prose not in code, f"{prose!r} escaped from a comment"
+
+
+def test_parameters_without_a_doc_each_keep_their_own_line(tmp_path: Path):
+    """A parameter line without a comment once ran into the next: `A = 5B = 3`."""
+    text = (HOSTILE / "protocol_name_docs_index.yaml").read_text(encoding="utf-8")
+    text = text.replace("protocol: index", "protocol: twoparams").replace(
+        "framing:", "parameters:\n  timeout: {default: 5}\n  retries: {default: 3}\n  own_id: {doc: set per device}\nframing:")
+    path = tmp_path / "twoparams.yaml"
+    path.write_text(text, encoding="utf-8")
+    result = build([path], tmp_path / "out")
+    assert not result.errors, "\n".join(map(str, result.errors))
+    source = (tmp_path / "out" / "python" / "twoparams.py").read_text(encoding="utf-8")
+    lines = source.splitlines()
+    assert "TIMEOUT = 5" in lines and "RETRY" not in source and "RETRIES = 3" in lines
+    assert "OWN_ID = None  # set per device" in lines

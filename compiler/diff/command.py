@@ -38,8 +38,11 @@ def load(spec: str) -> Protocol:
     rev, sep, path = spec[len("git:"):].partition(":")
     if not sep or not rev or not path:
         raise SourceError(f"{spec}: expected git:REV:path")
+    if rev.startswith("-"):  # git would read it as an option (--output=FILE writes a file)
+        raise SourceError(f"{spec}: a revision cannot start with '-'")
     try:
-        shown = subprocess.run(["git", "show", f"{rev}:{path}"], capture_output=True, check=False)
+        shown = subprocess.run(["git", "show", "--end-of-options", f"{rev}:{path}"],
+                               capture_output=True, check=False)
     except OSError as exc:
         raise SourceError(f"{spec}: cannot run git: {exc.strerror}") from None
     if shown.returncode != 0:

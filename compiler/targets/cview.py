@@ -20,6 +20,7 @@ from ..diagnostics import Diagnostic, SchemaError
 from ..crc import reflect
 from ..model import Checksum, CrcParams, Field, Message, Protocol, field_at
 from .code import Code
+from .escape import c_char as cchar, c_comment as comment, c_string as cstr
 from . import cpack, cword, cwordform
 from .cpack import Piece, Span
 from .wire import Leaf, checksum_name, dispatch_facts, leaves_of, stream_facts
@@ -78,31 +79,6 @@ def clit(value: int, unsigned: bool = False) -> str:
     if value > 0xFFFFFFFF:
         suffix = "ULL"
     return f"{value:#x}{suffix}" if value > 255 else f"{value}{suffix}"
-
-
-def cstr(text: str) -> str:
-    out = []
-    for ch in text:
-        if ch in '"\\?':  # '?' escaped: "??>" would be a trigraph in ISO C
-            out.append("\\" + ch)
-        elif " " <= ch <= "~":
-            out.append(ch)
-        else:
-            out.append(f"\\x{ord(ch):02x}\"\"")
-    return '"' + "".join(out) + '"'
-
-
-def cchar(ch: str) -> str:
-    if ch in "'\\":
-        return "'\\" + ch + "'"
-    if " " <= ch <= "~":
-        return f"'{ch}'"
-    return f"'\\x{ord(ch):02x}'"
-
-
-def comment(text: Any) -> str:
-    # "/*" inside a comment is -Wcomment; "*/" would end it.
-    return " ".join(str(text).split()).replace("*/", "* /").replace("/*", "/ *").replace("??", "? ?")
 
 
 @dataclass(frozen=True)
@@ -282,7 +258,7 @@ class CView:
             need = " && ".join(self.condition(x, obj, m) for x in rule.require)
             when = " && ".join(self.condition(x, obj, m) for x in rule.when)
             cond = f"({when}) && !({need})" if when else f"!({need})"
-            c(f"if ({cond}) {{  /* {rule.id or 'rule'}: {comment(rule.message or '')} */")
+            c(f"if ({cond}) {{  /* {comment(rule.id or 'rule')}: {comment(rule.message or '')} */")
             c("    return CW_ERR_RULE;")
             c("}")
 
@@ -783,7 +759,7 @@ class CView:
                 f.raw_range[0] * f.scale + (f.offset or 0), f.raw_range[1] * f.scale + (f.offset or 0))
             out.append({"name": "_".join(leaf.path), "path": leaf.dotted, "ctype": self.rep(f).ctype,
                         "scale": repr(float(f.scale)), "offset": repr(float(f.offset or 0)),
-                        "lo": repr(float(lo)), "hi": repr(float(hi)), "unit": f.unit or "units"})
+                        "lo": repr(float(lo)), "hi": repr(float(hi)), "unit": comment(f.unit or "units")})
         return out
 
 

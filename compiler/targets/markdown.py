@@ -220,7 +220,7 @@ def protocol_view(p: Protocol, codec: types.ModuleType) -> dict:
         "transports": transport_views(p, codec),
         "parameters": [{"name": x.name, "default": number(x.default) if x.default is not None else "per device",
                         "range": f"{number(x.range[0])} … {number(x.range[1])}" if x.range else "",
-                        "unit": x.unit or "", "doc": linker.link(cell(en(x.doc)))} for x in p.parameters],
+                        "unit": cell(x.unit or ""), "doc": linker.link(cell(en(x.doc)))} for x in p.parameters],
         "messages": [message_view(p, codec, m, linker) for m in p.messages],
         "enums": [{"name": e.name, "anchor": anchor("enum", e.name), "doc": cell(with_original(e.doc)),
                    "wire": f"u{e.bits}" if e.bits else ("char" if e.kind == "char" else "integer"),
@@ -242,9 +242,9 @@ def protocol_view(p: Protocol, codec: types.ModuleType) -> dict:
                       for s in p.sequences],
         "machines": [machine_view(p, m, linker) for m in p.machines],
         "delivery": delivery,
-        "notes": [{"id": n.id, "anchor": anchor("note", n.id), "text": linker.link(cell(en(n.text))),
+        "notes": [{"id": cell(n.id), "anchor": anchor("note", n.id), "text": linker.link(cell(en(n.text))),
                    "originals": [(l, cell(t)) for l, t in originals(n.text)]} for n in p.notes],
-        "history": [{"version": h.version, "date": h.date, "author": cell(h.author),
+        "history": [{"version": cell(h.version), "date": cell(h.date), "author": cell(h.author),
                      "changes": [(cell(en(c)), "; ".join(cell(t) for _, t in originals(c))) for c in h.changes]}
                     for h in p.history],
     }

@@ -8,7 +8,7 @@ from typing import Any, Optional
 
 from ..model import Message, Protocol, Transport
 from .markdown_layout import slots
-from .markdown_text import en, number, originals
+from .markdown_text import cell, code, en, number, originals
 
 # Serial characters are 8N1: a start bit, 8 data bits, a stop bit.
 BITS_PER_CHAR = 10
@@ -167,7 +167,7 @@ def transport_views(p: Protocol, codec: types.ModuleType) -> list[dict]:
         elif p.framing.kind == "text" and t.kind in ("serial", "uart", "radio"):
             rows = serial_lines(p, t, codec, REFERENCE_BAUD, assumed=True)
         same_as = next((o["name"] for o in out if rows and o["rows"] == rows), None)
-        out.append({"name": t.name, "kind": t.kind, "doc": en(t.doc),
-                    "originals": originals(t.doc), "same_as": same_as,
-                    "params": [(k, number(v)) for k, v in t.params], "rows": [] if same_as else rows})
+        out.append({"name": t.name, "kind": t.kind, "doc": cell(en(t.doc)),
+                    "originals": [(lang, cell(text)) for lang, text in originals(t.doc)], "same_as": same_as,
+                    "params": [(k, cell(number(v))) for k, v in t.params], "rows": [] if same_as else rows})
     return out

@@ -8,22 +8,14 @@ import re
 from typing import Any, Optional
 
 from ..model import Protocol, Text
+from .escape import md_code, md_text
 
 LANGUAGES = {"ru": "Russian", "zh": "Chinese", "pl": "Polish", "en": "English"}
 
 
-def cell(value: Any) -> str:
-    """One line of text that cannot break a Markdown table row."""
-    text = " ".join(str(value).split())
-    return text.replace("|", "\\|")
-
-
-def code(value: Any) -> str:
-    """An inline code span that survives inside a table cell."""
-    text = str(value).replace("|", "\\|")
-    fence = "``" if "`" in text else "`"
-    pad = " " if text.startswith("`") or text.endswith("`") else ""
-    return f"{fence}{pad}{text}{pad}{fence}"
+# Schema prose in a paragraph or table cell, and inline code: escape.py's Markdown context.
+cell = md_text
+code = md_code
 
 
 def en(text: Optional[Text]) -> str:
@@ -69,7 +61,8 @@ class DecisionLinker:
         """A link to a note if the protocol has it, else the id as plain text."""
         if not note_id:
             return ""
-        return f"[{note_id}](#{anchor('note', note_id)})" if note_id in self.ids else note_id
+        shown = md_text(note_id)
+        return f"[{shown}](#{anchor('note', note_id)})" if note_id in self.ids else shown
 
 
 def number(value: Any) -> str:

@@ -5,7 +5,8 @@ from ..fingerprint import fingerprint, fingerprint32
 from ..model import Protocol
 from .pymachine import machines_view
 from .pyview import leaves_of, module_view
-from .render import docline, environment, tidy
+from .escape import py_docstring
+from .render import environment, tidy
 
 
 def text_head(p: Protocol, head_bits: int) -> list[tuple[str, int]]:
@@ -27,7 +28,7 @@ def text_head(p: Protocol, head_bits: int) -> list[tuple[str, int]]:
 
 def render(p: Protocol) -> dict[str, str]:
     view = module_view(p)
-    docstring = '"""' + docline(f"{p.title.en}: codec generated from the {p.name} schema.") + '"""'
+    docstring = '"""' + py_docstring(f"{p.title.en}: codec generated from the {p.name} schema.") + '"""'
     head = view["dispatch"].get("head_bits")
     source = environment().get_template("python/module.py.j2").render(
         docstring=docstring, fingerprint=fingerprint(p), fingerprint32=f"{fingerprint32(p):#010x}",

@@ -1,4 +1,5 @@
-"""The Jinja2 environment shared by every target: strict, with escaping filters."""
+"""The Jinja2 environment shared by every target: strict, with the escaping filters of
+escape.py, and refusing model text that skipped them."""
 from __future__ import annotations
 
 from functools import lru_cache
@@ -6,36 +7,30 @@ from pathlib import Path
 
 import jinja2
 
+from ..model import Text
+from .escape import FILTERS
 from .template_cache import TemplateCache
 
 TEMPLATES = Path(__file__).resolve().parent.parent.parent / "templates"
 
 
-def pyrepr(value) -> str:
-    return repr(value)
-
-
-def comment(value) -> str:
-    """Text safe inside a one-line comment, Python or C: no newlines, no C comment
-    delimiters, no trigraphs ("??/" at a line end would splice lines)."""
-    return " ".join(str(value).split()).replace("*/", "* /").replace("/*", "/ *").replace("??", "? ?")
-
-
-def docline(value) -> str:
-    """Text safe inside a triple-quoted docstring."""
-    text = " ".join(str(value).split())
-    # Every quote escaped: no run of them can close the string, even at its end.
-    return text.replace("\\", "\\\\").replace('"', '\\"')
+def finalize(value):
+    """Every `{{ … }}` passes here: schema text held as a model `Text` must have gone
+    through the escaping filter of its context (escape.py) first."""
+    if isinstance(value, Text):
+        raise TypeError(f"schema text {value.en[:40]!r} reaches a template unescaped: "
+                        "pass it through the filter of its output context")
+    return value
 
 
 OPTIONS = dict(undefined=jinja2.StrictUndefined, trim_blocks=True, lstrip_blocks=True,
-               keep_trailing_newline=True, autoescape=False)
-FILTERS = dict(pyrepr=pyrepr, comment=comment, docline=docline)
+               keep_trailing_newline=True, autoescape=False, finalize=finalize)
 
 
 @lru_cache(maxsize=1)
 def environment() -> jinja2.Environment:
-    settings = repr((sorted(OPTIONS.items()), sorted(FILTERS)))
+    # by name: a function's repr holds its address, which would change the cache key every run
+    settings = repr((sorted((k, getattr(v, "__qualname__", v)) for k, v in OPTIONS.items()), sorted(FILTERS)))
     env = jinja2.Environment(loader=jinja2.FileSystemLoader(str(TEMPLATES)),
                              bytecode_cache=TemplateCache(TEMPLATES / "__pycache__", settings), **OPTIONS)
     env.filters.update(FILTERS)

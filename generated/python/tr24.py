@@ -15,7 +15,11 @@ VERSION = None
 SCHEMA_SHA256 = 'aac50b8b2b59205389f0737b4ed2efbc623cb20f5cfd08509da8250f3db4c936'
 FINGERPRINT = '2e76da093c476a8a'  # hash of the wire-relevant schema (codeword diff)
 FINGERPRINT32 = 0x2e76da09  # its first 32 bits
-DATA_LENGTH = 7  # number of data bytes in every packet of a link, fixed per link (the firmware's template parameter dataLength); at most 59 so that a packet fits the 64-byte FIFO (TR24-D1)TIMEOUT = 100  # how long the master waits for a reply before sending the command again (TR24-D4)RETRY_LIMIT = 0  # how many times the master resends one command before it reports failure; 0 = unlimited, the original behaviour (TR24-D4)OWN_ID = None  # this device's unique ID, set per device; packets for other IDs are ignored (TR24-D3)
+DATA_LENGTH = 7  # number of data bytes in every packet of a link, fixed per link (the firmware's template parameter dataLength); at most 59 so that a packet fits the 64-byte FIFO (TR24-D1)
+TIMEOUT = 100  # how long the master waits for a reply before sending the command again (TR24-D4)
+RETRY_LIMIT = 0  # how many times the master resends one command before it reports failure; 0 = unlimited, the original behaviour (TR24-D4)
+OWN_ID = None  # this device's unique ID, set per device; packets for other IDs are ignored (TR24-D3)
+
 _floor = math.floor
 _isfinite = math.isfinite
 _object_new = object.__new__
