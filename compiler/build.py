@@ -163,7 +163,14 @@ def build(schemas: list[Path], out: Path | Project, check: bool = False, root: P
 
 
 def _display(path: Path, root: Path | None) -> str:
-    return str(path.relative_to(root)) if root and path.is_absolute() and path.is_relative_to(root) else str(path)
+    """How generated files name their schema: relative to the project's root, so
+    that they are the same whichever folder the build ran from."""
+    if root is None:
+        return str(path)
+    try:
+        return path.resolve().relative_to(root.resolve()).as_posix()
+    except ValueError:
+        return str(path)
 
 
 def _place(project: Project, rel: str) -> Path | None:

@@ -53,7 +53,7 @@ def cmd_build(args: argparse.Namespace) -> int:
     from .build import build
     project = _project(args)
     schemas = _schemas(args, project)
-    result = build(schemas, project, check=args.check, root=Path.cwd(), all_schemas=project.schema_files())
+    result = build(schemas, project, check=args.check, root=project.root, all_schemas=project.schema_files())
     for diagnostic in result.errors:
         print(diagnostic, file=sys.stderr)
     if result.errors:

@@ -24,7 +24,7 @@ def add_arguments(parser: argparse.ArgumentParser, func) -> None:
     bar = parser.add_mutually_exclusive_group()
     bar.add_argument("--progress", dest="progress", action="store_true", default=None,
                      help="show a progress bar for large inputs even when stderr is not a terminal")
-    bar.add_argument("--no-progress", dest="progress", action="store_false")
+    bar.add_argument("--no-progress", dest="progress", action="store_false", help="never show a progress bar")
     parser.set_defaults(func=func)
 
 
