@@ -14,6 +14,7 @@ from .diagnostics import Diagnostic, Loc, SchemaError
 from .examples import check_examples
 from .loader import load_file
 from .model import Protocol
+from .project import Project
 from .pyload import load_module
 from .resolve import resolve
 from .spool import Spool
@@ -91,23 +92,33 @@ def vector_spool(p: Protocol, codec: types.ModuleType) -> Spool:
 
 @dataclass
 class BuildResult:
-    written: list[str] = field(default_factory=list)
-    unchanged: list[str] = field(default_factory=list)
-    stale: list[str] = field(default_factory=list)  # check mode: differ or missing
-    extra: list[str] = field(default_factory=list)  # check mode: generated files with no schema
+    # where each file goes, as the command line names it
+    written: list[Path] = field(default_factory=list)
+    unchanged: list[Path] = field(default_factory=list)
+    stale: list[Path] = field(default_factory=list)  # check mode: differ or missing
+    extra: list[Path] = field(default_factory=list)  # check mode: generated files with no schema
     errors: list[Diagnostic] = field(default_factory=list)
 
 
-def build(schemas: list[Path], out: Path, check: bool = False, root: Path | None = None) -> BuildResult:
+def build(schemas: list[Path], out: Path | Project, check: bool = False, root: Path | None = None,
+          all_schemas: list[Path] | None = None) -> BuildResult:
+    """Build `schemas` into the project's output folders (or into `out/<target>/`).
+
+    `all_schemas` are every schema of the project: the docs index lists them all
+    and, in check mode, files that none of them generates are reported, so that
+    building some schemas leaves the others' outputs and the index correct."""
+    project = out if isinstance(out, Project) else Project(root=root or Path.cwd(), config=None, out=out)
+    building_all = all_schemas is None or {p.resolve() for p in all_schemas} <= {p.resolve() for p in schemas}
     result = BuildResult()
     expected: dict[str, str | Spool] = {}
     protocols: list[Protocol] = []
     for path in schemas:
-        display = str(path.relative_to(root)) if root and path.is_relative_to(root) else str(path)
+        display = _display(path, root)
         try:
             protocol = compile_schema(path, display)
             files, codec = render_with_codec(protocol)
-            files[f"vectors/{protocol.name}.json"] = vector_spool(protocol, codec)
+            if "vectors" in project.targets:
+                files[f"vectors/{protocol.name}.json"] = vector_spool(protocol, codec)
         except SchemaError as exc:
             result.errors.extend(exc.diagnostics)
             continue
@@ -116,14 +127,18 @@ def build(schemas: list[Path], out: Path, check: bool = False, root: Path | None
     if result.errors:
         _close(expected)
         return result
-    if protocols:
-        expected.update(markdown_target.render_index(protocols))
-    for rel, text in sorted(expected.items()):
-        target = out / rel
+    listed = protocols + ([] if building_all else _others(all_schemas or [], protocols, root))
+    if listed:
+        expected.update(markdown_target.render_index(listed))
+    placed = {place: text for rel, text in expected.items() if (place := _place(project, rel)) is not None}
+    if project.python_package and "python" in project.targets and protocols:
+        placed[project.folder("python") / project.python_package / "__init__.py"] = package_init(listed)
+    for target, text in sorted(placed.items()):
+        rel = target
         if isinstance(text, Spool):
             same = text.same_as(target)
         else:
-            same = (target.read_text(encoding="utf-8") if target.exists() else None) == text
+            same = (target.read_text(encoding="utf-8") if target.is_file() else None) == text
         if same:
             result.unchanged.append(rel)
         elif check:
@@ -136,13 +151,59 @@ def build(schemas: list[Path], out: Path, check: bool = False, root: Path | None
                 target.write_text(text, encoding="utf-8")
             result.written.append(rel)
     _close(expected)
-    if check and out.exists():
-        known = set(expected)
-        for existing in sorted(out.rglob("*")):
-            rel = existing.relative_to(out).as_posix()
-            if existing.is_file() and rel not in known and "__pycache__" not in rel:
-                result.extra.append(rel)
+    if check and building_all:
+        known = set(placed)
+        for folder in sorted({project.folder(t) for t in project.targets}):
+            if not folder.is_dir():
+                continue
+            for existing in sorted(folder.rglob("*")):
+                if existing.is_file() and existing not in known and "__pycache__" not in existing.parts:
+                    result.extra.append(existing)
     return result
+
+
+def _display(path: Path, root: Path | None) -> str:
+    """How generated files name their schema: relative to the project's root, so
+    that they are the same whichever folder the build ran from."""
+    if root is None:
+        return str(path)
+    try:
+        return path.resolve().relative_to(root.resolve()).as_posix()
+    except ValueError:
+        return str(path)
+
+
+def _place(project: Project, rel: str) -> Path | None:
+    """Where a rendered file goes: `python/x.py` into the python folder, and so on;
+    None for a target the project does not build."""
+    target, _, rest = rel.partition("/")
+    if target not in project.targets:
+        return None
+    folder = project.folder(target)
+    if target == "python" and project.python_package:
+        folder = folder / project.python_package
+    return folder / rest
+
+
+def _others(all_schemas: list[Path], built: list[Protocol], root: Path | None) -> list[Protocol]:
+    """The project's other protocols, for the index; one that does not resolve is
+    left out of it (its own build reports why)."""
+    names = {p.name for p in built}
+    others = []
+    for path in all_schemas:
+        try:
+            protocol = compile_schema(path, _display(path, root))
+        except SchemaError:
+            continue
+        if protocol.name not in names:
+            others.append(protocol)
+    return others
+
+
+def package_init(protocols: list[Protocol]) -> str:
+    names = ", ".join(sorted(p.name for p in protocols))
+    return (f'"""Protocol codecs generated by codeword: {names}.\n\n'
+            'Each module is stand-alone; import the one you need."""\n')
 
 
 def _close(expected: dict[str, str | Spool]) -> None:

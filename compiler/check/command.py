@@ -14,7 +14,7 @@ def add_arguments(parser: argparse.ArgumentParser, func) -> None:
     parser.description = ("Check data against a schema with its generated codec and report every "
                           "violation. Exit 0 when all is valid, 1 when anything is invalid, 2 on usage "
                           "or schema errors.")
-    parser.add_argument("schema", help="schema file, or the name of a schema in schemas/ (route, car, …)")
+    parser.add_argument("schema", help="schema file, or a protocol name of the project (mtv4, …)")
     parser.add_argument("inputs", nargs="+", metavar="INPUT", help="files to check ('-' for standard input)")
     parser.add_argument("--format", choices=("text", "json"), default="text", help="output format")
     parser.add_argument("--input-format", choices=INPUT_FORMATS, default="auto",
@@ -24,23 +24,21 @@ def add_arguments(parser: argparse.ArgumentParser, func) -> None:
     bar = parser.add_mutually_exclusive_group()
     bar.add_argument("--progress", dest="progress", action="store_true", default=None,
                      help="show a progress bar for large inputs even when stderr is not a terminal")
-    bar.add_argument("--no-progress", dest="progress", action="store_false")
+    bar.add_argument("--no-progress", dest="progress", action="store_false", help="never show a progress bar")
     parser.set_defaults(func=func)
 
 
-def _schema_path(name: str) -> Path:
-    path = Path(name)
-    if not path.exists() and "/" not in name and not name.endswith((".yaml", ".yml")):
-        candidate = Path("schemas") / f"{name}.yaml"
-        if candidate.exists():
-            return candidate
-    return path
+def _schema_path(name: str) -> Path | None:
+    """A schema file, or a protocol of the project named by its name (`mtv4`)."""
+    from ..project import load_project
+    return load_project().find_schema(name)
 
 
 def run_check(args: argparse.Namespace) -> int:
     path = _schema_path(args.schema)
-    if not path.is_file():
-        print(f"codeword check: no schema {args.schema!r}", file=sys.stderr)
+    if path is None:
+        print(f"codeword check: no schema {args.schema!r} (not a file, nor a protocol of this project)",
+              file=sys.stderr)
         return 2
     try:
         protocol, codec = load_codec(path, args.schema if path == Path(args.schema) else str(path))

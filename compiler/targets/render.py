@@ -11,7 +11,15 @@ from ..model import Text
 from .escape import FILTERS
 from .template_cache import TemplateCache
 
-TEMPLATES = Path(__file__).resolve().parent.parent.parent / "templates"
+def _templates() -> Path:
+    """The templates: inside the installed package (codeword/templates), or beside
+    the package's source folder in a checkout (templates/)."""
+    package = Path(__file__).resolve().parent.parent
+    inside = package / "templates"
+    return inside if inside.is_dir() else package.parent / "templates"
+
+
+TEMPLATES = _templates()
 
 
 def finalize(value):

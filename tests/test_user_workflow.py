@@ -1,0 +1,83 @@
+"""README's "Use codeword in your project", run as a new user would: a wheel
+built from this checkout, installed into a fresh virtual environment, and every
+command of the section run in order from an empty folder."""
+from __future__ import annotations
+
+import os
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+SECTION = "## Use codeword in your project"
+INSTALL = "pip install path/to/codeword"
+FRAME = "a5 05 01 64 00 9c ff 39 05"  # the starter's drive example, worked out by hand in its schema
+
+
+def clean_env() -> dict[str, str]:
+    """The environment without this checkout on the path: a user's has none."""
+    return {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV")}
+
+
+def section_blocks() -> list[str]:
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    start = readme.index(SECTION)
+    end = readme.find("\n## ", start + len(SECTION))
+    return re.findall(r"```sh\n(.*?)```", readme[start:end], flags=re.S)
+
+
+def test_the_section_installs_builds_compiles_and_imports():
+    blocks = section_blocks()
+    assert blocks and INSTALL in blocks[0]
+    text = "".join(blocks)
+    for command in ("codeword init", "codeword build", "cc ", "./drive", "python3 -c", "ls generated/docs"):
+        assert command in text
+
+
+@pytest.fixture(scope="module")
+def venv(tmp_path_factory) -> Path:
+    where = tmp_path_factory.mktemp("wheel")
+    built = subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "-q",
+                            "-w", str(where / "dist"), str(ROOT)], capture_output=True, text=True, timeout=600)
+    assert built.returncode == 0, built.stderr
+    (wheel,) = (where / "dist").glob("codeword-*.whl")
+    env = where / "venv"
+    subprocess.run([sys.executable, "-m", "venv", str(env)], check=True, timeout=300)
+    installed = subprocess.run([str(env / "bin" / "python"), "-m", "pip", "install", "-q",
+                                "--disable-pip-version-check", str(wheel)],
+                               capture_output=True, text=True, timeout=600, env=clean_env())
+    assert installed.returncode == 0, installed.stderr
+    return env
+
+
+def test_the_wheel_has_codeword_and_no_compiler_package(venv):
+    python = str(venv / "bin" / "python")
+    assert subprocess.run([python, "-c", "import codeword"], cwd="/", env=clean_env()).returncode == 0
+    shadow = subprocess.run([python, "-c", "import compiler"], cwd="/", capture_output=True, text=True,
+                            env=clean_env())
+    assert shadow.returncode != 0 and "No module named 'compiler'" in shadow.stderr
+
+
+def test_every_command_of_the_section_runs_in_an_empty_folder(venv, tmp_path):
+    wheel = next((venv.parent / "dist").glob("codeword-*.whl"))
+    script = ["set -euo pipefail"]
+    for i, block in enumerate(section_blocks()):
+        script.append(f"echo '@@ block {i}'")
+        script.append(block.replace(INSTALL, f"pip install -q --disable-pip-version-check {wheel}"))
+    env = clean_env()
+    env["PATH"] = f"{venv / 'bin'}:{env['PATH']}"
+    env["HOME"] = str(tmp_path)
+    work = tmp_path / "empty"
+    work.mkdir()
+    proc = subprocess.run(["bash", "-c", "\n".join(script)], cwd=work, env=env, capture_output=True,
+                          text=True, timeout=600)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    out = dict(re.findall(r"@@ block (\d+)\n(.*?)(?=@@ block |\Z)", proc.stdout, flags=re.S))
+    assert "created schemas/rover.yaml" in out["0"] and "wrote generated/c/rover.h" in out["0"]
+    assert out["1"].splitlines()[-1].strip() == FRAME  # ./drive, compiled with -Werror
+    assert (work / "rover" / "firmware" / "c" / "rover.h").is_file()
+    assert out["2"].strip() == "Drive(left=100, right=-100)"
+    assert out["3"].split() == ["codeword.css", "index.md", "rover.md"]
