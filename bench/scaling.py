@@ -19,7 +19,7 @@ SIZES = (10, 100, 1000, 5000)
 CHILD = """\
 import json, resource, sys, time
 start = time.perf_counter()
-from compiler.cli import main
+from codeword.cli import main
 
 
 def peak_kib():
@@ -131,7 +131,7 @@ def seed_build(tmp: Path, repeats: int):
     for _ in range(repeats):
         before = resource.getrusage(resource.RUSAGE_CHILDREN)
         start = time.perf_counter()
-        subprocess.run([sys.executable, "-m", "compiler", "build", "--out", str(tmp / "seeds")],
+        subprocess.run([sys.executable, "-m", "codeword", "build", "--out", str(tmp / "seeds")],
                        cwd=ROOT, check=True, capture_output=True)
         wall.append(time.perf_counter() - start)
         after = resource.getrusage(resource.RUSAGE_CHILDREN)

@@ -15,9 +15,9 @@ from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
-from compiler.model import Field, Protocol
-from compiler.targets.cview import ERR, CView, cchar, cstr
-from compiler.targets.wire import leaves_of
+from codeword.model import Field, Protocol
+from codeword.targets.cview import ERR, CView, cchar, cstr
+from codeword.targets.wire import leaves_of
 
 ROOT = Path(__file__).resolve().parent.parent
 TEMPLATE = Path(__file__).resolve().parent / "c" / "driver.c.j2"

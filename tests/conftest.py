@@ -31,7 +31,7 @@ def load_generated(name: str):
 
 @lru_cache(maxsize=None)
 def load_model(name: str):
-    from compiler.build import compile_schema
+    from codeword.build import compile_schema
     return compile_schema(SCHEMAS / f"{name}.yaml")
 
 

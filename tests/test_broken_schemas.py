@@ -19,8 +19,8 @@ from pathlib import Path
 
 import pytest
 
-from compiler.build import compile_schema, render_protocol, verify
-from compiler.diagnostics import SchemaError
+from codeword.build import compile_schema, render_protocol, verify
+from codeword.diagnostics import SchemaError
 
 ROOT = Path(__file__).resolve().parent.parent
 BROKEN = Path(__file__).resolve().parent / "broken"
@@ -123,7 +123,7 @@ def test_python_tag_is_not_executed(tmp_path: Path):
 def test_lint_cli_reports_car_33_bits():
     path = BROKEN / "car_33_bits.yaml"
     line = expectations(path)[0][0]
-    proc = subprocess.run([sys.executable, "-m", "compiler", "lint", str(path)], cwd=ROOT,
+    proc = subprocess.run([sys.executable, "-m", "codeword", "lint", str(path)], cwd=ROOT,
                           capture_output=True, text=True, timeout=60)
     output = proc.stdout + proc.stderr
     assert proc.returncode == 1, output

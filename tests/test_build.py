@@ -5,7 +5,7 @@ import shutil
 import subprocess
 import sys
 
-from compiler.build import build, schema_files
+from codeword.build import build, schema_files
 from conftest import GENERATED, ROOT, SCHEMAS
 
 
@@ -57,7 +57,7 @@ def test_check_mode_reports_stale_files_and_exits_1(tmp_path):
     shutil.copytree(ROOT / "generated", out)
     (out / "python" / "tank.py").write_text("# edited by hand\n", encoding="utf-8")
     (out / "python" / "orphan.py").write_text("", encoding="utf-8")
-    proc = subprocess.run([sys.executable, "-m", "compiler", "build", "--check", "--out", str(out)],
+    proc = subprocess.run([sys.executable, "-m", "codeword", "build", "--check", "--out", str(out)],
                           cwd=ROOT, capture_output=True, text=True)
     assert proc.returncode == 1
     assert "stale: " in proc.stdout and "tank.py" in proc.stdout

@@ -13,13 +13,13 @@ from types import SimpleNamespace
 
 import pytest
 
-import compiler.loader as loader
-from compiler import jsontext, pyload
-from compiler.diagnostics import SchemaError
-from compiler.dispatch_pairs import candidate_pairs
-from compiler.loader import MAX_DEPTH, load_text
-from compiler.resolve import Resolver
-from compiler.spool import Spool
+import codeword.loader as loader
+from codeword import jsontext, pyload
+from codeword.diagnostics import SchemaError
+from codeword.dispatch_pairs import candidate_pairs
+from codeword.loader import MAX_DEPTH, load_text
+from codeword.resolve import Resolver
+from codeword.spool import Spool
 from conftest import ROOT, SCHEMAS
 
 
@@ -100,7 +100,7 @@ def test_libyaml_and_the_pure_parser_give_the_same_document():
 def test_a_document_nested_too_deep_for_libyaml_does_not_crash_the_build(tmp_path):
     deep = tmp_path / "deep.yaml"
     deep.write_text("codeword: 1\nx: " + "[" * 200_000 + "]" * 200_000 + "\n", encoding="utf-8")
-    proc = subprocess.run([sys.executable, "-m", "compiler", "lint", str(deep)], cwd=ROOT,
+    proc = subprocess.run([sys.executable, "-m", "codeword", "lint", str(deep)], cwd=ROOT,
                           capture_output=True, text=True, timeout=120)
     assert proc.returncode in (1, 2), proc  # a diagnostic or an internal error, not a signal
     with pytest.raises(SchemaError, match=f"nesting deeper than {MAX_DEPTH}"):
@@ -124,8 +124,8 @@ def test_a_spool_compares_like_read_text(tmp_path):
 def test_a_damaged_template_cache_only_costs_a_compile(tmp_path):
     code = ("import sys\n"
             "from pathlib import Path\n"
-            "from compiler.targets import render\n"
-            "from compiler.targets.template_cache import TemplateCache\n"
+            "from codeword.targets import render\n"
+            "from codeword.targets.template_cache import TemplateCache\n"
             "cache = TemplateCache(Path(sys.argv[1]), 'test')\n"
             "cache.write = True\n"
             "env = render.jinja2.Environment(loader=render.jinja2.FileSystemLoader(str(render.TEMPLATES)),\n"

@@ -10,7 +10,7 @@ import json
 
 import pytest
 
-from compiler.cli import main
+from codeword.cli import main
 from conftest import DATA, ROOT
 
 CHECK = DATA / "check"

@@ -41,7 +41,7 @@ def make_capture(path, frame_bytes: int, noise_bytes: int) -> None:
 def peak_rss_kb(capture) -> tuple[int, float]:
     """Peak RSS (KiB) of `codeword check mtv4 CAPTURE` in a child process, and its run time."""
     start = time.monotonic()
-    out = subprocess.run([sys.executable, "-c", _PEAK, sys.executable, "-m", "compiler", "check",
+    out = subprocess.run([sys.executable, "-c", _PEAK, sys.executable, "-m", "codeword", "check",
                           "--format", "json", "--no-progress", "mtv4", str(capture)],
                          cwd=ROOT, capture_output=True, text=True, check=True)
     return int(out.stdout.strip()), time.monotonic() - start

@@ -12,8 +12,8 @@ from pathlib import Path
 
 import pytest
 
-from compiler import cli
-from compiler.project import ProjectError, load_project
+from codeword import cli
+from codeword.project import ProjectError, load_project
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -28,7 +28,7 @@ STRICT = ["-std=c99", "-Wall", "-Wextra", "-Wpedantic", "-Wconversion", "-Wsign-
 
 def codeword(*args: str, cwd: Path) -> subprocess.CompletedProcess:
     env = dict(os.environ, PYTHONPATH=str(ROOT))
-    return subprocess.run([sys.executable, "-m", "compiler", *args], cwd=cwd, env=env, capture_output=True,
+    return subprocess.run([sys.executable, "-m", "codeword", *args], cwd=cwd, env=env, capture_output=True,
                           text=True, timeout=300)
 
 

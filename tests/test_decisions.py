@@ -2,7 +2,7 @@
 
 Expected wire values come from the seeds or from hand calculation, written out
 in the comments; CRC values are checked against the reference bitwise
-implementation in compiler.crc, itself checked against the RevEng catalogue.
+implementation in codeword.crc, itself checked against the RevEng catalogue.
 """
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ import dataclasses
 
 import pytest
 
-from compiler import crc
+from codeword import crc
 from conftest import DATA, load_model
 
 
@@ -164,8 +164,8 @@ def test_CAR_D1_widths_add_up_to_32_and_the_table_reading_is_rejected(tmp_path):
         assert model.message(name).bits == 32
     motor = next(f for f in model.message("master_control").layout if f.name == "motor")
     assert motor.bits == 7
-    from compiler.build import compile_schema
-    from compiler.diagnostics import SchemaError
+    from codeword.build import compile_schema
+    from codeword.diagnostics import SchemaError
     path = tmp_path / "car_table.yaml"
     path.write_text(CAR_TABLE_WORD, encoding="utf-8")
     with pytest.raises(SchemaError) as err:

@@ -9,9 +9,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from compiler.build import compile_schema
-from compiler.cli import main
-from compiler.diff import BREAKING, COMPATIBLE, DOCS, compare
+from codeword.build import compile_schema
+from codeword.cli import main
+from codeword.diff import BREAKING, COMPATIBLE, DOCS, compare
 from conftest import DATA, SCHEMAS
 
 V02 = DATA / "car_v0.2.yaml"

@@ -12,8 +12,8 @@ import sys
 
 import pytest
 
-from compiler.build import build, compile_schema, render_with_codec
-from compiler.targets import markdown
+from codeword.build import build, compile_schema, render_with_codec
+from codeword.targets import markdown
 from conftest import PROTOCOLS, ROOT, SCHEMAS, load_generated, load_model
 
 DOCS = ROOT / "generated" / "docs"

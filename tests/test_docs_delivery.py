@@ -37,8 +37,8 @@ def test_cost_table_matches_the_formula_within_3_percent():
 def test_cost_table_is_what_the_simulator_prints():
     """The command the page names reproduces its table."""
     page = section((DOCS / "tr24.md").read_text(encoding="utf-8"))
-    command = re.search(r"`python -m compiler\.sim (--efficiency[^`]*)`", page).group(1).split()
-    run = subprocess.run([sys.executable, "-m", "compiler.sim", *command], cwd=ROOT, capture_output=True,
+    command = re.search(r"`python -m codeword\.sim (--efficiency[^`]*)`", page).group(1).split()
+    run = subprocess.run([sys.executable, "-m", "codeword.sim", *command], cwd=ROOT, capture_output=True,
                          text=True, timeout=120)
     assert run.returncode == 0, run.stderr
     printed = [(float(p), float(m), float(t)) for p, m, t in

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from compiler.examples import ExampleChecker
+from codeword.examples import ExampleChecker
 from conftest import PROTOCOLS, load_generated, load_model
 
 

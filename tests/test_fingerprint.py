@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import re
 
-from compiler.build import compile_schema
-from compiler.fingerprint import fingerprint, fingerprint32
+from codeword.build import compile_schema
+from codeword.fingerprint import fingerprint, fingerprint32
 from conftest import DATA, PROTOCOLS, ROOT, SCHEMAS, load_generated
 
 

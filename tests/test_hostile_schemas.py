@@ -20,9 +20,9 @@ from pathlib import Path
 
 import pytest
 
-from compiler.build import build, compile_schema, render_protocol, verify
-from compiler.diagnostics import SchemaError
-from compiler.loader import MAX_FILE_BYTES
+from codeword.build import build, compile_schema, render_protocol, verify
+from codeword.diagnostics import SchemaError
+from codeword.loader import MAX_FILE_BYTES
 from test_broken_schemas import EXPECT, expectations
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -70,7 +70,7 @@ def test_hostile_schema_generates_nothing(path: Path, tmp_path: Path):
 
 
 def test_lint_reports_every_hostile_file_without_a_traceback():
-    proc = subprocess.run([sys.executable, "-m", "compiler", "lint", *map(str, FILES)], cwd=ROOT,
+    proc = subprocess.run([sys.executable, "-m", "codeword", "lint", *map(str, FILES)], cwd=ROOT,
                           capture_output=True, text=True, timeout=300)
     assert proc.returncode == 1
     assert "Traceback" not in proc.stdout + proc.stderr and "internal error" not in proc.stderr

@@ -3,9 +3,9 @@ from __future__ import annotations
 
 import pytest
 
-from compiler.diagnostics import SchemaError
-from compiler import loader
-from compiler.loader import MAX_DEPTH, MAX_FILE_BYTES, MAX_NODES, load_text
+from codeword.diagnostics import SchemaError
+from codeword import loader
+from codeword.loader import MAX_DEPTH, MAX_FILE_BYTES, MAX_NODES, load_text
 
 
 def test_yaml_1_1_booleans_stay_strings():

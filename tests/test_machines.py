@@ -92,8 +92,8 @@ def test_a_shape_the_machine_targets_cannot_generate_is_a_schema_error(tmp_path)
     # two transmits in one step: the generated machines send at most one packet per call
     from pathlib import Path
 
-    from compiler.build import compile_schema, render_protocol
-    from compiler.diagnostics import SchemaError
+    from codeword.build import compile_schema, render_protocol
+    from codeword.diagnostics import SchemaError
     seed = (Path(__file__).resolve().parent.parent / "schemas" / "tr24.yaml").read_text(encoding="utf-8")
     schema = tmp_path / "tr24.yaml"
     schema.write_text(seed.replace("actions: [send_kept, start_timer]",

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from compiler.sim import Link, Simulation
+from codeword.sim import Link, Simulation
 
 ROOT = Path(__file__).resolve().parent.parent
 DRIVER = Path(__file__).resolve().parent / "c" / "machine_driver.c"

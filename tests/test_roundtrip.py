@@ -1,7 +1,7 @@
 """Property tests of every generated codec, with strategies derived from the protocol model.
 
 Nothing here names a protocol's fields: the strategies are built from
-`compiler.model` (ranges, enums, flags, scales, text framing …) and the test
+`codeword.model` (ranges, enums, flags, scales, text framing …) and the test
 cases are collected from `schemas/*.yaml`, so a new schema is covered as soon
 as its generated module exists.
 

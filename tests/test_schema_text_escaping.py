@@ -27,8 +27,8 @@ import markdown
 import pytest
 import yaml
 
-from compiler.build import build
-from compiler.loader import _Loader as YAML12  # `no` is a string, as codeword reads it
+from codeword.build import build
+from codeword.loader import _Loader as YAML12  # `no` is a string, as codeword reads it
 from conftest import SCHEMAS
 
 SCHEMA = json.loads((Path(__file__).resolve().parent.parent / "compiler/schema/codeword.schema.json")

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from compiler.sim import Link, Simulation, efficiency, reply_for
+from codeword.sim import Link, Simulation, efficiency, reply_for
 
 ROOT = Path(__file__).resolve().parent.parent
 LOSS_RATES = (0.0, 0.1, 0.2, 0.3, 0.4, 0.5)
@@ -110,13 +110,13 @@ def test_bad_channel_settings_are_refused(bad):
 
 
 def test_command_line():
-    run = subprocess.run([sys.executable, "-m", "compiler.sim", "--seed", "4", "--loss", "0.2", "--slaves", "4",
+    run = subprocess.run([sys.executable, "-m", "codeword.sim", "--seed", "4", "--loss", "0.2", "--slaves", "4",
                           "--commands", "300"], cwd=ROOT, capture_output=True, text=True, timeout=120)
     assert run.returncode == 0, run.stderr
     assert "delivered: 300" in run.stdout and "failed: 0" in run.stdout
-    bad = subprocess.run([sys.executable, "-m", "compiler.sim", "--loss", "0.9"], cwd=ROOT,
+    bad = subprocess.run([sys.executable, "-m", "codeword.sim", "--loss", "0.9"], cwd=ROOT,
                          capture_output=True, text=True, timeout=60)
     assert bad.returncode == 2 and "p_fwd" in bad.stderr and "Traceback" not in bad.stderr
-    usage = subprocess.run([sys.executable, "-m", "compiler.sim", "--help"], cwd=ROOT, capture_output=True,
+    usage = subprocess.run([sys.executable, "-m", "codeword.sim", "--help"], cwd=ROOT, capture_output=True,
                            text=True, timeout=60)
     assert usage.returncode == 0 and "--loss" in usage.stdout

@@ -17,9 +17,9 @@ from pathlib import Path
 
 import pytest
 
-from compiler.build import compile_schema
-from compiler.diagnostics import SchemaError
-from compiler.targets import promela
+from codeword.build import compile_schema
+from codeword.diagnostics import SchemaError
+from codeword.targets import promela
 from conftest import ROOT, SCHEMAS
 
 MODEL = ROOT / "generated" / "promela" / "tr24.pml"

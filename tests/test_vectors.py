@@ -7,7 +7,7 @@ import json
 from pathlib import Path
 
 import scratch
-from compiler.build import build, schema_files
+from codeword.build import build, schema_files
 
 SCALED = """\
 codeword: 1

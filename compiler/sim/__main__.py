@@ -1,7 +1,7 @@
 """Command line: run the tr24 machines over a lossy channel and print the counts.
 
-    python -m compiler.sim --seed 7 --loss 0.3 --slaves 4 --commands 1000
-    python -m compiler.sim --efficiency --commands 4000 --seed 1
+    python -m codeword.sim --seed 7 --loss 0.3 --slaves 4 --commands 1000
+    python -m codeword.sim --efficiency --commands 4000 --seed 1
 """
 from __future__ import annotations
 
@@ -12,7 +12,7 @@ from . import Link, Simulation, efficiency_table
 
 
 def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(prog="python -m compiler.sim", description=__doc__.splitlines()[0])
+    ap = argparse.ArgumentParser(prog="python -m codeword.sim", description=__doc__.splitlines()[0])
     ap.add_argument("--seed", type=int, default=1, help="random seed of the channel and the application")
     ap.add_argument("--loss", type=float, default=0.1, help="loss rate in both directions, 0..0.5")
     ap.add_argument("--loss-fwd", type=float, help="loss rate of commands (overrides --loss)")

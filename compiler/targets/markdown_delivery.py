@@ -1,7 +1,7 @@
 """Markdown target, delivery: what a stop-and-wait pair of machines guarantees,
 its limits, and its cost measured over a lossy link.
 
-Only protocols the lossy-link simulator (compiler.sim) drives get the section:
+Only protocols the lossy-link simulator (codeword.sim) drives get the section:
 it runs their master and slave machines from the codec the docs build has just
 rendered. The table is measured at build time with a fixed seed, so the page is
 the same on every build; the guarantee and its limits are those the simulator

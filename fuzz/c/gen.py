@@ -20,7 +20,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent.parent
 sys.path.insert(0, str(ROOT))
 
-from compiler.build import compile_schema  # noqa: E402
+from codeword.build import compile_schema  # noqa: E402
 
 HEAD = """/* libFuzzer harness for {p}: written by fuzz/c/gen.py from the model. */
 #include <stddef.h>
