@@ -56,7 +56,7 @@ def venv(tmp_path_factory) -> Path:
 def test_the_wheel_has_codeword_and_no_compiler_package(venv):
     python = str(venv / "bin" / "python")
     assert subprocess.run([python, "-c", "import codeword"], cwd="/", env=clean_env()).returncode == 0
-    shadow = subprocess.run([python, "-c", "import codeword"], cwd="/", capture_output=True, text=True,
+    shadow = subprocess.run([python, "-c", "import compiler"], cwd="/", capture_output=True, text=True,
                             env=clean_env())
     assert shadow.returncode != 0 and "No module named 'compiler'" in shadow.stderr
 
