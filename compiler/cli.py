@@ -17,12 +17,9 @@ from pathlib import Path
 from . import __version__
 from .diagnostics import SchemaError
 from .project import Project, ProjectError, load_project
+from .usage import UsageError
 
 OK, FINDINGS, USAGE, INTERNAL = 0, 1, 2, 3
-
-
-class UsageError(Exception):
-    """The command cannot run as asked (exit status 2)."""
 
 
 def _project(args: argparse.Namespace) -> Project:
@@ -196,6 +193,10 @@ def parser() -> argparse.ArgumentParser:
     check_arguments(command("check", cmd_check, "check data (files, captures, logs) against a schema"), cmd_check)
     from .diff.command import add_arguments as diff_arguments
     diff_arguments(command("diff", cmd_diff, "classify the changes between two versions of a schema"), cmd_diff)
+    from .frames import decode, encode, monitor
+    decode.add_arguments(command("decode", decode.run, "decode frames or lines (hex, a capture, a log) into messages"))
+    encode.add_arguments(command("encode", encode.run, "encode one message from field values"))
+    monitor.add_arguments(command("monitor", monitor.run, "decode a serial port live, or replay a capture"))
     return top
 
 

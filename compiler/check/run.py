@@ -14,6 +14,7 @@ from typing import BinaryIO, Callable, Iterator, Optional
 from ..build import compile_schema, verify
 from ..fingerprint import fingerprint
 from ..model import Protocol
+from ..usage import UsageError
 from ..targets import python as python_target
 from . import sources
 from .sources import Tally
@@ -21,10 +22,6 @@ from .sources import Tally
 PROGRESS_MIN_BYTES = 4 * 1024 * 1024  # smaller inputs finish before a bar would help
 INPUT_FORMATS = ("auto", "raw", "hex", "text")
 _HEX_TEXT = re.compile(rb"(?:[0-9a-fA-F\s:,xX]|#[^\n]*)*\Z")
-
-
-class UsageError(Exception):
-    """The command cannot run as asked (exit status 2)."""
 
 
 @dataclass

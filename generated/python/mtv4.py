@@ -828,12 +828,13 @@ class StreamDecoder:
         self._buffer = b""  # bytes not yet consumed
         self.offset = 0  # stream offset of the buffer's first byte
         self.skipped = 0  # bytes dropped while resynchronising
+        self.spans = []  # (offset, length) of each item the last feed or finish returned
 
     def feed(self, data):
         # One immutable buffer walked by index: frames are sliced out once, and the
         # consumed head is dropped once per call rather than once per frame.
         buf = self._buffer + bytes(data) if self._buffer else bytes(data)
-        pos, end, out = 0, len(buf), []
+        pos, end, out, spans = 0, len(buf), [], []
         base, skipped, direction = self.offset, 0, self.direction
         while True:
             start = buf.find(170, pos)
@@ -848,12 +849,14 @@ class StreamDecoder:
             size = buf[pos + 1] + 4
             if size not in self._SIZES:
                 out.append(_dec(None, 'length', size, 'length', 'a known frame size', (base + pos) * 8))
+                spans.append((base + pos, 1))
                 skipped += 1
                 pos += 1
                 continue
             if end - pos < size:
                 break
             self.offset = base + pos  # at the frame's first byte while it is decoded
+            spans.append((base + pos, size))
             try:
                 out.append(decode(buf[pos:pos + size], direction))
             except DecodeError as exc:
@@ -866,11 +869,13 @@ class StreamDecoder:
         self._buffer = buf[pos:]
         self.offset = base + pos
         self.skipped += skipped
+        self.spans = spans
         return out
 
     def finish(self):
         """End of stream: a DecodeError for an incomplete frame left over, if any;
         its bytes count as skipped."""
+        self.spans = [(self.offset, len(self._buffer))] if self._buffer else []
         if not self._buffer:
             return []
         e = _dec(None, None, len(self._buffer), 'length', 'a whole frame before the end', self.offset * 8)

@@ -831,22 +831,26 @@ class StreamDecoder:
         self.direction = direction
         self._buffer = ""
         self.offset = 0  # characters consumed so far
+        self.spans = []  # (offset, length) of each item the last feed or finish returned
 
     def feed(self, data):
         self._buffer += _as_input(data)
-        out = []
+        out, spans = [], []
+        self.spans = spans
         while True:
             end = self._buffer.find(';')
             if end < 0:
                 if len(self._buffer) > self.MAX_MESSAGE:
                     out.append(_dec(None, None, self._buffer[:20], 'length',
                                     f'a message within {self.MAX_MESSAGE} characters', self.offset))
+                    spans.append((self.offset, len(self._buffer)))
                     self.offset += len(self._buffer)
                     self._buffer = ""
                 return out
             chunk = self._buffer[:end + 1]
             self._buffer = self._buffer[end + 1:]
             start = self.offset + len(chunk) - len(chunk.lstrip('\r\n'))
+            spans.append((start, self.offset + len(chunk) - start))
             try:
                 out.append(decode(chunk, self.direction))
             except DecodeError as exc:
@@ -859,6 +863,7 @@ class StreamDecoder:
         rest, self._buffer = self._buffer, ""
         lead = len(rest) - len(rest.lstrip('\r\n' + " \t"))
         start, self.offset = self.offset + lead, self.offset + len(rest)
+        self.spans = [(start, len(rest) - lead)] if rest[lead:] else []
         if not rest[lead:]:
             return []
         return [_dec(None, None, rest[lead:lead + 20], 'syntax',
