@@ -18,13 +18,15 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--format", choices=output.FORMATS, default="table",
                         help="an aligned table (default), JSON lines or CSV")
     parser.add_argument("--direction", help="decode frames as sent in this direction of the schema")
+    parser.add_argument("--sequence", help="the sequence a bit-packed input holds, when its words do not "
+                                           "identify themselves (default: the schema's first)")
 
 
 def run(args: argparse.Namespace) -> int:
     protocol, codec = open_codec(args.schema)
     rows, text = [], protocol.framing.kind == "text"
     for source in args.inputs or ["-"]:
-        stream = Stream(protocol, codec, args.direction)
+        stream = Stream(protocol, codec, args.direction, args.sequence)
         data = _input(source, text, protocol.framing.terminator if text else None)
         rows += stream.feed(data) + stream.finish()
     output.write(rows, args.format, sys.stdout)

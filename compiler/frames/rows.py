@@ -51,8 +51,8 @@ def units_of(protocol: Protocol) -> dict[str, dict[str, Field]]:
     return {m.name: {f.name: f for f in m.members} for m in protocol.messages}
 
 
-def message_row(obj, fields: dict[str, Field], offset: Optional[int], raw: bytes) -> Row:
-    row = Row(offset, raw, message=obj.NAME)
+def message_row(obj, fields: dict[str, Field], offset: Optional[int], raw, name: Optional[str] = None) -> Row:
+    row = Row(offset, raw, message=name or obj.NAME)
     _flatten(obj, fields, "", row.values)
     return row
 
@@ -68,6 +68,10 @@ def _flatten(obj, fields: dict[str, Field], prefix: str, out: list) -> None:
         name = prefix + attr.name
         if dataclasses.is_dataclass(value) and not isinstance(value, type):
             _flatten(value, {f.name: f for f in model.fields} if model else {}, name + ".", out)
+            continue
+        if isinstance(value, (list, tuple)):  # the items of a sequence
+            for i, item in enumerate(value):
+                _flatten(item, {}, f"{name}[{i}].", out)
             continue
         shown, plain = _show(value)
         unit = model.unit if model is not None else None

@@ -43,7 +43,8 @@ class Stream:
     """Bytes in, rows out: frames of a byte protocol, lines of a text protocol or
     words of a bit-packed one, each with its offset in the stream."""
 
-    def __init__(self, protocol: Protocol, codec, direction: Optional[str] = None):
+    def __init__(self, protocol: Protocol, codec, direction: Optional[str] = None,
+                 sequence: Optional[str] = None):
         if direction is not None and direction not in {d.name for d in protocol.directions}:
             raise UsageError(f"{protocol.name} has no direction {direction!r} "
                              f"(directions: {', '.join(d.name for d in protocol.directions) or 'none'})")
@@ -62,6 +63,7 @@ class Stream:
                                  "give them to `codeword check` in the text form")
             self.word = bits // 8
             self.decoder = None
+            self.sequence = _sequence(protocol, sequence)
         else:
             self.decoder = codec.StreamDecoder(direction)
 
@@ -99,6 +101,8 @@ class Stream:
         return data.decode("latin-1") if self.kind == "text" else data
 
     def _words(self, final: bool) -> list[Row]:
+        if self.sequence is not None:  # messages that do not identify themselves: one document
+            return self._document() if final else []
         rows, n = [], self.word
         whole = len(self._held) - len(self._held) % n
         for i in range(0, whole, n):
@@ -115,6 +119,17 @@ class Stream:
             self._forget(self._held_at + len(self._held))
         return rows
 
+    def _document(self) -> list[Row]:
+        data, at = self._held, self._held_at
+        self._forget(at + len(data))
+        if not data:
+            return []
+        try:
+            item = getattr(self.codec, f"decode_{self.sequence}")(data)
+        except self.codec.CodecError as exc:
+            return [error_row(exc, at, data)]
+        return [message_row(item, {}, at, data, name=self.sequence)]
+
     def _row(self, item, offset: int, raw: bytes) -> Row:
         if isinstance(item, self.codec.CodecError):
             return error_row(item, offset, raw)
@@ -125,3 +140,13 @@ class Stream:
         drop = max(0, upto - self._held_at)
         self._held = self._held[drop:]
         self._held_at += drop
+
+
+def _sequence(protocol: Protocol, name: Optional[str]) -> Optional[str]:
+    """The sequence a bit-packed input holds, when its words do not identify themselves."""
+    names = [s.name for s in protocol.sequences]
+    if name is not None and name not in names:
+        raise UsageError(f"{protocol.name} has no sequence {name!r} (sequences: {', '.join(names) or 'none'})")
+    if name is not None or protocol.self_identifying:
+        return name
+    return names[0] if names else None
