@@ -146,7 +146,7 @@ def test_monitor_decodes_a_serial_port_live_and_logs_the_bytes(pty_pair, tmp_pat
                                cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     sent = bytes.fromhex(ROBOT5) + b"\x00\x01" + bytes.fromhex(ROBOT12)
     try:
-        time.sleep(1.0)  # the port opened before the bytes arrive; bytes sent earlier wait in the pty anyway
+        assert monitor.stderr.readline().startswith(f"monitoring {port} at 115200 baud")  # the port is open
         os.write(master, sent[:7])
         time.sleep(0.2)
         os.write(master, sent[7:])  # a frame split across reads

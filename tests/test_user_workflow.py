@@ -3,10 +3,12 @@ built from this checkout, installed into a fresh virtual environment, and every
 command of the section run in order from an empty folder."""
 from __future__ import annotations
 
+import json
 import os
 import re
 import subprocess
 import sys
+import tty
 from pathlib import Path
 
 import pytest
@@ -33,7 +35,8 @@ def test_the_section_installs_builds_compiles_and_imports():
     blocks = section_blocks()
     assert blocks and INSTALL in blocks[0]
     text = "".join(blocks)
-    for command in ("codeword init", "codeword build", "cc ", "./drive", "python3 -c", "ls generated/docs"):
+    for command in ("codeword init", "codeword build", "cc ", "./drive", "python3 -c", "ls generated/docs",
+                    "codeword encode", "codeword decode", "codeword monitor"):
         assert command in text
 
 
@@ -81,3 +84,40 @@ def test_every_command_of_the_section_runs_in_an_empty_folder(venv, tmp_path):
     assert (work / "rover" / "firmware" / "c" / "rover.h").is_file()
     assert out["2"].strip() == "Drive(left=100, right=-100)"
     assert out["3"].split() == ["codeword.css", "index.md", "rover.md"]
+    frames = out["4"].splitlines()
+    assert frames[0].strip() == FRAME  # encode, against the hand-worked frame
+    table = [line.split() for line in frames[1:4]]
+    assert table[0] == ["offset", "frame", "message"]
+    assert table[1][:9] == ["0", "a5", "04", "02", "d4", "30", "03", "e8", "cc"]  # the starter's status example
+    assert table[1][9:] == ["status", "battery=12500", "mV", "mode=docked"]
+    assert table[2][:4] == ["8", "78", "78", "error"] and "skipped" in frames[3]
+    assert frames[4].split()[:2] == ["10", "a5"] and "drive" in frames[4] and "left=100 mm/s" in frames[4]
+    assert frames[5] == "exit status 1: the noise is a finding"
+    first = json.loads(frames[6])
+    assert first["message"] == "status" and first["values"] == {"battery": 12500, "mode": "docked"}
+
+
+def test_monitor_in_the_starter_project_reads_a_pty(venv, tmp_path):
+    """The wheel's monitor on the starter's frames, through a pseudo-terminal pair."""
+    env = clean_env()
+    env["PATH"] = f"{venv / 'bin'}:{env['PATH']}"
+    work = tmp_path / "rover"
+    work.mkdir()
+    subprocess.run(["codeword", "init"], cwd=work, env=env, check=True, capture_output=True, timeout=120)
+    master, slave = os.openpty()
+    tty.setraw(slave)
+    try:
+        monitor = subprocess.Popen(["codeword", "monitor", "rover", "--port", os.ttyname(slave), "--baud", "9600",
+                                    "--count", "2", "--duration", "60"], cwd=work, env=env,
+                                   stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        assert monitor.stderr.readline().startswith("monitoring ")  # the port is open
+        os.write(master, bytes.fromhex(FRAME) + bytes.fromhex("a5 04 02 d4 30 03 e8 cc"))
+        out, err = monitor.communicate(timeout=90)
+    finally:
+        os.close(master)
+        os.close(slave)
+    assert monitor.returncode == 0, err
+    drive, status = out.splitlines()
+    assert "drive left=100 mm/s right=-100 mm/s" in drive
+    assert "status battery=12500 mV mode=docked" in status
+    assert "2 frames, 0 errors, 0 bytes skipped, 17 bytes read" in err

@@ -52,6 +52,8 @@ def run(args: argparse.Namespace) -> int:
     counts = Counts()
     log = _open_log(args.log)
     port = _open_source(args)
+    if args.port:  # bytes that arrive from now on are read: a script may start sending
+        print(f"monitoring {args.port} at {args.baud} baud (Ctrl-C to stop)", file=sys.stderr, flush=True)
     deadline = time.monotonic() + args.duration if args.duration is not None else None
     try:
         while not _done(args, counts, deadline):
