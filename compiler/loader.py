@@ -24,6 +24,9 @@ MAX_NODES = 200_000  # after alias expansion
 Path_ = tuple  # a path into the document: keys and list indexes
 
 
+MAX_INT_LITERAL = 80  # a 64-bit value needs 66 (0b…); longer ones are mistakes, and slow to convert
+
+
 class _Loader(yaml.SafeLoader):
     """SafeLoader whose implicit resolvers follow the YAML 1.2 core schema."""
 
@@ -189,6 +192,11 @@ def load_text(text: str, file: str) -> Document:
                 errors.append(Diagnostic(_loc(file, n), f"YAML tag {n.tag!r} is not allowed",
                                          "use plain YAML data without tags"))
                 return None
+            if n.tag == "tag:yaml.org,2002:int" and len(n.value) > MAX_INT_LITERAL:
+                errors.append(Diagnostic(_loc(file, n), f"integer literal of {len(n.value)} characters",
+                                         f"no field is wider than 64 bits: write at most {MAX_INT_LITERAL} "
+                                         "characters"))
+                return 0
             value = _scalar(n)
             if isinstance(value, str):
                 problem = _text_problem(value)

@@ -427,6 +427,10 @@ class Resolver:
             if isinstance(value, bool) or not isinstance(value, (int, float)):
                 self.error(path, f"field {f.name!r}: {what} {value!r} is not a number")
                 return
+            if not f.scale and not f.offset and isinstance(value, float) and not value.is_integer():
+                self.error(path, f"field {f.name!r}: {what} {value} is not a whole number",
+                           "an integer field without a scale holds whole numbers")
+                return
             raw = value if f.one_hot else self.to_raw(f, value)
             limit = (0, bits - 1) if f.one_hot else f.raw_range
             if bits and limit and not (limit[0] <= raw <= limit[1]):
@@ -462,7 +466,12 @@ class Resolver:
                 return Checksum("crc", over, covers)
             params = CrcParams("custom", c["width"], c["poly"], c["init"], c["refin"],
                                c["refout"], c["xorout"])
-        elif algorithm not in ("parity", "sum", "xor"):
+        elif algorithm in ("parity", "sum", "xor"):
+            for key in ("width", "poly", "init", "refin", "refout", "xorout"):
+                if key in c:  # CRC parameters would be ignored: a silent mismatch with the peer
+                    self.error(path + (key,), f"{key} is a CRC parameter; a {algorithm} checksum has none",
+                               f"drop {key}, or use a CRC")
+        else:
             params = crc.lookup(algorithm)
             if params is None:
                 self.error(path + ("algorithm",), f"unknown checksum algorithm {algorithm!r}",

@@ -22,6 +22,16 @@ def _bits_of(frame: bytes, offset: int, width: int) -> int:
     return (value >> (total - offset - width)) & ((1 << width) - 1)
 
 
+def _sent_value(p: Protocol, frame: bytes, slot: Slot) -> int:
+    """A checksum field of whole bytes as sent, in its byte order; narrower ones as bits."""
+    field = slot.field
+    if slot.offset % 8 or field.bits % 8:
+        return _bits_of(frame, slot.offset, field.bits)
+    order = field.byte_order or p.framing.byte_order
+    return int.from_bytes(frame[slot.offset // 8:(slot.offset + field.bits) // 8],
+                          "big" if order == "big" else "little")
+
+
 def _checksum_slot(m: Message) -> Optional[Slot]:
     return next((s for s in slots(m) if s.field.checksum is not None), None)
 
@@ -84,7 +94,7 @@ def worked_example(p: Protocol, codec: types.ModuleType, m: Message, cs: Checksu
         digits = (cs.crc.width + 3) // 4
         order = field.byte_order or p.framing.byte_order
         sent_bytes = frame[slot.offset // 8:(slot.offset + field.bits) // 8]
-        sent = int.from_bytes(sent_bytes, "big" if order == "big" else "little")
+        sent = _sent_value(p, frame, slot)
         view["steps"] = steps
         view["lines"] = [
             f"covered bytes B{start}–B{end - 1}: `{covered.hex(' ')}`",
@@ -95,11 +105,13 @@ def worked_example(p: Protocol, codec: types.ModuleType, m: Message, cs: Checksu
             f"`{sent_bytes.hex(' ')}`",
         ]
     elif cs.algorithm in ("sum", "xor"):
-        terms = []
-        for s in slots(m):
-            if s.path == slot.path or s.field.kind == "group" or s.field.bits is None:
-                continue
-            terms.append((s.path, _bits_of(frame, s.offset, s.field.bits)))
+        if cs.byte_span is not None:  # over the covered bytes, as sent
+            start, end = cs.byte_span
+            terms = [(f"B{start + i}", byte) for i, byte in enumerate(frame[start:end])]
+            sent = _sent_value(p, frame, slot)
+        else:  # over the wire values of every other field
+            terms = [(s.path, _bits_of(frame, s.offset, s.field.bits)) for s in slots(m)
+                     if s.path != slot.path and s.field.kind != "group" and s.field.bits is not None]
         if cs.algorithm == "sum":
             total = sum(v for _, v in terms)
             result = total % cs.modulo if cs.modulo else total & ((1 << field.bits) - 1)
@@ -112,7 +124,8 @@ def worked_example(p: Protocol, codec: types.ModuleType, m: Message, cs: Checksu
             how = str(result)
             joined = " ⊕ ".join(str(v) for _, v in terms)
         view["lines"] = [
-            "wire values: " + ", ".join(f"{name} = {v}" for name, v in terms),
+            ("covered bytes: " if cs.byte_span is not None else "wire values: ")
+            + ", ".join(f"{name} = {v}" for name, v in terms),
             f"{joined} = {how}",
             f"sent in `{slot.path}` ({position(p, slot) or 'bits ' + str(slot.offset)}): {sent}",
         ]

@@ -1,0 +1,47 @@
+"""The docs' worked checksum example for every algorithm over bytes, recomputed by
+hand here: the README's own demo schema (a sum over bytes) and an xor."""
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import pytest
+
+from codeword.build import compile_schema, render_with_codec
+
+ROOT = Path(__file__).resolve().parent.parent
+README = (ROOT / "README.md").read_text(encoding="utf-8")
+DEMO = re.search(r"`schemas/demo.yaml`:\n\n```yaml\n(.*?)```", README, re.S).group(1)
+
+
+def docs_of(tmp_path: Path, text: str, name: str) -> str:
+    path = tmp_path / f"{name}.yaml"
+    path.write_text(text, encoding="utf-8")
+    files = render_with_codec(compile_schema(path))[0]
+    return files[f"docs/{name}.md"]
+
+
+def test_the_readme_demo_sum_over_bytes_is_worked_out(tmp_path):
+    page = docs_of(tmp_path, DEMO, "demo")
+    # frame 55 01 2b 00 2c: the sum covers kind..payload = 01 2b 00
+    assert "covered bytes: B1 = 1, B2 = 43, B3 = 0" in page
+    assert "1 + 43 + 0 = 44 mod 256 = 44" in page
+    assert "sent in `sum` (B4): 44" in page
+
+
+@pytest.mark.parametrize("algorithm,checksum,line", [
+    ("xor", "2a", "1 ⊕ 43 ⊕ 0 = 42"),  # 0x01 ^ 0x2b ^ 0x00
+])
+def test_an_xor_over_bytes_is_worked_out(tmp_path, algorithm, checksum, line):
+    text = DEMO.replace("protocol: demo", "protocol: demoxor").replace("algorithm: sum", f"algorithm: {algorithm}")
+    text = text.replace('hex: "55 01 2b 00 2c"', f'hex: "55 01 2b 00 {checksum}"')
+    page = docs_of(tmp_path, text, "demoxor")
+    assert line in page and f"(B4): {int(checksum, 16)}" in page
+
+
+def test_a_sixteen_bit_little_endian_sum_is_read_in_its_byte_order(tmp_path):
+    text = DEMO.replace("protocol: demo", "protocol: demo16").replace("{name: sum, type: u8,", "{name: sum, type: u16,")
+    # 01 + 2b + 00 = 0x002c, sent low byte first
+    text = text.replace('hex: "55 01 2b 00 2c"', 'hex: "55 01 2b 00 2c 00"')
+    page = docs_of(tmp_path, text, "demo16")
+    assert "1 + 43 + 0 = 44 mod 65536 = 44" in page and "(B4–B5): 44" in page
