@@ -405,6 +405,10 @@ class Resolver:
                                f"field {name!r}: range [{lo}, {hi}] does not fit {bits} bits "
                                f"(raw {raw_lo}..{raw_hi}, allowed {lo_raw}..{hi_raw})",
                                "widen the field or narrow the range")
+        if f.const is not None and self.framing_kind == "text" and (f.kind == "float" or f.scale or f.offset):
+            self.error(path + ("const",), f"field {name!r}: a text line spells a constant as written; "
+                                          "a number with a fraction has several spellings",
+                       "make the constant an integer, char or str field")
         for key in ("const", "default"):
             value = getattr(f, key)
             if value is None or (key == "default" and f.kind == "group"):

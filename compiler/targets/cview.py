@@ -126,7 +126,7 @@ class CView:
         if f.kind == "bool":
             return Rep("bool")
         if f.kind == "char":
-            return Rep("char")
+            return Rep("char", has_flag=f.optional)
         if f.kind == "str":
             if f.max_length is None:
                 raise CTargetError(f"{f.name}: a str field needs max_length for a C buffer", f.loc)
@@ -879,6 +879,11 @@ class CView:
         for i, leaf in enumerate(leaves):
             f = leaf.field
             v = self.member(leaf)
+            if f.const is not None:
+                lead = cchar(fr.separator if i else fr.prefix_separator)
+                text = self.text_const(f)
+                c(f"cw_write_text_field(&w, {lead}, {cstr(text)}, {len(text)}u);  /* const */")
+                continue
             if f.optional:
                 c(f"if ({self.has(leaf)}) {{")
                 c.indent()
@@ -910,12 +915,22 @@ class CView:
         return c.text()
 
     @staticmethod
+    def text_const(f: Field) -> str:
+        """A constant as its writer spells it in a text line."""
+        value = f.const
+        if f.enum is not None:
+            value = next(m.value for m in f.enum.members if f.const in (m.name, m.value))
+        return str(int(value)) if isinstance(value, (int, float)) and not isinstance(value, bool) else str(value)
+
+    @staticmethod
     def text_len(leaf: Leaf) -> str:
         """The local holding a str member's length, measured once by its check."""
         return f"{leaf.var}_len"
 
     def text_check(self, c: Code, leaf: Leaf) -> None:
         f = leaf.field
+        if f.const is not None:  # written from the schema, not from the struct
+            return
         v = self.member(leaf)
         r = self.rep(f)
         fr = self.fr
@@ -996,6 +1011,12 @@ class CView:
             t = self.member(leaf)
             r = self.rep(f)
             c(f"/* {leaf.dotted} */")
+            if f.const is not None:  # the token must read as the constant's text
+                text = self.text_const(f)
+                c(f"v = cw_value(s, ends, {i}u, {trim});")
+                self.fail_if(c, f"(size_t)(v.e - v.b) != {len(text)}u || memcmp(v.b, {cstr(text)}, {len(text)}u) != 0",
+                             "const")
+                continue
             if f.optional:
                 c(f"{self.has(leaf)} = count > {i}u;")
                 c(f"if ({self.has(leaf)}) {{")

@@ -308,6 +308,10 @@ class PythonView:
             expr = var_checked = var
         else:
             return var
+        if not bounded and not f.range and f.kind in ("uint", "int") and f.enum is None and f.raw_range:
+            lo, hi = self.logical_limits(f)  # a text token can hold more than the field's width
+            c(f"if not {lit(lo)} <= {var_checked} <= {lit(hi)}:")
+            c(f"    raise _dec({at}, 'range', '{lit(lo)}..{lit(hi)}', {off}, {f.rule!r}{self.user(f, False)})")
         if f.range and not (bounded and self.width_implies_range(f)):
             lo, hi = f.range
             c(f"if not {lit(lo)} <= {var_checked} <= {lit(hi)}:")

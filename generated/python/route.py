@@ -530,6 +530,8 @@ def _build_scene(r_hdr, r_ns, r_nl, r_db, r_nt, r_cs, text_form=False):
     e_db = _ENUM_pass_side.get(r_db)
     if e_db is None:
         raise _dec('scene', 'db', r_db, 'enum', 'PassSide', 8, None)
+    if not 0 <= r_nt <= 32767:
+        raise _dec('scene', 'nt', r_nt, 'range', '0..32767', 11, None)
     x = (r_hdr + r_ns + r_nl + r_db + r_nt) % 8
     if r_cs != x and not (text_form and r_cs == 0):
         raise _dec('scene', 'cs', r_cs, 'checksum', str(x), 26, 'ROUTE-D1')

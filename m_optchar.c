@@ -1,0 +1,2 @@
+#include "optchar.h"
+int main(void){return 0;}

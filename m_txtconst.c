@@ -1,0 +1,2 @@
+#include "txtconst.h"
+int main(void){return 0;}

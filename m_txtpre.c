@@ -1,0 +1,2 @@
+#include "txtpre.h"
+int main(void){return 0;}

@@ -1,0 +1,72 @@
+"""Text framing with a constant field and an optional char: Python and C write
+the same line, read it back, and refuse a wrong constant."""
+from __future__ import annotations
+
+import pytest
+
+from scratch import load, render, run_c
+
+SCHEMA = """codeword: 1
+protocol: {name}
+title: t
+source: s
+framing:
+  kind: text
+  prefix_separator: ":"
+  separator: ","
+  terminator: ";"
+messages:
+  ping:
+    id: "P"
+    fields:
+      - {{name: v, type: u8, const: 7}}
+      - {{name: a, type: u8}}
+      - {{name: c, type: char, optional: true}}
+"""
+
+
+@pytest.fixture(scope="module")
+def built(tmp_path_factory):
+    where = tmp_path_factory.mktemp("textconst")
+    render(where, "textconst", SCHEMA.format(name="textconst"))
+    return where
+
+
+def test_python_writes_the_constant_and_checks_it(built):
+    mod = load(built / "textconst.py")
+    assert mod.encode(mod.Ping(a=5, c="x")) == "P:7,5,x;"  # the line, written out by hand
+    assert mod.encode(mod.Ping(a=5)) == "P:7,5;"
+    assert mod.decode("P:7,5,x;") == mod.Ping(a=5, c="x")
+    with pytest.raises(mod.DecodeError) as bad:
+        mod.decode("P:8,5;")
+    assert bad.value.rule == "const" and bad.value.field == "v"
+    with pytest.raises(mod.DecodeError) as wide:
+        mod.decode("P:7,296;")  # a u8 written in text can hold more than 8 bits
+    assert wide.value.rule == "range"
+
+
+def test_c_agrees(built):
+    driver = r"""
+#include <stdio.h>
+#include <string.h>
+#include "textconst.h"
+int main(void) {
+    textconst_ping_t m;
+    char buf[64];
+    int n;
+    memset(&m, 0, sizeof m);
+    m.a = 5; m.has_c = true; m.c = 'x';
+    n = textconst_ping_encode(&m, buf, sizeof buf);
+    printf("%.*s\n", n, buf);
+    m.has_c = false;
+    n = textconst_ping_encode(&m, buf, sizeof buf);
+    printf("%.*s\n", n, buf);
+    memset(&m, 0, sizeof m);
+    n = textconst_ping_decode("P:7,5,x;", 8u, &m);
+    printf("%d %u %d %c\n", n, m.a, m.has_c, m.c);
+    printf("%d\n", textconst_ping_decode("P:8,5;", 6u, &m) == CW_ERR_CONST);
+    printf("%d\n", textconst_ping_decode("P:7,296;", 8u, &m) == CW_ERR_RANGE);
+    return 0;
+}
+"""
+    assert run_c(built, driver) == ["P:7,5,x;", "P:7,5;", "0 5 1 x", "1", "1"]
