@@ -70,3 +70,30 @@ int main(void) {
 }
 """
     assert run_c(built, driver) == ["P:7,5,x;", "P:7,5;", "0 5 1 x", "1", "1"]
+
+
+def test_a_newline_terminator_builds_and_agrees(tmp_path):
+    schema = SCHEMA.format(name="lines").replace('terminator: ";"', 'terminator: "\\n"')
+    render(tmp_path, "lines", schema)
+    mod = load(tmp_path / "lines.py")
+    assert mod.encode(mod.Ping(a=5)) == "P:7,5\n"
+    decoder = mod.StreamDecoder()
+    assert decoder.feed("P:7,5\nP:7,6") == [mod.Ping(a=5)]
+    (cut,) = decoder.finish()
+    assert cut.allowed == "a message ending in \n before the end"
+    driver = r"""
+#include <stdio.h>
+#include <string.h>
+#include "lines.h"
+int main(void) {
+    lines_ping_t m;
+    char buf[32];
+    int n;
+    memset(&m, 0, sizeof m);
+    m.a = 5;
+    n = lines_ping_encode(&m, buf, sizeof buf);
+    printf("%d %.*s|\n", n, n - 1, buf);
+    return 0;
+}
+"""
+    assert run_c(tmp_path, driver) == ["6 P:7,5|"]

@@ -867,7 +867,7 @@ class StreamDecoder:
         if not rest[lead:]:
             return []
         return [_dec(None, None, rest[lead:lead + 20], 'syntax',
-                     f'a message ending in ; before the end', start)]
+                     'a message ending in ; before the end', start)]
 
 
 _ENCODERS = {Telemetry: _encode_telemetry, Command: _encode_command, PayloadCommand: _encode_payload_command, PayloadReply: _encode_payload_reply, GpioConfig: _encode_gpio_config, }
