@@ -849,6 +849,8 @@ class Resolver:
                                f"{offset + (field.bits or 0)}, past the end of the shortest message "
                                f"{shortest.name!r} ({8 * shortest.size} bits)",
                                "put the dispatch fields first, where every message has them")
+        if framing == "bytes":
+            self.check_sizes_without_length(messages)
         for i, j in candidate_pairs(keyed, framing):
             a, b = keyed[i], keyed[j]
             if a.direction and b.direction and a.direction != b.direction:
@@ -858,6 +860,21 @@ class Resolver:
                            f"ambiguous dispatch: messages {a.name!r} and {b.name!r} cannot be "
                            f"told apart ({self.describe_key(a)} / {self.describe_key(b)})",
                            "give them different ids/constants, directions or sizes")
+
+    def check_sizes_without_length(self, messages: list[Message]) -> None:
+        """With no length field, a stream decoder knows a frame's size only from its id."""
+        if any(f.length_of for m in messages for f in m.layout) or len({m.size for m in messages}) < 2:
+            return
+        size_of: dict = {}
+        for m in messages:
+            for value in m.ids or (None,):
+                first = size_of.setdefault(value, m)
+                if first.size != m.size:
+                    self.error(("messages", m.name), f"message {m.name!r} is {m.size} bytes but {first.name!r}, "
+                               f"with the same id, is {first.size}; with no length field a stream decoder "
+                               "finds a frame's size from its id",
+                               "give them different ids, or add a length field to the framing")
+                    return
 
     @staticmethod
     def describe_key(m: Message) -> str:

@@ -84,7 +84,7 @@ def render(p: Protocol) -> dict[str, str]:
     v = CView(p)
     fr = p.framing
     messages = message_views(v)
-    dispatch = v.dispatch() if p.self_identifying else {"kind": "none"}
+    dispatch = v.dispatch()
     text_form = None
     if fr.text_form and dispatch["kind"] == "bits":
         facts = v.text_form_facts()

@@ -1189,6 +1189,9 @@ class ModuleView(PythonView):
         if facts.get("length"):
             length = facts["length"]
             facts = dict(facts, length=dict(length, value_expr=self.read_expr("buf", "pos + ", dict(length, first=length["at"]))))
+        if facts.get("by_key"):
+            key = facts["by_key"]
+            facts = dict(facts, by_key=dict(key, value_expr=self.read_expr("buf", "pos + ", dict(key, first=key["at"]))))
         return facts
 
     @staticmethod

@@ -37,6 +37,8 @@ def leaves_of(layout: tuple[Field, ...], prefix: tuple[str, ...] = ()) -> list[L
 def dispatch_facts(p: Protocol) -> dict:
     """How module-level decode finds the message a frame holds."""
     fr = p.framing
+    if fr.kind == "bytes" and len(p.messages) == 1 and not p.messages[0].dispatch_key:
+        return {"kind": "single", "name": p.messages[0].name}  # every frame holds the one message
     if not p.self_identifying:
         return {"kind": "none"}
     if fr.kind == "text":
@@ -97,7 +99,15 @@ def stream_facts(p: Protocol) -> dict:
                       "byte_order": (leaf.field.byte_order or fr.byte_order) if whole and bits > 8 else "big"}
         pos += leaf.field.bits or 0
     sizes = sorted({m.size for m in p.messages})
-    return {"sync": sync, "length": length, "sizes": sizes, "max": max(sizes), "min": min(sizes)}
+    by_key = None
+    if length is None and len(sizes) > 1:  # no length field: the dispatch value gives the size
+        dispatch = dispatch_facts(p)
+        size_of = {value: size for value, size, _, _ in dispatch["frames"]}
+        by_key = {"at": dispatch["first"], "last": dispatch["last"], "shift": dispatch["shift"],
+                  "mask": dispatch["mask"], "byte_order": dispatch["byte_order"],
+                  "sizes": sorted(size_of.items())}
+    return {"sync": sync, "length": length, "by_key": by_key, "sizes": sizes, "max": max(sizes),
+            "min": min(sizes)}
 
 
 def checksum_name(cs) -> str:

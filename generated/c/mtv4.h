@@ -937,9 +937,9 @@ static inline void mtv4_parser_drop(mtv4_parser_t *p, uint8_t n)
  * bytes were dropped (the error says why); call again. */
 static inline int mtv4_parser_next(mtv4_parser_t *p, mtv4_message_t *out)
 {
-    uint8_t start = 0;
     size_t size;
     int rc;
+    uint8_t start = 0;
     while (start < p->len && p->buf[start] != 170u) {
         start++;
     }

@@ -305,9 +305,9 @@ static inline void tr24_parser_drop(tr24_parser_t *p, uint8_t n)
  * bytes were dropped (the error says why); call again. */
 static inline int tr24_parser_next(tr24_parser_t *p, tr24_message_t *out)
 {
-    uint8_t start = 0;
     size_t size;
     int rc;
+    uint8_t start = 0;
     while (start < p->len && p->buf[start] != 2u) {
         start++;
     }
