@@ -42,6 +42,10 @@ def text(value: Any) -> Optional[Text]:
     return Text(value["en"], tuple(sorted((k, v) for k, v in value.items() if k != "en")))
 
 
+# A double's 53-bit significand: wider raw values would not survive value → raw → value.
+MAX_SCALED_BITS = 53
+
+
 class Resolver:
     def __init__(self, doc: Document):
         self.doc = doc
@@ -363,6 +367,10 @@ class Resolver:
         if f.scale is not None or f.offset is not None:
             if kind not in ("uint", "int"):
                 self.error(path, f"field {name!r}: scale/offset apply to integer fields")
+            elif f.scale is not None and bits and bits > MAX_SCALED_BITS:
+                self.error(path + ("scale",), f"field {name!r}: a scaled value is a double, which holds "
+                                              f"integers of up to {MAX_SCALED_BITS} bits exactly, not {bits}",
+                           f"narrow the field to {MAX_SCALED_BITS} bits, or drop the scale")
             elif f.scale is None and isinstance(f.offset, int) and bits:
                 lo = (-(1 << (bits - 1)) if kind == "int" else 0) + f.offset
                 hi = ((1 << (bits - 1)) - 1 if kind == "int" else (1 << bits) - 1) + f.offset

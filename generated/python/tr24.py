@@ -384,7 +384,7 @@ _FIELD_KINDS = {}  # class → ((field name, type), ...): resolving annotations 
 def _field_kinds(cls):
     import dataclasses
     import typing
-    hints = typing.get_type_hints(cls)
+    hints = typing.get_type_hints(cls, localns={})  # not the class: its slots may be named like types
     kinds = []
     for f in dataclasses.fields(cls):
         kind = hints[f.name]
