@@ -133,6 +133,16 @@ def serial_lines(p: Protocol, t: Transport, codec: types.ModuleType, baud: int, 
     return rows
 
 
+def serial_frames(p: Protocol, baud: int) -> list[tuple[str, str, str]]:
+    """Binary frames over a serial link: bytes and time per message."""
+    rows = [("line rate", f"{baud} baud, 8N1 ({BITS_PER_CHAR} bits a byte)", "from the transport's parameters")]
+    for m in p.messages:
+        if m.size is not None:
+            rows.append((f"`{m.name}` frame", f"{m.size} bytes, {seconds(_serial_time(m.size, baud))}",
+                         f"{m.size} × {BITS_PER_CHAR} bits"))
+    return rows
+
+
 def fifo(p: Protocol, t: Transport, size: int) -> list[tuple[str, str, str]]:
     rows = [("radio FIFO", f"{size} bytes", "from the transport's parameters")]
     for m in p.messages:
@@ -160,6 +170,8 @@ def transport_views(p: Protocol, codec: types.ModuleType) -> list[dict]:
         fifo_bytes = _param(t, "fifo_bytes")
         if _param(t, "word_bits") and _param(t, "repeat_s") and _param(t, "rate_hz"):
             rows = repeated_words(p, t, codec)
+        elif _param(t, "baud") and p.framing.kind != "text" and p.framing.text_form is None:
+            rows = serial_frames(p, int(_param(t, "baud")))
         elif _param(t, "baud"):
             rows = serial_lines(p, t, codec, int(_param(t, "baud")), assumed=False)
         elif fifo_bytes:
