@@ -41,6 +41,11 @@ def _group_classes(owner: str, items: Any, path: tuple, dotted: str) -> Iterator
 
 
 def _constants(d: dict[str, Any]) -> Iterator[tuple[str, tuple, str]]:
+    # What the C header defines on its own: first, so a schema name that meets one is the clash.
+    yield "DIR_ANY", (), "the constant that accepts every direction"
+    for name in d.get("flags", {}) or {}:
+        if isinstance(name, str):
+            yield f"{name}_ALL".upper(), (), f"the mask of every bit of flag set {name!r}"
     for name in d.get("messages", {}) or {}:
         if isinstance(name, str):
             yield f"MSG_{name}".upper(), ("messages", name), f"message {name!r}"
@@ -94,7 +99,7 @@ def generated_name_clashes(d: dict[str, Any]) -> list[Clash]:
             if kind == "Python class" and generated in GENERATED_CLASSES:
                 found.append((path, f"{what} would be the Python class {generated}, which the "
                                     "generated module already defines"))
-            elif generated in first:
+            elif generated in first and path:
                 found.append((path, f"{what} and {first[generated]} would both be the {kind} "
                                     f"{generated}"))
             else:

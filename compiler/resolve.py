@@ -784,6 +784,19 @@ class Resolver:
             if field is None:
                 self.error(path + (key,), f"rule names unknown field {key!r}",
                            "use a member field; dotted paths reach into groups")
+            elif not field.is_member and field.kind != "group":
+                self.error(path + (key,), f"rule names field {key!r}, which the codec sets itself "
+                                          "(a constant, length, checksum or reserved field)",
+                           "rules compare member fields")
+            elif field.enum is not None:
+                operands = value.values() if isinstance(value, dict) else [value]
+                for operand in operands:
+                    for v in operand if isinstance(operand, list) else [operand]:
+                        if v is not None and v not in {m.name for m in field.enum.members} \
+                                and v not in field.enum.values:
+                            self.error(path + (key,), f"rule compares {key!r} with {v!r}, which is not a "
+                                                      f"member of enum {field.enum.name!r}",
+                                       "use a member's name: " + ", ".join(m.name for m in field.enum.members))
             if isinstance(value, dict):
                 (op, operand), = value.items()
                 out.append(Condition(key, op, tuple(operand) if isinstance(operand, list) else operand))
