@@ -203,7 +203,7 @@ static inline uint32_t cw_get_bits(const uint8_t *p, uint16_t off, uint8_t n)
     for (i = 0; i < n; i++) {
         uint16_t bit = (uint16_t)(off + i);
         uint8_t byte = p[bit >> 3];
-        v = (uint32_t)(v << 1) | (uint32_t)((byte >> (7u - (bit & 7u))) & 1u);
+        v = (uint32_t)(v << 1) | (uint32_t)(((unsigned)byte >> (7u - (bit & 7u))) & 1u);
     }
     return v;
 }

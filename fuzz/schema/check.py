@@ -1,0 +1,165 @@
+"""One generated schema through every target: build (Python, C, docs, vectors,
+Promela), the Python codec on its vectors and on damaged frames, and the C codec
+compiled with the strict warning flags and run against the same vectors."""
+from __future__ import annotations
+
+import importlib.util
+import json
+import random
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import traceback
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from codeword.build import build, compile_schema
+
+from .features import DEFAULT
+from .generate import generate
+
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "tests"))  # the conformance driver writer, shared with tests/test_c.py
+from cdriver import Driver  # noqa: E402
+
+STRICT = ["-std=c99", "-O0", "-Wall", "-Wextra", "-Wpedantic", "-Wconversion", "-Wsign-conversion", "-Wshadow",
+          "-Werror", "-fsanitize=undefined", "-fno-sanitize-recover=all"]
+MUTATIONS = 40
+
+
+@dataclass
+class Outcome:
+    seed: int
+    stage: str = "ok"  # where it failed: build, python, c, or ok
+    detail: str = ""
+    checks: int = 0
+    notes: list[str] = field(default_factory=list)
+
+    @property
+    def ok(self) -> bool:
+        return self.stage == "ok"
+
+    def line(self) -> str:
+        return f"seed {self.seed}: {self.stage}" + (f": {self.detail}" if self.detail else "")
+
+
+def check_seed(seed: int, features: frozenset[str] = DEFAULT, keep: Path | None = None) -> Outcome:
+    outcome = Outcome(seed)
+    with tempfile.TemporaryDirectory(prefix=f"fz{seed}-") as tmp:
+        where = keep or Path(tmp)
+        where.mkdir(parents=True, exist_ok=True)
+        try:
+            check_text(generate(seed, features), f"fz{seed}", where, outcome)
+        except Exception:  # anything but a finding is an internal error somewhere
+            outcome.stage = outcome.stage if outcome.stage != "ok" else "internal"
+            outcome.detail = traceback.format_exc(limit=-3).strip().splitlines()[-1]
+            outcome.notes.append(traceback.format_exc(limit=-6))
+    return outcome
+
+
+def check_text(text: str, name: str, where: Path, outcome: Outcome) -> None:
+    path = where / f"{name}.yaml"
+    path.write_text(text, encoding="utf-8")
+    out = where / "out"
+    outcome.stage = "build"
+    result = build([path], out, root=where)
+    if result.errors:
+        outcome.detail = str(result.errors[0]).splitlines()[0]
+        return
+    protocol = compile_schema(path)
+    vectors = json.loads((out / "vectors" / f"{name}.json").read_text(encoding="utf-8"))
+    outcome.stage = "python"
+    module = _load(out / "python" / f"{name}.py")
+    problem = python_checks(module, vectors, protocol.framing.kind == "text", random.Random(outcome.seed))
+    if problem:
+        outcome.detail = problem
+        return
+    outcome.stage = "c"
+    problem, checks = c_checks(protocol, vectors, out / "c", where)
+    outcome.checks = checks
+    if problem:
+        outcome.detail = problem
+        return
+    outcome.stage = "ok"
+
+
+def _load(path: Path):
+    key = f"_fuzz_{path.stem}"
+    spec = importlib.util.spec_from_file_location(key, path)
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[key] = module
+    try:
+        spec.loader.exec_module(module)
+    finally:
+        sys.modules.pop(key, None)
+    return module
+
+
+def _wire(case: dict, text: bool):
+    return case["text"] if text else bytes.fromhex(case["hex"])
+
+
+def python_checks(mod, vectors: dict, text: bool, rng: random.Random) -> str:
+    """Every valid vector decodes and encodes back; every invalid one is refused with
+    a DecodeError; damaged frames give only codec errors, and what decodes encodes."""
+    frames = []
+    for case in vectors["valid"]:
+        wire = _wire(case, text)
+        obj = mod.decode(wire, case.get("direction"))
+        again = mod.encode(obj)
+        canonical = case.get("canonical", case.get("text") if text else case.get("hex"))
+        if again != (canonical if text else bytes.fromhex(canonical)):
+            return f"valid {case['name']!r}: encode(decode(x)) = {again!r}, not {wire!r}"
+        frames.append(wire)
+    for case in vectors["invalid"]:
+        try:
+            mod.decode(_wire(case, text), case.get("direction"))
+        except mod.DecodeError:
+            continue
+        return f"invalid {case['name']!r} decoded"
+    for frame in frames[:10]:
+        for _ in range(MUTATIONS // 10 or 1):
+            bad = _damage(frame, rng)
+            try:
+                obj = mod.decode(bad)
+            except mod.CodecError:
+                continue
+            again = mod.encode(obj)
+            if mod.decode(again) != obj:
+                return f"damaged {bad!r} decodes to {obj!r}, whose encoding decodes differently"
+    return ""
+
+
+def _damage(frame, rng: random.Random):
+    if isinstance(frame, str):
+        chars = list(frame)
+        i = rng.randrange(len(chars))
+        chars[i] = rng.choice("0123456789-.,;:|=*#abcXYZ \n")
+        return "".join(chars)
+    data = bytearray(frame)
+    if rng.random() < 0.5 and data:
+        data[rng.randrange(len(data))] ^= 1 << rng.randrange(8)
+    elif data:
+        del data[rng.randrange(len(data))]
+    return bytes(data)
+
+
+def c_checks(protocol, vectors: dict, include: Path, where: Path) -> tuple[str, int]:
+    gcc = shutil.which("gcc")
+    if gcc is None:
+        return "gcc is not installed", 0
+    src, exe = where / "driver.c", where / "driver"
+    src.write_text(Driver(protocol).source(vectors), encoding="utf-8")
+    built = subprocess.run([gcc, *STRICT, "-I", str(include), str(src), "-o", str(exe)], capture_output=True,
+                           text=True, timeout=300)
+    if built.returncode != 0:
+        first = next((line for line in built.stderr.splitlines() if "error" in line), built.stderr[:300])
+        return "does not compile: " + first.replace(str(where) + "/", ""), 0
+    ran = subprocess.run([str(exe)], capture_output=True, text=True, timeout=120)
+    verdict = re.search(rf"CONFORMANCE {protocol.name} PASS (\d+)", ran.stdout)
+    if ran.returncode != 0 or verdict is None:
+        lines = [x for x in (ran.stdout + ran.stderr).splitlines() if x.strip()]
+        return "C disagrees: " + " | ".join(lines[:3]), 0
+    return "", int(verdict.group(1))

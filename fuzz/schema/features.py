@@ -1,0 +1,47 @@
+"""The parts of the language the generator draws from, each one a switch.
+
+FULL is everything the generator knows. KNOWN_OPEN lists features switched off
+by default because a target does not serve them yet; each names what fails.
+The default run (and tests/test_schema_fuzz.py) uses DEFAULT = FULL - KNOWN_OPEN;
+`--features all` runs everything, to see whether an open one is fixed.
+"""
+from __future__ import annotations
+
+FULL = frozenset({
+    "bytes", "text",                        # framings
+    "sync", "length", "no_dispatch",        # envelope parts (bytes)
+    "sum", "xor", "crc",                    # checksums over bytes
+    "little", "field_order",                # byte orders: the framing's, and per field
+    "bitfields",                            # fields narrower than a byte, packed
+    "signed", "scale", "offset", "range",   # integer options
+    "enum", "flags", "bool", "bytes_field", "f32",
+    "wide",                                 # integers of 33..64 bits
+    "optional", "str", "char", "text_float", "newline",  # text options
+})
+
+KNOWN_OPEN = {
+    "wide": "C stores integers of more than 32 bits in 32-bit raw values (top bits lost)",
+}
+
+DEFAULT = FULL - set(KNOWN_OPEN)
+
+
+def parse(spec: str | None) -> frozenset[str]:
+    """`all`, or a comma-separated list with optional `-name` removals from the default."""
+    if not spec:
+        return DEFAULT
+    if spec == "all":
+        return FULL
+    chosen = set(DEFAULT)
+    for part in spec.split(","):
+        part = part.strip()
+        if part.startswith("-"):
+            chosen.discard(part[1:])
+        elif part.startswith("+"):
+            chosen.add(part[1:])
+        elif part:
+            chosen.add(part)
+    unknown = chosen - FULL
+    if unknown:
+        raise ValueError(f"unknown features: {', '.join(sorted(unknown))} (known: {', '.join(sorted(FULL))})")
+    return frozenset(chosen)

@@ -1,0 +1,211 @@
+"""Random valid schemas, each determined by its seed and the feature switches."""
+from __future__ import annotations
+
+import random
+import string
+
+import yaml
+
+from .features import DEFAULT
+
+CRCS = {8: ["CRC-8/SMBUS", "CRC-8/MAXIM-DOW"], 16: ["CRC-16/XMODEM", "CRC-16/MODBUS", "CRC-16/CMS"],
+        32: ["CRC-32/ISO-HDLC"]}
+SCALES = [0.5, 0.25, 0.125, 2, 4]  # powers of two: logical values are exact doubles
+NAMES = ["alpha", "bravo", "charlie", "delta", "echo", "foxtrot", "golf", "hotel", "india", "juliet",
+         "kilo", "lima", "mike", "november", "oscar", "papa", "quebec", "romeo", "sierra", "tango"]
+
+
+class Generator:
+    def __init__(self, seed: int, features: frozenset[str] = DEFAULT):
+        self.rng = random.Random(seed)
+        self.on = features
+        self.seed = seed
+        self.enums: dict = {}
+        self.flags: dict = {}
+        self.used: set[str] = set()
+
+    def has(self, feature: str, chance: float = 0.5) -> bool:
+        return feature in self.on and self.rng.random() < chance
+
+    def name(self) -> str:
+        while True:
+            candidate = self.rng.choice(NAMES) + ("" if self.rng.random() < 0.5 else f"_{self.rng.randrange(10)}")
+            if candidate not in self.used:
+                self.used.add(candidate)
+                return candidate
+
+    # -- the document -----------------------------------------------------------------------
+    def schema(self) -> dict:
+        kinds = [k for k in ("bytes", "text") if k in self.on] or ["bytes"]
+        kind = self.rng.choice(kinds)
+        doc: dict = {"codeword": 1, "protocol": f"fz{self.seed}", "title": f"fuzz schema {self.seed}",
+                     "source": "fuzz/schema"}
+        framing, messages = self.text() if kind == "text" else self.binary()
+        if self.enums:
+            doc["enums"] = self.enums
+        if self.flags:
+            doc["flags"] = self.flags
+        doc["framing"] = framing
+        doc["messages"] = messages
+        return doc
+
+    # -- bytes framing ----------------------------------------------------------------------
+    def binary(self) -> tuple[dict, dict]:
+        rng = self.rng
+        layout: list[dict] = []
+        single = self.has("no_dispatch", 0.2)
+        sync = self.has("sync", 0.8)
+        if sync:
+            layout.append({"name": "sync", "type": "u8", "const": rng.choice([0xA5, 0x55, 0x7E, 0xAA])})
+        if not single:
+            if self.has("length", 0.5):
+                layout.append({"name": "len", "type": "u8", "length_of": {"from": "kind", "to": "payload"}})
+            layout.append({"name": "kind", "type": "u8", "dispatch": True})
+        layout.append({"payload": True})
+        algorithms = [a for a in ("sum", "xor", "crc") if a in self.on]
+        if algorithms and rng.random() < 0.7:
+            algorithm = rng.choice(algorithms)
+            first = "kind" if not single else ("sync" if sync else "payload")
+            if algorithm == "crc":
+                width = rng.choice(sorted(CRCS))
+                check = {"algorithm": rng.choice(CRCS[width]), "covers": {"from": first, "to": "payload"}}
+            else:
+                width = rng.choice([8, 16])
+                check = {"algorithm": algorithm, "covers": {"from": first, "to": "payload"}}
+            layout.append({"name": "check", "type": f"u{width}", "checksum": check})
+        framing = {"kind": "bytes", "byte_order": "little" if self.has("little") else "big", "layout": layout}
+        count = 1 if single else rng.randint(1, 4)
+        ids = rng.sample(range(256), count)
+        messages = {}
+        for i in range(count):
+            body: dict = {} if single else {"id": ids[i]}
+            body["fields"] = self.binary_fields()
+            messages[self.name()] = body
+        return framing, messages
+
+    def binary_fields(self) -> list[dict]:
+        """Fields of whole bytes start on a byte; narrower ones do not cross one."""
+        rng = self.rng
+        fields, bits = [], 0
+        for _ in range(rng.randint(0, 5)):
+            field, width = self.binary_field()
+            room = 8 - bits % 8
+            if bits % 8 and (width >= 8 or width > room):
+                fields.append(self.padding(room))
+                bits += room
+            fields.append(field)
+            bits += width
+        if bits % 8:
+            fields.append(self.padding(8 - bits % 8))
+        return fields
+
+    def padding(self, width: int) -> dict:
+        return {"name": self.name(), "type": f"u{width}", "reserved": True}
+
+    def binary_field(self) -> tuple[dict, int]:
+        rng = self.rng
+        name = self.name()
+        choice = rng.random()
+        if choice < 0.1 and "enum" in self.on:
+            width = rng.choice([2, 3, 4, 8]) if "bitfields" in self.on else 8
+            return {"name": name, "type": f"u{width}", "enum": self.enum(width)}, width
+        if choice < 0.2 and "flags" in self.on:
+            width = rng.choice([3, 8, 16]) if "bitfields" in self.on else rng.choice([8, 16])
+            return {"name": name, "type": f"u{width}", "flags": self.flag_set(width)}, width
+        if choice < 0.27 and "bool" in self.on:
+            return {"name": name, "type": "bool"}, 1
+        if choice < 0.34 and "bytes_field" in self.on:
+            length = rng.randint(1, 4)
+            return {"name": name, "type": "bytes", "length": length}, 8 * length
+        if choice < 0.41 and "f32" in self.on:
+            return {"name": name, "type": "f32"}, 32
+        return self.integer(name)
+
+    def integer(self, name: str) -> tuple[dict, int]:
+        rng = self.rng
+        signed = self.has("signed")
+        if self.has("wide", 0.15):
+            width = rng.randint(33, 64)
+        elif "bitfields" in self.on and rng.random() < 0.4:
+            width = rng.randint(2 if signed else 1, 7)
+        else:
+            width = rng.choice([8, 16, 24, 32])
+        field: dict = {"name": name, "type": f"{'i' if signed else 'u'}{width}"}
+        if width % 8 == 0 and width > 8 and self.has("field_order", 0.2):
+            field["byte_order"] = rng.choice(["big", "little"])
+        lo, hi = (-(1 << (width - 1)), (1 << (width - 1)) - 1) if signed else (0, (1 << width) - 1)
+        scale = rng.choice(SCALES) if width <= 53 and self.has("scale", 0.3) else None
+        offset = rng.choice([-100, 1, 1000]) if width <= 53 and self.has("offset", 0.15) else None
+        if scale is not None:
+            field["scale"] = scale
+        if offset is not None:
+            field["offset"] = offset
+        if self.has("range", 0.3):
+            a, b = sorted(rng.randint(lo, hi) for _ in range(2))
+            field["range"] = [a * (scale or 1) + (offset or 0), b * (scale or 1) + (offset or 0)]
+        return field, width
+
+    def enum(self, width: int, text: bool = False) -> str:
+        rng = self.rng
+        name = self.name()
+        if text and rng.random() < 0.5:
+            chars = rng.sample(string.ascii_lowercase, rng.randint(2, 5))
+            self.enums[name] = {"type": "char", "values": [{"name": self.name(), "value": c} for c in chars]}
+            return name
+        values = rng.sample(range(1 << min(width, 8)), rng.randint(2, min(5, 1 << min(width, 8))))
+        self.enums[name] = {"type": f"u{width}", "values": [{"name": self.name(), "value": v} for v in sorted(values)]}
+        return name
+
+    def flag_set(self, width: int) -> str:
+        name = self.name()
+        bits = sorted(self.rng.sample(range(width), self.rng.randint(1, min(width, 6))))
+        self.flags[name] = {"type": f"u{width}", "bits": [{"name": self.name(), "bit": b} for b in bits]}
+        return name
+
+    # -- text framing -----------------------------------------------------------------------
+    def text(self) -> tuple[dict, dict]:
+        rng = self.rng
+        terminator = "\n" if self.has("newline", 0.3) else rng.choice([";", "*", "#"])
+        separator = rng.choice([",", "|"])
+        framing = {"kind": "text", "prefix_separator": rng.choice([":", "="]), "separator": separator,
+                   "terminator": terminator, "trim": rng.random() < 0.5}
+        if terminator != "\n":
+            framing["ignore_between"] = "\r\n"
+        prefixes = set()
+        while len(prefixes) < rng.randint(1, 4):
+            prefixes.add("".join(rng.choice(string.ascii_uppercase) for _ in range(rng.randint(1, 3))))
+        messages = {}
+        for prefix in sorted(prefixes):
+            fields = [self.text_field() for _ in range(rng.randint(1, 5))]
+            if self.has("optional", 0.3):
+                for field in fields[rng.randint(1, len(fields)):]:
+                    field["optional"] = True
+            messages[self.name()] = {"id": prefix, "fields": fields}
+        return framing, messages
+
+    def text_field(self) -> dict:
+        rng = self.rng
+        name = self.name()
+        choice = rng.random()
+        if choice < 0.15 and "enum" in self.on:
+            enum = self.enum(8, text=True)
+            return {"name": name, "type": self.enums[enum]["type"], "enum": enum}
+        if choice < 0.3 and "str" in self.on:
+            return {"name": name, "type": "str", "max_length": rng.randint(1, 20)}
+        if choice < 0.4 and "char" in self.on:
+            return {"name": name, "type": "char"}
+        if choice < 0.55 and "text_float" in self.on:
+            return {"name": name, "type": "f64"}
+        types = ["u8", "u16", "i8", "i16", "i32"] + (["u32", "i64", "u64"] if "wide" in self.on else [])
+        field: dict = {"name": name, "type": rng.choice(types)}
+        if self.has("range", 0.3):
+            bits = int(field["type"][1:])
+            signed = field["type"][0] == "i"
+            lo, hi = (-(1 << (bits - 1)), (1 << (bits - 1)) - 1) if signed else (0, (1 << bits) - 1)
+            field["range"] = sorted(rng.randint(lo, hi) for _ in range(2))
+        return field
+
+
+def generate(seed: int, features: frozenset[str] = DEFAULT) -> str:
+    """The YAML text of schema number `seed`."""
+    return yaml.safe_dump(Generator(seed, features).schema(), sort_keys=False, allow_unicode=True, width=100)
