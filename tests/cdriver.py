@@ -176,7 +176,8 @@ class Driver:
             wires=wires, wire_index={w: i for i, w in enumerate(wires)},
             decimals=self.text and any(leaf.field.kind == "float" for m in p.messages for leaf in leaves_of(m.layout)),
             text=self.text, wire_max=wire_max + 1, self_identifying=p.self_identifying,
-            has_dir=bool(p.directions), word=self.v.word_bits() is not None and p.framing.kind == "bits",
+            has_dir=p.framing.kind != "bits",  # decode takes a direction (PX_DIR_ANY: any)
+            word=self.v.word_bits() is not None and p.framing.kind == "bits",
             text_form=p.framing.text_form is not None,
             error_const=ERR, sequences=sequences,
             seq_cap=self.seq_cap(sequences))

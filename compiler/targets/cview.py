@@ -81,6 +81,13 @@ def clit(value: int, unsigned: bool = False) -> str:
     return f"{value:#x}{suffix}" if value > 255 else f"{value}{suffix}"
 
 
+def clit_signed(value: int) -> str:
+    """A literal compared with a signed value: signed itself, long where int may be 16 bits."""
+    if value < 0 or value <= 32767:
+        return clit(value)
+    return f"{value:#x}L" if value <= 0x7FFFFFFF else f"{value:#x}LL"
+
+
 @dataclass(frozen=True)
 class Rep:
     """How a leaf is stored in the C struct."""
@@ -209,10 +216,11 @@ class CView:
         tlo, thi = type_limits(ctype)
         unsigned = ctype.startswith("uint")
         parts = []
+        literal = (lambda v: clit(v, True)) if unsigned else clit_signed
         if lo > tlo:
-            parts.append(f"{expr} < {clit(lo, unsigned)}")
+            parts.append(f"{expr} < {literal(lo)}")
         if hi < thi:
-            parts.append(f"{expr} > {clit(hi, unsigned)}")
+            parts.append(f"{expr} > {literal(hi)}")
         return " || ".join(parts) or None
 
     def value_literal(self, f: Field, value: Any) -> str:
