@@ -877,6 +877,9 @@ class CView:
         self.rule_checks(c, m, "m")
         for leaf in leaves:
             self.text_check(c, leaf)
+        optional = [leaf for leaf in leaves if leaf.field.optional]
+        for before, after in zip(optional, optional[1:]):  # values are placed by position
+            self.fail_if(c, f"{self.has(after)} && !{self.has(before)}", "count")
         head = m.ids[0] + fr.prefix_separator
         lead_first = bool(leaves) and not leaves[0].field.optional
         if lead_first:

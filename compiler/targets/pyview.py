@@ -789,7 +789,8 @@ class MessageCode:
         self.view.rule_checks(c, self.m, "m", "_enc")
         outs: list[str] = []  # the text of each required field, joined once at the end
         optional = False
-        for leaf in self.leaves:
+        previous = None
+        for n, leaf in enumerate(self.leaves):
             f = leaf.field
             where = f"{self.m.name!r}, {leaf.dotted!r}"
             if f.optional:
@@ -798,6 +799,10 @@ class MessageCode:
                     optional = True
                 c(f"if m.{leaf.dotted} is not None:")
                 c.indent()
+                if previous is not None:  # a value is placed by its position: none may be skipped
+                    c(f"if len(p) != {n}:")
+                    c(f"    raise _enc({where}, m.{leaf.dotted}, 'count', 'absent, as {previous} is')")
+                previous = leaf.dotted
             if f.kind in ("char", "str") and f.enum is None:
                 v = leaf.var
                 c(f"{v} = m.{leaf.dotted}")
