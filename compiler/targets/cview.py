@@ -281,13 +281,14 @@ class CView:
         def store_member() -> None:
             c(f"{raw} = ({rt}){self.member(leaf)};")
 
-        def store_signed() -> None:  # two's complement cut to the field's bits
+        def store_signed(value: str = "") -> None:  # two's complement cut to the field's bits
+            value = value or v
             if f.bits == 16 and rt == "uint16_t":
-                c(f"{raw} = (uint16_t){v};")  # modular: no 32-bit arithmetic
+                c(f"{raw} = (uint16_t){value};")  # modular: no 32-bit arithmetic
             elif f.bits < 16 and rt != "uint32_t":
-                store(f"(uint16_t){v} & {clit((1 << f.bits) - 1, True)}")
+                store(f"(uint16_t){value} & {clit((1 << f.bits) - 1, True)}")
             else:
-                store(f"(uint32_t)(int32_t){v} & {clit((1 << f.bits) - 1, True)}")
+                store(f"(uint32_t)(int32_t){value} & {clit((1 << f.bits) - 1, True)}")
 
         if f.checksum or f.reserved:
             c(f"{raw} = 0u;")
@@ -335,12 +336,19 @@ class CView:
             store_member()
         else:
             self.member_check(c, f, v, "int")
-            if f.kind == "int":
+            if f.kind == "int" and f.offset and f.scale is None:  # the raw value is value - offset
+                store_signed(f"({self.offset_type(f)})((int64_t){v} - {clit_signed(int(f.offset))})")
+            elif f.kind == "int":
                 store_signed()
             elif f.offset and f.scale is None:
                 store(f"(uint32_t)({v} - {clit(int(f.offset))})")
             else:
                 store_member()
+
+    @staticmethod
+    def offset_type(f: Field) -> str:
+        """The signed type a raw value of `f` fits in (value - offset of a signed field)."""
+        return "int32_t" if f.bits <= 31 else "int64_t"
 
     def member_check(self, c: Code, f: Field, v: str, what: str) -> None:
         """Checks of an integer-like member (enum, flags, plain) before it is sent."""
@@ -461,7 +469,9 @@ class CView:
             c(f"{v} = cw_bit_index({raw});")
             return
         checked = v
-        if f.kind == "int" and f.bits <= 16 and r.ctype in ("int8_t", "int16_t"):
+        if f.kind == "int" and f.offset and f.scale is None:  # value = raw + offset, in signed arithmetic
+            c(f"{v} = ({r.ctype})((int64_t)cw_sign_extend({raw}, {f.bits}u) + {clit_signed(int(f.offset))});")
+        elif f.kind == "int" and f.bits <= 16 and r.ctype in ("int8_t", "int16_t"):
             c(f"{v} = ({r.ctype})cw_sign_extend16((uint16_t){raw}, {f.bits}u);")
         elif f.kind == "int":
             c(f"{v} = ({r.ctype})cw_sign_extend({raw}, {f.bits}u);")
