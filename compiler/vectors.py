@@ -334,9 +334,10 @@ class Generator:
             b = bytearray(data)
             b[-1] ^= 0xFF
             out.append(("last byte changed", bytes(b)))
-            b = bytearray(data)
-            b[1] = (b[1] + 1) & 0xFF
-            out.append(("second byte changed", bytes(b)))
+            if len(data) > 1:
+                b = bytearray(data)
+                b[1] = (b[1] + 1) & 0xFF
+                out.append(("second byte changed", bytes(b)))
         return [(label, bad) for label, bad in out if bad != data]
 
     def streams(self, frames: list[bytes]) -> list[dict]:
@@ -352,11 +353,11 @@ class Generator:
                 shape = rng.random()
                 if shape < 0.2:
                     parts.append(bytes(rng.randrange(256) for _ in range(rng.randint(1, 5))))
-                elif shape < 0.35:
+                elif shape < 0.35 and len(frame) > 1:
                     b = bytearray(frame)
                     b[rng.randrange(1, len(b))] ^= 1 << rng.randrange(8)
                     parts.append(bytes(b))
-                elif shape < 0.45:
+                elif shape < 0.45 and len(frame) > 1:
                     parts.append(frame[:rng.randint(1, len(frame) - 1)])
                 parts.append(frame)
             stream = b"".join(parts)

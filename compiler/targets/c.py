@@ -8,7 +8,7 @@ from .csequence import sequences_view
 from .cview import CView, cchar, clit, comment, cstr
 from .cwordform import word_type
 from .render import environment, tidy
-from .wire import leaves_of
+from .wire import stream_facts
 
 
 def constants(v: CView) -> list[tuple[str, str, str]]:
@@ -17,10 +17,9 @@ def constants(v: CView) -> list[tuple[str, str, str]]:
     for param in p.parameters:
         if isinstance(param.default, int):
             out.append((v.upper(param.name), clit(param.default), comment(param.doc or "")))
-    if p.framing.kind == "bytes":
-        first = leaves_of(p.framing.envelope)[0].field
-        if first.const is not None and first.bits == 8:
-            out.append((v.upper("SYNC"), f"{first.const:#04x}u", "first byte of every frame"))
+    sync = stream_facts(p).get("sync")
+    if sync is not None:
+        out.append((v.upper("SYNC"), f"{sync:#04x}u", "first byte of every frame"))
     for m in p.messages:
         if m.size is not None:
             out.append((v.upper(m.name, "SIZE"), f"{m.size}u", "bytes"))

@@ -83,8 +83,8 @@ def stream_facts(p: Protocol) -> dict:
     if fr.kind != "bytes":
         return {}
     leaves = leaves_of(tuple(f for f in fr.envelope))
-    first = leaves[0].field
-    sync = first.const if first.const is not None and first.bits == 8 else None
+    first = leaves[0].field if leaves else None  # an envelope of the payload alone has no leaves
+    sync = first.const if first is not None and first.const is not None and first.bits == 8 else None
     length = None
     pos = 0
     for leaf in leaves_of(p.messages[0].layout):

@@ -63,7 +63,7 @@ class Generator:
             layout.append({"name": "kind", "type": "u8", "dispatch": True})
         layout.append({"payload": True})
         algorithms = [a for a in ("sum", "xor", "crc") if a in self.on]
-        if algorithms and rng.random() < 0.7:
+        if algorithms and (sync or not single) and rng.random() < 0.7:  # `from: payload` is its end
             algorithm = rng.choice(algorithms)
             first = "kind" if not single else ("sync" if sync else "payload")
             if algorithm == "crc":
@@ -79,15 +79,15 @@ class Generator:
         messages = {}
         for i in range(count):
             body: dict = {} if single else {"id": ids[i]}
-            body["fields"] = self.binary_fields()
+            body["fields"] = self.binary_fields(at_least=1 if single else 0)  # a frame is never empty
             messages[self.name()] = body
         return framing, messages
 
-    def binary_fields(self) -> list[dict]:
+    def binary_fields(self, at_least: int = 0) -> list[dict]:
         """Fields of whole bytes start on a byte; narrower ones do not cross one."""
         rng = self.rng
         fields, bits = [], 0
-        for _ in range(rng.randint(0, 5)):
+        for _ in range(rng.randint(at_least, 5)):
             field, width = self.binary_field()
             room = 8 - bits % 8
             if bits % 8 and (width >= 8 or width > room):
