@@ -408,6 +408,11 @@ class Resolver:
                     raw_lo, raw_hi = self.to_raw(f, lo), self.to_raw(f, hi)
                 if f.scale is None and f.offset is None and not (float(lo).is_integer() and float(hi).is_integer()):
                     self.error(path + ("range",), f"field {name!r}: an integer field's range must be integers")
+                elif not f.one_hot and math.ceil((lo - (f.offset or 0)) / (f.scale or 1) - 1e-9) > \
+                        math.floor((hi - (f.offset or 0)) / (f.scale or 1) + 1e-9):  # decimal scales round
+                    self.error(path + ("range",), f"field {name!r}: range [{lo}, {hi}] holds no value the "
+                                                  "field can carry (raw value × scale + offset)",
+                               "widen the range to include one")
                 elif raw_lo < lo_raw or raw_hi > hi_raw:
                     self.error(path + ("range",),
                                f"field {name!r}: range [{lo}, {hi}] does not fit {bits} bits "

@@ -340,6 +340,8 @@ class CView:
                 store_signed(f"({self.offset_type(f)})((int64_t){v} - {clit_signed(int(f.offset))})")
             elif f.kind == "int":
                 store_signed()
+            elif f.offset and f.scale is None and f.offset < 0:  # the raw value is value - offset
+                store(f"(uint32_t)((int64_t){v} - {clit_signed(int(f.offset))})")
             elif f.offset and f.scale is None:
                 store(f"(uint32_t)({v} - {clit(int(f.offset))})")
             else:
@@ -475,6 +477,8 @@ class CView:
             c(f"{v} = ({r.ctype})cw_sign_extend16((uint16_t){raw}, {f.bits}u);")
         elif f.kind == "int":
             c(f"{v} = ({r.ctype})cw_sign_extend({raw}, {f.bits}u);")
+        elif f.offset and f.scale is None and f.offset < 0:  # may go below zero: signed arithmetic
+            c(f"{v} = ({r.ctype})((int64_t){raw} + {clit_signed(int(f.offset))});")
         elif f.offset and f.scale is None:
             c(f"{v} = ({r.ctype})({raw} + {clit(int(f.offset), True)});")
         else:
@@ -597,8 +601,8 @@ class CView:
         c(f"static inline int {self.fn(m, 'raw')}(const {self.tname(m)} *m, {rt} *r)")
         c("{")
         c.indent()
-        if not any(leaf.field.is_member for leaf, _ in wired):
-            c("(void)m;")
+        if not m.rules and not any(leaf.field.is_member and leaf.var in raws for leaf, _ in wired):
+            c("(void)m;")  # bytes fields are copied by encode itself
         if not raws:
             c("(void)r;")
         self.rule_checks(c, m, "m")
