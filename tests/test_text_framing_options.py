@@ -97,3 +97,29 @@ int main(void) {
 }
 """
     assert run_c(tmp_path, driver) == ["6 P:7,5|"]
+
+
+def test_a_present_optional_value_after_an_absent_one_is_refused(tmp_path):
+    schema = SCHEMA.format(name="gaps").replace(
+        "      - {name: c, type: char, optional: true}",
+        "      - {name: b, type: u8, optional: true}\n      - {name: c, type: char, optional: true}")
+    render(tmp_path, "gaps", schema)
+    mod = load(tmp_path / "gaps.py")
+    assert mod.encode(mod.Ping(a=5, b=6, c="x")) == "P:7,5,6,x;"
+    with pytest.raises(mod.EncodeError) as gap:
+        mod.encode(mod.Ping(a=5, c="x"))  # "P:7,5,x;" would read x as b
+    assert gap.value.field == "c" and gap.value.rule == "count"
+    driver = r"""
+#include <stdio.h>
+#include <string.h>
+#include "gaps.h"
+int main(void) {
+    gaps_ping_t m;
+    char buf[32];
+    memset(&m, 0, sizeof m);
+    m.a = 5; m.has_c = true; m.c = 'x';
+    printf("%d\n", gaps_ping_encode(&m, buf, sizeof buf) == CW_ERR_COUNT);
+    return 0;
+}
+"""
+    assert run_c(tmp_path, driver) == ["1"]
