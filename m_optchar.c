@@ -1,2 +1,0 @@
-#include "optchar.h"
-int main(void){return 0;}

@@ -1,2 +1,0 @@
-#include "txtconst.h"
-int main(void){return 0;}

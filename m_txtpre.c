@@ -1,2 +1,0 @@
-#include "txtpre.h"
-int main(void){return 0;}
