@@ -16,7 +16,7 @@ from pathlib import Path
 from typing import Any
 
 from codeword.model import Field, Protocol
-from codeword.targets.cview import ERR, CView, cchar, cstr
+from codeword.targets.cview import ERR, CView, cchar, clit, clit_signed, cstr
 from codeword.targets.wire import leaves_of
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -83,8 +83,8 @@ class Driver:
         if f.scale is not None:
             raw = (Fraction(value) - Fraction(f.offset or 0)) / Fraction(f.scale)
             assert raw.denominator == 1, (f.name, value)
-            return str(int(raw))
-        return str(int(value))
+            return int_literal(int(raw))
+        return int_literal(int(value))
 
     # -- equality of two decoded structs ----------------------------------------------------
     def equal_lines(self, fields: tuple[Field, ...], prefix: str) -> list[str]:
@@ -206,3 +206,9 @@ class Driver:
             if mine:
                 out.append({"name": s.name, "fn": f"{self.p.name}_{s.name}", "cases": mine})
         return out
+
+
+def int_literal(value: int) -> str:
+    """A C literal of `value` for a member of any integer type: INT64_MIN and values
+    above INT64_MAX have no plain decimal spelling."""
+    return clit(value, True) if value >= 1 << 63 else clit_signed(value) if value >= 0 else clit(value)

@@ -51,7 +51,7 @@ def spans(wired: list[tuple[Leaf, int]], frame_bytes: int) -> list[Span]:
     for leaf, pos in wired:
         f = leaf.field
         aligned = pos % 8 == 0 and f.bits % 8 == 0
-        if not pending and aligned and (f.kind == "bytes" or f.bits <= 32):
+        if not pending and aligned:
             out.append(Span("bytes" if f.kind == "bytes" else "int", pos // 8, f.bits // 8,
                             (Piece(leaf, pos, f.bits),)))
             continue

@@ -69,6 +69,30 @@ def type_limits(ctype: str) -> tuple[int, int]:
     raise KeyError(ctype)
 
 
+def unsigned_type(bits: int) -> str:
+    """The narrowest unsigned C type of at least `bits` bits (at most 64)."""
+    return "uint8_t" if bits <= 8 else "uint16_t" if bits <= 16 else "uint32_t" if bits <= 32 else "uint64_t"
+
+
+def sign_extend(bits: int) -> str:
+    """The codeword.h function that sign-extends a raw value of `bits` bits."""
+    return "cw_sign_extend_wide" if bits > 32 else "cw_sign_extend"
+
+
+def wide_text(f: Field) -> Optional[str]:
+    """"i64" or "u64" for a text integer the 32-bit text helpers cannot hold, else None."""
+    if f.kind == "int" and f.bits > 32 and f.enum is None:
+        return "i64"
+    if f.kind == "uint" and f.bits >= 32 and f.enum is None:
+        return "u64"
+    return None
+
+
+def bits_fn(op: str, bits: int) -> str:
+    """cw_get_bits / cw_put_bits, or their 64-bit forms for fields over 32 bits."""
+    return f"cw_{op}_bits_wide" if bits > 32 else f"cw_{op}_bits"
+
+
 def clit(value: int, unsigned: bool = False) -> str:
     """An integer literal that has the intended value on 16-bit-int targets."""
     if value < 0:
@@ -287,6 +311,8 @@ class CView:
                 c(f"{raw} = (uint16_t){value};")  # modular: no 32-bit arithmetic
             elif f.bits < 16 and rt != "uint32_t":
                 store(f"(uint16_t){value} & {clit((1 << f.bits) - 1, True)}")
+            elif f.bits > 32:
+                store(f"(uint64_t)(int64_t){value} & {clit((1 << f.bits) - 1, True)}")
             else:
                 store(f"(uint32_t)(int32_t){value} & {clit((1 << f.bits) - 1, True)}")
 
@@ -305,7 +331,7 @@ class CView:
             c(f"{raw} = ({rt}){v};")  # a bool is 0 or 1
         elif f.kind == "float":
             store(f"cw_f32_to_bits({v})")
-            c(f"if (!cw_f32_bits_finite({raw})) {{")
+            c(f"if (!cw_f32_bits_finite({raw if rt == 'uint32_t' else f'(uint32_t){raw}'})) {{")
             c("    return CW_ERR_FINITE;")
             c("}")
             if f.range is not None:
@@ -321,7 +347,8 @@ class CView:
                 c(f"    if ({cond}) {{")
                 c("        return CW_ERR_RANGE;")
                 c("    }")
-            c(f"    {raw} = " + (f"(uint32_t)1u << {v};" if rt == "uint32_t" else f"({rt})((uint32_t)1u << {v});"))
+            one = "(uint64_t)1u" if f.bits > 32 else "(uint32_t)1u"
+            c(f"    {raw} = " + (f"{one} << {v};" if rt == "uint32_t" else f"({rt})({one} << {v});"))
             c("} else {")
             c(f"    {raw} = 0u;")
             c("}")
@@ -341,9 +368,9 @@ class CView:
             elif f.kind == "int":
                 store_signed()
             elif f.offset and f.scale is None and f.offset < 0:  # the raw value is value - offset
-                store(f"(uint32_t)((int64_t){v} - {clit_signed(int(f.offset))})")
+                store(f"({unsigned_type(max(f.bits, 32))})((int64_t){v} - {clit_signed(int(f.offset))})")
             elif f.offset and f.scale is None:
-                store(f"(uint32_t)({v} - {clit(int(f.offset))})")
+                store(f"({unsigned_type(max(f.bits, 32))})({v} - {clit(int(f.offset))})")
             else:
                 store_member()
 
@@ -416,12 +443,14 @@ class CView:
     def literal_of(value: Any, ctype: str) -> str:
         if isinstance(value, str):
             return cchar(value)
-        return clit(int(value), ctype.startswith("uint"))
+        return clit(int(value), True) if ctype.startswith("uint") else clit_signed(int(value))
 
     # -- decode side: raw wire value -> checks -> struct member -----------------------------
     def decode_leaf(self, c: Code, leaf: Leaf, raw: str, m: Message) -> None:
-        """Check the raw value (uint32_t) in Python's order and store the member."""
+        """Check the raw value (of the message's raw type) in Python's order and store the member."""
         f = leaf.field
+        if self.raw_type(m) == "uint64_t" and f.bits and f.bits <= 32:  # for the 32-bit helpers
+            raw = f"(uint32_t){raw}"
         if f.reserved:
             self.fail_if(c, f"{raw} != 0u", "reserved")
             return
@@ -472,15 +501,16 @@ class CView:
             return
         checked = v
         if f.kind == "int" and f.offset and f.scale is None:  # value = raw + offset, in signed arithmetic
-            c(f"{v} = ({r.ctype})((int64_t)cw_sign_extend({raw}, {f.bits}u) + {clit_signed(int(f.offset))});")
+            c(f"{v} = ({r.ctype})((int64_t){sign_extend(f.bits)}({raw}, {f.bits}u) + {clit_signed(int(f.offset))});")
         elif f.kind == "int" and f.bits <= 16 and r.ctype in ("int8_t", "int16_t"):
             c(f"{v} = ({r.ctype})cw_sign_extend16((uint16_t){raw}, {f.bits}u);")
         elif f.kind == "int":
-            c(f"{v} = ({r.ctype})cw_sign_extend({raw}, {f.bits}u);")
+            c(f"{v} = ({r.ctype}){sign_extend(f.bits)}({raw}, {f.bits}u);")
         elif f.offset and f.scale is None and f.offset < 0:  # may go below zero: signed arithmetic
             c(f"{v} = ({r.ctype})((int64_t){raw} + {clit_signed(int(f.offset))});")
         elif f.offset and f.scale is None:
-            c(f"{v} = ({r.ctype})({raw} + {clit(int(f.offset), True)});")
+            total = f"(uint64_t){raw}" if r.ctype == "uint64_t" else raw  # no wrap in a narrower raw type
+            c(f"{v} = ({r.ctype})({total} + {clit(int(f.offset), True)});")
         else:
             c(f"{v} = ({r.ctype}){raw};")
         if f.enum is not None and f.kind == "int":
@@ -524,6 +554,8 @@ class CView:
             return f"buf[{start}] = (uint8_t){value};"
         if size in (2, 4):
             return f"cw_put_{o}{8 * size}(buf + {start}, (uint{8 * size}_t){value});"
+        if size > 4:
+            return f"cw_put_{o}_wide(buf + {start}, {size}u, (uint64_t){value});"
         return f"cw_put_{o}(buf + {start}, {size}u, (uint32_t){value});"
 
     @staticmethod
@@ -534,6 +566,8 @@ class CView:
             return f"buf[{start}]"
         if size in (2, 4):
             return f"cw_get_{o}{8 * size}(buf + {start})"
+        if size > 4:
+            return f"cw_get_{o}_wide(buf + {start}, {size}u)"
         return f"cw_get_{o}(buf + {start}, {size}u)"
 
     def spans(self, m: Message) -> list[Span]:
@@ -553,12 +587,13 @@ class CView:
         of two that divides 2**16: wrapping there keeps the sum's residue."""
         cs = leaf.field.checksum
         small = cs.algorithm in ("sum", "xor") and cs.modulo & (cs.modulo - 1) == 0 and cs.modulo <= 1 << 16
-        wide = [("(unsigned)" if small else "(uint32_t)") + others[0]] + others[1:]
+        wide = [("(unsigned)" if small else "(uint64_t)" if rt == "uint64_t" else "(uint32_t)") + others[0]] + others[1:]
         if cs.algorithm in ("sum", "xor"):
             op = " + " if cs.algorithm == "sum" else " ^ "
             return f"({rt})(({op.join(wide)}) % {clit(cs.modulo, True)})"
         flip = " ^ 1u" if cs.parity == "odd" else ""
-        return f"({rt})(cw_parity32({' ^ '.join(wide)}){flip})"
+        parity = "cw_parity64" if rt == "uint64_t" else "cw_parity32"
+        return f"({rt})({parity}({' ^ '.join(wide)}){flip})"
 
     def byte_checksums(self) -> list[str]:
         seen: dict[str, str] = {}
@@ -591,7 +626,7 @@ class CView:
         """The narrowest unsigned type that holds every raw value of `m`."""
         wired, raws = self.wired(m)
         widest = max([leaf.field.bits for leaf, _ in wired if leaf.var in raws] + [1])
-        return "uint8_t" if widest <= 8 else "uint16_t" if widest <= 16 else "uint32_t"
+        return unsigned_type(widest)
 
     def raw_function(self, m: Message) -> str:
         """<msg>_raw(m, r): checks a message and fills r[] with its raw wire values."""
@@ -648,7 +683,8 @@ class CView:
         c(f"static inline int {self.fn(m, 'encode')}(const {self.tname(m)} *m, uint8_t *buf, size_t cap)")
         c("{")
         c.indent()
-        c(f"{self.raw_type(m)} r[{max(1, len(raws))}];")
+        rt = self.raw_type(m)
+        c(f"{rt} r[{max(1, len(raws))}];")
         c(f"int rc = {self.fn(m, 'raw')}(m, r);")
         c("if (rc != CW_OK) {")
         c("    return rc;")
@@ -670,13 +706,14 @@ class CView:
                 c(f"memset(buf + {span.start}, 0, {span.size}u);")
                 for piece in span.pieces:
                     if piece.leaf.var in raws:
-                        c(f"cw_put_bits(buf, {piece.pos}u, {piece.bits}u, {raws[piece.leaf.var]});")
+                        value = raws[piece.leaf.var] if piece.bits > 32 or rt != "uint64_t" else f"(uint32_t){raws[piece.leaf.var]}"
+                        c(f"{bits_fn('put', piece.bits)}(buf, {piece.pos}u, {piece.bits}u, {value});")
         for span, piece in self.byte_sums(layout):
             call = self.byte_checksum_call(piece.leaf)
             if span.kind == "int":
                 c(self.int_put(span.start, span.size, self.order_of(piece.leaf.field), call))
             else:  # sharing its bytes, whose bits for it are still 0
-                c(f"cw_put_bits(buf, {piece.pos}u, {piece.bits}u, {call});")
+                c(f"{bits_fn('put', piece.bits)}(buf, {piece.pos}u, {piece.bits}u, {call});")
         c(f"return {m.size};")
         c.dedent()
         c("}")
@@ -720,12 +757,12 @@ class CView:
                 c("}")
             else:
                 for piece in pieces:
-                    c(f"{raws[piece.leaf.var]} = ({rt})cw_get_bits(buf, {piece.pos}u, {piece.bits}u);")
+                    c(f"{raws[piece.leaf.var]} = ({rt}){bits_fn('get', piece.bits)}(buf, {piece.pos}u, {piece.bits}u);")
         for span, piece in self.byte_sums(layout):
             if span.kind == "int":
                 got = self.int_get(span.start, span.size, self.order_of(piece.leaf.field))
             else:
-                got = f"cw_get_bits(buf, {piece.pos}u, {piece.bits}u)"
+                got = f"{bits_fn('get', piece.bits)}(buf, {piece.pos}u, {piece.bits}u)"
             self.fail_if(c, f"{got} != {self.byte_checksum_call(piece.leaf)}", "checksum")
         c(f"return {self.fn(m, 'check_raw')}(r, buf, m, false);")
         c.dedent()
@@ -919,6 +956,8 @@ class CView:
                     c(f"cw_write_char(&w, {v});")
                 elif f.kind == "str":
                     c(f"cw_write_text(&w, {v}, {self.text_len(leaf)});")
+                elif self.text_writer(f):
+                    c(f"cw_write_{self.text_writer(f)}(&w, {v});")
                 else:
                     c(f"cw_write_int(&w, (int32_t){v});")
             else:
@@ -929,6 +968,8 @@ class CView:
                     c(f"cw_write_text_field(&w, {lead}, &{v}, 1u);")
                 elif f.kind == "str":
                     c(f"cw_write_text_field(&w, {lead}, {v}, {self.text_len(leaf)});")
+                elif self.text_writer(f):
+                    c(f"cw_write_{self.text_writer(f)}_field(&w, {lead}, {v});")
                 else:
                     c(f"cw_write_int_field(&w, {lead}, (int32_t){v});")
             if f.optional:
@@ -1068,12 +1109,19 @@ class CView:
             else:
                 c("{")
                 c.indent()
-                c("int32_t value;")
-                if f.enum is not None or f.range is None:
-                    lo, hi = (-(1 << 31), (1 << 31) - 1)
+                wide = wide_text(f)
+                vtype = {"i64": "int64_t", "u64": "uint64_t", None: "int32_t"}[wide]
+                if wide:  # parsed straight into the field's own range
+                    c(f"{vtype} value;")
+                    lo, hi = self.raw_bounds(f) if f.range is not None else self.stored_range(f)
+                    c(f"rc = cw_parse_{wide}(v.b, v.e, {self.literal_of(lo, vtype)}, {self.literal_of(hi, vtype)}, &value);")
                 else:
-                    lo, hi = self.raw_bounds(f)
-                c(f"rc = cw_parse_int(v.b, v.e, {clit(lo) if lo > -(1 << 31) else 'INT32_MIN'}, {clit(hi) if hi < (1 << 31) - 1 else 'INT32_MAX'}, &value);")
+                    c("int32_t value;")
+                    if f.enum is not None or f.range is None:
+                        lo, hi = (-(1 << 31), (1 << 31) - 1)
+                    else:
+                        lo, hi = self.raw_bounds(f)
+                    c(f"rc = cw_parse_int(v.b, v.e, {clit(lo) if lo > -(1 << 31) else 'INT32_MIN'}, {clit(hi) if hi < (1 << 31) - 1 else 'INT32_MAX'}, &value);")
                 if f.enum is not None:
                     c("if (rc == CW_ERR_RANGE) {")
                     c("    return CW_ERR_ENUM;")
@@ -1083,13 +1131,13 @@ class CView:
                 c("}")
                 if f.enum is not None:
                     self.fail_if(c, " && ".join(f"value != {clit(int(x.value))}" for x in f.enum.members), "enum")
-                elif f.range is None:
+                elif f.range is None and not wide:
                     cond = self.range_cond("value", *self.stored_range(f), "int32_t")
                     if cond:
                         self.fail_if(c, cond, "range")
                 if f.values:
                     allowed = [self.enum_wire(f, x) for x in f.values]
-                    self.fail_if(c, " && ".join(f"value != {clit(int(x))}" for x in allowed), "values")
+                    self.fail_if(c, " && ".join(f"value != {self.literal_of(x, vtype)}" for x in allowed), "values")
                 c(f"{t} = ({r.ctype})value;")
                 c.dedent()
                 c("}")
@@ -1101,6 +1149,10 @@ class CView:
         c.dedent()
         c("}")
         return c.text()
+
+    def text_writer(self, f: Field) -> Optional[str]:
+        """"i64" or "u64" for a text integer member the 32-bit writer cannot hold, else None."""
+        return {"int64_t": "i64", "uint64_t": "u64", "uint32_t": "u64"}.get(self.rep(f).ctype)
 
     def text_decode_function(self, m: Message) -> str:
         c = Code()
@@ -1181,8 +1233,6 @@ def crc_table(p: CrcParams) -> list[int]:
     return table
 
 
-def crc_ctype(width: int) -> str:
-    return "uint8_t" if width <= 8 else "uint16_t" if width <= 16 else "uint32_t" if width <= 32 else "uint64_t"
 
 
 def checksum_code(name: str, cs: Checksum, guard: str) -> str:
@@ -1205,7 +1255,7 @@ def checksum_code(name: str, cs: Checksum, guard: str) -> str:
         c("}")
         return c.text()
     p = cs.crc
-    t = crc_ctype(p.width)
+    t = unsigned_type(p.width)
     small = p.width <= 16  # promote through `unsigned` so shifts never hit a signed int
     widen = "(unsigned)" if small else ""
     mask = (1 << p.width) - 1

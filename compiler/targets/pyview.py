@@ -203,7 +203,9 @@ class PythonView:
             expr = v
             if f.offset:
                 expr = f"({v} - {lit(f.offset)})"
-            if f.scale is not None:
+            if f.scale is not None and f.bits >= 53:
+                expr = f"_half_up({expr} / {lit(f.scale)})"
+            elif f.scale is not None:
                 expr = f"_floor({expr} / {lit(f.scale)} + 0.5)"
             elif f.offset and not float(f.offset).is_integer():
                 expr = f"_floor({expr} + 0.5)"

@@ -20,7 +20,6 @@ FULL = frozenset({
 })
 
 KNOWN_OPEN = {
-    "wide": "C stores integers of more than 32 bits in 32-bit raw values (top bits lost)",
     "text_float": "C and Python disagree on some decimal texts: values of 17 significant digits "
                   "(C: precision error) and lines the C decoder reads differently",
 }

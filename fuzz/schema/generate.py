@@ -20,6 +20,7 @@ class Generator:
         self.rng = random.Random(seed)
         self.on = features
         self.seed = seed
+        self.little = False  # the byte framing's order, once chosen
         self.enums: dict = {}
         self.flags: dict = {}
         self.used: set[str] = set()
@@ -73,7 +74,8 @@ class Generator:
                 width = rng.choice([8, 16])
                 check = {"algorithm": algorithm, "covers": {"from": first, "to": "payload"}}
             layout.append({"name": "check", "type": f"u{width}", "checksum": check})
-        framing = {"kind": "bytes", "byte_order": "little" if self.has("little") else "big", "layout": layout}
+        self.little = self.has("little")
+        framing = {"kind": "bytes", "byte_order": "little" if self.little else "big", "layout": layout}
         count = 1 if single else rng.randint(1, 4)
         ids = rng.sample(range(256), count)
         messages = {}
@@ -124,8 +126,8 @@ class Generator:
     def integer(self, name: str) -> tuple[dict, int]:
         rng = self.rng
         signed = self.has("signed")
-        if self.has("wide", 0.15):
-            width = rng.randint(33, 64)
+        if self.has("wide", 0.15):  # little-endian fields are whole bytes
+            width = rng.choice([40, 48, 56, 64]) if self.little else rng.randint(33, 64)
         elif "bitfields" in self.on and rng.random() < 0.4:
             width = rng.randint(2 if signed else 1, 7)
         else:

@@ -137,6 +137,46 @@ static inline void cw_put_le(uint8_t *p, uint8_t n, uint32_t v)
     }
 }
 
+/* Integers of 5..8 bytes (fields of 33..64 bits) in 64-bit arithmetic; a
+ * protocol without such fields never calls these. */
+static inline uint64_t cw_get_be_wide(const uint8_t *p, uint8_t n)
+{
+    uint64_t v = 0;
+    uint8_t i;
+    for (i = 0; i < n; i++) {
+        v = (uint64_t)(v << 8) | (uint64_t)p[i];
+    }
+    return v;
+}
+
+static inline uint64_t cw_get_le_wide(const uint8_t *p, uint8_t n)
+{
+    uint64_t v = 0;
+    uint8_t i;
+    for (i = n; i > 0; i--) {
+        v = (uint64_t)(v << 8) | (uint64_t)p[i - 1u];
+    }
+    return v;
+}
+
+static inline void cw_put_be_wide(uint8_t *p, uint8_t n, uint64_t v)
+{
+    uint8_t i;
+    for (i = n; i > 0; i--) {
+        p[i - 1u] = (uint8_t)(v & 0xFFu);
+        v >>= 8;
+    }
+}
+
+static inline void cw_put_le_wide(uint8_t *p, uint8_t n, uint64_t v)
+{
+    uint8_t i;
+    for (i = 0; i < n; i++) {
+        p[i] = (uint8_t)(v & 0xFFu);
+        v >>= 8;
+    }
+}
+
 /* Fixed widths without loops: what generated codecs call for 16- and 32-bit
  * fields (single bytes are plain array accesses). */
 static inline uint16_t cw_get_be16(const uint8_t *p)
@@ -220,6 +260,30 @@ static inline void cw_put_bits(uint8_t *p, uint16_t off, uint8_t n, uint32_t v)
     }
 }
 
+/* The same for fields of 33..64 bits. */
+static inline uint64_t cw_get_bits_wide(const uint8_t *p, uint16_t off, uint8_t n)
+{
+    uint64_t v = 0;
+    uint8_t i;
+    for (i = 0; i < n; i++) {
+        uint16_t bit = (uint16_t)(off + i);
+        uint8_t byte = p[bit >> 3];
+        v = (uint64_t)(v << 1) | (uint64_t)(((unsigned)byte >> (7u - (bit & 7u))) & 1u);
+    }
+    return v;
+}
+
+static inline void cw_put_bits_wide(uint8_t *p, uint16_t off, uint8_t n, uint64_t v)
+{
+    uint8_t i;
+    for (i = 0; i < n; i++) {
+        uint16_t bit = (uint16_t)(off + i);
+        if ((v >> (uint8_t)(n - 1u - i)) & 1u) {
+            p[bit >> 3] = (uint8_t)(p[bit >> 3] | (uint8_t)(0x80u >> (bit & 7u)));
+        }
+    }
+}
+
 /* Two's complement of the low `bits` bits, without implementation-defined
  * conversions. */
 static inline int32_t cw_sign_extend(uint32_t raw, uint8_t bits)
@@ -229,6 +293,16 @@ static inline int32_t cw_sign_extend(uint32_t raw, uint8_t bits)
         return -(int32_t)(uint32_t)(((~raw) & (sign - 1u)) ) - 1;
     }
     return (int32_t)raw;
+}
+
+/* The same for 33..64 bits. */
+static inline int64_t cw_sign_extend_wide(uint64_t raw, uint8_t bits)
+{
+    uint64_t sign = (uint64_t)1u << (uint8_t)(bits - 1u);
+    if (raw & sign) {
+        return -(int64_t)(((~raw) & (sign - 1u))) - 1;
+    }
+    return (int64_t)raw;
 }
 
 /* The same for 2..16 bits in 16-bit arithmetic (cheaper on 8-bit targets). */
@@ -254,6 +328,11 @@ static inline uint8_t cw_parity32(uint32_t v)
     b = (uint8_t)(b ^ ((unsigned)b >> 4));
     return (uint8_t)((0x6996u >> (b & 0xFu)) & 1u);
 #endif
+}
+
+static inline uint8_t cw_parity64(uint64_t v)
+{
+    return cw_parity32((uint32_t)(v ^ (v >> 32)));
 }
 
 static inline float cw_f32_from_bits(uint32_t bits)
@@ -515,6 +594,23 @@ static inline char *cw_put_int(char *out, int32_t v)
     return cw_put_u32(out, (uint32_t)v);
 }
 
+/* The same for the values of fields of more than 32 bits. */
+static inline char *cw_put_u64(char *out, uint64_t v)
+{
+    out += cw_digit_count(v);
+    cw_put_digits_back(out, v, 0u);
+    return out;
+}
+
+static inline char *cw_put_i64(char *out, int64_t v)
+{
+    if (v < 0) {
+        *out++ = '-';
+        return cw_put_u64(out, (uint64_t)0u - (uint64_t)v);
+    }
+    return cw_put_u64(out, (uint64_t)v);
+}
+
 /* Writes d like Python's repr(float) with a trailing ".0" removed:
  * positional for decimal exponents -4..15, otherwise d.ddde+XX; returns the
  * end. At most CW_DECIMAL_ANY_TEXT chars (CW_DECIMAL_MAX_TEXT when d fits).
@@ -620,6 +716,38 @@ static inline void cw_write_int_field(cw_writer_t *w, char lead, int32_t v)
     char *p = slot;
     *p++ = lead;
     cw_writer_take(w, slot, cw_put_int(p, v), spare);
+}
+
+static inline void cw_write_i64(cw_writer_t *w, int64_t v)
+{
+    char text[21];
+    size_t n = (size_t)(cw_put_i64(text, v) - text);
+    cw_write_text(w, text, n);
+}
+
+static inline void cw_write_u64(cw_writer_t *w, uint64_t v)
+{
+    char text[20];
+    size_t n = (size_t)(cw_put_u64(text, v) - text);
+    cw_write_text(w, text, n);
+}
+
+static inline void cw_write_i64_field(cw_writer_t *w, char lead, int64_t v)
+{
+    char spare[22];
+    char *slot = cw_writer_slot(w, sizeof spare, spare);
+    char *p = slot;
+    *p++ = lead;
+    cw_writer_take(w, slot, cw_put_i64(p, v), spare);
+}
+
+static inline void cw_write_u64_field(cw_writer_t *w, char lead, uint64_t v)
+{
+    char spare[21];
+    char *slot = cw_writer_slot(w, sizeof spare, spare);
+    char *p = slot;
+    *p++ = lead;
+    cw_writer_take(w, slot, cw_put_u64(p, v), spare);
 }
 
 static inline void cw_write_decimal_field(cw_writer_t *w, char lead, const cw_decimal_t *d)
@@ -822,6 +950,83 @@ static inline int cw_parse_int(const char *s, const char *end, int32_t lo, int32
         }
         *out = value;
     }
+    return CW_OK;
+}
+
+/* The sign and magnitude of a decimal integer ([+-]?[0-9]+) of up to 64 bits:
+ * CW_ERR_SYNTAX, or CW_ERR_RANGE past 2^64 - 1. No 64-bit division: 8-bit
+ * targets would link a library routine for it. */
+static inline int cw_parse_magnitude(const char *s, const char *end, bool *negative, uint64_t *out)
+{
+    uint64_t magnitude = 0;
+    bool overflow = false;
+    *negative = false;
+    if (s < end && (*s == '+' || *s == '-')) {
+        *negative = *s == '-';
+        s++;
+    }
+    if (s == end) {
+        return CW_ERR_SYNTAX;
+    }
+    for (; s < end; s++) {
+        unsigned digit;
+        if (!cw_is_digit(*s)) {
+            return CW_ERR_SYNTAX;
+        }
+        digit = (unsigned)(*s - '0');
+        if (magnitude > 1844674407370955161ULL || (magnitude == 1844674407370955161ULL && digit > 5u)) {
+            overflow = true;
+        } else {
+            magnitude = magnitude * 10u + digit;
+        }
+    }
+    if (overflow) {
+        return CW_ERR_RANGE;
+    }
+    *out = magnitude;
+    return CW_OK;
+}
+
+/* cw_parse_int for signed fields of more than 32 bits. */
+static inline int cw_parse_i64(const char *s, const char *end, int64_t lo, int64_t hi, int64_t *out)
+{
+    bool negative;
+    uint64_t magnitude;
+    int64_t value;
+    int rc = cw_parse_magnitude(s, end, &negative, &magnitude);
+    if (rc != CW_OK) {
+        return rc;
+    }
+    if (negative && magnitude > (uint64_t)INT64_MAX + 1u) {
+        return CW_ERR_RANGE;
+    }
+    if (negative) {
+        value = magnitude == (uint64_t)INT64_MAX + 1u ? INT64_MIN : -(int64_t)magnitude;
+    } else if (magnitude > (uint64_t)INT64_MAX) {
+        return CW_ERR_RANGE;
+    } else {
+        value = (int64_t)magnitude;
+    }
+    if (value < lo || value > hi) {
+        return CW_ERR_RANGE;
+    }
+    *out = value;
+    return CW_OK;
+}
+
+/* cw_parse_int for unsigned fields of 32 bits or more ("-0" reads as 0, as in Python). */
+static inline int cw_parse_u64(const char *s, const char *end, uint64_t lo, uint64_t hi, uint64_t *out)
+{
+    bool negative;
+    uint64_t magnitude;
+    int rc = cw_parse_magnitude(s, end, &negative, &magnitude);
+    if (rc != CW_OK) {
+        return rc;
+    }
+    if ((negative && magnitude != 0u) || magnitude < lo || magnitude > hi) {
+        return CW_ERR_RANGE;
+    }
+    *out = magnitude;
     return CW_OK;
 }
 

@@ -21,6 +21,12 @@ _isfinite = math.isfinite
 _object_new = object.__new__
 
 
+def _half_up(x):
+    """floor(x + 0.5) for x of 2**52 or more, where the sum itself would round."""
+    n = _floor(x)
+    return n + 1 if x - n >= 0.5 else n
+
+
 class CodecError(ValueError):
     """A value or frame that breaks the tank schema.
 
