@@ -610,6 +610,12 @@ class Resolver:
               path: tuple) -> tuple[tuple[Field, ...], tuple]:
         """The message's whole frame in wire order with bit offsets, and its dispatch key."""
         if framing.kind == "text":
+            for i, f in enumerate(own):
+                if f.dispatch:
+                    self.error(path + ("fields", i, "dispatch"),
+                               f"message {name!r}: field {f.name!r} is marked `dispatch: true`, but in "
+                               "text framing a message is identified by its `id`, the line's prefix",
+                               "drop `dispatch`")
             if len(ids) != 1 or not isinstance(ids[0], str):
                 self.error(path + ("id",), f"message {name!r}: text framing needs a string `id` (the prefix)")
             self.check_text_fields(name, own, path)
@@ -629,6 +635,12 @@ class Resolver:
                                "little-endian; bits framing dispatches on big-endian header bits",
                                "declare it `byte_order: big`, or split it into dispatch fields of 8 bits")
         else:
+            for i, f in enumerate(own):
+                if f.dispatch:  # would be ignored: the layout's dispatch field and `id` do this
+                    self.error(path + ("fields", i, "dispatch"),
+                               f"message {name!r}: field {f.name!r} is marked `dispatch: true`, but in "
+                               "bytes framing a message is identified by its `id`, the value of the "
+                               "layout's dispatch field", "give the message an `id` and drop `dispatch`")
             frame = []
             key = ()
             for f in framing.envelope:

@@ -7,6 +7,8 @@ against the schema. The set holds the schema's hand-written examples, edge
 values (every field at its minimum and maximum, every enum value, every flag)
 and RANDOM_PER_MESSAGE random valid messages per message type, plus mutations
 of them (bit flips, truncation, bad checksums, wrong length bytes, unknown ids).
+Large messages get fewer cases, within FRAME_BUDGET bytes of frames each, so that
+the file grows with the schema rather than with its square.
 Random choices come from a generator seeded by the protocol name, so the file
 is the same on every build. The format is documented in docs/vectors.md.
 """
@@ -30,6 +32,12 @@ from .vector_sequences import sequence_vectors
 FORMAT = "codeword-vectors/1"
 RANDOM_PER_MESSAGE = 200
 MUTATIONS_PER_MESSAGE = 24
+# a message of up to this many fields gets a case for each field at each edge (others random);
+# a wider one gets one case per edge with every field there, so that cases grow with the fields
+EDGES_ONE_BY_ONE = 32
+# bytes of frames a message's random cases, its mutations and the streams each hold at most
+FRAME_BUDGET = 1 << 20
+STREAM_BYTE_BY_BYTE = 4096  # longer streams are fed in chunks (the C side still feeds bytes)
 SPOOL_BYTES = 1 << 22  # invalid cases wait in memory up to this, then on disk
 
 
@@ -122,7 +130,7 @@ class Generator:
             text = "".join(rng.choice(chars) for _ in range(n))
             return text.strip() if self.p.framing.trim else text
         if f.kind == "bytes":
-            return bytes(rng.randrange(256) for _ in range(f.length)).hex()
+            return rng.randbytes(f.length).hex()
         raise ValueError(f"no generator for {f.kind}")
 
     def alphabet(self, f: Field) -> str:
@@ -168,11 +176,12 @@ class Generator:
             shape = rng.random()
             if edge == "zero" or shape < 0.1:
                 return 0.0
-            if shape < 0.2:
-                return rng.choice([1e-7, -2.5e-5, 1e16, 3.25e22, 12345678.9, 1e-4, 0.1 + 0.2])
+            if shape < 0.2:  # text floats hold 15 significant digits, magnitudes from 1e-307
+                return rng.choice([1e-7, -2.5e-5, 1e16, 3.25e22, 12345678.9, 1e-4, 123456789.012345,
+                                   1e-307, -1.79769313486231e308])
             if shape < 0.6:
                 return round(rng.uniform(-1000, 1000), rng.randint(0, 4))
-            return rng.uniform(-1e6, 1e6)
+            return float(f"{rng.uniform(-1e6, 1e6):.{rng.randint(1, 15)}g}")
         if edge == "zero":
             return 0.0
         while True:
@@ -279,12 +288,15 @@ class Generator:
             valid.append(self.valid_case(ex.name, m, obj, canonical,
                                          data if canonical != data else None))
         made: list[tuple[str, Any, Any]] = []
-        for f in m.layout:
-            if not f.is_member:
+        members = [f for f in m.layout if f.is_member]
+        size = max(1, m.size or 1)
+        for edge in ("min", "max", "zero"):
+            if len(members) > EDGES_ONE_BY_ONE or len(members) * size > FRAME_BUDGET:
+                made.append((f"every field {edge}", "edge", (edge, "")))
                 continue
-            for edge in ("min", "max", "zero"):
+            for f in members:
                 made.append((f"{f.name} {edge}", "edge", (edge, f.name)))
-        for i in range(RANDOM_PER_MESSAGE):
+        for i in range(min(RANDOM_PER_MESSAGE, max(1, FRAME_BUDGET // size))):
             made.append((f"random {i}", "random", None))
         frames = []
         for name, kind, arg in made:
@@ -298,7 +310,7 @@ class Generator:
                 valid.append(self.valid_case(f"{m.name} {name}", m, decoded, data))
                 frames.append(data)
                 break
-        for i, data in enumerate(frames[:MUTATIONS_PER_MESSAGE]):
+        for i, data in enumerate(frames[:min(MUTATIONS_PER_MESSAGE, max(1, FRAME_BUDGET // (8 * size)))]):
             for label, bad in self.mutations(m, data):
                 name = f"{m.name} {label} of {i}"
                 try:
@@ -343,16 +355,17 @@ class Generator:
     def streams(self, frames: list[bytes]) -> list[dict]:
         """Byte streams mixing valid frames (canonical ones, in vector order), garbage
         and damaged frames, with the events the Python StreamDecoder gives when fed
-        one byte at a time."""
+        one byte at a time (in chunks, for long streams: the events are the same)."""
         rng = self.rng
         out = []
-        for n in range(8):
+        largest = max(map(len, frames), default=1)
+        for n in range(max(1, min(8, FRAME_BUDGET // (16 * largest)))):
             parts = []
             for _ in range(rng.randint(3, 8)):
                 frame = rng.choice(frames)
                 shape = rng.random()
                 if shape < 0.2:
-                    parts.append(bytes(rng.randrange(256) for _ in range(rng.randint(1, 5))))
+                    parts.append(rng.randbytes(rng.randint(1, 5)))
                 elif shape < 0.35 and len(frame) > 1:
                     b = bytearray(frame)
                     b[rng.randrange(1, len(b))] ^= 1 << rng.randrange(8)
@@ -363,8 +376,9 @@ class Generator:
             stream = b"".join(parts)
             decoder = self.mod.StreamDecoder()
             events = []
-            for byte in stream:
-                for item in decoder.feed(bytes([byte])):
+            step = 1 if len(stream) <= STREAM_BYTE_BY_BYTE else 997
+            for at in range(0, len(stream), step):
+                for item in decoder.feed(stream[at:at + step]):
                     if isinstance(item, self.mod.DecodeError):
                         events.append({"error": item.rule})
                     else:

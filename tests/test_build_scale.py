@@ -142,3 +142,32 @@ def test_a_damaged_template_cache_only_costs_a_compile(tmp_path):
         assert proc.returncode == 0, proc.stderr
         runs.append(proc.stdout)
     assert len(set(runs)) == 1 and len(list(tmp_path.iterdir())) == 1
+
+
+def _one_message_schema(fields: str) -> str:
+    return ("codeword: 1\nprotocol: wide\ntitle: t\nsource: s\nframing:\n  kind: bytes\n  byte_order: big\n"
+            "  layout:\n    - {name: kind, type: u8, dispatch: true}\n    - {payload: true}\n"
+            "messages:\n  m:\n    id: 1\n    fields:\n" + fields)
+
+
+@pytest.mark.parametrize("fields, frame", [
+    ("".join(f"      - {{name: f{i}, type: u8}}\n" for i in range(2000)), 2001),
+    ("".join(f"      - {{name: b{i}, type: bytes, length: 4096}}\n" for i in range(64)), 1 + 64 * 4096),
+], ids=["2000 u8 fields", "64 fields of 4 KiB"])
+def test_vector_cases_grow_with_the_message_not_its_square(tmp_path, fields, frame):
+    """2,000 fields took 285 s and 64 fields of 4 KiB did not end (a case per field and edge,
+    each drawing every field; 200 random frames of 256 KiB). The cases are bounded by
+    counting them, not by timing the build."""
+    from codeword.build import compile_schema, render_with_codec
+    from codeword.vectors import FRAME_BUDGET, RANDOM_PER_MESSAGE, write_vectors
+    path = tmp_path / "wide.yaml"
+    path.write_text(_one_message_schema(fields), encoding="utf-8")
+    protocol = compile_schema(path)
+    out = io.StringIO()
+    write_vectors(protocol, render_with_codec(protocol)[1], out)
+    vectors = json.loads(out.getvalue())
+    edges = [c for c in vectors["valid"] if c["name"].startswith("m every field")]
+    assert [c["name"] for c in edges] == ["m every field min", "m every field max", "m every field zero"]
+    assert len(vectors["valid"]) <= 3 + min(RANDOM_PER_MESSAGE, FRAME_BUDGET // frame) + 24 * 5
+    assert all(len(c["hex"]) == 2 * frame for c in vectors["valid"])
+    assert sum(len(s["hex"]) // 2 for s in vectors["streams"]) <= 16 * FRAME_BUDGET

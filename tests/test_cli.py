@@ -27,7 +27,7 @@ STRICT = ["-std=c99", "-Wall", "-Wextra", "-Wpedantic", "-Wconversion", "-Wsign-
 
 
 def codeword(*args: str, cwd: Path) -> subprocess.CompletedProcess:
-    env = dict(os.environ, PYTHONPATH=str(ROOT))
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(filter(None, [os.environ.get("PYTHONPATH"), str(ROOT)])))
     return subprocess.run([sys.executable, "-m", "codeword", *args], cwd=cwd, env=env, capture_output=True,
                           text=True, timeout=300)
 

@@ -37,7 +37,8 @@ class TextReport:
         if inputs > 1:
             self.write(f"total: {total.read} read, {total.valid} valid, {total.invalid} invalid, "
                        f"{total.skipped} byte(s) skipped; {findings} finding(s)")
-        self.write(f"{self.protocol}: {'all valid' if not findings else 'INVALID'}")
+        verdict = "INVALID" if findings else "all valid" if total.read else "nothing read (empty input)"
+        self.write(f"{self.protocol}: {verdict}")
 
 
 class JsonReport:

@@ -116,8 +116,10 @@ def _progress_bar(size: Optional[int], file: str, wanted: Optional[bool]):
 def check(p: Protocol, codec, inputs: list[str], report, options: Options) -> int:
     """Check every input, writing to `report`; returns the number of findings."""
     plan(p, codec, options, b"")  # options that cannot work fail before any output
-    for path in inputs:
-        if path != "-" and not os.path.isfile(path):
+    for path in inputs:  # devices and pipes are read like files
+        if path != "-" and os.path.isdir(path):
+            raise UsageError(f"{path}: is a folder; give the capture files in it")
+        if path != "-" and not os.path.exists(path):
             raise UsageError(f"{path}: no such file")
     report.start(p.file, p.name, fingerprint(p))
     total, findings = Tally(), 0

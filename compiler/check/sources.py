@@ -164,6 +164,8 @@ def _messages(items, codec, file: str, tally: Tally, place) -> Iterator[Finding]
         tally.read += 1
         if isinstance(item, codec.DecodeError):
             tally.invalid += 1
+            if item.rule == "text" and item.allowed == "ASCII":
+                continue  # reported with its bytes when the chunk was read
             where = place(item.offset) if isinstance(item.offset, int) else {}
             yield from_error(item, file, tally.read, **where)
         else:
@@ -209,6 +211,9 @@ def text_sequence(codec, sequence: str, fh: BinaryIO, file: str, tally: Tally,
         unit = sentences.index(line) + 1 if line in sentences else None
         if line:
             bad_lines.add(line)
+        index = getattr(e, "index", None)
+        if index is not None and getattr(e, "count", 1) > 1:  # extra lines after the end
+            bad_lines.update(sentences[index:index + e.count])
         yield from_error(e, file, unit, line=line, column=column)
     tally.invalid = len(bad_lines & set(sentences))
     tally.valid = tally.read - tally.invalid
@@ -251,8 +256,8 @@ def word_sequence(codec, sequence: str, fh: BinaryIO, file: str, tally: Tally, p
         where = dict(places[index]) if index is not None and index < len(places) else {}
         if "offset" in where and isinstance(e.offset, int):
             where["offset"] = e.offset // 8
-        if index is not None and index < words:
-            bad.add(index)
+        if index is not None:  # an error may cover several words (extra data after the end)
+            bad.update(range(index, min(words, index + getattr(e, "count", 1))))
         yield from_error(e, file, index + 1 if index is not None else None, **where)
     tally.invalid += len(bad)
     tally.valid = words - len(bad)

@@ -446,10 +446,10 @@ class CView:
         return clit(int(value), True) if ctype.startswith("uint") else clit_signed(int(value))
 
     # -- decode side: raw wire value -> checks -> struct member -----------------------------
-    def decode_leaf(self, c: Code, leaf: Leaf, raw: str, m: Message) -> None:
-        """Check the raw value (of the message's raw type) in Python's order and store the member."""
+    def decode_leaf(self, c: Code, leaf: Leaf, raw: str, m: Message, rt: str = "uint32_t") -> None:
+        """Check the raw value (of the message's raw type `rt`) in Python's order and store the member."""
         f = leaf.field
-        if self.raw_type(m) == "uint64_t" and f.bits and f.bits <= 32:  # for the 32-bit helpers
+        if rt == "uint64_t" and f.bits and f.bits <= 32:  # for the 32-bit helpers
             raw = f"(uint32_t){raw}"
         if f.reserved:
             self.fail_if(c, f"{raw} != 0u", "reserved")
@@ -794,7 +794,7 @@ class CView:
             if leaf.field.kind == "bytes":
                 c(f"memcpy({self.member(leaf)}, buf + {pos // 8}, {leaf.field.length});")
             elif leaf.var in raws:
-                self.decode_leaf(c, leaf, raws[leaf.var], m)
+                self.decode_leaf(c, leaf, raws[leaf.var], m, rt)
         for leaf in field_sums:
             others = [raws[x.var] for x, _ in wired if x is not leaf and x.var in raws]
             cond = f"{raws[leaf.var]} != {self.field_checksum(leaf, others, rt)}"
@@ -1005,7 +1005,12 @@ class CView:
             c(f"if ({self.has(leaf)}) {{")
             c.indent()
         if f.kind == "float":
-            self.fail_if(c, f"!cw_decimal_fits(&{v})", "precision")
+            c("{")
+            c(f"    int decimal_rc = cw_decimal_check(&{v});")
+            c("    if (decimal_rc != CW_OK) {")
+            c("        return decimal_rc;")
+            c("    }")
+            c("}")
             if f.range is not None:
                 raise CTargetError(f"{f.name}: ranges on text floats are not supported by the C target", f.loc)
         elif f.kind == "char" and f.enum is not None:

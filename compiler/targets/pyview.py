@@ -23,6 +23,9 @@ def lit(value: Any) -> str:
     return repr(value)
 
 
+# what a text float may be, on both sides of a link (cw_decimal_t in C)
+TEXT_FLOAT = "at most 15 significant digits, and zero or a magnitude of at least 1e-307"
+
 class PythonView:
     def __init__(self, protocol: Protocol):
         self.p = protocol
@@ -165,7 +168,9 @@ class PythonView:
             base = "str" if f.enum.kind == "char" else "int"
             cls = self.enum_class(f.enum.name)
             # a member of the enum class is valid by construction: no membership test
-            c(f"if {v}.__class__ is not {cls} and (not isinstance({v}, {base}) or {v} not in _VALUES_{f.enum.name}):")
+            # a bool or another enum's member is not a value of this one, even where it compares equal
+            c(f"if {v}.__class__ is not {cls} and (not isinstance({v}, {base}) or {v}.__class__ is bool "
+              f"or isinstance({v}, enum.Enum) or {v} not in _VALUES_{f.enum.name}):")
             c(f"    raise _enc({where}, {v}, 'enum', {cls!r}{self.user(f)})")
             if f.values:
                 allowed = tuple(self.enum_value(f, x) for x in f.values)
@@ -174,8 +179,10 @@ class PythonView:
             if f.enum.kind != "char":
                 c(f"{var} = {v}._value_ if {v}.__class__ is {cls} else int({v})")
         elif f.flags is not None:
-            c(f"if {v}.__class__ is not int and not isinstance({v}, int):")
-            c(f"    raise _enc({where}, {v}, 'type', 'an int or {self.enum_class(f.flags.name)}')")
+            cls = self.enum_class(f.flags.name)
+            c(f"if {v}.__class__ is not int and {v}.__class__ is not {cls} and "
+              f"(not isinstance({v}, int) or {v}.__class__ is bool or isinstance({v}, enum.Enum)):")
+            c(f"    raise _enc({where}, {v}, 'type', 'an int or {cls}')")
             c(f"{v} = int({v})")  # each operator on an IntFlag builds a new flag: checks on an int are far cheaper
             c(f"if {v} < 0 or {v} & {~f.flags.mask & ((1 << f.bits) - 1):#x} or {v} > {(1 << f.bits) - 1:#x}:")
             c(f"    raise _enc({where}, {v}, 'flags', 'only the bits of {f.flags.name}'{self.user(f)})")
@@ -212,10 +219,16 @@ class PythonView:
             if expr != var:
                 c(f"{var} = {expr}")
         elif f.kind == "float":
-            c(f"if {v}.__class__ is not float and (not isinstance({v}, (int, float)) or {v}.__class__ is bool):")
-            c(f"    raise _enc({where}, {v}, 'type', 'a number')")
+            c(f"if {v}.__class__ is not float:")
+            c(f"    if not isinstance({v}, (int, float)) or {v}.__class__ is bool:")
+            c(f"        raise _enc({where}, {v}, 'type', 'a number')")
+            c(f"    if not -1.7976931348623157e308 <= {v} <= 1.7976931348623157e308:  # exact for any int")
+            c(f"        raise _enc({where}, {v}, 'finite', 'a finite number')")
             c(f"if not _isfinite({v}):")
             c(f"    raise _enc({where}, {v}, 'finite', 'a finite number')")
+            if self.p.framing.kind == "text":  # the decimals a C peer's cw_decimal_t holds too
+                c(f"if _significant(_format_float({v})) > 15 or {v} and -1e-307 < {v} < 1e-307:")
+                c(f"    raise _enc({where}, {v}, 'precision', {TEXT_FLOAT!r})")
             if f.range:
                 c(f"if not {lit(f.range[0])} <= {v} <= {lit(f.range[1])}:")
                 c(f"    raise _enc({where}, {v}, 'range', '{lit(f.range[0])}..{lit(f.range[1])}', {f.rule!r}{self.user(f, False)})")
@@ -964,6 +977,7 @@ def module_view(p: Protocol) -> dict:
     return {
         "p": p, "view": view, "codes": codes, "functions": functions, "structs": structs,
         "syntaxes": syntaxes, "text_classes": MessageCode.text_classes(fr) if fr.kind == "text" else {},
+        "text_float": TEXT_FLOAT,
         "classes": view.dataclasses(), "checksums": view.checksum_functions(),
         "dispatch": view.dispatch_table(), "sequences": [view.sequence_view(s) for s in p.sequences],
         "stream": view.stream_view(),

@@ -20,8 +20,6 @@ FULL = frozenset({
 })
 
 KNOWN_OPEN = {
-    "text_float": "C and Python disagree on some decimal texts: values of 17 significant digits "
-                  "(C: precision error) and lines the C decoder reads differently",
 }
 
 DEFAULT = FULL - set(KNOWN_OPEN)

@@ -385,18 +385,20 @@ static inline bool cw_is_digit(char c)
  * Text floats use it instead of double: AVR's double is 32 bits and its
  * printf has no float support, yet firmware must read and write the same
  * text as a 64-bit peer. Normalised: no trailing zeros in digits; zero is
- * digits 0, exp10 0. Up to 17 significant digits, as many as a double needs
- * to round-trip. */
+ * digits 0, exp10 0. Up to 15 significant digits and magnitudes 0 or
+ * 1e-307 .. 1.79769313486231e308: the decimals a binary64 double holds
+ * exactly enough to give them back digit for digit, so a Python peer reads
+ * the same value and writes the same text. */
 typedef struct {
     uint64_t digits;
     int16_t exp10;
     bool negative;
 } cw_decimal_t;
 
-#define CW_DECIMAL_MAX_DIGITS 17
+#define CW_DECIMAL_MAX_DIGITS 15
 /* Longest text written for a decimal of at most CW_DECIMAL_MAX_DIGITS digits:
- * sign, 17 digits, a point and "e-32768". */
-#define CW_DECIMAL_MAX_TEXT 26
+ * sign, 15 digits, a point and "e-32768". */
+#define CW_DECIMAL_MAX_TEXT 24
 /* Longest text written for any cw_decimal_t (20 digits). */
 #define CW_DECIMAL_ANY_TEXT 29
 
@@ -448,10 +450,50 @@ static inline double cw_decimal_to_double(cw_decimal_t d)
     return d.negative ? -v : v;
 }
 
-/* At most CW_DECIMAL_MAX_DIGITS digits: one comparison, no 64-bit division. */
-static inline bool cw_decimal_fits(const cw_decimal_t *d)
+/* How many decimal digits v has (1..20): a multiply-by-10 loop. */
+static inline uint8_t cw_digit_count(uint64_t v)
 {
-    return d->digits <= 99999999999999999ULL;
+    uint64_t power = 10u;
+    uint8_t n = 1;
+    while (n < 20u && v >= power) {
+        power *= 10u;
+        n++;
+    }
+    return n;
+}
+
+/* CW_OK for a decimal the text codecs may write: at most
+ * CW_DECIMAL_MAX_DIGITS digits (CW_ERR_PRECISION), magnitude 0 or at least
+ * 1e-307 (CW_ERR_PRECISION) and at most that of the largest double
+ * (CW_ERR_FINITE). Comparisons only, no 64-bit division. */
+static inline int cw_decimal_check(const cw_decimal_t *d)
+{
+    uint64_t top_digits = d->digits;
+    int32_t top;
+    uint8_t n;
+    if (d->digits > 999999999999999ULL) {
+        return CW_ERR_PRECISION;
+    }
+    if (d->digits == 0u) {
+        return CW_OK;
+    }
+    n = cw_digit_count(d->digits);
+    top = (int32_t)d->exp10 + (int32_t)n - 1;
+    if (top > 308) {
+        return CW_ERR_FINITE;
+    }
+    if (top < -307) {
+        return CW_ERR_PRECISION;
+    }
+    if (top == 308) {
+        for (; n < CW_DECIMAL_MAX_DIGITS; n++) {
+            top_digits *= 10u;
+        }
+        if (top_digits > 179769313486231ULL) {
+            return CW_ERR_FINITE;
+        }
+    }
+    return CW_OK;
 }
 
 /* ---- text writer: bounded, NUL-terminated ------------------------------- */
@@ -529,18 +571,6 @@ static inline void cw_writer_take(cw_writer_t *w, const char *slot, const char *
 }
 
 /* ---- formatting numbers ---------------------------------------------------- */
-
-/* How many decimal digits v has (1..20): a multiply-by-10 loop. */
-static inline uint8_t cw_digit_count(uint64_t v)
-{
-    uint64_t power = 10u;
-    uint8_t n = 1;
-    while (n < 20u && v >= power) {
-        power *= 10u;
-        n++;
-    }
-    return n;
-}
 
 /* Writes the decimal digits of v backwards, ending at `end`, with a point
  * after the last `point` of them (none for 0). Divides by constants in 32 bits
@@ -1030,10 +1060,10 @@ static inline int cw_parse_u64(const char *s, const char *end, uint64_t lo, uint
     return CW_OK;
 }
 
-/* Reads [+-]?([0-9]+(.[0-9]*)?|.[0-9]+)([eE][+-]?[0-9]+)? ; more than 17
+/* Reads [+-]?([0-9]+(.[0-9]*)?|.[0-9]+)([eE][+-]?[0-9]+)? ; more than 15
  * significant digits give CW_ERR_PRECISION, values whose magnitude overflows
- * a double CW_ERR_FINITE, those below its smallest subnormal read as zero, as
- * Python's float() does. The text is checked first; then only its digits
+ * a double CW_ERR_FINITE, nonzero ones below 1e-307 CW_ERR_PRECISION (see
+ * cw_decimal_t). The text is checked first; then only its digits
  * from the first nonzero one to the last are multiplied in, so the result
  * comes out normalised without any division. */
 static inline int cw_parse_decimal(const char *s, const char *end, cw_decimal_t *out)
@@ -1108,8 +1138,8 @@ static inline int cw_parse_decimal(const char *s, const char *end, cw_decimal_t 
         if (top > 308) {
             return CW_ERR_FINITE;
         }
-        if (top < -324) {
-            return CW_OK;  /* below the smallest subnormal: zero */
+        if (top < -307) {
+            return CW_ERR_PRECISION;  /* subnormal or below: a double does not keep its digits */
         }
         for (; first < last; first++) {
             if (*first != '.') {
@@ -1117,13 +1147,13 @@ static inline int cw_parse_decimal(const char *s, const char *end, cw_decimal_t 
             }
         }
         if (top == 308) {
-            /* 1.7976931348623157e308 is the largest double */
+            /* 1.7976931348623157e308 is the largest double: 15 digits of it */
             uint64_t v = digits;
             int32_t n;
             for (n = top - bottom - e; n < CW_DECIMAL_MAX_DIGITS - 1; n++) {
                 v *= 10u;
             }
-            if (v > 17976931348623157ULL) {
+            if (v > 179769313486231ULL) {
                 return CW_ERR_FINITE;
             }
         }

@@ -901,13 +901,15 @@ static inline int mtv4_decode(const uint8_t *buf, size_t len, int direction, mtv
 
 /* Byte-at-a-time frame parser. Feed one byte, then call mtv4_parser_next
  * until it returns 0. After garbage or a bad frame it resynchronises on the
- * next sync byte, exactly as the Python StreamDecoder. Memory: one maximum
- * frame (26 bytes). */
+ * next sync byte, exactly as the Python StreamDecoder: one error for each
+ * stretch of bytes dropped between two frames (the stretch's first), however
+ * long the stretch. Memory: one maximum frame (26 bytes). */
 typedef struct {
     uint8_t buf[26];
     uint8_t len;
     int direction;
     uint32_t skipped;  /* bytes dropped while resynchronising */
+    bool resyncing;    /* an error was returned and no frame decoded since */
 } mtv4_parser_t;
 
 static inline void mtv4_parser_init(mtv4_parser_t *p, int direction)
@@ -915,6 +917,7 @@ static inline void mtv4_parser_init(mtv4_parser_t *p, int direction)
     p->len = 0;
     p->direction = direction;
     p->skipped = 0;
+    p->resyncing = false;
 }
 
 /* CW_ERR_CAPACITY if mtv4_parser_next was not drained before. */
@@ -933,9 +936,8 @@ static inline void mtv4_parser_drop(mtv4_parser_t *p, uint8_t n)
     p->len = (uint8_t)(p->len - n);
 }
 
-/* 1: a message in *out; 0: more bytes needed; negative: a bad frame or stray
- * bytes were dropped (the error says why); call again. */
-static inline int mtv4_parser_next(mtv4_parser_t *p, mtv4_message_t *out)
+/* One step of mtv4_parser_next: a negative result drops one byte. */
+static inline int mtv4_parser_step(mtv4_parser_t *p, mtv4_message_t *out)
 {
     size_t size;
     int rc;
@@ -967,6 +969,25 @@ static inline int mtv4_parser_next(mtv4_parser_t *p, mtv4_message_t *out)
     }
     mtv4_parser_drop(p, (uint8_t)size);
     return 1;
+}
+
+/* 1: a message in *out; 0: more bytes needed; negative: a bad frame or stray
+ * bytes were dropped (the error says why); call again. */
+static inline int mtv4_parser_next(mtv4_parser_t *p, mtv4_message_t *out)
+{
+    for (;;) {
+        int rc = mtv4_parser_step(p, out);
+        if (rc >= 0) {
+            if (rc == 1) {
+                p->resyncing = false;
+            }
+            return rc;
+        }
+        if (!p->resyncing) {
+            p->resyncing = true;
+            return rc;
+        }
+    }
 }
 
 #ifdef __cplusplus

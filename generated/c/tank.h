@@ -203,38 +203,71 @@ static inline int tank_telemetry_encode(const tank_telemetry_t *m, char *buf, si
     if (!cw_text_ok(&m->value, 1u, ',', ';', true)) {
         return CW_ERR_TEXT;
     }
-    if (!cw_decimal_fits(&m->lcurr)) {
-        return CW_ERR_PRECISION;
+    {
+        int decimal_rc = cw_decimal_check(&m->lcurr);
+        if (decimal_rc != CW_OK) {
+            return decimal_rc;
+        }
     }
-    if (!cw_decimal_fits(&m->rcurr)) {
-        return CW_ERR_PRECISION;
+    {
+        int decimal_rc = cw_decimal_check(&m->rcurr);
+        if (decimal_rc != CW_OK) {
+            return decimal_rc;
+        }
     }
-    if (!cw_decimal_fits(&m->accx)) {
-        return CW_ERR_PRECISION;
+    {
+        int decimal_rc = cw_decimal_check(&m->accx);
+        if (decimal_rc != CW_OK) {
+            return decimal_rc;
+        }
     }
-    if (!cw_decimal_fits(&m->accy)) {
-        return CW_ERR_PRECISION;
+    {
+        int decimal_rc = cw_decimal_check(&m->accy);
+        if (decimal_rc != CW_OK) {
+            return decimal_rc;
+        }
     }
-    if (!cw_decimal_fits(&m->accz)) {
-        return CW_ERR_PRECISION;
+    {
+        int decimal_rc = cw_decimal_check(&m->accz);
+        if (decimal_rc != CW_OK) {
+            return decimal_rc;
+        }
     }
-    if (!cw_decimal_fits(&m->gyrox)) {
-        return CW_ERR_PRECISION;
+    {
+        int decimal_rc = cw_decimal_check(&m->gyrox);
+        if (decimal_rc != CW_OK) {
+            return decimal_rc;
+        }
     }
-    if (!cw_decimal_fits(&m->gyroy)) {
-        return CW_ERR_PRECISION;
+    {
+        int decimal_rc = cw_decimal_check(&m->gyroy);
+        if (decimal_rc != CW_OK) {
+            return decimal_rc;
+        }
     }
-    if (!cw_decimal_fits(&m->gyroz)) {
-        return CW_ERR_PRECISION;
+    {
+        int decimal_rc = cw_decimal_check(&m->gyroz);
+        if (decimal_rc != CW_OK) {
+            return decimal_rc;
+        }
     }
-    if (!cw_decimal_fits(&m->magx)) {
-        return CW_ERR_PRECISION;
+    {
+        int decimal_rc = cw_decimal_check(&m->magx);
+        if (decimal_rc != CW_OK) {
+            return decimal_rc;
+        }
     }
-    if (!cw_decimal_fits(&m->magy)) {
-        return CW_ERR_PRECISION;
+    {
+        int decimal_rc = cw_decimal_check(&m->magy);
+        if (decimal_rc != CW_OK) {
+            return decimal_rc;
+        }
     }
-    if (!cw_decimal_fits(&m->magz)) {
-        return CW_ERR_PRECISION;
+    {
+        int decimal_rc = cw_decimal_check(&m->magz);
+        if (decimal_rc != CW_OK) {
+            return decimal_rc;
+        }
     }
     r_lan_len = cw_text_len(m->lan, 33u);
     if (r_lan_len > 32u) {
@@ -250,8 +283,11 @@ static inline int tank_telemetry_encode(const tank_telemetry_t *m, char *buf, si
     if (!cw_text_ok(m->lon, r_lon_len, ',', ';', true)) {
         return CW_ERR_TEXT;
     }
-    if (!cw_decimal_fits(&m->vbat)) {
-        return CW_ERR_PRECISION;
+    {
+        int decimal_rc = cw_decimal_check(&m->vbat);
+        if (decimal_rc != CW_OK) {
+            return decimal_rc;
+        }
     }
     if (m->systemstatus > 6u) {
         return CW_ERR_ENUM;
@@ -485,17 +521,29 @@ static inline int tank_command_encode(const tank_command_t *m, char *buf, size_t
     if (!cw_text_ok(&m->value, 1u, ',', ';', true)) {
         return CW_ERR_TEXT;
     }
-    if (!cw_decimal_fits(&m->gpio1)) {
-        return CW_ERR_PRECISION;
+    {
+        int decimal_rc = cw_decimal_check(&m->gpio1);
+        if (decimal_rc != CW_OK) {
+            return decimal_rc;
+        }
     }
-    if (!cw_decimal_fits(&m->gpio2)) {
-        return CW_ERR_PRECISION;
+    {
+        int decimal_rc = cw_decimal_check(&m->gpio2);
+        if (decimal_rc != CW_OK) {
+            return decimal_rc;
+        }
     }
-    if (!cw_decimal_fits(&m->gpio3)) {
-        return CW_ERR_PRECISION;
+    {
+        int decimal_rc = cw_decimal_check(&m->gpio3);
+        if (decimal_rc != CW_OK) {
+            return decimal_rc;
+        }
     }
-    if (!cw_decimal_fits(&m->gpio4)) {
-        return CW_ERR_PRECISION;
+    {
+        int decimal_rc = cw_decimal_check(&m->gpio4);
+        if (decimal_rc != CW_OK) {
+            return decimal_rc;
+        }
     }
     if (m->systemstatus > 6u) {
         return CW_ERR_ENUM;

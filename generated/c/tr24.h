@@ -269,13 +269,15 @@ static inline int tr24_decode(const uint8_t *buf, size_t len, int direction, tr2
 
 /* Byte-at-a-time frame parser. Feed one byte, then call tr24_parser_next
  * until it returns 0. After garbage or a bad frame it resynchronises on the
- * next sync byte, exactly as the Python StreamDecoder. Memory: one maximum
- * frame (12 bytes). */
+ * next sync byte, exactly as the Python StreamDecoder: one error for each
+ * stretch of bytes dropped between two frames (the stretch's first), however
+ * long the stretch. Memory: one maximum frame (12 bytes). */
 typedef struct {
     uint8_t buf[12];
     uint8_t len;
     int direction;
     uint32_t skipped;  /* bytes dropped while resynchronising */
+    bool resyncing;    /* an error was returned and no frame decoded since */
 } tr24_parser_t;
 
 static inline void tr24_parser_init(tr24_parser_t *p, int direction)
@@ -283,6 +285,7 @@ static inline void tr24_parser_init(tr24_parser_t *p, int direction)
     p->len = 0;
     p->direction = direction;
     p->skipped = 0;
+    p->resyncing = false;
 }
 
 /* CW_ERR_CAPACITY if tr24_parser_next was not drained before. */
@@ -301,9 +304,8 @@ static inline void tr24_parser_drop(tr24_parser_t *p, uint8_t n)
     p->len = (uint8_t)(p->len - n);
 }
 
-/* 1: a message in *out; 0: more bytes needed; negative: a bad frame or stray
- * bytes were dropped (the error says why); call again. */
-static inline int tr24_parser_next(tr24_parser_t *p, tr24_message_t *out)
+/* One step of tr24_parser_next: a negative result drops one byte. */
+static inline int tr24_parser_step(tr24_parser_t *p, tr24_message_t *out)
 {
     size_t size;
     int rc;
@@ -327,6 +329,25 @@ static inline int tr24_parser_next(tr24_parser_t *p, tr24_message_t *out)
     }
     tr24_parser_drop(p, (uint8_t)size);
     return 1;
+}
+
+/* 1: a message in *out; 0: more bytes needed; negative: a bad frame or stray
+ * bytes were dropped (the error says why); call again. */
+static inline int tr24_parser_next(tr24_parser_t *p, tr24_message_t *out)
+{
+    for (;;) {
+        int rc = tr24_parser_step(p, out);
+        if (rc >= 0) {
+            if (rc == 1) {
+                p->resyncing = false;
+            }
+            return rc;
+        }
+        if (!p->resyncing) {
+            p->resyncing = true;
+            return rc;
+        }
+    }
 }
 
 /* ---------------------------------------------------------------- state machines

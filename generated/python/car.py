@@ -21,6 +21,15 @@ _isfinite = math.isfinite
 _object_new = object.__new__
 
 
+def _int_of(token):
+    """int() of a checked decimal token. One of more than 20 significant digits is beyond
+    every field's range and comes back as -2**80 or 2**80: int() refuses over 4300 digits."""
+    negative = token[:1] == "-"
+    digits = token.lstrip("+-").lstrip("0")
+    value = 1 << 80 if len(digits) > 20 else int(digits or "0")
+    return -value if negative else value
+
+
 def _half_up(x):
     """floor(x + 0.5) for x of 2**52 or more, where the sum itself would round."""
     n = _floor(x)
@@ -51,10 +60,12 @@ class CodecError(ValueError):
 
     def __str__(self):
         where = ".".join(x for x in (self.message, self.field) if x) or 'car'
-        text = f"{where}: {self.value!r} breaks rule {self.rule}"
+        named = self.rule == "rule" and self.decision  # a schema rule: its id says which
+        rule = f"rule {self.decision}" if named else "a rule" if self.rule == "rule" else f"rule {self.rule}"
+        text = f"{where}: {self.value!r} breaks {rule}"
         if self.allowed:
             text += f" (expected {self.allowed})"
-        if self.decision:
+        if self.decision and not named:
             text += f" [{self.decision}]"
         if self.offset is not None:
             text += f" at {self._where_offset()}"
@@ -206,6 +217,8 @@ class SlaveControl:
 def _as_input(data):
     if not isinstance(data, (bytes, bytearray, memoryview)):
         raise _dec(None, None, type(data).__name__, 'type', 'bytes')
+    if data.__class__ is memoryview and (data.itemsize != 1 or not data.c_contiguous):
+        return data.tobytes()  # the bytes it shows, however it is shaped or strided
     return data
 
 
@@ -281,7 +294,7 @@ def _encode_master_control(m):
             raise _enc('master_control', 'motor.enable', r_motor_enable, 'type', 'a bool')
         r_motor_enable = 1 if r_motor_enable else 0
     r_motor_direction = g_motor.direction
-    if r_motor_direction.__class__ is not MotorDirection and (not isinstance(r_motor_direction, int) or r_motor_direction not in _VALUES_motor_direction):
+    if r_motor_direction.__class__ is not MotorDirection and (not isinstance(r_motor_direction, int) or r_motor_direction.__class__ is bool or isinstance(r_motor_direction, enum.Enum) or r_motor_direction not in _VALUES_motor_direction):
         raise _enc('master_control', 'motor.direction', r_motor_direction, 'enum', 'MotorDirection', None)
     r_motor_direction = r_motor_direction._value_ if r_motor_direction.__class__ is MotorDirection else int(r_motor_direction)
     r_motor_speed = g_motor.speed
@@ -410,7 +423,7 @@ def _encode_slave_control(m):
             raise _enc('slave_control', 'motor.enable', r_motor_enable, 'type', 'a bool')
         r_motor_enable = 1 if r_motor_enable else 0
     r_motor_direction = g_motor.direction
-    if r_motor_direction.__class__ is not MotorDirection and (not isinstance(r_motor_direction, int) or r_motor_direction not in _VALUES_motor_direction):
+    if r_motor_direction.__class__ is not MotorDirection and (not isinstance(r_motor_direction, int) or r_motor_direction.__class__ is bool or isinstance(r_motor_direction, enum.Enum) or r_motor_direction not in _VALUES_motor_direction):
         raise _enc('slave_control', 'motor.direction', r_motor_direction, 'enum', 'MotorDirection', None)
     r_motor_direction = r_motor_direction._value_ if r_motor_direction.__class__ is MotorDirection else int(r_motor_direction)
     r_motor_speed = g_motor.speed
@@ -541,8 +554,12 @@ def decode(data, direction=None):
 
 
 def from_dict(name, values):
-    """Build a message object from plain data (enum names, flag name lists, nested dicts)."""
-    return _from_dict(MESSAGES[name], values)
+    """Build a message object from plain data (enum names, flag name lists, nested dicts,
+    bytes as hex); a name, key or value that does not fit is a DecodeError."""
+    cls = MESSAGES.get(name) if isinstance(name, str) else None
+    if cls is None:
+        raise _dec(None, None, name, 'type', 'a message name: ' + ', '.join(MESSAGES))
+    return _from_dict(cls, values, name, "")
 
 
 _FIELD_KINDS = {}  # class → ((field name, type), ...): resolving annotations is slow, do it once
@@ -556,36 +573,55 @@ def _field_kinds(cls):
     for f in dataclasses.fields(cls):
         kind = hints[f.name]
         args = [a for a in typing.get_args(kind) if a is not type(None)]
-        kinds.append((f.name, args[0] if args and typing.get_origin(kind) is Union else kind))
+        required = f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING
+        kinds.append((f.name, args[0] if args and typing.get_origin(kind) is Union else kind, required))
     return tuple(kinds)
 
 
-def _from_dict(cls, values):
+def _from_dict(cls, values, message, prefix):
     import dataclasses
+    if not isinstance(values, dict):
+        raise _dec(message, prefix[:-1] or None, values, 'type', 'a mapping of field names to values')
     kinds = _FIELD_KINDS.get(cls)
     if kinds is None:
         kinds = _FIELD_KINDS[cls] = _field_kinds(cls)
+    names = {field_name for field_name, _, _ in kinds}
+    for key in values:
+        if key not in names:
+            raise _dec(message, prefix + str(key), values[key], 'type', 'a field of ' + cls.__name__)
     kwargs = {}
-    for field_name, kind in kinds:
+    for field_name, kind, required in kinds:
         if field_name not in values:
+            if required:
+                raise _dec(message, prefix + field_name, None, 'type', 'a value (the field is missing)')
             continue
         value = values[field_name]
-        if value is None:
-            pass
-        elif dataclasses.is_dataclass(kind):
-            value = _from_dict(kind, value)
-        elif isinstance(kind, type) and issubclass(kind, enum.Flag):
-            if isinstance(value, list):
-                flags = kind(0)
-                for name in value:
-                    flags |= kind[name]
-                value = flags
-            else:
-                value = kind(value)
-        elif isinstance(kind, type) and issubclass(kind, enum.Enum):
-            value = kind[value] if isinstance(value, str) and value in kind.__members__ else kind(value)
-        elif kind is bytes and isinstance(value, str):
-            value = bytes.fromhex(value)
+        try:
+            if value is None:
+                pass
+            elif dataclasses.is_dataclass(kind):
+                value = _from_dict(kind, value, message, prefix + field_name + ".")
+            elif isinstance(kind, type) and issubclass(kind, enum.Flag):
+                if isinstance(value, list):
+                    flags = kind(0)
+                    for name in value:
+                        flags |= kind[name]
+                    value = flags
+                elif isinstance(value, int) and value.__class__ is not bool:
+                    value = kind(value)
+                else:
+                    raise TypeError(value)
+            elif isinstance(kind, type) and issubclass(kind, enum.Enum):
+                if isinstance(value, str) and value in kind.__members__:
+                    value = kind[value]
+                elif value.__class__ is not bool:
+                    value = kind(value)
+                else:
+                    raise TypeError(value)
+            elif kind is bytes and isinstance(value, str):
+                value = bytes.fromhex(value)
+        except (KeyError, ValueError, TypeError):
+            raise _dec(message, prefix + field_name, value, 'type', 'a value of ' + getattr(kind, '__name__', str(kind))) from None
         kwargs[field_name] = value
     return cls(**kwargs)
 
@@ -735,6 +771,7 @@ def _parse_sequence(units, spec, cls, rules, name, positional=False, text=False)
         unit = take(units, i, None) if not positional else _Unit("extra data", None, i, units[i][2])
         e = _dec(name, None, unit.kind, 'grammar', 'the end of the sequence', None)
         e.index, e.line = i, unit.line
+        e.count = len(units) - i  # every unit from here on is outside the sequence
         errors.append(e)
     seq = cls(**values)
     if not errors:

@@ -21,6 +21,15 @@ _isfinite = math.isfinite
 _object_new = object.__new__
 
 
+def _int_of(token):
+    """int() of a checked decimal token. One of more than 20 significant digits is beyond
+    every field's range and comes back as -2**80 or 2**80: int() refuses over 4300 digits."""
+    negative = token[:1] == "-"
+    digits = token.lstrip("+-").lstrip("0")
+    value = 1 << 80 if len(digits) > 20 else int(digits or "0")
+    return -value if negative else value
+
+
 def _half_up(x):
     """floor(x + 0.5) for x of 2**52 or more, where the sum itself would round."""
     n = _floor(x)
@@ -51,10 +60,12 @@ class CodecError(ValueError):
 
     def __str__(self):
         where = ".".join(x for x in (self.message, self.field) if x) or 'mtv4'
-        text = f"{where}: {self.value!r} breaks rule {self.rule}"
+        named = self.rule == "rule" and self.decision  # a schema rule: its id says which
+        rule = f"rule {self.decision}" if named else "a rule" if self.rule == "rule" else f"rule {self.rule}"
+        text = f"{where}: {self.value!r} breaks {rule}"
         if self.allowed:
             text += f" (expected {self.allowed})"
-        if self.decision:
+        if self.decision and not named:
             text += f" [{self.decision}]"
         if self.offset is not None:
             text += f" at {self._where_offset()}"
@@ -364,6 +375,8 @@ def _checksum_crc16_8005_ffff_nn_0_23(data, start):
 def _as_input(data):
     if not isinstance(data, (bytes, bytearray, memoryview)):
         raise _dec(None, None, type(data).__name__, 'type', 'bytes')
+    if data.__class__ is memoryview and (data.itemsize != 1 or not data.c_contiguous):
+        return data.tobytes()  # the bytes it shows, however it is shaped or strided
     return data
 
 
@@ -382,7 +395,7 @@ def _encode_set_wheels_velocities(m):
         raise _enc('set_wheels_velocities', 'radio_crc_flag', r_radio_crc_flag, 'range', '0..1', 'MTV4-D4')
     r_command = 1
     r_robots = m.robots
-    if r_robots.__class__ is not int and not isinstance(r_robots, int):
+    if r_robots.__class__ is not int and r_robots.__class__ is not Robots and (not isinstance(r_robots, int) or r_robots.__class__ is bool or isinstance(r_robots, enum.Enum)):
         raise _enc('set_wheels_velocities', 'robots', r_robots, 'type', 'an int or Robots')
     r_robots = int(r_robots)
     if r_robots < 0 or r_robots & 0x0 or r_robots > 0xffff:
@@ -453,7 +466,7 @@ def _encode_set_led(m):
         raise _enc('set_led', 'radio_crc_flag', r_radio_crc_flag, 'range', '0..1', 'MTV4-D4')
     r_command = 2
     r_robots = m.robots
-    if r_robots.__class__ is not int and not isinstance(r_robots, int):
+    if r_robots.__class__ is not int and r_robots.__class__ is not Robots and (not isinstance(r_robots, int) or r_robots.__class__ is bool or isinstance(r_robots, enum.Enum)):
         raise _enc('set_led', 'robots', r_robots, 'type', 'an int or Robots')
     r_robots = int(r_robots)
     if r_robots < 0 or r_robots & 0x0 or r_robots > 0xffff:
@@ -534,7 +547,7 @@ def _encode_set_wheels_velocities_with_odometry(m):
         raise _enc('set_wheels_velocities_with_odometry', 'radio_crc_flag', r_radio_crc_flag, 'range', '0..1', 'MTV4-D4')
     r_command = 3
     r_robots = m.robots
-    if r_robots.__class__ is not int and not isinstance(r_robots, int):
+    if r_robots.__class__ is not int and r_robots.__class__ is not Robots and (not isinstance(r_robots, int) or r_robots.__class__ is bool or isinstance(r_robots, enum.Enum)):
         raise _enc('set_wheels_velocities_with_odometry', 'robots', r_robots, 'type', 'an int or Robots')
     r_robots = int(r_robots)
     if r_robots < 0 or r_robots & 0x0 or r_robots > 0xffff:
@@ -542,7 +555,7 @@ def _encode_set_wheels_velocities_with_odometry(m):
     if r_robots == 0 or r_robots & (r_robots - 1):
         raise _enc('set_wheels_velocities_with_odometry', 'robots', r_robots, 'exactly_one', 'exactly one bit set', 'MTV4-D3', 'an individual command or reply addresses exactly one robot')
     r_status = m.status
-    if r_status.__class__ is not int and not isinstance(r_status, int):
+    if r_status.__class__ is not int and r_status.__class__ is not Status and (not isinstance(r_status, int) or r_status.__class__ is bool or isinstance(r_status, enum.Enum)):
         raise _enc('set_wheels_velocities_with_odometry', 'status', r_status, 'type', 'an int or Status')
     r_status = int(r_status)
     if r_status < 0 or r_status & 0xfff8 or r_status > 0xffff:
@@ -560,22 +573,31 @@ def _encode_set_wheels_velocities_with_odometry(m):
         raise _enc('set_wheels_velocities_with_odometry', 'vr', r_vr, 'range', '-4096..4095.875', 'MTV4-D5')
     r_vr = _floor(r_vr / 0.125 + 0.5)
     r_x = m.x
-    if r_x.__class__ is not float and (not isinstance(r_x, (int, float)) or r_x.__class__ is bool):
-        raise _enc('set_wheels_velocities_with_odometry', 'x', r_x, 'type', 'a number')
+    if r_x.__class__ is not float:
+        if not isinstance(r_x, (int, float)) or r_x.__class__ is bool:
+            raise _enc('set_wheels_velocities_with_odometry', 'x', r_x, 'type', 'a number')
+        if not -1.7976931348623157e308 <= r_x <= 1.7976931348623157e308:  # exact for any int
+            raise _enc('set_wheels_velocities_with_odometry', 'x', r_x, 'finite', 'a finite number')
     if not _isfinite(r_x):
         raise _enc('set_wheels_velocities_with_odometry', 'x', r_x, 'finite', 'a finite number')
     if r_x > 3.4028234663852886e38 or r_x < -3.4028234663852886e38:
         raise _enc('set_wheels_velocities_with_odometry', 'x', r_x, 'range', 'a binary32 value')
     r_y = m.y
-    if r_y.__class__ is not float and (not isinstance(r_y, (int, float)) or r_y.__class__ is bool):
-        raise _enc('set_wheels_velocities_with_odometry', 'y', r_y, 'type', 'a number')
+    if r_y.__class__ is not float:
+        if not isinstance(r_y, (int, float)) or r_y.__class__ is bool:
+            raise _enc('set_wheels_velocities_with_odometry', 'y', r_y, 'type', 'a number')
+        if not -1.7976931348623157e308 <= r_y <= 1.7976931348623157e308:  # exact for any int
+            raise _enc('set_wheels_velocities_with_odometry', 'y', r_y, 'finite', 'a finite number')
     if not _isfinite(r_y):
         raise _enc('set_wheels_velocities_with_odometry', 'y', r_y, 'finite', 'a finite number')
     if r_y > 3.4028234663852886e38 or r_y < -3.4028234663852886e38:
         raise _enc('set_wheels_velocities_with_odometry', 'y', r_y, 'range', 'a binary32 value')
     r_th = m.th
-    if r_th.__class__ is not float and (not isinstance(r_th, (int, float)) or r_th.__class__ is bool):
-        raise _enc('set_wheels_velocities_with_odometry', 'th', r_th, 'type', 'a number')
+    if r_th.__class__ is not float:
+        if not isinstance(r_th, (int, float)) or r_th.__class__ is bool:
+            raise _enc('set_wheels_velocities_with_odometry', 'th', r_th, 'type', 'a number')
+        if not -1.7976931348623157e308 <= r_th <= 1.7976931348623157e308:  # exact for any int
+            raise _enc('set_wheels_velocities_with_odometry', 'th', r_th, 'finite', 'a finite number')
     if not _isfinite(r_th):
         raise _enc('set_wheels_velocities_with_odometry', 'th', r_th, 'finite', 'a finite number')
     if r_th > 3.4028234663852886e38 or r_th < -3.4028234663852886e38:
@@ -650,7 +672,7 @@ def _encode_ack(m):
     if r_command not in (1, 2):
         raise _enc('ack', 'command', r_command, 'values', '1, 2', 'MTV4-D4')
     r_robots = m.robots
-    if r_robots.__class__ is not int and not isinstance(r_robots, int):
+    if r_robots.__class__ is not int and r_robots.__class__ is not Robots and (not isinstance(r_robots, int) or r_robots.__class__ is bool or isinstance(r_robots, enum.Enum)):
         raise _enc('ack', 'robots', r_robots, 'type', 'an int or Robots')
     r_robots = int(r_robots)
     if r_robots < 0 or r_robots & 0x0 or r_robots > 0xffff:
@@ -708,7 +730,7 @@ def _encode_odometry_reply(m):
         raise _enc('odometry_reply', 'radio_crc_flag', r_radio_crc_flag, 'range', '0..1', 'MTV4-D4')
     r_command = 3
     r_robots = m.robots
-    if r_robots.__class__ is not int and not isinstance(r_robots, int):
+    if r_robots.__class__ is not int and r_robots.__class__ is not Robots and (not isinstance(r_robots, int) or r_robots.__class__ is bool or isinstance(r_robots, enum.Enum)):
         raise _enc('odometry_reply', 'robots', r_robots, 'type', 'an int or Robots')
     r_robots = int(r_robots)
     if r_robots < 0 or r_robots & 0x0 or r_robots > 0xffff:
@@ -721,22 +743,31 @@ def _encode_odometry_reply(m):
     if not 0 <= r_status <= 65535:
         raise _enc('odometry_reply', 'status', r_status, 'range', '0..65535', None)
     r_x = m.x
-    if r_x.__class__ is not float and (not isinstance(r_x, (int, float)) or r_x.__class__ is bool):
-        raise _enc('odometry_reply', 'x', r_x, 'type', 'a number')
+    if r_x.__class__ is not float:
+        if not isinstance(r_x, (int, float)) or r_x.__class__ is bool:
+            raise _enc('odometry_reply', 'x', r_x, 'type', 'a number')
+        if not -1.7976931348623157e308 <= r_x <= 1.7976931348623157e308:  # exact for any int
+            raise _enc('odometry_reply', 'x', r_x, 'finite', 'a finite number')
     if not _isfinite(r_x):
         raise _enc('odometry_reply', 'x', r_x, 'finite', 'a finite number')
     if r_x > 3.4028234663852886e38 or r_x < -3.4028234663852886e38:
         raise _enc('odometry_reply', 'x', r_x, 'range', 'a binary32 value')
     r_y = m.y
-    if r_y.__class__ is not float and (not isinstance(r_y, (int, float)) or r_y.__class__ is bool):
-        raise _enc('odometry_reply', 'y', r_y, 'type', 'a number')
+    if r_y.__class__ is not float:
+        if not isinstance(r_y, (int, float)) or r_y.__class__ is bool:
+            raise _enc('odometry_reply', 'y', r_y, 'type', 'a number')
+        if not -1.7976931348623157e308 <= r_y <= 1.7976931348623157e308:  # exact for any int
+            raise _enc('odometry_reply', 'y', r_y, 'finite', 'a finite number')
     if not _isfinite(r_y):
         raise _enc('odometry_reply', 'y', r_y, 'finite', 'a finite number')
     if r_y > 3.4028234663852886e38 or r_y < -3.4028234663852886e38:
         raise _enc('odometry_reply', 'y', r_y, 'range', 'a binary32 value')
     r_th = m.th
-    if r_th.__class__ is not float and (not isinstance(r_th, (int, float)) or r_th.__class__ is bool):
-        raise _enc('odometry_reply', 'th', r_th, 'type', 'a number')
+    if r_th.__class__ is not float:
+        if not isinstance(r_th, (int, float)) or r_th.__class__ is bool:
+            raise _enc('odometry_reply', 'th', r_th, 'type', 'a number')
+        if not -1.7976931348623157e308 <= r_th <= 1.7976931348623157e308:  # exact for any int
+            raise _enc('odometry_reply', 'th', r_th, 'finite', 'a finite number')
     if not _isfinite(r_th):
         raise _enc('odometry_reply', 'th', r_th, 'finite', 'a finite number')
     if r_th > 3.4028234663852886e38 or r_th < -3.4028234663852886e38:
@@ -810,7 +841,7 @@ def decode(data, direction=None):
     value = (d[3] & 0x7f)
     key = (value, len(d))
     if direction is not None:
-        fn = _KEYS_BY_DIRECTION.get(direction, {}).get(key)
+        fn = _KEYS_BY_DIRECTION.get(direction, {}).get(key) if direction.__class__ is str else None
         if fn is None:
             raise _dec(None, None, value, 'dispatch', f'an id of {direction} with a frame of {len(d)} bytes', 24)
         return fn(d)
@@ -825,7 +856,9 @@ def decode(data, direction=None):
 class StreamDecoder:
     """Byte stream → frames. `feed` returns decoded messages and DecodeErrors in
     stream order; after garbage or a bad frame it resynchronises on the next
-    sync byte. Memory is bounded by one maximum frame."""
+    sync byte, with one DecodeError for each stretch of bytes dropped between two
+    frames (the stretch's first), however long the stretch. Memory is bounded by
+    one maximum frame."""
 
     _SIZES = frozenset([8, 12, 22, 26])
 
@@ -835,13 +868,15 @@ class StreamDecoder:
         self.offset = 0  # stream offset of the buffer's first byte
         self.skipped = 0  # bytes dropped while resynchronising
         self.spans = []  # (offset, length) of each item the last feed or finish returned
+        self._resyncing = False  # an error was returned and no frame decoded since
 
     def feed(self, data):
         # One immutable buffer walked by index: frames are sliced out once, and the
         # consumed head is dropped once per call rather than once per frame.
-        buf = self._buffer + bytes(data) if self._buffer else bytes(data)
+        data = bytes(data if data.__class__ is bytes else _as_input(data))
+        buf = self._buffer + data if self._buffer else data
         pos, end, out, spans = 0, len(buf), [], []
-        base, skipped, direction = self.offset, 0, self.direction
+        base, skipped, direction, resyncing = self.offset, 0, self.direction, self._resyncing
         while True:
             start = buf.find(170, pos)
             if start < 0:
@@ -854,27 +889,35 @@ class StreamDecoder:
                 break
             size = buf[pos + 1] + 4
             if size not in self._SIZES:
-                out.append(_dec(None, 'length', size, 'length', 'a known frame size', (base + pos) * 8))
-                spans.append((base + pos, 1))
+                if not resyncing:
+                    out.append(_dec(None, 'length', size, 'length', 'a known frame size', (base + pos) * 8))
+                    spans.append((base + pos, 1))
+                    resyncing = True
                 skipped += 1
                 pos += 1
                 continue
             if end - pos < size:
                 break
             self.offset = base + pos  # at the frame's first byte while it is decoded
-            spans.append((base + pos, size))
             try:
-                out.append(decode(buf[pos:pos + size], direction))
+                message = decode(buf[pos:pos + size], direction)
             except DecodeError as exc:
-                exc.offset = (base + pos) * 8 + (exc.offset or 0)
-                out.append(exc)
+                if not resyncing:
+                    exc.offset = (base + pos) * 8 + (exc.offset or 0)
+                    out.append(exc)
+                    spans.append((base + pos, size))
+                    resyncing = True
                 skipped += 1
                 pos += 1
                 continue
+            out.append(message)
+            spans.append((base + pos, size))
+            resyncing = False
             pos += size
         self._buffer = buf[pos:]
         self.offset = base + pos
         self.skipped += skipped
+        self._resyncing = resyncing
         self.spans = spans
         return out
 
@@ -909,8 +952,12 @@ def validate(m):
 
 
 def from_dict(name, values):
-    """Build a message object from plain data (enum names, flag name lists, nested dicts)."""
-    return _from_dict(MESSAGES[name], values)
+    """Build a message object from plain data (enum names, flag name lists, nested dicts,
+    bytes as hex); a name, key or value that does not fit is a DecodeError."""
+    cls = MESSAGES.get(name) if isinstance(name, str) else None
+    if cls is None:
+        raise _dec(None, None, name, 'type', 'a message name: ' + ', '.join(MESSAGES))
+    return _from_dict(cls, values, name, "")
 
 
 _FIELD_KINDS = {}  # class → ((field name, type), ...): resolving annotations is slow, do it once
@@ -924,35 +971,54 @@ def _field_kinds(cls):
     for f in dataclasses.fields(cls):
         kind = hints[f.name]
         args = [a for a in typing.get_args(kind) if a is not type(None)]
-        kinds.append((f.name, args[0] if args and typing.get_origin(kind) is Union else kind))
+        required = f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING
+        kinds.append((f.name, args[0] if args and typing.get_origin(kind) is Union else kind, required))
     return tuple(kinds)
 
 
-def _from_dict(cls, values):
+def _from_dict(cls, values, message, prefix):
     import dataclasses
+    if not isinstance(values, dict):
+        raise _dec(message, prefix[:-1] or None, values, 'type', 'a mapping of field names to values')
     kinds = _FIELD_KINDS.get(cls)
     if kinds is None:
         kinds = _FIELD_KINDS[cls] = _field_kinds(cls)
+    names = {field_name for field_name, _, _ in kinds}
+    for key in values:
+        if key not in names:
+            raise _dec(message, prefix + str(key), values[key], 'type', 'a field of ' + cls.__name__)
     kwargs = {}
-    for field_name, kind in kinds:
+    for field_name, kind, required in kinds:
         if field_name not in values:
+            if required:
+                raise _dec(message, prefix + field_name, None, 'type', 'a value (the field is missing)')
             continue
         value = values[field_name]
-        if value is None:
-            pass
-        elif dataclasses.is_dataclass(kind):
-            value = _from_dict(kind, value)
-        elif isinstance(kind, type) and issubclass(kind, enum.Flag):
-            if isinstance(value, list):
-                flags = kind(0)
-                for name in value:
-                    flags |= kind[name]
-                value = flags
-            else:
-                value = kind(value)
-        elif isinstance(kind, type) and issubclass(kind, enum.Enum):
-            value = kind[value] if isinstance(value, str) and value in kind.__members__ else kind(value)
-        elif kind is bytes and isinstance(value, str):
-            value = bytes.fromhex(value)
+        try:
+            if value is None:
+                pass
+            elif dataclasses.is_dataclass(kind):
+                value = _from_dict(kind, value, message, prefix + field_name + ".")
+            elif isinstance(kind, type) and issubclass(kind, enum.Flag):
+                if isinstance(value, list):
+                    flags = kind(0)
+                    for name in value:
+                        flags |= kind[name]
+                    value = flags
+                elif isinstance(value, int) and value.__class__ is not bool:
+                    value = kind(value)
+                else:
+                    raise TypeError(value)
+            elif isinstance(kind, type) and issubclass(kind, enum.Enum):
+                if isinstance(value, str) and value in kind.__members__:
+                    value = kind[value]
+                elif value.__class__ is not bool:
+                    value = kind(value)
+                else:
+                    raise TypeError(value)
+            elif kind is bytes and isinstance(value, str):
+                value = bytes.fromhex(value)
+        except (KeyError, ValueError, TypeError):
+            raise _dec(message, prefix + field_name, value, 'type', 'a value of ' + getattr(kind, '__name__', str(kind))) from None
         kwargs[field_name] = value
     return cls(**kwargs)

@@ -21,6 +21,15 @@ _isfinite = math.isfinite
 _object_new = object.__new__
 
 
+def _int_of(token):
+    """int() of a checked decimal token. One of more than 20 significant digits is beyond
+    every field's range and comes back as -2**80 or 2**80: int() refuses over 4300 digits."""
+    negative = token[:1] == "-"
+    digits = token.lstrip("+-").lstrip("0")
+    value = 1 << 80 if len(digits) > 20 else int(digits or "0")
+    return -value if negative else value
+
+
 def _half_up(x):
     """floor(x + 0.5) for x of 2**52 or more, where the sum itself would round."""
     n = _floor(x)
@@ -51,10 +60,12 @@ class CodecError(ValueError):
 
     def __str__(self):
         where = ".".join(x for x in (self.message, self.field) if x) or 'tank'
-        text = f"{where}: {self.value!r} breaks rule {self.rule}"
+        named = self.rule == "rule" and self.decision  # a schema rule: its id says which
+        rule = f"rule {self.decision}" if named else "a rule" if self.rule == "rule" else f"rule {self.rule}"
+        text = f"{where}: {self.value!r} breaks {rule}"
         if self.allowed:
             text += f" (expected {self.allowed})"
-        if self.decision:
+        if self.decision and not named:
             text += f" [{self.decision}]"
         if self.offset is not None:
             text += f" at {self._where_offset()}"
@@ -261,29 +272,42 @@ class GpioConfig:
         return _decode_as('gpio_config', data)
 
 
-_INT_RE = r"[+-]?[0-9]+"
+_INT_RE = r"[+-]?[0-9]{1,20}"  # longer ones take the checked path (_parse_int)
 _FLOAT_RE = r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?"
-# a number short enough to be finite (below 1e115): a line of such numbers needs no finiteness checks
-_FINITE_RE = r"[+-]?(?:[0-9]{1,15}(?:\.[0-9]{0,15})?|\.[0-9]{1,15})(?:[eE][+-]?[0-9]{1,2})?"
+# a number short enough to need no checks: at most 15 digits (and a point) and an exponent of at
+# most two digits: 1e-113 or more if not 0, below 1e115, every digit kept by a double
+_FINITE_RE = r"[+-]?(?=[0-9.]{1,15}(?![0-9.]))(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]{1,2})?"
 _CHAR_RE = '[!-\\+\\--:<-\\~]'  # printable, no space, separator or terminator
 _TEXT_RE = _CHAR_RE + "*"
 _REST_RE = '[!-:<-\\~]' + "*"  # a last field running to the end may hold separators
 _TEXT_OK = re.compile(_TEXT_RE)  # a text value that needs no closer look
 _REST_OK = re.compile(_REST_RE)
-_INT = re.compile(_INT_RE + r"\Z")
+_INT = re.compile(r"[+-]?[0-9]+\Z")
 _FLOAT = re.compile(_FLOAT_RE + r"\Z")
 
 
 def _parse_int(token, message, field, offset):
     if not _INT.match(token):
         raise _dec(message, field, token, 'syntax', 'a decimal integer', offset)
-    return int(token)
+    return _int_of(token)
 
 
 def _parse_float(token, message, field, offset):
     if not _FLOAT.match(token):
         raise _dec(message, field, token, 'syntax', 'a decimal number', offset)
-    return float(token)
+    digits = _significant(token)
+    if digits > 15:
+        raise _dec(message, field, token, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307', offset)
+    value = float(token)
+    if digits and -1e-307 < value < 1e-307:
+        raise _dec(message, field, token, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307', offset)
+    return value
+
+
+def _significant(text):
+    """The significant digits of a decimal number written as text."""
+    mantissa = text.partition("e")[0].partition("E")[0]
+    return len(mantissa.lstrip("+-").replace(".", "").strip("0"))
 
 
 def _format_float(value):
@@ -334,12 +358,15 @@ def _as_input(data):
             raise _dec(None, None, data[exc.start:exc.end], 'text', 'ASCII', exc.start) from None
     if not isinstance(data, str):
         raise _dec(None, None, type(data).__name__, 'type', 'str or bytes')
+    if not data.isascii():  # as from bytes: other spaces and digits would read differently in C
+        at = next(i for i, ch in enumerate(data) if ch > "\x7f")
+        raise _dec(None, None, data[at], 'text', 'ASCII', at)
     return data
 
 
 def _encode_telemetry(m):
     r_move = m.move
-    if r_move.__class__ is not Move and (not isinstance(r_move, str) or r_move not in _VALUES_move):
+    if r_move.__class__ is not Move and (not isinstance(r_move, str) or r_move.__class__ is bool or isinstance(r_move, enum.Enum) or r_move not in _VALUES_move):
         raise _enc('telemetry', 'move', r_move, 'enum', 'Move', None)
     r_speed = m.speed
     if r_speed.__class__ is not int and (not isinstance(r_speed, int) or r_speed.__class__ is bool):
@@ -354,60 +381,115 @@ def _encode_telemetry(m):
         if bad:
             raise _enc('telemetry', 'value', r_value, 'text', bad, 'TANK-D3')
     r_lcurr = m.lcurr
-    if r_lcurr.__class__ is not float and (not isinstance(r_lcurr, (int, float)) or r_lcurr.__class__ is bool):
-        raise _enc('telemetry', 'lcurr', r_lcurr, 'type', 'a number')
+    if r_lcurr.__class__ is not float:
+        if not isinstance(r_lcurr, (int, float)) or r_lcurr.__class__ is bool:
+            raise _enc('telemetry', 'lcurr', r_lcurr, 'type', 'a number')
+        if not -1.7976931348623157e308 <= r_lcurr <= 1.7976931348623157e308:  # exact for any int
+            raise _enc('telemetry', 'lcurr', r_lcurr, 'finite', 'a finite number')
     if not _isfinite(r_lcurr):
         raise _enc('telemetry', 'lcurr', r_lcurr, 'finite', 'a finite number')
+    if _significant(_format_float(r_lcurr)) > 15 or r_lcurr and -1e-307 < r_lcurr < 1e-307:
+        raise _enc('telemetry', 'lcurr', r_lcurr, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_rcurr = m.rcurr
-    if r_rcurr.__class__ is not float and (not isinstance(r_rcurr, (int, float)) or r_rcurr.__class__ is bool):
-        raise _enc('telemetry', 'rcurr', r_rcurr, 'type', 'a number')
+    if r_rcurr.__class__ is not float:
+        if not isinstance(r_rcurr, (int, float)) or r_rcurr.__class__ is bool:
+            raise _enc('telemetry', 'rcurr', r_rcurr, 'type', 'a number')
+        if not -1.7976931348623157e308 <= r_rcurr <= 1.7976931348623157e308:  # exact for any int
+            raise _enc('telemetry', 'rcurr', r_rcurr, 'finite', 'a finite number')
     if not _isfinite(r_rcurr):
         raise _enc('telemetry', 'rcurr', r_rcurr, 'finite', 'a finite number')
+    if _significant(_format_float(r_rcurr)) > 15 or r_rcurr and -1e-307 < r_rcurr < 1e-307:
+        raise _enc('telemetry', 'rcurr', r_rcurr, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_accx = m.accx
-    if r_accx.__class__ is not float and (not isinstance(r_accx, (int, float)) or r_accx.__class__ is bool):
-        raise _enc('telemetry', 'accx', r_accx, 'type', 'a number')
+    if r_accx.__class__ is not float:
+        if not isinstance(r_accx, (int, float)) or r_accx.__class__ is bool:
+            raise _enc('telemetry', 'accx', r_accx, 'type', 'a number')
+        if not -1.7976931348623157e308 <= r_accx <= 1.7976931348623157e308:  # exact for any int
+            raise _enc('telemetry', 'accx', r_accx, 'finite', 'a finite number')
     if not _isfinite(r_accx):
         raise _enc('telemetry', 'accx', r_accx, 'finite', 'a finite number')
+    if _significant(_format_float(r_accx)) > 15 or r_accx and -1e-307 < r_accx < 1e-307:
+        raise _enc('telemetry', 'accx', r_accx, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_accy = m.accy
-    if r_accy.__class__ is not float and (not isinstance(r_accy, (int, float)) or r_accy.__class__ is bool):
-        raise _enc('telemetry', 'accy', r_accy, 'type', 'a number')
+    if r_accy.__class__ is not float:
+        if not isinstance(r_accy, (int, float)) or r_accy.__class__ is bool:
+            raise _enc('telemetry', 'accy', r_accy, 'type', 'a number')
+        if not -1.7976931348623157e308 <= r_accy <= 1.7976931348623157e308:  # exact for any int
+            raise _enc('telemetry', 'accy', r_accy, 'finite', 'a finite number')
     if not _isfinite(r_accy):
         raise _enc('telemetry', 'accy', r_accy, 'finite', 'a finite number')
+    if _significant(_format_float(r_accy)) > 15 or r_accy and -1e-307 < r_accy < 1e-307:
+        raise _enc('telemetry', 'accy', r_accy, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_accz = m.accz
-    if r_accz.__class__ is not float and (not isinstance(r_accz, (int, float)) or r_accz.__class__ is bool):
-        raise _enc('telemetry', 'accz', r_accz, 'type', 'a number')
+    if r_accz.__class__ is not float:
+        if not isinstance(r_accz, (int, float)) or r_accz.__class__ is bool:
+            raise _enc('telemetry', 'accz', r_accz, 'type', 'a number')
+        if not -1.7976931348623157e308 <= r_accz <= 1.7976931348623157e308:  # exact for any int
+            raise _enc('telemetry', 'accz', r_accz, 'finite', 'a finite number')
     if not _isfinite(r_accz):
         raise _enc('telemetry', 'accz', r_accz, 'finite', 'a finite number')
+    if _significant(_format_float(r_accz)) > 15 or r_accz and -1e-307 < r_accz < 1e-307:
+        raise _enc('telemetry', 'accz', r_accz, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_gyrox = m.gyrox
-    if r_gyrox.__class__ is not float and (not isinstance(r_gyrox, (int, float)) or r_gyrox.__class__ is bool):
-        raise _enc('telemetry', 'gyrox', r_gyrox, 'type', 'a number')
+    if r_gyrox.__class__ is not float:
+        if not isinstance(r_gyrox, (int, float)) or r_gyrox.__class__ is bool:
+            raise _enc('telemetry', 'gyrox', r_gyrox, 'type', 'a number')
+        if not -1.7976931348623157e308 <= r_gyrox <= 1.7976931348623157e308:  # exact for any int
+            raise _enc('telemetry', 'gyrox', r_gyrox, 'finite', 'a finite number')
     if not _isfinite(r_gyrox):
         raise _enc('telemetry', 'gyrox', r_gyrox, 'finite', 'a finite number')
+    if _significant(_format_float(r_gyrox)) > 15 or r_gyrox and -1e-307 < r_gyrox < 1e-307:
+        raise _enc('telemetry', 'gyrox', r_gyrox, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_gyroy = m.gyroy
-    if r_gyroy.__class__ is not float and (not isinstance(r_gyroy, (int, float)) or r_gyroy.__class__ is bool):
-        raise _enc('telemetry', 'gyroy', r_gyroy, 'type', 'a number')
+    if r_gyroy.__class__ is not float:
+        if not isinstance(r_gyroy, (int, float)) or r_gyroy.__class__ is bool:
+            raise _enc('telemetry', 'gyroy', r_gyroy, 'type', 'a number')
+        if not -1.7976931348623157e308 <= r_gyroy <= 1.7976931348623157e308:  # exact for any int
+            raise _enc('telemetry', 'gyroy', r_gyroy, 'finite', 'a finite number')
     if not _isfinite(r_gyroy):
         raise _enc('telemetry', 'gyroy', r_gyroy, 'finite', 'a finite number')
+    if _significant(_format_float(r_gyroy)) > 15 or r_gyroy and -1e-307 < r_gyroy < 1e-307:
+        raise _enc('telemetry', 'gyroy', r_gyroy, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_gyroz = m.gyroz
-    if r_gyroz.__class__ is not float and (not isinstance(r_gyroz, (int, float)) or r_gyroz.__class__ is bool):
-        raise _enc('telemetry', 'gyroz', r_gyroz, 'type', 'a number')
+    if r_gyroz.__class__ is not float:
+        if not isinstance(r_gyroz, (int, float)) or r_gyroz.__class__ is bool:
+            raise _enc('telemetry', 'gyroz', r_gyroz, 'type', 'a number')
+        if not -1.7976931348623157e308 <= r_gyroz <= 1.7976931348623157e308:  # exact for any int
+            raise _enc('telemetry', 'gyroz', r_gyroz, 'finite', 'a finite number')
     if not _isfinite(r_gyroz):
         raise _enc('telemetry', 'gyroz', r_gyroz, 'finite', 'a finite number')
+    if _significant(_format_float(r_gyroz)) > 15 or r_gyroz and -1e-307 < r_gyroz < 1e-307:
+        raise _enc('telemetry', 'gyroz', r_gyroz, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_magx = m.magx
-    if r_magx.__class__ is not float and (not isinstance(r_magx, (int, float)) or r_magx.__class__ is bool):
-        raise _enc('telemetry', 'magx', r_magx, 'type', 'a number')
+    if r_magx.__class__ is not float:
+        if not isinstance(r_magx, (int, float)) or r_magx.__class__ is bool:
+            raise _enc('telemetry', 'magx', r_magx, 'type', 'a number')
+        if not -1.7976931348623157e308 <= r_magx <= 1.7976931348623157e308:  # exact for any int
+            raise _enc('telemetry', 'magx', r_magx, 'finite', 'a finite number')
     if not _isfinite(r_magx):
         raise _enc('telemetry', 'magx', r_magx, 'finite', 'a finite number')
+    if _significant(_format_float(r_magx)) > 15 or r_magx and -1e-307 < r_magx < 1e-307:
+        raise _enc('telemetry', 'magx', r_magx, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_magy = m.magy
-    if r_magy.__class__ is not float and (not isinstance(r_magy, (int, float)) or r_magy.__class__ is bool):
-        raise _enc('telemetry', 'magy', r_magy, 'type', 'a number')
+    if r_magy.__class__ is not float:
+        if not isinstance(r_magy, (int, float)) or r_magy.__class__ is bool:
+            raise _enc('telemetry', 'magy', r_magy, 'type', 'a number')
+        if not -1.7976931348623157e308 <= r_magy <= 1.7976931348623157e308:  # exact for any int
+            raise _enc('telemetry', 'magy', r_magy, 'finite', 'a finite number')
     if not _isfinite(r_magy):
         raise _enc('telemetry', 'magy', r_magy, 'finite', 'a finite number')
+    if _significant(_format_float(r_magy)) > 15 or r_magy and -1e-307 < r_magy < 1e-307:
+        raise _enc('telemetry', 'magy', r_magy, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_magz = m.magz
-    if r_magz.__class__ is not float and (not isinstance(r_magz, (int, float)) or r_magz.__class__ is bool):
-        raise _enc('telemetry', 'magz', r_magz, 'type', 'a number')
+    if r_magz.__class__ is not float:
+        if not isinstance(r_magz, (int, float)) or r_magz.__class__ is bool:
+            raise _enc('telemetry', 'magz', r_magz, 'type', 'a number')
+        if not -1.7976931348623157e308 <= r_magz <= 1.7976931348623157e308:  # exact for any int
+            raise _enc('telemetry', 'magz', r_magz, 'finite', 'a finite number')
     if not _isfinite(r_magz):
         raise _enc('telemetry', 'magz', r_magz, 'finite', 'a finite number')
+    if _significant(_format_float(r_magz)) > 15 or r_magz and -1e-307 < r_magz < 1e-307:
+        raise _enc('telemetry', 'magz', r_magz, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_lan = m.lan
     if not isinstance(r_lan, str):
         raise _enc('telemetry', 'lan', r_lan, 'type', 'a string')
@@ -427,12 +509,17 @@ def _encode_telemetry(m):
     if len(r_lon) > 32:
         raise _enc('telemetry', 'lon', r_lon, 'length', 'at most 32 characters')
     r_vbat = m.vbat
-    if r_vbat.__class__ is not float and (not isinstance(r_vbat, (int, float)) or r_vbat.__class__ is bool):
-        raise _enc('telemetry', 'vbat', r_vbat, 'type', 'a number')
+    if r_vbat.__class__ is not float:
+        if not isinstance(r_vbat, (int, float)) or r_vbat.__class__ is bool:
+            raise _enc('telemetry', 'vbat', r_vbat, 'type', 'a number')
+        if not -1.7976931348623157e308 <= r_vbat <= 1.7976931348623157e308:  # exact for any int
+            raise _enc('telemetry', 'vbat', r_vbat, 'finite', 'a finite number')
     if not _isfinite(r_vbat):
         raise _enc('telemetry', 'vbat', r_vbat, 'finite', 'a finite number')
+    if _significant(_format_float(r_vbat)) > 15 or r_vbat and -1e-307 < r_vbat < 1e-307:
+        raise _enc('telemetry', 'vbat', r_vbat, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_systemstatus = m.systemstatus
-    if r_systemstatus.__class__ is not SystemStatus and (not isinstance(r_systemstatus, int) or r_systemstatus not in _VALUES_system_status):
+    if r_systemstatus.__class__ is not SystemStatus and (not isinstance(r_systemstatus, int) or r_systemstatus.__class__ is bool or isinstance(r_systemstatus, enum.Enum) or r_systemstatus not in _VALUES_system_status):
         raise _enc('telemetry', 'systemstatus', r_systemstatus, 'enum', 'SystemStatus', None)
     r_systemstatus = r_systemstatus._value_ if r_systemstatus.__class__ is SystemStatus else int(r_systemstatus)
     r_extid = m.extid
@@ -441,7 +528,7 @@ def _encode_telemetry(m):
     if not 0 <= r_extid <= 255:
         raise _enc('telemetry', 'extid', r_extid, 'range', '0..255', None)
     r_extstatus = m.extstatus
-    if r_extstatus.__class__ is not ExtStatus and (not isinstance(r_extstatus, int) or r_extstatus not in _VALUES_ext_status):
+    if r_extstatus.__class__ is not ExtStatus and (not isinstance(r_extstatus, int) or r_extstatus.__class__ is bool or isinstance(r_extstatus, enum.Enum) or r_extstatus not in _VALUES_ext_status):
         raise _enc('telemetry', 'extstatus', r_extstatus, 'enum', 'ExtStatus', None)
     r_extstatus = r_extstatus._value_ if r_extstatus.__class__ is ExtStatus else int(r_extstatus)
     return '$:' + ','.join((_ENUM_move[r_move]._value_, str(r_speed), r_value, _format_float(r_lcurr), _format_float(r_rcurr), _format_float(r_accx), _format_float(r_accy), _format_float(r_accz), _format_float(r_gyrox), _format_float(r_gyroy), _format_float(r_gyroz), _format_float(r_magx), _format_float(r_magy), _format_float(r_magz), r_lan, r_lon, _format_float(r_vbat), str(r_systemstatus), str(r_extid), str(r_extstatus), )) + ';'
@@ -555,7 +642,7 @@ def _decode_telemetry(body, base):
 
 def _encode_command(m):
     r_move = m.move
-    if r_move.__class__ is not Move and (not isinstance(r_move, str) or r_move not in _VALUES_move):
+    if r_move.__class__ is not Move and (not isinstance(r_move, str) or r_move.__class__ is bool or isinstance(r_move, enum.Enum) or r_move not in _VALUES_move):
         raise _enc('command', 'move', r_move, 'enum', 'Move', None)
     r_speed = m.speed
     if r_speed.__class__ is not int and (not isinstance(r_speed, int) or r_speed.__class__ is bool):
@@ -575,27 +662,47 @@ def _encode_command(m):
     if not -32768 <= r_azimutloc <= 32767:
         raise _enc('command', 'azimutloc', r_azimutloc, 'range', '-32768..32767', None)
     r_gpio1 = m.gpio1
-    if r_gpio1.__class__ is not float and (not isinstance(r_gpio1, (int, float)) or r_gpio1.__class__ is bool):
-        raise _enc('command', 'gpio1', r_gpio1, 'type', 'a number')
+    if r_gpio1.__class__ is not float:
+        if not isinstance(r_gpio1, (int, float)) or r_gpio1.__class__ is bool:
+            raise _enc('command', 'gpio1', r_gpio1, 'type', 'a number')
+        if not -1.7976931348623157e308 <= r_gpio1 <= 1.7976931348623157e308:  # exact for any int
+            raise _enc('command', 'gpio1', r_gpio1, 'finite', 'a finite number')
     if not _isfinite(r_gpio1):
         raise _enc('command', 'gpio1', r_gpio1, 'finite', 'a finite number')
+    if _significant(_format_float(r_gpio1)) > 15 or r_gpio1 and -1e-307 < r_gpio1 < 1e-307:
+        raise _enc('command', 'gpio1', r_gpio1, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_gpio2 = m.gpio2
-    if r_gpio2.__class__ is not float and (not isinstance(r_gpio2, (int, float)) or r_gpio2.__class__ is bool):
-        raise _enc('command', 'gpio2', r_gpio2, 'type', 'a number')
+    if r_gpio2.__class__ is not float:
+        if not isinstance(r_gpio2, (int, float)) or r_gpio2.__class__ is bool:
+            raise _enc('command', 'gpio2', r_gpio2, 'type', 'a number')
+        if not -1.7976931348623157e308 <= r_gpio2 <= 1.7976931348623157e308:  # exact for any int
+            raise _enc('command', 'gpio2', r_gpio2, 'finite', 'a finite number')
     if not _isfinite(r_gpio2):
         raise _enc('command', 'gpio2', r_gpio2, 'finite', 'a finite number')
+    if _significant(_format_float(r_gpio2)) > 15 or r_gpio2 and -1e-307 < r_gpio2 < 1e-307:
+        raise _enc('command', 'gpio2', r_gpio2, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_gpio3 = m.gpio3
-    if r_gpio3.__class__ is not float and (not isinstance(r_gpio3, (int, float)) or r_gpio3.__class__ is bool):
-        raise _enc('command', 'gpio3', r_gpio3, 'type', 'a number')
+    if r_gpio3.__class__ is not float:
+        if not isinstance(r_gpio3, (int, float)) or r_gpio3.__class__ is bool:
+            raise _enc('command', 'gpio3', r_gpio3, 'type', 'a number')
+        if not -1.7976931348623157e308 <= r_gpio3 <= 1.7976931348623157e308:  # exact for any int
+            raise _enc('command', 'gpio3', r_gpio3, 'finite', 'a finite number')
     if not _isfinite(r_gpio3):
         raise _enc('command', 'gpio3', r_gpio3, 'finite', 'a finite number')
+    if _significant(_format_float(r_gpio3)) > 15 or r_gpio3 and -1e-307 < r_gpio3 < 1e-307:
+        raise _enc('command', 'gpio3', r_gpio3, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_gpio4 = m.gpio4
-    if r_gpio4.__class__ is not float and (not isinstance(r_gpio4, (int, float)) or r_gpio4.__class__ is bool):
-        raise _enc('command', 'gpio4', r_gpio4, 'type', 'a number')
+    if r_gpio4.__class__ is not float:
+        if not isinstance(r_gpio4, (int, float)) or r_gpio4.__class__ is bool:
+            raise _enc('command', 'gpio4', r_gpio4, 'type', 'a number')
+        if not -1.7976931348623157e308 <= r_gpio4 <= 1.7976931348623157e308:  # exact for any int
+            raise _enc('command', 'gpio4', r_gpio4, 'finite', 'a finite number')
     if not _isfinite(r_gpio4):
         raise _enc('command', 'gpio4', r_gpio4, 'finite', 'a finite number')
+    if _significant(_format_float(r_gpio4)) > 15 or r_gpio4 and -1e-307 < r_gpio4 < 1e-307:
+        raise _enc('command', 'gpio4', r_gpio4, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_systemstatus = m.systemstatus
-    if r_systemstatus.__class__ is not SystemStatus and (not isinstance(r_systemstatus, int) or r_systemstatus not in _VALUES_system_status):
+    if r_systemstatus.__class__ is not SystemStatus and (not isinstance(r_systemstatus, int) or r_systemstatus.__class__ is bool or isinstance(r_systemstatus, enum.Enum) or r_systemstatus not in _VALUES_system_status):
         raise _enc('command', 'systemstatus', r_systemstatus, 'enum', 'SystemStatus', 'TANK-D2', 'systemstatus 5 (Error) and 6 (Exception) are sent only by the platform / Только с платформы')
     if r_systemstatus not in (0, 1, 2, 3, 4):
         raise _enc('command', 'systemstatus', r_systemstatus, 'values', '0, 1, 2, 3, 4', 'TANK-D2', 'systemstatus 5 (Error) and 6 (Exception) are sent only by the platform / Только с платформы')
@@ -743,19 +850,19 @@ def _decode_payload_reply(body, base):
 
 def _encode_gpio_config(m):
     r_gpio1 = m.gpio1
-    if r_gpio1.__class__ is not GpioMode and (not isinstance(r_gpio1, int) or r_gpio1 not in _VALUES_gpio_mode):
+    if r_gpio1.__class__ is not GpioMode and (not isinstance(r_gpio1, int) or r_gpio1.__class__ is bool or isinstance(r_gpio1, enum.Enum) or r_gpio1 not in _VALUES_gpio_mode):
         raise _enc('gpio_config', 'gpio1', r_gpio1, 'enum', 'GpioMode', None)
     r_gpio1 = r_gpio1._value_ if r_gpio1.__class__ is GpioMode else int(r_gpio1)
     r_gpio2 = m.gpio2
-    if r_gpio2.__class__ is not GpioMode and (not isinstance(r_gpio2, int) or r_gpio2 not in _VALUES_gpio_mode):
+    if r_gpio2.__class__ is not GpioMode and (not isinstance(r_gpio2, int) or r_gpio2.__class__ is bool or isinstance(r_gpio2, enum.Enum) or r_gpio2 not in _VALUES_gpio_mode):
         raise _enc('gpio_config', 'gpio2', r_gpio2, 'enum', 'GpioMode', None)
     r_gpio2 = r_gpio2._value_ if r_gpio2.__class__ is GpioMode else int(r_gpio2)
     r_gpio3 = m.gpio3
-    if r_gpio3.__class__ is not GpioMode and (not isinstance(r_gpio3, int) or r_gpio3 not in _VALUES_gpio_mode):
+    if r_gpio3.__class__ is not GpioMode and (not isinstance(r_gpio3, int) or r_gpio3.__class__ is bool or isinstance(r_gpio3, enum.Enum) or r_gpio3 not in _VALUES_gpio_mode):
         raise _enc('gpio_config', 'gpio3', r_gpio3, 'enum', 'GpioMode', None)
     r_gpio3 = r_gpio3._value_ if r_gpio3.__class__ is GpioMode else int(r_gpio3)
     r_gpio4 = m.gpio4
-    if r_gpio4.__class__ is not GpioMode and (not isinstance(r_gpio4, int) or r_gpio4 not in _VALUES_gpio_mode):
+    if r_gpio4.__class__ is not GpioMode and (not isinstance(r_gpio4, int) or r_gpio4.__class__ is bool or isinstance(r_gpio4, enum.Enum) or r_gpio4 not in _VALUES_gpio_mode):
         raise _enc('gpio_config', 'gpio4', r_gpio4, 'enum', 'GpioMode', None)
     r_gpio4 = r_gpio4._value_ if r_gpio4.__class__ is GpioMode else int(r_gpio4)
     return '-:' + ','.join((str(r_gpio1), str(r_gpio2), str(r_gpio3), str(r_gpio4), )) + ';'
@@ -840,7 +947,12 @@ class StreamDecoder:
         self.spans = []  # (offset, length) of each item the last feed or finish returned
 
     def feed(self, data):
-        self._buffer += _as_input(data)
+        # any byte is taken here: a message holding one that is not ASCII is a DecodeError in its turn
+        if isinstance(data, (bytes, bytearray, memoryview)):
+            data = bytes(data).decode("latin-1")
+        elif not isinstance(data, str):
+            raise _dec(None, None, type(data).__name__, 'type', 'str or bytes')
+        self._buffer += data
         out, spans = [], []
         self.spans = spans
         while True:
@@ -894,8 +1006,12 @@ def validate(m):
 
 
 def from_dict(name, values):
-    """Build a message object from plain data (enum names, flag name lists, nested dicts)."""
-    return _from_dict(MESSAGES[name], values)
+    """Build a message object from plain data (enum names, flag name lists, nested dicts,
+    bytes as hex); a name, key or value that does not fit is a DecodeError."""
+    cls = MESSAGES.get(name) if isinstance(name, str) else None
+    if cls is None:
+        raise _dec(None, None, name, 'type', 'a message name: ' + ', '.join(MESSAGES))
+    return _from_dict(cls, values, name, "")
 
 
 _FIELD_KINDS = {}  # class → ((field name, type), ...): resolving annotations is slow, do it once
@@ -909,35 +1025,54 @@ def _field_kinds(cls):
     for f in dataclasses.fields(cls):
         kind = hints[f.name]
         args = [a for a in typing.get_args(kind) if a is not type(None)]
-        kinds.append((f.name, args[0] if args and typing.get_origin(kind) is Union else kind))
+        required = f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING
+        kinds.append((f.name, args[0] if args and typing.get_origin(kind) is Union else kind, required))
     return tuple(kinds)
 
 
-def _from_dict(cls, values):
+def _from_dict(cls, values, message, prefix):
     import dataclasses
+    if not isinstance(values, dict):
+        raise _dec(message, prefix[:-1] or None, values, 'type', 'a mapping of field names to values')
     kinds = _FIELD_KINDS.get(cls)
     if kinds is None:
         kinds = _FIELD_KINDS[cls] = _field_kinds(cls)
+    names = {field_name for field_name, _, _ in kinds}
+    for key in values:
+        if key not in names:
+            raise _dec(message, prefix + str(key), values[key], 'type', 'a field of ' + cls.__name__)
     kwargs = {}
-    for field_name, kind in kinds:
+    for field_name, kind, required in kinds:
         if field_name not in values:
+            if required:
+                raise _dec(message, prefix + field_name, None, 'type', 'a value (the field is missing)')
             continue
         value = values[field_name]
-        if value is None:
-            pass
-        elif dataclasses.is_dataclass(kind):
-            value = _from_dict(kind, value)
-        elif isinstance(kind, type) and issubclass(kind, enum.Flag):
-            if isinstance(value, list):
-                flags = kind(0)
-                for name in value:
-                    flags |= kind[name]
-                value = flags
-            else:
-                value = kind(value)
-        elif isinstance(kind, type) and issubclass(kind, enum.Enum):
-            value = kind[value] if isinstance(value, str) and value in kind.__members__ else kind(value)
-        elif kind is bytes and isinstance(value, str):
-            value = bytes.fromhex(value)
+        try:
+            if value is None:
+                pass
+            elif dataclasses.is_dataclass(kind):
+                value = _from_dict(kind, value, message, prefix + field_name + ".")
+            elif isinstance(kind, type) and issubclass(kind, enum.Flag):
+                if isinstance(value, list):
+                    flags = kind(0)
+                    for name in value:
+                        flags |= kind[name]
+                    value = flags
+                elif isinstance(value, int) and value.__class__ is not bool:
+                    value = kind(value)
+                else:
+                    raise TypeError(value)
+            elif isinstance(kind, type) and issubclass(kind, enum.Enum):
+                if isinstance(value, str) and value in kind.__members__:
+                    value = kind[value]
+                elif value.__class__ is not bool:
+                    value = kind(value)
+                else:
+                    raise TypeError(value)
+            elif kind is bytes and isinstance(value, str):
+                value = bytes.fromhex(value)
+        except (KeyError, ValueError, TypeError):
+            raise _dec(message, prefix + field_name, value, 'type', 'a value of ' + getattr(kind, '__name__', str(kind))) from None
         kwargs[field_name] = value
     return cls(**kwargs)

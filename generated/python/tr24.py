@@ -25,6 +25,15 @@ _isfinite = math.isfinite
 _object_new = object.__new__
 
 
+def _int_of(token):
+    """int() of a checked decimal token. One of more than 20 significant digits is beyond
+    every field's range and comes back as -2**80 or 2**80: int() refuses over 4300 digits."""
+    negative = token[:1] == "-"
+    digits = token.lstrip("+-").lstrip("0")
+    value = 1 << 80 if len(digits) > 20 else int(digits or "0")
+    return -value if negative else value
+
+
 def _half_up(x):
     """floor(x + 0.5) for x of 2**52 or more, where the sum itself would round."""
     n = _floor(x)
@@ -55,10 +64,12 @@ class CodecError(ValueError):
 
     def __str__(self):
         where = ".".join(x for x in (self.message, self.field) if x) or 'tr24'
-        text = f"{where}: {self.value!r} breaks rule {self.rule}"
+        named = self.rule == "rule" and self.decision  # a schema rule: its id says which
+        rule = f"rule {self.decision}" if named else "a rule" if self.rule == "rule" else f"rule {self.rule}"
+        text = f"{where}: {self.value!r} breaks {rule}"
         if self.allowed:
             text += f" (expected {self.allowed})"
-        if self.decision:
+        if self.decision and not named:
             text += f" [{self.decision}]"
         if self.offset is not None:
             text += f" at {self._where_offset()}"
@@ -154,6 +165,8 @@ _S_reply_0 = struct.Struct('<BBBB7sB')
 def _as_input(data):
     if not isinstance(data, (bytes, bytearray, memoryview)):
         raise _dec(None, None, type(data).__name__, 'type', 'bytes')
+    if data.__class__ is memoryview and (data.itemsize != 1 or not data.c_contiguous):
+        return data.tobytes()  # the bytes it shows, however it is shaped or strided
     return data
 
 
@@ -283,7 +296,7 @@ def decode(data, direction=None):
     value = ((d[1] >> 1) & 0x1)
     key = (value, len(d))
     if direction is not None:
-        fn = _KEYS_BY_DIRECTION.get(direction, {}).get(key)
+        fn = _KEYS_BY_DIRECTION.get(direction, {}).get(key) if direction.__class__ is str else None
         if fn is None:
             raise _dec(None, None, value, 'dispatch', f'an id of {direction} with a frame of {len(d)} bytes', 8)
         return fn(d)
@@ -298,7 +311,9 @@ def decode(data, direction=None):
 class StreamDecoder:
     """Byte stream → frames. `feed` returns decoded messages and DecodeErrors in
     stream order; after garbage or a bad frame it resynchronises on the next
-    sync byte. Memory is bounded by one maximum frame."""
+    sync byte, with one DecodeError for each stretch of bytes dropped between two
+    frames (the stretch's first), however long the stretch. Memory is bounded by
+    one maximum frame."""
 
     _SIZES = frozenset([12])
 
@@ -308,13 +323,15 @@ class StreamDecoder:
         self.offset = 0  # stream offset of the buffer's first byte
         self.skipped = 0  # bytes dropped while resynchronising
         self.spans = []  # (offset, length) of each item the last feed or finish returned
+        self._resyncing = False  # an error was returned and no frame decoded since
 
     def feed(self, data):
         # One immutable buffer walked by index: frames are sliced out once, and the
         # consumed head is dropped once per call rather than once per frame.
-        buf = self._buffer + bytes(data) if self._buffer else bytes(data)
+        data = bytes(data if data.__class__ is bytes else _as_input(data))
+        buf = self._buffer + data if self._buffer else data
         pos, end, out, spans = 0, len(buf), [], []
-        base, skipped, direction = self.offset, 0, self.direction
+        base, skipped, direction, resyncing = self.offset, 0, self.direction, self._resyncing
         while True:
             start = buf.find(2, pos)
             if start < 0:
@@ -325,27 +342,35 @@ class StreamDecoder:
             pos = start
             size = 12
             if size not in self._SIZES:
-                out.append(_dec(None, 'length', size, 'length', 'a known frame size', (base + pos) * 8))
-                spans.append((base + pos, 1))
+                if not resyncing:
+                    out.append(_dec(None, 'length', size, 'length', 'a known frame size', (base + pos) * 8))
+                    spans.append((base + pos, 1))
+                    resyncing = True
                 skipped += 1
                 pos += 1
                 continue
             if end - pos < size:
                 break
             self.offset = base + pos  # at the frame's first byte while it is decoded
-            spans.append((base + pos, size))
             try:
-                out.append(decode(buf[pos:pos + size], direction))
+                message = decode(buf[pos:pos + size], direction)
             except DecodeError as exc:
-                exc.offset = (base + pos) * 8 + (exc.offset or 0)
-                out.append(exc)
+                if not resyncing:
+                    exc.offset = (base + pos) * 8 + (exc.offset or 0)
+                    out.append(exc)
+                    spans.append((base + pos, size))
+                    resyncing = True
                 skipped += 1
                 pos += 1
                 continue
+            out.append(message)
+            spans.append((base + pos, size))
+            resyncing = False
             pos += size
         self._buffer = buf[pos:]
         self.offset = base + pos
         self.skipped += skipped
+        self._resyncing = resyncing
         self.spans = spans
         return out
 
@@ -380,8 +405,12 @@ def validate(m):
 
 
 def from_dict(name, values):
-    """Build a message object from plain data (enum names, flag name lists, nested dicts)."""
-    return _from_dict(MESSAGES[name], values)
+    """Build a message object from plain data (enum names, flag name lists, nested dicts,
+    bytes as hex); a name, key or value that does not fit is a DecodeError."""
+    cls = MESSAGES.get(name) if isinstance(name, str) else None
+    if cls is None:
+        raise _dec(None, None, name, 'type', 'a message name: ' + ', '.join(MESSAGES))
+    return _from_dict(cls, values, name, "")
 
 
 _FIELD_KINDS = {}  # class → ((field name, type), ...): resolving annotations is slow, do it once
@@ -395,36 +424,55 @@ def _field_kinds(cls):
     for f in dataclasses.fields(cls):
         kind = hints[f.name]
         args = [a for a in typing.get_args(kind) if a is not type(None)]
-        kinds.append((f.name, args[0] if args and typing.get_origin(kind) is Union else kind))
+        required = f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING
+        kinds.append((f.name, args[0] if args and typing.get_origin(kind) is Union else kind, required))
     return tuple(kinds)
 
 
-def _from_dict(cls, values):
+def _from_dict(cls, values, message, prefix):
     import dataclasses
+    if not isinstance(values, dict):
+        raise _dec(message, prefix[:-1] or None, values, 'type', 'a mapping of field names to values')
     kinds = _FIELD_KINDS.get(cls)
     if kinds is None:
         kinds = _FIELD_KINDS[cls] = _field_kinds(cls)
+    names = {field_name for field_name, _, _ in kinds}
+    for key in values:
+        if key not in names:
+            raise _dec(message, prefix + str(key), values[key], 'type', 'a field of ' + cls.__name__)
     kwargs = {}
-    for field_name, kind in kinds:
+    for field_name, kind, required in kinds:
         if field_name not in values:
+            if required:
+                raise _dec(message, prefix + field_name, None, 'type', 'a value (the field is missing)')
             continue
         value = values[field_name]
-        if value is None:
-            pass
-        elif dataclasses.is_dataclass(kind):
-            value = _from_dict(kind, value)
-        elif isinstance(kind, type) and issubclass(kind, enum.Flag):
-            if isinstance(value, list):
-                flags = kind(0)
-                for name in value:
-                    flags |= kind[name]
-                value = flags
-            else:
-                value = kind(value)
-        elif isinstance(kind, type) and issubclass(kind, enum.Enum):
-            value = kind[value] if isinstance(value, str) and value in kind.__members__ else kind(value)
-        elif kind is bytes and isinstance(value, str):
-            value = bytes.fromhex(value)
+        try:
+            if value is None:
+                pass
+            elif dataclasses.is_dataclass(kind):
+                value = _from_dict(kind, value, message, prefix + field_name + ".")
+            elif isinstance(kind, type) and issubclass(kind, enum.Flag):
+                if isinstance(value, list):
+                    flags = kind(0)
+                    for name in value:
+                        flags |= kind[name]
+                    value = flags
+                elif isinstance(value, int) and value.__class__ is not bool:
+                    value = kind(value)
+                else:
+                    raise TypeError(value)
+            elif isinstance(kind, type) and issubclass(kind, enum.Enum):
+                if isinstance(value, str) and value in kind.__members__:
+                    value = kind[value]
+                elif value.__class__ is not bool:
+                    value = kind(value)
+                else:
+                    raise TypeError(value)
+            elif kind is bytes and isinstance(value, str):
+                value = bytes.fromhex(value)
+        except (KeyError, ValueError, TypeError):
+            raise _dec(message, prefix + field_name, value, 'type', 'a value of ' + getattr(kind, '__name__', str(kind))) from None
         kwargs[field_name] = value
     return cls(**kwargs)
 

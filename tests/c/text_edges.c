@@ -87,12 +87,16 @@ static void reading(void)
     read_as("1.250", CW_OK, 125, -2, false);
     read_as("100", CW_OK, 1, 2, false);
     read_as("0.000012345", CW_OK, 12345, -9, false);  /* 10 digits */
-    read_as("12345678901234567", CW_OK, 12345678901234567ULL, 0, false);
-    read_as("123456789012345678", CW_ERR_PRECISION, 0, 0, false);  /* 18 significant digits */
-    read_as("1.7976931348623157e308", CW_OK, 17976931348623157ULL, 292, false);
-    read_as("1.7976931348623158e308", CW_ERR_FINITE, 0, 0, false);
+    read_as("123456789012345", CW_OK, 123456789012345ULL, 0, false);  /* 15 significant digits */
+    read_as("1234567890123456", CW_ERR_PRECISION, 0, 0, false);  /* 16: a double may not keep them */
+    read_as("12345678901234567", CW_ERR_PRECISION, 0, 0, false);
+    read_as("1.79769313486231e308", CW_OK, 179769313486231ULL, 294, false);
+    read_as("1.79769313486232e308", CW_ERR_FINITE, 0, 0, false);  /* past the largest double */
+    read_as("1.7976931348623157e308", CW_ERR_PRECISION, 0, 0, false);  /* digits before range */
     read_as("1e309", CW_ERR_FINITE, 0, 0, false);
-    read_as("1e-400", CW_OK, 0, 0, false);
+    read_as("1e-307", CW_OK, 1, -307, false);
+    read_as("9.99999999999999e-308", CW_ERR_PRECISION, 0, 0, false);  /* subnormal or below */
+    read_as("1e-400", CW_ERR_PRECISION, 0, 0, false);
     read_as("1e", CW_ERR_SYNTAX, 0, 0, false);
     read_as(".", CW_ERR_SYNTAX, 0, 0, false);
     read_as("1.2.3", CW_ERR_SYNTAX, 0, 0, false);
