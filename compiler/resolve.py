@@ -887,6 +887,15 @@ class Resolver:
                                f"{offset + (field.bits or 0)}, past the end of the shortest message "
                                f"{shortest.name!r} ({8 * shortest.size} bits)",
                                "put the dispatch fields first, where every message has them")
+        if framing == "bits" and d["framing"].get("text_form"):
+            for m in messages:
+                for f in m.layout:
+                    if f.bits and f.bits > 32:  # the C text-form reader holds 32-bit values
+                        self.error(("messages", m.name), f"message {m.name!r}: field {f.name!r} has "
+                                   f"{f.bits} bits; a text form carries values of at most 32 bits",
+                                   "split the field, or drop text_form")
+            if keyed:
+                self.check_text_form_heads(keyed)
         if framing == "bytes":
             self.check_sizes_without_length(messages)
         for i, j in candidate_pairs(keyed, framing):
@@ -898,6 +907,37 @@ class Resolver:
                            f"ambiguous dispatch: messages {a.name!r} and {b.name!r} cannot be "
                            f"told apart ({self.describe_key(a)} / {self.describe_key(b)})",
                            "give them different ids/constants, directions or sizes")
+
+    def check_text_form_heads(self, messages: list[Message]) -> None:
+        """A text-form line is dispatched on the bits of its leading values that hold the
+        dispatch fields: they must have the same widths in every message."""
+        head = max((f.bit_offset + (f.bits or 0) for m in messages for f in m.layout
+                    if f.dispatch and f.bit_offset is not None), default=0)
+        if not head:
+            return
+
+        def widths(fields) -> list[int]:
+            out, used = [], 0
+            stack = list(reversed(fields))
+            while stack and used < head:
+                f = stack.pop()
+                if f.kind == "group":
+                    stack.extend(reversed(f.fields))
+                elif f.bits:
+                    out.append(f.bits)
+                    used += f.bits
+            return out
+
+        first = messages[0]
+        expected = widths(first.layout)
+        for m in messages[1:]:
+            got = widths(m.layout)
+            if got != expected:
+                self.error(("messages", m.name),
+                           f"message {m.name!r}: its text form starts with values of {got} bits, "
+                           f"{first.name!r}'s with {expected}; a text line is told apart by its first "
+                           f"{head} bits, so the values that hold them must have the same widths in "
+                           "every message", "start every message with fields of the same widths")
 
     def check_sizes_without_length(self, messages: list[Message]) -> None:
         """With no length field, a stream decoder knows a frame's size only from its id."""

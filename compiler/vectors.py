@@ -216,7 +216,7 @@ class Generator:
         if decode_only_input is not None:
             case["canonical"] = self.wire(data)[("text" if self.text else "hex")]
         case["values"] = plain(obj)
-        if self.p.framing.kind == "bits" and m.size <= 4:
+        if self.p.framing.kind == "bits" and m.size <= 8:  # words of up to 64 bits
             encode_word = getattr(self.mod, "encode_word", None)
             case["word"] = encode_word(obj) if encode_word else int.from_bytes(data, "big")
         if self.p.framing.text_form:

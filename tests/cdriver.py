@@ -178,6 +178,7 @@ class Driver:
             text=self.text, wire_max=wire_max + 1, self_identifying=p.self_identifying,
             has_dir=p.framing.kind != "bits",  # decode takes a direction (PX_DIR_ANY: any)
             word=self.v.word_bits() is not None and p.framing.kind == "bits",
+            word_type="uint64_t" if (self.v.word_bits() or 0) > 32 else "uint32_t",
             text_form=p.framing.text_form is not None,
             error_const=ERR, sequences=sequences,
             seq_cap=self.seq_cap(sequences))

@@ -23,7 +23,7 @@ from .code import Code
 from .escape import c_char as cchar, c_comment as comment, c_string as cstr
 from . import cpack, cword, cwordform
 from .cpack import Piece, Span
-from .wire import Leaf, checksum_name, dispatch_facts, leaves_of, stream_facts
+from .wire import Leaf, checksum_name, dispatch_facts, leaves_of, stream_facts, text_form_head
 
 ERR = {
     "length": "CW_ERR_LENGTH", "const": "CW_ERR_CONST", "range": "CW_ERR_RANGE",
@@ -499,33 +499,53 @@ class CView:
             c(f"{self.has(leaf)} = {raw} != 0u;")
             c(f"{v} = cw_bit_index({raw});")
             return
-        checked = v
+        # expr: the logical value; a sum is parenthesised before a cast applies to it
         if f.kind == "int" and f.offset and f.scale is None:  # value = raw + offset, in signed arithmetic
-            c(f"{v} = ({r.ctype})((int64_t){sign_extend(f.bits)}({raw}, {f.bits}u) + {clit_signed(int(f.offset))});")
+            expr = f"((int64_t){sign_extend(f.bits)}({raw}, {f.bits}u) + {clit_signed(int(f.offset))})"
         elif f.kind == "int" and f.bits <= 16 and r.ctype in ("int8_t", "int16_t"):
-            c(f"{v} = ({r.ctype})cw_sign_extend16((uint16_t){raw}, {f.bits}u);")
+            expr = f"cw_sign_extend16((uint16_t){raw}, {f.bits}u)"
         elif f.kind == "int":
-            c(f"{v} = ({r.ctype}){sign_extend(f.bits)}({raw}, {f.bits}u);")
+            expr = f"{sign_extend(f.bits)}({raw}, {f.bits}u)"
         elif f.offset and f.scale is None and f.offset < 0:  # may go below zero: signed arithmetic
-            c(f"{v} = ({r.ctype})((int64_t){raw} + {clit_signed(int(f.offset))});")
+            expr = f"((int64_t){raw} + {clit_signed(int(f.offset))})"
         elif f.offset and f.scale is None:
             total = f"(uint64_t){raw}" if r.ctype == "uint64_t" else raw  # no wrap in a narrower raw type
-            c(f"{v} = ({r.ctype})({total} + {clit(int(f.offset), True)});")
+            expr = f"({total} + {clit(int(f.offset), True)})"
         else:
-            c(f"{v} = ({r.ctype}){raw};")
+            expr = raw
+        # a member sized by the range cannot hold every wire value: check before narrowing
+        full = self.wire_type(f)
+        narrowed = full != r.ctype and (f.range is not None or f.values)
+        checked, ctype = ("value", full) if narrowed else (v, r.ctype)
+        if narrowed:
+            c("{")
+            c.indent()
+            c(f"{full} value = ({full}){expr};")
+        else:
+            c(f"{v} = ({r.ctype}){expr};")
         if f.enum is not None and f.kind == "int":
             cond = self.enum_cond(v, [x.value for x in f.enum.members], r.ctype)
             if cond:
                 self.fail_if(c, cond, "enum")
         if f.range is not None and f.enum is None:
             lo, hi = self.raw_bounds(f)
-            cond = self.range_cond(checked, lo, hi, r.ctype)
+            cond = self.range_cond(checked, lo, hi, ctype)
             if cond:
                 self.fail_if(c, cond, "range")
         if f.values:
             allowed = [self.enum_wire(f, x) for x in f.values]
-            self.fail_if(c, " && ".join(f"{checked} != {self.literal_of(x, r.ctype)}" for x in allowed),
+            self.fail_if(c, " && ".join(f"{checked} != {self.literal_of(x, ctype)}" for x in allowed),
                          "values")
+        if narrowed:
+            c(f"{v} = ({r.ctype})value;")
+            c.dedent()
+            c("}")
+
+    def wire_type(self, f: Field) -> str:
+        """The C type of every logical value a field's wire bits can give (before its range)."""
+        lo, hi = f.raw_range or (-(1 << 31), (1 << 31) - 1)
+        off = int(f.offset or 0) if f.scale is None else 0
+        return int_ctype(lo + off, hi + off)
 
     @staticmethod
     def fail_if(c: Code, cond: str, kind: str) -> None:
@@ -852,7 +872,10 @@ class CView:
         c("    if (i) {")
         c(f"        cw_write_char(&w, {cchar(tf.separator)});")
         c("    }")
-        c("    cw_write_int(&w, (int32_t)r[i]);")
+        if max([leaf.field.bits for leaf, _ in wired if leaf.var in raws] + [1]) >= 32:
+            c("    cw_write_u64(&w, (uint64_t)r[i]);")  # raw values are unsigned
+        else:
+            c("    cw_write_int(&w, (int32_t)r[i]);")
         c("}")
         c("return cw_writer_finish(&w);")
         c.dedent()
@@ -881,15 +904,15 @@ class CView:
         return c.text()
 
     def text_form_facts(self) -> dict:
-        """Leading raw-value widths that cover the dispatch bits (as the Python decoder)."""
-        d = self.dispatch()
-        widths, used = [], 0
-        for leaf in leaves_of(self.p.messages[0].layout):
-            if used >= d["head_bits"]:
-                break
-            widths.append(leaf.field.bits)
-            used += leaf.field.bits
-        return {"widths": widths, "used": used,
+        """How the leading raw values give the dispatch head (as the Python decoder):
+        per value, the statement that shifts its bits in."""
+        steps, used = [], 0
+        for i, (take, drop) in enumerate(text_form_head(self.p)):
+            bits = f"((v[{i}] >> {drop}u) & {clit((1 << take) - 1, True)})" if drop else f"(v[{i}] & {clit((1 << take) - 1, True)})"
+            shifted = "0u" if take == 32 else f"(uint32_t)(head << {take})"  # all 32 bits: nothing kept
+            steps.append({"index": i, "present": f"head = {shifted} | {bits};", "absent": f"head = {shifted};"})
+            used += take
+        return {"steps": steps, "used": used,
                 "max_values": max(len(self.wired(m)[1]) for m in self.p.messages)}
 
     # -- text protocols ----------------------------------------------------------------------------

@@ -34,6 +34,21 @@ def leaves_of(layout: tuple[Field, ...], prefix: tuple[str, ...] = ()) -> list[L
     return out
 
 
+def text_form_head(p: Protocol) -> list[tuple[int, int]]:
+    """How a text-form line's leading values give the dispatch fields' bits: for each
+    value, (bits taken, low bits dropped), until the last dispatch bit (the resolver
+    makes these widths the same in every message)."""
+    end = max((pos + bits for e in dispatch_facts(p).get("entries", ()) for pos, bits, _ in e["tests"]), default=0)
+    out, pos = [], 0
+    for leaf in leaves_of(p.messages[0].layout):
+        if pos >= end:
+            break
+        take = min(leaf.field.bits, end - pos)
+        out.append((take, leaf.field.bits - take))
+        pos += leaf.field.bits
+    return out
+
+
 def dispatch_facts(p: Protocol) -> dict:
     """How module-level decode finds the message a frame holds."""
     fr = p.framing

@@ -8,7 +8,8 @@ The default run (and tests/test_schema_fuzz.py) uses DEFAULT = FULL - KNOWN_OPEN
 from __future__ import annotations
 
 FULL = frozenset({
-    "bytes", "text",                        # framings
+    "bytes", "text", "bits",                # framings
+    "text_form", "field_sum", "one_hot",    # bits framing: a text form, checksums over fields, one-hot
     "sync", "length", "no_dispatch",        # envelope parts (bytes)
     "sum", "xor", "crc",                    # checksums over bytes
     "little", "field_order",                # byte orders: the framing's, and per field

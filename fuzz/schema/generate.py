@@ -37,11 +37,11 @@ class Generator:
 
     # -- the document -----------------------------------------------------------------------
     def schema(self) -> dict:
-        kinds = [k for k in ("bytes", "text") if k in self.on] or ["bytes"]
+        kinds = [k for k in ("bytes", "text", "bits") if k in self.on] or ["bytes"]
         kind = self.rng.choice(kinds)
         doc: dict = {"codeword": 1, "protocol": f"fz{self.seed}", "title": f"fuzz schema {self.seed}",
                      "source": "fuzz/schema"}
-        framing, messages = self.text() if kind == "text" else self.binary()
+        framing, messages = {"text": self.text, "bytes": self.binary, "bits": self.bits}[kind]()
         if self.enums:
             doc["enums"] = self.enums
         if self.flags:
@@ -163,6 +163,79 @@ class Generator:
         bits = sorted(self.rng.sample(range(width), self.rng.randint(1, min(width, 6))))
         self.flags[name] = {"type": f"u{width}", "bits": [{"name": self.name(), "bit": b} for b in bits]}
         return name
+
+    # -- bits framing -----------------------------------------------------------------------
+    def bits(self) -> tuple[dict, dict]:
+        """Bit records: every message exactly `word_bits` long, or fitting `max_bits`;
+        a leading dispatch field of a few bits; bit fields of any width; a checksum
+        over the fields (parity, sum or xor); an optional text form."""
+        rng = self.rng
+        exact = rng.random() < 0.5
+        word = rng.choice([8, 16, 24, 32] + ([40, 48, 64] if "wide" in self.on else []))
+        framing: dict = {"kind": "bits", "word_bits" if exact else "max_bits": word, "byte_order": "big"}
+        if self.has("text_form", 0.3):
+            framing["text_form"] = {"separator": " ", "comment": "#"}
+        count = 1 if word <= 8 else rng.randint(1, 4)
+        tag_bits = max(1, (count - 1).bit_length()) + rng.randint(0, 2)
+        tags = rng.sample(range(1 << tag_bits), count)
+        messages = {}
+        for tag in tags:
+            fields: list[dict] = [{"name": "tag", "type": f"u{tag_bits}", "const": tag, "dispatch": True}]
+            room = word - tag_bits
+            if "field_sum" in self.on and room >= 2 and rng.random() < 0.4:
+                fields.append(self.field_checksum())
+                room -= int(fields[-1]["type"][1:])
+            while room > 0 and rng.random() < 0.85:
+                field, width = self.bit_field(min(room, 32))
+                fields.append(field)
+                room -= width
+            while exact and room:  # in pieces of at most 32 bits, as a text form needs
+                fields.append(self.padding(min(room, 32)))
+                room -= min(room, 32)
+            body: dict = {"fields": fields}
+            if exact:
+                body["bits"] = word
+            messages[self.name()] = body
+        return framing, messages
+
+    def field_checksum(self) -> dict:
+        rng = self.rng
+        kind = rng.choice(["parity", "sum", "xor"])
+        if kind == "parity":
+            return {"name": self.name(), "type": "u1",
+                    "checksum": {"algorithm": "parity", "parity": rng.choice(["even", "odd"]), "covers": "all"}}
+        width = rng.randint(2, 4)
+        return {"name": self.name(), "type": f"u{width}",
+                "checksum": {"algorithm": kind, "modulo": 1 << width, "over": "fields", "covers": "all"}}
+
+    def bit_field(self, room: int) -> tuple[dict, int]:
+        rng = self.rng
+        name = self.name()
+        choice = rng.random()
+        if choice < 0.12 and "enum" in self.on and room >= 2:
+            width = rng.randint(2, min(room, 8))
+            return {"name": name, "type": f"u{width}", "enum": self.enum(width)}, width
+        if choice < 0.22 and "flags" in self.on and room >= 2:
+            width = rng.randint(2, min(room, 12))
+            return {"name": name, "type": f"u{width}", "flags": self.flag_set(width)}, width
+        if choice < 0.3 and "bool" in self.on:
+            return {"name": name, "type": "bool"}, 1
+        if choice < 0.38 and "one_hot" in self.on and room >= 2:
+            width = rng.randint(2, min(room, 16))
+            lo = rng.randrange(width)
+            return {"name": name, "type": f"u{width}", "one_hot": True,
+                    "range": [lo, rng.randint(lo, width - 1)]}, width
+        signed = room >= 2 and self.has("signed")
+        width = rng.randint(2 if signed else 1, room)
+        field: dict = {"name": name, "type": f"{'i' if signed else 'u'}{width}"}
+        if width <= 53 and self.has("scale", 0.2):
+            field["scale"] = rng.choice(SCALES)
+        if self.has("range", 0.3):
+            lo, hi = (-(1 << (width - 1)), (1 << (width - 1)) - 1) if signed else (0, (1 << width) - 1)
+            a, b = sorted(rng.randint(lo, hi) for _ in range(2))
+            scale = field.get("scale", 1)
+            field["range"] = [a * scale, b * scale]
+        return field, width
 
     # -- text framing -----------------------------------------------------------------------
     def text(self) -> tuple[dict, dict]:

@@ -1000,12 +1000,7 @@ static inline int route_decode_text(const char *line, size_t len, route_message_
     } else {
         head = (uint32_t)(head << 3);
     }
-    if (count > 2u) {
-        head = (uint32_t)(head << 3) | (v[2] & 7u);
-    } else {
-        head = (uint32_t)(head << 3);
-    }
-    head = head << 0;
+    head = head << 3;
     kind = route_find(head);
     if (kind == 0) {
         return CW_ERR_DISPATCH;

@@ -785,16 +785,7 @@ def _parse_sequence(units, spec, cls, rules, name, positional=False, text=False)
 
 def _kind(raw, text):
     try:
-        if text:
-            head = 0
-            values = [int(t) for t in raw.split(' ') if t.isdigit()]
-            used = 0
-            for value, (_, bits) in zip(values, _TEXT_HEAD):
-                head = (head << bits) | (value & ((1 << bits) - 1))
-                used += bits
-            head <<= 8 - used
-        else:
-            head = int.from_bytes(raw[:1], 'big')
+        head = int.from_bytes(raw[:1], 'big')
         return _find_bits(head)[1].__name__[len("_decode_"):]
     except Exception:
         return None

@@ -749,13 +749,7 @@ def decode_text(line):
         pos += len(token) + 1
     if not values:
         raise _dec(None, None, text, 'syntax', 'a sentence', 0)
-    head = 0
-    used = 0
-    for value, (_, bits) in zip(values, _TEXT_HEAD):
-        head = (head << bits) | (value & ((1 << bits) - 1))
-        used += bits
-    head <<= 8 - used
-    size, fn, text_fn = _find_bits(head)
+    size, fn, text_fn = _find_bits(_text_head(values))
     try:
         return text_fn(values)
     except DecodeError as exc:
@@ -763,6 +757,15 @@ def decode_text(line):
             exc.offset = offsets[_TEXT_INDEX[text_fn].get(exc.field, 0)] if exc.field in _TEXT_INDEX[text_fn] else 0
         exc.unit = "character"
         raise
+
+
+def _text_head(values):
+    """The dispatch head of a text-form line: the dispatch bits its leading values hold."""
+    head = used = 0
+    for value, (take, drop) in zip(values, _TEXT_HEAD):
+        head = (head << take) | ((value >> drop) & ((1 << take) - 1))
+        used += take
+    return head << (8 - used)
 
 
 def _as_text(line):
@@ -798,7 +801,7 @@ def _as_text_block(text):
 _ENCODERS = {Start: _encode_start, Object: _encode_object, Scene: _encode_scene, End: _encode_end, }
 _TEXT_ENCODERS = {Start: _encode_text_start, Object: _encode_text_object, Scene: _encode_text_scene, End: _encode_text_end, }
 _TEXT_INDEX = {_decode_text_start: {'hdr': 0, 'kind': 1, 'cs': 2, }, _decode_text_object: {'hdr': 0, 'ns': 1, 'nl': 2, 'no': 3, 'na': 4, 'dl': 5, 'rc': 6, 'dr': 7, 'cm': 8, 'cs': 9, }, _decode_text_scene: {'hdr': 0, 'ns': 1, 'nl': 2, 'db': 3, 'nt': 4, 'cs': 5, }, _decode_text_end: {'hdr': 0, 'kind': 1, 'cs': 2, }, }
-_TEXT_HEAD = [('v0', 2), ('v1', 3), ('v2', 3)]
+_TEXT_HEAD = [(2, 0), (3, 0)]  # (bits taken, low bits dropped) of each leading value
 MESSAGES = {'start': Start, 'object': Object, 'scene': Scene, 'end': End, }
 
 
@@ -1077,13 +1080,8 @@ def _parse_sequence(units, spec, cls, rules, name, positional=False, text=False)
 def _kind(raw, text):
     try:
         if text:
-            head = 0
             values = [int(t) for t in raw.split(' ') if t.isdigit()]
-            used = 0
-            for value, (_, bits) in zip(values, _TEXT_HEAD):
-                head = (head << bits) | (value & ((1 << bits) - 1))
-                used += bits
-            head <<= 8 - used
+            head = _text_head(values)
         else:
             head = int.from_bytes(raw[:1], 'big')
         return _find_bits(head)[1].__name__[len("_decode_"):]
