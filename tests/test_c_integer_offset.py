@@ -44,3 +44,53 @@ int main(void) {
 }
 """
     assert run_c(tmp_path, driver) == ["2 55 c0", "0 -93"]
+
+
+NARROW = """codeword: 1
+protocol: narrow
+title: t
+source: s
+framing:
+  kind: bytes
+  byte_order: big
+  layout:
+    - {name: sync, type: u8, const: 0x55}
+    - {payload: true}
+messages:
+  a:
+    fields:
+      - {name: level, type: i9, range: [-73, 92]}
+      - {name: count, type: u7, range: [0, 100]}
+"""
+
+
+def test_range_is_checked_before_a_narrow_member_holds_the_value(tmp_path):
+    """The members are int8_t and uint8_t (from the ranges), the wire values 9 and 7 bits:
+    -201 (1 0011 0111) would wrap to 55 and 0x7f is fine, but both must be range errors
+    or not exactly as in Python, never pass after narrowing."""
+    render(tmp_path, "narrow", NARROW)
+    mod = load(tmp_path / "narrow.py")
+    frames = {"55 9b 80": "range",   # level -201: 1 0011 0111, count 0
+              "55 00 e4": "ok",      # level 0, count 100 (0x64 = 110 0100)
+              "55 00 e5": "range"}   # count 101
+    for frame, want in frames.items():
+        try:
+            mod.decode(bytes.fromhex(frame))
+            got = "ok"
+        except mod.DecodeError as err:
+            got = err.rule
+        assert got == want, frame
+    calls = "\n".join(f'    show((const uint8_t[]){{0x{f[0:2]}, 0x{f[3:5]}, 0x{f[6:8]}}});' for f in frames)
+    driver = """#include <stdio.h>
+#include "narrow.h"
+static void show(const uint8_t *frame) {
+    narrow_a_t m;
+    int rc = narrow_a_decode(frame, 3u, &m);
+    printf("%s\\n", rc == CW_OK ? "ok" : cw_error_name(rc));
+}
+int main(void) {
+""" + calls + """
+    return 0;
+}
+"""
+    assert run_c(tmp_path, driver) == list(frames.values())
