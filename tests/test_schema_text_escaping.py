@@ -368,3 +368,21 @@ UNREACHED = {
     ".sequences[a].rules[i].message",
     ".types[a].message",
 }
+
+
+def test_state_docs_stay_inside_the_mermaid_diagram(tmp_path):
+    """A state's doc is a Mermaid state description inside a ```mermaid fence: a backtick
+    run would end the fence and put the rest of the doc on the page as Markdown/HTML,
+    a newline or `;` would start a new diagram statement."""
+    from codeword.build import compile_schema, render_protocol
+    payload = "x```\\n<script>alert(1)</script>;\\n    idle --> waiting: injected %% #quot; [a]"
+    text = (SCHEMAS / "tr24.yaml").read_text(encoding="utf-8")
+    text = text.replace("doc: no command outstanding", f'doc: "{payload}"', 1)
+    path = tmp_path / "tr24.yaml"
+    path.write_text(text, encoding="utf-8")
+    page = next(v for k, v in render_protocol(compile_schema(path)).items() if k.startswith("docs/") and "mermaid" in v)
+    block = page.split("```mermaid\n", 1)[1].split("\n```", 1)[0]
+    line = next(x for x in block.splitlines() if "alert" in x)
+    assert "`" not in block and "<" not in block and ">" not in line.split(":", 1)[1]
+    assert line.strip().startswith("idle: idle — ") and line.count(":") == 1
+    assert [x for x in block.splitlines() if "injected" in x] == [line]  # no statement of its own

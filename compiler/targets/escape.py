@@ -121,6 +121,18 @@ def md_fence(value: Any) -> str:
     return "`" * max(3, longest + 1)
 
 
+_MERMAID = str.maketrans({"`": "'", ";": ",", ":": ",", "%": " percent", "#": "No.", "<": "(", ">": ")",
+                          "&": "and", '"': "'", "{": "(", "}": ")", "[": "(", "]": ")", "|": "/"})
+
+
+def mermaid_text(value: Any) -> str:
+    """Text in a Mermaid state description inside a ```mermaid fence: one line, no
+    backtick (it would end the fence), nothing Mermaid reads as syntax (`;` ends a
+    statement, `:` splits a description, `%%` starts a comment, `#` an entity code,
+    brackets and quotes shape nodes) and no HTML."""
+    return one_line(value).translate(_MERMAID)
+
+
 def html_comment(value: Any) -> str:
     """Text inside `<!-- … -->`: one line, no `--` (so no `-->` or `--!>`), no `<` or `>`."""
     text = one_line(value).replace("<", "&lt;").replace(">", "&gt;")
@@ -129,4 +141,5 @@ def html_comment(value: Any) -> str:
 
 FILTERS = {"c_comment": c_comment, "c_string": c_string, "c_char": c_char, "pml_comment": pml_comment,
            "py_comment": py_comment, "py_string": py_string, "py_docstring": py_docstring,
-           "md_text": md_text, "md_code": md_code, "md_fence": md_fence, "html_comment": html_comment}
+           "md_text": md_text, "md_code": md_code, "md_fence": md_fence, "html_comment": html_comment,
+           "mermaid_text": mermaid_text}

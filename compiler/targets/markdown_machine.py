@@ -6,6 +6,7 @@ from typing import Any
 
 from ..model import Condition, Machine, Protocol, Sequence, SequenceItem
 from .markdown_text import DecisionLinker, anchor, cell, code, en, number, originals
+from .escape import mermaid_text
 
 
 def _value(value: Any) -> str:
@@ -64,9 +65,7 @@ def machine_view(p: Protocol, m: Machine, linker: DecisionLinker) -> dict:
     lines = ["stateDiagram-v2", f"    [*] --> {_mermaid_id(m.initial)}"]
     for state in m.states:
         if state.doc:
-            # Mermaid ends a statement at ';' and splits a description at ':'.
-            text = en(state.doc).replace(";", ",").replace(":", ",")
-            lines.append(f"    {_mermaid_id(state.name)}: {state.name} — {text}")
+            lines.append(f"    {_mermaid_id(state.name)}: {state.name} — {mermaid_text(en(state.doc))}")
     for a, b, label in edges:
         lines.append(f"    {a} --> {b}: {label}")
     for final in m.final:
