@@ -174,6 +174,14 @@ def text_alphabet(proto, f, *, spaces=True):
     return "".join(c for c in PRINTABLE if c not in banned)
 
 
+def text_float(x: float) -> float:
+    """x as a text float holds it: 15 significant digits, 0 or at least 1e-307 in magnitude."""
+    x = float(f"{x:.15g}")
+    if math.isinf(x):  # rounded past the largest double
+        return math.copysign(1.79769313486231e308, x)
+    return 0.0 if abs(x) < 1e-307 else x
+
+
 def field_strategy(proto, f, tp, path, bias):
     tp = unwrap_optional(tp)
     s = base_strategy(proto, f, tp, path, bias)
@@ -217,7 +225,12 @@ def base_strategy(proto, f, tp, path, bias):
         kwargs = {}
         if f.range is not None:
             kwargs = {"min_value": float(f.range[0]), "max_value": float(f.range[1])}
-        return st.floats(width=width, allow_nan=False, allow_infinity=False, **kwargs)
+        floats = st.floats(width=width, allow_nan=False, allow_infinity=False, **kwargs)
+        if proto.framing.kind == "text":  # text floats: 15 significant digits, 0 or from 1e-307
+            floats = floats.map(text_float)
+            if f.range is not None:
+                floats = floats.filter(lambda x: f.range[0] <= x <= f.range[1])
+        return floats
     if f.kind == "char":
         return st.sampled_from(text_alphabet(proto, f, spaces=False))
     if f.kind == "str":
