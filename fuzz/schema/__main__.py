@@ -12,6 +12,7 @@ from pathlib import Path
 from . import features as feature_table
 from .check import check_seed
 from .generate import generate
+from .mutate import check_mutant
 
 RESULTS = Path(__file__).resolve().parents[1] / "RESULTS.md"
 MARK = "## Schema fuzzing"
@@ -23,6 +24,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--seed", type=int, default=0, help="first seed (default 0)")
     parser.add_argument("--features", help="'all', or +name/-name changes to the default set")
     parser.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="processes (default: every core)")
+    parser.add_argument("--mutants", type=int, default=None,
+                        help="mutated schemas to check after them (default: as many as --count)")
     parser.add_argument("--show", action="store_true", help="print the schema of --seed and stop")
     parser.add_argument("--record", action="store_true", help="write the run's count and result into fuzz/RESULTS.md")
     args = parser.parse_args(argv)
@@ -33,18 +36,25 @@ def main(argv: list[str] | None = None) -> int:
     seeds = range(args.seed, args.seed + args.count)
     start = time.monotonic()
     failed = []
+    mutants = range(args.seed, args.seed + (args.count if args.mutants is None else args.mutants))
+    problems = []
     with ProcessPoolExecutor(max_workers=args.jobs) as pool:
         for outcome in pool.map(check_seed, seeds, [chosen] * len(seeds), chunksize=8):
             if not outcome.ok:
                 failed.append(outcome)
                 print(outcome.line(), flush=True)
+        for problem in pool.map(check_mutant, mutants, [chosen] * len(mutants), chunksize=16):
+            if problem:
+                problems.append(problem)
+                print(problem, flush=True)
     seconds = time.monotonic() - start
-    summary = (f"{args.count} schemas (seeds {seeds.start}..{seeds.stop - 1}), {len(failed)} failures, "
+    summary = (f"{args.count} schemas (seeds {seeds.start}..{seeds.stop - 1}), {len(failed)} failures; "
+               f"{len(mutants)} mutated schemas, {len(problems)} not refused at a line nor built; "
                f"{seconds:.0f} s on {args.jobs} processes")
     print(summary)
     if args.record:
-        record(args, chosen, summary, failed)
-    return 1 if failed else 0
+        record(args, chosen, summary, [o.line() for o in failed] + problems)
+    return 1 if failed or problems else 0
 
 
 def record(args, chosen: frozenset[str], summary: str, failed) -> None:
@@ -54,7 +64,7 @@ def record(args, chosen: frozenset[str], summary: str, failed) -> None:
              f"- Result: {summary}.", f"- Machine: {platform.machine()}, Python {platform.python_version()}, "
              f"{os.cpu_count()} cores.", f"- Features off: {', '.join(off) or 'none'}."]
     lines += [f"  - `{name}`: {feature_table.KNOWN_OPEN.get(name, 'switched off for this run')}" for name in off]
-    lines += [f"- `{o.line()}`" for o in failed[:20]]
+    lines += [f"- `{line}`" for line in failed[:20]]
     text = RESULTS.read_text(encoding="utf-8") if RESULTS.exists() else ""
     head, _, rest = text.partition(MARK)
     tail = rest[rest.find("\n## "):] if "\n## " in rest else ""
