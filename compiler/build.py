@@ -16,12 +16,12 @@ from .loader import load_file
 from .model import Protocol
 from .project import Project
 from .pyload import load_module
-from .resolve import resolve
+from .resolver import resolve
 from .spool import Spool
 from .targets import python as python_target
 from .targets import c as c_target
-from .targets.cview import CTargetError
-from .targets.machine_packets import MachineTargetError
+from .targets.c.view import CTargetError
+from .targets.machines.packets import MachineTargetError
 from .targets import markdown as markdown_target
 from .targets import promela as promela_target
 from .vectors import write_vectors

@@ -7,7 +7,7 @@ values must give them back. Error examples must fail with the named field/rule.
 from __future__ import annotations
 
 import types
-from typing import Any, Optional
+from typing import Any
 
 from .diagnostics import Diagnostic
 from .model import Example, Message, Protocol, Sequence, SequenceItem

@@ -16,7 +16,8 @@ from pathlib import Path
 from typing import Any
 
 from codeword.model import Field, Protocol
-from codeword.targets.cview import ERR, CView, cchar, clit, clit_signed, cstr
+from codeword.targets.c.scalars import clit, clit_signed
+from codeword.targets.c.view import ERR, CView, cchar, cstr
 from codeword.targets.wire import leaves_of
 
 ROOT = Path(__file__).resolve().parent.parent

@@ -9,7 +9,7 @@ import bitstruct.c as bitstruct
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from codeword.targets.pyview import leaves_of
+from codeword.targets.python.view import leaves_of
 from conftest import load_generated, load_model
 
 

@@ -18,7 +18,7 @@ from codeword import jsontext, pyload
 from codeword.diagnostics import SchemaError
 from codeword.dispatch_pairs import candidate_pairs
 from codeword.loader import MAX_DEPTH, load_text
-from codeword.resolve import Resolver
+from codeword.resolver import Resolver
 from codeword.spool import Spool
 from conftest import ROOT, SCHEMAS
 

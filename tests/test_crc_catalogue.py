@@ -7,7 +7,7 @@ import pytest
 from codeword import crc
 from codeword.model import Checksum
 from codeword.pyload import load_module
-from codeword.targets.pyview import _checksum_code, _checksum_name, _fixed_span_crc_code, _positional_crc_code
+from codeword.targets.python.view import _checksum_code, _checksum_name, _fixed_span_crc_code, _positional_crc_code
 
 ENTRIES = sorted({p.name: p for p in crc.catalogue().values()}.values(), key=lambda p: p.name)
 

@@ -10,8 +10,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Optional
 
-from ..model import Machine, Message, Protocol
-from .wire import leaves_of
+from ...model import Machine, Message, Protocol
+from ..wire import leaves_of
 
 
 class MachineTargetError(ValueError):

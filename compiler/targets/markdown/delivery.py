@@ -13,10 +13,10 @@ import types
 from dataclasses import dataclass
 from typing import Optional
 
-from ..model import Protocol
-from ..sim import efficiency_table
-from . import promela
-from .markdown_text import DecisionLinker
+from ...model import Protocol
+from ...sim import efficiency_table
+from .. import promela
+from .text import DecisionLinker
 
 RATES = (0.0, 0.1, 0.3, 0.5)
 SEED = 1

@@ -6,9 +6,9 @@ the commands executed and the failures. No clock, socket or thread inside.
 """
 from __future__ import annotations
 
-from ..model import Action, Event, Machine, Protocol
-from .machine_lowering import Lowering
-from .machine_packets import PacketLayout, machine_messages, packet_layout
+from ...model import Action, Event, Machine, Protocol
+from ..machines.lowering import Lowering
+from ..machines.packets import PacketLayout, machine_messages, packet_layout
 
 
 def class_name(machine: Machine) -> str:

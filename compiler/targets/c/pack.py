@@ -16,7 +16,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .wire import Leaf
+from ..wire import Leaf
 
 
 @dataclass(frozen=True)

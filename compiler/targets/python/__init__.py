@@ -1,13 +1,13 @@
 """Python target: one stand-alone module per protocol in generated/python/."""
 from __future__ import annotations
 
-from ..fingerprint import fingerprint, fingerprint32
-from ..model import Protocol
-from .pymachine import machines_view
-from .pyview import module_view
-from .wire import text_form_head
-from .escape import py_docstring
-from .render import environment, tidy
+from ...fingerprint import fingerprint, fingerprint32
+from ...model import Protocol
+from .machines import machines_view
+from .view import module_view
+from ..wire import text_form_head
+from ..escape import py_docstring
+from ..render import environment, tidy
 
 
 def render(p: Protocol) -> dict[str, str]:

@@ -17,9 +17,9 @@ a loop, so nesting costs no recursion:
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from ..model import Sequence, SequenceItem, SequenceRule, field_at
-from ..diagnostics import Diagnostic, Loc, SchemaError
-from .cview import ERR, CView, comment
+from ...model import Sequence, SequenceItem, SequenceRule, field_at
+from ...diagnostics import Diagnostic, Loc, SchemaError
+from .view import ERR, CView, comment
 
 
 

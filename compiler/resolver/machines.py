@@ -9,7 +9,8 @@ from __future__ import annotations
 
 from typing import Any, Optional
 
-from .model import (Action, Condition, Event, Field, Handler, Machine, Message, Source, State,
+from .text import text
+from ..model import (Action, Condition, Event, Field, Handler, Machine, Message, Source, State,
                     Transition, Variable)
 
 ACTION_KINDS = ("set", "flip", "increment", "keep", "transmit", "start_timer", "stop_timer",
@@ -102,7 +103,6 @@ class MachineResolver:
 
     @staticmethod
     def r_text(value: Any):
-        from .resolve import text
         return text(value)
 
     # -- actions -----------------------------------------------------------------------

@@ -7,8 +7,8 @@ import enum
 import re
 from typing import Any, Optional
 
-from ..model import Protocol, Text
-from .escape import md_code, md_text
+from ...model import Protocol, Text
+from ..escape import md_code, md_text
 
 LANGUAGES = {"ru": "Russian", "zh": "Chinese", "pl": "Polish", "en": "English"}
 

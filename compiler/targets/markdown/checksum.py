@@ -9,11 +9,11 @@ from __future__ import annotations
 import types
 from typing import Any, Optional
 
-from .. import crc as crc_reference
-from ..model import Checksum, Message, Protocol
-from .markdown_layout import Slot, position, slots
-from .markdown_text import DecisionLinker, anchor, cell, en, number
-from .wire import checksum_name
+from ... import crc as crc_reference
+from ...model import Checksum, Message, Protocol
+from .layout import Slot, position, slots
+from .text import DecisionLinker, anchor, cell, en, number
+from ..wire import checksum_name
 
 
 def _bits_of(frame: bytes, offset: int, width: int) -> int:

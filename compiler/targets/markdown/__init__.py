@@ -10,17 +10,17 @@ from __future__ import annotations
 import types
 from typing import Optional
 
-from ..fingerprint import fingerprint, fingerprint32
-from ..model import Message, Protocol
-from .markdown_budget import longest_text_line, transport_views
-from .markdown_checksum import checksum_sections
-from .markdown_delivery import delivery_view
-from .markdown_examples import message_example, sequence_example
-from .markdown_layout import diagram, field_columns, field_rows, payload_note, slots, text_line
-from .markdown_machine import conditions, machine_view, sequence_view
-from .markdown_text import LANGUAGES, DecisionLinker, anchor, cell, code, en, number, originals, with_original
-from .render import environment, tidy
-from .wire import stream_facts
+from ...fingerprint import fingerprint, fingerprint32
+from ...model import Message, Protocol
+from .budget import longest_text_line, transport_views
+from .checksum import checksum_sections
+from .delivery import delivery_view
+from .examples import message_example, sequence_example
+from .layout import diagram, field_columns, field_rows, payload_note, slots, text_line
+from .machines import conditions, machine_view, sequence_view
+from .text import LANGUAGES, DecisionLinker, anchor, cell, code, en, number, originals, with_original
+from ..render import environment, tidy
+from ..wire import stream_facts
 
 
 def wire_fingerprint(p: Protocol) -> tuple[str, str]:

@@ -1,14 +1,14 @@
 """C target: generated/c/codeword.h (shared runtime) and one header per protocol."""
 from __future__ import annotations
 
-from ..fingerprint import fingerprint, fingerprint32
-from ..model import Protocol
-from .cmachine import machines_view
-from .csequence import sequences_view
-from .cview import CView, cchar, clit, comment, cstr
-from .cwordform import word_type
-from .render import environment, tidy
-from .wire import stream_facts
+from ...fingerprint import fingerprint, fingerprint32
+from ...model import Protocol
+from .machines import machines_view
+from .sequences import sequences_view
+from .view import CView, cchar, clit, comment, cstr
+from .wordform import word_type
+from ..render import environment, tidy
+from ..wire import stream_facts
 
 
 def constants(v: CView) -> list[tuple[str, str, str]]:

@@ -8,8 +8,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ..model import Action, Condition, Event, Machine, Protocol, Source
-from .machine_packets import PacketLayout, machine_messages, packet_layout
+from ...model import Action, Condition, Event, Machine, Protocol, Source
+from .packets import PacketLayout, machine_messages, packet_layout
 
 
 @dataclass(frozen=True)

@@ -6,8 +6,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Optional
 
-from ..model import Field, Message, Protocol
-from .markdown_text import DecisionLinker, anchor, cell, code, en, number, originals
+from ...model import Field, Message, Protocol
+from .text import DecisionLinker, anchor, cell, code, en, number, originals
 
 
 @dataclass(frozen=True)

@@ -8,11 +8,11 @@ import re
 from dataclasses import dataclass
 from typing import Any, Optional
 
-from ..crc import reflect
-from ..model import Field, Message, Protocol, Rule, Sequence, SequenceItem, field_at
-from ..names import camel
-from .code import Code
-from .wire import Leaf, checksum_name as _checksum_name, dispatch_facts, leaves_of, stream_facts
+from ...crc import reflect
+from ...model import Field, Message, Protocol, Rule, Sequence, SequenceItem, field_at
+from ...names import camel
+from ..code import Code
+from ..wire import Leaf, checksum_name as _checksum_name, dispatch_facts, leaves_of, stream_facts
 
 
 def lit(value: Any) -> str:

@@ -20,11 +20,11 @@ generated code (the first row whose guard holds wins). What the model abstracts:
 """
 from __future__ import annotations
 
-from ..diagnostics import Diagnostic, Loc, SchemaError
-from ..model import Action, Event, Machine, Protocol
-from .machine_lowering import Lowering
-from .machine_packets import MachineTargetError, machine_messages
-from .render import environment, tidy
+from ...diagnostics import Diagnostic, Loc, SchemaError
+from ...model import Action, Event, Machine, Protocol
+from ..machines.lowering import Lowering
+from ..machines.packets import MachineTargetError, machine_messages
+from ..render import environment, tidy
 
 CHANNEL_CAPACITY = 4  # a packet, its duplicate and resends in flight
 COMMAND_NUMBERS = 4  # more than the two a one-bit sequence number tells apart

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 from typing import Any
 
-from ..model import Condition, Machine, Protocol, Sequence, SequenceItem
-from .markdown_text import DecisionLinker, anchor, cell, code, en, number, originals
-from .escape import mermaid_text
+from ...model import Condition, Machine, Protocol, Sequence, SequenceItem
+from .text import DecisionLinker, anchor, cell, code, en, number, originals
+from ..escape import mermaid_text
 
 
 def _value(value: Any) -> str:

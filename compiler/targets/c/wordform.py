@@ -10,12 +10,12 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from . import cview  # cview calls this module: its names are looked up at call time
-from .code import Code
+from .scalars import clit
+from ..code import Code
 
 if TYPE_CHECKING:
-    from ..model import Message
-    from .cview import CView
+    from ...model import Message
+    from .view import CView
 
 
 def word_type(word_bits: int) -> str:
@@ -47,10 +47,10 @@ def narrow(v: "CView", m: "Message", w: int) -> str:
     c("{")
     c(f"    uint8_t b[{m.size}];")
     if w < 32:
-        v.fail_if(c.indent(), f"word > {cview.clit((1 << w) - 1, True)}", "range")
+        v.fail_if(c.indent(), f"word > {clit((1 << w) - 1, True)}", "range")
         c.dedent()
     if bits < w:
-        v.fail_if(c.indent(), f"(word & {cview.clit((1 << (w - bits)) - 1, True)}) != 0u", "reserved")
+        v.fail_if(c.indent(), f"(word & {clit((1 << (w - bits)) - 1, True)}) != 0u", "reserved")
         c.dedent()
         c(f"    cw_put_be(b, {m.size}u, word >> {w - bits});")
     else:
@@ -87,9 +87,9 @@ def wide(v: "CView", m: "Message", w: int) -> str:
     c.indent()
     c(f"uint8_t b[{n}];")
     if w < 64:
-        v.fail_if(c, f"word > {cview.clit((1 << w) - 1, True)}", "range")
+        v.fail_if(c, f"word > {clit((1 << w) - 1, True)}", "range")
     if bits < w:
-        v.fail_if(c, f"(word & {cview.clit((1 << (w - bits)) - 1, True)}) != 0u", "reserved")
+        v.fail_if(c, f"(word & {clit((1 << (w - bits)) - 1, True)}) != 0u", "reserved")
         c(f"word >>= {w - bits};")
     elif bits > w:
         c(f"word <<= {bits - w};")

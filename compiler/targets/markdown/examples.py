@@ -9,10 +9,10 @@ from __future__ import annotations
 import types
 from typing import Any
 
-from ..diagnostics import Diagnostic, SchemaError
-from ..examples import ExampleChecker
-from ..model import Example, Message, Protocol, Sequence
-from .markdown_text import DecisionLinker, cell, code, decoded_fields
+from ...diagnostics import Diagnostic, SchemaError
+from ...examples import ExampleChecker
+from ...model import Example, Message, Protocol, Sequence
+from .text import DecisionLinker, cell, code, decoded_fields
 
 
 def _wire_text(form: str, wire: Any, p: Protocol) -> str:

@@ -1,14 +1,14 @@
 """Airtime and size budgets of each transport, computed from the model and the
-codec's own encodings: how long a sentence, a route or a line takes, and
+codec's own encodings: how long a sentence, a sequence or a line takes, and
 whether every frame fits the radio's FIFO."""
 from __future__ import annotations
 
 import types
 from typing import Any, Optional
 
-from ..model import Message, Protocol, Transport
-from .markdown_layout import slots
-from .markdown_text import cell, code, en, number, originals
+from ...model import Message, Protocol, Transport
+from .layout import slots
+from .text import cell, en, number, originals
 
 # Serial characters are 8N1: a start bit, 8 data bits, a stop bit.
 BITS_PER_CHAR = 10
@@ -70,18 +70,23 @@ def _first_line(codec: types.ModuleType, p: Protocol, m: Message) -> Optional[st
     return None
 
 
+def _sequence_word(p: Protocol) -> str:
+    """What the protocol's one sequence is called (its name), or "sequence"."""
+    return p.sequences[0].name if len(p.sequences) == 1 else "sequence"
+
+
 def _example_sequence_text(codec: types.ModuleType, p: Protocol) -> Optional[tuple[str, str, int]]:
     for s in p.sequences:
         for ex in s.examples:
             if ex.text is not None and not ex.errors:
                 seq = getattr(codec, f"decode_{s.name}_text")(ex.text)
                 text = getattr(codec, f"encode_{s.name}_text")(seq)
-                return ex.name, text, len(text.splitlines())
+                return s.name, text, len(text.splitlines())
     return None
 
 
 def repeated_words(p: Protocol, t: Transport, codec: types.ModuleType) -> list[tuple[str, str, str]]:
-    """A word sent again and again for a time (route over RC5)."""
+    """A word sent again and again for a time (an RC5 remote control sends so)."""
     word, repeat_s, rate = _param(t, "word_bits"), _param(t, "repeat_s"), _param(t, "rate_hz")
     typical = _param(t, "sentences_typical")
     largest = max(m.bits for m in p.messages)
@@ -90,14 +95,14 @@ def repeated_words(p: Protocol, t: Transport, codec: types.ModuleType) -> list[t
             ("sends of each word", number(repeat_s * rate), f"{number(repeat_s)} s × {number(rate)} Hz"),
             ("time per sentence", seconds(repeat_s), f"{number(repeat_s * rate)} words ÷ {number(rate)} Hz")]
     if typical:
-        rows.append((f"typical route ({number(typical)} sentences)", seconds(typical * repeat_s),
+        rows.append((f"typical {_sequence_word(p)} ({number(typical)} sentences)", seconds(typical * repeat_s),
                      f"{number(typical)} × {number(repeat_s)} s"))
-        rows.append((f"data in a typical route", f"{number(typical * word)} bits",
+        rows.append((f"data in a typical {_sequence_word(p)}", f"{number(typical * word)} bits",
                      f"{number(typical)} × {word} bits"))
     example = _example_sequence_text(codec, p)
     if example:
         name, _, lines = example
-        rows.append((f"the example route ({lines} sentences)", seconds(lines * repeat_s),
+        rows.append((f"the example {name} ({lines} sentences)", seconds(lines * repeat_s),
                      f"{lines} × {number(repeat_s)} s"))
     return rows
 
@@ -122,13 +127,13 @@ def serial_lines(p: Protocol, t: Transport, codec: types.ModuleType, baud: int, 
     if example:
         name, text, lines = example
         chars = len(text.encode("utf-8"))
-        rows.append((f"the example route file ({lines} lines)", f"{chars} bytes, {seconds(_serial_time(chars, baud))}",
+        rows.append((f"the example {name} file ({lines} lines)", f"{chars} bytes, {seconds(_serial_time(chars, baud))}",
                      "codec output of the sequence example"))
     typical = next((_param(x, "sentences_typical") for x in p.transports if _param(x, "sentences_typical")), None)
     if typical and p.framing.text_form is not None:
         widest = max(longest_text_line(p, m) for m in p.messages)
         chars = typical * widest
-        rows.append((f"typical route file ({number(typical)} lines, at most)", f"{chars} bytes, "
+        rows.append((f"typical {_sequence_word(p)} file ({number(typical)} lines, at most)", f"{chars} bytes, "
                      f"{seconds(_serial_time(chars, baud))}", f"{number(typical)} × {widest} chars"))
     return rows
 

@@ -11,19 +11,20 @@ import re
 from dataclasses import replace
 from typing import Any, Optional
 
-from . import crc
-from .diagnostics import Loc, Reporter, SchemaError
-from .dispatch_pairs import candidate_pairs
-from .loader import Document
-from .model import (Checksum, Condition, CrcParams, Direction, Enum, EnumMember,
+from .. import crc
+from ..diagnostics import Loc, Reporter, SchemaError
+from ..dispatch_pairs import candidate_pairs
+from ..loader import Document
+from ..model import (Checksum, Condition, CrcParams, Direction, Enum, EnumMember,
                     Example, ExpectedError, Field, FlagBit, FlagSet, Framing,
                     HistoryEntry, Machine, Message, Note, Parameter, Protocol, Role, Rule,
-                    Sequence, SequenceItem, SequenceRule, Text, TextForm,
+                    Sequence, SequenceItem, SequenceRule, TextForm,
                     Transport, field_at)
-from .name_clashes import generated_name_clashes
-from .names import name_problem, protocol_name_problem
-from .resolve_machines import MachineResolver
-from .validate import structure_errors
+from ..name_clashes import generated_name_clashes
+from ..names import name_problem, protocol_name_problem
+from .machines import MachineResolver
+from .text import text
+from ..validate import structure_errors
 
 INT_TYPE = re.compile(r"^([ui])([0-9]+)$")
 BASE_KINDS = {"bool": ("bool", 1), "f32": ("float", 32), "f64": ("float", 64),
@@ -32,14 +33,6 @@ BASE_KINDS = {"bool": ("bool", 1), "f32": ("float", 32), "f64": ("float", 64),
 MAX_INT_BITS = 64
 MAX_BYTES_LENGTH = 4096
 DEFAULT_HINT = "see docs/schema-language.md for what this key accepts"
-
-
-def text(value: Any) -> Optional[Text]:
-    if value is None:
-        return None
-    if isinstance(value, str):
-        return Text(value)
-    return Text(value["en"], tuple(sorted((k, v) for k, v in value.items() if k != "en")))
 
 
 # A double's 53-bit significand: wider raw values would not survive value → raw → value.

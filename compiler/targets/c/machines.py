@@ -8,9 +8,9 @@ no transition produces more).
 """
 from __future__ import annotations
 
-from ..model import Action, Event, Machine, Protocol
-from .machine_lowering import Lowering
-from .machine_packets import MachineTargetError, PacketLayout, machine_messages, max_packet, packet_layout
+from ...model import Action, Event, Machine, Protocol
+from ..machines.lowering import Lowering
+from ..machines.packets import MachineTargetError, PacketLayout, machine_messages, max_packet, packet_layout
 
 
 def ctype(bits: int) -> str:

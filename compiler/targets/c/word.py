@@ -22,14 +22,14 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Optional
 
-from . import cview  # cview calls this module: its names are looked up at call time
-from .code import Code
-from .cpack import Piece, Span
-from .wire import Leaf
+from .scalars import clit, type_limits
+from ..code import Code
+from .pack import Piece, Span
+from ..wire import Leaf
 
 if TYPE_CHECKING:
-    from ..model import Message
-    from .cview import CView
+    from ...model import Message
+    from .view import CView
 
 
 @dataclass(frozen=True)
@@ -63,7 +63,7 @@ def leaf_type(leaf: Leaf) -> str:
 
 
 def mask(bits: int) -> str:
-    return cview.clit((1 << bits) - 1, True)
+    return clit((1 << bits) - 1, True)
 
 
 def container(v: "CView", m: "Message") -> Optional[Word]:
@@ -106,7 +106,7 @@ def bytes_checksum(word: Word, leaf: Leaf) -> str:
     start, end = cs.byte_span
     if cs.algorithm == "parity":
         covered = ((1 << 8 * (end - start)) - 1) << 8 * (word.size - end)
-        value = "word" if covered == (1 << 8 * word.size) - 1 else f"word & {cview.clit(covered, True)}"
+        value = "word" if covered == (1 << 8 * word.size) - 1 else f"word & {clit(covered, True)}"
         flip = " ^ 1u" if cs.parity == "odd" else ""
         return f"({rt})(cw_parity32({value}){flip})"
     shifts = [8 * (word.size - 1 - i) for i in range(start, end)]
@@ -115,7 +115,7 @@ def bytes_checksum(word: Word, leaf: Leaf) -> str:
     op = " + " if cs.algorithm == "sum" else " ^ "
     value = f"({op.join(data)})"
     if cs.modulo:
-        value = f"({value} % {cview.clit(cs.modulo, True)})"
+        value = f"({value} % {clit(cs.modulo, True)})"
     return f"({rt}){value}"
 
 
@@ -139,7 +139,7 @@ def fits_field(v: "CView", leaf: Leaf) -> bool:
     if f.kind != "uint":
         return False
     lo, hi = v.int_bounds(f)
-    tlo, thi = cview.type_limits(v.rep(f).ctype)
+    tlo, thi = type_limits(v.rep(f).ctype)
     off = int(f.offset or 0) if f.scale is None else 0
     return 0 <= max(lo, tlo) - off and min(hi, thi) - off < (1 << f.bits)
 

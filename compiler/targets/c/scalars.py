@@ -1,0 +1,74 @@
+"""C integer types and literals: the narrowest type for a range, literals that keep
+their value where int has 16 bits, and the codeword.h helpers chosen by width."""
+from __future__ import annotations
+
+from typing import Optional
+
+from ...model import Field
+from .errors import CTargetError
+
+INT_TYPES = [(8, "int8_t", "uint8_t"), (16, "int16_t", "uint16_t"), (32, "int32_t", "uint32_t"),
+             (64, "int64_t", "uint64_t")]
+
+
+def int_ctype(lo: int, hi: int) -> str:
+    for bits, signed, unsigned in INT_TYPES:
+        if lo >= 0 and hi < (1 << bits):
+            return unsigned
+        if lo < 0 and lo >= -(1 << (bits - 1)) and hi < (1 << (bits - 1)):
+            return signed
+    raise CTargetError(f"no C integer type holds {lo}..{hi}")
+
+
+def type_limits(ctype: str) -> tuple[int, int]:
+    for bits, signed, unsigned in INT_TYPES:
+        if ctype == unsigned:
+            return 0, (1 << bits) - 1
+        if ctype == signed:
+            return -(1 << (bits - 1)), (1 << (bits - 1)) - 1
+    if ctype == "char":
+        return 0, 127
+    raise KeyError(ctype)
+
+
+def unsigned_type(bits: int) -> str:
+    """The narrowest unsigned C type of at least `bits` bits (at most 64)."""
+    return "uint8_t" if bits <= 8 else "uint16_t" if bits <= 16 else "uint32_t" if bits <= 32 else "uint64_t"
+
+
+def sign_extend(bits: int) -> str:
+    """The codeword.h function that sign-extends a raw value of `bits` bits."""
+    return "cw_sign_extend_wide" if bits > 32 else "cw_sign_extend"
+
+
+def wide_text(f: Field) -> Optional[str]:
+    """"i64" or "u64" for a text integer the 32-bit text helpers cannot hold, else None."""
+    if f.kind == "int" and f.bits > 32 and f.enum is None:
+        return "i64"
+    if f.kind == "uint" and f.bits >= 32 and f.enum is None:
+        return "u64"
+    return None
+
+
+def bits_fn(op: str, bits: int) -> str:
+    """cw_get_bits / cw_put_bits, or their 64-bit forms for fields over 32 bits."""
+    return f"cw_{op}_bits_wide" if bits > 32 else f"cw_{op}_bits"
+
+
+def clit(value: int, unsigned: bool = False) -> str:
+    """An integer literal that has the intended value on 16-bit-int targets."""
+    if value < 0:
+        return f"(-{-value - 1} - 1)" if value <= -32768 else str(value)
+    suffix = "u" if unsigned or value > 32767 else ""
+    if value > 0xFFFF:
+        suffix = "UL"
+    if value > 0xFFFFFFFF:
+        suffix = "ULL"
+    return f"{value:#x}{suffix}" if value > 255 else f"{value}{suffix}"
+
+
+def clit_signed(value: int) -> str:
+    """A literal compared with a signed value: signed itself, long where int may be 16 bits."""
+    if value < 0 or value <= 32767:
+        return clit(value)
+    return f"{value:#x}L" if value <= 0x7FFFFFFF else f"{value:#x}LL"
