@@ -679,9 +679,10 @@ class CView:
         c(f"static inline int {self.fn(m, 'decode')}(const uint8_t *buf, size_t len, {self.tname(m)} *m)")
         c("{")
         c.indent()
-        c(f"{rt} r[{max(1, len(raws))}];")
-        if not raws:
-            c("(void)r;")
+        if raws:
+            c(f"{rt} r[{len(raws)}];")
+        else:  # nothing to read, but check_raw takes the array: initialised, so no compiler warns
+            c(f"{rt} r[1] = {{0}};")
         c(f"if (len != {m.size}u) {{")
         c("    return CW_ERR_LENGTH;")
         c("}")
