@@ -1,8 +1,9 @@
 """The front end's second half: the loaded, structurally valid document becomes the
 immutable Protocol model, and every semantic rule of the language is checked here,
-each error at its file:line:col. protocol.py resolves types, fields, framing,
-messages, dispatch, rules and sequences; machines.py the delivery machines;
-text.py schema prose."""
+each error at its file:line:col. One module per concern, each a mixin of the
+Resolver: types (enums, flags, groups), fields, checksums, framing (envelopes,
+placement, sizes), messages (dispatch, examples), rules, sequences; machines.py
+resolves the delivery machines, text.py schema prose, base.py what they share."""
 from __future__ import annotations
 
 from .protocol import Resolver, resolve

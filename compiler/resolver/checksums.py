@@ -1,0 +1,141 @@
+"""Checksums: algorithms and parameters, what each covers, the order they are filled in."""
+from __future__ import annotations
+
+from dataclasses import replace
+from typing import Optional
+
+from .. import crc
+from ..model import Checksum, CrcParams, Field, Framing
+from .base import ResolverBase
+
+
+class ChecksumsMixin(ResolverBase):
+    def resolve_checksum(self, c: dict, path: tuple, bits: Optional[int]) -> Checksum:
+        algorithm = c["algorithm"]
+        covers = c.get("covers", "all")
+        covers = None if covers == "all" else (covers["from"], covers["to"])
+        default_over = "fields" if self.framing_kind == "bits" else "bytes"
+        over = c.get("over", default_over)
+        params: Optional[CrcParams] = None
+        if algorithm == "crc":
+            missing = [k for k in ("width", "poly", "init", "refin", "refout", "xorout") if k not in c]
+            if missing:
+                self.error(path, f"crc needs Rocksoft parameters: missing {', '.join(missing)}",
+                           "or name a RevEng catalogue entry, e.g. algorithm: CRC-16/CMS")
+                return Checksum("crc", over, covers)
+            params = CrcParams("custom", c["width"], c["poly"], c["init"], c["refin"],
+                               c["refout"], c["xorout"])
+        elif algorithm in ("parity", "sum", "xor"):
+            for key in ("width", "poly", "init", "refin", "refout", "xorout"):
+                if key in c:  # CRC parameters would be ignored: a silent mismatch with the peer
+                    self.error(path + (key,), f"{key} is a CRC parameter; a {algorithm} checksum has none",
+                               f"drop {key}, or use a CRC")
+        else:
+            params = crc.lookup(algorithm)
+            if params is None:
+                self.error(path + ("algorithm",), f"unknown checksum algorithm {algorithm!r}",
+                           "use parity, sum, xor, crc (with parameters) or a RevEng catalogue "
+                           "name such as CRC-16/CMS")
+                return Checksum("crc", over, covers)
+        if params is not None:
+            algorithm = "crc"
+            mask = (1 << params.width) - 1
+            for key in ("poly", "init", "xorout"):
+                if getattr(params, key) > mask:
+                    self.error(path + (key,), f"crc {key} does not fit {params.width} bits")
+            if bits is not None and bits != params.width:
+                self.error(path, f"a {params.width}-bit CRC needs a {params.width}-bit field, not {bits}",
+                           f"declare the field as u{params.width}")
+            if over != "bytes":
+                self.error(path + ("over",), "a CRC is computed over bytes")
+        elif over != "bytes" and covers is not None:
+            # the codecs and docs take a checksum over fields from every other field
+            self.error(path + ("covers",), "a checksum over fields covers every other field "
+                                           "of the message; `covers: {from, to}` is the byte "
+                                           "range of a checksum over bytes",
+                       "drop `covers` (or write `covers: all`); to check part of the frame, use "
+                       "a CRC over whole bytes, e.g. {algorithm: CRC-8/SMBUS, covers: {from, to}}")
+        modulo = c.get("modulo")
+        if algorithm in ("sum", "xor") and modulo is None and bits:
+            modulo = 1 << bits
+        if algorithm == "parity" and bits not in (None, 1):
+            self.error(path, f"a parity bit is 1 bit wide, not {bits}")
+        if modulo is not None and bits and modulo > (1 << bits):
+            self.error(path + ("modulo",), f"sum modulo {modulo} does not fit {bits} bits")
+        return Checksum(algorithm, over, covers, c.get("parity", "even"), modulo, params,
+                        loc=self.loc(*(path + ("covers",))) if "covers" in c else self.loc(*path))
+
+    def bind_checksums(self, name: str, layout: tuple[Field, ...], framing: Framing,
+                       path: tuple) -> tuple[Field, ...]:
+        """Compute each checksum's and length field's byte coverage within this frame."""
+        by_name = {f.name: f for f in layout}
+        out = []
+        for f in layout:
+            span = None
+            pair = f.checksum.covers if f.checksum else f.length_of
+            if pair is not None:
+                start_f, end_f = by_name.get(pair[0]), by_name.get(pair[1])
+                for end_name, end in zip(pair, (start_f, end_f)):
+                    if end is None:
+                        self.report.error(f.checksum.loc if f.checksum else f.loc,
+                                          f"message {name!r}: {f.name!r} covers unknown field "
+                                                 f"{end_name!r}", "name envelope fields or `payload`")
+                if start_f and end_f:
+                    start = start_f.bit_offset
+                    stop = end_f.bit_offset + (end_f.bits or 0)
+                    refused = f.checksum and f.checksum.over != "bytes"  # resolve_checksum refuses its range
+                    if (start % 8 or stop % 8) and not refused:
+                        self.error(path, f"message {name!r}: coverage of {f.name!r} is not whole bytes")
+                    if stop <= start:
+                        self.error(path, f"message {name!r}: coverage of {f.name!r} is empty or reversed")
+                    if f.checksum and start <= f.bit_offset < stop:
+                        self.report.error(f.checksum.loc, f"message {name!r}: checksum {f.name!r} covers itself",
+                                          "a checksum cannot be part of what it checks")
+                    if f.checksum:
+                        self.check_later_checksums(name, f, (start, stop), layout)
+                    span = (start // 8, stop // 8)
+            if f.checksum:
+                if f.checksum.covers is None and f.checksum.over == "bytes" \
+                        and framing.kind == "bytes":
+                    self.error(path, f"checksum {f.name!r}: give `covers: {{from, to}}` in bytes framing")
+                f = replace(f, checksum=replace(f.checksum, byte_span=span))
+            elif f.length_of and span:
+                value = span[1] - span[0]
+                if not self.int_fits(value, f.kind, f.bits or 0):
+                    self.error(path, f"message {name!r}: length {value} does not fit {f.name!r}")
+                f = replace(f, const=value)
+            out.append(f)
+        return tuple(out)
+
+    def check_later_checksums(self, name: str, f: Field, bits: tuple[int, int],
+                              layout: tuple[Field, ...]) -> None:
+        """The codecs fill checksums in wire order: one whose bits cover a later checksum
+        would be computed while that one is still 0, and fail once it is filled in."""
+        start, stop = bits
+        for other in layout:
+            if other.checksum and f.bit_offset < other.bit_offset < stop \
+                    and other.bit_offset + (other.bits or 0) > start:
+                self.report.error(f.checksum.loc, f"message {name!r}: checksum {f.name!r} covers "
+                                                  f"checksum {other.name!r}, which comes after it",
+                                  f"end the coverage of {f.name!r} before {other.name!r}, or place "
+                                  f"{f.name!r} after {other.name!r} (checksums are filled in wire order)")
+
+    def check_field_checksums(self, name: str, layout: tuple[Field, ...]) -> None:
+        """A checksum over fields takes every other field, so another checksum among them
+        would have to be computed before it and after it: the two cannot both hold."""
+        def walk(fields: tuple[Field, ...]):
+            for f in fields:
+                yield f
+                yield from walk(f.fields)
+
+        sums = [f for f in walk(layout) if f.checksum]
+        for f in sums:
+            if f.checksum.over == "bytes":
+                continue
+            for other in sums:
+                if other is not f:
+                    self.report.error(f.checksum.loc or f.loc,
+                                      f"message {name!r}: checksum {f.name!r} over every other "
+                                      f"field covers checksum {other.name!r}, so the two cannot "
+                                      "both be right",
+                                      "a checksum over fields must be the message's only checksum")

@@ -1,0 +1,234 @@
+"""Fields: types, widths, scale and offset, ranges, constants and values."""
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from ..model import Field
+from .text import text
+from .base import MAX_BYTES_LENGTH, MAX_SCALED_BITS, ResolverBase
+
+
+class FieldsMixin(ResolverBase):
+    @staticmethod
+    def int_fits(value: Any, kind: str, bits: int) -> bool:
+        if isinstance(value, bool):
+            value = int(value)
+        if bits < 1 or kind == "int" and bits < 2:
+            return True  # a width with no values: its own error is reported at the type
+        if kind == "int":
+            return -(1 << (bits - 1)) <= value <= (1 << (bits - 1)) - 1
+        return 0 <= value <= (1 << bits) - 1
+
+    def resolve_field(self, raw: dict, path: tuple, allow_payload: bool = True) -> Field:
+        if raw.get("payload"):
+            if not allow_payload:
+                self.error(path, "`payload: true` belongs only in framing.layout")
+            return Field(name="payload", kind="payload", loc=self.loc(*path), is_payload=True)
+        name = raw["name"]
+        self.check_name(name, path + ("name",), "field")
+        f, type_name = self.merged(raw, path)
+        tpath = path + ("type",)
+        kind, bits = self.scalar_type(f["type"], tpath)
+        if not kind:
+            self.error(tpath, f"field {name!r}: unknown type {f['type']!r}",
+                       "use u1…u64, i2…i64, bool, f32, f64, char, str, bytes, group or a name from `types`")
+            kind, bits = "uint", 8
+        loc = self.loc(*path)
+        enum = flags = None
+        if "enum" in f:
+            enum = self.enums.get(f["enum"])
+            if enum is None:
+                self.error(path + ("enum",), f"field {name!r}: unknown enum {f['enum']!r}")
+            elif enum.kind == "char" and kind != "char" or enum.kind == "int" and kind not in ("uint", "int"):
+                self.error(tpath, f"field {name!r}: type {f['type']} does not match enum {enum.name!r}")
+            elif bits:
+                for m in enum.members:
+                    if not self.int_fits(m.value, kind, bits):
+                        self.error(tpath, f"field {name!r}: enum value {m.name}={m.value} does not fit {f['type']}")
+        if "flags" in f:
+            flags = self.flags.get(f["flags"])
+            if flags is None:
+                self.error(path + ("flags",), f"field {name!r}: unknown flag set {f['flags']!r}")
+            elif kind != "uint" or bits != flags.bits:
+                self.error(tpath, f"field {name!r}: type {f['type']} does not match flag set "
+                                  f"{flags.name!r} (u{flags.bits})")
+        sub_fields: tuple[Field, ...] = ()
+        if kind == "group":
+            if "fields" not in f:
+                self.error(path, f"group {name!r} needs `fields`")
+            else:
+                sub_fields = self.resolve_fields(f["fields"], path + ("fields",), allow_payload=False)
+                widths = [s.bits for s in sub_fields]
+                bits = sum(widths) if all(w is not None for w in widths) else None
+        elif "fields" in f:
+            self.error(path + ("fields",), f"field {name!r}: only `type: group` has fields")
+        length = f.get("length")
+        length_param = None
+        if isinstance(length, str):
+            param = self.parameters.get(length)
+            if param is None:
+                self.error(path + ("length",), f"field {name!r}: unknown parameter {length!r}",
+                           "declare it under `parameters`")
+                length = 1
+            elif param.default is None:
+                self.error(path + ("length",), f"field {name!r}: parameter {length!r} has no default",
+                           "a length parameter needs a default")
+                length = 1
+            else:
+                length_param, length = length, int(param.default)
+        if kind == "bytes":
+            if length is None:
+                self.error(path, f"bytes field {name!r} needs a fixed `length`",
+                           "variable-length byte strings are not supported yet")
+                length = 1
+            if not 0 < length <= MAX_BYTES_LENGTH:
+                self.error(path + ("length",), f"field {name!r}: length {length} is outside 1..{MAX_BYTES_LENGTH}")
+                length = 1
+            bits = 8 * length
+        elif kind == "str" and not 0 < (length or f.get("max_length") or 1) <= MAX_BYTES_LENGTH:
+            key = "length" if length else "max_length"
+            self.error(path + (key,), f"field {name!r}: {key} {length or f.get('max_length')} is outside "
+                                      f"1..{MAX_BYTES_LENGTH}")
+        elif length is not None and kind != "str":
+            self.error(path + ("length",), f"field {name!r}: `length` applies to bytes and str fields")
+        field = Field(
+            name=name, kind=kind, loc=loc, bits=bits, doc=text(f.get("doc")),
+            title=text(f.get("title")), type_name=type_name, unit=f.get("unit"),
+            const=f.get("const"), reserved=bool(f.get("reserved")), default=f.get("default"),
+            has_default="default" in f,
+            range=tuple(f["range"]) if "range" in f else None,
+            values=tuple(f["values"]) if "values" in f else None, enum=enum, flags=flags,
+            scale=f.get("scale"), offset=f.get("offset"), one_hot=bool(f.get("one_hot")),
+            exactly_one=bool(f.get("exactly_one")), byte_order=f.get("byte_order"),
+            length=length if kind in ("bytes", "str") else None, length_param=length_param,
+            max_length=f.get("max_length"), optional=bool(f.get("optional")),
+            to_end=bool(f.get("to_end")), dispatch=bool(f.get("dispatch")),
+            length_of=(f["length_of"]["from"], f["length_of"]["to"]) if "length_of" in f else None,
+            checksum=self.resolve_checksum(f["checksum"], path + ("checksum",), bits)
+            if "checksum" in f else None,
+            fields=sub_fields, message=text(f.get("message")), rule=f.get("rule"))
+        self.check_field(field, path)
+        return field
+
+    def resolve_fields(self, raw: list, path: tuple, allow_payload: bool = True) -> tuple[Field, ...]:
+        fields = []
+        seen: dict[str, int] = {}
+        for i, r in enumerate(raw):
+            field = self.resolve_field(r, path + (i,), allow_payload)
+            if field.name in seen and not field.is_payload:
+                self.error(path + (i, "name"), f"duplicate field name {field.name!r}",
+                           f"the first one is item {seen[field.name]}")
+            seen.setdefault(field.name, i)
+            fields.append(field)
+        return tuple(fields)
+
+    def check_field(self, f: Field, path: tuple) -> None:
+        """Constraints that concern one field alone."""
+        name, kind, bits = f.name, f.kind, f.bits
+        numeric = kind in ("uint", "int", "bool", "float")
+        if self.framing_kind != "text" and kind in ("char", "str"):
+            self.error(path + ("type",), f"field {name!r}: {kind} is a text type; binary framings need "
+                                         "bytes with a length")
+        if f.scale is not None or f.offset is not None:
+            if kind not in ("uint", "int"):
+                self.error(path, f"field {name!r}: scale/offset apply to integer fields")
+            elif f.scale is not None and bits and bits > MAX_SCALED_BITS:
+                self.error(path + ("scale",), f"field {name!r}: a scaled value is a double, which holds "
+                                              f"integers of up to {MAX_SCALED_BITS} bits exactly, not {bits}",
+                           f"narrow the field to {MAX_SCALED_BITS} bits, or drop the scale")
+            elif f.scale is None and isinstance(f.offset, int) and bits:
+                lo = (-(1 << (bits - 1)) if kind == "int" else 0) + f.offset
+                hi = ((1 << (bits - 1)) - 1 if kind == "int" else (1 << bits) - 1) + f.offset
+                if not (-(1 << 63) <= lo and hi < (1 << 63) or 0 <= lo and hi < (1 << 64)):
+                    self.error(path + ("offset",), f"field {name!r}: values {lo}..{hi} with offset "
+                                                   f"{f.offset} do not fit a 64-bit integer",
+                               "use a smaller offset or a narrower field")
+        if f.one_hot and kind != "uint":
+            self.error(path + ("one_hot",), f"field {name!r}: one_hot needs an unsigned type")
+        if f.exactly_one and f.flags is None:
+            self.error(path + ("exactly_one",), f"field {name!r}: exactly_one applies to flag fields")
+        if f.byte_order and (bits is None or bits % 8 or bits <= 8):
+            self.error(path + ("byte_order",), f"field {name!r}: byte_order needs a multi-byte field")
+        if f.reserved and kind not in ("uint", "int"):
+            self.error(path + ("reserved",), f"field {name!r}: reserved bits are an unsigned integer")
+        if (f.optional or f.to_end) and self.framing_kind != "text":
+            self.error(path, f"field {name!r}: optional/to_end apply to text framing")
+        if f.to_end and kind != "str":
+            self.error(path + ("to_end",), f"field {name!r}: to_end applies to str fields")
+        if kind == "float" and (f.range is not None and not all(math.isfinite(v) for v in f.range)):
+            self.error(path + ("range",), f"field {name!r}: range bounds must be finite")
+        lo_raw, hi_raw = (f.raw_range or (None, None))
+        if f.range is not None:
+            lo, hi = f.range
+            if lo > hi:
+                self.error(path + ("range",), f"field {name!r}: range [{lo}, {hi}] is empty",
+                           "write [low, high]")
+            elif not numeric:
+                self.error(path + ("range",), f"field {name!r}: range applies to numbers")
+            elif lo_raw is not None:
+                if f.one_hot:
+                    raw_lo, raw_hi = lo, hi
+                    lo_raw, hi_raw = 0, bits - 1
+                else:
+                    raw_lo, raw_hi = self.to_raw(f, lo), self.to_raw(f, hi)
+                if f.scale is None and f.offset is None and not (float(lo).is_integer() and float(hi).is_integer()):
+                    self.error(path + ("range",), f"field {name!r}: an integer field's range must be integers")
+                elif not f.one_hot and math.ceil((lo - (f.offset or 0)) / (f.scale or 1) - 1e-9) > \
+                        math.floor((hi - (f.offset or 0)) / (f.scale or 1) + 1e-9):  # decimal scales round
+                    self.error(path + ("range",), f"field {name!r}: range [{lo}, {hi}] holds no value the "
+                                                  "field can carry (raw value × scale + offset)",
+                               "widen the range to include one")
+                elif raw_lo < lo_raw or raw_hi > hi_raw:
+                    self.error(path + ("range",),
+                               f"field {name!r}: range [{lo}, {hi}] does not fit {bits} bits "
+                               f"(raw {raw_lo}..{raw_hi}, allowed {lo_raw}..{hi_raw})",
+                               "widen the field or narrow the range")
+        if f.const is not None and self.framing_kind == "text" and (f.kind == "float" or f.scale or f.offset):
+            self.error(path + ("const",), f"field {name!r}: a text line spells a constant as written; "
+                                          "a number with a fraction has several spellings",
+                       "make the constant an integer, char or str field")
+        for key in ("const", "default"):
+            value = getattr(f, key)
+            if value is None or (key == "default" and f.kind == "group"):
+                continue
+            self.check_value(f, value, path + (key,), key)
+        if f.values:
+            for i, v in enumerate(f.values):
+                self.check_value(f, v, path + ("values", i), "allowed value")
+
+    def check_value(self, f: Field, value: Any, path: tuple, what: str) -> None:
+        kind, bits = f.kind, f.bits
+        if f.enum is not None:
+            names = {m.name for m in f.enum.members}
+            if value not in names and value not in f.enum.values:
+                self.error(path, f"field {f.name!r}: {what} {value!r} is not a member of enum {f.enum.name!r}")
+            return
+        if kind in ("uint", "int"):
+            if f.one_hot and value is None:
+                return
+            if isinstance(value, bool) or not isinstance(value, (int, float)):
+                self.error(path, f"field {f.name!r}: {what} {value!r} is not a number")
+                return
+            if not f.scale and not f.offset and isinstance(value, float) and not value.is_integer():
+                self.error(path, f"field {f.name!r}: {what} {value} is not a whole number",
+                           "an integer field without a scale holds whole numbers")
+                return
+            raw = value if f.one_hot else self.to_raw(f, value)
+            limit = (0, bits - 1) if f.one_hot else f.raw_range
+            if bits and limit and not (limit[0] <= raw <= limit[1]):
+                self.error(path, f"field {f.name!r}: {what} {value} does not fit {bits} bits "
+                                 f"(allowed {limit[0]}..{limit[1]})", "widen the field or change the value")
+            elif f.range and not f.range[0] <= value <= f.range[1]:
+                self.error(path, f"field {f.name!r}: {what} {value} is outside its range {list(f.range)}")
+        elif kind == "bool" and not isinstance(value, bool) and value not in (0, 1):
+            self.error(path, f"field {f.name!r}: {what} {value!r} is not a bool")
+        elif kind == "char" and not (isinstance(value, str) and len(value) == 1):
+            self.error(path, f"field {f.name!r}: {what} {value!r} is not one character")
+        elif kind == "str" and not isinstance(value, str):
+            self.error(path, f"field {f.name!r}: {what} {value!r} is not a string")
+
+    @staticmethod
+    def to_raw(f: Field, value: float) -> float:
+        raw = (value - (f.offset or 0)) / (f.scale or 1)
+        return math.floor(raw + 0.5) if f.scale else raw

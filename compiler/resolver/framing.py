@@ -1,0 +1,161 @@
+"""Framing and envelopes: where a message's fields sit, alignment, sizes, text fields."""
+from __future__ import annotations
+
+from dataclasses import replace
+from typing import Optional
+
+from ..model import Field, Framing, TextForm
+from .base import ResolverBase
+
+
+class FramingMixin(ResolverBase):
+    def resolve_framing(self, fr: dict) -> Framing:
+        kind = fr["kind"]
+        path = ("framing",)
+        allowed = {"bits": {"kind", "word_bits", "max_bits", "byte_order", "text_form"},
+                   "bytes": {"kind", "layout", "byte_order"},
+                   "text": {"kind", "prefix_separator", "separator", "terminator",
+                            "ignore_between", "trim", "float_format"}}[kind]
+        for key in fr:
+            if key not in allowed:
+                self.error(path + (key,), f"framing: {key!r} does not apply to {kind} framing",
+                           "keys for this framing: " + ", ".join(sorted(allowed)))
+        envelope: tuple[Field, ...] = ()
+        if kind == "bytes":
+            if "layout" not in fr:
+                self.error(path, "bytes framing needs a `layout` with a `{payload: true}` item")
+            else:
+                envelope = self.resolve_fields(fr["layout"], path + ("layout",))
+                payloads = [f for f in envelope if f.is_payload]
+                if len(payloads) != 1:
+                    self.error(path + ("layout",), f"layout needs exactly one `{{payload: true}}` item, "
+                                                   f"found {len(payloads)}")
+                dispatch = [f for f in envelope if f.dispatch]
+                if len(dispatch) > 1:
+                    self.error(path + ("layout",), "layout may mark one field `dispatch: true`")
+        if kind == "bits" and "word_bits" in fr and "max_bits" in fr:
+            self.error(path, "give word_bits (every message is one word) or max_bits, not both")
+        if kind == "bits" and "word_bits" not in fr and "max_bits" not in fr:
+            self.error(path, "bits framing needs word_bits or max_bits")
+        tf = fr.get("text_form")
+        return Framing(
+            kind=kind, byte_order=fr.get("byte_order", "big"), word_bits=fr.get("word_bits"),
+            max_bits=fr.get("max_bits"),
+            text_form=TextForm(tf.get("separator", " "), tf.get("comment"), tf.get("checksum_unfilled"))
+            if tf else None,
+            envelope=envelope, prefix_separator=fr.get("prefix_separator", ":"),
+            separator=fr.get("separator", ","), terminator=fr.get("terminator", ";"),
+            ignore_between=fr.get("ignore_between", ""), trim=bool(fr.get("trim")),
+            float_format=fr.get("float_format", "shortest"))
+
+    def place(self, name: str, own: tuple[Field, ...], ids: tuple, framing: Framing,
+              path: tuple) -> tuple[tuple[Field, ...], tuple]:
+        """The message's whole frame in wire order with bit offsets, and its dispatch key."""
+        if framing.kind == "text":
+            for i, f in enumerate(own):
+                if f.dispatch:
+                    self.error(path + ("fields", i, "dispatch"),
+                               f"message {name!r}: field {f.name!r} is marked `dispatch: true`, but in "
+                               "text framing a message is identified by its `id`, the line's prefix",
+                               "drop `dispatch`")
+            if len(ids) != 1 or not isinstance(ids[0], str):
+                self.error(path + ("id",), f"message {name!r}: text framing needs a string `id` (the prefix)")
+            self.check_text_fields(name, own, path)
+            return own, (("prefix", ids),) if ids else ()
+        if framing.kind == "bits":
+            if ids:
+                self.error(path + ("id",), f"message {name!r}: bits framing identifies messages by "
+                                           "`dispatch: true` const fields, not `id`")
+            frame = own
+            key = tuple((f.name, f.const) for f in own if f.dispatch)
+            for i, f in enumerate(own):
+                if f.dispatch and f.const is None:
+                    self.error(path, f"message {name!r}: dispatch field {f.name!r} needs a const value")
+                if f.dispatch and (f.bits or 0) > 8 and (f.byte_order or framing.byte_order) == "little":
+                    # header tests read the leading bits most significant first
+                    self.error(path + ("fields", i), f"message {name!r}: dispatch field {f.name!r} is "
+                               "little-endian; bits framing dispatches on big-endian header bits",
+                               "declare it `byte_order: big`, or split it into dispatch fields of 8 bits")
+        else:
+            for i, f in enumerate(own):
+                if f.dispatch:  # would be ignored: the layout's dispatch field and `id` do this
+                    self.error(path + ("fields", i, "dispatch"),
+                               f"message {name!r}: field {f.name!r} is marked `dispatch: true`, but in "
+                               "bytes framing a message is identified by its `id`, the value of the "
+                               "layout's dispatch field", "give the message an `id` and drop `dispatch`")
+            frame = []
+            key = ()
+            for f in framing.envelope:
+                if f.is_payload:
+                    frame.extend(own)
+                    frame.append(replace(f, bits=0))
+                    continue
+                f = replace(f, from_envelope=True)
+                if f.dispatch:
+                    if not ids:
+                        self.error(path, f"message {name!r} needs an `id`: the value of {f.name!r}")
+                    for v in ids:
+                        if not self.int_fits(v, f.kind, f.bits or 0):
+                            self.error(path + ("id",), f"message {name!r}: id {v} does not fit "
+                                                       f"{f.name!r} ({f.bits} bits)")
+                    f = replace(f, const=ids[0]) if len(ids) == 1 else replace(f, values=ids)
+                    key = ((f.name, ids),)
+                frame.append(f)
+            names = [f.name for f in own]
+            for f in framing.envelope:
+                if f.name in names and not f.is_payload:
+                    self.error(path, f"message {name!r}: field {f.name!r} is also an envelope field")
+        placed = []
+        offset = 0
+        for f in frame:
+            placed.append(replace(f, bit_offset=offset))
+            offset += f.bits or 0
+        self.check_alignment(name, placed, framing, path)
+        return tuple(placed), key
+
+    def check_text_fields(self, name: str, own: tuple[Field, ...], path: tuple) -> None:
+        seen_optional = False
+        for i, f in enumerate(own):
+            if f.optional:
+                seen_optional = True
+            elif seen_optional:
+                self.error(path + ("fields", i), f"message {name!r}: required field {f.name!r} follows "
+                                                 "an optional one", "only trailing fields may be optional")
+            if f.to_end and i != len(own) - 1:
+                self.error(path + ("fields", i), f"message {name!r}: to_end field {f.name!r} must be last")
+            if f.kind in ("bytes", "group") or f.checksum or f.length_of:
+                self.error(path + ("fields", i), f"field {f.name!r}: {f.kind if f.kind in ('bytes', 'group') else 'checksum/length'} "
+                                                 "is not supported in text framing")
+
+    def check_alignment(self, name: str, placed: list[Field], framing: Framing, path: tuple) -> None:
+        for f in placed:
+            order = f.byte_order or framing.byte_order
+            multibyte = f.bits and f.bits > 8 and f.kind in ("uint", "int") and order == "little"
+            if (f.kind in ("float", "bytes") or multibyte) and (f.bit_offset % 8 or f.bits % 8):
+                self.error(path, f"message {name!r}: field {f.name!r} must be byte-aligned and whole "
+                                 f"bytes (it starts at bit {f.bit_offset}, {f.bits} bits)",
+                           "add padding bits before it")
+
+    def check_size(self, name: str, m: dict, layout: tuple[Field, ...], bits: Optional[int],
+                   framing: Framing, path: tuple) -> None:
+        if bits is None:
+            return
+        listing = " + ".join(f"{f.name}={f.bits}" for f in layout if not f.is_payload)
+        if bits == 0:
+            self.error(path + ("fields",), f"message {name!r} has no fields: nothing on the wire",
+                       "give it at least one field")
+            return
+        if "bits" in m and m["bits"] != bits:
+            self.error(path + ("bits",), f"message {name!r}: fields add up to {bits} bits, "
+                                         f"but the message declares {m['bits']} ({listing})",
+                       "fix a field width or the declared size")
+        if framing.word_bits and bits != framing.word_bits:
+            self.error(path + ("fields",), f"message {name!r}: fields add up to {bits} bits, "
+                                           f"but a word is {framing.word_bits} bits ({listing})",
+                       "every message of this protocol is exactly one word; fix a field width")
+        if framing.max_bits and bits > framing.max_bits:
+            self.error(path + ("fields",), f"message {name!r}: {bits} bits do not fit one "
+                                           f"{framing.max_bits}-bit word ({listing})")
+        if framing.kind == "bytes" and bits % 8:
+            self.error(path + ("fields",), f"message {name!r}: the frame is {bits} bits, not whole bytes",
+                       "add reserved bits")

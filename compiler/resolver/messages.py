@@ -1,0 +1,188 @@
+"""Messages and dispatch: how a decoder tells them apart, and their examples."""
+from __future__ import annotations
+
+from ..dispatch_pairs import candidate_pairs
+from ..model import Example, ExpectedError, Field, Framing, Message
+from .text import text
+from .base import ResolverBase
+
+
+class MessagesMixin(ResolverBase):
+    def resolve_message(self, name: str, m: dict, framing: Framing) -> Message:
+        path = ("messages", name)
+        self.check_name(name, path, "message")
+        layout_type = None
+        if isinstance(m["fields"], str):
+            layout_type = m["fields"]
+            t = self.data.get("types", {}).get(layout_type)
+            if t is None or self.base_type(t, ()) != "group":
+                self.error(path + ("fields",), f"message {name!r}: {layout_type!r} is not a group type",
+                           "declare it under `types` with `type: group` and `fields`")
+                own: tuple[Field, ...] = ()
+            else:
+                merged, _ = self.merged(t, ("types", layout_type))
+                own = self.resolve_fields(merged["fields"], ("types", layout_type, "fields"),
+                                          allow_payload=False)
+        else:
+            own = self.resolve_fields(m["fields"], path + ("fields",), allow_payload=False)
+        for key in ("direction", "role"):
+            table = "directions" if key == "direction" else "roles"
+            if key in m and m[key] not in self.data.get(table, {}):
+                self.error(path + (key,), f"message {name!r}: unknown {key} {m[key]!r}",
+                           f"declare it under `{table}`")
+        ids = m.get("id")
+        ids = () if ids is None else tuple(ids) if isinstance(ids, list) else (ids,)
+        layout, dispatch_key = self.place(name, own, ids, framing, path)
+        bits = None
+        if framing.kind != "text":
+            widths = [f.bits for f in layout]
+            bits = sum(widths) if all(w is not None for w in widths) else None
+            self.check_size(name, m, layout, bits, framing, path)
+            layout = self.bind_checksums(name, layout, framing, path)
+            self.check_field_checksums(name, layout)
+        rules = tuple(self.resolve_rule(r, path + ("rules", i), layout)
+                      for i, r in enumerate(m.get("rules", [])))
+        examples = tuple(self.resolve_example(e, path + ("examples", i))
+                         for i, e in enumerate(m.get("examples", [])))
+        return Message(
+            name=name, loc=self.loc(*path), title=text(m.get("title")), doc=text(m.get("doc")),
+            ids=ids, direction=m.get("direction"), role=m.get("role"),
+            answered_by=tuple(m.get("answered_by", [])), fields=own, layout=layout, bits=bits,
+            rules=rules, examples=examples, dispatch_key=dispatch_key, layout_type=layout_type)
+
+    def resolve_example(self, e: dict, path: tuple) -> Example:
+        raw_hex = None
+        if "hex" in e:
+            digits = "".join(e["hex"].split())
+            if len(digits) % 2:
+                self.error(path + ("hex",), "hex has an odd number of digits")
+            else:
+                raw_hex = bytes.fromhex(digits)
+        errors = []
+        if "error" in e:
+            errors.append(ExpectedError(e["error"]["field"], e["error"]["rule"]))
+        for x in e.get("errors", []):
+            errors.append(ExpectedError(x["field"], x["rule"], x["line"]))
+        forms = [k for k in ("hex", "word", "text") if k in e]
+        if not forms:
+            self.error(path, "an example needs a wire form: hex, word or text")
+        if "values" not in e and not errors and "sequence" not in path[0]:
+            self.error(path, "an example needs `values` (or an expected `error`)")
+        return Example(name=e.get("name", f"example {path[-1] + 1}"), loc=self.loc(*path),
+                       values=e.get("values"), hex=raw_hex, word=e.get("word"), text=e.get("text"),
+                       direction=e.get("direction"), decode_only=bool(e.get("decode_only")),
+                       errors=tuple(errors), source=e.get("source"))
+
+    def check_messages(self, messages: tuple[Message, ...], d: dict) -> None:
+        names = {m.name for m in messages}
+        for m in messages:
+            for i, other in enumerate(m.answered_by):
+                if other not in names:
+                    self.error(("messages", m.name, "answered_by", i),
+                               f"message {m.name!r} is answered by unknown message {other!r}")
+        keyed = [m for m in messages if m.dispatch_key]
+        if keyed and len(keyed) != len(messages):
+            for m in messages:
+                if not m.dispatch_key:
+                    self.error(("messages", m.name), f"message {m.name!r} has no dispatch value, "
+                                                     "but the others do", "give it its dispatch field(s)")
+        framing = d["framing"]["kind"]
+        offsets: dict[str, tuple[int, str]] = {}
+        for m in keyed:
+            for f in m.layout:
+                if f.dispatch and f.bit_offset is not None and framing == "bits":
+                    first = offsets.setdefault(f.name, (f.bit_offset, m.name))
+                    if first[0] != f.bit_offset:
+                        self.error(("messages", m.name), f"dispatch field {f.name!r} is at bit "
+                                   f"{f.bit_offset} here but at bit {first[0]} in {first[1]!r}",
+                                   "dispatch fields must sit at the same place in every message")
+        if framing == "bits" and keyed and all(m.size for m in keyed):
+            # the decoder reads the dispatch fields before it knows the message: every one
+            # must lie inside the shortest message
+            shortest = min(keyed, key=lambda m: m.size)
+            for name, (offset, owner) in offsets.items():
+                field = next(f for f in next(m for m in keyed if m.name == owner).layout if f.name == name)
+                if offset + (field.bits or 0) > 8 * shortest.size:
+                    self.error(("messages", owner), f"dispatch field {name!r} ends at bit "
+                               f"{offset + (field.bits or 0)}, past the end of the shortest message "
+                               f"{shortest.name!r} ({8 * shortest.size} bits)",
+                               "put the dispatch fields first, where every message has them")
+        if framing == "bits" and d["framing"].get("text_form"):
+            for m in messages:
+                for f in m.layout:
+                    if f.bits and f.bits > 32:  # the C text-form reader holds 32-bit values
+                        self.error(("messages", m.name), f"message {m.name!r}: field {f.name!r} has "
+                                   f"{f.bits} bits; a text form carries values of at most 32 bits",
+                                   "split the field, or drop text_form")
+            if keyed:
+                self.check_text_form_heads(keyed)
+        if framing == "bytes":
+            self.check_sizes_without_length(messages)
+        for i, j in candidate_pairs(keyed, framing):
+            a, b = keyed[i], keyed[j]
+            if a.direction and b.direction and a.direction != b.direction:
+                continue
+            if self.ambiguous(a, b, framing):
+                self.error(("messages", b.name),
+                           f"ambiguous dispatch: messages {a.name!r} and {b.name!r} cannot be "
+                           f"told apart ({self.describe_key(a)} / {self.describe_key(b)})",
+                           "give them different ids/constants, directions or sizes")
+
+    def check_text_form_heads(self, messages: list[Message]) -> None:
+        """A text-form line is dispatched on the bits of its leading values that hold the
+        dispatch fields: they must have the same widths in every message."""
+        head = max((f.bit_offset + (f.bits or 0) for m in messages for f in m.layout
+                    if f.dispatch and f.bit_offset is not None), default=0)
+        if not head:
+            return
+
+        def widths(fields) -> list[int]:
+            out, used = [], 0
+            stack = list(reversed(fields))
+            while stack and used < head:
+                f = stack.pop()
+                if f.kind == "group":
+                    stack.extend(reversed(f.fields))
+                elif f.bits:
+                    out.append(f.bits)
+                    used += f.bits
+            return out
+
+        first = messages[0]
+        expected = widths(first.layout)
+        for m in messages[1:]:
+            got = widths(m.layout)
+            if got != expected:
+                self.error(("messages", m.name),
+                           f"message {m.name!r}: its text form starts with values of {got} bits, "
+                           f"{first.name!r}'s with {expected}; a text line is told apart by its first "
+                           f"{head} bits, so the values that hold them must have the same widths in "
+                           "every message", "start every message with fields of the same widths")
+
+    def check_sizes_without_length(self, messages: list[Message]) -> None:
+        """With no length field, a stream decoder knows a frame's size only from its id."""
+        if any(f.length_of for m in messages for f in m.layout) or len({m.size for m in messages}) < 2:
+            return
+        size_of: dict = {}
+        for m in messages:
+            for value in m.ids or (None,):
+                first = size_of.setdefault(value, m)
+                if first.size != m.size:
+                    self.error(("messages", m.name), f"message {m.name!r} is {m.size} bytes but {first.name!r}, "
+                               f"with the same id, is {first.size}; with no length field a stream decoder "
+                               "finds a frame's size from its id",
+                               "give them different ids, or add a length field to the framing")
+                    return
+
+    @staticmethod
+    def describe_key(m: Message) -> str:
+        return ", ".join(f"{k}={v}" for k, v in m.dispatch_key) + (f", {m.size} bytes" if m.size else "")
+
+    @staticmethod
+    def ambiguous(a: Message, b: Message, framing: str) -> bool:
+        ka, kb = dict(a.dispatch_key), dict(b.dispatch_key)
+        if framing == "bits":
+            common = set(ka) & set(kb)
+            return all(ka[k] == kb[k] for k in common)
+        overlap = all(set(ka[k]) & set(kb.get(k, ())) for k in ka)
+        return overlap and (framing == "text" or a.size == b.size)
