@@ -98,6 +98,10 @@ class FlagBit:
     bit: int
     doc: Optional[Text]
 
+    @property
+    def mask(self) -> int:
+        return 1 << self.bit
+
 
 @dataclass(frozen=True)
 class FlagSet:

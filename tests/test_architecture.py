@@ -86,3 +86,19 @@ def test_each_target_is_a_package_with_a_render_function():
         package = importlib.import_module(f"codeword.targets.{target}")
         assert Path(package.__file__).name == "__init__.py"
         assert callable(package.render), target
+
+
+def test_templates_lay_out_and_do_no_arithmetic():
+    """Numbers in generated code come from the views: a template expression adds,
+    subtracts, multiplies or shifts nothing."""
+    import re
+    expression = re.compile(r"{{(.*?)}}|{%(.*?)%}", re.S)
+    string = re.compile(r"'[^']*'|\"[^\"]*\"")
+    arithmetic = re.compile(r"\s[-+*/%]\s|\*\*|<<|>>")
+    found = []
+    for path in sorted((ROOT / "templates").rglob("*.j2")):
+        for m in expression.finditer(path.read_text(encoding="utf-8")):
+            code = string.sub("''", m.group(1) or m.group(2))
+            if arithmetic.search(code):
+                found.append(f"{path.relative_to(ROOT)}: {m.group(0)[:80]}")
+    assert found == []

@@ -70,7 +70,8 @@ def dispatch_facts(p: Protocol) -> dict:
                 pos += f.bits or 0
             entries.append({"name": m.name, "size": m.size, "tests": tests})
         min_size = min(m.size for m in p.messages)  # the resolver keeps dispatch fields inside it
-        return {"kind": "bits", "entries": entries, "head_bytes": min_size, "head_bits": 8 * min_size}
+        return with_head_checks({"kind": "bits", "entries": entries, "head_bytes": min_size,
+                                 "head_bits": 8 * min_size})
     # bytes: the envelope's dispatch field
     env = [x for x in leaves_of(tuple(f for f in fr.envelope))]
     pos = 0
@@ -88,9 +89,18 @@ def dispatch_facts(p: Protocol) -> dict:
             keys.append((value, m.size, m.direction, m.name))
     # The field is read in its own byte order; the resolver makes a multi-byte
     # little-endian one whole, aligned bytes (shift 0). One byte reads alike.
-    return {"kind": "bytes", "first": first, "last": last, "shift": shift,
-            "mask": (1 << bits) - 1, "frames": keys,
+    return {"kind": "bytes", "first": first, "last": last, "bytes": last - first, "first_bit": 8 * first,
+            "shift": shift, "mask": (1 << bits) - 1, "frames": keys,
             "byte_order": order if bits > 8 else "big"}
+
+
+def with_head_checks(d: dict, head_bits: int | None = None) -> dict:
+    """Bits dispatch read from a head of `head_bits` bits (a target may read fewer than the
+    shortest message): each entry's tests as (shift, mask, value) on that head."""
+    head_bits = head_bits or d["head_bits"]
+    entries = [dict(e, checks=[(head_bits - pos - bits, (1 << bits) - 1, value) for pos, bits, value in e["tests"]])
+               for e in d["entries"]]
+    return dict(d, entries=entries, head_bits=head_bits)
 
 
 def stream_facts(p: Protocol) -> dict:
@@ -108,7 +118,7 @@ def stream_facts(p: Protocol) -> dict:
             bits = leaf.field.bits
             first, last = pos // 8, (pos + bits - 1) // 8 + 1
             whole = pos % 8 == 0 and bits % 8 == 0
-            length = {"at": first, "last": last, "shift": last * 8 - (pos + bits),
+            length = {"at": first, "last": last, "bytes": last - first, "shift": last * 8 - (pos + bits),
                       "mask": (1 << bits) - 1, "overhead": p.messages[0].size - span.const,
                       # a field of whole bytes is read in its byte order, bits inside bytes big-endian
                       "byte_order": (leaf.field.byte_order or fr.byte_order) if whole and bits > 8 else "big"}
@@ -118,7 +128,7 @@ def stream_facts(p: Protocol) -> dict:
     if length is None and len(sizes) > 1:  # no length field: the dispatch value gives the size
         dispatch = dispatch_facts(p)
         size_of = {value: size for value, size, _, _ in dispatch["frames"]}
-        by_key = {"at": dispatch["first"], "last": dispatch["last"], "shift": dispatch["shift"],
+        by_key = {"at": dispatch["first"], "last": dispatch["last"], "bytes": dispatch["bytes"], "shift": dispatch["shift"],
                   "mask": dispatch["mask"], "byte_order": dispatch["byte_order"],
                   "sizes": sorted(size_of.items())}
     return {"sync": sync, "length": length, "by_key": by_key, "sizes": sizes, "max": max(sizes),

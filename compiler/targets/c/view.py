@@ -27,7 +27,7 @@ from . import wordform as cwordform
 from .pack import Piece, Span
 from .errors import CTargetError
 from .scalars import bits_fn, clit, clit_signed, int_ctype, sign_extend, type_limits, unsigned_type, wide_text
-from ..wire import Leaf, checksum_name, dispatch_facts, leaves_of, stream_facts, text_form_head
+from ..wire import Leaf, checksum_name, dispatch_facts, leaves_of, stream_facts, text_form_head, with_head_checks
 
 ERR = {
     "length": "CW_ERR_LENGTH", "const": "CW_ERR_CONST", "range": "CW_ERR_RANGE",
@@ -842,7 +842,7 @@ class CView:
             shifted = "0u" if take == 32 else f"(uint32_t)(head << {take})"  # all 32 bits: nothing kept
             steps.append({"index": i, "present": f"head = {shifted} | {bits};", "absent": f"head = {shifted};"})
             used += take
-        return {"steps": steps, "used": used,
+        return {"steps": steps, "used": used, "pad": self.dispatch()["head_bits"] - used,
                 "max_values": max(len(self.wired(m)[1]) for m in self.p.messages)}
 
     # -- text protocols ----------------------------------------------------------------------------
@@ -1150,7 +1150,7 @@ class CView:
                         "the C target reads dispatch fields from a message's first 32 bits",
                         "move the dispatch fields to the front of the message")])
                 pos += leaf.field.bits or 0
-        return dict(d, head_bytes=4, head_bits=32)
+        return dict(with_head_checks(d, 32), head_bytes=4)
 
     def stream(self) -> dict:
         return stream_facts(self.p)

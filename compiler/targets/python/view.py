@@ -1203,6 +1203,9 @@ class ModuleView(PythonView):
         facts = dispatch_facts(self.p)
         if facts["kind"] == "bytes":
             facts = dict(facts, value_expr=self.read_expr("d", "", facts))
+        if facts["kind"] == "bits" and self.p.framing.max_bits:  # the word form: a left-aligned int
+            facts = dict(facts, word_limit=1 << self.p.framing.max_bits,
+                         word_shift=self.p.framing.max_bits - facts["head_bits"])
         return facts
 
     def stream_view(self) -> dict:
