@@ -8,7 +8,7 @@ no transition produces more).
 """
 from __future__ import annotations
 
-from ...model import Action, Event, Machine, Protocol
+from ...model import Action, Machine, Protocol
 from ..machines.lowering import Lowering
 from ..machines.packets import MachineTargetError, PacketLayout, machine_messages, max_packet, packet_layout
 
@@ -48,39 +48,39 @@ class CLowering(Lowering):
     def received(self) -> str:
         return next(e.message for e in self.m.events if e.message)
 
-    def action(self, a: Action, event: Event) -> list[str]:
-        if a.kind == "set":
-            bits = next(v.bits for v in self.m.variables if v.name == a.target)
-            return [f"{self.var(a.target)} = ({ctype(bits)})({self.source(a.value)});"]
-        if a.kind == "flip":
-            return [f"{self.var(a.target)} ^= 1u;"]
-        if a.kind == "increment":
-            bits = next(v.bits for v in self.m.variables if v.name == a.target)
-            return [f"{self.var(a.target)} = ({ctype(bits)})(({self.var(a.target)} + 1u) & {(1 << bits) - 1:#x}u);"]
-        if a.kind == "keep":
-            layout = self.layouts[a.target]
-            given = dict(a.fields)
-            args = ["m->kept"] + [self.param(n) for n in layout.length_params()]
-            args += [self.source(given[n], a.target, n) for n in layout.members]
-            return [f"m->kept_len = {self.px}_machine_pack_{a.target}({', '.join(args)});"]
-        if a.kind == "transmit":
-            return ["memcpy(out->sent, m->kept, m->kept_len);", "out->sent_len = m->kept_len;"]
-        if a.kind == "start_timer":
-            return ["m->timer_on = true;", f"m->deadline = now + {self.param(a.target)};"]
-        if a.kind == "stop_timer":
-            return ["m->timer_on = false;"]
-        if a.kind in ("deliver", "execute"):
-            size = self.data_length(self.received(), a.target)
-            sink = "delivered" if a.kind == "deliver" else "executed"
-            lines = [f"memcpy(out->{sink}, {self.packet(a.target)}, {size});", f"out->{sink}_len = {size};"]
-            if a.kind == "execute":
-                r = self.result(a.target)
-                lines += [f"if (m->execute != NULL) m->execute(m->execute_ctx, {self.packet(a.target)}, {size}, {r});",
-                          f"else memset({r}, 0, {size});"]
-            return lines
-        if a.kind == "fail":
-            return [f'out->failed = "{a.target}";']
-        raise ValueError(f"unknown action kind {a.kind!r}")
+    SPELLING = {
+        "set": "{var} = ({ctype})({value});",
+        "flip": "{var} ^= 1u;",
+        "increment": "{var} = ({ctype})(({var} + 1u) & {mask:#x}u);",
+        "transmit": ("memcpy(out->sent, m->kept, m->kept_len);", "out->sent_len = m->kept_len;"),
+        "start_timer": ("m->timer_on = true;", "m->deadline = now + {param};"),
+        "stop_timer": "m->timer_on = false;",
+        "fail": 'out->failed = "{target}";',
+    }
+
+    def action_word(self, key: str, a: Action) -> object:
+        if key == "ctype":  # a variable's own width
+            return ctype(self.var_bits(a.target))
+        return super().action_word(key, a)
+
+    def lower_keep(self, a: Action) -> list[str]:
+        layout = self.layouts[a.target]
+        given = dict(a.fields)
+        args = ["m->kept"] + [self.param(n) for n in layout.length_params()]
+        args += [self.source(given[n], a.target, n) for n in layout.members]
+        return [f"m->kept_len = {self.px}_machine_pack_{a.target}({', '.join(args)});"]
+
+    def lower_deliver(self, a: Action) -> list[str]:
+        size = self.data_length(self.received(), a.target)
+        sink = "delivered" if a.kind == "deliver" else "executed"
+        return [f"memcpy(out->{sink}, {self.packet(a.target)}, {size});", f"out->{sink}_len = {size};"]
+
+    def lower_execute(self, a: Action) -> list[str]:
+        size = self.data_length(self.received(), a.target)
+        r = self.result(a.target)
+        return self.lower_deliver(a) + [
+            f"if (m->execute != NULL) m->execute(m->execute_ctx, {self.packet(a.target)}, {size}, {r});",
+            f"else memset({r}, 0, {size});"]
 
 
 def check_single_outputs(machine: Machine) -> None:

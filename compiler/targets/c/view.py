@@ -41,6 +41,20 @@ ERR = {
     "unique": "CW_ERR_UNIQUE",
 }
 
+# How the text encoder writes a value of each kind ({v}: the member, {n}: a str's length,
+# {lead}: the separator before it): the first value of a line, or any after a separator.
+TEXT_WRITE_FIRST = {
+    "float": "cw_write_decimal(&w, {v});", "char": "cw_write_char(&w, {v});",
+    "str": "cw_write_text(&w, {v}, {n});", "i64": "cw_write_i64(&w, {v});", "u64": "cw_write_u64(&w, {v});",
+    "int": "cw_write_int(&w, (int32_t){v});",
+}
+TEXT_WRITE_AFTER = {
+    "float": "cw_write_decimal_field(&w, {lead}, &{v});", "char": "cw_write_text_field(&w, {lead}, &{v}, 1u);",
+    "str": "cw_write_text_field(&w, {lead}, {v}, {n});", "i64": "cw_write_i64_field(&w, {lead}, {v});",
+    "u64": "cw_write_u64_field(&w, {lead}, {v});", "int": "cw_write_int_field(&w, {lead}, (int32_t){v});",
+}
+
+
 @dataclass(frozen=True)
 class Rep:
     """How a leaf is stored in the C struct."""
@@ -902,29 +916,10 @@ class CView:
             if f.optional:
                 c(f"if ({self.has(leaf)}) {{")
                 c.indent()
-            if i == 0 and not lead_first:  # an optional first value: nothing leads it
-                if f.kind == "float":
-                    c(f"cw_write_decimal(&w, {v});")
-                elif f.kind == "char":
-                    c(f"cw_write_char(&w, {v});")
-                elif f.kind == "str":
-                    c(f"cw_write_text(&w, {v}, {self.text_len(leaf)});")
-                elif self.text_writer(f):
-                    c(f"cw_write_{self.text_writer(f)}(&w, {v});")
-                else:
-                    c(f"cw_write_int(&w, (int32_t){v});")
-            else:
-                lead = cchar(fr.separator if i else fr.prefix_separator)
-                if f.kind == "float":
-                    c(f"cw_write_decimal_field(&w, {lead}, &{v});")
-                elif f.kind == "char":
-                    c(f"cw_write_text_field(&w, {lead}, &{v}, 1u);")
-                elif f.kind == "str":
-                    c(f"cw_write_text_field(&w, {lead}, {v}, {self.text_len(leaf)});")
-                elif self.text_writer(f):
-                    c(f"cw_write_{self.text_writer(f)}_field(&w, {lead}, {v});")
-                else:
-                    c(f"cw_write_int_field(&w, {lead}, (int32_t){v});")
+            first = i == 0 and not lead_first  # an optional first value: nothing leads it
+            kind = f.kind if f.kind in ("float", "char", "str") else self.text_writer(f) or "int"
+            spelling = (TEXT_WRITE_FIRST if first else TEXT_WRITE_AFTER)[kind]
+            c(spelling.format(v=v, n=self.text_len(leaf), lead=cchar(fr.separator if i else fr.prefix_separator)))
             if f.optional:
                 c.dedent()
                 c("}")

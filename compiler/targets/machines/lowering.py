@@ -9,7 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ...model import Action, Condition, Event, Machine, Protocol, Source
-from .packets import PacketLayout, machine_messages, packet_layout
+from .packets import MachineTargetError, PacketLayout, machine_messages, packet_layout
 
 
 @dataclass(frozen=True)
@@ -35,8 +35,27 @@ class EventCode:
     packet: PacketLayout | None  # receive events: the message the packet must be
 
 
+class _Words(dict):
+    """The words an action's spelling uses ({var}, {value}, {mask}, …), each worked out
+    only when the spelling names it."""
+
+    def __init__(self, lowering: "Lowering", a: Action):
+        super().__init__()
+        self.lowering, self.a = lowering, a
+
+    def __missing__(self, key: str) -> object:
+        value = self[key] = self.lowering.action_word(key, self.a)
+        return value
+
+
 class Lowering:
-    """Spell a machine in one target; subclasses fill in the spelling."""
+    """Spell a machine in one target; subclasses fill in the spelling.
+
+    SPELLING gives the statements of each simple action kind as format strings over
+    the words of action_word; a kind whose statements need more is a method
+    lower_<kind>(action)."""
+
+    SPELLING: dict[str, str | tuple[str, ...]] = {}
 
     def __init__(self, p: Protocol, machine: Machine):
         self.p = p
@@ -52,11 +71,31 @@ class Lowering:
     def result(self, name: str) -> str: raise NotImplementedError
     def state_value(self, name: str) -> str: raise NotImplementedError
     def zero_bytes(self, message: str, field: str) -> str: raise NotImplementedError
-    def action(self, a: Action, event: Event) -> list[str]: raise NotImplementedError
     def goto(self, state: str) -> str: raise NotImplementedError
     AND = " and "
 
     # -- shared ---------------------------------------------------------------------------
+    def action(self, a: Action, event: Event) -> list[str]:
+        lower = getattr(self, f"lower_{a.kind}", None)
+        if lower is not None:
+            return lower(a)
+        spelled = self.SPELLING.get(a.kind)
+        if spelled is None:
+            raise MachineTargetError(f"{self.m.name}.{a.name}: action kind {a.kind!r} has no spelling here")
+        words = _Words(self, a)
+        return [line.format_map(words) for line in ((spelled,) if isinstance(spelled, str) else spelled)]
+
+    def action_word(self, key: str, a: Action) -> object:
+        """A word of an action's spelling."""
+        words = {"var": lambda: self.var(a.target), "value": lambda: self.source(a.value),
+                 "mask": lambda: (1 << self.var_bits(a.target)) - 1, "param": lambda: self.param(a.target),
+                 "packet": lambda: self.packet(a.target), "result": lambda: self.result(a.target),
+                 "target": lambda: a.target, "machine": lambda: self.m.name}
+        return words[key]()
+
+    def var_bits(self, name: str) -> int:
+        return next(v.bits for v in self.m.variables if v.name == name)
+
     def source(self, s: Source, message: str | None = None, field: str | None = None) -> str:
         if s.kind == "const":
             if message and field in self.layouts[message].data_members:

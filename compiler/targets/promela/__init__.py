@@ -57,33 +57,25 @@ class PromelaLowering(Lowering):
                                      f"not {', '.join(built)}")
         return built[0] if built else None
 
-    def action(self, a: Action, event: Event) -> list[str]:
-        if a.kind == "set":
-            return [f"{self.var(a.target)} = {self.source(a.value)}"]
-        if a.kind == "flip":
-            return [f"{self.var(a.target)} = 1 - {self.var(a.target)}"]
-        if a.kind == "increment":
-            bits = next(v.bits for v in self.m.variables if v.name == a.target)
-            return [f"{self.var(a.target)} = ({self.var(a.target)} + 1) & {(1 << bits) - 1}"]
-        if a.kind == "keep":
-            given = dict(a.fields)
-            return [f"{self.kept(n)} = {self.source(given[n], a.target, n)}"
-                    for n in self.layouts[a.target].members]
-        if a.kind == "transmit":
-            message = self.kept_message()
-            members = self.layouts[message].members
-            return [f"transmit_{message}({', '.join(self.kept(n) for n in members)})"]
-        if a.kind == "start_timer":
-            return [f"{self.m.name}_timer = true"]
-        if a.kind == "stop_timer":
-            return [f"{self.m.name}_timer = false"]
-        if a.kind == "deliver":
-            return [f"app_deliver({self.packet(a.target)})"]
-        if a.kind == "execute":
-            return [f"app_execute({self.packet(a.target)}, {self.result(a.target)})"]
-        if a.kind == "fail":
-            return ["app_fail()"]
-        raise MachineTargetError(f"{self.m.name}.{a.name}: no Promela for action kind {a.kind!r}")
+    SPELLING = {
+        "set": "{var} = {value}",
+        "flip": "{var} = 1 - {var}",
+        "increment": "{var} = ({var} + 1) & {mask}",
+        "start_timer": "{machine}_timer = true",
+        "stop_timer": "{machine}_timer = false",
+        "deliver": "app_deliver({packet})",
+        "execute": "app_execute({packet}, {result})",
+        "fail": "app_fail()",
+    }
+
+    def lower_keep(self, a: Action) -> list[str]:
+        given = dict(a.fields)
+        return [f"{self.kept(n)} = {self.source(given[n], a.target, n)}" for n in self.layouts[a.target].members]
+
+    def lower_transmit(self, a: Action) -> list[str]:
+        message = self.kept_message()
+        members = self.layouts[message].members
+        return [f"transmit_{message}({', '.join(self.kept(n) for n in members)})"]
 
 
 def variable_type(bits: int) -> str:

@@ -85,33 +85,22 @@ class PythonLowering(Lowering):
         slot = next(s for s in self.layouts[message].slots if s.data_field == field)
         return f"bytes({self.param(slot.length_param)})" if slot.length_param else f"bytes({slot.length})"
 
-    def action(self, a: Action, event: Event) -> list[str]:
-        if a.kind == "set":
-            return [f"{self.var(a.target)} = {self.source(a.value)}"]
-        if a.kind == "flip":
-            return [f"{self.var(a.target)} ^= 1"]
-        if a.kind == "increment":
-            bits = next(v.bits for v in self.m.variables if v.name == a.target)
-            return [f"{self.var(a.target)} = ({self.var(a.target)} + 1) & {(1 << bits) - 1:#x}"]
-        if a.kind == "keep":
-            layout = self.layouts[a.target]
-            given = dict(a.fields)
-            args = [self.source(given[n], a.target, n) for n in layout.members]
-            return [f"self.kept = _machine_pack_{a.target}({', '.join(args)})"]
-        if a.kind == "transmit":
-            return ["out.sent.append(self.kept)"]
-        if a.kind == "start_timer":
-            return [f"self.deadline = now + {self.param(a.target)}"]
-        if a.kind == "stop_timer":
-            return ["self.deadline = None"]
-        if a.kind == "deliver":
-            return [f"out.delivered.append({self.packet(a.target)})"]
-        if a.kind == "execute":
-            return [f"out.executed.append({self.packet(a.target)})",
-                    f"{self.result(a.target)} = self._execute_checked({self.packet(a.target)})"]
-        if a.kind == "fail":
-            return [f"out.failed.append({a.target!r})"]
-        raise ValueError(f"unknown action kind {a.kind!r}")
+    SPELLING = {
+        "set": "{var} = {value}",
+        "flip": "{var} ^= 1",
+        "increment": "{var} = ({var} + 1) & {mask:#x}",
+        "transmit": "out.sent.append(self.kept)",
+        "start_timer": "self.deadline = now + {param}",
+        "stop_timer": "self.deadline = None",
+        "deliver": "out.delivered.append({packet})",
+        "execute": ("out.executed.append({packet})", "{result} = self._execute_checked({packet})"),
+        "fail": "out.failed.append({target!r})",
+    }
+
+    def lower_keep(self, a: Action) -> list[str]:
+        given = dict(a.fields)
+        args = [self.source(given[n], a.target, n) for n in self.layouts[a.target].members]
+        return [f"self.kept = _machine_pack_{a.target}({', '.join(args)})"]
 
 
 def branches(case) -> list[dict]:
