@@ -107,6 +107,10 @@ class MessagesMixin(ResolverBase):
                                f"{offset + (field.bits or 0)}, past the end of the shortest message "
                                f"{shortest.name!r} ({8 * shortest.size} bits)",
                                "put the dispatch fields first, where every message has them")
+                elif offset + (field.bits or 0) > 32:  # a C decoder reads them into a uint32_t
+                    self.error(("messages", owner), f"dispatch field {name!r} ends at bit "
+                               f"{offset + (field.bits or 0)}; dispatch fields are read from a "
+                               "message's first 32 bits", "move the dispatch fields to the front of the message")
         if framing == "bits" and d["framing"].get("text_form"):
             for m in messages:
                 for f in m.layout:

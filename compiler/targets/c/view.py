@@ -16,7 +16,6 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any, Optional
 
-from ...diagnostics import Diagnostic, SchemaError
 from ...crc import reflect
 from ...model import Checksum, CrcParams, Field, Message, Protocol, field_at
 from ..code import Code
@@ -1131,20 +1130,11 @@ class CView:
 
     def dispatch(self) -> dict:
         """How decode finds the message. In bits framing the C reads the head that
-        holds the dispatch fields into a uint32_t: at most its first 4 bytes."""
+        holds the dispatch fields into a uint32_t: at most its first 4 bytes (the
+        resolver keeps the dispatch fields there)."""
         d = dispatch_facts(self.p)
         if d["kind"] != "bits" or d["head_bytes"] <= 4:
             return d
-        for m in self.p.messages:
-            pos = 0
-            for leaf in leaves_of(m.layout):
-                if leaf.field.dispatch and pos + leaf.field.bits > 32:
-                    raise SchemaError([Diagnostic(
-                        leaf.field.loc or m.loc,
-                        f"message {m.name!r}: dispatch field {leaf.field.name!r} ends past bit 32; "
-                        "the C target reads dispatch fields from a message's first 32 bits",
-                        "move the dispatch fields to the front of the message")])
-                pos += leaf.field.bits or 0
         return dict(with_head_checks(d, 32), head_bytes=4)
 
     def stream(self) -> dict:
