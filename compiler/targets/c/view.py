@@ -254,7 +254,7 @@ class CView:
             elif f.bits < 16 and rt != "uint32_t":
                 store(f"(uint16_t){value} & {clit((1 << f.bits) - 1, True)}")
             elif f.bits > 32:
-                store(f"(uint64_t)(int64_t){value} & {clit((1 << f.bits) - 1, True)}")
+                store(f"(uint64_t)(int64_t){value} & (uint64_t){clit((1 << f.bits) - 1, True)}")
             else:
                 store(f"(uint32_t)(int32_t){value} & {clit((1 << f.bits) - 1, True)}")
 
