@@ -123,3 +123,44 @@ int main(void) {
 }
 """
     assert run_c(tmp_path, driver) == ["1"]
+
+
+ALL_OPTIONAL = """codeword: 1
+protocol: allopt
+title: t
+source: s
+framing: {kind: text, prefix_separator: ':', separator: '|', terminator: '#'}
+messages:
+  a:
+    id: A
+    fields:
+      - {name: c, type: char, optional: true}
+      - {name: n, type: i8, optional: true}
+"""
+
+
+def test_a_message_of_optional_values_only_reads_an_empty_body_as_none(tmp_path):
+    """`A:#` holds no value (not one empty value), in Python and in C; `A:x|5#` both."""
+    from scratch import load, render, run_c
+    render(tmp_path, "allopt", ALL_OPTIONAL)
+    mod = load(tmp_path / "allopt.py")
+    assert mod.encode(mod.A()) == "A:#"
+    got = mod.decode("A:#")
+    assert (got.c, got.n) == (None, None)
+    assert (mod.decode("A:x|5#").c, mod.decode("A:x|5#").n) == ("x", 5)
+    driver = r"""
+#include <stdio.h>
+#include <string.h>
+#include "allopt.h"
+static void show(const char *line) {
+    allopt_a_t m;
+    int rc = allopt_a_decode(line, strlen(line), &m);
+    printf("%s %d %d\n", cw_error_name(rc), (int)m.has_c, (int)m.has_n);
+}
+int main(void) {
+    show("A:#");
+    show("A:x|5#");
+    return 0;
+}
+"""
+    assert run_c(tmp_path, driver) == ["ok 0 0", "ok 1 1"]

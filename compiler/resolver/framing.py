@@ -83,6 +83,10 @@ class FramingMixin(ResolverBase):
                                f"message {name!r}: field {f.name!r} is marked `dispatch: true`, but in "
                                "bytes framing a message is identified by its `id`, the value of the "
                                "layout's dispatch field", "give the message an `id` and drop `dispatch`")
+            if ids and not any(f.dispatch for f in framing.envelope):
+                self.error(path + ("id",), f"message {name!r} has an `id`, but no field of the framing's "
+                                           "layout is marked `dispatch: true` to hold it",
+                           "mark the layout's id field `dispatch: true`, or drop the id")
             frame = []
             key = ()
             for f in framing.envelope:
@@ -95,7 +99,10 @@ class FramingMixin(ResolverBase):
                     if not ids:
                         self.error(path, f"message {name!r} needs an `id`: the value of {f.name!r}")
                     for v in ids:
-                        if not self.int_fits(v, f.kind, f.bits or 0):
+                        if not isinstance(v, int) or isinstance(v, bool):
+                            self.error(path + ("id",), f"message {name!r}: id {v!r} is not an integer; "
+                                                       f"it is the value of {f.name!r}")
+                        elif not self.int_fits(v, f.kind, f.bits or 0):
                             self.error(path + ("id",), f"message {name!r}: id {v} does not fit "
                                                        f"{f.name!r} ({f.bits} bits)")
                     f = replace(f, const=ids[0]) if len(ids) == 1 else replace(f, values=ids)

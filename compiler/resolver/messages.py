@@ -112,6 +112,10 @@ class MessagesMixin(ResolverBase):
                                f"{offset + (field.bits or 0)}; dispatch fields are read from a "
                                "message's first 32 bits", "move the dispatch fields to the front of the message")
         if framing == "bits" and d["framing"].get("text_form"):
+            if not keyed:  # with dispatch fields missing somewhere, the error above says where
+                self.error(("framing", "text_form"), "a text form finds each line's message from its "
+                           "dispatch fields, and no message has any",
+                           "give the messages `dispatch: true` const fields, or drop text_form")
             for m in messages:
                 for f in m.layout:
                     if f.bits and f.bits > 32:  # the C text-form reader holds 32-bit values
@@ -120,7 +124,11 @@ class MessagesMixin(ResolverBase):
                                    "split the field, or drop text_form")
             if keyed:
                 self.check_text_form_heads(keyed)
-        if framing == "bytes":
+        if framing == "bytes" and len(messages) > 1 and not keyed:
+            self.error(("framing", "layout"), f"{len(messages)} messages, but no layout field is marked "
+                       "`dispatch: true`: a decoder could not tell them apart",
+                       "add an id field marked `dispatch: true` and give each message an `id`")
+        elif framing == "bytes":
             self.check_sizes_without_length(messages)
         for i, j in candidate_pairs(keyed, framing):
             a, b = keyed[i], keyed[j]

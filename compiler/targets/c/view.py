@@ -1016,8 +1016,11 @@ class CView:
         if total == 1 and last_to_end and required == 1:
             c("ends[0] = end;  /* the one value runs to the end */")
         else:
-            c(f"size_t count = cw_split_values(s, end, {cchar(fr.separator)}, ends, {total}u, "
-              f"{'true' if last_to_end else 'false'});")
+            split = (f"cw_split_values(s, end, {cchar(fr.separator)}, ends, {total}u, "
+                     f"{'true' if last_to_end else 'false'})")
+            if not required:  # every value optional: an empty body holds none (not one empty value)
+                split = f"s == end ? 0u : {split}"
+            c(f"size_t count = {split};")
             if required == total and not last_to_end:
                 self.fail_if(c, f"count != {total}u", "count")
             else:

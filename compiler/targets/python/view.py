@@ -907,9 +907,10 @@ class MessageCode:
             c("if body.strip():")
             c(f"    raise _dec({self.m.name!r}, None, body, 'count', 'no fields', base)")
         elif last_to_end:
-            c(f"t = body.split({fr.separator!r}, {total - 1})")
+            c(f"t = body.split({fr.separator!r}, {total - 1})" + (" if body else []" if not required else ""))
         else:
-            c(f"t = body.split({fr.separator!r})")
+            # every value optional: an empty body holds none (not one empty value)
+            c(f"t = body.split({fr.separator!r})" + (" if body else []" if not required else ""))
         c(f"if not {required} <= len(t) <= {total}:")
         c(f"    raise _dec({self.m.name!r}, None, len(t), 'count', '{required}..{total} fields' if {required} != {total} else '{total} fields', base)")
         if total:
