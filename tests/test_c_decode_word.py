@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import scratch
+import schema_in_a_test as scratch
 
 SCHEMA = """\
 codeword: 1

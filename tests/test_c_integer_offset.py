@@ -2,7 +2,7 @@
 -104 with offset -100 is raw -4, four bits 1100, sent in the high half of the byte."""
 from __future__ import annotations
 
-from scratch import load, render, run_c
+from schema_in_a_test import load, render, run_c
 
 SCHEMA = """codeword: 1
 protocol: shifted

@@ -2,7 +2,7 @@
 Expected frames are written out by hand from the field widths below."""
 from __future__ import annotations
 
-from scratch import load, render, run_c
+from schema_in_a_test import load, render, run_c
 
 BINARY = """codeword: 1
 protocol: wide

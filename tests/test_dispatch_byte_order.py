@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-import scratch
+import schema_in_a_test as scratch
 
 
 SCHEMA = """\

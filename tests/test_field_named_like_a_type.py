@@ -2,7 +2,7 @@
 still reads the other fields' types right."""
 from __future__ import annotations
 
-from scratch import load, render
+from schema_in_a_test import load, render
 
 SCHEMA = """codeword: 1
 protocol: typenames

@@ -6,7 +6,7 @@ from pathlib import Path
 
 from codeword.build import compile_schema, render_protocol
 from conftest import load_generated
-from scratch import load
+from schema_in_a_test import load
 
 SCHEMA = """codeword: 1
 protocol: params

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import pytest
 
-from scratch import load, render, run_c
+from schema_in_a_test import load, render, run_c
 
 SCHEMA = """codeword: 1
 protocol: tf

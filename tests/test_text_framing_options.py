@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from scratch import load, render, run_c
+from schema_in_a_test import load, render, run_c
 
 SCHEMA = """codeword: 1
 protocol: {name}
@@ -141,7 +141,7 @@ messages:
 
 def test_a_message_of_optional_values_only_reads_an_empty_body_as_none(tmp_path):
     """`A:#` holds no value (not one empty value), in Python and in C; `A:x|5#` both."""
-    from scratch import load, render, run_c
+    from schema_in_a_test import load, render, run_c
     render(tmp_path, "allopt", ALL_OPTIONAL)
     mod = load(tmp_path / "allopt.py")
     assert mod.encode(mod.A()) == "A:#"

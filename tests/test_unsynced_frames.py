@@ -9,7 +9,7 @@ import pytest
 
 from codeword.build import compile_schema
 from codeword.diagnostics import SchemaError
-from scratch import load, render, run_c
+from schema_in_a_test import load, render, run_c
 
 HEAD = """codeword: 1
 protocol: {name}

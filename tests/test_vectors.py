@@ -6,7 +6,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-import scratch
+import schema_in_a_test as scratch
 from codeword.build import build, schema_files
 
 SCALED = """\
