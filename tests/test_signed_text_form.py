@@ -75,3 +75,52 @@ def test_c_agrees(tmp_path: Path):
     where = scratch.render(tmp_path, "sgnt", SCHEMA)
     assert scratch.run_c(where, DRIVER) == ["-1 -> 1 63", "-32 -> 1 32", "5 -> 1 5",
                                            "1 63 <- -1", "1 32 <- -32", "1 5 <- 5", "1 64 error range"]
+
+
+WIDE = """\
+codeword: 1
+protocol: widet
+title: a 32-bit value in the text form
+source: hand-written
+framing:
+  kind: bits
+  max_bits: 40
+  byte_order: big
+  text_form: {separator: " ", comment: "#"}
+messages:
+  big:
+    fields:
+      - {name: tag, type: u8, const: 7, dispatch: true}
+      - {name: v, type: u32}
+"""
+
+# the largest values read back whole; one past 2**32 - 1 is out of range, not clamped to it
+WIDE_LINES = [("7 4294967294", "ok 4294967294"), ("7 4294967295", "ok 4294967295"),
+              ("7 4294967296", "range"), ("7 99999999999999999999999", "range")]
+
+
+def test_a_32_bit_text_form_value_is_read_whole_or_refused(tmp_path):
+    where = scratch.render(tmp_path, "widet", WIDE)
+    mod = scratch.load(where / "widet.py")
+    for line, want in WIDE_LINES:
+        try:
+            got = f"ok {mod.decode_text(line).v}"
+        except mod.DecodeError as err:
+            got = err.rule
+        assert got == want, line
+    calls = "\n".join(f'    show("{line}");' for line, _ in WIDE_LINES)
+    driver = """#include <inttypes.h>
+#include <stdio.h>
+#include <string.h>
+#include "widet.h"
+static void show(const char *line) {
+    widet_message_t m;
+    int rc = widet_decode_text(line, strlen(line), &m);
+    if (rc == CW_OK) printf("ok %" PRIu32 "\\n", m.as.big.v); else printf("%s\\n", cw_error_name(rc));
+}
+int main(void) {
+""" + calls + """
+    return 0;
+}
+"""
+    assert scratch.run_c(where, driver) == [want for _, want in WIDE_LINES]

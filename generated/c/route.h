@@ -204,7 +204,7 @@ static inline int route_start_to_text(const route_start_t *m, char *buf, size_t 
     return cw_writer_finish(&w);
 }
 
-static inline int route_start_from_values(const uint32_t *v, size_t count, route_start_t *m)
+static inline int route_start_from_values(const uint64_t *v, size_t count, route_start_t *m)
 {
     uint8_t r[3];
     size_t i;
@@ -220,7 +220,7 @@ static inline int route_start_from_values(const uint32_t *v, size_t count, route
     if (v[2] > 7u) {
         return CW_ERR_RANGE;
     }
-    for (i = 0; i < 3u; i++) {
+    for (i = 0; i < 3u; i++) {  /* every value fits its field, so it fits the raw type */
         r[i] = (uint8_t)v[i];
     }
     return route_start_check_raw(r, NULL, m, true);
@@ -482,7 +482,7 @@ static inline int route_object_to_text(const route_object_t *m, char *buf, size_
     return cw_writer_finish(&w);
 }
 
-static inline int route_object_from_values(const uint32_t *v, size_t count, route_object_t *m)
+static inline int route_object_from_values(const uint64_t *v, size_t count, route_object_t *m)
 {
     uint8_t r[10];
     size_t i;
@@ -519,7 +519,7 @@ static inline int route_object_from_values(const uint32_t *v, size_t count, rout
     if (v[9] > 7u) {
         return CW_ERR_RANGE;
     }
-    for (i = 0; i < 10u; i++) {
+    for (i = 0; i < 10u; i++) {  /* every value fits its field, so it fits the raw type */
         r[i] = (uint8_t)v[i];
     }
     return route_object_check_raw(r, NULL, m, true);
@@ -699,7 +699,7 @@ static inline int route_scene_to_text(const route_scene_t *m, char *buf, size_t 
     return cw_writer_finish(&w);
 }
 
-static inline int route_scene_from_values(const uint32_t *v, size_t count, route_scene_t *m)
+static inline int route_scene_from_values(const uint64_t *v, size_t count, route_scene_t *m)
 {
     uint16_t r[6];
     size_t i;
@@ -724,7 +724,7 @@ static inline int route_scene_from_values(const uint32_t *v, size_t count, route
     if (v[5] > 7u) {
         return CW_ERR_RANGE;
     }
-    for (i = 0; i < 6u; i++) {
+    for (i = 0; i < 6u; i++) {  /* every value fits its field, so it fits the raw type */
         r[i] = (uint16_t)v[i];
     }
     return route_scene_check_raw(r, NULL, m, true);
@@ -847,7 +847,7 @@ static inline int route_end_to_text(const route_end_t *m, char *buf, size_t cap)
     return cw_writer_finish(&w);
 }
 
-static inline int route_end_from_values(const uint32_t *v, size_t count, route_end_t *m)
+static inline int route_end_from_values(const uint64_t *v, size_t count, route_end_t *m)
 {
     uint8_t r[3];
     size_t i;
@@ -863,7 +863,7 @@ static inline int route_end_from_values(const uint32_t *v, size_t count, route_e
     if (v[2] > 7u) {
         return CW_ERR_RANGE;
     }
-    for (i = 0; i < 3u; i++) {
+    for (i = 0; i < 3u; i++) {  /* every value fits its field, so it fits the raw type */
         r[i] = (uint8_t)v[i];
     }
     return route_end_check_raw(r, NULL, m, true);
@@ -956,8 +956,7 @@ static inline int route_decode_word(uint32_t word, route_message_t *out)
 /* Decodes one text line of decimal raw values; a checksum of 0 means "not filled in". */
 static inline int route_decode_text(const char *line, size_t len, route_message_t *out)
 {
-    uint32_t v[10];
-    uint16_t overflow = 0;
+    uint64_t v[10];  /* over 32 bits: out of every field's range */
     size_t count = 0;
     uint32_t head = 0;
     const char *s = line;
@@ -969,8 +968,7 @@ static inline int route_decode_text(const char *line, size_t len, route_message_
     }
     while (s <= end) {
         const char *e = cw_token_end(s, end, ' ');
-        uint32_t value = 0;
-        bool big = false;
+        uint64_t value = 0;
         if (e == s) {
             return CW_ERR_SYNTAX;
         }
@@ -978,25 +976,23 @@ static inline int route_decode_text(const char *line, size_t len, route_message_
             if (!cw_is_digit(*s)) {
                 return CW_ERR_SYNTAX;
             }
-            big = big || value > 429496728UL;
-            value = value * 10u + (uint32_t)(*s - '0');
+            if (value <= 0xFFFFFFFFUL) {  /* past it, the value stays too large for any field */
+                value = value * 10u + (uint64_t)(*s - '0');
+            }
         }
         if (count < 10u) {
             v[count] = value;
-            if (big) {
-                overflow = (uint16_t)(overflow | (1u << count));
-            }
         }
         count++;
         s = e + 1;
     }
     if (count > 0u) {
-        head = (uint32_t)(head << 2) | (v[0] & 3u);
+        head = (uint32_t)(head << 2) | (uint32_t)(v[0] & 3u);
     } else {
         head = (uint32_t)(head << 2);
     }
     if (count > 1u) {
-        head = (uint32_t)(head << 3) | (v[1] & 7u);
+        head = (uint32_t)(head << 3) | (uint32_t)(v[1] & 7u);
     } else {
         head = (uint32_t)(head << 3);
     }
@@ -1004,14 +1000,6 @@ static inline int route_decode_text(const char *line, size_t len, route_message_
     kind = route_find(head);
     if (kind == 0) {
         return CW_ERR_DISPATCH;
-    }
-    {
-        size_t i;
-        for (i = 0; i < count && i < 10u; i++) {
-            if (overflow & (1u << i)) {
-                v[i] = 0xFFFFFFFFUL;
-            }
-        }
     }
     out->kind = (uint8_t)kind;
     switch (kind) {

@@ -824,24 +824,20 @@ class CView:
         c.dedent()
         c("}")
         c("")
-        c(f"static inline int {self.fn(m, 'from_values')}(const uint32_t *v, size_t count, {self.tname(m)} *m)")
+        c(f"static inline int {self.fn(m, 'from_values')}(const uint64_t *v, size_t count, {self.tname(m)} *m)")
         c("{")
         c.indent()
         rt = self.raw_type(m)
-        if rt != "uint32_t":
-            c(f"{rt} r[{max(1, n)}];")
-            c("size_t i;")
+        c(f"{rt} r[{max(1, n)}];")
+        c("size_t i;")
         self.fail_if(c, f"count != {n}u", "count")
         for leaf, _ in wired:
-            if leaf.var in raws and leaf.field.bits < 32:
+            if leaf.var in raws:
                 self.fail_if(c, f"{raws[leaf.var].replace('r[', 'v[')} > {clit((1 << leaf.field.bits) - 1, True)}", "range")
-        if rt == "uint32_t":
-            c(f"return {self.fn(m, 'check_raw')}(v, NULL, m, true);")
-        else:  # every value fits its field, so it fits the narrower raw type
-            c(f"for (i = 0; i < {n}u; i++) {{")
-            c(f"    r[i] = ({rt})v[i];")
-            c("}")
-            c(f"return {self.fn(m, 'check_raw')}(r, NULL, m, true);")
+        c(f"for (i = 0; i < {n}u; i++) {{  /* every value fits its field, so it fits the raw type */")
+        c(f"    r[i] = ({rt})v[i];")
+        c("}")
+        c(f"return {self.fn(m, 'check_raw')}(r, NULL, m, true);")
         c.dedent()
         c("}")
         return c.text()
@@ -851,7 +847,8 @@ class CView:
         per value, the statement that shifts its bits in."""
         steps, used = [], 0
         for i, (take, drop) in enumerate(text_form_head(self.p)):
-            bits = f"((v[{i}] >> {drop}u) & {clit((1 << take) - 1, True)})" if drop else f"(v[{i}] & {clit((1 << take) - 1, True)})"
+            bits = (f"(uint32_t)((v[{i}] >> {drop}u) & {clit((1 << take) - 1, True)})" if drop
+                    else f"(uint32_t)(v[{i}] & {clit((1 << take) - 1, True)})")
             shifted = "0u" if take == 32 else f"(uint32_t)(head << {take})"  # all 32 bits: nothing kept
             steps.append({"index": i, "present": f"head = {shifted} | {bits};", "absent": f"head = {shifted};"})
             used += take
