@@ -172,7 +172,10 @@ class FieldsMixin(ResolverBase):
                     lo_raw, hi_raw = 0, bits - 1
                 else:
                     raw_lo, raw_hi = self.to_raw(f, lo), self.to_raw(f, hi)
-                if f.scale is None and f.offset is None and not (float(lo).is_integer() and float(hi).is_integer()):
+                if not (math.isfinite(raw_lo) and math.isfinite(raw_hi)):  # scaled past a double
+                    self.error(path + ("range",), f"field {name!r}: range [{lo}, {hi}] does not fit {bits} bits",
+                               "widen the field or narrow the range")
+                elif f.scale is None and f.offset is None and not (float(lo).is_integer() and float(hi).is_integer()):
                     self.error(path + ("range",), f"field {name!r}: an integer field's range must be integers")
                 elif not f.one_hot and math.ceil((lo - (f.offset or 0)) / (f.scale or 1) - 1e-9) > \
                         math.floor((hi - (f.offset or 0)) / (f.scale or 1) + 1e-9):  # decimal scales round
@@ -231,4 +234,6 @@ class FieldsMixin(ResolverBase):
     @staticmethod
     def to_raw(f: Field, value: float) -> float:
         raw = (value - (f.offset or 0)) / (f.scale or 1)
+        if not math.isfinite(raw):  # past a double: beyond any field's width, so refused as not fitting
+            return raw
         return math.floor(raw + 0.5) if f.scale else raw
