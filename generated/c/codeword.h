@@ -1146,21 +1146,10 @@ static inline int cw_parse_decimal(const char *s, const char *end, cw_decimal_t 
                 digits = digits * 10u + (uint64_t)(*first - '0');
             }
         }
-        if (top == 308) {
-            /* 1.7976931348623157e308 is the largest double: 15 digits of it */
-            uint64_t v = digits;
-            int32_t n;
-            for (n = top - bottom - e; n < CW_DECIMAL_MAX_DIGITS - 1; n++) {
-                v *= 10u;
-            }
-            if (v > 179769313486231ULL) {
-                return CW_ERR_FINITE;
-            }
-        }
         out->digits = digits;
         out->exp10 = (int16_t)(bottom + e);
     }
-    return CW_OK;
+    return cw_decimal_check(out);  /* what is left: past the largest double at 10^308 */
 }
 
 /* The common case of cw_parse_decimal in 32-bit arithmetic: at most 9

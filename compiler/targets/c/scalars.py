@@ -2,9 +2,7 @@
 their value where int has 16 bits, and the codeword.h helpers chosen by width."""
 from __future__ import annotations
 
-from typing import Optional
 
-from ...model import Field
 from .errors import CTargetError
 
 INT_TYPES = [(8, "int8_t", "uint8_t"), (16, "int16_t", "uint16_t"), (32, "int32_t", "uint32_t"),
@@ -39,15 +37,6 @@ def unsigned_type(bits: int) -> str:
 def sign_extend(bits: int) -> str:
     """The codeword.h function that sign-extends a raw value of `bits` bits."""
     return "cw_sign_extend_wide" if bits > 32 else "cw_sign_extend"
-
-
-def wide_text(f: Field) -> Optional[str]:
-    """"i64" or "u64" for a text integer the 32-bit text helpers cannot hold, else None."""
-    if f.kind == "int" and f.bits > 32 and f.enum is None:
-        return "i64"
-    if f.kind == "uint" and f.bits >= 32 and f.enum is None:
-        return "u64"
-    return None
 
 
 def bits_fn(op: str, bits: int) -> str:

@@ -25,7 +25,7 @@ from . import word as cword
 from . import wordform as cwordform
 from .pack import Piece, Span
 from .errors import CTargetError
-from .scalars import bits_fn, clit, clit_signed, int_ctype, sign_extend, type_limits, unsigned_type, wide_text
+from .scalars import bits_fn, clit, clit_signed, int_ctype, sign_extend, type_limits, unsigned_type
 from ..wire import Leaf, checksum_name, dispatch_facts, leaves_of, stream_facts, text_form_head, with_head_checks
 
 ERR = {
@@ -913,7 +913,7 @@ class CView:
                 c(f"if ({self.has(leaf)}) {{")
                 c.indent()
             first = i == 0 and not lead_first  # an optional first value: nothing leads it
-            kind = f.kind if f.kind in ("float", "char", "str") else self.text_writer(f) or "int"
+            kind = f.kind if f.kind in ("float", "char", "str") else self.text_int64(f) or "int"
             spelling = (TEXT_WRITE_FIRST if first else TEXT_WRITE_AFTER)[kind]
             c(spelling.format(v=v, n=self.text_len(leaf), lead=cchar(fr.separator if i else fr.prefix_separator)))
             if f.optional:
@@ -1061,7 +1061,7 @@ class CView:
             else:
                 c("{")
                 c.indent()
-                wide = wide_text(f)
+                wide = self.text_int64(f)
                 vtype = {"i64": "int64_t", "u64": "uint64_t", None: "int32_t"}[wide]
                 if wide:  # parsed straight into the field's own range
                     c(f"{vtype} value;")
@@ -1102,8 +1102,9 @@ class CView:
         c("}")
         return c.text()
 
-    def text_writer(self, f: Field) -> Optional[str]:
-        """"i64" or "u64" for a text integer member the 32-bit writer cannot hold, else None."""
+    def text_int64(self, f: Field) -> Optional[str]:
+        """"i64" or "u64" for a text integer whose member the 32-bit reader and writer cannot
+        hold (cw_parse_i64/u64, cw_write_i64/u64), else None."""
         return {"int64_t": "i64", "uint64_t": "u64", "uint32_t": "u64"}.get(self.rep(f).ctype)
 
     def text_decode_function(self, m: Message) -> str:
