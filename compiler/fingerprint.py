@@ -24,11 +24,13 @@ DOC_ONLY = frozenset({
     "doc", "title", "message", "examples", "notes", "history", "version", "source",
     "file", "sha256", "loc",
 })
+# Model attributes computed from others: hashing them again adds nothing.
+DERIVED = frozenset({"wire"})
 
 
 @lru_cache(maxsize=None)
 def _wire_fields(cls: type) -> tuple[str, ...]:
-    return tuple(f.name for f in dataclasses.fields(cls) if f.name not in DOC_ONLY)
+    return tuple(f.name for f in dataclasses.fields(cls) if f.name not in DOC_ONLY | DERIVED)
 
 
 def wire_model(value: Any) -> Any:

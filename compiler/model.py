@@ -259,6 +259,54 @@ class Example:
 
 
 @dataclass(frozen=True)
+class Leaf:
+    """A field with a wire value of its own (groups are flattened into leaves) and
+    where it sits."""
+
+    field: Field
+    path: tuple[str, ...]  # attribute path from the message object
+    pos: Optional[int]  # first bit in the frame; None where widths are not fixed (text)
+
+    @property
+    def bits(self) -> int:
+        return self.field.bits or 0
+
+    @property
+    def var(self) -> str:
+        """The local variable generated code keeps its raw wire value in."""
+        return "r_" + "_".join(self.path)
+
+    @property
+    def dotted(self) -> str:
+        return ".".join(self.path)
+
+
+@dataclass(frozen=True)
+class Run:
+    """Bytes of a frame moved as one unit. "bytes" and "number": one field of whole
+    bytes starting on a byte boundary, in its own byte order; "packed": bit fields
+    that together fill whole bytes, as one big-endian integer, most significant bit
+    first as the wire counts bits (a frame's trailing padding completes the last)."""
+
+    kind: str  # bytes | number | packed
+    start: int  # first byte
+    size: int  # bytes
+    leaves: tuple[Leaf, ...]
+
+    def shift(self, leaf: Leaf) -> int:
+        """Where `leaf` sits in the run's big-endian integer, from bit 0."""
+        return (self.start + self.size) * 8 - leaf.pos - leaf.bits
+
+
+@dataclass(frozen=True)
+class Wire:
+    """A message's wire layout, computed once for every target."""
+
+    leaves: tuple[Leaf, ...]
+    runs: tuple[Run, ...]  # binary framings; empty in text framing
+
+
+@dataclass(frozen=True)
 class Message:
     name: str
     loc: Loc
@@ -274,6 +322,7 @@ class Message:
     rules: tuple[Rule, ...]
     examples: tuple[Example, ...]
     dispatch_key: tuple[tuple[str, Any], ...]  # (field, value) pairs that identify it
+    wire: Wire
     layout_type: Optional[str] = None  # the shared group type its fields come from
 
     @property

@@ -18,7 +18,6 @@ from typing import Any
 from codeword.model import Field, Protocol
 from codeword.targets.c.scalars import clit, clit_signed
 from codeword.targets.c.view import ERR, CView, cchar, cstr
-from codeword.targets.wire import leaves_of
 
 ROOT = Path(__file__).resolve().parent.parent
 TEMPLATE = Path(__file__).resolve().parent / "c" / "driver.c.j2"
@@ -175,7 +174,7 @@ class Driver:
         return env.from_string(TEMPLATE.read_text()).render(
             p=p, px=p.name, PX=p.name.upper(), messages=messages, invalid=invalid, streams=streams,
             wires=wires, wire_index={w: i for i, w in enumerate(wires)},
-            decimals=self.text and any(leaf.field.kind == "float" for m in p.messages for leaf in leaves_of(m.layout)),
+            decimals=self.text and any(leaf.field.kind == "float" for m in p.messages for leaf in m.wire.leaves),
             text=self.text, wire_max=wire_max + 1, self_identifying=p.self_identifying,
             has_dir=p.framing.kind != "bits",  # decode takes a direction (PX_DIR_ANY: any)
             word=self.v.word_bits() is not None and p.framing.kind == "bits",

@@ -9,7 +9,6 @@ import bitstruct.c as bitstruct
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from codeword.targets.python.view import leaves_of
 from conftest import load_generated, load_model
 
 
@@ -35,7 +34,7 @@ def raw_strategy(field):
 def oracle_case(protocol, message_name):
     model = load_model(protocol)
     message = model.message(message_name)
-    leaves = leaves_of(message.layout)
+    leaves = message.wire.leaves
     bits = sum(leaf.field.bits for leaf in leaves)
     pad = (-bits) % 8
     fmt = "".join(f"u{leaf.field.bits}" for leaf in leaves) + (f"p{pad}" if pad else "")

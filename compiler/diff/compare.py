@@ -7,7 +7,8 @@ from dataclasses import dataclass, field
 from typing import Any, Optional
 
 from ..fingerprint import fingerprint, wire_model
-from ..model import Field, Message, Protocol
+from ..model import Field, Leaf, Message, Protocol
+from ..resolver.layout import leaves_of
 
 BREAKING, COMPATIBLE, DOCS = "breaking", "compatible", "docs"
 KINDS = (BREAKING, COMPATIBLE, DOCS)
@@ -66,23 +67,8 @@ class Placed:
         return f"bits {self.bit}–{self.bit + self.field.bits - 1}"
 
 
-def placed_leaves(layout: tuple[Field, ...]) -> dict[str, Placed]:
-    out: dict[str, Placed] = {}
-    bit: Optional[int] = 0
-
-    def walk(fields, prefix):
-        nonlocal bit
-        for f in fields:
-            if f.is_payload:
-                continue
-            if f.kind == "group":
-                walk(f.fields, prefix + f.name + ".")
-                continue
-            path = prefix + f.name
-            out[path] = Placed(path, f, len(out), bit)
-            bit = bit + f.bits if bit is not None and f.bits is not None else None
-    walk(layout, "")
-    return out
+def placed_leaves(leaves: tuple[Leaf, ...]) -> dict[str, Placed]:
+    return {leaf.dotted: Placed(leaf.dotted, leaf.field, i, leaf.pos) for i, leaf in enumerate(leaves)}
 
 
 def _text(t) -> str:
@@ -138,7 +124,7 @@ def _framing(old: Protocol, new: Protocol, out: _Collector) -> None:
     if not _same_wire(a.text_form, b.text_form):
         out.add(BREAKING, "framing", "the text form changed")
     if a.envelope or b.envelope:
-        _fields(placed_leaves(a.envelope), placed_leaves(b.envelope), out, "envelope", text=a.kind == "text")
+        _fields(placed_leaves(leaves_of(a.envelope)), placed_leaves(leaves_of(b.envelope)), out, "envelope", text=a.kind == "text")
 
 
 def _messages(old: Protocol, new: Protocol, out: _Collector) -> None:
@@ -174,7 +160,7 @@ def _message(a: Message, b: Message, out: _Collector, text: bool) -> None:
         out.add(BREAKING, subject, f"size changed from {a.bits} to {b.bits} bits")
     if not _same_wire(a.dispatch_key, b.dispatch_key) and a.ids == b.ids:
         out.add(BREAKING, subject, "how a decoder recognises it changed")
-    _fields(placed_leaves(a.layout), placed_leaves(b.layout), out, a.name, text=text)
+    _fields(placed_leaves(a.wire.leaves), placed_leaves(b.wire.leaves), out, a.name, text=text)
     _rules(a, b, out)
     if _text(a.title) != _text(b.title) or _text(a.doc) != _text(b.doc):
         out.add(DOCS, subject, "title or description changed")

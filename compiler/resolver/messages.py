@@ -5,6 +5,7 @@ from ..dispatch_pairs import candidate_pairs
 from ..model import Example, ExpectedError, Field, Framing, Message
 from .text import text
 from .base import ResolverBase
+from .layout import wire_of
 
 
 class MessagesMixin(ResolverBase):
@@ -48,7 +49,8 @@ class MessagesMixin(ResolverBase):
             name=name, loc=self.loc(*path), title=text(m.get("title")), doc=text(m.get("doc")),
             ids=ids, direction=m.get("direction"), role=m.get("role"),
             answered_by=tuple(m.get("answered_by", [])), fields=own, layout=layout, bits=bits,
-            rules=rules, examples=examples, dispatch_key=dispatch_key, layout_type=layout_type)
+            rules=rules, examples=examples, dispatch_key=dispatch_key, wire=wire_of(layout, bits),
+            layout_type=layout_type)
 
     def resolve_example(self, e: dict, path: tuple) -> Example:
         raw_hex = None

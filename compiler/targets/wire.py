@@ -1,37 +1,9 @@
-"""Wire facts every backend needs, computed from the model: the leaves of a
-layout (groups flattened), how a decoder finds the message in a frame, and how
-a stream decoder finds frames."""
+"""Wire facts every backend needs, computed from the model: how a decoder finds
+the message in a frame, and how a stream decoder finds frames."""
 from __future__ import annotations
 
-from dataclasses import dataclass
-
-from ..model import Field, Protocol
-
-
-@dataclass(frozen=True)
-class Leaf:
-    """A field with a wire value of its own (groups are flattened into leaves)."""
-
-    field: Field
-    path: tuple[str, ...]  # attribute path from the message object (member fields)
-    var: str  # local variable holding its raw wire value
-
-    @property
-    def dotted(self) -> str:
-        return ".".join(self.path)
-
-
-def leaves_of(layout: tuple[Field, ...], prefix: tuple[str, ...] = ()) -> list[Leaf]:
-    out: list[Leaf] = []
-    for f in layout:
-        if f.is_payload:
-            continue
-        if f.kind == "group":
-            out.extend(leaves_of(f.fields, prefix + (f.name,)))
-        else:
-            path = prefix + (f.name,)
-            out.append(Leaf(f, path, "r_" + "_".join(path)))
-    return out
+from ..model import Protocol
+from ..resolver.layout import leaves_of
 
 
 def text_form_head(p: Protocol) -> list[tuple[int, int]]:
@@ -40,7 +12,7 @@ def text_form_head(p: Protocol) -> list[tuple[int, int]]:
     makes these widths the same in every message)."""
     end = max((pos + bits for e in dispatch_facts(p).get("entries", ()) for pos, bits, _ in e["tests"]), default=0)
     out, pos = [], 0
-    for leaf in leaves_of(p.messages[0].layout):
+    for leaf in p.messages[0].wire.leaves:
         if pos >= end:
             break
         take = min(leaf.field.bits, end - pos)
@@ -62,25 +34,17 @@ def dispatch_facts(p: Protocol) -> dict:
         entries = []
         for m in p.messages:
             tests = []
-            pos = 0
-            for leaf in leaves_of(m.layout):
+            for leaf in m.wire.leaves:
                 f = leaf.field
                 if f.dispatch:  # compared with the raw bits: a negative constant as its two's complement
-                    tests.append((pos, f.bits, f.const & ((1 << f.bits) - 1)))
-                pos += f.bits or 0
+                    tests.append((leaf.pos, f.bits, f.const & ((1 << f.bits) - 1)))
             entries.append({"name": m.name, "size": m.size, "tests": tests})
         min_size = min(m.size for m in p.messages)  # the resolver keeps dispatch fields inside it
         return with_head_checks({"kind": "bits", "entries": entries, "head_bytes": min_size,
                                  "head_bits": 8 * min_size})
     # bytes: the envelope's dispatch field
-    env = [x for x in leaves_of(tuple(f for f in fr.envelope))]
-    pos = 0
-    field_pos = None
-    for leaf in env:
-        if leaf.field.dispatch:
-            field_pos = (pos, leaf.field.bits, leaf.field.byte_order or fr.byte_order)
-        pos += leaf.field.bits or 0
-    start, bits, order = field_pos
+    leaf = next(x for x in leaves_of(fr.envelope) if x.field.dispatch)
+    start, bits, order = leaf.pos, leaf.bits, leaf.field.byte_order or fr.byte_order
     first, last = start // 8, (start + bits - 1) // 8 + 1
     shift = last * 8 - (start + bits)
     keys = []
@@ -107,12 +71,12 @@ def stream_facts(p: Protocol) -> dict:
     fr = p.framing
     if fr.kind != "bytes":
         return {}
-    leaves = leaves_of(tuple(f for f in fr.envelope))
+    leaves = leaves_of(fr.envelope)
     first = leaves[0].field if leaves else None  # an envelope of the payload alone has no leaves
     sync = first.const if first is not None and first.const is not None and first.bits == 8 else None
     length = None
-    pos = 0
-    for leaf in leaves_of(p.messages[0].layout):
+    for leaf in p.messages[0].wire.leaves:
+        pos = leaf.pos
         if leaf.field.length_of:
             span = next(x for x in p.messages[0].layout if x.name == leaf.field.name)
             bits = leaf.field.bits
@@ -122,7 +86,6 @@ def stream_facts(p: Protocol) -> dict:
                       "mask": (1 << bits) - 1, "overhead": p.messages[0].size - span.const,
                       # a field of whole bytes is read in its byte order, bits inside bytes big-endian
                       "byte_order": (leaf.field.byte_order or fr.byte_order) if whole and bits > 8 else "big"}
-        pos += leaf.field.bits or 0
     sizes = sorted({m.size for m in p.messages})
     by_key = None
     if length is None and len(sizes) > 1:  # no length field: the dispatch value gives the size

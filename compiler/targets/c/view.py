@@ -17,16 +17,16 @@ from fractions import Fraction
 from typing import Any, Optional
 
 from ...crc import reflect
-from ...model import Checksum, CrcParams, Field, Message, Protocol, field_at
+from ...model import Checksum, CrcParams, Field, Leaf, Message, Protocol, field_at
 from ..code import Code
 from ..escape import c_char as cchar, c_comment as comment, c_string as cstr
 from . import pack as cpack
 from . import word as cword
 from . import wordform as cwordform
-from .pack import Piece, Span
+from .pack import Span
 from .errors import CTargetError
 from .scalars import bits_fn, clit, clit_signed, int_ctype, sign_extend, type_limits, unsigned_type
-from ..wire import Leaf, checksum_name, dispatch_facts, leaves_of, stream_facts, text_form_head, with_head_checks
+from ..wire import checksum_name, dispatch_facts, stream_facts, text_form_head, with_head_checks
 
 ERR = {
     "length": "CW_ERR_LENGTH", "const": "CW_ERR_CONST", "range": "CW_ERR_RANGE",
@@ -101,16 +101,12 @@ class CView:
         if f.kind == "char":
             return Rep("char", has_flag=f.optional)
         if f.kind == "str":
-            if f.max_length is None:
-                raise CTargetError(f"{f.name}: a str field needs max_length for a C buffer", f.loc)
             return Rep("char", array=f.max_length + 1, has_flag=f.optional)
         if f.kind == "bytes":
             return Rep("uint8_t", array=f.length)
         if f.kind == "float":
             if self.text:
                 return Rep("cw_decimal_t", has_flag=f.optional)
-            if f.bits != 32:
-                raise CTargetError(f"{f.name}: binary f64 is not supported by the C target", f.loc)
             return Rep("float")
         if f.one_hot:
             lo, hi = f.range or (0, f.bits - 1)
@@ -496,13 +492,6 @@ class CView:
         c("}")
 
     # -- byte layout -----------------------------------------------------------------------
-    def positioned(self, m: Message) -> list[tuple[Leaf, int]]:
-        out, pos = [], 0
-        for leaf in leaves_of(m.layout):
-            out.append((leaf, pos))
-            pos += leaf.field.bits or 0
-        return out
-
     def order_of(self, f: Field) -> str:
         return f.byte_order or self.fr.byte_order
 
@@ -510,33 +499,28 @@ class CView:
     def int_put(start: int, size: int, order: str, value: str) -> str:
         """A statement writing the integer `value` to buf[start..start+size);
         `order` is "big" or "little"."""
-        o = "le" if order == "little" else "be"
         value = value if re.fullmatch(r"[\w\[\]]+", value) else f"({value})"
         if size == 1:
             return f"buf[{start}] = (uint8_t){value};"
-        if size in (2, 4):
-            return f"cw_put_{o}{8 * size}(buf + {start}, (uint{8 * size}_t){value});"
-        if size > 4:
-            return f"cw_put_{o}_wide(buf + {start}, {size}u, (uint64_t){value});"
-        return f"cw_put_{o}(buf + {start}, {size}u, (uint32_t){value});"
+        cast = f"uint{8 * size}_t" if size in (2, 4) else "uint64_t" if size > 4 else "uint32_t"
+        return CView.int_access("put", start, size, order, f"({cast}){value}") + ";"
 
     @staticmethod
     def int_get(start: int, size: int, order: str) -> str:
         """An unsigned expression reading buf[start..start+size)."""
-        o = "le" if order == "little" else "be"
-        if size == 1:
-            return f"buf[{start}]"
-        if size in (2, 4):
-            return f"cw_get_{o}{8 * size}(buf + {start})"
-        if size > 4:
-            return f"cw_get_{o}_wide(buf + {start}, {size}u)"
-        return f"cw_get_{o}(buf + {start}, {size}u)"
+        return f"buf[{start}]" if size == 1 else CView.int_access("get", start, size, order)
 
-    def spans(self, m: Message) -> list[Span]:
-        try:
-            return cpack.spans(self.wired(m)[0], m.size)
-        except ValueError as err:
-            raise CTargetError(str(err)) from None
+    @staticmethod
+    def int_access(verb: str, start: int, size: int, order: str, value: Optional[str] = None) -> str:
+        """The call of the codeword.h helper that gets or puts `size` bytes in `order`."""
+        o = "le" if order == "little" else "be"
+        name = f"cw_{verb}_{o}{8 * size}" if size in (2, 4) else f"cw_{verb}_{o}_wide" if size > 4 else f"cw_{verb}_{o}"
+        args = [f"buf + {start}"] + ([] if size in (2, 4) else [f"{size}u"]) + ([value] if value else [])
+        return f"{name}({', '.join(args)})"
+
+    @staticmethod
+    def spans(m: Message) -> list[Span]:
+        return cpack.spans(m.wire.runs)
 
     # -- checksums ----------------------------------------------------------------------------
     def checksum_fn(self, cs: Checksum) -> str:
@@ -560,7 +544,7 @@ class CView:
     def byte_checksums(self) -> list[str]:
         seen: dict[str, str] = {}
         for m in self.p.messages:
-            for leaf in leaves_of(m.layout):
+            for leaf in m.wire.leaves:
                 cs = leaf.field.checksum
                 if cs and cs.over == "bytes":
                     seen.setdefault(checksum_name(cs), checksum_code(self.checksum_fn(cs), cs, self.PX))
@@ -577,17 +561,17 @@ class CView:
         cs = leaf.field.checksum
         return bool(cs) and cs.over == "bytes"
 
-    def wired(self, m: Message) -> tuple[list[tuple[Leaf, int]], dict[str, str]]:
-        """Leaves with wire bits and their offsets, and the r[] slot of each
+    def wired(self, m: Message) -> tuple[list[Leaf], dict[str, str]]:
+        """Leaves with wire bits, and the r[] slot of each
         integer leaf (byte checksums have none: they are computed on the bytes)."""
-        wired = [(leaf, pos) for leaf, pos in self.positioned(m) if leaf.field.bits]
-        slots = [leaf for leaf, _ in wired if leaf.field.kind != "bytes" and not self.is_byte_checksum(leaf)]
+        wired = [leaf for leaf in m.wire.leaves if leaf.bits]
+        slots = [leaf for leaf in wired if leaf.field.kind != "bytes" and not self.is_byte_checksum(leaf)]
         return wired, {leaf.var: f"r[{i}]" for i, leaf in enumerate(slots)}
 
     def raw_type(self, m: Message) -> str:
         """The narrowest unsigned type that holds every raw value of `m`."""
         wired, raws = self.wired(m)
-        widest = max([leaf.field.bits for leaf, _ in wired if leaf.var in raws] + [1])
+        widest = max([leaf.field.bits for leaf in wired if leaf.var in raws] + [1])
         return unsigned_type(widest)
 
     def raw_function(self, m: Message) -> str:
@@ -598,18 +582,18 @@ class CView:
         c(f"static inline int {self.fn(m, 'raw')}(const {self.tname(m)} *m, {rt} *r)")
         c("{")
         c.indent()
-        if not m.rules and not any(leaf.field.is_member and leaf.var in raws for leaf, _ in wired):
+        if not m.rules and not any(leaf.field.is_member and leaf.var in raws for leaf in wired):
             c("(void)m;")  # bytes fields are copied by encode itself
         if not raws:
             c("(void)r;")
         self.rule_checks(c, m, "m")
-        for leaf, _ in wired:
+        for leaf in wired:
             if leaf.var in raws:
                 self.encode_leaf(c, leaf, raws[leaf.var], rt)
-        for leaf, _ in wired:
+        for leaf in wired:
             cs = leaf.field.checksum
             if cs and cs.over != "bytes":
-                others = [raws[x.var] for x, _ in wired if x is not leaf and x.var in raws]
+                others = [raws[x.var] for x in wired if x is not leaf and x.var in raws]
                 c(f"{raws[leaf.var]} = {self.field_checksum(leaf, others, rt)};")
         c("return CW_OK;")
         c.dedent()
@@ -622,18 +606,18 @@ class CView:
         wide = "unsigned" if span.size <= 2 else "uint32_t"  # unsigned: at least 16 bits
         parts = []
         for piece in span.pieces:
-            if piece.leaf.var not in raws:
+            if piece.var not in raws:
                 continue
             mask = clit((1 << piece.bits) - 1, True)
-            term = f"(({wide}){raws[piece.leaf.var]} & {mask})"
+            term = f"(({wide}){raws[piece.var]} & {mask})"
             shift = span.shift(piece)
             parts.append(f"({term} << {shift})" if shift else term)
         return " | ".join(parts) or "0u"
 
-    def byte_sums(self, layout: list[Span]) -> list[tuple[Span, Piece]]:
+    def byte_sums(self, layout: list[Span]) -> list[tuple[Span, Leaf]]:
         """The checksums over bytes, in wire order: the order the encoder fills them in."""
         return [(span, piece) for span in layout for piece in span.pieces
-                if self.is_byte_checksum(piece.leaf)]
+                if self.is_byte_checksum(piece)]
 
     def encode_function(self, m: Message) -> str:
         word = cword.container(self, m)
@@ -655,7 +639,7 @@ class CView:
         c("    return CW_ERR_CAPACITY;")
         c("}")
         for span in layout:
-            leaf = span.pieces[0].leaf
+            leaf = span.pieces[0]
             if span.kind == "bytes":
                 c(f"memcpy(buf + {span.start}, {self.member(leaf)}, {leaf.field.length});")
             elif span.kind == "int" and self.is_byte_checksum(leaf):
@@ -667,13 +651,13 @@ class CView:
             else:
                 c(f"memset(buf + {span.start}, 0, {span.size}u);")
                 for piece in span.pieces:
-                    if piece.leaf.var in raws:
-                        value = raws[piece.leaf.var] if piece.bits > 32 or rt != "uint64_t" else f"(uint32_t){raws[piece.leaf.var]}"
+                    if piece.var in raws:
+                        value = raws[piece.var] if piece.bits > 32 or rt != "uint64_t" else f"(uint32_t){raws[piece.var]}"
                         c(f"{bits_fn('put', piece.bits)}(buf, {piece.pos}u, {piece.bits}u, {value});")
         for span, piece in self.byte_sums(layout):
-            call = self.byte_checksum_call(piece.leaf)
+            call = self.byte_checksum_call(piece)
             if span.kind == "int":
-                c(self.int_put(span.start, span.size, self.order_of(piece.leaf.field), call))
+                c(self.int_put(span.start, span.size, self.order_of(piece.field), call))
             else:  # sharing its bytes, whose bits for it are still 0
                 c(f"{bits_fn('put', piece.bits)}(buf, {piece.pos}u, {piece.bits}u, {call});")
         c(f"return {m.size};")
@@ -703,8 +687,8 @@ class CView:
         if pad:
             self.fail_if(c, f"(buf[{m.size - 1}] & {clit((1 << pad) - 1, True)}) != 0u", "reserved")
         for span in layout:
-            leaf = span.pieces[0].leaf
-            pieces = [piece for piece in span.pieces if piece.leaf.var in raws]
+            leaf = span.pieces[0]
+            pieces = [piece for piece in span.pieces if piece.var in raws]
             if span.kind == "bytes" or not pieces:
                 continue  # check_raw copies bytes; checksums over bytes are checked below
             if span.kind == "int":
@@ -716,17 +700,17 @@ class CView:
                 for piece in pieces:
                     shift = span.shift(piece)
                     value = f"(word >> {shift})" if shift else "word"
-                    c(f"    {raws[piece.leaf.var]} = ({rt})({value} & {clit((1 << piece.bits) - 1, True)});")
+                    c(f"    {raws[piece.var]} = ({rt})({value} & {clit((1 << piece.bits) - 1, True)});")
                 c("}")
             else:
                 for piece in pieces:
-                    c(f"{raws[piece.leaf.var]} = ({rt}){bits_fn('get', piece.bits)}(buf, {piece.pos}u, {piece.bits}u);")
+                    c(f"{raws[piece.var]} = ({rt}){bits_fn('get', piece.bits)}(buf, {piece.pos}u, {piece.bits}u);")
         for span, piece in self.byte_sums(layout):
             if span.kind == "int":
-                got = self.int_get(span.start, span.size, self.order_of(piece.leaf.field))
+                got = self.int_get(span.start, span.size, self.order_of(piece.field))
             else:
                 got = f"{bits_fn('get', piece.bits)}(buf, {piece.pos}u, {piece.bits}u)"
-            self.fail_if(c, f"{got} != {self.byte_checksum_call(piece.leaf)}", "checksum")
+            self.fail_if(c, f"{got} != {self.byte_checksum_call(piece)}", "checksum")
         c(f"return {self.fn(m, 'check_raw')}(r, buf, m, false);")
         c.dedent()
         c("}")
@@ -742,9 +726,9 @@ class CView:
           f"{self.tname(m)} *m, bool text_form)")
         c("{")
         c.indent()
-        uses_buf = any(leaf.field.kind == "bytes" for leaf, _ in wired)
+        uses_buf = any(leaf.field.kind == "bytes" for leaf in wired)
         unfilled = self.fr.text_form.checksum_unfilled if self.fr.text_form else None
-        field_sums = [leaf for leaf, _ in wired if leaf.field.checksum and leaf.field.checksum.over != "bytes"]
+        field_sums = [leaf for leaf in wired if leaf.field.checksum and leaf.field.checksum.over != "bytes"]
         if not uses_buf:
             c("(void)buf;")
         if not raws:
@@ -753,13 +737,13 @@ class CView:
             c("(void)m;")
         if unfilled is None or not field_sums:
             c("(void)text_form;")
-        for leaf, pos in wired:
+        for leaf in wired:
             if leaf.field.kind == "bytes":
-                c(f"memcpy({self.member(leaf)}, buf + {pos // 8}, {leaf.field.length});")
+                c(f"memcpy({self.member(leaf)}, buf + {leaf.pos // 8}, {leaf.field.length});")
             elif leaf.var in raws:
                 self.decode_leaf(c, leaf, raws[leaf.var], m, rt)
         for leaf in field_sums:
-            others = [raws[x.var] for x, _ in wired if x is not leaf and x.var in raws]
+            others = [raws[x.var] for x in wired if x is not leaf and x.var in raws]
             cond = f"{raws[leaf.var]} != {self.field_checksum(leaf, others, rt)}"
             if unfilled is not None:
                 cond = f"{cond} && !(text_form && {raws[leaf.var]} == {clit(unfilled, True)})"
@@ -773,7 +757,7 @@ class CView:
     # -- physical units of scaled fields ----------------------------------------------------------
     def unit_helpers(self, m: Message) -> list[dict]:
         out = []
-        for leaf in leaves_of(m.layout):
+        for leaf in m.wire.leaves:
             f = leaf.field
             if f.scale is None or not f.is_member:
                 continue
@@ -815,7 +799,7 @@ class CView:
         c("    if (i) {")
         c(f"        cw_write_char(&w, {cchar(tf.separator)});")
         c("    }")
-        if max([leaf.field.bits for leaf, _ in wired if leaf.var in raws] + [1]) >= 32:
+        if max([leaf.field.bits for leaf in wired if leaf.var in raws] + [1]) >= 32:
             c("    cw_write_u64(&w, (uint64_t)r[i]);")  # raw values are unsigned
         else:
             c("    cw_write_int(&w, (int32_t)r[i]);")
@@ -831,7 +815,7 @@ class CView:
         c(f"{rt} r[{max(1, n)}];")
         c("size_t i;")
         self.fail_if(c, f"count != {n}u", "count")
-        for leaf, _ in wired:
+        for leaf in wired:
             if leaf.var in raws:
                 self.fail_if(c, f"{raws[leaf.var].replace('r[', 'v[')} > {clit((1 << leaf.field.bits) - 1, True)}", "range")
         c(f"for (i = 0; i < {n}u; i++) {{  /* every value fits its field, so it fits the raw type */")
@@ -860,7 +844,7 @@ class CView:
         """Longest line the encoder writes, without the NUL."""
         fr = self.fr
         n = len(m.ids[0]) + len(fr.prefix_separator) + len(fr.terminator)
-        leaves = leaves_of(m.layout)
+        leaves = m.wire.leaves
         n += max(0, len(leaves) - 1) * len(fr.separator)
         for leaf in leaves:
             f = leaf.field
@@ -884,7 +868,7 @@ class CView:
         c("{")
         c.indent()
         c("cw_writer_t w;")
-        leaves = leaves_of(m.layout)
+        leaves = m.wire.leaves
         for leaf in leaves:
             if leaf.field.kind == "str":
                 c(f"size_t {self.text_len(leaf)} = 0;")
@@ -955,8 +939,6 @@ class CView:
             c("        return decimal_rc;")
             c("    }")
             c("}")
-            if f.range is not None:
-                raise CTargetError(f"{f.name}: ranges on text floats are not supported by the C target", f.loc)
         elif f.kind == "char" and f.enum is not None:
             self.member_check(c, f, v, "enum")
         elif f.kind == "char":
@@ -990,7 +972,7 @@ class CView:
         and read once. Bytes above 0x7F are left to the caller (see text_ascii)."""
         fr = self.fr
         c = Code()
-        leaves = leaves_of(m.layout)
+        leaves = m.wire.leaves
         total = len(leaves)
         required = sum(1 for x in leaves if not x.field.optional)
         last_to_end = bool(leaves) and leaves[-1].field.to_end

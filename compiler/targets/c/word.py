@@ -24,8 +24,8 @@ from typing import TYPE_CHECKING, Optional
 
 from .scalars import clit, type_limits
 from ..code import Code
-from .pack import Piece, Span
-from ..wire import Leaf
+from .pack import Span
+from ...model import Leaf
 
 if TYPE_CHECKING:
     from ...model import Message
@@ -42,10 +42,10 @@ class Word:
         return int_type(self.size)
 
     @property
-    def pieces(self) -> list[Piece]:
+    def pieces(self) -> list[Leaf]:
         return [p for part in self.parts for p in part.pieces]
 
-    def part_of(self, piece: Piece) -> Span:
+    def part_of(self, piece: Leaf) -> Span:
         return next(part for part in self.parts if piece in part.pieces)
 
     def byte_shift(self, part: Span) -> int:
@@ -75,8 +75,8 @@ def container(v: "CView", m: "Message") -> Optional[Word]:
         return None
     spans = v.spans(m)
     for span in spans:
-        leaf = span.pieces[0].leaf
-        if any(v.is_byte_checksum(p.leaf) and p.leaf.field.checksum.algorithm == "crc"
+        leaf = span.pieces[0]
+        if any(v.is_byte_checksum(p) and p.field.checksum.algorithm == "crc"
                for p in span.pieces):
             return None
         if span.kind == "pack":
@@ -91,7 +91,7 @@ def container(v: "CView", m: "Message") -> Optional[Word]:
 def field_sums(word: Word) -> list[Leaf]:
     """Every checksum, in wire order (over fields or over bytes: never both, the resolver
     refuses a checksum over fields beside another checksum)."""
-    return [p.leaf for p in word.pieces if p.leaf.field.checksum]
+    return [p for p in word.pieces if p.field.checksum]
 
 
 def over_bytes(leaf: Leaf) -> bool:
@@ -119,7 +119,7 @@ def bytes_checksum(word: Word, leaf: Leaf) -> str:
     return f"({rt}){value}"
 
 
-def fills_type(piece: Piece) -> bool:
+def fills_type(piece: Leaf) -> bool:
     """The piece is as wide as its C type: the type's width masks it."""
     return piece.bits in (8, 16, 32)
 
@@ -145,7 +145,7 @@ def fits_field(v: "CView", leaf: Leaf) -> bool:
 
 
 # -- encode ---------------------------------------------------------------------------------
-def place(v: "CView", word: Word, pieces: list[Piece]) -> str:
+def place(v: "CView", word: Word, pieces: list[Leaf]) -> str:
     """The word's bits of `pieces` (all of one part, or of several), from their locals."""
     out = []
     for part in word.parts:
@@ -155,15 +155,15 @@ def place(v: "CView", word: Word, pieces: list[Piece]) -> str:
         pt = int_type(part.size)
         terms = []
         for piece in mine:
-            value = f"({pt}){piece.leaf.var}"
-            if not (fills_type(piece) or fits_field(v, piece.leaf)):
+            value = f"({pt}){piece.var}"
+            if not (fills_type(piece) or fits_field(v, piece)):
                 value = f"({value} & {mask(piece.bits)})"
             shift = part.shift(piece)
             terms.append(f"({value} << {shift})" if shift else value)
         value = " | ".join(terms)
         shift = word.byte_shift(part)
-        if terms == [f"({pt}){mine[0].leaf.var}"]:  # a lone unshifted value: one cast will do
-            value = f"({word.ctype}){mine[0].leaf.var}"
+        if terms == [f"({pt}){mine[0].var}"]:  # a lone unshifted value: one cast will do
+            value = f"({word.ctype}){mine[0].var}"
         elif shift or pt != word.ctype:
             value = f"({word.ctype})({value})" if len(terms) > 1 else f"({word.ctype}){terms[0]}"
         out.append(f"({value} << {shift})" if shift else value)
@@ -178,7 +178,7 @@ def checksum_value(v: "CView", word: Word, leaf: Leaf) -> str:
     if cs.algorithm == "parity":  # the other fields' parity is the word's: the bit is still 0 in it
         flip = " ^ 1u" if cs.parity == "odd" else ""
         return f"({rt})(cw_parity32(word){flip})"
-    return v.field_checksum(leaf, [p.leaf.var for p in word.pieces if p.leaf is not leaf], rt)
+    return v.field_checksum(leaf, [p.var for p in word.pieces if p is not leaf], rt)
 
 
 def encode_function(v: "CView", m: "Message", word: Word) -> str:
@@ -187,13 +187,13 @@ def encode_function(v: "CView", m: "Message", word: Word) -> str:
     c("{")
     c.indent()
     for piece in word.pieces:
-        c(f"{leaf_type(piece.leaf)} {piece.leaf.var};")
+        c(f"{leaf_type(piece)} {piece.var};")
     c(f"{word.ctype} word;")
-    if not any(p.leaf.field.is_member for p in word.pieces):
+    if not any(p.field.is_member for p in word.pieces):
         c("(void)m;")
     v.rule_checks(c, m, "m")
     for piece in word.pieces:
-        v.encode_leaf(c, piece.leaf, piece.leaf.var, leaf_type(piece.leaf))
+        v.encode_leaf(c, piece, piece.var, leaf_type(piece))
     c(f"if (cap < {m.size}u) {{")
     c("    return CW_ERR_CAPACITY;")
     c("}")
@@ -205,9 +205,9 @@ def encode_function(v: "CView", m: "Message", word: Word) -> str:
     done: list[Leaf] = []
     built = False
     for leaf in sums:
-        piece = next(p for p in word.pieces if p.leaf is leaf)
+        piece = next(p for p in word.pieces if p is leaf)
         if (leaf.field.checksum.algorithm == "parity" or over_bytes(leaf)) and not built:
-            ready = [p for p in word.pieces if p.leaf not in sums or p.leaf in done]
+            ready = [p for p in word.pieces if p not in sums or p in done]
             c(f"word = {place(v, word, ready)};")
             built = True
         c(f"{leaf.var} = {checksum_value(v, word, leaf)};")
@@ -224,7 +224,7 @@ def encode_function(v: "CView", m: "Message", word: Word) -> str:
 
 
 # -- decode ---------------------------------------------------------------------------------
-def read(word: Word, piece: Piece, local: dict) -> str:
+def read(word: Word, piece: Leaf, local: dict) -> str:
     """The statement reading a piece's raw value into its local: from its
     part's local when the part has one, else straight from the word."""
     part = word.part_of(piece)
@@ -236,7 +236,7 @@ def read(word: Word, piece: Piece, local: dict) -> str:
     value = f"({name} >> {shift})" if shift else name
     if not fills_type(piece):
         value = f"({value} & {mask(piece.bits)})"
-    return f"{piece.leaf.var} = ({leaf_type(piece.leaf)}){value};"
+    return f"{piece.var} = ({leaf_type(piece)}){value};"
 
 
 def decode_function(v: "CView", m: "Message", word: Word) -> str:
@@ -244,7 +244,7 @@ def decode_function(v: "CView", m: "Message", word: Word) -> str:
     # a parity bit over fields is checked on the word: its own value is read only
     # for a sum over it; a checksum over bytes is compared with its bits
     parity_only = all(leaf.field.checksum.algorithm == "parity" and not over_bytes(leaf) for leaf in sums)
-    pieces = [p for p in word.pieces if not (parity_only and p.leaf in sums)]
+    pieces = [p for p in word.pieces if not (parity_only and p in sums)]
     # a narrower part read for several pieces gets a local of its width (16-bit shifts on 8-bit targets)
     parts = [part for part in word.parts
              if int_type(part.size) != word.ctype and sum(p in part.pieces for p in pieces) > 1]
@@ -254,7 +254,7 @@ def decode_function(v: "CView", m: "Message", word: Word) -> str:
     c("{")
     c.indent()
     for piece in pieces:
-        c(f"{leaf_type(piece.leaf)} {piece.leaf.var};")
+        c(f"{leaf_type(piece)} {piece.var};")
     c(f"{word.ctype} word;")
     for part in parts:
         c(f"{int_type(part.size)} {local[part.start]};")
@@ -276,7 +276,7 @@ def decode_function(v: "CView", m: "Message", word: Word) -> str:
         if over_bytes(leaf):
             v.fail_if(c, f"{leaf.var} != {bytes_checksum(word, leaf)}", "checksum")
     for piece in word.pieces:
-        v.decode_leaf(c, piece.leaf, piece.leaf.var, m)
+        v.decode_leaf(c, piece, piece.var, m)
     for leaf in sums:
         cs = leaf.field.checksum
         if over_bytes(leaf):
@@ -284,7 +284,7 @@ def decode_function(v: "CView", m: "Message", word: Word) -> str:
         if cs.algorithm == "parity":  # the padding is 0: the word's parity is that of its fields
             v.fail_if(c, f"cw_parity32(word) != {1 if cs.parity == 'odd' else 0}u", "checksum")
         else:
-            others = [p.leaf.var for p in word.pieces if p.leaf is not leaf]
+            others = [p.var for p in word.pieces if p is not leaf]
             v.fail_if(c, f"{leaf.var} != {v.field_checksum(leaf, others, leaf_type(leaf))}", "checksum")
     v.rule_checks(c, m, "m")
     c("return CW_OK;")

@@ -11,7 +11,6 @@ from dataclasses import dataclass
 from typing import Optional
 
 from ...model import Machine, Message, Protocol
-from ..wire import leaves_of
 
 
 class MachineTargetError(ValueError):
@@ -91,7 +90,7 @@ def packet_layout(p: Protocol, m: Message) -> PacketLayout:
     pending: list[BitPart] = []
     used = 0
     members, data_members = [], []
-    for leaf in leaves_of(m.layout):
+    for leaf in m.wire.leaves:
         f = leaf.field
         if f.is_payload or f.kind == "payload":
             continue

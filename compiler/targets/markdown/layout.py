@@ -22,24 +22,26 @@ class Slot:
 
 
 def slots(m: Message) -> list[Slot]:
-    """Every field of the frame in wire order, groups followed by their members.
-    Group members carry no offset in the model; it is the running sum from the group's."""
+    """Every field of the frame in wire order, groups followed by their members;
+    a group sits where its first member does."""
     out: list[Slot] = []
+    first_bit: dict[tuple[str, ...], Optional[int]] = {}
+    for leaf in m.wire.leaves:
+        for n in range(1, len(leaf.path) + 1):
+            first_bit.setdefault(leaf.path[:n], leaf.pos)
 
-    def walk(fields: tuple[Field, ...], prefix: str, start: Optional[int], depth: int) -> None:
-        pos = start
+    def walk(fields: tuple[Field, ...], prefix: tuple[str, ...], depth: int) -> None:
         for f in fields:
             if f.is_payload:
                 continue
-            offset = f.bit_offset if f.bit_offset is not None else pos
+            path = prefix + (f.name,)
+            offset = f.bit_offset if f.bit_offset is not None or m.bits is None else first_bit.get(path)
             index = len([s for s in out if s.depth == 0]) + 1 if depth == 0 else 0
-            out.append(Slot(prefix + f.name, f, offset, index, depth))
+            out.append(Slot(".".join(path), f, offset, index, depth))
             if f.kind == "group":
-                walk(f.fields, prefix + f.name + ".", offset, depth + 1)
-            if offset is not None and f.bits is not None:
-                pos = offset + f.bits
+                walk(f.fields, path, depth + 1)
 
-    walk(m.layout, "", 0 if m.bits is not None else None, 0)
+    walk(m.layout, (), 0)
     return out
 
 

@@ -9,10 +9,10 @@ from dataclasses import dataclass
 from typing import Any, Optional
 
 from ...crc import reflect
-from ...model import Field, Message, Protocol, Rule, Sequence, SequenceItem, field_at
+from ...model import Field, Leaf, Message, Protocol, Rule, Run, Sequence, SequenceItem, field_at
 from ...names import camel
 from ..code import Code
-from ..wire import Leaf, checksum_name as _checksum_name, dispatch_facts, leaves_of, stream_facts
+from ..wire import checksum_name as _checksum_name, dispatch_facts, stream_facts
 
 
 def lit(value: Any) -> str:
@@ -406,49 +406,30 @@ class Chunk:
     signed: bool = False
 
 
-def chunks_of(leaves: list[Leaf], default_order: str) -> list[Chunk]:
+def chunks_of(runs: tuple[Run, ...], default_order: str) -> list[Chunk]:
+    """The struct code of each run of the wire layout."""
     out: list[Chunk] = []
-    pos = 0
-    run: Optional[Chunk] = None
-    for leaf in leaves:
+    for run in runs:
+        n = run.size
+        if run.kind == "packed":
+            out.append(Chunk(run.start, n, [(leaf, run.shift(leaf)) for leaf in run.leaves],
+                             STRUCT_CODES.get(n, "s"), "big" if n > 1 else None, False))
+            continue
+        leaf = run.leaves[0]
         f = leaf.field
-        bits = f.bits or 0
-        order = f.byte_order or default_order
-        whole = pos % 8 == 0 and bits % 8 == 0 and bits > 0
-        lone = run is None and whole and (f.kind in ("float", "bytes") or order == "little" and bits > 8
-                                          or bits in (8, 16, 32, 64))
-        if lone:
-            n = bits // 8
-            if f.kind == "float":
-                code = "f" if bits == 32 else "d"
-            elif f.kind == "bytes":
-                code = f"{n}s"
-            elif n in (1, 2, 4, 8):
-                code = {1: "B", 2: "H", 4: "I", 8: "Q"}[n]
-                code = code.lower() if f.kind == "int" else code
-            else:
-                code = "s"
-            out.append(Chunk(pos // 8, n, [(leaf, 0)], code, order if n > 1 else None, True,
-                             f.kind == "int"))
+        if f.kind == "float":
+            code = "f" if n == 4 else "d"
+        elif f.kind == "bytes":
+            code = f"{n}s"
         else:
-            if run is None:
-                run = Chunk(pos // 8, 0, [], "", "big", False)
-            run.leaves.append((leaf, pos))
-            if (pos + bits) % 8 == 0:
-                out.append(_close(run, pos + bits))
-                run = None
-        pos += bits
-    if run is not None:
-        out.append(_close(run, (pos + 7) // 8 * 8))
+            code = STRUCT_CODES.get(n, "s")
+            code = code.lower() if f.kind == "int" else code
+        order = f.byte_order or default_order
+        out.append(Chunk(run.start, n, [(leaf, 0)], code, order if n > 1 else None, True, f.kind == "int"))
     return out
 
 
-def _close(run: Chunk, end_bit: int) -> Chunk:
-    run.nbytes = end_bit // 8 - run.start
-    run.leaves = [(leaf, end_bit - start - (leaf.field.bits or 0)) for leaf, start in run.leaves]
-    run.code = {1: "B", 2: "H", 4: "I", 8: "Q"}.get(run.nbytes, "s")
-    run.order = "big" if run.nbytes > 1 else None
-    return run
+STRUCT_CODES = {1: "B", 2: "H", 4: "I", 8: "Q"}
 
 
 @dataclass
@@ -482,7 +463,7 @@ class MessageCode:
     def __init__(self, view: PythonView, message: Message):
         self.view = view
         self.m = message
-        self.leaves = leaves_of(message.layout)
+        self.leaves = message.wire.leaves
         self.cls = view.class_name(message)
         self.fn = message.name
 
@@ -540,13 +521,10 @@ class MessageCode:
         bounded: the values were read from their bits (binary), not parsed from text;
         word: they were read from the integer `w` (parity is then one bit count)."""
         values: dict[tuple, str] = {}
-        offset = 0
         for leaf in self.leaves:
-            expr = self.view.decode_leaf(c, self.m, leaf, str(offset), bounded)
+            expr = self.view.decode_leaf(c, self.m, leaf, str(leaf.pos), bounded)
             if expr is not None:
                 values[leaf.path] = expr
-            offset += leaf.field.bits or 0
-        offset = 0
         for leaf in self.leaves:
             cs = leaf.field.checksum
             if cs and cs.over != "bytes":
@@ -563,8 +541,7 @@ class MessageCode:
                 if text_form and unfilled is not None:
                     cond += f" and not (text_form and {leaf.var} == {unfilled})"
                 c(f"if {cond}:")
-                c(f"    raise _dec({self.m.name!r}, {leaf.dotted!r}, {leaf.var}, 'checksum', str(x), {offset}, {leaf.field.rule!r})")
-            offset += leaf.field.bits or 0
+                c(f"    raise _dec({self.m.name!r}, {leaf.dotted!r}, {leaf.var}, 'checksum', str(x), {leaf.pos}, {leaf.field.rule!r})")
         self.construct(c, self.m.layout, (), values)
         self.view.rule_checks(c, self.m, "o", "_dec")
 
@@ -593,7 +570,7 @@ class MessageCode:
 
     # -- bytes -----------------------------------------------------------------------------
     def chunks(self) -> list[Chunk]:
-        return chunks_of(self.leaves, self.view.p.framing.byte_order)
+        return chunks_of(self.m.wire.runs, self.view.p.framing.byte_order)
 
     def one_word(self) -> bool:
         """The frame is short and all integers, big-endian: it is read and written as one int."""
@@ -612,12 +589,7 @@ class MessageCode:
 
     def word_shifts(self) -> list[tuple[Leaf, int]]:
         """(leaf, shift) of every leaf in the frame read as one big-endian integer."""
-        out, pos = [], 0
-        for leaf in self.leaves:
-            bits = leaf.field.bits or 0
-            out.append((leaf, 8 * self.m.size - pos - bits))
-            pos += bits
-        return out
+        return [(leaf, 8 * self.m.size - leaf.pos - leaf.bits) for leaf in self.leaves]
 
     def encode_bytes_function(self) -> str:
         c = Code()
@@ -708,10 +680,9 @@ class MessageCode:
             cs = leaf.field.checksum
             if cs and cs.over == "bytes":
                 start, end = cs.byte_span
-                offset = sum(x.field.bits or 0 for x in self.leaves[:self.leaves.index(leaf)])
                 c(f"x = {self.view.checksum_call(cs, 'd', start, end)}")
                 c(f"if {leaf.var} != x:")
-                c(f"    raise _dec({self.m.name!r}, {leaf.dotted!r}, {leaf.var}, 'checksum', hex(x), {offset}, {leaf.field.rule!r})")
+                c(f"    raise _dec({self.m.name!r}, {leaf.dotted!r}, {leaf.var}, 'checksum', hex(x), {leaf.pos}, {leaf.field.rule!r})")
         self.build_checks(c, bounded=True, text_form=False, word=self.one_word())
         c("return o")
         return c.text()
@@ -1178,7 +1149,7 @@ class ModuleView(PythonView):
         spans: dict[str, set[int]] = {}
         crcs: dict[str, Any] = {}
         for m in self.p.messages:
-            for f in leaves_of(m.layout):
+            for f in m.wire.leaves:
                 cs = f.field.checksum
                 if cs and cs.over == "bytes":
                     seen.setdefault(_checksum_name(cs), _checksum_code(cs))
