@@ -333,6 +333,14 @@ class Message:
     def members(self) -> tuple[Field, ...]:
         return tuple(f for f in self.layout if f.is_member)
 
+    @property
+    def id_fields(self) -> tuple[tuple[str, int], ...]:
+        """With several dispatch fields (bytes framing), each one's value; `ids` then
+        holds the one key they make together, as a decoder reads it."""
+        if len(self.dispatch_key) < 2 or not self.ids:
+            return ()
+        return tuple((name, values[0]) for name, values in self.dispatch_key)
+
 
 @dataclass(frozen=True)
 class TextForm:

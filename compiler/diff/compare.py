@@ -132,7 +132,7 @@ def _messages(old: Protocol, new: Protocol, out: _Collector) -> None:
     after = {m.name: m for m in new.messages}
     for name, m in before.items():
         if name not in after:
-            ids = f" (id {', '.join(map(str, m.ids))})" if m.ids else ""
+            ids = f" (id {_ids(m)})" if m.ids else ""
             out.add(BREAKING, f"message {name}", f"removed{ids}")
     old_ids = {(m.direction, i) for m in old.messages for i in m.ids}
     for name, m in after.items():
@@ -144,14 +144,14 @@ def _messages(old: Protocol, new: Protocol, out: _Collector) -> None:
             out.add(BREAKING, f"message {name}", f"added with id {', '.join(map(str, reused))}, "
                     "which an old message already uses")
         else:
-            ids = f" with id {', '.join(map(str, m.ids))}" if m.ids else ""
+            ids = f" with id {_ids(m)}" if m.ids else ""
             out.add(COMPATIBLE, f"message {name}", f"added{ids}")
 
 
 def _message(a: Message, b: Message, out: _Collector, text: bool) -> None:
     subject = f"message {a.name}"
     if a.ids != b.ids:
-        out.add(BREAKING, subject, f"id changed from {_ids(a.ids)} to {_ids(b.ids)}")
+        out.add(BREAKING, subject, f"id changed from {_ids(a)} to {_ids(b)}")
     if a.direction != b.direction:
         out.add(BREAKING, subject, f"direction changed from {a.direction} to {b.direction}")
     if a.role != b.role:
@@ -169,8 +169,10 @@ def _message(a: Message, b: Message, out: _Collector, text: bool) -> None:
         out.add(DOCS, subject, "examples changed")
 
 
-def _ids(ids: tuple) -> str:
-    return ", ".join(map(repr, ids)) or "none"
+def _ids(m: Message) -> str:
+    if m.id_fields:
+        return ", ".join(f"{name}={value}" for name, value in m.id_fields)
+    return ", ".join(map(repr, m.ids)) or "none"
 
 
 def _fields(before: dict[str, Placed], after: dict[str, Placed], out: _Collector, message: str,

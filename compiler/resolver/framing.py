@@ -6,6 +6,7 @@ from typing import Optional
 
 from ..model import Field, Framing, TextForm
 from .base import ResolverBase
+from .layout import key_read, leaves_of
 
 
 class FramingMixin(ResolverBase):
@@ -30,9 +31,7 @@ class FramingMixin(ResolverBase):
                 if len(payloads) != 1:
                     self.error(path + ("layout",), f"layout needs exactly one `{{payload: true}}` item, "
                                                    f"found {len(payloads)}")
-                dispatch = [f for f in envelope if f.dispatch]
-                if len(dispatch) > 1:
-                    self.error(path + ("layout",), "layout may mark one field `dispatch: true`")
+                self.check_dispatch_fields(envelope, fr.get("byte_order", "big"), path + ("layout",))
         if kind == "bits" and "word_bits" in fr and "max_bits" in fr:
             self.error(path, "give word_bits (every message is one word) or max_bits, not both")
         if kind == "bits" and "word_bits" not in fr and "max_bits" not in fr:
@@ -88,7 +87,14 @@ class FramingMixin(ResolverBase):
                                            "layout is marked `dispatch: true` to hold it",
                            "mark the layout's id field `dispatch: true`, or drop the id")
             frame = []
-            key = ()
+            key: tuple = ()
+            dispatch = [f.name for f in framing.envelope if f.dispatch]
+            if len(dispatch) > 1 and ids and not isinstance(ids, dict):
+                self.error(path + ("id",), f"message {name!r}: the layout has several dispatch fields, so "
+                                           "`id` maps each to its value", "write id: {field: value, …}")
+            if isinstance(ids, dict) and sorted(ids) != sorted(dispatch):
+                self.error(path + ("id",), f"message {name!r}: `id` names {sorted(ids)}, but the layout's "
+                                           f"dispatch fields are {dispatch}", "give a value for each of them")
             for f in framing.envelope:
                 if f.is_payload:
                     frame.extend(own)
@@ -96,17 +102,8 @@ class FramingMixin(ResolverBase):
                     continue
                 f = replace(f, from_envelope=True)
                 if f.dispatch:
-                    if not ids:
-                        self.error(path, f"message {name!r} needs an `id`: the value of {f.name!r}")
-                    for v in ids:
-                        if not isinstance(v, int) or isinstance(v, bool):
-                            self.error(path + ("id",), f"message {name!r}: id {v!r} is not an integer; "
-                                                       f"it is the value of {f.name!r}")
-                        elif not self.int_fits(v, f.kind, f.bits or 0):
-                            self.error(path + ("id",), f"message {name!r}: id {v} does not fit "
-                                                       f"{f.name!r} ({f.bits} bits)")
-                    f = replace(f, const=ids[0]) if len(ids) == 1 else replace(f, values=ids)
-                    key = ((f.name, ids),)
+                    f, pair = self.dispatch_value(name, f, ids, len(dispatch) > 1, path)
+                    key += (pair,)
                 frame.append(f)
             names = [f.name for f in own]
             for f in framing.envelope:
@@ -119,6 +116,50 @@ class FramingMixin(ResolverBase):
             offset += f.bits or 0
         self.check_alignment(name, placed, framing, path)
         return tuple(placed), key
+
+    def dispatch_value(self, name: str, f: Field, ids, several: bool, path: tuple) -> tuple[Field, tuple]:
+        """The envelope's dispatch field `f` fixed to the message's id, and its (name, values)
+        pair of the dispatch key. With several dispatch fields, `id` maps each to a value."""
+        if isinstance(ids, dict):
+            if f.name not in ids:  # reported with the fields the id names
+                return f, (f.name, ())
+            values = (ids[f.name],)
+        elif several and ids:  # reported once, by place()
+            return f, (f.name, ())
+        else:
+            values = ids
+        if not values:
+            self.error(path, f"message {name!r} needs an `id`: the value of {f.name!r}")
+            return f, (f.name, values)
+        for v in values:
+            if not isinstance(v, int) or isinstance(v, bool):
+                self.error(path + ("id",), f"message {name!r}: id {v!r} is not an integer; "
+                                           f"it is the value of {f.name!r}")
+            elif not self.int_fits(v, f.kind, f.bits or 0):
+                self.error(path + ("id",), f"message {name!r}: id {v} does not fit {f.name!r} ({f.bits} bits)")
+        f = replace(f, const=values[0]) if len(values) == 1 else replace(f, values=values)
+        return f, (f.name, values)
+
+    def check_dispatch_fields(self, envelope: tuple[Field, ...], byte_order: str, path: tuple) -> None:
+        """Several dispatch fields are read together as one key of at most 32 bits."""
+        leaves = leaves_of(envelope)
+        read = key_read(leaves, byte_order)
+        if read is None or sum(x.field.dispatch for x in leaves) < 2:
+            return
+        if any(x.pos is None for x in leaves if x.field.dispatch):
+            self.error(path, "dispatch fields must sit at fixed places in the frame",
+                       "move them before any field of variable size")
+        elif read["bytes"] > 4:
+            self.error(path, f"the dispatch fields span {read['bytes']} bytes; a key is read from at most 4",
+                       "move them next to each other")
+        dispatch = [x for x in leaves if x.field.dispatch]
+        orders = {x.field.byte_order or byte_order for x in dispatch if x.bits > 8}
+        if len(orders) > 1:
+            self.error(path, "dispatch fields of several bytes must share one byte order",
+                       "give them the same `byte_order`")
+        elif orders == {"little"} and any(x.bits % 8 and x.pos // 8 != (x.pos + x.bits - 1) // 8 for x in dispatch):
+            self.error(path, "with little-endian dispatch fields, a dispatch field of part of a byte "
+                             "must not cross a byte boundary", "move it inside one byte")
 
     def check_text_fields(self, name: str, own: tuple[Field, ...], path: tuple) -> None:
         seen_optional = False

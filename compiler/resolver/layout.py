@@ -58,3 +58,39 @@ def wire_of(layout: tuple[Field, ...], bits: Optional[int]) -> Wire:
     leaves = leaves_of(layout, start=0 if bits is not None else None)
     runs = runs_of(leaves, (bits + 7) // 8) if bits is not None else ()
     return Wire(tuple(leaves), runs)
+
+
+def key_read(leaves: list[Leaf] | tuple[Leaf, ...], default_order: str) -> Optional[dict]:
+    """How a decoder reads the dispatch key of a bytes frame: bytes first..last as
+    one integer in `byte_order`, shifted right by `shift` and masked with `mask`;
+    `places` gives each dispatch field's (shift, bits) inside that key. With one
+    dispatch field the key is its value; with several (UBX's class and id) it is
+    their values side by side, as the bytes hold them."""
+    fields = [leaf for leaf in leaves if leaf.field.dispatch and leaf.pos is not None]
+    if not fields:
+        return None
+    first = min(leaf.pos for leaf in fields) // 8
+    last = max((leaf.pos + leaf.bits - 1) // 8 + 1 for leaf in fields)
+    orders = {leaf.field.byte_order or default_order for leaf in fields if leaf.bits > 8}
+    order = "little" if orders == {"little"} else "big"
+
+    def shift(leaf: Leaf) -> int:
+        if order == "big":
+            return last * 8 - (leaf.pos + leaf.bits)
+        byte = 8 * (leaf.pos // 8 - first)  # the integer's bytes are read least significant first
+        return byte if leaf.bits % 8 == 0 else byte + 8 - leaf.pos % 8 - leaf.bits
+
+    shifts = {leaf.field.name: shift(leaf) for leaf in fields}
+    low = min(shifts.values())
+    places = {leaf.field.name: (shifts[leaf.field.name] - low, leaf.bits) for leaf in fields}
+    mask = sum(((1 << bits) - 1) << at for at, bits in places.values())
+    return {"first": first, "last": last, "bytes": last - first, "shift": low, "mask": mask,
+            "byte_order": order if last - first > 1 else "big", "places": places}
+
+
+def key_of(read: dict, values: dict[str, int]) -> int:
+    """The dispatch key of a message whose dispatch fields hold `values`."""
+    key = 0
+    for name, (at, bits) in read["places"].items():
+        key |= (values[name] & ((1 << bits) - 1)) << at
+    return key

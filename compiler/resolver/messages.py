@@ -5,7 +5,7 @@ from ..dispatch_pairs import candidate_pairs
 from ..model import Example, ExpectedError, Field, Framing, Message
 from .text import text
 from .base import ResolverBase
-from .layout import wire_of
+from .layout import key_of, key_read, leaves_of, wire_of
 
 
 class MessagesMixin(ResolverBase):
@@ -32,8 +32,16 @@ class MessagesMixin(ResolverBase):
                 self.error(path + (key,), f"message {name!r}: unknown {key} {m[key]!r}",
                            f"declare it under `{table}`")
         ids = m.get("id")
-        ids = () if ids is None else tuple(ids) if isinstance(ids, list) else (ids,)
+        if isinstance(ids, dict) and framing.kind != "bytes":
+            self.error(path + ("id",), f"message {name!r}: an `id` that names fields is for bytes framing "
+                                       "with several dispatch fields")
+            ids = None
+        ids = () if ids is None else tuple(ids) if isinstance(ids, list) else ids if isinstance(ids, dict) else (ids,)
         layout, dispatch_key = self.place(name, own, ids, framing, path)
+        if isinstance(ids, dict):  # the key the dispatch fields' values make together
+            values = dict((k, v[0]) for k, v in dispatch_key if len(v) == 1 and isinstance(v[0], int))
+            read = key_read(leaves_of(framing.envelope), framing.byte_order)
+            ids = (key_of(read, values),) if read and set(values) == set(read["places"]) else ()
         bits = None
         if framing.kind != "text":
             widths = [f.bits for f in layout]

@@ -3,7 +3,7 @@ the message in a frame, and how a stream decoder finds frames."""
 from __future__ import annotations
 
 from ..model import Protocol
-from ..resolver.layout import leaves_of
+from ..resolver.layout import key_read, leaves_of
 
 
 def text_form_head(p: Protocol) -> list[tuple[int, int]]:
@@ -42,20 +42,13 @@ def dispatch_facts(p: Protocol) -> dict:
         min_size = min(m.size for m in p.messages)  # the resolver keeps dispatch fields inside it
         return with_head_checks({"kind": "bits", "entries": entries, "head_bytes": min_size,
                                  "head_bits": 8 * min_size})
-    # bytes: the envelope's dispatch field
-    leaf = next(x for x in leaves_of(fr.envelope) if x.field.dispatch)
-    start, bits, order = leaf.pos, leaf.bits, leaf.field.byte_order or fr.byte_order
-    first, last = start // 8, (start + bits - 1) // 8 + 1
-    shift = last * 8 - (start + bits)
+    # bytes: the envelope's dispatch fields, read together as one key
+    read = key_read(leaves_of(fr.envelope), fr.byte_order)
     keys = []
     for m in p.messages:
         for value in m.ids:
             keys.append((value, m.size, m.direction, m.name))
-    # The field is read in its own byte order; the resolver makes a multi-byte
-    # little-endian one whole, aligned bytes (shift 0). One byte reads alike.
-    return {"kind": "bytes", "first": first, "last": last, "bytes": last - first, "first_bit": 8 * first,
-            "shift": shift, "mask": (1 << bits) - 1, "frames": keys,
-            "byte_order": order if bits > 8 else "big"}
+    return dict(read, kind="bytes", first_bit=8 * read["first"], frames=keys)
 
 
 def with_head_checks(d: dict, head_bits: int | None = None) -> dict:
@@ -72,8 +65,8 @@ def stream_facts(p: Protocol) -> dict:
     if fr.kind != "bytes":
         return {}
     leaves = leaves_of(fr.envelope)
-    first = leaves[0].field if leaves else None  # an envelope of the payload alone has no leaves
-    sync = first.const if first is not None and first.const is not None and first.bits == 8 else None
+    pattern = sync_pattern(leaves, fr.byte_order)
+    sync = pattern[0] if pattern else None
     length = None
     for leaf in p.messages[0].wire.leaves:
         pos = leaf.pos
@@ -94,8 +87,22 @@ def stream_facts(p: Protocol) -> dict:
         by_key = {"at": dispatch["first"], "last": dispatch["last"], "bytes": dispatch["bytes"], "shift": dispatch["shift"],
                   "mask": dispatch["mask"], "byte_order": dispatch["byte_order"],
                   "sizes": sorted(size_of.items())}
-    return {"sync": sync, "length": length, "by_key": by_key, "sizes": sizes, "max": max(sizes),
+    # A sync of several bytes: the decoder finds the first, then checks the rest
+    # before it reads a frame there; a mismatch drops the byte as garbage.
+    return {"sync": sync, "sync_rest": list(enumerate(pattern))[1:],
+            "sync_bytes": pattern, "length": length, "by_key": by_key, "sizes": sizes, "max": max(sizes),
             "min": min(sizes)}
+
+
+def sync_pattern(leaves: list, byte_order: str) -> bytes:
+    """The constant bytes a frame starts with: its leading constant fields of whole bytes."""
+    out = b""
+    for leaf in leaves:
+        f = leaf.field
+        if f.const is None or f.dispatch or leaf.pos != 8 * len(out) or leaf.bits % 8 or f.kind != "uint":
+            break
+        out += f.const.to_bytes(leaf.bits // 8, f.byte_order or byte_order)
+    return out
 
 
 def checksum_name(cs) -> str:

@@ -28,7 +28,9 @@ def constants(v: CView) -> list[tuple[str, str, str]]:
                         "chars, with the NUL: buffer size for encode"))
         for i, value in enumerate(m.ids):
             name = v.upper(m.name, "ID") if len(m.ids) == 1 else v.upper(m.name, f"ID{i}")
-            out.append((name, cchar(value) if isinstance(value, str) else f"{value}u", ""))
+            made_of = ", ".join(name for name, _ in m.id_fields)
+            out.append((name, cchar(value) if isinstance(value, str) else f"{value}u",
+                        f"the key {made_of} make together" if made_of else ""))
     sizes = [m.size for m in p.messages if m.size is not None]
     if sizes:
         out.append((v.upper("MAX_FRAME"), f"{max(sizes)}u", "bytes: largest frame"))

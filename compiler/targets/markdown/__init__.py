@@ -35,6 +35,8 @@ def direction_text(p: Protocol, name: Optional[str]) -> str:
 
 
 def message_id(p: Protocol, m: Message) -> str:
+    if m.id_fields:
+        return ", ".join(f"{name} = `{value:#04x}`" for name, value in m.id_fields)
     if m.ids:
         return ", ".join(code(v) if isinstance(v, str) else f"`{v:#04x}`" for v in m.ids)
     if m.dispatch_key:

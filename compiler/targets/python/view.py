@@ -1182,6 +1182,8 @@ class ModuleView(PythonView):
 
     def stream_view(self) -> dict:
         facts = stream_facts(self.p)
+        if facts:
+            facts = dict(facts, sync_literal=repr(facts["sync_bytes"]))
         if facts.get("length"):
             length = facts["length"]
             facts = dict(facts, length=dict(length, value_expr=self.read_expr("buf", "pos + ", dict(length, first=length["at"]))))
