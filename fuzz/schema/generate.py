@@ -58,15 +58,24 @@ class Generator:
         sync = self.has("sync", 0.8)
         if sync:
             layout.append({"name": "sync", "type": "u8", "const": rng.choice([0xA5, 0x55, 0x7E, 0xAA])})
+            if self.has("sync2", 0.3):  # a sync of two bytes, such as UBX's B5 62
+                layout.append({"name": "sync_b", "type": "u8", "const": rng.choice([0x62, 0x00, 0xA5, 0xFF])})
+        two_keys = not single and self.has("two_keys", 0.3)
+        key = "group" if two_keys else "kind"  # the first dispatch field
         if not single:
             if self.has("length", 0.5):
-                layout.append({"name": "len", "type": "u8", "length_of": {"from": "kind", "to": "payload"}})
-            layout.append({"name": "kind", "type": "u8", "dispatch": True})
+                layout.append({"name": "len", "type": "u8", "length_of": {"from": key, "to": "payload"}})
+            if two_keys:  # messages told apart by a group and a kind, as UBX's class and id
+                layout.append({"name": "group", "type": rng.choice(["u8", "u4"]), "dispatch": True})
+                layout.append({"name": "kind", "type": "u8" if layout[-1]["type"] == "u8" else "u4",
+                               "dispatch": True})
+            else:
+                layout.append({"name": "kind", "type": "u8", "dispatch": True})
         layout.append({"payload": True})
         algorithms = [a for a in ("sum", "xor", "crc") if a in self.on]
         if algorithms and (sync or not single) and rng.random() < 0.7:  # `from: payload` is its end
             algorithm = rng.choice(algorithms)
-            first = "kind" if not single else ("sync" if sync else "payload")
+            first = key if not single else ("sync" if sync else "payload")
             if algorithm == "crc":
                 width = rng.choice(sorted(CRCS))
                 check = {"algorithm": rng.choice(CRCS[width]), "covers": {"from": first, "to": "payload"}}
@@ -77,7 +86,10 @@ class Generator:
         self.little = self.has("little")
         framing = {"kind": "bytes", "byte_order": "little" if self.little else "big", "layout": layout}
         count = 1 if single else rng.randint(1, 4)
-        ids = rng.sample(range(256), count)
+        if two_keys:  # few values of each, so that messages share a group or a kind
+            ids = [{"group": g, "kind": k} for g, k in rng.sample([(g, k) for g in range(3) for k in range(3)], count)]
+        else:
+            ids = rng.sample(range(256), count)
         messages = {}
         for i in range(count):
             body: dict = {} if single else {"id": ids[i]}
