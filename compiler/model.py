@@ -287,7 +287,7 @@ class Message:
 
 @dataclass(frozen=True)
 class TextForm:
-    """A bits protocol written as a line of decimal integers (route exchange file)."""
+    """A bits protocol written as a line of decimal integers (a text exchange file)."""
 
     separator: str
     comment: Optional[str]
