@@ -1,7 +1,7 @@
 """Safe YAML loading that keeps file:line:col for every node.
 
 Scalars are resolved by YAML 1.2 core rules instead of PyYAML's YAML 1.1 rules,
-so `no`, `yes`, `on`, `off` stay strings (route has a field named `no`).
+so `no`, `yes`, `on`, `off` stay strings (a field may well be named `no`).
 Size, nesting depth and alias expansion are bounded so a hostile schema cannot
 exhaust memory.
 """

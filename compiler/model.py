@@ -344,7 +344,7 @@ class Message:
 
 @dataclass(frozen=True)
 class TextForm:
-    """A bits protocol written as a line of decimal integers (route exchange file)."""
+    """A bits protocol written as a line of decimal integers (a text exchange file)."""
 
     separator: str
     comment: Optional[str]
@@ -493,6 +493,34 @@ class Machine:
 
 
 @dataclass(frozen=True)
+class DeliveryNotes:
+    """The notes that state the delivery guarantee and each of its limits."""
+
+    guarantee: str
+    retry_limit: str
+    restart: str
+
+
+@dataclass(frozen=True)
+class Delivery:
+    """A sender machine that sends each application request and resends it until
+    answered, and a receiver machine that executes it once: what the lossy-link
+    simulator drives and the docs' delivery section describes. Names refer to
+    the protocol's machines, parameters and notes; the resolver checks them."""
+
+    sender: str  # machine
+    receiver: str  # machine
+    address: str  # parameter both machines take: a device's own address
+    timeout: str  # sender parameter: ticks before a resend
+    retry_limit: str  # sender parameter: resends before failure, 0 = no limit
+    request: str  # the sender's one application request event
+    address_arg: str  # its argument that addresses the receiver
+    data_arg: str  # its argument that carries the data the receiver executes
+    notes: DeliveryNotes
+    loc: Loc
+
+
+@dataclass(frozen=True)
 class Protocol:
     name: str
     file: str
@@ -514,11 +542,18 @@ class Protocol:
     sequences: tuple[Sequence, ...] = ()
     machines: tuple[Machine, ...] = ()
     group_types: tuple[tuple[str, Field], ...] = field(default=())
+    delivery: Optional[Delivery] = None
 
     def message(self, name: str) -> Message:
         for message in self.messages:
             if message.name == name:
                 return message
+        raise KeyError(name)
+
+    def machine(self, name: str) -> Machine:
+        for machine in self.machines:
+            if machine.name == name:
+                return machine
         raise KeyError(name)
 
     @property

@@ -7,8 +7,8 @@ both give `P_SIDE_LEFT_X`). A sequence shares the class namespace with
 messages (and its C functions `p_<name>_…` with theirs). C functions and
 types are `p_<name>_<suffix>` for messages, sequences and machines next to the
 protocol's own `p_<suffix>` (a message `parser` would define `p_parser_t`, the
-stream parser's type; a message `route_iter` the iterator type of a sequence
-`route`). A second definition would silently replace the first in Python and
+stream parser's type; a message `log_iter` the iterator type of a sequence
+`log`). A second definition would silently replace the first in Python and
 fail to compile in C, so such schemas are refused.
 """
 from __future__ import annotations

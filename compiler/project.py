@@ -53,7 +53,7 @@ class Project:
         return files
 
     def find_schema(self, name: str) -> Optional[Path]:
-        """A schema named by its protocol name (`mtv4`) or by its file."""
+        """A schema named by its protocol name (its file's stem) or by its file."""
         path = Path(name)
         if path.is_file():
             return path

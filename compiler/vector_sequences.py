@@ -88,7 +88,7 @@ class SequenceVectors:
     def counting(self, head: Any, fields: dict[str, int]) -> Any:
         """A message of head's kind with the count fields set: one of the valid
         vectors that has them, else head with the fields set, if that encodes
-        (other fields may depend on a count, as in CAR-D3)."""
+        (other fields may depend on a count)."""
         name = type(head).NAME
         having = [v for v in self.pool[name]
                   if all(_get(v, dotted.split(".")) == n for dotted, n in fields.items())]

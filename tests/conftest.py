@@ -35,6 +35,12 @@ def load_model(name: str):
     return compile_schema(SCHEMAS / f"{name}.yaml")
 
 
+def simulation(name: str, seed: int, link, **options):
+    """The lossy-link simulator over a committed protocol's delivery machines."""
+    from codeword.sim import Simulation
+    return Simulation(load_model(name), load_generated(name), seed, link, **options)
+
+
 @pytest.fixture(scope="session")
 def route():
     return load_generated("route")

@@ -131,3 +131,20 @@ def test_git_revision_is_never_read_as_a_git_option(tmp_path, capsys, monkeypatc
         assert main(["diff", f"git:{rev}:schemas/route.yaml", str(SCHEMAS / "route.yaml")]) == 2
         assert "cannot start with '-'" in capsys.readouterr().err
     assert not any(tmp_path.iterdir())
+
+
+def test_delivery_section_changes_are_docs_only(tmp_path):
+    """The section names what the docs describe and the simulator drives; the wire is the same."""
+    tr24 = SCHEMAS / "tr24.yaml"
+    cited = diff_of(tmp_path, tr24, "restart: TR24-D5}", "restart: TR24-D4}")
+    assert not cited.breaking and cited.old_fingerprint == cited.new_fingerprint
+    assert changes(cited, DOCS) == {("delivery", "the notes cited for the guarantee or its limits changed")}
+    text = tr24.read_text(encoding="utf-8")
+    without = tmp_path / "without" / "tr24.yaml"
+    without.parent.mkdir()
+    without.write_text(text[:text.index("\ndelivery:")], encoding="utf-8")
+    removed = compare(compile_schema(tr24), compile_schema(without))
+    assert not removed.breaking and removed.old_fingerprint == removed.new_fingerprint
+    assert changes(removed, DOCS) == {("delivery", "removed: the docs no longer state a delivery guarantee")}
+    added = compare(compile_schema(without), compile_schema(tr24))
+    assert changes(added, DOCS) == {("delivery", "added: the docs state the delivery guarantee of master → slave")}

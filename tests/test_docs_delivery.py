@@ -8,6 +8,7 @@ import sys
 
 import pytest
 
+from codeword.build import compile_schema, render_protocol
 from conftest import PROTOCOLS, ROOT
 
 DOCS = ROOT / "generated" / "docs"
@@ -37,7 +38,8 @@ def test_cost_table_matches_the_formula_within_3_percent():
 def test_cost_table_is_what_the_simulator_prints():
     """The command the page names reproduces its table."""
     page = section((DOCS / "tr24.md").read_text(encoding="utf-8"))
-    command = re.search(r"`python -m codeword\.sim (--efficiency[^`]*)`", page).group(1).split()
+    command = re.search(r"`python -m codeword\.sim ([^`]*--efficiency[^`]*)`", page).group(1).split()
+    assert command[:2] == ["--schema", "tr24"]  # the page's own protocol, in any project
     run = subprocess.run([sys.executable, "-m", "codeword.sim", *command], cwd=ROOT, capture_output=True,
                          text=True, timeout=120)
     assert run.returncode == 0, run.stderr
@@ -65,3 +67,31 @@ def test_contents_link_the_section():
 def test_protocols_without_delivery_machines_have_no_section(protocol):
     page = (DOCS / f"{protocol}.md").read_text(encoding="utf-8")
     assert 'id="delivery"' not in page and "#delivery" not in page
+
+
+def test_machines_without_a_delivery_section_have_no_section(tmp_path):
+    """The section comes from the schema's `delivery` section, not from the machines."""
+    text = (ROOT / "schemas" / "tr24.yaml").read_text(encoding="utf-8")
+    schema = tmp_path / "tr24.yaml"
+    schema.write_text(text[:text.index("\ndelivery:")], encoding="utf-8")
+    page = render_protocol(compile_schema(schema))["docs/tr24.md"]
+    assert "## State machines" in page and 'id="delivery"' not in page and "#delivery" not in page
+
+
+def test_the_section_names_the_declared_machines(tmp_path):
+    """Prose and SPIN flags follow the `delivery` section's machine and parameter names."""
+    text = (ROOT / "schemas" / "tr24.yaml").read_text(encoding="utf-8")
+    head, delivery = text.split("\ndelivery:")
+    renames = (("\n  master:\n", "\n  sender:\n"), ("\n  slave:\n", "\n  receiver:\n"),
+               ("retry_limit", "attempts"))
+    for old, new in renames:
+        assert old in head, old
+        head = head.replace(old, new)
+    delivery = delivery.replace("sender: master", "sender: sender").replace("receiver: slave", "receiver: receiver")
+    text = head + "\ndelivery:" + delivery.replace("retry_limit: retry_limit", "retry_limit: attempts")
+    schema = tmp_path / "tr24.yaml"
+    schema.write_text(text, encoding="utf-8")
+    page = section(render_protocol(compile_schema(schema))["docs/tr24.md"])
+    assert "every reply reaches the sender" in page and "one to four receivers" in page
+    assert "-DSENDER_RESTART" in page and "-DATTEMPTS=2" in page and "with `attempts` above 0" in page
+    assert "master" not in page and "slave" not in page

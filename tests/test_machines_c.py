@@ -8,7 +8,8 @@ from pathlib import Path
 
 import pytest
 
-from codeword.sim import Link, Simulation
+from codeword.sim import Link
+from conftest import simulation
 
 ROOT = Path(__file__).resolve().parent.parent
 DRIVER = Path(__file__).resolve().parent / "c" / "machine_driver.c"
@@ -37,10 +38,10 @@ SCENARIOS = [
 
 @pytest.mark.parametrize("seed, link, slaves, data_length, timeout, retry_limit, commands", SCENARIOS)
 def test_c_machines_trace_equals_python(driver, seed, link, slaves, data_length, timeout, retry_limit, commands):
-    sim = Simulation(seed, link, slaves=slaves, data_length=data_length, timeout=timeout,
-                     retry_limit=retry_limit, trace=True)
+    sim = simulation("tr24", seed, link, receivers=slaves, parameters={"data_length": data_length},
+                     timeout=timeout, retry_limit=retry_limit, trace=True)
     sim.run(commands)
-    args = [str(data_length), str(timeout), str(retry_limit)] + [str(s) for s in sim.slave_ids]
+    args = [str(data_length), str(timeout), str(retry_limit)] + [str(s) for s in sim.receiver_ids]
     run = subprocess.run([str(driver), *args], input=sim.trace.script(), capture_output=True, text=True,
                          timeout=120)
     assert run.returncode == 0, run.stderr

@@ -14,7 +14,7 @@ def add_arguments(parser: argparse.ArgumentParser, func) -> None:
     parser.description = ("Check data against a schema with its generated codec and report every "
                           "violation. Exit 0 when all is valid, 1 when anything is invalid, 2 on usage "
                           "or schema errors.")
-    parser.add_argument("schema", help="schema file, or a protocol name of the project (mtv4, …)")
+    parser.add_argument("schema", help="schema file, or a protocol name of the project (a schema file's stem)")
     parser.add_argument("inputs", nargs="+", metavar="INPUT", help="files to check ('-' for standard input)")
     parser.add_argument("--format", choices=("text", "json"), default="text", help="output format")
     parser.add_argument("--input-format", choices=INPUT_FORMATS, default="auto",
@@ -29,7 +29,7 @@ def add_arguments(parser: argparse.ArgumentParser, func) -> None:
 
 
 def _schema_path(name: str) -> Path | None:
-    """A schema file, or a protocol of the project named by its name (`mtv4`)."""
+    """A schema file, or a protocol of the project named by its name (its file's stem)."""
     from ..project import load_project
     return load_project().find_schema(name)
 

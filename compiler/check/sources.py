@@ -18,7 +18,7 @@ from .finding import Finding, from_error
 CHUNK = 64 * 1024
 TEXT_CHUNK = 8 * 1024  # the text stream decoder re-slices its buffer per message
 MAX_LINE = 64 * 1024  # a hex-dump line longer than this is not a frame
-MAX_DOCUMENT = 16 * 1024 * 1024  # sequence documents (route files, car programs) are read whole
+MAX_DOCUMENT = 16 * 1024 * 1024  # sequence documents (text files, word programs) are read whole
 
 _NON_ASCII = re.compile(rb"[\x80-\xff]+")
 _HEX_SEPARATORS = re.compile(r"[\s:,]+")
@@ -185,7 +185,7 @@ def _document(fh: BinaryIO, file: str, progress: Progress) -> tuple[bytes, Findi
 
 def text_sequence(codec, sequence: str, fh: BinaryIO, file: str, tally: Tally,
                   progress: Progress) -> Iterator[Finding]:
-    """A text-form sequence file (the route exchange file): every line and the grammar."""
+    """A text-form sequence file (an exchange file, one message a line): every line and the grammar."""
     data, too_big = _document(fh, file, progress)
     if too_big:
         yield too_big
@@ -221,7 +221,7 @@ def text_sequence(codec, sequence: str, fh: BinaryIO, file: str, tally: Tally,
 
 def word_sequence(codec, sequence: str, fh: BinaryIO, file: str, tally: Tally, progress: Progress,
                   hex_words: bool, word_bytes: int) -> Iterator[Finding]:
-    """A sequence of fixed-size words (a car program): raw bytes, or hex words
+    """A sequence of fixed-size words (a program of command words): raw bytes, or hex words
     separated by white space, several to a line."""
     data, too_big = _document(fh, file, progress)
     if too_big:

@@ -106,6 +106,7 @@ def compare(old: Protocol, new: Protocol) -> Diff:
     _sequences(old, new, out)
     _parameters(old, new, out)
     _machines(old, new, out)
+    _delivery(old, new, out)
     _docs(old, new, out)
     if fingerprint(old) != fingerprint(new) and not any(c.kind != DOCS for c in out.changes):
         # never report a wire change as harmless because no rule above names it
@@ -325,6 +326,25 @@ def _machines(old: Protocol, new: Protocol, out: _Collector) -> None:
     for name in sorted(before.keys() & after.keys()):
         if not _same_wire(before[name], after[name]):
             out.add(BREAKING, f"machine {name}", "states, events or transitions changed")
+
+
+def _delivery(old: Protocol, new: Protocol, out: _Collector) -> None:
+    """The delivery section names what the docs describe and the simulator drives;
+    the machines' own changes are reported above, so any change here is docs-only."""
+    a, b = old.delivery, new.delivery
+    if a is None and b is None:
+        return
+    if a is None:
+        out.add(DOCS, "delivery", f"added: the docs state the delivery guarantee of {b.sender} → {b.receiver}")
+        return
+    if b is None:
+        out.add(DOCS, "delivery", "removed: the docs no longer state a delivery guarantee")
+        return
+    for name in ("sender", "receiver", "address", "timeout", "retry_limit", "request"):
+        if getattr(a, name) != getattr(b, name):
+            out.add(DOCS, "delivery", f"{name} changed from {getattr(a, name)!r} to {getattr(b, name)!r}")
+    if a.notes != b.notes:
+        out.add(DOCS, "delivery", "the notes cited for the guarantee or its limits changed")
 
 
 def _docs(old: Protocol, new: Protocol, out: _Collector) -> None:

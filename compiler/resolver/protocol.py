@@ -23,9 +23,11 @@ from .framing import FramingMixin
 from .messages import MessagesMixin
 from .rules import RulesMixin
 from .sequences import SequencesMixin
+from .delivery import DeliveryMixin
 
 
-class Resolver(TypesMixin, FieldsMixin, ChecksumsMixin, FramingMixin, MessagesMixin, RulesMixin, SequencesMixin):
+class Resolver(TypesMixin, FieldsMixin, ChecksumsMixin, FramingMixin, MessagesMixin, RulesMixin, SequencesMixin,
+               DeliveryMixin):
     """The whole document: each concern's rules come from its mixin module."""
 
     def resolve(self) -> Protocol:
@@ -70,6 +72,7 @@ class Resolver(TypesMixin, FieldsMixin, ChecksumsMixin, FramingMixin, MessagesMi
                           for n, s in d.get("sequences", {}).items())
         machines = tuple(self.resolve_machine(n, m, messages)
                          for n, m in d.get("machines", {}).items())
+        delivery = self.resolve_delivery(d["delivery"], machines, messages) if "delivery" in d else None
         self.report.raise_if_any()
         return Protocol(
             name=d["protocol"], file=self.doc.file,
@@ -86,7 +89,7 @@ class Resolver(TypesMixin, FieldsMixin, ChecksumsMixin, FramingMixin, MessagesMi
                              for t in d.get("transports", [])),
             parameters=tuple(self.parameters.values()), enums=tuple(self.enums.values()),
             flags=tuple(self.flags.values()), framing=framing, messages=messages,
-            sequences=sequences, machines=machines, group_types=group_types)
+            sequences=sequences, machines=machines, group_types=group_types, delivery=delivery)
 
     def resolve_machine(self, name: str, m: dict, messages: tuple[Message, ...]) -> Machine:
         return MachineResolver(self, name, m, messages).resolve()

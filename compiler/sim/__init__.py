@@ -1,45 +1,35 @@
-"""A lossy shared radio channel for the generated tr24 machines.
+"""A lossy shared channel for a protocol's delivery pair: the sender and receiver
+machines its schema's `delivery` section names, as the generated Python module
+has them (see pair.py).
 
-One master device and up to four slaves share one channel, as in the seed
-(three beacons, two locators). Every packet is heard by every other device;
-for each listener the channel independently loses it (per direction: commands
-master→slave, replies slave→master), duplicates it, or flips one bit in it, in
-which case the listener's radio finds a CRC mismatch and drops it, as the
-tr24a module does. Each copy is delayed by a bounded random time, never
-overtaking an earlier packet on the same sender→listener path.
+One sender device and up to four receiver devices share one channel, a sender
+machine per receiver. Every packet is heard by every other device; for each
+listener the channel independently loses it (per direction: commands
+sender→receiver, replies receiver→sender), duplicates it, or flips one bit in
+it, in which case the listener's link layer finds a CRC mismatch and drops it.
+Each copy is delayed by a bounded random time, never overtaking an earlier
+packet on the same sender→listener path.
 
 Everything is driven by one seeded random.Random, so a seed names a run; the
 run's inputs and outputs are recorded as a trace (`Trace`) that a C driver can
 replay against the generated C machines.
-
-The machines come from the committed generated/python/tr24.py unless a module
-is passed (the docs build passes the codec it has just rendered).
 """
 from __future__ import annotations
 
 import binascii
 import heapq
-import importlib.util
 import random
-import sys
+import types
 from dataclasses import dataclass, field
-from functools import lru_cache
-from pathlib import Path
+from functools import lru_cache, partial
+from typing import Mapping, Optional
 
-GENERATED = Path(__file__).resolve().parents[2] / "generated" / "python" / "tr24.py"
-MASTER_ID = 1
-SLAVE_IDS = (3, 4, 5, 6)  # the seed's example addresses a slave with ID 3
+from ..model import Protocol
+from .pair import Pair
 
-
-def load_tr24():
-    """The committed generated module, imported without the compiler."""
-    name = "sim_generated_tr24"
-    if name not in sys.modules:
-        spec = importlib.util.spec_from_file_location(name, GENERATED)
-        module = importlib.util.module_from_spec(spec)
-        sys.modules[name] = module  # dataclasses look their module up while the class is built
-        spec.loader.exec_module(module)
-    return sys.modules[name]
+# Device addresses, each given to its machines' address parameter.
+SENDER_ADDRESS = 1
+RECEIVER_ADDRESSES = (3, 4, 5, 6)
 
 
 @dataclass(frozen=True)
@@ -49,7 +39,7 @@ class Link:
     p_fwd: float = 0.0  # a command is lost
     p_ack: float = 0.0  # a reply is lost
     duplicate: float = 0.0  # a copy arrives twice
-    corrupt: float = 0.0  # one bit flipped: the radio's CRC drops it
+    corrupt: float = 0.0  # one bit flipped: the listener's CRC check drops it
     delay: tuple[int, int] = (1, 5)  # ticks, inclusive
 
     def check(self) -> None:
@@ -63,10 +53,10 @@ class Link:
             raise ValueError("delay must be (min, max) with 0 <= min <= max")
 
 
-def reply_for(command: bytes, slave_id: int) -> bytes:
-    """What a slave's application answers: each byte plus the slave's ID, so a
-    reply names both its command and the slave that ran it."""
-    return bytes(command).translate(_plus(slave_id))
+def reply_for(command: bytes, address: int) -> bytes:
+    """What a receiver's application answers: each byte plus the receiver's
+    address, so a reply names both its command and the receiver that ran it."""
+    return bytes(command).translate(_plus(address))
 
 
 @lru_cache(maxsize=None)
@@ -80,7 +70,7 @@ class Stats:
     commands: int = 0
     delivered: int = 0
     failed: int = 0
-    command_packets: int = 0  # transmissions by the master
+    command_packets: int = 0  # transmissions by the sender
     reply_packets: int = 0
     lost: int = 0
     corrupted: int = 0
@@ -115,26 +105,26 @@ def crc(packet: bytes) -> int:
 
 
 class Simulation:
-    """One master device (a master machine per slave: the sequence bit belongs to a
-    link) and `slaves` slave devices; the application sends `commands` commands,
-    one at a time, each to a random slave, with random data."""
+    """One sender device (a sender machine per receiver: the state that tells
+    commands apart belongs to a link) and `receivers` receiver devices; the
+    application sends `commands` commands, one at a time, each to a random
+    receiver, with random data. `parameters` gives the machines' other
+    parameters by name; those left out take the schema's defaults."""
 
-    def __init__(self, seed: int, link: Link, *, slaves: int = 1, data_length: int = 7,
-                 timeout: int = 20, retry_limit: int = 0, module=None, trace: bool = False):
+    def __init__(self, protocol: Protocol, module: types.ModuleType, seed: int, link: Link, *,
+                 receivers: int = 1, timeout: int = 20, retry_limit: int = 0,
+                 parameters: Optional[Mapping[str, int]] = None, trace: bool = False):
         link.check()
-        if not 1 <= slaves <= len(SLAVE_IDS):
-            raise ValueError(f"slaves must be in 1..{len(SLAVE_IDS)}")
-        self.tr24 = module or load_tr24()
+        if not 1 <= receivers <= len(RECEIVER_ADDRESSES):
+            raise ValueError(f"receivers must be in 1..{len(RECEIVER_ADDRESSES)}")
+        self.pair = pair = Pair(protocol, module, parameters)
         self.rng = random.Random(seed)
         self.link = link
-        self.data_length = data_length
-        self.slave_ids = SLAVE_IDS[:slaves]
-        self.masters = {sid: self.tr24.MasterMachine(own_id=MASTER_ID, data_length=data_length, timeout=timeout,
-                                                     retry_limit=retry_limit) for sid in self.slave_ids}
-        self.slaves = {sid: self.tr24.SlaveMachine(own_id=sid, data_length=data_length,
-                                                   execute=lambda data, sid=sid: reply_for(data, sid))
-                       for sid in self.slave_ids}
-        self.devices = (MASTER_ID,) + self.slave_ids
+        self.data_length = pair.data_length
+        self.receiver_ids = RECEIVER_ADDRESSES[:receivers]
+        self.senders = {rid: pair.new_sender(SENDER_ADDRESS, timeout, retry_limit) for rid in self.receiver_ids}
+        self.receivers = {rid: pair.new_receiver(rid, partial(reply_for, address=rid)) for rid in self.receiver_ids}
+        self.devices = (SENDER_ADDRESS,) + self.receiver_ids
         self.listeners = {d: tuple(x for x in self.devices if x != d) for d in self.devices}
         self.queue: list = []
         self.order = 0
@@ -142,10 +132,10 @@ class Simulation:
         self.scheduled: dict[int, int] = {}  # machine id -> deadline a tick is queued for
         self.stats = Stats()
         self.trace = Trace() if trace else None
-        # what the property checks: commands per slave in order, what each slave ran
-        self.issued: dict[int, list[bytes]] = {sid: [] for sid in self.slave_ids}
-        self.executed: dict[int, list[bytes]] = {sid: [] for sid in self.slave_ids}
-        self.outcomes: list[tuple[int, bytes, str, bytes | None]] = []  # slave, command, delivered|failed, reply
+        # what the property checks: commands per receiver in order, what each receiver ran
+        self.issued: dict[int, list[bytes]] = {rid: [] for rid in self.receiver_ids}
+        self.executed: dict[int, list[bytes]] = {rid: [] for rid in self.receiver_ids}
+        self.outcomes: list[tuple[int, bytes, str, bytes | None]] = []  # receiver, command, delivered|failed, reply
         self.pending: tuple[int, bytes] | None = None
         self.now = 0
 
@@ -158,7 +148,7 @@ class Simulation:
         # The docs build runs this some 50,000 times: attributes are read once.
         link, rng, stats, last_arrival = self.link, self.rng, self.stats, self.last_arrival
         chance = rng.random
-        if sender == MASTER_ID:
+        if sender == SENDER_ADDRESS:
             loss = link.p_fwd
             stats.command_packets += 1
         else:
@@ -186,6 +176,8 @@ class Simulation:
                 heapq.heappush(self.queue, (arrival, self.order, "arrive", (listener, data, check)))
 
     # -- machine calls, traced -----------------------------------------------------
+    # Trace names: m<address> is the sender machine for the receiver at that
+    # address, s<address> the receiver; kinds are send, receive and tick.
     def call(self, name: str, kind: str, fn, *args):
         out = fn(self.now, *args)
         if self.trace is not None:
@@ -212,34 +204,36 @@ class Simulation:
             return
         number = self.stats.commands
         self.stats.commands += 1
-        sid = self.rng.choice(self.slave_ids)
+        rid = self.rng.choice(self.receiver_ids)
         byte = self.rng.getrandbits
         tail = bytes([byte(8) for _ in range(max(0, self.data_length - 4))])
         data = (number.to_bytes(4, "big") + tail)[:self.data_length] if self.data_length >= 4 else \
             bytes([byte(8) for _ in range(self.data_length)])
-        self.issued[sid].append(data)
-        self.pending = (sid, data)
-        master = self.masters[sid]
+        self.issued[rid].append(data)
+        self.pending = (rid, data)
+        sender = self.senders[rid]
         if self.trace is None:
-            out = master.send(self.now, sid, data)
+            out = self.pair.send(sender, self.now, rid, data)
         else:
-            out = self.call(f"m{sid}", "send", master.send, sid, data)
-        self.handle(MASTER_ID, out, master)
+            out = self.call(f"m{rid}", "send", partial(self.pair.send, sender), rid, data)
+        self.handle(SENDER_ADDRESS, out, sender)
 
-    def finish_command(self, sid: int, out) -> None:
+    def finish_command(self, rid: int, out) -> None:
         for reply in out.delivered:
             self.stats.delivered += 1
-            self.outcomes.append((sid, self.pending[1], "delivered", reply))
+            self.outcomes.append((rid, self.pending[1], "delivered", reply))
         for _ in out.failed:
             self.stats.failed += 1
-            self.outcomes.append((sid, self.pending[1], "failed", None))
+            self.outcomes.append((rid, self.pending[1], "failed", None))
 
     def run(self, commands: int, time_limit: int | None = None) -> Stats:
         """Send `commands` commands; stop when all are answered or failed, or at `time_limit`."""
         # Untraced runs (the docs' efficiency table) call the machines directly.
         traced = self.trace is not None
-        queue, masters, handle = self.queue, self.masters, self.handle
-        sid_of = {id(m): sid for sid, m in masters.items()}
+        queue, senders, handle, pair = self.queue, self.senders, self.handle, self.pair
+        rid_of = {id(m): rid for rid, m in senders.items()}
+        take_reply = {rid: getattr(m, pair.sender_receive) for rid, m in senders.items()}
+        take_command = {rid: getattr(m, pair.receiver_receive) for rid, m in self.receivers.items()}
         self.next_command(commands)
         while queue:
             time, _, kind, args = heapq.heappop(queue)
@@ -247,36 +241,37 @@ class Simulation:
                 break
             self.now = time
             if kind == "tick":
-                device, machine = args
-                sid = device if device != MASTER_ID else sid_of[id(machine)]
-                out = self.call(f"m{sid}", "tick", machine.tick) if traced else machine.tick(time)
-                handle(MASTER_ID, out, machine)
+                _, machine = args  # only senders have a timer
+                rid = rid_of[id(machine)]
+                tick = getattr(machine, pair.tick)
+                out = self.call(f"m{rid}", "tick", tick) if traced else tick(time)
+                handle(SENDER_ADDRESS, out, machine)
                 if out.failed:
-                    self.finish_command(sid, out)
+                    self.finish_command(rid, out)
                     self.next_command(commands)
                 continue
             listener, data, check = args
             if binascii.crc_hqx(data, CRC_INIT) != check:
-                self.stats.corrupted += 1  # the radio drops it
+                self.stats.corrupted += 1  # the listener's CRC check drops it
                 continue
-            if listener == MASTER_ID:
-                for sid, master in masters.items():
-                    out = self.call(f"m{sid}", "receive", master.receive, data) if traced \
-                        else master.receive(time, data)
-                    handle(MASTER_ID, out, master)
+            if listener == SENDER_ADDRESS:
+                for rid, sender in senders.items():
+                    receive = take_reply[rid]
+                    out = self.call(f"m{rid}", "receive", receive, data) if traced else receive(time, data)
+                    handle(SENDER_ADDRESS, out, sender)
                     if out.delivered:
-                        self.finish_command(sid, out)
+                        self.finish_command(rid, out)
                         self.next_command(commands)
             else:
-                slave = self.slaves[listener]
-                out = self.call(f"s{listener}", "receive", slave.receive, data) if traced \
-                    else slave.receive(time, data)
+                receive = take_command[listener]
+                out = self.call(f"s{listener}", "receive", receive, data) if traced else receive(time, data)
                 self.executed[listener].extend(out.executed)
                 handle(listener, out)
         return self.stats
 
     def idle(self) -> bool:
-        return all(m.state == "idle" for m in self.masters.values())
+        """Whether no command is outstanding: every sender in its initial state."""
+        return all(m.state == self.pair.idle for m in self.senders.values())
 
 
 def trace_lines(out) -> list[str]:
@@ -285,24 +280,24 @@ def trace_lines(out) -> list[str]:
             + [f"dropped {d.hex()}" for d in out.dropped])
 
 
-def efficiency(p_fwd: float, p_ack: float, commands: int = 20000, seed: int = 1,
-               module=None) -> tuple[float, float]:
+def efficiency(protocol: Protocol, module: types.ModuleType, p_fwd: float, p_ack: float,
+               commands: int = 20000, seed: int = 1) -> tuple[float, float]:
     """(measured, theoretical) transmissions per delivered command over a link with
     these loss rates, no duplication or corruption, and a timeout longer than any
     round trip; theory: attempts are independent and one succeeds when both the
     command and its reply arrive, so their number is geometric with mean
     1/((1-p_fwd)(1-p_ack))."""
-    sim = Simulation(seed, Link(p_fwd=p_fwd, p_ack=p_ack, delay=(1, 4)), timeout=10, module=module)
+    sim = Simulation(protocol, module, seed, Link(p_fwd=p_fwd, p_ack=p_ack, delay=(1, 4)), timeout=10)
     stats = sim.run(commands)
     return stats.command_packets / stats.delivered, 1.0 / ((1.0 - p_fwd) * (1.0 - p_ack))
 
 
-def efficiency_table(rates=(0.0, 0.1, 0.3, 0.5), commands: int = 20000, seed: int = 1,
-                     module=None) -> list[dict]:
+def efficiency_table(protocol: Protocol, module: types.ModuleType, rates=(0.0, 0.1, 0.3, 0.5),
+                     commands: int = 20000, seed: int = 1) -> list[dict]:
     """Rows for the docs: the same loss rate p in both directions."""
     rows = []
-    for p in rates:
-        measured, theory = efficiency(p, p, commands, seed, module)
-        rows.append({"p": p, "measured": measured, "theory": theory,
+    for rate in rates:
+        measured, theory = efficiency(protocol, module, rate, rate, commands, seed)
+        rows.append({"p": rate, "measured": measured, "theory": theory,
                      "error": abs(measured - theory) / theory})
     return rows

@@ -12,8 +12,8 @@ from .text import cell, en, number, originals
 
 # Serial characters are 8N1: a start bit, 8 data bits, a stop bit.
 BITS_PER_CHAR = 10
-# A rate for serial links whose seed names none: 9600 baud is the rate the
-# route seed gives for its XBee serial link, and a common UART default.
+# A rate for serial links whose seed names none: 9600 baud, the common default
+# of UARTs and serial radio modules.
 REFERENCE_BAUD = 9600
 # The longest shortest-round-trip text of an IEEE-754 binary64 is 24 characters
 # (-2.2250738585072014e-308); a double with no bound is counted at that.

@@ -1,16 +1,16 @@
 """Markdown target, delivery: what a stop-and-wait pair of machines guarantees,
 its limits, and its cost measured over a lossy link.
 
-Only protocols the lossy-link simulator (codeword.sim) drives get the section:
-it runs their master and slave machines from the codec the docs build has just
-rendered. The table is measured at build time with a fixed seed, so the page is
-the same on every build; the guarantee and its limits are those the simulator
-and SPIN check (tests/test_sim.py, tests/test_spin.py).
+Only protocols whose schema declares a `delivery` section get the section: the
+lossy-link simulator (codeword.sim) runs the sender and receiver machines it
+names from the codec the docs build has just rendered, and the section cites
+the notes it names. The table is measured at build time with a fixed seed, so
+the page is the same on every build; the guarantee and its limits are those the
+simulator and SPIN check (tests/test_sim.py, tests/test_spin.py).
 """
 from __future__ import annotations
 
 import types
-from dataclasses import dataclass
 from typing import Optional
 
 from ...model import Protocol
@@ -26,34 +26,23 @@ SEED = 1
 COMMANDS = 4000
 
 
-@dataclass(frozen=True)
-class Decisions:
-    """The notes that state the guarantee and each of its limits."""
-
-    guarantee: str
-    retry_limit: str
-    restart: str
-
-
-SIMULATED = {"tr24": Decisions(guarantee="TR24-D5", retry_limit="TR24-D4", restart="TR24-D5")}
-
-
-def efficiency_rows(codec: types.ModuleType) -> list[dict]:
+def efficiency_rows(p: Protocol, codec: types.ModuleType) -> list[dict]:
     rows = []
-    for row in efficiency_table(RATES, COMMANDS, SEED, module=codec):
+    for row in efficiency_table(p, codec, RATES, COMMANDS, SEED):
         rows.append({"p": f"{row['p']:.1f}", "measured": f"{row['measured']:.3f}",
                      "theory": f"{row['theory']:.3f}", "error": f"{100 * row['error']:.1f}%"})
     return rows
 
 
 def delivery_view(p: Protocol, codec: types.ModuleType, linker: DecisionLinker) -> Optional[dict]:
-    decisions = SIMULATED.get(p.name)
-    if decisions is None or not p.machines:
+    d = p.delivery
+    if d is None:
         return None
-    master = next(m for m in p.machines if m.role == "master")
-    return {"guarantee": linker.ref(decisions.guarantee), "retry_limit": linker.ref(decisions.retry_limit),
-            "restart": linker.ref(decisions.restart),
+    return {"guarantee": linker.ref(d.notes.guarantee), "retry_limit": linker.ref(d.notes.retry_limit),
+            "restart": linker.ref(d.notes.restart),
+            "sender": d.sender, "receiver": d.receiver, "retry_parameter": d.retry_limit,
             "model": f"generated/promela/{p.name}.pml",
-            "restart_macro": f"{promela.macro(master.name)}_RESTART",
-            "retry_macro": promela.macro("retry_limit"),
-            "rows": efficiency_rows(codec), "commands": f"{COMMANDS:,}", "seed": SEED}
+            "restart_macro": promela.restart_macro(p.machine(d.sender)),
+            "retry_macro": promela.macro(d.retry_limit),
+            "rows": efficiency_rows(p, codec), "commands": f"{COMMANDS:,}", "seed": SEED,
+            "command": f"python -m codeword.sim --schema {p.name} --efficiency --commands {COMMANDS} --seed {SEED}"}

@@ -1,5 +1,5 @@
 """Where each field of a message sits on the wire, as the docs show it: the
-layout diagram (a table in the style of the seeds' `HDR|ns|nl|…` tables) and
+layout diagram (a table in the style of a seed document's `name|name|…` tables) and
 the field table (offset, width, type, range, unit, values, default, meaning)."""
 from __future__ import annotations
 
@@ -222,7 +222,7 @@ def field_rows(p: Protocol, m: Message, linker: DecisionLinker) -> list[dict]:
 
 
 def payload_note(p: Protocol, m: Message) -> str:
-    """Positions depend on a link parameter when a field's length is one (tr24 data)."""
+    """Positions depend on a link parameter when a field's length is one (data of a per-link length)."""
     for s in slots(m):
         if s.field.length_param:
             param = next((x for x in p.parameters if x.name == s.field.length_param), None)

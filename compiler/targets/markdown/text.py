@@ -42,7 +42,7 @@ def anchor(kind: str, name: str) -> str:
 
 
 class DecisionLinker:
-    """Turns the note ids a text cites (CAR-D1, MTV4-D2 …) into links to the notes."""
+    """Turns the note ids a text cites (such as ABC-D1) into links to the notes."""
 
     def __init__(self, p: Protocol):
         ids = sorted((n.id for n in p.notes), key=len, reverse=True)

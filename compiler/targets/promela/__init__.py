@@ -6,7 +6,8 @@ generated code (the first row whose guard holds wins). What the model abstracts:
 
 - Packets travel on one channel per message; a send may be lost, or arrive
   twice, but packets never overtake each other (a FIFO that drops and repeats).
-  A corrupted packet is dropped by the radio's CRC, so it is a loss.
+  A corrupted packet is dropped by the receiving end's CRC check, so it is a
+  loss.
 - Data bytes carry a command number (1..CMDS, cycling) instead of L bytes: the
   application asks to send the next number, the executing side checks that it
   runs every number once and in order, and the delivering side checks that the
@@ -32,6 +33,11 @@ COMMAND_NUMBERS = 4  # more than the two a one-bit sequence number tells apart
 
 def macro(name: str) -> str:
     return name.upper()
+
+
+def restart_macro(machine: Machine) -> str:
+    """The -D flag name that lets a machine restart at any time."""
+    return f"{macro(machine.name)}_RESTART"
 
 
 class PromelaLowering(Lowering):
@@ -193,7 +199,7 @@ def machine_view(p: Protocol, machine: Machine, identities) -> dict:
         n for msg in received for n in low.layouts[msg].members)]
     return {
         "name": machine.name,
-        "restart": f"{macro(machine.name)}_RESTART",
+        "restart": restart_macro(machine),
         "restart_guard": f"!{machine.name}_timer" if any(e.timer for e in machine.events) else "true",
         "states": [{"name": low.state_value(s.name), "value": i} for i, s in enumerate(machine.states)],
         "initial": low.state_value(machine.initial),

@@ -11,6 +11,11 @@ from ..machines.lowering import Lowering
 from ..machines.packets import PacketLayout, machine_messages, packet_layout
 
 
+# The constructor keyword of a machine that executes requests: the application's
+# function from request data to reply data.
+EXECUTE_ARGUMENT = "execute"
+
+
 def class_name(machine: Machine) -> str:
     return "".join(part.capitalize() for part in machine.name.split("_")) + "Machine"
 
@@ -160,7 +165,7 @@ def machine_view(p: Protocol, machine: Machine) -> dict:
     return {"cls": class_name(machine), "name": machine.name, "doc": machine.doc or machine.name,
             "states": [s.name for s in machine.states], "initial": machine.initial,
             "variables": machine.variables, "params": parameter_views(p, machine),
-            "events": events, "executes": low.uses("execute"),
+            "events": events, "executes": low.uses("execute"), "execute_argument": EXECUTE_ARGUMENT,
             "timer": any(e.timer for e in machine.events),
             "execute_size": execute_size(low)}
 

@@ -737,7 +737,7 @@ class MessageCode:
             c(f"if {leaf.var} & {1 << (bits - 1):#x}:")
             c(f"    {leaf.var} -= {1 << bits:#x}")
 
-    # -- the text form of a bits protocol (route exchange file) ----------------------------
+    # -- the text form of a bits protocol (a text exchange file) --------------------------
     def text_form_functions(self) -> str:
         """The exchange-file form: the raw wire values in decimal, a signed field as its
         bit pattern (as the C writes it), so every token is a plain unsigned number."""
