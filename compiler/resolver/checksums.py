@@ -69,6 +69,10 @@ class ChecksumsMixin(ResolverBase):
                        path: tuple) -> tuple[Field, ...]:
         """Compute each checksum's and length field's byte coverage within this frame."""
         by_name = {f.name: f for f in layout}
+        # `payload` starts a coverage where the message's own fields start and ends one where they end
+        marker = next((f for f in layout if f.is_payload), None)
+        own = [f for f in layout if not f.from_envelope and not f.is_payload]
+        payload_start = own[0].bit_offset if own else marker.bit_offset if marker else None
         out = []
         for f in layout:
             span = None
@@ -81,12 +85,12 @@ class ChecksumsMixin(ResolverBase):
                                           f"message {name!r}: {f.name!r} covers unknown field "
                                                  f"{end_name!r}", "name envelope fields or `payload`")
                 if start_f and end_f:
-                    start = start_f.bit_offset
+                    start = payload_start if start_f.is_payload else start_f.bit_offset
                     stop = end_f.bit_offset + (end_f.bits or 0)
                     refused = f.checksum and f.checksum.over != "bytes"  # resolve_checksum refuses its range
                     if (start % 8 or stop % 8) and not refused:
                         self.error(path, f"message {name!r}: coverage of {f.name!r} is not whole bytes")
-                    if stop <= start:
+                    if stop < start or stop == start and f.checksum:  # a length may count nothing
                         self.error(path, f"message {name!r}: coverage of {f.name!r} is empty or reversed")
                     if f.checksum and start <= f.bit_offset < stop:
                         self.report.error(f.checksum.loc, f"message {name!r}: checksum {f.name!r} covers itself",
