@@ -30,16 +30,24 @@ DERIVED = frozenset({"wire"})
 
 
 @lru_cache(maxsize=None)
-def _wire_fields(cls: type) -> tuple[str, ...]:
-    return tuple(f.name for f in dataclasses.fields(cls) if f.name not in DOC_ONLY | DERIVED)
+def _wire_fields(cls: type) -> tuple[tuple[str, Any], ...]:
+    """(name, default) of each wire attribute; `_NONE` when it has no default."""
+    return tuple((f.name, f.default if f.default is not dataclasses.MISSING else _NONE)
+                 for f in dataclasses.fields(cls) if f.name not in DOC_ONLY | DERIVED)
+
+
+_NONE = object()
 
 
 def wire_model(value: Any) -> Any:
-    """The model as plain JSON data without its documentation."""
+    """The model as plain JSON data without its documentation. An attribute at its
+    default is left out, so a model that grows (a new option, off by default)
+    keeps the fingerprints of the protocols that do not use it."""
     if isinstance(value, Text):
         return None
     if hasattr(type(value), "__dataclass_fields__") and not isinstance(value, type):
-        return {name: wire_model(getattr(value, name)) for name in _wire_fields(type(value))}
+        return {name: wire_model(attr) for name, default in _wire_fields(type(value))
+                if (attr := getattr(value, name)) is not default and not (default is not _NONE and attr == default)}
     if isinstance(value, (tuple, list)):
         return [wire_model(x) for x in value]
     if isinstance(value, dict):

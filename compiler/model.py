@@ -176,6 +176,7 @@ class Field:
     optional: bool = False
     to_end: bool = False
     dispatch: bool = False
+    by_direction: tuple[tuple[str, int], ...] = ()  # envelope: (direction, value); a dispatch field
     length_of: Optional[tuple[str, str]] = None
     checksum: Optional[Checksum] = None
     fields: tuple["Field", ...] = ()

@@ -103,13 +103,30 @@ class FieldsMixin(ResolverBase):
             exactly_one=bool(f.get("exactly_one")), byte_order=f.get("byte_order"),
             length=length if kind in ("bytes", "str") else None, length_param=length_param,
             max_length=f.get("max_length"), optional=bool(f.get("optional")),
-            to_end=bool(f.get("to_end")), dispatch=bool(f.get("dispatch")),
+            to_end=bool(f.get("to_end")), dispatch=bool(f.get("dispatch")) or bool(f.get("by_direction")) and allow_payload,
+            by_direction=tuple(f.get("by_direction", {}).items()),
             length_of=(f["length_of"]["from"], f["length_of"]["to"]) if "length_of" in f else None,
             checksum=self.resolve_checksum(f["checksum"], path + ("checksum",), bits)
             if "checksum" in f else None,
             fields=sub_fields, message=text(f.get("message")), rule=f.get("rule"))
+        if field.by_direction:
+            self.check_by_direction(field, path, allow_payload)
         self.check_field(field, path)
         return field
+
+    def check_by_direction(self, f: Field, path: tuple, in_envelope: bool) -> None:
+        if not in_envelope or self.framing_kind != "bytes":
+            self.error(path + ("by_direction",), f"field {f.name!r}: by_direction is for the envelope of "
+                                                 "bytes framing", "drop it, or move the field to framing.layout")
+        if f.const is not None:
+            self.error(path + ("const",), f"field {f.name!r}: give `const` or `by_direction`, not both")
+        for direction, value in f.by_direction:
+            if direction not in self.data.get("directions", {}):
+                self.error(path + ("by_direction", direction), f"field {f.name!r}: unknown direction {direction!r}",
+                           "declare it under `directions`")
+            if not self.int_fits(value, f.kind, f.bits or 0):
+                self.error(path + ("by_direction", direction), f"field {f.name!r}: {value} does not fit "
+                                                               f"{f.bits} bits")
 
     def resolve_fields(self, raw: list, path: tuple, allow_payload: bool = True) -> tuple[Field, ...]:
         fields = []

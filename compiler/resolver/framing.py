@@ -48,7 +48,7 @@ class FramingMixin(ResolverBase):
             float_format=fr.get("float_format", "shortest"))
 
     def place(self, name: str, own: tuple[Field, ...], ids: tuple, framing: Framing,
-              path: tuple) -> tuple[tuple[Field, ...], tuple]:
+              path: tuple, direction: Optional[str] = None) -> tuple[tuple[Field, ...], tuple]:
         """The message's whole frame in wire order with bit offsets, and its dispatch key."""
         if framing.kind == "text":
             for i, f in enumerate(own):
@@ -88,7 +88,7 @@ class FramingMixin(ResolverBase):
                            "mark the layout's id field `dispatch: true`, or drop the id")
             frame = []
             key: tuple = ()
-            dispatch = [f.name for f in framing.envelope if f.dispatch]
+            dispatch = [f.name for f in framing.envelope if f.dispatch and not f.by_direction]
             if len(dispatch) > 1 and ids and not isinstance(ids, dict):
                 self.error(path + ("id",), f"message {name!r}: the layout has several dispatch fields, so "
                                            "`id` maps each to its value", "write id: {field: value, …}")
@@ -101,7 +101,10 @@ class FramingMixin(ResolverBase):
                     frame.append(replace(f, bits=0))
                     continue
                 f = replace(f, from_envelope=True)
-                if f.dispatch:
+                if f.by_direction:
+                    f, pair = self.direction_value(name, f, direction, path)
+                    key += (pair,)
+                elif f.dispatch:
                     f, pair = self.dispatch_value(name, f, ids, len(dispatch) > 1, path)
                     key += (pair,)
                 frame.append(f)
@@ -116,6 +119,16 @@ class FramingMixin(ResolverBase):
             offset += f.bits or 0
         self.check_alignment(name, placed, framing, path)
         return tuple(placed), key
+
+    def direction_value(self, name: str, f: Field, direction: Optional[str], path: tuple) -> tuple[Field, tuple]:
+        """An envelope field whose value is set by the message's direction (MSP's `<` and `>`)."""
+        values = dict(f.by_direction)
+        if direction not in values:
+            self.error(path, f"message {name!r}: {f.name!r} takes its value from the message's direction, "
+                             f"and {'it has none' if direction is None else repr(direction) + ' has no value'}",
+                       f"give the message one of the directions {sorted(values)}")
+            return f, (f.name, ())
+        return replace(f, const=values[direction]), (f.name, (values[direction],))
 
     def dispatch_value(self, name: str, f: Field, ids, several: bool, path: tuple) -> tuple[Field, tuple]:
         """The envelope's dispatch field `f` fixed to the message's id, and its (name, values)

@@ -11,7 +11,7 @@ FULL = frozenset({
     "bytes", "text", "bits",                # framings
     "text_form", "field_sum", "one_hot",    # bits framing: a text form, checksums over fields, one-hot
     "sync", "length", "no_dispatch",        # envelope parts (bytes)
-    "sync2", "two_keys",                    # a sync of two bytes; two dispatch fields
+    "sync2", "two_keys", "by_direction",    # a sync of two bytes; two dispatch fields; a direction byte
     "sum", "xor", "crc",                    # checksums over bytes
     "little", "field_order",                # byte orders: the framing's, and per field
     "bitfields",                            # fields narrower than a byte, packed

@@ -23,6 +23,7 @@ class Generator:
         self.little = False  # the byte framing's order, once chosen
         self.enums: dict = {}
         self.flags: dict = {}
+        self.directions = False  # messages have directions (an envelope byte depends on them)
         self.used: set[str] = set()
 
     def has(self, feature: str, chance: float = 0.5) -> bool:
@@ -46,6 +47,9 @@ class Generator:
             doc["enums"] = self.enums
         if self.flags:
             doc["flags"] = self.flags
+        if self.directions:
+            doc["roles"] = {"host": {"doc": "host"}, "device": {"doc": "device"}}
+            doc["directions"] = {"up": {"from": "device", "to": "host"}, "down": {"from": "host", "to": "device"}}
         doc["framing"] = framing
         doc["messages"] = messages
         return doc
@@ -71,6 +75,10 @@ class Generator:
                                "dispatch": True})
             else:
                 layout.append({"name": "kind", "type": "u8", "dispatch": True})
+            self.directions = self.has("by_direction", 0.25)
+            if self.directions:  # a byte that says the direction, as MSP's `<` and `>`
+                layout.insert(rng.randrange(len(layout) + 1) if not sync else len(layout),
+                              {"name": "mark", "type": "u8", "by_direction": {"up": 0x3E, "down": 0x3C}})
         layout.append({"payload": True})
         algorithms = [a for a in ("sum", "xor", "crc") if a in self.on]
         if algorithms and (sync or not single) and rng.random() < 0.7:  # `from: payload` is its end
@@ -93,6 +101,8 @@ class Generator:
         messages = {}
         for i in range(count):
             body: dict = {} if single else {"id": ids[i]}
+            if self.directions:
+                body["direction"] = rng.choice(["up", "down"])
             body["fields"] = self.binary_fields(at_least=1 if single else 0)  # a frame is never empty
             messages[self.name()] = body
         return framing, messages

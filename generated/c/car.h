@@ -17,8 +17,8 @@ extern "C" {
 #endif
 
 #define CAR_SCHEMA_SHA256 "39d261d9cbc110e2a0e1a1ab269d71a7951317049b1044d7cd99043988247492"
-#define CAR_FINGERPRINT "c44c8363b58b7ae7"  /* hash of the wire-relevant schema (codeword diff) */
-#define CAR_FINGERPRINT32 0xc44c8363u  /* its first 32 bits */
+#define CAR_FINGERPRINT "89bb3eb2c8f651a7"  /* hash of the wire-relevant schema (codeword diff) */
+#define CAR_FINGERPRINT32 0x89bb3eb2u  /* its first 32 bits */
 #define CAR_HEADER_SIZE 4u  /* bytes */
 #define CAR_MASTER_CONTROL_SIZE 4u  /* bytes */
 #define CAR_SLAVE_CONTROL_SIZE 4u  /* bytes */

@@ -19,8 +19,8 @@ extern "C" {
 #endif
 
 #define MTV4_SCHEMA_SHA256 "6f5d966161bbb7ed579dfa17ae28a8fb32e3fdb0af1b2de082768223ffd31ef6"
-#define MTV4_FINGERPRINT "21bcd1a78f812e10"  /* hash of the wire-relevant schema (codeword diff) */
-#define MTV4_FINGERPRINT32 0x21bcd1a7u  /* its first 32 bits */
+#define MTV4_FINGERPRINT "72643e38e9ca7af8"  /* hash of the wire-relevant schema (codeword diff) */
+#define MTV4_FINGERPRINT32 0x72643e38u  /* its first 32 bits */
 #define MTV4_SYNC 0xaau  /* first byte of every frame */
 #define MTV4_SET_WHEELS_VELOCITIES_SIZE 12u  /* bytes */
 #define MTV4_SET_WHEELS_VELOCITIES_ID 1u

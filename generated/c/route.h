@@ -17,8 +17,8 @@ extern "C" {
 #endif
 
 #define ROUTE_SCHEMA_SHA256 "d94187a8818b0cb788982ae6a053947239ae31cc835af3ba25db442464e6667b"
-#define ROUTE_FINGERPRINT "3e65a8fa00f90c84"  /* hash of the wire-relevant schema (codeword diff) */
-#define ROUTE_FINGERPRINT32 0x3e65a8fau  /* its first 32 bits */
+#define ROUTE_FINGERPRINT "363bd35221c4cf5f"  /* hash of the wire-relevant schema (codeword diff) */
+#define ROUTE_FINGERPRINT32 0x363bd352u  /* its first 32 bits */
 #define ROUTE_START_SIZE 1u  /* bytes */
 #define ROUTE_OBJECT_SIZE 4u  /* bytes */
 #define ROUTE_SCENE_SIZE 4u  /* bytes */

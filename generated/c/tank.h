@@ -17,8 +17,8 @@ extern "C" {
 #endif
 
 #define TANK_SCHEMA_SHA256 "e27ac8570efe3316d3e13ee8a2768e4f1d70f6db80a4545a2913bf06b4c3b3a0"
-#define TANK_FINGERPRINT "efd374c2efe0a1e9"  /* hash of the wire-relevant schema (codeword diff) */
-#define TANK_FINGERPRINT32 0xefd374c2u  /* its first 32 bits */
+#define TANK_FINGERPRINT "9d70d29ed1cf46f3"  /* hash of the wire-relevant schema (codeword diff) */
+#define TANK_FINGERPRINT32 0x9d70d29eu  /* its first 32 bits */
 #define TANK_TELEMETRY_MAX_TEXT 445u  /* chars, with the NUL: buffer size for encode */
 #define TANK_TELEMETRY_ID '$'
 #define TANK_COMMAND_MAX_TEXT 216u  /* chars, with the NUL: buffer size for encode */

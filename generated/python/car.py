@@ -13,8 +13,8 @@ from typing import ClassVar, Optional, Union
 PROTOCOL = 'car'
 VERSION = '0.3'
 SCHEMA_SHA256 = '39d261d9cbc110e2a0e1a1ab269d71a7951317049b1044d7cd99043988247492'
-FINGERPRINT = 'c44c8363b58b7ae7'  # hash of the wire-relevant schema (codeword diff)
-FINGERPRINT32 = 0xc44c8363  # its first 32 bits
+FINGERPRINT = '89bb3eb2c8f651a7'  # hash of the wire-relevant schema (codeword diff)
+FINGERPRINT32 = 0x89bb3eb2  # its first 32 bits
 
 _floor = math.floor
 _isfinite = math.isfinite

@@ -13,8 +13,8 @@ from typing import ClassVar, Optional, Union
 PROTOCOL = 'mtv4'
 VERSION = '2014.11.12'
 SCHEMA_SHA256 = '6f5d966161bbb7ed579dfa17ae28a8fb32e3fdb0af1b2de082768223ffd31ef6'
-FINGERPRINT = '21bcd1a78f812e10'  # hash of the wire-relevant schema (codeword diff)
-FINGERPRINT32 = 0x21bcd1a7  # its first 32 bits
+FINGERPRINT = '72643e38e9ca7af8'  # hash of the wire-relevant schema (codeword diff)
+FINGERPRINT32 = 0x72643e38  # its first 32 bits
 
 _floor = math.floor
 _isfinite = math.isfinite

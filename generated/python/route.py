@@ -13,8 +13,8 @@ from typing import ClassVar, Optional, Union
 PROTOCOL = 'route'
 VERSION = None
 SCHEMA_SHA256 = 'd94187a8818b0cb788982ae6a053947239ae31cc835af3ba25db442464e6667b'
-FINGERPRINT = '3e65a8fa00f90c84'  # hash of the wire-relevant schema (codeword diff)
-FINGERPRINT32 = 0x3e65a8fa  # its first 32 bits
+FINGERPRINT = '363bd35221c4cf5f'  # hash of the wire-relevant schema (codeword diff)
+FINGERPRINT32 = 0x363bd352  # its first 32 bits
 
 _floor = math.floor
 _isfinite = math.isfinite

@@ -13,8 +13,8 @@ from typing import ClassVar, Optional, Union
 PROTOCOL = 'tank'
 VERSION = None
 SCHEMA_SHA256 = 'e27ac8570efe3316d3e13ee8a2768e4f1d70f6db80a4545a2913bf06b4c3b3a0'
-FINGERPRINT = 'efd374c2efe0a1e9'  # hash of the wire-relevant schema (codeword diff)
-FINGERPRINT32 = 0xefd374c2  # its first 32 bits
+FINGERPRINT = '9d70d29ed1cf46f3'  # hash of the wire-relevant schema (codeword diff)
+FINGERPRINT32 = 0x9d70d29e  # its first 32 bits
 
 _floor = math.floor
 _isfinite = math.isfinite

@@ -13,8 +13,8 @@ from typing import ClassVar, Optional, Union
 PROTOCOL = 'tr24'
 VERSION = None
 SCHEMA_SHA256 = '13dca1560ca4fb5db750e6a5012a6b6fdea3398ad975c55ef959c2fbe972117a'
-FINGERPRINT = '2e76da093c476a8a'  # hash of the wire-relevant schema (codeword diff)
-FINGERPRINT32 = 0x2e76da09  # its first 32 bits
+FINGERPRINT = '16ccc21674b23853'  # hash of the wire-relevant schema (codeword diff)
+FINGERPRINT32 = 0x16ccc216  # its first 32 bits
 DATA_LENGTH = 7  # number of data bytes in every packet of a link, fixed per link (the firmware's template parameter dataLength); at most 59 so that a packet fits the 64-byte FIFO (TR24-D1)
 TIMEOUT = 100  # how long the master waits for a reply before sending the command again (TR24-D4)
 RETRY_LIMIT = 0  # how many times the master resends one command before it reports failure; 0 = unlimited, the original behaviour (TR24-D4)
