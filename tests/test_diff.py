@@ -131,3 +131,12 @@ def test_git_revision_is_never_read_as_a_git_option(tmp_path, capsys, monkeypatc
         assert main(["diff", f"git:{rev}:schemas/route.yaml", str(SCHEMAS / "route.yaml")]) == 2
         assert "cannot start with '-'" in capsys.readouterr().err
     assert not any(tmp_path.iterdir())
+
+
+def test_f32_to_f64_is_a_width_change_and_breaking(tmp_path):
+    mtv4 = SCHEMAS / "mtv4.yaml"
+    old = "{name: th, type: f32, unit: rad, rule: MTV4-D5, title: {en: orientation Th, pl: Orientacja Th}, doc: heading}"
+    d = diff_of(tmp_path, mtv4, old, old.replace("f32", "f64"))
+    assert d.breaking and d.old_fingerprint != d.new_fingerprint
+    assert {("field th", "resized from 32 bits to 64 bits"),
+            ("message odometry_reply", "size changed from 176 to 208 bits")} <= changes(d, BREAKING)
