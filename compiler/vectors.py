@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import dataclasses
 import enum
+import math
 import random
 import shutil
 import string
@@ -24,7 +25,7 @@ import tempfile
 from functools import lru_cache
 from typing import Any, TextIO
 
-from . import jsontext
+from . import binary64, jsontext
 
 from .model import Field, Message, Protocol
 from .vector_sequences import sequence_vectors
@@ -42,6 +43,13 @@ SPOOL_BYTES = 1 << 22  # invalid cases wait in memory up to this, then on disk
 
 
 _SCALARS = frozenset({int, float, str, bool, type(None)})
+
+# doubles where encoders go wrong: signed zeros, the smallest and largest subnormals,
+# the smallest normal, the largest finite, and values with hand-checked bits
+BINARY64_EDGES = (0.0, -0.0, 5e-324, -5e-324, 2.225073858507201e-308, 2.2250738585072014e-308,
+                  binary64.LARGEST, -binary64.LARGEST, 1.0, -2.5, math.pi, 0.1)
+NON_FINITE = (("NaN", math.nan), ("+inf", math.inf), ("-inf", -math.inf))
+
 
 
 @lru_cache(maxsize=None)
@@ -182,6 +190,8 @@ class Generator:
             if shape < 0.6:
                 return round(rng.uniform(-1000, 1000), rng.randint(0, 4))
             return float(f"{rng.uniform(-1e6, 1e6):.{rng.randint(1, 15)}g}")
+        if f.bits == 64:
+            return self.binary64(f, edge)
         if edge == "zero":
             return 0.0
         while True:
@@ -189,6 +199,26 @@ class Generator:
             if rng.random() < 0.5:
                 x = struct.unpack("<f", struct.pack("<f", rng.uniform(-1e4, 1e4)))[0]
             if x == x and abs(x) != float("inf"):
+                return x
+
+    def binary64(self, f: Field, edge: str) -> float:
+        """A binary f64 value: the range's ends (or the largest finite doubles), zero, the
+        doubles at the edges of the format (signed zeros, subnormals), any bit pattern."""
+        rng = self.rng
+        lo, hi = f.range or (-binary64.LARGEST, binary64.LARGEST)
+        lo, hi = binary64.at_least(lo), binary64.at_most(hi)
+        pick = {"min": lo, "max": hi, "zero": max(lo, min(hi, 0.0))}.get(edge)
+        if pick is not None:
+            return pick
+        while True:
+            shape = rng.random()
+            if shape < 0.3:
+                x = rng.choice(BINARY64_EDGES)
+            elif shape < 0.6:
+                x = struct.unpack(">d", rng.getrandbits(64).to_bytes(8, "big"))[0]
+            else:
+                x = rng.uniform(max(lo, -1e6), min(hi, 1e6)) if lo <= 1e6 and hi >= -1e6 else rng.choice((lo, hi))
+            if math.isfinite(x) and lo <= x <= hi:
                 return x
 
     def values(self, m: Message, edge: str = "", focus: str = "") -> dict:
@@ -311,7 +341,7 @@ class Generator:
                 frames.append(data)
                 break
         for i, data in enumerate(frames[:min(MUTATIONS_PER_MESSAGE, max(1, FRAME_BUDGET // (8 * size)))]):
-            for label, bad in self.mutations(m, data):
+            for label, bad in self.mutations(m, data) + (self.f64_outside(m, data) if i == 0 else []):
                 name = f"{m.name} {label} of {i}"
                 try:
                     obj = self.decode(m, bad)
@@ -325,6 +355,29 @@ class Generator:
                 valid.append(self.valid_case(name, self.messages[type(obj).NAME], obj, canonical,
                                              bad if canonical != bad else None))
         return valid, invalid
+
+    def f64_outside(self, m: Message, data) -> list[tuple[str, Any]]:
+        """The frame with each binary f64 field set to NaN, to each infinity and to the
+        doubles just outside its range, which both codecs refuse (NaN and infinities
+        as in f32 fields)."""
+        out: list[tuple[str, Any]] = []
+        if self.text:
+            return out
+        for leaf in m.wire.leaves:
+            f = leaf.field
+            if f.kind != "float" or f.bits != 64 or not f.is_member:
+                continue
+            outside = list(NON_FINITE)
+            if f.range is not None:
+                below = math.nextafter(binary64.at_least(f.range[0]), -math.inf)
+                above = math.nextafter(binary64.at_most(f.range[1]), math.inf)
+                outside += [(f"{x!r}", x) for x in (below, above) if math.isfinite(x)]
+            order = "<" if (f.byte_order or self.p.framing.byte_order) == "little" else ">"
+            start = leaf.pos // 8
+            for label, value in outside:
+                bad = data[:start] + struct.pack(order + "d", value) + data[start + 8:]
+                out.append((f"{leaf.dotted} {label}", bad))
+        return out
 
     def mutations(self, m: Message, data) -> list[tuple[str, Any]]:
         rng = self.rng

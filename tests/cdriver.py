@@ -16,6 +16,7 @@ from pathlib import Path
 from typing import Any
 
 from codeword.model import Field, Protocol
+from codeword.binary64 import bits_of
 from codeword.targets.c.scalars import clit, clit_signed
 from codeword.targets.c.view import ERR, CView, cchar, cstr
 
@@ -72,6 +73,8 @@ class Driver:
             if number == 0:
                 exp = 0
             return f"{{{number}ULL, {exp}, {'true' if sign else 'false'}}}"
+        if f.kind == "float" and f.bits == 64:  # the member is a double or its bits (codeword.h)
+            return f"CW_F64_CONST({bits_of(float(value)):#018x}ULL, {float(value)!r})"
         if f.kind == "float":
             return repr(float(value)) + "f"
         if f.kind == "char":
@@ -104,7 +107,8 @@ class Driver:
             if f.kind == "float" and self.text:
                 cond = f"!eq_decimal(&{a}, &{b})"
             elif f.kind == "float":
-                cond = f"cw_f32_to_bits({a}) != cw_f32_to_bits({b})"
+                to_bits = "cw_f64_to_bits" if f.bits == 64 else "cw_f32_to_bits"
+                cond = f"{to_bits}({a}) != {to_bits}({b})"
             elif f.kind == "str":
                 cond = f"strcmp({a}, {b}) != 0"
             elif f.kind == "bytes":

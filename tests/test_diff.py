@@ -148,3 +148,12 @@ def test_delivery_section_changes_are_docs_only(tmp_path):
     assert changes(removed, DOCS) == {("delivery", "removed: the docs no longer state a delivery guarantee")}
     added = compare(compile_schema(without), compile_schema(tr24))
     assert changes(added, DOCS) == {("delivery", "added: the docs state the delivery guarantee of master → slave")}
+
+
+def test_f32_to_f64_is_a_width_change_and_breaking(tmp_path):
+    mtv4 = SCHEMAS / "mtv4.yaml"
+    old = "{name: th, type: f32, unit: rad, rule: MTV4-D5, title: {en: orientation Th, pl: Orientacja Th}, doc: heading}"
+    d = diff_of(tmp_path, mtv4, old, old.replace("f32", "f64"))
+    assert d.breaking and d.old_fingerprint != d.new_fingerprint
+    assert {("field th", "resized from 32 bits to 64 bits"),
+            ("message odometry_reply", "size changed from 176 to 208 bits")} <= changes(d, BREAKING)

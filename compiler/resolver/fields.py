@@ -176,9 +176,6 @@ class FieldsMixin(ResolverBase):
         if kind == "str" and f.length is None and f.max_length is None:
             self.error(path, f"field {name!r}: a str field needs `max_length` (or a fixed `length`)",
                        "C decoders keep the text in a buffer of that size")
-        if kind == "float" and bits == 64 and self.framing_kind != "text":
-            self.error(path + ("type",), f"field {name!r}: f64 is not available in binary framings yet",
-                       "use f32, or an integer with a scale")
         if kind == "float" and f.range is not None and self.framing_kind == "text":
             self.error(path + ("range",), f"field {name!r}: a text float cannot have a range yet",
                        "use an integer with a scale, which can")

@@ -16,7 +16,7 @@ FULL = frozenset({
     "little", "field_order",                # byte orders: the framing's, and per field
     "bitfields",                            # fields narrower than a byte, packed
     "signed", "scale", "offset", "range",   # integer options
-    "enum", "flags", "bool", "bytes_field", "f32",
+    "enum", "flags", "bool", "bytes_field", "f32", "f64",
     "wide",                                 # integers of 33..64 bits
     "optional", "str", "char", "text_float", "newline",  # text options
 })

@@ -143,7 +143,23 @@ class Generator:
             return {"name": name, "type": "bytes", "length": length}, 8 * length
         if choice < 0.41 and "f32" in self.on:
             return {"name": name, "type": "f32"}, 32
+        if choice < 0.46 and "f64" in self.on:
+            return self.binary64(name), 64
         return self.integer(name)
+
+    def binary64(self, name: str) -> dict:
+        """An f64 field: sometimes in its own byte order, sometimes with a range
+        (ends that are decimals or integers, which may fall between doubles)."""
+        rng = self.rng
+        field: dict = {"name": name, "type": "f64"}
+        if self.has("field_order", 0.2):
+            field["byte_order"] = rng.choice(["big", "little"])
+        if self.has("range", 0.4):
+            ends = [round(rng.uniform(-1e6, 1e6), rng.randint(0, 6)) for _ in range(2)]
+            if rng.random() < 0.3:
+                ends = [rng.randint(-(1 << 60), 1 << 60) for _ in range(2)]
+            field["range"] = sorted(ends)
+        return field
 
     def integer(self, name: str) -> tuple[dict, int]:
         rng = self.rng

@@ -8,6 +8,7 @@
 #ifndef CODEWORD_H
 #define CODEWORD_H
 
+#include <float.h>
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -353,6 +354,152 @@ static inline uint32_t cw_f32_to_bits(float f)
 static inline bool cw_f32_bits_finite(uint32_t bits)
 {
     return (bits & 0x7F800000UL) != 0x7F800000UL;
+}
+
+/* ---- binary64 (f64 fields) ----------------------------------------------- */
+
+/* An f64 field's member is a cw_f64_t. Where the compiler's double is IEEE
+ * binary64 (gcc and clang on hosts, Cortex-M) it is that double; where double
+ * is narrower (avr-gcc's default 32-bit double) it is the value's binary64 bit
+ * pattern in a struct, so that no value is rounded on its way through, and
+ * assigning a 32-bit double to it does not compile rather than convert.
+ * Either way cw_f64_from_bits/cw_f64_to_bits give the exact value as bits,
+ * cw_f64_from_float widens a float exactly and cw_f64_to_float narrows one
+ * that a float holds exactly. The codecs themselves never do floating-point
+ * arithmetic on an f64: they check its bits (finite, range). */
+#if FLT_RADIX == 2 && DBL_MANT_DIG == 53 && DBL_MAX_EXP == 1024 && DBL_MIN_EXP == -1021
+#define CW_F64_IS_DOUBLE 1
+typedef double cw_f64_t;
+/* memcpy between double and uint64_t below needs them of one size */
+typedef char cw_double_has_64_bits[sizeof(double) == sizeof(uint64_t) ? 1 : -1];
+/* A constant of a cw_f64_t, given as its bits and as a literal of the same
+ * value, e.g. CW_F64_CONST(0x3FF0000000000000ULL, 1.0): usable in an
+ * initializer whatever the member is. */
+#define CW_F64_CONST(bits, literal) (literal)
+
+static inline cw_f64_t cw_f64_from_bits(uint64_t bits)
+{
+    double v;
+    memcpy(&v, &bits, sizeof v);
+    return v;
+}
+
+static inline uint64_t cw_f64_to_bits(cw_f64_t v)
+{
+    uint64_t bits;
+    memcpy(&bits, &v, sizeof bits);
+    return bits;
+}
+#else
+#define CW_F64_IS_DOUBLE 0
+typedef struct {
+    uint64_t bits;  /* IEEE 754 binary64: sign, 11 exponent bits, 52 fraction bits */
+} cw_f64_t;
+#define CW_F64_CONST(bits, literal) {bits}
+
+static inline cw_f64_t cw_f64_from_bits(uint64_t bits)
+{
+    cw_f64_t v;
+    v.bits = bits;
+    return v;
+}
+
+static inline uint64_t cw_f64_to_bits(cw_f64_t v)
+{
+    return v.bits;
+}
+#endif
+
+#define CW_F64_SIGN 0x8000000000000000ULL
+#define CW_F64_EXPONENT 0x7FF0000000000000ULL
+
+/* A binary64 is finite when its exponent bits are not all ones. Tested on the
+ * top 16 bits: avr-gcc 5.4 at -Os gets (bits & mask) != mask wrong in 64 bits. */
+static inline bool cw_f64_bits_finite(uint64_t bits)
+{
+    return ((uint16_t)(bits >> 48) & 0x7FF0u) != 0x7FF0u;
+}
+
+/* The bits of a finite binary64 as an unsigned integer that orders as the
+ * values do (-0 as +0): a range is checked with two integer comparisons. */
+static inline uint64_t cw_f64_order(uint64_t bits)
+{
+    if (bits == CW_F64_SIGN) {
+        bits = 0u;
+    }
+    return (bits >> 63) != 0u ? ~bits : bits | CW_F64_SIGN;
+}
+
+/* The binary64 holding exactly the value of f (every float is one). */
+static inline cw_f64_t cw_f64_from_float(float f)
+{
+    uint32_t b = cw_f32_to_bits(f);
+    uint64_t sign = (uint64_t)(b >> 31) << 63;
+    uint32_t fraction = b & 0x7FFFFFUL;
+    int16_t exponent = (int16_t)((b >> 23) & 0xFFu);  /* biased by 127 */
+    if (exponent == 0xFF) {  /* infinity, or NaN with its payload */
+        return cw_f64_from_bits(sign | CW_F64_EXPONENT | (uint64_t)fraction << 29);
+    }
+    if (exponent == 0) {
+        if (fraction == 0u) {
+            return cw_f64_from_bits(sign);
+        }
+        exponent = 1;  /* subnormal, fraction * 2^-149: normalised here */
+        while ((fraction & 0x800000UL) == 0u) {
+            fraction <<= 1;
+            exponent--;
+        }
+        fraction &= 0x7FFFFFUL;
+    }
+    return cw_f64_from_bits(sign | (uint64_t)(exponent + (1023 - 127)) << 52 | (uint64_t)fraction << 29);
+}
+
+/* The float holding exactly the value of v, in *out: CW_ERR_RANGE past a
+ * float's largest value, CW_ERR_PRECISION when a float would round it and
+ * CW_ERR_FINITE for NaN (infinities narrow to themselves). Never rounds. */
+static inline int cw_f64_to_float(cw_f64_t v, float *out)
+{
+    uint64_t bits = cw_f64_to_bits(v);
+    uint32_t sign = (uint32_t)(bits >> 63) << 31;
+    uint64_t fraction = bits & 0xFFFFFFFFFFFFFULL;
+    int16_t exponent = (int16_t)((bits >> 52) & 0x7FFu);
+    uint8_t shift;
+    if (exponent == 0x7FF) {
+        if (fraction != 0u) {
+            return CW_ERR_FINITE;
+        }
+        *out = cw_f32_from_bits(sign | 0x7F800000UL);
+        return CW_OK;
+    }
+    if (exponent == 0 && fraction == 0u) {
+        *out = cw_f32_from_bits(sign);
+        return CW_OK;
+    }
+    if (exponent == 0) {
+        return CW_ERR_PRECISION;  /* under 2^-1022: far below a float's smallest */
+    }
+    exponent = (int16_t)(exponent - 1023);
+    if (exponent > 127) {
+        return CW_ERR_RANGE;
+    }
+    if (exponent >= -126) {  /* a normal float: the low 29 fraction bits go */
+        if ((fraction & 0x1FFFFFFFUL) != 0u) {
+            return CW_ERR_PRECISION;
+        }
+        *out = cw_f32_from_bits(sign | (uint32_t)(exponent + 127) << 23 | (uint32_t)(fraction >> 29));
+        return CW_OK;
+    }
+    if (exponent < -149) {
+        return CW_ERR_PRECISION;  /* under a float's smallest subnormal, 2^-149 */
+    }
+    /* a subnormal float: 1.fraction * 2^exponent = m * 2^-149 */
+    fraction |= 0x10000000000000ULL;
+    shift = (uint8_t)(-97 - exponent);  /* 30..52 */
+    if ((fraction & (((uint64_t)1u << shift) - 1u)) != 0u) {
+        return CW_ERR_PRECISION;
+    }
+    *out = cw_f32_from_bits(sign | (uint32_t)(fraction >> shift));
+    return CW_OK;
 }
 
 /* Index of the single set bit of a one-hot value (0 for 0). */

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any, Optional
 
+from ... import binary64
 from ...crc import reflect
 from ...model import Checksum, CrcParams, Field, Leaf, Message, Protocol, field_at
 from ..code import Code
@@ -107,7 +108,7 @@ class CView:
         if f.kind == "float":
             if self.text:
                 return Rep("cw_decimal_t", has_flag=f.optional)
-            return Rep("float")
+            return Rep("float" if f.bits == 32 else "cw_f64_t")
         if f.one_hot:
             lo, hi = f.range or (0, f.bits - 1)
             return Rep("uint8_t", has_flag=True, lo=int(lo), hi=int(hi))
@@ -211,6 +212,8 @@ class CView:
         value = cond.value
         if cond.op in ("eq", "ne") and value is None:
             return f"!{leaf_has}" if cond.op == "eq" else leaf_has
+        if f is not None and self.rep(f).ctype == "cw_f64_t":
+            return self.f64_condition(cond.op, f"cw_f64_to_bits({left})", value)
         if cond.op in ("eq", "ne"):
             if f is not None and f.kind == "bool":
                 want = bool(value) == (cond.op == "eq")
@@ -222,6 +225,29 @@ class CView:
         if cond.op == "range":
             return f"({left} >= {self.value_literal(f, value[0])} && {left} <= {self.value_literal(f, value[1])})"
         raise CTargetError(f"condition {cond.op} is for state machines")
+
+    def f64_condition(self, op: str, bits: str, value: Any) -> str:
+        """A rule's condition on an f64 member, on its bits (`bits`): no double arithmetic,
+        which a 32-bit double could not do, and the values compared exactly, as Python does."""
+        if op == "range":
+            return f"!({self.f64_outside(bits, *value)})"
+        if op == "in":
+            return "(" + " || ".join(self.f64_condition("eq", bits, x) for x in value) + ")"
+        if binary64.at_most(value) != value:  # no double holds it
+            return "false" if op == "eq" else "true"
+        return f"cw_f64_order({bits}) {'==' if op == 'eq' else '!='} {clit(binary64.order_of(value), True)}"
+
+    @staticmethod
+    def f64_outside(bits: str, lo: Any, hi: Any) -> str:
+        """`bits` (a finite binary64) outside [lo, hi]; the bounds are the nearest
+        doubles inside, compared in cw_f64_order."""
+        low, high = binary64.at_least(lo), binary64.at_most(hi)
+        parts = []
+        if low > -binary64.LARGEST:
+            parts.append(f"cw_f64_order({bits}) < {clit(binary64.order_of(low), True)} /* {low!r} */")
+        if high < binary64.LARGEST:
+            parts.append(f"cw_f64_order({bits}) > {clit(binary64.order_of(high), True)} /* {high!r} */")
+        return " || ".join(parts) or "false"
 
     def rule_checks(self, c: Code, m: Message, obj: str) -> None:
         for rule in m.rules:
@@ -267,6 +293,11 @@ class CView:
         r = self.rep(f)
         if f.kind == "bool":
             c(f"{raw} = ({rt}){v};")  # a bool is 0 or 1
+        elif f.kind == "float" and f.bits == 64:  # raw values of a message with one are uint64_t
+            c(f"{raw} = cw_f64_to_bits({v});")
+            self.fail_if(c, f"!cw_f64_bits_finite({raw})", "finite")
+            if f.range is not None:
+                self.fail_if(c, self.f64_outside(raw, *f.range), "range")
         elif f.kind == "float":
             store(f"cw_f32_to_bits({v})")
             c(f"if (!cw_f32_bits_finite({raw if rt == 'uint32_t' else f'(uint32_t){raw}'})) {{")
@@ -407,6 +438,12 @@ class CView:
             c(f"{v} = {raw} != 0u;")
             return
         if f.kind == "bytes":
+            return
+        if f.kind == "float" and f.bits == 64:
+            self.fail_if(c, f"!cw_f64_bits_finite({raw})", "finite")
+            c(f"{v} = cw_f64_from_bits({raw});")
+            if f.range is not None:
+                self.fail_if(c, self.f64_outside(raw, *f.range), "range")
             return
         if f.kind == "float":
             self.fail_if(c, f"!cw_f32_bits_finite({raw})", "finite")

@@ -102,7 +102,7 @@ def type_text(p: Protocol, f: Field) -> str:
     return text
 
 
-def range_text(f: Field) -> str:
+def range_text(p: Protocol, f: Field) -> str:
     """The allowed values in the units the user sees, and how they map to the wire."""
     if f.const is not None:
         value = f"{f.const:#04x}" if isinstance(f.const, int) and not isinstance(f.const, bool) and f.bits and f.bits >= 8 else number(f.const)
@@ -124,8 +124,8 @@ def range_text(f: Field) -> str:
         parts.append(f"sent as value − {number(f.offset)}")
     if f.scale is not None:
         parts.append(f"step {number(f.scale)}")
-    if f.kind == "float" and f.bits == 32:
-        parts.append("IEEE-754 binary32")
+    if f.kind == "float" and (f.bits == 32 or p.framing.kind != "text"):
+        parts.append(f"IEEE-754 binary{f.bits}")
     if f.kind == "float" and f.bits == 64 and not parts:
         parts.append("any decimal number")
     return "; ".join(parts)
@@ -214,7 +214,7 @@ def field_rows(p: Protocol, m: Message, linker: DecisionLinker) -> list[dict]:
             "offset": str(s.offset) if s.offset is not None else "",
             "index": str(s.index) if s.depth == 0 else "",
             "position": position(p, s),
-            "type": cell(type_text(p, f)), "range": range_text(f),
+            "type": cell(type_text(p, f)), "range": range_text(p, f),
             "unit": cell(f.unit or ""), "kinds": values_text(f), "default": cell(default_text(f)),
             "meaning": meaning(f, linker),
         })
