@@ -26,6 +26,9 @@ DOC_ONLY = frozenset({
 })
 # Model attributes computed from others: hashing them again adds nothing.
 DERIVED = frozenset({"wire"})
+# Attributes added to the language later, left out at their default so that the
+# fingerprint of a schema that does not use them stays what it was.
+LATER_DEFAULTS = {"bit_order": "msb_first"}
 
 
 @lru_cache(maxsize=None)
@@ -38,7 +41,8 @@ def wire_model(value: Any) -> Any:
     if isinstance(value, Text):
         return None
     if hasattr(type(value), "__dataclass_fields__") and not isinstance(value, type):
-        return {name: wire_model(getattr(value, name)) for name in _wire_fields(type(value))}
+        return {name: wire_model(getattr(value, name)) for name in _wire_fields(type(value))
+                if name not in LATER_DEFAULTS or getattr(value, name) != LATER_DEFAULTS[name]}
     if isinstance(value, (tuple, list)):
         return [wire_model(x) for x in value]
     if isinstance(value, dict):

@@ -13,7 +13,7 @@ class FramingMixin(ResolverBase):
         kind = fr["kind"]
         path = ("framing",)
         allowed = {"bits": {"kind", "word_bits", "max_bits", "byte_order", "text_form"},
-                   "bytes": {"kind", "layout", "byte_order"},
+                   "bytes": {"kind", "layout", "byte_order", "bit_order"},
                    "text": {"kind", "prefix_separator", "separator", "terminator",
                             "ignore_between", "trim", "float_format"}}[kind]
         for key in fr:
@@ -38,8 +38,12 @@ class FramingMixin(ResolverBase):
         if kind == "bits" and "word_bits" not in fr and "max_bits" not in fr:
             self.error(path, "bits framing needs word_bits or max_bits")
         tf = fr.get("text_form")
+        bit_order = fr.get("bit_order", "msb_first")
+        # least significant bit first, a field crossing bytes is little-endian: the default
+        default_order = "little" if bit_order == "lsb_first" else "big"
         return Framing(
-            kind=kind, byte_order=fr.get("byte_order", "big"), word_bits=fr.get("word_bits"),
+            kind=kind, byte_order=fr.get("byte_order", default_order), bit_order=bit_order,
+            word_bits=fr.get("word_bits"),
             max_bits=fr.get("max_bits"),
             text_form=TextForm(tf.get("separator", " "), tf.get("comment"), tf.get("checksum_unfilled"))
             if tf else None,
@@ -135,13 +139,20 @@ class FramingMixin(ResolverBase):
                                                  "is not supported in text framing")
 
     def check_alignment(self, name: str, placed: list[Field], framing: Framing, path: tuple) -> None:
+        """Bits inside a byte are counted in the frame's bit order, so a field crossing
+        bytes reads in the matching byte order: big-endian most significant bit first,
+        little-endian least significant bit first. A field in the other byte order, a
+        float or bytes must be whole bytes on a byte boundary."""
+        natural = framing.wire_order
         for f in placed:
             order = f.byte_order or framing.byte_order
-            multibyte = f.bits and f.bits > 8 and f.kind in ("uint", "int") and order == "little"
+            multibyte = f.bits and f.bits > 8 and f.kind in ("uint", "int") and order != natural
             if (f.kind in ("float", "bytes") or multibyte) and (f.bit_offset % 8 or f.bits % 8):
+                hint = "add padding bits before it"
+                if multibyte:
+                    hint += f", or make it {natural}-endian (the byte order of {framing.bit_order} bits)"
                 self.error(path, f"message {name!r}: field {f.name!r} must be byte-aligned and whole "
-                                 f"bytes (it starts at bit {f.bit_offset}, {f.bits} bits)",
-                           "add padding bits before it")
+                                 f"bytes (it starts at bit {f.bit_offset}, {f.bits} bits)", hint)
 
     def check_size(self, name: str, m: dict, layout: tuple[Field, ...], bits: Optional[int],
                    framing: Framing, path: tuple) -> None:

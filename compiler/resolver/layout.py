@@ -26,16 +26,17 @@ def leaves_of(layout: tuple[Field, ...], prefix: tuple[str, ...] = (), start: Op
     return out
 
 
-def runs_of(leaves: list[Leaf], frame_bytes: int) -> tuple[Run, ...]:
+def runs_of(leaves: list[Leaf], frame_bytes: int, order: str = "big") -> tuple[Run, ...]:
     """A field of whole bytes that starts on a byte boundary, with no bit field
     waiting before it, is a run of its own; bit fields gather until they end on a
-    byte boundary (or the frame's padding completes the last byte)."""
+    byte boundary (or the frame's padding completes the last byte), into an integer
+    read in `order`, the frame's bit order."""
     out: list[Run] = []
     pending: list[Leaf] = []
 
     def close(end_bit: int) -> None:
         start = pending[0].pos // 8
-        out.append(Run("packed", start, (end_bit + 7) // 8 - start, tuple(pending)))
+        out.append(Run("packed", start, (end_bit + 7) // 8 - start, tuple(pending), order))
         pending.clear()
 
     for leaf in leaves:
@@ -53,8 +54,9 @@ def runs_of(leaves: list[Leaf], frame_bytes: int) -> tuple[Run, ...]:
     return tuple(out)
 
 
-def wire_of(layout: tuple[Field, ...], bits: Optional[int]) -> Wire:
-    """The layout of a message; runs only when the frame's size is known (binary)."""
+def wire_of(layout: tuple[Field, ...], bits: Optional[int], order: str = "big") -> Wire:
+    """The layout of a message; runs only when the frame's size is known (binary).
+    `order`: the frame's bit stream order (Framing.wire_order)."""
     leaves = leaves_of(layout, start=0 if bits is not None else None)
-    runs = runs_of(leaves, (bits + 7) // 8) if bits is not None else ()
-    return Wire(tuple(leaves), runs)
+    runs = runs_of(leaves, (bits + 7) // 8, order) if bits is not None else ()
+    return Wire(tuple(leaves), runs, order)

@@ -49,7 +49,7 @@ class MessagesMixin(ResolverBase):
             name=name, loc=self.loc(*path), title=text(m.get("title")), doc=text(m.get("doc")),
             ids=ids, direction=m.get("direction"), role=m.get("role"),
             answered_by=tuple(m.get("answered_by", [])), fields=own, layout=layout, bits=bits,
-            rules=rules, examples=examples, dispatch_key=dispatch_key, wire=wire_of(layout, bits),
+            rules=rules, examples=examples, dispatch_key=dispatch_key, wire=wire_of(layout, bits, framing.wire_order),
             layout_type=layout_type)
 
     def resolve_example(self, e: dict, path: tuple) -> Example:
