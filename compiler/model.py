@@ -282,21 +282,31 @@ class Leaf:
         return ".".join(self.path)
 
 
+def shift_in(order: str, start: int, size: int, pos: int, bits: int) -> int:
+    """Where the `bits` bits from frame bit `pos` sit, from bit 0, in the integer that
+    bytes start..start+size read in `order`. The wire counts bits as its integers
+    read them: "big" most significant bit first (bit 0 is the top bit of byte 0),
+    "little" least significant bit first (bit 0 is the low bit of byte 0)."""
+    return (start + size) * 8 - pos - bits if order == "big" else pos - 8 * start
+
+
 @dataclass(frozen=True)
 class Run:
     """Bytes of a frame moved as one unit. "bytes" and "number": one field of whole
     bytes starting on a byte boundary, in its own byte order; "packed": bit fields
-    that together fill whole bytes, as one big-endian integer, most significant bit
-    first as the wire counts bits (a frame's trailing padding completes the last)."""
+    that together fill whole bytes, as one integer read in `order`: big-endian when
+    the frame counts bits most significant first, little-endian when least
+    significant first (a frame's trailing padding completes the last byte)."""
 
     kind: str  # bytes | number | packed
     start: int  # first byte
     size: int  # bytes
     leaves: tuple[Leaf, ...]
+    order: str = "big"  # packed: byte order of the run's integer (the frame's bit order)
 
     def shift(self, leaf: Leaf) -> int:
-        """Where `leaf` sits in the run's big-endian integer, from bit 0."""
-        return (self.start + self.size) * 8 - leaf.pos - leaf.bits
+        """Where `leaf` sits in the run's integer, from bit 0."""
+        return shift_in(self.order, self.start, self.size, leaf.pos, leaf.bits)
 
 
 @dataclass(frozen=True)
@@ -305,6 +315,7 @@ class Wire:
 
     leaves: tuple[Leaf, ...]
     runs: tuple[Run, ...]  # binary framings; empty in text framing
+    order: str = "big"  # byte order of the frame read as one integer: its bit order
 
 
 @dataclass(frozen=True)
@@ -342,6 +353,15 @@ class Message:
             return ()
         return tuple((name, values[0]) for name, values in self.dispatch_key)
 
+    def shift(self, leaf: Leaf) -> int:
+        """Where `leaf` sits in the whole frame read as one integer (in `wire.order`)."""
+        return shift_in(self.wire.order, 0, self.size, leaf.pos, leaf.bits)
+
+    def padding(self) -> tuple[int, int]:
+        """(shift, bits) of the padding that completes the last byte, in that byte."""
+        pad = 8 * self.size - self.bits
+        return shift_in(self.wire.order, self.size - 1, 1, self.bits, pad), pad
+
 
 @dataclass(frozen=True)
 class TextForm:
@@ -356,6 +376,13 @@ class TextForm:
 class Framing:
     kind: str  # bits | bytes | text
     byte_order: str = "big"
+    bit_order: str = "msb_first"  # msb_first | lsb_first (bytes framing)
+
+    @property
+    def wire_order(self) -> str:
+        """The byte order of the frame read as one bit stream: big-endian when bits
+        count most significant first, little-endian when least significant first."""
+        return "little" if self.bit_order == "lsb_first" else "big"
     word_bits: Optional[int] = None
     max_bits: Optional[int] = None
     text_form: Optional[TextForm] = None

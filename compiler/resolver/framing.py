@@ -6,7 +6,7 @@ from typing import Optional
 
 from ..model import Field, Framing, TextForm
 from .base import ResolverBase
-from .layout import key_read, leaves_of
+from .layout import key_read, leaves_of, whole_bytes
 
 
 class FramingMixin(ResolverBase):
@@ -14,7 +14,7 @@ class FramingMixin(ResolverBase):
         kind = fr["kind"]
         path = ("framing",)
         allowed = {"bits": {"kind", "word_bits", "max_bits", "byte_order", "text_form"},
-                   "bytes": {"kind", "layout", "byte_order"},
+                   "bytes": {"kind", "layout", "byte_order", "bit_order"},
                    "text": {"kind", "prefix_separator", "separator", "terminator",
                             "ignore_between", "trim", "float_format"}}[kind]
         for key in fr:
@@ -31,14 +31,20 @@ class FramingMixin(ResolverBase):
                 if len(payloads) != 1:
                     self.error(path + ("layout",), f"layout needs exactly one `{{payload: true}}` item, "
                                                    f"found {len(payloads)}")
-                self.check_dispatch_fields(envelope, fr.get("byte_order", "big"), path + ("layout",))
+                wire_order = "little" if fr.get("bit_order") == "lsb_first" else "big"
+                self.check_dispatch_fields(envelope, fr.get("byte_order", wire_order), wire_order,
+                                           path + ("layout",))
         if kind == "bits" and "word_bits" in fr and "max_bits" in fr:
             self.error(path, "give word_bits (every message is one word) or max_bits, not both")
         if kind == "bits" and "word_bits" not in fr and "max_bits" not in fr:
             self.error(path, "bits framing needs word_bits or max_bits")
         tf = fr.get("text_form")
+        bit_order = fr.get("bit_order", "msb_first")
+        # least significant bit first, a field crossing bytes is little-endian: the default
+        default_order = "little" if bit_order == "lsb_first" else "big"
         return Framing(
-            kind=kind, byte_order=fr.get("byte_order", "big"), word_bits=fr.get("word_bits"),
+            kind=kind, byte_order=fr.get("byte_order", default_order), bit_order=bit_order,
+            word_bits=fr.get("word_bits"),
             max_bits=fr.get("max_bits"),
             text_form=TextForm(tf.get("separator", " "), tf.get("comment"), tf.get("checksum_unfilled"))
             if tf else None,
@@ -153,26 +159,29 @@ class FramingMixin(ResolverBase):
         f = replace(f, const=values[0]) if len(values) == 1 else replace(f, values=values)
         return f, (f.name, values)
 
-    def check_dispatch_fields(self, envelope: tuple[Field, ...], byte_order: str, path: tuple) -> None:
+    def check_dispatch_fields(self, envelope: tuple[Field, ...], byte_order: str, wire_order: str,
+                              path: tuple) -> None:
         """Several dispatch fields are read together as one key of at most 32 bits."""
         leaves = leaves_of(envelope)
-        read = key_read(leaves, byte_order)
-        if read is None or sum(x.field.dispatch for x in leaves) < 2:
+        dispatch = [x for x in leaves if x.field.dispatch]
+        if len(dispatch) < 2:
             return
-        if any(x.pos is None for x in leaves if x.field.dispatch):
+        if any(x.pos is None for x in dispatch):
             self.error(path, "dispatch fields must sit at fixed places in the frame",
                        "move them before any field of variable size")
-        elif read["bytes"] > 4:
+            return
+        read = key_read(leaves, byte_order, wire_order)
+        if read["bytes"] > 4:
             self.error(path, f"the dispatch fields span {read['bytes']} bytes; a key is read from at most 4",
                        "move them next to each other")
-        dispatch = [x for x in leaves if x.field.dispatch]
-        orders = {x.field.byte_order or byte_order for x in dispatch if x.bits > 8}
+        orders = {x.field.byte_order or byte_order for x in dispatch if whole_bytes(x) and x.bits > 8}
         if len(orders) > 1:
             self.error(path, "dispatch fields of several bytes must share one byte order",
                        "give them the same `byte_order`")
-        elif orders == {"little"} and any(x.bits % 8 and x.pos // 8 != (x.pos + x.bits - 1) // 8 for x in dispatch):
-            self.error(path, "with little-endian dispatch fields, a dispatch field of part of a byte "
-                             "must not cross a byte boundary", "move it inside one byte")
+        elif read["byte_order"] != wire_order and any(
+                not whole_bytes(x) and x.pos // 8 != (x.pos + x.bits - 1) // 8 for x in dispatch):
+            self.error(path, f"the dispatch fields are read {read['byte_order']}-endian, so a dispatch field "
+                             "of part of a byte must not cross a byte boundary", "move it inside one byte")
 
     def check_text_fields(self, name: str, own: tuple[Field, ...], path: tuple) -> None:
         seen_optional = False
@@ -189,13 +198,20 @@ class FramingMixin(ResolverBase):
                                                  "is not supported in text framing")
 
     def check_alignment(self, name: str, placed: list[Field], framing: Framing, path: tuple) -> None:
+        """Bits inside a byte are counted in the frame's bit order, so a field crossing
+        bytes reads in the matching byte order: big-endian most significant bit first,
+        little-endian least significant bit first. A field in the other byte order, a
+        float or bytes must be whole bytes on a byte boundary."""
+        natural = framing.wire_order
         for f in placed:
             order = f.byte_order or framing.byte_order
-            multibyte = f.bits and f.bits > 8 and f.kind in ("uint", "int") and order == "little"
+            multibyte = f.bits and f.bits > 8 and f.kind in ("uint", "int") and order != natural
             if (f.kind in ("float", "bytes") or multibyte) and (f.bit_offset % 8 or f.bits % 8):
+                hint = "add padding bits before it"
+                if multibyte:
+                    hint += f", or make it {natural}-endian (the byte order of {framing.bit_order} bits)"
                 self.error(path, f"message {name!r}: field {f.name!r} must be byte-aligned and whole "
-                                 f"bytes (it starts at bit {f.bit_offset}, {f.bits} bits)",
-                           "add padding bits before it")
+                                 f"bytes (it starts at bit {f.bit_offset}, {f.bits} bits)", hint)
 
     def check_size(self, name: str, m: dict, layout: tuple[Field, ...], bits: Optional[int],
                    framing: Framing, path: tuple) -> None:

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from typing import Optional
 
-from ..model import Field, Leaf, Run, Wire
+from ..model import Field, Leaf, Run, Wire, shift_in
 
 
 def leaves_of(layout: tuple[Field, ...], prefix: tuple[str, ...] = (), start: Optional[int] = 0) -> list[Leaf]:
@@ -26,16 +26,17 @@ def leaves_of(layout: tuple[Field, ...], prefix: tuple[str, ...] = (), start: Op
     return out
 
 
-def runs_of(leaves: list[Leaf], frame_bytes: int) -> tuple[Run, ...]:
+def runs_of(leaves: list[Leaf], frame_bytes: int, order: str = "big") -> tuple[Run, ...]:
     """A field of whole bytes that starts on a byte boundary, with no bit field
     waiting before it, is a run of its own; bit fields gather until they end on a
-    byte boundary (or the frame's padding completes the last byte)."""
+    byte boundary (or the frame's padding completes the last byte), into an integer
+    read in `order`, the frame's bit order."""
     out: list[Run] = []
     pending: list[Leaf] = []
 
     def close(end_bit: int) -> None:
         start = pending[0].pos // 8
-        out.append(Run("packed", start, (end_bit + 7) // 8 - start, tuple(pending)))
+        out.append(Run("packed", start, (end_bit + 7) // 8 - start, tuple(pending), order))
         pending.clear()
 
     for leaf in leaves:
@@ -53,39 +54,46 @@ def runs_of(leaves: list[Leaf], frame_bytes: int) -> tuple[Run, ...]:
     return tuple(out)
 
 
-def wire_of(layout: tuple[Field, ...], bits: Optional[int]) -> Wire:
-    """The layout of a message; runs only when the frame's size is known (binary)."""
+def wire_of(layout: tuple[Field, ...], bits: Optional[int], order: str = "big") -> Wire:
+    """The layout of a message; runs only when the frame's size is known (binary).
+    `order`: the frame's bit stream order (Framing.wire_order)."""
     leaves = leaves_of(layout, start=0 if bits is not None else None)
-    runs = runs_of(leaves, (bits + 7) // 8) if bits is not None else ()
-    return Wire(tuple(leaves), runs)
+    runs = runs_of(leaves, (bits + 7) // 8, order) if bits is not None else ()
+    return Wire(tuple(leaves), runs, order)
 
 
-def key_read(leaves: list[Leaf] | tuple[Leaf, ...], default_order: str) -> Optional[dict]:
+def key_read(leaves: list[Leaf] | tuple[Leaf, ...], default_order: str, wire_order: str = "big") -> Optional[dict]:
     """How a decoder reads the dispatch key of a bytes frame: bytes first..last as
     one integer in `byte_order`, shifted right by `shift` and masked with `mask`;
     `places` gives each dispatch field's (shift, bits) inside that key. With one
     dispatch field the key is its value; with several (UBX's class and id) it is
-    their values side by side, as the bytes hold them."""
+    their values side by side, as the bytes hold them. Fields of whole bytes set
+    the read's byte order; otherwise it is the frame's bit order (`wire_order`)."""
     fields = [leaf for leaf in leaves if leaf.field.dispatch and leaf.pos is not None]
     if not fields:
         return None
     first = min(leaf.pos for leaf in fields) // 8
     last = max((leaf.pos + leaf.bits - 1) // 8 + 1 for leaf in fields)
-    orders = {leaf.field.byte_order or default_order for leaf in fields if leaf.bits > 8}
-    order = "little" if orders == {"little"} else "big"
+    orders = {leaf.field.byte_order or default_order for leaf in fields if whole_bytes(leaf) and leaf.bits > 8}
+    order = orders.pop() if len(orders) == 1 else wire_order
 
     def shift(leaf: Leaf) -> int:
-        if order == "big":
-            return last * 8 - (leaf.pos + leaf.bits)
-        byte = 8 * (leaf.pos // 8 - first)  # the integer's bytes are read least significant first
-        return byte if leaf.bits % 8 == 0 else byte + 8 - leaf.pos % 8 - leaf.bits
+        if whole_bytes(leaf) or order == wire_order:
+            return shift_in(order, first, last - first, leaf.pos, leaf.bits)
+        byte = leaf.pos // 8  # part of one byte (the resolver sees to it), read in the frame's bit order
+        index = byte - first if order == "little" else last - 1 - byte
+        return 8 * index + shift_in(wire_order, byte, 1, leaf.pos, leaf.bits)
 
     shifts = {leaf.field.name: shift(leaf) for leaf in fields}
     low = min(shifts.values())
     places = {leaf.field.name: (shifts[leaf.field.name] - low, leaf.bits) for leaf in fields}
     mask = sum(((1 << bits) - 1) << at for at, bits in places.values())
     return {"first": first, "last": last, "bytes": last - first, "shift": low, "mask": mask,
-            "byte_order": order if last - first > 1 else "big", "places": places}
+            "byte_order": order, "places": places}
+
+
+def whole_bytes(leaf: Leaf) -> bool:
+    return leaf.pos % 8 == 0 and leaf.bits % 8 == 0
 
 
 def key_of(read: dict, values: dict[str, int]) -> int:

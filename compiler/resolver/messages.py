@@ -40,7 +40,7 @@ class MessagesMixin(ResolverBase):
         layout, dispatch_key = self.place(name, own, ids, framing, path, m.get("direction"))
         if len(dispatch_key) > 1 and framing.kind == "bytes":  # the key the dispatch fields' values make together
             values = dict((k, v[0]) for k, v in dispatch_key if len(v) == 1 and isinstance(v[0], int))
-            read = key_read(leaves_of(framing.envelope), framing.byte_order)
+            read = key_read(leaves_of(framing.envelope), framing.byte_order, framing.wire_order)
             ids = (key_of(read, values),) if read and set(values) == set(read["places"]) else ()
         bits = None
         if framing.kind != "text":
@@ -57,7 +57,7 @@ class MessagesMixin(ResolverBase):
             name=name, loc=self.loc(*path), title=text(m.get("title")), doc=text(m.get("doc")),
             ids=ids, direction=m.get("direction"), role=m.get("role"),
             answered_by=tuple(m.get("answered_by", [])), fields=own, layout=layout, bits=bits,
-            rules=rules, examples=examples, dispatch_key=dispatch_key, wire=wire_of(layout, bits),
+            rules=rules, examples=examples, dispatch_key=dispatch_key, wire=wire_of(layout, bits, framing.wire_order),
             layout_type=layout_type)
 
     def resolve_example(self, e: dict, path: tuple) -> Example:

@@ -2,7 +2,7 @@
 the message in a frame, and how a stream decoder finds frames."""
 from __future__ import annotations
 
-from ..model import Protocol
+from ..model import Framing, Protocol, shift_in
 from ..resolver.layout import key_read, leaves_of
 
 
@@ -43,12 +43,24 @@ def dispatch_facts(p: Protocol) -> dict:
         return with_head_checks({"kind": "bits", "entries": entries, "head_bytes": min_size,
                                  "head_bits": 8 * min_size})
     # bytes: the envelope's dispatch fields, read together as one key
-    read = key_read(leaves_of(fr.envelope), fr.byte_order)
+    read = key_read(leaves_of(fr.envelope), fr.byte_order, fr.wire_order)
     keys = []
     for m in p.messages:
         for value in m.ids:
             keys.append((value, m.size, m.direction, m.name))
     return dict(read, kind="bytes", first_bit=8 * read["first"], frames=keys)
+
+
+def covering_read(fr: Framing, pos: int, bits: int, own_order: str | None) -> dict:
+    """How to read the `bits` bits from frame bit `pos`: the bytes that cover them as
+    one integer in `byte_order`, shifted right by `shift` and masked. A field of whole
+    aligned bytes reads in its own byte order (shift 0); any other in the frame's bit
+    order, which the resolver makes the byte order of every field crossing bytes."""
+    first, last = pos // 8, (pos + bits - 1) // 8 + 1
+    whole = pos % 8 == 0 and bits % 8 == 0
+    order = (own_order or fr.byte_order) if whole and bits > 8 else fr.wire_order
+    return {"at": first, "last": last, "bytes": last - first, "byte_order": order,
+            "shift": shift_in(order, first, last - first, pos, bits), "mask": (1 << bits) - 1}
 
 
 def with_head_checks(d: dict, head_bits: int | None = None) -> dict:
@@ -69,16 +81,10 @@ def stream_facts(p: Protocol) -> dict:
     sync = pattern[0] if pattern else None
     length = None
     for leaf in p.messages[0].wire.leaves:
-        pos = leaf.pos
         if leaf.field.length_of:
             span = next(x for x in p.messages[0].layout if x.name == leaf.field.name)
-            bits = leaf.field.bits
-            first, last = pos // 8, (pos + bits - 1) // 8 + 1
-            whole = pos % 8 == 0 and bits % 8 == 0
-            length = {"at": first, "last": last, "bytes": last - first, "shift": last * 8 - (pos + bits),
-                      "mask": (1 << bits) - 1, "overhead": p.messages[0].size - span.const,
-                      # a field of whole bytes is read in its byte order, bits inside bytes big-endian
-                      "byte_order": (leaf.field.byte_order or fr.byte_order) if whole and bits > 8 else "big"}
+            length = dict(covering_read(fr, leaf.pos, leaf.field.bits, leaf.field.byte_order),
+                          overhead=p.messages[0].size - span.const)
     sizes = sorted({m.size for m in p.messages})
     by_key = None
     if length is None and len(sizes) > 1:  # no length field: the dispatch value gives the size

@@ -15,6 +15,7 @@ FULL = frozenset({
     "sum", "xor", "crc",                    # checksums over bytes
     "little", "field_order",                # byte orders: the framing's, and per field
     "bitfields",                            # fields narrower than a byte, packed
+    "lsb_first",                            # bytes framing: bit fields least significant bit first
     "signed", "scale", "offset", "range",   # integer options
     "enum", "flags", "bool", "bytes_field", "f32", "f64",
     "wide",                                 # integers of 33..64 bits

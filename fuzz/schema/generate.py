@@ -21,6 +21,7 @@ class Generator:
         self.on = features
         self.seed = seed
         self.little = False  # the byte framing's order, once chosen
+        self.lsb = False  # bytes framing, least significant bit first: fields cross bytes
         self.enums: dict = {}
         self.flags: dict = {}
         self.directions = False  # messages have directions (an envelope byte depends on them)
@@ -60,21 +61,32 @@ class Generator:
         layout: list[dict] = []
         single = self.has("no_dispatch", 0.2)
         sync = self.has("sync", 0.8)
+        self.lsb = self.has("lsb_first", 0.25)
         if sync:
             layout.append({"name": "sync", "type": "u8", "const": rng.choice([0xA5, 0x55, 0x7E, 0xAA])})
             if self.has("sync2", 0.3):  # a sync of two bytes, such as UBX's B5 62
                 layout.append({"name": "sync_b", "type": "u8", "const": rng.choice([0x62, 0x00, 0xA5, 0xFF])})
-        two_keys = not single and self.has("two_keys", 0.3)
-        key = "group" if two_keys else "kind"  # the first dispatch field
+        two_keys = not single and not self.lsb and self.has("two_keys", 0.3)
+        id_bits = 8
         if not single:
-            if self.has("length", 0.5):
-                layout.append({"name": "len", "type": "u8", "length_of": {"from": key, "to": "payload"}})
-            if two_keys:  # messages told apart by a group and a kind, as UBX's class and id
-                layout.append({"name": "group", "type": rng.choice(["u8", "u4"]), "dispatch": True})
-                layout.append({"name": "kind", "type": "u8" if layout[-1]["type"] == "u8" else "u4",
-                               "dispatch": True})
+            length = self.has("length", 0.5)
+            if self.lsb:  # an 11-bit length and a 5-bit id share two bytes, as on a CAN-like bus
+                id_bits = 5
+                if length:
+                    layout.append({"name": "len", "type": "u11", "length_of": {"from": "len", "to": "payload"}})
+                layout.append({"name": "kind", "type": "u5", "dispatch": True})
+                if not length:
+                    layout.append(self.padding(3))
             else:
-                layout.append({"name": "kind", "type": "u8", "dispatch": True})
+                key = "group" if two_keys else "kind"  # the first dispatch field
+                if length:
+                    layout.append({"name": "len", "type": "u8", "length_of": {"from": key, "to": "payload"}})
+                if two_keys:  # messages told apart by a group and a kind, as UBX's class and id
+                    layout.append({"name": "group", "type": rng.choice(["u8", "u4"]), "dispatch": True})
+                    layout.append({"name": "kind", "type": "u8" if layout[-1]["type"] == "u8" else "u4",
+                                   "dispatch": True})
+                else:
+                    layout.append({"name": "kind", "type": "u8", "dispatch": True})
             self.directions = self.has("by_direction", 0.25)
             if self.directions:  # a byte that says the direction, as MSP's `<` and `>`
                 layout.insert(rng.randrange(len(layout) + 1) if not sync else len(layout),
@@ -83,7 +95,7 @@ class Generator:
         algorithms = [a for a in ("sum", "xor", "crc") if a in self.on]
         if algorithms and (sync or not single) and rng.random() < 0.7:  # `from: payload` is its end
             algorithm = rng.choice(algorithms)
-            first = key if not single else ("sync" if sync else "payload")
+            first = layout[1 if sync else 0]["name"] if not single else ("sync" if sync else "payload")
             if algorithm == "crc":
                 width = rng.choice(sorted(CRCS))
                 check = {"algorithm": rng.choice(CRCS[width]), "covers": {"from": first, "to": "payload"}}
@@ -91,13 +103,17 @@ class Generator:
                 width = rng.choice([8, 16])
                 check = {"algorithm": algorithm, "covers": {"from": first, "to": "payload"}}
             layout.append({"name": "check", "type": f"u{width}", "checksum": check})
-        self.little = self.has("little")
+        self.little = self.lsb or self.has("little")
         framing = {"kind": "bytes", "byte_order": "little" if self.little else "big", "layout": layout}
+        if self.lsb:
+            framing["bit_order"] = "lsb_first"
+            if rng.random() < 0.5:  # little-endian is its default
+                del framing["byte_order"]
         count = 1 if single else rng.randint(1, 4)
         if two_keys:  # few values of each, so that messages share a group or a kind
             ids = [{"group": g, "kind": k} for g, k in rng.sample([(g, k) for g in range(3) for k in range(3)], count)]
         else:
-            ids = rng.sample(range(256), count)
+            ids = rng.sample(range(1 << id_bits), count)
         messages = {}
         for i in range(count):
             body: dict = {} if single else {"id": ids[i]}
@@ -108,13 +124,15 @@ class Generator:
         return framing, messages
 
     def binary_fields(self, at_least: int = 0) -> list[dict]:
-        """Fields of whole bytes start on a byte; narrower ones do not cross one."""
+        """Fields of whole bytes start on a byte; narrower ones do not cross one, but
+        least significant bit first little-endian integers of any width may."""
         rng = self.rng
         fields, bits = [], 0
         for _ in range(rng.randint(at_least, 5)):
             field, width = self.binary_field()
             room = 8 - bits % 8
-            if bits % 8 and (width >= 8 or width > room):
+            crosses = self.lsb and field["type"][0] in "ui" and field.get("byte_order", "little") == "little"
+            if bits % 8 and (width >= 8 or width > room) and not crosses:
                 fields.append(self.padding(room))
                 bits += room
             fields.append(field)
@@ -164,10 +182,10 @@ class Generator:
     def integer(self, name: str) -> tuple[dict, int]:
         rng = self.rng
         signed = self.has("signed")
-        if self.has("wide", 0.15):  # little-endian fields are whole bytes
-            width = rng.choice([40, 48, 56, 64]) if self.little else rng.randint(33, 64)
+        if self.has("wide", 0.15):  # little-endian fields are whole bytes, unless lsb first
+            width = rng.choice([40, 48, 56, 64]) if self.little and not self.lsb else rng.randint(33, 64)
         elif "bitfields" in self.on and rng.random() < 0.4:
-            width = rng.randint(2 if signed else 1, 7)
+            width = rng.randint(2 if signed else 1, 31 if self.lsb else 7)
         else:
             width = rng.choice([8, 16, 24, 32])
         field: dict = {"name": name, "type": f"{'i' if signed else 'u'}{width}"}

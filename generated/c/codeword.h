@@ -285,6 +285,58 @@ static inline void cw_put_bits_wide(uint8_t *p, uint16_t off, uint8_t n, uint64_
     }
 }
 
+/* Bit fields counted least significant bit first (a little-endian bit
+ * stream: bit `off` is bit off % 8, from the low end, of byte off / 8; a
+ * field's low bit comes first). */
+static inline uint32_t cw_get_bits_lsb(const uint8_t *p, uint16_t off, uint8_t n)
+{
+    uint32_t v = 0;
+    uint8_t i;
+    for (i = 0; i < n; i++) {
+        uint16_t bit = (uint16_t)(off + i);
+        if (((unsigned)p[bit >> 3] >> (bit & 7u)) & 1u) {
+            v |= (uint32_t)1u << i;
+        }
+    }
+    return v;
+}
+
+/* Writes into a zeroed buffer. */
+static inline void cw_put_bits_lsb(uint8_t *p, uint16_t off, uint8_t n, uint32_t v)
+{
+    uint8_t i;
+    for (i = 0; i < n; i++) {
+        uint16_t bit = (uint16_t)(off + i);
+        if ((v >> i) & 1u) {
+            p[bit >> 3] = (uint8_t)(p[bit >> 3] | (uint8_t)(1u << (bit & 7u)));
+        }
+    }
+}
+
+static inline uint64_t cw_get_bits_wide_lsb(const uint8_t *p, uint16_t off, uint8_t n)
+{
+    uint64_t v = 0;
+    uint8_t i;
+    for (i = 0; i < n; i++) {
+        uint16_t bit = (uint16_t)(off + i);
+        if (((unsigned)p[bit >> 3] >> (bit & 7u)) & 1u) {
+            v |= (uint64_t)1u << i;
+        }
+    }
+    return v;
+}
+
+static inline void cw_put_bits_wide_lsb(uint8_t *p, uint16_t off, uint8_t n, uint64_t v)
+{
+    uint8_t i;
+    for (i = 0; i < n; i++) {
+        uint16_t bit = (uint16_t)(off + i);
+        if ((v >> i) & 1u) {
+            p[bit >> 3] = (uint8_t)(p[bit >> 3] | (uint8_t)(1u << (bit & 7u)));
+        }
+    }
+}
+
 /* Two's complement of the low `bits` bits, without implementation-defined
  * conversions. */
 static inline int32_t cw_sign_extend(uint32_t raw, uint8_t bits)

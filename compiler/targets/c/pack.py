@@ -7,15 +7,16 @@ A span is one of
 - "bytes": a `bytes` field, copied;
 - "int": a byte-aligned number of whole bytes, in its own byte order;
 - "pack": bit fields (and the frame's trailing padding) that together fill
-  1 to 4 whole bytes, read and written as one big-endian integer;
+  1 to 4 whole bytes, read and written as one integer in the run's byte order
+  (big-endian most significant bit first, little-endian least significant first);
 - "bits": bit fields filling more than 4 bytes together, moved bit by bit
-  (cw_put_bits/cw_get_bits) in bytes zeroed first.
+  (cw_put_bits/cw_get_bits, or their _lsb forms) in bytes zeroed first.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ...model import Leaf, Run
+from ...model import Leaf, Run, shift_in
 
 
 @dataclass(frozen=True)
@@ -24,10 +25,11 @@ class Span:
     start: int  # first byte
     size: int  # bytes
     pieces: tuple[Leaf, ...]
+    order: str = "big"  # "pack" and "bits": the byte order of the span's integer
 
     def shift(self, piece: Leaf) -> int:
-        """Where `piece` sits in the span's big-endian integer, from bit 0."""
-        return (self.start + self.size) * 8 - piece.pos - piece.bits
+        """Where `piece` sits in the span's integer, from bit 0."""
+        return shift_in(self.order, self.start, self.size, piece.pos, piece.bits)
 
 
 def span_kind(run: Run) -> str:
@@ -37,4 +39,4 @@ def span_kind(run: Run) -> str:
 
 
 def spans(runs: tuple[Run, ...]) -> list[Span]:
-    return [Span(span_kind(run), run.start, run.size, run.leaves) for run in runs]
+    return [Span(span_kind(run), run.start, run.size, run.leaves, run.order) for run in runs]

@@ -638,7 +638,7 @@ class CView:
         return c.text()
 
     def pack_value(self, span: Span, raws: dict[str, str]) -> str:
-        """The big-endian integer of a "pack" span, from the raw values of its pieces
+        """The integer of a "pack" span, from the raw values of its pieces
         (a checksum over bytes has none: its bits stay 0 until its bytes are written)."""
         wide = "unsigned" if span.size <= 2 else "uint32_t"  # unsigned: at least 16 bits
         parts = []
@@ -684,19 +684,19 @@ class CView:
             elif span.kind == "int":
                 c(self.int_put(span.start, span.size, self.order_of(leaf.field), raws[leaf.var]))
             elif span.kind == "pack":
-                c(self.int_put(span.start, span.size, "big", self.pack_value(span, raws)))
+                c(self.int_put(span.start, span.size, span.order, self.pack_value(span, raws)))
             else:
                 c(f"memset(buf + {span.start}, 0, {span.size}u);")
                 for piece in span.pieces:
                     if piece.var in raws:
                         value = raws[piece.var] if piece.bits > 32 or rt != "uint64_t" else f"(uint32_t){raws[piece.var]}"
-                        c(f"{bits_fn('put', piece.bits)}(buf, {piece.pos}u, {piece.bits}u, {value});")
+                        c(f"{bits_fn('put', piece.bits, span.order)}(buf, {piece.pos}u, {piece.bits}u, {value});")
         for span, piece in self.byte_sums(layout):
             call = self.byte_checksum_call(piece)
             if span.kind == "int":
                 c(self.int_put(span.start, span.size, self.order_of(piece.field), call))
             else:  # sharing its bytes, whose bits for it are still 0
-                c(f"{bits_fn('put', piece.bits)}(buf, {piece.pos}u, {piece.bits}u, {call});")
+                c(f"{bits_fn('put', piece.bits, span.order)}(buf, {piece.pos}u, {piece.bits}u, {call});")
         c(f"return {m.size};")
         c.dedent()
         c("}")
@@ -720,9 +720,9 @@ class CView:
         c(f"if (len != {m.size}u) {{")
         c("    return CW_ERR_LENGTH;")
         c("}")
-        pad = m.size * 8 - m.bits  # always under 8: the padding fills the last byte
+        shift, pad = m.padding()  # always under 8 bits: the padding fills the last byte
         if pad:
-            self.fail_if(c, f"(buf[{m.size - 1}] & {clit((1 << pad) - 1, True)}) != 0u", "reserved")
+            self.fail_if(c, f"(buf[{m.size - 1}] & {clit(((1 << pad) - 1) << shift, True)}) != 0u", "reserved")
         for span in layout:
             leaf = span.pieces[0]
             pieces = [piece for piece in span.pieces if piece.var in raws]
@@ -733,7 +733,7 @@ class CView:
             elif span.kind == "pack":
                 wide = "unsigned" if span.size <= 2 else "uint32_t"
                 c("{")
-                c(f"    {wide} word = {self.int_get(span.start, span.size, 'big')};")
+                c(f"    {wide} word = {self.int_get(span.start, span.size, span.order)};")
                 for piece in pieces:
                     shift = span.shift(piece)
                     value = f"(word >> {shift})" if shift else "word"
@@ -741,12 +741,12 @@ class CView:
                 c("}")
             else:
                 for piece in pieces:
-                    c(f"{raws[piece.var]} = ({rt}){bits_fn('get', piece.bits)}(buf, {piece.pos}u, {piece.bits}u);")
+                    c(f"{raws[piece.var]} = ({rt}){bits_fn('get', piece.bits, span.order)}(buf, {piece.pos}u, {piece.bits}u);")
         for span, piece in self.byte_sums(layout):
             if span.kind == "int":
                 got = self.int_get(span.start, span.size, self.order_of(piece.field))
             else:
-                got = f"{bits_fn('get', piece.bits)}(buf, {piece.pos}u, {piece.bits}u)"
+                got = f"{bits_fn('get', piece.bits, span.order)}(buf, {piece.pos}u, {piece.bits}u)"
             self.fail_if(c, f"{got} != {self.byte_checksum_call(piece)}", "checksum")
         c(f"return {self.fn(m, 'check_raw')}(r, buf, m, false);")
         c.dedent()

@@ -1,7 +1,8 @@
 """How the C target codes a binary message that fits one word of at most 32
 bits: the message is built in one unsigned integer with shifts and written
-with one big-endian store, and read back with one load, as hand-written
-firmware does. A parity bit over fields is then the parity of that word,
+with one store in the frame's bit order (big-endian most significant bit
+first, little-endian least significant bit first), and read back with one
+load, as hand-written firmware does. A parity bit over fields is then the parity of that word,
 not of the fields one by one; a parity, sum or xor over bytes that shares its
 bytes with other fields is taken over the word's covered bytes. A message
 with a CRC (it runs over bytes in memory) or a checksum in whole bytes of its
@@ -25,7 +26,7 @@ from typing import TYPE_CHECKING, Optional
 from .scalars import clit, type_limits
 from ..code import Code
 from .pack import Span
-from ...model import Leaf
+from ...model import Leaf, shift_in
 
 if TYPE_CHECKING:
     from ...model import Message
@@ -36,6 +37,7 @@ if TYPE_CHECKING:
 class Word:
     size: int  # bytes, 1 to 4
     parts: tuple[Span, ...]  # cpack's byte-aligned spans, first byte first
+    order: str = "big"  # byte order of the word: the frame's bit order
 
     @property
     def ctype(self) -> str:
@@ -50,7 +52,11 @@ class Word:
 
     def byte_shift(self, part: Span) -> int:
         """Where `part` sits in the word, from bit 0."""
-        return 8 * (self.size - part.start - part.size)
+        return self.shift(8 * part.start, 8 * part.size)
+
+    def shift(self, pos: int, bits: int) -> int:
+        """Where the `bits` bits from frame bit `pos` sit in the word, from bit 0."""
+        return shift_in(self.order, 0, self.size, pos, bits)
 
 
 def int_type(size: int) -> str:
@@ -67,10 +73,10 @@ def mask(bits: int) -> str:
 
 
 def container(v: "CView", m: "Message") -> Optional[Word]:
-    """The message as one big-endian word, or None when it does not fit one:
-    over 4 bytes, a `bytes` field, a CRC, a checksum over bytes in whole bytes
-    of its own (the byte-wise loop is smaller on AVR) or a multi-byte
-    little-endian integer."""
+    """The message as one word, or None when it does not fit one: over 4 bytes,
+    a `bytes` field, a CRC, a checksum over bytes in whole bytes of its own (the
+    byte-wise loop is smaller on AVR) or a multi-byte integer in the other byte
+    order than the word's."""
     if v.text or m.size is None or not 1 <= m.size <= 4:
         return None
     spans = v.spans(m)
@@ -83,9 +89,9 @@ def container(v: "CView", m: "Message") -> Optional[Word]:
             continue
         if span.kind != "int" or v.is_byte_checksum(leaf):
             return None
-        if span.size > 1 and v.order_of(leaf.field) != "big":
+        if span.size > 1 and v.order_of(leaf.field) != m.wire.order:
             return None
-    return Word(m.size, tuple(spans))
+    return Word(m.size, tuple(spans), m.wire.order)
 
 
 def field_sums(word: Word) -> list[Leaf]:
@@ -105,11 +111,11 @@ def bytes_checksum(word: Word, leaf: Leaf) -> str:
     rt = leaf_type(leaf)
     start, end = cs.byte_span
     if cs.algorithm == "parity":
-        covered = ((1 << 8 * (end - start)) - 1) << 8 * (word.size - end)
+        covered = ((1 << 8 * (end - start)) - 1) << word.shift(8 * start, 8 * (end - start))
         value = "word" if covered == (1 << 8 * word.size) - 1 else f"word & {clit(covered, True)}"
         flip = " ^ 1u" if cs.parity == "odd" else ""
         return f"({rt})(cw_parity32({value}){flip})"
-    shifts = [8 * (word.size - 1 - i) for i in range(start, end)]
+    shifts = [word.shift(8 * i, 8) for i in range(start, end)]
     data = [f"(uint8_t)(word >> {s})" if s else "(uint8_t)word" for s in shifts]
     data[0] = f"(unsigned){data[0]}"  # at most 4 bytes: the sum fits 16 bits
     op = " + " if cs.algorithm == "sum" else " ^ "
@@ -216,7 +222,7 @@ def encode_function(v: "CView", m: "Message", word: Word) -> str:
         done.append(leaf)
     if not built:
         c(f"word = {place(v, word, word.pieces)};")
-    c(v.int_put(0, m.size, "big", "word"))
+    c(v.int_put(0, m.size, word.order, "word"))
     c(f"return {m.size};")
     c.dedent()
     c("}")
@@ -263,10 +269,10 @@ def decode_function(v: "CView", m: "Message", word: Word) -> str:
     c(f"if (len != {m.size}u) {{")
     c("    return CW_ERR_LENGTH;")
     c("}")
-    c(f"word = {v.int_get(0, m.size, 'big')};")
+    c(f"word = {v.int_get(0, m.size, word.order)};")
     pad = m.size * 8 - m.bits  # under 8: the padding fills the last byte
     if pad:
-        v.fail_if(c, f"(word & {mask(pad)}) != 0u", "reserved")
+        v.fail_if(c, f"(word & {clit(((1 << pad) - 1) << word.shift(m.bits, pad), True)}) != 0u", "reserved")
     for part in parts:
         shift = word.byte_shift(part)
         c(f"{local[part.start]} = ({int_type(part.size)})" + (f"(word >> {shift});" if shift else "word;"))

@@ -153,11 +153,16 @@ def framing_view(p: Protocol, linker: DecisionLinker) -> dict:
         lines.append("Every frame has the same envelope; each message fills its payload. Multi-byte fields are "
                      + ("little endian" if fr.byte_order == "little" else "big endian")
                      + " unless the field table says otherwise; bits within a byte are numbered 7 (MSB) to 0.")
+        if fr.bit_order == "lsb_first":
+            lines.append("Bit fields are packed least significant bit first: the frame is one little-endian bit "
+                         "stream, each field starting at the lowest free bit of a byte, low bit first, and "
+                         "continuing from bit 0 of the next byte.")
         if facts.get("sync") is not None:
             lines.append(f"A frame starts with the sync byte `{facts['sync']:#04x}`.")
         if facts.get("length"):
-            at, overhead = facts["length"]["at"], facts["length"]["overhead"]
-            lines.append(f"Byte B{at} holds the length: the frame is length + {overhead} bytes. Known frame sizes: "
+            at, overhead, last = facts["length"]["at"], facts["length"]["overhead"], facts["length"]["last"] - 1
+            where = f"Byte B{at} holds" if at == last else f"Bytes B{at}–B{last} hold"
+            lines.append(f"{where} the length: the frame is length + {overhead} bytes. Known frame sizes: "
                          + ", ".join(str(s) for s in facts["sizes"]) + " bytes.")
         else:
             lines.append("Frames have a fixed size for a link: " + ", ".join(str(s) for s in facts["sizes"])

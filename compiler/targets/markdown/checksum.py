@@ -10,23 +10,23 @@ import types
 from typing import Any, Optional
 
 from ... import crc as crc_reference
-from ...model import Checksum, Message, Protocol
+from ...model import Checksum, Message, Protocol, shift_in
 from .layout import Slot, position, slots
 from .text import DecisionLinker, anchor, cell, en, number
 from ..wire import checksum_name
 
 
-def _bits_of(frame: bytes, offset: int, width: int) -> int:
-    value = int.from_bytes(frame, "big")
-    total = 8 * len(frame)
-    return (value >> (total - offset - width)) & ((1 << width) - 1)
+def _bits_of(frame: bytes, offset: int, width: int, order: str = "big") -> int:
+    """The `width` bits from frame bit `offset`, the frame read as one integer in
+    `order` (its bit order: Framing.wire_order)."""
+    return (int.from_bytes(frame, order) >> shift_in(order, 0, len(frame), offset, width)) & ((1 << width) - 1)
 
 
 def _sent_value(p: Protocol, frame: bytes, slot: Slot) -> int:
     """A checksum field of whole bytes as sent, in its byte order; narrower ones as bits."""
     field = slot.field
     if slot.offset % 8 or field.bits % 8:
-        return _bits_of(frame, slot.offset, field.bits)
+        return _bits_of(frame, slot.offset, field.bits, p.framing.wire_order)
     order = field.byte_order or p.framing.byte_order
     return int.from_bytes(frame[slot.offset // 8:(slot.offset + field.bits) // 8],
                           "big" if order == "big" else "little")
@@ -79,7 +79,7 @@ def worked_example(p: Protocol, codec: types.ModuleType, m: Message, cs: Checksu
         return None
     ex, frame = found
     field = slot.field
-    sent = _bits_of(frame, slot.offset, field.bits)
+    sent = _bits_of(frame, slot.offset, field.bits, p.framing.wire_order)
     view = {"message": f"[{m.name}](#{anchor('msg', m.name)})", "example": cell(ex.name), "frame": frame.hex(" "),
             "field": slot.path, "position": position(p, slot), "steps": [], "lines": []}
     if cs.algorithm == "crc":
@@ -110,7 +110,7 @@ def worked_example(p: Protocol, codec: types.ModuleType, m: Message, cs: Checksu
             terms = [(f"B{start + i}", byte) for i, byte in enumerate(frame[start:end])]
             sent = _sent_value(p, frame, slot)
         else:  # over the wire values of every other field
-            terms = [(s.path, _bits_of(frame, s.offset, s.field.bits)) for s in slots(m)
+            terms = [(s.path, _bits_of(frame, s.offset, s.field.bits, p.framing.wire_order)) for s in slots(m)
                      if s.path != slot.path and s.field.kind != "group" and s.field.bits is not None]
         if cs.algorithm == "sum":
             total = sum(v for _, v in terms)

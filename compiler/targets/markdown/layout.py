@@ -50,7 +50,8 @@ def bit_span(offset: int, bits: int) -> str:
 
 
 def position(p: Protocol, slot: Slot) -> str:
-    """Where a reader finds the field: word bits (31 = MSB) or bytes (B0 first sent)."""
+    """Where a reader finds the field: word bits (31 = MSB) or bytes (B0 first sent),
+    bits in a byte numbered 7 (MSB) to 0, from the field's first bit to its last."""
     f, offset = slot.field, slot.offset
     if offset is None or f.bits is None:
         return ""
@@ -62,11 +63,13 @@ def position(p: Protocol, slot: Slot) -> str:
     first, last = offset // 8, (offset + f.bits - 1) // 8
     if offset % 8 == 0 and f.bits % 8 == 0:
         return f"B{first}" if first == last else f"B{first}–B{last}"
-    high = 7 - offset % 8
-    low = high - f.bits + 1
+    if fr.bit_order == "lsb_first":  # the field's low bit first, counting up
+        start, end = offset % 8, (offset + f.bits - 1) % 8
+    else:
+        start, end = 7 - offset % 8, 7 - (offset + f.bits - 1) % 8
     if first == last:
-        return f"B{first} bit {high}" if f.bits == 1 else f"B{first} bits {high}–{low}"
-    return f"B{first} bit {high} – B{last} bit {7 - (offset + f.bits - 1) % 8}"
+        return f"B{first} bit {start}" if f.bits == 1 else f"B{first} bits {start}–{end}"
+    return f"B{first} bit {start} – B{last} bit {end}"
 
 
 def type_text(p: Protocol, f: Field) -> str:

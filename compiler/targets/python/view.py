@@ -413,7 +413,7 @@ def chunks_of(runs: tuple[Run, ...], default_order: str) -> list[Chunk]:
         n = run.size
         if run.kind == "packed":
             out.append(Chunk(run.start, n, [(leaf, run.shift(leaf)) for leaf in run.leaves],
-                             STRUCT_CODES.get(n, "s"), "big" if n > 1 else None, False))
+                             STRUCT_CODES.get(n, "s"), run.order if n > 1 else None, False))
             continue
         leaf = run.leaves[0]
         f = leaf.field
@@ -573,14 +573,15 @@ class MessageCode:
         return chunks_of(self.m.wire.runs, self.view.p.framing.byte_order)
 
     def one_word(self) -> bool:
-        """The frame is short and all integers, big-endian: it is read and written as one int."""
+        """The frame is short and all integers in the frame's bit order (big-endian most
+        significant bit first): it is read and written as one int."""
         if self.m.size > 8:
             return False
         for leaf in self.leaves:  # a checksum over bytes needs the bytes first
             f = leaf.field
             if f.kind in ("float", "bytes") or f.checksum and f.checksum.over == "bytes":
                 return False
-        return not any(ch.lone and ch.nbytes > 1 and ch.order != "big" for ch in self.chunks())
+        return not any(ch.lone and ch.nbytes > 1 and ch.order != self.m.wire.order for ch in self.chunks())
 
     def structs(self) -> list[tuple[str, str]]:
         if self.one_word():
@@ -588,8 +589,8 @@ class MessageCode:
         return [(f"_S_{self.fn}_{n}", s.fmt) for n, s in enumerate(segments_of(self.chunks()))]
 
     def word_shifts(self) -> list[tuple[Leaf, int]]:
-        """(leaf, shift) of every leaf in the frame read as one big-endian integer."""
-        return [(leaf, 8 * self.m.size - leaf.pos - leaf.bits) for leaf in self.leaves]
+        """(leaf, shift) of every leaf in the frame read as one integer."""
+        return [(leaf, self.m.shift(leaf)) for leaf in self.leaves]
 
     def encode_bytes_function(self) -> str:
         c = Code()
@@ -606,7 +607,7 @@ class MessageCode:
             for leaf, shift in parity:  # parity of every other field is parity of the word
                 flip = " ^ 1" if leaf.field.checksum.parity == "odd" else ""
                 c(f"w |= (w.bit_count() & 1{flip}) << {shift}" if shift else f"w |= w.bit_count() & 1{flip}")
-            c(f"return w.to_bytes({size}, 'big')")
+            c(f"return w.to_bytes({size}, {self.m.wire.order!r})")
             return c.text()
         segments = segments_of(self.chunks())
         crcs = [(leaf, leaf.field.checksum) for leaf in self.leaves
@@ -629,7 +630,8 @@ class MessageCode:
                 order = leaf.field.byte_order or self.view.p.framing.byte_order
                 c(f"{at} = {value}.to_bytes({chunk.nbytes}, {order!r})")
             else:  # a checksum sharing bytes with other fields goes into its bits
-                c(f"{at} = (int.from_bytes({at}, 'big') | {value} << {shift}).to_bytes({chunk.nbytes}, 'big')")
+                order = chunk.order or "big"
+                c(f"{at} = (int.from_bytes({at}, {order!r}) | {value} << {shift}).to_bytes({chunk.nbytes}, {order!r})")
         if not single:
             c("return bytes(b)")
         return c.text()
@@ -661,7 +663,7 @@ class MessageCode:
             return leaf.var
         expr = self.packed(chunk.leaves)
         if chunk.code == "s":
-            return f"({expr}).to_bytes({chunk.nbytes}, 'big')"
+            return f"({expr}).to_bytes({chunk.nbytes}, {chunk.order!r})"
         return expr
 
     def decode_bytes_function(self) -> str:
@@ -688,9 +690,10 @@ class MessageCode:
         return c.text()
 
     def read_word(self, c: Code) -> None:
-        c("w = int.from_bytes(d, 'big')")
+        c(f"w = int.from_bytes(d, {self.m.wire.order!r})")
         used = sum(leaf.field.bits or 0 for leaf in self.leaves)
-        padding = (1 << (8 * self.m.size - used)) - 1
+        shift, pad = self.m.padding()
+        padding = ((1 << pad) - 1) << shift
         if padding:  # bits after the record that fill the last byte must be zero
             c(f"if w & {padding:#x}:")
             c(f"    raise _dec({self.m.name!r}, 'padding', w & {padding:#x}, 'reserved', '0', {used})")
@@ -714,7 +717,7 @@ class MessageCode:
                     c(f"{leaf.var} = int.from_bytes({var}, {order!r}, signed={chunk.signed})")
                 continue
             if chunk.code == "s":
-                c(f"{var} = int.from_bytes({var}, 'big')")
+                c(f"{var} = int.from_bytes({var}, {chunk.order!r})")
             used = 0
             for leaf, shift in chunk.leaves:
                 used |= ((1 << leaf.field.bits) - 1) << shift
@@ -722,7 +725,7 @@ class MessageCode:
             if padding:  # bits after the record that fill the last byte must be zero
                 c(f"if {var} & {padding:#x}:")
                 c(f"    raise _dec({self.m.name!r}, 'padding', {var} & {padding:#x}, 'reserved', '0', "
-                  f"{8 * (chunk.start + chunk.nbytes) - padding.bit_length()})")
+                  f"{self.m.bits})")
             for leaf, shift in chunk.leaves:
                 self.extract(c, leaf, var, shift)
 
