@@ -26,6 +26,9 @@ DOC_ONLY = frozenset({
 })
 # Model attributes computed from others: hashing them again adds nothing.
 DERIVED = frozenset({"wire"})
+# Attributes added to the language after fingerprints were first published, hashed
+# only when set: a schema that does not use them keeps the fingerprint it had.
+HASHED_WHEN_SET = {"Checksum": frozenset({"complement", "xorout", "width"})}
 
 
 @lru_cache(maxsize=None)
@@ -38,7 +41,9 @@ def wire_model(value: Any) -> Any:
     if isinstance(value, Text):
         return None
     if hasattr(type(value), "__dataclass_fields__") and not isinstance(value, type):
-        return {name: wire_model(getattr(value, name)) for name in _wire_fields(type(value))}
+        optional = HASHED_WHEN_SET.get(type(value).__name__, frozenset())
+        return {name: wire_model(getattr(value, name)) for name in _wire_fields(type(value))
+                if getattr(value, name) is not None or name not in optional}
     if isinstance(value, (tuple, list)):
         return [wire_model(x) for x in value]
     if isinstance(value, dict):

@@ -11,7 +11,8 @@ FULL = frozenset({
     "bytes", "text", "bits",                # framings
     "text_form", "field_sum", "one_hot",    # bits framing: a text form, checksums over fields, one-hot
     "sync", "length", "no_dispatch",        # envelope parts (bytes)
-    "sum", "xor", "crc",                    # checksums over bytes
+    "sum", "xor", "crc", "fletcher",        # checksums over bytes
+    "complement",                           # a sum's complement, a sum's or xor's xorout
     "little", "field_order",                # byte orders: the framing's, and per field
     "bitfields",                            # fields narrower than a byte, packed
     "signed", "scale", "offset", "range",   # integer options
