@@ -134,7 +134,7 @@ class CrcParams:
 
 @dataclass(frozen=True)
 class Checksum:
-    algorithm: str  # parity | sum | xor | crc
+    algorithm: str  # parity | sum | xor | fletcher | crc
     over: str  # fields | bytes | bits
     covers: Optional[tuple[str, str]]  # (from, to) field names; None = every other field
     parity: str = "even"
@@ -143,6 +143,19 @@ class Checksum:
     # Byte range [start, end) of the frame covered, computed for bytes framing.
     byte_span: Optional[tuple[int, int]] = None
     loc: Optional[Loc] = None
+    # A sum's final step: "ones" or "twos" complement in the field's width, then XOR with xorout.
+    complement: Optional[str] = None
+    xorout: Optional[int] = None
+    # The field's width, for arithmetic that depends on it (fletcher, a complemented sum).
+    width: Optional[int] = None
+
+    def final(self, value: int) -> int:
+        """The finished checksum from a sum or xor reduced by the modulo."""
+        if self.complement == "ones":
+            value ^= (1 << self.width) - 1
+        elif self.complement == "twos":
+            value = -value & ((1 << self.width) - 1)
+        return value ^ (self.xorout or 0)
 
 
 @dataclass(frozen=True)

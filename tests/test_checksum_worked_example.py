@@ -45,3 +45,29 @@ def test_a_sixteen_bit_little_endian_sum_is_read_in_its_byte_order(tmp_path):
     text = text.replace('hex: "55 01 2b 00 2c"', 'hex: "55 01 2b 00 2c 00"')
     page = docs_of(tmp_path, text, "demo16")
     assert "1 + 43 + 0 = 44 mod 65536 = 44" in page and "(B4–B5): 44" in page
+
+
+def test_a_twos_complement_sum_is_worked_out(tmp_path):
+    text = DEMO.replace("protocol: demo", "protocol: demolrc").replace(
+        "algorithm: sum,", "algorithm: sum, complement: twos,")
+    # 01 + 2b + 00 = 44; 256 - 44 = 212 = 0xd4
+    text = text.replace('hex: "55 01 2b 00 2c"', 'hex: "55 01 2b 00 d4"')
+    page = docs_of(tmp_path, text, "demolrc")
+    assert "1 + 43 + 0 = 44 mod 256 = 44" in page
+    assert "two's complement in 8 bits: (256 − 44) mod 256 = 212" in page
+    assert "sent in `sum` (B4): 212" in page
+    assert "| then | `two's complement in the field's width` |" in page
+
+
+def test_a_fletcher16_is_worked_out_byte_by_byte(tmp_path):
+    text = DEMO.replace("protocol: demo", "protocol: demofl").replace(
+        "{name: sum, type: u8, checksum: {algorithm: sum,", "{name: sum, type: u16, checksum: {algorithm: fletcher,")
+    # bytes 01 2b 00 mod 255: A 1, 44, 44; B 1, 45, 89; (89 << 8) | 44 = 0x592c, low byte first
+    text = text.replace('hex: "55 01 2b 00 2c"', 'hex: "55 01 2b 00 2c 59"')
+    page = docs_of(tmp_path, text, "demofl")
+    assert "A = sum of the bytes mod 255 = 44; B = sum of A after each step mod 255 = 89" in page
+    assert "(B << 8) | A = `0x592c`" in page
+    assert "sent low byte (A) first at B4–B5: `2c 59`" in page
+    assert "| byte | A | B |" in page and "| value | `B in the high byte, A in the low one` |" in page
+    for row in ("| 01 | `0x01` | `0x01` |", "| 2b | `0x2c` | `0x2d` |", "| 00 | `0x2c` | `0x59` |"):
+        assert row in page

@@ -157,3 +157,45 @@ def test_f32_to_f64_is_a_width_change_and_breaking(tmp_path):
     assert d.breaking and d.old_fingerprint != d.new_fingerprint
     assert {("field th", "resized from 32 bits to 64 bits"),
             ("message odometry_reply", "size changed from 176 to 208 bits")} <= changes(d, BREAKING)
+
+
+SUMMED = """codeword: 1
+protocol: summed
+title: t
+source: s
+framing:
+  kind: bytes
+  byte_order: little
+  layout:
+    - {name: sync, type: u8, const: 0x55}
+    - {name: kind, type: u8, dispatch: true}
+    - {payload: true}
+    - {name: ck, type: u16, checksum: {algorithm: sum, covers: {from: kind, to: payload}}}
+messages:
+  a: {id: 1, fields: [{name: x, type: u8}]}
+"""
+
+
+def test_checksum_family_and_final_step_changes_are_breaking(tmp_path):
+    source = tmp_path / "old" / "summed.yaml"
+    source.parent.mkdir()
+    source.write_text(SUMMED, encoding="utf-8")
+    old = "{algorithm: sum,"
+    for new in ("{algorithm: fletcher,", "{algorithm: sum, complement: twos,", "{algorithm: sum, xorout: 0xFF,",
+                "{algorithm: sum, modulo: 255,"):
+        d = diff_of(tmp_path, source, old, new)
+        assert ("field ck", "checksum changed") in changes(d, BREAKING), new
+        assert d.old_fingerprint != d.new_fingerprint
+    fletcher = tmp_path / "fletcher" / "summed.yaml"
+    fletcher.parent.mkdir()
+    fletcher.write_text(SUMMED.replace(old, "{algorithm: fletcher,"), encoding="utf-8")
+    d = diff_of(tmp_path, fletcher, "{algorithm: fletcher,", "{algorithm: fletcher, modulo: 256,")
+    assert ("field ck", "checksum changed") in changes(d, BREAKING)
+    twos = tmp_path / "twos" / "summed.yaml"
+    twos.parent.mkdir()
+    twos.write_text(SUMMED.replace(old, "{algorithm: sum, complement: twos,"), encoding="utf-8")
+    d = diff_of(tmp_path, twos, "complement: twos", "complement: ones")
+    assert ("field ck", "checksum changed") in changes(d, BREAKING)
+    # XOR with 0 is no final step: the same wire
+    d = diff_of(tmp_path, source, old, "{algorithm: sum, xorout: 0,")
+    assert not d.changes and d.old_fingerprint == d.new_fingerprint

@@ -50,3 +50,21 @@ def test_wire_changes_count(tmp_path):
     base = fingerprint(compile_schema(SCHEMAS / "tank.yaml"))
     assert fingerprint(_edited(tmp_path, "tank", "range: [0, 100]", "range: [0, 99]")) != base
     assert fingerprint(compile_schema(DATA / "car_v0.2.yaml")) != fingerprint(compile_schema(SCHEMAS / "car.yaml"))
+
+
+def test_checksum_final_steps_count_and_leave_older_schemas_alone(tmp_path):
+    """complement and xorout change the fingerprint; a schema without them has no trace
+    of them in the hashed model, so it keeps the fingerprint it had before they existed."""
+    from codeword.fingerprint import canonical_json
+    mtv4 = compile_schema(SCHEMAS / "mtv4.yaml")
+    assert '"complement"' not in canonical_json(mtv4) and '"width":null' not in canonical_json(mtv4)
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    demo = re.search(r"`schemas/demo.yaml`:\n\n```yaml\n(.*?)```", readme, re.S).group(1)
+    demo = re.sub(r"    examples:\n(.*\n)*", "", demo)  # each variant sends another checksum
+    prints = set()
+    for i, params in enumerate(["", "complement: twos, ", "complement: ones, ", "xorout: 0x5a, ",
+                                "complement: ones, xorout: 0x5a, "]):
+        path = tmp_path / f"demo{i}.yaml"
+        path.write_text(demo.replace("algorithm: sum, ", f"algorithm: sum, {params}"), encoding="utf-8")
+        prints.add(fingerprint(compile_schema(path)))
+    assert len(prints) == 5

@@ -8,6 +8,9 @@ from .. import crc
 from ..model import Checksum, CrcParams, Field, Framing
 from .base import ResolverBase
 
+CRC_KEYS = ("width", "poly", "init", "refin", "refout", "xorout")
+SIMPLE = ("parity", "sum", "xor", "fletcher")  # algorithms without CRC parameters
+
 
 class ChecksumsMixin(ResolverBase):
     def resolve_checksum(self, c: dict, path: tuple, bits: Optional[int]) -> Checksum:
@@ -18,36 +21,34 @@ class ChecksumsMixin(ResolverBase):
         over = c.get("over", default_over)
         params: Optional[CrcParams] = None
         if algorithm == "crc":
-            missing = [k for k in ("width", "poly", "init", "refin", "refout", "xorout") if k not in c]
+            missing = [k for k in CRC_KEYS if k not in c]
             if missing:
                 self.error(path, f"crc needs Rocksoft parameters: missing {', '.join(missing)}",
                            "or name a RevEng catalogue entry, e.g. algorithm: CRC-16/CMS")
                 return Checksum("crc", over, covers)
             params = CrcParams("custom", c["width"], c["poly"], c["init"], c["refin"],
                                c["refout"], c["xorout"])
-        elif algorithm in ("parity", "sum", "xor"):
-            for key in ("width", "poly", "init", "refin", "refout", "xorout"):
-                if key in c:  # CRC parameters would be ignored: a silent mismatch with the peer
+        elif algorithm in SIMPLE:
+            # CRC parameters would be ignored: a silent mismatch with the peer
+            finals = ("xorout",) if algorithm in ("sum", "xor") else ()
+            for key in CRC_KEYS:
+                if key in c and key not in finals:
                     self.error(path + (key,), f"{key} is a CRC parameter; a {algorithm} checksum has none",
                                f"drop {key}, or use a CRC")
         else:
             params = crc.lookup(algorithm)
             if params is None:
                 self.error(path + ("algorithm",), f"unknown checksum algorithm {algorithm!r}",
-                           "use parity, sum, xor, crc (with parameters) or a RevEng catalogue "
-                           "name such as CRC-16/CMS")
+                           "use parity, sum, xor, fletcher, crc (with parameters) or a RevEng "
+                           "catalogue name such as CRC-16/CMS")
                 return Checksum("crc", over, covers)
         if params is not None:
             algorithm = "crc"
-            mask = (1 << params.width) - 1
-            for key in ("poly", "init", "xorout"):
-                if getattr(params, key) > mask:
-                    self.error(path + (key,), f"crc {key} does not fit {params.width} bits")
-            if bits is not None and bits != params.width:
-                self.error(path, f"a {params.width}-bit CRC needs a {params.width}-bit field, not {bits}",
-                           f"declare the field as u{params.width}")
+            self.check_crc(params, path, bits, over)
+        elif algorithm == "fletcher":
             if over != "bytes":
-                self.error(path + ("over",), "a CRC is computed over bytes")
+                self.error(path + ("over",), "a Fletcher checksum is computed over bytes",
+                           "drop `over`, or use a sum or xor over fields")
         elif over != "bytes" and covers is not None:
             # the codecs and docs take a checksum over fields from every other field
             self.error(path + ("covers",), "a checksum over fields covers every other field "
@@ -56,14 +57,66 @@ class ChecksumsMixin(ResolverBase):
                        "drop `covers` (or write `covers: all`); to check part of the frame, use "
                        "a CRC over whole bytes, e.g. {algorithm: CRC-8/SMBUS, covers: {from, to}}")
         modulo = c.get("modulo")
-        if algorithm in ("sum", "xor") and modulo is None and bits:
+        if algorithm == "fletcher":
+            modulo = self.fletcher_modulo(modulo, path, bits)
+        elif algorithm in ("sum", "xor") and modulo is None and bits:
             modulo = 1 << bits
         if algorithm == "parity" and bits not in (None, 1):
             self.error(path, f"a parity bit is 1 bit wide, not {bits}")
-        if modulo is not None and bits and modulo > (1 << bits):
+        if algorithm != "fletcher" and modulo is not None and bits and modulo > (1 << bits):
             self.error(path + ("modulo",), f"sum modulo {modulo} does not fit {bits} bits")
+        complement = c.get("complement")
+        xorout = c.get("xorout") if algorithm in ("sum", "xor") else None  # a CRC's is in its params
+        self.check_final_step(algorithm, complement, xorout, over, path, bits)
+        xorout = xorout or None  # XOR with 0 changes nothing: the same checksum as none
+        width = bits if algorithm == "fletcher" or complement else None
         return Checksum(algorithm, over, covers, c.get("parity", "even"), modulo, params,
-                        loc=self.loc(*(path + ("covers",))) if "covers" in c else self.loc(*path))
+                        loc=self.loc(*(path + ("covers",))) if "covers" in c else self.loc(*path),
+                        complement=complement, xorout=xorout, width=width)
+
+    def check_crc(self, params: CrcParams, path: tuple, bits: Optional[int], over: str) -> None:
+        mask = (1 << params.width) - 1
+        for key in ("poly", "init", "xorout"):
+            if getattr(params, key) > mask:
+                self.error(path + (key,), f"crc {key} does not fit {params.width} bits")
+        if bits is not None and bits != params.width:
+            self.error(path, f"a {params.width}-bit CRC needs a {params.width}-bit field, not {bits}",
+                       f"declare the field as u{params.width}")
+        if over != "bytes":
+            self.error(path + ("over",), "a CRC is computed over bytes")
+
+    def fletcher_modulo(self, modulo: Optional[int], path: tuple, bits: Optional[int]) -> Optional[int]:
+        """Fletcher-16 keeps two sums of bytes in 8 bits each, Fletcher-8 two sums of
+        nibbles in 4 bits: the field holds both, so its width sets the sums' modulo."""
+        if bits not in (8, 16):
+            self.error(path, f"a Fletcher checksum is 8 or 16 bits wide, not {bits}",
+                       "declare the field as u16 (two sums of bytes) or u8 (two sums of nibbles)")
+            return modulo
+        half = 1 << (bits // 2)
+        if modulo is None:
+            return half - 1
+        if modulo not in (half - 1, half):
+            self.error(path + ("modulo",), f"a {bits}-bit Fletcher checksum sums modulo {half - 1} "
+                                           f"or {half}, not {modulo}",
+                       f"write modulo: {half - 1} (classic Fletcher-{bits}) or modulo: {half} "
+                       "(sums that wrap, as u-blox UBX)" if bits == 16 else
+                       f"write modulo: {half - 1} (classic Fletcher-{bits}) or modulo: {half}")
+        return modulo
+
+    def check_final_step(self, algorithm: str, complement: Optional[str], xorout: Optional[int],
+                         over: str, path: tuple, bits: Optional[int]) -> None:
+        """`complement` and `xorout` finish a sum (xorout also an xor) over bytes."""
+        if complement is not None and algorithm != "sum":
+            self.error(path + ("complement",), f"`complement` finishes algorithm: sum, not {algorithm}",
+                       "use algorithm: sum, or drop complement"
+                       + (" (an xor's one's complement is xorout: 0xFF for 8 bits)" if algorithm == "xor" else ""))
+        for key, given in (("complement", complement), ("xorout", xorout)):
+            if given is not None and algorithm in ("sum", "xor") and over != "bytes":
+                self.error(path + (key,), f"`{key}` finishes a checksum over bytes, not over {over}",
+                           f"drop {key}, or compute the checksum over bytes")
+        if xorout is not None and algorithm in ("sum", "xor") and bits and xorout >= 1 << bits:
+            self.error(path + ("xorout",), f"xorout {xorout:#x} does not fit the {bits}-bit field",
+                       f"give a value below {1 << bits:#x}, or widen the field")
 
     def bind_checksums(self, name: str, layout: tuple[Field, ...], framing: Framing,
                        path: tuple) -> tuple[Field, ...]:

@@ -119,4 +119,8 @@ def checksum_name(cs) -> str:
                 f"{'r' if c.refout else 'n'}_{c.xorout:x}")
     if cs.algorithm == "parity":
         return "parity_odd" if cs.parity == "odd" else "parity"
-    return f"{cs.algorithm}{cs.modulo or ''}"
+    if cs.algorithm == "fletcher":
+        return f"fletcher{cs.width}_{cs.modulo}"
+    final = (f"_{cs.complement}{cs.width}" if cs.complement else "") \
+        + (f"_x{cs.xorout:x}" if cs.xorout is not None else "")
+    return f"{cs.algorithm}{cs.modulo or ''}{final}"

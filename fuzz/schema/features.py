@@ -12,7 +12,8 @@ FULL = frozenset({
     "text_form", "field_sum", "one_hot",    # bits framing: a text form, checksums over fields, one-hot
     "sync", "length", "no_dispatch",        # envelope parts (bytes)
     "sync2", "two_keys", "by_direction",    # a sync of two bytes; two dispatch fields; a direction byte
-    "sum", "xor", "crc",                    # checksums over bytes
+    "sum", "xor", "crc", "fletcher",        # checksums over bytes
+    "complement",                           # a sum's complement, a sum's or xor's xorout
     "little", "field_order",                # byte orders: the framing's, and per field
     "bitfields",                            # fields narrower than a byte, packed
     "lsb_first",                            # bytes framing: bit fields least significant bit first

@@ -92,16 +92,21 @@ class Generator:
                 layout.insert(rng.randrange(len(layout) + 1) if not sync else len(layout),
                               {"name": "mark", "type": "u8", "by_direction": {"up": 0x3E, "down": 0x3C}})
         layout.append({"payload": True})
-        algorithms = [a for a in ("sum", "xor", "crc") if a in self.on]
+        algorithms = [a for a in ("sum", "xor", "crc", "fletcher") if a in self.on]
         if algorithms and (sync or not single) and rng.random() < 0.7:  # `from: payload` is its end
             algorithm = rng.choice(algorithms)
             first = layout[1 if sync else 0]["name"] if not single else ("sync" if sync else "payload")
             if algorithm == "crc":
                 width = rng.choice(sorted(CRCS))
                 check = {"algorithm": rng.choice(CRCS[width]), "covers": {"from": first, "to": "payload"}}
+            elif algorithm == "fletcher":  # sums modulo 2**(width/2) - 1 (classic) or 2**(width/2)
+                width = rng.choice([8, 16])
+                check = {"algorithm": algorithm, "modulo": (1 << width // 2) - rng.randint(0, 1),
+                         "covers": {"from": first, "to": "payload"}}
             else:
                 width = rng.choice([8, 16])
                 check = {"algorithm": algorithm, "covers": {"from": first, "to": "payload"}}
+                width = self.final_step(check, width)
             layout.append({"name": "check", "type": f"u{width}", "checksum": check})
         self.little = self.lsb or self.has("little")
         framing = {"kind": "bytes", "byte_order": "little" if self.little else "big", "layout": layout}
@@ -122,6 +127,18 @@ class Generator:
             body["fields"] = self.binary_fields(at_least=1 if single else 0)  # a frame is never empty
             messages[self.name()] = body
         return framing, messages
+
+    def final_step(self, check: dict, width: int) -> int:
+        """A sum's complement (in 8, 16, 32 or 64 bits) and a sum's or xor's xorout; the width."""
+        rng = self.rng
+        if "complement" not in self.on or rng.random() < 0.5:
+            return width
+        if check["algorithm"] == "sum" and rng.random() < 0.7:
+            check["complement"] = rng.choice(["ones", "twos"])
+            width = rng.choice([width, 32, 64])
+        if rng.random() < 0.5:
+            check["xorout"] = rng.randrange(1 << width)
+        return width
 
     def binary_fields(self, at_least: int = 0) -> list[dict]:
         """Fields of whole bytes start on a byte; narrower ones do not cross one, but

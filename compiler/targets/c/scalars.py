@@ -63,3 +63,16 @@ def clit_signed(value: int) -> str:
     if value < 0 or value <= 32767:
         return clit(value)
     return f"{value:#x}L" if value <= 0x7FFFFFFF else f"{value:#x}LL"
+
+
+def final_step(cs, value: str, wide: str) -> str:
+    """A sum's or xor's `value` (unsigned, reduced by the modulo) finished by the
+    checksum's complement and xorout, in `wide` (`unsigned` or `uint32_t`, never a type
+    that promotes to int) so that the two's complement wraps in the field's width."""
+    if cs.complement == "ones":
+        value = f"({value} ^ {clit((1 << cs.width) - 1, True)})"
+    elif cs.complement == "twos":
+        value = f"(({wide})(({wide})0u - {value}) & {clit((1 << cs.width) - 1, True)})"
+    if cs.xorout is not None:
+        value = f"({value} ^ {clit(cs.xorout, True)})"
+    return value

@@ -26,7 +26,7 @@ from . import word as cword
 from . import wordform as cwordform
 from .pack import Span
 from .errors import CTargetError
-from .scalars import bits_fn, clit, clit_signed, int_ctype, sign_extend, type_limits, unsigned_type
+from .scalars import bits_fn, clit, clit_signed, final_step, int_ctype, sign_extend, type_limits, unsigned_type
 from ..wire import checksum_name, dispatch_facts, stream_facts, text_form_head, with_head_checks
 
 ERR = {
@@ -1198,13 +1198,45 @@ def crc_table(p: CrcParams) -> list[int]:
 
 
 
+def fletcher_code(name: str, cs: Checksum) -> str:
+    """Fletcher-16 (two sums of bytes) or Fletcher-8 (two sums of nibbles, high nibble
+    first), each sum reduced at every step so it stays within `unsigned` on 8-bit targets."""
+    c = Code()
+    t = unsigned_type(cs.width)
+    half, m = cs.width // 2, clit(cs.modulo, True)
+    c(f"/* Fletcher-{cs.width}: sums modulo {cs.modulo}, value (B << {half}) | A */")
+    c(f"static inline {t} {name}(const uint8_t *data, size_t len)")
+    c("{")
+    c.indent()
+    c("unsigned a = 0u;")
+    c("unsigned b = 0u;")
+    c("size_t i;")
+    c("for (i = 0; i < len; i++) {")
+    if cs.width == 16:
+        c(f"    a = (a + data[i]) % {m};")
+        c(f"    b = (b + a) % {m};")
+    else:
+        c(f"    a = (a + ((unsigned)data[i] >> 4)) % {m};")
+        c(f"    b = (b + a) % {m};")
+        c(f"    a = (a + ((unsigned)data[i] & 0xFu)) % {m};")
+        c(f"    b = (b + a) % {m};")
+    c("}")
+    c(f"return ({t})((b << {half}) | a);")
+    c.dedent()
+    c("}")
+    return c.text()
+
+
 def checksum_code(name: str, cs: Checksum, guard: str) -> str:
     """A C function `name(data, len)` computing a byte checksum; CRCs bitwise by
     default and table-driven (table in flash on AVR) when <guard>_CRC_TABLE is defined."""
     c = Code()
+    if cs.algorithm == "fletcher":
+        return fletcher_code(name, cs)
     if cs.algorithm != "crc":
         op = "+" if cs.algorithm == "sum" else "^"
-        c(f"static inline uint32_t {name}(const uint8_t *data, size_t len)")
+        rt = "uint64_t" if (cs.width or 0) > 32 else "uint32_t"  # a complement in 64 bits
+        c(f"static inline {rt} {name}(const uint8_t *data, size_t len)")
         c("{")
         c("    uint32_t acc = 0;")
         c("    size_t i;")
@@ -1214,7 +1246,10 @@ def checksum_code(name: str, cs: Checksum, guard: str) -> str:
         if cs.algorithm == "parity":  # the bytes' XOR has the parity of all their bits
             c("    return cw_parity32(acc)" + (" ^ 1u;" if cs.parity == "odd" else ";"))
         else:
-            c(f"    return acc % {clit(cs.modulo, True)};" if cs.modulo else "    return acc;")
+            # a 32-bit sum of a frame's bytes never reaches a modulo above 2**32
+            value = f"acc % {clit(cs.modulo, True)}" if cs.modulo and cs.modulo <= 1 << 32 else "acc"
+            finished = final_step(cs, value, rt)
+            c(f"    return {value};" if finished == value else f"    return ({rt}){finished};")
         c("}")
         return c.text()
     p = cs.crc

@@ -23,7 +23,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Optional
 
-from .scalars import clit, type_limits
+from .scalars import clit, final_step, type_limits
 from ..code import Code
 from .pack import Span
 from ...model import Leaf, shift_in
@@ -74,15 +74,15 @@ def mask(bits: int) -> str:
 
 def container(v: "CView", m: "Message") -> Optional[Word]:
     """The message as one word, or None when it does not fit one: over 4 bytes,
-    a `bytes` field, a CRC, a checksum over bytes in whole bytes of its own (the
-    byte-wise loop is smaller on AVR) or a multi-byte integer in the other byte
-    order than the word's."""
+    a `bytes` field, a CRC or Fletcher checksum, a checksum over bytes in whole
+    bytes of its own (the byte-wise loop is smaller on AVR) or a multi-byte
+    integer in the other byte order than the word's."""
     if v.text or m.size is None or not 1 <= m.size <= 4:
         return None
     spans = v.spans(m)
     for span in spans:
         leaf = span.pieces[0]
-        if any(v.is_byte_checksum(p) and p.field.checksum.algorithm == "crc"
+        if any(v.is_byte_checksum(p) and p.field.checksum.algorithm in ("crc", "fletcher")
                for p in span.pieces):
             return None
         if span.kind == "pack":
@@ -105,7 +105,8 @@ def over_bytes(leaf: Leaf) -> bool:
 
 
 def bytes_checksum(word: Word, leaf: Leaf) -> str:
-    """A parity, sum or xor over the covered bytes of `word`, as the leaf's type. The
+    """A parity, sum or xor over the covered bytes of `word`, as the leaf's type (a
+    Fletcher checksum, like a CRC, keeps the message out of a word). The
     encoder calls it with the checksums after `leaf` still 0 (none is covered)."""
     cs = leaf.field.checksum
     rt = leaf_type(leaf)
@@ -122,7 +123,7 @@ def bytes_checksum(word: Word, leaf: Leaf) -> str:
     value = f"({op.join(data)})"
     if cs.modulo:
         value = f"({value} % {clit(cs.modulo, True)})"
-    return f"({rt}){value}"
+    return f"({rt}){final_step(cs, value, 'uint32_t' if rt == 'uint32_t' else 'unsigned')}"
 
 
 def fills_type(piece: Leaf) -> bool:

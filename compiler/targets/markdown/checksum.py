@@ -73,6 +73,47 @@ def _crc_steps(params, data: bytes) -> list[tuple[str, str]]:
     return steps
 
 
+def _final_steps(cs: Checksum, bits: int, value: int) -> tuple[list[str], int]:
+    """The lines of a sum's complement and xorout, and the finished value."""
+    lines = []
+    mask = (1 << bits) - 1
+    if cs.complement == "ones":
+        lines.append(f"one's complement in {bits} bits: {value} ⊕ {mask} = {value ^ mask}")
+        value ^= mask
+    elif cs.complement == "twos":
+        finished = -value & mask
+        lines.append(f"two's complement in {bits} bits: ({mask + 1} − {value}) mod {mask + 1} = {finished}")
+        value = finished
+    if cs.xorout is not None:
+        lines.append(f"XOR with xorout {cs.xorout:#x}: {value} ⊕ {cs.xorout} = {value ^ cs.xorout}")
+        value ^= cs.xorout
+    return lines, value
+
+
+def _fletcher_steps(cs: Checksum, data: bytes) -> tuple[list[tuple[str, tuple[str, str]]], int, int]:
+    """Fletcher's two sums after each byte (Fletcher-16) or nibble (Fletcher-8), reduced
+    at every step, and their final values."""
+    a = b = 0
+    digits = 2 if cs.width == 16 else 1
+    steps = [("start", (f"0x{a:0{digits}x}", f"0x{b:0{digits}x}"))]
+    for byte in data:
+        blocks = [(f"{byte:02x}", byte)] if cs.width == 16 else \
+            [(f"{byte:02x} high", byte >> 4), (f"{byte:02x} low", byte & 0xF)]
+        for label, block in blocks:
+            a = (a + block) % cs.modulo
+            b = (b + a) % cs.modulo
+            steps.append((label, (f"0x{a:0{digits}x}", f"0x{b:0{digits}x}")))
+    return steps, a, b
+
+
+def _sent_bytes_line(p: Protocol, frame: bytes, slot: Slot) -> str:
+    field = slot.field
+    order = field.byte_order or p.framing.byte_order
+    sent_bytes = frame[slot.offset // 8:(slot.offset + field.bits) // 8]
+    return (f"sent {'high byte (B) first' if order == 'big' else 'low byte (A) first'} at "
+            f"{position(p, slot)}: `{sent_bytes.hex(' ')}`")
+
+
 def worked_example(p: Protocol, codec: types.ModuleType, m: Message, cs: Checksum, slot: Slot) -> Optional[dict]:
     found = _frame(p, codec, m)
     if found is None:
@@ -95,7 +136,8 @@ def worked_example(p: Protocol, codec: types.ModuleType, m: Message, cs: Checksu
         order = field.byte_order or p.framing.byte_order
         sent_bytes = frame[slot.offset // 8:(slot.offset + field.bits) // 8]
         sent = _sent_value(p, frame, slot)
-        view["steps"] = steps
+        view["steps"] = [(b, (r,)) for b, r in steps]
+        view["steps_title"], view["steps_head"] = "CRC register after each byte", ("register",)
         view["lines"] = [
             f"covered bytes B{start}–B{end - 1}: `{covered.hex(' ')}`",
             f"register after the last byte: `0x{raw:0{digits}x}`"
@@ -123,11 +165,32 @@ def worked_example(p: Protocol, codec: types.ModuleType, m: Message, cs: Checksu
                 result ^= v
             how = str(result)
             joined = " ⊕ ".join(str(v) for _, v in terms)
+        finishing, result = _final_steps(cs, field.bits, result)
         view["lines"] = [
             ("covered bytes: " if cs.byte_span is not None else "wire values: ")
             + ", ".join(f"{name} = {v}" for name, v in terms),
             f"{joined} = {how}",
+            *finishing,
             f"sent in `{slot.path}` ({position(p, slot) or 'bits ' + str(slot.offset)}): {sent}",
+        ]
+    elif cs.algorithm == "fletcher":
+        start, end = cs.byte_span
+        covered = frame[start:end]
+        steps, a, b = _fletcher_steps(cs, covered)
+        half = cs.width // 2
+        result = (b << half) | a
+        sent = _sent_value(p, frame, slot)
+        digits = cs.width // 4
+        view["steps"] = steps
+        view["steps_title"] = "Sums after each " + ("byte" if cs.width == 16 else "nibble (high, then low)")
+        view["steps_head"] = ("A", "B")
+        view["lines"] = [
+            f"covered bytes B{start}–B{end - 1}: `{covered.hex(' ')}`",
+            f"A = sum of the {'bytes' if cs.width == 16 else 'nibbles, high nibble first'} mod {cs.modulo} "
+            f"= {a}; B = sum of A after each step mod {cs.modulo} = {b}",
+            f"(B << {half}) | A = `0x{result:0{digits}x}`",
+            f"sent in `{slot.path}` ({position(p, slot)}): {sent}" if cs.width == 8 else
+            _sent_bytes_line(p, frame, slot),
         ]
     elif cs.algorithm == "parity":
         word = int.from_bytes(frame, "big")
@@ -157,10 +220,29 @@ def parameters(cs: Checksum) -> list[tuple[str, str]]:
             rows.append(("check (CRC of ASCII `123456789`)", f"0x{c.check:0{digits}x}"))
         return rows
     if cs.algorithm == "sum":
-        return [("algorithm", "sum of values"), ("modulo", number(cs.modulo) if cs.modulo else "field width")]
+        rows = [("algorithm", "sum of values"), ("modulo", number(cs.modulo) if cs.modulo else "field width")]
+        if cs.complement:
+            rows.append(("then", f"{'one' if cs.complement == 'ones' else 'two'}'s complement in the field's width"))
+        return rows + _xorout_row(cs)
+    if cs.algorithm == "xor":
+        return [("algorithm", "xor")] + _xorout_row(cs)
+    if cs.algorithm == "fletcher":
+        half = cs.width // 2
+        return [("algorithm", f"Fletcher-{cs.width}"),
+                ("blocks", "bytes" if cs.width == 16 else "nibbles, high nibble first"),
+                ("modulo", number(cs.modulo)),
+                ("value", f"B in the high {'byte' if half == 8 else 'nibble'}, A in the low one")]
     if cs.algorithm == "parity":
         return [("algorithm", "parity"), ("parity", cs.parity)]
     return [("algorithm", cs.algorithm)]
+
+
+def _title(cs: Checksum) -> str:
+    return f"Fletcher-{cs.width}" if cs.algorithm == "fletcher" else cs.algorithm
+
+
+def _xorout_row(cs: Checksum) -> list[tuple[str, str]]:
+    return [("then XOR with", f"0x{cs.xorout:x}")] if cs.xorout is not None else []
 
 
 def checksum_sections(p: Protocol, codec: types.ModuleType, linker: DecisionLinker) -> list[dict]:
@@ -172,7 +254,7 @@ def checksum_sections(p: Protocol, codec: types.ModuleType, linker: DecisionLink
             continue
         cs = slot.field.checksum
         key = checksum_name(cs)
-        group = groups.setdefault(key, {"title": cs.crc.name if cs.crc else cs.algorithm,
+        group = groups.setdefault(key, {"title": cs.crc.name if cs.crc else _title(cs),
                                         "params": parameters(cs), "coverage": [], "worked": None,
                                         "field": slot.path, "doc": "", "decisions": []})
         order = slot.field.byte_order or p.framing.byte_order

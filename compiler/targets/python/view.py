@@ -1045,18 +1045,50 @@ def _checksum_code(cs) -> str:
             c(f"    return reg ^ {p.xorout:#x}")
     elif cs.algorithm == "sum":
         c(f"def _checksum_{name}(data):")
-        c(f"    return sum(data) % {cs.modulo}")
+        c(f"    return {_final_step(cs, f'sum(data) % {cs.modulo}')}")
     elif cs.algorithm == "xor":
         c(f"def _checksum_{name}(data):")
         c("    x = 0")
         c("    for byte in data:")
         c("        x ^= byte")
-        c(f"    return x % {cs.modulo}")
+        c(f"    return {_final_step(cs, f'x % {cs.modulo}')}")
+    elif cs.algorithm == "fletcher":
+        _fletcher_code(c, cs, name)
     else:
         c(f"def _checksum_{name}(data):")
         flip = " ^ 1" if cs.parity == "odd" else ""
         c(f"    return int.from_bytes(data, 'big').bit_count() & 1{flip}")
     return c.text()
+
+
+def _final_step(cs, value: str) -> str:
+    """A sum's or xor's value finished by its complement and xorout."""
+    mask = (1 << cs.width) - 1 if cs.width else 0
+    if cs.complement == "ones":
+        value = f"({value}) ^ {mask:#x}"
+    elif cs.complement == "twos":
+        value = f"-({value}) & {mask:#x}"
+    return f"({value}) ^ {cs.xorout:#x}" if cs.xorout is not None else value
+
+
+def _fletcher_code(c: Code, cs, name: str) -> None:
+    """Two running sums, A of the data and B of A after each step, reduced at the end
+    (a sum's residue does not depend on when it is taken); Fletcher-8 steps through
+    nibbles, high nibble first."""
+    half = cs.width // 2
+    c(f"# Fletcher-{cs.width}: sums modulo {cs.modulo}, value (B << {half}) | A")
+    c(f"def _checksum_{name}(data):")
+    c("    a = b = 0")
+    c("    for byte in data:")
+    if cs.width == 16:
+        c("        a += byte")
+        c("        b += a")
+    else:
+        c("        a += byte >> 4")
+        c("        b += a")
+        c("        a += byte & 0xF")
+        c("        b += a")
+    c(f"    return (b % {cs.modulo}) << {half} | a % {cs.modulo}")
 
 
 def _positional_crc_code(name: str, lengths: list[int]) -> str:
