@@ -148,6 +148,8 @@ class Checksum:
     xorout: Optional[int] = None
     # The field's width, for arithmetic that depends on it (fletcher, a complemented sum).
     width: Optional[int] = None
+    # "message": a CRC that takes one more byte after its coverage, the message's crc_extra.
+    extra: Optional[str] = None
 
     def final(self, value: int) -> int:
         """The finished checksum from a sum or xor reduced by the modulo."""
@@ -348,6 +350,7 @@ class Message:
     examples: tuple[Example, ...]
     dispatch_key: tuple[tuple[str, Any], ...]  # (field, value) pairs that identify it
     wire: Wire
+    crc_extra: Optional[int] = None  # the byte a checksum with `extra: message` takes last
     layout_type: Optional[str] = None  # the shared group type its fields come from
 
     @property

@@ -70,9 +70,13 @@ class ChecksumsMixin(ResolverBase):
         self.check_final_step(algorithm, complement, xorout, over, path, bits)
         xorout = xorout or None  # XOR with 0 changes nothing: the same checksum as none
         width = bits if algorithm == "fletcher" or complement else None
+        extra = c.get("extra")
+        if extra and (algorithm != "crc" or over != "bytes"):
+            self.error(path + ("extra",), "`extra: message` is for a CRC over bytes (MAVLink's CRC_EXTRA)",
+                       "drop `extra`, or use a CRC")
         return Checksum(algorithm, over, covers, c.get("parity", "even"), modulo, params,
                         loc=self.loc(*(path + ("covers",))) if "covers" in c else self.loc(*path),
-                        complement=complement, xorout=xorout, width=width)
+                        complement=complement, xorout=xorout, width=width, extra=extra)
 
     def check_crc(self, params: CrcParams, path: tuple, bits: Optional[int], over: str) -> None:
         mask = (1 << params.width) - 1

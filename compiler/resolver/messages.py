@@ -1,6 +1,8 @@
 """Messages and dispatch: how a decoder tells them apart, and their examples."""
 from __future__ import annotations
 
+from typing import Optional
+
 from ..dispatch_pairs import candidate_pairs
 from ..model import Example, ExpectedError, Field, Framing, Message
 from .text import text
@@ -49,6 +51,7 @@ class MessagesMixin(ResolverBase):
             self.check_size(name, m, layout, bits, framing, path)
             layout = self.bind_checksums(name, layout, framing, path)
             self.check_field_checksums(name, layout)
+        crc_extra = self.crc_extra(name, m, layout, path)
         rules = tuple(self.resolve_rule(r, path + ("rules", i), layout)
                       for i, r in enumerate(m.get("rules", [])))
         examples = tuple(self.resolve_example(e, path + ("examples", i))
@@ -57,8 +60,19 @@ class MessagesMixin(ResolverBase):
             name=name, loc=self.loc(*path), title=text(m.get("title")), doc=text(m.get("doc")),
             ids=ids, direction=m.get("direction"), role=m.get("role"),
             answered_by=tuple(m.get("answered_by", [])), fields=own, layout=layout, bits=bits,
-            rules=rules, examples=examples, dispatch_key=dispatch_key, wire=wire_of(layout, bits, framing.wire_order),
+            rules=rules, examples=examples, dispatch_key=dispatch_key, crc_extra=crc_extra, wire=wire_of(layout, bits, framing.wire_order),
             layout_type=layout_type)
+
+    def crc_extra(self, name: str, m: dict, layout: tuple[Field, ...], path: tuple) -> Optional[int]:
+        """The byte a CRC with `extra: message` takes after its coverage: every message declares it."""
+        takes = [f.name for f in layout if f.checksum and f.checksum.extra]
+        if takes and "crc_extra" not in m:
+            self.error(path, f"message {name!r} needs `crc_extra`: {takes[0]!r} takes one more byte, "
+                             "the message's", "add crc_extra: <0..255> (MAVLink's CRC_EXTRA)")
+        elif not takes and "crc_extra" in m:
+            self.error(path + ("crc_extra",), f"message {name!r}: no checksum takes its crc_extra",
+                       "drop it, or give the frame's CRC `extra: message`")
+        return m.get("crc_extra") if takes else None
 
     def resolve_example(self, e: dict, path: tuple) -> Example:
         raw_hex = None

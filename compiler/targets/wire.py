@@ -116,7 +116,7 @@ def checksum_name(cs) -> str:
     if cs.algorithm == "crc":
         c = cs.crc
         return (f"crc{c.width}_{c.poly:x}_{c.init:x}_{'r' if c.refin else 'n'}"
-                f"{'r' if c.refout else 'n'}_{c.xorout:x}")
+                f"{'r' if c.refout else 'n'}_{c.xorout:x}" + ("_extra" if cs.extra else ""))
     if cs.algorithm == "parity":
         return "parity_odd" if cs.parity == "odd" else "parity"
     if cs.algorithm == "fletcher":

@@ -587,10 +587,11 @@ class CView:
                     seen.setdefault(checksum_name(cs), checksum_code(self.checksum_fn(cs), cs, self.PX))
         return list(seen.values())
 
-    def byte_checksum_call(self, leaf: Leaf) -> str:
+    def byte_checksum_call(self, leaf: Leaf, m: Message) -> str:
         cs = leaf.field.checksum
         start, end = cs.byte_span
-        return f"{self.checksum_fn(cs)}(buf + {start}, {end - start}u)"
+        extra = f", {clit(m.crc_extra, True)}" if cs.extra else ""
+        return f"{self.checksum_fn(cs)}(buf + {start}, {end - start}u{extra})"
 
     # -- binary messages -----------------------------------------------------------------------
     @staticmethod
@@ -692,7 +693,7 @@ class CView:
                         value = raws[piece.var] if piece.bits > 32 or rt != "uint64_t" else f"(uint32_t){raws[piece.var]}"
                         c(f"{bits_fn('put', piece.bits, span.order)}(buf, {piece.pos}u, {piece.bits}u, {value});")
         for span, piece in self.byte_sums(layout):
-            call = self.byte_checksum_call(piece)
+            call = self.byte_checksum_call(piece, m)
             if span.kind == "int":
                 c(self.int_put(span.start, span.size, self.order_of(piece.field), call))
             else:  # sharing its bytes, whose bits for it are still 0
@@ -747,7 +748,7 @@ class CView:
                 got = self.int_get(span.start, span.size, self.order_of(piece.field))
             else:
                 got = f"{bits_fn('get', piece.bits, span.order)}(buf, {piece.pos}u, {piece.bits}u)"
-            self.fail_if(c, f"{got} != {self.byte_checksum_call(piece)}", "checksum")
+            self.fail_if(c, f"{got} != {self.byte_checksum_call(piece, m)}", "checksum")
         c(f"return {self.fn(m, 'check_raw')}(r, buf, m, false);")
         c.dedent()
         c("}")
@@ -1273,44 +1274,46 @@ def checksum_code(name: str, cs: Checksum, guard: str) -> str:
             c("    " + ", ".join(f"{clit_hex(v, digits, t)}" for v in table[i:i + per]) + ",")
         c("};")
         c("#endif")
-    c(f"static inline {t} {name}(const uint8_t *data, size_t len)")
+    extra = ", uint8_t extra" if cs.extra else ""
+    c(f"static inline {t} {name}(const uint8_t *data, size_t len{extra})")
     c("{")
     c.indent()
     c(f"{t} reg = {clit_hex(reg_init, 1, t)};")
     c("size_t i;")
+    byte = "byte" if cs.extra else "data[i]"
     if read:
         c(f"#ifdef {guard}_CRC_TABLE")
-        c("for (i = 0; i < len; i++) {")
+        byte_loop(c, cs.extra)
         if p.refin:
             shift = f"({t})({widen}reg >> 8)" if p.width > 8 else "0u"
-            c(f"    reg = ({t})({read}(&{name}_table[({widen}reg ^ data[i]) & 0xFFu]) ^ {shift});")
+            c(f"    reg = ({t})({read}(&{name}_table[({widen}reg ^ {byte}) & 0xFFu]) ^ {shift});")
         elif left or p.width == 8:
-            c(f"    reg = {read}(&{name}_table[({widen}reg ^ data[i]) & 0xFFu]);")
+            c(f"    reg = {read}(&{name}_table[({widen}reg ^ {byte}) & 0xFFu]);")
         else:
             keep = "" if full else f" & {clit_hex(mask, 1, t)}"
-            c(f"    reg = ({t})((({widen}reg << 8) ^ {read}(&{name}_table[(({widen}reg >> {p.width - 8}) ^ data[i]) & 0xFFu])){keep});")
+            c(f"    reg = ({t})((({widen}reg << 8) ^ {read}(&{name}_table[(({widen}reg >> {p.width - 8}) ^ {byte}) & 0xFFu])){keep});")
         c("}")
         c("#else")
-    c("for (i = 0; i < len; i++) {")
+    byte_loop(c, cs.extra)
     c.indent()
     c("uint8_t bit;")
     if p.refin:
         rpoly = reflect(p.poly, p.width)
-        c(f"reg = ({t})(reg ^ data[i]);")
+        c(f"reg = ({t})(reg ^ {byte});")
         c("for (bit = 0; bit < 8u; bit++) {")
         c(f"    reg = (reg & 1u) ? ({t})(({widen}reg >> 1) ^ {clit_hex(rpoly, 1, t)}) : ({t})({widen}reg >> 1);")
         c("}")
     elif left:
         poly = (p.poly << (8 - p.width)) & 0xFF
-        c("reg = (uint8_t)(reg ^ data[i]);")
+        c(f"reg = (uint8_t)(reg ^ {byte});")
         c("for (bit = 0; bit < 8u; bit++) {")
         c(f"    reg = (reg & 0x80u) ? (uint8_t)(({widen}reg << 1) ^ {poly:#x}u) : (uint8_t)({widen}reg << 1);")
         c("}")
     else:
         top = 1 << (p.width - 1)
         keep = "" if full else f" & {clit_hex(mask, 1, t)}"
-        data = f"({widen}data[i] << {p.width - 8})" if small else f"(({t})data[i] << {p.width - 8})"
-        c(f"reg = ({t})(reg ^ {data});" if p.width > 8 else f"reg = ({t})(reg ^ data[i]);")
+        data = f"({widen}{byte} << {p.width - 8})" if small else f"(({t}){byte} << {p.width - 8})"
+        c(f"reg = ({t})(reg ^ {data});" if p.width > 8 else f"reg = ({t})(reg ^ {byte});")
         c("for (bit = 0; bit < 8u; bit++) {")
         c(f"    reg = (reg & {clit_hex(top, 1, t)}) ? ({t})((({widen}reg << 1) ^ {clit_hex(p.poly, 1, t)}){keep}) : ({t})(({widen}reg << 1){keep});")
         c("}")
@@ -1334,6 +1337,15 @@ def checksum_code(name: str, cs: Checksum, guard: str) -> str:
     c.dedent()
     c("}")
     return c.text()
+
+
+def byte_loop(c: Code, extra: Optional[str]) -> None:
+    """Opens the loop over the data; with an extra byte, one more turn reads it as `byte`."""
+    if not extra:
+        c("for (i = 0; i < len; i++) {")
+        return
+    c("for (i = 0; i <= len; i++) {  /* the data, then the message's extra byte */")
+    c("    const uint8_t byte = i < len ? data[i] : extra;")
 
 
 def clit_hex(value: int, digits: int, ctype: str) -> str:

@@ -625,7 +625,7 @@ class MessageCode:
             start, end = cs.byte_span
             chunk, shift = next((ch, sh) for ch in self.chunks() for x, sh in ch.leaves if x is leaf)
             at = f"b[{chunk.start}:{chunk.start + chunk.nbytes}]"
-            value = self.view.checksum_call(cs, "b", start, end)
+            value = self.view.checksum_call(cs, "b", start, end, self.m.crc_extra)
             if chunk.lone:
                 order = leaf.field.byte_order or self.view.p.framing.byte_order
                 c(f"{at} = {value}.to_bytes({chunk.nbytes}, {order!r})")
@@ -682,7 +682,7 @@ class MessageCode:
             cs = leaf.field.checksum
             if cs and cs.over == "bytes":
                 start, end = cs.byte_span
-                c(f"x = {self.view.checksum_call(cs, 'd', start, end)}")
+                c(f"x = {self.view.checksum_call(cs, 'd', start, end, self.m.crc_extra)}")
                 c(f"if {leaf.var} != x:")
                 c(f"    raise _dec({self.m.name!r}, {leaf.dotted!r}, {leaf.var}, 'checksum', hex(x), {leaf.pos}, {leaf.field.rule!r})")
         self.build_checks(c, bounded=True, text_form=False, word=self.one_word())
@@ -1190,7 +1190,7 @@ class ModuleView(PythonView):
                     seen.setdefault(_checksum_name(cs), _checksum_code(cs))
                     if cs.algorithm == "crc" and not _stdlib_crc(cs.crc):
                         start, end = cs.byte_span
-                        spans.setdefault(_checksum_name(cs), set()).add(end - start)
+                        spans.setdefault(_checksum_name(cs), set()).add(end - start + bool(cs.extra))
                         crcs[_checksum_name(cs)] = cs
         out = list(seen.values())
         for name, lengths in spans.items():
@@ -1198,9 +1198,15 @@ class ModuleView(PythonView):
         return out
 
     @staticmethod
-    def checksum_call(cs, buf: str, start: int, end: int) -> str:
-        """The call that computes checksum cs over buf[start:end]."""
+    def checksum_call(cs, buf: str, start: int, end: int, extra: Optional[int] = None) -> str:
+        """The call that computes checksum cs over buf[start:end], then over the
+        message's extra byte when the checksum takes one."""
         name = _checksum_name(cs)
+        if cs.extra:
+            data, size = f"{buf}[{start}:{end}] + {bytes([extra])!r}", end - start + 1
+            if cs.algorithm == "crc" and not _stdlib_crc(cs.crc):
+                return f"_checksum_{name}_{size}({data}, 0)"
+            return f"_checksum_{name}({data})"
         if cs.algorithm == "crc" and not _stdlib_crc(cs.crc):  # straight-line code for this length
             return f"_checksum_{name}_{end - start}({buf}, {start})"
         return f"_checksum_{name}({buf}[{start}:{end}])"
