@@ -27,6 +27,9 @@ DOC_ONLY = frozenset({
 })
 # Model attributes computed from others: hashing them again adds nothing.
 DERIVED = frozenset({"wire"})
+# Model attributes added to the language later, hashed only when set: a schema
+# that does not use them keeps the fingerprint it had before they existed.
+LATER = frozenset({"encoding"})
 
 
 @lru_cache(maxsize=None)
@@ -39,7 +42,8 @@ def wire_model(value: Any) -> Any:
     if isinstance(value, Text):
         return None
     if hasattr(type(value), "__dataclass_fields__") and not isinstance(value, type):
-        return {name: wire_model(getattr(value, name)) for name in _wire_fields(type(value))}
+        return {name: wire_model(getattr(value, name)) for name in _wire_fields(type(value))
+                if name not in LATER or getattr(value, name) is not None}
     if isinstance(value, (tuple, list)):
         return [wire_model(x) for x in value]
     if isinstance(value, dict):

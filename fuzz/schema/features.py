@@ -12,6 +12,7 @@ FULL = frozenset({
     "text_form", "field_sum", "one_hot",    # bits framing: a text form, checksums over fields, one-hot
     "sync", "length", "no_dispatch",        # envelope parts (bytes)
     "sync2", "two_keys",                    # a sync of two bytes; two dispatch fields
+    "encoding",                             # SLIP, COBS or HDLC byte stuffing around frames
     "sum", "xor", "crc",                    # checksums over bytes
     "little", "field_order",                # byte orders: the framing's, and per field
     "bitfields",                            # fields narrower than a byte, packed
