@@ -268,3 +268,45 @@ def test_c_stuffs_and_parses_as_the_published_frames_say(tmp_path, encoding):
     decoder = mod.StreamDecoder()
     decoder.feed(stream)
     assert rest[-1] == f"skipped {decoder.skipped}"
+
+
+def compiled(tmp_path, encoding):
+    from codeword.build import compile_schema
+    folder = tmp_path / (encoding or "plain")
+    folder.mkdir()
+    text = SCHEMA.format(name="stuffed", encoding=encoding or "slip")
+    if encoding is None:
+        text = text.replace("  encoding: slip\n", "")
+    path = folder / "stuffed.yaml"
+    path.write_text(text, encoding="utf-8")
+    return compile_schema(path)
+
+
+def test_adding_or_changing_the_encoding_breaks_and_changes_the_fingerprint(tmp_path):
+    from codeword.diff import BREAKING, compare
+    from codeword.fingerprint import fingerprint
+    plain, slip, cobs = compiled(tmp_path, None), compiled(tmp_path, "slip"), compiled(tmp_path, "cobs")
+    assert len({fingerprint(plain), fingerprint(slip), fingerprint(cobs)}) == 3
+    assert {c.what for c in compare(plain, slip).of_kind(BREAKING)} == {"encoding changed from None to 'slip'"}
+    assert {c.what for c in compare(slip, cobs).of_kind(BREAKING)} == {"encoding changed from 'slip' to 'cobs'"}
+    assert compare(slip, compiled(tmp_path, "hdlc")).breaking
+
+
+def test_check_reads_an_encoded_capture(tmp_path, capsys):
+    import json
+
+    from codeword.cli import main
+    folder = tmp_path / "schema"
+    folder.mkdir()
+    schema = folder / "stuffed.yaml"
+    schema.write_text(SCHEMA.format(name="stuffed", encoding="hdlc"), encoding="utf-8")
+    good = hx(PING_WIRE["hdlc"])
+    # a good frame @0-9 (flags at 0 and 9), 01 7D @10-11 ending in the escape, then the frame again,
+    # its leading flag shared: the escape at 11 is the one finding
+    capture = tmp_path / "capture.bin"
+    capture.write_bytes(good + hx("7E 01 7D 7E")[1:] + good[1:])
+    status = main(["check", "--format", "json", str(schema), str(capture)])
+    doc = json.loads(capsys.readouterr().out)
+    assert status == 1
+    assert [(f["offset"], f["rule"]) for f in doc["findings"]][:1] == [(11, "escape")]
+    assert doc["summary"]["valid"] == 2 and doc["summary"]["invalid"] == 1
