@@ -310,3 +310,61 @@ def test_check_reads_an_encoded_capture(tmp_path, capsys):
     assert status == 1
     assert [(f["offset"], f["rule"]) for f in doc["findings"]][:1] == [(11, "escape")]
     assert doc["summary"]["valid"] == 2 and doc["summary"]["invalid"] == 1
+
+
+SMALL = """codeword: 1
+protocol: avr_{encoding}
+title: t
+source: s
+framing:
+  kind: bytes
+  encoding: {encoding}
+  layout:
+    - {{name: kind, type: u8, dispatch: true}}
+    - {{name: len, type: u8, length_of: {{from: payload, to: payload}}}}
+    - {{payload: true}}
+    - {{name: check, type: u8, checksum: {{algorithm: sum, modulo: 256, covers: {{from: kind, to: payload}}}}}}
+messages:
+  ping:
+    id: 0xC0
+    fields:
+      - {{name: a, type: u16}}
+      - {{name: b, type: u8, const: 0x7E}}
+  pong:
+    id: 0x00
+    fields:
+      - {{name: a, type: u8}}
+"""
+
+
+@pytest.mark.parametrize("encoding", ["slip", "hdlc", "cobs"])
+def test_conformance_vectors_on_atmega32_under_simavr(tmp_path, encoding):
+    """The conformance driver of tests/cdriver.py (valid, invalid and stream vectors, the
+    damaged escapes among them) built with avr-gcc, where int is 16 bits, and run."""
+    import json
+    import re
+    import shutil
+    import subprocess
+
+    from cdriver import Driver
+    from codeword.build import build as build_all, compile_schema
+    name = f"avr_{encoding}"
+    path = tmp_path / f"{name}.yaml"
+    path.write_text(SMALL.format(encoding=encoding), encoding="utf-8")
+    out = tmp_path / "out"
+    assert not build_all([path], out, root=tmp_path).errors
+    vectors = json.loads((out / "vectors" / f"{name}.json").read_text(encoding="utf-8"))
+    assert any(c["error"] == "escape" for c in vectors["invalid"])
+    src = tmp_path / f"{name}.c"
+    src.write_text(Driver(compile_schema(path)).source(vectors), encoding="utf-8")
+    gcc, simavr = shutil.which("avr-gcc"), shutil.which("simavr")
+    assert gcc and simavr, "avr-gcc and simavr are not installed (.ci/run installs them)"
+    elf = tmp_path / f"{name}.elf"
+    made = subprocess.run([gcc, "-std=gnu99", "-Os", "-mmcu=atmega32", "-Wall", "-Wextra", "-Wconversion",
+                           "-Werror", "-ffunction-sections", "-fdata-sections", "-Wl,--gc-sections",
+                           "-I", str(out / "c"), str(src), "-o", str(elf)], capture_output=True, text=True)
+    assert made.returncode == 0, made.stderr[-3000:]
+    ran = subprocess.run([simavr, "-m", "atmega32", "-f", "16000000", str(elf)], capture_output=True,
+                         text=True, timeout=600, errors="replace")
+    clean = re.sub(r"\x1b\[[0-9;]*m", "", ran.stdout + ran.stderr)
+    assert re.search(rf"CONFORMANCE {name} PASS \d+ checks 0 failures", clean), clean[-3000:]
