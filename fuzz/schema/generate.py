@@ -223,20 +223,7 @@ class Generator:
             if exact:
                 body["bits"] = word
             messages[self.name()] = body
-        if self.has("encoding", 0.4):
-            self.encode_frames(framing, messages, ids if not two_keys and not single else None)
         return framing, messages
-
-    def encode_frames(self, framing: dict, messages: dict, ids: list | None) -> None:
-        """Byte stuffing on the link, and frames that hold the bytes it escapes: each
-        message starts with one as a constant, and ids are often one."""
-        rng = self.rng
-        framing["encoding"] = rng.choice(["slip", "cobs", "hdlc"])
-        free = [b for b in STUFFED if ids is None or b not in ids]
-        for body in messages.values():
-            body["fields"].insert(0, {"name": self.name(), "type": "u8", "const": rng.choice(STUFFED)})
-            if ids is not None and free and rng.random() < 0.5:
-                body["id"] = free.pop(rng.randrange(len(free)))
 
     def field_checksum(self) -> dict:
         rng = self.rng
