@@ -403,6 +403,7 @@ class Framing:
     max_bits: Optional[int] = None
     text_form: Optional[TextForm] = None
     envelope: tuple[Field, ...] = ()  # bytes framing: layout with a payload item
+    encoding: Optional[str] = None  # bytes framing: slip | cobs | hdlc byte stuffing around each frame
     prefix_separator: str = ":"
     separator: str = ","
     terminator: str = ";"

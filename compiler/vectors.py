@@ -28,6 +28,7 @@ from typing import Any, TextIO
 from . import binary64, jsontext
 
 from .model import Field, Message, Protocol
+from .targets.wire import ENCODINGS
 from .vector_sequences import sequence_vectors
 
 FORMAT = "codeword-vectors/1"
@@ -403,7 +404,26 @@ class Generator:
                 b = bytearray(data)
                 b[1] = (b[1] + 1) & 0xFF
                 out.append(("second byte changed", bytes(b)))
+        encoding = self.p.framing.encoding
+        if encoding:
+            out += self.damaged_escapes(encoding, data)
         return [(label, bad) for label, bad in out if bad != data]
+
+    def damaged_escapes(self, encoding: str, data: bytes) -> list[tuple[str, bytes]]:
+        """An encoded frame with a bad escape (or COBS code) and with a delimiter inside it."""
+        facts = ENCODINGS[encoding]
+        delimiter = bytes((facts["delimiter"],))
+        middle = self.rng.randrange(1, len(data))
+        out = [("delimiter inside", data[:middle] + delimiter + data[middle:])]
+        if encoding == "cobs":
+            if len(data) <= 0xFF:  # the first block claims every byte and the delimiter
+                out.append(("COBS code past the end", bytes((len(data),)) + data[1:]))
+            return out
+        escape = bytes((facts["escape"],))
+        out.append(("escape before the delimiter", data[:-1] + escape + delimiter))
+        if encoding == "slip":  # only DC and DD may follow SLIP's escape
+            out.append(("bad escape", data[:middle] + escape + b"\x41" + data[middle:]))
+        return out
 
     def streams(self, frames: list[bytes]) -> list[dict]:
         """Byte streams mixing valid frames (canonical ones, in vector order), garbage

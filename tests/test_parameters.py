@@ -2,7 +2,6 @@
 without a doc."""
 from __future__ import annotations
 
-from pathlib import Path
 
 from codeword.build import compile_schema, render_protocol
 from conftest import load_generated

@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import html.parser
 import importlib.util
-import io
 import json
 import re
 import shutil

@@ -3,7 +3,6 @@ from its id (and a protocol of one message needs no id at all). Frames are
 worked out by hand: xor checksums over every byte before them."""
 from __future__ import annotations
 
-from pathlib import Path
 
 import pytest
 

@@ -118,7 +118,7 @@ def compare(old: Protocol, new: Protocol) -> Diff:
 
 def _framing(old: Protocol, new: Protocol, out: _Collector) -> None:
     a, b = old.framing, new.framing
-    for name in ("kind", "byte_order", "bit_order", "word_bits", "max_bits", "prefix_separator", "separator",
+    for name in ("kind", "byte_order", "bit_order", "encoding", "word_bits", "max_bits", "prefix_separator", "separator",
                  "terminator", "ignore_between", "trim", "float_format"):
         if getattr(a, name) != getattr(b, name):
             out.add(BREAKING, "framing", f"{name} changed from {getattr(a, name)!r} to {getattr(b, name)!r}")

@@ -8,13 +8,16 @@ from ..model import Field, Framing, TextForm
 from .base import ResolverBase
 from .layout import key_read, leaves_of, whole_bytes
 
+# SLIP and HDLC may double a frame, and add two delimiters: 2 * 16382 + 2 fits 16 bits
+MAX_ENCODED_FRAME = 16382
+
 
 class FramingMixin(ResolverBase):
     def resolve_framing(self, fr: dict) -> Framing:
         kind = fr["kind"]
         path = ("framing",)
         allowed = {"bits": {"kind", "word_bits", "max_bits", "byte_order", "text_form"},
-                   "bytes": {"kind", "layout", "byte_order", "bit_order"},
+                   "bytes": {"kind", "layout", "byte_order", "bit_order", "encoding"},
                    "text": {"kind", "prefix_separator", "separator", "terminator",
                             "ignore_between", "trim", "float_format"}}[kind]
         for key in fr:
@@ -48,7 +51,7 @@ class FramingMixin(ResolverBase):
             max_bits=fr.get("max_bits"),
             text_form=TextForm(tf.get("separator", " "), tf.get("comment"), tf.get("checksum_unfilled"))
             if tf else None,
-            envelope=envelope, prefix_separator=fr.get("prefix_separator", ":"),
+            envelope=envelope, encoding=fr.get("encoding"), prefix_separator=fr.get("prefix_separator", ":"),
             separator=fr.get("separator", ","), terminator=fr.get("terminator", ";"),
             ignore_between=fr.get("ignore_between", ""), trim=bool(fr.get("trim")),
             float_format=fr.get("float_format", "shortest"))
@@ -236,3 +239,7 @@ class FramingMixin(ResolverBase):
         if framing.kind == "bytes" and bits % 8:
             self.error(path + ("fields",), f"message {name!r}: the frame is {bits} bits, not whole bytes",
                        "add reserved bits")
+        if framing.encoding and bits > 8 * MAX_ENCODED_FRAME:
+            self.error(path + ("fields",), f"message {name!r}: the frame is {bits // 8} bytes; an encoded "
+                                           f"frame holds at most {MAX_ENCODED_FRAME}",
+                       "its encoded length (up to twice the frame) is an `int` of 16 bits in C on AVR")

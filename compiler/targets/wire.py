@@ -124,3 +124,36 @@ def checksum_name(cs) -> str:
     final = (f"_{cs.complement}{cs.width}" if cs.complement else "") \
         + (f"_x{cs.xorout:x}" if cs.xorout is not None else "")
     return f"{cs.algorithm}{cs.modulo or ''}{final}"
+
+
+# Each encoding's delimiter, escape and what an escaped byte stands for (RFC 1055,
+# RFC 1662; COBS has no escape: a code byte says where the next zero goes).
+ENCODINGS = {
+    "slip": {"name": "SLIP (RFC 1055)", "delimiter": 0xC0, "escape": 0xDB, "escaped": ((0xDC, 0xC0), (0xDD, 0xDB)),
+             "leading": True},
+    "hdlc": {"name": "HDLC-like byte stuffing (RFC 1662)", "delimiter": 0x7E, "escape": 0x7D,
+             "escaped": ((0x5E, 0x7E), (0x5D, 0x7D)), "leading": True},
+    "cobs": {"name": "COBS (Consistent Overhead Byte Stuffing)", "delimiter": 0x00, "escape": None,
+             "escaped": (), "leading": False},
+}
+
+
+def encoded_size(encoding: str, size: int) -> int:
+    """The most bytes a frame of `size` bytes takes encoded, delimiters included: SLIP and
+    HDLC escape every byte at worst and send a delimiter before and after; COBS adds a
+    code byte per 254 bytes (at least one) and the closing zero."""
+    if encoding == "cobs":
+        return size + max(1, -(-size // 254)) + 1
+    return 2 * size + 2
+
+
+def encoding_facts(p: Protocol) -> dict:
+    """How frames are stuffed on the link, or {} when they are sent as they are."""
+    fr = p.framing
+    if fr.kind != "bytes" or not fr.encoding:
+        return {}
+    frame_max = max(m.size for m in p.messages)
+    return dict(ENCODINGS[fr.encoding], kind=fr.encoding, frame_max=frame_max,
+                wire_max=encoded_size(fr.encoding, frame_max),
+                # a stretch this long without a delimiter cannot unstuff into a frame
+                unit_max=2 * frame_max + 2)

@@ -14,6 +14,7 @@ FULL = frozenset({
     "sync2", "two_keys", "by_direction",    # a sync of two bytes; two dispatch fields; a direction byte
     "sum", "xor", "crc", "fletcher",        # checksums over bytes
     "complement",                           # a sum's complement, a sum's or xor's xorout
+    "encoding",                             # SLIP, COBS or HDLC byte stuffing around frames
     "little", "field_order",                # byte orders: the framing's, and per field
     "bitfields",                            # fields narrower than a byte, packed
     "lsb_first",                            # bytes framing: bit fields least significant bit first

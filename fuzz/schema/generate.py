@@ -10,6 +10,8 @@ from .features import DEFAULT
 
 CRCS = {8: ["CRC-8/SMBUS", "CRC-8/MAXIM-DOW"], 16: ["CRC-16/XMODEM", "CRC-16/MODBUS", "CRC-16/CMS"],
         32: ["CRC-32/ISO-HDLC"]}
+# the bytes SLIP, COBS and HDLC escape or stand for (delimiters, escapes, escaped codes)
+STUFFED = [0x00, 0xC0, 0xDB, 0xDC, 0xDD, 0x7E, 0x7D, 0x5E, 0x5D]
 SCALES = [0.5, 0.25, 0.125, 2, 4]  # powers of two: logical values are exact doubles
 NAMES = ["alpha", "bravo", "charlie", "delta", "echo", "foxtrot", "golf", "hotel", "india", "juliet",
          "kilo", "lima", "mike", "november", "oscar", "papa", "quebec", "romeo", "sierra", "tango"]
@@ -126,6 +128,8 @@ class Generator:
                 body["direction"] = rng.choice(["up", "down"])
             body["fields"] = self.binary_fields(at_least=1 if single else 0)  # a frame is never empty
             messages[self.name()] = body
+        if self.has("encoding", 0.4):
+            self.encode_frames(framing, messages, ids if not two_keys and not single else None)
         return framing, messages
 
     def final_step(self, check: dict, width: int) -> int:
@@ -139,6 +143,17 @@ class Generator:
         if rng.random() < 0.5:
             check["xorout"] = rng.randrange(1 << width)
         return width
+
+    def encode_frames(self, framing: dict, messages: dict, ids: list | None) -> None:
+        """Byte stuffing on the link, and frames that hold the bytes it escapes: each
+        message starts with one as a constant, and ids are often one."""
+        rng = self.rng
+        framing["encoding"] = rng.choice(["slip", "cobs", "hdlc"])
+        free = [b for b in STUFFED if ids is None or b not in ids]
+        for body in messages.values():
+            body["fields"].insert(0, {"name": self.name(), "type": "u8", "const": rng.choice(STUFFED)})
+            if ids is not None and free and rng.random() < 0.5:
+                body["id"] = free.pop(rng.randrange(len(free)))
 
     def binary_fields(self, at_least: int = 0) -> list[dict]:
         """Fields of whole bytes start on a byte; narrower ones do not cross one, but

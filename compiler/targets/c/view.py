@@ -27,7 +27,7 @@ from . import wordform as cwordform
 from .pack import Span
 from .errors import CTargetError
 from .scalars import bits_fn, clit, clit_signed, final_step, int_ctype, sign_extend, type_limits, unsigned_type
-from ..wire import checksum_name, dispatch_facts, stream_facts, text_form_head, with_head_checks
+from ..wire import checksum_name, dispatch_facts, encoding_facts, stream_facts, text_form_head, with_head_checks
 
 ERR = {
     "length": "CW_ERR_LENGTH", "const": "CW_ERR_CONST", "range": "CW_ERR_RANGE",
@@ -38,7 +38,7 @@ ERR = {
     "finite": "CW_ERR_FINITE", "terminator": "CW_ERR_TERMINATOR", "prefix": "CW_ERR_PREFIX",
     "rule": "CW_ERR_RULE", "precision": "CW_ERR_PRECISION", "grammar": "CW_ERR_GRAMMAR",
     "consecutive": "CW_ERR_CONSECUTIVE", "equal": "CW_ERR_EQUAL", "member": "CW_ERR_MEMBER",
-    "unique": "CW_ERR_UNIQUE",
+    "unique": "CW_ERR_UNIQUE", "escape": "CW_ERR_ESCAPE", "delimiter": "CW_ERR_DELIMITER",
 }
 
 # How the text encoder writes a value of each kind ({v}: the member, {n}: a str's length,
@@ -79,6 +79,8 @@ class CView:
         return f"{self.px}_{m.name}_t"
 
     def fn(self, m: Message, op: str) -> str:
+        if self.fr.encoding and op in ("encode", "decode"):
+            op += "_frame"  # the frame as the layout describes it; <msg>_encode/_decode stuff it
         return f"{self.px}_{m.name}_{op}"
 
     def upper(self, *parts: str) -> str:
@@ -1160,6 +1162,13 @@ class CView:
 
     def stream(self) -> dict:
         return stream_facts(self.p)
+
+    def encoding(self) -> dict:
+        """The link's byte stuffing as C constants, or {} without one."""
+        facts = encoding_facts(self.p)
+        if not facts:
+            return facts
+        return dict(facts, constant=f"CW_{facts['kind'].upper()}", delimiter_c=f"0x{facts['delimiter']:02X}u")
 
 
 def enum_span(values: list) -> Optional[tuple[int, int]]:

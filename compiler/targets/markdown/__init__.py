@@ -17,6 +17,7 @@ from .checksum import checksum_sections
 from .delivery import delivery_view
 from .examples import message_example, sequence_example
 from .layout import diagram, field_columns, field_rows, payload_note, slots, text_line
+from .stuffing import encoding_lines
 from .machines import conditions, machine_view, sequence_view
 from .text import LANGUAGES, DecisionLinker, anchor, cell, code, en, number, originals, with_original
 from ..render import environment, tidy
@@ -170,12 +171,15 @@ def framing_view(p: Protocol, linker: DecisionLinker) -> dict:
         last = slots(p.messages[0])[-1].field
         if last.const is not None:
             lines.append(f"A frame ends with `{last.const:#04x}`.")
-        lines.append("**Stream resynchronisation.** A stream decoder skips bytes up to the next sync byte"
-                     + (", checks the length byte against the known frame sizes" if facts.get("length") else "")
-                     + ", and decodes a whole frame. After a bad frame (wrong length, checksum, constant or "
-                     "unknown id) it reports the error, drops one byte and searches for the next sync byte, so "
-                     "one damaged frame never hides the next good one. It holds at most one largest frame "
-                     f"({facts['max']} bytes).")
+        if fr.encoding:
+            lines.extend(encoding_lines(p))
+        else:
+            lines.append("**Stream resynchronisation.** A stream decoder skips bytes up to the next sync byte"
+                         + (", checks the length byte against the known frame sizes" if facts.get("length") else "")
+                         + ", and decodes a whole frame. After a bad frame (wrong length, checksum, constant or "
+                         "unknown id) it reports the error, drops one byte and searches for the next sync byte, so "
+                         "one damaged frame never hides the next good one. It holds at most one largest frame "
+                         f"({facts['max']} bytes).")
     else:
         lines.append(f"Every message is one ASCII line `<prefix>{fr.prefix_separator}<field>{fr.separator}"
                      f"<field>…{fr.terminator}`: the prefix names the message, fields follow in table order.")

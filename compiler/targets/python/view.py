@@ -12,7 +12,7 @@ from ...crc import reflect
 from ...model import Field, Leaf, Message, Protocol, Rule, Run, Sequence, SequenceItem, field_at
 from ...names import camel
 from ..code import Code
-from ..wire import checksum_name as _checksum_name, dispatch_facts, stream_facts
+from ..wire import checksum_name as _checksum_name, dispatch_facts, encoding_facts, stream_facts
 
 
 def lit(value: Any) -> str:
@@ -955,7 +955,7 @@ def module_view(p: Protocol) -> dict:
         "text_float": TEXT_FLOAT,
         "classes": view.dataclasses(), "checksums": view.checksum_functions(),
         "dispatch": view.dispatch_table(), "sequences": [view.sequence_view(s) for s in p.sequences],
-        "stream": view.stream_view(),
+        "stream": view.stream_view(), "encoding": view.encoding_view(),
     }
 
 
@@ -1220,6 +1220,18 @@ class ModuleView(PythonView):
             facts = dict(facts, word_limit=1 << self.p.framing.max_bits,
                          word_shift=self.p.framing.max_bits - facts["head_bits"])
         return facts
+
+    def encoding_view(self) -> dict:
+        """The link's byte stuffing as Python literals, or {} without one."""
+        facts = encoding_facts(self.p)
+        if not facts:
+            return facts
+        delimiter, escape = bytes((facts["delimiter"],)), bytes((facts["escape"] or 0,))
+        escaped = dict((original, escape + bytes((code,))) for code, original in facts["escaped"])
+        return dict(facts, delimiter_literal=repr(delimiter), escape_literal=repr(escape),
+                    escaped_delimiter=repr(escaped.get(facts["delimiter"], b"")),
+                    escaped_escape=repr(escaped.get(facts["escape"], b"")),
+                    escaped_table="{" + ", ".join(f"{code:#x}: {original:#x}" for code, original in facts["escaped"]) + "}")
 
     def stream_view(self) -> dict:
         facts = stream_facts(self.p)

@@ -1,0 +1,98 @@
+"""The framing section's byte stuffing: what the encoding does, and one frame
+before and after it. A small reference encoder of its own, for the docs only: the
+codecs' agreement with published frames is what the tests check."""
+from __future__ import annotations
+
+from ...model import Protocol
+from ..wire import ENCODINGS, encoding_facts
+
+DEMO = bytes((0x01, 0xC0, 0x7E, 0x00, 0xDB, 0x7D, 0x02))  # every special byte of every encoding
+
+
+def stuff(encoding: str, frame: bytes) -> bytes:
+    """The frame as the encoding sends it, delimiters included."""
+    if encoding == "cobs":
+        out = bytearray()
+        code_at, code = 0, 1
+        out.append(0)
+        for byte in frame:
+            if code == 0xFF:  # a full block closes only when more follows
+                out[code_at], code_at, code = code, len(out), 1
+                out.append(0)
+            if byte == 0:
+                out[code_at], code_at, code = code, len(out), 1
+                out.append(0)
+            else:
+                out.append(byte)
+                code += 1
+        out[code_at] = code
+        return bytes(out) + b"\x00"
+    facts = ENCODINGS[encoding]
+    codes = {original: code for code, original in facts["escaped"]}
+    body = b"".join(bytes((facts["escape"], codes[b])) if b in codes else bytes((b,)) for b in frame)
+    delimiter = bytes((facts["delimiter"],))
+    return delimiter + body + delimiter
+
+
+def unstuff(encoding: str, wire: bytes) -> bytes:
+    """The frame a well-formed encoded frame holds."""
+    facts = ENCODINGS[encoding]
+    body = wire[:-1]
+    if encoding == "cobs":
+        out, pos = bytearray(), 0
+        while pos < len(body):
+            code = body[pos]
+            out += body[pos + 1:pos + code]
+            pos += code
+            if code < 0xFF and pos < len(body):
+                out.append(0)
+        return bytes(out)
+    body = body[1:] if body[:1] == bytes((facts["delimiter"],)) else body
+    originals = dict(facts["escaped"])
+    out, pos = bytearray(), 0
+    while pos < len(body):
+        if body[pos] == facts["escape"]:
+            out.append(originals[body[pos + 1]])
+            pos += 2
+        else:
+            out.append(body[pos])
+            pos += 1
+    return bytes(out)
+
+
+def spaced(data: bytes) -> str:
+    return " ".join(f"{b:02X}" for b in data)
+
+
+def encoding_lines(p: Protocol) -> list[str]:
+    """The framing section's paragraphs on the encoding, or none without one."""
+    facts = encoding_facts(p)
+    if not facts:
+        return []
+    kind = facts["kind"]
+    example = next((ex.hex for m in p.messages for ex in m.examples if ex.hex and ex.values is not None), None)
+    frame = unstuff(kind, example) if example else DEMO
+    wire = example or stuff(kind, DEMO)
+    lines = [f"**Encoding: {facts['name']}.** The frame above, its lengths and checksums computed over "
+             "its own bytes, is stuffed on the link: every encoder and decoder of this protocol reads and "
+             "writes the stuffed bytes."]
+    if kind == "cobs":
+        lines.append("COBS removes every `00` byte: each block is a code byte *n* and *n* − 1 non-zero bytes, "
+                     "followed by a `00` in the frame unless *n* is `FF` or the block is the last; `00` ends "
+                     "the frame.")
+    else:
+        (first, of_first), (second, of_second) = facts["escaped"]
+        lines.append(f"Each frame is sent between two delimiters `{facts['delimiter']:02X}`; inside it "
+                     f"`{of_first:02X}` is sent as `{facts['escape']:02X} {first:02X}` and `{of_second:02X}` as "
+                     f"`{facts['escape']:02X} {second:02X}`. A decoder accepts a frame without its leading "
+                     "delimiter" + (", and any byte after the escape `7D` (the byte XOR `20`), so a peer "
+                     "may escape control characters too." if kind == "hdlc" else
+                     "; `DB` followed by any byte but `DC` or `DD` is an error."))
+    lines.append(f"{'An example frame' if example else 'A frame'}: `{spaced(frame)}` is sent as "
+                 f"`{spaced(wire)}`. Buffers: a frame takes at most {facts['wire_max']} bytes encoded "
+                 f"(the largest frame is {facts['frame_max']} bytes).")
+    lines.append("**Stream resynchronisation.** A stream decoder splits the stream at each delimiter and "
+                 "unstuffs and decodes the bytes between two delimiters. When they hold no frame (a bad "
+                 "escape, more bytes than the largest frame, a bad frame) it reports one error for them and "
+                 "goes on after the next delimiter, so a damaged frame never hides the next good one.")
+    return lines
