@@ -26,6 +26,10 @@ DOC_ONLY = frozenset({
 })
 # Model attributes computed from others: hashing them again adds nothing.
 DERIVED = frozenset({"wire"})
+# Attributes added to the model after fingerprints were published, with the value that
+# means "not used": left out at that value, so a schema that does not use them keeps
+# the fingerprint its firmware already carries.
+ADDED_LATER = {"start": "", "line_checksum": None}
 
 
 @lru_cache(maxsize=None)
@@ -38,7 +42,8 @@ def wire_model(value: Any) -> Any:
     if isinstance(value, Text):
         return None
     if hasattr(type(value), "__dataclass_fields__") and not isinstance(value, type):
-        return {name: wire_model(getattr(value, name)) for name in _wire_fields(type(value))}
+        return {name: wire_model(getattr(value, name)) for name in _wire_fields(type(value))
+                if name not in ADDED_LATER or getattr(value, name) != ADDED_LATER[name]}
     if isinstance(value, (tuple, list)):
         return [wire_model(x) for x in value]
     if isinstance(value, dict):

@@ -344,6 +344,17 @@ class TextForm:
 
 
 @dataclass(frozen=True)
+class LineChecksum:
+    """Text framing: a checksum of the line's characters between the start marker (or
+    the line's start) and `suffix`, written after `suffix` as two uppercase hex digits
+    (NMEA 0183's `*hh`)."""
+
+    algorithm: str  # xor | sum (modulo 256)
+    suffix: str
+    digits: str = "hex2"
+
+
+@dataclass(frozen=True)
 class Framing:
     kind: str  # bits | bytes | text
     byte_order: str = "big"
@@ -357,6 +368,8 @@ class Framing:
     ignore_between: str = ""
     trim: bool = False
     float_format: str = "shortest"
+    start: str = ""  # text: a marker every line starts with, before the prefix (NMEA's `$`)
+    line_checksum: Optional[LineChecksum] = None  # text: `<suffix><hh>` before the terminator
 
 
 @dataclass(frozen=True)

@@ -4,7 +4,7 @@ from __future__ import annotations
 from dataclasses import replace
 from typing import Optional
 
-from ..model import Field, Framing, TextForm
+from ..model import Field, Framing, LineChecksum, TextForm
 from .base import ResolverBase
 
 
@@ -14,8 +14,8 @@ class FramingMixin(ResolverBase):
         path = ("framing",)
         allowed = {"bits": {"kind", "word_bits", "max_bits", "byte_order", "text_form"},
                    "bytes": {"kind", "layout", "byte_order"},
-                   "text": {"kind", "prefix_separator", "separator", "terminator",
-                            "ignore_between", "trim", "float_format"}}[kind]
+                   "text": {"kind", "start", "prefix_separator", "separator", "terminator",
+                            "ignore_between", "trim", "float_format", "checksum"}}[kind]
         for key in fr:
             if key not in allowed:
                 self.error(path + (key,), f"framing: {key!r} does not apply to {kind} framing",
@@ -38,6 +38,9 @@ class FramingMixin(ResolverBase):
         if kind == "bits" and "word_bits" not in fr and "max_bits" not in fr:
             self.error(path, "bits framing needs word_bits or max_bits")
         tf = fr.get("text_form")
+        if kind == "text":
+            self.check_text_marks(fr, path)
+        cs = fr.get("checksum")
         return Framing(
             kind=kind, byte_order=fr.get("byte_order", "big"), word_bits=fr.get("word_bits"),
             max_bits=fr.get("max_bits"),
@@ -46,7 +49,27 @@ class FramingMixin(ResolverBase):
             envelope=envelope, prefix_separator=fr.get("prefix_separator", ":"),
             separator=fr.get("separator", ","), terminator=fr.get("terminator", ";"),
             ignore_between=fr.get("ignore_between", ""), trim=bool(fr.get("trim")),
-            float_format=fr.get("float_format", "shortest"))
+            float_format=fr.get("float_format", "shortest"), start=fr.get("start", ""),
+            line_checksum=LineChecksum(cs["algorithm"], cs["suffix"], cs.get("digits", "hex2")) if cs else None)
+
+    def check_text_marks(self, fr: dict, path: tuple) -> None:
+        """The marks of a text line must not be mistaken for one another: a line ends at
+        the first terminator, so no other mark may hold one of its characters."""
+        terminator = fr.get("terminator", ";")
+        marks = {"start": fr.get("start", ""), "prefix_separator": fr.get("prefix_separator", ":"),
+                 "separator": fr.get("separator", ",")}
+        if fr.get("checksum"):
+            marks["checksum"] = fr["checksum"]["suffix"]
+        for key, mark in marks.items():
+            shared = sorted(set(mark) & set(terminator))
+            if shared:
+                self.error(path + (key,), f"framing: {key} {mark!r} holds {shared[0]!r}, a character of the "
+                                          f"terminator {terminator!r}", "choose marks that share no character")
+        shared = sorted(set(fr.get("ignore_between", "")) & set(terminator))
+        if shared:
+            self.error(path + ("ignore_between",), f"framing: ignore_between would strip {shared[0]!r} of the "
+                                                   f"terminator {terminator!r}",
+                       "leave the terminator's characters out of ignore_between")
 
     def place(self, name: str, own: tuple[Field, ...], ids: tuple, framing: Framing,
               path: tuple) -> tuple[tuple[Field, ...], tuple]:
@@ -60,6 +83,10 @@ class FramingMixin(ResolverBase):
                                "drop `dispatch`")
             if len(ids) != 1 or not isinstance(ids[0], str):
                 self.error(path + ("id",), f"message {name!r}: text framing needs a string `id` (the prefix)")
+            elif framing.prefix_separator in ids[0] or set(ids[0]) & set(framing.terminator):
+                self.error(path + ("id",), f"message {name!r}: id {ids[0]!r} holds the prefix separator "
+                                           "or a character of the terminator, so it would not be read back",
+                           "choose an id without them")
             self.check_text_fields(name, own, path)
             return own, (("prefix", ids),) if ids else ()
         if framing.kind == "bits":

@@ -107,3 +107,23 @@ def checksum_name(cs) -> str:
     if cs.algorithm == "parity":
         return "parity_odd" if cs.parity == "odd" else "parity"
     return f"{cs.algorithm}{cs.modulo or ''}"
+
+
+def text_line_facts(p: Protocol) -> dict:
+    """How a text line is marked: `simple` when every mark is one character and the line
+    has neither start marker nor checksum (the codecs' original, fastest form); the
+    checksum's suffix, its algorithm and the characters it takes before the terminator."""
+    fr = p.framing
+    if fr.kind != "text":
+        return {}
+    cs = fr.line_checksum
+    simple = (len(fr.separator) == len(fr.terminator) == len(fr.prefix_separator) == 1
+              and not fr.start and cs is None)
+    checksum = None
+    if cs is not None:
+        what = "XOR" if cs.algorithm == "xor" else "sum modulo 256"
+        after = f"after {fr.start!r}" if fr.start else "from the line's start"
+        checksum = {"algorithm": cs.algorithm, "suffix": cs.suffix, "tail": len(cs.suffix) + 2,
+                    "shape": f"{cs.suffix}hh before the terminator (two uppercase hex digits)",
+                    "doc": f"The {what} of the characters {after} up to {cs.suffix!r}."}
+    return {"simple": simple, "checksum": checksum, "start": fr.start}

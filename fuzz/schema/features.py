@@ -18,6 +18,7 @@ FULL = frozenset({
     "enum", "flags", "bool", "bytes_field", "f32",
     "wide",                                 # integers of 33..64 bits
     "optional", "str", "char", "text_float", "newline",  # text options
+    "long_marks", "line_checksum",          # text: marks of several characters, a start marker; `*hh`
 })
 
 KNOWN_OPEN = {

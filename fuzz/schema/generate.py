@@ -244,11 +244,19 @@ class Generator:
         separator = rng.choice([",", "|"])
         framing = {"kind": "text", "prefix_separator": rng.choice([":", "="]), "separator": separator,
                    "terminator": terminator, "trim": rng.random() < 0.5}
-        if terminator != "\n":
+        if self.has("long_marks", 0.3):  # NMEA-like: `$`, `\r\n`; or marks of two characters
+            framing.update(rng.choice([{"start": "$", "prefix_separator": ",", "separator": ",", "terminator": "\r\n"},
+                                       {"start": "!", "separator": "||", "terminator": ";;"},
+                                       {"prefix_separator": "::", "separator": ", ", "terminator": "\n"}]))
+            terminator = framing["terminator"]
+        if self.has("line_checksum", 0.3):
+            framing["checksum"] = {"algorithm": rng.choice(["xor", "sum"]), "over": "line",
+                                   "suffix": rng.choice([x for x in ("*", "#", "*~", "@") if not set(x) & set(terminator)])}
+        if terminator != "\n" and "\n" not in terminator:
             framing["ignore_between"] = "\r\n"
         prefixes = set()
         while len(prefixes) < rng.randint(1, 4):
-            prefixes.add("".join(rng.choice(string.ascii_uppercase) for _ in range(rng.randint(1, 3))))
+            prefixes.add("".join(rng.choice(string.ascii_uppercase) for _ in range(rng.randint(1, 5))))
         messages = {}
         for prefix in sorted(prefixes):
             fields = [self.text_field() for _ in range(rng.randint(1, 5))]

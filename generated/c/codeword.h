@@ -789,7 +789,126 @@ static inline void cw_write_decimal_field(cw_writer_t *w, char lead, const cw_de
     cw_writer_take(w, slot, cw_put_decimal(p, d), spare);
 }
 
+/* The end of a line with longer marks or a checksum: the checksum of
+ * buf[from..len) (algorithm CW_LINE_XOR or CW_LINE_SUM, or CW_LINE_PLAIN for
+ * none) after `suffix` as two uppercase hex digits, the terminator and the NUL,
+ * with one check: the line's length, or CW_ERR_CAPACITY if it did not fit. */
+enum { CW_LINE_PLAIN = 0, CW_LINE_XOR = 1, CW_LINE_SUM = 2 };
+
+static inline unsigned cw_line_checksum(const char *s, const char *end, int algorithm)
+{
+    unsigned acc = 0u;
+    for (; s < end; s++) {
+        acc = algorithm == CW_LINE_XOR ? acc ^ (unsigned char)*s : acc + (unsigned char)*s;
+    }
+    return acc & 0xFFu;
+}
+
+static inline int cw_writer_end_line(cw_writer_t *w, size_t from, const char *suffix, size_t suffix_len,
+                                     const char *terminator, size_t terminator_len, int algorithm)
+{
+    static const char hex[] = "0123456789ABCDEF";
+    size_t tail = terminator_len + (algorithm != CW_LINE_PLAIN ? suffix_len + 2u : 0u);
+    if (w->overflow || w->cap - w->len <= tail) {
+        return CW_ERR_CAPACITY;
+    }
+    if (algorithm != CW_LINE_PLAIN) {
+        unsigned sum = cw_line_checksum(w->buf + from, w->buf + w->len, algorithm);
+        memcpy(w->buf + w->len, suffix, suffix_len);
+        w->len += suffix_len;
+        w->buf[w->len] = hex[sum >> 4];
+        w->buf[w->len + 1u] = hex[sum & 0xFu];
+        w->len += 2u;
+    }
+    memcpy(w->buf + w->len, terminator, terminator_len);
+    w->len += terminator_len;
+    w->buf[w->len] = '\0';
+    return (int)w->len;
+}
+
 /* ---- text reader helpers ----------------------------------------------- */
+
+/* The first `mark` (n chars) in [s, end), or end. */
+static inline const char *cw_find(const char *s, const char *end, const char *mark, size_t n)
+{
+    for (; (size_t)(end - s) >= n; s++) {
+        if (memcmp(s, mark, n) == 0) {
+            return s;
+        }
+    }
+    return end;
+}
+
+/* The line's checksum: `suffix` and two uppercase hex digits end [s, *end),
+ * and they hold the checksum of the characters before the suffix. Then *end
+ * is moved to the suffix; otherwise CW_ERR_CHECKSUM. */
+static inline int cw_check_line(const char *s, const char **end, const char *suffix, size_t n, int algorithm)
+{
+    static const char hex[] = "0123456789ABCDEF";
+    const char *at;
+    unsigned sum;
+    if ((size_t)(*end - s) < n + 2u) {
+        return CW_ERR_CHECKSUM;
+    }
+    at = *end - 2 - n;
+    if (memcmp(at, suffix, n) != 0) {
+        return CW_ERR_CHECKSUM;
+    }
+    sum = cw_line_checksum(s, at, algorithm);
+    if (at[n] != hex[sum >> 4] || at[n + 1u] != hex[sum & 0xFu]) {
+        return CW_ERR_CHECKSUM;
+    }
+    *end = at;
+    return CW_OK;
+}
+
+/* As cw_split_values, for a separator of n > 1 chars: ends[i] is where the
+ * separator after value i starts. */
+static inline size_t cw_split_marked(const char *s, const char *end, const char *separator, size_t n,
+                                     const char **ends, size_t max, bool to_end)
+{
+    size_t count = 1;
+    while ((size_t)(end - s) >= n) {
+        if (memcmp(s, separator, n) != 0) {
+            s++;
+            continue;
+        }
+        if (count < max) {
+            ends[count - 1u] = s;
+            count++;
+        } else if (!to_end) {
+            count = max + 1u;
+        }
+        s += n;
+    }
+    if (count <= max) {
+        ends[count - 1u] = end;
+    }
+    return count;
+}
+
+/* As cw_text_ok, with the characters a value may not hold given as a string. */
+static inline bool cw_text_ok_set(const char *s, size_t n, const char *banned, bool trim)
+{
+    size_t i;
+    for (i = 0; i < n; i++) {
+        char c = s[i];
+        const char *b;
+        if ((unsigned char)(c - ' ') > (unsigned char)('~' - ' ')) {
+            return false;
+        }
+        for (b = banned; *b != '\0'; b++) {
+            if (c == *b) {
+                return false;
+            }
+        }
+    }
+    if (trim && n > 0u && (cw_is_space(s[0]) || cw_is_space(s[n - 1u]))) {
+        return false;
+    }
+    return true;
+}
+
 
 /* Length of a NUL-terminated string held in an array of `cap` chars; `cap`
  * when the array has no NUL. */
@@ -899,13 +1018,12 @@ typedef struct {
     const char *e;
 } cw_span_t;
 
-/* Value i of a body split by cw_split_values (the first starts at s), when
- * `trim` without the whitespace around it. Returned by value, so that the
- * caller's pointers stay in registers. */
-static inline cw_span_t cw_value(const char *s, const char *const *ends, size_t i, bool trim)
+/* Value i of a body split at separators of n chars (the first starts at s),
+ * when `trim` without the whitespace around it. */
+static inline cw_span_t cw_value_after(const char *s, const char *const *ends, size_t i, size_t n, bool trim)
 {
     cw_span_t v;
-    v.b = i != 0u ? ends[i - 1u] + 1 : s;
+    v.b = i != 0u ? ends[i - 1u] + n : s;
     v.e = ends[i];
     if (trim) {
         while (v.b < v.e && cw_is_space(*v.b)) {
@@ -916,6 +1034,14 @@ static inline cw_span_t cw_value(const char *s, const char *const *ends, size_t 
         }
     }
     return v;
+}
+
+/* Value i of a body split by cw_split_values (the first starts at s), when
+ * `trim` without the whitespace around it. Returned by value, so that the
+ * caller's pointers stay in registers. */
+static inline cw_span_t cw_value(const char *s, const char *const *ends, size_t i, bool trim)
+{
+    return cw_value_after(s, ends, i, 1u, trim);
 }
 
 /* rc, or CW_ERR_TEXT when rc is an error and the text holds a byte above

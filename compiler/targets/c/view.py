@@ -26,7 +26,7 @@ from . import wordform as cwordform
 from .pack import Span
 from .errors import CTargetError
 from .scalars import bits_fn, clit, clit_signed, int_ctype, sign_extend, type_limits, unsigned_type
-from ..wire import checksum_name, dispatch_facts, stream_facts, text_form_head, with_head_checks
+from ..wire import checksum_name, dispatch_facts, stream_facts, text_form_head, text_line_facts, with_head_checks
 
 ERR = {
     "length": "CW_ERR_LENGTH", "const": "CW_ERR_CONST", "range": "CW_ERR_RANGE",
@@ -72,6 +72,7 @@ class CView:
         self.PX = protocol.name.upper()
         self.fr = protocol.framing
         self.text = self.fr.kind == "text"
+        self.line = text_line_facts(protocol)
 
     # -- names ---------------------------------------------------------------------------
     def tname(self, m: Message) -> str:
@@ -843,7 +844,9 @@ class CView:
     def max_text(self, m: Message) -> int:
         """Longest line the encoder writes, without the NUL."""
         fr = self.fr
-        n = len(m.ids[0]) + len(fr.prefix_separator) + len(fr.terminator)
+        n = len(fr.start) + len(m.ids[0]) + len(fr.prefix_separator) + len(fr.terminator)
+        if fr.line_checksum:
+            n += len(fr.line_checksum.suffix) + 2
         leaves = m.wire.leaves
         n += max(0, len(leaves) - 1) * len(fr.separator)
         for leaf in leaves:
@@ -878,8 +881,8 @@ class CView:
         optional = [leaf for leaf in leaves if leaf.field.optional]
         for before, after in zip(optional, optional[1:]):  # values are placed by position
             self.fail_if(c, f"{self.has(after)} && !{self.has(before)}", "count")
-        head = m.ids[0] + fr.prefix_separator
-        lead_first = bool(leaves) and not leaves[0].field.optional
+        head = fr.start + m.ids[0] + fr.prefix_separator
+        lead_first = bool(leaves) and not leaves[0].field.optional and len(fr.prefix_separator) == 1
         if lead_first:
             head = head[:-len(fr.prefix_separator)]
         c("cw_writer_init(&w, buf, cap);")
@@ -888,22 +891,32 @@ class CView:
         for i, leaf in enumerate(leaves):
             f = leaf.field
             v = self.member(leaf)
+            mark = fr.separator if i else fr.prefix_separator
+            led = i > 0 or lead_first  # else the head holds what leads the first value
             if f.const is not None:
-                lead = cchar(fr.separator if i else fr.prefix_separator)
-                text = self.text_const(f)
-                c(f"cw_write_text_field(&w, {lead}, {cstr(text)}, {len(text)}u);  /* const */")
+                text = (mark if led else "") + self.text_const(f)
+                c(f"cw_write_text(&w, {cstr(text)}, {len(text)}u);  /* const */")
                 continue
             if f.optional:
                 c(f"if ({self.has(leaf)}) {{")
                 c.indent()
-            first = i == 0 and not lead_first  # an optional first value: nothing leads it
             kind = f.kind if f.kind in ("float", "char", "str") else self.text_int64(f) or "int"
-            spelling = (TEXT_WRITE_FIRST if first else TEXT_WRITE_AFTER)[kind]
-            c(spelling.format(v=v, n=self.text_len(leaf), lead=cchar(fr.separator if i else fr.prefix_separator)))
+            if led and len(mark) > 1:  # a longer mark is written on its own
+                c(f"cw_write_text(&w, {cstr(mark)}, {len(mark)}u);")
+                led = False
+            spelling = (TEXT_WRITE_AFTER if led else TEXT_WRITE_FIRST)[kind]
+            c(spelling.format(v=v, n=self.text_len(leaf), lead=cchar(mark) if led else ""))
             if f.optional:
                 c.dedent()
                 c("}")
-        c(f"return cw_writer_end(&w, {cchar(fr.terminator)});")
+        if self.line["simple"]:
+            c(f"return cw_writer_end(&w, {cchar(fr.terminator)});")
+        else:
+            cs = self.line["checksum"]
+            algorithm = {"xor": "CW_LINE_XOR", "sum": "CW_LINE_SUM", None: "CW_LINE_PLAIN"}[cs and cs["algorithm"]]
+            suffix = cs["suffix"] if cs else ""
+            c(f"return cw_writer_end_line(&w, {len(fr.start)}u, {cstr(suffix)}, {len(suffix)}u, "
+              f"{cstr(fr.terminator)}, {len(fr.terminator)}u, {algorithm});")
         c.dedent()
         c("}")
         return c.text()
@@ -928,7 +941,6 @@ class CView:
         v = self.member(leaf)
         r = self.rep(f)
         fr = self.fr
-        sep = "'\\0'" if f.to_end else cchar(fr.separator)
         if f.optional:
             c(f"if ({self.has(leaf)}) {{")
             c.indent()
@@ -942,12 +954,12 @@ class CView:
         elif f.kind == "char" and f.enum is not None:
             self.member_check(c, f, v, "enum")
         elif f.kind == "char":
-            self.fail_if(c, f"!cw_text_ok(&{v}, 1u, {sep}, {cchar(fr.terminator)}, {str(fr.trim).lower()})", "text")
+            self.fail_if(c, "!" + self.text_ok(f"&{v}", "1u", f.to_end, fr.trim), "text")
         elif f.kind == "str":
             n = self.text_len(leaf)
             c(f"{n} = cw_text_len({v}, {r.array}u);")
             self.fail_if(c, f"{n} > {f.max_length}u", "length")
-            self.fail_if(c, f"!cw_text_ok({v}, {n}, {sep}, {cchar(fr.terminator)}, {str(fr.trim).lower()})", "text")
+            self.fail_if(c, "!" + self.text_ok(v, n, f.to_end, fr.trim), "text")
         elif f.enum is not None:
             self.member_check(c, f, v, "enum")
         else:
@@ -956,12 +968,24 @@ class CView:
             c.dedent()
             c("}")
 
+    def text_ok(self, s: str, n: str, to_end: bool, trim: bool) -> str:
+        """The call that tells whether a value may be written (and so read): printable
+        ASCII without a character of the terminator or, unless it runs to the end, of
+        the separator."""
+        fr = self.fr
+        if self.line["simple"]:
+            sep = "'\\0'" if to_end else cchar(fr.separator)
+            return f"cw_text_ok({s}, {n}, {sep}, {cchar(fr.terminator)}, {str(trim).lower()})"
+        banned = "".join(sorted(ch for ch in set(fr.terminator + ("" if to_end else fr.separator)) if " " <= ch <= "~"))
+        return f"cw_text_ok_set({s}, {n}, {cstr(banned)}, {str(trim).lower()})"
+
     def text_ascii(self) -> bool:
         """Whether every character the framing, the prefixes and the char enums
         accept is 7-bit ASCII. Then a message that reads well is ASCII throughout
         (its readers accept no other byte), and the check for a byte above 0x7F,
         Python's first, is needed only on the way to another error."""
         chars = self.fr.prefix_separator + self.fr.separator + self.fr.terminator + self.fr.ignore_between
+        chars += self.fr.start + (self.fr.line_checksum.suffix if self.fr.line_checksum else "")
         chars += "".join(x for m in self.p.messages for x in m.ids if isinstance(x, str))
         chars += "".join(str(x.value) for e in self.p.enums if e.kind == "char" for x in e.members)
         return all(ord(ch) < 0x80 for ch in chars)
@@ -995,8 +1019,11 @@ class CView:
         if total == 1 and last_to_end and required == 1:
             c("ends[0] = end;  /* the one value runs to the end */")
         else:
-            split = (f"cw_split_values(s, end, {cchar(fr.separator)}, ends, {total}u, "
-                     f"{'true' if last_to_end else 'false'})")
+            to_end = 'true' if last_to_end else 'false'
+            if len(fr.separator) == 1:
+                split = f"cw_split_values(s, end, {cchar(fr.separator)}, ends, {total}u, {to_end})"
+            else:
+                split = f"cw_split_marked(s, end, {cstr(fr.separator)}, {len(fr.separator)}u, ends, {total}u, {to_end})"
             if not required:  # every value optional: an empty body holds none (not one empty value)
                 split = f"s == end ? 0u : {split}"
             c(f"size_t count = {split};")
@@ -1013,7 +1040,7 @@ class CView:
             c(f"/* {leaf.dotted} */")
             if f.const is not None:  # the token must read as the constant's text
                 text = self.text_const(f)
-                c(f"v = cw_value(s, ends, {i}u, {trim});")
+                c(f"v = {self.value_call(i, trim)};")
                 self.fail_if(c, f"(size_t)(v.e - v.b) != {len(text)}u || memcmp(v.b, {cstr(text)}, {len(text)}u) != 0",
                              "const")
                 continue
@@ -1021,7 +1048,7 @@ class CView:
                 c(f"{self.has(leaf)} = count > {i}u;")
                 c(f"if ({self.has(leaf)}) {{")
                 c.indent()
-            c(f"v = cw_value(s, ends, {i}u, {trim});")
+            c(f"v = {self.value_call(i, trim)};")
             if f.kind == "float":
                 c(f"rc = cw_read_decimal(v.b, v.e, &{t});")
                 c("if (rc != CW_OK) {")
@@ -1030,13 +1057,13 @@ class CView:
             elif f.kind == "char":
                 self.fail_if(c, "v.e - v.b != 1", "type")
                 if f.enum is None:  # split at separators and trimmed: left to check are the characters and the terminator
-                    self.fail_if(c, f"!cw_text_ok(v.b, 1u, '\\0', {cchar(fr.terminator)}, false)", "text")
+                    self.fail_if(c, "!" + self.text_read_ok("1u", f.to_end), "text")
                 else:
                     self.fail_if(c, " && ".join(f"*v.b != {cchar(x.value)}" for x in f.enum.members), "enum")
                 c(f"{t} = *v.b;")
             elif f.kind == "str":
                 # split at separators (a to_end value may hold them) and trimmed: left to check are the characters and the terminator
-                self.fail_if(c, f"!cw_text_ok(v.b, (size_t)(v.e - v.b), '\\0', {cchar(fr.terminator)}, false)", "text")
+                self.fail_if(c, "!" + self.text_read_ok("(size_t)(v.e - v.b)", f.to_end), "text")
                 self.fail_if(c, f"(size_t)(v.e - v.b) > {f.max_length}u", "length")
                 c(f"memcpy({t}, v.b, (size_t)(v.e - v.b));")
                 c(f"{t}[v.e - v.b] = '\\0';")
@@ -1083,6 +1110,19 @@ class CView:
         c.dedent()
         c("}")
         return c.text()
+
+    def value_call(self, i: int, trim: str) -> str:
+        if len(self.fr.separator) == 1:
+            return f"cw_value(s, ends, {i}u, {trim})"
+        return f"cw_value_after(s, ends, {i}u, {len(self.fr.separator)}u, {trim})"
+
+    def text_read_ok(self, n: str, to_end: bool) -> str:
+        """The check of a value read: split at separators and trimmed, so with one-character
+        marks left to check are the characters and the terminator; a longer separator's
+        characters may still be inside."""
+        if self.line["simple"]:
+            return f"cw_text_ok(v.b, {n}, '\\0', {cchar(self.fr.terminator)}, false)"
+        return self.text_ok("v.b", n, to_end, False)
 
     def text_int64(self, f: Field) -> Optional[str]:
         """"i64" or "u64" for a text integer whose member the 32-bit reader and writer cannot

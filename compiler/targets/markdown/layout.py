@@ -200,7 +200,13 @@ def text_line(p: Protocol, m: Message) -> str:
     body = ""
     for i, name in enumerate(names):
         body += name if i == 0 or name.startswith("[") else fr.separator + name
-    return f"{m.ids[0]}{fr.prefix_separator}{body}{fr.terminator}"
+    checksum = fr.line_checksum.suffix + "hh" if fr.line_checksum else ""
+    return shown(f"{fr.start}{m.ids[0]}{fr.prefix_separator}{body}{checksum}{fr.terminator}")
+
+
+def shown(text: str) -> str:
+    """Line text with its control characters spelled as escapes (`\\r\\n`), as a reader types them."""
+    return text.encode("unicode_escape").decode("ascii") if not text.isprintable() else text
 
 
 def field_rows(p: Protocol, m: Message, linker: DecisionLinker) -> list[dict]:

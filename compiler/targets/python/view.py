@@ -12,7 +12,7 @@ from ...crc import reflect
 from ...model import Field, Leaf, Message, Protocol, Rule, Run, Sequence, SequenceItem, field_at
 from ...names import camel
 from ..code import Code
-from ..wire import checksum_name as _checksum_name, dispatch_facts, stream_facts
+from ..wire import checksum_name as _checksum_name, dispatch_facts, stream_facts, text_line_facts
 
 
 def lit(value: Any) -> str:
@@ -816,11 +816,12 @@ class MessageCode:
                 c.dedent()
             else:
                 outs.append(out)
-        head, sep, term = repr(self.m.ids[0] + fr.prefix_separator), repr(fr.separator), repr(fr.terminator)
-        if optional:
-            c(f"return {head} + {sep}.join(p) + {term}")
+        sep = repr(fr.separator)
+        values = f"{sep}.join(p)" if optional else f"{sep}.join(({''.join(x + ', ' for x in outs)}))"
+        if fr.line_checksum:  # _line adds the start marker, the checksum and the terminator
+            c(f"return _line({self.m.ids[0] + fr.prefix_separator!r} + {values})")
         else:
-            c(f"return {head} + {sep}.join(({''.join(x + ', ' for x in outs)})) + {term}")
+            c(f"return {fr.start + self.m.ids[0] + fr.prefix_separator!r} + {values} + {fr.terminator!r}")
         return c.text()
 
     def text_syntax(self) -> str:
@@ -949,7 +950,7 @@ def module_view(p: Protocol) -> dict:
     return {
         "p": p, "view": view, "codes": codes, "functions": functions, "structs": structs,
         "syntaxes": syntaxes, "text_classes": MessageCode.text_classes(fr) if fr.kind == "text" else {},
-        "text_float": TEXT_FLOAT,
+        "text_float": TEXT_FLOAT, "line": text_line_facts(p),
         "classes": view.dataclasses(), "checksums": view.checksum_functions(),
         "dispatch": view.dispatch_table(), "sequences": [view.sequence_view(s) for s in p.sequences],
         "stream": view.stream_view(),
