@@ -148,13 +148,15 @@ class FramingMixin(ResolverBase):
         return tuple(placed), key
 
     def check_text_fields(self, name: str, own: tuple[Field, ...], path: tuple) -> None:
-        seen_optional = False
+        optional_str = None  # an empty value is an empty str, so a str is absent only at the end
         for i, f in enumerate(own):
-            if f.optional:
-                seen_optional = True
-            elif seen_optional:
+            if f.optional and f.kind == "str":
+                optional_str = optional_str or f
+            elif optional_str is not None and not f.optional:
                 self.error(path + ("fields", i), f"message {name!r}: required field {f.name!r} follows "
-                                                 "an optional one", "only trailing fields may be optional")
+                                                 f"the optional str {optional_str.name!r}",
+                           "an empty value reads as an empty str, so only trailing str fields may be "
+                           "optional; make it a required str, or move it to the end")
             if f.to_end and i != len(own) - 1:
                 self.error(path + ("fields", i), f"message {name!r}: to_end field {f.name!r} must be last")
             if f.kind in ("bytes", "group") or f.checksum or f.length_of:

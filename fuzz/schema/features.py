@@ -19,6 +19,7 @@ FULL = frozenset({
     "wide",                                 # integers of 33..64 bits
     "optional", "str", "char", "text_float", "newline",  # text options
     "long_marks", "line_checksum",          # text: marks of several characters, a start marker; `*hh`
+    "empty_values",                         # text: optional values anywhere, absent ones empty
 })
 
 KNOWN_OPEN = {

@@ -263,6 +263,10 @@ class Generator:
             if self.has("optional", 0.3):
                 for field in fields[rng.randint(1, len(fields)):]:
                     field["optional"] = True
+            if self.has("empty_values", 0.3):  # absent in the middle of a line: an empty value
+                for field in fields:
+                    if field["type"] != "str" and rng.random() < 0.4:
+                        field["optional"] = True
             messages[self.name()] = {"id": prefix, "fields": fields}
         return framing, messages
 

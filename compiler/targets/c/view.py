@@ -878,9 +878,11 @@ class CView:
         self.rule_checks(c, m, "m")
         for leaf in leaves:
             self.text_check(c, leaf)
-        optional = [leaf for leaf in leaves if leaf.field.optional]
-        for before, after in zip(optional, optional[1:]):  # values are placed by position
-            self.fail_if(c, f"{self.has(after)} && !{self.has(before)}", "count")
+        trailing = self.trailing_from(leaves)
+        for n in range(trailing, len(leaves) - 1):  # an absent str is left out, never written empty
+            if leaves[n].field.kind == "str":
+                later = " || ".join(self.has(x) for x in leaves[n + 1:])
+                self.fail_if(c, f"!{self.has(leaves[n])} && ({later})", "count")
         head = fr.start + m.ids[0] + fr.prefix_separator
         lead_first = bool(leaves) and not leaves[0].field.optional and len(fr.prefix_separator) == 1
         if lead_first:
@@ -897,6 +899,10 @@ class CView:
                 text = (mark if led else "") + self.text_const(f)
                 c(f"cw_write_text(&w, {cstr(text)}, {len(text)}u);  /* const */")
                 continue
+            slot = i < len(leaves) - 1 and f.optional and led  # absent: its separator alone
+            if f.optional and i >= trailing and slot:  # at the end, only while a later value is present
+                c(f"if ({' || '.join(self.has(x) for x in leaves[i:])}) {{")
+                c.indent()
             if f.optional:
                 c(f"if ({self.has(leaf)}) {{")
                 c.indent()
@@ -907,6 +913,12 @@ class CView:
             spelling = (TEXT_WRITE_AFTER if led else TEXT_WRITE_FIRST)[kind]
             c(spelling.format(v=v, n=self.text_len(leaf), lead=cchar(mark) if led else ""))
             if f.optional:
+                c.dedent()
+                if slot:
+                    c("} else {")
+                    c(f"    cw_write_text(&w, {cstr(mark)}, {len(mark)}u);")
+                c("}")
+            if f.optional and i >= trailing and slot:
                 c.dedent()
                 c("}")
         if self.line["simple"]:
@@ -998,7 +1010,7 @@ class CView:
         c = Code()
         leaves = m.wire.leaves
         total = len(leaves)
-        required = sum(1 for x in leaves if not x.field.optional)
+        required = self.trailing_from(leaves)  # values up to the last required one
         last_to_end = bool(leaves) and leaves[-1].field.to_end
         trim = str(fr.trim).lower()
         c(f"static inline int {self.fn(m, 'parse_body')}(const char *s, const char *end, {self.tname(m)} *m)")
@@ -1044,11 +1056,20 @@ class CView:
                 self.fail_if(c, f"(size_t)(v.e - v.b) != {len(text)}u || memcmp(v.b, {cstr(text)}, {len(text)}u) != 0",
                              "const")
                 continue
-            if f.optional:
+            if f.optional and f.kind != "str":  # an empty value is an absent one
+                c(f"{self.has(leaf)} = false;")
+                c(f"if (count > {i}u) {{")
+                c(f"    v = {self.value_call(i, trim)};")
+                c(f"    {self.has(leaf)} = v.b != v.e;")
+                c("}")
+                c(f"if ({self.has(leaf)}) {{")
+                c.indent()
+            elif f.optional:
                 c(f"{self.has(leaf)} = count > {i}u;")
                 c(f"if ({self.has(leaf)}) {{")
                 c.indent()
-            c(f"v = {self.value_call(i, trim)};")
+            if not f.optional or f.kind == "str":
+                c(f"v = {self.value_call(i, trim)};")
             if f.kind == "float":
                 c(f"rc = cw_read_decimal(v.b, v.e, &{t});")
                 c("if (rc != CW_OK) {")
@@ -1110,6 +1131,14 @@ class CView:
         c.dedent()
         c("}")
         return c.text()
+
+    @staticmethod
+    def trailing_from(leaves) -> int:
+        """Where the run of optional values at the end of a line starts (as Python's)."""
+        n = len(leaves)
+        while n and leaves[n - 1].field.optional:
+            n -= 1
+        return n
 
     def value_call(self, i: int, trim: str) -> str:
         if len(self.fr.separator) == 1:

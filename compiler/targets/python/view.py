@@ -773,22 +773,14 @@ class MessageCode:
         c(f"def _encode_{self.fn}(m):")
         c.indent()
         self.view.rule_checks(c, self.m, "m", "_enc")
-        outs: list[str] = []  # the text of each required field, joined once at the end
-        optional = False
-        previous = None
+        outs: list[str] = []  # the text of each field, joined once at the end
+        trailing = self.trailing_from()
         for n, leaf in enumerate(self.leaves):
             f = leaf.field
             where = f"{self.m.name!r}, {leaf.dotted!r}"
             if f.optional:
-                if not optional:  # optional fields are the last ones
-                    c(f"p = [{', '.join(outs)}]")
-                    optional = True
                 c(f"if m.{leaf.dotted} is not None:")
                 c.indent()
-                if previous is not None:  # a value is placed by its position: none may be skipped
-                    c(f"if len(p) != {n}:")
-                    c(f"    raise _enc({where}, m.{leaf.dotted}, 'count', 'absent, as {previous} is')")
-                previous = leaf.dotted
             if f.kind in ("char", "str") and f.enum is None:
                 v = leaf.var
                 c(f"{v} = m.{leaf.dotted}")
@@ -811,18 +803,39 @@ class MessageCode:
                     out = f"_ENUM_{f.enum.name}[{leaf.var}]._value_"
                 else:
                     out = f"str({leaf.var})"
-            if optional:
-                c(f"p.append({out})")
+            if f.optional:  # absent: an empty value, or none at all at the end of the line
+                c(f"t{n} = {out}")
                 c.dedent()
-            else:
-                outs.append(out)
+                c("else:")
+                c(f"    t{n} = {'None' if n >= trailing else repr('')}")
+                out = f"t{n}"
+            outs.append(out)
+        if trailing < len(self.leaves):
+            c(f"p = [{', '.join(outs)}]")
+            c("while p and p[-1] is None:  # absent values at the end are left out, separators and all")
+            c("    p.pop()")
+            for n in range(trailing, len(self.leaves) - 1):  # the last one, if kept, is present
+                leaf = self.leaves[n]
+                c(f"if len(p) > {n} and p[{n}] is None:")
+                if leaf.field.kind == "str":  # an empty value would read as an empty str
+                    c(f"    raise _enc({self.m.name!r}, {leaf.dotted!r}, None, 'count', 'present, as a later value is')")
+                else:
+                    c(f"    p[{n}] = ''")
         sep = repr(fr.separator)
-        values = f"{sep}.join(p)" if optional else f"{sep}.join(({''.join(x + ', ' for x in outs)}))"
+        values = f"{sep}.join(p)" if trailing < len(self.leaves) else f"{sep}.join(({''.join(x + ', ' for x in outs)}))"
         if fr.line_checksum:  # _line adds the start marker, the checksum and the terminator
             c(f"return _line({self.m.ids[0] + fr.prefix_separator!r} + {values})")
         else:
             c(f"return {fr.start + self.m.ids[0] + fr.prefix_separator!r} + {values} + {fr.terminator!r}")
         return c.text()
+
+    def trailing_from(self) -> int:
+        """Where the run of optional values at the end of the line starts: those may be
+        left out, separators and all, when absent."""
+        n = len(self.leaves)
+        while n and self.leaves[n - 1].field.optional:
+            n -= 1
+        return n
 
     def text_syntax(self) -> str:
         """An expression for the regular expression a well-formed body matches: every number
@@ -831,6 +844,7 @@ class MessageCode:
         which names the first bad token. Stricter than the checks it stands for, never looser."""
         sep = repr(re.escape(self.view.p.framing.separator))
         out, closing = [], ""
+        trailing = self.trailing_from()
         for n, leaf in enumerate(self.leaves):
             f = leaf.field
             if f.kind == "float":
@@ -841,12 +855,12 @@ class MessageCode:
                 tok = "_CHAR_RE"
             else:
                 tok = "_REST_RE" if f.to_end else "_TEXT_RE"
-            if f.optional:
+            if f.optional and n >= trailing:
                 out.append("'(?:'")
                 closing += ")?"
             if n:
                 out.append(sep)
-            out.append(tok)
+            out.append(f"'(?:' + {tok} + ')?'" if f.optional and f.kind != "str" else tok)
         if closing:
             out.append(repr(closing))
         return " + ".join(out)
@@ -872,7 +886,7 @@ class MessageCode:
         c(f"def _decode_{self.fn}(body, base):")
         c.indent()
         total = len(self.leaves)
-        required = sum(1 for x in self.leaves if not x.field.optional)
+        required = self.trailing_from()  # values up to the last required one
         last_to_end = bool(self.leaves) and self.leaves[-1].field.to_end
         if total == 0:
             c("t = []")
@@ -892,8 +906,11 @@ class MessageCode:
             f = leaf.field
             at = f"{self.m.name!r}, {leaf.dotted!r}"
             where = f"_token_offsets(t, base)[{n}]"  # computed only for an error
-            if f.optional:
+            if f.optional and f.kind == "str":  # an empty value is an empty str
                 c(f"if len(t) > {n}:")
+                c.indent()
+            elif f.optional:  # an empty value is an absent one
+                c(f"if len(t) > {n} and {f't[{n}].strip()' if fr.trim else f't[{n}]'}:")
                 c.indent()
             tok = f"(t[{n}] if ok else t[{n}].strip())" if fr.trim else f"t[{n}]"
             slow_tok = f"t[{n}].strip()" if fr.trim else f"t[{n}]"
