@@ -175,6 +175,8 @@ class Field:
     max_length: Optional[int] = None
     optional: bool = False
     to_end: bool = False
+    decimals: Optional[int] = None  # text: the raw integer written with this many decimals
+    width: Optional[int] = None  # text: an integer written at least this wide, zero-padded
     dispatch: bool = False
     length_of: Optional[tuple[str, str]] = None
     checksum: Optional[Checksum] = None

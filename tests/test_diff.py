@@ -131,3 +131,28 @@ def test_git_revision_is_never_read_as_a_git_option(tmp_path, capsys, monkeypatc
         assert main(["diff", f"git:{rev}:schemas/route.yaml", str(SCHEMAS / "route.yaml")]) == 2
         assert "cannot start with '-'" in capsys.readouterr().err
     assert not any(tmp_path.iterdir())
+
+
+def test_a_text_line_mark_checksum_or_spelling_change_breaks(tmp_path):
+    base = """codeword: 1
+protocol: nmea_like
+title: t
+source: s
+framing: {kind: text, start: "$", prefix_separator: ",", terminator: "\\r\\n",
+          checksum: {algorithm: xor, over: line, suffix: "*"}}
+messages:
+  fix:
+    id: GPFIX
+    fields:
+      - {name: lat, type: i32, decimals: 3, width: 8}
+"""
+    old = tmp_path / "old.yaml"
+    old.write_text(base)
+    for edit, subject in [('start: "$"', "framing"), ("algorithm: xor", "framing"),
+                          ("decimals: 3, width: 8", "field lat"), ("width: 8", "field lat")]:
+        new = tmp_path / "new.yaml"
+        replacement = {'start: "$"': 'start: "!"', "algorithm: xor": "algorithm: sum",
+                       "decimals: 3, width: 8": "decimals: 2, width: 8", "width: 8": "width: 9"}[edit]
+        new.write_text(base.replace(edit, replacement))
+        d = compare(compile_schema(old), compile_schema(new))
+        assert d.breaking and subject in {c.subject for c in d.of_kind(BREAKING)}, edit

@@ -20,6 +20,7 @@ FULL = frozenset({
     "optional", "str", "char", "text_float", "newline",  # text options
     "long_marks", "line_checksum",          # text: marks of several characters, a start marker; `*hh`
     "empty_values",                         # text: optional values anywhere, absent ones empty
+    "fixed_spelling",                       # text: integers with fixed decimals and zero padding
 })
 
 KNOWN_OPEN = {

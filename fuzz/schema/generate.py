@@ -283,6 +283,13 @@ class Generator:
             return {"name": name, "type": "char"}
         if choice < 0.55 and "text_float" in self.on:
             return {"name": name, "type": "f64"}
+        if self.has("fixed_spelling", 0.15):  # NMEA-like: 4807.038, 08
+            field = {"name": name, "type": rng.choice(["u8", "u16", "i16", "i32"])}
+            if rng.random() < 0.7:
+                field["decimals"] = rng.randint(0, 4)
+            if rng.random() < 0.7 or "decimals" not in field:
+                field["width"] = rng.randint(1, 12)
+            return field
         types = ["u8", "u16", "i8", "i16", "i32"] + (["u32", "i64", "u64"] if "wide" in self.on else [])
         field: dict = {"name": name, "type": rng.choice(types)}
         if self.has("range", 0.3):

@@ -826,7 +826,114 @@ static inline int cw_writer_end_line(cw_writer_t *w, size_t from, const char *su
     return (int)w->len;
 }
 
+/* A raw integer with `decimals` digits after the point, zero-padded after its
+ * sign to at least `width` characters: (4807038, 3, 8) is "4807.038", (8, 0,
+ * 2) is "08". At most 22 chars (width is at most 20). */
+static inline void cw_write_fixed(cw_writer_t *w, int32_t v, unsigned decimals, unsigned width)
+{
+    char digits[12];
+    char text[24];
+    uint32_t mag = v < 0 ? (uint32_t)0u - (uint32_t)v : (uint32_t)v;
+    size_t n = 0, len = 0, i;
+    size_t sign = v < 0 ? 1u : 0u;
+    size_t core;
+    do {  /* digits, lowest first */
+        digits[n++] = (char)('0' + (int)(mag % 10u));
+        mag /= 10u;
+    } while (mag != 0u);
+    while (n < (size_t)decimals + 1u) {
+        digits[n++] = '0';
+    }
+    core = n + (decimals != 0u ? 1u : 0u);
+    if (sign != 0u) {
+        text[len++] = '-';
+    }
+    for (i = sign + core; i < (size_t)width; i++) {
+        text[len++] = '0';
+    }
+    for (i = n; i > 0u; i--) {
+        text[len++] = digits[i - 1u];
+        if (i - 1u == (size_t)decimals && decimals != 0u) {
+            text[len++] = '.';
+        }
+    }
+    cw_write_text(w, text, len);
+}
+
 /* ---- text reader helpers ----------------------------------------------- */
+
+/* A raw integer spelled exactly as cw_write_fixed writes it, within [lo, hi]:
+ * CW_ERR_SYNTAX for any other spelling (other decimals, padding or sign),
+ * CW_ERR_RANGE for a value outside. */
+static inline int cw_parse_fixed(const char *s, const char *end, unsigned decimals, unsigned width,
+                                 int32_t lo, int32_t hi, int32_t *out)
+{
+    const char *p = s;
+    const char *lead;
+    size_t whole, zeros, core;
+    bool neg = p < end && *p == '-';
+    uint64_t mag = 0u;
+    size_t significant = 0;
+    if (neg) {
+        p++;
+    }
+    lead = p;
+    while (p < end && *p >= '0' && *p <= '9') {
+        p++;
+    }
+    whole = (size_t)(p - lead);
+    if (whole == 0u) {
+        return CW_ERR_SYNTAX;
+    }
+    if (decimals != 0u) {
+        const char *frac;
+        if (p == end || *p != '.') {
+            return CW_ERR_SYNTAX;
+        }
+        frac = ++p;
+        while (p < end && *p >= '0' && *p <= '9') {
+            p++;
+        }
+        if ((size_t)(p - frac) != (size_t)decimals) {
+            return CW_ERR_SYNTAX;
+        }
+    }
+    if (p != end) {
+        return CW_ERR_SYNTAX;
+    }
+    zeros = 0;
+    while (zeros + 1u < whole && lead[zeros] == '0') {
+        zeros++;
+    }
+    core = whole - zeros + (decimals != 0u ? (size_t)decimals + 1u : 0u);
+    if ((size_t)(end - s) != ((size_t)width > core + (neg ? 1u : 0u) ? (size_t)width : core + (neg ? 1u : 0u))) {
+        return CW_ERR_SYNTAX;  /* padded other than to the width */
+    }
+    for (p = lead; p < end; p++) {
+        if (*p == '.') {
+            continue;
+        }
+        if (significant != 0u || *p != '0') {
+            significant++;
+        }
+        if (significant > 11u) {
+            return CW_ERR_RANGE;  /* past any 32-bit value */
+        }
+        mag = mag * 10u + (uint64_t)(*p - '0');
+    }
+    if (neg && mag == 0u) {
+        return CW_ERR_SYNTAX;  /* "-0" is written "0" */
+    }
+    {
+        int64_t value = neg ? (int64_t)0 - (int64_t)mag : (int64_t)mag;
+        if (value < (int64_t)lo || value > (int64_t)hi) {
+            return CW_ERR_RANGE;
+        }
+        *out = (int32_t)value;
+    }
+    return CW_OK;
+}
+
 
 /* The first `mark` (n chars) in [s, end), or end. */
 static inline const char *cw_find(const char *s, const char *end, const char *mark, size_t n)

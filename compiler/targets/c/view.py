@@ -46,6 +46,7 @@ TEXT_WRITE_FIRST = {
     "float": "cw_write_decimal(&w, {v});", "char": "cw_write_char(&w, {v});",
     "str": "cw_write_text(&w, {v}, {n});", "i64": "cw_write_i64(&w, {v});", "u64": "cw_write_u64(&w, {v});",
     "int": "cw_write_int(&w, (int32_t){v});",
+    "fixed": "cw_write_fixed(&w, (int32_t){v}, {decimals}u, {width}u);",
 }
 TEXT_WRITE_AFTER = {
     "float": "cw_write_decimal_field(&w, {lead}, &{v});", "char": "cw_write_text_field(&w, {lead}, &{v}, 1u);",
@@ -857,6 +858,8 @@ class CView:
                 n += 1
             elif f.kind == "str":
                 n += f.max_length
+            elif f.decimals is not None or f.width is not None:
+                n += max(12, f.width or 0)
             else:
                 n += 11
         return n
@@ -907,11 +910,14 @@ class CView:
                 c(f"if ({self.has(leaf)}) {{")
                 c.indent()
             kind = f.kind if f.kind in ("float", "char", "str") else self.text_int64(f) or "int"
-            if led and len(mark) > 1:  # a longer mark is written on its own
+            if f.decimals is not None or f.width is not None:
+                kind = "fixed"
+            if led and (len(mark) > 1 or kind == "fixed"):  # the mark on its own, then the value
                 c(f"cw_write_text(&w, {cstr(mark)}, {len(mark)}u);")
                 led = False
             spelling = (TEXT_WRITE_AFTER if led else TEXT_WRITE_FIRST)[kind]
-            c(spelling.format(v=v, n=self.text_len(leaf), lead=cchar(mark) if led else ""))
+            c(spelling.format(v=v, n=self.text_len(leaf), lead=cchar(mark) if led else "",
+                              decimals=f.decimals or 0, width=f.width or 0))
             if f.optional:
                 c.dedent()
                 if slot:
@@ -1091,9 +1097,15 @@ class CView:
             else:
                 c("{")
                 c.indent()
-                wide = self.text_int64(f)
+                fixed = f.decimals is not None or f.width is not None
+                wide = None if fixed else self.text_int64(f)
                 vtype = {"i64": "int64_t", "u64": "uint64_t", None: "int32_t"}[wide]
-                if wide:  # parsed straight into the field's own range
+                if fixed:  # read exactly as written (the resolver keeps it within 32 bits)
+                    c("int32_t value;")
+                    lo, hi = self.raw_bounds(f) if f.range is not None else (-(1 << 31), (1 << 31) - 1)
+                    c(f"rc = cw_parse_fixed(v.b, v.e, {f.decimals or 0}u, {f.width or 0}u, "
+                      f"{clit(lo) if lo > -(1 << 31) else 'INT32_MIN'}, {clit(hi) if hi < (1 << 31) - 1 else 'INT32_MAX'}, &value);")
+                elif wide:  # parsed straight into the field's own range
                     c(f"{vtype} value;")
                     lo, hi = self.raw_bounds(f) if f.range is not None else self.stored_range(f)
                     c(f"rc = cw_parse_{wide}(v.b, v.e, {self.literal_of(lo, vtype)}, {self.literal_of(hi, vtype)}, &value);")

@@ -312,11 +312,14 @@ class PythonView:
             return f"({var}.bit_length() - 1 if {var} else None)"
         elif f.kind in ("uint", "int"):
             expr = var
+            expr = var
             if f.scale is not None:
                 expr = f"{var} * {lit(f.scale)}"
             if f.offset:
                 expr = f"{expr} + {lit(f.offset)}"
             var_checked = expr
+            if f.decimals:  # the value the text shows, correctly rounded (checked as any scaled value)
+                expr = f"{var} / {10 ** f.decimals}" + (f" + {lit(f.offset)}" if f.offset else "")
         elif f.kind == "float":
             c(f"if {'not ' + finite_if + ' and ' if finite_if else ''}not _isfinite({var}):")
             c(f"    raise _dec({at}, 'finite', 'a finite number', {off}, {f.rule!r})")
@@ -801,6 +804,8 @@ class MessageCode:
                     out = f"_format_float({leaf.var})"
                 elif f.enum is not None and f.enum.kind == "char":
                     out = f"_ENUM_{f.enum.name}[{leaf.var}]._value_"
+                elif f.decimals or f.width:
+                    out = f"_fixed({leaf.var}, {f.decimals or 0}, {f.width or 0})"
                 else:
                     out = f"str({leaf.var})"
             if f.optional:  # absent: an empty value, or none at all at the end of the line
@@ -849,6 +854,8 @@ class MessageCode:
             f = leaf.field
             if f.kind == "float":
                 tok = "_FINITE_RE"
+            elif f.decimals or f.width:
+                tok = "_FIXED_RE"
             elif f.kind in ("uint", "int") or (f.enum is not None and f.enum.kind == "int"):
                 tok = "_INT_RE"
             elif f.kind == "char":
@@ -916,6 +923,8 @@ class MessageCode:
             slow_tok = f"t[{n}].strip()" if fr.trim else f"t[{n}]"
             if f.kind == "float":
                 c(f"{leaf.var} = float(t[{n}]) if ok else _parse_float({slow_tok}, {at}, {where})")
+            elif f.decimals or f.width:  # exactly as written: checked on every path
+                c(f"{leaf.var} = _parse_fixed({tok}, {f.decimals or 0}, {f.width or 0}, {at}, {where})")
             elif f.kind in ("uint", "int") or (f.enum is not None and f.enum.kind == "int"):
                 c(f"{leaf.var} = int(t[{n}]) if ok else _parse_int({slow_tok}, {at}, {where})")
             elif f.kind == "char":
@@ -968,6 +977,7 @@ def module_view(p: Protocol) -> dict:
         "p": p, "view": view, "codes": codes, "functions": functions, "structs": structs,
         "syntaxes": syntaxes, "text_classes": MessageCode.text_classes(fr) if fr.kind == "text" else {},
         "text_float": TEXT_FLOAT, "line": text_line_facts(p),
+        "fixed": any(x.field.decimals or x.field.width for m in p.messages for x in m.wire.leaves),
         "classes": view.dataclasses(), "checksums": view.checksum_functions(),
         "dispatch": view.dispatch_table(), "sequences": [view.sequence_view(s) for s in p.sequences],
         "stream": view.stream_view(),
