@@ -29,7 +29,8 @@ DERIVED = frozenset({"wire"})
 # Attributes added to the model after fingerprints were published, with the value that
 # means "not used": left out at that value, so a schema that does not use them keeps
 # the fingerprint its firmware already carries.
-ADDED_LATER = {"start": "", "line_checksum": None, "decimals": None, "width": None}
+ADDED_LATER = {"start": "", "line_checksum": None, "decimals": None, "width": None,
+               "keep_empty": False}
 
 
 @lru_cache(maxsize=None)

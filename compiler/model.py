@@ -370,6 +370,7 @@ class Framing:
     ignore_between: str = ""
     trim: bool = False
     float_format: str = "shortest"
+    keep_empty: bool = False  # text: absent values at the end keep their empty places (NMEA)
     start: str = ""  # text: a marker every line starts with, before the prefix (NMEA's `$`)
     line_checksum: Optional[LineChecksum] = None  # text: `<suffix><hh>` before the terminator
 

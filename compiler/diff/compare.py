@@ -118,7 +118,7 @@ def compare(old: Protocol, new: Protocol) -> Diff:
 def _framing(old: Protocol, new: Protocol, out: _Collector) -> None:
     a, b = old.framing, new.framing
     for name in ("kind", "byte_order", "word_bits", "max_bits", "prefix_separator", "separator",
-                 "terminator", "ignore_between", "trim", "float_format", "start", "line_checksum"):
+                 "terminator", "ignore_between", "trim", "float_format", "start", "line_checksum", "keep_empty"):
         if getattr(a, name) != getattr(b, name):
             out.add(BREAKING, "framing", f"{name} changed from {getattr(a, name)!r} to {getattr(b, name)!r}")
     if not _same_wire(a.text_form, b.text_form):

@@ -15,7 +15,7 @@ class FramingMixin(ResolverBase):
         allowed = {"bits": {"kind", "word_bits", "max_bits", "byte_order", "text_form"},
                    "bytes": {"kind", "layout", "byte_order"},
                    "text": {"kind", "start", "prefix_separator", "separator", "terminator",
-                            "ignore_between", "trim", "float_format", "checksum"}}[kind]
+                            "ignore_between", "trim", "float_format", "checksum", "keep_empty"}}[kind]
         for key in fr:
             if key not in allowed:
                 self.error(path + (key,), f"framing: {key!r} does not apply to {kind} framing",
@@ -50,6 +50,7 @@ class FramingMixin(ResolverBase):
             separator=fr.get("separator", ","), terminator=fr.get("terminator", ";"),
             ignore_between=fr.get("ignore_between", ""), trim=bool(fr.get("trim")),
             float_format=fr.get("float_format", "shortest"), start=fr.get("start", ""),
+            keep_empty=bool(fr.get("keep_empty")),
             line_checksum=LineChecksum(cs["algorithm"], cs["suffix"], cs.get("digits", "hex2")) if cs else None)
 
     def check_text_marks(self, fr: dict, path: tuple) -> None:
@@ -87,7 +88,7 @@ class FramingMixin(ResolverBase):
                 self.error(path + ("id",), f"message {name!r}: id {ids[0]!r} holds the prefix separator "
                                            "or a character of the terminator, so it would not be read back",
                            "choose an id without them")
-            self.check_text_fields(name, own, path)
+            self.check_text_fields(name, own, path, framing.keep_empty)
             return own, (("prefix", ids),) if ids else ()
         if framing.kind == "bits":
             if ids:
@@ -147,9 +148,13 @@ class FramingMixin(ResolverBase):
         self.check_alignment(name, placed, framing, path)
         return tuple(placed), key
 
-    def check_text_fields(self, name: str, own: tuple[Field, ...], path: tuple) -> None:
+    def check_text_fields(self, name: str, own: tuple[Field, ...], path: tuple, keep_empty: bool) -> None:
         optional_str = None  # an empty value is an empty str, so a str is absent only at the end
         for i, f in enumerate(own):
+            if f.optional and f.kind == "str" and keep_empty:
+                self.error(path + ("fields", i, "optional"), f"message {name!r}: optional str {f.name!r} in a "
+                           "line that keeps empty values (keep_empty): an empty value reads as an empty str",
+                           "make it a required str (empty when there is nothing to say)")
             if f.optional and f.kind == "str":
                 optional_str = optional_str or f
             elif optional_str is not None and not f.optional:

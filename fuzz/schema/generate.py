@@ -245,7 +245,8 @@ class Generator:
         framing = {"kind": "text", "prefix_separator": rng.choice([":", "="]), "separator": separator,
                    "terminator": terminator, "trim": rng.random() < 0.5}
         if self.has("long_marks", 0.3):  # NMEA-like: `$`, `\r\n`; or marks of two characters
-            framing.update(rng.choice([{"start": "$", "prefix_separator": ",", "separator": ",", "terminator": "\r\n"},
+            framing.update(rng.choice([{"start": "$", "prefix_separator": ",", "separator": ",", "terminator": "\r\n",
+                                        "keep_empty": True},
                                        {"start": "!", "separator": "||", "terminator": ";;"},
                                        {"prefix_separator": "::", "separator": ", ", "terminator": "\n"}]))
             terminator = framing["terminator"]
@@ -267,6 +268,10 @@ class Generator:
                 for field in fields:
                     if field["type"] != "str" and rng.random() < 0.4:
                         field["optional"] = True
+            if framing.get("keep_empty"):  # an empty str would not read back as absent
+                for field in fields:
+                    if field["type"] == "str":
+                        field.pop("optional", None)
             messages[self.name()] = {"id": prefix, "fields": fields}
         return framing, messages
 

@@ -902,7 +902,7 @@ class CView:
                 text = (mark if led else "") + self.text_const(f)
                 c(f"cw_write_text(&w, {cstr(text)}, {len(text)}u);  /* const */")
                 continue
-            slot = i < len(leaves) - 1 and f.optional and led  # absent: its separator alone
+            slot = (i < trailing or i < len(leaves) - 1) and f.optional and led  # absent: its separator alone
             if f.optional and i >= trailing and slot:  # at the end, only while a later value is present
                 c(f"if ({' || '.join(self.has(x) for x in leaves[i:])}) {{")
                 c.indent()
@@ -1144,11 +1144,10 @@ class CView:
         c("}")
         return c.text()
 
-    @staticmethod
-    def trailing_from(leaves) -> int:
+    def trailing_from(self, leaves) -> int:
         """Where the run of optional values at the end of a line starts (as Python's)."""
         n = len(leaves)
-        while n and leaves[n - 1].field.optional:
+        while n and leaves[n - 1].field.optional and not self.fr.keep_empty:
             n -= 1
         return n
 

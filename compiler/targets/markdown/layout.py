@@ -194,7 +194,7 @@ def text_line(p: Protocol, m: Message) -> str:
     fr = p.framing
     top = [s for s in slots(m) if not s.depth]
     trailing = len(top)
-    while trailing and top[trailing - 1].field.optional:  # left out at the end of a line
+    while trailing and top[trailing - 1].field.optional and not fr.keep_empty:  # left out at the end of a line
         trailing -= 1
     body = ""
     for i, s in enumerate(top):

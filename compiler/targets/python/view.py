@@ -838,7 +838,7 @@ class MessageCode:
         """Where the run of optional values at the end of the line starts: those may be
         left out, separators and all, when absent."""
         n = len(self.leaves)
-        while n and self.leaves[n - 1].field.optional:
+        while n and self.leaves[n - 1].field.optional and not self.view.p.framing.keep_empty:
             n -= 1
         return n
 
