@@ -27,8 +27,6 @@ DOC_ONLY = frozenset({
 })
 # Model attributes computed from others: hashing them again adds nothing.
 DERIVED = frozenset({"wire"})
-# Attributes added to the language later, left out at their default so that the
-# fingerprint of a schema that does not use them stays what it was.
 
 
 @lru_cache(maxsize=None)

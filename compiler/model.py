@@ -190,6 +190,8 @@ class Field:
     max_length: Optional[int] = None
     optional: bool = False
     to_end: bool = False
+    decimals: Optional[int] = None  # text: the raw integer written with this many decimals
+    width: Optional[int] = None  # text: an integer written at least this wide, zero-padded
     dispatch: bool = False
     by_direction: tuple[tuple[str, int], ...] = ()  # envelope: (direction, value); a dispatch field
     length_of: Optional[tuple[str, str]] = None
@@ -389,6 +391,17 @@ class TextForm:
 
 
 @dataclass(frozen=True)
+class LineChecksum:
+    """Text framing: a checksum of the line's characters between the start marker (or
+    the line's start) and `suffix`, written after `suffix` as two uppercase hex digits
+    (NMEA 0183's `*hh`)."""
+
+    algorithm: str  # xor | sum (modulo 256)
+    suffix: str
+    digits: str = "hex2"
+
+
+@dataclass(frozen=True)
 class Framing:
     kind: str  # bits | bytes | text
     byte_order: str = "big"
@@ -410,6 +423,9 @@ class Framing:
     ignore_between: str = ""
     trim: bool = False
     float_format: str = "shortest"
+    keep_empty: bool = False  # text: absent values at the end keep their empty places (NMEA)
+    start: str = ""  # text: a marker every line starts with, before the prefix (NMEA's `$`)
+    line_checksum: Optional[LineChecksum] = None  # text: `<suffix><hh>` before the terminator
 
 
 @dataclass(frozen=True)

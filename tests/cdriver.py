@@ -83,6 +83,8 @@ class Driver:
             return cstr(value)
         if f.kind == "bytes":
             return "{" + ", ".join(f"0x{b:02x}" for b in bytes.fromhex(value)) + "}"
+        if f.decimals:  # decoded as raw / 10**decimals, correctly rounded: the nearest raw
+            return int_literal(round((Fraction(value) - Fraction(f.offset or 0)) * 10 ** f.decimals))
         if f.scale is not None:
             raw = (Fraction(value) - Fraction(f.offset or 0)) / Fraction(f.scale)
             assert raw.denominator == 1, (f.name, value)

@@ -199,3 +199,28 @@ def test_checksum_family_and_final_step_changes_are_breaking(tmp_path):
     # XOR with 0 is no final step: the same wire
     d = diff_of(tmp_path, source, old, "{algorithm: sum, xorout: 0,")
     assert not d.changes and d.old_fingerprint == d.new_fingerprint
+
+
+def test_a_text_line_mark_checksum_or_spelling_change_breaks(tmp_path):
+    base = """codeword: 1
+protocol: nmea_like
+title: t
+source: s
+framing: {kind: text, start: "$", prefix_separator: ",", terminator: "\\r\\n",
+          checksum: {algorithm: xor, over: line, suffix: "*"}}
+messages:
+  fix:
+    id: GPFIX
+    fields:
+      - {name: lat, type: i32, decimals: 3, width: 8}
+"""
+    old = tmp_path / "old.yaml"
+    old.write_text(base)
+    for edit, subject in [('start: "$"', "framing"), ("algorithm: xor", "framing"),
+                          ("decimals: 3, width: 8", "field lat"), ("width: 8", "field lat")]:
+        new = tmp_path / "new.yaml"
+        replacement = {'start: "$"': 'start: "!"', "algorithm: xor": "algorithm: sum",
+                       "decimals: 3, width: 8": "decimals: 2, width: 8", "width: 8": "width: 9"}[edit]
+        new.write_text(base.replace(edit, replacement))
+        d = compare(compile_schema(old), compile_schema(new))
+        assert d.breaking and subject in {c.subject for c in d.of_kind(BREAKING)}, edit

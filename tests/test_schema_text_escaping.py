@@ -71,6 +71,8 @@ NOT_PROSE = {
     ".framing.prefix_separator": "wire syntax",
     ".framing.separator": "wire syntax",
     ".framing.terminator": "wire syntax",
+    ".framing.start": "wire syntax",
+    ".framing.checksum.suffix": "wire syntax",
     ".framing.text_form.comment": "wire syntax",
     ".framing.text_form.separator": "wire syntax",
     ".messages[a].id": "a wire value",

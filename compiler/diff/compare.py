@@ -16,7 +16,7 @@ KINDS = (BREAKING, COMPATIBLE, DOCS)
 # Field attributes whose change alters the bytes or what a decoder accepts;
 # each is described on its own below when it changes.
 _WIRE_ATTRS = ("kind", "const", "scale", "offset", "byte_order", "one_hot", "exactly_one", "reserved",
-               "length", "length_param", "max_length", "to_end", "dispatch", "length_of")
+               "length", "length_param", "max_length", "to_end", "dispatch", "length_of", "decimals", "width")
 
 
 @dataclass
@@ -118,8 +118,9 @@ def compare(old: Protocol, new: Protocol) -> Diff:
 
 def _framing(old: Protocol, new: Protocol, out: _Collector) -> None:
     a, b = old.framing, new.framing
-    for name in ("kind", "byte_order", "bit_order", "encoding", "word_bits", "max_bits", "prefix_separator", "separator",
-                 "terminator", "ignore_between", "trim", "float_format"):
+    for name in ("kind", "byte_order", "bit_order", "encoding", "word_bits", "max_bits", "prefix_separator",
+                 "separator", "terminator", "ignore_between", "trim", "float_format", "start", "line_checksum",
+                 "keep_empty"):
         if getattr(a, name) != getattr(b, name):
             out.add(BREAKING, "framing", f"{name} changed from {getattr(a, name)!r} to {getattr(b, name)!r}")
     if not _same_wire(a.text_form, b.text_form):

@@ -99,7 +99,9 @@ class FieldsMixin(ResolverBase):
             has_default="default" in f,
             range=tuple(f["range"]) if "range" in f else None,
             values=tuple(f["values"]) if "values" in f else None, enum=enum, flags=flags,
-            scale=f.get("scale"), offset=f.get("offset"), one_hot=bool(f.get("one_hot")),
+            scale=f.get("scale", float(f"1e-{f['decimals']}") if f.get("decimals") else None),
+            offset=f.get("offset"), one_hot=bool(f.get("one_hot")),
+            decimals=f.get("decimals"), width=f.get("width"),
             exactly_one=bool(f.get("exactly_one")), byte_order=f.get("byte_order"),
             length=length if kind in ("bytes", "str") else None, length_param=length_param,
             max_length=f.get("max_length"), optional=bool(f.get("optional")),
@@ -171,6 +173,8 @@ class FieldsMixin(ResolverBase):
             self.error(path + ("reserved",), f"field {name!r}: reserved bits are an unsigned integer")
         if (f.optional or f.to_end) and self.framing_kind != "text":
             self.error(path, f"field {name!r}: optional/to_end apply to text framing")
+        if f.decimals is not None or f.width is not None:
+            self.check_fixed_spelling(f, path)
         if f.to_end and kind != "str":
             self.error(path + ("to_end",), f"field {name!r}: to_end applies to str fields")
         if kind == "str" and f.length is None and f.max_length is None:
@@ -222,6 +226,24 @@ class FieldsMixin(ResolverBase):
         if f.values:
             for i, v in enumerate(f.values):
                 self.check_value(f, v, path + ("values", i), "allowed value")
+
+    def check_fixed_spelling(self, f: Field, path: tuple) -> None:
+        """`decimals` and `width` spell a text integer's raw value: 4807038 with decimals 3 is
+        `4807.038`, 8 with width 2 is `08`. Read and written exactly, in 32 bits."""
+        key = "decimals" if f.decimals is not None else "width"
+        if self.framing_kind != "text" or f.kind not in ("uint", "int") or f.enum or f.flags or f.one_hot:
+            self.error(path + (key,), f"field {f.name!r}: {key} applies to integer fields of text framing",
+                       "a float is written in its shortest form; use an integer with decimals")
+            return
+        if f.decimals and f.scale != float(f"1e-{f.decimals}"):
+            self.error(path + ("scale",), f"field {f.name!r}: decimals {f.decimals} means scale "
+                                          f"{float(f'1e-{f.decimals}')}, not {f.scale}",
+                       "leave scale out: decimals sets it")
+        lo, hi = f.raw_range or (0, 0)
+        if lo < -(1 << 31) or hi > (1 << 31) - 1:
+            self.error(path + ("type",), f"field {f.name!r}: {key} needs raw values of at most 32 bits "
+                                         f"(signed); {f.type_name or f.kind} {f.bits} bits is wider",
+                       "use i32, or u31 and narrower")
 
     def check_value(self, f: Field, value: Any, path: tuple, what: str) -> None:
         kind, bits = f.kind, f.bits

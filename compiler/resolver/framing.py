@@ -4,7 +4,7 @@ from __future__ import annotations
 from dataclasses import replace
 from typing import Optional
 
-from ..model import Field, Framing, TextForm
+from ..model import Field, Framing, LineChecksum, TextForm
 from .base import ResolverBase
 from .layout import key_read, leaves_of, whole_bytes
 
@@ -18,8 +18,8 @@ class FramingMixin(ResolverBase):
         path = ("framing",)
         allowed = {"bits": {"kind", "word_bits", "max_bits", "byte_order", "text_form"},
                    "bytes": {"kind", "layout", "byte_order", "bit_order", "encoding"},
-                   "text": {"kind", "prefix_separator", "separator", "terminator",
-                            "ignore_between", "trim", "float_format"}}[kind]
+                   "text": {"kind", "start", "prefix_separator", "separator", "terminator",
+                            "ignore_between", "trim", "float_format", "checksum", "keep_empty"}}[kind]
         for key in fr:
             if key not in allowed:
                 self.error(path + (key,), f"framing: {key!r} does not apply to {kind} framing",
@@ -45,6 +45,9 @@ class FramingMixin(ResolverBase):
         bit_order = fr.get("bit_order", "msb_first")
         # least significant bit first, a field crossing bytes is little-endian: the default
         default_order = "little" if bit_order == "lsb_first" else "big"
+        if kind == "text":
+            self.check_text_marks(fr, path)
+        cs = fr.get("checksum")
         return Framing(
             kind=kind, byte_order=fr.get("byte_order", default_order), bit_order=bit_order,
             word_bits=fr.get("word_bits"),
@@ -54,7 +57,28 @@ class FramingMixin(ResolverBase):
             envelope=envelope, encoding=fr.get("encoding"), prefix_separator=fr.get("prefix_separator", ":"),
             separator=fr.get("separator", ","), terminator=fr.get("terminator", ";"),
             ignore_between=fr.get("ignore_between", ""), trim=bool(fr.get("trim")),
-            float_format=fr.get("float_format", "shortest"))
+            float_format=fr.get("float_format", "shortest"), start=fr.get("start", ""),
+            keep_empty=bool(fr.get("keep_empty")),
+            line_checksum=LineChecksum(cs["algorithm"], cs["suffix"], cs.get("digits", "hex2")) if cs else None)
+
+    def check_text_marks(self, fr: dict, path: tuple) -> None:
+        """The marks of a text line must not be mistaken for one another: a line ends at
+        the first terminator, so no other mark may hold one of its characters."""
+        terminator = fr.get("terminator", ";")
+        marks = {"start": fr.get("start", ""), "prefix_separator": fr.get("prefix_separator", ":"),
+                 "separator": fr.get("separator", ",")}
+        if fr.get("checksum"):
+            marks["checksum"] = fr["checksum"]["suffix"]
+        for key, mark in marks.items():
+            shared = sorted(set(mark) & set(terminator))
+            if shared:
+                self.error(path + (key,), f"framing: {key} {mark!r} holds {shared[0]!r}, a character of the "
+                                          f"terminator {terminator!r}", "choose marks that share no character")
+        shared = sorted(set(fr.get("ignore_between", "")) & set(terminator))
+        if shared:
+            self.error(path + ("ignore_between",), f"framing: ignore_between would strip {shared[0]!r} of the "
+                                                   f"terminator {terminator!r}",
+                       "leave the terminator's characters out of ignore_between")
 
     def place(self, name: str, own: tuple[Field, ...], ids: tuple, framing: Framing,
               path: tuple, direction: Optional[str] = None) -> tuple[tuple[Field, ...], tuple]:
@@ -68,7 +92,11 @@ class FramingMixin(ResolverBase):
                                "drop `dispatch`")
             if len(ids) != 1 or not isinstance(ids[0], str):
                 self.error(path + ("id",), f"message {name!r}: text framing needs a string `id` (the prefix)")
-            self.check_text_fields(name, own, path)
+            elif framing.prefix_separator in ids[0] or set(ids[0]) & set(framing.terminator):
+                self.error(path + ("id",), f"message {name!r}: id {ids[0]!r} holds the prefix separator "
+                                           "or a character of the terminator, so it would not be read back",
+                           "choose an id without them")
+            self.check_text_fields(name, own, path, framing.keep_empty)
             return own, (("prefix", ids),) if ids else ()
         if framing.kind == "bits":
             if ids:
@@ -186,14 +214,20 @@ class FramingMixin(ResolverBase):
             self.error(path, f"the dispatch fields are read {read['byte_order']}-endian, so a dispatch field "
                              "of part of a byte must not cross a byte boundary", "move it inside one byte")
 
-    def check_text_fields(self, name: str, own: tuple[Field, ...], path: tuple) -> None:
-        seen_optional = False
+    def check_text_fields(self, name: str, own: tuple[Field, ...], path: tuple, keep_empty: bool) -> None:
+        optional_str = None  # an empty value is an empty str, so a str is absent only at the end
         for i, f in enumerate(own):
-            if f.optional:
-                seen_optional = True
-            elif seen_optional:
+            if f.optional and f.kind == "str" and keep_empty:
+                self.error(path + ("fields", i, "optional"), f"message {name!r}: optional str {f.name!r} in a "
+                           "line that keeps empty values (keep_empty): an empty value reads as an empty str",
+                           "make it a required str (empty when there is nothing to say)")
+            if f.optional and f.kind == "str":
+                optional_str = optional_str or f
+            elif optional_str is not None and not f.optional:
                 self.error(path + ("fields", i), f"message {name!r}: required field {f.name!r} follows "
-                                                 "an optional one", "only trailing fields may be optional")
+                                                 f"the optional str {optional_str.name!r}",
+                           "an empty value reads as an empty str, so only trailing str fields may be "
+                           "optional; make it a required str, or move it to the end")
             if f.to_end and i != len(own) - 1:
                 self.error(path + ("fields", i), f"message {name!r}: to_end field {f.name!r} must be last")
             if f.kind in ("bytes", "group") or f.checksum or f.length_of:

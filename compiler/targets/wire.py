@@ -157,3 +157,23 @@ def encoding_facts(p: Protocol) -> dict:
                 wire_max=encoded_size(fr.encoding, frame_max),
                 # a stretch this long without a delimiter cannot unstuff into a frame
                 unit_max=2 * frame_max + 2)
+
+
+def text_line_facts(p: Protocol) -> dict:
+    """How a text line is marked: `simple` when every mark is one character and the line
+    has neither start marker nor checksum (the codecs' original, fastest form); the
+    checksum's suffix, its algorithm and the characters it takes before the terminator."""
+    fr = p.framing
+    if fr.kind != "text":
+        return {}
+    cs = fr.line_checksum
+    simple = (len(fr.separator) == len(fr.terminator) == len(fr.prefix_separator) == 1
+              and not fr.start and cs is None)
+    checksum = None
+    if cs is not None:
+        what = "XOR" if cs.algorithm == "xor" else "sum modulo 256"
+        after = f"after {fr.start!r}" if fr.start else "from the line's start"
+        checksum = {"algorithm": cs.algorithm, "suffix": cs.suffix, "tail": len(cs.suffix) + 2,
+                    "shape": f"{cs.suffix}hh before the terminator (two uppercase hex digits)",
+                    "doc": f"The {what} of the characters {after} up to {cs.suffix!r}."}
+    return {"simple": simple, "checksum": checksum, "start": fr.start}

@@ -22,6 +22,9 @@ FULL = frozenset({
     "enum", "flags", "bool", "bytes_field", "f32", "f64",
     "wide",                                 # integers of 33..64 bits
     "optional", "str", "char", "text_float", "newline",  # text options
+    "long_marks", "line_checksum",          # text: marks of several characters, a start marker; `*hh`
+    "empty_values",                         # text: optional values anywhere, absent ones empty
+    "fixed_spelling",                       # text: integers with fixed decimals and zero padding
 })
 
 KNOWN_OPEN = {

@@ -332,17 +332,34 @@ class Generator:
         separator = rng.choice([",", "|"])
         framing = {"kind": "text", "prefix_separator": rng.choice([":", "="]), "separator": separator,
                    "terminator": terminator, "trim": rng.random() < 0.5}
-        if terminator != "\n":
+        if self.has("long_marks", 0.3):  # NMEA-like: `$`, `\r\n`; or marks of two characters
+            framing.update(rng.choice([{"start": "$", "prefix_separator": ",", "separator": ",", "terminator": "\r\n",
+                                        "keep_empty": True},
+                                       {"start": "!", "separator": "||", "terminator": ";;"},
+                                       {"prefix_separator": "::", "separator": ", ", "terminator": "\n"}]))
+            terminator = framing["terminator"]
+        if self.has("line_checksum", 0.3):
+            framing["checksum"] = {"algorithm": rng.choice(["xor", "sum"]), "over": "line",
+                                   "suffix": rng.choice([x for x in ("*", "#", "*~", "@") if not set(x) & set(terminator)])}
+        if terminator != "\n" and "\n" not in terminator:
             framing["ignore_between"] = "\r\n"
         prefixes = set()
         while len(prefixes) < rng.randint(1, 4):
-            prefixes.add("".join(rng.choice(string.ascii_uppercase) for _ in range(rng.randint(1, 3))))
+            prefixes.add("".join(rng.choice(string.ascii_uppercase) for _ in range(rng.randint(1, 5))))
         messages = {}
         for prefix in sorted(prefixes):
             fields = [self.text_field() for _ in range(rng.randint(1, 5))]
             if self.has("optional", 0.3):
                 for field in fields[rng.randint(1, len(fields)):]:
                     field["optional"] = True
+            if self.has("empty_values", 0.3):  # absent in the middle of a line: an empty value
+                for field in fields:
+                    if field["type"] != "str" and rng.random() < 0.4:
+                        field["optional"] = True
+            if framing.get("keep_empty"):  # an empty str would not read back as absent
+                for field in fields:
+                    if field["type"] == "str":
+                        field.pop("optional", None)
             messages[self.name()] = {"id": prefix, "fields": fields}
         return framing, messages
 
@@ -359,6 +376,13 @@ class Generator:
             return {"name": name, "type": "char"}
         if choice < 0.55 and "text_float" in self.on:
             return {"name": name, "type": "f64"}
+        if self.has("fixed_spelling", 0.15):  # NMEA-like: 4807.038, 08
+            field = {"name": name, "type": rng.choice(["u8", "u16", "i16", "i32"])}
+            if rng.random() < 0.7:
+                field["decimals"] = rng.randint(0, 4)
+            if rng.random() < 0.7 or "decimals" not in field:
+                field["width"] = rng.randint(1, 12)
+            return field
         types = ["u8", "u16", "i8", "i16", "i32"] + (["u32", "i64", "u64"] if "wide" in self.on else [])
         field: dict = {"name": name, "type": rng.choice(types)}
         if self.has("range", 0.3):

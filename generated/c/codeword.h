@@ -988,7 +988,233 @@ static inline void cw_write_decimal_field(cw_writer_t *w, char lead, const cw_de
     cw_writer_take(w, slot, cw_put_decimal(p, d), spare);
 }
 
+/* The end of a line with longer marks or a checksum: the checksum of
+ * buf[from..len) (algorithm CW_LINE_XOR or CW_LINE_SUM, or CW_LINE_PLAIN for
+ * none) after `suffix` as two uppercase hex digits, the terminator and the NUL,
+ * with one check: the line's length, or CW_ERR_CAPACITY if it did not fit. */
+enum { CW_LINE_PLAIN = 0, CW_LINE_XOR = 1, CW_LINE_SUM = 2 };
+
+static inline unsigned cw_line_checksum(const char *s, const char *end, int algorithm)
+{
+    unsigned acc = 0u;
+    for (; s < end; s++) {
+        acc = algorithm == CW_LINE_XOR ? acc ^ (unsigned char)*s : acc + (unsigned char)*s;
+    }
+    return acc & 0xFFu;
+}
+
+static inline int cw_writer_end_line(cw_writer_t *w, size_t from, const char *suffix, size_t suffix_len,
+                                     const char *terminator, size_t terminator_len, int algorithm)
+{
+    static const char hex[] = "0123456789ABCDEF";
+    size_t tail = terminator_len + (algorithm != CW_LINE_PLAIN ? suffix_len + 2u : 0u);
+    if (w->overflow || w->cap - w->len <= tail) {
+        return CW_ERR_CAPACITY;
+    }
+    if (algorithm != CW_LINE_PLAIN) {
+        unsigned sum = cw_line_checksum(w->buf + from, w->buf + w->len, algorithm);
+        memcpy(w->buf + w->len, suffix, suffix_len);
+        w->len += suffix_len;
+        w->buf[w->len] = hex[sum >> 4];
+        w->buf[w->len + 1u] = hex[sum & 0xFu];
+        w->len += 2u;
+    }
+    memcpy(w->buf + w->len, terminator, terminator_len);
+    w->len += terminator_len;
+    w->buf[w->len] = '\0';
+    return (int)w->len;
+}
+
+/* A raw integer with `decimals` digits after the point, zero-padded after its
+ * sign to at least `width` characters: (4807038, 3, 8) is "4807.038", (8, 0,
+ * 2) is "08". At most 22 chars (width is at most 20). */
+static inline void cw_write_fixed(cw_writer_t *w, int32_t v, unsigned decimals, unsigned width)
+{
+    char digits[12];
+    char text[24];
+    uint32_t mag = v < 0 ? (uint32_t)0u - (uint32_t)v : (uint32_t)v;
+    size_t n = 0, len = 0, i;
+    size_t sign = v < 0 ? 1u : 0u;
+    size_t core;
+    do {  /* digits, lowest first */
+        digits[n++] = (char)('0' + (int)(mag % 10u));
+        mag /= 10u;
+    } while (mag != 0u);
+    while (n < (size_t)decimals + 1u) {
+        digits[n++] = '0';
+    }
+    core = n + (decimals != 0u ? 1u : 0u);
+    if (sign != 0u) {
+        text[len++] = '-';
+    }
+    for (i = sign + core; i < (size_t)width; i++) {
+        text[len++] = '0';
+    }
+    for (i = n; i > 0u; i--) {
+        text[len++] = digits[i - 1u];
+        if (i - 1u == (size_t)decimals && decimals != 0u) {
+            text[len++] = '.';
+        }
+    }
+    cw_write_text(w, text, len);
+}
+
 /* ---- text reader helpers ----------------------------------------------- */
+
+/* A raw integer spelled exactly as cw_write_fixed writes it, within [lo, hi]:
+ * CW_ERR_SYNTAX for any other spelling (other decimals, padding or sign),
+ * CW_ERR_RANGE for a value outside. */
+static inline int cw_parse_fixed(const char *s, const char *end, unsigned decimals, unsigned width,
+                                 int32_t lo, int32_t hi, int32_t *out)
+{
+    const char *p = s;
+    const char *lead;
+    size_t whole, zeros, core;
+    bool neg = p < end && *p == '-';
+    uint64_t mag = 0u;
+    size_t significant = 0;
+    if (neg) {
+        p++;
+    }
+    lead = p;
+    while (p < end && *p >= '0' && *p <= '9') {
+        p++;
+    }
+    whole = (size_t)(p - lead);
+    if (whole == 0u) {
+        return CW_ERR_SYNTAX;
+    }
+    if (decimals != 0u) {
+        const char *frac;
+        if (p == end || *p != '.') {
+            return CW_ERR_SYNTAX;
+        }
+        frac = ++p;
+        while (p < end && *p >= '0' && *p <= '9') {
+            p++;
+        }
+        if ((size_t)(p - frac) != (size_t)decimals) {
+            return CW_ERR_SYNTAX;
+        }
+    }
+    if (p != end) {
+        return CW_ERR_SYNTAX;
+    }
+    zeros = 0;
+    while (zeros + 1u < whole && lead[zeros] == '0') {
+        zeros++;
+    }
+    core = whole - zeros + (decimals != 0u ? (size_t)decimals + 1u : 0u);
+    if ((size_t)(end - s) != ((size_t)width > core + (neg ? 1u : 0u) ? (size_t)width : core + (neg ? 1u : 0u))) {
+        return CW_ERR_SYNTAX;  /* padded other than to the width */
+    }
+    for (p = lead; p < end; p++) {
+        if (*p == '.') {
+            continue;
+        }
+        if (significant != 0u || *p != '0') {
+            significant++;
+        }
+        if (significant > 11u) {
+            return CW_ERR_RANGE;  /* past any 32-bit value */
+        }
+        mag = mag * 10u + (uint64_t)(*p - '0');
+    }
+    if (neg && mag == 0u) {
+        return CW_ERR_SYNTAX;  /* "-0" is written "0" */
+    }
+    {
+        int64_t value = neg ? (int64_t)0 - (int64_t)mag : (int64_t)mag;
+        if (value < (int64_t)lo || value > (int64_t)hi) {
+            return CW_ERR_RANGE;
+        }
+        *out = (int32_t)value;
+    }
+    return CW_OK;
+}
+
+
+/* The first `mark` (n chars) in [s, end), or end. */
+static inline const char *cw_find(const char *s, const char *end, const char *mark, size_t n)
+{
+    for (; (size_t)(end - s) >= n; s++) {
+        if (memcmp(s, mark, n) == 0) {
+            return s;
+        }
+    }
+    return end;
+}
+
+/* The line's checksum: `suffix` and two uppercase hex digits end [s, *end),
+ * and they hold the checksum of the characters before the suffix. Then *end
+ * is moved to the suffix; otherwise CW_ERR_CHECKSUM. */
+static inline int cw_check_line(const char *s, const char **end, const char *suffix, size_t n, int algorithm)
+{
+    static const char hex[] = "0123456789ABCDEF";
+    const char *at;
+    unsigned sum;
+    if ((size_t)(*end - s) < n + 2u) {
+        return CW_ERR_CHECKSUM;
+    }
+    at = *end - 2 - n;
+    if (memcmp(at, suffix, n) != 0) {
+        return CW_ERR_CHECKSUM;
+    }
+    sum = cw_line_checksum(s, at, algorithm);
+    if (at[n] != hex[sum >> 4] || at[n + 1u] != hex[sum & 0xFu]) {
+        return CW_ERR_CHECKSUM;
+    }
+    *end = at;
+    return CW_OK;
+}
+
+/* As cw_split_values, for a separator of n > 1 chars: ends[i] is where the
+ * separator after value i starts. */
+static inline size_t cw_split_marked(const char *s, const char *end, const char *separator, size_t n,
+                                     const char **ends, size_t max, bool to_end)
+{
+    size_t count = 1;
+    while ((size_t)(end - s) >= n) {
+        if (memcmp(s, separator, n) != 0) {
+            s++;
+            continue;
+        }
+        if (count < max) {
+            ends[count - 1u] = s;
+            count++;
+        } else if (!to_end) {
+            count = max + 1u;
+        }
+        s += n;
+    }
+    if (count <= max) {
+        ends[count - 1u] = end;
+    }
+    return count;
+}
+
+/* As cw_text_ok, with the characters a value may not hold given as a string. */
+static inline bool cw_text_ok_set(const char *s, size_t n, const char *banned, bool trim)
+{
+    size_t i;
+    for (i = 0; i < n; i++) {
+        char c = s[i];
+        const char *b;
+        if ((unsigned char)(c - ' ') > (unsigned char)('~' - ' ')) {
+            return false;
+        }
+        for (b = banned; *b != '\0'; b++) {
+            if (c == *b) {
+                return false;
+            }
+        }
+    }
+    if (trim && n > 0u && (cw_is_space(s[0]) || cw_is_space(s[n - 1u]))) {
+        return false;
+    }
+    return true;
+}
+
 
 /* Length of a NUL-terminated string held in an array of `cap` chars; `cap`
  * when the array has no NUL. */
@@ -1098,13 +1324,12 @@ typedef struct {
     const char *e;
 } cw_span_t;
 
-/* Value i of a body split by cw_split_values (the first starts at s), when
- * `trim` without the whitespace around it. Returned by value, so that the
- * caller's pointers stay in registers. */
-static inline cw_span_t cw_value(const char *s, const char *const *ends, size_t i, bool trim)
+/* Value i of a body split at separators of n chars (the first starts at s),
+ * when `trim` without the whitespace around it. */
+static inline cw_span_t cw_value_after(const char *s, const char *const *ends, size_t i, size_t n, bool trim)
 {
     cw_span_t v;
-    v.b = i != 0u ? ends[i - 1u] + 1 : s;
+    v.b = i != 0u ? ends[i - 1u] + n : s;
     v.e = ends[i];
     if (trim) {
         while (v.b < v.e && cw_is_space(*v.b)) {
@@ -1115,6 +1340,14 @@ static inline cw_span_t cw_value(const char *s, const char *const *ends, size_t 
         }
     }
     return v;
+}
+
+/* Value i of a body split by cw_split_values (the first starts at s), when
+ * `trim` without the whitespace around it. Returned by value, so that the
+ * caller's pointers stay in registers. */
+static inline cw_span_t cw_value(const char *s, const char *const *ends, size_t i, bool trim)
+{
+    return cw_value_after(s, ends, i, 1u, trim);
 }
 
 /* rc, or CW_ERR_TEXT when rc is an error and the text holds a byte above

@@ -707,7 +707,6 @@ def _encode_command(m):
     if r_systemstatus not in (0, 1, 2, 3, 4):
         raise _enc('command', 'systemstatus', r_systemstatus, 'values', '0, 1, 2, 3, 4', 'TANK-D2', 'systemstatus 5 (Error) and 6 (Exception) are sent only by the platform / Только с платформы')
     r_systemstatus = r_systemstatus._value_ if r_systemstatus.__class__ is SystemStatus else int(r_systemstatus)
-    p = [_ENUM_move[r_move]._value_, str(r_speed), r_value, str(r_azimutloc), _format_float(r_gpio1), _format_float(r_gpio2), _format_float(r_gpio3), _format_float(r_gpio4), str(r_systemstatus)]
     if m.data is not None:
         r_data = m.data
         if not isinstance(r_data, str):
@@ -718,7 +717,12 @@ def _encode_command(m):
                 raise _enc('command', 'data', r_data, 'text', bad, 'TANK-D1')
         if len(r_data) > 64:
             raise _enc('command', 'data', r_data, 'length', 'at most 64 characters')
-        p.append(r_data)
+        t9 = r_data
+    else:
+        t9 = None
+    p = [_ENUM_move[r_move]._value_, str(r_speed), r_value, str(r_azimutloc), _format_float(r_gpio1), _format_float(r_gpio2), _format_float(r_gpio3), _format_float(r_gpio4), str(r_systemstatus), t9]
+    while p and p[-1] is None:  # absent values at the end are left out, separators and all
+        p.pop()
     return '%:' + ','.join(p) + ';'
 
 

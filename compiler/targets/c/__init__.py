@@ -81,6 +81,22 @@ def message_views(v: CView) -> list[dict]:
     return out
 
 
+def line_view(v: CView) -> dict:
+    """The marks of a text line as C literals and lengths, for <proto>_split."""
+    fr = v.fr
+    if not v.text:
+        return {}
+    cs = fr.line_checksum
+    shape = f"{fr.start}<prefix>{fr.prefix_separator}<fields>{cs.suffix + 'hh' if cs else ''}{fr.terminator}"
+    return dict(v.line, c={
+        "shape": comment(shape.encode("unicode_escape").decode("ascii")),
+        "terminator": cstr(fr.terminator), "terminator_len": len(fr.terminator),
+        "start": cstr(fr.start), "start_len": len(fr.start),
+        "prefix_separator": cstr(fr.prefix_separator), "prefix_separator_len": len(fr.prefix_separator),
+        "suffix": cstr(cs.suffix) if cs else "", "suffix_len": len(cs.suffix) if cs else 0,
+        "algorithm": {"xor": "CW_LINE_XOR", "sum": "CW_LINE_SUM"}[cs.algorithm] if cs else ""})
+
+
 def render(p: Protocol) -> dict[str, str]:
     v = CView(p)
     fr = p.framing
@@ -102,8 +118,9 @@ def render(p: Protocol) -> dict[str, str]:
         word_bits=v.word_bits(), word_type=word_type(v.word_bits() or 32), text_form=text_form,
         word_max=(1 << v.word_bits()) - 1 if v.word_bits() else None,
         word_shift=v.word_bits() - dispatch["head_bits"] if v.word_bits() and dispatch["kind"] == "bits" else None, cstr=cstr, ignore=ignore, ignore_end=ignore_end,
-        terminator=cchar(fr.terminator), prefix_separator=cchar(fr.prefix_separator),
-        text_ascii=v.text and v.text_ascii(),
+        terminator=cchar(fr.terminator) if v.text and v.line["simple"] else "",
+        prefix_separator=cchar(fr.prefix_separator) if v.text and v.line["simple"] else "",
+        text_ascii=v.text and v.text_ascii(), line=line_view(v),
         machines=machines_view(p), sequences=sequences_view(v))
     runtime = env.get_template("c/codeword.h.j2").render()
     return {f"c/{p.name}.h": tidy(header, max_blank=1), "c/codeword.h": runtime}

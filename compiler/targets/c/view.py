@@ -27,7 +27,8 @@ from . import wordform as cwordform
 from .pack import Span
 from .errors import CTargetError
 from .scalars import bits_fn, clit, clit_signed, final_step, int_ctype, sign_extend, type_limits, unsigned_type
-from ..wire import checksum_name, dispatch_facts, encoding_facts, stream_facts, text_form_head, with_head_checks
+from ..wire import (checksum_name, dispatch_facts, encoding_facts, stream_facts, text_form_head,
+                    text_line_facts, with_head_checks)
 
 ERR = {
     "length": "CW_ERR_LENGTH", "const": "CW_ERR_CONST", "range": "CW_ERR_RANGE",
@@ -47,6 +48,7 @@ TEXT_WRITE_FIRST = {
     "float": "cw_write_decimal(&w, {v});", "char": "cw_write_char(&w, {v});",
     "str": "cw_write_text(&w, {v}, {n});", "i64": "cw_write_i64(&w, {v});", "u64": "cw_write_u64(&w, {v});",
     "int": "cw_write_int(&w, (int32_t){v});",
+    "fixed": "cw_write_fixed(&w, (int32_t){v}, {decimals}u, {width}u);",
 }
 TEXT_WRITE_AFTER = {
     "float": "cw_write_decimal_field(&w, {lead}, &{v});", "char": "cw_write_text_field(&w, {lead}, &{v}, 1u);",
@@ -73,6 +75,7 @@ class CView:
         self.PX = protocol.name.upper()
         self.fr = protocol.framing
         self.text = self.fr.kind == "text"
+        self.line = text_line_facts(protocol)
 
     # -- names ---------------------------------------------------------------------------
     def tname(self, m: Message) -> str:
@@ -883,7 +886,9 @@ class CView:
     def max_text(self, m: Message) -> int:
         """Longest line the encoder writes, without the NUL."""
         fr = self.fr
-        n = len(m.ids[0]) + len(fr.prefix_separator) + len(fr.terminator)
+        n = len(fr.start) + len(m.ids[0]) + len(fr.prefix_separator) + len(fr.terminator)
+        if fr.line_checksum:
+            n += len(fr.line_checksum.suffix) + 2
         leaves = m.wire.leaves
         n += max(0, len(leaves) - 1) * len(fr.separator)
         for leaf in leaves:
@@ -894,6 +899,8 @@ class CView:
                 n += 1
             elif f.kind == "str":
                 n += f.max_length
+            elif f.decimals is not None or f.width is not None:
+                n += max(12, f.width or 0)
             else:
                 n += 11
         return n
@@ -915,11 +922,13 @@ class CView:
         self.rule_checks(c, m, "m")
         for leaf in leaves:
             self.text_check(c, leaf)
-        optional = [leaf for leaf in leaves if leaf.field.optional]
-        for before, after in zip(optional, optional[1:]):  # values are placed by position
-            self.fail_if(c, f"{self.has(after)} && !{self.has(before)}", "count")
-        head = m.ids[0] + fr.prefix_separator
-        lead_first = bool(leaves) and not leaves[0].field.optional
+        trailing = self.trailing_from(leaves)
+        for n in range(trailing, len(leaves) - 1):  # an absent str is left out, never written empty
+            if leaves[n].field.kind == "str":
+                later = " || ".join(self.has(x) for x in leaves[n + 1:])
+                self.fail_if(c, f"!{self.has(leaves[n])} && ({later})", "count")
+        head = fr.start + m.ids[0] + fr.prefix_separator
+        lead_first = bool(leaves) and not leaves[0].field.optional and len(fr.prefix_separator) == 1
         if lead_first:
             head = head[:-len(fr.prefix_separator)]
         c("cw_writer_init(&w, buf, cap);")
@@ -928,22 +937,45 @@ class CView:
         for i, leaf in enumerate(leaves):
             f = leaf.field
             v = self.member(leaf)
+            mark = fr.separator if i else fr.prefix_separator
+            led = i > 0 or lead_first  # else the head holds what leads the first value
             if f.const is not None:
-                lead = cchar(fr.separator if i else fr.prefix_separator)
-                text = self.text_const(f)
-                c(f"cw_write_text_field(&w, {lead}, {cstr(text)}, {len(text)}u);  /* const */")
+                text = (mark if led else "") + self.text_const(f)
+                c(f"cw_write_text(&w, {cstr(text)}, {len(text)}u);  /* const */")
                 continue
+            slot = (i < trailing or i < len(leaves) - 1) and f.optional and led  # absent: its separator alone
+            if f.optional and i >= trailing and slot:  # at the end, only while a later value is present
+                c(f"if ({' || '.join(self.has(x) for x in leaves[i:])}) {{")
+                c.indent()
             if f.optional:
                 c(f"if ({self.has(leaf)}) {{")
                 c.indent()
-            first = i == 0 and not lead_first  # an optional first value: nothing leads it
             kind = f.kind if f.kind in ("float", "char", "str") else self.text_int64(f) or "int"
-            spelling = (TEXT_WRITE_FIRST if first else TEXT_WRITE_AFTER)[kind]
-            c(spelling.format(v=v, n=self.text_len(leaf), lead=cchar(fr.separator if i else fr.prefix_separator)))
+            if f.decimals is not None or f.width is not None:
+                kind = "fixed"
+            if led and (len(mark) > 1 or kind == "fixed"):  # the mark on its own, then the value
+                c(f"cw_write_text(&w, {cstr(mark)}, {len(mark)}u);")
+                led = False
+            spelling = (TEXT_WRITE_AFTER if led else TEXT_WRITE_FIRST)[kind]
+            c(spelling.format(v=v, n=self.text_len(leaf), lead=cchar(mark) if led else "",
+                              decimals=f.decimals or 0, width=f.width or 0))
             if f.optional:
                 c.dedent()
+                if slot:
+                    c("} else {")
+                    c(f"    cw_write_text(&w, {cstr(mark)}, {len(mark)}u);")
                 c("}")
-        c(f"return cw_writer_end(&w, {cchar(fr.terminator)});")
+            if f.optional and i >= trailing and slot:
+                c.dedent()
+                c("}")
+        if self.line["simple"]:
+            c(f"return cw_writer_end(&w, {cchar(fr.terminator)});")
+        else:
+            cs = self.line["checksum"]
+            algorithm = {"xor": "CW_LINE_XOR", "sum": "CW_LINE_SUM", None: "CW_LINE_PLAIN"}[cs and cs["algorithm"]]
+            suffix = cs["suffix"] if cs else ""
+            c(f"return cw_writer_end_line(&w, {len(fr.start)}u, {cstr(suffix)}, {len(suffix)}u, "
+              f"{cstr(fr.terminator)}, {len(fr.terminator)}u, {algorithm});")
         c.dedent()
         c("}")
         return c.text()
@@ -968,7 +1000,6 @@ class CView:
         v = self.member(leaf)
         r = self.rep(f)
         fr = self.fr
-        sep = "'\\0'" if f.to_end else cchar(fr.separator)
         if f.optional:
             c(f"if ({self.has(leaf)}) {{")
             c.indent()
@@ -982,12 +1013,12 @@ class CView:
         elif f.kind == "char" and f.enum is not None:
             self.member_check(c, f, v, "enum")
         elif f.kind == "char":
-            self.fail_if(c, f"!cw_text_ok(&{v}, 1u, {sep}, {cchar(fr.terminator)}, {str(fr.trim).lower()})", "text")
+            self.fail_if(c, "!" + self.text_ok(f"&{v}", "1u", f.to_end, fr.trim), "text")
         elif f.kind == "str":
             n = self.text_len(leaf)
             c(f"{n} = cw_text_len({v}, {r.array}u);")
             self.fail_if(c, f"{n} > {f.max_length}u", "length")
-            self.fail_if(c, f"!cw_text_ok({v}, {n}, {sep}, {cchar(fr.terminator)}, {str(fr.trim).lower()})", "text")
+            self.fail_if(c, "!" + self.text_ok(v, n, f.to_end, fr.trim), "text")
         elif f.enum is not None:
             self.member_check(c, f, v, "enum")
         else:
@@ -996,12 +1027,24 @@ class CView:
             c.dedent()
             c("}")
 
+    def text_ok(self, s: str, n: str, to_end: bool, trim: bool) -> str:
+        """The call that tells whether a value may be written (and so read): printable
+        ASCII without a character of the terminator or, unless it runs to the end, of
+        the separator."""
+        fr = self.fr
+        if self.line["simple"]:
+            sep = "'\\0'" if to_end else cchar(fr.separator)
+            return f"cw_text_ok({s}, {n}, {sep}, {cchar(fr.terminator)}, {str(trim).lower()})"
+        banned = "".join(sorted(ch for ch in set(fr.terminator + ("" if to_end else fr.separator)) if " " <= ch <= "~"))
+        return f"cw_text_ok_set({s}, {n}, {cstr(banned)}, {str(trim).lower()})"
+
     def text_ascii(self) -> bool:
         """Whether every character the framing, the prefixes and the char enums
         accept is 7-bit ASCII. Then a message that reads well is ASCII throughout
         (its readers accept no other byte), and the check for a byte above 0x7F,
         Python's first, is needed only on the way to another error."""
         chars = self.fr.prefix_separator + self.fr.separator + self.fr.terminator + self.fr.ignore_between
+        chars += self.fr.start + (self.fr.line_checksum.suffix if self.fr.line_checksum else "")
         chars += "".join(x for m in self.p.messages for x in m.ids if isinstance(x, str))
         chars += "".join(str(x.value) for e in self.p.enums if e.kind == "char" for x in e.members)
         return all(ord(ch) < 0x80 for ch in chars)
@@ -1014,7 +1057,7 @@ class CView:
         c = Code()
         leaves = m.wire.leaves
         total = len(leaves)
-        required = sum(1 for x in leaves if not x.field.optional)
+        required = self.trailing_from(leaves)  # values up to the last required one
         last_to_end = bool(leaves) and leaves[-1].field.to_end
         trim = str(fr.trim).lower()
         c(f"static inline int {self.fn(m, 'parse_body')}(const char *s, const char *end, {self.tname(m)} *m)")
@@ -1035,8 +1078,11 @@ class CView:
         if total == 1 and last_to_end and required == 1:
             c("ends[0] = end;  /* the one value runs to the end */")
         else:
-            split = (f"cw_split_values(s, end, {cchar(fr.separator)}, ends, {total}u, "
-                     f"{'true' if last_to_end else 'false'})")
+            to_end = 'true' if last_to_end else 'false'
+            if len(fr.separator) == 1:
+                split = f"cw_split_values(s, end, {cchar(fr.separator)}, ends, {total}u, {to_end})"
+            else:
+                split = f"cw_split_marked(s, end, {cstr(fr.separator)}, {len(fr.separator)}u, ends, {total}u, {to_end})"
             if not required:  # every value optional: an empty body holds none (not one empty value)
                 split = f"s == end ? 0u : {split}"
             c(f"size_t count = {split};")
@@ -1053,15 +1099,24 @@ class CView:
             c(f"/* {leaf.dotted} */")
             if f.const is not None:  # the token must read as the constant's text
                 text = self.text_const(f)
-                c(f"v = cw_value(s, ends, {i}u, {trim});")
+                c(f"v = {self.value_call(i, trim)};")
                 self.fail_if(c, f"(size_t)(v.e - v.b) != {len(text)}u || memcmp(v.b, {cstr(text)}, {len(text)}u) != 0",
                              "const")
                 continue
-            if f.optional:
+            if f.optional and f.kind != "str":  # an empty value is an absent one
+                c(f"{self.has(leaf)} = false;")
+                c(f"if (count > {i}u) {{")
+                c(f"    v = {self.value_call(i, trim)};")
+                c(f"    {self.has(leaf)} = v.b != v.e;")
+                c("}")
+                c(f"if ({self.has(leaf)}) {{")
+                c.indent()
+            elif f.optional:
                 c(f"{self.has(leaf)} = count > {i}u;")
                 c(f"if ({self.has(leaf)}) {{")
                 c.indent()
-            c(f"v = cw_value(s, ends, {i}u, {trim});")
+            if not f.optional or f.kind == "str":
+                c(f"v = {self.value_call(i, trim)};")
             if f.kind == "float":
                 c(f"rc = cw_read_decimal(v.b, v.e, &{t});")
                 c("if (rc != CW_OK) {")
@@ -1070,22 +1125,28 @@ class CView:
             elif f.kind == "char":
                 self.fail_if(c, "v.e - v.b != 1", "type")
                 if f.enum is None:  # split at separators and trimmed: left to check are the characters and the terminator
-                    self.fail_if(c, f"!cw_text_ok(v.b, 1u, '\\0', {cchar(fr.terminator)}, false)", "text")
+                    self.fail_if(c, "!" + self.text_read_ok("1u", f.to_end), "text")
                 else:
                     self.fail_if(c, " && ".join(f"*v.b != {cchar(x.value)}" for x in f.enum.members), "enum")
                 c(f"{t} = *v.b;")
             elif f.kind == "str":
                 # split at separators (a to_end value may hold them) and trimmed: left to check are the characters and the terminator
-                self.fail_if(c, f"!cw_text_ok(v.b, (size_t)(v.e - v.b), '\\0', {cchar(fr.terminator)}, false)", "text")
+                self.fail_if(c, "!" + self.text_read_ok("(size_t)(v.e - v.b)", f.to_end), "text")
                 self.fail_if(c, f"(size_t)(v.e - v.b) > {f.max_length}u", "length")
                 c(f"memcpy({t}, v.b, (size_t)(v.e - v.b));")
                 c(f"{t}[v.e - v.b] = '\\0';")
             else:
                 c("{")
                 c.indent()
-                wide = self.text_int64(f)
+                fixed = f.decimals is not None or f.width is not None
+                wide = None if fixed else self.text_int64(f)
                 vtype = {"i64": "int64_t", "u64": "uint64_t", None: "int32_t"}[wide]
-                if wide:  # parsed straight into the field's own range
+                if fixed:  # read exactly as written (the resolver keeps it within 32 bits)
+                    c("int32_t value;")
+                    lo, hi = self.raw_bounds(f) if f.range is not None else (-(1 << 31), (1 << 31) - 1)
+                    c(f"rc = cw_parse_fixed(v.b, v.e, {f.decimals or 0}u, {f.width or 0}u, "
+                      f"{clit(lo) if lo > -(1 << 31) else 'INT32_MIN'}, {clit(hi) if hi < (1 << 31) - 1 else 'INT32_MAX'}, &value);")
+                elif wide:  # parsed straight into the field's own range
                     c(f"{vtype} value;")
                     lo, hi = self.raw_bounds(f) if f.range is not None else self.stored_range(f)
                     c(f"rc = cw_parse_{wide}(v.b, v.e, {self.literal_of(lo, vtype)}, {self.literal_of(hi, vtype)}, &value);")
@@ -1123,6 +1184,26 @@ class CView:
         c.dedent()
         c("}")
         return c.text()
+
+    def trailing_from(self, leaves) -> int:
+        """Where the run of optional values at the end of a line starts (as Python's)."""
+        n = len(leaves)
+        while n and leaves[n - 1].field.optional and not self.fr.keep_empty:
+            n -= 1
+        return n
+
+    def value_call(self, i: int, trim: str) -> str:
+        if len(self.fr.separator) == 1:
+            return f"cw_value(s, ends, {i}u, {trim})"
+        return f"cw_value_after(s, ends, {i}u, {len(self.fr.separator)}u, {trim})"
+
+    def text_read_ok(self, n: str, to_end: bool) -> str:
+        """The check of a value read: split at separators and trimmed, so with one-character
+        marks left to check are the characters and the terminator; a longer separator's
+        characters may still be inside."""
+        if self.line["simple"]:
+            return f"cw_text_ok(v.b, {n}, '\\0', {cchar(self.fr.terminator)}, false)"
+        return self.text_ok("v.b", n, to_end, False)
 
     def text_int64(self, f: Field) -> Optional[str]:
         """"i64" or "u64" for a text integer whose member the 32-bit reader and writer cannot

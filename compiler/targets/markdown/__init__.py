@@ -16,7 +16,7 @@ from .budget import longest_text_line, transport_views
 from .checksum import checksum_sections
 from .delivery import delivery_view
 from .examples import message_example, sequence_example
-from .layout import diagram, field_columns, field_rows, payload_note, slots, text_line
+from .layout import diagram, field_columns, field_rows, payload_note, shown, slots, text_line
 from .stuffing import encoding_lines
 from .machines import conditions, machine_view, sequence_view
 from .text import LANGUAGES, DecisionLinker, anchor, cell, code, en, number, originals, with_original
@@ -181,13 +181,24 @@ def framing_view(p: Protocol, linker: DecisionLinker) -> dict:
                          "one damaged frame never hides the next good one. It holds at most one largest frame "
                          f"({facts['max']} bytes).")
     else:
-        lines.append(f"Every message is one ASCII line `<prefix>{fr.prefix_separator}<field>{fr.separator}"
-                     f"<field>…{fr.terminator}`: the prefix names the message, fields follow in table order.")
+        cs = fr.line_checksum
+        lines.append(f"Every message is one ASCII line `{shown(fr.start)}<prefix>{shown(fr.prefix_separator)}<field>"
+                     f"{shown(fr.separator)}<field>…{shown(cs.suffix) + 'hh' if cs else ''}{shown(fr.terminator)}`: "
+                     "the prefix names the message, fields follow in table order.")
+        if fr.start:
+            lines.append(f"A line starts with {code(shown(fr.start))}.")
+        if cs:
+            what = "XOR" if cs.algorithm == "xor" else "sum modulo 256"
+            after = f"after {code(shown(fr.start))}" if fr.start else "from the start of the line"
+            lines.append(f"`hh` is the {what} of the characters {after} up to {code(shown(cs.suffix))}, "
+                         "written as two uppercase hex digits; readers accept only that spelling and refuse a "
+                         "line whose checksum differs (error `checksum`, at the offset of "
+                         f"{code(shown(cs.suffix))}).")
         if fr.trim:
             lines.append("Readers accept spaces around a value; writers emit none.")
         if fr.ignore_between:
             names = {"\r": "CR", "\n": "LF", " ": "space", "\t": "tab"}
-            lines.append("A message ends at " + code(fr.terminator) + "; "
+            lines.append("A message ends at " + code(shown(fr.terminator)) + "; "
                          + "/".join(names.get(ch, ch) for ch in fr.ignore_between)
                          + " between messages is ignored, so a stream resynchronises at the next terminator.")
         if fr.float_format == "shortest":

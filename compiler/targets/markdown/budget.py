@@ -44,11 +44,17 @@ def longest_text_line(p: Protocol, m: Message) -> Optional[int]:
     leaves = [s for s in slots(m) if s.field.kind != "group"]
     if fr.text_form is not None:  # bits protocol written as decimal wire values
         return sum(_wire_digits(s.field.bits) for s in leaves) + len(leaves) - 1 + 1
-    total = len(str(m.ids[0])) + len(fr.prefix_separator) + len(fr.terminator)
+    total = len(fr.start) + len(str(m.ids[0])) + len(fr.prefix_separator) + len(fr.terminator)
+    if fr.line_checksum:
+        total += len(fr.line_checksum.suffix) + 2
     for i, s in enumerate(leaves):
         f = s.field
         if f.kind == "char":
             width = 1
+        elif f.kind in ("uint", "int") and (f.decimals or f.width):  # raw digits, a point, padding
+            lo, hi = f.raw_range
+            width = max(len(str(lo)), len(str(hi))) + 2 + (f.decimals or 0)
+            width = max(width, f.width or 0)
         elif f.kind in ("uint", "int"):
             lo, hi = f.range if f.range is not None else f.raw_range
             width = max(len(number(lo)), len(number(hi)))

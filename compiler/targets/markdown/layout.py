@@ -195,15 +195,23 @@ def diagram(p: Protocol, m: Message) -> Optional[dict]:
 def text_line(p: Protocol, m: Message) -> str:
     """The shape of a text message: `%:move,speed,…[,data];`."""
     fr = p.framing
-    names = []
-    for s in slots(m):
-        if s.depth:
-            continue
-        names.append(f"[{fr.separator}{s.path}]" if s.field.optional else s.path)
+    top = [s for s in slots(m) if not s.depth]
+    trailing = len(top)
+    while trailing and top[trailing - 1].field.optional and not fr.keep_empty:  # left out at the end of a line
+        trailing -= 1
     body = ""
-    for i, name in enumerate(names):
-        body += name if i == 0 or name.startswith("[") else fr.separator + name
-    return f"{m.ids[0]}{fr.prefix_separator}{body}{fr.terminator}"
+    for i, s in enumerate(top):
+        if i >= trailing:
+            body += f"[{fr.separator}{s.path}]" if i else f"[{s.path}]"
+        else:  # `[name]`: may be empty
+            body += (fr.separator if i else "") + (f"[{s.path}]" if s.field.optional else s.path)
+    checksum = fr.line_checksum.suffix + "hh" if fr.line_checksum else ""
+    return shown(f"{fr.start}{m.ids[0]}{fr.prefix_separator}{body}{checksum}{fr.terminator}")
+
+
+def shown(text: str) -> str:
+    """Line text with its control characters spelled as escapes (`\\r\\n`), as a reader types them."""
+    return text.encode("unicode_escape").decode("ascii") if not text.isprintable() else text
 
 
 def field_rows(p: Protocol, m: Message, linker: DecisionLinker) -> list[dict]:

@@ -12,7 +12,7 @@ from ...crc import reflect
 from ...model import Field, Leaf, Message, Protocol, Rule, Run, Sequence, SequenceItem, field_at
 from ...names import camel
 from ..code import Code
-from ..wire import checksum_name as _checksum_name, dispatch_facts, encoding_facts, stream_facts
+from ..wire import checksum_name as _checksum_name, dispatch_facts, encoding_facts, stream_facts, text_line_facts
 
 
 def lit(value: Any) -> str:
@@ -312,11 +312,14 @@ class PythonView:
             return f"({var}.bit_length() - 1 if {var} else None)"
         elif f.kind in ("uint", "int"):
             expr = var
+            expr = var
             if f.scale is not None:
                 expr = f"{var} * {lit(f.scale)}"
             if f.offset:
                 expr = f"{expr} + {lit(f.offset)}"
             var_checked = expr
+            if f.decimals:  # the value the text shows, correctly rounded (checked as any scaled value)
+                expr = f"{var} / {10 ** f.decimals}" + (f" + {lit(f.offset)}" if f.offset else "")
         elif f.kind == "float":
             c(f"if {'not ' + finite_if + ' and ' if finite_if else ''}not _isfinite({var}):")
             c(f"    raise _dec({at}, 'finite', 'a finite number', {off}, {f.rule!r})")
@@ -776,22 +779,14 @@ class MessageCode:
         c(f"def _encode_{self.fn}(m):")
         c.indent()
         self.view.rule_checks(c, self.m, "m", "_enc")
-        outs: list[str] = []  # the text of each required field, joined once at the end
-        optional = False
-        previous = None
+        outs: list[str] = []  # the text of each field, joined once at the end
+        trailing = self.trailing_from()
         for n, leaf in enumerate(self.leaves):
             f = leaf.field
             where = f"{self.m.name!r}, {leaf.dotted!r}"
             if f.optional:
-                if not optional:  # optional fields are the last ones
-                    c(f"p = [{', '.join(outs)}]")
-                    optional = True
                 c(f"if m.{leaf.dotted} is not None:")
                 c.indent()
-                if previous is not None:  # a value is placed by its position: none may be skipped
-                    c(f"if len(p) != {n}:")
-                    c(f"    raise _enc({where}, m.{leaf.dotted}, 'count', 'absent, as {previous} is')")
-                previous = leaf.dotted
             if f.kind in ("char", "str") and f.enum is None:
                 v = leaf.var
                 c(f"{v} = m.{leaf.dotted}")
@@ -812,19 +807,43 @@ class MessageCode:
                     out = f"_format_float({leaf.var})"
                 elif f.enum is not None and f.enum.kind == "char":
                     out = f"_ENUM_{f.enum.name}[{leaf.var}]._value_"
+                elif f.decimals or f.width:
+                    out = f"_fixed({leaf.var}, {f.decimals or 0}, {f.width or 0})"
                 else:
                     out = f"str({leaf.var})"
-            if optional:
-                c(f"p.append({out})")
+            if f.optional:  # absent: an empty value, or none at all at the end of the line
+                c(f"t{n} = {out}")
                 c.dedent()
-            else:
-                outs.append(out)
-        head, sep, term = repr(self.m.ids[0] + fr.prefix_separator), repr(fr.separator), repr(fr.terminator)
-        if optional:
-            c(f"return {head} + {sep}.join(p) + {term}")
+                c("else:")
+                c(f"    t{n} = {'None' if n >= trailing else repr('')}")
+                out = f"t{n}"
+            outs.append(out)
+        if trailing < len(self.leaves):
+            c(f"p = [{', '.join(outs)}]")
+            c("while p and p[-1] is None:  # absent values at the end are left out, separators and all")
+            c("    p.pop()")
+            for n in range(trailing, len(self.leaves) - 1):  # the last one, if kept, is present
+                leaf = self.leaves[n]
+                c(f"if len(p) > {n} and p[{n}] is None:")
+                if leaf.field.kind == "str":  # an empty value would read as an empty str
+                    c(f"    raise _enc({self.m.name!r}, {leaf.dotted!r}, None, 'count', 'present, as a later value is')")
+                else:
+                    c(f"    p[{n}] = ''")
+        sep = repr(fr.separator)
+        values = f"{sep}.join(p)" if trailing < len(self.leaves) else f"{sep}.join(({''.join(x + ', ' for x in outs)}))"
+        if fr.line_checksum:  # _line adds the start marker, the checksum and the terminator
+            c(f"return _line({self.m.ids[0] + fr.prefix_separator!r} + {values})")
         else:
-            c(f"return {head} + {sep}.join(({''.join(x + ', ' for x in outs)})) + {term}")
+            c(f"return {fr.start + self.m.ids[0] + fr.prefix_separator!r} + {values} + {fr.terminator!r}")
         return c.text()
+
+    def trailing_from(self) -> int:
+        """Where the run of optional values at the end of the line starts: those may be
+        left out, separators and all, when absent."""
+        n = len(self.leaves)
+        while n and self.leaves[n - 1].field.optional and not self.view.p.framing.keep_empty:
+            n -= 1
+        return n
 
     def text_syntax(self) -> str:
         """An expression for the regular expression a well-formed body matches: every number
@@ -833,22 +852,25 @@ class MessageCode:
         which names the first bad token. Stricter than the checks it stands for, never looser."""
         sep = repr(re.escape(self.view.p.framing.separator))
         out, closing = [], ""
+        trailing = self.trailing_from()
         for n, leaf in enumerate(self.leaves):
             f = leaf.field
             if f.kind == "float":
                 tok = "_FINITE_RE"
+            elif f.decimals or f.width:
+                tok = "_FIXED_RE"
             elif f.kind in ("uint", "int") or (f.enum is not None and f.enum.kind == "int"):
                 tok = "_INT_RE"
             elif f.kind == "char":
                 tok = "_CHAR_RE"
             else:
                 tok = "_REST_RE" if f.to_end else "_TEXT_RE"
-            if f.optional:
+            if f.optional and n >= trailing:
                 out.append("'(?:'")
                 closing += ")?"
             if n:
                 out.append(sep)
-            out.append(tok)
+            out.append(f"'(?:' + {tok} + ')?'" if f.optional and f.kind != "str" else tok)
         if closing:
             out.append(repr(closing))
         return " + ".join(out)
@@ -874,7 +896,7 @@ class MessageCode:
         c(f"def _decode_{self.fn}(body, base):")
         c.indent()
         total = len(self.leaves)
-        required = sum(1 for x in self.leaves if not x.field.optional)
+        required = self.trailing_from()  # values up to the last required one
         last_to_end = bool(self.leaves) and self.leaves[-1].field.to_end
         if total == 0:
             c("t = []")
@@ -894,13 +916,18 @@ class MessageCode:
             f = leaf.field
             at = f"{self.m.name!r}, {leaf.dotted!r}"
             where = f"_token_offsets(t, base)[{n}]"  # computed only for an error
-            if f.optional:
+            if f.optional and f.kind == "str":  # an empty value is an empty str
                 c(f"if len(t) > {n}:")
+                c.indent()
+            elif f.optional:  # an empty value is an absent one
+                c(f"if len(t) > {n} and {f't[{n}].strip()' if fr.trim else f't[{n}]'}:")
                 c.indent()
             tok = f"(t[{n}] if ok else t[{n}].strip())" if fr.trim else f"t[{n}]"
             slow_tok = f"t[{n}].strip()" if fr.trim else f"t[{n}]"
             if f.kind == "float":
                 c(f"{leaf.var} = float(t[{n}]) if ok else _parse_float({slow_tok}, {at}, {where})")
+            elif f.decimals or f.width:  # exactly as written: checked on every path
+                c(f"{leaf.var} = _parse_fixed({tok}, {f.decimals or 0}, {f.width or 0}, {at}, {where})")
             elif f.kind in ("uint", "int") or (f.enum is not None and f.enum.kind == "int"):
                 c(f"{leaf.var} = int(t[{n}]) if ok else _parse_int({slow_tok}, {at}, {where})")
             elif f.kind == "char":
@@ -952,7 +979,8 @@ def module_view(p: Protocol) -> dict:
     return {
         "p": p, "view": view, "codes": codes, "functions": functions, "structs": structs,
         "syntaxes": syntaxes, "text_classes": MessageCode.text_classes(fr) if fr.kind == "text" else {},
-        "text_float": TEXT_FLOAT,
+        "text_float": TEXT_FLOAT, "line": text_line_facts(p),
+        "fixed": any(x.field.decimals or x.field.width for m in p.messages for x in m.wire.leaves),
         "classes": view.dataclasses(), "checksums": view.checksum_functions(),
         "dispatch": view.dispatch_table(), "sequences": [view.sequence_view(s) for s in p.sequences],
         "stream": view.stream_view(), "encoding": view.encoding_view(),
