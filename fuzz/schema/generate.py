@@ -129,7 +129,7 @@ class Generator:
             body["fields"] = self.binary_fields(at_least=1 if single else 0)  # a frame is never empty
             messages[self.name()] = body
         if self.has("encoding", 0.4):
-            self.encode_frames(framing, messages, ids if not two_keys and not single else None)
+            self.encode_frames(framing, messages, ids if not two_keys and not single and id_bits == 8 else None)
         return framing, messages
 
     def final_step(self, check: dict, width: int) -> int:
