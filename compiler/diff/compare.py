@@ -156,6 +156,8 @@ def _message(a: Message, b: Message, out: _Collector, text: bool) -> None:
         out.add(BREAKING, subject, f"id changed from {_ids(a)} to {_ids(b)}")
     if a.direction != b.direction:
         out.add(BREAKING, subject, f"direction changed from {a.direction} to {b.direction}")
+    if a.crc_extra != b.crc_extra:
+        out.add(BREAKING, subject, f"crc_extra changed from {a.crc_extra} to {b.crc_extra}")
     if a.role != b.role:
         out.add(BREAKING, subject, f"role changed from {a.role} to {b.role}")
     if a.bits != b.bits and a.bits is not None and b.bits is not None:

@@ -13,7 +13,7 @@ FULL = frozenset({
     "sync", "length", "no_dispatch",        # envelope parts (bytes)
     "sync2", "two_keys", "by_direction",    # a sync of two bytes; two dispatch fields; a direction byte
     "sum", "xor", "crc", "fletcher",        # checksums over bytes
-    "complement",                           # a sum's complement, a sum's or xor's xorout
+    "complement", "crc_extra",              # a sum's complement, xorout; a CRC's per-message extra byte
     "encoding",                             # SLIP, COBS or HDLC byte stuffing around frames
     "little", "field_order",                # byte orders: the framing's, and per field
     "bitfields",                            # fields narrower than a byte, packed

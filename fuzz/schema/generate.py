@@ -101,6 +101,8 @@ class Generator:
             if algorithm == "crc":
                 width = rng.choice(sorted(CRCS))
                 check = {"algorithm": rng.choice(CRCS[width]), "covers": {"from": first, "to": "payload"}}
+                if self.has("crc_extra", 0.3):  # each message's byte after the coverage (MAVLink)
+                    check["extra"] = "message"
             elif algorithm == "fletcher":  # sums modulo 2**(width/2) - 1 (classic) or 2**(width/2)
                 width = rng.choice([8, 16])
                 check = {"algorithm": algorithm, "modulo": (1 << width // 2) - rng.randint(0, 1),
@@ -128,6 +130,9 @@ class Generator:
                 body["direction"] = rng.choice(["up", "down"])
             body["fields"] = self.binary_fields(at_least=1 if single else 0)  # a frame is never empty
             messages[self.name()] = body
+        if any(f.get("checksum", {}).get("extra") for f in layout):
+            for body in messages.values():
+                body["crc_extra"] = rng.randrange(256)
         if self.has("encoding", 0.4):
             self.encode_frames(framing, messages, ids if not two_keys and not single and id_bits == 8 else None)
         return framing, messages

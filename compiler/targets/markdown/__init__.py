@@ -95,6 +95,8 @@ def message_view(p: Protocol, codec: types.ModuleType, m: Message, linker: Decis
     cited.update(linker.cited(en(m.doc)))
     rows = field_rows(p, m, linker)
     facts = [("Id", message_id(p, m)), ("Size", message_size(p, m))]
+    if m.crc_extra is not None:
+        facts.append(("CRC extra", f"`{m.crc_extra:#04x}` ({m.crc_extra}), the last byte the CRC takes"))
     if m.direction:
         facts.append(("Direction", f"{direction_text(p, m.direction)} (`{m.direction}`)"))
     if m.role:

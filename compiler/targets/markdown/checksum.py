@@ -125,7 +125,8 @@ def worked_example(p: Protocol, codec: types.ModuleType, m: Message, cs: Checksu
             "field": slot.path, "position": position(p, slot), "steps": [], "lines": []}
     if cs.algorithm == "crc":
         start, end = cs.byte_span
-        covered = frame[start:end]
+        extra = bytes([m.crc_extra]) if cs.extra else b""
+        covered = frame[start:end] + extra
         steps = _crc_steps(cs.crc, covered)
         raw = int(steps[-1][1], 16)
         out = crc_reference.reflect(raw, cs.crc.width) if cs.crc.refout else raw
@@ -139,7 +140,8 @@ def worked_example(p: Protocol, codec: types.ModuleType, m: Message, cs: Checksu
         view["steps"] = [(b, (r,)) for b, r in steps]
         view["steps_title"], view["steps_head"] = "CRC register after each byte", ("register",)
         view["lines"] = [
-            f"covered bytes B{start}–B{end - 1}: `{covered.hex(' ')}`",
+            f"covered bytes B{start}–B{end - 1}: `{frame[start:end].hex(' ')}`"
+            + (f", then the message's crc_extra `{extra.hex()}`" if extra else ""),
             f"register after the last byte: `0x{raw:0{digits}x}`"
             + (f", reflected `0x{out:0{digits}x}`" if cs.crc.refout else "")
             + f"; XOR `0x{cs.crc.xorout:0{digits}x}` → CRC `0x{result:0{digits}x}`",
@@ -185,7 +187,8 @@ def worked_example(p: Protocol, codec: types.ModuleType, m: Message, cs: Checksu
         view["steps_title"] = "Sums after each " + ("byte" if cs.width == 16 else "nibble (high, then low)")
         view["steps_head"] = ("A", "B")
         view["lines"] = [
-            f"covered bytes B{start}–B{end - 1}: `{covered.hex(' ')}`",
+            f"covered bytes B{start}–B{end - 1}: `{frame[start:end].hex(' ')}`"
+            + (f", then the message's crc_extra `{extra.hex()}`" if extra else ""),
             f"A = sum of the {'bytes' if cs.width == 16 else 'nibbles, high nibble first'} mod {cs.modulo} "
             f"= {a}; B = sum of A after each step mod {cs.modulo} = {b}",
             f"(B << {half}) | A = `0x{result:0{digits}x}`",
@@ -218,6 +221,8 @@ def parameters(cs: Checksum) -> list[tuple[str, str]]:
                 ("refout", str(c.refout).lower()), ("xorout", f"0x{c.xorout:0{digits}x}")]
         if c.check is not None:
             rows.append(("check (CRC of ASCII `123456789`)", f"0x{c.check:0{digits}x}"))
+        if cs.extra:
+            rows.append(("extra", "each message's crc_extra byte, after the covered bytes"))
         return rows
     if cs.algorithm == "sum":
         rows = [("algorithm", "sum of values"), ("modulo", number(cs.modulo) if cs.modulo else "field width")]
