@@ -187,8 +187,7 @@ def worked_example(p: Protocol, codec: types.ModuleType, m: Message, cs: Checksu
         view["steps_title"] = "Sums after each " + ("byte" if cs.width == 16 else "nibble (high, then low)")
         view["steps_head"] = ("A", "B")
         view["lines"] = [
-            f"covered bytes B{start}–B{end - 1}: `{frame[start:end].hex(' ')}`"
-            + (f", then the message's crc_extra `{extra.hex()}`" if extra else ""),
+            f"covered bytes B{start}–B{end - 1}: `{covered.hex(' ')}`",
             f"A = sum of the {'bytes' if cs.width == 16 else 'nibbles, high nibble first'} mod {cs.modulo} "
             f"= {a}; B = sum of A after each step mod {cs.modulo} = {b}",
             f"(B << {half}) | A = `0x{result:0{digits}x}`",
