@@ -16,6 +16,15 @@ def test_committed_generated_tree_matches_schemas():
     assert len(result.unchanged) >= 5
 
 
+def test_committed_examples_match_their_schemas():
+    """examples/ is a project of its own (examples/codeword.toml): what it generates is committed."""
+    proc = subprocess.run([sys.executable, "-m", "codeword", "build", "--check"], cwd=ROOT / "examples",
+                          capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    assert {p.name for p in (ROOT / "generated" / "docs" / "examples").glob("*.md")} >= \
+        {"index.md", "mavlink1.md", "ubx.md", "nmea0183.md"}
+
+
 def test_editing_one_field_rewrites_only_that_protocol(tmp_path):
     schemas = tmp_path / "schemas"
     shutil.copytree(SCHEMAS, schemas)
