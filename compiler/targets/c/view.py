@@ -917,7 +917,7 @@ class CView:
         c("cw_writer_t w;")
         leaves = m.wire.leaves
         for leaf in leaves:
-            if leaf.field.kind == "str":
+            if leaf.field.kind == "str" and leaf.field.const is None:  # a constant is written as spelt
                 c(f"size_t {self.text_len(leaf)} = 0;")
         self.rule_checks(c, m, "m")
         for leaf in leaves:

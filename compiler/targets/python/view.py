@@ -787,7 +787,9 @@ class MessageCode:
             if f.optional:
                 c(f"if m.{leaf.dotted} is not None:")
                 c.indent()
-            if f.kind in ("char", "str") and f.enum is None:
+            if f.kind in ("char", "str") and f.enum is None and f.const is not None:
+                out = repr(f.const)  # not a member: written as the schema spells it
+            elif f.kind in ("char", "str") and f.enum is None:
                 v = leaf.var
                 c(f"{v} = m.{leaf.dotted}")
                 c(f"if not isinstance({v}, str){f' or len({v}) != 1' if f.kind == 'char' else ''}:")
