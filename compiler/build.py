@@ -153,11 +153,16 @@ def build(schemas: list[Path], out: Path | Project, check: bool = False, root: P
     _close(expected)
     if check and building_all:
         known = set(placed)
-        for folder in sorted({project.folder(t) for t in project.targets}):
+        folders = {project.folder(t) for t in project.targets}
+        # only the folders this build writes to: a subfolder may hold another project's
+        # output (examples/ puts its pages in generated/docs/examples for the site)
+        ours = folders | {path.parent for path in placed}
+        for folder in sorted(folders):
             if not folder.is_dir():
                 continue
             for existing in sorted(folder.rglob("*")):
-                if existing.is_file() and existing not in known and "__pycache__" not in existing.parts:
+                if existing.is_file() and existing not in known and existing.parent in ours \
+                        and "__pycache__" not in existing.parts:
                     result.extra.append(existing)
     return result
 
