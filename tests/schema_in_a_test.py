@@ -57,3 +57,21 @@ def show_calls(frames: list[str]) -> str:
         f"    {{ static const uint8_t f[] = {{{', '.join(f'0x{b:02x}' for b in bytes.fromhex(h))}}};"
         f" show(\"{h}\", f, sizeof f); }}"
         for h in frames)
+
+
+def build_example(name: str, out: Path) -> Path:
+    """`codeword build examples/<name>.yaml --out OUT`, as a user runs it; the codec
+    and the headers are also copied into OUT itself, for `load` and `run_c`."""
+    root = Path(__file__).resolve().parent.parent
+    run = subprocess.run([sys.executable, "-m", "codeword", "build", str(root / "examples" / f"{name}.yaml"),
+                          "--out", str(out)], capture_output=True, text=True, timeout=300, cwd=root)
+    assert run.returncode == 0, run.stdout + run.stderr
+    for rel in (f"python/{name}.py", f"c/{name}.h", "c/codeword.h"):
+        (out / Path(rel).name).write_text((out / rel).read_text(encoding="utf-8"), encoding="utf-8")
+    return out
+
+
+def c_bytes(data: bytes) -> str:
+    """The bytes as the items of a C array initialiser."""
+    return ", ".join(f"0x{b:02x}" for b in data)
+

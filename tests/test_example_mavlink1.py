@@ -6,17 +6,12 @@ from __future__ import annotations
 
 import random
 import struct
-import subprocess
-import sys
-from pathlib import Path
 
 import pytest
 from pymavlink.dialects.v10 import common as mavlink  # a test extra: pip install -e ".[peers]"
 
-from schema_in_a_test import load, run_c
+from schema_in_a_test import build_example, c_bytes, load, run_c
 
-ROOT = Path(__file__).resolve().parent.parent
-EXAMPLE = ROOT / "examples" / "mavlink1.yaml"
 
 
 def f32(x: float) -> float:
@@ -51,13 +46,7 @@ def sample_messages(seed: int = 7) -> list:
 
 @pytest.fixture(scope="module")
 def built(tmp_path_factory):
-    out = tmp_path_factory.mktemp("mavlink1")
-    run = subprocess.run([sys.executable, "-m", "codeword", "build", str(EXAMPLE), "--out", str(out)],
-                         capture_output=True, text=True, timeout=300)
-    assert run.returncode == 0, run.stderr
-    for rel in ("python/mavlink1.py", "c/mavlink1.h", "c/codeword.h"):
-        (out / Path(rel).name).write_text((out / rel).read_text(encoding="utf-8"), encoding="utf-8")
-    return out
+    return build_example("mavlink1", tmp_path_factory.mktemp("mavlink1"))
 
 
 def packed(messages) -> list[bytes]:
@@ -127,10 +116,7 @@ def test_c_decodes_and_encodes_pymavlink_frames(built):
     frames = packed(sample_messages(seed=9))
     stream = garbage_stream(frames, seed=4)
 
-    def array(data: bytes) -> str:
-        return ", ".join(f"0x{b:02x}" for b in data)
-
-    table = "\n".join(f"    {{{len(f)}u, {{{array(f)}}}}}," for f in frames)
+    table = "\n".join(f"    {{{len(f)}u, {{{c_bytes(f)}}}}}," for f in frames)
     driver = r"""
 #include <stdio.h>
 #include "mavlink1.h"
@@ -169,7 +155,7 @@ int main(void) {
     }
     return 0;
 }
-""".replace("TABLE", table).replace("STREAM", array(stream))
+""".replace("TABLE", table).replace("STREAM", c_bytes(stream))
     lines = run_c(built, driver)
     assert lines[:len(frames)] == [f.hex() for f in frames]
     assert lines[len(frames):] == ["stream " + f.hex() for f in frames]

@@ -6,19 +6,14 @@ from __future__ import annotations
 
 import dataclasses
 import random
-import subprocess
-import sys
-from pathlib import Path
 
 import pytest
 from pyubx2 import GET, POLL, SET, UBXMessage, UBXReader  # a test extra: pip install -e ".[peers]"
 from pyubx2.ubxtypes_get import UBX_PAYLOADS_GET
 from pyubx2.ubxtypes_set import UBX_PAYLOADS_SET
 
-from schema_in_a_test import load, run_c
+from schema_in_a_test import build_example, c_bytes, load, run_c
 
-ROOT = Path(__file__).resolve().parent.parent
-EXAMPLE = ROOT / "examples" / "ubx.yaml"
 # pyubx2's (class, name, mode) of each message of the example
 MESSAGES = [("ACK", "ACK-ACK", GET), ("ACK", "ACK-NAK", GET), ("CFG", "CFG-RATE", SET),
             ("NAV", "NAV-POSLLH", GET), ("NAV", "NAV-PVT", GET)]
@@ -62,13 +57,7 @@ def sample_frames(seed: int) -> list[bytes]:
 
 @pytest.fixture(scope="module")
 def built(tmp_path_factory):
-    out = tmp_path_factory.mktemp("ubx")
-    run = subprocess.run([sys.executable, "-m", "codeword", "build", str(EXAMPLE), "--out", str(out)],
-                         capture_output=True, text=True, timeout=300)
-    assert run.returncode == 0, run.stderr
-    for rel in ("python/ubx.py", "c/ubx.h", "c/codeword.h"):
-        (out / Path(rel).name).write_text((out / rel).read_text(encoding="utf-8"), encoding="utf-8")
-    return out
+    return build_example("ubx", tmp_path_factory.mktemp("ubx"))
 
 
 def mode_of(frame: bytes):
@@ -131,10 +120,7 @@ def test_c_reads_and_writes_pyubx2_frames(built):
     frames = sample_frames(seed=4)
     stream = garbage_stream(frames, seed=5)
 
-    def array(data: bytes) -> str:
-        return ", ".join(f"0x{b:02x}" for b in data)
-
-    table = "\n".join(f"    {{{len(f)}u, {{{array(f)}}}}}," for f in frames)
+    table = "\n".join(f"    {{{len(f)}u, {{{c_bytes(f)}}}}}," for f in frames)
     driver = r"""
 #include <stdio.h>
 #include "ubx.h"
@@ -173,7 +159,7 @@ int main(void) {
     }
     return 0;
 }
-""".replace("TABLE", table).replace("STREAM", array(stream))
+""".replace("TABLE", table).replace("STREAM", c_bytes(stream))
     lines = run_c(built, driver)
     assert lines[:len(frames)] == [f.hex() for f in frames]
     assert lines[len(frames):] == ["stream " + f.hex() for f in frames]
