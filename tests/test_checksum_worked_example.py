@@ -71,3 +71,12 @@ def test_a_fletcher16_is_worked_out_byte_by_byte(tmp_path):
     assert "| byte | A | B |" in page and "| value | `B in the high byte, A in the low one` |" in page
     for row in ("| 01 | `0x01` | `0x01` |", "| 2b | `0x2c` | `0x2d` |", "| 00 | `0x2c` | `0x59` |"):
         assert row in page
+
+
+def test_a_line_checksum_is_worked_out_character_by_character():
+    """NMEA's `*hh` on the published GGA sentence, whose checksum 47 the sentence itself carries."""
+    page = (ROOT / "generated" / "docs" / "examples" / "nmea0183.md").read_text(encoding="utf-8")
+    section = page[page.index("### Line checksum (XOR)"):page.index('<a id="framing"></a>')]
+    assert "characters covered: `GPGGA,123519,4807.038,N,01131.000,E,1,08,0.9,545.4,M,46.9,M,,` (61)" in section
+    assert "XOR of their codes: `0x47`, written `*47`" in section
+    assert "| 'G' | `0x47` |\n| 'P' | `0x17` |" in section  # 0x47 ^ 0x50

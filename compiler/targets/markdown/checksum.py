@@ -276,4 +276,40 @@ def checksum_sections(p: Protocol, codec: types.ModuleType, linker: DecisionLink
             group["worked"] = worked_example(p, codec, m, cs, slot)
     for group in groups.values():
         group["decisions"] = [linker.ref(d) for d in group["decisions"]]
-    return list(groups.values())
+    line = line_checksum_section(p)
+    return list(groups.values()) + ([line] if line else [])
+
+
+def line_checksum_section(p: Protocol) -> Optional[dict]:
+    """The checksum of a text line (NMEA's `*hh`), worked out on the first example line."""
+    cs = p.framing.line_checksum
+    if cs is None:
+        return None
+    fr = p.framing
+    what = "XOR" if cs.algorithm == "xor" else "sum modulo 256"
+    section = {"title": f"Line checksum ({what})", "coverage": [], "decisions": [], "worked": None,
+               "params": [("algorithm", cs.algorithm), ("covers", f"the characters after {fr.start!r} up to "
+                                                                  f"{cs.suffix!r}" if fr.start else
+                                                                  f"the line up to {cs.suffix!r}"),
+                          ("written as", f"{cs.suffix} and two uppercase hex digits, before the terminator")],
+               "doc": "Every line ends with its checksum, before the terminator."}
+    for m in p.messages:
+        ex = next((e for e in m.examples if e.text and not e.errors), None)
+        if ex is None:
+            continue
+        line = ex.text
+        body = line[len(fr.start):line.rindex(cs.suffix)]
+        value, steps = 0, []
+        for ch in body:
+            value = value ^ ord(ch) if cs.algorithm == "xor" else (value + ord(ch)) % 256
+            steps.append((cell(repr(ch)), (f"0x{value:02x}",)))
+        sent = line[line.rindex(cs.suffix) + len(cs.suffix):][:2]
+        if f"{value:02X}" != sent:
+            raise AssertionError(f"worked line checksum gives {value:02X}, the example carries {sent}")
+        section["worked"] = {
+            "message": f"[{m.name}](#{anchor('msg', m.name)})", "example": cell(ex.name), "frame": cell(line.rstrip()),
+            "steps": steps, "steps_title": f"{what} after each character", "steps_head": ("value",),
+            "lines": [f"characters covered: `{cell(body)}` ({len(body)})",
+                      f"{what} of their codes: `0x{value:02x}`, written `{cs.suffix}{value:02X}`"]}
+        break
+    return section
