@@ -204,6 +204,12 @@ class Field:
     from_envelope: bool = False
 
     @property
+    def fixed_spelling(self) -> bool:
+        """A text integer written with fixed decimals or padding (`decimals: 0` included):
+        readers accept only the writer's spelling."""
+        return self.decimals is not None or self.width is not None
+
+    @property
     def is_member(self) -> bool:
         """Whether the field is an attribute of the decoded object."""
         return not (self.is_payload or self.reserved or self.checksum or self.length_of

@@ -78,3 +78,38 @@ CALLS
     out = run_c(built, driver)
     assert out[:3] == [f"{len(GOOD)} {GOOD}", "25 P,0000.005,000000.000,12;", "0 4807038 92750000 8 -15"]
     assert [line.split()[0] for line in out[3:]] == ["-13"] * len(BAD) + ["-4"]  # CW_ERR_SYNTAX, CW_ERR_RANGE
+
+
+DECIMALS_ZERO = """codeword: 1
+protocol: zerodec
+title: t
+source: s
+framing: {kind: text, prefix_separator: ",", separator: ",", terminator: ";"}
+messages:
+  q:
+    id: Q
+    fields:
+      - {name: count, type: i16, decimals: 0}
+"""
+
+
+def test_decimals_zero_is_a_fixed_spelling_too(tmp_path):
+    """`decimals: 0` writes the integer as it is and reads only that: `07` is not `7`
+    (Python took `decimals: 0` for no option and read `07`; C refused it)."""
+    render(tmp_path, "zerodec", DECIMALS_ZERO)
+    mod = load(tmp_path / "zerodec.py")
+    assert mod.encode(mod.Q(count=7)) == "Q,7;"
+    assert mod.decode("Q,7;") == mod.Q(count=7)
+    with pytest.raises(mod.DecodeError) as err:
+        mod.decode("Q,07;")
+    assert err.value.rule == "syntax"
+    driver = r"""
+#include <stdio.h>
+#include "zerodec.h"
+int main(void) {
+    zerodec_q_t m;
+    printf("%d %d\n", zerodec_q_decode("Q,7;", 4u, &m), zerodec_q_decode("Q,07;", 5u, &m) == CW_ERR_SYNTAX);
+    return 0;
+}
+"""
+    assert run_c(tmp_path, driver) == ["0 1"]

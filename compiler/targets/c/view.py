@@ -899,7 +899,7 @@ class CView:
                 n += 1
             elif f.kind == "str":
                 n += f.max_length
-            elif f.decimals is not None or f.width is not None:
+            elif f.fixed_spelling:
                 n += max(12, f.width or 0)
             else:
                 n += 11
@@ -951,7 +951,7 @@ class CView:
                 c(f"if ({self.has(leaf)}) {{")
                 c.indent()
             kind = f.kind if f.kind in ("float", "char", "str") else self.text_int64(f) or "int"
-            if f.decimals is not None or f.width is not None:
+            if f.fixed_spelling:
                 kind = "fixed"
             if led and (len(mark) > 1 or kind == "fixed"):  # the mark on its own, then the value
                 c(f"cw_write_text(&w, {cstr(mark)}, {len(mark)}u);")
@@ -1138,7 +1138,7 @@ class CView:
             else:
                 c("{")
                 c.indent()
-                fixed = f.decimals is not None or f.width is not None
+                fixed = f.fixed_spelling
                 wide = None if fixed else self.text_int64(f)
                 vtype = {"i64": "int64_t", "u64": "uint64_t", None: "int32_t"}[wide]
                 if fixed:  # read exactly as written (the resolver keeps it within 32 bits)

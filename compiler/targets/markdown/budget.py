@@ -51,7 +51,7 @@ def longest_text_line(p: Protocol, m: Message) -> Optional[int]:
         f = s.field
         if f.kind == "char":
             width = 1
-        elif f.kind in ("uint", "int") and (f.decimals or f.width):  # raw digits, a point, padding
+        elif f.kind in ("uint", "int") and f.fixed_spelling:  # raw digits, a point, padding
             lo, hi = f.raw_range
             width = max(len(str(lo)), len(str(hi))) + 2 + (f.decimals or 0)
             width = max(width, f.width or 0)

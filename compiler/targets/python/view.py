@@ -809,7 +809,7 @@ class MessageCode:
                     out = f"_format_float({leaf.var})"
                 elif f.enum is not None and f.enum.kind == "char":
                     out = f"_ENUM_{f.enum.name}[{leaf.var}]._value_"
-                elif f.decimals or f.width:
+                elif f.fixed_spelling:
                     out = f"_fixed({leaf.var}, {f.decimals or 0}, {f.width or 0})"
                 else:
                     out = f"str({leaf.var})"
@@ -859,7 +859,7 @@ class MessageCode:
             f = leaf.field
             if f.kind == "float":
                 tok = "_FINITE_RE"
-            elif f.decimals or f.width:
+            elif f.fixed_spelling:
                 tok = "_FIXED_RE"
             elif f.kind in ("uint", "int") or (f.enum is not None and f.enum.kind == "int"):
                 tok = "_INT_RE"
@@ -928,7 +928,7 @@ class MessageCode:
             slow_tok = f"t[{n}].strip()" if fr.trim else f"t[{n}]"
             if f.kind == "float":
                 c(f"{leaf.var} = float(t[{n}]) if ok else _parse_float({slow_tok}, {at}, {where})")
-            elif f.decimals or f.width:  # exactly as written: checked on every path
+            elif f.fixed_spelling:  # exactly as written: checked on every path
                 c(f"{leaf.var} = _parse_fixed({tok}, {f.decimals or 0}, {f.width or 0}, {at}, {where})")
             elif f.kind in ("uint", "int") or (f.enum is not None and f.enum.kind == "int"):
                 c(f"{leaf.var} = int(t[{n}]) if ok else _parse_int({slow_tok}, {at}, {where})")
@@ -982,7 +982,7 @@ def module_view(p: Protocol) -> dict:
         "p": p, "view": view, "codes": codes, "functions": functions, "structs": structs,
         "syntaxes": syntaxes, "text_classes": MessageCode.text_classes(fr) if fr.kind == "text" else {},
         "text_float": TEXT_FLOAT, "line": text_line_facts(p),
-        "fixed": any(x.field.decimals or x.field.width for m in p.messages for x in m.wire.leaves),
+        "fixed": any(x.field.fixed_spelling for m in p.messages for x in m.wire.leaves),
         "classes": view.dataclasses(), "checksums": view.checksum_functions(),
         "dispatch": view.dispatch_table(), "sequences": [view.sequence_view(s) for s in p.sequences],
         "stream": view.stream_view(), "encoding": view.encoding_view(),
