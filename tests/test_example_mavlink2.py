@@ -6,16 +6,26 @@ frames in a stream with garbage between them; a signed frame is refused. Expecte
 bytes come from pymavlink."""
 from __future__ import annotations
 
+import json
 import os
 import random
+import re
+import shutil
 import struct
+import subprocess
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
 
 import pytest
 
 os.environ["MAVLINK20"] = "1"  # before pymavlink is imported: its v2 framing
 from pymavlink.dialects.v20 import common as mavlink  # noqa: E402  (a test extra: pip install -e ".[peers]")
 
-from schema_in_a_test import build_example, c_bytes, load, run_c  # noqa: E402
+from cdriver import Driver  # noqa: E402
+from codeword.build import compile_schema  # noqa: E402
+from schema_in_a_test import C_FLAGS, build_example, c_bytes, load, run_c  # noqa: E402
+
+SCHEMA = Path(__file__).resolve().parent.parent / "examples" / "mavlink2.yaml"
 
 
 def f32(x: float) -> float:
@@ -211,3 +221,47 @@ int main(void) {
     lines = run_c(built, driver)
     assert lines[:len(frames)] == [f.hex() for f in frames]
     assert lines[len(frames):] == ["stream " + f.hex() for f in frames]
+
+
+def conformance_driver(built, part: int = 0, parts: int = 1) -> str:
+    vectors = json.loads((built / "vectors" / "mavlink2.json").read_text())
+    return Driver(compile_schema(SCHEMA)).source(vectors, part, parts)
+
+
+def test_c_conformance_on_the_host(built, tmp_path):
+    """The vectors (truncated frames, frames without extensions, damaged frames) in C."""
+    src, exe = tmp_path / "conf.c", tmp_path / "conf"
+    src.write_text(conformance_driver(built))
+    build = subprocess.run(["gcc", *C_FLAGS, "-Wconversion", "-Wsign-conversion", "-Wshadow", "-Wpedantic",
+                            "-I", str(built / "c"), str(src), "-o", str(exe)],
+                           capture_output=True, text=True, timeout=300)
+    assert build.returncode == 0, build.stderr
+    run = subprocess.run([str(exe)], capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0 and re.search(r"CONFORMANCE mavlink2 PASS \d+ checks 0 failures", run.stdout), \
+        run.stdout[-3000:] + run.stderr
+
+
+AVR_PARTS = 16  # the vectors and the codec take about 350 KB of flash: in parts that fit 32 KB
+
+
+def test_c_conformance_on_atmega32_under_simavr(built, tmp_path):
+    if not (shutil.which("avr-gcc") and shutil.which("simavr")):
+        pytest.fail("avr-gcc and simavr are needed (.ci/run installs them)")
+
+    def build_and_run(part: int) -> str:
+        src, elf = tmp_path / f"conf{part}.c", tmp_path / f"conf{part}.elf"
+        src.write_text(conformance_driver(built, part, AVR_PARTS))
+        build = subprocess.run(["avr-gcc", "-std=gnu99", "-Os", "-mmcu=atmega32", "-Wall", "-Wextra", "-Werror",
+                                "-ffunction-sections", "-fdata-sections", "-Wl,--gc-sections",
+                                "-I", str(built / "c"), str(src), "-o", str(elf)],
+                               capture_output=True, text=True, timeout=300)
+        if build.returncode != 0:
+            return f"part {part}: build failed\n{build.stderr[-3000:]}"
+        run = subprocess.run(["simavr", "-m", "atmega32", "-f", "16000000", str(elf)],
+                             capture_output=True, text=True, timeout=600, errors="replace")
+        return f"part {part}: " + run.stdout + run.stderr
+
+    with ThreadPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
+        for output in pool.map(build_and_run, range(AVR_PARTS)):
+            assert re.search(r"CONFORMANCE mavlink2 PASS \d+ checks 0 failures",
+                             re.sub(r"\x1b\[[0-9;]*m", "", output)), output[-3000:]
