@@ -202,6 +202,7 @@ class Field:
     is_payload: bool = False
     bit_offset: Optional[int] = None  # from the start of the frame/record
     from_envelope: bool = False
+    extension: bool = False  # added in a later version: a frame may end before it (it then reads as 0)
 
     @property
     def fixed_spelling(self) -> bool:
@@ -342,6 +343,24 @@ class Wire:
 
 
 @dataclass(frozen=True)
+class Shortening:
+    """A frame whose payload may end early: its extension fields left off, or (with
+    `truncate: trailing_zeros`) its trailing zero bytes dropped by the sender. The
+    length field counts the payload bytes sent; a decoder puts the missing bytes back
+    as zeros before it reads the fields, an encoder that truncates drops them."""
+
+    payload: tuple[int, int]  # byte span [start, end) of the whole payload in the full frame
+    least: int  # the fewest payload bytes a frame may carry
+    length_field: str  # the envelope field that counts the payload bytes sent
+    trailing_zeros: bool = False  # the encoder drops the payload's trailing zero bytes
+
+    @property
+    def most_cut(self) -> int:
+        """The most payload bytes a frame may leave off."""
+        return self.payload[1] - self.payload[0] - self.least
+
+
+@dataclass(frozen=True)
 class Message:
     name: str
     loc: Loc
@@ -360,14 +379,31 @@ class Message:
     wire: Wire
     crc_extra: Optional[int] = None  # the byte a checksum with `extra: message` takes last
     layout_type: Optional[str] = None  # the shared group type its fields come from
+    shortening: Optional[Shortening] = None  # set when a frame may carry less than the whole payload
 
     @property
     def size(self) -> Optional[int]:
+        """Bytes of the whole frame (the largest, when frames may be shorter)."""
         return None if self.bits is None else (self.bits + 7) // 8
+
+    @property
+    def min_size(self) -> Optional[int]:
+        """Bytes of the shortest frame a decoder accepts."""
+        return self.size - self.shortening.most_cut if self.shortening else self.size
+
+    @property
+    def sizes(self) -> range:
+        """Every frame size a decoder accepts."""
+        return range(self.min_size, self.size + 1)
 
     @property
     def members(self) -> tuple[Field, ...]:
         return tuple(f for f in self.layout if f.is_member)
+
+    def counts_sent(self, cs: Checksum) -> bool:
+        """Whether checksum `cs` ends with a payload that may be cut short, and so covers
+        the bytes sent rather than the whole frame."""
+        return self.shortening is not None and cs.byte_span[1] == self.shortening.payload[1]
 
     @property
     def id_fields(self) -> tuple[tuple[str, int], ...]:
@@ -432,6 +468,7 @@ class Framing:
     keep_empty: bool = False  # text: absent values at the end keep their empty places (NMEA)
     start: str = ""  # text: a marker every line starts with, before the prefix (NMEA's `$`)
     line_checksum: Optional[LineChecksum] = None  # text: `<suffix><hh>` before the terminator
+    truncate: Optional[str] = None  # bytes: "trailing_zeros", senders drop the payload's trailing zeros
 
 
 @dataclass(frozen=True)

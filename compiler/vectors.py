@@ -329,10 +329,14 @@ class Generator:
                 made.append((f"{f.name} {edge}", "edge", (edge, f.name)))
         for i in range(min(RANDOM_PER_MESSAGE, max(1, FRAME_BUDGET // size))):
             made.append((f"random {i}", "random", None))
+        if any(f.extension for f in members):  # as an older sender writes it (truncated, if the framing is)
+            made.append(("without its extension fields", "older", None))
         frames = []
         for name, kind, arg in made:
             for _attempt in range(50):
                 values = self.values(m, *arg) if arg else self.values(m)
+                if kind == "older":
+                    values.update((f.name, 0) for f in members if f.extension)
                 try:
                     obj, data = self.encode(m, values)
                 except self.mod.EncodeError:

@@ -56,7 +56,8 @@ def test_dispatch_candidates_hold_every_ambiguous_pair_in_loop_order():
                 key = (("kind", tuple(rng.sample(range(5), rng.randint(1, 2)))),)
             else:
                 key = (("prefix", (rng.choice("XYZ"),)),)
-            messages.append(SimpleNamespace(dispatch_key=key, size=rng.randint(1, 2)))
+            size = rng.randint(1, 3)  # some frames may be cut short: sizes min_size..size
+            messages.append(SimpleNamespace(dispatch_key=key, size=size, min_size=rng.randint(1, size)))
         every_pair = [(i, j) for i in range(len(messages)) for j in range(i + 1, len(messages))
                       if Resolver.ambiguous(messages[i], messages[j], framing)]
         found = [(i, j) for i, j in candidate_pairs(messages, framing)

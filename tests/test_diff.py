@@ -224,3 +224,41 @@ messages:
         new.write_text(base.replace(edit, replacement))
         d = compare(compile_schema(old), compile_schema(new))
         assert d.breaking and subject in {c.subject for c in d.of_kind(BREAKING)}, edit
+
+
+MAVLINK2 = Path(__file__).resolve().parent.parent / "examples" / "mavlink2.yaml"
+
+
+def mavlink2_with(tmp_path, name: str, field: str) -> Path:
+    """examples/mavlink2.yaml with one more field at the end of HEARTBEAT."""
+    text = MAVLINK2.read_text(encoding="utf-8")
+    last = "      - {name: mavlink_version, type: u8}\n"
+    path = tmp_path / f"{name}.yaml"
+    path.write_text(text.replace(last, last + field + "\n", 1).replace("protocol: mavlink2", "protocol: " + name),
+                    encoding="utf-8")
+    return path
+
+
+def test_an_extension_field_at_the_end_is_compatible_a_plain_one_breaks(tmp_path):
+    old = compile_schema(MAVLINK2)
+    extended = compile_schema(mavlink2_with(tmp_path, "extended", "      - {name: note, type: u16, extension: true}"))
+    d = compare(old, extended)
+    assert not d.breaking, d.of_kind(BREAKING)
+    assert changes(d, COMPATIBLE) == {("field note", "added as an extension field at bits 152–167")}
+    plain = compile_schema(mavlink2_with(tmp_path, "plain", "      - {name: note, type: u16}"))
+    assert plain.message("heartbeat").shortening is not None
+    d = compare(old, plain)
+    assert d.breaking
+    assert ("field note", "added at bits 152–167 (16 bits)") in changes(d, BREAKING)
+
+
+def test_a_message_without_the_new_keys_keeps_its_fingerprint(tmp_path):
+    """The fingerprint leaves attributes at their defaults out: extension: false and no
+    truncation add nothing, so schemas that use neither keep theirs."""
+    from codeword.fingerprint import canonical_json
+    text = (SCHEMAS.parent / "examples" / "mavlink1.yaml").read_text(encoding="utf-8")
+    assert "extension" not in canonical_json(compile_schema(SCHEMAS.parent / "examples" / "mavlink1.yaml"))
+    path = tmp_path / "mavlink1.yaml"
+    path.write_text(text.replace("{name: type, type: u8}", "{name: type, type: u8, extension: false}"), encoding="utf-8")
+    d = compare(compile_schema(SCHEMAS.parent / "examples" / "mavlink1.yaml"), compile_schema(path))
+    assert d.old_fingerprint == d.new_fingerprint and not d.changes

@@ -3,7 +3,7 @@ the wire: breaking (old and new codecs disagree on some bytes), compatible
 (everything valid before is still valid and means the same) or docs-only."""
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any, Optional
 
 from ..fingerprint import fingerprint, wire_model
@@ -118,7 +118,7 @@ def compare(old: Protocol, new: Protocol) -> Diff:
 
 def _framing(old: Protocol, new: Protocol, out: _Collector) -> None:
     a, b = old.framing, new.framing
-    for name in ("kind", "byte_order", "bit_order", "encoding", "word_bits", "max_bits", "prefix_separator",
+    for name in ("kind", "byte_order", "bit_order", "encoding", "truncate", "word_bits", "max_bits", "prefix_separator",
                  "separator", "terminator", "ignore_between", "trim", "float_format", "start", "line_checksum",
                  "keep_empty"):
         if getattr(a, name) != getattr(b, name):
@@ -160,17 +160,31 @@ def _message(a: Message, b: Message, out: _Collector, text: bool) -> None:
         out.add(BREAKING, subject, f"crc_extra changed from {a.crc_extra} to {b.crc_extra}")
     if a.role != b.role:
         out.add(BREAKING, subject, f"role changed from {a.role} to {b.role}")
-    if a.bits != b.bits and a.bits is not None and b.bits is not None:
+    growth = extension_growth(a, b)
+    if a.bits != b.bits and a.bits is not None and b.bits is not None and growth is None:
         out.add(BREAKING, subject, f"size changed from {a.bits} to {b.bits} bits")
     if not _same_wire(a.dispatch_key, b.dispatch_key) and a.ids == b.ids:
         out.add(BREAKING, subject, "how a decoder recognises it changed")
-    _fields(placed_leaves(a.wire.leaves), placed_leaves(b.wire.leaves), out, a.name, text=text)
+    _fields(placed_leaves(a.wire.leaves), placed_leaves(b.wire.leaves), out, a.name, text=text, growth=growth)
     _rules(a, b, out)
     if _text(a.title) != _text(b.title) or _text(a.doc) != _text(b.doc):
         out.add(DOCS, subject, "title or description changed")
     if [e.name for e in a.examples] != [e.name for e in b.examples] or \
             [(e.hex, e.text, e.values) for e in a.examples] != [(e.hex, e.text, e.values) for e in b.examples]:
         out.add(DOCS, subject, "examples changed")
+
+
+def extension_growth(a: Message, b: Message) -> Optional[int]:
+    """The bits `b` adds to `a` when they are extension fields at the end of its payload
+    and a frame of `a` is one `b` accepts (its extensions left off); else None."""
+    if b.shortening is None or a.bits is None or b.bits is None or b.bits <= a.bits or a.size not in b.sizes:
+        return None
+    old = {f.name for f in a.fields}
+    added = [f for f in b.fields if f.name not in old]
+    if [f.name for f in b.fields[:len(a.fields)]] != [f.name for f in a.fields] or \
+            not all(f.extension for f in added) or len(added) != len(b.fields) - len(a.fields):
+        return None
+    return b.bits - a.bits
 
 
 def _ids(m: Message) -> str:
@@ -180,16 +194,18 @@ def _ids(m: Message) -> str:
 
 
 def _fields(before: dict[str, Placed], after: dict[str, Placed], out: _Collector, message: str,
-            text: bool) -> None:
+            text: bool, growth: Optional[int] = None) -> None:
     for path, old in before.items():
         if path not in after:
             out.add(BREAKING, f"field {path}", f"removed (was {old.place()}, {_width(old.field)})", message)
     last = max((p.index for p in after.values()), default=-1)
     for path, new in after.items():
         if path in before:
-            _field(before[path], new, out, message)
+            _field(before[path], new, out, message, growth)
         elif text and new.field.optional and new.index == last:
             out.add(COMPATIBLE, f"field {path}", "added as an optional last field", message)
+        elif growth is not None and new.field.extension:
+            out.add(COMPATIBLE, f"field {path}", f"added as an extension field at {new.place()}", message)
         else:
             out.add(BREAKING, f"field {path}", f"added at {new.place()} ({_width(new.field)})", message)
 
@@ -198,9 +214,15 @@ def _width(f: Field) -> str:
     return f"{f.bits} bit{'s' if f.bits != 1 else ''}" if f.bits is not None else f.kind
 
 
-def _field(a: Placed, b: Placed, out: _Collector, message: str) -> None:
+def _field(a: Placed, b: Placed, out: _Collector, message: str, growth: Optional[int] = None) -> None:
     subject = f"field {b.path}"
     fa, fb = a.field, b.field
+    if growth is not None:  # extensions added: what follows the payload moves, the length counts them
+        fa = replace(fa, checksum=fa.checksum and replace(fa.checksum, byte_span=None),
+                     const=fb.const if fb.length_of else fa.const)
+        fb = replace(fb, checksum=fb.checksum and replace(fb.checksum, byte_span=None))
+        if fb.from_envelope and a.bit is not None and b.bit == a.bit + growth:
+            a = replace(a, bit=b.bit)
 
     def add(kind, what):
         out.add(kind, subject, what, message)
@@ -214,6 +236,8 @@ def _field(a: Placed, b: Placed, out: _Collector, message: str) -> None:
         va, vb = getattr(fa, name), getattr(fb, name)
         if va != vb:
             add(BREAKING, f"{name} changed from {va!r} to {vb!r}")
+    if fa.extension != fb.extension:
+        add(BREAKING, "now an extension field" if fb.extension else "no longer an extension field")
     if fa.optional != fb.optional:
         add(COMPATIBLE if fb.optional else BREAKING,
             "now optional" if fb.optional else "now required")

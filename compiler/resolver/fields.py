@@ -110,7 +110,8 @@ class FieldsMixin(ResolverBase):
             length_of=(f["length_of"]["from"], f["length_of"]["to"]) if "length_of" in f else None,
             checksum=self.resolve_checksum(f["checksum"], path + ("checksum",), bits)
             if "checksum" in f else None,
-            fields=sub_fields, message=text(f.get("message")), rule=f.get("rule"))
+            fields=sub_fields, message=text(f.get("message")), rule=f.get("rule"),
+            extension=bool(f.get("extension")))
         if field.by_direction:
             self.check_by_direction(field, path, allow_payload)
         self.check_field(field, path)
@@ -175,6 +176,8 @@ class FieldsMixin(ResolverBase):
             self.error(path, f"field {name!r}: optional/to_end apply to text framing")
         if f.decimals is not None or f.width is not None:
             self.check_fixed_spelling(f, path)
+        if f.extension:
+            self.check_extension(f, path)
         if f.to_end and kind != "str":
             self.error(path + ("to_end",), f"field {name!r}: to_end applies to str fields")
         if kind == "str" and f.length is None and f.max_length is None:
@@ -226,6 +229,20 @@ class FieldsMixin(ResolverBase):
         if f.values:
             for i, v in enumerate(f.values):
                 self.check_value(f, v, path + ("values", i), "allowed value")
+
+    def check_extension(self, f: Field, path: tuple) -> None:
+        """An extension field may be missing from a frame, and then reads as 0: it is a
+        plain value of a bytes frame's message."""
+        if self.framing_kind != "bytes":
+            self.error(path + ("extension",), f"field {f.name!r}: extension fields are for bytes framing",
+                       "drop `extension`")
+        elif f.checksum or f.length_of or f.const is not None or f.reserved:
+            self.error(path + ("extension",), f"field {f.name!r}: a checksum, length, const or reserved "
+                                              "field cannot be an extension", "drop `extension`")
+        elif f.has_default and f.default not in (0, 0.0, False) and not isinstance(f.default, str):
+            self.error(path + ("default",), f"field {f.name!r}: an extension field missing from a frame "
+                                            f"reads as 0, so its default must be 0, not {f.default!r}",
+                       "drop the default, or make it 0")
 
     def check_fixed_spelling(self, f: Field, path: tuple) -> None:
         """`decimals` and `width` spell a text integer's raw value: 4807038 with decimals 3 is

@@ -17,7 +17,7 @@ class FramingMixin(ResolverBase):
         kind = fr["kind"]
         path = ("framing",)
         allowed = {"bits": {"kind", "word_bits", "max_bits", "byte_order", "text_form"},
-                   "bytes": {"kind", "layout", "byte_order", "bit_order", "encoding"},
+                   "bytes": {"kind", "layout", "byte_order", "bit_order", "encoding", "truncate"},
                    "text": {"kind", "start", "prefix_separator", "separator", "terminator",
                             "ignore_between", "trim", "float_format", "checksum", "keep_empty"}}[kind]
         for key in fr:
@@ -34,6 +34,10 @@ class FramingMixin(ResolverBase):
                 if len(payloads) != 1:
                     self.error(path + ("layout",), f"layout needs exactly one `{{payload: true}}` item, "
                                                    f"found {len(payloads)}")
+                for i, f in enumerate(envelope):
+                    if f.extension:
+                        self.error(path + ("layout", i, "extension"), f"layout field {f.name!r}: only a "
+                                   "message's own fields can be extensions", "drop `extension`")
                 wire_order = "little" if fr.get("bit_order") == "lsb_first" else "big"
                 self.check_dispatch_fields(envelope, fr.get("byte_order", wire_order), wire_order,
                                            path + ("layout",))
@@ -54,7 +58,8 @@ class FramingMixin(ResolverBase):
             max_bits=fr.get("max_bits"),
             text_form=TextForm(tf.get("separator", " "), tf.get("comment"), tf.get("checksum_unfilled"))
             if tf else None,
-            envelope=envelope, encoding=fr.get("encoding"), prefix_separator=fr.get("prefix_separator", ":"),
+            envelope=envelope, encoding=fr.get("encoding"), truncate=fr.get("truncate"),
+            prefix_separator=fr.get("prefix_separator", ":"),
             separator=fr.get("separator", ","), terminator=fr.get("terminator", ";"),
             ignore_between=fr.get("ignore_between", ""), trim=bool(fr.get("trim")),
             float_format=fr.get("float_format", "shortest"), start=fr.get("start", ""),

@@ -44,13 +44,15 @@ class MessagesMixin(ResolverBase):
             values = dict((k, v[0]) for k, v in dispatch_key if len(v) == 1 and isinstance(v[0], int))
             read = key_read(leaves_of(framing.envelope), framing.byte_order, framing.wire_order)
             ids = (key_of(read, values),) if read and set(values) == set(read["places"]) else ()
-        bits = None
+        bits = shortening = None
         if framing.kind != "text":
             widths = [f.bits for f in layout]
             bits = sum(widths) if all(w is not None for w in widths) else None
             self.check_size(name, m, layout, bits, framing, path)
             layout = self.bind_checksums(name, layout, framing, path)
             self.check_field_checksums(name, layout)
+            if framing.kind == "bytes" and bits is not None:
+                shortening = self.shortening(name, layout, framing, path)
         crc_extra = self.crc_extra(name, m, layout, path)
         rules = tuple(self.resolve_rule(r, path + ("rules", i), layout)
                       for i, r in enumerate(m.get("rules", [])))
@@ -61,7 +63,7 @@ class MessagesMixin(ResolverBase):
             ids=ids, direction=m.get("direction"), role=m.get("role"),
             answered_by=tuple(m.get("answered_by", [])), fields=own, layout=layout, bits=bits,
             rules=rules, examples=examples, dispatch_key=dispatch_key, crc_extra=crc_extra, wire=wire_of(layout, bits, framing.wire_order),
-            layout_type=layout_type)
+            layout_type=layout_type, shortening=shortening)
 
     def crc_extra(self, name: str, m: dict, layout: tuple[Field, ...], path: tuple) -> Optional[int]:
         """The byte a CRC with `extra: message` takes after its coverage: every message declares it."""
@@ -212,7 +214,8 @@ class MessagesMixin(ResolverBase):
 
     @staticmethod
     def describe_key(m: Message) -> str:
-        return ", ".join(f"{k}={v}" for k, v in m.dispatch_key) + (f", {m.size} bytes" if m.size else "")
+        sizes = f"{m.min_size}..{m.size}" if m.shortening else m.size
+        return ", ".join(f"{k}={v}" for k, v in m.dispatch_key) + (f", {sizes} bytes" if m.size else "")
 
     @staticmethod
     def ambiguous(a: Message, b: Message, framing: str) -> bool:
@@ -221,4 +224,4 @@ class MessagesMixin(ResolverBase):
             common = set(ka) & set(kb)
             return all(ka[k] == kb[k] for k in common)
         overlap = all(set(ka[k]) & set(kb.get(k, ())) for k in ka)
-        return overlap and (framing == "text" or a.size == b.size)
+        return overlap and (framing == "text" or a.min_size <= b.size and b.min_size <= a.size)

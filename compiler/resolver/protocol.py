@@ -21,13 +21,14 @@ from .fields import FieldsMixin
 from .checksums import ChecksumsMixin
 from .framing import FramingMixin
 from .messages import MessagesMixin
+from .shortening import ShorteningMixin
 from .rules import RulesMixin
 from .sequences import SequencesMixin
 from .delivery import DeliveryMixin
 
 
-class Resolver(TypesMixin, FieldsMixin, ChecksumsMixin, FramingMixin, MessagesMixin, RulesMixin, SequencesMixin,
-               DeliveryMixin):
+class Resolver(TypesMixin, FieldsMixin, ChecksumsMixin, FramingMixin, MessagesMixin, ShorteningMixin, RulesMixin,
+               SequencesMixin, DeliveryMixin):
     """The whole document: each concern's rules come from its mixin module."""
 
     def resolve(self) -> Protocol:

@@ -48,7 +48,9 @@ def dispatch_facts(p: Protocol) -> dict:
     for m in p.messages:
         for value in m.ids:
             keys.append((value, m.size, m.direction, m.name))
-    return dict(read, kind="bytes", first_bit=8 * read["first"], frames=keys)
+    # a message whose frames may be cut short takes every size from its shortest up
+    least = {m.name: m.min_size for m in p.messages if m.shortening}
+    return dict(read, kind="bytes", first_bit=8 * read["first"], frames=keys, least=least)
 
 
 def covering_read(fr: Framing, pos: int, bits: int, own_order: str | None) -> dict:
@@ -85,7 +87,7 @@ def stream_facts(p: Protocol) -> dict:
             span = next(x for x in p.messages[0].layout if x.name == leaf.field.name)
             length = dict(covering_read(fr, leaf.pos, leaf.field.bits, leaf.field.byte_order),
                           overhead=p.messages[0].size - span.const)
-    sizes = sorted({m.size for m in p.messages})
+    sizes = sorted({n for m in p.messages for n in m.sizes})
     by_key = None
     if length is None and len(sizes) > 1:  # no length field: the dispatch value gives the size
         dispatch = dispatch_facts(p)
@@ -97,7 +99,19 @@ def stream_facts(p: Protocol) -> dict:
     # before it reads a frame there; a mismatch drops the byte as garbage.
     return {"sync": sync, "sync_rest": list(enumerate(pattern))[1:],
             "sync_bytes": pattern, "length": length, "by_key": by_key, "sizes": sizes, "max": max(sizes),
-            "min": min(sizes)}
+            "min": min(sizes), "ranges": size_ranges(p)}
+
+
+def size_ranges(p: Protocol) -> list[tuple[int, int]]:
+    """The frame sizes a decoder accepts as (shortest, longest) pairs: one per message
+    size, those of messages that may be cut short merged where they overlap."""
+    out: list[tuple[int, int]] = []
+    for lo, hi in sorted({(m.min_size, m.size) for m in p.messages}):
+        if out and lo <= out[-1][1]:
+            out[-1] = (out[-1][0], max(hi, out[-1][1]))
+        else:
+            out.append((lo, hi))
+    return out
 
 
 def sync_pattern(leaves: list, byte_order: str) -> bytes:

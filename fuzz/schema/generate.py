@@ -70,6 +70,7 @@ class Generator:
                 layout.append({"name": "sync_b", "type": "u8", "const": rng.choice([0x62, 0x00, 0xA5, 0xFF])})
         two_keys = not single and not self.lsb and self.has("two_keys", 0.3)
         id_bits = 8
+        shortens = False  # a length of the payload alone, so frames may be cut short
         if not single:
             length = self.has("length", 0.5)
             if self.lsb:  # an 11-bit length and a 5-bit id share two bytes, as on a CAN-like bus
@@ -81,6 +82,9 @@ class Generator:
                     layout.append(self.padding(3))
             else:
                 key = "group" if two_keys else "kind"  # the first dispatch field
+                shortens = length and ("extension" in self.on or "truncate" in self.on) and rng.random() < 0.8
+                if shortens:
+                    key = "payload"
                 if length:
                     layout.append({"name": "len", "type": "u8", "length_of": {"from": key, "to": "payload"}})
                 if two_keys:  # messages told apart by a group and a kind, as UBX's class and id
@@ -114,6 +118,8 @@ class Generator:
             layout.append({"name": "check", "type": f"u{width}", "checksum": check})
         self.little = self.lsb or self.has("little")
         framing = {"kind": "bytes", "byte_order": "little" if self.little else "big", "layout": layout}
+        if shortens and self.has("truncate", 0.6):
+            framing["truncate"] = "trailing_zeros"
         if self.lsb:
             framing["bit_order"] = "lsb_first"
             if rng.random() < 0.5:  # little-endian is its default
@@ -129,6 +135,8 @@ class Generator:
             if self.directions:
                 body["direction"] = rng.choice(["up", "down"])
             body["fields"] = self.binary_fields(at_least=1 if single else 0)  # a frame is never empty
+            if shortens and self.has("extension", 0.6):
+                body["fields"] += self.extension_fields()
             messages[self.name()] = body
         if any(f.get("checksum", {}).get("extra") for f in layout):
             for body in messages.values():
@@ -177,6 +185,11 @@ class Generator:
         if bits % 8:
             fields.append(self.padding(8 - bits % 8))
         return fields
+
+    def extension_fields(self) -> list[dict]:
+        """Fields a later version of the message added at its end, of whole bytes."""
+        return [{"name": self.name(), "type": self.rng.choice(["u8", "u16", "i16", "u32", "i32"]), "extension": True}
+                for _ in range(self.rng.randint(1, 3))]
 
     def padding(self, width: int) -> dict:
         return {"name": self.name(), "type": f"u{width}", "reserved": True}

@@ -592,11 +592,13 @@ class CView:
                     seen.setdefault(checksum_name(cs), checksum_code(self.checksum_fn(cs), cs, self.PX))
         return list(seen.values())
 
-    def byte_checksum_call(self, leaf: Leaf, m: Message) -> str:
+    def byte_checksum_call(self, leaf: Leaf, m: Message, cut: bool = False) -> str:
+        """The checksum of its coverage; `cut`: the coverage ends with the payload, `cut` bytes early."""
         cs = leaf.field.checksum
         start, end = cs.byte_span
         extra = f", {clit(m.crc_extra, True)}" if cs.extra else ""
-        return f"{self.checksum_fn(cs)}(buf + {start}, {end - start}u{extra})"
+        less = " - cut" if cut and m.counts_sent(cs) else ""
+        return f"{self.checksum_fn(cs)}(buf + {start}, {end - start}u{less}{extra})"
 
     # -- binary messages -----------------------------------------------------------------------
     @staticmethod
@@ -678,6 +680,9 @@ class CView:
         c("if (rc != CW_OK) {")
         c("    return rc;")
         c("}")
+        truncates = bool(m.shortening and m.shortening.trailing_zeros)
+        if truncates:
+            c("size_t cut = 0u;")
         c(f"if (cap < {m.size}u) {{")
         c("    return CW_ERR_CAPACITY;")
         c("}")
@@ -697,16 +702,47 @@ class CView:
                     if piece.var in raws:
                         value = raws[piece.var] if piece.bits > 32 or rt != "uint64_t" else f"(uint32_t){raws[piece.var]}"
                         c(f"{bits_fn('put', piece.bits, span.order)}(buf, {piece.pos}u, {piece.bits}u, {value});")
+        if truncates:
+            self.truncate(c, m)
         for span, piece in self.byte_sums(layout):
-            call = self.byte_checksum_call(piece, m)
+            call = self.byte_checksum_call(piece, m, truncates)
             if span.kind == "int":
                 c(self.int_put(span.start, span.size, self.order_of(piece.field), call))
             else:  # sharing its bytes, whose bits for it are still 0
                 c(f"{bits_fn('put', piece.bits, span.order)}(buf, {piece.pos}u, {piece.bits}u, {call});")
-        c(f"return {m.size};")
+        if truncates:
+            end = m.shortening.payload[1]
+            c(f"memmove(buf + ({end}u - cut), buf + {end}, {m.size - end}u);")
+            c(f"return (int)({m.size}u - cut);")
+        else:
+            c(f"return {m.size};")
         c.dedent()
         c("}")
         return c.text()
+
+    def truncate(self, c: Code, m: Message) -> None:
+        """Count the payload's trailing zero bytes the frame leaves off (keeping the
+        fewest it must carry), and set the length field to the bytes sent."""
+        sh = m.shortening
+        lo, hi = sh.payload[0] + sh.least, sh.payload[1]
+        c(f"while (cut < {hi - lo}u && buf[{hi - 1}u - cut] == 0u) {{  /* trailing zeros are not sent */")
+        c("    cut++;")
+        c("}")
+        leaf = next(x for x in m.wire.leaves if x.field.name == sh.length_field)
+        c(self.int_put(leaf.pos // 8, leaf.bits // 8, self.order_of(leaf.field), f"{clit(int(leaf.field.const), True)} - cut"))
+
+    def restore(self, c: Code, m: Message) -> None:
+        """A frame cut short becomes the whole frame: the payload bytes left off read as zeros,
+        and the length field as if they had been sent."""
+        size, end = m.size, m.shortening.payload[1]
+        c(f"if (len < {m.min_size}u || len > {size}u) {{")
+        c("    return CW_ERR_LENGTH;")
+        c("}")
+        c(f"cut = {size}u - len;")
+        c(f"memcpy(full, buf, {end}u - cut);")
+        c(f"memset(full + ({end}u - cut), 0, cut);")
+        c(f"memcpy(full + {end}, buf + ({end}u - cut), {size - end}u);")
+        c("buf = full;")
 
     def decode_function(self, m: Message) -> str:
         word = cword.container(self, m)
@@ -723,9 +759,14 @@ class CView:
             c(f"{rt} r[{len(raws)}];")
         else:  # nothing to read, but check_raw takes the array: initialised, so no compiler warns
             c(f"{rt} r[1] = {{0}};")
-        c(f"if (len != {m.size}u) {{")
-        c("    return CW_ERR_LENGTH;")
-        c("}")
+        if m.shortening:
+            c(f"uint8_t full[{m.size}];")
+            c("size_t cut;")
+            self.restore(c, m)
+        else:
+            c(f"if (len != {m.size}u) {{")
+            c("    return CW_ERR_LENGTH;")
+            c("}")
         shift, pad = m.padding()  # always under 8 bits: the padding fills the last byte
         if pad:
             self.fail_if(c, f"(buf[{m.size - 1}] & {clit(((1 << pad) - 1) << shift, True)}) != 0u", "reserved")
@@ -748,12 +789,15 @@ class CView:
             else:
                 for piece in pieces:
                     c(f"{raws[piece.var]} = ({rt}){bits_fn('get', piece.bits, span.order)}(buf, {piece.pos}u, {piece.bits}u);")
+        if m.shortening:
+            counter = next(x for x in m.wire.leaves if x.field.name == m.shortening.length_field)
+            c(f"{raws[counter.var]} = ({rt})({raws[counter.var]} + cut);  /* as if the whole payload were sent */")
         for span, piece in self.byte_sums(layout):
             if span.kind == "int":
                 got = self.int_get(span.start, span.size, self.order_of(piece.field))
             else:
                 got = f"{bits_fn('get', piece.bits, span.order)}(buf, {piece.pos}u, {piece.bits}u)"
-            self.fail_if(c, f"{got} != {self.byte_checksum_call(piece, m)}", "checksum")
+            self.fail_if(c, f"{got} != {self.byte_checksum_call(piece, m, True)}", "checksum")
         c(f"return {self.fn(m, 'check_raw')}(r, buf, m, false);")
         c.dedent()
         c("}")

@@ -76,8 +76,8 @@ def container(v: "CView", m: "Message") -> Optional[Word]:
     """The message as one word, or None when it does not fit one: over 4 bytes,
     a `bytes` field, a CRC or Fletcher checksum, a checksum over bytes in whole
     bytes of its own (the byte-wise loop is smaller on AVR) or a multi-byte
-    integer in the other byte order than the word's."""
-    if v.text or m.size is None or not 1 <= m.size <= 4:
+    integer in the other byte order than the word's, or a frame that may be cut short."""
+    if v.text or m.size is None or not 1 <= m.size <= 4 or m.shortening:
         return None
     spans = v.spans(m)
     for span in spans:

@@ -51,6 +51,8 @@ def message_size(p: Protocol, m: Message) -> str:
         return f"≤ {longest} chars" if longest is not None else "unbounded"
     if p.framing.kind == "bits":
         return f"{m.bits} bits ({m.size} byte{'s' if m.size != 1 else ''})"
+    if m.shortening:
+        return f"{m.min_size}–{m.size} bytes"
     return f"{m.size} bytes"
 
 
@@ -166,7 +168,11 @@ def framing_view(p: Protocol, linker: DecisionLinker) -> dict:
             at, overhead, last = facts["length"]["at"], facts["length"]["overhead"], facts["length"]["last"] - 1
             where = f"Byte B{at} holds" if at == last else f"Bytes B{at}–B{last} hold"
             lines.append(f"{where} the length: the frame is length + {overhead} bytes. Known frame sizes: "
-                         + ", ".join(str(s) for s in facts["sizes"]) + " bytes.")
+                         + ", ".join(f"{lo}–{hi}" if lo != hi else str(lo) for lo, hi in facts["ranges"]) + " bytes.")
+            if fr.truncate:
+                lines.append("**Truncation.** A sender drops the trailing zero bytes of the payload, keeping at "
+                             "least one, and the length says how many it sent; the checksum covers the frame as "
+                             "sent. A decoder checks it, then puts the zeros back before it reads the fields.")
         else:
             lines.append("Frames have a fixed size for a link: " + ", ".join(str(s) for s in facts["sizes"])
                          + " bytes with the default parameters.")

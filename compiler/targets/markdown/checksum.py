@@ -37,10 +37,13 @@ def _checksum_slot(m: Message) -> Optional[Slot]:
 
 
 def _frame(p: Protocol, codec: types.ModuleType, m: Message) -> Optional[tuple[Any, bytes]]:
-    """The first example of `m` with values, encoded by the codec."""
+    """The first example of `m` with values, encoded by the codec, as a whole frame (the
+    positions of a frame cut short are not those of the layout)."""
     for ex in m.examples:
         if not ex.errors and not ex.decode_only and ex.values is not None:
-            return ex, codec.encode(codec.from_dict(m.name, ex.values))
+            frame = codec.encode(codec.from_dict(m.name, ex.values))
+            if len(frame) == m.size:
+                return ex, frame
     return None
 
 

@@ -176,6 +176,8 @@ def meaning(f: Field, linker: DecisionLinker) -> str:
         by_lang.setdefault(lang, []).append(cell(text))
     for lang, texts in by_lang.items():
         parts.append(f"*{lang}:* " + " — ".join(texts))
+    if f.extension:
+        parts.append("*extension:* a frame may end before it; it then reads as 0")
     text = linker.link(" <br>".join(parts))
     if f.rule and f.rule not in linker.cited(text):
         text += (" " if text else "") + f"({linker.ref(f.rule)})"
@@ -233,7 +235,16 @@ def field_rows(p: Protocol, m: Message, linker: DecisionLinker) -> list[dict]:
 
 
 def payload_note(p: Protocol, m: Message) -> str:
-    """Positions depend on a link parameter when a field's length is one (data of a per-link length)."""
+    """Positions depend on a link parameter when a field's length is one (data of a per-link length),
+    and on the payload's length when a frame may carry less than the whole payload."""
+    sh = m.shortening
+    if sh is not None:
+        start, end = sh.payload
+        why = "its trailing zero bytes are not sent" if sh.trailing_zeros else "its extension fields may be left off"
+        return (f"Positions are those of the whole frame. The payload (B{start}–B{end - 1}) may be cut short, "
+                f"to {sh.least} byte{'s' if sh.least != 1 else ''}: {why}, `{sh.length_field}` counts the payload "
+                "bytes sent, and what follows the payload moves up by the bytes left off. A decoder reads "
+                "the bytes left off as zeros.")
     for s in slots(m):
         if s.field.length_param:
             param = next((x for x in p.parameters if x.name == s.field.length_param), None)

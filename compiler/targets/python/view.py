@@ -275,8 +275,12 @@ class PythonView:
             c(f"    raise _dec({at}, 'reserved', '0', {off}, {f.rule!r})")
             return None
         if f.length_of:
-            c(f"if {var} != {f.const}:")
-            c(f"    raise _dec({at}, 'length', '{f.const} for {message.name}', {off}, {f.rule!r})")
+            if message.shortening:  # it counts the payload bytes sent
+                c(f"if {var} != {f.const} - cut:")
+                c(f"    raise _dec({at}, 'length', f'{{{f.const} - cut}} for {message.name}', {off}, {f.rule!r})")
+            else:
+                c(f"if {var} != {f.const}:")
+                c(f"    raise _dec({at}, 'length', '{f.const} for {message.name}', {off}, {f.rule!r})")
             return None
         if f.checksum:
             return None  # verified after all fields are known
@@ -578,7 +582,7 @@ class MessageCode:
     def one_word(self) -> bool:
         """The frame is short and all integers in the frame's bit order (big-endian most
         significant bit first): it is read and written as one int."""
-        if self.m.size > 8:
+        if self.m.size > 8 or self.m.shortening:
             return False
         for leaf in self.leaves:  # a checksum over bytes needs the bytes first
             f = leaf.field
@@ -615,7 +619,8 @@ class MessageCode:
         segments = segments_of(self.chunks())
         crcs = [(leaf, leaf.field.checksum) for leaf in self.leaves
                 if leaf.field.checksum and leaf.field.checksum.over == "bytes"]
-        single = len(segments) == 1 and not crcs
+        truncates = bool(self.m.shortening and self.m.shortening.trailing_zeros)
+        single = len(segments) == 1 and not crcs and not truncates
         if not single:
             c(f"b = bytearray({size})")
         for n, seg in enumerate(segments):
@@ -624,20 +629,36 @@ class MessageCode:
                 c(f"return _S_{self.fn}_{n}.pack({values})")
             else:
                 c(f"_S_{self.fn}_{n}.pack_into(b, {seg.start}, {values})")
+        if truncates:
+            self.truncate(c)
         for leaf, cs in crcs:
             start, end = cs.byte_span
             chunk, shift = next((ch, sh) for ch in self.chunks() for x, sh in ch.leaves if x is leaf)
             at = f"b[{chunk.start}:{chunk.start + chunk.nbytes}]"
-            value = self.view.checksum_call(cs, "b", start, end, self.m.crc_extra)
+            value = self.view.checksum_call(cs, "b", start, end, self.m.crc_extra, truncates and self.m.counts_sent(cs))
             if chunk.lone:
                 order = leaf.field.byte_order or self.view.p.framing.byte_order
                 c(f"{at} = {value}.to_bytes({chunk.nbytes}, {order!r})")
             else:  # a checksum sharing bytes with other fields goes into its bits
                 order = chunk.order or "big"
                 c(f"{at} = (int.from_bytes({at}, {order!r}) | {value} << {shift}).to_bytes({chunk.nbytes}, {order!r})")
+        if truncates:
+            end = self.m.shortening.payload[1]
+            c(f"del b[{end} - cut:{end}]")
         if not single:
             c("return bytes(b)")
         return c.text()
+
+    def truncate(self, c: Code) -> None:
+        """Count the payload's trailing zero bytes the frame leaves off (keeping the
+        fewest it must carry), and set the length field to the bytes sent."""
+        sh = self.m.shortening
+        lo, hi = sh.payload[0] + sh.least, sh.payload[1]
+        c(f"cut = {hi - lo} - len(b[{lo}:{hi}].rstrip(b'\\0'))  # trailing zeros are not sent")
+        leaf = next(x for x in self.leaves if x.field.name == sh.length_field)
+        at, n = leaf.pos // 8, leaf.bits // 8
+        order = leaf.field.byte_order or self.view.p.framing.byte_order
+        c(f"b[{at}:{at + n}] = ({leaf.field.const} - cut).to_bytes({n}, {order!r})")
 
     def packed(self, leaves: list[tuple[Leaf, int]]) -> str:
         """Expression OR-ing (leaf, shift) pairs; fixed values are folded into one constant."""
@@ -675,8 +696,17 @@ class MessageCode:
         size = self.m.size
         c(f"def _decode_{self.fn}(d):")
         c.indent()
-        c(f"if len(d) != {size}:")
-        c(f"    raise _dec({self.m.name!r}, None, len(d), 'length', '{size} bytes', 0)")
+        sh = self.m.shortening
+        if sh:
+            least = self.m.min_size
+            c(f"if not {least} <= len(d) <= {size}:")
+            c(f"    raise _dec({self.m.name!r}, None, len(d), 'length', '{least}..{size} bytes', 0)")
+            c(f"cut = {size} - len(d)")
+            c("if cut:  # the payload bytes left off read as zeros")
+            c(f"    d = b''.join((d[:{sh.payload[1]} - cut], bytes(cut), d[{sh.payload[1]} - cut:]))")
+        else:
+            c(f"if len(d) != {size}:")
+            c(f"    raise _dec({self.m.name!r}, None, len(d), 'length', '{size} bytes', 0)")
         if self.one_word():
             self.read_word(c)
         else:
@@ -685,7 +715,7 @@ class MessageCode:
             cs = leaf.field.checksum
             if cs and cs.over == "bytes":
                 start, end = cs.byte_span
-                c(f"x = {self.view.checksum_call(cs, 'd', start, end, self.m.crc_extra)}")
+                c(f"x = {self.view.checksum_call(cs, 'd', start, end, self.m.crc_extra, self.m.counts_sent(cs))}")
                 c(f"if {leaf.var} != x:")
                 c(f"    raise _dec({self.m.name!r}, {leaf.dotted!r}, {leaf.var}, 'checksum', hex(x), {leaf.pos}, {leaf.field.rule!r})")
         self.build_checks(c, bounded=True, text_form=False, word=self.one_word())
@@ -1218,7 +1248,8 @@ class ModuleView(PythonView):
                 cs = f.field.checksum
                 if cs and cs.over == "bytes":
                     seen.setdefault(_checksum_name(cs), _checksum_code(cs))
-                    if cs.algorithm == "crc" and not _stdlib_crc(cs.crc):
+                    truncated = m.shortening and m.shortening.trailing_zeros and m.counts_sent(cs)
+                    if cs.algorithm == "crc" and not _stdlib_crc(cs.crc) and not truncated:
                         start, end = cs.byte_span
                         spans.setdefault(_checksum_name(cs), set()).add(end - start + bool(cs.extra))
                         crcs[_checksum_name(cs)] = cs
@@ -1228,10 +1259,14 @@ class ModuleView(PythonView):
         return out
 
     @staticmethod
-    def checksum_call(cs, buf: str, start: int, end: int, extra: Optional[int] = None) -> str:
+    def checksum_call(cs, buf: str, start: int, end: int, extra: Optional[int] = None, cut: bool = False) -> str:
         """The call that computes checksum cs over buf[start:end], then over the
-        message's extra byte when the checksum takes one."""
+        message's extra byte when the checksum takes one. `cut`: the coverage ends
+        `cut` bytes early, with a payload cut short."""
         name = _checksum_name(cs)
+        if cut:
+            tail = f" + {bytes([extra])!r}" if cs.extra else ""
+            return f"_checksum_{name}({buf}[{start}:{end} - cut]{tail})"
         if cs.extra:
             data, size = f"{buf}[{start}:{end}] + {bytes([extra])!r}", end - start + 1
             if cs.algorithm == "crc" and not _stdlib_crc(cs.crc):
@@ -1245,7 +1280,9 @@ class ModuleView(PythonView):
     def dispatch_table(self) -> dict:
         facts = dispatch_facts(self.p)
         if facts["kind"] == "bytes":
-            facts = dict(facts, value_expr=self.read_expr("d", "", facts))
+            keys = [(value, n, direction, name) for value, size, direction, name in facts["frames"]
+                    for n in range(facts["least"].get(name, size), size + 1)]
+            facts = dict(facts, value_expr=self.read_expr("d", "", facts), sized_frames=keys)
         if facts["kind"] == "bits" and self.p.framing.max_bits:  # the word form: a left-aligned int
             facts = dict(facts, word_limit=1 << self.p.framing.max_bits,
                          word_shift=self.p.framing.max_bits - facts["head_bits"])
