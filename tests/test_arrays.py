@@ -258,9 +258,40 @@ def test_check_names_the_element_that_breaks_a_range(tmp_path, capsys):
     assert [(f["line"], f["field"], f["rule"], f["actual"]) for f in doc["findings"]] == [(2, "ch[2]", "range", 201)]
 
 
-@pytest.mark.parametrize("name,schema", [("arrays", ARRAYS), ("sbus16", SBUS)])
+
+
+WORDS = """codeword: 1
+protocol: bitarrays
+title: An array in a bit record with a text form
+source: hand-written
+framing:
+  kind: bits
+  max_bits: 56
+  byte_order: big
+  text_form: {separator: " ", comment: "#"}
+messages:
+  levels:
+    bits: 56
+    fields:
+      - {name: tag, type: u2, const: 1, dispatch: true}
+      - {name: v, type: u3, count: 4}
+      - {name: pad, type: u2, reserved: true}
+      - {name: wide, type: u20, count: 2}
+"""
+
+
+def test_a_bit_record_holds_an_array_and_its_text_form_one_value_per_element(tmp_path):
+    mod = load(render(tmp_path, "bitarrays", WORDS) / "bitarrays.py")
+    obj = mod.Levels(v=[1, 2, 3, 7], wide=[0xFFFFF, 1])
+    # 01 | 001 010 011 111 | 00 | 20 ones | 19 zeros and a one: 0100 1010 0111 1100, ff ff f0 00 01
+    assert mod.encode(obj) == bytes.fromhex("4a7c fffff00001")
+    assert mod.encode_text(obj) == "1 1 2 3 7 0 1048575 1"  # each element a raw value of its own
+    assert mod.decode_text("1 1 2 3 7 0 1048575 1") == obj
+
+
+@pytest.mark.parametrize("name,schema", [("arrays", ARRAYS), ("sbus16", SBUS), ("bitarrays", WORDS)])
 def test_conformance_vectors_on_the_host_and_on_atmega32_under_simavr(tmp_path, name, schema):
-    """Edge values in every element, random arrays, damaged frames: C agrees with Python
-    on the host and on an 8-bit AVR."""
+    """Edge values in every element, random arrays, damaged frames (and, for the bit
+    record, its text form): C agrees with Python on the host and on an 8-bit AVR."""
     host, avr = conformance_on_host_and_avr(tmp_path, name, schema)
     assert host > 100 and avr > 100
