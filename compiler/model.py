@@ -5,7 +5,7 @@ Sizes, bit offsets, checksum coverage and dispatch keys are computed here once.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any, Optional, Union
 
 from .diagnostics import Loc
@@ -203,12 +203,20 @@ class Field:
     bit_offset: Optional[int] = None  # from the start of the frame/record
     from_envelope: bool = False
     extension: bool = False  # added in a later version: a frame may end before it (it then reads as 0)
+    count: Optional[int] = None  # an array of this many elements; `bits` is then the whole array's
 
     @property
     def fixed_spelling(self) -> bool:
         """A text integer written with fixed decimals or padding (`decimals: 0` included):
         readers accept only the writer's spelling."""
         return self.decimals is not None or self.width is not None
+
+    @property
+    def element(self) -> "Field":
+        """One element of an array field (the field itself when it is not one)."""
+        if self.count is None:
+            return self
+        return replace(self, count=None, bits=None if self.bits is None else self.bits // self.count)
 
     @property
     def is_member(self) -> bool:
@@ -239,6 +247,18 @@ def field_at(fields: tuple[Field, ...], dotted: str) -> Optional[Field]:
             return None
         fields = found.fields
     return found
+
+
+def array_on(fields: tuple[Field, ...], dotted: str) -> Optional[Field]:
+    """The array field a dotted path names or passes through, if any."""
+    for part in dotted.split("."):
+        found = next((f for f in fields if f.name == part), None)
+        if found is None:
+            return None
+        if found.count is not None:
+            return found
+        fields = found.fields
+    return None
 
 
 @dataclass(frozen=True)
@@ -289,7 +309,7 @@ class Leaf:
     where it sits."""
 
     field: Field
-    path: tuple[str, ...]  # attribute path from the message object
+    path: tuple[Union[str, int], ...]  # attribute path from the message object; an int indexes an array
     pos: Optional[int]  # first bit in the frame; None where widths are not fixed (text)
 
     @property
@@ -299,11 +319,23 @@ class Leaf:
     @property
     def var(self) -> str:
         """The local variable generated code keeps its raw wire value in."""
-        return "r_" + "_".join(self.path)
+        return "r_" + path_name(self.path)
 
     @property
     def dotted(self) -> str:
-        return ".".join(self.path)
+        """The path as Python and C spell an access to it: `pts[1].x`."""
+        return dotted(self.path)
+
+
+def path_name(path: tuple[Union[str, int], ...]) -> str:
+    """A path as one identifier: names joined by `_`, an index as `__<i>` (a schema
+    name holds no `__`, so `ch[3]` and a field `ch_3` do not meet)."""
+    return "".join(f"__{p}" if isinstance(p, int) else f"_{p}" if i else p for i, p in enumerate(path))
+
+
+def dotted(path: tuple[Union[str, int], ...]) -> str:
+    """`pts[1].x` for ("pts", 1, "x")."""
+    return "".join(f"[{p}]" if isinstance(p, int) else f".{p}" if i else p for i, p in enumerate(path))
 
 
 def shift_in(order: str, start: int, size: int, pos: int, bits: int) -> int:

@@ -77,6 +77,8 @@ def plain(value: Any) -> Any:
         if dataclasses.is_dataclass(value):
             return {f.name: plain(getattr(value, f.name)) for f in dataclasses.fields(value)}
         return value
+    if cls is list:  # an array
+        return [plain(x) for x in value]
     kind, names = _kind(cls)
     if kind == "dataclass":
         return {name: plain(getattr(value, name)) for name in names}
@@ -105,6 +107,9 @@ class Generator:
     # -- random values from the model ----------------------------------------------------
     def value(self, f: Field, edge: str = "") -> Any:
         rng = self.rng
+        if f.count is not None:  # an array: each element at the edge
+            element = f.element
+            return [self.value(element, edge) for _ in range(f.count)]
         if f.kind == "group":
             return {s.name: self.value(s) for s in f.fields if s.is_member}
         if f.optional and rng.random() < 0.3 and not edge:

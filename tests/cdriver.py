@@ -41,6 +41,12 @@ class Driver:
             if not f.is_member:
                 continue
             value = values.get(f.name)
+            if f.count is not None:  # an array: one initialiser per element
+                element = f.element
+                parts.append(f".{f.name} = {{{', '.join(self.one(element, x) for x in value)}}}")
+                if self.v.rep(element).has_flag:
+                    parts.append(f".has_{f.name} = {{{', '.join('false' if x is None else 'true' for x in value)}}}")
+                continue
             if f.kind == "group":
                 parts.append(f".{f.name} = {self.init(f.fields, value)}")
                 continue
@@ -51,6 +57,12 @@ class Driver:
                     continue
             parts.append(f".{f.name} = {self.scalar(f, value)}")
         return "{" + ", ".join(parts) + "}" if parts else "{0}"
+
+    def one(self, f: Field, value: Any) -> str:
+        """The initialiser of one array element (0 for an absent one)."""
+        if f.kind == "group":
+            return self.init(f.fields, value)
+        return "0" if value is None else self.scalar(f, value)
 
     def scalar(self, f: Field, value: Any) -> str:
         if f.kind == "bool":
@@ -92,20 +104,25 @@ class Driver:
         return int_literal(int(value))
 
     # -- equality of two decoded structs ----------------------------------------------------
-    def equal_lines(self, fields: tuple[Field, ...], prefix: str) -> list[str]:
+    def equal_lines(self, fields: tuple[Field, ...], prefix: str, index: str = "") -> list[str]:
         out = []
         for f in fields:
             if not f.is_member:
                 continue
-            a, b = f"a->{prefix}{f.name}", f"b->{prefix}{f.name}"
+            if f.count is not None:  # an array: each element as a field of its own
+                element = f.element
+                for i in range(f.count):
+                    out += self.equal_lines((element,), prefix, f"[{i}]")
+                continue
+            a, b = f"a->{prefix}{f.name}{index}", f"b->{prefix}{f.name}{index}"
             if f.kind == "group":
-                out += self.equal_lines(f.fields, f"{prefix}{f.name}.")
+                out += self.equal_lines(f.fields, f"{prefix}{f.name}{index}.")
                 continue
             r = self.v.rep(f)
             guard = ""
             if r.has_flag:
-                out.append(f"if (a->{prefix}has_{f.name} != b->{prefix}has_{f.name}) return false;")
-                guard = f"a->{prefix}has_{f.name} && "
+                out.append(f"if (a->{prefix}has_{f.name}{index} != b->{prefix}has_{f.name}{index}) return false;")
+                guard = f"a->{prefix}has_{f.name}{index} && "
             if f.kind == "float" and self.text:
                 cond = f"!eq_decimal(&{a}, &{b})"
             elif f.kind == "float":

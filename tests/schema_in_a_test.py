@@ -3,12 +3,16 @@ Python codec, compile and run a C driver against its header."""
 from __future__ import annotations
 
 import importlib.util
+import json
+import re
 import shutil
 import subprocess
 import sys
 from pathlib import Path
 
-from codeword.build import compile_schema, render_protocol, verify
+from codeword.build import build, compile_schema, render_protocol, verify
+
+from cdriver import Driver
 
 C_FLAGS = ["-std=c99", "-g", "-O1", "-fsanitize=address,undefined", "-fno-sanitize-recover=all",
            "-Wall", "-Wextra", "-Werror"]
@@ -75,3 +79,38 @@ def c_bytes(data: bytes) -> str:
     """The bytes as the items of a C array initialiser."""
     return ", ".join(f"0x{b:02x}" for b in data)
 
+
+
+def conformance_on_host_and_avr(where: Path, name: str, schema: str) -> tuple[int, int]:
+    """Python's vectors of the schema (valid frames, damaged ones, streams) through the
+    C conformance driver, on the host with the sanitizers and on an ATmega32 (whose
+    `int` is 16 bits) under simavr: the checks passed on each."""
+    (where / f"{name}.yaml").write_text(schema, encoding="utf-8")
+    out = where / "out"
+    assert not build([where / f"{name}.yaml"], out, root=where).errors
+    protocol = compile_schema(where / f"{name}.yaml")
+    vectors = json.loads((out / "vectors" / f"{name}.json").read_text(encoding="utf-8"))
+    for rel in (f"{name}.h", "codeword.h"):
+        shutil.copy(out / "c" / rel, where / rel)
+    host = passed("\n".join(run_c(where, Driver(protocol).source(vectors))), name)
+    avr_gcc, simavr = shutil.which("avr-gcc"), shutil.which("simavr")
+    assert avr_gcc and simavr, "avr-gcc and simavr are not installed (.ci/run installs them)"
+    parts, avr = 4, 0
+    for part in range(parts):
+        src, elf = where / f"avr_{part}.c", where / f"avr_{part}.elf"
+        src.write_text(Driver(protocol).source(vectors, part, parts), encoding="utf-8")
+        made = subprocess.run([avr_gcc, "-std=gnu99", "-Os", "-mmcu=atmega32", "-Wall", "-Wextra", "-Werror",
+                               "-ffunction-sections", "-fdata-sections", "-Wl,--gc-sections",
+                               "-I", str(where), str(src), "-o", str(elf)], capture_output=True, text=True)
+        assert made.returncode == 0, made.stderr[-3000:]
+        ran = subprocess.run([simavr, "-m", "atmega32", "-f", "16000000", str(elf)], capture_output=True,
+                             text=True, timeout=600, errors="replace")
+        avr += passed(ran.stdout + ran.stderr, name)
+    return host, avr
+
+
+def passed(output: str, name: str) -> int:
+    """The checks of a conformance driver that passed them all."""
+    found = re.search(rf"CONFORMANCE {name} PASS (\d+) checks 0 failures", re.sub(r"\x1b\[[0-9;]*m", "", output))
+    assert found, output[-3000:]
+    return int(found.group(1))

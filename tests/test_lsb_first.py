@@ -6,21 +6,16 @@ and read them back, one frame at a time and, for the framed protocol, in a
 stream with garbage around it."""
 from __future__ import annotations
 
-import json
-import re
-import shutil
-import subprocess
 
 import bitstruct
 import pytest
 
-from codeword.build import build, compile_schema
+from codeword.build import compile_schema
 from codeword.diff import BREAKING, compare
 from codeword.fingerprint import fingerprint
 from codeword.targets.markdown.layout import position, slots
 
-from cdriver import Driver
-from schema_in_a_test import load, render, run_c
+from schema_in_a_test import conformance_on_host_and_avr, load, render, run_c
 
 CHANNELS = "\n".join(f"      - {{name: ch{i}, type: u11}}" for i in range(1, 17))
 SBUS = f"""codeword: 1
@@ -368,34 +363,5 @@ messages:
 def test_conformance_vectors_on_the_host_and_on_atmega32_under_simavr(tmp_path, name, schema):
     """Python's vectors (valid frames, damaged ones, streams) through the C codec,
     on the host with the sanitizers and on an 8-bit AVR, whose `int` is 16 bits."""
-    (tmp_path / f"{name}.yaml").write_text(schema, encoding="utf-8")
-    out = tmp_path / "out"
-    assert not build([tmp_path / f"{name}.yaml"], out, root=tmp_path).errors
-    protocol = compile_schema(tmp_path / f"{name}.yaml")
-    vectors = json.loads((out / "vectors" / f"{name}.json").read_text(encoding="utf-8"))
-    host = tmp_path / "host.c"
-    host.write_text(Driver(protocol).source(vectors), encoding="utf-8")
-    for rel in (f"{name}.h", "codeword.h"):
-        shutil.copy(out / "c" / rel, tmp_path / rel)
-    assert passed("\n".join(run_c(tmp_path, host.read_text(encoding="utf-8"))), name) > 100
-    avr_gcc, simavr = shutil.which("avr-gcc"), shutil.which("simavr")
-    assert avr_gcc and simavr, "avr-gcc and simavr are not installed (.ci/run installs them)"
-    parts, total = 4, 0
-    for part in range(parts):
-        src, elf = tmp_path / f"avr_{part}.c", tmp_path / f"avr_{part}.elf"
-        src.write_text(Driver(protocol).source(vectors, part, parts), encoding="utf-8")
-        made = subprocess.run([avr_gcc, "-std=gnu99", "-Os", "-mmcu=atmega32", "-Wall", "-Wextra", "-Werror",
-                               "-ffunction-sections", "-fdata-sections", "-Wl,--gc-sections",
-                               "-I", str(tmp_path), str(src), "-o", str(elf)], capture_output=True, text=True)
-        assert made.returncode == 0, made.stderr[-3000:]
-        ran = subprocess.run([simavr, "-m", "atmega32", "-f", "16000000", str(elf)], capture_output=True,
-                             text=True, timeout=600, errors="replace")
-        total += passed(ran.stdout + ran.stderr, name)
-    assert total > 100
-
-
-def passed(output: str, name: str) -> int:
-    """The checks of a conformance driver that passed them all."""
-    found = re.search(rf"CONFORMANCE {name} PASS (\d+) checks 0 failures", re.sub(r"\x1b\[[0-9;]*m", "", output))
-    assert found, output[-3000:]
-    return int(found.group(1))
+    host, avr = conformance_on_host_and_avr(tmp_path, name, schema)
+    assert host > 100 and avr > 100

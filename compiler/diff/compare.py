@@ -165,7 +165,9 @@ def _message(a: Message, b: Message, out: _Collector, text: bool) -> None:
         out.add(BREAKING, subject, f"size changed from {a.bits} to {b.bits} bits")
     if not _same_wire(a.dispatch_key, b.dispatch_key) and a.ids == b.ids:
         out.add(BREAKING, subject, "how a decoder recognises it changed")
-    _fields(placed_leaves(a.wire.leaves), placed_leaves(b.wire.leaves), out, a.name, text=text, growth=growth)
+    recounted = _counts(a.layout, b.layout, out, a.name)
+    _fields(_outside(placed_leaves(a.wire.leaves), recounted), _outside(placed_leaves(b.wire.leaves), recounted),
+            out, a.name, text=text, growth=growth)
     _rules(a, b, out)
     if _text(a.title) != _text(b.title) or _text(a.doc) != _text(b.doc):
         out.add(DOCS, subject, "title or description changed")
@@ -185,6 +187,31 @@ def extension_growth(a: Message, b: Message) -> Optional[int]:
             not all(f.extension for f in added) or len(added) != len(b.fields) - len(a.fields):
         return None
     return b.bits - a.bits
+
+
+def _counts(before: tuple[Field, ...], after: tuple[Field, ...], out: _Collector, message: str,
+            prefix: str = "") -> list[str]:
+    """Arrays whose count changed, reported once each (not element by element); their paths."""
+    changed = []
+    old = {f.name: f for f in before}
+    for f in after:
+        g = old.get(f.name)
+        if g is None:
+            continue
+        path = prefix + f.name
+        if g.count != f.count:
+            out.add(BREAKING, f"field {path}", f"count changed from {g.count or 'none'} to {f.count or 'none'}",
+                    message)
+            changed.append(path)
+        elif f.kind == "group" and g.kind == "group":
+            changed += _counts(g.fields, f.fields, out, message, path + ("[0]" if f.count else "") + ".")
+    return changed
+
+
+def _outside(placed: dict[str, Placed], arrays: list[str]) -> dict[str, Placed]:
+    """The places not inside one of `arrays` (or where one of them was)."""
+    return {path: x for path, x in placed.items()
+            if not any(path == a or path.startswith(a + "[") or path.startswith(a + ".") for a in arrays)}
 
 
 def _ids(m: Message) -> str:

@@ -16,6 +16,8 @@ BASE_KINDS = {"bool": ("bool", 1), "f32": ("float", 32), "f64": ("float", 64),
               "group": ("group", None)}
 MAX_INT_BITS = 64
 MAX_BYTES_LENGTH = 4096
+# An array's values (its count times each element's), and its bytes at most MAX_BYTES_LENGTH.
+MAX_ARRAY_COUNT = 4096
 DEFAULT_HINT = "see docs/schema-language.md for what this key accepts"
 
 # A double's 53-bit significand: wider raw values would not survive value → raw → value.

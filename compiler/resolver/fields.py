@@ -2,11 +2,18 @@
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from typing import Any
 
 from ..model import Field
 from .text import text
-from .base import MAX_BYTES_LENGTH, MAX_SCALED_BITS, ResolverBase
+from .base import MAX_ARRAY_COUNT, MAX_BYTES_LENGTH, MAX_SCALED_BITS, ResolverBase
+
+
+def leaf_count(f: Field) -> int:
+    """How many wire values a field holds: a group's members', an array's times its count."""
+    each = sum(leaf_count(s) for s in f.fields) if f.kind == "group" else 1
+    return each * (f.count or 1)
 
 
 class FieldsMixin(ResolverBase):
@@ -115,7 +122,45 @@ class FieldsMixin(ResolverBase):
         if field.by_direction:
             self.check_by_direction(field, path, allow_payload)
         self.check_field(field, path)
+        if "count" in f:
+            field = self.array_of(field, f["count"], path, allow_payload)
         return field
+
+    def array_of(self, element: Field, count: int, path: tuple, in_envelope: bool) -> Field:
+        """The field as an array of `count` elements, each checked as the field alone was;
+        `bits` becomes the whole array's, as a group's is the sum of its members'."""
+        name, cpath = element.name, path + ("count",)
+        if not 1 <= count <= MAX_ARRAY_COUNT:
+            self.error(cpath, f"field {name!r}: count {count} is outside 1..{MAX_ARRAY_COUNT}",
+                       "an array holds at least one element")
+            return element
+        if self.framing_kind == "text":
+            self.error(cpath, f"field {name!r}: count applies to binary framings; a text line holds "
+                              "one value per field", "declare each value as a field of its own")
+            return element
+        if in_envelope:
+            self.error(cpath, f"field {name!r}: count applies to message fields, not to the "
+                              "framing's layout", "move the array into the messages")
+            return element
+        set_by_codec = [key for key, on in (("const", element.const is not None), ("checksum", element.checksum),
+                                            ("dispatch", element.dispatch), ("length_of", element.length_of),
+                                            ("reserved", element.reserved)) if on]
+        if set_by_codec:
+            self.error(cpath, f"field {name!r}: an array cannot be `{set_by_codec[0]}`: the codec "
+                              "sets such a field as one value", "drop `count`, or make it a member field")
+            return element
+        elements = count * leaf_count(element)
+        if elements > MAX_ARRAY_COUNT:
+            self.error(cpath, f"field {name!r}: {count} elements of {leaf_count(element)} values each "
+                              f"are {elements} values, more than {MAX_ARRAY_COUNT}",
+                       "split the array over several messages")
+            return element
+        if element.bits is not None and count * element.bits > 8 * MAX_BYTES_LENGTH:
+            self.error(cpath, f"field {name!r}: {count} elements of {element.bits} bits are "
+                              f"{count * element.bits // 8} bytes, more than {MAX_BYTES_LENGTH}",
+                       "split the array over several messages")
+            return element
+        return replace(element, count=count, bits=None if element.bits is None else count * element.bits)
 
     def check_by_direction(self, f: Field, path: tuple, in_envelope: bool) -> None:
         if not in_envelope or self.framing_kind != "bytes":

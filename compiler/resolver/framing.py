@@ -245,15 +245,19 @@ class FramingMixin(ResolverBase):
         little-endian least significant bit first. A field in the other byte order, a
         float or bytes must be whole bytes on a byte boundary."""
         natural = framing.wire_order
-        for f in placed:
+        for leaf in leaves_of(tuple(placed)):  # each group member and array element where it sits
+            f = leaf.field
+            if leaf.pos is None:
+                break
             order = f.byte_order or framing.byte_order
             multibyte = f.bits and f.bits > 8 and f.kind in ("uint", "int") and order != natural
-            if (f.kind in ("float", "bytes") or multibyte) and (f.bit_offset % 8 or f.bits % 8):
+            if (f.kind in ("float", "bytes") or multibyte) and (leaf.pos % 8 or f.bits % 8):
                 hint = "add padding bits before it"
                 if multibyte:
                     hint += f", or make it {natural}-endian (the byte order of {framing.bit_order} bits)"
-                self.error(path, f"message {name!r}: field {f.name!r} must be byte-aligned and whole "
-                                 f"bytes (it starts at bit {f.bit_offset}, {f.bits} bits)", hint)
+                self.error(path, f"message {name!r}: field {leaf.dotted!r} must be byte-aligned and whole "
+                                 f"bytes (it starts at bit {leaf.pos}, {f.bits} bits)", hint)
+                break
 
     def check_size(self, name: str, m: dict, layout: tuple[Field, ...], bits: Optional[int],
                    framing: Framing, path: tuple) -> None:

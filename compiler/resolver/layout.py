@@ -17,13 +17,22 @@ def leaves_of(layout: tuple[Field, ...], prefix: tuple[str, ...] = (), start: Op
     for f in layout:
         if f.is_payload:
             continue
-        if f.kind == "group":
-            inner = leaves_of(f.fields, prefix + (f.name,), pos)
-            out.extend(inner)
-        else:
-            out.append(Leaf(f, prefix + (f.name,), pos))
+        if f.count is None:
+            out.extend(leaves_of_one(f, prefix + (f.name,), pos))
+        else:  # an array: each element where the one before it ends, its index in the path
+            element = f.element
+            for i in range(f.count):
+                at = None if pos is None or element.bits is None else pos + i * element.bits
+                out.extend(leaves_of_one(element, prefix + (f.name, i), at))
         pos = None if pos is None or f.bits is None else pos + f.bits
     return out
+
+
+def leaves_of_one(f: Field, path: tuple, pos: Optional[int]) -> list[Leaf]:
+    """The leaves of one field (or one array element) at `path`: a group's flattened."""
+    if f.kind == "group":
+        return leaves_of(f.fields, path, pos)
+    return [Leaf(f, path, pos)]
 
 
 def runs_of(leaves: list[Leaf], frame_bytes: int, order: str = "big") -> tuple[Run, ...]:

@@ -49,7 +49,7 @@ class MachineResolver:
         m = self.messages.get(message or "")
         if m is None:
             return None
-        return next((f for f in m.members if f.name == name), None)
+        return next((f for f in m.members if f.name == name and f.count is None), None)
 
     # -- declarations ------------------------------------------------------------------
     def resolve_declarations(self) -> None:
@@ -151,6 +151,11 @@ class MachineResolver:
                 self.error(path + ("keep",), f"action {name!r}: unknown message {target!r}",
                            "name a message under `messages`")
             else:
+                arrays = [f.name for f in self.messages[target].members if f.count is not None]
+                if arrays:
+                    self.error(path + ("keep",), f"action {name!r}: {target!r} has the array {arrays[0]!r}, "
+                                                 "and a machine's values are single numbers",
+                               "keep a message without arrays")
                 members = [f.name for f in self.messages[target].members]
                 for fn in a["fields"]:
                     if fn not in members:

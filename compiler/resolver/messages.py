@@ -143,7 +143,7 @@ class MessagesMixin(ResolverBase):
                            "dispatch fields, and no message has any",
                            "give the messages `dispatch: true` const fields, or drop text_form")
             for m in messages:
-                for f in m.layout:
+                for f in (f.element for f in m.layout):  # an array's values are its elements
                     if f.bits and f.bits > 32:  # the C text-form reader holds 32-bit values
                         self.error(("messages", m.name), f"message {m.name!r}: field {f.name!r} has "
                                    f"{f.bits} bits; a text form carries values of at most 32 bits",

@@ -1,7 +1,7 @@
 """Rules: conditions and requirements over a message's fields."""
 from __future__ import annotations
 
-from ..model import Condition, Field, Rule, field_at
+from ..model import Condition, Field, Rule, array_on, field_at
 from .text import text
 from .base import ResolverBase
 
@@ -11,7 +11,11 @@ class RulesMixin(ResolverBase):
         out = []
         for key, value in raw.items():
             field = self.find_path(layout, key)
-            if field is None:
+            if field is None and array_on(layout, key) is not None:
+                self.error(path + (key,), f"rule names {key!r}, which is or is inside the array "
+                                          f"{array_on(layout, key).name!r}",
+                           "rules compare single values; an array's elements have no rules yet")
+            elif field is None:
                 self.error(path + (key,), f"rule names unknown field {key!r}",
                            "use a member field; dotted paths reach into groups")
             elif not field.is_member and field.kind != "group":
@@ -34,7 +38,10 @@ class RulesMixin(ResolverBase):
                 out.append(Condition(key, "eq", value))
         return tuple(out)
 
-    find_path = staticmethod(field_at)
+    @staticmethod
+    def find_path(fields: tuple[Field, ...], dotted: str):
+        """The single-valued field a dotted path names; None for an unknown one or an array's."""
+        return None if array_on(fields, dotted) is not None else field_at(fields, dotted)
 
     def resolve_rule(self, r: dict, path: tuple, layout: tuple[Field, ...]) -> Rule:
         return Rule(r.get("id"), self.conditions(r.get("when", {}), path + ("when",), layout),

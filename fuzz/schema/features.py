@@ -18,6 +18,7 @@ FULL = frozenset({
     "extension", "truncate",                # bytes: extension fields at a message's end; trailing zeros not sent
     "little", "field_order",                # byte orders: the framing's, and per field
     "bitfields",                            # fields narrower than a byte, packed
+    "arrays",                               # fields of a fixed count: scalars, groups (bytes), bit fields
     "lsb_first",                            # bytes framing: bit fields least significant bit first
     "signed", "scale", "offset", "range",   # integer options
     "enum", "flags", "bool", "bytes_field", "f32", "f64",

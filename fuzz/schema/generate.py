@@ -28,6 +28,7 @@ class Generator:
         self.flags: dict = {}
         self.directions = False  # messages have directions (an envelope byte depends on them)
         self.used: set[str] = set()
+        self.depth = 0  # arrays of groups being generated, one inside another
 
     def has(self, feature: str, chance: float = 0.5) -> bool:
         return feature in self.on and self.rng.random() < chance
@@ -169,8 +170,12 @@ class Generator:
                 body["id"] = free.pop(rng.randrange(len(free)))
 
     def binary_fields(self, at_least: int = 0) -> list[dict]:
+        return self.sized_fields(at_least)[0]
+
+    def sized_fields(self, at_least: int = 0) -> tuple[list[dict], int]:
         """Fields of whole bytes start on a byte; narrower ones do not cross one, but
-        least significant bit first little-endian integers of any width may."""
+        least significant bit first little-endian integers of any width may; and their
+        bits, a whole number of bytes."""
         rng = self.rng
         fields, bits = [], 0
         for _ in range(rng.randint(at_least, 5)):
@@ -184,7 +189,8 @@ class Generator:
             bits += width
         if bits % 8:
             fields.append(self.padding(8 - bits % 8))
-        return fields
+            bits += 8 - bits % 8
+        return fields, bits
 
     def extension_fields(self) -> list[dict]:
         """Fields a later version of the message added at its end, of whole bytes."""
@@ -194,7 +200,26 @@ class Generator:
     def padding(self, width: int) -> dict:
         return {"name": self.name(), "type": f"u{width}", "reserved": True}
 
+    def array(self, element: dict, width: int, room: int = 1 << 16) -> tuple[dict, int]:
+        """The field as an array of a few elements (as many as fit `room` bits), each
+        where the one before it ends."""
+        count = min(self.rng.choice([1, 2, 3, 4, 16]), max(1, room // width))
+        return {**element, "count": count}, count * width
+
     def binary_field(self) -> tuple[dict, int]:
+        rng = self.rng
+        if self.depth < 2 and self.has("arrays", 0.1):  # an array of a scalar or of a group of whole bytes
+            self.depth += 1
+            if rng.random() < 0.3:
+                fields, width = self.sized_fields(at_least=1)
+                element = {"name": self.name(), "type": "group", "fields": fields}
+            else:
+                element, width = self.binary_scalar()
+            self.depth -= 1
+            return self.array(element, width)
+        return self.binary_scalar()
+
+    def binary_scalar(self) -> tuple[dict, int]:
         rng = self.rng
         name = self.name()
         choice = rng.random()
@@ -293,6 +318,8 @@ class Generator:
                 room -= int(fields[-1]["type"][1:])
             while room > 0 and rng.random() < 0.85:
                 field, width = self.bit_field(min(room, 32))
+                if width < room and self.has("arrays", 0.15):  # consecutive values of one field
+                    field, width = self.array(field, width, room)
                 fields.append(field)
                 room -= width
             while exact and room:  # in pieces of at most 32 bits, as a text form needs

@@ -1035,7 +1035,7 @@ def _field_kinds(cls):
 
 
 def _from_dict(cls, values, message, prefix):
-    import dataclasses
+    import typing
     if not isinstance(values, dict):
         raise _dec(message, prefix[:-1] or None, values, 'type', 'a mapping of field names to values')
     kinds = _FIELD_KINDS.get(cls)
@@ -1052,31 +1052,44 @@ def _from_dict(cls, values, message, prefix):
                 raise _dec(message, prefix + field_name, None, 'type', 'a value (the field is missing)')
             continue
         value = values[field_name]
-        try:
-            if value is None:
-                pass
-            elif dataclasses.is_dataclass(kind):
-                value = _from_dict(kind, value, message, prefix + field_name + ".")
-            elif isinstance(kind, type) and issubclass(kind, enum.Flag):
-                if isinstance(value, list):
-                    flags = kind(0)
-                    for name in value:
-                        flags |= kind[name]
-                    value = flags
-                elif isinstance(value, int) and value.__class__ is not bool:
-                    value = kind(value)
-                else:
-                    raise TypeError(value)
-            elif isinstance(kind, type) and issubclass(kind, enum.Enum):
-                if isinstance(value, str) and value in kind.__members__:
-                    value = kind[value]
-                elif value.__class__ is not bool:
-                    value = kind(value)
-                else:
-                    raise TypeError(value)
-            elif kind is bytes and isinstance(value, str):
-                value = bytes.fromhex(value)
-        except (KeyError, ValueError, TypeError):
-            raise _dec(message, prefix + field_name, value, 'type', 'a value of ' + getattr(kind, '__name__', str(kind))) from None
+        if typing.get_origin(kind) is list:  # an array: each element as a field of the element's type
+            if not isinstance(value, list):
+                raise _dec(message, prefix + field_name, value, 'type', 'a list')
+            kind, = typing.get_args(kind)
+            value = [_plain_value(kind, x, message, f"{prefix}{field_name}[{i}]") for i, x in enumerate(value)]
+        else:
+            value = _plain_value(kind, value, message, prefix + field_name)
         kwargs[field_name] = value
     return cls(**kwargs)
+
+
+def _plain_value(kind, value, message, where):
+    """One value from plain data: a nested dict, an enum name, a flag name list, hex bytes."""
+    import dataclasses
+    try:
+        if value is None:
+            pass
+        elif dataclasses.is_dataclass(kind):
+            value = _from_dict(kind, value, message, where + ".")
+        elif isinstance(kind, type) and issubclass(kind, enum.Flag):
+            if isinstance(value, list):
+                flags = kind(0)
+                for name in value:
+                    flags |= kind[name]
+                value = flags
+            elif isinstance(value, int) and value.__class__ is not bool:
+                value = kind(value)
+            else:
+                raise TypeError(value)
+        elif isinstance(kind, type) and issubclass(kind, enum.Enum):
+            if isinstance(value, str) and value in kind.__members__:
+                value = kind[value]
+            elif value.__class__ is not bool:
+                value = kind(value)
+            else:
+                raise TypeError(value)
+        elif kind is bytes and isinstance(value, str):
+            value = bytes.fromhex(value)
+    except (KeyError, ValueError, TypeError):
+        raise _dec(message, where, value, 'type', 'a value of ' + getattr(kind, '__name__', str(kind))) from None
+    return value

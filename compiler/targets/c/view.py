@@ -18,7 +18,7 @@ from typing import Any, Optional
 
 from ... import binary64
 from ...crc import reflect
-from ...model import Checksum, CrcParams, Field, Leaf, Message, Protocol, field_at
+from ...model import Checksum, CrcParams, Field, Leaf, Message, Protocol, dotted, field_at
 from ..code import Code
 from ..escape import c_char as cchar, c_comment as comment, c_string as cstr
 from . import pack as cpack
@@ -90,12 +90,13 @@ class CView:
         return "_".join([self.PX] + [p.upper() for p in parts])
 
     def member(self, leaf: Leaf, obj: str = "m") -> str:
-        return f"{obj}->" + ".".join(leaf.path)
+        return f"{obj}->" + leaf.dotted
 
     def has(self, leaf: Leaf, obj: str = "m") -> str:
         path = list(leaf.path)
-        path[-1] = "has_" + path[-1]
-        return f"{obj}->" + ".".join(path)
+        name = max(i for i, p in enumerate(path) if isinstance(p, str))  # an array's flags are an array too
+        path[name] = "has_" + path[name]
+        return f"{obj}->" + dotted(tuple(path))
 
     def enum_const(self, enum_name: str, member: str) -> str:
         return self.upper(enum_name, member)
@@ -147,16 +148,17 @@ class CView:
             if not f.is_member:
                 continue
             note = self.field_note(f)
+            count = f"[{f.count}]" if f.count is not None else ""  # an array of the element
             if f.kind == "group":
                 out.append(f"{pad}struct {{" + (f"  /* {note} */" if note else ""))
                 out.extend(self.struct_lines(f.fields, depth + 1))
-                out.append(f"{pad}}} {f.name};")
+                out.append(f"{pad}}} {f.name}{count};")
                 continue
-            r = self.rep(f)
+            r = self.rep(f.element)
             if r.has_flag:
-                out.append(f"{pad}bool has_{f.name};  /* {'0 = absent' if f.optional else '0 = no bit set'} */")
+                out.append(f"{pad}bool has_{f.name}{count};  /* {'0 = absent' if f.optional else '0 = no bit set'} */")
             arr = f"[{r.array}]" if r.array else ""
-            out.append(f"{pad}{r.ctype} {f.name}{arr};" + (f"  /* {note} */" if note else ""))
+            out.append(f"{pad}{r.ctype} {f.name}{count}{arr};" + (f"  /* {note} */" if note else ""))
         return out
 
     def field_note(self, f: Field) -> str:
@@ -846,8 +848,8 @@ class CView:
         out = []
         for leaf in m.wire.leaves:
             f = leaf.field
-            if f.scale is None or not f.is_member:
-                continue
+            if f.scale is None or not f.is_member or any(isinstance(p, int) for p in leaf.path):
+                continue  # an array's elements are set as its element type, without helpers
             lo, hi = f.range if f.range is not None else (
                 f.raw_range[0] * f.scale + (f.offset or 0), f.raw_range[1] * f.scale + (f.offset or 0))
             out.append({"name": "_".join(leaf.path), "path": leaf.dotted, "ctype": self.rep(f).ctype,

@@ -41,9 +41,10 @@ def _wire_digits(bits: int) -> int:
 def longest_text_line(p: Protocol, m: Message) -> Optional[int]:
     """Characters of the longest line a message can take, with its line end; None if unbounded."""
     fr = p.framing
+    if fr.text_form is not None:  # bits protocol written as decimal wire values, each array element one
+        values = m.wire.leaves
+        return sum(_wire_digits(x.bits) for x in values) + len(values) - 1 + 1
     leaves = [s for s in slots(m) if s.field.kind != "group"]
-    if fr.text_form is not None:  # bits protocol written as decimal wire values
-        return sum(_wire_digits(s.field.bits) for s in leaves) + len(leaves) - 1 + 1
     total = len(fr.start) + len(str(m.ids[0])) + len(fr.prefix_separator) + len(fr.terminator)
     if fr.line_checksum:
         total += len(fr.line_checksum.suffix) + 2

@@ -157,8 +157,8 @@ def worked_example(p: Protocol, codec: types.ModuleType, m: Message, cs: Checksu
             terms = [(f"B{start + i}", byte) for i, byte in enumerate(frame[start:end])]
             sent = _sent_value(p, frame, slot)
         else:  # over the wire values of every other field
-            terms = [(s.path, _bits_of(frame, s.offset, s.field.bits, p.framing.wire_order)) for s in slots(m)
-                     if s.path != slot.path and s.field.kind != "group" and s.field.bits is not None]
+            terms = [(x.dotted, _bits_of(frame, x.pos, x.bits, p.framing.wire_order)) for x in m.wire.leaves
+                     if x.dotted != slot.path and x.field.bits is not None]  # each array element its own
         if cs.algorithm == "sum":
             total = sum(v for _, v in terms)
             result = total % cs.modulo if cs.modulo else total & ((1 << field.bits) - 1)

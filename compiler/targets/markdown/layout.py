@@ -20,28 +20,38 @@ class Slot:
     index: int  # 1-based position among the top-level fields (text framings: field number)
     depth: int
 
+    @property
+    def span_name(self) -> str:
+        """The name the layout diagram gives it: an array as its elements, `ch[0..15]`."""
+        if self.field.count is None:
+            return self.path
+        return self.path[:self.path.rindex("[")] + f"[0..{self.field.count - 1}]"
+
 
 def slots(m: Message) -> list[Slot]:
     """Every field of the frame in wire order, groups followed by their members;
     a group sits where its first member does."""
     out: list[Slot] = []
-    first_bit: dict[tuple[str, ...], Optional[int]] = {}
+    first_bit: dict[tuple, Optional[int]] = {}
     for leaf in m.wire.leaves:
         for n in range(1, len(leaf.path) + 1):
             first_bit.setdefault(leaf.path[:n], leaf.pos)
 
-    def walk(fields: tuple[Field, ...], prefix: tuple[str, ...], depth: int) -> None:
+    def walk(fields: tuple[Field, ...], prefix: tuple, shown: str, depth: int) -> None:
+        """prefix: the path of the first element of each array on the way, as the leaves spell it."""
         for f in fields:
             if f.is_payload:
                 continue
             path = prefix + (f.name,)
+            name = f"{shown}.{f.name}" if shown else f.name
             offset = f.bit_offset if f.bit_offset is not None or m.bits is None else first_bit.get(path)
             index = len([s for s in out if s.depth == 0]) + 1 if depth == 0 else 0
-            out.append(Slot(".".join(path), f, offset, index, depth))
-            if f.kind == "group":
-                walk(f.fields, path, depth + 1)
+            out.append(Slot(name + (f"[{f.count}]" if f.count is not None else ""), f, offset, index, depth))
+            if f.kind == "group":  # an array's members shown once, at its first element
+                walk(f.fields, path + ((0,) if f.count is not None else ()),
+                     name + ("[i]" if f.count is not None else ""), depth + 1)
 
-    walk(m.layout, (), 0)
+    walk(m.layout, (), "", 0)
     return out
 
 
@@ -73,6 +83,8 @@ def position(p: Protocol, slot: Slot) -> str:
 
 
 def type_text(p: Protocol, f: Field) -> str:
+    if f.count is not None:
+        return f"{f.count} × {type_text(p, f.element)}"
     kind = f.kind
     if kind == "group":
         text = "group"
@@ -106,7 +118,9 @@ def type_text(p: Protocol, f: Field) -> str:
 
 
 def range_text(p: Protocol, f: Field) -> str:
-    """The allowed values in the units the user sees, and how they map to the wire."""
+    """The allowed values in the units the user sees, and how they map to the wire
+    (an array's: those of each element)."""
+    f = f.element
     if f.const is not None:
         value = f"{f.const:#04x}" if isinstance(f.const, int) and not isinstance(f.const, bool) and f.bits and f.bits >= 8 else number(f.const)
         return f"= {value}"
@@ -189,7 +203,7 @@ def diagram(p: Protocol, m: Message) -> Optional[dict]:
     top = [s for s in slots(m) if s.depth == 0]
     if p.framing.kind == "text":
         return None
-    cols = [{"name": s.path, "bits": s.field.bits, "offset": bit_span(s.offset, s.field.bits),
+    cols = [{"name": s.span_name, "bits": s.field.bits, "offset": bit_span(s.offset, s.field.bits),
              "position": position(p, s)} for s in top]
     return {"columns": cols, "word": bool(p.framing.word_bits), "bytes": p.framing.kind == "bytes"}
 

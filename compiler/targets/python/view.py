@@ -9,7 +9,8 @@ from dataclasses import dataclass
 from typing import Any, Optional
 
 from ...crc import reflect
-from ...model import Field, Leaf, Message, Protocol, Rule, Run, Sequence, SequenceItem, field_at
+from ...model import (Field, Leaf, Message, Protocol, Rule, Run, Sequence, SequenceItem, array_on, dotted,
+                      field_at, path_name)
 from ...names import camel
 from ..code import Code
 from ..wire import checksum_name as _checksum_name, dispatch_facts, encoding_facts, stream_facts, text_line_facts
@@ -26,6 +27,11 @@ def lit(value: Any) -> str:
 # what a text float may be, on both sides of a link (cw_decimal_t in C)
 TEXT_FLOAT = "at most 15 significant digits, and zero or a magnitude of at least 1e-307"
 
+def access(obj: str, step) -> str:
+    """Python for one step down a path: an attribute, or an array's element."""
+    return f"{obj}[{step}]" if isinstance(step, int) else f"{obj}.{step}"
+
+
 class PythonView:
     def __init__(self, protocol: Protocol):
         self.p = protocol
@@ -35,10 +41,9 @@ class PythonView:
     def class_name(self, message: Message) -> str:
         return camel(message.name)
 
-    def group_class(self, message: Message, path: tuple[str, ...]) -> str:
-        if message.layout_type:
-            return camel(message.layout_type) + "".join(camel(p) for p in path)
-        return camel(message.name) + "".join(camel(p) for p in path)
+    def group_class(self, message: Message, path: tuple) -> str:
+        names = "".join(camel(p) for p in path if isinstance(p, str))  # an array's elements share one class
+        return camel(message.layout_type or message.name) + names
 
     @staticmethod
     def enum_class(name: str) -> str:
@@ -46,6 +51,8 @@ class PythonView:
 
     # -- declarations ----------------------------------------------------------------------
     def annotation(self, f: Field, message: Message, path: tuple[str, ...]) -> str:
+        if f.count is not None:
+            return f"list[{self.annotation(f.element, message, path)}]"
         if f.kind == "group":
             return self.group_class(message, path)
         if f.enum:
@@ -64,6 +71,13 @@ class PythonView:
         return base
 
     def default_expr(self, f: Field, message: Message, path: tuple[str, ...]) -> Optional[str]:
+        if f.count is not None:  # a list of the element's default, each element its own object
+            each = self.default_expr(f.element, message, path)
+            if each is None:
+                return None
+            if f.kind == "group":
+                each = f"{self.group_class(message, path)}()"
+            return f"field(default_factory=lambda: [{each} for _ in range({f.count})])"
         if f.kind == "group":
             return f"field(default_factory={self.group_class(message, path)})" \
                 if all(self.default_expr(s, message, path + (s.name,)) is not None
@@ -154,7 +168,7 @@ class PythonView:
         if f.checksum or self.fixed_raw(f) is not None:
             c(f"{var} = {lit(self.fixed_raw(f) or 0)}")
             return
-        c(f"{v} = {source}.{leaf.path[-1]}" if source else f"{v} = m.{leaf.dotted}")
+        c(f"{v} = {access(source, leaf.path[-1])}" if source else f"{v} = m.{leaf.dotted}")
         if f.kind == "bool" and keep_bool:
             c(f"if {v} is not True and {v} is not False:")
             c(f"    if {v} != 0 and {v} != 1:")
@@ -481,11 +495,13 @@ class MessageCode:
         self.view.rule_checks(c, self.m, "m", "_enc")
         groups: set[tuple] = set()
         for leaf in self.leaves:
-            for depth in range(1, len(leaf.path)):  # each group object is read once
+            for depth in range(1, len(leaf.path)):  # each group object and array is read once
                 prefix = leaf.path[:depth]
                 if prefix not in groups:
                     groups.add(prefix)
-                    c(f"{self.group_var(prefix)} = {self.group_var(prefix[:-1])}.{prefix[-1]}")
+                    c(f"{self.group_var(prefix)} = {access(self.group_var(prefix[:-1]), prefix[-1])}")
+                    if isinstance(leaf.path[depth], int):
+                        self.check_list(c, prefix)
             self.view.encode_leaf(c, self.m, leaf, self.group_var(leaf.path[:-1]), keep_bool=word)
         for leaf in self.leaves:
             cs = leaf.field.checksum
@@ -494,7 +510,14 @@ class MessageCode:
 
     @staticmethod
     def group_var(path: tuple) -> str:
-        return "g_" + "_".join(path) if path else "m"
+        return "g_" + path_name(path) if path else "m"
+
+    def check_list(self, c: Code, path: tuple) -> None:
+        """An array member must be a list (or tuple) of exactly its count of elements."""
+        count = array_on(self.m.layout, ".".join(p for p in path if isinstance(p, str))).count
+        v = self.group_var(path)
+        c(f"if not isinstance({v}, (list, tuple)) or len({v}) != {count}:")
+        c(f"    raise _enc({self.m.name!r}, {dotted(path)!r}, {v}, 'count', 'a list of {count} values')")
 
     def raw_function(self) -> str:
         """_raw_<msg>(m): the raw values in wire order; the text form's writer."""
@@ -567,13 +590,21 @@ class MessageCode:
         __init__ costs several times more. Groups are built first, into g_<path>."""
         members = [f for f in fields if f.is_member]
         for f in members:
-            if f.kind == "group":
-                self.construct(c, f.fields, path + (f.name,), values, "g_" + "_".join(path + (f.name,)))
+            for at in self.places(f, path):
+                if f.kind == "group":
+                    self.construct(c, f.fields, at, values, self.group_var(at))
         name = self.view.group_class(self.m, path) if path else self.cls
         c(f"{var} = _object_new({name})")
         for f in members:
-            value = "g_" + "_".join(path + (f.name,)) if f.kind == "group" else values[path + (f.name,)]
-            c(f"{var}.{f.name} = {value}")
+            each = [self.group_var(at) if f.kind == "group" else values[at] for at in self.places(f, path)]
+            c(f"{var}.{f.name} = {each[0] if f.count is None else '[' + ', '.join(each) + ']'}")
+
+    @staticmethod
+    def places(f: Field, path: tuple) -> list[tuple]:
+        """The path of the field, or of each element of an array."""
+        if f.count is None:
+            return [path + (f.name,)]
+        return [path + (f.name, i) for i in range(f.count)]
 
     # -- bytes -----------------------------------------------------------------------------
     def chunks(self) -> list[Chunk]:
