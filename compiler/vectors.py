@@ -102,7 +102,7 @@ class Generator:
         self.messages = {m.name: m for m in p.messages}
         self.members: dict[str, list[Field]] = {}  # per message: the fields values() fills
         self.alphabets: dict[tuple[bool, bool], str] = {}
-        self.choices: dict[int, list] = {}  # per enum field (by id: the model outlives this)
+        self.choices: dict[tuple, list] = {}  # per enum and allowed values
 
     # -- random values from the model ----------------------------------------------------
     def value(self, f: Field, edge: str = "") -> Any:
@@ -117,10 +117,11 @@ class Generator:
         if f.kind == "bool":
             return rng.random() < 0.5 if not edge else edge == "max"
         if f.enum is not None:
-            members = self.choices.get(id(f))
+            key = (f.enum.name, f.values)  # not id(f): an array's element is a new Field each time
+            members = self.choices.get(key)
             if members is None:
-                members = self.choices[id(f)] = [m for m in f.enum.members
-                                                 if not f.values or m.value in f.values or m.name in f.values]
+                members = self.choices[key] = [m for m in f.enum.members
+                                               if not f.values or m.value in f.values or m.name in f.values]
             return rng.choice(members).name
         if f.flags is not None:
             bits = [b.name for b in f.flags.members]
