@@ -124,7 +124,7 @@ class FramingMixin(ResolverBase):
                                f"message {name!r}: field {f.name!r} is marked `dispatch: true`, but in "
                                "bytes framing a message is identified by its `id`, the value of the "
                                "layout's dispatch field", "give the message an `id` and drop `dispatch`")
-            if ids and not any(f.dispatch for f in framing.envelope):
+            if ids and not any(f.dispatch and not f.by_direction for f in framing.envelope):
                 self.error(path + ("id",), f"message {name!r} has an `id`, but no field of the framing's "
                                            "layout is marked `dispatch: true` to hold it",
                            "mark the layout's id field `dispatch: true`, or drop the id")
