@@ -295,3 +295,55 @@ def test_conformance_vectors_on_the_host_and_on_atmega32_under_simavr(tmp_path, 
     record, its text form): C agrees with Python on the host and on an 8-bit AVR."""
     host, avr = conformance_on_host_and_avr(tmp_path, name, schema)
     assert host > 100 and avr > 100
+
+
+NESTED = """codeword: 1
+protocol: nested
+title: t
+source: s
+framing:
+  kind: bytes
+  layout:
+    - {name: sync, type: u8, const: 0x55}
+    - {payload: true}
+types:
+  pair: {type: group, fields: [{name: x, type: u4}, {name: y, type: u4}]}
+messages:
+  m:
+    fields:
+      - name: outer
+        type: group
+        count: 2
+        fields:
+          - {name: a, type: u8}
+          - {name: inner, type: pair, count: 3}
+"""
+# by hand: outer[0] = a 01, pairs 12 34 56; outer[1] = a 02, pairs 78 9a bc
+NESTED_FRAME = "55 01 12 34 56 02 78 9a bc"
+
+
+def test_an_array_inside_an_array_has_its_own_count(tmp_path):
+    """Python checked the inner array against the outer one's count (3 pairs refused as not 2)."""
+    render(tmp_path, "nested", NESTED)
+    mod = load(tmp_path / "nested.py")
+    frame = bytes.fromhex(NESTED_FRAME)
+    m = mod.decode(frame)
+    assert [(o.a, [(p.x, p.y) for p in o.inner]) for o in m.outer] == \
+        [(1, [(1, 2), (3, 4), (5, 6)]), (2, [(7, 8), (9, 10), (11, 12)])]
+    assert mod.encode(m) == frame
+    driver = r"""
+#include <stdio.h>
+#include "nested.h"
+int main(void) {
+    static const uint8_t frame[] = {0x55, 0x01, 0x12, 0x34, 0x56, 0x02, 0x78, 0x9a, 0xbc};
+    nested_m_t m;
+    uint8_t out[9];
+    int i, n, rc = nested_m_decode(frame, sizeof frame, &m);
+    n = nested_m_encode(&m, out, sizeof out);
+    printf("%d %d %u %u", rc, n, (unsigned)m.outer[1].a, (unsigned)m.outer[1].inner[2].y);
+    for (i = 0; i < n; i++) printf(" %02x", out[i]);
+    printf("\n");
+    return 0;
+}
+"""
+    assert run_c(tmp_path, driver) == ["0 9 2 12 " + NESTED_FRAME]

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 from typing import Any, Optional
 
 from ...crc import reflect
-from ...model import (Field, Leaf, Message, Protocol, Rule, Run, Sequence, SequenceItem, array_on, dotted,
+from ...model import (Field, Leaf, Message, Protocol, Rule, Run, Sequence, SequenceItem, dotted,
                       field_at, path_name)
 from ...names import camel
 from ..code import Code
@@ -514,7 +514,7 @@ class MessageCode:
 
     def check_list(self, c: Code, path: tuple) -> None:
         """An array member must be a list (or tuple) of exactly its count of elements."""
-        count = array_on(self.m.layout, ".".join(p for p in path if isinstance(p, str))).count
+        count = field_at(self.m.layout, ".".join(p for p in path if isinstance(p, str))).count
         v = self.group_var(path)
         c(f"if not isinstance({v}, (list, tuple)) or len({v}) != {count}:")
         c(f"    raise _enc({self.m.name!r}, {dotted(path)!r}, {v}, 'count', 'a list of {count} values')")
