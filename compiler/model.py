@@ -204,6 +204,9 @@ class Field:
     from_envelope: bool = False
     extension: bool = False  # added in a later version: a frame may end before it (it then reads as 0)
     count: Optional[int] = None  # an array of this many elements; `bits` is then the whole array's
+    counted_by: Optional[str] = None  # an earlier field gives how many elements (count is then the most)
+    counts_bytes: bool = False  # counted_by's value counts bytes, not elements
+    counts: Optional[str] = None  # the array this field gives the count of: the encoder sets it
 
     @property
     def fixed_spelling(self) -> bool:
@@ -216,13 +219,14 @@ class Field:
         """One element of an array field (the field itself when it is not one)."""
         if self.count is None:
             return self
-        return replace(self, count=None, bits=None if self.bits is None else self.bits // self.count)
+        return replace(self, count=None, counted_by=None, counts_bytes=False,
+                       bits=None if self.bits is None else self.bits // self.count)
 
     @property
     def is_member(self) -> bool:
         """Whether the field is an attribute of the decoded object."""
         return not (self.is_payload or self.reserved or self.checksum or self.length_of
-                    or self.const is not None)
+                    or self.const is not None or self.counts)
 
     @property
     def signed(self) -> bool:
@@ -375,6 +379,29 @@ class Wire:
 
 
 @dataclass(frozen=True)
+class Counter:
+    """The array (or bytes field) that ends a payload and whose length an earlier field
+    gives: a frame sends `count × unit` of its bytes, the rest of its `most` elements
+    are left off."""
+
+    field: str  # the counted array or bytes field
+    count_field: str  # the earlier field whose value gives its length
+    element_bytes: int  # bytes of one element (1 for a bytes field)
+    most: int  # the most elements it holds
+    counts_bytes: bool = False  # the count field's value is bytes, not elements
+
+    @property
+    def unit(self) -> int:
+        """Bytes one unit of the count field's value stands for."""
+        return 1 if self.counts_bytes else self.element_bytes
+
+    @property
+    def most_value(self) -> int:
+        """The largest value the count field may hold."""
+        return self.most * self.element_bytes // self.unit
+
+
+@dataclass(frozen=True)
 class Shortening:
     """A frame whose payload may end early: its extension fields left off, or (with
     `truncate: trailing_zeros`) its trailing zero bytes dropped by the sender. The
@@ -383,8 +410,9 @@ class Shortening:
 
     payload: tuple[int, int]  # byte span [start, end) of the whole payload in the full frame
     least: int  # the fewest payload bytes a frame may carry
-    length_field: str  # the envelope field that counts the payload bytes sent
+    length_field: Optional[str]  # the envelope field that counts the payload bytes sent, if any
     trailing_zeros: bool = False  # the encoder drops the payload's trailing zero bytes
+    counter: Optional[Counter] = None  # the payload ends with an array whose count a field gives
 
     @property
     def most_cut(self) -> int:
@@ -425,8 +453,9 @@ class Message:
 
     @property
     def sizes(self) -> range:
-        """Every frame size a decoder accepts."""
-        return range(self.min_size, self.size + 1)
+        """Every frame size a decoder accepts (a counted array's frames step by its elements)."""
+        counter = self.shortening.counter if self.shortening else None
+        return range(self.min_size, self.size + 1, counter.element_bytes if counter else 1)
 
     @property
     def members(self) -> tuple[Field, ...]:

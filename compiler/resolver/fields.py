@@ -84,6 +84,9 @@ class FieldsMixin(ResolverBase):
                 length = 1
             else:
                 length_param, length = length, int(param.default)
+        counted_by = None
+        if isinstance(length, dict):  # bytes whose length an earlier field gives: max_length at most
+            counted_by, length = self.counted_length(name, path)
         if kind == "bytes":
             if length is None:
                 self.error(path, f"bytes field {name!r} needs a fixed `length`",
@@ -97,7 +100,7 @@ class FieldsMixin(ResolverBase):
             key = "length" if length else "max_length"
             self.error(path + (key,), f"field {name!r}: {key} {length or f.get('max_length')} is outside "
                                       f"1..{MAX_BYTES_LENGTH}")
-        elif length is not None and kind != "str":
+        elif length is not None and kind != "str" and counted_by is None:
             self.error(path + ("length",), f"field {name!r}: `length` applies to bytes and str fields")
         field = Field(
             name=name, kind=kind, loc=loc, bits=bits, doc=text(f.get("doc")),
@@ -118,18 +121,56 @@ class FieldsMixin(ResolverBase):
             checksum=self.resolve_checksum(f["checksum"], path + ("checksum",), bits)
             if "checksum" in f else None,
             fields=sub_fields, message=text(f.get("message")), rule=f.get("rule"),
-            extension=bool(f.get("extension")))
+            extension=bool(f.get("extension")), counted_by=counted_by)
         if field.by_direction:
             self.check_by_direction(field, path, allow_payload)
         self.check_field(field, path)
-        if "count" in f:
+        if isinstance(f.get("count"), dict):
+            field = self.counted_array(field, f, path, allow_payload)
+        elif "count" in f:
             field = self.array_of(field, f["count"], path, allow_payload)
+        if "max_count" in f and not isinstance(f.get("count"), dict):
+            self.error(path + ("max_count",), f"field {name!r}: max_count is for an array whose count "
+                                              "another field gives", "drop it, or write `count: {from: <field>}`")
         return field
 
-    def array_of(self, element: Field, count: int, path: tuple, in_envelope: bool) -> Field:
+    def counted_length(self, name: str, path: tuple) -> tuple:
+        """`length: {from: n}` on a bytes or str field: not yet (a counted u8 array serves)."""
+        self.error(path + ("length",), f"field {name!r}: a length another field gives is not supported "
+                                       "yet for bytes or str", "use a u8 array counted by the field: "
+                                                               "count: {from: <field>}, max_count: <bytes>")
+        return None, 1
+
+    def counted_array(self, element: Field, f: dict, path: tuple, in_envelope: bool) -> Field:
+        """`count: {from: n, unit: elements|bytes}` with `max_count`: an array of at most
+        max_count elements whose count an earlier field gives (checked by the message)."""
+        name, cpath = element.name, path + ("count",)
+        if "max_count" not in f:
+            self.error(cpath, f"field {name!r}: an array whose count another field gives needs "
+                              "`max_count`, the most elements a frame carries", "add max_count: <elements>")
+            return element
+        if self.framing_kind != "bytes":
+            self.error(cpath, f"field {name!r}: a count another field gives is for bytes framing",
+                       "give a fixed `count`")
+            return element
+        checked = [key for key, on in (("group", element.kind == "group"), ("enum", element.enum),
+                                       ("flags", element.flags), ("range", element.range),
+                                       ("values", element.values), ("one_hot", element.one_hot),
+                                       ("bytes", element.kind == "bytes")) if on]
+        if checked:
+            self.error(cpath, f"field {name!r}: an array whose count another field gives holds plain "
+                              f"numbers, not `{checked[0]}` elements", "use a fixed `count`, or plain "
+                                                                         "integer or float elements")
+            return element
+        array = self.array_of(element, f["max_count"], path, in_envelope, "max_count")
+        if array.count is None:
+            return element
+        return replace(array, counted_by=f["count"]["from"], counts_bytes=f["count"].get("unit") == "bytes")
+
+    def array_of(self, element: Field, count: int, path: tuple, in_envelope: bool, key: str = "count") -> Field:
         """The field as an array of `count` elements, each checked as the field alone was;
         `bits` becomes the whole array's, as a group's is the sum of its members'."""
-        name, cpath = element.name, path + ("count",)
+        name, cpath = element.name, path + (key,)
         if not 1 <= count <= MAX_ARRAY_COUNT:
             self.error(cpath, f"field {name!r}: count {count} is outside 1..{MAX_ARRAY_COUNT}",
                        "an array holds at least one element")

@@ -39,6 +39,7 @@ class MessagesMixin(ResolverBase):
                                        "with several dispatch fields")
             ids = None
         ids = () if ids is None else tuple(ids) if isinstance(ids, list) else ids if isinstance(ids, dict) else (ids,)
+        own = self.bind_count(name, own, path)
         layout, dispatch_key = self.place(name, own, ids, framing, path, m.get("direction"))
         if len(dispatch_key) > 1 and framing.kind == "bytes":  # the key the dispatch fields' values make together
             values = dict((k, v[0]) for k, v in dispatch_key if len(v) == 1 and isinstance(v[0], int))
@@ -202,10 +203,11 @@ class MessagesMixin(ResolverBase):
         if any(f.length_of for m in messages for f in m.layout) or len({m.size for m in messages}) < 2:
             return
         size_of: dict = {}
-        for m in messages:
+        for m in messages:  # a counted array's size is read from its count, by direction and id
+            counted = bool(m.shortening and m.shortening.counter)
             for value in m.ids or (None,):
-                first = size_of.setdefault(value, m)
-                if first.size != m.size:
+                first = size_of.setdefault((m.direction, value) if counted else value, m)
+                if first.sizes != m.sizes:
                     self.error(("messages", m.name), f"message {m.name!r} is {m.size} bytes but {first.name!r}, "
                                f"with the same id, is {first.size}; with no length field a stream decoder "
                                "finds a frame's size from its id",

@@ -50,7 +50,9 @@ def dispatch_facts(p: Protocol) -> dict:
             keys.append((value, m.size, m.direction, m.name))
     # a message whose frames may be cut short takes every size from its shortest up
     least = {m.name: m.min_size for m in p.messages if m.shortening}
-    return dict(read, kind="bytes", first_bit=8 * read["first"], frames=keys, least=least)
+    # a counted array's frames grow an element at a time
+    steps = {m.name: m.sizes.step for m in p.messages if m.sizes.step > 1}
+    return dict(read, kind="bytes", first_bit=8 * read["first"], frames=keys, least=least, steps=steps)
 
 
 def covering_read(fr: Framing, pos: int, bits: int, own_order: str | None) -> dict:
@@ -91,15 +93,34 @@ def stream_facts(p: Protocol) -> dict:
     by_key = None
     if length is None and len(sizes) > 1:  # no length field: the dispatch value gives the size
         dispatch = dispatch_facts(p)
-        size_of = {value: size for value, size, _, _ in dispatch["frames"]}
+        counted = counted_sizes(p)
+        size_of = {value: size for value, size, _, name in dispatch["frames"] if name not in counted}
         by_key = {"at": dispatch["first"], "last": dispatch["last"], "bytes": dispatch["bytes"], "shift": dispatch["shift"],
                   "mask": dispatch["mask"], "byte_order": dispatch["byte_order"],
-                  "sizes": sorted(size_of.items())}
+                  "sizes": sorted(size_of.items()), "counted": []}
+        if counted:  # the count field gives these frames' sizes, looked up by direction and id
+            by_key["counted"] = [dict(counted[name], value=value, direction=direction, any=value not in size_of)
+                                 for value, _, direction, name in dispatch["frames"] if name in counted]
     # A sync of several bytes: the decoder finds the first, then checks the rest
     # before it reads a frame there; a mismatch drops the byte as garbage.
     return {"sync": sync, "sync_rest": list(enumerate(pattern))[1:],
             "sync_bytes": pattern, "length": length, "by_key": by_key, "sizes": sizes, "max": max(sizes),
             "min": min(sizes), "ranges": size_ranges(p)}
+
+
+def counted_sizes(p: Protocol) -> dict[str, dict]:
+    """With no length field, how a stream decoder finds the size of a message with a counted
+    array: the frame is `least` bytes plus the count field's value times `unit`."""
+    out = {}
+    for m in p.messages:
+        counter = m.shortening.counter if m.shortening else None
+        if counter is None:
+            continue
+        leaf = next(x for x in m.wire.leaves if x.field.counts)
+        out[m.name] = {"least": m.min_size, "at": leaf.pos // 8, "bytes": leaf.bits // 8, "unit": counter.unit,
+                       "byte_order": leaf.field.byte_order or p.framing.byte_order,
+                       "most": counter.most_value, "end": leaf.pos // 8 + leaf.bits // 8}
+    return out
 
 
 def size_ranges(p: Protocol) -> list[tuple[int, int]]:

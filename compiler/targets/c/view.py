@@ -159,6 +159,9 @@ class CView:
                 out.append(f"{pad}bool has_{f.name}{count};  /* {'0 = absent' if f.optional else '0 = no bit set'} */")
             arr = f"[{r.array}]" if r.array else ""
             out.append(f"{pad}{r.ctype} {f.name}{count}{arr};" + (f"  /* {note} */" if note else ""))
+            if f.counted_by:
+                out.append(f"{pad}{unsigned_type(f.count.bit_length())} {f.name}_count;  "
+                           f"/* elements in use, 0..{f.count} */")
         return out
 
     def field_note(self, f: Field) -> str:
@@ -433,7 +436,7 @@ class CView:
         if f.length_of:
             self.fail_if(c, f"{raw} != {clit(int(f.const), True)}", "length")
             return
-        if f.checksum:
+        if f.checksum or f.counts:  # a count is checked against the frame's size by decode
             return
         if f.const is not None and not f.values:
             value = self.enum_wire(f, f.const)
@@ -634,8 +637,23 @@ class CView:
         if not raws:
             c("(void)r;")
         self.rule_checks(c, m, "m")
+        counter = m.shortening.counter if m.shortening else None
+        if counter:
+            self.fail_if(c, f"m->{counter.field}_count > {counter.most}u", "range")
         for leaf in wired:
-            if leaf.var in raws:
+            if leaf.var not in raws:
+                continue
+            if leaf.field.counts:  # set from the array's count
+                c(f"{raws[leaf.var]} = ({rt})(m->{counter.field}_count * {counter.element_bytes // counter.unit}u);")
+            elif counter and leaf.path[0] == counter.field:  # elements past the count are not sent
+                c(f"if (m->{counter.field}_count > {leaf.path[1]}u) {{")
+                c.indent()
+                self.encode_leaf(c, leaf, raws[leaf.var], rt)
+                c.dedent()
+                c("} else {")
+                c(f"    {raws[leaf.var]} = 0u;")
+                c("}")
+            else:
                 self.encode_leaf(c, leaf, raws[leaf.var], rt)
         for leaf in wired:
             cs = leaf.field.checksum
@@ -682,8 +700,11 @@ class CView:
         c("if (rc != CW_OK) {")
         c("    return rc;")
         c("}")
-        truncates = bool(m.shortening and m.shortening.trailing_zeros)
-        if truncates:
+        counter = m.shortening.counter if m.shortening else None
+        truncates = bool(m.shortening and m.shortening.trailing_zeros) or bool(counter)
+        if counter:  # the elements past the count are not sent
+            c(f"size_t cut = (size_t)({counter.most}u - m->{counter.field}_count) * {counter.element_bytes}u;")
+        elif truncates:
             c("size_t cut = 0u;")
         c(f"if (cap < {m.size}u) {{")
         c("    return CW_ERR_CAPACITY;")
@@ -704,7 +725,9 @@ class CView:
                     if piece.var in raws:
                         value = raws[piece.var] if piece.bits > 32 or rt != "uint64_t" else f"(uint32_t){raws[piece.var]}"
                         c(f"{bits_fn('put', piece.bits, span.order)}(buf, {piece.pos}u, {piece.bits}u, {value});")
-        if truncates:
+        if counter and m.shortening.length_field:
+            self.set_length(c, m)
+        elif truncates and not counter:
             self.truncate(c, m)
         for span, piece in self.byte_sums(layout):
             call = self.byte_checksum_call(piece, m, truncates)
@@ -730,7 +753,11 @@ class CView:
         c(f"while (cut < {hi - lo}u && buf[{hi - 1}u - cut] == 0u) {{  /* trailing zeros are not sent */")
         c("    cut++;")
         c("}")
-        leaf = next(x for x in m.wire.leaves if x.field.name == sh.length_field)
+        self.set_length(c, m)
+
+    def set_length(self, c: Code, m: Message) -> None:
+        """The length field counts the payload bytes sent."""
+        leaf = next(x for x in m.wire.leaves if x.field.name == m.shortening.length_field)
         c(self.int_put(leaf.pos // 8, leaf.bits // 8, self.order_of(leaf.field), f"{clit(int(leaf.field.const), True)} - cut"))
 
     def restore(self, c: Code, m: Message) -> None:
@@ -741,10 +768,25 @@ class CView:
         c("    return CW_ERR_LENGTH;")
         c("}")
         c(f"cut = {size}u - len;")
+        if m.shortening.counter:
+            self.check_count(c, m)
         c(f"memcpy(full, buf, {end}u - cut);")
         c(f"memset(full + ({end}u - cut), 0, cut);")
         c(f"memcpy(full + {end}, buf + ({end}u - cut), {size - end}u);")
         c("buf = full;")
+
+    def check_count(self, c: Code, m: Message) -> None:
+        """The count field's value: within the array's most, and the frame as long as it says."""
+        counter = m.shortening.counter
+        leaf = next(x for x in m.wire.leaves if x.field.counts)
+        n = self.int_get(leaf.pos // 8, leaf.bits // 8, self.order_of(leaf.field))
+        c(f"n = (size_t){n};")
+        self.fail_if(c, f"n > {counter.most_value}u", "range")
+        if counter.unit != counter.element_bytes:
+            self.fail_if(c, f"n % {counter.element_bytes}u != 0u", "length")
+        most = counter.most * counter.element_bytes
+        self.fail_if(c, f"cut != {most}u - n * {counter.unit}u", "length")
+        c(f"m->{counter.field}_count = ({unsigned_type(counter.most.bit_length())})(n / {counter.element_bytes // counter.unit}u);")
 
     def decode_function(self, m: Message) -> str:
         word = cword.container(self, m)
@@ -764,6 +806,8 @@ class CView:
         if m.shortening:
             c(f"uint8_t full[{m.size}];")
             c("size_t cut;")
+            if m.shortening.counter:
+                c("size_t n;")
             self.restore(c, m)
         else:
             c(f"if (len != {m.size}u) {{")
@@ -791,7 +835,7 @@ class CView:
             else:
                 for piece in pieces:
                     c(f"{raws[piece.var]} = ({rt}){bits_fn('get', piece.bits, span.order)}(buf, {piece.pos}u, {piece.bits}u);")
-        if m.shortening:
+        if m.shortening and m.shortening.length_field:
             counter = next(x for x in m.wire.leaves if x.field.name == m.shortening.length_field)
             c(f"{raws[counter.var]} = ({rt})({raws[counter.var]} + cut);  /* as if the whole payload were sent */")
         for span, piece in self.byte_sums(layout):

@@ -25,7 +25,15 @@ class Slot:
         """The name the layout diagram gives it: an array as its elements, `ch[0..15]`."""
         if self.field.count is None:
             return self.path
-        return self.path[:self.path.rindex("[")] + f"[0..{self.field.count - 1}]"
+        last = self.field.count if self.field.counted_by else self.field.count - 1
+        return self.path[:self.path.rindex("[")] + f"[0..{last}]"
+
+
+def array_suffix(f: Field) -> str:
+    """`[16]` after an array of 16, `[0..125]` after one whose count another field gives."""
+    if f.count is None:
+        return ""
+    return f"[0..{f.count}]" if f.counted_by else f"[{f.count}]"
 
 
 def slots(m: Message) -> list[Slot]:
@@ -46,7 +54,7 @@ def slots(m: Message) -> list[Slot]:
             name = f"{shown}.{f.name}" if shown else f.name
             offset = f.bit_offset if f.bit_offset is not None or m.bits is None else first_bit.get(path)
             index = len([s for s in out if s.depth == 0]) + 1 if depth == 0 else 0
-            out.append(Slot(name + (f"[{f.count}]" if f.count is not None else ""), f, offset, index, depth))
+            out.append(Slot(name + array_suffix(f), f, offset, index, depth))
             if f.kind == "group":  # an array's members shown once, at its first element
                 walk(f.fields, path + ((0,) if f.count is not None else ()),
                      name + ("[i]" if f.count is not None else ""), depth + 1)
@@ -83,6 +91,8 @@ def position(p: Protocol, slot: Slot) -> str:
 
 
 def type_text(p: Protocol, f: Field) -> str:
+    if f.counted_by:
+        return f"0…{f.count} × {type_text(p, f.element)}"
     if f.count is not None:
         return f"{f.count} × {type_text(p, f.element)}"
     kind = f.kind
@@ -252,6 +262,13 @@ def payload_note(p: Protocol, m: Message) -> str:
     """Positions depend on a link parameter when a field's length is one (data of a per-link length),
     and on the payload's length when a frame may carry less than the whole payload."""
     sh = m.shortening
+    if sh is not None and sh.counter is not None:
+        ct = sh.counter
+        says = "bytes" if ct.counts_bytes else "elements"
+        length = f" `{sh.length_field}` counts the payload bytes sent;" if sh.length_field else ""
+        return (f"Positions are those of the largest frame. `{ct.field}` holds as many elements as "
+                f"`{ct.count_field}` says (it counts {says}, at most {ct.most_value}); a frame carries only "
+                f"those,{length} and what follows moves up by the bytes left off.")
     if sh is not None:
         start, end = sh.payload
         why = "its trailing zero bytes are not sent" if sh.trailing_zeros else "its extension fields may be left off"

@@ -288,6 +288,8 @@ class PythonView:
             c(f"if {var}:")
             c(f"    raise _dec({at}, 'reserved', '0', {off}, {f.rule!r})")
             return None
+        if f.counts:
+            return None  # checked against the frame's size before the fields are read
         if f.length_of:
             if message.shortening:  # it counts the payload bytes sent
                 c(f"if {var} != {f.const} - cut:")
@@ -494,6 +496,7 @@ class MessageCode:
         word: the caller packs one integer and computes parity bits from it."""
         self.view.rule_checks(c, self.m, "m", "_enc")
         groups: set[tuple] = set()
+        counter = self.m.shortening.counter if self.m.shortening else None
         for leaf in self.leaves:
             for depth in range(1, len(leaf.path)):  # each group object and array is read once
                 prefix = leaf.path[:depth]
@@ -502,7 +505,20 @@ class MessageCode:
                     c(f"{self.group_var(prefix)} = {access(self.group_var(prefix[:-1]), prefix[-1])}")
                     if isinstance(leaf.path[depth], int):
                         self.check_list(c, prefix)
-            self.view.encode_leaf(c, self.m, leaf, self.group_var(leaf.path[:-1]), keep_bool=word)
+            if leaf.field.counts:
+                continue  # set from the list's length below
+            if counter and leaf.path[0] == counter.field:  # elements past the list's end are not sent
+                c(f"if len({self.group_var(leaf.path[:-1])}) > {leaf.path[1]}:")
+                c.indent()
+                self.view.encode_leaf(c, self.m, leaf, self.group_var(leaf.path[:-1]), keep_bool=word)
+                c.dedent()
+                c("else:")
+                c(f"    {leaf.var} = 0")
+            else:
+                self.view.encode_leaf(c, self.m, leaf, self.group_var(leaf.path[:-1]), keep_bool=word)
+        if counter:
+            leaf = next(x for x in self.leaves if x.field.counts)
+            c(f"{leaf.var} = len({self.group_var((counter.field,))}) * {counter.element_bytes // counter.unit}")
         for leaf in self.leaves:
             cs = leaf.field.checksum
             if cs and cs.over != "bytes" and not (word and cs.algorithm == "parity"):
@@ -514,8 +530,13 @@ class MessageCode:
 
     def check_list(self, c: Code, path: tuple) -> None:
         """An array member must be a list (or tuple) of exactly its count of elements."""
-        count = field_at(self.m.layout, ".".join(p for p in path if isinstance(p, str))).count
+        array = field_at(self.m.layout, ".".join(p for p in path if isinstance(p, str)))
+        count = array.count
         v = self.group_var(path)
+        if array.counted_by:
+            c(f"if not isinstance({v}, (list, tuple)) or len({v}) > {count}:")
+            c(f"    raise _enc({self.m.name!r}, {dotted(path)!r}, {v}, 'count', 'a list of at most {count} values')")
+            return
         c(f"if not isinstance({v}, (list, tuple)) or len({v}) != {count}:")
         c(f"    raise _enc({self.m.name!r}, {dotted(path)!r}, {v}, 'count', 'a list of {count} values')")
 
@@ -597,7 +618,8 @@ class MessageCode:
         c(f"{var} = _object_new({name})")
         for f in members:
             each = [self.group_var(at) if f.kind == "group" else values[at] for at in self.places(f, path)]
-            c(f"{var}.{f.name} = {each[0] if f.count is None else '[' + ', '.join(each) + ']'}")
+            sent = f"[:n_{f.name}]" if f.counted_by else ""
+            c(f"{var}.{f.name} = {each[0] if f.count is None else '[' + ', '.join(each) + ']' + sent}")
 
     @staticmethod
     def places(f: Field, path: tuple) -> list[tuple]:
@@ -650,7 +672,8 @@ class MessageCode:
         segments = segments_of(self.chunks())
         crcs = [(leaf, leaf.field.checksum) for leaf in self.leaves
                 if leaf.field.checksum and leaf.field.checksum.over == "bytes"]
-        truncates = bool(self.m.shortening and self.m.shortening.trailing_zeros)
+        counter = self.m.shortening.counter if self.m.shortening else None
+        truncates = bool(self.m.shortening and self.m.shortening.trailing_zeros) or bool(counter)
         single = len(segments) == 1 and not crcs and not truncates
         if not single:
             c(f"b = bytearray({size})")
@@ -660,7 +683,9 @@ class MessageCode:
                 c(f"return _S_{self.fn}_{n}.pack({values})")
             else:
                 c(f"_S_{self.fn}_{n}.pack_into(b, {seg.start}, {values})")
-        if truncates:
+        if counter:
+            self.cut_unsent(c)
+        elif truncates:
             self.truncate(c)
         for leaf, cs in crcs:
             start, end = cs.byte_span
@@ -680,16 +705,29 @@ class MessageCode:
             c("return bytes(b)")
         return c.text()
 
+    def cut_unsent(self, c: Code) -> None:
+        """A counted array's elements past the list's end are not sent; a length field
+        counts the payload bytes that are."""
+        sh = self.m.shortening
+        counter = sh.counter
+        c(f"cut = {counter.most * counter.element_bytes} - len(m.{counter.field}) * {counter.element_bytes}")
+        if sh.length_field:
+            self.set_length(c, sh.length_field)
+
+    def set_length(self, c: Code, name: str) -> None:
+        """The length field counts the payload bytes sent."""
+        leaf = next(x for x in self.leaves if x.field.name == name)
+        at, n = leaf.pos // 8, leaf.bits // 8
+        order = leaf.field.byte_order or self.view.p.framing.byte_order
+        c(f"b[{at}:{at + n}] = ({leaf.field.const} - cut).to_bytes({n}, {order!r})")
+
     def truncate(self, c: Code) -> None:
         """Count the payload's trailing zero bytes the frame leaves off (keeping the
         fewest it must carry), and set the length field to the bytes sent."""
         sh = self.m.shortening
         lo, hi = sh.payload[0] + sh.least, sh.payload[1]
         c(f"cut = {hi - lo} - len(b[{lo}:{hi}].rstrip(b'\\0'))  # trailing zeros are not sent")
-        leaf = next(x for x in self.leaves if x.field.name == sh.length_field)
-        at, n = leaf.pos // 8, leaf.bits // 8
-        order = leaf.field.byte_order or self.view.p.framing.byte_order
-        c(f"b[{at}:{at + n}] = ({leaf.field.const} - cut).to_bytes({n}, {order!r})")
+        self.set_length(c, sh.length_field)
 
     def packed(self, leaves: list[tuple[Leaf, int]]) -> str:
         """Expression OR-ing (leaf, shift) pairs; fixed values are folded into one constant."""
@@ -733,6 +771,8 @@ class MessageCode:
             c(f"if not {least} <= len(d) <= {size}:")
             c(f"    raise _dec({self.m.name!r}, None, len(d), 'length', '{least}..{size} bytes', 0)")
             c(f"cut = {size} - len(d)")
+            if sh.counter:
+                self.check_count(c)
             c("if cut:  # the payload bytes left off read as zeros")
             c(f"    d = b''.join((d[:{sh.payload[1]} - cut], bytes(cut), d[{sh.payload[1]} - cut:]))")
         else:
@@ -752,6 +792,24 @@ class MessageCode:
         self.build_checks(c, bounded=True, text_form=False, word=self.one_word())
         c("return o")
         return c.text()
+
+    def check_count(self, c: Code) -> None:
+        """The count field's value: within the array's most, and the frame as long as it says."""
+        counter = self.m.shortening.counter
+        leaf = next(x for x in self.leaves if x.field.counts)
+        at, n = leaf.pos // 8, leaf.bits // 8
+        order = leaf.field.byte_order or self.view.p.framing.byte_order
+        name, array = self.m.name, next(x for x in self.leaves if x.path[0] == counter.field)
+        c(f"n = int.from_bytes(d[{at}:{at + n}], {order!r})")
+        c(f"if n > {counter.most_value}:")
+        c(f"    raise _dec({name!r}, {leaf.dotted!r}, n, 'range', '0..{counter.most_value}', {leaf.pos})")
+        if counter.unit != counter.element_bytes:
+            c(f"if n % {counter.element_bytes}:")
+            c(f"    raise _dec({name!r}, {leaf.dotted!r}, n, 'length', 'a multiple of {counter.element_bytes}', {leaf.pos})")
+        c(f"n_{counter.field} = n // {counter.element_bytes // counter.unit}")
+        most = counter.most * counter.element_bytes
+        c(f"if cut != {most} - n * {counter.unit}:")
+        c(f"    raise _dec({name!r}, {counter.field!r}, len(d), 'length', f'{{{self.m.size - most} + n * {counter.unit}}} bytes for {{n}} in {leaf.dotted}', {array.pos})")
 
     def read_word(self, c: Code) -> None:
         c(f"w = int.from_bytes(d, {self.m.wire.order!r})")
@@ -1312,7 +1370,7 @@ class ModuleView(PythonView):
         facts = dispatch_facts(self.p)
         if facts["kind"] == "bytes":
             keys = [(value, n, direction, name) for value, size, direction, name in facts["frames"]
-                    for n in range(facts["least"].get(name, size), size + 1)]
+                    for n in range(facts["least"].get(name, size), size + 1, facts["steps"].get(name, 1))]
             facts = dict(facts, value_expr=self.read_expr("d", "", facts), sized_frames=keys)
         if facts["kind"] == "bits" and self.p.framing.max_bits:  # the word form: a left-aligned int
             facts = dict(facts, word_limit=1 << self.p.framing.max_bits,
