@@ -43,7 +43,9 @@ class Driver:
             value = values.get(f.name)
             if f.count is not None:  # an array: one initialiser per element
                 element = f.element
-                parts.append(f".{f.name} = {{{', '.join(self.one(element, x) for x in value)}}}")
+                parts.append(f".{f.name} = {{{', '.join(self.one(element, x) for x in value) or '0'}}}")
+                if f.counted_by:  # elements past the count are 0, as the decoder leaves them
+                    parts.append(f".{f.name}_count = {len(value)}u")
                 if self.v.rep(element).has_flag:
                     parts.append(f".has_{f.name} = {{{', '.join('false' if x is None else 'true' for x in value)}}}")
                 continue
@@ -111,6 +113,8 @@ class Driver:
                 continue
             if f.count is not None:  # an array: each element as a field of its own
                 element = f.element
+                if f.counted_by:
+                    out.append(f"if (a->{prefix}{f.name}_count != b->{prefix}{f.name}_count) return false;")
                 for i in range(f.count):
                     out += self.equal_lines((element,), prefix, f"[{i}]")
                 continue

@@ -31,7 +31,9 @@ class ShorteningMixin(ResolverBase):
                               "length field that counts the payload", "add to the framing's layout a field "
                                                                       "with length_of: {from: payload, to: payload}")
             return None
-        marker = next(f for f in layout if f.is_payload)
+        marker = next((f for f in layout if f.is_payload), None)
+        if marker is None:  # the layout's own error says so
+            return None
         start = own[0].bit_offset if own else marker.bit_offset
         end = marker.bit_offset
         if start % 8 or end % 8 or counter.bit_offset % 8 or counter.bits % 8:
@@ -75,6 +77,17 @@ class ShorteningMixin(ResolverBase):
             return None
         end = (counted.bit_offset + counted.bits) // 8
         length = next((f for f in layout if f.length_of == PAYLOAD), None)
+        fixed = next((f for f in layout if f.length_of and f.length_of != PAYLOAD), None)
+        if fixed is not None:
+            self.error(where, f"message {name!r}: {fixed.name!r} counts {fixed.length_of[0]}..{fixed.length_of[1]}, "
+                              f"a span whose size changes with {counted.name!r}",
+                       "count the payload alone: length_of: {from: payload, to: payload}")
+            return None
+        if length is None and not any(f.dispatch for f in framing.envelope):
+            self.error(where, f"message {name!r}: with neither a length field nor a dispatch field, a stream "
+                              f"decoder cannot tell where a frame with {counted.name!r} ends",
+                       "add a length field that counts the payload, or a dispatch field to the layout")
+            return None
         counter = Counter(counted.name, counted.counted_by, element.bits // 8, counted.count or counted.length,
                           counted.counts_bytes)
         self.check_spans_end_with_payload(name, layout, length, (start // 8, end), path)

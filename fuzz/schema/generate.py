@@ -138,6 +138,9 @@ class Generator:
             body["fields"] = self.binary_fields(at_least=1 if single else 0)  # a frame is never empty
             if shortens and self.has("extension", 0.6):
                 body["fields"] += self.extension_fields()
+            elif not shortens and not single and not any("length_of" in f for f in layout) \
+                    and self.has("counted", 0.25):
+                body["fields"] += self.counted_fields()
             messages[self.name()] = body
         if any(f.get("checksum", {}).get("extra") for f in layout):
             for body in messages.values():
@@ -191,6 +194,19 @@ class Generator:
             fields.append(self.padding(8 - bits % 8))
             bits += 8 - bits % 8
         return fields, bits
+
+    def counted_fields(self) -> list[dict]:
+        """A count and the array it counts, last in the payload (Modbus's byte count and
+        its registers): the count in elements or in bytes, up to a maximum."""
+        rng = self.rng
+        element = rng.choice(["u8", "u16", "i16", "u32"])
+        unit = rng.choice(["elements", "bytes"])
+        max_count = rng.randint(1, 20)
+        most = max_count * (int(element[1:]) // 8 if unit == "bytes" else 1)
+        count = self.name()
+        return [{"name": count, "type": "u8" if most < 256 else "u16"},
+                {"name": self.name(), "type": element, "count": {"from": count, "unit": unit},
+                 "max_count": max_count}]
 
     def extension_fields(self) -> list[dict]:
         """Fields a later version of the message added at its end, of whole bytes."""
