@@ -109,7 +109,10 @@ class Generator:
         rng = self.rng
         if f.count is not None:  # an array: each element at the edge
             element = f.element
-            return [self.value(element, edge) for _ in range(f.count)]
+            n = f.count
+            if f.counted_by:  # a counted array: none at min, one at zero, the most at max
+                n = {"min": 0, "zero": 1, "max": f.count}.get(edge, rng.randint(0, f.count))
+            return [self.value(element, edge) for _ in range(n)]
         if f.kind == "group":
             return {s.name: self.value(s) for s in f.fields if s.is_member}
         if f.optional and rng.random() < 0.3 and not edge:
