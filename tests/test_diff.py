@@ -12,7 +12,7 @@ from pathlib import Path
 from codeword.build import compile_schema
 from codeword.cli import main
 from codeword.diff import BREAKING, COMPATIBLE, DOCS, compare
-from conftest import DATA, SCHEMAS
+from conftest import DATA, ROOT, SCHEMAS
 
 V02 = DATA / "car_v0.2.yaml"
 V03 = SCHEMAS / "car.yaml"
@@ -262,3 +262,14 @@ def test_a_message_without_the_new_keys_keeps_its_fingerprint(tmp_path):
     path.write_text(text.replace("{name: type, type: u8}", "{name: type, type: u8, extension: false}"), encoding="utf-8")
     d = compare(compile_schema(SCHEMAS.parent / "examples" / "mavlink1.yaml"), compile_schema(path))
     assert d.old_fingerprint == d.new_fingerprint and not d.changes
+
+
+def test_a_counted_arrays_maximum_is_part_of_the_wire(tmp_path):
+    """Modbus's read response with room for 100 registers instead of 125: frames of
+    101..125 registers that old peers send are refused by new ones."""
+    modbus = ROOT / "examples" / "modbus_rtu.yaml"
+    old = "{name: registers, type: u16, count: {from: byte_count, unit: bytes}, max_count: 125}"
+    d = diff_of(tmp_path, modbus, old, old.replace("125", "100"))
+    assert d.breaking and d.old_fingerprint != d.new_fingerprint
+    assert any("registers" in c.subject and "125" in c.what and "100" in c.what for c in d.of_kind(BREAKING)), \
+        d.changes
