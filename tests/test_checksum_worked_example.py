@@ -12,6 +12,9 @@ from codeword.build import compile_schema, render_with_codec
 ROOT = Path(__file__).resolve().parent.parent
 README = (ROOT / "README.md").read_text(encoding="utf-8")
 DEMO = re.search(r"`schemas/demo.yaml`:\n\n```yaml\n(.*?)```", README, re.S).group(1)
+# its temperature message alone: the tests below change the checksum, and the log
+# message's example frame carries the sum's value
+TEMPERATURE = DEMO[:DEMO.index("  log:")]
 
 
 def docs_of(tmp_path: Path, text: str, name: str) -> str:
@@ -33,14 +36,14 @@ def test_the_readme_demo_sum_over_bytes_is_worked_out(tmp_path):
     ("xor", "2a", "1 ⊕ 43 ⊕ 0 = 42"),  # 0x01 ^ 0x2b ^ 0x00
 ])
 def test_an_xor_over_bytes_is_worked_out(tmp_path, algorithm, checksum, line):
-    text = DEMO.replace("protocol: demo", "protocol: demoxor").replace("algorithm: sum", f"algorithm: {algorithm}")
+    text = TEMPERATURE.replace("protocol: demo", "protocol: demoxor").replace("algorithm: sum", f"algorithm: {algorithm}")
     text = text.replace('hex: "55 01 2b 00 2c"', f'hex: "55 01 2b 00 {checksum}"')
     page = docs_of(tmp_path, text, "demoxor")
     assert line in page and f"(B4): {int(checksum, 16)}" in page
 
 
 def test_a_sixteen_bit_little_endian_sum_is_read_in_its_byte_order(tmp_path):
-    text = DEMO.replace("protocol: demo", "protocol: demo16").replace("{name: sum, type: u8,", "{name: sum, type: u16,")
+    text = TEMPERATURE.replace("protocol: demo", "protocol: demo16").replace("{name: sum, type: u8,", "{name: sum, type: u16,")
     # 01 + 2b + 00 = 0x002c, sent low byte first
     text = text.replace('hex: "55 01 2b 00 2c"', 'hex: "55 01 2b 00 2c 00"')
     page = docs_of(tmp_path, text, "demo16")
@@ -48,7 +51,7 @@ def test_a_sixteen_bit_little_endian_sum_is_read_in_its_byte_order(tmp_path):
 
 
 def test_a_twos_complement_sum_is_worked_out(tmp_path):
-    text = DEMO.replace("protocol: demo", "protocol: demolrc").replace(
+    text = TEMPERATURE.replace("protocol: demo", "protocol: demolrc").replace(
         "algorithm: sum,", "algorithm: sum, complement: twos,")
     # 01 + 2b + 00 = 44; 256 - 44 = 212 = 0xd4
     text = text.replace('hex: "55 01 2b 00 2c"', 'hex: "55 01 2b 00 d4"')
@@ -60,7 +63,7 @@ def test_a_twos_complement_sum_is_worked_out(tmp_path):
 
 
 def test_a_fletcher16_is_worked_out_byte_by_byte(tmp_path):
-    text = DEMO.replace("protocol: demo", "protocol: demofl").replace(
+    text = TEMPERATURE.replace("protocol: demo", "protocol: demofl").replace(
         "{name: sum, type: u8, checksum: {algorithm: sum,", "{name: sum, type: u16, checksum: {algorithm: fletcher,")
     # bytes 01 2b 00 mod 255: A 1, 44, 44; B 1, 45, 89; (89 << 8) | 44 = 0x592c, low byte first
     text = text.replace('hex: "55 01 2b 00 2c"', 'hex: "55 01 2b 00 2c 59"')
