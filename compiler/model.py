@@ -400,6 +400,11 @@ class Counter:
         """The largest value the count field may hold."""
         return self.most * self.element_bytes // self.unit
 
+    @property
+    def step(self) -> int:
+        """The count field's value is a multiple of this (a count of bytes holds whole elements)."""
+        return self.element_bytes // self.unit
+
 
 @dataclass(frozen=True)
 class Shortening:
