@@ -86,8 +86,9 @@ class Generator:
                 shortens = length and ("extension" in self.on or "truncate" in self.on) and rng.random() < 0.8
                 if shortens:
                     key = "payload"
-                if length:
-                    layout.append({"name": "len", "type": "u8", "length_of": {"from": key, "to": "payload"}})
+                if length:  # arrays make payloads of more than 255 bytes
+                    width = "u16" if "arrays" in self.on else "u8"
+                    layout.append({"name": "len", "type": width, "length_of": {"from": key, "to": "payload"}})
                 if two_keys:  # messages told apart by a group and a kind, as UBX's class and id
                     layout.append({"name": "group", "type": rng.choice(["u8", "u4"]), "dispatch": True})
                     layout.append({"name": "kind", "type": "u8" if layout[-1]["type"] == "u8" else "u4",
