@@ -119,7 +119,8 @@ def counted_sizes(p: Protocol) -> dict[str, dict]:
         leaf = next(x for x in m.wire.leaves if x.field.counts)
         out[m.name] = {"least": m.min_size, "at": leaf.pos // 8, "bytes": leaf.bits // 8, "unit": counter.unit,
                        "byte_order": leaf.field.byte_order or p.framing.byte_order,
-                       "most": counter.most_value, "end": leaf.pos // 8 + leaf.bits // 8}
+                       "most": counter.most_value, "end": leaf.pos // 8 + leaf.bits // 8,
+                       "per": counter.element_bytes // counter.unit}  # a count a multiple of per: whole elements
     return out
 
 

@@ -2657,7 +2657,7 @@ static inline int modbus_rtu_parser_step(modbus_rtu_parser_t *p, modbus_rtu_mess
             return 0;
         }
         size = (size_t)cw_get_be(p->buf + 2, 1u);
-        if (size > 250u) {  /* more than the largest frame holds */
+        if (size > 250u || size % 2u != 0u) {  /* more than the largest frame holds, or part of an element */
             p->skipped += 1u;
             modbus_rtu_parser_drop(p, 1u);
             return CW_ERR_LENGTH;
@@ -2670,7 +2670,7 @@ static inline int modbus_rtu_parser_step(modbus_rtu_parser_t *p, modbus_rtu_mess
             return 0;
         }
         size = (size_t)cw_get_be(p->buf + 6, 1u);
-        if (size > 246u) {  /* more than the largest frame holds */
+        if (size > 246u || size % 2u != 0u) {  /* more than the largest frame holds, or part of an element */
             p->skipped += 1u;
             modbus_rtu_parser_drop(p, 1u);
             return CW_ERR_LENGTH;

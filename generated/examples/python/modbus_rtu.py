@@ -2691,8 +2691,8 @@ class StreamDecoder:
 
     _SIZES = frozenset([5, 7, 8, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31, 33, 35, 37, 39, 41, 43, 45, 47, 49, 51, 53, 55, 57, 59, 61, 63, 65, 67, 69, 71, 73, 75, 77, 79, 81, 83, 85, 87, 89, 91, 93, 95, 97, 99, 101, 103, 105, 107, 109, 111, 113, 115, 117, 119, 121, 123, 125, 127, 129, 131, 133, 135, 137, 139, 141, 143, 145, 147, 149, 151, 153, 155, 157, 159, 161, 163, 165, 167, 169, 171, 173, 175, 177, 179, 181, 183, 185, 187, 189, 191, 193, 195, 197, 199, 201, 203, 205, 207, 209, 211, 213, 215, 217, 219, 221, 223, 225, 227, 229, 231, 233, 235, 237, 239, 241, 243, 245, 247, 249, 251, 253, 255])
     _SIZE_OF = {3: 8, 16: 8, 129: 5, 130: 5, 131: 5, 132: 5, 133: 5, 134: 5, 143: 5, 144: 5, }  # id → frame size
-    # (direction, id) → (least size, count field's first byte, its bytes, byte order, bytes per count)
-    _COUNTED = {('to_client', 3): (5, 2, 1, 'big', 1), ('to_server', 16): (9, 6, 1, 'big', 1), }
+    # (direction, id) → (least size, count field's first byte, its bytes, byte order, bytes per count, most count, counts per element)
+    _COUNTED = {('to_client', 3): (5, 2, 1, 'big', 1, 250, 2), ('to_server', 16): (9, 6, 1, 'big', 1, 246, 2), }
 
     def __init__(self, direction=None):
         self.direction = direction
@@ -2716,10 +2716,11 @@ class StreamDecoder:
             size = self._SIZE_OF.get(key)
             counted = self._COUNTED.get((direction, key))
             if counted is not None:  # the count field gives the size
-                least, at, n, order, unit = counted
+                least, at, n, order, unit, most, per = counted
                 if end - pos < at + n:
                     break
-                size = least + int.from_bytes(buf[pos + at:pos + at + n], order) * unit
+                count = int.from_bytes(buf[pos + at:pos + at + n], order)
+                size = least + count * unit  # a count over the most or of part of an element: a length error
             if size is None:  # no length field: an unknown id gives no size to skip
                 if not resyncing:
                     out.append(_dec(None, None, key, 'dispatch', 'a known id', (base + pos + 1) * 8))
@@ -2728,7 +2729,7 @@ class StreamDecoder:
                 skipped += 1
                 pos += 1
                 continue
-            if size not in self._SIZES:
+            if size not in self._SIZES or counted is not None and (count > most or count % per):
                 if not resyncing:
                     out.append(_dec(None, 'length', size, 'length', 'a known frame size', (base + pos) * 8))
                     spans.append((base + pos, 1))
