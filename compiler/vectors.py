@@ -147,6 +147,8 @@ class Generator:
             chars = self.alphabet(f)
             text = "".join(rng.choice(chars) for _ in range(n))
             return text.strip() if self.p.framing.trim else text
+        if f.kind == "bytes" and f.counted_by:  # none at min, one at zero, the most at max
+            return rng.randbytes({"min": 0, "zero": 1, "max": f.length}.get(edge, rng.randint(0, f.length))).hex()
         if f.kind == "bytes":
             return rng.randbytes(f.length).hex()
         raise ValueError(f"no generator for {f.kind}")

@@ -58,6 +58,8 @@ class Driver:
                 if value is None:
                     continue
             parts.append(f".{f.name} = {self.scalar(f, value)}")
+            if f.counted_by:  # counted bytes: the bytes past the count are 0, as the decoder leaves them
+                parts.append(f".{f.name}_count = {len(bytes.fromhex(value))}u")
         return "{" + ", ".join(parts) + "}" if parts else "{0}"
 
     def one(self, f: Field, value: Any) -> str:
@@ -96,7 +98,7 @@ class Driver:
         if f.kind == "str":
             return cstr(value)
         if f.kind == "bytes":
-            return "{" + ", ".join(f"0x{b:02x}" for b in bytes.fromhex(value)) + "}"
+            return "{" + (", ".join(f"0x{b:02x}" for b in bytes.fromhex(value)) or "0") + "}"
         if f.decimals:  # decoded as raw / 10**decimals, correctly rounded: the nearest raw
             return int_literal(round((Fraction(value) - Fraction(f.offset or 0)) * 10 ** f.decimals))
         if f.scale is not None:
@@ -134,6 +136,9 @@ class Driver:
                 cond = f"{to_bits}({a}) != {to_bits}({b})"
             elif f.kind == "str":
                 cond = f"strcmp({a}, {b}) != 0"
+            elif f.kind == "bytes" and f.counted_by:
+                out.append(f"if ({a}_count != {b}_count) return false;")
+                cond = f"memcmp({a}, {b}, {f.length}) != 0"
             elif f.kind == "bytes":
                 cond = f"memcmp({a}, {b}, {f.length}) != 0"
             else:

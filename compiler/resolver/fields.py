@@ -86,14 +86,16 @@ class FieldsMixin(ResolverBase):
                 length_param, length = length, int(param.default)
         counted_by = None
         if isinstance(length, dict):  # bytes whose length an earlier field gives: max_length at most
-            counted_by, length = self.counted_length(name, path)
+            counted_by, length = self.counted_length(name, kind, f, path, allow_payload)
         if kind == "bytes":
             if length is None:
                 self.error(path, f"bytes field {name!r} needs a fixed `length`",
                            "variable-length byte strings are not supported yet")
                 length = 1
             if not 0 < length <= MAX_BYTES_LENGTH:
-                self.error(path + ("length",), f"field {name!r}: length {length} is outside 1..{MAX_BYTES_LENGTH}")
+                key = "max_length" if counted_by else "length"
+                self.error(path + (key,), f"field {name!r}: {key} {length} is outside 1..{MAX_BYTES_LENGTH}",
+                           f"give {key} between 1 and {MAX_BYTES_LENGTH}")
                 length = 1
             bits = 8 * length
         elif kind == "str" and not 0 < (length or f.get("max_length") or 1) <= MAX_BYTES_LENGTH:
@@ -121,7 +123,8 @@ class FieldsMixin(ResolverBase):
             checksum=self.resolve_checksum(f["checksum"], path + ("checksum",), bits)
             if "checksum" in f else None,
             fields=sub_fields, message=text(f.get("message")), rule=f.get("rule"),
-            extension=bool(f.get("extension")), counted_by=counted_by)
+            extension=bool(f.get("extension")), counted_by=counted_by,
+            counts_bytes=counted_by is not None)
         if field.by_direction:
             self.check_by_direction(field, path, allow_payload)
         self.check_field(field, path)
@@ -134,11 +137,27 @@ class FieldsMixin(ResolverBase):
                                               "another field gives", "drop it, or write `count: {from: <field>}`")
         return field
 
-    def counted_length(self, name: str, path: tuple) -> tuple:
-        """`length: {from: n}` on a bytes or str field: not yet (a counted u8 array serves)."""
-        self.error(path + ("length",), f"field {name!r}: a length another field gives is not supported "
-                                       "yet for bytes or str", "use a u8 array counted by the field: "
-                                                               "count: {from: <field>}, max_count: <bytes>")
+    def counted_length(self, name: str, kind: str, f: dict, path: tuple, in_envelope: bool) -> tuple:
+        """`length: {from: n}` with `max_length` on a bytes field: 0..max_length bytes whose
+        length an earlier field gives (checked by the message, as a counted array is)."""
+        lpath = path + ("length",)
+        if kind != "bytes":
+            self.error(lpath, f"field {name!r}: a length another field gives is for bytes fields",
+                       "give a fixed `length`, or `max_length` for text")
+        elif "max_length" not in f:
+            self.error(lpath, f"field {name!r}: bytes whose length another field gives need `max_length`, "
+                              "the most bytes a frame carries", "add max_length: <bytes>")
+        elif self.framing_kind != "bytes":
+            self.error(lpath, f"field {name!r}: a length another field gives is for bytes framing",
+                       "give a fixed `length`")
+        elif "count" in f:
+            self.error(lpath, f"field {name!r}: bytes whose length another field gives cannot be an array",
+                       "drop `count`, or give a fixed `length`")
+        elif in_envelope:
+            self.error(lpath, f"field {name!r}: a length another field gives applies to message fields, "
+                              "not to the framing's layout", "move the field into the messages")
+        else:
+            return f["length"]["from"], f["max_length"]
         return None, 1
 
     def counted_array(self, element: Field, f: dict, path: tuple, in_envelope: bool) -> Field:

@@ -14,6 +14,11 @@ from .base import ResolverBase
 PAYLOAD = ("payload", "payload")
 
 
+def element_bytes(counted: Field) -> int:
+    """Bytes of one element of a counted field: a counted bytes field's elements are bytes."""
+    return 1 if counted.kind == "bytes" else counted.element.bits // 8
+
+
 class ShorteningMixin(ResolverBase):
     def shortening(self, name: str, layout: tuple[Field, ...], framing: Framing, path: tuple) -> Optional[Shortening]:
         """How much of the payload a frame of this message may leave off, or None."""
@@ -88,7 +93,7 @@ class ShorteningMixin(ResolverBase):
                               f"decoder cannot tell where a frame with {counted.name!r} ends",
                        "add a length field that counts the payload, or a dispatch field to the layout")
             return None
-        counter = Counter(counted.name, counted.counted_by, element.bits // 8, counted.count or counted.length,
+        counter = Counter(counted.name, counted.counted_by, element_bytes(counted), counted.count or counted.length,
                           counted.counts_bytes)
         self.check_spans_end_with_payload(name, layout, length, (start // 8, end), path)
         return Shortening((start // 8, end), counted.bit_offset // 8 - start // 8,
@@ -107,7 +112,7 @@ class ShorteningMixin(ResolverBase):
                        "name a u8 or u16 field declared before it")
             return own
         f = own[index]
-        most = (counted.count or counted.length) * (counted.element.bits // 8 if counted.counts_bytes else 1)
+        most = (counted.count or counted.length) * (element_bytes(counted) if counted.counts_bytes else 1)
         problem = ("it is not an unsigned integer" if f.kind != "uint" or f.count is not None else
                    "the codec sets it" if not f.is_member else
                    "it has checks or a scale of its own" if f.enum or f.flags or f.range or f.values or f.scale

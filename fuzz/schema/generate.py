@@ -198,13 +198,18 @@ class Generator:
 
     def counted_fields(self) -> list[dict]:
         """A count and the array it counts, last in the payload (Modbus's byte count and
-        its registers): the count in elements or in bytes, up to a maximum."""
+        its registers): the count in elements or in bytes, up to a maximum; or a bytes
+        field whose length the count gives."""
         rng = self.rng
+        count = self.name()
+        if rng.random() < 0.3:
+            most = rng.choice([rng.randint(1, 20), 300])
+            return [{"name": count, "type": "u8" if most < 256 else "u16"},
+                    {"name": self.name(), "type": "bytes", "length": {"from": count}, "max_length": most}]
         element = rng.choice(["u8", "u16", "i16", "u32"])
         unit = rng.choice(["elements", "bytes"])
         max_count = rng.randint(1, 20)
         most = max_count * (int(element[1:]) // 8 if unit == "bytes" else 1)
-        count = self.name()
         return [{"name": count, "type": "u8" if most < 256 else "u16"},
                 {"name": self.name(), "type": element, "count": {"from": count, "unit": unit},
                  "max_count": max_count}]

@@ -160,8 +160,9 @@ class CView:
             arr = f"[{r.array}]" if r.array else ""
             out.append(f"{pad}{r.ctype} {f.name}{count}{arr};" + (f"  /* {note} */" if note else ""))
             if f.counted_by:
-                out.append(f"{pad}{unsigned_type(f.count.bit_length())} {f.name}_count;  "
-                           f"/* elements in use, 0..{f.count} */")
+                most, what = (f.length, "bytes") if f.kind == "bytes" else (f.count, "elements")
+                out.append(f"{pad}{unsigned_type(most.bit_length())} {f.name}_count;  "
+                           f"/* {what} in use, 0..{most} */")
         return out
 
     def field_note(self, f: Field) -> str:
@@ -645,7 +646,7 @@ class CView:
                 continue
             if leaf.field.counts:  # set from the array's count
                 c(f"{raws[leaf.var]} = ({rt})(m->{counter.field}_count * {counter.element_bytes // counter.unit}u);")
-            elif counter and leaf.path[0] == counter.field:  # elements past the count are not sent
+            elif counter and leaf.path[0] == counter.field and len(leaf.path) > 1:  # elements past the count are not sent
                 c(f"if (m->{counter.field}_count > {leaf.path[1]}u) {{")
                 c.indent()
                 self.encode_leaf(c, leaf, raws[leaf.var], rt)

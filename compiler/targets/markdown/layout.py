@@ -6,7 +6,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Optional
 
-from ...model import Field, Message, Protocol
+from ...model import Field, Message, Protocol, field_at
 from .text import DecisionLinker, anchor, cell, code, en, number, originals
 
 
@@ -91,6 +91,8 @@ def position(p: Protocol, slot: Slot) -> str:
 
 
 def type_text(p: Protocol, f: Field) -> str:
+    if f.counted_by and f.kind == "bytes":
+        return f"0…{f.length} bytes"
     if f.counted_by:
         return f"0…{f.count} × {type_text(p, f.element)}"
     if f.count is not None:
@@ -266,8 +268,9 @@ def payload_note(p: Protocol, m: Message) -> str:
         ct = sh.counter
         says = "bytes" if ct.counts_bytes else "elements"
         length = f" `{sh.length_field}` counts the payload bytes sent;" if sh.length_field else ""
-        return (f"Positions are those of the largest frame. `{ct.field}` holds as many elements as "
-                f"`{ct.count_field}` says (it counts {says}, at most {ct.most_value}); a frame carries only "
+        holds = ("bytes", "") if field_at(m.layout, ct.field).kind == "bytes" else ("elements", f"it counts {says}, ")
+        return (f"Positions are those of the largest frame. `{ct.field}` holds as many {holds[0]} as "
+                f"`{ct.count_field}` says ({holds[1]}at most {ct.most_value}); a frame carries only "
                 f"those,{length} and what follows moves up by the bytes left off.")
     if sh is not None:
         start, end = sh.payload

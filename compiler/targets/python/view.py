@@ -249,6 +249,10 @@ class PythonView:
             if f.bits == 32:
                 c(f"if {v} > 3.4028234663852886e38 or {v} < -3.4028234663852886e38:")
                 c(f"    raise _enc({where}, {v}, 'range', 'a binary32 value')")
+        elif f.kind == "bytes" and f.counted_by:  # the bytes past its length are not sent
+            c(f"if not isinstance({v}, (bytes, bytearray)) or len({v}) > {f.length}:")
+            c(f"    raise _enc({where}, {v}, 'length', 'bytes of length 0..{f.length}')")
+            c(f"{var} = bytes({v}).ljust({f.length}, b'\\0')")
         elif f.kind == "bytes":
             c(f"if not isinstance({v}, (bytes, bytearray)) or len({v}) != %d:" % f.length)
             c(f"    raise _enc({where}, {v}, 'length', 'bytes of length {f.length}')")
@@ -507,7 +511,9 @@ class MessageCode:
                         self.check_list(c, prefix)
             if leaf.field.counts:
                 continue  # set from the list's length below
-            if counter and leaf.path[0] == counter.field:  # elements past the list's end are not sent
+            if counter and leaf.path == (counter.field,):  # counted bytes, padded to the most
+                self.view.encode_leaf(c, self.m, leaf, keep_bool=word)
+            elif counter and leaf.path[0] == counter.field:  # elements past the list's end are not sent
                 c(f"if len({self.group_var(leaf.path[:-1])}) > {leaf.path[1]}:")
                 c.indent()
                 self.view.encode_leaf(c, self.m, leaf, self.group_var(leaf.path[:-1]), keep_bool=word)
@@ -518,7 +524,10 @@ class MessageCode:
                 self.view.encode_leaf(c, self.m, leaf, self.group_var(leaf.path[:-1]), keep_bool=word)
         if counter:
             leaf = next(x for x in self.leaves if x.field.counts)
-            c(f"{leaf.var} = len({self.group_var((counter.field,))}) * {counter.element_bytes // counter.unit}")
+            if field_at(self.m.layout, counter.field).kind == "bytes":
+                c(f"{leaf.var} = len(m.{counter.field})")
+            else:
+                c(f"{leaf.var} = len({self.group_var((counter.field,))}) * {counter.element_bytes // counter.unit}")
         for leaf in self.leaves:
             cs = leaf.field.checksum
             if cs and cs.over != "bytes" and not (word and cs.algorithm == "parity"):
@@ -619,7 +628,7 @@ class MessageCode:
         for f in members:
             each = [self.group_var(at) if f.kind == "group" else values[at] for at in self.places(f, path)]
             sent = f"[:n_{f.name}]" if f.counted_by else ""
-            c(f"{var}.{f.name} = {each[0] if f.count is None else '[' + ', '.join(each) + ']' + sent}")
+            c(f"{var}.{f.name} = {each[0] + sent if f.count is None else '[' + ', '.join(each) + ']' + sent}")
 
     @staticmethod
     def places(f: Field, path: tuple) -> list[tuple]:
