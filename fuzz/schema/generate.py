@@ -97,7 +97,9 @@ class Generator:
                     layout.append({"name": "kind", "type": "u8", "dispatch": True})
             self.directions = self.has("by_direction", 0.25)
             if self.directions:  # a byte that says the direction, as MSP's `<` and `>`
-                layout.insert(rng.randrange(len(layout) + 1) if not sync else len(layout),
+                # next to the other dispatch fields: a key is read from at most 4 bytes
+                first = next(i for i, f in enumerate(layout) if f.get("dispatch"))
+                layout.insert(rng.choice([first, len(layout)]) if not sync else len(layout),
                               {"name": "mark", "type": "u8", "by_direction": {"up": 0x3E, "down": 0x3C}})
         layout.append({"payload": True})
         algorithms = [a for a in ("sum", "xor", "crc", "fletcher") if a in self.on]
