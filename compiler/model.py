@@ -207,6 +207,7 @@ class Field:
     counted_by: Optional[str] = None  # an earlier field gives how many elements (count is then the most)
     counts_bytes: bool = False  # counted_by's value counts bytes, not elements
     counts: Optional[str] = None  # the array this field gives the count of: the encoder sets it
+    present_if: Optional["Presence"] = None  # in the frame only when an earlier field says so
 
     @property
     def fixed_spelling(self) -> bool:
@@ -407,6 +408,48 @@ class Counter:
 
 
 @dataclass(frozen=True)
+class Presence:
+    """When a conditional field is in the frame: the raw value of the earlier field
+    `field`, masked with `mask`, is one of `values`. `has` and `equals` keep what the
+    schema said, for docs and errors."""
+
+    field: str  # the earlier field whose value says
+    has: Optional[str] = None  # a flag of its flag set that must be set
+    equals: tuple = ()  # values (numbers or enum member names), one of which it must hold
+    mask: int = 0  # the bits of its raw value that are tested (all of them for a value)
+    values: tuple[int, ...] = ()  # present when the masked raw value is one of these
+
+    @property
+    def says(self) -> str:
+        """The condition in words: "flags has gps", "kind is 3 or 4"."""
+        if self.has is not None:
+            return f"{self.field} has {self.has}"
+        return f"{self.field} is {' or '.join(str(v) for v in self.equals)}"
+
+
+@dataclass(frozen=True)
+class Gap:
+    """Bytes of the whole frame that a frame carries in part or not at all, as an earlier
+    field says: a counted array's elements past its count, or a conditional field that is
+    absent. A decoder puts the missing bytes back as zeros and reads the whole frame; an
+    encoder writes the whole frame and leaves them out."""
+
+    span: tuple[int, int]  # byte span [start, end) of the field in the whole frame
+    field: str  # the counted or conditional field
+    counter: Optional[Counter] = None  # counted: how the count field gives the bytes sent
+    presence: Optional[Presence] = None  # conditional: when all of it is sent
+
+    @property
+    def control(self) -> str:
+        """The earlier field whose value says how many of the bytes are sent."""
+        return self.counter.count_field if self.counter else self.presence.field
+
+    @property
+    def size(self) -> int:
+        return self.span[1] - self.span[0]
+
+
+@dataclass(frozen=True)
 class Shortening:
     """A frame whose payload may end early: its extension fields left off, or (with
     `truncate: trailing_zeros`) its trailing zero bytes dropped by the sender. The
@@ -417,7 +460,13 @@ class Shortening:
     least: int  # the fewest payload bytes a frame may carry
     length_field: Optional[str]  # the envelope field that counts the payload bytes sent, if any
     trailing_zeros: bool = False  # the encoder drops the payload's trailing zero bytes
-    counter: Optional[Counter] = None  # the payload ends with an array whose count a field gives
+    gaps: tuple[Gap, ...] = ()  # counted and conditional fields, in wire order
+
+    @property
+    def counter(self) -> Optional[Counter]:
+        """The counted array when it is the frame's only gap: a frame's size then follows
+        from its count field alone, which a stream decoder without a length field reads."""
+        return self.gaps[0].counter if len(self.gaps) == 1 else None
 
     @property
     def most_cut(self) -> int:
@@ -458,7 +507,8 @@ class Message:
 
     @property
     def sizes(self) -> range:
-        """Every frame size a decoder accepts (a counted array's frames step by its elements)."""
+        """Every frame size a decoder accepts (a counted array's frames step by its elements;
+        with several gaps, a superset: the decoder checks the size against what it reads)."""
         counter = self.shortening.counter if self.shortening else None
         return range(self.min_size, self.size + 1, counter.element_bytes if counter else 1)
 

@@ -240,7 +240,34 @@ class Generator:
         out = {}
         for f in members:
             out[f.name] = self.value(f, edge if (not focus or focus == f.name) else "")
+        for f in members:
+            if f.present_if:
+                self.choose_presence(m, f, out)
         return out
+
+    def choose_presence(self, m: Message, f: Field, out: dict) -> None:
+        """Make a conditional field present or absent at random, by setting its control field;
+        a field its control leaves out holds None."""
+        cond = f.present_if
+        control = next(x for x in m.layout if x.name == cond.field)
+        if self.rng.random() < 0.5:  # present: the control takes a value that says so
+            if cond.has is not None:
+                out[control.name] = sorted(set(out[control.name]) | {cond.has})
+            else:
+                out[control.name] = self.rng.choice(cond.equals)
+        elif cond.has is not None:
+            out[control.name] = [x for x in out[control.name] if x != cond.has]
+        if (self.raw_of(control, out[control.name]) & cond.mask) not in cond.values:
+            out[f.name] = None
+
+    @staticmethod
+    def raw_of(f: Field, value: Any) -> int:
+        """The raw integer of a control field's value: an enum member's, the bits of flags."""
+        if f.flags is not None:
+            return sum(b.mask for b in f.flags.members if b.name in value)
+        if f.enum is not None:
+            return next(e.value for e in f.enum.members if value in (e.name, e.value))
+        return int(value)
 
     # -- vectors --------------------------------------------------------------------------------
     def encode(self, m: Message, values: dict):

@@ -41,9 +41,12 @@ class Driver:
             if not f.is_member:
                 continue
             value = values.get(f.name)
+            if f.present_if and value is None:  # absent: zeros, as the decoder leaves it
+                continue
             if f.count is not None:  # an array: one initialiser per element
                 element = f.element
-                parts.append(f".{f.name} = {{{', '.join(self.one(element, x) for x in value) or '0'}}}")
+                empty = "{0}" if element.kind == "group" else "0"
+                parts.append(f".{f.name} = {{{', '.join(self.one(element, x) for x in value) or empty}}}")
                 if f.counted_by:  # elements past the count are 0, as the decoder leaves them
                     parts.append(f".{f.name}_count = {len(value)}u")
                 if self.v.rep(element).has_flag:

@@ -3,9 +3,9 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
-from typing import Any
+from typing import Any, Optional
 
-from ..model import Field
+from ..model import Field, Presence
 from .text import text
 from .base import MAX_ARRAY_COUNT, MAX_BYTES_LENGTH, MAX_SCALED_BITS, ResolverBase
 
@@ -124,7 +124,7 @@ class FieldsMixin(ResolverBase):
             if "checksum" in f else None,
             fields=sub_fields, message=text(f.get("message")), rule=f.get("rule"),
             extension=bool(f.get("extension")), counted_by=counted_by,
-            counts_bytes=counted_by is not None)
+            counts_bytes=counted_by is not None, present_if=self.condition_of(f, path, allow_payload))
         if field.by_direction:
             self.check_by_direction(field, path, allow_payload)
         self.check_field(field, path)
@@ -136,6 +136,21 @@ class FieldsMixin(ResolverBase):
             self.error(path + ("max_count",), f"field {name!r}: max_count is for an array whose count "
                                               "another field gives", "drop it, or write `count: {from: <field>}`")
         return field
+
+    def condition_of(self, f: dict, path: tuple, in_envelope: bool) -> Optional[Presence]:
+        """`present_if: {field, has | equals}`: the field is sent only when an earlier field
+        says so (bound to that field, and checked, by the message)."""
+        spec = f.get("present_if")
+        if spec is None:
+            return None
+        where = path + ("present_if",)
+        if self.framing_kind != "bytes" or in_envelope:
+            self.error(where, f"field {f['name']!r}: present_if applies to message fields of bytes framing",
+                       "drop present_if")
+            return None
+        equals = spec.get("equals", ())
+        return Presence(spec["field"], has=spec.get("has"),
+                         equals=tuple(equals) if isinstance(equals, list) else (equals,) if "equals" in spec else ())
 
     def counted_length(self, name: str, kind: str, f: dict, path: tuple, in_envelope: bool) -> tuple:
         """`length: {from: n}` with `max_length` on a bytes field: 0..max_length bytes whose
@@ -172,14 +187,9 @@ class FieldsMixin(ResolverBase):
             self.error(cpath, f"field {name!r}: a count another field gives is for bytes framing",
                        "give a fixed `count`")
             return element
-        checked = [key for key, on in (("group", element.kind == "group"), ("enum", element.enum),
-                                       ("flags", element.flags), ("range", element.range),
-                                       ("values", element.values), ("one_hot", element.one_hot),
-                                       ("bytes", element.kind == "bytes")) if on]
-        if checked:
-            self.error(cpath, f"field {name!r}: an array whose count another field gives holds plain "
-                              f"numbers, not `{checked[0]}` elements", "use a fixed `count`, or plain "
-                                                                         "integer or float elements")
+        if element.kind == "bytes":
+            self.error(cpath, f"field {name!r}: an array whose count another field gives holds numbers "
+                              "or groups, not bytes", "use bytes with `length: {from: <field>}`, or a fixed `count`")
             return element
         array = self.array_of(element, f["max_count"], path, in_envelope, "max_count")
         if array.count is None:

@@ -8,7 +8,7 @@ from typing import Optional
 
 from dataclasses import replace
 
-from ..model import Counter, Field, Framing, Shortening
+from ..model import Counter, Field, Framing, Gap, Shortening
 from .base import ResolverBase
 
 PAYLOAD = ("payload", "payload")
@@ -23,9 +23,9 @@ class ShorteningMixin(ResolverBase):
     def shortening(self, name: str, layout: tuple[Field, ...], framing: Framing, path: tuple) -> Optional[Shortening]:
         """How much of the payload a frame of this message may leave off, or None."""
         own = tuple(f for f in layout if not f.from_envelope and not f.is_payload)  # placed
-        counted = next((f for f in own if f.counted_by), None)
-        if counted is not None:
-            return self.counted_shortening(name, layout, own, counted, framing, path)
+        gapped = [f for f in own if f.counted_by or f.present_if]
+        if gapped:
+            return self.gapped_shortening(name, layout, own, gapped, framing, path)
         first_extension = self.check_extensions_last(name, own, path)
         if first_extension is None and not framing.truncate:
             return None
@@ -61,59 +61,126 @@ class ShorteningMixin(ResolverBase):
         self.check_spans_end_with_payload(name, layout, counter, (start, end), path)
         return Shortening((start, end), least, counter.name, framing.truncate == "trailing_zeros")
 
-    def counted_shortening(self, name: str, layout: tuple[Field, ...], own: tuple[Field, ...], counted: Field,
-                           framing: Framing, path: tuple) -> Optional[Shortening]:
-        """A payload that ends with an array (or bytes) whose length an earlier field gives:
-        frames carry from none of its elements to all of them."""
-        where = path + ("fields", own.index(counted))
-        if counted is not own[-1]:
-            self.error(where, f"message {name!r}: {counted.name!r}, whose length {counted.counted_by!r} "
-                              "gives, must be the last field of the message", f"move {counted.name!r} to the end")
-            return None
+    def gapped_shortening(self, name: str, layout: tuple[Field, ...], own: tuple[Field, ...],
+                          gapped: list[Field], framing: Framing, path: tuple) -> Optional[Shortening]:
+        """A payload with counted arrays (or bytes) and conditional fields: frames carry from
+        none to all of each one's bytes, as an earlier field says."""
+        gaps = []
+        for f in gapped:
+            gap = self.gap_of(name, f, framing, path + ("fields", own.index(f)))
+            if gap is None:
+                return None
+            gaps.append(gap)
+        where = path + ("fields", own.index(gapped[0]))
         if framing.truncate or any(f.extension for f in own):
-            self.error(where, f"message {name!r}: a counted field and a frame cut short in another way "
-                              "(truncate, extension fields) do not combine", "drop one of them")
+            self.error(where, f"message {name!r}: a counted or conditional field and a frame cut short in "
+                              "another way (truncate, extension fields) do not combine", "drop one of them")
             return None
-        element = counted.element
-        start = own[0].bit_offset
-        if start % 8 or counted.bit_offset % 8 or (element.bits or 0) % 8:
-            self.error(where, f"message {name!r}: {counted.name!r} must start on a byte boundary and "
-                              "its elements be whole bytes", "add reserved bits before it")
+        marker = next((f for f in layout if f.is_payload), None)
+        if marker is None:  # the layout's own error says so
             return None
-        end = (counted.bit_offset + counted.bits) // 8
+        start, end = own[0].bit_offset // 8, marker.bit_offset // 8
         length = next((f for f in layout if f.length_of == PAYLOAD), None)
         fixed = next((f for f in layout if f.length_of and f.length_of != PAYLOAD), None)
         if fixed is not None:
             self.error(where, f"message {name!r}: {fixed.name!r} counts {fixed.length_of[0]}..{fixed.length_of[1]}, "
-                              f"a span whose size changes with {counted.name!r}",
+                              f"a span whose size changes with {gapped[0].name!r}",
                        "count the payload alone: length_of: {from: payload, to: payload}")
+            return None
+        if length is None and not framing.encoding and (len(gaps) > 1 or gaps[0].presence):
+            self.error(where, f"message {name!r}: without a length field or a byte stuffing that ends frames, "
+                              f"a stream decoder cannot tell where a frame with {gapped[-1].name!r} ends",
+                       "add a length field that counts the payload")
             return None
         if length is None and not any(f.dispatch for f in framing.envelope):
             self.error(where, f"message {name!r}: with neither a length field nor a dispatch field, a stream "
-                              f"decoder cannot tell where a frame with {counted.name!r} ends",
+                              f"decoder cannot tell where a frame with {gapped[0].name!r} ends",
                        "add a length field that counts the payload, or a dispatch field to the layout")
             return None
-        counter = Counter(counted.name, counted.counted_by, element_bytes(counted), counted.count or counted.length,
-                          counted.counts_bytes)
-        self.check_spans_end_with_payload(name, layout, length, (start // 8, end), path)
-        return Shortening((start // 8, end), counted.bit_offset // 8 - start // 8,
-                          None if length is None else length.name, counter=counter)
+        self.check_nothing_moves(name, layout, gaps[0], (start, end), path)
+        self.check_spans_end_with_payload(name, layout, length, (start, end), path, gaps[0].span[0])
+        least = end - start - sum(g.size for g in gaps)
+        return Shortening((start, end), least, None if length is None else length.name, gaps=tuple(gaps))
 
-    def bind_count(self, name: str, own: tuple[Field, ...], path: tuple) -> tuple[Field, ...]:
+    def gap_of(self, name: str, f: Field, framing: Framing, where: tuple) -> Optional[Gap]:
+        """The bytes of counted or conditional field `f`, which must be whole bytes."""
+        element = f.element if f.counted_by else f
+        if f.counted_by and f.present_if or f.present_if and (not f.is_member or f.extension):
+            self.error(where, f"message {name!r}: {f.name!r} is conditional and "
+                              f"{'counted' if f.counted_by else 'not a value the sender gives'}",
+                       "make it one or the other")
+            return None
+        if f.bit_offset % 8 or (element.bits or 0) % 8:
+            self.error(where, f"message {name!r}: {f.name!r} must start on a byte boundary and be whole bytes"
+                              f"{' each element' if f.counted_by else ''}: a frame may leave it out",
+                       "add reserved bits before it, or widen it")
+            return None
+        span = (f.bit_offset // 8, (f.bit_offset + f.bits) // 8)
+        if f.counted_by:
+            counter = Counter(f.name, f.counted_by, element_bytes(f), f.count or f.length, f.counts_bytes)
+            return Gap(span, f.name, counter=counter)
+        return Gap(span, f.name, presence=f.present_if)
+
+    def check_nothing_moves(self, name: str, layout: tuple[Field, ...], first: Gap, payload: tuple[int, int],
+                            path: tuple) -> None:
+        """A length or checksum field sits before the first gap or after the payload: the
+        bytes between move with what a frame leaves out."""
+        for f in layout:
+            if (f.length_of or f.checksum) and first.span[0] * 8 <= f.bit_offset < payload[1] * 8:
+                self.error(path, f"message {name!r}: {f.name!r} follows {first.field!r}, which a frame may "
+                                 "leave out, inside the payload", f"move {f.name!r} before {first.field!r} "
+                                                                   "or into the framing's trailer")
+
+    def bind_controls(self, name: str, own: tuple[Field, ...], path: tuple) -> tuple[Field, ...]:
+        """Counted and conditional fields name an earlier field of the message: a count field
+        becomes one the encoder sets; a condition learns the bits and values it tests."""
+        self.refuse_nested_gaps(name, own, path)
+        for i, f in enumerate(own):
+            if f.counted_by:
+                own = self.bind_count(name, own, f, path + ("fields", i, "count" if f.count else "length"))
+            elif f.present_if:
+                own = own[:i] + (self.bind_condition(name, own, f, path + ("fields", i, "present_if")),) + own[i + 1:]
+        return own
+
+    def refuse_nested_gaps(self, name: str, own: tuple[Field, ...], path: tuple) -> None:
+        """Counted and conditional fields are fields of the message itself, not of a group."""
+        def nested(fields: tuple[Field, ...]) -> Optional[Field]:
+            for f in fields:
+                if f.counted_by or f.present_if:
+                    return f
+                inner = nested(f.fields)
+                if inner is not None:
+                    return inner
+            return None
+        for i, f in enumerate(own):
+            inner = nested(f.fields)
+            if inner is not None:
+                self.error(path + ("fields", i), f"message {name!r}: {inner.name!r} in group {f.name!r} is "
+                                                 "counted or conditional; only a message's own fields may be",
+                           f"move {inner.name!r} out of the group, into the message")
+
+    def control_of(self, name: str, own: tuple[Field, ...], f: Field, control: str, where: tuple) -> Optional[Field]:
+        """The earlier field of the message, outside any gap, that `f` names."""
+        index = next((i for i, x in enumerate(own) if x.name == control), None)
+        if index is None or index > own.index(f):
+            self.error(where, f"message {name!r}: {f.name!r} depends on {control!r}, which is not an "
+                              "earlier field of the message", "name an unsigned field declared before it")
+            return None
+        x = own[index]
+        if x.counted_by or x.present_if or x.count is not None:
+            self.error(where, f"message {name!r}: {f.name!r} depends on {control!r}, which is an array or "
+                              "itself counted or conditional", "name a single field that every frame carries")
+            return None
+        return x
+
+    def bind_count(self, name: str, own: tuple[Field, ...], counted: Field, where: tuple) -> tuple[Field, ...]:
         """The field that gives a counted field's length becomes one the encoder sets."""
-        counted = next((f for f in own if f.counted_by), None)
-        if counted is None:
+        f = self.control_of(name, own, counted, counted.counted_by, where)
+        if f is None:
             return own
-        index = next((i for i, f in enumerate(own) if f.name == counted.counted_by), None)
-        where = path + ("fields", own.index(counted), "count" if counted.count else "length")
-        if index is None or index > own.index(counted):
-            self.error(where, f"message {name!r}: {counted.name!r} takes its length from "
-                              f"{counted.counted_by!r}, which is not an earlier field of the message",
-                       "name a u8 or u16 field declared before it")
-            return own
-        f = own[index]
+        index = own.index(f)
         most = (counted.count or counted.length) * (element_bytes(counted) if counted.counts_bytes else 1)
-        problem = ("it is not an unsigned integer" if f.kind != "uint" or f.count is not None else
+        problem = ("it is not an unsigned integer" if f.kind != "uint" else
                    "the codec sets it" if not f.is_member else
                    "it has checks or a scale of its own" if f.enum or f.flags or f.range or f.values or f.scale
                    or f.offset is not None or f.one_hot else
@@ -123,6 +190,36 @@ class ShorteningMixin(ResolverBase):
                               f"{problem}", "make it a plain unsigned integer wide enough for the most elements")
             return own
         return own[:index] + (replace(f, counts=counted.name),) + own[index + 1:]
+
+    def bind_condition(self, name: str, own: tuple[Field, ...], f: Field, where: tuple) -> Field:
+        """The bits of the control field a condition tests, and the raw values that mean present."""
+        cond = f.present_if
+        x = self.control_of(name, own, f, cond.field, where)
+        if x is None:
+            return f
+        if x.kind not in ("uint", "bool") or x.scale or x.offset is not None or not x.is_member:
+            self.error(where, f"message {name!r}: {f.name!r} depends on {x.name!r}, which is not a plain "
+                              "unsigned, enum, flags or bool field of the message", "name such a field")
+            return f
+        if cond.has is not None:
+            flag = next((fl for fl in x.flags.members if fl.name == cond.has), None) if x.flags else None
+            if flag is None:
+                self.error(where, f"message {name!r}: {x.name!r} has no flag {cond.has!r}",
+                           f"name a flag of {x.name!r}'s flag set, or use `equals`")
+                return f
+            mask = 1 << flag.bit
+            return replace(f, present_if=replace(cond, mask=mask, values=(mask,)))
+        values = []
+        for v in cond.equals:
+            member = next((e for e in x.enum.members if e.name == v), None) if x.enum and isinstance(v, str) else None
+            raw = member.value if member is not None else v
+            if isinstance(raw, bool) or not isinstance(raw, int) or not 0 <= raw < 1 << x.bits:
+                self.error(where, f"message {name!r}: {f.name!r} is present when {x.name!r} is {v!r}, "
+                                  f"which its {x.bits} bits cannot hold",
+                           f"give a number in 0..{(1 << x.bits) - 1}" + (" or a member of its enum" if x.enum else ""))
+                return f
+            values.append(raw)
+        return replace(f, present_if=replace(cond, mask=(1 << x.bits) - 1, values=tuple(values)))
 
     def check_extensions_last(self, name: str, own: tuple[Field, ...], path: tuple) -> Optional[Field]:
         """Extension fields come after every other field of the message: the first of them."""
@@ -139,7 +236,7 @@ class ShorteningMixin(ResolverBase):
         return first
 
     def check_spans_end_with_payload(self, name: str, layout: tuple[Field, ...], counter: Optional[Field],
-                                     payload: tuple[int, int], path: tuple) -> None:
+                                     payload: tuple[int, int], path: tuple, first: Optional[int] = None) -> None:
         """A checksum or length that covers the payload's end counts the bytes sent, so its
         coverage must end where the payload does: bytes after a cut payload move."""
         start, end = payload
@@ -157,3 +254,7 @@ class ShorteningMixin(ResolverBase):
                 self.error(path, f"message {name!r}: {f.name!r} covers bytes past the start of a payload "
                                  "that may be cut short, and does not end with it",
                            "end its coverage with the payload (`to: payload`) or before it")
+            elif span is not None and first is not None and span[0] > first and span[1] > first:
+                self.error(path, f"message {name!r}: {f.name!r} starts its coverage after a field that a "
+                                 "frame may leave out, so its first byte moves",
+                           "start its coverage before the first counted or conditional field")

@@ -2,7 +2,9 @@
 the message in a frame, and how a stream decoder finds frames."""
 from __future__ import annotations
 
-from ..model import Framing, Protocol, shift_in
+from typing import Optional
+
+from ..model import Framing, Gap, Leaf, Message, Protocol, shift_in
 from ..resolver.layout import key_read, leaves_of
 
 
@@ -106,6 +108,25 @@ def stream_facts(p: Protocol) -> dict:
     return {"sync": sync, "sync_rest": list(enumerate(pattern))[1:],
             "sync_bytes": pattern, "length": length, "by_key": by_key, "sizes": sizes, "max": max(sizes),
             "min": min(sizes), "ranges": size_ranges(p)}
+
+
+def gap_reads(p: Protocol, m: Message) -> list[dict]:
+    """For each gap of `m` (in wire order), how a decoder reads the field that says how much
+    of it is sent, from the bytes sent: the covering read at the field's place in the whole
+    frame, less the bytes missing from the earlier gaps (`before`, their indices) ahead of it."""
+    gaps = m.shortening.gaps if m.shortening else ()
+    out = []
+    for k, gap in enumerate(gaps):
+        leaf = next(x for x in m.wire.leaves if x.path == (gap.control,))
+        read = covering_read(p.framing, leaf.pos, leaf.bits, leaf.field.byte_order)
+        out.append(dict(read, leaf=leaf, before=[j for j in range(k) if gaps[j].span[1] * 8 <= leaf.pos]))
+    return out
+
+
+def gap_of(m: Message, leaf: Leaf) -> Optional[tuple[int, Gap]]:
+    """The gap (index, gap) that holds `leaf`, if a frame may leave it out."""
+    gaps = m.shortening.gaps if m.shortening else ()
+    return next(((k, g) for k, g in enumerate(gaps) if leaf.path[0] == g.field), None)
 
 
 def counted_sizes(p: Protocol) -> dict[str, dict]:

@@ -27,7 +27,7 @@ from . import wordform as cwordform
 from .pack import Span
 from .errors import CTargetError
 from .scalars import bits_fn, clit, clit_signed, final_step, int_ctype, sign_extend, type_limits, unsigned_type
-from ..wire import (checksum_name, dispatch_facts, encoding_facts, stream_facts, text_form_head,
+from ..wire import (checksum_name, dispatch_facts, encoding_facts, gap_of, gap_reads, stream_facts, text_form_head,
                     text_line_facts, with_head_checks)
 
 ERR = {
@@ -153,12 +153,12 @@ class CView:
                 out.append(f"{pad}struct {{" + (f"  /* {note} */" if note else ""))
                 out.extend(self.struct_lines(f.fields, depth + 1))
                 out.append(f"{pad}}} {f.name}{count};")
-                continue
-            r = self.rep(f.element)
-            if r.has_flag:
-                out.append(f"{pad}bool has_{f.name}{count};  /* {'0 = absent' if f.optional else '0 = no bit set'} */")
-            arr = f"[{r.array}]" if r.array else ""
-            out.append(f"{pad}{r.ctype} {f.name}{count}{arr};" + (f"  /* {note} */" if note else ""))
+            else:
+                r = self.rep(f.element)
+                if r.has_flag:
+                    out.append(f"{pad}bool has_{f.name}{count};  /* {'0 = absent' if f.optional else '0 = no bit set'} */")
+                arr = f"[{r.array}]" if r.array else ""
+                out.append(f"{pad}{r.ctype} {f.name}{count}{arr};" + (f"  /* {note} */" if note else ""))
             if f.counted_by:
                 most, what = (f.length, "bytes") if f.kind == "bytes" else (f.count, "elements")
                 out.append(f"{pad}{unsigned_type(most.bit_length())} {f.name}_count;  "
@@ -167,6 +167,8 @@ class CView:
 
     def field_note(self, f: Field) -> str:
         parts = [comment(f.doc or f.title)] if (f.doc or f.title) else []
+        if f.present_if:
+            parts.append(comment(f"sent when {f.present_if.says}"))
         if f.scale is not None:
             parts.append(f"raw: value = raw * {f.scale:g}" + (f" + {f.offset:g}" if f.offset else "")
                          + (f" {f.unit}" if f.unit else ""))
@@ -598,13 +600,14 @@ class CView:
                     seen.setdefault(checksum_name(cs), checksum_code(self.checksum_fn(cs), cs, self.PX))
         return list(seen.values())
 
-    def byte_checksum_call(self, leaf: Leaf, m: Message, cut: bool = False) -> str:
-        """The checksum of its coverage; `cut`: the coverage ends with the payload, `cut` bytes early."""
+    def byte_checksum_call(self, leaf: Leaf, m: Message, cut: bool = False, sent: str = "buf") -> str:
+        """The checksum of its coverage; `cut`: the coverage ends with the payload, `cut` bytes
+        early, in the bytes sent (`sent`)."""
         cs = leaf.field.checksum
         start, end = cs.byte_span
         extra = f", {clit(m.crc_extra, True)}" if cs.extra else ""
         less = " - cut" if cut and m.counts_sent(cs) else ""
-        return f"{self.checksum_fn(cs)}(buf + {start}, {end - start}u{less}{extra})"
+        return f"{self.checksum_fn(cs)}({sent if less else 'buf'} + {start}, {end - start}u{less}{extra})"
 
     # -- binary messages -----------------------------------------------------------------------
     @staticmethod
@@ -638,24 +641,29 @@ class CView:
         if not raws:
             c("(void)r;")
         self.rule_checks(c, m, "m")
-        counter = m.shortening.counter if m.shortening else None
-        if counter:
-            self.fail_if(c, f"m->{counter.field}_count > {counter.most}u", "range")
+        gaps = m.shortening.gaps if m.shortening else ()
+        for gap in gaps:
+            if gap.counter:
+                self.fail_if(c, f"m->{gap.field}_count > {gap.counter.most}u", "range")
+        counts = {g.control: g for g in gaps if g.counter}
         for leaf in wired:
             if leaf.var not in raws:
                 continue
             if leaf.field.counts:  # set from the array's count
-                c(f"{raws[leaf.var]} = ({rt})(m->{counter.field}_count * {counter.element_bytes // counter.unit}u);")
-            elif counter and leaf.path[0] == counter.field and len(leaf.path) > 1:  # elements past the count are not sent
-                c(f"if (m->{counter.field}_count > {leaf.path[1]}u) {{")
-                c.indent()
+                gap = counts[leaf.field.name]
+                c(f"{raws[leaf.var]} = ({rt})(m->{gap.field}_count * {gap.counter.element_bytes // gap.counter.unit}u);")
+                continue
+            guard = self.sent_guard(m, leaf, raws)
+            if guard is None:
                 self.encode_leaf(c, leaf, raws[leaf.var], rt)
-                c.dedent()
-                c("} else {")
-                c(f"    {raws[leaf.var]} = 0u;")
-                c("}")
-            else:
-                self.encode_leaf(c, leaf, raws[leaf.var], rt)
+                continue
+            c(f"if ({guard}) {{")
+            c.indent()
+            self.encode_leaf(c, leaf, raws[leaf.var], rt)
+            c.dedent()
+            c("} else {")
+            c(f"    {raws[leaf.var]} = 0u;")
+            c("}")
         for leaf in wired:
             cs = leaf.field.checksum
             if cs and cs.over != "bytes":
@@ -665,6 +673,27 @@ class CView:
         c.dedent()
         c("}")
         return c.text()
+
+    def presence_test(self, m: Message, gap, value: Optional[str] = None) -> str:
+        """Whether conditional `gap` is sent, from its control field's raw value (`value`, by
+        default its r[] slot)."""
+        cond = gap.presence
+        leaf = next(x for x in m.wire.leaves if x.path == (gap.control,))
+        value = value or self.wired(m)[1][leaf.var]
+        full = cond.mask == (1 << leaf.bits) - 1
+        tested = value if full else f"({value} & {clit(cond.mask, True)})"
+        return " || ".join(f"{tested} == {clit(v, True)}" for v in cond.values)
+
+    def sent_guard(self, m: Message, leaf: Leaf, raws: dict[str, str]) -> Optional[str]:
+        """The condition under which a leaf in a gap is in the frame (None: always, or all of a
+        counted bytes field)."""
+        held = gap_of(m, leaf)
+        if held is None:
+            return None
+        gap = held[1]
+        if gap.presence:
+            return self.presence_test(m, gap)
+        return f"m->{gap.field}_count > {leaf.path[1]}u" if len(leaf.path) > 1 else None
 
     def pack_value(self, span: Span, raws: dict[str, str]) -> str:
         """The integer of a "pack" span, from the raw values of its pieces
@@ -701,11 +730,9 @@ class CView:
         c("if (rc != CW_OK) {")
         c("    return rc;")
         c("}")
-        counter = m.shortening.counter if m.shortening else None
-        truncates = bool(m.shortening and m.shortening.trailing_zeros) or bool(counter)
-        if counter:  # the elements past the count are not sent
-            c(f"size_t cut = (size_t)({counter.most}u - m->{counter.field}_count) * {counter.element_bytes}u;")
-        elif truncates:
+        sh = m.shortening
+        truncates = bool(sh and (sh.trailing_zeros or sh.gaps))
+        if truncates:
             c("size_t cut = 0u;")
         c(f"if (cap < {m.size}u) {{")
         c("    return CW_ERR_CAPACITY;")
@@ -726,25 +753,40 @@ class CView:
                     if piece.var in raws:
                         value = raws[piece.var] if piece.bits > 32 or rt != "uint64_t" else f"(uint32_t){raws[piece.var]}"
                         c(f"{bits_fn('put', piece.bits, span.order)}(buf, {piece.pos}u, {piece.bits}u, {value});")
-        if counter and m.shortening.length_field:
-            self.set_length(c, m)
-        elif truncates and not counter:
+        if truncates and sh.gaps:
+            self.leave_out_gaps(c, m, raws)
+        elif truncates:
             self.truncate(c, m)
+        end = sh.payload[1] if truncates else m.size
         for span, piece in self.byte_sums(layout):
             call = self.byte_checksum_call(piece, m, truncates)
+            moved = span.start >= end  # it follows the bytes left out
             if span.kind == "int":
-                c(self.int_put(span.start, span.size, self.order_of(piece.field), call))
+                c(self.int_put(f"({span.start}u - cut)" if moved else span.start, span.size, self.order_of(piece.field), call))
             else:  # sharing its bytes, whose bits for it are still 0
-                c(f"{bits_fn('put', piece.bits, span.order)}(buf, {piece.pos}u, {piece.bits}u, {call});")
-        if truncates:
-            end = m.shortening.payload[1]
-            c(f"memmove(buf + ({end}u - cut), buf + {end}, {m.size - end}u);")
-            c(f"return (int)({m.size}u - cut);")
-        else:
-            c(f"return {m.size};")
+                pos = f"({piece.pos}u - 8u * cut)" if moved else f"{piece.pos}u"
+                c(f"{bits_fn('put', piece.bits, span.order)}(buf, {pos}, {piece.bits}u, {call});")
+        c(f"return (int)({m.size}u - cut);" if truncates else f"return {m.size};")
         c.dedent()
         c("}")
         return c.text()
+
+    def leave_out_gaps(self, c: Code, m: Message, raws: dict[str, str]) -> None:
+        """Drop the bytes of each gap that the frame does not send, the last gap first so the
+        places of the earlier ones hold; a length field counts the payload bytes sent."""
+        gaps = m.shortening.gaps
+        for k, gap in enumerate(gaps):
+            if gap.counter:
+                per = gap.counter.element_bytes
+                c(f"size_t lost{k} = (size_t)({gap.counter.most}u - m->{gap.field}_count) * {per}u;")
+            else:
+                c(f"size_t lost{k} = ({self.presence_test(m, gap)}) ? 0u : {gap.size}u;")
+        for k, gap in reversed(list(enumerate(gaps))):
+            end = gap.span[1]
+            c(f"memmove(buf + ({end}u - lost{k}), buf + {end}, {m.size - end}u - cut);")
+            c(f"cut += lost{k};")
+        if m.shortening.length_field:
+            self.set_length(c, m)
 
     def truncate(self, c: Code, m: Message) -> None:
         """Count the payload's trailing zero bytes the frame leaves off (keeping the
@@ -754,6 +796,7 @@ class CView:
         c(f"while (cut < {hi - lo}u && buf[{hi - 1}u - cut] == 0u) {{  /* trailing zeros are not sent */")
         c("    cut++;")
         c("}")
+        c(f"memmove(buf + ({hi}u - cut), buf + {hi}, {m.size - hi}u);")
         self.set_length(c, m)
 
     def set_length(self, c: Code, m: Message) -> None:
@@ -769,25 +812,49 @@ class CView:
         c("    return CW_ERR_LENGTH;")
         c("}")
         c(f"cut = {size}u - len;")
-        if m.shortening.counter:
-            self.check_count(c, m)
-        c(f"memcpy(full, buf, {end}u - cut);")
-        c(f"memset(full + ({end}u - cut), 0, cut);")
-        c(f"memcpy(full + {end}, buf + ({end}u - cut), {size - end}u);")
+        if m.shortening.gaps:
+            self.restore_gaps(c, m)
+        else:
+            c(f"memcpy(full, buf, {end}u - cut);")
+            c(f"memset(full + ({end}u - cut), 0, cut);")
+            c(f"memcpy(full + {end}, buf + ({end}u - cut), {size - end}u);")
         c("buf = full;")
 
-    def check_count(self, c: Code, m: Message) -> None:
-        """The count field's value: within the array's most, and the frame as long as it says."""
-        counter = m.shortening.counter
-        leaf = next(x for x in m.wire.leaves if x.field.counts)
-        n = self.int_get(leaf.pos // 8, leaf.bits // 8, self.order_of(leaf.field))
-        c(f"n = (size_t){n};")
-        self.fail_if(c, f"n > {counter.most_value}u", "range")
-        if counter.unit != counter.element_bytes:
-            self.fail_if(c, f"n % {counter.element_bytes}u != 0u", "length")
-        most = counter.most * counter.element_bytes
-        self.fail_if(c, f"cut != {most}u - n * {counter.unit}u", "length")
-        c(f"m->{counter.field}_count = ({unsigned_type(counter.most.bit_length())})(n / {counter.element_bytes // counter.unit}u);")
+    def restore_gaps(self, c: Code, m: Message) -> None:
+        """Read each gap's control field from the bytes sent, check it, and copy the frame into
+        `full` with the bytes it leaves out as zeros."""
+        gaps, lost = m.shortening.gaps, ""
+        for k, (gap, read) in enumerate(zip(gaps, gap_reads(self.p, m))):
+            if k:  # the shortest frame holds what comes before the first gap
+                self.fail_if(c, f"len < {gap.span[0]}u{lost}", "length")
+            less = "".join(f" - lost{j}" for j in read["before"])
+            getter = "cw_get_le" if read["byte_order"] == "little" else "cw_get_be"
+            value = f"{getter}(buf + ({read['at']}u{less}), {read['bytes']}u)" if read["bytes"] > 1 \
+                else f"buf[{read['at']}u{less}]"
+            if read["shift"]:
+                value = f"({value} >> {read['shift']})"
+            whole = not read["shift"] and read["mask"] == (1 << (8 * read["bytes"])) - 1
+            value = f"(size_t){value}" if whole else f"((size_t){value} & {clit(read['mask'], True)})"
+            if gap.counter:
+                counter = gap.counter
+                c(f"n = {value};")
+                self.fail_if(c, f"n > {counter.most_value}u", "range")
+                if counter.unit != counter.element_bytes:
+                    self.fail_if(c, f"n % {counter.element_bytes}u != 0u", "length")
+                c(f"m->{gap.field}_count = ({unsigned_type(counter.most.bit_length())})(n / {counter.step}u);")
+                c(f"size_t lost{k} = {counter.most * counter.element_bytes}u - n * {counter.unit}u;")
+            else:
+                c(f"size_t lost{k} = ({self.presence_test(m, gap, value)}) ? 0u : {gap.size}u;")
+            lost += f" - lost{k}"
+        self.fail_if(c, f"len != {m.size}u{lost}", "length")
+        at, sent = 0, "0u"
+        for k, gap in enumerate(gaps):
+            kept = f"{gap.span[1]}u - lost{k}"
+            c(f"memcpy(full + {at}, buf + {sent}, {kept} - {at}u);" if at else f"memcpy(full, buf, {kept});")
+            c(f"memset(full + ({kept}), 0, lost{k});")
+            sent = f"({gap.span[1]}u{''.join(f' - lost{j}' for j in range(k + 1))})"
+            at = gap.span[1]
+        c(f"memcpy(full + {at}, buf + {sent}, {m.size - at}u);")
 
     def decode_function(self, m: Message) -> str:
         word = cword.container(self, m)
@@ -806,8 +873,10 @@ class CView:
             c(f"{rt} r[1] = {{0}};")
         if m.shortening:
             c(f"uint8_t full[{m.size}];")
+            if any(self.is_byte_checksum(x) and m.counts_sent(x.field.checksum) for x in m.wire.leaves):
+                c("const uint8_t *sent = buf;  /* the bytes sent, which checksums cover */")
             c("size_t cut;")
-            if m.shortening.counter:
+            if any(g.counter for g in m.shortening.gaps):
                 c("size_t n;")
             self.restore(c, m)
         else:
@@ -844,7 +913,7 @@ class CView:
                 got = self.int_get(span.start, span.size, self.order_of(piece.field))
             else:
                 got = f"{bits_fn('get', piece.bits, span.order)}(buf, {piece.pos}u, {piece.bits}u)"
-            self.fail_if(c, f"{got} != {self.byte_checksum_call(piece, m, True)}", "checksum")
+            self.fail_if(c, f"{got} != {self.byte_checksum_call(piece, m, True, 'sent')}", "checksum")
         c(f"return {self.fn(m, 'check_raw')}(r, buf, m, false);")
         c.dedent()
         c("}")
@@ -872,8 +941,21 @@ class CView:
         if unfilled is None or not field_sums:
             c("(void)text_form;")
         for leaf in wired:
+            guard = self.sent_guard(m, leaf, raws)
             if leaf.field.kind == "bytes":
                 c(f"memcpy({self.member(leaf)}, buf + {leaf.pos // 8}, {leaf.field.length});")
+            elif leaf.var in raws and guard and leaf.field.is_member:  # a value left out is zero, unchecked
+                body = Code()
+                body.depth = c.depth + 1
+                self.decode_leaf(body, leaf, raws[leaf.var], m, rt)
+                if not any("return" in line for line in body.lines):
+                    self.decode_leaf(c, leaf, raws[leaf.var], m, rt)
+                    continue
+                c(f"if ({guard}) {{")
+                c.lines.extend(body.lines)
+                c("} else {")
+                c(f"    memset(&{self.member(leaf)}, 0, sizeof {self.member(leaf)});")
+                c("}")
             elif leaf.var in raws:
                 self.decode_leaf(c, leaf, raws[leaf.var], m, rt)
         for leaf in field_sums:

@@ -13,7 +13,8 @@ from ...model import (Field, Leaf, Message, Protocol, Rule, Run, Sequence, Seque
                       field_at, path_name)
 from ...names import camel
 from ..code import Code
-from ..wire import checksum_name as _checksum_name, dispatch_facts, encoding_facts, stream_facts, text_line_facts
+from ..wire import (checksum_name as _checksum_name, dispatch_facts, encoding_facts, gap_of, gap_reads, stream_facts,
+                    text_line_facts)
 
 
 def lit(value: Any) -> str:
@@ -500,34 +501,38 @@ class MessageCode:
         word: the caller packs one integer and computes parity bits from it."""
         self.view.rule_checks(c, self.m, "m", "_enc")
         groups: set[tuple] = set()
-        counter = self.m.shortening.counter if self.m.shortening else None
         for leaf in self.leaves:
+            held = gap_of(self.m, leaf)
             for depth in range(1, len(leaf.path)):  # each group object and array is read once
                 prefix = leaf.path[:depth]
                 if prefix not in groups:
                     groups.add(prefix)
-                    c(f"{self.group_var(prefix)} = {access(self.group_var(prefix[:-1]), prefix[-1])}")
+                    value = access(self.group_var(prefix[:-1]), prefix[-1])
+                    if held and held[1].counter and depth == 2:  # an element past the list's end is None
+                        value += f" if len({self.group_var(prefix[:1])}) > {prefix[1]} else None"
+                    c(f"{self.group_var(prefix)} = {value}")
                     if isinstance(leaf.path[depth], int):
                         self.check_list(c, prefix)
             if leaf.field.counts:
                 continue  # set from the list's length below
-            if counter and leaf.path == (counter.field,):  # counted bytes, padded to the most
-                self.view.encode_leaf(c, self.m, leaf, keep_bool=word)
-            elif counter and leaf.path[0] == counter.field:  # elements past the list's end are not sent
-                c(f"if len({self.group_var(leaf.path[:-1])}) > {leaf.path[1]}:")
-                c.indent()
+            if held and held[1].presence and leaf is self.first_leaf(held[1].field):
+                self.check_presence(c, held[1])
+            guard = self.sent_guard(leaf, held, encoding=True)
+            if guard is None:
                 self.view.encode_leaf(c, self.m, leaf, self.group_var(leaf.path[:-1]), keep_bool=word)
-                c.dedent()
-                c("else:")
-                c(f"    {leaf.var} = 0")
-            else:
-                self.view.encode_leaf(c, self.m, leaf, self.group_var(leaf.path[:-1]), keep_bool=word)
-        if counter:
-            leaf = next(x for x in self.leaves if x.field.counts)
-            if field_at(self.m.layout, counter.field).kind == "bytes":
-                c(f"{leaf.var} = len(m.{counter.field})")
-            else:
-                c(f"{leaf.var} = len({self.group_var((counter.field,))}) * {counter.element_bytes // counter.unit}")
+                continue
+            c(f"if {guard}:")
+            c.indent()
+            self.view.encode_leaf(c, self.m, leaf, self.group_var(leaf.path[:-1]), keep_bool=word)
+            c.dedent()
+            c("else:")
+            c(f"    {leaf.var} = 0")
+        for gap in self.gaps():
+            if gap.counter:
+                leaf = self.first_leaf(gap.control)
+                per = gap.counter.element_bytes // gap.counter.unit
+                held = self.group_var((gap.field,)) if field_at(self.m.layout, gap.field).count else f"m.{gap.field}"
+                c(f"{leaf.var} = len({held}){f' * {per}' if per != 1 else ''}")
         for leaf in self.leaves:
             cs = leaf.field.checksum
             if cs and cs.over != "bytes" and not (word and cs.algorithm == "parity"):
@@ -536,6 +541,41 @@ class MessageCode:
     @staticmethod
     def group_var(path: tuple) -> str:
         return "g_" + path_name(path) if path else "m"
+
+    def gaps(self) -> tuple:
+        return self.m.shortening.gaps if self.m.shortening else ()
+
+    def first_leaf(self, name: str) -> Leaf:
+        return next(x for x in self.leaves if x.path[0] == name)
+
+    def presence_test(self, gap, var: Optional[str] = None) -> str:
+        """Whether conditional `gap` is sent, from its control field's raw value (`var`, by
+        default the control's local)."""
+        cond, var = gap.presence, var or self.first_leaf(gap.control).var
+        full = cond.mask == (1 << self.first_leaf(gap.control).bits) - 1
+        value = var if full else f"{var} & {cond.mask:#x}"
+        if len(cond.values) == 1:
+            return f"{value} == {cond.values[0]}" if full else f"({value}) == {cond.values[0]:#x}"
+        return f"{value} in {cond.values!r}" if full else f"({value}) in {cond.values!r}"
+
+    def sent_guard(self, leaf: Leaf, held, encoding: bool) -> Optional[str]:
+        """The condition under which a leaf in a gap is sent (None: always, or all of a counted
+        bytes field, which is padded to its most)."""
+        if held is None:
+            return None
+        gap = held[1]
+        if gap.presence:
+            return self.presence_test(gap) if encoding else f"p_{gap.field}"
+        if len(leaf.path) == 1:
+            return None
+        return f"len({self.group_var((gap.field,))}) > {leaf.path[1]}" if encoding else f"n_{gap.field} > {leaf.path[1]}"
+
+    def check_presence(self, c: Code, gap) -> None:
+        """A conditional field holds a value exactly when its control field says it is sent."""
+        name, says = self.m.name, gap.presence.says
+        c(f"if ({self.presence_test(gap)}) != (m.{gap.field} is not None):")
+        c(f"    raise _enc({name!r}, {gap.field!r}, m.{gap.field}, 'present', "
+          f"{('a value when ' + says + ', else None')!r})")
 
     def check_list(self, c: Code, path: tuple) -> None:
         """An array member must be a list (or tuple) of exactly its count of elements."""
@@ -582,9 +622,15 @@ class MessageCode:
         word: they were read from the integer `w` (parity is then one bit count)."""
         values: dict[tuple, str] = {}
         for leaf in self.leaves:
-            expr = self.view.decode_leaf(c, self.m, leaf, str(leaf.pos), bounded)
+            guard = self.sent_guard(leaf, gap_of(self.m, leaf), encoding=False)
+            checks = Code()
+            checks.depth = c.depth + (guard is not None)
+            expr = self.view.decode_leaf(checks, self.m, leaf, str(leaf.pos), bounded)
+            if guard and checks.lines:  # a value the frame left out is not checked
+                c(f"if {guard}:")
+            c.lines.extend(checks.lines)
             if expr is not None:
-                values[leaf.path] = expr
+                values[leaf.path] = expr if guard is None or expr == leaf.var else f"({expr} if {guard} else None)"
         for leaf in self.leaves:
             cs = leaf.field.checksum
             if cs and cs.over != "bytes":
@@ -628,7 +674,10 @@ class MessageCode:
         for f in members:
             each = [self.group_var(at) if f.kind == "group" else values[at] for at in self.places(f, path)]
             sent = f"[:n_{f.name}]" if f.counted_by else ""
-            c(f"{var}.{f.name} = {each[0] + sent if f.count is None else '[' + ', '.join(each) + ']' + sent}")
+            value = each[0] + sent if f.count is None else '[' + ', '.join(each) + ']' + sent
+            if f.present_if and not path:
+                value = f"{value} if p_{f.name} else None"
+            c(f"{var}.{f.name} = {value}")
 
     @staticmethod
     def places(f: Field, path: tuple) -> list[tuple]:
@@ -681,8 +730,7 @@ class MessageCode:
         segments = segments_of(self.chunks())
         crcs = [(leaf, leaf.field.checksum) for leaf in self.leaves
                 if leaf.field.checksum and leaf.field.checksum.over == "bytes"]
-        counter = self.m.shortening.counter if self.m.shortening else None
-        truncates = bool(self.m.shortening and self.m.shortening.trailing_zeros) or bool(counter)
+        truncates = bool(self.m.shortening and (self.m.shortening.trailing_zeros or self.m.shortening.gaps))
         single = len(segments) == 1 and not crcs and not truncates
         if not single:
             c(f"b = bytearray({size})")
@@ -692,34 +740,42 @@ class MessageCode:
                 c(f"return _S_{self.fn}_{n}.pack({values})")
             else:
                 c(f"_S_{self.fn}_{n}.pack_into(b, {seg.start}, {values})")
-        if counter:
-            self.cut_unsent(c)
+        if truncates and self.m.shortening.gaps:
+            self.leave_out_gaps(c)
         elif truncates:
             self.truncate(c)
+        end = self.m.shortening.payload[1] if truncates else size
         for leaf, cs in crcs:
-            start, end = cs.byte_span
+            start, stop = cs.byte_span
             chunk, shift = next((ch, sh) for ch in self.chunks() for x, sh in ch.leaves if x is leaf)
-            at = f"b[{chunk.start}:{chunk.start + chunk.nbytes}]"
-            value = self.view.checksum_call(cs, "b", start, end, self.m.crc_extra, truncates and self.m.counts_sent(cs))
+            moved = " - cut" if chunk.start >= end else ""  # it follows the bytes left out
+            at = f"b[{chunk.start}{moved}:{chunk.start + chunk.nbytes}{moved}]"
+            value = self.view.checksum_call(cs, "b", start, stop, self.m.crc_extra, truncates and self.m.counts_sent(cs))
             if chunk.lone:
                 order = leaf.field.byte_order or self.view.p.framing.byte_order
                 c(f"{at} = {value}.to_bytes({chunk.nbytes}, {order!r})")
             else:  # a checksum sharing bytes with other fields goes into its bits
                 order = chunk.order or "big"
                 c(f"{at} = (int.from_bytes({at}, {order!r}) | {value} << {shift}).to_bytes({chunk.nbytes}, {order!r})")
-        if truncates:
-            end = self.m.shortening.payload[1]
-            c(f"del b[{end} - cut:{end}]")
         if not single:
             c("return bytes(b)")
         return c.text()
 
-    def cut_unsent(self, c: Code) -> None:
-        """A counted array's elements past the list's end are not sent; a length field
-        counts the payload bytes that are."""
-        sh = self.m.shortening
-        counter = sh.counter
-        c(f"cut = {counter.most * counter.element_bytes} - len(m.{counter.field}) * {counter.element_bytes}")
+    def leave_out_gaps(self, c: Code) -> None:
+        """Drop the bytes of each gap that the frame does not send, the last gap first so
+        the places of the earlier ones hold; a length field counts the payload bytes sent."""
+        sh, lost = self.m.shortening, []
+        for k, gap in enumerate(sh.gaps):
+            if gap.counter:
+                held = self.group_var((gap.field,)) if field_at(self.m.layout, gap.field).count else f"m.{gap.field}"
+                per = gap.counter.element_bytes
+                c(f"lost{k} = {gap.counter.most * per} - len({held}){f' * {per}' if per != 1 else ''}")
+            else:
+                c(f"lost{k} = 0 if {self.presence_test(gap)} else {gap.size}")
+            lost.append(f"lost{k}")
+        for k, gap in reversed(list(enumerate(sh.gaps))):
+            c(f"del b[{gap.span[1]} - lost{k}:{gap.span[1]}]")
+        c(f"cut = {' + '.join(lost)}")
         if sh.length_field:
             self.set_length(c, sh.length_field)
 
@@ -736,6 +792,7 @@ class MessageCode:
         sh = self.m.shortening
         lo, hi = sh.payload[0] + sh.least, sh.payload[1]
         c(f"cut = {hi - lo} - len(b[{lo}:{hi}].rstrip(b'\\0'))  # trailing zeros are not sent")
+        c(f"del b[{hi} - cut:{hi}]")
         self.set_length(c, sh.length_field)
 
     def packed(self, leaves: list[tuple[Leaf, int]]) -> str:
@@ -779,11 +836,12 @@ class MessageCode:
             least = self.m.min_size
             c(f"if not {least} <= len(d) <= {size}:")
             c(f"    raise _dec({self.m.name!r}, None, len(d), 'length', '{least}..{size} bytes', 0)")
-            c(f"cut = {size} - len(d)")
-            if sh.counter:
-                self.check_count(c)
-            c("if cut:  # the payload bytes left off read as zeros")
-            c(f"    d = b''.join((d[:{sh.payload[1]} - cut], bytes(cut), d[{sh.payload[1]} - cut:]))")
+            c(f"s, cut = d, {size} - len(d)")
+            if sh.gaps:
+                self.restore_gaps(c)
+            else:
+                c("if cut:  # the payload bytes left off read as zeros")
+                c(f"    d = b''.join((d[:{sh.payload[1]} - cut], bytes(cut), d[{sh.payload[1]} - cut:]))")
         else:
             c(f"if len(d) != {size}:")
             c(f"    raise _dec({self.m.name!r}, None, len(d), 'length', '{size} bytes', 0)")
@@ -795,30 +853,63 @@ class MessageCode:
             cs = leaf.field.checksum
             if cs and cs.over == "bytes":
                 start, end = cs.byte_span
-                c(f"x = {self.view.checksum_call(cs, 'd', start, end, self.m.crc_extra, self.m.counts_sent(cs))}")
+                sent = self.m.counts_sent(cs)  # over the bytes sent
+                c(f"x = {self.view.checksum_call(cs, 's' if sent else 'd', start, end, self.m.crc_extra, sent)}")
                 c(f"if {leaf.var} != x:")
                 c(f"    raise _dec({self.m.name!r}, {leaf.dotted!r}, {leaf.var}, 'checksum', hex(x), {leaf.pos}, {leaf.field.rule!r})")
         self.build_checks(c, bounded=True, text_form=False, word=self.one_word())
         c("return o")
         return c.text()
 
-    def check_count(self, c: Code) -> None:
-        """The count field's value: within the array's most, and the frame as long as it says."""
-        counter = self.m.shortening.counter
-        leaf = next(x for x in self.leaves if x.field.counts)
-        at, n = leaf.pos // 8, leaf.bits // 8
-        order = leaf.field.byte_order or self.view.p.framing.byte_order
-        name, array = self.m.name, next(x for x in self.leaves if x.path[0] == counter.field)
-        c(f"n = int.from_bytes(d[{at}:{at + n}], {order!r})")
+    def restore_gaps(self, c: Code) -> None:
+        """Read each gap's control field from the bytes sent (`s`), check it, and put the bytes
+        the frame leaves out back as zeros (`d`), so the fields read from their places."""
+        name, size, gaps = self.m.name, self.m.size, self.m.shortening.gaps
+        lost = ""
+        for k, (gap, read) in enumerate(zip(gaps, gap_reads(self.view.p, self.m))):
+            if k:  # the shortest frame holds what comes before the first gap
+                c(f"if len(s) < {gap.span[0]}{lost}:")
+                c(f"    raise _dec({name!r}, {gap.field!r}, len(s), 'length', f'at least {{{gap.span[0]}{lost}}} bytes', {8 * gap.span[0]})")
+            value = self.sent_read(read, "".join(f" - lost{j}" for j in read["before"]))
+            if gap.counter:
+                self.check_count(c, gap, read["leaf"], value)
+                c(f"lost{k} = {gap.counter.most * gap.counter.element_bytes} - n * {gap.counter.unit}")
+            else:
+                c(f"p_{gap.field} = {self.presence_test(gap, value)}")
+                c(f"lost{k} = 0 if p_{gap.field} else {gap.size}")
+            lost += f" - lost{k}"
+        c(f"if len(s) != {size}{lost}:")
+        c(f"    raise _dec({name!r}, {gaps[-1].field!r}, len(s), 'length', f'{{{size}{lost}}} bytes', {8 * gaps[-1].span[0]})")
+        parts, at = [], "0"
+        for k, gap in enumerate(gaps):
+            end = f"{gap.span[1]}{''.join(f' - lost{j}' for j in range(k + 1))}"
+            parts += [f"s[{at}:{end}]", f"bytes(lost{k})"]
+            at = end
+        parts[0] = parts[0].replace("[0:", "[:")
+        c("if cut:  # the bytes left out read as zeros")
+        c(f"    d = b''.join(({', '.join(parts)}, s[{at}:]))")
+
+    @staticmethod
+    def sent_read(read: dict, less: str) -> str:
+        """The control field's raw value, read from the bytes sent: `less` the bytes missing ahead of it."""
+        at, last = f"{read['at']}{less}", f"{read['last']}{less}"
+        value = f"s[{at}]" if read["bytes"] == 1 else f"int.from_bytes(s[{at}:{last}], {read['byte_order']!r})"
+        if read["shift"]:
+            value = f"({value} >> {read['shift']})"
+        if read["shift"] or read["mask"] != (1 << (8 * read["bytes"])) - 1:
+            value = f"({value} & {read['mask']:#x})"
+        return value
+
+    def check_count(self, c: Code, gap, leaf: Leaf, value: str) -> None:
+        """The count field's value: within the array's most, and a whole number of elements."""
+        counter, name = gap.counter, self.m.name
+        c(f"n = {value}")
         c(f"if n > {counter.most_value}:")
         c(f"    raise _dec({name!r}, {leaf.dotted!r}, n, 'range', '0..{counter.most_value}', {leaf.pos})")
         if counter.unit != counter.element_bytes:
             c(f"if n % {counter.element_bytes}:")
             c(f"    raise _dec({name!r}, {leaf.dotted!r}, n, 'length', 'a multiple of {counter.element_bytes}', {leaf.pos})")
         c(f"n_{counter.field} = n // {counter.element_bytes // counter.unit}")
-        most = counter.most * counter.element_bytes
-        c(f"if cut != {most} - n * {counter.unit}:")
-        c(f"    raise _dec({name!r}, {counter.field!r}, len(d), 'length', f'{{{self.m.size - most} + n * {counter.unit}}} bytes for {{n}} in {leaf.dotted}', {array.pos})")
 
     def read_word(self, c: Code) -> None:
         c(f"w = int.from_bytes(d, {self.m.wire.order!r})")

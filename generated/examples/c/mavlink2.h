@@ -265,9 +265,9 @@ static inline int mavlink2_heartbeat_encode(const mavlink2_heartbeat_t *m, uint8
     while (cut < 8u && buf[18u - cut] == 0u) {  /* trailing zeros are not sent */
         cut++;
     }
-    buf[1] = (uint8_t)(9u - cut);
-    cw_put_le16(buf + 19, (uint16_t)(mavlink2_crc16_1021_ffff_rr_0_extra(buf + 1, 18u - cut, 50u)));
     memmove(buf + (19u - cut), buf + 19, 2u);
+    buf[1] = (uint8_t)(9u - cut);
+    cw_put_le16(buf + (19u - cut), (uint16_t)(mavlink2_crc16_1021_ffff_rr_0_extra(buf + 1, 18u - cut, 50u)));
     return (int)(21u - cut);
 }
 
@@ -304,6 +304,7 @@ static inline int mavlink2_heartbeat_decode(const uint8_t *buf, size_t len, mavl
 {
     uint32_t r[14];
     uint8_t full[21];
+    const uint8_t *sent = buf;  /* the bytes sent, which checksums cover */
     size_t cut;
     if (len < 13u || len > 21u) {
         return CW_ERR_LENGTH;
@@ -328,7 +329,7 @@ static inline int mavlink2_heartbeat_decode(const uint8_t *buf, size_t len, mavl
     r[12] = (uint32_t)buf[17];
     r[13] = (uint32_t)buf[18];
     r[1] = (uint32_t)(r[1] + cut);  /* as if the whole payload were sent */
-    if (cw_get_le16(buf + 19) != mavlink2_crc16_1021_ffff_rr_0_extra(buf + 1, 18u - cut, 50u)) {
+    if (cw_get_le16(buf + 19) != mavlink2_crc16_1021_ffff_rr_0_extra(sent + 1, 18u - cut, 50u)) {
         return CW_ERR_CHECKSUM;
     }
     return mavlink2_heartbeat_check_raw(r, buf, m, false);
@@ -403,9 +404,9 @@ static inline int mavlink2_sys_status_encode(const mavlink2_sys_status_t *m, uin
     while (cut < 42u && buf[52u - cut] == 0u) {  /* trailing zeros are not sent */
         cut++;
     }
-    buf[1] = (uint8_t)(43u - cut);
-    cw_put_le16(buf + 53, (uint16_t)(mavlink2_crc16_1021_ffff_rr_0_extra(buf + 1, 52u - cut, 124u)));
     memmove(buf + (53u - cut), buf + 53, 2u);
+    buf[1] = (uint8_t)(43u - cut);
+    cw_put_le16(buf + (53u - cut), (uint16_t)(mavlink2_crc16_1021_ffff_rr_0_extra(buf + 1, 52u - cut, 124u)));
     return (int)(55u - cut);
 }
 
@@ -452,6 +453,7 @@ static inline int mavlink2_sys_status_decode(const uint8_t *buf, size_t len, mav
 {
     uint32_t r[24];
     uint8_t full[55];
+    const uint8_t *sent = buf;  /* the bytes sent, which checksums cover */
     size_t cut;
     if (len < 13u || len > 55u) {
         return CW_ERR_LENGTH;
@@ -486,7 +488,7 @@ static inline int mavlink2_sys_status_decode(const uint8_t *buf, size_t len, mav
     r[22] = (uint32_t)cw_get_le32(buf + 45);
     r[23] = (uint32_t)cw_get_le32(buf + 49);
     r[1] = (uint32_t)(r[1] + cut);  /* as if the whole payload were sent */
-    if (cw_get_le16(buf + 53) != mavlink2_crc16_1021_ffff_rr_0_extra(buf + 1, 52u - cut, 124u)) {
+    if (cw_get_le16(buf + 53) != mavlink2_crc16_1021_ffff_rr_0_extra(sent + 1, 52u - cut, 124u)) {
         return CW_ERR_CHECKSUM;
     }
     return mavlink2_sys_status_check_raw(r, buf, m, false);
@@ -541,9 +543,9 @@ static inline int mavlink2_param_value_encode(const mavlink2_param_value_t *m, u
     while (cut < 24u && buf[34u - cut] == 0u) {  /* trailing zeros are not sent */
         cut++;
     }
-    buf[1] = (uint8_t)(25u - cut);
-    cw_put_le16(buf + 35, (uint16_t)(mavlink2_crc16_1021_ffff_rr_0_extra(buf + 1, 34u - cut, 220u)));
     memmove(buf + (35u - cut), buf + 35, 2u);
+    buf[1] = (uint8_t)(25u - cut);
+    cw_put_le16(buf + (35u - cut), (uint16_t)(mavlink2_crc16_1021_ffff_rr_0_extra(buf + 1, 34u - cut, 220u)));
     return (int)(37u - cut);
 }
 
@@ -581,6 +583,7 @@ static inline int mavlink2_param_value_decode(const uint8_t *buf, size_t len, ma
 {
     uint32_t r[12];
     uint8_t full[37];
+    const uint8_t *sent = buf;  /* the bytes sent, which checksums cover */
     size_t cut;
     if (len < 13u || len > 37u) {
         return CW_ERR_LENGTH;
@@ -603,7 +606,7 @@ static inline int mavlink2_param_value_decode(const uint8_t *buf, size_t len, ma
     r[10] = (uint32_t)cw_get_le16(buf + 16);
     r[11] = (uint32_t)buf[34];
     r[1] = (uint32_t)(r[1] + cut);  /* as if the whole payload were sent */
-    if (cw_get_le16(buf + 35) != mavlink2_crc16_1021_ffff_rr_0_extra(buf + 1, 34u - cut, 220u)) {
+    if (cw_get_le16(buf + 35) != mavlink2_crc16_1021_ffff_rr_0_extra(sent + 1, 34u - cut, 220u)) {
         return CW_ERR_CHECKSUM;
     }
     return mavlink2_param_value_check_raw(r, buf, m, false);
@@ -678,9 +681,9 @@ static inline int mavlink2_gps_raw_int_encode(const mavlink2_gps_raw_int_t *m, u
     while (cut < 51u && buf[61u - cut] == 0u) {  /* trailing zeros are not sent */
         cut++;
     }
-    buf[1] = (uint8_t)(52u - cut);
-    cw_put_le16(buf + 62, (uint16_t)(mavlink2_crc16_1021_ffff_rr_0_extra(buf + 1, 61u - cut, 24u)));
     memmove(buf + (62u - cut), buf + 62, 2u);
+    buf[1] = (uint8_t)(52u - cut);
+    cw_put_le16(buf + (62u - cut), (uint16_t)(mavlink2_crc16_1021_ffff_rr_0_extra(buf + 1, 61u - cut, 24u)));
     return (int)(64u - cut);
 }
 
@@ -727,6 +730,7 @@ static inline int mavlink2_gps_raw_int_decode(const uint8_t *buf, size_t len, ma
 {
     uint64_t r[24];
     uint8_t full[64];
+    const uint8_t *sent = buf;  /* the bytes sent, which checksums cover */
     size_t cut;
     if (len < 13u || len > 64u) {
         return CW_ERR_LENGTH;
@@ -761,7 +765,7 @@ static inline int mavlink2_gps_raw_int_decode(const uint8_t *buf, size_t len, ma
     r[22] = (uint64_t)cw_get_le32(buf + 56);
     r[23] = (uint64_t)cw_get_le16(buf + 60);
     r[1] = (uint64_t)(r[1] + cut);  /* as if the whole payload were sent */
-    if (cw_get_le16(buf + 62) != mavlink2_crc16_1021_ffff_rr_0_extra(buf + 1, 61u - cut, 24u)) {
+    if (cw_get_le16(buf + 62) != mavlink2_crc16_1021_ffff_rr_0_extra(sent + 1, 61u - cut, 24u)) {
         return CW_ERR_CHECKSUM;
     }
     return mavlink2_gps_raw_int_check_raw(r, buf, m, false);
@@ -836,9 +840,9 @@ static inline int mavlink2_attitude_encode(const mavlink2_attitude_t *m, uint8_t
     while (cut < 27u && buf[37u - cut] == 0u) {  /* trailing zeros are not sent */
         cut++;
     }
-    buf[1] = (uint8_t)(28u - cut);
-    cw_put_le16(buf + 38, (uint16_t)(mavlink2_crc16_1021_ffff_rr_0_extra(buf + 1, 37u - cut, 39u)));
     memmove(buf + (38u - cut), buf + 38, 2u);
+    buf[1] = (uint8_t)(28u - cut);
+    cw_put_le16(buf + (38u - cut), (uint16_t)(mavlink2_crc16_1021_ffff_rr_0_extra(buf + 1, 37u - cut, 39u)));
     return (int)(40u - cut);
 }
 
@@ -894,6 +898,7 @@ static inline int mavlink2_attitude_decode(const uint8_t *buf, size_t len, mavli
 {
     uint32_t r[15];
     uint8_t full[40];
+    const uint8_t *sent = buf;  /* the bytes sent, which checksums cover */
     size_t cut;
     if (len < 13u || len > 40u) {
         return CW_ERR_LENGTH;
@@ -919,7 +924,7 @@ static inline int mavlink2_attitude_decode(const uint8_t *buf, size_t len, mavli
     r[13] = (uint32_t)cw_get_le32(buf + 30);
     r[14] = (uint32_t)cw_get_le32(buf + 34);
     r[1] = (uint32_t)(r[1] + cut);  /* as if the whole payload were sent */
-    if (cw_get_le16(buf + 38) != mavlink2_crc16_1021_ffff_rr_0_extra(buf + 1, 37u - cut, 39u)) {
+    if (cw_get_le16(buf + 38) != mavlink2_crc16_1021_ffff_rr_0_extra(sent + 1, 37u - cut, 39u)) {
         return CW_ERR_CHECKSUM;
     }
     return mavlink2_attitude_check_raw(r, buf, m, false);
@@ -974,9 +979,9 @@ static inline int mavlink2_command_ack_encode(const mavlink2_command_ack_t *m, u
     while (cut < 9u && buf[19u - cut] == 0u) {  /* trailing zeros are not sent */
         cut++;
     }
-    buf[1] = (uint8_t)(10u - cut);
-    cw_put_le16(buf + 20, (uint16_t)(mavlink2_crc16_1021_ffff_rr_0_extra(buf + 1, 19u - cut, 143u)));
     memmove(buf + (20u - cut), buf + 20, 2u);
+    buf[1] = (uint8_t)(10u - cut);
+    cw_put_le16(buf + (20u - cut), (uint16_t)(mavlink2_crc16_1021_ffff_rr_0_extra(buf + 1, 19u - cut, 143u)));
     return (int)(22u - cut);
 }
 
@@ -1013,6 +1018,7 @@ static inline int mavlink2_command_ack_decode(const uint8_t *buf, size_t len, ma
 {
     uint32_t r[14];
     uint8_t full[22];
+    const uint8_t *sent = buf;  /* the bytes sent, which checksums cover */
     size_t cut;
     if (len < 13u || len > 22u) {
         return CW_ERR_LENGTH;
@@ -1037,7 +1043,7 @@ static inline int mavlink2_command_ack_decode(const uint8_t *buf, size_t len, ma
     r[12] = (uint32_t)buf[18];
     r[13] = (uint32_t)buf[19];
     r[1] = (uint32_t)(r[1] + cut);  /* as if the whole payload were sent */
-    if (cw_get_le16(buf + 20) != mavlink2_crc16_1021_ffff_rr_0_extra(buf + 1, 19u - cut, 143u)) {
+    if (cw_get_le16(buf + 20) != mavlink2_crc16_1021_ffff_rr_0_extra(sent + 1, 19u - cut, 143u)) {
         return CW_ERR_CHECKSUM;
     }
     return mavlink2_command_ack_check_raw(r, buf, m, false);

@@ -19,8 +19,8 @@ extern "C" {
 #endif
 
 #define MODBUS_RTU_SCHEMA_SHA256 "e7d16b6bb6d8bf1a8330d2190d1f9b5cc0d09e358d1bb51dbcc71513aad0d25a"
-#define MODBUS_RTU_FINGERPRINT "9a4a6a507513fa5e"  /* hash of the wire-relevant schema (codeword diff) */
-#define MODBUS_RTU_FINGERPRINT32 0x9a4a6a50u  /* its first 32 bits */
+#define MODBUS_RTU_FINGERPRINT "6e747324468acd50"  /* hash of the wire-relevant schema (codeword diff) */
+#define MODBUS_RTU_FINGERPRINT32 0x6e747324u  /* its first 32 bits */
 #define MODBUS_RTU_READ_HOLDING_REGISTERS_SIZE 8u  /* bytes */
 #define MODBUS_RTU_READ_HOLDING_REGISTERS_ID 3u
 #define MODBUS_RTU_READ_HOLDING_REGISTERS_RESPONSE_SIZE 255u  /* bytes */
@@ -876,7 +876,7 @@ static inline int modbus_rtu_read_holding_registers_response_encode(const modbus
     if (rc != CW_OK) {
         return rc;
     }
-    size_t cut = (size_t)(125u - m->registers_count) * 2u;
+    size_t cut = 0u;
     if (cap < 255u) {
         return CW_ERR_CAPACITY;
     }
@@ -1008,8 +1008,10 @@ static inline int modbus_rtu_read_holding_registers_response_encode(const modbus
     cw_put_be16(buf + 247, (uint16_t)r[125]);
     cw_put_be16(buf + 249, (uint16_t)r[126]);
     cw_put_be16(buf + 251, (uint16_t)r[127]);
-    cw_put_le16(buf + 253, (uint16_t)(modbus_rtu_crc16_8005_ffff_rr_0(buf + 0, 253u - cut)));
-    memmove(buf + (253u - cut), buf + 253, 2u);
+    size_t lost0 = (size_t)(125u - m->registers_count) * 2u;
+    memmove(buf + (253u - lost0), buf + 253, 2u - cut);
+    cut += lost0;
+    cw_put_le16(buf + (253u - cut), (uint16_t)(modbus_rtu_crc16_8005_ffff_rr_0(buf + 0, 253u - cut)));
     return (int)(255u - cut);
 }
 
@@ -1153,26 +1155,28 @@ static inline int modbus_rtu_read_holding_registers_response_decode(const uint8_
 {
     uint16_t r[128];
     uint8_t full[255];
+    const uint8_t *sent = buf;  /* the bytes sent, which checksums cover */
     size_t cut;
     size_t n;
     if (len < 5u || len > 255u) {
         return CW_ERR_LENGTH;
     }
     cut = 255u - len;
-    n = (size_t)buf[2];
+    n = (size_t)buf[2u];
     if (n > 250u) {
         return CW_ERR_RANGE;
     }
     if (n % 2u != 0u) {
         return CW_ERR_LENGTH;
     }
-    if (cut != 250u - n * 1u) {
+    m->registers_count = (uint8_t)(n / 2u);
+    size_t lost0 = 250u - n * 1u;
+    if (len != 255u - lost0) {
         return CW_ERR_LENGTH;
     }
-    m->registers_count = (uint8_t)(n / 2u);
-    memcpy(full, buf, 253u - cut);
-    memset(full + (253u - cut), 0, cut);
-    memcpy(full + 253, buf + (253u - cut), 2u);
+    memcpy(full, buf, 253u - lost0);
+    memset(full + (253u - lost0), 0, lost0);
+    memcpy(full + 253, buf + (253u - lost0), 2u);
     buf = full;
     r[0] = (uint16_t)buf[0];
     r[1] = (uint16_t)buf[1];
@@ -1302,7 +1306,7 @@ static inline int modbus_rtu_read_holding_registers_response_decode(const uint8_
     r[125] = (uint16_t)cw_get_be16(buf + 247);
     r[126] = (uint16_t)cw_get_be16(buf + 249);
     r[127] = (uint16_t)cw_get_be16(buf + 251);
-    if (cw_get_le16(buf + 253) != modbus_rtu_crc16_8005_ffff_rr_0(buf + 0, 253u - cut)) {
+    if (cw_get_le16(buf + 253) != modbus_rtu_crc16_8005_ffff_rr_0(sent + 0, 253u - cut)) {
         return CW_ERR_CHECKSUM;
     }
     return modbus_rtu_read_holding_registers_response_check_raw(r, buf, m, false);
@@ -1948,7 +1952,7 @@ static inline int modbus_rtu_write_multiple_registers_encode(const modbus_rtu_wr
     if (rc != CW_OK) {
         return rc;
     }
-    size_t cut = (size_t)(123u - m->values_count) * 2u;
+    size_t cut = 0u;
     if (cap < 255u) {
         return CW_ERR_CAPACITY;
     }
@@ -2080,8 +2084,10 @@ static inline int modbus_rtu_write_multiple_registers_encode(const modbus_rtu_wr
     cw_put_be16(buf + 247, (uint16_t)r[125]);
     cw_put_be16(buf + 249, (uint16_t)r[126]);
     cw_put_be16(buf + 251, (uint16_t)r[127]);
-    cw_put_le16(buf + 253, (uint16_t)(modbus_rtu_crc16_8005_ffff_rr_0(buf + 0, 253u - cut)));
-    memmove(buf + (253u - cut), buf + 253, 2u);
+    size_t lost0 = (size_t)(123u - m->values_count) * 2u;
+    memmove(buf + (253u - lost0), buf + 253, 2u - cut);
+    cut += lost0;
+    cw_put_le16(buf + (253u - cut), (uint16_t)(modbus_rtu_crc16_8005_ffff_rr_0(buf + 0, 253u - cut)));
     return (int)(255u - cut);
 }
 
@@ -2231,26 +2237,28 @@ static inline int modbus_rtu_write_multiple_registers_decode(const uint8_t *buf,
 {
     uint16_t r[128];
     uint8_t full[255];
+    const uint8_t *sent = buf;  /* the bytes sent, which checksums cover */
     size_t cut;
     size_t n;
     if (len < 9u || len > 255u) {
         return CW_ERR_LENGTH;
     }
     cut = 255u - len;
-    n = (size_t)buf[6];
+    n = (size_t)buf[6u];
     if (n > 246u) {
         return CW_ERR_RANGE;
     }
     if (n % 2u != 0u) {
         return CW_ERR_LENGTH;
     }
-    if (cut != 246u - n * 1u) {
+    m->values_count = (uint8_t)(n / 2u);
+    size_t lost0 = 246u - n * 1u;
+    if (len != 255u - lost0) {
         return CW_ERR_LENGTH;
     }
-    m->values_count = (uint8_t)(n / 2u);
-    memcpy(full, buf, 253u - cut);
-    memset(full + (253u - cut), 0, cut);
-    memcpy(full + 253, buf + (253u - cut), 2u);
+    memcpy(full, buf, 253u - lost0);
+    memset(full + (253u - lost0), 0, lost0);
+    memcpy(full + 253, buf + (253u - lost0), 2u);
     buf = full;
     r[0] = (uint16_t)buf[0];
     r[1] = (uint16_t)buf[1];
@@ -2380,7 +2388,7 @@ static inline int modbus_rtu_write_multiple_registers_decode(const uint8_t *buf,
     r[125] = (uint16_t)cw_get_be16(buf + 247);
     r[126] = (uint16_t)cw_get_be16(buf + 249);
     r[127] = (uint16_t)cw_get_be16(buf + 251);
-    if (cw_get_le16(buf + 253) != modbus_rtu_crc16_8005_ffff_rr_0(buf + 0, 253u - cut)) {
+    if (cw_get_le16(buf + 253) != modbus_rtu_crc16_8005_ffff_rr_0(sent + 0, 253u - cut)) {
         return CW_ERR_CHECKSUM;
     }
     return modbus_rtu_write_multiple_registers_check_raw(r, buf, m, false);

@@ -374,21 +374,21 @@ def _encode_heartbeat(m):
     b = bytearray(21)
     _S_heartbeat_0.pack_into(b, 0, 253, 9, 0, r_compat_flags, r_seq, r_sysid, r_compid, r_msgid.to_bytes(3, 'little', signed=False), r_custom_mode, r_type, r_autopilot, r_base_mode, r_system_status, r_mavlink_version, r_checksum)
     cut = 8 - len(b[11:19].rstrip(b'\0'))  # trailing zeros are not sent
-    b[1:2] = (9 - cut).to_bytes(1, 'little')
-    b[19:21] = _checksum_crc16_1021_ffff_rr_0_extra(b[1:19 - cut] + b'2').to_bytes(2, 'little')
     del b[19 - cut:19]
+    b[1:2] = (9 - cut).to_bytes(1, 'little')
+    b[19 - cut:21 - cut] = _checksum_crc16_1021_ffff_rr_0_extra(b[1:19 - cut] + b'2').to_bytes(2, 'little')
     return bytes(b)
 
 
 def _decode_heartbeat(d):
     if not 13 <= len(d) <= 21:
         raise _dec('heartbeat', None, len(d), 'length', '13..21 bytes', 0)
-    cut = 21 - len(d)
+    s, cut = d, 21 - len(d)
     if cut:  # the payload bytes left off read as zeros
         d = b''.join((d[:19 - cut], bytes(cut), d[19 - cut:]))
     r_stx, r_len, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, c0_7, r_custom_mode, r_type, r_autopilot, r_base_mode, r_system_status, r_mavlink_version, r_checksum, = _S_heartbeat_0.unpack_from(d, 0)
     r_msgid = int.from_bytes(c0_7, 'little', signed=False)
-    x = _checksum_crc16_1021_ffff_rr_0_extra(d[1:19 - cut] + b'2')
+    x = _checksum_crc16_1021_ffff_rr_0_extra(s[1:19 - cut] + b'2')
     if r_checksum != x:
         raise _dec('heartbeat', 'checksum', r_checksum, 'checksum', hex(x), 152, None)
     if r_stx != 253:
@@ -522,21 +522,21 @@ def _encode_sys_status(m):
     b = bytearray(55)
     _S_sys_status_0.pack_into(b, 0, 253, 43, 0, r_compat_flags, r_seq, r_sysid, r_compid, r_msgid.to_bytes(3, 'little', signed=False), r_onboard_control_sensors_present, r_onboard_control_sensors_enabled, r_onboard_control_sensors_health, r_load, r_voltage_battery, r_current_battery, r_drop_rate_comm, r_errors_comm, r_errors_count1, r_errors_count2, r_errors_count3, r_errors_count4, r_battery_remaining, r_onboard_control_sensors_present_extended, r_onboard_control_sensors_enabled_extended, r_onboard_control_sensors_health_extended, r_checksum)
     cut = 42 - len(b[11:53].rstrip(b'\0'))  # trailing zeros are not sent
-    b[1:2] = (43 - cut).to_bytes(1, 'little')
-    b[53:55] = _checksum_crc16_1021_ffff_rr_0_extra(b[1:53 - cut] + b'|').to_bytes(2, 'little')
     del b[53 - cut:53]
+    b[1:2] = (43 - cut).to_bytes(1, 'little')
+    b[53 - cut:55 - cut] = _checksum_crc16_1021_ffff_rr_0_extra(b[1:53 - cut] + b'|').to_bytes(2, 'little')
     return bytes(b)
 
 
 def _decode_sys_status(d):
     if not 13 <= len(d) <= 55:
         raise _dec('sys_status', None, len(d), 'length', '13..55 bytes', 0)
-    cut = 55 - len(d)
+    s, cut = d, 55 - len(d)
     if cut:  # the payload bytes left off read as zeros
         d = b''.join((d[:53 - cut], bytes(cut), d[53 - cut:]))
     r_stx, r_len, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, c0_7, r_onboard_control_sensors_present, r_onboard_control_sensors_enabled, r_onboard_control_sensors_health, r_load, r_voltage_battery, r_current_battery, r_drop_rate_comm, r_errors_comm, r_errors_count1, r_errors_count2, r_errors_count3, r_errors_count4, r_battery_remaining, r_onboard_control_sensors_present_extended, r_onboard_control_sensors_enabled_extended, r_onboard_control_sensors_health_extended, r_checksum, = _S_sys_status_0.unpack_from(d, 0)
     r_msgid = int.from_bytes(c0_7, 'little', signed=False)
-    x = _checksum_crc16_1021_ffff_rr_0_extra(d[1:53 - cut] + b'|')
+    x = _checksum_crc16_1021_ffff_rr_0_extra(s[1:53 - cut] + b'|')
     if r_checksum != x:
         raise _dec('sys_status', 'checksum', r_checksum, 'checksum', hex(x), 424, None)
     if r_stx != 253:
@@ -630,21 +630,21 @@ def _encode_param_value(m):
     b = bytearray(37)
     _S_param_value_0.pack_into(b, 0, 253, 25, 0, r_compat_flags, r_seq, r_sysid, r_compid, r_msgid.to_bytes(3, 'little', signed=False), r_param_value, r_param_count, r_param_index, r_param_id, r_param_type, r_checksum)
     cut = 24 - len(b[11:35].rstrip(b'\0'))  # trailing zeros are not sent
-    b[1:2] = (25 - cut).to_bytes(1, 'little')
-    b[35:37] = _checksum_crc16_1021_ffff_rr_0_extra(b[1:35 - cut] + b'\xdc').to_bytes(2, 'little')
     del b[35 - cut:35]
+    b[1:2] = (25 - cut).to_bytes(1, 'little')
+    b[35 - cut:37 - cut] = _checksum_crc16_1021_ffff_rr_0_extra(b[1:35 - cut] + b'\xdc').to_bytes(2, 'little')
     return bytes(b)
 
 
 def _decode_param_value(d):
     if not 13 <= len(d) <= 37:
         raise _dec('param_value', None, len(d), 'length', '13..37 bytes', 0)
-    cut = 37 - len(d)
+    s, cut = d, 37 - len(d)
     if cut:  # the payload bytes left off read as zeros
         d = b''.join((d[:35 - cut], bytes(cut), d[35 - cut:]))
     r_stx, r_len, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, c0_7, r_param_value, r_param_count, r_param_index, r_param_id, r_param_type, r_checksum, = _S_param_value_0.unpack_from(d, 0)
     r_msgid = int.from_bytes(c0_7, 'little', signed=False)
-    x = _checksum_crc16_1021_ffff_rr_0_extra(d[1:35 - cut] + b'\xdc')
+    x = _checksum_crc16_1021_ffff_rr_0_extra(s[1:35 - cut] + b'\xdc')
     if r_checksum != x:
         raise _dec('param_value', 'checksum', r_checksum, 'checksum', hex(x), 280, None)
     if r_stx != 253:
@@ -779,21 +779,21 @@ def _encode_gps_raw_int(m):
     b = bytearray(64)
     _S_gps_raw_int_0.pack_into(b, 0, 253, 52, 0, r_compat_flags, r_seq, r_sysid, r_compid, r_msgid.to_bytes(3, 'little', signed=False), r_time_usec, r_lat, r_lon, r_alt, r_eph, r_epv, r_vel, r_cog, r_fix_type, r_satellites_visible, r_alt_ellipsoid, r_h_acc, r_v_acc, r_vel_acc, r_hdg_acc, r_yaw, r_checksum)
     cut = 51 - len(b[11:62].rstrip(b'\0'))  # trailing zeros are not sent
-    b[1:2] = (52 - cut).to_bytes(1, 'little')
-    b[62:64] = _checksum_crc16_1021_ffff_rr_0_extra(b[1:62 - cut] + b'\x18').to_bytes(2, 'little')
     del b[62 - cut:62]
+    b[1:2] = (52 - cut).to_bytes(1, 'little')
+    b[62 - cut:64 - cut] = _checksum_crc16_1021_ffff_rr_0_extra(b[1:62 - cut] + b'\x18').to_bytes(2, 'little')
     return bytes(b)
 
 
 def _decode_gps_raw_int(d):
     if not 13 <= len(d) <= 64:
         raise _dec('gps_raw_int', None, len(d), 'length', '13..64 bytes', 0)
-    cut = 64 - len(d)
+    s, cut = d, 64 - len(d)
     if cut:  # the payload bytes left off read as zeros
         d = b''.join((d[:62 - cut], bytes(cut), d[62 - cut:]))
     r_stx, r_len, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, c0_7, r_time_usec, r_lat, r_lon, r_alt, r_eph, r_epv, r_vel, r_cog, r_fix_type, r_satellites_visible, r_alt_ellipsoid, r_h_acc, r_v_acc, r_vel_acc, r_hdg_acc, r_yaw, r_checksum, = _S_gps_raw_int_0.unpack_from(d, 0)
     r_msgid = int.from_bytes(c0_7, 'little', signed=False)
-    x = _checksum_crc16_1021_ffff_rr_0_extra(d[1:62 - cut] + b'\x18')
+    x = _checksum_crc16_1021_ffff_rr_0_extra(s[1:62 - cut] + b'\x18')
     if r_checksum != x:
         raise _dec('gps_raw_int', 'checksum', r_checksum, 'checksum', hex(x), 496, None)
     if r_stx != 253:
@@ -922,21 +922,21 @@ def _encode_attitude(m):
     b = bytearray(40)
     _S_attitude_0.pack_into(b, 0, 253, 28, 0, r_compat_flags, r_seq, r_sysid, r_compid, r_msgid.to_bytes(3, 'little', signed=False), r_time_boot_ms, r_roll, r_pitch, r_yaw, r_rollspeed, r_pitchspeed, r_yawspeed, r_checksum)
     cut = 27 - len(b[11:38].rstrip(b'\0'))  # trailing zeros are not sent
-    b[1:2] = (28 - cut).to_bytes(1, 'little')
-    b[38:40] = _checksum_crc16_1021_ffff_rr_0_extra(b[1:38 - cut] + b"'").to_bytes(2, 'little')
     del b[38 - cut:38]
+    b[1:2] = (28 - cut).to_bytes(1, 'little')
+    b[38 - cut:40 - cut] = _checksum_crc16_1021_ffff_rr_0_extra(b[1:38 - cut] + b"'").to_bytes(2, 'little')
     return bytes(b)
 
 
 def _decode_attitude(d):
     if not 13 <= len(d) <= 40:
         raise _dec('attitude', None, len(d), 'length', '13..40 bytes', 0)
-    cut = 40 - len(d)
+    s, cut = d, 40 - len(d)
     if cut:  # the payload bytes left off read as zeros
         d = b''.join((d[:38 - cut], bytes(cut), d[38 - cut:]))
     r_stx, r_len, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, c0_7, r_time_boot_ms, r_roll, r_pitch, r_yaw, r_rollspeed, r_pitchspeed, r_yawspeed, r_checksum, = _S_attitude_0.unpack_from(d, 0)
     r_msgid = int.from_bytes(c0_7, 'little', signed=False)
-    x = _checksum_crc16_1021_ffff_rr_0_extra(d[1:38 - cut] + b"'")
+    x = _checksum_crc16_1021_ffff_rr_0_extra(s[1:38 - cut] + b"'")
     if r_checksum != x:
         raise _dec('attitude', 'checksum', r_checksum, 'checksum', hex(x), 304, None)
     if r_stx != 253:
@@ -1033,21 +1033,21 @@ def _encode_command_ack(m):
     b = bytearray(22)
     _S_command_ack_0.pack_into(b, 0, 253, 10, 0, r_compat_flags, r_seq, r_sysid, r_compid, r_msgid.to_bytes(3, 'little', signed=False), r_command, r_result, r_progress, r_result_param2, r_target_system, r_target_component, r_checksum)
     cut = 9 - len(b[11:20].rstrip(b'\0'))  # trailing zeros are not sent
-    b[1:2] = (10 - cut).to_bytes(1, 'little')
-    b[20:22] = _checksum_crc16_1021_ffff_rr_0_extra(b[1:20 - cut] + b'\x8f').to_bytes(2, 'little')
     del b[20 - cut:20]
+    b[1:2] = (10 - cut).to_bytes(1, 'little')
+    b[20 - cut:22 - cut] = _checksum_crc16_1021_ffff_rr_0_extra(b[1:20 - cut] + b'\x8f').to_bytes(2, 'little')
     return bytes(b)
 
 
 def _decode_command_ack(d):
     if not 13 <= len(d) <= 22:
         raise _dec('command_ack', None, len(d), 'length', '13..22 bytes', 0)
-    cut = 22 - len(d)
+    s, cut = d, 22 - len(d)
     if cut:  # the payload bytes left off read as zeros
         d = b''.join((d[:20 - cut], bytes(cut), d[20 - cut:]))
     r_stx, r_len, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, c0_7, r_command, r_result, r_progress, r_result_param2, r_target_system, r_target_component, r_checksum, = _S_command_ack_0.unpack_from(d, 0)
     r_msgid = int.from_bytes(c0_7, 'little', signed=False)
-    x = _checksum_crc16_1021_ffff_rr_0_extra(d[1:20 - cut] + b'\x8f')
+    x = _checksum_crc16_1021_ffff_rr_0_extra(s[1:20 - cut] + b'\x8f')
     if r_checksum != x:
         raise _dec('command_ack', 'checksum', r_checksum, 'checksum', hex(x), 160, None)
     if r_stx != 253:

@@ -13,8 +13,8 @@ from typing import ClassVar, Optional, Union
 PROTOCOL = 'modbus_rtu'
 VERSION = None
 SCHEMA_SHA256 = 'e7d16b6bb6d8bf1a8330d2190d1f9b5cc0d09e358d1bb51dbcc71513aad0d25a'
-FINGERPRINT = '9a4a6a507513fa5e'  # hash of the wire-relevant schema (codeword diff)
-FINGERPRINT32 = 0x9a4a6a50  # its first 32 bits
+FINGERPRINT = '6e747324468acd50'  # hash of the wire-relevant schema (codeword diff)
+FINGERPRINT32 = 0x6e747324  # its first 32 bits
 
 _floor = math.floor
 _isfinite = math.isfinite
@@ -1482,29 +1482,31 @@ def _encode_read_holding_registers_response(m):
     b = bytearray(255)
     _S_read_holding_registers_response_0.pack_into(b, 0, r_address, 3, r_byte_count, r_registers__0, r_registers__1, r_registers__2, r_registers__3, r_registers__4, r_registers__5, r_registers__6, r_registers__7, r_registers__8, r_registers__9, r_registers__10, r_registers__11, r_registers__12, r_registers__13, r_registers__14, r_registers__15, r_registers__16, r_registers__17, r_registers__18, r_registers__19, r_registers__20, r_registers__21, r_registers__22, r_registers__23, r_registers__24, r_registers__25, r_registers__26, r_registers__27, r_registers__28, r_registers__29, r_registers__30, r_registers__31, r_registers__32, r_registers__33, r_registers__34, r_registers__35, r_registers__36, r_registers__37, r_registers__38, r_registers__39, r_registers__40, r_registers__41, r_registers__42, r_registers__43, r_registers__44, r_registers__45, r_registers__46, r_registers__47, r_registers__48, r_registers__49, r_registers__50, r_registers__51, r_registers__52, r_registers__53, r_registers__54, r_registers__55, r_registers__56, r_registers__57, r_registers__58, r_registers__59, r_registers__60, r_registers__61, r_registers__62, r_registers__63, r_registers__64, r_registers__65, r_registers__66, r_registers__67, r_registers__68, r_registers__69, r_registers__70, r_registers__71, r_registers__72, r_registers__73, r_registers__74, r_registers__75, r_registers__76, r_registers__77, r_registers__78, r_registers__79, r_registers__80, r_registers__81, r_registers__82, r_registers__83, r_registers__84, r_registers__85, r_registers__86, r_registers__87, r_registers__88, r_registers__89, r_registers__90, r_registers__91, r_registers__92, r_registers__93, r_registers__94, r_registers__95, r_registers__96, r_registers__97, r_registers__98, r_registers__99, r_registers__100, r_registers__101, r_registers__102, r_registers__103, r_registers__104, r_registers__105, r_registers__106, r_registers__107, r_registers__108, r_registers__109, r_registers__110, r_registers__111, r_registers__112, r_registers__113, r_registers__114, r_registers__115, r_registers__116, r_registers__117, r_registers__118, r_registers__119, r_registers__120, r_registers__121, r_registers__122, r_registers__123, r_registers__124)
     _S_read_holding_registers_response_1.pack_into(b, 253, r_crc)
-    cut = 250 - len(m.registers) * 2
-    b[253:255] = _checksum_crc16_8005_ffff_rr_0(b[0:253 - cut]).to_bytes(2, 'little')
-    del b[253 - cut:253]
+    lost0 = 250 - len(g_registers) * 2
+    del b[253 - lost0:253]
+    cut = lost0
+    b[253 - cut:255 - cut] = _checksum_crc16_8005_ffff_rr_0(b[0:253 - cut]).to_bytes(2, 'little')
     return bytes(b)
 
 
 def _decode_read_holding_registers_response(d):
     if not 5 <= len(d) <= 255:
         raise _dec('read_holding_registers_response', None, len(d), 'length', '5..255 bytes', 0)
-    cut = 255 - len(d)
-    n = int.from_bytes(d[2:3], 'big')
+    s, cut = d, 255 - len(d)
+    n = s[2]
     if n > 250:
         raise _dec('read_holding_registers_response', 'byte_count', n, 'range', '0..250', 16)
     if n % 2:
         raise _dec('read_holding_registers_response', 'byte_count', n, 'length', 'a multiple of 2', 16)
     n_registers = n // 2
-    if cut != 250 - n * 1:
-        raise _dec('read_holding_registers_response', 'registers', len(d), 'length', f'{5 + n * 1} bytes for {n} in byte_count', 24)
-    if cut:  # the payload bytes left off read as zeros
-        d = b''.join((d[:253 - cut], bytes(cut), d[253 - cut:]))
+    lost0 = 250 - n * 1
+    if len(s) != 255 - lost0:
+        raise _dec('read_holding_registers_response', 'registers', len(s), 'length', f'{255 - lost0} bytes', 24)
+    if cut:  # the bytes left out read as zeros
+        d = b''.join((s[:253 - lost0], bytes(lost0), s[253 - lost0:]))
     r_address, r_function, r_byte_count, r_registers__0, r_registers__1, r_registers__2, r_registers__3, r_registers__4, r_registers__5, r_registers__6, r_registers__7, r_registers__8, r_registers__9, r_registers__10, r_registers__11, r_registers__12, r_registers__13, r_registers__14, r_registers__15, r_registers__16, r_registers__17, r_registers__18, r_registers__19, r_registers__20, r_registers__21, r_registers__22, r_registers__23, r_registers__24, r_registers__25, r_registers__26, r_registers__27, r_registers__28, r_registers__29, r_registers__30, r_registers__31, r_registers__32, r_registers__33, r_registers__34, r_registers__35, r_registers__36, r_registers__37, r_registers__38, r_registers__39, r_registers__40, r_registers__41, r_registers__42, r_registers__43, r_registers__44, r_registers__45, r_registers__46, r_registers__47, r_registers__48, r_registers__49, r_registers__50, r_registers__51, r_registers__52, r_registers__53, r_registers__54, r_registers__55, r_registers__56, r_registers__57, r_registers__58, r_registers__59, r_registers__60, r_registers__61, r_registers__62, r_registers__63, r_registers__64, r_registers__65, r_registers__66, r_registers__67, r_registers__68, r_registers__69, r_registers__70, r_registers__71, r_registers__72, r_registers__73, r_registers__74, r_registers__75, r_registers__76, r_registers__77, r_registers__78, r_registers__79, r_registers__80, r_registers__81, r_registers__82, r_registers__83, r_registers__84, r_registers__85, r_registers__86, r_registers__87, r_registers__88, r_registers__89, r_registers__90, r_registers__91, r_registers__92, r_registers__93, r_registers__94, r_registers__95, r_registers__96, r_registers__97, r_registers__98, r_registers__99, r_registers__100, r_registers__101, r_registers__102, r_registers__103, r_registers__104, r_registers__105, r_registers__106, r_registers__107, r_registers__108, r_registers__109, r_registers__110, r_registers__111, r_registers__112, r_registers__113, r_registers__114, r_registers__115, r_registers__116, r_registers__117, r_registers__118, r_registers__119, r_registers__120, r_registers__121, r_registers__122, r_registers__123, r_registers__124, = _S_read_holding_registers_response_0.unpack_from(d, 0)
     r_crc, = _S_read_holding_registers_response_1.unpack_from(d, 253)
-    x = _checksum_crc16_8005_ffff_rr_0(d[0:253 - cut])
+    x = _checksum_crc16_8005_ffff_rr_0(s[0:253 - cut])
     if r_crc != x:
         raise _dec('read_holding_registers_response', 'crc', r_crc, 'checksum', hex(x), 2024, None)
     if r_function != 3:
@@ -2524,29 +2526,31 @@ def _encode_write_multiple_registers(m):
     b = bytearray(255)
     _S_write_multiple_registers_0.pack_into(b, 0, r_address, 16, r_start, r_quantity, r_byte_count, r_values__0, r_values__1, r_values__2, r_values__3, r_values__4, r_values__5, r_values__6, r_values__7, r_values__8, r_values__9, r_values__10, r_values__11, r_values__12, r_values__13, r_values__14, r_values__15, r_values__16, r_values__17, r_values__18, r_values__19, r_values__20, r_values__21, r_values__22, r_values__23, r_values__24, r_values__25, r_values__26, r_values__27, r_values__28, r_values__29, r_values__30, r_values__31, r_values__32, r_values__33, r_values__34, r_values__35, r_values__36, r_values__37, r_values__38, r_values__39, r_values__40, r_values__41, r_values__42, r_values__43, r_values__44, r_values__45, r_values__46, r_values__47, r_values__48, r_values__49, r_values__50, r_values__51, r_values__52, r_values__53, r_values__54, r_values__55, r_values__56, r_values__57, r_values__58, r_values__59, r_values__60, r_values__61, r_values__62, r_values__63, r_values__64, r_values__65, r_values__66, r_values__67, r_values__68, r_values__69, r_values__70, r_values__71, r_values__72, r_values__73, r_values__74, r_values__75, r_values__76, r_values__77, r_values__78, r_values__79, r_values__80, r_values__81, r_values__82, r_values__83, r_values__84, r_values__85, r_values__86, r_values__87, r_values__88, r_values__89, r_values__90, r_values__91, r_values__92, r_values__93, r_values__94, r_values__95, r_values__96, r_values__97, r_values__98, r_values__99, r_values__100, r_values__101, r_values__102, r_values__103, r_values__104, r_values__105, r_values__106, r_values__107, r_values__108, r_values__109, r_values__110, r_values__111, r_values__112, r_values__113, r_values__114, r_values__115, r_values__116, r_values__117, r_values__118, r_values__119, r_values__120, r_values__121, r_values__122)
     _S_write_multiple_registers_1.pack_into(b, 253, r_crc)
-    cut = 246 - len(m.values) * 2
-    b[253:255] = _checksum_crc16_8005_ffff_rr_0(b[0:253 - cut]).to_bytes(2, 'little')
-    del b[253 - cut:253]
+    lost0 = 246 - len(g_values) * 2
+    del b[253 - lost0:253]
+    cut = lost0
+    b[253 - cut:255 - cut] = _checksum_crc16_8005_ffff_rr_0(b[0:253 - cut]).to_bytes(2, 'little')
     return bytes(b)
 
 
 def _decode_write_multiple_registers(d):
     if not 9 <= len(d) <= 255:
         raise _dec('write_multiple_registers', None, len(d), 'length', '9..255 bytes', 0)
-    cut = 255 - len(d)
-    n = int.from_bytes(d[6:7], 'big')
+    s, cut = d, 255 - len(d)
+    n = s[6]
     if n > 246:
         raise _dec('write_multiple_registers', 'byte_count', n, 'range', '0..246', 48)
     if n % 2:
         raise _dec('write_multiple_registers', 'byte_count', n, 'length', 'a multiple of 2', 48)
     n_values = n // 2
-    if cut != 246 - n * 1:
-        raise _dec('write_multiple_registers', 'values', len(d), 'length', f'{9 + n * 1} bytes for {n} in byte_count', 56)
-    if cut:  # the payload bytes left off read as zeros
-        d = b''.join((d[:253 - cut], bytes(cut), d[253 - cut:]))
+    lost0 = 246 - n * 1
+    if len(s) != 255 - lost0:
+        raise _dec('write_multiple_registers', 'values', len(s), 'length', f'{255 - lost0} bytes', 56)
+    if cut:  # the bytes left out read as zeros
+        d = b''.join((s[:253 - lost0], bytes(lost0), s[253 - lost0:]))
     r_address, r_function, r_start, r_quantity, r_byte_count, r_values__0, r_values__1, r_values__2, r_values__3, r_values__4, r_values__5, r_values__6, r_values__7, r_values__8, r_values__9, r_values__10, r_values__11, r_values__12, r_values__13, r_values__14, r_values__15, r_values__16, r_values__17, r_values__18, r_values__19, r_values__20, r_values__21, r_values__22, r_values__23, r_values__24, r_values__25, r_values__26, r_values__27, r_values__28, r_values__29, r_values__30, r_values__31, r_values__32, r_values__33, r_values__34, r_values__35, r_values__36, r_values__37, r_values__38, r_values__39, r_values__40, r_values__41, r_values__42, r_values__43, r_values__44, r_values__45, r_values__46, r_values__47, r_values__48, r_values__49, r_values__50, r_values__51, r_values__52, r_values__53, r_values__54, r_values__55, r_values__56, r_values__57, r_values__58, r_values__59, r_values__60, r_values__61, r_values__62, r_values__63, r_values__64, r_values__65, r_values__66, r_values__67, r_values__68, r_values__69, r_values__70, r_values__71, r_values__72, r_values__73, r_values__74, r_values__75, r_values__76, r_values__77, r_values__78, r_values__79, r_values__80, r_values__81, r_values__82, r_values__83, r_values__84, r_values__85, r_values__86, r_values__87, r_values__88, r_values__89, r_values__90, r_values__91, r_values__92, r_values__93, r_values__94, r_values__95, r_values__96, r_values__97, r_values__98, r_values__99, r_values__100, r_values__101, r_values__102, r_values__103, r_values__104, r_values__105, r_values__106, r_values__107, r_values__108, r_values__109, r_values__110, r_values__111, r_values__112, r_values__113, r_values__114, r_values__115, r_values__116, r_values__117, r_values__118, r_values__119, r_values__120, r_values__121, r_values__122, = _S_write_multiple_registers_0.unpack_from(d, 0)
     r_crc, = _S_write_multiple_registers_1.unpack_from(d, 253)
-    x = _checksum_crc16_8005_ffff_rr_0(d[0:253 - cut])
+    x = _checksum_crc16_8005_ffff_rr_0(s[0:253 - cut])
     if r_crc != x:
         raise _dec('write_multiple_registers', 'crc', r_crc, 'checksum', hex(x), 2024, None)
     if r_function != 16:
