@@ -45,11 +45,11 @@ class Driver:
                 continue
             if f.count is not None:  # an array: one initialiser per element
                 element = f.element
-                empty = "{0}" if element.kind == "group" else "0"
-                parts.append(f".{f.name} = {{{', '.join(self.one(element, x) for x in value) or empty}}}")
+                if value:  # an empty list: zeros, as a missing initialiser leaves them
+                    parts.append(f".{f.name} = {{{', '.join(self.one(element, x) for x in value)}}}")
                 if f.counted_by:  # elements past the count are 0, as the decoder leaves them
                     parts.append(f".{f.name}_count = {len(value)}u")
-                if self.v.rep(element).has_flag:
+                if self.v.rep(element).has_flag and value:
                     parts.append(f".has_{f.name} = {{{', '.join('false' if x is None else 'true' for x in value)}}}")
                 continue
             if f.kind == "group":

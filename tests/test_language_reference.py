@@ -56,7 +56,8 @@ def test_the_reference_shows_every_new_key_in_an_example():
     for key in ("by_direction:", "crc_extra:", "extra: message", "encoding:", "bit_order:", "fletcher",
                 "complement:", "keep_empty:", "start:", "digits:", "decimals:", "width:", "delivery:",
                 "id: {msg_class", "length_of: {from: payload, to: payload}",
-                "count: {from: byte_count, unit: bytes}", "max_count:"):
+                "count: {from: byte_count, unit: bytes}", "max_count:", "present_if: {field: parts, has: gps}",
+                "present_if: {field: mode, equals: [2, 3]}", "count: {from: points}"):
         assert key in shown, key
 
 

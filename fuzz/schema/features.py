@@ -19,7 +19,8 @@ FULL = frozenset({
     "little", "field_order",                # byte orders: the framing's, and per field
     "bitfields",                            # fields narrower than a byte, packed
     "arrays",                               # fields of a fixed count: scalars, groups (bytes), bit fields
-    "counted",                              # bytes: an array counted by an earlier field, last in the payload
+    "counted",                              # bytes: arrays counted by an earlier field, anywhere in the payload
+    "conditional",                          # bytes: fields present when an earlier field says so
     "lsb_first",                            # bytes framing: bit fields least significant bit first
     "signed", "scale", "offset", "range",   # integer options
     "enum", "flags", "bool", "bytes_field", "f32", "f64",

@@ -83,11 +83,12 @@ class Generator:
                     layout.append(self.padding(3))
             else:
                 key = "group" if two_keys else "kind"  # the first dispatch field
-                shortens = length and ("extension" in self.on or "truncate" in self.on) and rng.random() < 0.8
+                shortens = length and bool({"extension", "truncate", "counted", "conditional"} & self.on) \
+                    and rng.random() < 0.8
                 if shortens:
                     key = "payload"
                 if length:  # arrays make payloads of more than 255 bytes
-                    width = "u16" if "arrays" in self.on else "u8"
+                    width = "u16" if {"arrays", "counted", "conditional"} & self.on else "u8"
                     layout.append({"name": "len", "type": width, "length_of": {"from": key, "to": "payload"}})
                 if two_keys:  # messages told apart by a group and a kind, as UBX's class and id
                     layout.append({"name": "group", "type": rng.choice(["u8", "u4"]), "dispatch": True})
@@ -122,7 +123,7 @@ class Generator:
             layout.append({"name": "check", "type": f"u{width}", "checksum": check})
         self.little = self.lsb or self.has("little")
         framing = {"kind": "bytes", "byte_order": "little" if self.little else "big", "layout": layout}
-        if shortens and self.has("truncate", 0.6):
+        if shortens and self.has("truncate", 0.35):
             framing["truncate"] = "trailing_zeros"
         if self.lsb:
             framing["bit_order"] = "lsb_first"
@@ -139,7 +140,10 @@ class Generator:
             if self.directions:
                 body["direction"] = rng.choice(["up", "down"])
             body["fields"] = self.binary_fields(at_least=1 if single else 0)  # a frame is never empty
-            if shortens and self.has("extension", 0.6):
+            gapped = ({"counted", "conditional"} & self.on) and "truncate" not in framing
+            if shortens and gapped and rng.random() < 0.7:
+                body["fields"] = self.gapped_fields(body["fields"])
+            elif shortens and self.has("extension", 0.6):
                 body["fields"] += self.extension_fields()
             elif not shortens and not single and not any("length_of" in f for f in layout) \
                     and self.has("counted", 0.25):
@@ -215,6 +219,67 @@ class Generator:
         return [{"name": count, "type": "u8" if most < 256 else "u16"},
                 {"name": self.name(), "type": element, "count": {"from": count, "unit": unit},
                  "max_count": max_count}]
+
+    def gapped_fields(self, fields: list[dict]) -> list[dict]:
+        """Counted arrays (of numbers or groups, checked or not) and conditional fields between
+        runs of whole bytes, their control fields first: a frame leaves out what they say."""
+        rng = self.rng
+        controls: list[dict] = []
+        out = list(fields)
+        for _ in range(rng.randint(1, 3)):
+            kinds = [k for k in ("counted", "conditional") if k in self.on]
+            if rng.choice(kinds) == "counted":
+                control, gap = self.counted_gap()
+            else:
+                control, gap = self.conditional_gap()
+            controls += control
+            out += [gap] + self.binary_fields()
+        return controls + out
+
+    def counted_gap(self) -> tuple[list[dict], dict]:
+        """A count (in elements or bytes) and an array of numbers or of a group that it counts."""
+        rng = self.rng
+        count, max_count = self.name(), rng.randint(1, 6)
+        if rng.random() < 0.4:  # a group of whole bytes, checked members included
+            fields, bits = self.sized_fields(at_least=1)
+            element, size = {"name": self.name(), "type": "group", "fields": fields}, bits // 8
+            unit = "elements"
+        else:
+            element, _ = self.number_field()
+            size, unit = int(element["type"][1:]) // 8, rng.choice(["elements", "bytes"])
+        most = max_count * (size if unit == "bytes" else 1)
+        return ([{"name": count, "type": "u8" if most < 256 else "u16"}],
+                {**element, "count": {"from": count, "unit": unit}, "max_count": max_count})
+
+    def conditional_gap(self) -> tuple[list[dict], dict]:
+        """A control field (flags with a named bit, or a plain or enum value) and a field of
+        whole bytes sent only when it says so."""
+        rng = self.rng
+        name = self.name()
+        if rng.random() < 0.5:
+            fields, _ = self.sized_fields(at_least=1)
+            gap = {"name": self.name(), "type": "group", "fields": fields}
+        else:
+            gap, _ = self.number_field()
+        if "flags" in self.on and rng.random() < 0.5:
+            flag_set = self.flag_set(8)
+            control = {"name": name, "type": "u8", "flags": flag_set}
+            gap["present_if"] = {"field": name, "has": rng.choice(self.flags[flag_set]["bits"])["name"]}
+            return [control], gap
+        width = rng.choice([8, 4])
+        control = [{"name": name, "type": f"u{width}"}] + ([self.padding(4)] if width == 4 else [])
+        values = rng.sample(range(1 << width), rng.randint(1, 3))
+        gap["present_if"] = {"field": name, "equals": values if len(values) > 1 else values[0]}
+        return control, gap
+
+    def number_field(self) -> tuple[dict, int]:
+        """A number of whole bytes, sometimes with a range."""
+        rng = self.rng
+        kind = rng.choice(["u8", "i8", "u16", "i16", "u32", "f32"])
+        field = {"name": self.name(), "type": kind}
+        if kind[0] != "f" and "range" in self.on and rng.random() < 0.3:
+            field["range"] = [0, 100]
+        return field, int(kind[1:])
 
     def extension_fields(self) -> list[dict]:
         """Fields a later version of the message added at its end, of whole bytes."""

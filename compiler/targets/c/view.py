@@ -804,6 +804,15 @@ class CView:
         leaf = next(x for x in m.wire.leaves if x.field.name == m.shortening.length_field)
         c(self.int_put(leaf.pos // 8, leaf.bits // 8, self.order_of(leaf.field), f"{clit(int(leaf.field.const), True)} - cut"))
 
+    def sums_sent(self, m: Message) -> bool:
+        """Whether a checksum covers the bytes a frame cut short sends."""
+        return any(self.is_byte_checksum(x) and m.counts_sent(x.field.checksum) for x in m.wire.leaves)
+
+    def uses_cut(self, m: Message) -> bool:
+        """Whether a decoder needs the bytes a frame left out: to restore a payload cut at its
+        end, or for a length field or a checksum that counts what was sent."""
+        return not m.shortening.gaps or bool(m.shortening.length_field) or self.sums_sent(m)
+
     def restore(self, c: Code, m: Message) -> None:
         """A frame cut short becomes the whole frame: the payload bytes left off read as zeros,
         and the length field as if they had been sent."""
@@ -811,7 +820,8 @@ class CView:
         c(f"if (len < {m.min_size}u || len > {size}u) {{")
         c("    return CW_ERR_LENGTH;")
         c("}")
-        c(f"cut = {size}u - len;")
+        if self.uses_cut(m):
+            c(f"cut = {size}u - len;")
         if m.shortening.gaps:
             self.restore_gaps(c, m)
         else:
@@ -873,9 +883,10 @@ class CView:
             c(f"{rt} r[1] = {{0}};")
         if m.shortening:
             c(f"uint8_t full[{m.size}];")
-            if any(self.is_byte_checksum(x) and m.counts_sent(x.field.checksum) for x in m.wire.leaves):
+            if self.sums_sent(m):
                 c("const uint8_t *sent = buf;  /* the bytes sent, which checksums cover */")
-            c("size_t cut;")
+            if self.uses_cut(m):
+                c("size_t cut;")
             if any(g.counter for g in m.shortening.gaps):
                 c("size_t n;")
             self.restore(c, m)
@@ -948,7 +959,7 @@ class CView:
                 body = Code()
                 body.depth = c.depth + 1
                 self.decode_leaf(body, leaf, raws[leaf.var], m, rt)
-                if not any("return" in line for line in body.lines):
+                if not any("return" in line for line in body.lines) and not leaf.field.offset:  # 0 stays 0
                     self.decode_leaf(c, leaf, raws[leaf.var], m, rt)
                     continue
                 c(f"if ({guard}) {{")

@@ -3,10 +3,10 @@ layout diagram (a table in the style of a seed document's `name|name|…` tables
 the field table (offset, width, type, range, unit, values, default, meaning)."""
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Optional
 
-from ...model import Field, Message, Protocol, field_at
+from ...model import Field, Message, Presence, Protocol, field_at
 from .text import DecisionLinker, anchor, cell, code, en, number, originals
 
 
@@ -90,7 +90,16 @@ def position(p: Protocol, slot: Slot) -> str:
     return f"B{first} bit {start} – B{last} bit {end}"
 
 
+def presence_text(cond: Presence) -> str:
+    """A condition in the docs' words: "`parts` has `gps`", "`kind` is `run` or 4"."""
+    if cond.has is not None:
+        return f"`{cond.field}` has `{cond.has}`"
+    return f"`{cond.field}` is " + " or ".join(f"`{v}`" if isinstance(v, str) else number(v) for v in cond.equals)
+
+
 def type_text(p: Protocol, f: Field) -> str:
+    if f.present_if:
+        return f"{type_text(p, replace(f, present_if=None))}, if {presence_text(f.present_if)}"
     if f.counted_by and f.kind == "bytes":
         return f"0…{f.length} bytes"
     if f.counted_by:
@@ -264,14 +273,20 @@ def payload_note(p: Protocol, m: Message) -> str:
     """Positions depend on a link parameter when a field's length is one (data of a per-link length),
     and on the payload's length when a frame may carry less than the whole payload."""
     sh = m.shortening
-    if sh is not None and sh.counter is not None:
-        ct = sh.counter
-        says = "bytes" if ct.counts_bytes else "elements"
-        length = f" `{sh.length_field}` counts the payload bytes sent;" if sh.length_field else ""
-        holds = ("bytes", "") if field_at(m.layout, ct.field).kind == "bytes" else ("elements", f"it counts {says}, ")
-        return (f"Positions are those of the largest frame. `{ct.field}` holds as many {holds[0]} as "
-                f"`{ct.count_field}` says ({holds[1]}at most {ct.most_value}); a frame carries only "
-                f"those,{length} and what follows moves up by the bytes left off.")
+    if sh is not None and sh.gaps:
+        said = []
+        for gap in sh.gaps:
+            ct = gap.counter
+            if ct is None:
+                said.append(f"`{gap.field}` is sent only when {presence_text(gap.presence)}")
+                continue
+            says = "bytes" if ct.counts_bytes else "elements"
+            holds = ("bytes", "") if field_at(m.layout, ct.field).kind == "bytes" else ("elements", f"it counts {says}, ")
+            said.append(f"`{ct.field}` holds as many {holds[0]} as `{ct.count_field}` says ({holds[1]}at most "
+                        f"{ct.most_value})")
+        length = f" (`{sh.length_field}` counts the payload bytes sent)" if sh.length_field else ""
+        return (f"Positions are those of the largest frame. {'; '.join(said)}. A frame carries only those "
+                f"bytes{length}, and what follows moves up by the bytes left off.")
     if sh is not None:
         start, end = sh.payload
         why = "its trailing zero bytes are not sent" if sh.trailing_zeros else "its extension fields may be left off"

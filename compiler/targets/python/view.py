@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any, Optional
 
 from ...crc import reflect
@@ -52,6 +52,8 @@ class PythonView:
 
     # -- declarations ----------------------------------------------------------------------
     def annotation(self, f: Field, message: Message, path: tuple[str, ...]) -> str:
+        if f.present_if:  # None when its condition leaves it out
+            return f"Optional[{self.annotation(replace(f, present_if=None), message, path)}]"
         if f.count is not None:
             return f"list[{self.annotation(f.element, message, path)}]"
         if f.kind == "group":
@@ -72,6 +74,8 @@ class PythonView:
         return base
 
     def default_expr(self, f: Field, message: Message, path: tuple[str, ...]) -> Optional[str]:
+        if f.present_if:
+            return "None"
         if f.count is not None:  # a list of the element's default, each element its own object
             each = self.default_expr(f.element, message, path)
             if each is None:
@@ -142,6 +146,8 @@ class PythonView:
             parts.append(f"range {lit(f.range[0])}..{lit(f.range[1])}")
         if f.rule:
             parts.append(f"({f.rule})")
+        if f.present_if:
+            parts.append(f"(sent when {f.present_if.says})")
         return " ".join(parts).replace("\n", " ")
 
     # -- encode: logical value → raw wire integer (or bytes/float) -------------------------
@@ -503,20 +509,23 @@ class MessageCode:
         groups: set[tuple] = set()
         for leaf in self.leaves:
             held = gap_of(self.m, leaf)
+            if held and held[1].presence and leaf is self.first_leaf(held[1].field):
+                self.check_presence(c, held[1])
             for depth in range(1, len(leaf.path)):  # each group object and array is read once
                 prefix = leaf.path[:depth]
                 if prefix not in groups:
                     groups.add(prefix)
-                    value = access(self.group_var(prefix[:-1]), prefix[-1])
+                    parent = self.group_var(prefix[:-1])
+                    value = access(parent, prefix[-1])
                     if held and held[1].counter and depth == 2:  # an element past the list's end is None
-                        value += f" if len({self.group_var(prefix[:1])}) > {prefix[1]} else None"
+                        value += f" if len({parent}) > {prefix[1]} else None"
+                    elif held and depth > (2 if held[1].counter else 1):  # inside what may be None
+                        value += f" if {parent} is not None else None"
                     c(f"{self.group_var(prefix)} = {value}")
                     if isinstance(leaf.path[depth], int):
-                        self.check_list(c, prefix)
+                        self.check_list(c, prefix, maybe_none=held is not None and bool(held[1].presence or depth > 1))
             if leaf.field.counts:
                 continue  # set from the list's length below
-            if held and held[1].presence and leaf is self.first_leaf(held[1].field):
-                self.check_presence(c, held[1])
             guard = self.sent_guard(leaf, held, encoding=True)
             if guard is None:
                 self.view.encode_leaf(c, self.m, leaf, self.group_var(leaf.path[:-1]), keep_bool=word)
@@ -526,7 +535,7 @@ class MessageCode:
             self.view.encode_leaf(c, self.m, leaf, self.group_var(leaf.path[:-1]), keep_bool=word)
             c.dedent()
             c("else:")
-            c(f"    {leaf.var} = 0")
+            c(f"    {leaf.var} = {f'bytes({leaf.field.length})' if leaf.field.kind == 'bytes' else 0}")
         for gap in self.gaps():
             if gap.counter:
                 leaf = self.first_leaf(gap.control)
@@ -577,8 +586,9 @@ class MessageCode:
         c(f"    raise _enc({name!r}, {gap.field!r}, m.{gap.field}, 'present', "
           f"{('a value when ' + says + ', else None')!r})")
 
-    def check_list(self, c: Code, path: tuple) -> None:
-        """An array member must be a list (or tuple) of exactly its count of elements."""
+    def check_list(self, c: Code, path: tuple, maybe_none: bool = False) -> None:
+        """An array member must be a list (or tuple) of exactly its count of elements
+        (`maybe_none`: or None, inside what a frame leaves out)."""
         array = field_at(self.m.layout, ".".join(p for p in path if isinstance(p, str)))
         count = array.count
         v = self.group_var(path)
@@ -586,7 +596,9 @@ class MessageCode:
             c(f"if not isinstance({v}, (list, tuple)) or len({v}) > {count}:")
             c(f"    raise _enc({self.m.name!r}, {dotted(path)!r}, {v}, 'count', 'a list of at most {count} values')")
             return
-        c(f"if not isinstance({v}, (list, tuple)) or len({v}) != {count}:")
+        absent = f"{v} is not None and " if maybe_none else ""
+        c(f"if {absent}(not isinstance({v}, (list, tuple)) or len({v}) != {count}):" if maybe_none else
+          f"if not isinstance({v}, (list, tuple)) or len({v}) != {count}:")
         c(f"    raise _enc({self.m.name!r}, {dotted(path)!r}, {v}, 'count', 'a list of {count} values')")
 
     def raw_function(self) -> str:
