@@ -478,1009 +478,1009 @@ def _encode_read_holding_registers_response(m):
     if not isinstance(g_registers, (list, tuple)) or len(g_registers) > 125:
         raise _enc('read_holding_registers_response', 'registers', g_registers, 'count', 'a list of at most 125 values')
     if len(g_registers) > 0:
-        r_registers__0 = g_registers[0]
-        if r_registers__0.__class__ is not int and (not isinstance(r_registers__0, int) or r_registers__0.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[0]', r_registers__0, 'type', 'an int')
-        if not 0 <= r_registers__0 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[0]', r_registers__0, 'range', '0..65535', None)
+        r_9registers_0 = g_registers[0]
+        if r_9registers_0.__class__ is not int and (not isinstance(r_9registers_0, int) or r_9registers_0.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[0]', r_9registers_0, 'type', 'an int')
+        if not 0 <= r_9registers_0 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[0]', r_9registers_0, 'range', '0..65535', None)
     else:
-        r_registers__0 = 0
+        r_9registers_0 = 0
     if len(g_registers) > 1:
-        r_registers__1 = g_registers[1]
-        if r_registers__1.__class__ is not int and (not isinstance(r_registers__1, int) or r_registers__1.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[1]', r_registers__1, 'type', 'an int')
-        if not 0 <= r_registers__1 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[1]', r_registers__1, 'range', '0..65535', None)
+        r_9registers_1 = g_registers[1]
+        if r_9registers_1.__class__ is not int and (not isinstance(r_9registers_1, int) or r_9registers_1.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[1]', r_9registers_1, 'type', 'an int')
+        if not 0 <= r_9registers_1 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[1]', r_9registers_1, 'range', '0..65535', None)
     else:
-        r_registers__1 = 0
+        r_9registers_1 = 0
     if len(g_registers) > 2:
-        r_registers__2 = g_registers[2]
-        if r_registers__2.__class__ is not int and (not isinstance(r_registers__2, int) or r_registers__2.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[2]', r_registers__2, 'type', 'an int')
-        if not 0 <= r_registers__2 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[2]', r_registers__2, 'range', '0..65535', None)
+        r_9registers_2 = g_registers[2]
+        if r_9registers_2.__class__ is not int and (not isinstance(r_9registers_2, int) or r_9registers_2.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[2]', r_9registers_2, 'type', 'an int')
+        if not 0 <= r_9registers_2 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[2]', r_9registers_2, 'range', '0..65535', None)
     else:
-        r_registers__2 = 0
+        r_9registers_2 = 0
     if len(g_registers) > 3:
-        r_registers__3 = g_registers[3]
-        if r_registers__3.__class__ is not int and (not isinstance(r_registers__3, int) or r_registers__3.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[3]', r_registers__3, 'type', 'an int')
-        if not 0 <= r_registers__3 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[3]', r_registers__3, 'range', '0..65535', None)
+        r_9registers_3 = g_registers[3]
+        if r_9registers_3.__class__ is not int and (not isinstance(r_9registers_3, int) or r_9registers_3.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[3]', r_9registers_3, 'type', 'an int')
+        if not 0 <= r_9registers_3 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[3]', r_9registers_3, 'range', '0..65535', None)
     else:
-        r_registers__3 = 0
+        r_9registers_3 = 0
     if len(g_registers) > 4:
-        r_registers__4 = g_registers[4]
-        if r_registers__4.__class__ is not int and (not isinstance(r_registers__4, int) or r_registers__4.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[4]', r_registers__4, 'type', 'an int')
-        if not 0 <= r_registers__4 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[4]', r_registers__4, 'range', '0..65535', None)
+        r_9registers_4 = g_registers[4]
+        if r_9registers_4.__class__ is not int and (not isinstance(r_9registers_4, int) or r_9registers_4.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[4]', r_9registers_4, 'type', 'an int')
+        if not 0 <= r_9registers_4 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[4]', r_9registers_4, 'range', '0..65535', None)
     else:
-        r_registers__4 = 0
+        r_9registers_4 = 0
     if len(g_registers) > 5:
-        r_registers__5 = g_registers[5]
-        if r_registers__5.__class__ is not int and (not isinstance(r_registers__5, int) or r_registers__5.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[5]', r_registers__5, 'type', 'an int')
-        if not 0 <= r_registers__5 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[5]', r_registers__5, 'range', '0..65535', None)
+        r_9registers_5 = g_registers[5]
+        if r_9registers_5.__class__ is not int and (not isinstance(r_9registers_5, int) or r_9registers_5.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[5]', r_9registers_5, 'type', 'an int')
+        if not 0 <= r_9registers_5 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[5]', r_9registers_5, 'range', '0..65535', None)
     else:
-        r_registers__5 = 0
+        r_9registers_5 = 0
     if len(g_registers) > 6:
-        r_registers__6 = g_registers[6]
-        if r_registers__6.__class__ is not int and (not isinstance(r_registers__6, int) or r_registers__6.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[6]', r_registers__6, 'type', 'an int')
-        if not 0 <= r_registers__6 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[6]', r_registers__6, 'range', '0..65535', None)
+        r_9registers_6 = g_registers[6]
+        if r_9registers_6.__class__ is not int and (not isinstance(r_9registers_6, int) or r_9registers_6.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[6]', r_9registers_6, 'type', 'an int')
+        if not 0 <= r_9registers_6 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[6]', r_9registers_6, 'range', '0..65535', None)
     else:
-        r_registers__6 = 0
+        r_9registers_6 = 0
     if len(g_registers) > 7:
-        r_registers__7 = g_registers[7]
-        if r_registers__7.__class__ is not int and (not isinstance(r_registers__7, int) or r_registers__7.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[7]', r_registers__7, 'type', 'an int')
-        if not 0 <= r_registers__7 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[7]', r_registers__7, 'range', '0..65535', None)
+        r_9registers_7 = g_registers[7]
+        if r_9registers_7.__class__ is not int and (not isinstance(r_9registers_7, int) or r_9registers_7.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[7]', r_9registers_7, 'type', 'an int')
+        if not 0 <= r_9registers_7 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[7]', r_9registers_7, 'range', '0..65535', None)
     else:
-        r_registers__7 = 0
+        r_9registers_7 = 0
     if len(g_registers) > 8:
-        r_registers__8 = g_registers[8]
-        if r_registers__8.__class__ is not int and (not isinstance(r_registers__8, int) or r_registers__8.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[8]', r_registers__8, 'type', 'an int')
-        if not 0 <= r_registers__8 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[8]', r_registers__8, 'range', '0..65535', None)
+        r_9registers_8 = g_registers[8]
+        if r_9registers_8.__class__ is not int and (not isinstance(r_9registers_8, int) or r_9registers_8.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[8]', r_9registers_8, 'type', 'an int')
+        if not 0 <= r_9registers_8 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[8]', r_9registers_8, 'range', '0..65535', None)
     else:
-        r_registers__8 = 0
+        r_9registers_8 = 0
     if len(g_registers) > 9:
-        r_registers__9 = g_registers[9]
-        if r_registers__9.__class__ is not int and (not isinstance(r_registers__9, int) or r_registers__9.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[9]', r_registers__9, 'type', 'an int')
-        if not 0 <= r_registers__9 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[9]', r_registers__9, 'range', '0..65535', None)
+        r_9registers_9 = g_registers[9]
+        if r_9registers_9.__class__ is not int and (not isinstance(r_9registers_9, int) or r_9registers_9.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[9]', r_9registers_9, 'type', 'an int')
+        if not 0 <= r_9registers_9 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[9]', r_9registers_9, 'range', '0..65535', None)
     else:
-        r_registers__9 = 0
+        r_9registers_9 = 0
     if len(g_registers) > 10:
-        r_registers__10 = g_registers[10]
-        if r_registers__10.__class__ is not int and (not isinstance(r_registers__10, int) or r_registers__10.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[10]', r_registers__10, 'type', 'an int')
-        if not 0 <= r_registers__10 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[10]', r_registers__10, 'range', '0..65535', None)
+        r_9registers_10 = g_registers[10]
+        if r_9registers_10.__class__ is not int and (not isinstance(r_9registers_10, int) or r_9registers_10.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[10]', r_9registers_10, 'type', 'an int')
+        if not 0 <= r_9registers_10 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[10]', r_9registers_10, 'range', '0..65535', None)
     else:
-        r_registers__10 = 0
+        r_9registers_10 = 0
     if len(g_registers) > 11:
-        r_registers__11 = g_registers[11]
-        if r_registers__11.__class__ is not int and (not isinstance(r_registers__11, int) or r_registers__11.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[11]', r_registers__11, 'type', 'an int')
-        if not 0 <= r_registers__11 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[11]', r_registers__11, 'range', '0..65535', None)
+        r_9registers_11 = g_registers[11]
+        if r_9registers_11.__class__ is not int and (not isinstance(r_9registers_11, int) or r_9registers_11.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[11]', r_9registers_11, 'type', 'an int')
+        if not 0 <= r_9registers_11 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[11]', r_9registers_11, 'range', '0..65535', None)
     else:
-        r_registers__11 = 0
+        r_9registers_11 = 0
     if len(g_registers) > 12:
-        r_registers__12 = g_registers[12]
-        if r_registers__12.__class__ is not int and (not isinstance(r_registers__12, int) or r_registers__12.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[12]', r_registers__12, 'type', 'an int')
-        if not 0 <= r_registers__12 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[12]', r_registers__12, 'range', '0..65535', None)
+        r_9registers_12 = g_registers[12]
+        if r_9registers_12.__class__ is not int and (not isinstance(r_9registers_12, int) or r_9registers_12.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[12]', r_9registers_12, 'type', 'an int')
+        if not 0 <= r_9registers_12 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[12]', r_9registers_12, 'range', '0..65535', None)
     else:
-        r_registers__12 = 0
+        r_9registers_12 = 0
     if len(g_registers) > 13:
-        r_registers__13 = g_registers[13]
-        if r_registers__13.__class__ is not int and (not isinstance(r_registers__13, int) or r_registers__13.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[13]', r_registers__13, 'type', 'an int')
-        if not 0 <= r_registers__13 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[13]', r_registers__13, 'range', '0..65535', None)
+        r_9registers_13 = g_registers[13]
+        if r_9registers_13.__class__ is not int and (not isinstance(r_9registers_13, int) or r_9registers_13.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[13]', r_9registers_13, 'type', 'an int')
+        if not 0 <= r_9registers_13 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[13]', r_9registers_13, 'range', '0..65535', None)
     else:
-        r_registers__13 = 0
+        r_9registers_13 = 0
     if len(g_registers) > 14:
-        r_registers__14 = g_registers[14]
-        if r_registers__14.__class__ is not int and (not isinstance(r_registers__14, int) or r_registers__14.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[14]', r_registers__14, 'type', 'an int')
-        if not 0 <= r_registers__14 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[14]', r_registers__14, 'range', '0..65535', None)
+        r_9registers_14 = g_registers[14]
+        if r_9registers_14.__class__ is not int and (not isinstance(r_9registers_14, int) or r_9registers_14.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[14]', r_9registers_14, 'type', 'an int')
+        if not 0 <= r_9registers_14 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[14]', r_9registers_14, 'range', '0..65535', None)
     else:
-        r_registers__14 = 0
+        r_9registers_14 = 0
     if len(g_registers) > 15:
-        r_registers__15 = g_registers[15]
-        if r_registers__15.__class__ is not int and (not isinstance(r_registers__15, int) or r_registers__15.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[15]', r_registers__15, 'type', 'an int')
-        if not 0 <= r_registers__15 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[15]', r_registers__15, 'range', '0..65535', None)
+        r_9registers_15 = g_registers[15]
+        if r_9registers_15.__class__ is not int and (not isinstance(r_9registers_15, int) or r_9registers_15.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[15]', r_9registers_15, 'type', 'an int')
+        if not 0 <= r_9registers_15 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[15]', r_9registers_15, 'range', '0..65535', None)
     else:
-        r_registers__15 = 0
+        r_9registers_15 = 0
     if len(g_registers) > 16:
-        r_registers__16 = g_registers[16]
-        if r_registers__16.__class__ is not int and (not isinstance(r_registers__16, int) or r_registers__16.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[16]', r_registers__16, 'type', 'an int')
-        if not 0 <= r_registers__16 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[16]', r_registers__16, 'range', '0..65535', None)
+        r_9registers_16 = g_registers[16]
+        if r_9registers_16.__class__ is not int and (not isinstance(r_9registers_16, int) or r_9registers_16.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[16]', r_9registers_16, 'type', 'an int')
+        if not 0 <= r_9registers_16 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[16]', r_9registers_16, 'range', '0..65535', None)
     else:
-        r_registers__16 = 0
+        r_9registers_16 = 0
     if len(g_registers) > 17:
-        r_registers__17 = g_registers[17]
-        if r_registers__17.__class__ is not int and (not isinstance(r_registers__17, int) or r_registers__17.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[17]', r_registers__17, 'type', 'an int')
-        if not 0 <= r_registers__17 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[17]', r_registers__17, 'range', '0..65535', None)
+        r_9registers_17 = g_registers[17]
+        if r_9registers_17.__class__ is not int and (not isinstance(r_9registers_17, int) or r_9registers_17.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[17]', r_9registers_17, 'type', 'an int')
+        if not 0 <= r_9registers_17 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[17]', r_9registers_17, 'range', '0..65535', None)
     else:
-        r_registers__17 = 0
+        r_9registers_17 = 0
     if len(g_registers) > 18:
-        r_registers__18 = g_registers[18]
-        if r_registers__18.__class__ is not int and (not isinstance(r_registers__18, int) or r_registers__18.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[18]', r_registers__18, 'type', 'an int')
-        if not 0 <= r_registers__18 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[18]', r_registers__18, 'range', '0..65535', None)
+        r_9registers_18 = g_registers[18]
+        if r_9registers_18.__class__ is not int and (not isinstance(r_9registers_18, int) or r_9registers_18.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[18]', r_9registers_18, 'type', 'an int')
+        if not 0 <= r_9registers_18 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[18]', r_9registers_18, 'range', '0..65535', None)
     else:
-        r_registers__18 = 0
+        r_9registers_18 = 0
     if len(g_registers) > 19:
-        r_registers__19 = g_registers[19]
-        if r_registers__19.__class__ is not int and (not isinstance(r_registers__19, int) or r_registers__19.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[19]', r_registers__19, 'type', 'an int')
-        if not 0 <= r_registers__19 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[19]', r_registers__19, 'range', '0..65535', None)
+        r_9registers_19 = g_registers[19]
+        if r_9registers_19.__class__ is not int and (not isinstance(r_9registers_19, int) or r_9registers_19.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[19]', r_9registers_19, 'type', 'an int')
+        if not 0 <= r_9registers_19 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[19]', r_9registers_19, 'range', '0..65535', None)
     else:
-        r_registers__19 = 0
+        r_9registers_19 = 0
     if len(g_registers) > 20:
-        r_registers__20 = g_registers[20]
-        if r_registers__20.__class__ is not int and (not isinstance(r_registers__20, int) or r_registers__20.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[20]', r_registers__20, 'type', 'an int')
-        if not 0 <= r_registers__20 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[20]', r_registers__20, 'range', '0..65535', None)
+        r_9registers_20 = g_registers[20]
+        if r_9registers_20.__class__ is not int and (not isinstance(r_9registers_20, int) or r_9registers_20.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[20]', r_9registers_20, 'type', 'an int')
+        if not 0 <= r_9registers_20 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[20]', r_9registers_20, 'range', '0..65535', None)
     else:
-        r_registers__20 = 0
+        r_9registers_20 = 0
     if len(g_registers) > 21:
-        r_registers__21 = g_registers[21]
-        if r_registers__21.__class__ is not int and (not isinstance(r_registers__21, int) or r_registers__21.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[21]', r_registers__21, 'type', 'an int')
-        if not 0 <= r_registers__21 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[21]', r_registers__21, 'range', '0..65535', None)
+        r_9registers_21 = g_registers[21]
+        if r_9registers_21.__class__ is not int and (not isinstance(r_9registers_21, int) or r_9registers_21.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[21]', r_9registers_21, 'type', 'an int')
+        if not 0 <= r_9registers_21 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[21]', r_9registers_21, 'range', '0..65535', None)
     else:
-        r_registers__21 = 0
+        r_9registers_21 = 0
     if len(g_registers) > 22:
-        r_registers__22 = g_registers[22]
-        if r_registers__22.__class__ is not int and (not isinstance(r_registers__22, int) or r_registers__22.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[22]', r_registers__22, 'type', 'an int')
-        if not 0 <= r_registers__22 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[22]', r_registers__22, 'range', '0..65535', None)
+        r_9registers_22 = g_registers[22]
+        if r_9registers_22.__class__ is not int and (not isinstance(r_9registers_22, int) or r_9registers_22.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[22]', r_9registers_22, 'type', 'an int')
+        if not 0 <= r_9registers_22 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[22]', r_9registers_22, 'range', '0..65535', None)
     else:
-        r_registers__22 = 0
+        r_9registers_22 = 0
     if len(g_registers) > 23:
-        r_registers__23 = g_registers[23]
-        if r_registers__23.__class__ is not int and (not isinstance(r_registers__23, int) or r_registers__23.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[23]', r_registers__23, 'type', 'an int')
-        if not 0 <= r_registers__23 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[23]', r_registers__23, 'range', '0..65535', None)
+        r_9registers_23 = g_registers[23]
+        if r_9registers_23.__class__ is not int and (not isinstance(r_9registers_23, int) or r_9registers_23.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[23]', r_9registers_23, 'type', 'an int')
+        if not 0 <= r_9registers_23 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[23]', r_9registers_23, 'range', '0..65535', None)
     else:
-        r_registers__23 = 0
+        r_9registers_23 = 0
     if len(g_registers) > 24:
-        r_registers__24 = g_registers[24]
-        if r_registers__24.__class__ is not int and (not isinstance(r_registers__24, int) or r_registers__24.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[24]', r_registers__24, 'type', 'an int')
-        if not 0 <= r_registers__24 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[24]', r_registers__24, 'range', '0..65535', None)
+        r_9registers_24 = g_registers[24]
+        if r_9registers_24.__class__ is not int and (not isinstance(r_9registers_24, int) or r_9registers_24.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[24]', r_9registers_24, 'type', 'an int')
+        if not 0 <= r_9registers_24 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[24]', r_9registers_24, 'range', '0..65535', None)
     else:
-        r_registers__24 = 0
+        r_9registers_24 = 0
     if len(g_registers) > 25:
-        r_registers__25 = g_registers[25]
-        if r_registers__25.__class__ is not int and (not isinstance(r_registers__25, int) or r_registers__25.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[25]', r_registers__25, 'type', 'an int')
-        if not 0 <= r_registers__25 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[25]', r_registers__25, 'range', '0..65535', None)
+        r_9registers_25 = g_registers[25]
+        if r_9registers_25.__class__ is not int and (not isinstance(r_9registers_25, int) or r_9registers_25.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[25]', r_9registers_25, 'type', 'an int')
+        if not 0 <= r_9registers_25 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[25]', r_9registers_25, 'range', '0..65535', None)
     else:
-        r_registers__25 = 0
+        r_9registers_25 = 0
     if len(g_registers) > 26:
-        r_registers__26 = g_registers[26]
-        if r_registers__26.__class__ is not int and (not isinstance(r_registers__26, int) or r_registers__26.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[26]', r_registers__26, 'type', 'an int')
-        if not 0 <= r_registers__26 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[26]', r_registers__26, 'range', '0..65535', None)
+        r_9registers_26 = g_registers[26]
+        if r_9registers_26.__class__ is not int and (not isinstance(r_9registers_26, int) or r_9registers_26.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[26]', r_9registers_26, 'type', 'an int')
+        if not 0 <= r_9registers_26 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[26]', r_9registers_26, 'range', '0..65535', None)
     else:
-        r_registers__26 = 0
+        r_9registers_26 = 0
     if len(g_registers) > 27:
-        r_registers__27 = g_registers[27]
-        if r_registers__27.__class__ is not int and (not isinstance(r_registers__27, int) or r_registers__27.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[27]', r_registers__27, 'type', 'an int')
-        if not 0 <= r_registers__27 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[27]', r_registers__27, 'range', '0..65535', None)
+        r_9registers_27 = g_registers[27]
+        if r_9registers_27.__class__ is not int and (not isinstance(r_9registers_27, int) or r_9registers_27.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[27]', r_9registers_27, 'type', 'an int')
+        if not 0 <= r_9registers_27 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[27]', r_9registers_27, 'range', '0..65535', None)
     else:
-        r_registers__27 = 0
+        r_9registers_27 = 0
     if len(g_registers) > 28:
-        r_registers__28 = g_registers[28]
-        if r_registers__28.__class__ is not int and (not isinstance(r_registers__28, int) or r_registers__28.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[28]', r_registers__28, 'type', 'an int')
-        if not 0 <= r_registers__28 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[28]', r_registers__28, 'range', '0..65535', None)
+        r_9registers_28 = g_registers[28]
+        if r_9registers_28.__class__ is not int and (not isinstance(r_9registers_28, int) or r_9registers_28.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[28]', r_9registers_28, 'type', 'an int')
+        if not 0 <= r_9registers_28 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[28]', r_9registers_28, 'range', '0..65535', None)
     else:
-        r_registers__28 = 0
+        r_9registers_28 = 0
     if len(g_registers) > 29:
-        r_registers__29 = g_registers[29]
-        if r_registers__29.__class__ is not int and (not isinstance(r_registers__29, int) or r_registers__29.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[29]', r_registers__29, 'type', 'an int')
-        if not 0 <= r_registers__29 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[29]', r_registers__29, 'range', '0..65535', None)
+        r_9registers_29 = g_registers[29]
+        if r_9registers_29.__class__ is not int and (not isinstance(r_9registers_29, int) or r_9registers_29.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[29]', r_9registers_29, 'type', 'an int')
+        if not 0 <= r_9registers_29 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[29]', r_9registers_29, 'range', '0..65535', None)
     else:
-        r_registers__29 = 0
+        r_9registers_29 = 0
     if len(g_registers) > 30:
-        r_registers__30 = g_registers[30]
-        if r_registers__30.__class__ is not int and (not isinstance(r_registers__30, int) or r_registers__30.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[30]', r_registers__30, 'type', 'an int')
-        if not 0 <= r_registers__30 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[30]', r_registers__30, 'range', '0..65535', None)
+        r_9registers_30 = g_registers[30]
+        if r_9registers_30.__class__ is not int and (not isinstance(r_9registers_30, int) or r_9registers_30.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[30]', r_9registers_30, 'type', 'an int')
+        if not 0 <= r_9registers_30 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[30]', r_9registers_30, 'range', '0..65535', None)
     else:
-        r_registers__30 = 0
+        r_9registers_30 = 0
     if len(g_registers) > 31:
-        r_registers__31 = g_registers[31]
-        if r_registers__31.__class__ is not int and (not isinstance(r_registers__31, int) or r_registers__31.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[31]', r_registers__31, 'type', 'an int')
-        if not 0 <= r_registers__31 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[31]', r_registers__31, 'range', '0..65535', None)
+        r_9registers_31 = g_registers[31]
+        if r_9registers_31.__class__ is not int and (not isinstance(r_9registers_31, int) or r_9registers_31.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[31]', r_9registers_31, 'type', 'an int')
+        if not 0 <= r_9registers_31 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[31]', r_9registers_31, 'range', '0..65535', None)
     else:
-        r_registers__31 = 0
+        r_9registers_31 = 0
     if len(g_registers) > 32:
-        r_registers__32 = g_registers[32]
-        if r_registers__32.__class__ is not int and (not isinstance(r_registers__32, int) or r_registers__32.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[32]', r_registers__32, 'type', 'an int')
-        if not 0 <= r_registers__32 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[32]', r_registers__32, 'range', '0..65535', None)
+        r_9registers_32 = g_registers[32]
+        if r_9registers_32.__class__ is not int and (not isinstance(r_9registers_32, int) or r_9registers_32.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[32]', r_9registers_32, 'type', 'an int')
+        if not 0 <= r_9registers_32 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[32]', r_9registers_32, 'range', '0..65535', None)
     else:
-        r_registers__32 = 0
+        r_9registers_32 = 0
     if len(g_registers) > 33:
-        r_registers__33 = g_registers[33]
-        if r_registers__33.__class__ is not int and (not isinstance(r_registers__33, int) or r_registers__33.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[33]', r_registers__33, 'type', 'an int')
-        if not 0 <= r_registers__33 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[33]', r_registers__33, 'range', '0..65535', None)
+        r_9registers_33 = g_registers[33]
+        if r_9registers_33.__class__ is not int and (not isinstance(r_9registers_33, int) or r_9registers_33.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[33]', r_9registers_33, 'type', 'an int')
+        if not 0 <= r_9registers_33 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[33]', r_9registers_33, 'range', '0..65535', None)
     else:
-        r_registers__33 = 0
+        r_9registers_33 = 0
     if len(g_registers) > 34:
-        r_registers__34 = g_registers[34]
-        if r_registers__34.__class__ is not int and (not isinstance(r_registers__34, int) or r_registers__34.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[34]', r_registers__34, 'type', 'an int')
-        if not 0 <= r_registers__34 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[34]', r_registers__34, 'range', '0..65535', None)
+        r_9registers_34 = g_registers[34]
+        if r_9registers_34.__class__ is not int and (not isinstance(r_9registers_34, int) or r_9registers_34.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[34]', r_9registers_34, 'type', 'an int')
+        if not 0 <= r_9registers_34 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[34]', r_9registers_34, 'range', '0..65535', None)
     else:
-        r_registers__34 = 0
+        r_9registers_34 = 0
     if len(g_registers) > 35:
-        r_registers__35 = g_registers[35]
-        if r_registers__35.__class__ is not int and (not isinstance(r_registers__35, int) or r_registers__35.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[35]', r_registers__35, 'type', 'an int')
-        if not 0 <= r_registers__35 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[35]', r_registers__35, 'range', '0..65535', None)
+        r_9registers_35 = g_registers[35]
+        if r_9registers_35.__class__ is not int and (not isinstance(r_9registers_35, int) or r_9registers_35.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[35]', r_9registers_35, 'type', 'an int')
+        if not 0 <= r_9registers_35 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[35]', r_9registers_35, 'range', '0..65535', None)
     else:
-        r_registers__35 = 0
+        r_9registers_35 = 0
     if len(g_registers) > 36:
-        r_registers__36 = g_registers[36]
-        if r_registers__36.__class__ is not int and (not isinstance(r_registers__36, int) or r_registers__36.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[36]', r_registers__36, 'type', 'an int')
-        if not 0 <= r_registers__36 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[36]', r_registers__36, 'range', '0..65535', None)
+        r_9registers_36 = g_registers[36]
+        if r_9registers_36.__class__ is not int and (not isinstance(r_9registers_36, int) or r_9registers_36.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[36]', r_9registers_36, 'type', 'an int')
+        if not 0 <= r_9registers_36 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[36]', r_9registers_36, 'range', '0..65535', None)
     else:
-        r_registers__36 = 0
+        r_9registers_36 = 0
     if len(g_registers) > 37:
-        r_registers__37 = g_registers[37]
-        if r_registers__37.__class__ is not int and (not isinstance(r_registers__37, int) or r_registers__37.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[37]', r_registers__37, 'type', 'an int')
-        if not 0 <= r_registers__37 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[37]', r_registers__37, 'range', '0..65535', None)
+        r_9registers_37 = g_registers[37]
+        if r_9registers_37.__class__ is not int and (not isinstance(r_9registers_37, int) or r_9registers_37.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[37]', r_9registers_37, 'type', 'an int')
+        if not 0 <= r_9registers_37 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[37]', r_9registers_37, 'range', '0..65535', None)
     else:
-        r_registers__37 = 0
+        r_9registers_37 = 0
     if len(g_registers) > 38:
-        r_registers__38 = g_registers[38]
-        if r_registers__38.__class__ is not int and (not isinstance(r_registers__38, int) or r_registers__38.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[38]', r_registers__38, 'type', 'an int')
-        if not 0 <= r_registers__38 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[38]', r_registers__38, 'range', '0..65535', None)
+        r_9registers_38 = g_registers[38]
+        if r_9registers_38.__class__ is not int and (not isinstance(r_9registers_38, int) or r_9registers_38.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[38]', r_9registers_38, 'type', 'an int')
+        if not 0 <= r_9registers_38 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[38]', r_9registers_38, 'range', '0..65535', None)
     else:
-        r_registers__38 = 0
+        r_9registers_38 = 0
     if len(g_registers) > 39:
-        r_registers__39 = g_registers[39]
-        if r_registers__39.__class__ is not int and (not isinstance(r_registers__39, int) or r_registers__39.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[39]', r_registers__39, 'type', 'an int')
-        if not 0 <= r_registers__39 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[39]', r_registers__39, 'range', '0..65535', None)
+        r_9registers_39 = g_registers[39]
+        if r_9registers_39.__class__ is not int and (not isinstance(r_9registers_39, int) or r_9registers_39.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[39]', r_9registers_39, 'type', 'an int')
+        if not 0 <= r_9registers_39 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[39]', r_9registers_39, 'range', '0..65535', None)
     else:
-        r_registers__39 = 0
+        r_9registers_39 = 0
     if len(g_registers) > 40:
-        r_registers__40 = g_registers[40]
-        if r_registers__40.__class__ is not int and (not isinstance(r_registers__40, int) or r_registers__40.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[40]', r_registers__40, 'type', 'an int')
-        if not 0 <= r_registers__40 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[40]', r_registers__40, 'range', '0..65535', None)
+        r_9registers_40 = g_registers[40]
+        if r_9registers_40.__class__ is not int and (not isinstance(r_9registers_40, int) or r_9registers_40.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[40]', r_9registers_40, 'type', 'an int')
+        if not 0 <= r_9registers_40 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[40]', r_9registers_40, 'range', '0..65535', None)
     else:
-        r_registers__40 = 0
+        r_9registers_40 = 0
     if len(g_registers) > 41:
-        r_registers__41 = g_registers[41]
-        if r_registers__41.__class__ is not int and (not isinstance(r_registers__41, int) or r_registers__41.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[41]', r_registers__41, 'type', 'an int')
-        if not 0 <= r_registers__41 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[41]', r_registers__41, 'range', '0..65535', None)
+        r_9registers_41 = g_registers[41]
+        if r_9registers_41.__class__ is not int and (not isinstance(r_9registers_41, int) or r_9registers_41.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[41]', r_9registers_41, 'type', 'an int')
+        if not 0 <= r_9registers_41 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[41]', r_9registers_41, 'range', '0..65535', None)
     else:
-        r_registers__41 = 0
+        r_9registers_41 = 0
     if len(g_registers) > 42:
-        r_registers__42 = g_registers[42]
-        if r_registers__42.__class__ is not int and (not isinstance(r_registers__42, int) or r_registers__42.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[42]', r_registers__42, 'type', 'an int')
-        if not 0 <= r_registers__42 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[42]', r_registers__42, 'range', '0..65535', None)
+        r_9registers_42 = g_registers[42]
+        if r_9registers_42.__class__ is not int and (not isinstance(r_9registers_42, int) or r_9registers_42.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[42]', r_9registers_42, 'type', 'an int')
+        if not 0 <= r_9registers_42 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[42]', r_9registers_42, 'range', '0..65535', None)
     else:
-        r_registers__42 = 0
+        r_9registers_42 = 0
     if len(g_registers) > 43:
-        r_registers__43 = g_registers[43]
-        if r_registers__43.__class__ is not int and (not isinstance(r_registers__43, int) or r_registers__43.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[43]', r_registers__43, 'type', 'an int')
-        if not 0 <= r_registers__43 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[43]', r_registers__43, 'range', '0..65535', None)
+        r_9registers_43 = g_registers[43]
+        if r_9registers_43.__class__ is not int and (not isinstance(r_9registers_43, int) or r_9registers_43.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[43]', r_9registers_43, 'type', 'an int')
+        if not 0 <= r_9registers_43 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[43]', r_9registers_43, 'range', '0..65535', None)
     else:
-        r_registers__43 = 0
+        r_9registers_43 = 0
     if len(g_registers) > 44:
-        r_registers__44 = g_registers[44]
-        if r_registers__44.__class__ is not int and (not isinstance(r_registers__44, int) or r_registers__44.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[44]', r_registers__44, 'type', 'an int')
-        if not 0 <= r_registers__44 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[44]', r_registers__44, 'range', '0..65535', None)
+        r_9registers_44 = g_registers[44]
+        if r_9registers_44.__class__ is not int and (not isinstance(r_9registers_44, int) or r_9registers_44.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[44]', r_9registers_44, 'type', 'an int')
+        if not 0 <= r_9registers_44 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[44]', r_9registers_44, 'range', '0..65535', None)
     else:
-        r_registers__44 = 0
+        r_9registers_44 = 0
     if len(g_registers) > 45:
-        r_registers__45 = g_registers[45]
-        if r_registers__45.__class__ is not int and (not isinstance(r_registers__45, int) or r_registers__45.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[45]', r_registers__45, 'type', 'an int')
-        if not 0 <= r_registers__45 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[45]', r_registers__45, 'range', '0..65535', None)
+        r_9registers_45 = g_registers[45]
+        if r_9registers_45.__class__ is not int and (not isinstance(r_9registers_45, int) or r_9registers_45.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[45]', r_9registers_45, 'type', 'an int')
+        if not 0 <= r_9registers_45 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[45]', r_9registers_45, 'range', '0..65535', None)
     else:
-        r_registers__45 = 0
+        r_9registers_45 = 0
     if len(g_registers) > 46:
-        r_registers__46 = g_registers[46]
-        if r_registers__46.__class__ is not int and (not isinstance(r_registers__46, int) or r_registers__46.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[46]', r_registers__46, 'type', 'an int')
-        if not 0 <= r_registers__46 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[46]', r_registers__46, 'range', '0..65535', None)
+        r_9registers_46 = g_registers[46]
+        if r_9registers_46.__class__ is not int and (not isinstance(r_9registers_46, int) or r_9registers_46.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[46]', r_9registers_46, 'type', 'an int')
+        if not 0 <= r_9registers_46 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[46]', r_9registers_46, 'range', '0..65535', None)
     else:
-        r_registers__46 = 0
+        r_9registers_46 = 0
     if len(g_registers) > 47:
-        r_registers__47 = g_registers[47]
-        if r_registers__47.__class__ is not int and (not isinstance(r_registers__47, int) or r_registers__47.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[47]', r_registers__47, 'type', 'an int')
-        if not 0 <= r_registers__47 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[47]', r_registers__47, 'range', '0..65535', None)
+        r_9registers_47 = g_registers[47]
+        if r_9registers_47.__class__ is not int and (not isinstance(r_9registers_47, int) or r_9registers_47.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[47]', r_9registers_47, 'type', 'an int')
+        if not 0 <= r_9registers_47 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[47]', r_9registers_47, 'range', '0..65535', None)
     else:
-        r_registers__47 = 0
+        r_9registers_47 = 0
     if len(g_registers) > 48:
-        r_registers__48 = g_registers[48]
-        if r_registers__48.__class__ is not int and (not isinstance(r_registers__48, int) or r_registers__48.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[48]', r_registers__48, 'type', 'an int')
-        if not 0 <= r_registers__48 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[48]', r_registers__48, 'range', '0..65535', None)
+        r_9registers_48 = g_registers[48]
+        if r_9registers_48.__class__ is not int and (not isinstance(r_9registers_48, int) or r_9registers_48.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[48]', r_9registers_48, 'type', 'an int')
+        if not 0 <= r_9registers_48 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[48]', r_9registers_48, 'range', '0..65535', None)
     else:
-        r_registers__48 = 0
+        r_9registers_48 = 0
     if len(g_registers) > 49:
-        r_registers__49 = g_registers[49]
-        if r_registers__49.__class__ is not int and (not isinstance(r_registers__49, int) or r_registers__49.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[49]', r_registers__49, 'type', 'an int')
-        if not 0 <= r_registers__49 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[49]', r_registers__49, 'range', '0..65535', None)
+        r_9registers_49 = g_registers[49]
+        if r_9registers_49.__class__ is not int and (not isinstance(r_9registers_49, int) or r_9registers_49.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[49]', r_9registers_49, 'type', 'an int')
+        if not 0 <= r_9registers_49 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[49]', r_9registers_49, 'range', '0..65535', None)
     else:
-        r_registers__49 = 0
+        r_9registers_49 = 0
     if len(g_registers) > 50:
-        r_registers__50 = g_registers[50]
-        if r_registers__50.__class__ is not int and (not isinstance(r_registers__50, int) or r_registers__50.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[50]', r_registers__50, 'type', 'an int')
-        if not 0 <= r_registers__50 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[50]', r_registers__50, 'range', '0..65535', None)
+        r_9registers_50 = g_registers[50]
+        if r_9registers_50.__class__ is not int and (not isinstance(r_9registers_50, int) or r_9registers_50.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[50]', r_9registers_50, 'type', 'an int')
+        if not 0 <= r_9registers_50 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[50]', r_9registers_50, 'range', '0..65535', None)
     else:
-        r_registers__50 = 0
+        r_9registers_50 = 0
     if len(g_registers) > 51:
-        r_registers__51 = g_registers[51]
-        if r_registers__51.__class__ is not int and (not isinstance(r_registers__51, int) or r_registers__51.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[51]', r_registers__51, 'type', 'an int')
-        if not 0 <= r_registers__51 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[51]', r_registers__51, 'range', '0..65535', None)
+        r_9registers_51 = g_registers[51]
+        if r_9registers_51.__class__ is not int and (not isinstance(r_9registers_51, int) or r_9registers_51.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[51]', r_9registers_51, 'type', 'an int')
+        if not 0 <= r_9registers_51 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[51]', r_9registers_51, 'range', '0..65535', None)
     else:
-        r_registers__51 = 0
+        r_9registers_51 = 0
     if len(g_registers) > 52:
-        r_registers__52 = g_registers[52]
-        if r_registers__52.__class__ is not int and (not isinstance(r_registers__52, int) or r_registers__52.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[52]', r_registers__52, 'type', 'an int')
-        if not 0 <= r_registers__52 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[52]', r_registers__52, 'range', '0..65535', None)
+        r_9registers_52 = g_registers[52]
+        if r_9registers_52.__class__ is not int and (not isinstance(r_9registers_52, int) or r_9registers_52.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[52]', r_9registers_52, 'type', 'an int')
+        if not 0 <= r_9registers_52 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[52]', r_9registers_52, 'range', '0..65535', None)
     else:
-        r_registers__52 = 0
+        r_9registers_52 = 0
     if len(g_registers) > 53:
-        r_registers__53 = g_registers[53]
-        if r_registers__53.__class__ is not int and (not isinstance(r_registers__53, int) or r_registers__53.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[53]', r_registers__53, 'type', 'an int')
-        if not 0 <= r_registers__53 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[53]', r_registers__53, 'range', '0..65535', None)
+        r_9registers_53 = g_registers[53]
+        if r_9registers_53.__class__ is not int and (not isinstance(r_9registers_53, int) or r_9registers_53.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[53]', r_9registers_53, 'type', 'an int')
+        if not 0 <= r_9registers_53 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[53]', r_9registers_53, 'range', '0..65535', None)
     else:
-        r_registers__53 = 0
+        r_9registers_53 = 0
     if len(g_registers) > 54:
-        r_registers__54 = g_registers[54]
-        if r_registers__54.__class__ is not int and (not isinstance(r_registers__54, int) or r_registers__54.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[54]', r_registers__54, 'type', 'an int')
-        if not 0 <= r_registers__54 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[54]', r_registers__54, 'range', '0..65535', None)
+        r_9registers_54 = g_registers[54]
+        if r_9registers_54.__class__ is not int and (not isinstance(r_9registers_54, int) or r_9registers_54.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[54]', r_9registers_54, 'type', 'an int')
+        if not 0 <= r_9registers_54 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[54]', r_9registers_54, 'range', '0..65535', None)
     else:
-        r_registers__54 = 0
+        r_9registers_54 = 0
     if len(g_registers) > 55:
-        r_registers__55 = g_registers[55]
-        if r_registers__55.__class__ is not int and (not isinstance(r_registers__55, int) or r_registers__55.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[55]', r_registers__55, 'type', 'an int')
-        if not 0 <= r_registers__55 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[55]', r_registers__55, 'range', '0..65535', None)
+        r_9registers_55 = g_registers[55]
+        if r_9registers_55.__class__ is not int and (not isinstance(r_9registers_55, int) or r_9registers_55.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[55]', r_9registers_55, 'type', 'an int')
+        if not 0 <= r_9registers_55 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[55]', r_9registers_55, 'range', '0..65535', None)
     else:
-        r_registers__55 = 0
+        r_9registers_55 = 0
     if len(g_registers) > 56:
-        r_registers__56 = g_registers[56]
-        if r_registers__56.__class__ is not int and (not isinstance(r_registers__56, int) or r_registers__56.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[56]', r_registers__56, 'type', 'an int')
-        if not 0 <= r_registers__56 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[56]', r_registers__56, 'range', '0..65535', None)
+        r_9registers_56 = g_registers[56]
+        if r_9registers_56.__class__ is not int and (not isinstance(r_9registers_56, int) or r_9registers_56.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[56]', r_9registers_56, 'type', 'an int')
+        if not 0 <= r_9registers_56 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[56]', r_9registers_56, 'range', '0..65535', None)
     else:
-        r_registers__56 = 0
+        r_9registers_56 = 0
     if len(g_registers) > 57:
-        r_registers__57 = g_registers[57]
-        if r_registers__57.__class__ is not int and (not isinstance(r_registers__57, int) or r_registers__57.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[57]', r_registers__57, 'type', 'an int')
-        if not 0 <= r_registers__57 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[57]', r_registers__57, 'range', '0..65535', None)
+        r_9registers_57 = g_registers[57]
+        if r_9registers_57.__class__ is not int and (not isinstance(r_9registers_57, int) or r_9registers_57.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[57]', r_9registers_57, 'type', 'an int')
+        if not 0 <= r_9registers_57 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[57]', r_9registers_57, 'range', '0..65535', None)
     else:
-        r_registers__57 = 0
+        r_9registers_57 = 0
     if len(g_registers) > 58:
-        r_registers__58 = g_registers[58]
-        if r_registers__58.__class__ is not int and (not isinstance(r_registers__58, int) or r_registers__58.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[58]', r_registers__58, 'type', 'an int')
-        if not 0 <= r_registers__58 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[58]', r_registers__58, 'range', '0..65535', None)
+        r_9registers_58 = g_registers[58]
+        if r_9registers_58.__class__ is not int and (not isinstance(r_9registers_58, int) or r_9registers_58.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[58]', r_9registers_58, 'type', 'an int')
+        if not 0 <= r_9registers_58 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[58]', r_9registers_58, 'range', '0..65535', None)
     else:
-        r_registers__58 = 0
+        r_9registers_58 = 0
     if len(g_registers) > 59:
-        r_registers__59 = g_registers[59]
-        if r_registers__59.__class__ is not int and (not isinstance(r_registers__59, int) or r_registers__59.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[59]', r_registers__59, 'type', 'an int')
-        if not 0 <= r_registers__59 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[59]', r_registers__59, 'range', '0..65535', None)
+        r_9registers_59 = g_registers[59]
+        if r_9registers_59.__class__ is not int and (not isinstance(r_9registers_59, int) or r_9registers_59.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[59]', r_9registers_59, 'type', 'an int')
+        if not 0 <= r_9registers_59 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[59]', r_9registers_59, 'range', '0..65535', None)
     else:
-        r_registers__59 = 0
+        r_9registers_59 = 0
     if len(g_registers) > 60:
-        r_registers__60 = g_registers[60]
-        if r_registers__60.__class__ is not int and (not isinstance(r_registers__60, int) or r_registers__60.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[60]', r_registers__60, 'type', 'an int')
-        if not 0 <= r_registers__60 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[60]', r_registers__60, 'range', '0..65535', None)
+        r_9registers_60 = g_registers[60]
+        if r_9registers_60.__class__ is not int and (not isinstance(r_9registers_60, int) or r_9registers_60.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[60]', r_9registers_60, 'type', 'an int')
+        if not 0 <= r_9registers_60 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[60]', r_9registers_60, 'range', '0..65535', None)
     else:
-        r_registers__60 = 0
+        r_9registers_60 = 0
     if len(g_registers) > 61:
-        r_registers__61 = g_registers[61]
-        if r_registers__61.__class__ is not int and (not isinstance(r_registers__61, int) or r_registers__61.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[61]', r_registers__61, 'type', 'an int')
-        if not 0 <= r_registers__61 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[61]', r_registers__61, 'range', '0..65535', None)
+        r_9registers_61 = g_registers[61]
+        if r_9registers_61.__class__ is not int and (not isinstance(r_9registers_61, int) or r_9registers_61.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[61]', r_9registers_61, 'type', 'an int')
+        if not 0 <= r_9registers_61 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[61]', r_9registers_61, 'range', '0..65535', None)
     else:
-        r_registers__61 = 0
+        r_9registers_61 = 0
     if len(g_registers) > 62:
-        r_registers__62 = g_registers[62]
-        if r_registers__62.__class__ is not int and (not isinstance(r_registers__62, int) or r_registers__62.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[62]', r_registers__62, 'type', 'an int')
-        if not 0 <= r_registers__62 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[62]', r_registers__62, 'range', '0..65535', None)
+        r_9registers_62 = g_registers[62]
+        if r_9registers_62.__class__ is not int and (not isinstance(r_9registers_62, int) or r_9registers_62.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[62]', r_9registers_62, 'type', 'an int')
+        if not 0 <= r_9registers_62 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[62]', r_9registers_62, 'range', '0..65535', None)
     else:
-        r_registers__62 = 0
+        r_9registers_62 = 0
     if len(g_registers) > 63:
-        r_registers__63 = g_registers[63]
-        if r_registers__63.__class__ is not int and (not isinstance(r_registers__63, int) or r_registers__63.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[63]', r_registers__63, 'type', 'an int')
-        if not 0 <= r_registers__63 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[63]', r_registers__63, 'range', '0..65535', None)
+        r_9registers_63 = g_registers[63]
+        if r_9registers_63.__class__ is not int and (not isinstance(r_9registers_63, int) or r_9registers_63.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[63]', r_9registers_63, 'type', 'an int')
+        if not 0 <= r_9registers_63 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[63]', r_9registers_63, 'range', '0..65535', None)
     else:
-        r_registers__63 = 0
+        r_9registers_63 = 0
     if len(g_registers) > 64:
-        r_registers__64 = g_registers[64]
-        if r_registers__64.__class__ is not int and (not isinstance(r_registers__64, int) or r_registers__64.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[64]', r_registers__64, 'type', 'an int')
-        if not 0 <= r_registers__64 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[64]', r_registers__64, 'range', '0..65535', None)
+        r_9registers_64 = g_registers[64]
+        if r_9registers_64.__class__ is not int and (not isinstance(r_9registers_64, int) or r_9registers_64.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[64]', r_9registers_64, 'type', 'an int')
+        if not 0 <= r_9registers_64 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[64]', r_9registers_64, 'range', '0..65535', None)
     else:
-        r_registers__64 = 0
+        r_9registers_64 = 0
     if len(g_registers) > 65:
-        r_registers__65 = g_registers[65]
-        if r_registers__65.__class__ is not int and (not isinstance(r_registers__65, int) or r_registers__65.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[65]', r_registers__65, 'type', 'an int')
-        if not 0 <= r_registers__65 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[65]', r_registers__65, 'range', '0..65535', None)
+        r_9registers_65 = g_registers[65]
+        if r_9registers_65.__class__ is not int and (not isinstance(r_9registers_65, int) or r_9registers_65.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[65]', r_9registers_65, 'type', 'an int')
+        if not 0 <= r_9registers_65 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[65]', r_9registers_65, 'range', '0..65535', None)
     else:
-        r_registers__65 = 0
+        r_9registers_65 = 0
     if len(g_registers) > 66:
-        r_registers__66 = g_registers[66]
-        if r_registers__66.__class__ is not int and (not isinstance(r_registers__66, int) or r_registers__66.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[66]', r_registers__66, 'type', 'an int')
-        if not 0 <= r_registers__66 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[66]', r_registers__66, 'range', '0..65535', None)
+        r_9registers_66 = g_registers[66]
+        if r_9registers_66.__class__ is not int and (not isinstance(r_9registers_66, int) or r_9registers_66.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[66]', r_9registers_66, 'type', 'an int')
+        if not 0 <= r_9registers_66 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[66]', r_9registers_66, 'range', '0..65535', None)
     else:
-        r_registers__66 = 0
+        r_9registers_66 = 0
     if len(g_registers) > 67:
-        r_registers__67 = g_registers[67]
-        if r_registers__67.__class__ is not int and (not isinstance(r_registers__67, int) or r_registers__67.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[67]', r_registers__67, 'type', 'an int')
-        if not 0 <= r_registers__67 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[67]', r_registers__67, 'range', '0..65535', None)
+        r_9registers_67 = g_registers[67]
+        if r_9registers_67.__class__ is not int and (not isinstance(r_9registers_67, int) or r_9registers_67.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[67]', r_9registers_67, 'type', 'an int')
+        if not 0 <= r_9registers_67 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[67]', r_9registers_67, 'range', '0..65535', None)
     else:
-        r_registers__67 = 0
+        r_9registers_67 = 0
     if len(g_registers) > 68:
-        r_registers__68 = g_registers[68]
-        if r_registers__68.__class__ is not int and (not isinstance(r_registers__68, int) or r_registers__68.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[68]', r_registers__68, 'type', 'an int')
-        if not 0 <= r_registers__68 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[68]', r_registers__68, 'range', '0..65535', None)
+        r_9registers_68 = g_registers[68]
+        if r_9registers_68.__class__ is not int and (not isinstance(r_9registers_68, int) or r_9registers_68.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[68]', r_9registers_68, 'type', 'an int')
+        if not 0 <= r_9registers_68 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[68]', r_9registers_68, 'range', '0..65535', None)
     else:
-        r_registers__68 = 0
+        r_9registers_68 = 0
     if len(g_registers) > 69:
-        r_registers__69 = g_registers[69]
-        if r_registers__69.__class__ is not int and (not isinstance(r_registers__69, int) or r_registers__69.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[69]', r_registers__69, 'type', 'an int')
-        if not 0 <= r_registers__69 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[69]', r_registers__69, 'range', '0..65535', None)
+        r_9registers_69 = g_registers[69]
+        if r_9registers_69.__class__ is not int and (not isinstance(r_9registers_69, int) or r_9registers_69.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[69]', r_9registers_69, 'type', 'an int')
+        if not 0 <= r_9registers_69 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[69]', r_9registers_69, 'range', '0..65535', None)
     else:
-        r_registers__69 = 0
+        r_9registers_69 = 0
     if len(g_registers) > 70:
-        r_registers__70 = g_registers[70]
-        if r_registers__70.__class__ is not int and (not isinstance(r_registers__70, int) or r_registers__70.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[70]', r_registers__70, 'type', 'an int')
-        if not 0 <= r_registers__70 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[70]', r_registers__70, 'range', '0..65535', None)
+        r_9registers_70 = g_registers[70]
+        if r_9registers_70.__class__ is not int and (not isinstance(r_9registers_70, int) or r_9registers_70.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[70]', r_9registers_70, 'type', 'an int')
+        if not 0 <= r_9registers_70 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[70]', r_9registers_70, 'range', '0..65535', None)
     else:
-        r_registers__70 = 0
+        r_9registers_70 = 0
     if len(g_registers) > 71:
-        r_registers__71 = g_registers[71]
-        if r_registers__71.__class__ is not int and (not isinstance(r_registers__71, int) or r_registers__71.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[71]', r_registers__71, 'type', 'an int')
-        if not 0 <= r_registers__71 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[71]', r_registers__71, 'range', '0..65535', None)
+        r_9registers_71 = g_registers[71]
+        if r_9registers_71.__class__ is not int and (not isinstance(r_9registers_71, int) or r_9registers_71.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[71]', r_9registers_71, 'type', 'an int')
+        if not 0 <= r_9registers_71 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[71]', r_9registers_71, 'range', '0..65535', None)
     else:
-        r_registers__71 = 0
+        r_9registers_71 = 0
     if len(g_registers) > 72:
-        r_registers__72 = g_registers[72]
-        if r_registers__72.__class__ is not int and (not isinstance(r_registers__72, int) or r_registers__72.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[72]', r_registers__72, 'type', 'an int')
-        if not 0 <= r_registers__72 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[72]', r_registers__72, 'range', '0..65535', None)
+        r_9registers_72 = g_registers[72]
+        if r_9registers_72.__class__ is not int and (not isinstance(r_9registers_72, int) or r_9registers_72.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[72]', r_9registers_72, 'type', 'an int')
+        if not 0 <= r_9registers_72 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[72]', r_9registers_72, 'range', '0..65535', None)
     else:
-        r_registers__72 = 0
+        r_9registers_72 = 0
     if len(g_registers) > 73:
-        r_registers__73 = g_registers[73]
-        if r_registers__73.__class__ is not int and (not isinstance(r_registers__73, int) or r_registers__73.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[73]', r_registers__73, 'type', 'an int')
-        if not 0 <= r_registers__73 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[73]', r_registers__73, 'range', '0..65535', None)
+        r_9registers_73 = g_registers[73]
+        if r_9registers_73.__class__ is not int and (not isinstance(r_9registers_73, int) or r_9registers_73.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[73]', r_9registers_73, 'type', 'an int')
+        if not 0 <= r_9registers_73 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[73]', r_9registers_73, 'range', '0..65535', None)
     else:
-        r_registers__73 = 0
+        r_9registers_73 = 0
     if len(g_registers) > 74:
-        r_registers__74 = g_registers[74]
-        if r_registers__74.__class__ is not int and (not isinstance(r_registers__74, int) or r_registers__74.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[74]', r_registers__74, 'type', 'an int')
-        if not 0 <= r_registers__74 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[74]', r_registers__74, 'range', '0..65535', None)
+        r_9registers_74 = g_registers[74]
+        if r_9registers_74.__class__ is not int and (not isinstance(r_9registers_74, int) or r_9registers_74.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[74]', r_9registers_74, 'type', 'an int')
+        if not 0 <= r_9registers_74 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[74]', r_9registers_74, 'range', '0..65535', None)
     else:
-        r_registers__74 = 0
+        r_9registers_74 = 0
     if len(g_registers) > 75:
-        r_registers__75 = g_registers[75]
-        if r_registers__75.__class__ is not int and (not isinstance(r_registers__75, int) or r_registers__75.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[75]', r_registers__75, 'type', 'an int')
-        if not 0 <= r_registers__75 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[75]', r_registers__75, 'range', '0..65535', None)
+        r_9registers_75 = g_registers[75]
+        if r_9registers_75.__class__ is not int and (not isinstance(r_9registers_75, int) or r_9registers_75.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[75]', r_9registers_75, 'type', 'an int')
+        if not 0 <= r_9registers_75 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[75]', r_9registers_75, 'range', '0..65535', None)
     else:
-        r_registers__75 = 0
+        r_9registers_75 = 0
     if len(g_registers) > 76:
-        r_registers__76 = g_registers[76]
-        if r_registers__76.__class__ is not int and (not isinstance(r_registers__76, int) or r_registers__76.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[76]', r_registers__76, 'type', 'an int')
-        if not 0 <= r_registers__76 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[76]', r_registers__76, 'range', '0..65535', None)
+        r_9registers_76 = g_registers[76]
+        if r_9registers_76.__class__ is not int and (not isinstance(r_9registers_76, int) or r_9registers_76.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[76]', r_9registers_76, 'type', 'an int')
+        if not 0 <= r_9registers_76 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[76]', r_9registers_76, 'range', '0..65535', None)
     else:
-        r_registers__76 = 0
+        r_9registers_76 = 0
     if len(g_registers) > 77:
-        r_registers__77 = g_registers[77]
-        if r_registers__77.__class__ is not int and (not isinstance(r_registers__77, int) or r_registers__77.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[77]', r_registers__77, 'type', 'an int')
-        if not 0 <= r_registers__77 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[77]', r_registers__77, 'range', '0..65535', None)
+        r_9registers_77 = g_registers[77]
+        if r_9registers_77.__class__ is not int and (not isinstance(r_9registers_77, int) or r_9registers_77.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[77]', r_9registers_77, 'type', 'an int')
+        if not 0 <= r_9registers_77 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[77]', r_9registers_77, 'range', '0..65535', None)
     else:
-        r_registers__77 = 0
+        r_9registers_77 = 0
     if len(g_registers) > 78:
-        r_registers__78 = g_registers[78]
-        if r_registers__78.__class__ is not int and (not isinstance(r_registers__78, int) or r_registers__78.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[78]', r_registers__78, 'type', 'an int')
-        if not 0 <= r_registers__78 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[78]', r_registers__78, 'range', '0..65535', None)
+        r_9registers_78 = g_registers[78]
+        if r_9registers_78.__class__ is not int and (not isinstance(r_9registers_78, int) or r_9registers_78.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[78]', r_9registers_78, 'type', 'an int')
+        if not 0 <= r_9registers_78 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[78]', r_9registers_78, 'range', '0..65535', None)
     else:
-        r_registers__78 = 0
+        r_9registers_78 = 0
     if len(g_registers) > 79:
-        r_registers__79 = g_registers[79]
-        if r_registers__79.__class__ is not int and (not isinstance(r_registers__79, int) or r_registers__79.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[79]', r_registers__79, 'type', 'an int')
-        if not 0 <= r_registers__79 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[79]', r_registers__79, 'range', '0..65535', None)
+        r_9registers_79 = g_registers[79]
+        if r_9registers_79.__class__ is not int and (not isinstance(r_9registers_79, int) or r_9registers_79.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[79]', r_9registers_79, 'type', 'an int')
+        if not 0 <= r_9registers_79 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[79]', r_9registers_79, 'range', '0..65535', None)
     else:
-        r_registers__79 = 0
+        r_9registers_79 = 0
     if len(g_registers) > 80:
-        r_registers__80 = g_registers[80]
-        if r_registers__80.__class__ is not int and (not isinstance(r_registers__80, int) or r_registers__80.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[80]', r_registers__80, 'type', 'an int')
-        if not 0 <= r_registers__80 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[80]', r_registers__80, 'range', '0..65535', None)
+        r_9registers_80 = g_registers[80]
+        if r_9registers_80.__class__ is not int and (not isinstance(r_9registers_80, int) or r_9registers_80.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[80]', r_9registers_80, 'type', 'an int')
+        if not 0 <= r_9registers_80 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[80]', r_9registers_80, 'range', '0..65535', None)
     else:
-        r_registers__80 = 0
+        r_9registers_80 = 0
     if len(g_registers) > 81:
-        r_registers__81 = g_registers[81]
-        if r_registers__81.__class__ is not int and (not isinstance(r_registers__81, int) or r_registers__81.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[81]', r_registers__81, 'type', 'an int')
-        if not 0 <= r_registers__81 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[81]', r_registers__81, 'range', '0..65535', None)
+        r_9registers_81 = g_registers[81]
+        if r_9registers_81.__class__ is not int and (not isinstance(r_9registers_81, int) or r_9registers_81.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[81]', r_9registers_81, 'type', 'an int')
+        if not 0 <= r_9registers_81 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[81]', r_9registers_81, 'range', '0..65535', None)
     else:
-        r_registers__81 = 0
+        r_9registers_81 = 0
     if len(g_registers) > 82:
-        r_registers__82 = g_registers[82]
-        if r_registers__82.__class__ is not int and (not isinstance(r_registers__82, int) or r_registers__82.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[82]', r_registers__82, 'type', 'an int')
-        if not 0 <= r_registers__82 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[82]', r_registers__82, 'range', '0..65535', None)
+        r_9registers_82 = g_registers[82]
+        if r_9registers_82.__class__ is not int and (not isinstance(r_9registers_82, int) or r_9registers_82.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[82]', r_9registers_82, 'type', 'an int')
+        if not 0 <= r_9registers_82 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[82]', r_9registers_82, 'range', '0..65535', None)
     else:
-        r_registers__82 = 0
+        r_9registers_82 = 0
     if len(g_registers) > 83:
-        r_registers__83 = g_registers[83]
-        if r_registers__83.__class__ is not int and (not isinstance(r_registers__83, int) or r_registers__83.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[83]', r_registers__83, 'type', 'an int')
-        if not 0 <= r_registers__83 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[83]', r_registers__83, 'range', '0..65535', None)
+        r_9registers_83 = g_registers[83]
+        if r_9registers_83.__class__ is not int and (not isinstance(r_9registers_83, int) or r_9registers_83.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[83]', r_9registers_83, 'type', 'an int')
+        if not 0 <= r_9registers_83 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[83]', r_9registers_83, 'range', '0..65535', None)
     else:
-        r_registers__83 = 0
+        r_9registers_83 = 0
     if len(g_registers) > 84:
-        r_registers__84 = g_registers[84]
-        if r_registers__84.__class__ is not int and (not isinstance(r_registers__84, int) or r_registers__84.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[84]', r_registers__84, 'type', 'an int')
-        if not 0 <= r_registers__84 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[84]', r_registers__84, 'range', '0..65535', None)
+        r_9registers_84 = g_registers[84]
+        if r_9registers_84.__class__ is not int and (not isinstance(r_9registers_84, int) or r_9registers_84.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[84]', r_9registers_84, 'type', 'an int')
+        if not 0 <= r_9registers_84 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[84]', r_9registers_84, 'range', '0..65535', None)
     else:
-        r_registers__84 = 0
+        r_9registers_84 = 0
     if len(g_registers) > 85:
-        r_registers__85 = g_registers[85]
-        if r_registers__85.__class__ is not int and (not isinstance(r_registers__85, int) or r_registers__85.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[85]', r_registers__85, 'type', 'an int')
-        if not 0 <= r_registers__85 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[85]', r_registers__85, 'range', '0..65535', None)
+        r_9registers_85 = g_registers[85]
+        if r_9registers_85.__class__ is not int and (not isinstance(r_9registers_85, int) or r_9registers_85.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[85]', r_9registers_85, 'type', 'an int')
+        if not 0 <= r_9registers_85 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[85]', r_9registers_85, 'range', '0..65535', None)
     else:
-        r_registers__85 = 0
+        r_9registers_85 = 0
     if len(g_registers) > 86:
-        r_registers__86 = g_registers[86]
-        if r_registers__86.__class__ is not int and (not isinstance(r_registers__86, int) or r_registers__86.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[86]', r_registers__86, 'type', 'an int')
-        if not 0 <= r_registers__86 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[86]', r_registers__86, 'range', '0..65535', None)
+        r_9registers_86 = g_registers[86]
+        if r_9registers_86.__class__ is not int and (not isinstance(r_9registers_86, int) or r_9registers_86.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[86]', r_9registers_86, 'type', 'an int')
+        if not 0 <= r_9registers_86 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[86]', r_9registers_86, 'range', '0..65535', None)
     else:
-        r_registers__86 = 0
+        r_9registers_86 = 0
     if len(g_registers) > 87:
-        r_registers__87 = g_registers[87]
-        if r_registers__87.__class__ is not int and (not isinstance(r_registers__87, int) or r_registers__87.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[87]', r_registers__87, 'type', 'an int')
-        if not 0 <= r_registers__87 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[87]', r_registers__87, 'range', '0..65535', None)
+        r_9registers_87 = g_registers[87]
+        if r_9registers_87.__class__ is not int and (not isinstance(r_9registers_87, int) or r_9registers_87.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[87]', r_9registers_87, 'type', 'an int')
+        if not 0 <= r_9registers_87 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[87]', r_9registers_87, 'range', '0..65535', None)
     else:
-        r_registers__87 = 0
+        r_9registers_87 = 0
     if len(g_registers) > 88:
-        r_registers__88 = g_registers[88]
-        if r_registers__88.__class__ is not int and (not isinstance(r_registers__88, int) or r_registers__88.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[88]', r_registers__88, 'type', 'an int')
-        if not 0 <= r_registers__88 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[88]', r_registers__88, 'range', '0..65535', None)
+        r_9registers_88 = g_registers[88]
+        if r_9registers_88.__class__ is not int and (not isinstance(r_9registers_88, int) or r_9registers_88.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[88]', r_9registers_88, 'type', 'an int')
+        if not 0 <= r_9registers_88 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[88]', r_9registers_88, 'range', '0..65535', None)
     else:
-        r_registers__88 = 0
+        r_9registers_88 = 0
     if len(g_registers) > 89:
-        r_registers__89 = g_registers[89]
-        if r_registers__89.__class__ is not int and (not isinstance(r_registers__89, int) or r_registers__89.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[89]', r_registers__89, 'type', 'an int')
-        if not 0 <= r_registers__89 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[89]', r_registers__89, 'range', '0..65535', None)
+        r_9registers_89 = g_registers[89]
+        if r_9registers_89.__class__ is not int and (not isinstance(r_9registers_89, int) or r_9registers_89.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[89]', r_9registers_89, 'type', 'an int')
+        if not 0 <= r_9registers_89 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[89]', r_9registers_89, 'range', '0..65535', None)
     else:
-        r_registers__89 = 0
+        r_9registers_89 = 0
     if len(g_registers) > 90:
-        r_registers__90 = g_registers[90]
-        if r_registers__90.__class__ is not int and (not isinstance(r_registers__90, int) or r_registers__90.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[90]', r_registers__90, 'type', 'an int')
-        if not 0 <= r_registers__90 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[90]', r_registers__90, 'range', '0..65535', None)
+        r_9registers_90 = g_registers[90]
+        if r_9registers_90.__class__ is not int and (not isinstance(r_9registers_90, int) or r_9registers_90.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[90]', r_9registers_90, 'type', 'an int')
+        if not 0 <= r_9registers_90 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[90]', r_9registers_90, 'range', '0..65535', None)
     else:
-        r_registers__90 = 0
+        r_9registers_90 = 0
     if len(g_registers) > 91:
-        r_registers__91 = g_registers[91]
-        if r_registers__91.__class__ is not int and (not isinstance(r_registers__91, int) or r_registers__91.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[91]', r_registers__91, 'type', 'an int')
-        if not 0 <= r_registers__91 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[91]', r_registers__91, 'range', '0..65535', None)
+        r_9registers_91 = g_registers[91]
+        if r_9registers_91.__class__ is not int and (not isinstance(r_9registers_91, int) or r_9registers_91.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[91]', r_9registers_91, 'type', 'an int')
+        if not 0 <= r_9registers_91 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[91]', r_9registers_91, 'range', '0..65535', None)
     else:
-        r_registers__91 = 0
+        r_9registers_91 = 0
     if len(g_registers) > 92:
-        r_registers__92 = g_registers[92]
-        if r_registers__92.__class__ is not int and (not isinstance(r_registers__92, int) or r_registers__92.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[92]', r_registers__92, 'type', 'an int')
-        if not 0 <= r_registers__92 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[92]', r_registers__92, 'range', '0..65535', None)
+        r_9registers_92 = g_registers[92]
+        if r_9registers_92.__class__ is not int and (not isinstance(r_9registers_92, int) or r_9registers_92.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[92]', r_9registers_92, 'type', 'an int')
+        if not 0 <= r_9registers_92 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[92]', r_9registers_92, 'range', '0..65535', None)
     else:
-        r_registers__92 = 0
+        r_9registers_92 = 0
     if len(g_registers) > 93:
-        r_registers__93 = g_registers[93]
-        if r_registers__93.__class__ is not int and (not isinstance(r_registers__93, int) or r_registers__93.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[93]', r_registers__93, 'type', 'an int')
-        if not 0 <= r_registers__93 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[93]', r_registers__93, 'range', '0..65535', None)
+        r_9registers_93 = g_registers[93]
+        if r_9registers_93.__class__ is not int and (not isinstance(r_9registers_93, int) or r_9registers_93.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[93]', r_9registers_93, 'type', 'an int')
+        if not 0 <= r_9registers_93 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[93]', r_9registers_93, 'range', '0..65535', None)
     else:
-        r_registers__93 = 0
+        r_9registers_93 = 0
     if len(g_registers) > 94:
-        r_registers__94 = g_registers[94]
-        if r_registers__94.__class__ is not int and (not isinstance(r_registers__94, int) or r_registers__94.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[94]', r_registers__94, 'type', 'an int')
-        if not 0 <= r_registers__94 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[94]', r_registers__94, 'range', '0..65535', None)
+        r_9registers_94 = g_registers[94]
+        if r_9registers_94.__class__ is not int and (not isinstance(r_9registers_94, int) or r_9registers_94.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[94]', r_9registers_94, 'type', 'an int')
+        if not 0 <= r_9registers_94 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[94]', r_9registers_94, 'range', '0..65535', None)
     else:
-        r_registers__94 = 0
+        r_9registers_94 = 0
     if len(g_registers) > 95:
-        r_registers__95 = g_registers[95]
-        if r_registers__95.__class__ is not int and (not isinstance(r_registers__95, int) or r_registers__95.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[95]', r_registers__95, 'type', 'an int')
-        if not 0 <= r_registers__95 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[95]', r_registers__95, 'range', '0..65535', None)
+        r_9registers_95 = g_registers[95]
+        if r_9registers_95.__class__ is not int and (not isinstance(r_9registers_95, int) or r_9registers_95.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[95]', r_9registers_95, 'type', 'an int')
+        if not 0 <= r_9registers_95 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[95]', r_9registers_95, 'range', '0..65535', None)
     else:
-        r_registers__95 = 0
+        r_9registers_95 = 0
     if len(g_registers) > 96:
-        r_registers__96 = g_registers[96]
-        if r_registers__96.__class__ is not int and (not isinstance(r_registers__96, int) or r_registers__96.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[96]', r_registers__96, 'type', 'an int')
-        if not 0 <= r_registers__96 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[96]', r_registers__96, 'range', '0..65535', None)
+        r_9registers_96 = g_registers[96]
+        if r_9registers_96.__class__ is not int and (not isinstance(r_9registers_96, int) or r_9registers_96.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[96]', r_9registers_96, 'type', 'an int')
+        if not 0 <= r_9registers_96 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[96]', r_9registers_96, 'range', '0..65535', None)
     else:
-        r_registers__96 = 0
+        r_9registers_96 = 0
     if len(g_registers) > 97:
-        r_registers__97 = g_registers[97]
-        if r_registers__97.__class__ is not int and (not isinstance(r_registers__97, int) or r_registers__97.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[97]', r_registers__97, 'type', 'an int')
-        if not 0 <= r_registers__97 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[97]', r_registers__97, 'range', '0..65535', None)
+        r_9registers_97 = g_registers[97]
+        if r_9registers_97.__class__ is not int and (not isinstance(r_9registers_97, int) or r_9registers_97.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[97]', r_9registers_97, 'type', 'an int')
+        if not 0 <= r_9registers_97 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[97]', r_9registers_97, 'range', '0..65535', None)
     else:
-        r_registers__97 = 0
+        r_9registers_97 = 0
     if len(g_registers) > 98:
-        r_registers__98 = g_registers[98]
-        if r_registers__98.__class__ is not int and (not isinstance(r_registers__98, int) or r_registers__98.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[98]', r_registers__98, 'type', 'an int')
-        if not 0 <= r_registers__98 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[98]', r_registers__98, 'range', '0..65535', None)
+        r_9registers_98 = g_registers[98]
+        if r_9registers_98.__class__ is not int and (not isinstance(r_9registers_98, int) or r_9registers_98.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[98]', r_9registers_98, 'type', 'an int')
+        if not 0 <= r_9registers_98 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[98]', r_9registers_98, 'range', '0..65535', None)
     else:
-        r_registers__98 = 0
+        r_9registers_98 = 0
     if len(g_registers) > 99:
-        r_registers__99 = g_registers[99]
-        if r_registers__99.__class__ is not int and (not isinstance(r_registers__99, int) or r_registers__99.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[99]', r_registers__99, 'type', 'an int')
-        if not 0 <= r_registers__99 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[99]', r_registers__99, 'range', '0..65535', None)
+        r_9registers_99 = g_registers[99]
+        if r_9registers_99.__class__ is not int and (not isinstance(r_9registers_99, int) or r_9registers_99.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[99]', r_9registers_99, 'type', 'an int')
+        if not 0 <= r_9registers_99 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[99]', r_9registers_99, 'range', '0..65535', None)
     else:
-        r_registers__99 = 0
+        r_9registers_99 = 0
     if len(g_registers) > 100:
-        r_registers__100 = g_registers[100]
-        if r_registers__100.__class__ is not int and (not isinstance(r_registers__100, int) or r_registers__100.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[100]', r_registers__100, 'type', 'an int')
-        if not 0 <= r_registers__100 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[100]', r_registers__100, 'range', '0..65535', None)
+        r_9registers_100 = g_registers[100]
+        if r_9registers_100.__class__ is not int and (not isinstance(r_9registers_100, int) or r_9registers_100.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[100]', r_9registers_100, 'type', 'an int')
+        if not 0 <= r_9registers_100 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[100]', r_9registers_100, 'range', '0..65535', None)
     else:
-        r_registers__100 = 0
+        r_9registers_100 = 0
     if len(g_registers) > 101:
-        r_registers__101 = g_registers[101]
-        if r_registers__101.__class__ is not int and (not isinstance(r_registers__101, int) or r_registers__101.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[101]', r_registers__101, 'type', 'an int')
-        if not 0 <= r_registers__101 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[101]', r_registers__101, 'range', '0..65535', None)
+        r_9registers_101 = g_registers[101]
+        if r_9registers_101.__class__ is not int and (not isinstance(r_9registers_101, int) or r_9registers_101.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[101]', r_9registers_101, 'type', 'an int')
+        if not 0 <= r_9registers_101 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[101]', r_9registers_101, 'range', '0..65535', None)
     else:
-        r_registers__101 = 0
+        r_9registers_101 = 0
     if len(g_registers) > 102:
-        r_registers__102 = g_registers[102]
-        if r_registers__102.__class__ is not int and (not isinstance(r_registers__102, int) or r_registers__102.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[102]', r_registers__102, 'type', 'an int')
-        if not 0 <= r_registers__102 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[102]', r_registers__102, 'range', '0..65535', None)
+        r_9registers_102 = g_registers[102]
+        if r_9registers_102.__class__ is not int and (not isinstance(r_9registers_102, int) or r_9registers_102.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[102]', r_9registers_102, 'type', 'an int')
+        if not 0 <= r_9registers_102 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[102]', r_9registers_102, 'range', '0..65535', None)
     else:
-        r_registers__102 = 0
+        r_9registers_102 = 0
     if len(g_registers) > 103:
-        r_registers__103 = g_registers[103]
-        if r_registers__103.__class__ is not int and (not isinstance(r_registers__103, int) or r_registers__103.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[103]', r_registers__103, 'type', 'an int')
-        if not 0 <= r_registers__103 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[103]', r_registers__103, 'range', '0..65535', None)
+        r_9registers_103 = g_registers[103]
+        if r_9registers_103.__class__ is not int and (not isinstance(r_9registers_103, int) or r_9registers_103.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[103]', r_9registers_103, 'type', 'an int')
+        if not 0 <= r_9registers_103 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[103]', r_9registers_103, 'range', '0..65535', None)
     else:
-        r_registers__103 = 0
+        r_9registers_103 = 0
     if len(g_registers) > 104:
-        r_registers__104 = g_registers[104]
-        if r_registers__104.__class__ is not int and (not isinstance(r_registers__104, int) or r_registers__104.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[104]', r_registers__104, 'type', 'an int')
-        if not 0 <= r_registers__104 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[104]', r_registers__104, 'range', '0..65535', None)
+        r_9registers_104 = g_registers[104]
+        if r_9registers_104.__class__ is not int and (not isinstance(r_9registers_104, int) or r_9registers_104.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[104]', r_9registers_104, 'type', 'an int')
+        if not 0 <= r_9registers_104 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[104]', r_9registers_104, 'range', '0..65535', None)
     else:
-        r_registers__104 = 0
+        r_9registers_104 = 0
     if len(g_registers) > 105:
-        r_registers__105 = g_registers[105]
-        if r_registers__105.__class__ is not int and (not isinstance(r_registers__105, int) or r_registers__105.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[105]', r_registers__105, 'type', 'an int')
-        if not 0 <= r_registers__105 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[105]', r_registers__105, 'range', '0..65535', None)
+        r_9registers_105 = g_registers[105]
+        if r_9registers_105.__class__ is not int and (not isinstance(r_9registers_105, int) or r_9registers_105.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[105]', r_9registers_105, 'type', 'an int')
+        if not 0 <= r_9registers_105 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[105]', r_9registers_105, 'range', '0..65535', None)
     else:
-        r_registers__105 = 0
+        r_9registers_105 = 0
     if len(g_registers) > 106:
-        r_registers__106 = g_registers[106]
-        if r_registers__106.__class__ is not int and (not isinstance(r_registers__106, int) or r_registers__106.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[106]', r_registers__106, 'type', 'an int')
-        if not 0 <= r_registers__106 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[106]', r_registers__106, 'range', '0..65535', None)
+        r_9registers_106 = g_registers[106]
+        if r_9registers_106.__class__ is not int and (not isinstance(r_9registers_106, int) or r_9registers_106.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[106]', r_9registers_106, 'type', 'an int')
+        if not 0 <= r_9registers_106 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[106]', r_9registers_106, 'range', '0..65535', None)
     else:
-        r_registers__106 = 0
+        r_9registers_106 = 0
     if len(g_registers) > 107:
-        r_registers__107 = g_registers[107]
-        if r_registers__107.__class__ is not int and (not isinstance(r_registers__107, int) or r_registers__107.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[107]', r_registers__107, 'type', 'an int')
-        if not 0 <= r_registers__107 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[107]', r_registers__107, 'range', '0..65535', None)
+        r_9registers_107 = g_registers[107]
+        if r_9registers_107.__class__ is not int and (not isinstance(r_9registers_107, int) or r_9registers_107.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[107]', r_9registers_107, 'type', 'an int')
+        if not 0 <= r_9registers_107 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[107]', r_9registers_107, 'range', '0..65535', None)
     else:
-        r_registers__107 = 0
+        r_9registers_107 = 0
     if len(g_registers) > 108:
-        r_registers__108 = g_registers[108]
-        if r_registers__108.__class__ is not int and (not isinstance(r_registers__108, int) or r_registers__108.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[108]', r_registers__108, 'type', 'an int')
-        if not 0 <= r_registers__108 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[108]', r_registers__108, 'range', '0..65535', None)
+        r_9registers_108 = g_registers[108]
+        if r_9registers_108.__class__ is not int and (not isinstance(r_9registers_108, int) or r_9registers_108.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[108]', r_9registers_108, 'type', 'an int')
+        if not 0 <= r_9registers_108 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[108]', r_9registers_108, 'range', '0..65535', None)
     else:
-        r_registers__108 = 0
+        r_9registers_108 = 0
     if len(g_registers) > 109:
-        r_registers__109 = g_registers[109]
-        if r_registers__109.__class__ is not int and (not isinstance(r_registers__109, int) or r_registers__109.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[109]', r_registers__109, 'type', 'an int')
-        if not 0 <= r_registers__109 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[109]', r_registers__109, 'range', '0..65535', None)
+        r_9registers_109 = g_registers[109]
+        if r_9registers_109.__class__ is not int and (not isinstance(r_9registers_109, int) or r_9registers_109.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[109]', r_9registers_109, 'type', 'an int')
+        if not 0 <= r_9registers_109 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[109]', r_9registers_109, 'range', '0..65535', None)
     else:
-        r_registers__109 = 0
+        r_9registers_109 = 0
     if len(g_registers) > 110:
-        r_registers__110 = g_registers[110]
-        if r_registers__110.__class__ is not int and (not isinstance(r_registers__110, int) or r_registers__110.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[110]', r_registers__110, 'type', 'an int')
-        if not 0 <= r_registers__110 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[110]', r_registers__110, 'range', '0..65535', None)
+        r_9registers_110 = g_registers[110]
+        if r_9registers_110.__class__ is not int and (not isinstance(r_9registers_110, int) or r_9registers_110.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[110]', r_9registers_110, 'type', 'an int')
+        if not 0 <= r_9registers_110 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[110]', r_9registers_110, 'range', '0..65535', None)
     else:
-        r_registers__110 = 0
+        r_9registers_110 = 0
     if len(g_registers) > 111:
-        r_registers__111 = g_registers[111]
-        if r_registers__111.__class__ is not int and (not isinstance(r_registers__111, int) or r_registers__111.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[111]', r_registers__111, 'type', 'an int')
-        if not 0 <= r_registers__111 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[111]', r_registers__111, 'range', '0..65535', None)
+        r_9registers_111 = g_registers[111]
+        if r_9registers_111.__class__ is not int and (not isinstance(r_9registers_111, int) or r_9registers_111.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[111]', r_9registers_111, 'type', 'an int')
+        if not 0 <= r_9registers_111 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[111]', r_9registers_111, 'range', '0..65535', None)
     else:
-        r_registers__111 = 0
+        r_9registers_111 = 0
     if len(g_registers) > 112:
-        r_registers__112 = g_registers[112]
-        if r_registers__112.__class__ is not int and (not isinstance(r_registers__112, int) or r_registers__112.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[112]', r_registers__112, 'type', 'an int')
-        if not 0 <= r_registers__112 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[112]', r_registers__112, 'range', '0..65535', None)
+        r_9registers_112 = g_registers[112]
+        if r_9registers_112.__class__ is not int and (not isinstance(r_9registers_112, int) or r_9registers_112.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[112]', r_9registers_112, 'type', 'an int')
+        if not 0 <= r_9registers_112 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[112]', r_9registers_112, 'range', '0..65535', None)
     else:
-        r_registers__112 = 0
+        r_9registers_112 = 0
     if len(g_registers) > 113:
-        r_registers__113 = g_registers[113]
-        if r_registers__113.__class__ is not int and (not isinstance(r_registers__113, int) or r_registers__113.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[113]', r_registers__113, 'type', 'an int')
-        if not 0 <= r_registers__113 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[113]', r_registers__113, 'range', '0..65535', None)
+        r_9registers_113 = g_registers[113]
+        if r_9registers_113.__class__ is not int and (not isinstance(r_9registers_113, int) or r_9registers_113.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[113]', r_9registers_113, 'type', 'an int')
+        if not 0 <= r_9registers_113 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[113]', r_9registers_113, 'range', '0..65535', None)
     else:
-        r_registers__113 = 0
+        r_9registers_113 = 0
     if len(g_registers) > 114:
-        r_registers__114 = g_registers[114]
-        if r_registers__114.__class__ is not int and (not isinstance(r_registers__114, int) or r_registers__114.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[114]', r_registers__114, 'type', 'an int')
-        if not 0 <= r_registers__114 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[114]', r_registers__114, 'range', '0..65535', None)
+        r_9registers_114 = g_registers[114]
+        if r_9registers_114.__class__ is not int and (not isinstance(r_9registers_114, int) or r_9registers_114.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[114]', r_9registers_114, 'type', 'an int')
+        if not 0 <= r_9registers_114 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[114]', r_9registers_114, 'range', '0..65535', None)
     else:
-        r_registers__114 = 0
+        r_9registers_114 = 0
     if len(g_registers) > 115:
-        r_registers__115 = g_registers[115]
-        if r_registers__115.__class__ is not int and (not isinstance(r_registers__115, int) or r_registers__115.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[115]', r_registers__115, 'type', 'an int')
-        if not 0 <= r_registers__115 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[115]', r_registers__115, 'range', '0..65535', None)
+        r_9registers_115 = g_registers[115]
+        if r_9registers_115.__class__ is not int and (not isinstance(r_9registers_115, int) or r_9registers_115.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[115]', r_9registers_115, 'type', 'an int')
+        if not 0 <= r_9registers_115 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[115]', r_9registers_115, 'range', '0..65535', None)
     else:
-        r_registers__115 = 0
+        r_9registers_115 = 0
     if len(g_registers) > 116:
-        r_registers__116 = g_registers[116]
-        if r_registers__116.__class__ is not int and (not isinstance(r_registers__116, int) or r_registers__116.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[116]', r_registers__116, 'type', 'an int')
-        if not 0 <= r_registers__116 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[116]', r_registers__116, 'range', '0..65535', None)
+        r_9registers_116 = g_registers[116]
+        if r_9registers_116.__class__ is not int and (not isinstance(r_9registers_116, int) or r_9registers_116.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[116]', r_9registers_116, 'type', 'an int')
+        if not 0 <= r_9registers_116 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[116]', r_9registers_116, 'range', '0..65535', None)
     else:
-        r_registers__116 = 0
+        r_9registers_116 = 0
     if len(g_registers) > 117:
-        r_registers__117 = g_registers[117]
-        if r_registers__117.__class__ is not int and (not isinstance(r_registers__117, int) or r_registers__117.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[117]', r_registers__117, 'type', 'an int')
-        if not 0 <= r_registers__117 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[117]', r_registers__117, 'range', '0..65535', None)
+        r_9registers_117 = g_registers[117]
+        if r_9registers_117.__class__ is not int and (not isinstance(r_9registers_117, int) or r_9registers_117.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[117]', r_9registers_117, 'type', 'an int')
+        if not 0 <= r_9registers_117 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[117]', r_9registers_117, 'range', '0..65535', None)
     else:
-        r_registers__117 = 0
+        r_9registers_117 = 0
     if len(g_registers) > 118:
-        r_registers__118 = g_registers[118]
-        if r_registers__118.__class__ is not int and (not isinstance(r_registers__118, int) or r_registers__118.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[118]', r_registers__118, 'type', 'an int')
-        if not 0 <= r_registers__118 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[118]', r_registers__118, 'range', '0..65535', None)
+        r_9registers_118 = g_registers[118]
+        if r_9registers_118.__class__ is not int and (not isinstance(r_9registers_118, int) or r_9registers_118.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[118]', r_9registers_118, 'type', 'an int')
+        if not 0 <= r_9registers_118 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[118]', r_9registers_118, 'range', '0..65535', None)
     else:
-        r_registers__118 = 0
+        r_9registers_118 = 0
     if len(g_registers) > 119:
-        r_registers__119 = g_registers[119]
-        if r_registers__119.__class__ is not int and (not isinstance(r_registers__119, int) or r_registers__119.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[119]', r_registers__119, 'type', 'an int')
-        if not 0 <= r_registers__119 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[119]', r_registers__119, 'range', '0..65535', None)
+        r_9registers_119 = g_registers[119]
+        if r_9registers_119.__class__ is not int and (not isinstance(r_9registers_119, int) or r_9registers_119.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[119]', r_9registers_119, 'type', 'an int')
+        if not 0 <= r_9registers_119 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[119]', r_9registers_119, 'range', '0..65535', None)
     else:
-        r_registers__119 = 0
+        r_9registers_119 = 0
     if len(g_registers) > 120:
-        r_registers__120 = g_registers[120]
-        if r_registers__120.__class__ is not int and (not isinstance(r_registers__120, int) or r_registers__120.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[120]', r_registers__120, 'type', 'an int')
-        if not 0 <= r_registers__120 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[120]', r_registers__120, 'range', '0..65535', None)
+        r_9registers_120 = g_registers[120]
+        if r_9registers_120.__class__ is not int and (not isinstance(r_9registers_120, int) or r_9registers_120.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[120]', r_9registers_120, 'type', 'an int')
+        if not 0 <= r_9registers_120 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[120]', r_9registers_120, 'range', '0..65535', None)
     else:
-        r_registers__120 = 0
+        r_9registers_120 = 0
     if len(g_registers) > 121:
-        r_registers__121 = g_registers[121]
-        if r_registers__121.__class__ is not int and (not isinstance(r_registers__121, int) or r_registers__121.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[121]', r_registers__121, 'type', 'an int')
-        if not 0 <= r_registers__121 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[121]', r_registers__121, 'range', '0..65535', None)
+        r_9registers_121 = g_registers[121]
+        if r_9registers_121.__class__ is not int and (not isinstance(r_9registers_121, int) or r_9registers_121.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[121]', r_9registers_121, 'type', 'an int')
+        if not 0 <= r_9registers_121 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[121]', r_9registers_121, 'range', '0..65535', None)
     else:
-        r_registers__121 = 0
+        r_9registers_121 = 0
     if len(g_registers) > 122:
-        r_registers__122 = g_registers[122]
-        if r_registers__122.__class__ is not int and (not isinstance(r_registers__122, int) or r_registers__122.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[122]', r_registers__122, 'type', 'an int')
-        if not 0 <= r_registers__122 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[122]', r_registers__122, 'range', '0..65535', None)
+        r_9registers_122 = g_registers[122]
+        if r_9registers_122.__class__ is not int and (not isinstance(r_9registers_122, int) or r_9registers_122.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[122]', r_9registers_122, 'type', 'an int')
+        if not 0 <= r_9registers_122 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[122]', r_9registers_122, 'range', '0..65535', None)
     else:
-        r_registers__122 = 0
+        r_9registers_122 = 0
     if len(g_registers) > 123:
-        r_registers__123 = g_registers[123]
-        if r_registers__123.__class__ is not int and (not isinstance(r_registers__123, int) or r_registers__123.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[123]', r_registers__123, 'type', 'an int')
-        if not 0 <= r_registers__123 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[123]', r_registers__123, 'range', '0..65535', None)
+        r_9registers_123 = g_registers[123]
+        if r_9registers_123.__class__ is not int and (not isinstance(r_9registers_123, int) or r_9registers_123.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[123]', r_9registers_123, 'type', 'an int')
+        if not 0 <= r_9registers_123 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[123]', r_9registers_123, 'range', '0..65535', None)
     else:
-        r_registers__123 = 0
+        r_9registers_123 = 0
     if len(g_registers) > 124:
-        r_registers__124 = g_registers[124]
-        if r_registers__124.__class__ is not int and (not isinstance(r_registers__124, int) or r_registers__124.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[124]', r_registers__124, 'type', 'an int')
-        if not 0 <= r_registers__124 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[124]', r_registers__124, 'range', '0..65535', None)
+        r_9registers_124 = g_registers[124]
+        if r_9registers_124.__class__ is not int and (not isinstance(r_9registers_124, int) or r_9registers_124.__class__ is bool):
+            raise _enc('read_holding_registers_response', 'registers[124]', r_9registers_124, 'type', 'an int')
+        if not 0 <= r_9registers_124 <= 65535:
+            raise _enc('read_holding_registers_response', 'registers[124]', r_9registers_124, 'range', '0..65535', None)
     else:
-        r_registers__124 = 0
+        r_9registers_124 = 0
     r_crc = 0
     r_byte_count = len(g_registers) * 2
     b = bytearray(255)
-    _S_read_holding_registers_response_0.pack_into(b, 0, r_address, 3, r_byte_count, r_registers__0, r_registers__1, r_registers__2, r_registers__3, r_registers__4, r_registers__5, r_registers__6, r_registers__7, r_registers__8, r_registers__9, r_registers__10, r_registers__11, r_registers__12, r_registers__13, r_registers__14, r_registers__15, r_registers__16, r_registers__17, r_registers__18, r_registers__19, r_registers__20, r_registers__21, r_registers__22, r_registers__23, r_registers__24, r_registers__25, r_registers__26, r_registers__27, r_registers__28, r_registers__29, r_registers__30, r_registers__31, r_registers__32, r_registers__33, r_registers__34, r_registers__35, r_registers__36, r_registers__37, r_registers__38, r_registers__39, r_registers__40, r_registers__41, r_registers__42, r_registers__43, r_registers__44, r_registers__45, r_registers__46, r_registers__47, r_registers__48, r_registers__49, r_registers__50, r_registers__51, r_registers__52, r_registers__53, r_registers__54, r_registers__55, r_registers__56, r_registers__57, r_registers__58, r_registers__59, r_registers__60, r_registers__61, r_registers__62, r_registers__63, r_registers__64, r_registers__65, r_registers__66, r_registers__67, r_registers__68, r_registers__69, r_registers__70, r_registers__71, r_registers__72, r_registers__73, r_registers__74, r_registers__75, r_registers__76, r_registers__77, r_registers__78, r_registers__79, r_registers__80, r_registers__81, r_registers__82, r_registers__83, r_registers__84, r_registers__85, r_registers__86, r_registers__87, r_registers__88, r_registers__89, r_registers__90, r_registers__91, r_registers__92, r_registers__93, r_registers__94, r_registers__95, r_registers__96, r_registers__97, r_registers__98, r_registers__99, r_registers__100, r_registers__101, r_registers__102, r_registers__103, r_registers__104, r_registers__105, r_registers__106, r_registers__107, r_registers__108, r_registers__109, r_registers__110, r_registers__111, r_registers__112, r_registers__113, r_registers__114, r_registers__115, r_registers__116, r_registers__117, r_registers__118, r_registers__119, r_registers__120, r_registers__121, r_registers__122, r_registers__123, r_registers__124)
+    _S_read_holding_registers_response_0.pack_into(b, 0, r_address, 3, r_byte_count, r_9registers_0, r_9registers_1, r_9registers_2, r_9registers_3, r_9registers_4, r_9registers_5, r_9registers_6, r_9registers_7, r_9registers_8, r_9registers_9, r_9registers_10, r_9registers_11, r_9registers_12, r_9registers_13, r_9registers_14, r_9registers_15, r_9registers_16, r_9registers_17, r_9registers_18, r_9registers_19, r_9registers_20, r_9registers_21, r_9registers_22, r_9registers_23, r_9registers_24, r_9registers_25, r_9registers_26, r_9registers_27, r_9registers_28, r_9registers_29, r_9registers_30, r_9registers_31, r_9registers_32, r_9registers_33, r_9registers_34, r_9registers_35, r_9registers_36, r_9registers_37, r_9registers_38, r_9registers_39, r_9registers_40, r_9registers_41, r_9registers_42, r_9registers_43, r_9registers_44, r_9registers_45, r_9registers_46, r_9registers_47, r_9registers_48, r_9registers_49, r_9registers_50, r_9registers_51, r_9registers_52, r_9registers_53, r_9registers_54, r_9registers_55, r_9registers_56, r_9registers_57, r_9registers_58, r_9registers_59, r_9registers_60, r_9registers_61, r_9registers_62, r_9registers_63, r_9registers_64, r_9registers_65, r_9registers_66, r_9registers_67, r_9registers_68, r_9registers_69, r_9registers_70, r_9registers_71, r_9registers_72, r_9registers_73, r_9registers_74, r_9registers_75, r_9registers_76, r_9registers_77, r_9registers_78, r_9registers_79, r_9registers_80, r_9registers_81, r_9registers_82, r_9registers_83, r_9registers_84, r_9registers_85, r_9registers_86, r_9registers_87, r_9registers_88, r_9registers_89, r_9registers_90, r_9registers_91, r_9registers_92, r_9registers_93, r_9registers_94, r_9registers_95, r_9registers_96, r_9registers_97, r_9registers_98, r_9registers_99, r_9registers_100, r_9registers_101, r_9registers_102, r_9registers_103, r_9registers_104, r_9registers_105, r_9registers_106, r_9registers_107, r_9registers_108, r_9registers_109, r_9registers_110, r_9registers_111, r_9registers_112, r_9registers_113, r_9registers_114, r_9registers_115, r_9registers_116, r_9registers_117, r_9registers_118, r_9registers_119, r_9registers_120, r_9registers_121, r_9registers_122, r_9registers_123, r_9registers_124)
     _S_read_holding_registers_response_1.pack_into(b, 253, r_crc)
     cut = 250 - len(m.registers) * 2
     b[253:255] = _checksum_crc16_8005_ffff_rr_0(b[0:253 - cut]).to_bytes(2, 'little')
@@ -1502,7 +1502,7 @@ def _decode_read_holding_registers_response(d):
         raise _dec('read_holding_registers_response', 'registers', len(d), 'length', f'{5 + n * 1} bytes for {n} in byte_count', 24)
     if cut:  # the payload bytes left off read as zeros
         d = b''.join((d[:253 - cut], bytes(cut), d[253 - cut:]))
-    r_address, r_function, r_byte_count, r_registers__0, r_registers__1, r_registers__2, r_registers__3, r_registers__4, r_registers__5, r_registers__6, r_registers__7, r_registers__8, r_registers__9, r_registers__10, r_registers__11, r_registers__12, r_registers__13, r_registers__14, r_registers__15, r_registers__16, r_registers__17, r_registers__18, r_registers__19, r_registers__20, r_registers__21, r_registers__22, r_registers__23, r_registers__24, r_registers__25, r_registers__26, r_registers__27, r_registers__28, r_registers__29, r_registers__30, r_registers__31, r_registers__32, r_registers__33, r_registers__34, r_registers__35, r_registers__36, r_registers__37, r_registers__38, r_registers__39, r_registers__40, r_registers__41, r_registers__42, r_registers__43, r_registers__44, r_registers__45, r_registers__46, r_registers__47, r_registers__48, r_registers__49, r_registers__50, r_registers__51, r_registers__52, r_registers__53, r_registers__54, r_registers__55, r_registers__56, r_registers__57, r_registers__58, r_registers__59, r_registers__60, r_registers__61, r_registers__62, r_registers__63, r_registers__64, r_registers__65, r_registers__66, r_registers__67, r_registers__68, r_registers__69, r_registers__70, r_registers__71, r_registers__72, r_registers__73, r_registers__74, r_registers__75, r_registers__76, r_registers__77, r_registers__78, r_registers__79, r_registers__80, r_registers__81, r_registers__82, r_registers__83, r_registers__84, r_registers__85, r_registers__86, r_registers__87, r_registers__88, r_registers__89, r_registers__90, r_registers__91, r_registers__92, r_registers__93, r_registers__94, r_registers__95, r_registers__96, r_registers__97, r_registers__98, r_registers__99, r_registers__100, r_registers__101, r_registers__102, r_registers__103, r_registers__104, r_registers__105, r_registers__106, r_registers__107, r_registers__108, r_registers__109, r_registers__110, r_registers__111, r_registers__112, r_registers__113, r_registers__114, r_registers__115, r_registers__116, r_registers__117, r_registers__118, r_registers__119, r_registers__120, r_registers__121, r_registers__122, r_registers__123, r_registers__124, = _S_read_holding_registers_response_0.unpack_from(d, 0)
+    r_address, r_function, r_byte_count, r_9registers_0, r_9registers_1, r_9registers_2, r_9registers_3, r_9registers_4, r_9registers_5, r_9registers_6, r_9registers_7, r_9registers_8, r_9registers_9, r_9registers_10, r_9registers_11, r_9registers_12, r_9registers_13, r_9registers_14, r_9registers_15, r_9registers_16, r_9registers_17, r_9registers_18, r_9registers_19, r_9registers_20, r_9registers_21, r_9registers_22, r_9registers_23, r_9registers_24, r_9registers_25, r_9registers_26, r_9registers_27, r_9registers_28, r_9registers_29, r_9registers_30, r_9registers_31, r_9registers_32, r_9registers_33, r_9registers_34, r_9registers_35, r_9registers_36, r_9registers_37, r_9registers_38, r_9registers_39, r_9registers_40, r_9registers_41, r_9registers_42, r_9registers_43, r_9registers_44, r_9registers_45, r_9registers_46, r_9registers_47, r_9registers_48, r_9registers_49, r_9registers_50, r_9registers_51, r_9registers_52, r_9registers_53, r_9registers_54, r_9registers_55, r_9registers_56, r_9registers_57, r_9registers_58, r_9registers_59, r_9registers_60, r_9registers_61, r_9registers_62, r_9registers_63, r_9registers_64, r_9registers_65, r_9registers_66, r_9registers_67, r_9registers_68, r_9registers_69, r_9registers_70, r_9registers_71, r_9registers_72, r_9registers_73, r_9registers_74, r_9registers_75, r_9registers_76, r_9registers_77, r_9registers_78, r_9registers_79, r_9registers_80, r_9registers_81, r_9registers_82, r_9registers_83, r_9registers_84, r_9registers_85, r_9registers_86, r_9registers_87, r_9registers_88, r_9registers_89, r_9registers_90, r_9registers_91, r_9registers_92, r_9registers_93, r_9registers_94, r_9registers_95, r_9registers_96, r_9registers_97, r_9registers_98, r_9registers_99, r_9registers_100, r_9registers_101, r_9registers_102, r_9registers_103, r_9registers_104, r_9registers_105, r_9registers_106, r_9registers_107, r_9registers_108, r_9registers_109, r_9registers_110, r_9registers_111, r_9registers_112, r_9registers_113, r_9registers_114, r_9registers_115, r_9registers_116, r_9registers_117, r_9registers_118, r_9registers_119, r_9registers_120, r_9registers_121, r_9registers_122, r_9registers_123, r_9registers_124, = _S_read_holding_registers_response_0.unpack_from(d, 0)
     r_crc, = _S_read_holding_registers_response_1.unpack_from(d, 253)
     x = _checksum_crc16_8005_ffff_rr_0(d[0:253 - cut])
     if r_crc != x:
@@ -1511,7 +1511,7 @@ def _decode_read_holding_registers_response(d):
         raise _dec('read_holding_registers_response', 'function', r_function, 'const', '3', 8, None)
     o = _object_new(ReadHoldingRegistersResponse)
     o.address = r_address
-    o.registers = [r_registers__0, r_registers__1, r_registers__2, r_registers__3, r_registers__4, r_registers__5, r_registers__6, r_registers__7, r_registers__8, r_registers__9, r_registers__10, r_registers__11, r_registers__12, r_registers__13, r_registers__14, r_registers__15, r_registers__16, r_registers__17, r_registers__18, r_registers__19, r_registers__20, r_registers__21, r_registers__22, r_registers__23, r_registers__24, r_registers__25, r_registers__26, r_registers__27, r_registers__28, r_registers__29, r_registers__30, r_registers__31, r_registers__32, r_registers__33, r_registers__34, r_registers__35, r_registers__36, r_registers__37, r_registers__38, r_registers__39, r_registers__40, r_registers__41, r_registers__42, r_registers__43, r_registers__44, r_registers__45, r_registers__46, r_registers__47, r_registers__48, r_registers__49, r_registers__50, r_registers__51, r_registers__52, r_registers__53, r_registers__54, r_registers__55, r_registers__56, r_registers__57, r_registers__58, r_registers__59, r_registers__60, r_registers__61, r_registers__62, r_registers__63, r_registers__64, r_registers__65, r_registers__66, r_registers__67, r_registers__68, r_registers__69, r_registers__70, r_registers__71, r_registers__72, r_registers__73, r_registers__74, r_registers__75, r_registers__76, r_registers__77, r_registers__78, r_registers__79, r_registers__80, r_registers__81, r_registers__82, r_registers__83, r_registers__84, r_registers__85, r_registers__86, r_registers__87, r_registers__88, r_registers__89, r_registers__90, r_registers__91, r_registers__92, r_registers__93, r_registers__94, r_registers__95, r_registers__96, r_registers__97, r_registers__98, r_registers__99, r_registers__100, r_registers__101, r_registers__102, r_registers__103, r_registers__104, r_registers__105, r_registers__106, r_registers__107, r_registers__108, r_registers__109, r_registers__110, r_registers__111, r_registers__112, r_registers__113, r_registers__114, r_registers__115, r_registers__116, r_registers__117, r_registers__118, r_registers__119, r_registers__120, r_registers__121, r_registers__122, r_registers__123, r_registers__124][:n_registers]
+    o.registers = [r_9registers_0, r_9registers_1, r_9registers_2, r_9registers_3, r_9registers_4, r_9registers_5, r_9registers_6, r_9registers_7, r_9registers_8, r_9registers_9, r_9registers_10, r_9registers_11, r_9registers_12, r_9registers_13, r_9registers_14, r_9registers_15, r_9registers_16, r_9registers_17, r_9registers_18, r_9registers_19, r_9registers_20, r_9registers_21, r_9registers_22, r_9registers_23, r_9registers_24, r_9registers_25, r_9registers_26, r_9registers_27, r_9registers_28, r_9registers_29, r_9registers_30, r_9registers_31, r_9registers_32, r_9registers_33, r_9registers_34, r_9registers_35, r_9registers_36, r_9registers_37, r_9registers_38, r_9registers_39, r_9registers_40, r_9registers_41, r_9registers_42, r_9registers_43, r_9registers_44, r_9registers_45, r_9registers_46, r_9registers_47, r_9registers_48, r_9registers_49, r_9registers_50, r_9registers_51, r_9registers_52, r_9registers_53, r_9registers_54, r_9registers_55, r_9registers_56, r_9registers_57, r_9registers_58, r_9registers_59, r_9registers_60, r_9registers_61, r_9registers_62, r_9registers_63, r_9registers_64, r_9registers_65, r_9registers_66, r_9registers_67, r_9registers_68, r_9registers_69, r_9registers_70, r_9registers_71, r_9registers_72, r_9registers_73, r_9registers_74, r_9registers_75, r_9registers_76, r_9registers_77, r_9registers_78, r_9registers_79, r_9registers_80, r_9registers_81, r_9registers_82, r_9registers_83, r_9registers_84, r_9registers_85, r_9registers_86, r_9registers_87, r_9registers_88, r_9registers_89, r_9registers_90, r_9registers_91, r_9registers_92, r_9registers_93, r_9registers_94, r_9registers_95, r_9registers_96, r_9registers_97, r_9registers_98, r_9registers_99, r_9registers_100, r_9registers_101, r_9registers_102, r_9registers_103, r_9registers_104, r_9registers_105, r_9registers_106, r_9registers_107, r_9registers_108, r_9registers_109, r_9registers_110, r_9registers_111, r_9registers_112, r_9registers_113, r_9registers_114, r_9registers_115, r_9registers_116, r_9registers_117, r_9registers_118, r_9registers_119, r_9registers_120, r_9registers_121, r_9registers_122, r_9registers_123, r_9registers_124][:n_registers]
     return o
 
 
@@ -1536,993 +1536,993 @@ def _encode_write_multiple_registers(m):
     if not isinstance(g_values, (list, tuple)) or len(g_values) > 123:
         raise _enc('write_multiple_registers', 'values', g_values, 'count', 'a list of at most 123 values')
     if len(g_values) > 0:
-        r_values__0 = g_values[0]
-        if r_values__0.__class__ is not int and (not isinstance(r_values__0, int) or r_values__0.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[0]', r_values__0, 'type', 'an int')
-        if not 0 <= r_values__0 <= 65535:
-            raise _enc('write_multiple_registers', 'values[0]', r_values__0, 'range', '0..65535', None)
+        r_6values_0 = g_values[0]
+        if r_6values_0.__class__ is not int and (not isinstance(r_6values_0, int) or r_6values_0.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[0]', r_6values_0, 'type', 'an int')
+        if not 0 <= r_6values_0 <= 65535:
+            raise _enc('write_multiple_registers', 'values[0]', r_6values_0, 'range', '0..65535', None)
     else:
-        r_values__0 = 0
+        r_6values_0 = 0
     if len(g_values) > 1:
-        r_values__1 = g_values[1]
-        if r_values__1.__class__ is not int and (not isinstance(r_values__1, int) or r_values__1.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[1]', r_values__1, 'type', 'an int')
-        if not 0 <= r_values__1 <= 65535:
-            raise _enc('write_multiple_registers', 'values[1]', r_values__1, 'range', '0..65535', None)
+        r_6values_1 = g_values[1]
+        if r_6values_1.__class__ is not int and (not isinstance(r_6values_1, int) or r_6values_1.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[1]', r_6values_1, 'type', 'an int')
+        if not 0 <= r_6values_1 <= 65535:
+            raise _enc('write_multiple_registers', 'values[1]', r_6values_1, 'range', '0..65535', None)
     else:
-        r_values__1 = 0
+        r_6values_1 = 0
     if len(g_values) > 2:
-        r_values__2 = g_values[2]
-        if r_values__2.__class__ is not int and (not isinstance(r_values__2, int) or r_values__2.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[2]', r_values__2, 'type', 'an int')
-        if not 0 <= r_values__2 <= 65535:
-            raise _enc('write_multiple_registers', 'values[2]', r_values__2, 'range', '0..65535', None)
+        r_6values_2 = g_values[2]
+        if r_6values_2.__class__ is not int and (not isinstance(r_6values_2, int) or r_6values_2.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[2]', r_6values_2, 'type', 'an int')
+        if not 0 <= r_6values_2 <= 65535:
+            raise _enc('write_multiple_registers', 'values[2]', r_6values_2, 'range', '0..65535', None)
     else:
-        r_values__2 = 0
+        r_6values_2 = 0
     if len(g_values) > 3:
-        r_values__3 = g_values[3]
-        if r_values__3.__class__ is not int and (not isinstance(r_values__3, int) or r_values__3.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[3]', r_values__3, 'type', 'an int')
-        if not 0 <= r_values__3 <= 65535:
-            raise _enc('write_multiple_registers', 'values[3]', r_values__3, 'range', '0..65535', None)
+        r_6values_3 = g_values[3]
+        if r_6values_3.__class__ is not int and (not isinstance(r_6values_3, int) or r_6values_3.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[3]', r_6values_3, 'type', 'an int')
+        if not 0 <= r_6values_3 <= 65535:
+            raise _enc('write_multiple_registers', 'values[3]', r_6values_3, 'range', '0..65535', None)
     else:
-        r_values__3 = 0
+        r_6values_3 = 0
     if len(g_values) > 4:
-        r_values__4 = g_values[4]
-        if r_values__4.__class__ is not int and (not isinstance(r_values__4, int) or r_values__4.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[4]', r_values__4, 'type', 'an int')
-        if not 0 <= r_values__4 <= 65535:
-            raise _enc('write_multiple_registers', 'values[4]', r_values__4, 'range', '0..65535', None)
+        r_6values_4 = g_values[4]
+        if r_6values_4.__class__ is not int and (not isinstance(r_6values_4, int) or r_6values_4.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[4]', r_6values_4, 'type', 'an int')
+        if not 0 <= r_6values_4 <= 65535:
+            raise _enc('write_multiple_registers', 'values[4]', r_6values_4, 'range', '0..65535', None)
     else:
-        r_values__4 = 0
+        r_6values_4 = 0
     if len(g_values) > 5:
-        r_values__5 = g_values[5]
-        if r_values__5.__class__ is not int and (not isinstance(r_values__5, int) or r_values__5.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[5]', r_values__5, 'type', 'an int')
-        if not 0 <= r_values__5 <= 65535:
-            raise _enc('write_multiple_registers', 'values[5]', r_values__5, 'range', '0..65535', None)
+        r_6values_5 = g_values[5]
+        if r_6values_5.__class__ is not int and (not isinstance(r_6values_5, int) or r_6values_5.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[5]', r_6values_5, 'type', 'an int')
+        if not 0 <= r_6values_5 <= 65535:
+            raise _enc('write_multiple_registers', 'values[5]', r_6values_5, 'range', '0..65535', None)
     else:
-        r_values__5 = 0
+        r_6values_5 = 0
     if len(g_values) > 6:
-        r_values__6 = g_values[6]
-        if r_values__6.__class__ is not int and (not isinstance(r_values__6, int) or r_values__6.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[6]', r_values__6, 'type', 'an int')
-        if not 0 <= r_values__6 <= 65535:
-            raise _enc('write_multiple_registers', 'values[6]', r_values__6, 'range', '0..65535', None)
+        r_6values_6 = g_values[6]
+        if r_6values_6.__class__ is not int and (not isinstance(r_6values_6, int) or r_6values_6.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[6]', r_6values_6, 'type', 'an int')
+        if not 0 <= r_6values_6 <= 65535:
+            raise _enc('write_multiple_registers', 'values[6]', r_6values_6, 'range', '0..65535', None)
     else:
-        r_values__6 = 0
+        r_6values_6 = 0
     if len(g_values) > 7:
-        r_values__7 = g_values[7]
-        if r_values__7.__class__ is not int and (not isinstance(r_values__7, int) or r_values__7.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[7]', r_values__7, 'type', 'an int')
-        if not 0 <= r_values__7 <= 65535:
-            raise _enc('write_multiple_registers', 'values[7]', r_values__7, 'range', '0..65535', None)
+        r_6values_7 = g_values[7]
+        if r_6values_7.__class__ is not int and (not isinstance(r_6values_7, int) or r_6values_7.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[7]', r_6values_7, 'type', 'an int')
+        if not 0 <= r_6values_7 <= 65535:
+            raise _enc('write_multiple_registers', 'values[7]', r_6values_7, 'range', '0..65535', None)
     else:
-        r_values__7 = 0
+        r_6values_7 = 0
     if len(g_values) > 8:
-        r_values__8 = g_values[8]
-        if r_values__8.__class__ is not int and (not isinstance(r_values__8, int) or r_values__8.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[8]', r_values__8, 'type', 'an int')
-        if not 0 <= r_values__8 <= 65535:
-            raise _enc('write_multiple_registers', 'values[8]', r_values__8, 'range', '0..65535', None)
+        r_6values_8 = g_values[8]
+        if r_6values_8.__class__ is not int and (not isinstance(r_6values_8, int) or r_6values_8.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[8]', r_6values_8, 'type', 'an int')
+        if not 0 <= r_6values_8 <= 65535:
+            raise _enc('write_multiple_registers', 'values[8]', r_6values_8, 'range', '0..65535', None)
     else:
-        r_values__8 = 0
+        r_6values_8 = 0
     if len(g_values) > 9:
-        r_values__9 = g_values[9]
-        if r_values__9.__class__ is not int and (not isinstance(r_values__9, int) or r_values__9.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[9]', r_values__9, 'type', 'an int')
-        if not 0 <= r_values__9 <= 65535:
-            raise _enc('write_multiple_registers', 'values[9]', r_values__9, 'range', '0..65535', None)
+        r_6values_9 = g_values[9]
+        if r_6values_9.__class__ is not int and (not isinstance(r_6values_9, int) or r_6values_9.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[9]', r_6values_9, 'type', 'an int')
+        if not 0 <= r_6values_9 <= 65535:
+            raise _enc('write_multiple_registers', 'values[9]', r_6values_9, 'range', '0..65535', None)
     else:
-        r_values__9 = 0
+        r_6values_9 = 0
     if len(g_values) > 10:
-        r_values__10 = g_values[10]
-        if r_values__10.__class__ is not int and (not isinstance(r_values__10, int) or r_values__10.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[10]', r_values__10, 'type', 'an int')
-        if not 0 <= r_values__10 <= 65535:
-            raise _enc('write_multiple_registers', 'values[10]', r_values__10, 'range', '0..65535', None)
+        r_6values_10 = g_values[10]
+        if r_6values_10.__class__ is not int and (not isinstance(r_6values_10, int) or r_6values_10.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[10]', r_6values_10, 'type', 'an int')
+        if not 0 <= r_6values_10 <= 65535:
+            raise _enc('write_multiple_registers', 'values[10]', r_6values_10, 'range', '0..65535', None)
     else:
-        r_values__10 = 0
+        r_6values_10 = 0
     if len(g_values) > 11:
-        r_values__11 = g_values[11]
-        if r_values__11.__class__ is not int and (not isinstance(r_values__11, int) or r_values__11.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[11]', r_values__11, 'type', 'an int')
-        if not 0 <= r_values__11 <= 65535:
-            raise _enc('write_multiple_registers', 'values[11]', r_values__11, 'range', '0..65535', None)
+        r_6values_11 = g_values[11]
+        if r_6values_11.__class__ is not int and (not isinstance(r_6values_11, int) or r_6values_11.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[11]', r_6values_11, 'type', 'an int')
+        if not 0 <= r_6values_11 <= 65535:
+            raise _enc('write_multiple_registers', 'values[11]', r_6values_11, 'range', '0..65535', None)
     else:
-        r_values__11 = 0
+        r_6values_11 = 0
     if len(g_values) > 12:
-        r_values__12 = g_values[12]
-        if r_values__12.__class__ is not int and (not isinstance(r_values__12, int) or r_values__12.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[12]', r_values__12, 'type', 'an int')
-        if not 0 <= r_values__12 <= 65535:
-            raise _enc('write_multiple_registers', 'values[12]', r_values__12, 'range', '0..65535', None)
+        r_6values_12 = g_values[12]
+        if r_6values_12.__class__ is not int and (not isinstance(r_6values_12, int) or r_6values_12.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[12]', r_6values_12, 'type', 'an int')
+        if not 0 <= r_6values_12 <= 65535:
+            raise _enc('write_multiple_registers', 'values[12]', r_6values_12, 'range', '0..65535', None)
     else:
-        r_values__12 = 0
+        r_6values_12 = 0
     if len(g_values) > 13:
-        r_values__13 = g_values[13]
-        if r_values__13.__class__ is not int and (not isinstance(r_values__13, int) or r_values__13.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[13]', r_values__13, 'type', 'an int')
-        if not 0 <= r_values__13 <= 65535:
-            raise _enc('write_multiple_registers', 'values[13]', r_values__13, 'range', '0..65535', None)
+        r_6values_13 = g_values[13]
+        if r_6values_13.__class__ is not int and (not isinstance(r_6values_13, int) or r_6values_13.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[13]', r_6values_13, 'type', 'an int')
+        if not 0 <= r_6values_13 <= 65535:
+            raise _enc('write_multiple_registers', 'values[13]', r_6values_13, 'range', '0..65535', None)
     else:
-        r_values__13 = 0
+        r_6values_13 = 0
     if len(g_values) > 14:
-        r_values__14 = g_values[14]
-        if r_values__14.__class__ is not int and (not isinstance(r_values__14, int) or r_values__14.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[14]', r_values__14, 'type', 'an int')
-        if not 0 <= r_values__14 <= 65535:
-            raise _enc('write_multiple_registers', 'values[14]', r_values__14, 'range', '0..65535', None)
+        r_6values_14 = g_values[14]
+        if r_6values_14.__class__ is not int and (not isinstance(r_6values_14, int) or r_6values_14.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[14]', r_6values_14, 'type', 'an int')
+        if not 0 <= r_6values_14 <= 65535:
+            raise _enc('write_multiple_registers', 'values[14]', r_6values_14, 'range', '0..65535', None)
     else:
-        r_values__14 = 0
+        r_6values_14 = 0
     if len(g_values) > 15:
-        r_values__15 = g_values[15]
-        if r_values__15.__class__ is not int and (not isinstance(r_values__15, int) or r_values__15.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[15]', r_values__15, 'type', 'an int')
-        if not 0 <= r_values__15 <= 65535:
-            raise _enc('write_multiple_registers', 'values[15]', r_values__15, 'range', '0..65535', None)
+        r_6values_15 = g_values[15]
+        if r_6values_15.__class__ is not int and (not isinstance(r_6values_15, int) or r_6values_15.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[15]', r_6values_15, 'type', 'an int')
+        if not 0 <= r_6values_15 <= 65535:
+            raise _enc('write_multiple_registers', 'values[15]', r_6values_15, 'range', '0..65535', None)
     else:
-        r_values__15 = 0
+        r_6values_15 = 0
     if len(g_values) > 16:
-        r_values__16 = g_values[16]
-        if r_values__16.__class__ is not int and (not isinstance(r_values__16, int) or r_values__16.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[16]', r_values__16, 'type', 'an int')
-        if not 0 <= r_values__16 <= 65535:
-            raise _enc('write_multiple_registers', 'values[16]', r_values__16, 'range', '0..65535', None)
+        r_6values_16 = g_values[16]
+        if r_6values_16.__class__ is not int and (not isinstance(r_6values_16, int) or r_6values_16.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[16]', r_6values_16, 'type', 'an int')
+        if not 0 <= r_6values_16 <= 65535:
+            raise _enc('write_multiple_registers', 'values[16]', r_6values_16, 'range', '0..65535', None)
     else:
-        r_values__16 = 0
+        r_6values_16 = 0
     if len(g_values) > 17:
-        r_values__17 = g_values[17]
-        if r_values__17.__class__ is not int and (not isinstance(r_values__17, int) or r_values__17.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[17]', r_values__17, 'type', 'an int')
-        if not 0 <= r_values__17 <= 65535:
-            raise _enc('write_multiple_registers', 'values[17]', r_values__17, 'range', '0..65535', None)
+        r_6values_17 = g_values[17]
+        if r_6values_17.__class__ is not int and (not isinstance(r_6values_17, int) or r_6values_17.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[17]', r_6values_17, 'type', 'an int')
+        if not 0 <= r_6values_17 <= 65535:
+            raise _enc('write_multiple_registers', 'values[17]', r_6values_17, 'range', '0..65535', None)
     else:
-        r_values__17 = 0
+        r_6values_17 = 0
     if len(g_values) > 18:
-        r_values__18 = g_values[18]
-        if r_values__18.__class__ is not int and (not isinstance(r_values__18, int) or r_values__18.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[18]', r_values__18, 'type', 'an int')
-        if not 0 <= r_values__18 <= 65535:
-            raise _enc('write_multiple_registers', 'values[18]', r_values__18, 'range', '0..65535', None)
+        r_6values_18 = g_values[18]
+        if r_6values_18.__class__ is not int and (not isinstance(r_6values_18, int) or r_6values_18.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[18]', r_6values_18, 'type', 'an int')
+        if not 0 <= r_6values_18 <= 65535:
+            raise _enc('write_multiple_registers', 'values[18]', r_6values_18, 'range', '0..65535', None)
     else:
-        r_values__18 = 0
+        r_6values_18 = 0
     if len(g_values) > 19:
-        r_values__19 = g_values[19]
-        if r_values__19.__class__ is not int and (not isinstance(r_values__19, int) or r_values__19.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[19]', r_values__19, 'type', 'an int')
-        if not 0 <= r_values__19 <= 65535:
-            raise _enc('write_multiple_registers', 'values[19]', r_values__19, 'range', '0..65535', None)
+        r_6values_19 = g_values[19]
+        if r_6values_19.__class__ is not int and (not isinstance(r_6values_19, int) or r_6values_19.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[19]', r_6values_19, 'type', 'an int')
+        if not 0 <= r_6values_19 <= 65535:
+            raise _enc('write_multiple_registers', 'values[19]', r_6values_19, 'range', '0..65535', None)
     else:
-        r_values__19 = 0
+        r_6values_19 = 0
     if len(g_values) > 20:
-        r_values__20 = g_values[20]
-        if r_values__20.__class__ is not int and (not isinstance(r_values__20, int) or r_values__20.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[20]', r_values__20, 'type', 'an int')
-        if not 0 <= r_values__20 <= 65535:
-            raise _enc('write_multiple_registers', 'values[20]', r_values__20, 'range', '0..65535', None)
+        r_6values_20 = g_values[20]
+        if r_6values_20.__class__ is not int and (not isinstance(r_6values_20, int) or r_6values_20.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[20]', r_6values_20, 'type', 'an int')
+        if not 0 <= r_6values_20 <= 65535:
+            raise _enc('write_multiple_registers', 'values[20]', r_6values_20, 'range', '0..65535', None)
     else:
-        r_values__20 = 0
+        r_6values_20 = 0
     if len(g_values) > 21:
-        r_values__21 = g_values[21]
-        if r_values__21.__class__ is not int and (not isinstance(r_values__21, int) or r_values__21.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[21]', r_values__21, 'type', 'an int')
-        if not 0 <= r_values__21 <= 65535:
-            raise _enc('write_multiple_registers', 'values[21]', r_values__21, 'range', '0..65535', None)
+        r_6values_21 = g_values[21]
+        if r_6values_21.__class__ is not int and (not isinstance(r_6values_21, int) or r_6values_21.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[21]', r_6values_21, 'type', 'an int')
+        if not 0 <= r_6values_21 <= 65535:
+            raise _enc('write_multiple_registers', 'values[21]', r_6values_21, 'range', '0..65535', None)
     else:
-        r_values__21 = 0
+        r_6values_21 = 0
     if len(g_values) > 22:
-        r_values__22 = g_values[22]
-        if r_values__22.__class__ is not int and (not isinstance(r_values__22, int) or r_values__22.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[22]', r_values__22, 'type', 'an int')
-        if not 0 <= r_values__22 <= 65535:
-            raise _enc('write_multiple_registers', 'values[22]', r_values__22, 'range', '0..65535', None)
+        r_6values_22 = g_values[22]
+        if r_6values_22.__class__ is not int and (not isinstance(r_6values_22, int) or r_6values_22.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[22]', r_6values_22, 'type', 'an int')
+        if not 0 <= r_6values_22 <= 65535:
+            raise _enc('write_multiple_registers', 'values[22]', r_6values_22, 'range', '0..65535', None)
     else:
-        r_values__22 = 0
+        r_6values_22 = 0
     if len(g_values) > 23:
-        r_values__23 = g_values[23]
-        if r_values__23.__class__ is not int and (not isinstance(r_values__23, int) or r_values__23.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[23]', r_values__23, 'type', 'an int')
-        if not 0 <= r_values__23 <= 65535:
-            raise _enc('write_multiple_registers', 'values[23]', r_values__23, 'range', '0..65535', None)
+        r_6values_23 = g_values[23]
+        if r_6values_23.__class__ is not int and (not isinstance(r_6values_23, int) or r_6values_23.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[23]', r_6values_23, 'type', 'an int')
+        if not 0 <= r_6values_23 <= 65535:
+            raise _enc('write_multiple_registers', 'values[23]', r_6values_23, 'range', '0..65535', None)
     else:
-        r_values__23 = 0
+        r_6values_23 = 0
     if len(g_values) > 24:
-        r_values__24 = g_values[24]
-        if r_values__24.__class__ is not int and (not isinstance(r_values__24, int) or r_values__24.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[24]', r_values__24, 'type', 'an int')
-        if not 0 <= r_values__24 <= 65535:
-            raise _enc('write_multiple_registers', 'values[24]', r_values__24, 'range', '0..65535', None)
+        r_6values_24 = g_values[24]
+        if r_6values_24.__class__ is not int and (not isinstance(r_6values_24, int) or r_6values_24.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[24]', r_6values_24, 'type', 'an int')
+        if not 0 <= r_6values_24 <= 65535:
+            raise _enc('write_multiple_registers', 'values[24]', r_6values_24, 'range', '0..65535', None)
     else:
-        r_values__24 = 0
+        r_6values_24 = 0
     if len(g_values) > 25:
-        r_values__25 = g_values[25]
-        if r_values__25.__class__ is not int and (not isinstance(r_values__25, int) or r_values__25.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[25]', r_values__25, 'type', 'an int')
-        if not 0 <= r_values__25 <= 65535:
-            raise _enc('write_multiple_registers', 'values[25]', r_values__25, 'range', '0..65535', None)
+        r_6values_25 = g_values[25]
+        if r_6values_25.__class__ is not int and (not isinstance(r_6values_25, int) or r_6values_25.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[25]', r_6values_25, 'type', 'an int')
+        if not 0 <= r_6values_25 <= 65535:
+            raise _enc('write_multiple_registers', 'values[25]', r_6values_25, 'range', '0..65535', None)
     else:
-        r_values__25 = 0
+        r_6values_25 = 0
     if len(g_values) > 26:
-        r_values__26 = g_values[26]
-        if r_values__26.__class__ is not int and (not isinstance(r_values__26, int) or r_values__26.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[26]', r_values__26, 'type', 'an int')
-        if not 0 <= r_values__26 <= 65535:
-            raise _enc('write_multiple_registers', 'values[26]', r_values__26, 'range', '0..65535', None)
+        r_6values_26 = g_values[26]
+        if r_6values_26.__class__ is not int and (not isinstance(r_6values_26, int) or r_6values_26.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[26]', r_6values_26, 'type', 'an int')
+        if not 0 <= r_6values_26 <= 65535:
+            raise _enc('write_multiple_registers', 'values[26]', r_6values_26, 'range', '0..65535', None)
     else:
-        r_values__26 = 0
+        r_6values_26 = 0
     if len(g_values) > 27:
-        r_values__27 = g_values[27]
-        if r_values__27.__class__ is not int and (not isinstance(r_values__27, int) or r_values__27.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[27]', r_values__27, 'type', 'an int')
-        if not 0 <= r_values__27 <= 65535:
-            raise _enc('write_multiple_registers', 'values[27]', r_values__27, 'range', '0..65535', None)
+        r_6values_27 = g_values[27]
+        if r_6values_27.__class__ is not int and (not isinstance(r_6values_27, int) or r_6values_27.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[27]', r_6values_27, 'type', 'an int')
+        if not 0 <= r_6values_27 <= 65535:
+            raise _enc('write_multiple_registers', 'values[27]', r_6values_27, 'range', '0..65535', None)
     else:
-        r_values__27 = 0
+        r_6values_27 = 0
     if len(g_values) > 28:
-        r_values__28 = g_values[28]
-        if r_values__28.__class__ is not int and (not isinstance(r_values__28, int) or r_values__28.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[28]', r_values__28, 'type', 'an int')
-        if not 0 <= r_values__28 <= 65535:
-            raise _enc('write_multiple_registers', 'values[28]', r_values__28, 'range', '0..65535', None)
+        r_6values_28 = g_values[28]
+        if r_6values_28.__class__ is not int and (not isinstance(r_6values_28, int) or r_6values_28.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[28]', r_6values_28, 'type', 'an int')
+        if not 0 <= r_6values_28 <= 65535:
+            raise _enc('write_multiple_registers', 'values[28]', r_6values_28, 'range', '0..65535', None)
     else:
-        r_values__28 = 0
+        r_6values_28 = 0
     if len(g_values) > 29:
-        r_values__29 = g_values[29]
-        if r_values__29.__class__ is not int and (not isinstance(r_values__29, int) or r_values__29.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[29]', r_values__29, 'type', 'an int')
-        if not 0 <= r_values__29 <= 65535:
-            raise _enc('write_multiple_registers', 'values[29]', r_values__29, 'range', '0..65535', None)
+        r_6values_29 = g_values[29]
+        if r_6values_29.__class__ is not int and (not isinstance(r_6values_29, int) or r_6values_29.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[29]', r_6values_29, 'type', 'an int')
+        if not 0 <= r_6values_29 <= 65535:
+            raise _enc('write_multiple_registers', 'values[29]', r_6values_29, 'range', '0..65535', None)
     else:
-        r_values__29 = 0
+        r_6values_29 = 0
     if len(g_values) > 30:
-        r_values__30 = g_values[30]
-        if r_values__30.__class__ is not int and (not isinstance(r_values__30, int) or r_values__30.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[30]', r_values__30, 'type', 'an int')
-        if not 0 <= r_values__30 <= 65535:
-            raise _enc('write_multiple_registers', 'values[30]', r_values__30, 'range', '0..65535', None)
+        r_6values_30 = g_values[30]
+        if r_6values_30.__class__ is not int and (not isinstance(r_6values_30, int) or r_6values_30.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[30]', r_6values_30, 'type', 'an int')
+        if not 0 <= r_6values_30 <= 65535:
+            raise _enc('write_multiple_registers', 'values[30]', r_6values_30, 'range', '0..65535', None)
     else:
-        r_values__30 = 0
+        r_6values_30 = 0
     if len(g_values) > 31:
-        r_values__31 = g_values[31]
-        if r_values__31.__class__ is not int and (not isinstance(r_values__31, int) or r_values__31.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[31]', r_values__31, 'type', 'an int')
-        if not 0 <= r_values__31 <= 65535:
-            raise _enc('write_multiple_registers', 'values[31]', r_values__31, 'range', '0..65535', None)
+        r_6values_31 = g_values[31]
+        if r_6values_31.__class__ is not int and (not isinstance(r_6values_31, int) or r_6values_31.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[31]', r_6values_31, 'type', 'an int')
+        if not 0 <= r_6values_31 <= 65535:
+            raise _enc('write_multiple_registers', 'values[31]', r_6values_31, 'range', '0..65535', None)
     else:
-        r_values__31 = 0
+        r_6values_31 = 0
     if len(g_values) > 32:
-        r_values__32 = g_values[32]
-        if r_values__32.__class__ is not int and (not isinstance(r_values__32, int) or r_values__32.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[32]', r_values__32, 'type', 'an int')
-        if not 0 <= r_values__32 <= 65535:
-            raise _enc('write_multiple_registers', 'values[32]', r_values__32, 'range', '0..65535', None)
+        r_6values_32 = g_values[32]
+        if r_6values_32.__class__ is not int and (not isinstance(r_6values_32, int) or r_6values_32.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[32]', r_6values_32, 'type', 'an int')
+        if not 0 <= r_6values_32 <= 65535:
+            raise _enc('write_multiple_registers', 'values[32]', r_6values_32, 'range', '0..65535', None)
     else:
-        r_values__32 = 0
+        r_6values_32 = 0
     if len(g_values) > 33:
-        r_values__33 = g_values[33]
-        if r_values__33.__class__ is not int and (not isinstance(r_values__33, int) or r_values__33.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[33]', r_values__33, 'type', 'an int')
-        if not 0 <= r_values__33 <= 65535:
-            raise _enc('write_multiple_registers', 'values[33]', r_values__33, 'range', '0..65535', None)
+        r_6values_33 = g_values[33]
+        if r_6values_33.__class__ is not int and (not isinstance(r_6values_33, int) or r_6values_33.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[33]', r_6values_33, 'type', 'an int')
+        if not 0 <= r_6values_33 <= 65535:
+            raise _enc('write_multiple_registers', 'values[33]', r_6values_33, 'range', '0..65535', None)
     else:
-        r_values__33 = 0
+        r_6values_33 = 0
     if len(g_values) > 34:
-        r_values__34 = g_values[34]
-        if r_values__34.__class__ is not int and (not isinstance(r_values__34, int) or r_values__34.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[34]', r_values__34, 'type', 'an int')
-        if not 0 <= r_values__34 <= 65535:
-            raise _enc('write_multiple_registers', 'values[34]', r_values__34, 'range', '0..65535', None)
+        r_6values_34 = g_values[34]
+        if r_6values_34.__class__ is not int and (not isinstance(r_6values_34, int) or r_6values_34.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[34]', r_6values_34, 'type', 'an int')
+        if not 0 <= r_6values_34 <= 65535:
+            raise _enc('write_multiple_registers', 'values[34]', r_6values_34, 'range', '0..65535', None)
     else:
-        r_values__34 = 0
+        r_6values_34 = 0
     if len(g_values) > 35:
-        r_values__35 = g_values[35]
-        if r_values__35.__class__ is not int and (not isinstance(r_values__35, int) or r_values__35.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[35]', r_values__35, 'type', 'an int')
-        if not 0 <= r_values__35 <= 65535:
-            raise _enc('write_multiple_registers', 'values[35]', r_values__35, 'range', '0..65535', None)
+        r_6values_35 = g_values[35]
+        if r_6values_35.__class__ is not int and (not isinstance(r_6values_35, int) or r_6values_35.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[35]', r_6values_35, 'type', 'an int')
+        if not 0 <= r_6values_35 <= 65535:
+            raise _enc('write_multiple_registers', 'values[35]', r_6values_35, 'range', '0..65535', None)
     else:
-        r_values__35 = 0
+        r_6values_35 = 0
     if len(g_values) > 36:
-        r_values__36 = g_values[36]
-        if r_values__36.__class__ is not int and (not isinstance(r_values__36, int) or r_values__36.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[36]', r_values__36, 'type', 'an int')
-        if not 0 <= r_values__36 <= 65535:
-            raise _enc('write_multiple_registers', 'values[36]', r_values__36, 'range', '0..65535', None)
+        r_6values_36 = g_values[36]
+        if r_6values_36.__class__ is not int and (not isinstance(r_6values_36, int) or r_6values_36.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[36]', r_6values_36, 'type', 'an int')
+        if not 0 <= r_6values_36 <= 65535:
+            raise _enc('write_multiple_registers', 'values[36]', r_6values_36, 'range', '0..65535', None)
     else:
-        r_values__36 = 0
+        r_6values_36 = 0
     if len(g_values) > 37:
-        r_values__37 = g_values[37]
-        if r_values__37.__class__ is not int and (not isinstance(r_values__37, int) or r_values__37.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[37]', r_values__37, 'type', 'an int')
-        if not 0 <= r_values__37 <= 65535:
-            raise _enc('write_multiple_registers', 'values[37]', r_values__37, 'range', '0..65535', None)
+        r_6values_37 = g_values[37]
+        if r_6values_37.__class__ is not int and (not isinstance(r_6values_37, int) or r_6values_37.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[37]', r_6values_37, 'type', 'an int')
+        if not 0 <= r_6values_37 <= 65535:
+            raise _enc('write_multiple_registers', 'values[37]', r_6values_37, 'range', '0..65535', None)
     else:
-        r_values__37 = 0
+        r_6values_37 = 0
     if len(g_values) > 38:
-        r_values__38 = g_values[38]
-        if r_values__38.__class__ is not int and (not isinstance(r_values__38, int) or r_values__38.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[38]', r_values__38, 'type', 'an int')
-        if not 0 <= r_values__38 <= 65535:
-            raise _enc('write_multiple_registers', 'values[38]', r_values__38, 'range', '0..65535', None)
+        r_6values_38 = g_values[38]
+        if r_6values_38.__class__ is not int and (not isinstance(r_6values_38, int) or r_6values_38.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[38]', r_6values_38, 'type', 'an int')
+        if not 0 <= r_6values_38 <= 65535:
+            raise _enc('write_multiple_registers', 'values[38]', r_6values_38, 'range', '0..65535', None)
     else:
-        r_values__38 = 0
+        r_6values_38 = 0
     if len(g_values) > 39:
-        r_values__39 = g_values[39]
-        if r_values__39.__class__ is not int and (not isinstance(r_values__39, int) or r_values__39.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[39]', r_values__39, 'type', 'an int')
-        if not 0 <= r_values__39 <= 65535:
-            raise _enc('write_multiple_registers', 'values[39]', r_values__39, 'range', '0..65535', None)
+        r_6values_39 = g_values[39]
+        if r_6values_39.__class__ is not int and (not isinstance(r_6values_39, int) or r_6values_39.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[39]', r_6values_39, 'type', 'an int')
+        if not 0 <= r_6values_39 <= 65535:
+            raise _enc('write_multiple_registers', 'values[39]', r_6values_39, 'range', '0..65535', None)
     else:
-        r_values__39 = 0
+        r_6values_39 = 0
     if len(g_values) > 40:
-        r_values__40 = g_values[40]
-        if r_values__40.__class__ is not int and (not isinstance(r_values__40, int) or r_values__40.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[40]', r_values__40, 'type', 'an int')
-        if not 0 <= r_values__40 <= 65535:
-            raise _enc('write_multiple_registers', 'values[40]', r_values__40, 'range', '0..65535', None)
+        r_6values_40 = g_values[40]
+        if r_6values_40.__class__ is not int and (not isinstance(r_6values_40, int) or r_6values_40.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[40]', r_6values_40, 'type', 'an int')
+        if not 0 <= r_6values_40 <= 65535:
+            raise _enc('write_multiple_registers', 'values[40]', r_6values_40, 'range', '0..65535', None)
     else:
-        r_values__40 = 0
+        r_6values_40 = 0
     if len(g_values) > 41:
-        r_values__41 = g_values[41]
-        if r_values__41.__class__ is not int and (not isinstance(r_values__41, int) or r_values__41.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[41]', r_values__41, 'type', 'an int')
-        if not 0 <= r_values__41 <= 65535:
-            raise _enc('write_multiple_registers', 'values[41]', r_values__41, 'range', '0..65535', None)
+        r_6values_41 = g_values[41]
+        if r_6values_41.__class__ is not int and (not isinstance(r_6values_41, int) or r_6values_41.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[41]', r_6values_41, 'type', 'an int')
+        if not 0 <= r_6values_41 <= 65535:
+            raise _enc('write_multiple_registers', 'values[41]', r_6values_41, 'range', '0..65535', None)
     else:
-        r_values__41 = 0
+        r_6values_41 = 0
     if len(g_values) > 42:
-        r_values__42 = g_values[42]
-        if r_values__42.__class__ is not int and (not isinstance(r_values__42, int) or r_values__42.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[42]', r_values__42, 'type', 'an int')
-        if not 0 <= r_values__42 <= 65535:
-            raise _enc('write_multiple_registers', 'values[42]', r_values__42, 'range', '0..65535', None)
+        r_6values_42 = g_values[42]
+        if r_6values_42.__class__ is not int and (not isinstance(r_6values_42, int) or r_6values_42.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[42]', r_6values_42, 'type', 'an int')
+        if not 0 <= r_6values_42 <= 65535:
+            raise _enc('write_multiple_registers', 'values[42]', r_6values_42, 'range', '0..65535', None)
     else:
-        r_values__42 = 0
+        r_6values_42 = 0
     if len(g_values) > 43:
-        r_values__43 = g_values[43]
-        if r_values__43.__class__ is not int and (not isinstance(r_values__43, int) or r_values__43.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[43]', r_values__43, 'type', 'an int')
-        if not 0 <= r_values__43 <= 65535:
-            raise _enc('write_multiple_registers', 'values[43]', r_values__43, 'range', '0..65535', None)
+        r_6values_43 = g_values[43]
+        if r_6values_43.__class__ is not int and (not isinstance(r_6values_43, int) or r_6values_43.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[43]', r_6values_43, 'type', 'an int')
+        if not 0 <= r_6values_43 <= 65535:
+            raise _enc('write_multiple_registers', 'values[43]', r_6values_43, 'range', '0..65535', None)
     else:
-        r_values__43 = 0
+        r_6values_43 = 0
     if len(g_values) > 44:
-        r_values__44 = g_values[44]
-        if r_values__44.__class__ is not int and (not isinstance(r_values__44, int) or r_values__44.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[44]', r_values__44, 'type', 'an int')
-        if not 0 <= r_values__44 <= 65535:
-            raise _enc('write_multiple_registers', 'values[44]', r_values__44, 'range', '0..65535', None)
+        r_6values_44 = g_values[44]
+        if r_6values_44.__class__ is not int and (not isinstance(r_6values_44, int) or r_6values_44.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[44]', r_6values_44, 'type', 'an int')
+        if not 0 <= r_6values_44 <= 65535:
+            raise _enc('write_multiple_registers', 'values[44]', r_6values_44, 'range', '0..65535', None)
     else:
-        r_values__44 = 0
+        r_6values_44 = 0
     if len(g_values) > 45:
-        r_values__45 = g_values[45]
-        if r_values__45.__class__ is not int and (not isinstance(r_values__45, int) or r_values__45.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[45]', r_values__45, 'type', 'an int')
-        if not 0 <= r_values__45 <= 65535:
-            raise _enc('write_multiple_registers', 'values[45]', r_values__45, 'range', '0..65535', None)
+        r_6values_45 = g_values[45]
+        if r_6values_45.__class__ is not int and (not isinstance(r_6values_45, int) or r_6values_45.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[45]', r_6values_45, 'type', 'an int')
+        if not 0 <= r_6values_45 <= 65535:
+            raise _enc('write_multiple_registers', 'values[45]', r_6values_45, 'range', '0..65535', None)
     else:
-        r_values__45 = 0
+        r_6values_45 = 0
     if len(g_values) > 46:
-        r_values__46 = g_values[46]
-        if r_values__46.__class__ is not int and (not isinstance(r_values__46, int) or r_values__46.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[46]', r_values__46, 'type', 'an int')
-        if not 0 <= r_values__46 <= 65535:
-            raise _enc('write_multiple_registers', 'values[46]', r_values__46, 'range', '0..65535', None)
+        r_6values_46 = g_values[46]
+        if r_6values_46.__class__ is not int and (not isinstance(r_6values_46, int) or r_6values_46.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[46]', r_6values_46, 'type', 'an int')
+        if not 0 <= r_6values_46 <= 65535:
+            raise _enc('write_multiple_registers', 'values[46]', r_6values_46, 'range', '0..65535', None)
     else:
-        r_values__46 = 0
+        r_6values_46 = 0
     if len(g_values) > 47:
-        r_values__47 = g_values[47]
-        if r_values__47.__class__ is not int and (not isinstance(r_values__47, int) or r_values__47.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[47]', r_values__47, 'type', 'an int')
-        if not 0 <= r_values__47 <= 65535:
-            raise _enc('write_multiple_registers', 'values[47]', r_values__47, 'range', '0..65535', None)
+        r_6values_47 = g_values[47]
+        if r_6values_47.__class__ is not int and (not isinstance(r_6values_47, int) or r_6values_47.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[47]', r_6values_47, 'type', 'an int')
+        if not 0 <= r_6values_47 <= 65535:
+            raise _enc('write_multiple_registers', 'values[47]', r_6values_47, 'range', '0..65535', None)
     else:
-        r_values__47 = 0
+        r_6values_47 = 0
     if len(g_values) > 48:
-        r_values__48 = g_values[48]
-        if r_values__48.__class__ is not int and (not isinstance(r_values__48, int) or r_values__48.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[48]', r_values__48, 'type', 'an int')
-        if not 0 <= r_values__48 <= 65535:
-            raise _enc('write_multiple_registers', 'values[48]', r_values__48, 'range', '0..65535', None)
+        r_6values_48 = g_values[48]
+        if r_6values_48.__class__ is not int and (not isinstance(r_6values_48, int) or r_6values_48.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[48]', r_6values_48, 'type', 'an int')
+        if not 0 <= r_6values_48 <= 65535:
+            raise _enc('write_multiple_registers', 'values[48]', r_6values_48, 'range', '0..65535', None)
     else:
-        r_values__48 = 0
+        r_6values_48 = 0
     if len(g_values) > 49:
-        r_values__49 = g_values[49]
-        if r_values__49.__class__ is not int and (not isinstance(r_values__49, int) or r_values__49.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[49]', r_values__49, 'type', 'an int')
-        if not 0 <= r_values__49 <= 65535:
-            raise _enc('write_multiple_registers', 'values[49]', r_values__49, 'range', '0..65535', None)
+        r_6values_49 = g_values[49]
+        if r_6values_49.__class__ is not int and (not isinstance(r_6values_49, int) or r_6values_49.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[49]', r_6values_49, 'type', 'an int')
+        if not 0 <= r_6values_49 <= 65535:
+            raise _enc('write_multiple_registers', 'values[49]', r_6values_49, 'range', '0..65535', None)
     else:
-        r_values__49 = 0
+        r_6values_49 = 0
     if len(g_values) > 50:
-        r_values__50 = g_values[50]
-        if r_values__50.__class__ is not int and (not isinstance(r_values__50, int) or r_values__50.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[50]', r_values__50, 'type', 'an int')
-        if not 0 <= r_values__50 <= 65535:
-            raise _enc('write_multiple_registers', 'values[50]', r_values__50, 'range', '0..65535', None)
+        r_6values_50 = g_values[50]
+        if r_6values_50.__class__ is not int and (not isinstance(r_6values_50, int) or r_6values_50.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[50]', r_6values_50, 'type', 'an int')
+        if not 0 <= r_6values_50 <= 65535:
+            raise _enc('write_multiple_registers', 'values[50]', r_6values_50, 'range', '0..65535', None)
     else:
-        r_values__50 = 0
+        r_6values_50 = 0
     if len(g_values) > 51:
-        r_values__51 = g_values[51]
-        if r_values__51.__class__ is not int and (not isinstance(r_values__51, int) or r_values__51.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[51]', r_values__51, 'type', 'an int')
-        if not 0 <= r_values__51 <= 65535:
-            raise _enc('write_multiple_registers', 'values[51]', r_values__51, 'range', '0..65535', None)
+        r_6values_51 = g_values[51]
+        if r_6values_51.__class__ is not int and (not isinstance(r_6values_51, int) or r_6values_51.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[51]', r_6values_51, 'type', 'an int')
+        if not 0 <= r_6values_51 <= 65535:
+            raise _enc('write_multiple_registers', 'values[51]', r_6values_51, 'range', '0..65535', None)
     else:
-        r_values__51 = 0
+        r_6values_51 = 0
     if len(g_values) > 52:
-        r_values__52 = g_values[52]
-        if r_values__52.__class__ is not int and (not isinstance(r_values__52, int) or r_values__52.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[52]', r_values__52, 'type', 'an int')
-        if not 0 <= r_values__52 <= 65535:
-            raise _enc('write_multiple_registers', 'values[52]', r_values__52, 'range', '0..65535', None)
+        r_6values_52 = g_values[52]
+        if r_6values_52.__class__ is not int and (not isinstance(r_6values_52, int) or r_6values_52.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[52]', r_6values_52, 'type', 'an int')
+        if not 0 <= r_6values_52 <= 65535:
+            raise _enc('write_multiple_registers', 'values[52]', r_6values_52, 'range', '0..65535', None)
     else:
-        r_values__52 = 0
+        r_6values_52 = 0
     if len(g_values) > 53:
-        r_values__53 = g_values[53]
-        if r_values__53.__class__ is not int and (not isinstance(r_values__53, int) or r_values__53.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[53]', r_values__53, 'type', 'an int')
-        if not 0 <= r_values__53 <= 65535:
-            raise _enc('write_multiple_registers', 'values[53]', r_values__53, 'range', '0..65535', None)
+        r_6values_53 = g_values[53]
+        if r_6values_53.__class__ is not int and (not isinstance(r_6values_53, int) or r_6values_53.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[53]', r_6values_53, 'type', 'an int')
+        if not 0 <= r_6values_53 <= 65535:
+            raise _enc('write_multiple_registers', 'values[53]', r_6values_53, 'range', '0..65535', None)
     else:
-        r_values__53 = 0
+        r_6values_53 = 0
     if len(g_values) > 54:
-        r_values__54 = g_values[54]
-        if r_values__54.__class__ is not int and (not isinstance(r_values__54, int) or r_values__54.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[54]', r_values__54, 'type', 'an int')
-        if not 0 <= r_values__54 <= 65535:
-            raise _enc('write_multiple_registers', 'values[54]', r_values__54, 'range', '0..65535', None)
+        r_6values_54 = g_values[54]
+        if r_6values_54.__class__ is not int and (not isinstance(r_6values_54, int) or r_6values_54.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[54]', r_6values_54, 'type', 'an int')
+        if not 0 <= r_6values_54 <= 65535:
+            raise _enc('write_multiple_registers', 'values[54]', r_6values_54, 'range', '0..65535', None)
     else:
-        r_values__54 = 0
+        r_6values_54 = 0
     if len(g_values) > 55:
-        r_values__55 = g_values[55]
-        if r_values__55.__class__ is not int and (not isinstance(r_values__55, int) or r_values__55.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[55]', r_values__55, 'type', 'an int')
-        if not 0 <= r_values__55 <= 65535:
-            raise _enc('write_multiple_registers', 'values[55]', r_values__55, 'range', '0..65535', None)
+        r_6values_55 = g_values[55]
+        if r_6values_55.__class__ is not int and (not isinstance(r_6values_55, int) or r_6values_55.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[55]', r_6values_55, 'type', 'an int')
+        if not 0 <= r_6values_55 <= 65535:
+            raise _enc('write_multiple_registers', 'values[55]', r_6values_55, 'range', '0..65535', None)
     else:
-        r_values__55 = 0
+        r_6values_55 = 0
     if len(g_values) > 56:
-        r_values__56 = g_values[56]
-        if r_values__56.__class__ is not int and (not isinstance(r_values__56, int) or r_values__56.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[56]', r_values__56, 'type', 'an int')
-        if not 0 <= r_values__56 <= 65535:
-            raise _enc('write_multiple_registers', 'values[56]', r_values__56, 'range', '0..65535', None)
+        r_6values_56 = g_values[56]
+        if r_6values_56.__class__ is not int and (not isinstance(r_6values_56, int) or r_6values_56.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[56]', r_6values_56, 'type', 'an int')
+        if not 0 <= r_6values_56 <= 65535:
+            raise _enc('write_multiple_registers', 'values[56]', r_6values_56, 'range', '0..65535', None)
     else:
-        r_values__56 = 0
+        r_6values_56 = 0
     if len(g_values) > 57:
-        r_values__57 = g_values[57]
-        if r_values__57.__class__ is not int and (not isinstance(r_values__57, int) or r_values__57.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[57]', r_values__57, 'type', 'an int')
-        if not 0 <= r_values__57 <= 65535:
-            raise _enc('write_multiple_registers', 'values[57]', r_values__57, 'range', '0..65535', None)
+        r_6values_57 = g_values[57]
+        if r_6values_57.__class__ is not int and (not isinstance(r_6values_57, int) or r_6values_57.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[57]', r_6values_57, 'type', 'an int')
+        if not 0 <= r_6values_57 <= 65535:
+            raise _enc('write_multiple_registers', 'values[57]', r_6values_57, 'range', '0..65535', None)
     else:
-        r_values__57 = 0
+        r_6values_57 = 0
     if len(g_values) > 58:
-        r_values__58 = g_values[58]
-        if r_values__58.__class__ is not int and (not isinstance(r_values__58, int) or r_values__58.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[58]', r_values__58, 'type', 'an int')
-        if not 0 <= r_values__58 <= 65535:
-            raise _enc('write_multiple_registers', 'values[58]', r_values__58, 'range', '0..65535', None)
+        r_6values_58 = g_values[58]
+        if r_6values_58.__class__ is not int and (not isinstance(r_6values_58, int) or r_6values_58.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[58]', r_6values_58, 'type', 'an int')
+        if not 0 <= r_6values_58 <= 65535:
+            raise _enc('write_multiple_registers', 'values[58]', r_6values_58, 'range', '0..65535', None)
     else:
-        r_values__58 = 0
+        r_6values_58 = 0
     if len(g_values) > 59:
-        r_values__59 = g_values[59]
-        if r_values__59.__class__ is not int and (not isinstance(r_values__59, int) or r_values__59.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[59]', r_values__59, 'type', 'an int')
-        if not 0 <= r_values__59 <= 65535:
-            raise _enc('write_multiple_registers', 'values[59]', r_values__59, 'range', '0..65535', None)
+        r_6values_59 = g_values[59]
+        if r_6values_59.__class__ is not int and (not isinstance(r_6values_59, int) or r_6values_59.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[59]', r_6values_59, 'type', 'an int')
+        if not 0 <= r_6values_59 <= 65535:
+            raise _enc('write_multiple_registers', 'values[59]', r_6values_59, 'range', '0..65535', None)
     else:
-        r_values__59 = 0
+        r_6values_59 = 0
     if len(g_values) > 60:
-        r_values__60 = g_values[60]
-        if r_values__60.__class__ is not int and (not isinstance(r_values__60, int) or r_values__60.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[60]', r_values__60, 'type', 'an int')
-        if not 0 <= r_values__60 <= 65535:
-            raise _enc('write_multiple_registers', 'values[60]', r_values__60, 'range', '0..65535', None)
+        r_6values_60 = g_values[60]
+        if r_6values_60.__class__ is not int and (not isinstance(r_6values_60, int) or r_6values_60.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[60]', r_6values_60, 'type', 'an int')
+        if not 0 <= r_6values_60 <= 65535:
+            raise _enc('write_multiple_registers', 'values[60]', r_6values_60, 'range', '0..65535', None)
     else:
-        r_values__60 = 0
+        r_6values_60 = 0
     if len(g_values) > 61:
-        r_values__61 = g_values[61]
-        if r_values__61.__class__ is not int and (not isinstance(r_values__61, int) or r_values__61.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[61]', r_values__61, 'type', 'an int')
-        if not 0 <= r_values__61 <= 65535:
-            raise _enc('write_multiple_registers', 'values[61]', r_values__61, 'range', '0..65535', None)
+        r_6values_61 = g_values[61]
+        if r_6values_61.__class__ is not int and (not isinstance(r_6values_61, int) or r_6values_61.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[61]', r_6values_61, 'type', 'an int')
+        if not 0 <= r_6values_61 <= 65535:
+            raise _enc('write_multiple_registers', 'values[61]', r_6values_61, 'range', '0..65535', None)
     else:
-        r_values__61 = 0
+        r_6values_61 = 0
     if len(g_values) > 62:
-        r_values__62 = g_values[62]
-        if r_values__62.__class__ is not int and (not isinstance(r_values__62, int) or r_values__62.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[62]', r_values__62, 'type', 'an int')
-        if not 0 <= r_values__62 <= 65535:
-            raise _enc('write_multiple_registers', 'values[62]', r_values__62, 'range', '0..65535', None)
+        r_6values_62 = g_values[62]
+        if r_6values_62.__class__ is not int and (not isinstance(r_6values_62, int) or r_6values_62.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[62]', r_6values_62, 'type', 'an int')
+        if not 0 <= r_6values_62 <= 65535:
+            raise _enc('write_multiple_registers', 'values[62]', r_6values_62, 'range', '0..65535', None)
     else:
-        r_values__62 = 0
+        r_6values_62 = 0
     if len(g_values) > 63:
-        r_values__63 = g_values[63]
-        if r_values__63.__class__ is not int and (not isinstance(r_values__63, int) or r_values__63.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[63]', r_values__63, 'type', 'an int')
-        if not 0 <= r_values__63 <= 65535:
-            raise _enc('write_multiple_registers', 'values[63]', r_values__63, 'range', '0..65535', None)
+        r_6values_63 = g_values[63]
+        if r_6values_63.__class__ is not int and (not isinstance(r_6values_63, int) or r_6values_63.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[63]', r_6values_63, 'type', 'an int')
+        if not 0 <= r_6values_63 <= 65535:
+            raise _enc('write_multiple_registers', 'values[63]', r_6values_63, 'range', '0..65535', None)
     else:
-        r_values__63 = 0
+        r_6values_63 = 0
     if len(g_values) > 64:
-        r_values__64 = g_values[64]
-        if r_values__64.__class__ is not int and (not isinstance(r_values__64, int) or r_values__64.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[64]', r_values__64, 'type', 'an int')
-        if not 0 <= r_values__64 <= 65535:
-            raise _enc('write_multiple_registers', 'values[64]', r_values__64, 'range', '0..65535', None)
+        r_6values_64 = g_values[64]
+        if r_6values_64.__class__ is not int and (not isinstance(r_6values_64, int) or r_6values_64.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[64]', r_6values_64, 'type', 'an int')
+        if not 0 <= r_6values_64 <= 65535:
+            raise _enc('write_multiple_registers', 'values[64]', r_6values_64, 'range', '0..65535', None)
     else:
-        r_values__64 = 0
+        r_6values_64 = 0
     if len(g_values) > 65:
-        r_values__65 = g_values[65]
-        if r_values__65.__class__ is not int and (not isinstance(r_values__65, int) or r_values__65.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[65]', r_values__65, 'type', 'an int')
-        if not 0 <= r_values__65 <= 65535:
-            raise _enc('write_multiple_registers', 'values[65]', r_values__65, 'range', '0..65535', None)
+        r_6values_65 = g_values[65]
+        if r_6values_65.__class__ is not int and (not isinstance(r_6values_65, int) or r_6values_65.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[65]', r_6values_65, 'type', 'an int')
+        if not 0 <= r_6values_65 <= 65535:
+            raise _enc('write_multiple_registers', 'values[65]', r_6values_65, 'range', '0..65535', None)
     else:
-        r_values__65 = 0
+        r_6values_65 = 0
     if len(g_values) > 66:
-        r_values__66 = g_values[66]
-        if r_values__66.__class__ is not int and (not isinstance(r_values__66, int) or r_values__66.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[66]', r_values__66, 'type', 'an int')
-        if not 0 <= r_values__66 <= 65535:
-            raise _enc('write_multiple_registers', 'values[66]', r_values__66, 'range', '0..65535', None)
+        r_6values_66 = g_values[66]
+        if r_6values_66.__class__ is not int and (not isinstance(r_6values_66, int) or r_6values_66.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[66]', r_6values_66, 'type', 'an int')
+        if not 0 <= r_6values_66 <= 65535:
+            raise _enc('write_multiple_registers', 'values[66]', r_6values_66, 'range', '0..65535', None)
     else:
-        r_values__66 = 0
+        r_6values_66 = 0
     if len(g_values) > 67:
-        r_values__67 = g_values[67]
-        if r_values__67.__class__ is not int and (not isinstance(r_values__67, int) or r_values__67.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[67]', r_values__67, 'type', 'an int')
-        if not 0 <= r_values__67 <= 65535:
-            raise _enc('write_multiple_registers', 'values[67]', r_values__67, 'range', '0..65535', None)
+        r_6values_67 = g_values[67]
+        if r_6values_67.__class__ is not int and (not isinstance(r_6values_67, int) or r_6values_67.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[67]', r_6values_67, 'type', 'an int')
+        if not 0 <= r_6values_67 <= 65535:
+            raise _enc('write_multiple_registers', 'values[67]', r_6values_67, 'range', '0..65535', None)
     else:
-        r_values__67 = 0
+        r_6values_67 = 0
     if len(g_values) > 68:
-        r_values__68 = g_values[68]
-        if r_values__68.__class__ is not int and (not isinstance(r_values__68, int) or r_values__68.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[68]', r_values__68, 'type', 'an int')
-        if not 0 <= r_values__68 <= 65535:
-            raise _enc('write_multiple_registers', 'values[68]', r_values__68, 'range', '0..65535', None)
+        r_6values_68 = g_values[68]
+        if r_6values_68.__class__ is not int and (not isinstance(r_6values_68, int) or r_6values_68.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[68]', r_6values_68, 'type', 'an int')
+        if not 0 <= r_6values_68 <= 65535:
+            raise _enc('write_multiple_registers', 'values[68]', r_6values_68, 'range', '0..65535', None)
     else:
-        r_values__68 = 0
+        r_6values_68 = 0
     if len(g_values) > 69:
-        r_values__69 = g_values[69]
-        if r_values__69.__class__ is not int and (not isinstance(r_values__69, int) or r_values__69.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[69]', r_values__69, 'type', 'an int')
-        if not 0 <= r_values__69 <= 65535:
-            raise _enc('write_multiple_registers', 'values[69]', r_values__69, 'range', '0..65535', None)
+        r_6values_69 = g_values[69]
+        if r_6values_69.__class__ is not int and (not isinstance(r_6values_69, int) or r_6values_69.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[69]', r_6values_69, 'type', 'an int')
+        if not 0 <= r_6values_69 <= 65535:
+            raise _enc('write_multiple_registers', 'values[69]', r_6values_69, 'range', '0..65535', None)
     else:
-        r_values__69 = 0
+        r_6values_69 = 0
     if len(g_values) > 70:
-        r_values__70 = g_values[70]
-        if r_values__70.__class__ is not int and (not isinstance(r_values__70, int) or r_values__70.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[70]', r_values__70, 'type', 'an int')
-        if not 0 <= r_values__70 <= 65535:
-            raise _enc('write_multiple_registers', 'values[70]', r_values__70, 'range', '0..65535', None)
+        r_6values_70 = g_values[70]
+        if r_6values_70.__class__ is not int and (not isinstance(r_6values_70, int) or r_6values_70.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[70]', r_6values_70, 'type', 'an int')
+        if not 0 <= r_6values_70 <= 65535:
+            raise _enc('write_multiple_registers', 'values[70]', r_6values_70, 'range', '0..65535', None)
     else:
-        r_values__70 = 0
+        r_6values_70 = 0
     if len(g_values) > 71:
-        r_values__71 = g_values[71]
-        if r_values__71.__class__ is not int and (not isinstance(r_values__71, int) or r_values__71.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[71]', r_values__71, 'type', 'an int')
-        if not 0 <= r_values__71 <= 65535:
-            raise _enc('write_multiple_registers', 'values[71]', r_values__71, 'range', '0..65535', None)
+        r_6values_71 = g_values[71]
+        if r_6values_71.__class__ is not int and (not isinstance(r_6values_71, int) or r_6values_71.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[71]', r_6values_71, 'type', 'an int')
+        if not 0 <= r_6values_71 <= 65535:
+            raise _enc('write_multiple_registers', 'values[71]', r_6values_71, 'range', '0..65535', None)
     else:
-        r_values__71 = 0
+        r_6values_71 = 0
     if len(g_values) > 72:
-        r_values__72 = g_values[72]
-        if r_values__72.__class__ is not int and (not isinstance(r_values__72, int) or r_values__72.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[72]', r_values__72, 'type', 'an int')
-        if not 0 <= r_values__72 <= 65535:
-            raise _enc('write_multiple_registers', 'values[72]', r_values__72, 'range', '0..65535', None)
+        r_6values_72 = g_values[72]
+        if r_6values_72.__class__ is not int and (not isinstance(r_6values_72, int) or r_6values_72.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[72]', r_6values_72, 'type', 'an int')
+        if not 0 <= r_6values_72 <= 65535:
+            raise _enc('write_multiple_registers', 'values[72]', r_6values_72, 'range', '0..65535', None)
     else:
-        r_values__72 = 0
+        r_6values_72 = 0
     if len(g_values) > 73:
-        r_values__73 = g_values[73]
-        if r_values__73.__class__ is not int and (not isinstance(r_values__73, int) or r_values__73.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[73]', r_values__73, 'type', 'an int')
-        if not 0 <= r_values__73 <= 65535:
-            raise _enc('write_multiple_registers', 'values[73]', r_values__73, 'range', '0..65535', None)
+        r_6values_73 = g_values[73]
+        if r_6values_73.__class__ is not int and (not isinstance(r_6values_73, int) or r_6values_73.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[73]', r_6values_73, 'type', 'an int')
+        if not 0 <= r_6values_73 <= 65535:
+            raise _enc('write_multiple_registers', 'values[73]', r_6values_73, 'range', '0..65535', None)
     else:
-        r_values__73 = 0
+        r_6values_73 = 0
     if len(g_values) > 74:
-        r_values__74 = g_values[74]
-        if r_values__74.__class__ is not int and (not isinstance(r_values__74, int) or r_values__74.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[74]', r_values__74, 'type', 'an int')
-        if not 0 <= r_values__74 <= 65535:
-            raise _enc('write_multiple_registers', 'values[74]', r_values__74, 'range', '0..65535', None)
+        r_6values_74 = g_values[74]
+        if r_6values_74.__class__ is not int and (not isinstance(r_6values_74, int) or r_6values_74.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[74]', r_6values_74, 'type', 'an int')
+        if not 0 <= r_6values_74 <= 65535:
+            raise _enc('write_multiple_registers', 'values[74]', r_6values_74, 'range', '0..65535', None)
     else:
-        r_values__74 = 0
+        r_6values_74 = 0
     if len(g_values) > 75:
-        r_values__75 = g_values[75]
-        if r_values__75.__class__ is not int and (not isinstance(r_values__75, int) or r_values__75.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[75]', r_values__75, 'type', 'an int')
-        if not 0 <= r_values__75 <= 65535:
-            raise _enc('write_multiple_registers', 'values[75]', r_values__75, 'range', '0..65535', None)
+        r_6values_75 = g_values[75]
+        if r_6values_75.__class__ is not int and (not isinstance(r_6values_75, int) or r_6values_75.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[75]', r_6values_75, 'type', 'an int')
+        if not 0 <= r_6values_75 <= 65535:
+            raise _enc('write_multiple_registers', 'values[75]', r_6values_75, 'range', '0..65535', None)
     else:
-        r_values__75 = 0
+        r_6values_75 = 0
     if len(g_values) > 76:
-        r_values__76 = g_values[76]
-        if r_values__76.__class__ is not int and (not isinstance(r_values__76, int) or r_values__76.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[76]', r_values__76, 'type', 'an int')
-        if not 0 <= r_values__76 <= 65535:
-            raise _enc('write_multiple_registers', 'values[76]', r_values__76, 'range', '0..65535', None)
+        r_6values_76 = g_values[76]
+        if r_6values_76.__class__ is not int and (not isinstance(r_6values_76, int) or r_6values_76.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[76]', r_6values_76, 'type', 'an int')
+        if not 0 <= r_6values_76 <= 65535:
+            raise _enc('write_multiple_registers', 'values[76]', r_6values_76, 'range', '0..65535', None)
     else:
-        r_values__76 = 0
+        r_6values_76 = 0
     if len(g_values) > 77:
-        r_values__77 = g_values[77]
-        if r_values__77.__class__ is not int and (not isinstance(r_values__77, int) or r_values__77.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[77]', r_values__77, 'type', 'an int')
-        if not 0 <= r_values__77 <= 65535:
-            raise _enc('write_multiple_registers', 'values[77]', r_values__77, 'range', '0..65535', None)
+        r_6values_77 = g_values[77]
+        if r_6values_77.__class__ is not int and (not isinstance(r_6values_77, int) or r_6values_77.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[77]', r_6values_77, 'type', 'an int')
+        if not 0 <= r_6values_77 <= 65535:
+            raise _enc('write_multiple_registers', 'values[77]', r_6values_77, 'range', '0..65535', None)
     else:
-        r_values__77 = 0
+        r_6values_77 = 0
     if len(g_values) > 78:
-        r_values__78 = g_values[78]
-        if r_values__78.__class__ is not int and (not isinstance(r_values__78, int) or r_values__78.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[78]', r_values__78, 'type', 'an int')
-        if not 0 <= r_values__78 <= 65535:
-            raise _enc('write_multiple_registers', 'values[78]', r_values__78, 'range', '0..65535', None)
+        r_6values_78 = g_values[78]
+        if r_6values_78.__class__ is not int and (not isinstance(r_6values_78, int) or r_6values_78.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[78]', r_6values_78, 'type', 'an int')
+        if not 0 <= r_6values_78 <= 65535:
+            raise _enc('write_multiple_registers', 'values[78]', r_6values_78, 'range', '0..65535', None)
     else:
-        r_values__78 = 0
+        r_6values_78 = 0
     if len(g_values) > 79:
-        r_values__79 = g_values[79]
-        if r_values__79.__class__ is not int and (not isinstance(r_values__79, int) or r_values__79.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[79]', r_values__79, 'type', 'an int')
-        if not 0 <= r_values__79 <= 65535:
-            raise _enc('write_multiple_registers', 'values[79]', r_values__79, 'range', '0..65535', None)
+        r_6values_79 = g_values[79]
+        if r_6values_79.__class__ is not int and (not isinstance(r_6values_79, int) or r_6values_79.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[79]', r_6values_79, 'type', 'an int')
+        if not 0 <= r_6values_79 <= 65535:
+            raise _enc('write_multiple_registers', 'values[79]', r_6values_79, 'range', '0..65535', None)
     else:
-        r_values__79 = 0
+        r_6values_79 = 0
     if len(g_values) > 80:
-        r_values__80 = g_values[80]
-        if r_values__80.__class__ is not int and (not isinstance(r_values__80, int) or r_values__80.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[80]', r_values__80, 'type', 'an int')
-        if not 0 <= r_values__80 <= 65535:
-            raise _enc('write_multiple_registers', 'values[80]', r_values__80, 'range', '0..65535', None)
+        r_6values_80 = g_values[80]
+        if r_6values_80.__class__ is not int and (not isinstance(r_6values_80, int) or r_6values_80.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[80]', r_6values_80, 'type', 'an int')
+        if not 0 <= r_6values_80 <= 65535:
+            raise _enc('write_multiple_registers', 'values[80]', r_6values_80, 'range', '0..65535', None)
     else:
-        r_values__80 = 0
+        r_6values_80 = 0
     if len(g_values) > 81:
-        r_values__81 = g_values[81]
-        if r_values__81.__class__ is not int and (not isinstance(r_values__81, int) or r_values__81.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[81]', r_values__81, 'type', 'an int')
-        if not 0 <= r_values__81 <= 65535:
-            raise _enc('write_multiple_registers', 'values[81]', r_values__81, 'range', '0..65535', None)
+        r_6values_81 = g_values[81]
+        if r_6values_81.__class__ is not int and (not isinstance(r_6values_81, int) or r_6values_81.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[81]', r_6values_81, 'type', 'an int')
+        if not 0 <= r_6values_81 <= 65535:
+            raise _enc('write_multiple_registers', 'values[81]', r_6values_81, 'range', '0..65535', None)
     else:
-        r_values__81 = 0
+        r_6values_81 = 0
     if len(g_values) > 82:
-        r_values__82 = g_values[82]
-        if r_values__82.__class__ is not int and (not isinstance(r_values__82, int) or r_values__82.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[82]', r_values__82, 'type', 'an int')
-        if not 0 <= r_values__82 <= 65535:
-            raise _enc('write_multiple_registers', 'values[82]', r_values__82, 'range', '0..65535', None)
+        r_6values_82 = g_values[82]
+        if r_6values_82.__class__ is not int and (not isinstance(r_6values_82, int) or r_6values_82.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[82]', r_6values_82, 'type', 'an int')
+        if not 0 <= r_6values_82 <= 65535:
+            raise _enc('write_multiple_registers', 'values[82]', r_6values_82, 'range', '0..65535', None)
     else:
-        r_values__82 = 0
+        r_6values_82 = 0
     if len(g_values) > 83:
-        r_values__83 = g_values[83]
-        if r_values__83.__class__ is not int and (not isinstance(r_values__83, int) or r_values__83.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[83]', r_values__83, 'type', 'an int')
-        if not 0 <= r_values__83 <= 65535:
-            raise _enc('write_multiple_registers', 'values[83]', r_values__83, 'range', '0..65535', None)
+        r_6values_83 = g_values[83]
+        if r_6values_83.__class__ is not int and (not isinstance(r_6values_83, int) or r_6values_83.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[83]', r_6values_83, 'type', 'an int')
+        if not 0 <= r_6values_83 <= 65535:
+            raise _enc('write_multiple_registers', 'values[83]', r_6values_83, 'range', '0..65535', None)
     else:
-        r_values__83 = 0
+        r_6values_83 = 0
     if len(g_values) > 84:
-        r_values__84 = g_values[84]
-        if r_values__84.__class__ is not int and (not isinstance(r_values__84, int) or r_values__84.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[84]', r_values__84, 'type', 'an int')
-        if not 0 <= r_values__84 <= 65535:
-            raise _enc('write_multiple_registers', 'values[84]', r_values__84, 'range', '0..65535', None)
+        r_6values_84 = g_values[84]
+        if r_6values_84.__class__ is not int and (not isinstance(r_6values_84, int) or r_6values_84.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[84]', r_6values_84, 'type', 'an int')
+        if not 0 <= r_6values_84 <= 65535:
+            raise _enc('write_multiple_registers', 'values[84]', r_6values_84, 'range', '0..65535', None)
     else:
-        r_values__84 = 0
+        r_6values_84 = 0
     if len(g_values) > 85:
-        r_values__85 = g_values[85]
-        if r_values__85.__class__ is not int and (not isinstance(r_values__85, int) or r_values__85.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[85]', r_values__85, 'type', 'an int')
-        if not 0 <= r_values__85 <= 65535:
-            raise _enc('write_multiple_registers', 'values[85]', r_values__85, 'range', '0..65535', None)
+        r_6values_85 = g_values[85]
+        if r_6values_85.__class__ is not int and (not isinstance(r_6values_85, int) or r_6values_85.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[85]', r_6values_85, 'type', 'an int')
+        if not 0 <= r_6values_85 <= 65535:
+            raise _enc('write_multiple_registers', 'values[85]', r_6values_85, 'range', '0..65535', None)
     else:
-        r_values__85 = 0
+        r_6values_85 = 0
     if len(g_values) > 86:
-        r_values__86 = g_values[86]
-        if r_values__86.__class__ is not int and (not isinstance(r_values__86, int) or r_values__86.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[86]', r_values__86, 'type', 'an int')
-        if not 0 <= r_values__86 <= 65535:
-            raise _enc('write_multiple_registers', 'values[86]', r_values__86, 'range', '0..65535', None)
+        r_6values_86 = g_values[86]
+        if r_6values_86.__class__ is not int and (not isinstance(r_6values_86, int) or r_6values_86.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[86]', r_6values_86, 'type', 'an int')
+        if not 0 <= r_6values_86 <= 65535:
+            raise _enc('write_multiple_registers', 'values[86]', r_6values_86, 'range', '0..65535', None)
     else:
-        r_values__86 = 0
+        r_6values_86 = 0
     if len(g_values) > 87:
-        r_values__87 = g_values[87]
-        if r_values__87.__class__ is not int and (not isinstance(r_values__87, int) or r_values__87.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[87]', r_values__87, 'type', 'an int')
-        if not 0 <= r_values__87 <= 65535:
-            raise _enc('write_multiple_registers', 'values[87]', r_values__87, 'range', '0..65535', None)
+        r_6values_87 = g_values[87]
+        if r_6values_87.__class__ is not int and (not isinstance(r_6values_87, int) or r_6values_87.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[87]', r_6values_87, 'type', 'an int')
+        if not 0 <= r_6values_87 <= 65535:
+            raise _enc('write_multiple_registers', 'values[87]', r_6values_87, 'range', '0..65535', None)
     else:
-        r_values__87 = 0
+        r_6values_87 = 0
     if len(g_values) > 88:
-        r_values__88 = g_values[88]
-        if r_values__88.__class__ is not int and (not isinstance(r_values__88, int) or r_values__88.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[88]', r_values__88, 'type', 'an int')
-        if not 0 <= r_values__88 <= 65535:
-            raise _enc('write_multiple_registers', 'values[88]', r_values__88, 'range', '0..65535', None)
+        r_6values_88 = g_values[88]
+        if r_6values_88.__class__ is not int and (not isinstance(r_6values_88, int) or r_6values_88.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[88]', r_6values_88, 'type', 'an int')
+        if not 0 <= r_6values_88 <= 65535:
+            raise _enc('write_multiple_registers', 'values[88]', r_6values_88, 'range', '0..65535', None)
     else:
-        r_values__88 = 0
+        r_6values_88 = 0
     if len(g_values) > 89:
-        r_values__89 = g_values[89]
-        if r_values__89.__class__ is not int and (not isinstance(r_values__89, int) or r_values__89.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[89]', r_values__89, 'type', 'an int')
-        if not 0 <= r_values__89 <= 65535:
-            raise _enc('write_multiple_registers', 'values[89]', r_values__89, 'range', '0..65535', None)
+        r_6values_89 = g_values[89]
+        if r_6values_89.__class__ is not int and (not isinstance(r_6values_89, int) or r_6values_89.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[89]', r_6values_89, 'type', 'an int')
+        if not 0 <= r_6values_89 <= 65535:
+            raise _enc('write_multiple_registers', 'values[89]', r_6values_89, 'range', '0..65535', None)
     else:
-        r_values__89 = 0
+        r_6values_89 = 0
     if len(g_values) > 90:
-        r_values__90 = g_values[90]
-        if r_values__90.__class__ is not int and (not isinstance(r_values__90, int) or r_values__90.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[90]', r_values__90, 'type', 'an int')
-        if not 0 <= r_values__90 <= 65535:
-            raise _enc('write_multiple_registers', 'values[90]', r_values__90, 'range', '0..65535', None)
+        r_6values_90 = g_values[90]
+        if r_6values_90.__class__ is not int and (not isinstance(r_6values_90, int) or r_6values_90.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[90]', r_6values_90, 'type', 'an int')
+        if not 0 <= r_6values_90 <= 65535:
+            raise _enc('write_multiple_registers', 'values[90]', r_6values_90, 'range', '0..65535', None)
     else:
-        r_values__90 = 0
+        r_6values_90 = 0
     if len(g_values) > 91:
-        r_values__91 = g_values[91]
-        if r_values__91.__class__ is not int and (not isinstance(r_values__91, int) or r_values__91.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[91]', r_values__91, 'type', 'an int')
-        if not 0 <= r_values__91 <= 65535:
-            raise _enc('write_multiple_registers', 'values[91]', r_values__91, 'range', '0..65535', None)
+        r_6values_91 = g_values[91]
+        if r_6values_91.__class__ is not int and (not isinstance(r_6values_91, int) or r_6values_91.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[91]', r_6values_91, 'type', 'an int')
+        if not 0 <= r_6values_91 <= 65535:
+            raise _enc('write_multiple_registers', 'values[91]', r_6values_91, 'range', '0..65535', None)
     else:
-        r_values__91 = 0
+        r_6values_91 = 0
     if len(g_values) > 92:
-        r_values__92 = g_values[92]
-        if r_values__92.__class__ is not int and (not isinstance(r_values__92, int) or r_values__92.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[92]', r_values__92, 'type', 'an int')
-        if not 0 <= r_values__92 <= 65535:
-            raise _enc('write_multiple_registers', 'values[92]', r_values__92, 'range', '0..65535', None)
+        r_6values_92 = g_values[92]
+        if r_6values_92.__class__ is not int and (not isinstance(r_6values_92, int) or r_6values_92.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[92]', r_6values_92, 'type', 'an int')
+        if not 0 <= r_6values_92 <= 65535:
+            raise _enc('write_multiple_registers', 'values[92]', r_6values_92, 'range', '0..65535', None)
     else:
-        r_values__92 = 0
+        r_6values_92 = 0
     if len(g_values) > 93:
-        r_values__93 = g_values[93]
-        if r_values__93.__class__ is not int and (not isinstance(r_values__93, int) or r_values__93.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[93]', r_values__93, 'type', 'an int')
-        if not 0 <= r_values__93 <= 65535:
-            raise _enc('write_multiple_registers', 'values[93]', r_values__93, 'range', '0..65535', None)
+        r_6values_93 = g_values[93]
+        if r_6values_93.__class__ is not int and (not isinstance(r_6values_93, int) or r_6values_93.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[93]', r_6values_93, 'type', 'an int')
+        if not 0 <= r_6values_93 <= 65535:
+            raise _enc('write_multiple_registers', 'values[93]', r_6values_93, 'range', '0..65535', None)
     else:
-        r_values__93 = 0
+        r_6values_93 = 0
     if len(g_values) > 94:
-        r_values__94 = g_values[94]
-        if r_values__94.__class__ is not int and (not isinstance(r_values__94, int) or r_values__94.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[94]', r_values__94, 'type', 'an int')
-        if not 0 <= r_values__94 <= 65535:
-            raise _enc('write_multiple_registers', 'values[94]', r_values__94, 'range', '0..65535', None)
+        r_6values_94 = g_values[94]
+        if r_6values_94.__class__ is not int and (not isinstance(r_6values_94, int) or r_6values_94.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[94]', r_6values_94, 'type', 'an int')
+        if not 0 <= r_6values_94 <= 65535:
+            raise _enc('write_multiple_registers', 'values[94]', r_6values_94, 'range', '0..65535', None)
     else:
-        r_values__94 = 0
+        r_6values_94 = 0
     if len(g_values) > 95:
-        r_values__95 = g_values[95]
-        if r_values__95.__class__ is not int and (not isinstance(r_values__95, int) or r_values__95.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[95]', r_values__95, 'type', 'an int')
-        if not 0 <= r_values__95 <= 65535:
-            raise _enc('write_multiple_registers', 'values[95]', r_values__95, 'range', '0..65535', None)
+        r_6values_95 = g_values[95]
+        if r_6values_95.__class__ is not int and (not isinstance(r_6values_95, int) or r_6values_95.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[95]', r_6values_95, 'type', 'an int')
+        if not 0 <= r_6values_95 <= 65535:
+            raise _enc('write_multiple_registers', 'values[95]', r_6values_95, 'range', '0..65535', None)
     else:
-        r_values__95 = 0
+        r_6values_95 = 0
     if len(g_values) > 96:
-        r_values__96 = g_values[96]
-        if r_values__96.__class__ is not int and (not isinstance(r_values__96, int) or r_values__96.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[96]', r_values__96, 'type', 'an int')
-        if not 0 <= r_values__96 <= 65535:
-            raise _enc('write_multiple_registers', 'values[96]', r_values__96, 'range', '0..65535', None)
+        r_6values_96 = g_values[96]
+        if r_6values_96.__class__ is not int and (not isinstance(r_6values_96, int) or r_6values_96.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[96]', r_6values_96, 'type', 'an int')
+        if not 0 <= r_6values_96 <= 65535:
+            raise _enc('write_multiple_registers', 'values[96]', r_6values_96, 'range', '0..65535', None)
     else:
-        r_values__96 = 0
+        r_6values_96 = 0
     if len(g_values) > 97:
-        r_values__97 = g_values[97]
-        if r_values__97.__class__ is not int and (not isinstance(r_values__97, int) or r_values__97.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[97]', r_values__97, 'type', 'an int')
-        if not 0 <= r_values__97 <= 65535:
-            raise _enc('write_multiple_registers', 'values[97]', r_values__97, 'range', '0..65535', None)
+        r_6values_97 = g_values[97]
+        if r_6values_97.__class__ is not int and (not isinstance(r_6values_97, int) or r_6values_97.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[97]', r_6values_97, 'type', 'an int')
+        if not 0 <= r_6values_97 <= 65535:
+            raise _enc('write_multiple_registers', 'values[97]', r_6values_97, 'range', '0..65535', None)
     else:
-        r_values__97 = 0
+        r_6values_97 = 0
     if len(g_values) > 98:
-        r_values__98 = g_values[98]
-        if r_values__98.__class__ is not int and (not isinstance(r_values__98, int) or r_values__98.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[98]', r_values__98, 'type', 'an int')
-        if not 0 <= r_values__98 <= 65535:
-            raise _enc('write_multiple_registers', 'values[98]', r_values__98, 'range', '0..65535', None)
+        r_6values_98 = g_values[98]
+        if r_6values_98.__class__ is not int and (not isinstance(r_6values_98, int) or r_6values_98.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[98]', r_6values_98, 'type', 'an int')
+        if not 0 <= r_6values_98 <= 65535:
+            raise _enc('write_multiple_registers', 'values[98]', r_6values_98, 'range', '0..65535', None)
     else:
-        r_values__98 = 0
+        r_6values_98 = 0
     if len(g_values) > 99:
-        r_values__99 = g_values[99]
-        if r_values__99.__class__ is not int and (not isinstance(r_values__99, int) or r_values__99.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[99]', r_values__99, 'type', 'an int')
-        if not 0 <= r_values__99 <= 65535:
-            raise _enc('write_multiple_registers', 'values[99]', r_values__99, 'range', '0..65535', None)
+        r_6values_99 = g_values[99]
+        if r_6values_99.__class__ is not int and (not isinstance(r_6values_99, int) or r_6values_99.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[99]', r_6values_99, 'type', 'an int')
+        if not 0 <= r_6values_99 <= 65535:
+            raise _enc('write_multiple_registers', 'values[99]', r_6values_99, 'range', '0..65535', None)
     else:
-        r_values__99 = 0
+        r_6values_99 = 0
     if len(g_values) > 100:
-        r_values__100 = g_values[100]
-        if r_values__100.__class__ is not int and (not isinstance(r_values__100, int) or r_values__100.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[100]', r_values__100, 'type', 'an int')
-        if not 0 <= r_values__100 <= 65535:
-            raise _enc('write_multiple_registers', 'values[100]', r_values__100, 'range', '0..65535', None)
+        r_6values_100 = g_values[100]
+        if r_6values_100.__class__ is not int and (not isinstance(r_6values_100, int) or r_6values_100.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[100]', r_6values_100, 'type', 'an int')
+        if not 0 <= r_6values_100 <= 65535:
+            raise _enc('write_multiple_registers', 'values[100]', r_6values_100, 'range', '0..65535', None)
     else:
-        r_values__100 = 0
+        r_6values_100 = 0
     if len(g_values) > 101:
-        r_values__101 = g_values[101]
-        if r_values__101.__class__ is not int and (not isinstance(r_values__101, int) or r_values__101.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[101]', r_values__101, 'type', 'an int')
-        if not 0 <= r_values__101 <= 65535:
-            raise _enc('write_multiple_registers', 'values[101]', r_values__101, 'range', '0..65535', None)
+        r_6values_101 = g_values[101]
+        if r_6values_101.__class__ is not int and (not isinstance(r_6values_101, int) or r_6values_101.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[101]', r_6values_101, 'type', 'an int')
+        if not 0 <= r_6values_101 <= 65535:
+            raise _enc('write_multiple_registers', 'values[101]', r_6values_101, 'range', '0..65535', None)
     else:
-        r_values__101 = 0
+        r_6values_101 = 0
     if len(g_values) > 102:
-        r_values__102 = g_values[102]
-        if r_values__102.__class__ is not int and (not isinstance(r_values__102, int) or r_values__102.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[102]', r_values__102, 'type', 'an int')
-        if not 0 <= r_values__102 <= 65535:
-            raise _enc('write_multiple_registers', 'values[102]', r_values__102, 'range', '0..65535', None)
+        r_6values_102 = g_values[102]
+        if r_6values_102.__class__ is not int and (not isinstance(r_6values_102, int) or r_6values_102.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[102]', r_6values_102, 'type', 'an int')
+        if not 0 <= r_6values_102 <= 65535:
+            raise _enc('write_multiple_registers', 'values[102]', r_6values_102, 'range', '0..65535', None)
     else:
-        r_values__102 = 0
+        r_6values_102 = 0
     if len(g_values) > 103:
-        r_values__103 = g_values[103]
-        if r_values__103.__class__ is not int and (not isinstance(r_values__103, int) or r_values__103.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[103]', r_values__103, 'type', 'an int')
-        if not 0 <= r_values__103 <= 65535:
-            raise _enc('write_multiple_registers', 'values[103]', r_values__103, 'range', '0..65535', None)
+        r_6values_103 = g_values[103]
+        if r_6values_103.__class__ is not int and (not isinstance(r_6values_103, int) or r_6values_103.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[103]', r_6values_103, 'type', 'an int')
+        if not 0 <= r_6values_103 <= 65535:
+            raise _enc('write_multiple_registers', 'values[103]', r_6values_103, 'range', '0..65535', None)
     else:
-        r_values__103 = 0
+        r_6values_103 = 0
     if len(g_values) > 104:
-        r_values__104 = g_values[104]
-        if r_values__104.__class__ is not int and (not isinstance(r_values__104, int) or r_values__104.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[104]', r_values__104, 'type', 'an int')
-        if not 0 <= r_values__104 <= 65535:
-            raise _enc('write_multiple_registers', 'values[104]', r_values__104, 'range', '0..65535', None)
+        r_6values_104 = g_values[104]
+        if r_6values_104.__class__ is not int and (not isinstance(r_6values_104, int) or r_6values_104.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[104]', r_6values_104, 'type', 'an int')
+        if not 0 <= r_6values_104 <= 65535:
+            raise _enc('write_multiple_registers', 'values[104]', r_6values_104, 'range', '0..65535', None)
     else:
-        r_values__104 = 0
+        r_6values_104 = 0
     if len(g_values) > 105:
-        r_values__105 = g_values[105]
-        if r_values__105.__class__ is not int and (not isinstance(r_values__105, int) or r_values__105.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[105]', r_values__105, 'type', 'an int')
-        if not 0 <= r_values__105 <= 65535:
-            raise _enc('write_multiple_registers', 'values[105]', r_values__105, 'range', '0..65535', None)
+        r_6values_105 = g_values[105]
+        if r_6values_105.__class__ is not int and (not isinstance(r_6values_105, int) or r_6values_105.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[105]', r_6values_105, 'type', 'an int')
+        if not 0 <= r_6values_105 <= 65535:
+            raise _enc('write_multiple_registers', 'values[105]', r_6values_105, 'range', '0..65535', None)
     else:
-        r_values__105 = 0
+        r_6values_105 = 0
     if len(g_values) > 106:
-        r_values__106 = g_values[106]
-        if r_values__106.__class__ is not int and (not isinstance(r_values__106, int) or r_values__106.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[106]', r_values__106, 'type', 'an int')
-        if not 0 <= r_values__106 <= 65535:
-            raise _enc('write_multiple_registers', 'values[106]', r_values__106, 'range', '0..65535', None)
+        r_6values_106 = g_values[106]
+        if r_6values_106.__class__ is not int and (not isinstance(r_6values_106, int) or r_6values_106.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[106]', r_6values_106, 'type', 'an int')
+        if not 0 <= r_6values_106 <= 65535:
+            raise _enc('write_multiple_registers', 'values[106]', r_6values_106, 'range', '0..65535', None)
     else:
-        r_values__106 = 0
+        r_6values_106 = 0
     if len(g_values) > 107:
-        r_values__107 = g_values[107]
-        if r_values__107.__class__ is not int and (not isinstance(r_values__107, int) or r_values__107.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[107]', r_values__107, 'type', 'an int')
-        if not 0 <= r_values__107 <= 65535:
-            raise _enc('write_multiple_registers', 'values[107]', r_values__107, 'range', '0..65535', None)
+        r_6values_107 = g_values[107]
+        if r_6values_107.__class__ is not int and (not isinstance(r_6values_107, int) or r_6values_107.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[107]', r_6values_107, 'type', 'an int')
+        if not 0 <= r_6values_107 <= 65535:
+            raise _enc('write_multiple_registers', 'values[107]', r_6values_107, 'range', '0..65535', None)
     else:
-        r_values__107 = 0
+        r_6values_107 = 0
     if len(g_values) > 108:
-        r_values__108 = g_values[108]
-        if r_values__108.__class__ is not int and (not isinstance(r_values__108, int) or r_values__108.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[108]', r_values__108, 'type', 'an int')
-        if not 0 <= r_values__108 <= 65535:
-            raise _enc('write_multiple_registers', 'values[108]', r_values__108, 'range', '0..65535', None)
+        r_6values_108 = g_values[108]
+        if r_6values_108.__class__ is not int and (not isinstance(r_6values_108, int) or r_6values_108.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[108]', r_6values_108, 'type', 'an int')
+        if not 0 <= r_6values_108 <= 65535:
+            raise _enc('write_multiple_registers', 'values[108]', r_6values_108, 'range', '0..65535', None)
     else:
-        r_values__108 = 0
+        r_6values_108 = 0
     if len(g_values) > 109:
-        r_values__109 = g_values[109]
-        if r_values__109.__class__ is not int and (not isinstance(r_values__109, int) or r_values__109.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[109]', r_values__109, 'type', 'an int')
-        if not 0 <= r_values__109 <= 65535:
-            raise _enc('write_multiple_registers', 'values[109]', r_values__109, 'range', '0..65535', None)
+        r_6values_109 = g_values[109]
+        if r_6values_109.__class__ is not int and (not isinstance(r_6values_109, int) or r_6values_109.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[109]', r_6values_109, 'type', 'an int')
+        if not 0 <= r_6values_109 <= 65535:
+            raise _enc('write_multiple_registers', 'values[109]', r_6values_109, 'range', '0..65535', None)
     else:
-        r_values__109 = 0
+        r_6values_109 = 0
     if len(g_values) > 110:
-        r_values__110 = g_values[110]
-        if r_values__110.__class__ is not int and (not isinstance(r_values__110, int) or r_values__110.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[110]', r_values__110, 'type', 'an int')
-        if not 0 <= r_values__110 <= 65535:
-            raise _enc('write_multiple_registers', 'values[110]', r_values__110, 'range', '0..65535', None)
+        r_6values_110 = g_values[110]
+        if r_6values_110.__class__ is not int and (not isinstance(r_6values_110, int) or r_6values_110.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[110]', r_6values_110, 'type', 'an int')
+        if not 0 <= r_6values_110 <= 65535:
+            raise _enc('write_multiple_registers', 'values[110]', r_6values_110, 'range', '0..65535', None)
     else:
-        r_values__110 = 0
+        r_6values_110 = 0
     if len(g_values) > 111:
-        r_values__111 = g_values[111]
-        if r_values__111.__class__ is not int and (not isinstance(r_values__111, int) or r_values__111.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[111]', r_values__111, 'type', 'an int')
-        if not 0 <= r_values__111 <= 65535:
-            raise _enc('write_multiple_registers', 'values[111]', r_values__111, 'range', '0..65535', None)
+        r_6values_111 = g_values[111]
+        if r_6values_111.__class__ is not int and (not isinstance(r_6values_111, int) or r_6values_111.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[111]', r_6values_111, 'type', 'an int')
+        if not 0 <= r_6values_111 <= 65535:
+            raise _enc('write_multiple_registers', 'values[111]', r_6values_111, 'range', '0..65535', None)
     else:
-        r_values__111 = 0
+        r_6values_111 = 0
     if len(g_values) > 112:
-        r_values__112 = g_values[112]
-        if r_values__112.__class__ is not int and (not isinstance(r_values__112, int) or r_values__112.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[112]', r_values__112, 'type', 'an int')
-        if not 0 <= r_values__112 <= 65535:
-            raise _enc('write_multiple_registers', 'values[112]', r_values__112, 'range', '0..65535', None)
+        r_6values_112 = g_values[112]
+        if r_6values_112.__class__ is not int and (not isinstance(r_6values_112, int) or r_6values_112.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[112]', r_6values_112, 'type', 'an int')
+        if not 0 <= r_6values_112 <= 65535:
+            raise _enc('write_multiple_registers', 'values[112]', r_6values_112, 'range', '0..65535', None)
     else:
-        r_values__112 = 0
+        r_6values_112 = 0
     if len(g_values) > 113:
-        r_values__113 = g_values[113]
-        if r_values__113.__class__ is not int and (not isinstance(r_values__113, int) or r_values__113.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[113]', r_values__113, 'type', 'an int')
-        if not 0 <= r_values__113 <= 65535:
-            raise _enc('write_multiple_registers', 'values[113]', r_values__113, 'range', '0..65535', None)
+        r_6values_113 = g_values[113]
+        if r_6values_113.__class__ is not int and (not isinstance(r_6values_113, int) or r_6values_113.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[113]', r_6values_113, 'type', 'an int')
+        if not 0 <= r_6values_113 <= 65535:
+            raise _enc('write_multiple_registers', 'values[113]', r_6values_113, 'range', '0..65535', None)
     else:
-        r_values__113 = 0
+        r_6values_113 = 0
     if len(g_values) > 114:
-        r_values__114 = g_values[114]
-        if r_values__114.__class__ is not int and (not isinstance(r_values__114, int) or r_values__114.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[114]', r_values__114, 'type', 'an int')
-        if not 0 <= r_values__114 <= 65535:
-            raise _enc('write_multiple_registers', 'values[114]', r_values__114, 'range', '0..65535', None)
+        r_6values_114 = g_values[114]
+        if r_6values_114.__class__ is not int and (not isinstance(r_6values_114, int) or r_6values_114.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[114]', r_6values_114, 'type', 'an int')
+        if not 0 <= r_6values_114 <= 65535:
+            raise _enc('write_multiple_registers', 'values[114]', r_6values_114, 'range', '0..65535', None)
     else:
-        r_values__114 = 0
+        r_6values_114 = 0
     if len(g_values) > 115:
-        r_values__115 = g_values[115]
-        if r_values__115.__class__ is not int and (not isinstance(r_values__115, int) or r_values__115.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[115]', r_values__115, 'type', 'an int')
-        if not 0 <= r_values__115 <= 65535:
-            raise _enc('write_multiple_registers', 'values[115]', r_values__115, 'range', '0..65535', None)
+        r_6values_115 = g_values[115]
+        if r_6values_115.__class__ is not int and (not isinstance(r_6values_115, int) or r_6values_115.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[115]', r_6values_115, 'type', 'an int')
+        if not 0 <= r_6values_115 <= 65535:
+            raise _enc('write_multiple_registers', 'values[115]', r_6values_115, 'range', '0..65535', None)
     else:
-        r_values__115 = 0
+        r_6values_115 = 0
     if len(g_values) > 116:
-        r_values__116 = g_values[116]
-        if r_values__116.__class__ is not int and (not isinstance(r_values__116, int) or r_values__116.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[116]', r_values__116, 'type', 'an int')
-        if not 0 <= r_values__116 <= 65535:
-            raise _enc('write_multiple_registers', 'values[116]', r_values__116, 'range', '0..65535', None)
+        r_6values_116 = g_values[116]
+        if r_6values_116.__class__ is not int and (not isinstance(r_6values_116, int) or r_6values_116.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[116]', r_6values_116, 'type', 'an int')
+        if not 0 <= r_6values_116 <= 65535:
+            raise _enc('write_multiple_registers', 'values[116]', r_6values_116, 'range', '0..65535', None)
     else:
-        r_values__116 = 0
+        r_6values_116 = 0
     if len(g_values) > 117:
-        r_values__117 = g_values[117]
-        if r_values__117.__class__ is not int and (not isinstance(r_values__117, int) or r_values__117.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[117]', r_values__117, 'type', 'an int')
-        if not 0 <= r_values__117 <= 65535:
-            raise _enc('write_multiple_registers', 'values[117]', r_values__117, 'range', '0..65535', None)
+        r_6values_117 = g_values[117]
+        if r_6values_117.__class__ is not int and (not isinstance(r_6values_117, int) or r_6values_117.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[117]', r_6values_117, 'type', 'an int')
+        if not 0 <= r_6values_117 <= 65535:
+            raise _enc('write_multiple_registers', 'values[117]', r_6values_117, 'range', '0..65535', None)
     else:
-        r_values__117 = 0
+        r_6values_117 = 0
     if len(g_values) > 118:
-        r_values__118 = g_values[118]
-        if r_values__118.__class__ is not int and (not isinstance(r_values__118, int) or r_values__118.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[118]', r_values__118, 'type', 'an int')
-        if not 0 <= r_values__118 <= 65535:
-            raise _enc('write_multiple_registers', 'values[118]', r_values__118, 'range', '0..65535', None)
+        r_6values_118 = g_values[118]
+        if r_6values_118.__class__ is not int and (not isinstance(r_6values_118, int) or r_6values_118.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[118]', r_6values_118, 'type', 'an int')
+        if not 0 <= r_6values_118 <= 65535:
+            raise _enc('write_multiple_registers', 'values[118]', r_6values_118, 'range', '0..65535', None)
     else:
-        r_values__118 = 0
+        r_6values_118 = 0
     if len(g_values) > 119:
-        r_values__119 = g_values[119]
-        if r_values__119.__class__ is not int and (not isinstance(r_values__119, int) or r_values__119.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[119]', r_values__119, 'type', 'an int')
-        if not 0 <= r_values__119 <= 65535:
-            raise _enc('write_multiple_registers', 'values[119]', r_values__119, 'range', '0..65535', None)
+        r_6values_119 = g_values[119]
+        if r_6values_119.__class__ is not int and (not isinstance(r_6values_119, int) or r_6values_119.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[119]', r_6values_119, 'type', 'an int')
+        if not 0 <= r_6values_119 <= 65535:
+            raise _enc('write_multiple_registers', 'values[119]', r_6values_119, 'range', '0..65535', None)
     else:
-        r_values__119 = 0
+        r_6values_119 = 0
     if len(g_values) > 120:
-        r_values__120 = g_values[120]
-        if r_values__120.__class__ is not int and (not isinstance(r_values__120, int) or r_values__120.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[120]', r_values__120, 'type', 'an int')
-        if not 0 <= r_values__120 <= 65535:
-            raise _enc('write_multiple_registers', 'values[120]', r_values__120, 'range', '0..65535', None)
+        r_6values_120 = g_values[120]
+        if r_6values_120.__class__ is not int and (not isinstance(r_6values_120, int) or r_6values_120.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[120]', r_6values_120, 'type', 'an int')
+        if not 0 <= r_6values_120 <= 65535:
+            raise _enc('write_multiple_registers', 'values[120]', r_6values_120, 'range', '0..65535', None)
     else:
-        r_values__120 = 0
+        r_6values_120 = 0
     if len(g_values) > 121:
-        r_values__121 = g_values[121]
-        if r_values__121.__class__ is not int and (not isinstance(r_values__121, int) or r_values__121.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[121]', r_values__121, 'type', 'an int')
-        if not 0 <= r_values__121 <= 65535:
-            raise _enc('write_multiple_registers', 'values[121]', r_values__121, 'range', '0..65535', None)
+        r_6values_121 = g_values[121]
+        if r_6values_121.__class__ is not int and (not isinstance(r_6values_121, int) or r_6values_121.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[121]', r_6values_121, 'type', 'an int')
+        if not 0 <= r_6values_121 <= 65535:
+            raise _enc('write_multiple_registers', 'values[121]', r_6values_121, 'range', '0..65535', None)
     else:
-        r_values__121 = 0
+        r_6values_121 = 0
     if len(g_values) > 122:
-        r_values__122 = g_values[122]
-        if r_values__122.__class__ is not int and (not isinstance(r_values__122, int) or r_values__122.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[122]', r_values__122, 'type', 'an int')
-        if not 0 <= r_values__122 <= 65535:
-            raise _enc('write_multiple_registers', 'values[122]', r_values__122, 'range', '0..65535', None)
+        r_6values_122 = g_values[122]
+        if r_6values_122.__class__ is not int and (not isinstance(r_6values_122, int) or r_6values_122.__class__ is bool):
+            raise _enc('write_multiple_registers', 'values[122]', r_6values_122, 'type', 'an int')
+        if not 0 <= r_6values_122 <= 65535:
+            raise _enc('write_multiple_registers', 'values[122]', r_6values_122, 'range', '0..65535', None)
     else:
-        r_values__122 = 0
+        r_6values_122 = 0
     r_crc = 0
     r_byte_count = len(g_values) * 2
     b = bytearray(255)
-    _S_write_multiple_registers_0.pack_into(b, 0, r_address, 16, r_start, r_quantity, r_byte_count, r_values__0, r_values__1, r_values__2, r_values__3, r_values__4, r_values__5, r_values__6, r_values__7, r_values__8, r_values__9, r_values__10, r_values__11, r_values__12, r_values__13, r_values__14, r_values__15, r_values__16, r_values__17, r_values__18, r_values__19, r_values__20, r_values__21, r_values__22, r_values__23, r_values__24, r_values__25, r_values__26, r_values__27, r_values__28, r_values__29, r_values__30, r_values__31, r_values__32, r_values__33, r_values__34, r_values__35, r_values__36, r_values__37, r_values__38, r_values__39, r_values__40, r_values__41, r_values__42, r_values__43, r_values__44, r_values__45, r_values__46, r_values__47, r_values__48, r_values__49, r_values__50, r_values__51, r_values__52, r_values__53, r_values__54, r_values__55, r_values__56, r_values__57, r_values__58, r_values__59, r_values__60, r_values__61, r_values__62, r_values__63, r_values__64, r_values__65, r_values__66, r_values__67, r_values__68, r_values__69, r_values__70, r_values__71, r_values__72, r_values__73, r_values__74, r_values__75, r_values__76, r_values__77, r_values__78, r_values__79, r_values__80, r_values__81, r_values__82, r_values__83, r_values__84, r_values__85, r_values__86, r_values__87, r_values__88, r_values__89, r_values__90, r_values__91, r_values__92, r_values__93, r_values__94, r_values__95, r_values__96, r_values__97, r_values__98, r_values__99, r_values__100, r_values__101, r_values__102, r_values__103, r_values__104, r_values__105, r_values__106, r_values__107, r_values__108, r_values__109, r_values__110, r_values__111, r_values__112, r_values__113, r_values__114, r_values__115, r_values__116, r_values__117, r_values__118, r_values__119, r_values__120, r_values__121, r_values__122)
+    _S_write_multiple_registers_0.pack_into(b, 0, r_address, 16, r_start, r_quantity, r_byte_count, r_6values_0, r_6values_1, r_6values_2, r_6values_3, r_6values_4, r_6values_5, r_6values_6, r_6values_7, r_6values_8, r_6values_9, r_6values_10, r_6values_11, r_6values_12, r_6values_13, r_6values_14, r_6values_15, r_6values_16, r_6values_17, r_6values_18, r_6values_19, r_6values_20, r_6values_21, r_6values_22, r_6values_23, r_6values_24, r_6values_25, r_6values_26, r_6values_27, r_6values_28, r_6values_29, r_6values_30, r_6values_31, r_6values_32, r_6values_33, r_6values_34, r_6values_35, r_6values_36, r_6values_37, r_6values_38, r_6values_39, r_6values_40, r_6values_41, r_6values_42, r_6values_43, r_6values_44, r_6values_45, r_6values_46, r_6values_47, r_6values_48, r_6values_49, r_6values_50, r_6values_51, r_6values_52, r_6values_53, r_6values_54, r_6values_55, r_6values_56, r_6values_57, r_6values_58, r_6values_59, r_6values_60, r_6values_61, r_6values_62, r_6values_63, r_6values_64, r_6values_65, r_6values_66, r_6values_67, r_6values_68, r_6values_69, r_6values_70, r_6values_71, r_6values_72, r_6values_73, r_6values_74, r_6values_75, r_6values_76, r_6values_77, r_6values_78, r_6values_79, r_6values_80, r_6values_81, r_6values_82, r_6values_83, r_6values_84, r_6values_85, r_6values_86, r_6values_87, r_6values_88, r_6values_89, r_6values_90, r_6values_91, r_6values_92, r_6values_93, r_6values_94, r_6values_95, r_6values_96, r_6values_97, r_6values_98, r_6values_99, r_6values_100, r_6values_101, r_6values_102, r_6values_103, r_6values_104, r_6values_105, r_6values_106, r_6values_107, r_6values_108, r_6values_109, r_6values_110, r_6values_111, r_6values_112, r_6values_113, r_6values_114, r_6values_115, r_6values_116, r_6values_117, r_6values_118, r_6values_119, r_6values_120, r_6values_121, r_6values_122)
     _S_write_multiple_registers_1.pack_into(b, 253, r_crc)
     cut = 246 - len(m.values) * 2
     b[253:255] = _checksum_crc16_8005_ffff_rr_0(b[0:253 - cut]).to_bytes(2, 'little')
@@ -2544,7 +2544,7 @@ def _decode_write_multiple_registers(d):
         raise _dec('write_multiple_registers', 'values', len(d), 'length', f'{9 + n * 1} bytes for {n} in byte_count', 56)
     if cut:  # the payload bytes left off read as zeros
         d = b''.join((d[:253 - cut], bytes(cut), d[253 - cut:]))
-    r_address, r_function, r_start, r_quantity, r_byte_count, r_values__0, r_values__1, r_values__2, r_values__3, r_values__4, r_values__5, r_values__6, r_values__7, r_values__8, r_values__9, r_values__10, r_values__11, r_values__12, r_values__13, r_values__14, r_values__15, r_values__16, r_values__17, r_values__18, r_values__19, r_values__20, r_values__21, r_values__22, r_values__23, r_values__24, r_values__25, r_values__26, r_values__27, r_values__28, r_values__29, r_values__30, r_values__31, r_values__32, r_values__33, r_values__34, r_values__35, r_values__36, r_values__37, r_values__38, r_values__39, r_values__40, r_values__41, r_values__42, r_values__43, r_values__44, r_values__45, r_values__46, r_values__47, r_values__48, r_values__49, r_values__50, r_values__51, r_values__52, r_values__53, r_values__54, r_values__55, r_values__56, r_values__57, r_values__58, r_values__59, r_values__60, r_values__61, r_values__62, r_values__63, r_values__64, r_values__65, r_values__66, r_values__67, r_values__68, r_values__69, r_values__70, r_values__71, r_values__72, r_values__73, r_values__74, r_values__75, r_values__76, r_values__77, r_values__78, r_values__79, r_values__80, r_values__81, r_values__82, r_values__83, r_values__84, r_values__85, r_values__86, r_values__87, r_values__88, r_values__89, r_values__90, r_values__91, r_values__92, r_values__93, r_values__94, r_values__95, r_values__96, r_values__97, r_values__98, r_values__99, r_values__100, r_values__101, r_values__102, r_values__103, r_values__104, r_values__105, r_values__106, r_values__107, r_values__108, r_values__109, r_values__110, r_values__111, r_values__112, r_values__113, r_values__114, r_values__115, r_values__116, r_values__117, r_values__118, r_values__119, r_values__120, r_values__121, r_values__122, = _S_write_multiple_registers_0.unpack_from(d, 0)
+    r_address, r_function, r_start, r_quantity, r_byte_count, r_6values_0, r_6values_1, r_6values_2, r_6values_3, r_6values_4, r_6values_5, r_6values_6, r_6values_7, r_6values_8, r_6values_9, r_6values_10, r_6values_11, r_6values_12, r_6values_13, r_6values_14, r_6values_15, r_6values_16, r_6values_17, r_6values_18, r_6values_19, r_6values_20, r_6values_21, r_6values_22, r_6values_23, r_6values_24, r_6values_25, r_6values_26, r_6values_27, r_6values_28, r_6values_29, r_6values_30, r_6values_31, r_6values_32, r_6values_33, r_6values_34, r_6values_35, r_6values_36, r_6values_37, r_6values_38, r_6values_39, r_6values_40, r_6values_41, r_6values_42, r_6values_43, r_6values_44, r_6values_45, r_6values_46, r_6values_47, r_6values_48, r_6values_49, r_6values_50, r_6values_51, r_6values_52, r_6values_53, r_6values_54, r_6values_55, r_6values_56, r_6values_57, r_6values_58, r_6values_59, r_6values_60, r_6values_61, r_6values_62, r_6values_63, r_6values_64, r_6values_65, r_6values_66, r_6values_67, r_6values_68, r_6values_69, r_6values_70, r_6values_71, r_6values_72, r_6values_73, r_6values_74, r_6values_75, r_6values_76, r_6values_77, r_6values_78, r_6values_79, r_6values_80, r_6values_81, r_6values_82, r_6values_83, r_6values_84, r_6values_85, r_6values_86, r_6values_87, r_6values_88, r_6values_89, r_6values_90, r_6values_91, r_6values_92, r_6values_93, r_6values_94, r_6values_95, r_6values_96, r_6values_97, r_6values_98, r_6values_99, r_6values_100, r_6values_101, r_6values_102, r_6values_103, r_6values_104, r_6values_105, r_6values_106, r_6values_107, r_6values_108, r_6values_109, r_6values_110, r_6values_111, r_6values_112, r_6values_113, r_6values_114, r_6values_115, r_6values_116, r_6values_117, r_6values_118, r_6values_119, r_6values_120, r_6values_121, r_6values_122, = _S_write_multiple_registers_0.unpack_from(d, 0)
     r_crc, = _S_write_multiple_registers_1.unpack_from(d, 253)
     x = _checksum_crc16_8005_ffff_rr_0(d[0:253 - cut])
     if r_crc != x:
@@ -2557,7 +2557,7 @@ def _decode_write_multiple_registers(d):
     o.address = r_address
     o.start = r_start
     o.quantity = r_quantity
-    o.values = [r_values__0, r_values__1, r_values__2, r_values__3, r_values__4, r_values__5, r_values__6, r_values__7, r_values__8, r_values__9, r_values__10, r_values__11, r_values__12, r_values__13, r_values__14, r_values__15, r_values__16, r_values__17, r_values__18, r_values__19, r_values__20, r_values__21, r_values__22, r_values__23, r_values__24, r_values__25, r_values__26, r_values__27, r_values__28, r_values__29, r_values__30, r_values__31, r_values__32, r_values__33, r_values__34, r_values__35, r_values__36, r_values__37, r_values__38, r_values__39, r_values__40, r_values__41, r_values__42, r_values__43, r_values__44, r_values__45, r_values__46, r_values__47, r_values__48, r_values__49, r_values__50, r_values__51, r_values__52, r_values__53, r_values__54, r_values__55, r_values__56, r_values__57, r_values__58, r_values__59, r_values__60, r_values__61, r_values__62, r_values__63, r_values__64, r_values__65, r_values__66, r_values__67, r_values__68, r_values__69, r_values__70, r_values__71, r_values__72, r_values__73, r_values__74, r_values__75, r_values__76, r_values__77, r_values__78, r_values__79, r_values__80, r_values__81, r_values__82, r_values__83, r_values__84, r_values__85, r_values__86, r_values__87, r_values__88, r_values__89, r_values__90, r_values__91, r_values__92, r_values__93, r_values__94, r_values__95, r_values__96, r_values__97, r_values__98, r_values__99, r_values__100, r_values__101, r_values__102, r_values__103, r_values__104, r_values__105, r_values__106, r_values__107, r_values__108, r_values__109, r_values__110, r_values__111, r_values__112, r_values__113, r_values__114, r_values__115, r_values__116, r_values__117, r_values__118, r_values__119, r_values__120, r_values__121, r_values__122][:n_values]
+    o.values = [r_6values_0, r_6values_1, r_6values_2, r_6values_3, r_6values_4, r_6values_5, r_6values_6, r_6values_7, r_6values_8, r_6values_9, r_6values_10, r_6values_11, r_6values_12, r_6values_13, r_6values_14, r_6values_15, r_6values_16, r_6values_17, r_6values_18, r_6values_19, r_6values_20, r_6values_21, r_6values_22, r_6values_23, r_6values_24, r_6values_25, r_6values_26, r_6values_27, r_6values_28, r_6values_29, r_6values_30, r_6values_31, r_6values_32, r_6values_33, r_6values_34, r_6values_35, r_6values_36, r_6values_37, r_6values_38, r_6values_39, r_6values_40, r_6values_41, r_6values_42, r_6values_43, r_6values_44, r_6values_45, r_6values_46, r_6values_47, r_6values_48, r_6values_49, r_6values_50, r_6values_51, r_6values_52, r_6values_53, r_6values_54, r_6values_55, r_6values_56, r_6values_57, r_6values_58, r_6values_59, r_6values_60, r_6values_61, r_6values_62, r_6values_63, r_6values_64, r_6values_65, r_6values_66, r_6values_67, r_6values_68, r_6values_69, r_6values_70, r_6values_71, r_6values_72, r_6values_73, r_6values_74, r_6values_75, r_6values_76, r_6values_77, r_6values_78, r_6values_79, r_6values_80, r_6values_81, r_6values_82, r_6values_83, r_6values_84, r_6values_85, r_6values_86, r_6values_87, r_6values_88, r_6values_89, r_6values_90, r_6values_91, r_6values_92, r_6values_93, r_6values_94, r_6values_95, r_6values_96, r_6values_97, r_6values_98, r_6values_99, r_6values_100, r_6values_101, r_6values_102, r_6values_103, r_6values_104, r_6values_105, r_6values_106, r_6values_107, r_6values_108, r_6values_109, r_6values_110, r_6values_111, r_6values_112, r_6values_113, r_6values_114, r_6values_115, r_6values_116, r_6values_117, r_6values_118, r_6values_119, r_6values_120, r_6values_121, r_6values_122][:n_values]
     return o
 
 
