@@ -333,9 +333,20 @@ class Leaf:
 
 
 def path_name(path: tuple[Union[str, int], ...]) -> str:
-    """A path as one identifier: names joined by `_`, an index as `__<i>` (a schema
-    name holds no `__`, so `ch[3]` and a field `ch_3` do not meet)."""
-    return "".join(f"__{p}" if isinstance(p, int) else f"_{p}" if i else p for i, p in enumerate(path))
+    """A path as one identifier, the only path spelt so and with no `__` (C++ reserves
+    it): a top-level field is its name (`speed`); a deeper path is each name led by
+    its length and each index in digits, `_` between them but after a name that ends
+    in `_`: `ch[3]` is `2ch_3`, `pts[1].x` is `3pts_1_1x`, `led.red` is `3led_3red`.
+    A name starts with a letter, so a deeper path never meets a top-level name, and
+    the lengths keep `a.b_c` (`1a_3b_c`) apart from `a_b.c` (`3a_b_1c`)."""
+    if len(path) == 1:
+        return str(path[0])
+    out = ""
+    for part in path:
+        if out and not out.endswith("_"):
+            out += "_"
+        out += str(part) if isinstance(part, int) else f"{len(part)}{part}"
+    return out
 
 
 def dotted(path: tuple[Union[str, int], ...]) -> str:

@@ -212,7 +212,7 @@ def test_each_element_is_a_leaf_with_its_index(tmp_path):
     p = compile_schema(path)
     fives = p.message("fives")
     assert [(x.dotted, x.var, x.pos, x.bits) for x in fives.wire.leaves] == [
-        ("id", "r_id", 0, 8), ("v[0]", "r_v__0", 8, 5), ("v[1]", "r_v__1", 13, 5), ("v[2]", "r_v__2", 18, 5),
+        ("id", "r_id", 0, 8), ("v[0]", "r_1v_0", 8, 5), ("v[1]", "r_1v_1", 13, 5), ("v[2]", "r_1v_2", 18, 5),
         ("pad", "r_pad", 23, 1)]
     pairs = p.message("pairs")
     assert [x.dotted for x in pairs.wire.leaves] == ["id", "p[0].hi", "p[0].lo", "p[1].hi", "p[1].lo"]

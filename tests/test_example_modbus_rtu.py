@@ -3,12 +3,19 @@
 here by a bitwise CRC-16/MODBUS written from the Modbus over Serial Line
 specification (§6.2.2), not by codeword. Python and C decode each frame and
 encode it back byte for byte; the stream decoders find frames whose size the
-function code gives and those whose size the byte count gives."""
+function code gives and those whose size the byte count gives. Then against
+pymodbus, whose RTU framer and PDU classes build and read frames of every message
+(0 to 125 registers, exception responses): see the section below."""
 from __future__ import annotations
 
+import random
 from pathlib import Path
 
 import pytest
+from pymodbus.framer import FramerRTU  # a test extra: pip install -e ".[peers]"
+from pymodbus.pdu import DecodePDU, ExceptionResponse
+from pymodbus.pdu.register_message import (ReadHoldingRegistersRequest, ReadHoldingRegistersResponse,
+                                           WriteMultipleRegistersRequest, WriteMultipleRegistersResponse)
 
 from schema_in_a_test import load, render, run_c
 
@@ -160,3 +167,198 @@ def test_c_decodes_encodes_and_finds_frames(built):
     assert lines[:len(frames)] == ["0 " + f.upper() for f in frames]
     assert lines[len(frames)] == "-2"  # CW_ERR_LENGTH: 250 bytes claimed, 6 sent
     assert lines[len(frames) + 1:] == ["frame " + f.upper() for f in frames]
+
+
+# --- against pymodbus --------------------------------------------------------------------
+# pymodbus, a widely used Modbus stack, builds frames with its RTU framer and PDU classes:
+# codeword's Python and C decode them to the values pymodbus reads, write the same bytes
+# back, and pymodbus reads what codeword writes. Expected bytes come from pymodbus.
+
+# a server's framer reads requests, a client's responses
+FRAMERS = {"to_server": FramerRTU(DecodePDU(is_server=True)), "to_client": FramerRTU(DecodePDU(is_server=False))}
+REFUSED = [1, 2, 3, 4, 5, 6, 15, 16]  # the function codes whose exception responses the example has
+EXCEPTION_CODES = [1, 2, 3, 4, 5, 6, 8, 10, 11]
+
+
+def registers(rng: random.Random, n: int) -> list[int]:
+    return [rng.getrandbits(16) for _ in range(n)]
+
+
+def sample_pdus(seed: int) -> list[tuple[str, object]]:
+    """pymodbus PDUs of every message of the example, with the fewest and the most
+    registers, each with its direction."""
+    rng = random.Random(seed)
+    out = []
+    for n in [0, 1, 125] + [rng.randint(0, 125) for _ in range(4)]:
+        dev = rng.randint(1, 247)
+        write = max(1, min(n, 123))
+        out += [("to_server", ReadHoldingRegistersRequest(address=rng.getrandbits(16), count=max(n, 1), dev_id=dev)),
+                ("to_client", ReadHoldingRegistersResponse(registers=registers(rng, n), dev_id=dev)),
+                ("to_server", WriteMultipleRegistersRequest(address=rng.getrandbits(16),
+                                                            registers=registers(rng, write), dev_id=dev)),
+                ("to_client", WriteMultipleRegistersResponse(address=rng.getrandbits(16), count=write, dev_id=dev)),
+                ("to_client", ExceptionResponse(rng.choice(REFUSED), rng.choice(EXCEPTION_CODES), device_id=dev))]
+    return out
+
+
+def sample_frames(seed: int) -> list[tuple[str, bytes]]:
+    return [(direction, FRAMERS[direction].buildFrame(pdu)) for direction, pdu in sample_pdus(seed)]
+
+
+def read_by_pymodbus(frame: bytes, direction: str):
+    used, pdu = FRAMERS[direction].handleFrame(frame, 0, 0)
+    assert used == len(frame) and pdu is not None, frame.hex(" ")
+    return pdu
+
+
+def values_of(pdu) -> tuple:
+    """What pymodbus read from a frame, in the order of the example's fields."""
+    if isinstance(pdu, ExceptionResponse):
+        return "exception_response", pdu.dev_id, pdu.function_code, pdu.exception_code
+    if isinstance(pdu, ReadHoldingRegistersRequest):
+        return "read_holding_registers", pdu.dev_id, pdu.address, pdu.count
+    if isinstance(pdu, ReadHoldingRegistersResponse):
+        return ("read_holding_registers_response", pdu.dev_id, *pdu.registers)
+    if isinstance(pdu, WriteMultipleRegistersRequest):
+        return ("write_multiple_registers", pdu.dev_id, pdu.address, pdu.count, *pdu.registers)
+    return "write_multiple_registers_response", pdu.dev_id, pdu.address, pdu.count
+
+
+def values_of_ours(m) -> tuple:
+    name = m.NAME
+    if name == "exception_response":
+        return name, m.address, m.function, int(m.exception_code)
+    if name == "read_holding_registers_response":
+        return (name, m.address, *m.registers)
+    if name == "write_multiple_registers":
+        return (name, m.address, m.start, m.quantity, *m.values)
+    return name, m.address, m.start, m.quantity
+
+
+@pytest.mark.parametrize("frame", TO_SERVER + TO_CLIENT)
+def test_pymodbus_reads_the_published_frames(frame):
+    direction = "to_server" if frame in TO_SERVER else "to_client"
+    pdu = read_by_pymodbus(bytes.fromhex(frame), direction)
+    assert FRAMERS[direction].buildFrame(pdu) == bytes.fromhex(frame)
+
+
+def test_python_reads_what_pymodbus_reads_and_writes_the_same_bytes(built):
+    _, mod = built
+    for direction, frame in sample_frames(seed=1):
+        ours = mod.decode(frame, direction)
+        assert values_of_ours(ours) == values_of(read_by_pymodbus(frame, direction)), frame.hex(" ")
+        assert mod.encode(ours) == frame
+
+
+def test_pymodbus_reads_what_codeword_writes(built):
+    _, mod = built
+    rng = random.Random(2)
+    for _ in range(20):
+        dev, n = rng.randint(1, 247), rng.randint(1, 123)
+        messages = [
+            ("to_server", mod.ReadHoldingRegisters(address=dev, start=rng.getrandbits(16), quantity=rng.randint(1, 125))),
+            ("to_client", mod.ReadHoldingRegistersResponse(address=dev, registers=registers(rng, rng.randint(0, 125)))),
+            ("to_server", mod.WriteMultipleRegisters(address=dev, start=rng.getrandbits(16), quantity=n,
+                                                     values=registers(rng, n))),
+            ("to_client", mod.WriteMultipleRegistersResponse(address=dev, start=rng.getrandbits(16),
+                                                             quantity=rng.getrandbits(16))),
+            ("to_client", mod.ExceptionResponse(address=dev, function=0x80 | rng.choice(REFUSED),
+                                                exception_code=rng.choice(EXCEPTION_CODES)))]
+        for direction, m in messages:
+            frame = mod.encode(m)
+            pdu = read_by_pymodbus(frame, direction)
+            assert values_of(pdu) == values_of_ours(m)
+            assert FRAMERS[direction].buildFrame(pdu) == frame
+
+
+def test_python_stream_finds_pymodbus_frames(built):
+    _, mod = built
+    for direction in FRAMERS:
+        frames = [f for d, f in sample_frames(seed=3) if d == direction]
+        stream = b"".join(frames)
+        dec = mod.StreamDecoder(direction)
+        found = [x for i in range(0, len(stream), 7) for x in dec.feed(stream[i:i + 7])]
+        assert [mod.encode(x) for x in found] == frames
+
+
+PYMODBUS_DRIVER = r"""
+#include <stdio.h>
+#include "modbus_rtu.h"
+struct frame { int direction; size_t len; uint8_t bytes[MODBUS_RTU_MAX_FRAME]; };
+static const struct frame frames[] = {
+TABLE
+};
+static void values(const modbus_rtu_message_t *m) {
+    int i;
+    switch (m->kind) {
+    case MODBUS_RTU_MSG_READ_HOLDING_REGISTERS:
+        printf("read_holding_registers %u %u %u", m->as.read_holding_registers.address,
+               m->as.read_holding_registers.start, m->as.read_holding_registers.quantity);
+        break;
+    case MODBUS_RTU_MSG_READ_HOLDING_REGISTERS_RESPONSE:
+        printf("read_holding_registers_response %u", m->as.read_holding_registers_response.address);
+        for (i = 0; i < m->as.read_holding_registers_response.registers_count; i++) {
+            printf(" %u", m->as.read_holding_registers_response.registers[i]);
+        }
+        break;
+    case MODBUS_RTU_MSG_WRITE_MULTIPLE_REGISTERS:
+        printf("write_multiple_registers %u %u %u", m->as.write_multiple_registers.address,
+               m->as.write_multiple_registers.start, m->as.write_multiple_registers.quantity);
+        for (i = 0; i < m->as.write_multiple_registers.values_count; i++) {
+            printf(" %u", m->as.write_multiple_registers.values[i]);
+        }
+        break;
+    case MODBUS_RTU_MSG_WRITE_MULTIPLE_REGISTERS_RESPONSE:
+        printf("write_multiple_registers_response %u %u %u", m->as.write_multiple_registers_response.address,
+               m->as.write_multiple_registers_response.start, m->as.write_multiple_registers_response.quantity);
+        break;
+    default:
+        printf("exception_response %u %u %u", m->as.exception_response.address, m->as.exception_response.function,
+               m->as.exception_response.exception_code);
+    }
+}
+static void again(const modbus_rtu_message_t *m) {
+    uint8_t out[MODBUS_RTU_MAX_FRAME];
+    int i, n = modbus_rtu_encode(m, out, sizeof out);
+    printf(" |");
+    for (i = 0; i < n; i++) printf(" %02x", out[i]);
+    printf("\n");
+}
+int main(void) {
+    modbus_rtu_message_t m;
+    modbus_rtu_parser_t p;
+    size_t i, j;
+    int rc, direction;
+    for (i = 0; i < sizeof frames / sizeof frames[0]; i++) {
+        rc = modbus_rtu_decode(frames[i].bytes, frames[i].len, frames[i].direction, &m);
+        if (rc != 0) { printf("error %d\n", rc); continue; }
+        values(&m);
+        again(&m);
+    }
+    for (direction = MODBUS_RTU_DIR_TO_SERVER; direction <= MODBUS_RTU_DIR_TO_CLIENT; direction++) {
+        modbus_rtu_parser_init(&p, direction);
+        for (i = 0; i < sizeof frames / sizeof frames[0]; i++) {
+            for (j = 0; frames[i].direction == direction && j < frames[i].len; j++) {
+                modbus_rtu_parser_feed(&p, frames[i].bytes[j]);
+                while ((rc = modbus_rtu_parser_next(&p, &m)) != 0) {
+                    printf("stream");
+                    if (rc == 1) again(&m); else printf(" error %d\n", rc);
+                }
+            }
+        }
+    }
+    return 0;
+}
+"""
+
+
+def test_c_reads_what_pymodbus_reads_and_writes_the_same_bytes(built):
+    where, _ = built
+    pdus = sample_pdus(seed=4)
+    frames = [(direction, FRAMERS[direction].buildFrame(pdu)) for direction, pdu in pdus]
+    table = "\n".join(f"    {{MODBUS_RTU_DIR_{d.upper()}, {len(f)}u, {{{c_bytes([f.hex()])}}}}}," for d, f in frames)
+    lines = run_c(where, PYMODBUS_DRIVER.replace("TABLE", table))
+    expected = [" ".join(map(str, values_of(read_by_pymodbus(f, d)))) + " | " + f.hex(" ") for d, f in frames]
+    assert lines[:len(frames)] == expected
+    in_stream_order = [f for direction in ("to_server", "to_client") for d, f in frames if d == direction]
+    assert lines[len(frames):] == ["stream | " + f.hex(" ") for f in in_stream_order]

@@ -295,15 +295,15 @@ static inline int car_master_control_encode(const car_master_control_t *m, uint8
 {
     uint8_t r_accept_ir;
     uint8_t r_forward_words;
-    uint8_t r_motor_enable;
-    uint8_t r_motor_direction;
-    uint8_t r_motor_speed;
-    uint8_t r_motor_duration;
-    uint8_t r_led_led;
-    uint8_t r_led_duration;
-    uint8_t r_ultrasonic_enable;
-    uint8_t r_ultrasonic_radius;
-    uint8_t r_ultrasonic_duration;
+    uint8_t r_5motor_6enable;
+    uint8_t r_5motor_9direction;
+    uint8_t r_5motor_5speed;
+    uint8_t r_5motor_8duration;
+    uint8_t r_3led_3led;
+    uint8_t r_3led_8duration;
+    uint8_t r_10ultrasonic_6enable;
+    uint8_t r_10ultrasonic_6radius;
+    uint8_t r_10ultrasonic_8duration;
     uint8_t r_voice;
     uint8_t r_body_sensor;
     uint16_t r_reserved_bits;
@@ -317,36 +317,36 @@ static inline int car_master_control_encode(const car_master_control_t *m, uint8
     }
     r_accept_ir = (uint8_t)m->accept_ir;
     r_forward_words = (uint8_t)m->forward_words;
-    r_motor_enable = (uint8_t)m->motor.enable;
+    r_5motor_6enable = (uint8_t)m->motor.enable;
     if (m->motor.direction > 3u) {
         return CW_ERR_ENUM;
     }
-    r_motor_direction = (uint8_t)m->motor.direction;
+    r_5motor_9direction = (uint8_t)m->motor.direction;
     if (m->motor.speed > 3u) {
         return CW_ERR_RANGE;
     }
-    r_motor_speed = (uint8_t)m->motor.speed;
+    r_5motor_5speed = (uint8_t)m->motor.speed;
     if (m->motor.duration > 3u) {
         return CW_ERR_RANGE;
     }
-    r_motor_duration = (uint8_t)m->motor.duration;
+    r_5motor_8duration = (uint8_t)m->motor.duration;
     if (m->led.led > 3u) {
         return CW_ERR_RANGE;
     }
-    r_led_led = (uint8_t)m->led.led;
+    r_3led_3led = (uint8_t)m->led.led;
     if (m->led.duration > 3u) {
         return CW_ERR_RANGE;
     }
-    r_led_duration = (uint8_t)m->led.duration;
-    r_ultrasonic_enable = (uint8_t)m->ultrasonic.enable;
+    r_3led_8duration = (uint8_t)m->led.duration;
+    r_10ultrasonic_6enable = (uint8_t)m->ultrasonic.enable;
     if (m->ultrasonic.radius > 3u) {
         return CW_ERR_RANGE;
     }
-    r_ultrasonic_radius = (uint8_t)m->ultrasonic.radius;
+    r_10ultrasonic_6radius = (uint8_t)m->ultrasonic.radius;
     if (m->ultrasonic.duration > 3u) {
         return CW_ERR_RANGE;
     }
-    r_ultrasonic_duration = (uint8_t)m->ultrasonic.duration;
+    r_10ultrasonic_8duration = (uint8_t)m->ultrasonic.duration;
     r_voice = (uint8_t)m->voice;
     r_body_sensor = (uint8_t)m->body_sensor;
     r_reserved_bits = 0u;
@@ -354,7 +354,7 @@ static inline int car_master_control_encode(const car_master_control_t *m, uint8
     if (cap < 4u) {
         return CW_ERR_CAPACITY;
     }
-    word = ((uint32_t)(((unsigned)r_accept_ir << 15) | ((unsigned)r_forward_words << 14) | ((unsigned)r_motor_enable << 13) | ((unsigned)r_motor_direction << 11) | ((unsigned)r_motor_speed << 9) | ((unsigned)r_motor_duration << 7) | ((unsigned)r_led_led << 5) | ((unsigned)r_led_duration << 3) | ((unsigned)r_ultrasonic_enable << 2) | (unsigned)r_ultrasonic_radius) << 16) | (uint32_t)(((unsigned)r_ultrasonic_duration << 14) | ((unsigned)r_voice << 13) | ((unsigned)r_body_sensor << 12) | ((unsigned)r_reserved_bits << 1));
+    word = ((uint32_t)(((unsigned)r_accept_ir << 15) | ((unsigned)r_forward_words << 14) | ((unsigned)r_5motor_6enable << 13) | ((unsigned)r_5motor_9direction << 11) | ((unsigned)r_5motor_5speed << 9) | ((unsigned)r_5motor_8duration << 7) | ((unsigned)r_3led_3led << 5) | ((unsigned)r_3led_8duration << 3) | ((unsigned)r_10ultrasonic_6enable << 2) | (unsigned)r_10ultrasonic_6radius) << 16) | (uint32_t)(((unsigned)r_10ultrasonic_8duration << 14) | ((unsigned)r_voice << 13) | ((unsigned)r_body_sensor << 12) | ((unsigned)r_reserved_bits << 1));
     r_parity = (uint8_t)(cw_parity32(word));
     word |= (uint32_t)r_parity;
     cw_put_be32(buf + 0, (uint32_t)word);
@@ -397,15 +397,15 @@ static inline int car_master_control_decode(const uint8_t *buf, size_t len, car_
 {
     uint8_t r_accept_ir;
     uint8_t r_forward_words;
-    uint8_t r_motor_enable;
-    uint8_t r_motor_direction;
-    uint8_t r_motor_speed;
-    uint8_t r_motor_duration;
-    uint8_t r_led_led;
-    uint8_t r_led_duration;
-    uint8_t r_ultrasonic_enable;
-    uint8_t r_ultrasonic_radius;
-    uint8_t r_ultrasonic_duration;
+    uint8_t r_5motor_6enable;
+    uint8_t r_5motor_9direction;
+    uint8_t r_5motor_5speed;
+    uint8_t r_5motor_8duration;
+    uint8_t r_3led_3led;
+    uint8_t r_3led_8duration;
+    uint8_t r_10ultrasonic_6enable;
+    uint8_t r_10ultrasonic_6radius;
+    uint8_t r_10ultrasonic_8duration;
     uint8_t r_voice;
     uint8_t r_body_sensor;
     uint16_t r_reserved_bits;
@@ -420,29 +420,29 @@ static inline int car_master_control_decode(const uint8_t *buf, size_t len, car_
     w1 = (unsigned)word;
     r_accept_ir = (uint8_t)((w0 >> 15) & 1u);
     r_forward_words = (uint8_t)((w0 >> 14) & 1u);
-    r_motor_enable = (uint8_t)((w0 >> 13) & 1u);
-    r_motor_direction = (uint8_t)((w0 >> 11) & 3u);
-    r_motor_speed = (uint8_t)((w0 >> 9) & 3u);
-    r_motor_duration = (uint8_t)((w0 >> 7) & 3u);
-    r_led_led = (uint8_t)((w0 >> 5) & 3u);
-    r_led_duration = (uint8_t)((w0 >> 3) & 3u);
-    r_ultrasonic_enable = (uint8_t)((w0 >> 2) & 1u);
-    r_ultrasonic_radius = (uint8_t)(w0 & 3u);
-    r_ultrasonic_duration = (uint8_t)((w1 >> 14) & 3u);
+    r_5motor_6enable = (uint8_t)((w0 >> 13) & 1u);
+    r_5motor_9direction = (uint8_t)((w0 >> 11) & 3u);
+    r_5motor_5speed = (uint8_t)((w0 >> 9) & 3u);
+    r_5motor_8duration = (uint8_t)((w0 >> 7) & 3u);
+    r_3led_3led = (uint8_t)((w0 >> 5) & 3u);
+    r_3led_8duration = (uint8_t)((w0 >> 3) & 3u);
+    r_10ultrasonic_6enable = (uint8_t)((w0 >> 2) & 1u);
+    r_10ultrasonic_6radius = (uint8_t)(w0 & 3u);
+    r_10ultrasonic_8duration = (uint8_t)((w1 >> 14) & 3u);
     r_voice = (uint8_t)((w1 >> 13) & 1u);
     r_body_sensor = (uint8_t)((w1 >> 12) & 1u);
     r_reserved_bits = (uint16_t)((w1 >> 1) & 0x7ffu);
     m->accept_ir = r_accept_ir != 0u;
     m->forward_words = r_forward_words != 0u;
-    m->motor.enable = r_motor_enable != 0u;
-    m->motor.direction = (uint8_t)r_motor_direction;
-    m->motor.speed = (uint8_t)r_motor_speed;
-    m->motor.duration = (uint8_t)r_motor_duration;
-    m->led.led = (uint8_t)r_led_led;
-    m->led.duration = (uint8_t)r_led_duration;
-    m->ultrasonic.enable = r_ultrasonic_enable != 0u;
-    m->ultrasonic.radius = (uint8_t)r_ultrasonic_radius;
-    m->ultrasonic.duration = (uint8_t)r_ultrasonic_duration;
+    m->motor.enable = r_5motor_6enable != 0u;
+    m->motor.direction = (uint8_t)r_5motor_9direction;
+    m->motor.speed = (uint8_t)r_5motor_5speed;
+    m->motor.duration = (uint8_t)r_5motor_8duration;
+    m->led.led = (uint8_t)r_3led_3led;
+    m->led.duration = (uint8_t)r_3led_8duration;
+    m->ultrasonic.enable = r_10ultrasonic_6enable != 0u;
+    m->ultrasonic.radius = (uint8_t)r_10ultrasonic_6radius;
+    m->ultrasonic.duration = (uint8_t)r_10ultrasonic_8duration;
     m->voice = r_voice != 0u;
     m->body_sensor = r_body_sensor != 0u;
     if (r_reserved_bits != 0u) {
@@ -526,15 +526,15 @@ static inline int car_slave_control_encode(const car_slave_control_t *m, uint8_t
 {
     uint8_t r_accept_ir;
     uint8_t r_forward_words;
-    uint8_t r_motor_enable;
-    uint8_t r_motor_direction;
-    uint8_t r_motor_speed;
-    uint8_t r_motor_duration;
-    uint8_t r_led_led;
-    uint8_t r_led_duration;
-    uint8_t r_ultrasonic_enable;
-    uint8_t r_ultrasonic_radius;
-    uint8_t r_ultrasonic_duration;
+    uint8_t r_5motor_6enable;
+    uint8_t r_5motor_9direction;
+    uint8_t r_5motor_5speed;
+    uint8_t r_5motor_8duration;
+    uint8_t r_3led_3led;
+    uint8_t r_3led_8duration;
+    uint8_t r_10ultrasonic_6enable;
+    uint8_t r_10ultrasonic_6radius;
+    uint8_t r_10ultrasonic_8duration;
     uint8_t r_voice;
     uint8_t r_body_sensor;
     uint16_t r_reserved_bits;
@@ -542,36 +542,36 @@ static inline int car_slave_control_encode(const car_slave_control_t *m, uint8_t
     uint32_t word;
     r_accept_ir = (uint8_t)m->accept_ir;
     r_forward_words = (uint8_t)m->forward_words;
-    r_motor_enable = (uint8_t)m->motor.enable;
+    r_5motor_6enable = (uint8_t)m->motor.enable;
     if (m->motor.direction > 3u) {
         return CW_ERR_ENUM;
     }
-    r_motor_direction = (uint8_t)m->motor.direction;
+    r_5motor_9direction = (uint8_t)m->motor.direction;
     if (m->motor.speed > 3u) {
         return CW_ERR_RANGE;
     }
-    r_motor_speed = (uint8_t)m->motor.speed;
+    r_5motor_5speed = (uint8_t)m->motor.speed;
     if (m->motor.duration > 3u) {
         return CW_ERR_RANGE;
     }
-    r_motor_duration = (uint8_t)m->motor.duration;
+    r_5motor_8duration = (uint8_t)m->motor.duration;
     if (m->led.led > 3u) {
         return CW_ERR_RANGE;
     }
-    r_led_led = (uint8_t)m->led.led;
+    r_3led_3led = (uint8_t)m->led.led;
     if (m->led.duration > 3u) {
         return CW_ERR_RANGE;
     }
-    r_led_duration = (uint8_t)m->led.duration;
-    r_ultrasonic_enable = (uint8_t)m->ultrasonic.enable;
+    r_3led_8duration = (uint8_t)m->led.duration;
+    r_10ultrasonic_6enable = (uint8_t)m->ultrasonic.enable;
     if (m->ultrasonic.radius > 3u) {
         return CW_ERR_RANGE;
     }
-    r_ultrasonic_radius = (uint8_t)m->ultrasonic.radius;
+    r_10ultrasonic_6radius = (uint8_t)m->ultrasonic.radius;
     if (m->ultrasonic.duration > 3u) {
         return CW_ERR_RANGE;
     }
-    r_ultrasonic_duration = (uint8_t)m->ultrasonic.duration;
+    r_10ultrasonic_8duration = (uint8_t)m->ultrasonic.duration;
     r_voice = (uint8_t)m->voice;
     r_body_sensor = (uint8_t)m->body_sensor;
     r_reserved_bits = 0u;
@@ -579,7 +579,7 @@ static inline int car_slave_control_encode(const car_slave_control_t *m, uint8_t
     if (cap < 4u) {
         return CW_ERR_CAPACITY;
     }
-    word = ((uint32_t)(((unsigned)r_accept_ir << 15) | ((unsigned)r_forward_words << 14) | ((unsigned)r_motor_enable << 13) | ((unsigned)r_motor_direction << 11) | ((unsigned)r_motor_speed << 9) | ((unsigned)r_motor_duration << 7) | ((unsigned)r_led_led << 5) | ((unsigned)r_led_duration << 3) | ((unsigned)r_ultrasonic_enable << 2) | (unsigned)r_ultrasonic_radius) << 16) | (uint32_t)(((unsigned)r_ultrasonic_duration << 14) | ((unsigned)r_voice << 13) | ((unsigned)r_body_sensor << 12) | ((unsigned)r_reserved_bits << 1));
+    word = ((uint32_t)(((unsigned)r_accept_ir << 15) | ((unsigned)r_forward_words << 14) | ((unsigned)r_5motor_6enable << 13) | ((unsigned)r_5motor_9direction << 11) | ((unsigned)r_5motor_5speed << 9) | ((unsigned)r_5motor_8duration << 7) | ((unsigned)r_3led_3led << 5) | ((unsigned)r_3led_8duration << 3) | ((unsigned)r_10ultrasonic_6enable << 2) | (unsigned)r_10ultrasonic_6radius) << 16) | (uint32_t)(((unsigned)r_10ultrasonic_8duration << 14) | ((unsigned)r_voice << 13) | ((unsigned)r_body_sensor << 12) | ((unsigned)r_reserved_bits << 1));
     r_parity = (uint8_t)(cw_parity32(word));
     word |= (uint32_t)r_parity;
     cw_put_be32(buf + 0, (uint32_t)word);
@@ -616,15 +616,15 @@ static inline int car_slave_control_decode(const uint8_t *buf, size_t len, car_s
 {
     uint8_t r_accept_ir;
     uint8_t r_forward_words;
-    uint8_t r_motor_enable;
-    uint8_t r_motor_direction;
-    uint8_t r_motor_speed;
-    uint8_t r_motor_duration;
-    uint8_t r_led_led;
-    uint8_t r_led_duration;
-    uint8_t r_ultrasonic_enable;
-    uint8_t r_ultrasonic_radius;
-    uint8_t r_ultrasonic_duration;
+    uint8_t r_5motor_6enable;
+    uint8_t r_5motor_9direction;
+    uint8_t r_5motor_5speed;
+    uint8_t r_5motor_8duration;
+    uint8_t r_3led_3led;
+    uint8_t r_3led_8duration;
+    uint8_t r_10ultrasonic_6enable;
+    uint8_t r_10ultrasonic_6radius;
+    uint8_t r_10ultrasonic_8duration;
     uint8_t r_voice;
     uint8_t r_body_sensor;
     uint16_t r_reserved_bits;
@@ -639,29 +639,29 @@ static inline int car_slave_control_decode(const uint8_t *buf, size_t len, car_s
     w1 = (unsigned)word;
     r_accept_ir = (uint8_t)((w0 >> 15) & 1u);
     r_forward_words = (uint8_t)((w0 >> 14) & 1u);
-    r_motor_enable = (uint8_t)((w0 >> 13) & 1u);
-    r_motor_direction = (uint8_t)((w0 >> 11) & 3u);
-    r_motor_speed = (uint8_t)((w0 >> 9) & 3u);
-    r_motor_duration = (uint8_t)((w0 >> 7) & 3u);
-    r_led_led = (uint8_t)((w0 >> 5) & 3u);
-    r_led_duration = (uint8_t)((w0 >> 3) & 3u);
-    r_ultrasonic_enable = (uint8_t)((w0 >> 2) & 1u);
-    r_ultrasonic_radius = (uint8_t)(w0 & 3u);
-    r_ultrasonic_duration = (uint8_t)((w1 >> 14) & 3u);
+    r_5motor_6enable = (uint8_t)((w0 >> 13) & 1u);
+    r_5motor_9direction = (uint8_t)((w0 >> 11) & 3u);
+    r_5motor_5speed = (uint8_t)((w0 >> 9) & 3u);
+    r_5motor_8duration = (uint8_t)((w0 >> 7) & 3u);
+    r_3led_3led = (uint8_t)((w0 >> 5) & 3u);
+    r_3led_8duration = (uint8_t)((w0 >> 3) & 3u);
+    r_10ultrasonic_6enable = (uint8_t)((w0 >> 2) & 1u);
+    r_10ultrasonic_6radius = (uint8_t)(w0 & 3u);
+    r_10ultrasonic_8duration = (uint8_t)((w1 >> 14) & 3u);
     r_voice = (uint8_t)((w1 >> 13) & 1u);
     r_body_sensor = (uint8_t)((w1 >> 12) & 1u);
     r_reserved_bits = (uint16_t)((w1 >> 1) & 0x7ffu);
     m->accept_ir = r_accept_ir != 0u;
     m->forward_words = r_forward_words != 0u;
-    m->motor.enable = r_motor_enable != 0u;
-    m->motor.direction = (uint8_t)r_motor_direction;
-    m->motor.speed = (uint8_t)r_motor_speed;
-    m->motor.duration = (uint8_t)r_motor_duration;
-    m->led.led = (uint8_t)r_led_led;
-    m->led.duration = (uint8_t)r_led_duration;
-    m->ultrasonic.enable = r_ultrasonic_enable != 0u;
-    m->ultrasonic.radius = (uint8_t)r_ultrasonic_radius;
-    m->ultrasonic.duration = (uint8_t)r_ultrasonic_duration;
+    m->motor.enable = r_5motor_6enable != 0u;
+    m->motor.direction = (uint8_t)r_5motor_9direction;
+    m->motor.speed = (uint8_t)r_5motor_5speed;
+    m->motor.duration = (uint8_t)r_5motor_8duration;
+    m->led.led = (uint8_t)r_3led_3led;
+    m->led.duration = (uint8_t)r_3led_8duration;
+    m->ultrasonic.enable = r_10ultrasonic_6enable != 0u;
+    m->ultrasonic.radius = (uint8_t)r_10ultrasonic_6radius;
+    m->ultrasonic.duration = (uint8_t)r_10ultrasonic_8duration;
     m->voice = r_voice != 0u;
     m->body_sensor = r_body_sensor != 0u;
     if (r_reserved_bits != 0u) {

@@ -288,52 +288,52 @@ def _encode_master_control(m):
             raise _enc('master_control', 'forward_words', r_forward_words, 'type', 'a bool')
         r_forward_words = 1 if r_forward_words else 0
     g_motor = m.motor
-    r_motor_enable = g_motor.enable
-    if r_motor_enable is not True and r_motor_enable is not False:
-        if r_motor_enable != 0 and r_motor_enable != 1:
-            raise _enc('master_control', 'motor.enable', r_motor_enable, 'type', 'a bool')
-        r_motor_enable = 1 if r_motor_enable else 0
-    r_motor_direction = g_motor.direction
-    if r_motor_direction.__class__ is not MotorDirection and (not isinstance(r_motor_direction, int) or r_motor_direction.__class__ is bool or isinstance(r_motor_direction, enum.Enum) or r_motor_direction not in _VALUES_motor_direction):
-        raise _enc('master_control', 'motor.direction', r_motor_direction, 'enum', 'MotorDirection', None)
-    r_motor_direction = r_motor_direction._value_ if r_motor_direction.__class__ is MotorDirection else int(r_motor_direction)
-    r_motor_speed = g_motor.speed
-    if r_motor_speed.__class__ is not int and (not isinstance(r_motor_speed, int) or r_motor_speed.__class__ is bool):
-        raise _enc('master_control', 'motor.speed', r_motor_speed, 'type', 'an int')
-    if not 0 <= r_motor_speed <= 3:
-        raise _enc('master_control', 'motor.speed', r_motor_speed, 'range', '0..3', None)
-    r_motor_duration = g_motor.duration
-    if r_motor_duration.__class__ is not int and (not isinstance(r_motor_duration, int) or r_motor_duration.__class__ is bool):
-        raise _enc('master_control', 'motor.duration', r_motor_duration, 'type', 'an int')
-    if not 0 <= r_motor_duration <= 3:
-        raise _enc('master_control', 'motor.duration', r_motor_duration, 'range', '0..3', None)
+    r_5motor_6enable = g_motor.enable
+    if r_5motor_6enable is not True and r_5motor_6enable is not False:
+        if r_5motor_6enable != 0 and r_5motor_6enable != 1:
+            raise _enc('master_control', 'motor.enable', r_5motor_6enable, 'type', 'a bool')
+        r_5motor_6enable = 1 if r_5motor_6enable else 0
+    r_5motor_9direction = g_motor.direction
+    if r_5motor_9direction.__class__ is not MotorDirection and (not isinstance(r_5motor_9direction, int) or r_5motor_9direction.__class__ is bool or isinstance(r_5motor_9direction, enum.Enum) or r_5motor_9direction not in _VALUES_motor_direction):
+        raise _enc('master_control', 'motor.direction', r_5motor_9direction, 'enum', 'MotorDirection', None)
+    r_5motor_9direction = r_5motor_9direction._value_ if r_5motor_9direction.__class__ is MotorDirection else int(r_5motor_9direction)
+    r_5motor_5speed = g_motor.speed
+    if r_5motor_5speed.__class__ is not int and (not isinstance(r_5motor_5speed, int) or r_5motor_5speed.__class__ is bool):
+        raise _enc('master_control', 'motor.speed', r_5motor_5speed, 'type', 'an int')
+    if not 0 <= r_5motor_5speed <= 3:
+        raise _enc('master_control', 'motor.speed', r_5motor_5speed, 'range', '0..3', None)
+    r_5motor_8duration = g_motor.duration
+    if r_5motor_8duration.__class__ is not int and (not isinstance(r_5motor_8duration, int) or r_5motor_8duration.__class__ is bool):
+        raise _enc('master_control', 'motor.duration', r_5motor_8duration, 'type', 'an int')
+    if not 0 <= r_5motor_8duration <= 3:
+        raise _enc('master_control', 'motor.duration', r_5motor_8duration, 'range', '0..3', None)
     g_led = m.led
-    r_led_led = g_led.led
-    if r_led_led.__class__ is not int and (not isinstance(r_led_led, int) or r_led_led.__class__ is bool):
-        raise _enc('master_control', 'led.led', r_led_led, 'type', 'an int')
-    if not 0 <= r_led_led <= 3:
-        raise _enc('master_control', 'led.led', r_led_led, 'range', '0..3', None)
-    r_led_duration = g_led.duration
-    if r_led_duration.__class__ is not int and (not isinstance(r_led_duration, int) or r_led_duration.__class__ is bool):
-        raise _enc('master_control', 'led.duration', r_led_duration, 'type', 'an int')
-    if not 0 <= r_led_duration <= 3:
-        raise _enc('master_control', 'led.duration', r_led_duration, 'range', '0..3', None)
+    r_3led_3led = g_led.led
+    if r_3led_3led.__class__ is not int and (not isinstance(r_3led_3led, int) or r_3led_3led.__class__ is bool):
+        raise _enc('master_control', 'led.led', r_3led_3led, 'type', 'an int')
+    if not 0 <= r_3led_3led <= 3:
+        raise _enc('master_control', 'led.led', r_3led_3led, 'range', '0..3', None)
+    r_3led_8duration = g_led.duration
+    if r_3led_8duration.__class__ is not int and (not isinstance(r_3led_8duration, int) or r_3led_8duration.__class__ is bool):
+        raise _enc('master_control', 'led.duration', r_3led_8duration, 'type', 'an int')
+    if not 0 <= r_3led_8duration <= 3:
+        raise _enc('master_control', 'led.duration', r_3led_8duration, 'range', '0..3', None)
     g_ultrasonic = m.ultrasonic
-    r_ultrasonic_enable = g_ultrasonic.enable
-    if r_ultrasonic_enable is not True and r_ultrasonic_enable is not False:
-        if r_ultrasonic_enable != 0 and r_ultrasonic_enable != 1:
-            raise _enc('master_control', 'ultrasonic.enable', r_ultrasonic_enable, 'type', 'a bool')
-        r_ultrasonic_enable = 1 if r_ultrasonic_enable else 0
-    r_ultrasonic_radius = g_ultrasonic.radius
-    if r_ultrasonic_radius.__class__ is not int and (not isinstance(r_ultrasonic_radius, int) or r_ultrasonic_radius.__class__ is bool):
-        raise _enc('master_control', 'ultrasonic.radius', r_ultrasonic_radius, 'type', 'an int')
-    if not 0 <= r_ultrasonic_radius <= 3:
-        raise _enc('master_control', 'ultrasonic.radius', r_ultrasonic_radius, 'range', '0..3', None)
-    r_ultrasonic_duration = g_ultrasonic.duration
-    if r_ultrasonic_duration.__class__ is not int and (not isinstance(r_ultrasonic_duration, int) or r_ultrasonic_duration.__class__ is bool):
-        raise _enc('master_control', 'ultrasonic.duration', r_ultrasonic_duration, 'type', 'an int')
-    if not 0 <= r_ultrasonic_duration <= 3:
-        raise _enc('master_control', 'ultrasonic.duration', r_ultrasonic_duration, 'range', '0..3', None)
+    r_10ultrasonic_6enable = g_ultrasonic.enable
+    if r_10ultrasonic_6enable is not True and r_10ultrasonic_6enable is not False:
+        if r_10ultrasonic_6enable != 0 and r_10ultrasonic_6enable != 1:
+            raise _enc('master_control', 'ultrasonic.enable', r_10ultrasonic_6enable, 'type', 'a bool')
+        r_10ultrasonic_6enable = 1 if r_10ultrasonic_6enable else 0
+    r_10ultrasonic_6radius = g_ultrasonic.radius
+    if r_10ultrasonic_6radius.__class__ is not int and (not isinstance(r_10ultrasonic_6radius, int) or r_10ultrasonic_6radius.__class__ is bool):
+        raise _enc('master_control', 'ultrasonic.radius', r_10ultrasonic_6radius, 'type', 'an int')
+    if not 0 <= r_10ultrasonic_6radius <= 3:
+        raise _enc('master_control', 'ultrasonic.radius', r_10ultrasonic_6radius, 'range', '0..3', None)
+    r_10ultrasonic_8duration = g_ultrasonic.duration
+    if r_10ultrasonic_8duration.__class__ is not int and (not isinstance(r_10ultrasonic_8duration, int) or r_10ultrasonic_8duration.__class__ is bool):
+        raise _enc('master_control', 'ultrasonic.duration', r_10ultrasonic_8duration, 'type', 'an int')
+    if not 0 <= r_10ultrasonic_8duration <= 3:
+        raise _enc('master_control', 'ultrasonic.duration', r_10ultrasonic_8duration, 'range', '0..3', None)
     r_voice = m.voice
     if r_voice is not True and r_voice is not False:
         if r_voice != 0 and r_voice != 1:
@@ -346,7 +346,7 @@ def _encode_master_control(m):
         r_body_sensor = 1 if r_body_sensor else 0
     r_reserved_bits = 0
     r_parity = 0
-    w = r_accept_ir << 31 | r_forward_words << 30 | r_motor_enable << 29 | r_motor_direction << 27 | r_motor_speed << 25 | r_motor_duration << 23 | r_led_led << 21 | r_led_duration << 19 | r_ultrasonic_enable << 18 | r_ultrasonic_radius << 16 | r_ultrasonic_duration << 14 | r_voice << 13 | r_body_sensor << 12
+    w = r_accept_ir << 31 | r_forward_words << 30 | r_5motor_6enable << 29 | r_5motor_9direction << 27 | r_5motor_5speed << 25 | r_5motor_8duration << 23 | r_3led_3led << 21 | r_3led_8duration << 19 | r_10ultrasonic_6enable << 18 | r_10ultrasonic_6radius << 16 | r_10ultrasonic_8duration << 14 | r_voice << 13 | r_body_sensor << 12
     w |= w.bit_count() & 1
     return w.to_bytes(4, 'big')
 
@@ -357,39 +357,39 @@ def _decode_master_control(d):
     w = int.from_bytes(d, 'big')
     r_accept_ir = (w >> 31) & 0x1
     r_forward_words = (w >> 30) & 0x1
-    r_motor_enable = (w >> 29) & 0x1
-    r_motor_direction = (w >> 27) & 0x3
-    r_motor_speed = (w >> 25) & 0x3
-    r_motor_duration = (w >> 23) & 0x3
-    r_led_led = (w >> 21) & 0x3
-    r_led_duration = (w >> 19) & 0x3
-    r_ultrasonic_enable = (w >> 18) & 0x1
-    r_ultrasonic_radius = (w >> 16) & 0x3
-    r_ultrasonic_duration = (w >> 14) & 0x3
+    r_5motor_6enable = (w >> 29) & 0x1
+    r_5motor_9direction = (w >> 27) & 0x3
+    r_5motor_5speed = (w >> 25) & 0x3
+    r_5motor_8duration = (w >> 23) & 0x3
+    r_3led_3led = (w >> 21) & 0x3
+    r_3led_8duration = (w >> 19) & 0x3
+    r_10ultrasonic_6enable = (w >> 18) & 0x1
+    r_10ultrasonic_6radius = (w >> 16) & 0x3
+    r_10ultrasonic_8duration = (w >> 14) & 0x3
     r_voice = (w >> 13) & 0x1
     r_body_sensor = (w >> 12) & 0x1
     r_reserved_bits = (w >> 1) & 0x7ff
     r_parity = w & 0x1
-    e_motor_direction = _ENUM_motor_direction.get(r_motor_direction)
-    if e_motor_direction is None:
-        raise _dec('master_control', 'motor.direction', r_motor_direction, 'enum', 'MotorDirection', 3, None)
+    e_5motor_9direction = _ENUM_motor_direction.get(r_5motor_9direction)
+    if e_5motor_9direction is None:
+        raise _dec('master_control', 'motor.direction', r_5motor_9direction, 'enum', 'MotorDirection', 3, None)
     if r_reserved_bits:
         raise _dec('master_control', 'reserved_bits', r_reserved_bits, 'reserved', '0', 20, 'CAR-D1')
     x = (w & 0xfffffffe).bit_count() & 1
     if r_parity != x:
         raise _dec('master_control', 'parity', r_parity, 'checksum', str(x), 31, 'CAR-D2')
     g_motor = _object_new(ControlWordMotor)
-    g_motor.enable = r_motor_enable == 1
-    g_motor.direction = e_motor_direction
-    g_motor.speed = r_motor_speed
-    g_motor.duration = r_motor_duration
+    g_motor.enable = r_5motor_6enable == 1
+    g_motor.direction = e_5motor_9direction
+    g_motor.speed = r_5motor_5speed
+    g_motor.duration = r_5motor_8duration
     g_led = _object_new(ControlWordLed)
-    g_led.led = r_led_led
-    g_led.duration = r_led_duration
+    g_led.led = r_3led_3led
+    g_led.duration = r_3led_8duration
     g_ultrasonic = _object_new(ControlWordUltrasonic)
-    g_ultrasonic.enable = r_ultrasonic_enable == 1
-    g_ultrasonic.radius = r_ultrasonic_radius
-    g_ultrasonic.duration = r_ultrasonic_duration
+    g_ultrasonic.enable = r_10ultrasonic_6enable == 1
+    g_ultrasonic.radius = r_10ultrasonic_6radius
+    g_ultrasonic.duration = r_10ultrasonic_8duration
     o = _object_new(MasterControl)
     o.accept_ir = r_accept_ir == 1
     o.forward_words = r_forward_words == 1
@@ -417,52 +417,52 @@ def _encode_slave_control(m):
             raise _enc('slave_control', 'forward_words', r_forward_words, 'type', 'a bool')
         r_forward_words = 1 if r_forward_words else 0
     g_motor = m.motor
-    r_motor_enable = g_motor.enable
-    if r_motor_enable is not True and r_motor_enable is not False:
-        if r_motor_enable != 0 and r_motor_enable != 1:
-            raise _enc('slave_control', 'motor.enable', r_motor_enable, 'type', 'a bool')
-        r_motor_enable = 1 if r_motor_enable else 0
-    r_motor_direction = g_motor.direction
-    if r_motor_direction.__class__ is not MotorDirection and (not isinstance(r_motor_direction, int) or r_motor_direction.__class__ is bool or isinstance(r_motor_direction, enum.Enum) or r_motor_direction not in _VALUES_motor_direction):
-        raise _enc('slave_control', 'motor.direction', r_motor_direction, 'enum', 'MotorDirection', None)
-    r_motor_direction = r_motor_direction._value_ if r_motor_direction.__class__ is MotorDirection else int(r_motor_direction)
-    r_motor_speed = g_motor.speed
-    if r_motor_speed.__class__ is not int and (not isinstance(r_motor_speed, int) or r_motor_speed.__class__ is bool):
-        raise _enc('slave_control', 'motor.speed', r_motor_speed, 'type', 'an int')
-    if not 0 <= r_motor_speed <= 3:
-        raise _enc('slave_control', 'motor.speed', r_motor_speed, 'range', '0..3', None)
-    r_motor_duration = g_motor.duration
-    if r_motor_duration.__class__ is not int and (not isinstance(r_motor_duration, int) or r_motor_duration.__class__ is bool):
-        raise _enc('slave_control', 'motor.duration', r_motor_duration, 'type', 'an int')
-    if not 0 <= r_motor_duration <= 3:
-        raise _enc('slave_control', 'motor.duration', r_motor_duration, 'range', '0..3', None)
+    r_5motor_6enable = g_motor.enable
+    if r_5motor_6enable is not True and r_5motor_6enable is not False:
+        if r_5motor_6enable != 0 and r_5motor_6enable != 1:
+            raise _enc('slave_control', 'motor.enable', r_5motor_6enable, 'type', 'a bool')
+        r_5motor_6enable = 1 if r_5motor_6enable else 0
+    r_5motor_9direction = g_motor.direction
+    if r_5motor_9direction.__class__ is not MotorDirection and (not isinstance(r_5motor_9direction, int) or r_5motor_9direction.__class__ is bool or isinstance(r_5motor_9direction, enum.Enum) or r_5motor_9direction not in _VALUES_motor_direction):
+        raise _enc('slave_control', 'motor.direction', r_5motor_9direction, 'enum', 'MotorDirection', None)
+    r_5motor_9direction = r_5motor_9direction._value_ if r_5motor_9direction.__class__ is MotorDirection else int(r_5motor_9direction)
+    r_5motor_5speed = g_motor.speed
+    if r_5motor_5speed.__class__ is not int and (not isinstance(r_5motor_5speed, int) or r_5motor_5speed.__class__ is bool):
+        raise _enc('slave_control', 'motor.speed', r_5motor_5speed, 'type', 'an int')
+    if not 0 <= r_5motor_5speed <= 3:
+        raise _enc('slave_control', 'motor.speed', r_5motor_5speed, 'range', '0..3', None)
+    r_5motor_8duration = g_motor.duration
+    if r_5motor_8duration.__class__ is not int and (not isinstance(r_5motor_8duration, int) or r_5motor_8duration.__class__ is bool):
+        raise _enc('slave_control', 'motor.duration', r_5motor_8duration, 'type', 'an int')
+    if not 0 <= r_5motor_8duration <= 3:
+        raise _enc('slave_control', 'motor.duration', r_5motor_8duration, 'range', '0..3', None)
     g_led = m.led
-    r_led_led = g_led.led
-    if r_led_led.__class__ is not int and (not isinstance(r_led_led, int) or r_led_led.__class__ is bool):
-        raise _enc('slave_control', 'led.led', r_led_led, 'type', 'an int')
-    if not 0 <= r_led_led <= 3:
-        raise _enc('slave_control', 'led.led', r_led_led, 'range', '0..3', None)
-    r_led_duration = g_led.duration
-    if r_led_duration.__class__ is not int and (not isinstance(r_led_duration, int) or r_led_duration.__class__ is bool):
-        raise _enc('slave_control', 'led.duration', r_led_duration, 'type', 'an int')
-    if not 0 <= r_led_duration <= 3:
-        raise _enc('slave_control', 'led.duration', r_led_duration, 'range', '0..3', None)
+    r_3led_3led = g_led.led
+    if r_3led_3led.__class__ is not int and (not isinstance(r_3led_3led, int) or r_3led_3led.__class__ is bool):
+        raise _enc('slave_control', 'led.led', r_3led_3led, 'type', 'an int')
+    if not 0 <= r_3led_3led <= 3:
+        raise _enc('slave_control', 'led.led', r_3led_3led, 'range', '0..3', None)
+    r_3led_8duration = g_led.duration
+    if r_3led_8duration.__class__ is not int and (not isinstance(r_3led_8duration, int) or r_3led_8duration.__class__ is bool):
+        raise _enc('slave_control', 'led.duration', r_3led_8duration, 'type', 'an int')
+    if not 0 <= r_3led_8duration <= 3:
+        raise _enc('slave_control', 'led.duration', r_3led_8duration, 'range', '0..3', None)
     g_ultrasonic = m.ultrasonic
-    r_ultrasonic_enable = g_ultrasonic.enable
-    if r_ultrasonic_enable is not True and r_ultrasonic_enable is not False:
-        if r_ultrasonic_enable != 0 and r_ultrasonic_enable != 1:
-            raise _enc('slave_control', 'ultrasonic.enable', r_ultrasonic_enable, 'type', 'a bool')
-        r_ultrasonic_enable = 1 if r_ultrasonic_enable else 0
-    r_ultrasonic_radius = g_ultrasonic.radius
-    if r_ultrasonic_radius.__class__ is not int and (not isinstance(r_ultrasonic_radius, int) or r_ultrasonic_radius.__class__ is bool):
-        raise _enc('slave_control', 'ultrasonic.radius', r_ultrasonic_radius, 'type', 'an int')
-    if not 0 <= r_ultrasonic_radius <= 3:
-        raise _enc('slave_control', 'ultrasonic.radius', r_ultrasonic_radius, 'range', '0..3', None)
-    r_ultrasonic_duration = g_ultrasonic.duration
-    if r_ultrasonic_duration.__class__ is not int and (not isinstance(r_ultrasonic_duration, int) or r_ultrasonic_duration.__class__ is bool):
-        raise _enc('slave_control', 'ultrasonic.duration', r_ultrasonic_duration, 'type', 'an int')
-    if not 0 <= r_ultrasonic_duration <= 3:
-        raise _enc('slave_control', 'ultrasonic.duration', r_ultrasonic_duration, 'range', '0..3', None)
+    r_10ultrasonic_6enable = g_ultrasonic.enable
+    if r_10ultrasonic_6enable is not True and r_10ultrasonic_6enable is not False:
+        if r_10ultrasonic_6enable != 0 and r_10ultrasonic_6enable != 1:
+            raise _enc('slave_control', 'ultrasonic.enable', r_10ultrasonic_6enable, 'type', 'a bool')
+        r_10ultrasonic_6enable = 1 if r_10ultrasonic_6enable else 0
+    r_10ultrasonic_6radius = g_ultrasonic.radius
+    if r_10ultrasonic_6radius.__class__ is not int and (not isinstance(r_10ultrasonic_6radius, int) or r_10ultrasonic_6radius.__class__ is bool):
+        raise _enc('slave_control', 'ultrasonic.radius', r_10ultrasonic_6radius, 'type', 'an int')
+    if not 0 <= r_10ultrasonic_6radius <= 3:
+        raise _enc('slave_control', 'ultrasonic.radius', r_10ultrasonic_6radius, 'range', '0..3', None)
+    r_10ultrasonic_8duration = g_ultrasonic.duration
+    if r_10ultrasonic_8duration.__class__ is not int and (not isinstance(r_10ultrasonic_8duration, int) or r_10ultrasonic_8duration.__class__ is bool):
+        raise _enc('slave_control', 'ultrasonic.duration', r_10ultrasonic_8duration, 'type', 'an int')
+    if not 0 <= r_10ultrasonic_8duration <= 3:
+        raise _enc('slave_control', 'ultrasonic.duration', r_10ultrasonic_8duration, 'range', '0..3', None)
     r_voice = m.voice
     if r_voice is not True and r_voice is not False:
         if r_voice != 0 and r_voice != 1:
@@ -475,7 +475,7 @@ def _encode_slave_control(m):
         r_body_sensor = 1 if r_body_sensor else 0
     r_reserved_bits = 0
     r_parity = 0
-    w = r_accept_ir << 31 | r_forward_words << 30 | r_motor_enable << 29 | r_motor_direction << 27 | r_motor_speed << 25 | r_motor_duration << 23 | r_led_led << 21 | r_led_duration << 19 | r_ultrasonic_enable << 18 | r_ultrasonic_radius << 16 | r_ultrasonic_duration << 14 | r_voice << 13 | r_body_sensor << 12
+    w = r_accept_ir << 31 | r_forward_words << 30 | r_5motor_6enable << 29 | r_5motor_9direction << 27 | r_5motor_5speed << 25 | r_5motor_8duration << 23 | r_3led_3led << 21 | r_3led_8duration << 19 | r_10ultrasonic_6enable << 18 | r_10ultrasonic_6radius << 16 | r_10ultrasonic_8duration << 14 | r_voice << 13 | r_body_sensor << 12
     w |= w.bit_count() & 1
     return w.to_bytes(4, 'big')
 
@@ -486,39 +486,39 @@ def _decode_slave_control(d):
     w = int.from_bytes(d, 'big')
     r_accept_ir = (w >> 31) & 0x1
     r_forward_words = (w >> 30) & 0x1
-    r_motor_enable = (w >> 29) & 0x1
-    r_motor_direction = (w >> 27) & 0x3
-    r_motor_speed = (w >> 25) & 0x3
-    r_motor_duration = (w >> 23) & 0x3
-    r_led_led = (w >> 21) & 0x3
-    r_led_duration = (w >> 19) & 0x3
-    r_ultrasonic_enable = (w >> 18) & 0x1
-    r_ultrasonic_radius = (w >> 16) & 0x3
-    r_ultrasonic_duration = (w >> 14) & 0x3
+    r_5motor_6enable = (w >> 29) & 0x1
+    r_5motor_9direction = (w >> 27) & 0x3
+    r_5motor_5speed = (w >> 25) & 0x3
+    r_5motor_8duration = (w >> 23) & 0x3
+    r_3led_3led = (w >> 21) & 0x3
+    r_3led_8duration = (w >> 19) & 0x3
+    r_10ultrasonic_6enable = (w >> 18) & 0x1
+    r_10ultrasonic_6radius = (w >> 16) & 0x3
+    r_10ultrasonic_8duration = (w >> 14) & 0x3
     r_voice = (w >> 13) & 0x1
     r_body_sensor = (w >> 12) & 0x1
     r_reserved_bits = (w >> 1) & 0x7ff
     r_parity = w & 0x1
-    e_motor_direction = _ENUM_motor_direction.get(r_motor_direction)
-    if e_motor_direction is None:
-        raise _dec('slave_control', 'motor.direction', r_motor_direction, 'enum', 'MotorDirection', 3, None)
+    e_5motor_9direction = _ENUM_motor_direction.get(r_5motor_9direction)
+    if e_5motor_9direction is None:
+        raise _dec('slave_control', 'motor.direction', r_5motor_9direction, 'enum', 'MotorDirection', 3, None)
     if r_reserved_bits:
         raise _dec('slave_control', 'reserved_bits', r_reserved_bits, 'reserved', '0', 20, 'CAR-D1')
     x = (w & 0xfffffffe).bit_count() & 1
     if r_parity != x:
         raise _dec('slave_control', 'parity', r_parity, 'checksum', str(x), 31, 'CAR-D2')
     g_motor = _object_new(ControlWordMotor)
-    g_motor.enable = r_motor_enable == 1
-    g_motor.direction = e_motor_direction
-    g_motor.speed = r_motor_speed
-    g_motor.duration = r_motor_duration
+    g_motor.enable = r_5motor_6enable == 1
+    g_motor.direction = e_5motor_9direction
+    g_motor.speed = r_5motor_5speed
+    g_motor.duration = r_5motor_8duration
     g_led = _object_new(ControlWordLed)
-    g_led.led = r_led_led
-    g_led.duration = r_led_duration
+    g_led.led = r_3led_3led
+    g_led.duration = r_3led_8duration
     g_ultrasonic = _object_new(ControlWordUltrasonic)
-    g_ultrasonic.enable = r_ultrasonic_enable == 1
-    g_ultrasonic.radius = r_ultrasonic_radius
-    g_ultrasonic.duration = r_ultrasonic_duration
+    g_ultrasonic.enable = r_10ultrasonic_6enable == 1
+    g_ultrasonic.radius = r_10ultrasonic_6radius
+    g_ultrasonic.duration = r_10ultrasonic_8duration
     o = _object_new(SlaveControl)
     o.accept_ir = r_accept_ir == 1
     o.forward_words = r_forward_words == 1
