@@ -195,6 +195,7 @@ class Field:
     dispatch: bool = False
     by_direction: tuple[tuple[str, int], ...] = ()  # envelope: (direction, value); a dispatch field
     length_of: Optional[tuple[str, str]] = None
+    length_adjust: int = 0  # added to the bytes length_of counts (the field's value is the sum)
     checksum: Optional[Checksum] = None
     fields: tuple["Field", ...] = ()
     message: Optional[Text] = None

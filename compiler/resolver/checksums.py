@@ -12,6 +12,20 @@ CRC_KEYS = ("width", "poly", "init", "refin", "refout", "xorout")
 SIMPLE = ("parity", "sum", "xor", "fletcher")  # algorithms without CRC parameters
 
 
+def coverage(layout: tuple[Field, ...], pair: tuple[str, str]) -> Optional[tuple[int, int]]:
+    """The bits [start, stop) a coverage {from, to} names in the frame, or None if a name is
+    unknown: `payload` starts where the message's own fields start and ends where they end."""
+    by_name = {f.name: f for f in layout}
+    start_f, end_f = by_name.get(pair[0]), by_name.get(pair[1])
+    if start_f is None or end_f is None:
+        return None
+    marker = next((f for f in layout if f.is_payload), None)
+    own = [f for f in layout if not f.from_envelope and not f.is_payload]
+    payload_start = own[0].bit_offset if own else marker.bit_offset if marker else None
+    start = payload_start if start_f.is_payload else start_f.bit_offset
+    return start, end_f.bit_offset + (end_f.bits or 0)
+
+
 class ChecksumsMixin(ResolverBase):
     def resolve_checksum(self, c: dict, path: tuple, bits: Optional[int]) -> Checksum:
         algorithm = c["algorithm"]
@@ -126,10 +140,6 @@ class ChecksumsMixin(ResolverBase):
                        path: tuple) -> tuple[Field, ...]:
         """Compute each checksum's and length field's byte coverage within this frame."""
         by_name = {f.name: f for f in layout}
-        # `payload` starts a coverage where the message's own fields start and ends one where they end
-        marker = next((f for f in layout if f.is_payload), None)
-        own = [f for f in layout if not f.from_envelope and not f.is_payload]
-        payload_start = own[0].bit_offset if own else marker.bit_offset if marker else None
         out = []
         for f in layout:
             span = None
@@ -142,8 +152,7 @@ class ChecksumsMixin(ResolverBase):
                                           f"message {name!r}: {f.name!r} covers unknown field "
                                                  f"{end_name!r}", "name envelope fields or `payload`")
                 if start_f and end_f:
-                    start = payload_start if start_f.is_payload else start_f.bit_offset
-                    stop = end_f.bit_offset + (end_f.bits or 0)
+                    start, stop = coverage(layout, pair)
                     refused = f.checksum and f.checksum.over != "bytes"  # resolve_checksum refuses its range
                     if (start % 8 or stop % 8) and not refused:
                         self.error(path, f"message {name!r}: coverage of {f.name!r} is not whole bytes")
@@ -161,8 +170,8 @@ class ChecksumsMixin(ResolverBase):
                     self.error(path, f"checksum {f.name!r}: give `covers: {{from, to}}` in bytes framing")
                 f = replace(f, checksum=replace(f.checksum, byte_span=span))
             elif f.length_of and span:
-                value = span[1] - span[0]
-                if not self.int_fits(value, f.kind, f.bits or 0):
+                value = span[1] - span[0] + f.length_adjust
+                if value < 0 or not self.int_fits(value, f.kind, f.bits or 0):
                     self.error(path, f"message {name!r}: length {value} does not fit {f.name!r}")
                 f = replace(f, const=value)
             out.append(f)

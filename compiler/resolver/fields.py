@@ -120,6 +120,7 @@ class FieldsMixin(ResolverBase):
             to_end=bool(f.get("to_end")), dispatch=bool(f.get("dispatch")) or bool(f.get("by_direction")) and allow_payload,
             by_direction=tuple(f.get("by_direction", {}).items()),
             length_of=(f["length_of"]["from"], f["length_of"]["to"]) if "length_of" in f else None,
+            length_adjust=f["length_of"].get("adjust", 0) if "length_of" in f else 0,
             checksum=self.resolve_checksum(f["checksum"], path + ("checksum",), bits)
             if "checksum" in f else None,
             fields=sub_fields, message=text(f.get("message")), rule=f.get("rule"),

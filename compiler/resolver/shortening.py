@@ -10,8 +10,8 @@ from dataclasses import replace
 
 from ..model import Counter, Field, Framing, Gap, Shortening
 from .base import ResolverBase
+from .checksums import coverage
 
-PAYLOAD = ("payload", "payload")
 
 
 def element_bytes(counted: Field) -> int:
@@ -29,12 +29,13 @@ class ShorteningMixin(ResolverBase):
         first_extension = self.check_extensions_last(name, own, path)
         if first_extension is None and not framing.truncate:
             return None
-        counter = next((f for f in layout if f.length_of == PAYLOAD), None)
+        counter = self.payload_length(layout)
         if counter is None:
             where = ("framing", "truncate") if framing.truncate else path + ("fields", own.index(first_extension))
             self.error(where, f"message {name!r}: a frame that may be shorter than its message needs a "
                               "length field that counts the payload", "add to the framing's layout a field "
-                                                                      "with length_of: {from: payload, to: payload}")
+                                                                      "with length_of: {from: payload, to: payload}, or "
+                                                                      "a range around the payload")
             return None
         marker = next((f for f in layout if f.is_payload), None)
         if marker is None:  # the layout's own error says so
@@ -80,13 +81,7 @@ class ShorteningMixin(ResolverBase):
         if marker is None:  # the layout's own error says so
             return None
         start, end = own[0].bit_offset // 8, marker.bit_offset // 8
-        length = next((f for f in layout if f.length_of == PAYLOAD), None)
-        fixed = next((f for f in layout if f.length_of and f.length_of != PAYLOAD), None)
-        if fixed is not None:
-            self.error(where, f"message {name!r}: {fixed.name!r} counts {fixed.length_of[0]}..{fixed.length_of[1]}, "
-                              f"a span whose size changes with {gapped[0].name!r}",
-                       "count the payload alone: length_of: {from: payload, to: payload}")
-            return None
+        length = self.payload_length(layout)
         if length is None and not framing.encoding and (len(gaps) > 1 or gaps[0].presence):
             self.error(where, f"message {name!r}: without a length field or a byte stuffing that ends frames, "
                               f"a stream decoder cannot tell where a frame with {gapped[-1].name!r} ends",
@@ -101,6 +96,20 @@ class ShorteningMixin(ResolverBase):
         self.check_spans_end_with_payload(name, layout, length, (start, end), path, gaps[0].span[0])
         least = end - start - sum(g.size for g in gaps)
         return Shortening((start, end), least, None if length is None else length.name, gaps=tuple(gaps))
+
+    @staticmethod
+    def payload_length(layout: tuple[Field, ...]) -> Optional[Field]:
+        """The length field whose coverage holds the whole payload: it counts the bytes sent."""
+        marker = next((f for f in layout if f.is_payload), None)
+        own = [f for f in layout if not f.from_envelope and not f.is_payload]
+        if marker is None:
+            return None
+        start = own[0].bit_offset if own else marker.bit_offset
+        for f in layout:
+            span = coverage(layout, f.length_of) if f.length_of else None
+            if span is not None and span[0] <= start and span[1] >= marker.bit_offset:
+                return f
+        return None
 
     def gap_of(self, name: str, f: Field, framing: Framing, where: tuple) -> Optional[Gap]:
         """The bytes of counted or conditional field `f`, which must be whole bytes."""
@@ -241,14 +250,16 @@ class ShorteningMixin(ResolverBase):
         coverage must end where the payload does: bytes after a cut payload move."""
         start, end = payload
         for f in layout:
-            if f.length_of and f is not counter and counter is not None:
+            span = coverage(layout, f.length_of) if f.length_of and f is not counter else None
+            if span is not None and span[1] > start * 8 and counter is not None and span[0] <= start * 8 \
+                    and span[1] >= end * 8:
                 self.error(path, f"message {name!r}: {f.name!r} is a second length field; a frame that may "
-                                 f"be cut short has one, {counter.name!r}, which counts the payload sent",
+                                 f"be cut short has one, {counter.name!r}, which counts the bytes sent",
                            "drop the other length field")
-            elif f.length_of and counter is None:
-                self.error(path, f"message {name!r}: {f.name!r} does not count the payload alone; in a "
-                                 "frame that may be cut short a length field counts the payload sent",
-                           "give it length_of: {from: payload, to: payload}")
+            elif span is not None and span[1] > start * 8 and span[0] < end * 8:
+                self.error(path, f"message {name!r}: {f.name!r} counts part of a payload that may be cut "
+                                 "short, but not all of it", "count from the payload's start (or before) "
+                                                             "to its end (or after)")
             span = f.checksum.byte_span if f.checksum else None
             if span is not None and span[1] > start and span[1] != end:
                 self.error(path, f"message {name!r}: {f.name!r} covers bytes past the start of a payload "

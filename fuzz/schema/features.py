@@ -11,6 +11,7 @@ FULL = frozenset({
     "bytes", "text", "bits",                # framings
     "text_form", "field_sum", "one_hot",    # bits framing: a text form, checksums over fields, one-hot
     "sync", "length", "no_dispatch",        # envelope parts (bytes)
+    "length_range",                         # a length that counts itself (and the checksum), adjusted
     "sync2", "two_keys", "by_direction",    # a sync of two bytes; two dispatch fields; a direction byte
     "sum", "xor", "crc", "fletcher",        # checksums over bytes
     "complement", "crc_extra",              # a sum's complement, xorout; a CRC's per-message extra byte

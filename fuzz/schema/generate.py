@@ -90,6 +90,8 @@ class Generator:
                 if length:  # arrays make payloads of more than 255 bytes
                     width = "u16" if {"arrays", "counted", "conditional"} & self.on else "u8"
                     layout.append({"name": "len", "type": width, "length_of": {"from": key, "to": "payload"}})
+                    if shortens and self.has("length_range", 0.4):  # counting itself (CRSF, MSP v2)
+                        layout[-1]["length_of"] = {"from": "len", "to": "payload", "adjust": rng.randint(-1, 3)}
                 if two_keys:  # messages told apart by a group and a kind, as UBX's class and id
                     layout.append({"name": "group", "type": rng.choice(["u8", "u4"]), "dispatch": True})
                     layout.append({"name": "kind", "type": "u8" if layout[-1]["type"] == "u8" else "u4",
@@ -121,6 +123,9 @@ class Generator:
                 check = {"algorithm": algorithm, "covers": {"from": first, "to": "payload"}}
                 width = self.final_step(check, width)
             layout.append({"name": "check", "type": f"u{width}", "checksum": check})
+            counter = next((f for f in layout if f.get("length_of", {}).get("adjust") is not None), None)
+            if counter is not None and rng.random() < 0.5:  # and the checksum after the payload
+                counter["length_of"]["to"] = "check"
         self.little = self.lsb or self.has("little")
         framing = {"kind": "bytes", "byte_order": "little" if self.little else "big", "layout": layout}
         if shortens and self.has("truncate", 0.35):

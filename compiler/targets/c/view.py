@@ -742,6 +742,8 @@ class CView:
             if span.kind == "bytes":
                 c(f"memcpy(buf + {span.start}, {self.member(leaf)}, {leaf.field.length});")
             elif span.kind == "int" and self.is_byte_checksum(leaf):
+                if truncates and span.start >= sh.payload[1]:  # moved up before it is filled in
+                    c(f"memset(buf + {span.start}, 0, {span.size}u);")
                 continue  # written once the bytes it covers are
             elif span.kind == "int":
                 c(self.int_put(span.start, span.size, self.order_of(leaf.field), raws[leaf.var]))

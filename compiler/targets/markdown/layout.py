@@ -144,6 +144,9 @@ def range_text(p: Protocol, f: Field) -> str:
     f = f.element
     if f.const is not None:
         value = f"{f.const:#04x}" if isinstance(f.const, int) and not isinstance(f.const, bool) and f.bits and f.bits >= 8 else number(f.const)
+        if f.length_of is not None and f.length_adjust:  # the count is not the bytes alone
+            sign = "+" if f.length_adjust > 0 else "−"
+            return f"= {value} (bytes {f.length_of[0]} … {f.length_of[1]} {sign} {abs(f.length_adjust)})"
         return f"= {value}"
     if f.reserved:
         return "0 (reserved)"

@@ -262,6 +262,7 @@ static inline int mavlink2_heartbeat_encode(const mavlink2_heartbeat_t *m, uint8
     buf[16] = (uint8_t)r[11];
     buf[17] = (uint8_t)r[12];
     buf[18] = (uint8_t)r[13];
+    memset(buf + 19, 0, 2u);
     while (cut < 8u && buf[18u - cut] == 0u) {  /* trailing zeros are not sent */
         cut++;
     }
@@ -401,6 +402,7 @@ static inline int mavlink2_sys_status_encode(const mavlink2_sys_status_t *m, uin
     cw_put_le32(buf + 41, (uint32_t)r[21]);
     cw_put_le32(buf + 45, (uint32_t)r[22]);
     cw_put_le32(buf + 49, (uint32_t)r[23]);
+    memset(buf + 53, 0, 2u);
     while (cut < 42u && buf[52u - cut] == 0u) {  /* trailing zeros are not sent */
         cut++;
     }
@@ -540,6 +542,7 @@ static inline int mavlink2_param_value_encode(const mavlink2_param_value_t *m, u
     cw_put_le16(buf + 16, (uint16_t)r[10]);
     memcpy(buf + 18, m->param_id, 16);
     buf[34] = (uint8_t)r[11];
+    memset(buf + 35, 0, 2u);
     while (cut < 24u && buf[34u - cut] == 0u) {  /* trailing zeros are not sent */
         cut++;
     }
@@ -678,6 +681,7 @@ static inline int mavlink2_gps_raw_int_encode(const mavlink2_gps_raw_int_t *m, u
     cw_put_le32(buf + 52, (uint32_t)r[21]);
     cw_put_le32(buf + 56, (uint32_t)r[22]);
     cw_put_le16(buf + 60, (uint16_t)r[23]);
+    memset(buf + 62, 0, 2u);
     while (cut < 51u && buf[61u - cut] == 0u) {  /* trailing zeros are not sent */
         cut++;
     }
@@ -837,6 +841,7 @@ static inline int mavlink2_attitude_encode(const mavlink2_attitude_t *m, uint8_t
     cw_put_le32(buf + 26, (uint32_t)r[12]);
     cw_put_le32(buf + 30, (uint32_t)r[13]);
     cw_put_le32(buf + 34, (uint32_t)r[14]);
+    memset(buf + 38, 0, 2u);
     while (cut < 27u && buf[37u - cut] == 0u) {  /* trailing zeros are not sent */
         cut++;
     }
@@ -976,6 +981,7 @@ static inline int mavlink2_command_ack_encode(const mavlink2_command_ack_t *m, u
     cw_put_le32(buf + 14, (uint32_t)r[11]);
     buf[18] = (uint8_t)r[12];
     buf[19] = (uint8_t)r[13];
+    memset(buf + 20, 0, 2u);
     while (cut < 9u && buf[19u - cut] == 0u) {  /* trailing zeros are not sent */
         cut++;
     }

@@ -1008,6 +1008,7 @@ static inline int modbus_rtu_read_holding_registers_response_encode(const modbus
     cw_put_be16(buf + 247, (uint16_t)r[125]);
     cw_put_be16(buf + 249, (uint16_t)r[126]);
     cw_put_be16(buf + 251, (uint16_t)r[127]);
+    memset(buf + 253, 0, 2u);
     size_t lost0 = (size_t)(125u - m->registers_count) * 2u;
     memmove(buf + (253u - lost0), buf + 253, 2u - cut);
     cut += lost0;
@@ -2084,6 +2085,7 @@ static inline int modbus_rtu_write_multiple_registers_encode(const modbus_rtu_wr
     cw_put_be16(buf + 247, (uint16_t)r[125]);
     cw_put_be16(buf + 249, (uint16_t)r[126]);
     cw_put_be16(buf + 251, (uint16_t)r[127]);
+    memset(buf + 253, 0, 2u);
     size_t lost0 = (size_t)(123u - m->values_count) * 2u;
     memmove(buf + (253u - lost0), buf + 253, 2u - cut);
     cut += lost0;
