@@ -24,6 +24,7 @@ from .targets.c.view import CTargetError
 from .targets.machines.packets import MachineTargetError
 from .targets import markdown as markdown_target
 from .targets import promela as promela_target
+from .targets.markdown.site import is_generated, render_site
 from .vectors import write_vectors
 
 
@@ -97,6 +98,7 @@ class BuildResult:
     unchanged: list[Path] = field(default_factory=list)
     stale: list[Path] = field(default_factory=list)  # check mode: differ or missing
     extra: list[Path] = field(default_factory=list)  # check mode: generated files with no schema
+    notes: list[str] = field(default_factory=list)  # what the build left alone, and why
     errors: list[Diagnostic] = field(default_factory=list)
 
 
@@ -133,6 +135,7 @@ def build(schemas: list[Path], out: Path | Project, check: bool = False, root: P
     placed = {place: text for rel, text in expected.items() if (place := _place(project, rel)) is not None}
     if project.python_package and "python" in project.targets and protocols:
         placed[project.folder("python") / project.python_package / "__init__.py"] = package_init(listed)
+    placed.update(_site(project, listed, result))
     for target, text in sorted(placed.items()):
         rel = target
         if isinstance(text, Spool):
@@ -165,6 +168,17 @@ def build(schemas: list[Path], out: Path | Project, check: bool = False, root: P
                         and "__pycache__" not in existing.parts:
                     result.extra.append(existing)
     return result
+
+
+def _site(project: Project, listed: list[Protocol], result: BuildResult) -> dict[Path, str]:
+    """The project's MkDocs configuration, unless it has none or keeps its own."""
+    if project.site is None or "docs" not in project.targets or not listed:
+        return {}
+    if not is_generated(project.site):
+        result.notes.append(f"{project.site}: not written by codeword, left as it is (name another file with "
+                            "`[docs] site = \"...\"` in codeword.toml, or none with `site = false`)")
+        return {}
+    return render_site(listed, project.site, project.folder("docs"))
 
 
 def _display(path: Path, root: Path | None) -> str:

@@ -56,7 +56,12 @@ def cmd_build(args: argparse.Namespace) -> int:
     if result.errors:
         print(f"{len(result.errors)} error(s); nothing written", file=sys.stderr)
         return USAGE
-    folders = ", ".join(f"{project.folder(t)}/" for t in project.targets)
+    for note in result.notes:
+        print(f"note: {note}", file=sys.stderr)
+    places = [f"{project.folder(t)}/" for t in project.targets]
+    if project.site is not None and "docs" in project.targets:
+        places.append(str(project.site))
+    folders = ", ".join(places)
     if args.check:
         for path in result.stale:
             print(f"stale: {path}")

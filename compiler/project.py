@@ -3,8 +3,9 @@ each target's files go.
 
 Read from `codeword.toml`, or from `[tool.codeword]` in `pyproject.toml`, in the
 current folder or the nearest folder above it; without either, the defaults
-(every `schemas/*.yaml`, every target, into `generated/<target>/`). Paths in the
-configuration are relative to the file that holds it.
+(every `schemas/*.yaml`, every target, into `generated/<target>/`, the MkDocs
+configuration of the docs as `mkdocs.yml`). Paths in the configuration are
+relative to the file that holds it.
 """
 from __future__ import annotations
 
@@ -22,7 +23,8 @@ from .names import protocol_name_problem
 
 CONFIG_FILE = "codeword.toml"
 TARGETS = ("python", "c", "docs", "vectors", "promela")
-KEYS = {"schemas", "targets", "out", "outputs", "python"}
+KEYS = {"schemas", "targets", "out", "outputs", "python", "docs"}
+SITE_FILE = "mkdocs.yml"
 
 
 class ProjectError(Exception):
@@ -38,6 +40,9 @@ class Project:
     out: Path = Path("generated")
     outputs: tuple[tuple[str, Path], ...] = ()  # per-target folders that differ from out/<target>
     python_package: Optional[str] = None
+    # the MkDocs configuration written for the docs; None: none (a build into
+    # another folder, or a project that configures `[docs] site = false`)
+    site: Optional[Path] = None
 
     def folder(self, target: str) -> Path:
         """Where a target's files go, relative to the working folder."""
@@ -73,9 +78,10 @@ class Project:
         changes: dict[str, Any] = {}
         if schema_dir is not None:
             changes["schema_paths"] = (Path(schema_dir),)
-        if out is not None:
+        if out is not None:  # a build elsewhere leaves the project's site configuration alone
             changes["out"] = Path(out)
             changes["outputs"] = ()
+            changes["site"] = None
         if targets is not None:
             changes["targets"] = parse_targets([t.strip() for t in targets.split(",") if t.strip()], "--targets")
         if not changes:
@@ -119,9 +125,19 @@ def load_project(cwd: Optional[Path] = None) -> Project:
     cwd = cwd or Path.cwd()
     found = find_config(cwd)
     if found is None:
-        return Project(root=cwd, config=None)
+        return Project(root=cwd, config=None, site=Path(SITE_FILE))
     path, table = found
     return from_table(table, path, cwd)
+
+
+def _site(docs: Any, where: str, place) -> Optional[Path]:
+    """`[docs] site = "mkdocs.yml"` (the default) or `site = false`."""
+    if not isinstance(docs, dict) or set(docs) - {"site"}:
+        raise ProjectError(f"{where}: [docs] takes one key, site = \"{SITE_FILE}\" (or false for none)")
+    site = docs.get("site", SITE_FILE)
+    if site is False:
+        return None
+    return place(site, "docs.site")
 
 
 def from_table(table: dict, path: Path, cwd: Path) -> Project:
@@ -135,7 +151,7 @@ def from_table(table: dict, path: Path, cwd: Path) -> Project:
 
     def place(value: Any, key: str) -> Path:
         if not isinstance(value, str) or not value:
-            raise ProjectError(f"{where}: {key} must be a folder name (a non-empty string)")
+            raise ProjectError(f"{where}: {key} must be a path (a non-empty string)")
         full = (base / value)
         try:
             return full.relative_to(cwd)
@@ -165,7 +181,7 @@ def from_table(table: dict, path: Path, cwd: Path) -> Project:
         if problem:
             raise ProjectError(f"{where}: python.package {problem}")
     return Project(
-        root=base, config=path,
+        root=base, config=path, site=_site(table.get("docs", {}), where, place),
         schema_paths=tuple(place(s, "schemas") for s in schemas),
         targets=parse_targets(targets, f"{where}: targets"),
         out=place(table.get("out", "generated"), "out"),

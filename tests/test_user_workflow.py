@@ -64,6 +64,15 @@ def test_the_wheel_has_codeword_and_no_compiler_package(venv):
     assert shadow.returncode != 0 and "No module named 'compiler'" in shadow.stderr
 
 
+def test_the_wheel_ships_what_the_docs_site_needs(venv):
+    """The MkDocs configuration's template and the Mermaid script the build copies next to the pages."""
+    check = ("from codeword.targets.markdown.site import MERMAID; from codeword.targets.render import TEMPLATES; "
+             "assert MERMAID.stat().st_size > 1_000_000 and (TEMPLATES / 'docs' / 'mkdocs.yml.j2').is_file()")
+    proc = subprocess.run([str(venv / "bin" / "python"), "-c", check], cwd="/", capture_output=True, text=True,
+                          env=clean_env())
+    assert proc.returncode == 0, proc.stderr
+
+
 def test_every_command_of_the_section_runs_in_an_empty_folder(venv, tmp_path):
     wheel = next((venv.parent / "dist").glob("codeword-*.whl"))
     script = ["set -euo pipefail"]

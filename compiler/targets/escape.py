@@ -13,6 +13,7 @@ print a model `Text` object that did not pass through one.
 from __future__ import annotations
 
 import html
+import json
 import re
 from typing import Any
 
@@ -139,7 +140,13 @@ def html_comment(value: Any) -> str:
     return re.sub(r"-(?=-)", "- ", text)
 
 
+def yaml_string(value: Any) -> str:
+    """A YAML double-quoted scalar: a JSON string in ASCII, which YAML reads as the same
+    text, so that no name or path can be taken for a number, a boolean or syntax."""
+    return json.dumps(str(value), ensure_ascii=True)
+
+
 FILTERS = {"c_comment": c_comment, "c_string": c_string, "c_char": c_char, "pml_comment": pml_comment,
            "py_comment": py_comment, "py_string": py_string, "py_docstring": py_docstring,
            "md_text": md_text, "md_code": md_code, "md_fence": md_fence, "html_comment": html_comment,
-           "mermaid_text": mermaid_text}
+           "mermaid_text": mermaid_text, "yaml_string": yaml_string}

@@ -19,6 +19,7 @@ from .examples import message_example, sequence_example
 from .layout import diagram, field_columns, field_rows, payload_note, shown, slots, text_line
 from .stuffing import encoding_lines
 from .machines import conditions, machine_view, sequence_view
+from .site import mermaid_script
 from .text import LANGUAGES, DecisionLinker, anchor, cell, code, en, number, originals, with_original
 from ..render import environment, tidy
 from ..wire import stream_facts
@@ -224,7 +225,9 @@ def protocol_view(p: Protocol, codec: types.ModuleType) -> dict:
         carried = [link_msg(m.name) for m in p.messages if m.direction == d.name]
         directions.append({"name": d.name, "route": f"{d.source} → {d.target}", "messages": carried,
                            "doc": cell(en(d.doc)), "originals": [(l, cell(t)) for l, t in originals(d.doc)]})
-    contents = ["[All protocols](index.md)", "[Overview](#overview)", "[Messages](#message-catalogue)"]
+    overview = bool(en(p.doc) or p.roles or p.directions or p.transports or p.parameters)
+    contents = ["[All protocols](index.md)"] + (["[Overview](#overview)"] if overview else [])
+    contents.append("[Messages](#message-catalogue)")
     if p.enums or p.flags:
         contents.append("[Enumerations and flags](#enumerations-and-flags)")
     contents += ["[Checksum](#checksum)", "[Framing](#framing)"]
@@ -235,11 +238,12 @@ def protocol_view(p: Protocol, codec: types.ModuleType) -> dict:
         contents.append("[State machines](#state-machines)")
     if delivery:
         contents.append("[Delivery guarantee](#delivery)")
-    contents.append("[Spec notes](#spec-notes)")
+    if p.notes:
+        contents.append("[Spec notes](#spec-notes)")
     if p.history:
         contents.append("[Version history](#version-history)")
     return {
-        "p": p, "name": p.name, "title": cell(en(p.title)), "contents": contents,
+        "p": p, "name": p.name, "title": cell(en(p.title)), "contents": contents, "overview": overview,
         "title_originals": [(LANGUAGES.get(l, l), cell(t)) for l, t in originals(p.title)],
         "languages": [LANGUAGES.get(l, l) for l in languages],
         "doc": linker.link(cell(en(p.doc))), "doc_originals": [(LANGUAGES.get(l, l), cell(t)) for l, t in originals(p.doc)],
@@ -299,4 +303,4 @@ def render_index(protocols: list[Protocol]) -> dict[str, str]:
     env = environment()
     text = env.get_template("docs/index.md.j2").render(protocols=rows)
     style = env.get_template("docs/codeword.css").render()
-    return {"docs/index.md": tidy(text, max_blank=1), "docs/codeword.css": style}
+    return {"docs/index.md": tidy(text, max_blank=1), "docs/codeword.css": style, **mermaid_script(protocols)}

@@ -12,7 +12,7 @@ from .text import cell, en, number, originals
 
 # Serial characters are 8N1: a start bit, 8 data bits, a stop bit.
 BITS_PER_CHAR = 10
-# A rate for serial links whose seed names none: 9600 baud, the common default
+# A rate for serial links whose schema names none: 9600 baud, the common default
 # of UARTs and serial radio modules.
 REFERENCE_BAUD = 9600
 # The longest shortest-round-trip text of an IEEE-754 binary64 is 24 characters
@@ -117,7 +117,7 @@ def repeated_words(p: Protocol, t: Transport, codec: types.ModuleType) -> list[t
 def serial_lines(p: Protocol, t: Transport, codec: types.ModuleType, baud: int, assumed: bool) -> list[tuple[str, str, str]]:
     """Text lines over a serial link: characters and time per message and per file."""
     rate = f"{baud} baud, 8N1 ({BITS_PER_CHAR} bits a character)"
-    rows = [("line rate", rate, "no rate in the seed: a reference rate, not a spec value" if assumed
+    rows = [("line rate", rate, "no rate in the schema: a reference rate, not a spec value" if assumed
              else "from the transport's parameters")]
     for m in p.messages:
         longest = longest_text_line(p, m)
