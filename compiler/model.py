@@ -217,11 +217,17 @@ class Field:
         return self.decimals is not None or self.width is not None
 
     @property
+    def varies(self) -> bool:
+        """An array or bytes field whose frames carry from none to all of it: counted by an
+        earlier field, or filling the rest of the payload (binary `to_end`)."""
+        return self.counted_by is not None or self.to_end and (self.count is not None or self.kind == "bytes")
+
+    @property
     def element(self) -> "Field":
         """One element of an array field (the field itself when it is not one)."""
         if self.count is None:
             return self
-        return replace(self, count=None, counted_by=None, counts_bytes=False,
+        return replace(self, count=None, counted_by=None, counts_bytes=False, to_end=False,
                        bits=None if self.bits is None else self.bits // self.count)
 
     @property
@@ -398,7 +404,7 @@ class Counter:
     are left off."""
 
     field: str  # the counted array or bytes field
-    count_field: str  # the earlier field whose value gives its length
+    count_field: Optional[str]  # the earlier field whose value gives its length (None: the frame's size does)
     element_bytes: int  # bytes of one element (1 for a bytes field)
     most: int  # the most elements it holds
     counts_bytes: bool = False  # the count field's value is bytes, not elements
@@ -452,9 +458,14 @@ class Gap:
     presence: Optional[Presence] = None  # conditional: when all of it is sent
 
     @property
-    def control(self) -> str:
-        """The earlier field whose value says how many of the bytes are sent."""
+    def control(self) -> Optional[str]:
+        """The earlier field whose value says how many of the bytes are sent (None: the frame's size)."""
         return self.counter.count_field if self.counter else self.presence.field
+
+    @property
+    def fills_rest(self) -> bool:
+        """The field takes what the frame holds after the fields before it."""
+        return self.counter is not None and self.counter.count_field is None
 
     @property
     def size(self) -> int:

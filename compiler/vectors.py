@@ -110,7 +110,7 @@ class Generator:
         if f.count is not None:  # an array: each element at the edge
             element = f.element
             n = f.count
-            if f.counted_by:  # a counted array: none at min, one at zero, the most at max
+            if f.varies:  # a counted array: none at min, one at zero, the most at max
                 n = {"min": 0, "zero": 1, "max": f.count}.get(edge, rng.randint(0, f.count))
             return [self.value(element, edge) for _ in range(n)]
         if f.kind == "group":
@@ -147,7 +147,7 @@ class Generator:
             chars = self.alphabet(f)
             text = "".join(rng.choice(chars) for _ in range(n))
             return text.strip() if self.p.framing.trim else text
-        if f.kind == "bytes" and f.counted_by:  # none at min, one at zero, the most at max
+        if f.kind == "bytes" and f.varies:  # none at min, one at zero, the most at max
             return rng.randbytes({"min": 0, "zero": 1, "max": f.length}.get(edge, rng.randint(0, f.length))).hex()
         if f.kind == "bytes":
             return rng.randbytes(f.length).hex()

@@ -47,7 +47,7 @@ class Driver:
                 element = f.element
                 if value:  # an empty list: zeros, as a missing initialiser leaves them
                     parts.append(f".{f.name} = {{{', '.join(self.one(element, x) for x in value)}}}")
-                if f.counted_by:  # elements past the count are 0, as the decoder leaves them
+                if f.varies:  # elements past the count are 0, as the decoder leaves them
                     parts.append(f".{f.name}_count = {len(value)}u")
                 if self.v.rep(element).has_flag and value:
                     parts.append(f".has_{f.name} = {{{', '.join('false' if x is None else 'true' for x in value)}}}")
@@ -61,7 +61,7 @@ class Driver:
                 if value is None:
                     continue
             parts.append(f".{f.name} = {self.scalar(f, value)}")
-            if f.counted_by:  # counted bytes: the bytes past the count are 0, as the decoder leaves them
+            if f.varies:  # counted bytes: the bytes past the count are 0, as the decoder leaves them
                 parts.append(f".{f.name}_count = {len(bytes.fromhex(value))}u")
         return "{" + ", ".join(parts) + "}" if parts else "{0}"
 
@@ -118,7 +118,7 @@ class Driver:
                 continue
             if f.count is not None:  # an array: each element as a field of its own
                 element = f.element
-                if f.counted_by:
+                if f.varies:
                     out.append(f"if (a->{prefix}{f.name}_count != b->{prefix}{f.name}_count) return false;")
                 for i in range(f.count):
                     out += self.equal_lines((element,), prefix, f"[{i}]")
@@ -139,7 +139,7 @@ class Driver:
                 cond = f"{to_bits}({a}) != {to_bits}({b})"
             elif f.kind == "str":
                 cond = f"strcmp({a}, {b}) != 0"
-            elif f.kind == "bytes" and f.counted_by:
+            elif f.kind == "bytes" and f.varies:
                 out.append(f"if ({a}_count != {b}_count) return false;")
                 cond = f"memcmp({a}, {b}, {f.length}) != 0"
             elif f.kind == "bytes":

@@ -87,13 +87,15 @@ class FieldsMixin(ResolverBase):
         counted_by = None
         if isinstance(length, dict):  # bytes whose length an earlier field gives: max_length at most
             counted_by, length = self.counted_length(name, kind, f, path, allow_payload)
+        if kind == "bytes" and length is None and f.get("to_end") and isinstance(f.get("max_length"), int):
+            length = f["max_length"]  # the most the rest of the payload holds
         if kind == "bytes":
             if length is None:
-                self.error(path, f"bytes field {name!r} needs a fixed `length`",
-                           "variable-length byte strings are not supported yet")
+                self.error(path, f"bytes field {name!r} needs a `length`: a number, `{{from: <field>}}` "
+                                 "with max_length, or to_end with max_length")
                 length = 1
             if not 0 < length <= MAX_BYTES_LENGTH:
-                key = "max_length" if counted_by else "length"
+                key = "max_length" if counted_by or f.get("to_end") else "length"
                 self.error(path + (key,), f"field {name!r}: {key} {length} is outside 1..{MAX_BYTES_LENGTH}",
                            f"give {key} between 1 and {MAX_BYTES_LENGTH}")
                 length = 1
@@ -133,7 +135,9 @@ class FieldsMixin(ResolverBase):
             field = self.counted_array(field, f, path, allow_payload)
         elif "count" in f:
             field = self.array_of(field, f["count"], path, allow_payload)
-        if "max_count" in f and not isinstance(f.get("count"), dict):
+        elif field.to_end and self.framing_kind != "text":
+            field = self.rest_of_payload(field, f, path, allow_payload)
+        if "max_count" in f and not isinstance(f.get("count"), dict) and not (field.to_end and field.count):
             self.error(path + ("max_count",), f"field {name!r}: max_count is for an array whose count "
                                               "another field gives", "drop it, or write `count: {from: <field>}`")
         return field
@@ -175,6 +179,27 @@ class FieldsMixin(ResolverBase):
         else:
             return f["length"]["from"], f["max_length"]
         return None, 1
+
+    def rest_of_payload(self, field: Field, f: dict, path: tuple, in_envelope: bool) -> Field:
+        """`to_end: true` in a bytes framing: bytes (up to max_length) or an array (up to
+        max_count) that fills what the frame holds after the fields before it."""
+        name, where = field.name, path + ("to_end",)
+        if self.framing_kind != "bytes" or in_envelope:
+            self.error(where, f"field {name!r}: to_end applies to message fields of text and bytes framings",
+                       "drop to_end")
+        elif field.kind == "bytes":
+            if "max_length" not in f:
+                self.error(where, f"field {name!r}: bytes that fill the rest of the payload need `max_length`",
+                           "add max_length: <bytes>")
+            else:
+                return replace(field, counts_bytes=True)
+        elif "max_count" not in f:
+            self.error(where, f"field {name!r}: an array that fills the rest of the payload needs `max_count`",
+                       "add max_count: <elements>")
+        else:
+            array = self.array_of(field, f["max_count"], path, in_envelope, "max_count")
+            return array if array.count is None else replace(array, counts_bytes=True)
+        return replace(field, to_end=False)
 
     def counted_array(self, element: Field, f: dict, path: tuple, in_envelope: bool) -> Field:
         """`count: {from: n, unit: elements|bytes}` with `max_count`: an array of at most
@@ -288,14 +313,17 @@ class FieldsMixin(ResolverBase):
             self.error(path + ("byte_order",), f"field {name!r}: byte_order needs a multi-byte field")
         if f.reserved and kind not in ("uint", "int"):
             self.error(path + ("reserved",), f"field {name!r}: reserved bits are an unsigned integer")
-        if (f.optional or f.to_end) and self.framing_kind != "text":
-            self.error(path, f"field {name!r}: optional/to_end apply to text framing")
+        if f.optional and self.framing_kind != "text":
+            self.error(path, f"field {name!r}: optional applies to text framing")
         if f.decimals is not None or f.width is not None:
             self.check_fixed_spelling(f, path)
         if f.extension:
             self.check_extension(f, path)
-        if f.to_end and kind != "str":
+        if f.to_end and kind != "str" and self.framing_kind == "text":
             self.error(path + ("to_end",), f"field {name!r}: to_end applies to str fields")
+        elif f.to_end and kind == "str" and self.framing_kind != "text":
+            self.error(path + ("to_end",), f"field {name!r}: a str field is for text framing",
+                       "use bytes with to_end and max_length")
         if kind == "str" and f.length is None and f.max_length is None:
             self.error(path, f"field {name!r}: a str field needs `max_length` (or a fixed `length`)",
                        "C decoders keep the text in a buffer of that size")

@@ -23,7 +23,7 @@ class ShorteningMixin(ResolverBase):
     def shortening(self, name: str, layout: tuple[Field, ...], framing: Framing, path: tuple) -> Optional[Shortening]:
         """How much of the payload a frame of this message may leave off, or None."""
         own = tuple(f for f in layout if not f.from_envelope and not f.is_payload)  # placed
-        gapped = [f for f in own if f.counted_by or f.present_if]
+        gapped = [f for f in own if f.varies or f.present_if]
         if gapped:
             return self.gapped_shortening(name, layout, own, gapped, framing, path)
         first_extension = self.check_extensions_last(name, own, path)
@@ -82,7 +82,13 @@ class ShorteningMixin(ResolverBase):
             return None
         start, end = own[0].bit_offset // 8, marker.bit_offset // 8
         length = self.payload_length(layout)
-        if length is None and not framing.encoding and (len(gaps) > 1 or gaps[0].presence):
+        rest = next((f for f, g in zip(gapped, gaps) if g.fills_rest), None)
+        if rest is not None and rest is not own[-1]:
+            self.error(path + ("fields", own.index(rest)), f"message {name!r}: {rest.name!r} fills the rest "
+                                                          "of the payload, so it must be the last field",
+                       f"move {rest.name!r} to the end, or count it with `count: {{from: <field>}}`")
+            return None
+        if length is None and not framing.encoding and (len(gaps) > 1 or gaps[0].presence or rest):
             self.error(where, f"message {name!r}: without a length field or a byte stuffing that ends frames, "
                               f"a stream decoder cannot tell where a frame with {gapped[-1].name!r} ends",
                        "add a length field that counts the payload")
@@ -113,19 +119,19 @@ class ShorteningMixin(ResolverBase):
 
     def gap_of(self, name: str, f: Field, framing: Framing, where: tuple) -> Optional[Gap]:
         """The bytes of counted or conditional field `f`, which must be whole bytes."""
-        element = f.element if f.counted_by else f
-        if f.counted_by and f.present_if or f.present_if and (not f.is_member or f.extension):
+        element = f.element if f.varies else f
+        if f.varies and f.present_if or f.present_if and (not f.is_member or f.extension):
             self.error(where, f"message {name!r}: {f.name!r} is conditional and "
                               f"{'counted' if f.counted_by else 'not a value the sender gives'}",
                        "make it one or the other")
             return None
         if f.bit_offset % 8 or (element.bits or 0) % 8:
             self.error(where, f"message {name!r}: {f.name!r} must start on a byte boundary and be whole bytes"
-                              f"{' each element' if f.counted_by else ''}: a frame may leave it out",
+                              f"{' each element' if f.varies else ''}: a frame may leave it out",
                        "add reserved bits before it, or widen it")
             return None
         span = (f.bit_offset // 8, (f.bit_offset + f.bits) // 8)
-        if f.counted_by:
+        if f.varies:
             counter = Counter(f.name, f.counted_by, element_bytes(f), f.count or f.length, f.counts_bytes)
             return Gap(span, f.name, counter=counter)
         return Gap(span, f.name, presence=f.present_if)
@@ -155,7 +161,7 @@ class ShorteningMixin(ResolverBase):
         """Counted and conditional fields are fields of the message itself, not of a group."""
         def nested(fields: tuple[Field, ...]) -> Optional[Field]:
             for f in fields:
-                if f.counted_by or f.present_if:
+                if f.varies or f.present_if:
                     return f
                 inner = nested(f.fields)
                 if inner is not None:

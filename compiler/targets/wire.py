@@ -117,6 +117,9 @@ def gap_reads(p: Protocol, m: Message) -> list[dict]:
     gaps = m.shortening.gaps if m.shortening else ()
     out = []
     for k, gap in enumerate(gaps):
+        if gap.control is None:  # it fills the rest: the frame's size says
+            out.append({})
+            continue
         leaf = next(x for x in m.wire.leaves if x.path == (gap.control,))
         read = covering_read(p.framing, leaf.pos, leaf.bits, leaf.field.byte_order)
         out.append(dict(read, leaf=leaf, before=[j for j in range(k) if gaps[j].span[1] * 8 <= leaf.pos]))
@@ -135,7 +138,7 @@ def counted_sizes(p: Protocol) -> dict[str, dict]:
     out = {}
     for m in p.messages:
         counter = m.shortening.counter if m.shortening else None
-        if counter is None:
+        if counter is None or counter.count_field is None:
             continue
         leaf = next(x for x in m.wire.leaves if x.field.counts)
         out[m.name] = {"least": m.min_size, "at": leaf.pos // 8, "bytes": leaf.bits // 8, "unit": counter.unit,

@@ -239,6 +239,12 @@ class Generator:
                 control, gap = self.conditional_gap()
             controls += control
             out += [gap] + self.binary_fields()
+        if "counted" in self.on and rng.random() < 0.3:  # and the rest of the payload
+            element, _ = self.number_field()
+            if rng.random() < 0.4:
+                out.append({"name": self.name(), "type": "bytes", "to_end": True, "max_length": rng.randint(1, 20)})
+            else:
+                out.append({**element, "to_end": True, "max_count": rng.randint(1, 6)})
         return controls + out
 
     def counted_gap(self) -> tuple[list[dict], dict]:

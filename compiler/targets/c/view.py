@@ -159,7 +159,7 @@ class CView:
                     out.append(f"{pad}bool has_{f.name}{count};  /* {'0 = absent' if f.optional else '0 = no bit set'} */")
                 arr = f"[{r.array}]" if r.array else ""
                 out.append(f"{pad}{r.ctype} {f.name}{count}{arr};" + (f"  /* {note} */" if note else ""))
-            if f.counted_by:
+            if f.varies:
                 most, what = (f.length, "bytes") if f.kind == "bytes" else (f.count, "elements")
                 out.append(f"{pad}{unsigned_type(most.bit_length())} {f.name}_count;  "
                            f"/* {what} in use, 0..{most} */")
@@ -839,6 +839,10 @@ class CView:
         for k, (gap, read) in enumerate(zip(gaps, gap_reads(self.p, m))):
             if k:  # the shortest frame holds what comes before the first gap
                 self.fail_if(c, f"len < {gap.span[0]}u{lost}", "length")
+            if gap.fills_rest:  # the last gap: what the frame holds past the fields before it
+                self.take_rest(c, m, k, gap, lost)
+                lost += f" - lost{k}"
+                continue
             less = "".join(f" - lost{j}" for j in read["before"])
             getter = "cw_get_le" if read["byte_order"] == "little" else "cw_get_be"
             value = f"{getter}(buf + ({read['at']}u{less}), {read['bytes']}u)" if read["bytes"] > 1 \
@@ -868,6 +872,16 @@ class CView:
             at = gap.span[1]
         c(f"memcpy(full + {at}, buf + {sent}, {m.size - at}u);")
 
+    def take_rest(self, c: Code, m: Message, k: int, gap, lost: str) -> None:
+        """A field filling the rest of the payload: the frame's size says how much of it was
+        sent, whole elements up to its most."""
+        counter = gap.counter
+        self.fail_if(c, f"len > {m.size}u{lost}", "length")
+        c(f"size_t lost{k} = {m.size}u{lost} - len;")
+        self.fail_if(c, f"lost{k} > {gap.size}u || ({gap.size}u - lost{k}) % {counter.element_bytes}u != 0u", "length")
+        c(f"m->{gap.field}_count = ({unsigned_type(counter.most.bit_length())})"
+          f"(({gap.size}u - lost{k}) / {counter.element_bytes}u);")
+
     def decode_function(self, m: Message) -> str:
         word = cword.container(self, m)
         if word is not None:
@@ -889,7 +903,7 @@ class CView:
                 c("const uint8_t *sent = buf;  /* the bytes sent, which checksums cover */")
             if self.uses_cut(m):
                 c("size_t cut;")
-            if any(g.counter for g in m.shortening.gaps):
+            if any(g.counter and g.control for g in m.shortening.gaps):
                 c("size_t n;")
             self.restore(c, m)
         else:
@@ -1428,7 +1442,12 @@ class CView:
         return dict(with_head_checks(d, 32), head_bytes=4)
 
     def stream(self) -> dict:
-        return stream_facts(self.p)
+        facts = stream_facts(self.p)
+        length = facts.get("length")
+        if length:  # the frame's size from the length's value: a length that counts more than the frame has less
+            over = length["overhead"]
+            facts = dict(facts, length=dict(length, overhead_term=f"+ {over}u" if over >= 0 else f"- {-over}u"))
+        return facts
 
     def encoding(self) -> dict:
         """The link's byte stuffing as C constants, or {} without one."""

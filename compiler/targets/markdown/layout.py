@@ -25,7 +25,7 @@ class Slot:
         """The name the layout diagram gives it: an array as its elements, `ch[0..15]`."""
         if self.field.count is None:
             return self.path
-        last = self.field.count if self.field.counted_by else self.field.count - 1
+        last = self.field.count if self.field.varies else self.field.count - 1
         return self.path[:self.path.rindex("[")] + f"[0..{last}]"
 
 
@@ -33,7 +33,7 @@ def array_suffix(f: Field) -> str:
     """`[16]` after an array of 16, `[0..125]` after one whose count another field gives."""
     if f.count is None:
         return ""
-    return f"[0..{f.count}]" if f.counted_by else f"[{f.count}]"
+    return f"[0..{f.count}]" if f.varies else f"[{f.count}]"
 
 
 def slots(m: Message) -> list[Slot]:
@@ -100,9 +100,9 @@ def presence_text(cond: Presence) -> str:
 def type_text(p: Protocol, f: Field) -> str:
     if f.present_if:
         return f"{type_text(p, replace(f, present_if=None))}, if {presence_text(f.present_if)}"
-    if f.counted_by and f.kind == "bytes":
+    if f.varies and f.kind == "bytes":
         return f"0…{f.length} bytes"
-    if f.counted_by:
+    if f.varies:
         return f"0…{f.count} × {type_text(p, f.element)}"
     if f.count is not None:
         return f"{f.count} × {type_text(p, f.element)}"
@@ -282,6 +282,10 @@ def payload_note(p: Protocol, m: Message) -> str:
             ct = gap.counter
             if ct is None:
                 said.append(f"`{gap.field}` is sent only when {presence_text(gap.presence)}")
+                continue
+            if gap.fills_rest:
+                what = "bytes" if field_at(m.layout, ct.field).kind == "bytes" else "elements"
+                said.append(f"`{ct.field}` fills the rest of the payload (at most {ct.most} {what})")
                 continue
             says = "bytes" if ct.counts_bytes else "elements"
             holds = ("bytes", "") if field_at(m.layout, ct.field).kind == "bytes" else ("elements", f"it counts {says}, ")

@@ -256,7 +256,7 @@ class PythonView:
             if f.bits == 32:
                 c(f"if {v} > 3.4028234663852886e38 or {v} < -3.4028234663852886e38:")
                 c(f"    raise _enc({where}, {v}, 'range', 'a binary32 value')")
-        elif f.kind == "bytes" and f.counted_by:  # the bytes past its length are not sent
+        elif f.kind == "bytes" and f.varies:  # the bytes past its length are not sent
             c(f"if not isinstance({v}, (bytes, bytearray)) or len({v}) > {f.length}:")
             c(f"    raise _enc({where}, {v}, 'length', 'bytes of length 0..{f.length}')")
             c(f"{var} = bytes({v}).ljust({f.length}, b'\\0')")
@@ -537,7 +537,7 @@ class MessageCode:
             c("else:")
             c(f"    {leaf.var} = {f'bytes({leaf.field.length})' if leaf.field.kind == 'bytes' else 0}")
         for gap in self.gaps():
-            if gap.counter:
+            if gap.counter and gap.control:
                 leaf = self.first_leaf(gap.control)
                 per = gap.counter.element_bytes // gap.counter.unit
                 held = self.group_var((gap.field,)) if field_at(self.m.layout, gap.field).count else f"m.{gap.field}"
@@ -592,7 +592,7 @@ class MessageCode:
         array = field_at(self.m.layout, ".".join(p for p in path if isinstance(p, str)))
         count = array.count
         v = self.group_var(path)
-        if array.counted_by:
+        if array.varies:
             c(f"if not isinstance({v}, (list, tuple)) or len({v}) > {count}:")
             c(f"    raise _enc({self.m.name!r}, {dotted(path)!r}, {v}, 'count', 'a list of at most {count} values')")
             return
@@ -685,7 +685,7 @@ class MessageCode:
         c(f"{var} = _object_new({name})")
         for f in members:
             each = [self.group_var(at) if f.kind == "group" else values[at] for at in self.places(f, path)]
-            sent = f"[:n_{f.name}]" if f.counted_by else ""
+            sent = f"[:n_{f.name}]" if f.varies else ""
             value = each[0] + sent if f.count is None else '[' + ', '.join(each) + ']' + sent
             if f.present_if and not path:
                 value = f"{value} if p_{f.name} else None"
@@ -882,6 +882,10 @@ class MessageCode:
             if k:  # the shortest frame holds what comes before the first gap
                 c(f"if len(s) < {gap.span[0]}{lost}:")
                 c(f"    raise _dec({name!r}, {gap.field!r}, len(s), 'length', f'at least {{{gap.span[0]}{lost}}} bytes', {8 * gap.span[0]})")
+            if gap.fills_rest:  # the last gap: what the frame holds past the fields before it
+                self.take_rest(c, k, gap, lost)
+                lost += f" - lost{k}"
+                continue
             value = self.sent_read(read, "".join(f" - lost{j}" for j in read["before"]))
             if gap.counter:
                 self.check_count(c, gap, read["leaf"], value)
@@ -900,6 +904,16 @@ class MessageCode:
         parts[0] = parts[0].replace("[0:", "[:")
         c("if cut:  # the bytes left out read as zeros")
         c(f"    d = b''.join(({', '.join(parts)}, s[{at}:]))")
+
+    def take_rest(self, c: Code, k: int, gap, lost: str) -> None:
+        """A field filling the rest of the payload: the frame's size says how much of it was
+        sent, whole elements up to its most."""
+        counter, name = gap.counter, self.m.name
+        c(f"lost{k} = {self.m.size}{lost} - len(s)")
+        c(f"if not 0 <= lost{k} <= {gap.size} or (lost{k} - {gap.size}) % {counter.element_bytes}:")
+        c(f"    raise _dec({name!r}, {gap.field!r}, len(s), 'length', "
+          f"f'{{{self.m.size}{lost} - {gap.size}}} bytes and whole elements of {counter.element_bytes}', {8 * gap.span[0]})")
+        c(f"n_{gap.field} = {counter.most} - lost{k} // {counter.element_bytes}")
 
     @staticmethod
     def sent_read(read: dict, less: str) -> str:
