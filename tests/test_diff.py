@@ -273,3 +273,14 @@ def test_a_counted_arrays_maximum_is_part_of_the_wire(tmp_path):
     assert d.breaking and d.old_fingerprint != d.new_fingerprint
     assert any("registers" in c.subject and "125" in c.what and "100" in c.what for c in d.of_kind(BREAKING)), \
         d.changes
+
+
+def test_a_changed_condition_or_maximum_is_breaking(tmp_path):
+    tele = tmp_path / "src" / "tele.yaml"
+    tele.parent.mkdir()
+    tele.write_text((ROOT / "tests" / "test_conditional_fields.py").read_text(encoding="utf-8")
+                    .split('SCHEMA = """', 1)[1].split('"""', 1)[0], encoding="utf-8")
+    d = diff_of(tmp_path, tele, "present_if: {field: parts, has: battery}", "present_if: {field: parts, has: gps}")
+    assert ("field volts", "sent when parts has battery, now parts has gps") in changes(d, BREAKING)
+    d = diff_of(tmp_path, tele, "max_count: 3", "max_count: 4")
+    assert d.breaking

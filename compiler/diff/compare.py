@@ -264,6 +264,11 @@ def _field(a: Placed, b: Placed, out: _Collector, message: str, growth: Optional
         va, vb = getattr(fa, name), getattr(fb, name)
         if va != vb:
             add(BREAKING, f"{name} changed from {va!r} to {vb!r}")
+    if fa.present_if != fb.present_if:  # when a frame carries it, so where what follows sits
+        old, new = (f.present_if.says if f.present_if else "always" for f in (fa, fb))
+        add(BREAKING, f"sent when {old}, now {new}")
+    if fa.to_end != fb.to_end:
+        add(BREAKING, "now fills the rest of the payload" if fb.to_end else "no longer fills the rest of the payload")
     if fa.extension != fb.extension:
         add(BREAKING, "now an extension field" if fb.extension else "no longer an extension field")
     if fa.optional != fb.optional:

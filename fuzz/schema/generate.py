@@ -300,9 +300,9 @@ class Generator:
     def padding(self, width: int) -> dict:
         return {"name": self.name(), "type": f"u{width}", "reserved": True}
 
-    def array(self, element: dict, width: int, room: int = 1 << 16) -> tuple[dict, int]:
+    def array(self, element: dict, width: int, room: int = 8 * 4096) -> tuple[dict, int]:
         """The field as an array of a few elements (as many as fit `room` bits), each
-        where the one before it ends."""
+        where the one before it ends; an array holds at most 4096 bytes."""
         count = min(self.rng.choice([1, 2, 3, 4, 16]), max(1, room // width))
         return {**element, "count": count}, count * width
 
