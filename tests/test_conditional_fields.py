@@ -198,3 +198,11 @@ def test_conformance_vectors_on_the_host_and_on_atmega32_under_simavr(tmp_path):
     Python on the host and on an 8-bit AVR."""
     host, avr = conformance_on_host_and_avr(tmp_path, "tele", SCHEMA)
     assert host > 50 and avr > 50
+
+
+def test_an_error_names_the_bit_offset_in_the_frame_as_sent(built):
+    """`kind` is byte 17 of the largest frame; with nothing optional sent it is byte 5."""
+    mod = built[1]
+    with pytest.raises(mod.DecodeError) as e:
+        mod.decode(frame("00 00  05  09"))  # kind = 5: no such mode
+    assert (e.value.field, e.value.rule, e.value.offset) == ("kind", "enum", 40)

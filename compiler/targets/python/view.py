@@ -579,6 +579,17 @@ class MessageCode:
             return None
         return f"len({self.group_var((gap.field,))}) > {leaf.path[1]}" if encoding else f"n_{gap.field} > {leaf.path[1]}"
 
+    def sent_offset(self, leaf: Leaf) -> str:
+        """The leaf's first bit in the frame as sent: its place in the whole frame, less the
+        bytes left out before it."""
+        sh = self.m.shortening
+        if sh is None:
+            return str(leaf.pos)
+        if sh.gaps:
+            lost = [f"lost{k}" for k, g in enumerate(sh.gaps) if g.span[1] * 8 <= leaf.pos]
+            return f"{leaf.pos} - 8 * ({' + '.join(lost)})" if lost else str(leaf.pos)
+        return f"{leaf.pos} - 8 * cut" if leaf.pos >= sh.payload[1] * 8 else str(leaf.pos)
+
     def check_presence(self, c: Code, gap) -> None:
         """A conditional field holds a value exactly when its control field says it is sent."""
         name, says = self.m.name, gap.presence.says
@@ -637,7 +648,7 @@ class MessageCode:
             guard = self.sent_guard(leaf, gap_of(self.m, leaf), encoding=False)
             checks = Code()
             checks.depth = c.depth + (guard is not None)
-            expr = self.view.decode_leaf(checks, self.m, leaf, str(leaf.pos), bounded)
+            expr = self.view.decode_leaf(checks, self.m, leaf, self.sent_offset(leaf), bounded)
             if guard and checks.lines:  # a value the frame left out is not checked
                 c(f"if {guard}:")
             c.lines.extend(checks.lines)
@@ -868,7 +879,7 @@ class MessageCode:
                 sent = self.m.counts_sent(cs)  # over the bytes sent
                 c(f"x = {self.view.checksum_call(cs, 's' if sent else 'd', start, end, self.m.crc_extra, sent)}")
                 c(f"if {leaf.var} != x:")
-                c(f"    raise _dec({self.m.name!r}, {leaf.dotted!r}, {leaf.var}, 'checksum', hex(x), {leaf.pos}, {leaf.field.rule!r})")
+                c(f"    raise _dec({self.m.name!r}, {leaf.dotted!r}, {leaf.var}, 'checksum', hex(x), {self.sent_offset(leaf)}, {leaf.field.rule!r})")
         self.build_checks(c, bounded=True, text_form=False, word=self.one_word())
         c("return o")
         return c.text()

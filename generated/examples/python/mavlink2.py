@@ -390,7 +390,7 @@ def _decode_heartbeat(d):
     r_msgid = int.from_bytes(c0_7, 'little', signed=False)
     x = _checksum_crc16_1021_ffff_rr_0_extra(s[1:19 - cut] + b'2')
     if r_checksum != x:
-        raise _dec('heartbeat', 'checksum', r_checksum, 'checksum', hex(x), 152, None)
+        raise _dec('heartbeat', 'checksum', r_checksum, 'checksum', hex(x), 152 - 8 * cut, None)
     if r_stx != 253:
         raise _dec('heartbeat', 'stx', r_stx, 'const', '253', 0, None)
     if r_len != 9 - cut:
@@ -538,7 +538,7 @@ def _decode_sys_status(d):
     r_msgid = int.from_bytes(c0_7, 'little', signed=False)
     x = _checksum_crc16_1021_ffff_rr_0_extra(s[1:53 - cut] + b'|')
     if r_checksum != x:
-        raise _dec('sys_status', 'checksum', r_checksum, 'checksum', hex(x), 424, None)
+        raise _dec('sys_status', 'checksum', r_checksum, 'checksum', hex(x), 424 - 8 * cut, None)
     if r_stx != 253:
         raise _dec('sys_status', 'stx', r_stx, 'const', '253', 0, None)
     if r_len != 43 - cut:
@@ -646,7 +646,7 @@ def _decode_param_value(d):
     r_msgid = int.from_bytes(c0_7, 'little', signed=False)
     x = _checksum_crc16_1021_ffff_rr_0_extra(s[1:35 - cut] + b'\xdc')
     if r_checksum != x:
-        raise _dec('param_value', 'checksum', r_checksum, 'checksum', hex(x), 280, None)
+        raise _dec('param_value', 'checksum', r_checksum, 'checksum', hex(x), 280 - 8 * cut, None)
     if r_stx != 253:
         raise _dec('param_value', 'stx', r_stx, 'const', '253', 0, None)
     if r_len != 25 - cut:
@@ -795,7 +795,7 @@ def _decode_gps_raw_int(d):
     r_msgid = int.from_bytes(c0_7, 'little', signed=False)
     x = _checksum_crc16_1021_ffff_rr_0_extra(s[1:62 - cut] + b'\x18')
     if r_checksum != x:
-        raise _dec('gps_raw_int', 'checksum', r_checksum, 'checksum', hex(x), 496, None)
+        raise _dec('gps_raw_int', 'checksum', r_checksum, 'checksum', hex(x), 496 - 8 * cut, None)
     if r_stx != 253:
         raise _dec('gps_raw_int', 'stx', r_stx, 'const', '253', 0, None)
     if r_len != 52 - cut:
@@ -938,7 +938,7 @@ def _decode_attitude(d):
     r_msgid = int.from_bytes(c0_7, 'little', signed=False)
     x = _checksum_crc16_1021_ffff_rr_0_extra(s[1:38 - cut] + b"'")
     if r_checksum != x:
-        raise _dec('attitude', 'checksum', r_checksum, 'checksum', hex(x), 304, None)
+        raise _dec('attitude', 'checksum', r_checksum, 'checksum', hex(x), 304 - 8 * cut, None)
     if r_stx != 253:
         raise _dec('attitude', 'stx', r_stx, 'const', '253', 0, None)
     if r_len != 28 - cut:
@@ -1049,7 +1049,7 @@ def _decode_command_ack(d):
     r_msgid = int.from_bytes(c0_7, 'little', signed=False)
     x = _checksum_crc16_1021_ffff_rr_0_extra(s[1:20 - cut] + b'\x8f')
     if r_checksum != x:
-        raise _dec('command_ack', 'checksum', r_checksum, 'checksum', hex(x), 160, None)
+        raise _dec('command_ack', 'checksum', r_checksum, 'checksum', hex(x), 160 - 8 * cut, None)
     if r_stx != 253:
         raise _dec('command_ack', 'stx', r_stx, 'const', '253', 0, None)
     if r_len != 10 - cut:

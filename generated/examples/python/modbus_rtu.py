@@ -1508,7 +1508,7 @@ def _decode_read_holding_registers_response(d):
     r_crc, = _S_read_holding_registers_response_1.unpack_from(d, 253)
     x = _checksum_crc16_8005_ffff_rr_0(s[0:253 - cut])
     if r_crc != x:
-        raise _dec('read_holding_registers_response', 'crc', r_crc, 'checksum', hex(x), 2024, None)
+        raise _dec('read_holding_registers_response', 'crc', r_crc, 'checksum', hex(x), 2024 - 8 * (lost0), None)
     if r_function != 3:
         raise _dec('read_holding_registers_response', 'function', r_function, 'const', '3', 8, None)
     o = _object_new(ReadHoldingRegistersResponse)
@@ -2552,7 +2552,7 @@ def _decode_write_multiple_registers(d):
     r_crc, = _S_write_multiple_registers_1.unpack_from(d, 253)
     x = _checksum_crc16_8005_ffff_rr_0(s[0:253 - cut])
     if r_crc != x:
-        raise _dec('write_multiple_registers', 'crc', r_crc, 'checksum', hex(x), 2024, None)
+        raise _dec('write_multiple_registers', 'crc', r_crc, 'checksum', hex(x), 2024 - 8 * (lost0), None)
     if r_function != 16:
         raise _dec('write_multiple_registers', 'function', r_function, 'const', '16', 8, None)
     if not 1 <= r_quantity <= 123:
