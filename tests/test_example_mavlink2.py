@@ -153,6 +153,7 @@ def test_a_wrong_crc_and_a_signed_frame_are_refused(built):
     with pytest.raises(mod.DecodeError) as err:
         mod.decode(signed[:-13])  # the frame without its signature: the flag refuses it
     assert err.value.rule == "const" and err.value.field == "incompat_flags"
+    assert "signed packet" in str(err.value.user_message)  # recognised, and said so
 
 
 def garbage_stream(frames: list[bytes], seed: int = 3) -> bytes:

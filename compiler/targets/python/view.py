@@ -297,7 +297,7 @@ class PythonView:
         off = offset_expr
         if f.reserved:
             c(f"if {var}:")
-            c(f"    raise _dec({at}, 'reserved', '0', {off}, {f.rule!r})")
+            c(f"    raise _dec({at}, 'reserved', '0', {off}{self.user(f)})")
             return None
         if f.counts:
             return None  # checked against the frame's size before the fields are read
@@ -316,7 +316,7 @@ class PythonView:
             if f.enum:
                 value = next(m.value for m in f.enum.members if f.const in (m.name, m.value))
             c(f"if {var} != {lit(value)}:")
-            c(f"    raise _dec({at}, 'const', {lit(value)!r}, {off}, {f.rule!r})")
+            c(f"    raise _dec({at}, 'const', {lit(value)!r}, {off}{self.user(f)})")
             return None
         if f.kind == "bool":
             return f"{var} == 1"
