@@ -130,7 +130,9 @@ def type_text(p: Protocol, f: Field) -> str:
     else:
         text = kind
     if p.framing.kind == "text" and kind in ("uint", "int"):
-        text = "integer (" + text + ")"
+        spelling = [f"{f.decimals} decimal{'' if f.decimals == 1 else 's'}" if f.decimals is not None else "",
+                    f"{f.width} wide, zero-padded" if f.width is not None else ""]
+        text = "integer (" + ", ".join([text] + [x for x in spelling if x]) + ")"
     if p.framing.kind == "text" and kind == "float":
         text = "decimal (" + text + ")"
     if f.type_name:
