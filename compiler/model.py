@@ -5,6 +5,7 @@ Sizes, bit offsets, checksum coverage and dispatch keys are computed here once.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field, replace
 from typing import Any, Optional, Union
 
@@ -206,7 +207,7 @@ class Field:
     extension: bool = False  # added in a later version: a frame may end before it (it then reads as 0)
     count: Optional[int] = None  # an array of this many elements; `bits` is then the whole array's
     counted_by: Optional[str] = None  # an earlier field gives how many elements (count is then the most)
-    counts_bytes: bool = False  # counted_by's value counts bytes, not elements
+    count_unit: Optional[int] = None  # bytes one unit of the count stands for (None: an element)
     counts: Optional[str] = None  # the array this field gives the count of: the encoder sets it
     present_if: Optional["Presence"] = None  # in the frame only when an earlier field says so
 
@@ -227,7 +228,7 @@ class Field:
         """One element of an array field (the field itself when it is not one)."""
         if self.count is None:
             return self
-        return replace(self, count=None, counted_by=None, counts_bytes=False, to_end=False,
+        return replace(self, count=None, counted_by=None, count_unit=None, to_end=False,
                        bits=None if self.bits is None else self.bits // self.count)
 
     @property
@@ -399,20 +400,19 @@ class Wire:
 
 @dataclass(frozen=True)
 class Counter:
-    """The array (or bytes field) that ends a payload and whose length an earlier field
-    gives: a frame sends `count × unit` of its bytes, the rest of its `most` elements
-    are left off."""
+    """An array (or bytes field) whose length an earlier field, or the frame's size, gives:
+    a frame sends `count × unit` of its bytes, the rest of its `most` elements are left off."""
 
     field: str  # the counted array or bytes field
     count_field: Optional[str]  # the earlier field whose value gives its length (None: the frame's size does)
     element_bytes: int  # bytes of one element (1 for a bytes field)
     most: int  # the most elements it holds
-    counts_bytes: bool = False  # the count field's value is bytes, not elements
+    unit_bytes: Optional[int] = None  # bytes one unit of the count stands for (None: an element)
 
     @property
     def unit(self) -> int:
         """Bytes one unit of the count field's value stands for."""
-        return 1 if self.counts_bytes else self.element_bytes
+        return self.unit_bytes or self.element_bytes
 
     @property
     def most_value(self) -> int:
@@ -421,8 +421,13 @@ class Counter:
 
     @property
     def step(self) -> int:
-        """The count field's value is a multiple of this (a count of bytes holds whole elements)."""
-        return self.element_bytes // self.unit
+        """The count field's value is a multiple of this: its bytes hold whole elements."""
+        return self.element_bytes // math.gcd(self.element_bytes, self.unit)
+
+    @property
+    def element_step(self) -> int:
+        """The elements sent are a multiple of this: they fill whole units of the count."""
+        return self.unit // math.gcd(self.element_bytes, self.unit)
 
 
 @dataclass(frozen=True)

@@ -112,6 +112,10 @@ class Generator:
             n = f.count
             if f.varies:  # a counted array: none at min, one at zero, the most at max
                 n = {"min": 0, "zero": 1, "max": f.count}.get(edge, rng.randint(0, f.count))
+                if f.count_unit:  # whole units of the count: a multiple of the elements one holds
+                    size = element.bits // 8
+                    step = f.count_unit // math.gcd(size, f.count_unit)
+                    n = max(n - n % step, step if n else 0) if step <= f.count else 0
             return [self.value(element, edge) for _ in range(n)]
         if f.kind == "group":
             return {s.name: self.value(s) for s in f.fields if s.is_member}

@@ -58,7 +58,8 @@ def test_the_reference_shows_every_new_key_in_an_example():
                 "id: {msg_class", "length_of: {from: payload, to: payload}",
                 "count: {from: byte_count, unit: bytes}", "max_count:", "present_if: {field: parts, has: gps}",
                 "present_if: {field: mode, equals: [2, 3]}", "count: {from: points}",
-                "length_of: {from: len, to: end, adjust: -1}", "to_end: true, max_count: 8"):
+                "length_of: {from: len, to: end, adjust: -1}", "to_end: true, max_count: 8",
+                "count: {from: registers, unit: 2}"):
         assert key in shown, key
 
 

@@ -127,7 +127,7 @@ class FieldsMixin(ResolverBase):
             if "checksum" in f else None,
             fields=sub_fields, message=text(f.get("message")), rule=f.get("rule"),
             extension=bool(f.get("extension")), counted_by=counted_by,
-            counts_bytes=counted_by is not None, present_if=self.condition_of(f, path, allow_payload))
+            count_unit=1 if counted_by is not None else None, present_if=self.condition_of(f, path, allow_payload))
         if field.by_direction:
             self.check_by_direction(field, path, allow_payload)
         self.check_field(field, path)
@@ -192,13 +192,13 @@ class FieldsMixin(ResolverBase):
                 self.error(where, f"field {name!r}: bytes that fill the rest of the payload need `max_length`",
                            "add max_length: <bytes>")
             else:
-                return replace(field, counts_bytes=True)
+                return replace(field, count_unit=1)
         elif "max_count" not in f:
             self.error(where, f"field {name!r}: an array that fills the rest of the payload needs `max_count`",
                        "add max_count: <elements>")
         else:
             array = self.array_of(field, f["max_count"], path, in_envelope, "max_count")
-            return array if array.count is None else replace(array, counts_bytes=True)
+            return array
         return replace(field, to_end=False)
 
     def counted_array(self, element: Field, f: dict, path: tuple, in_envelope: bool) -> Field:
@@ -220,7 +220,15 @@ class FieldsMixin(ResolverBase):
         array = self.array_of(element, f["max_count"], path, in_envelope, "max_count")
         if array.count is None:
             return element
-        return replace(array, counted_by=f["count"]["from"], counts_bytes=f["count"].get("unit") == "bytes")
+        unit = f["count"].get("unit", "elements")
+        unit = None if unit == "elements" else 1 if unit == "bytes" else unit
+        if unit is not None and (element.bits // 8 * array.count) % unit:
+            size = element.bits // 8
+            self.error(cpath + ("unit",), f"field {name!r}: {array.count} elements of {size} byte"
+                                          f"{'s' if size != 1 else ''} are not a whole number of {unit}-byte units",
+                       "choose max_count so that the most elements fill whole units")
+            return element
+        return replace(array, counted_by=f["count"]["from"], count_unit=unit)
 
     def array_of(self, element: Field, count: int, path: tuple, in_envelope: bool, key: str = "count") -> Field:
         """The field as an array of `count` elements, each checked as the field alone was;

@@ -132,7 +132,7 @@ class ShorteningMixin(ResolverBase):
             return None
         span = (f.bit_offset // 8, (f.bit_offset + f.bits) // 8)
         if f.varies:
-            counter = Counter(f.name, f.counted_by, element_bytes(f), f.count or f.length, f.counts_bytes)
+            counter = Counter(f.name, f.counted_by, element_bytes(f), f.count or f.length, f.count_unit)
             return Gap(span, f.name, counter=counter)
         return Gap(span, f.name, presence=f.present_if)
 
@@ -194,7 +194,7 @@ class ShorteningMixin(ResolverBase):
         if f is None:
             return own
         index = own.index(f)
-        most = (counted.count or counted.length) * (element_bytes(counted) if counted.counts_bytes else 1)
+        most = (counted.count or counted.length) * element_bytes(counted) // (counted.count_unit or element_bytes(counted))
         problem = ("it is not an unsigned integer" if f.kind != "uint" else
                    "the codec sets it" if not f.is_member else
                    "it has checks or a scale of its own" if f.enum or f.flags or f.range or f.values or f.scale

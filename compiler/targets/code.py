@@ -1,6 +1,8 @@
 """Lines of generated code with indentation, for code-building backends."""
 from __future__ import annotations
 
+import math
+
 
 class Code:
     """Lines of code; `indent`/`dedent` step four spaces."""
@@ -24,3 +26,12 @@ class Code:
     def text(self, base: int = 0) -> str:
         pad = "    " * base
         return "\n".join(pad + line if line else line for line in self.lines)
+
+
+def times_over(value: str, times: int, over: int, divide: str, suffix: str = "") -> str:
+    """`value * times / over` in whole numbers, spelt with the target's integer division
+    (`//` or `/`) and literal suffix, with the common factor taken out."""
+    g = math.gcd(times, over)
+    times, over = times // g, over // g
+    out = value if times == 1 else f"{value} * {times}{suffix}"
+    return out if over == 1 else f"{out} {divide} {over}{suffix}"

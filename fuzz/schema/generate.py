@@ -257,8 +257,10 @@ class Generator:
             unit = "elements"
         else:
             element, _ = self.number_field()
-            size, unit = int(element["type"][1:]) // 8, rng.choice(["elements", "bytes"])
-        most = max_count * (size if unit == "bytes" else 1)
+            size, unit = int(element["type"][1:]) // 8, rng.choice(["elements", "bytes", 2])
+            if unit == 2 and size == 1:  # whole 2-byte units of single bytes
+                max_count += max_count % 2
+        most = max_count * size // {"elements": size, "bytes": 1}.get(unit, unit)
         return ([{"name": count, "type": "u8" if most < 256 else "u16"}],
                 {**element, "count": {"from": count, "unit": unit}, "max_count": max_count})
 

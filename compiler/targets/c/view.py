@@ -19,7 +19,7 @@ from typing import Any, Optional
 from ... import binary64
 from ...crc import reflect
 from ...model import Checksum, CrcParams, Field, Leaf, Message, Protocol, dotted, field_at
-from ..code import Code
+from ..code import Code, times_over
 from ..escape import c_char as cchar, c_comment as comment, c_string as cstr
 from . import pack as cpack
 from . import word as cword
@@ -650,8 +650,11 @@ class CView:
             if leaf.var not in raws:
                 continue
             if leaf.field.counts:  # set from the array's count
-                gap = counts[leaf.field.name]
-                c(f"{raws[leaf.var]} = ({rt})(m->{gap.field}_count * {gap.counter.element_bytes // gap.counter.unit}u);")
+                counter = counts[leaf.field.name].counter
+                count = f"(uint32_t)m->{counter.field}_count"
+                if counter.element_step != 1:  # the elements must fill whole units
+                    self.fail_if(c, f"{count} % {counter.element_step}u != 0u", "range")
+                c(f"{raws[leaf.var]} = ({rt})({times_over(count, counter.element_bytes, counter.unit, '/', 'u')});")
                 continue
             guard = self.sent_guard(m, leaf, raws)
             if guard is None:
@@ -855,9 +858,10 @@ class CView:
                 counter = gap.counter
                 c(f"n = {value};")
                 self.fail_if(c, f"n > {counter.most_value}u", "range")
-                if counter.unit != counter.element_bytes:
-                    self.fail_if(c, f"n % {counter.element_bytes}u != 0u", "length")
-                c(f"m->{gap.field}_count = ({unsigned_type(counter.most.bit_length())})(n / {counter.step}u);")
+                if counter.step != 1:  # its bytes must hold whole elements
+                    self.fail_if(c, f"n % {counter.step}u != 0u", "length")
+                c(f"m->{gap.field}_count = ({unsigned_type(counter.most.bit_length())})"
+                  f"({times_over('n', counter.unit, counter.element_bytes, '/', 'u')});")
                 c(f"size_t lost{k} = {counter.most * counter.element_bytes}u - n * {counter.unit}u;")
             else:
                 c(f"size_t lost{k} = ({self.presence_test(m, gap, value)}) ? 0u : {gap.size}u;")

@@ -289,7 +289,7 @@ def payload_note(p: Protocol, m: Message) -> str:
                 what = "bytes" if field_at(m.layout, ct.field).kind == "bytes" else "elements"
                 said.append(f"`{ct.field}` fills the rest of the payload (at most {ct.most} {what})")
                 continue
-            says = "bytes" if ct.counts_bytes else "elements"
+            says = "elements" if ct.unit_bytes is None else "bytes" if ct.unit_bytes == 1 else f"{ct.unit_bytes}-byte units"
             holds = ("bytes", "") if field_at(m.layout, ct.field).kind == "bytes" else ("elements", f"it counts {says}, ")
             said.append(f"`{ct.field}` holds as many {holds[0]} as `{ct.count_field}` says ({holds[1]}at most "
                         f"{ct.most_value})")

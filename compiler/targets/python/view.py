@@ -12,7 +12,7 @@ from ...crc import reflect
 from ...model import (Field, Leaf, Message, Protocol, Rule, Run, Sequence, SequenceItem, dotted,
                       field_at, path_name)
 from ...names import camel
-from ..code import Code
+from ..code import Code, times_over
 from ..wire import (checksum_name as _checksum_name, dispatch_facts, encoding_facts, gap_of, gap_reads, stream_facts,
                     text_line_facts)
 
@@ -539,9 +539,13 @@ class MessageCode:
         for gap in self.gaps():
             if gap.counter and gap.control:
                 leaf = self.first_leaf(gap.control)
-                per = gap.counter.element_bytes // gap.counter.unit
+                counter = gap.counter
                 held = self.group_var((gap.field,)) if field_at(self.m.layout, gap.field).count else f"m.{gap.field}"
-                c(f"{leaf.var} = len({held}){f' * {per}' if per != 1 else ''}")
+                if counter.element_step != 1:  # the elements must fill whole units
+                    c(f"if len({held}) % {counter.element_step}:")
+                    c(f"    raise _enc({self.m.name!r}, {gap.field!r}, {held}, 'count', "
+                      f"'a multiple of {counter.element_step} elements: the count is in {counter.unit}-byte units')")
+                c(f"{leaf.var} = {times_over(f'len({held})', counter.element_bytes, counter.unit, '//')}")
         for leaf in self.leaves:
             cs = leaf.field.checksum
             if cs and cs.over != "bytes" and not (word and cs.algorithm == "parity"):
@@ -943,10 +947,10 @@ class MessageCode:
         c(f"n = {value}")
         c(f"if n > {counter.most_value}:")
         c(f"    raise _dec({name!r}, {leaf.dotted!r}, n, 'range', '0..{counter.most_value}', {leaf.pos})")
-        if counter.unit != counter.element_bytes:
-            c(f"if n % {counter.element_bytes}:")
-            c(f"    raise _dec({name!r}, {leaf.dotted!r}, n, 'length', 'a multiple of {counter.element_bytes}', {leaf.pos})")
-        c(f"n_{counter.field} = n // {counter.element_bytes // counter.unit}")
+        if counter.step != 1:  # its bytes must hold whole elements
+            c(f"if n % {counter.step}:")
+            c(f"    raise _dec({name!r}, {leaf.dotted!r}, n, 'length', 'a multiple of {counter.step}', {leaf.pos})")
+        c(f"n_{counter.field} = {times_over('n', counter.unit, counter.element_bytes, '//')}")
 
     def read_word(self, c: Code) -> None:
         c(f"w = int.from_bytes(d, {self.m.wire.order!r})")

@@ -19,8 +19,8 @@ extern "C" {
 #endif
 
 #define MODBUS_RTU_SCHEMA_SHA256 "5ffe2ba6d17aa6241ad7ba7e5807b7500bd68421e850d54d53ca19ee59216e34"
-#define MODBUS_RTU_FINGERPRINT "6e747324468acd50"  /* hash of the wire-relevant schema (codeword diff) */
-#define MODBUS_RTU_FINGERPRINT32 0x6e747324u  /* its first 32 bits */
+#define MODBUS_RTU_FINGERPRINT "22247971a88ef4fc"  /* hash of the wire-relevant schema (codeword diff) */
+#define MODBUS_RTU_FINGERPRINT32 0x22247971u  /* its first 32 bits */
 #define MODBUS_RTU_READ_HOLDING_REGISTERS_SIZE 8u  /* bytes */
 #define MODBUS_RTU_READ_HOLDING_REGISTERS_ID 3u
 #define MODBUS_RTU_READ_HOLDING_REGISTERS_RESPONSE_SIZE 255u  /* bytes */
@@ -240,7 +240,7 @@ static inline int modbus_rtu_read_holding_registers_response_raw(const modbus_rt
     }
     r[0] = (uint16_t)m->address;
     r[1] = 3u;
-    r[2] = (uint16_t)(m->registers_count * 2u);
+    r[2] = (uint16_t)((uint32_t)m->registers_count * 2u);
     if (m->registers_count > 0u) {
         r[3] = (uint16_t)m->registers[0];
     } else {
@@ -1327,7 +1327,7 @@ static inline int modbus_rtu_write_multiple_registers_raw(const modbus_rtu_write
         return CW_ERR_RANGE;
     }
     r[3] = (uint16_t)m->quantity;
-    r[4] = (uint16_t)(m->values_count * 2u);
+    r[4] = (uint16_t)((uint32_t)m->values_count * 2u);
     if (m->values_count > 0u) {
         r[5] = (uint16_t)m->values[0];
     } else {

@@ -13,8 +13,8 @@ from typing import ClassVar, Optional, Union
 PROTOCOL = 'modbus_rtu'
 VERSION = None
 SCHEMA_SHA256 = '5ffe2ba6d17aa6241ad7ba7e5807b7500bd68421e850d54d53ca19ee59216e34'
-FINGERPRINT = '6e747324468acd50'  # hash of the wire-relevant schema (codeword diff)
-FINGERPRINT32 = 0x6e747324  # its first 32 bits
+FINGERPRINT = '22247971a88ef4fc'  # hash of the wire-relevant schema (codeword diff)
+FINGERPRINT32 = 0x22247971  # its first 32 bits
 
 _floor = math.floor
 _isfinite = math.isfinite
