@@ -11,7 +11,7 @@ import math
 import re
 import unicodedata
 from pathlib import Path
-from typing import Any
+from typing import Any, Optional
 
 import yaml
 
@@ -149,6 +149,41 @@ def _compose(text: str, file: str) -> yaml.Node | None:
                                       f"nesting deeper than {MAX_DEPTH}", "flatten the schema")])
 
 
+def _children(n: yaml.Node) -> list:
+    """The nodes `load_text` builds under `n`, in its order (a mapping's values; keys are scalars)."""
+    if isinstance(n, yaml.SequenceNode):
+        return n.value
+    if isinstance(n, yaml.MappingNode):
+        return [value for _, value in n.value]
+    return []
+
+
+def _node_over(root: yaml.Node, limit: int) -> Optional[yaml.Node]:
+    """The node at which a document with its aliases expanded passes `limit` nodes, or None.
+    An alias is one node object met again, so each distinct node's expanded size is
+    counted once: a YAML bomb is found without expanding it."""
+    sizes: dict[int, int] = {}
+
+    def size(n: yaml.Node) -> int:
+        got = sizes.get(id(n))
+        if got is None:
+            got = sizes[id(n)] = 1 + sum(size(child) for child in _children(n))
+        return got
+
+    if size(root) <= limit:
+        return None
+    count, n = 0, root
+    while True:  # descend into the first subtree that does not fit what is left
+        count += 1
+        if count > limit:
+            return n
+        for child in _children(n):
+            if count + size(child) > limit:
+                n = child
+                break
+            count += size(child)
+
+
 def _loc(file: str, node: yaml.Node) -> Loc:
     return Loc(file, node.start_mark.line + 1, node.start_mark.column + 1)
 
@@ -173,6 +208,10 @@ def load_text(text: str, file: str) -> Document:
     if node is None:
         raise SchemaError([Diagnostic(Loc(file, 1, 1), "schema is empty",
                                       "start with `codeword: 1` and `protocol: <name>`")])
+    over = _node_over(node, MAX_NODES)
+    if over is not None:
+        raise SchemaError([Diagnostic(_loc(file, over), f"document expands to more than {MAX_NODES} nodes",
+                                      "aliases expand too much (YAML bomb?)")])
     locs: dict[Path_, Loc] = {}
     errors: list[Diagnostic] = []
     count = [0]
