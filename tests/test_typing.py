@@ -207,7 +207,7 @@ def test_field_docs_are_attribute_docstrings_editors_show():
 @pytest.mark.parametrize("path", MODULES, ids=lambda p: p.stem)
 def test_crc_tables_are_constants_in_the_source(path):
     """No table is computed from its polynomial at import: the byte table is a literal, and
-    the two-byte table is combined from two literal halves."""
+    the two-byte table is combined from two literal halves when a checksum first needs it."""
     tree = ast.parse(path.read_text(encoding="utf-8"))
     names = {node.name for node in tree.body if isinstance(node, ast.FunctionDef)}
     assert not {n for n in names if n.startswith(("_make", "_tables_"))}

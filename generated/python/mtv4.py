@@ -562,9 +562,15 @@ _LOW16_crc16_8005_ffff_nn_0: tuple[int, ...] = (
     0x0220, 0x8225, 0x822f, 0x022a, 0x823b, 0x023e, 0x0234, 0x8231,
     0x8213, 0x0216, 0x021c, 0x8219, 0x0208, 0x820d, 0x8207, 0x0202,
 )
-# the register after two bytes is linear in them: the entry of (high, low) is the
-# entry of (high, 0) xor that of (0, low), so 65,536 entries come from 512 constants
-_TABLE16_crc16_8005_ffff_nn_0: tuple[int, ...] = tuple([h ^ low for h in _HIGH16_crc16_8005_ffff_nn_0 for low in _LOW16_crc16_8005_ffff_nn_0])
+_TABLE16_crc16_8005_ffff_nn_0: tuple[int, ...] = ()  # built by the first checksum, not at import
+
+
+def _table16_crc16_8005_ffff_nn_0() -> tuple[int, ...]:
+    """The register after two bytes is linear in them: the entry of (high, low) is the
+    entry of (high, 0) xor that of (0, low), so 65,536 entries come from 512 constants."""
+    global _TABLE16_crc16_8005_ffff_nn_0
+    _TABLE16_crc16_8005_ffff_nn_0 = tuple([h ^ low for h in _HIGH16_crc16_8005_ffff_nn_0 for low in _LOW16_crc16_8005_ffff_nn_0])
+    return _TABLE16_crc16_8005_ffff_nn_0
 
 
 _WORDS_crc16_8005_ffff_nn_0_5 = struct.Struct('>2HB')
@@ -573,7 +579,7 @@ _WORDS_crc16_8005_ffff_nn_0_5 = struct.Struct('>2HB')
 def _checksum_crc16_8005_ffff_nn_0_5(data: _Buffer, start: int) -> int:
     words: tuple[int, ...] = _WORDS_crc16_8005_ffff_nn_0_5.unpack_from(data, start)
     w0, w1, b, = words
-    t = _TABLE16_crc16_8005_ffff_nn_0
+    t = _TABLE16_crc16_8005_ffff_nn_0 or _table16_crc16_8005_ffff_nn_0()
     r: int = 0xffff
     r = t[r ^ w0]
     r = t[r ^ w1]
@@ -587,7 +593,7 @@ _WORDS_crc16_8005_ffff_nn_0_9 = struct.Struct('>4HB')
 def _checksum_crc16_8005_ffff_nn_0_9(data: _Buffer, start: int) -> int:
     words: tuple[int, ...] = _WORDS_crc16_8005_ffff_nn_0_9.unpack_from(data, start)
     w0, w1, w2, w3, b, = words
-    t = _TABLE16_crc16_8005_ffff_nn_0
+    t = _TABLE16_crc16_8005_ffff_nn_0 or _table16_crc16_8005_ffff_nn_0()
     r: int = 0xffff
     r = t[r ^ w0]
     r = t[r ^ w1]
@@ -603,7 +609,7 @@ _WORDS_crc16_8005_ffff_nn_0_19 = struct.Struct('>9HB')
 def _checksum_crc16_8005_ffff_nn_0_19(data: _Buffer, start: int) -> int:
     words: tuple[int, ...] = _WORDS_crc16_8005_ffff_nn_0_19.unpack_from(data, start)
     w0, w1, w2, w3, w4, w5, w6, w7, w8, b, = words
-    t = _TABLE16_crc16_8005_ffff_nn_0
+    t = _TABLE16_crc16_8005_ffff_nn_0 or _table16_crc16_8005_ffff_nn_0()
     r: int = 0xffff
     r = t[r ^ w0]
     r = t[r ^ w1]
@@ -624,7 +630,7 @@ _WORDS_crc16_8005_ffff_nn_0_23 = struct.Struct('>11HB')
 def _checksum_crc16_8005_ffff_nn_0_23(data: _Buffer, start: int) -> int:
     words: tuple[int, ...] = _WORDS_crc16_8005_ffff_nn_0_23.unpack_from(data, start)
     w0, w1, w2, w3, w4, w5, w6, w7, w8, w9, w10, b, = words
-    t = _TABLE16_crc16_8005_ffff_nn_0
+    t = _TABLE16_crc16_8005_ffff_nn_0 or _table16_crc16_8005_ffff_nn_0()
     r: int = 0xffff
     r = t[r ^ w0]
     r = t[r ^ w1]

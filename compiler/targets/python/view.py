@@ -1331,9 +1331,15 @@ def _pairwise_crc_code(cs, name: str, lengths: list[int]) -> str:
         for row in range(0, 256, 8):
             c("    " + " ".join(f"{x:#0{(width + 3) // 4 + 2}x}," for x in values[row:row + 8]))
         c(")")
-    c("# the register after two bytes is linear in them: the entry of (high, low) is the")
-    c("# entry of (high, 0) xor that of (0, low), so 65,536 entries come from 512 constants")
-    c(f"_TABLE16_{name}: tuple[int, ...] = tuple([h ^ low for h in _HIGH16_{name} for low in _LOW16_{name}])")
+    c(f"_TABLE16_{name}: tuple[int, ...] = ()  # built by the first checksum, not at import")
+    c("")
+    c("")
+    c(f"def _table16_{name}() -> tuple[int, ...]:")
+    c('    """The register after two bytes is linear in them: the entry of (high, low) is the')
+    c('    entry of (high, 0) xor that of (0, low), so 65,536 entries come from 512 constants."""')
+    c(f"    global _TABLE16_{name}")
+    c(f"    _TABLE16_{name} = tuple([h ^ low for h in _HIGH16_{name} for low in _LOW16_{name}])")
+    c(f"    return _TABLE16_{name}")
     init = reflect(p.init, width) if p.refin else p.init
     for n in lengths:
         words, odd = divmod(n, 2)
@@ -1347,7 +1353,7 @@ def _pairwise_crc_code(cs, name: str, lengths: list[int]) -> str:
         names = [f"w{i}" for i in range(words)] + (["b"] if odd else [])
         c(f"words: tuple[int, ...] = _WORDS_{name}_{n}.unpack_from(data, start)")
         c(f"{', '.join(names)}, = words")
-        c(f"t = _TABLE16_{name}")
+        c(f"t = _TABLE16_{name} or _table16_{name}()")
         c(f"r: int = {init:#x}")
         for w in names[:words]:
             if width == 16:

@@ -585,9 +585,15 @@ _LOW16_crc16_1021_ffff_rr_0_extra: tuple[int, ...] = (
     0x7c08, 0x65d0, 0x4fb8, 0x5660, 0x1b68, 0x02b0, 0x28d8, 0x3100,
     0xb2c8, 0xab10, 0x8178, 0x98a0, 0xd5a8, 0xcc70, 0xe618, 0xffc0,
 )
-# the register after two bytes is linear in them: the entry of (high, low) is the
-# entry of (high, 0) xor that of (0, low), so 65,536 entries come from 512 constants
-_TABLE16_crc16_1021_ffff_rr_0_extra: tuple[int, ...] = tuple([h ^ low for h in _HIGH16_crc16_1021_ffff_rr_0_extra for low in _LOW16_crc16_1021_ffff_rr_0_extra])
+_TABLE16_crc16_1021_ffff_rr_0_extra: tuple[int, ...] = ()  # built by the first checksum, not at import
+
+
+def _table16_crc16_1021_ffff_rr_0_extra() -> tuple[int, ...]:
+    """The register after two bytes is linear in them: the entry of (high, low) is the
+    entry of (high, 0) xor that of (0, low), so 65,536 entries come from 512 constants."""
+    global _TABLE16_crc16_1021_ffff_rr_0_extra
+    _TABLE16_crc16_1021_ffff_rr_0_extra = tuple([h ^ low for h in _HIGH16_crc16_1021_ffff_rr_0_extra for low in _LOW16_crc16_1021_ffff_rr_0_extra])
+    return _TABLE16_crc16_1021_ffff_rr_0_extra
 
 
 _WORDS_crc16_1021_ffff_rr_0_extra_15 = struct.Struct('<7HB')
@@ -596,7 +602,7 @@ _WORDS_crc16_1021_ffff_rr_0_extra_15 = struct.Struct('<7HB')
 def _checksum_crc16_1021_ffff_rr_0_extra_15(data: _Buffer, start: int) -> int:
     words: tuple[int, ...] = _WORDS_crc16_1021_ffff_rr_0_extra_15.unpack_from(data, start)
     w0, w1, w2, w3, w4, w5, w6, b, = words
-    t = _TABLE16_crc16_1021_ffff_rr_0_extra
+    t = _TABLE16_crc16_1021_ffff_rr_0_extra or _table16_crc16_1021_ffff_rr_0_extra()
     r: int = 0xffff
     r = t[r ^ w0]
     r = t[r ^ w1]
@@ -615,7 +621,7 @@ _WORDS_crc16_1021_ffff_rr_0_extra_31 = struct.Struct('<15HB')
 def _checksum_crc16_1021_ffff_rr_0_extra_31(data: _Buffer, start: int) -> int:
     words: tuple[int, ...] = _WORDS_crc16_1021_ffff_rr_0_extra_31.unpack_from(data, start)
     w0, w1, w2, w3, w4, w5, w6, w7, w8, w9, w10, w11, w12, w13, w14, b, = words
-    t = _TABLE16_crc16_1021_ffff_rr_0_extra
+    t = _TABLE16_crc16_1021_ffff_rr_0_extra or _table16_crc16_1021_ffff_rr_0_extra()
     r: int = 0xffff
     r = t[r ^ w0]
     r = t[r ^ w1]
@@ -642,7 +648,7 @@ _WORDS_crc16_1021_ffff_rr_0_extra_34 = struct.Struct('<17H')
 def _checksum_crc16_1021_ffff_rr_0_extra_34(data: _Buffer, start: int) -> int:
     words: tuple[int, ...] = _WORDS_crc16_1021_ffff_rr_0_extra_34.unpack_from(data, start)
     w0, w1, w2, w3, w4, w5, w6, w7, w8, w9, w10, w11, w12, w13, w14, w15, w16, = words
-    t = _TABLE16_crc16_1021_ffff_rr_0_extra
+    t = _TABLE16_crc16_1021_ffff_rr_0_extra or _table16_crc16_1021_ffff_rr_0_extra()
     r: int = 0xffff
     r = t[r ^ w0]
     r = t[r ^ w1]
@@ -670,7 +676,7 @@ _WORDS_crc16_1021_ffff_rr_0_extra_36 = struct.Struct('<18H')
 def _checksum_crc16_1021_ffff_rr_0_extra_36(data: _Buffer, start: int) -> int:
     words: tuple[int, ...] = _WORDS_crc16_1021_ffff_rr_0_extra_36.unpack_from(data, start)
     w0, w1, w2, w3, w4, w5, w6, w7, w8, w9, w10, w11, w12, w13, w14, w15, w16, w17, = words
-    t = _TABLE16_crc16_1021_ffff_rr_0_extra
+    t = _TABLE16_crc16_1021_ffff_rr_0_extra or _table16_crc16_1021_ffff_rr_0_extra()
     r: int = 0xffff
     r = t[r ^ w0]
     r = t[r ^ w1]
@@ -699,7 +705,7 @@ _WORDS_crc16_1021_ffff_rr_0_extra_37 = struct.Struct('<18HB')
 def _checksum_crc16_1021_ffff_rr_0_extra_37(data: _Buffer, start: int) -> int:
     words: tuple[int, ...] = _WORDS_crc16_1021_ffff_rr_0_extra_37.unpack_from(data, start)
     w0, w1, w2, w3, w4, w5, w6, w7, w8, w9, w10, w11, w12, w13, w14, w15, w16, w17, b, = words
-    t = _TABLE16_crc16_1021_ffff_rr_0_extra
+    t = _TABLE16_crc16_1021_ffff_rr_0_extra or _table16_crc16_1021_ffff_rr_0_extra()
     r: int = 0xffff
     r = t[r ^ w0]
     r = t[r ^ w1]
@@ -729,7 +735,7 @@ _WORDS_crc16_1021_ffff_rr_0_extra_39 = struct.Struct('<19HB')
 def _checksum_crc16_1021_ffff_rr_0_extra_39(data: _Buffer, start: int) -> int:
     words: tuple[int, ...] = _WORDS_crc16_1021_ffff_rr_0_extra_39.unpack_from(data, start)
     w0, w1, w2, w3, w4, w5, w6, w7, w8, w9, w10, w11, w12, w13, w14, w15, w16, w17, w18, b, = words
-    t = _TABLE16_crc16_1021_ffff_rr_0_extra
+    t = _TABLE16_crc16_1021_ffff_rr_0_extra or _table16_crc16_1021_ffff_rr_0_extra()
     r: int = 0xffff
     r = t[r ^ w0]
     r = t[r ^ w1]

@@ -456,9 +456,15 @@ _LOW16_crc16_8005_ffff_rr_0: tuple[int, ...] = (
     0x0044, 0x9045, 0x6045, 0xf044, 0xc046, 0x5047, 0xa047, 0x3046,
     0xc043, 0x5042, 0xa042, 0x3043, 0x0041, 0x9040, 0x6040, 0xf041,
 )
-# the register after two bytes is linear in them: the entry of (high, low) is the
-# entry of (high, 0) xor that of (0, low), so 65,536 entries come from 512 constants
-_TABLE16_crc16_8005_ffff_rr_0: tuple[int, ...] = tuple([h ^ low for h in _HIGH16_crc16_8005_ffff_rr_0 for low in _LOW16_crc16_8005_ffff_rr_0])
+_TABLE16_crc16_8005_ffff_rr_0: tuple[int, ...] = ()  # built by the first checksum, not at import
+
+
+def _table16_crc16_8005_ffff_rr_0() -> tuple[int, ...]:
+    """The register after two bytes is linear in them: the entry of (high, low) is the
+    entry of (high, 0) xor that of (0, low), so 65,536 entries come from 512 constants."""
+    global _TABLE16_crc16_8005_ffff_rr_0
+    _TABLE16_crc16_8005_ffff_rr_0 = tuple([h ^ low for h in _HIGH16_crc16_8005_ffff_rr_0 for low in _LOW16_crc16_8005_ffff_rr_0])
+    return _TABLE16_crc16_8005_ffff_rr_0
 
 
 _WORDS_crc16_8005_ffff_rr_0_3 = struct.Struct('<1HB')
@@ -467,7 +473,7 @@ _WORDS_crc16_8005_ffff_rr_0_3 = struct.Struct('<1HB')
 def _checksum_crc16_8005_ffff_rr_0_3(data: _Buffer, start: int) -> int:
     words: tuple[int, ...] = _WORDS_crc16_8005_ffff_rr_0_3.unpack_from(data, start)
     w0, b, = words
-    t = _TABLE16_crc16_8005_ffff_rr_0
+    t = _TABLE16_crc16_8005_ffff_rr_0 or _table16_crc16_8005_ffff_rr_0()
     r: int = 0xffff
     r = t[r ^ w0]
     r = _TABLE_crc16_8005_ffff_rr_0[(r ^ b) & 0xFF] ^ (r >> 8)
@@ -480,7 +486,7 @@ _WORDS_crc16_8005_ffff_rr_0_6 = struct.Struct('<3H')
 def _checksum_crc16_8005_ffff_rr_0_6(data: _Buffer, start: int) -> int:
     words: tuple[int, ...] = _WORDS_crc16_8005_ffff_rr_0_6.unpack_from(data, start)
     w0, w1, w2, = words
-    t = _TABLE16_crc16_8005_ffff_rr_0
+    t = _TABLE16_crc16_8005_ffff_rr_0 or _table16_crc16_8005_ffff_rr_0()
     r: int = 0xffff
     r = t[r ^ w0]
     r = t[r ^ w1]
