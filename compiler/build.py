@@ -134,7 +134,9 @@ def build(schemas: list[Path], out: Path | Project, check: bool = False, root: P
         expected.update(markdown_target.render_index(listed))
     placed = {place: text for rel, text in expected.items() if (place := _place(project, rel)) is not None}
     if project.python_package and "python" in project.targets and protocols:
-        placed[project.folder("python") / project.python_package / "__init__.py"] = package_init(listed)
+        package = project.folder("python") / project.python_package
+        placed[package / "__init__.py"] = package_init(listed)
+        placed[package / "py.typed"] = ""  # PEP 561: type checkers read the modules' annotations
     placed.update(_site(project, listed, result))
     for target, text in sorted(placed.items()):
         rel = target

@@ -23,7 +23,7 @@ NULL main errno assert offsetof
 PYTHON_KEYWORDS = frozenset(keyword.kwlist) | frozenset(keyword.softkwlist)
 
 # Names the generated code defines on every message class or module.
-GENERATED = frozenset({"encode", "decode", "validate", "self", "cls", "MESSAGE", "NAME"})
+GENERATED = frozenset({"encode", "decode", "validate", "self", "cls", "MESSAGE", "NAME", "to_dict", "from_dict"})
 
 # C99 guarantees 63 significant characters in an identifier; generated names
 # add a prefix, so schema names stay well below that.
@@ -34,6 +34,7 @@ MAX_NAME_LENGTH = 40
 GENERATED_CLASSES = frozenset({
     "CodecError", "EncodeError", "DecodeError", "SequenceError", "StreamDecoder",
     "ClassVar", "Optional", "Union", "Fraction", "Decimal",
+    "Any", "Callable", "Iterator", "Literal", "TypeVar", "AnyMessage",
 })
 
 # A protocol name becomes generated/python/<name>.py and generated/c/<name>.h: it

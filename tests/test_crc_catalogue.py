@@ -9,6 +9,7 @@ from codeword.model import Checksum
 from codeword.pyload import load_module
 from codeword.targets.python.view import _checksum_code, _checksum_name, _fixed_span_crc_code, _positional_crc_code
 
+HEAD = "from __future__ import annotations\n"  # as in a generated module: annotations are not evaluated
 ENTRIES = sorted({p.name: p for p in crc.catalogue().values()}.values(), key=lambda p: p.name)
 
 
@@ -26,7 +27,7 @@ def test_reference_reproduces_check(params):
 @pytest.mark.parametrize("params", ENTRIES, ids=lambda p: p.name)
 def test_generated_table_code_reproduces_check(params):
     cs = Checksum("crc", "bytes", ("a", "b"), crc=params)
-    module = load_module(f"_crc_{_checksum_name(cs)}", _checksum_code(cs), "<crc>")
+    module = load_module(f"_crc_{_checksum_name(cs)}", HEAD + _checksum_code(cs), "<crc>")
     fn = getattr(module, f"_checksum_{_checksum_name(cs)}")
     assert fn(b"123456789") == params.check
     assert fn(b"") == crc.compute(params, b"")
@@ -50,7 +51,7 @@ def test_generated_fixed_length_code_reproduces_check(params):
     if "import" not in _checksum_code(cs):  # the standard library's CRCs need no fixed-span code
         codes.append(_fixed_span_crc_code(cs, name, [1, 9, 40]))
     for code in codes:
-        source = "import struct\n" + _checksum_code(cs) + "\n" + code
+        source = HEAD + "import struct\n" + _checksum_code(cs) + "\n" + code
         module = load_module(f"_crc_fixed_{name}", source, "<crc>")
         assert getattr(module, f"_checksum_{name}_9")(b"123456789", 0) == params.check
         assert getattr(module, f"_checksum_{name}_9")(b"\xaa\xbb123456789", 2) == params.check

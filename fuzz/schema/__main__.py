@@ -13,6 +13,7 @@ from . import features as feature_table
 from .check import check_seed
 from .generate import generate
 from .mutate import check_mutant
+from .typecheck import mypy_problems
 
 RESULTS = Path(__file__).resolve().parents[1] / "RESULTS.md"
 MARK = "## Schema fuzzing"
@@ -27,6 +28,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--mutants", type=int, default=None,
                         help="mutated schemas to check after them (default: as many as --count)")
     parser.add_argument("--show", action="store_true", help="print the schema of --seed and stop")
+    parser.add_argument("--mypy", action="store_true", help="also run mypy --strict on every generated module")
     parser.add_argument("--record", action="store_true", help="write the run's count and result into fuzz/RESULTS.md")
     args = parser.parse_args(argv)
     chosen = feature_table.parse(args.features)
@@ -47,6 +49,10 @@ def main(argv: list[str] | None = None) -> int:
             if problem:
                 problems.append(problem)
                 print(problem, flush=True)
+    if args.mypy:
+        for problem in mypy_problems(seeds, chosen):
+            problems.append(problem)
+            print(problem, flush=True)
     seconds = time.monotonic() - start
     summary = (f"{args.count} schemas (seeds {seeds.start}..{seeds.stop - 1}), {len(failed)} failures; "
                f"{len(mutants)} mutated schemas, {len(problems)} not refused at a line nor built; "

@@ -48,8 +48,9 @@ def pack_function(layout: PacketLayout) -> dict:
             run.append(byte_expr(slot, lambda name: name))
     if run:
         pieces.append("bytes((" + ", ".join(run) + ",))")
+    data = {slot.data_field for slot in layout.slots if slot.data_field}
     return {"name": f"_machine_pack_{layout.message}",
-            "args": ", ".join(layout.members),
+            "args": ", ".join(f"{name}: {'bytes' if name in data else 'int'}" for name in layout.members),
             "expr": " + ".join(pieces)}
 
 
@@ -73,8 +74,10 @@ def unpack_function(layout: PacketLayout) -> dict:
             if bp.const is None:
                 v = f"b[{at(slot)}]" if bp.shift == 0 else f"(b[{at(slot)}] >> {bp.shift})"
                 values[bp.field] = v if bp.mask == 0xff >> bp.shift else f"{v} & {bp.mask:#x}"
+    data = {slot.data_field for slot in layout.slots if slot.data_field}
     return {"name": f"_machine_unpack_{layout.message}",
-            "args": ", ".join(layout.length_params() + ("b",)), "checks": checks,
+            "args": ", ".join([f"{name}: int" for name in layout.length_params()] + ["b: Union[bytes, bytearray]"]),
+            "checks": checks, "types": ", ".join("bytes" if name in data else "int" for name in layout.members),
             "values": [values[name] for name in layout.members]}
 
 
@@ -151,10 +154,11 @@ def machine_view(p: Protocol, machine: Machine) -> dict:
         view = {"name": e.name, "method": method_name(e), "doc": e.doc or e.name, "timer": e.timer,
                 "args": "", "checks": [], "unpack": None, "cases": []}
         if e.request:
-            view["args"] = "".join(", " + a for a in e.args)
             view["checks"] = argument_checks(p, e, machine)
+            types = {c["name"]: "Union[bytes, bytearray]" if c["bytes"] else "int" for c in view["checks"]}
+            view["args"] = "".join(f", {a}: {types[a]}" for a in e.args)
         if code.packet:
-            view["args"] = ", packet"
+            view["args"] = ", packet: Union[bytes, bytearray]"
             lengths = [low.param(n) for n in code.packet.length_params()]
             view["unpack"] = {"fn": f"_machine_unpack_{code.packet.message}",
                               "args": ", ".join(lengths + ["packet"]),

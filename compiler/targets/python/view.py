@@ -132,11 +132,28 @@ class PythonView:
                             "default": self.default_expr(f, message, path + (f.name,)),
                             "doc": self.field_comment(f)}
                            for f in required + optional],
+                "spec": "(" + "".join(self.plain_spec(f, message, path + (f.name,), f in required) + ", "
+                                      for f in required + optional) + ")",
             })
 
         for m in self.p.messages:
             visit(m, m.layout, (), self.class_name(m), str(m.title or m.doc or m.name), True)
         return out
+
+    def plain_spec(self, f: Field, message: Message, path: tuple[str, ...], required: bool) -> str:
+        """How to_dict and from_dict convert a field: (name, kind, class, optional, array, required)."""
+        one = f.element if f.count is not None else f
+        if one.kind == "group":
+            kind, cls = "group", self.group_class(message, path)
+        elif one.enum:
+            kind, cls = "enum", self.enum_class(one.enum.name)
+        elif one.flags:
+            kind, cls = "flags", self.enum_class(one.flags.name)
+        else:
+            kind, cls = self.annotation(one, message, path).removeprefix("Optional[").rstrip("]"), "None"
+            kind = "number" if kind == "float" else kind
+        optional = bool(one.one_hot or one.optional)
+        return f"({f.name!r}, {kind!r}, {cls}, {optional}, {f.count is not None}, {required})"
 
     def field_comment(self, f: Field) -> str:
         parts = [str(f.doc)] if f.doc else []
@@ -175,7 +192,9 @@ class PythonView:
         if f.checksum or self.fixed_raw(f) is not None:
             c(f"{var} = {lit(self.fixed_raw(f) or 0)}")
             return
-        c(f"{v} = {access(source, leaf.path[-1])}" if source else f"{v} = m.{leaf.dotted}")
+        # an enum, flag or bool value is checked and then replaced by its raw int: typed as Any
+        typed = ": Any" if f.kind == "bool" or f.enum is not None or f.flags is not None else ""
+        c(f"{v}{typed} = {access(source, leaf.path[-1])}" if source else f"{v}{typed} = m.{leaf.dotted}")
         if f.kind == "bool" and keep_bool:
             c(f"if {v} is not True and {v} is not False:")
             c(f"    if {v} != 0 and {v} != 1:")
@@ -190,7 +209,8 @@ class PythonView:
             cls = self.enum_class(f.enum.name)
             # a member of the enum class is valid by construction: no membership test
             # a bool or another enum's member is not a value of this one, even where it compares equal
-            c(f"if {v}.__class__ is not {cls} and (not isinstance({v}, {base}) or {v}.__class__ is bool "
+            not_bool = f" or {v}.__class__ is bool" if base == "int" else ""  # no str is a bool
+            c(f"if {v}.__class__ is not {cls} and (not isinstance({v}, {base}){not_bool} "
               f"or isinstance({v}, enum.Enum) or {v} not in _VALUES_{f.enum.name}):")
             c(f"    raise _enc({where}, {v}, 'enum', {cls!r}{self.user(f)})")
             if f.values:
@@ -198,7 +218,7 @@ class PythonView:
                 c(f"if {v} not in {lit(allowed)}:")
                 c(f"    raise _enc({where}, {v}, 'values', {', '.join(map(str, allowed))!r}, {f.rule!r}{self.user(f, False)})")
             if f.enum.kind != "char":
-                c(f"{var} = {v}._value_ if {v}.__class__ is {cls} else int({v})")
+                c(f"{var} = int({v})")
         elif f.flags is not None:
             cls = self.enum_class(f.flags.name)
             c(f"if {v}.__class__ is not int and {v}.__class__ is not {cls} and "
@@ -500,6 +520,7 @@ class MessageCode:
         self.leaves = message.wire.leaves
         self.cls = view.class_name(message)
         self.fn = message.name
+        self.output = "str" if view.p.framing.kind == "text" else "bytes"
 
     # -- raw values (binary framings and the text form) ----------------------------------
     def raw_checks(self, c: Code, word: bool = False) -> None:
@@ -619,7 +640,7 @@ class MessageCode:
     def raw_function(self) -> str:
         """_raw_<msg>(m): the raw values in wire order; the text form's writer."""
         c = Code()
-        c(f"def _raw_{self.fn}(m):")
+        c(f"def _raw_{self.fn}(m: {self.cls}) -> tuple[int, ...]:")
         c.indent()
         c(f'"""Check a {self.m.name} and return its raw wire values, in wire order."""')
         self.raw_checks(c)
@@ -681,8 +702,8 @@ class MessageCode:
     def build_function(self) -> str:
         """_build_<msg>(raw values…): checks parsed raw values, returns the object (text form)."""
         c = Code()
-        args = ", ".join(x.var for x in self.leaves)
-        c(f"def _build_{self.fn}({args}{', ' if args else ''}text_form=False):")
+        args = ", ".join(f"{x.var}: int" for x in self.leaves)
+        c(f"def _build_{self.fn}({args}{', ' if args else ''}text_form: bool = False) -> {self.cls}:")
         c.indent()
         self.build_checks(c, bounded=False, text_form=True)
         c("return o")
@@ -740,7 +761,7 @@ class MessageCode:
     def encode_bytes_function(self) -> str:
         c = Code()
         size = self.m.size
-        c(f"def _encode_{self.fn}(m):")
+        c(f"def _encode_{self.fn}(m: {self.cls}) -> {self.output}:")
         c.indent()
         word = self.one_word()
         self.raw_checks(c, word)
@@ -748,7 +769,7 @@ class MessageCode:
             parity = [(leaf, shift) for leaf, shift in self.word_shifts()
                       if leaf.field.checksum and leaf.field.checksum.algorithm == "parity"]
             others = [x for x in self.word_shifts() if x not in parity]
-            c(f"w = {self.packed(others)}")
+            c(f"w: int = {self.packed(others)}")
             for leaf, shift in parity:  # parity of every other field is parity of the word
                 flip = " ^ 1" if leaf.field.checksum.parity == "odd" else ""
                 c(f"w |= (w.bit_count() & 1{flip}) << {shift}" if shift else f"w |= w.bit_count() & 1{flip}")
@@ -856,7 +877,7 @@ class MessageCode:
         """_decode_<msg>(d): one straight-line function from bytes to the checked object."""
         c = Code()
         size = self.m.size
-        c(f"def _decode_{self.fn}(d):")
+        c(f"def _decode_{self.fn}(d: _Buffer) -> {self.cls}:")
         c.indent()
         sh = self.m.shortening
         if sh:
@@ -1010,11 +1031,11 @@ class MessageCode:
         sep = self.view.p.framing.text_form.separator
         names = ", ".join(x.var for x in self.leaves)
         c = Code()
-        c(f"def _encode_text_{self.fn}(m):")
+        c(f"def _encode_text_{self.fn}(m: {self.cls}) -> str:")
         c(f"    {names}, = _raw_{self.fn}(m)")
         c(f"    return {sep!r}.join(map(str, ({''.join(self.unsigned(x) + ', ' for x in self.leaves)})))")
         c("")
-        c(f"def _decode_text_{self.fn}(tokens):")
+        c(f"def _decode_text_{self.fn}(tokens: list[int]) -> {self.cls}:")
         c.indent()
         c(f"if len(tokens) != {len(self.leaves)}:")
         c(f"    raise _dec({self.m.name!r}, None, len(tokens), 'count', '{len(self.leaves)} values', 0)")
@@ -1036,7 +1057,7 @@ class MessageCode:
     def text_encode_function(self) -> str:
         fr = self.view.p.framing
         c = Code()
-        c(f"def _encode_{self.fn}(m):")
+        c(f"def _encode_{self.fn}(m: {self.cls}) -> {self.output}:")
         c.indent()
         self.view.rule_checks(c, self.m, "m", "_enc")
         outs: list[str] = []  # the text of each field, joined once at the end
@@ -1081,7 +1102,7 @@ class MessageCode:
                 out = f"t{n}"
             outs.append(out)
         if trailing < len(self.leaves):
-            c(f"p = [{', '.join(outs)}]")
+            c(f"p: list[Any] = [{', '.join(outs)}]")
             c("while p and p[-1] is None:  # absent values at the end are left out, separators and all")
             c("    p.pop()")
             for n in range(trailing, len(self.leaves) - 1):  # the last one, if kept, is present
@@ -1155,7 +1176,7 @@ class MessageCode:
     def text_decode_function(self) -> str:
         fr = self.view.p.framing
         c = Code()
-        c(f"def _decode_{self.fn}(body, base):")
+        c(f"def _decode_{self.fn}(body: str, base: int) -> {self.cls}:")
         c.indent()
         total = len(self.leaves)
         required = self.trailing_from()  # values up to the last required one
@@ -1170,7 +1191,7 @@ class MessageCode:
             # every value optional: an empty body holds none (not one empty value)
             c(f"t = body.split({fr.separator!r})" + (" if body else []" if not required else ""))
         c(f"if not {required} <= len(t) <= {total}:")
-        c(f"    raise _dec({self.m.name!r}, None, len(t), 'count', '{required}..{total} fields' if {required} != {total} else '{total} fields', base)")
+        c(f"    raise _dec({self.m.name!r}, None, len(t), 'count', {f'{required}..{total} fields' if required != total else f'{total} fields'!r}, base)")
         if total:
             c(f"ok = _SYNTAX_{self.fn}.fullmatch(body) is not None  # well-formed: token syntax checks are skipped")
         values: dict[tuple, str] = {}
@@ -1212,7 +1233,10 @@ class MessageCode:
                 c.dedent()
                 c("else:")
                 c(f"    {leaf.var} = None")
-                expr = f"(None if {leaf.var} is None else {expr})" if expr != leaf.var else expr
+                if expr and expr.isidentifier() and expr != leaf.var:  # bound on both branches
+                    c(f"    {expr} = None")
+                elif expr != leaf.var:
+                    expr = f"(None if {leaf.var} is None else {expr})"
             values[leaf.path] = expr if expr is not None else leaf.var
         self.construct(c, self.m.layout, (), values)
         self.view.rule_checks(c, self.m, "o", "_dec")
@@ -1246,6 +1270,7 @@ def module_view(p: Protocol) -> dict:
         "classes": view.dataclasses(), "checksums": view.checksum_functions(),
         "dispatch": view.dispatch_table(), "sequences": [view.sequence_view(s) for s in p.sequences],
         "stream": view.stream_view(), "encoding": view.encoding_view(),
+        "decode_overloads": view.decode_signature(),
     }
 
 
@@ -1273,7 +1298,7 @@ def _checksum_code(cs) -> str:
         c(fast[0])
         c("")
         c("")
-        c(f"def _checksum_{name}(data):")
+        c(f"def _checksum_{name}(data: _Buffer) -> int:")
         c(f"    return {fast[1]}")
     elif cs.algorithm == "crc":
         p = cs.crc
@@ -1282,18 +1307,9 @@ def _checksum_code(cs) -> str:
           f"refin={p.refin} refout={p.refout} xorout={p.xorout:#x}")
         if p.refin:
             # Reflected algorithm: shift right with the reflected polynomial.
-            rpoly = reflect(p.poly, p.width)
-            c(f"def _make_{name}():")
-            c("    table = []")
-            c("    for byte in range(256):")
-            c("        reg = byte")
-            c("        for _ in range(8):")
-            c(f"            reg = (reg >> 1) ^ {rpoly:#x} if reg & 1 else reg >> 1")
-            c("        table.append(reg)")
-            c("    return tuple(table)")
+            _table_literal(c, name, p)
             init = reflect(p.init, p.width)
-            c(f"_TABLE_{name} = _make_{name}()")
-            c(f"def _checksum_{name}(data):")
+            c(f"def _checksum_{name}(data: _Buffer) -> int:")
             c(f"    reg = {init:#x}")
             c(f"    table = _TABLE_{name}")
             c("    for byte in data:")
@@ -1302,23 +1318,9 @@ def _checksum_code(cs) -> str:
                 c(f"    reg = int(format(reg, '0{p.width}b')[::-1], 2)")
             c(f"    return reg ^ {p.xorout:#x}")
         else:
-            top = 1 << (p.width - 1)
             shift = p.width - 8
-            c(f"def _make_{name}():")
-            c("    table = []")
-            c("    for byte in range(256):")
-            if p.width >= 8:
-                c(f"        reg = byte << {shift}")
-                c("        for _ in range(8):")
-                c(f"            reg = ((reg << 1) ^ {p.poly:#x}) & {mask:#x} if reg & {top:#x} else (reg << 1) & {mask:#x}")
-            else:
-                c(f"        reg = byte << {8 - p.width}  # widths under 8 run on a left-aligned register")
-                c("        for _ in range(8):")
-                c(f"            reg = ((reg << 1) ^ {p.poly << (8 - p.width):#x}) & 0xFF if reg & 0x80 else (reg << 1) & 0xFF")
-            c("        table.append(reg)")
-            c("    return tuple(table)")
-            c(f"_TABLE_{name} = _make_{name}()")
-            c(f"def _checksum_{name}(data):")
+            _table_literal(c, name, p)
+            c(f"def _checksum_{name}(data: _Buffer) -> int:")
             if p.width >= 8:
                 c(f"    reg = {p.init:#x}")
                 c(f"    table = _TABLE_{name}")
@@ -1334,10 +1336,10 @@ def _checksum_code(cs) -> str:
                 c(f"    reg = int(format(reg, '0{p.width}b')[::-1], 2)")
             c(f"    return reg ^ {p.xorout:#x}")
     elif cs.algorithm == "sum":
-        c(f"def _checksum_{name}(data):")
+        c(f"def _checksum_{name}(data: _Buffer) -> int:")
         c(f"    return {_final_step(cs, f'sum(data) % {cs.modulo}')}")
     elif cs.algorithm == "xor":
-        c(f"def _checksum_{name}(data):")
+        c(f"def _checksum_{name}(data: _Buffer) -> int:")
         c("    x = 0")
         c("    for byte in data:")
         c("        x ^= byte")
@@ -1345,10 +1347,45 @@ def _checksum_code(cs) -> str:
     elif cs.algorithm == "fletcher":
         _fletcher_code(c, cs, name)
     else:
-        c(f"def _checksum_{name}(data):")
+        c(f"def _checksum_{name}(data: _Buffer) -> int:")
         flip = " ^ 1" if cs.parity == "odd" else ""
         c(f"    return int.from_bytes(data, 'big').bit_count() & 1{flip}")
     return c.text()
+
+
+def crc_byte_table(p) -> list[int]:
+    """The 256-entry table of a table-driven CRC: the register after each byte alone from
+    zero; reflected CRCs shift right by the reflected polynomial, widths under 8 run on a
+    left-aligned 8-bit register."""
+    table = []
+    for byte in range(256):
+        if p.refin:
+            reg = byte
+            for _ in range(8):
+                reg = (reg >> 1) ^ reflect(p.poly, p.width) if reg & 1 else reg >> 1
+        elif p.width >= 8:
+            mask, top = (1 << p.width) - 1, 1 << (p.width - 1)
+            reg = byte << (p.width - 8)
+            for _ in range(8):
+                reg = ((reg << 1) ^ p.poly) & mask if reg & top else (reg << 1) & mask
+        else:
+            reg = byte << (8 - p.width)
+            for _ in range(8):
+                reg = ((reg << 1) ^ (p.poly << (8 - p.width))) & 0xFF if reg & 0x80 else (reg << 1) & 0xFF
+        table.append(reg)
+    return table
+
+
+def _table_literal(c: Code, name: str, p) -> None:
+    """The byte table as a constant: nothing is computed when the module is imported."""
+    table = crc_byte_table(p)
+    digits = (max(p.width, 8) + 3) // 4
+    c(f"_TABLE_{name}: tuple[int, ...] = (")
+    for row in range(0, 256, 8):
+        c("    " + " ".join(f"{x:#0{digits + 2}x}," for x in table[row:row + 8]))
+    c(")")
+    c("")
+    c("")
 
 
 def _final_step(cs, value: str) -> str:
@@ -1367,7 +1404,7 @@ def _fletcher_code(c: Code, cs, name: str) -> None:
     nibbles, high nibble first."""
     half = cs.width // 2
     c(f"# Fletcher-{cs.width}: sums modulo {cs.modulo}, value (B << {half}) | A")
-    c(f"def _checksum_{name}(data):")
+    c(f"def _checksum_{name}(data: _Buffer) -> int:")
     c("    a = b = 0")
     c("    for byte in data:")
     if cs.width == 16:
@@ -1387,7 +1424,7 @@ def _positional_crc_code(name: str, lengths: list[int]) -> str:
     byte's distance from the end, so each length gets straight-line code."""
     c = Code()
     longest = max(lengths)
-    c(f"def _tables_{name}(longest):")
+    c(f"def _tables_{name}(longest: int) -> tuple[list[int], tuple[tuple[int, ...], ...]]:")
     c("    zeros = [_checksum_" + name + "(bytes(n)) for n in range(longest + 1)]")
     c("    tables = tuple(tuple(_checksum_" + name + "(bytes((b,)) + bytes(k)) ^ zeros[k + 1] for b in range(256))")
     c("                   for k in range(longest))")
@@ -1398,7 +1435,7 @@ def _positional_crc_code(name: str, lengths: list[int]) -> str:
     for n in lengths:
         c("")
         c("")
-        c(f"def _checksum_{name}_{n}(data, start):")
+        c(f"def _checksum_{name}_{n}(data: _Buffer, start: int) -> int:")
         names = [f"b{i}" for i in range(n)]
         c(f"    {', '.join(names)}, = data[start:start + {n}]")
         terms = [f"_ZEROS_{name}[{n}]"] + [f"_AT{n - 1 - i}_{name}[b{i}]" for i in range(n)]
@@ -1420,14 +1457,21 @@ def _pairwise_crc_code(cs, name: str, lengths: list[int]) -> str:
     def reflected(expr: str) -> str:  # generated code that bit-reverses expr
         return f"int(format({expr}, '0{width}b')[::-1], 2)"
     c = Code()
-    c(f"def _make16_{name}():")
-    c(f"    t = _TABLE_{name}")
-    if p.refin:  # the low byte of each little-endian word goes in first
-        c("    return tuple([t[(t[x & 0xFF] ^ (x >> 8)) & 0xFF] ^ (t[x & 0xFF] >> 8) for x in range(65536)])")
-    else:
-        c(f"    return tuple([t[((t[x >> 8] >> {width - 8}) ^ x) & 0xFF] ^ ((t[x >> 8] << 8) & {mask:#x})"
-          " for x in range(65536)])")
-    c(f"_TABLE16_{name} = _make16_{name}()")
+    pairs = _pair_table_halves(p)
+    for half, values in zip(("HIGH", "LOW"), pairs):
+        c(f"_{half}16_{name}: tuple[int, ...] = (")
+        for row in range(0, 256, 8):
+            c("    " + " ".join(f"{x:#0{(width + 3) // 4 + 2}x}," for x in values[row:row + 8]))
+        c(")")
+    c(f"_TABLE16_{name}: tuple[int, ...] = ()  # built by the first checksum, not at import")
+    c("")
+    c("")
+    c(f"def _table16_{name}() -> tuple[int, ...]:")
+    c('    """The register after two bytes is linear in them: the entry of (high, low) is the')
+    c('    entry of (high, 0) xor that of (0, low), so 65,536 entries come from 512 constants."""')
+    c(f"    global _TABLE16_{name}")
+    c(f"    _TABLE16_{name} = tuple([h ^ low for h in _HIGH16_{name} for low in _LOW16_{name}])")
+    c(f"    return _TABLE16_{name}")
     init = reflect(p.init, width) if p.refin else p.init
     for n in lengths:
         words, odd = divmod(n, 2)
@@ -1436,12 +1480,13 @@ def _pairwise_crc_code(cs, name: str, lengths: list[int]) -> str:
         c(f"_WORDS_{name}_{n} = struct.Struct({('<' if p.refin else '>') + f'{words}H' + ('B' if odd else '')!r})")
         c("")
         c("")
-        c(f"def _checksum_{name}_{n}(data, start):")
+        c(f"def _checksum_{name}_{n}(data: _Buffer, start: int) -> int:")
         c.indent()
         names = [f"w{i}" for i in range(words)] + (["b"] if odd else [])
-        c(f"{', '.join(names)}, = _WORDS_{name}_{n}.unpack_from(data, start)")
-        c(f"t = _TABLE16_{name}")
-        c(f"r = {init:#x}")
+        c(f"words: tuple[int, ...] = _WORDS_{name}_{n}.unpack_from(data, start)")
+        c(f"{', '.join(names)}, = words")
+        c(f"t = _TABLE16_{name} or _table16_{name}()")
+        c(f"r: int = {init:#x}")
         for w in names[:words]:
             if width == 16:
                 c(f"r = t[r ^ {w}]")
@@ -1459,6 +1504,18 @@ def _pairwise_crc_code(cs, name: str, lengths: list[int]) -> str:
         c(f"return r ^ {p.xorout:#x}" if p.xorout else "return r")
         c.dedent()
     return c.text()
+
+
+def _pair_table_halves(p) -> tuple[list[int], list[int]]:
+    """The two-byte table's entries for the pairs (x, 0) and (0, x), indexed as the
+    generated code indexes it: the 16-bit word the pair reads as."""
+    t, width, mask = crc_byte_table(p), p.width, (1 << p.width) - 1
+
+    def entry(x: int) -> int:
+        if p.refin:  # the low byte of each little-endian word goes in first
+            return t[(t[x & 0xFF] ^ (x >> 8)) & 0xFF] ^ (t[x & 0xFF] >> 8)
+        return t[((t[x >> 8] >> (width - 8)) ^ x) & 0xFF] ^ ((t[x >> 8] << 8) & mask)
+    return [entry(x << 8) for x in range(256)], [entry(x) for x in range(256)]
 
 
 def _fixed_span_crc_code(cs, name: str, lengths: list[int]) -> str:
@@ -1495,10 +1552,11 @@ class ModuleView(PythonView):
         `cut` bytes early, with a payload cut short."""
         name = _checksum_name(cs)
         if cut:
-            tail = f" + {bytes([extra])!r}" if cs.extra else ""
-            return f"_checksum_{name}({buf}[{start}:{end} - cut]{tail})"
+            if cs.extra:
+                return f"_checksum_{name}(bytes({buf}[{start}:{end} - cut]) + {bytes([extra])!r})"
+            return f"_checksum_{name}({buf}[{start}:{end} - cut])"
         if cs.extra:
-            data, size = f"{buf}[{start}:{end}] + {bytes([extra])!r}", end - start + 1
+            data, size = f"bytes({buf}[{start}:{end}]) + {bytes([extra])!r}", end - start + 1
             if cs.algorithm == "crc" and not _stdlib_crc(cs.crc):
                 return f"_checksum_{name}_{size}({data}, 0)"
             return f"_checksum_{name}({data})"
@@ -1517,6 +1575,21 @@ class ModuleView(PythonView):
             facts = dict(facts, word_limit=1 << self.p.framing.max_bits,
                          word_shift=self.p.framing.max_bits - facts["head_bits"])
         return facts
+
+    def decode_signature(self) -> str:
+        """The def line of module-level decode, after an overload for each direction where
+        the direction narrows the messages it returns (frames dispatched by id or prefix)."""
+        lines = []
+        if dispatch_facts(self.p)["kind"] in ("bytes", "text"):
+            for d in self.p.directions:
+                classes = [self.class_name(m) for m in self.p.messages if m.direction == d.name]
+                if classes:
+                    returned = f"Union[{', '.join(classes)}]" if len(classes) > 1 else classes[0]
+                    lines += ["@overload", f"def decode(data: _Input, direction: Literal[{d.name!r}]) -> {returned}: ...",
+                              "", ""]
+        if lines:
+            lines += ["@overload", "def decode(data: _Input, direction: Optional[str] = None) -> AnyMessage: ...", "", ""]
+        return "\n".join(lines + ["def decode(data: _Input, direction: Optional[str] = None) -> AnyMessage:"])
 
     def encoding_view(self) -> dict:
         """The link's byte stuffing as Python literals, or {} without one."""
@@ -1567,7 +1640,8 @@ class ModuleView(PythonView):
                 return f"({item.name!r}, {mode!r}, {item.message!r}, {item.count!r}, None)"
             cls = owner + camel(item.name)
             children = ", ".join(item_spec(c, cls) for c in item.items)
-            classes.append({"name": cls, "fields": [(c.name, annotation(c, cls)) for c in item.items]})
+            classes.append({"name": cls, "fields": [(c.name, annotation(c, cls)) for c in item.items],
+                            "doc": str(item.doc or f"The {item.name} of a {s.name}.")})
             mode = "repeat" if item.repeat else "one"
             return f"({item.name!r}, {mode!r}, {cls}, {item.count!r}, ({children},))"
 
@@ -1577,7 +1651,8 @@ class ModuleView(PythonView):
 
         cls = camel(s.name)
         spec = ", ".join(item_spec(i, cls) for i in s.items)
-        classes.append({"name": cls, "fields": [(i.name, annotation(i, cls)) for i in s.items]})
+        classes.append({"name": cls, "fields": [(i.name, annotation(i, cls)) for i in s.items],
+                        "doc": str(s.doc or f"A {s.name} sequence.")})
         rules = []
         for r in s.rules:
             rules.append(f"({r.kind!r}, {tuple(r.path.split('.'))!r}, "
