@@ -1293,6 +1293,9 @@ def _from_dict(cls: Callable[..., _T], values: object, message: str, prefix: str
             if required:
                 raise _dec(message, prefix + name, None, 'type', 'a value (the field is missing)')
             continue
+        if given[name] is None and optional and not required:  # absent (a conditional or optional field)
+            kwargs[name] = None
+            continue
         value: Any = given[name]
         if array:  # each element as a field of the element's type
             if value.__class__ is not list:

@@ -152,7 +152,7 @@ class PythonView:
         else:
             kind, cls = self.annotation(one, message, path).removeprefix("Optional[").rstrip("]"), "None"
             kind = "number" if kind == "float" else kind
-        optional = bool(one.one_hot or one.optional)
+        optional = bool(one.one_hot or one.optional or f.present_if)
         return f"({f.name!r}, {kind!r}, {cls}, {optional}, {f.count is not None}, {required})"
 
     def field_comment(self, f: Field) -> str:
@@ -182,7 +182,7 @@ class PythonView:
         return None
 
     def encode_leaf(self, c: Code, message: Message, leaf: Leaf, source: str = "",
-                    keep_bool: bool = False) -> None:
+                    keep_bool: bool = False, maybe_none: bool = False) -> None:
         """Emit code that reads leaf from `m` (or from `source`, its group already read), checks
         it and stores its raw value in leaf.var. keep_bool: a True or False is left as it is
         (binary packing shifts and sums bools as 1 and 0; text would write "True")."""
@@ -193,8 +193,10 @@ class PythonView:
             c(f"{var} = {lit(self.fixed_raw(f) or 0)}")
             return
         # an enum, flag or bool value is checked and then replaced by its raw int: typed as Any
-        typed = ": Any" if f.kind == "bool" or f.enum is not None or f.flags is not None else ""
-        c(f"{v}{typed} = {access(source, leaf.path[-1])}" if source else f"{v}{typed} = m.{leaf.dotted}")
+        # (and a value a frame may leave out, None unless its condition holds: read where it does)
+        typed = ": Any" if f.kind == "bool" or f.enum is not None or f.flags is not None or maybe_none else ""
+        read = access(source, leaf.path[-1]) if source else f"m.{leaf.dotted}"
+        c(f"{v}{typed} = cast(Any, {read})" if maybe_none else f"{v}{typed} = {read}")
         if f.kind == "bool" and keep_bool:
             c(f"if {v} is not True and {v} is not False:")
             c(f"    if {v} != 0 and {v} != 1:")
@@ -542,9 +544,12 @@ class MessageCode:
                         value += f" if len({parent}) > {prefix[1]} else None"
                     elif held and depth > (2 if held[1].counter else 1):  # inside what may be None
                         value += f" if {parent} is not None else None"
-                    c(f"{self.group_var(prefix)} = {value}")
+                    # None where a frame leaves it out: a checker takes it as Any, as the guards below read it
+                    maybe_none = held is not None and bool(held[1].presence or depth > 1)
+                    c(f"{self.group_var(prefix)}: Any = cast(Any, {value})" if maybe_none
+                      else f"{self.group_var(prefix)} = {value}")
                     if isinstance(leaf.path[depth], int):
-                        self.check_list(c, prefix, maybe_none=held is not None and bool(held[1].presence or depth > 1))
+                        self.check_list(c, prefix, maybe_none=maybe_none)
             if leaf.field.counts:
                 continue  # set from the list's length below
             guard = self.sent_guard(leaf, held, encoding=True)
@@ -553,7 +558,8 @@ class MessageCode:
                 continue
             c(f"if {guard}:")
             c.indent()
-            self.view.encode_leaf(c, self.m, leaf, self.group_var(leaf.path[:-1]), keep_bool=word)
+            self.view.encode_leaf(c, self.m, leaf, self.group_var(leaf.path[:-1]), keep_bool=word,
+                                  maybe_none=len(leaf.path) == 1)  # a conditional field's own value
             c.dedent()
             c("else:")
             c(f"    {leaf.var} = {f'bytes({leaf.field.length})' if leaf.field.kind == 'bytes' else 0}")
@@ -632,8 +638,7 @@ class MessageCode:
             c(f"if not isinstance({v}, (list, tuple)) or len({v}) > {count}:")
             c(f"    raise _enc({self.m.name!r}, {dotted(path)!r}, {v}, 'count', 'a list of at most {count} values')")
             return
-        absent = f"{v} is not None and " if maybe_none else ""
-        c(f"if {absent}(not isinstance({v}, (list, tuple)) or len({v}) != {count}):" if maybe_none else
+        c(f"if not _absent_or_list_of({v}, {count}):" if maybe_none else
           f"if not isinstance({v}, (list, tuple)) or len({v}) != {count}:")
         c(f"    raise _enc({self.m.name!r}, {dotted(path)!r}, {v}, 'count', 'a list of {count} values')")
 
@@ -678,7 +683,7 @@ class MessageCode:
                 c(f"if {guard}:")
             c.lines.extend(checks.lines)
             if expr is not None:
-                values[leaf.path] = expr if guard is None or expr == leaf.var else f"({expr} if {guard} else None)"
+                values[leaf.path] = expr if guard is None or expr == leaf.var else f"({expr} if {guard} else _ABSENT)"
         for leaf in self.leaves:
             cs = leaf.field.checksum
             if cs and cs.over != "bytes":
@@ -1267,6 +1272,7 @@ def module_view(p: Protocol) -> dict:
         "syntaxes": syntaxes, "text_classes": MessageCode.text_classes(fr) if fr.kind == "text" else {},
         "text_float": TEXT_FLOAT, "line": text_line_facts(p),
         "fixed": any(x.field.fixed_spelling for m in p.messages for x in m.wire.leaves),
+        "has_gaps": any(m.shortening and m.shortening.gaps for m in p.messages),
         "classes": view.dataclasses(), "checksums": view.checksum_functions(),
         "dispatch": view.dispatch_table(), "sequences": [view.sequence_view(s) for s in p.sequences],
         "stream": view.stream_view(), "encoding": view.encoding_view(),

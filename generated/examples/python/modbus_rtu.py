@@ -27,6 +27,7 @@ FINGERPRINT32 = 0x22247971  # its first 32 bits
 _floor = math.floor
 _isfinite = math.isfinite
 _object_new = object.__new__
+_ABSENT: Any = None  # a value a frame left out: its list slot is cut, or its field is None
 
 
 class CodecError(ValueError):
@@ -2946,6 +2947,9 @@ def _from_dict(cls: Callable[..., _T], values: object, message: str, prefix: str
         if name not in given:
             if required:
                 raise _dec(message, prefix + name, None, 'type', 'a value (the field is missing)')
+            continue
+        if given[name] is None and optional and not required:  # absent (a conditional or optional field)
+            kwargs[name] = None
             continue
         value: Any = given[name]
         if array:  # each element as a field of the element's type
