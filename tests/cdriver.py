@@ -205,7 +205,9 @@ class Driver:
         env.filters["cstr"] = cstr
         wire_max = max([len(c["wire"]) for mm in messages for c in mm["cases"]]
                        + [len(c["canon"]) for mm in messages for c in mm["cases"]]
-                       + [len(c["wire"]) for c in invalid] + [len(w) for w in seq_wires] + [1])
+                       + [len(c["wire"]) for c in invalid] + [len(w) for w in seq_wires] + [1]
+                       # an encoder writes the largest frame before it leaves out what is not sent
+                       + [m.size for m in p.messages if m.size is not None and p.framing.kind == "bytes"])
         return env.from_string(TEMPLATE.read_text()).render(
             p=p, px=p.name, PX=p.name.upper(), messages=messages, invalid=invalid, streams=streams,
             wires=wires, wire_index={w: i for i, w in enumerate(wires)},

@@ -200,7 +200,8 @@ class MessagesMixin(ResolverBase):
 
     def check_sizes_without_length(self, messages: list[Message]) -> None:
         """With no length field, a stream decoder knows a frame's size only from its id."""
-        if any(f.length_of for m in messages for f in m.layout) or len({m.size for m in messages}) < 2:
+        if any(f.length_of for m in messages for f in m.layout) or len({m.size for m in messages}) < 2 \
+                or any(m.size is None for m in messages):  # a field without a width says why itself
             return
         size_of: dict = {}
         for m in messages:  # a counted array's size is read from its count, by direction and id

@@ -107,7 +107,10 @@ def stream_facts(p: Protocol) -> dict:
     # before it reads a frame there; a mismatch drops the byte as garbage.
     return {"sync": sync, "sync_rest": list(enumerate(pattern))[1:],
             "sync_bytes": pattern, "length": length, "by_key": by_key, "sizes": sizes, "max": max(sizes),
-            "min": min(sizes), "ranges": size_ranges(p)}
+            "min": min(sizes), "ranges": size_ranges(p),
+            # what a stream decoder hands to the decoder: every size within a message's range, so
+            # one between the steps of a counted array is a dispatch error in both targets
+            "accepted": sorted({n for lo, hi in size_ranges(p) for n in range(lo, hi + 1)})}
 
 
 def gap_reads(p: Protocol, m: Message) -> list[dict]:
