@@ -8,6 +8,7 @@ line numbers, then run in order: the same module, a fraction of the memory.
 from __future__ import annotations
 
 import __future__
+import hashlib
 import sys
 import types
 
@@ -51,6 +52,8 @@ def _compile(source: str, filename: str) -> list[types.CodeType]:
 def load_module(name: str, source: str, filename: str) -> types.ModuleType:
     module = types.ModuleType(name)
     module.__file__ = filename
+    # what a result computed with the module (and cached, see cache.py) depends on
+    module.__source_sha256__ = hashlib.sha256(source.encode("utf-8", "surrogatepass")).hexdigest()
     sys.modules[name] = module  # dataclasses look the module up while processing classes
     try:
         for code in _compile(source, filename):
