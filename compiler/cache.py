@@ -1,20 +1,26 @@
 """Results a build would compute again unchanged, kept between builds.
 
-A result is stored under a hash of everything it depends on (the caller names
-each input: schema and generated code hashes, parameters, the source of the
-code that computes it, the Python version), so a stale entry is never found,
-only left behind. The folder is $CODEWORD_CACHE, else $XDG_CACHE_HOME/codeword,
-else ~/.cache/codeword; CODEWORD_CACHE=off keeps nothing. A cache that cannot be
+Each result has a slot, named by what it is and for which protocol, and a key,
+a hash of everything it depends on (the caller names each input: schema and
+generated code hashes, parameters, the source of the code that computes it; the
+Python version is always part of it). A slot holds the last result stored in
+it with its key; a result is used only when its key is the one asked for, so a
+stale one is never used, only replaced, and the cache holds one result per
+slot. The folder is $CODEWORD_CACHE, else $XDG_CACHE_HOME/codeword, else
+~/.cache/codeword; CODEWORD_CACHE=off keeps nothing. A cache that cannot be
 read or written only costs the computation.
 """
 from __future__ import annotations
 
 import contextlib
 import hashlib
+import importlib.util
 import json
 import os
+import re
 import sys
 import tempfile
+from functools import lru_cache
 from pathlib import Path
 from typing import Any, Callable, Optional
 
@@ -39,36 +45,68 @@ def source_hash(*files: Path) -> str:
     return h.hexdigest()
 
 
-def key(kind: str, *inputs: Any) -> str:
-    text = json.dumps([kind, list(sys.version_info[:2]), *inputs], sort_keys=True)
-    return f"{kind}-{hashlib.sha256(text.encode('utf-8')).hexdigest()[:32]}"
+@lru_cache(maxsize=1)
+def compiler_hash() -> str:
+    """The hash of codeword's own code and data (its templates show in what they render):
+    for a result that depends on more of it than a caller can name."""
+    package = Path(__file__).resolve().parent
+    files = sorted(p for suffix in ("*.py", "*.json", "*.yaml") for p in package.rglob(suffix)
+                   if "__pycache__" not in p.parts)
+    h = hashlib.sha256()
+    for path in files:
+        h.update(path.relative_to(package).as_posix().encode("utf-8") + b"\0" + path.read_bytes() + b"\0")
+    return h.hexdigest()
 
 
-def remembered(name: str, compute: Callable[[], Any]) -> Any:
-    """compute()'s JSON-able result, from the cache when a build has stored it."""
+def key(*inputs: Any) -> str:
+    """The hash of a result's inputs (JSON data), with the Python version and bytecode format."""
+    text = json.dumps([list(sys.version_info[:3]), importlib.util.MAGIC_NUMBER.hex(), *inputs], sort_keys=True)
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()
+
+
+def slot(kind: str, name: str) -> str:
+    return kind + "-" + re.sub(r"[^A-Za-z0-9_.-]", "_", name)[:80]
+
+
+def load(place: str, wanted: str) -> Optional[bytes]:
+    """The bytes stored in slot `place` under key `wanted`, or None."""
     where = folder()
-    path = where / f"{name}.json" if where is not None else None
-    if path is not None:
-        try:
-            return json.loads(path.read_text(encoding="utf-8"))["value"]
-        except (OSError, ValueError, KeyError, TypeError):  # absent or damaged: compute it
-            pass
-    value = compute()
-    if path is not None:
-        _store(path, value)
-    return value
-
-
-def _store(path: Path, value: Any) -> None:
+    if where is None:
+        return None
     try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=".tmp")
+        data = (where / place).read_bytes()
+    except OSError:
+        return None
+    stored, _, value = data.partition(b"\n")
+    return value if stored == wanted.encode("ascii") else None
+
+
+def store(place: str, wanted: str, value: bytes) -> None:
+    where = folder()
+    if where is None:
+        return
+    try:
+        where.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(dir=where, prefix=place, suffix=".tmp")
     except OSError:
         return
     try:
-        with os.fdopen(fd, "w", encoding="utf-8") as out:
-            json.dump({"value": value}, out)
-        os.replace(tmp, path)  # whole or not at all, even with builds running side by side
+        with os.fdopen(fd, "wb") as out:
+            out.write(wanted.encode("ascii") + b"\n" + value)
+        os.replace(tmp, where / place)  # whole or not at all, even with builds running side by side
     except OSError:
         with contextlib.suppress(OSError):
             os.unlink(tmp)
+
+
+def remembered(place: str, wanted: str, compute: Callable[[], Any]) -> Any:
+    """compute()'s JSON-able result, from the cache when a build has stored it."""
+    data = load(place, wanted)
+    if data is not None:
+        try:
+            return json.loads(data)
+        except ValueError:  # damaged: compute it
+            pass
+    value = compute()
+    store(place, wanted, json.dumps(value).encode("utf-8"))
+    return value

@@ -46,8 +46,8 @@ def measured(p: Protocol, codec: types.ModuleType) -> list[dict]:
     if codec_hash is None:  # a codec not loaded by the build: nothing to key it on
         return measure()
     simulator = cache.source_hash(*sorted(Path(sim.__file__).parent.glob("*.py")))
-    return cache.remembered(cache.key("efficiency", p.sha256, codec_hash, simulator, RATES, COMMANDS, SEED),
-                            measure)
+    return cache.remembered(cache.slot("efficiency", p.name),
+                            cache.key("efficiency", p.sha256, codec_hash, simulator, RATES, COMMANDS, SEED), measure)
 
 
 def delivery_view(p: Protocol, codec: types.ModuleType, linker: DecisionLinker) -> Optional[dict]:
