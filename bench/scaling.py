@@ -16,6 +16,7 @@ from pathlib import Path
 from bench.protocols import ROOT
 
 SIZES = (10, 100, 1000, 5000)
+COLD = dict(os.environ, CODEWORD_CACHE="off")  # builds that find nothing kept by an earlier one
 
 # One process: import the compiler, build, report wall seconds and peak RSS.
 CHILD = """\
@@ -90,6 +91,55 @@ print(json.dumps({"rc": 0, "seconds": time.perf_counter() - start, "cpu": usage.
 """
 
 
+# One process: a codeword build with the CPU time of each stage (wrapping the stages' functions).
+PHASES_CHILD = """\
+import functools, json, resource, sys, time
+
+
+def cpu():
+    usage = resource.getrusage(resource.RUSAGE_SELF)
+    return usage.ru_utime + usage.ru_stime
+
+
+start = cpu()
+from codeword import build, cli
+from codeword.targets import c, markdown, python
+spent = {"interpreter start and imports": start}
+spent["interpreter start and imports"] += cpu() - start
+
+
+def timed(owner, name, stage):
+    inner = getattr(owner, name)
+
+    @functools.wraps(inner)
+    def wrapper(*args, **kwargs):
+        began = cpu()
+        try:
+            return inner(*args, **kwargs)
+        finally:
+            spent[stage] = spent.get(stage, 0.0) + cpu() - began
+    setattr(owner, name, wrapper)
+
+
+for owner, name, stage in ((build, "load_file", "YAML"), (build, "resolve", "validation and resolution"),
+                           (python, "render", "Python"), (c, "render", "C"),
+                           (build, "load_module", "compiling the generated Python"),
+                           (build, "check_examples", "checking the examples"), (markdown, "render", "docs"),
+                           (build, "write_vectors", "vectors")):
+    timed(owner, name, stage)
+rc = cli.main(sys.argv[1:])
+spent["writing and the rest"] = cpu() - sum(spent.values())
+print(json.dumps({"rc": rc, "phases": spent}))
+"""
+
+
+def phases(tmp: Path, schema: Path) -> dict:
+    """{stage: CPU seconds} of one cold codeword build of `schema`."""
+    out = subprocess.run([sys.executable, "-c", PHASES_CHILD, "build", str(schema), "--out", str(tmp / "phases")],
+                         capture_output=True, text=True, cwd=tmp, check=True, env=COLD)
+    return json.loads(out.stdout.strip().splitlines()[-1])["phases"]
+
+
 def mavlink_shaped_schema(n: int) -> str:
     """A protocol framed as MAVLink 2 (length, sequence, system and component ids, a
     24-bit id, CRC-16/MCRF4XX with a CRC extra per message) with n messages of eight
@@ -142,23 +192,27 @@ def mavlink_messages(xml: Path) -> int:
 
 
 def versus_mavgen(tmp: Path, repeats: int, xml: Path):
-    """{"mavgen": (CPU s, wall s), "codeword": (CPU s, wall s)}, medians of interleaved
-    rounds, each a new process: mavgen's C and Python for `xml`, codeword's full build
-    (Python, C, docs, vectors, no cache) of a MAVLink-shaped synthetic protocol with as many
-    messages; and that count."""
+    """{"mavgen" | "codeword" | "codeword again": (CPU s, wall s)}, medians of interleaved
+    rounds, each a new process: mavgen's C and Python for `xml`; codeword's full build
+    (Python, C, docs, vectors) of a MAVLink-shaped synthetic protocol with as many messages,
+    with no build cache and again with the cache an earlier build left; and that count."""
     n = mavlink_messages(xml)
     tmp.mkdir(parents=True, exist_ok=True)
     schema = tmp / f"mav{n}.yaml"
     schema.write_text(mavlink_shaped_schema(n))
-    env = dict(os.environ, CODEWORD_CACHE="off")
+    build = ["build", str(schema), "--out", str(tmp / "codeword")]
+    warm = dict(os.environ, CODEWORD_CACHE=str(tmp / "cache"))
+    _child(build, tmp, env=warm)  # fills the cache the rebuilds find
     jobs = {"mavgen": lambda: _child([str(xml), str(tmp / "mavgen")], tmp, MAVGEN_CHILD),
-            "codeword": lambda: _child(["build", str(schema), "--out", str(tmp / "codeword")], tmp, env=env)}
+            "codeword": lambda: _child(build, tmp, env=COLD),
+            "codeword again": lambda: _child(build, tmp, env=warm)}
     samples = {k: [] for k in jobs}
     for _ in range(repeats):
         for k, job in jobs.items():
             samples[k].append(job())
-    return {k: (statistics.median(r["cpu"] for r in v), statistics.median(r["seconds"] for r in v))
-            for k, v in samples.items()}, n
+    figures = {k: (statistics.median(r["cpu"] for r in v), statistics.median(r["seconds"] for r in v))
+               for k, v in samples.items()}
+    return figures, n, phases(tmp, schema)
 
 
 def _child(args, cwd, code=CHILD, env=None):
@@ -187,7 +241,7 @@ def scaling(tmp: Path, repeats: int, sizes=SIZES):
             if n in failures:
                 continue
             try:
-                samples[n].append(_child(["build", str(paths[n]), "--out", str(tmp / f"out{n}")], tmp))
+                samples[n].append(_child(["build", str(paths[n]), "--out", str(tmp / f"out{n}")], tmp, env=COLD))
             except (RuntimeError, subprocess.CalledProcessError) as exc:
                 failures[n] = str(exc).strip().splitlines()[-1][:300]
     figures = {n: (statistics.median(s["cpu"] for s in samples[n]),

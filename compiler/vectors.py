@@ -27,8 +27,8 @@ import shutil
 import string
 import struct
 import tempfile
-from functools import lru_cache
-from typing import Any, TextIO
+from functools import lru_cache, partial
+from typing import Any, Callable, TextIO
 
 from . import binary64, jsontext
 
@@ -118,7 +118,8 @@ class Generator:
         # asked for every frame: looked up once (both walk every message)
         self.self_identifying = p.self_identifying
         self.messages = {m.name: m for m in p.messages}
-        self.members: dict[str, list[Field]] = {}  # per message: the fields values() fills
+        # per message: the fields values() fills, each with its drawer
+        self.members: dict[str, list[tuple[Field, Callable[[str], Any]]]] = {}
         self.alphabets: dict[tuple[bool, bool], str] = {}
         self.choices: dict[tuple, list] = {}  # per enum and allowed values
         self.randoms, self.mutated = cases_per_message(len(p.messages))
@@ -267,14 +268,29 @@ class Generator:
     def values(self, m: Message, edge: str = "", focus: str = "") -> dict:
         members = self.members.get(m.name)
         if members is None:
-            members = self.members[m.name] = [f for f in m.layout if f.is_member]
+            members = self.members[m.name] = [(f, self.drawer(f)) for f in m.layout if f.is_member]
         out = {}
-        for f in members:
-            out[f.name] = self.value(f, edge if (not focus or focus == f.name) else "")
-        for f in members:
+        for f, draw in members:
+            out[f.name] = draw(edge if (not focus or focus == f.name) else "")
+        for f, _ in members:
             if f.present_if:
                 self.choose_presence(m, f, out)
         return out
+
+    def drawer(self, f: Field) -> Callable[[str], Any]:
+        """How values() draws a field at an edge (or at random for ""): a plain integer
+        directly, drawing as value() does, anything else through value()."""
+        if f.kind not in ("uint", "int") or f.count is not None or f.enum is not None or f.flags is not None \
+                or f.one_hot or f.optional or f.scale is not None or f.values:
+            return partial(self.value, f)
+        lo, hi, _, _ = self.integer_bounds(f)
+        zero, randrange = max(lo, min(hi, 0)), self.rng.randrange
+
+        def draw(edge: str) -> int:
+            if not edge:
+                return randrange(lo, hi + 1)  # what randint(lo, hi) draws
+            return lo if edge == "min" else hi if edge == "max" else zero
+        return draw
 
     def choose_presence(self, m: Message, f: Field, out: dict) -> None:
         """Make a conditional field present or absent at random, by setting its control field;
