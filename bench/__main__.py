@@ -4,6 +4,7 @@
     python3 -m bench --smoke          # one repetition of everything, small inputs, no file written
     python3 -m bench --no-install     # skip `pip install -e .[bench]`
     python3 -m bench --profile        # cProfile of codeword's encode and decode calls, printed
+    python3 -m bench --only compiler  # section 5 alone, spliced into the existing RESULTS.md
 """
 
 import argparse
@@ -25,6 +26,7 @@ def main(argv=None):
     parser.add_argument("--smoke", action="store_true", help="one repetition, small inputs, print only")
     parser.add_argument("--no-install", action="store_true", help="do not pip install the bench extra")
     parser.add_argument("--profile", action="store_true", help="profile codeword's per-message calls, print")
+    parser.add_argument("--only", choices=["compiler"], help="measure one section again, keep the others")
     parser.add_argument("--out", default=str(ROOT / "bench" / "RESULTS.md"))
     parser.add_argument("--stream-mb", type=float, default=50.0, help="size of the mtv4 capture")
     # every size the scaling target names; 5,000 messages take about 2 CPU minutes and under 0.5 GB
@@ -37,12 +39,23 @@ def main(argv=None):
         print(profile.profile())
         return 0
     from bench import runner  # imports the peers, so only after installing them
+    sizes = tuple(int(x) for x in args.scaling_sizes.split(","))
+    if args.only == "compiler":
+        with tempfile.TemporaryDirectory(prefix="codeword-bench-") as tmp:
+            results = runner.run_compiler(Path(tmp), (10,) if args.smoke else sizes, 1 if args.smoke else 3)
+        out = Path(args.out)
+        text = runner.splice_compiler(out.read_text(encoding="utf-8"), results)
+        if args.smoke:
+            print(text)
+        else:
+            out.write_text(text, encoding="utf-8")
+            print(f"wrote {out}")
+        return 0
     with tempfile.TemporaryDirectory(prefix="codeword-bench-") as tmp:
         if args.smoke:
             results = runner.run(Path(tmp), repeats=1, stream_bytes=200_000, c_rounds=1,
                                  scaling_sizes=(10,), timing_target=0.002)
         else:
-            sizes = tuple(int(x) for x in args.scaling_sizes.split(","))
             results = runner.run(Path(tmp), repeats=7, stream_bytes=int(args.stream_mb * 1e6),
                                  c_rounds=7, scaling_sizes=sizes, stream_repeats=3,
                                  scaling_repeats=1)

@@ -1,19 +1,22 @@
 """Compiler scaling: time and peak memory of `codeword build` on synthetic
-schemas of growing size, each in a fresh process, and the cold build of the
-five seed protocols."""
+schemas of growing size, each in a fresh process; the cold build of the five
+seed protocols; and codeword against mavgen on the same message count."""
 
 import json
 import math
+import os
 import resource
 import statistics
 import subprocess
 import sys
 import time
+import xml.etree.ElementTree as ET
 from pathlib import Path
 
 from bench.protocols import ROOT
 
 SIZES = (10, 100, 1000, 5000)
+COLD = dict(os.environ, CODEWORD_CACHE="off")  # builds that find nothing kept by an earlier one
 
 # One process: import the compiler, build, report wall seconds and peak RSS.
 CHILD = """\
@@ -76,9 +79,145 @@ def synthetic_schema(n: int) -> str:
     return "\n".join(lines) + "\n"
 
 
-def _child(args, cwd):
-    out = subprocess.run([sys.executable, "-c", CHILD, *args], capture_output=True, text=True,
-                         cwd=cwd, check=True)
+# One process: mavgen's C and Python for a MAVLink XML, as two `mavgen --lang` runs would.
+MAVGEN_CHILD = """\
+import json, resource, sys, time
+start = time.perf_counter()
+from pymavlink.generator import mavgen
+for lang in ("C", "Python"):
+    mavgen.mavgen(mavgen.Opts(f"{sys.argv[2]}/{lang}", wire_protocol="2.0", language=lang), [sys.argv[1]])
+usage = resource.getrusage(resource.RUSAGE_SELF)
+print(json.dumps({"rc": 0, "seconds": time.perf_counter() - start, "cpu": usage.ru_utime + usage.ru_stime}))
+"""
+
+
+# One process: a codeword build with the CPU time of each stage (wrapping the stages' functions).
+PHASES_CHILD = """\
+import functools, json, resource, sys, time
+
+
+def cpu():
+    usage = resource.getrusage(resource.RUSAGE_SELF)
+    return usage.ru_utime + usage.ru_stime
+
+
+start = cpu()
+from codeword import build, cli
+from codeword.targets import c, markdown, python
+spent = {"interpreter start and imports": start}
+spent["interpreter start and imports"] += cpu() - start
+
+
+def timed(owner, name, stage):
+    inner = getattr(owner, name)
+
+    @functools.wraps(inner)
+    def wrapper(*args, **kwargs):
+        began = cpu()
+        try:
+            return inner(*args, **kwargs)
+        finally:
+            spent[stage] = spent.get(stage, 0.0) + cpu() - began
+    setattr(owner, name, wrapper)
+
+
+for owner, name, stage in ((build, "load_file", "YAML"), (build, "resolve", "validation and resolution"),
+                           (python, "render", "Python"), (c, "render", "C"),
+                           (build, "load_module", "compiling the generated Python"),
+                           (build, "check_examples", "checking the examples"), (markdown, "render", "docs"),
+                           (build, "write_vectors", "vectors")):
+    timed(owner, name, stage)
+rc = cli.main(sys.argv[1:])
+spent["writing and the rest"] = cpu() - sum(spent.values())
+print(json.dumps({"rc": rc, "phases": spent}))
+"""
+
+
+def phases(tmp: Path, schema: Path) -> dict:
+    """{stage: CPU seconds} of one cold codeword build of `schema`."""
+    out = subprocess.run([sys.executable, "-c", PHASES_CHILD, "build", str(schema), "--out", str(tmp / "phases")],
+                         capture_output=True, text=True, cwd=tmp, check=True, env=COLD)
+    return json.loads(out.stdout.strip().splitlines()[-1])["phases"]
+
+
+def mavlink_shaped_schema(n: int) -> str:
+    """A protocol framed as MAVLink 2 (length, sequence, system and component ids, a
+    24-bit id, CRC-16/MCRF4XX with a CRC extra per message) with n messages of eight
+    fields each: integers of every width, a float, a scaled and two ranged fields."""
+    lines = [
+        "codeword: 1",
+        f"protocol: mav{n}",
+        f"title: synthetic MAVLink-shaped protocol with {n} messages",
+        "source: bench/scaling.py",
+        "framing:",
+        "  kind: bytes",
+        "  byte_order: little",
+        "  layout:",
+        "    - {name: stx, type: u8, const: 0xFD}",
+        "    - {name: len, type: u8, length_of: {from: payload, to: payload}}",
+        "    - {name: seq, type: u8}",
+        "    - {name: sysid, type: u8}",
+        "    - {name: compid, type: u8}",
+        "    - {name: msgid, type: u24, dispatch: true}",
+        "    - {payload: true}",
+        "    - name: checksum",
+        "      type: u16",
+        "      checksum: {algorithm: CRC-16/MCRF4XX, covers: {from: len, to: payload}, extra: message}",
+        "messages:",
+    ]
+    for i in range(n):
+        lines += [
+            f"  m{i}:",
+            f"    id: {i}",
+            f"    crc_extra: {i * 37 % 256}",
+            f"    doc: synthetic message {i}",
+            "    fields:",
+            "      - {name: time_ms, type: u32, unit: ms}",
+            "      - {name: x, type: f32}",
+            "      - {name: y, type: i16, scale: 0.01, range: [-300, 300]}",
+            "      - {name: speed, type: u16, range: [0, 5000]}",
+            "      - {name: mode, type: u8}",
+            "      - {name: trim, type: i8}",
+            "      - {name: level, type: u8, range: [0, 100]}",
+            "      - {name: count, type: u16}",
+        ]
+    return "\n".join(lines) + "\n"
+
+
+def mavlink_messages(xml: Path) -> int:
+    """Messages in a MAVLink XML file and the files it includes."""
+    root = ET.parse(xml).getroot()
+    included = sum(mavlink_messages(xml.parent / inc.text.strip()) for inc in root.iter("include"))
+    return included + len(root.findall("./messages/message"))
+
+
+def versus_mavgen(tmp: Path, repeats: int, xml: Path):
+    """{"mavgen" | "codeword" | "codeword again": (CPU s, wall s)}, medians of interleaved
+    rounds, each a new process: mavgen's C and Python for `xml`; codeword's full build
+    (Python, C, docs, vectors) of a MAVLink-shaped synthetic protocol with as many messages,
+    with no build cache and again with the cache an earlier build left; and that count."""
+    n = mavlink_messages(xml)
+    tmp.mkdir(parents=True, exist_ok=True)
+    schema = tmp / f"mav{n}.yaml"
+    schema.write_text(mavlink_shaped_schema(n))
+    build = ["build", str(schema), "--out", str(tmp / "codeword")]
+    warm = dict(os.environ, CODEWORD_CACHE=str(tmp / "cache"))
+    _child(build, tmp, env=warm)  # fills the cache the rebuilds find
+    jobs = {"mavgen": lambda: _child([str(xml), str(tmp / "mavgen")], tmp, MAVGEN_CHILD),
+            "codeword": lambda: _child(build, tmp, env=COLD),
+            "codeword again": lambda: _child(build, tmp, env=warm)}
+    samples = {k: [] for k in jobs}
+    for _ in range(repeats):
+        for k, job in jobs.items():
+            samples[k].append(job())
+    figures = {k: (statistics.median(r["cpu"] for r in v), statistics.median(r["seconds"] for r in v))
+               for k, v in samples.items()}
+    return figures, n, phases(tmp, schema)
+
+
+def _child(args, cwd, code=CHILD, env=None):
+    out = subprocess.run([sys.executable, "-c", code, *args], capture_output=True, text=True,
+                         cwd=cwd, check=True, env=env)
     result = json.loads(out.stdout.strip().splitlines()[-1])
     if result["rc"] != 0:
         raise RuntimeError(f"codeword {' '.join(args)} exited {result['rc']}: {out.stderr[-2000:]}")
@@ -102,7 +241,7 @@ def scaling(tmp: Path, repeats: int, sizes=SIZES):
             if n in failures:
                 continue
             try:
-                samples[n].append(_child(["build", str(paths[n]), "--out", str(tmp / f"out{n}")], ROOT))
+                samples[n].append(_child(["build", str(paths[n]), "--out", str(tmp / f"out{n}")], tmp, env=COLD))
             except (RuntimeError, subprocess.CalledProcessError) as exc:
                 failures[n] = str(exc).strip().splitlines()[-1][:300]
     figures = {n: (statistics.median(s["cpu"] for s in samples[n]),
@@ -126,14 +265,22 @@ def exponent(times: dict) -> float:
 
 def seed_build(tmp: Path, repeats: int):
     """Median (CPU seconds, wall seconds) of a cold `codeword build` of the five
-    seed schemas: a new process each time, interpreter start and imports included."""
-    cpu, wall = [], []
-    for _ in range(repeats):
-        before = resource.getrusage(resource.RUSAGE_CHILDREN)
-        start = time.perf_counter()
-        subprocess.run([sys.executable, "-m", "codeword", "build", "--out", str(tmp / "seeds")],
-                       cwd=ROOT, check=True, capture_output=True)
-        wall.append(time.perf_counter() - start)
-        after = resource.getrusage(resource.RUSAGE_CHILDREN)
-        cpu.append(after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime)
-    return statistics.median(cpu), statistics.median(wall)
+    seed schemas, a new process each time, interpreter start and imports included:
+    {"first": with an empty build cache, "again": with the cache the first build left}."""
+    figures = {}
+    for label, cache in (("first", None), ("again", tmp / "seed-cache")):
+        cpu, wall = [], []
+        for _ in range(repeats):
+            env = dict(os.environ, CODEWORD_CACHE=str(cache) if cache else "off")
+            if cache is not None and not cache.exists():  # fill it, untimed
+                subprocess.run([sys.executable, "-m", "codeword", "build", "--out", str(tmp / "seeds")],
+                               cwd=ROOT, check=True, capture_output=True, env=env)
+            before = resource.getrusage(resource.RUSAGE_CHILDREN)
+            start = time.perf_counter()
+            subprocess.run([sys.executable, "-m", "codeword", "build", "--out", str(tmp / "seeds")],
+                           cwd=ROOT, check=True, capture_output=True, env=env)
+            wall.append(time.perf_counter() - start)
+            after = resource.getrusage(resource.RUSAGE_CHILDREN)
+            cpu.append(after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime)
+        figures[label] = (statistics.median(cpu), statistics.median(wall))
+    return figures

@@ -17,7 +17,8 @@ from .model import Protocol
 from .project import Project
 from .pyload import load_module
 from .resolver import resolve
-from .spool import Spool
+from .spool import InPlace, Spool, file_sha256
+from . import cache
 from .targets import python as python_target
 from .targets import c as c_target
 from .targets.c.view import CTargetError
@@ -91,6 +92,19 @@ def vector_spool(p: Protocol, codec: types.ModuleType) -> Spool:
     return spool
 
 
+def vectors_for(p: Protocol, codec: types.ModuleType, target: Path | None) -> Spool | InPlace:
+    """The vectors, or InPlace when `target` already holds those the same schema, codec
+    and compiler made before (their hash is kept in the build cache)."""
+    place = cache.slot("vectors", p.name)
+    wanted = cache.key("vectors", p.sha256, getattr(codec, "__source_sha256__", None), cache.compiler_hash())
+    made = cache.load(place, wanted)
+    if made is not None and target is not None and file_sha256(target) == made.decode("ascii", "replace"):
+        return InPlace(target)
+    spool = vector_spool(p, codec)
+    cache.store(place, wanted, spool.sha256().encode("ascii"))
+    return spool
+
+
 @dataclass
 class BuildResult:
     # where each file goes, as the command line names it
@@ -112,7 +126,7 @@ def build(schemas: list[Path], out: Path | Project, check: bool = False, root: P
     project = out if isinstance(out, Project) else Project(root=root or Path.cwd(), config=None, out=out)
     building_all = all_schemas is None or {p.resolve() for p in all_schemas} <= {p.resolve() for p in schemas}
     result = BuildResult()
-    expected: dict[str, str | Spool] = {}
+    expected: dict[str, str | Spool | InPlace] = {}
     protocols: list[Protocol] = []
     for path in schemas:
         display = _display(path, root)
@@ -120,7 +134,8 @@ def build(schemas: list[Path], out: Path | Project, check: bool = False, root: P
             protocol = compile_schema(path, display)
             files, codec = render_with_codec(protocol)
             if "vectors" in project.targets:
-                files[f"vectors/{protocol.name}.json"] = vector_spool(protocol, codec)
+                rel = f"vectors/{protocol.name}.json"
+                files[rel] = vectors_for(protocol, codec, _place(project, rel))
         except SchemaError as exc:
             result.errors.extend(exc.diagnostics)
             continue
@@ -140,7 +155,9 @@ def build(schemas: list[Path], out: Path | Project, check: bool = False, root: P
     placed.update(_site(project, listed, result))
     for target, text in sorted(placed.items()):
         rel = target
-        if isinstance(text, Spool):
+        if isinstance(text, InPlace):
+            same = text.path == target
+        elif isinstance(text, Spool):
             same = text.same_as(target)
         else:
             same = (target.read_text(encoding="utf-8") if target.is_file() else None) == text
@@ -227,7 +244,7 @@ def package_init(protocols: list[Protocol]) -> str:
             'Each module is stand-alone; import the one you need."""\n')
 
 
-def _close(expected: dict[str, str | Spool]) -> None:
+def _close(expected: dict[str, str | Spool | InPlace]) -> None:
     for text in expected.values():
         if isinstance(text, Spool):
             text.close()

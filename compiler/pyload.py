@@ -4,12 +4,19 @@ A codec for thousands of messages is megabytes of source, and compiling it in
 one go builds a syntax tree of over a hundred bytes per source byte. It is
 compiled a run of top-level definitions at a time instead, each at its own
 line numbers, then run in order: the same module, a fraction of the memory.
+The compiled code is kept in the build cache (cache.py) under the source's
+hash, as Python keeps a module's in __pycache__: a build of an unchanged
+schema does not compile it again.
 """
 from __future__ import annotations
 
 import __future__
+import hashlib
+import marshal
 import sys
 import types
+
+from . import cache
 
 CHUNK_LINES = 4000
 _FUTURE_FLAGS = 0
@@ -48,12 +55,27 @@ def _compile(source: str, filename: str) -> list[types.CodeType]:
         return [compile(source, filename, "exec")]
 
 
+def _code(source: str, filename: str, digest: str) -> list[types.CodeType]:
+    place, wanted = cache.slot("codec", filename), cache.key("codec", digest, filename)
+    data = cache.load(place, wanted)
+    if data is not None:
+        try:
+            return marshal.loads(data)
+        except (EOFError, ValueError, TypeError):  # damaged: compile it
+            pass
+    code = _compile(source, filename)
+    cache.store(place, wanted, marshal.dumps(code))
+    return code
+
+
 def load_module(name: str, source: str, filename: str) -> types.ModuleType:
     module = types.ModuleType(name)
     module.__file__ = filename
+    # what a result computed with the module (and cached, see cache.py) depends on
+    module.__source_sha256__ = digest = hashlib.sha256(source.encode("utf-8", "surrogatepass")).hexdigest()
     sys.modules[name] = module  # dataclasses look the module up while processing classes
     try:
-        for code in _compile(source, filename):
+        for code in _code(source, filename, digest):
             exec(code, module.__dict__)
     except BaseException:
         del sys.modules[name]

@@ -6,6 +6,7 @@ build does for the outputs it keeps in memory.
 """
 from __future__ import annotations
 
+import hashlib
 import tempfile
 from pathlib import Path
 from typing import Iterator
@@ -32,6 +33,13 @@ class Spool:
                     return False
             return current.read(1) == ""
 
+    def sha256(self) -> str:
+        """The hash of the text as UTF-8, as written to a file on a system with \\n line ends."""
+        h = hashlib.sha256()
+        for chunk in self.chunks():
+            h.update(chunk.encode("utf-8"))
+        return h.hexdigest()
+
     def write_to(self, path: Path) -> None:
         with open(path, "w", encoding="utf-8") as target:
             for chunk in self.chunks():
@@ -39,3 +47,22 @@ class Spool:
 
     def close(self) -> None:
         self.file.close()
+
+
+class InPlace:
+    """A large output found already in its place: the file there has the hash that
+    the build recorded for the same inputs (cache.py), so it is not made again."""
+
+    def __init__(self, path: Path) -> None:
+        self.path = path
+
+
+def file_sha256(path: Path) -> str | None:
+    h = hashlib.sha256()
+    try:
+        with open(path, "rb") as f:
+            while chunk := f.read(CHUNK):
+                h.update(chunk)
+    except OSError:
+        return None
+    return h.hexdigest()

@@ -1,20 +1,31 @@
-"""Structural validation of a schema document against the language's JSON Schema."""
+"""Structural validation of a schema document against the language's JSON Schema.
+
+A document found valid is remembered in the build cache (cache.py) under the
+hash of its text, the JSON Schema and the code that reads and checks it: the
+next build of the same schema neither validates it again nor imports jsonschema.
+"""
 from __future__ import annotations
 
+import hashlib
 import json
 from functools import lru_cache
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-import jsonschema
-
+from . import cache, loader
 from .diagnostics import Diagnostic
 from .loader import Document
 
+if TYPE_CHECKING:
+    import jsonschema
+
 SCHEMA_FILE = Path(__file__).parent / "schema" / "codeword.schema.json"
+VALID = b"valid"
 
 
 @lru_cache(maxsize=1)
 def _validator() -> jsonschema.Draft202012Validator:
+    import jsonschema  # only when a document is checked: importing it is a fair share of a small build
     return jsonschema.Draft202012Validator(json.loads(SCHEMA_FILE.read_text(encoding="utf-8")))
 
 
@@ -42,6 +53,18 @@ def _hint(error: jsonschema.ValidationError) -> str:
 
 
 def structure_errors(doc: Document) -> list[Diagnostic]:
+    place = cache.slot("valid", doc.file)
+    wanted = cache.key("valid", hashlib.sha256(doc.text.encode("utf-8", "surrogatepass")).hexdigest(),
+                       cache.source_hash(SCHEMA_FILE, Path(loader.__file__), Path(__file__)))
+    if cache.load(place, wanted) == VALID:
+        return []
+    found = _errors(doc)
+    if not found:
+        cache.store(place, wanted, VALID)
+    return found
+
+
+def _errors(doc: Document) -> list[Diagnostic]:
     found: list[Diagnostic] = []
     seen: set[tuple] = set()
     for error in _validator().iter_errors(doc.data):

@@ -8,7 +8,12 @@ values (every field at its minimum and maximum, every enum value, every flag)
 and RANDOM_PER_MESSAGE random valid messages per message type, plus mutations
 of them (bit flips, truncation, bad checksums, wrong length bytes, unknown ids).
 Large messages get fewer cases, within FRAME_BUDGET bytes of frames each, so that
-the file grows with the schema rather than with its square.
+the file grows with the schema rather than with its square. A protocol of more
+than FULL_MESSAGES messages shares RANDOM_PER_PROTOCOL random cases and
+MUTATED_PER_PROTOCOL mutated frames among them (each message keeps at least
+RANDOM_FLOOR random cases and MUTATED_FLOOR mutated frames, and gets a case per
+edge with every field at it), so that the vectors cost per message about what
+the other outputs do.
 Random choices come from a generator seeded by the protocol name, so the file
 is the same on every build. The format is documented in docs/vectors.md.
 """
@@ -22,8 +27,8 @@ import shutil
 import string
 import struct
 import tempfile
-from functools import lru_cache
-from typing import Any, TextIO
+from functools import lru_cache, partial
+from typing import Any, Callable, TextIO
 
 from . import binary64, jsontext
 
@@ -33,7 +38,13 @@ from .vector_sequences import sequence_vectors
 
 FORMAT = "codeword-vectors/1"
 RANDOM_PER_MESSAGE = 200
-MUTATIONS_PER_MESSAGE = 24
+MUTATIONS_PER_MESSAGE = 24  # frames mutated, each several ways
+# up to FULL_MESSAGES messages each get the numbers above; a larger protocol shares these
+FULL_MESSAGES = 20
+RANDOM_PER_PROTOCOL = FULL_MESSAGES * RANDOM_PER_MESSAGE
+MUTATED_PER_PROTOCOL = FULL_MESSAGES * MUTATIONS_PER_MESSAGE
+RANDOM_FLOOR = 8
+MUTATED_FLOOR = 2
 # a message of up to this many fields gets a case for each field at each edge (others random);
 # a wider one gets one case per edge with every field there, so that cases grow with the fields
 EDGES_ONE_BY_ONE = 32
@@ -91,6 +102,13 @@ def plain(value: Any) -> Any:
     return value
 
 
+def cases_per_message(messages: int) -> tuple[int, int]:
+    """(random cases, mutated frames) of each message of a protocol with this many."""
+    n = max(1, messages)
+    return (min(RANDOM_PER_MESSAGE, max(RANDOM_FLOOR, RANDOM_PER_PROTOCOL // n)),
+            min(MUTATIONS_PER_MESSAGE, max(MUTATED_FLOOR, MUTATED_PER_PROTOCOL // n)))
+
+
 class Generator:
     def __init__(self, p: Protocol, module: Any):
         self.p = p
@@ -100,9 +118,14 @@ class Generator:
         # asked for every frame: looked up once (both walk every message)
         self.self_identifying = p.self_identifying
         self.messages = {m.name: m for m in p.messages}
-        self.members: dict[str, list[Field]] = {}  # per message: the fields values() fills
+        # per message: the fields values() fills, each with its drawer
+        self.members: dict[str, list[tuple[Field, Callable[[str], Any]]]] = {}
         self.alphabets: dict[tuple[bool, bool], str] = {}
         self.choices: dict[tuple, list] = {}  # per enum and allowed values
+        self.randoms, self.mutated = cases_per_message(len(p.messages))
+        self.shared = len(p.messages) > FULL_MESSAGES  # a case per edge with every field there
+        self.plain_classes: dict[str, Any] = {}  # per message: its class, when values need no conversion
+        self.bounds: dict[int, tuple] = {}  # per integer field: (the field, its bounds)
 
     # -- random values from the model ----------------------------------------------------
     def value(self, f: Field, edge: str = "") -> Any:
@@ -173,6 +196,23 @@ class Generator:
         return "".join(chars)
 
     def integer(self, f: Field, edge: str) -> Any:
+        got = self.bounds.get(id(f))
+        if got is None or got[0] is not f:  # the field is kept, so its id is not reused
+            got = self.bounds[id(f)] = (f, *self.integer_bounds(f))
+        _, lo, hi, scale, offset = got
+        if scale is not None:  # a random raw value is drawn even at an edge
+            raw = self.rng.randint(int(lo), int(hi))
+            raw = lo if edge == "min" else hi if edge == "max" else raw
+            return raw * scale + offset
+        if edge:
+            return lo if edge == "min" else hi if edge == "max" else max(lo, min(hi, 0))
+        if f.values:
+            return self.rng.choice(list(f.values))
+        return self.rng.randint(lo, hi)
+
+    @staticmethod
+    def integer_bounds(f: Field) -> tuple:
+        """(lo, hi, scale, offset): the raw bounds of a scaled field, else the value's."""
         if f.scale is not None:
             if f.range is None:  # the width alone limits the value
                 raw_lo, raw_hi = f.raw_range
@@ -180,19 +220,11 @@ class Generator:
                 lo, hi = f.range
                 raw_lo = -(-(lo - (f.offset or 0)) // f.scale)
                 raw_hi = (hi - (f.offset or 0)) // f.scale
-            raw = {"min": raw_lo, "max": raw_hi}.get(edge, self.rng.randint(int(raw_lo), int(raw_hi)))
-            return raw * f.scale + (f.offset or 0)
+            return raw_lo, raw_hi, f.scale, f.offset or 0
         if f.range is not None:
-            lo, hi = int(f.range[0]), int(f.range[1])
-        else:
-            lo, hi = f.raw_range
-            lo, hi = lo + int(f.offset or 0), hi + int(f.offset or 0)
-        pick = {"min": lo, "max": hi, "zero": max(lo, min(hi, 0))}.get(edge)
-        if pick is not None:
-            return pick
-        if f.values:
-            return self.rng.choice(list(f.values))
-        return self.rng.randint(lo, hi)
+            return int(f.range[0]), int(f.range[1]), None, 0
+        lo, hi = f.raw_range
+        return lo + int(f.offset or 0), hi + int(f.offset or 0), None, 0
 
     def real(self, f: Field, edge: str) -> float:
         rng = self.rng
@@ -240,14 +272,29 @@ class Generator:
     def values(self, m: Message, edge: str = "", focus: str = "") -> dict:
         members = self.members.get(m.name)
         if members is None:
-            members = self.members[m.name] = [f for f in m.layout if f.is_member]
+            members = self.members[m.name] = [(f, self.drawer(f)) for f in m.layout if f.is_member]
         out = {}
-        for f in members:
-            out[f.name] = self.value(f, edge if (not focus or focus == f.name) else "")
-        for f in members:
+        for f, draw in members:
+            out[f.name] = draw(edge if (not focus or focus == f.name) else "")
+        for f, _ in members:
             if f.present_if:
                 self.choose_presence(m, f, out)
         return out
+
+    def drawer(self, f: Field) -> Callable[[str], Any]:
+        """How values() draws a field at an edge (or at random for ""): a plain integer
+        directly, drawing as value() does, anything else through value()."""
+        if f.kind not in ("uint", "int") or f.count is not None or f.enum is not None or f.flags is not None \
+                or f.one_hot or f.optional or f.scale is not None or f.values:
+            return partial(self.value, f)
+        lo, hi, _, _ = self.integer_bounds(f)
+        zero, randrange = max(lo, min(hi, 0)), self.rng.randrange
+
+        def draw(edge: str) -> int:
+            if not edge:
+                return randrange(lo, hi + 1)  # what randint(lo, hi) draws
+            return lo if edge == "min" else hi if edge == "max" else zero
+        return draw
 
     def choose_presence(self, m: Message, f: Field, out: dict) -> None:
         """Make a conditional field present or absent at random, by setting its control field;
@@ -275,8 +322,18 @@ class Generator:
 
     # -- vectors --------------------------------------------------------------------------------
     def encode(self, m: Message, values: dict):
-        obj = self.mod.from_dict(m.name, values)
+        cls = self.plain_classes.get(m.name, False)
+        if cls is False:
+            cls = self.plain_classes[m.name] = self._plain_class(m)
+        obj = cls(**values) if cls is not None else self.mod.from_dict(m.name, values)
         return obj, self.mod.encode(obj)
+
+    def _plain_class(self, m: Message):
+        """The message's class when every member is a plain number, which from_dict
+        would pass to the constructor unchanged; None otherwise."""
+        plain_number = all(f.kind in ("uint", "int", "bool", "float") and f.count is None and f.enum is None
+                           and f.flags is None and not f.one_hot for f in m.layout if f.is_member)
+        return self.mod.MESSAGES[m.name] if plain_number else None
 
     def wire(self, data) -> dict:
         return {"text": data} if isinstance(data, str) else {"hex": data.hex()}
@@ -364,12 +421,12 @@ class Generator:
         members = [f for f in m.layout if f.is_member]
         size = max(1, m.size or 1)
         for edge in ("min", "max", "zero"):
-            if len(members) > EDGES_ONE_BY_ONE or len(members) * size > FRAME_BUDGET:
+            if len(members) > EDGES_ONE_BY_ONE or len(members) * size > FRAME_BUDGET or self.shared:
                 made.append((f"every field {edge}", "edge", (edge, "")))
                 continue
             for f in members:
                 made.append((f"{f.name} {edge}", "edge", (edge, f.name)))
-        for i in range(min(RANDOM_PER_MESSAGE, max(1, FRAME_BUDGET // size))):
+        for i in range(min(self.randoms, max(1, FRAME_BUDGET // size))):
             made.append((f"random {i}", "random", None))
         if any(f.extension for f in members):  # as an older sender writes it (truncated, if the framing is)
             made.append(("without its extension fields", "older", None))
@@ -387,7 +444,7 @@ class Generator:
                 valid.append(self.valid_case(f"{m.name} {name}", m, decoded, data))
                 frames.append(data)
                 break
-        for i, data in enumerate(frames[:min(MUTATIONS_PER_MESSAGE, max(1, FRAME_BUDGET // (8 * size)))]):
+        for i, data in enumerate(frames[:min(self.mutated, max(1, FRAME_BUDGET // (8 * size)))]):
             for label, bad in self.mutations(m, data) + (self.f64_outside(m, data) if i == 0 else []):
                 name = f"{m.name} {label} of {i}"
                 try:

@@ -2,7 +2,9 @@
 from __future__ import annotations
 
 import importlib.util
+import os
 import sys
+import tempfile
 from functools import lru_cache
 from pathlib import Path
 
@@ -15,6 +17,10 @@ DATA = Path(__file__).resolve().parent / "data"
 PROTOCOLS = ("route", "car", "tank", "mtv4", "tr24")
 
 sys.path.insert(0, str(ROOT))
+
+# the build cache (compiler/cache.py) of this run, apart from the user's; builds in subprocesses inherit it
+_CACHE = tempfile.TemporaryDirectory(prefix="codeword-test-cache-")
+os.environ["CODEWORD_CACHE"] = _CACHE.name
 
 
 def load_generated(name: str):

@@ -172,3 +172,33 @@ def test_vector_cases_grow_with_the_message_not_its_square(tmp_path, fields, fra
     assert len(vectors["valid"]) <= 3 + min(RANDOM_PER_MESSAGE, FRAME_BUDGET // frame) + 24 * 5
     assert all(len(c["hex"]) == 2 * frame for c in vectors["valid"])
     assert sum(len(s["hex"]) // 2 for s in vectors["streams"]) <= 16 * FRAME_BUDGET
+
+
+def test_a_large_protocol_shares_its_random_and_mutated_cases_among_its_messages(tmp_path):
+    """Every message keeps its edges (every field at each), some random cases and
+    mutated frames; the file grows with the message count, not 350 cases a message."""
+    from codeword.build import compile_schema, render_with_codec
+    from codeword.vectors import FULL_MESSAGES, RANDOM_FLOOR, MUTATED_FLOOR, cases_per_message, write_vectors
+    n = 3 * FULL_MESSAGES
+    randoms, mutated = cases_per_message(n)
+    assert (randoms, mutated) == (4000 // n, 480 // n) and randoms >= RANDOM_FLOOR and mutated >= MUTATED_FLOOR
+    assert cases_per_message(5000) == (RANDOM_FLOOR, MUTATED_FLOOR)
+    assert cases_per_message(FULL_MESSAGES) == (200, 24)  # small protocols keep every case
+    messages = "".join(f"  m{i}:\n    id: {i + 1}\n    fields:\n      - {{name: a, type: u8, range: [1, 9]}}\n"
+                       f"      - {{name: b, type: i16}}\n" for i in range(n))
+    path = tmp_path / "many.yaml"
+    path.write_text(_one_message_schema("").split("messages:")[0] + "messages:\n" + messages, encoding="utf-8")
+    protocol = compile_schema(path)
+    out = io.StringIO()
+    write_vectors(protocol, render_with_codec(protocol)[1], out)
+    vectors = json.loads(out.getvalue())
+    for i in range(n):
+        names = [c["name"] for c in vectors["valid"] if c["name"].startswith(f"m{i} ")]
+        assert names[:3] == [f"m{i} every field {edge}" for edge in ("min", "max", "zero")]
+        assert sum(name.startswith(f"m{i} random") for name in names) == randoms
+    # mutations: five per frame here (a bit flipped, truncated, extended, last and second byte changed)
+    assert len(vectors["valid"]) + len(vectors["invalid"]) <= n * (3 + randoms + 5 * mutated)
+    assert len(vectors["invalid"]) >= n * mutated
+    edges = {c["name"]: c["values"] for c in vectors["valid"] if c["name"].startswith("m0 every")}
+    assert edges["m0 every field min"] == {"a": 1, "b": -32768}
+    assert edges["m0 every field max"] == {"a": 9, "b": 32767}

@@ -596,8 +596,8 @@ class CView:
         for m in self.p.messages:
             for leaf in m.wire.leaves:
                 cs = leaf.field.checksum
-                if cs and cs.over == "bytes":
-                    seen.setdefault(checksum_name(cs), checksum_code(self.checksum_fn(cs), cs, self.PX))
+                if cs and cs.over == "bytes" and checksum_name(cs) not in seen:  # one function each
+                    seen[checksum_name(cs)] = checksum_code(self.checksum_fn(cs), cs, self.PX)
         return list(seen.values())
 
     def byte_checksum_call(self, leaf: Leaf, m: Message, cut: bool = False, sent: str = "buf") -> str:

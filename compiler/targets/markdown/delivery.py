@@ -5,14 +5,17 @@ Only protocols whose schema declares a `delivery` section get the section: the
 lossy-link simulator (codeword.sim) runs the sender and receiver machines it
 names from the codec the docs build has just rendered, and the section cites
 the notes it names. The table is measured at build time with a fixed seed, so
-the page is the same on every build; the guarantee and its limits are those the
+the page is the same on every build, and the measurement is kept (cache.py)
+for the next build of the same schema and codec; the guarantee and its limits are those the
 simulator and SPIN check (tests/test_sim.py, tests/test_spin.py).
 """
 from __future__ import annotations
 
 import types
+from pathlib import Path
 from typing import Optional
 
+from ... import cache, sim
 from ...model import Protocol
 from ...sim import efficiency_table
 from .. import promela
@@ -28,10 +31,23 @@ COMMANDS = 4000
 
 def efficiency_rows(p: Protocol, codec: types.ModuleType) -> list[dict]:
     rows = []
-    for row in efficiency_table(p, codec, RATES, COMMANDS, SEED):
+    for row in measured(p, codec):
         rows.append({"p": f"{row['p']:.1f}", "measured": f"{row['measured']:.3f}",
                      "theory": f"{row['theory']:.3f}", "error": f"{100 * row['error']:.1f}%"})
     return rows
+
+
+def measured(p: Protocol, codec: types.ModuleType) -> list[dict]:
+    """The efficiency table's rows, measured or, for a schema and codec measured
+    before with the same simulator, as measured then (the run is seeded)."""
+    def measure() -> list[dict]:
+        return efficiency_table(p, codec, RATES, COMMANDS, SEED)
+    codec_hash = getattr(codec, "__source_sha256__", None)
+    if codec_hash is None:  # a codec not loaded by the build: nothing to key it on
+        return measure()
+    simulator = cache.source_hash(*sorted(Path(sim.__file__).parent.glob("*.py")))
+    return cache.remembered(cache.slot("efficiency", p.name),
+                            cache.key("efficiency", p.sha256, codec_hash, simulator, RATES, COMMANDS, SEED), measure)
 
 
 def delivery_view(p: Protocol, codec: types.ModuleType, linker: DecisionLinker) -> Optional[dict]:
