@@ -179,3 +179,95 @@ def measure(tmp: Path, mavlink_dir: Path, cantools_dir: Path):
 def compiler_version():
     return subprocess.run(["avr-gcc", "--version"], capture_output=True, text=True,
                           check=True).stdout.splitlines()[0]
+
+
+# The default CRC, bitwise or table-driven: flash and cycles on the ATmega32 of
+# docs/c-size.md, under simavr (cycle-accurate), Timer1 counting CPU cycles.
+CRC_MCU = "atmega32"
+CRC_FRAMES = 8
+
+CRC_PROGRAM = """\
+#include <avr/interrupt.h>
+#include <avr/io.h>
+#include <avr/sleep.h>
+#include <stdio.h>
+#include "mtv4.h"
+
+#define SIZE MTV4_SET_WHEELS_VELOCITIES_WITH_ODOMETRY_SIZE
+static uint8_t stream[{frames} * SIZE];
+
+static int uart_putchar(char c, FILE *f)
+{{
+    (void)f;
+    while (!(UCSRA & (1 << UDRE))) {{
+    }}
+    UDR = (uint8_t)c;
+    return 0;
+}}
+static FILE uart_out = FDEV_SETUP_STREAM(uart_putchar, NULL, _FDEV_SETUP_WRITE);
+
+int main(void)
+{{
+    mtv4_set_wheels_velocities_with_odometry_t m = {{0}};
+    mtv4_scan_state_t s;
+    mtv4_message_t out;
+    size_t pos = 0;
+    uint8_t i;
+    uint16_t t0, crc;
+    uint32_t scan_cycles = 0, crc_cycles;
+    int good = 0;
+    stdout = &uart_out;
+    for (i = 0; i < {frames}; i++) {{
+        m.group = i;
+        m.robots = (uint16_t)(1u << i);
+        m.vl = (int16_t)(100 * i - 300);
+        m.x = 0.5f * i;
+        if (mtv4_set_wheels_velocities_with_odometry_encode(&m, stream + i * SIZE, SIZE) != (int)SIZE) {{
+            printf("encode failed\\n");
+        }}
+    }}
+    TCCR1B = 1 << CS10;  /* Timer1 counts CPU cycles */
+    mtv4_scan_start(&s, MTV4_DIR_ANY);
+    while (pos < sizeof stream) {{
+        size_t used;
+        int rc;
+        t0 = TCNT1;
+        rc = mtv4_scan(&s, stream + pos, sizeof stream - pos, &used, &out);
+        scan_cycles += (uint16_t)(TCNT1 - t0);
+        pos += used;
+        good += rc == 1;
+        if (rc == 0) {{
+            break;
+        }}
+    }}
+    t0 = TCNT1;
+    crc = mtv4_crc16_8005_ffff_nn_0(stream + 1, SIZE - 3u);
+    crc_cycles = (uint16_t)(TCNT1 - t0);
+    printf("frames %d scan %lu crc %lu %u\\n", good, (unsigned long)scan_cycles, (unsigned long)crc_cycles, crc);
+    cli();
+    sleep_cpu();
+    return 0;
+}}
+"""
+
+
+def crc_choice(tmp: Path):
+    """{variant: (flash, scan cycles per frame, CRC cycles per frame)} for mtv4's 26-byte
+    frame: mtv4_scan (sync, length, CRC, decode) and the CRC alone over its 23 bytes."""
+    tmp.mkdir(parents=True, exist_ok=True)
+    src = tmp / "crc_choice.c"
+    src.write_text(CRC_PROGRAM.format(frames=CRC_FRAMES))
+    out = {}
+    for variant, defines in (("bitwise", []), ("table", ["-DMTV4_CRC_TABLE"])):
+        elf = tmp / f"crc_{variant}.elf"
+        subprocess.run(["avr-gcc", "-std=gnu99", "-Os", f"-mmcu={CRC_MCU}", "-ffunction-sections", "-fdata-sections",
+                        "-Wl,--gc-sections", "-Wall", "-Wextra", "-Werror", *defines,
+                        "-I", str(ROOT / "generated" / "c"), str(src), "-o", str(elf)],
+                       check=True, capture_output=True, text=True)
+        run = subprocess.run(["simavr", "-m", CRC_MCU, "-f", "16000000", str(elf)],
+                             capture_output=True, text=True, timeout=120)
+        m = re.search(r"frames (\d+) scan (\d+) crc (\d+)", run.stdout + run.stderr)
+        if not m or int(m.group(1)) != CRC_FRAMES:
+            raise AssertionError(f"simavr run of the {variant} CRC program: {run.stdout}{run.stderr}")
+        out[variant] = (_size(elf)[0], int(m.group(2)) / CRC_FRAMES, int(m.group(3)))
+    return out

@@ -43,6 +43,7 @@ def _group_classes(owner: str, items: Any, path: tuple, dotted: str) -> Iterator
 def _constants(d: dict[str, Any]) -> Iterator[tuple[str, tuple, str]]:
     # What the C header defines on its own: first, so a schema name that meets one is the clash.
     yield "DIR_ANY", (), "the constant that accepts every direction"
+    yield "STREAM_MAX", (), "the constant of the largest frame a stream holds"
     for name in d.get("flags", {}) or {}:
         if isinstance(name, str):
             yield f"{name}_ALL".upper(), (), f"the mask of every bit of flag set {name!r}"
@@ -72,6 +73,7 @@ C_SUFFIXES = {
 # ... and for the protocol itself, after `p_`.
 C_PROTOCOL = ("encode", "decode", "decode_kind", "decode_text", "decode_word", "find", "split",
               "message_t", "parser_t", "parser_init", "parser_feed", "parser_drop", "parser_next",
+              "scan", "scan_state_t", "scan_start", "scan_byte", "scan_restart", "scan_fail", "frame_at",
               "machine_out_t", "machine_out_clear")
 
 

@@ -49,6 +49,18 @@ def test_host_c_harness_builds_and_generated_and_hand_written_c_agree():
         tmp = Path(tmp)
         figures = c_host.run(tmp, peers_c.generate_mavlink(tmp / "mavlink"), 1, 20_000)
     assert figures["mtv4 codeword"] > 0 and figures["parser mavlink_parse_char MB/s"] > 0
+    assert all(figures[f"parser {key} MB/s"] > 0 for key in c_host.PARSERS) and figures["memcpy MB/s"] > 0
+
+
+def test_the_crc_choice_is_measured_under_simavr_and_reported():
+    from bench import avr
+    with tempfile.TemporaryDirectory() as tmp:
+        figures = avr.crc_choice(Path(tmp))
+    (bit_flash, bit_scan, bit_crc), (table_flash, table_scan, table_crc) = figures["bitwise"], figures["table"]
+    assert table_flash - bit_flash >= 400  # its 512-byte table, less the bitwise loop
+    assert table_scan < bit_scan and table_crc < bit_crc
+    host = {f"parser mtv4_scan, CRC {v} MB/s": 100.0 for v in ("table", "bitwise")}
+    assert any("| bitwise (default) |" in line for line in runner.crc_choice(figures, host))
 
 
 def test_exponent_of_a_linear_and_a_quadratic_series():

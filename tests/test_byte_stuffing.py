@@ -225,7 +225,7 @@ int main(void) {
             printf("%%s\n", n == 1 ? (any.kind == %(PX)s_MSG_PING ? "ping" : "blob") : cw_error_name(n));
         }
     }
-    printf("skipped %%lu\n", (unsigned long)parser.skipped);
+    printf("skipped %%lu\n", (unsigned long)parser.scan.skipped);
     (void)frame;
     return 0;
 }

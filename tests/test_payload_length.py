@@ -78,7 +78,7 @@ int main(void) {
             printf("%d %d\n", rc, rc == 1 && m.kind == UBXLEN_MSG_CFG_RATE ? (int)m.as.cfg_rate.meas_rate : -1);
         }
     }
-    printf("skipped %lu\n", (unsigned long)p.skipped);
+    printf("skipped %lu\n", (unsigned long)p.scan.skipped);
     return 0;
 }
 """

@@ -67,7 +67,7 @@ int main(void) {{
     for (k = 0; k < sizeof frame; k++) feed(frame[k], &errors, &frames);
     printf("%d %d\\n", errors, frames);
     for (i = 0; i < {len(GARBAGE)}; i++) feed(0x02, &errors, &frames);
-    printf("%d %d %lu\\n", errors, frames, (unsigned long)(p.skipped + p.len));
+    printf("%d %d %lu\\n", errors, frames, (unsigned long)(p.scan.skipped + p.len));
     return 0;
 }}
 """)
@@ -77,6 +77,52 @@ int main(void) {{
     assert build.returncode == 0, build.stderr
     run = subprocess.run([str(exe)], capture_output=True, text=True, timeout=60)
     assert run.stdout.split("\n")[:2] == ["1 1", f"2 1 {2 * len(GARBAGE)}"]
+
+
+def test_c_scan_decodes_in_place_with_one_error_per_stretch(tmp_path):
+    """tr24_scan over one buffer: the same events as the parser, each call saying how many
+    bytes it consumed; what is left at the end is the second stretch's unfinished tail,
+    shorter than a frame, for the caller to keep."""
+    gcc = shutil.which("gcc")
+    assert gcc, "gcc is not installed (.ci/run installs it)"
+    src, exe = tmp_path / "scan.c", tmp_path / "scan"
+    frame = ", ".join(f"0x{b:02x}" for b in FRAME)
+    src.write_text(f"""#include <stdio.h>
+#include <stdlib.h>
+#include "tr24.h"
+int main(void) {{
+    static const uint8_t frame[] = {{{frame}}};
+    size_t n = 2u * {len(GARBAGE)}u + sizeof frame, at = 0, used;
+    uint8_t *buf = malloc(n);
+    tr24_scan_state_t s;
+    tr24_message_t m;
+    int rc;
+    memset(buf, 0x02, n);
+    memcpy(buf + {len(GARBAGE)}, frame, sizeof frame);
+    tr24_scan_start(&s, TR24_DIR_ANY);
+    while ((rc = tr24_scan(&s, buf + at, n - at, &used, &m)) != 0) {{
+        at += used;
+        printf("%s %lu\\n", rc == 1 ? "frame" : cw_error_name(rc), (unsigned long)at);
+    }}
+    at += used;
+    printf("left %lu skipped %lu\\n", (unsigned long)(n - at), (unsigned long)s.skipped);
+    free(buf);
+    return 0;
+}}
+""")
+    build = subprocess.run([gcc, "-std=c99", "-O1", "-Wall", "-Wextra", "-Werror", "-fsanitize=address,undefined",
+                            "-I", str(ROOT / "generated" / "c"), str(src), "-o", str(exe)],
+                           capture_output=True, text=True, timeout=300)
+    assert build.returncode == 0, build.stderr
+    run = subprocess.run([str(exe)], capture_output=True, text=True, timeout=60)
+    g, f = len(GARBAGE), len(FRAME)
+    # The run of 0x02 fails at its first byte (consumed: 1). The first 12 bytes that hold a
+    # frame are the run's last 8 and FRAME's first 4 (02 00 01 03: its 0x03 is where the stop
+    # byte goes; tr24 has no checksum), so the frame found ends at g + 4. FRAME's other 8 bytes
+    # hold no 0x02: skipped silently; the second run fails at its first byte (g + 12, consumed:
+    # up to g + 13); its last 11 bytes wait for more. Skipped: all but those 12 and the 11.
+    assert run.stdout.splitlines() == ["const 1", f"frame {g + 4}", f"const {g + f + 1}",
+                                       f"left {f - 1} skipped {2 * g - (f - 1)}"]
 
 
 def test_check_reports_a_stretch_once(tmp_path, capsys):

@@ -112,7 +112,7 @@ int main(void) {
             }
         }
     }
-    printf("skipped %lu\n", (unsigned long)p.skipped);
+    printf("skipped %lu\n", (unsigned long)p.scan.skipped);
     return 0;
 }
 """

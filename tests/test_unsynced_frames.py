@@ -66,7 +66,7 @@ int main(void) {{
             {show}
         }}
     }}
-    printf("skipped %u\n", (unsigned)p.skipped);
+    printf("skipped %u\n", (unsigned)p.scan.skipped);
     return 0;
 }}
 """

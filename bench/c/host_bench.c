@@ -1,5 +1,6 @@
 /* Host benchmark of the generated C: ns per encode+decode of one message and
- * stream-parser MB/s, next to hand-written C and MAVLink's generated C.
+ * stream-parser MB/s (byte at a time and in place, CRC table and bitwise), next
+ * to hand-written C, MAVLink's generated C and memcpy.
  * Built by bench/c_host.py with gcc -O2; prints one "key value" line per
  * figure (medians over interleaved rounds). Usage:
  *   host_bench ROUNDS MTV4_CAPTURE MAVLINK_CAPTURE */
@@ -173,22 +174,31 @@ static unsigned char *read_file(const char *path, size_t *len)
 
 static unsigned char *mtv4_cap, *mav_cap;
 static size_t mtv4_len, mav_len;
-static long cw_good, mav_good;
+static long mav_good;
 
-static void parse_mtv4(void)
+/* bench/c/mtv4_stream.c, built with the table CRC and with the bitwise one */
+long mtv4_feed_table(const unsigned char *buf, size_t len);
+long mtv4_scan_table(const unsigned char *buf, size_t len);
+long mtv4_feed_bitwise(const unsigned char *buf, size_t len);
+long mtv4_scan_bitwise(const unsigned char *buf, size_t len);
+
+typedef long (*stream_fn)(const unsigned char *, size_t);
+static const struct { const char *key; stream_fn fn; } PARSERS[] = {
+    {"mtv4_parser_feed/next, CRC table", mtv4_feed_table},
+    {"mtv4_parser_feed/next, CRC bitwise", mtv4_feed_bitwise},
+    {"mtv4_scan, CRC table", mtv4_scan_table},
+    {"mtv4_scan, CRC bitwise", mtv4_scan_bitwise},
+};
+#define N_PARSERS (sizeof PARSERS / sizeof PARSERS[0])
+static long parser_good[N_PARSERS];
+
+static unsigned char *copy_dst;
+
+/* The floor: copying the capture once. */
+static void copy_mtv4(void)
 {
-    mtv4_parser_t p;
-    mtv4_message_t m;
-    long good = 0;
-    mtv4_parser_init(&p, MTV4_DIR_ANY);
-    for (size_t i = 0; i < mtv4_len; i++) {
-        int rc;
-        mtv4_parser_feed(&p, mtv4_cap[i]);
-        while ((rc = mtv4_parser_next(&p, &m)) != 0) {
-            if (rc == 1) good++;
-        }
-    }
-    cw_good = good;
+    memcpy(copy_dst, mtv4_cap, mtv4_len);
+    sink = copy_dst[mtv4_len / 2];
 }
 
 static void parse_mavlink(void)
@@ -232,7 +242,7 @@ int main(int argc, char **argv)
 {
     int rounds = argc > 1 ? atoi(argv[1]) : 5;
     long iters[N_CASES];
-    double samples[N_CASES][64], parse_cw[64], parse_mav[64];
+    double samples[N_CASES][64], parse_cw[N_PARSERS][64], parse_mav[64], copy[64];
     if (rounds < 1 || rounds > 64 || argc < 4) {
         fprintf(stderr, "usage: host_bench ROUNDS MTV4_CAPTURE MAVLINK_CAPTURE\n");
         return 2;
@@ -248,6 +258,7 @@ int main(int argc, char **argv)
     }
     mtv4_cap = read_file(argv[2], &mtv4_len);
     mav_cap = read_file(argv[3], &mav_len);
+    copy_dst = malloc(mtv4_len);
     for (size_t c = 0; c < N_CASES; c++) { /* calibrate: about 20 ms per measurement */
         long n = 1000;
         double t;
@@ -266,18 +277,26 @@ int main(int argc, char **argv)
             sink = CASES[c].fn(iters[c]);
             samples[c][r] = (now() - t) / iters[c] * 1e9;
         }
+        for (size_t k = 0; k < N_PARSERS; k++) {
+            double t = now();
+            parser_good[k] = PARSERS[k].fn(mtv4_cap, mtv4_len);
+            parse_cw[k][r] = mtv4_len / (now() - t) / 1e6;
+        }
         double t = now();
-        parse_mtv4();
-        parse_cw[r] = mtv4_len / (now() - t) / 1e6;
-        t = now();
         parse_mavlink();
         parse_mav[r] = mav_len / (now() - t) / 1e6;
+        t = now();
+        copy_mtv4();
+        copy[r] = mtv4_len / (now() - t) / 1e6;
     }
     for (size_t c = 0; c < N_CASES; c++) {
         printf("%s\t%.2f\n", CASES[c].key, median(samples[c], rounds));
     }
-    printf("parser mtv4 codeword MB/s\t%.1f\n", median(parse_cw, rounds));
-    printf("parser mtv4 codeword frames\t%ld\n", cw_good);
+    for (size_t k = 0; k < N_PARSERS; k++) {
+        printf("parser %s MB/s\t%.1f\n", PARSERS[k].key, median(parse_cw[k], rounds));
+        printf("parser %s frames\t%ld\n", PARSERS[k].key, parser_good[k]);
+    }
+    printf("memcpy MB/s\t%.1f\n", median(copy, rounds));
     printf("parser mavlink_parse_char MB/s\t%.1f\n", median(parse_mav, rounds));
     printf("parser mavlink_parse_char frames\t%ld\n", mav_good);
     return 0;

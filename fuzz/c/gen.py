@@ -4,7 +4,7 @@
 
 The harness (OUTDIR/PROTOCOL_fuzz.c) feeds the input to every decoder the
 generated header offers: each message's `_decode`, the dispatching decode, the
-text and word forms, and the byte-at-a-time parser. Whatever a decoder
+text and word forms, the byte-at-a-time parser and the in-place scan. Whatever a decoder
 accepts is encoded again and must give the same bytes (binary framings) or,
 for text, a line that decodes and re-encodes to itself; a mismatch traps.
 The corpus (OUTDIR/corpus/) holds every wire form of generated/vectors/PROTOCOL.json.
@@ -113,6 +113,21 @@ PARSER = """    {{
                     n = {p}_encode(&m, out, CAP);
                     CHECK(n > 0);
                 }}
+            }}
+        }}
+    }}
+    {{
+        {p}_scan_state_t scan;
+        {p}_message_t m;
+        size_t at = 0, used;
+        int rc;
+        {p}_scan_start(&scan, {P}_DIR_ANY);
+        while ((rc = {p}_scan(&scan, data + at, size - at, &used, &m)) != 0) {{  /* in place */
+            CHECK(used > 0 && used <= size - at);  /* every event consumes a byte or more */
+            at += used;
+            if (rc == 1) {{
+                n = {p}_encode(&m, out, CAP);
+                CHECK(n > 0);
             }}
         }}
     }}

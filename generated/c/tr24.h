@@ -267,25 +267,96 @@ static inline int tr24_decode(const uint8_t *buf, size_t len, int direction, tr2
     }
 }
 
-/* Byte-at-a-time frame parser. Feed one byte, then call tr24_parser_next
- * until it returns 0. After garbage or a bad frame it resynchronises on the
- * next sync byte, exactly as the Python StreamDecoder: one error for each
- * stretch of bytes dropped between two frames (the stretch's first), however
- * long the stretch. Memory: one maximum frame (12 bytes). */
+/* Streams. tr24_scan decodes frames in place, straight from the caller's
+ * buffer (a DMA block, a file read into memory): nothing is copied.
+ * tr24_parser_feed/tr24_parser_next take one byte at a time (from an
+ * ISR queue) into a buffer of one maximum frame and run the same scan over it.
+ * After garbage or a bad frame both resynchronise on the next sync byte,
+ * exactly as the Python StreamDecoder: one error for each stretch of bytes
+ * dropped between two frames (the stretch's first), however long the stretch. */
+#define TR24_STREAM_MAX 12u  /* the largest frame: a partial one left over by tr24_scan is shorter */
+
+/* The next frame in buf[0..len): 1 and its *size (decoded into *out); 0: more
+ * bytes are needed; negative: no frame starts at buf[*at] (the error says why).
+ * The *at bytes before it hold no sync: garbage. */
+static inline int tr24_frame_at(const uint8_t *buf, size_t len, int direction, size_t *at, size_t *size,
+                                    tr24_message_t *out)
+{
+    const uint8_t *f = buf;
+    size_t n = len;
+    int rc;
+    *at = 0;
+    *size = 0;
+    while (n && *f != 2u) {
+        f++;
+        n--;
+    }
+    *at = (size_t)(f - buf);
+    *size = 12u;
+    if (n < *size) {
+        return 0;
+    }
+    rc = tr24_decode(f, *size, direction, out);
+    return rc < 0 ? rc : 1;
+}
+
 typedef struct {
-    uint8_t buf[12];
-    uint8_t len;
     int direction;
     uint32_t skipped;  /* bytes dropped while resynchronising */
     bool resyncing;    /* an error was returned and no frame decoded since */
+} tr24_scan_state_t;
+
+static inline void tr24_scan_start(tr24_scan_state_t *s, int direction)
+{
+    s->direction = direction;
+    s->skipped = 0;
+    s->resyncing = false;
+}
+
+/* Decodes the next frame in buf[0..len) where it lies. 1: a message in *out;
+ * 0: no whole frame, and buf[*used..len) may begin one: pass those bytes again
+ * with more after them (fewer than TR24_STREAM_MAX are left); negative: a bad
+ * frame or stray bytes were dropped (the error says why). In every case *used
+ * bytes are consumed: call again from buf + *used. */
+static inline int tr24_scan(tr24_scan_state_t *s, const uint8_t *buf, size_t len, size_t *used,
+                                tr24_message_t *out)
+{
+    size_t pos = 0;
+    for (;;) {
+        size_t at, size;
+        int rc = tr24_frame_at(buf + pos, len - pos, s->direction, &at, &size, out);
+        pos += at;
+        s->skipped += (uint32_t)at;
+        if (rc >= 0) {
+            if (rc == 1) {
+                pos += size;
+                s->resyncing = false;
+            }
+            *used = pos;
+            return rc;
+        }
+        pos += 1u;  /* no frame starts at this byte */
+        s->skipped += 1u;
+        if (!s->resyncing) {
+            s->resyncing = true;
+            *used = pos;
+            return rc;
+        }
+    }
+}
+
+/* Byte-at-a-time: feed one byte, then call tr24_parser_next until it
+ * returns 0. Memory: one maximum frame (12 bytes). */
+typedef struct {
+    uint8_t buf[12];
+    uint8_t len;
+    tr24_scan_state_t scan;  /* scan.skipped: bytes dropped while resynchronising */
 } tr24_parser_t;
 
 static inline void tr24_parser_init(tr24_parser_t *p, int direction)
 {
     p->len = 0;
-    p->direction = direction;
-    p->skipped = 0;
-    p->resyncing = false;
+    tr24_scan_start(&p->scan, direction);
 }
 
 /* CW_ERR_CAPACITY if tr24_parser_next was not drained before. */
@@ -300,54 +371,20 @@ static inline int tr24_parser_feed(tr24_parser_t *p, uint8_t byte)
 
 static inline void tr24_parser_drop(tr24_parser_t *p, uint8_t n)
 {
-    memmove(p->buf, p->buf + n, (size_t)(p->len - n));
+    if (n != 0u && n < p->len) {  /* 0: nothing to drop, p->len: nothing left to move */
+        memmove(p->buf, p->buf + n, (size_t)(p->len - n));
+    }
     p->len = (uint8_t)(p->len - n);
-}
-
-/* One step of tr24_parser_next: a negative result drops one byte. */
-static inline int tr24_parser_step(tr24_parser_t *p, tr24_message_t *out)
-{
-    size_t size;
-    int rc;
-    uint8_t start = 0;
-    while (start < p->len && p->buf[start] != 2u) {
-        start++;
-    }
-    if (start) {
-        p->skipped += start;
-        tr24_parser_drop(p, start);
-    }
-    size = 12u;
-    if (p->len < size) {
-        return 0;
-    }
-    rc = tr24_decode(p->buf, size, p->direction, out);
-    if (rc < 0) {
-        p->skipped += 1u;
-        tr24_parser_drop(p, 1u);
-        return rc;
-    }
-    tr24_parser_drop(p, (uint8_t)size);
-    return 1;
 }
 
 /* 1: a message in *out; 0: more bytes needed; negative: a bad frame or stray
  * bytes were dropped (the error says why); call again. */
 static inline int tr24_parser_next(tr24_parser_t *p, tr24_message_t *out)
 {
-    for (;;) {
-        int rc = tr24_parser_step(p, out);
-        if (rc >= 0) {
-            if (rc == 1) {
-                p->resyncing = false;
-            }
-            return rc;
-        }
-        if (!p->resyncing) {
-            p->resyncing = true;
-            return rc;
-        }
-    }
+    size_t used;
+    int rc = tr24_scan(&p->scan, p->buf, p->len, &used, out);
+    tr24_parser_drop(p, (uint8_t)used);
+    return rc;
 }
 
 /* ---------------------------------------------------------------- state machines

@@ -2615,25 +2615,130 @@ static inline int modbus_rtu_decode(const uint8_t *buf, size_t len, int directio
     }
 }
 
-/* Byte-at-a-time frame parser. Feed one byte, then call modbus_rtu_parser_next
- * until it returns 0. After garbage or a bad frame it resynchronises on the
- * next sync byte, exactly as the Python StreamDecoder: one error for each
- * stretch of bytes dropped between two frames (the stretch's first), however
- * long the stretch. Memory: one maximum frame (255 bytes). */
+/* Streams. modbus_rtu_scan decodes frames in place, straight from the caller's
+ * buffer (a DMA block, a file read into memory): nothing is copied.
+ * modbus_rtu_parser_feed/modbus_rtu_parser_next take one byte at a time (from an
+ * ISR queue) into a buffer of one maximum frame and run the same scan over it.
+ * After garbage or a bad frame both resynchronise on the next sync byte,
+ * exactly as the Python StreamDecoder: one error for each stretch of bytes
+ * dropped between two frames (the stretch's first), however long the stretch. */
+#define MODBUS_RTU_STREAM_MAX 255u  /* the largest frame: a partial one left over by modbus_rtu_scan is shorter */
+
+/* The next frame in buf[0..len): 1 and its *size (decoded into *out); 0: more
+ * bytes are needed; negative: no frame starts at buf[*at] (the error says why).
+ * The *at bytes before it hold no sync: garbage. */
+static inline int modbus_rtu_frame_at(const uint8_t *buf, size_t len, int direction, size_t *at, size_t *size,
+                                    modbus_rtu_message_t *out)
+{
+    const uint8_t *f = buf;
+    size_t n = len;
+    int rc;
+    *at = 0;
+    *size = 0;
+    if (n < 2u) {
+        return 0;
+    }
+    /* no length field: the id gives the frame's size */
+    if (((cw_get_be(f + 1, 1u) >> 0) & 255u) == 3u && (direction == MODBUS_RTU_DIR_TO_CLIENT)) {
+        /* the count field gives the size */
+        if (n < 3u) {
+            return 0;
+        }
+        *size = (size_t)cw_get_be(f + 2, 1u);
+        if (*size > 250u || *size % 2u != 0u) {  /* more than the largest frame holds, or part of an element */
+            return CW_ERR_LENGTH;
+        }
+        *size = 5u + *size * 1u;
+    } else
+    if (((cw_get_be(f + 1, 1u) >> 0) & 255u) == 16u && (direction == MODBUS_RTU_DIR_TO_SERVER)) {
+        /* the count field gives the size */
+        if (n < 7u) {
+            return 0;
+        }
+        *size = (size_t)cw_get_be(f + 6, 1u);
+        if (*size > 246u || *size % 2u != 0u) {  /* more than the largest frame holds, or part of an element */
+            return CW_ERR_LENGTH;
+        }
+        *size = 9u + *size * 1u;
+    } else
+    switch ((cw_get_be(f + 1, 1u) >> 0) & 255u) {
+    case 3u: *size = 8u; break;
+    case 16u: *size = 8u; break;
+    case 129u: *size = 5u; break;
+    case 130u: *size = 5u; break;
+    case 131u: *size = 5u; break;
+    case 132u: *size = 5u; break;
+    case 133u: *size = 5u; break;
+    case 134u: *size = 5u; break;
+    case 143u: *size = 5u; break;
+    case 144u: *size = 5u; break;
+    default:
+        return CW_ERR_DISPATCH;
+    }
+    if (n < *size) {
+        return 0;
+    }
+    rc = modbus_rtu_decode(f, *size, direction, out);
+    return rc < 0 ? rc : 1;
+}
+
 typedef struct {
-    uint8_t buf[255];
-    uint8_t len;
     int direction;
     uint32_t skipped;  /* bytes dropped while resynchronising */
     bool resyncing;    /* an error was returned and no frame decoded since */
+} modbus_rtu_scan_state_t;
+
+static inline void modbus_rtu_scan_start(modbus_rtu_scan_state_t *s, int direction)
+{
+    s->direction = direction;
+    s->skipped = 0;
+    s->resyncing = false;
+}
+
+/* Decodes the next frame in buf[0..len) where it lies. 1: a message in *out;
+ * 0: no whole frame, and buf[*used..len) may begin one: pass those bytes again
+ * with more after them (fewer than MODBUS_RTU_STREAM_MAX are left); negative: a bad
+ * frame or stray bytes were dropped (the error says why). In every case *used
+ * bytes are consumed: call again from buf + *used. */
+static inline int modbus_rtu_scan(modbus_rtu_scan_state_t *s, const uint8_t *buf, size_t len, size_t *used,
+                                modbus_rtu_message_t *out)
+{
+    size_t pos = 0;
+    for (;;) {
+        size_t at, size;
+        int rc = modbus_rtu_frame_at(buf + pos, len - pos, s->direction, &at, &size, out);
+        pos += at;
+        s->skipped += (uint32_t)at;
+        if (rc >= 0) {
+            if (rc == 1) {
+                pos += size;
+                s->resyncing = false;
+            }
+            *used = pos;
+            return rc;
+        }
+        pos += 1u;  /* no frame starts at this byte */
+        s->skipped += 1u;
+        if (!s->resyncing) {
+            s->resyncing = true;
+            *used = pos;
+            return rc;
+        }
+    }
+}
+
+/* Byte-at-a-time: feed one byte, then call modbus_rtu_parser_next until it
+ * returns 0. Memory: one maximum frame (255 bytes). */
+typedef struct {
+    uint8_t buf[255];
+    uint8_t len;
+    modbus_rtu_scan_state_t scan;  /* scan.skipped: bytes dropped while resynchronising */
 } modbus_rtu_parser_t;
 
 static inline void modbus_rtu_parser_init(modbus_rtu_parser_t *p, int direction)
 {
     p->len = 0;
-    p->direction = direction;
-    p->skipped = 0;
-    p->resyncing = false;
+    modbus_rtu_scan_start(&p->scan, direction);
 }
 
 /* CW_ERR_CAPACITY if modbus_rtu_parser_next was not drained before. */
@@ -2648,91 +2753,20 @@ static inline int modbus_rtu_parser_feed(modbus_rtu_parser_t *p, uint8_t byte)
 
 static inline void modbus_rtu_parser_drop(modbus_rtu_parser_t *p, uint8_t n)
 {
-    memmove(p->buf, p->buf + n, (size_t)(p->len - n));
+    if (n != 0u && n < p->len) {  /* 0: nothing to drop, p->len: nothing left to move */
+        memmove(p->buf, p->buf + n, (size_t)(p->len - n));
+    }
     p->len = (uint8_t)(p->len - n);
-}
-
-/* One step of modbus_rtu_parser_next: a negative result drops one byte. */
-static inline int modbus_rtu_parser_step(modbus_rtu_parser_t *p, modbus_rtu_message_t *out)
-{
-    size_t size;
-    int rc;
-    if (p->len < 2u) {
-        return 0;
-    }
-    /* no length field: the id gives the frame's size */
-    if (((cw_get_be(p->buf + 1, 1u) >> 0) & 255u) == 3u && (p->direction == MODBUS_RTU_DIR_TO_CLIENT)) {
-        /* the count field gives the size */
-        if (p->len < 3u) {
-            return 0;
-        }
-        size = (size_t)cw_get_be(p->buf + 2, 1u);
-        if (size > 250u || size % 2u != 0u) {  /* more than the largest frame holds, or part of an element */
-            p->skipped += 1u;
-            modbus_rtu_parser_drop(p, 1u);
-            return CW_ERR_LENGTH;
-        }
-        size = 5u + size * 1u;
-    } else
-    if (((cw_get_be(p->buf + 1, 1u) >> 0) & 255u) == 16u && (p->direction == MODBUS_RTU_DIR_TO_SERVER)) {
-        /* the count field gives the size */
-        if (p->len < 7u) {
-            return 0;
-        }
-        size = (size_t)cw_get_be(p->buf + 6, 1u);
-        if (size > 246u || size % 2u != 0u) {  /* more than the largest frame holds, or part of an element */
-            p->skipped += 1u;
-            modbus_rtu_parser_drop(p, 1u);
-            return CW_ERR_LENGTH;
-        }
-        size = 9u + size * 1u;
-    } else
-    switch ((cw_get_be(p->buf + 1, 1u) >> 0) & 255u) {
-    case 3u: size = 8u; break;
-    case 16u: size = 8u; break;
-    case 129u: size = 5u; break;
-    case 130u: size = 5u; break;
-    case 131u: size = 5u; break;
-    case 132u: size = 5u; break;
-    case 133u: size = 5u; break;
-    case 134u: size = 5u; break;
-    case 143u: size = 5u; break;
-    case 144u: size = 5u; break;
-    default:
-        p->skipped += 1u;
-        modbus_rtu_parser_drop(p, 1u);
-        return CW_ERR_DISPATCH;
-    }
-    if (p->len < size) {
-        return 0;
-    }
-    rc = modbus_rtu_decode(p->buf, size, p->direction, out);
-    if (rc < 0) {
-        p->skipped += 1u;
-        modbus_rtu_parser_drop(p, 1u);
-        return rc;
-    }
-    modbus_rtu_parser_drop(p, (uint8_t)size);
-    return 1;
 }
 
 /* 1: a message in *out; 0: more bytes needed; negative: a bad frame or stray
  * bytes were dropped (the error says why); call again. */
 static inline int modbus_rtu_parser_next(modbus_rtu_parser_t *p, modbus_rtu_message_t *out)
 {
-    for (;;) {
-        int rc = modbus_rtu_parser_step(p, out);
-        if (rc >= 0) {
-            if (rc == 1) {
-                p->resyncing = false;
-            }
-            return rc;
-        }
-        if (!p->resyncing) {
-            p->resyncing = true;
-            return rc;
-        }
-    }
+    size_t used;
+    int rc = modbus_rtu_scan(&p->scan, p->buf, p->len, &used, out);
+    modbus_rtu_parser_drop(p, (uint8_t)used);
+    return rc;
 }
 
 #ifdef __cplusplus
