@@ -513,6 +513,57 @@ def segments_of(chunks: list[Chunk]) -> list[Segment]:
     return out
 
 
+class GuardedRun:
+    """Consecutive leaves under one guard (an element of a counted array, a conditional field)
+    share one `if`, and its `else` sets the raw values of those a frame leaves out."""
+
+    def __init__(self, c: Code):
+        self.c = c
+        self.guard: Optional[str] = None
+        self.left_out: list[tuple[str, str]] = []
+
+    def open(self, guard: Optional[str]) -> None:
+        if guard is None or guard == self.guard:
+            return
+        self.close()
+        self.c(f"if {guard}:")
+        self.c.indent()
+        self.guard = guard
+
+    def unsent(self, var: str, value: str) -> None:
+        self.left_out.append((var, value))
+
+    def close(self) -> None:
+        if self.guard is None:
+            return
+        self.c.dedent()
+        if self.left_out:
+            self.c("else:")
+            for var, value in self.left_out:
+                self.c(f"    {var} = {value}")
+        self.guard, self.left_out = None, []
+
+
+class ElementHelper:
+    """One element of a counted array of groups, checked in a function of its own: straight
+    code for every element in one function is more than a type checker follows."""
+
+    def __init__(self, mc: "MessageCode", path: tuple):
+        self.mc, self.path = mc, path
+        self.name = f"_raw_{mc.fn}_{path_name(path)}"
+        self.code = Code()
+        self.code(f"def {self.name}({mc.group_var(path)}: Any) -> tuple[Any, ...]:")
+        self.code.indent()
+        self.returns: list[str] = []
+
+    def call(self, c: Code) -> None:
+        """Write the function, and its call in `c` (under the element's guard)."""
+        self.code(f"return ({''.join(v + ', ' for v in self.returns)})")
+        self.mc.helpers.append(self.code.text())
+        array = self.mc.group_var(self.path[:1])
+        c(f"{', '.join(self.returns)}{',' if len(self.returns) == 1 else ''} = {self.name}({array}[{self.path[1]}])")
+
+
 class MessageCode:
     """The generated functions of one message."""
 
@@ -523,6 +574,7 @@ class MessageCode:
         self.cls = view.class_name(message)
         self.fn = message.name
         self.output = "str" if view.p.framing.kind == "text" else "bytes"
+        self.helpers: list[str] = []  # functions the encoder calls, written before it
 
     # -- raw values (binary framings and the text form) ----------------------------------
     def raw_checks(self, c: Code, word: bool = False) -> None:
@@ -530,13 +582,29 @@ class MessageCode:
         word: the caller packs one integer and computes parity bits from it."""
         self.view.rule_checks(c, self.m, "m", "_enc")
         groups: set[tuple] = set()
+        run = GuardedRun(c)  # the leaves of one element (or conditional field) share one `if`
+        element: Optional[ElementHelper] = None  # an element of a counted array of groups, checked apart
         for leaf in self.leaves:
             held = gap_of(self.m, leaf)
+            guard = None if leaf.field.counts else self.sent_guard(leaf, held, encoding=True)
+            of = leaf.path[:2] if held and held[1].counter and len(leaf.path) > 2 else None
+            if element is not None and element.path != of:
+                element.call(c)
+                element = None
+            if guard != run.guard:
+                run.close()
             if held and held[1].presence and leaf is self.first_leaf(held[1].field):
                 self.check_presence(c, held[1])
             for depth in range(1, len(leaf.path)):  # each group object and array is read once
                 prefix = leaf.path[:depth]
+                if depth == 2 and of is not None and element is None:  # its function reads the rest
+                    run.open(guard)
+                    element = ElementHelper(self, of)
+                    groups.add(of)
+                out = element.code if element is not None else c
                 if prefix not in groups:
+                    if depth > 1:  # inside an element or a conditional field: under its guard
+                        run.open(guard)
                     groups.add(prefix)
                     parent = self.group_var(prefix[:-1])
                     value = access(parent, prefix[-1])
@@ -546,23 +614,23 @@ class MessageCode:
                         value += f" if {parent} is not None else None"
                     # None where a frame leaves it out: a checker takes it as Any, as the guards below read it
                     maybe_none = held is not None and bool(held[1].presence or depth > 1)
-                    c(f"{self.group_var(prefix)}: Any = cast(Any, {value})" if maybe_none
-                      else f"{self.group_var(prefix)} = {value}")
+                    out(f"{self.group_var(prefix)}: Any = cast(Any, {value})" if maybe_none
+                        else f"{self.group_var(prefix)} = {value}")
                     if isinstance(leaf.path[depth], int):
-                        self.check_list(c, prefix, maybe_none=maybe_none)
+                        self.check_list(out, prefix, maybe_none=maybe_none)
             if leaf.field.counts:
                 continue  # set from the list's length below
-            guard = self.sent_guard(leaf, held, encoding=True)
-            if guard is None:
-                self.view.encode_leaf(c, self.m, leaf, self.group_var(leaf.path[:-1]), keep_bool=word)
-                continue
-            c(f"if {guard}:")
-            c.indent()
-            self.view.encode_leaf(c, self.m, leaf, self.group_var(leaf.path[:-1]), keep_bool=word,
-                                  maybe_none=len(leaf.path) == 1)  # a conditional field's own value
-            c.dedent()
-            c("else:")
-            c(f"    {leaf.var} = {f'bytes({leaf.field.length})' if leaf.field.kind == 'bytes' else 0}")
+            run.open(guard)
+            out = element.code if element is not None else c
+            self.view.encode_leaf(out, self.m, leaf, self.group_var(leaf.path[:-1]), keep_bool=word,
+                                  maybe_none=guard is not None and len(leaf.path) == 1)  # a conditional field's own value
+            if element is not None:
+                element.returns.append(leaf.var)
+            if guard is not None:
+                run.unsent(leaf.var, f"bytes({leaf.field.length})" if leaf.field.kind == "bytes" else "0")
+        if element is not None:
+            element.call(c)
+        run.close()
         for gap in self.gaps():
             if gap.counter and gap.control:
                 leaf = self.first_leaf(gap.control)
@@ -674,16 +742,19 @@ class MessageCode:
         bounded: the values were read from their bits (binary), not parsed from text;
         word: they were read from the integer `w` (parity is then one bit count)."""
         values: dict[tuple, str] = {}
+        opened = None  # the guard of the `if` the last checks went into
         for leaf in self.leaves:
             guard = self.sent_guard(leaf, gap_of(self.m, leaf), encoding=False)
             checks = Code()
             checks.depth = c.depth + (guard is not None)
             expr = self.view.decode_leaf(checks, self.m, leaf, self.sent_offset(leaf), bounded)
-            if guard and checks.lines:  # a value the frame left out is not checked
+            if guard and checks.lines and guard != opened:  # a value the frame left out is not checked
                 c(f"if {guard}:")
+            if checks.lines:
+                opened = guard
             c.lines.extend(checks.lines)
             if expr is not None:
-                values[leaf.path] = expr if guard is None or expr == leaf.var else f"({expr} if {guard} else _ABSENT)"
+                values[leaf.path] = expr if guard is None or expr == leaf.var else f"(_sent({expr}) if {guard} else _ABSENT)"
         for leaf in self.leaves:
             cs = leaf.field.checksum
             if cs and cs.over != "bytes":
@@ -764,6 +835,12 @@ class MessageCode:
         return [(leaf, self.m.shift(leaf)) for leaf in self.leaves]
 
     def encode_bytes_function(self) -> str:
+        """_encode_<msg>(m), after the functions that check its elements apart (if any)."""
+        self.helpers = []
+        code = self.encode_bytes_body()
+        return "\n\n\n".join(self.helpers + [code])
+
+    def encode_bytes_body(self) -> str:
         c = Code()
         size = self.m.size
         c(f"def _encode_{self.fn}(m: {self.cls}) -> {self.output}:")

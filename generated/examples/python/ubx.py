@@ -30,6 +30,11 @@ _object_new = object.__new__
 _ABSENT: Any = None  # a value a frame left out: its list slot is cut, or its field is None
 
 
+def _sent(value: object) -> Any:
+    """A value the frame sent, checked under its guard, which a type checker does not follow."""
+    return value
+
+
 class CodecError(ValueError):
     """A value or frame that breaks the ubx schema.
 
@@ -1240,6 +1245,3974 @@ def _decode_nav_pvt(d: _Buffer) -> NavPvt:
     return o
 
 
+def _raw_nav_sat_2sv_0(g_2sv_0: Any) -> tuple[Any, ...]:
+    r_2sv_0_6gnssId = g_2sv_0.gnssId
+    if r_2sv_0_6gnssId.__class__ is not int and (not isinstance(r_2sv_0_6gnssId, int) or r_2sv_0_6gnssId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[0].gnssId', r_2sv_0_6gnssId, 'type', 'an int')
+    if not 0 <= r_2sv_0_6gnssId <= 255:
+        raise _enc('nav_sat', 'sv[0].gnssId', r_2sv_0_6gnssId, 'range', '0..255', None)
+    r_2sv_0_4svId = g_2sv_0.svId
+    if r_2sv_0_4svId.__class__ is not int and (not isinstance(r_2sv_0_4svId, int) or r_2sv_0_4svId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[0].svId', r_2sv_0_4svId, 'type', 'an int')
+    if not 0 <= r_2sv_0_4svId <= 255:
+        raise _enc('nav_sat', 'sv[0].svId', r_2sv_0_4svId, 'range', '0..255', None)
+    r_2sv_0_3cno = g_2sv_0.cno
+    if r_2sv_0_3cno.__class__ is not int and (not isinstance(r_2sv_0_3cno, int) or r_2sv_0_3cno.__class__ is bool):
+        raise _enc('nav_sat', 'sv[0].cno', r_2sv_0_3cno, 'type', 'an int')
+    if not 0 <= r_2sv_0_3cno <= 255:
+        raise _enc('nav_sat', 'sv[0].cno', r_2sv_0_3cno, 'range', '0..255', None)
+    r_2sv_0_4elev = g_2sv_0.elev
+    if r_2sv_0_4elev.__class__ is not int and (not isinstance(r_2sv_0_4elev, int) or r_2sv_0_4elev.__class__ is bool):
+        raise _enc('nav_sat', 'sv[0].elev', r_2sv_0_4elev, 'type', 'an int')
+    if not -128 <= r_2sv_0_4elev <= 127:
+        raise _enc('nav_sat', 'sv[0].elev', r_2sv_0_4elev, 'range', '-128..127', None)
+    r_2sv_0_4azim = g_2sv_0.azim
+    if r_2sv_0_4azim.__class__ is not int and (not isinstance(r_2sv_0_4azim, int) or r_2sv_0_4azim.__class__ is bool):
+        raise _enc('nav_sat', 'sv[0].azim', r_2sv_0_4azim, 'type', 'an int')
+    if not -32768 <= r_2sv_0_4azim <= 32767:
+        raise _enc('nav_sat', 'sv[0].azim', r_2sv_0_4azim, 'range', '-32768..32767', None)
+    r_2sv_0_5prRes = g_2sv_0.prRes
+    if r_2sv_0_5prRes.__class__ is not float and (not isinstance(r_2sv_0_5prRes, (int, float)) or r_2sv_0_5prRes.__class__ is bool):
+        raise _enc('nav_sat', 'sv[0].prRes', r_2sv_0_5prRes, 'type', 'a number')
+    if not -3276.8 <= r_2sv_0_5prRes <= 3276.7000000000003:
+        raise _enc('nav_sat', 'sv[0].prRes', r_2sv_0_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    r_2sv_0_5prRes = _floor(r_2sv_0_5prRes / 0.1 + 0.5)
+    r_2sv_0_10qualityInd = g_2sv_0.qualityInd
+    if r_2sv_0_10qualityInd.__class__ is not int and (not isinstance(r_2sv_0_10qualityInd, int) or r_2sv_0_10qualityInd.__class__ is bool):
+        raise _enc('nav_sat', 'sv[0].qualityInd', r_2sv_0_10qualityInd, 'type', 'an int')
+    if not 0 <= r_2sv_0_10qualityInd <= 7:
+        raise _enc('nav_sat', 'sv[0].qualityInd', r_2sv_0_10qualityInd, 'range', '0..7', None)
+    r_2sv_0_6svUsed: Any = g_2sv_0.svUsed
+    if r_2sv_0_6svUsed is not True and r_2sv_0_6svUsed is not False and r_2sv_0_6svUsed != 0 and r_2sv_0_6svUsed != 1:
+        raise _enc('nav_sat', 'sv[0].svUsed', r_2sv_0_6svUsed, 'type', 'a bool')
+    r_2sv_0_6svUsed = 1 if r_2sv_0_6svUsed else 0
+    r_2sv_0_6health = g_2sv_0.health
+    if r_2sv_0_6health.__class__ is not int and (not isinstance(r_2sv_0_6health, int) or r_2sv_0_6health.__class__ is bool):
+        raise _enc('nav_sat', 'sv[0].health', r_2sv_0_6health, 'type', 'an int')
+    if not 0 <= r_2sv_0_6health <= 3:
+        raise _enc('nav_sat', 'sv[0].health', r_2sv_0_6health, 'range', '0..3', None)
+    r_2sv_0_8diffCorr: Any = g_2sv_0.diffCorr
+    if r_2sv_0_8diffCorr is not True and r_2sv_0_8diffCorr is not False and r_2sv_0_8diffCorr != 0 and r_2sv_0_8diffCorr != 1:
+        raise _enc('nav_sat', 'sv[0].diffCorr', r_2sv_0_8diffCorr, 'type', 'a bool')
+    r_2sv_0_8diffCorr = 1 if r_2sv_0_8diffCorr else 0
+    r_2sv_0_8smoothed: Any = g_2sv_0.smoothed
+    if r_2sv_0_8smoothed is not True and r_2sv_0_8smoothed is not False and r_2sv_0_8smoothed != 0 and r_2sv_0_8smoothed != 1:
+        raise _enc('nav_sat', 'sv[0].smoothed', r_2sv_0_8smoothed, 'type', 'a bool')
+    r_2sv_0_8smoothed = 1 if r_2sv_0_8smoothed else 0
+    r_2sv_0_11orbitSource = g_2sv_0.orbitSource
+    if r_2sv_0_11orbitSource.__class__ is not int and (not isinstance(r_2sv_0_11orbitSource, int) or r_2sv_0_11orbitSource.__class__ is bool):
+        raise _enc('nav_sat', 'sv[0].orbitSource', r_2sv_0_11orbitSource, 'type', 'an int')
+    if not 0 <= r_2sv_0_11orbitSource <= 7:
+        raise _enc('nav_sat', 'sv[0].orbitSource', r_2sv_0_11orbitSource, 'range', '0..7', None)
+    r_2sv_0_8ephAvail: Any = g_2sv_0.ephAvail
+    if r_2sv_0_8ephAvail is not True and r_2sv_0_8ephAvail is not False and r_2sv_0_8ephAvail != 0 and r_2sv_0_8ephAvail != 1:
+        raise _enc('nav_sat', 'sv[0].ephAvail', r_2sv_0_8ephAvail, 'type', 'a bool')
+    r_2sv_0_8ephAvail = 1 if r_2sv_0_8ephAvail else 0
+    r_2sv_0_8almAvail: Any = g_2sv_0.almAvail
+    if r_2sv_0_8almAvail is not True and r_2sv_0_8almAvail is not False and r_2sv_0_8almAvail != 0 and r_2sv_0_8almAvail != 1:
+        raise _enc('nav_sat', 'sv[0].almAvail', r_2sv_0_8almAvail, 'type', 'a bool')
+    r_2sv_0_8almAvail = 1 if r_2sv_0_8almAvail else 0
+    r_2sv_0_8anoAvail: Any = g_2sv_0.anoAvail
+    if r_2sv_0_8anoAvail is not True and r_2sv_0_8anoAvail is not False and r_2sv_0_8anoAvail != 0 and r_2sv_0_8anoAvail != 1:
+        raise _enc('nav_sat', 'sv[0].anoAvail', r_2sv_0_8anoAvail, 'type', 'a bool')
+    r_2sv_0_8anoAvail = 1 if r_2sv_0_8anoAvail else 0
+    r_2sv_0_8aopAvail: Any = g_2sv_0.aopAvail
+    if r_2sv_0_8aopAvail is not True and r_2sv_0_8aopAvail is not False and r_2sv_0_8aopAvail != 0 and r_2sv_0_8aopAvail != 1:
+        raise _enc('nav_sat', 'sv[0].aopAvail', r_2sv_0_8aopAvail, 'type', 'a bool')
+    r_2sv_0_8aopAvail = 1 if r_2sv_0_8aopAvail else 0
+    r_2sv_0_10reserved13 = g_2sv_0.reserved13
+    if r_2sv_0_10reserved13.__class__ is not int and (not isinstance(r_2sv_0_10reserved13, int) or r_2sv_0_10reserved13.__class__ is bool):
+        raise _enc('nav_sat', 'sv[0].reserved13', r_2sv_0_10reserved13, 'type', 'an int')
+    if not 0 <= r_2sv_0_10reserved13 <= 1:
+        raise _enc('nav_sat', 'sv[0].reserved13', r_2sv_0_10reserved13, 'range', '0..1', None)
+    r_2sv_0_12sbasCorrUsed: Any = g_2sv_0.sbasCorrUsed
+    if r_2sv_0_12sbasCorrUsed is not True and r_2sv_0_12sbasCorrUsed is not False and r_2sv_0_12sbasCorrUsed != 0 and r_2sv_0_12sbasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[0].sbasCorrUsed', r_2sv_0_12sbasCorrUsed, 'type', 'a bool')
+    r_2sv_0_12sbasCorrUsed = 1 if r_2sv_0_12sbasCorrUsed else 0
+    r_2sv_0_12rtcmCorrUsed: Any = g_2sv_0.rtcmCorrUsed
+    if r_2sv_0_12rtcmCorrUsed is not True and r_2sv_0_12rtcmCorrUsed is not False and r_2sv_0_12rtcmCorrUsed != 0 and r_2sv_0_12rtcmCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[0].rtcmCorrUsed', r_2sv_0_12rtcmCorrUsed, 'type', 'a bool')
+    r_2sv_0_12rtcmCorrUsed = 1 if r_2sv_0_12rtcmCorrUsed else 0
+    r_2sv_0_12slasCorrUsed: Any = g_2sv_0.slasCorrUsed
+    if r_2sv_0_12slasCorrUsed is not True and r_2sv_0_12slasCorrUsed is not False and r_2sv_0_12slasCorrUsed != 0 and r_2sv_0_12slasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[0].slasCorrUsed', r_2sv_0_12slasCorrUsed, 'type', 'a bool')
+    r_2sv_0_12slasCorrUsed = 1 if r_2sv_0_12slasCorrUsed else 0
+    r_2sv_0_14spartnCorrUsed: Any = g_2sv_0.spartnCorrUsed
+    if r_2sv_0_14spartnCorrUsed is not True and r_2sv_0_14spartnCorrUsed is not False and r_2sv_0_14spartnCorrUsed != 0 and r_2sv_0_14spartnCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[0].spartnCorrUsed', r_2sv_0_14spartnCorrUsed, 'type', 'a bool')
+    r_2sv_0_14spartnCorrUsed = 1 if r_2sv_0_14spartnCorrUsed else 0
+    r_2sv_0_10prCorrUsed: Any = g_2sv_0.prCorrUsed
+    if r_2sv_0_10prCorrUsed is not True and r_2sv_0_10prCorrUsed is not False and r_2sv_0_10prCorrUsed != 0 and r_2sv_0_10prCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[0].prCorrUsed', r_2sv_0_10prCorrUsed, 'type', 'a bool')
+    r_2sv_0_10prCorrUsed = 1 if r_2sv_0_10prCorrUsed else 0
+    r_2sv_0_10crCorrUsed: Any = g_2sv_0.crCorrUsed
+    if r_2sv_0_10crCorrUsed is not True and r_2sv_0_10crCorrUsed is not False and r_2sv_0_10crCorrUsed != 0 and r_2sv_0_10crCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[0].crCorrUsed', r_2sv_0_10crCorrUsed, 'type', 'a bool')
+    r_2sv_0_10crCorrUsed = 1 if r_2sv_0_10crCorrUsed else 0
+    r_2sv_0_10doCorrUsed: Any = g_2sv_0.doCorrUsed
+    if r_2sv_0_10doCorrUsed is not True and r_2sv_0_10doCorrUsed is not False and r_2sv_0_10doCorrUsed != 0 and r_2sv_0_10doCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[0].doCorrUsed', r_2sv_0_10doCorrUsed, 'type', 'a bool')
+    r_2sv_0_10doCorrUsed = 1 if r_2sv_0_10doCorrUsed else 0
+    r_2sv_0_12clasCorrUsed: Any = g_2sv_0.clasCorrUsed
+    if r_2sv_0_12clasCorrUsed is not True and r_2sv_0_12clasCorrUsed is not False and r_2sv_0_12clasCorrUsed != 0 and r_2sv_0_12clasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[0].clasCorrUsed', r_2sv_0_12clasCorrUsed, 'type', 'a bool')
+    r_2sv_0_12clasCorrUsed = 1 if r_2sv_0_12clasCorrUsed else 0
+    r_2sv_0_11lppCorrUsed: Any = g_2sv_0.lppCorrUsed
+    if r_2sv_0_11lppCorrUsed is not True and r_2sv_0_11lppCorrUsed is not False and r_2sv_0_11lppCorrUsed != 0 and r_2sv_0_11lppCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[0].lppCorrUsed', r_2sv_0_11lppCorrUsed, 'type', 'a bool')
+    r_2sv_0_11lppCorrUsed = 1 if r_2sv_0_11lppCorrUsed else 0
+    r_2sv_0_11hasCorrUsed: Any = g_2sv_0.hasCorrUsed
+    if r_2sv_0_11hasCorrUsed is not True and r_2sv_0_11hasCorrUsed is not False and r_2sv_0_11hasCorrUsed != 0 and r_2sv_0_11hasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[0].hasCorrUsed', r_2sv_0_11hasCorrUsed, 'type', 'a bool')
+    r_2sv_0_11hasCorrUsed = 1 if r_2sv_0_11hasCorrUsed else 0
+    r_2sv_0_11flags_spare = 0
+    return (r_2sv_0_6gnssId, r_2sv_0_4svId, r_2sv_0_3cno, r_2sv_0_4elev, r_2sv_0_4azim, r_2sv_0_5prRes, r_2sv_0_10qualityInd, r_2sv_0_6svUsed, r_2sv_0_6health, r_2sv_0_8diffCorr, r_2sv_0_8smoothed, r_2sv_0_11orbitSource, r_2sv_0_8ephAvail, r_2sv_0_8almAvail, r_2sv_0_8anoAvail, r_2sv_0_8aopAvail, r_2sv_0_10reserved13, r_2sv_0_12sbasCorrUsed, r_2sv_0_12rtcmCorrUsed, r_2sv_0_12slasCorrUsed, r_2sv_0_14spartnCorrUsed, r_2sv_0_10prCorrUsed, r_2sv_0_10crCorrUsed, r_2sv_0_10doCorrUsed, r_2sv_0_12clasCorrUsed, r_2sv_0_11lppCorrUsed, r_2sv_0_11hasCorrUsed, r_2sv_0_11flags_spare, )
+
+
+def _raw_nav_sat_2sv_1(g_2sv_1: Any) -> tuple[Any, ...]:
+    r_2sv_1_6gnssId = g_2sv_1.gnssId
+    if r_2sv_1_6gnssId.__class__ is not int and (not isinstance(r_2sv_1_6gnssId, int) or r_2sv_1_6gnssId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[1].gnssId', r_2sv_1_6gnssId, 'type', 'an int')
+    if not 0 <= r_2sv_1_6gnssId <= 255:
+        raise _enc('nav_sat', 'sv[1].gnssId', r_2sv_1_6gnssId, 'range', '0..255', None)
+    r_2sv_1_4svId = g_2sv_1.svId
+    if r_2sv_1_4svId.__class__ is not int and (not isinstance(r_2sv_1_4svId, int) or r_2sv_1_4svId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[1].svId', r_2sv_1_4svId, 'type', 'an int')
+    if not 0 <= r_2sv_1_4svId <= 255:
+        raise _enc('nav_sat', 'sv[1].svId', r_2sv_1_4svId, 'range', '0..255', None)
+    r_2sv_1_3cno = g_2sv_1.cno
+    if r_2sv_1_3cno.__class__ is not int and (not isinstance(r_2sv_1_3cno, int) or r_2sv_1_3cno.__class__ is bool):
+        raise _enc('nav_sat', 'sv[1].cno', r_2sv_1_3cno, 'type', 'an int')
+    if not 0 <= r_2sv_1_3cno <= 255:
+        raise _enc('nav_sat', 'sv[1].cno', r_2sv_1_3cno, 'range', '0..255', None)
+    r_2sv_1_4elev = g_2sv_1.elev
+    if r_2sv_1_4elev.__class__ is not int and (not isinstance(r_2sv_1_4elev, int) or r_2sv_1_4elev.__class__ is bool):
+        raise _enc('nav_sat', 'sv[1].elev', r_2sv_1_4elev, 'type', 'an int')
+    if not -128 <= r_2sv_1_4elev <= 127:
+        raise _enc('nav_sat', 'sv[1].elev', r_2sv_1_4elev, 'range', '-128..127', None)
+    r_2sv_1_4azim = g_2sv_1.azim
+    if r_2sv_1_4azim.__class__ is not int and (not isinstance(r_2sv_1_4azim, int) or r_2sv_1_4azim.__class__ is bool):
+        raise _enc('nav_sat', 'sv[1].azim', r_2sv_1_4azim, 'type', 'an int')
+    if not -32768 <= r_2sv_1_4azim <= 32767:
+        raise _enc('nav_sat', 'sv[1].azim', r_2sv_1_4azim, 'range', '-32768..32767', None)
+    r_2sv_1_5prRes = g_2sv_1.prRes
+    if r_2sv_1_5prRes.__class__ is not float and (not isinstance(r_2sv_1_5prRes, (int, float)) or r_2sv_1_5prRes.__class__ is bool):
+        raise _enc('nav_sat', 'sv[1].prRes', r_2sv_1_5prRes, 'type', 'a number')
+    if not -3276.8 <= r_2sv_1_5prRes <= 3276.7000000000003:
+        raise _enc('nav_sat', 'sv[1].prRes', r_2sv_1_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    r_2sv_1_5prRes = _floor(r_2sv_1_5prRes / 0.1 + 0.5)
+    r_2sv_1_10qualityInd = g_2sv_1.qualityInd
+    if r_2sv_1_10qualityInd.__class__ is not int and (not isinstance(r_2sv_1_10qualityInd, int) or r_2sv_1_10qualityInd.__class__ is bool):
+        raise _enc('nav_sat', 'sv[1].qualityInd', r_2sv_1_10qualityInd, 'type', 'an int')
+    if not 0 <= r_2sv_1_10qualityInd <= 7:
+        raise _enc('nav_sat', 'sv[1].qualityInd', r_2sv_1_10qualityInd, 'range', '0..7', None)
+    r_2sv_1_6svUsed: Any = g_2sv_1.svUsed
+    if r_2sv_1_6svUsed is not True and r_2sv_1_6svUsed is not False and r_2sv_1_6svUsed != 0 and r_2sv_1_6svUsed != 1:
+        raise _enc('nav_sat', 'sv[1].svUsed', r_2sv_1_6svUsed, 'type', 'a bool')
+    r_2sv_1_6svUsed = 1 if r_2sv_1_6svUsed else 0
+    r_2sv_1_6health = g_2sv_1.health
+    if r_2sv_1_6health.__class__ is not int and (not isinstance(r_2sv_1_6health, int) or r_2sv_1_6health.__class__ is bool):
+        raise _enc('nav_sat', 'sv[1].health', r_2sv_1_6health, 'type', 'an int')
+    if not 0 <= r_2sv_1_6health <= 3:
+        raise _enc('nav_sat', 'sv[1].health', r_2sv_1_6health, 'range', '0..3', None)
+    r_2sv_1_8diffCorr: Any = g_2sv_1.diffCorr
+    if r_2sv_1_8diffCorr is not True and r_2sv_1_8diffCorr is not False and r_2sv_1_8diffCorr != 0 and r_2sv_1_8diffCorr != 1:
+        raise _enc('nav_sat', 'sv[1].diffCorr', r_2sv_1_8diffCorr, 'type', 'a bool')
+    r_2sv_1_8diffCorr = 1 if r_2sv_1_8diffCorr else 0
+    r_2sv_1_8smoothed: Any = g_2sv_1.smoothed
+    if r_2sv_1_8smoothed is not True and r_2sv_1_8smoothed is not False and r_2sv_1_8smoothed != 0 and r_2sv_1_8smoothed != 1:
+        raise _enc('nav_sat', 'sv[1].smoothed', r_2sv_1_8smoothed, 'type', 'a bool')
+    r_2sv_1_8smoothed = 1 if r_2sv_1_8smoothed else 0
+    r_2sv_1_11orbitSource = g_2sv_1.orbitSource
+    if r_2sv_1_11orbitSource.__class__ is not int and (not isinstance(r_2sv_1_11orbitSource, int) or r_2sv_1_11orbitSource.__class__ is bool):
+        raise _enc('nav_sat', 'sv[1].orbitSource', r_2sv_1_11orbitSource, 'type', 'an int')
+    if not 0 <= r_2sv_1_11orbitSource <= 7:
+        raise _enc('nav_sat', 'sv[1].orbitSource', r_2sv_1_11orbitSource, 'range', '0..7', None)
+    r_2sv_1_8ephAvail: Any = g_2sv_1.ephAvail
+    if r_2sv_1_8ephAvail is not True and r_2sv_1_8ephAvail is not False and r_2sv_1_8ephAvail != 0 and r_2sv_1_8ephAvail != 1:
+        raise _enc('nav_sat', 'sv[1].ephAvail', r_2sv_1_8ephAvail, 'type', 'a bool')
+    r_2sv_1_8ephAvail = 1 if r_2sv_1_8ephAvail else 0
+    r_2sv_1_8almAvail: Any = g_2sv_1.almAvail
+    if r_2sv_1_8almAvail is not True and r_2sv_1_8almAvail is not False and r_2sv_1_8almAvail != 0 and r_2sv_1_8almAvail != 1:
+        raise _enc('nav_sat', 'sv[1].almAvail', r_2sv_1_8almAvail, 'type', 'a bool')
+    r_2sv_1_8almAvail = 1 if r_2sv_1_8almAvail else 0
+    r_2sv_1_8anoAvail: Any = g_2sv_1.anoAvail
+    if r_2sv_1_8anoAvail is not True and r_2sv_1_8anoAvail is not False and r_2sv_1_8anoAvail != 0 and r_2sv_1_8anoAvail != 1:
+        raise _enc('nav_sat', 'sv[1].anoAvail', r_2sv_1_8anoAvail, 'type', 'a bool')
+    r_2sv_1_8anoAvail = 1 if r_2sv_1_8anoAvail else 0
+    r_2sv_1_8aopAvail: Any = g_2sv_1.aopAvail
+    if r_2sv_1_8aopAvail is not True and r_2sv_1_8aopAvail is not False and r_2sv_1_8aopAvail != 0 and r_2sv_1_8aopAvail != 1:
+        raise _enc('nav_sat', 'sv[1].aopAvail', r_2sv_1_8aopAvail, 'type', 'a bool')
+    r_2sv_1_8aopAvail = 1 if r_2sv_1_8aopAvail else 0
+    r_2sv_1_10reserved13 = g_2sv_1.reserved13
+    if r_2sv_1_10reserved13.__class__ is not int and (not isinstance(r_2sv_1_10reserved13, int) or r_2sv_1_10reserved13.__class__ is bool):
+        raise _enc('nav_sat', 'sv[1].reserved13', r_2sv_1_10reserved13, 'type', 'an int')
+    if not 0 <= r_2sv_1_10reserved13 <= 1:
+        raise _enc('nav_sat', 'sv[1].reserved13', r_2sv_1_10reserved13, 'range', '0..1', None)
+    r_2sv_1_12sbasCorrUsed: Any = g_2sv_1.sbasCorrUsed
+    if r_2sv_1_12sbasCorrUsed is not True and r_2sv_1_12sbasCorrUsed is not False and r_2sv_1_12sbasCorrUsed != 0 and r_2sv_1_12sbasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[1].sbasCorrUsed', r_2sv_1_12sbasCorrUsed, 'type', 'a bool')
+    r_2sv_1_12sbasCorrUsed = 1 if r_2sv_1_12sbasCorrUsed else 0
+    r_2sv_1_12rtcmCorrUsed: Any = g_2sv_1.rtcmCorrUsed
+    if r_2sv_1_12rtcmCorrUsed is not True and r_2sv_1_12rtcmCorrUsed is not False and r_2sv_1_12rtcmCorrUsed != 0 and r_2sv_1_12rtcmCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[1].rtcmCorrUsed', r_2sv_1_12rtcmCorrUsed, 'type', 'a bool')
+    r_2sv_1_12rtcmCorrUsed = 1 if r_2sv_1_12rtcmCorrUsed else 0
+    r_2sv_1_12slasCorrUsed: Any = g_2sv_1.slasCorrUsed
+    if r_2sv_1_12slasCorrUsed is not True and r_2sv_1_12slasCorrUsed is not False and r_2sv_1_12slasCorrUsed != 0 and r_2sv_1_12slasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[1].slasCorrUsed', r_2sv_1_12slasCorrUsed, 'type', 'a bool')
+    r_2sv_1_12slasCorrUsed = 1 if r_2sv_1_12slasCorrUsed else 0
+    r_2sv_1_14spartnCorrUsed: Any = g_2sv_1.spartnCorrUsed
+    if r_2sv_1_14spartnCorrUsed is not True and r_2sv_1_14spartnCorrUsed is not False and r_2sv_1_14spartnCorrUsed != 0 and r_2sv_1_14spartnCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[1].spartnCorrUsed', r_2sv_1_14spartnCorrUsed, 'type', 'a bool')
+    r_2sv_1_14spartnCorrUsed = 1 if r_2sv_1_14spartnCorrUsed else 0
+    r_2sv_1_10prCorrUsed: Any = g_2sv_1.prCorrUsed
+    if r_2sv_1_10prCorrUsed is not True and r_2sv_1_10prCorrUsed is not False and r_2sv_1_10prCorrUsed != 0 and r_2sv_1_10prCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[1].prCorrUsed', r_2sv_1_10prCorrUsed, 'type', 'a bool')
+    r_2sv_1_10prCorrUsed = 1 if r_2sv_1_10prCorrUsed else 0
+    r_2sv_1_10crCorrUsed: Any = g_2sv_1.crCorrUsed
+    if r_2sv_1_10crCorrUsed is not True and r_2sv_1_10crCorrUsed is not False and r_2sv_1_10crCorrUsed != 0 and r_2sv_1_10crCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[1].crCorrUsed', r_2sv_1_10crCorrUsed, 'type', 'a bool')
+    r_2sv_1_10crCorrUsed = 1 if r_2sv_1_10crCorrUsed else 0
+    r_2sv_1_10doCorrUsed: Any = g_2sv_1.doCorrUsed
+    if r_2sv_1_10doCorrUsed is not True and r_2sv_1_10doCorrUsed is not False and r_2sv_1_10doCorrUsed != 0 and r_2sv_1_10doCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[1].doCorrUsed', r_2sv_1_10doCorrUsed, 'type', 'a bool')
+    r_2sv_1_10doCorrUsed = 1 if r_2sv_1_10doCorrUsed else 0
+    r_2sv_1_12clasCorrUsed: Any = g_2sv_1.clasCorrUsed
+    if r_2sv_1_12clasCorrUsed is not True and r_2sv_1_12clasCorrUsed is not False and r_2sv_1_12clasCorrUsed != 0 and r_2sv_1_12clasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[1].clasCorrUsed', r_2sv_1_12clasCorrUsed, 'type', 'a bool')
+    r_2sv_1_12clasCorrUsed = 1 if r_2sv_1_12clasCorrUsed else 0
+    r_2sv_1_11lppCorrUsed: Any = g_2sv_1.lppCorrUsed
+    if r_2sv_1_11lppCorrUsed is not True and r_2sv_1_11lppCorrUsed is not False and r_2sv_1_11lppCorrUsed != 0 and r_2sv_1_11lppCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[1].lppCorrUsed', r_2sv_1_11lppCorrUsed, 'type', 'a bool')
+    r_2sv_1_11lppCorrUsed = 1 if r_2sv_1_11lppCorrUsed else 0
+    r_2sv_1_11hasCorrUsed: Any = g_2sv_1.hasCorrUsed
+    if r_2sv_1_11hasCorrUsed is not True and r_2sv_1_11hasCorrUsed is not False and r_2sv_1_11hasCorrUsed != 0 and r_2sv_1_11hasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[1].hasCorrUsed', r_2sv_1_11hasCorrUsed, 'type', 'a bool')
+    r_2sv_1_11hasCorrUsed = 1 if r_2sv_1_11hasCorrUsed else 0
+    r_2sv_1_11flags_spare = 0
+    return (r_2sv_1_6gnssId, r_2sv_1_4svId, r_2sv_1_3cno, r_2sv_1_4elev, r_2sv_1_4azim, r_2sv_1_5prRes, r_2sv_1_10qualityInd, r_2sv_1_6svUsed, r_2sv_1_6health, r_2sv_1_8diffCorr, r_2sv_1_8smoothed, r_2sv_1_11orbitSource, r_2sv_1_8ephAvail, r_2sv_1_8almAvail, r_2sv_1_8anoAvail, r_2sv_1_8aopAvail, r_2sv_1_10reserved13, r_2sv_1_12sbasCorrUsed, r_2sv_1_12rtcmCorrUsed, r_2sv_1_12slasCorrUsed, r_2sv_1_14spartnCorrUsed, r_2sv_1_10prCorrUsed, r_2sv_1_10crCorrUsed, r_2sv_1_10doCorrUsed, r_2sv_1_12clasCorrUsed, r_2sv_1_11lppCorrUsed, r_2sv_1_11hasCorrUsed, r_2sv_1_11flags_spare, )
+
+
+def _raw_nav_sat_2sv_2(g_2sv_2: Any) -> tuple[Any, ...]:
+    r_2sv_2_6gnssId = g_2sv_2.gnssId
+    if r_2sv_2_6gnssId.__class__ is not int and (not isinstance(r_2sv_2_6gnssId, int) or r_2sv_2_6gnssId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[2].gnssId', r_2sv_2_6gnssId, 'type', 'an int')
+    if not 0 <= r_2sv_2_6gnssId <= 255:
+        raise _enc('nav_sat', 'sv[2].gnssId', r_2sv_2_6gnssId, 'range', '0..255', None)
+    r_2sv_2_4svId = g_2sv_2.svId
+    if r_2sv_2_4svId.__class__ is not int and (not isinstance(r_2sv_2_4svId, int) or r_2sv_2_4svId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[2].svId', r_2sv_2_4svId, 'type', 'an int')
+    if not 0 <= r_2sv_2_4svId <= 255:
+        raise _enc('nav_sat', 'sv[2].svId', r_2sv_2_4svId, 'range', '0..255', None)
+    r_2sv_2_3cno = g_2sv_2.cno
+    if r_2sv_2_3cno.__class__ is not int and (not isinstance(r_2sv_2_3cno, int) or r_2sv_2_3cno.__class__ is bool):
+        raise _enc('nav_sat', 'sv[2].cno', r_2sv_2_3cno, 'type', 'an int')
+    if not 0 <= r_2sv_2_3cno <= 255:
+        raise _enc('nav_sat', 'sv[2].cno', r_2sv_2_3cno, 'range', '0..255', None)
+    r_2sv_2_4elev = g_2sv_2.elev
+    if r_2sv_2_4elev.__class__ is not int and (not isinstance(r_2sv_2_4elev, int) or r_2sv_2_4elev.__class__ is bool):
+        raise _enc('nav_sat', 'sv[2].elev', r_2sv_2_4elev, 'type', 'an int')
+    if not -128 <= r_2sv_2_4elev <= 127:
+        raise _enc('nav_sat', 'sv[2].elev', r_2sv_2_4elev, 'range', '-128..127', None)
+    r_2sv_2_4azim = g_2sv_2.azim
+    if r_2sv_2_4azim.__class__ is not int and (not isinstance(r_2sv_2_4azim, int) or r_2sv_2_4azim.__class__ is bool):
+        raise _enc('nav_sat', 'sv[2].azim', r_2sv_2_4azim, 'type', 'an int')
+    if not -32768 <= r_2sv_2_4azim <= 32767:
+        raise _enc('nav_sat', 'sv[2].azim', r_2sv_2_4azim, 'range', '-32768..32767', None)
+    r_2sv_2_5prRes = g_2sv_2.prRes
+    if r_2sv_2_5prRes.__class__ is not float and (not isinstance(r_2sv_2_5prRes, (int, float)) or r_2sv_2_5prRes.__class__ is bool):
+        raise _enc('nav_sat', 'sv[2].prRes', r_2sv_2_5prRes, 'type', 'a number')
+    if not -3276.8 <= r_2sv_2_5prRes <= 3276.7000000000003:
+        raise _enc('nav_sat', 'sv[2].prRes', r_2sv_2_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    r_2sv_2_5prRes = _floor(r_2sv_2_5prRes / 0.1 + 0.5)
+    r_2sv_2_10qualityInd = g_2sv_2.qualityInd
+    if r_2sv_2_10qualityInd.__class__ is not int and (not isinstance(r_2sv_2_10qualityInd, int) or r_2sv_2_10qualityInd.__class__ is bool):
+        raise _enc('nav_sat', 'sv[2].qualityInd', r_2sv_2_10qualityInd, 'type', 'an int')
+    if not 0 <= r_2sv_2_10qualityInd <= 7:
+        raise _enc('nav_sat', 'sv[2].qualityInd', r_2sv_2_10qualityInd, 'range', '0..7', None)
+    r_2sv_2_6svUsed: Any = g_2sv_2.svUsed
+    if r_2sv_2_6svUsed is not True and r_2sv_2_6svUsed is not False and r_2sv_2_6svUsed != 0 and r_2sv_2_6svUsed != 1:
+        raise _enc('nav_sat', 'sv[2].svUsed', r_2sv_2_6svUsed, 'type', 'a bool')
+    r_2sv_2_6svUsed = 1 if r_2sv_2_6svUsed else 0
+    r_2sv_2_6health = g_2sv_2.health
+    if r_2sv_2_6health.__class__ is not int and (not isinstance(r_2sv_2_6health, int) or r_2sv_2_6health.__class__ is bool):
+        raise _enc('nav_sat', 'sv[2].health', r_2sv_2_6health, 'type', 'an int')
+    if not 0 <= r_2sv_2_6health <= 3:
+        raise _enc('nav_sat', 'sv[2].health', r_2sv_2_6health, 'range', '0..3', None)
+    r_2sv_2_8diffCorr: Any = g_2sv_2.diffCorr
+    if r_2sv_2_8diffCorr is not True and r_2sv_2_8diffCorr is not False and r_2sv_2_8diffCorr != 0 and r_2sv_2_8diffCorr != 1:
+        raise _enc('nav_sat', 'sv[2].diffCorr', r_2sv_2_8diffCorr, 'type', 'a bool')
+    r_2sv_2_8diffCorr = 1 if r_2sv_2_8diffCorr else 0
+    r_2sv_2_8smoothed: Any = g_2sv_2.smoothed
+    if r_2sv_2_8smoothed is not True and r_2sv_2_8smoothed is not False and r_2sv_2_8smoothed != 0 and r_2sv_2_8smoothed != 1:
+        raise _enc('nav_sat', 'sv[2].smoothed', r_2sv_2_8smoothed, 'type', 'a bool')
+    r_2sv_2_8smoothed = 1 if r_2sv_2_8smoothed else 0
+    r_2sv_2_11orbitSource = g_2sv_2.orbitSource
+    if r_2sv_2_11orbitSource.__class__ is not int and (not isinstance(r_2sv_2_11orbitSource, int) or r_2sv_2_11orbitSource.__class__ is bool):
+        raise _enc('nav_sat', 'sv[2].orbitSource', r_2sv_2_11orbitSource, 'type', 'an int')
+    if not 0 <= r_2sv_2_11orbitSource <= 7:
+        raise _enc('nav_sat', 'sv[2].orbitSource', r_2sv_2_11orbitSource, 'range', '0..7', None)
+    r_2sv_2_8ephAvail: Any = g_2sv_2.ephAvail
+    if r_2sv_2_8ephAvail is not True and r_2sv_2_8ephAvail is not False and r_2sv_2_8ephAvail != 0 and r_2sv_2_8ephAvail != 1:
+        raise _enc('nav_sat', 'sv[2].ephAvail', r_2sv_2_8ephAvail, 'type', 'a bool')
+    r_2sv_2_8ephAvail = 1 if r_2sv_2_8ephAvail else 0
+    r_2sv_2_8almAvail: Any = g_2sv_2.almAvail
+    if r_2sv_2_8almAvail is not True and r_2sv_2_8almAvail is not False and r_2sv_2_8almAvail != 0 and r_2sv_2_8almAvail != 1:
+        raise _enc('nav_sat', 'sv[2].almAvail', r_2sv_2_8almAvail, 'type', 'a bool')
+    r_2sv_2_8almAvail = 1 if r_2sv_2_8almAvail else 0
+    r_2sv_2_8anoAvail: Any = g_2sv_2.anoAvail
+    if r_2sv_2_8anoAvail is not True and r_2sv_2_8anoAvail is not False and r_2sv_2_8anoAvail != 0 and r_2sv_2_8anoAvail != 1:
+        raise _enc('nav_sat', 'sv[2].anoAvail', r_2sv_2_8anoAvail, 'type', 'a bool')
+    r_2sv_2_8anoAvail = 1 if r_2sv_2_8anoAvail else 0
+    r_2sv_2_8aopAvail: Any = g_2sv_2.aopAvail
+    if r_2sv_2_8aopAvail is not True and r_2sv_2_8aopAvail is not False and r_2sv_2_8aopAvail != 0 and r_2sv_2_8aopAvail != 1:
+        raise _enc('nav_sat', 'sv[2].aopAvail', r_2sv_2_8aopAvail, 'type', 'a bool')
+    r_2sv_2_8aopAvail = 1 if r_2sv_2_8aopAvail else 0
+    r_2sv_2_10reserved13 = g_2sv_2.reserved13
+    if r_2sv_2_10reserved13.__class__ is not int and (not isinstance(r_2sv_2_10reserved13, int) or r_2sv_2_10reserved13.__class__ is bool):
+        raise _enc('nav_sat', 'sv[2].reserved13', r_2sv_2_10reserved13, 'type', 'an int')
+    if not 0 <= r_2sv_2_10reserved13 <= 1:
+        raise _enc('nav_sat', 'sv[2].reserved13', r_2sv_2_10reserved13, 'range', '0..1', None)
+    r_2sv_2_12sbasCorrUsed: Any = g_2sv_2.sbasCorrUsed
+    if r_2sv_2_12sbasCorrUsed is not True and r_2sv_2_12sbasCorrUsed is not False and r_2sv_2_12sbasCorrUsed != 0 and r_2sv_2_12sbasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[2].sbasCorrUsed', r_2sv_2_12sbasCorrUsed, 'type', 'a bool')
+    r_2sv_2_12sbasCorrUsed = 1 if r_2sv_2_12sbasCorrUsed else 0
+    r_2sv_2_12rtcmCorrUsed: Any = g_2sv_2.rtcmCorrUsed
+    if r_2sv_2_12rtcmCorrUsed is not True and r_2sv_2_12rtcmCorrUsed is not False and r_2sv_2_12rtcmCorrUsed != 0 and r_2sv_2_12rtcmCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[2].rtcmCorrUsed', r_2sv_2_12rtcmCorrUsed, 'type', 'a bool')
+    r_2sv_2_12rtcmCorrUsed = 1 if r_2sv_2_12rtcmCorrUsed else 0
+    r_2sv_2_12slasCorrUsed: Any = g_2sv_2.slasCorrUsed
+    if r_2sv_2_12slasCorrUsed is not True and r_2sv_2_12slasCorrUsed is not False and r_2sv_2_12slasCorrUsed != 0 and r_2sv_2_12slasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[2].slasCorrUsed', r_2sv_2_12slasCorrUsed, 'type', 'a bool')
+    r_2sv_2_12slasCorrUsed = 1 if r_2sv_2_12slasCorrUsed else 0
+    r_2sv_2_14spartnCorrUsed: Any = g_2sv_2.spartnCorrUsed
+    if r_2sv_2_14spartnCorrUsed is not True and r_2sv_2_14spartnCorrUsed is not False and r_2sv_2_14spartnCorrUsed != 0 and r_2sv_2_14spartnCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[2].spartnCorrUsed', r_2sv_2_14spartnCorrUsed, 'type', 'a bool')
+    r_2sv_2_14spartnCorrUsed = 1 if r_2sv_2_14spartnCorrUsed else 0
+    r_2sv_2_10prCorrUsed: Any = g_2sv_2.prCorrUsed
+    if r_2sv_2_10prCorrUsed is not True and r_2sv_2_10prCorrUsed is not False and r_2sv_2_10prCorrUsed != 0 and r_2sv_2_10prCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[2].prCorrUsed', r_2sv_2_10prCorrUsed, 'type', 'a bool')
+    r_2sv_2_10prCorrUsed = 1 if r_2sv_2_10prCorrUsed else 0
+    r_2sv_2_10crCorrUsed: Any = g_2sv_2.crCorrUsed
+    if r_2sv_2_10crCorrUsed is not True and r_2sv_2_10crCorrUsed is not False and r_2sv_2_10crCorrUsed != 0 and r_2sv_2_10crCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[2].crCorrUsed', r_2sv_2_10crCorrUsed, 'type', 'a bool')
+    r_2sv_2_10crCorrUsed = 1 if r_2sv_2_10crCorrUsed else 0
+    r_2sv_2_10doCorrUsed: Any = g_2sv_2.doCorrUsed
+    if r_2sv_2_10doCorrUsed is not True and r_2sv_2_10doCorrUsed is not False and r_2sv_2_10doCorrUsed != 0 and r_2sv_2_10doCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[2].doCorrUsed', r_2sv_2_10doCorrUsed, 'type', 'a bool')
+    r_2sv_2_10doCorrUsed = 1 if r_2sv_2_10doCorrUsed else 0
+    r_2sv_2_12clasCorrUsed: Any = g_2sv_2.clasCorrUsed
+    if r_2sv_2_12clasCorrUsed is not True and r_2sv_2_12clasCorrUsed is not False and r_2sv_2_12clasCorrUsed != 0 and r_2sv_2_12clasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[2].clasCorrUsed', r_2sv_2_12clasCorrUsed, 'type', 'a bool')
+    r_2sv_2_12clasCorrUsed = 1 if r_2sv_2_12clasCorrUsed else 0
+    r_2sv_2_11lppCorrUsed: Any = g_2sv_2.lppCorrUsed
+    if r_2sv_2_11lppCorrUsed is not True and r_2sv_2_11lppCorrUsed is not False and r_2sv_2_11lppCorrUsed != 0 and r_2sv_2_11lppCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[2].lppCorrUsed', r_2sv_2_11lppCorrUsed, 'type', 'a bool')
+    r_2sv_2_11lppCorrUsed = 1 if r_2sv_2_11lppCorrUsed else 0
+    r_2sv_2_11hasCorrUsed: Any = g_2sv_2.hasCorrUsed
+    if r_2sv_2_11hasCorrUsed is not True and r_2sv_2_11hasCorrUsed is not False and r_2sv_2_11hasCorrUsed != 0 and r_2sv_2_11hasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[2].hasCorrUsed', r_2sv_2_11hasCorrUsed, 'type', 'a bool')
+    r_2sv_2_11hasCorrUsed = 1 if r_2sv_2_11hasCorrUsed else 0
+    r_2sv_2_11flags_spare = 0
+    return (r_2sv_2_6gnssId, r_2sv_2_4svId, r_2sv_2_3cno, r_2sv_2_4elev, r_2sv_2_4azim, r_2sv_2_5prRes, r_2sv_2_10qualityInd, r_2sv_2_6svUsed, r_2sv_2_6health, r_2sv_2_8diffCorr, r_2sv_2_8smoothed, r_2sv_2_11orbitSource, r_2sv_2_8ephAvail, r_2sv_2_8almAvail, r_2sv_2_8anoAvail, r_2sv_2_8aopAvail, r_2sv_2_10reserved13, r_2sv_2_12sbasCorrUsed, r_2sv_2_12rtcmCorrUsed, r_2sv_2_12slasCorrUsed, r_2sv_2_14spartnCorrUsed, r_2sv_2_10prCorrUsed, r_2sv_2_10crCorrUsed, r_2sv_2_10doCorrUsed, r_2sv_2_12clasCorrUsed, r_2sv_2_11lppCorrUsed, r_2sv_2_11hasCorrUsed, r_2sv_2_11flags_spare, )
+
+
+def _raw_nav_sat_2sv_3(g_2sv_3: Any) -> tuple[Any, ...]:
+    r_2sv_3_6gnssId = g_2sv_3.gnssId
+    if r_2sv_3_6gnssId.__class__ is not int and (not isinstance(r_2sv_3_6gnssId, int) or r_2sv_3_6gnssId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[3].gnssId', r_2sv_3_6gnssId, 'type', 'an int')
+    if not 0 <= r_2sv_3_6gnssId <= 255:
+        raise _enc('nav_sat', 'sv[3].gnssId', r_2sv_3_6gnssId, 'range', '0..255', None)
+    r_2sv_3_4svId = g_2sv_3.svId
+    if r_2sv_3_4svId.__class__ is not int and (not isinstance(r_2sv_3_4svId, int) or r_2sv_3_4svId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[3].svId', r_2sv_3_4svId, 'type', 'an int')
+    if not 0 <= r_2sv_3_4svId <= 255:
+        raise _enc('nav_sat', 'sv[3].svId', r_2sv_3_4svId, 'range', '0..255', None)
+    r_2sv_3_3cno = g_2sv_3.cno
+    if r_2sv_3_3cno.__class__ is not int and (not isinstance(r_2sv_3_3cno, int) or r_2sv_3_3cno.__class__ is bool):
+        raise _enc('nav_sat', 'sv[3].cno', r_2sv_3_3cno, 'type', 'an int')
+    if not 0 <= r_2sv_3_3cno <= 255:
+        raise _enc('nav_sat', 'sv[3].cno', r_2sv_3_3cno, 'range', '0..255', None)
+    r_2sv_3_4elev = g_2sv_3.elev
+    if r_2sv_3_4elev.__class__ is not int and (not isinstance(r_2sv_3_4elev, int) or r_2sv_3_4elev.__class__ is bool):
+        raise _enc('nav_sat', 'sv[3].elev', r_2sv_3_4elev, 'type', 'an int')
+    if not -128 <= r_2sv_3_4elev <= 127:
+        raise _enc('nav_sat', 'sv[3].elev', r_2sv_3_4elev, 'range', '-128..127', None)
+    r_2sv_3_4azim = g_2sv_3.azim
+    if r_2sv_3_4azim.__class__ is not int and (not isinstance(r_2sv_3_4azim, int) or r_2sv_3_4azim.__class__ is bool):
+        raise _enc('nav_sat', 'sv[3].azim', r_2sv_3_4azim, 'type', 'an int')
+    if not -32768 <= r_2sv_3_4azim <= 32767:
+        raise _enc('nav_sat', 'sv[3].azim', r_2sv_3_4azim, 'range', '-32768..32767', None)
+    r_2sv_3_5prRes = g_2sv_3.prRes
+    if r_2sv_3_5prRes.__class__ is not float and (not isinstance(r_2sv_3_5prRes, (int, float)) or r_2sv_3_5prRes.__class__ is bool):
+        raise _enc('nav_sat', 'sv[3].prRes', r_2sv_3_5prRes, 'type', 'a number')
+    if not -3276.8 <= r_2sv_3_5prRes <= 3276.7000000000003:
+        raise _enc('nav_sat', 'sv[3].prRes', r_2sv_3_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    r_2sv_3_5prRes = _floor(r_2sv_3_5prRes / 0.1 + 0.5)
+    r_2sv_3_10qualityInd = g_2sv_3.qualityInd
+    if r_2sv_3_10qualityInd.__class__ is not int and (not isinstance(r_2sv_3_10qualityInd, int) or r_2sv_3_10qualityInd.__class__ is bool):
+        raise _enc('nav_sat', 'sv[3].qualityInd', r_2sv_3_10qualityInd, 'type', 'an int')
+    if not 0 <= r_2sv_3_10qualityInd <= 7:
+        raise _enc('nav_sat', 'sv[3].qualityInd', r_2sv_3_10qualityInd, 'range', '0..7', None)
+    r_2sv_3_6svUsed: Any = g_2sv_3.svUsed
+    if r_2sv_3_6svUsed is not True and r_2sv_3_6svUsed is not False and r_2sv_3_6svUsed != 0 and r_2sv_3_6svUsed != 1:
+        raise _enc('nav_sat', 'sv[3].svUsed', r_2sv_3_6svUsed, 'type', 'a bool')
+    r_2sv_3_6svUsed = 1 if r_2sv_3_6svUsed else 0
+    r_2sv_3_6health = g_2sv_3.health
+    if r_2sv_3_6health.__class__ is not int and (not isinstance(r_2sv_3_6health, int) or r_2sv_3_6health.__class__ is bool):
+        raise _enc('nav_sat', 'sv[3].health', r_2sv_3_6health, 'type', 'an int')
+    if not 0 <= r_2sv_3_6health <= 3:
+        raise _enc('nav_sat', 'sv[3].health', r_2sv_3_6health, 'range', '0..3', None)
+    r_2sv_3_8diffCorr: Any = g_2sv_3.diffCorr
+    if r_2sv_3_8diffCorr is not True and r_2sv_3_8diffCorr is not False and r_2sv_3_8diffCorr != 0 and r_2sv_3_8diffCorr != 1:
+        raise _enc('nav_sat', 'sv[3].diffCorr', r_2sv_3_8diffCorr, 'type', 'a bool')
+    r_2sv_3_8diffCorr = 1 if r_2sv_3_8diffCorr else 0
+    r_2sv_3_8smoothed: Any = g_2sv_3.smoothed
+    if r_2sv_3_8smoothed is not True and r_2sv_3_8smoothed is not False and r_2sv_3_8smoothed != 0 and r_2sv_3_8smoothed != 1:
+        raise _enc('nav_sat', 'sv[3].smoothed', r_2sv_3_8smoothed, 'type', 'a bool')
+    r_2sv_3_8smoothed = 1 if r_2sv_3_8smoothed else 0
+    r_2sv_3_11orbitSource = g_2sv_3.orbitSource
+    if r_2sv_3_11orbitSource.__class__ is not int and (not isinstance(r_2sv_3_11orbitSource, int) or r_2sv_3_11orbitSource.__class__ is bool):
+        raise _enc('nav_sat', 'sv[3].orbitSource', r_2sv_3_11orbitSource, 'type', 'an int')
+    if not 0 <= r_2sv_3_11orbitSource <= 7:
+        raise _enc('nav_sat', 'sv[3].orbitSource', r_2sv_3_11orbitSource, 'range', '0..7', None)
+    r_2sv_3_8ephAvail: Any = g_2sv_3.ephAvail
+    if r_2sv_3_8ephAvail is not True and r_2sv_3_8ephAvail is not False and r_2sv_3_8ephAvail != 0 and r_2sv_3_8ephAvail != 1:
+        raise _enc('nav_sat', 'sv[3].ephAvail', r_2sv_3_8ephAvail, 'type', 'a bool')
+    r_2sv_3_8ephAvail = 1 if r_2sv_3_8ephAvail else 0
+    r_2sv_3_8almAvail: Any = g_2sv_3.almAvail
+    if r_2sv_3_8almAvail is not True and r_2sv_3_8almAvail is not False and r_2sv_3_8almAvail != 0 and r_2sv_3_8almAvail != 1:
+        raise _enc('nav_sat', 'sv[3].almAvail', r_2sv_3_8almAvail, 'type', 'a bool')
+    r_2sv_3_8almAvail = 1 if r_2sv_3_8almAvail else 0
+    r_2sv_3_8anoAvail: Any = g_2sv_3.anoAvail
+    if r_2sv_3_8anoAvail is not True and r_2sv_3_8anoAvail is not False and r_2sv_3_8anoAvail != 0 and r_2sv_3_8anoAvail != 1:
+        raise _enc('nav_sat', 'sv[3].anoAvail', r_2sv_3_8anoAvail, 'type', 'a bool')
+    r_2sv_3_8anoAvail = 1 if r_2sv_3_8anoAvail else 0
+    r_2sv_3_8aopAvail: Any = g_2sv_3.aopAvail
+    if r_2sv_3_8aopAvail is not True and r_2sv_3_8aopAvail is not False and r_2sv_3_8aopAvail != 0 and r_2sv_3_8aopAvail != 1:
+        raise _enc('nav_sat', 'sv[3].aopAvail', r_2sv_3_8aopAvail, 'type', 'a bool')
+    r_2sv_3_8aopAvail = 1 if r_2sv_3_8aopAvail else 0
+    r_2sv_3_10reserved13 = g_2sv_3.reserved13
+    if r_2sv_3_10reserved13.__class__ is not int and (not isinstance(r_2sv_3_10reserved13, int) or r_2sv_3_10reserved13.__class__ is bool):
+        raise _enc('nav_sat', 'sv[3].reserved13', r_2sv_3_10reserved13, 'type', 'an int')
+    if not 0 <= r_2sv_3_10reserved13 <= 1:
+        raise _enc('nav_sat', 'sv[3].reserved13', r_2sv_3_10reserved13, 'range', '0..1', None)
+    r_2sv_3_12sbasCorrUsed: Any = g_2sv_3.sbasCorrUsed
+    if r_2sv_3_12sbasCorrUsed is not True and r_2sv_3_12sbasCorrUsed is not False and r_2sv_3_12sbasCorrUsed != 0 and r_2sv_3_12sbasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[3].sbasCorrUsed', r_2sv_3_12sbasCorrUsed, 'type', 'a bool')
+    r_2sv_3_12sbasCorrUsed = 1 if r_2sv_3_12sbasCorrUsed else 0
+    r_2sv_3_12rtcmCorrUsed: Any = g_2sv_3.rtcmCorrUsed
+    if r_2sv_3_12rtcmCorrUsed is not True and r_2sv_3_12rtcmCorrUsed is not False and r_2sv_3_12rtcmCorrUsed != 0 and r_2sv_3_12rtcmCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[3].rtcmCorrUsed', r_2sv_3_12rtcmCorrUsed, 'type', 'a bool')
+    r_2sv_3_12rtcmCorrUsed = 1 if r_2sv_3_12rtcmCorrUsed else 0
+    r_2sv_3_12slasCorrUsed: Any = g_2sv_3.slasCorrUsed
+    if r_2sv_3_12slasCorrUsed is not True and r_2sv_3_12slasCorrUsed is not False and r_2sv_3_12slasCorrUsed != 0 and r_2sv_3_12slasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[3].slasCorrUsed', r_2sv_3_12slasCorrUsed, 'type', 'a bool')
+    r_2sv_3_12slasCorrUsed = 1 if r_2sv_3_12slasCorrUsed else 0
+    r_2sv_3_14spartnCorrUsed: Any = g_2sv_3.spartnCorrUsed
+    if r_2sv_3_14spartnCorrUsed is not True and r_2sv_3_14spartnCorrUsed is not False and r_2sv_3_14spartnCorrUsed != 0 and r_2sv_3_14spartnCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[3].spartnCorrUsed', r_2sv_3_14spartnCorrUsed, 'type', 'a bool')
+    r_2sv_3_14spartnCorrUsed = 1 if r_2sv_3_14spartnCorrUsed else 0
+    r_2sv_3_10prCorrUsed: Any = g_2sv_3.prCorrUsed
+    if r_2sv_3_10prCorrUsed is not True and r_2sv_3_10prCorrUsed is not False and r_2sv_3_10prCorrUsed != 0 and r_2sv_3_10prCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[3].prCorrUsed', r_2sv_3_10prCorrUsed, 'type', 'a bool')
+    r_2sv_3_10prCorrUsed = 1 if r_2sv_3_10prCorrUsed else 0
+    r_2sv_3_10crCorrUsed: Any = g_2sv_3.crCorrUsed
+    if r_2sv_3_10crCorrUsed is not True and r_2sv_3_10crCorrUsed is not False and r_2sv_3_10crCorrUsed != 0 and r_2sv_3_10crCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[3].crCorrUsed', r_2sv_3_10crCorrUsed, 'type', 'a bool')
+    r_2sv_3_10crCorrUsed = 1 if r_2sv_3_10crCorrUsed else 0
+    r_2sv_3_10doCorrUsed: Any = g_2sv_3.doCorrUsed
+    if r_2sv_3_10doCorrUsed is not True and r_2sv_3_10doCorrUsed is not False and r_2sv_3_10doCorrUsed != 0 and r_2sv_3_10doCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[3].doCorrUsed', r_2sv_3_10doCorrUsed, 'type', 'a bool')
+    r_2sv_3_10doCorrUsed = 1 if r_2sv_3_10doCorrUsed else 0
+    r_2sv_3_12clasCorrUsed: Any = g_2sv_3.clasCorrUsed
+    if r_2sv_3_12clasCorrUsed is not True and r_2sv_3_12clasCorrUsed is not False and r_2sv_3_12clasCorrUsed != 0 and r_2sv_3_12clasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[3].clasCorrUsed', r_2sv_3_12clasCorrUsed, 'type', 'a bool')
+    r_2sv_3_12clasCorrUsed = 1 if r_2sv_3_12clasCorrUsed else 0
+    r_2sv_3_11lppCorrUsed: Any = g_2sv_3.lppCorrUsed
+    if r_2sv_3_11lppCorrUsed is not True and r_2sv_3_11lppCorrUsed is not False and r_2sv_3_11lppCorrUsed != 0 and r_2sv_3_11lppCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[3].lppCorrUsed', r_2sv_3_11lppCorrUsed, 'type', 'a bool')
+    r_2sv_3_11lppCorrUsed = 1 if r_2sv_3_11lppCorrUsed else 0
+    r_2sv_3_11hasCorrUsed: Any = g_2sv_3.hasCorrUsed
+    if r_2sv_3_11hasCorrUsed is not True and r_2sv_3_11hasCorrUsed is not False and r_2sv_3_11hasCorrUsed != 0 and r_2sv_3_11hasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[3].hasCorrUsed', r_2sv_3_11hasCorrUsed, 'type', 'a bool')
+    r_2sv_3_11hasCorrUsed = 1 if r_2sv_3_11hasCorrUsed else 0
+    r_2sv_3_11flags_spare = 0
+    return (r_2sv_3_6gnssId, r_2sv_3_4svId, r_2sv_3_3cno, r_2sv_3_4elev, r_2sv_3_4azim, r_2sv_3_5prRes, r_2sv_3_10qualityInd, r_2sv_3_6svUsed, r_2sv_3_6health, r_2sv_3_8diffCorr, r_2sv_3_8smoothed, r_2sv_3_11orbitSource, r_2sv_3_8ephAvail, r_2sv_3_8almAvail, r_2sv_3_8anoAvail, r_2sv_3_8aopAvail, r_2sv_3_10reserved13, r_2sv_3_12sbasCorrUsed, r_2sv_3_12rtcmCorrUsed, r_2sv_3_12slasCorrUsed, r_2sv_3_14spartnCorrUsed, r_2sv_3_10prCorrUsed, r_2sv_3_10crCorrUsed, r_2sv_3_10doCorrUsed, r_2sv_3_12clasCorrUsed, r_2sv_3_11lppCorrUsed, r_2sv_3_11hasCorrUsed, r_2sv_3_11flags_spare, )
+
+
+def _raw_nav_sat_2sv_4(g_2sv_4: Any) -> tuple[Any, ...]:
+    r_2sv_4_6gnssId = g_2sv_4.gnssId
+    if r_2sv_4_6gnssId.__class__ is not int and (not isinstance(r_2sv_4_6gnssId, int) or r_2sv_4_6gnssId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[4].gnssId', r_2sv_4_6gnssId, 'type', 'an int')
+    if not 0 <= r_2sv_4_6gnssId <= 255:
+        raise _enc('nav_sat', 'sv[4].gnssId', r_2sv_4_6gnssId, 'range', '0..255', None)
+    r_2sv_4_4svId = g_2sv_4.svId
+    if r_2sv_4_4svId.__class__ is not int and (not isinstance(r_2sv_4_4svId, int) or r_2sv_4_4svId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[4].svId', r_2sv_4_4svId, 'type', 'an int')
+    if not 0 <= r_2sv_4_4svId <= 255:
+        raise _enc('nav_sat', 'sv[4].svId', r_2sv_4_4svId, 'range', '0..255', None)
+    r_2sv_4_3cno = g_2sv_4.cno
+    if r_2sv_4_3cno.__class__ is not int and (not isinstance(r_2sv_4_3cno, int) or r_2sv_4_3cno.__class__ is bool):
+        raise _enc('nav_sat', 'sv[4].cno', r_2sv_4_3cno, 'type', 'an int')
+    if not 0 <= r_2sv_4_3cno <= 255:
+        raise _enc('nav_sat', 'sv[4].cno', r_2sv_4_3cno, 'range', '0..255', None)
+    r_2sv_4_4elev = g_2sv_4.elev
+    if r_2sv_4_4elev.__class__ is not int and (not isinstance(r_2sv_4_4elev, int) or r_2sv_4_4elev.__class__ is bool):
+        raise _enc('nav_sat', 'sv[4].elev', r_2sv_4_4elev, 'type', 'an int')
+    if not -128 <= r_2sv_4_4elev <= 127:
+        raise _enc('nav_sat', 'sv[4].elev', r_2sv_4_4elev, 'range', '-128..127', None)
+    r_2sv_4_4azim = g_2sv_4.azim
+    if r_2sv_4_4azim.__class__ is not int and (not isinstance(r_2sv_4_4azim, int) or r_2sv_4_4azim.__class__ is bool):
+        raise _enc('nav_sat', 'sv[4].azim', r_2sv_4_4azim, 'type', 'an int')
+    if not -32768 <= r_2sv_4_4azim <= 32767:
+        raise _enc('nav_sat', 'sv[4].azim', r_2sv_4_4azim, 'range', '-32768..32767', None)
+    r_2sv_4_5prRes = g_2sv_4.prRes
+    if r_2sv_4_5prRes.__class__ is not float and (not isinstance(r_2sv_4_5prRes, (int, float)) or r_2sv_4_5prRes.__class__ is bool):
+        raise _enc('nav_sat', 'sv[4].prRes', r_2sv_4_5prRes, 'type', 'a number')
+    if not -3276.8 <= r_2sv_4_5prRes <= 3276.7000000000003:
+        raise _enc('nav_sat', 'sv[4].prRes', r_2sv_4_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    r_2sv_4_5prRes = _floor(r_2sv_4_5prRes / 0.1 + 0.5)
+    r_2sv_4_10qualityInd = g_2sv_4.qualityInd
+    if r_2sv_4_10qualityInd.__class__ is not int and (not isinstance(r_2sv_4_10qualityInd, int) or r_2sv_4_10qualityInd.__class__ is bool):
+        raise _enc('nav_sat', 'sv[4].qualityInd', r_2sv_4_10qualityInd, 'type', 'an int')
+    if not 0 <= r_2sv_4_10qualityInd <= 7:
+        raise _enc('nav_sat', 'sv[4].qualityInd', r_2sv_4_10qualityInd, 'range', '0..7', None)
+    r_2sv_4_6svUsed: Any = g_2sv_4.svUsed
+    if r_2sv_4_6svUsed is not True and r_2sv_4_6svUsed is not False and r_2sv_4_6svUsed != 0 and r_2sv_4_6svUsed != 1:
+        raise _enc('nav_sat', 'sv[4].svUsed', r_2sv_4_6svUsed, 'type', 'a bool')
+    r_2sv_4_6svUsed = 1 if r_2sv_4_6svUsed else 0
+    r_2sv_4_6health = g_2sv_4.health
+    if r_2sv_4_6health.__class__ is not int and (not isinstance(r_2sv_4_6health, int) or r_2sv_4_6health.__class__ is bool):
+        raise _enc('nav_sat', 'sv[4].health', r_2sv_4_6health, 'type', 'an int')
+    if not 0 <= r_2sv_4_6health <= 3:
+        raise _enc('nav_sat', 'sv[4].health', r_2sv_4_6health, 'range', '0..3', None)
+    r_2sv_4_8diffCorr: Any = g_2sv_4.diffCorr
+    if r_2sv_4_8diffCorr is not True and r_2sv_4_8diffCorr is not False and r_2sv_4_8diffCorr != 0 and r_2sv_4_8diffCorr != 1:
+        raise _enc('nav_sat', 'sv[4].diffCorr', r_2sv_4_8diffCorr, 'type', 'a bool')
+    r_2sv_4_8diffCorr = 1 if r_2sv_4_8diffCorr else 0
+    r_2sv_4_8smoothed: Any = g_2sv_4.smoothed
+    if r_2sv_4_8smoothed is not True and r_2sv_4_8smoothed is not False and r_2sv_4_8smoothed != 0 and r_2sv_4_8smoothed != 1:
+        raise _enc('nav_sat', 'sv[4].smoothed', r_2sv_4_8smoothed, 'type', 'a bool')
+    r_2sv_4_8smoothed = 1 if r_2sv_4_8smoothed else 0
+    r_2sv_4_11orbitSource = g_2sv_4.orbitSource
+    if r_2sv_4_11orbitSource.__class__ is not int and (not isinstance(r_2sv_4_11orbitSource, int) or r_2sv_4_11orbitSource.__class__ is bool):
+        raise _enc('nav_sat', 'sv[4].orbitSource', r_2sv_4_11orbitSource, 'type', 'an int')
+    if not 0 <= r_2sv_4_11orbitSource <= 7:
+        raise _enc('nav_sat', 'sv[4].orbitSource', r_2sv_4_11orbitSource, 'range', '0..7', None)
+    r_2sv_4_8ephAvail: Any = g_2sv_4.ephAvail
+    if r_2sv_4_8ephAvail is not True and r_2sv_4_8ephAvail is not False and r_2sv_4_8ephAvail != 0 and r_2sv_4_8ephAvail != 1:
+        raise _enc('nav_sat', 'sv[4].ephAvail', r_2sv_4_8ephAvail, 'type', 'a bool')
+    r_2sv_4_8ephAvail = 1 if r_2sv_4_8ephAvail else 0
+    r_2sv_4_8almAvail: Any = g_2sv_4.almAvail
+    if r_2sv_4_8almAvail is not True and r_2sv_4_8almAvail is not False and r_2sv_4_8almAvail != 0 and r_2sv_4_8almAvail != 1:
+        raise _enc('nav_sat', 'sv[4].almAvail', r_2sv_4_8almAvail, 'type', 'a bool')
+    r_2sv_4_8almAvail = 1 if r_2sv_4_8almAvail else 0
+    r_2sv_4_8anoAvail: Any = g_2sv_4.anoAvail
+    if r_2sv_4_8anoAvail is not True and r_2sv_4_8anoAvail is not False and r_2sv_4_8anoAvail != 0 and r_2sv_4_8anoAvail != 1:
+        raise _enc('nav_sat', 'sv[4].anoAvail', r_2sv_4_8anoAvail, 'type', 'a bool')
+    r_2sv_4_8anoAvail = 1 if r_2sv_4_8anoAvail else 0
+    r_2sv_4_8aopAvail: Any = g_2sv_4.aopAvail
+    if r_2sv_4_8aopAvail is not True and r_2sv_4_8aopAvail is not False and r_2sv_4_8aopAvail != 0 and r_2sv_4_8aopAvail != 1:
+        raise _enc('nav_sat', 'sv[4].aopAvail', r_2sv_4_8aopAvail, 'type', 'a bool')
+    r_2sv_4_8aopAvail = 1 if r_2sv_4_8aopAvail else 0
+    r_2sv_4_10reserved13 = g_2sv_4.reserved13
+    if r_2sv_4_10reserved13.__class__ is not int and (not isinstance(r_2sv_4_10reserved13, int) or r_2sv_4_10reserved13.__class__ is bool):
+        raise _enc('nav_sat', 'sv[4].reserved13', r_2sv_4_10reserved13, 'type', 'an int')
+    if not 0 <= r_2sv_4_10reserved13 <= 1:
+        raise _enc('nav_sat', 'sv[4].reserved13', r_2sv_4_10reserved13, 'range', '0..1', None)
+    r_2sv_4_12sbasCorrUsed: Any = g_2sv_4.sbasCorrUsed
+    if r_2sv_4_12sbasCorrUsed is not True and r_2sv_4_12sbasCorrUsed is not False and r_2sv_4_12sbasCorrUsed != 0 and r_2sv_4_12sbasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[4].sbasCorrUsed', r_2sv_4_12sbasCorrUsed, 'type', 'a bool')
+    r_2sv_4_12sbasCorrUsed = 1 if r_2sv_4_12sbasCorrUsed else 0
+    r_2sv_4_12rtcmCorrUsed: Any = g_2sv_4.rtcmCorrUsed
+    if r_2sv_4_12rtcmCorrUsed is not True and r_2sv_4_12rtcmCorrUsed is not False and r_2sv_4_12rtcmCorrUsed != 0 and r_2sv_4_12rtcmCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[4].rtcmCorrUsed', r_2sv_4_12rtcmCorrUsed, 'type', 'a bool')
+    r_2sv_4_12rtcmCorrUsed = 1 if r_2sv_4_12rtcmCorrUsed else 0
+    r_2sv_4_12slasCorrUsed: Any = g_2sv_4.slasCorrUsed
+    if r_2sv_4_12slasCorrUsed is not True and r_2sv_4_12slasCorrUsed is not False and r_2sv_4_12slasCorrUsed != 0 and r_2sv_4_12slasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[4].slasCorrUsed', r_2sv_4_12slasCorrUsed, 'type', 'a bool')
+    r_2sv_4_12slasCorrUsed = 1 if r_2sv_4_12slasCorrUsed else 0
+    r_2sv_4_14spartnCorrUsed: Any = g_2sv_4.spartnCorrUsed
+    if r_2sv_4_14spartnCorrUsed is not True and r_2sv_4_14spartnCorrUsed is not False and r_2sv_4_14spartnCorrUsed != 0 and r_2sv_4_14spartnCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[4].spartnCorrUsed', r_2sv_4_14spartnCorrUsed, 'type', 'a bool')
+    r_2sv_4_14spartnCorrUsed = 1 if r_2sv_4_14spartnCorrUsed else 0
+    r_2sv_4_10prCorrUsed: Any = g_2sv_4.prCorrUsed
+    if r_2sv_4_10prCorrUsed is not True and r_2sv_4_10prCorrUsed is not False and r_2sv_4_10prCorrUsed != 0 and r_2sv_4_10prCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[4].prCorrUsed', r_2sv_4_10prCorrUsed, 'type', 'a bool')
+    r_2sv_4_10prCorrUsed = 1 if r_2sv_4_10prCorrUsed else 0
+    r_2sv_4_10crCorrUsed: Any = g_2sv_4.crCorrUsed
+    if r_2sv_4_10crCorrUsed is not True and r_2sv_4_10crCorrUsed is not False and r_2sv_4_10crCorrUsed != 0 and r_2sv_4_10crCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[4].crCorrUsed', r_2sv_4_10crCorrUsed, 'type', 'a bool')
+    r_2sv_4_10crCorrUsed = 1 if r_2sv_4_10crCorrUsed else 0
+    r_2sv_4_10doCorrUsed: Any = g_2sv_4.doCorrUsed
+    if r_2sv_4_10doCorrUsed is not True and r_2sv_4_10doCorrUsed is not False and r_2sv_4_10doCorrUsed != 0 and r_2sv_4_10doCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[4].doCorrUsed', r_2sv_4_10doCorrUsed, 'type', 'a bool')
+    r_2sv_4_10doCorrUsed = 1 if r_2sv_4_10doCorrUsed else 0
+    r_2sv_4_12clasCorrUsed: Any = g_2sv_4.clasCorrUsed
+    if r_2sv_4_12clasCorrUsed is not True and r_2sv_4_12clasCorrUsed is not False and r_2sv_4_12clasCorrUsed != 0 and r_2sv_4_12clasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[4].clasCorrUsed', r_2sv_4_12clasCorrUsed, 'type', 'a bool')
+    r_2sv_4_12clasCorrUsed = 1 if r_2sv_4_12clasCorrUsed else 0
+    r_2sv_4_11lppCorrUsed: Any = g_2sv_4.lppCorrUsed
+    if r_2sv_4_11lppCorrUsed is not True and r_2sv_4_11lppCorrUsed is not False and r_2sv_4_11lppCorrUsed != 0 and r_2sv_4_11lppCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[4].lppCorrUsed', r_2sv_4_11lppCorrUsed, 'type', 'a bool')
+    r_2sv_4_11lppCorrUsed = 1 if r_2sv_4_11lppCorrUsed else 0
+    r_2sv_4_11hasCorrUsed: Any = g_2sv_4.hasCorrUsed
+    if r_2sv_4_11hasCorrUsed is not True and r_2sv_4_11hasCorrUsed is not False and r_2sv_4_11hasCorrUsed != 0 and r_2sv_4_11hasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[4].hasCorrUsed', r_2sv_4_11hasCorrUsed, 'type', 'a bool')
+    r_2sv_4_11hasCorrUsed = 1 if r_2sv_4_11hasCorrUsed else 0
+    r_2sv_4_11flags_spare = 0
+    return (r_2sv_4_6gnssId, r_2sv_4_4svId, r_2sv_4_3cno, r_2sv_4_4elev, r_2sv_4_4azim, r_2sv_4_5prRes, r_2sv_4_10qualityInd, r_2sv_4_6svUsed, r_2sv_4_6health, r_2sv_4_8diffCorr, r_2sv_4_8smoothed, r_2sv_4_11orbitSource, r_2sv_4_8ephAvail, r_2sv_4_8almAvail, r_2sv_4_8anoAvail, r_2sv_4_8aopAvail, r_2sv_4_10reserved13, r_2sv_4_12sbasCorrUsed, r_2sv_4_12rtcmCorrUsed, r_2sv_4_12slasCorrUsed, r_2sv_4_14spartnCorrUsed, r_2sv_4_10prCorrUsed, r_2sv_4_10crCorrUsed, r_2sv_4_10doCorrUsed, r_2sv_4_12clasCorrUsed, r_2sv_4_11lppCorrUsed, r_2sv_4_11hasCorrUsed, r_2sv_4_11flags_spare, )
+
+
+def _raw_nav_sat_2sv_5(g_2sv_5: Any) -> tuple[Any, ...]:
+    r_2sv_5_6gnssId = g_2sv_5.gnssId
+    if r_2sv_5_6gnssId.__class__ is not int and (not isinstance(r_2sv_5_6gnssId, int) or r_2sv_5_6gnssId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[5].gnssId', r_2sv_5_6gnssId, 'type', 'an int')
+    if not 0 <= r_2sv_5_6gnssId <= 255:
+        raise _enc('nav_sat', 'sv[5].gnssId', r_2sv_5_6gnssId, 'range', '0..255', None)
+    r_2sv_5_4svId = g_2sv_5.svId
+    if r_2sv_5_4svId.__class__ is not int and (not isinstance(r_2sv_5_4svId, int) or r_2sv_5_4svId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[5].svId', r_2sv_5_4svId, 'type', 'an int')
+    if not 0 <= r_2sv_5_4svId <= 255:
+        raise _enc('nav_sat', 'sv[5].svId', r_2sv_5_4svId, 'range', '0..255', None)
+    r_2sv_5_3cno = g_2sv_5.cno
+    if r_2sv_5_3cno.__class__ is not int and (not isinstance(r_2sv_5_3cno, int) or r_2sv_5_3cno.__class__ is bool):
+        raise _enc('nav_sat', 'sv[5].cno', r_2sv_5_3cno, 'type', 'an int')
+    if not 0 <= r_2sv_5_3cno <= 255:
+        raise _enc('nav_sat', 'sv[5].cno', r_2sv_5_3cno, 'range', '0..255', None)
+    r_2sv_5_4elev = g_2sv_5.elev
+    if r_2sv_5_4elev.__class__ is not int and (not isinstance(r_2sv_5_4elev, int) or r_2sv_5_4elev.__class__ is bool):
+        raise _enc('nav_sat', 'sv[5].elev', r_2sv_5_4elev, 'type', 'an int')
+    if not -128 <= r_2sv_5_4elev <= 127:
+        raise _enc('nav_sat', 'sv[5].elev', r_2sv_5_4elev, 'range', '-128..127', None)
+    r_2sv_5_4azim = g_2sv_5.azim
+    if r_2sv_5_4azim.__class__ is not int and (not isinstance(r_2sv_5_4azim, int) or r_2sv_5_4azim.__class__ is bool):
+        raise _enc('nav_sat', 'sv[5].azim', r_2sv_5_4azim, 'type', 'an int')
+    if not -32768 <= r_2sv_5_4azim <= 32767:
+        raise _enc('nav_sat', 'sv[5].azim', r_2sv_5_4azim, 'range', '-32768..32767', None)
+    r_2sv_5_5prRes = g_2sv_5.prRes
+    if r_2sv_5_5prRes.__class__ is not float and (not isinstance(r_2sv_5_5prRes, (int, float)) or r_2sv_5_5prRes.__class__ is bool):
+        raise _enc('nav_sat', 'sv[5].prRes', r_2sv_5_5prRes, 'type', 'a number')
+    if not -3276.8 <= r_2sv_5_5prRes <= 3276.7000000000003:
+        raise _enc('nav_sat', 'sv[5].prRes', r_2sv_5_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    r_2sv_5_5prRes = _floor(r_2sv_5_5prRes / 0.1 + 0.5)
+    r_2sv_5_10qualityInd = g_2sv_5.qualityInd
+    if r_2sv_5_10qualityInd.__class__ is not int and (not isinstance(r_2sv_5_10qualityInd, int) or r_2sv_5_10qualityInd.__class__ is bool):
+        raise _enc('nav_sat', 'sv[5].qualityInd', r_2sv_5_10qualityInd, 'type', 'an int')
+    if not 0 <= r_2sv_5_10qualityInd <= 7:
+        raise _enc('nav_sat', 'sv[5].qualityInd', r_2sv_5_10qualityInd, 'range', '0..7', None)
+    r_2sv_5_6svUsed: Any = g_2sv_5.svUsed
+    if r_2sv_5_6svUsed is not True and r_2sv_5_6svUsed is not False and r_2sv_5_6svUsed != 0 and r_2sv_5_6svUsed != 1:
+        raise _enc('nav_sat', 'sv[5].svUsed', r_2sv_5_6svUsed, 'type', 'a bool')
+    r_2sv_5_6svUsed = 1 if r_2sv_5_6svUsed else 0
+    r_2sv_5_6health = g_2sv_5.health
+    if r_2sv_5_6health.__class__ is not int and (not isinstance(r_2sv_5_6health, int) or r_2sv_5_6health.__class__ is bool):
+        raise _enc('nav_sat', 'sv[5].health', r_2sv_5_6health, 'type', 'an int')
+    if not 0 <= r_2sv_5_6health <= 3:
+        raise _enc('nav_sat', 'sv[5].health', r_2sv_5_6health, 'range', '0..3', None)
+    r_2sv_5_8diffCorr: Any = g_2sv_5.diffCorr
+    if r_2sv_5_8diffCorr is not True and r_2sv_5_8diffCorr is not False and r_2sv_5_8diffCorr != 0 and r_2sv_5_8diffCorr != 1:
+        raise _enc('nav_sat', 'sv[5].diffCorr', r_2sv_5_8diffCorr, 'type', 'a bool')
+    r_2sv_5_8diffCorr = 1 if r_2sv_5_8diffCorr else 0
+    r_2sv_5_8smoothed: Any = g_2sv_5.smoothed
+    if r_2sv_5_8smoothed is not True and r_2sv_5_8smoothed is not False and r_2sv_5_8smoothed != 0 and r_2sv_5_8smoothed != 1:
+        raise _enc('nav_sat', 'sv[5].smoothed', r_2sv_5_8smoothed, 'type', 'a bool')
+    r_2sv_5_8smoothed = 1 if r_2sv_5_8smoothed else 0
+    r_2sv_5_11orbitSource = g_2sv_5.orbitSource
+    if r_2sv_5_11orbitSource.__class__ is not int and (not isinstance(r_2sv_5_11orbitSource, int) or r_2sv_5_11orbitSource.__class__ is bool):
+        raise _enc('nav_sat', 'sv[5].orbitSource', r_2sv_5_11orbitSource, 'type', 'an int')
+    if not 0 <= r_2sv_5_11orbitSource <= 7:
+        raise _enc('nav_sat', 'sv[5].orbitSource', r_2sv_5_11orbitSource, 'range', '0..7', None)
+    r_2sv_5_8ephAvail: Any = g_2sv_5.ephAvail
+    if r_2sv_5_8ephAvail is not True and r_2sv_5_8ephAvail is not False and r_2sv_5_8ephAvail != 0 and r_2sv_5_8ephAvail != 1:
+        raise _enc('nav_sat', 'sv[5].ephAvail', r_2sv_5_8ephAvail, 'type', 'a bool')
+    r_2sv_5_8ephAvail = 1 if r_2sv_5_8ephAvail else 0
+    r_2sv_5_8almAvail: Any = g_2sv_5.almAvail
+    if r_2sv_5_8almAvail is not True and r_2sv_5_8almAvail is not False and r_2sv_5_8almAvail != 0 and r_2sv_5_8almAvail != 1:
+        raise _enc('nav_sat', 'sv[5].almAvail', r_2sv_5_8almAvail, 'type', 'a bool')
+    r_2sv_5_8almAvail = 1 if r_2sv_5_8almAvail else 0
+    r_2sv_5_8anoAvail: Any = g_2sv_5.anoAvail
+    if r_2sv_5_8anoAvail is not True and r_2sv_5_8anoAvail is not False and r_2sv_5_8anoAvail != 0 and r_2sv_5_8anoAvail != 1:
+        raise _enc('nav_sat', 'sv[5].anoAvail', r_2sv_5_8anoAvail, 'type', 'a bool')
+    r_2sv_5_8anoAvail = 1 if r_2sv_5_8anoAvail else 0
+    r_2sv_5_8aopAvail: Any = g_2sv_5.aopAvail
+    if r_2sv_5_8aopAvail is not True and r_2sv_5_8aopAvail is not False and r_2sv_5_8aopAvail != 0 and r_2sv_5_8aopAvail != 1:
+        raise _enc('nav_sat', 'sv[5].aopAvail', r_2sv_5_8aopAvail, 'type', 'a bool')
+    r_2sv_5_8aopAvail = 1 if r_2sv_5_8aopAvail else 0
+    r_2sv_5_10reserved13 = g_2sv_5.reserved13
+    if r_2sv_5_10reserved13.__class__ is not int and (not isinstance(r_2sv_5_10reserved13, int) or r_2sv_5_10reserved13.__class__ is bool):
+        raise _enc('nav_sat', 'sv[5].reserved13', r_2sv_5_10reserved13, 'type', 'an int')
+    if not 0 <= r_2sv_5_10reserved13 <= 1:
+        raise _enc('nav_sat', 'sv[5].reserved13', r_2sv_5_10reserved13, 'range', '0..1', None)
+    r_2sv_5_12sbasCorrUsed: Any = g_2sv_5.sbasCorrUsed
+    if r_2sv_5_12sbasCorrUsed is not True and r_2sv_5_12sbasCorrUsed is not False and r_2sv_5_12sbasCorrUsed != 0 and r_2sv_5_12sbasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[5].sbasCorrUsed', r_2sv_5_12sbasCorrUsed, 'type', 'a bool')
+    r_2sv_5_12sbasCorrUsed = 1 if r_2sv_5_12sbasCorrUsed else 0
+    r_2sv_5_12rtcmCorrUsed: Any = g_2sv_5.rtcmCorrUsed
+    if r_2sv_5_12rtcmCorrUsed is not True and r_2sv_5_12rtcmCorrUsed is not False and r_2sv_5_12rtcmCorrUsed != 0 and r_2sv_5_12rtcmCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[5].rtcmCorrUsed', r_2sv_5_12rtcmCorrUsed, 'type', 'a bool')
+    r_2sv_5_12rtcmCorrUsed = 1 if r_2sv_5_12rtcmCorrUsed else 0
+    r_2sv_5_12slasCorrUsed: Any = g_2sv_5.slasCorrUsed
+    if r_2sv_5_12slasCorrUsed is not True and r_2sv_5_12slasCorrUsed is not False and r_2sv_5_12slasCorrUsed != 0 and r_2sv_5_12slasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[5].slasCorrUsed', r_2sv_5_12slasCorrUsed, 'type', 'a bool')
+    r_2sv_5_12slasCorrUsed = 1 if r_2sv_5_12slasCorrUsed else 0
+    r_2sv_5_14spartnCorrUsed: Any = g_2sv_5.spartnCorrUsed
+    if r_2sv_5_14spartnCorrUsed is not True and r_2sv_5_14spartnCorrUsed is not False and r_2sv_5_14spartnCorrUsed != 0 and r_2sv_5_14spartnCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[5].spartnCorrUsed', r_2sv_5_14spartnCorrUsed, 'type', 'a bool')
+    r_2sv_5_14spartnCorrUsed = 1 if r_2sv_5_14spartnCorrUsed else 0
+    r_2sv_5_10prCorrUsed: Any = g_2sv_5.prCorrUsed
+    if r_2sv_5_10prCorrUsed is not True and r_2sv_5_10prCorrUsed is not False and r_2sv_5_10prCorrUsed != 0 and r_2sv_5_10prCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[5].prCorrUsed', r_2sv_5_10prCorrUsed, 'type', 'a bool')
+    r_2sv_5_10prCorrUsed = 1 if r_2sv_5_10prCorrUsed else 0
+    r_2sv_5_10crCorrUsed: Any = g_2sv_5.crCorrUsed
+    if r_2sv_5_10crCorrUsed is not True and r_2sv_5_10crCorrUsed is not False and r_2sv_5_10crCorrUsed != 0 and r_2sv_5_10crCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[5].crCorrUsed', r_2sv_5_10crCorrUsed, 'type', 'a bool')
+    r_2sv_5_10crCorrUsed = 1 if r_2sv_5_10crCorrUsed else 0
+    r_2sv_5_10doCorrUsed: Any = g_2sv_5.doCorrUsed
+    if r_2sv_5_10doCorrUsed is not True and r_2sv_5_10doCorrUsed is not False and r_2sv_5_10doCorrUsed != 0 and r_2sv_5_10doCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[5].doCorrUsed', r_2sv_5_10doCorrUsed, 'type', 'a bool')
+    r_2sv_5_10doCorrUsed = 1 if r_2sv_5_10doCorrUsed else 0
+    r_2sv_5_12clasCorrUsed: Any = g_2sv_5.clasCorrUsed
+    if r_2sv_5_12clasCorrUsed is not True and r_2sv_5_12clasCorrUsed is not False and r_2sv_5_12clasCorrUsed != 0 and r_2sv_5_12clasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[5].clasCorrUsed', r_2sv_5_12clasCorrUsed, 'type', 'a bool')
+    r_2sv_5_12clasCorrUsed = 1 if r_2sv_5_12clasCorrUsed else 0
+    r_2sv_5_11lppCorrUsed: Any = g_2sv_5.lppCorrUsed
+    if r_2sv_5_11lppCorrUsed is not True and r_2sv_5_11lppCorrUsed is not False and r_2sv_5_11lppCorrUsed != 0 and r_2sv_5_11lppCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[5].lppCorrUsed', r_2sv_5_11lppCorrUsed, 'type', 'a bool')
+    r_2sv_5_11lppCorrUsed = 1 if r_2sv_5_11lppCorrUsed else 0
+    r_2sv_5_11hasCorrUsed: Any = g_2sv_5.hasCorrUsed
+    if r_2sv_5_11hasCorrUsed is not True and r_2sv_5_11hasCorrUsed is not False and r_2sv_5_11hasCorrUsed != 0 and r_2sv_5_11hasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[5].hasCorrUsed', r_2sv_5_11hasCorrUsed, 'type', 'a bool')
+    r_2sv_5_11hasCorrUsed = 1 if r_2sv_5_11hasCorrUsed else 0
+    r_2sv_5_11flags_spare = 0
+    return (r_2sv_5_6gnssId, r_2sv_5_4svId, r_2sv_5_3cno, r_2sv_5_4elev, r_2sv_5_4azim, r_2sv_5_5prRes, r_2sv_5_10qualityInd, r_2sv_5_6svUsed, r_2sv_5_6health, r_2sv_5_8diffCorr, r_2sv_5_8smoothed, r_2sv_5_11orbitSource, r_2sv_5_8ephAvail, r_2sv_5_8almAvail, r_2sv_5_8anoAvail, r_2sv_5_8aopAvail, r_2sv_5_10reserved13, r_2sv_5_12sbasCorrUsed, r_2sv_5_12rtcmCorrUsed, r_2sv_5_12slasCorrUsed, r_2sv_5_14spartnCorrUsed, r_2sv_5_10prCorrUsed, r_2sv_5_10crCorrUsed, r_2sv_5_10doCorrUsed, r_2sv_5_12clasCorrUsed, r_2sv_5_11lppCorrUsed, r_2sv_5_11hasCorrUsed, r_2sv_5_11flags_spare, )
+
+
+def _raw_nav_sat_2sv_6(g_2sv_6: Any) -> tuple[Any, ...]:
+    r_2sv_6_6gnssId = g_2sv_6.gnssId
+    if r_2sv_6_6gnssId.__class__ is not int and (not isinstance(r_2sv_6_6gnssId, int) or r_2sv_6_6gnssId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[6].gnssId', r_2sv_6_6gnssId, 'type', 'an int')
+    if not 0 <= r_2sv_6_6gnssId <= 255:
+        raise _enc('nav_sat', 'sv[6].gnssId', r_2sv_6_6gnssId, 'range', '0..255', None)
+    r_2sv_6_4svId = g_2sv_6.svId
+    if r_2sv_6_4svId.__class__ is not int and (not isinstance(r_2sv_6_4svId, int) or r_2sv_6_4svId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[6].svId', r_2sv_6_4svId, 'type', 'an int')
+    if not 0 <= r_2sv_6_4svId <= 255:
+        raise _enc('nav_sat', 'sv[6].svId', r_2sv_6_4svId, 'range', '0..255', None)
+    r_2sv_6_3cno = g_2sv_6.cno
+    if r_2sv_6_3cno.__class__ is not int and (not isinstance(r_2sv_6_3cno, int) or r_2sv_6_3cno.__class__ is bool):
+        raise _enc('nav_sat', 'sv[6].cno', r_2sv_6_3cno, 'type', 'an int')
+    if not 0 <= r_2sv_6_3cno <= 255:
+        raise _enc('nav_sat', 'sv[6].cno', r_2sv_6_3cno, 'range', '0..255', None)
+    r_2sv_6_4elev = g_2sv_6.elev
+    if r_2sv_6_4elev.__class__ is not int and (not isinstance(r_2sv_6_4elev, int) or r_2sv_6_4elev.__class__ is bool):
+        raise _enc('nav_sat', 'sv[6].elev', r_2sv_6_4elev, 'type', 'an int')
+    if not -128 <= r_2sv_6_4elev <= 127:
+        raise _enc('nav_sat', 'sv[6].elev', r_2sv_6_4elev, 'range', '-128..127', None)
+    r_2sv_6_4azim = g_2sv_6.azim
+    if r_2sv_6_4azim.__class__ is not int and (not isinstance(r_2sv_6_4azim, int) or r_2sv_6_4azim.__class__ is bool):
+        raise _enc('nav_sat', 'sv[6].azim', r_2sv_6_4azim, 'type', 'an int')
+    if not -32768 <= r_2sv_6_4azim <= 32767:
+        raise _enc('nav_sat', 'sv[6].azim', r_2sv_6_4azim, 'range', '-32768..32767', None)
+    r_2sv_6_5prRes = g_2sv_6.prRes
+    if r_2sv_6_5prRes.__class__ is not float and (not isinstance(r_2sv_6_5prRes, (int, float)) or r_2sv_6_5prRes.__class__ is bool):
+        raise _enc('nav_sat', 'sv[6].prRes', r_2sv_6_5prRes, 'type', 'a number')
+    if not -3276.8 <= r_2sv_6_5prRes <= 3276.7000000000003:
+        raise _enc('nav_sat', 'sv[6].prRes', r_2sv_6_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    r_2sv_6_5prRes = _floor(r_2sv_6_5prRes / 0.1 + 0.5)
+    r_2sv_6_10qualityInd = g_2sv_6.qualityInd
+    if r_2sv_6_10qualityInd.__class__ is not int and (not isinstance(r_2sv_6_10qualityInd, int) or r_2sv_6_10qualityInd.__class__ is bool):
+        raise _enc('nav_sat', 'sv[6].qualityInd', r_2sv_6_10qualityInd, 'type', 'an int')
+    if not 0 <= r_2sv_6_10qualityInd <= 7:
+        raise _enc('nav_sat', 'sv[6].qualityInd', r_2sv_6_10qualityInd, 'range', '0..7', None)
+    r_2sv_6_6svUsed: Any = g_2sv_6.svUsed
+    if r_2sv_6_6svUsed is not True and r_2sv_6_6svUsed is not False and r_2sv_6_6svUsed != 0 and r_2sv_6_6svUsed != 1:
+        raise _enc('nav_sat', 'sv[6].svUsed', r_2sv_6_6svUsed, 'type', 'a bool')
+    r_2sv_6_6svUsed = 1 if r_2sv_6_6svUsed else 0
+    r_2sv_6_6health = g_2sv_6.health
+    if r_2sv_6_6health.__class__ is not int and (not isinstance(r_2sv_6_6health, int) or r_2sv_6_6health.__class__ is bool):
+        raise _enc('nav_sat', 'sv[6].health', r_2sv_6_6health, 'type', 'an int')
+    if not 0 <= r_2sv_6_6health <= 3:
+        raise _enc('nav_sat', 'sv[6].health', r_2sv_6_6health, 'range', '0..3', None)
+    r_2sv_6_8diffCorr: Any = g_2sv_6.diffCorr
+    if r_2sv_6_8diffCorr is not True and r_2sv_6_8diffCorr is not False and r_2sv_6_8diffCorr != 0 and r_2sv_6_8diffCorr != 1:
+        raise _enc('nav_sat', 'sv[6].diffCorr', r_2sv_6_8diffCorr, 'type', 'a bool')
+    r_2sv_6_8diffCorr = 1 if r_2sv_6_8diffCorr else 0
+    r_2sv_6_8smoothed: Any = g_2sv_6.smoothed
+    if r_2sv_6_8smoothed is not True and r_2sv_6_8smoothed is not False and r_2sv_6_8smoothed != 0 and r_2sv_6_8smoothed != 1:
+        raise _enc('nav_sat', 'sv[6].smoothed', r_2sv_6_8smoothed, 'type', 'a bool')
+    r_2sv_6_8smoothed = 1 if r_2sv_6_8smoothed else 0
+    r_2sv_6_11orbitSource = g_2sv_6.orbitSource
+    if r_2sv_6_11orbitSource.__class__ is not int and (not isinstance(r_2sv_6_11orbitSource, int) or r_2sv_6_11orbitSource.__class__ is bool):
+        raise _enc('nav_sat', 'sv[6].orbitSource', r_2sv_6_11orbitSource, 'type', 'an int')
+    if not 0 <= r_2sv_6_11orbitSource <= 7:
+        raise _enc('nav_sat', 'sv[6].orbitSource', r_2sv_6_11orbitSource, 'range', '0..7', None)
+    r_2sv_6_8ephAvail: Any = g_2sv_6.ephAvail
+    if r_2sv_6_8ephAvail is not True and r_2sv_6_8ephAvail is not False and r_2sv_6_8ephAvail != 0 and r_2sv_6_8ephAvail != 1:
+        raise _enc('nav_sat', 'sv[6].ephAvail', r_2sv_6_8ephAvail, 'type', 'a bool')
+    r_2sv_6_8ephAvail = 1 if r_2sv_6_8ephAvail else 0
+    r_2sv_6_8almAvail: Any = g_2sv_6.almAvail
+    if r_2sv_6_8almAvail is not True and r_2sv_6_8almAvail is not False and r_2sv_6_8almAvail != 0 and r_2sv_6_8almAvail != 1:
+        raise _enc('nav_sat', 'sv[6].almAvail', r_2sv_6_8almAvail, 'type', 'a bool')
+    r_2sv_6_8almAvail = 1 if r_2sv_6_8almAvail else 0
+    r_2sv_6_8anoAvail: Any = g_2sv_6.anoAvail
+    if r_2sv_6_8anoAvail is not True and r_2sv_6_8anoAvail is not False and r_2sv_6_8anoAvail != 0 and r_2sv_6_8anoAvail != 1:
+        raise _enc('nav_sat', 'sv[6].anoAvail', r_2sv_6_8anoAvail, 'type', 'a bool')
+    r_2sv_6_8anoAvail = 1 if r_2sv_6_8anoAvail else 0
+    r_2sv_6_8aopAvail: Any = g_2sv_6.aopAvail
+    if r_2sv_6_8aopAvail is not True and r_2sv_6_8aopAvail is not False and r_2sv_6_8aopAvail != 0 and r_2sv_6_8aopAvail != 1:
+        raise _enc('nav_sat', 'sv[6].aopAvail', r_2sv_6_8aopAvail, 'type', 'a bool')
+    r_2sv_6_8aopAvail = 1 if r_2sv_6_8aopAvail else 0
+    r_2sv_6_10reserved13 = g_2sv_6.reserved13
+    if r_2sv_6_10reserved13.__class__ is not int and (not isinstance(r_2sv_6_10reserved13, int) or r_2sv_6_10reserved13.__class__ is bool):
+        raise _enc('nav_sat', 'sv[6].reserved13', r_2sv_6_10reserved13, 'type', 'an int')
+    if not 0 <= r_2sv_6_10reserved13 <= 1:
+        raise _enc('nav_sat', 'sv[6].reserved13', r_2sv_6_10reserved13, 'range', '0..1', None)
+    r_2sv_6_12sbasCorrUsed: Any = g_2sv_6.sbasCorrUsed
+    if r_2sv_6_12sbasCorrUsed is not True and r_2sv_6_12sbasCorrUsed is not False and r_2sv_6_12sbasCorrUsed != 0 and r_2sv_6_12sbasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[6].sbasCorrUsed', r_2sv_6_12sbasCorrUsed, 'type', 'a bool')
+    r_2sv_6_12sbasCorrUsed = 1 if r_2sv_6_12sbasCorrUsed else 0
+    r_2sv_6_12rtcmCorrUsed: Any = g_2sv_6.rtcmCorrUsed
+    if r_2sv_6_12rtcmCorrUsed is not True and r_2sv_6_12rtcmCorrUsed is not False and r_2sv_6_12rtcmCorrUsed != 0 and r_2sv_6_12rtcmCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[6].rtcmCorrUsed', r_2sv_6_12rtcmCorrUsed, 'type', 'a bool')
+    r_2sv_6_12rtcmCorrUsed = 1 if r_2sv_6_12rtcmCorrUsed else 0
+    r_2sv_6_12slasCorrUsed: Any = g_2sv_6.slasCorrUsed
+    if r_2sv_6_12slasCorrUsed is not True and r_2sv_6_12slasCorrUsed is not False and r_2sv_6_12slasCorrUsed != 0 and r_2sv_6_12slasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[6].slasCorrUsed', r_2sv_6_12slasCorrUsed, 'type', 'a bool')
+    r_2sv_6_12slasCorrUsed = 1 if r_2sv_6_12slasCorrUsed else 0
+    r_2sv_6_14spartnCorrUsed: Any = g_2sv_6.spartnCorrUsed
+    if r_2sv_6_14spartnCorrUsed is not True and r_2sv_6_14spartnCorrUsed is not False and r_2sv_6_14spartnCorrUsed != 0 and r_2sv_6_14spartnCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[6].spartnCorrUsed', r_2sv_6_14spartnCorrUsed, 'type', 'a bool')
+    r_2sv_6_14spartnCorrUsed = 1 if r_2sv_6_14spartnCorrUsed else 0
+    r_2sv_6_10prCorrUsed: Any = g_2sv_6.prCorrUsed
+    if r_2sv_6_10prCorrUsed is not True and r_2sv_6_10prCorrUsed is not False and r_2sv_6_10prCorrUsed != 0 and r_2sv_6_10prCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[6].prCorrUsed', r_2sv_6_10prCorrUsed, 'type', 'a bool')
+    r_2sv_6_10prCorrUsed = 1 if r_2sv_6_10prCorrUsed else 0
+    r_2sv_6_10crCorrUsed: Any = g_2sv_6.crCorrUsed
+    if r_2sv_6_10crCorrUsed is not True and r_2sv_6_10crCorrUsed is not False and r_2sv_6_10crCorrUsed != 0 and r_2sv_6_10crCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[6].crCorrUsed', r_2sv_6_10crCorrUsed, 'type', 'a bool')
+    r_2sv_6_10crCorrUsed = 1 if r_2sv_6_10crCorrUsed else 0
+    r_2sv_6_10doCorrUsed: Any = g_2sv_6.doCorrUsed
+    if r_2sv_6_10doCorrUsed is not True and r_2sv_6_10doCorrUsed is not False and r_2sv_6_10doCorrUsed != 0 and r_2sv_6_10doCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[6].doCorrUsed', r_2sv_6_10doCorrUsed, 'type', 'a bool')
+    r_2sv_6_10doCorrUsed = 1 if r_2sv_6_10doCorrUsed else 0
+    r_2sv_6_12clasCorrUsed: Any = g_2sv_6.clasCorrUsed
+    if r_2sv_6_12clasCorrUsed is not True and r_2sv_6_12clasCorrUsed is not False and r_2sv_6_12clasCorrUsed != 0 and r_2sv_6_12clasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[6].clasCorrUsed', r_2sv_6_12clasCorrUsed, 'type', 'a bool')
+    r_2sv_6_12clasCorrUsed = 1 if r_2sv_6_12clasCorrUsed else 0
+    r_2sv_6_11lppCorrUsed: Any = g_2sv_6.lppCorrUsed
+    if r_2sv_6_11lppCorrUsed is not True and r_2sv_6_11lppCorrUsed is not False and r_2sv_6_11lppCorrUsed != 0 and r_2sv_6_11lppCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[6].lppCorrUsed', r_2sv_6_11lppCorrUsed, 'type', 'a bool')
+    r_2sv_6_11lppCorrUsed = 1 if r_2sv_6_11lppCorrUsed else 0
+    r_2sv_6_11hasCorrUsed: Any = g_2sv_6.hasCorrUsed
+    if r_2sv_6_11hasCorrUsed is not True and r_2sv_6_11hasCorrUsed is not False and r_2sv_6_11hasCorrUsed != 0 and r_2sv_6_11hasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[6].hasCorrUsed', r_2sv_6_11hasCorrUsed, 'type', 'a bool')
+    r_2sv_6_11hasCorrUsed = 1 if r_2sv_6_11hasCorrUsed else 0
+    r_2sv_6_11flags_spare = 0
+    return (r_2sv_6_6gnssId, r_2sv_6_4svId, r_2sv_6_3cno, r_2sv_6_4elev, r_2sv_6_4azim, r_2sv_6_5prRes, r_2sv_6_10qualityInd, r_2sv_6_6svUsed, r_2sv_6_6health, r_2sv_6_8diffCorr, r_2sv_6_8smoothed, r_2sv_6_11orbitSource, r_2sv_6_8ephAvail, r_2sv_6_8almAvail, r_2sv_6_8anoAvail, r_2sv_6_8aopAvail, r_2sv_6_10reserved13, r_2sv_6_12sbasCorrUsed, r_2sv_6_12rtcmCorrUsed, r_2sv_6_12slasCorrUsed, r_2sv_6_14spartnCorrUsed, r_2sv_6_10prCorrUsed, r_2sv_6_10crCorrUsed, r_2sv_6_10doCorrUsed, r_2sv_6_12clasCorrUsed, r_2sv_6_11lppCorrUsed, r_2sv_6_11hasCorrUsed, r_2sv_6_11flags_spare, )
+
+
+def _raw_nav_sat_2sv_7(g_2sv_7: Any) -> tuple[Any, ...]:
+    r_2sv_7_6gnssId = g_2sv_7.gnssId
+    if r_2sv_7_6gnssId.__class__ is not int and (not isinstance(r_2sv_7_6gnssId, int) or r_2sv_7_6gnssId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[7].gnssId', r_2sv_7_6gnssId, 'type', 'an int')
+    if not 0 <= r_2sv_7_6gnssId <= 255:
+        raise _enc('nav_sat', 'sv[7].gnssId', r_2sv_7_6gnssId, 'range', '0..255', None)
+    r_2sv_7_4svId = g_2sv_7.svId
+    if r_2sv_7_4svId.__class__ is not int and (not isinstance(r_2sv_7_4svId, int) or r_2sv_7_4svId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[7].svId', r_2sv_7_4svId, 'type', 'an int')
+    if not 0 <= r_2sv_7_4svId <= 255:
+        raise _enc('nav_sat', 'sv[7].svId', r_2sv_7_4svId, 'range', '0..255', None)
+    r_2sv_7_3cno = g_2sv_7.cno
+    if r_2sv_7_3cno.__class__ is not int and (not isinstance(r_2sv_7_3cno, int) or r_2sv_7_3cno.__class__ is bool):
+        raise _enc('nav_sat', 'sv[7].cno', r_2sv_7_3cno, 'type', 'an int')
+    if not 0 <= r_2sv_7_3cno <= 255:
+        raise _enc('nav_sat', 'sv[7].cno', r_2sv_7_3cno, 'range', '0..255', None)
+    r_2sv_7_4elev = g_2sv_7.elev
+    if r_2sv_7_4elev.__class__ is not int and (not isinstance(r_2sv_7_4elev, int) or r_2sv_7_4elev.__class__ is bool):
+        raise _enc('nav_sat', 'sv[7].elev', r_2sv_7_4elev, 'type', 'an int')
+    if not -128 <= r_2sv_7_4elev <= 127:
+        raise _enc('nav_sat', 'sv[7].elev', r_2sv_7_4elev, 'range', '-128..127', None)
+    r_2sv_7_4azim = g_2sv_7.azim
+    if r_2sv_7_4azim.__class__ is not int and (not isinstance(r_2sv_7_4azim, int) or r_2sv_7_4azim.__class__ is bool):
+        raise _enc('nav_sat', 'sv[7].azim', r_2sv_7_4azim, 'type', 'an int')
+    if not -32768 <= r_2sv_7_4azim <= 32767:
+        raise _enc('nav_sat', 'sv[7].azim', r_2sv_7_4azim, 'range', '-32768..32767', None)
+    r_2sv_7_5prRes = g_2sv_7.prRes
+    if r_2sv_7_5prRes.__class__ is not float and (not isinstance(r_2sv_7_5prRes, (int, float)) or r_2sv_7_5prRes.__class__ is bool):
+        raise _enc('nav_sat', 'sv[7].prRes', r_2sv_7_5prRes, 'type', 'a number')
+    if not -3276.8 <= r_2sv_7_5prRes <= 3276.7000000000003:
+        raise _enc('nav_sat', 'sv[7].prRes', r_2sv_7_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    r_2sv_7_5prRes = _floor(r_2sv_7_5prRes / 0.1 + 0.5)
+    r_2sv_7_10qualityInd = g_2sv_7.qualityInd
+    if r_2sv_7_10qualityInd.__class__ is not int and (not isinstance(r_2sv_7_10qualityInd, int) or r_2sv_7_10qualityInd.__class__ is bool):
+        raise _enc('nav_sat', 'sv[7].qualityInd', r_2sv_7_10qualityInd, 'type', 'an int')
+    if not 0 <= r_2sv_7_10qualityInd <= 7:
+        raise _enc('nav_sat', 'sv[7].qualityInd', r_2sv_7_10qualityInd, 'range', '0..7', None)
+    r_2sv_7_6svUsed: Any = g_2sv_7.svUsed
+    if r_2sv_7_6svUsed is not True and r_2sv_7_6svUsed is not False and r_2sv_7_6svUsed != 0 and r_2sv_7_6svUsed != 1:
+        raise _enc('nav_sat', 'sv[7].svUsed', r_2sv_7_6svUsed, 'type', 'a bool')
+    r_2sv_7_6svUsed = 1 if r_2sv_7_6svUsed else 0
+    r_2sv_7_6health = g_2sv_7.health
+    if r_2sv_7_6health.__class__ is not int and (not isinstance(r_2sv_7_6health, int) or r_2sv_7_6health.__class__ is bool):
+        raise _enc('nav_sat', 'sv[7].health', r_2sv_7_6health, 'type', 'an int')
+    if not 0 <= r_2sv_7_6health <= 3:
+        raise _enc('nav_sat', 'sv[7].health', r_2sv_7_6health, 'range', '0..3', None)
+    r_2sv_7_8diffCorr: Any = g_2sv_7.diffCorr
+    if r_2sv_7_8diffCorr is not True and r_2sv_7_8diffCorr is not False and r_2sv_7_8diffCorr != 0 and r_2sv_7_8diffCorr != 1:
+        raise _enc('nav_sat', 'sv[7].diffCorr', r_2sv_7_8diffCorr, 'type', 'a bool')
+    r_2sv_7_8diffCorr = 1 if r_2sv_7_8diffCorr else 0
+    r_2sv_7_8smoothed: Any = g_2sv_7.smoothed
+    if r_2sv_7_8smoothed is not True and r_2sv_7_8smoothed is not False and r_2sv_7_8smoothed != 0 and r_2sv_7_8smoothed != 1:
+        raise _enc('nav_sat', 'sv[7].smoothed', r_2sv_7_8smoothed, 'type', 'a bool')
+    r_2sv_7_8smoothed = 1 if r_2sv_7_8smoothed else 0
+    r_2sv_7_11orbitSource = g_2sv_7.orbitSource
+    if r_2sv_7_11orbitSource.__class__ is not int and (not isinstance(r_2sv_7_11orbitSource, int) or r_2sv_7_11orbitSource.__class__ is bool):
+        raise _enc('nav_sat', 'sv[7].orbitSource', r_2sv_7_11orbitSource, 'type', 'an int')
+    if not 0 <= r_2sv_7_11orbitSource <= 7:
+        raise _enc('nav_sat', 'sv[7].orbitSource', r_2sv_7_11orbitSource, 'range', '0..7', None)
+    r_2sv_7_8ephAvail: Any = g_2sv_7.ephAvail
+    if r_2sv_7_8ephAvail is not True and r_2sv_7_8ephAvail is not False and r_2sv_7_8ephAvail != 0 and r_2sv_7_8ephAvail != 1:
+        raise _enc('nav_sat', 'sv[7].ephAvail', r_2sv_7_8ephAvail, 'type', 'a bool')
+    r_2sv_7_8ephAvail = 1 if r_2sv_7_8ephAvail else 0
+    r_2sv_7_8almAvail: Any = g_2sv_7.almAvail
+    if r_2sv_7_8almAvail is not True and r_2sv_7_8almAvail is not False and r_2sv_7_8almAvail != 0 and r_2sv_7_8almAvail != 1:
+        raise _enc('nav_sat', 'sv[7].almAvail', r_2sv_7_8almAvail, 'type', 'a bool')
+    r_2sv_7_8almAvail = 1 if r_2sv_7_8almAvail else 0
+    r_2sv_7_8anoAvail: Any = g_2sv_7.anoAvail
+    if r_2sv_7_8anoAvail is not True and r_2sv_7_8anoAvail is not False and r_2sv_7_8anoAvail != 0 and r_2sv_7_8anoAvail != 1:
+        raise _enc('nav_sat', 'sv[7].anoAvail', r_2sv_7_8anoAvail, 'type', 'a bool')
+    r_2sv_7_8anoAvail = 1 if r_2sv_7_8anoAvail else 0
+    r_2sv_7_8aopAvail: Any = g_2sv_7.aopAvail
+    if r_2sv_7_8aopAvail is not True and r_2sv_7_8aopAvail is not False and r_2sv_7_8aopAvail != 0 and r_2sv_7_8aopAvail != 1:
+        raise _enc('nav_sat', 'sv[7].aopAvail', r_2sv_7_8aopAvail, 'type', 'a bool')
+    r_2sv_7_8aopAvail = 1 if r_2sv_7_8aopAvail else 0
+    r_2sv_7_10reserved13 = g_2sv_7.reserved13
+    if r_2sv_7_10reserved13.__class__ is not int and (not isinstance(r_2sv_7_10reserved13, int) or r_2sv_7_10reserved13.__class__ is bool):
+        raise _enc('nav_sat', 'sv[7].reserved13', r_2sv_7_10reserved13, 'type', 'an int')
+    if not 0 <= r_2sv_7_10reserved13 <= 1:
+        raise _enc('nav_sat', 'sv[7].reserved13', r_2sv_7_10reserved13, 'range', '0..1', None)
+    r_2sv_7_12sbasCorrUsed: Any = g_2sv_7.sbasCorrUsed
+    if r_2sv_7_12sbasCorrUsed is not True and r_2sv_7_12sbasCorrUsed is not False and r_2sv_7_12sbasCorrUsed != 0 and r_2sv_7_12sbasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[7].sbasCorrUsed', r_2sv_7_12sbasCorrUsed, 'type', 'a bool')
+    r_2sv_7_12sbasCorrUsed = 1 if r_2sv_7_12sbasCorrUsed else 0
+    r_2sv_7_12rtcmCorrUsed: Any = g_2sv_7.rtcmCorrUsed
+    if r_2sv_7_12rtcmCorrUsed is not True and r_2sv_7_12rtcmCorrUsed is not False and r_2sv_7_12rtcmCorrUsed != 0 and r_2sv_7_12rtcmCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[7].rtcmCorrUsed', r_2sv_7_12rtcmCorrUsed, 'type', 'a bool')
+    r_2sv_7_12rtcmCorrUsed = 1 if r_2sv_7_12rtcmCorrUsed else 0
+    r_2sv_7_12slasCorrUsed: Any = g_2sv_7.slasCorrUsed
+    if r_2sv_7_12slasCorrUsed is not True and r_2sv_7_12slasCorrUsed is not False and r_2sv_7_12slasCorrUsed != 0 and r_2sv_7_12slasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[7].slasCorrUsed', r_2sv_7_12slasCorrUsed, 'type', 'a bool')
+    r_2sv_7_12slasCorrUsed = 1 if r_2sv_7_12slasCorrUsed else 0
+    r_2sv_7_14spartnCorrUsed: Any = g_2sv_7.spartnCorrUsed
+    if r_2sv_7_14spartnCorrUsed is not True and r_2sv_7_14spartnCorrUsed is not False and r_2sv_7_14spartnCorrUsed != 0 and r_2sv_7_14spartnCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[7].spartnCorrUsed', r_2sv_7_14spartnCorrUsed, 'type', 'a bool')
+    r_2sv_7_14spartnCorrUsed = 1 if r_2sv_7_14spartnCorrUsed else 0
+    r_2sv_7_10prCorrUsed: Any = g_2sv_7.prCorrUsed
+    if r_2sv_7_10prCorrUsed is not True and r_2sv_7_10prCorrUsed is not False and r_2sv_7_10prCorrUsed != 0 and r_2sv_7_10prCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[7].prCorrUsed', r_2sv_7_10prCorrUsed, 'type', 'a bool')
+    r_2sv_7_10prCorrUsed = 1 if r_2sv_7_10prCorrUsed else 0
+    r_2sv_7_10crCorrUsed: Any = g_2sv_7.crCorrUsed
+    if r_2sv_7_10crCorrUsed is not True and r_2sv_7_10crCorrUsed is not False and r_2sv_7_10crCorrUsed != 0 and r_2sv_7_10crCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[7].crCorrUsed', r_2sv_7_10crCorrUsed, 'type', 'a bool')
+    r_2sv_7_10crCorrUsed = 1 if r_2sv_7_10crCorrUsed else 0
+    r_2sv_7_10doCorrUsed: Any = g_2sv_7.doCorrUsed
+    if r_2sv_7_10doCorrUsed is not True and r_2sv_7_10doCorrUsed is not False and r_2sv_7_10doCorrUsed != 0 and r_2sv_7_10doCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[7].doCorrUsed', r_2sv_7_10doCorrUsed, 'type', 'a bool')
+    r_2sv_7_10doCorrUsed = 1 if r_2sv_7_10doCorrUsed else 0
+    r_2sv_7_12clasCorrUsed: Any = g_2sv_7.clasCorrUsed
+    if r_2sv_7_12clasCorrUsed is not True and r_2sv_7_12clasCorrUsed is not False and r_2sv_7_12clasCorrUsed != 0 and r_2sv_7_12clasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[7].clasCorrUsed', r_2sv_7_12clasCorrUsed, 'type', 'a bool')
+    r_2sv_7_12clasCorrUsed = 1 if r_2sv_7_12clasCorrUsed else 0
+    r_2sv_7_11lppCorrUsed: Any = g_2sv_7.lppCorrUsed
+    if r_2sv_7_11lppCorrUsed is not True and r_2sv_7_11lppCorrUsed is not False and r_2sv_7_11lppCorrUsed != 0 and r_2sv_7_11lppCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[7].lppCorrUsed', r_2sv_7_11lppCorrUsed, 'type', 'a bool')
+    r_2sv_7_11lppCorrUsed = 1 if r_2sv_7_11lppCorrUsed else 0
+    r_2sv_7_11hasCorrUsed: Any = g_2sv_7.hasCorrUsed
+    if r_2sv_7_11hasCorrUsed is not True and r_2sv_7_11hasCorrUsed is not False and r_2sv_7_11hasCorrUsed != 0 and r_2sv_7_11hasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[7].hasCorrUsed', r_2sv_7_11hasCorrUsed, 'type', 'a bool')
+    r_2sv_7_11hasCorrUsed = 1 if r_2sv_7_11hasCorrUsed else 0
+    r_2sv_7_11flags_spare = 0
+    return (r_2sv_7_6gnssId, r_2sv_7_4svId, r_2sv_7_3cno, r_2sv_7_4elev, r_2sv_7_4azim, r_2sv_7_5prRes, r_2sv_7_10qualityInd, r_2sv_7_6svUsed, r_2sv_7_6health, r_2sv_7_8diffCorr, r_2sv_7_8smoothed, r_2sv_7_11orbitSource, r_2sv_7_8ephAvail, r_2sv_7_8almAvail, r_2sv_7_8anoAvail, r_2sv_7_8aopAvail, r_2sv_7_10reserved13, r_2sv_7_12sbasCorrUsed, r_2sv_7_12rtcmCorrUsed, r_2sv_7_12slasCorrUsed, r_2sv_7_14spartnCorrUsed, r_2sv_7_10prCorrUsed, r_2sv_7_10crCorrUsed, r_2sv_7_10doCorrUsed, r_2sv_7_12clasCorrUsed, r_2sv_7_11lppCorrUsed, r_2sv_7_11hasCorrUsed, r_2sv_7_11flags_spare, )
+
+
+def _raw_nav_sat_2sv_8(g_2sv_8: Any) -> tuple[Any, ...]:
+    r_2sv_8_6gnssId = g_2sv_8.gnssId
+    if r_2sv_8_6gnssId.__class__ is not int and (not isinstance(r_2sv_8_6gnssId, int) or r_2sv_8_6gnssId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[8].gnssId', r_2sv_8_6gnssId, 'type', 'an int')
+    if not 0 <= r_2sv_8_6gnssId <= 255:
+        raise _enc('nav_sat', 'sv[8].gnssId', r_2sv_8_6gnssId, 'range', '0..255', None)
+    r_2sv_8_4svId = g_2sv_8.svId
+    if r_2sv_8_4svId.__class__ is not int and (not isinstance(r_2sv_8_4svId, int) or r_2sv_8_4svId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[8].svId', r_2sv_8_4svId, 'type', 'an int')
+    if not 0 <= r_2sv_8_4svId <= 255:
+        raise _enc('nav_sat', 'sv[8].svId', r_2sv_8_4svId, 'range', '0..255', None)
+    r_2sv_8_3cno = g_2sv_8.cno
+    if r_2sv_8_3cno.__class__ is not int and (not isinstance(r_2sv_8_3cno, int) or r_2sv_8_3cno.__class__ is bool):
+        raise _enc('nav_sat', 'sv[8].cno', r_2sv_8_3cno, 'type', 'an int')
+    if not 0 <= r_2sv_8_3cno <= 255:
+        raise _enc('nav_sat', 'sv[8].cno', r_2sv_8_3cno, 'range', '0..255', None)
+    r_2sv_8_4elev = g_2sv_8.elev
+    if r_2sv_8_4elev.__class__ is not int and (not isinstance(r_2sv_8_4elev, int) or r_2sv_8_4elev.__class__ is bool):
+        raise _enc('nav_sat', 'sv[8].elev', r_2sv_8_4elev, 'type', 'an int')
+    if not -128 <= r_2sv_8_4elev <= 127:
+        raise _enc('nav_sat', 'sv[8].elev', r_2sv_8_4elev, 'range', '-128..127', None)
+    r_2sv_8_4azim = g_2sv_8.azim
+    if r_2sv_8_4azim.__class__ is not int and (not isinstance(r_2sv_8_4azim, int) or r_2sv_8_4azim.__class__ is bool):
+        raise _enc('nav_sat', 'sv[8].azim', r_2sv_8_4azim, 'type', 'an int')
+    if not -32768 <= r_2sv_8_4azim <= 32767:
+        raise _enc('nav_sat', 'sv[8].azim', r_2sv_8_4azim, 'range', '-32768..32767', None)
+    r_2sv_8_5prRes = g_2sv_8.prRes
+    if r_2sv_8_5prRes.__class__ is not float and (not isinstance(r_2sv_8_5prRes, (int, float)) or r_2sv_8_5prRes.__class__ is bool):
+        raise _enc('nav_sat', 'sv[8].prRes', r_2sv_8_5prRes, 'type', 'a number')
+    if not -3276.8 <= r_2sv_8_5prRes <= 3276.7000000000003:
+        raise _enc('nav_sat', 'sv[8].prRes', r_2sv_8_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    r_2sv_8_5prRes = _floor(r_2sv_8_5prRes / 0.1 + 0.5)
+    r_2sv_8_10qualityInd = g_2sv_8.qualityInd
+    if r_2sv_8_10qualityInd.__class__ is not int and (not isinstance(r_2sv_8_10qualityInd, int) or r_2sv_8_10qualityInd.__class__ is bool):
+        raise _enc('nav_sat', 'sv[8].qualityInd', r_2sv_8_10qualityInd, 'type', 'an int')
+    if not 0 <= r_2sv_8_10qualityInd <= 7:
+        raise _enc('nav_sat', 'sv[8].qualityInd', r_2sv_8_10qualityInd, 'range', '0..7', None)
+    r_2sv_8_6svUsed: Any = g_2sv_8.svUsed
+    if r_2sv_8_6svUsed is not True and r_2sv_8_6svUsed is not False and r_2sv_8_6svUsed != 0 and r_2sv_8_6svUsed != 1:
+        raise _enc('nav_sat', 'sv[8].svUsed', r_2sv_8_6svUsed, 'type', 'a bool')
+    r_2sv_8_6svUsed = 1 if r_2sv_8_6svUsed else 0
+    r_2sv_8_6health = g_2sv_8.health
+    if r_2sv_8_6health.__class__ is not int and (not isinstance(r_2sv_8_6health, int) or r_2sv_8_6health.__class__ is bool):
+        raise _enc('nav_sat', 'sv[8].health', r_2sv_8_6health, 'type', 'an int')
+    if not 0 <= r_2sv_8_6health <= 3:
+        raise _enc('nav_sat', 'sv[8].health', r_2sv_8_6health, 'range', '0..3', None)
+    r_2sv_8_8diffCorr: Any = g_2sv_8.diffCorr
+    if r_2sv_8_8diffCorr is not True and r_2sv_8_8diffCorr is not False and r_2sv_8_8diffCorr != 0 and r_2sv_8_8diffCorr != 1:
+        raise _enc('nav_sat', 'sv[8].diffCorr', r_2sv_8_8diffCorr, 'type', 'a bool')
+    r_2sv_8_8diffCorr = 1 if r_2sv_8_8diffCorr else 0
+    r_2sv_8_8smoothed: Any = g_2sv_8.smoothed
+    if r_2sv_8_8smoothed is not True and r_2sv_8_8smoothed is not False and r_2sv_8_8smoothed != 0 and r_2sv_8_8smoothed != 1:
+        raise _enc('nav_sat', 'sv[8].smoothed', r_2sv_8_8smoothed, 'type', 'a bool')
+    r_2sv_8_8smoothed = 1 if r_2sv_8_8smoothed else 0
+    r_2sv_8_11orbitSource = g_2sv_8.orbitSource
+    if r_2sv_8_11orbitSource.__class__ is not int and (not isinstance(r_2sv_8_11orbitSource, int) or r_2sv_8_11orbitSource.__class__ is bool):
+        raise _enc('nav_sat', 'sv[8].orbitSource', r_2sv_8_11orbitSource, 'type', 'an int')
+    if not 0 <= r_2sv_8_11orbitSource <= 7:
+        raise _enc('nav_sat', 'sv[8].orbitSource', r_2sv_8_11orbitSource, 'range', '0..7', None)
+    r_2sv_8_8ephAvail: Any = g_2sv_8.ephAvail
+    if r_2sv_8_8ephAvail is not True and r_2sv_8_8ephAvail is not False and r_2sv_8_8ephAvail != 0 and r_2sv_8_8ephAvail != 1:
+        raise _enc('nav_sat', 'sv[8].ephAvail', r_2sv_8_8ephAvail, 'type', 'a bool')
+    r_2sv_8_8ephAvail = 1 if r_2sv_8_8ephAvail else 0
+    r_2sv_8_8almAvail: Any = g_2sv_8.almAvail
+    if r_2sv_8_8almAvail is not True and r_2sv_8_8almAvail is not False and r_2sv_8_8almAvail != 0 and r_2sv_8_8almAvail != 1:
+        raise _enc('nav_sat', 'sv[8].almAvail', r_2sv_8_8almAvail, 'type', 'a bool')
+    r_2sv_8_8almAvail = 1 if r_2sv_8_8almAvail else 0
+    r_2sv_8_8anoAvail: Any = g_2sv_8.anoAvail
+    if r_2sv_8_8anoAvail is not True and r_2sv_8_8anoAvail is not False and r_2sv_8_8anoAvail != 0 and r_2sv_8_8anoAvail != 1:
+        raise _enc('nav_sat', 'sv[8].anoAvail', r_2sv_8_8anoAvail, 'type', 'a bool')
+    r_2sv_8_8anoAvail = 1 if r_2sv_8_8anoAvail else 0
+    r_2sv_8_8aopAvail: Any = g_2sv_8.aopAvail
+    if r_2sv_8_8aopAvail is not True and r_2sv_8_8aopAvail is not False and r_2sv_8_8aopAvail != 0 and r_2sv_8_8aopAvail != 1:
+        raise _enc('nav_sat', 'sv[8].aopAvail', r_2sv_8_8aopAvail, 'type', 'a bool')
+    r_2sv_8_8aopAvail = 1 if r_2sv_8_8aopAvail else 0
+    r_2sv_8_10reserved13 = g_2sv_8.reserved13
+    if r_2sv_8_10reserved13.__class__ is not int and (not isinstance(r_2sv_8_10reserved13, int) or r_2sv_8_10reserved13.__class__ is bool):
+        raise _enc('nav_sat', 'sv[8].reserved13', r_2sv_8_10reserved13, 'type', 'an int')
+    if not 0 <= r_2sv_8_10reserved13 <= 1:
+        raise _enc('nav_sat', 'sv[8].reserved13', r_2sv_8_10reserved13, 'range', '0..1', None)
+    r_2sv_8_12sbasCorrUsed: Any = g_2sv_8.sbasCorrUsed
+    if r_2sv_8_12sbasCorrUsed is not True and r_2sv_8_12sbasCorrUsed is not False and r_2sv_8_12sbasCorrUsed != 0 and r_2sv_8_12sbasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[8].sbasCorrUsed', r_2sv_8_12sbasCorrUsed, 'type', 'a bool')
+    r_2sv_8_12sbasCorrUsed = 1 if r_2sv_8_12sbasCorrUsed else 0
+    r_2sv_8_12rtcmCorrUsed: Any = g_2sv_8.rtcmCorrUsed
+    if r_2sv_8_12rtcmCorrUsed is not True and r_2sv_8_12rtcmCorrUsed is not False and r_2sv_8_12rtcmCorrUsed != 0 and r_2sv_8_12rtcmCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[8].rtcmCorrUsed', r_2sv_8_12rtcmCorrUsed, 'type', 'a bool')
+    r_2sv_8_12rtcmCorrUsed = 1 if r_2sv_8_12rtcmCorrUsed else 0
+    r_2sv_8_12slasCorrUsed: Any = g_2sv_8.slasCorrUsed
+    if r_2sv_8_12slasCorrUsed is not True and r_2sv_8_12slasCorrUsed is not False and r_2sv_8_12slasCorrUsed != 0 and r_2sv_8_12slasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[8].slasCorrUsed', r_2sv_8_12slasCorrUsed, 'type', 'a bool')
+    r_2sv_8_12slasCorrUsed = 1 if r_2sv_8_12slasCorrUsed else 0
+    r_2sv_8_14spartnCorrUsed: Any = g_2sv_8.spartnCorrUsed
+    if r_2sv_8_14spartnCorrUsed is not True and r_2sv_8_14spartnCorrUsed is not False and r_2sv_8_14spartnCorrUsed != 0 and r_2sv_8_14spartnCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[8].spartnCorrUsed', r_2sv_8_14spartnCorrUsed, 'type', 'a bool')
+    r_2sv_8_14spartnCorrUsed = 1 if r_2sv_8_14spartnCorrUsed else 0
+    r_2sv_8_10prCorrUsed: Any = g_2sv_8.prCorrUsed
+    if r_2sv_8_10prCorrUsed is not True and r_2sv_8_10prCorrUsed is not False and r_2sv_8_10prCorrUsed != 0 and r_2sv_8_10prCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[8].prCorrUsed', r_2sv_8_10prCorrUsed, 'type', 'a bool')
+    r_2sv_8_10prCorrUsed = 1 if r_2sv_8_10prCorrUsed else 0
+    r_2sv_8_10crCorrUsed: Any = g_2sv_8.crCorrUsed
+    if r_2sv_8_10crCorrUsed is not True and r_2sv_8_10crCorrUsed is not False and r_2sv_8_10crCorrUsed != 0 and r_2sv_8_10crCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[8].crCorrUsed', r_2sv_8_10crCorrUsed, 'type', 'a bool')
+    r_2sv_8_10crCorrUsed = 1 if r_2sv_8_10crCorrUsed else 0
+    r_2sv_8_10doCorrUsed: Any = g_2sv_8.doCorrUsed
+    if r_2sv_8_10doCorrUsed is not True and r_2sv_8_10doCorrUsed is not False and r_2sv_8_10doCorrUsed != 0 and r_2sv_8_10doCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[8].doCorrUsed', r_2sv_8_10doCorrUsed, 'type', 'a bool')
+    r_2sv_8_10doCorrUsed = 1 if r_2sv_8_10doCorrUsed else 0
+    r_2sv_8_12clasCorrUsed: Any = g_2sv_8.clasCorrUsed
+    if r_2sv_8_12clasCorrUsed is not True and r_2sv_8_12clasCorrUsed is not False and r_2sv_8_12clasCorrUsed != 0 and r_2sv_8_12clasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[8].clasCorrUsed', r_2sv_8_12clasCorrUsed, 'type', 'a bool')
+    r_2sv_8_12clasCorrUsed = 1 if r_2sv_8_12clasCorrUsed else 0
+    r_2sv_8_11lppCorrUsed: Any = g_2sv_8.lppCorrUsed
+    if r_2sv_8_11lppCorrUsed is not True and r_2sv_8_11lppCorrUsed is not False and r_2sv_8_11lppCorrUsed != 0 and r_2sv_8_11lppCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[8].lppCorrUsed', r_2sv_8_11lppCorrUsed, 'type', 'a bool')
+    r_2sv_8_11lppCorrUsed = 1 if r_2sv_8_11lppCorrUsed else 0
+    r_2sv_8_11hasCorrUsed: Any = g_2sv_8.hasCorrUsed
+    if r_2sv_8_11hasCorrUsed is not True and r_2sv_8_11hasCorrUsed is not False and r_2sv_8_11hasCorrUsed != 0 and r_2sv_8_11hasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[8].hasCorrUsed', r_2sv_8_11hasCorrUsed, 'type', 'a bool')
+    r_2sv_8_11hasCorrUsed = 1 if r_2sv_8_11hasCorrUsed else 0
+    r_2sv_8_11flags_spare = 0
+    return (r_2sv_8_6gnssId, r_2sv_8_4svId, r_2sv_8_3cno, r_2sv_8_4elev, r_2sv_8_4azim, r_2sv_8_5prRes, r_2sv_8_10qualityInd, r_2sv_8_6svUsed, r_2sv_8_6health, r_2sv_8_8diffCorr, r_2sv_8_8smoothed, r_2sv_8_11orbitSource, r_2sv_8_8ephAvail, r_2sv_8_8almAvail, r_2sv_8_8anoAvail, r_2sv_8_8aopAvail, r_2sv_8_10reserved13, r_2sv_8_12sbasCorrUsed, r_2sv_8_12rtcmCorrUsed, r_2sv_8_12slasCorrUsed, r_2sv_8_14spartnCorrUsed, r_2sv_8_10prCorrUsed, r_2sv_8_10crCorrUsed, r_2sv_8_10doCorrUsed, r_2sv_8_12clasCorrUsed, r_2sv_8_11lppCorrUsed, r_2sv_8_11hasCorrUsed, r_2sv_8_11flags_spare, )
+
+
+def _raw_nav_sat_2sv_9(g_2sv_9: Any) -> tuple[Any, ...]:
+    r_2sv_9_6gnssId = g_2sv_9.gnssId
+    if r_2sv_9_6gnssId.__class__ is not int and (not isinstance(r_2sv_9_6gnssId, int) or r_2sv_9_6gnssId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[9].gnssId', r_2sv_9_6gnssId, 'type', 'an int')
+    if not 0 <= r_2sv_9_6gnssId <= 255:
+        raise _enc('nav_sat', 'sv[9].gnssId', r_2sv_9_6gnssId, 'range', '0..255', None)
+    r_2sv_9_4svId = g_2sv_9.svId
+    if r_2sv_9_4svId.__class__ is not int and (not isinstance(r_2sv_9_4svId, int) or r_2sv_9_4svId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[9].svId', r_2sv_9_4svId, 'type', 'an int')
+    if not 0 <= r_2sv_9_4svId <= 255:
+        raise _enc('nav_sat', 'sv[9].svId', r_2sv_9_4svId, 'range', '0..255', None)
+    r_2sv_9_3cno = g_2sv_9.cno
+    if r_2sv_9_3cno.__class__ is not int and (not isinstance(r_2sv_9_3cno, int) or r_2sv_9_3cno.__class__ is bool):
+        raise _enc('nav_sat', 'sv[9].cno', r_2sv_9_3cno, 'type', 'an int')
+    if not 0 <= r_2sv_9_3cno <= 255:
+        raise _enc('nav_sat', 'sv[9].cno', r_2sv_9_3cno, 'range', '0..255', None)
+    r_2sv_9_4elev = g_2sv_9.elev
+    if r_2sv_9_4elev.__class__ is not int and (not isinstance(r_2sv_9_4elev, int) or r_2sv_9_4elev.__class__ is bool):
+        raise _enc('nav_sat', 'sv[9].elev', r_2sv_9_4elev, 'type', 'an int')
+    if not -128 <= r_2sv_9_4elev <= 127:
+        raise _enc('nav_sat', 'sv[9].elev', r_2sv_9_4elev, 'range', '-128..127', None)
+    r_2sv_9_4azim = g_2sv_9.azim
+    if r_2sv_9_4azim.__class__ is not int and (not isinstance(r_2sv_9_4azim, int) or r_2sv_9_4azim.__class__ is bool):
+        raise _enc('nav_sat', 'sv[9].azim', r_2sv_9_4azim, 'type', 'an int')
+    if not -32768 <= r_2sv_9_4azim <= 32767:
+        raise _enc('nav_sat', 'sv[9].azim', r_2sv_9_4azim, 'range', '-32768..32767', None)
+    r_2sv_9_5prRes = g_2sv_9.prRes
+    if r_2sv_9_5prRes.__class__ is not float and (not isinstance(r_2sv_9_5prRes, (int, float)) or r_2sv_9_5prRes.__class__ is bool):
+        raise _enc('nav_sat', 'sv[9].prRes', r_2sv_9_5prRes, 'type', 'a number')
+    if not -3276.8 <= r_2sv_9_5prRes <= 3276.7000000000003:
+        raise _enc('nav_sat', 'sv[9].prRes', r_2sv_9_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    r_2sv_9_5prRes = _floor(r_2sv_9_5prRes / 0.1 + 0.5)
+    r_2sv_9_10qualityInd = g_2sv_9.qualityInd
+    if r_2sv_9_10qualityInd.__class__ is not int and (not isinstance(r_2sv_9_10qualityInd, int) or r_2sv_9_10qualityInd.__class__ is bool):
+        raise _enc('nav_sat', 'sv[9].qualityInd', r_2sv_9_10qualityInd, 'type', 'an int')
+    if not 0 <= r_2sv_9_10qualityInd <= 7:
+        raise _enc('nav_sat', 'sv[9].qualityInd', r_2sv_9_10qualityInd, 'range', '0..7', None)
+    r_2sv_9_6svUsed: Any = g_2sv_9.svUsed
+    if r_2sv_9_6svUsed is not True and r_2sv_9_6svUsed is not False and r_2sv_9_6svUsed != 0 and r_2sv_9_6svUsed != 1:
+        raise _enc('nav_sat', 'sv[9].svUsed', r_2sv_9_6svUsed, 'type', 'a bool')
+    r_2sv_9_6svUsed = 1 if r_2sv_9_6svUsed else 0
+    r_2sv_9_6health = g_2sv_9.health
+    if r_2sv_9_6health.__class__ is not int and (not isinstance(r_2sv_9_6health, int) or r_2sv_9_6health.__class__ is bool):
+        raise _enc('nav_sat', 'sv[9].health', r_2sv_9_6health, 'type', 'an int')
+    if not 0 <= r_2sv_9_6health <= 3:
+        raise _enc('nav_sat', 'sv[9].health', r_2sv_9_6health, 'range', '0..3', None)
+    r_2sv_9_8diffCorr: Any = g_2sv_9.diffCorr
+    if r_2sv_9_8diffCorr is not True and r_2sv_9_8diffCorr is not False and r_2sv_9_8diffCorr != 0 and r_2sv_9_8diffCorr != 1:
+        raise _enc('nav_sat', 'sv[9].diffCorr', r_2sv_9_8diffCorr, 'type', 'a bool')
+    r_2sv_9_8diffCorr = 1 if r_2sv_9_8diffCorr else 0
+    r_2sv_9_8smoothed: Any = g_2sv_9.smoothed
+    if r_2sv_9_8smoothed is not True and r_2sv_9_8smoothed is not False and r_2sv_9_8smoothed != 0 and r_2sv_9_8smoothed != 1:
+        raise _enc('nav_sat', 'sv[9].smoothed', r_2sv_9_8smoothed, 'type', 'a bool')
+    r_2sv_9_8smoothed = 1 if r_2sv_9_8smoothed else 0
+    r_2sv_9_11orbitSource = g_2sv_9.orbitSource
+    if r_2sv_9_11orbitSource.__class__ is not int and (not isinstance(r_2sv_9_11orbitSource, int) or r_2sv_9_11orbitSource.__class__ is bool):
+        raise _enc('nav_sat', 'sv[9].orbitSource', r_2sv_9_11orbitSource, 'type', 'an int')
+    if not 0 <= r_2sv_9_11orbitSource <= 7:
+        raise _enc('nav_sat', 'sv[9].orbitSource', r_2sv_9_11orbitSource, 'range', '0..7', None)
+    r_2sv_9_8ephAvail: Any = g_2sv_9.ephAvail
+    if r_2sv_9_8ephAvail is not True and r_2sv_9_8ephAvail is not False and r_2sv_9_8ephAvail != 0 and r_2sv_9_8ephAvail != 1:
+        raise _enc('nav_sat', 'sv[9].ephAvail', r_2sv_9_8ephAvail, 'type', 'a bool')
+    r_2sv_9_8ephAvail = 1 if r_2sv_9_8ephAvail else 0
+    r_2sv_9_8almAvail: Any = g_2sv_9.almAvail
+    if r_2sv_9_8almAvail is not True and r_2sv_9_8almAvail is not False and r_2sv_9_8almAvail != 0 and r_2sv_9_8almAvail != 1:
+        raise _enc('nav_sat', 'sv[9].almAvail', r_2sv_9_8almAvail, 'type', 'a bool')
+    r_2sv_9_8almAvail = 1 if r_2sv_9_8almAvail else 0
+    r_2sv_9_8anoAvail: Any = g_2sv_9.anoAvail
+    if r_2sv_9_8anoAvail is not True and r_2sv_9_8anoAvail is not False and r_2sv_9_8anoAvail != 0 and r_2sv_9_8anoAvail != 1:
+        raise _enc('nav_sat', 'sv[9].anoAvail', r_2sv_9_8anoAvail, 'type', 'a bool')
+    r_2sv_9_8anoAvail = 1 if r_2sv_9_8anoAvail else 0
+    r_2sv_9_8aopAvail: Any = g_2sv_9.aopAvail
+    if r_2sv_9_8aopAvail is not True and r_2sv_9_8aopAvail is not False and r_2sv_9_8aopAvail != 0 and r_2sv_9_8aopAvail != 1:
+        raise _enc('nav_sat', 'sv[9].aopAvail', r_2sv_9_8aopAvail, 'type', 'a bool')
+    r_2sv_9_8aopAvail = 1 if r_2sv_9_8aopAvail else 0
+    r_2sv_9_10reserved13 = g_2sv_9.reserved13
+    if r_2sv_9_10reserved13.__class__ is not int and (not isinstance(r_2sv_9_10reserved13, int) or r_2sv_9_10reserved13.__class__ is bool):
+        raise _enc('nav_sat', 'sv[9].reserved13', r_2sv_9_10reserved13, 'type', 'an int')
+    if not 0 <= r_2sv_9_10reserved13 <= 1:
+        raise _enc('nav_sat', 'sv[9].reserved13', r_2sv_9_10reserved13, 'range', '0..1', None)
+    r_2sv_9_12sbasCorrUsed: Any = g_2sv_9.sbasCorrUsed
+    if r_2sv_9_12sbasCorrUsed is not True and r_2sv_9_12sbasCorrUsed is not False and r_2sv_9_12sbasCorrUsed != 0 and r_2sv_9_12sbasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[9].sbasCorrUsed', r_2sv_9_12sbasCorrUsed, 'type', 'a bool')
+    r_2sv_9_12sbasCorrUsed = 1 if r_2sv_9_12sbasCorrUsed else 0
+    r_2sv_9_12rtcmCorrUsed: Any = g_2sv_9.rtcmCorrUsed
+    if r_2sv_9_12rtcmCorrUsed is not True and r_2sv_9_12rtcmCorrUsed is not False and r_2sv_9_12rtcmCorrUsed != 0 and r_2sv_9_12rtcmCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[9].rtcmCorrUsed', r_2sv_9_12rtcmCorrUsed, 'type', 'a bool')
+    r_2sv_9_12rtcmCorrUsed = 1 if r_2sv_9_12rtcmCorrUsed else 0
+    r_2sv_9_12slasCorrUsed: Any = g_2sv_9.slasCorrUsed
+    if r_2sv_9_12slasCorrUsed is not True and r_2sv_9_12slasCorrUsed is not False and r_2sv_9_12slasCorrUsed != 0 and r_2sv_9_12slasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[9].slasCorrUsed', r_2sv_9_12slasCorrUsed, 'type', 'a bool')
+    r_2sv_9_12slasCorrUsed = 1 if r_2sv_9_12slasCorrUsed else 0
+    r_2sv_9_14spartnCorrUsed: Any = g_2sv_9.spartnCorrUsed
+    if r_2sv_9_14spartnCorrUsed is not True and r_2sv_9_14spartnCorrUsed is not False and r_2sv_9_14spartnCorrUsed != 0 and r_2sv_9_14spartnCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[9].spartnCorrUsed', r_2sv_9_14spartnCorrUsed, 'type', 'a bool')
+    r_2sv_9_14spartnCorrUsed = 1 if r_2sv_9_14spartnCorrUsed else 0
+    r_2sv_9_10prCorrUsed: Any = g_2sv_9.prCorrUsed
+    if r_2sv_9_10prCorrUsed is not True and r_2sv_9_10prCorrUsed is not False and r_2sv_9_10prCorrUsed != 0 and r_2sv_9_10prCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[9].prCorrUsed', r_2sv_9_10prCorrUsed, 'type', 'a bool')
+    r_2sv_9_10prCorrUsed = 1 if r_2sv_9_10prCorrUsed else 0
+    r_2sv_9_10crCorrUsed: Any = g_2sv_9.crCorrUsed
+    if r_2sv_9_10crCorrUsed is not True and r_2sv_9_10crCorrUsed is not False and r_2sv_9_10crCorrUsed != 0 and r_2sv_9_10crCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[9].crCorrUsed', r_2sv_9_10crCorrUsed, 'type', 'a bool')
+    r_2sv_9_10crCorrUsed = 1 if r_2sv_9_10crCorrUsed else 0
+    r_2sv_9_10doCorrUsed: Any = g_2sv_9.doCorrUsed
+    if r_2sv_9_10doCorrUsed is not True and r_2sv_9_10doCorrUsed is not False and r_2sv_9_10doCorrUsed != 0 and r_2sv_9_10doCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[9].doCorrUsed', r_2sv_9_10doCorrUsed, 'type', 'a bool')
+    r_2sv_9_10doCorrUsed = 1 if r_2sv_9_10doCorrUsed else 0
+    r_2sv_9_12clasCorrUsed: Any = g_2sv_9.clasCorrUsed
+    if r_2sv_9_12clasCorrUsed is not True and r_2sv_9_12clasCorrUsed is not False and r_2sv_9_12clasCorrUsed != 0 and r_2sv_9_12clasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[9].clasCorrUsed', r_2sv_9_12clasCorrUsed, 'type', 'a bool')
+    r_2sv_9_12clasCorrUsed = 1 if r_2sv_9_12clasCorrUsed else 0
+    r_2sv_9_11lppCorrUsed: Any = g_2sv_9.lppCorrUsed
+    if r_2sv_9_11lppCorrUsed is not True and r_2sv_9_11lppCorrUsed is not False and r_2sv_9_11lppCorrUsed != 0 and r_2sv_9_11lppCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[9].lppCorrUsed', r_2sv_9_11lppCorrUsed, 'type', 'a bool')
+    r_2sv_9_11lppCorrUsed = 1 if r_2sv_9_11lppCorrUsed else 0
+    r_2sv_9_11hasCorrUsed: Any = g_2sv_9.hasCorrUsed
+    if r_2sv_9_11hasCorrUsed is not True and r_2sv_9_11hasCorrUsed is not False and r_2sv_9_11hasCorrUsed != 0 and r_2sv_9_11hasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[9].hasCorrUsed', r_2sv_9_11hasCorrUsed, 'type', 'a bool')
+    r_2sv_9_11hasCorrUsed = 1 if r_2sv_9_11hasCorrUsed else 0
+    r_2sv_9_11flags_spare = 0
+    return (r_2sv_9_6gnssId, r_2sv_9_4svId, r_2sv_9_3cno, r_2sv_9_4elev, r_2sv_9_4azim, r_2sv_9_5prRes, r_2sv_9_10qualityInd, r_2sv_9_6svUsed, r_2sv_9_6health, r_2sv_9_8diffCorr, r_2sv_9_8smoothed, r_2sv_9_11orbitSource, r_2sv_9_8ephAvail, r_2sv_9_8almAvail, r_2sv_9_8anoAvail, r_2sv_9_8aopAvail, r_2sv_9_10reserved13, r_2sv_9_12sbasCorrUsed, r_2sv_9_12rtcmCorrUsed, r_2sv_9_12slasCorrUsed, r_2sv_9_14spartnCorrUsed, r_2sv_9_10prCorrUsed, r_2sv_9_10crCorrUsed, r_2sv_9_10doCorrUsed, r_2sv_9_12clasCorrUsed, r_2sv_9_11lppCorrUsed, r_2sv_9_11hasCorrUsed, r_2sv_9_11flags_spare, )
+
+
+def _raw_nav_sat_2sv_10(g_2sv_10: Any) -> tuple[Any, ...]:
+    r_2sv_10_6gnssId = g_2sv_10.gnssId
+    if r_2sv_10_6gnssId.__class__ is not int and (not isinstance(r_2sv_10_6gnssId, int) or r_2sv_10_6gnssId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[10].gnssId', r_2sv_10_6gnssId, 'type', 'an int')
+    if not 0 <= r_2sv_10_6gnssId <= 255:
+        raise _enc('nav_sat', 'sv[10].gnssId', r_2sv_10_6gnssId, 'range', '0..255', None)
+    r_2sv_10_4svId = g_2sv_10.svId
+    if r_2sv_10_4svId.__class__ is not int and (not isinstance(r_2sv_10_4svId, int) or r_2sv_10_4svId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[10].svId', r_2sv_10_4svId, 'type', 'an int')
+    if not 0 <= r_2sv_10_4svId <= 255:
+        raise _enc('nav_sat', 'sv[10].svId', r_2sv_10_4svId, 'range', '0..255', None)
+    r_2sv_10_3cno = g_2sv_10.cno
+    if r_2sv_10_3cno.__class__ is not int and (not isinstance(r_2sv_10_3cno, int) or r_2sv_10_3cno.__class__ is bool):
+        raise _enc('nav_sat', 'sv[10].cno', r_2sv_10_3cno, 'type', 'an int')
+    if not 0 <= r_2sv_10_3cno <= 255:
+        raise _enc('nav_sat', 'sv[10].cno', r_2sv_10_3cno, 'range', '0..255', None)
+    r_2sv_10_4elev = g_2sv_10.elev
+    if r_2sv_10_4elev.__class__ is not int and (not isinstance(r_2sv_10_4elev, int) or r_2sv_10_4elev.__class__ is bool):
+        raise _enc('nav_sat', 'sv[10].elev', r_2sv_10_4elev, 'type', 'an int')
+    if not -128 <= r_2sv_10_4elev <= 127:
+        raise _enc('nav_sat', 'sv[10].elev', r_2sv_10_4elev, 'range', '-128..127', None)
+    r_2sv_10_4azim = g_2sv_10.azim
+    if r_2sv_10_4azim.__class__ is not int and (not isinstance(r_2sv_10_4azim, int) or r_2sv_10_4azim.__class__ is bool):
+        raise _enc('nav_sat', 'sv[10].azim', r_2sv_10_4azim, 'type', 'an int')
+    if not -32768 <= r_2sv_10_4azim <= 32767:
+        raise _enc('nav_sat', 'sv[10].azim', r_2sv_10_4azim, 'range', '-32768..32767', None)
+    r_2sv_10_5prRes = g_2sv_10.prRes
+    if r_2sv_10_5prRes.__class__ is not float and (not isinstance(r_2sv_10_5prRes, (int, float)) or r_2sv_10_5prRes.__class__ is bool):
+        raise _enc('nav_sat', 'sv[10].prRes', r_2sv_10_5prRes, 'type', 'a number')
+    if not -3276.8 <= r_2sv_10_5prRes <= 3276.7000000000003:
+        raise _enc('nav_sat', 'sv[10].prRes', r_2sv_10_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    r_2sv_10_5prRes = _floor(r_2sv_10_5prRes / 0.1 + 0.5)
+    r_2sv_10_10qualityInd = g_2sv_10.qualityInd
+    if r_2sv_10_10qualityInd.__class__ is not int and (not isinstance(r_2sv_10_10qualityInd, int) or r_2sv_10_10qualityInd.__class__ is bool):
+        raise _enc('nav_sat', 'sv[10].qualityInd', r_2sv_10_10qualityInd, 'type', 'an int')
+    if not 0 <= r_2sv_10_10qualityInd <= 7:
+        raise _enc('nav_sat', 'sv[10].qualityInd', r_2sv_10_10qualityInd, 'range', '0..7', None)
+    r_2sv_10_6svUsed: Any = g_2sv_10.svUsed
+    if r_2sv_10_6svUsed is not True and r_2sv_10_6svUsed is not False and r_2sv_10_6svUsed != 0 and r_2sv_10_6svUsed != 1:
+        raise _enc('nav_sat', 'sv[10].svUsed', r_2sv_10_6svUsed, 'type', 'a bool')
+    r_2sv_10_6svUsed = 1 if r_2sv_10_6svUsed else 0
+    r_2sv_10_6health = g_2sv_10.health
+    if r_2sv_10_6health.__class__ is not int and (not isinstance(r_2sv_10_6health, int) or r_2sv_10_6health.__class__ is bool):
+        raise _enc('nav_sat', 'sv[10].health', r_2sv_10_6health, 'type', 'an int')
+    if not 0 <= r_2sv_10_6health <= 3:
+        raise _enc('nav_sat', 'sv[10].health', r_2sv_10_6health, 'range', '0..3', None)
+    r_2sv_10_8diffCorr: Any = g_2sv_10.diffCorr
+    if r_2sv_10_8diffCorr is not True and r_2sv_10_8diffCorr is not False and r_2sv_10_8diffCorr != 0 and r_2sv_10_8diffCorr != 1:
+        raise _enc('nav_sat', 'sv[10].diffCorr', r_2sv_10_8diffCorr, 'type', 'a bool')
+    r_2sv_10_8diffCorr = 1 if r_2sv_10_8diffCorr else 0
+    r_2sv_10_8smoothed: Any = g_2sv_10.smoothed
+    if r_2sv_10_8smoothed is not True and r_2sv_10_8smoothed is not False and r_2sv_10_8smoothed != 0 and r_2sv_10_8smoothed != 1:
+        raise _enc('nav_sat', 'sv[10].smoothed', r_2sv_10_8smoothed, 'type', 'a bool')
+    r_2sv_10_8smoothed = 1 if r_2sv_10_8smoothed else 0
+    r_2sv_10_11orbitSource = g_2sv_10.orbitSource
+    if r_2sv_10_11orbitSource.__class__ is not int and (not isinstance(r_2sv_10_11orbitSource, int) or r_2sv_10_11orbitSource.__class__ is bool):
+        raise _enc('nav_sat', 'sv[10].orbitSource', r_2sv_10_11orbitSource, 'type', 'an int')
+    if not 0 <= r_2sv_10_11orbitSource <= 7:
+        raise _enc('nav_sat', 'sv[10].orbitSource', r_2sv_10_11orbitSource, 'range', '0..7', None)
+    r_2sv_10_8ephAvail: Any = g_2sv_10.ephAvail
+    if r_2sv_10_8ephAvail is not True and r_2sv_10_8ephAvail is not False and r_2sv_10_8ephAvail != 0 and r_2sv_10_8ephAvail != 1:
+        raise _enc('nav_sat', 'sv[10].ephAvail', r_2sv_10_8ephAvail, 'type', 'a bool')
+    r_2sv_10_8ephAvail = 1 if r_2sv_10_8ephAvail else 0
+    r_2sv_10_8almAvail: Any = g_2sv_10.almAvail
+    if r_2sv_10_8almAvail is not True and r_2sv_10_8almAvail is not False and r_2sv_10_8almAvail != 0 and r_2sv_10_8almAvail != 1:
+        raise _enc('nav_sat', 'sv[10].almAvail', r_2sv_10_8almAvail, 'type', 'a bool')
+    r_2sv_10_8almAvail = 1 if r_2sv_10_8almAvail else 0
+    r_2sv_10_8anoAvail: Any = g_2sv_10.anoAvail
+    if r_2sv_10_8anoAvail is not True and r_2sv_10_8anoAvail is not False and r_2sv_10_8anoAvail != 0 and r_2sv_10_8anoAvail != 1:
+        raise _enc('nav_sat', 'sv[10].anoAvail', r_2sv_10_8anoAvail, 'type', 'a bool')
+    r_2sv_10_8anoAvail = 1 if r_2sv_10_8anoAvail else 0
+    r_2sv_10_8aopAvail: Any = g_2sv_10.aopAvail
+    if r_2sv_10_8aopAvail is not True and r_2sv_10_8aopAvail is not False and r_2sv_10_8aopAvail != 0 and r_2sv_10_8aopAvail != 1:
+        raise _enc('nav_sat', 'sv[10].aopAvail', r_2sv_10_8aopAvail, 'type', 'a bool')
+    r_2sv_10_8aopAvail = 1 if r_2sv_10_8aopAvail else 0
+    r_2sv_10_10reserved13 = g_2sv_10.reserved13
+    if r_2sv_10_10reserved13.__class__ is not int and (not isinstance(r_2sv_10_10reserved13, int) or r_2sv_10_10reserved13.__class__ is bool):
+        raise _enc('nav_sat', 'sv[10].reserved13', r_2sv_10_10reserved13, 'type', 'an int')
+    if not 0 <= r_2sv_10_10reserved13 <= 1:
+        raise _enc('nav_sat', 'sv[10].reserved13', r_2sv_10_10reserved13, 'range', '0..1', None)
+    r_2sv_10_12sbasCorrUsed: Any = g_2sv_10.sbasCorrUsed
+    if r_2sv_10_12sbasCorrUsed is not True and r_2sv_10_12sbasCorrUsed is not False and r_2sv_10_12sbasCorrUsed != 0 and r_2sv_10_12sbasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[10].sbasCorrUsed', r_2sv_10_12sbasCorrUsed, 'type', 'a bool')
+    r_2sv_10_12sbasCorrUsed = 1 if r_2sv_10_12sbasCorrUsed else 0
+    r_2sv_10_12rtcmCorrUsed: Any = g_2sv_10.rtcmCorrUsed
+    if r_2sv_10_12rtcmCorrUsed is not True and r_2sv_10_12rtcmCorrUsed is not False and r_2sv_10_12rtcmCorrUsed != 0 and r_2sv_10_12rtcmCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[10].rtcmCorrUsed', r_2sv_10_12rtcmCorrUsed, 'type', 'a bool')
+    r_2sv_10_12rtcmCorrUsed = 1 if r_2sv_10_12rtcmCorrUsed else 0
+    r_2sv_10_12slasCorrUsed: Any = g_2sv_10.slasCorrUsed
+    if r_2sv_10_12slasCorrUsed is not True and r_2sv_10_12slasCorrUsed is not False and r_2sv_10_12slasCorrUsed != 0 and r_2sv_10_12slasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[10].slasCorrUsed', r_2sv_10_12slasCorrUsed, 'type', 'a bool')
+    r_2sv_10_12slasCorrUsed = 1 if r_2sv_10_12slasCorrUsed else 0
+    r_2sv_10_14spartnCorrUsed: Any = g_2sv_10.spartnCorrUsed
+    if r_2sv_10_14spartnCorrUsed is not True and r_2sv_10_14spartnCorrUsed is not False and r_2sv_10_14spartnCorrUsed != 0 and r_2sv_10_14spartnCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[10].spartnCorrUsed', r_2sv_10_14spartnCorrUsed, 'type', 'a bool')
+    r_2sv_10_14spartnCorrUsed = 1 if r_2sv_10_14spartnCorrUsed else 0
+    r_2sv_10_10prCorrUsed: Any = g_2sv_10.prCorrUsed
+    if r_2sv_10_10prCorrUsed is not True and r_2sv_10_10prCorrUsed is not False and r_2sv_10_10prCorrUsed != 0 and r_2sv_10_10prCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[10].prCorrUsed', r_2sv_10_10prCorrUsed, 'type', 'a bool')
+    r_2sv_10_10prCorrUsed = 1 if r_2sv_10_10prCorrUsed else 0
+    r_2sv_10_10crCorrUsed: Any = g_2sv_10.crCorrUsed
+    if r_2sv_10_10crCorrUsed is not True and r_2sv_10_10crCorrUsed is not False and r_2sv_10_10crCorrUsed != 0 and r_2sv_10_10crCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[10].crCorrUsed', r_2sv_10_10crCorrUsed, 'type', 'a bool')
+    r_2sv_10_10crCorrUsed = 1 if r_2sv_10_10crCorrUsed else 0
+    r_2sv_10_10doCorrUsed: Any = g_2sv_10.doCorrUsed
+    if r_2sv_10_10doCorrUsed is not True and r_2sv_10_10doCorrUsed is not False and r_2sv_10_10doCorrUsed != 0 and r_2sv_10_10doCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[10].doCorrUsed', r_2sv_10_10doCorrUsed, 'type', 'a bool')
+    r_2sv_10_10doCorrUsed = 1 if r_2sv_10_10doCorrUsed else 0
+    r_2sv_10_12clasCorrUsed: Any = g_2sv_10.clasCorrUsed
+    if r_2sv_10_12clasCorrUsed is not True and r_2sv_10_12clasCorrUsed is not False and r_2sv_10_12clasCorrUsed != 0 and r_2sv_10_12clasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[10].clasCorrUsed', r_2sv_10_12clasCorrUsed, 'type', 'a bool')
+    r_2sv_10_12clasCorrUsed = 1 if r_2sv_10_12clasCorrUsed else 0
+    r_2sv_10_11lppCorrUsed: Any = g_2sv_10.lppCorrUsed
+    if r_2sv_10_11lppCorrUsed is not True and r_2sv_10_11lppCorrUsed is not False and r_2sv_10_11lppCorrUsed != 0 and r_2sv_10_11lppCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[10].lppCorrUsed', r_2sv_10_11lppCorrUsed, 'type', 'a bool')
+    r_2sv_10_11lppCorrUsed = 1 if r_2sv_10_11lppCorrUsed else 0
+    r_2sv_10_11hasCorrUsed: Any = g_2sv_10.hasCorrUsed
+    if r_2sv_10_11hasCorrUsed is not True and r_2sv_10_11hasCorrUsed is not False and r_2sv_10_11hasCorrUsed != 0 and r_2sv_10_11hasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[10].hasCorrUsed', r_2sv_10_11hasCorrUsed, 'type', 'a bool')
+    r_2sv_10_11hasCorrUsed = 1 if r_2sv_10_11hasCorrUsed else 0
+    r_2sv_10_11flags_spare = 0
+    return (r_2sv_10_6gnssId, r_2sv_10_4svId, r_2sv_10_3cno, r_2sv_10_4elev, r_2sv_10_4azim, r_2sv_10_5prRes, r_2sv_10_10qualityInd, r_2sv_10_6svUsed, r_2sv_10_6health, r_2sv_10_8diffCorr, r_2sv_10_8smoothed, r_2sv_10_11orbitSource, r_2sv_10_8ephAvail, r_2sv_10_8almAvail, r_2sv_10_8anoAvail, r_2sv_10_8aopAvail, r_2sv_10_10reserved13, r_2sv_10_12sbasCorrUsed, r_2sv_10_12rtcmCorrUsed, r_2sv_10_12slasCorrUsed, r_2sv_10_14spartnCorrUsed, r_2sv_10_10prCorrUsed, r_2sv_10_10crCorrUsed, r_2sv_10_10doCorrUsed, r_2sv_10_12clasCorrUsed, r_2sv_10_11lppCorrUsed, r_2sv_10_11hasCorrUsed, r_2sv_10_11flags_spare, )
+
+
+def _raw_nav_sat_2sv_11(g_2sv_11: Any) -> tuple[Any, ...]:
+    r_2sv_11_6gnssId = g_2sv_11.gnssId
+    if r_2sv_11_6gnssId.__class__ is not int and (not isinstance(r_2sv_11_6gnssId, int) or r_2sv_11_6gnssId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[11].gnssId', r_2sv_11_6gnssId, 'type', 'an int')
+    if not 0 <= r_2sv_11_6gnssId <= 255:
+        raise _enc('nav_sat', 'sv[11].gnssId', r_2sv_11_6gnssId, 'range', '0..255', None)
+    r_2sv_11_4svId = g_2sv_11.svId
+    if r_2sv_11_4svId.__class__ is not int and (not isinstance(r_2sv_11_4svId, int) or r_2sv_11_4svId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[11].svId', r_2sv_11_4svId, 'type', 'an int')
+    if not 0 <= r_2sv_11_4svId <= 255:
+        raise _enc('nav_sat', 'sv[11].svId', r_2sv_11_4svId, 'range', '0..255', None)
+    r_2sv_11_3cno = g_2sv_11.cno
+    if r_2sv_11_3cno.__class__ is not int and (not isinstance(r_2sv_11_3cno, int) or r_2sv_11_3cno.__class__ is bool):
+        raise _enc('nav_sat', 'sv[11].cno', r_2sv_11_3cno, 'type', 'an int')
+    if not 0 <= r_2sv_11_3cno <= 255:
+        raise _enc('nav_sat', 'sv[11].cno', r_2sv_11_3cno, 'range', '0..255', None)
+    r_2sv_11_4elev = g_2sv_11.elev
+    if r_2sv_11_4elev.__class__ is not int and (not isinstance(r_2sv_11_4elev, int) or r_2sv_11_4elev.__class__ is bool):
+        raise _enc('nav_sat', 'sv[11].elev', r_2sv_11_4elev, 'type', 'an int')
+    if not -128 <= r_2sv_11_4elev <= 127:
+        raise _enc('nav_sat', 'sv[11].elev', r_2sv_11_4elev, 'range', '-128..127', None)
+    r_2sv_11_4azim = g_2sv_11.azim
+    if r_2sv_11_4azim.__class__ is not int and (not isinstance(r_2sv_11_4azim, int) or r_2sv_11_4azim.__class__ is bool):
+        raise _enc('nav_sat', 'sv[11].azim', r_2sv_11_4azim, 'type', 'an int')
+    if not -32768 <= r_2sv_11_4azim <= 32767:
+        raise _enc('nav_sat', 'sv[11].azim', r_2sv_11_4azim, 'range', '-32768..32767', None)
+    r_2sv_11_5prRes = g_2sv_11.prRes
+    if r_2sv_11_5prRes.__class__ is not float and (not isinstance(r_2sv_11_5prRes, (int, float)) or r_2sv_11_5prRes.__class__ is bool):
+        raise _enc('nav_sat', 'sv[11].prRes', r_2sv_11_5prRes, 'type', 'a number')
+    if not -3276.8 <= r_2sv_11_5prRes <= 3276.7000000000003:
+        raise _enc('nav_sat', 'sv[11].prRes', r_2sv_11_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    r_2sv_11_5prRes = _floor(r_2sv_11_5prRes / 0.1 + 0.5)
+    r_2sv_11_10qualityInd = g_2sv_11.qualityInd
+    if r_2sv_11_10qualityInd.__class__ is not int and (not isinstance(r_2sv_11_10qualityInd, int) or r_2sv_11_10qualityInd.__class__ is bool):
+        raise _enc('nav_sat', 'sv[11].qualityInd', r_2sv_11_10qualityInd, 'type', 'an int')
+    if not 0 <= r_2sv_11_10qualityInd <= 7:
+        raise _enc('nav_sat', 'sv[11].qualityInd', r_2sv_11_10qualityInd, 'range', '0..7', None)
+    r_2sv_11_6svUsed: Any = g_2sv_11.svUsed
+    if r_2sv_11_6svUsed is not True and r_2sv_11_6svUsed is not False and r_2sv_11_6svUsed != 0 and r_2sv_11_6svUsed != 1:
+        raise _enc('nav_sat', 'sv[11].svUsed', r_2sv_11_6svUsed, 'type', 'a bool')
+    r_2sv_11_6svUsed = 1 if r_2sv_11_6svUsed else 0
+    r_2sv_11_6health = g_2sv_11.health
+    if r_2sv_11_6health.__class__ is not int and (not isinstance(r_2sv_11_6health, int) or r_2sv_11_6health.__class__ is bool):
+        raise _enc('nav_sat', 'sv[11].health', r_2sv_11_6health, 'type', 'an int')
+    if not 0 <= r_2sv_11_6health <= 3:
+        raise _enc('nav_sat', 'sv[11].health', r_2sv_11_6health, 'range', '0..3', None)
+    r_2sv_11_8diffCorr: Any = g_2sv_11.diffCorr
+    if r_2sv_11_8diffCorr is not True and r_2sv_11_8diffCorr is not False and r_2sv_11_8diffCorr != 0 and r_2sv_11_8diffCorr != 1:
+        raise _enc('nav_sat', 'sv[11].diffCorr', r_2sv_11_8diffCorr, 'type', 'a bool')
+    r_2sv_11_8diffCorr = 1 if r_2sv_11_8diffCorr else 0
+    r_2sv_11_8smoothed: Any = g_2sv_11.smoothed
+    if r_2sv_11_8smoothed is not True and r_2sv_11_8smoothed is not False and r_2sv_11_8smoothed != 0 and r_2sv_11_8smoothed != 1:
+        raise _enc('nav_sat', 'sv[11].smoothed', r_2sv_11_8smoothed, 'type', 'a bool')
+    r_2sv_11_8smoothed = 1 if r_2sv_11_8smoothed else 0
+    r_2sv_11_11orbitSource = g_2sv_11.orbitSource
+    if r_2sv_11_11orbitSource.__class__ is not int and (not isinstance(r_2sv_11_11orbitSource, int) or r_2sv_11_11orbitSource.__class__ is bool):
+        raise _enc('nav_sat', 'sv[11].orbitSource', r_2sv_11_11orbitSource, 'type', 'an int')
+    if not 0 <= r_2sv_11_11orbitSource <= 7:
+        raise _enc('nav_sat', 'sv[11].orbitSource', r_2sv_11_11orbitSource, 'range', '0..7', None)
+    r_2sv_11_8ephAvail: Any = g_2sv_11.ephAvail
+    if r_2sv_11_8ephAvail is not True and r_2sv_11_8ephAvail is not False and r_2sv_11_8ephAvail != 0 and r_2sv_11_8ephAvail != 1:
+        raise _enc('nav_sat', 'sv[11].ephAvail', r_2sv_11_8ephAvail, 'type', 'a bool')
+    r_2sv_11_8ephAvail = 1 if r_2sv_11_8ephAvail else 0
+    r_2sv_11_8almAvail: Any = g_2sv_11.almAvail
+    if r_2sv_11_8almAvail is not True and r_2sv_11_8almAvail is not False and r_2sv_11_8almAvail != 0 and r_2sv_11_8almAvail != 1:
+        raise _enc('nav_sat', 'sv[11].almAvail', r_2sv_11_8almAvail, 'type', 'a bool')
+    r_2sv_11_8almAvail = 1 if r_2sv_11_8almAvail else 0
+    r_2sv_11_8anoAvail: Any = g_2sv_11.anoAvail
+    if r_2sv_11_8anoAvail is not True and r_2sv_11_8anoAvail is not False and r_2sv_11_8anoAvail != 0 and r_2sv_11_8anoAvail != 1:
+        raise _enc('nav_sat', 'sv[11].anoAvail', r_2sv_11_8anoAvail, 'type', 'a bool')
+    r_2sv_11_8anoAvail = 1 if r_2sv_11_8anoAvail else 0
+    r_2sv_11_8aopAvail: Any = g_2sv_11.aopAvail
+    if r_2sv_11_8aopAvail is not True and r_2sv_11_8aopAvail is not False and r_2sv_11_8aopAvail != 0 and r_2sv_11_8aopAvail != 1:
+        raise _enc('nav_sat', 'sv[11].aopAvail', r_2sv_11_8aopAvail, 'type', 'a bool')
+    r_2sv_11_8aopAvail = 1 if r_2sv_11_8aopAvail else 0
+    r_2sv_11_10reserved13 = g_2sv_11.reserved13
+    if r_2sv_11_10reserved13.__class__ is not int and (not isinstance(r_2sv_11_10reserved13, int) or r_2sv_11_10reserved13.__class__ is bool):
+        raise _enc('nav_sat', 'sv[11].reserved13', r_2sv_11_10reserved13, 'type', 'an int')
+    if not 0 <= r_2sv_11_10reserved13 <= 1:
+        raise _enc('nav_sat', 'sv[11].reserved13', r_2sv_11_10reserved13, 'range', '0..1', None)
+    r_2sv_11_12sbasCorrUsed: Any = g_2sv_11.sbasCorrUsed
+    if r_2sv_11_12sbasCorrUsed is not True and r_2sv_11_12sbasCorrUsed is not False and r_2sv_11_12sbasCorrUsed != 0 and r_2sv_11_12sbasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[11].sbasCorrUsed', r_2sv_11_12sbasCorrUsed, 'type', 'a bool')
+    r_2sv_11_12sbasCorrUsed = 1 if r_2sv_11_12sbasCorrUsed else 0
+    r_2sv_11_12rtcmCorrUsed: Any = g_2sv_11.rtcmCorrUsed
+    if r_2sv_11_12rtcmCorrUsed is not True and r_2sv_11_12rtcmCorrUsed is not False and r_2sv_11_12rtcmCorrUsed != 0 and r_2sv_11_12rtcmCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[11].rtcmCorrUsed', r_2sv_11_12rtcmCorrUsed, 'type', 'a bool')
+    r_2sv_11_12rtcmCorrUsed = 1 if r_2sv_11_12rtcmCorrUsed else 0
+    r_2sv_11_12slasCorrUsed: Any = g_2sv_11.slasCorrUsed
+    if r_2sv_11_12slasCorrUsed is not True and r_2sv_11_12slasCorrUsed is not False and r_2sv_11_12slasCorrUsed != 0 and r_2sv_11_12slasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[11].slasCorrUsed', r_2sv_11_12slasCorrUsed, 'type', 'a bool')
+    r_2sv_11_12slasCorrUsed = 1 if r_2sv_11_12slasCorrUsed else 0
+    r_2sv_11_14spartnCorrUsed: Any = g_2sv_11.spartnCorrUsed
+    if r_2sv_11_14spartnCorrUsed is not True and r_2sv_11_14spartnCorrUsed is not False and r_2sv_11_14spartnCorrUsed != 0 and r_2sv_11_14spartnCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[11].spartnCorrUsed', r_2sv_11_14spartnCorrUsed, 'type', 'a bool')
+    r_2sv_11_14spartnCorrUsed = 1 if r_2sv_11_14spartnCorrUsed else 0
+    r_2sv_11_10prCorrUsed: Any = g_2sv_11.prCorrUsed
+    if r_2sv_11_10prCorrUsed is not True and r_2sv_11_10prCorrUsed is not False and r_2sv_11_10prCorrUsed != 0 and r_2sv_11_10prCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[11].prCorrUsed', r_2sv_11_10prCorrUsed, 'type', 'a bool')
+    r_2sv_11_10prCorrUsed = 1 if r_2sv_11_10prCorrUsed else 0
+    r_2sv_11_10crCorrUsed: Any = g_2sv_11.crCorrUsed
+    if r_2sv_11_10crCorrUsed is not True and r_2sv_11_10crCorrUsed is not False and r_2sv_11_10crCorrUsed != 0 and r_2sv_11_10crCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[11].crCorrUsed', r_2sv_11_10crCorrUsed, 'type', 'a bool')
+    r_2sv_11_10crCorrUsed = 1 if r_2sv_11_10crCorrUsed else 0
+    r_2sv_11_10doCorrUsed: Any = g_2sv_11.doCorrUsed
+    if r_2sv_11_10doCorrUsed is not True and r_2sv_11_10doCorrUsed is not False and r_2sv_11_10doCorrUsed != 0 and r_2sv_11_10doCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[11].doCorrUsed', r_2sv_11_10doCorrUsed, 'type', 'a bool')
+    r_2sv_11_10doCorrUsed = 1 if r_2sv_11_10doCorrUsed else 0
+    r_2sv_11_12clasCorrUsed: Any = g_2sv_11.clasCorrUsed
+    if r_2sv_11_12clasCorrUsed is not True and r_2sv_11_12clasCorrUsed is not False and r_2sv_11_12clasCorrUsed != 0 and r_2sv_11_12clasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[11].clasCorrUsed', r_2sv_11_12clasCorrUsed, 'type', 'a bool')
+    r_2sv_11_12clasCorrUsed = 1 if r_2sv_11_12clasCorrUsed else 0
+    r_2sv_11_11lppCorrUsed: Any = g_2sv_11.lppCorrUsed
+    if r_2sv_11_11lppCorrUsed is not True and r_2sv_11_11lppCorrUsed is not False and r_2sv_11_11lppCorrUsed != 0 and r_2sv_11_11lppCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[11].lppCorrUsed', r_2sv_11_11lppCorrUsed, 'type', 'a bool')
+    r_2sv_11_11lppCorrUsed = 1 if r_2sv_11_11lppCorrUsed else 0
+    r_2sv_11_11hasCorrUsed: Any = g_2sv_11.hasCorrUsed
+    if r_2sv_11_11hasCorrUsed is not True and r_2sv_11_11hasCorrUsed is not False and r_2sv_11_11hasCorrUsed != 0 and r_2sv_11_11hasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[11].hasCorrUsed', r_2sv_11_11hasCorrUsed, 'type', 'a bool')
+    r_2sv_11_11hasCorrUsed = 1 if r_2sv_11_11hasCorrUsed else 0
+    r_2sv_11_11flags_spare = 0
+    return (r_2sv_11_6gnssId, r_2sv_11_4svId, r_2sv_11_3cno, r_2sv_11_4elev, r_2sv_11_4azim, r_2sv_11_5prRes, r_2sv_11_10qualityInd, r_2sv_11_6svUsed, r_2sv_11_6health, r_2sv_11_8diffCorr, r_2sv_11_8smoothed, r_2sv_11_11orbitSource, r_2sv_11_8ephAvail, r_2sv_11_8almAvail, r_2sv_11_8anoAvail, r_2sv_11_8aopAvail, r_2sv_11_10reserved13, r_2sv_11_12sbasCorrUsed, r_2sv_11_12rtcmCorrUsed, r_2sv_11_12slasCorrUsed, r_2sv_11_14spartnCorrUsed, r_2sv_11_10prCorrUsed, r_2sv_11_10crCorrUsed, r_2sv_11_10doCorrUsed, r_2sv_11_12clasCorrUsed, r_2sv_11_11lppCorrUsed, r_2sv_11_11hasCorrUsed, r_2sv_11_11flags_spare, )
+
+
+def _raw_nav_sat_2sv_12(g_2sv_12: Any) -> tuple[Any, ...]:
+    r_2sv_12_6gnssId = g_2sv_12.gnssId
+    if r_2sv_12_6gnssId.__class__ is not int and (not isinstance(r_2sv_12_6gnssId, int) or r_2sv_12_6gnssId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[12].gnssId', r_2sv_12_6gnssId, 'type', 'an int')
+    if not 0 <= r_2sv_12_6gnssId <= 255:
+        raise _enc('nav_sat', 'sv[12].gnssId', r_2sv_12_6gnssId, 'range', '0..255', None)
+    r_2sv_12_4svId = g_2sv_12.svId
+    if r_2sv_12_4svId.__class__ is not int and (not isinstance(r_2sv_12_4svId, int) or r_2sv_12_4svId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[12].svId', r_2sv_12_4svId, 'type', 'an int')
+    if not 0 <= r_2sv_12_4svId <= 255:
+        raise _enc('nav_sat', 'sv[12].svId', r_2sv_12_4svId, 'range', '0..255', None)
+    r_2sv_12_3cno = g_2sv_12.cno
+    if r_2sv_12_3cno.__class__ is not int and (not isinstance(r_2sv_12_3cno, int) or r_2sv_12_3cno.__class__ is bool):
+        raise _enc('nav_sat', 'sv[12].cno', r_2sv_12_3cno, 'type', 'an int')
+    if not 0 <= r_2sv_12_3cno <= 255:
+        raise _enc('nav_sat', 'sv[12].cno', r_2sv_12_3cno, 'range', '0..255', None)
+    r_2sv_12_4elev = g_2sv_12.elev
+    if r_2sv_12_4elev.__class__ is not int and (not isinstance(r_2sv_12_4elev, int) or r_2sv_12_4elev.__class__ is bool):
+        raise _enc('nav_sat', 'sv[12].elev', r_2sv_12_4elev, 'type', 'an int')
+    if not -128 <= r_2sv_12_4elev <= 127:
+        raise _enc('nav_sat', 'sv[12].elev', r_2sv_12_4elev, 'range', '-128..127', None)
+    r_2sv_12_4azim = g_2sv_12.azim
+    if r_2sv_12_4azim.__class__ is not int and (not isinstance(r_2sv_12_4azim, int) or r_2sv_12_4azim.__class__ is bool):
+        raise _enc('nav_sat', 'sv[12].azim', r_2sv_12_4azim, 'type', 'an int')
+    if not -32768 <= r_2sv_12_4azim <= 32767:
+        raise _enc('nav_sat', 'sv[12].azim', r_2sv_12_4azim, 'range', '-32768..32767', None)
+    r_2sv_12_5prRes = g_2sv_12.prRes
+    if r_2sv_12_5prRes.__class__ is not float and (not isinstance(r_2sv_12_5prRes, (int, float)) or r_2sv_12_5prRes.__class__ is bool):
+        raise _enc('nav_sat', 'sv[12].prRes', r_2sv_12_5prRes, 'type', 'a number')
+    if not -3276.8 <= r_2sv_12_5prRes <= 3276.7000000000003:
+        raise _enc('nav_sat', 'sv[12].prRes', r_2sv_12_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    r_2sv_12_5prRes = _floor(r_2sv_12_5prRes / 0.1 + 0.5)
+    r_2sv_12_10qualityInd = g_2sv_12.qualityInd
+    if r_2sv_12_10qualityInd.__class__ is not int and (not isinstance(r_2sv_12_10qualityInd, int) or r_2sv_12_10qualityInd.__class__ is bool):
+        raise _enc('nav_sat', 'sv[12].qualityInd', r_2sv_12_10qualityInd, 'type', 'an int')
+    if not 0 <= r_2sv_12_10qualityInd <= 7:
+        raise _enc('nav_sat', 'sv[12].qualityInd', r_2sv_12_10qualityInd, 'range', '0..7', None)
+    r_2sv_12_6svUsed: Any = g_2sv_12.svUsed
+    if r_2sv_12_6svUsed is not True and r_2sv_12_6svUsed is not False and r_2sv_12_6svUsed != 0 and r_2sv_12_6svUsed != 1:
+        raise _enc('nav_sat', 'sv[12].svUsed', r_2sv_12_6svUsed, 'type', 'a bool')
+    r_2sv_12_6svUsed = 1 if r_2sv_12_6svUsed else 0
+    r_2sv_12_6health = g_2sv_12.health
+    if r_2sv_12_6health.__class__ is not int and (not isinstance(r_2sv_12_6health, int) or r_2sv_12_6health.__class__ is bool):
+        raise _enc('nav_sat', 'sv[12].health', r_2sv_12_6health, 'type', 'an int')
+    if not 0 <= r_2sv_12_6health <= 3:
+        raise _enc('nav_sat', 'sv[12].health', r_2sv_12_6health, 'range', '0..3', None)
+    r_2sv_12_8diffCorr: Any = g_2sv_12.diffCorr
+    if r_2sv_12_8diffCorr is not True and r_2sv_12_8diffCorr is not False and r_2sv_12_8diffCorr != 0 and r_2sv_12_8diffCorr != 1:
+        raise _enc('nav_sat', 'sv[12].diffCorr', r_2sv_12_8diffCorr, 'type', 'a bool')
+    r_2sv_12_8diffCorr = 1 if r_2sv_12_8diffCorr else 0
+    r_2sv_12_8smoothed: Any = g_2sv_12.smoothed
+    if r_2sv_12_8smoothed is not True and r_2sv_12_8smoothed is not False and r_2sv_12_8smoothed != 0 and r_2sv_12_8smoothed != 1:
+        raise _enc('nav_sat', 'sv[12].smoothed', r_2sv_12_8smoothed, 'type', 'a bool')
+    r_2sv_12_8smoothed = 1 if r_2sv_12_8smoothed else 0
+    r_2sv_12_11orbitSource = g_2sv_12.orbitSource
+    if r_2sv_12_11orbitSource.__class__ is not int and (not isinstance(r_2sv_12_11orbitSource, int) or r_2sv_12_11orbitSource.__class__ is bool):
+        raise _enc('nav_sat', 'sv[12].orbitSource', r_2sv_12_11orbitSource, 'type', 'an int')
+    if not 0 <= r_2sv_12_11orbitSource <= 7:
+        raise _enc('nav_sat', 'sv[12].orbitSource', r_2sv_12_11orbitSource, 'range', '0..7', None)
+    r_2sv_12_8ephAvail: Any = g_2sv_12.ephAvail
+    if r_2sv_12_8ephAvail is not True and r_2sv_12_8ephAvail is not False and r_2sv_12_8ephAvail != 0 and r_2sv_12_8ephAvail != 1:
+        raise _enc('nav_sat', 'sv[12].ephAvail', r_2sv_12_8ephAvail, 'type', 'a bool')
+    r_2sv_12_8ephAvail = 1 if r_2sv_12_8ephAvail else 0
+    r_2sv_12_8almAvail: Any = g_2sv_12.almAvail
+    if r_2sv_12_8almAvail is not True and r_2sv_12_8almAvail is not False and r_2sv_12_8almAvail != 0 and r_2sv_12_8almAvail != 1:
+        raise _enc('nav_sat', 'sv[12].almAvail', r_2sv_12_8almAvail, 'type', 'a bool')
+    r_2sv_12_8almAvail = 1 if r_2sv_12_8almAvail else 0
+    r_2sv_12_8anoAvail: Any = g_2sv_12.anoAvail
+    if r_2sv_12_8anoAvail is not True and r_2sv_12_8anoAvail is not False and r_2sv_12_8anoAvail != 0 and r_2sv_12_8anoAvail != 1:
+        raise _enc('nav_sat', 'sv[12].anoAvail', r_2sv_12_8anoAvail, 'type', 'a bool')
+    r_2sv_12_8anoAvail = 1 if r_2sv_12_8anoAvail else 0
+    r_2sv_12_8aopAvail: Any = g_2sv_12.aopAvail
+    if r_2sv_12_8aopAvail is not True and r_2sv_12_8aopAvail is not False and r_2sv_12_8aopAvail != 0 and r_2sv_12_8aopAvail != 1:
+        raise _enc('nav_sat', 'sv[12].aopAvail', r_2sv_12_8aopAvail, 'type', 'a bool')
+    r_2sv_12_8aopAvail = 1 if r_2sv_12_8aopAvail else 0
+    r_2sv_12_10reserved13 = g_2sv_12.reserved13
+    if r_2sv_12_10reserved13.__class__ is not int and (not isinstance(r_2sv_12_10reserved13, int) or r_2sv_12_10reserved13.__class__ is bool):
+        raise _enc('nav_sat', 'sv[12].reserved13', r_2sv_12_10reserved13, 'type', 'an int')
+    if not 0 <= r_2sv_12_10reserved13 <= 1:
+        raise _enc('nav_sat', 'sv[12].reserved13', r_2sv_12_10reserved13, 'range', '0..1', None)
+    r_2sv_12_12sbasCorrUsed: Any = g_2sv_12.sbasCorrUsed
+    if r_2sv_12_12sbasCorrUsed is not True and r_2sv_12_12sbasCorrUsed is not False and r_2sv_12_12sbasCorrUsed != 0 and r_2sv_12_12sbasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[12].sbasCorrUsed', r_2sv_12_12sbasCorrUsed, 'type', 'a bool')
+    r_2sv_12_12sbasCorrUsed = 1 if r_2sv_12_12sbasCorrUsed else 0
+    r_2sv_12_12rtcmCorrUsed: Any = g_2sv_12.rtcmCorrUsed
+    if r_2sv_12_12rtcmCorrUsed is not True and r_2sv_12_12rtcmCorrUsed is not False and r_2sv_12_12rtcmCorrUsed != 0 and r_2sv_12_12rtcmCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[12].rtcmCorrUsed', r_2sv_12_12rtcmCorrUsed, 'type', 'a bool')
+    r_2sv_12_12rtcmCorrUsed = 1 if r_2sv_12_12rtcmCorrUsed else 0
+    r_2sv_12_12slasCorrUsed: Any = g_2sv_12.slasCorrUsed
+    if r_2sv_12_12slasCorrUsed is not True and r_2sv_12_12slasCorrUsed is not False and r_2sv_12_12slasCorrUsed != 0 and r_2sv_12_12slasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[12].slasCorrUsed', r_2sv_12_12slasCorrUsed, 'type', 'a bool')
+    r_2sv_12_12slasCorrUsed = 1 if r_2sv_12_12slasCorrUsed else 0
+    r_2sv_12_14spartnCorrUsed: Any = g_2sv_12.spartnCorrUsed
+    if r_2sv_12_14spartnCorrUsed is not True and r_2sv_12_14spartnCorrUsed is not False and r_2sv_12_14spartnCorrUsed != 0 and r_2sv_12_14spartnCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[12].spartnCorrUsed', r_2sv_12_14spartnCorrUsed, 'type', 'a bool')
+    r_2sv_12_14spartnCorrUsed = 1 if r_2sv_12_14spartnCorrUsed else 0
+    r_2sv_12_10prCorrUsed: Any = g_2sv_12.prCorrUsed
+    if r_2sv_12_10prCorrUsed is not True and r_2sv_12_10prCorrUsed is not False and r_2sv_12_10prCorrUsed != 0 and r_2sv_12_10prCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[12].prCorrUsed', r_2sv_12_10prCorrUsed, 'type', 'a bool')
+    r_2sv_12_10prCorrUsed = 1 if r_2sv_12_10prCorrUsed else 0
+    r_2sv_12_10crCorrUsed: Any = g_2sv_12.crCorrUsed
+    if r_2sv_12_10crCorrUsed is not True and r_2sv_12_10crCorrUsed is not False and r_2sv_12_10crCorrUsed != 0 and r_2sv_12_10crCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[12].crCorrUsed', r_2sv_12_10crCorrUsed, 'type', 'a bool')
+    r_2sv_12_10crCorrUsed = 1 if r_2sv_12_10crCorrUsed else 0
+    r_2sv_12_10doCorrUsed: Any = g_2sv_12.doCorrUsed
+    if r_2sv_12_10doCorrUsed is not True and r_2sv_12_10doCorrUsed is not False and r_2sv_12_10doCorrUsed != 0 and r_2sv_12_10doCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[12].doCorrUsed', r_2sv_12_10doCorrUsed, 'type', 'a bool')
+    r_2sv_12_10doCorrUsed = 1 if r_2sv_12_10doCorrUsed else 0
+    r_2sv_12_12clasCorrUsed: Any = g_2sv_12.clasCorrUsed
+    if r_2sv_12_12clasCorrUsed is not True and r_2sv_12_12clasCorrUsed is not False and r_2sv_12_12clasCorrUsed != 0 and r_2sv_12_12clasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[12].clasCorrUsed', r_2sv_12_12clasCorrUsed, 'type', 'a bool')
+    r_2sv_12_12clasCorrUsed = 1 if r_2sv_12_12clasCorrUsed else 0
+    r_2sv_12_11lppCorrUsed: Any = g_2sv_12.lppCorrUsed
+    if r_2sv_12_11lppCorrUsed is not True and r_2sv_12_11lppCorrUsed is not False and r_2sv_12_11lppCorrUsed != 0 and r_2sv_12_11lppCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[12].lppCorrUsed', r_2sv_12_11lppCorrUsed, 'type', 'a bool')
+    r_2sv_12_11lppCorrUsed = 1 if r_2sv_12_11lppCorrUsed else 0
+    r_2sv_12_11hasCorrUsed: Any = g_2sv_12.hasCorrUsed
+    if r_2sv_12_11hasCorrUsed is not True and r_2sv_12_11hasCorrUsed is not False and r_2sv_12_11hasCorrUsed != 0 and r_2sv_12_11hasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[12].hasCorrUsed', r_2sv_12_11hasCorrUsed, 'type', 'a bool')
+    r_2sv_12_11hasCorrUsed = 1 if r_2sv_12_11hasCorrUsed else 0
+    r_2sv_12_11flags_spare = 0
+    return (r_2sv_12_6gnssId, r_2sv_12_4svId, r_2sv_12_3cno, r_2sv_12_4elev, r_2sv_12_4azim, r_2sv_12_5prRes, r_2sv_12_10qualityInd, r_2sv_12_6svUsed, r_2sv_12_6health, r_2sv_12_8diffCorr, r_2sv_12_8smoothed, r_2sv_12_11orbitSource, r_2sv_12_8ephAvail, r_2sv_12_8almAvail, r_2sv_12_8anoAvail, r_2sv_12_8aopAvail, r_2sv_12_10reserved13, r_2sv_12_12sbasCorrUsed, r_2sv_12_12rtcmCorrUsed, r_2sv_12_12slasCorrUsed, r_2sv_12_14spartnCorrUsed, r_2sv_12_10prCorrUsed, r_2sv_12_10crCorrUsed, r_2sv_12_10doCorrUsed, r_2sv_12_12clasCorrUsed, r_2sv_12_11lppCorrUsed, r_2sv_12_11hasCorrUsed, r_2sv_12_11flags_spare, )
+
+
+def _raw_nav_sat_2sv_13(g_2sv_13: Any) -> tuple[Any, ...]:
+    r_2sv_13_6gnssId = g_2sv_13.gnssId
+    if r_2sv_13_6gnssId.__class__ is not int and (not isinstance(r_2sv_13_6gnssId, int) or r_2sv_13_6gnssId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[13].gnssId', r_2sv_13_6gnssId, 'type', 'an int')
+    if not 0 <= r_2sv_13_6gnssId <= 255:
+        raise _enc('nav_sat', 'sv[13].gnssId', r_2sv_13_6gnssId, 'range', '0..255', None)
+    r_2sv_13_4svId = g_2sv_13.svId
+    if r_2sv_13_4svId.__class__ is not int and (not isinstance(r_2sv_13_4svId, int) or r_2sv_13_4svId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[13].svId', r_2sv_13_4svId, 'type', 'an int')
+    if not 0 <= r_2sv_13_4svId <= 255:
+        raise _enc('nav_sat', 'sv[13].svId', r_2sv_13_4svId, 'range', '0..255', None)
+    r_2sv_13_3cno = g_2sv_13.cno
+    if r_2sv_13_3cno.__class__ is not int and (not isinstance(r_2sv_13_3cno, int) or r_2sv_13_3cno.__class__ is bool):
+        raise _enc('nav_sat', 'sv[13].cno', r_2sv_13_3cno, 'type', 'an int')
+    if not 0 <= r_2sv_13_3cno <= 255:
+        raise _enc('nav_sat', 'sv[13].cno', r_2sv_13_3cno, 'range', '0..255', None)
+    r_2sv_13_4elev = g_2sv_13.elev
+    if r_2sv_13_4elev.__class__ is not int and (not isinstance(r_2sv_13_4elev, int) or r_2sv_13_4elev.__class__ is bool):
+        raise _enc('nav_sat', 'sv[13].elev', r_2sv_13_4elev, 'type', 'an int')
+    if not -128 <= r_2sv_13_4elev <= 127:
+        raise _enc('nav_sat', 'sv[13].elev', r_2sv_13_4elev, 'range', '-128..127', None)
+    r_2sv_13_4azim = g_2sv_13.azim
+    if r_2sv_13_4azim.__class__ is not int and (not isinstance(r_2sv_13_4azim, int) or r_2sv_13_4azim.__class__ is bool):
+        raise _enc('nav_sat', 'sv[13].azim', r_2sv_13_4azim, 'type', 'an int')
+    if not -32768 <= r_2sv_13_4azim <= 32767:
+        raise _enc('nav_sat', 'sv[13].azim', r_2sv_13_4azim, 'range', '-32768..32767', None)
+    r_2sv_13_5prRes = g_2sv_13.prRes
+    if r_2sv_13_5prRes.__class__ is not float and (not isinstance(r_2sv_13_5prRes, (int, float)) or r_2sv_13_5prRes.__class__ is bool):
+        raise _enc('nav_sat', 'sv[13].prRes', r_2sv_13_5prRes, 'type', 'a number')
+    if not -3276.8 <= r_2sv_13_5prRes <= 3276.7000000000003:
+        raise _enc('nav_sat', 'sv[13].prRes', r_2sv_13_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    r_2sv_13_5prRes = _floor(r_2sv_13_5prRes / 0.1 + 0.5)
+    r_2sv_13_10qualityInd = g_2sv_13.qualityInd
+    if r_2sv_13_10qualityInd.__class__ is not int and (not isinstance(r_2sv_13_10qualityInd, int) or r_2sv_13_10qualityInd.__class__ is bool):
+        raise _enc('nav_sat', 'sv[13].qualityInd', r_2sv_13_10qualityInd, 'type', 'an int')
+    if not 0 <= r_2sv_13_10qualityInd <= 7:
+        raise _enc('nav_sat', 'sv[13].qualityInd', r_2sv_13_10qualityInd, 'range', '0..7', None)
+    r_2sv_13_6svUsed: Any = g_2sv_13.svUsed
+    if r_2sv_13_6svUsed is not True and r_2sv_13_6svUsed is not False and r_2sv_13_6svUsed != 0 and r_2sv_13_6svUsed != 1:
+        raise _enc('nav_sat', 'sv[13].svUsed', r_2sv_13_6svUsed, 'type', 'a bool')
+    r_2sv_13_6svUsed = 1 if r_2sv_13_6svUsed else 0
+    r_2sv_13_6health = g_2sv_13.health
+    if r_2sv_13_6health.__class__ is not int and (not isinstance(r_2sv_13_6health, int) or r_2sv_13_6health.__class__ is bool):
+        raise _enc('nav_sat', 'sv[13].health', r_2sv_13_6health, 'type', 'an int')
+    if not 0 <= r_2sv_13_6health <= 3:
+        raise _enc('nav_sat', 'sv[13].health', r_2sv_13_6health, 'range', '0..3', None)
+    r_2sv_13_8diffCorr: Any = g_2sv_13.diffCorr
+    if r_2sv_13_8diffCorr is not True and r_2sv_13_8diffCorr is not False and r_2sv_13_8diffCorr != 0 and r_2sv_13_8diffCorr != 1:
+        raise _enc('nav_sat', 'sv[13].diffCorr', r_2sv_13_8diffCorr, 'type', 'a bool')
+    r_2sv_13_8diffCorr = 1 if r_2sv_13_8diffCorr else 0
+    r_2sv_13_8smoothed: Any = g_2sv_13.smoothed
+    if r_2sv_13_8smoothed is not True and r_2sv_13_8smoothed is not False and r_2sv_13_8smoothed != 0 and r_2sv_13_8smoothed != 1:
+        raise _enc('nav_sat', 'sv[13].smoothed', r_2sv_13_8smoothed, 'type', 'a bool')
+    r_2sv_13_8smoothed = 1 if r_2sv_13_8smoothed else 0
+    r_2sv_13_11orbitSource = g_2sv_13.orbitSource
+    if r_2sv_13_11orbitSource.__class__ is not int and (not isinstance(r_2sv_13_11orbitSource, int) or r_2sv_13_11orbitSource.__class__ is bool):
+        raise _enc('nav_sat', 'sv[13].orbitSource', r_2sv_13_11orbitSource, 'type', 'an int')
+    if not 0 <= r_2sv_13_11orbitSource <= 7:
+        raise _enc('nav_sat', 'sv[13].orbitSource', r_2sv_13_11orbitSource, 'range', '0..7', None)
+    r_2sv_13_8ephAvail: Any = g_2sv_13.ephAvail
+    if r_2sv_13_8ephAvail is not True and r_2sv_13_8ephAvail is not False and r_2sv_13_8ephAvail != 0 and r_2sv_13_8ephAvail != 1:
+        raise _enc('nav_sat', 'sv[13].ephAvail', r_2sv_13_8ephAvail, 'type', 'a bool')
+    r_2sv_13_8ephAvail = 1 if r_2sv_13_8ephAvail else 0
+    r_2sv_13_8almAvail: Any = g_2sv_13.almAvail
+    if r_2sv_13_8almAvail is not True and r_2sv_13_8almAvail is not False and r_2sv_13_8almAvail != 0 and r_2sv_13_8almAvail != 1:
+        raise _enc('nav_sat', 'sv[13].almAvail', r_2sv_13_8almAvail, 'type', 'a bool')
+    r_2sv_13_8almAvail = 1 if r_2sv_13_8almAvail else 0
+    r_2sv_13_8anoAvail: Any = g_2sv_13.anoAvail
+    if r_2sv_13_8anoAvail is not True and r_2sv_13_8anoAvail is not False and r_2sv_13_8anoAvail != 0 and r_2sv_13_8anoAvail != 1:
+        raise _enc('nav_sat', 'sv[13].anoAvail', r_2sv_13_8anoAvail, 'type', 'a bool')
+    r_2sv_13_8anoAvail = 1 if r_2sv_13_8anoAvail else 0
+    r_2sv_13_8aopAvail: Any = g_2sv_13.aopAvail
+    if r_2sv_13_8aopAvail is not True and r_2sv_13_8aopAvail is not False and r_2sv_13_8aopAvail != 0 and r_2sv_13_8aopAvail != 1:
+        raise _enc('nav_sat', 'sv[13].aopAvail', r_2sv_13_8aopAvail, 'type', 'a bool')
+    r_2sv_13_8aopAvail = 1 if r_2sv_13_8aopAvail else 0
+    r_2sv_13_10reserved13 = g_2sv_13.reserved13
+    if r_2sv_13_10reserved13.__class__ is not int and (not isinstance(r_2sv_13_10reserved13, int) or r_2sv_13_10reserved13.__class__ is bool):
+        raise _enc('nav_sat', 'sv[13].reserved13', r_2sv_13_10reserved13, 'type', 'an int')
+    if not 0 <= r_2sv_13_10reserved13 <= 1:
+        raise _enc('nav_sat', 'sv[13].reserved13', r_2sv_13_10reserved13, 'range', '0..1', None)
+    r_2sv_13_12sbasCorrUsed: Any = g_2sv_13.sbasCorrUsed
+    if r_2sv_13_12sbasCorrUsed is not True and r_2sv_13_12sbasCorrUsed is not False and r_2sv_13_12sbasCorrUsed != 0 and r_2sv_13_12sbasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[13].sbasCorrUsed', r_2sv_13_12sbasCorrUsed, 'type', 'a bool')
+    r_2sv_13_12sbasCorrUsed = 1 if r_2sv_13_12sbasCorrUsed else 0
+    r_2sv_13_12rtcmCorrUsed: Any = g_2sv_13.rtcmCorrUsed
+    if r_2sv_13_12rtcmCorrUsed is not True and r_2sv_13_12rtcmCorrUsed is not False and r_2sv_13_12rtcmCorrUsed != 0 and r_2sv_13_12rtcmCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[13].rtcmCorrUsed', r_2sv_13_12rtcmCorrUsed, 'type', 'a bool')
+    r_2sv_13_12rtcmCorrUsed = 1 if r_2sv_13_12rtcmCorrUsed else 0
+    r_2sv_13_12slasCorrUsed: Any = g_2sv_13.slasCorrUsed
+    if r_2sv_13_12slasCorrUsed is not True and r_2sv_13_12slasCorrUsed is not False and r_2sv_13_12slasCorrUsed != 0 and r_2sv_13_12slasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[13].slasCorrUsed', r_2sv_13_12slasCorrUsed, 'type', 'a bool')
+    r_2sv_13_12slasCorrUsed = 1 if r_2sv_13_12slasCorrUsed else 0
+    r_2sv_13_14spartnCorrUsed: Any = g_2sv_13.spartnCorrUsed
+    if r_2sv_13_14spartnCorrUsed is not True and r_2sv_13_14spartnCorrUsed is not False and r_2sv_13_14spartnCorrUsed != 0 and r_2sv_13_14spartnCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[13].spartnCorrUsed', r_2sv_13_14spartnCorrUsed, 'type', 'a bool')
+    r_2sv_13_14spartnCorrUsed = 1 if r_2sv_13_14spartnCorrUsed else 0
+    r_2sv_13_10prCorrUsed: Any = g_2sv_13.prCorrUsed
+    if r_2sv_13_10prCorrUsed is not True and r_2sv_13_10prCorrUsed is not False and r_2sv_13_10prCorrUsed != 0 and r_2sv_13_10prCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[13].prCorrUsed', r_2sv_13_10prCorrUsed, 'type', 'a bool')
+    r_2sv_13_10prCorrUsed = 1 if r_2sv_13_10prCorrUsed else 0
+    r_2sv_13_10crCorrUsed: Any = g_2sv_13.crCorrUsed
+    if r_2sv_13_10crCorrUsed is not True and r_2sv_13_10crCorrUsed is not False and r_2sv_13_10crCorrUsed != 0 and r_2sv_13_10crCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[13].crCorrUsed', r_2sv_13_10crCorrUsed, 'type', 'a bool')
+    r_2sv_13_10crCorrUsed = 1 if r_2sv_13_10crCorrUsed else 0
+    r_2sv_13_10doCorrUsed: Any = g_2sv_13.doCorrUsed
+    if r_2sv_13_10doCorrUsed is not True and r_2sv_13_10doCorrUsed is not False and r_2sv_13_10doCorrUsed != 0 and r_2sv_13_10doCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[13].doCorrUsed', r_2sv_13_10doCorrUsed, 'type', 'a bool')
+    r_2sv_13_10doCorrUsed = 1 if r_2sv_13_10doCorrUsed else 0
+    r_2sv_13_12clasCorrUsed: Any = g_2sv_13.clasCorrUsed
+    if r_2sv_13_12clasCorrUsed is not True and r_2sv_13_12clasCorrUsed is not False and r_2sv_13_12clasCorrUsed != 0 and r_2sv_13_12clasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[13].clasCorrUsed', r_2sv_13_12clasCorrUsed, 'type', 'a bool')
+    r_2sv_13_12clasCorrUsed = 1 if r_2sv_13_12clasCorrUsed else 0
+    r_2sv_13_11lppCorrUsed: Any = g_2sv_13.lppCorrUsed
+    if r_2sv_13_11lppCorrUsed is not True and r_2sv_13_11lppCorrUsed is not False and r_2sv_13_11lppCorrUsed != 0 and r_2sv_13_11lppCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[13].lppCorrUsed', r_2sv_13_11lppCorrUsed, 'type', 'a bool')
+    r_2sv_13_11lppCorrUsed = 1 if r_2sv_13_11lppCorrUsed else 0
+    r_2sv_13_11hasCorrUsed: Any = g_2sv_13.hasCorrUsed
+    if r_2sv_13_11hasCorrUsed is not True and r_2sv_13_11hasCorrUsed is not False and r_2sv_13_11hasCorrUsed != 0 and r_2sv_13_11hasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[13].hasCorrUsed', r_2sv_13_11hasCorrUsed, 'type', 'a bool')
+    r_2sv_13_11hasCorrUsed = 1 if r_2sv_13_11hasCorrUsed else 0
+    r_2sv_13_11flags_spare = 0
+    return (r_2sv_13_6gnssId, r_2sv_13_4svId, r_2sv_13_3cno, r_2sv_13_4elev, r_2sv_13_4azim, r_2sv_13_5prRes, r_2sv_13_10qualityInd, r_2sv_13_6svUsed, r_2sv_13_6health, r_2sv_13_8diffCorr, r_2sv_13_8smoothed, r_2sv_13_11orbitSource, r_2sv_13_8ephAvail, r_2sv_13_8almAvail, r_2sv_13_8anoAvail, r_2sv_13_8aopAvail, r_2sv_13_10reserved13, r_2sv_13_12sbasCorrUsed, r_2sv_13_12rtcmCorrUsed, r_2sv_13_12slasCorrUsed, r_2sv_13_14spartnCorrUsed, r_2sv_13_10prCorrUsed, r_2sv_13_10crCorrUsed, r_2sv_13_10doCorrUsed, r_2sv_13_12clasCorrUsed, r_2sv_13_11lppCorrUsed, r_2sv_13_11hasCorrUsed, r_2sv_13_11flags_spare, )
+
+
+def _raw_nav_sat_2sv_14(g_2sv_14: Any) -> tuple[Any, ...]:
+    r_2sv_14_6gnssId = g_2sv_14.gnssId
+    if r_2sv_14_6gnssId.__class__ is not int and (not isinstance(r_2sv_14_6gnssId, int) or r_2sv_14_6gnssId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[14].gnssId', r_2sv_14_6gnssId, 'type', 'an int')
+    if not 0 <= r_2sv_14_6gnssId <= 255:
+        raise _enc('nav_sat', 'sv[14].gnssId', r_2sv_14_6gnssId, 'range', '0..255', None)
+    r_2sv_14_4svId = g_2sv_14.svId
+    if r_2sv_14_4svId.__class__ is not int and (not isinstance(r_2sv_14_4svId, int) or r_2sv_14_4svId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[14].svId', r_2sv_14_4svId, 'type', 'an int')
+    if not 0 <= r_2sv_14_4svId <= 255:
+        raise _enc('nav_sat', 'sv[14].svId', r_2sv_14_4svId, 'range', '0..255', None)
+    r_2sv_14_3cno = g_2sv_14.cno
+    if r_2sv_14_3cno.__class__ is not int and (not isinstance(r_2sv_14_3cno, int) or r_2sv_14_3cno.__class__ is bool):
+        raise _enc('nav_sat', 'sv[14].cno', r_2sv_14_3cno, 'type', 'an int')
+    if not 0 <= r_2sv_14_3cno <= 255:
+        raise _enc('nav_sat', 'sv[14].cno', r_2sv_14_3cno, 'range', '0..255', None)
+    r_2sv_14_4elev = g_2sv_14.elev
+    if r_2sv_14_4elev.__class__ is not int and (not isinstance(r_2sv_14_4elev, int) or r_2sv_14_4elev.__class__ is bool):
+        raise _enc('nav_sat', 'sv[14].elev', r_2sv_14_4elev, 'type', 'an int')
+    if not -128 <= r_2sv_14_4elev <= 127:
+        raise _enc('nav_sat', 'sv[14].elev', r_2sv_14_4elev, 'range', '-128..127', None)
+    r_2sv_14_4azim = g_2sv_14.azim
+    if r_2sv_14_4azim.__class__ is not int and (not isinstance(r_2sv_14_4azim, int) or r_2sv_14_4azim.__class__ is bool):
+        raise _enc('nav_sat', 'sv[14].azim', r_2sv_14_4azim, 'type', 'an int')
+    if not -32768 <= r_2sv_14_4azim <= 32767:
+        raise _enc('nav_sat', 'sv[14].azim', r_2sv_14_4azim, 'range', '-32768..32767', None)
+    r_2sv_14_5prRes = g_2sv_14.prRes
+    if r_2sv_14_5prRes.__class__ is not float and (not isinstance(r_2sv_14_5prRes, (int, float)) or r_2sv_14_5prRes.__class__ is bool):
+        raise _enc('nav_sat', 'sv[14].prRes', r_2sv_14_5prRes, 'type', 'a number')
+    if not -3276.8 <= r_2sv_14_5prRes <= 3276.7000000000003:
+        raise _enc('nav_sat', 'sv[14].prRes', r_2sv_14_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    r_2sv_14_5prRes = _floor(r_2sv_14_5prRes / 0.1 + 0.5)
+    r_2sv_14_10qualityInd = g_2sv_14.qualityInd
+    if r_2sv_14_10qualityInd.__class__ is not int and (not isinstance(r_2sv_14_10qualityInd, int) or r_2sv_14_10qualityInd.__class__ is bool):
+        raise _enc('nav_sat', 'sv[14].qualityInd', r_2sv_14_10qualityInd, 'type', 'an int')
+    if not 0 <= r_2sv_14_10qualityInd <= 7:
+        raise _enc('nav_sat', 'sv[14].qualityInd', r_2sv_14_10qualityInd, 'range', '0..7', None)
+    r_2sv_14_6svUsed: Any = g_2sv_14.svUsed
+    if r_2sv_14_6svUsed is not True and r_2sv_14_6svUsed is not False and r_2sv_14_6svUsed != 0 and r_2sv_14_6svUsed != 1:
+        raise _enc('nav_sat', 'sv[14].svUsed', r_2sv_14_6svUsed, 'type', 'a bool')
+    r_2sv_14_6svUsed = 1 if r_2sv_14_6svUsed else 0
+    r_2sv_14_6health = g_2sv_14.health
+    if r_2sv_14_6health.__class__ is not int and (not isinstance(r_2sv_14_6health, int) or r_2sv_14_6health.__class__ is bool):
+        raise _enc('nav_sat', 'sv[14].health', r_2sv_14_6health, 'type', 'an int')
+    if not 0 <= r_2sv_14_6health <= 3:
+        raise _enc('nav_sat', 'sv[14].health', r_2sv_14_6health, 'range', '0..3', None)
+    r_2sv_14_8diffCorr: Any = g_2sv_14.diffCorr
+    if r_2sv_14_8diffCorr is not True and r_2sv_14_8diffCorr is not False and r_2sv_14_8diffCorr != 0 and r_2sv_14_8diffCorr != 1:
+        raise _enc('nav_sat', 'sv[14].diffCorr', r_2sv_14_8diffCorr, 'type', 'a bool')
+    r_2sv_14_8diffCorr = 1 if r_2sv_14_8diffCorr else 0
+    r_2sv_14_8smoothed: Any = g_2sv_14.smoothed
+    if r_2sv_14_8smoothed is not True and r_2sv_14_8smoothed is not False and r_2sv_14_8smoothed != 0 and r_2sv_14_8smoothed != 1:
+        raise _enc('nav_sat', 'sv[14].smoothed', r_2sv_14_8smoothed, 'type', 'a bool')
+    r_2sv_14_8smoothed = 1 if r_2sv_14_8smoothed else 0
+    r_2sv_14_11orbitSource = g_2sv_14.orbitSource
+    if r_2sv_14_11orbitSource.__class__ is not int and (not isinstance(r_2sv_14_11orbitSource, int) or r_2sv_14_11orbitSource.__class__ is bool):
+        raise _enc('nav_sat', 'sv[14].orbitSource', r_2sv_14_11orbitSource, 'type', 'an int')
+    if not 0 <= r_2sv_14_11orbitSource <= 7:
+        raise _enc('nav_sat', 'sv[14].orbitSource', r_2sv_14_11orbitSource, 'range', '0..7', None)
+    r_2sv_14_8ephAvail: Any = g_2sv_14.ephAvail
+    if r_2sv_14_8ephAvail is not True and r_2sv_14_8ephAvail is not False and r_2sv_14_8ephAvail != 0 and r_2sv_14_8ephAvail != 1:
+        raise _enc('nav_sat', 'sv[14].ephAvail', r_2sv_14_8ephAvail, 'type', 'a bool')
+    r_2sv_14_8ephAvail = 1 if r_2sv_14_8ephAvail else 0
+    r_2sv_14_8almAvail: Any = g_2sv_14.almAvail
+    if r_2sv_14_8almAvail is not True and r_2sv_14_8almAvail is not False and r_2sv_14_8almAvail != 0 and r_2sv_14_8almAvail != 1:
+        raise _enc('nav_sat', 'sv[14].almAvail', r_2sv_14_8almAvail, 'type', 'a bool')
+    r_2sv_14_8almAvail = 1 if r_2sv_14_8almAvail else 0
+    r_2sv_14_8anoAvail: Any = g_2sv_14.anoAvail
+    if r_2sv_14_8anoAvail is not True and r_2sv_14_8anoAvail is not False and r_2sv_14_8anoAvail != 0 and r_2sv_14_8anoAvail != 1:
+        raise _enc('nav_sat', 'sv[14].anoAvail', r_2sv_14_8anoAvail, 'type', 'a bool')
+    r_2sv_14_8anoAvail = 1 if r_2sv_14_8anoAvail else 0
+    r_2sv_14_8aopAvail: Any = g_2sv_14.aopAvail
+    if r_2sv_14_8aopAvail is not True and r_2sv_14_8aopAvail is not False and r_2sv_14_8aopAvail != 0 and r_2sv_14_8aopAvail != 1:
+        raise _enc('nav_sat', 'sv[14].aopAvail', r_2sv_14_8aopAvail, 'type', 'a bool')
+    r_2sv_14_8aopAvail = 1 if r_2sv_14_8aopAvail else 0
+    r_2sv_14_10reserved13 = g_2sv_14.reserved13
+    if r_2sv_14_10reserved13.__class__ is not int and (not isinstance(r_2sv_14_10reserved13, int) or r_2sv_14_10reserved13.__class__ is bool):
+        raise _enc('nav_sat', 'sv[14].reserved13', r_2sv_14_10reserved13, 'type', 'an int')
+    if not 0 <= r_2sv_14_10reserved13 <= 1:
+        raise _enc('nav_sat', 'sv[14].reserved13', r_2sv_14_10reserved13, 'range', '0..1', None)
+    r_2sv_14_12sbasCorrUsed: Any = g_2sv_14.sbasCorrUsed
+    if r_2sv_14_12sbasCorrUsed is not True and r_2sv_14_12sbasCorrUsed is not False and r_2sv_14_12sbasCorrUsed != 0 and r_2sv_14_12sbasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[14].sbasCorrUsed', r_2sv_14_12sbasCorrUsed, 'type', 'a bool')
+    r_2sv_14_12sbasCorrUsed = 1 if r_2sv_14_12sbasCorrUsed else 0
+    r_2sv_14_12rtcmCorrUsed: Any = g_2sv_14.rtcmCorrUsed
+    if r_2sv_14_12rtcmCorrUsed is not True and r_2sv_14_12rtcmCorrUsed is not False and r_2sv_14_12rtcmCorrUsed != 0 and r_2sv_14_12rtcmCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[14].rtcmCorrUsed', r_2sv_14_12rtcmCorrUsed, 'type', 'a bool')
+    r_2sv_14_12rtcmCorrUsed = 1 if r_2sv_14_12rtcmCorrUsed else 0
+    r_2sv_14_12slasCorrUsed: Any = g_2sv_14.slasCorrUsed
+    if r_2sv_14_12slasCorrUsed is not True and r_2sv_14_12slasCorrUsed is not False and r_2sv_14_12slasCorrUsed != 0 and r_2sv_14_12slasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[14].slasCorrUsed', r_2sv_14_12slasCorrUsed, 'type', 'a bool')
+    r_2sv_14_12slasCorrUsed = 1 if r_2sv_14_12slasCorrUsed else 0
+    r_2sv_14_14spartnCorrUsed: Any = g_2sv_14.spartnCorrUsed
+    if r_2sv_14_14spartnCorrUsed is not True and r_2sv_14_14spartnCorrUsed is not False and r_2sv_14_14spartnCorrUsed != 0 and r_2sv_14_14spartnCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[14].spartnCorrUsed', r_2sv_14_14spartnCorrUsed, 'type', 'a bool')
+    r_2sv_14_14spartnCorrUsed = 1 if r_2sv_14_14spartnCorrUsed else 0
+    r_2sv_14_10prCorrUsed: Any = g_2sv_14.prCorrUsed
+    if r_2sv_14_10prCorrUsed is not True and r_2sv_14_10prCorrUsed is not False and r_2sv_14_10prCorrUsed != 0 and r_2sv_14_10prCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[14].prCorrUsed', r_2sv_14_10prCorrUsed, 'type', 'a bool')
+    r_2sv_14_10prCorrUsed = 1 if r_2sv_14_10prCorrUsed else 0
+    r_2sv_14_10crCorrUsed: Any = g_2sv_14.crCorrUsed
+    if r_2sv_14_10crCorrUsed is not True and r_2sv_14_10crCorrUsed is not False and r_2sv_14_10crCorrUsed != 0 and r_2sv_14_10crCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[14].crCorrUsed', r_2sv_14_10crCorrUsed, 'type', 'a bool')
+    r_2sv_14_10crCorrUsed = 1 if r_2sv_14_10crCorrUsed else 0
+    r_2sv_14_10doCorrUsed: Any = g_2sv_14.doCorrUsed
+    if r_2sv_14_10doCorrUsed is not True and r_2sv_14_10doCorrUsed is not False and r_2sv_14_10doCorrUsed != 0 and r_2sv_14_10doCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[14].doCorrUsed', r_2sv_14_10doCorrUsed, 'type', 'a bool')
+    r_2sv_14_10doCorrUsed = 1 if r_2sv_14_10doCorrUsed else 0
+    r_2sv_14_12clasCorrUsed: Any = g_2sv_14.clasCorrUsed
+    if r_2sv_14_12clasCorrUsed is not True and r_2sv_14_12clasCorrUsed is not False and r_2sv_14_12clasCorrUsed != 0 and r_2sv_14_12clasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[14].clasCorrUsed', r_2sv_14_12clasCorrUsed, 'type', 'a bool')
+    r_2sv_14_12clasCorrUsed = 1 if r_2sv_14_12clasCorrUsed else 0
+    r_2sv_14_11lppCorrUsed: Any = g_2sv_14.lppCorrUsed
+    if r_2sv_14_11lppCorrUsed is not True and r_2sv_14_11lppCorrUsed is not False and r_2sv_14_11lppCorrUsed != 0 and r_2sv_14_11lppCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[14].lppCorrUsed', r_2sv_14_11lppCorrUsed, 'type', 'a bool')
+    r_2sv_14_11lppCorrUsed = 1 if r_2sv_14_11lppCorrUsed else 0
+    r_2sv_14_11hasCorrUsed: Any = g_2sv_14.hasCorrUsed
+    if r_2sv_14_11hasCorrUsed is not True and r_2sv_14_11hasCorrUsed is not False and r_2sv_14_11hasCorrUsed != 0 and r_2sv_14_11hasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[14].hasCorrUsed', r_2sv_14_11hasCorrUsed, 'type', 'a bool')
+    r_2sv_14_11hasCorrUsed = 1 if r_2sv_14_11hasCorrUsed else 0
+    r_2sv_14_11flags_spare = 0
+    return (r_2sv_14_6gnssId, r_2sv_14_4svId, r_2sv_14_3cno, r_2sv_14_4elev, r_2sv_14_4azim, r_2sv_14_5prRes, r_2sv_14_10qualityInd, r_2sv_14_6svUsed, r_2sv_14_6health, r_2sv_14_8diffCorr, r_2sv_14_8smoothed, r_2sv_14_11orbitSource, r_2sv_14_8ephAvail, r_2sv_14_8almAvail, r_2sv_14_8anoAvail, r_2sv_14_8aopAvail, r_2sv_14_10reserved13, r_2sv_14_12sbasCorrUsed, r_2sv_14_12rtcmCorrUsed, r_2sv_14_12slasCorrUsed, r_2sv_14_14spartnCorrUsed, r_2sv_14_10prCorrUsed, r_2sv_14_10crCorrUsed, r_2sv_14_10doCorrUsed, r_2sv_14_12clasCorrUsed, r_2sv_14_11lppCorrUsed, r_2sv_14_11hasCorrUsed, r_2sv_14_11flags_spare, )
+
+
+def _raw_nav_sat_2sv_15(g_2sv_15: Any) -> tuple[Any, ...]:
+    r_2sv_15_6gnssId = g_2sv_15.gnssId
+    if r_2sv_15_6gnssId.__class__ is not int and (not isinstance(r_2sv_15_6gnssId, int) or r_2sv_15_6gnssId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[15].gnssId', r_2sv_15_6gnssId, 'type', 'an int')
+    if not 0 <= r_2sv_15_6gnssId <= 255:
+        raise _enc('nav_sat', 'sv[15].gnssId', r_2sv_15_6gnssId, 'range', '0..255', None)
+    r_2sv_15_4svId = g_2sv_15.svId
+    if r_2sv_15_4svId.__class__ is not int and (not isinstance(r_2sv_15_4svId, int) or r_2sv_15_4svId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[15].svId', r_2sv_15_4svId, 'type', 'an int')
+    if not 0 <= r_2sv_15_4svId <= 255:
+        raise _enc('nav_sat', 'sv[15].svId', r_2sv_15_4svId, 'range', '0..255', None)
+    r_2sv_15_3cno = g_2sv_15.cno
+    if r_2sv_15_3cno.__class__ is not int and (not isinstance(r_2sv_15_3cno, int) or r_2sv_15_3cno.__class__ is bool):
+        raise _enc('nav_sat', 'sv[15].cno', r_2sv_15_3cno, 'type', 'an int')
+    if not 0 <= r_2sv_15_3cno <= 255:
+        raise _enc('nav_sat', 'sv[15].cno', r_2sv_15_3cno, 'range', '0..255', None)
+    r_2sv_15_4elev = g_2sv_15.elev
+    if r_2sv_15_4elev.__class__ is not int and (not isinstance(r_2sv_15_4elev, int) or r_2sv_15_4elev.__class__ is bool):
+        raise _enc('nav_sat', 'sv[15].elev', r_2sv_15_4elev, 'type', 'an int')
+    if not -128 <= r_2sv_15_4elev <= 127:
+        raise _enc('nav_sat', 'sv[15].elev', r_2sv_15_4elev, 'range', '-128..127', None)
+    r_2sv_15_4azim = g_2sv_15.azim
+    if r_2sv_15_4azim.__class__ is not int and (not isinstance(r_2sv_15_4azim, int) or r_2sv_15_4azim.__class__ is bool):
+        raise _enc('nav_sat', 'sv[15].azim', r_2sv_15_4azim, 'type', 'an int')
+    if not -32768 <= r_2sv_15_4azim <= 32767:
+        raise _enc('nav_sat', 'sv[15].azim', r_2sv_15_4azim, 'range', '-32768..32767', None)
+    r_2sv_15_5prRes = g_2sv_15.prRes
+    if r_2sv_15_5prRes.__class__ is not float and (not isinstance(r_2sv_15_5prRes, (int, float)) or r_2sv_15_5prRes.__class__ is bool):
+        raise _enc('nav_sat', 'sv[15].prRes', r_2sv_15_5prRes, 'type', 'a number')
+    if not -3276.8 <= r_2sv_15_5prRes <= 3276.7000000000003:
+        raise _enc('nav_sat', 'sv[15].prRes', r_2sv_15_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    r_2sv_15_5prRes = _floor(r_2sv_15_5prRes / 0.1 + 0.5)
+    r_2sv_15_10qualityInd = g_2sv_15.qualityInd
+    if r_2sv_15_10qualityInd.__class__ is not int and (not isinstance(r_2sv_15_10qualityInd, int) or r_2sv_15_10qualityInd.__class__ is bool):
+        raise _enc('nav_sat', 'sv[15].qualityInd', r_2sv_15_10qualityInd, 'type', 'an int')
+    if not 0 <= r_2sv_15_10qualityInd <= 7:
+        raise _enc('nav_sat', 'sv[15].qualityInd', r_2sv_15_10qualityInd, 'range', '0..7', None)
+    r_2sv_15_6svUsed: Any = g_2sv_15.svUsed
+    if r_2sv_15_6svUsed is not True and r_2sv_15_6svUsed is not False and r_2sv_15_6svUsed != 0 and r_2sv_15_6svUsed != 1:
+        raise _enc('nav_sat', 'sv[15].svUsed', r_2sv_15_6svUsed, 'type', 'a bool')
+    r_2sv_15_6svUsed = 1 if r_2sv_15_6svUsed else 0
+    r_2sv_15_6health = g_2sv_15.health
+    if r_2sv_15_6health.__class__ is not int and (not isinstance(r_2sv_15_6health, int) or r_2sv_15_6health.__class__ is bool):
+        raise _enc('nav_sat', 'sv[15].health', r_2sv_15_6health, 'type', 'an int')
+    if not 0 <= r_2sv_15_6health <= 3:
+        raise _enc('nav_sat', 'sv[15].health', r_2sv_15_6health, 'range', '0..3', None)
+    r_2sv_15_8diffCorr: Any = g_2sv_15.diffCorr
+    if r_2sv_15_8diffCorr is not True and r_2sv_15_8diffCorr is not False and r_2sv_15_8diffCorr != 0 and r_2sv_15_8diffCorr != 1:
+        raise _enc('nav_sat', 'sv[15].diffCorr', r_2sv_15_8diffCorr, 'type', 'a bool')
+    r_2sv_15_8diffCorr = 1 if r_2sv_15_8diffCorr else 0
+    r_2sv_15_8smoothed: Any = g_2sv_15.smoothed
+    if r_2sv_15_8smoothed is not True and r_2sv_15_8smoothed is not False and r_2sv_15_8smoothed != 0 and r_2sv_15_8smoothed != 1:
+        raise _enc('nav_sat', 'sv[15].smoothed', r_2sv_15_8smoothed, 'type', 'a bool')
+    r_2sv_15_8smoothed = 1 if r_2sv_15_8smoothed else 0
+    r_2sv_15_11orbitSource = g_2sv_15.orbitSource
+    if r_2sv_15_11orbitSource.__class__ is not int and (not isinstance(r_2sv_15_11orbitSource, int) or r_2sv_15_11orbitSource.__class__ is bool):
+        raise _enc('nav_sat', 'sv[15].orbitSource', r_2sv_15_11orbitSource, 'type', 'an int')
+    if not 0 <= r_2sv_15_11orbitSource <= 7:
+        raise _enc('nav_sat', 'sv[15].orbitSource', r_2sv_15_11orbitSource, 'range', '0..7', None)
+    r_2sv_15_8ephAvail: Any = g_2sv_15.ephAvail
+    if r_2sv_15_8ephAvail is not True and r_2sv_15_8ephAvail is not False and r_2sv_15_8ephAvail != 0 and r_2sv_15_8ephAvail != 1:
+        raise _enc('nav_sat', 'sv[15].ephAvail', r_2sv_15_8ephAvail, 'type', 'a bool')
+    r_2sv_15_8ephAvail = 1 if r_2sv_15_8ephAvail else 0
+    r_2sv_15_8almAvail: Any = g_2sv_15.almAvail
+    if r_2sv_15_8almAvail is not True and r_2sv_15_8almAvail is not False and r_2sv_15_8almAvail != 0 and r_2sv_15_8almAvail != 1:
+        raise _enc('nav_sat', 'sv[15].almAvail', r_2sv_15_8almAvail, 'type', 'a bool')
+    r_2sv_15_8almAvail = 1 if r_2sv_15_8almAvail else 0
+    r_2sv_15_8anoAvail: Any = g_2sv_15.anoAvail
+    if r_2sv_15_8anoAvail is not True and r_2sv_15_8anoAvail is not False and r_2sv_15_8anoAvail != 0 and r_2sv_15_8anoAvail != 1:
+        raise _enc('nav_sat', 'sv[15].anoAvail', r_2sv_15_8anoAvail, 'type', 'a bool')
+    r_2sv_15_8anoAvail = 1 if r_2sv_15_8anoAvail else 0
+    r_2sv_15_8aopAvail: Any = g_2sv_15.aopAvail
+    if r_2sv_15_8aopAvail is not True and r_2sv_15_8aopAvail is not False and r_2sv_15_8aopAvail != 0 and r_2sv_15_8aopAvail != 1:
+        raise _enc('nav_sat', 'sv[15].aopAvail', r_2sv_15_8aopAvail, 'type', 'a bool')
+    r_2sv_15_8aopAvail = 1 if r_2sv_15_8aopAvail else 0
+    r_2sv_15_10reserved13 = g_2sv_15.reserved13
+    if r_2sv_15_10reserved13.__class__ is not int and (not isinstance(r_2sv_15_10reserved13, int) or r_2sv_15_10reserved13.__class__ is bool):
+        raise _enc('nav_sat', 'sv[15].reserved13', r_2sv_15_10reserved13, 'type', 'an int')
+    if not 0 <= r_2sv_15_10reserved13 <= 1:
+        raise _enc('nav_sat', 'sv[15].reserved13', r_2sv_15_10reserved13, 'range', '0..1', None)
+    r_2sv_15_12sbasCorrUsed: Any = g_2sv_15.sbasCorrUsed
+    if r_2sv_15_12sbasCorrUsed is not True and r_2sv_15_12sbasCorrUsed is not False and r_2sv_15_12sbasCorrUsed != 0 and r_2sv_15_12sbasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[15].sbasCorrUsed', r_2sv_15_12sbasCorrUsed, 'type', 'a bool')
+    r_2sv_15_12sbasCorrUsed = 1 if r_2sv_15_12sbasCorrUsed else 0
+    r_2sv_15_12rtcmCorrUsed: Any = g_2sv_15.rtcmCorrUsed
+    if r_2sv_15_12rtcmCorrUsed is not True and r_2sv_15_12rtcmCorrUsed is not False and r_2sv_15_12rtcmCorrUsed != 0 and r_2sv_15_12rtcmCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[15].rtcmCorrUsed', r_2sv_15_12rtcmCorrUsed, 'type', 'a bool')
+    r_2sv_15_12rtcmCorrUsed = 1 if r_2sv_15_12rtcmCorrUsed else 0
+    r_2sv_15_12slasCorrUsed: Any = g_2sv_15.slasCorrUsed
+    if r_2sv_15_12slasCorrUsed is not True and r_2sv_15_12slasCorrUsed is not False and r_2sv_15_12slasCorrUsed != 0 and r_2sv_15_12slasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[15].slasCorrUsed', r_2sv_15_12slasCorrUsed, 'type', 'a bool')
+    r_2sv_15_12slasCorrUsed = 1 if r_2sv_15_12slasCorrUsed else 0
+    r_2sv_15_14spartnCorrUsed: Any = g_2sv_15.spartnCorrUsed
+    if r_2sv_15_14spartnCorrUsed is not True and r_2sv_15_14spartnCorrUsed is not False and r_2sv_15_14spartnCorrUsed != 0 and r_2sv_15_14spartnCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[15].spartnCorrUsed', r_2sv_15_14spartnCorrUsed, 'type', 'a bool')
+    r_2sv_15_14spartnCorrUsed = 1 if r_2sv_15_14spartnCorrUsed else 0
+    r_2sv_15_10prCorrUsed: Any = g_2sv_15.prCorrUsed
+    if r_2sv_15_10prCorrUsed is not True and r_2sv_15_10prCorrUsed is not False and r_2sv_15_10prCorrUsed != 0 and r_2sv_15_10prCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[15].prCorrUsed', r_2sv_15_10prCorrUsed, 'type', 'a bool')
+    r_2sv_15_10prCorrUsed = 1 if r_2sv_15_10prCorrUsed else 0
+    r_2sv_15_10crCorrUsed: Any = g_2sv_15.crCorrUsed
+    if r_2sv_15_10crCorrUsed is not True and r_2sv_15_10crCorrUsed is not False and r_2sv_15_10crCorrUsed != 0 and r_2sv_15_10crCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[15].crCorrUsed', r_2sv_15_10crCorrUsed, 'type', 'a bool')
+    r_2sv_15_10crCorrUsed = 1 if r_2sv_15_10crCorrUsed else 0
+    r_2sv_15_10doCorrUsed: Any = g_2sv_15.doCorrUsed
+    if r_2sv_15_10doCorrUsed is not True and r_2sv_15_10doCorrUsed is not False and r_2sv_15_10doCorrUsed != 0 and r_2sv_15_10doCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[15].doCorrUsed', r_2sv_15_10doCorrUsed, 'type', 'a bool')
+    r_2sv_15_10doCorrUsed = 1 if r_2sv_15_10doCorrUsed else 0
+    r_2sv_15_12clasCorrUsed: Any = g_2sv_15.clasCorrUsed
+    if r_2sv_15_12clasCorrUsed is not True and r_2sv_15_12clasCorrUsed is not False and r_2sv_15_12clasCorrUsed != 0 and r_2sv_15_12clasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[15].clasCorrUsed', r_2sv_15_12clasCorrUsed, 'type', 'a bool')
+    r_2sv_15_12clasCorrUsed = 1 if r_2sv_15_12clasCorrUsed else 0
+    r_2sv_15_11lppCorrUsed: Any = g_2sv_15.lppCorrUsed
+    if r_2sv_15_11lppCorrUsed is not True and r_2sv_15_11lppCorrUsed is not False and r_2sv_15_11lppCorrUsed != 0 and r_2sv_15_11lppCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[15].lppCorrUsed', r_2sv_15_11lppCorrUsed, 'type', 'a bool')
+    r_2sv_15_11lppCorrUsed = 1 if r_2sv_15_11lppCorrUsed else 0
+    r_2sv_15_11hasCorrUsed: Any = g_2sv_15.hasCorrUsed
+    if r_2sv_15_11hasCorrUsed is not True and r_2sv_15_11hasCorrUsed is not False and r_2sv_15_11hasCorrUsed != 0 and r_2sv_15_11hasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[15].hasCorrUsed', r_2sv_15_11hasCorrUsed, 'type', 'a bool')
+    r_2sv_15_11hasCorrUsed = 1 if r_2sv_15_11hasCorrUsed else 0
+    r_2sv_15_11flags_spare = 0
+    return (r_2sv_15_6gnssId, r_2sv_15_4svId, r_2sv_15_3cno, r_2sv_15_4elev, r_2sv_15_4azim, r_2sv_15_5prRes, r_2sv_15_10qualityInd, r_2sv_15_6svUsed, r_2sv_15_6health, r_2sv_15_8diffCorr, r_2sv_15_8smoothed, r_2sv_15_11orbitSource, r_2sv_15_8ephAvail, r_2sv_15_8almAvail, r_2sv_15_8anoAvail, r_2sv_15_8aopAvail, r_2sv_15_10reserved13, r_2sv_15_12sbasCorrUsed, r_2sv_15_12rtcmCorrUsed, r_2sv_15_12slasCorrUsed, r_2sv_15_14spartnCorrUsed, r_2sv_15_10prCorrUsed, r_2sv_15_10crCorrUsed, r_2sv_15_10doCorrUsed, r_2sv_15_12clasCorrUsed, r_2sv_15_11lppCorrUsed, r_2sv_15_11hasCorrUsed, r_2sv_15_11flags_spare, )
+
+
+def _raw_nav_sat_2sv_16(g_2sv_16: Any) -> tuple[Any, ...]:
+    r_2sv_16_6gnssId = g_2sv_16.gnssId
+    if r_2sv_16_6gnssId.__class__ is not int and (not isinstance(r_2sv_16_6gnssId, int) or r_2sv_16_6gnssId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[16].gnssId', r_2sv_16_6gnssId, 'type', 'an int')
+    if not 0 <= r_2sv_16_6gnssId <= 255:
+        raise _enc('nav_sat', 'sv[16].gnssId', r_2sv_16_6gnssId, 'range', '0..255', None)
+    r_2sv_16_4svId = g_2sv_16.svId
+    if r_2sv_16_4svId.__class__ is not int and (not isinstance(r_2sv_16_4svId, int) or r_2sv_16_4svId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[16].svId', r_2sv_16_4svId, 'type', 'an int')
+    if not 0 <= r_2sv_16_4svId <= 255:
+        raise _enc('nav_sat', 'sv[16].svId', r_2sv_16_4svId, 'range', '0..255', None)
+    r_2sv_16_3cno = g_2sv_16.cno
+    if r_2sv_16_3cno.__class__ is not int and (not isinstance(r_2sv_16_3cno, int) or r_2sv_16_3cno.__class__ is bool):
+        raise _enc('nav_sat', 'sv[16].cno', r_2sv_16_3cno, 'type', 'an int')
+    if not 0 <= r_2sv_16_3cno <= 255:
+        raise _enc('nav_sat', 'sv[16].cno', r_2sv_16_3cno, 'range', '0..255', None)
+    r_2sv_16_4elev = g_2sv_16.elev
+    if r_2sv_16_4elev.__class__ is not int and (not isinstance(r_2sv_16_4elev, int) or r_2sv_16_4elev.__class__ is bool):
+        raise _enc('nav_sat', 'sv[16].elev', r_2sv_16_4elev, 'type', 'an int')
+    if not -128 <= r_2sv_16_4elev <= 127:
+        raise _enc('nav_sat', 'sv[16].elev', r_2sv_16_4elev, 'range', '-128..127', None)
+    r_2sv_16_4azim = g_2sv_16.azim
+    if r_2sv_16_4azim.__class__ is not int and (not isinstance(r_2sv_16_4azim, int) or r_2sv_16_4azim.__class__ is bool):
+        raise _enc('nav_sat', 'sv[16].azim', r_2sv_16_4azim, 'type', 'an int')
+    if not -32768 <= r_2sv_16_4azim <= 32767:
+        raise _enc('nav_sat', 'sv[16].azim', r_2sv_16_4azim, 'range', '-32768..32767', None)
+    r_2sv_16_5prRes = g_2sv_16.prRes
+    if r_2sv_16_5prRes.__class__ is not float and (not isinstance(r_2sv_16_5prRes, (int, float)) or r_2sv_16_5prRes.__class__ is bool):
+        raise _enc('nav_sat', 'sv[16].prRes', r_2sv_16_5prRes, 'type', 'a number')
+    if not -3276.8 <= r_2sv_16_5prRes <= 3276.7000000000003:
+        raise _enc('nav_sat', 'sv[16].prRes', r_2sv_16_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    r_2sv_16_5prRes = _floor(r_2sv_16_5prRes / 0.1 + 0.5)
+    r_2sv_16_10qualityInd = g_2sv_16.qualityInd
+    if r_2sv_16_10qualityInd.__class__ is not int and (not isinstance(r_2sv_16_10qualityInd, int) or r_2sv_16_10qualityInd.__class__ is bool):
+        raise _enc('nav_sat', 'sv[16].qualityInd', r_2sv_16_10qualityInd, 'type', 'an int')
+    if not 0 <= r_2sv_16_10qualityInd <= 7:
+        raise _enc('nav_sat', 'sv[16].qualityInd', r_2sv_16_10qualityInd, 'range', '0..7', None)
+    r_2sv_16_6svUsed: Any = g_2sv_16.svUsed
+    if r_2sv_16_6svUsed is not True and r_2sv_16_6svUsed is not False and r_2sv_16_6svUsed != 0 and r_2sv_16_6svUsed != 1:
+        raise _enc('nav_sat', 'sv[16].svUsed', r_2sv_16_6svUsed, 'type', 'a bool')
+    r_2sv_16_6svUsed = 1 if r_2sv_16_6svUsed else 0
+    r_2sv_16_6health = g_2sv_16.health
+    if r_2sv_16_6health.__class__ is not int and (not isinstance(r_2sv_16_6health, int) or r_2sv_16_6health.__class__ is bool):
+        raise _enc('nav_sat', 'sv[16].health', r_2sv_16_6health, 'type', 'an int')
+    if not 0 <= r_2sv_16_6health <= 3:
+        raise _enc('nav_sat', 'sv[16].health', r_2sv_16_6health, 'range', '0..3', None)
+    r_2sv_16_8diffCorr: Any = g_2sv_16.diffCorr
+    if r_2sv_16_8diffCorr is not True and r_2sv_16_8diffCorr is not False and r_2sv_16_8diffCorr != 0 and r_2sv_16_8diffCorr != 1:
+        raise _enc('nav_sat', 'sv[16].diffCorr', r_2sv_16_8diffCorr, 'type', 'a bool')
+    r_2sv_16_8diffCorr = 1 if r_2sv_16_8diffCorr else 0
+    r_2sv_16_8smoothed: Any = g_2sv_16.smoothed
+    if r_2sv_16_8smoothed is not True and r_2sv_16_8smoothed is not False and r_2sv_16_8smoothed != 0 and r_2sv_16_8smoothed != 1:
+        raise _enc('nav_sat', 'sv[16].smoothed', r_2sv_16_8smoothed, 'type', 'a bool')
+    r_2sv_16_8smoothed = 1 if r_2sv_16_8smoothed else 0
+    r_2sv_16_11orbitSource = g_2sv_16.orbitSource
+    if r_2sv_16_11orbitSource.__class__ is not int and (not isinstance(r_2sv_16_11orbitSource, int) or r_2sv_16_11orbitSource.__class__ is bool):
+        raise _enc('nav_sat', 'sv[16].orbitSource', r_2sv_16_11orbitSource, 'type', 'an int')
+    if not 0 <= r_2sv_16_11orbitSource <= 7:
+        raise _enc('nav_sat', 'sv[16].orbitSource', r_2sv_16_11orbitSource, 'range', '0..7', None)
+    r_2sv_16_8ephAvail: Any = g_2sv_16.ephAvail
+    if r_2sv_16_8ephAvail is not True and r_2sv_16_8ephAvail is not False and r_2sv_16_8ephAvail != 0 and r_2sv_16_8ephAvail != 1:
+        raise _enc('nav_sat', 'sv[16].ephAvail', r_2sv_16_8ephAvail, 'type', 'a bool')
+    r_2sv_16_8ephAvail = 1 if r_2sv_16_8ephAvail else 0
+    r_2sv_16_8almAvail: Any = g_2sv_16.almAvail
+    if r_2sv_16_8almAvail is not True and r_2sv_16_8almAvail is not False and r_2sv_16_8almAvail != 0 and r_2sv_16_8almAvail != 1:
+        raise _enc('nav_sat', 'sv[16].almAvail', r_2sv_16_8almAvail, 'type', 'a bool')
+    r_2sv_16_8almAvail = 1 if r_2sv_16_8almAvail else 0
+    r_2sv_16_8anoAvail: Any = g_2sv_16.anoAvail
+    if r_2sv_16_8anoAvail is not True and r_2sv_16_8anoAvail is not False and r_2sv_16_8anoAvail != 0 and r_2sv_16_8anoAvail != 1:
+        raise _enc('nav_sat', 'sv[16].anoAvail', r_2sv_16_8anoAvail, 'type', 'a bool')
+    r_2sv_16_8anoAvail = 1 if r_2sv_16_8anoAvail else 0
+    r_2sv_16_8aopAvail: Any = g_2sv_16.aopAvail
+    if r_2sv_16_8aopAvail is not True and r_2sv_16_8aopAvail is not False and r_2sv_16_8aopAvail != 0 and r_2sv_16_8aopAvail != 1:
+        raise _enc('nav_sat', 'sv[16].aopAvail', r_2sv_16_8aopAvail, 'type', 'a bool')
+    r_2sv_16_8aopAvail = 1 if r_2sv_16_8aopAvail else 0
+    r_2sv_16_10reserved13 = g_2sv_16.reserved13
+    if r_2sv_16_10reserved13.__class__ is not int and (not isinstance(r_2sv_16_10reserved13, int) or r_2sv_16_10reserved13.__class__ is bool):
+        raise _enc('nav_sat', 'sv[16].reserved13', r_2sv_16_10reserved13, 'type', 'an int')
+    if not 0 <= r_2sv_16_10reserved13 <= 1:
+        raise _enc('nav_sat', 'sv[16].reserved13', r_2sv_16_10reserved13, 'range', '0..1', None)
+    r_2sv_16_12sbasCorrUsed: Any = g_2sv_16.sbasCorrUsed
+    if r_2sv_16_12sbasCorrUsed is not True and r_2sv_16_12sbasCorrUsed is not False and r_2sv_16_12sbasCorrUsed != 0 and r_2sv_16_12sbasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[16].sbasCorrUsed', r_2sv_16_12sbasCorrUsed, 'type', 'a bool')
+    r_2sv_16_12sbasCorrUsed = 1 if r_2sv_16_12sbasCorrUsed else 0
+    r_2sv_16_12rtcmCorrUsed: Any = g_2sv_16.rtcmCorrUsed
+    if r_2sv_16_12rtcmCorrUsed is not True and r_2sv_16_12rtcmCorrUsed is not False and r_2sv_16_12rtcmCorrUsed != 0 and r_2sv_16_12rtcmCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[16].rtcmCorrUsed', r_2sv_16_12rtcmCorrUsed, 'type', 'a bool')
+    r_2sv_16_12rtcmCorrUsed = 1 if r_2sv_16_12rtcmCorrUsed else 0
+    r_2sv_16_12slasCorrUsed: Any = g_2sv_16.slasCorrUsed
+    if r_2sv_16_12slasCorrUsed is not True and r_2sv_16_12slasCorrUsed is not False and r_2sv_16_12slasCorrUsed != 0 and r_2sv_16_12slasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[16].slasCorrUsed', r_2sv_16_12slasCorrUsed, 'type', 'a bool')
+    r_2sv_16_12slasCorrUsed = 1 if r_2sv_16_12slasCorrUsed else 0
+    r_2sv_16_14spartnCorrUsed: Any = g_2sv_16.spartnCorrUsed
+    if r_2sv_16_14spartnCorrUsed is not True and r_2sv_16_14spartnCorrUsed is not False and r_2sv_16_14spartnCorrUsed != 0 and r_2sv_16_14spartnCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[16].spartnCorrUsed', r_2sv_16_14spartnCorrUsed, 'type', 'a bool')
+    r_2sv_16_14spartnCorrUsed = 1 if r_2sv_16_14spartnCorrUsed else 0
+    r_2sv_16_10prCorrUsed: Any = g_2sv_16.prCorrUsed
+    if r_2sv_16_10prCorrUsed is not True and r_2sv_16_10prCorrUsed is not False and r_2sv_16_10prCorrUsed != 0 and r_2sv_16_10prCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[16].prCorrUsed', r_2sv_16_10prCorrUsed, 'type', 'a bool')
+    r_2sv_16_10prCorrUsed = 1 if r_2sv_16_10prCorrUsed else 0
+    r_2sv_16_10crCorrUsed: Any = g_2sv_16.crCorrUsed
+    if r_2sv_16_10crCorrUsed is not True and r_2sv_16_10crCorrUsed is not False and r_2sv_16_10crCorrUsed != 0 and r_2sv_16_10crCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[16].crCorrUsed', r_2sv_16_10crCorrUsed, 'type', 'a bool')
+    r_2sv_16_10crCorrUsed = 1 if r_2sv_16_10crCorrUsed else 0
+    r_2sv_16_10doCorrUsed: Any = g_2sv_16.doCorrUsed
+    if r_2sv_16_10doCorrUsed is not True and r_2sv_16_10doCorrUsed is not False and r_2sv_16_10doCorrUsed != 0 and r_2sv_16_10doCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[16].doCorrUsed', r_2sv_16_10doCorrUsed, 'type', 'a bool')
+    r_2sv_16_10doCorrUsed = 1 if r_2sv_16_10doCorrUsed else 0
+    r_2sv_16_12clasCorrUsed: Any = g_2sv_16.clasCorrUsed
+    if r_2sv_16_12clasCorrUsed is not True and r_2sv_16_12clasCorrUsed is not False and r_2sv_16_12clasCorrUsed != 0 and r_2sv_16_12clasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[16].clasCorrUsed', r_2sv_16_12clasCorrUsed, 'type', 'a bool')
+    r_2sv_16_12clasCorrUsed = 1 if r_2sv_16_12clasCorrUsed else 0
+    r_2sv_16_11lppCorrUsed: Any = g_2sv_16.lppCorrUsed
+    if r_2sv_16_11lppCorrUsed is not True and r_2sv_16_11lppCorrUsed is not False and r_2sv_16_11lppCorrUsed != 0 and r_2sv_16_11lppCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[16].lppCorrUsed', r_2sv_16_11lppCorrUsed, 'type', 'a bool')
+    r_2sv_16_11lppCorrUsed = 1 if r_2sv_16_11lppCorrUsed else 0
+    r_2sv_16_11hasCorrUsed: Any = g_2sv_16.hasCorrUsed
+    if r_2sv_16_11hasCorrUsed is not True and r_2sv_16_11hasCorrUsed is not False and r_2sv_16_11hasCorrUsed != 0 and r_2sv_16_11hasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[16].hasCorrUsed', r_2sv_16_11hasCorrUsed, 'type', 'a bool')
+    r_2sv_16_11hasCorrUsed = 1 if r_2sv_16_11hasCorrUsed else 0
+    r_2sv_16_11flags_spare = 0
+    return (r_2sv_16_6gnssId, r_2sv_16_4svId, r_2sv_16_3cno, r_2sv_16_4elev, r_2sv_16_4azim, r_2sv_16_5prRes, r_2sv_16_10qualityInd, r_2sv_16_6svUsed, r_2sv_16_6health, r_2sv_16_8diffCorr, r_2sv_16_8smoothed, r_2sv_16_11orbitSource, r_2sv_16_8ephAvail, r_2sv_16_8almAvail, r_2sv_16_8anoAvail, r_2sv_16_8aopAvail, r_2sv_16_10reserved13, r_2sv_16_12sbasCorrUsed, r_2sv_16_12rtcmCorrUsed, r_2sv_16_12slasCorrUsed, r_2sv_16_14spartnCorrUsed, r_2sv_16_10prCorrUsed, r_2sv_16_10crCorrUsed, r_2sv_16_10doCorrUsed, r_2sv_16_12clasCorrUsed, r_2sv_16_11lppCorrUsed, r_2sv_16_11hasCorrUsed, r_2sv_16_11flags_spare, )
+
+
+def _raw_nav_sat_2sv_17(g_2sv_17: Any) -> tuple[Any, ...]:
+    r_2sv_17_6gnssId = g_2sv_17.gnssId
+    if r_2sv_17_6gnssId.__class__ is not int and (not isinstance(r_2sv_17_6gnssId, int) or r_2sv_17_6gnssId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[17].gnssId', r_2sv_17_6gnssId, 'type', 'an int')
+    if not 0 <= r_2sv_17_6gnssId <= 255:
+        raise _enc('nav_sat', 'sv[17].gnssId', r_2sv_17_6gnssId, 'range', '0..255', None)
+    r_2sv_17_4svId = g_2sv_17.svId
+    if r_2sv_17_4svId.__class__ is not int and (not isinstance(r_2sv_17_4svId, int) or r_2sv_17_4svId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[17].svId', r_2sv_17_4svId, 'type', 'an int')
+    if not 0 <= r_2sv_17_4svId <= 255:
+        raise _enc('nav_sat', 'sv[17].svId', r_2sv_17_4svId, 'range', '0..255', None)
+    r_2sv_17_3cno = g_2sv_17.cno
+    if r_2sv_17_3cno.__class__ is not int and (not isinstance(r_2sv_17_3cno, int) or r_2sv_17_3cno.__class__ is bool):
+        raise _enc('nav_sat', 'sv[17].cno', r_2sv_17_3cno, 'type', 'an int')
+    if not 0 <= r_2sv_17_3cno <= 255:
+        raise _enc('nav_sat', 'sv[17].cno', r_2sv_17_3cno, 'range', '0..255', None)
+    r_2sv_17_4elev = g_2sv_17.elev
+    if r_2sv_17_4elev.__class__ is not int and (not isinstance(r_2sv_17_4elev, int) or r_2sv_17_4elev.__class__ is bool):
+        raise _enc('nav_sat', 'sv[17].elev', r_2sv_17_4elev, 'type', 'an int')
+    if not -128 <= r_2sv_17_4elev <= 127:
+        raise _enc('nav_sat', 'sv[17].elev', r_2sv_17_4elev, 'range', '-128..127', None)
+    r_2sv_17_4azim = g_2sv_17.azim
+    if r_2sv_17_4azim.__class__ is not int and (not isinstance(r_2sv_17_4azim, int) or r_2sv_17_4azim.__class__ is bool):
+        raise _enc('nav_sat', 'sv[17].azim', r_2sv_17_4azim, 'type', 'an int')
+    if not -32768 <= r_2sv_17_4azim <= 32767:
+        raise _enc('nav_sat', 'sv[17].azim', r_2sv_17_4azim, 'range', '-32768..32767', None)
+    r_2sv_17_5prRes = g_2sv_17.prRes
+    if r_2sv_17_5prRes.__class__ is not float and (not isinstance(r_2sv_17_5prRes, (int, float)) or r_2sv_17_5prRes.__class__ is bool):
+        raise _enc('nav_sat', 'sv[17].prRes', r_2sv_17_5prRes, 'type', 'a number')
+    if not -3276.8 <= r_2sv_17_5prRes <= 3276.7000000000003:
+        raise _enc('nav_sat', 'sv[17].prRes', r_2sv_17_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    r_2sv_17_5prRes = _floor(r_2sv_17_5prRes / 0.1 + 0.5)
+    r_2sv_17_10qualityInd = g_2sv_17.qualityInd
+    if r_2sv_17_10qualityInd.__class__ is not int and (not isinstance(r_2sv_17_10qualityInd, int) or r_2sv_17_10qualityInd.__class__ is bool):
+        raise _enc('nav_sat', 'sv[17].qualityInd', r_2sv_17_10qualityInd, 'type', 'an int')
+    if not 0 <= r_2sv_17_10qualityInd <= 7:
+        raise _enc('nav_sat', 'sv[17].qualityInd', r_2sv_17_10qualityInd, 'range', '0..7', None)
+    r_2sv_17_6svUsed: Any = g_2sv_17.svUsed
+    if r_2sv_17_6svUsed is not True and r_2sv_17_6svUsed is not False and r_2sv_17_6svUsed != 0 and r_2sv_17_6svUsed != 1:
+        raise _enc('nav_sat', 'sv[17].svUsed', r_2sv_17_6svUsed, 'type', 'a bool')
+    r_2sv_17_6svUsed = 1 if r_2sv_17_6svUsed else 0
+    r_2sv_17_6health = g_2sv_17.health
+    if r_2sv_17_6health.__class__ is not int and (not isinstance(r_2sv_17_6health, int) or r_2sv_17_6health.__class__ is bool):
+        raise _enc('nav_sat', 'sv[17].health', r_2sv_17_6health, 'type', 'an int')
+    if not 0 <= r_2sv_17_6health <= 3:
+        raise _enc('nav_sat', 'sv[17].health', r_2sv_17_6health, 'range', '0..3', None)
+    r_2sv_17_8diffCorr: Any = g_2sv_17.diffCorr
+    if r_2sv_17_8diffCorr is not True and r_2sv_17_8diffCorr is not False and r_2sv_17_8diffCorr != 0 and r_2sv_17_8diffCorr != 1:
+        raise _enc('nav_sat', 'sv[17].diffCorr', r_2sv_17_8diffCorr, 'type', 'a bool')
+    r_2sv_17_8diffCorr = 1 if r_2sv_17_8diffCorr else 0
+    r_2sv_17_8smoothed: Any = g_2sv_17.smoothed
+    if r_2sv_17_8smoothed is not True and r_2sv_17_8smoothed is not False and r_2sv_17_8smoothed != 0 and r_2sv_17_8smoothed != 1:
+        raise _enc('nav_sat', 'sv[17].smoothed', r_2sv_17_8smoothed, 'type', 'a bool')
+    r_2sv_17_8smoothed = 1 if r_2sv_17_8smoothed else 0
+    r_2sv_17_11orbitSource = g_2sv_17.orbitSource
+    if r_2sv_17_11orbitSource.__class__ is not int and (not isinstance(r_2sv_17_11orbitSource, int) or r_2sv_17_11orbitSource.__class__ is bool):
+        raise _enc('nav_sat', 'sv[17].orbitSource', r_2sv_17_11orbitSource, 'type', 'an int')
+    if not 0 <= r_2sv_17_11orbitSource <= 7:
+        raise _enc('nav_sat', 'sv[17].orbitSource', r_2sv_17_11orbitSource, 'range', '0..7', None)
+    r_2sv_17_8ephAvail: Any = g_2sv_17.ephAvail
+    if r_2sv_17_8ephAvail is not True and r_2sv_17_8ephAvail is not False and r_2sv_17_8ephAvail != 0 and r_2sv_17_8ephAvail != 1:
+        raise _enc('nav_sat', 'sv[17].ephAvail', r_2sv_17_8ephAvail, 'type', 'a bool')
+    r_2sv_17_8ephAvail = 1 if r_2sv_17_8ephAvail else 0
+    r_2sv_17_8almAvail: Any = g_2sv_17.almAvail
+    if r_2sv_17_8almAvail is not True and r_2sv_17_8almAvail is not False and r_2sv_17_8almAvail != 0 and r_2sv_17_8almAvail != 1:
+        raise _enc('nav_sat', 'sv[17].almAvail', r_2sv_17_8almAvail, 'type', 'a bool')
+    r_2sv_17_8almAvail = 1 if r_2sv_17_8almAvail else 0
+    r_2sv_17_8anoAvail: Any = g_2sv_17.anoAvail
+    if r_2sv_17_8anoAvail is not True and r_2sv_17_8anoAvail is not False and r_2sv_17_8anoAvail != 0 and r_2sv_17_8anoAvail != 1:
+        raise _enc('nav_sat', 'sv[17].anoAvail', r_2sv_17_8anoAvail, 'type', 'a bool')
+    r_2sv_17_8anoAvail = 1 if r_2sv_17_8anoAvail else 0
+    r_2sv_17_8aopAvail: Any = g_2sv_17.aopAvail
+    if r_2sv_17_8aopAvail is not True and r_2sv_17_8aopAvail is not False and r_2sv_17_8aopAvail != 0 and r_2sv_17_8aopAvail != 1:
+        raise _enc('nav_sat', 'sv[17].aopAvail', r_2sv_17_8aopAvail, 'type', 'a bool')
+    r_2sv_17_8aopAvail = 1 if r_2sv_17_8aopAvail else 0
+    r_2sv_17_10reserved13 = g_2sv_17.reserved13
+    if r_2sv_17_10reserved13.__class__ is not int and (not isinstance(r_2sv_17_10reserved13, int) or r_2sv_17_10reserved13.__class__ is bool):
+        raise _enc('nav_sat', 'sv[17].reserved13', r_2sv_17_10reserved13, 'type', 'an int')
+    if not 0 <= r_2sv_17_10reserved13 <= 1:
+        raise _enc('nav_sat', 'sv[17].reserved13', r_2sv_17_10reserved13, 'range', '0..1', None)
+    r_2sv_17_12sbasCorrUsed: Any = g_2sv_17.sbasCorrUsed
+    if r_2sv_17_12sbasCorrUsed is not True and r_2sv_17_12sbasCorrUsed is not False and r_2sv_17_12sbasCorrUsed != 0 and r_2sv_17_12sbasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[17].sbasCorrUsed', r_2sv_17_12sbasCorrUsed, 'type', 'a bool')
+    r_2sv_17_12sbasCorrUsed = 1 if r_2sv_17_12sbasCorrUsed else 0
+    r_2sv_17_12rtcmCorrUsed: Any = g_2sv_17.rtcmCorrUsed
+    if r_2sv_17_12rtcmCorrUsed is not True and r_2sv_17_12rtcmCorrUsed is not False and r_2sv_17_12rtcmCorrUsed != 0 and r_2sv_17_12rtcmCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[17].rtcmCorrUsed', r_2sv_17_12rtcmCorrUsed, 'type', 'a bool')
+    r_2sv_17_12rtcmCorrUsed = 1 if r_2sv_17_12rtcmCorrUsed else 0
+    r_2sv_17_12slasCorrUsed: Any = g_2sv_17.slasCorrUsed
+    if r_2sv_17_12slasCorrUsed is not True and r_2sv_17_12slasCorrUsed is not False and r_2sv_17_12slasCorrUsed != 0 and r_2sv_17_12slasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[17].slasCorrUsed', r_2sv_17_12slasCorrUsed, 'type', 'a bool')
+    r_2sv_17_12slasCorrUsed = 1 if r_2sv_17_12slasCorrUsed else 0
+    r_2sv_17_14spartnCorrUsed: Any = g_2sv_17.spartnCorrUsed
+    if r_2sv_17_14spartnCorrUsed is not True and r_2sv_17_14spartnCorrUsed is not False and r_2sv_17_14spartnCorrUsed != 0 and r_2sv_17_14spartnCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[17].spartnCorrUsed', r_2sv_17_14spartnCorrUsed, 'type', 'a bool')
+    r_2sv_17_14spartnCorrUsed = 1 if r_2sv_17_14spartnCorrUsed else 0
+    r_2sv_17_10prCorrUsed: Any = g_2sv_17.prCorrUsed
+    if r_2sv_17_10prCorrUsed is not True and r_2sv_17_10prCorrUsed is not False and r_2sv_17_10prCorrUsed != 0 and r_2sv_17_10prCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[17].prCorrUsed', r_2sv_17_10prCorrUsed, 'type', 'a bool')
+    r_2sv_17_10prCorrUsed = 1 if r_2sv_17_10prCorrUsed else 0
+    r_2sv_17_10crCorrUsed: Any = g_2sv_17.crCorrUsed
+    if r_2sv_17_10crCorrUsed is not True and r_2sv_17_10crCorrUsed is not False and r_2sv_17_10crCorrUsed != 0 and r_2sv_17_10crCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[17].crCorrUsed', r_2sv_17_10crCorrUsed, 'type', 'a bool')
+    r_2sv_17_10crCorrUsed = 1 if r_2sv_17_10crCorrUsed else 0
+    r_2sv_17_10doCorrUsed: Any = g_2sv_17.doCorrUsed
+    if r_2sv_17_10doCorrUsed is not True and r_2sv_17_10doCorrUsed is not False and r_2sv_17_10doCorrUsed != 0 and r_2sv_17_10doCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[17].doCorrUsed', r_2sv_17_10doCorrUsed, 'type', 'a bool')
+    r_2sv_17_10doCorrUsed = 1 if r_2sv_17_10doCorrUsed else 0
+    r_2sv_17_12clasCorrUsed: Any = g_2sv_17.clasCorrUsed
+    if r_2sv_17_12clasCorrUsed is not True and r_2sv_17_12clasCorrUsed is not False and r_2sv_17_12clasCorrUsed != 0 and r_2sv_17_12clasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[17].clasCorrUsed', r_2sv_17_12clasCorrUsed, 'type', 'a bool')
+    r_2sv_17_12clasCorrUsed = 1 if r_2sv_17_12clasCorrUsed else 0
+    r_2sv_17_11lppCorrUsed: Any = g_2sv_17.lppCorrUsed
+    if r_2sv_17_11lppCorrUsed is not True and r_2sv_17_11lppCorrUsed is not False and r_2sv_17_11lppCorrUsed != 0 and r_2sv_17_11lppCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[17].lppCorrUsed', r_2sv_17_11lppCorrUsed, 'type', 'a bool')
+    r_2sv_17_11lppCorrUsed = 1 if r_2sv_17_11lppCorrUsed else 0
+    r_2sv_17_11hasCorrUsed: Any = g_2sv_17.hasCorrUsed
+    if r_2sv_17_11hasCorrUsed is not True and r_2sv_17_11hasCorrUsed is not False and r_2sv_17_11hasCorrUsed != 0 and r_2sv_17_11hasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[17].hasCorrUsed', r_2sv_17_11hasCorrUsed, 'type', 'a bool')
+    r_2sv_17_11hasCorrUsed = 1 if r_2sv_17_11hasCorrUsed else 0
+    r_2sv_17_11flags_spare = 0
+    return (r_2sv_17_6gnssId, r_2sv_17_4svId, r_2sv_17_3cno, r_2sv_17_4elev, r_2sv_17_4azim, r_2sv_17_5prRes, r_2sv_17_10qualityInd, r_2sv_17_6svUsed, r_2sv_17_6health, r_2sv_17_8diffCorr, r_2sv_17_8smoothed, r_2sv_17_11orbitSource, r_2sv_17_8ephAvail, r_2sv_17_8almAvail, r_2sv_17_8anoAvail, r_2sv_17_8aopAvail, r_2sv_17_10reserved13, r_2sv_17_12sbasCorrUsed, r_2sv_17_12rtcmCorrUsed, r_2sv_17_12slasCorrUsed, r_2sv_17_14spartnCorrUsed, r_2sv_17_10prCorrUsed, r_2sv_17_10crCorrUsed, r_2sv_17_10doCorrUsed, r_2sv_17_12clasCorrUsed, r_2sv_17_11lppCorrUsed, r_2sv_17_11hasCorrUsed, r_2sv_17_11flags_spare, )
+
+
+def _raw_nav_sat_2sv_18(g_2sv_18: Any) -> tuple[Any, ...]:
+    r_2sv_18_6gnssId = g_2sv_18.gnssId
+    if r_2sv_18_6gnssId.__class__ is not int and (not isinstance(r_2sv_18_6gnssId, int) or r_2sv_18_6gnssId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[18].gnssId', r_2sv_18_6gnssId, 'type', 'an int')
+    if not 0 <= r_2sv_18_6gnssId <= 255:
+        raise _enc('nav_sat', 'sv[18].gnssId', r_2sv_18_6gnssId, 'range', '0..255', None)
+    r_2sv_18_4svId = g_2sv_18.svId
+    if r_2sv_18_4svId.__class__ is not int and (not isinstance(r_2sv_18_4svId, int) or r_2sv_18_4svId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[18].svId', r_2sv_18_4svId, 'type', 'an int')
+    if not 0 <= r_2sv_18_4svId <= 255:
+        raise _enc('nav_sat', 'sv[18].svId', r_2sv_18_4svId, 'range', '0..255', None)
+    r_2sv_18_3cno = g_2sv_18.cno
+    if r_2sv_18_3cno.__class__ is not int and (not isinstance(r_2sv_18_3cno, int) or r_2sv_18_3cno.__class__ is bool):
+        raise _enc('nav_sat', 'sv[18].cno', r_2sv_18_3cno, 'type', 'an int')
+    if not 0 <= r_2sv_18_3cno <= 255:
+        raise _enc('nav_sat', 'sv[18].cno', r_2sv_18_3cno, 'range', '0..255', None)
+    r_2sv_18_4elev = g_2sv_18.elev
+    if r_2sv_18_4elev.__class__ is not int and (not isinstance(r_2sv_18_4elev, int) or r_2sv_18_4elev.__class__ is bool):
+        raise _enc('nav_sat', 'sv[18].elev', r_2sv_18_4elev, 'type', 'an int')
+    if not -128 <= r_2sv_18_4elev <= 127:
+        raise _enc('nav_sat', 'sv[18].elev', r_2sv_18_4elev, 'range', '-128..127', None)
+    r_2sv_18_4azim = g_2sv_18.azim
+    if r_2sv_18_4azim.__class__ is not int and (not isinstance(r_2sv_18_4azim, int) or r_2sv_18_4azim.__class__ is bool):
+        raise _enc('nav_sat', 'sv[18].azim', r_2sv_18_4azim, 'type', 'an int')
+    if not -32768 <= r_2sv_18_4azim <= 32767:
+        raise _enc('nav_sat', 'sv[18].azim', r_2sv_18_4azim, 'range', '-32768..32767', None)
+    r_2sv_18_5prRes = g_2sv_18.prRes
+    if r_2sv_18_5prRes.__class__ is not float and (not isinstance(r_2sv_18_5prRes, (int, float)) or r_2sv_18_5prRes.__class__ is bool):
+        raise _enc('nav_sat', 'sv[18].prRes', r_2sv_18_5prRes, 'type', 'a number')
+    if not -3276.8 <= r_2sv_18_5prRes <= 3276.7000000000003:
+        raise _enc('nav_sat', 'sv[18].prRes', r_2sv_18_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    r_2sv_18_5prRes = _floor(r_2sv_18_5prRes / 0.1 + 0.5)
+    r_2sv_18_10qualityInd = g_2sv_18.qualityInd
+    if r_2sv_18_10qualityInd.__class__ is not int and (not isinstance(r_2sv_18_10qualityInd, int) or r_2sv_18_10qualityInd.__class__ is bool):
+        raise _enc('nav_sat', 'sv[18].qualityInd', r_2sv_18_10qualityInd, 'type', 'an int')
+    if not 0 <= r_2sv_18_10qualityInd <= 7:
+        raise _enc('nav_sat', 'sv[18].qualityInd', r_2sv_18_10qualityInd, 'range', '0..7', None)
+    r_2sv_18_6svUsed: Any = g_2sv_18.svUsed
+    if r_2sv_18_6svUsed is not True and r_2sv_18_6svUsed is not False and r_2sv_18_6svUsed != 0 and r_2sv_18_6svUsed != 1:
+        raise _enc('nav_sat', 'sv[18].svUsed', r_2sv_18_6svUsed, 'type', 'a bool')
+    r_2sv_18_6svUsed = 1 if r_2sv_18_6svUsed else 0
+    r_2sv_18_6health = g_2sv_18.health
+    if r_2sv_18_6health.__class__ is not int and (not isinstance(r_2sv_18_6health, int) or r_2sv_18_6health.__class__ is bool):
+        raise _enc('nav_sat', 'sv[18].health', r_2sv_18_6health, 'type', 'an int')
+    if not 0 <= r_2sv_18_6health <= 3:
+        raise _enc('nav_sat', 'sv[18].health', r_2sv_18_6health, 'range', '0..3', None)
+    r_2sv_18_8diffCorr: Any = g_2sv_18.diffCorr
+    if r_2sv_18_8diffCorr is not True and r_2sv_18_8diffCorr is not False and r_2sv_18_8diffCorr != 0 and r_2sv_18_8diffCorr != 1:
+        raise _enc('nav_sat', 'sv[18].diffCorr', r_2sv_18_8diffCorr, 'type', 'a bool')
+    r_2sv_18_8diffCorr = 1 if r_2sv_18_8diffCorr else 0
+    r_2sv_18_8smoothed: Any = g_2sv_18.smoothed
+    if r_2sv_18_8smoothed is not True and r_2sv_18_8smoothed is not False and r_2sv_18_8smoothed != 0 and r_2sv_18_8smoothed != 1:
+        raise _enc('nav_sat', 'sv[18].smoothed', r_2sv_18_8smoothed, 'type', 'a bool')
+    r_2sv_18_8smoothed = 1 if r_2sv_18_8smoothed else 0
+    r_2sv_18_11orbitSource = g_2sv_18.orbitSource
+    if r_2sv_18_11orbitSource.__class__ is not int and (not isinstance(r_2sv_18_11orbitSource, int) or r_2sv_18_11orbitSource.__class__ is bool):
+        raise _enc('nav_sat', 'sv[18].orbitSource', r_2sv_18_11orbitSource, 'type', 'an int')
+    if not 0 <= r_2sv_18_11orbitSource <= 7:
+        raise _enc('nav_sat', 'sv[18].orbitSource', r_2sv_18_11orbitSource, 'range', '0..7', None)
+    r_2sv_18_8ephAvail: Any = g_2sv_18.ephAvail
+    if r_2sv_18_8ephAvail is not True and r_2sv_18_8ephAvail is not False and r_2sv_18_8ephAvail != 0 and r_2sv_18_8ephAvail != 1:
+        raise _enc('nav_sat', 'sv[18].ephAvail', r_2sv_18_8ephAvail, 'type', 'a bool')
+    r_2sv_18_8ephAvail = 1 if r_2sv_18_8ephAvail else 0
+    r_2sv_18_8almAvail: Any = g_2sv_18.almAvail
+    if r_2sv_18_8almAvail is not True and r_2sv_18_8almAvail is not False and r_2sv_18_8almAvail != 0 and r_2sv_18_8almAvail != 1:
+        raise _enc('nav_sat', 'sv[18].almAvail', r_2sv_18_8almAvail, 'type', 'a bool')
+    r_2sv_18_8almAvail = 1 if r_2sv_18_8almAvail else 0
+    r_2sv_18_8anoAvail: Any = g_2sv_18.anoAvail
+    if r_2sv_18_8anoAvail is not True and r_2sv_18_8anoAvail is not False and r_2sv_18_8anoAvail != 0 and r_2sv_18_8anoAvail != 1:
+        raise _enc('nav_sat', 'sv[18].anoAvail', r_2sv_18_8anoAvail, 'type', 'a bool')
+    r_2sv_18_8anoAvail = 1 if r_2sv_18_8anoAvail else 0
+    r_2sv_18_8aopAvail: Any = g_2sv_18.aopAvail
+    if r_2sv_18_8aopAvail is not True and r_2sv_18_8aopAvail is not False and r_2sv_18_8aopAvail != 0 and r_2sv_18_8aopAvail != 1:
+        raise _enc('nav_sat', 'sv[18].aopAvail', r_2sv_18_8aopAvail, 'type', 'a bool')
+    r_2sv_18_8aopAvail = 1 if r_2sv_18_8aopAvail else 0
+    r_2sv_18_10reserved13 = g_2sv_18.reserved13
+    if r_2sv_18_10reserved13.__class__ is not int and (not isinstance(r_2sv_18_10reserved13, int) or r_2sv_18_10reserved13.__class__ is bool):
+        raise _enc('nav_sat', 'sv[18].reserved13', r_2sv_18_10reserved13, 'type', 'an int')
+    if not 0 <= r_2sv_18_10reserved13 <= 1:
+        raise _enc('nav_sat', 'sv[18].reserved13', r_2sv_18_10reserved13, 'range', '0..1', None)
+    r_2sv_18_12sbasCorrUsed: Any = g_2sv_18.sbasCorrUsed
+    if r_2sv_18_12sbasCorrUsed is not True and r_2sv_18_12sbasCorrUsed is not False and r_2sv_18_12sbasCorrUsed != 0 and r_2sv_18_12sbasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[18].sbasCorrUsed', r_2sv_18_12sbasCorrUsed, 'type', 'a bool')
+    r_2sv_18_12sbasCorrUsed = 1 if r_2sv_18_12sbasCorrUsed else 0
+    r_2sv_18_12rtcmCorrUsed: Any = g_2sv_18.rtcmCorrUsed
+    if r_2sv_18_12rtcmCorrUsed is not True and r_2sv_18_12rtcmCorrUsed is not False and r_2sv_18_12rtcmCorrUsed != 0 and r_2sv_18_12rtcmCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[18].rtcmCorrUsed', r_2sv_18_12rtcmCorrUsed, 'type', 'a bool')
+    r_2sv_18_12rtcmCorrUsed = 1 if r_2sv_18_12rtcmCorrUsed else 0
+    r_2sv_18_12slasCorrUsed: Any = g_2sv_18.slasCorrUsed
+    if r_2sv_18_12slasCorrUsed is not True and r_2sv_18_12slasCorrUsed is not False and r_2sv_18_12slasCorrUsed != 0 and r_2sv_18_12slasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[18].slasCorrUsed', r_2sv_18_12slasCorrUsed, 'type', 'a bool')
+    r_2sv_18_12slasCorrUsed = 1 if r_2sv_18_12slasCorrUsed else 0
+    r_2sv_18_14spartnCorrUsed: Any = g_2sv_18.spartnCorrUsed
+    if r_2sv_18_14spartnCorrUsed is not True and r_2sv_18_14spartnCorrUsed is not False and r_2sv_18_14spartnCorrUsed != 0 and r_2sv_18_14spartnCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[18].spartnCorrUsed', r_2sv_18_14spartnCorrUsed, 'type', 'a bool')
+    r_2sv_18_14spartnCorrUsed = 1 if r_2sv_18_14spartnCorrUsed else 0
+    r_2sv_18_10prCorrUsed: Any = g_2sv_18.prCorrUsed
+    if r_2sv_18_10prCorrUsed is not True and r_2sv_18_10prCorrUsed is not False and r_2sv_18_10prCorrUsed != 0 and r_2sv_18_10prCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[18].prCorrUsed', r_2sv_18_10prCorrUsed, 'type', 'a bool')
+    r_2sv_18_10prCorrUsed = 1 if r_2sv_18_10prCorrUsed else 0
+    r_2sv_18_10crCorrUsed: Any = g_2sv_18.crCorrUsed
+    if r_2sv_18_10crCorrUsed is not True and r_2sv_18_10crCorrUsed is not False and r_2sv_18_10crCorrUsed != 0 and r_2sv_18_10crCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[18].crCorrUsed', r_2sv_18_10crCorrUsed, 'type', 'a bool')
+    r_2sv_18_10crCorrUsed = 1 if r_2sv_18_10crCorrUsed else 0
+    r_2sv_18_10doCorrUsed: Any = g_2sv_18.doCorrUsed
+    if r_2sv_18_10doCorrUsed is not True and r_2sv_18_10doCorrUsed is not False and r_2sv_18_10doCorrUsed != 0 and r_2sv_18_10doCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[18].doCorrUsed', r_2sv_18_10doCorrUsed, 'type', 'a bool')
+    r_2sv_18_10doCorrUsed = 1 if r_2sv_18_10doCorrUsed else 0
+    r_2sv_18_12clasCorrUsed: Any = g_2sv_18.clasCorrUsed
+    if r_2sv_18_12clasCorrUsed is not True and r_2sv_18_12clasCorrUsed is not False and r_2sv_18_12clasCorrUsed != 0 and r_2sv_18_12clasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[18].clasCorrUsed', r_2sv_18_12clasCorrUsed, 'type', 'a bool')
+    r_2sv_18_12clasCorrUsed = 1 if r_2sv_18_12clasCorrUsed else 0
+    r_2sv_18_11lppCorrUsed: Any = g_2sv_18.lppCorrUsed
+    if r_2sv_18_11lppCorrUsed is not True and r_2sv_18_11lppCorrUsed is not False and r_2sv_18_11lppCorrUsed != 0 and r_2sv_18_11lppCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[18].lppCorrUsed', r_2sv_18_11lppCorrUsed, 'type', 'a bool')
+    r_2sv_18_11lppCorrUsed = 1 if r_2sv_18_11lppCorrUsed else 0
+    r_2sv_18_11hasCorrUsed: Any = g_2sv_18.hasCorrUsed
+    if r_2sv_18_11hasCorrUsed is not True and r_2sv_18_11hasCorrUsed is not False and r_2sv_18_11hasCorrUsed != 0 and r_2sv_18_11hasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[18].hasCorrUsed', r_2sv_18_11hasCorrUsed, 'type', 'a bool')
+    r_2sv_18_11hasCorrUsed = 1 if r_2sv_18_11hasCorrUsed else 0
+    r_2sv_18_11flags_spare = 0
+    return (r_2sv_18_6gnssId, r_2sv_18_4svId, r_2sv_18_3cno, r_2sv_18_4elev, r_2sv_18_4azim, r_2sv_18_5prRes, r_2sv_18_10qualityInd, r_2sv_18_6svUsed, r_2sv_18_6health, r_2sv_18_8diffCorr, r_2sv_18_8smoothed, r_2sv_18_11orbitSource, r_2sv_18_8ephAvail, r_2sv_18_8almAvail, r_2sv_18_8anoAvail, r_2sv_18_8aopAvail, r_2sv_18_10reserved13, r_2sv_18_12sbasCorrUsed, r_2sv_18_12rtcmCorrUsed, r_2sv_18_12slasCorrUsed, r_2sv_18_14spartnCorrUsed, r_2sv_18_10prCorrUsed, r_2sv_18_10crCorrUsed, r_2sv_18_10doCorrUsed, r_2sv_18_12clasCorrUsed, r_2sv_18_11lppCorrUsed, r_2sv_18_11hasCorrUsed, r_2sv_18_11flags_spare, )
+
+
+def _raw_nav_sat_2sv_19(g_2sv_19: Any) -> tuple[Any, ...]:
+    r_2sv_19_6gnssId = g_2sv_19.gnssId
+    if r_2sv_19_6gnssId.__class__ is not int and (not isinstance(r_2sv_19_6gnssId, int) or r_2sv_19_6gnssId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[19].gnssId', r_2sv_19_6gnssId, 'type', 'an int')
+    if not 0 <= r_2sv_19_6gnssId <= 255:
+        raise _enc('nav_sat', 'sv[19].gnssId', r_2sv_19_6gnssId, 'range', '0..255', None)
+    r_2sv_19_4svId = g_2sv_19.svId
+    if r_2sv_19_4svId.__class__ is not int and (not isinstance(r_2sv_19_4svId, int) or r_2sv_19_4svId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[19].svId', r_2sv_19_4svId, 'type', 'an int')
+    if not 0 <= r_2sv_19_4svId <= 255:
+        raise _enc('nav_sat', 'sv[19].svId', r_2sv_19_4svId, 'range', '0..255', None)
+    r_2sv_19_3cno = g_2sv_19.cno
+    if r_2sv_19_3cno.__class__ is not int and (not isinstance(r_2sv_19_3cno, int) or r_2sv_19_3cno.__class__ is bool):
+        raise _enc('nav_sat', 'sv[19].cno', r_2sv_19_3cno, 'type', 'an int')
+    if not 0 <= r_2sv_19_3cno <= 255:
+        raise _enc('nav_sat', 'sv[19].cno', r_2sv_19_3cno, 'range', '0..255', None)
+    r_2sv_19_4elev = g_2sv_19.elev
+    if r_2sv_19_4elev.__class__ is not int and (not isinstance(r_2sv_19_4elev, int) or r_2sv_19_4elev.__class__ is bool):
+        raise _enc('nav_sat', 'sv[19].elev', r_2sv_19_4elev, 'type', 'an int')
+    if not -128 <= r_2sv_19_4elev <= 127:
+        raise _enc('nav_sat', 'sv[19].elev', r_2sv_19_4elev, 'range', '-128..127', None)
+    r_2sv_19_4azim = g_2sv_19.azim
+    if r_2sv_19_4azim.__class__ is not int and (not isinstance(r_2sv_19_4azim, int) or r_2sv_19_4azim.__class__ is bool):
+        raise _enc('nav_sat', 'sv[19].azim', r_2sv_19_4azim, 'type', 'an int')
+    if not -32768 <= r_2sv_19_4azim <= 32767:
+        raise _enc('nav_sat', 'sv[19].azim', r_2sv_19_4azim, 'range', '-32768..32767', None)
+    r_2sv_19_5prRes = g_2sv_19.prRes
+    if r_2sv_19_5prRes.__class__ is not float and (not isinstance(r_2sv_19_5prRes, (int, float)) or r_2sv_19_5prRes.__class__ is bool):
+        raise _enc('nav_sat', 'sv[19].prRes', r_2sv_19_5prRes, 'type', 'a number')
+    if not -3276.8 <= r_2sv_19_5prRes <= 3276.7000000000003:
+        raise _enc('nav_sat', 'sv[19].prRes', r_2sv_19_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    r_2sv_19_5prRes = _floor(r_2sv_19_5prRes / 0.1 + 0.5)
+    r_2sv_19_10qualityInd = g_2sv_19.qualityInd
+    if r_2sv_19_10qualityInd.__class__ is not int and (not isinstance(r_2sv_19_10qualityInd, int) or r_2sv_19_10qualityInd.__class__ is bool):
+        raise _enc('nav_sat', 'sv[19].qualityInd', r_2sv_19_10qualityInd, 'type', 'an int')
+    if not 0 <= r_2sv_19_10qualityInd <= 7:
+        raise _enc('nav_sat', 'sv[19].qualityInd', r_2sv_19_10qualityInd, 'range', '0..7', None)
+    r_2sv_19_6svUsed: Any = g_2sv_19.svUsed
+    if r_2sv_19_6svUsed is not True and r_2sv_19_6svUsed is not False and r_2sv_19_6svUsed != 0 and r_2sv_19_6svUsed != 1:
+        raise _enc('nav_sat', 'sv[19].svUsed', r_2sv_19_6svUsed, 'type', 'a bool')
+    r_2sv_19_6svUsed = 1 if r_2sv_19_6svUsed else 0
+    r_2sv_19_6health = g_2sv_19.health
+    if r_2sv_19_6health.__class__ is not int and (not isinstance(r_2sv_19_6health, int) or r_2sv_19_6health.__class__ is bool):
+        raise _enc('nav_sat', 'sv[19].health', r_2sv_19_6health, 'type', 'an int')
+    if not 0 <= r_2sv_19_6health <= 3:
+        raise _enc('nav_sat', 'sv[19].health', r_2sv_19_6health, 'range', '0..3', None)
+    r_2sv_19_8diffCorr: Any = g_2sv_19.diffCorr
+    if r_2sv_19_8diffCorr is not True and r_2sv_19_8diffCorr is not False and r_2sv_19_8diffCorr != 0 and r_2sv_19_8diffCorr != 1:
+        raise _enc('nav_sat', 'sv[19].diffCorr', r_2sv_19_8diffCorr, 'type', 'a bool')
+    r_2sv_19_8diffCorr = 1 if r_2sv_19_8diffCorr else 0
+    r_2sv_19_8smoothed: Any = g_2sv_19.smoothed
+    if r_2sv_19_8smoothed is not True and r_2sv_19_8smoothed is not False and r_2sv_19_8smoothed != 0 and r_2sv_19_8smoothed != 1:
+        raise _enc('nav_sat', 'sv[19].smoothed', r_2sv_19_8smoothed, 'type', 'a bool')
+    r_2sv_19_8smoothed = 1 if r_2sv_19_8smoothed else 0
+    r_2sv_19_11orbitSource = g_2sv_19.orbitSource
+    if r_2sv_19_11orbitSource.__class__ is not int and (not isinstance(r_2sv_19_11orbitSource, int) or r_2sv_19_11orbitSource.__class__ is bool):
+        raise _enc('nav_sat', 'sv[19].orbitSource', r_2sv_19_11orbitSource, 'type', 'an int')
+    if not 0 <= r_2sv_19_11orbitSource <= 7:
+        raise _enc('nav_sat', 'sv[19].orbitSource', r_2sv_19_11orbitSource, 'range', '0..7', None)
+    r_2sv_19_8ephAvail: Any = g_2sv_19.ephAvail
+    if r_2sv_19_8ephAvail is not True and r_2sv_19_8ephAvail is not False and r_2sv_19_8ephAvail != 0 and r_2sv_19_8ephAvail != 1:
+        raise _enc('nav_sat', 'sv[19].ephAvail', r_2sv_19_8ephAvail, 'type', 'a bool')
+    r_2sv_19_8ephAvail = 1 if r_2sv_19_8ephAvail else 0
+    r_2sv_19_8almAvail: Any = g_2sv_19.almAvail
+    if r_2sv_19_8almAvail is not True and r_2sv_19_8almAvail is not False and r_2sv_19_8almAvail != 0 and r_2sv_19_8almAvail != 1:
+        raise _enc('nav_sat', 'sv[19].almAvail', r_2sv_19_8almAvail, 'type', 'a bool')
+    r_2sv_19_8almAvail = 1 if r_2sv_19_8almAvail else 0
+    r_2sv_19_8anoAvail: Any = g_2sv_19.anoAvail
+    if r_2sv_19_8anoAvail is not True and r_2sv_19_8anoAvail is not False and r_2sv_19_8anoAvail != 0 and r_2sv_19_8anoAvail != 1:
+        raise _enc('nav_sat', 'sv[19].anoAvail', r_2sv_19_8anoAvail, 'type', 'a bool')
+    r_2sv_19_8anoAvail = 1 if r_2sv_19_8anoAvail else 0
+    r_2sv_19_8aopAvail: Any = g_2sv_19.aopAvail
+    if r_2sv_19_8aopAvail is not True and r_2sv_19_8aopAvail is not False and r_2sv_19_8aopAvail != 0 and r_2sv_19_8aopAvail != 1:
+        raise _enc('nav_sat', 'sv[19].aopAvail', r_2sv_19_8aopAvail, 'type', 'a bool')
+    r_2sv_19_8aopAvail = 1 if r_2sv_19_8aopAvail else 0
+    r_2sv_19_10reserved13 = g_2sv_19.reserved13
+    if r_2sv_19_10reserved13.__class__ is not int and (not isinstance(r_2sv_19_10reserved13, int) or r_2sv_19_10reserved13.__class__ is bool):
+        raise _enc('nav_sat', 'sv[19].reserved13', r_2sv_19_10reserved13, 'type', 'an int')
+    if not 0 <= r_2sv_19_10reserved13 <= 1:
+        raise _enc('nav_sat', 'sv[19].reserved13', r_2sv_19_10reserved13, 'range', '0..1', None)
+    r_2sv_19_12sbasCorrUsed: Any = g_2sv_19.sbasCorrUsed
+    if r_2sv_19_12sbasCorrUsed is not True and r_2sv_19_12sbasCorrUsed is not False and r_2sv_19_12sbasCorrUsed != 0 and r_2sv_19_12sbasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[19].sbasCorrUsed', r_2sv_19_12sbasCorrUsed, 'type', 'a bool')
+    r_2sv_19_12sbasCorrUsed = 1 if r_2sv_19_12sbasCorrUsed else 0
+    r_2sv_19_12rtcmCorrUsed: Any = g_2sv_19.rtcmCorrUsed
+    if r_2sv_19_12rtcmCorrUsed is not True and r_2sv_19_12rtcmCorrUsed is not False and r_2sv_19_12rtcmCorrUsed != 0 and r_2sv_19_12rtcmCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[19].rtcmCorrUsed', r_2sv_19_12rtcmCorrUsed, 'type', 'a bool')
+    r_2sv_19_12rtcmCorrUsed = 1 if r_2sv_19_12rtcmCorrUsed else 0
+    r_2sv_19_12slasCorrUsed: Any = g_2sv_19.slasCorrUsed
+    if r_2sv_19_12slasCorrUsed is not True and r_2sv_19_12slasCorrUsed is not False and r_2sv_19_12slasCorrUsed != 0 and r_2sv_19_12slasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[19].slasCorrUsed', r_2sv_19_12slasCorrUsed, 'type', 'a bool')
+    r_2sv_19_12slasCorrUsed = 1 if r_2sv_19_12slasCorrUsed else 0
+    r_2sv_19_14spartnCorrUsed: Any = g_2sv_19.spartnCorrUsed
+    if r_2sv_19_14spartnCorrUsed is not True and r_2sv_19_14spartnCorrUsed is not False and r_2sv_19_14spartnCorrUsed != 0 and r_2sv_19_14spartnCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[19].spartnCorrUsed', r_2sv_19_14spartnCorrUsed, 'type', 'a bool')
+    r_2sv_19_14spartnCorrUsed = 1 if r_2sv_19_14spartnCorrUsed else 0
+    r_2sv_19_10prCorrUsed: Any = g_2sv_19.prCorrUsed
+    if r_2sv_19_10prCorrUsed is not True and r_2sv_19_10prCorrUsed is not False and r_2sv_19_10prCorrUsed != 0 and r_2sv_19_10prCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[19].prCorrUsed', r_2sv_19_10prCorrUsed, 'type', 'a bool')
+    r_2sv_19_10prCorrUsed = 1 if r_2sv_19_10prCorrUsed else 0
+    r_2sv_19_10crCorrUsed: Any = g_2sv_19.crCorrUsed
+    if r_2sv_19_10crCorrUsed is not True and r_2sv_19_10crCorrUsed is not False and r_2sv_19_10crCorrUsed != 0 and r_2sv_19_10crCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[19].crCorrUsed', r_2sv_19_10crCorrUsed, 'type', 'a bool')
+    r_2sv_19_10crCorrUsed = 1 if r_2sv_19_10crCorrUsed else 0
+    r_2sv_19_10doCorrUsed: Any = g_2sv_19.doCorrUsed
+    if r_2sv_19_10doCorrUsed is not True and r_2sv_19_10doCorrUsed is not False and r_2sv_19_10doCorrUsed != 0 and r_2sv_19_10doCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[19].doCorrUsed', r_2sv_19_10doCorrUsed, 'type', 'a bool')
+    r_2sv_19_10doCorrUsed = 1 if r_2sv_19_10doCorrUsed else 0
+    r_2sv_19_12clasCorrUsed: Any = g_2sv_19.clasCorrUsed
+    if r_2sv_19_12clasCorrUsed is not True and r_2sv_19_12clasCorrUsed is not False and r_2sv_19_12clasCorrUsed != 0 and r_2sv_19_12clasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[19].clasCorrUsed', r_2sv_19_12clasCorrUsed, 'type', 'a bool')
+    r_2sv_19_12clasCorrUsed = 1 if r_2sv_19_12clasCorrUsed else 0
+    r_2sv_19_11lppCorrUsed: Any = g_2sv_19.lppCorrUsed
+    if r_2sv_19_11lppCorrUsed is not True and r_2sv_19_11lppCorrUsed is not False and r_2sv_19_11lppCorrUsed != 0 and r_2sv_19_11lppCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[19].lppCorrUsed', r_2sv_19_11lppCorrUsed, 'type', 'a bool')
+    r_2sv_19_11lppCorrUsed = 1 if r_2sv_19_11lppCorrUsed else 0
+    r_2sv_19_11hasCorrUsed: Any = g_2sv_19.hasCorrUsed
+    if r_2sv_19_11hasCorrUsed is not True and r_2sv_19_11hasCorrUsed is not False and r_2sv_19_11hasCorrUsed != 0 and r_2sv_19_11hasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[19].hasCorrUsed', r_2sv_19_11hasCorrUsed, 'type', 'a bool')
+    r_2sv_19_11hasCorrUsed = 1 if r_2sv_19_11hasCorrUsed else 0
+    r_2sv_19_11flags_spare = 0
+    return (r_2sv_19_6gnssId, r_2sv_19_4svId, r_2sv_19_3cno, r_2sv_19_4elev, r_2sv_19_4azim, r_2sv_19_5prRes, r_2sv_19_10qualityInd, r_2sv_19_6svUsed, r_2sv_19_6health, r_2sv_19_8diffCorr, r_2sv_19_8smoothed, r_2sv_19_11orbitSource, r_2sv_19_8ephAvail, r_2sv_19_8almAvail, r_2sv_19_8anoAvail, r_2sv_19_8aopAvail, r_2sv_19_10reserved13, r_2sv_19_12sbasCorrUsed, r_2sv_19_12rtcmCorrUsed, r_2sv_19_12slasCorrUsed, r_2sv_19_14spartnCorrUsed, r_2sv_19_10prCorrUsed, r_2sv_19_10crCorrUsed, r_2sv_19_10doCorrUsed, r_2sv_19_12clasCorrUsed, r_2sv_19_11lppCorrUsed, r_2sv_19_11hasCorrUsed, r_2sv_19_11flags_spare, )
+
+
+def _raw_nav_sat_2sv_20(g_2sv_20: Any) -> tuple[Any, ...]:
+    r_2sv_20_6gnssId = g_2sv_20.gnssId
+    if r_2sv_20_6gnssId.__class__ is not int and (not isinstance(r_2sv_20_6gnssId, int) or r_2sv_20_6gnssId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[20].gnssId', r_2sv_20_6gnssId, 'type', 'an int')
+    if not 0 <= r_2sv_20_6gnssId <= 255:
+        raise _enc('nav_sat', 'sv[20].gnssId', r_2sv_20_6gnssId, 'range', '0..255', None)
+    r_2sv_20_4svId = g_2sv_20.svId
+    if r_2sv_20_4svId.__class__ is not int and (not isinstance(r_2sv_20_4svId, int) or r_2sv_20_4svId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[20].svId', r_2sv_20_4svId, 'type', 'an int')
+    if not 0 <= r_2sv_20_4svId <= 255:
+        raise _enc('nav_sat', 'sv[20].svId', r_2sv_20_4svId, 'range', '0..255', None)
+    r_2sv_20_3cno = g_2sv_20.cno
+    if r_2sv_20_3cno.__class__ is not int and (not isinstance(r_2sv_20_3cno, int) or r_2sv_20_3cno.__class__ is bool):
+        raise _enc('nav_sat', 'sv[20].cno', r_2sv_20_3cno, 'type', 'an int')
+    if not 0 <= r_2sv_20_3cno <= 255:
+        raise _enc('nav_sat', 'sv[20].cno', r_2sv_20_3cno, 'range', '0..255', None)
+    r_2sv_20_4elev = g_2sv_20.elev
+    if r_2sv_20_4elev.__class__ is not int and (not isinstance(r_2sv_20_4elev, int) or r_2sv_20_4elev.__class__ is bool):
+        raise _enc('nav_sat', 'sv[20].elev', r_2sv_20_4elev, 'type', 'an int')
+    if not -128 <= r_2sv_20_4elev <= 127:
+        raise _enc('nav_sat', 'sv[20].elev', r_2sv_20_4elev, 'range', '-128..127', None)
+    r_2sv_20_4azim = g_2sv_20.azim
+    if r_2sv_20_4azim.__class__ is not int and (not isinstance(r_2sv_20_4azim, int) or r_2sv_20_4azim.__class__ is bool):
+        raise _enc('nav_sat', 'sv[20].azim', r_2sv_20_4azim, 'type', 'an int')
+    if not -32768 <= r_2sv_20_4azim <= 32767:
+        raise _enc('nav_sat', 'sv[20].azim', r_2sv_20_4azim, 'range', '-32768..32767', None)
+    r_2sv_20_5prRes = g_2sv_20.prRes
+    if r_2sv_20_5prRes.__class__ is not float and (not isinstance(r_2sv_20_5prRes, (int, float)) or r_2sv_20_5prRes.__class__ is bool):
+        raise _enc('nav_sat', 'sv[20].prRes', r_2sv_20_5prRes, 'type', 'a number')
+    if not -3276.8 <= r_2sv_20_5prRes <= 3276.7000000000003:
+        raise _enc('nav_sat', 'sv[20].prRes', r_2sv_20_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    r_2sv_20_5prRes = _floor(r_2sv_20_5prRes / 0.1 + 0.5)
+    r_2sv_20_10qualityInd = g_2sv_20.qualityInd
+    if r_2sv_20_10qualityInd.__class__ is not int and (not isinstance(r_2sv_20_10qualityInd, int) or r_2sv_20_10qualityInd.__class__ is bool):
+        raise _enc('nav_sat', 'sv[20].qualityInd', r_2sv_20_10qualityInd, 'type', 'an int')
+    if not 0 <= r_2sv_20_10qualityInd <= 7:
+        raise _enc('nav_sat', 'sv[20].qualityInd', r_2sv_20_10qualityInd, 'range', '0..7', None)
+    r_2sv_20_6svUsed: Any = g_2sv_20.svUsed
+    if r_2sv_20_6svUsed is not True and r_2sv_20_6svUsed is not False and r_2sv_20_6svUsed != 0 and r_2sv_20_6svUsed != 1:
+        raise _enc('nav_sat', 'sv[20].svUsed', r_2sv_20_6svUsed, 'type', 'a bool')
+    r_2sv_20_6svUsed = 1 if r_2sv_20_6svUsed else 0
+    r_2sv_20_6health = g_2sv_20.health
+    if r_2sv_20_6health.__class__ is not int and (not isinstance(r_2sv_20_6health, int) or r_2sv_20_6health.__class__ is bool):
+        raise _enc('nav_sat', 'sv[20].health', r_2sv_20_6health, 'type', 'an int')
+    if not 0 <= r_2sv_20_6health <= 3:
+        raise _enc('nav_sat', 'sv[20].health', r_2sv_20_6health, 'range', '0..3', None)
+    r_2sv_20_8diffCorr: Any = g_2sv_20.diffCorr
+    if r_2sv_20_8diffCorr is not True and r_2sv_20_8diffCorr is not False and r_2sv_20_8diffCorr != 0 and r_2sv_20_8diffCorr != 1:
+        raise _enc('nav_sat', 'sv[20].diffCorr', r_2sv_20_8diffCorr, 'type', 'a bool')
+    r_2sv_20_8diffCorr = 1 if r_2sv_20_8diffCorr else 0
+    r_2sv_20_8smoothed: Any = g_2sv_20.smoothed
+    if r_2sv_20_8smoothed is not True and r_2sv_20_8smoothed is not False and r_2sv_20_8smoothed != 0 and r_2sv_20_8smoothed != 1:
+        raise _enc('nav_sat', 'sv[20].smoothed', r_2sv_20_8smoothed, 'type', 'a bool')
+    r_2sv_20_8smoothed = 1 if r_2sv_20_8smoothed else 0
+    r_2sv_20_11orbitSource = g_2sv_20.orbitSource
+    if r_2sv_20_11orbitSource.__class__ is not int and (not isinstance(r_2sv_20_11orbitSource, int) or r_2sv_20_11orbitSource.__class__ is bool):
+        raise _enc('nav_sat', 'sv[20].orbitSource', r_2sv_20_11orbitSource, 'type', 'an int')
+    if not 0 <= r_2sv_20_11orbitSource <= 7:
+        raise _enc('nav_sat', 'sv[20].orbitSource', r_2sv_20_11orbitSource, 'range', '0..7', None)
+    r_2sv_20_8ephAvail: Any = g_2sv_20.ephAvail
+    if r_2sv_20_8ephAvail is not True and r_2sv_20_8ephAvail is not False and r_2sv_20_8ephAvail != 0 and r_2sv_20_8ephAvail != 1:
+        raise _enc('nav_sat', 'sv[20].ephAvail', r_2sv_20_8ephAvail, 'type', 'a bool')
+    r_2sv_20_8ephAvail = 1 if r_2sv_20_8ephAvail else 0
+    r_2sv_20_8almAvail: Any = g_2sv_20.almAvail
+    if r_2sv_20_8almAvail is not True and r_2sv_20_8almAvail is not False and r_2sv_20_8almAvail != 0 and r_2sv_20_8almAvail != 1:
+        raise _enc('nav_sat', 'sv[20].almAvail', r_2sv_20_8almAvail, 'type', 'a bool')
+    r_2sv_20_8almAvail = 1 if r_2sv_20_8almAvail else 0
+    r_2sv_20_8anoAvail: Any = g_2sv_20.anoAvail
+    if r_2sv_20_8anoAvail is not True and r_2sv_20_8anoAvail is not False and r_2sv_20_8anoAvail != 0 and r_2sv_20_8anoAvail != 1:
+        raise _enc('nav_sat', 'sv[20].anoAvail', r_2sv_20_8anoAvail, 'type', 'a bool')
+    r_2sv_20_8anoAvail = 1 if r_2sv_20_8anoAvail else 0
+    r_2sv_20_8aopAvail: Any = g_2sv_20.aopAvail
+    if r_2sv_20_8aopAvail is not True and r_2sv_20_8aopAvail is not False and r_2sv_20_8aopAvail != 0 and r_2sv_20_8aopAvail != 1:
+        raise _enc('nav_sat', 'sv[20].aopAvail', r_2sv_20_8aopAvail, 'type', 'a bool')
+    r_2sv_20_8aopAvail = 1 if r_2sv_20_8aopAvail else 0
+    r_2sv_20_10reserved13 = g_2sv_20.reserved13
+    if r_2sv_20_10reserved13.__class__ is not int and (not isinstance(r_2sv_20_10reserved13, int) or r_2sv_20_10reserved13.__class__ is bool):
+        raise _enc('nav_sat', 'sv[20].reserved13', r_2sv_20_10reserved13, 'type', 'an int')
+    if not 0 <= r_2sv_20_10reserved13 <= 1:
+        raise _enc('nav_sat', 'sv[20].reserved13', r_2sv_20_10reserved13, 'range', '0..1', None)
+    r_2sv_20_12sbasCorrUsed: Any = g_2sv_20.sbasCorrUsed
+    if r_2sv_20_12sbasCorrUsed is not True and r_2sv_20_12sbasCorrUsed is not False and r_2sv_20_12sbasCorrUsed != 0 and r_2sv_20_12sbasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[20].sbasCorrUsed', r_2sv_20_12sbasCorrUsed, 'type', 'a bool')
+    r_2sv_20_12sbasCorrUsed = 1 if r_2sv_20_12sbasCorrUsed else 0
+    r_2sv_20_12rtcmCorrUsed: Any = g_2sv_20.rtcmCorrUsed
+    if r_2sv_20_12rtcmCorrUsed is not True and r_2sv_20_12rtcmCorrUsed is not False and r_2sv_20_12rtcmCorrUsed != 0 and r_2sv_20_12rtcmCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[20].rtcmCorrUsed', r_2sv_20_12rtcmCorrUsed, 'type', 'a bool')
+    r_2sv_20_12rtcmCorrUsed = 1 if r_2sv_20_12rtcmCorrUsed else 0
+    r_2sv_20_12slasCorrUsed: Any = g_2sv_20.slasCorrUsed
+    if r_2sv_20_12slasCorrUsed is not True and r_2sv_20_12slasCorrUsed is not False and r_2sv_20_12slasCorrUsed != 0 and r_2sv_20_12slasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[20].slasCorrUsed', r_2sv_20_12slasCorrUsed, 'type', 'a bool')
+    r_2sv_20_12slasCorrUsed = 1 if r_2sv_20_12slasCorrUsed else 0
+    r_2sv_20_14spartnCorrUsed: Any = g_2sv_20.spartnCorrUsed
+    if r_2sv_20_14spartnCorrUsed is not True and r_2sv_20_14spartnCorrUsed is not False and r_2sv_20_14spartnCorrUsed != 0 and r_2sv_20_14spartnCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[20].spartnCorrUsed', r_2sv_20_14spartnCorrUsed, 'type', 'a bool')
+    r_2sv_20_14spartnCorrUsed = 1 if r_2sv_20_14spartnCorrUsed else 0
+    r_2sv_20_10prCorrUsed: Any = g_2sv_20.prCorrUsed
+    if r_2sv_20_10prCorrUsed is not True and r_2sv_20_10prCorrUsed is not False and r_2sv_20_10prCorrUsed != 0 and r_2sv_20_10prCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[20].prCorrUsed', r_2sv_20_10prCorrUsed, 'type', 'a bool')
+    r_2sv_20_10prCorrUsed = 1 if r_2sv_20_10prCorrUsed else 0
+    r_2sv_20_10crCorrUsed: Any = g_2sv_20.crCorrUsed
+    if r_2sv_20_10crCorrUsed is not True and r_2sv_20_10crCorrUsed is not False and r_2sv_20_10crCorrUsed != 0 and r_2sv_20_10crCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[20].crCorrUsed', r_2sv_20_10crCorrUsed, 'type', 'a bool')
+    r_2sv_20_10crCorrUsed = 1 if r_2sv_20_10crCorrUsed else 0
+    r_2sv_20_10doCorrUsed: Any = g_2sv_20.doCorrUsed
+    if r_2sv_20_10doCorrUsed is not True and r_2sv_20_10doCorrUsed is not False and r_2sv_20_10doCorrUsed != 0 and r_2sv_20_10doCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[20].doCorrUsed', r_2sv_20_10doCorrUsed, 'type', 'a bool')
+    r_2sv_20_10doCorrUsed = 1 if r_2sv_20_10doCorrUsed else 0
+    r_2sv_20_12clasCorrUsed: Any = g_2sv_20.clasCorrUsed
+    if r_2sv_20_12clasCorrUsed is not True and r_2sv_20_12clasCorrUsed is not False and r_2sv_20_12clasCorrUsed != 0 and r_2sv_20_12clasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[20].clasCorrUsed', r_2sv_20_12clasCorrUsed, 'type', 'a bool')
+    r_2sv_20_12clasCorrUsed = 1 if r_2sv_20_12clasCorrUsed else 0
+    r_2sv_20_11lppCorrUsed: Any = g_2sv_20.lppCorrUsed
+    if r_2sv_20_11lppCorrUsed is not True and r_2sv_20_11lppCorrUsed is not False and r_2sv_20_11lppCorrUsed != 0 and r_2sv_20_11lppCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[20].lppCorrUsed', r_2sv_20_11lppCorrUsed, 'type', 'a bool')
+    r_2sv_20_11lppCorrUsed = 1 if r_2sv_20_11lppCorrUsed else 0
+    r_2sv_20_11hasCorrUsed: Any = g_2sv_20.hasCorrUsed
+    if r_2sv_20_11hasCorrUsed is not True and r_2sv_20_11hasCorrUsed is not False and r_2sv_20_11hasCorrUsed != 0 and r_2sv_20_11hasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[20].hasCorrUsed', r_2sv_20_11hasCorrUsed, 'type', 'a bool')
+    r_2sv_20_11hasCorrUsed = 1 if r_2sv_20_11hasCorrUsed else 0
+    r_2sv_20_11flags_spare = 0
+    return (r_2sv_20_6gnssId, r_2sv_20_4svId, r_2sv_20_3cno, r_2sv_20_4elev, r_2sv_20_4azim, r_2sv_20_5prRes, r_2sv_20_10qualityInd, r_2sv_20_6svUsed, r_2sv_20_6health, r_2sv_20_8diffCorr, r_2sv_20_8smoothed, r_2sv_20_11orbitSource, r_2sv_20_8ephAvail, r_2sv_20_8almAvail, r_2sv_20_8anoAvail, r_2sv_20_8aopAvail, r_2sv_20_10reserved13, r_2sv_20_12sbasCorrUsed, r_2sv_20_12rtcmCorrUsed, r_2sv_20_12slasCorrUsed, r_2sv_20_14spartnCorrUsed, r_2sv_20_10prCorrUsed, r_2sv_20_10crCorrUsed, r_2sv_20_10doCorrUsed, r_2sv_20_12clasCorrUsed, r_2sv_20_11lppCorrUsed, r_2sv_20_11hasCorrUsed, r_2sv_20_11flags_spare, )
+
+
+def _raw_nav_sat_2sv_21(g_2sv_21: Any) -> tuple[Any, ...]:
+    r_2sv_21_6gnssId = g_2sv_21.gnssId
+    if r_2sv_21_6gnssId.__class__ is not int and (not isinstance(r_2sv_21_6gnssId, int) or r_2sv_21_6gnssId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[21].gnssId', r_2sv_21_6gnssId, 'type', 'an int')
+    if not 0 <= r_2sv_21_6gnssId <= 255:
+        raise _enc('nav_sat', 'sv[21].gnssId', r_2sv_21_6gnssId, 'range', '0..255', None)
+    r_2sv_21_4svId = g_2sv_21.svId
+    if r_2sv_21_4svId.__class__ is not int and (not isinstance(r_2sv_21_4svId, int) or r_2sv_21_4svId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[21].svId', r_2sv_21_4svId, 'type', 'an int')
+    if not 0 <= r_2sv_21_4svId <= 255:
+        raise _enc('nav_sat', 'sv[21].svId', r_2sv_21_4svId, 'range', '0..255', None)
+    r_2sv_21_3cno = g_2sv_21.cno
+    if r_2sv_21_3cno.__class__ is not int and (not isinstance(r_2sv_21_3cno, int) or r_2sv_21_3cno.__class__ is bool):
+        raise _enc('nav_sat', 'sv[21].cno', r_2sv_21_3cno, 'type', 'an int')
+    if not 0 <= r_2sv_21_3cno <= 255:
+        raise _enc('nav_sat', 'sv[21].cno', r_2sv_21_3cno, 'range', '0..255', None)
+    r_2sv_21_4elev = g_2sv_21.elev
+    if r_2sv_21_4elev.__class__ is not int and (not isinstance(r_2sv_21_4elev, int) or r_2sv_21_4elev.__class__ is bool):
+        raise _enc('nav_sat', 'sv[21].elev', r_2sv_21_4elev, 'type', 'an int')
+    if not -128 <= r_2sv_21_4elev <= 127:
+        raise _enc('nav_sat', 'sv[21].elev', r_2sv_21_4elev, 'range', '-128..127', None)
+    r_2sv_21_4azim = g_2sv_21.azim
+    if r_2sv_21_4azim.__class__ is not int and (not isinstance(r_2sv_21_4azim, int) or r_2sv_21_4azim.__class__ is bool):
+        raise _enc('nav_sat', 'sv[21].azim', r_2sv_21_4azim, 'type', 'an int')
+    if not -32768 <= r_2sv_21_4azim <= 32767:
+        raise _enc('nav_sat', 'sv[21].azim', r_2sv_21_4azim, 'range', '-32768..32767', None)
+    r_2sv_21_5prRes = g_2sv_21.prRes
+    if r_2sv_21_5prRes.__class__ is not float and (not isinstance(r_2sv_21_5prRes, (int, float)) or r_2sv_21_5prRes.__class__ is bool):
+        raise _enc('nav_sat', 'sv[21].prRes', r_2sv_21_5prRes, 'type', 'a number')
+    if not -3276.8 <= r_2sv_21_5prRes <= 3276.7000000000003:
+        raise _enc('nav_sat', 'sv[21].prRes', r_2sv_21_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    r_2sv_21_5prRes = _floor(r_2sv_21_5prRes / 0.1 + 0.5)
+    r_2sv_21_10qualityInd = g_2sv_21.qualityInd
+    if r_2sv_21_10qualityInd.__class__ is not int and (not isinstance(r_2sv_21_10qualityInd, int) or r_2sv_21_10qualityInd.__class__ is bool):
+        raise _enc('nav_sat', 'sv[21].qualityInd', r_2sv_21_10qualityInd, 'type', 'an int')
+    if not 0 <= r_2sv_21_10qualityInd <= 7:
+        raise _enc('nav_sat', 'sv[21].qualityInd', r_2sv_21_10qualityInd, 'range', '0..7', None)
+    r_2sv_21_6svUsed: Any = g_2sv_21.svUsed
+    if r_2sv_21_6svUsed is not True and r_2sv_21_6svUsed is not False and r_2sv_21_6svUsed != 0 and r_2sv_21_6svUsed != 1:
+        raise _enc('nav_sat', 'sv[21].svUsed', r_2sv_21_6svUsed, 'type', 'a bool')
+    r_2sv_21_6svUsed = 1 if r_2sv_21_6svUsed else 0
+    r_2sv_21_6health = g_2sv_21.health
+    if r_2sv_21_6health.__class__ is not int and (not isinstance(r_2sv_21_6health, int) or r_2sv_21_6health.__class__ is bool):
+        raise _enc('nav_sat', 'sv[21].health', r_2sv_21_6health, 'type', 'an int')
+    if not 0 <= r_2sv_21_6health <= 3:
+        raise _enc('nav_sat', 'sv[21].health', r_2sv_21_6health, 'range', '0..3', None)
+    r_2sv_21_8diffCorr: Any = g_2sv_21.diffCorr
+    if r_2sv_21_8diffCorr is not True and r_2sv_21_8diffCorr is not False and r_2sv_21_8diffCorr != 0 and r_2sv_21_8diffCorr != 1:
+        raise _enc('nav_sat', 'sv[21].diffCorr', r_2sv_21_8diffCorr, 'type', 'a bool')
+    r_2sv_21_8diffCorr = 1 if r_2sv_21_8diffCorr else 0
+    r_2sv_21_8smoothed: Any = g_2sv_21.smoothed
+    if r_2sv_21_8smoothed is not True and r_2sv_21_8smoothed is not False and r_2sv_21_8smoothed != 0 and r_2sv_21_8smoothed != 1:
+        raise _enc('nav_sat', 'sv[21].smoothed', r_2sv_21_8smoothed, 'type', 'a bool')
+    r_2sv_21_8smoothed = 1 if r_2sv_21_8smoothed else 0
+    r_2sv_21_11orbitSource = g_2sv_21.orbitSource
+    if r_2sv_21_11orbitSource.__class__ is not int and (not isinstance(r_2sv_21_11orbitSource, int) or r_2sv_21_11orbitSource.__class__ is bool):
+        raise _enc('nav_sat', 'sv[21].orbitSource', r_2sv_21_11orbitSource, 'type', 'an int')
+    if not 0 <= r_2sv_21_11orbitSource <= 7:
+        raise _enc('nav_sat', 'sv[21].orbitSource', r_2sv_21_11orbitSource, 'range', '0..7', None)
+    r_2sv_21_8ephAvail: Any = g_2sv_21.ephAvail
+    if r_2sv_21_8ephAvail is not True and r_2sv_21_8ephAvail is not False and r_2sv_21_8ephAvail != 0 and r_2sv_21_8ephAvail != 1:
+        raise _enc('nav_sat', 'sv[21].ephAvail', r_2sv_21_8ephAvail, 'type', 'a bool')
+    r_2sv_21_8ephAvail = 1 if r_2sv_21_8ephAvail else 0
+    r_2sv_21_8almAvail: Any = g_2sv_21.almAvail
+    if r_2sv_21_8almAvail is not True and r_2sv_21_8almAvail is not False and r_2sv_21_8almAvail != 0 and r_2sv_21_8almAvail != 1:
+        raise _enc('nav_sat', 'sv[21].almAvail', r_2sv_21_8almAvail, 'type', 'a bool')
+    r_2sv_21_8almAvail = 1 if r_2sv_21_8almAvail else 0
+    r_2sv_21_8anoAvail: Any = g_2sv_21.anoAvail
+    if r_2sv_21_8anoAvail is not True and r_2sv_21_8anoAvail is not False and r_2sv_21_8anoAvail != 0 and r_2sv_21_8anoAvail != 1:
+        raise _enc('nav_sat', 'sv[21].anoAvail', r_2sv_21_8anoAvail, 'type', 'a bool')
+    r_2sv_21_8anoAvail = 1 if r_2sv_21_8anoAvail else 0
+    r_2sv_21_8aopAvail: Any = g_2sv_21.aopAvail
+    if r_2sv_21_8aopAvail is not True and r_2sv_21_8aopAvail is not False and r_2sv_21_8aopAvail != 0 and r_2sv_21_8aopAvail != 1:
+        raise _enc('nav_sat', 'sv[21].aopAvail', r_2sv_21_8aopAvail, 'type', 'a bool')
+    r_2sv_21_8aopAvail = 1 if r_2sv_21_8aopAvail else 0
+    r_2sv_21_10reserved13 = g_2sv_21.reserved13
+    if r_2sv_21_10reserved13.__class__ is not int and (not isinstance(r_2sv_21_10reserved13, int) or r_2sv_21_10reserved13.__class__ is bool):
+        raise _enc('nav_sat', 'sv[21].reserved13', r_2sv_21_10reserved13, 'type', 'an int')
+    if not 0 <= r_2sv_21_10reserved13 <= 1:
+        raise _enc('nav_sat', 'sv[21].reserved13', r_2sv_21_10reserved13, 'range', '0..1', None)
+    r_2sv_21_12sbasCorrUsed: Any = g_2sv_21.sbasCorrUsed
+    if r_2sv_21_12sbasCorrUsed is not True and r_2sv_21_12sbasCorrUsed is not False and r_2sv_21_12sbasCorrUsed != 0 and r_2sv_21_12sbasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[21].sbasCorrUsed', r_2sv_21_12sbasCorrUsed, 'type', 'a bool')
+    r_2sv_21_12sbasCorrUsed = 1 if r_2sv_21_12sbasCorrUsed else 0
+    r_2sv_21_12rtcmCorrUsed: Any = g_2sv_21.rtcmCorrUsed
+    if r_2sv_21_12rtcmCorrUsed is not True and r_2sv_21_12rtcmCorrUsed is not False and r_2sv_21_12rtcmCorrUsed != 0 and r_2sv_21_12rtcmCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[21].rtcmCorrUsed', r_2sv_21_12rtcmCorrUsed, 'type', 'a bool')
+    r_2sv_21_12rtcmCorrUsed = 1 if r_2sv_21_12rtcmCorrUsed else 0
+    r_2sv_21_12slasCorrUsed: Any = g_2sv_21.slasCorrUsed
+    if r_2sv_21_12slasCorrUsed is not True and r_2sv_21_12slasCorrUsed is not False and r_2sv_21_12slasCorrUsed != 0 and r_2sv_21_12slasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[21].slasCorrUsed', r_2sv_21_12slasCorrUsed, 'type', 'a bool')
+    r_2sv_21_12slasCorrUsed = 1 if r_2sv_21_12slasCorrUsed else 0
+    r_2sv_21_14spartnCorrUsed: Any = g_2sv_21.spartnCorrUsed
+    if r_2sv_21_14spartnCorrUsed is not True and r_2sv_21_14spartnCorrUsed is not False and r_2sv_21_14spartnCorrUsed != 0 and r_2sv_21_14spartnCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[21].spartnCorrUsed', r_2sv_21_14spartnCorrUsed, 'type', 'a bool')
+    r_2sv_21_14spartnCorrUsed = 1 if r_2sv_21_14spartnCorrUsed else 0
+    r_2sv_21_10prCorrUsed: Any = g_2sv_21.prCorrUsed
+    if r_2sv_21_10prCorrUsed is not True and r_2sv_21_10prCorrUsed is not False and r_2sv_21_10prCorrUsed != 0 and r_2sv_21_10prCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[21].prCorrUsed', r_2sv_21_10prCorrUsed, 'type', 'a bool')
+    r_2sv_21_10prCorrUsed = 1 if r_2sv_21_10prCorrUsed else 0
+    r_2sv_21_10crCorrUsed: Any = g_2sv_21.crCorrUsed
+    if r_2sv_21_10crCorrUsed is not True and r_2sv_21_10crCorrUsed is not False and r_2sv_21_10crCorrUsed != 0 and r_2sv_21_10crCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[21].crCorrUsed', r_2sv_21_10crCorrUsed, 'type', 'a bool')
+    r_2sv_21_10crCorrUsed = 1 if r_2sv_21_10crCorrUsed else 0
+    r_2sv_21_10doCorrUsed: Any = g_2sv_21.doCorrUsed
+    if r_2sv_21_10doCorrUsed is not True and r_2sv_21_10doCorrUsed is not False and r_2sv_21_10doCorrUsed != 0 and r_2sv_21_10doCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[21].doCorrUsed', r_2sv_21_10doCorrUsed, 'type', 'a bool')
+    r_2sv_21_10doCorrUsed = 1 if r_2sv_21_10doCorrUsed else 0
+    r_2sv_21_12clasCorrUsed: Any = g_2sv_21.clasCorrUsed
+    if r_2sv_21_12clasCorrUsed is not True and r_2sv_21_12clasCorrUsed is not False and r_2sv_21_12clasCorrUsed != 0 and r_2sv_21_12clasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[21].clasCorrUsed', r_2sv_21_12clasCorrUsed, 'type', 'a bool')
+    r_2sv_21_12clasCorrUsed = 1 if r_2sv_21_12clasCorrUsed else 0
+    r_2sv_21_11lppCorrUsed: Any = g_2sv_21.lppCorrUsed
+    if r_2sv_21_11lppCorrUsed is not True and r_2sv_21_11lppCorrUsed is not False and r_2sv_21_11lppCorrUsed != 0 and r_2sv_21_11lppCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[21].lppCorrUsed', r_2sv_21_11lppCorrUsed, 'type', 'a bool')
+    r_2sv_21_11lppCorrUsed = 1 if r_2sv_21_11lppCorrUsed else 0
+    r_2sv_21_11hasCorrUsed: Any = g_2sv_21.hasCorrUsed
+    if r_2sv_21_11hasCorrUsed is not True and r_2sv_21_11hasCorrUsed is not False and r_2sv_21_11hasCorrUsed != 0 and r_2sv_21_11hasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[21].hasCorrUsed', r_2sv_21_11hasCorrUsed, 'type', 'a bool')
+    r_2sv_21_11hasCorrUsed = 1 if r_2sv_21_11hasCorrUsed else 0
+    r_2sv_21_11flags_spare = 0
+    return (r_2sv_21_6gnssId, r_2sv_21_4svId, r_2sv_21_3cno, r_2sv_21_4elev, r_2sv_21_4azim, r_2sv_21_5prRes, r_2sv_21_10qualityInd, r_2sv_21_6svUsed, r_2sv_21_6health, r_2sv_21_8diffCorr, r_2sv_21_8smoothed, r_2sv_21_11orbitSource, r_2sv_21_8ephAvail, r_2sv_21_8almAvail, r_2sv_21_8anoAvail, r_2sv_21_8aopAvail, r_2sv_21_10reserved13, r_2sv_21_12sbasCorrUsed, r_2sv_21_12rtcmCorrUsed, r_2sv_21_12slasCorrUsed, r_2sv_21_14spartnCorrUsed, r_2sv_21_10prCorrUsed, r_2sv_21_10crCorrUsed, r_2sv_21_10doCorrUsed, r_2sv_21_12clasCorrUsed, r_2sv_21_11lppCorrUsed, r_2sv_21_11hasCorrUsed, r_2sv_21_11flags_spare, )
+
+
+def _raw_nav_sat_2sv_22(g_2sv_22: Any) -> tuple[Any, ...]:
+    r_2sv_22_6gnssId = g_2sv_22.gnssId
+    if r_2sv_22_6gnssId.__class__ is not int and (not isinstance(r_2sv_22_6gnssId, int) or r_2sv_22_6gnssId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[22].gnssId', r_2sv_22_6gnssId, 'type', 'an int')
+    if not 0 <= r_2sv_22_6gnssId <= 255:
+        raise _enc('nav_sat', 'sv[22].gnssId', r_2sv_22_6gnssId, 'range', '0..255', None)
+    r_2sv_22_4svId = g_2sv_22.svId
+    if r_2sv_22_4svId.__class__ is not int and (not isinstance(r_2sv_22_4svId, int) or r_2sv_22_4svId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[22].svId', r_2sv_22_4svId, 'type', 'an int')
+    if not 0 <= r_2sv_22_4svId <= 255:
+        raise _enc('nav_sat', 'sv[22].svId', r_2sv_22_4svId, 'range', '0..255', None)
+    r_2sv_22_3cno = g_2sv_22.cno
+    if r_2sv_22_3cno.__class__ is not int and (not isinstance(r_2sv_22_3cno, int) or r_2sv_22_3cno.__class__ is bool):
+        raise _enc('nav_sat', 'sv[22].cno', r_2sv_22_3cno, 'type', 'an int')
+    if not 0 <= r_2sv_22_3cno <= 255:
+        raise _enc('nav_sat', 'sv[22].cno', r_2sv_22_3cno, 'range', '0..255', None)
+    r_2sv_22_4elev = g_2sv_22.elev
+    if r_2sv_22_4elev.__class__ is not int and (not isinstance(r_2sv_22_4elev, int) or r_2sv_22_4elev.__class__ is bool):
+        raise _enc('nav_sat', 'sv[22].elev', r_2sv_22_4elev, 'type', 'an int')
+    if not -128 <= r_2sv_22_4elev <= 127:
+        raise _enc('nav_sat', 'sv[22].elev', r_2sv_22_4elev, 'range', '-128..127', None)
+    r_2sv_22_4azim = g_2sv_22.azim
+    if r_2sv_22_4azim.__class__ is not int and (not isinstance(r_2sv_22_4azim, int) or r_2sv_22_4azim.__class__ is bool):
+        raise _enc('nav_sat', 'sv[22].azim', r_2sv_22_4azim, 'type', 'an int')
+    if not -32768 <= r_2sv_22_4azim <= 32767:
+        raise _enc('nav_sat', 'sv[22].azim', r_2sv_22_4azim, 'range', '-32768..32767', None)
+    r_2sv_22_5prRes = g_2sv_22.prRes
+    if r_2sv_22_5prRes.__class__ is not float and (not isinstance(r_2sv_22_5prRes, (int, float)) or r_2sv_22_5prRes.__class__ is bool):
+        raise _enc('nav_sat', 'sv[22].prRes', r_2sv_22_5prRes, 'type', 'a number')
+    if not -3276.8 <= r_2sv_22_5prRes <= 3276.7000000000003:
+        raise _enc('nav_sat', 'sv[22].prRes', r_2sv_22_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    r_2sv_22_5prRes = _floor(r_2sv_22_5prRes / 0.1 + 0.5)
+    r_2sv_22_10qualityInd = g_2sv_22.qualityInd
+    if r_2sv_22_10qualityInd.__class__ is not int and (not isinstance(r_2sv_22_10qualityInd, int) or r_2sv_22_10qualityInd.__class__ is bool):
+        raise _enc('nav_sat', 'sv[22].qualityInd', r_2sv_22_10qualityInd, 'type', 'an int')
+    if not 0 <= r_2sv_22_10qualityInd <= 7:
+        raise _enc('nav_sat', 'sv[22].qualityInd', r_2sv_22_10qualityInd, 'range', '0..7', None)
+    r_2sv_22_6svUsed: Any = g_2sv_22.svUsed
+    if r_2sv_22_6svUsed is not True and r_2sv_22_6svUsed is not False and r_2sv_22_6svUsed != 0 and r_2sv_22_6svUsed != 1:
+        raise _enc('nav_sat', 'sv[22].svUsed', r_2sv_22_6svUsed, 'type', 'a bool')
+    r_2sv_22_6svUsed = 1 if r_2sv_22_6svUsed else 0
+    r_2sv_22_6health = g_2sv_22.health
+    if r_2sv_22_6health.__class__ is not int and (not isinstance(r_2sv_22_6health, int) or r_2sv_22_6health.__class__ is bool):
+        raise _enc('nav_sat', 'sv[22].health', r_2sv_22_6health, 'type', 'an int')
+    if not 0 <= r_2sv_22_6health <= 3:
+        raise _enc('nav_sat', 'sv[22].health', r_2sv_22_6health, 'range', '0..3', None)
+    r_2sv_22_8diffCorr: Any = g_2sv_22.diffCorr
+    if r_2sv_22_8diffCorr is not True and r_2sv_22_8diffCorr is not False and r_2sv_22_8diffCorr != 0 and r_2sv_22_8diffCorr != 1:
+        raise _enc('nav_sat', 'sv[22].diffCorr', r_2sv_22_8diffCorr, 'type', 'a bool')
+    r_2sv_22_8diffCorr = 1 if r_2sv_22_8diffCorr else 0
+    r_2sv_22_8smoothed: Any = g_2sv_22.smoothed
+    if r_2sv_22_8smoothed is not True and r_2sv_22_8smoothed is not False and r_2sv_22_8smoothed != 0 and r_2sv_22_8smoothed != 1:
+        raise _enc('nav_sat', 'sv[22].smoothed', r_2sv_22_8smoothed, 'type', 'a bool')
+    r_2sv_22_8smoothed = 1 if r_2sv_22_8smoothed else 0
+    r_2sv_22_11orbitSource = g_2sv_22.orbitSource
+    if r_2sv_22_11orbitSource.__class__ is not int and (not isinstance(r_2sv_22_11orbitSource, int) or r_2sv_22_11orbitSource.__class__ is bool):
+        raise _enc('nav_sat', 'sv[22].orbitSource', r_2sv_22_11orbitSource, 'type', 'an int')
+    if not 0 <= r_2sv_22_11orbitSource <= 7:
+        raise _enc('nav_sat', 'sv[22].orbitSource', r_2sv_22_11orbitSource, 'range', '0..7', None)
+    r_2sv_22_8ephAvail: Any = g_2sv_22.ephAvail
+    if r_2sv_22_8ephAvail is not True and r_2sv_22_8ephAvail is not False and r_2sv_22_8ephAvail != 0 and r_2sv_22_8ephAvail != 1:
+        raise _enc('nav_sat', 'sv[22].ephAvail', r_2sv_22_8ephAvail, 'type', 'a bool')
+    r_2sv_22_8ephAvail = 1 if r_2sv_22_8ephAvail else 0
+    r_2sv_22_8almAvail: Any = g_2sv_22.almAvail
+    if r_2sv_22_8almAvail is not True and r_2sv_22_8almAvail is not False and r_2sv_22_8almAvail != 0 and r_2sv_22_8almAvail != 1:
+        raise _enc('nav_sat', 'sv[22].almAvail', r_2sv_22_8almAvail, 'type', 'a bool')
+    r_2sv_22_8almAvail = 1 if r_2sv_22_8almAvail else 0
+    r_2sv_22_8anoAvail: Any = g_2sv_22.anoAvail
+    if r_2sv_22_8anoAvail is not True and r_2sv_22_8anoAvail is not False and r_2sv_22_8anoAvail != 0 and r_2sv_22_8anoAvail != 1:
+        raise _enc('nav_sat', 'sv[22].anoAvail', r_2sv_22_8anoAvail, 'type', 'a bool')
+    r_2sv_22_8anoAvail = 1 if r_2sv_22_8anoAvail else 0
+    r_2sv_22_8aopAvail: Any = g_2sv_22.aopAvail
+    if r_2sv_22_8aopAvail is not True and r_2sv_22_8aopAvail is not False and r_2sv_22_8aopAvail != 0 and r_2sv_22_8aopAvail != 1:
+        raise _enc('nav_sat', 'sv[22].aopAvail', r_2sv_22_8aopAvail, 'type', 'a bool')
+    r_2sv_22_8aopAvail = 1 if r_2sv_22_8aopAvail else 0
+    r_2sv_22_10reserved13 = g_2sv_22.reserved13
+    if r_2sv_22_10reserved13.__class__ is not int and (not isinstance(r_2sv_22_10reserved13, int) or r_2sv_22_10reserved13.__class__ is bool):
+        raise _enc('nav_sat', 'sv[22].reserved13', r_2sv_22_10reserved13, 'type', 'an int')
+    if not 0 <= r_2sv_22_10reserved13 <= 1:
+        raise _enc('nav_sat', 'sv[22].reserved13', r_2sv_22_10reserved13, 'range', '0..1', None)
+    r_2sv_22_12sbasCorrUsed: Any = g_2sv_22.sbasCorrUsed
+    if r_2sv_22_12sbasCorrUsed is not True and r_2sv_22_12sbasCorrUsed is not False and r_2sv_22_12sbasCorrUsed != 0 and r_2sv_22_12sbasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[22].sbasCorrUsed', r_2sv_22_12sbasCorrUsed, 'type', 'a bool')
+    r_2sv_22_12sbasCorrUsed = 1 if r_2sv_22_12sbasCorrUsed else 0
+    r_2sv_22_12rtcmCorrUsed: Any = g_2sv_22.rtcmCorrUsed
+    if r_2sv_22_12rtcmCorrUsed is not True and r_2sv_22_12rtcmCorrUsed is not False and r_2sv_22_12rtcmCorrUsed != 0 and r_2sv_22_12rtcmCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[22].rtcmCorrUsed', r_2sv_22_12rtcmCorrUsed, 'type', 'a bool')
+    r_2sv_22_12rtcmCorrUsed = 1 if r_2sv_22_12rtcmCorrUsed else 0
+    r_2sv_22_12slasCorrUsed: Any = g_2sv_22.slasCorrUsed
+    if r_2sv_22_12slasCorrUsed is not True and r_2sv_22_12slasCorrUsed is not False and r_2sv_22_12slasCorrUsed != 0 and r_2sv_22_12slasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[22].slasCorrUsed', r_2sv_22_12slasCorrUsed, 'type', 'a bool')
+    r_2sv_22_12slasCorrUsed = 1 if r_2sv_22_12slasCorrUsed else 0
+    r_2sv_22_14spartnCorrUsed: Any = g_2sv_22.spartnCorrUsed
+    if r_2sv_22_14spartnCorrUsed is not True and r_2sv_22_14spartnCorrUsed is not False and r_2sv_22_14spartnCorrUsed != 0 and r_2sv_22_14spartnCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[22].spartnCorrUsed', r_2sv_22_14spartnCorrUsed, 'type', 'a bool')
+    r_2sv_22_14spartnCorrUsed = 1 if r_2sv_22_14spartnCorrUsed else 0
+    r_2sv_22_10prCorrUsed: Any = g_2sv_22.prCorrUsed
+    if r_2sv_22_10prCorrUsed is not True and r_2sv_22_10prCorrUsed is not False and r_2sv_22_10prCorrUsed != 0 and r_2sv_22_10prCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[22].prCorrUsed', r_2sv_22_10prCorrUsed, 'type', 'a bool')
+    r_2sv_22_10prCorrUsed = 1 if r_2sv_22_10prCorrUsed else 0
+    r_2sv_22_10crCorrUsed: Any = g_2sv_22.crCorrUsed
+    if r_2sv_22_10crCorrUsed is not True and r_2sv_22_10crCorrUsed is not False and r_2sv_22_10crCorrUsed != 0 and r_2sv_22_10crCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[22].crCorrUsed', r_2sv_22_10crCorrUsed, 'type', 'a bool')
+    r_2sv_22_10crCorrUsed = 1 if r_2sv_22_10crCorrUsed else 0
+    r_2sv_22_10doCorrUsed: Any = g_2sv_22.doCorrUsed
+    if r_2sv_22_10doCorrUsed is not True and r_2sv_22_10doCorrUsed is not False and r_2sv_22_10doCorrUsed != 0 and r_2sv_22_10doCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[22].doCorrUsed', r_2sv_22_10doCorrUsed, 'type', 'a bool')
+    r_2sv_22_10doCorrUsed = 1 if r_2sv_22_10doCorrUsed else 0
+    r_2sv_22_12clasCorrUsed: Any = g_2sv_22.clasCorrUsed
+    if r_2sv_22_12clasCorrUsed is not True and r_2sv_22_12clasCorrUsed is not False and r_2sv_22_12clasCorrUsed != 0 and r_2sv_22_12clasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[22].clasCorrUsed', r_2sv_22_12clasCorrUsed, 'type', 'a bool')
+    r_2sv_22_12clasCorrUsed = 1 if r_2sv_22_12clasCorrUsed else 0
+    r_2sv_22_11lppCorrUsed: Any = g_2sv_22.lppCorrUsed
+    if r_2sv_22_11lppCorrUsed is not True and r_2sv_22_11lppCorrUsed is not False and r_2sv_22_11lppCorrUsed != 0 and r_2sv_22_11lppCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[22].lppCorrUsed', r_2sv_22_11lppCorrUsed, 'type', 'a bool')
+    r_2sv_22_11lppCorrUsed = 1 if r_2sv_22_11lppCorrUsed else 0
+    r_2sv_22_11hasCorrUsed: Any = g_2sv_22.hasCorrUsed
+    if r_2sv_22_11hasCorrUsed is not True and r_2sv_22_11hasCorrUsed is not False and r_2sv_22_11hasCorrUsed != 0 and r_2sv_22_11hasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[22].hasCorrUsed', r_2sv_22_11hasCorrUsed, 'type', 'a bool')
+    r_2sv_22_11hasCorrUsed = 1 if r_2sv_22_11hasCorrUsed else 0
+    r_2sv_22_11flags_spare = 0
+    return (r_2sv_22_6gnssId, r_2sv_22_4svId, r_2sv_22_3cno, r_2sv_22_4elev, r_2sv_22_4azim, r_2sv_22_5prRes, r_2sv_22_10qualityInd, r_2sv_22_6svUsed, r_2sv_22_6health, r_2sv_22_8diffCorr, r_2sv_22_8smoothed, r_2sv_22_11orbitSource, r_2sv_22_8ephAvail, r_2sv_22_8almAvail, r_2sv_22_8anoAvail, r_2sv_22_8aopAvail, r_2sv_22_10reserved13, r_2sv_22_12sbasCorrUsed, r_2sv_22_12rtcmCorrUsed, r_2sv_22_12slasCorrUsed, r_2sv_22_14spartnCorrUsed, r_2sv_22_10prCorrUsed, r_2sv_22_10crCorrUsed, r_2sv_22_10doCorrUsed, r_2sv_22_12clasCorrUsed, r_2sv_22_11lppCorrUsed, r_2sv_22_11hasCorrUsed, r_2sv_22_11flags_spare, )
+
+
+def _raw_nav_sat_2sv_23(g_2sv_23: Any) -> tuple[Any, ...]:
+    r_2sv_23_6gnssId = g_2sv_23.gnssId
+    if r_2sv_23_6gnssId.__class__ is not int and (not isinstance(r_2sv_23_6gnssId, int) or r_2sv_23_6gnssId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[23].gnssId', r_2sv_23_6gnssId, 'type', 'an int')
+    if not 0 <= r_2sv_23_6gnssId <= 255:
+        raise _enc('nav_sat', 'sv[23].gnssId', r_2sv_23_6gnssId, 'range', '0..255', None)
+    r_2sv_23_4svId = g_2sv_23.svId
+    if r_2sv_23_4svId.__class__ is not int and (not isinstance(r_2sv_23_4svId, int) or r_2sv_23_4svId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[23].svId', r_2sv_23_4svId, 'type', 'an int')
+    if not 0 <= r_2sv_23_4svId <= 255:
+        raise _enc('nav_sat', 'sv[23].svId', r_2sv_23_4svId, 'range', '0..255', None)
+    r_2sv_23_3cno = g_2sv_23.cno
+    if r_2sv_23_3cno.__class__ is not int and (not isinstance(r_2sv_23_3cno, int) or r_2sv_23_3cno.__class__ is bool):
+        raise _enc('nav_sat', 'sv[23].cno', r_2sv_23_3cno, 'type', 'an int')
+    if not 0 <= r_2sv_23_3cno <= 255:
+        raise _enc('nav_sat', 'sv[23].cno', r_2sv_23_3cno, 'range', '0..255', None)
+    r_2sv_23_4elev = g_2sv_23.elev
+    if r_2sv_23_4elev.__class__ is not int and (not isinstance(r_2sv_23_4elev, int) or r_2sv_23_4elev.__class__ is bool):
+        raise _enc('nav_sat', 'sv[23].elev', r_2sv_23_4elev, 'type', 'an int')
+    if not -128 <= r_2sv_23_4elev <= 127:
+        raise _enc('nav_sat', 'sv[23].elev', r_2sv_23_4elev, 'range', '-128..127', None)
+    r_2sv_23_4azim = g_2sv_23.azim
+    if r_2sv_23_4azim.__class__ is not int and (not isinstance(r_2sv_23_4azim, int) or r_2sv_23_4azim.__class__ is bool):
+        raise _enc('nav_sat', 'sv[23].azim', r_2sv_23_4azim, 'type', 'an int')
+    if not -32768 <= r_2sv_23_4azim <= 32767:
+        raise _enc('nav_sat', 'sv[23].azim', r_2sv_23_4azim, 'range', '-32768..32767', None)
+    r_2sv_23_5prRes = g_2sv_23.prRes
+    if r_2sv_23_5prRes.__class__ is not float and (not isinstance(r_2sv_23_5prRes, (int, float)) or r_2sv_23_5prRes.__class__ is bool):
+        raise _enc('nav_sat', 'sv[23].prRes', r_2sv_23_5prRes, 'type', 'a number')
+    if not -3276.8 <= r_2sv_23_5prRes <= 3276.7000000000003:
+        raise _enc('nav_sat', 'sv[23].prRes', r_2sv_23_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    r_2sv_23_5prRes = _floor(r_2sv_23_5prRes / 0.1 + 0.5)
+    r_2sv_23_10qualityInd = g_2sv_23.qualityInd
+    if r_2sv_23_10qualityInd.__class__ is not int and (not isinstance(r_2sv_23_10qualityInd, int) or r_2sv_23_10qualityInd.__class__ is bool):
+        raise _enc('nav_sat', 'sv[23].qualityInd', r_2sv_23_10qualityInd, 'type', 'an int')
+    if not 0 <= r_2sv_23_10qualityInd <= 7:
+        raise _enc('nav_sat', 'sv[23].qualityInd', r_2sv_23_10qualityInd, 'range', '0..7', None)
+    r_2sv_23_6svUsed: Any = g_2sv_23.svUsed
+    if r_2sv_23_6svUsed is not True and r_2sv_23_6svUsed is not False and r_2sv_23_6svUsed != 0 and r_2sv_23_6svUsed != 1:
+        raise _enc('nav_sat', 'sv[23].svUsed', r_2sv_23_6svUsed, 'type', 'a bool')
+    r_2sv_23_6svUsed = 1 if r_2sv_23_6svUsed else 0
+    r_2sv_23_6health = g_2sv_23.health
+    if r_2sv_23_6health.__class__ is not int and (not isinstance(r_2sv_23_6health, int) or r_2sv_23_6health.__class__ is bool):
+        raise _enc('nav_sat', 'sv[23].health', r_2sv_23_6health, 'type', 'an int')
+    if not 0 <= r_2sv_23_6health <= 3:
+        raise _enc('nav_sat', 'sv[23].health', r_2sv_23_6health, 'range', '0..3', None)
+    r_2sv_23_8diffCorr: Any = g_2sv_23.diffCorr
+    if r_2sv_23_8diffCorr is not True and r_2sv_23_8diffCorr is not False and r_2sv_23_8diffCorr != 0 and r_2sv_23_8diffCorr != 1:
+        raise _enc('nav_sat', 'sv[23].diffCorr', r_2sv_23_8diffCorr, 'type', 'a bool')
+    r_2sv_23_8diffCorr = 1 if r_2sv_23_8diffCorr else 0
+    r_2sv_23_8smoothed: Any = g_2sv_23.smoothed
+    if r_2sv_23_8smoothed is not True and r_2sv_23_8smoothed is not False and r_2sv_23_8smoothed != 0 and r_2sv_23_8smoothed != 1:
+        raise _enc('nav_sat', 'sv[23].smoothed', r_2sv_23_8smoothed, 'type', 'a bool')
+    r_2sv_23_8smoothed = 1 if r_2sv_23_8smoothed else 0
+    r_2sv_23_11orbitSource = g_2sv_23.orbitSource
+    if r_2sv_23_11orbitSource.__class__ is not int and (not isinstance(r_2sv_23_11orbitSource, int) or r_2sv_23_11orbitSource.__class__ is bool):
+        raise _enc('nav_sat', 'sv[23].orbitSource', r_2sv_23_11orbitSource, 'type', 'an int')
+    if not 0 <= r_2sv_23_11orbitSource <= 7:
+        raise _enc('nav_sat', 'sv[23].orbitSource', r_2sv_23_11orbitSource, 'range', '0..7', None)
+    r_2sv_23_8ephAvail: Any = g_2sv_23.ephAvail
+    if r_2sv_23_8ephAvail is not True and r_2sv_23_8ephAvail is not False and r_2sv_23_8ephAvail != 0 and r_2sv_23_8ephAvail != 1:
+        raise _enc('nav_sat', 'sv[23].ephAvail', r_2sv_23_8ephAvail, 'type', 'a bool')
+    r_2sv_23_8ephAvail = 1 if r_2sv_23_8ephAvail else 0
+    r_2sv_23_8almAvail: Any = g_2sv_23.almAvail
+    if r_2sv_23_8almAvail is not True and r_2sv_23_8almAvail is not False and r_2sv_23_8almAvail != 0 and r_2sv_23_8almAvail != 1:
+        raise _enc('nav_sat', 'sv[23].almAvail', r_2sv_23_8almAvail, 'type', 'a bool')
+    r_2sv_23_8almAvail = 1 if r_2sv_23_8almAvail else 0
+    r_2sv_23_8anoAvail: Any = g_2sv_23.anoAvail
+    if r_2sv_23_8anoAvail is not True and r_2sv_23_8anoAvail is not False and r_2sv_23_8anoAvail != 0 and r_2sv_23_8anoAvail != 1:
+        raise _enc('nav_sat', 'sv[23].anoAvail', r_2sv_23_8anoAvail, 'type', 'a bool')
+    r_2sv_23_8anoAvail = 1 if r_2sv_23_8anoAvail else 0
+    r_2sv_23_8aopAvail: Any = g_2sv_23.aopAvail
+    if r_2sv_23_8aopAvail is not True and r_2sv_23_8aopAvail is not False and r_2sv_23_8aopAvail != 0 and r_2sv_23_8aopAvail != 1:
+        raise _enc('nav_sat', 'sv[23].aopAvail', r_2sv_23_8aopAvail, 'type', 'a bool')
+    r_2sv_23_8aopAvail = 1 if r_2sv_23_8aopAvail else 0
+    r_2sv_23_10reserved13 = g_2sv_23.reserved13
+    if r_2sv_23_10reserved13.__class__ is not int and (not isinstance(r_2sv_23_10reserved13, int) or r_2sv_23_10reserved13.__class__ is bool):
+        raise _enc('nav_sat', 'sv[23].reserved13', r_2sv_23_10reserved13, 'type', 'an int')
+    if not 0 <= r_2sv_23_10reserved13 <= 1:
+        raise _enc('nav_sat', 'sv[23].reserved13', r_2sv_23_10reserved13, 'range', '0..1', None)
+    r_2sv_23_12sbasCorrUsed: Any = g_2sv_23.sbasCorrUsed
+    if r_2sv_23_12sbasCorrUsed is not True and r_2sv_23_12sbasCorrUsed is not False and r_2sv_23_12sbasCorrUsed != 0 and r_2sv_23_12sbasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[23].sbasCorrUsed', r_2sv_23_12sbasCorrUsed, 'type', 'a bool')
+    r_2sv_23_12sbasCorrUsed = 1 if r_2sv_23_12sbasCorrUsed else 0
+    r_2sv_23_12rtcmCorrUsed: Any = g_2sv_23.rtcmCorrUsed
+    if r_2sv_23_12rtcmCorrUsed is not True and r_2sv_23_12rtcmCorrUsed is not False and r_2sv_23_12rtcmCorrUsed != 0 and r_2sv_23_12rtcmCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[23].rtcmCorrUsed', r_2sv_23_12rtcmCorrUsed, 'type', 'a bool')
+    r_2sv_23_12rtcmCorrUsed = 1 if r_2sv_23_12rtcmCorrUsed else 0
+    r_2sv_23_12slasCorrUsed: Any = g_2sv_23.slasCorrUsed
+    if r_2sv_23_12slasCorrUsed is not True and r_2sv_23_12slasCorrUsed is not False and r_2sv_23_12slasCorrUsed != 0 and r_2sv_23_12slasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[23].slasCorrUsed', r_2sv_23_12slasCorrUsed, 'type', 'a bool')
+    r_2sv_23_12slasCorrUsed = 1 if r_2sv_23_12slasCorrUsed else 0
+    r_2sv_23_14spartnCorrUsed: Any = g_2sv_23.spartnCorrUsed
+    if r_2sv_23_14spartnCorrUsed is not True and r_2sv_23_14spartnCorrUsed is not False and r_2sv_23_14spartnCorrUsed != 0 and r_2sv_23_14spartnCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[23].spartnCorrUsed', r_2sv_23_14spartnCorrUsed, 'type', 'a bool')
+    r_2sv_23_14spartnCorrUsed = 1 if r_2sv_23_14spartnCorrUsed else 0
+    r_2sv_23_10prCorrUsed: Any = g_2sv_23.prCorrUsed
+    if r_2sv_23_10prCorrUsed is not True and r_2sv_23_10prCorrUsed is not False and r_2sv_23_10prCorrUsed != 0 and r_2sv_23_10prCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[23].prCorrUsed', r_2sv_23_10prCorrUsed, 'type', 'a bool')
+    r_2sv_23_10prCorrUsed = 1 if r_2sv_23_10prCorrUsed else 0
+    r_2sv_23_10crCorrUsed: Any = g_2sv_23.crCorrUsed
+    if r_2sv_23_10crCorrUsed is not True and r_2sv_23_10crCorrUsed is not False and r_2sv_23_10crCorrUsed != 0 and r_2sv_23_10crCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[23].crCorrUsed', r_2sv_23_10crCorrUsed, 'type', 'a bool')
+    r_2sv_23_10crCorrUsed = 1 if r_2sv_23_10crCorrUsed else 0
+    r_2sv_23_10doCorrUsed: Any = g_2sv_23.doCorrUsed
+    if r_2sv_23_10doCorrUsed is not True and r_2sv_23_10doCorrUsed is not False and r_2sv_23_10doCorrUsed != 0 and r_2sv_23_10doCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[23].doCorrUsed', r_2sv_23_10doCorrUsed, 'type', 'a bool')
+    r_2sv_23_10doCorrUsed = 1 if r_2sv_23_10doCorrUsed else 0
+    r_2sv_23_12clasCorrUsed: Any = g_2sv_23.clasCorrUsed
+    if r_2sv_23_12clasCorrUsed is not True and r_2sv_23_12clasCorrUsed is not False and r_2sv_23_12clasCorrUsed != 0 and r_2sv_23_12clasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[23].clasCorrUsed', r_2sv_23_12clasCorrUsed, 'type', 'a bool')
+    r_2sv_23_12clasCorrUsed = 1 if r_2sv_23_12clasCorrUsed else 0
+    r_2sv_23_11lppCorrUsed: Any = g_2sv_23.lppCorrUsed
+    if r_2sv_23_11lppCorrUsed is not True and r_2sv_23_11lppCorrUsed is not False and r_2sv_23_11lppCorrUsed != 0 and r_2sv_23_11lppCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[23].lppCorrUsed', r_2sv_23_11lppCorrUsed, 'type', 'a bool')
+    r_2sv_23_11lppCorrUsed = 1 if r_2sv_23_11lppCorrUsed else 0
+    r_2sv_23_11hasCorrUsed: Any = g_2sv_23.hasCorrUsed
+    if r_2sv_23_11hasCorrUsed is not True and r_2sv_23_11hasCorrUsed is not False and r_2sv_23_11hasCorrUsed != 0 and r_2sv_23_11hasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[23].hasCorrUsed', r_2sv_23_11hasCorrUsed, 'type', 'a bool')
+    r_2sv_23_11hasCorrUsed = 1 if r_2sv_23_11hasCorrUsed else 0
+    r_2sv_23_11flags_spare = 0
+    return (r_2sv_23_6gnssId, r_2sv_23_4svId, r_2sv_23_3cno, r_2sv_23_4elev, r_2sv_23_4azim, r_2sv_23_5prRes, r_2sv_23_10qualityInd, r_2sv_23_6svUsed, r_2sv_23_6health, r_2sv_23_8diffCorr, r_2sv_23_8smoothed, r_2sv_23_11orbitSource, r_2sv_23_8ephAvail, r_2sv_23_8almAvail, r_2sv_23_8anoAvail, r_2sv_23_8aopAvail, r_2sv_23_10reserved13, r_2sv_23_12sbasCorrUsed, r_2sv_23_12rtcmCorrUsed, r_2sv_23_12slasCorrUsed, r_2sv_23_14spartnCorrUsed, r_2sv_23_10prCorrUsed, r_2sv_23_10crCorrUsed, r_2sv_23_10doCorrUsed, r_2sv_23_12clasCorrUsed, r_2sv_23_11lppCorrUsed, r_2sv_23_11hasCorrUsed, r_2sv_23_11flags_spare, )
+
+
+def _raw_nav_sat_2sv_24(g_2sv_24: Any) -> tuple[Any, ...]:
+    r_2sv_24_6gnssId = g_2sv_24.gnssId
+    if r_2sv_24_6gnssId.__class__ is not int and (not isinstance(r_2sv_24_6gnssId, int) or r_2sv_24_6gnssId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[24].gnssId', r_2sv_24_6gnssId, 'type', 'an int')
+    if not 0 <= r_2sv_24_6gnssId <= 255:
+        raise _enc('nav_sat', 'sv[24].gnssId', r_2sv_24_6gnssId, 'range', '0..255', None)
+    r_2sv_24_4svId = g_2sv_24.svId
+    if r_2sv_24_4svId.__class__ is not int and (not isinstance(r_2sv_24_4svId, int) or r_2sv_24_4svId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[24].svId', r_2sv_24_4svId, 'type', 'an int')
+    if not 0 <= r_2sv_24_4svId <= 255:
+        raise _enc('nav_sat', 'sv[24].svId', r_2sv_24_4svId, 'range', '0..255', None)
+    r_2sv_24_3cno = g_2sv_24.cno
+    if r_2sv_24_3cno.__class__ is not int and (not isinstance(r_2sv_24_3cno, int) or r_2sv_24_3cno.__class__ is bool):
+        raise _enc('nav_sat', 'sv[24].cno', r_2sv_24_3cno, 'type', 'an int')
+    if not 0 <= r_2sv_24_3cno <= 255:
+        raise _enc('nav_sat', 'sv[24].cno', r_2sv_24_3cno, 'range', '0..255', None)
+    r_2sv_24_4elev = g_2sv_24.elev
+    if r_2sv_24_4elev.__class__ is not int and (not isinstance(r_2sv_24_4elev, int) or r_2sv_24_4elev.__class__ is bool):
+        raise _enc('nav_sat', 'sv[24].elev', r_2sv_24_4elev, 'type', 'an int')
+    if not -128 <= r_2sv_24_4elev <= 127:
+        raise _enc('nav_sat', 'sv[24].elev', r_2sv_24_4elev, 'range', '-128..127', None)
+    r_2sv_24_4azim = g_2sv_24.azim
+    if r_2sv_24_4azim.__class__ is not int and (not isinstance(r_2sv_24_4azim, int) or r_2sv_24_4azim.__class__ is bool):
+        raise _enc('nav_sat', 'sv[24].azim', r_2sv_24_4azim, 'type', 'an int')
+    if not -32768 <= r_2sv_24_4azim <= 32767:
+        raise _enc('nav_sat', 'sv[24].azim', r_2sv_24_4azim, 'range', '-32768..32767', None)
+    r_2sv_24_5prRes = g_2sv_24.prRes
+    if r_2sv_24_5prRes.__class__ is not float and (not isinstance(r_2sv_24_5prRes, (int, float)) or r_2sv_24_5prRes.__class__ is bool):
+        raise _enc('nav_sat', 'sv[24].prRes', r_2sv_24_5prRes, 'type', 'a number')
+    if not -3276.8 <= r_2sv_24_5prRes <= 3276.7000000000003:
+        raise _enc('nav_sat', 'sv[24].prRes', r_2sv_24_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    r_2sv_24_5prRes = _floor(r_2sv_24_5prRes / 0.1 + 0.5)
+    r_2sv_24_10qualityInd = g_2sv_24.qualityInd
+    if r_2sv_24_10qualityInd.__class__ is not int and (not isinstance(r_2sv_24_10qualityInd, int) or r_2sv_24_10qualityInd.__class__ is bool):
+        raise _enc('nav_sat', 'sv[24].qualityInd', r_2sv_24_10qualityInd, 'type', 'an int')
+    if not 0 <= r_2sv_24_10qualityInd <= 7:
+        raise _enc('nav_sat', 'sv[24].qualityInd', r_2sv_24_10qualityInd, 'range', '0..7', None)
+    r_2sv_24_6svUsed: Any = g_2sv_24.svUsed
+    if r_2sv_24_6svUsed is not True and r_2sv_24_6svUsed is not False and r_2sv_24_6svUsed != 0 and r_2sv_24_6svUsed != 1:
+        raise _enc('nav_sat', 'sv[24].svUsed', r_2sv_24_6svUsed, 'type', 'a bool')
+    r_2sv_24_6svUsed = 1 if r_2sv_24_6svUsed else 0
+    r_2sv_24_6health = g_2sv_24.health
+    if r_2sv_24_6health.__class__ is not int and (not isinstance(r_2sv_24_6health, int) or r_2sv_24_6health.__class__ is bool):
+        raise _enc('nav_sat', 'sv[24].health', r_2sv_24_6health, 'type', 'an int')
+    if not 0 <= r_2sv_24_6health <= 3:
+        raise _enc('nav_sat', 'sv[24].health', r_2sv_24_6health, 'range', '0..3', None)
+    r_2sv_24_8diffCorr: Any = g_2sv_24.diffCorr
+    if r_2sv_24_8diffCorr is not True and r_2sv_24_8diffCorr is not False and r_2sv_24_8diffCorr != 0 and r_2sv_24_8diffCorr != 1:
+        raise _enc('nav_sat', 'sv[24].diffCorr', r_2sv_24_8diffCorr, 'type', 'a bool')
+    r_2sv_24_8diffCorr = 1 if r_2sv_24_8diffCorr else 0
+    r_2sv_24_8smoothed: Any = g_2sv_24.smoothed
+    if r_2sv_24_8smoothed is not True and r_2sv_24_8smoothed is not False and r_2sv_24_8smoothed != 0 and r_2sv_24_8smoothed != 1:
+        raise _enc('nav_sat', 'sv[24].smoothed', r_2sv_24_8smoothed, 'type', 'a bool')
+    r_2sv_24_8smoothed = 1 if r_2sv_24_8smoothed else 0
+    r_2sv_24_11orbitSource = g_2sv_24.orbitSource
+    if r_2sv_24_11orbitSource.__class__ is not int and (not isinstance(r_2sv_24_11orbitSource, int) or r_2sv_24_11orbitSource.__class__ is bool):
+        raise _enc('nav_sat', 'sv[24].orbitSource', r_2sv_24_11orbitSource, 'type', 'an int')
+    if not 0 <= r_2sv_24_11orbitSource <= 7:
+        raise _enc('nav_sat', 'sv[24].orbitSource', r_2sv_24_11orbitSource, 'range', '0..7', None)
+    r_2sv_24_8ephAvail: Any = g_2sv_24.ephAvail
+    if r_2sv_24_8ephAvail is not True and r_2sv_24_8ephAvail is not False and r_2sv_24_8ephAvail != 0 and r_2sv_24_8ephAvail != 1:
+        raise _enc('nav_sat', 'sv[24].ephAvail', r_2sv_24_8ephAvail, 'type', 'a bool')
+    r_2sv_24_8ephAvail = 1 if r_2sv_24_8ephAvail else 0
+    r_2sv_24_8almAvail: Any = g_2sv_24.almAvail
+    if r_2sv_24_8almAvail is not True and r_2sv_24_8almAvail is not False and r_2sv_24_8almAvail != 0 and r_2sv_24_8almAvail != 1:
+        raise _enc('nav_sat', 'sv[24].almAvail', r_2sv_24_8almAvail, 'type', 'a bool')
+    r_2sv_24_8almAvail = 1 if r_2sv_24_8almAvail else 0
+    r_2sv_24_8anoAvail: Any = g_2sv_24.anoAvail
+    if r_2sv_24_8anoAvail is not True and r_2sv_24_8anoAvail is not False and r_2sv_24_8anoAvail != 0 and r_2sv_24_8anoAvail != 1:
+        raise _enc('nav_sat', 'sv[24].anoAvail', r_2sv_24_8anoAvail, 'type', 'a bool')
+    r_2sv_24_8anoAvail = 1 if r_2sv_24_8anoAvail else 0
+    r_2sv_24_8aopAvail: Any = g_2sv_24.aopAvail
+    if r_2sv_24_8aopAvail is not True and r_2sv_24_8aopAvail is not False and r_2sv_24_8aopAvail != 0 and r_2sv_24_8aopAvail != 1:
+        raise _enc('nav_sat', 'sv[24].aopAvail', r_2sv_24_8aopAvail, 'type', 'a bool')
+    r_2sv_24_8aopAvail = 1 if r_2sv_24_8aopAvail else 0
+    r_2sv_24_10reserved13 = g_2sv_24.reserved13
+    if r_2sv_24_10reserved13.__class__ is not int and (not isinstance(r_2sv_24_10reserved13, int) or r_2sv_24_10reserved13.__class__ is bool):
+        raise _enc('nav_sat', 'sv[24].reserved13', r_2sv_24_10reserved13, 'type', 'an int')
+    if not 0 <= r_2sv_24_10reserved13 <= 1:
+        raise _enc('nav_sat', 'sv[24].reserved13', r_2sv_24_10reserved13, 'range', '0..1', None)
+    r_2sv_24_12sbasCorrUsed: Any = g_2sv_24.sbasCorrUsed
+    if r_2sv_24_12sbasCorrUsed is not True and r_2sv_24_12sbasCorrUsed is not False and r_2sv_24_12sbasCorrUsed != 0 and r_2sv_24_12sbasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[24].sbasCorrUsed', r_2sv_24_12sbasCorrUsed, 'type', 'a bool')
+    r_2sv_24_12sbasCorrUsed = 1 if r_2sv_24_12sbasCorrUsed else 0
+    r_2sv_24_12rtcmCorrUsed: Any = g_2sv_24.rtcmCorrUsed
+    if r_2sv_24_12rtcmCorrUsed is not True and r_2sv_24_12rtcmCorrUsed is not False and r_2sv_24_12rtcmCorrUsed != 0 and r_2sv_24_12rtcmCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[24].rtcmCorrUsed', r_2sv_24_12rtcmCorrUsed, 'type', 'a bool')
+    r_2sv_24_12rtcmCorrUsed = 1 if r_2sv_24_12rtcmCorrUsed else 0
+    r_2sv_24_12slasCorrUsed: Any = g_2sv_24.slasCorrUsed
+    if r_2sv_24_12slasCorrUsed is not True and r_2sv_24_12slasCorrUsed is not False and r_2sv_24_12slasCorrUsed != 0 and r_2sv_24_12slasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[24].slasCorrUsed', r_2sv_24_12slasCorrUsed, 'type', 'a bool')
+    r_2sv_24_12slasCorrUsed = 1 if r_2sv_24_12slasCorrUsed else 0
+    r_2sv_24_14spartnCorrUsed: Any = g_2sv_24.spartnCorrUsed
+    if r_2sv_24_14spartnCorrUsed is not True and r_2sv_24_14spartnCorrUsed is not False and r_2sv_24_14spartnCorrUsed != 0 and r_2sv_24_14spartnCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[24].spartnCorrUsed', r_2sv_24_14spartnCorrUsed, 'type', 'a bool')
+    r_2sv_24_14spartnCorrUsed = 1 if r_2sv_24_14spartnCorrUsed else 0
+    r_2sv_24_10prCorrUsed: Any = g_2sv_24.prCorrUsed
+    if r_2sv_24_10prCorrUsed is not True and r_2sv_24_10prCorrUsed is not False and r_2sv_24_10prCorrUsed != 0 and r_2sv_24_10prCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[24].prCorrUsed', r_2sv_24_10prCorrUsed, 'type', 'a bool')
+    r_2sv_24_10prCorrUsed = 1 if r_2sv_24_10prCorrUsed else 0
+    r_2sv_24_10crCorrUsed: Any = g_2sv_24.crCorrUsed
+    if r_2sv_24_10crCorrUsed is not True and r_2sv_24_10crCorrUsed is not False and r_2sv_24_10crCorrUsed != 0 and r_2sv_24_10crCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[24].crCorrUsed', r_2sv_24_10crCorrUsed, 'type', 'a bool')
+    r_2sv_24_10crCorrUsed = 1 if r_2sv_24_10crCorrUsed else 0
+    r_2sv_24_10doCorrUsed: Any = g_2sv_24.doCorrUsed
+    if r_2sv_24_10doCorrUsed is not True and r_2sv_24_10doCorrUsed is not False and r_2sv_24_10doCorrUsed != 0 and r_2sv_24_10doCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[24].doCorrUsed', r_2sv_24_10doCorrUsed, 'type', 'a bool')
+    r_2sv_24_10doCorrUsed = 1 if r_2sv_24_10doCorrUsed else 0
+    r_2sv_24_12clasCorrUsed: Any = g_2sv_24.clasCorrUsed
+    if r_2sv_24_12clasCorrUsed is not True and r_2sv_24_12clasCorrUsed is not False and r_2sv_24_12clasCorrUsed != 0 and r_2sv_24_12clasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[24].clasCorrUsed', r_2sv_24_12clasCorrUsed, 'type', 'a bool')
+    r_2sv_24_12clasCorrUsed = 1 if r_2sv_24_12clasCorrUsed else 0
+    r_2sv_24_11lppCorrUsed: Any = g_2sv_24.lppCorrUsed
+    if r_2sv_24_11lppCorrUsed is not True and r_2sv_24_11lppCorrUsed is not False and r_2sv_24_11lppCorrUsed != 0 and r_2sv_24_11lppCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[24].lppCorrUsed', r_2sv_24_11lppCorrUsed, 'type', 'a bool')
+    r_2sv_24_11lppCorrUsed = 1 if r_2sv_24_11lppCorrUsed else 0
+    r_2sv_24_11hasCorrUsed: Any = g_2sv_24.hasCorrUsed
+    if r_2sv_24_11hasCorrUsed is not True and r_2sv_24_11hasCorrUsed is not False and r_2sv_24_11hasCorrUsed != 0 and r_2sv_24_11hasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[24].hasCorrUsed', r_2sv_24_11hasCorrUsed, 'type', 'a bool')
+    r_2sv_24_11hasCorrUsed = 1 if r_2sv_24_11hasCorrUsed else 0
+    r_2sv_24_11flags_spare = 0
+    return (r_2sv_24_6gnssId, r_2sv_24_4svId, r_2sv_24_3cno, r_2sv_24_4elev, r_2sv_24_4azim, r_2sv_24_5prRes, r_2sv_24_10qualityInd, r_2sv_24_6svUsed, r_2sv_24_6health, r_2sv_24_8diffCorr, r_2sv_24_8smoothed, r_2sv_24_11orbitSource, r_2sv_24_8ephAvail, r_2sv_24_8almAvail, r_2sv_24_8anoAvail, r_2sv_24_8aopAvail, r_2sv_24_10reserved13, r_2sv_24_12sbasCorrUsed, r_2sv_24_12rtcmCorrUsed, r_2sv_24_12slasCorrUsed, r_2sv_24_14spartnCorrUsed, r_2sv_24_10prCorrUsed, r_2sv_24_10crCorrUsed, r_2sv_24_10doCorrUsed, r_2sv_24_12clasCorrUsed, r_2sv_24_11lppCorrUsed, r_2sv_24_11hasCorrUsed, r_2sv_24_11flags_spare, )
+
+
+def _raw_nav_sat_2sv_25(g_2sv_25: Any) -> tuple[Any, ...]:
+    r_2sv_25_6gnssId = g_2sv_25.gnssId
+    if r_2sv_25_6gnssId.__class__ is not int and (not isinstance(r_2sv_25_6gnssId, int) or r_2sv_25_6gnssId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[25].gnssId', r_2sv_25_6gnssId, 'type', 'an int')
+    if not 0 <= r_2sv_25_6gnssId <= 255:
+        raise _enc('nav_sat', 'sv[25].gnssId', r_2sv_25_6gnssId, 'range', '0..255', None)
+    r_2sv_25_4svId = g_2sv_25.svId
+    if r_2sv_25_4svId.__class__ is not int and (not isinstance(r_2sv_25_4svId, int) or r_2sv_25_4svId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[25].svId', r_2sv_25_4svId, 'type', 'an int')
+    if not 0 <= r_2sv_25_4svId <= 255:
+        raise _enc('nav_sat', 'sv[25].svId', r_2sv_25_4svId, 'range', '0..255', None)
+    r_2sv_25_3cno = g_2sv_25.cno
+    if r_2sv_25_3cno.__class__ is not int and (not isinstance(r_2sv_25_3cno, int) or r_2sv_25_3cno.__class__ is bool):
+        raise _enc('nav_sat', 'sv[25].cno', r_2sv_25_3cno, 'type', 'an int')
+    if not 0 <= r_2sv_25_3cno <= 255:
+        raise _enc('nav_sat', 'sv[25].cno', r_2sv_25_3cno, 'range', '0..255', None)
+    r_2sv_25_4elev = g_2sv_25.elev
+    if r_2sv_25_4elev.__class__ is not int and (not isinstance(r_2sv_25_4elev, int) or r_2sv_25_4elev.__class__ is bool):
+        raise _enc('nav_sat', 'sv[25].elev', r_2sv_25_4elev, 'type', 'an int')
+    if not -128 <= r_2sv_25_4elev <= 127:
+        raise _enc('nav_sat', 'sv[25].elev', r_2sv_25_4elev, 'range', '-128..127', None)
+    r_2sv_25_4azim = g_2sv_25.azim
+    if r_2sv_25_4azim.__class__ is not int and (not isinstance(r_2sv_25_4azim, int) or r_2sv_25_4azim.__class__ is bool):
+        raise _enc('nav_sat', 'sv[25].azim', r_2sv_25_4azim, 'type', 'an int')
+    if not -32768 <= r_2sv_25_4azim <= 32767:
+        raise _enc('nav_sat', 'sv[25].azim', r_2sv_25_4azim, 'range', '-32768..32767', None)
+    r_2sv_25_5prRes = g_2sv_25.prRes
+    if r_2sv_25_5prRes.__class__ is not float and (not isinstance(r_2sv_25_5prRes, (int, float)) or r_2sv_25_5prRes.__class__ is bool):
+        raise _enc('nav_sat', 'sv[25].prRes', r_2sv_25_5prRes, 'type', 'a number')
+    if not -3276.8 <= r_2sv_25_5prRes <= 3276.7000000000003:
+        raise _enc('nav_sat', 'sv[25].prRes', r_2sv_25_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    r_2sv_25_5prRes = _floor(r_2sv_25_5prRes / 0.1 + 0.5)
+    r_2sv_25_10qualityInd = g_2sv_25.qualityInd
+    if r_2sv_25_10qualityInd.__class__ is not int and (not isinstance(r_2sv_25_10qualityInd, int) or r_2sv_25_10qualityInd.__class__ is bool):
+        raise _enc('nav_sat', 'sv[25].qualityInd', r_2sv_25_10qualityInd, 'type', 'an int')
+    if not 0 <= r_2sv_25_10qualityInd <= 7:
+        raise _enc('nav_sat', 'sv[25].qualityInd', r_2sv_25_10qualityInd, 'range', '0..7', None)
+    r_2sv_25_6svUsed: Any = g_2sv_25.svUsed
+    if r_2sv_25_6svUsed is not True and r_2sv_25_6svUsed is not False and r_2sv_25_6svUsed != 0 and r_2sv_25_6svUsed != 1:
+        raise _enc('nav_sat', 'sv[25].svUsed', r_2sv_25_6svUsed, 'type', 'a bool')
+    r_2sv_25_6svUsed = 1 if r_2sv_25_6svUsed else 0
+    r_2sv_25_6health = g_2sv_25.health
+    if r_2sv_25_6health.__class__ is not int and (not isinstance(r_2sv_25_6health, int) or r_2sv_25_6health.__class__ is bool):
+        raise _enc('nav_sat', 'sv[25].health', r_2sv_25_6health, 'type', 'an int')
+    if not 0 <= r_2sv_25_6health <= 3:
+        raise _enc('nav_sat', 'sv[25].health', r_2sv_25_6health, 'range', '0..3', None)
+    r_2sv_25_8diffCorr: Any = g_2sv_25.diffCorr
+    if r_2sv_25_8diffCorr is not True and r_2sv_25_8diffCorr is not False and r_2sv_25_8diffCorr != 0 and r_2sv_25_8diffCorr != 1:
+        raise _enc('nav_sat', 'sv[25].diffCorr', r_2sv_25_8diffCorr, 'type', 'a bool')
+    r_2sv_25_8diffCorr = 1 if r_2sv_25_8diffCorr else 0
+    r_2sv_25_8smoothed: Any = g_2sv_25.smoothed
+    if r_2sv_25_8smoothed is not True and r_2sv_25_8smoothed is not False and r_2sv_25_8smoothed != 0 and r_2sv_25_8smoothed != 1:
+        raise _enc('nav_sat', 'sv[25].smoothed', r_2sv_25_8smoothed, 'type', 'a bool')
+    r_2sv_25_8smoothed = 1 if r_2sv_25_8smoothed else 0
+    r_2sv_25_11orbitSource = g_2sv_25.orbitSource
+    if r_2sv_25_11orbitSource.__class__ is not int and (not isinstance(r_2sv_25_11orbitSource, int) or r_2sv_25_11orbitSource.__class__ is bool):
+        raise _enc('nav_sat', 'sv[25].orbitSource', r_2sv_25_11orbitSource, 'type', 'an int')
+    if not 0 <= r_2sv_25_11orbitSource <= 7:
+        raise _enc('nav_sat', 'sv[25].orbitSource', r_2sv_25_11orbitSource, 'range', '0..7', None)
+    r_2sv_25_8ephAvail: Any = g_2sv_25.ephAvail
+    if r_2sv_25_8ephAvail is not True and r_2sv_25_8ephAvail is not False and r_2sv_25_8ephAvail != 0 and r_2sv_25_8ephAvail != 1:
+        raise _enc('nav_sat', 'sv[25].ephAvail', r_2sv_25_8ephAvail, 'type', 'a bool')
+    r_2sv_25_8ephAvail = 1 if r_2sv_25_8ephAvail else 0
+    r_2sv_25_8almAvail: Any = g_2sv_25.almAvail
+    if r_2sv_25_8almAvail is not True and r_2sv_25_8almAvail is not False and r_2sv_25_8almAvail != 0 and r_2sv_25_8almAvail != 1:
+        raise _enc('nav_sat', 'sv[25].almAvail', r_2sv_25_8almAvail, 'type', 'a bool')
+    r_2sv_25_8almAvail = 1 if r_2sv_25_8almAvail else 0
+    r_2sv_25_8anoAvail: Any = g_2sv_25.anoAvail
+    if r_2sv_25_8anoAvail is not True and r_2sv_25_8anoAvail is not False and r_2sv_25_8anoAvail != 0 and r_2sv_25_8anoAvail != 1:
+        raise _enc('nav_sat', 'sv[25].anoAvail', r_2sv_25_8anoAvail, 'type', 'a bool')
+    r_2sv_25_8anoAvail = 1 if r_2sv_25_8anoAvail else 0
+    r_2sv_25_8aopAvail: Any = g_2sv_25.aopAvail
+    if r_2sv_25_8aopAvail is not True and r_2sv_25_8aopAvail is not False and r_2sv_25_8aopAvail != 0 and r_2sv_25_8aopAvail != 1:
+        raise _enc('nav_sat', 'sv[25].aopAvail', r_2sv_25_8aopAvail, 'type', 'a bool')
+    r_2sv_25_8aopAvail = 1 if r_2sv_25_8aopAvail else 0
+    r_2sv_25_10reserved13 = g_2sv_25.reserved13
+    if r_2sv_25_10reserved13.__class__ is not int and (not isinstance(r_2sv_25_10reserved13, int) or r_2sv_25_10reserved13.__class__ is bool):
+        raise _enc('nav_sat', 'sv[25].reserved13', r_2sv_25_10reserved13, 'type', 'an int')
+    if not 0 <= r_2sv_25_10reserved13 <= 1:
+        raise _enc('nav_sat', 'sv[25].reserved13', r_2sv_25_10reserved13, 'range', '0..1', None)
+    r_2sv_25_12sbasCorrUsed: Any = g_2sv_25.sbasCorrUsed
+    if r_2sv_25_12sbasCorrUsed is not True and r_2sv_25_12sbasCorrUsed is not False and r_2sv_25_12sbasCorrUsed != 0 and r_2sv_25_12sbasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[25].sbasCorrUsed', r_2sv_25_12sbasCorrUsed, 'type', 'a bool')
+    r_2sv_25_12sbasCorrUsed = 1 if r_2sv_25_12sbasCorrUsed else 0
+    r_2sv_25_12rtcmCorrUsed: Any = g_2sv_25.rtcmCorrUsed
+    if r_2sv_25_12rtcmCorrUsed is not True and r_2sv_25_12rtcmCorrUsed is not False and r_2sv_25_12rtcmCorrUsed != 0 and r_2sv_25_12rtcmCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[25].rtcmCorrUsed', r_2sv_25_12rtcmCorrUsed, 'type', 'a bool')
+    r_2sv_25_12rtcmCorrUsed = 1 if r_2sv_25_12rtcmCorrUsed else 0
+    r_2sv_25_12slasCorrUsed: Any = g_2sv_25.slasCorrUsed
+    if r_2sv_25_12slasCorrUsed is not True and r_2sv_25_12slasCorrUsed is not False and r_2sv_25_12slasCorrUsed != 0 and r_2sv_25_12slasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[25].slasCorrUsed', r_2sv_25_12slasCorrUsed, 'type', 'a bool')
+    r_2sv_25_12slasCorrUsed = 1 if r_2sv_25_12slasCorrUsed else 0
+    r_2sv_25_14spartnCorrUsed: Any = g_2sv_25.spartnCorrUsed
+    if r_2sv_25_14spartnCorrUsed is not True and r_2sv_25_14spartnCorrUsed is not False and r_2sv_25_14spartnCorrUsed != 0 and r_2sv_25_14spartnCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[25].spartnCorrUsed', r_2sv_25_14spartnCorrUsed, 'type', 'a bool')
+    r_2sv_25_14spartnCorrUsed = 1 if r_2sv_25_14spartnCorrUsed else 0
+    r_2sv_25_10prCorrUsed: Any = g_2sv_25.prCorrUsed
+    if r_2sv_25_10prCorrUsed is not True and r_2sv_25_10prCorrUsed is not False and r_2sv_25_10prCorrUsed != 0 and r_2sv_25_10prCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[25].prCorrUsed', r_2sv_25_10prCorrUsed, 'type', 'a bool')
+    r_2sv_25_10prCorrUsed = 1 if r_2sv_25_10prCorrUsed else 0
+    r_2sv_25_10crCorrUsed: Any = g_2sv_25.crCorrUsed
+    if r_2sv_25_10crCorrUsed is not True and r_2sv_25_10crCorrUsed is not False and r_2sv_25_10crCorrUsed != 0 and r_2sv_25_10crCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[25].crCorrUsed', r_2sv_25_10crCorrUsed, 'type', 'a bool')
+    r_2sv_25_10crCorrUsed = 1 if r_2sv_25_10crCorrUsed else 0
+    r_2sv_25_10doCorrUsed: Any = g_2sv_25.doCorrUsed
+    if r_2sv_25_10doCorrUsed is not True and r_2sv_25_10doCorrUsed is not False and r_2sv_25_10doCorrUsed != 0 and r_2sv_25_10doCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[25].doCorrUsed', r_2sv_25_10doCorrUsed, 'type', 'a bool')
+    r_2sv_25_10doCorrUsed = 1 if r_2sv_25_10doCorrUsed else 0
+    r_2sv_25_12clasCorrUsed: Any = g_2sv_25.clasCorrUsed
+    if r_2sv_25_12clasCorrUsed is not True and r_2sv_25_12clasCorrUsed is not False and r_2sv_25_12clasCorrUsed != 0 and r_2sv_25_12clasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[25].clasCorrUsed', r_2sv_25_12clasCorrUsed, 'type', 'a bool')
+    r_2sv_25_12clasCorrUsed = 1 if r_2sv_25_12clasCorrUsed else 0
+    r_2sv_25_11lppCorrUsed: Any = g_2sv_25.lppCorrUsed
+    if r_2sv_25_11lppCorrUsed is not True and r_2sv_25_11lppCorrUsed is not False and r_2sv_25_11lppCorrUsed != 0 and r_2sv_25_11lppCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[25].lppCorrUsed', r_2sv_25_11lppCorrUsed, 'type', 'a bool')
+    r_2sv_25_11lppCorrUsed = 1 if r_2sv_25_11lppCorrUsed else 0
+    r_2sv_25_11hasCorrUsed: Any = g_2sv_25.hasCorrUsed
+    if r_2sv_25_11hasCorrUsed is not True and r_2sv_25_11hasCorrUsed is not False and r_2sv_25_11hasCorrUsed != 0 and r_2sv_25_11hasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[25].hasCorrUsed', r_2sv_25_11hasCorrUsed, 'type', 'a bool')
+    r_2sv_25_11hasCorrUsed = 1 if r_2sv_25_11hasCorrUsed else 0
+    r_2sv_25_11flags_spare = 0
+    return (r_2sv_25_6gnssId, r_2sv_25_4svId, r_2sv_25_3cno, r_2sv_25_4elev, r_2sv_25_4azim, r_2sv_25_5prRes, r_2sv_25_10qualityInd, r_2sv_25_6svUsed, r_2sv_25_6health, r_2sv_25_8diffCorr, r_2sv_25_8smoothed, r_2sv_25_11orbitSource, r_2sv_25_8ephAvail, r_2sv_25_8almAvail, r_2sv_25_8anoAvail, r_2sv_25_8aopAvail, r_2sv_25_10reserved13, r_2sv_25_12sbasCorrUsed, r_2sv_25_12rtcmCorrUsed, r_2sv_25_12slasCorrUsed, r_2sv_25_14spartnCorrUsed, r_2sv_25_10prCorrUsed, r_2sv_25_10crCorrUsed, r_2sv_25_10doCorrUsed, r_2sv_25_12clasCorrUsed, r_2sv_25_11lppCorrUsed, r_2sv_25_11hasCorrUsed, r_2sv_25_11flags_spare, )
+
+
+def _raw_nav_sat_2sv_26(g_2sv_26: Any) -> tuple[Any, ...]:
+    r_2sv_26_6gnssId = g_2sv_26.gnssId
+    if r_2sv_26_6gnssId.__class__ is not int and (not isinstance(r_2sv_26_6gnssId, int) or r_2sv_26_6gnssId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[26].gnssId', r_2sv_26_6gnssId, 'type', 'an int')
+    if not 0 <= r_2sv_26_6gnssId <= 255:
+        raise _enc('nav_sat', 'sv[26].gnssId', r_2sv_26_6gnssId, 'range', '0..255', None)
+    r_2sv_26_4svId = g_2sv_26.svId
+    if r_2sv_26_4svId.__class__ is not int and (not isinstance(r_2sv_26_4svId, int) or r_2sv_26_4svId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[26].svId', r_2sv_26_4svId, 'type', 'an int')
+    if not 0 <= r_2sv_26_4svId <= 255:
+        raise _enc('nav_sat', 'sv[26].svId', r_2sv_26_4svId, 'range', '0..255', None)
+    r_2sv_26_3cno = g_2sv_26.cno
+    if r_2sv_26_3cno.__class__ is not int and (not isinstance(r_2sv_26_3cno, int) or r_2sv_26_3cno.__class__ is bool):
+        raise _enc('nav_sat', 'sv[26].cno', r_2sv_26_3cno, 'type', 'an int')
+    if not 0 <= r_2sv_26_3cno <= 255:
+        raise _enc('nav_sat', 'sv[26].cno', r_2sv_26_3cno, 'range', '0..255', None)
+    r_2sv_26_4elev = g_2sv_26.elev
+    if r_2sv_26_4elev.__class__ is not int and (not isinstance(r_2sv_26_4elev, int) or r_2sv_26_4elev.__class__ is bool):
+        raise _enc('nav_sat', 'sv[26].elev', r_2sv_26_4elev, 'type', 'an int')
+    if not -128 <= r_2sv_26_4elev <= 127:
+        raise _enc('nav_sat', 'sv[26].elev', r_2sv_26_4elev, 'range', '-128..127', None)
+    r_2sv_26_4azim = g_2sv_26.azim
+    if r_2sv_26_4azim.__class__ is not int and (not isinstance(r_2sv_26_4azim, int) or r_2sv_26_4azim.__class__ is bool):
+        raise _enc('nav_sat', 'sv[26].azim', r_2sv_26_4azim, 'type', 'an int')
+    if not -32768 <= r_2sv_26_4azim <= 32767:
+        raise _enc('nav_sat', 'sv[26].azim', r_2sv_26_4azim, 'range', '-32768..32767', None)
+    r_2sv_26_5prRes = g_2sv_26.prRes
+    if r_2sv_26_5prRes.__class__ is not float and (not isinstance(r_2sv_26_5prRes, (int, float)) or r_2sv_26_5prRes.__class__ is bool):
+        raise _enc('nav_sat', 'sv[26].prRes', r_2sv_26_5prRes, 'type', 'a number')
+    if not -3276.8 <= r_2sv_26_5prRes <= 3276.7000000000003:
+        raise _enc('nav_sat', 'sv[26].prRes', r_2sv_26_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    r_2sv_26_5prRes = _floor(r_2sv_26_5prRes / 0.1 + 0.5)
+    r_2sv_26_10qualityInd = g_2sv_26.qualityInd
+    if r_2sv_26_10qualityInd.__class__ is not int and (not isinstance(r_2sv_26_10qualityInd, int) or r_2sv_26_10qualityInd.__class__ is bool):
+        raise _enc('nav_sat', 'sv[26].qualityInd', r_2sv_26_10qualityInd, 'type', 'an int')
+    if not 0 <= r_2sv_26_10qualityInd <= 7:
+        raise _enc('nav_sat', 'sv[26].qualityInd', r_2sv_26_10qualityInd, 'range', '0..7', None)
+    r_2sv_26_6svUsed: Any = g_2sv_26.svUsed
+    if r_2sv_26_6svUsed is not True and r_2sv_26_6svUsed is not False and r_2sv_26_6svUsed != 0 and r_2sv_26_6svUsed != 1:
+        raise _enc('nav_sat', 'sv[26].svUsed', r_2sv_26_6svUsed, 'type', 'a bool')
+    r_2sv_26_6svUsed = 1 if r_2sv_26_6svUsed else 0
+    r_2sv_26_6health = g_2sv_26.health
+    if r_2sv_26_6health.__class__ is not int and (not isinstance(r_2sv_26_6health, int) or r_2sv_26_6health.__class__ is bool):
+        raise _enc('nav_sat', 'sv[26].health', r_2sv_26_6health, 'type', 'an int')
+    if not 0 <= r_2sv_26_6health <= 3:
+        raise _enc('nav_sat', 'sv[26].health', r_2sv_26_6health, 'range', '0..3', None)
+    r_2sv_26_8diffCorr: Any = g_2sv_26.diffCorr
+    if r_2sv_26_8diffCorr is not True and r_2sv_26_8diffCorr is not False and r_2sv_26_8diffCorr != 0 and r_2sv_26_8diffCorr != 1:
+        raise _enc('nav_sat', 'sv[26].diffCorr', r_2sv_26_8diffCorr, 'type', 'a bool')
+    r_2sv_26_8diffCorr = 1 if r_2sv_26_8diffCorr else 0
+    r_2sv_26_8smoothed: Any = g_2sv_26.smoothed
+    if r_2sv_26_8smoothed is not True and r_2sv_26_8smoothed is not False and r_2sv_26_8smoothed != 0 and r_2sv_26_8smoothed != 1:
+        raise _enc('nav_sat', 'sv[26].smoothed', r_2sv_26_8smoothed, 'type', 'a bool')
+    r_2sv_26_8smoothed = 1 if r_2sv_26_8smoothed else 0
+    r_2sv_26_11orbitSource = g_2sv_26.orbitSource
+    if r_2sv_26_11orbitSource.__class__ is not int and (not isinstance(r_2sv_26_11orbitSource, int) or r_2sv_26_11orbitSource.__class__ is bool):
+        raise _enc('nav_sat', 'sv[26].orbitSource', r_2sv_26_11orbitSource, 'type', 'an int')
+    if not 0 <= r_2sv_26_11orbitSource <= 7:
+        raise _enc('nav_sat', 'sv[26].orbitSource', r_2sv_26_11orbitSource, 'range', '0..7', None)
+    r_2sv_26_8ephAvail: Any = g_2sv_26.ephAvail
+    if r_2sv_26_8ephAvail is not True and r_2sv_26_8ephAvail is not False and r_2sv_26_8ephAvail != 0 and r_2sv_26_8ephAvail != 1:
+        raise _enc('nav_sat', 'sv[26].ephAvail', r_2sv_26_8ephAvail, 'type', 'a bool')
+    r_2sv_26_8ephAvail = 1 if r_2sv_26_8ephAvail else 0
+    r_2sv_26_8almAvail: Any = g_2sv_26.almAvail
+    if r_2sv_26_8almAvail is not True and r_2sv_26_8almAvail is not False and r_2sv_26_8almAvail != 0 and r_2sv_26_8almAvail != 1:
+        raise _enc('nav_sat', 'sv[26].almAvail', r_2sv_26_8almAvail, 'type', 'a bool')
+    r_2sv_26_8almAvail = 1 if r_2sv_26_8almAvail else 0
+    r_2sv_26_8anoAvail: Any = g_2sv_26.anoAvail
+    if r_2sv_26_8anoAvail is not True and r_2sv_26_8anoAvail is not False and r_2sv_26_8anoAvail != 0 and r_2sv_26_8anoAvail != 1:
+        raise _enc('nav_sat', 'sv[26].anoAvail', r_2sv_26_8anoAvail, 'type', 'a bool')
+    r_2sv_26_8anoAvail = 1 if r_2sv_26_8anoAvail else 0
+    r_2sv_26_8aopAvail: Any = g_2sv_26.aopAvail
+    if r_2sv_26_8aopAvail is not True and r_2sv_26_8aopAvail is not False and r_2sv_26_8aopAvail != 0 and r_2sv_26_8aopAvail != 1:
+        raise _enc('nav_sat', 'sv[26].aopAvail', r_2sv_26_8aopAvail, 'type', 'a bool')
+    r_2sv_26_8aopAvail = 1 if r_2sv_26_8aopAvail else 0
+    r_2sv_26_10reserved13 = g_2sv_26.reserved13
+    if r_2sv_26_10reserved13.__class__ is not int and (not isinstance(r_2sv_26_10reserved13, int) or r_2sv_26_10reserved13.__class__ is bool):
+        raise _enc('nav_sat', 'sv[26].reserved13', r_2sv_26_10reserved13, 'type', 'an int')
+    if not 0 <= r_2sv_26_10reserved13 <= 1:
+        raise _enc('nav_sat', 'sv[26].reserved13', r_2sv_26_10reserved13, 'range', '0..1', None)
+    r_2sv_26_12sbasCorrUsed: Any = g_2sv_26.sbasCorrUsed
+    if r_2sv_26_12sbasCorrUsed is not True and r_2sv_26_12sbasCorrUsed is not False and r_2sv_26_12sbasCorrUsed != 0 and r_2sv_26_12sbasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[26].sbasCorrUsed', r_2sv_26_12sbasCorrUsed, 'type', 'a bool')
+    r_2sv_26_12sbasCorrUsed = 1 if r_2sv_26_12sbasCorrUsed else 0
+    r_2sv_26_12rtcmCorrUsed: Any = g_2sv_26.rtcmCorrUsed
+    if r_2sv_26_12rtcmCorrUsed is not True and r_2sv_26_12rtcmCorrUsed is not False and r_2sv_26_12rtcmCorrUsed != 0 and r_2sv_26_12rtcmCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[26].rtcmCorrUsed', r_2sv_26_12rtcmCorrUsed, 'type', 'a bool')
+    r_2sv_26_12rtcmCorrUsed = 1 if r_2sv_26_12rtcmCorrUsed else 0
+    r_2sv_26_12slasCorrUsed: Any = g_2sv_26.slasCorrUsed
+    if r_2sv_26_12slasCorrUsed is not True and r_2sv_26_12slasCorrUsed is not False and r_2sv_26_12slasCorrUsed != 0 and r_2sv_26_12slasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[26].slasCorrUsed', r_2sv_26_12slasCorrUsed, 'type', 'a bool')
+    r_2sv_26_12slasCorrUsed = 1 if r_2sv_26_12slasCorrUsed else 0
+    r_2sv_26_14spartnCorrUsed: Any = g_2sv_26.spartnCorrUsed
+    if r_2sv_26_14spartnCorrUsed is not True and r_2sv_26_14spartnCorrUsed is not False and r_2sv_26_14spartnCorrUsed != 0 and r_2sv_26_14spartnCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[26].spartnCorrUsed', r_2sv_26_14spartnCorrUsed, 'type', 'a bool')
+    r_2sv_26_14spartnCorrUsed = 1 if r_2sv_26_14spartnCorrUsed else 0
+    r_2sv_26_10prCorrUsed: Any = g_2sv_26.prCorrUsed
+    if r_2sv_26_10prCorrUsed is not True and r_2sv_26_10prCorrUsed is not False and r_2sv_26_10prCorrUsed != 0 and r_2sv_26_10prCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[26].prCorrUsed', r_2sv_26_10prCorrUsed, 'type', 'a bool')
+    r_2sv_26_10prCorrUsed = 1 if r_2sv_26_10prCorrUsed else 0
+    r_2sv_26_10crCorrUsed: Any = g_2sv_26.crCorrUsed
+    if r_2sv_26_10crCorrUsed is not True and r_2sv_26_10crCorrUsed is not False and r_2sv_26_10crCorrUsed != 0 and r_2sv_26_10crCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[26].crCorrUsed', r_2sv_26_10crCorrUsed, 'type', 'a bool')
+    r_2sv_26_10crCorrUsed = 1 if r_2sv_26_10crCorrUsed else 0
+    r_2sv_26_10doCorrUsed: Any = g_2sv_26.doCorrUsed
+    if r_2sv_26_10doCorrUsed is not True and r_2sv_26_10doCorrUsed is not False and r_2sv_26_10doCorrUsed != 0 and r_2sv_26_10doCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[26].doCorrUsed', r_2sv_26_10doCorrUsed, 'type', 'a bool')
+    r_2sv_26_10doCorrUsed = 1 if r_2sv_26_10doCorrUsed else 0
+    r_2sv_26_12clasCorrUsed: Any = g_2sv_26.clasCorrUsed
+    if r_2sv_26_12clasCorrUsed is not True and r_2sv_26_12clasCorrUsed is not False and r_2sv_26_12clasCorrUsed != 0 and r_2sv_26_12clasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[26].clasCorrUsed', r_2sv_26_12clasCorrUsed, 'type', 'a bool')
+    r_2sv_26_12clasCorrUsed = 1 if r_2sv_26_12clasCorrUsed else 0
+    r_2sv_26_11lppCorrUsed: Any = g_2sv_26.lppCorrUsed
+    if r_2sv_26_11lppCorrUsed is not True and r_2sv_26_11lppCorrUsed is not False and r_2sv_26_11lppCorrUsed != 0 and r_2sv_26_11lppCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[26].lppCorrUsed', r_2sv_26_11lppCorrUsed, 'type', 'a bool')
+    r_2sv_26_11lppCorrUsed = 1 if r_2sv_26_11lppCorrUsed else 0
+    r_2sv_26_11hasCorrUsed: Any = g_2sv_26.hasCorrUsed
+    if r_2sv_26_11hasCorrUsed is not True and r_2sv_26_11hasCorrUsed is not False and r_2sv_26_11hasCorrUsed != 0 and r_2sv_26_11hasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[26].hasCorrUsed', r_2sv_26_11hasCorrUsed, 'type', 'a bool')
+    r_2sv_26_11hasCorrUsed = 1 if r_2sv_26_11hasCorrUsed else 0
+    r_2sv_26_11flags_spare = 0
+    return (r_2sv_26_6gnssId, r_2sv_26_4svId, r_2sv_26_3cno, r_2sv_26_4elev, r_2sv_26_4azim, r_2sv_26_5prRes, r_2sv_26_10qualityInd, r_2sv_26_6svUsed, r_2sv_26_6health, r_2sv_26_8diffCorr, r_2sv_26_8smoothed, r_2sv_26_11orbitSource, r_2sv_26_8ephAvail, r_2sv_26_8almAvail, r_2sv_26_8anoAvail, r_2sv_26_8aopAvail, r_2sv_26_10reserved13, r_2sv_26_12sbasCorrUsed, r_2sv_26_12rtcmCorrUsed, r_2sv_26_12slasCorrUsed, r_2sv_26_14spartnCorrUsed, r_2sv_26_10prCorrUsed, r_2sv_26_10crCorrUsed, r_2sv_26_10doCorrUsed, r_2sv_26_12clasCorrUsed, r_2sv_26_11lppCorrUsed, r_2sv_26_11hasCorrUsed, r_2sv_26_11flags_spare, )
+
+
+def _raw_nav_sat_2sv_27(g_2sv_27: Any) -> tuple[Any, ...]:
+    r_2sv_27_6gnssId = g_2sv_27.gnssId
+    if r_2sv_27_6gnssId.__class__ is not int and (not isinstance(r_2sv_27_6gnssId, int) or r_2sv_27_6gnssId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[27].gnssId', r_2sv_27_6gnssId, 'type', 'an int')
+    if not 0 <= r_2sv_27_6gnssId <= 255:
+        raise _enc('nav_sat', 'sv[27].gnssId', r_2sv_27_6gnssId, 'range', '0..255', None)
+    r_2sv_27_4svId = g_2sv_27.svId
+    if r_2sv_27_4svId.__class__ is not int and (not isinstance(r_2sv_27_4svId, int) or r_2sv_27_4svId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[27].svId', r_2sv_27_4svId, 'type', 'an int')
+    if not 0 <= r_2sv_27_4svId <= 255:
+        raise _enc('nav_sat', 'sv[27].svId', r_2sv_27_4svId, 'range', '0..255', None)
+    r_2sv_27_3cno = g_2sv_27.cno
+    if r_2sv_27_3cno.__class__ is not int and (not isinstance(r_2sv_27_3cno, int) or r_2sv_27_3cno.__class__ is bool):
+        raise _enc('nav_sat', 'sv[27].cno', r_2sv_27_3cno, 'type', 'an int')
+    if not 0 <= r_2sv_27_3cno <= 255:
+        raise _enc('nav_sat', 'sv[27].cno', r_2sv_27_3cno, 'range', '0..255', None)
+    r_2sv_27_4elev = g_2sv_27.elev
+    if r_2sv_27_4elev.__class__ is not int and (not isinstance(r_2sv_27_4elev, int) or r_2sv_27_4elev.__class__ is bool):
+        raise _enc('nav_sat', 'sv[27].elev', r_2sv_27_4elev, 'type', 'an int')
+    if not -128 <= r_2sv_27_4elev <= 127:
+        raise _enc('nav_sat', 'sv[27].elev', r_2sv_27_4elev, 'range', '-128..127', None)
+    r_2sv_27_4azim = g_2sv_27.azim
+    if r_2sv_27_4azim.__class__ is not int and (not isinstance(r_2sv_27_4azim, int) or r_2sv_27_4azim.__class__ is bool):
+        raise _enc('nav_sat', 'sv[27].azim', r_2sv_27_4azim, 'type', 'an int')
+    if not -32768 <= r_2sv_27_4azim <= 32767:
+        raise _enc('nav_sat', 'sv[27].azim', r_2sv_27_4azim, 'range', '-32768..32767', None)
+    r_2sv_27_5prRes = g_2sv_27.prRes
+    if r_2sv_27_5prRes.__class__ is not float and (not isinstance(r_2sv_27_5prRes, (int, float)) or r_2sv_27_5prRes.__class__ is bool):
+        raise _enc('nav_sat', 'sv[27].prRes', r_2sv_27_5prRes, 'type', 'a number')
+    if not -3276.8 <= r_2sv_27_5prRes <= 3276.7000000000003:
+        raise _enc('nav_sat', 'sv[27].prRes', r_2sv_27_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    r_2sv_27_5prRes = _floor(r_2sv_27_5prRes / 0.1 + 0.5)
+    r_2sv_27_10qualityInd = g_2sv_27.qualityInd
+    if r_2sv_27_10qualityInd.__class__ is not int and (not isinstance(r_2sv_27_10qualityInd, int) or r_2sv_27_10qualityInd.__class__ is bool):
+        raise _enc('nav_sat', 'sv[27].qualityInd', r_2sv_27_10qualityInd, 'type', 'an int')
+    if not 0 <= r_2sv_27_10qualityInd <= 7:
+        raise _enc('nav_sat', 'sv[27].qualityInd', r_2sv_27_10qualityInd, 'range', '0..7', None)
+    r_2sv_27_6svUsed: Any = g_2sv_27.svUsed
+    if r_2sv_27_6svUsed is not True and r_2sv_27_6svUsed is not False and r_2sv_27_6svUsed != 0 and r_2sv_27_6svUsed != 1:
+        raise _enc('nav_sat', 'sv[27].svUsed', r_2sv_27_6svUsed, 'type', 'a bool')
+    r_2sv_27_6svUsed = 1 if r_2sv_27_6svUsed else 0
+    r_2sv_27_6health = g_2sv_27.health
+    if r_2sv_27_6health.__class__ is not int and (not isinstance(r_2sv_27_6health, int) or r_2sv_27_6health.__class__ is bool):
+        raise _enc('nav_sat', 'sv[27].health', r_2sv_27_6health, 'type', 'an int')
+    if not 0 <= r_2sv_27_6health <= 3:
+        raise _enc('nav_sat', 'sv[27].health', r_2sv_27_6health, 'range', '0..3', None)
+    r_2sv_27_8diffCorr: Any = g_2sv_27.diffCorr
+    if r_2sv_27_8diffCorr is not True and r_2sv_27_8diffCorr is not False and r_2sv_27_8diffCorr != 0 and r_2sv_27_8diffCorr != 1:
+        raise _enc('nav_sat', 'sv[27].diffCorr', r_2sv_27_8diffCorr, 'type', 'a bool')
+    r_2sv_27_8diffCorr = 1 if r_2sv_27_8diffCorr else 0
+    r_2sv_27_8smoothed: Any = g_2sv_27.smoothed
+    if r_2sv_27_8smoothed is not True and r_2sv_27_8smoothed is not False and r_2sv_27_8smoothed != 0 and r_2sv_27_8smoothed != 1:
+        raise _enc('nav_sat', 'sv[27].smoothed', r_2sv_27_8smoothed, 'type', 'a bool')
+    r_2sv_27_8smoothed = 1 if r_2sv_27_8smoothed else 0
+    r_2sv_27_11orbitSource = g_2sv_27.orbitSource
+    if r_2sv_27_11orbitSource.__class__ is not int and (not isinstance(r_2sv_27_11orbitSource, int) or r_2sv_27_11orbitSource.__class__ is bool):
+        raise _enc('nav_sat', 'sv[27].orbitSource', r_2sv_27_11orbitSource, 'type', 'an int')
+    if not 0 <= r_2sv_27_11orbitSource <= 7:
+        raise _enc('nav_sat', 'sv[27].orbitSource', r_2sv_27_11orbitSource, 'range', '0..7', None)
+    r_2sv_27_8ephAvail: Any = g_2sv_27.ephAvail
+    if r_2sv_27_8ephAvail is not True and r_2sv_27_8ephAvail is not False and r_2sv_27_8ephAvail != 0 and r_2sv_27_8ephAvail != 1:
+        raise _enc('nav_sat', 'sv[27].ephAvail', r_2sv_27_8ephAvail, 'type', 'a bool')
+    r_2sv_27_8ephAvail = 1 if r_2sv_27_8ephAvail else 0
+    r_2sv_27_8almAvail: Any = g_2sv_27.almAvail
+    if r_2sv_27_8almAvail is not True and r_2sv_27_8almAvail is not False and r_2sv_27_8almAvail != 0 and r_2sv_27_8almAvail != 1:
+        raise _enc('nav_sat', 'sv[27].almAvail', r_2sv_27_8almAvail, 'type', 'a bool')
+    r_2sv_27_8almAvail = 1 if r_2sv_27_8almAvail else 0
+    r_2sv_27_8anoAvail: Any = g_2sv_27.anoAvail
+    if r_2sv_27_8anoAvail is not True and r_2sv_27_8anoAvail is not False and r_2sv_27_8anoAvail != 0 and r_2sv_27_8anoAvail != 1:
+        raise _enc('nav_sat', 'sv[27].anoAvail', r_2sv_27_8anoAvail, 'type', 'a bool')
+    r_2sv_27_8anoAvail = 1 if r_2sv_27_8anoAvail else 0
+    r_2sv_27_8aopAvail: Any = g_2sv_27.aopAvail
+    if r_2sv_27_8aopAvail is not True and r_2sv_27_8aopAvail is not False and r_2sv_27_8aopAvail != 0 and r_2sv_27_8aopAvail != 1:
+        raise _enc('nav_sat', 'sv[27].aopAvail', r_2sv_27_8aopAvail, 'type', 'a bool')
+    r_2sv_27_8aopAvail = 1 if r_2sv_27_8aopAvail else 0
+    r_2sv_27_10reserved13 = g_2sv_27.reserved13
+    if r_2sv_27_10reserved13.__class__ is not int and (not isinstance(r_2sv_27_10reserved13, int) or r_2sv_27_10reserved13.__class__ is bool):
+        raise _enc('nav_sat', 'sv[27].reserved13', r_2sv_27_10reserved13, 'type', 'an int')
+    if not 0 <= r_2sv_27_10reserved13 <= 1:
+        raise _enc('nav_sat', 'sv[27].reserved13', r_2sv_27_10reserved13, 'range', '0..1', None)
+    r_2sv_27_12sbasCorrUsed: Any = g_2sv_27.sbasCorrUsed
+    if r_2sv_27_12sbasCorrUsed is not True and r_2sv_27_12sbasCorrUsed is not False and r_2sv_27_12sbasCorrUsed != 0 and r_2sv_27_12sbasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[27].sbasCorrUsed', r_2sv_27_12sbasCorrUsed, 'type', 'a bool')
+    r_2sv_27_12sbasCorrUsed = 1 if r_2sv_27_12sbasCorrUsed else 0
+    r_2sv_27_12rtcmCorrUsed: Any = g_2sv_27.rtcmCorrUsed
+    if r_2sv_27_12rtcmCorrUsed is not True and r_2sv_27_12rtcmCorrUsed is not False and r_2sv_27_12rtcmCorrUsed != 0 and r_2sv_27_12rtcmCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[27].rtcmCorrUsed', r_2sv_27_12rtcmCorrUsed, 'type', 'a bool')
+    r_2sv_27_12rtcmCorrUsed = 1 if r_2sv_27_12rtcmCorrUsed else 0
+    r_2sv_27_12slasCorrUsed: Any = g_2sv_27.slasCorrUsed
+    if r_2sv_27_12slasCorrUsed is not True and r_2sv_27_12slasCorrUsed is not False and r_2sv_27_12slasCorrUsed != 0 and r_2sv_27_12slasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[27].slasCorrUsed', r_2sv_27_12slasCorrUsed, 'type', 'a bool')
+    r_2sv_27_12slasCorrUsed = 1 if r_2sv_27_12slasCorrUsed else 0
+    r_2sv_27_14spartnCorrUsed: Any = g_2sv_27.spartnCorrUsed
+    if r_2sv_27_14spartnCorrUsed is not True and r_2sv_27_14spartnCorrUsed is not False and r_2sv_27_14spartnCorrUsed != 0 and r_2sv_27_14spartnCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[27].spartnCorrUsed', r_2sv_27_14spartnCorrUsed, 'type', 'a bool')
+    r_2sv_27_14spartnCorrUsed = 1 if r_2sv_27_14spartnCorrUsed else 0
+    r_2sv_27_10prCorrUsed: Any = g_2sv_27.prCorrUsed
+    if r_2sv_27_10prCorrUsed is not True and r_2sv_27_10prCorrUsed is not False and r_2sv_27_10prCorrUsed != 0 and r_2sv_27_10prCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[27].prCorrUsed', r_2sv_27_10prCorrUsed, 'type', 'a bool')
+    r_2sv_27_10prCorrUsed = 1 if r_2sv_27_10prCorrUsed else 0
+    r_2sv_27_10crCorrUsed: Any = g_2sv_27.crCorrUsed
+    if r_2sv_27_10crCorrUsed is not True and r_2sv_27_10crCorrUsed is not False and r_2sv_27_10crCorrUsed != 0 and r_2sv_27_10crCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[27].crCorrUsed', r_2sv_27_10crCorrUsed, 'type', 'a bool')
+    r_2sv_27_10crCorrUsed = 1 if r_2sv_27_10crCorrUsed else 0
+    r_2sv_27_10doCorrUsed: Any = g_2sv_27.doCorrUsed
+    if r_2sv_27_10doCorrUsed is not True and r_2sv_27_10doCorrUsed is not False and r_2sv_27_10doCorrUsed != 0 and r_2sv_27_10doCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[27].doCorrUsed', r_2sv_27_10doCorrUsed, 'type', 'a bool')
+    r_2sv_27_10doCorrUsed = 1 if r_2sv_27_10doCorrUsed else 0
+    r_2sv_27_12clasCorrUsed: Any = g_2sv_27.clasCorrUsed
+    if r_2sv_27_12clasCorrUsed is not True and r_2sv_27_12clasCorrUsed is not False and r_2sv_27_12clasCorrUsed != 0 and r_2sv_27_12clasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[27].clasCorrUsed', r_2sv_27_12clasCorrUsed, 'type', 'a bool')
+    r_2sv_27_12clasCorrUsed = 1 if r_2sv_27_12clasCorrUsed else 0
+    r_2sv_27_11lppCorrUsed: Any = g_2sv_27.lppCorrUsed
+    if r_2sv_27_11lppCorrUsed is not True and r_2sv_27_11lppCorrUsed is not False and r_2sv_27_11lppCorrUsed != 0 and r_2sv_27_11lppCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[27].lppCorrUsed', r_2sv_27_11lppCorrUsed, 'type', 'a bool')
+    r_2sv_27_11lppCorrUsed = 1 if r_2sv_27_11lppCorrUsed else 0
+    r_2sv_27_11hasCorrUsed: Any = g_2sv_27.hasCorrUsed
+    if r_2sv_27_11hasCorrUsed is not True and r_2sv_27_11hasCorrUsed is not False and r_2sv_27_11hasCorrUsed != 0 and r_2sv_27_11hasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[27].hasCorrUsed', r_2sv_27_11hasCorrUsed, 'type', 'a bool')
+    r_2sv_27_11hasCorrUsed = 1 if r_2sv_27_11hasCorrUsed else 0
+    r_2sv_27_11flags_spare = 0
+    return (r_2sv_27_6gnssId, r_2sv_27_4svId, r_2sv_27_3cno, r_2sv_27_4elev, r_2sv_27_4azim, r_2sv_27_5prRes, r_2sv_27_10qualityInd, r_2sv_27_6svUsed, r_2sv_27_6health, r_2sv_27_8diffCorr, r_2sv_27_8smoothed, r_2sv_27_11orbitSource, r_2sv_27_8ephAvail, r_2sv_27_8almAvail, r_2sv_27_8anoAvail, r_2sv_27_8aopAvail, r_2sv_27_10reserved13, r_2sv_27_12sbasCorrUsed, r_2sv_27_12rtcmCorrUsed, r_2sv_27_12slasCorrUsed, r_2sv_27_14spartnCorrUsed, r_2sv_27_10prCorrUsed, r_2sv_27_10crCorrUsed, r_2sv_27_10doCorrUsed, r_2sv_27_12clasCorrUsed, r_2sv_27_11lppCorrUsed, r_2sv_27_11hasCorrUsed, r_2sv_27_11flags_spare, )
+
+
+def _raw_nav_sat_2sv_28(g_2sv_28: Any) -> tuple[Any, ...]:
+    r_2sv_28_6gnssId = g_2sv_28.gnssId
+    if r_2sv_28_6gnssId.__class__ is not int and (not isinstance(r_2sv_28_6gnssId, int) or r_2sv_28_6gnssId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[28].gnssId', r_2sv_28_6gnssId, 'type', 'an int')
+    if not 0 <= r_2sv_28_6gnssId <= 255:
+        raise _enc('nav_sat', 'sv[28].gnssId', r_2sv_28_6gnssId, 'range', '0..255', None)
+    r_2sv_28_4svId = g_2sv_28.svId
+    if r_2sv_28_4svId.__class__ is not int and (not isinstance(r_2sv_28_4svId, int) or r_2sv_28_4svId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[28].svId', r_2sv_28_4svId, 'type', 'an int')
+    if not 0 <= r_2sv_28_4svId <= 255:
+        raise _enc('nav_sat', 'sv[28].svId', r_2sv_28_4svId, 'range', '0..255', None)
+    r_2sv_28_3cno = g_2sv_28.cno
+    if r_2sv_28_3cno.__class__ is not int and (not isinstance(r_2sv_28_3cno, int) or r_2sv_28_3cno.__class__ is bool):
+        raise _enc('nav_sat', 'sv[28].cno', r_2sv_28_3cno, 'type', 'an int')
+    if not 0 <= r_2sv_28_3cno <= 255:
+        raise _enc('nav_sat', 'sv[28].cno', r_2sv_28_3cno, 'range', '0..255', None)
+    r_2sv_28_4elev = g_2sv_28.elev
+    if r_2sv_28_4elev.__class__ is not int and (not isinstance(r_2sv_28_4elev, int) or r_2sv_28_4elev.__class__ is bool):
+        raise _enc('nav_sat', 'sv[28].elev', r_2sv_28_4elev, 'type', 'an int')
+    if not -128 <= r_2sv_28_4elev <= 127:
+        raise _enc('nav_sat', 'sv[28].elev', r_2sv_28_4elev, 'range', '-128..127', None)
+    r_2sv_28_4azim = g_2sv_28.azim
+    if r_2sv_28_4azim.__class__ is not int and (not isinstance(r_2sv_28_4azim, int) or r_2sv_28_4azim.__class__ is bool):
+        raise _enc('nav_sat', 'sv[28].azim', r_2sv_28_4azim, 'type', 'an int')
+    if not -32768 <= r_2sv_28_4azim <= 32767:
+        raise _enc('nav_sat', 'sv[28].azim', r_2sv_28_4azim, 'range', '-32768..32767', None)
+    r_2sv_28_5prRes = g_2sv_28.prRes
+    if r_2sv_28_5prRes.__class__ is not float and (not isinstance(r_2sv_28_5prRes, (int, float)) or r_2sv_28_5prRes.__class__ is bool):
+        raise _enc('nav_sat', 'sv[28].prRes', r_2sv_28_5prRes, 'type', 'a number')
+    if not -3276.8 <= r_2sv_28_5prRes <= 3276.7000000000003:
+        raise _enc('nav_sat', 'sv[28].prRes', r_2sv_28_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    r_2sv_28_5prRes = _floor(r_2sv_28_5prRes / 0.1 + 0.5)
+    r_2sv_28_10qualityInd = g_2sv_28.qualityInd
+    if r_2sv_28_10qualityInd.__class__ is not int and (not isinstance(r_2sv_28_10qualityInd, int) or r_2sv_28_10qualityInd.__class__ is bool):
+        raise _enc('nav_sat', 'sv[28].qualityInd', r_2sv_28_10qualityInd, 'type', 'an int')
+    if not 0 <= r_2sv_28_10qualityInd <= 7:
+        raise _enc('nav_sat', 'sv[28].qualityInd', r_2sv_28_10qualityInd, 'range', '0..7', None)
+    r_2sv_28_6svUsed: Any = g_2sv_28.svUsed
+    if r_2sv_28_6svUsed is not True and r_2sv_28_6svUsed is not False and r_2sv_28_6svUsed != 0 and r_2sv_28_6svUsed != 1:
+        raise _enc('nav_sat', 'sv[28].svUsed', r_2sv_28_6svUsed, 'type', 'a bool')
+    r_2sv_28_6svUsed = 1 if r_2sv_28_6svUsed else 0
+    r_2sv_28_6health = g_2sv_28.health
+    if r_2sv_28_6health.__class__ is not int and (not isinstance(r_2sv_28_6health, int) or r_2sv_28_6health.__class__ is bool):
+        raise _enc('nav_sat', 'sv[28].health', r_2sv_28_6health, 'type', 'an int')
+    if not 0 <= r_2sv_28_6health <= 3:
+        raise _enc('nav_sat', 'sv[28].health', r_2sv_28_6health, 'range', '0..3', None)
+    r_2sv_28_8diffCorr: Any = g_2sv_28.diffCorr
+    if r_2sv_28_8diffCorr is not True and r_2sv_28_8diffCorr is not False and r_2sv_28_8diffCorr != 0 and r_2sv_28_8diffCorr != 1:
+        raise _enc('nav_sat', 'sv[28].diffCorr', r_2sv_28_8diffCorr, 'type', 'a bool')
+    r_2sv_28_8diffCorr = 1 if r_2sv_28_8diffCorr else 0
+    r_2sv_28_8smoothed: Any = g_2sv_28.smoothed
+    if r_2sv_28_8smoothed is not True and r_2sv_28_8smoothed is not False and r_2sv_28_8smoothed != 0 and r_2sv_28_8smoothed != 1:
+        raise _enc('nav_sat', 'sv[28].smoothed', r_2sv_28_8smoothed, 'type', 'a bool')
+    r_2sv_28_8smoothed = 1 if r_2sv_28_8smoothed else 0
+    r_2sv_28_11orbitSource = g_2sv_28.orbitSource
+    if r_2sv_28_11orbitSource.__class__ is not int and (not isinstance(r_2sv_28_11orbitSource, int) or r_2sv_28_11orbitSource.__class__ is bool):
+        raise _enc('nav_sat', 'sv[28].orbitSource', r_2sv_28_11orbitSource, 'type', 'an int')
+    if not 0 <= r_2sv_28_11orbitSource <= 7:
+        raise _enc('nav_sat', 'sv[28].orbitSource', r_2sv_28_11orbitSource, 'range', '0..7', None)
+    r_2sv_28_8ephAvail: Any = g_2sv_28.ephAvail
+    if r_2sv_28_8ephAvail is not True and r_2sv_28_8ephAvail is not False and r_2sv_28_8ephAvail != 0 and r_2sv_28_8ephAvail != 1:
+        raise _enc('nav_sat', 'sv[28].ephAvail', r_2sv_28_8ephAvail, 'type', 'a bool')
+    r_2sv_28_8ephAvail = 1 if r_2sv_28_8ephAvail else 0
+    r_2sv_28_8almAvail: Any = g_2sv_28.almAvail
+    if r_2sv_28_8almAvail is not True and r_2sv_28_8almAvail is not False and r_2sv_28_8almAvail != 0 and r_2sv_28_8almAvail != 1:
+        raise _enc('nav_sat', 'sv[28].almAvail', r_2sv_28_8almAvail, 'type', 'a bool')
+    r_2sv_28_8almAvail = 1 if r_2sv_28_8almAvail else 0
+    r_2sv_28_8anoAvail: Any = g_2sv_28.anoAvail
+    if r_2sv_28_8anoAvail is not True and r_2sv_28_8anoAvail is not False and r_2sv_28_8anoAvail != 0 and r_2sv_28_8anoAvail != 1:
+        raise _enc('nav_sat', 'sv[28].anoAvail', r_2sv_28_8anoAvail, 'type', 'a bool')
+    r_2sv_28_8anoAvail = 1 if r_2sv_28_8anoAvail else 0
+    r_2sv_28_8aopAvail: Any = g_2sv_28.aopAvail
+    if r_2sv_28_8aopAvail is not True and r_2sv_28_8aopAvail is not False and r_2sv_28_8aopAvail != 0 and r_2sv_28_8aopAvail != 1:
+        raise _enc('nav_sat', 'sv[28].aopAvail', r_2sv_28_8aopAvail, 'type', 'a bool')
+    r_2sv_28_8aopAvail = 1 if r_2sv_28_8aopAvail else 0
+    r_2sv_28_10reserved13 = g_2sv_28.reserved13
+    if r_2sv_28_10reserved13.__class__ is not int and (not isinstance(r_2sv_28_10reserved13, int) or r_2sv_28_10reserved13.__class__ is bool):
+        raise _enc('nav_sat', 'sv[28].reserved13', r_2sv_28_10reserved13, 'type', 'an int')
+    if not 0 <= r_2sv_28_10reserved13 <= 1:
+        raise _enc('nav_sat', 'sv[28].reserved13', r_2sv_28_10reserved13, 'range', '0..1', None)
+    r_2sv_28_12sbasCorrUsed: Any = g_2sv_28.sbasCorrUsed
+    if r_2sv_28_12sbasCorrUsed is not True and r_2sv_28_12sbasCorrUsed is not False and r_2sv_28_12sbasCorrUsed != 0 and r_2sv_28_12sbasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[28].sbasCorrUsed', r_2sv_28_12sbasCorrUsed, 'type', 'a bool')
+    r_2sv_28_12sbasCorrUsed = 1 if r_2sv_28_12sbasCorrUsed else 0
+    r_2sv_28_12rtcmCorrUsed: Any = g_2sv_28.rtcmCorrUsed
+    if r_2sv_28_12rtcmCorrUsed is not True and r_2sv_28_12rtcmCorrUsed is not False and r_2sv_28_12rtcmCorrUsed != 0 and r_2sv_28_12rtcmCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[28].rtcmCorrUsed', r_2sv_28_12rtcmCorrUsed, 'type', 'a bool')
+    r_2sv_28_12rtcmCorrUsed = 1 if r_2sv_28_12rtcmCorrUsed else 0
+    r_2sv_28_12slasCorrUsed: Any = g_2sv_28.slasCorrUsed
+    if r_2sv_28_12slasCorrUsed is not True and r_2sv_28_12slasCorrUsed is not False and r_2sv_28_12slasCorrUsed != 0 and r_2sv_28_12slasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[28].slasCorrUsed', r_2sv_28_12slasCorrUsed, 'type', 'a bool')
+    r_2sv_28_12slasCorrUsed = 1 if r_2sv_28_12slasCorrUsed else 0
+    r_2sv_28_14spartnCorrUsed: Any = g_2sv_28.spartnCorrUsed
+    if r_2sv_28_14spartnCorrUsed is not True and r_2sv_28_14spartnCorrUsed is not False and r_2sv_28_14spartnCorrUsed != 0 and r_2sv_28_14spartnCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[28].spartnCorrUsed', r_2sv_28_14spartnCorrUsed, 'type', 'a bool')
+    r_2sv_28_14spartnCorrUsed = 1 if r_2sv_28_14spartnCorrUsed else 0
+    r_2sv_28_10prCorrUsed: Any = g_2sv_28.prCorrUsed
+    if r_2sv_28_10prCorrUsed is not True and r_2sv_28_10prCorrUsed is not False and r_2sv_28_10prCorrUsed != 0 and r_2sv_28_10prCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[28].prCorrUsed', r_2sv_28_10prCorrUsed, 'type', 'a bool')
+    r_2sv_28_10prCorrUsed = 1 if r_2sv_28_10prCorrUsed else 0
+    r_2sv_28_10crCorrUsed: Any = g_2sv_28.crCorrUsed
+    if r_2sv_28_10crCorrUsed is not True and r_2sv_28_10crCorrUsed is not False and r_2sv_28_10crCorrUsed != 0 and r_2sv_28_10crCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[28].crCorrUsed', r_2sv_28_10crCorrUsed, 'type', 'a bool')
+    r_2sv_28_10crCorrUsed = 1 if r_2sv_28_10crCorrUsed else 0
+    r_2sv_28_10doCorrUsed: Any = g_2sv_28.doCorrUsed
+    if r_2sv_28_10doCorrUsed is not True and r_2sv_28_10doCorrUsed is not False and r_2sv_28_10doCorrUsed != 0 and r_2sv_28_10doCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[28].doCorrUsed', r_2sv_28_10doCorrUsed, 'type', 'a bool')
+    r_2sv_28_10doCorrUsed = 1 if r_2sv_28_10doCorrUsed else 0
+    r_2sv_28_12clasCorrUsed: Any = g_2sv_28.clasCorrUsed
+    if r_2sv_28_12clasCorrUsed is not True and r_2sv_28_12clasCorrUsed is not False and r_2sv_28_12clasCorrUsed != 0 and r_2sv_28_12clasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[28].clasCorrUsed', r_2sv_28_12clasCorrUsed, 'type', 'a bool')
+    r_2sv_28_12clasCorrUsed = 1 if r_2sv_28_12clasCorrUsed else 0
+    r_2sv_28_11lppCorrUsed: Any = g_2sv_28.lppCorrUsed
+    if r_2sv_28_11lppCorrUsed is not True and r_2sv_28_11lppCorrUsed is not False and r_2sv_28_11lppCorrUsed != 0 and r_2sv_28_11lppCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[28].lppCorrUsed', r_2sv_28_11lppCorrUsed, 'type', 'a bool')
+    r_2sv_28_11lppCorrUsed = 1 if r_2sv_28_11lppCorrUsed else 0
+    r_2sv_28_11hasCorrUsed: Any = g_2sv_28.hasCorrUsed
+    if r_2sv_28_11hasCorrUsed is not True and r_2sv_28_11hasCorrUsed is not False and r_2sv_28_11hasCorrUsed != 0 and r_2sv_28_11hasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[28].hasCorrUsed', r_2sv_28_11hasCorrUsed, 'type', 'a bool')
+    r_2sv_28_11hasCorrUsed = 1 if r_2sv_28_11hasCorrUsed else 0
+    r_2sv_28_11flags_spare = 0
+    return (r_2sv_28_6gnssId, r_2sv_28_4svId, r_2sv_28_3cno, r_2sv_28_4elev, r_2sv_28_4azim, r_2sv_28_5prRes, r_2sv_28_10qualityInd, r_2sv_28_6svUsed, r_2sv_28_6health, r_2sv_28_8diffCorr, r_2sv_28_8smoothed, r_2sv_28_11orbitSource, r_2sv_28_8ephAvail, r_2sv_28_8almAvail, r_2sv_28_8anoAvail, r_2sv_28_8aopAvail, r_2sv_28_10reserved13, r_2sv_28_12sbasCorrUsed, r_2sv_28_12rtcmCorrUsed, r_2sv_28_12slasCorrUsed, r_2sv_28_14spartnCorrUsed, r_2sv_28_10prCorrUsed, r_2sv_28_10crCorrUsed, r_2sv_28_10doCorrUsed, r_2sv_28_12clasCorrUsed, r_2sv_28_11lppCorrUsed, r_2sv_28_11hasCorrUsed, r_2sv_28_11flags_spare, )
+
+
+def _raw_nav_sat_2sv_29(g_2sv_29: Any) -> tuple[Any, ...]:
+    r_2sv_29_6gnssId = g_2sv_29.gnssId
+    if r_2sv_29_6gnssId.__class__ is not int and (not isinstance(r_2sv_29_6gnssId, int) or r_2sv_29_6gnssId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[29].gnssId', r_2sv_29_6gnssId, 'type', 'an int')
+    if not 0 <= r_2sv_29_6gnssId <= 255:
+        raise _enc('nav_sat', 'sv[29].gnssId', r_2sv_29_6gnssId, 'range', '0..255', None)
+    r_2sv_29_4svId = g_2sv_29.svId
+    if r_2sv_29_4svId.__class__ is not int and (not isinstance(r_2sv_29_4svId, int) or r_2sv_29_4svId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[29].svId', r_2sv_29_4svId, 'type', 'an int')
+    if not 0 <= r_2sv_29_4svId <= 255:
+        raise _enc('nav_sat', 'sv[29].svId', r_2sv_29_4svId, 'range', '0..255', None)
+    r_2sv_29_3cno = g_2sv_29.cno
+    if r_2sv_29_3cno.__class__ is not int and (not isinstance(r_2sv_29_3cno, int) or r_2sv_29_3cno.__class__ is bool):
+        raise _enc('nav_sat', 'sv[29].cno', r_2sv_29_3cno, 'type', 'an int')
+    if not 0 <= r_2sv_29_3cno <= 255:
+        raise _enc('nav_sat', 'sv[29].cno', r_2sv_29_3cno, 'range', '0..255', None)
+    r_2sv_29_4elev = g_2sv_29.elev
+    if r_2sv_29_4elev.__class__ is not int and (not isinstance(r_2sv_29_4elev, int) or r_2sv_29_4elev.__class__ is bool):
+        raise _enc('nav_sat', 'sv[29].elev', r_2sv_29_4elev, 'type', 'an int')
+    if not -128 <= r_2sv_29_4elev <= 127:
+        raise _enc('nav_sat', 'sv[29].elev', r_2sv_29_4elev, 'range', '-128..127', None)
+    r_2sv_29_4azim = g_2sv_29.azim
+    if r_2sv_29_4azim.__class__ is not int and (not isinstance(r_2sv_29_4azim, int) or r_2sv_29_4azim.__class__ is bool):
+        raise _enc('nav_sat', 'sv[29].azim', r_2sv_29_4azim, 'type', 'an int')
+    if not -32768 <= r_2sv_29_4azim <= 32767:
+        raise _enc('nav_sat', 'sv[29].azim', r_2sv_29_4azim, 'range', '-32768..32767', None)
+    r_2sv_29_5prRes = g_2sv_29.prRes
+    if r_2sv_29_5prRes.__class__ is not float and (not isinstance(r_2sv_29_5prRes, (int, float)) or r_2sv_29_5prRes.__class__ is bool):
+        raise _enc('nav_sat', 'sv[29].prRes', r_2sv_29_5prRes, 'type', 'a number')
+    if not -3276.8 <= r_2sv_29_5prRes <= 3276.7000000000003:
+        raise _enc('nav_sat', 'sv[29].prRes', r_2sv_29_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    r_2sv_29_5prRes = _floor(r_2sv_29_5prRes / 0.1 + 0.5)
+    r_2sv_29_10qualityInd = g_2sv_29.qualityInd
+    if r_2sv_29_10qualityInd.__class__ is not int and (not isinstance(r_2sv_29_10qualityInd, int) or r_2sv_29_10qualityInd.__class__ is bool):
+        raise _enc('nav_sat', 'sv[29].qualityInd', r_2sv_29_10qualityInd, 'type', 'an int')
+    if not 0 <= r_2sv_29_10qualityInd <= 7:
+        raise _enc('nav_sat', 'sv[29].qualityInd', r_2sv_29_10qualityInd, 'range', '0..7', None)
+    r_2sv_29_6svUsed: Any = g_2sv_29.svUsed
+    if r_2sv_29_6svUsed is not True and r_2sv_29_6svUsed is not False and r_2sv_29_6svUsed != 0 and r_2sv_29_6svUsed != 1:
+        raise _enc('nav_sat', 'sv[29].svUsed', r_2sv_29_6svUsed, 'type', 'a bool')
+    r_2sv_29_6svUsed = 1 if r_2sv_29_6svUsed else 0
+    r_2sv_29_6health = g_2sv_29.health
+    if r_2sv_29_6health.__class__ is not int and (not isinstance(r_2sv_29_6health, int) or r_2sv_29_6health.__class__ is bool):
+        raise _enc('nav_sat', 'sv[29].health', r_2sv_29_6health, 'type', 'an int')
+    if not 0 <= r_2sv_29_6health <= 3:
+        raise _enc('nav_sat', 'sv[29].health', r_2sv_29_6health, 'range', '0..3', None)
+    r_2sv_29_8diffCorr: Any = g_2sv_29.diffCorr
+    if r_2sv_29_8diffCorr is not True and r_2sv_29_8diffCorr is not False and r_2sv_29_8diffCorr != 0 and r_2sv_29_8diffCorr != 1:
+        raise _enc('nav_sat', 'sv[29].diffCorr', r_2sv_29_8diffCorr, 'type', 'a bool')
+    r_2sv_29_8diffCorr = 1 if r_2sv_29_8diffCorr else 0
+    r_2sv_29_8smoothed: Any = g_2sv_29.smoothed
+    if r_2sv_29_8smoothed is not True and r_2sv_29_8smoothed is not False and r_2sv_29_8smoothed != 0 and r_2sv_29_8smoothed != 1:
+        raise _enc('nav_sat', 'sv[29].smoothed', r_2sv_29_8smoothed, 'type', 'a bool')
+    r_2sv_29_8smoothed = 1 if r_2sv_29_8smoothed else 0
+    r_2sv_29_11orbitSource = g_2sv_29.orbitSource
+    if r_2sv_29_11orbitSource.__class__ is not int and (not isinstance(r_2sv_29_11orbitSource, int) or r_2sv_29_11orbitSource.__class__ is bool):
+        raise _enc('nav_sat', 'sv[29].orbitSource', r_2sv_29_11orbitSource, 'type', 'an int')
+    if not 0 <= r_2sv_29_11orbitSource <= 7:
+        raise _enc('nav_sat', 'sv[29].orbitSource', r_2sv_29_11orbitSource, 'range', '0..7', None)
+    r_2sv_29_8ephAvail: Any = g_2sv_29.ephAvail
+    if r_2sv_29_8ephAvail is not True and r_2sv_29_8ephAvail is not False and r_2sv_29_8ephAvail != 0 and r_2sv_29_8ephAvail != 1:
+        raise _enc('nav_sat', 'sv[29].ephAvail', r_2sv_29_8ephAvail, 'type', 'a bool')
+    r_2sv_29_8ephAvail = 1 if r_2sv_29_8ephAvail else 0
+    r_2sv_29_8almAvail: Any = g_2sv_29.almAvail
+    if r_2sv_29_8almAvail is not True and r_2sv_29_8almAvail is not False and r_2sv_29_8almAvail != 0 and r_2sv_29_8almAvail != 1:
+        raise _enc('nav_sat', 'sv[29].almAvail', r_2sv_29_8almAvail, 'type', 'a bool')
+    r_2sv_29_8almAvail = 1 if r_2sv_29_8almAvail else 0
+    r_2sv_29_8anoAvail: Any = g_2sv_29.anoAvail
+    if r_2sv_29_8anoAvail is not True and r_2sv_29_8anoAvail is not False and r_2sv_29_8anoAvail != 0 and r_2sv_29_8anoAvail != 1:
+        raise _enc('nav_sat', 'sv[29].anoAvail', r_2sv_29_8anoAvail, 'type', 'a bool')
+    r_2sv_29_8anoAvail = 1 if r_2sv_29_8anoAvail else 0
+    r_2sv_29_8aopAvail: Any = g_2sv_29.aopAvail
+    if r_2sv_29_8aopAvail is not True and r_2sv_29_8aopAvail is not False and r_2sv_29_8aopAvail != 0 and r_2sv_29_8aopAvail != 1:
+        raise _enc('nav_sat', 'sv[29].aopAvail', r_2sv_29_8aopAvail, 'type', 'a bool')
+    r_2sv_29_8aopAvail = 1 if r_2sv_29_8aopAvail else 0
+    r_2sv_29_10reserved13 = g_2sv_29.reserved13
+    if r_2sv_29_10reserved13.__class__ is not int and (not isinstance(r_2sv_29_10reserved13, int) or r_2sv_29_10reserved13.__class__ is bool):
+        raise _enc('nav_sat', 'sv[29].reserved13', r_2sv_29_10reserved13, 'type', 'an int')
+    if not 0 <= r_2sv_29_10reserved13 <= 1:
+        raise _enc('nav_sat', 'sv[29].reserved13', r_2sv_29_10reserved13, 'range', '0..1', None)
+    r_2sv_29_12sbasCorrUsed: Any = g_2sv_29.sbasCorrUsed
+    if r_2sv_29_12sbasCorrUsed is not True and r_2sv_29_12sbasCorrUsed is not False and r_2sv_29_12sbasCorrUsed != 0 and r_2sv_29_12sbasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[29].sbasCorrUsed', r_2sv_29_12sbasCorrUsed, 'type', 'a bool')
+    r_2sv_29_12sbasCorrUsed = 1 if r_2sv_29_12sbasCorrUsed else 0
+    r_2sv_29_12rtcmCorrUsed: Any = g_2sv_29.rtcmCorrUsed
+    if r_2sv_29_12rtcmCorrUsed is not True and r_2sv_29_12rtcmCorrUsed is not False and r_2sv_29_12rtcmCorrUsed != 0 and r_2sv_29_12rtcmCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[29].rtcmCorrUsed', r_2sv_29_12rtcmCorrUsed, 'type', 'a bool')
+    r_2sv_29_12rtcmCorrUsed = 1 if r_2sv_29_12rtcmCorrUsed else 0
+    r_2sv_29_12slasCorrUsed: Any = g_2sv_29.slasCorrUsed
+    if r_2sv_29_12slasCorrUsed is not True and r_2sv_29_12slasCorrUsed is not False and r_2sv_29_12slasCorrUsed != 0 and r_2sv_29_12slasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[29].slasCorrUsed', r_2sv_29_12slasCorrUsed, 'type', 'a bool')
+    r_2sv_29_12slasCorrUsed = 1 if r_2sv_29_12slasCorrUsed else 0
+    r_2sv_29_14spartnCorrUsed: Any = g_2sv_29.spartnCorrUsed
+    if r_2sv_29_14spartnCorrUsed is not True and r_2sv_29_14spartnCorrUsed is not False and r_2sv_29_14spartnCorrUsed != 0 and r_2sv_29_14spartnCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[29].spartnCorrUsed', r_2sv_29_14spartnCorrUsed, 'type', 'a bool')
+    r_2sv_29_14spartnCorrUsed = 1 if r_2sv_29_14spartnCorrUsed else 0
+    r_2sv_29_10prCorrUsed: Any = g_2sv_29.prCorrUsed
+    if r_2sv_29_10prCorrUsed is not True and r_2sv_29_10prCorrUsed is not False and r_2sv_29_10prCorrUsed != 0 and r_2sv_29_10prCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[29].prCorrUsed', r_2sv_29_10prCorrUsed, 'type', 'a bool')
+    r_2sv_29_10prCorrUsed = 1 if r_2sv_29_10prCorrUsed else 0
+    r_2sv_29_10crCorrUsed: Any = g_2sv_29.crCorrUsed
+    if r_2sv_29_10crCorrUsed is not True and r_2sv_29_10crCorrUsed is not False and r_2sv_29_10crCorrUsed != 0 and r_2sv_29_10crCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[29].crCorrUsed', r_2sv_29_10crCorrUsed, 'type', 'a bool')
+    r_2sv_29_10crCorrUsed = 1 if r_2sv_29_10crCorrUsed else 0
+    r_2sv_29_10doCorrUsed: Any = g_2sv_29.doCorrUsed
+    if r_2sv_29_10doCorrUsed is not True and r_2sv_29_10doCorrUsed is not False and r_2sv_29_10doCorrUsed != 0 and r_2sv_29_10doCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[29].doCorrUsed', r_2sv_29_10doCorrUsed, 'type', 'a bool')
+    r_2sv_29_10doCorrUsed = 1 if r_2sv_29_10doCorrUsed else 0
+    r_2sv_29_12clasCorrUsed: Any = g_2sv_29.clasCorrUsed
+    if r_2sv_29_12clasCorrUsed is not True and r_2sv_29_12clasCorrUsed is not False and r_2sv_29_12clasCorrUsed != 0 and r_2sv_29_12clasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[29].clasCorrUsed', r_2sv_29_12clasCorrUsed, 'type', 'a bool')
+    r_2sv_29_12clasCorrUsed = 1 if r_2sv_29_12clasCorrUsed else 0
+    r_2sv_29_11lppCorrUsed: Any = g_2sv_29.lppCorrUsed
+    if r_2sv_29_11lppCorrUsed is not True and r_2sv_29_11lppCorrUsed is not False and r_2sv_29_11lppCorrUsed != 0 and r_2sv_29_11lppCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[29].lppCorrUsed', r_2sv_29_11lppCorrUsed, 'type', 'a bool')
+    r_2sv_29_11lppCorrUsed = 1 if r_2sv_29_11lppCorrUsed else 0
+    r_2sv_29_11hasCorrUsed: Any = g_2sv_29.hasCorrUsed
+    if r_2sv_29_11hasCorrUsed is not True and r_2sv_29_11hasCorrUsed is not False and r_2sv_29_11hasCorrUsed != 0 and r_2sv_29_11hasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[29].hasCorrUsed', r_2sv_29_11hasCorrUsed, 'type', 'a bool')
+    r_2sv_29_11hasCorrUsed = 1 if r_2sv_29_11hasCorrUsed else 0
+    r_2sv_29_11flags_spare = 0
+    return (r_2sv_29_6gnssId, r_2sv_29_4svId, r_2sv_29_3cno, r_2sv_29_4elev, r_2sv_29_4azim, r_2sv_29_5prRes, r_2sv_29_10qualityInd, r_2sv_29_6svUsed, r_2sv_29_6health, r_2sv_29_8diffCorr, r_2sv_29_8smoothed, r_2sv_29_11orbitSource, r_2sv_29_8ephAvail, r_2sv_29_8almAvail, r_2sv_29_8anoAvail, r_2sv_29_8aopAvail, r_2sv_29_10reserved13, r_2sv_29_12sbasCorrUsed, r_2sv_29_12rtcmCorrUsed, r_2sv_29_12slasCorrUsed, r_2sv_29_14spartnCorrUsed, r_2sv_29_10prCorrUsed, r_2sv_29_10crCorrUsed, r_2sv_29_10doCorrUsed, r_2sv_29_12clasCorrUsed, r_2sv_29_11lppCorrUsed, r_2sv_29_11hasCorrUsed, r_2sv_29_11flags_spare, )
+
+
+def _raw_nav_sat_2sv_30(g_2sv_30: Any) -> tuple[Any, ...]:
+    r_2sv_30_6gnssId = g_2sv_30.gnssId
+    if r_2sv_30_6gnssId.__class__ is not int and (not isinstance(r_2sv_30_6gnssId, int) or r_2sv_30_6gnssId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[30].gnssId', r_2sv_30_6gnssId, 'type', 'an int')
+    if not 0 <= r_2sv_30_6gnssId <= 255:
+        raise _enc('nav_sat', 'sv[30].gnssId', r_2sv_30_6gnssId, 'range', '0..255', None)
+    r_2sv_30_4svId = g_2sv_30.svId
+    if r_2sv_30_4svId.__class__ is not int and (not isinstance(r_2sv_30_4svId, int) or r_2sv_30_4svId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[30].svId', r_2sv_30_4svId, 'type', 'an int')
+    if not 0 <= r_2sv_30_4svId <= 255:
+        raise _enc('nav_sat', 'sv[30].svId', r_2sv_30_4svId, 'range', '0..255', None)
+    r_2sv_30_3cno = g_2sv_30.cno
+    if r_2sv_30_3cno.__class__ is not int and (not isinstance(r_2sv_30_3cno, int) or r_2sv_30_3cno.__class__ is bool):
+        raise _enc('nav_sat', 'sv[30].cno', r_2sv_30_3cno, 'type', 'an int')
+    if not 0 <= r_2sv_30_3cno <= 255:
+        raise _enc('nav_sat', 'sv[30].cno', r_2sv_30_3cno, 'range', '0..255', None)
+    r_2sv_30_4elev = g_2sv_30.elev
+    if r_2sv_30_4elev.__class__ is not int and (not isinstance(r_2sv_30_4elev, int) or r_2sv_30_4elev.__class__ is bool):
+        raise _enc('nav_sat', 'sv[30].elev', r_2sv_30_4elev, 'type', 'an int')
+    if not -128 <= r_2sv_30_4elev <= 127:
+        raise _enc('nav_sat', 'sv[30].elev', r_2sv_30_4elev, 'range', '-128..127', None)
+    r_2sv_30_4azim = g_2sv_30.azim
+    if r_2sv_30_4azim.__class__ is not int and (not isinstance(r_2sv_30_4azim, int) or r_2sv_30_4azim.__class__ is bool):
+        raise _enc('nav_sat', 'sv[30].azim', r_2sv_30_4azim, 'type', 'an int')
+    if not -32768 <= r_2sv_30_4azim <= 32767:
+        raise _enc('nav_sat', 'sv[30].azim', r_2sv_30_4azim, 'range', '-32768..32767', None)
+    r_2sv_30_5prRes = g_2sv_30.prRes
+    if r_2sv_30_5prRes.__class__ is not float and (not isinstance(r_2sv_30_5prRes, (int, float)) or r_2sv_30_5prRes.__class__ is bool):
+        raise _enc('nav_sat', 'sv[30].prRes', r_2sv_30_5prRes, 'type', 'a number')
+    if not -3276.8 <= r_2sv_30_5prRes <= 3276.7000000000003:
+        raise _enc('nav_sat', 'sv[30].prRes', r_2sv_30_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    r_2sv_30_5prRes = _floor(r_2sv_30_5prRes / 0.1 + 0.5)
+    r_2sv_30_10qualityInd = g_2sv_30.qualityInd
+    if r_2sv_30_10qualityInd.__class__ is not int and (not isinstance(r_2sv_30_10qualityInd, int) or r_2sv_30_10qualityInd.__class__ is bool):
+        raise _enc('nav_sat', 'sv[30].qualityInd', r_2sv_30_10qualityInd, 'type', 'an int')
+    if not 0 <= r_2sv_30_10qualityInd <= 7:
+        raise _enc('nav_sat', 'sv[30].qualityInd', r_2sv_30_10qualityInd, 'range', '0..7', None)
+    r_2sv_30_6svUsed: Any = g_2sv_30.svUsed
+    if r_2sv_30_6svUsed is not True and r_2sv_30_6svUsed is not False and r_2sv_30_6svUsed != 0 and r_2sv_30_6svUsed != 1:
+        raise _enc('nav_sat', 'sv[30].svUsed', r_2sv_30_6svUsed, 'type', 'a bool')
+    r_2sv_30_6svUsed = 1 if r_2sv_30_6svUsed else 0
+    r_2sv_30_6health = g_2sv_30.health
+    if r_2sv_30_6health.__class__ is not int and (not isinstance(r_2sv_30_6health, int) or r_2sv_30_6health.__class__ is bool):
+        raise _enc('nav_sat', 'sv[30].health', r_2sv_30_6health, 'type', 'an int')
+    if not 0 <= r_2sv_30_6health <= 3:
+        raise _enc('nav_sat', 'sv[30].health', r_2sv_30_6health, 'range', '0..3', None)
+    r_2sv_30_8diffCorr: Any = g_2sv_30.diffCorr
+    if r_2sv_30_8diffCorr is not True and r_2sv_30_8diffCorr is not False and r_2sv_30_8diffCorr != 0 and r_2sv_30_8diffCorr != 1:
+        raise _enc('nav_sat', 'sv[30].diffCorr', r_2sv_30_8diffCorr, 'type', 'a bool')
+    r_2sv_30_8diffCorr = 1 if r_2sv_30_8diffCorr else 0
+    r_2sv_30_8smoothed: Any = g_2sv_30.smoothed
+    if r_2sv_30_8smoothed is not True and r_2sv_30_8smoothed is not False and r_2sv_30_8smoothed != 0 and r_2sv_30_8smoothed != 1:
+        raise _enc('nav_sat', 'sv[30].smoothed', r_2sv_30_8smoothed, 'type', 'a bool')
+    r_2sv_30_8smoothed = 1 if r_2sv_30_8smoothed else 0
+    r_2sv_30_11orbitSource = g_2sv_30.orbitSource
+    if r_2sv_30_11orbitSource.__class__ is not int and (not isinstance(r_2sv_30_11orbitSource, int) or r_2sv_30_11orbitSource.__class__ is bool):
+        raise _enc('nav_sat', 'sv[30].orbitSource', r_2sv_30_11orbitSource, 'type', 'an int')
+    if not 0 <= r_2sv_30_11orbitSource <= 7:
+        raise _enc('nav_sat', 'sv[30].orbitSource', r_2sv_30_11orbitSource, 'range', '0..7', None)
+    r_2sv_30_8ephAvail: Any = g_2sv_30.ephAvail
+    if r_2sv_30_8ephAvail is not True and r_2sv_30_8ephAvail is not False and r_2sv_30_8ephAvail != 0 and r_2sv_30_8ephAvail != 1:
+        raise _enc('nav_sat', 'sv[30].ephAvail', r_2sv_30_8ephAvail, 'type', 'a bool')
+    r_2sv_30_8ephAvail = 1 if r_2sv_30_8ephAvail else 0
+    r_2sv_30_8almAvail: Any = g_2sv_30.almAvail
+    if r_2sv_30_8almAvail is not True and r_2sv_30_8almAvail is not False and r_2sv_30_8almAvail != 0 and r_2sv_30_8almAvail != 1:
+        raise _enc('nav_sat', 'sv[30].almAvail', r_2sv_30_8almAvail, 'type', 'a bool')
+    r_2sv_30_8almAvail = 1 if r_2sv_30_8almAvail else 0
+    r_2sv_30_8anoAvail: Any = g_2sv_30.anoAvail
+    if r_2sv_30_8anoAvail is not True and r_2sv_30_8anoAvail is not False and r_2sv_30_8anoAvail != 0 and r_2sv_30_8anoAvail != 1:
+        raise _enc('nav_sat', 'sv[30].anoAvail', r_2sv_30_8anoAvail, 'type', 'a bool')
+    r_2sv_30_8anoAvail = 1 if r_2sv_30_8anoAvail else 0
+    r_2sv_30_8aopAvail: Any = g_2sv_30.aopAvail
+    if r_2sv_30_8aopAvail is not True and r_2sv_30_8aopAvail is not False and r_2sv_30_8aopAvail != 0 and r_2sv_30_8aopAvail != 1:
+        raise _enc('nav_sat', 'sv[30].aopAvail', r_2sv_30_8aopAvail, 'type', 'a bool')
+    r_2sv_30_8aopAvail = 1 if r_2sv_30_8aopAvail else 0
+    r_2sv_30_10reserved13 = g_2sv_30.reserved13
+    if r_2sv_30_10reserved13.__class__ is not int and (not isinstance(r_2sv_30_10reserved13, int) or r_2sv_30_10reserved13.__class__ is bool):
+        raise _enc('nav_sat', 'sv[30].reserved13', r_2sv_30_10reserved13, 'type', 'an int')
+    if not 0 <= r_2sv_30_10reserved13 <= 1:
+        raise _enc('nav_sat', 'sv[30].reserved13', r_2sv_30_10reserved13, 'range', '0..1', None)
+    r_2sv_30_12sbasCorrUsed: Any = g_2sv_30.sbasCorrUsed
+    if r_2sv_30_12sbasCorrUsed is not True and r_2sv_30_12sbasCorrUsed is not False and r_2sv_30_12sbasCorrUsed != 0 and r_2sv_30_12sbasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[30].sbasCorrUsed', r_2sv_30_12sbasCorrUsed, 'type', 'a bool')
+    r_2sv_30_12sbasCorrUsed = 1 if r_2sv_30_12sbasCorrUsed else 0
+    r_2sv_30_12rtcmCorrUsed: Any = g_2sv_30.rtcmCorrUsed
+    if r_2sv_30_12rtcmCorrUsed is not True and r_2sv_30_12rtcmCorrUsed is not False and r_2sv_30_12rtcmCorrUsed != 0 and r_2sv_30_12rtcmCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[30].rtcmCorrUsed', r_2sv_30_12rtcmCorrUsed, 'type', 'a bool')
+    r_2sv_30_12rtcmCorrUsed = 1 if r_2sv_30_12rtcmCorrUsed else 0
+    r_2sv_30_12slasCorrUsed: Any = g_2sv_30.slasCorrUsed
+    if r_2sv_30_12slasCorrUsed is not True and r_2sv_30_12slasCorrUsed is not False and r_2sv_30_12slasCorrUsed != 0 and r_2sv_30_12slasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[30].slasCorrUsed', r_2sv_30_12slasCorrUsed, 'type', 'a bool')
+    r_2sv_30_12slasCorrUsed = 1 if r_2sv_30_12slasCorrUsed else 0
+    r_2sv_30_14spartnCorrUsed: Any = g_2sv_30.spartnCorrUsed
+    if r_2sv_30_14spartnCorrUsed is not True and r_2sv_30_14spartnCorrUsed is not False and r_2sv_30_14spartnCorrUsed != 0 and r_2sv_30_14spartnCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[30].spartnCorrUsed', r_2sv_30_14spartnCorrUsed, 'type', 'a bool')
+    r_2sv_30_14spartnCorrUsed = 1 if r_2sv_30_14spartnCorrUsed else 0
+    r_2sv_30_10prCorrUsed: Any = g_2sv_30.prCorrUsed
+    if r_2sv_30_10prCorrUsed is not True and r_2sv_30_10prCorrUsed is not False and r_2sv_30_10prCorrUsed != 0 and r_2sv_30_10prCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[30].prCorrUsed', r_2sv_30_10prCorrUsed, 'type', 'a bool')
+    r_2sv_30_10prCorrUsed = 1 if r_2sv_30_10prCorrUsed else 0
+    r_2sv_30_10crCorrUsed: Any = g_2sv_30.crCorrUsed
+    if r_2sv_30_10crCorrUsed is not True and r_2sv_30_10crCorrUsed is not False and r_2sv_30_10crCorrUsed != 0 and r_2sv_30_10crCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[30].crCorrUsed', r_2sv_30_10crCorrUsed, 'type', 'a bool')
+    r_2sv_30_10crCorrUsed = 1 if r_2sv_30_10crCorrUsed else 0
+    r_2sv_30_10doCorrUsed: Any = g_2sv_30.doCorrUsed
+    if r_2sv_30_10doCorrUsed is not True and r_2sv_30_10doCorrUsed is not False and r_2sv_30_10doCorrUsed != 0 and r_2sv_30_10doCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[30].doCorrUsed', r_2sv_30_10doCorrUsed, 'type', 'a bool')
+    r_2sv_30_10doCorrUsed = 1 if r_2sv_30_10doCorrUsed else 0
+    r_2sv_30_12clasCorrUsed: Any = g_2sv_30.clasCorrUsed
+    if r_2sv_30_12clasCorrUsed is not True and r_2sv_30_12clasCorrUsed is not False and r_2sv_30_12clasCorrUsed != 0 and r_2sv_30_12clasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[30].clasCorrUsed', r_2sv_30_12clasCorrUsed, 'type', 'a bool')
+    r_2sv_30_12clasCorrUsed = 1 if r_2sv_30_12clasCorrUsed else 0
+    r_2sv_30_11lppCorrUsed: Any = g_2sv_30.lppCorrUsed
+    if r_2sv_30_11lppCorrUsed is not True and r_2sv_30_11lppCorrUsed is not False and r_2sv_30_11lppCorrUsed != 0 and r_2sv_30_11lppCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[30].lppCorrUsed', r_2sv_30_11lppCorrUsed, 'type', 'a bool')
+    r_2sv_30_11lppCorrUsed = 1 if r_2sv_30_11lppCorrUsed else 0
+    r_2sv_30_11hasCorrUsed: Any = g_2sv_30.hasCorrUsed
+    if r_2sv_30_11hasCorrUsed is not True and r_2sv_30_11hasCorrUsed is not False and r_2sv_30_11hasCorrUsed != 0 and r_2sv_30_11hasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[30].hasCorrUsed', r_2sv_30_11hasCorrUsed, 'type', 'a bool')
+    r_2sv_30_11hasCorrUsed = 1 if r_2sv_30_11hasCorrUsed else 0
+    r_2sv_30_11flags_spare = 0
+    return (r_2sv_30_6gnssId, r_2sv_30_4svId, r_2sv_30_3cno, r_2sv_30_4elev, r_2sv_30_4azim, r_2sv_30_5prRes, r_2sv_30_10qualityInd, r_2sv_30_6svUsed, r_2sv_30_6health, r_2sv_30_8diffCorr, r_2sv_30_8smoothed, r_2sv_30_11orbitSource, r_2sv_30_8ephAvail, r_2sv_30_8almAvail, r_2sv_30_8anoAvail, r_2sv_30_8aopAvail, r_2sv_30_10reserved13, r_2sv_30_12sbasCorrUsed, r_2sv_30_12rtcmCorrUsed, r_2sv_30_12slasCorrUsed, r_2sv_30_14spartnCorrUsed, r_2sv_30_10prCorrUsed, r_2sv_30_10crCorrUsed, r_2sv_30_10doCorrUsed, r_2sv_30_12clasCorrUsed, r_2sv_30_11lppCorrUsed, r_2sv_30_11hasCorrUsed, r_2sv_30_11flags_spare, )
+
+
+def _raw_nav_sat_2sv_31(g_2sv_31: Any) -> tuple[Any, ...]:
+    r_2sv_31_6gnssId = g_2sv_31.gnssId
+    if r_2sv_31_6gnssId.__class__ is not int and (not isinstance(r_2sv_31_6gnssId, int) or r_2sv_31_6gnssId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[31].gnssId', r_2sv_31_6gnssId, 'type', 'an int')
+    if not 0 <= r_2sv_31_6gnssId <= 255:
+        raise _enc('nav_sat', 'sv[31].gnssId', r_2sv_31_6gnssId, 'range', '0..255', None)
+    r_2sv_31_4svId = g_2sv_31.svId
+    if r_2sv_31_4svId.__class__ is not int and (not isinstance(r_2sv_31_4svId, int) or r_2sv_31_4svId.__class__ is bool):
+        raise _enc('nav_sat', 'sv[31].svId', r_2sv_31_4svId, 'type', 'an int')
+    if not 0 <= r_2sv_31_4svId <= 255:
+        raise _enc('nav_sat', 'sv[31].svId', r_2sv_31_4svId, 'range', '0..255', None)
+    r_2sv_31_3cno = g_2sv_31.cno
+    if r_2sv_31_3cno.__class__ is not int and (not isinstance(r_2sv_31_3cno, int) or r_2sv_31_3cno.__class__ is bool):
+        raise _enc('nav_sat', 'sv[31].cno', r_2sv_31_3cno, 'type', 'an int')
+    if not 0 <= r_2sv_31_3cno <= 255:
+        raise _enc('nav_sat', 'sv[31].cno', r_2sv_31_3cno, 'range', '0..255', None)
+    r_2sv_31_4elev = g_2sv_31.elev
+    if r_2sv_31_4elev.__class__ is not int and (not isinstance(r_2sv_31_4elev, int) or r_2sv_31_4elev.__class__ is bool):
+        raise _enc('nav_sat', 'sv[31].elev', r_2sv_31_4elev, 'type', 'an int')
+    if not -128 <= r_2sv_31_4elev <= 127:
+        raise _enc('nav_sat', 'sv[31].elev', r_2sv_31_4elev, 'range', '-128..127', None)
+    r_2sv_31_4azim = g_2sv_31.azim
+    if r_2sv_31_4azim.__class__ is not int and (not isinstance(r_2sv_31_4azim, int) or r_2sv_31_4azim.__class__ is bool):
+        raise _enc('nav_sat', 'sv[31].azim', r_2sv_31_4azim, 'type', 'an int')
+    if not -32768 <= r_2sv_31_4azim <= 32767:
+        raise _enc('nav_sat', 'sv[31].azim', r_2sv_31_4azim, 'range', '-32768..32767', None)
+    r_2sv_31_5prRes = g_2sv_31.prRes
+    if r_2sv_31_5prRes.__class__ is not float and (not isinstance(r_2sv_31_5prRes, (int, float)) or r_2sv_31_5prRes.__class__ is bool):
+        raise _enc('nav_sat', 'sv[31].prRes', r_2sv_31_5prRes, 'type', 'a number')
+    if not -3276.8 <= r_2sv_31_5prRes <= 3276.7000000000003:
+        raise _enc('nav_sat', 'sv[31].prRes', r_2sv_31_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    r_2sv_31_5prRes = _floor(r_2sv_31_5prRes / 0.1 + 0.5)
+    r_2sv_31_10qualityInd = g_2sv_31.qualityInd
+    if r_2sv_31_10qualityInd.__class__ is not int and (not isinstance(r_2sv_31_10qualityInd, int) or r_2sv_31_10qualityInd.__class__ is bool):
+        raise _enc('nav_sat', 'sv[31].qualityInd', r_2sv_31_10qualityInd, 'type', 'an int')
+    if not 0 <= r_2sv_31_10qualityInd <= 7:
+        raise _enc('nav_sat', 'sv[31].qualityInd', r_2sv_31_10qualityInd, 'range', '0..7', None)
+    r_2sv_31_6svUsed: Any = g_2sv_31.svUsed
+    if r_2sv_31_6svUsed is not True and r_2sv_31_6svUsed is not False and r_2sv_31_6svUsed != 0 and r_2sv_31_6svUsed != 1:
+        raise _enc('nav_sat', 'sv[31].svUsed', r_2sv_31_6svUsed, 'type', 'a bool')
+    r_2sv_31_6svUsed = 1 if r_2sv_31_6svUsed else 0
+    r_2sv_31_6health = g_2sv_31.health
+    if r_2sv_31_6health.__class__ is not int and (not isinstance(r_2sv_31_6health, int) or r_2sv_31_6health.__class__ is bool):
+        raise _enc('nav_sat', 'sv[31].health', r_2sv_31_6health, 'type', 'an int')
+    if not 0 <= r_2sv_31_6health <= 3:
+        raise _enc('nav_sat', 'sv[31].health', r_2sv_31_6health, 'range', '0..3', None)
+    r_2sv_31_8diffCorr: Any = g_2sv_31.diffCorr
+    if r_2sv_31_8diffCorr is not True and r_2sv_31_8diffCorr is not False and r_2sv_31_8diffCorr != 0 and r_2sv_31_8diffCorr != 1:
+        raise _enc('nav_sat', 'sv[31].diffCorr', r_2sv_31_8diffCorr, 'type', 'a bool')
+    r_2sv_31_8diffCorr = 1 if r_2sv_31_8diffCorr else 0
+    r_2sv_31_8smoothed: Any = g_2sv_31.smoothed
+    if r_2sv_31_8smoothed is not True and r_2sv_31_8smoothed is not False and r_2sv_31_8smoothed != 0 and r_2sv_31_8smoothed != 1:
+        raise _enc('nav_sat', 'sv[31].smoothed', r_2sv_31_8smoothed, 'type', 'a bool')
+    r_2sv_31_8smoothed = 1 if r_2sv_31_8smoothed else 0
+    r_2sv_31_11orbitSource = g_2sv_31.orbitSource
+    if r_2sv_31_11orbitSource.__class__ is not int and (not isinstance(r_2sv_31_11orbitSource, int) or r_2sv_31_11orbitSource.__class__ is bool):
+        raise _enc('nav_sat', 'sv[31].orbitSource', r_2sv_31_11orbitSource, 'type', 'an int')
+    if not 0 <= r_2sv_31_11orbitSource <= 7:
+        raise _enc('nav_sat', 'sv[31].orbitSource', r_2sv_31_11orbitSource, 'range', '0..7', None)
+    r_2sv_31_8ephAvail: Any = g_2sv_31.ephAvail
+    if r_2sv_31_8ephAvail is not True and r_2sv_31_8ephAvail is not False and r_2sv_31_8ephAvail != 0 and r_2sv_31_8ephAvail != 1:
+        raise _enc('nav_sat', 'sv[31].ephAvail', r_2sv_31_8ephAvail, 'type', 'a bool')
+    r_2sv_31_8ephAvail = 1 if r_2sv_31_8ephAvail else 0
+    r_2sv_31_8almAvail: Any = g_2sv_31.almAvail
+    if r_2sv_31_8almAvail is not True and r_2sv_31_8almAvail is not False and r_2sv_31_8almAvail != 0 and r_2sv_31_8almAvail != 1:
+        raise _enc('nav_sat', 'sv[31].almAvail', r_2sv_31_8almAvail, 'type', 'a bool')
+    r_2sv_31_8almAvail = 1 if r_2sv_31_8almAvail else 0
+    r_2sv_31_8anoAvail: Any = g_2sv_31.anoAvail
+    if r_2sv_31_8anoAvail is not True and r_2sv_31_8anoAvail is not False and r_2sv_31_8anoAvail != 0 and r_2sv_31_8anoAvail != 1:
+        raise _enc('nav_sat', 'sv[31].anoAvail', r_2sv_31_8anoAvail, 'type', 'a bool')
+    r_2sv_31_8anoAvail = 1 if r_2sv_31_8anoAvail else 0
+    r_2sv_31_8aopAvail: Any = g_2sv_31.aopAvail
+    if r_2sv_31_8aopAvail is not True and r_2sv_31_8aopAvail is not False and r_2sv_31_8aopAvail != 0 and r_2sv_31_8aopAvail != 1:
+        raise _enc('nav_sat', 'sv[31].aopAvail', r_2sv_31_8aopAvail, 'type', 'a bool')
+    r_2sv_31_8aopAvail = 1 if r_2sv_31_8aopAvail else 0
+    r_2sv_31_10reserved13 = g_2sv_31.reserved13
+    if r_2sv_31_10reserved13.__class__ is not int and (not isinstance(r_2sv_31_10reserved13, int) or r_2sv_31_10reserved13.__class__ is bool):
+        raise _enc('nav_sat', 'sv[31].reserved13', r_2sv_31_10reserved13, 'type', 'an int')
+    if not 0 <= r_2sv_31_10reserved13 <= 1:
+        raise _enc('nav_sat', 'sv[31].reserved13', r_2sv_31_10reserved13, 'range', '0..1', None)
+    r_2sv_31_12sbasCorrUsed: Any = g_2sv_31.sbasCorrUsed
+    if r_2sv_31_12sbasCorrUsed is not True and r_2sv_31_12sbasCorrUsed is not False and r_2sv_31_12sbasCorrUsed != 0 and r_2sv_31_12sbasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[31].sbasCorrUsed', r_2sv_31_12sbasCorrUsed, 'type', 'a bool')
+    r_2sv_31_12sbasCorrUsed = 1 if r_2sv_31_12sbasCorrUsed else 0
+    r_2sv_31_12rtcmCorrUsed: Any = g_2sv_31.rtcmCorrUsed
+    if r_2sv_31_12rtcmCorrUsed is not True and r_2sv_31_12rtcmCorrUsed is not False and r_2sv_31_12rtcmCorrUsed != 0 and r_2sv_31_12rtcmCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[31].rtcmCorrUsed', r_2sv_31_12rtcmCorrUsed, 'type', 'a bool')
+    r_2sv_31_12rtcmCorrUsed = 1 if r_2sv_31_12rtcmCorrUsed else 0
+    r_2sv_31_12slasCorrUsed: Any = g_2sv_31.slasCorrUsed
+    if r_2sv_31_12slasCorrUsed is not True and r_2sv_31_12slasCorrUsed is not False and r_2sv_31_12slasCorrUsed != 0 and r_2sv_31_12slasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[31].slasCorrUsed', r_2sv_31_12slasCorrUsed, 'type', 'a bool')
+    r_2sv_31_12slasCorrUsed = 1 if r_2sv_31_12slasCorrUsed else 0
+    r_2sv_31_14spartnCorrUsed: Any = g_2sv_31.spartnCorrUsed
+    if r_2sv_31_14spartnCorrUsed is not True and r_2sv_31_14spartnCorrUsed is not False and r_2sv_31_14spartnCorrUsed != 0 and r_2sv_31_14spartnCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[31].spartnCorrUsed', r_2sv_31_14spartnCorrUsed, 'type', 'a bool')
+    r_2sv_31_14spartnCorrUsed = 1 if r_2sv_31_14spartnCorrUsed else 0
+    r_2sv_31_10prCorrUsed: Any = g_2sv_31.prCorrUsed
+    if r_2sv_31_10prCorrUsed is not True and r_2sv_31_10prCorrUsed is not False and r_2sv_31_10prCorrUsed != 0 and r_2sv_31_10prCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[31].prCorrUsed', r_2sv_31_10prCorrUsed, 'type', 'a bool')
+    r_2sv_31_10prCorrUsed = 1 if r_2sv_31_10prCorrUsed else 0
+    r_2sv_31_10crCorrUsed: Any = g_2sv_31.crCorrUsed
+    if r_2sv_31_10crCorrUsed is not True and r_2sv_31_10crCorrUsed is not False and r_2sv_31_10crCorrUsed != 0 and r_2sv_31_10crCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[31].crCorrUsed', r_2sv_31_10crCorrUsed, 'type', 'a bool')
+    r_2sv_31_10crCorrUsed = 1 if r_2sv_31_10crCorrUsed else 0
+    r_2sv_31_10doCorrUsed: Any = g_2sv_31.doCorrUsed
+    if r_2sv_31_10doCorrUsed is not True and r_2sv_31_10doCorrUsed is not False and r_2sv_31_10doCorrUsed != 0 and r_2sv_31_10doCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[31].doCorrUsed', r_2sv_31_10doCorrUsed, 'type', 'a bool')
+    r_2sv_31_10doCorrUsed = 1 if r_2sv_31_10doCorrUsed else 0
+    r_2sv_31_12clasCorrUsed: Any = g_2sv_31.clasCorrUsed
+    if r_2sv_31_12clasCorrUsed is not True and r_2sv_31_12clasCorrUsed is not False and r_2sv_31_12clasCorrUsed != 0 and r_2sv_31_12clasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[31].clasCorrUsed', r_2sv_31_12clasCorrUsed, 'type', 'a bool')
+    r_2sv_31_12clasCorrUsed = 1 if r_2sv_31_12clasCorrUsed else 0
+    r_2sv_31_11lppCorrUsed: Any = g_2sv_31.lppCorrUsed
+    if r_2sv_31_11lppCorrUsed is not True and r_2sv_31_11lppCorrUsed is not False and r_2sv_31_11lppCorrUsed != 0 and r_2sv_31_11lppCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[31].lppCorrUsed', r_2sv_31_11lppCorrUsed, 'type', 'a bool')
+    r_2sv_31_11lppCorrUsed = 1 if r_2sv_31_11lppCorrUsed else 0
+    r_2sv_31_11hasCorrUsed: Any = g_2sv_31.hasCorrUsed
+    if r_2sv_31_11hasCorrUsed is not True and r_2sv_31_11hasCorrUsed is not False and r_2sv_31_11hasCorrUsed != 0 and r_2sv_31_11hasCorrUsed != 1:
+        raise _enc('nav_sat', 'sv[31].hasCorrUsed', r_2sv_31_11hasCorrUsed, 'type', 'a bool')
+    r_2sv_31_11hasCorrUsed = 1 if r_2sv_31_11hasCorrUsed else 0
+    r_2sv_31_11flags_spare = 0
+    return (r_2sv_31_6gnssId, r_2sv_31_4svId, r_2sv_31_3cno, r_2sv_31_4elev, r_2sv_31_4azim, r_2sv_31_5prRes, r_2sv_31_10qualityInd, r_2sv_31_6svUsed, r_2sv_31_6health, r_2sv_31_8diffCorr, r_2sv_31_8smoothed, r_2sv_31_11orbitSource, r_2sv_31_8ephAvail, r_2sv_31_8almAvail, r_2sv_31_8anoAvail, r_2sv_31_8aopAvail, r_2sv_31_10reserved13, r_2sv_31_12sbasCorrUsed, r_2sv_31_12rtcmCorrUsed, r_2sv_31_12slasCorrUsed, r_2sv_31_14spartnCorrUsed, r_2sv_31_10prCorrUsed, r_2sv_31_10crCorrUsed, r_2sv_31_10doCorrUsed, r_2sv_31_12clasCorrUsed, r_2sv_31_11lppCorrUsed, r_2sv_31_11hasCorrUsed, r_2sv_31_11flags_spare, )
+
+
 def _encode_nav_sat(m: NavSat) -> bytes:
     r_sync1 = 181
     r_sync2 = 98
@@ -1264,6565 +5237,997 @@ def _encode_nav_sat(m: NavSat) -> bytes:
     g_sv = m.sv
     if not isinstance(g_sv, (list, tuple)) or len(g_sv) > 32:
         raise _enc('nav_sat', 'sv', g_sv, 'count', 'a list of at most 32 values')
-    g_2sv_0: Any = cast(Any, g_sv[0] if len(g_sv) > 0 else None)
     if len(g_sv) > 0:
-        r_2sv_0_6gnssId = g_2sv_0.gnssId
-        if r_2sv_0_6gnssId.__class__ is not int and (not isinstance(r_2sv_0_6gnssId, int) or r_2sv_0_6gnssId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[0].gnssId', r_2sv_0_6gnssId, 'type', 'an int')
-        if not 0 <= r_2sv_0_6gnssId <= 255:
-            raise _enc('nav_sat', 'sv[0].gnssId', r_2sv_0_6gnssId, 'range', '0..255', None)
+        r_2sv_0_6gnssId, r_2sv_0_4svId, r_2sv_0_3cno, r_2sv_0_4elev, r_2sv_0_4azim, r_2sv_0_5prRes, r_2sv_0_10qualityInd, r_2sv_0_6svUsed, r_2sv_0_6health, r_2sv_0_8diffCorr, r_2sv_0_8smoothed, r_2sv_0_11orbitSource, r_2sv_0_8ephAvail, r_2sv_0_8almAvail, r_2sv_0_8anoAvail, r_2sv_0_8aopAvail, r_2sv_0_10reserved13, r_2sv_0_12sbasCorrUsed, r_2sv_0_12rtcmCorrUsed, r_2sv_0_12slasCorrUsed, r_2sv_0_14spartnCorrUsed, r_2sv_0_10prCorrUsed, r_2sv_0_10crCorrUsed, r_2sv_0_10doCorrUsed, r_2sv_0_12clasCorrUsed, r_2sv_0_11lppCorrUsed, r_2sv_0_11hasCorrUsed, r_2sv_0_11flags_spare = _raw_nav_sat_2sv_0(g_sv[0])
     else:
         r_2sv_0_6gnssId = 0
-    if len(g_sv) > 0:
-        r_2sv_0_4svId = g_2sv_0.svId
-        if r_2sv_0_4svId.__class__ is not int and (not isinstance(r_2sv_0_4svId, int) or r_2sv_0_4svId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[0].svId', r_2sv_0_4svId, 'type', 'an int')
-        if not 0 <= r_2sv_0_4svId <= 255:
-            raise _enc('nav_sat', 'sv[0].svId', r_2sv_0_4svId, 'range', '0..255', None)
-    else:
         r_2sv_0_4svId = 0
-    if len(g_sv) > 0:
-        r_2sv_0_3cno = g_2sv_0.cno
-        if r_2sv_0_3cno.__class__ is not int and (not isinstance(r_2sv_0_3cno, int) or r_2sv_0_3cno.__class__ is bool):
-            raise _enc('nav_sat', 'sv[0].cno', r_2sv_0_3cno, 'type', 'an int')
-        if not 0 <= r_2sv_0_3cno <= 255:
-            raise _enc('nav_sat', 'sv[0].cno', r_2sv_0_3cno, 'range', '0..255', None)
-    else:
         r_2sv_0_3cno = 0
-    if len(g_sv) > 0:
-        r_2sv_0_4elev = g_2sv_0.elev
-        if r_2sv_0_4elev.__class__ is not int and (not isinstance(r_2sv_0_4elev, int) or r_2sv_0_4elev.__class__ is bool):
-            raise _enc('nav_sat', 'sv[0].elev', r_2sv_0_4elev, 'type', 'an int')
-        if not -128 <= r_2sv_0_4elev <= 127:
-            raise _enc('nav_sat', 'sv[0].elev', r_2sv_0_4elev, 'range', '-128..127', None)
-    else:
         r_2sv_0_4elev = 0
-    if len(g_sv) > 0:
-        r_2sv_0_4azim = g_2sv_0.azim
-        if r_2sv_0_4azim.__class__ is not int and (not isinstance(r_2sv_0_4azim, int) or r_2sv_0_4azim.__class__ is bool):
-            raise _enc('nav_sat', 'sv[0].azim', r_2sv_0_4azim, 'type', 'an int')
-        if not -32768 <= r_2sv_0_4azim <= 32767:
-            raise _enc('nav_sat', 'sv[0].azim', r_2sv_0_4azim, 'range', '-32768..32767', None)
-    else:
         r_2sv_0_4azim = 0
-    if len(g_sv) > 0:
-        r_2sv_0_5prRes = g_2sv_0.prRes
-        if r_2sv_0_5prRes.__class__ is not float and (not isinstance(r_2sv_0_5prRes, (int, float)) or r_2sv_0_5prRes.__class__ is bool):
-            raise _enc('nav_sat', 'sv[0].prRes', r_2sv_0_5prRes, 'type', 'a number')
-        if not -3276.8 <= r_2sv_0_5prRes <= 3276.7000000000003:
-            raise _enc('nav_sat', 'sv[0].prRes', r_2sv_0_5prRes, 'range', '-3276.8..3276.7000000000003', None)
-        r_2sv_0_5prRes = _floor(r_2sv_0_5prRes / 0.1 + 0.5)
-    else:
         r_2sv_0_5prRes = 0
-    if len(g_sv) > 0:
-        r_2sv_0_10qualityInd = g_2sv_0.qualityInd
-        if r_2sv_0_10qualityInd.__class__ is not int and (not isinstance(r_2sv_0_10qualityInd, int) or r_2sv_0_10qualityInd.__class__ is bool):
-            raise _enc('nav_sat', 'sv[0].qualityInd', r_2sv_0_10qualityInd, 'type', 'an int')
-        if not 0 <= r_2sv_0_10qualityInd <= 7:
-            raise _enc('nav_sat', 'sv[0].qualityInd', r_2sv_0_10qualityInd, 'range', '0..7', None)
-    else:
         r_2sv_0_10qualityInd = 0
-    if len(g_sv) > 0:
-        r_2sv_0_6svUsed: Any = g_2sv_0.svUsed
-        if r_2sv_0_6svUsed is not True and r_2sv_0_6svUsed is not False and r_2sv_0_6svUsed != 0 and r_2sv_0_6svUsed != 1:
-            raise _enc('nav_sat', 'sv[0].svUsed', r_2sv_0_6svUsed, 'type', 'a bool')
-        r_2sv_0_6svUsed = 1 if r_2sv_0_6svUsed else 0
-    else:
         r_2sv_0_6svUsed = 0
-    if len(g_sv) > 0:
-        r_2sv_0_6health = g_2sv_0.health
-        if r_2sv_0_6health.__class__ is not int and (not isinstance(r_2sv_0_6health, int) or r_2sv_0_6health.__class__ is bool):
-            raise _enc('nav_sat', 'sv[0].health', r_2sv_0_6health, 'type', 'an int')
-        if not 0 <= r_2sv_0_6health <= 3:
-            raise _enc('nav_sat', 'sv[0].health', r_2sv_0_6health, 'range', '0..3', None)
-    else:
         r_2sv_0_6health = 0
-    if len(g_sv) > 0:
-        r_2sv_0_8diffCorr: Any = g_2sv_0.diffCorr
-        if r_2sv_0_8diffCorr is not True and r_2sv_0_8diffCorr is not False and r_2sv_0_8diffCorr != 0 and r_2sv_0_8diffCorr != 1:
-            raise _enc('nav_sat', 'sv[0].diffCorr', r_2sv_0_8diffCorr, 'type', 'a bool')
-        r_2sv_0_8diffCorr = 1 if r_2sv_0_8diffCorr else 0
-    else:
         r_2sv_0_8diffCorr = 0
-    if len(g_sv) > 0:
-        r_2sv_0_8smoothed: Any = g_2sv_0.smoothed
-        if r_2sv_0_8smoothed is not True and r_2sv_0_8smoothed is not False and r_2sv_0_8smoothed != 0 and r_2sv_0_8smoothed != 1:
-            raise _enc('nav_sat', 'sv[0].smoothed', r_2sv_0_8smoothed, 'type', 'a bool')
-        r_2sv_0_8smoothed = 1 if r_2sv_0_8smoothed else 0
-    else:
         r_2sv_0_8smoothed = 0
-    if len(g_sv) > 0:
-        r_2sv_0_11orbitSource = g_2sv_0.orbitSource
-        if r_2sv_0_11orbitSource.__class__ is not int and (not isinstance(r_2sv_0_11orbitSource, int) or r_2sv_0_11orbitSource.__class__ is bool):
-            raise _enc('nav_sat', 'sv[0].orbitSource', r_2sv_0_11orbitSource, 'type', 'an int')
-        if not 0 <= r_2sv_0_11orbitSource <= 7:
-            raise _enc('nav_sat', 'sv[0].orbitSource', r_2sv_0_11orbitSource, 'range', '0..7', None)
-    else:
         r_2sv_0_11orbitSource = 0
-    if len(g_sv) > 0:
-        r_2sv_0_8ephAvail: Any = g_2sv_0.ephAvail
-        if r_2sv_0_8ephAvail is not True and r_2sv_0_8ephAvail is not False and r_2sv_0_8ephAvail != 0 and r_2sv_0_8ephAvail != 1:
-            raise _enc('nav_sat', 'sv[0].ephAvail', r_2sv_0_8ephAvail, 'type', 'a bool')
-        r_2sv_0_8ephAvail = 1 if r_2sv_0_8ephAvail else 0
-    else:
         r_2sv_0_8ephAvail = 0
-    if len(g_sv) > 0:
-        r_2sv_0_8almAvail: Any = g_2sv_0.almAvail
-        if r_2sv_0_8almAvail is not True and r_2sv_0_8almAvail is not False and r_2sv_0_8almAvail != 0 and r_2sv_0_8almAvail != 1:
-            raise _enc('nav_sat', 'sv[0].almAvail', r_2sv_0_8almAvail, 'type', 'a bool')
-        r_2sv_0_8almAvail = 1 if r_2sv_0_8almAvail else 0
-    else:
         r_2sv_0_8almAvail = 0
-    if len(g_sv) > 0:
-        r_2sv_0_8anoAvail: Any = g_2sv_0.anoAvail
-        if r_2sv_0_8anoAvail is not True and r_2sv_0_8anoAvail is not False and r_2sv_0_8anoAvail != 0 and r_2sv_0_8anoAvail != 1:
-            raise _enc('nav_sat', 'sv[0].anoAvail', r_2sv_0_8anoAvail, 'type', 'a bool')
-        r_2sv_0_8anoAvail = 1 if r_2sv_0_8anoAvail else 0
-    else:
         r_2sv_0_8anoAvail = 0
-    if len(g_sv) > 0:
-        r_2sv_0_8aopAvail: Any = g_2sv_0.aopAvail
-        if r_2sv_0_8aopAvail is not True and r_2sv_0_8aopAvail is not False and r_2sv_0_8aopAvail != 0 and r_2sv_0_8aopAvail != 1:
-            raise _enc('nav_sat', 'sv[0].aopAvail', r_2sv_0_8aopAvail, 'type', 'a bool')
-        r_2sv_0_8aopAvail = 1 if r_2sv_0_8aopAvail else 0
-    else:
         r_2sv_0_8aopAvail = 0
-    if len(g_sv) > 0:
-        r_2sv_0_10reserved13 = g_2sv_0.reserved13
-        if r_2sv_0_10reserved13.__class__ is not int and (not isinstance(r_2sv_0_10reserved13, int) or r_2sv_0_10reserved13.__class__ is bool):
-            raise _enc('nav_sat', 'sv[0].reserved13', r_2sv_0_10reserved13, 'type', 'an int')
-        if not 0 <= r_2sv_0_10reserved13 <= 1:
-            raise _enc('nav_sat', 'sv[0].reserved13', r_2sv_0_10reserved13, 'range', '0..1', None)
-    else:
         r_2sv_0_10reserved13 = 0
-    if len(g_sv) > 0:
-        r_2sv_0_12sbasCorrUsed: Any = g_2sv_0.sbasCorrUsed
-        if r_2sv_0_12sbasCorrUsed is not True and r_2sv_0_12sbasCorrUsed is not False and r_2sv_0_12sbasCorrUsed != 0 and r_2sv_0_12sbasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[0].sbasCorrUsed', r_2sv_0_12sbasCorrUsed, 'type', 'a bool')
-        r_2sv_0_12sbasCorrUsed = 1 if r_2sv_0_12sbasCorrUsed else 0
-    else:
         r_2sv_0_12sbasCorrUsed = 0
-    if len(g_sv) > 0:
-        r_2sv_0_12rtcmCorrUsed: Any = g_2sv_0.rtcmCorrUsed
-        if r_2sv_0_12rtcmCorrUsed is not True and r_2sv_0_12rtcmCorrUsed is not False and r_2sv_0_12rtcmCorrUsed != 0 and r_2sv_0_12rtcmCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[0].rtcmCorrUsed', r_2sv_0_12rtcmCorrUsed, 'type', 'a bool')
-        r_2sv_0_12rtcmCorrUsed = 1 if r_2sv_0_12rtcmCorrUsed else 0
-    else:
         r_2sv_0_12rtcmCorrUsed = 0
-    if len(g_sv) > 0:
-        r_2sv_0_12slasCorrUsed: Any = g_2sv_0.slasCorrUsed
-        if r_2sv_0_12slasCorrUsed is not True and r_2sv_0_12slasCorrUsed is not False and r_2sv_0_12slasCorrUsed != 0 and r_2sv_0_12slasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[0].slasCorrUsed', r_2sv_0_12slasCorrUsed, 'type', 'a bool')
-        r_2sv_0_12slasCorrUsed = 1 if r_2sv_0_12slasCorrUsed else 0
-    else:
         r_2sv_0_12slasCorrUsed = 0
-    if len(g_sv) > 0:
-        r_2sv_0_14spartnCorrUsed: Any = g_2sv_0.spartnCorrUsed
-        if r_2sv_0_14spartnCorrUsed is not True and r_2sv_0_14spartnCorrUsed is not False and r_2sv_0_14spartnCorrUsed != 0 and r_2sv_0_14spartnCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[0].spartnCorrUsed', r_2sv_0_14spartnCorrUsed, 'type', 'a bool')
-        r_2sv_0_14spartnCorrUsed = 1 if r_2sv_0_14spartnCorrUsed else 0
-    else:
         r_2sv_0_14spartnCorrUsed = 0
-    if len(g_sv) > 0:
-        r_2sv_0_10prCorrUsed: Any = g_2sv_0.prCorrUsed
-        if r_2sv_0_10prCorrUsed is not True and r_2sv_0_10prCorrUsed is not False and r_2sv_0_10prCorrUsed != 0 and r_2sv_0_10prCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[0].prCorrUsed', r_2sv_0_10prCorrUsed, 'type', 'a bool')
-        r_2sv_0_10prCorrUsed = 1 if r_2sv_0_10prCorrUsed else 0
-    else:
         r_2sv_0_10prCorrUsed = 0
-    if len(g_sv) > 0:
-        r_2sv_0_10crCorrUsed: Any = g_2sv_0.crCorrUsed
-        if r_2sv_0_10crCorrUsed is not True and r_2sv_0_10crCorrUsed is not False and r_2sv_0_10crCorrUsed != 0 and r_2sv_0_10crCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[0].crCorrUsed', r_2sv_0_10crCorrUsed, 'type', 'a bool')
-        r_2sv_0_10crCorrUsed = 1 if r_2sv_0_10crCorrUsed else 0
-    else:
         r_2sv_0_10crCorrUsed = 0
-    if len(g_sv) > 0:
-        r_2sv_0_10doCorrUsed: Any = g_2sv_0.doCorrUsed
-        if r_2sv_0_10doCorrUsed is not True and r_2sv_0_10doCorrUsed is not False and r_2sv_0_10doCorrUsed != 0 and r_2sv_0_10doCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[0].doCorrUsed', r_2sv_0_10doCorrUsed, 'type', 'a bool')
-        r_2sv_0_10doCorrUsed = 1 if r_2sv_0_10doCorrUsed else 0
-    else:
         r_2sv_0_10doCorrUsed = 0
-    if len(g_sv) > 0:
-        r_2sv_0_12clasCorrUsed: Any = g_2sv_0.clasCorrUsed
-        if r_2sv_0_12clasCorrUsed is not True and r_2sv_0_12clasCorrUsed is not False and r_2sv_0_12clasCorrUsed != 0 and r_2sv_0_12clasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[0].clasCorrUsed', r_2sv_0_12clasCorrUsed, 'type', 'a bool')
-        r_2sv_0_12clasCorrUsed = 1 if r_2sv_0_12clasCorrUsed else 0
-    else:
         r_2sv_0_12clasCorrUsed = 0
-    if len(g_sv) > 0:
-        r_2sv_0_11lppCorrUsed: Any = g_2sv_0.lppCorrUsed
-        if r_2sv_0_11lppCorrUsed is not True and r_2sv_0_11lppCorrUsed is not False and r_2sv_0_11lppCorrUsed != 0 and r_2sv_0_11lppCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[0].lppCorrUsed', r_2sv_0_11lppCorrUsed, 'type', 'a bool')
-        r_2sv_0_11lppCorrUsed = 1 if r_2sv_0_11lppCorrUsed else 0
-    else:
         r_2sv_0_11lppCorrUsed = 0
-    if len(g_sv) > 0:
-        r_2sv_0_11hasCorrUsed: Any = g_2sv_0.hasCorrUsed
-        if r_2sv_0_11hasCorrUsed is not True and r_2sv_0_11hasCorrUsed is not False and r_2sv_0_11hasCorrUsed != 0 and r_2sv_0_11hasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[0].hasCorrUsed', r_2sv_0_11hasCorrUsed, 'type', 'a bool')
-        r_2sv_0_11hasCorrUsed = 1 if r_2sv_0_11hasCorrUsed else 0
-    else:
         r_2sv_0_11hasCorrUsed = 0
-    if len(g_sv) > 0:
         r_2sv_0_11flags_spare = 0
-    else:
-        r_2sv_0_11flags_spare = 0
-    g_2sv_1: Any = cast(Any, g_sv[1] if len(g_sv) > 1 else None)
     if len(g_sv) > 1:
-        r_2sv_1_6gnssId = g_2sv_1.gnssId
-        if r_2sv_1_6gnssId.__class__ is not int and (not isinstance(r_2sv_1_6gnssId, int) or r_2sv_1_6gnssId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[1].gnssId', r_2sv_1_6gnssId, 'type', 'an int')
-        if not 0 <= r_2sv_1_6gnssId <= 255:
-            raise _enc('nav_sat', 'sv[1].gnssId', r_2sv_1_6gnssId, 'range', '0..255', None)
+        r_2sv_1_6gnssId, r_2sv_1_4svId, r_2sv_1_3cno, r_2sv_1_4elev, r_2sv_1_4azim, r_2sv_1_5prRes, r_2sv_1_10qualityInd, r_2sv_1_6svUsed, r_2sv_1_6health, r_2sv_1_8diffCorr, r_2sv_1_8smoothed, r_2sv_1_11orbitSource, r_2sv_1_8ephAvail, r_2sv_1_8almAvail, r_2sv_1_8anoAvail, r_2sv_1_8aopAvail, r_2sv_1_10reserved13, r_2sv_1_12sbasCorrUsed, r_2sv_1_12rtcmCorrUsed, r_2sv_1_12slasCorrUsed, r_2sv_1_14spartnCorrUsed, r_2sv_1_10prCorrUsed, r_2sv_1_10crCorrUsed, r_2sv_1_10doCorrUsed, r_2sv_1_12clasCorrUsed, r_2sv_1_11lppCorrUsed, r_2sv_1_11hasCorrUsed, r_2sv_1_11flags_spare = _raw_nav_sat_2sv_1(g_sv[1])
     else:
         r_2sv_1_6gnssId = 0
-    if len(g_sv) > 1:
-        r_2sv_1_4svId = g_2sv_1.svId
-        if r_2sv_1_4svId.__class__ is not int and (not isinstance(r_2sv_1_4svId, int) or r_2sv_1_4svId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[1].svId', r_2sv_1_4svId, 'type', 'an int')
-        if not 0 <= r_2sv_1_4svId <= 255:
-            raise _enc('nav_sat', 'sv[1].svId', r_2sv_1_4svId, 'range', '0..255', None)
-    else:
         r_2sv_1_4svId = 0
-    if len(g_sv) > 1:
-        r_2sv_1_3cno = g_2sv_1.cno
-        if r_2sv_1_3cno.__class__ is not int and (not isinstance(r_2sv_1_3cno, int) or r_2sv_1_3cno.__class__ is bool):
-            raise _enc('nav_sat', 'sv[1].cno', r_2sv_1_3cno, 'type', 'an int')
-        if not 0 <= r_2sv_1_3cno <= 255:
-            raise _enc('nav_sat', 'sv[1].cno', r_2sv_1_3cno, 'range', '0..255', None)
-    else:
         r_2sv_1_3cno = 0
-    if len(g_sv) > 1:
-        r_2sv_1_4elev = g_2sv_1.elev
-        if r_2sv_1_4elev.__class__ is not int and (not isinstance(r_2sv_1_4elev, int) or r_2sv_1_4elev.__class__ is bool):
-            raise _enc('nav_sat', 'sv[1].elev', r_2sv_1_4elev, 'type', 'an int')
-        if not -128 <= r_2sv_1_4elev <= 127:
-            raise _enc('nav_sat', 'sv[1].elev', r_2sv_1_4elev, 'range', '-128..127', None)
-    else:
         r_2sv_1_4elev = 0
-    if len(g_sv) > 1:
-        r_2sv_1_4azim = g_2sv_1.azim
-        if r_2sv_1_4azim.__class__ is not int and (not isinstance(r_2sv_1_4azim, int) or r_2sv_1_4azim.__class__ is bool):
-            raise _enc('nav_sat', 'sv[1].azim', r_2sv_1_4azim, 'type', 'an int')
-        if not -32768 <= r_2sv_1_4azim <= 32767:
-            raise _enc('nav_sat', 'sv[1].azim', r_2sv_1_4azim, 'range', '-32768..32767', None)
-    else:
         r_2sv_1_4azim = 0
-    if len(g_sv) > 1:
-        r_2sv_1_5prRes = g_2sv_1.prRes
-        if r_2sv_1_5prRes.__class__ is not float and (not isinstance(r_2sv_1_5prRes, (int, float)) or r_2sv_1_5prRes.__class__ is bool):
-            raise _enc('nav_sat', 'sv[1].prRes', r_2sv_1_5prRes, 'type', 'a number')
-        if not -3276.8 <= r_2sv_1_5prRes <= 3276.7000000000003:
-            raise _enc('nav_sat', 'sv[1].prRes', r_2sv_1_5prRes, 'range', '-3276.8..3276.7000000000003', None)
-        r_2sv_1_5prRes = _floor(r_2sv_1_5prRes / 0.1 + 0.5)
-    else:
         r_2sv_1_5prRes = 0
-    if len(g_sv) > 1:
-        r_2sv_1_10qualityInd = g_2sv_1.qualityInd
-        if r_2sv_1_10qualityInd.__class__ is not int and (not isinstance(r_2sv_1_10qualityInd, int) or r_2sv_1_10qualityInd.__class__ is bool):
-            raise _enc('nav_sat', 'sv[1].qualityInd', r_2sv_1_10qualityInd, 'type', 'an int')
-        if not 0 <= r_2sv_1_10qualityInd <= 7:
-            raise _enc('nav_sat', 'sv[1].qualityInd', r_2sv_1_10qualityInd, 'range', '0..7', None)
-    else:
         r_2sv_1_10qualityInd = 0
-    if len(g_sv) > 1:
-        r_2sv_1_6svUsed: Any = g_2sv_1.svUsed
-        if r_2sv_1_6svUsed is not True and r_2sv_1_6svUsed is not False and r_2sv_1_6svUsed != 0 and r_2sv_1_6svUsed != 1:
-            raise _enc('nav_sat', 'sv[1].svUsed', r_2sv_1_6svUsed, 'type', 'a bool')
-        r_2sv_1_6svUsed = 1 if r_2sv_1_6svUsed else 0
-    else:
         r_2sv_1_6svUsed = 0
-    if len(g_sv) > 1:
-        r_2sv_1_6health = g_2sv_1.health
-        if r_2sv_1_6health.__class__ is not int and (not isinstance(r_2sv_1_6health, int) or r_2sv_1_6health.__class__ is bool):
-            raise _enc('nav_sat', 'sv[1].health', r_2sv_1_6health, 'type', 'an int')
-        if not 0 <= r_2sv_1_6health <= 3:
-            raise _enc('nav_sat', 'sv[1].health', r_2sv_1_6health, 'range', '0..3', None)
-    else:
         r_2sv_1_6health = 0
-    if len(g_sv) > 1:
-        r_2sv_1_8diffCorr: Any = g_2sv_1.diffCorr
-        if r_2sv_1_8diffCorr is not True and r_2sv_1_8diffCorr is not False and r_2sv_1_8diffCorr != 0 and r_2sv_1_8diffCorr != 1:
-            raise _enc('nav_sat', 'sv[1].diffCorr', r_2sv_1_8diffCorr, 'type', 'a bool')
-        r_2sv_1_8diffCorr = 1 if r_2sv_1_8diffCorr else 0
-    else:
         r_2sv_1_8diffCorr = 0
-    if len(g_sv) > 1:
-        r_2sv_1_8smoothed: Any = g_2sv_1.smoothed
-        if r_2sv_1_8smoothed is not True and r_2sv_1_8smoothed is not False and r_2sv_1_8smoothed != 0 and r_2sv_1_8smoothed != 1:
-            raise _enc('nav_sat', 'sv[1].smoothed', r_2sv_1_8smoothed, 'type', 'a bool')
-        r_2sv_1_8smoothed = 1 if r_2sv_1_8smoothed else 0
-    else:
         r_2sv_1_8smoothed = 0
-    if len(g_sv) > 1:
-        r_2sv_1_11orbitSource = g_2sv_1.orbitSource
-        if r_2sv_1_11orbitSource.__class__ is not int and (not isinstance(r_2sv_1_11orbitSource, int) or r_2sv_1_11orbitSource.__class__ is bool):
-            raise _enc('nav_sat', 'sv[1].orbitSource', r_2sv_1_11orbitSource, 'type', 'an int')
-        if not 0 <= r_2sv_1_11orbitSource <= 7:
-            raise _enc('nav_sat', 'sv[1].orbitSource', r_2sv_1_11orbitSource, 'range', '0..7', None)
-    else:
         r_2sv_1_11orbitSource = 0
-    if len(g_sv) > 1:
-        r_2sv_1_8ephAvail: Any = g_2sv_1.ephAvail
-        if r_2sv_1_8ephAvail is not True and r_2sv_1_8ephAvail is not False and r_2sv_1_8ephAvail != 0 and r_2sv_1_8ephAvail != 1:
-            raise _enc('nav_sat', 'sv[1].ephAvail', r_2sv_1_8ephAvail, 'type', 'a bool')
-        r_2sv_1_8ephAvail = 1 if r_2sv_1_8ephAvail else 0
-    else:
         r_2sv_1_8ephAvail = 0
-    if len(g_sv) > 1:
-        r_2sv_1_8almAvail: Any = g_2sv_1.almAvail
-        if r_2sv_1_8almAvail is not True and r_2sv_1_8almAvail is not False and r_2sv_1_8almAvail != 0 and r_2sv_1_8almAvail != 1:
-            raise _enc('nav_sat', 'sv[1].almAvail', r_2sv_1_8almAvail, 'type', 'a bool')
-        r_2sv_1_8almAvail = 1 if r_2sv_1_8almAvail else 0
-    else:
         r_2sv_1_8almAvail = 0
-    if len(g_sv) > 1:
-        r_2sv_1_8anoAvail: Any = g_2sv_1.anoAvail
-        if r_2sv_1_8anoAvail is not True and r_2sv_1_8anoAvail is not False and r_2sv_1_8anoAvail != 0 and r_2sv_1_8anoAvail != 1:
-            raise _enc('nav_sat', 'sv[1].anoAvail', r_2sv_1_8anoAvail, 'type', 'a bool')
-        r_2sv_1_8anoAvail = 1 if r_2sv_1_8anoAvail else 0
-    else:
         r_2sv_1_8anoAvail = 0
-    if len(g_sv) > 1:
-        r_2sv_1_8aopAvail: Any = g_2sv_1.aopAvail
-        if r_2sv_1_8aopAvail is not True and r_2sv_1_8aopAvail is not False and r_2sv_1_8aopAvail != 0 and r_2sv_1_8aopAvail != 1:
-            raise _enc('nav_sat', 'sv[1].aopAvail', r_2sv_1_8aopAvail, 'type', 'a bool')
-        r_2sv_1_8aopAvail = 1 if r_2sv_1_8aopAvail else 0
-    else:
         r_2sv_1_8aopAvail = 0
-    if len(g_sv) > 1:
-        r_2sv_1_10reserved13 = g_2sv_1.reserved13
-        if r_2sv_1_10reserved13.__class__ is not int and (not isinstance(r_2sv_1_10reserved13, int) or r_2sv_1_10reserved13.__class__ is bool):
-            raise _enc('nav_sat', 'sv[1].reserved13', r_2sv_1_10reserved13, 'type', 'an int')
-        if not 0 <= r_2sv_1_10reserved13 <= 1:
-            raise _enc('nav_sat', 'sv[1].reserved13', r_2sv_1_10reserved13, 'range', '0..1', None)
-    else:
         r_2sv_1_10reserved13 = 0
-    if len(g_sv) > 1:
-        r_2sv_1_12sbasCorrUsed: Any = g_2sv_1.sbasCorrUsed
-        if r_2sv_1_12sbasCorrUsed is not True and r_2sv_1_12sbasCorrUsed is not False and r_2sv_1_12sbasCorrUsed != 0 and r_2sv_1_12sbasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[1].sbasCorrUsed', r_2sv_1_12sbasCorrUsed, 'type', 'a bool')
-        r_2sv_1_12sbasCorrUsed = 1 if r_2sv_1_12sbasCorrUsed else 0
-    else:
         r_2sv_1_12sbasCorrUsed = 0
-    if len(g_sv) > 1:
-        r_2sv_1_12rtcmCorrUsed: Any = g_2sv_1.rtcmCorrUsed
-        if r_2sv_1_12rtcmCorrUsed is not True and r_2sv_1_12rtcmCorrUsed is not False and r_2sv_1_12rtcmCorrUsed != 0 and r_2sv_1_12rtcmCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[1].rtcmCorrUsed', r_2sv_1_12rtcmCorrUsed, 'type', 'a bool')
-        r_2sv_1_12rtcmCorrUsed = 1 if r_2sv_1_12rtcmCorrUsed else 0
-    else:
         r_2sv_1_12rtcmCorrUsed = 0
-    if len(g_sv) > 1:
-        r_2sv_1_12slasCorrUsed: Any = g_2sv_1.slasCorrUsed
-        if r_2sv_1_12slasCorrUsed is not True and r_2sv_1_12slasCorrUsed is not False and r_2sv_1_12slasCorrUsed != 0 and r_2sv_1_12slasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[1].slasCorrUsed', r_2sv_1_12slasCorrUsed, 'type', 'a bool')
-        r_2sv_1_12slasCorrUsed = 1 if r_2sv_1_12slasCorrUsed else 0
-    else:
         r_2sv_1_12slasCorrUsed = 0
-    if len(g_sv) > 1:
-        r_2sv_1_14spartnCorrUsed: Any = g_2sv_1.spartnCorrUsed
-        if r_2sv_1_14spartnCorrUsed is not True and r_2sv_1_14spartnCorrUsed is not False and r_2sv_1_14spartnCorrUsed != 0 and r_2sv_1_14spartnCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[1].spartnCorrUsed', r_2sv_1_14spartnCorrUsed, 'type', 'a bool')
-        r_2sv_1_14spartnCorrUsed = 1 if r_2sv_1_14spartnCorrUsed else 0
-    else:
         r_2sv_1_14spartnCorrUsed = 0
-    if len(g_sv) > 1:
-        r_2sv_1_10prCorrUsed: Any = g_2sv_1.prCorrUsed
-        if r_2sv_1_10prCorrUsed is not True and r_2sv_1_10prCorrUsed is not False and r_2sv_1_10prCorrUsed != 0 and r_2sv_1_10prCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[1].prCorrUsed', r_2sv_1_10prCorrUsed, 'type', 'a bool')
-        r_2sv_1_10prCorrUsed = 1 if r_2sv_1_10prCorrUsed else 0
-    else:
         r_2sv_1_10prCorrUsed = 0
-    if len(g_sv) > 1:
-        r_2sv_1_10crCorrUsed: Any = g_2sv_1.crCorrUsed
-        if r_2sv_1_10crCorrUsed is not True and r_2sv_1_10crCorrUsed is not False and r_2sv_1_10crCorrUsed != 0 and r_2sv_1_10crCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[1].crCorrUsed', r_2sv_1_10crCorrUsed, 'type', 'a bool')
-        r_2sv_1_10crCorrUsed = 1 if r_2sv_1_10crCorrUsed else 0
-    else:
         r_2sv_1_10crCorrUsed = 0
-    if len(g_sv) > 1:
-        r_2sv_1_10doCorrUsed: Any = g_2sv_1.doCorrUsed
-        if r_2sv_1_10doCorrUsed is not True and r_2sv_1_10doCorrUsed is not False and r_2sv_1_10doCorrUsed != 0 and r_2sv_1_10doCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[1].doCorrUsed', r_2sv_1_10doCorrUsed, 'type', 'a bool')
-        r_2sv_1_10doCorrUsed = 1 if r_2sv_1_10doCorrUsed else 0
-    else:
         r_2sv_1_10doCorrUsed = 0
-    if len(g_sv) > 1:
-        r_2sv_1_12clasCorrUsed: Any = g_2sv_1.clasCorrUsed
-        if r_2sv_1_12clasCorrUsed is not True and r_2sv_1_12clasCorrUsed is not False and r_2sv_1_12clasCorrUsed != 0 and r_2sv_1_12clasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[1].clasCorrUsed', r_2sv_1_12clasCorrUsed, 'type', 'a bool')
-        r_2sv_1_12clasCorrUsed = 1 if r_2sv_1_12clasCorrUsed else 0
-    else:
         r_2sv_1_12clasCorrUsed = 0
-    if len(g_sv) > 1:
-        r_2sv_1_11lppCorrUsed: Any = g_2sv_1.lppCorrUsed
-        if r_2sv_1_11lppCorrUsed is not True and r_2sv_1_11lppCorrUsed is not False and r_2sv_1_11lppCorrUsed != 0 and r_2sv_1_11lppCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[1].lppCorrUsed', r_2sv_1_11lppCorrUsed, 'type', 'a bool')
-        r_2sv_1_11lppCorrUsed = 1 if r_2sv_1_11lppCorrUsed else 0
-    else:
         r_2sv_1_11lppCorrUsed = 0
-    if len(g_sv) > 1:
-        r_2sv_1_11hasCorrUsed: Any = g_2sv_1.hasCorrUsed
-        if r_2sv_1_11hasCorrUsed is not True and r_2sv_1_11hasCorrUsed is not False and r_2sv_1_11hasCorrUsed != 0 and r_2sv_1_11hasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[1].hasCorrUsed', r_2sv_1_11hasCorrUsed, 'type', 'a bool')
-        r_2sv_1_11hasCorrUsed = 1 if r_2sv_1_11hasCorrUsed else 0
-    else:
         r_2sv_1_11hasCorrUsed = 0
-    if len(g_sv) > 1:
         r_2sv_1_11flags_spare = 0
-    else:
-        r_2sv_1_11flags_spare = 0
-    g_2sv_2: Any = cast(Any, g_sv[2] if len(g_sv) > 2 else None)
     if len(g_sv) > 2:
-        r_2sv_2_6gnssId = g_2sv_2.gnssId
-        if r_2sv_2_6gnssId.__class__ is not int and (not isinstance(r_2sv_2_6gnssId, int) or r_2sv_2_6gnssId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[2].gnssId', r_2sv_2_6gnssId, 'type', 'an int')
-        if not 0 <= r_2sv_2_6gnssId <= 255:
-            raise _enc('nav_sat', 'sv[2].gnssId', r_2sv_2_6gnssId, 'range', '0..255', None)
+        r_2sv_2_6gnssId, r_2sv_2_4svId, r_2sv_2_3cno, r_2sv_2_4elev, r_2sv_2_4azim, r_2sv_2_5prRes, r_2sv_2_10qualityInd, r_2sv_2_6svUsed, r_2sv_2_6health, r_2sv_2_8diffCorr, r_2sv_2_8smoothed, r_2sv_2_11orbitSource, r_2sv_2_8ephAvail, r_2sv_2_8almAvail, r_2sv_2_8anoAvail, r_2sv_2_8aopAvail, r_2sv_2_10reserved13, r_2sv_2_12sbasCorrUsed, r_2sv_2_12rtcmCorrUsed, r_2sv_2_12slasCorrUsed, r_2sv_2_14spartnCorrUsed, r_2sv_2_10prCorrUsed, r_2sv_2_10crCorrUsed, r_2sv_2_10doCorrUsed, r_2sv_2_12clasCorrUsed, r_2sv_2_11lppCorrUsed, r_2sv_2_11hasCorrUsed, r_2sv_2_11flags_spare = _raw_nav_sat_2sv_2(g_sv[2])
     else:
         r_2sv_2_6gnssId = 0
-    if len(g_sv) > 2:
-        r_2sv_2_4svId = g_2sv_2.svId
-        if r_2sv_2_4svId.__class__ is not int and (not isinstance(r_2sv_2_4svId, int) or r_2sv_2_4svId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[2].svId', r_2sv_2_4svId, 'type', 'an int')
-        if not 0 <= r_2sv_2_4svId <= 255:
-            raise _enc('nav_sat', 'sv[2].svId', r_2sv_2_4svId, 'range', '0..255', None)
-    else:
         r_2sv_2_4svId = 0
-    if len(g_sv) > 2:
-        r_2sv_2_3cno = g_2sv_2.cno
-        if r_2sv_2_3cno.__class__ is not int and (not isinstance(r_2sv_2_3cno, int) or r_2sv_2_3cno.__class__ is bool):
-            raise _enc('nav_sat', 'sv[2].cno', r_2sv_2_3cno, 'type', 'an int')
-        if not 0 <= r_2sv_2_3cno <= 255:
-            raise _enc('nav_sat', 'sv[2].cno', r_2sv_2_3cno, 'range', '0..255', None)
-    else:
         r_2sv_2_3cno = 0
-    if len(g_sv) > 2:
-        r_2sv_2_4elev = g_2sv_2.elev
-        if r_2sv_2_4elev.__class__ is not int and (not isinstance(r_2sv_2_4elev, int) or r_2sv_2_4elev.__class__ is bool):
-            raise _enc('nav_sat', 'sv[2].elev', r_2sv_2_4elev, 'type', 'an int')
-        if not -128 <= r_2sv_2_4elev <= 127:
-            raise _enc('nav_sat', 'sv[2].elev', r_2sv_2_4elev, 'range', '-128..127', None)
-    else:
         r_2sv_2_4elev = 0
-    if len(g_sv) > 2:
-        r_2sv_2_4azim = g_2sv_2.azim
-        if r_2sv_2_4azim.__class__ is not int and (not isinstance(r_2sv_2_4azim, int) or r_2sv_2_4azim.__class__ is bool):
-            raise _enc('nav_sat', 'sv[2].azim', r_2sv_2_4azim, 'type', 'an int')
-        if not -32768 <= r_2sv_2_4azim <= 32767:
-            raise _enc('nav_sat', 'sv[2].azim', r_2sv_2_4azim, 'range', '-32768..32767', None)
-    else:
         r_2sv_2_4azim = 0
-    if len(g_sv) > 2:
-        r_2sv_2_5prRes = g_2sv_2.prRes
-        if r_2sv_2_5prRes.__class__ is not float and (not isinstance(r_2sv_2_5prRes, (int, float)) or r_2sv_2_5prRes.__class__ is bool):
-            raise _enc('nav_sat', 'sv[2].prRes', r_2sv_2_5prRes, 'type', 'a number')
-        if not -3276.8 <= r_2sv_2_5prRes <= 3276.7000000000003:
-            raise _enc('nav_sat', 'sv[2].prRes', r_2sv_2_5prRes, 'range', '-3276.8..3276.7000000000003', None)
-        r_2sv_2_5prRes = _floor(r_2sv_2_5prRes / 0.1 + 0.5)
-    else:
         r_2sv_2_5prRes = 0
-    if len(g_sv) > 2:
-        r_2sv_2_10qualityInd = g_2sv_2.qualityInd
-        if r_2sv_2_10qualityInd.__class__ is not int and (not isinstance(r_2sv_2_10qualityInd, int) or r_2sv_2_10qualityInd.__class__ is bool):
-            raise _enc('nav_sat', 'sv[2].qualityInd', r_2sv_2_10qualityInd, 'type', 'an int')
-        if not 0 <= r_2sv_2_10qualityInd <= 7:
-            raise _enc('nav_sat', 'sv[2].qualityInd', r_2sv_2_10qualityInd, 'range', '0..7', None)
-    else:
         r_2sv_2_10qualityInd = 0
-    if len(g_sv) > 2:
-        r_2sv_2_6svUsed: Any = g_2sv_2.svUsed
-        if r_2sv_2_6svUsed is not True and r_2sv_2_6svUsed is not False and r_2sv_2_6svUsed != 0 and r_2sv_2_6svUsed != 1:
-            raise _enc('nav_sat', 'sv[2].svUsed', r_2sv_2_6svUsed, 'type', 'a bool')
-        r_2sv_2_6svUsed = 1 if r_2sv_2_6svUsed else 0
-    else:
         r_2sv_2_6svUsed = 0
-    if len(g_sv) > 2:
-        r_2sv_2_6health = g_2sv_2.health
-        if r_2sv_2_6health.__class__ is not int and (not isinstance(r_2sv_2_6health, int) or r_2sv_2_6health.__class__ is bool):
-            raise _enc('nav_sat', 'sv[2].health', r_2sv_2_6health, 'type', 'an int')
-        if not 0 <= r_2sv_2_6health <= 3:
-            raise _enc('nav_sat', 'sv[2].health', r_2sv_2_6health, 'range', '0..3', None)
-    else:
         r_2sv_2_6health = 0
-    if len(g_sv) > 2:
-        r_2sv_2_8diffCorr: Any = g_2sv_2.diffCorr
-        if r_2sv_2_8diffCorr is not True and r_2sv_2_8diffCorr is not False and r_2sv_2_8diffCorr != 0 and r_2sv_2_8diffCorr != 1:
-            raise _enc('nav_sat', 'sv[2].diffCorr', r_2sv_2_8diffCorr, 'type', 'a bool')
-        r_2sv_2_8diffCorr = 1 if r_2sv_2_8diffCorr else 0
-    else:
         r_2sv_2_8diffCorr = 0
-    if len(g_sv) > 2:
-        r_2sv_2_8smoothed: Any = g_2sv_2.smoothed
-        if r_2sv_2_8smoothed is not True and r_2sv_2_8smoothed is not False and r_2sv_2_8smoothed != 0 and r_2sv_2_8smoothed != 1:
-            raise _enc('nav_sat', 'sv[2].smoothed', r_2sv_2_8smoothed, 'type', 'a bool')
-        r_2sv_2_8smoothed = 1 if r_2sv_2_8smoothed else 0
-    else:
         r_2sv_2_8smoothed = 0
-    if len(g_sv) > 2:
-        r_2sv_2_11orbitSource = g_2sv_2.orbitSource
-        if r_2sv_2_11orbitSource.__class__ is not int and (not isinstance(r_2sv_2_11orbitSource, int) or r_2sv_2_11orbitSource.__class__ is bool):
-            raise _enc('nav_sat', 'sv[2].orbitSource', r_2sv_2_11orbitSource, 'type', 'an int')
-        if not 0 <= r_2sv_2_11orbitSource <= 7:
-            raise _enc('nav_sat', 'sv[2].orbitSource', r_2sv_2_11orbitSource, 'range', '0..7', None)
-    else:
         r_2sv_2_11orbitSource = 0
-    if len(g_sv) > 2:
-        r_2sv_2_8ephAvail: Any = g_2sv_2.ephAvail
-        if r_2sv_2_8ephAvail is not True and r_2sv_2_8ephAvail is not False and r_2sv_2_8ephAvail != 0 and r_2sv_2_8ephAvail != 1:
-            raise _enc('nav_sat', 'sv[2].ephAvail', r_2sv_2_8ephAvail, 'type', 'a bool')
-        r_2sv_2_8ephAvail = 1 if r_2sv_2_8ephAvail else 0
-    else:
         r_2sv_2_8ephAvail = 0
-    if len(g_sv) > 2:
-        r_2sv_2_8almAvail: Any = g_2sv_2.almAvail
-        if r_2sv_2_8almAvail is not True and r_2sv_2_8almAvail is not False and r_2sv_2_8almAvail != 0 and r_2sv_2_8almAvail != 1:
-            raise _enc('nav_sat', 'sv[2].almAvail', r_2sv_2_8almAvail, 'type', 'a bool')
-        r_2sv_2_8almAvail = 1 if r_2sv_2_8almAvail else 0
-    else:
         r_2sv_2_8almAvail = 0
-    if len(g_sv) > 2:
-        r_2sv_2_8anoAvail: Any = g_2sv_2.anoAvail
-        if r_2sv_2_8anoAvail is not True and r_2sv_2_8anoAvail is not False and r_2sv_2_8anoAvail != 0 and r_2sv_2_8anoAvail != 1:
-            raise _enc('nav_sat', 'sv[2].anoAvail', r_2sv_2_8anoAvail, 'type', 'a bool')
-        r_2sv_2_8anoAvail = 1 if r_2sv_2_8anoAvail else 0
-    else:
         r_2sv_2_8anoAvail = 0
-    if len(g_sv) > 2:
-        r_2sv_2_8aopAvail: Any = g_2sv_2.aopAvail
-        if r_2sv_2_8aopAvail is not True and r_2sv_2_8aopAvail is not False and r_2sv_2_8aopAvail != 0 and r_2sv_2_8aopAvail != 1:
-            raise _enc('nav_sat', 'sv[2].aopAvail', r_2sv_2_8aopAvail, 'type', 'a bool')
-        r_2sv_2_8aopAvail = 1 if r_2sv_2_8aopAvail else 0
-    else:
         r_2sv_2_8aopAvail = 0
-    if len(g_sv) > 2:
-        r_2sv_2_10reserved13 = g_2sv_2.reserved13
-        if r_2sv_2_10reserved13.__class__ is not int and (not isinstance(r_2sv_2_10reserved13, int) or r_2sv_2_10reserved13.__class__ is bool):
-            raise _enc('nav_sat', 'sv[2].reserved13', r_2sv_2_10reserved13, 'type', 'an int')
-        if not 0 <= r_2sv_2_10reserved13 <= 1:
-            raise _enc('nav_sat', 'sv[2].reserved13', r_2sv_2_10reserved13, 'range', '0..1', None)
-    else:
         r_2sv_2_10reserved13 = 0
-    if len(g_sv) > 2:
-        r_2sv_2_12sbasCorrUsed: Any = g_2sv_2.sbasCorrUsed
-        if r_2sv_2_12sbasCorrUsed is not True and r_2sv_2_12sbasCorrUsed is not False and r_2sv_2_12sbasCorrUsed != 0 and r_2sv_2_12sbasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[2].sbasCorrUsed', r_2sv_2_12sbasCorrUsed, 'type', 'a bool')
-        r_2sv_2_12sbasCorrUsed = 1 if r_2sv_2_12sbasCorrUsed else 0
-    else:
         r_2sv_2_12sbasCorrUsed = 0
-    if len(g_sv) > 2:
-        r_2sv_2_12rtcmCorrUsed: Any = g_2sv_2.rtcmCorrUsed
-        if r_2sv_2_12rtcmCorrUsed is not True and r_2sv_2_12rtcmCorrUsed is not False and r_2sv_2_12rtcmCorrUsed != 0 and r_2sv_2_12rtcmCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[2].rtcmCorrUsed', r_2sv_2_12rtcmCorrUsed, 'type', 'a bool')
-        r_2sv_2_12rtcmCorrUsed = 1 if r_2sv_2_12rtcmCorrUsed else 0
-    else:
         r_2sv_2_12rtcmCorrUsed = 0
-    if len(g_sv) > 2:
-        r_2sv_2_12slasCorrUsed: Any = g_2sv_2.slasCorrUsed
-        if r_2sv_2_12slasCorrUsed is not True and r_2sv_2_12slasCorrUsed is not False and r_2sv_2_12slasCorrUsed != 0 and r_2sv_2_12slasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[2].slasCorrUsed', r_2sv_2_12slasCorrUsed, 'type', 'a bool')
-        r_2sv_2_12slasCorrUsed = 1 if r_2sv_2_12slasCorrUsed else 0
-    else:
         r_2sv_2_12slasCorrUsed = 0
-    if len(g_sv) > 2:
-        r_2sv_2_14spartnCorrUsed: Any = g_2sv_2.spartnCorrUsed
-        if r_2sv_2_14spartnCorrUsed is not True and r_2sv_2_14spartnCorrUsed is not False and r_2sv_2_14spartnCorrUsed != 0 and r_2sv_2_14spartnCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[2].spartnCorrUsed', r_2sv_2_14spartnCorrUsed, 'type', 'a bool')
-        r_2sv_2_14spartnCorrUsed = 1 if r_2sv_2_14spartnCorrUsed else 0
-    else:
         r_2sv_2_14spartnCorrUsed = 0
-    if len(g_sv) > 2:
-        r_2sv_2_10prCorrUsed: Any = g_2sv_2.prCorrUsed
-        if r_2sv_2_10prCorrUsed is not True and r_2sv_2_10prCorrUsed is not False and r_2sv_2_10prCorrUsed != 0 and r_2sv_2_10prCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[2].prCorrUsed', r_2sv_2_10prCorrUsed, 'type', 'a bool')
-        r_2sv_2_10prCorrUsed = 1 if r_2sv_2_10prCorrUsed else 0
-    else:
         r_2sv_2_10prCorrUsed = 0
-    if len(g_sv) > 2:
-        r_2sv_2_10crCorrUsed: Any = g_2sv_2.crCorrUsed
-        if r_2sv_2_10crCorrUsed is not True and r_2sv_2_10crCorrUsed is not False and r_2sv_2_10crCorrUsed != 0 and r_2sv_2_10crCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[2].crCorrUsed', r_2sv_2_10crCorrUsed, 'type', 'a bool')
-        r_2sv_2_10crCorrUsed = 1 if r_2sv_2_10crCorrUsed else 0
-    else:
         r_2sv_2_10crCorrUsed = 0
-    if len(g_sv) > 2:
-        r_2sv_2_10doCorrUsed: Any = g_2sv_2.doCorrUsed
-        if r_2sv_2_10doCorrUsed is not True and r_2sv_2_10doCorrUsed is not False and r_2sv_2_10doCorrUsed != 0 and r_2sv_2_10doCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[2].doCorrUsed', r_2sv_2_10doCorrUsed, 'type', 'a bool')
-        r_2sv_2_10doCorrUsed = 1 if r_2sv_2_10doCorrUsed else 0
-    else:
         r_2sv_2_10doCorrUsed = 0
-    if len(g_sv) > 2:
-        r_2sv_2_12clasCorrUsed: Any = g_2sv_2.clasCorrUsed
-        if r_2sv_2_12clasCorrUsed is not True and r_2sv_2_12clasCorrUsed is not False and r_2sv_2_12clasCorrUsed != 0 and r_2sv_2_12clasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[2].clasCorrUsed', r_2sv_2_12clasCorrUsed, 'type', 'a bool')
-        r_2sv_2_12clasCorrUsed = 1 if r_2sv_2_12clasCorrUsed else 0
-    else:
         r_2sv_2_12clasCorrUsed = 0
-    if len(g_sv) > 2:
-        r_2sv_2_11lppCorrUsed: Any = g_2sv_2.lppCorrUsed
-        if r_2sv_2_11lppCorrUsed is not True and r_2sv_2_11lppCorrUsed is not False and r_2sv_2_11lppCorrUsed != 0 and r_2sv_2_11lppCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[2].lppCorrUsed', r_2sv_2_11lppCorrUsed, 'type', 'a bool')
-        r_2sv_2_11lppCorrUsed = 1 if r_2sv_2_11lppCorrUsed else 0
-    else:
         r_2sv_2_11lppCorrUsed = 0
-    if len(g_sv) > 2:
-        r_2sv_2_11hasCorrUsed: Any = g_2sv_2.hasCorrUsed
-        if r_2sv_2_11hasCorrUsed is not True and r_2sv_2_11hasCorrUsed is not False and r_2sv_2_11hasCorrUsed != 0 and r_2sv_2_11hasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[2].hasCorrUsed', r_2sv_2_11hasCorrUsed, 'type', 'a bool')
-        r_2sv_2_11hasCorrUsed = 1 if r_2sv_2_11hasCorrUsed else 0
-    else:
         r_2sv_2_11hasCorrUsed = 0
-    if len(g_sv) > 2:
         r_2sv_2_11flags_spare = 0
-    else:
-        r_2sv_2_11flags_spare = 0
-    g_2sv_3: Any = cast(Any, g_sv[3] if len(g_sv) > 3 else None)
     if len(g_sv) > 3:
-        r_2sv_3_6gnssId = g_2sv_3.gnssId
-        if r_2sv_3_6gnssId.__class__ is not int and (not isinstance(r_2sv_3_6gnssId, int) or r_2sv_3_6gnssId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[3].gnssId', r_2sv_3_6gnssId, 'type', 'an int')
-        if not 0 <= r_2sv_3_6gnssId <= 255:
-            raise _enc('nav_sat', 'sv[3].gnssId', r_2sv_3_6gnssId, 'range', '0..255', None)
+        r_2sv_3_6gnssId, r_2sv_3_4svId, r_2sv_3_3cno, r_2sv_3_4elev, r_2sv_3_4azim, r_2sv_3_5prRes, r_2sv_3_10qualityInd, r_2sv_3_6svUsed, r_2sv_3_6health, r_2sv_3_8diffCorr, r_2sv_3_8smoothed, r_2sv_3_11orbitSource, r_2sv_3_8ephAvail, r_2sv_3_8almAvail, r_2sv_3_8anoAvail, r_2sv_3_8aopAvail, r_2sv_3_10reserved13, r_2sv_3_12sbasCorrUsed, r_2sv_3_12rtcmCorrUsed, r_2sv_3_12slasCorrUsed, r_2sv_3_14spartnCorrUsed, r_2sv_3_10prCorrUsed, r_2sv_3_10crCorrUsed, r_2sv_3_10doCorrUsed, r_2sv_3_12clasCorrUsed, r_2sv_3_11lppCorrUsed, r_2sv_3_11hasCorrUsed, r_2sv_3_11flags_spare = _raw_nav_sat_2sv_3(g_sv[3])
     else:
         r_2sv_3_6gnssId = 0
-    if len(g_sv) > 3:
-        r_2sv_3_4svId = g_2sv_3.svId
-        if r_2sv_3_4svId.__class__ is not int and (not isinstance(r_2sv_3_4svId, int) or r_2sv_3_4svId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[3].svId', r_2sv_3_4svId, 'type', 'an int')
-        if not 0 <= r_2sv_3_4svId <= 255:
-            raise _enc('nav_sat', 'sv[3].svId', r_2sv_3_4svId, 'range', '0..255', None)
-    else:
         r_2sv_3_4svId = 0
-    if len(g_sv) > 3:
-        r_2sv_3_3cno = g_2sv_3.cno
-        if r_2sv_3_3cno.__class__ is not int and (not isinstance(r_2sv_3_3cno, int) or r_2sv_3_3cno.__class__ is bool):
-            raise _enc('nav_sat', 'sv[3].cno', r_2sv_3_3cno, 'type', 'an int')
-        if not 0 <= r_2sv_3_3cno <= 255:
-            raise _enc('nav_sat', 'sv[3].cno', r_2sv_3_3cno, 'range', '0..255', None)
-    else:
         r_2sv_3_3cno = 0
-    if len(g_sv) > 3:
-        r_2sv_3_4elev = g_2sv_3.elev
-        if r_2sv_3_4elev.__class__ is not int and (not isinstance(r_2sv_3_4elev, int) or r_2sv_3_4elev.__class__ is bool):
-            raise _enc('nav_sat', 'sv[3].elev', r_2sv_3_4elev, 'type', 'an int')
-        if not -128 <= r_2sv_3_4elev <= 127:
-            raise _enc('nav_sat', 'sv[3].elev', r_2sv_3_4elev, 'range', '-128..127', None)
-    else:
         r_2sv_3_4elev = 0
-    if len(g_sv) > 3:
-        r_2sv_3_4azim = g_2sv_3.azim
-        if r_2sv_3_4azim.__class__ is not int and (not isinstance(r_2sv_3_4azim, int) or r_2sv_3_4azim.__class__ is bool):
-            raise _enc('nav_sat', 'sv[3].azim', r_2sv_3_4azim, 'type', 'an int')
-        if not -32768 <= r_2sv_3_4azim <= 32767:
-            raise _enc('nav_sat', 'sv[3].azim', r_2sv_3_4azim, 'range', '-32768..32767', None)
-    else:
         r_2sv_3_4azim = 0
-    if len(g_sv) > 3:
-        r_2sv_3_5prRes = g_2sv_3.prRes
-        if r_2sv_3_5prRes.__class__ is not float and (not isinstance(r_2sv_3_5prRes, (int, float)) or r_2sv_3_5prRes.__class__ is bool):
-            raise _enc('nav_sat', 'sv[3].prRes', r_2sv_3_5prRes, 'type', 'a number')
-        if not -3276.8 <= r_2sv_3_5prRes <= 3276.7000000000003:
-            raise _enc('nav_sat', 'sv[3].prRes', r_2sv_3_5prRes, 'range', '-3276.8..3276.7000000000003', None)
-        r_2sv_3_5prRes = _floor(r_2sv_3_5prRes / 0.1 + 0.5)
-    else:
         r_2sv_3_5prRes = 0
-    if len(g_sv) > 3:
-        r_2sv_3_10qualityInd = g_2sv_3.qualityInd
-        if r_2sv_3_10qualityInd.__class__ is not int and (not isinstance(r_2sv_3_10qualityInd, int) or r_2sv_3_10qualityInd.__class__ is bool):
-            raise _enc('nav_sat', 'sv[3].qualityInd', r_2sv_3_10qualityInd, 'type', 'an int')
-        if not 0 <= r_2sv_3_10qualityInd <= 7:
-            raise _enc('nav_sat', 'sv[3].qualityInd', r_2sv_3_10qualityInd, 'range', '0..7', None)
-    else:
         r_2sv_3_10qualityInd = 0
-    if len(g_sv) > 3:
-        r_2sv_3_6svUsed: Any = g_2sv_3.svUsed
-        if r_2sv_3_6svUsed is not True and r_2sv_3_6svUsed is not False and r_2sv_3_6svUsed != 0 and r_2sv_3_6svUsed != 1:
-            raise _enc('nav_sat', 'sv[3].svUsed', r_2sv_3_6svUsed, 'type', 'a bool')
-        r_2sv_3_6svUsed = 1 if r_2sv_3_6svUsed else 0
-    else:
         r_2sv_3_6svUsed = 0
-    if len(g_sv) > 3:
-        r_2sv_3_6health = g_2sv_3.health
-        if r_2sv_3_6health.__class__ is not int and (not isinstance(r_2sv_3_6health, int) or r_2sv_3_6health.__class__ is bool):
-            raise _enc('nav_sat', 'sv[3].health', r_2sv_3_6health, 'type', 'an int')
-        if not 0 <= r_2sv_3_6health <= 3:
-            raise _enc('nav_sat', 'sv[3].health', r_2sv_3_6health, 'range', '0..3', None)
-    else:
         r_2sv_3_6health = 0
-    if len(g_sv) > 3:
-        r_2sv_3_8diffCorr: Any = g_2sv_3.diffCorr
-        if r_2sv_3_8diffCorr is not True and r_2sv_3_8diffCorr is not False and r_2sv_3_8diffCorr != 0 and r_2sv_3_8diffCorr != 1:
-            raise _enc('nav_sat', 'sv[3].diffCorr', r_2sv_3_8diffCorr, 'type', 'a bool')
-        r_2sv_3_8diffCorr = 1 if r_2sv_3_8diffCorr else 0
-    else:
         r_2sv_3_8diffCorr = 0
-    if len(g_sv) > 3:
-        r_2sv_3_8smoothed: Any = g_2sv_3.smoothed
-        if r_2sv_3_8smoothed is not True and r_2sv_3_8smoothed is not False and r_2sv_3_8smoothed != 0 and r_2sv_3_8smoothed != 1:
-            raise _enc('nav_sat', 'sv[3].smoothed', r_2sv_3_8smoothed, 'type', 'a bool')
-        r_2sv_3_8smoothed = 1 if r_2sv_3_8smoothed else 0
-    else:
         r_2sv_3_8smoothed = 0
-    if len(g_sv) > 3:
-        r_2sv_3_11orbitSource = g_2sv_3.orbitSource
-        if r_2sv_3_11orbitSource.__class__ is not int and (not isinstance(r_2sv_3_11orbitSource, int) or r_2sv_3_11orbitSource.__class__ is bool):
-            raise _enc('nav_sat', 'sv[3].orbitSource', r_2sv_3_11orbitSource, 'type', 'an int')
-        if not 0 <= r_2sv_3_11orbitSource <= 7:
-            raise _enc('nav_sat', 'sv[3].orbitSource', r_2sv_3_11orbitSource, 'range', '0..7', None)
-    else:
         r_2sv_3_11orbitSource = 0
-    if len(g_sv) > 3:
-        r_2sv_3_8ephAvail: Any = g_2sv_3.ephAvail
-        if r_2sv_3_8ephAvail is not True and r_2sv_3_8ephAvail is not False and r_2sv_3_8ephAvail != 0 and r_2sv_3_8ephAvail != 1:
-            raise _enc('nav_sat', 'sv[3].ephAvail', r_2sv_3_8ephAvail, 'type', 'a bool')
-        r_2sv_3_8ephAvail = 1 if r_2sv_3_8ephAvail else 0
-    else:
         r_2sv_3_8ephAvail = 0
-    if len(g_sv) > 3:
-        r_2sv_3_8almAvail: Any = g_2sv_3.almAvail
-        if r_2sv_3_8almAvail is not True and r_2sv_3_8almAvail is not False and r_2sv_3_8almAvail != 0 and r_2sv_3_8almAvail != 1:
-            raise _enc('nav_sat', 'sv[3].almAvail', r_2sv_3_8almAvail, 'type', 'a bool')
-        r_2sv_3_8almAvail = 1 if r_2sv_3_8almAvail else 0
-    else:
         r_2sv_3_8almAvail = 0
-    if len(g_sv) > 3:
-        r_2sv_3_8anoAvail: Any = g_2sv_3.anoAvail
-        if r_2sv_3_8anoAvail is not True and r_2sv_3_8anoAvail is not False and r_2sv_3_8anoAvail != 0 and r_2sv_3_8anoAvail != 1:
-            raise _enc('nav_sat', 'sv[3].anoAvail', r_2sv_3_8anoAvail, 'type', 'a bool')
-        r_2sv_3_8anoAvail = 1 if r_2sv_3_8anoAvail else 0
-    else:
         r_2sv_3_8anoAvail = 0
-    if len(g_sv) > 3:
-        r_2sv_3_8aopAvail: Any = g_2sv_3.aopAvail
-        if r_2sv_3_8aopAvail is not True and r_2sv_3_8aopAvail is not False and r_2sv_3_8aopAvail != 0 and r_2sv_3_8aopAvail != 1:
-            raise _enc('nav_sat', 'sv[3].aopAvail', r_2sv_3_8aopAvail, 'type', 'a bool')
-        r_2sv_3_8aopAvail = 1 if r_2sv_3_8aopAvail else 0
-    else:
         r_2sv_3_8aopAvail = 0
-    if len(g_sv) > 3:
-        r_2sv_3_10reserved13 = g_2sv_3.reserved13
-        if r_2sv_3_10reserved13.__class__ is not int and (not isinstance(r_2sv_3_10reserved13, int) or r_2sv_3_10reserved13.__class__ is bool):
-            raise _enc('nav_sat', 'sv[3].reserved13', r_2sv_3_10reserved13, 'type', 'an int')
-        if not 0 <= r_2sv_3_10reserved13 <= 1:
-            raise _enc('nav_sat', 'sv[3].reserved13', r_2sv_3_10reserved13, 'range', '0..1', None)
-    else:
         r_2sv_3_10reserved13 = 0
-    if len(g_sv) > 3:
-        r_2sv_3_12sbasCorrUsed: Any = g_2sv_3.sbasCorrUsed
-        if r_2sv_3_12sbasCorrUsed is not True and r_2sv_3_12sbasCorrUsed is not False and r_2sv_3_12sbasCorrUsed != 0 and r_2sv_3_12sbasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[3].sbasCorrUsed', r_2sv_3_12sbasCorrUsed, 'type', 'a bool')
-        r_2sv_3_12sbasCorrUsed = 1 if r_2sv_3_12sbasCorrUsed else 0
-    else:
         r_2sv_3_12sbasCorrUsed = 0
-    if len(g_sv) > 3:
-        r_2sv_3_12rtcmCorrUsed: Any = g_2sv_3.rtcmCorrUsed
-        if r_2sv_3_12rtcmCorrUsed is not True and r_2sv_3_12rtcmCorrUsed is not False and r_2sv_3_12rtcmCorrUsed != 0 and r_2sv_3_12rtcmCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[3].rtcmCorrUsed', r_2sv_3_12rtcmCorrUsed, 'type', 'a bool')
-        r_2sv_3_12rtcmCorrUsed = 1 if r_2sv_3_12rtcmCorrUsed else 0
-    else:
         r_2sv_3_12rtcmCorrUsed = 0
-    if len(g_sv) > 3:
-        r_2sv_3_12slasCorrUsed: Any = g_2sv_3.slasCorrUsed
-        if r_2sv_3_12slasCorrUsed is not True and r_2sv_3_12slasCorrUsed is not False and r_2sv_3_12slasCorrUsed != 0 and r_2sv_3_12slasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[3].slasCorrUsed', r_2sv_3_12slasCorrUsed, 'type', 'a bool')
-        r_2sv_3_12slasCorrUsed = 1 if r_2sv_3_12slasCorrUsed else 0
-    else:
         r_2sv_3_12slasCorrUsed = 0
-    if len(g_sv) > 3:
-        r_2sv_3_14spartnCorrUsed: Any = g_2sv_3.spartnCorrUsed
-        if r_2sv_3_14spartnCorrUsed is not True and r_2sv_3_14spartnCorrUsed is not False and r_2sv_3_14spartnCorrUsed != 0 and r_2sv_3_14spartnCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[3].spartnCorrUsed', r_2sv_3_14spartnCorrUsed, 'type', 'a bool')
-        r_2sv_3_14spartnCorrUsed = 1 if r_2sv_3_14spartnCorrUsed else 0
-    else:
         r_2sv_3_14spartnCorrUsed = 0
-    if len(g_sv) > 3:
-        r_2sv_3_10prCorrUsed: Any = g_2sv_3.prCorrUsed
-        if r_2sv_3_10prCorrUsed is not True and r_2sv_3_10prCorrUsed is not False and r_2sv_3_10prCorrUsed != 0 and r_2sv_3_10prCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[3].prCorrUsed', r_2sv_3_10prCorrUsed, 'type', 'a bool')
-        r_2sv_3_10prCorrUsed = 1 if r_2sv_3_10prCorrUsed else 0
-    else:
         r_2sv_3_10prCorrUsed = 0
-    if len(g_sv) > 3:
-        r_2sv_3_10crCorrUsed: Any = g_2sv_3.crCorrUsed
-        if r_2sv_3_10crCorrUsed is not True and r_2sv_3_10crCorrUsed is not False and r_2sv_3_10crCorrUsed != 0 and r_2sv_3_10crCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[3].crCorrUsed', r_2sv_3_10crCorrUsed, 'type', 'a bool')
-        r_2sv_3_10crCorrUsed = 1 if r_2sv_3_10crCorrUsed else 0
-    else:
         r_2sv_3_10crCorrUsed = 0
-    if len(g_sv) > 3:
-        r_2sv_3_10doCorrUsed: Any = g_2sv_3.doCorrUsed
-        if r_2sv_3_10doCorrUsed is not True and r_2sv_3_10doCorrUsed is not False and r_2sv_3_10doCorrUsed != 0 and r_2sv_3_10doCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[3].doCorrUsed', r_2sv_3_10doCorrUsed, 'type', 'a bool')
-        r_2sv_3_10doCorrUsed = 1 if r_2sv_3_10doCorrUsed else 0
-    else:
         r_2sv_3_10doCorrUsed = 0
-    if len(g_sv) > 3:
-        r_2sv_3_12clasCorrUsed: Any = g_2sv_3.clasCorrUsed
-        if r_2sv_3_12clasCorrUsed is not True and r_2sv_3_12clasCorrUsed is not False and r_2sv_3_12clasCorrUsed != 0 and r_2sv_3_12clasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[3].clasCorrUsed', r_2sv_3_12clasCorrUsed, 'type', 'a bool')
-        r_2sv_3_12clasCorrUsed = 1 if r_2sv_3_12clasCorrUsed else 0
-    else:
         r_2sv_3_12clasCorrUsed = 0
-    if len(g_sv) > 3:
-        r_2sv_3_11lppCorrUsed: Any = g_2sv_3.lppCorrUsed
-        if r_2sv_3_11lppCorrUsed is not True and r_2sv_3_11lppCorrUsed is not False and r_2sv_3_11lppCorrUsed != 0 and r_2sv_3_11lppCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[3].lppCorrUsed', r_2sv_3_11lppCorrUsed, 'type', 'a bool')
-        r_2sv_3_11lppCorrUsed = 1 if r_2sv_3_11lppCorrUsed else 0
-    else:
         r_2sv_3_11lppCorrUsed = 0
-    if len(g_sv) > 3:
-        r_2sv_3_11hasCorrUsed: Any = g_2sv_3.hasCorrUsed
-        if r_2sv_3_11hasCorrUsed is not True and r_2sv_3_11hasCorrUsed is not False and r_2sv_3_11hasCorrUsed != 0 and r_2sv_3_11hasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[3].hasCorrUsed', r_2sv_3_11hasCorrUsed, 'type', 'a bool')
-        r_2sv_3_11hasCorrUsed = 1 if r_2sv_3_11hasCorrUsed else 0
-    else:
         r_2sv_3_11hasCorrUsed = 0
-    if len(g_sv) > 3:
         r_2sv_3_11flags_spare = 0
-    else:
-        r_2sv_3_11flags_spare = 0
-    g_2sv_4: Any = cast(Any, g_sv[4] if len(g_sv) > 4 else None)
     if len(g_sv) > 4:
-        r_2sv_4_6gnssId = g_2sv_4.gnssId
-        if r_2sv_4_6gnssId.__class__ is not int and (not isinstance(r_2sv_4_6gnssId, int) or r_2sv_4_6gnssId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[4].gnssId', r_2sv_4_6gnssId, 'type', 'an int')
-        if not 0 <= r_2sv_4_6gnssId <= 255:
-            raise _enc('nav_sat', 'sv[4].gnssId', r_2sv_4_6gnssId, 'range', '0..255', None)
+        r_2sv_4_6gnssId, r_2sv_4_4svId, r_2sv_4_3cno, r_2sv_4_4elev, r_2sv_4_4azim, r_2sv_4_5prRes, r_2sv_4_10qualityInd, r_2sv_4_6svUsed, r_2sv_4_6health, r_2sv_4_8diffCorr, r_2sv_4_8smoothed, r_2sv_4_11orbitSource, r_2sv_4_8ephAvail, r_2sv_4_8almAvail, r_2sv_4_8anoAvail, r_2sv_4_8aopAvail, r_2sv_4_10reserved13, r_2sv_4_12sbasCorrUsed, r_2sv_4_12rtcmCorrUsed, r_2sv_4_12slasCorrUsed, r_2sv_4_14spartnCorrUsed, r_2sv_4_10prCorrUsed, r_2sv_4_10crCorrUsed, r_2sv_4_10doCorrUsed, r_2sv_4_12clasCorrUsed, r_2sv_4_11lppCorrUsed, r_2sv_4_11hasCorrUsed, r_2sv_4_11flags_spare = _raw_nav_sat_2sv_4(g_sv[4])
     else:
         r_2sv_4_6gnssId = 0
-    if len(g_sv) > 4:
-        r_2sv_4_4svId = g_2sv_4.svId
-        if r_2sv_4_4svId.__class__ is not int and (not isinstance(r_2sv_4_4svId, int) or r_2sv_4_4svId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[4].svId', r_2sv_4_4svId, 'type', 'an int')
-        if not 0 <= r_2sv_4_4svId <= 255:
-            raise _enc('nav_sat', 'sv[4].svId', r_2sv_4_4svId, 'range', '0..255', None)
-    else:
         r_2sv_4_4svId = 0
-    if len(g_sv) > 4:
-        r_2sv_4_3cno = g_2sv_4.cno
-        if r_2sv_4_3cno.__class__ is not int and (not isinstance(r_2sv_4_3cno, int) or r_2sv_4_3cno.__class__ is bool):
-            raise _enc('nav_sat', 'sv[4].cno', r_2sv_4_3cno, 'type', 'an int')
-        if not 0 <= r_2sv_4_3cno <= 255:
-            raise _enc('nav_sat', 'sv[4].cno', r_2sv_4_3cno, 'range', '0..255', None)
-    else:
         r_2sv_4_3cno = 0
-    if len(g_sv) > 4:
-        r_2sv_4_4elev = g_2sv_4.elev
-        if r_2sv_4_4elev.__class__ is not int and (not isinstance(r_2sv_4_4elev, int) or r_2sv_4_4elev.__class__ is bool):
-            raise _enc('nav_sat', 'sv[4].elev', r_2sv_4_4elev, 'type', 'an int')
-        if not -128 <= r_2sv_4_4elev <= 127:
-            raise _enc('nav_sat', 'sv[4].elev', r_2sv_4_4elev, 'range', '-128..127', None)
-    else:
         r_2sv_4_4elev = 0
-    if len(g_sv) > 4:
-        r_2sv_4_4azim = g_2sv_4.azim
-        if r_2sv_4_4azim.__class__ is not int and (not isinstance(r_2sv_4_4azim, int) or r_2sv_4_4azim.__class__ is bool):
-            raise _enc('nav_sat', 'sv[4].azim', r_2sv_4_4azim, 'type', 'an int')
-        if not -32768 <= r_2sv_4_4azim <= 32767:
-            raise _enc('nav_sat', 'sv[4].azim', r_2sv_4_4azim, 'range', '-32768..32767', None)
-    else:
         r_2sv_4_4azim = 0
-    if len(g_sv) > 4:
-        r_2sv_4_5prRes = g_2sv_4.prRes
-        if r_2sv_4_5prRes.__class__ is not float and (not isinstance(r_2sv_4_5prRes, (int, float)) or r_2sv_4_5prRes.__class__ is bool):
-            raise _enc('nav_sat', 'sv[4].prRes', r_2sv_4_5prRes, 'type', 'a number')
-        if not -3276.8 <= r_2sv_4_5prRes <= 3276.7000000000003:
-            raise _enc('nav_sat', 'sv[4].prRes', r_2sv_4_5prRes, 'range', '-3276.8..3276.7000000000003', None)
-        r_2sv_4_5prRes = _floor(r_2sv_4_5prRes / 0.1 + 0.5)
-    else:
         r_2sv_4_5prRes = 0
-    if len(g_sv) > 4:
-        r_2sv_4_10qualityInd = g_2sv_4.qualityInd
-        if r_2sv_4_10qualityInd.__class__ is not int and (not isinstance(r_2sv_4_10qualityInd, int) or r_2sv_4_10qualityInd.__class__ is bool):
-            raise _enc('nav_sat', 'sv[4].qualityInd', r_2sv_4_10qualityInd, 'type', 'an int')
-        if not 0 <= r_2sv_4_10qualityInd <= 7:
-            raise _enc('nav_sat', 'sv[4].qualityInd', r_2sv_4_10qualityInd, 'range', '0..7', None)
-    else:
         r_2sv_4_10qualityInd = 0
-    if len(g_sv) > 4:
-        r_2sv_4_6svUsed: Any = g_2sv_4.svUsed
-        if r_2sv_4_6svUsed is not True and r_2sv_4_6svUsed is not False and r_2sv_4_6svUsed != 0 and r_2sv_4_6svUsed != 1:
-            raise _enc('nav_sat', 'sv[4].svUsed', r_2sv_4_6svUsed, 'type', 'a bool')
-        r_2sv_4_6svUsed = 1 if r_2sv_4_6svUsed else 0
-    else:
         r_2sv_4_6svUsed = 0
-    if len(g_sv) > 4:
-        r_2sv_4_6health = g_2sv_4.health
-        if r_2sv_4_6health.__class__ is not int and (not isinstance(r_2sv_4_6health, int) or r_2sv_4_6health.__class__ is bool):
-            raise _enc('nav_sat', 'sv[4].health', r_2sv_4_6health, 'type', 'an int')
-        if not 0 <= r_2sv_4_6health <= 3:
-            raise _enc('nav_sat', 'sv[4].health', r_2sv_4_6health, 'range', '0..3', None)
-    else:
         r_2sv_4_6health = 0
-    if len(g_sv) > 4:
-        r_2sv_4_8diffCorr: Any = g_2sv_4.diffCorr
-        if r_2sv_4_8diffCorr is not True and r_2sv_4_8diffCorr is not False and r_2sv_4_8diffCorr != 0 and r_2sv_4_8diffCorr != 1:
-            raise _enc('nav_sat', 'sv[4].diffCorr', r_2sv_4_8diffCorr, 'type', 'a bool')
-        r_2sv_4_8diffCorr = 1 if r_2sv_4_8diffCorr else 0
-    else:
         r_2sv_4_8diffCorr = 0
-    if len(g_sv) > 4:
-        r_2sv_4_8smoothed: Any = g_2sv_4.smoothed
-        if r_2sv_4_8smoothed is not True and r_2sv_4_8smoothed is not False and r_2sv_4_8smoothed != 0 and r_2sv_4_8smoothed != 1:
-            raise _enc('nav_sat', 'sv[4].smoothed', r_2sv_4_8smoothed, 'type', 'a bool')
-        r_2sv_4_8smoothed = 1 if r_2sv_4_8smoothed else 0
-    else:
         r_2sv_4_8smoothed = 0
-    if len(g_sv) > 4:
-        r_2sv_4_11orbitSource = g_2sv_4.orbitSource
-        if r_2sv_4_11orbitSource.__class__ is not int and (not isinstance(r_2sv_4_11orbitSource, int) or r_2sv_4_11orbitSource.__class__ is bool):
-            raise _enc('nav_sat', 'sv[4].orbitSource', r_2sv_4_11orbitSource, 'type', 'an int')
-        if not 0 <= r_2sv_4_11orbitSource <= 7:
-            raise _enc('nav_sat', 'sv[4].orbitSource', r_2sv_4_11orbitSource, 'range', '0..7', None)
-    else:
         r_2sv_4_11orbitSource = 0
-    if len(g_sv) > 4:
-        r_2sv_4_8ephAvail: Any = g_2sv_4.ephAvail
-        if r_2sv_4_8ephAvail is not True and r_2sv_4_8ephAvail is not False and r_2sv_4_8ephAvail != 0 and r_2sv_4_8ephAvail != 1:
-            raise _enc('nav_sat', 'sv[4].ephAvail', r_2sv_4_8ephAvail, 'type', 'a bool')
-        r_2sv_4_8ephAvail = 1 if r_2sv_4_8ephAvail else 0
-    else:
         r_2sv_4_8ephAvail = 0
-    if len(g_sv) > 4:
-        r_2sv_4_8almAvail: Any = g_2sv_4.almAvail
-        if r_2sv_4_8almAvail is not True and r_2sv_4_8almAvail is not False and r_2sv_4_8almAvail != 0 and r_2sv_4_8almAvail != 1:
-            raise _enc('nav_sat', 'sv[4].almAvail', r_2sv_4_8almAvail, 'type', 'a bool')
-        r_2sv_4_8almAvail = 1 if r_2sv_4_8almAvail else 0
-    else:
         r_2sv_4_8almAvail = 0
-    if len(g_sv) > 4:
-        r_2sv_4_8anoAvail: Any = g_2sv_4.anoAvail
-        if r_2sv_4_8anoAvail is not True and r_2sv_4_8anoAvail is not False and r_2sv_4_8anoAvail != 0 and r_2sv_4_8anoAvail != 1:
-            raise _enc('nav_sat', 'sv[4].anoAvail', r_2sv_4_8anoAvail, 'type', 'a bool')
-        r_2sv_4_8anoAvail = 1 if r_2sv_4_8anoAvail else 0
-    else:
         r_2sv_4_8anoAvail = 0
-    if len(g_sv) > 4:
-        r_2sv_4_8aopAvail: Any = g_2sv_4.aopAvail
-        if r_2sv_4_8aopAvail is not True and r_2sv_4_8aopAvail is not False and r_2sv_4_8aopAvail != 0 and r_2sv_4_8aopAvail != 1:
-            raise _enc('nav_sat', 'sv[4].aopAvail', r_2sv_4_8aopAvail, 'type', 'a bool')
-        r_2sv_4_8aopAvail = 1 if r_2sv_4_8aopAvail else 0
-    else:
         r_2sv_4_8aopAvail = 0
-    if len(g_sv) > 4:
-        r_2sv_4_10reserved13 = g_2sv_4.reserved13
-        if r_2sv_4_10reserved13.__class__ is not int and (not isinstance(r_2sv_4_10reserved13, int) or r_2sv_4_10reserved13.__class__ is bool):
-            raise _enc('nav_sat', 'sv[4].reserved13', r_2sv_4_10reserved13, 'type', 'an int')
-        if not 0 <= r_2sv_4_10reserved13 <= 1:
-            raise _enc('nav_sat', 'sv[4].reserved13', r_2sv_4_10reserved13, 'range', '0..1', None)
-    else:
         r_2sv_4_10reserved13 = 0
-    if len(g_sv) > 4:
-        r_2sv_4_12sbasCorrUsed: Any = g_2sv_4.sbasCorrUsed
-        if r_2sv_4_12sbasCorrUsed is not True and r_2sv_4_12sbasCorrUsed is not False and r_2sv_4_12sbasCorrUsed != 0 and r_2sv_4_12sbasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[4].sbasCorrUsed', r_2sv_4_12sbasCorrUsed, 'type', 'a bool')
-        r_2sv_4_12sbasCorrUsed = 1 if r_2sv_4_12sbasCorrUsed else 0
-    else:
         r_2sv_4_12sbasCorrUsed = 0
-    if len(g_sv) > 4:
-        r_2sv_4_12rtcmCorrUsed: Any = g_2sv_4.rtcmCorrUsed
-        if r_2sv_4_12rtcmCorrUsed is not True and r_2sv_4_12rtcmCorrUsed is not False and r_2sv_4_12rtcmCorrUsed != 0 and r_2sv_4_12rtcmCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[4].rtcmCorrUsed', r_2sv_4_12rtcmCorrUsed, 'type', 'a bool')
-        r_2sv_4_12rtcmCorrUsed = 1 if r_2sv_4_12rtcmCorrUsed else 0
-    else:
         r_2sv_4_12rtcmCorrUsed = 0
-    if len(g_sv) > 4:
-        r_2sv_4_12slasCorrUsed: Any = g_2sv_4.slasCorrUsed
-        if r_2sv_4_12slasCorrUsed is not True and r_2sv_4_12slasCorrUsed is not False and r_2sv_4_12slasCorrUsed != 0 and r_2sv_4_12slasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[4].slasCorrUsed', r_2sv_4_12slasCorrUsed, 'type', 'a bool')
-        r_2sv_4_12slasCorrUsed = 1 if r_2sv_4_12slasCorrUsed else 0
-    else:
         r_2sv_4_12slasCorrUsed = 0
-    if len(g_sv) > 4:
-        r_2sv_4_14spartnCorrUsed: Any = g_2sv_4.spartnCorrUsed
-        if r_2sv_4_14spartnCorrUsed is not True and r_2sv_4_14spartnCorrUsed is not False and r_2sv_4_14spartnCorrUsed != 0 and r_2sv_4_14spartnCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[4].spartnCorrUsed', r_2sv_4_14spartnCorrUsed, 'type', 'a bool')
-        r_2sv_4_14spartnCorrUsed = 1 if r_2sv_4_14spartnCorrUsed else 0
-    else:
         r_2sv_4_14spartnCorrUsed = 0
-    if len(g_sv) > 4:
-        r_2sv_4_10prCorrUsed: Any = g_2sv_4.prCorrUsed
-        if r_2sv_4_10prCorrUsed is not True and r_2sv_4_10prCorrUsed is not False and r_2sv_4_10prCorrUsed != 0 and r_2sv_4_10prCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[4].prCorrUsed', r_2sv_4_10prCorrUsed, 'type', 'a bool')
-        r_2sv_4_10prCorrUsed = 1 if r_2sv_4_10prCorrUsed else 0
-    else:
         r_2sv_4_10prCorrUsed = 0
-    if len(g_sv) > 4:
-        r_2sv_4_10crCorrUsed: Any = g_2sv_4.crCorrUsed
-        if r_2sv_4_10crCorrUsed is not True and r_2sv_4_10crCorrUsed is not False and r_2sv_4_10crCorrUsed != 0 and r_2sv_4_10crCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[4].crCorrUsed', r_2sv_4_10crCorrUsed, 'type', 'a bool')
-        r_2sv_4_10crCorrUsed = 1 if r_2sv_4_10crCorrUsed else 0
-    else:
         r_2sv_4_10crCorrUsed = 0
-    if len(g_sv) > 4:
-        r_2sv_4_10doCorrUsed: Any = g_2sv_4.doCorrUsed
-        if r_2sv_4_10doCorrUsed is not True and r_2sv_4_10doCorrUsed is not False and r_2sv_4_10doCorrUsed != 0 and r_2sv_4_10doCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[4].doCorrUsed', r_2sv_4_10doCorrUsed, 'type', 'a bool')
-        r_2sv_4_10doCorrUsed = 1 if r_2sv_4_10doCorrUsed else 0
-    else:
         r_2sv_4_10doCorrUsed = 0
-    if len(g_sv) > 4:
-        r_2sv_4_12clasCorrUsed: Any = g_2sv_4.clasCorrUsed
-        if r_2sv_4_12clasCorrUsed is not True and r_2sv_4_12clasCorrUsed is not False and r_2sv_4_12clasCorrUsed != 0 and r_2sv_4_12clasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[4].clasCorrUsed', r_2sv_4_12clasCorrUsed, 'type', 'a bool')
-        r_2sv_4_12clasCorrUsed = 1 if r_2sv_4_12clasCorrUsed else 0
-    else:
         r_2sv_4_12clasCorrUsed = 0
-    if len(g_sv) > 4:
-        r_2sv_4_11lppCorrUsed: Any = g_2sv_4.lppCorrUsed
-        if r_2sv_4_11lppCorrUsed is not True and r_2sv_4_11lppCorrUsed is not False and r_2sv_4_11lppCorrUsed != 0 and r_2sv_4_11lppCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[4].lppCorrUsed', r_2sv_4_11lppCorrUsed, 'type', 'a bool')
-        r_2sv_4_11lppCorrUsed = 1 if r_2sv_4_11lppCorrUsed else 0
-    else:
         r_2sv_4_11lppCorrUsed = 0
-    if len(g_sv) > 4:
-        r_2sv_4_11hasCorrUsed: Any = g_2sv_4.hasCorrUsed
-        if r_2sv_4_11hasCorrUsed is not True and r_2sv_4_11hasCorrUsed is not False and r_2sv_4_11hasCorrUsed != 0 and r_2sv_4_11hasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[4].hasCorrUsed', r_2sv_4_11hasCorrUsed, 'type', 'a bool')
-        r_2sv_4_11hasCorrUsed = 1 if r_2sv_4_11hasCorrUsed else 0
-    else:
         r_2sv_4_11hasCorrUsed = 0
-    if len(g_sv) > 4:
         r_2sv_4_11flags_spare = 0
-    else:
-        r_2sv_4_11flags_spare = 0
-    g_2sv_5: Any = cast(Any, g_sv[5] if len(g_sv) > 5 else None)
     if len(g_sv) > 5:
-        r_2sv_5_6gnssId = g_2sv_5.gnssId
-        if r_2sv_5_6gnssId.__class__ is not int and (not isinstance(r_2sv_5_6gnssId, int) or r_2sv_5_6gnssId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[5].gnssId', r_2sv_5_6gnssId, 'type', 'an int')
-        if not 0 <= r_2sv_5_6gnssId <= 255:
-            raise _enc('nav_sat', 'sv[5].gnssId', r_2sv_5_6gnssId, 'range', '0..255', None)
+        r_2sv_5_6gnssId, r_2sv_5_4svId, r_2sv_5_3cno, r_2sv_5_4elev, r_2sv_5_4azim, r_2sv_5_5prRes, r_2sv_5_10qualityInd, r_2sv_5_6svUsed, r_2sv_5_6health, r_2sv_5_8diffCorr, r_2sv_5_8smoothed, r_2sv_5_11orbitSource, r_2sv_5_8ephAvail, r_2sv_5_8almAvail, r_2sv_5_8anoAvail, r_2sv_5_8aopAvail, r_2sv_5_10reserved13, r_2sv_5_12sbasCorrUsed, r_2sv_5_12rtcmCorrUsed, r_2sv_5_12slasCorrUsed, r_2sv_5_14spartnCorrUsed, r_2sv_5_10prCorrUsed, r_2sv_5_10crCorrUsed, r_2sv_5_10doCorrUsed, r_2sv_5_12clasCorrUsed, r_2sv_5_11lppCorrUsed, r_2sv_5_11hasCorrUsed, r_2sv_5_11flags_spare = _raw_nav_sat_2sv_5(g_sv[5])
     else:
         r_2sv_5_6gnssId = 0
-    if len(g_sv) > 5:
-        r_2sv_5_4svId = g_2sv_5.svId
-        if r_2sv_5_4svId.__class__ is not int and (not isinstance(r_2sv_5_4svId, int) or r_2sv_5_4svId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[5].svId', r_2sv_5_4svId, 'type', 'an int')
-        if not 0 <= r_2sv_5_4svId <= 255:
-            raise _enc('nav_sat', 'sv[5].svId', r_2sv_5_4svId, 'range', '0..255', None)
-    else:
         r_2sv_5_4svId = 0
-    if len(g_sv) > 5:
-        r_2sv_5_3cno = g_2sv_5.cno
-        if r_2sv_5_3cno.__class__ is not int and (not isinstance(r_2sv_5_3cno, int) or r_2sv_5_3cno.__class__ is bool):
-            raise _enc('nav_sat', 'sv[5].cno', r_2sv_5_3cno, 'type', 'an int')
-        if not 0 <= r_2sv_5_3cno <= 255:
-            raise _enc('nav_sat', 'sv[5].cno', r_2sv_5_3cno, 'range', '0..255', None)
-    else:
         r_2sv_5_3cno = 0
-    if len(g_sv) > 5:
-        r_2sv_5_4elev = g_2sv_5.elev
-        if r_2sv_5_4elev.__class__ is not int and (not isinstance(r_2sv_5_4elev, int) or r_2sv_5_4elev.__class__ is bool):
-            raise _enc('nav_sat', 'sv[5].elev', r_2sv_5_4elev, 'type', 'an int')
-        if not -128 <= r_2sv_5_4elev <= 127:
-            raise _enc('nav_sat', 'sv[5].elev', r_2sv_5_4elev, 'range', '-128..127', None)
-    else:
         r_2sv_5_4elev = 0
-    if len(g_sv) > 5:
-        r_2sv_5_4azim = g_2sv_5.azim
-        if r_2sv_5_4azim.__class__ is not int and (not isinstance(r_2sv_5_4azim, int) or r_2sv_5_4azim.__class__ is bool):
-            raise _enc('nav_sat', 'sv[5].azim', r_2sv_5_4azim, 'type', 'an int')
-        if not -32768 <= r_2sv_5_4azim <= 32767:
-            raise _enc('nav_sat', 'sv[5].azim', r_2sv_5_4azim, 'range', '-32768..32767', None)
-    else:
         r_2sv_5_4azim = 0
-    if len(g_sv) > 5:
-        r_2sv_5_5prRes = g_2sv_5.prRes
-        if r_2sv_5_5prRes.__class__ is not float and (not isinstance(r_2sv_5_5prRes, (int, float)) or r_2sv_5_5prRes.__class__ is bool):
-            raise _enc('nav_sat', 'sv[5].prRes', r_2sv_5_5prRes, 'type', 'a number')
-        if not -3276.8 <= r_2sv_5_5prRes <= 3276.7000000000003:
-            raise _enc('nav_sat', 'sv[5].prRes', r_2sv_5_5prRes, 'range', '-3276.8..3276.7000000000003', None)
-        r_2sv_5_5prRes = _floor(r_2sv_5_5prRes / 0.1 + 0.5)
-    else:
         r_2sv_5_5prRes = 0
-    if len(g_sv) > 5:
-        r_2sv_5_10qualityInd = g_2sv_5.qualityInd
-        if r_2sv_5_10qualityInd.__class__ is not int and (not isinstance(r_2sv_5_10qualityInd, int) or r_2sv_5_10qualityInd.__class__ is bool):
-            raise _enc('nav_sat', 'sv[5].qualityInd', r_2sv_5_10qualityInd, 'type', 'an int')
-        if not 0 <= r_2sv_5_10qualityInd <= 7:
-            raise _enc('nav_sat', 'sv[5].qualityInd', r_2sv_5_10qualityInd, 'range', '0..7', None)
-    else:
         r_2sv_5_10qualityInd = 0
-    if len(g_sv) > 5:
-        r_2sv_5_6svUsed: Any = g_2sv_5.svUsed
-        if r_2sv_5_6svUsed is not True and r_2sv_5_6svUsed is not False and r_2sv_5_6svUsed != 0 and r_2sv_5_6svUsed != 1:
-            raise _enc('nav_sat', 'sv[5].svUsed', r_2sv_5_6svUsed, 'type', 'a bool')
-        r_2sv_5_6svUsed = 1 if r_2sv_5_6svUsed else 0
-    else:
         r_2sv_5_6svUsed = 0
-    if len(g_sv) > 5:
-        r_2sv_5_6health = g_2sv_5.health
-        if r_2sv_5_6health.__class__ is not int and (not isinstance(r_2sv_5_6health, int) or r_2sv_5_6health.__class__ is bool):
-            raise _enc('nav_sat', 'sv[5].health', r_2sv_5_6health, 'type', 'an int')
-        if not 0 <= r_2sv_5_6health <= 3:
-            raise _enc('nav_sat', 'sv[5].health', r_2sv_5_6health, 'range', '0..3', None)
-    else:
         r_2sv_5_6health = 0
-    if len(g_sv) > 5:
-        r_2sv_5_8diffCorr: Any = g_2sv_5.diffCorr
-        if r_2sv_5_8diffCorr is not True and r_2sv_5_8diffCorr is not False and r_2sv_5_8diffCorr != 0 and r_2sv_5_8diffCorr != 1:
-            raise _enc('nav_sat', 'sv[5].diffCorr', r_2sv_5_8diffCorr, 'type', 'a bool')
-        r_2sv_5_8diffCorr = 1 if r_2sv_5_8diffCorr else 0
-    else:
         r_2sv_5_8diffCorr = 0
-    if len(g_sv) > 5:
-        r_2sv_5_8smoothed: Any = g_2sv_5.smoothed
-        if r_2sv_5_8smoothed is not True and r_2sv_5_8smoothed is not False and r_2sv_5_8smoothed != 0 and r_2sv_5_8smoothed != 1:
-            raise _enc('nav_sat', 'sv[5].smoothed', r_2sv_5_8smoothed, 'type', 'a bool')
-        r_2sv_5_8smoothed = 1 if r_2sv_5_8smoothed else 0
-    else:
         r_2sv_5_8smoothed = 0
-    if len(g_sv) > 5:
-        r_2sv_5_11orbitSource = g_2sv_5.orbitSource
-        if r_2sv_5_11orbitSource.__class__ is not int and (not isinstance(r_2sv_5_11orbitSource, int) or r_2sv_5_11orbitSource.__class__ is bool):
-            raise _enc('nav_sat', 'sv[5].orbitSource', r_2sv_5_11orbitSource, 'type', 'an int')
-        if not 0 <= r_2sv_5_11orbitSource <= 7:
-            raise _enc('nav_sat', 'sv[5].orbitSource', r_2sv_5_11orbitSource, 'range', '0..7', None)
-    else:
         r_2sv_5_11orbitSource = 0
-    if len(g_sv) > 5:
-        r_2sv_5_8ephAvail: Any = g_2sv_5.ephAvail
-        if r_2sv_5_8ephAvail is not True and r_2sv_5_8ephAvail is not False and r_2sv_5_8ephAvail != 0 and r_2sv_5_8ephAvail != 1:
-            raise _enc('nav_sat', 'sv[5].ephAvail', r_2sv_5_8ephAvail, 'type', 'a bool')
-        r_2sv_5_8ephAvail = 1 if r_2sv_5_8ephAvail else 0
-    else:
         r_2sv_5_8ephAvail = 0
-    if len(g_sv) > 5:
-        r_2sv_5_8almAvail: Any = g_2sv_5.almAvail
-        if r_2sv_5_8almAvail is not True and r_2sv_5_8almAvail is not False and r_2sv_5_8almAvail != 0 and r_2sv_5_8almAvail != 1:
-            raise _enc('nav_sat', 'sv[5].almAvail', r_2sv_5_8almAvail, 'type', 'a bool')
-        r_2sv_5_8almAvail = 1 if r_2sv_5_8almAvail else 0
-    else:
         r_2sv_5_8almAvail = 0
-    if len(g_sv) > 5:
-        r_2sv_5_8anoAvail: Any = g_2sv_5.anoAvail
-        if r_2sv_5_8anoAvail is not True and r_2sv_5_8anoAvail is not False and r_2sv_5_8anoAvail != 0 and r_2sv_5_8anoAvail != 1:
-            raise _enc('nav_sat', 'sv[5].anoAvail', r_2sv_5_8anoAvail, 'type', 'a bool')
-        r_2sv_5_8anoAvail = 1 if r_2sv_5_8anoAvail else 0
-    else:
         r_2sv_5_8anoAvail = 0
-    if len(g_sv) > 5:
-        r_2sv_5_8aopAvail: Any = g_2sv_5.aopAvail
-        if r_2sv_5_8aopAvail is not True and r_2sv_5_8aopAvail is not False and r_2sv_5_8aopAvail != 0 and r_2sv_5_8aopAvail != 1:
-            raise _enc('nav_sat', 'sv[5].aopAvail', r_2sv_5_8aopAvail, 'type', 'a bool')
-        r_2sv_5_8aopAvail = 1 if r_2sv_5_8aopAvail else 0
-    else:
         r_2sv_5_8aopAvail = 0
-    if len(g_sv) > 5:
-        r_2sv_5_10reserved13 = g_2sv_5.reserved13
-        if r_2sv_5_10reserved13.__class__ is not int and (not isinstance(r_2sv_5_10reserved13, int) or r_2sv_5_10reserved13.__class__ is bool):
-            raise _enc('nav_sat', 'sv[5].reserved13', r_2sv_5_10reserved13, 'type', 'an int')
-        if not 0 <= r_2sv_5_10reserved13 <= 1:
-            raise _enc('nav_sat', 'sv[5].reserved13', r_2sv_5_10reserved13, 'range', '0..1', None)
-    else:
         r_2sv_5_10reserved13 = 0
-    if len(g_sv) > 5:
-        r_2sv_5_12sbasCorrUsed: Any = g_2sv_5.sbasCorrUsed
-        if r_2sv_5_12sbasCorrUsed is not True and r_2sv_5_12sbasCorrUsed is not False and r_2sv_5_12sbasCorrUsed != 0 and r_2sv_5_12sbasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[5].sbasCorrUsed', r_2sv_5_12sbasCorrUsed, 'type', 'a bool')
-        r_2sv_5_12sbasCorrUsed = 1 if r_2sv_5_12sbasCorrUsed else 0
-    else:
         r_2sv_5_12sbasCorrUsed = 0
-    if len(g_sv) > 5:
-        r_2sv_5_12rtcmCorrUsed: Any = g_2sv_5.rtcmCorrUsed
-        if r_2sv_5_12rtcmCorrUsed is not True and r_2sv_5_12rtcmCorrUsed is not False and r_2sv_5_12rtcmCorrUsed != 0 and r_2sv_5_12rtcmCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[5].rtcmCorrUsed', r_2sv_5_12rtcmCorrUsed, 'type', 'a bool')
-        r_2sv_5_12rtcmCorrUsed = 1 if r_2sv_5_12rtcmCorrUsed else 0
-    else:
         r_2sv_5_12rtcmCorrUsed = 0
-    if len(g_sv) > 5:
-        r_2sv_5_12slasCorrUsed: Any = g_2sv_5.slasCorrUsed
-        if r_2sv_5_12slasCorrUsed is not True and r_2sv_5_12slasCorrUsed is not False and r_2sv_5_12slasCorrUsed != 0 and r_2sv_5_12slasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[5].slasCorrUsed', r_2sv_5_12slasCorrUsed, 'type', 'a bool')
-        r_2sv_5_12slasCorrUsed = 1 if r_2sv_5_12slasCorrUsed else 0
-    else:
         r_2sv_5_12slasCorrUsed = 0
-    if len(g_sv) > 5:
-        r_2sv_5_14spartnCorrUsed: Any = g_2sv_5.spartnCorrUsed
-        if r_2sv_5_14spartnCorrUsed is not True and r_2sv_5_14spartnCorrUsed is not False and r_2sv_5_14spartnCorrUsed != 0 and r_2sv_5_14spartnCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[5].spartnCorrUsed', r_2sv_5_14spartnCorrUsed, 'type', 'a bool')
-        r_2sv_5_14spartnCorrUsed = 1 if r_2sv_5_14spartnCorrUsed else 0
-    else:
         r_2sv_5_14spartnCorrUsed = 0
-    if len(g_sv) > 5:
-        r_2sv_5_10prCorrUsed: Any = g_2sv_5.prCorrUsed
-        if r_2sv_5_10prCorrUsed is not True and r_2sv_5_10prCorrUsed is not False and r_2sv_5_10prCorrUsed != 0 and r_2sv_5_10prCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[5].prCorrUsed', r_2sv_5_10prCorrUsed, 'type', 'a bool')
-        r_2sv_5_10prCorrUsed = 1 if r_2sv_5_10prCorrUsed else 0
-    else:
         r_2sv_5_10prCorrUsed = 0
-    if len(g_sv) > 5:
-        r_2sv_5_10crCorrUsed: Any = g_2sv_5.crCorrUsed
-        if r_2sv_5_10crCorrUsed is not True and r_2sv_5_10crCorrUsed is not False and r_2sv_5_10crCorrUsed != 0 and r_2sv_5_10crCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[5].crCorrUsed', r_2sv_5_10crCorrUsed, 'type', 'a bool')
-        r_2sv_5_10crCorrUsed = 1 if r_2sv_5_10crCorrUsed else 0
-    else:
         r_2sv_5_10crCorrUsed = 0
-    if len(g_sv) > 5:
-        r_2sv_5_10doCorrUsed: Any = g_2sv_5.doCorrUsed
-        if r_2sv_5_10doCorrUsed is not True and r_2sv_5_10doCorrUsed is not False and r_2sv_5_10doCorrUsed != 0 and r_2sv_5_10doCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[5].doCorrUsed', r_2sv_5_10doCorrUsed, 'type', 'a bool')
-        r_2sv_5_10doCorrUsed = 1 if r_2sv_5_10doCorrUsed else 0
-    else:
         r_2sv_5_10doCorrUsed = 0
-    if len(g_sv) > 5:
-        r_2sv_5_12clasCorrUsed: Any = g_2sv_5.clasCorrUsed
-        if r_2sv_5_12clasCorrUsed is not True and r_2sv_5_12clasCorrUsed is not False and r_2sv_5_12clasCorrUsed != 0 and r_2sv_5_12clasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[5].clasCorrUsed', r_2sv_5_12clasCorrUsed, 'type', 'a bool')
-        r_2sv_5_12clasCorrUsed = 1 if r_2sv_5_12clasCorrUsed else 0
-    else:
         r_2sv_5_12clasCorrUsed = 0
-    if len(g_sv) > 5:
-        r_2sv_5_11lppCorrUsed: Any = g_2sv_5.lppCorrUsed
-        if r_2sv_5_11lppCorrUsed is not True and r_2sv_5_11lppCorrUsed is not False and r_2sv_5_11lppCorrUsed != 0 and r_2sv_5_11lppCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[5].lppCorrUsed', r_2sv_5_11lppCorrUsed, 'type', 'a bool')
-        r_2sv_5_11lppCorrUsed = 1 if r_2sv_5_11lppCorrUsed else 0
-    else:
         r_2sv_5_11lppCorrUsed = 0
-    if len(g_sv) > 5:
-        r_2sv_5_11hasCorrUsed: Any = g_2sv_5.hasCorrUsed
-        if r_2sv_5_11hasCorrUsed is not True and r_2sv_5_11hasCorrUsed is not False and r_2sv_5_11hasCorrUsed != 0 and r_2sv_5_11hasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[5].hasCorrUsed', r_2sv_5_11hasCorrUsed, 'type', 'a bool')
-        r_2sv_5_11hasCorrUsed = 1 if r_2sv_5_11hasCorrUsed else 0
-    else:
         r_2sv_5_11hasCorrUsed = 0
-    if len(g_sv) > 5:
         r_2sv_5_11flags_spare = 0
-    else:
-        r_2sv_5_11flags_spare = 0
-    g_2sv_6: Any = cast(Any, g_sv[6] if len(g_sv) > 6 else None)
     if len(g_sv) > 6:
-        r_2sv_6_6gnssId = g_2sv_6.gnssId
-        if r_2sv_6_6gnssId.__class__ is not int and (not isinstance(r_2sv_6_6gnssId, int) or r_2sv_6_6gnssId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[6].gnssId', r_2sv_6_6gnssId, 'type', 'an int')
-        if not 0 <= r_2sv_6_6gnssId <= 255:
-            raise _enc('nav_sat', 'sv[6].gnssId', r_2sv_6_6gnssId, 'range', '0..255', None)
+        r_2sv_6_6gnssId, r_2sv_6_4svId, r_2sv_6_3cno, r_2sv_6_4elev, r_2sv_6_4azim, r_2sv_6_5prRes, r_2sv_6_10qualityInd, r_2sv_6_6svUsed, r_2sv_6_6health, r_2sv_6_8diffCorr, r_2sv_6_8smoothed, r_2sv_6_11orbitSource, r_2sv_6_8ephAvail, r_2sv_6_8almAvail, r_2sv_6_8anoAvail, r_2sv_6_8aopAvail, r_2sv_6_10reserved13, r_2sv_6_12sbasCorrUsed, r_2sv_6_12rtcmCorrUsed, r_2sv_6_12slasCorrUsed, r_2sv_6_14spartnCorrUsed, r_2sv_6_10prCorrUsed, r_2sv_6_10crCorrUsed, r_2sv_6_10doCorrUsed, r_2sv_6_12clasCorrUsed, r_2sv_6_11lppCorrUsed, r_2sv_6_11hasCorrUsed, r_2sv_6_11flags_spare = _raw_nav_sat_2sv_6(g_sv[6])
     else:
         r_2sv_6_6gnssId = 0
-    if len(g_sv) > 6:
-        r_2sv_6_4svId = g_2sv_6.svId
-        if r_2sv_6_4svId.__class__ is not int and (not isinstance(r_2sv_6_4svId, int) or r_2sv_6_4svId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[6].svId', r_2sv_6_4svId, 'type', 'an int')
-        if not 0 <= r_2sv_6_4svId <= 255:
-            raise _enc('nav_sat', 'sv[6].svId', r_2sv_6_4svId, 'range', '0..255', None)
-    else:
         r_2sv_6_4svId = 0
-    if len(g_sv) > 6:
-        r_2sv_6_3cno = g_2sv_6.cno
-        if r_2sv_6_3cno.__class__ is not int and (not isinstance(r_2sv_6_3cno, int) or r_2sv_6_3cno.__class__ is bool):
-            raise _enc('nav_sat', 'sv[6].cno', r_2sv_6_3cno, 'type', 'an int')
-        if not 0 <= r_2sv_6_3cno <= 255:
-            raise _enc('nav_sat', 'sv[6].cno', r_2sv_6_3cno, 'range', '0..255', None)
-    else:
         r_2sv_6_3cno = 0
-    if len(g_sv) > 6:
-        r_2sv_6_4elev = g_2sv_6.elev
-        if r_2sv_6_4elev.__class__ is not int and (not isinstance(r_2sv_6_4elev, int) or r_2sv_6_4elev.__class__ is bool):
-            raise _enc('nav_sat', 'sv[6].elev', r_2sv_6_4elev, 'type', 'an int')
-        if not -128 <= r_2sv_6_4elev <= 127:
-            raise _enc('nav_sat', 'sv[6].elev', r_2sv_6_4elev, 'range', '-128..127', None)
-    else:
         r_2sv_6_4elev = 0
-    if len(g_sv) > 6:
-        r_2sv_6_4azim = g_2sv_6.azim
-        if r_2sv_6_4azim.__class__ is not int and (not isinstance(r_2sv_6_4azim, int) or r_2sv_6_4azim.__class__ is bool):
-            raise _enc('nav_sat', 'sv[6].azim', r_2sv_6_4azim, 'type', 'an int')
-        if not -32768 <= r_2sv_6_4azim <= 32767:
-            raise _enc('nav_sat', 'sv[6].azim', r_2sv_6_4azim, 'range', '-32768..32767', None)
-    else:
         r_2sv_6_4azim = 0
-    if len(g_sv) > 6:
-        r_2sv_6_5prRes = g_2sv_6.prRes
-        if r_2sv_6_5prRes.__class__ is not float and (not isinstance(r_2sv_6_5prRes, (int, float)) or r_2sv_6_5prRes.__class__ is bool):
-            raise _enc('nav_sat', 'sv[6].prRes', r_2sv_6_5prRes, 'type', 'a number')
-        if not -3276.8 <= r_2sv_6_5prRes <= 3276.7000000000003:
-            raise _enc('nav_sat', 'sv[6].prRes', r_2sv_6_5prRes, 'range', '-3276.8..3276.7000000000003', None)
-        r_2sv_6_5prRes = _floor(r_2sv_6_5prRes / 0.1 + 0.5)
-    else:
         r_2sv_6_5prRes = 0
-    if len(g_sv) > 6:
-        r_2sv_6_10qualityInd = g_2sv_6.qualityInd
-        if r_2sv_6_10qualityInd.__class__ is not int and (not isinstance(r_2sv_6_10qualityInd, int) or r_2sv_6_10qualityInd.__class__ is bool):
-            raise _enc('nav_sat', 'sv[6].qualityInd', r_2sv_6_10qualityInd, 'type', 'an int')
-        if not 0 <= r_2sv_6_10qualityInd <= 7:
-            raise _enc('nav_sat', 'sv[6].qualityInd', r_2sv_6_10qualityInd, 'range', '0..7', None)
-    else:
         r_2sv_6_10qualityInd = 0
-    if len(g_sv) > 6:
-        r_2sv_6_6svUsed: Any = g_2sv_6.svUsed
-        if r_2sv_6_6svUsed is not True and r_2sv_6_6svUsed is not False and r_2sv_6_6svUsed != 0 and r_2sv_6_6svUsed != 1:
-            raise _enc('nav_sat', 'sv[6].svUsed', r_2sv_6_6svUsed, 'type', 'a bool')
-        r_2sv_6_6svUsed = 1 if r_2sv_6_6svUsed else 0
-    else:
         r_2sv_6_6svUsed = 0
-    if len(g_sv) > 6:
-        r_2sv_6_6health = g_2sv_6.health
-        if r_2sv_6_6health.__class__ is not int and (not isinstance(r_2sv_6_6health, int) or r_2sv_6_6health.__class__ is bool):
-            raise _enc('nav_sat', 'sv[6].health', r_2sv_6_6health, 'type', 'an int')
-        if not 0 <= r_2sv_6_6health <= 3:
-            raise _enc('nav_sat', 'sv[6].health', r_2sv_6_6health, 'range', '0..3', None)
-    else:
         r_2sv_6_6health = 0
-    if len(g_sv) > 6:
-        r_2sv_6_8diffCorr: Any = g_2sv_6.diffCorr
-        if r_2sv_6_8diffCorr is not True and r_2sv_6_8diffCorr is not False and r_2sv_6_8diffCorr != 0 and r_2sv_6_8diffCorr != 1:
-            raise _enc('nav_sat', 'sv[6].diffCorr', r_2sv_6_8diffCorr, 'type', 'a bool')
-        r_2sv_6_8diffCorr = 1 if r_2sv_6_8diffCorr else 0
-    else:
         r_2sv_6_8diffCorr = 0
-    if len(g_sv) > 6:
-        r_2sv_6_8smoothed: Any = g_2sv_6.smoothed
-        if r_2sv_6_8smoothed is not True and r_2sv_6_8smoothed is not False and r_2sv_6_8smoothed != 0 and r_2sv_6_8smoothed != 1:
-            raise _enc('nav_sat', 'sv[6].smoothed', r_2sv_6_8smoothed, 'type', 'a bool')
-        r_2sv_6_8smoothed = 1 if r_2sv_6_8smoothed else 0
-    else:
         r_2sv_6_8smoothed = 0
-    if len(g_sv) > 6:
-        r_2sv_6_11orbitSource = g_2sv_6.orbitSource
-        if r_2sv_6_11orbitSource.__class__ is not int and (not isinstance(r_2sv_6_11orbitSource, int) or r_2sv_6_11orbitSource.__class__ is bool):
-            raise _enc('nav_sat', 'sv[6].orbitSource', r_2sv_6_11orbitSource, 'type', 'an int')
-        if not 0 <= r_2sv_6_11orbitSource <= 7:
-            raise _enc('nav_sat', 'sv[6].orbitSource', r_2sv_6_11orbitSource, 'range', '0..7', None)
-    else:
         r_2sv_6_11orbitSource = 0
-    if len(g_sv) > 6:
-        r_2sv_6_8ephAvail: Any = g_2sv_6.ephAvail
-        if r_2sv_6_8ephAvail is not True and r_2sv_6_8ephAvail is not False and r_2sv_6_8ephAvail != 0 and r_2sv_6_8ephAvail != 1:
-            raise _enc('nav_sat', 'sv[6].ephAvail', r_2sv_6_8ephAvail, 'type', 'a bool')
-        r_2sv_6_8ephAvail = 1 if r_2sv_6_8ephAvail else 0
-    else:
         r_2sv_6_8ephAvail = 0
-    if len(g_sv) > 6:
-        r_2sv_6_8almAvail: Any = g_2sv_6.almAvail
-        if r_2sv_6_8almAvail is not True and r_2sv_6_8almAvail is not False and r_2sv_6_8almAvail != 0 and r_2sv_6_8almAvail != 1:
-            raise _enc('nav_sat', 'sv[6].almAvail', r_2sv_6_8almAvail, 'type', 'a bool')
-        r_2sv_6_8almAvail = 1 if r_2sv_6_8almAvail else 0
-    else:
         r_2sv_6_8almAvail = 0
-    if len(g_sv) > 6:
-        r_2sv_6_8anoAvail: Any = g_2sv_6.anoAvail
-        if r_2sv_6_8anoAvail is not True and r_2sv_6_8anoAvail is not False and r_2sv_6_8anoAvail != 0 and r_2sv_6_8anoAvail != 1:
-            raise _enc('nav_sat', 'sv[6].anoAvail', r_2sv_6_8anoAvail, 'type', 'a bool')
-        r_2sv_6_8anoAvail = 1 if r_2sv_6_8anoAvail else 0
-    else:
         r_2sv_6_8anoAvail = 0
-    if len(g_sv) > 6:
-        r_2sv_6_8aopAvail: Any = g_2sv_6.aopAvail
-        if r_2sv_6_8aopAvail is not True and r_2sv_6_8aopAvail is not False and r_2sv_6_8aopAvail != 0 and r_2sv_6_8aopAvail != 1:
-            raise _enc('nav_sat', 'sv[6].aopAvail', r_2sv_6_8aopAvail, 'type', 'a bool')
-        r_2sv_6_8aopAvail = 1 if r_2sv_6_8aopAvail else 0
-    else:
         r_2sv_6_8aopAvail = 0
-    if len(g_sv) > 6:
-        r_2sv_6_10reserved13 = g_2sv_6.reserved13
-        if r_2sv_6_10reserved13.__class__ is not int and (not isinstance(r_2sv_6_10reserved13, int) or r_2sv_6_10reserved13.__class__ is bool):
-            raise _enc('nav_sat', 'sv[6].reserved13', r_2sv_6_10reserved13, 'type', 'an int')
-        if not 0 <= r_2sv_6_10reserved13 <= 1:
-            raise _enc('nav_sat', 'sv[6].reserved13', r_2sv_6_10reserved13, 'range', '0..1', None)
-    else:
         r_2sv_6_10reserved13 = 0
-    if len(g_sv) > 6:
-        r_2sv_6_12sbasCorrUsed: Any = g_2sv_6.sbasCorrUsed
-        if r_2sv_6_12sbasCorrUsed is not True and r_2sv_6_12sbasCorrUsed is not False and r_2sv_6_12sbasCorrUsed != 0 and r_2sv_6_12sbasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[6].sbasCorrUsed', r_2sv_6_12sbasCorrUsed, 'type', 'a bool')
-        r_2sv_6_12sbasCorrUsed = 1 if r_2sv_6_12sbasCorrUsed else 0
-    else:
         r_2sv_6_12sbasCorrUsed = 0
-    if len(g_sv) > 6:
-        r_2sv_6_12rtcmCorrUsed: Any = g_2sv_6.rtcmCorrUsed
-        if r_2sv_6_12rtcmCorrUsed is not True and r_2sv_6_12rtcmCorrUsed is not False and r_2sv_6_12rtcmCorrUsed != 0 and r_2sv_6_12rtcmCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[6].rtcmCorrUsed', r_2sv_6_12rtcmCorrUsed, 'type', 'a bool')
-        r_2sv_6_12rtcmCorrUsed = 1 if r_2sv_6_12rtcmCorrUsed else 0
-    else:
         r_2sv_6_12rtcmCorrUsed = 0
-    if len(g_sv) > 6:
-        r_2sv_6_12slasCorrUsed: Any = g_2sv_6.slasCorrUsed
-        if r_2sv_6_12slasCorrUsed is not True and r_2sv_6_12slasCorrUsed is not False and r_2sv_6_12slasCorrUsed != 0 and r_2sv_6_12slasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[6].slasCorrUsed', r_2sv_6_12slasCorrUsed, 'type', 'a bool')
-        r_2sv_6_12slasCorrUsed = 1 if r_2sv_6_12slasCorrUsed else 0
-    else:
         r_2sv_6_12slasCorrUsed = 0
-    if len(g_sv) > 6:
-        r_2sv_6_14spartnCorrUsed: Any = g_2sv_6.spartnCorrUsed
-        if r_2sv_6_14spartnCorrUsed is not True and r_2sv_6_14spartnCorrUsed is not False and r_2sv_6_14spartnCorrUsed != 0 and r_2sv_6_14spartnCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[6].spartnCorrUsed', r_2sv_6_14spartnCorrUsed, 'type', 'a bool')
-        r_2sv_6_14spartnCorrUsed = 1 if r_2sv_6_14spartnCorrUsed else 0
-    else:
         r_2sv_6_14spartnCorrUsed = 0
-    if len(g_sv) > 6:
-        r_2sv_6_10prCorrUsed: Any = g_2sv_6.prCorrUsed
-        if r_2sv_6_10prCorrUsed is not True and r_2sv_6_10prCorrUsed is not False and r_2sv_6_10prCorrUsed != 0 and r_2sv_6_10prCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[6].prCorrUsed', r_2sv_6_10prCorrUsed, 'type', 'a bool')
-        r_2sv_6_10prCorrUsed = 1 if r_2sv_6_10prCorrUsed else 0
-    else:
         r_2sv_6_10prCorrUsed = 0
-    if len(g_sv) > 6:
-        r_2sv_6_10crCorrUsed: Any = g_2sv_6.crCorrUsed
-        if r_2sv_6_10crCorrUsed is not True and r_2sv_6_10crCorrUsed is not False and r_2sv_6_10crCorrUsed != 0 and r_2sv_6_10crCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[6].crCorrUsed', r_2sv_6_10crCorrUsed, 'type', 'a bool')
-        r_2sv_6_10crCorrUsed = 1 if r_2sv_6_10crCorrUsed else 0
-    else:
         r_2sv_6_10crCorrUsed = 0
-    if len(g_sv) > 6:
-        r_2sv_6_10doCorrUsed: Any = g_2sv_6.doCorrUsed
-        if r_2sv_6_10doCorrUsed is not True and r_2sv_6_10doCorrUsed is not False and r_2sv_6_10doCorrUsed != 0 and r_2sv_6_10doCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[6].doCorrUsed', r_2sv_6_10doCorrUsed, 'type', 'a bool')
-        r_2sv_6_10doCorrUsed = 1 if r_2sv_6_10doCorrUsed else 0
-    else:
         r_2sv_6_10doCorrUsed = 0
-    if len(g_sv) > 6:
-        r_2sv_6_12clasCorrUsed: Any = g_2sv_6.clasCorrUsed
-        if r_2sv_6_12clasCorrUsed is not True and r_2sv_6_12clasCorrUsed is not False and r_2sv_6_12clasCorrUsed != 0 and r_2sv_6_12clasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[6].clasCorrUsed', r_2sv_6_12clasCorrUsed, 'type', 'a bool')
-        r_2sv_6_12clasCorrUsed = 1 if r_2sv_6_12clasCorrUsed else 0
-    else:
         r_2sv_6_12clasCorrUsed = 0
-    if len(g_sv) > 6:
-        r_2sv_6_11lppCorrUsed: Any = g_2sv_6.lppCorrUsed
-        if r_2sv_6_11lppCorrUsed is not True and r_2sv_6_11lppCorrUsed is not False and r_2sv_6_11lppCorrUsed != 0 and r_2sv_6_11lppCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[6].lppCorrUsed', r_2sv_6_11lppCorrUsed, 'type', 'a bool')
-        r_2sv_6_11lppCorrUsed = 1 if r_2sv_6_11lppCorrUsed else 0
-    else:
         r_2sv_6_11lppCorrUsed = 0
-    if len(g_sv) > 6:
-        r_2sv_6_11hasCorrUsed: Any = g_2sv_6.hasCorrUsed
-        if r_2sv_6_11hasCorrUsed is not True and r_2sv_6_11hasCorrUsed is not False and r_2sv_6_11hasCorrUsed != 0 and r_2sv_6_11hasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[6].hasCorrUsed', r_2sv_6_11hasCorrUsed, 'type', 'a bool')
-        r_2sv_6_11hasCorrUsed = 1 if r_2sv_6_11hasCorrUsed else 0
-    else:
         r_2sv_6_11hasCorrUsed = 0
-    if len(g_sv) > 6:
         r_2sv_6_11flags_spare = 0
-    else:
-        r_2sv_6_11flags_spare = 0
-    g_2sv_7: Any = cast(Any, g_sv[7] if len(g_sv) > 7 else None)
     if len(g_sv) > 7:
-        r_2sv_7_6gnssId = g_2sv_7.gnssId
-        if r_2sv_7_6gnssId.__class__ is not int and (not isinstance(r_2sv_7_6gnssId, int) or r_2sv_7_6gnssId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[7].gnssId', r_2sv_7_6gnssId, 'type', 'an int')
-        if not 0 <= r_2sv_7_6gnssId <= 255:
-            raise _enc('nav_sat', 'sv[7].gnssId', r_2sv_7_6gnssId, 'range', '0..255', None)
+        r_2sv_7_6gnssId, r_2sv_7_4svId, r_2sv_7_3cno, r_2sv_7_4elev, r_2sv_7_4azim, r_2sv_7_5prRes, r_2sv_7_10qualityInd, r_2sv_7_6svUsed, r_2sv_7_6health, r_2sv_7_8diffCorr, r_2sv_7_8smoothed, r_2sv_7_11orbitSource, r_2sv_7_8ephAvail, r_2sv_7_8almAvail, r_2sv_7_8anoAvail, r_2sv_7_8aopAvail, r_2sv_7_10reserved13, r_2sv_7_12sbasCorrUsed, r_2sv_7_12rtcmCorrUsed, r_2sv_7_12slasCorrUsed, r_2sv_7_14spartnCorrUsed, r_2sv_7_10prCorrUsed, r_2sv_7_10crCorrUsed, r_2sv_7_10doCorrUsed, r_2sv_7_12clasCorrUsed, r_2sv_7_11lppCorrUsed, r_2sv_7_11hasCorrUsed, r_2sv_7_11flags_spare = _raw_nav_sat_2sv_7(g_sv[7])
     else:
         r_2sv_7_6gnssId = 0
-    if len(g_sv) > 7:
-        r_2sv_7_4svId = g_2sv_7.svId
-        if r_2sv_7_4svId.__class__ is not int and (not isinstance(r_2sv_7_4svId, int) or r_2sv_7_4svId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[7].svId', r_2sv_7_4svId, 'type', 'an int')
-        if not 0 <= r_2sv_7_4svId <= 255:
-            raise _enc('nav_sat', 'sv[7].svId', r_2sv_7_4svId, 'range', '0..255', None)
-    else:
         r_2sv_7_4svId = 0
-    if len(g_sv) > 7:
-        r_2sv_7_3cno = g_2sv_7.cno
-        if r_2sv_7_3cno.__class__ is not int and (not isinstance(r_2sv_7_3cno, int) or r_2sv_7_3cno.__class__ is bool):
-            raise _enc('nav_sat', 'sv[7].cno', r_2sv_7_3cno, 'type', 'an int')
-        if not 0 <= r_2sv_7_3cno <= 255:
-            raise _enc('nav_sat', 'sv[7].cno', r_2sv_7_3cno, 'range', '0..255', None)
-    else:
         r_2sv_7_3cno = 0
-    if len(g_sv) > 7:
-        r_2sv_7_4elev = g_2sv_7.elev
-        if r_2sv_7_4elev.__class__ is not int and (not isinstance(r_2sv_7_4elev, int) or r_2sv_7_4elev.__class__ is bool):
-            raise _enc('nav_sat', 'sv[7].elev', r_2sv_7_4elev, 'type', 'an int')
-        if not -128 <= r_2sv_7_4elev <= 127:
-            raise _enc('nav_sat', 'sv[7].elev', r_2sv_7_4elev, 'range', '-128..127', None)
-    else:
         r_2sv_7_4elev = 0
-    if len(g_sv) > 7:
-        r_2sv_7_4azim = g_2sv_7.azim
-        if r_2sv_7_4azim.__class__ is not int and (not isinstance(r_2sv_7_4azim, int) or r_2sv_7_4azim.__class__ is bool):
-            raise _enc('nav_sat', 'sv[7].azim', r_2sv_7_4azim, 'type', 'an int')
-        if not -32768 <= r_2sv_7_4azim <= 32767:
-            raise _enc('nav_sat', 'sv[7].azim', r_2sv_7_4azim, 'range', '-32768..32767', None)
-    else:
         r_2sv_7_4azim = 0
-    if len(g_sv) > 7:
-        r_2sv_7_5prRes = g_2sv_7.prRes
-        if r_2sv_7_5prRes.__class__ is not float and (not isinstance(r_2sv_7_5prRes, (int, float)) or r_2sv_7_5prRes.__class__ is bool):
-            raise _enc('nav_sat', 'sv[7].prRes', r_2sv_7_5prRes, 'type', 'a number')
-        if not -3276.8 <= r_2sv_7_5prRes <= 3276.7000000000003:
-            raise _enc('nav_sat', 'sv[7].prRes', r_2sv_7_5prRes, 'range', '-3276.8..3276.7000000000003', None)
-        r_2sv_7_5prRes = _floor(r_2sv_7_5prRes / 0.1 + 0.5)
-    else:
         r_2sv_7_5prRes = 0
-    if len(g_sv) > 7:
-        r_2sv_7_10qualityInd = g_2sv_7.qualityInd
-        if r_2sv_7_10qualityInd.__class__ is not int and (not isinstance(r_2sv_7_10qualityInd, int) or r_2sv_7_10qualityInd.__class__ is bool):
-            raise _enc('nav_sat', 'sv[7].qualityInd', r_2sv_7_10qualityInd, 'type', 'an int')
-        if not 0 <= r_2sv_7_10qualityInd <= 7:
-            raise _enc('nav_sat', 'sv[7].qualityInd', r_2sv_7_10qualityInd, 'range', '0..7', None)
-    else:
         r_2sv_7_10qualityInd = 0
-    if len(g_sv) > 7:
-        r_2sv_7_6svUsed: Any = g_2sv_7.svUsed
-        if r_2sv_7_6svUsed is not True and r_2sv_7_6svUsed is not False and r_2sv_7_6svUsed != 0 and r_2sv_7_6svUsed != 1:
-            raise _enc('nav_sat', 'sv[7].svUsed', r_2sv_7_6svUsed, 'type', 'a bool')
-        r_2sv_7_6svUsed = 1 if r_2sv_7_6svUsed else 0
-    else:
         r_2sv_7_6svUsed = 0
-    if len(g_sv) > 7:
-        r_2sv_7_6health = g_2sv_7.health
-        if r_2sv_7_6health.__class__ is not int and (not isinstance(r_2sv_7_6health, int) or r_2sv_7_6health.__class__ is bool):
-            raise _enc('nav_sat', 'sv[7].health', r_2sv_7_6health, 'type', 'an int')
-        if not 0 <= r_2sv_7_6health <= 3:
-            raise _enc('nav_sat', 'sv[7].health', r_2sv_7_6health, 'range', '0..3', None)
-    else:
         r_2sv_7_6health = 0
-    if len(g_sv) > 7:
-        r_2sv_7_8diffCorr: Any = g_2sv_7.diffCorr
-        if r_2sv_7_8diffCorr is not True and r_2sv_7_8diffCorr is not False and r_2sv_7_8diffCorr != 0 and r_2sv_7_8diffCorr != 1:
-            raise _enc('nav_sat', 'sv[7].diffCorr', r_2sv_7_8diffCorr, 'type', 'a bool')
-        r_2sv_7_8diffCorr = 1 if r_2sv_7_8diffCorr else 0
-    else:
         r_2sv_7_8diffCorr = 0
-    if len(g_sv) > 7:
-        r_2sv_7_8smoothed: Any = g_2sv_7.smoothed
-        if r_2sv_7_8smoothed is not True and r_2sv_7_8smoothed is not False and r_2sv_7_8smoothed != 0 and r_2sv_7_8smoothed != 1:
-            raise _enc('nav_sat', 'sv[7].smoothed', r_2sv_7_8smoothed, 'type', 'a bool')
-        r_2sv_7_8smoothed = 1 if r_2sv_7_8smoothed else 0
-    else:
         r_2sv_7_8smoothed = 0
-    if len(g_sv) > 7:
-        r_2sv_7_11orbitSource = g_2sv_7.orbitSource
-        if r_2sv_7_11orbitSource.__class__ is not int and (not isinstance(r_2sv_7_11orbitSource, int) or r_2sv_7_11orbitSource.__class__ is bool):
-            raise _enc('nav_sat', 'sv[7].orbitSource', r_2sv_7_11orbitSource, 'type', 'an int')
-        if not 0 <= r_2sv_7_11orbitSource <= 7:
-            raise _enc('nav_sat', 'sv[7].orbitSource', r_2sv_7_11orbitSource, 'range', '0..7', None)
-    else:
         r_2sv_7_11orbitSource = 0
-    if len(g_sv) > 7:
-        r_2sv_7_8ephAvail: Any = g_2sv_7.ephAvail
-        if r_2sv_7_8ephAvail is not True and r_2sv_7_8ephAvail is not False and r_2sv_7_8ephAvail != 0 and r_2sv_7_8ephAvail != 1:
-            raise _enc('nav_sat', 'sv[7].ephAvail', r_2sv_7_8ephAvail, 'type', 'a bool')
-        r_2sv_7_8ephAvail = 1 if r_2sv_7_8ephAvail else 0
-    else:
         r_2sv_7_8ephAvail = 0
-    if len(g_sv) > 7:
-        r_2sv_7_8almAvail: Any = g_2sv_7.almAvail
-        if r_2sv_7_8almAvail is not True and r_2sv_7_8almAvail is not False and r_2sv_7_8almAvail != 0 and r_2sv_7_8almAvail != 1:
-            raise _enc('nav_sat', 'sv[7].almAvail', r_2sv_7_8almAvail, 'type', 'a bool')
-        r_2sv_7_8almAvail = 1 if r_2sv_7_8almAvail else 0
-    else:
         r_2sv_7_8almAvail = 0
-    if len(g_sv) > 7:
-        r_2sv_7_8anoAvail: Any = g_2sv_7.anoAvail
-        if r_2sv_7_8anoAvail is not True and r_2sv_7_8anoAvail is not False and r_2sv_7_8anoAvail != 0 and r_2sv_7_8anoAvail != 1:
-            raise _enc('nav_sat', 'sv[7].anoAvail', r_2sv_7_8anoAvail, 'type', 'a bool')
-        r_2sv_7_8anoAvail = 1 if r_2sv_7_8anoAvail else 0
-    else:
         r_2sv_7_8anoAvail = 0
-    if len(g_sv) > 7:
-        r_2sv_7_8aopAvail: Any = g_2sv_7.aopAvail
-        if r_2sv_7_8aopAvail is not True and r_2sv_7_8aopAvail is not False and r_2sv_7_8aopAvail != 0 and r_2sv_7_8aopAvail != 1:
-            raise _enc('nav_sat', 'sv[7].aopAvail', r_2sv_7_8aopAvail, 'type', 'a bool')
-        r_2sv_7_8aopAvail = 1 if r_2sv_7_8aopAvail else 0
-    else:
         r_2sv_7_8aopAvail = 0
-    if len(g_sv) > 7:
-        r_2sv_7_10reserved13 = g_2sv_7.reserved13
-        if r_2sv_7_10reserved13.__class__ is not int and (not isinstance(r_2sv_7_10reserved13, int) or r_2sv_7_10reserved13.__class__ is bool):
-            raise _enc('nav_sat', 'sv[7].reserved13', r_2sv_7_10reserved13, 'type', 'an int')
-        if not 0 <= r_2sv_7_10reserved13 <= 1:
-            raise _enc('nav_sat', 'sv[7].reserved13', r_2sv_7_10reserved13, 'range', '0..1', None)
-    else:
         r_2sv_7_10reserved13 = 0
-    if len(g_sv) > 7:
-        r_2sv_7_12sbasCorrUsed: Any = g_2sv_7.sbasCorrUsed
-        if r_2sv_7_12sbasCorrUsed is not True and r_2sv_7_12sbasCorrUsed is not False and r_2sv_7_12sbasCorrUsed != 0 and r_2sv_7_12sbasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[7].sbasCorrUsed', r_2sv_7_12sbasCorrUsed, 'type', 'a bool')
-        r_2sv_7_12sbasCorrUsed = 1 if r_2sv_7_12sbasCorrUsed else 0
-    else:
         r_2sv_7_12sbasCorrUsed = 0
-    if len(g_sv) > 7:
-        r_2sv_7_12rtcmCorrUsed: Any = g_2sv_7.rtcmCorrUsed
-        if r_2sv_7_12rtcmCorrUsed is not True and r_2sv_7_12rtcmCorrUsed is not False and r_2sv_7_12rtcmCorrUsed != 0 and r_2sv_7_12rtcmCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[7].rtcmCorrUsed', r_2sv_7_12rtcmCorrUsed, 'type', 'a bool')
-        r_2sv_7_12rtcmCorrUsed = 1 if r_2sv_7_12rtcmCorrUsed else 0
-    else:
         r_2sv_7_12rtcmCorrUsed = 0
-    if len(g_sv) > 7:
-        r_2sv_7_12slasCorrUsed: Any = g_2sv_7.slasCorrUsed
-        if r_2sv_7_12slasCorrUsed is not True and r_2sv_7_12slasCorrUsed is not False and r_2sv_7_12slasCorrUsed != 0 and r_2sv_7_12slasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[7].slasCorrUsed', r_2sv_7_12slasCorrUsed, 'type', 'a bool')
-        r_2sv_7_12slasCorrUsed = 1 if r_2sv_7_12slasCorrUsed else 0
-    else:
         r_2sv_7_12slasCorrUsed = 0
-    if len(g_sv) > 7:
-        r_2sv_7_14spartnCorrUsed: Any = g_2sv_7.spartnCorrUsed
-        if r_2sv_7_14spartnCorrUsed is not True and r_2sv_7_14spartnCorrUsed is not False and r_2sv_7_14spartnCorrUsed != 0 and r_2sv_7_14spartnCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[7].spartnCorrUsed', r_2sv_7_14spartnCorrUsed, 'type', 'a bool')
-        r_2sv_7_14spartnCorrUsed = 1 if r_2sv_7_14spartnCorrUsed else 0
-    else:
         r_2sv_7_14spartnCorrUsed = 0
-    if len(g_sv) > 7:
-        r_2sv_7_10prCorrUsed: Any = g_2sv_7.prCorrUsed
-        if r_2sv_7_10prCorrUsed is not True and r_2sv_7_10prCorrUsed is not False and r_2sv_7_10prCorrUsed != 0 and r_2sv_7_10prCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[7].prCorrUsed', r_2sv_7_10prCorrUsed, 'type', 'a bool')
-        r_2sv_7_10prCorrUsed = 1 if r_2sv_7_10prCorrUsed else 0
-    else:
         r_2sv_7_10prCorrUsed = 0
-    if len(g_sv) > 7:
-        r_2sv_7_10crCorrUsed: Any = g_2sv_7.crCorrUsed
-        if r_2sv_7_10crCorrUsed is not True and r_2sv_7_10crCorrUsed is not False and r_2sv_7_10crCorrUsed != 0 and r_2sv_7_10crCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[7].crCorrUsed', r_2sv_7_10crCorrUsed, 'type', 'a bool')
-        r_2sv_7_10crCorrUsed = 1 if r_2sv_7_10crCorrUsed else 0
-    else:
         r_2sv_7_10crCorrUsed = 0
-    if len(g_sv) > 7:
-        r_2sv_7_10doCorrUsed: Any = g_2sv_7.doCorrUsed
-        if r_2sv_7_10doCorrUsed is not True and r_2sv_7_10doCorrUsed is not False and r_2sv_7_10doCorrUsed != 0 and r_2sv_7_10doCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[7].doCorrUsed', r_2sv_7_10doCorrUsed, 'type', 'a bool')
-        r_2sv_7_10doCorrUsed = 1 if r_2sv_7_10doCorrUsed else 0
-    else:
         r_2sv_7_10doCorrUsed = 0
-    if len(g_sv) > 7:
-        r_2sv_7_12clasCorrUsed: Any = g_2sv_7.clasCorrUsed
-        if r_2sv_7_12clasCorrUsed is not True and r_2sv_7_12clasCorrUsed is not False and r_2sv_7_12clasCorrUsed != 0 and r_2sv_7_12clasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[7].clasCorrUsed', r_2sv_7_12clasCorrUsed, 'type', 'a bool')
-        r_2sv_7_12clasCorrUsed = 1 if r_2sv_7_12clasCorrUsed else 0
-    else:
         r_2sv_7_12clasCorrUsed = 0
-    if len(g_sv) > 7:
-        r_2sv_7_11lppCorrUsed: Any = g_2sv_7.lppCorrUsed
-        if r_2sv_7_11lppCorrUsed is not True and r_2sv_7_11lppCorrUsed is not False and r_2sv_7_11lppCorrUsed != 0 and r_2sv_7_11lppCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[7].lppCorrUsed', r_2sv_7_11lppCorrUsed, 'type', 'a bool')
-        r_2sv_7_11lppCorrUsed = 1 if r_2sv_7_11lppCorrUsed else 0
-    else:
         r_2sv_7_11lppCorrUsed = 0
-    if len(g_sv) > 7:
-        r_2sv_7_11hasCorrUsed: Any = g_2sv_7.hasCorrUsed
-        if r_2sv_7_11hasCorrUsed is not True and r_2sv_7_11hasCorrUsed is not False and r_2sv_7_11hasCorrUsed != 0 and r_2sv_7_11hasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[7].hasCorrUsed', r_2sv_7_11hasCorrUsed, 'type', 'a bool')
-        r_2sv_7_11hasCorrUsed = 1 if r_2sv_7_11hasCorrUsed else 0
-    else:
         r_2sv_7_11hasCorrUsed = 0
-    if len(g_sv) > 7:
         r_2sv_7_11flags_spare = 0
-    else:
-        r_2sv_7_11flags_spare = 0
-    g_2sv_8: Any = cast(Any, g_sv[8] if len(g_sv) > 8 else None)
     if len(g_sv) > 8:
-        r_2sv_8_6gnssId = g_2sv_8.gnssId
-        if r_2sv_8_6gnssId.__class__ is not int and (not isinstance(r_2sv_8_6gnssId, int) or r_2sv_8_6gnssId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[8].gnssId', r_2sv_8_6gnssId, 'type', 'an int')
-        if not 0 <= r_2sv_8_6gnssId <= 255:
-            raise _enc('nav_sat', 'sv[8].gnssId', r_2sv_8_6gnssId, 'range', '0..255', None)
+        r_2sv_8_6gnssId, r_2sv_8_4svId, r_2sv_8_3cno, r_2sv_8_4elev, r_2sv_8_4azim, r_2sv_8_5prRes, r_2sv_8_10qualityInd, r_2sv_8_6svUsed, r_2sv_8_6health, r_2sv_8_8diffCorr, r_2sv_8_8smoothed, r_2sv_8_11orbitSource, r_2sv_8_8ephAvail, r_2sv_8_8almAvail, r_2sv_8_8anoAvail, r_2sv_8_8aopAvail, r_2sv_8_10reserved13, r_2sv_8_12sbasCorrUsed, r_2sv_8_12rtcmCorrUsed, r_2sv_8_12slasCorrUsed, r_2sv_8_14spartnCorrUsed, r_2sv_8_10prCorrUsed, r_2sv_8_10crCorrUsed, r_2sv_8_10doCorrUsed, r_2sv_8_12clasCorrUsed, r_2sv_8_11lppCorrUsed, r_2sv_8_11hasCorrUsed, r_2sv_8_11flags_spare = _raw_nav_sat_2sv_8(g_sv[8])
     else:
         r_2sv_8_6gnssId = 0
-    if len(g_sv) > 8:
-        r_2sv_8_4svId = g_2sv_8.svId
-        if r_2sv_8_4svId.__class__ is not int and (not isinstance(r_2sv_8_4svId, int) or r_2sv_8_4svId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[8].svId', r_2sv_8_4svId, 'type', 'an int')
-        if not 0 <= r_2sv_8_4svId <= 255:
-            raise _enc('nav_sat', 'sv[8].svId', r_2sv_8_4svId, 'range', '0..255', None)
-    else:
         r_2sv_8_4svId = 0
-    if len(g_sv) > 8:
-        r_2sv_8_3cno = g_2sv_8.cno
-        if r_2sv_8_3cno.__class__ is not int and (not isinstance(r_2sv_8_3cno, int) or r_2sv_8_3cno.__class__ is bool):
-            raise _enc('nav_sat', 'sv[8].cno', r_2sv_8_3cno, 'type', 'an int')
-        if not 0 <= r_2sv_8_3cno <= 255:
-            raise _enc('nav_sat', 'sv[8].cno', r_2sv_8_3cno, 'range', '0..255', None)
-    else:
         r_2sv_8_3cno = 0
-    if len(g_sv) > 8:
-        r_2sv_8_4elev = g_2sv_8.elev
-        if r_2sv_8_4elev.__class__ is not int and (not isinstance(r_2sv_8_4elev, int) or r_2sv_8_4elev.__class__ is bool):
-            raise _enc('nav_sat', 'sv[8].elev', r_2sv_8_4elev, 'type', 'an int')
-        if not -128 <= r_2sv_8_4elev <= 127:
-            raise _enc('nav_sat', 'sv[8].elev', r_2sv_8_4elev, 'range', '-128..127', None)
-    else:
         r_2sv_8_4elev = 0
-    if len(g_sv) > 8:
-        r_2sv_8_4azim = g_2sv_8.azim
-        if r_2sv_8_4azim.__class__ is not int and (not isinstance(r_2sv_8_4azim, int) or r_2sv_8_4azim.__class__ is bool):
-            raise _enc('nav_sat', 'sv[8].azim', r_2sv_8_4azim, 'type', 'an int')
-        if not -32768 <= r_2sv_8_4azim <= 32767:
-            raise _enc('nav_sat', 'sv[8].azim', r_2sv_8_4azim, 'range', '-32768..32767', None)
-    else:
         r_2sv_8_4azim = 0
-    if len(g_sv) > 8:
-        r_2sv_8_5prRes = g_2sv_8.prRes
-        if r_2sv_8_5prRes.__class__ is not float and (not isinstance(r_2sv_8_5prRes, (int, float)) or r_2sv_8_5prRes.__class__ is bool):
-            raise _enc('nav_sat', 'sv[8].prRes', r_2sv_8_5prRes, 'type', 'a number')
-        if not -3276.8 <= r_2sv_8_5prRes <= 3276.7000000000003:
-            raise _enc('nav_sat', 'sv[8].prRes', r_2sv_8_5prRes, 'range', '-3276.8..3276.7000000000003', None)
-        r_2sv_8_5prRes = _floor(r_2sv_8_5prRes / 0.1 + 0.5)
-    else:
         r_2sv_8_5prRes = 0
-    if len(g_sv) > 8:
-        r_2sv_8_10qualityInd = g_2sv_8.qualityInd
-        if r_2sv_8_10qualityInd.__class__ is not int and (not isinstance(r_2sv_8_10qualityInd, int) or r_2sv_8_10qualityInd.__class__ is bool):
-            raise _enc('nav_sat', 'sv[8].qualityInd', r_2sv_8_10qualityInd, 'type', 'an int')
-        if not 0 <= r_2sv_8_10qualityInd <= 7:
-            raise _enc('nav_sat', 'sv[8].qualityInd', r_2sv_8_10qualityInd, 'range', '0..7', None)
-    else:
         r_2sv_8_10qualityInd = 0
-    if len(g_sv) > 8:
-        r_2sv_8_6svUsed: Any = g_2sv_8.svUsed
-        if r_2sv_8_6svUsed is not True and r_2sv_8_6svUsed is not False and r_2sv_8_6svUsed != 0 and r_2sv_8_6svUsed != 1:
-            raise _enc('nav_sat', 'sv[8].svUsed', r_2sv_8_6svUsed, 'type', 'a bool')
-        r_2sv_8_6svUsed = 1 if r_2sv_8_6svUsed else 0
-    else:
         r_2sv_8_6svUsed = 0
-    if len(g_sv) > 8:
-        r_2sv_8_6health = g_2sv_8.health
-        if r_2sv_8_6health.__class__ is not int and (not isinstance(r_2sv_8_6health, int) or r_2sv_8_6health.__class__ is bool):
-            raise _enc('nav_sat', 'sv[8].health', r_2sv_8_6health, 'type', 'an int')
-        if not 0 <= r_2sv_8_6health <= 3:
-            raise _enc('nav_sat', 'sv[8].health', r_2sv_8_6health, 'range', '0..3', None)
-    else:
         r_2sv_8_6health = 0
-    if len(g_sv) > 8:
-        r_2sv_8_8diffCorr: Any = g_2sv_8.diffCorr
-        if r_2sv_8_8diffCorr is not True and r_2sv_8_8diffCorr is not False and r_2sv_8_8diffCorr != 0 and r_2sv_8_8diffCorr != 1:
-            raise _enc('nav_sat', 'sv[8].diffCorr', r_2sv_8_8diffCorr, 'type', 'a bool')
-        r_2sv_8_8diffCorr = 1 if r_2sv_8_8diffCorr else 0
-    else:
         r_2sv_8_8diffCorr = 0
-    if len(g_sv) > 8:
-        r_2sv_8_8smoothed: Any = g_2sv_8.smoothed
-        if r_2sv_8_8smoothed is not True and r_2sv_8_8smoothed is not False and r_2sv_8_8smoothed != 0 and r_2sv_8_8smoothed != 1:
-            raise _enc('nav_sat', 'sv[8].smoothed', r_2sv_8_8smoothed, 'type', 'a bool')
-        r_2sv_8_8smoothed = 1 if r_2sv_8_8smoothed else 0
-    else:
         r_2sv_8_8smoothed = 0
-    if len(g_sv) > 8:
-        r_2sv_8_11orbitSource = g_2sv_8.orbitSource
-        if r_2sv_8_11orbitSource.__class__ is not int and (not isinstance(r_2sv_8_11orbitSource, int) or r_2sv_8_11orbitSource.__class__ is bool):
-            raise _enc('nav_sat', 'sv[8].orbitSource', r_2sv_8_11orbitSource, 'type', 'an int')
-        if not 0 <= r_2sv_8_11orbitSource <= 7:
-            raise _enc('nav_sat', 'sv[8].orbitSource', r_2sv_8_11orbitSource, 'range', '0..7', None)
-    else:
         r_2sv_8_11orbitSource = 0
-    if len(g_sv) > 8:
-        r_2sv_8_8ephAvail: Any = g_2sv_8.ephAvail
-        if r_2sv_8_8ephAvail is not True and r_2sv_8_8ephAvail is not False and r_2sv_8_8ephAvail != 0 and r_2sv_8_8ephAvail != 1:
-            raise _enc('nav_sat', 'sv[8].ephAvail', r_2sv_8_8ephAvail, 'type', 'a bool')
-        r_2sv_8_8ephAvail = 1 if r_2sv_8_8ephAvail else 0
-    else:
         r_2sv_8_8ephAvail = 0
-    if len(g_sv) > 8:
-        r_2sv_8_8almAvail: Any = g_2sv_8.almAvail
-        if r_2sv_8_8almAvail is not True and r_2sv_8_8almAvail is not False and r_2sv_8_8almAvail != 0 and r_2sv_8_8almAvail != 1:
-            raise _enc('nav_sat', 'sv[8].almAvail', r_2sv_8_8almAvail, 'type', 'a bool')
-        r_2sv_8_8almAvail = 1 if r_2sv_8_8almAvail else 0
-    else:
         r_2sv_8_8almAvail = 0
-    if len(g_sv) > 8:
-        r_2sv_8_8anoAvail: Any = g_2sv_8.anoAvail
-        if r_2sv_8_8anoAvail is not True and r_2sv_8_8anoAvail is not False and r_2sv_8_8anoAvail != 0 and r_2sv_8_8anoAvail != 1:
-            raise _enc('nav_sat', 'sv[8].anoAvail', r_2sv_8_8anoAvail, 'type', 'a bool')
-        r_2sv_8_8anoAvail = 1 if r_2sv_8_8anoAvail else 0
-    else:
         r_2sv_8_8anoAvail = 0
-    if len(g_sv) > 8:
-        r_2sv_8_8aopAvail: Any = g_2sv_8.aopAvail
-        if r_2sv_8_8aopAvail is not True and r_2sv_8_8aopAvail is not False and r_2sv_8_8aopAvail != 0 and r_2sv_8_8aopAvail != 1:
-            raise _enc('nav_sat', 'sv[8].aopAvail', r_2sv_8_8aopAvail, 'type', 'a bool')
-        r_2sv_8_8aopAvail = 1 if r_2sv_8_8aopAvail else 0
-    else:
         r_2sv_8_8aopAvail = 0
-    if len(g_sv) > 8:
-        r_2sv_8_10reserved13 = g_2sv_8.reserved13
-        if r_2sv_8_10reserved13.__class__ is not int and (not isinstance(r_2sv_8_10reserved13, int) or r_2sv_8_10reserved13.__class__ is bool):
-            raise _enc('nav_sat', 'sv[8].reserved13', r_2sv_8_10reserved13, 'type', 'an int')
-        if not 0 <= r_2sv_8_10reserved13 <= 1:
-            raise _enc('nav_sat', 'sv[8].reserved13', r_2sv_8_10reserved13, 'range', '0..1', None)
-    else:
         r_2sv_8_10reserved13 = 0
-    if len(g_sv) > 8:
-        r_2sv_8_12sbasCorrUsed: Any = g_2sv_8.sbasCorrUsed
-        if r_2sv_8_12sbasCorrUsed is not True and r_2sv_8_12sbasCorrUsed is not False and r_2sv_8_12sbasCorrUsed != 0 and r_2sv_8_12sbasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[8].sbasCorrUsed', r_2sv_8_12sbasCorrUsed, 'type', 'a bool')
-        r_2sv_8_12sbasCorrUsed = 1 if r_2sv_8_12sbasCorrUsed else 0
-    else:
         r_2sv_8_12sbasCorrUsed = 0
-    if len(g_sv) > 8:
-        r_2sv_8_12rtcmCorrUsed: Any = g_2sv_8.rtcmCorrUsed
-        if r_2sv_8_12rtcmCorrUsed is not True and r_2sv_8_12rtcmCorrUsed is not False and r_2sv_8_12rtcmCorrUsed != 0 and r_2sv_8_12rtcmCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[8].rtcmCorrUsed', r_2sv_8_12rtcmCorrUsed, 'type', 'a bool')
-        r_2sv_8_12rtcmCorrUsed = 1 if r_2sv_8_12rtcmCorrUsed else 0
-    else:
         r_2sv_8_12rtcmCorrUsed = 0
-    if len(g_sv) > 8:
-        r_2sv_8_12slasCorrUsed: Any = g_2sv_8.slasCorrUsed
-        if r_2sv_8_12slasCorrUsed is not True and r_2sv_8_12slasCorrUsed is not False and r_2sv_8_12slasCorrUsed != 0 and r_2sv_8_12slasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[8].slasCorrUsed', r_2sv_8_12slasCorrUsed, 'type', 'a bool')
-        r_2sv_8_12slasCorrUsed = 1 if r_2sv_8_12slasCorrUsed else 0
-    else:
         r_2sv_8_12slasCorrUsed = 0
-    if len(g_sv) > 8:
-        r_2sv_8_14spartnCorrUsed: Any = g_2sv_8.spartnCorrUsed
-        if r_2sv_8_14spartnCorrUsed is not True and r_2sv_8_14spartnCorrUsed is not False and r_2sv_8_14spartnCorrUsed != 0 and r_2sv_8_14spartnCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[8].spartnCorrUsed', r_2sv_8_14spartnCorrUsed, 'type', 'a bool')
-        r_2sv_8_14spartnCorrUsed = 1 if r_2sv_8_14spartnCorrUsed else 0
-    else:
         r_2sv_8_14spartnCorrUsed = 0
-    if len(g_sv) > 8:
-        r_2sv_8_10prCorrUsed: Any = g_2sv_8.prCorrUsed
-        if r_2sv_8_10prCorrUsed is not True and r_2sv_8_10prCorrUsed is not False and r_2sv_8_10prCorrUsed != 0 and r_2sv_8_10prCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[8].prCorrUsed', r_2sv_8_10prCorrUsed, 'type', 'a bool')
-        r_2sv_8_10prCorrUsed = 1 if r_2sv_8_10prCorrUsed else 0
-    else:
         r_2sv_8_10prCorrUsed = 0
-    if len(g_sv) > 8:
-        r_2sv_8_10crCorrUsed: Any = g_2sv_8.crCorrUsed
-        if r_2sv_8_10crCorrUsed is not True and r_2sv_8_10crCorrUsed is not False and r_2sv_8_10crCorrUsed != 0 and r_2sv_8_10crCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[8].crCorrUsed', r_2sv_8_10crCorrUsed, 'type', 'a bool')
-        r_2sv_8_10crCorrUsed = 1 if r_2sv_8_10crCorrUsed else 0
-    else:
         r_2sv_8_10crCorrUsed = 0
-    if len(g_sv) > 8:
-        r_2sv_8_10doCorrUsed: Any = g_2sv_8.doCorrUsed
-        if r_2sv_8_10doCorrUsed is not True and r_2sv_8_10doCorrUsed is not False and r_2sv_8_10doCorrUsed != 0 and r_2sv_8_10doCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[8].doCorrUsed', r_2sv_8_10doCorrUsed, 'type', 'a bool')
-        r_2sv_8_10doCorrUsed = 1 if r_2sv_8_10doCorrUsed else 0
-    else:
         r_2sv_8_10doCorrUsed = 0
-    if len(g_sv) > 8:
-        r_2sv_8_12clasCorrUsed: Any = g_2sv_8.clasCorrUsed
-        if r_2sv_8_12clasCorrUsed is not True and r_2sv_8_12clasCorrUsed is not False and r_2sv_8_12clasCorrUsed != 0 and r_2sv_8_12clasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[8].clasCorrUsed', r_2sv_8_12clasCorrUsed, 'type', 'a bool')
-        r_2sv_8_12clasCorrUsed = 1 if r_2sv_8_12clasCorrUsed else 0
-    else:
         r_2sv_8_12clasCorrUsed = 0
-    if len(g_sv) > 8:
-        r_2sv_8_11lppCorrUsed: Any = g_2sv_8.lppCorrUsed
-        if r_2sv_8_11lppCorrUsed is not True and r_2sv_8_11lppCorrUsed is not False and r_2sv_8_11lppCorrUsed != 0 and r_2sv_8_11lppCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[8].lppCorrUsed', r_2sv_8_11lppCorrUsed, 'type', 'a bool')
-        r_2sv_8_11lppCorrUsed = 1 if r_2sv_8_11lppCorrUsed else 0
-    else:
         r_2sv_8_11lppCorrUsed = 0
-    if len(g_sv) > 8:
-        r_2sv_8_11hasCorrUsed: Any = g_2sv_8.hasCorrUsed
-        if r_2sv_8_11hasCorrUsed is not True and r_2sv_8_11hasCorrUsed is not False and r_2sv_8_11hasCorrUsed != 0 and r_2sv_8_11hasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[8].hasCorrUsed', r_2sv_8_11hasCorrUsed, 'type', 'a bool')
-        r_2sv_8_11hasCorrUsed = 1 if r_2sv_8_11hasCorrUsed else 0
-    else:
         r_2sv_8_11hasCorrUsed = 0
-    if len(g_sv) > 8:
         r_2sv_8_11flags_spare = 0
-    else:
-        r_2sv_8_11flags_spare = 0
-    g_2sv_9: Any = cast(Any, g_sv[9] if len(g_sv) > 9 else None)
     if len(g_sv) > 9:
-        r_2sv_9_6gnssId = g_2sv_9.gnssId
-        if r_2sv_9_6gnssId.__class__ is not int and (not isinstance(r_2sv_9_6gnssId, int) or r_2sv_9_6gnssId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[9].gnssId', r_2sv_9_6gnssId, 'type', 'an int')
-        if not 0 <= r_2sv_9_6gnssId <= 255:
-            raise _enc('nav_sat', 'sv[9].gnssId', r_2sv_9_6gnssId, 'range', '0..255', None)
+        r_2sv_9_6gnssId, r_2sv_9_4svId, r_2sv_9_3cno, r_2sv_9_4elev, r_2sv_9_4azim, r_2sv_9_5prRes, r_2sv_9_10qualityInd, r_2sv_9_6svUsed, r_2sv_9_6health, r_2sv_9_8diffCorr, r_2sv_9_8smoothed, r_2sv_9_11orbitSource, r_2sv_9_8ephAvail, r_2sv_9_8almAvail, r_2sv_9_8anoAvail, r_2sv_9_8aopAvail, r_2sv_9_10reserved13, r_2sv_9_12sbasCorrUsed, r_2sv_9_12rtcmCorrUsed, r_2sv_9_12slasCorrUsed, r_2sv_9_14spartnCorrUsed, r_2sv_9_10prCorrUsed, r_2sv_9_10crCorrUsed, r_2sv_9_10doCorrUsed, r_2sv_9_12clasCorrUsed, r_2sv_9_11lppCorrUsed, r_2sv_9_11hasCorrUsed, r_2sv_9_11flags_spare = _raw_nav_sat_2sv_9(g_sv[9])
     else:
         r_2sv_9_6gnssId = 0
-    if len(g_sv) > 9:
-        r_2sv_9_4svId = g_2sv_9.svId
-        if r_2sv_9_4svId.__class__ is not int and (not isinstance(r_2sv_9_4svId, int) or r_2sv_9_4svId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[9].svId', r_2sv_9_4svId, 'type', 'an int')
-        if not 0 <= r_2sv_9_4svId <= 255:
-            raise _enc('nav_sat', 'sv[9].svId', r_2sv_9_4svId, 'range', '0..255', None)
-    else:
         r_2sv_9_4svId = 0
-    if len(g_sv) > 9:
-        r_2sv_9_3cno = g_2sv_9.cno
-        if r_2sv_9_3cno.__class__ is not int and (not isinstance(r_2sv_9_3cno, int) or r_2sv_9_3cno.__class__ is bool):
-            raise _enc('nav_sat', 'sv[9].cno', r_2sv_9_3cno, 'type', 'an int')
-        if not 0 <= r_2sv_9_3cno <= 255:
-            raise _enc('nav_sat', 'sv[9].cno', r_2sv_9_3cno, 'range', '0..255', None)
-    else:
         r_2sv_9_3cno = 0
-    if len(g_sv) > 9:
-        r_2sv_9_4elev = g_2sv_9.elev
-        if r_2sv_9_4elev.__class__ is not int and (not isinstance(r_2sv_9_4elev, int) or r_2sv_9_4elev.__class__ is bool):
-            raise _enc('nav_sat', 'sv[9].elev', r_2sv_9_4elev, 'type', 'an int')
-        if not -128 <= r_2sv_9_4elev <= 127:
-            raise _enc('nav_sat', 'sv[9].elev', r_2sv_9_4elev, 'range', '-128..127', None)
-    else:
         r_2sv_9_4elev = 0
-    if len(g_sv) > 9:
-        r_2sv_9_4azim = g_2sv_9.azim
-        if r_2sv_9_4azim.__class__ is not int and (not isinstance(r_2sv_9_4azim, int) or r_2sv_9_4azim.__class__ is bool):
-            raise _enc('nav_sat', 'sv[9].azim', r_2sv_9_4azim, 'type', 'an int')
-        if not -32768 <= r_2sv_9_4azim <= 32767:
-            raise _enc('nav_sat', 'sv[9].azim', r_2sv_9_4azim, 'range', '-32768..32767', None)
-    else:
         r_2sv_9_4azim = 0
-    if len(g_sv) > 9:
-        r_2sv_9_5prRes = g_2sv_9.prRes
-        if r_2sv_9_5prRes.__class__ is not float and (not isinstance(r_2sv_9_5prRes, (int, float)) or r_2sv_9_5prRes.__class__ is bool):
-            raise _enc('nav_sat', 'sv[9].prRes', r_2sv_9_5prRes, 'type', 'a number')
-        if not -3276.8 <= r_2sv_9_5prRes <= 3276.7000000000003:
-            raise _enc('nav_sat', 'sv[9].prRes', r_2sv_9_5prRes, 'range', '-3276.8..3276.7000000000003', None)
-        r_2sv_9_5prRes = _floor(r_2sv_9_5prRes / 0.1 + 0.5)
-    else:
         r_2sv_9_5prRes = 0
-    if len(g_sv) > 9:
-        r_2sv_9_10qualityInd = g_2sv_9.qualityInd
-        if r_2sv_9_10qualityInd.__class__ is not int and (not isinstance(r_2sv_9_10qualityInd, int) or r_2sv_9_10qualityInd.__class__ is bool):
-            raise _enc('nav_sat', 'sv[9].qualityInd', r_2sv_9_10qualityInd, 'type', 'an int')
-        if not 0 <= r_2sv_9_10qualityInd <= 7:
-            raise _enc('nav_sat', 'sv[9].qualityInd', r_2sv_9_10qualityInd, 'range', '0..7', None)
-    else:
         r_2sv_9_10qualityInd = 0
-    if len(g_sv) > 9:
-        r_2sv_9_6svUsed: Any = g_2sv_9.svUsed
-        if r_2sv_9_6svUsed is not True and r_2sv_9_6svUsed is not False and r_2sv_9_6svUsed != 0 and r_2sv_9_6svUsed != 1:
-            raise _enc('nav_sat', 'sv[9].svUsed', r_2sv_9_6svUsed, 'type', 'a bool')
-        r_2sv_9_6svUsed = 1 if r_2sv_9_6svUsed else 0
-    else:
         r_2sv_9_6svUsed = 0
-    if len(g_sv) > 9:
-        r_2sv_9_6health = g_2sv_9.health
-        if r_2sv_9_6health.__class__ is not int and (not isinstance(r_2sv_9_6health, int) or r_2sv_9_6health.__class__ is bool):
-            raise _enc('nav_sat', 'sv[9].health', r_2sv_9_6health, 'type', 'an int')
-        if not 0 <= r_2sv_9_6health <= 3:
-            raise _enc('nav_sat', 'sv[9].health', r_2sv_9_6health, 'range', '0..3', None)
-    else:
         r_2sv_9_6health = 0
-    if len(g_sv) > 9:
-        r_2sv_9_8diffCorr: Any = g_2sv_9.diffCorr
-        if r_2sv_9_8diffCorr is not True and r_2sv_9_8diffCorr is not False and r_2sv_9_8diffCorr != 0 and r_2sv_9_8diffCorr != 1:
-            raise _enc('nav_sat', 'sv[9].diffCorr', r_2sv_9_8diffCorr, 'type', 'a bool')
-        r_2sv_9_8diffCorr = 1 if r_2sv_9_8diffCorr else 0
-    else:
         r_2sv_9_8diffCorr = 0
-    if len(g_sv) > 9:
-        r_2sv_9_8smoothed: Any = g_2sv_9.smoothed
-        if r_2sv_9_8smoothed is not True and r_2sv_9_8smoothed is not False and r_2sv_9_8smoothed != 0 and r_2sv_9_8smoothed != 1:
-            raise _enc('nav_sat', 'sv[9].smoothed', r_2sv_9_8smoothed, 'type', 'a bool')
-        r_2sv_9_8smoothed = 1 if r_2sv_9_8smoothed else 0
-    else:
         r_2sv_9_8smoothed = 0
-    if len(g_sv) > 9:
-        r_2sv_9_11orbitSource = g_2sv_9.orbitSource
-        if r_2sv_9_11orbitSource.__class__ is not int and (not isinstance(r_2sv_9_11orbitSource, int) or r_2sv_9_11orbitSource.__class__ is bool):
-            raise _enc('nav_sat', 'sv[9].orbitSource', r_2sv_9_11orbitSource, 'type', 'an int')
-        if not 0 <= r_2sv_9_11orbitSource <= 7:
-            raise _enc('nav_sat', 'sv[9].orbitSource', r_2sv_9_11orbitSource, 'range', '0..7', None)
-    else:
         r_2sv_9_11orbitSource = 0
-    if len(g_sv) > 9:
-        r_2sv_9_8ephAvail: Any = g_2sv_9.ephAvail
-        if r_2sv_9_8ephAvail is not True and r_2sv_9_8ephAvail is not False and r_2sv_9_8ephAvail != 0 and r_2sv_9_8ephAvail != 1:
-            raise _enc('nav_sat', 'sv[9].ephAvail', r_2sv_9_8ephAvail, 'type', 'a bool')
-        r_2sv_9_8ephAvail = 1 if r_2sv_9_8ephAvail else 0
-    else:
         r_2sv_9_8ephAvail = 0
-    if len(g_sv) > 9:
-        r_2sv_9_8almAvail: Any = g_2sv_9.almAvail
-        if r_2sv_9_8almAvail is not True and r_2sv_9_8almAvail is not False and r_2sv_9_8almAvail != 0 and r_2sv_9_8almAvail != 1:
-            raise _enc('nav_sat', 'sv[9].almAvail', r_2sv_9_8almAvail, 'type', 'a bool')
-        r_2sv_9_8almAvail = 1 if r_2sv_9_8almAvail else 0
-    else:
         r_2sv_9_8almAvail = 0
-    if len(g_sv) > 9:
-        r_2sv_9_8anoAvail: Any = g_2sv_9.anoAvail
-        if r_2sv_9_8anoAvail is not True and r_2sv_9_8anoAvail is not False and r_2sv_9_8anoAvail != 0 and r_2sv_9_8anoAvail != 1:
-            raise _enc('nav_sat', 'sv[9].anoAvail', r_2sv_9_8anoAvail, 'type', 'a bool')
-        r_2sv_9_8anoAvail = 1 if r_2sv_9_8anoAvail else 0
-    else:
         r_2sv_9_8anoAvail = 0
-    if len(g_sv) > 9:
-        r_2sv_9_8aopAvail: Any = g_2sv_9.aopAvail
-        if r_2sv_9_8aopAvail is not True and r_2sv_9_8aopAvail is not False and r_2sv_9_8aopAvail != 0 and r_2sv_9_8aopAvail != 1:
-            raise _enc('nav_sat', 'sv[9].aopAvail', r_2sv_9_8aopAvail, 'type', 'a bool')
-        r_2sv_9_8aopAvail = 1 if r_2sv_9_8aopAvail else 0
-    else:
         r_2sv_9_8aopAvail = 0
-    if len(g_sv) > 9:
-        r_2sv_9_10reserved13 = g_2sv_9.reserved13
-        if r_2sv_9_10reserved13.__class__ is not int and (not isinstance(r_2sv_9_10reserved13, int) or r_2sv_9_10reserved13.__class__ is bool):
-            raise _enc('nav_sat', 'sv[9].reserved13', r_2sv_9_10reserved13, 'type', 'an int')
-        if not 0 <= r_2sv_9_10reserved13 <= 1:
-            raise _enc('nav_sat', 'sv[9].reserved13', r_2sv_9_10reserved13, 'range', '0..1', None)
-    else:
         r_2sv_9_10reserved13 = 0
-    if len(g_sv) > 9:
-        r_2sv_9_12sbasCorrUsed: Any = g_2sv_9.sbasCorrUsed
-        if r_2sv_9_12sbasCorrUsed is not True and r_2sv_9_12sbasCorrUsed is not False and r_2sv_9_12sbasCorrUsed != 0 and r_2sv_9_12sbasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[9].sbasCorrUsed', r_2sv_9_12sbasCorrUsed, 'type', 'a bool')
-        r_2sv_9_12sbasCorrUsed = 1 if r_2sv_9_12sbasCorrUsed else 0
-    else:
         r_2sv_9_12sbasCorrUsed = 0
-    if len(g_sv) > 9:
-        r_2sv_9_12rtcmCorrUsed: Any = g_2sv_9.rtcmCorrUsed
-        if r_2sv_9_12rtcmCorrUsed is not True and r_2sv_9_12rtcmCorrUsed is not False and r_2sv_9_12rtcmCorrUsed != 0 and r_2sv_9_12rtcmCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[9].rtcmCorrUsed', r_2sv_9_12rtcmCorrUsed, 'type', 'a bool')
-        r_2sv_9_12rtcmCorrUsed = 1 if r_2sv_9_12rtcmCorrUsed else 0
-    else:
         r_2sv_9_12rtcmCorrUsed = 0
-    if len(g_sv) > 9:
-        r_2sv_9_12slasCorrUsed: Any = g_2sv_9.slasCorrUsed
-        if r_2sv_9_12slasCorrUsed is not True and r_2sv_9_12slasCorrUsed is not False and r_2sv_9_12slasCorrUsed != 0 and r_2sv_9_12slasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[9].slasCorrUsed', r_2sv_9_12slasCorrUsed, 'type', 'a bool')
-        r_2sv_9_12slasCorrUsed = 1 if r_2sv_9_12slasCorrUsed else 0
-    else:
         r_2sv_9_12slasCorrUsed = 0
-    if len(g_sv) > 9:
-        r_2sv_9_14spartnCorrUsed: Any = g_2sv_9.spartnCorrUsed
-        if r_2sv_9_14spartnCorrUsed is not True and r_2sv_9_14spartnCorrUsed is not False and r_2sv_9_14spartnCorrUsed != 0 and r_2sv_9_14spartnCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[9].spartnCorrUsed', r_2sv_9_14spartnCorrUsed, 'type', 'a bool')
-        r_2sv_9_14spartnCorrUsed = 1 if r_2sv_9_14spartnCorrUsed else 0
-    else:
         r_2sv_9_14spartnCorrUsed = 0
-    if len(g_sv) > 9:
-        r_2sv_9_10prCorrUsed: Any = g_2sv_9.prCorrUsed
-        if r_2sv_9_10prCorrUsed is not True and r_2sv_9_10prCorrUsed is not False and r_2sv_9_10prCorrUsed != 0 and r_2sv_9_10prCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[9].prCorrUsed', r_2sv_9_10prCorrUsed, 'type', 'a bool')
-        r_2sv_9_10prCorrUsed = 1 if r_2sv_9_10prCorrUsed else 0
-    else:
         r_2sv_9_10prCorrUsed = 0
-    if len(g_sv) > 9:
-        r_2sv_9_10crCorrUsed: Any = g_2sv_9.crCorrUsed
-        if r_2sv_9_10crCorrUsed is not True and r_2sv_9_10crCorrUsed is not False and r_2sv_9_10crCorrUsed != 0 and r_2sv_9_10crCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[9].crCorrUsed', r_2sv_9_10crCorrUsed, 'type', 'a bool')
-        r_2sv_9_10crCorrUsed = 1 if r_2sv_9_10crCorrUsed else 0
-    else:
         r_2sv_9_10crCorrUsed = 0
-    if len(g_sv) > 9:
-        r_2sv_9_10doCorrUsed: Any = g_2sv_9.doCorrUsed
-        if r_2sv_9_10doCorrUsed is not True and r_2sv_9_10doCorrUsed is not False and r_2sv_9_10doCorrUsed != 0 and r_2sv_9_10doCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[9].doCorrUsed', r_2sv_9_10doCorrUsed, 'type', 'a bool')
-        r_2sv_9_10doCorrUsed = 1 if r_2sv_9_10doCorrUsed else 0
-    else:
         r_2sv_9_10doCorrUsed = 0
-    if len(g_sv) > 9:
-        r_2sv_9_12clasCorrUsed: Any = g_2sv_9.clasCorrUsed
-        if r_2sv_9_12clasCorrUsed is not True and r_2sv_9_12clasCorrUsed is not False and r_2sv_9_12clasCorrUsed != 0 and r_2sv_9_12clasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[9].clasCorrUsed', r_2sv_9_12clasCorrUsed, 'type', 'a bool')
-        r_2sv_9_12clasCorrUsed = 1 if r_2sv_9_12clasCorrUsed else 0
-    else:
         r_2sv_9_12clasCorrUsed = 0
-    if len(g_sv) > 9:
-        r_2sv_9_11lppCorrUsed: Any = g_2sv_9.lppCorrUsed
-        if r_2sv_9_11lppCorrUsed is not True and r_2sv_9_11lppCorrUsed is not False and r_2sv_9_11lppCorrUsed != 0 and r_2sv_9_11lppCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[9].lppCorrUsed', r_2sv_9_11lppCorrUsed, 'type', 'a bool')
-        r_2sv_9_11lppCorrUsed = 1 if r_2sv_9_11lppCorrUsed else 0
-    else:
         r_2sv_9_11lppCorrUsed = 0
-    if len(g_sv) > 9:
-        r_2sv_9_11hasCorrUsed: Any = g_2sv_9.hasCorrUsed
-        if r_2sv_9_11hasCorrUsed is not True and r_2sv_9_11hasCorrUsed is not False and r_2sv_9_11hasCorrUsed != 0 and r_2sv_9_11hasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[9].hasCorrUsed', r_2sv_9_11hasCorrUsed, 'type', 'a bool')
-        r_2sv_9_11hasCorrUsed = 1 if r_2sv_9_11hasCorrUsed else 0
-    else:
         r_2sv_9_11hasCorrUsed = 0
-    if len(g_sv) > 9:
         r_2sv_9_11flags_spare = 0
-    else:
-        r_2sv_9_11flags_spare = 0
-    g_2sv_10: Any = cast(Any, g_sv[10] if len(g_sv) > 10 else None)
     if len(g_sv) > 10:
-        r_2sv_10_6gnssId = g_2sv_10.gnssId
-        if r_2sv_10_6gnssId.__class__ is not int and (not isinstance(r_2sv_10_6gnssId, int) or r_2sv_10_6gnssId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[10].gnssId', r_2sv_10_6gnssId, 'type', 'an int')
-        if not 0 <= r_2sv_10_6gnssId <= 255:
-            raise _enc('nav_sat', 'sv[10].gnssId', r_2sv_10_6gnssId, 'range', '0..255', None)
+        r_2sv_10_6gnssId, r_2sv_10_4svId, r_2sv_10_3cno, r_2sv_10_4elev, r_2sv_10_4azim, r_2sv_10_5prRes, r_2sv_10_10qualityInd, r_2sv_10_6svUsed, r_2sv_10_6health, r_2sv_10_8diffCorr, r_2sv_10_8smoothed, r_2sv_10_11orbitSource, r_2sv_10_8ephAvail, r_2sv_10_8almAvail, r_2sv_10_8anoAvail, r_2sv_10_8aopAvail, r_2sv_10_10reserved13, r_2sv_10_12sbasCorrUsed, r_2sv_10_12rtcmCorrUsed, r_2sv_10_12slasCorrUsed, r_2sv_10_14spartnCorrUsed, r_2sv_10_10prCorrUsed, r_2sv_10_10crCorrUsed, r_2sv_10_10doCorrUsed, r_2sv_10_12clasCorrUsed, r_2sv_10_11lppCorrUsed, r_2sv_10_11hasCorrUsed, r_2sv_10_11flags_spare = _raw_nav_sat_2sv_10(g_sv[10])
     else:
         r_2sv_10_6gnssId = 0
-    if len(g_sv) > 10:
-        r_2sv_10_4svId = g_2sv_10.svId
-        if r_2sv_10_4svId.__class__ is not int and (not isinstance(r_2sv_10_4svId, int) or r_2sv_10_4svId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[10].svId', r_2sv_10_4svId, 'type', 'an int')
-        if not 0 <= r_2sv_10_4svId <= 255:
-            raise _enc('nav_sat', 'sv[10].svId', r_2sv_10_4svId, 'range', '0..255', None)
-    else:
         r_2sv_10_4svId = 0
-    if len(g_sv) > 10:
-        r_2sv_10_3cno = g_2sv_10.cno
-        if r_2sv_10_3cno.__class__ is not int and (not isinstance(r_2sv_10_3cno, int) or r_2sv_10_3cno.__class__ is bool):
-            raise _enc('nav_sat', 'sv[10].cno', r_2sv_10_3cno, 'type', 'an int')
-        if not 0 <= r_2sv_10_3cno <= 255:
-            raise _enc('nav_sat', 'sv[10].cno', r_2sv_10_3cno, 'range', '0..255', None)
-    else:
         r_2sv_10_3cno = 0
-    if len(g_sv) > 10:
-        r_2sv_10_4elev = g_2sv_10.elev
-        if r_2sv_10_4elev.__class__ is not int and (not isinstance(r_2sv_10_4elev, int) or r_2sv_10_4elev.__class__ is bool):
-            raise _enc('nav_sat', 'sv[10].elev', r_2sv_10_4elev, 'type', 'an int')
-        if not -128 <= r_2sv_10_4elev <= 127:
-            raise _enc('nav_sat', 'sv[10].elev', r_2sv_10_4elev, 'range', '-128..127', None)
-    else:
         r_2sv_10_4elev = 0
-    if len(g_sv) > 10:
-        r_2sv_10_4azim = g_2sv_10.azim
-        if r_2sv_10_4azim.__class__ is not int and (not isinstance(r_2sv_10_4azim, int) or r_2sv_10_4azim.__class__ is bool):
-            raise _enc('nav_sat', 'sv[10].azim', r_2sv_10_4azim, 'type', 'an int')
-        if not -32768 <= r_2sv_10_4azim <= 32767:
-            raise _enc('nav_sat', 'sv[10].azim', r_2sv_10_4azim, 'range', '-32768..32767', None)
-    else:
         r_2sv_10_4azim = 0
-    if len(g_sv) > 10:
-        r_2sv_10_5prRes = g_2sv_10.prRes
-        if r_2sv_10_5prRes.__class__ is not float and (not isinstance(r_2sv_10_5prRes, (int, float)) or r_2sv_10_5prRes.__class__ is bool):
-            raise _enc('nav_sat', 'sv[10].prRes', r_2sv_10_5prRes, 'type', 'a number')
-        if not -3276.8 <= r_2sv_10_5prRes <= 3276.7000000000003:
-            raise _enc('nav_sat', 'sv[10].prRes', r_2sv_10_5prRes, 'range', '-3276.8..3276.7000000000003', None)
-        r_2sv_10_5prRes = _floor(r_2sv_10_5prRes / 0.1 + 0.5)
-    else:
         r_2sv_10_5prRes = 0
-    if len(g_sv) > 10:
-        r_2sv_10_10qualityInd = g_2sv_10.qualityInd
-        if r_2sv_10_10qualityInd.__class__ is not int and (not isinstance(r_2sv_10_10qualityInd, int) or r_2sv_10_10qualityInd.__class__ is bool):
-            raise _enc('nav_sat', 'sv[10].qualityInd', r_2sv_10_10qualityInd, 'type', 'an int')
-        if not 0 <= r_2sv_10_10qualityInd <= 7:
-            raise _enc('nav_sat', 'sv[10].qualityInd', r_2sv_10_10qualityInd, 'range', '0..7', None)
-    else:
         r_2sv_10_10qualityInd = 0
-    if len(g_sv) > 10:
-        r_2sv_10_6svUsed: Any = g_2sv_10.svUsed
-        if r_2sv_10_6svUsed is not True and r_2sv_10_6svUsed is not False and r_2sv_10_6svUsed != 0 and r_2sv_10_6svUsed != 1:
-            raise _enc('nav_sat', 'sv[10].svUsed', r_2sv_10_6svUsed, 'type', 'a bool')
-        r_2sv_10_6svUsed = 1 if r_2sv_10_6svUsed else 0
-    else:
         r_2sv_10_6svUsed = 0
-    if len(g_sv) > 10:
-        r_2sv_10_6health = g_2sv_10.health
-        if r_2sv_10_6health.__class__ is not int and (not isinstance(r_2sv_10_6health, int) or r_2sv_10_6health.__class__ is bool):
-            raise _enc('nav_sat', 'sv[10].health', r_2sv_10_6health, 'type', 'an int')
-        if not 0 <= r_2sv_10_6health <= 3:
-            raise _enc('nav_sat', 'sv[10].health', r_2sv_10_6health, 'range', '0..3', None)
-    else:
         r_2sv_10_6health = 0
-    if len(g_sv) > 10:
-        r_2sv_10_8diffCorr: Any = g_2sv_10.diffCorr
-        if r_2sv_10_8diffCorr is not True and r_2sv_10_8diffCorr is not False and r_2sv_10_8diffCorr != 0 and r_2sv_10_8diffCorr != 1:
-            raise _enc('nav_sat', 'sv[10].diffCorr', r_2sv_10_8diffCorr, 'type', 'a bool')
-        r_2sv_10_8diffCorr = 1 if r_2sv_10_8diffCorr else 0
-    else:
         r_2sv_10_8diffCorr = 0
-    if len(g_sv) > 10:
-        r_2sv_10_8smoothed: Any = g_2sv_10.smoothed
-        if r_2sv_10_8smoothed is not True and r_2sv_10_8smoothed is not False and r_2sv_10_8smoothed != 0 and r_2sv_10_8smoothed != 1:
-            raise _enc('nav_sat', 'sv[10].smoothed', r_2sv_10_8smoothed, 'type', 'a bool')
-        r_2sv_10_8smoothed = 1 if r_2sv_10_8smoothed else 0
-    else:
         r_2sv_10_8smoothed = 0
-    if len(g_sv) > 10:
-        r_2sv_10_11orbitSource = g_2sv_10.orbitSource
-        if r_2sv_10_11orbitSource.__class__ is not int and (not isinstance(r_2sv_10_11orbitSource, int) or r_2sv_10_11orbitSource.__class__ is bool):
-            raise _enc('nav_sat', 'sv[10].orbitSource', r_2sv_10_11orbitSource, 'type', 'an int')
-        if not 0 <= r_2sv_10_11orbitSource <= 7:
-            raise _enc('nav_sat', 'sv[10].orbitSource', r_2sv_10_11orbitSource, 'range', '0..7', None)
-    else:
         r_2sv_10_11orbitSource = 0
-    if len(g_sv) > 10:
-        r_2sv_10_8ephAvail: Any = g_2sv_10.ephAvail
-        if r_2sv_10_8ephAvail is not True and r_2sv_10_8ephAvail is not False and r_2sv_10_8ephAvail != 0 and r_2sv_10_8ephAvail != 1:
-            raise _enc('nav_sat', 'sv[10].ephAvail', r_2sv_10_8ephAvail, 'type', 'a bool')
-        r_2sv_10_8ephAvail = 1 if r_2sv_10_8ephAvail else 0
-    else:
         r_2sv_10_8ephAvail = 0
-    if len(g_sv) > 10:
-        r_2sv_10_8almAvail: Any = g_2sv_10.almAvail
-        if r_2sv_10_8almAvail is not True and r_2sv_10_8almAvail is not False and r_2sv_10_8almAvail != 0 and r_2sv_10_8almAvail != 1:
-            raise _enc('nav_sat', 'sv[10].almAvail', r_2sv_10_8almAvail, 'type', 'a bool')
-        r_2sv_10_8almAvail = 1 if r_2sv_10_8almAvail else 0
-    else:
         r_2sv_10_8almAvail = 0
-    if len(g_sv) > 10:
-        r_2sv_10_8anoAvail: Any = g_2sv_10.anoAvail
-        if r_2sv_10_8anoAvail is not True and r_2sv_10_8anoAvail is not False and r_2sv_10_8anoAvail != 0 and r_2sv_10_8anoAvail != 1:
-            raise _enc('nav_sat', 'sv[10].anoAvail', r_2sv_10_8anoAvail, 'type', 'a bool')
-        r_2sv_10_8anoAvail = 1 if r_2sv_10_8anoAvail else 0
-    else:
         r_2sv_10_8anoAvail = 0
-    if len(g_sv) > 10:
-        r_2sv_10_8aopAvail: Any = g_2sv_10.aopAvail
-        if r_2sv_10_8aopAvail is not True and r_2sv_10_8aopAvail is not False and r_2sv_10_8aopAvail != 0 and r_2sv_10_8aopAvail != 1:
-            raise _enc('nav_sat', 'sv[10].aopAvail', r_2sv_10_8aopAvail, 'type', 'a bool')
-        r_2sv_10_8aopAvail = 1 if r_2sv_10_8aopAvail else 0
-    else:
         r_2sv_10_8aopAvail = 0
-    if len(g_sv) > 10:
-        r_2sv_10_10reserved13 = g_2sv_10.reserved13
-        if r_2sv_10_10reserved13.__class__ is not int and (not isinstance(r_2sv_10_10reserved13, int) or r_2sv_10_10reserved13.__class__ is bool):
-            raise _enc('nav_sat', 'sv[10].reserved13', r_2sv_10_10reserved13, 'type', 'an int')
-        if not 0 <= r_2sv_10_10reserved13 <= 1:
-            raise _enc('nav_sat', 'sv[10].reserved13', r_2sv_10_10reserved13, 'range', '0..1', None)
-    else:
         r_2sv_10_10reserved13 = 0
-    if len(g_sv) > 10:
-        r_2sv_10_12sbasCorrUsed: Any = g_2sv_10.sbasCorrUsed
-        if r_2sv_10_12sbasCorrUsed is not True and r_2sv_10_12sbasCorrUsed is not False and r_2sv_10_12sbasCorrUsed != 0 and r_2sv_10_12sbasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[10].sbasCorrUsed', r_2sv_10_12sbasCorrUsed, 'type', 'a bool')
-        r_2sv_10_12sbasCorrUsed = 1 if r_2sv_10_12sbasCorrUsed else 0
-    else:
         r_2sv_10_12sbasCorrUsed = 0
-    if len(g_sv) > 10:
-        r_2sv_10_12rtcmCorrUsed: Any = g_2sv_10.rtcmCorrUsed
-        if r_2sv_10_12rtcmCorrUsed is not True and r_2sv_10_12rtcmCorrUsed is not False and r_2sv_10_12rtcmCorrUsed != 0 and r_2sv_10_12rtcmCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[10].rtcmCorrUsed', r_2sv_10_12rtcmCorrUsed, 'type', 'a bool')
-        r_2sv_10_12rtcmCorrUsed = 1 if r_2sv_10_12rtcmCorrUsed else 0
-    else:
         r_2sv_10_12rtcmCorrUsed = 0
-    if len(g_sv) > 10:
-        r_2sv_10_12slasCorrUsed: Any = g_2sv_10.slasCorrUsed
-        if r_2sv_10_12slasCorrUsed is not True and r_2sv_10_12slasCorrUsed is not False and r_2sv_10_12slasCorrUsed != 0 and r_2sv_10_12slasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[10].slasCorrUsed', r_2sv_10_12slasCorrUsed, 'type', 'a bool')
-        r_2sv_10_12slasCorrUsed = 1 if r_2sv_10_12slasCorrUsed else 0
-    else:
         r_2sv_10_12slasCorrUsed = 0
-    if len(g_sv) > 10:
-        r_2sv_10_14spartnCorrUsed: Any = g_2sv_10.spartnCorrUsed
-        if r_2sv_10_14spartnCorrUsed is not True and r_2sv_10_14spartnCorrUsed is not False and r_2sv_10_14spartnCorrUsed != 0 and r_2sv_10_14spartnCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[10].spartnCorrUsed', r_2sv_10_14spartnCorrUsed, 'type', 'a bool')
-        r_2sv_10_14spartnCorrUsed = 1 if r_2sv_10_14spartnCorrUsed else 0
-    else:
         r_2sv_10_14spartnCorrUsed = 0
-    if len(g_sv) > 10:
-        r_2sv_10_10prCorrUsed: Any = g_2sv_10.prCorrUsed
-        if r_2sv_10_10prCorrUsed is not True and r_2sv_10_10prCorrUsed is not False and r_2sv_10_10prCorrUsed != 0 and r_2sv_10_10prCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[10].prCorrUsed', r_2sv_10_10prCorrUsed, 'type', 'a bool')
-        r_2sv_10_10prCorrUsed = 1 if r_2sv_10_10prCorrUsed else 0
-    else:
         r_2sv_10_10prCorrUsed = 0
-    if len(g_sv) > 10:
-        r_2sv_10_10crCorrUsed: Any = g_2sv_10.crCorrUsed
-        if r_2sv_10_10crCorrUsed is not True and r_2sv_10_10crCorrUsed is not False and r_2sv_10_10crCorrUsed != 0 and r_2sv_10_10crCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[10].crCorrUsed', r_2sv_10_10crCorrUsed, 'type', 'a bool')
-        r_2sv_10_10crCorrUsed = 1 if r_2sv_10_10crCorrUsed else 0
-    else:
         r_2sv_10_10crCorrUsed = 0
-    if len(g_sv) > 10:
-        r_2sv_10_10doCorrUsed: Any = g_2sv_10.doCorrUsed
-        if r_2sv_10_10doCorrUsed is not True and r_2sv_10_10doCorrUsed is not False and r_2sv_10_10doCorrUsed != 0 and r_2sv_10_10doCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[10].doCorrUsed', r_2sv_10_10doCorrUsed, 'type', 'a bool')
-        r_2sv_10_10doCorrUsed = 1 if r_2sv_10_10doCorrUsed else 0
-    else:
         r_2sv_10_10doCorrUsed = 0
-    if len(g_sv) > 10:
-        r_2sv_10_12clasCorrUsed: Any = g_2sv_10.clasCorrUsed
-        if r_2sv_10_12clasCorrUsed is not True and r_2sv_10_12clasCorrUsed is not False and r_2sv_10_12clasCorrUsed != 0 and r_2sv_10_12clasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[10].clasCorrUsed', r_2sv_10_12clasCorrUsed, 'type', 'a bool')
-        r_2sv_10_12clasCorrUsed = 1 if r_2sv_10_12clasCorrUsed else 0
-    else:
         r_2sv_10_12clasCorrUsed = 0
-    if len(g_sv) > 10:
-        r_2sv_10_11lppCorrUsed: Any = g_2sv_10.lppCorrUsed
-        if r_2sv_10_11lppCorrUsed is not True and r_2sv_10_11lppCorrUsed is not False and r_2sv_10_11lppCorrUsed != 0 and r_2sv_10_11lppCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[10].lppCorrUsed', r_2sv_10_11lppCorrUsed, 'type', 'a bool')
-        r_2sv_10_11lppCorrUsed = 1 if r_2sv_10_11lppCorrUsed else 0
-    else:
         r_2sv_10_11lppCorrUsed = 0
-    if len(g_sv) > 10:
-        r_2sv_10_11hasCorrUsed: Any = g_2sv_10.hasCorrUsed
-        if r_2sv_10_11hasCorrUsed is not True and r_2sv_10_11hasCorrUsed is not False and r_2sv_10_11hasCorrUsed != 0 and r_2sv_10_11hasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[10].hasCorrUsed', r_2sv_10_11hasCorrUsed, 'type', 'a bool')
-        r_2sv_10_11hasCorrUsed = 1 if r_2sv_10_11hasCorrUsed else 0
-    else:
         r_2sv_10_11hasCorrUsed = 0
-    if len(g_sv) > 10:
         r_2sv_10_11flags_spare = 0
-    else:
-        r_2sv_10_11flags_spare = 0
-    g_2sv_11: Any = cast(Any, g_sv[11] if len(g_sv) > 11 else None)
     if len(g_sv) > 11:
-        r_2sv_11_6gnssId = g_2sv_11.gnssId
-        if r_2sv_11_6gnssId.__class__ is not int and (not isinstance(r_2sv_11_6gnssId, int) or r_2sv_11_6gnssId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[11].gnssId', r_2sv_11_6gnssId, 'type', 'an int')
-        if not 0 <= r_2sv_11_6gnssId <= 255:
-            raise _enc('nav_sat', 'sv[11].gnssId', r_2sv_11_6gnssId, 'range', '0..255', None)
+        r_2sv_11_6gnssId, r_2sv_11_4svId, r_2sv_11_3cno, r_2sv_11_4elev, r_2sv_11_4azim, r_2sv_11_5prRes, r_2sv_11_10qualityInd, r_2sv_11_6svUsed, r_2sv_11_6health, r_2sv_11_8diffCorr, r_2sv_11_8smoothed, r_2sv_11_11orbitSource, r_2sv_11_8ephAvail, r_2sv_11_8almAvail, r_2sv_11_8anoAvail, r_2sv_11_8aopAvail, r_2sv_11_10reserved13, r_2sv_11_12sbasCorrUsed, r_2sv_11_12rtcmCorrUsed, r_2sv_11_12slasCorrUsed, r_2sv_11_14spartnCorrUsed, r_2sv_11_10prCorrUsed, r_2sv_11_10crCorrUsed, r_2sv_11_10doCorrUsed, r_2sv_11_12clasCorrUsed, r_2sv_11_11lppCorrUsed, r_2sv_11_11hasCorrUsed, r_2sv_11_11flags_spare = _raw_nav_sat_2sv_11(g_sv[11])
     else:
         r_2sv_11_6gnssId = 0
-    if len(g_sv) > 11:
-        r_2sv_11_4svId = g_2sv_11.svId
-        if r_2sv_11_4svId.__class__ is not int and (not isinstance(r_2sv_11_4svId, int) or r_2sv_11_4svId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[11].svId', r_2sv_11_4svId, 'type', 'an int')
-        if not 0 <= r_2sv_11_4svId <= 255:
-            raise _enc('nav_sat', 'sv[11].svId', r_2sv_11_4svId, 'range', '0..255', None)
-    else:
         r_2sv_11_4svId = 0
-    if len(g_sv) > 11:
-        r_2sv_11_3cno = g_2sv_11.cno
-        if r_2sv_11_3cno.__class__ is not int and (not isinstance(r_2sv_11_3cno, int) or r_2sv_11_3cno.__class__ is bool):
-            raise _enc('nav_sat', 'sv[11].cno', r_2sv_11_3cno, 'type', 'an int')
-        if not 0 <= r_2sv_11_3cno <= 255:
-            raise _enc('nav_sat', 'sv[11].cno', r_2sv_11_3cno, 'range', '0..255', None)
-    else:
         r_2sv_11_3cno = 0
-    if len(g_sv) > 11:
-        r_2sv_11_4elev = g_2sv_11.elev
-        if r_2sv_11_4elev.__class__ is not int and (not isinstance(r_2sv_11_4elev, int) or r_2sv_11_4elev.__class__ is bool):
-            raise _enc('nav_sat', 'sv[11].elev', r_2sv_11_4elev, 'type', 'an int')
-        if not -128 <= r_2sv_11_4elev <= 127:
-            raise _enc('nav_sat', 'sv[11].elev', r_2sv_11_4elev, 'range', '-128..127', None)
-    else:
         r_2sv_11_4elev = 0
-    if len(g_sv) > 11:
-        r_2sv_11_4azim = g_2sv_11.azim
-        if r_2sv_11_4azim.__class__ is not int and (not isinstance(r_2sv_11_4azim, int) or r_2sv_11_4azim.__class__ is bool):
-            raise _enc('nav_sat', 'sv[11].azim', r_2sv_11_4azim, 'type', 'an int')
-        if not -32768 <= r_2sv_11_4azim <= 32767:
-            raise _enc('nav_sat', 'sv[11].azim', r_2sv_11_4azim, 'range', '-32768..32767', None)
-    else:
         r_2sv_11_4azim = 0
-    if len(g_sv) > 11:
-        r_2sv_11_5prRes = g_2sv_11.prRes
-        if r_2sv_11_5prRes.__class__ is not float and (not isinstance(r_2sv_11_5prRes, (int, float)) or r_2sv_11_5prRes.__class__ is bool):
-            raise _enc('nav_sat', 'sv[11].prRes', r_2sv_11_5prRes, 'type', 'a number')
-        if not -3276.8 <= r_2sv_11_5prRes <= 3276.7000000000003:
-            raise _enc('nav_sat', 'sv[11].prRes', r_2sv_11_5prRes, 'range', '-3276.8..3276.7000000000003', None)
-        r_2sv_11_5prRes = _floor(r_2sv_11_5prRes / 0.1 + 0.5)
-    else:
         r_2sv_11_5prRes = 0
-    if len(g_sv) > 11:
-        r_2sv_11_10qualityInd = g_2sv_11.qualityInd
-        if r_2sv_11_10qualityInd.__class__ is not int and (not isinstance(r_2sv_11_10qualityInd, int) or r_2sv_11_10qualityInd.__class__ is bool):
-            raise _enc('nav_sat', 'sv[11].qualityInd', r_2sv_11_10qualityInd, 'type', 'an int')
-        if not 0 <= r_2sv_11_10qualityInd <= 7:
-            raise _enc('nav_sat', 'sv[11].qualityInd', r_2sv_11_10qualityInd, 'range', '0..7', None)
-    else:
         r_2sv_11_10qualityInd = 0
-    if len(g_sv) > 11:
-        r_2sv_11_6svUsed: Any = g_2sv_11.svUsed
-        if r_2sv_11_6svUsed is not True and r_2sv_11_6svUsed is not False and r_2sv_11_6svUsed != 0 and r_2sv_11_6svUsed != 1:
-            raise _enc('nav_sat', 'sv[11].svUsed', r_2sv_11_6svUsed, 'type', 'a bool')
-        r_2sv_11_6svUsed = 1 if r_2sv_11_6svUsed else 0
-    else:
         r_2sv_11_6svUsed = 0
-    if len(g_sv) > 11:
-        r_2sv_11_6health = g_2sv_11.health
-        if r_2sv_11_6health.__class__ is not int and (not isinstance(r_2sv_11_6health, int) or r_2sv_11_6health.__class__ is bool):
-            raise _enc('nav_sat', 'sv[11].health', r_2sv_11_6health, 'type', 'an int')
-        if not 0 <= r_2sv_11_6health <= 3:
-            raise _enc('nav_sat', 'sv[11].health', r_2sv_11_6health, 'range', '0..3', None)
-    else:
         r_2sv_11_6health = 0
-    if len(g_sv) > 11:
-        r_2sv_11_8diffCorr: Any = g_2sv_11.diffCorr
-        if r_2sv_11_8diffCorr is not True and r_2sv_11_8diffCorr is not False and r_2sv_11_8diffCorr != 0 and r_2sv_11_8diffCorr != 1:
-            raise _enc('nav_sat', 'sv[11].diffCorr', r_2sv_11_8diffCorr, 'type', 'a bool')
-        r_2sv_11_8diffCorr = 1 if r_2sv_11_8diffCorr else 0
-    else:
         r_2sv_11_8diffCorr = 0
-    if len(g_sv) > 11:
-        r_2sv_11_8smoothed: Any = g_2sv_11.smoothed
-        if r_2sv_11_8smoothed is not True and r_2sv_11_8smoothed is not False and r_2sv_11_8smoothed != 0 and r_2sv_11_8smoothed != 1:
-            raise _enc('nav_sat', 'sv[11].smoothed', r_2sv_11_8smoothed, 'type', 'a bool')
-        r_2sv_11_8smoothed = 1 if r_2sv_11_8smoothed else 0
-    else:
         r_2sv_11_8smoothed = 0
-    if len(g_sv) > 11:
-        r_2sv_11_11orbitSource = g_2sv_11.orbitSource
-        if r_2sv_11_11orbitSource.__class__ is not int and (not isinstance(r_2sv_11_11orbitSource, int) or r_2sv_11_11orbitSource.__class__ is bool):
-            raise _enc('nav_sat', 'sv[11].orbitSource', r_2sv_11_11orbitSource, 'type', 'an int')
-        if not 0 <= r_2sv_11_11orbitSource <= 7:
-            raise _enc('nav_sat', 'sv[11].orbitSource', r_2sv_11_11orbitSource, 'range', '0..7', None)
-    else:
         r_2sv_11_11orbitSource = 0
-    if len(g_sv) > 11:
-        r_2sv_11_8ephAvail: Any = g_2sv_11.ephAvail
-        if r_2sv_11_8ephAvail is not True and r_2sv_11_8ephAvail is not False and r_2sv_11_8ephAvail != 0 and r_2sv_11_8ephAvail != 1:
-            raise _enc('nav_sat', 'sv[11].ephAvail', r_2sv_11_8ephAvail, 'type', 'a bool')
-        r_2sv_11_8ephAvail = 1 if r_2sv_11_8ephAvail else 0
-    else:
         r_2sv_11_8ephAvail = 0
-    if len(g_sv) > 11:
-        r_2sv_11_8almAvail: Any = g_2sv_11.almAvail
-        if r_2sv_11_8almAvail is not True and r_2sv_11_8almAvail is not False and r_2sv_11_8almAvail != 0 and r_2sv_11_8almAvail != 1:
-            raise _enc('nav_sat', 'sv[11].almAvail', r_2sv_11_8almAvail, 'type', 'a bool')
-        r_2sv_11_8almAvail = 1 if r_2sv_11_8almAvail else 0
-    else:
         r_2sv_11_8almAvail = 0
-    if len(g_sv) > 11:
-        r_2sv_11_8anoAvail: Any = g_2sv_11.anoAvail
-        if r_2sv_11_8anoAvail is not True and r_2sv_11_8anoAvail is not False and r_2sv_11_8anoAvail != 0 and r_2sv_11_8anoAvail != 1:
-            raise _enc('nav_sat', 'sv[11].anoAvail', r_2sv_11_8anoAvail, 'type', 'a bool')
-        r_2sv_11_8anoAvail = 1 if r_2sv_11_8anoAvail else 0
-    else:
         r_2sv_11_8anoAvail = 0
-    if len(g_sv) > 11:
-        r_2sv_11_8aopAvail: Any = g_2sv_11.aopAvail
-        if r_2sv_11_8aopAvail is not True and r_2sv_11_8aopAvail is not False and r_2sv_11_8aopAvail != 0 and r_2sv_11_8aopAvail != 1:
-            raise _enc('nav_sat', 'sv[11].aopAvail', r_2sv_11_8aopAvail, 'type', 'a bool')
-        r_2sv_11_8aopAvail = 1 if r_2sv_11_8aopAvail else 0
-    else:
         r_2sv_11_8aopAvail = 0
-    if len(g_sv) > 11:
-        r_2sv_11_10reserved13 = g_2sv_11.reserved13
-        if r_2sv_11_10reserved13.__class__ is not int and (not isinstance(r_2sv_11_10reserved13, int) or r_2sv_11_10reserved13.__class__ is bool):
-            raise _enc('nav_sat', 'sv[11].reserved13', r_2sv_11_10reserved13, 'type', 'an int')
-        if not 0 <= r_2sv_11_10reserved13 <= 1:
-            raise _enc('nav_sat', 'sv[11].reserved13', r_2sv_11_10reserved13, 'range', '0..1', None)
-    else:
         r_2sv_11_10reserved13 = 0
-    if len(g_sv) > 11:
-        r_2sv_11_12sbasCorrUsed: Any = g_2sv_11.sbasCorrUsed
-        if r_2sv_11_12sbasCorrUsed is not True and r_2sv_11_12sbasCorrUsed is not False and r_2sv_11_12sbasCorrUsed != 0 and r_2sv_11_12sbasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[11].sbasCorrUsed', r_2sv_11_12sbasCorrUsed, 'type', 'a bool')
-        r_2sv_11_12sbasCorrUsed = 1 if r_2sv_11_12sbasCorrUsed else 0
-    else:
         r_2sv_11_12sbasCorrUsed = 0
-    if len(g_sv) > 11:
-        r_2sv_11_12rtcmCorrUsed: Any = g_2sv_11.rtcmCorrUsed
-        if r_2sv_11_12rtcmCorrUsed is not True and r_2sv_11_12rtcmCorrUsed is not False and r_2sv_11_12rtcmCorrUsed != 0 and r_2sv_11_12rtcmCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[11].rtcmCorrUsed', r_2sv_11_12rtcmCorrUsed, 'type', 'a bool')
-        r_2sv_11_12rtcmCorrUsed = 1 if r_2sv_11_12rtcmCorrUsed else 0
-    else:
         r_2sv_11_12rtcmCorrUsed = 0
-    if len(g_sv) > 11:
-        r_2sv_11_12slasCorrUsed: Any = g_2sv_11.slasCorrUsed
-        if r_2sv_11_12slasCorrUsed is not True and r_2sv_11_12slasCorrUsed is not False and r_2sv_11_12slasCorrUsed != 0 and r_2sv_11_12slasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[11].slasCorrUsed', r_2sv_11_12slasCorrUsed, 'type', 'a bool')
-        r_2sv_11_12slasCorrUsed = 1 if r_2sv_11_12slasCorrUsed else 0
-    else:
         r_2sv_11_12slasCorrUsed = 0
-    if len(g_sv) > 11:
-        r_2sv_11_14spartnCorrUsed: Any = g_2sv_11.spartnCorrUsed
-        if r_2sv_11_14spartnCorrUsed is not True and r_2sv_11_14spartnCorrUsed is not False and r_2sv_11_14spartnCorrUsed != 0 and r_2sv_11_14spartnCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[11].spartnCorrUsed', r_2sv_11_14spartnCorrUsed, 'type', 'a bool')
-        r_2sv_11_14spartnCorrUsed = 1 if r_2sv_11_14spartnCorrUsed else 0
-    else:
         r_2sv_11_14spartnCorrUsed = 0
-    if len(g_sv) > 11:
-        r_2sv_11_10prCorrUsed: Any = g_2sv_11.prCorrUsed
-        if r_2sv_11_10prCorrUsed is not True and r_2sv_11_10prCorrUsed is not False and r_2sv_11_10prCorrUsed != 0 and r_2sv_11_10prCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[11].prCorrUsed', r_2sv_11_10prCorrUsed, 'type', 'a bool')
-        r_2sv_11_10prCorrUsed = 1 if r_2sv_11_10prCorrUsed else 0
-    else:
         r_2sv_11_10prCorrUsed = 0
-    if len(g_sv) > 11:
-        r_2sv_11_10crCorrUsed: Any = g_2sv_11.crCorrUsed
-        if r_2sv_11_10crCorrUsed is not True and r_2sv_11_10crCorrUsed is not False and r_2sv_11_10crCorrUsed != 0 and r_2sv_11_10crCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[11].crCorrUsed', r_2sv_11_10crCorrUsed, 'type', 'a bool')
-        r_2sv_11_10crCorrUsed = 1 if r_2sv_11_10crCorrUsed else 0
-    else:
         r_2sv_11_10crCorrUsed = 0
-    if len(g_sv) > 11:
-        r_2sv_11_10doCorrUsed: Any = g_2sv_11.doCorrUsed
-        if r_2sv_11_10doCorrUsed is not True and r_2sv_11_10doCorrUsed is not False and r_2sv_11_10doCorrUsed != 0 and r_2sv_11_10doCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[11].doCorrUsed', r_2sv_11_10doCorrUsed, 'type', 'a bool')
-        r_2sv_11_10doCorrUsed = 1 if r_2sv_11_10doCorrUsed else 0
-    else:
         r_2sv_11_10doCorrUsed = 0
-    if len(g_sv) > 11:
-        r_2sv_11_12clasCorrUsed: Any = g_2sv_11.clasCorrUsed
-        if r_2sv_11_12clasCorrUsed is not True and r_2sv_11_12clasCorrUsed is not False and r_2sv_11_12clasCorrUsed != 0 and r_2sv_11_12clasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[11].clasCorrUsed', r_2sv_11_12clasCorrUsed, 'type', 'a bool')
-        r_2sv_11_12clasCorrUsed = 1 if r_2sv_11_12clasCorrUsed else 0
-    else:
         r_2sv_11_12clasCorrUsed = 0
-    if len(g_sv) > 11:
-        r_2sv_11_11lppCorrUsed: Any = g_2sv_11.lppCorrUsed
-        if r_2sv_11_11lppCorrUsed is not True and r_2sv_11_11lppCorrUsed is not False and r_2sv_11_11lppCorrUsed != 0 and r_2sv_11_11lppCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[11].lppCorrUsed', r_2sv_11_11lppCorrUsed, 'type', 'a bool')
-        r_2sv_11_11lppCorrUsed = 1 if r_2sv_11_11lppCorrUsed else 0
-    else:
         r_2sv_11_11lppCorrUsed = 0
-    if len(g_sv) > 11:
-        r_2sv_11_11hasCorrUsed: Any = g_2sv_11.hasCorrUsed
-        if r_2sv_11_11hasCorrUsed is not True and r_2sv_11_11hasCorrUsed is not False and r_2sv_11_11hasCorrUsed != 0 and r_2sv_11_11hasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[11].hasCorrUsed', r_2sv_11_11hasCorrUsed, 'type', 'a bool')
-        r_2sv_11_11hasCorrUsed = 1 if r_2sv_11_11hasCorrUsed else 0
-    else:
         r_2sv_11_11hasCorrUsed = 0
-    if len(g_sv) > 11:
         r_2sv_11_11flags_spare = 0
-    else:
-        r_2sv_11_11flags_spare = 0
-    g_2sv_12: Any = cast(Any, g_sv[12] if len(g_sv) > 12 else None)
     if len(g_sv) > 12:
-        r_2sv_12_6gnssId = g_2sv_12.gnssId
-        if r_2sv_12_6gnssId.__class__ is not int and (not isinstance(r_2sv_12_6gnssId, int) or r_2sv_12_6gnssId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[12].gnssId', r_2sv_12_6gnssId, 'type', 'an int')
-        if not 0 <= r_2sv_12_6gnssId <= 255:
-            raise _enc('nav_sat', 'sv[12].gnssId', r_2sv_12_6gnssId, 'range', '0..255', None)
+        r_2sv_12_6gnssId, r_2sv_12_4svId, r_2sv_12_3cno, r_2sv_12_4elev, r_2sv_12_4azim, r_2sv_12_5prRes, r_2sv_12_10qualityInd, r_2sv_12_6svUsed, r_2sv_12_6health, r_2sv_12_8diffCorr, r_2sv_12_8smoothed, r_2sv_12_11orbitSource, r_2sv_12_8ephAvail, r_2sv_12_8almAvail, r_2sv_12_8anoAvail, r_2sv_12_8aopAvail, r_2sv_12_10reserved13, r_2sv_12_12sbasCorrUsed, r_2sv_12_12rtcmCorrUsed, r_2sv_12_12slasCorrUsed, r_2sv_12_14spartnCorrUsed, r_2sv_12_10prCorrUsed, r_2sv_12_10crCorrUsed, r_2sv_12_10doCorrUsed, r_2sv_12_12clasCorrUsed, r_2sv_12_11lppCorrUsed, r_2sv_12_11hasCorrUsed, r_2sv_12_11flags_spare = _raw_nav_sat_2sv_12(g_sv[12])
     else:
         r_2sv_12_6gnssId = 0
-    if len(g_sv) > 12:
-        r_2sv_12_4svId = g_2sv_12.svId
-        if r_2sv_12_4svId.__class__ is not int and (not isinstance(r_2sv_12_4svId, int) or r_2sv_12_4svId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[12].svId', r_2sv_12_4svId, 'type', 'an int')
-        if not 0 <= r_2sv_12_4svId <= 255:
-            raise _enc('nav_sat', 'sv[12].svId', r_2sv_12_4svId, 'range', '0..255', None)
-    else:
         r_2sv_12_4svId = 0
-    if len(g_sv) > 12:
-        r_2sv_12_3cno = g_2sv_12.cno
-        if r_2sv_12_3cno.__class__ is not int and (not isinstance(r_2sv_12_3cno, int) or r_2sv_12_3cno.__class__ is bool):
-            raise _enc('nav_sat', 'sv[12].cno', r_2sv_12_3cno, 'type', 'an int')
-        if not 0 <= r_2sv_12_3cno <= 255:
-            raise _enc('nav_sat', 'sv[12].cno', r_2sv_12_3cno, 'range', '0..255', None)
-    else:
         r_2sv_12_3cno = 0
-    if len(g_sv) > 12:
-        r_2sv_12_4elev = g_2sv_12.elev
-        if r_2sv_12_4elev.__class__ is not int and (not isinstance(r_2sv_12_4elev, int) or r_2sv_12_4elev.__class__ is bool):
-            raise _enc('nav_sat', 'sv[12].elev', r_2sv_12_4elev, 'type', 'an int')
-        if not -128 <= r_2sv_12_4elev <= 127:
-            raise _enc('nav_sat', 'sv[12].elev', r_2sv_12_4elev, 'range', '-128..127', None)
-    else:
         r_2sv_12_4elev = 0
-    if len(g_sv) > 12:
-        r_2sv_12_4azim = g_2sv_12.azim
-        if r_2sv_12_4azim.__class__ is not int and (not isinstance(r_2sv_12_4azim, int) or r_2sv_12_4azim.__class__ is bool):
-            raise _enc('nav_sat', 'sv[12].azim', r_2sv_12_4azim, 'type', 'an int')
-        if not -32768 <= r_2sv_12_4azim <= 32767:
-            raise _enc('nav_sat', 'sv[12].azim', r_2sv_12_4azim, 'range', '-32768..32767', None)
-    else:
         r_2sv_12_4azim = 0
-    if len(g_sv) > 12:
-        r_2sv_12_5prRes = g_2sv_12.prRes
-        if r_2sv_12_5prRes.__class__ is not float and (not isinstance(r_2sv_12_5prRes, (int, float)) or r_2sv_12_5prRes.__class__ is bool):
-            raise _enc('nav_sat', 'sv[12].prRes', r_2sv_12_5prRes, 'type', 'a number')
-        if not -3276.8 <= r_2sv_12_5prRes <= 3276.7000000000003:
-            raise _enc('nav_sat', 'sv[12].prRes', r_2sv_12_5prRes, 'range', '-3276.8..3276.7000000000003', None)
-        r_2sv_12_5prRes = _floor(r_2sv_12_5prRes / 0.1 + 0.5)
-    else:
         r_2sv_12_5prRes = 0
-    if len(g_sv) > 12:
-        r_2sv_12_10qualityInd = g_2sv_12.qualityInd
-        if r_2sv_12_10qualityInd.__class__ is not int and (not isinstance(r_2sv_12_10qualityInd, int) or r_2sv_12_10qualityInd.__class__ is bool):
-            raise _enc('nav_sat', 'sv[12].qualityInd', r_2sv_12_10qualityInd, 'type', 'an int')
-        if not 0 <= r_2sv_12_10qualityInd <= 7:
-            raise _enc('nav_sat', 'sv[12].qualityInd', r_2sv_12_10qualityInd, 'range', '0..7', None)
-    else:
         r_2sv_12_10qualityInd = 0
-    if len(g_sv) > 12:
-        r_2sv_12_6svUsed: Any = g_2sv_12.svUsed
-        if r_2sv_12_6svUsed is not True and r_2sv_12_6svUsed is not False and r_2sv_12_6svUsed != 0 and r_2sv_12_6svUsed != 1:
-            raise _enc('nav_sat', 'sv[12].svUsed', r_2sv_12_6svUsed, 'type', 'a bool')
-        r_2sv_12_6svUsed = 1 if r_2sv_12_6svUsed else 0
-    else:
         r_2sv_12_6svUsed = 0
-    if len(g_sv) > 12:
-        r_2sv_12_6health = g_2sv_12.health
-        if r_2sv_12_6health.__class__ is not int and (not isinstance(r_2sv_12_6health, int) or r_2sv_12_6health.__class__ is bool):
-            raise _enc('nav_sat', 'sv[12].health', r_2sv_12_6health, 'type', 'an int')
-        if not 0 <= r_2sv_12_6health <= 3:
-            raise _enc('nav_sat', 'sv[12].health', r_2sv_12_6health, 'range', '0..3', None)
-    else:
         r_2sv_12_6health = 0
-    if len(g_sv) > 12:
-        r_2sv_12_8diffCorr: Any = g_2sv_12.diffCorr
-        if r_2sv_12_8diffCorr is not True and r_2sv_12_8diffCorr is not False and r_2sv_12_8diffCorr != 0 and r_2sv_12_8diffCorr != 1:
-            raise _enc('nav_sat', 'sv[12].diffCorr', r_2sv_12_8diffCorr, 'type', 'a bool')
-        r_2sv_12_8diffCorr = 1 if r_2sv_12_8diffCorr else 0
-    else:
         r_2sv_12_8diffCorr = 0
-    if len(g_sv) > 12:
-        r_2sv_12_8smoothed: Any = g_2sv_12.smoothed
-        if r_2sv_12_8smoothed is not True and r_2sv_12_8smoothed is not False and r_2sv_12_8smoothed != 0 and r_2sv_12_8smoothed != 1:
-            raise _enc('nav_sat', 'sv[12].smoothed', r_2sv_12_8smoothed, 'type', 'a bool')
-        r_2sv_12_8smoothed = 1 if r_2sv_12_8smoothed else 0
-    else:
         r_2sv_12_8smoothed = 0
-    if len(g_sv) > 12:
-        r_2sv_12_11orbitSource = g_2sv_12.orbitSource
-        if r_2sv_12_11orbitSource.__class__ is not int and (not isinstance(r_2sv_12_11orbitSource, int) or r_2sv_12_11orbitSource.__class__ is bool):
-            raise _enc('nav_sat', 'sv[12].orbitSource', r_2sv_12_11orbitSource, 'type', 'an int')
-        if not 0 <= r_2sv_12_11orbitSource <= 7:
-            raise _enc('nav_sat', 'sv[12].orbitSource', r_2sv_12_11orbitSource, 'range', '0..7', None)
-    else:
         r_2sv_12_11orbitSource = 0
-    if len(g_sv) > 12:
-        r_2sv_12_8ephAvail: Any = g_2sv_12.ephAvail
-        if r_2sv_12_8ephAvail is not True and r_2sv_12_8ephAvail is not False and r_2sv_12_8ephAvail != 0 and r_2sv_12_8ephAvail != 1:
-            raise _enc('nav_sat', 'sv[12].ephAvail', r_2sv_12_8ephAvail, 'type', 'a bool')
-        r_2sv_12_8ephAvail = 1 if r_2sv_12_8ephAvail else 0
-    else:
         r_2sv_12_8ephAvail = 0
-    if len(g_sv) > 12:
-        r_2sv_12_8almAvail: Any = g_2sv_12.almAvail
-        if r_2sv_12_8almAvail is not True and r_2sv_12_8almAvail is not False and r_2sv_12_8almAvail != 0 and r_2sv_12_8almAvail != 1:
-            raise _enc('nav_sat', 'sv[12].almAvail', r_2sv_12_8almAvail, 'type', 'a bool')
-        r_2sv_12_8almAvail = 1 if r_2sv_12_8almAvail else 0
-    else:
         r_2sv_12_8almAvail = 0
-    if len(g_sv) > 12:
-        r_2sv_12_8anoAvail: Any = g_2sv_12.anoAvail
-        if r_2sv_12_8anoAvail is not True and r_2sv_12_8anoAvail is not False and r_2sv_12_8anoAvail != 0 and r_2sv_12_8anoAvail != 1:
-            raise _enc('nav_sat', 'sv[12].anoAvail', r_2sv_12_8anoAvail, 'type', 'a bool')
-        r_2sv_12_8anoAvail = 1 if r_2sv_12_8anoAvail else 0
-    else:
         r_2sv_12_8anoAvail = 0
-    if len(g_sv) > 12:
-        r_2sv_12_8aopAvail: Any = g_2sv_12.aopAvail
-        if r_2sv_12_8aopAvail is not True and r_2sv_12_8aopAvail is not False and r_2sv_12_8aopAvail != 0 and r_2sv_12_8aopAvail != 1:
-            raise _enc('nav_sat', 'sv[12].aopAvail', r_2sv_12_8aopAvail, 'type', 'a bool')
-        r_2sv_12_8aopAvail = 1 if r_2sv_12_8aopAvail else 0
-    else:
         r_2sv_12_8aopAvail = 0
-    if len(g_sv) > 12:
-        r_2sv_12_10reserved13 = g_2sv_12.reserved13
-        if r_2sv_12_10reserved13.__class__ is not int and (not isinstance(r_2sv_12_10reserved13, int) or r_2sv_12_10reserved13.__class__ is bool):
-            raise _enc('nav_sat', 'sv[12].reserved13', r_2sv_12_10reserved13, 'type', 'an int')
-        if not 0 <= r_2sv_12_10reserved13 <= 1:
-            raise _enc('nav_sat', 'sv[12].reserved13', r_2sv_12_10reserved13, 'range', '0..1', None)
-    else:
         r_2sv_12_10reserved13 = 0
-    if len(g_sv) > 12:
-        r_2sv_12_12sbasCorrUsed: Any = g_2sv_12.sbasCorrUsed
-        if r_2sv_12_12sbasCorrUsed is not True and r_2sv_12_12sbasCorrUsed is not False and r_2sv_12_12sbasCorrUsed != 0 and r_2sv_12_12sbasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[12].sbasCorrUsed', r_2sv_12_12sbasCorrUsed, 'type', 'a bool')
-        r_2sv_12_12sbasCorrUsed = 1 if r_2sv_12_12sbasCorrUsed else 0
-    else:
         r_2sv_12_12sbasCorrUsed = 0
-    if len(g_sv) > 12:
-        r_2sv_12_12rtcmCorrUsed: Any = g_2sv_12.rtcmCorrUsed
-        if r_2sv_12_12rtcmCorrUsed is not True and r_2sv_12_12rtcmCorrUsed is not False and r_2sv_12_12rtcmCorrUsed != 0 and r_2sv_12_12rtcmCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[12].rtcmCorrUsed', r_2sv_12_12rtcmCorrUsed, 'type', 'a bool')
-        r_2sv_12_12rtcmCorrUsed = 1 if r_2sv_12_12rtcmCorrUsed else 0
-    else:
         r_2sv_12_12rtcmCorrUsed = 0
-    if len(g_sv) > 12:
-        r_2sv_12_12slasCorrUsed: Any = g_2sv_12.slasCorrUsed
-        if r_2sv_12_12slasCorrUsed is not True and r_2sv_12_12slasCorrUsed is not False and r_2sv_12_12slasCorrUsed != 0 and r_2sv_12_12slasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[12].slasCorrUsed', r_2sv_12_12slasCorrUsed, 'type', 'a bool')
-        r_2sv_12_12slasCorrUsed = 1 if r_2sv_12_12slasCorrUsed else 0
-    else:
         r_2sv_12_12slasCorrUsed = 0
-    if len(g_sv) > 12:
-        r_2sv_12_14spartnCorrUsed: Any = g_2sv_12.spartnCorrUsed
-        if r_2sv_12_14spartnCorrUsed is not True and r_2sv_12_14spartnCorrUsed is not False and r_2sv_12_14spartnCorrUsed != 0 and r_2sv_12_14spartnCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[12].spartnCorrUsed', r_2sv_12_14spartnCorrUsed, 'type', 'a bool')
-        r_2sv_12_14spartnCorrUsed = 1 if r_2sv_12_14spartnCorrUsed else 0
-    else:
         r_2sv_12_14spartnCorrUsed = 0
-    if len(g_sv) > 12:
-        r_2sv_12_10prCorrUsed: Any = g_2sv_12.prCorrUsed
-        if r_2sv_12_10prCorrUsed is not True and r_2sv_12_10prCorrUsed is not False and r_2sv_12_10prCorrUsed != 0 and r_2sv_12_10prCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[12].prCorrUsed', r_2sv_12_10prCorrUsed, 'type', 'a bool')
-        r_2sv_12_10prCorrUsed = 1 if r_2sv_12_10prCorrUsed else 0
-    else:
         r_2sv_12_10prCorrUsed = 0
-    if len(g_sv) > 12:
-        r_2sv_12_10crCorrUsed: Any = g_2sv_12.crCorrUsed
-        if r_2sv_12_10crCorrUsed is not True and r_2sv_12_10crCorrUsed is not False and r_2sv_12_10crCorrUsed != 0 and r_2sv_12_10crCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[12].crCorrUsed', r_2sv_12_10crCorrUsed, 'type', 'a bool')
-        r_2sv_12_10crCorrUsed = 1 if r_2sv_12_10crCorrUsed else 0
-    else:
         r_2sv_12_10crCorrUsed = 0
-    if len(g_sv) > 12:
-        r_2sv_12_10doCorrUsed: Any = g_2sv_12.doCorrUsed
-        if r_2sv_12_10doCorrUsed is not True and r_2sv_12_10doCorrUsed is not False and r_2sv_12_10doCorrUsed != 0 and r_2sv_12_10doCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[12].doCorrUsed', r_2sv_12_10doCorrUsed, 'type', 'a bool')
-        r_2sv_12_10doCorrUsed = 1 if r_2sv_12_10doCorrUsed else 0
-    else:
         r_2sv_12_10doCorrUsed = 0
-    if len(g_sv) > 12:
-        r_2sv_12_12clasCorrUsed: Any = g_2sv_12.clasCorrUsed
-        if r_2sv_12_12clasCorrUsed is not True and r_2sv_12_12clasCorrUsed is not False and r_2sv_12_12clasCorrUsed != 0 and r_2sv_12_12clasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[12].clasCorrUsed', r_2sv_12_12clasCorrUsed, 'type', 'a bool')
-        r_2sv_12_12clasCorrUsed = 1 if r_2sv_12_12clasCorrUsed else 0
-    else:
         r_2sv_12_12clasCorrUsed = 0
-    if len(g_sv) > 12:
-        r_2sv_12_11lppCorrUsed: Any = g_2sv_12.lppCorrUsed
-        if r_2sv_12_11lppCorrUsed is not True and r_2sv_12_11lppCorrUsed is not False and r_2sv_12_11lppCorrUsed != 0 and r_2sv_12_11lppCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[12].lppCorrUsed', r_2sv_12_11lppCorrUsed, 'type', 'a bool')
-        r_2sv_12_11lppCorrUsed = 1 if r_2sv_12_11lppCorrUsed else 0
-    else:
         r_2sv_12_11lppCorrUsed = 0
-    if len(g_sv) > 12:
-        r_2sv_12_11hasCorrUsed: Any = g_2sv_12.hasCorrUsed
-        if r_2sv_12_11hasCorrUsed is not True and r_2sv_12_11hasCorrUsed is not False and r_2sv_12_11hasCorrUsed != 0 and r_2sv_12_11hasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[12].hasCorrUsed', r_2sv_12_11hasCorrUsed, 'type', 'a bool')
-        r_2sv_12_11hasCorrUsed = 1 if r_2sv_12_11hasCorrUsed else 0
-    else:
         r_2sv_12_11hasCorrUsed = 0
-    if len(g_sv) > 12:
         r_2sv_12_11flags_spare = 0
-    else:
-        r_2sv_12_11flags_spare = 0
-    g_2sv_13: Any = cast(Any, g_sv[13] if len(g_sv) > 13 else None)
     if len(g_sv) > 13:
-        r_2sv_13_6gnssId = g_2sv_13.gnssId
-        if r_2sv_13_6gnssId.__class__ is not int and (not isinstance(r_2sv_13_6gnssId, int) or r_2sv_13_6gnssId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[13].gnssId', r_2sv_13_6gnssId, 'type', 'an int')
-        if not 0 <= r_2sv_13_6gnssId <= 255:
-            raise _enc('nav_sat', 'sv[13].gnssId', r_2sv_13_6gnssId, 'range', '0..255', None)
+        r_2sv_13_6gnssId, r_2sv_13_4svId, r_2sv_13_3cno, r_2sv_13_4elev, r_2sv_13_4azim, r_2sv_13_5prRes, r_2sv_13_10qualityInd, r_2sv_13_6svUsed, r_2sv_13_6health, r_2sv_13_8diffCorr, r_2sv_13_8smoothed, r_2sv_13_11orbitSource, r_2sv_13_8ephAvail, r_2sv_13_8almAvail, r_2sv_13_8anoAvail, r_2sv_13_8aopAvail, r_2sv_13_10reserved13, r_2sv_13_12sbasCorrUsed, r_2sv_13_12rtcmCorrUsed, r_2sv_13_12slasCorrUsed, r_2sv_13_14spartnCorrUsed, r_2sv_13_10prCorrUsed, r_2sv_13_10crCorrUsed, r_2sv_13_10doCorrUsed, r_2sv_13_12clasCorrUsed, r_2sv_13_11lppCorrUsed, r_2sv_13_11hasCorrUsed, r_2sv_13_11flags_spare = _raw_nav_sat_2sv_13(g_sv[13])
     else:
         r_2sv_13_6gnssId = 0
-    if len(g_sv) > 13:
-        r_2sv_13_4svId = g_2sv_13.svId
-        if r_2sv_13_4svId.__class__ is not int and (not isinstance(r_2sv_13_4svId, int) or r_2sv_13_4svId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[13].svId', r_2sv_13_4svId, 'type', 'an int')
-        if not 0 <= r_2sv_13_4svId <= 255:
-            raise _enc('nav_sat', 'sv[13].svId', r_2sv_13_4svId, 'range', '0..255', None)
-    else:
         r_2sv_13_4svId = 0
-    if len(g_sv) > 13:
-        r_2sv_13_3cno = g_2sv_13.cno
-        if r_2sv_13_3cno.__class__ is not int and (not isinstance(r_2sv_13_3cno, int) or r_2sv_13_3cno.__class__ is bool):
-            raise _enc('nav_sat', 'sv[13].cno', r_2sv_13_3cno, 'type', 'an int')
-        if not 0 <= r_2sv_13_3cno <= 255:
-            raise _enc('nav_sat', 'sv[13].cno', r_2sv_13_3cno, 'range', '0..255', None)
-    else:
         r_2sv_13_3cno = 0
-    if len(g_sv) > 13:
-        r_2sv_13_4elev = g_2sv_13.elev
-        if r_2sv_13_4elev.__class__ is not int and (not isinstance(r_2sv_13_4elev, int) or r_2sv_13_4elev.__class__ is bool):
-            raise _enc('nav_sat', 'sv[13].elev', r_2sv_13_4elev, 'type', 'an int')
-        if not -128 <= r_2sv_13_4elev <= 127:
-            raise _enc('nav_sat', 'sv[13].elev', r_2sv_13_4elev, 'range', '-128..127', None)
-    else:
         r_2sv_13_4elev = 0
-    if len(g_sv) > 13:
-        r_2sv_13_4azim = g_2sv_13.azim
-        if r_2sv_13_4azim.__class__ is not int and (not isinstance(r_2sv_13_4azim, int) or r_2sv_13_4azim.__class__ is bool):
-            raise _enc('nav_sat', 'sv[13].azim', r_2sv_13_4azim, 'type', 'an int')
-        if not -32768 <= r_2sv_13_4azim <= 32767:
-            raise _enc('nav_sat', 'sv[13].azim', r_2sv_13_4azim, 'range', '-32768..32767', None)
-    else:
         r_2sv_13_4azim = 0
-    if len(g_sv) > 13:
-        r_2sv_13_5prRes = g_2sv_13.prRes
-        if r_2sv_13_5prRes.__class__ is not float and (not isinstance(r_2sv_13_5prRes, (int, float)) or r_2sv_13_5prRes.__class__ is bool):
-            raise _enc('nav_sat', 'sv[13].prRes', r_2sv_13_5prRes, 'type', 'a number')
-        if not -3276.8 <= r_2sv_13_5prRes <= 3276.7000000000003:
-            raise _enc('nav_sat', 'sv[13].prRes', r_2sv_13_5prRes, 'range', '-3276.8..3276.7000000000003', None)
-        r_2sv_13_5prRes = _floor(r_2sv_13_5prRes / 0.1 + 0.5)
-    else:
         r_2sv_13_5prRes = 0
-    if len(g_sv) > 13:
-        r_2sv_13_10qualityInd = g_2sv_13.qualityInd
-        if r_2sv_13_10qualityInd.__class__ is not int and (not isinstance(r_2sv_13_10qualityInd, int) or r_2sv_13_10qualityInd.__class__ is bool):
-            raise _enc('nav_sat', 'sv[13].qualityInd', r_2sv_13_10qualityInd, 'type', 'an int')
-        if not 0 <= r_2sv_13_10qualityInd <= 7:
-            raise _enc('nav_sat', 'sv[13].qualityInd', r_2sv_13_10qualityInd, 'range', '0..7', None)
-    else:
         r_2sv_13_10qualityInd = 0
-    if len(g_sv) > 13:
-        r_2sv_13_6svUsed: Any = g_2sv_13.svUsed
-        if r_2sv_13_6svUsed is not True and r_2sv_13_6svUsed is not False and r_2sv_13_6svUsed != 0 and r_2sv_13_6svUsed != 1:
-            raise _enc('nav_sat', 'sv[13].svUsed', r_2sv_13_6svUsed, 'type', 'a bool')
-        r_2sv_13_6svUsed = 1 if r_2sv_13_6svUsed else 0
-    else:
         r_2sv_13_6svUsed = 0
-    if len(g_sv) > 13:
-        r_2sv_13_6health = g_2sv_13.health
-        if r_2sv_13_6health.__class__ is not int and (not isinstance(r_2sv_13_6health, int) or r_2sv_13_6health.__class__ is bool):
-            raise _enc('nav_sat', 'sv[13].health', r_2sv_13_6health, 'type', 'an int')
-        if not 0 <= r_2sv_13_6health <= 3:
-            raise _enc('nav_sat', 'sv[13].health', r_2sv_13_6health, 'range', '0..3', None)
-    else:
         r_2sv_13_6health = 0
-    if len(g_sv) > 13:
-        r_2sv_13_8diffCorr: Any = g_2sv_13.diffCorr
-        if r_2sv_13_8diffCorr is not True and r_2sv_13_8diffCorr is not False and r_2sv_13_8diffCorr != 0 and r_2sv_13_8diffCorr != 1:
-            raise _enc('nav_sat', 'sv[13].diffCorr', r_2sv_13_8diffCorr, 'type', 'a bool')
-        r_2sv_13_8diffCorr = 1 if r_2sv_13_8diffCorr else 0
-    else:
         r_2sv_13_8diffCorr = 0
-    if len(g_sv) > 13:
-        r_2sv_13_8smoothed: Any = g_2sv_13.smoothed
-        if r_2sv_13_8smoothed is not True and r_2sv_13_8smoothed is not False and r_2sv_13_8smoothed != 0 and r_2sv_13_8smoothed != 1:
-            raise _enc('nav_sat', 'sv[13].smoothed', r_2sv_13_8smoothed, 'type', 'a bool')
-        r_2sv_13_8smoothed = 1 if r_2sv_13_8smoothed else 0
-    else:
         r_2sv_13_8smoothed = 0
-    if len(g_sv) > 13:
-        r_2sv_13_11orbitSource = g_2sv_13.orbitSource
-        if r_2sv_13_11orbitSource.__class__ is not int and (not isinstance(r_2sv_13_11orbitSource, int) or r_2sv_13_11orbitSource.__class__ is bool):
-            raise _enc('nav_sat', 'sv[13].orbitSource', r_2sv_13_11orbitSource, 'type', 'an int')
-        if not 0 <= r_2sv_13_11orbitSource <= 7:
-            raise _enc('nav_sat', 'sv[13].orbitSource', r_2sv_13_11orbitSource, 'range', '0..7', None)
-    else:
         r_2sv_13_11orbitSource = 0
-    if len(g_sv) > 13:
-        r_2sv_13_8ephAvail: Any = g_2sv_13.ephAvail
-        if r_2sv_13_8ephAvail is not True and r_2sv_13_8ephAvail is not False and r_2sv_13_8ephAvail != 0 and r_2sv_13_8ephAvail != 1:
-            raise _enc('nav_sat', 'sv[13].ephAvail', r_2sv_13_8ephAvail, 'type', 'a bool')
-        r_2sv_13_8ephAvail = 1 if r_2sv_13_8ephAvail else 0
-    else:
         r_2sv_13_8ephAvail = 0
-    if len(g_sv) > 13:
-        r_2sv_13_8almAvail: Any = g_2sv_13.almAvail
-        if r_2sv_13_8almAvail is not True and r_2sv_13_8almAvail is not False and r_2sv_13_8almAvail != 0 and r_2sv_13_8almAvail != 1:
-            raise _enc('nav_sat', 'sv[13].almAvail', r_2sv_13_8almAvail, 'type', 'a bool')
-        r_2sv_13_8almAvail = 1 if r_2sv_13_8almAvail else 0
-    else:
         r_2sv_13_8almAvail = 0
-    if len(g_sv) > 13:
-        r_2sv_13_8anoAvail: Any = g_2sv_13.anoAvail
-        if r_2sv_13_8anoAvail is not True and r_2sv_13_8anoAvail is not False and r_2sv_13_8anoAvail != 0 and r_2sv_13_8anoAvail != 1:
-            raise _enc('nav_sat', 'sv[13].anoAvail', r_2sv_13_8anoAvail, 'type', 'a bool')
-        r_2sv_13_8anoAvail = 1 if r_2sv_13_8anoAvail else 0
-    else:
         r_2sv_13_8anoAvail = 0
-    if len(g_sv) > 13:
-        r_2sv_13_8aopAvail: Any = g_2sv_13.aopAvail
-        if r_2sv_13_8aopAvail is not True and r_2sv_13_8aopAvail is not False and r_2sv_13_8aopAvail != 0 and r_2sv_13_8aopAvail != 1:
-            raise _enc('nav_sat', 'sv[13].aopAvail', r_2sv_13_8aopAvail, 'type', 'a bool')
-        r_2sv_13_8aopAvail = 1 if r_2sv_13_8aopAvail else 0
-    else:
         r_2sv_13_8aopAvail = 0
-    if len(g_sv) > 13:
-        r_2sv_13_10reserved13 = g_2sv_13.reserved13
-        if r_2sv_13_10reserved13.__class__ is not int and (not isinstance(r_2sv_13_10reserved13, int) or r_2sv_13_10reserved13.__class__ is bool):
-            raise _enc('nav_sat', 'sv[13].reserved13', r_2sv_13_10reserved13, 'type', 'an int')
-        if not 0 <= r_2sv_13_10reserved13 <= 1:
-            raise _enc('nav_sat', 'sv[13].reserved13', r_2sv_13_10reserved13, 'range', '0..1', None)
-    else:
         r_2sv_13_10reserved13 = 0
-    if len(g_sv) > 13:
-        r_2sv_13_12sbasCorrUsed: Any = g_2sv_13.sbasCorrUsed
-        if r_2sv_13_12sbasCorrUsed is not True and r_2sv_13_12sbasCorrUsed is not False and r_2sv_13_12sbasCorrUsed != 0 and r_2sv_13_12sbasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[13].sbasCorrUsed', r_2sv_13_12sbasCorrUsed, 'type', 'a bool')
-        r_2sv_13_12sbasCorrUsed = 1 if r_2sv_13_12sbasCorrUsed else 0
-    else:
         r_2sv_13_12sbasCorrUsed = 0
-    if len(g_sv) > 13:
-        r_2sv_13_12rtcmCorrUsed: Any = g_2sv_13.rtcmCorrUsed
-        if r_2sv_13_12rtcmCorrUsed is not True and r_2sv_13_12rtcmCorrUsed is not False and r_2sv_13_12rtcmCorrUsed != 0 and r_2sv_13_12rtcmCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[13].rtcmCorrUsed', r_2sv_13_12rtcmCorrUsed, 'type', 'a bool')
-        r_2sv_13_12rtcmCorrUsed = 1 if r_2sv_13_12rtcmCorrUsed else 0
-    else:
         r_2sv_13_12rtcmCorrUsed = 0
-    if len(g_sv) > 13:
-        r_2sv_13_12slasCorrUsed: Any = g_2sv_13.slasCorrUsed
-        if r_2sv_13_12slasCorrUsed is not True and r_2sv_13_12slasCorrUsed is not False and r_2sv_13_12slasCorrUsed != 0 and r_2sv_13_12slasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[13].slasCorrUsed', r_2sv_13_12slasCorrUsed, 'type', 'a bool')
-        r_2sv_13_12slasCorrUsed = 1 if r_2sv_13_12slasCorrUsed else 0
-    else:
         r_2sv_13_12slasCorrUsed = 0
-    if len(g_sv) > 13:
-        r_2sv_13_14spartnCorrUsed: Any = g_2sv_13.spartnCorrUsed
-        if r_2sv_13_14spartnCorrUsed is not True and r_2sv_13_14spartnCorrUsed is not False and r_2sv_13_14spartnCorrUsed != 0 and r_2sv_13_14spartnCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[13].spartnCorrUsed', r_2sv_13_14spartnCorrUsed, 'type', 'a bool')
-        r_2sv_13_14spartnCorrUsed = 1 if r_2sv_13_14spartnCorrUsed else 0
-    else:
         r_2sv_13_14spartnCorrUsed = 0
-    if len(g_sv) > 13:
-        r_2sv_13_10prCorrUsed: Any = g_2sv_13.prCorrUsed
-        if r_2sv_13_10prCorrUsed is not True and r_2sv_13_10prCorrUsed is not False and r_2sv_13_10prCorrUsed != 0 and r_2sv_13_10prCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[13].prCorrUsed', r_2sv_13_10prCorrUsed, 'type', 'a bool')
-        r_2sv_13_10prCorrUsed = 1 if r_2sv_13_10prCorrUsed else 0
-    else:
         r_2sv_13_10prCorrUsed = 0
-    if len(g_sv) > 13:
-        r_2sv_13_10crCorrUsed: Any = g_2sv_13.crCorrUsed
-        if r_2sv_13_10crCorrUsed is not True and r_2sv_13_10crCorrUsed is not False and r_2sv_13_10crCorrUsed != 0 and r_2sv_13_10crCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[13].crCorrUsed', r_2sv_13_10crCorrUsed, 'type', 'a bool')
-        r_2sv_13_10crCorrUsed = 1 if r_2sv_13_10crCorrUsed else 0
-    else:
         r_2sv_13_10crCorrUsed = 0
-    if len(g_sv) > 13:
-        r_2sv_13_10doCorrUsed: Any = g_2sv_13.doCorrUsed
-        if r_2sv_13_10doCorrUsed is not True and r_2sv_13_10doCorrUsed is not False and r_2sv_13_10doCorrUsed != 0 and r_2sv_13_10doCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[13].doCorrUsed', r_2sv_13_10doCorrUsed, 'type', 'a bool')
-        r_2sv_13_10doCorrUsed = 1 if r_2sv_13_10doCorrUsed else 0
-    else:
         r_2sv_13_10doCorrUsed = 0
-    if len(g_sv) > 13:
-        r_2sv_13_12clasCorrUsed: Any = g_2sv_13.clasCorrUsed
-        if r_2sv_13_12clasCorrUsed is not True and r_2sv_13_12clasCorrUsed is not False and r_2sv_13_12clasCorrUsed != 0 and r_2sv_13_12clasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[13].clasCorrUsed', r_2sv_13_12clasCorrUsed, 'type', 'a bool')
-        r_2sv_13_12clasCorrUsed = 1 if r_2sv_13_12clasCorrUsed else 0
-    else:
         r_2sv_13_12clasCorrUsed = 0
-    if len(g_sv) > 13:
-        r_2sv_13_11lppCorrUsed: Any = g_2sv_13.lppCorrUsed
-        if r_2sv_13_11lppCorrUsed is not True and r_2sv_13_11lppCorrUsed is not False and r_2sv_13_11lppCorrUsed != 0 and r_2sv_13_11lppCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[13].lppCorrUsed', r_2sv_13_11lppCorrUsed, 'type', 'a bool')
-        r_2sv_13_11lppCorrUsed = 1 if r_2sv_13_11lppCorrUsed else 0
-    else:
         r_2sv_13_11lppCorrUsed = 0
-    if len(g_sv) > 13:
-        r_2sv_13_11hasCorrUsed: Any = g_2sv_13.hasCorrUsed
-        if r_2sv_13_11hasCorrUsed is not True and r_2sv_13_11hasCorrUsed is not False and r_2sv_13_11hasCorrUsed != 0 and r_2sv_13_11hasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[13].hasCorrUsed', r_2sv_13_11hasCorrUsed, 'type', 'a bool')
-        r_2sv_13_11hasCorrUsed = 1 if r_2sv_13_11hasCorrUsed else 0
-    else:
         r_2sv_13_11hasCorrUsed = 0
-    if len(g_sv) > 13:
         r_2sv_13_11flags_spare = 0
-    else:
-        r_2sv_13_11flags_spare = 0
-    g_2sv_14: Any = cast(Any, g_sv[14] if len(g_sv) > 14 else None)
     if len(g_sv) > 14:
-        r_2sv_14_6gnssId = g_2sv_14.gnssId
-        if r_2sv_14_6gnssId.__class__ is not int and (not isinstance(r_2sv_14_6gnssId, int) or r_2sv_14_6gnssId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[14].gnssId', r_2sv_14_6gnssId, 'type', 'an int')
-        if not 0 <= r_2sv_14_6gnssId <= 255:
-            raise _enc('nav_sat', 'sv[14].gnssId', r_2sv_14_6gnssId, 'range', '0..255', None)
+        r_2sv_14_6gnssId, r_2sv_14_4svId, r_2sv_14_3cno, r_2sv_14_4elev, r_2sv_14_4azim, r_2sv_14_5prRes, r_2sv_14_10qualityInd, r_2sv_14_6svUsed, r_2sv_14_6health, r_2sv_14_8diffCorr, r_2sv_14_8smoothed, r_2sv_14_11orbitSource, r_2sv_14_8ephAvail, r_2sv_14_8almAvail, r_2sv_14_8anoAvail, r_2sv_14_8aopAvail, r_2sv_14_10reserved13, r_2sv_14_12sbasCorrUsed, r_2sv_14_12rtcmCorrUsed, r_2sv_14_12slasCorrUsed, r_2sv_14_14spartnCorrUsed, r_2sv_14_10prCorrUsed, r_2sv_14_10crCorrUsed, r_2sv_14_10doCorrUsed, r_2sv_14_12clasCorrUsed, r_2sv_14_11lppCorrUsed, r_2sv_14_11hasCorrUsed, r_2sv_14_11flags_spare = _raw_nav_sat_2sv_14(g_sv[14])
     else:
         r_2sv_14_6gnssId = 0
-    if len(g_sv) > 14:
-        r_2sv_14_4svId = g_2sv_14.svId
-        if r_2sv_14_4svId.__class__ is not int and (not isinstance(r_2sv_14_4svId, int) or r_2sv_14_4svId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[14].svId', r_2sv_14_4svId, 'type', 'an int')
-        if not 0 <= r_2sv_14_4svId <= 255:
-            raise _enc('nav_sat', 'sv[14].svId', r_2sv_14_4svId, 'range', '0..255', None)
-    else:
         r_2sv_14_4svId = 0
-    if len(g_sv) > 14:
-        r_2sv_14_3cno = g_2sv_14.cno
-        if r_2sv_14_3cno.__class__ is not int and (not isinstance(r_2sv_14_3cno, int) or r_2sv_14_3cno.__class__ is bool):
-            raise _enc('nav_sat', 'sv[14].cno', r_2sv_14_3cno, 'type', 'an int')
-        if not 0 <= r_2sv_14_3cno <= 255:
-            raise _enc('nav_sat', 'sv[14].cno', r_2sv_14_3cno, 'range', '0..255', None)
-    else:
         r_2sv_14_3cno = 0
-    if len(g_sv) > 14:
-        r_2sv_14_4elev = g_2sv_14.elev
-        if r_2sv_14_4elev.__class__ is not int and (not isinstance(r_2sv_14_4elev, int) or r_2sv_14_4elev.__class__ is bool):
-            raise _enc('nav_sat', 'sv[14].elev', r_2sv_14_4elev, 'type', 'an int')
-        if not -128 <= r_2sv_14_4elev <= 127:
-            raise _enc('nav_sat', 'sv[14].elev', r_2sv_14_4elev, 'range', '-128..127', None)
-    else:
         r_2sv_14_4elev = 0
-    if len(g_sv) > 14:
-        r_2sv_14_4azim = g_2sv_14.azim
-        if r_2sv_14_4azim.__class__ is not int and (not isinstance(r_2sv_14_4azim, int) or r_2sv_14_4azim.__class__ is bool):
-            raise _enc('nav_sat', 'sv[14].azim', r_2sv_14_4azim, 'type', 'an int')
-        if not -32768 <= r_2sv_14_4azim <= 32767:
-            raise _enc('nav_sat', 'sv[14].azim', r_2sv_14_4azim, 'range', '-32768..32767', None)
-    else:
         r_2sv_14_4azim = 0
-    if len(g_sv) > 14:
-        r_2sv_14_5prRes = g_2sv_14.prRes
-        if r_2sv_14_5prRes.__class__ is not float and (not isinstance(r_2sv_14_5prRes, (int, float)) or r_2sv_14_5prRes.__class__ is bool):
-            raise _enc('nav_sat', 'sv[14].prRes', r_2sv_14_5prRes, 'type', 'a number')
-        if not -3276.8 <= r_2sv_14_5prRes <= 3276.7000000000003:
-            raise _enc('nav_sat', 'sv[14].prRes', r_2sv_14_5prRes, 'range', '-3276.8..3276.7000000000003', None)
-        r_2sv_14_5prRes = _floor(r_2sv_14_5prRes / 0.1 + 0.5)
-    else:
         r_2sv_14_5prRes = 0
-    if len(g_sv) > 14:
-        r_2sv_14_10qualityInd = g_2sv_14.qualityInd
-        if r_2sv_14_10qualityInd.__class__ is not int and (not isinstance(r_2sv_14_10qualityInd, int) or r_2sv_14_10qualityInd.__class__ is bool):
-            raise _enc('nav_sat', 'sv[14].qualityInd', r_2sv_14_10qualityInd, 'type', 'an int')
-        if not 0 <= r_2sv_14_10qualityInd <= 7:
-            raise _enc('nav_sat', 'sv[14].qualityInd', r_2sv_14_10qualityInd, 'range', '0..7', None)
-    else:
         r_2sv_14_10qualityInd = 0
-    if len(g_sv) > 14:
-        r_2sv_14_6svUsed: Any = g_2sv_14.svUsed
-        if r_2sv_14_6svUsed is not True and r_2sv_14_6svUsed is not False and r_2sv_14_6svUsed != 0 and r_2sv_14_6svUsed != 1:
-            raise _enc('nav_sat', 'sv[14].svUsed', r_2sv_14_6svUsed, 'type', 'a bool')
-        r_2sv_14_6svUsed = 1 if r_2sv_14_6svUsed else 0
-    else:
         r_2sv_14_6svUsed = 0
-    if len(g_sv) > 14:
-        r_2sv_14_6health = g_2sv_14.health
-        if r_2sv_14_6health.__class__ is not int and (not isinstance(r_2sv_14_6health, int) or r_2sv_14_6health.__class__ is bool):
-            raise _enc('nav_sat', 'sv[14].health', r_2sv_14_6health, 'type', 'an int')
-        if not 0 <= r_2sv_14_6health <= 3:
-            raise _enc('nav_sat', 'sv[14].health', r_2sv_14_6health, 'range', '0..3', None)
-    else:
         r_2sv_14_6health = 0
-    if len(g_sv) > 14:
-        r_2sv_14_8diffCorr: Any = g_2sv_14.diffCorr
-        if r_2sv_14_8diffCorr is not True and r_2sv_14_8diffCorr is not False and r_2sv_14_8diffCorr != 0 and r_2sv_14_8diffCorr != 1:
-            raise _enc('nav_sat', 'sv[14].diffCorr', r_2sv_14_8diffCorr, 'type', 'a bool')
-        r_2sv_14_8diffCorr = 1 if r_2sv_14_8diffCorr else 0
-    else:
         r_2sv_14_8diffCorr = 0
-    if len(g_sv) > 14:
-        r_2sv_14_8smoothed: Any = g_2sv_14.smoothed
-        if r_2sv_14_8smoothed is not True and r_2sv_14_8smoothed is not False and r_2sv_14_8smoothed != 0 and r_2sv_14_8smoothed != 1:
-            raise _enc('nav_sat', 'sv[14].smoothed', r_2sv_14_8smoothed, 'type', 'a bool')
-        r_2sv_14_8smoothed = 1 if r_2sv_14_8smoothed else 0
-    else:
         r_2sv_14_8smoothed = 0
-    if len(g_sv) > 14:
-        r_2sv_14_11orbitSource = g_2sv_14.orbitSource
-        if r_2sv_14_11orbitSource.__class__ is not int and (not isinstance(r_2sv_14_11orbitSource, int) or r_2sv_14_11orbitSource.__class__ is bool):
-            raise _enc('nav_sat', 'sv[14].orbitSource', r_2sv_14_11orbitSource, 'type', 'an int')
-        if not 0 <= r_2sv_14_11orbitSource <= 7:
-            raise _enc('nav_sat', 'sv[14].orbitSource', r_2sv_14_11orbitSource, 'range', '0..7', None)
-    else:
         r_2sv_14_11orbitSource = 0
-    if len(g_sv) > 14:
-        r_2sv_14_8ephAvail: Any = g_2sv_14.ephAvail
-        if r_2sv_14_8ephAvail is not True and r_2sv_14_8ephAvail is not False and r_2sv_14_8ephAvail != 0 and r_2sv_14_8ephAvail != 1:
-            raise _enc('nav_sat', 'sv[14].ephAvail', r_2sv_14_8ephAvail, 'type', 'a bool')
-        r_2sv_14_8ephAvail = 1 if r_2sv_14_8ephAvail else 0
-    else:
         r_2sv_14_8ephAvail = 0
-    if len(g_sv) > 14:
-        r_2sv_14_8almAvail: Any = g_2sv_14.almAvail
-        if r_2sv_14_8almAvail is not True and r_2sv_14_8almAvail is not False and r_2sv_14_8almAvail != 0 and r_2sv_14_8almAvail != 1:
-            raise _enc('nav_sat', 'sv[14].almAvail', r_2sv_14_8almAvail, 'type', 'a bool')
-        r_2sv_14_8almAvail = 1 if r_2sv_14_8almAvail else 0
-    else:
         r_2sv_14_8almAvail = 0
-    if len(g_sv) > 14:
-        r_2sv_14_8anoAvail: Any = g_2sv_14.anoAvail
-        if r_2sv_14_8anoAvail is not True and r_2sv_14_8anoAvail is not False and r_2sv_14_8anoAvail != 0 and r_2sv_14_8anoAvail != 1:
-            raise _enc('nav_sat', 'sv[14].anoAvail', r_2sv_14_8anoAvail, 'type', 'a bool')
-        r_2sv_14_8anoAvail = 1 if r_2sv_14_8anoAvail else 0
-    else:
         r_2sv_14_8anoAvail = 0
-    if len(g_sv) > 14:
-        r_2sv_14_8aopAvail: Any = g_2sv_14.aopAvail
-        if r_2sv_14_8aopAvail is not True and r_2sv_14_8aopAvail is not False and r_2sv_14_8aopAvail != 0 and r_2sv_14_8aopAvail != 1:
-            raise _enc('nav_sat', 'sv[14].aopAvail', r_2sv_14_8aopAvail, 'type', 'a bool')
-        r_2sv_14_8aopAvail = 1 if r_2sv_14_8aopAvail else 0
-    else:
         r_2sv_14_8aopAvail = 0
-    if len(g_sv) > 14:
-        r_2sv_14_10reserved13 = g_2sv_14.reserved13
-        if r_2sv_14_10reserved13.__class__ is not int and (not isinstance(r_2sv_14_10reserved13, int) or r_2sv_14_10reserved13.__class__ is bool):
-            raise _enc('nav_sat', 'sv[14].reserved13', r_2sv_14_10reserved13, 'type', 'an int')
-        if not 0 <= r_2sv_14_10reserved13 <= 1:
-            raise _enc('nav_sat', 'sv[14].reserved13', r_2sv_14_10reserved13, 'range', '0..1', None)
-    else:
         r_2sv_14_10reserved13 = 0
-    if len(g_sv) > 14:
-        r_2sv_14_12sbasCorrUsed: Any = g_2sv_14.sbasCorrUsed
-        if r_2sv_14_12sbasCorrUsed is not True and r_2sv_14_12sbasCorrUsed is not False and r_2sv_14_12sbasCorrUsed != 0 and r_2sv_14_12sbasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[14].sbasCorrUsed', r_2sv_14_12sbasCorrUsed, 'type', 'a bool')
-        r_2sv_14_12sbasCorrUsed = 1 if r_2sv_14_12sbasCorrUsed else 0
-    else:
         r_2sv_14_12sbasCorrUsed = 0
-    if len(g_sv) > 14:
-        r_2sv_14_12rtcmCorrUsed: Any = g_2sv_14.rtcmCorrUsed
-        if r_2sv_14_12rtcmCorrUsed is not True and r_2sv_14_12rtcmCorrUsed is not False and r_2sv_14_12rtcmCorrUsed != 0 and r_2sv_14_12rtcmCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[14].rtcmCorrUsed', r_2sv_14_12rtcmCorrUsed, 'type', 'a bool')
-        r_2sv_14_12rtcmCorrUsed = 1 if r_2sv_14_12rtcmCorrUsed else 0
-    else:
         r_2sv_14_12rtcmCorrUsed = 0
-    if len(g_sv) > 14:
-        r_2sv_14_12slasCorrUsed: Any = g_2sv_14.slasCorrUsed
-        if r_2sv_14_12slasCorrUsed is not True and r_2sv_14_12slasCorrUsed is not False and r_2sv_14_12slasCorrUsed != 0 and r_2sv_14_12slasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[14].slasCorrUsed', r_2sv_14_12slasCorrUsed, 'type', 'a bool')
-        r_2sv_14_12slasCorrUsed = 1 if r_2sv_14_12slasCorrUsed else 0
-    else:
         r_2sv_14_12slasCorrUsed = 0
-    if len(g_sv) > 14:
-        r_2sv_14_14spartnCorrUsed: Any = g_2sv_14.spartnCorrUsed
-        if r_2sv_14_14spartnCorrUsed is not True and r_2sv_14_14spartnCorrUsed is not False and r_2sv_14_14spartnCorrUsed != 0 and r_2sv_14_14spartnCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[14].spartnCorrUsed', r_2sv_14_14spartnCorrUsed, 'type', 'a bool')
-        r_2sv_14_14spartnCorrUsed = 1 if r_2sv_14_14spartnCorrUsed else 0
-    else:
         r_2sv_14_14spartnCorrUsed = 0
-    if len(g_sv) > 14:
-        r_2sv_14_10prCorrUsed: Any = g_2sv_14.prCorrUsed
-        if r_2sv_14_10prCorrUsed is not True and r_2sv_14_10prCorrUsed is not False and r_2sv_14_10prCorrUsed != 0 and r_2sv_14_10prCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[14].prCorrUsed', r_2sv_14_10prCorrUsed, 'type', 'a bool')
-        r_2sv_14_10prCorrUsed = 1 if r_2sv_14_10prCorrUsed else 0
-    else:
         r_2sv_14_10prCorrUsed = 0
-    if len(g_sv) > 14:
-        r_2sv_14_10crCorrUsed: Any = g_2sv_14.crCorrUsed
-        if r_2sv_14_10crCorrUsed is not True and r_2sv_14_10crCorrUsed is not False and r_2sv_14_10crCorrUsed != 0 and r_2sv_14_10crCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[14].crCorrUsed', r_2sv_14_10crCorrUsed, 'type', 'a bool')
-        r_2sv_14_10crCorrUsed = 1 if r_2sv_14_10crCorrUsed else 0
-    else:
         r_2sv_14_10crCorrUsed = 0
-    if len(g_sv) > 14:
-        r_2sv_14_10doCorrUsed: Any = g_2sv_14.doCorrUsed
-        if r_2sv_14_10doCorrUsed is not True and r_2sv_14_10doCorrUsed is not False and r_2sv_14_10doCorrUsed != 0 and r_2sv_14_10doCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[14].doCorrUsed', r_2sv_14_10doCorrUsed, 'type', 'a bool')
-        r_2sv_14_10doCorrUsed = 1 if r_2sv_14_10doCorrUsed else 0
-    else:
         r_2sv_14_10doCorrUsed = 0
-    if len(g_sv) > 14:
-        r_2sv_14_12clasCorrUsed: Any = g_2sv_14.clasCorrUsed
-        if r_2sv_14_12clasCorrUsed is not True and r_2sv_14_12clasCorrUsed is not False and r_2sv_14_12clasCorrUsed != 0 and r_2sv_14_12clasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[14].clasCorrUsed', r_2sv_14_12clasCorrUsed, 'type', 'a bool')
-        r_2sv_14_12clasCorrUsed = 1 if r_2sv_14_12clasCorrUsed else 0
-    else:
         r_2sv_14_12clasCorrUsed = 0
-    if len(g_sv) > 14:
-        r_2sv_14_11lppCorrUsed: Any = g_2sv_14.lppCorrUsed
-        if r_2sv_14_11lppCorrUsed is not True and r_2sv_14_11lppCorrUsed is not False and r_2sv_14_11lppCorrUsed != 0 and r_2sv_14_11lppCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[14].lppCorrUsed', r_2sv_14_11lppCorrUsed, 'type', 'a bool')
-        r_2sv_14_11lppCorrUsed = 1 if r_2sv_14_11lppCorrUsed else 0
-    else:
         r_2sv_14_11lppCorrUsed = 0
-    if len(g_sv) > 14:
-        r_2sv_14_11hasCorrUsed: Any = g_2sv_14.hasCorrUsed
-        if r_2sv_14_11hasCorrUsed is not True and r_2sv_14_11hasCorrUsed is not False and r_2sv_14_11hasCorrUsed != 0 and r_2sv_14_11hasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[14].hasCorrUsed', r_2sv_14_11hasCorrUsed, 'type', 'a bool')
-        r_2sv_14_11hasCorrUsed = 1 if r_2sv_14_11hasCorrUsed else 0
-    else:
         r_2sv_14_11hasCorrUsed = 0
-    if len(g_sv) > 14:
         r_2sv_14_11flags_spare = 0
-    else:
-        r_2sv_14_11flags_spare = 0
-    g_2sv_15: Any = cast(Any, g_sv[15] if len(g_sv) > 15 else None)
     if len(g_sv) > 15:
-        r_2sv_15_6gnssId = g_2sv_15.gnssId
-        if r_2sv_15_6gnssId.__class__ is not int and (not isinstance(r_2sv_15_6gnssId, int) or r_2sv_15_6gnssId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[15].gnssId', r_2sv_15_6gnssId, 'type', 'an int')
-        if not 0 <= r_2sv_15_6gnssId <= 255:
-            raise _enc('nav_sat', 'sv[15].gnssId', r_2sv_15_6gnssId, 'range', '0..255', None)
+        r_2sv_15_6gnssId, r_2sv_15_4svId, r_2sv_15_3cno, r_2sv_15_4elev, r_2sv_15_4azim, r_2sv_15_5prRes, r_2sv_15_10qualityInd, r_2sv_15_6svUsed, r_2sv_15_6health, r_2sv_15_8diffCorr, r_2sv_15_8smoothed, r_2sv_15_11orbitSource, r_2sv_15_8ephAvail, r_2sv_15_8almAvail, r_2sv_15_8anoAvail, r_2sv_15_8aopAvail, r_2sv_15_10reserved13, r_2sv_15_12sbasCorrUsed, r_2sv_15_12rtcmCorrUsed, r_2sv_15_12slasCorrUsed, r_2sv_15_14spartnCorrUsed, r_2sv_15_10prCorrUsed, r_2sv_15_10crCorrUsed, r_2sv_15_10doCorrUsed, r_2sv_15_12clasCorrUsed, r_2sv_15_11lppCorrUsed, r_2sv_15_11hasCorrUsed, r_2sv_15_11flags_spare = _raw_nav_sat_2sv_15(g_sv[15])
     else:
         r_2sv_15_6gnssId = 0
-    if len(g_sv) > 15:
-        r_2sv_15_4svId = g_2sv_15.svId
-        if r_2sv_15_4svId.__class__ is not int and (not isinstance(r_2sv_15_4svId, int) or r_2sv_15_4svId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[15].svId', r_2sv_15_4svId, 'type', 'an int')
-        if not 0 <= r_2sv_15_4svId <= 255:
-            raise _enc('nav_sat', 'sv[15].svId', r_2sv_15_4svId, 'range', '0..255', None)
-    else:
         r_2sv_15_4svId = 0
-    if len(g_sv) > 15:
-        r_2sv_15_3cno = g_2sv_15.cno
-        if r_2sv_15_3cno.__class__ is not int and (not isinstance(r_2sv_15_3cno, int) or r_2sv_15_3cno.__class__ is bool):
-            raise _enc('nav_sat', 'sv[15].cno', r_2sv_15_3cno, 'type', 'an int')
-        if not 0 <= r_2sv_15_3cno <= 255:
-            raise _enc('nav_sat', 'sv[15].cno', r_2sv_15_3cno, 'range', '0..255', None)
-    else:
         r_2sv_15_3cno = 0
-    if len(g_sv) > 15:
-        r_2sv_15_4elev = g_2sv_15.elev
-        if r_2sv_15_4elev.__class__ is not int and (not isinstance(r_2sv_15_4elev, int) or r_2sv_15_4elev.__class__ is bool):
-            raise _enc('nav_sat', 'sv[15].elev', r_2sv_15_4elev, 'type', 'an int')
-        if not -128 <= r_2sv_15_4elev <= 127:
-            raise _enc('nav_sat', 'sv[15].elev', r_2sv_15_4elev, 'range', '-128..127', None)
-    else:
         r_2sv_15_4elev = 0
-    if len(g_sv) > 15:
-        r_2sv_15_4azim = g_2sv_15.azim
-        if r_2sv_15_4azim.__class__ is not int and (not isinstance(r_2sv_15_4azim, int) or r_2sv_15_4azim.__class__ is bool):
-            raise _enc('nav_sat', 'sv[15].azim', r_2sv_15_4azim, 'type', 'an int')
-        if not -32768 <= r_2sv_15_4azim <= 32767:
-            raise _enc('nav_sat', 'sv[15].azim', r_2sv_15_4azim, 'range', '-32768..32767', None)
-    else:
         r_2sv_15_4azim = 0
-    if len(g_sv) > 15:
-        r_2sv_15_5prRes = g_2sv_15.prRes
-        if r_2sv_15_5prRes.__class__ is not float and (not isinstance(r_2sv_15_5prRes, (int, float)) or r_2sv_15_5prRes.__class__ is bool):
-            raise _enc('nav_sat', 'sv[15].prRes', r_2sv_15_5prRes, 'type', 'a number')
-        if not -3276.8 <= r_2sv_15_5prRes <= 3276.7000000000003:
-            raise _enc('nav_sat', 'sv[15].prRes', r_2sv_15_5prRes, 'range', '-3276.8..3276.7000000000003', None)
-        r_2sv_15_5prRes = _floor(r_2sv_15_5prRes / 0.1 + 0.5)
-    else:
         r_2sv_15_5prRes = 0
-    if len(g_sv) > 15:
-        r_2sv_15_10qualityInd = g_2sv_15.qualityInd
-        if r_2sv_15_10qualityInd.__class__ is not int and (not isinstance(r_2sv_15_10qualityInd, int) or r_2sv_15_10qualityInd.__class__ is bool):
-            raise _enc('nav_sat', 'sv[15].qualityInd', r_2sv_15_10qualityInd, 'type', 'an int')
-        if not 0 <= r_2sv_15_10qualityInd <= 7:
-            raise _enc('nav_sat', 'sv[15].qualityInd', r_2sv_15_10qualityInd, 'range', '0..7', None)
-    else:
         r_2sv_15_10qualityInd = 0
-    if len(g_sv) > 15:
-        r_2sv_15_6svUsed: Any = g_2sv_15.svUsed
-        if r_2sv_15_6svUsed is not True and r_2sv_15_6svUsed is not False and r_2sv_15_6svUsed != 0 and r_2sv_15_6svUsed != 1:
-            raise _enc('nav_sat', 'sv[15].svUsed', r_2sv_15_6svUsed, 'type', 'a bool')
-        r_2sv_15_6svUsed = 1 if r_2sv_15_6svUsed else 0
-    else:
         r_2sv_15_6svUsed = 0
-    if len(g_sv) > 15:
-        r_2sv_15_6health = g_2sv_15.health
-        if r_2sv_15_6health.__class__ is not int and (not isinstance(r_2sv_15_6health, int) or r_2sv_15_6health.__class__ is bool):
-            raise _enc('nav_sat', 'sv[15].health', r_2sv_15_6health, 'type', 'an int')
-        if not 0 <= r_2sv_15_6health <= 3:
-            raise _enc('nav_sat', 'sv[15].health', r_2sv_15_6health, 'range', '0..3', None)
-    else:
         r_2sv_15_6health = 0
-    if len(g_sv) > 15:
-        r_2sv_15_8diffCorr: Any = g_2sv_15.diffCorr
-        if r_2sv_15_8diffCorr is not True and r_2sv_15_8diffCorr is not False and r_2sv_15_8diffCorr != 0 and r_2sv_15_8diffCorr != 1:
-            raise _enc('nav_sat', 'sv[15].diffCorr', r_2sv_15_8diffCorr, 'type', 'a bool')
-        r_2sv_15_8diffCorr = 1 if r_2sv_15_8diffCorr else 0
-    else:
         r_2sv_15_8diffCorr = 0
-    if len(g_sv) > 15:
-        r_2sv_15_8smoothed: Any = g_2sv_15.smoothed
-        if r_2sv_15_8smoothed is not True and r_2sv_15_8smoothed is not False and r_2sv_15_8smoothed != 0 and r_2sv_15_8smoothed != 1:
-            raise _enc('nav_sat', 'sv[15].smoothed', r_2sv_15_8smoothed, 'type', 'a bool')
-        r_2sv_15_8smoothed = 1 if r_2sv_15_8smoothed else 0
-    else:
         r_2sv_15_8smoothed = 0
-    if len(g_sv) > 15:
-        r_2sv_15_11orbitSource = g_2sv_15.orbitSource
-        if r_2sv_15_11orbitSource.__class__ is not int and (not isinstance(r_2sv_15_11orbitSource, int) or r_2sv_15_11orbitSource.__class__ is bool):
-            raise _enc('nav_sat', 'sv[15].orbitSource', r_2sv_15_11orbitSource, 'type', 'an int')
-        if not 0 <= r_2sv_15_11orbitSource <= 7:
-            raise _enc('nav_sat', 'sv[15].orbitSource', r_2sv_15_11orbitSource, 'range', '0..7', None)
-    else:
         r_2sv_15_11orbitSource = 0
-    if len(g_sv) > 15:
-        r_2sv_15_8ephAvail: Any = g_2sv_15.ephAvail
-        if r_2sv_15_8ephAvail is not True and r_2sv_15_8ephAvail is not False and r_2sv_15_8ephAvail != 0 and r_2sv_15_8ephAvail != 1:
-            raise _enc('nav_sat', 'sv[15].ephAvail', r_2sv_15_8ephAvail, 'type', 'a bool')
-        r_2sv_15_8ephAvail = 1 if r_2sv_15_8ephAvail else 0
-    else:
         r_2sv_15_8ephAvail = 0
-    if len(g_sv) > 15:
-        r_2sv_15_8almAvail: Any = g_2sv_15.almAvail
-        if r_2sv_15_8almAvail is not True and r_2sv_15_8almAvail is not False and r_2sv_15_8almAvail != 0 and r_2sv_15_8almAvail != 1:
-            raise _enc('nav_sat', 'sv[15].almAvail', r_2sv_15_8almAvail, 'type', 'a bool')
-        r_2sv_15_8almAvail = 1 if r_2sv_15_8almAvail else 0
-    else:
         r_2sv_15_8almAvail = 0
-    if len(g_sv) > 15:
-        r_2sv_15_8anoAvail: Any = g_2sv_15.anoAvail
-        if r_2sv_15_8anoAvail is not True and r_2sv_15_8anoAvail is not False and r_2sv_15_8anoAvail != 0 and r_2sv_15_8anoAvail != 1:
-            raise _enc('nav_sat', 'sv[15].anoAvail', r_2sv_15_8anoAvail, 'type', 'a bool')
-        r_2sv_15_8anoAvail = 1 if r_2sv_15_8anoAvail else 0
-    else:
         r_2sv_15_8anoAvail = 0
-    if len(g_sv) > 15:
-        r_2sv_15_8aopAvail: Any = g_2sv_15.aopAvail
-        if r_2sv_15_8aopAvail is not True and r_2sv_15_8aopAvail is not False and r_2sv_15_8aopAvail != 0 and r_2sv_15_8aopAvail != 1:
-            raise _enc('nav_sat', 'sv[15].aopAvail', r_2sv_15_8aopAvail, 'type', 'a bool')
-        r_2sv_15_8aopAvail = 1 if r_2sv_15_8aopAvail else 0
-    else:
         r_2sv_15_8aopAvail = 0
-    if len(g_sv) > 15:
-        r_2sv_15_10reserved13 = g_2sv_15.reserved13
-        if r_2sv_15_10reserved13.__class__ is not int and (not isinstance(r_2sv_15_10reserved13, int) or r_2sv_15_10reserved13.__class__ is bool):
-            raise _enc('nav_sat', 'sv[15].reserved13', r_2sv_15_10reserved13, 'type', 'an int')
-        if not 0 <= r_2sv_15_10reserved13 <= 1:
-            raise _enc('nav_sat', 'sv[15].reserved13', r_2sv_15_10reserved13, 'range', '0..1', None)
-    else:
         r_2sv_15_10reserved13 = 0
-    if len(g_sv) > 15:
-        r_2sv_15_12sbasCorrUsed: Any = g_2sv_15.sbasCorrUsed
-        if r_2sv_15_12sbasCorrUsed is not True and r_2sv_15_12sbasCorrUsed is not False and r_2sv_15_12sbasCorrUsed != 0 and r_2sv_15_12sbasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[15].sbasCorrUsed', r_2sv_15_12sbasCorrUsed, 'type', 'a bool')
-        r_2sv_15_12sbasCorrUsed = 1 if r_2sv_15_12sbasCorrUsed else 0
-    else:
         r_2sv_15_12sbasCorrUsed = 0
-    if len(g_sv) > 15:
-        r_2sv_15_12rtcmCorrUsed: Any = g_2sv_15.rtcmCorrUsed
-        if r_2sv_15_12rtcmCorrUsed is not True and r_2sv_15_12rtcmCorrUsed is not False and r_2sv_15_12rtcmCorrUsed != 0 and r_2sv_15_12rtcmCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[15].rtcmCorrUsed', r_2sv_15_12rtcmCorrUsed, 'type', 'a bool')
-        r_2sv_15_12rtcmCorrUsed = 1 if r_2sv_15_12rtcmCorrUsed else 0
-    else:
         r_2sv_15_12rtcmCorrUsed = 0
-    if len(g_sv) > 15:
-        r_2sv_15_12slasCorrUsed: Any = g_2sv_15.slasCorrUsed
-        if r_2sv_15_12slasCorrUsed is not True and r_2sv_15_12slasCorrUsed is not False and r_2sv_15_12slasCorrUsed != 0 and r_2sv_15_12slasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[15].slasCorrUsed', r_2sv_15_12slasCorrUsed, 'type', 'a bool')
-        r_2sv_15_12slasCorrUsed = 1 if r_2sv_15_12slasCorrUsed else 0
-    else:
         r_2sv_15_12slasCorrUsed = 0
-    if len(g_sv) > 15:
-        r_2sv_15_14spartnCorrUsed: Any = g_2sv_15.spartnCorrUsed
-        if r_2sv_15_14spartnCorrUsed is not True and r_2sv_15_14spartnCorrUsed is not False and r_2sv_15_14spartnCorrUsed != 0 and r_2sv_15_14spartnCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[15].spartnCorrUsed', r_2sv_15_14spartnCorrUsed, 'type', 'a bool')
-        r_2sv_15_14spartnCorrUsed = 1 if r_2sv_15_14spartnCorrUsed else 0
-    else:
         r_2sv_15_14spartnCorrUsed = 0
-    if len(g_sv) > 15:
-        r_2sv_15_10prCorrUsed: Any = g_2sv_15.prCorrUsed
-        if r_2sv_15_10prCorrUsed is not True and r_2sv_15_10prCorrUsed is not False and r_2sv_15_10prCorrUsed != 0 and r_2sv_15_10prCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[15].prCorrUsed', r_2sv_15_10prCorrUsed, 'type', 'a bool')
-        r_2sv_15_10prCorrUsed = 1 if r_2sv_15_10prCorrUsed else 0
-    else:
         r_2sv_15_10prCorrUsed = 0
-    if len(g_sv) > 15:
-        r_2sv_15_10crCorrUsed: Any = g_2sv_15.crCorrUsed
-        if r_2sv_15_10crCorrUsed is not True and r_2sv_15_10crCorrUsed is not False and r_2sv_15_10crCorrUsed != 0 and r_2sv_15_10crCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[15].crCorrUsed', r_2sv_15_10crCorrUsed, 'type', 'a bool')
-        r_2sv_15_10crCorrUsed = 1 if r_2sv_15_10crCorrUsed else 0
-    else:
         r_2sv_15_10crCorrUsed = 0
-    if len(g_sv) > 15:
-        r_2sv_15_10doCorrUsed: Any = g_2sv_15.doCorrUsed
-        if r_2sv_15_10doCorrUsed is not True and r_2sv_15_10doCorrUsed is not False and r_2sv_15_10doCorrUsed != 0 and r_2sv_15_10doCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[15].doCorrUsed', r_2sv_15_10doCorrUsed, 'type', 'a bool')
-        r_2sv_15_10doCorrUsed = 1 if r_2sv_15_10doCorrUsed else 0
-    else:
         r_2sv_15_10doCorrUsed = 0
-    if len(g_sv) > 15:
-        r_2sv_15_12clasCorrUsed: Any = g_2sv_15.clasCorrUsed
-        if r_2sv_15_12clasCorrUsed is not True and r_2sv_15_12clasCorrUsed is not False and r_2sv_15_12clasCorrUsed != 0 and r_2sv_15_12clasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[15].clasCorrUsed', r_2sv_15_12clasCorrUsed, 'type', 'a bool')
-        r_2sv_15_12clasCorrUsed = 1 if r_2sv_15_12clasCorrUsed else 0
-    else:
         r_2sv_15_12clasCorrUsed = 0
-    if len(g_sv) > 15:
-        r_2sv_15_11lppCorrUsed: Any = g_2sv_15.lppCorrUsed
-        if r_2sv_15_11lppCorrUsed is not True and r_2sv_15_11lppCorrUsed is not False and r_2sv_15_11lppCorrUsed != 0 and r_2sv_15_11lppCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[15].lppCorrUsed', r_2sv_15_11lppCorrUsed, 'type', 'a bool')
-        r_2sv_15_11lppCorrUsed = 1 if r_2sv_15_11lppCorrUsed else 0
-    else:
         r_2sv_15_11lppCorrUsed = 0
-    if len(g_sv) > 15:
-        r_2sv_15_11hasCorrUsed: Any = g_2sv_15.hasCorrUsed
-        if r_2sv_15_11hasCorrUsed is not True and r_2sv_15_11hasCorrUsed is not False and r_2sv_15_11hasCorrUsed != 0 and r_2sv_15_11hasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[15].hasCorrUsed', r_2sv_15_11hasCorrUsed, 'type', 'a bool')
-        r_2sv_15_11hasCorrUsed = 1 if r_2sv_15_11hasCorrUsed else 0
-    else:
         r_2sv_15_11hasCorrUsed = 0
-    if len(g_sv) > 15:
         r_2sv_15_11flags_spare = 0
-    else:
-        r_2sv_15_11flags_spare = 0
-    g_2sv_16: Any = cast(Any, g_sv[16] if len(g_sv) > 16 else None)
     if len(g_sv) > 16:
-        r_2sv_16_6gnssId = g_2sv_16.gnssId
-        if r_2sv_16_6gnssId.__class__ is not int and (not isinstance(r_2sv_16_6gnssId, int) or r_2sv_16_6gnssId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[16].gnssId', r_2sv_16_6gnssId, 'type', 'an int')
-        if not 0 <= r_2sv_16_6gnssId <= 255:
-            raise _enc('nav_sat', 'sv[16].gnssId', r_2sv_16_6gnssId, 'range', '0..255', None)
+        r_2sv_16_6gnssId, r_2sv_16_4svId, r_2sv_16_3cno, r_2sv_16_4elev, r_2sv_16_4azim, r_2sv_16_5prRes, r_2sv_16_10qualityInd, r_2sv_16_6svUsed, r_2sv_16_6health, r_2sv_16_8diffCorr, r_2sv_16_8smoothed, r_2sv_16_11orbitSource, r_2sv_16_8ephAvail, r_2sv_16_8almAvail, r_2sv_16_8anoAvail, r_2sv_16_8aopAvail, r_2sv_16_10reserved13, r_2sv_16_12sbasCorrUsed, r_2sv_16_12rtcmCorrUsed, r_2sv_16_12slasCorrUsed, r_2sv_16_14spartnCorrUsed, r_2sv_16_10prCorrUsed, r_2sv_16_10crCorrUsed, r_2sv_16_10doCorrUsed, r_2sv_16_12clasCorrUsed, r_2sv_16_11lppCorrUsed, r_2sv_16_11hasCorrUsed, r_2sv_16_11flags_spare = _raw_nav_sat_2sv_16(g_sv[16])
     else:
         r_2sv_16_6gnssId = 0
-    if len(g_sv) > 16:
-        r_2sv_16_4svId = g_2sv_16.svId
-        if r_2sv_16_4svId.__class__ is not int and (not isinstance(r_2sv_16_4svId, int) or r_2sv_16_4svId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[16].svId', r_2sv_16_4svId, 'type', 'an int')
-        if not 0 <= r_2sv_16_4svId <= 255:
-            raise _enc('nav_sat', 'sv[16].svId', r_2sv_16_4svId, 'range', '0..255', None)
-    else:
         r_2sv_16_4svId = 0
-    if len(g_sv) > 16:
-        r_2sv_16_3cno = g_2sv_16.cno
-        if r_2sv_16_3cno.__class__ is not int and (not isinstance(r_2sv_16_3cno, int) or r_2sv_16_3cno.__class__ is bool):
-            raise _enc('nav_sat', 'sv[16].cno', r_2sv_16_3cno, 'type', 'an int')
-        if not 0 <= r_2sv_16_3cno <= 255:
-            raise _enc('nav_sat', 'sv[16].cno', r_2sv_16_3cno, 'range', '0..255', None)
-    else:
         r_2sv_16_3cno = 0
-    if len(g_sv) > 16:
-        r_2sv_16_4elev = g_2sv_16.elev
-        if r_2sv_16_4elev.__class__ is not int and (not isinstance(r_2sv_16_4elev, int) or r_2sv_16_4elev.__class__ is bool):
-            raise _enc('nav_sat', 'sv[16].elev', r_2sv_16_4elev, 'type', 'an int')
-        if not -128 <= r_2sv_16_4elev <= 127:
-            raise _enc('nav_sat', 'sv[16].elev', r_2sv_16_4elev, 'range', '-128..127', None)
-    else:
         r_2sv_16_4elev = 0
-    if len(g_sv) > 16:
-        r_2sv_16_4azim = g_2sv_16.azim
-        if r_2sv_16_4azim.__class__ is not int and (not isinstance(r_2sv_16_4azim, int) or r_2sv_16_4azim.__class__ is bool):
-            raise _enc('nav_sat', 'sv[16].azim', r_2sv_16_4azim, 'type', 'an int')
-        if not -32768 <= r_2sv_16_4azim <= 32767:
-            raise _enc('nav_sat', 'sv[16].azim', r_2sv_16_4azim, 'range', '-32768..32767', None)
-    else:
         r_2sv_16_4azim = 0
-    if len(g_sv) > 16:
-        r_2sv_16_5prRes = g_2sv_16.prRes
-        if r_2sv_16_5prRes.__class__ is not float and (not isinstance(r_2sv_16_5prRes, (int, float)) or r_2sv_16_5prRes.__class__ is bool):
-            raise _enc('nav_sat', 'sv[16].prRes', r_2sv_16_5prRes, 'type', 'a number')
-        if not -3276.8 <= r_2sv_16_5prRes <= 3276.7000000000003:
-            raise _enc('nav_sat', 'sv[16].prRes', r_2sv_16_5prRes, 'range', '-3276.8..3276.7000000000003', None)
-        r_2sv_16_5prRes = _floor(r_2sv_16_5prRes / 0.1 + 0.5)
-    else:
         r_2sv_16_5prRes = 0
-    if len(g_sv) > 16:
-        r_2sv_16_10qualityInd = g_2sv_16.qualityInd
-        if r_2sv_16_10qualityInd.__class__ is not int and (not isinstance(r_2sv_16_10qualityInd, int) or r_2sv_16_10qualityInd.__class__ is bool):
-            raise _enc('nav_sat', 'sv[16].qualityInd', r_2sv_16_10qualityInd, 'type', 'an int')
-        if not 0 <= r_2sv_16_10qualityInd <= 7:
-            raise _enc('nav_sat', 'sv[16].qualityInd', r_2sv_16_10qualityInd, 'range', '0..7', None)
-    else:
         r_2sv_16_10qualityInd = 0
-    if len(g_sv) > 16:
-        r_2sv_16_6svUsed: Any = g_2sv_16.svUsed
-        if r_2sv_16_6svUsed is not True and r_2sv_16_6svUsed is not False and r_2sv_16_6svUsed != 0 and r_2sv_16_6svUsed != 1:
-            raise _enc('nav_sat', 'sv[16].svUsed', r_2sv_16_6svUsed, 'type', 'a bool')
-        r_2sv_16_6svUsed = 1 if r_2sv_16_6svUsed else 0
-    else:
         r_2sv_16_6svUsed = 0
-    if len(g_sv) > 16:
-        r_2sv_16_6health = g_2sv_16.health
-        if r_2sv_16_6health.__class__ is not int and (not isinstance(r_2sv_16_6health, int) or r_2sv_16_6health.__class__ is bool):
-            raise _enc('nav_sat', 'sv[16].health', r_2sv_16_6health, 'type', 'an int')
-        if not 0 <= r_2sv_16_6health <= 3:
-            raise _enc('nav_sat', 'sv[16].health', r_2sv_16_6health, 'range', '0..3', None)
-    else:
         r_2sv_16_6health = 0
-    if len(g_sv) > 16:
-        r_2sv_16_8diffCorr: Any = g_2sv_16.diffCorr
-        if r_2sv_16_8diffCorr is not True and r_2sv_16_8diffCorr is not False and r_2sv_16_8diffCorr != 0 and r_2sv_16_8diffCorr != 1:
-            raise _enc('nav_sat', 'sv[16].diffCorr', r_2sv_16_8diffCorr, 'type', 'a bool')
-        r_2sv_16_8diffCorr = 1 if r_2sv_16_8diffCorr else 0
-    else:
         r_2sv_16_8diffCorr = 0
-    if len(g_sv) > 16:
-        r_2sv_16_8smoothed: Any = g_2sv_16.smoothed
-        if r_2sv_16_8smoothed is not True and r_2sv_16_8smoothed is not False and r_2sv_16_8smoothed != 0 and r_2sv_16_8smoothed != 1:
-            raise _enc('nav_sat', 'sv[16].smoothed', r_2sv_16_8smoothed, 'type', 'a bool')
-        r_2sv_16_8smoothed = 1 if r_2sv_16_8smoothed else 0
-    else:
         r_2sv_16_8smoothed = 0
-    if len(g_sv) > 16:
-        r_2sv_16_11orbitSource = g_2sv_16.orbitSource
-        if r_2sv_16_11orbitSource.__class__ is not int and (not isinstance(r_2sv_16_11orbitSource, int) or r_2sv_16_11orbitSource.__class__ is bool):
-            raise _enc('nav_sat', 'sv[16].orbitSource', r_2sv_16_11orbitSource, 'type', 'an int')
-        if not 0 <= r_2sv_16_11orbitSource <= 7:
-            raise _enc('nav_sat', 'sv[16].orbitSource', r_2sv_16_11orbitSource, 'range', '0..7', None)
-    else:
         r_2sv_16_11orbitSource = 0
-    if len(g_sv) > 16:
-        r_2sv_16_8ephAvail: Any = g_2sv_16.ephAvail
-        if r_2sv_16_8ephAvail is not True and r_2sv_16_8ephAvail is not False and r_2sv_16_8ephAvail != 0 and r_2sv_16_8ephAvail != 1:
-            raise _enc('nav_sat', 'sv[16].ephAvail', r_2sv_16_8ephAvail, 'type', 'a bool')
-        r_2sv_16_8ephAvail = 1 if r_2sv_16_8ephAvail else 0
-    else:
         r_2sv_16_8ephAvail = 0
-    if len(g_sv) > 16:
-        r_2sv_16_8almAvail: Any = g_2sv_16.almAvail
-        if r_2sv_16_8almAvail is not True and r_2sv_16_8almAvail is not False and r_2sv_16_8almAvail != 0 and r_2sv_16_8almAvail != 1:
-            raise _enc('nav_sat', 'sv[16].almAvail', r_2sv_16_8almAvail, 'type', 'a bool')
-        r_2sv_16_8almAvail = 1 if r_2sv_16_8almAvail else 0
-    else:
         r_2sv_16_8almAvail = 0
-    if len(g_sv) > 16:
-        r_2sv_16_8anoAvail: Any = g_2sv_16.anoAvail
-        if r_2sv_16_8anoAvail is not True and r_2sv_16_8anoAvail is not False and r_2sv_16_8anoAvail != 0 and r_2sv_16_8anoAvail != 1:
-            raise _enc('nav_sat', 'sv[16].anoAvail', r_2sv_16_8anoAvail, 'type', 'a bool')
-        r_2sv_16_8anoAvail = 1 if r_2sv_16_8anoAvail else 0
-    else:
         r_2sv_16_8anoAvail = 0
-    if len(g_sv) > 16:
-        r_2sv_16_8aopAvail: Any = g_2sv_16.aopAvail
-        if r_2sv_16_8aopAvail is not True and r_2sv_16_8aopAvail is not False and r_2sv_16_8aopAvail != 0 and r_2sv_16_8aopAvail != 1:
-            raise _enc('nav_sat', 'sv[16].aopAvail', r_2sv_16_8aopAvail, 'type', 'a bool')
-        r_2sv_16_8aopAvail = 1 if r_2sv_16_8aopAvail else 0
-    else:
         r_2sv_16_8aopAvail = 0
-    if len(g_sv) > 16:
-        r_2sv_16_10reserved13 = g_2sv_16.reserved13
-        if r_2sv_16_10reserved13.__class__ is not int and (not isinstance(r_2sv_16_10reserved13, int) or r_2sv_16_10reserved13.__class__ is bool):
-            raise _enc('nav_sat', 'sv[16].reserved13', r_2sv_16_10reserved13, 'type', 'an int')
-        if not 0 <= r_2sv_16_10reserved13 <= 1:
-            raise _enc('nav_sat', 'sv[16].reserved13', r_2sv_16_10reserved13, 'range', '0..1', None)
-    else:
         r_2sv_16_10reserved13 = 0
-    if len(g_sv) > 16:
-        r_2sv_16_12sbasCorrUsed: Any = g_2sv_16.sbasCorrUsed
-        if r_2sv_16_12sbasCorrUsed is not True and r_2sv_16_12sbasCorrUsed is not False and r_2sv_16_12sbasCorrUsed != 0 and r_2sv_16_12sbasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[16].sbasCorrUsed', r_2sv_16_12sbasCorrUsed, 'type', 'a bool')
-        r_2sv_16_12sbasCorrUsed = 1 if r_2sv_16_12sbasCorrUsed else 0
-    else:
         r_2sv_16_12sbasCorrUsed = 0
-    if len(g_sv) > 16:
-        r_2sv_16_12rtcmCorrUsed: Any = g_2sv_16.rtcmCorrUsed
-        if r_2sv_16_12rtcmCorrUsed is not True and r_2sv_16_12rtcmCorrUsed is not False and r_2sv_16_12rtcmCorrUsed != 0 and r_2sv_16_12rtcmCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[16].rtcmCorrUsed', r_2sv_16_12rtcmCorrUsed, 'type', 'a bool')
-        r_2sv_16_12rtcmCorrUsed = 1 if r_2sv_16_12rtcmCorrUsed else 0
-    else:
         r_2sv_16_12rtcmCorrUsed = 0
-    if len(g_sv) > 16:
-        r_2sv_16_12slasCorrUsed: Any = g_2sv_16.slasCorrUsed
-        if r_2sv_16_12slasCorrUsed is not True and r_2sv_16_12slasCorrUsed is not False and r_2sv_16_12slasCorrUsed != 0 and r_2sv_16_12slasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[16].slasCorrUsed', r_2sv_16_12slasCorrUsed, 'type', 'a bool')
-        r_2sv_16_12slasCorrUsed = 1 if r_2sv_16_12slasCorrUsed else 0
-    else:
         r_2sv_16_12slasCorrUsed = 0
-    if len(g_sv) > 16:
-        r_2sv_16_14spartnCorrUsed: Any = g_2sv_16.spartnCorrUsed
-        if r_2sv_16_14spartnCorrUsed is not True and r_2sv_16_14spartnCorrUsed is not False and r_2sv_16_14spartnCorrUsed != 0 and r_2sv_16_14spartnCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[16].spartnCorrUsed', r_2sv_16_14spartnCorrUsed, 'type', 'a bool')
-        r_2sv_16_14spartnCorrUsed = 1 if r_2sv_16_14spartnCorrUsed else 0
-    else:
         r_2sv_16_14spartnCorrUsed = 0
-    if len(g_sv) > 16:
-        r_2sv_16_10prCorrUsed: Any = g_2sv_16.prCorrUsed
-        if r_2sv_16_10prCorrUsed is not True and r_2sv_16_10prCorrUsed is not False and r_2sv_16_10prCorrUsed != 0 and r_2sv_16_10prCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[16].prCorrUsed', r_2sv_16_10prCorrUsed, 'type', 'a bool')
-        r_2sv_16_10prCorrUsed = 1 if r_2sv_16_10prCorrUsed else 0
-    else:
         r_2sv_16_10prCorrUsed = 0
-    if len(g_sv) > 16:
-        r_2sv_16_10crCorrUsed: Any = g_2sv_16.crCorrUsed
-        if r_2sv_16_10crCorrUsed is not True and r_2sv_16_10crCorrUsed is not False and r_2sv_16_10crCorrUsed != 0 and r_2sv_16_10crCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[16].crCorrUsed', r_2sv_16_10crCorrUsed, 'type', 'a bool')
-        r_2sv_16_10crCorrUsed = 1 if r_2sv_16_10crCorrUsed else 0
-    else:
         r_2sv_16_10crCorrUsed = 0
-    if len(g_sv) > 16:
-        r_2sv_16_10doCorrUsed: Any = g_2sv_16.doCorrUsed
-        if r_2sv_16_10doCorrUsed is not True and r_2sv_16_10doCorrUsed is not False and r_2sv_16_10doCorrUsed != 0 and r_2sv_16_10doCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[16].doCorrUsed', r_2sv_16_10doCorrUsed, 'type', 'a bool')
-        r_2sv_16_10doCorrUsed = 1 if r_2sv_16_10doCorrUsed else 0
-    else:
         r_2sv_16_10doCorrUsed = 0
-    if len(g_sv) > 16:
-        r_2sv_16_12clasCorrUsed: Any = g_2sv_16.clasCorrUsed
-        if r_2sv_16_12clasCorrUsed is not True and r_2sv_16_12clasCorrUsed is not False and r_2sv_16_12clasCorrUsed != 0 and r_2sv_16_12clasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[16].clasCorrUsed', r_2sv_16_12clasCorrUsed, 'type', 'a bool')
-        r_2sv_16_12clasCorrUsed = 1 if r_2sv_16_12clasCorrUsed else 0
-    else:
         r_2sv_16_12clasCorrUsed = 0
-    if len(g_sv) > 16:
-        r_2sv_16_11lppCorrUsed: Any = g_2sv_16.lppCorrUsed
-        if r_2sv_16_11lppCorrUsed is not True and r_2sv_16_11lppCorrUsed is not False and r_2sv_16_11lppCorrUsed != 0 and r_2sv_16_11lppCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[16].lppCorrUsed', r_2sv_16_11lppCorrUsed, 'type', 'a bool')
-        r_2sv_16_11lppCorrUsed = 1 if r_2sv_16_11lppCorrUsed else 0
-    else:
         r_2sv_16_11lppCorrUsed = 0
-    if len(g_sv) > 16:
-        r_2sv_16_11hasCorrUsed: Any = g_2sv_16.hasCorrUsed
-        if r_2sv_16_11hasCorrUsed is not True and r_2sv_16_11hasCorrUsed is not False and r_2sv_16_11hasCorrUsed != 0 and r_2sv_16_11hasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[16].hasCorrUsed', r_2sv_16_11hasCorrUsed, 'type', 'a bool')
-        r_2sv_16_11hasCorrUsed = 1 if r_2sv_16_11hasCorrUsed else 0
-    else:
         r_2sv_16_11hasCorrUsed = 0
-    if len(g_sv) > 16:
         r_2sv_16_11flags_spare = 0
-    else:
-        r_2sv_16_11flags_spare = 0
-    g_2sv_17: Any = cast(Any, g_sv[17] if len(g_sv) > 17 else None)
     if len(g_sv) > 17:
-        r_2sv_17_6gnssId = g_2sv_17.gnssId
-        if r_2sv_17_6gnssId.__class__ is not int and (not isinstance(r_2sv_17_6gnssId, int) or r_2sv_17_6gnssId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[17].gnssId', r_2sv_17_6gnssId, 'type', 'an int')
-        if not 0 <= r_2sv_17_6gnssId <= 255:
-            raise _enc('nav_sat', 'sv[17].gnssId', r_2sv_17_6gnssId, 'range', '0..255', None)
+        r_2sv_17_6gnssId, r_2sv_17_4svId, r_2sv_17_3cno, r_2sv_17_4elev, r_2sv_17_4azim, r_2sv_17_5prRes, r_2sv_17_10qualityInd, r_2sv_17_6svUsed, r_2sv_17_6health, r_2sv_17_8diffCorr, r_2sv_17_8smoothed, r_2sv_17_11orbitSource, r_2sv_17_8ephAvail, r_2sv_17_8almAvail, r_2sv_17_8anoAvail, r_2sv_17_8aopAvail, r_2sv_17_10reserved13, r_2sv_17_12sbasCorrUsed, r_2sv_17_12rtcmCorrUsed, r_2sv_17_12slasCorrUsed, r_2sv_17_14spartnCorrUsed, r_2sv_17_10prCorrUsed, r_2sv_17_10crCorrUsed, r_2sv_17_10doCorrUsed, r_2sv_17_12clasCorrUsed, r_2sv_17_11lppCorrUsed, r_2sv_17_11hasCorrUsed, r_2sv_17_11flags_spare = _raw_nav_sat_2sv_17(g_sv[17])
     else:
         r_2sv_17_6gnssId = 0
-    if len(g_sv) > 17:
-        r_2sv_17_4svId = g_2sv_17.svId
-        if r_2sv_17_4svId.__class__ is not int and (not isinstance(r_2sv_17_4svId, int) or r_2sv_17_4svId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[17].svId', r_2sv_17_4svId, 'type', 'an int')
-        if not 0 <= r_2sv_17_4svId <= 255:
-            raise _enc('nav_sat', 'sv[17].svId', r_2sv_17_4svId, 'range', '0..255', None)
-    else:
         r_2sv_17_4svId = 0
-    if len(g_sv) > 17:
-        r_2sv_17_3cno = g_2sv_17.cno
-        if r_2sv_17_3cno.__class__ is not int and (not isinstance(r_2sv_17_3cno, int) or r_2sv_17_3cno.__class__ is bool):
-            raise _enc('nav_sat', 'sv[17].cno', r_2sv_17_3cno, 'type', 'an int')
-        if not 0 <= r_2sv_17_3cno <= 255:
-            raise _enc('nav_sat', 'sv[17].cno', r_2sv_17_3cno, 'range', '0..255', None)
-    else:
         r_2sv_17_3cno = 0
-    if len(g_sv) > 17:
-        r_2sv_17_4elev = g_2sv_17.elev
-        if r_2sv_17_4elev.__class__ is not int and (not isinstance(r_2sv_17_4elev, int) or r_2sv_17_4elev.__class__ is bool):
-            raise _enc('nav_sat', 'sv[17].elev', r_2sv_17_4elev, 'type', 'an int')
-        if not -128 <= r_2sv_17_4elev <= 127:
-            raise _enc('nav_sat', 'sv[17].elev', r_2sv_17_4elev, 'range', '-128..127', None)
-    else:
         r_2sv_17_4elev = 0
-    if len(g_sv) > 17:
-        r_2sv_17_4azim = g_2sv_17.azim
-        if r_2sv_17_4azim.__class__ is not int and (not isinstance(r_2sv_17_4azim, int) or r_2sv_17_4azim.__class__ is bool):
-            raise _enc('nav_sat', 'sv[17].azim', r_2sv_17_4azim, 'type', 'an int')
-        if not -32768 <= r_2sv_17_4azim <= 32767:
-            raise _enc('nav_sat', 'sv[17].azim', r_2sv_17_4azim, 'range', '-32768..32767', None)
-    else:
         r_2sv_17_4azim = 0
-    if len(g_sv) > 17:
-        r_2sv_17_5prRes = g_2sv_17.prRes
-        if r_2sv_17_5prRes.__class__ is not float and (not isinstance(r_2sv_17_5prRes, (int, float)) or r_2sv_17_5prRes.__class__ is bool):
-            raise _enc('nav_sat', 'sv[17].prRes', r_2sv_17_5prRes, 'type', 'a number')
-        if not -3276.8 <= r_2sv_17_5prRes <= 3276.7000000000003:
-            raise _enc('nav_sat', 'sv[17].prRes', r_2sv_17_5prRes, 'range', '-3276.8..3276.7000000000003', None)
-        r_2sv_17_5prRes = _floor(r_2sv_17_5prRes / 0.1 + 0.5)
-    else:
         r_2sv_17_5prRes = 0
-    if len(g_sv) > 17:
-        r_2sv_17_10qualityInd = g_2sv_17.qualityInd
-        if r_2sv_17_10qualityInd.__class__ is not int and (not isinstance(r_2sv_17_10qualityInd, int) or r_2sv_17_10qualityInd.__class__ is bool):
-            raise _enc('nav_sat', 'sv[17].qualityInd', r_2sv_17_10qualityInd, 'type', 'an int')
-        if not 0 <= r_2sv_17_10qualityInd <= 7:
-            raise _enc('nav_sat', 'sv[17].qualityInd', r_2sv_17_10qualityInd, 'range', '0..7', None)
-    else:
         r_2sv_17_10qualityInd = 0
-    if len(g_sv) > 17:
-        r_2sv_17_6svUsed: Any = g_2sv_17.svUsed
-        if r_2sv_17_6svUsed is not True and r_2sv_17_6svUsed is not False and r_2sv_17_6svUsed != 0 and r_2sv_17_6svUsed != 1:
-            raise _enc('nav_sat', 'sv[17].svUsed', r_2sv_17_6svUsed, 'type', 'a bool')
-        r_2sv_17_6svUsed = 1 if r_2sv_17_6svUsed else 0
-    else:
         r_2sv_17_6svUsed = 0
-    if len(g_sv) > 17:
-        r_2sv_17_6health = g_2sv_17.health
-        if r_2sv_17_6health.__class__ is not int and (not isinstance(r_2sv_17_6health, int) or r_2sv_17_6health.__class__ is bool):
-            raise _enc('nav_sat', 'sv[17].health', r_2sv_17_6health, 'type', 'an int')
-        if not 0 <= r_2sv_17_6health <= 3:
-            raise _enc('nav_sat', 'sv[17].health', r_2sv_17_6health, 'range', '0..3', None)
-    else:
         r_2sv_17_6health = 0
-    if len(g_sv) > 17:
-        r_2sv_17_8diffCorr: Any = g_2sv_17.diffCorr
-        if r_2sv_17_8diffCorr is not True and r_2sv_17_8diffCorr is not False and r_2sv_17_8diffCorr != 0 and r_2sv_17_8diffCorr != 1:
-            raise _enc('nav_sat', 'sv[17].diffCorr', r_2sv_17_8diffCorr, 'type', 'a bool')
-        r_2sv_17_8diffCorr = 1 if r_2sv_17_8diffCorr else 0
-    else:
         r_2sv_17_8diffCorr = 0
-    if len(g_sv) > 17:
-        r_2sv_17_8smoothed: Any = g_2sv_17.smoothed
-        if r_2sv_17_8smoothed is not True and r_2sv_17_8smoothed is not False and r_2sv_17_8smoothed != 0 and r_2sv_17_8smoothed != 1:
-            raise _enc('nav_sat', 'sv[17].smoothed', r_2sv_17_8smoothed, 'type', 'a bool')
-        r_2sv_17_8smoothed = 1 if r_2sv_17_8smoothed else 0
-    else:
         r_2sv_17_8smoothed = 0
-    if len(g_sv) > 17:
-        r_2sv_17_11orbitSource = g_2sv_17.orbitSource
-        if r_2sv_17_11orbitSource.__class__ is not int and (not isinstance(r_2sv_17_11orbitSource, int) or r_2sv_17_11orbitSource.__class__ is bool):
-            raise _enc('nav_sat', 'sv[17].orbitSource', r_2sv_17_11orbitSource, 'type', 'an int')
-        if not 0 <= r_2sv_17_11orbitSource <= 7:
-            raise _enc('nav_sat', 'sv[17].orbitSource', r_2sv_17_11orbitSource, 'range', '0..7', None)
-    else:
         r_2sv_17_11orbitSource = 0
-    if len(g_sv) > 17:
-        r_2sv_17_8ephAvail: Any = g_2sv_17.ephAvail
-        if r_2sv_17_8ephAvail is not True and r_2sv_17_8ephAvail is not False and r_2sv_17_8ephAvail != 0 and r_2sv_17_8ephAvail != 1:
-            raise _enc('nav_sat', 'sv[17].ephAvail', r_2sv_17_8ephAvail, 'type', 'a bool')
-        r_2sv_17_8ephAvail = 1 if r_2sv_17_8ephAvail else 0
-    else:
         r_2sv_17_8ephAvail = 0
-    if len(g_sv) > 17:
-        r_2sv_17_8almAvail: Any = g_2sv_17.almAvail
-        if r_2sv_17_8almAvail is not True and r_2sv_17_8almAvail is not False and r_2sv_17_8almAvail != 0 and r_2sv_17_8almAvail != 1:
-            raise _enc('nav_sat', 'sv[17].almAvail', r_2sv_17_8almAvail, 'type', 'a bool')
-        r_2sv_17_8almAvail = 1 if r_2sv_17_8almAvail else 0
-    else:
         r_2sv_17_8almAvail = 0
-    if len(g_sv) > 17:
-        r_2sv_17_8anoAvail: Any = g_2sv_17.anoAvail
-        if r_2sv_17_8anoAvail is not True and r_2sv_17_8anoAvail is not False and r_2sv_17_8anoAvail != 0 and r_2sv_17_8anoAvail != 1:
-            raise _enc('nav_sat', 'sv[17].anoAvail', r_2sv_17_8anoAvail, 'type', 'a bool')
-        r_2sv_17_8anoAvail = 1 if r_2sv_17_8anoAvail else 0
-    else:
         r_2sv_17_8anoAvail = 0
-    if len(g_sv) > 17:
-        r_2sv_17_8aopAvail: Any = g_2sv_17.aopAvail
-        if r_2sv_17_8aopAvail is not True and r_2sv_17_8aopAvail is not False and r_2sv_17_8aopAvail != 0 and r_2sv_17_8aopAvail != 1:
-            raise _enc('nav_sat', 'sv[17].aopAvail', r_2sv_17_8aopAvail, 'type', 'a bool')
-        r_2sv_17_8aopAvail = 1 if r_2sv_17_8aopAvail else 0
-    else:
         r_2sv_17_8aopAvail = 0
-    if len(g_sv) > 17:
-        r_2sv_17_10reserved13 = g_2sv_17.reserved13
-        if r_2sv_17_10reserved13.__class__ is not int and (not isinstance(r_2sv_17_10reserved13, int) or r_2sv_17_10reserved13.__class__ is bool):
-            raise _enc('nav_sat', 'sv[17].reserved13', r_2sv_17_10reserved13, 'type', 'an int')
-        if not 0 <= r_2sv_17_10reserved13 <= 1:
-            raise _enc('nav_sat', 'sv[17].reserved13', r_2sv_17_10reserved13, 'range', '0..1', None)
-    else:
         r_2sv_17_10reserved13 = 0
-    if len(g_sv) > 17:
-        r_2sv_17_12sbasCorrUsed: Any = g_2sv_17.sbasCorrUsed
-        if r_2sv_17_12sbasCorrUsed is not True and r_2sv_17_12sbasCorrUsed is not False and r_2sv_17_12sbasCorrUsed != 0 and r_2sv_17_12sbasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[17].sbasCorrUsed', r_2sv_17_12sbasCorrUsed, 'type', 'a bool')
-        r_2sv_17_12sbasCorrUsed = 1 if r_2sv_17_12sbasCorrUsed else 0
-    else:
         r_2sv_17_12sbasCorrUsed = 0
-    if len(g_sv) > 17:
-        r_2sv_17_12rtcmCorrUsed: Any = g_2sv_17.rtcmCorrUsed
-        if r_2sv_17_12rtcmCorrUsed is not True and r_2sv_17_12rtcmCorrUsed is not False and r_2sv_17_12rtcmCorrUsed != 0 and r_2sv_17_12rtcmCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[17].rtcmCorrUsed', r_2sv_17_12rtcmCorrUsed, 'type', 'a bool')
-        r_2sv_17_12rtcmCorrUsed = 1 if r_2sv_17_12rtcmCorrUsed else 0
-    else:
         r_2sv_17_12rtcmCorrUsed = 0
-    if len(g_sv) > 17:
-        r_2sv_17_12slasCorrUsed: Any = g_2sv_17.slasCorrUsed
-        if r_2sv_17_12slasCorrUsed is not True and r_2sv_17_12slasCorrUsed is not False and r_2sv_17_12slasCorrUsed != 0 and r_2sv_17_12slasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[17].slasCorrUsed', r_2sv_17_12slasCorrUsed, 'type', 'a bool')
-        r_2sv_17_12slasCorrUsed = 1 if r_2sv_17_12slasCorrUsed else 0
-    else:
         r_2sv_17_12slasCorrUsed = 0
-    if len(g_sv) > 17:
-        r_2sv_17_14spartnCorrUsed: Any = g_2sv_17.spartnCorrUsed
-        if r_2sv_17_14spartnCorrUsed is not True and r_2sv_17_14spartnCorrUsed is not False and r_2sv_17_14spartnCorrUsed != 0 and r_2sv_17_14spartnCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[17].spartnCorrUsed', r_2sv_17_14spartnCorrUsed, 'type', 'a bool')
-        r_2sv_17_14spartnCorrUsed = 1 if r_2sv_17_14spartnCorrUsed else 0
-    else:
         r_2sv_17_14spartnCorrUsed = 0
-    if len(g_sv) > 17:
-        r_2sv_17_10prCorrUsed: Any = g_2sv_17.prCorrUsed
-        if r_2sv_17_10prCorrUsed is not True and r_2sv_17_10prCorrUsed is not False and r_2sv_17_10prCorrUsed != 0 and r_2sv_17_10prCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[17].prCorrUsed', r_2sv_17_10prCorrUsed, 'type', 'a bool')
-        r_2sv_17_10prCorrUsed = 1 if r_2sv_17_10prCorrUsed else 0
-    else:
         r_2sv_17_10prCorrUsed = 0
-    if len(g_sv) > 17:
-        r_2sv_17_10crCorrUsed: Any = g_2sv_17.crCorrUsed
-        if r_2sv_17_10crCorrUsed is not True and r_2sv_17_10crCorrUsed is not False and r_2sv_17_10crCorrUsed != 0 and r_2sv_17_10crCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[17].crCorrUsed', r_2sv_17_10crCorrUsed, 'type', 'a bool')
-        r_2sv_17_10crCorrUsed = 1 if r_2sv_17_10crCorrUsed else 0
-    else:
         r_2sv_17_10crCorrUsed = 0
-    if len(g_sv) > 17:
-        r_2sv_17_10doCorrUsed: Any = g_2sv_17.doCorrUsed
-        if r_2sv_17_10doCorrUsed is not True and r_2sv_17_10doCorrUsed is not False and r_2sv_17_10doCorrUsed != 0 and r_2sv_17_10doCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[17].doCorrUsed', r_2sv_17_10doCorrUsed, 'type', 'a bool')
-        r_2sv_17_10doCorrUsed = 1 if r_2sv_17_10doCorrUsed else 0
-    else:
         r_2sv_17_10doCorrUsed = 0
-    if len(g_sv) > 17:
-        r_2sv_17_12clasCorrUsed: Any = g_2sv_17.clasCorrUsed
-        if r_2sv_17_12clasCorrUsed is not True and r_2sv_17_12clasCorrUsed is not False and r_2sv_17_12clasCorrUsed != 0 and r_2sv_17_12clasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[17].clasCorrUsed', r_2sv_17_12clasCorrUsed, 'type', 'a bool')
-        r_2sv_17_12clasCorrUsed = 1 if r_2sv_17_12clasCorrUsed else 0
-    else:
         r_2sv_17_12clasCorrUsed = 0
-    if len(g_sv) > 17:
-        r_2sv_17_11lppCorrUsed: Any = g_2sv_17.lppCorrUsed
-        if r_2sv_17_11lppCorrUsed is not True and r_2sv_17_11lppCorrUsed is not False and r_2sv_17_11lppCorrUsed != 0 and r_2sv_17_11lppCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[17].lppCorrUsed', r_2sv_17_11lppCorrUsed, 'type', 'a bool')
-        r_2sv_17_11lppCorrUsed = 1 if r_2sv_17_11lppCorrUsed else 0
-    else:
         r_2sv_17_11lppCorrUsed = 0
-    if len(g_sv) > 17:
-        r_2sv_17_11hasCorrUsed: Any = g_2sv_17.hasCorrUsed
-        if r_2sv_17_11hasCorrUsed is not True and r_2sv_17_11hasCorrUsed is not False and r_2sv_17_11hasCorrUsed != 0 and r_2sv_17_11hasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[17].hasCorrUsed', r_2sv_17_11hasCorrUsed, 'type', 'a bool')
-        r_2sv_17_11hasCorrUsed = 1 if r_2sv_17_11hasCorrUsed else 0
-    else:
         r_2sv_17_11hasCorrUsed = 0
-    if len(g_sv) > 17:
         r_2sv_17_11flags_spare = 0
-    else:
-        r_2sv_17_11flags_spare = 0
-    g_2sv_18: Any = cast(Any, g_sv[18] if len(g_sv) > 18 else None)
     if len(g_sv) > 18:
-        r_2sv_18_6gnssId = g_2sv_18.gnssId
-        if r_2sv_18_6gnssId.__class__ is not int and (not isinstance(r_2sv_18_6gnssId, int) or r_2sv_18_6gnssId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[18].gnssId', r_2sv_18_6gnssId, 'type', 'an int')
-        if not 0 <= r_2sv_18_6gnssId <= 255:
-            raise _enc('nav_sat', 'sv[18].gnssId', r_2sv_18_6gnssId, 'range', '0..255', None)
+        r_2sv_18_6gnssId, r_2sv_18_4svId, r_2sv_18_3cno, r_2sv_18_4elev, r_2sv_18_4azim, r_2sv_18_5prRes, r_2sv_18_10qualityInd, r_2sv_18_6svUsed, r_2sv_18_6health, r_2sv_18_8diffCorr, r_2sv_18_8smoothed, r_2sv_18_11orbitSource, r_2sv_18_8ephAvail, r_2sv_18_8almAvail, r_2sv_18_8anoAvail, r_2sv_18_8aopAvail, r_2sv_18_10reserved13, r_2sv_18_12sbasCorrUsed, r_2sv_18_12rtcmCorrUsed, r_2sv_18_12slasCorrUsed, r_2sv_18_14spartnCorrUsed, r_2sv_18_10prCorrUsed, r_2sv_18_10crCorrUsed, r_2sv_18_10doCorrUsed, r_2sv_18_12clasCorrUsed, r_2sv_18_11lppCorrUsed, r_2sv_18_11hasCorrUsed, r_2sv_18_11flags_spare = _raw_nav_sat_2sv_18(g_sv[18])
     else:
         r_2sv_18_6gnssId = 0
-    if len(g_sv) > 18:
-        r_2sv_18_4svId = g_2sv_18.svId
-        if r_2sv_18_4svId.__class__ is not int and (not isinstance(r_2sv_18_4svId, int) or r_2sv_18_4svId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[18].svId', r_2sv_18_4svId, 'type', 'an int')
-        if not 0 <= r_2sv_18_4svId <= 255:
-            raise _enc('nav_sat', 'sv[18].svId', r_2sv_18_4svId, 'range', '0..255', None)
-    else:
         r_2sv_18_4svId = 0
-    if len(g_sv) > 18:
-        r_2sv_18_3cno = g_2sv_18.cno
-        if r_2sv_18_3cno.__class__ is not int and (not isinstance(r_2sv_18_3cno, int) or r_2sv_18_3cno.__class__ is bool):
-            raise _enc('nav_sat', 'sv[18].cno', r_2sv_18_3cno, 'type', 'an int')
-        if not 0 <= r_2sv_18_3cno <= 255:
-            raise _enc('nav_sat', 'sv[18].cno', r_2sv_18_3cno, 'range', '0..255', None)
-    else:
         r_2sv_18_3cno = 0
-    if len(g_sv) > 18:
-        r_2sv_18_4elev = g_2sv_18.elev
-        if r_2sv_18_4elev.__class__ is not int and (not isinstance(r_2sv_18_4elev, int) or r_2sv_18_4elev.__class__ is bool):
-            raise _enc('nav_sat', 'sv[18].elev', r_2sv_18_4elev, 'type', 'an int')
-        if not -128 <= r_2sv_18_4elev <= 127:
-            raise _enc('nav_sat', 'sv[18].elev', r_2sv_18_4elev, 'range', '-128..127', None)
-    else:
         r_2sv_18_4elev = 0
-    if len(g_sv) > 18:
-        r_2sv_18_4azim = g_2sv_18.azim
-        if r_2sv_18_4azim.__class__ is not int and (not isinstance(r_2sv_18_4azim, int) or r_2sv_18_4azim.__class__ is bool):
-            raise _enc('nav_sat', 'sv[18].azim', r_2sv_18_4azim, 'type', 'an int')
-        if not -32768 <= r_2sv_18_4azim <= 32767:
-            raise _enc('nav_sat', 'sv[18].azim', r_2sv_18_4azim, 'range', '-32768..32767', None)
-    else:
         r_2sv_18_4azim = 0
-    if len(g_sv) > 18:
-        r_2sv_18_5prRes = g_2sv_18.prRes
-        if r_2sv_18_5prRes.__class__ is not float and (not isinstance(r_2sv_18_5prRes, (int, float)) or r_2sv_18_5prRes.__class__ is bool):
-            raise _enc('nav_sat', 'sv[18].prRes', r_2sv_18_5prRes, 'type', 'a number')
-        if not -3276.8 <= r_2sv_18_5prRes <= 3276.7000000000003:
-            raise _enc('nav_sat', 'sv[18].prRes', r_2sv_18_5prRes, 'range', '-3276.8..3276.7000000000003', None)
-        r_2sv_18_5prRes = _floor(r_2sv_18_5prRes / 0.1 + 0.5)
-    else:
         r_2sv_18_5prRes = 0
-    if len(g_sv) > 18:
-        r_2sv_18_10qualityInd = g_2sv_18.qualityInd
-        if r_2sv_18_10qualityInd.__class__ is not int and (not isinstance(r_2sv_18_10qualityInd, int) or r_2sv_18_10qualityInd.__class__ is bool):
-            raise _enc('nav_sat', 'sv[18].qualityInd', r_2sv_18_10qualityInd, 'type', 'an int')
-        if not 0 <= r_2sv_18_10qualityInd <= 7:
-            raise _enc('nav_sat', 'sv[18].qualityInd', r_2sv_18_10qualityInd, 'range', '0..7', None)
-    else:
         r_2sv_18_10qualityInd = 0
-    if len(g_sv) > 18:
-        r_2sv_18_6svUsed: Any = g_2sv_18.svUsed
-        if r_2sv_18_6svUsed is not True and r_2sv_18_6svUsed is not False and r_2sv_18_6svUsed != 0 and r_2sv_18_6svUsed != 1:
-            raise _enc('nav_sat', 'sv[18].svUsed', r_2sv_18_6svUsed, 'type', 'a bool')
-        r_2sv_18_6svUsed = 1 if r_2sv_18_6svUsed else 0
-    else:
         r_2sv_18_6svUsed = 0
-    if len(g_sv) > 18:
-        r_2sv_18_6health = g_2sv_18.health
-        if r_2sv_18_6health.__class__ is not int and (not isinstance(r_2sv_18_6health, int) or r_2sv_18_6health.__class__ is bool):
-            raise _enc('nav_sat', 'sv[18].health', r_2sv_18_6health, 'type', 'an int')
-        if not 0 <= r_2sv_18_6health <= 3:
-            raise _enc('nav_sat', 'sv[18].health', r_2sv_18_6health, 'range', '0..3', None)
-    else:
         r_2sv_18_6health = 0
-    if len(g_sv) > 18:
-        r_2sv_18_8diffCorr: Any = g_2sv_18.diffCorr
-        if r_2sv_18_8diffCorr is not True and r_2sv_18_8diffCorr is not False and r_2sv_18_8diffCorr != 0 and r_2sv_18_8diffCorr != 1:
-            raise _enc('nav_sat', 'sv[18].diffCorr', r_2sv_18_8diffCorr, 'type', 'a bool')
-        r_2sv_18_8diffCorr = 1 if r_2sv_18_8diffCorr else 0
-    else:
         r_2sv_18_8diffCorr = 0
-    if len(g_sv) > 18:
-        r_2sv_18_8smoothed: Any = g_2sv_18.smoothed
-        if r_2sv_18_8smoothed is not True and r_2sv_18_8smoothed is not False and r_2sv_18_8smoothed != 0 and r_2sv_18_8smoothed != 1:
-            raise _enc('nav_sat', 'sv[18].smoothed', r_2sv_18_8smoothed, 'type', 'a bool')
-        r_2sv_18_8smoothed = 1 if r_2sv_18_8smoothed else 0
-    else:
         r_2sv_18_8smoothed = 0
-    if len(g_sv) > 18:
-        r_2sv_18_11orbitSource = g_2sv_18.orbitSource
-        if r_2sv_18_11orbitSource.__class__ is not int and (not isinstance(r_2sv_18_11orbitSource, int) or r_2sv_18_11orbitSource.__class__ is bool):
-            raise _enc('nav_sat', 'sv[18].orbitSource', r_2sv_18_11orbitSource, 'type', 'an int')
-        if not 0 <= r_2sv_18_11orbitSource <= 7:
-            raise _enc('nav_sat', 'sv[18].orbitSource', r_2sv_18_11orbitSource, 'range', '0..7', None)
-    else:
         r_2sv_18_11orbitSource = 0
-    if len(g_sv) > 18:
-        r_2sv_18_8ephAvail: Any = g_2sv_18.ephAvail
-        if r_2sv_18_8ephAvail is not True and r_2sv_18_8ephAvail is not False and r_2sv_18_8ephAvail != 0 and r_2sv_18_8ephAvail != 1:
-            raise _enc('nav_sat', 'sv[18].ephAvail', r_2sv_18_8ephAvail, 'type', 'a bool')
-        r_2sv_18_8ephAvail = 1 if r_2sv_18_8ephAvail else 0
-    else:
         r_2sv_18_8ephAvail = 0
-    if len(g_sv) > 18:
-        r_2sv_18_8almAvail: Any = g_2sv_18.almAvail
-        if r_2sv_18_8almAvail is not True and r_2sv_18_8almAvail is not False and r_2sv_18_8almAvail != 0 and r_2sv_18_8almAvail != 1:
-            raise _enc('nav_sat', 'sv[18].almAvail', r_2sv_18_8almAvail, 'type', 'a bool')
-        r_2sv_18_8almAvail = 1 if r_2sv_18_8almAvail else 0
-    else:
         r_2sv_18_8almAvail = 0
-    if len(g_sv) > 18:
-        r_2sv_18_8anoAvail: Any = g_2sv_18.anoAvail
-        if r_2sv_18_8anoAvail is not True and r_2sv_18_8anoAvail is not False and r_2sv_18_8anoAvail != 0 and r_2sv_18_8anoAvail != 1:
-            raise _enc('nav_sat', 'sv[18].anoAvail', r_2sv_18_8anoAvail, 'type', 'a bool')
-        r_2sv_18_8anoAvail = 1 if r_2sv_18_8anoAvail else 0
-    else:
         r_2sv_18_8anoAvail = 0
-    if len(g_sv) > 18:
-        r_2sv_18_8aopAvail: Any = g_2sv_18.aopAvail
-        if r_2sv_18_8aopAvail is not True and r_2sv_18_8aopAvail is not False and r_2sv_18_8aopAvail != 0 and r_2sv_18_8aopAvail != 1:
-            raise _enc('nav_sat', 'sv[18].aopAvail', r_2sv_18_8aopAvail, 'type', 'a bool')
-        r_2sv_18_8aopAvail = 1 if r_2sv_18_8aopAvail else 0
-    else:
         r_2sv_18_8aopAvail = 0
-    if len(g_sv) > 18:
-        r_2sv_18_10reserved13 = g_2sv_18.reserved13
-        if r_2sv_18_10reserved13.__class__ is not int and (not isinstance(r_2sv_18_10reserved13, int) or r_2sv_18_10reserved13.__class__ is bool):
-            raise _enc('nav_sat', 'sv[18].reserved13', r_2sv_18_10reserved13, 'type', 'an int')
-        if not 0 <= r_2sv_18_10reserved13 <= 1:
-            raise _enc('nav_sat', 'sv[18].reserved13', r_2sv_18_10reserved13, 'range', '0..1', None)
-    else:
         r_2sv_18_10reserved13 = 0
-    if len(g_sv) > 18:
-        r_2sv_18_12sbasCorrUsed: Any = g_2sv_18.sbasCorrUsed
-        if r_2sv_18_12sbasCorrUsed is not True and r_2sv_18_12sbasCorrUsed is not False and r_2sv_18_12sbasCorrUsed != 0 and r_2sv_18_12sbasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[18].sbasCorrUsed', r_2sv_18_12sbasCorrUsed, 'type', 'a bool')
-        r_2sv_18_12sbasCorrUsed = 1 if r_2sv_18_12sbasCorrUsed else 0
-    else:
         r_2sv_18_12sbasCorrUsed = 0
-    if len(g_sv) > 18:
-        r_2sv_18_12rtcmCorrUsed: Any = g_2sv_18.rtcmCorrUsed
-        if r_2sv_18_12rtcmCorrUsed is not True and r_2sv_18_12rtcmCorrUsed is not False and r_2sv_18_12rtcmCorrUsed != 0 and r_2sv_18_12rtcmCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[18].rtcmCorrUsed', r_2sv_18_12rtcmCorrUsed, 'type', 'a bool')
-        r_2sv_18_12rtcmCorrUsed = 1 if r_2sv_18_12rtcmCorrUsed else 0
-    else:
         r_2sv_18_12rtcmCorrUsed = 0
-    if len(g_sv) > 18:
-        r_2sv_18_12slasCorrUsed: Any = g_2sv_18.slasCorrUsed
-        if r_2sv_18_12slasCorrUsed is not True and r_2sv_18_12slasCorrUsed is not False and r_2sv_18_12slasCorrUsed != 0 and r_2sv_18_12slasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[18].slasCorrUsed', r_2sv_18_12slasCorrUsed, 'type', 'a bool')
-        r_2sv_18_12slasCorrUsed = 1 if r_2sv_18_12slasCorrUsed else 0
-    else:
         r_2sv_18_12slasCorrUsed = 0
-    if len(g_sv) > 18:
-        r_2sv_18_14spartnCorrUsed: Any = g_2sv_18.spartnCorrUsed
-        if r_2sv_18_14spartnCorrUsed is not True and r_2sv_18_14spartnCorrUsed is not False and r_2sv_18_14spartnCorrUsed != 0 and r_2sv_18_14spartnCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[18].spartnCorrUsed', r_2sv_18_14spartnCorrUsed, 'type', 'a bool')
-        r_2sv_18_14spartnCorrUsed = 1 if r_2sv_18_14spartnCorrUsed else 0
-    else:
         r_2sv_18_14spartnCorrUsed = 0
-    if len(g_sv) > 18:
-        r_2sv_18_10prCorrUsed: Any = g_2sv_18.prCorrUsed
-        if r_2sv_18_10prCorrUsed is not True and r_2sv_18_10prCorrUsed is not False and r_2sv_18_10prCorrUsed != 0 and r_2sv_18_10prCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[18].prCorrUsed', r_2sv_18_10prCorrUsed, 'type', 'a bool')
-        r_2sv_18_10prCorrUsed = 1 if r_2sv_18_10prCorrUsed else 0
-    else:
         r_2sv_18_10prCorrUsed = 0
-    if len(g_sv) > 18:
-        r_2sv_18_10crCorrUsed: Any = g_2sv_18.crCorrUsed
-        if r_2sv_18_10crCorrUsed is not True and r_2sv_18_10crCorrUsed is not False and r_2sv_18_10crCorrUsed != 0 and r_2sv_18_10crCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[18].crCorrUsed', r_2sv_18_10crCorrUsed, 'type', 'a bool')
-        r_2sv_18_10crCorrUsed = 1 if r_2sv_18_10crCorrUsed else 0
-    else:
         r_2sv_18_10crCorrUsed = 0
-    if len(g_sv) > 18:
-        r_2sv_18_10doCorrUsed: Any = g_2sv_18.doCorrUsed
-        if r_2sv_18_10doCorrUsed is not True and r_2sv_18_10doCorrUsed is not False and r_2sv_18_10doCorrUsed != 0 and r_2sv_18_10doCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[18].doCorrUsed', r_2sv_18_10doCorrUsed, 'type', 'a bool')
-        r_2sv_18_10doCorrUsed = 1 if r_2sv_18_10doCorrUsed else 0
-    else:
         r_2sv_18_10doCorrUsed = 0
-    if len(g_sv) > 18:
-        r_2sv_18_12clasCorrUsed: Any = g_2sv_18.clasCorrUsed
-        if r_2sv_18_12clasCorrUsed is not True and r_2sv_18_12clasCorrUsed is not False and r_2sv_18_12clasCorrUsed != 0 and r_2sv_18_12clasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[18].clasCorrUsed', r_2sv_18_12clasCorrUsed, 'type', 'a bool')
-        r_2sv_18_12clasCorrUsed = 1 if r_2sv_18_12clasCorrUsed else 0
-    else:
         r_2sv_18_12clasCorrUsed = 0
-    if len(g_sv) > 18:
-        r_2sv_18_11lppCorrUsed: Any = g_2sv_18.lppCorrUsed
-        if r_2sv_18_11lppCorrUsed is not True and r_2sv_18_11lppCorrUsed is not False and r_2sv_18_11lppCorrUsed != 0 and r_2sv_18_11lppCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[18].lppCorrUsed', r_2sv_18_11lppCorrUsed, 'type', 'a bool')
-        r_2sv_18_11lppCorrUsed = 1 if r_2sv_18_11lppCorrUsed else 0
-    else:
         r_2sv_18_11lppCorrUsed = 0
-    if len(g_sv) > 18:
-        r_2sv_18_11hasCorrUsed: Any = g_2sv_18.hasCorrUsed
-        if r_2sv_18_11hasCorrUsed is not True and r_2sv_18_11hasCorrUsed is not False and r_2sv_18_11hasCorrUsed != 0 and r_2sv_18_11hasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[18].hasCorrUsed', r_2sv_18_11hasCorrUsed, 'type', 'a bool')
-        r_2sv_18_11hasCorrUsed = 1 if r_2sv_18_11hasCorrUsed else 0
-    else:
         r_2sv_18_11hasCorrUsed = 0
-    if len(g_sv) > 18:
         r_2sv_18_11flags_spare = 0
-    else:
-        r_2sv_18_11flags_spare = 0
-    g_2sv_19: Any = cast(Any, g_sv[19] if len(g_sv) > 19 else None)
     if len(g_sv) > 19:
-        r_2sv_19_6gnssId = g_2sv_19.gnssId
-        if r_2sv_19_6gnssId.__class__ is not int and (not isinstance(r_2sv_19_6gnssId, int) or r_2sv_19_6gnssId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[19].gnssId', r_2sv_19_6gnssId, 'type', 'an int')
-        if not 0 <= r_2sv_19_6gnssId <= 255:
-            raise _enc('nav_sat', 'sv[19].gnssId', r_2sv_19_6gnssId, 'range', '0..255', None)
+        r_2sv_19_6gnssId, r_2sv_19_4svId, r_2sv_19_3cno, r_2sv_19_4elev, r_2sv_19_4azim, r_2sv_19_5prRes, r_2sv_19_10qualityInd, r_2sv_19_6svUsed, r_2sv_19_6health, r_2sv_19_8diffCorr, r_2sv_19_8smoothed, r_2sv_19_11orbitSource, r_2sv_19_8ephAvail, r_2sv_19_8almAvail, r_2sv_19_8anoAvail, r_2sv_19_8aopAvail, r_2sv_19_10reserved13, r_2sv_19_12sbasCorrUsed, r_2sv_19_12rtcmCorrUsed, r_2sv_19_12slasCorrUsed, r_2sv_19_14spartnCorrUsed, r_2sv_19_10prCorrUsed, r_2sv_19_10crCorrUsed, r_2sv_19_10doCorrUsed, r_2sv_19_12clasCorrUsed, r_2sv_19_11lppCorrUsed, r_2sv_19_11hasCorrUsed, r_2sv_19_11flags_spare = _raw_nav_sat_2sv_19(g_sv[19])
     else:
         r_2sv_19_6gnssId = 0
-    if len(g_sv) > 19:
-        r_2sv_19_4svId = g_2sv_19.svId
-        if r_2sv_19_4svId.__class__ is not int and (not isinstance(r_2sv_19_4svId, int) or r_2sv_19_4svId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[19].svId', r_2sv_19_4svId, 'type', 'an int')
-        if not 0 <= r_2sv_19_4svId <= 255:
-            raise _enc('nav_sat', 'sv[19].svId', r_2sv_19_4svId, 'range', '0..255', None)
-    else:
         r_2sv_19_4svId = 0
-    if len(g_sv) > 19:
-        r_2sv_19_3cno = g_2sv_19.cno
-        if r_2sv_19_3cno.__class__ is not int and (not isinstance(r_2sv_19_3cno, int) or r_2sv_19_3cno.__class__ is bool):
-            raise _enc('nav_sat', 'sv[19].cno', r_2sv_19_3cno, 'type', 'an int')
-        if not 0 <= r_2sv_19_3cno <= 255:
-            raise _enc('nav_sat', 'sv[19].cno', r_2sv_19_3cno, 'range', '0..255', None)
-    else:
         r_2sv_19_3cno = 0
-    if len(g_sv) > 19:
-        r_2sv_19_4elev = g_2sv_19.elev
-        if r_2sv_19_4elev.__class__ is not int and (not isinstance(r_2sv_19_4elev, int) or r_2sv_19_4elev.__class__ is bool):
-            raise _enc('nav_sat', 'sv[19].elev', r_2sv_19_4elev, 'type', 'an int')
-        if not -128 <= r_2sv_19_4elev <= 127:
-            raise _enc('nav_sat', 'sv[19].elev', r_2sv_19_4elev, 'range', '-128..127', None)
-    else:
         r_2sv_19_4elev = 0
-    if len(g_sv) > 19:
-        r_2sv_19_4azim = g_2sv_19.azim
-        if r_2sv_19_4azim.__class__ is not int and (not isinstance(r_2sv_19_4azim, int) or r_2sv_19_4azim.__class__ is bool):
-            raise _enc('nav_sat', 'sv[19].azim', r_2sv_19_4azim, 'type', 'an int')
-        if not -32768 <= r_2sv_19_4azim <= 32767:
-            raise _enc('nav_sat', 'sv[19].azim', r_2sv_19_4azim, 'range', '-32768..32767', None)
-    else:
         r_2sv_19_4azim = 0
-    if len(g_sv) > 19:
-        r_2sv_19_5prRes = g_2sv_19.prRes
-        if r_2sv_19_5prRes.__class__ is not float and (not isinstance(r_2sv_19_5prRes, (int, float)) or r_2sv_19_5prRes.__class__ is bool):
-            raise _enc('nav_sat', 'sv[19].prRes', r_2sv_19_5prRes, 'type', 'a number')
-        if not -3276.8 <= r_2sv_19_5prRes <= 3276.7000000000003:
-            raise _enc('nav_sat', 'sv[19].prRes', r_2sv_19_5prRes, 'range', '-3276.8..3276.7000000000003', None)
-        r_2sv_19_5prRes = _floor(r_2sv_19_5prRes / 0.1 + 0.5)
-    else:
         r_2sv_19_5prRes = 0
-    if len(g_sv) > 19:
-        r_2sv_19_10qualityInd = g_2sv_19.qualityInd
-        if r_2sv_19_10qualityInd.__class__ is not int and (not isinstance(r_2sv_19_10qualityInd, int) or r_2sv_19_10qualityInd.__class__ is bool):
-            raise _enc('nav_sat', 'sv[19].qualityInd', r_2sv_19_10qualityInd, 'type', 'an int')
-        if not 0 <= r_2sv_19_10qualityInd <= 7:
-            raise _enc('nav_sat', 'sv[19].qualityInd', r_2sv_19_10qualityInd, 'range', '0..7', None)
-    else:
         r_2sv_19_10qualityInd = 0
-    if len(g_sv) > 19:
-        r_2sv_19_6svUsed: Any = g_2sv_19.svUsed
-        if r_2sv_19_6svUsed is not True and r_2sv_19_6svUsed is not False and r_2sv_19_6svUsed != 0 and r_2sv_19_6svUsed != 1:
-            raise _enc('nav_sat', 'sv[19].svUsed', r_2sv_19_6svUsed, 'type', 'a bool')
-        r_2sv_19_6svUsed = 1 if r_2sv_19_6svUsed else 0
-    else:
         r_2sv_19_6svUsed = 0
-    if len(g_sv) > 19:
-        r_2sv_19_6health = g_2sv_19.health
-        if r_2sv_19_6health.__class__ is not int and (not isinstance(r_2sv_19_6health, int) or r_2sv_19_6health.__class__ is bool):
-            raise _enc('nav_sat', 'sv[19].health', r_2sv_19_6health, 'type', 'an int')
-        if not 0 <= r_2sv_19_6health <= 3:
-            raise _enc('nav_sat', 'sv[19].health', r_2sv_19_6health, 'range', '0..3', None)
-    else:
         r_2sv_19_6health = 0
-    if len(g_sv) > 19:
-        r_2sv_19_8diffCorr: Any = g_2sv_19.diffCorr
-        if r_2sv_19_8diffCorr is not True and r_2sv_19_8diffCorr is not False and r_2sv_19_8diffCorr != 0 and r_2sv_19_8diffCorr != 1:
-            raise _enc('nav_sat', 'sv[19].diffCorr', r_2sv_19_8diffCorr, 'type', 'a bool')
-        r_2sv_19_8diffCorr = 1 if r_2sv_19_8diffCorr else 0
-    else:
         r_2sv_19_8diffCorr = 0
-    if len(g_sv) > 19:
-        r_2sv_19_8smoothed: Any = g_2sv_19.smoothed
-        if r_2sv_19_8smoothed is not True and r_2sv_19_8smoothed is not False and r_2sv_19_8smoothed != 0 and r_2sv_19_8smoothed != 1:
-            raise _enc('nav_sat', 'sv[19].smoothed', r_2sv_19_8smoothed, 'type', 'a bool')
-        r_2sv_19_8smoothed = 1 if r_2sv_19_8smoothed else 0
-    else:
         r_2sv_19_8smoothed = 0
-    if len(g_sv) > 19:
-        r_2sv_19_11orbitSource = g_2sv_19.orbitSource
-        if r_2sv_19_11orbitSource.__class__ is not int and (not isinstance(r_2sv_19_11orbitSource, int) or r_2sv_19_11orbitSource.__class__ is bool):
-            raise _enc('nav_sat', 'sv[19].orbitSource', r_2sv_19_11orbitSource, 'type', 'an int')
-        if not 0 <= r_2sv_19_11orbitSource <= 7:
-            raise _enc('nav_sat', 'sv[19].orbitSource', r_2sv_19_11orbitSource, 'range', '0..7', None)
-    else:
         r_2sv_19_11orbitSource = 0
-    if len(g_sv) > 19:
-        r_2sv_19_8ephAvail: Any = g_2sv_19.ephAvail
-        if r_2sv_19_8ephAvail is not True and r_2sv_19_8ephAvail is not False and r_2sv_19_8ephAvail != 0 and r_2sv_19_8ephAvail != 1:
-            raise _enc('nav_sat', 'sv[19].ephAvail', r_2sv_19_8ephAvail, 'type', 'a bool')
-        r_2sv_19_8ephAvail = 1 if r_2sv_19_8ephAvail else 0
-    else:
         r_2sv_19_8ephAvail = 0
-    if len(g_sv) > 19:
-        r_2sv_19_8almAvail: Any = g_2sv_19.almAvail
-        if r_2sv_19_8almAvail is not True and r_2sv_19_8almAvail is not False and r_2sv_19_8almAvail != 0 and r_2sv_19_8almAvail != 1:
-            raise _enc('nav_sat', 'sv[19].almAvail', r_2sv_19_8almAvail, 'type', 'a bool')
-        r_2sv_19_8almAvail = 1 if r_2sv_19_8almAvail else 0
-    else:
         r_2sv_19_8almAvail = 0
-    if len(g_sv) > 19:
-        r_2sv_19_8anoAvail: Any = g_2sv_19.anoAvail
-        if r_2sv_19_8anoAvail is not True and r_2sv_19_8anoAvail is not False and r_2sv_19_8anoAvail != 0 and r_2sv_19_8anoAvail != 1:
-            raise _enc('nav_sat', 'sv[19].anoAvail', r_2sv_19_8anoAvail, 'type', 'a bool')
-        r_2sv_19_8anoAvail = 1 if r_2sv_19_8anoAvail else 0
-    else:
         r_2sv_19_8anoAvail = 0
-    if len(g_sv) > 19:
-        r_2sv_19_8aopAvail: Any = g_2sv_19.aopAvail
-        if r_2sv_19_8aopAvail is not True and r_2sv_19_8aopAvail is not False and r_2sv_19_8aopAvail != 0 and r_2sv_19_8aopAvail != 1:
-            raise _enc('nav_sat', 'sv[19].aopAvail', r_2sv_19_8aopAvail, 'type', 'a bool')
-        r_2sv_19_8aopAvail = 1 if r_2sv_19_8aopAvail else 0
-    else:
         r_2sv_19_8aopAvail = 0
-    if len(g_sv) > 19:
-        r_2sv_19_10reserved13 = g_2sv_19.reserved13
-        if r_2sv_19_10reserved13.__class__ is not int and (not isinstance(r_2sv_19_10reserved13, int) or r_2sv_19_10reserved13.__class__ is bool):
-            raise _enc('nav_sat', 'sv[19].reserved13', r_2sv_19_10reserved13, 'type', 'an int')
-        if not 0 <= r_2sv_19_10reserved13 <= 1:
-            raise _enc('nav_sat', 'sv[19].reserved13', r_2sv_19_10reserved13, 'range', '0..1', None)
-    else:
         r_2sv_19_10reserved13 = 0
-    if len(g_sv) > 19:
-        r_2sv_19_12sbasCorrUsed: Any = g_2sv_19.sbasCorrUsed
-        if r_2sv_19_12sbasCorrUsed is not True and r_2sv_19_12sbasCorrUsed is not False and r_2sv_19_12sbasCorrUsed != 0 and r_2sv_19_12sbasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[19].sbasCorrUsed', r_2sv_19_12sbasCorrUsed, 'type', 'a bool')
-        r_2sv_19_12sbasCorrUsed = 1 if r_2sv_19_12sbasCorrUsed else 0
-    else:
         r_2sv_19_12sbasCorrUsed = 0
-    if len(g_sv) > 19:
-        r_2sv_19_12rtcmCorrUsed: Any = g_2sv_19.rtcmCorrUsed
-        if r_2sv_19_12rtcmCorrUsed is not True and r_2sv_19_12rtcmCorrUsed is not False and r_2sv_19_12rtcmCorrUsed != 0 and r_2sv_19_12rtcmCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[19].rtcmCorrUsed', r_2sv_19_12rtcmCorrUsed, 'type', 'a bool')
-        r_2sv_19_12rtcmCorrUsed = 1 if r_2sv_19_12rtcmCorrUsed else 0
-    else:
         r_2sv_19_12rtcmCorrUsed = 0
-    if len(g_sv) > 19:
-        r_2sv_19_12slasCorrUsed: Any = g_2sv_19.slasCorrUsed
-        if r_2sv_19_12slasCorrUsed is not True and r_2sv_19_12slasCorrUsed is not False and r_2sv_19_12slasCorrUsed != 0 and r_2sv_19_12slasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[19].slasCorrUsed', r_2sv_19_12slasCorrUsed, 'type', 'a bool')
-        r_2sv_19_12slasCorrUsed = 1 if r_2sv_19_12slasCorrUsed else 0
-    else:
         r_2sv_19_12slasCorrUsed = 0
-    if len(g_sv) > 19:
-        r_2sv_19_14spartnCorrUsed: Any = g_2sv_19.spartnCorrUsed
-        if r_2sv_19_14spartnCorrUsed is not True and r_2sv_19_14spartnCorrUsed is not False and r_2sv_19_14spartnCorrUsed != 0 and r_2sv_19_14spartnCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[19].spartnCorrUsed', r_2sv_19_14spartnCorrUsed, 'type', 'a bool')
-        r_2sv_19_14spartnCorrUsed = 1 if r_2sv_19_14spartnCorrUsed else 0
-    else:
         r_2sv_19_14spartnCorrUsed = 0
-    if len(g_sv) > 19:
-        r_2sv_19_10prCorrUsed: Any = g_2sv_19.prCorrUsed
-        if r_2sv_19_10prCorrUsed is not True and r_2sv_19_10prCorrUsed is not False and r_2sv_19_10prCorrUsed != 0 and r_2sv_19_10prCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[19].prCorrUsed', r_2sv_19_10prCorrUsed, 'type', 'a bool')
-        r_2sv_19_10prCorrUsed = 1 if r_2sv_19_10prCorrUsed else 0
-    else:
         r_2sv_19_10prCorrUsed = 0
-    if len(g_sv) > 19:
-        r_2sv_19_10crCorrUsed: Any = g_2sv_19.crCorrUsed
-        if r_2sv_19_10crCorrUsed is not True and r_2sv_19_10crCorrUsed is not False and r_2sv_19_10crCorrUsed != 0 and r_2sv_19_10crCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[19].crCorrUsed', r_2sv_19_10crCorrUsed, 'type', 'a bool')
-        r_2sv_19_10crCorrUsed = 1 if r_2sv_19_10crCorrUsed else 0
-    else:
         r_2sv_19_10crCorrUsed = 0
-    if len(g_sv) > 19:
-        r_2sv_19_10doCorrUsed: Any = g_2sv_19.doCorrUsed
-        if r_2sv_19_10doCorrUsed is not True and r_2sv_19_10doCorrUsed is not False and r_2sv_19_10doCorrUsed != 0 and r_2sv_19_10doCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[19].doCorrUsed', r_2sv_19_10doCorrUsed, 'type', 'a bool')
-        r_2sv_19_10doCorrUsed = 1 if r_2sv_19_10doCorrUsed else 0
-    else:
         r_2sv_19_10doCorrUsed = 0
-    if len(g_sv) > 19:
-        r_2sv_19_12clasCorrUsed: Any = g_2sv_19.clasCorrUsed
-        if r_2sv_19_12clasCorrUsed is not True and r_2sv_19_12clasCorrUsed is not False and r_2sv_19_12clasCorrUsed != 0 and r_2sv_19_12clasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[19].clasCorrUsed', r_2sv_19_12clasCorrUsed, 'type', 'a bool')
-        r_2sv_19_12clasCorrUsed = 1 if r_2sv_19_12clasCorrUsed else 0
-    else:
         r_2sv_19_12clasCorrUsed = 0
-    if len(g_sv) > 19:
-        r_2sv_19_11lppCorrUsed: Any = g_2sv_19.lppCorrUsed
-        if r_2sv_19_11lppCorrUsed is not True and r_2sv_19_11lppCorrUsed is not False and r_2sv_19_11lppCorrUsed != 0 and r_2sv_19_11lppCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[19].lppCorrUsed', r_2sv_19_11lppCorrUsed, 'type', 'a bool')
-        r_2sv_19_11lppCorrUsed = 1 if r_2sv_19_11lppCorrUsed else 0
-    else:
         r_2sv_19_11lppCorrUsed = 0
-    if len(g_sv) > 19:
-        r_2sv_19_11hasCorrUsed: Any = g_2sv_19.hasCorrUsed
-        if r_2sv_19_11hasCorrUsed is not True and r_2sv_19_11hasCorrUsed is not False and r_2sv_19_11hasCorrUsed != 0 and r_2sv_19_11hasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[19].hasCorrUsed', r_2sv_19_11hasCorrUsed, 'type', 'a bool')
-        r_2sv_19_11hasCorrUsed = 1 if r_2sv_19_11hasCorrUsed else 0
-    else:
         r_2sv_19_11hasCorrUsed = 0
-    if len(g_sv) > 19:
         r_2sv_19_11flags_spare = 0
-    else:
-        r_2sv_19_11flags_spare = 0
-    g_2sv_20: Any = cast(Any, g_sv[20] if len(g_sv) > 20 else None)
     if len(g_sv) > 20:
-        r_2sv_20_6gnssId = g_2sv_20.gnssId
-        if r_2sv_20_6gnssId.__class__ is not int and (not isinstance(r_2sv_20_6gnssId, int) or r_2sv_20_6gnssId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[20].gnssId', r_2sv_20_6gnssId, 'type', 'an int')
-        if not 0 <= r_2sv_20_6gnssId <= 255:
-            raise _enc('nav_sat', 'sv[20].gnssId', r_2sv_20_6gnssId, 'range', '0..255', None)
+        r_2sv_20_6gnssId, r_2sv_20_4svId, r_2sv_20_3cno, r_2sv_20_4elev, r_2sv_20_4azim, r_2sv_20_5prRes, r_2sv_20_10qualityInd, r_2sv_20_6svUsed, r_2sv_20_6health, r_2sv_20_8diffCorr, r_2sv_20_8smoothed, r_2sv_20_11orbitSource, r_2sv_20_8ephAvail, r_2sv_20_8almAvail, r_2sv_20_8anoAvail, r_2sv_20_8aopAvail, r_2sv_20_10reserved13, r_2sv_20_12sbasCorrUsed, r_2sv_20_12rtcmCorrUsed, r_2sv_20_12slasCorrUsed, r_2sv_20_14spartnCorrUsed, r_2sv_20_10prCorrUsed, r_2sv_20_10crCorrUsed, r_2sv_20_10doCorrUsed, r_2sv_20_12clasCorrUsed, r_2sv_20_11lppCorrUsed, r_2sv_20_11hasCorrUsed, r_2sv_20_11flags_spare = _raw_nav_sat_2sv_20(g_sv[20])
     else:
         r_2sv_20_6gnssId = 0
-    if len(g_sv) > 20:
-        r_2sv_20_4svId = g_2sv_20.svId
-        if r_2sv_20_4svId.__class__ is not int and (not isinstance(r_2sv_20_4svId, int) or r_2sv_20_4svId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[20].svId', r_2sv_20_4svId, 'type', 'an int')
-        if not 0 <= r_2sv_20_4svId <= 255:
-            raise _enc('nav_sat', 'sv[20].svId', r_2sv_20_4svId, 'range', '0..255', None)
-    else:
         r_2sv_20_4svId = 0
-    if len(g_sv) > 20:
-        r_2sv_20_3cno = g_2sv_20.cno
-        if r_2sv_20_3cno.__class__ is not int and (not isinstance(r_2sv_20_3cno, int) or r_2sv_20_3cno.__class__ is bool):
-            raise _enc('nav_sat', 'sv[20].cno', r_2sv_20_3cno, 'type', 'an int')
-        if not 0 <= r_2sv_20_3cno <= 255:
-            raise _enc('nav_sat', 'sv[20].cno', r_2sv_20_3cno, 'range', '0..255', None)
-    else:
         r_2sv_20_3cno = 0
-    if len(g_sv) > 20:
-        r_2sv_20_4elev = g_2sv_20.elev
-        if r_2sv_20_4elev.__class__ is not int and (not isinstance(r_2sv_20_4elev, int) or r_2sv_20_4elev.__class__ is bool):
-            raise _enc('nav_sat', 'sv[20].elev', r_2sv_20_4elev, 'type', 'an int')
-        if not -128 <= r_2sv_20_4elev <= 127:
-            raise _enc('nav_sat', 'sv[20].elev', r_2sv_20_4elev, 'range', '-128..127', None)
-    else:
         r_2sv_20_4elev = 0
-    if len(g_sv) > 20:
-        r_2sv_20_4azim = g_2sv_20.azim
-        if r_2sv_20_4azim.__class__ is not int and (not isinstance(r_2sv_20_4azim, int) or r_2sv_20_4azim.__class__ is bool):
-            raise _enc('nav_sat', 'sv[20].azim', r_2sv_20_4azim, 'type', 'an int')
-        if not -32768 <= r_2sv_20_4azim <= 32767:
-            raise _enc('nav_sat', 'sv[20].azim', r_2sv_20_4azim, 'range', '-32768..32767', None)
-    else:
         r_2sv_20_4azim = 0
-    if len(g_sv) > 20:
-        r_2sv_20_5prRes = g_2sv_20.prRes
-        if r_2sv_20_5prRes.__class__ is not float and (not isinstance(r_2sv_20_5prRes, (int, float)) or r_2sv_20_5prRes.__class__ is bool):
-            raise _enc('nav_sat', 'sv[20].prRes', r_2sv_20_5prRes, 'type', 'a number')
-        if not -3276.8 <= r_2sv_20_5prRes <= 3276.7000000000003:
-            raise _enc('nav_sat', 'sv[20].prRes', r_2sv_20_5prRes, 'range', '-3276.8..3276.7000000000003', None)
-        r_2sv_20_5prRes = _floor(r_2sv_20_5prRes / 0.1 + 0.5)
-    else:
         r_2sv_20_5prRes = 0
-    if len(g_sv) > 20:
-        r_2sv_20_10qualityInd = g_2sv_20.qualityInd
-        if r_2sv_20_10qualityInd.__class__ is not int and (not isinstance(r_2sv_20_10qualityInd, int) or r_2sv_20_10qualityInd.__class__ is bool):
-            raise _enc('nav_sat', 'sv[20].qualityInd', r_2sv_20_10qualityInd, 'type', 'an int')
-        if not 0 <= r_2sv_20_10qualityInd <= 7:
-            raise _enc('nav_sat', 'sv[20].qualityInd', r_2sv_20_10qualityInd, 'range', '0..7', None)
-    else:
         r_2sv_20_10qualityInd = 0
-    if len(g_sv) > 20:
-        r_2sv_20_6svUsed: Any = g_2sv_20.svUsed
-        if r_2sv_20_6svUsed is not True and r_2sv_20_6svUsed is not False and r_2sv_20_6svUsed != 0 and r_2sv_20_6svUsed != 1:
-            raise _enc('nav_sat', 'sv[20].svUsed', r_2sv_20_6svUsed, 'type', 'a bool')
-        r_2sv_20_6svUsed = 1 if r_2sv_20_6svUsed else 0
-    else:
         r_2sv_20_6svUsed = 0
-    if len(g_sv) > 20:
-        r_2sv_20_6health = g_2sv_20.health
-        if r_2sv_20_6health.__class__ is not int and (not isinstance(r_2sv_20_6health, int) or r_2sv_20_6health.__class__ is bool):
-            raise _enc('nav_sat', 'sv[20].health', r_2sv_20_6health, 'type', 'an int')
-        if not 0 <= r_2sv_20_6health <= 3:
-            raise _enc('nav_sat', 'sv[20].health', r_2sv_20_6health, 'range', '0..3', None)
-    else:
         r_2sv_20_6health = 0
-    if len(g_sv) > 20:
-        r_2sv_20_8diffCorr: Any = g_2sv_20.diffCorr
-        if r_2sv_20_8diffCorr is not True and r_2sv_20_8diffCorr is not False and r_2sv_20_8diffCorr != 0 and r_2sv_20_8diffCorr != 1:
-            raise _enc('nav_sat', 'sv[20].diffCorr', r_2sv_20_8diffCorr, 'type', 'a bool')
-        r_2sv_20_8diffCorr = 1 if r_2sv_20_8diffCorr else 0
-    else:
         r_2sv_20_8diffCorr = 0
-    if len(g_sv) > 20:
-        r_2sv_20_8smoothed: Any = g_2sv_20.smoothed
-        if r_2sv_20_8smoothed is not True and r_2sv_20_8smoothed is not False and r_2sv_20_8smoothed != 0 and r_2sv_20_8smoothed != 1:
-            raise _enc('nav_sat', 'sv[20].smoothed', r_2sv_20_8smoothed, 'type', 'a bool')
-        r_2sv_20_8smoothed = 1 if r_2sv_20_8smoothed else 0
-    else:
         r_2sv_20_8smoothed = 0
-    if len(g_sv) > 20:
-        r_2sv_20_11orbitSource = g_2sv_20.orbitSource
-        if r_2sv_20_11orbitSource.__class__ is not int and (not isinstance(r_2sv_20_11orbitSource, int) or r_2sv_20_11orbitSource.__class__ is bool):
-            raise _enc('nav_sat', 'sv[20].orbitSource', r_2sv_20_11orbitSource, 'type', 'an int')
-        if not 0 <= r_2sv_20_11orbitSource <= 7:
-            raise _enc('nav_sat', 'sv[20].orbitSource', r_2sv_20_11orbitSource, 'range', '0..7', None)
-    else:
         r_2sv_20_11orbitSource = 0
-    if len(g_sv) > 20:
-        r_2sv_20_8ephAvail: Any = g_2sv_20.ephAvail
-        if r_2sv_20_8ephAvail is not True and r_2sv_20_8ephAvail is not False and r_2sv_20_8ephAvail != 0 and r_2sv_20_8ephAvail != 1:
-            raise _enc('nav_sat', 'sv[20].ephAvail', r_2sv_20_8ephAvail, 'type', 'a bool')
-        r_2sv_20_8ephAvail = 1 if r_2sv_20_8ephAvail else 0
-    else:
         r_2sv_20_8ephAvail = 0
-    if len(g_sv) > 20:
-        r_2sv_20_8almAvail: Any = g_2sv_20.almAvail
-        if r_2sv_20_8almAvail is not True and r_2sv_20_8almAvail is not False and r_2sv_20_8almAvail != 0 and r_2sv_20_8almAvail != 1:
-            raise _enc('nav_sat', 'sv[20].almAvail', r_2sv_20_8almAvail, 'type', 'a bool')
-        r_2sv_20_8almAvail = 1 if r_2sv_20_8almAvail else 0
-    else:
         r_2sv_20_8almAvail = 0
-    if len(g_sv) > 20:
-        r_2sv_20_8anoAvail: Any = g_2sv_20.anoAvail
-        if r_2sv_20_8anoAvail is not True and r_2sv_20_8anoAvail is not False and r_2sv_20_8anoAvail != 0 and r_2sv_20_8anoAvail != 1:
-            raise _enc('nav_sat', 'sv[20].anoAvail', r_2sv_20_8anoAvail, 'type', 'a bool')
-        r_2sv_20_8anoAvail = 1 if r_2sv_20_8anoAvail else 0
-    else:
         r_2sv_20_8anoAvail = 0
-    if len(g_sv) > 20:
-        r_2sv_20_8aopAvail: Any = g_2sv_20.aopAvail
-        if r_2sv_20_8aopAvail is not True and r_2sv_20_8aopAvail is not False and r_2sv_20_8aopAvail != 0 and r_2sv_20_8aopAvail != 1:
-            raise _enc('nav_sat', 'sv[20].aopAvail', r_2sv_20_8aopAvail, 'type', 'a bool')
-        r_2sv_20_8aopAvail = 1 if r_2sv_20_8aopAvail else 0
-    else:
         r_2sv_20_8aopAvail = 0
-    if len(g_sv) > 20:
-        r_2sv_20_10reserved13 = g_2sv_20.reserved13
-        if r_2sv_20_10reserved13.__class__ is not int and (not isinstance(r_2sv_20_10reserved13, int) or r_2sv_20_10reserved13.__class__ is bool):
-            raise _enc('nav_sat', 'sv[20].reserved13', r_2sv_20_10reserved13, 'type', 'an int')
-        if not 0 <= r_2sv_20_10reserved13 <= 1:
-            raise _enc('nav_sat', 'sv[20].reserved13', r_2sv_20_10reserved13, 'range', '0..1', None)
-    else:
         r_2sv_20_10reserved13 = 0
-    if len(g_sv) > 20:
-        r_2sv_20_12sbasCorrUsed: Any = g_2sv_20.sbasCorrUsed
-        if r_2sv_20_12sbasCorrUsed is not True and r_2sv_20_12sbasCorrUsed is not False and r_2sv_20_12sbasCorrUsed != 0 and r_2sv_20_12sbasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[20].sbasCorrUsed', r_2sv_20_12sbasCorrUsed, 'type', 'a bool')
-        r_2sv_20_12sbasCorrUsed = 1 if r_2sv_20_12sbasCorrUsed else 0
-    else:
         r_2sv_20_12sbasCorrUsed = 0
-    if len(g_sv) > 20:
-        r_2sv_20_12rtcmCorrUsed: Any = g_2sv_20.rtcmCorrUsed
-        if r_2sv_20_12rtcmCorrUsed is not True and r_2sv_20_12rtcmCorrUsed is not False and r_2sv_20_12rtcmCorrUsed != 0 and r_2sv_20_12rtcmCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[20].rtcmCorrUsed', r_2sv_20_12rtcmCorrUsed, 'type', 'a bool')
-        r_2sv_20_12rtcmCorrUsed = 1 if r_2sv_20_12rtcmCorrUsed else 0
-    else:
         r_2sv_20_12rtcmCorrUsed = 0
-    if len(g_sv) > 20:
-        r_2sv_20_12slasCorrUsed: Any = g_2sv_20.slasCorrUsed
-        if r_2sv_20_12slasCorrUsed is not True and r_2sv_20_12slasCorrUsed is not False and r_2sv_20_12slasCorrUsed != 0 and r_2sv_20_12slasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[20].slasCorrUsed', r_2sv_20_12slasCorrUsed, 'type', 'a bool')
-        r_2sv_20_12slasCorrUsed = 1 if r_2sv_20_12slasCorrUsed else 0
-    else:
         r_2sv_20_12slasCorrUsed = 0
-    if len(g_sv) > 20:
-        r_2sv_20_14spartnCorrUsed: Any = g_2sv_20.spartnCorrUsed
-        if r_2sv_20_14spartnCorrUsed is not True and r_2sv_20_14spartnCorrUsed is not False and r_2sv_20_14spartnCorrUsed != 0 and r_2sv_20_14spartnCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[20].spartnCorrUsed', r_2sv_20_14spartnCorrUsed, 'type', 'a bool')
-        r_2sv_20_14spartnCorrUsed = 1 if r_2sv_20_14spartnCorrUsed else 0
-    else:
         r_2sv_20_14spartnCorrUsed = 0
-    if len(g_sv) > 20:
-        r_2sv_20_10prCorrUsed: Any = g_2sv_20.prCorrUsed
-        if r_2sv_20_10prCorrUsed is not True and r_2sv_20_10prCorrUsed is not False and r_2sv_20_10prCorrUsed != 0 and r_2sv_20_10prCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[20].prCorrUsed', r_2sv_20_10prCorrUsed, 'type', 'a bool')
-        r_2sv_20_10prCorrUsed = 1 if r_2sv_20_10prCorrUsed else 0
-    else:
         r_2sv_20_10prCorrUsed = 0
-    if len(g_sv) > 20:
-        r_2sv_20_10crCorrUsed: Any = g_2sv_20.crCorrUsed
-        if r_2sv_20_10crCorrUsed is not True and r_2sv_20_10crCorrUsed is not False and r_2sv_20_10crCorrUsed != 0 and r_2sv_20_10crCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[20].crCorrUsed', r_2sv_20_10crCorrUsed, 'type', 'a bool')
-        r_2sv_20_10crCorrUsed = 1 if r_2sv_20_10crCorrUsed else 0
-    else:
         r_2sv_20_10crCorrUsed = 0
-    if len(g_sv) > 20:
-        r_2sv_20_10doCorrUsed: Any = g_2sv_20.doCorrUsed
-        if r_2sv_20_10doCorrUsed is not True and r_2sv_20_10doCorrUsed is not False and r_2sv_20_10doCorrUsed != 0 and r_2sv_20_10doCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[20].doCorrUsed', r_2sv_20_10doCorrUsed, 'type', 'a bool')
-        r_2sv_20_10doCorrUsed = 1 if r_2sv_20_10doCorrUsed else 0
-    else:
         r_2sv_20_10doCorrUsed = 0
-    if len(g_sv) > 20:
-        r_2sv_20_12clasCorrUsed: Any = g_2sv_20.clasCorrUsed
-        if r_2sv_20_12clasCorrUsed is not True and r_2sv_20_12clasCorrUsed is not False and r_2sv_20_12clasCorrUsed != 0 and r_2sv_20_12clasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[20].clasCorrUsed', r_2sv_20_12clasCorrUsed, 'type', 'a bool')
-        r_2sv_20_12clasCorrUsed = 1 if r_2sv_20_12clasCorrUsed else 0
-    else:
         r_2sv_20_12clasCorrUsed = 0
-    if len(g_sv) > 20:
-        r_2sv_20_11lppCorrUsed: Any = g_2sv_20.lppCorrUsed
-        if r_2sv_20_11lppCorrUsed is not True and r_2sv_20_11lppCorrUsed is not False and r_2sv_20_11lppCorrUsed != 0 and r_2sv_20_11lppCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[20].lppCorrUsed', r_2sv_20_11lppCorrUsed, 'type', 'a bool')
-        r_2sv_20_11lppCorrUsed = 1 if r_2sv_20_11lppCorrUsed else 0
-    else:
         r_2sv_20_11lppCorrUsed = 0
-    if len(g_sv) > 20:
-        r_2sv_20_11hasCorrUsed: Any = g_2sv_20.hasCorrUsed
-        if r_2sv_20_11hasCorrUsed is not True and r_2sv_20_11hasCorrUsed is not False and r_2sv_20_11hasCorrUsed != 0 and r_2sv_20_11hasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[20].hasCorrUsed', r_2sv_20_11hasCorrUsed, 'type', 'a bool')
-        r_2sv_20_11hasCorrUsed = 1 if r_2sv_20_11hasCorrUsed else 0
-    else:
         r_2sv_20_11hasCorrUsed = 0
-    if len(g_sv) > 20:
         r_2sv_20_11flags_spare = 0
-    else:
-        r_2sv_20_11flags_spare = 0
-    g_2sv_21: Any = cast(Any, g_sv[21] if len(g_sv) > 21 else None)
     if len(g_sv) > 21:
-        r_2sv_21_6gnssId = g_2sv_21.gnssId
-        if r_2sv_21_6gnssId.__class__ is not int and (not isinstance(r_2sv_21_6gnssId, int) or r_2sv_21_6gnssId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[21].gnssId', r_2sv_21_6gnssId, 'type', 'an int')
-        if not 0 <= r_2sv_21_6gnssId <= 255:
-            raise _enc('nav_sat', 'sv[21].gnssId', r_2sv_21_6gnssId, 'range', '0..255', None)
+        r_2sv_21_6gnssId, r_2sv_21_4svId, r_2sv_21_3cno, r_2sv_21_4elev, r_2sv_21_4azim, r_2sv_21_5prRes, r_2sv_21_10qualityInd, r_2sv_21_6svUsed, r_2sv_21_6health, r_2sv_21_8diffCorr, r_2sv_21_8smoothed, r_2sv_21_11orbitSource, r_2sv_21_8ephAvail, r_2sv_21_8almAvail, r_2sv_21_8anoAvail, r_2sv_21_8aopAvail, r_2sv_21_10reserved13, r_2sv_21_12sbasCorrUsed, r_2sv_21_12rtcmCorrUsed, r_2sv_21_12slasCorrUsed, r_2sv_21_14spartnCorrUsed, r_2sv_21_10prCorrUsed, r_2sv_21_10crCorrUsed, r_2sv_21_10doCorrUsed, r_2sv_21_12clasCorrUsed, r_2sv_21_11lppCorrUsed, r_2sv_21_11hasCorrUsed, r_2sv_21_11flags_spare = _raw_nav_sat_2sv_21(g_sv[21])
     else:
         r_2sv_21_6gnssId = 0
-    if len(g_sv) > 21:
-        r_2sv_21_4svId = g_2sv_21.svId
-        if r_2sv_21_4svId.__class__ is not int and (not isinstance(r_2sv_21_4svId, int) or r_2sv_21_4svId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[21].svId', r_2sv_21_4svId, 'type', 'an int')
-        if not 0 <= r_2sv_21_4svId <= 255:
-            raise _enc('nav_sat', 'sv[21].svId', r_2sv_21_4svId, 'range', '0..255', None)
-    else:
         r_2sv_21_4svId = 0
-    if len(g_sv) > 21:
-        r_2sv_21_3cno = g_2sv_21.cno
-        if r_2sv_21_3cno.__class__ is not int and (not isinstance(r_2sv_21_3cno, int) or r_2sv_21_3cno.__class__ is bool):
-            raise _enc('nav_sat', 'sv[21].cno', r_2sv_21_3cno, 'type', 'an int')
-        if not 0 <= r_2sv_21_3cno <= 255:
-            raise _enc('nav_sat', 'sv[21].cno', r_2sv_21_3cno, 'range', '0..255', None)
-    else:
         r_2sv_21_3cno = 0
-    if len(g_sv) > 21:
-        r_2sv_21_4elev = g_2sv_21.elev
-        if r_2sv_21_4elev.__class__ is not int and (not isinstance(r_2sv_21_4elev, int) or r_2sv_21_4elev.__class__ is bool):
-            raise _enc('nav_sat', 'sv[21].elev', r_2sv_21_4elev, 'type', 'an int')
-        if not -128 <= r_2sv_21_4elev <= 127:
-            raise _enc('nav_sat', 'sv[21].elev', r_2sv_21_4elev, 'range', '-128..127', None)
-    else:
         r_2sv_21_4elev = 0
-    if len(g_sv) > 21:
-        r_2sv_21_4azim = g_2sv_21.azim
-        if r_2sv_21_4azim.__class__ is not int and (not isinstance(r_2sv_21_4azim, int) or r_2sv_21_4azim.__class__ is bool):
-            raise _enc('nav_sat', 'sv[21].azim', r_2sv_21_4azim, 'type', 'an int')
-        if not -32768 <= r_2sv_21_4azim <= 32767:
-            raise _enc('nav_sat', 'sv[21].azim', r_2sv_21_4azim, 'range', '-32768..32767', None)
-    else:
         r_2sv_21_4azim = 0
-    if len(g_sv) > 21:
-        r_2sv_21_5prRes = g_2sv_21.prRes
-        if r_2sv_21_5prRes.__class__ is not float and (not isinstance(r_2sv_21_5prRes, (int, float)) or r_2sv_21_5prRes.__class__ is bool):
-            raise _enc('nav_sat', 'sv[21].prRes', r_2sv_21_5prRes, 'type', 'a number')
-        if not -3276.8 <= r_2sv_21_5prRes <= 3276.7000000000003:
-            raise _enc('nav_sat', 'sv[21].prRes', r_2sv_21_5prRes, 'range', '-3276.8..3276.7000000000003', None)
-        r_2sv_21_5prRes = _floor(r_2sv_21_5prRes / 0.1 + 0.5)
-    else:
         r_2sv_21_5prRes = 0
-    if len(g_sv) > 21:
-        r_2sv_21_10qualityInd = g_2sv_21.qualityInd
-        if r_2sv_21_10qualityInd.__class__ is not int and (not isinstance(r_2sv_21_10qualityInd, int) or r_2sv_21_10qualityInd.__class__ is bool):
-            raise _enc('nav_sat', 'sv[21].qualityInd', r_2sv_21_10qualityInd, 'type', 'an int')
-        if not 0 <= r_2sv_21_10qualityInd <= 7:
-            raise _enc('nav_sat', 'sv[21].qualityInd', r_2sv_21_10qualityInd, 'range', '0..7', None)
-    else:
         r_2sv_21_10qualityInd = 0
-    if len(g_sv) > 21:
-        r_2sv_21_6svUsed: Any = g_2sv_21.svUsed
-        if r_2sv_21_6svUsed is not True and r_2sv_21_6svUsed is not False and r_2sv_21_6svUsed != 0 and r_2sv_21_6svUsed != 1:
-            raise _enc('nav_sat', 'sv[21].svUsed', r_2sv_21_6svUsed, 'type', 'a bool')
-        r_2sv_21_6svUsed = 1 if r_2sv_21_6svUsed else 0
-    else:
         r_2sv_21_6svUsed = 0
-    if len(g_sv) > 21:
-        r_2sv_21_6health = g_2sv_21.health
-        if r_2sv_21_6health.__class__ is not int and (not isinstance(r_2sv_21_6health, int) or r_2sv_21_6health.__class__ is bool):
-            raise _enc('nav_sat', 'sv[21].health', r_2sv_21_6health, 'type', 'an int')
-        if not 0 <= r_2sv_21_6health <= 3:
-            raise _enc('nav_sat', 'sv[21].health', r_2sv_21_6health, 'range', '0..3', None)
-    else:
         r_2sv_21_6health = 0
-    if len(g_sv) > 21:
-        r_2sv_21_8diffCorr: Any = g_2sv_21.diffCorr
-        if r_2sv_21_8diffCorr is not True and r_2sv_21_8diffCorr is not False and r_2sv_21_8diffCorr != 0 and r_2sv_21_8diffCorr != 1:
-            raise _enc('nav_sat', 'sv[21].diffCorr', r_2sv_21_8diffCorr, 'type', 'a bool')
-        r_2sv_21_8diffCorr = 1 if r_2sv_21_8diffCorr else 0
-    else:
         r_2sv_21_8diffCorr = 0
-    if len(g_sv) > 21:
-        r_2sv_21_8smoothed: Any = g_2sv_21.smoothed
-        if r_2sv_21_8smoothed is not True and r_2sv_21_8smoothed is not False and r_2sv_21_8smoothed != 0 and r_2sv_21_8smoothed != 1:
-            raise _enc('nav_sat', 'sv[21].smoothed', r_2sv_21_8smoothed, 'type', 'a bool')
-        r_2sv_21_8smoothed = 1 if r_2sv_21_8smoothed else 0
-    else:
         r_2sv_21_8smoothed = 0
-    if len(g_sv) > 21:
-        r_2sv_21_11orbitSource = g_2sv_21.orbitSource
-        if r_2sv_21_11orbitSource.__class__ is not int and (not isinstance(r_2sv_21_11orbitSource, int) or r_2sv_21_11orbitSource.__class__ is bool):
-            raise _enc('nav_sat', 'sv[21].orbitSource', r_2sv_21_11orbitSource, 'type', 'an int')
-        if not 0 <= r_2sv_21_11orbitSource <= 7:
-            raise _enc('nav_sat', 'sv[21].orbitSource', r_2sv_21_11orbitSource, 'range', '0..7', None)
-    else:
         r_2sv_21_11orbitSource = 0
-    if len(g_sv) > 21:
-        r_2sv_21_8ephAvail: Any = g_2sv_21.ephAvail
-        if r_2sv_21_8ephAvail is not True and r_2sv_21_8ephAvail is not False and r_2sv_21_8ephAvail != 0 and r_2sv_21_8ephAvail != 1:
-            raise _enc('nav_sat', 'sv[21].ephAvail', r_2sv_21_8ephAvail, 'type', 'a bool')
-        r_2sv_21_8ephAvail = 1 if r_2sv_21_8ephAvail else 0
-    else:
         r_2sv_21_8ephAvail = 0
-    if len(g_sv) > 21:
-        r_2sv_21_8almAvail: Any = g_2sv_21.almAvail
-        if r_2sv_21_8almAvail is not True and r_2sv_21_8almAvail is not False and r_2sv_21_8almAvail != 0 and r_2sv_21_8almAvail != 1:
-            raise _enc('nav_sat', 'sv[21].almAvail', r_2sv_21_8almAvail, 'type', 'a bool')
-        r_2sv_21_8almAvail = 1 if r_2sv_21_8almAvail else 0
-    else:
         r_2sv_21_8almAvail = 0
-    if len(g_sv) > 21:
-        r_2sv_21_8anoAvail: Any = g_2sv_21.anoAvail
-        if r_2sv_21_8anoAvail is not True and r_2sv_21_8anoAvail is not False and r_2sv_21_8anoAvail != 0 and r_2sv_21_8anoAvail != 1:
-            raise _enc('nav_sat', 'sv[21].anoAvail', r_2sv_21_8anoAvail, 'type', 'a bool')
-        r_2sv_21_8anoAvail = 1 if r_2sv_21_8anoAvail else 0
-    else:
         r_2sv_21_8anoAvail = 0
-    if len(g_sv) > 21:
-        r_2sv_21_8aopAvail: Any = g_2sv_21.aopAvail
-        if r_2sv_21_8aopAvail is not True and r_2sv_21_8aopAvail is not False and r_2sv_21_8aopAvail != 0 and r_2sv_21_8aopAvail != 1:
-            raise _enc('nav_sat', 'sv[21].aopAvail', r_2sv_21_8aopAvail, 'type', 'a bool')
-        r_2sv_21_8aopAvail = 1 if r_2sv_21_8aopAvail else 0
-    else:
         r_2sv_21_8aopAvail = 0
-    if len(g_sv) > 21:
-        r_2sv_21_10reserved13 = g_2sv_21.reserved13
-        if r_2sv_21_10reserved13.__class__ is not int and (not isinstance(r_2sv_21_10reserved13, int) or r_2sv_21_10reserved13.__class__ is bool):
-            raise _enc('nav_sat', 'sv[21].reserved13', r_2sv_21_10reserved13, 'type', 'an int')
-        if not 0 <= r_2sv_21_10reserved13 <= 1:
-            raise _enc('nav_sat', 'sv[21].reserved13', r_2sv_21_10reserved13, 'range', '0..1', None)
-    else:
         r_2sv_21_10reserved13 = 0
-    if len(g_sv) > 21:
-        r_2sv_21_12sbasCorrUsed: Any = g_2sv_21.sbasCorrUsed
-        if r_2sv_21_12sbasCorrUsed is not True and r_2sv_21_12sbasCorrUsed is not False and r_2sv_21_12sbasCorrUsed != 0 and r_2sv_21_12sbasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[21].sbasCorrUsed', r_2sv_21_12sbasCorrUsed, 'type', 'a bool')
-        r_2sv_21_12sbasCorrUsed = 1 if r_2sv_21_12sbasCorrUsed else 0
-    else:
         r_2sv_21_12sbasCorrUsed = 0
-    if len(g_sv) > 21:
-        r_2sv_21_12rtcmCorrUsed: Any = g_2sv_21.rtcmCorrUsed
-        if r_2sv_21_12rtcmCorrUsed is not True and r_2sv_21_12rtcmCorrUsed is not False and r_2sv_21_12rtcmCorrUsed != 0 and r_2sv_21_12rtcmCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[21].rtcmCorrUsed', r_2sv_21_12rtcmCorrUsed, 'type', 'a bool')
-        r_2sv_21_12rtcmCorrUsed = 1 if r_2sv_21_12rtcmCorrUsed else 0
-    else:
         r_2sv_21_12rtcmCorrUsed = 0
-    if len(g_sv) > 21:
-        r_2sv_21_12slasCorrUsed: Any = g_2sv_21.slasCorrUsed
-        if r_2sv_21_12slasCorrUsed is not True and r_2sv_21_12slasCorrUsed is not False and r_2sv_21_12slasCorrUsed != 0 and r_2sv_21_12slasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[21].slasCorrUsed', r_2sv_21_12slasCorrUsed, 'type', 'a bool')
-        r_2sv_21_12slasCorrUsed = 1 if r_2sv_21_12slasCorrUsed else 0
-    else:
         r_2sv_21_12slasCorrUsed = 0
-    if len(g_sv) > 21:
-        r_2sv_21_14spartnCorrUsed: Any = g_2sv_21.spartnCorrUsed
-        if r_2sv_21_14spartnCorrUsed is not True and r_2sv_21_14spartnCorrUsed is not False and r_2sv_21_14spartnCorrUsed != 0 and r_2sv_21_14spartnCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[21].spartnCorrUsed', r_2sv_21_14spartnCorrUsed, 'type', 'a bool')
-        r_2sv_21_14spartnCorrUsed = 1 if r_2sv_21_14spartnCorrUsed else 0
-    else:
         r_2sv_21_14spartnCorrUsed = 0
-    if len(g_sv) > 21:
-        r_2sv_21_10prCorrUsed: Any = g_2sv_21.prCorrUsed
-        if r_2sv_21_10prCorrUsed is not True and r_2sv_21_10prCorrUsed is not False and r_2sv_21_10prCorrUsed != 0 and r_2sv_21_10prCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[21].prCorrUsed', r_2sv_21_10prCorrUsed, 'type', 'a bool')
-        r_2sv_21_10prCorrUsed = 1 if r_2sv_21_10prCorrUsed else 0
-    else:
         r_2sv_21_10prCorrUsed = 0
-    if len(g_sv) > 21:
-        r_2sv_21_10crCorrUsed: Any = g_2sv_21.crCorrUsed
-        if r_2sv_21_10crCorrUsed is not True and r_2sv_21_10crCorrUsed is not False and r_2sv_21_10crCorrUsed != 0 and r_2sv_21_10crCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[21].crCorrUsed', r_2sv_21_10crCorrUsed, 'type', 'a bool')
-        r_2sv_21_10crCorrUsed = 1 if r_2sv_21_10crCorrUsed else 0
-    else:
         r_2sv_21_10crCorrUsed = 0
-    if len(g_sv) > 21:
-        r_2sv_21_10doCorrUsed: Any = g_2sv_21.doCorrUsed
-        if r_2sv_21_10doCorrUsed is not True and r_2sv_21_10doCorrUsed is not False and r_2sv_21_10doCorrUsed != 0 and r_2sv_21_10doCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[21].doCorrUsed', r_2sv_21_10doCorrUsed, 'type', 'a bool')
-        r_2sv_21_10doCorrUsed = 1 if r_2sv_21_10doCorrUsed else 0
-    else:
         r_2sv_21_10doCorrUsed = 0
-    if len(g_sv) > 21:
-        r_2sv_21_12clasCorrUsed: Any = g_2sv_21.clasCorrUsed
-        if r_2sv_21_12clasCorrUsed is not True and r_2sv_21_12clasCorrUsed is not False and r_2sv_21_12clasCorrUsed != 0 and r_2sv_21_12clasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[21].clasCorrUsed', r_2sv_21_12clasCorrUsed, 'type', 'a bool')
-        r_2sv_21_12clasCorrUsed = 1 if r_2sv_21_12clasCorrUsed else 0
-    else:
         r_2sv_21_12clasCorrUsed = 0
-    if len(g_sv) > 21:
-        r_2sv_21_11lppCorrUsed: Any = g_2sv_21.lppCorrUsed
-        if r_2sv_21_11lppCorrUsed is not True and r_2sv_21_11lppCorrUsed is not False and r_2sv_21_11lppCorrUsed != 0 and r_2sv_21_11lppCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[21].lppCorrUsed', r_2sv_21_11lppCorrUsed, 'type', 'a bool')
-        r_2sv_21_11lppCorrUsed = 1 if r_2sv_21_11lppCorrUsed else 0
-    else:
         r_2sv_21_11lppCorrUsed = 0
-    if len(g_sv) > 21:
-        r_2sv_21_11hasCorrUsed: Any = g_2sv_21.hasCorrUsed
-        if r_2sv_21_11hasCorrUsed is not True and r_2sv_21_11hasCorrUsed is not False and r_2sv_21_11hasCorrUsed != 0 and r_2sv_21_11hasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[21].hasCorrUsed', r_2sv_21_11hasCorrUsed, 'type', 'a bool')
-        r_2sv_21_11hasCorrUsed = 1 if r_2sv_21_11hasCorrUsed else 0
-    else:
         r_2sv_21_11hasCorrUsed = 0
-    if len(g_sv) > 21:
         r_2sv_21_11flags_spare = 0
-    else:
-        r_2sv_21_11flags_spare = 0
-    g_2sv_22: Any = cast(Any, g_sv[22] if len(g_sv) > 22 else None)
     if len(g_sv) > 22:
-        r_2sv_22_6gnssId = g_2sv_22.gnssId
-        if r_2sv_22_6gnssId.__class__ is not int and (not isinstance(r_2sv_22_6gnssId, int) or r_2sv_22_6gnssId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[22].gnssId', r_2sv_22_6gnssId, 'type', 'an int')
-        if not 0 <= r_2sv_22_6gnssId <= 255:
-            raise _enc('nav_sat', 'sv[22].gnssId', r_2sv_22_6gnssId, 'range', '0..255', None)
+        r_2sv_22_6gnssId, r_2sv_22_4svId, r_2sv_22_3cno, r_2sv_22_4elev, r_2sv_22_4azim, r_2sv_22_5prRes, r_2sv_22_10qualityInd, r_2sv_22_6svUsed, r_2sv_22_6health, r_2sv_22_8diffCorr, r_2sv_22_8smoothed, r_2sv_22_11orbitSource, r_2sv_22_8ephAvail, r_2sv_22_8almAvail, r_2sv_22_8anoAvail, r_2sv_22_8aopAvail, r_2sv_22_10reserved13, r_2sv_22_12sbasCorrUsed, r_2sv_22_12rtcmCorrUsed, r_2sv_22_12slasCorrUsed, r_2sv_22_14spartnCorrUsed, r_2sv_22_10prCorrUsed, r_2sv_22_10crCorrUsed, r_2sv_22_10doCorrUsed, r_2sv_22_12clasCorrUsed, r_2sv_22_11lppCorrUsed, r_2sv_22_11hasCorrUsed, r_2sv_22_11flags_spare = _raw_nav_sat_2sv_22(g_sv[22])
     else:
         r_2sv_22_6gnssId = 0
-    if len(g_sv) > 22:
-        r_2sv_22_4svId = g_2sv_22.svId
-        if r_2sv_22_4svId.__class__ is not int and (not isinstance(r_2sv_22_4svId, int) or r_2sv_22_4svId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[22].svId', r_2sv_22_4svId, 'type', 'an int')
-        if not 0 <= r_2sv_22_4svId <= 255:
-            raise _enc('nav_sat', 'sv[22].svId', r_2sv_22_4svId, 'range', '0..255', None)
-    else:
         r_2sv_22_4svId = 0
-    if len(g_sv) > 22:
-        r_2sv_22_3cno = g_2sv_22.cno
-        if r_2sv_22_3cno.__class__ is not int and (not isinstance(r_2sv_22_3cno, int) or r_2sv_22_3cno.__class__ is bool):
-            raise _enc('nav_sat', 'sv[22].cno', r_2sv_22_3cno, 'type', 'an int')
-        if not 0 <= r_2sv_22_3cno <= 255:
-            raise _enc('nav_sat', 'sv[22].cno', r_2sv_22_3cno, 'range', '0..255', None)
-    else:
         r_2sv_22_3cno = 0
-    if len(g_sv) > 22:
-        r_2sv_22_4elev = g_2sv_22.elev
-        if r_2sv_22_4elev.__class__ is not int and (not isinstance(r_2sv_22_4elev, int) or r_2sv_22_4elev.__class__ is bool):
-            raise _enc('nav_sat', 'sv[22].elev', r_2sv_22_4elev, 'type', 'an int')
-        if not -128 <= r_2sv_22_4elev <= 127:
-            raise _enc('nav_sat', 'sv[22].elev', r_2sv_22_4elev, 'range', '-128..127', None)
-    else:
         r_2sv_22_4elev = 0
-    if len(g_sv) > 22:
-        r_2sv_22_4azim = g_2sv_22.azim
-        if r_2sv_22_4azim.__class__ is not int and (not isinstance(r_2sv_22_4azim, int) or r_2sv_22_4azim.__class__ is bool):
-            raise _enc('nav_sat', 'sv[22].azim', r_2sv_22_4azim, 'type', 'an int')
-        if not -32768 <= r_2sv_22_4azim <= 32767:
-            raise _enc('nav_sat', 'sv[22].azim', r_2sv_22_4azim, 'range', '-32768..32767', None)
-    else:
         r_2sv_22_4azim = 0
-    if len(g_sv) > 22:
-        r_2sv_22_5prRes = g_2sv_22.prRes
-        if r_2sv_22_5prRes.__class__ is not float and (not isinstance(r_2sv_22_5prRes, (int, float)) or r_2sv_22_5prRes.__class__ is bool):
-            raise _enc('nav_sat', 'sv[22].prRes', r_2sv_22_5prRes, 'type', 'a number')
-        if not -3276.8 <= r_2sv_22_5prRes <= 3276.7000000000003:
-            raise _enc('nav_sat', 'sv[22].prRes', r_2sv_22_5prRes, 'range', '-3276.8..3276.7000000000003', None)
-        r_2sv_22_5prRes = _floor(r_2sv_22_5prRes / 0.1 + 0.5)
-    else:
         r_2sv_22_5prRes = 0
-    if len(g_sv) > 22:
-        r_2sv_22_10qualityInd = g_2sv_22.qualityInd
-        if r_2sv_22_10qualityInd.__class__ is not int and (not isinstance(r_2sv_22_10qualityInd, int) or r_2sv_22_10qualityInd.__class__ is bool):
-            raise _enc('nav_sat', 'sv[22].qualityInd', r_2sv_22_10qualityInd, 'type', 'an int')
-        if not 0 <= r_2sv_22_10qualityInd <= 7:
-            raise _enc('nav_sat', 'sv[22].qualityInd', r_2sv_22_10qualityInd, 'range', '0..7', None)
-    else:
         r_2sv_22_10qualityInd = 0
-    if len(g_sv) > 22:
-        r_2sv_22_6svUsed: Any = g_2sv_22.svUsed
-        if r_2sv_22_6svUsed is not True and r_2sv_22_6svUsed is not False and r_2sv_22_6svUsed != 0 and r_2sv_22_6svUsed != 1:
-            raise _enc('nav_sat', 'sv[22].svUsed', r_2sv_22_6svUsed, 'type', 'a bool')
-        r_2sv_22_6svUsed = 1 if r_2sv_22_6svUsed else 0
-    else:
         r_2sv_22_6svUsed = 0
-    if len(g_sv) > 22:
-        r_2sv_22_6health = g_2sv_22.health
-        if r_2sv_22_6health.__class__ is not int and (not isinstance(r_2sv_22_6health, int) or r_2sv_22_6health.__class__ is bool):
-            raise _enc('nav_sat', 'sv[22].health', r_2sv_22_6health, 'type', 'an int')
-        if not 0 <= r_2sv_22_6health <= 3:
-            raise _enc('nav_sat', 'sv[22].health', r_2sv_22_6health, 'range', '0..3', None)
-    else:
         r_2sv_22_6health = 0
-    if len(g_sv) > 22:
-        r_2sv_22_8diffCorr: Any = g_2sv_22.diffCorr
-        if r_2sv_22_8diffCorr is not True and r_2sv_22_8diffCorr is not False and r_2sv_22_8diffCorr != 0 and r_2sv_22_8diffCorr != 1:
-            raise _enc('nav_sat', 'sv[22].diffCorr', r_2sv_22_8diffCorr, 'type', 'a bool')
-        r_2sv_22_8diffCorr = 1 if r_2sv_22_8diffCorr else 0
-    else:
         r_2sv_22_8diffCorr = 0
-    if len(g_sv) > 22:
-        r_2sv_22_8smoothed: Any = g_2sv_22.smoothed
-        if r_2sv_22_8smoothed is not True and r_2sv_22_8smoothed is not False and r_2sv_22_8smoothed != 0 and r_2sv_22_8smoothed != 1:
-            raise _enc('nav_sat', 'sv[22].smoothed', r_2sv_22_8smoothed, 'type', 'a bool')
-        r_2sv_22_8smoothed = 1 if r_2sv_22_8smoothed else 0
-    else:
         r_2sv_22_8smoothed = 0
-    if len(g_sv) > 22:
-        r_2sv_22_11orbitSource = g_2sv_22.orbitSource
-        if r_2sv_22_11orbitSource.__class__ is not int and (not isinstance(r_2sv_22_11orbitSource, int) or r_2sv_22_11orbitSource.__class__ is bool):
-            raise _enc('nav_sat', 'sv[22].orbitSource', r_2sv_22_11orbitSource, 'type', 'an int')
-        if not 0 <= r_2sv_22_11orbitSource <= 7:
-            raise _enc('nav_sat', 'sv[22].orbitSource', r_2sv_22_11orbitSource, 'range', '0..7', None)
-    else:
         r_2sv_22_11orbitSource = 0
-    if len(g_sv) > 22:
-        r_2sv_22_8ephAvail: Any = g_2sv_22.ephAvail
-        if r_2sv_22_8ephAvail is not True and r_2sv_22_8ephAvail is not False and r_2sv_22_8ephAvail != 0 and r_2sv_22_8ephAvail != 1:
-            raise _enc('nav_sat', 'sv[22].ephAvail', r_2sv_22_8ephAvail, 'type', 'a bool')
-        r_2sv_22_8ephAvail = 1 if r_2sv_22_8ephAvail else 0
-    else:
         r_2sv_22_8ephAvail = 0
-    if len(g_sv) > 22:
-        r_2sv_22_8almAvail: Any = g_2sv_22.almAvail
-        if r_2sv_22_8almAvail is not True and r_2sv_22_8almAvail is not False and r_2sv_22_8almAvail != 0 and r_2sv_22_8almAvail != 1:
-            raise _enc('nav_sat', 'sv[22].almAvail', r_2sv_22_8almAvail, 'type', 'a bool')
-        r_2sv_22_8almAvail = 1 if r_2sv_22_8almAvail else 0
-    else:
         r_2sv_22_8almAvail = 0
-    if len(g_sv) > 22:
-        r_2sv_22_8anoAvail: Any = g_2sv_22.anoAvail
-        if r_2sv_22_8anoAvail is not True and r_2sv_22_8anoAvail is not False and r_2sv_22_8anoAvail != 0 and r_2sv_22_8anoAvail != 1:
-            raise _enc('nav_sat', 'sv[22].anoAvail', r_2sv_22_8anoAvail, 'type', 'a bool')
-        r_2sv_22_8anoAvail = 1 if r_2sv_22_8anoAvail else 0
-    else:
         r_2sv_22_8anoAvail = 0
-    if len(g_sv) > 22:
-        r_2sv_22_8aopAvail: Any = g_2sv_22.aopAvail
-        if r_2sv_22_8aopAvail is not True and r_2sv_22_8aopAvail is not False and r_2sv_22_8aopAvail != 0 and r_2sv_22_8aopAvail != 1:
-            raise _enc('nav_sat', 'sv[22].aopAvail', r_2sv_22_8aopAvail, 'type', 'a bool')
-        r_2sv_22_8aopAvail = 1 if r_2sv_22_8aopAvail else 0
-    else:
         r_2sv_22_8aopAvail = 0
-    if len(g_sv) > 22:
-        r_2sv_22_10reserved13 = g_2sv_22.reserved13
-        if r_2sv_22_10reserved13.__class__ is not int and (not isinstance(r_2sv_22_10reserved13, int) or r_2sv_22_10reserved13.__class__ is bool):
-            raise _enc('nav_sat', 'sv[22].reserved13', r_2sv_22_10reserved13, 'type', 'an int')
-        if not 0 <= r_2sv_22_10reserved13 <= 1:
-            raise _enc('nav_sat', 'sv[22].reserved13', r_2sv_22_10reserved13, 'range', '0..1', None)
-    else:
         r_2sv_22_10reserved13 = 0
-    if len(g_sv) > 22:
-        r_2sv_22_12sbasCorrUsed: Any = g_2sv_22.sbasCorrUsed
-        if r_2sv_22_12sbasCorrUsed is not True and r_2sv_22_12sbasCorrUsed is not False and r_2sv_22_12sbasCorrUsed != 0 and r_2sv_22_12sbasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[22].sbasCorrUsed', r_2sv_22_12sbasCorrUsed, 'type', 'a bool')
-        r_2sv_22_12sbasCorrUsed = 1 if r_2sv_22_12sbasCorrUsed else 0
-    else:
         r_2sv_22_12sbasCorrUsed = 0
-    if len(g_sv) > 22:
-        r_2sv_22_12rtcmCorrUsed: Any = g_2sv_22.rtcmCorrUsed
-        if r_2sv_22_12rtcmCorrUsed is not True and r_2sv_22_12rtcmCorrUsed is not False and r_2sv_22_12rtcmCorrUsed != 0 and r_2sv_22_12rtcmCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[22].rtcmCorrUsed', r_2sv_22_12rtcmCorrUsed, 'type', 'a bool')
-        r_2sv_22_12rtcmCorrUsed = 1 if r_2sv_22_12rtcmCorrUsed else 0
-    else:
         r_2sv_22_12rtcmCorrUsed = 0
-    if len(g_sv) > 22:
-        r_2sv_22_12slasCorrUsed: Any = g_2sv_22.slasCorrUsed
-        if r_2sv_22_12slasCorrUsed is not True and r_2sv_22_12slasCorrUsed is not False and r_2sv_22_12slasCorrUsed != 0 and r_2sv_22_12slasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[22].slasCorrUsed', r_2sv_22_12slasCorrUsed, 'type', 'a bool')
-        r_2sv_22_12slasCorrUsed = 1 if r_2sv_22_12slasCorrUsed else 0
-    else:
         r_2sv_22_12slasCorrUsed = 0
-    if len(g_sv) > 22:
-        r_2sv_22_14spartnCorrUsed: Any = g_2sv_22.spartnCorrUsed
-        if r_2sv_22_14spartnCorrUsed is not True and r_2sv_22_14spartnCorrUsed is not False and r_2sv_22_14spartnCorrUsed != 0 and r_2sv_22_14spartnCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[22].spartnCorrUsed', r_2sv_22_14spartnCorrUsed, 'type', 'a bool')
-        r_2sv_22_14spartnCorrUsed = 1 if r_2sv_22_14spartnCorrUsed else 0
-    else:
         r_2sv_22_14spartnCorrUsed = 0
-    if len(g_sv) > 22:
-        r_2sv_22_10prCorrUsed: Any = g_2sv_22.prCorrUsed
-        if r_2sv_22_10prCorrUsed is not True and r_2sv_22_10prCorrUsed is not False and r_2sv_22_10prCorrUsed != 0 and r_2sv_22_10prCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[22].prCorrUsed', r_2sv_22_10prCorrUsed, 'type', 'a bool')
-        r_2sv_22_10prCorrUsed = 1 if r_2sv_22_10prCorrUsed else 0
-    else:
         r_2sv_22_10prCorrUsed = 0
-    if len(g_sv) > 22:
-        r_2sv_22_10crCorrUsed: Any = g_2sv_22.crCorrUsed
-        if r_2sv_22_10crCorrUsed is not True and r_2sv_22_10crCorrUsed is not False and r_2sv_22_10crCorrUsed != 0 and r_2sv_22_10crCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[22].crCorrUsed', r_2sv_22_10crCorrUsed, 'type', 'a bool')
-        r_2sv_22_10crCorrUsed = 1 if r_2sv_22_10crCorrUsed else 0
-    else:
         r_2sv_22_10crCorrUsed = 0
-    if len(g_sv) > 22:
-        r_2sv_22_10doCorrUsed: Any = g_2sv_22.doCorrUsed
-        if r_2sv_22_10doCorrUsed is not True and r_2sv_22_10doCorrUsed is not False and r_2sv_22_10doCorrUsed != 0 and r_2sv_22_10doCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[22].doCorrUsed', r_2sv_22_10doCorrUsed, 'type', 'a bool')
-        r_2sv_22_10doCorrUsed = 1 if r_2sv_22_10doCorrUsed else 0
-    else:
         r_2sv_22_10doCorrUsed = 0
-    if len(g_sv) > 22:
-        r_2sv_22_12clasCorrUsed: Any = g_2sv_22.clasCorrUsed
-        if r_2sv_22_12clasCorrUsed is not True and r_2sv_22_12clasCorrUsed is not False and r_2sv_22_12clasCorrUsed != 0 and r_2sv_22_12clasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[22].clasCorrUsed', r_2sv_22_12clasCorrUsed, 'type', 'a bool')
-        r_2sv_22_12clasCorrUsed = 1 if r_2sv_22_12clasCorrUsed else 0
-    else:
         r_2sv_22_12clasCorrUsed = 0
-    if len(g_sv) > 22:
-        r_2sv_22_11lppCorrUsed: Any = g_2sv_22.lppCorrUsed
-        if r_2sv_22_11lppCorrUsed is not True and r_2sv_22_11lppCorrUsed is not False and r_2sv_22_11lppCorrUsed != 0 and r_2sv_22_11lppCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[22].lppCorrUsed', r_2sv_22_11lppCorrUsed, 'type', 'a bool')
-        r_2sv_22_11lppCorrUsed = 1 if r_2sv_22_11lppCorrUsed else 0
-    else:
         r_2sv_22_11lppCorrUsed = 0
-    if len(g_sv) > 22:
-        r_2sv_22_11hasCorrUsed: Any = g_2sv_22.hasCorrUsed
-        if r_2sv_22_11hasCorrUsed is not True and r_2sv_22_11hasCorrUsed is not False and r_2sv_22_11hasCorrUsed != 0 and r_2sv_22_11hasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[22].hasCorrUsed', r_2sv_22_11hasCorrUsed, 'type', 'a bool')
-        r_2sv_22_11hasCorrUsed = 1 if r_2sv_22_11hasCorrUsed else 0
-    else:
         r_2sv_22_11hasCorrUsed = 0
-    if len(g_sv) > 22:
         r_2sv_22_11flags_spare = 0
-    else:
-        r_2sv_22_11flags_spare = 0
-    g_2sv_23: Any = cast(Any, g_sv[23] if len(g_sv) > 23 else None)
     if len(g_sv) > 23:
-        r_2sv_23_6gnssId = g_2sv_23.gnssId
-        if r_2sv_23_6gnssId.__class__ is not int and (not isinstance(r_2sv_23_6gnssId, int) or r_2sv_23_6gnssId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[23].gnssId', r_2sv_23_6gnssId, 'type', 'an int')
-        if not 0 <= r_2sv_23_6gnssId <= 255:
-            raise _enc('nav_sat', 'sv[23].gnssId', r_2sv_23_6gnssId, 'range', '0..255', None)
+        r_2sv_23_6gnssId, r_2sv_23_4svId, r_2sv_23_3cno, r_2sv_23_4elev, r_2sv_23_4azim, r_2sv_23_5prRes, r_2sv_23_10qualityInd, r_2sv_23_6svUsed, r_2sv_23_6health, r_2sv_23_8diffCorr, r_2sv_23_8smoothed, r_2sv_23_11orbitSource, r_2sv_23_8ephAvail, r_2sv_23_8almAvail, r_2sv_23_8anoAvail, r_2sv_23_8aopAvail, r_2sv_23_10reserved13, r_2sv_23_12sbasCorrUsed, r_2sv_23_12rtcmCorrUsed, r_2sv_23_12slasCorrUsed, r_2sv_23_14spartnCorrUsed, r_2sv_23_10prCorrUsed, r_2sv_23_10crCorrUsed, r_2sv_23_10doCorrUsed, r_2sv_23_12clasCorrUsed, r_2sv_23_11lppCorrUsed, r_2sv_23_11hasCorrUsed, r_2sv_23_11flags_spare = _raw_nav_sat_2sv_23(g_sv[23])
     else:
         r_2sv_23_6gnssId = 0
-    if len(g_sv) > 23:
-        r_2sv_23_4svId = g_2sv_23.svId
-        if r_2sv_23_4svId.__class__ is not int and (not isinstance(r_2sv_23_4svId, int) or r_2sv_23_4svId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[23].svId', r_2sv_23_4svId, 'type', 'an int')
-        if not 0 <= r_2sv_23_4svId <= 255:
-            raise _enc('nav_sat', 'sv[23].svId', r_2sv_23_4svId, 'range', '0..255', None)
-    else:
         r_2sv_23_4svId = 0
-    if len(g_sv) > 23:
-        r_2sv_23_3cno = g_2sv_23.cno
-        if r_2sv_23_3cno.__class__ is not int and (not isinstance(r_2sv_23_3cno, int) or r_2sv_23_3cno.__class__ is bool):
-            raise _enc('nav_sat', 'sv[23].cno', r_2sv_23_3cno, 'type', 'an int')
-        if not 0 <= r_2sv_23_3cno <= 255:
-            raise _enc('nav_sat', 'sv[23].cno', r_2sv_23_3cno, 'range', '0..255', None)
-    else:
         r_2sv_23_3cno = 0
-    if len(g_sv) > 23:
-        r_2sv_23_4elev = g_2sv_23.elev
-        if r_2sv_23_4elev.__class__ is not int and (not isinstance(r_2sv_23_4elev, int) or r_2sv_23_4elev.__class__ is bool):
-            raise _enc('nav_sat', 'sv[23].elev', r_2sv_23_4elev, 'type', 'an int')
-        if not -128 <= r_2sv_23_4elev <= 127:
-            raise _enc('nav_sat', 'sv[23].elev', r_2sv_23_4elev, 'range', '-128..127', None)
-    else:
         r_2sv_23_4elev = 0
-    if len(g_sv) > 23:
-        r_2sv_23_4azim = g_2sv_23.azim
-        if r_2sv_23_4azim.__class__ is not int and (not isinstance(r_2sv_23_4azim, int) or r_2sv_23_4azim.__class__ is bool):
-            raise _enc('nav_sat', 'sv[23].azim', r_2sv_23_4azim, 'type', 'an int')
-        if not -32768 <= r_2sv_23_4azim <= 32767:
-            raise _enc('nav_sat', 'sv[23].azim', r_2sv_23_4azim, 'range', '-32768..32767', None)
-    else:
         r_2sv_23_4azim = 0
-    if len(g_sv) > 23:
-        r_2sv_23_5prRes = g_2sv_23.prRes
-        if r_2sv_23_5prRes.__class__ is not float and (not isinstance(r_2sv_23_5prRes, (int, float)) or r_2sv_23_5prRes.__class__ is bool):
-            raise _enc('nav_sat', 'sv[23].prRes', r_2sv_23_5prRes, 'type', 'a number')
-        if not -3276.8 <= r_2sv_23_5prRes <= 3276.7000000000003:
-            raise _enc('nav_sat', 'sv[23].prRes', r_2sv_23_5prRes, 'range', '-3276.8..3276.7000000000003', None)
-        r_2sv_23_5prRes = _floor(r_2sv_23_5prRes / 0.1 + 0.5)
-    else:
         r_2sv_23_5prRes = 0
-    if len(g_sv) > 23:
-        r_2sv_23_10qualityInd = g_2sv_23.qualityInd
-        if r_2sv_23_10qualityInd.__class__ is not int and (not isinstance(r_2sv_23_10qualityInd, int) or r_2sv_23_10qualityInd.__class__ is bool):
-            raise _enc('nav_sat', 'sv[23].qualityInd', r_2sv_23_10qualityInd, 'type', 'an int')
-        if not 0 <= r_2sv_23_10qualityInd <= 7:
-            raise _enc('nav_sat', 'sv[23].qualityInd', r_2sv_23_10qualityInd, 'range', '0..7', None)
-    else:
         r_2sv_23_10qualityInd = 0
-    if len(g_sv) > 23:
-        r_2sv_23_6svUsed: Any = g_2sv_23.svUsed
-        if r_2sv_23_6svUsed is not True and r_2sv_23_6svUsed is not False and r_2sv_23_6svUsed != 0 and r_2sv_23_6svUsed != 1:
-            raise _enc('nav_sat', 'sv[23].svUsed', r_2sv_23_6svUsed, 'type', 'a bool')
-        r_2sv_23_6svUsed = 1 if r_2sv_23_6svUsed else 0
-    else:
         r_2sv_23_6svUsed = 0
-    if len(g_sv) > 23:
-        r_2sv_23_6health = g_2sv_23.health
-        if r_2sv_23_6health.__class__ is not int and (not isinstance(r_2sv_23_6health, int) or r_2sv_23_6health.__class__ is bool):
-            raise _enc('nav_sat', 'sv[23].health', r_2sv_23_6health, 'type', 'an int')
-        if not 0 <= r_2sv_23_6health <= 3:
-            raise _enc('nav_sat', 'sv[23].health', r_2sv_23_6health, 'range', '0..3', None)
-    else:
         r_2sv_23_6health = 0
-    if len(g_sv) > 23:
-        r_2sv_23_8diffCorr: Any = g_2sv_23.diffCorr
-        if r_2sv_23_8diffCorr is not True and r_2sv_23_8diffCorr is not False and r_2sv_23_8diffCorr != 0 and r_2sv_23_8diffCorr != 1:
-            raise _enc('nav_sat', 'sv[23].diffCorr', r_2sv_23_8diffCorr, 'type', 'a bool')
-        r_2sv_23_8diffCorr = 1 if r_2sv_23_8diffCorr else 0
-    else:
         r_2sv_23_8diffCorr = 0
-    if len(g_sv) > 23:
-        r_2sv_23_8smoothed: Any = g_2sv_23.smoothed
-        if r_2sv_23_8smoothed is not True and r_2sv_23_8smoothed is not False and r_2sv_23_8smoothed != 0 and r_2sv_23_8smoothed != 1:
-            raise _enc('nav_sat', 'sv[23].smoothed', r_2sv_23_8smoothed, 'type', 'a bool')
-        r_2sv_23_8smoothed = 1 if r_2sv_23_8smoothed else 0
-    else:
         r_2sv_23_8smoothed = 0
-    if len(g_sv) > 23:
-        r_2sv_23_11orbitSource = g_2sv_23.orbitSource
-        if r_2sv_23_11orbitSource.__class__ is not int and (not isinstance(r_2sv_23_11orbitSource, int) or r_2sv_23_11orbitSource.__class__ is bool):
-            raise _enc('nav_sat', 'sv[23].orbitSource', r_2sv_23_11orbitSource, 'type', 'an int')
-        if not 0 <= r_2sv_23_11orbitSource <= 7:
-            raise _enc('nav_sat', 'sv[23].orbitSource', r_2sv_23_11orbitSource, 'range', '0..7', None)
-    else:
         r_2sv_23_11orbitSource = 0
-    if len(g_sv) > 23:
-        r_2sv_23_8ephAvail: Any = g_2sv_23.ephAvail
-        if r_2sv_23_8ephAvail is not True and r_2sv_23_8ephAvail is not False and r_2sv_23_8ephAvail != 0 and r_2sv_23_8ephAvail != 1:
-            raise _enc('nav_sat', 'sv[23].ephAvail', r_2sv_23_8ephAvail, 'type', 'a bool')
-        r_2sv_23_8ephAvail = 1 if r_2sv_23_8ephAvail else 0
-    else:
         r_2sv_23_8ephAvail = 0
-    if len(g_sv) > 23:
-        r_2sv_23_8almAvail: Any = g_2sv_23.almAvail
-        if r_2sv_23_8almAvail is not True and r_2sv_23_8almAvail is not False and r_2sv_23_8almAvail != 0 and r_2sv_23_8almAvail != 1:
-            raise _enc('nav_sat', 'sv[23].almAvail', r_2sv_23_8almAvail, 'type', 'a bool')
-        r_2sv_23_8almAvail = 1 if r_2sv_23_8almAvail else 0
-    else:
         r_2sv_23_8almAvail = 0
-    if len(g_sv) > 23:
-        r_2sv_23_8anoAvail: Any = g_2sv_23.anoAvail
-        if r_2sv_23_8anoAvail is not True and r_2sv_23_8anoAvail is not False and r_2sv_23_8anoAvail != 0 and r_2sv_23_8anoAvail != 1:
-            raise _enc('nav_sat', 'sv[23].anoAvail', r_2sv_23_8anoAvail, 'type', 'a bool')
-        r_2sv_23_8anoAvail = 1 if r_2sv_23_8anoAvail else 0
-    else:
         r_2sv_23_8anoAvail = 0
-    if len(g_sv) > 23:
-        r_2sv_23_8aopAvail: Any = g_2sv_23.aopAvail
-        if r_2sv_23_8aopAvail is not True and r_2sv_23_8aopAvail is not False and r_2sv_23_8aopAvail != 0 and r_2sv_23_8aopAvail != 1:
-            raise _enc('nav_sat', 'sv[23].aopAvail', r_2sv_23_8aopAvail, 'type', 'a bool')
-        r_2sv_23_8aopAvail = 1 if r_2sv_23_8aopAvail else 0
-    else:
         r_2sv_23_8aopAvail = 0
-    if len(g_sv) > 23:
-        r_2sv_23_10reserved13 = g_2sv_23.reserved13
-        if r_2sv_23_10reserved13.__class__ is not int and (not isinstance(r_2sv_23_10reserved13, int) or r_2sv_23_10reserved13.__class__ is bool):
-            raise _enc('nav_sat', 'sv[23].reserved13', r_2sv_23_10reserved13, 'type', 'an int')
-        if not 0 <= r_2sv_23_10reserved13 <= 1:
-            raise _enc('nav_sat', 'sv[23].reserved13', r_2sv_23_10reserved13, 'range', '0..1', None)
-    else:
         r_2sv_23_10reserved13 = 0
-    if len(g_sv) > 23:
-        r_2sv_23_12sbasCorrUsed: Any = g_2sv_23.sbasCorrUsed
-        if r_2sv_23_12sbasCorrUsed is not True and r_2sv_23_12sbasCorrUsed is not False and r_2sv_23_12sbasCorrUsed != 0 and r_2sv_23_12sbasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[23].sbasCorrUsed', r_2sv_23_12sbasCorrUsed, 'type', 'a bool')
-        r_2sv_23_12sbasCorrUsed = 1 if r_2sv_23_12sbasCorrUsed else 0
-    else:
         r_2sv_23_12sbasCorrUsed = 0
-    if len(g_sv) > 23:
-        r_2sv_23_12rtcmCorrUsed: Any = g_2sv_23.rtcmCorrUsed
-        if r_2sv_23_12rtcmCorrUsed is not True and r_2sv_23_12rtcmCorrUsed is not False and r_2sv_23_12rtcmCorrUsed != 0 and r_2sv_23_12rtcmCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[23].rtcmCorrUsed', r_2sv_23_12rtcmCorrUsed, 'type', 'a bool')
-        r_2sv_23_12rtcmCorrUsed = 1 if r_2sv_23_12rtcmCorrUsed else 0
-    else:
         r_2sv_23_12rtcmCorrUsed = 0
-    if len(g_sv) > 23:
-        r_2sv_23_12slasCorrUsed: Any = g_2sv_23.slasCorrUsed
-        if r_2sv_23_12slasCorrUsed is not True and r_2sv_23_12slasCorrUsed is not False and r_2sv_23_12slasCorrUsed != 0 and r_2sv_23_12slasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[23].slasCorrUsed', r_2sv_23_12slasCorrUsed, 'type', 'a bool')
-        r_2sv_23_12slasCorrUsed = 1 if r_2sv_23_12slasCorrUsed else 0
-    else:
         r_2sv_23_12slasCorrUsed = 0
-    if len(g_sv) > 23:
-        r_2sv_23_14spartnCorrUsed: Any = g_2sv_23.spartnCorrUsed
-        if r_2sv_23_14spartnCorrUsed is not True and r_2sv_23_14spartnCorrUsed is not False and r_2sv_23_14spartnCorrUsed != 0 and r_2sv_23_14spartnCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[23].spartnCorrUsed', r_2sv_23_14spartnCorrUsed, 'type', 'a bool')
-        r_2sv_23_14spartnCorrUsed = 1 if r_2sv_23_14spartnCorrUsed else 0
-    else:
         r_2sv_23_14spartnCorrUsed = 0
-    if len(g_sv) > 23:
-        r_2sv_23_10prCorrUsed: Any = g_2sv_23.prCorrUsed
-        if r_2sv_23_10prCorrUsed is not True and r_2sv_23_10prCorrUsed is not False and r_2sv_23_10prCorrUsed != 0 and r_2sv_23_10prCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[23].prCorrUsed', r_2sv_23_10prCorrUsed, 'type', 'a bool')
-        r_2sv_23_10prCorrUsed = 1 if r_2sv_23_10prCorrUsed else 0
-    else:
         r_2sv_23_10prCorrUsed = 0
-    if len(g_sv) > 23:
-        r_2sv_23_10crCorrUsed: Any = g_2sv_23.crCorrUsed
-        if r_2sv_23_10crCorrUsed is not True and r_2sv_23_10crCorrUsed is not False and r_2sv_23_10crCorrUsed != 0 and r_2sv_23_10crCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[23].crCorrUsed', r_2sv_23_10crCorrUsed, 'type', 'a bool')
-        r_2sv_23_10crCorrUsed = 1 if r_2sv_23_10crCorrUsed else 0
-    else:
         r_2sv_23_10crCorrUsed = 0
-    if len(g_sv) > 23:
-        r_2sv_23_10doCorrUsed: Any = g_2sv_23.doCorrUsed
-        if r_2sv_23_10doCorrUsed is not True and r_2sv_23_10doCorrUsed is not False and r_2sv_23_10doCorrUsed != 0 and r_2sv_23_10doCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[23].doCorrUsed', r_2sv_23_10doCorrUsed, 'type', 'a bool')
-        r_2sv_23_10doCorrUsed = 1 if r_2sv_23_10doCorrUsed else 0
-    else:
         r_2sv_23_10doCorrUsed = 0
-    if len(g_sv) > 23:
-        r_2sv_23_12clasCorrUsed: Any = g_2sv_23.clasCorrUsed
-        if r_2sv_23_12clasCorrUsed is not True and r_2sv_23_12clasCorrUsed is not False and r_2sv_23_12clasCorrUsed != 0 and r_2sv_23_12clasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[23].clasCorrUsed', r_2sv_23_12clasCorrUsed, 'type', 'a bool')
-        r_2sv_23_12clasCorrUsed = 1 if r_2sv_23_12clasCorrUsed else 0
-    else:
         r_2sv_23_12clasCorrUsed = 0
-    if len(g_sv) > 23:
-        r_2sv_23_11lppCorrUsed: Any = g_2sv_23.lppCorrUsed
-        if r_2sv_23_11lppCorrUsed is not True and r_2sv_23_11lppCorrUsed is not False and r_2sv_23_11lppCorrUsed != 0 and r_2sv_23_11lppCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[23].lppCorrUsed', r_2sv_23_11lppCorrUsed, 'type', 'a bool')
-        r_2sv_23_11lppCorrUsed = 1 if r_2sv_23_11lppCorrUsed else 0
-    else:
         r_2sv_23_11lppCorrUsed = 0
-    if len(g_sv) > 23:
-        r_2sv_23_11hasCorrUsed: Any = g_2sv_23.hasCorrUsed
-        if r_2sv_23_11hasCorrUsed is not True and r_2sv_23_11hasCorrUsed is not False and r_2sv_23_11hasCorrUsed != 0 and r_2sv_23_11hasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[23].hasCorrUsed', r_2sv_23_11hasCorrUsed, 'type', 'a bool')
-        r_2sv_23_11hasCorrUsed = 1 if r_2sv_23_11hasCorrUsed else 0
-    else:
         r_2sv_23_11hasCorrUsed = 0
-    if len(g_sv) > 23:
         r_2sv_23_11flags_spare = 0
-    else:
-        r_2sv_23_11flags_spare = 0
-    g_2sv_24: Any = cast(Any, g_sv[24] if len(g_sv) > 24 else None)
     if len(g_sv) > 24:
-        r_2sv_24_6gnssId = g_2sv_24.gnssId
-        if r_2sv_24_6gnssId.__class__ is not int and (not isinstance(r_2sv_24_6gnssId, int) or r_2sv_24_6gnssId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[24].gnssId', r_2sv_24_6gnssId, 'type', 'an int')
-        if not 0 <= r_2sv_24_6gnssId <= 255:
-            raise _enc('nav_sat', 'sv[24].gnssId', r_2sv_24_6gnssId, 'range', '0..255', None)
+        r_2sv_24_6gnssId, r_2sv_24_4svId, r_2sv_24_3cno, r_2sv_24_4elev, r_2sv_24_4azim, r_2sv_24_5prRes, r_2sv_24_10qualityInd, r_2sv_24_6svUsed, r_2sv_24_6health, r_2sv_24_8diffCorr, r_2sv_24_8smoothed, r_2sv_24_11orbitSource, r_2sv_24_8ephAvail, r_2sv_24_8almAvail, r_2sv_24_8anoAvail, r_2sv_24_8aopAvail, r_2sv_24_10reserved13, r_2sv_24_12sbasCorrUsed, r_2sv_24_12rtcmCorrUsed, r_2sv_24_12slasCorrUsed, r_2sv_24_14spartnCorrUsed, r_2sv_24_10prCorrUsed, r_2sv_24_10crCorrUsed, r_2sv_24_10doCorrUsed, r_2sv_24_12clasCorrUsed, r_2sv_24_11lppCorrUsed, r_2sv_24_11hasCorrUsed, r_2sv_24_11flags_spare = _raw_nav_sat_2sv_24(g_sv[24])
     else:
         r_2sv_24_6gnssId = 0
-    if len(g_sv) > 24:
-        r_2sv_24_4svId = g_2sv_24.svId
-        if r_2sv_24_4svId.__class__ is not int and (not isinstance(r_2sv_24_4svId, int) or r_2sv_24_4svId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[24].svId', r_2sv_24_4svId, 'type', 'an int')
-        if not 0 <= r_2sv_24_4svId <= 255:
-            raise _enc('nav_sat', 'sv[24].svId', r_2sv_24_4svId, 'range', '0..255', None)
-    else:
         r_2sv_24_4svId = 0
-    if len(g_sv) > 24:
-        r_2sv_24_3cno = g_2sv_24.cno
-        if r_2sv_24_3cno.__class__ is not int and (not isinstance(r_2sv_24_3cno, int) or r_2sv_24_3cno.__class__ is bool):
-            raise _enc('nav_sat', 'sv[24].cno', r_2sv_24_3cno, 'type', 'an int')
-        if not 0 <= r_2sv_24_3cno <= 255:
-            raise _enc('nav_sat', 'sv[24].cno', r_2sv_24_3cno, 'range', '0..255', None)
-    else:
         r_2sv_24_3cno = 0
-    if len(g_sv) > 24:
-        r_2sv_24_4elev = g_2sv_24.elev
-        if r_2sv_24_4elev.__class__ is not int and (not isinstance(r_2sv_24_4elev, int) or r_2sv_24_4elev.__class__ is bool):
-            raise _enc('nav_sat', 'sv[24].elev', r_2sv_24_4elev, 'type', 'an int')
-        if not -128 <= r_2sv_24_4elev <= 127:
-            raise _enc('nav_sat', 'sv[24].elev', r_2sv_24_4elev, 'range', '-128..127', None)
-    else:
         r_2sv_24_4elev = 0
-    if len(g_sv) > 24:
-        r_2sv_24_4azim = g_2sv_24.azim
-        if r_2sv_24_4azim.__class__ is not int and (not isinstance(r_2sv_24_4azim, int) or r_2sv_24_4azim.__class__ is bool):
-            raise _enc('nav_sat', 'sv[24].azim', r_2sv_24_4azim, 'type', 'an int')
-        if not -32768 <= r_2sv_24_4azim <= 32767:
-            raise _enc('nav_sat', 'sv[24].azim', r_2sv_24_4azim, 'range', '-32768..32767', None)
-    else:
         r_2sv_24_4azim = 0
-    if len(g_sv) > 24:
-        r_2sv_24_5prRes = g_2sv_24.prRes
-        if r_2sv_24_5prRes.__class__ is not float and (not isinstance(r_2sv_24_5prRes, (int, float)) or r_2sv_24_5prRes.__class__ is bool):
-            raise _enc('nav_sat', 'sv[24].prRes', r_2sv_24_5prRes, 'type', 'a number')
-        if not -3276.8 <= r_2sv_24_5prRes <= 3276.7000000000003:
-            raise _enc('nav_sat', 'sv[24].prRes', r_2sv_24_5prRes, 'range', '-3276.8..3276.7000000000003', None)
-        r_2sv_24_5prRes = _floor(r_2sv_24_5prRes / 0.1 + 0.5)
-    else:
         r_2sv_24_5prRes = 0
-    if len(g_sv) > 24:
-        r_2sv_24_10qualityInd = g_2sv_24.qualityInd
-        if r_2sv_24_10qualityInd.__class__ is not int and (not isinstance(r_2sv_24_10qualityInd, int) or r_2sv_24_10qualityInd.__class__ is bool):
-            raise _enc('nav_sat', 'sv[24].qualityInd', r_2sv_24_10qualityInd, 'type', 'an int')
-        if not 0 <= r_2sv_24_10qualityInd <= 7:
-            raise _enc('nav_sat', 'sv[24].qualityInd', r_2sv_24_10qualityInd, 'range', '0..7', None)
-    else:
         r_2sv_24_10qualityInd = 0
-    if len(g_sv) > 24:
-        r_2sv_24_6svUsed: Any = g_2sv_24.svUsed
-        if r_2sv_24_6svUsed is not True and r_2sv_24_6svUsed is not False and r_2sv_24_6svUsed != 0 and r_2sv_24_6svUsed != 1:
-            raise _enc('nav_sat', 'sv[24].svUsed', r_2sv_24_6svUsed, 'type', 'a bool')
-        r_2sv_24_6svUsed = 1 if r_2sv_24_6svUsed else 0
-    else:
         r_2sv_24_6svUsed = 0
-    if len(g_sv) > 24:
-        r_2sv_24_6health = g_2sv_24.health
-        if r_2sv_24_6health.__class__ is not int and (not isinstance(r_2sv_24_6health, int) or r_2sv_24_6health.__class__ is bool):
-            raise _enc('nav_sat', 'sv[24].health', r_2sv_24_6health, 'type', 'an int')
-        if not 0 <= r_2sv_24_6health <= 3:
-            raise _enc('nav_sat', 'sv[24].health', r_2sv_24_6health, 'range', '0..3', None)
-    else:
         r_2sv_24_6health = 0
-    if len(g_sv) > 24:
-        r_2sv_24_8diffCorr: Any = g_2sv_24.diffCorr
-        if r_2sv_24_8diffCorr is not True and r_2sv_24_8diffCorr is not False and r_2sv_24_8diffCorr != 0 and r_2sv_24_8diffCorr != 1:
-            raise _enc('nav_sat', 'sv[24].diffCorr', r_2sv_24_8diffCorr, 'type', 'a bool')
-        r_2sv_24_8diffCorr = 1 if r_2sv_24_8diffCorr else 0
-    else:
         r_2sv_24_8diffCorr = 0
-    if len(g_sv) > 24:
-        r_2sv_24_8smoothed: Any = g_2sv_24.smoothed
-        if r_2sv_24_8smoothed is not True and r_2sv_24_8smoothed is not False and r_2sv_24_8smoothed != 0 and r_2sv_24_8smoothed != 1:
-            raise _enc('nav_sat', 'sv[24].smoothed', r_2sv_24_8smoothed, 'type', 'a bool')
-        r_2sv_24_8smoothed = 1 if r_2sv_24_8smoothed else 0
-    else:
         r_2sv_24_8smoothed = 0
-    if len(g_sv) > 24:
-        r_2sv_24_11orbitSource = g_2sv_24.orbitSource
-        if r_2sv_24_11orbitSource.__class__ is not int and (not isinstance(r_2sv_24_11orbitSource, int) or r_2sv_24_11orbitSource.__class__ is bool):
-            raise _enc('nav_sat', 'sv[24].orbitSource', r_2sv_24_11orbitSource, 'type', 'an int')
-        if not 0 <= r_2sv_24_11orbitSource <= 7:
-            raise _enc('nav_sat', 'sv[24].orbitSource', r_2sv_24_11orbitSource, 'range', '0..7', None)
-    else:
         r_2sv_24_11orbitSource = 0
-    if len(g_sv) > 24:
-        r_2sv_24_8ephAvail: Any = g_2sv_24.ephAvail
-        if r_2sv_24_8ephAvail is not True and r_2sv_24_8ephAvail is not False and r_2sv_24_8ephAvail != 0 and r_2sv_24_8ephAvail != 1:
-            raise _enc('nav_sat', 'sv[24].ephAvail', r_2sv_24_8ephAvail, 'type', 'a bool')
-        r_2sv_24_8ephAvail = 1 if r_2sv_24_8ephAvail else 0
-    else:
         r_2sv_24_8ephAvail = 0
-    if len(g_sv) > 24:
-        r_2sv_24_8almAvail: Any = g_2sv_24.almAvail
-        if r_2sv_24_8almAvail is not True and r_2sv_24_8almAvail is not False and r_2sv_24_8almAvail != 0 and r_2sv_24_8almAvail != 1:
-            raise _enc('nav_sat', 'sv[24].almAvail', r_2sv_24_8almAvail, 'type', 'a bool')
-        r_2sv_24_8almAvail = 1 if r_2sv_24_8almAvail else 0
-    else:
         r_2sv_24_8almAvail = 0
-    if len(g_sv) > 24:
-        r_2sv_24_8anoAvail: Any = g_2sv_24.anoAvail
-        if r_2sv_24_8anoAvail is not True and r_2sv_24_8anoAvail is not False and r_2sv_24_8anoAvail != 0 and r_2sv_24_8anoAvail != 1:
-            raise _enc('nav_sat', 'sv[24].anoAvail', r_2sv_24_8anoAvail, 'type', 'a bool')
-        r_2sv_24_8anoAvail = 1 if r_2sv_24_8anoAvail else 0
-    else:
         r_2sv_24_8anoAvail = 0
-    if len(g_sv) > 24:
-        r_2sv_24_8aopAvail: Any = g_2sv_24.aopAvail
-        if r_2sv_24_8aopAvail is not True and r_2sv_24_8aopAvail is not False and r_2sv_24_8aopAvail != 0 and r_2sv_24_8aopAvail != 1:
-            raise _enc('nav_sat', 'sv[24].aopAvail', r_2sv_24_8aopAvail, 'type', 'a bool')
-        r_2sv_24_8aopAvail = 1 if r_2sv_24_8aopAvail else 0
-    else:
         r_2sv_24_8aopAvail = 0
-    if len(g_sv) > 24:
-        r_2sv_24_10reserved13 = g_2sv_24.reserved13
-        if r_2sv_24_10reserved13.__class__ is not int and (not isinstance(r_2sv_24_10reserved13, int) or r_2sv_24_10reserved13.__class__ is bool):
-            raise _enc('nav_sat', 'sv[24].reserved13', r_2sv_24_10reserved13, 'type', 'an int')
-        if not 0 <= r_2sv_24_10reserved13 <= 1:
-            raise _enc('nav_sat', 'sv[24].reserved13', r_2sv_24_10reserved13, 'range', '0..1', None)
-    else:
         r_2sv_24_10reserved13 = 0
-    if len(g_sv) > 24:
-        r_2sv_24_12sbasCorrUsed: Any = g_2sv_24.sbasCorrUsed
-        if r_2sv_24_12sbasCorrUsed is not True and r_2sv_24_12sbasCorrUsed is not False and r_2sv_24_12sbasCorrUsed != 0 and r_2sv_24_12sbasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[24].sbasCorrUsed', r_2sv_24_12sbasCorrUsed, 'type', 'a bool')
-        r_2sv_24_12sbasCorrUsed = 1 if r_2sv_24_12sbasCorrUsed else 0
-    else:
         r_2sv_24_12sbasCorrUsed = 0
-    if len(g_sv) > 24:
-        r_2sv_24_12rtcmCorrUsed: Any = g_2sv_24.rtcmCorrUsed
-        if r_2sv_24_12rtcmCorrUsed is not True and r_2sv_24_12rtcmCorrUsed is not False and r_2sv_24_12rtcmCorrUsed != 0 and r_2sv_24_12rtcmCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[24].rtcmCorrUsed', r_2sv_24_12rtcmCorrUsed, 'type', 'a bool')
-        r_2sv_24_12rtcmCorrUsed = 1 if r_2sv_24_12rtcmCorrUsed else 0
-    else:
         r_2sv_24_12rtcmCorrUsed = 0
-    if len(g_sv) > 24:
-        r_2sv_24_12slasCorrUsed: Any = g_2sv_24.slasCorrUsed
-        if r_2sv_24_12slasCorrUsed is not True and r_2sv_24_12slasCorrUsed is not False and r_2sv_24_12slasCorrUsed != 0 and r_2sv_24_12slasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[24].slasCorrUsed', r_2sv_24_12slasCorrUsed, 'type', 'a bool')
-        r_2sv_24_12slasCorrUsed = 1 if r_2sv_24_12slasCorrUsed else 0
-    else:
         r_2sv_24_12slasCorrUsed = 0
-    if len(g_sv) > 24:
-        r_2sv_24_14spartnCorrUsed: Any = g_2sv_24.spartnCorrUsed
-        if r_2sv_24_14spartnCorrUsed is not True and r_2sv_24_14spartnCorrUsed is not False and r_2sv_24_14spartnCorrUsed != 0 and r_2sv_24_14spartnCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[24].spartnCorrUsed', r_2sv_24_14spartnCorrUsed, 'type', 'a bool')
-        r_2sv_24_14spartnCorrUsed = 1 if r_2sv_24_14spartnCorrUsed else 0
-    else:
         r_2sv_24_14spartnCorrUsed = 0
-    if len(g_sv) > 24:
-        r_2sv_24_10prCorrUsed: Any = g_2sv_24.prCorrUsed
-        if r_2sv_24_10prCorrUsed is not True and r_2sv_24_10prCorrUsed is not False and r_2sv_24_10prCorrUsed != 0 and r_2sv_24_10prCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[24].prCorrUsed', r_2sv_24_10prCorrUsed, 'type', 'a bool')
-        r_2sv_24_10prCorrUsed = 1 if r_2sv_24_10prCorrUsed else 0
-    else:
         r_2sv_24_10prCorrUsed = 0
-    if len(g_sv) > 24:
-        r_2sv_24_10crCorrUsed: Any = g_2sv_24.crCorrUsed
-        if r_2sv_24_10crCorrUsed is not True and r_2sv_24_10crCorrUsed is not False and r_2sv_24_10crCorrUsed != 0 and r_2sv_24_10crCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[24].crCorrUsed', r_2sv_24_10crCorrUsed, 'type', 'a bool')
-        r_2sv_24_10crCorrUsed = 1 if r_2sv_24_10crCorrUsed else 0
-    else:
         r_2sv_24_10crCorrUsed = 0
-    if len(g_sv) > 24:
-        r_2sv_24_10doCorrUsed: Any = g_2sv_24.doCorrUsed
-        if r_2sv_24_10doCorrUsed is not True and r_2sv_24_10doCorrUsed is not False and r_2sv_24_10doCorrUsed != 0 and r_2sv_24_10doCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[24].doCorrUsed', r_2sv_24_10doCorrUsed, 'type', 'a bool')
-        r_2sv_24_10doCorrUsed = 1 if r_2sv_24_10doCorrUsed else 0
-    else:
         r_2sv_24_10doCorrUsed = 0
-    if len(g_sv) > 24:
-        r_2sv_24_12clasCorrUsed: Any = g_2sv_24.clasCorrUsed
-        if r_2sv_24_12clasCorrUsed is not True and r_2sv_24_12clasCorrUsed is not False and r_2sv_24_12clasCorrUsed != 0 and r_2sv_24_12clasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[24].clasCorrUsed', r_2sv_24_12clasCorrUsed, 'type', 'a bool')
-        r_2sv_24_12clasCorrUsed = 1 if r_2sv_24_12clasCorrUsed else 0
-    else:
         r_2sv_24_12clasCorrUsed = 0
-    if len(g_sv) > 24:
-        r_2sv_24_11lppCorrUsed: Any = g_2sv_24.lppCorrUsed
-        if r_2sv_24_11lppCorrUsed is not True and r_2sv_24_11lppCorrUsed is not False and r_2sv_24_11lppCorrUsed != 0 and r_2sv_24_11lppCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[24].lppCorrUsed', r_2sv_24_11lppCorrUsed, 'type', 'a bool')
-        r_2sv_24_11lppCorrUsed = 1 if r_2sv_24_11lppCorrUsed else 0
-    else:
         r_2sv_24_11lppCorrUsed = 0
-    if len(g_sv) > 24:
-        r_2sv_24_11hasCorrUsed: Any = g_2sv_24.hasCorrUsed
-        if r_2sv_24_11hasCorrUsed is not True and r_2sv_24_11hasCorrUsed is not False and r_2sv_24_11hasCorrUsed != 0 and r_2sv_24_11hasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[24].hasCorrUsed', r_2sv_24_11hasCorrUsed, 'type', 'a bool')
-        r_2sv_24_11hasCorrUsed = 1 if r_2sv_24_11hasCorrUsed else 0
-    else:
         r_2sv_24_11hasCorrUsed = 0
-    if len(g_sv) > 24:
         r_2sv_24_11flags_spare = 0
-    else:
-        r_2sv_24_11flags_spare = 0
-    g_2sv_25: Any = cast(Any, g_sv[25] if len(g_sv) > 25 else None)
     if len(g_sv) > 25:
-        r_2sv_25_6gnssId = g_2sv_25.gnssId
-        if r_2sv_25_6gnssId.__class__ is not int and (not isinstance(r_2sv_25_6gnssId, int) or r_2sv_25_6gnssId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[25].gnssId', r_2sv_25_6gnssId, 'type', 'an int')
-        if not 0 <= r_2sv_25_6gnssId <= 255:
-            raise _enc('nav_sat', 'sv[25].gnssId', r_2sv_25_6gnssId, 'range', '0..255', None)
+        r_2sv_25_6gnssId, r_2sv_25_4svId, r_2sv_25_3cno, r_2sv_25_4elev, r_2sv_25_4azim, r_2sv_25_5prRes, r_2sv_25_10qualityInd, r_2sv_25_6svUsed, r_2sv_25_6health, r_2sv_25_8diffCorr, r_2sv_25_8smoothed, r_2sv_25_11orbitSource, r_2sv_25_8ephAvail, r_2sv_25_8almAvail, r_2sv_25_8anoAvail, r_2sv_25_8aopAvail, r_2sv_25_10reserved13, r_2sv_25_12sbasCorrUsed, r_2sv_25_12rtcmCorrUsed, r_2sv_25_12slasCorrUsed, r_2sv_25_14spartnCorrUsed, r_2sv_25_10prCorrUsed, r_2sv_25_10crCorrUsed, r_2sv_25_10doCorrUsed, r_2sv_25_12clasCorrUsed, r_2sv_25_11lppCorrUsed, r_2sv_25_11hasCorrUsed, r_2sv_25_11flags_spare = _raw_nav_sat_2sv_25(g_sv[25])
     else:
         r_2sv_25_6gnssId = 0
-    if len(g_sv) > 25:
-        r_2sv_25_4svId = g_2sv_25.svId
-        if r_2sv_25_4svId.__class__ is not int and (not isinstance(r_2sv_25_4svId, int) or r_2sv_25_4svId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[25].svId', r_2sv_25_4svId, 'type', 'an int')
-        if not 0 <= r_2sv_25_4svId <= 255:
-            raise _enc('nav_sat', 'sv[25].svId', r_2sv_25_4svId, 'range', '0..255', None)
-    else:
         r_2sv_25_4svId = 0
-    if len(g_sv) > 25:
-        r_2sv_25_3cno = g_2sv_25.cno
-        if r_2sv_25_3cno.__class__ is not int and (not isinstance(r_2sv_25_3cno, int) or r_2sv_25_3cno.__class__ is bool):
-            raise _enc('nav_sat', 'sv[25].cno', r_2sv_25_3cno, 'type', 'an int')
-        if not 0 <= r_2sv_25_3cno <= 255:
-            raise _enc('nav_sat', 'sv[25].cno', r_2sv_25_3cno, 'range', '0..255', None)
-    else:
         r_2sv_25_3cno = 0
-    if len(g_sv) > 25:
-        r_2sv_25_4elev = g_2sv_25.elev
-        if r_2sv_25_4elev.__class__ is not int and (not isinstance(r_2sv_25_4elev, int) or r_2sv_25_4elev.__class__ is bool):
-            raise _enc('nav_sat', 'sv[25].elev', r_2sv_25_4elev, 'type', 'an int')
-        if not -128 <= r_2sv_25_4elev <= 127:
-            raise _enc('nav_sat', 'sv[25].elev', r_2sv_25_4elev, 'range', '-128..127', None)
-    else:
         r_2sv_25_4elev = 0
-    if len(g_sv) > 25:
-        r_2sv_25_4azim = g_2sv_25.azim
-        if r_2sv_25_4azim.__class__ is not int and (not isinstance(r_2sv_25_4azim, int) or r_2sv_25_4azim.__class__ is bool):
-            raise _enc('nav_sat', 'sv[25].azim', r_2sv_25_4azim, 'type', 'an int')
-        if not -32768 <= r_2sv_25_4azim <= 32767:
-            raise _enc('nav_sat', 'sv[25].azim', r_2sv_25_4azim, 'range', '-32768..32767', None)
-    else:
         r_2sv_25_4azim = 0
-    if len(g_sv) > 25:
-        r_2sv_25_5prRes = g_2sv_25.prRes
-        if r_2sv_25_5prRes.__class__ is not float and (not isinstance(r_2sv_25_5prRes, (int, float)) or r_2sv_25_5prRes.__class__ is bool):
-            raise _enc('nav_sat', 'sv[25].prRes', r_2sv_25_5prRes, 'type', 'a number')
-        if not -3276.8 <= r_2sv_25_5prRes <= 3276.7000000000003:
-            raise _enc('nav_sat', 'sv[25].prRes', r_2sv_25_5prRes, 'range', '-3276.8..3276.7000000000003', None)
-        r_2sv_25_5prRes = _floor(r_2sv_25_5prRes / 0.1 + 0.5)
-    else:
         r_2sv_25_5prRes = 0
-    if len(g_sv) > 25:
-        r_2sv_25_10qualityInd = g_2sv_25.qualityInd
-        if r_2sv_25_10qualityInd.__class__ is not int and (not isinstance(r_2sv_25_10qualityInd, int) or r_2sv_25_10qualityInd.__class__ is bool):
-            raise _enc('nav_sat', 'sv[25].qualityInd', r_2sv_25_10qualityInd, 'type', 'an int')
-        if not 0 <= r_2sv_25_10qualityInd <= 7:
-            raise _enc('nav_sat', 'sv[25].qualityInd', r_2sv_25_10qualityInd, 'range', '0..7', None)
-    else:
         r_2sv_25_10qualityInd = 0
-    if len(g_sv) > 25:
-        r_2sv_25_6svUsed: Any = g_2sv_25.svUsed
-        if r_2sv_25_6svUsed is not True and r_2sv_25_6svUsed is not False and r_2sv_25_6svUsed != 0 and r_2sv_25_6svUsed != 1:
-            raise _enc('nav_sat', 'sv[25].svUsed', r_2sv_25_6svUsed, 'type', 'a bool')
-        r_2sv_25_6svUsed = 1 if r_2sv_25_6svUsed else 0
-    else:
         r_2sv_25_6svUsed = 0
-    if len(g_sv) > 25:
-        r_2sv_25_6health = g_2sv_25.health
-        if r_2sv_25_6health.__class__ is not int and (not isinstance(r_2sv_25_6health, int) or r_2sv_25_6health.__class__ is bool):
-            raise _enc('nav_sat', 'sv[25].health', r_2sv_25_6health, 'type', 'an int')
-        if not 0 <= r_2sv_25_6health <= 3:
-            raise _enc('nav_sat', 'sv[25].health', r_2sv_25_6health, 'range', '0..3', None)
-    else:
         r_2sv_25_6health = 0
-    if len(g_sv) > 25:
-        r_2sv_25_8diffCorr: Any = g_2sv_25.diffCorr
-        if r_2sv_25_8diffCorr is not True and r_2sv_25_8diffCorr is not False and r_2sv_25_8diffCorr != 0 and r_2sv_25_8diffCorr != 1:
-            raise _enc('nav_sat', 'sv[25].diffCorr', r_2sv_25_8diffCorr, 'type', 'a bool')
-        r_2sv_25_8diffCorr = 1 if r_2sv_25_8diffCorr else 0
-    else:
         r_2sv_25_8diffCorr = 0
-    if len(g_sv) > 25:
-        r_2sv_25_8smoothed: Any = g_2sv_25.smoothed
-        if r_2sv_25_8smoothed is not True and r_2sv_25_8smoothed is not False and r_2sv_25_8smoothed != 0 and r_2sv_25_8smoothed != 1:
-            raise _enc('nav_sat', 'sv[25].smoothed', r_2sv_25_8smoothed, 'type', 'a bool')
-        r_2sv_25_8smoothed = 1 if r_2sv_25_8smoothed else 0
-    else:
         r_2sv_25_8smoothed = 0
-    if len(g_sv) > 25:
-        r_2sv_25_11orbitSource = g_2sv_25.orbitSource
-        if r_2sv_25_11orbitSource.__class__ is not int and (not isinstance(r_2sv_25_11orbitSource, int) or r_2sv_25_11orbitSource.__class__ is bool):
-            raise _enc('nav_sat', 'sv[25].orbitSource', r_2sv_25_11orbitSource, 'type', 'an int')
-        if not 0 <= r_2sv_25_11orbitSource <= 7:
-            raise _enc('nav_sat', 'sv[25].orbitSource', r_2sv_25_11orbitSource, 'range', '0..7', None)
-    else:
         r_2sv_25_11orbitSource = 0
-    if len(g_sv) > 25:
-        r_2sv_25_8ephAvail: Any = g_2sv_25.ephAvail
-        if r_2sv_25_8ephAvail is not True and r_2sv_25_8ephAvail is not False and r_2sv_25_8ephAvail != 0 and r_2sv_25_8ephAvail != 1:
-            raise _enc('nav_sat', 'sv[25].ephAvail', r_2sv_25_8ephAvail, 'type', 'a bool')
-        r_2sv_25_8ephAvail = 1 if r_2sv_25_8ephAvail else 0
-    else:
         r_2sv_25_8ephAvail = 0
-    if len(g_sv) > 25:
-        r_2sv_25_8almAvail: Any = g_2sv_25.almAvail
-        if r_2sv_25_8almAvail is not True and r_2sv_25_8almAvail is not False and r_2sv_25_8almAvail != 0 and r_2sv_25_8almAvail != 1:
-            raise _enc('nav_sat', 'sv[25].almAvail', r_2sv_25_8almAvail, 'type', 'a bool')
-        r_2sv_25_8almAvail = 1 if r_2sv_25_8almAvail else 0
-    else:
         r_2sv_25_8almAvail = 0
-    if len(g_sv) > 25:
-        r_2sv_25_8anoAvail: Any = g_2sv_25.anoAvail
-        if r_2sv_25_8anoAvail is not True and r_2sv_25_8anoAvail is not False and r_2sv_25_8anoAvail != 0 and r_2sv_25_8anoAvail != 1:
-            raise _enc('nav_sat', 'sv[25].anoAvail', r_2sv_25_8anoAvail, 'type', 'a bool')
-        r_2sv_25_8anoAvail = 1 if r_2sv_25_8anoAvail else 0
-    else:
         r_2sv_25_8anoAvail = 0
-    if len(g_sv) > 25:
-        r_2sv_25_8aopAvail: Any = g_2sv_25.aopAvail
-        if r_2sv_25_8aopAvail is not True and r_2sv_25_8aopAvail is not False and r_2sv_25_8aopAvail != 0 and r_2sv_25_8aopAvail != 1:
-            raise _enc('nav_sat', 'sv[25].aopAvail', r_2sv_25_8aopAvail, 'type', 'a bool')
-        r_2sv_25_8aopAvail = 1 if r_2sv_25_8aopAvail else 0
-    else:
         r_2sv_25_8aopAvail = 0
-    if len(g_sv) > 25:
-        r_2sv_25_10reserved13 = g_2sv_25.reserved13
-        if r_2sv_25_10reserved13.__class__ is not int and (not isinstance(r_2sv_25_10reserved13, int) or r_2sv_25_10reserved13.__class__ is bool):
-            raise _enc('nav_sat', 'sv[25].reserved13', r_2sv_25_10reserved13, 'type', 'an int')
-        if not 0 <= r_2sv_25_10reserved13 <= 1:
-            raise _enc('nav_sat', 'sv[25].reserved13', r_2sv_25_10reserved13, 'range', '0..1', None)
-    else:
         r_2sv_25_10reserved13 = 0
-    if len(g_sv) > 25:
-        r_2sv_25_12sbasCorrUsed: Any = g_2sv_25.sbasCorrUsed
-        if r_2sv_25_12sbasCorrUsed is not True and r_2sv_25_12sbasCorrUsed is not False and r_2sv_25_12sbasCorrUsed != 0 and r_2sv_25_12sbasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[25].sbasCorrUsed', r_2sv_25_12sbasCorrUsed, 'type', 'a bool')
-        r_2sv_25_12sbasCorrUsed = 1 if r_2sv_25_12sbasCorrUsed else 0
-    else:
         r_2sv_25_12sbasCorrUsed = 0
-    if len(g_sv) > 25:
-        r_2sv_25_12rtcmCorrUsed: Any = g_2sv_25.rtcmCorrUsed
-        if r_2sv_25_12rtcmCorrUsed is not True and r_2sv_25_12rtcmCorrUsed is not False and r_2sv_25_12rtcmCorrUsed != 0 and r_2sv_25_12rtcmCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[25].rtcmCorrUsed', r_2sv_25_12rtcmCorrUsed, 'type', 'a bool')
-        r_2sv_25_12rtcmCorrUsed = 1 if r_2sv_25_12rtcmCorrUsed else 0
-    else:
         r_2sv_25_12rtcmCorrUsed = 0
-    if len(g_sv) > 25:
-        r_2sv_25_12slasCorrUsed: Any = g_2sv_25.slasCorrUsed
-        if r_2sv_25_12slasCorrUsed is not True and r_2sv_25_12slasCorrUsed is not False and r_2sv_25_12slasCorrUsed != 0 and r_2sv_25_12slasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[25].slasCorrUsed', r_2sv_25_12slasCorrUsed, 'type', 'a bool')
-        r_2sv_25_12slasCorrUsed = 1 if r_2sv_25_12slasCorrUsed else 0
-    else:
         r_2sv_25_12slasCorrUsed = 0
-    if len(g_sv) > 25:
-        r_2sv_25_14spartnCorrUsed: Any = g_2sv_25.spartnCorrUsed
-        if r_2sv_25_14spartnCorrUsed is not True and r_2sv_25_14spartnCorrUsed is not False and r_2sv_25_14spartnCorrUsed != 0 and r_2sv_25_14spartnCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[25].spartnCorrUsed', r_2sv_25_14spartnCorrUsed, 'type', 'a bool')
-        r_2sv_25_14spartnCorrUsed = 1 if r_2sv_25_14spartnCorrUsed else 0
-    else:
         r_2sv_25_14spartnCorrUsed = 0
-    if len(g_sv) > 25:
-        r_2sv_25_10prCorrUsed: Any = g_2sv_25.prCorrUsed
-        if r_2sv_25_10prCorrUsed is not True and r_2sv_25_10prCorrUsed is not False and r_2sv_25_10prCorrUsed != 0 and r_2sv_25_10prCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[25].prCorrUsed', r_2sv_25_10prCorrUsed, 'type', 'a bool')
-        r_2sv_25_10prCorrUsed = 1 if r_2sv_25_10prCorrUsed else 0
-    else:
         r_2sv_25_10prCorrUsed = 0
-    if len(g_sv) > 25:
-        r_2sv_25_10crCorrUsed: Any = g_2sv_25.crCorrUsed
-        if r_2sv_25_10crCorrUsed is not True and r_2sv_25_10crCorrUsed is not False and r_2sv_25_10crCorrUsed != 0 and r_2sv_25_10crCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[25].crCorrUsed', r_2sv_25_10crCorrUsed, 'type', 'a bool')
-        r_2sv_25_10crCorrUsed = 1 if r_2sv_25_10crCorrUsed else 0
-    else:
         r_2sv_25_10crCorrUsed = 0
-    if len(g_sv) > 25:
-        r_2sv_25_10doCorrUsed: Any = g_2sv_25.doCorrUsed
-        if r_2sv_25_10doCorrUsed is not True and r_2sv_25_10doCorrUsed is not False and r_2sv_25_10doCorrUsed != 0 and r_2sv_25_10doCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[25].doCorrUsed', r_2sv_25_10doCorrUsed, 'type', 'a bool')
-        r_2sv_25_10doCorrUsed = 1 if r_2sv_25_10doCorrUsed else 0
-    else:
         r_2sv_25_10doCorrUsed = 0
-    if len(g_sv) > 25:
-        r_2sv_25_12clasCorrUsed: Any = g_2sv_25.clasCorrUsed
-        if r_2sv_25_12clasCorrUsed is not True and r_2sv_25_12clasCorrUsed is not False and r_2sv_25_12clasCorrUsed != 0 and r_2sv_25_12clasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[25].clasCorrUsed', r_2sv_25_12clasCorrUsed, 'type', 'a bool')
-        r_2sv_25_12clasCorrUsed = 1 if r_2sv_25_12clasCorrUsed else 0
-    else:
         r_2sv_25_12clasCorrUsed = 0
-    if len(g_sv) > 25:
-        r_2sv_25_11lppCorrUsed: Any = g_2sv_25.lppCorrUsed
-        if r_2sv_25_11lppCorrUsed is not True and r_2sv_25_11lppCorrUsed is not False and r_2sv_25_11lppCorrUsed != 0 and r_2sv_25_11lppCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[25].lppCorrUsed', r_2sv_25_11lppCorrUsed, 'type', 'a bool')
-        r_2sv_25_11lppCorrUsed = 1 if r_2sv_25_11lppCorrUsed else 0
-    else:
         r_2sv_25_11lppCorrUsed = 0
-    if len(g_sv) > 25:
-        r_2sv_25_11hasCorrUsed: Any = g_2sv_25.hasCorrUsed
-        if r_2sv_25_11hasCorrUsed is not True and r_2sv_25_11hasCorrUsed is not False and r_2sv_25_11hasCorrUsed != 0 and r_2sv_25_11hasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[25].hasCorrUsed', r_2sv_25_11hasCorrUsed, 'type', 'a bool')
-        r_2sv_25_11hasCorrUsed = 1 if r_2sv_25_11hasCorrUsed else 0
-    else:
         r_2sv_25_11hasCorrUsed = 0
-    if len(g_sv) > 25:
         r_2sv_25_11flags_spare = 0
-    else:
-        r_2sv_25_11flags_spare = 0
-    g_2sv_26: Any = cast(Any, g_sv[26] if len(g_sv) > 26 else None)
     if len(g_sv) > 26:
-        r_2sv_26_6gnssId = g_2sv_26.gnssId
-        if r_2sv_26_6gnssId.__class__ is not int and (not isinstance(r_2sv_26_6gnssId, int) or r_2sv_26_6gnssId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[26].gnssId', r_2sv_26_6gnssId, 'type', 'an int')
-        if not 0 <= r_2sv_26_6gnssId <= 255:
-            raise _enc('nav_sat', 'sv[26].gnssId', r_2sv_26_6gnssId, 'range', '0..255', None)
+        r_2sv_26_6gnssId, r_2sv_26_4svId, r_2sv_26_3cno, r_2sv_26_4elev, r_2sv_26_4azim, r_2sv_26_5prRes, r_2sv_26_10qualityInd, r_2sv_26_6svUsed, r_2sv_26_6health, r_2sv_26_8diffCorr, r_2sv_26_8smoothed, r_2sv_26_11orbitSource, r_2sv_26_8ephAvail, r_2sv_26_8almAvail, r_2sv_26_8anoAvail, r_2sv_26_8aopAvail, r_2sv_26_10reserved13, r_2sv_26_12sbasCorrUsed, r_2sv_26_12rtcmCorrUsed, r_2sv_26_12slasCorrUsed, r_2sv_26_14spartnCorrUsed, r_2sv_26_10prCorrUsed, r_2sv_26_10crCorrUsed, r_2sv_26_10doCorrUsed, r_2sv_26_12clasCorrUsed, r_2sv_26_11lppCorrUsed, r_2sv_26_11hasCorrUsed, r_2sv_26_11flags_spare = _raw_nav_sat_2sv_26(g_sv[26])
     else:
         r_2sv_26_6gnssId = 0
-    if len(g_sv) > 26:
-        r_2sv_26_4svId = g_2sv_26.svId
-        if r_2sv_26_4svId.__class__ is not int and (not isinstance(r_2sv_26_4svId, int) or r_2sv_26_4svId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[26].svId', r_2sv_26_4svId, 'type', 'an int')
-        if not 0 <= r_2sv_26_4svId <= 255:
-            raise _enc('nav_sat', 'sv[26].svId', r_2sv_26_4svId, 'range', '0..255', None)
-    else:
         r_2sv_26_4svId = 0
-    if len(g_sv) > 26:
-        r_2sv_26_3cno = g_2sv_26.cno
-        if r_2sv_26_3cno.__class__ is not int and (not isinstance(r_2sv_26_3cno, int) or r_2sv_26_3cno.__class__ is bool):
-            raise _enc('nav_sat', 'sv[26].cno', r_2sv_26_3cno, 'type', 'an int')
-        if not 0 <= r_2sv_26_3cno <= 255:
-            raise _enc('nav_sat', 'sv[26].cno', r_2sv_26_3cno, 'range', '0..255', None)
-    else:
         r_2sv_26_3cno = 0
-    if len(g_sv) > 26:
-        r_2sv_26_4elev = g_2sv_26.elev
-        if r_2sv_26_4elev.__class__ is not int and (not isinstance(r_2sv_26_4elev, int) or r_2sv_26_4elev.__class__ is bool):
-            raise _enc('nav_sat', 'sv[26].elev', r_2sv_26_4elev, 'type', 'an int')
-        if not -128 <= r_2sv_26_4elev <= 127:
-            raise _enc('nav_sat', 'sv[26].elev', r_2sv_26_4elev, 'range', '-128..127', None)
-    else:
         r_2sv_26_4elev = 0
-    if len(g_sv) > 26:
-        r_2sv_26_4azim = g_2sv_26.azim
-        if r_2sv_26_4azim.__class__ is not int and (not isinstance(r_2sv_26_4azim, int) or r_2sv_26_4azim.__class__ is bool):
-            raise _enc('nav_sat', 'sv[26].azim', r_2sv_26_4azim, 'type', 'an int')
-        if not -32768 <= r_2sv_26_4azim <= 32767:
-            raise _enc('nav_sat', 'sv[26].azim', r_2sv_26_4azim, 'range', '-32768..32767', None)
-    else:
         r_2sv_26_4azim = 0
-    if len(g_sv) > 26:
-        r_2sv_26_5prRes = g_2sv_26.prRes
-        if r_2sv_26_5prRes.__class__ is not float and (not isinstance(r_2sv_26_5prRes, (int, float)) or r_2sv_26_5prRes.__class__ is bool):
-            raise _enc('nav_sat', 'sv[26].prRes', r_2sv_26_5prRes, 'type', 'a number')
-        if not -3276.8 <= r_2sv_26_5prRes <= 3276.7000000000003:
-            raise _enc('nav_sat', 'sv[26].prRes', r_2sv_26_5prRes, 'range', '-3276.8..3276.7000000000003', None)
-        r_2sv_26_5prRes = _floor(r_2sv_26_5prRes / 0.1 + 0.5)
-    else:
         r_2sv_26_5prRes = 0
-    if len(g_sv) > 26:
-        r_2sv_26_10qualityInd = g_2sv_26.qualityInd
-        if r_2sv_26_10qualityInd.__class__ is not int and (not isinstance(r_2sv_26_10qualityInd, int) or r_2sv_26_10qualityInd.__class__ is bool):
-            raise _enc('nav_sat', 'sv[26].qualityInd', r_2sv_26_10qualityInd, 'type', 'an int')
-        if not 0 <= r_2sv_26_10qualityInd <= 7:
-            raise _enc('nav_sat', 'sv[26].qualityInd', r_2sv_26_10qualityInd, 'range', '0..7', None)
-    else:
         r_2sv_26_10qualityInd = 0
-    if len(g_sv) > 26:
-        r_2sv_26_6svUsed: Any = g_2sv_26.svUsed
-        if r_2sv_26_6svUsed is not True and r_2sv_26_6svUsed is not False and r_2sv_26_6svUsed != 0 and r_2sv_26_6svUsed != 1:
-            raise _enc('nav_sat', 'sv[26].svUsed', r_2sv_26_6svUsed, 'type', 'a bool')
-        r_2sv_26_6svUsed = 1 if r_2sv_26_6svUsed else 0
-    else:
         r_2sv_26_6svUsed = 0
-    if len(g_sv) > 26:
-        r_2sv_26_6health = g_2sv_26.health
-        if r_2sv_26_6health.__class__ is not int and (not isinstance(r_2sv_26_6health, int) or r_2sv_26_6health.__class__ is bool):
-            raise _enc('nav_sat', 'sv[26].health', r_2sv_26_6health, 'type', 'an int')
-        if not 0 <= r_2sv_26_6health <= 3:
-            raise _enc('nav_sat', 'sv[26].health', r_2sv_26_6health, 'range', '0..3', None)
-    else:
         r_2sv_26_6health = 0
-    if len(g_sv) > 26:
-        r_2sv_26_8diffCorr: Any = g_2sv_26.diffCorr
-        if r_2sv_26_8diffCorr is not True and r_2sv_26_8diffCorr is not False and r_2sv_26_8diffCorr != 0 and r_2sv_26_8diffCorr != 1:
-            raise _enc('nav_sat', 'sv[26].diffCorr', r_2sv_26_8diffCorr, 'type', 'a bool')
-        r_2sv_26_8diffCorr = 1 if r_2sv_26_8diffCorr else 0
-    else:
         r_2sv_26_8diffCorr = 0
-    if len(g_sv) > 26:
-        r_2sv_26_8smoothed: Any = g_2sv_26.smoothed
-        if r_2sv_26_8smoothed is not True and r_2sv_26_8smoothed is not False and r_2sv_26_8smoothed != 0 and r_2sv_26_8smoothed != 1:
-            raise _enc('nav_sat', 'sv[26].smoothed', r_2sv_26_8smoothed, 'type', 'a bool')
-        r_2sv_26_8smoothed = 1 if r_2sv_26_8smoothed else 0
-    else:
         r_2sv_26_8smoothed = 0
-    if len(g_sv) > 26:
-        r_2sv_26_11orbitSource = g_2sv_26.orbitSource
-        if r_2sv_26_11orbitSource.__class__ is not int and (not isinstance(r_2sv_26_11orbitSource, int) or r_2sv_26_11orbitSource.__class__ is bool):
-            raise _enc('nav_sat', 'sv[26].orbitSource', r_2sv_26_11orbitSource, 'type', 'an int')
-        if not 0 <= r_2sv_26_11orbitSource <= 7:
-            raise _enc('nav_sat', 'sv[26].orbitSource', r_2sv_26_11orbitSource, 'range', '0..7', None)
-    else:
         r_2sv_26_11orbitSource = 0
-    if len(g_sv) > 26:
-        r_2sv_26_8ephAvail: Any = g_2sv_26.ephAvail
-        if r_2sv_26_8ephAvail is not True and r_2sv_26_8ephAvail is not False and r_2sv_26_8ephAvail != 0 and r_2sv_26_8ephAvail != 1:
-            raise _enc('nav_sat', 'sv[26].ephAvail', r_2sv_26_8ephAvail, 'type', 'a bool')
-        r_2sv_26_8ephAvail = 1 if r_2sv_26_8ephAvail else 0
-    else:
         r_2sv_26_8ephAvail = 0
-    if len(g_sv) > 26:
-        r_2sv_26_8almAvail: Any = g_2sv_26.almAvail
-        if r_2sv_26_8almAvail is not True and r_2sv_26_8almAvail is not False and r_2sv_26_8almAvail != 0 and r_2sv_26_8almAvail != 1:
-            raise _enc('nav_sat', 'sv[26].almAvail', r_2sv_26_8almAvail, 'type', 'a bool')
-        r_2sv_26_8almAvail = 1 if r_2sv_26_8almAvail else 0
-    else:
         r_2sv_26_8almAvail = 0
-    if len(g_sv) > 26:
-        r_2sv_26_8anoAvail: Any = g_2sv_26.anoAvail
-        if r_2sv_26_8anoAvail is not True and r_2sv_26_8anoAvail is not False and r_2sv_26_8anoAvail != 0 and r_2sv_26_8anoAvail != 1:
-            raise _enc('nav_sat', 'sv[26].anoAvail', r_2sv_26_8anoAvail, 'type', 'a bool')
-        r_2sv_26_8anoAvail = 1 if r_2sv_26_8anoAvail else 0
-    else:
         r_2sv_26_8anoAvail = 0
-    if len(g_sv) > 26:
-        r_2sv_26_8aopAvail: Any = g_2sv_26.aopAvail
-        if r_2sv_26_8aopAvail is not True and r_2sv_26_8aopAvail is not False and r_2sv_26_8aopAvail != 0 and r_2sv_26_8aopAvail != 1:
-            raise _enc('nav_sat', 'sv[26].aopAvail', r_2sv_26_8aopAvail, 'type', 'a bool')
-        r_2sv_26_8aopAvail = 1 if r_2sv_26_8aopAvail else 0
-    else:
         r_2sv_26_8aopAvail = 0
-    if len(g_sv) > 26:
-        r_2sv_26_10reserved13 = g_2sv_26.reserved13
-        if r_2sv_26_10reserved13.__class__ is not int and (not isinstance(r_2sv_26_10reserved13, int) or r_2sv_26_10reserved13.__class__ is bool):
-            raise _enc('nav_sat', 'sv[26].reserved13', r_2sv_26_10reserved13, 'type', 'an int')
-        if not 0 <= r_2sv_26_10reserved13 <= 1:
-            raise _enc('nav_sat', 'sv[26].reserved13', r_2sv_26_10reserved13, 'range', '0..1', None)
-    else:
         r_2sv_26_10reserved13 = 0
-    if len(g_sv) > 26:
-        r_2sv_26_12sbasCorrUsed: Any = g_2sv_26.sbasCorrUsed
-        if r_2sv_26_12sbasCorrUsed is not True and r_2sv_26_12sbasCorrUsed is not False and r_2sv_26_12sbasCorrUsed != 0 and r_2sv_26_12sbasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[26].sbasCorrUsed', r_2sv_26_12sbasCorrUsed, 'type', 'a bool')
-        r_2sv_26_12sbasCorrUsed = 1 if r_2sv_26_12sbasCorrUsed else 0
-    else:
         r_2sv_26_12sbasCorrUsed = 0
-    if len(g_sv) > 26:
-        r_2sv_26_12rtcmCorrUsed: Any = g_2sv_26.rtcmCorrUsed
-        if r_2sv_26_12rtcmCorrUsed is not True and r_2sv_26_12rtcmCorrUsed is not False and r_2sv_26_12rtcmCorrUsed != 0 and r_2sv_26_12rtcmCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[26].rtcmCorrUsed', r_2sv_26_12rtcmCorrUsed, 'type', 'a bool')
-        r_2sv_26_12rtcmCorrUsed = 1 if r_2sv_26_12rtcmCorrUsed else 0
-    else:
         r_2sv_26_12rtcmCorrUsed = 0
-    if len(g_sv) > 26:
-        r_2sv_26_12slasCorrUsed: Any = g_2sv_26.slasCorrUsed
-        if r_2sv_26_12slasCorrUsed is not True and r_2sv_26_12slasCorrUsed is not False and r_2sv_26_12slasCorrUsed != 0 and r_2sv_26_12slasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[26].slasCorrUsed', r_2sv_26_12slasCorrUsed, 'type', 'a bool')
-        r_2sv_26_12slasCorrUsed = 1 if r_2sv_26_12slasCorrUsed else 0
-    else:
         r_2sv_26_12slasCorrUsed = 0
-    if len(g_sv) > 26:
-        r_2sv_26_14spartnCorrUsed: Any = g_2sv_26.spartnCorrUsed
-        if r_2sv_26_14spartnCorrUsed is not True and r_2sv_26_14spartnCorrUsed is not False and r_2sv_26_14spartnCorrUsed != 0 and r_2sv_26_14spartnCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[26].spartnCorrUsed', r_2sv_26_14spartnCorrUsed, 'type', 'a bool')
-        r_2sv_26_14spartnCorrUsed = 1 if r_2sv_26_14spartnCorrUsed else 0
-    else:
         r_2sv_26_14spartnCorrUsed = 0
-    if len(g_sv) > 26:
-        r_2sv_26_10prCorrUsed: Any = g_2sv_26.prCorrUsed
-        if r_2sv_26_10prCorrUsed is not True and r_2sv_26_10prCorrUsed is not False and r_2sv_26_10prCorrUsed != 0 and r_2sv_26_10prCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[26].prCorrUsed', r_2sv_26_10prCorrUsed, 'type', 'a bool')
-        r_2sv_26_10prCorrUsed = 1 if r_2sv_26_10prCorrUsed else 0
-    else:
         r_2sv_26_10prCorrUsed = 0
-    if len(g_sv) > 26:
-        r_2sv_26_10crCorrUsed: Any = g_2sv_26.crCorrUsed
-        if r_2sv_26_10crCorrUsed is not True and r_2sv_26_10crCorrUsed is not False and r_2sv_26_10crCorrUsed != 0 and r_2sv_26_10crCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[26].crCorrUsed', r_2sv_26_10crCorrUsed, 'type', 'a bool')
-        r_2sv_26_10crCorrUsed = 1 if r_2sv_26_10crCorrUsed else 0
-    else:
         r_2sv_26_10crCorrUsed = 0
-    if len(g_sv) > 26:
-        r_2sv_26_10doCorrUsed: Any = g_2sv_26.doCorrUsed
-        if r_2sv_26_10doCorrUsed is not True and r_2sv_26_10doCorrUsed is not False and r_2sv_26_10doCorrUsed != 0 and r_2sv_26_10doCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[26].doCorrUsed', r_2sv_26_10doCorrUsed, 'type', 'a bool')
-        r_2sv_26_10doCorrUsed = 1 if r_2sv_26_10doCorrUsed else 0
-    else:
         r_2sv_26_10doCorrUsed = 0
-    if len(g_sv) > 26:
-        r_2sv_26_12clasCorrUsed: Any = g_2sv_26.clasCorrUsed
-        if r_2sv_26_12clasCorrUsed is not True and r_2sv_26_12clasCorrUsed is not False and r_2sv_26_12clasCorrUsed != 0 and r_2sv_26_12clasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[26].clasCorrUsed', r_2sv_26_12clasCorrUsed, 'type', 'a bool')
-        r_2sv_26_12clasCorrUsed = 1 if r_2sv_26_12clasCorrUsed else 0
-    else:
         r_2sv_26_12clasCorrUsed = 0
-    if len(g_sv) > 26:
-        r_2sv_26_11lppCorrUsed: Any = g_2sv_26.lppCorrUsed
-        if r_2sv_26_11lppCorrUsed is not True and r_2sv_26_11lppCorrUsed is not False and r_2sv_26_11lppCorrUsed != 0 and r_2sv_26_11lppCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[26].lppCorrUsed', r_2sv_26_11lppCorrUsed, 'type', 'a bool')
-        r_2sv_26_11lppCorrUsed = 1 if r_2sv_26_11lppCorrUsed else 0
-    else:
         r_2sv_26_11lppCorrUsed = 0
-    if len(g_sv) > 26:
-        r_2sv_26_11hasCorrUsed: Any = g_2sv_26.hasCorrUsed
-        if r_2sv_26_11hasCorrUsed is not True and r_2sv_26_11hasCorrUsed is not False and r_2sv_26_11hasCorrUsed != 0 and r_2sv_26_11hasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[26].hasCorrUsed', r_2sv_26_11hasCorrUsed, 'type', 'a bool')
-        r_2sv_26_11hasCorrUsed = 1 if r_2sv_26_11hasCorrUsed else 0
-    else:
         r_2sv_26_11hasCorrUsed = 0
-    if len(g_sv) > 26:
         r_2sv_26_11flags_spare = 0
-    else:
-        r_2sv_26_11flags_spare = 0
-    g_2sv_27: Any = cast(Any, g_sv[27] if len(g_sv) > 27 else None)
     if len(g_sv) > 27:
-        r_2sv_27_6gnssId = g_2sv_27.gnssId
-        if r_2sv_27_6gnssId.__class__ is not int and (not isinstance(r_2sv_27_6gnssId, int) or r_2sv_27_6gnssId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[27].gnssId', r_2sv_27_6gnssId, 'type', 'an int')
-        if not 0 <= r_2sv_27_6gnssId <= 255:
-            raise _enc('nav_sat', 'sv[27].gnssId', r_2sv_27_6gnssId, 'range', '0..255', None)
+        r_2sv_27_6gnssId, r_2sv_27_4svId, r_2sv_27_3cno, r_2sv_27_4elev, r_2sv_27_4azim, r_2sv_27_5prRes, r_2sv_27_10qualityInd, r_2sv_27_6svUsed, r_2sv_27_6health, r_2sv_27_8diffCorr, r_2sv_27_8smoothed, r_2sv_27_11orbitSource, r_2sv_27_8ephAvail, r_2sv_27_8almAvail, r_2sv_27_8anoAvail, r_2sv_27_8aopAvail, r_2sv_27_10reserved13, r_2sv_27_12sbasCorrUsed, r_2sv_27_12rtcmCorrUsed, r_2sv_27_12slasCorrUsed, r_2sv_27_14spartnCorrUsed, r_2sv_27_10prCorrUsed, r_2sv_27_10crCorrUsed, r_2sv_27_10doCorrUsed, r_2sv_27_12clasCorrUsed, r_2sv_27_11lppCorrUsed, r_2sv_27_11hasCorrUsed, r_2sv_27_11flags_spare = _raw_nav_sat_2sv_27(g_sv[27])
     else:
         r_2sv_27_6gnssId = 0
-    if len(g_sv) > 27:
-        r_2sv_27_4svId = g_2sv_27.svId
-        if r_2sv_27_4svId.__class__ is not int and (not isinstance(r_2sv_27_4svId, int) or r_2sv_27_4svId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[27].svId', r_2sv_27_4svId, 'type', 'an int')
-        if not 0 <= r_2sv_27_4svId <= 255:
-            raise _enc('nav_sat', 'sv[27].svId', r_2sv_27_4svId, 'range', '0..255', None)
-    else:
         r_2sv_27_4svId = 0
-    if len(g_sv) > 27:
-        r_2sv_27_3cno = g_2sv_27.cno
-        if r_2sv_27_3cno.__class__ is not int and (not isinstance(r_2sv_27_3cno, int) or r_2sv_27_3cno.__class__ is bool):
-            raise _enc('nav_sat', 'sv[27].cno', r_2sv_27_3cno, 'type', 'an int')
-        if not 0 <= r_2sv_27_3cno <= 255:
-            raise _enc('nav_sat', 'sv[27].cno', r_2sv_27_3cno, 'range', '0..255', None)
-    else:
         r_2sv_27_3cno = 0
-    if len(g_sv) > 27:
-        r_2sv_27_4elev = g_2sv_27.elev
-        if r_2sv_27_4elev.__class__ is not int and (not isinstance(r_2sv_27_4elev, int) or r_2sv_27_4elev.__class__ is bool):
-            raise _enc('nav_sat', 'sv[27].elev', r_2sv_27_4elev, 'type', 'an int')
-        if not -128 <= r_2sv_27_4elev <= 127:
-            raise _enc('nav_sat', 'sv[27].elev', r_2sv_27_4elev, 'range', '-128..127', None)
-    else:
         r_2sv_27_4elev = 0
-    if len(g_sv) > 27:
-        r_2sv_27_4azim = g_2sv_27.azim
-        if r_2sv_27_4azim.__class__ is not int and (not isinstance(r_2sv_27_4azim, int) or r_2sv_27_4azim.__class__ is bool):
-            raise _enc('nav_sat', 'sv[27].azim', r_2sv_27_4azim, 'type', 'an int')
-        if not -32768 <= r_2sv_27_4azim <= 32767:
-            raise _enc('nav_sat', 'sv[27].azim', r_2sv_27_4azim, 'range', '-32768..32767', None)
-    else:
         r_2sv_27_4azim = 0
-    if len(g_sv) > 27:
-        r_2sv_27_5prRes = g_2sv_27.prRes
-        if r_2sv_27_5prRes.__class__ is not float and (not isinstance(r_2sv_27_5prRes, (int, float)) or r_2sv_27_5prRes.__class__ is bool):
-            raise _enc('nav_sat', 'sv[27].prRes', r_2sv_27_5prRes, 'type', 'a number')
-        if not -3276.8 <= r_2sv_27_5prRes <= 3276.7000000000003:
-            raise _enc('nav_sat', 'sv[27].prRes', r_2sv_27_5prRes, 'range', '-3276.8..3276.7000000000003', None)
-        r_2sv_27_5prRes = _floor(r_2sv_27_5prRes / 0.1 + 0.5)
-    else:
         r_2sv_27_5prRes = 0
-    if len(g_sv) > 27:
-        r_2sv_27_10qualityInd = g_2sv_27.qualityInd
-        if r_2sv_27_10qualityInd.__class__ is not int and (not isinstance(r_2sv_27_10qualityInd, int) or r_2sv_27_10qualityInd.__class__ is bool):
-            raise _enc('nav_sat', 'sv[27].qualityInd', r_2sv_27_10qualityInd, 'type', 'an int')
-        if not 0 <= r_2sv_27_10qualityInd <= 7:
-            raise _enc('nav_sat', 'sv[27].qualityInd', r_2sv_27_10qualityInd, 'range', '0..7', None)
-    else:
         r_2sv_27_10qualityInd = 0
-    if len(g_sv) > 27:
-        r_2sv_27_6svUsed: Any = g_2sv_27.svUsed
-        if r_2sv_27_6svUsed is not True and r_2sv_27_6svUsed is not False and r_2sv_27_6svUsed != 0 and r_2sv_27_6svUsed != 1:
-            raise _enc('nav_sat', 'sv[27].svUsed', r_2sv_27_6svUsed, 'type', 'a bool')
-        r_2sv_27_6svUsed = 1 if r_2sv_27_6svUsed else 0
-    else:
         r_2sv_27_6svUsed = 0
-    if len(g_sv) > 27:
-        r_2sv_27_6health = g_2sv_27.health
-        if r_2sv_27_6health.__class__ is not int and (not isinstance(r_2sv_27_6health, int) or r_2sv_27_6health.__class__ is bool):
-            raise _enc('nav_sat', 'sv[27].health', r_2sv_27_6health, 'type', 'an int')
-        if not 0 <= r_2sv_27_6health <= 3:
-            raise _enc('nav_sat', 'sv[27].health', r_2sv_27_6health, 'range', '0..3', None)
-    else:
         r_2sv_27_6health = 0
-    if len(g_sv) > 27:
-        r_2sv_27_8diffCorr: Any = g_2sv_27.diffCorr
-        if r_2sv_27_8diffCorr is not True and r_2sv_27_8diffCorr is not False and r_2sv_27_8diffCorr != 0 and r_2sv_27_8diffCorr != 1:
-            raise _enc('nav_sat', 'sv[27].diffCorr', r_2sv_27_8diffCorr, 'type', 'a bool')
-        r_2sv_27_8diffCorr = 1 if r_2sv_27_8diffCorr else 0
-    else:
         r_2sv_27_8diffCorr = 0
-    if len(g_sv) > 27:
-        r_2sv_27_8smoothed: Any = g_2sv_27.smoothed
-        if r_2sv_27_8smoothed is not True and r_2sv_27_8smoothed is not False and r_2sv_27_8smoothed != 0 and r_2sv_27_8smoothed != 1:
-            raise _enc('nav_sat', 'sv[27].smoothed', r_2sv_27_8smoothed, 'type', 'a bool')
-        r_2sv_27_8smoothed = 1 if r_2sv_27_8smoothed else 0
-    else:
         r_2sv_27_8smoothed = 0
-    if len(g_sv) > 27:
-        r_2sv_27_11orbitSource = g_2sv_27.orbitSource
-        if r_2sv_27_11orbitSource.__class__ is not int and (not isinstance(r_2sv_27_11orbitSource, int) or r_2sv_27_11orbitSource.__class__ is bool):
-            raise _enc('nav_sat', 'sv[27].orbitSource', r_2sv_27_11orbitSource, 'type', 'an int')
-        if not 0 <= r_2sv_27_11orbitSource <= 7:
-            raise _enc('nav_sat', 'sv[27].orbitSource', r_2sv_27_11orbitSource, 'range', '0..7', None)
-    else:
         r_2sv_27_11orbitSource = 0
-    if len(g_sv) > 27:
-        r_2sv_27_8ephAvail: Any = g_2sv_27.ephAvail
-        if r_2sv_27_8ephAvail is not True and r_2sv_27_8ephAvail is not False and r_2sv_27_8ephAvail != 0 and r_2sv_27_8ephAvail != 1:
-            raise _enc('nav_sat', 'sv[27].ephAvail', r_2sv_27_8ephAvail, 'type', 'a bool')
-        r_2sv_27_8ephAvail = 1 if r_2sv_27_8ephAvail else 0
-    else:
         r_2sv_27_8ephAvail = 0
-    if len(g_sv) > 27:
-        r_2sv_27_8almAvail: Any = g_2sv_27.almAvail
-        if r_2sv_27_8almAvail is not True and r_2sv_27_8almAvail is not False and r_2sv_27_8almAvail != 0 and r_2sv_27_8almAvail != 1:
-            raise _enc('nav_sat', 'sv[27].almAvail', r_2sv_27_8almAvail, 'type', 'a bool')
-        r_2sv_27_8almAvail = 1 if r_2sv_27_8almAvail else 0
-    else:
         r_2sv_27_8almAvail = 0
-    if len(g_sv) > 27:
-        r_2sv_27_8anoAvail: Any = g_2sv_27.anoAvail
-        if r_2sv_27_8anoAvail is not True and r_2sv_27_8anoAvail is not False and r_2sv_27_8anoAvail != 0 and r_2sv_27_8anoAvail != 1:
-            raise _enc('nav_sat', 'sv[27].anoAvail', r_2sv_27_8anoAvail, 'type', 'a bool')
-        r_2sv_27_8anoAvail = 1 if r_2sv_27_8anoAvail else 0
-    else:
         r_2sv_27_8anoAvail = 0
-    if len(g_sv) > 27:
-        r_2sv_27_8aopAvail: Any = g_2sv_27.aopAvail
-        if r_2sv_27_8aopAvail is not True and r_2sv_27_8aopAvail is not False and r_2sv_27_8aopAvail != 0 and r_2sv_27_8aopAvail != 1:
-            raise _enc('nav_sat', 'sv[27].aopAvail', r_2sv_27_8aopAvail, 'type', 'a bool')
-        r_2sv_27_8aopAvail = 1 if r_2sv_27_8aopAvail else 0
-    else:
         r_2sv_27_8aopAvail = 0
-    if len(g_sv) > 27:
-        r_2sv_27_10reserved13 = g_2sv_27.reserved13
-        if r_2sv_27_10reserved13.__class__ is not int and (not isinstance(r_2sv_27_10reserved13, int) or r_2sv_27_10reserved13.__class__ is bool):
-            raise _enc('nav_sat', 'sv[27].reserved13', r_2sv_27_10reserved13, 'type', 'an int')
-        if not 0 <= r_2sv_27_10reserved13 <= 1:
-            raise _enc('nav_sat', 'sv[27].reserved13', r_2sv_27_10reserved13, 'range', '0..1', None)
-    else:
         r_2sv_27_10reserved13 = 0
-    if len(g_sv) > 27:
-        r_2sv_27_12sbasCorrUsed: Any = g_2sv_27.sbasCorrUsed
-        if r_2sv_27_12sbasCorrUsed is not True and r_2sv_27_12sbasCorrUsed is not False and r_2sv_27_12sbasCorrUsed != 0 and r_2sv_27_12sbasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[27].sbasCorrUsed', r_2sv_27_12sbasCorrUsed, 'type', 'a bool')
-        r_2sv_27_12sbasCorrUsed = 1 if r_2sv_27_12sbasCorrUsed else 0
-    else:
         r_2sv_27_12sbasCorrUsed = 0
-    if len(g_sv) > 27:
-        r_2sv_27_12rtcmCorrUsed: Any = g_2sv_27.rtcmCorrUsed
-        if r_2sv_27_12rtcmCorrUsed is not True and r_2sv_27_12rtcmCorrUsed is not False and r_2sv_27_12rtcmCorrUsed != 0 and r_2sv_27_12rtcmCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[27].rtcmCorrUsed', r_2sv_27_12rtcmCorrUsed, 'type', 'a bool')
-        r_2sv_27_12rtcmCorrUsed = 1 if r_2sv_27_12rtcmCorrUsed else 0
-    else:
         r_2sv_27_12rtcmCorrUsed = 0
-    if len(g_sv) > 27:
-        r_2sv_27_12slasCorrUsed: Any = g_2sv_27.slasCorrUsed
-        if r_2sv_27_12slasCorrUsed is not True and r_2sv_27_12slasCorrUsed is not False and r_2sv_27_12slasCorrUsed != 0 and r_2sv_27_12slasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[27].slasCorrUsed', r_2sv_27_12slasCorrUsed, 'type', 'a bool')
-        r_2sv_27_12slasCorrUsed = 1 if r_2sv_27_12slasCorrUsed else 0
-    else:
         r_2sv_27_12slasCorrUsed = 0
-    if len(g_sv) > 27:
-        r_2sv_27_14spartnCorrUsed: Any = g_2sv_27.spartnCorrUsed
-        if r_2sv_27_14spartnCorrUsed is not True and r_2sv_27_14spartnCorrUsed is not False and r_2sv_27_14spartnCorrUsed != 0 and r_2sv_27_14spartnCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[27].spartnCorrUsed', r_2sv_27_14spartnCorrUsed, 'type', 'a bool')
-        r_2sv_27_14spartnCorrUsed = 1 if r_2sv_27_14spartnCorrUsed else 0
-    else:
         r_2sv_27_14spartnCorrUsed = 0
-    if len(g_sv) > 27:
-        r_2sv_27_10prCorrUsed: Any = g_2sv_27.prCorrUsed
-        if r_2sv_27_10prCorrUsed is not True and r_2sv_27_10prCorrUsed is not False and r_2sv_27_10prCorrUsed != 0 and r_2sv_27_10prCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[27].prCorrUsed', r_2sv_27_10prCorrUsed, 'type', 'a bool')
-        r_2sv_27_10prCorrUsed = 1 if r_2sv_27_10prCorrUsed else 0
-    else:
         r_2sv_27_10prCorrUsed = 0
-    if len(g_sv) > 27:
-        r_2sv_27_10crCorrUsed: Any = g_2sv_27.crCorrUsed
-        if r_2sv_27_10crCorrUsed is not True and r_2sv_27_10crCorrUsed is not False and r_2sv_27_10crCorrUsed != 0 and r_2sv_27_10crCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[27].crCorrUsed', r_2sv_27_10crCorrUsed, 'type', 'a bool')
-        r_2sv_27_10crCorrUsed = 1 if r_2sv_27_10crCorrUsed else 0
-    else:
         r_2sv_27_10crCorrUsed = 0
-    if len(g_sv) > 27:
-        r_2sv_27_10doCorrUsed: Any = g_2sv_27.doCorrUsed
-        if r_2sv_27_10doCorrUsed is not True and r_2sv_27_10doCorrUsed is not False and r_2sv_27_10doCorrUsed != 0 and r_2sv_27_10doCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[27].doCorrUsed', r_2sv_27_10doCorrUsed, 'type', 'a bool')
-        r_2sv_27_10doCorrUsed = 1 if r_2sv_27_10doCorrUsed else 0
-    else:
         r_2sv_27_10doCorrUsed = 0
-    if len(g_sv) > 27:
-        r_2sv_27_12clasCorrUsed: Any = g_2sv_27.clasCorrUsed
-        if r_2sv_27_12clasCorrUsed is not True and r_2sv_27_12clasCorrUsed is not False and r_2sv_27_12clasCorrUsed != 0 and r_2sv_27_12clasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[27].clasCorrUsed', r_2sv_27_12clasCorrUsed, 'type', 'a bool')
-        r_2sv_27_12clasCorrUsed = 1 if r_2sv_27_12clasCorrUsed else 0
-    else:
         r_2sv_27_12clasCorrUsed = 0
-    if len(g_sv) > 27:
-        r_2sv_27_11lppCorrUsed: Any = g_2sv_27.lppCorrUsed
-        if r_2sv_27_11lppCorrUsed is not True and r_2sv_27_11lppCorrUsed is not False and r_2sv_27_11lppCorrUsed != 0 and r_2sv_27_11lppCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[27].lppCorrUsed', r_2sv_27_11lppCorrUsed, 'type', 'a bool')
-        r_2sv_27_11lppCorrUsed = 1 if r_2sv_27_11lppCorrUsed else 0
-    else:
         r_2sv_27_11lppCorrUsed = 0
-    if len(g_sv) > 27:
-        r_2sv_27_11hasCorrUsed: Any = g_2sv_27.hasCorrUsed
-        if r_2sv_27_11hasCorrUsed is not True and r_2sv_27_11hasCorrUsed is not False and r_2sv_27_11hasCorrUsed != 0 and r_2sv_27_11hasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[27].hasCorrUsed', r_2sv_27_11hasCorrUsed, 'type', 'a bool')
-        r_2sv_27_11hasCorrUsed = 1 if r_2sv_27_11hasCorrUsed else 0
-    else:
         r_2sv_27_11hasCorrUsed = 0
-    if len(g_sv) > 27:
         r_2sv_27_11flags_spare = 0
-    else:
-        r_2sv_27_11flags_spare = 0
-    g_2sv_28: Any = cast(Any, g_sv[28] if len(g_sv) > 28 else None)
     if len(g_sv) > 28:
-        r_2sv_28_6gnssId = g_2sv_28.gnssId
-        if r_2sv_28_6gnssId.__class__ is not int and (not isinstance(r_2sv_28_6gnssId, int) or r_2sv_28_6gnssId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[28].gnssId', r_2sv_28_6gnssId, 'type', 'an int')
-        if not 0 <= r_2sv_28_6gnssId <= 255:
-            raise _enc('nav_sat', 'sv[28].gnssId', r_2sv_28_6gnssId, 'range', '0..255', None)
+        r_2sv_28_6gnssId, r_2sv_28_4svId, r_2sv_28_3cno, r_2sv_28_4elev, r_2sv_28_4azim, r_2sv_28_5prRes, r_2sv_28_10qualityInd, r_2sv_28_6svUsed, r_2sv_28_6health, r_2sv_28_8diffCorr, r_2sv_28_8smoothed, r_2sv_28_11orbitSource, r_2sv_28_8ephAvail, r_2sv_28_8almAvail, r_2sv_28_8anoAvail, r_2sv_28_8aopAvail, r_2sv_28_10reserved13, r_2sv_28_12sbasCorrUsed, r_2sv_28_12rtcmCorrUsed, r_2sv_28_12slasCorrUsed, r_2sv_28_14spartnCorrUsed, r_2sv_28_10prCorrUsed, r_2sv_28_10crCorrUsed, r_2sv_28_10doCorrUsed, r_2sv_28_12clasCorrUsed, r_2sv_28_11lppCorrUsed, r_2sv_28_11hasCorrUsed, r_2sv_28_11flags_spare = _raw_nav_sat_2sv_28(g_sv[28])
     else:
         r_2sv_28_6gnssId = 0
-    if len(g_sv) > 28:
-        r_2sv_28_4svId = g_2sv_28.svId
-        if r_2sv_28_4svId.__class__ is not int and (not isinstance(r_2sv_28_4svId, int) or r_2sv_28_4svId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[28].svId', r_2sv_28_4svId, 'type', 'an int')
-        if not 0 <= r_2sv_28_4svId <= 255:
-            raise _enc('nav_sat', 'sv[28].svId', r_2sv_28_4svId, 'range', '0..255', None)
-    else:
         r_2sv_28_4svId = 0
-    if len(g_sv) > 28:
-        r_2sv_28_3cno = g_2sv_28.cno
-        if r_2sv_28_3cno.__class__ is not int and (not isinstance(r_2sv_28_3cno, int) or r_2sv_28_3cno.__class__ is bool):
-            raise _enc('nav_sat', 'sv[28].cno', r_2sv_28_3cno, 'type', 'an int')
-        if not 0 <= r_2sv_28_3cno <= 255:
-            raise _enc('nav_sat', 'sv[28].cno', r_2sv_28_3cno, 'range', '0..255', None)
-    else:
         r_2sv_28_3cno = 0
-    if len(g_sv) > 28:
-        r_2sv_28_4elev = g_2sv_28.elev
-        if r_2sv_28_4elev.__class__ is not int and (not isinstance(r_2sv_28_4elev, int) or r_2sv_28_4elev.__class__ is bool):
-            raise _enc('nav_sat', 'sv[28].elev', r_2sv_28_4elev, 'type', 'an int')
-        if not -128 <= r_2sv_28_4elev <= 127:
-            raise _enc('nav_sat', 'sv[28].elev', r_2sv_28_4elev, 'range', '-128..127', None)
-    else:
         r_2sv_28_4elev = 0
-    if len(g_sv) > 28:
-        r_2sv_28_4azim = g_2sv_28.azim
-        if r_2sv_28_4azim.__class__ is not int and (not isinstance(r_2sv_28_4azim, int) or r_2sv_28_4azim.__class__ is bool):
-            raise _enc('nav_sat', 'sv[28].azim', r_2sv_28_4azim, 'type', 'an int')
-        if not -32768 <= r_2sv_28_4azim <= 32767:
-            raise _enc('nav_sat', 'sv[28].azim', r_2sv_28_4azim, 'range', '-32768..32767', None)
-    else:
         r_2sv_28_4azim = 0
-    if len(g_sv) > 28:
-        r_2sv_28_5prRes = g_2sv_28.prRes
-        if r_2sv_28_5prRes.__class__ is not float and (not isinstance(r_2sv_28_5prRes, (int, float)) or r_2sv_28_5prRes.__class__ is bool):
-            raise _enc('nav_sat', 'sv[28].prRes', r_2sv_28_5prRes, 'type', 'a number')
-        if not -3276.8 <= r_2sv_28_5prRes <= 3276.7000000000003:
-            raise _enc('nav_sat', 'sv[28].prRes', r_2sv_28_5prRes, 'range', '-3276.8..3276.7000000000003', None)
-        r_2sv_28_5prRes = _floor(r_2sv_28_5prRes / 0.1 + 0.5)
-    else:
         r_2sv_28_5prRes = 0
-    if len(g_sv) > 28:
-        r_2sv_28_10qualityInd = g_2sv_28.qualityInd
-        if r_2sv_28_10qualityInd.__class__ is not int and (not isinstance(r_2sv_28_10qualityInd, int) or r_2sv_28_10qualityInd.__class__ is bool):
-            raise _enc('nav_sat', 'sv[28].qualityInd', r_2sv_28_10qualityInd, 'type', 'an int')
-        if not 0 <= r_2sv_28_10qualityInd <= 7:
-            raise _enc('nav_sat', 'sv[28].qualityInd', r_2sv_28_10qualityInd, 'range', '0..7', None)
-    else:
         r_2sv_28_10qualityInd = 0
-    if len(g_sv) > 28:
-        r_2sv_28_6svUsed: Any = g_2sv_28.svUsed
-        if r_2sv_28_6svUsed is not True and r_2sv_28_6svUsed is not False and r_2sv_28_6svUsed != 0 and r_2sv_28_6svUsed != 1:
-            raise _enc('nav_sat', 'sv[28].svUsed', r_2sv_28_6svUsed, 'type', 'a bool')
-        r_2sv_28_6svUsed = 1 if r_2sv_28_6svUsed else 0
-    else:
         r_2sv_28_6svUsed = 0
-    if len(g_sv) > 28:
-        r_2sv_28_6health = g_2sv_28.health
-        if r_2sv_28_6health.__class__ is not int and (not isinstance(r_2sv_28_6health, int) or r_2sv_28_6health.__class__ is bool):
-            raise _enc('nav_sat', 'sv[28].health', r_2sv_28_6health, 'type', 'an int')
-        if not 0 <= r_2sv_28_6health <= 3:
-            raise _enc('nav_sat', 'sv[28].health', r_2sv_28_6health, 'range', '0..3', None)
-    else:
         r_2sv_28_6health = 0
-    if len(g_sv) > 28:
-        r_2sv_28_8diffCorr: Any = g_2sv_28.diffCorr
-        if r_2sv_28_8diffCorr is not True and r_2sv_28_8diffCorr is not False and r_2sv_28_8diffCorr != 0 and r_2sv_28_8diffCorr != 1:
-            raise _enc('nav_sat', 'sv[28].diffCorr', r_2sv_28_8diffCorr, 'type', 'a bool')
-        r_2sv_28_8diffCorr = 1 if r_2sv_28_8diffCorr else 0
-    else:
         r_2sv_28_8diffCorr = 0
-    if len(g_sv) > 28:
-        r_2sv_28_8smoothed: Any = g_2sv_28.smoothed
-        if r_2sv_28_8smoothed is not True and r_2sv_28_8smoothed is not False and r_2sv_28_8smoothed != 0 and r_2sv_28_8smoothed != 1:
-            raise _enc('nav_sat', 'sv[28].smoothed', r_2sv_28_8smoothed, 'type', 'a bool')
-        r_2sv_28_8smoothed = 1 if r_2sv_28_8smoothed else 0
-    else:
         r_2sv_28_8smoothed = 0
-    if len(g_sv) > 28:
-        r_2sv_28_11orbitSource = g_2sv_28.orbitSource
-        if r_2sv_28_11orbitSource.__class__ is not int and (not isinstance(r_2sv_28_11orbitSource, int) or r_2sv_28_11orbitSource.__class__ is bool):
-            raise _enc('nav_sat', 'sv[28].orbitSource', r_2sv_28_11orbitSource, 'type', 'an int')
-        if not 0 <= r_2sv_28_11orbitSource <= 7:
-            raise _enc('nav_sat', 'sv[28].orbitSource', r_2sv_28_11orbitSource, 'range', '0..7', None)
-    else:
         r_2sv_28_11orbitSource = 0
-    if len(g_sv) > 28:
-        r_2sv_28_8ephAvail: Any = g_2sv_28.ephAvail
-        if r_2sv_28_8ephAvail is not True and r_2sv_28_8ephAvail is not False and r_2sv_28_8ephAvail != 0 and r_2sv_28_8ephAvail != 1:
-            raise _enc('nav_sat', 'sv[28].ephAvail', r_2sv_28_8ephAvail, 'type', 'a bool')
-        r_2sv_28_8ephAvail = 1 if r_2sv_28_8ephAvail else 0
-    else:
         r_2sv_28_8ephAvail = 0
-    if len(g_sv) > 28:
-        r_2sv_28_8almAvail: Any = g_2sv_28.almAvail
-        if r_2sv_28_8almAvail is not True and r_2sv_28_8almAvail is not False and r_2sv_28_8almAvail != 0 and r_2sv_28_8almAvail != 1:
-            raise _enc('nav_sat', 'sv[28].almAvail', r_2sv_28_8almAvail, 'type', 'a bool')
-        r_2sv_28_8almAvail = 1 if r_2sv_28_8almAvail else 0
-    else:
         r_2sv_28_8almAvail = 0
-    if len(g_sv) > 28:
-        r_2sv_28_8anoAvail: Any = g_2sv_28.anoAvail
-        if r_2sv_28_8anoAvail is not True and r_2sv_28_8anoAvail is not False and r_2sv_28_8anoAvail != 0 and r_2sv_28_8anoAvail != 1:
-            raise _enc('nav_sat', 'sv[28].anoAvail', r_2sv_28_8anoAvail, 'type', 'a bool')
-        r_2sv_28_8anoAvail = 1 if r_2sv_28_8anoAvail else 0
-    else:
         r_2sv_28_8anoAvail = 0
-    if len(g_sv) > 28:
-        r_2sv_28_8aopAvail: Any = g_2sv_28.aopAvail
-        if r_2sv_28_8aopAvail is not True and r_2sv_28_8aopAvail is not False and r_2sv_28_8aopAvail != 0 and r_2sv_28_8aopAvail != 1:
-            raise _enc('nav_sat', 'sv[28].aopAvail', r_2sv_28_8aopAvail, 'type', 'a bool')
-        r_2sv_28_8aopAvail = 1 if r_2sv_28_8aopAvail else 0
-    else:
         r_2sv_28_8aopAvail = 0
-    if len(g_sv) > 28:
-        r_2sv_28_10reserved13 = g_2sv_28.reserved13
-        if r_2sv_28_10reserved13.__class__ is not int and (not isinstance(r_2sv_28_10reserved13, int) or r_2sv_28_10reserved13.__class__ is bool):
-            raise _enc('nav_sat', 'sv[28].reserved13', r_2sv_28_10reserved13, 'type', 'an int')
-        if not 0 <= r_2sv_28_10reserved13 <= 1:
-            raise _enc('nav_sat', 'sv[28].reserved13', r_2sv_28_10reserved13, 'range', '0..1', None)
-    else:
         r_2sv_28_10reserved13 = 0
-    if len(g_sv) > 28:
-        r_2sv_28_12sbasCorrUsed: Any = g_2sv_28.sbasCorrUsed
-        if r_2sv_28_12sbasCorrUsed is not True and r_2sv_28_12sbasCorrUsed is not False and r_2sv_28_12sbasCorrUsed != 0 and r_2sv_28_12sbasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[28].sbasCorrUsed', r_2sv_28_12sbasCorrUsed, 'type', 'a bool')
-        r_2sv_28_12sbasCorrUsed = 1 if r_2sv_28_12sbasCorrUsed else 0
-    else:
         r_2sv_28_12sbasCorrUsed = 0
-    if len(g_sv) > 28:
-        r_2sv_28_12rtcmCorrUsed: Any = g_2sv_28.rtcmCorrUsed
-        if r_2sv_28_12rtcmCorrUsed is not True and r_2sv_28_12rtcmCorrUsed is not False and r_2sv_28_12rtcmCorrUsed != 0 and r_2sv_28_12rtcmCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[28].rtcmCorrUsed', r_2sv_28_12rtcmCorrUsed, 'type', 'a bool')
-        r_2sv_28_12rtcmCorrUsed = 1 if r_2sv_28_12rtcmCorrUsed else 0
-    else:
         r_2sv_28_12rtcmCorrUsed = 0
-    if len(g_sv) > 28:
-        r_2sv_28_12slasCorrUsed: Any = g_2sv_28.slasCorrUsed
-        if r_2sv_28_12slasCorrUsed is not True and r_2sv_28_12slasCorrUsed is not False and r_2sv_28_12slasCorrUsed != 0 and r_2sv_28_12slasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[28].slasCorrUsed', r_2sv_28_12slasCorrUsed, 'type', 'a bool')
-        r_2sv_28_12slasCorrUsed = 1 if r_2sv_28_12slasCorrUsed else 0
-    else:
         r_2sv_28_12slasCorrUsed = 0
-    if len(g_sv) > 28:
-        r_2sv_28_14spartnCorrUsed: Any = g_2sv_28.spartnCorrUsed
-        if r_2sv_28_14spartnCorrUsed is not True and r_2sv_28_14spartnCorrUsed is not False and r_2sv_28_14spartnCorrUsed != 0 and r_2sv_28_14spartnCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[28].spartnCorrUsed', r_2sv_28_14spartnCorrUsed, 'type', 'a bool')
-        r_2sv_28_14spartnCorrUsed = 1 if r_2sv_28_14spartnCorrUsed else 0
-    else:
         r_2sv_28_14spartnCorrUsed = 0
-    if len(g_sv) > 28:
-        r_2sv_28_10prCorrUsed: Any = g_2sv_28.prCorrUsed
-        if r_2sv_28_10prCorrUsed is not True and r_2sv_28_10prCorrUsed is not False and r_2sv_28_10prCorrUsed != 0 and r_2sv_28_10prCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[28].prCorrUsed', r_2sv_28_10prCorrUsed, 'type', 'a bool')
-        r_2sv_28_10prCorrUsed = 1 if r_2sv_28_10prCorrUsed else 0
-    else:
         r_2sv_28_10prCorrUsed = 0
-    if len(g_sv) > 28:
-        r_2sv_28_10crCorrUsed: Any = g_2sv_28.crCorrUsed
-        if r_2sv_28_10crCorrUsed is not True and r_2sv_28_10crCorrUsed is not False and r_2sv_28_10crCorrUsed != 0 and r_2sv_28_10crCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[28].crCorrUsed', r_2sv_28_10crCorrUsed, 'type', 'a bool')
-        r_2sv_28_10crCorrUsed = 1 if r_2sv_28_10crCorrUsed else 0
-    else:
         r_2sv_28_10crCorrUsed = 0
-    if len(g_sv) > 28:
-        r_2sv_28_10doCorrUsed: Any = g_2sv_28.doCorrUsed
-        if r_2sv_28_10doCorrUsed is not True and r_2sv_28_10doCorrUsed is not False and r_2sv_28_10doCorrUsed != 0 and r_2sv_28_10doCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[28].doCorrUsed', r_2sv_28_10doCorrUsed, 'type', 'a bool')
-        r_2sv_28_10doCorrUsed = 1 if r_2sv_28_10doCorrUsed else 0
-    else:
         r_2sv_28_10doCorrUsed = 0
-    if len(g_sv) > 28:
-        r_2sv_28_12clasCorrUsed: Any = g_2sv_28.clasCorrUsed
-        if r_2sv_28_12clasCorrUsed is not True and r_2sv_28_12clasCorrUsed is not False and r_2sv_28_12clasCorrUsed != 0 and r_2sv_28_12clasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[28].clasCorrUsed', r_2sv_28_12clasCorrUsed, 'type', 'a bool')
-        r_2sv_28_12clasCorrUsed = 1 if r_2sv_28_12clasCorrUsed else 0
-    else:
         r_2sv_28_12clasCorrUsed = 0
-    if len(g_sv) > 28:
-        r_2sv_28_11lppCorrUsed: Any = g_2sv_28.lppCorrUsed
-        if r_2sv_28_11lppCorrUsed is not True and r_2sv_28_11lppCorrUsed is not False and r_2sv_28_11lppCorrUsed != 0 and r_2sv_28_11lppCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[28].lppCorrUsed', r_2sv_28_11lppCorrUsed, 'type', 'a bool')
-        r_2sv_28_11lppCorrUsed = 1 if r_2sv_28_11lppCorrUsed else 0
-    else:
         r_2sv_28_11lppCorrUsed = 0
-    if len(g_sv) > 28:
-        r_2sv_28_11hasCorrUsed: Any = g_2sv_28.hasCorrUsed
-        if r_2sv_28_11hasCorrUsed is not True and r_2sv_28_11hasCorrUsed is not False and r_2sv_28_11hasCorrUsed != 0 and r_2sv_28_11hasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[28].hasCorrUsed', r_2sv_28_11hasCorrUsed, 'type', 'a bool')
-        r_2sv_28_11hasCorrUsed = 1 if r_2sv_28_11hasCorrUsed else 0
-    else:
         r_2sv_28_11hasCorrUsed = 0
-    if len(g_sv) > 28:
         r_2sv_28_11flags_spare = 0
-    else:
-        r_2sv_28_11flags_spare = 0
-    g_2sv_29: Any = cast(Any, g_sv[29] if len(g_sv) > 29 else None)
     if len(g_sv) > 29:
-        r_2sv_29_6gnssId = g_2sv_29.gnssId
-        if r_2sv_29_6gnssId.__class__ is not int and (not isinstance(r_2sv_29_6gnssId, int) or r_2sv_29_6gnssId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[29].gnssId', r_2sv_29_6gnssId, 'type', 'an int')
-        if not 0 <= r_2sv_29_6gnssId <= 255:
-            raise _enc('nav_sat', 'sv[29].gnssId', r_2sv_29_6gnssId, 'range', '0..255', None)
+        r_2sv_29_6gnssId, r_2sv_29_4svId, r_2sv_29_3cno, r_2sv_29_4elev, r_2sv_29_4azim, r_2sv_29_5prRes, r_2sv_29_10qualityInd, r_2sv_29_6svUsed, r_2sv_29_6health, r_2sv_29_8diffCorr, r_2sv_29_8smoothed, r_2sv_29_11orbitSource, r_2sv_29_8ephAvail, r_2sv_29_8almAvail, r_2sv_29_8anoAvail, r_2sv_29_8aopAvail, r_2sv_29_10reserved13, r_2sv_29_12sbasCorrUsed, r_2sv_29_12rtcmCorrUsed, r_2sv_29_12slasCorrUsed, r_2sv_29_14spartnCorrUsed, r_2sv_29_10prCorrUsed, r_2sv_29_10crCorrUsed, r_2sv_29_10doCorrUsed, r_2sv_29_12clasCorrUsed, r_2sv_29_11lppCorrUsed, r_2sv_29_11hasCorrUsed, r_2sv_29_11flags_spare = _raw_nav_sat_2sv_29(g_sv[29])
     else:
         r_2sv_29_6gnssId = 0
-    if len(g_sv) > 29:
-        r_2sv_29_4svId = g_2sv_29.svId
-        if r_2sv_29_4svId.__class__ is not int and (not isinstance(r_2sv_29_4svId, int) or r_2sv_29_4svId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[29].svId', r_2sv_29_4svId, 'type', 'an int')
-        if not 0 <= r_2sv_29_4svId <= 255:
-            raise _enc('nav_sat', 'sv[29].svId', r_2sv_29_4svId, 'range', '0..255', None)
-    else:
         r_2sv_29_4svId = 0
-    if len(g_sv) > 29:
-        r_2sv_29_3cno = g_2sv_29.cno
-        if r_2sv_29_3cno.__class__ is not int and (not isinstance(r_2sv_29_3cno, int) or r_2sv_29_3cno.__class__ is bool):
-            raise _enc('nav_sat', 'sv[29].cno', r_2sv_29_3cno, 'type', 'an int')
-        if not 0 <= r_2sv_29_3cno <= 255:
-            raise _enc('nav_sat', 'sv[29].cno', r_2sv_29_3cno, 'range', '0..255', None)
-    else:
         r_2sv_29_3cno = 0
-    if len(g_sv) > 29:
-        r_2sv_29_4elev = g_2sv_29.elev
-        if r_2sv_29_4elev.__class__ is not int and (not isinstance(r_2sv_29_4elev, int) or r_2sv_29_4elev.__class__ is bool):
-            raise _enc('nav_sat', 'sv[29].elev', r_2sv_29_4elev, 'type', 'an int')
-        if not -128 <= r_2sv_29_4elev <= 127:
-            raise _enc('nav_sat', 'sv[29].elev', r_2sv_29_4elev, 'range', '-128..127', None)
-    else:
         r_2sv_29_4elev = 0
-    if len(g_sv) > 29:
-        r_2sv_29_4azim = g_2sv_29.azim
-        if r_2sv_29_4azim.__class__ is not int and (not isinstance(r_2sv_29_4azim, int) or r_2sv_29_4azim.__class__ is bool):
-            raise _enc('nav_sat', 'sv[29].azim', r_2sv_29_4azim, 'type', 'an int')
-        if not -32768 <= r_2sv_29_4azim <= 32767:
-            raise _enc('nav_sat', 'sv[29].azim', r_2sv_29_4azim, 'range', '-32768..32767', None)
-    else:
         r_2sv_29_4azim = 0
-    if len(g_sv) > 29:
-        r_2sv_29_5prRes = g_2sv_29.prRes
-        if r_2sv_29_5prRes.__class__ is not float and (not isinstance(r_2sv_29_5prRes, (int, float)) or r_2sv_29_5prRes.__class__ is bool):
-            raise _enc('nav_sat', 'sv[29].prRes', r_2sv_29_5prRes, 'type', 'a number')
-        if not -3276.8 <= r_2sv_29_5prRes <= 3276.7000000000003:
-            raise _enc('nav_sat', 'sv[29].prRes', r_2sv_29_5prRes, 'range', '-3276.8..3276.7000000000003', None)
-        r_2sv_29_5prRes = _floor(r_2sv_29_5prRes / 0.1 + 0.5)
-    else:
         r_2sv_29_5prRes = 0
-    if len(g_sv) > 29:
-        r_2sv_29_10qualityInd = g_2sv_29.qualityInd
-        if r_2sv_29_10qualityInd.__class__ is not int and (not isinstance(r_2sv_29_10qualityInd, int) or r_2sv_29_10qualityInd.__class__ is bool):
-            raise _enc('nav_sat', 'sv[29].qualityInd', r_2sv_29_10qualityInd, 'type', 'an int')
-        if not 0 <= r_2sv_29_10qualityInd <= 7:
-            raise _enc('nav_sat', 'sv[29].qualityInd', r_2sv_29_10qualityInd, 'range', '0..7', None)
-    else:
         r_2sv_29_10qualityInd = 0
-    if len(g_sv) > 29:
-        r_2sv_29_6svUsed: Any = g_2sv_29.svUsed
-        if r_2sv_29_6svUsed is not True and r_2sv_29_6svUsed is not False and r_2sv_29_6svUsed != 0 and r_2sv_29_6svUsed != 1:
-            raise _enc('nav_sat', 'sv[29].svUsed', r_2sv_29_6svUsed, 'type', 'a bool')
-        r_2sv_29_6svUsed = 1 if r_2sv_29_6svUsed else 0
-    else:
         r_2sv_29_6svUsed = 0
-    if len(g_sv) > 29:
-        r_2sv_29_6health = g_2sv_29.health
-        if r_2sv_29_6health.__class__ is not int and (not isinstance(r_2sv_29_6health, int) or r_2sv_29_6health.__class__ is bool):
-            raise _enc('nav_sat', 'sv[29].health', r_2sv_29_6health, 'type', 'an int')
-        if not 0 <= r_2sv_29_6health <= 3:
-            raise _enc('nav_sat', 'sv[29].health', r_2sv_29_6health, 'range', '0..3', None)
-    else:
         r_2sv_29_6health = 0
-    if len(g_sv) > 29:
-        r_2sv_29_8diffCorr: Any = g_2sv_29.diffCorr
-        if r_2sv_29_8diffCorr is not True and r_2sv_29_8diffCorr is not False and r_2sv_29_8diffCorr != 0 and r_2sv_29_8diffCorr != 1:
-            raise _enc('nav_sat', 'sv[29].diffCorr', r_2sv_29_8diffCorr, 'type', 'a bool')
-        r_2sv_29_8diffCorr = 1 if r_2sv_29_8diffCorr else 0
-    else:
         r_2sv_29_8diffCorr = 0
-    if len(g_sv) > 29:
-        r_2sv_29_8smoothed: Any = g_2sv_29.smoothed
-        if r_2sv_29_8smoothed is not True and r_2sv_29_8smoothed is not False and r_2sv_29_8smoothed != 0 and r_2sv_29_8smoothed != 1:
-            raise _enc('nav_sat', 'sv[29].smoothed', r_2sv_29_8smoothed, 'type', 'a bool')
-        r_2sv_29_8smoothed = 1 if r_2sv_29_8smoothed else 0
-    else:
         r_2sv_29_8smoothed = 0
-    if len(g_sv) > 29:
-        r_2sv_29_11orbitSource = g_2sv_29.orbitSource
-        if r_2sv_29_11orbitSource.__class__ is not int and (not isinstance(r_2sv_29_11orbitSource, int) or r_2sv_29_11orbitSource.__class__ is bool):
-            raise _enc('nav_sat', 'sv[29].orbitSource', r_2sv_29_11orbitSource, 'type', 'an int')
-        if not 0 <= r_2sv_29_11orbitSource <= 7:
-            raise _enc('nav_sat', 'sv[29].orbitSource', r_2sv_29_11orbitSource, 'range', '0..7', None)
-    else:
         r_2sv_29_11orbitSource = 0
-    if len(g_sv) > 29:
-        r_2sv_29_8ephAvail: Any = g_2sv_29.ephAvail
-        if r_2sv_29_8ephAvail is not True and r_2sv_29_8ephAvail is not False and r_2sv_29_8ephAvail != 0 and r_2sv_29_8ephAvail != 1:
-            raise _enc('nav_sat', 'sv[29].ephAvail', r_2sv_29_8ephAvail, 'type', 'a bool')
-        r_2sv_29_8ephAvail = 1 if r_2sv_29_8ephAvail else 0
-    else:
         r_2sv_29_8ephAvail = 0
-    if len(g_sv) > 29:
-        r_2sv_29_8almAvail: Any = g_2sv_29.almAvail
-        if r_2sv_29_8almAvail is not True and r_2sv_29_8almAvail is not False and r_2sv_29_8almAvail != 0 and r_2sv_29_8almAvail != 1:
-            raise _enc('nav_sat', 'sv[29].almAvail', r_2sv_29_8almAvail, 'type', 'a bool')
-        r_2sv_29_8almAvail = 1 if r_2sv_29_8almAvail else 0
-    else:
         r_2sv_29_8almAvail = 0
-    if len(g_sv) > 29:
-        r_2sv_29_8anoAvail: Any = g_2sv_29.anoAvail
-        if r_2sv_29_8anoAvail is not True and r_2sv_29_8anoAvail is not False and r_2sv_29_8anoAvail != 0 and r_2sv_29_8anoAvail != 1:
-            raise _enc('nav_sat', 'sv[29].anoAvail', r_2sv_29_8anoAvail, 'type', 'a bool')
-        r_2sv_29_8anoAvail = 1 if r_2sv_29_8anoAvail else 0
-    else:
         r_2sv_29_8anoAvail = 0
-    if len(g_sv) > 29:
-        r_2sv_29_8aopAvail: Any = g_2sv_29.aopAvail
-        if r_2sv_29_8aopAvail is not True and r_2sv_29_8aopAvail is not False and r_2sv_29_8aopAvail != 0 and r_2sv_29_8aopAvail != 1:
-            raise _enc('nav_sat', 'sv[29].aopAvail', r_2sv_29_8aopAvail, 'type', 'a bool')
-        r_2sv_29_8aopAvail = 1 if r_2sv_29_8aopAvail else 0
-    else:
         r_2sv_29_8aopAvail = 0
-    if len(g_sv) > 29:
-        r_2sv_29_10reserved13 = g_2sv_29.reserved13
-        if r_2sv_29_10reserved13.__class__ is not int and (not isinstance(r_2sv_29_10reserved13, int) or r_2sv_29_10reserved13.__class__ is bool):
-            raise _enc('nav_sat', 'sv[29].reserved13', r_2sv_29_10reserved13, 'type', 'an int')
-        if not 0 <= r_2sv_29_10reserved13 <= 1:
-            raise _enc('nav_sat', 'sv[29].reserved13', r_2sv_29_10reserved13, 'range', '0..1', None)
-    else:
         r_2sv_29_10reserved13 = 0
-    if len(g_sv) > 29:
-        r_2sv_29_12sbasCorrUsed: Any = g_2sv_29.sbasCorrUsed
-        if r_2sv_29_12sbasCorrUsed is not True and r_2sv_29_12sbasCorrUsed is not False and r_2sv_29_12sbasCorrUsed != 0 and r_2sv_29_12sbasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[29].sbasCorrUsed', r_2sv_29_12sbasCorrUsed, 'type', 'a bool')
-        r_2sv_29_12sbasCorrUsed = 1 if r_2sv_29_12sbasCorrUsed else 0
-    else:
         r_2sv_29_12sbasCorrUsed = 0
-    if len(g_sv) > 29:
-        r_2sv_29_12rtcmCorrUsed: Any = g_2sv_29.rtcmCorrUsed
-        if r_2sv_29_12rtcmCorrUsed is not True and r_2sv_29_12rtcmCorrUsed is not False and r_2sv_29_12rtcmCorrUsed != 0 and r_2sv_29_12rtcmCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[29].rtcmCorrUsed', r_2sv_29_12rtcmCorrUsed, 'type', 'a bool')
-        r_2sv_29_12rtcmCorrUsed = 1 if r_2sv_29_12rtcmCorrUsed else 0
-    else:
         r_2sv_29_12rtcmCorrUsed = 0
-    if len(g_sv) > 29:
-        r_2sv_29_12slasCorrUsed: Any = g_2sv_29.slasCorrUsed
-        if r_2sv_29_12slasCorrUsed is not True and r_2sv_29_12slasCorrUsed is not False and r_2sv_29_12slasCorrUsed != 0 and r_2sv_29_12slasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[29].slasCorrUsed', r_2sv_29_12slasCorrUsed, 'type', 'a bool')
-        r_2sv_29_12slasCorrUsed = 1 if r_2sv_29_12slasCorrUsed else 0
-    else:
         r_2sv_29_12slasCorrUsed = 0
-    if len(g_sv) > 29:
-        r_2sv_29_14spartnCorrUsed: Any = g_2sv_29.spartnCorrUsed
-        if r_2sv_29_14spartnCorrUsed is not True and r_2sv_29_14spartnCorrUsed is not False and r_2sv_29_14spartnCorrUsed != 0 and r_2sv_29_14spartnCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[29].spartnCorrUsed', r_2sv_29_14spartnCorrUsed, 'type', 'a bool')
-        r_2sv_29_14spartnCorrUsed = 1 if r_2sv_29_14spartnCorrUsed else 0
-    else:
         r_2sv_29_14spartnCorrUsed = 0
-    if len(g_sv) > 29:
-        r_2sv_29_10prCorrUsed: Any = g_2sv_29.prCorrUsed
-        if r_2sv_29_10prCorrUsed is not True and r_2sv_29_10prCorrUsed is not False and r_2sv_29_10prCorrUsed != 0 and r_2sv_29_10prCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[29].prCorrUsed', r_2sv_29_10prCorrUsed, 'type', 'a bool')
-        r_2sv_29_10prCorrUsed = 1 if r_2sv_29_10prCorrUsed else 0
-    else:
         r_2sv_29_10prCorrUsed = 0
-    if len(g_sv) > 29:
-        r_2sv_29_10crCorrUsed: Any = g_2sv_29.crCorrUsed
-        if r_2sv_29_10crCorrUsed is not True and r_2sv_29_10crCorrUsed is not False and r_2sv_29_10crCorrUsed != 0 and r_2sv_29_10crCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[29].crCorrUsed', r_2sv_29_10crCorrUsed, 'type', 'a bool')
-        r_2sv_29_10crCorrUsed = 1 if r_2sv_29_10crCorrUsed else 0
-    else:
         r_2sv_29_10crCorrUsed = 0
-    if len(g_sv) > 29:
-        r_2sv_29_10doCorrUsed: Any = g_2sv_29.doCorrUsed
-        if r_2sv_29_10doCorrUsed is not True and r_2sv_29_10doCorrUsed is not False and r_2sv_29_10doCorrUsed != 0 and r_2sv_29_10doCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[29].doCorrUsed', r_2sv_29_10doCorrUsed, 'type', 'a bool')
-        r_2sv_29_10doCorrUsed = 1 if r_2sv_29_10doCorrUsed else 0
-    else:
         r_2sv_29_10doCorrUsed = 0
-    if len(g_sv) > 29:
-        r_2sv_29_12clasCorrUsed: Any = g_2sv_29.clasCorrUsed
-        if r_2sv_29_12clasCorrUsed is not True and r_2sv_29_12clasCorrUsed is not False and r_2sv_29_12clasCorrUsed != 0 and r_2sv_29_12clasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[29].clasCorrUsed', r_2sv_29_12clasCorrUsed, 'type', 'a bool')
-        r_2sv_29_12clasCorrUsed = 1 if r_2sv_29_12clasCorrUsed else 0
-    else:
         r_2sv_29_12clasCorrUsed = 0
-    if len(g_sv) > 29:
-        r_2sv_29_11lppCorrUsed: Any = g_2sv_29.lppCorrUsed
-        if r_2sv_29_11lppCorrUsed is not True and r_2sv_29_11lppCorrUsed is not False and r_2sv_29_11lppCorrUsed != 0 and r_2sv_29_11lppCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[29].lppCorrUsed', r_2sv_29_11lppCorrUsed, 'type', 'a bool')
-        r_2sv_29_11lppCorrUsed = 1 if r_2sv_29_11lppCorrUsed else 0
-    else:
         r_2sv_29_11lppCorrUsed = 0
-    if len(g_sv) > 29:
-        r_2sv_29_11hasCorrUsed: Any = g_2sv_29.hasCorrUsed
-        if r_2sv_29_11hasCorrUsed is not True and r_2sv_29_11hasCorrUsed is not False and r_2sv_29_11hasCorrUsed != 0 and r_2sv_29_11hasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[29].hasCorrUsed', r_2sv_29_11hasCorrUsed, 'type', 'a bool')
-        r_2sv_29_11hasCorrUsed = 1 if r_2sv_29_11hasCorrUsed else 0
-    else:
         r_2sv_29_11hasCorrUsed = 0
-    if len(g_sv) > 29:
         r_2sv_29_11flags_spare = 0
-    else:
-        r_2sv_29_11flags_spare = 0
-    g_2sv_30: Any = cast(Any, g_sv[30] if len(g_sv) > 30 else None)
     if len(g_sv) > 30:
-        r_2sv_30_6gnssId = g_2sv_30.gnssId
-        if r_2sv_30_6gnssId.__class__ is not int and (not isinstance(r_2sv_30_6gnssId, int) or r_2sv_30_6gnssId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[30].gnssId', r_2sv_30_6gnssId, 'type', 'an int')
-        if not 0 <= r_2sv_30_6gnssId <= 255:
-            raise _enc('nav_sat', 'sv[30].gnssId', r_2sv_30_6gnssId, 'range', '0..255', None)
+        r_2sv_30_6gnssId, r_2sv_30_4svId, r_2sv_30_3cno, r_2sv_30_4elev, r_2sv_30_4azim, r_2sv_30_5prRes, r_2sv_30_10qualityInd, r_2sv_30_6svUsed, r_2sv_30_6health, r_2sv_30_8diffCorr, r_2sv_30_8smoothed, r_2sv_30_11orbitSource, r_2sv_30_8ephAvail, r_2sv_30_8almAvail, r_2sv_30_8anoAvail, r_2sv_30_8aopAvail, r_2sv_30_10reserved13, r_2sv_30_12sbasCorrUsed, r_2sv_30_12rtcmCorrUsed, r_2sv_30_12slasCorrUsed, r_2sv_30_14spartnCorrUsed, r_2sv_30_10prCorrUsed, r_2sv_30_10crCorrUsed, r_2sv_30_10doCorrUsed, r_2sv_30_12clasCorrUsed, r_2sv_30_11lppCorrUsed, r_2sv_30_11hasCorrUsed, r_2sv_30_11flags_spare = _raw_nav_sat_2sv_30(g_sv[30])
     else:
         r_2sv_30_6gnssId = 0
-    if len(g_sv) > 30:
-        r_2sv_30_4svId = g_2sv_30.svId
-        if r_2sv_30_4svId.__class__ is not int and (not isinstance(r_2sv_30_4svId, int) or r_2sv_30_4svId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[30].svId', r_2sv_30_4svId, 'type', 'an int')
-        if not 0 <= r_2sv_30_4svId <= 255:
-            raise _enc('nav_sat', 'sv[30].svId', r_2sv_30_4svId, 'range', '0..255', None)
-    else:
         r_2sv_30_4svId = 0
-    if len(g_sv) > 30:
-        r_2sv_30_3cno = g_2sv_30.cno
-        if r_2sv_30_3cno.__class__ is not int and (not isinstance(r_2sv_30_3cno, int) or r_2sv_30_3cno.__class__ is bool):
-            raise _enc('nav_sat', 'sv[30].cno', r_2sv_30_3cno, 'type', 'an int')
-        if not 0 <= r_2sv_30_3cno <= 255:
-            raise _enc('nav_sat', 'sv[30].cno', r_2sv_30_3cno, 'range', '0..255', None)
-    else:
         r_2sv_30_3cno = 0
-    if len(g_sv) > 30:
-        r_2sv_30_4elev = g_2sv_30.elev
-        if r_2sv_30_4elev.__class__ is not int and (not isinstance(r_2sv_30_4elev, int) or r_2sv_30_4elev.__class__ is bool):
-            raise _enc('nav_sat', 'sv[30].elev', r_2sv_30_4elev, 'type', 'an int')
-        if not -128 <= r_2sv_30_4elev <= 127:
-            raise _enc('nav_sat', 'sv[30].elev', r_2sv_30_4elev, 'range', '-128..127', None)
-    else:
         r_2sv_30_4elev = 0
-    if len(g_sv) > 30:
-        r_2sv_30_4azim = g_2sv_30.azim
-        if r_2sv_30_4azim.__class__ is not int and (not isinstance(r_2sv_30_4azim, int) or r_2sv_30_4azim.__class__ is bool):
-            raise _enc('nav_sat', 'sv[30].azim', r_2sv_30_4azim, 'type', 'an int')
-        if not -32768 <= r_2sv_30_4azim <= 32767:
-            raise _enc('nav_sat', 'sv[30].azim', r_2sv_30_4azim, 'range', '-32768..32767', None)
-    else:
         r_2sv_30_4azim = 0
-    if len(g_sv) > 30:
-        r_2sv_30_5prRes = g_2sv_30.prRes
-        if r_2sv_30_5prRes.__class__ is not float and (not isinstance(r_2sv_30_5prRes, (int, float)) or r_2sv_30_5prRes.__class__ is bool):
-            raise _enc('nav_sat', 'sv[30].prRes', r_2sv_30_5prRes, 'type', 'a number')
-        if not -3276.8 <= r_2sv_30_5prRes <= 3276.7000000000003:
-            raise _enc('nav_sat', 'sv[30].prRes', r_2sv_30_5prRes, 'range', '-3276.8..3276.7000000000003', None)
-        r_2sv_30_5prRes = _floor(r_2sv_30_5prRes / 0.1 + 0.5)
-    else:
         r_2sv_30_5prRes = 0
-    if len(g_sv) > 30:
-        r_2sv_30_10qualityInd = g_2sv_30.qualityInd
-        if r_2sv_30_10qualityInd.__class__ is not int and (not isinstance(r_2sv_30_10qualityInd, int) or r_2sv_30_10qualityInd.__class__ is bool):
-            raise _enc('nav_sat', 'sv[30].qualityInd', r_2sv_30_10qualityInd, 'type', 'an int')
-        if not 0 <= r_2sv_30_10qualityInd <= 7:
-            raise _enc('nav_sat', 'sv[30].qualityInd', r_2sv_30_10qualityInd, 'range', '0..7', None)
-    else:
         r_2sv_30_10qualityInd = 0
-    if len(g_sv) > 30:
-        r_2sv_30_6svUsed: Any = g_2sv_30.svUsed
-        if r_2sv_30_6svUsed is not True and r_2sv_30_6svUsed is not False and r_2sv_30_6svUsed != 0 and r_2sv_30_6svUsed != 1:
-            raise _enc('nav_sat', 'sv[30].svUsed', r_2sv_30_6svUsed, 'type', 'a bool')
-        r_2sv_30_6svUsed = 1 if r_2sv_30_6svUsed else 0
-    else:
         r_2sv_30_6svUsed = 0
-    if len(g_sv) > 30:
-        r_2sv_30_6health = g_2sv_30.health
-        if r_2sv_30_6health.__class__ is not int and (not isinstance(r_2sv_30_6health, int) or r_2sv_30_6health.__class__ is bool):
-            raise _enc('nav_sat', 'sv[30].health', r_2sv_30_6health, 'type', 'an int')
-        if not 0 <= r_2sv_30_6health <= 3:
-            raise _enc('nav_sat', 'sv[30].health', r_2sv_30_6health, 'range', '0..3', None)
-    else:
         r_2sv_30_6health = 0
-    if len(g_sv) > 30:
-        r_2sv_30_8diffCorr: Any = g_2sv_30.diffCorr
-        if r_2sv_30_8diffCorr is not True and r_2sv_30_8diffCorr is not False and r_2sv_30_8diffCorr != 0 and r_2sv_30_8diffCorr != 1:
-            raise _enc('nav_sat', 'sv[30].diffCorr', r_2sv_30_8diffCorr, 'type', 'a bool')
-        r_2sv_30_8diffCorr = 1 if r_2sv_30_8diffCorr else 0
-    else:
         r_2sv_30_8diffCorr = 0
-    if len(g_sv) > 30:
-        r_2sv_30_8smoothed: Any = g_2sv_30.smoothed
-        if r_2sv_30_8smoothed is not True and r_2sv_30_8smoothed is not False and r_2sv_30_8smoothed != 0 and r_2sv_30_8smoothed != 1:
-            raise _enc('nav_sat', 'sv[30].smoothed', r_2sv_30_8smoothed, 'type', 'a bool')
-        r_2sv_30_8smoothed = 1 if r_2sv_30_8smoothed else 0
-    else:
         r_2sv_30_8smoothed = 0
-    if len(g_sv) > 30:
-        r_2sv_30_11orbitSource = g_2sv_30.orbitSource
-        if r_2sv_30_11orbitSource.__class__ is not int and (not isinstance(r_2sv_30_11orbitSource, int) or r_2sv_30_11orbitSource.__class__ is bool):
-            raise _enc('nav_sat', 'sv[30].orbitSource', r_2sv_30_11orbitSource, 'type', 'an int')
-        if not 0 <= r_2sv_30_11orbitSource <= 7:
-            raise _enc('nav_sat', 'sv[30].orbitSource', r_2sv_30_11orbitSource, 'range', '0..7', None)
-    else:
         r_2sv_30_11orbitSource = 0
-    if len(g_sv) > 30:
-        r_2sv_30_8ephAvail: Any = g_2sv_30.ephAvail
-        if r_2sv_30_8ephAvail is not True and r_2sv_30_8ephAvail is not False and r_2sv_30_8ephAvail != 0 and r_2sv_30_8ephAvail != 1:
-            raise _enc('nav_sat', 'sv[30].ephAvail', r_2sv_30_8ephAvail, 'type', 'a bool')
-        r_2sv_30_8ephAvail = 1 if r_2sv_30_8ephAvail else 0
-    else:
         r_2sv_30_8ephAvail = 0
-    if len(g_sv) > 30:
-        r_2sv_30_8almAvail: Any = g_2sv_30.almAvail
-        if r_2sv_30_8almAvail is not True and r_2sv_30_8almAvail is not False and r_2sv_30_8almAvail != 0 and r_2sv_30_8almAvail != 1:
-            raise _enc('nav_sat', 'sv[30].almAvail', r_2sv_30_8almAvail, 'type', 'a bool')
-        r_2sv_30_8almAvail = 1 if r_2sv_30_8almAvail else 0
-    else:
         r_2sv_30_8almAvail = 0
-    if len(g_sv) > 30:
-        r_2sv_30_8anoAvail: Any = g_2sv_30.anoAvail
-        if r_2sv_30_8anoAvail is not True and r_2sv_30_8anoAvail is not False and r_2sv_30_8anoAvail != 0 and r_2sv_30_8anoAvail != 1:
-            raise _enc('nav_sat', 'sv[30].anoAvail', r_2sv_30_8anoAvail, 'type', 'a bool')
-        r_2sv_30_8anoAvail = 1 if r_2sv_30_8anoAvail else 0
-    else:
         r_2sv_30_8anoAvail = 0
-    if len(g_sv) > 30:
-        r_2sv_30_8aopAvail: Any = g_2sv_30.aopAvail
-        if r_2sv_30_8aopAvail is not True and r_2sv_30_8aopAvail is not False and r_2sv_30_8aopAvail != 0 and r_2sv_30_8aopAvail != 1:
-            raise _enc('nav_sat', 'sv[30].aopAvail', r_2sv_30_8aopAvail, 'type', 'a bool')
-        r_2sv_30_8aopAvail = 1 if r_2sv_30_8aopAvail else 0
-    else:
         r_2sv_30_8aopAvail = 0
-    if len(g_sv) > 30:
-        r_2sv_30_10reserved13 = g_2sv_30.reserved13
-        if r_2sv_30_10reserved13.__class__ is not int and (not isinstance(r_2sv_30_10reserved13, int) or r_2sv_30_10reserved13.__class__ is bool):
-            raise _enc('nav_sat', 'sv[30].reserved13', r_2sv_30_10reserved13, 'type', 'an int')
-        if not 0 <= r_2sv_30_10reserved13 <= 1:
-            raise _enc('nav_sat', 'sv[30].reserved13', r_2sv_30_10reserved13, 'range', '0..1', None)
-    else:
         r_2sv_30_10reserved13 = 0
-    if len(g_sv) > 30:
-        r_2sv_30_12sbasCorrUsed: Any = g_2sv_30.sbasCorrUsed
-        if r_2sv_30_12sbasCorrUsed is not True and r_2sv_30_12sbasCorrUsed is not False and r_2sv_30_12sbasCorrUsed != 0 and r_2sv_30_12sbasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[30].sbasCorrUsed', r_2sv_30_12sbasCorrUsed, 'type', 'a bool')
-        r_2sv_30_12sbasCorrUsed = 1 if r_2sv_30_12sbasCorrUsed else 0
-    else:
         r_2sv_30_12sbasCorrUsed = 0
-    if len(g_sv) > 30:
-        r_2sv_30_12rtcmCorrUsed: Any = g_2sv_30.rtcmCorrUsed
-        if r_2sv_30_12rtcmCorrUsed is not True and r_2sv_30_12rtcmCorrUsed is not False and r_2sv_30_12rtcmCorrUsed != 0 and r_2sv_30_12rtcmCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[30].rtcmCorrUsed', r_2sv_30_12rtcmCorrUsed, 'type', 'a bool')
-        r_2sv_30_12rtcmCorrUsed = 1 if r_2sv_30_12rtcmCorrUsed else 0
-    else:
         r_2sv_30_12rtcmCorrUsed = 0
-    if len(g_sv) > 30:
-        r_2sv_30_12slasCorrUsed: Any = g_2sv_30.slasCorrUsed
-        if r_2sv_30_12slasCorrUsed is not True and r_2sv_30_12slasCorrUsed is not False and r_2sv_30_12slasCorrUsed != 0 and r_2sv_30_12slasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[30].slasCorrUsed', r_2sv_30_12slasCorrUsed, 'type', 'a bool')
-        r_2sv_30_12slasCorrUsed = 1 if r_2sv_30_12slasCorrUsed else 0
-    else:
         r_2sv_30_12slasCorrUsed = 0
-    if len(g_sv) > 30:
-        r_2sv_30_14spartnCorrUsed: Any = g_2sv_30.spartnCorrUsed
-        if r_2sv_30_14spartnCorrUsed is not True and r_2sv_30_14spartnCorrUsed is not False and r_2sv_30_14spartnCorrUsed != 0 and r_2sv_30_14spartnCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[30].spartnCorrUsed', r_2sv_30_14spartnCorrUsed, 'type', 'a bool')
-        r_2sv_30_14spartnCorrUsed = 1 if r_2sv_30_14spartnCorrUsed else 0
-    else:
         r_2sv_30_14spartnCorrUsed = 0
-    if len(g_sv) > 30:
-        r_2sv_30_10prCorrUsed: Any = g_2sv_30.prCorrUsed
-        if r_2sv_30_10prCorrUsed is not True and r_2sv_30_10prCorrUsed is not False and r_2sv_30_10prCorrUsed != 0 and r_2sv_30_10prCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[30].prCorrUsed', r_2sv_30_10prCorrUsed, 'type', 'a bool')
-        r_2sv_30_10prCorrUsed = 1 if r_2sv_30_10prCorrUsed else 0
-    else:
         r_2sv_30_10prCorrUsed = 0
-    if len(g_sv) > 30:
-        r_2sv_30_10crCorrUsed: Any = g_2sv_30.crCorrUsed
-        if r_2sv_30_10crCorrUsed is not True and r_2sv_30_10crCorrUsed is not False and r_2sv_30_10crCorrUsed != 0 and r_2sv_30_10crCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[30].crCorrUsed', r_2sv_30_10crCorrUsed, 'type', 'a bool')
-        r_2sv_30_10crCorrUsed = 1 if r_2sv_30_10crCorrUsed else 0
-    else:
         r_2sv_30_10crCorrUsed = 0
-    if len(g_sv) > 30:
-        r_2sv_30_10doCorrUsed: Any = g_2sv_30.doCorrUsed
-        if r_2sv_30_10doCorrUsed is not True and r_2sv_30_10doCorrUsed is not False and r_2sv_30_10doCorrUsed != 0 and r_2sv_30_10doCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[30].doCorrUsed', r_2sv_30_10doCorrUsed, 'type', 'a bool')
-        r_2sv_30_10doCorrUsed = 1 if r_2sv_30_10doCorrUsed else 0
-    else:
         r_2sv_30_10doCorrUsed = 0
-    if len(g_sv) > 30:
-        r_2sv_30_12clasCorrUsed: Any = g_2sv_30.clasCorrUsed
-        if r_2sv_30_12clasCorrUsed is not True and r_2sv_30_12clasCorrUsed is not False and r_2sv_30_12clasCorrUsed != 0 and r_2sv_30_12clasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[30].clasCorrUsed', r_2sv_30_12clasCorrUsed, 'type', 'a bool')
-        r_2sv_30_12clasCorrUsed = 1 if r_2sv_30_12clasCorrUsed else 0
-    else:
         r_2sv_30_12clasCorrUsed = 0
-    if len(g_sv) > 30:
-        r_2sv_30_11lppCorrUsed: Any = g_2sv_30.lppCorrUsed
-        if r_2sv_30_11lppCorrUsed is not True and r_2sv_30_11lppCorrUsed is not False and r_2sv_30_11lppCorrUsed != 0 and r_2sv_30_11lppCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[30].lppCorrUsed', r_2sv_30_11lppCorrUsed, 'type', 'a bool')
-        r_2sv_30_11lppCorrUsed = 1 if r_2sv_30_11lppCorrUsed else 0
-    else:
         r_2sv_30_11lppCorrUsed = 0
-    if len(g_sv) > 30:
-        r_2sv_30_11hasCorrUsed: Any = g_2sv_30.hasCorrUsed
-        if r_2sv_30_11hasCorrUsed is not True and r_2sv_30_11hasCorrUsed is not False and r_2sv_30_11hasCorrUsed != 0 and r_2sv_30_11hasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[30].hasCorrUsed', r_2sv_30_11hasCorrUsed, 'type', 'a bool')
-        r_2sv_30_11hasCorrUsed = 1 if r_2sv_30_11hasCorrUsed else 0
-    else:
         r_2sv_30_11hasCorrUsed = 0
-    if len(g_sv) > 30:
         r_2sv_30_11flags_spare = 0
-    else:
-        r_2sv_30_11flags_spare = 0
-    g_2sv_31: Any = cast(Any, g_sv[31] if len(g_sv) > 31 else None)
     if len(g_sv) > 31:
-        r_2sv_31_6gnssId = g_2sv_31.gnssId
-        if r_2sv_31_6gnssId.__class__ is not int and (not isinstance(r_2sv_31_6gnssId, int) or r_2sv_31_6gnssId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[31].gnssId', r_2sv_31_6gnssId, 'type', 'an int')
-        if not 0 <= r_2sv_31_6gnssId <= 255:
-            raise _enc('nav_sat', 'sv[31].gnssId', r_2sv_31_6gnssId, 'range', '0..255', None)
+        r_2sv_31_6gnssId, r_2sv_31_4svId, r_2sv_31_3cno, r_2sv_31_4elev, r_2sv_31_4azim, r_2sv_31_5prRes, r_2sv_31_10qualityInd, r_2sv_31_6svUsed, r_2sv_31_6health, r_2sv_31_8diffCorr, r_2sv_31_8smoothed, r_2sv_31_11orbitSource, r_2sv_31_8ephAvail, r_2sv_31_8almAvail, r_2sv_31_8anoAvail, r_2sv_31_8aopAvail, r_2sv_31_10reserved13, r_2sv_31_12sbasCorrUsed, r_2sv_31_12rtcmCorrUsed, r_2sv_31_12slasCorrUsed, r_2sv_31_14spartnCorrUsed, r_2sv_31_10prCorrUsed, r_2sv_31_10crCorrUsed, r_2sv_31_10doCorrUsed, r_2sv_31_12clasCorrUsed, r_2sv_31_11lppCorrUsed, r_2sv_31_11hasCorrUsed, r_2sv_31_11flags_spare = _raw_nav_sat_2sv_31(g_sv[31])
     else:
         r_2sv_31_6gnssId = 0
-    if len(g_sv) > 31:
-        r_2sv_31_4svId = g_2sv_31.svId
-        if r_2sv_31_4svId.__class__ is not int and (not isinstance(r_2sv_31_4svId, int) or r_2sv_31_4svId.__class__ is bool):
-            raise _enc('nav_sat', 'sv[31].svId', r_2sv_31_4svId, 'type', 'an int')
-        if not 0 <= r_2sv_31_4svId <= 255:
-            raise _enc('nav_sat', 'sv[31].svId', r_2sv_31_4svId, 'range', '0..255', None)
-    else:
         r_2sv_31_4svId = 0
-    if len(g_sv) > 31:
-        r_2sv_31_3cno = g_2sv_31.cno
-        if r_2sv_31_3cno.__class__ is not int and (not isinstance(r_2sv_31_3cno, int) or r_2sv_31_3cno.__class__ is bool):
-            raise _enc('nav_sat', 'sv[31].cno', r_2sv_31_3cno, 'type', 'an int')
-        if not 0 <= r_2sv_31_3cno <= 255:
-            raise _enc('nav_sat', 'sv[31].cno', r_2sv_31_3cno, 'range', '0..255', None)
-    else:
         r_2sv_31_3cno = 0
-    if len(g_sv) > 31:
-        r_2sv_31_4elev = g_2sv_31.elev
-        if r_2sv_31_4elev.__class__ is not int and (not isinstance(r_2sv_31_4elev, int) or r_2sv_31_4elev.__class__ is bool):
-            raise _enc('nav_sat', 'sv[31].elev', r_2sv_31_4elev, 'type', 'an int')
-        if not -128 <= r_2sv_31_4elev <= 127:
-            raise _enc('nav_sat', 'sv[31].elev', r_2sv_31_4elev, 'range', '-128..127', None)
-    else:
         r_2sv_31_4elev = 0
-    if len(g_sv) > 31:
-        r_2sv_31_4azim = g_2sv_31.azim
-        if r_2sv_31_4azim.__class__ is not int and (not isinstance(r_2sv_31_4azim, int) or r_2sv_31_4azim.__class__ is bool):
-            raise _enc('nav_sat', 'sv[31].azim', r_2sv_31_4azim, 'type', 'an int')
-        if not -32768 <= r_2sv_31_4azim <= 32767:
-            raise _enc('nav_sat', 'sv[31].azim', r_2sv_31_4azim, 'range', '-32768..32767', None)
-    else:
         r_2sv_31_4azim = 0
-    if len(g_sv) > 31:
-        r_2sv_31_5prRes = g_2sv_31.prRes
-        if r_2sv_31_5prRes.__class__ is not float and (not isinstance(r_2sv_31_5prRes, (int, float)) or r_2sv_31_5prRes.__class__ is bool):
-            raise _enc('nav_sat', 'sv[31].prRes', r_2sv_31_5prRes, 'type', 'a number')
-        if not -3276.8 <= r_2sv_31_5prRes <= 3276.7000000000003:
-            raise _enc('nav_sat', 'sv[31].prRes', r_2sv_31_5prRes, 'range', '-3276.8..3276.7000000000003', None)
-        r_2sv_31_5prRes = _floor(r_2sv_31_5prRes / 0.1 + 0.5)
-    else:
         r_2sv_31_5prRes = 0
-    if len(g_sv) > 31:
-        r_2sv_31_10qualityInd = g_2sv_31.qualityInd
-        if r_2sv_31_10qualityInd.__class__ is not int and (not isinstance(r_2sv_31_10qualityInd, int) or r_2sv_31_10qualityInd.__class__ is bool):
-            raise _enc('nav_sat', 'sv[31].qualityInd', r_2sv_31_10qualityInd, 'type', 'an int')
-        if not 0 <= r_2sv_31_10qualityInd <= 7:
-            raise _enc('nav_sat', 'sv[31].qualityInd', r_2sv_31_10qualityInd, 'range', '0..7', None)
-    else:
         r_2sv_31_10qualityInd = 0
-    if len(g_sv) > 31:
-        r_2sv_31_6svUsed: Any = g_2sv_31.svUsed
-        if r_2sv_31_6svUsed is not True and r_2sv_31_6svUsed is not False and r_2sv_31_6svUsed != 0 and r_2sv_31_6svUsed != 1:
-            raise _enc('nav_sat', 'sv[31].svUsed', r_2sv_31_6svUsed, 'type', 'a bool')
-        r_2sv_31_6svUsed = 1 if r_2sv_31_6svUsed else 0
-    else:
         r_2sv_31_6svUsed = 0
-    if len(g_sv) > 31:
-        r_2sv_31_6health = g_2sv_31.health
-        if r_2sv_31_6health.__class__ is not int and (not isinstance(r_2sv_31_6health, int) or r_2sv_31_6health.__class__ is bool):
-            raise _enc('nav_sat', 'sv[31].health', r_2sv_31_6health, 'type', 'an int')
-        if not 0 <= r_2sv_31_6health <= 3:
-            raise _enc('nav_sat', 'sv[31].health', r_2sv_31_6health, 'range', '0..3', None)
-    else:
         r_2sv_31_6health = 0
-    if len(g_sv) > 31:
-        r_2sv_31_8diffCorr: Any = g_2sv_31.diffCorr
-        if r_2sv_31_8diffCorr is not True and r_2sv_31_8diffCorr is not False and r_2sv_31_8diffCorr != 0 and r_2sv_31_8diffCorr != 1:
-            raise _enc('nav_sat', 'sv[31].diffCorr', r_2sv_31_8diffCorr, 'type', 'a bool')
-        r_2sv_31_8diffCorr = 1 if r_2sv_31_8diffCorr else 0
-    else:
         r_2sv_31_8diffCorr = 0
-    if len(g_sv) > 31:
-        r_2sv_31_8smoothed: Any = g_2sv_31.smoothed
-        if r_2sv_31_8smoothed is not True and r_2sv_31_8smoothed is not False and r_2sv_31_8smoothed != 0 and r_2sv_31_8smoothed != 1:
-            raise _enc('nav_sat', 'sv[31].smoothed', r_2sv_31_8smoothed, 'type', 'a bool')
-        r_2sv_31_8smoothed = 1 if r_2sv_31_8smoothed else 0
-    else:
         r_2sv_31_8smoothed = 0
-    if len(g_sv) > 31:
-        r_2sv_31_11orbitSource = g_2sv_31.orbitSource
-        if r_2sv_31_11orbitSource.__class__ is not int and (not isinstance(r_2sv_31_11orbitSource, int) or r_2sv_31_11orbitSource.__class__ is bool):
-            raise _enc('nav_sat', 'sv[31].orbitSource', r_2sv_31_11orbitSource, 'type', 'an int')
-        if not 0 <= r_2sv_31_11orbitSource <= 7:
-            raise _enc('nav_sat', 'sv[31].orbitSource', r_2sv_31_11orbitSource, 'range', '0..7', None)
-    else:
         r_2sv_31_11orbitSource = 0
-    if len(g_sv) > 31:
-        r_2sv_31_8ephAvail: Any = g_2sv_31.ephAvail
-        if r_2sv_31_8ephAvail is not True and r_2sv_31_8ephAvail is not False and r_2sv_31_8ephAvail != 0 and r_2sv_31_8ephAvail != 1:
-            raise _enc('nav_sat', 'sv[31].ephAvail', r_2sv_31_8ephAvail, 'type', 'a bool')
-        r_2sv_31_8ephAvail = 1 if r_2sv_31_8ephAvail else 0
-    else:
         r_2sv_31_8ephAvail = 0
-    if len(g_sv) > 31:
-        r_2sv_31_8almAvail: Any = g_2sv_31.almAvail
-        if r_2sv_31_8almAvail is not True and r_2sv_31_8almAvail is not False and r_2sv_31_8almAvail != 0 and r_2sv_31_8almAvail != 1:
-            raise _enc('nav_sat', 'sv[31].almAvail', r_2sv_31_8almAvail, 'type', 'a bool')
-        r_2sv_31_8almAvail = 1 if r_2sv_31_8almAvail else 0
-    else:
         r_2sv_31_8almAvail = 0
-    if len(g_sv) > 31:
-        r_2sv_31_8anoAvail: Any = g_2sv_31.anoAvail
-        if r_2sv_31_8anoAvail is not True and r_2sv_31_8anoAvail is not False and r_2sv_31_8anoAvail != 0 and r_2sv_31_8anoAvail != 1:
-            raise _enc('nav_sat', 'sv[31].anoAvail', r_2sv_31_8anoAvail, 'type', 'a bool')
-        r_2sv_31_8anoAvail = 1 if r_2sv_31_8anoAvail else 0
-    else:
         r_2sv_31_8anoAvail = 0
-    if len(g_sv) > 31:
-        r_2sv_31_8aopAvail: Any = g_2sv_31.aopAvail
-        if r_2sv_31_8aopAvail is not True and r_2sv_31_8aopAvail is not False and r_2sv_31_8aopAvail != 0 and r_2sv_31_8aopAvail != 1:
-            raise _enc('nav_sat', 'sv[31].aopAvail', r_2sv_31_8aopAvail, 'type', 'a bool')
-        r_2sv_31_8aopAvail = 1 if r_2sv_31_8aopAvail else 0
-    else:
         r_2sv_31_8aopAvail = 0
-    if len(g_sv) > 31:
-        r_2sv_31_10reserved13 = g_2sv_31.reserved13
-        if r_2sv_31_10reserved13.__class__ is not int and (not isinstance(r_2sv_31_10reserved13, int) or r_2sv_31_10reserved13.__class__ is bool):
-            raise _enc('nav_sat', 'sv[31].reserved13', r_2sv_31_10reserved13, 'type', 'an int')
-        if not 0 <= r_2sv_31_10reserved13 <= 1:
-            raise _enc('nav_sat', 'sv[31].reserved13', r_2sv_31_10reserved13, 'range', '0..1', None)
-    else:
         r_2sv_31_10reserved13 = 0
-    if len(g_sv) > 31:
-        r_2sv_31_12sbasCorrUsed: Any = g_2sv_31.sbasCorrUsed
-        if r_2sv_31_12sbasCorrUsed is not True and r_2sv_31_12sbasCorrUsed is not False and r_2sv_31_12sbasCorrUsed != 0 and r_2sv_31_12sbasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[31].sbasCorrUsed', r_2sv_31_12sbasCorrUsed, 'type', 'a bool')
-        r_2sv_31_12sbasCorrUsed = 1 if r_2sv_31_12sbasCorrUsed else 0
-    else:
         r_2sv_31_12sbasCorrUsed = 0
-    if len(g_sv) > 31:
-        r_2sv_31_12rtcmCorrUsed: Any = g_2sv_31.rtcmCorrUsed
-        if r_2sv_31_12rtcmCorrUsed is not True and r_2sv_31_12rtcmCorrUsed is not False and r_2sv_31_12rtcmCorrUsed != 0 and r_2sv_31_12rtcmCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[31].rtcmCorrUsed', r_2sv_31_12rtcmCorrUsed, 'type', 'a bool')
-        r_2sv_31_12rtcmCorrUsed = 1 if r_2sv_31_12rtcmCorrUsed else 0
-    else:
         r_2sv_31_12rtcmCorrUsed = 0
-    if len(g_sv) > 31:
-        r_2sv_31_12slasCorrUsed: Any = g_2sv_31.slasCorrUsed
-        if r_2sv_31_12slasCorrUsed is not True and r_2sv_31_12slasCorrUsed is not False and r_2sv_31_12slasCorrUsed != 0 and r_2sv_31_12slasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[31].slasCorrUsed', r_2sv_31_12slasCorrUsed, 'type', 'a bool')
-        r_2sv_31_12slasCorrUsed = 1 if r_2sv_31_12slasCorrUsed else 0
-    else:
         r_2sv_31_12slasCorrUsed = 0
-    if len(g_sv) > 31:
-        r_2sv_31_14spartnCorrUsed: Any = g_2sv_31.spartnCorrUsed
-        if r_2sv_31_14spartnCorrUsed is not True and r_2sv_31_14spartnCorrUsed is not False and r_2sv_31_14spartnCorrUsed != 0 and r_2sv_31_14spartnCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[31].spartnCorrUsed', r_2sv_31_14spartnCorrUsed, 'type', 'a bool')
-        r_2sv_31_14spartnCorrUsed = 1 if r_2sv_31_14spartnCorrUsed else 0
-    else:
         r_2sv_31_14spartnCorrUsed = 0
-    if len(g_sv) > 31:
-        r_2sv_31_10prCorrUsed: Any = g_2sv_31.prCorrUsed
-        if r_2sv_31_10prCorrUsed is not True and r_2sv_31_10prCorrUsed is not False and r_2sv_31_10prCorrUsed != 0 and r_2sv_31_10prCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[31].prCorrUsed', r_2sv_31_10prCorrUsed, 'type', 'a bool')
-        r_2sv_31_10prCorrUsed = 1 if r_2sv_31_10prCorrUsed else 0
-    else:
         r_2sv_31_10prCorrUsed = 0
-    if len(g_sv) > 31:
-        r_2sv_31_10crCorrUsed: Any = g_2sv_31.crCorrUsed
-        if r_2sv_31_10crCorrUsed is not True and r_2sv_31_10crCorrUsed is not False and r_2sv_31_10crCorrUsed != 0 and r_2sv_31_10crCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[31].crCorrUsed', r_2sv_31_10crCorrUsed, 'type', 'a bool')
-        r_2sv_31_10crCorrUsed = 1 if r_2sv_31_10crCorrUsed else 0
-    else:
         r_2sv_31_10crCorrUsed = 0
-    if len(g_sv) > 31:
-        r_2sv_31_10doCorrUsed: Any = g_2sv_31.doCorrUsed
-        if r_2sv_31_10doCorrUsed is not True and r_2sv_31_10doCorrUsed is not False and r_2sv_31_10doCorrUsed != 0 and r_2sv_31_10doCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[31].doCorrUsed', r_2sv_31_10doCorrUsed, 'type', 'a bool')
-        r_2sv_31_10doCorrUsed = 1 if r_2sv_31_10doCorrUsed else 0
-    else:
         r_2sv_31_10doCorrUsed = 0
-    if len(g_sv) > 31:
-        r_2sv_31_12clasCorrUsed: Any = g_2sv_31.clasCorrUsed
-        if r_2sv_31_12clasCorrUsed is not True and r_2sv_31_12clasCorrUsed is not False and r_2sv_31_12clasCorrUsed != 0 and r_2sv_31_12clasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[31].clasCorrUsed', r_2sv_31_12clasCorrUsed, 'type', 'a bool')
-        r_2sv_31_12clasCorrUsed = 1 if r_2sv_31_12clasCorrUsed else 0
-    else:
         r_2sv_31_12clasCorrUsed = 0
-    if len(g_sv) > 31:
-        r_2sv_31_11lppCorrUsed: Any = g_2sv_31.lppCorrUsed
-        if r_2sv_31_11lppCorrUsed is not True and r_2sv_31_11lppCorrUsed is not False and r_2sv_31_11lppCorrUsed != 0 and r_2sv_31_11lppCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[31].lppCorrUsed', r_2sv_31_11lppCorrUsed, 'type', 'a bool')
-        r_2sv_31_11lppCorrUsed = 1 if r_2sv_31_11lppCorrUsed else 0
-    else:
         r_2sv_31_11lppCorrUsed = 0
-    if len(g_sv) > 31:
-        r_2sv_31_11hasCorrUsed: Any = g_2sv_31.hasCorrUsed
-        if r_2sv_31_11hasCorrUsed is not True and r_2sv_31_11hasCorrUsed is not False and r_2sv_31_11hasCorrUsed != 0 and r_2sv_31_11hasCorrUsed != 1:
-            raise _enc('nav_sat', 'sv[31].hasCorrUsed', r_2sv_31_11hasCorrUsed, 'type', 'a bool')
-        r_2sv_31_11hasCorrUsed = 1 if r_2sv_31_11hasCorrUsed else 0
-    else:
         r_2sv_31_11hasCorrUsed = 0
-    if len(g_sv) > 31:
-        r_2sv_31_11flags_spare = 0
-    else:
         r_2sv_31_11flags_spare = 0
     r_checksum = 0
     r_numSvs = len(g_sv)
@@ -8669,902 +7074,992 @@ def _decode_nav_sat(d: _Buffer) -> NavSat:
     g_2sv_0.cno = r_2sv_0_3cno
     g_2sv_0.elev = r_2sv_0_4elev
     g_2sv_0.azim = r_2sv_0_4azim
-    g_2sv_0.prRes = (r_2sv_0_5prRes * 0.1 if n_sv > 0 else _ABSENT)
+    g_2sv_0.prRes = (_sent(r_2sv_0_5prRes * 0.1) if n_sv > 0 else _ABSENT)
     g_2sv_0.qualityInd = r_2sv_0_10qualityInd
-    g_2sv_0.svUsed = (r_2sv_0_6svUsed == 1 if n_sv > 0 else _ABSENT)
+    g_2sv_0.svUsed = (_sent(r_2sv_0_6svUsed == 1) if n_sv > 0 else _ABSENT)
     g_2sv_0.health = r_2sv_0_6health
-    g_2sv_0.diffCorr = (r_2sv_0_8diffCorr == 1 if n_sv > 0 else _ABSENT)
-    g_2sv_0.smoothed = (r_2sv_0_8smoothed == 1 if n_sv > 0 else _ABSENT)
+    g_2sv_0.diffCorr = (_sent(r_2sv_0_8diffCorr == 1) if n_sv > 0 else _ABSENT)
+    g_2sv_0.smoothed = (_sent(r_2sv_0_8smoothed == 1) if n_sv > 0 else _ABSENT)
     g_2sv_0.orbitSource = r_2sv_0_11orbitSource
-    g_2sv_0.ephAvail = (r_2sv_0_8ephAvail == 1 if n_sv > 0 else _ABSENT)
-    g_2sv_0.almAvail = (r_2sv_0_8almAvail == 1 if n_sv > 0 else _ABSENT)
-    g_2sv_0.anoAvail = (r_2sv_0_8anoAvail == 1 if n_sv > 0 else _ABSENT)
-    g_2sv_0.aopAvail = (r_2sv_0_8aopAvail == 1 if n_sv > 0 else _ABSENT)
+    g_2sv_0.ephAvail = (_sent(r_2sv_0_8ephAvail == 1) if n_sv > 0 else _ABSENT)
+    g_2sv_0.almAvail = (_sent(r_2sv_0_8almAvail == 1) if n_sv > 0 else _ABSENT)
+    g_2sv_0.anoAvail = (_sent(r_2sv_0_8anoAvail == 1) if n_sv > 0 else _ABSENT)
+    g_2sv_0.aopAvail = (_sent(r_2sv_0_8aopAvail == 1) if n_sv > 0 else _ABSENT)
     g_2sv_0.reserved13 = r_2sv_0_10reserved13
-    g_2sv_0.sbasCorrUsed = (r_2sv_0_12sbasCorrUsed == 1 if n_sv > 0 else _ABSENT)
-    g_2sv_0.rtcmCorrUsed = (r_2sv_0_12rtcmCorrUsed == 1 if n_sv > 0 else _ABSENT)
-    g_2sv_0.slasCorrUsed = (r_2sv_0_12slasCorrUsed == 1 if n_sv > 0 else _ABSENT)
-    g_2sv_0.spartnCorrUsed = (r_2sv_0_14spartnCorrUsed == 1 if n_sv > 0 else _ABSENT)
-    g_2sv_0.prCorrUsed = (r_2sv_0_10prCorrUsed == 1 if n_sv > 0 else _ABSENT)
-    g_2sv_0.crCorrUsed = (r_2sv_0_10crCorrUsed == 1 if n_sv > 0 else _ABSENT)
-    g_2sv_0.doCorrUsed = (r_2sv_0_10doCorrUsed == 1 if n_sv > 0 else _ABSENT)
-    g_2sv_0.clasCorrUsed = (r_2sv_0_12clasCorrUsed == 1 if n_sv > 0 else _ABSENT)
-    g_2sv_0.lppCorrUsed = (r_2sv_0_11lppCorrUsed == 1 if n_sv > 0 else _ABSENT)
-    g_2sv_0.hasCorrUsed = (r_2sv_0_11hasCorrUsed == 1 if n_sv > 0 else _ABSENT)
+    g_2sv_0.sbasCorrUsed = (_sent(r_2sv_0_12sbasCorrUsed == 1) if n_sv > 0 else _ABSENT)
+    g_2sv_0.rtcmCorrUsed = (_sent(r_2sv_0_12rtcmCorrUsed == 1) if n_sv > 0 else _ABSENT)
+    g_2sv_0.slasCorrUsed = (_sent(r_2sv_0_12slasCorrUsed == 1) if n_sv > 0 else _ABSENT)
+    g_2sv_0.spartnCorrUsed = (_sent(r_2sv_0_14spartnCorrUsed == 1) if n_sv > 0 else _ABSENT)
+    g_2sv_0.prCorrUsed = (_sent(r_2sv_0_10prCorrUsed == 1) if n_sv > 0 else _ABSENT)
+    g_2sv_0.crCorrUsed = (_sent(r_2sv_0_10crCorrUsed == 1) if n_sv > 0 else _ABSENT)
+    g_2sv_0.doCorrUsed = (_sent(r_2sv_0_10doCorrUsed == 1) if n_sv > 0 else _ABSENT)
+    g_2sv_0.clasCorrUsed = (_sent(r_2sv_0_12clasCorrUsed == 1) if n_sv > 0 else _ABSENT)
+    g_2sv_0.lppCorrUsed = (_sent(r_2sv_0_11lppCorrUsed == 1) if n_sv > 0 else _ABSENT)
+    g_2sv_0.hasCorrUsed = (_sent(r_2sv_0_11hasCorrUsed == 1) if n_sv > 0 else _ABSENT)
     g_2sv_1 = _object_new(NavSatSv)
     g_2sv_1.gnssId = r_2sv_1_6gnssId
     g_2sv_1.svId = r_2sv_1_4svId
     g_2sv_1.cno = r_2sv_1_3cno
     g_2sv_1.elev = r_2sv_1_4elev
     g_2sv_1.azim = r_2sv_1_4azim
-    g_2sv_1.prRes = (r_2sv_1_5prRes * 0.1 if n_sv > 1 else _ABSENT)
+    g_2sv_1.prRes = (_sent(r_2sv_1_5prRes * 0.1) if n_sv > 1 else _ABSENT)
     g_2sv_1.qualityInd = r_2sv_1_10qualityInd
-    g_2sv_1.svUsed = (r_2sv_1_6svUsed == 1 if n_sv > 1 else _ABSENT)
+    g_2sv_1.svUsed = (_sent(r_2sv_1_6svUsed == 1) if n_sv > 1 else _ABSENT)
     g_2sv_1.health = r_2sv_1_6health
-    g_2sv_1.diffCorr = (r_2sv_1_8diffCorr == 1 if n_sv > 1 else _ABSENT)
-    g_2sv_1.smoothed = (r_2sv_1_8smoothed == 1 if n_sv > 1 else _ABSENT)
+    g_2sv_1.diffCorr = (_sent(r_2sv_1_8diffCorr == 1) if n_sv > 1 else _ABSENT)
+    g_2sv_1.smoothed = (_sent(r_2sv_1_8smoothed == 1) if n_sv > 1 else _ABSENT)
     g_2sv_1.orbitSource = r_2sv_1_11orbitSource
-    g_2sv_1.ephAvail = (r_2sv_1_8ephAvail == 1 if n_sv > 1 else _ABSENT)
-    g_2sv_1.almAvail = (r_2sv_1_8almAvail == 1 if n_sv > 1 else _ABSENT)
-    g_2sv_1.anoAvail = (r_2sv_1_8anoAvail == 1 if n_sv > 1 else _ABSENT)
-    g_2sv_1.aopAvail = (r_2sv_1_8aopAvail == 1 if n_sv > 1 else _ABSENT)
+    g_2sv_1.ephAvail = (_sent(r_2sv_1_8ephAvail == 1) if n_sv > 1 else _ABSENT)
+    g_2sv_1.almAvail = (_sent(r_2sv_1_8almAvail == 1) if n_sv > 1 else _ABSENT)
+    g_2sv_1.anoAvail = (_sent(r_2sv_1_8anoAvail == 1) if n_sv > 1 else _ABSENT)
+    g_2sv_1.aopAvail = (_sent(r_2sv_1_8aopAvail == 1) if n_sv > 1 else _ABSENT)
     g_2sv_1.reserved13 = r_2sv_1_10reserved13
-    g_2sv_1.sbasCorrUsed = (r_2sv_1_12sbasCorrUsed == 1 if n_sv > 1 else _ABSENT)
-    g_2sv_1.rtcmCorrUsed = (r_2sv_1_12rtcmCorrUsed == 1 if n_sv > 1 else _ABSENT)
-    g_2sv_1.slasCorrUsed = (r_2sv_1_12slasCorrUsed == 1 if n_sv > 1 else _ABSENT)
-    g_2sv_1.spartnCorrUsed = (r_2sv_1_14spartnCorrUsed == 1 if n_sv > 1 else _ABSENT)
-    g_2sv_1.prCorrUsed = (r_2sv_1_10prCorrUsed == 1 if n_sv > 1 else _ABSENT)
-    g_2sv_1.crCorrUsed = (r_2sv_1_10crCorrUsed == 1 if n_sv > 1 else _ABSENT)
-    g_2sv_1.doCorrUsed = (r_2sv_1_10doCorrUsed == 1 if n_sv > 1 else _ABSENT)
-    g_2sv_1.clasCorrUsed = (r_2sv_1_12clasCorrUsed == 1 if n_sv > 1 else _ABSENT)
-    g_2sv_1.lppCorrUsed = (r_2sv_1_11lppCorrUsed == 1 if n_sv > 1 else _ABSENT)
-    g_2sv_1.hasCorrUsed = (r_2sv_1_11hasCorrUsed == 1 if n_sv > 1 else _ABSENT)
+    g_2sv_1.sbasCorrUsed = (_sent(r_2sv_1_12sbasCorrUsed == 1) if n_sv > 1 else _ABSENT)
+    g_2sv_1.rtcmCorrUsed = (_sent(r_2sv_1_12rtcmCorrUsed == 1) if n_sv > 1 else _ABSENT)
+    g_2sv_1.slasCorrUsed = (_sent(r_2sv_1_12slasCorrUsed == 1) if n_sv > 1 else _ABSENT)
+    g_2sv_1.spartnCorrUsed = (_sent(r_2sv_1_14spartnCorrUsed == 1) if n_sv > 1 else _ABSENT)
+    g_2sv_1.prCorrUsed = (_sent(r_2sv_1_10prCorrUsed == 1) if n_sv > 1 else _ABSENT)
+    g_2sv_1.crCorrUsed = (_sent(r_2sv_1_10crCorrUsed == 1) if n_sv > 1 else _ABSENT)
+    g_2sv_1.doCorrUsed = (_sent(r_2sv_1_10doCorrUsed == 1) if n_sv > 1 else _ABSENT)
+    g_2sv_1.clasCorrUsed = (_sent(r_2sv_1_12clasCorrUsed == 1) if n_sv > 1 else _ABSENT)
+    g_2sv_1.lppCorrUsed = (_sent(r_2sv_1_11lppCorrUsed == 1) if n_sv > 1 else _ABSENT)
+    g_2sv_1.hasCorrUsed = (_sent(r_2sv_1_11hasCorrUsed == 1) if n_sv > 1 else _ABSENT)
     g_2sv_2 = _object_new(NavSatSv)
     g_2sv_2.gnssId = r_2sv_2_6gnssId
     g_2sv_2.svId = r_2sv_2_4svId
     g_2sv_2.cno = r_2sv_2_3cno
     g_2sv_2.elev = r_2sv_2_4elev
     g_2sv_2.azim = r_2sv_2_4azim
-    g_2sv_2.prRes = (r_2sv_2_5prRes * 0.1 if n_sv > 2 else _ABSENT)
+    g_2sv_2.prRes = (_sent(r_2sv_2_5prRes * 0.1) if n_sv > 2 else _ABSENT)
     g_2sv_2.qualityInd = r_2sv_2_10qualityInd
-    g_2sv_2.svUsed = (r_2sv_2_6svUsed == 1 if n_sv > 2 else _ABSENT)
+    g_2sv_2.svUsed = (_sent(r_2sv_2_6svUsed == 1) if n_sv > 2 else _ABSENT)
     g_2sv_2.health = r_2sv_2_6health
-    g_2sv_2.diffCorr = (r_2sv_2_8diffCorr == 1 if n_sv > 2 else _ABSENT)
-    g_2sv_2.smoothed = (r_2sv_2_8smoothed == 1 if n_sv > 2 else _ABSENT)
+    g_2sv_2.diffCorr = (_sent(r_2sv_2_8diffCorr == 1) if n_sv > 2 else _ABSENT)
+    g_2sv_2.smoothed = (_sent(r_2sv_2_8smoothed == 1) if n_sv > 2 else _ABSENT)
     g_2sv_2.orbitSource = r_2sv_2_11orbitSource
-    g_2sv_2.ephAvail = (r_2sv_2_8ephAvail == 1 if n_sv > 2 else _ABSENT)
-    g_2sv_2.almAvail = (r_2sv_2_8almAvail == 1 if n_sv > 2 else _ABSENT)
-    g_2sv_2.anoAvail = (r_2sv_2_8anoAvail == 1 if n_sv > 2 else _ABSENT)
-    g_2sv_2.aopAvail = (r_2sv_2_8aopAvail == 1 if n_sv > 2 else _ABSENT)
+    g_2sv_2.ephAvail = (_sent(r_2sv_2_8ephAvail == 1) if n_sv > 2 else _ABSENT)
+    g_2sv_2.almAvail = (_sent(r_2sv_2_8almAvail == 1) if n_sv > 2 else _ABSENT)
+    g_2sv_2.anoAvail = (_sent(r_2sv_2_8anoAvail == 1) if n_sv > 2 else _ABSENT)
+    g_2sv_2.aopAvail = (_sent(r_2sv_2_8aopAvail == 1) if n_sv > 2 else _ABSENT)
     g_2sv_2.reserved13 = r_2sv_2_10reserved13
-    g_2sv_2.sbasCorrUsed = (r_2sv_2_12sbasCorrUsed == 1 if n_sv > 2 else _ABSENT)
-    g_2sv_2.rtcmCorrUsed = (r_2sv_2_12rtcmCorrUsed == 1 if n_sv > 2 else _ABSENT)
-    g_2sv_2.slasCorrUsed = (r_2sv_2_12slasCorrUsed == 1 if n_sv > 2 else _ABSENT)
-    g_2sv_2.spartnCorrUsed = (r_2sv_2_14spartnCorrUsed == 1 if n_sv > 2 else _ABSENT)
-    g_2sv_2.prCorrUsed = (r_2sv_2_10prCorrUsed == 1 if n_sv > 2 else _ABSENT)
-    g_2sv_2.crCorrUsed = (r_2sv_2_10crCorrUsed == 1 if n_sv > 2 else _ABSENT)
-    g_2sv_2.doCorrUsed = (r_2sv_2_10doCorrUsed == 1 if n_sv > 2 else _ABSENT)
-    g_2sv_2.clasCorrUsed = (r_2sv_2_12clasCorrUsed == 1 if n_sv > 2 else _ABSENT)
-    g_2sv_2.lppCorrUsed = (r_2sv_2_11lppCorrUsed == 1 if n_sv > 2 else _ABSENT)
-    g_2sv_2.hasCorrUsed = (r_2sv_2_11hasCorrUsed == 1 if n_sv > 2 else _ABSENT)
+    g_2sv_2.sbasCorrUsed = (_sent(r_2sv_2_12sbasCorrUsed == 1) if n_sv > 2 else _ABSENT)
+    g_2sv_2.rtcmCorrUsed = (_sent(r_2sv_2_12rtcmCorrUsed == 1) if n_sv > 2 else _ABSENT)
+    g_2sv_2.slasCorrUsed = (_sent(r_2sv_2_12slasCorrUsed == 1) if n_sv > 2 else _ABSENT)
+    g_2sv_2.spartnCorrUsed = (_sent(r_2sv_2_14spartnCorrUsed == 1) if n_sv > 2 else _ABSENT)
+    g_2sv_2.prCorrUsed = (_sent(r_2sv_2_10prCorrUsed == 1) if n_sv > 2 else _ABSENT)
+    g_2sv_2.crCorrUsed = (_sent(r_2sv_2_10crCorrUsed == 1) if n_sv > 2 else _ABSENT)
+    g_2sv_2.doCorrUsed = (_sent(r_2sv_2_10doCorrUsed == 1) if n_sv > 2 else _ABSENT)
+    g_2sv_2.clasCorrUsed = (_sent(r_2sv_2_12clasCorrUsed == 1) if n_sv > 2 else _ABSENT)
+    g_2sv_2.lppCorrUsed = (_sent(r_2sv_2_11lppCorrUsed == 1) if n_sv > 2 else _ABSENT)
+    g_2sv_2.hasCorrUsed = (_sent(r_2sv_2_11hasCorrUsed == 1) if n_sv > 2 else _ABSENT)
     g_2sv_3 = _object_new(NavSatSv)
     g_2sv_3.gnssId = r_2sv_3_6gnssId
     g_2sv_3.svId = r_2sv_3_4svId
     g_2sv_3.cno = r_2sv_3_3cno
     g_2sv_3.elev = r_2sv_3_4elev
     g_2sv_3.azim = r_2sv_3_4azim
-    g_2sv_3.prRes = (r_2sv_3_5prRes * 0.1 if n_sv > 3 else _ABSENT)
+    g_2sv_3.prRes = (_sent(r_2sv_3_5prRes * 0.1) if n_sv > 3 else _ABSENT)
     g_2sv_3.qualityInd = r_2sv_3_10qualityInd
-    g_2sv_3.svUsed = (r_2sv_3_6svUsed == 1 if n_sv > 3 else _ABSENT)
+    g_2sv_3.svUsed = (_sent(r_2sv_3_6svUsed == 1) if n_sv > 3 else _ABSENT)
     g_2sv_3.health = r_2sv_3_6health
-    g_2sv_3.diffCorr = (r_2sv_3_8diffCorr == 1 if n_sv > 3 else _ABSENT)
-    g_2sv_3.smoothed = (r_2sv_3_8smoothed == 1 if n_sv > 3 else _ABSENT)
+    g_2sv_3.diffCorr = (_sent(r_2sv_3_8diffCorr == 1) if n_sv > 3 else _ABSENT)
+    g_2sv_3.smoothed = (_sent(r_2sv_3_8smoothed == 1) if n_sv > 3 else _ABSENT)
     g_2sv_3.orbitSource = r_2sv_3_11orbitSource
-    g_2sv_3.ephAvail = (r_2sv_3_8ephAvail == 1 if n_sv > 3 else _ABSENT)
-    g_2sv_3.almAvail = (r_2sv_3_8almAvail == 1 if n_sv > 3 else _ABSENT)
-    g_2sv_3.anoAvail = (r_2sv_3_8anoAvail == 1 if n_sv > 3 else _ABSENT)
-    g_2sv_3.aopAvail = (r_2sv_3_8aopAvail == 1 if n_sv > 3 else _ABSENT)
+    g_2sv_3.ephAvail = (_sent(r_2sv_3_8ephAvail == 1) if n_sv > 3 else _ABSENT)
+    g_2sv_3.almAvail = (_sent(r_2sv_3_8almAvail == 1) if n_sv > 3 else _ABSENT)
+    g_2sv_3.anoAvail = (_sent(r_2sv_3_8anoAvail == 1) if n_sv > 3 else _ABSENT)
+    g_2sv_3.aopAvail = (_sent(r_2sv_3_8aopAvail == 1) if n_sv > 3 else _ABSENT)
     g_2sv_3.reserved13 = r_2sv_3_10reserved13
-    g_2sv_3.sbasCorrUsed = (r_2sv_3_12sbasCorrUsed == 1 if n_sv > 3 else _ABSENT)
-    g_2sv_3.rtcmCorrUsed = (r_2sv_3_12rtcmCorrUsed == 1 if n_sv > 3 else _ABSENT)
-    g_2sv_3.slasCorrUsed = (r_2sv_3_12slasCorrUsed == 1 if n_sv > 3 else _ABSENT)
-    g_2sv_3.spartnCorrUsed = (r_2sv_3_14spartnCorrUsed == 1 if n_sv > 3 else _ABSENT)
-    g_2sv_3.prCorrUsed = (r_2sv_3_10prCorrUsed == 1 if n_sv > 3 else _ABSENT)
-    g_2sv_3.crCorrUsed = (r_2sv_3_10crCorrUsed == 1 if n_sv > 3 else _ABSENT)
-    g_2sv_3.doCorrUsed = (r_2sv_3_10doCorrUsed == 1 if n_sv > 3 else _ABSENT)
-    g_2sv_3.clasCorrUsed = (r_2sv_3_12clasCorrUsed == 1 if n_sv > 3 else _ABSENT)
-    g_2sv_3.lppCorrUsed = (r_2sv_3_11lppCorrUsed == 1 if n_sv > 3 else _ABSENT)
-    g_2sv_3.hasCorrUsed = (r_2sv_3_11hasCorrUsed == 1 if n_sv > 3 else _ABSENT)
+    g_2sv_3.sbasCorrUsed = (_sent(r_2sv_3_12sbasCorrUsed == 1) if n_sv > 3 else _ABSENT)
+    g_2sv_3.rtcmCorrUsed = (_sent(r_2sv_3_12rtcmCorrUsed == 1) if n_sv > 3 else _ABSENT)
+    g_2sv_3.slasCorrUsed = (_sent(r_2sv_3_12slasCorrUsed == 1) if n_sv > 3 else _ABSENT)
+    g_2sv_3.spartnCorrUsed = (_sent(r_2sv_3_14spartnCorrUsed == 1) if n_sv > 3 else _ABSENT)
+    g_2sv_3.prCorrUsed = (_sent(r_2sv_3_10prCorrUsed == 1) if n_sv > 3 else _ABSENT)
+    g_2sv_3.crCorrUsed = (_sent(r_2sv_3_10crCorrUsed == 1) if n_sv > 3 else _ABSENT)
+    g_2sv_3.doCorrUsed = (_sent(r_2sv_3_10doCorrUsed == 1) if n_sv > 3 else _ABSENT)
+    g_2sv_3.clasCorrUsed = (_sent(r_2sv_3_12clasCorrUsed == 1) if n_sv > 3 else _ABSENT)
+    g_2sv_3.lppCorrUsed = (_sent(r_2sv_3_11lppCorrUsed == 1) if n_sv > 3 else _ABSENT)
+    g_2sv_3.hasCorrUsed = (_sent(r_2sv_3_11hasCorrUsed == 1) if n_sv > 3 else _ABSENT)
     g_2sv_4 = _object_new(NavSatSv)
     g_2sv_4.gnssId = r_2sv_4_6gnssId
     g_2sv_4.svId = r_2sv_4_4svId
     g_2sv_4.cno = r_2sv_4_3cno
     g_2sv_4.elev = r_2sv_4_4elev
     g_2sv_4.azim = r_2sv_4_4azim
-    g_2sv_4.prRes = (r_2sv_4_5prRes * 0.1 if n_sv > 4 else _ABSENT)
+    g_2sv_4.prRes = (_sent(r_2sv_4_5prRes * 0.1) if n_sv > 4 else _ABSENT)
     g_2sv_4.qualityInd = r_2sv_4_10qualityInd
-    g_2sv_4.svUsed = (r_2sv_4_6svUsed == 1 if n_sv > 4 else _ABSENT)
+    g_2sv_4.svUsed = (_sent(r_2sv_4_6svUsed == 1) if n_sv > 4 else _ABSENT)
     g_2sv_4.health = r_2sv_4_6health
-    g_2sv_4.diffCorr = (r_2sv_4_8diffCorr == 1 if n_sv > 4 else _ABSENT)
-    g_2sv_4.smoothed = (r_2sv_4_8smoothed == 1 if n_sv > 4 else _ABSENT)
+    g_2sv_4.diffCorr = (_sent(r_2sv_4_8diffCorr == 1) if n_sv > 4 else _ABSENT)
+    g_2sv_4.smoothed = (_sent(r_2sv_4_8smoothed == 1) if n_sv > 4 else _ABSENT)
     g_2sv_4.orbitSource = r_2sv_4_11orbitSource
-    g_2sv_4.ephAvail = (r_2sv_4_8ephAvail == 1 if n_sv > 4 else _ABSENT)
-    g_2sv_4.almAvail = (r_2sv_4_8almAvail == 1 if n_sv > 4 else _ABSENT)
-    g_2sv_4.anoAvail = (r_2sv_4_8anoAvail == 1 if n_sv > 4 else _ABSENT)
-    g_2sv_4.aopAvail = (r_2sv_4_8aopAvail == 1 if n_sv > 4 else _ABSENT)
+    g_2sv_4.ephAvail = (_sent(r_2sv_4_8ephAvail == 1) if n_sv > 4 else _ABSENT)
+    g_2sv_4.almAvail = (_sent(r_2sv_4_8almAvail == 1) if n_sv > 4 else _ABSENT)
+    g_2sv_4.anoAvail = (_sent(r_2sv_4_8anoAvail == 1) if n_sv > 4 else _ABSENT)
+    g_2sv_4.aopAvail = (_sent(r_2sv_4_8aopAvail == 1) if n_sv > 4 else _ABSENT)
     g_2sv_4.reserved13 = r_2sv_4_10reserved13
-    g_2sv_4.sbasCorrUsed = (r_2sv_4_12sbasCorrUsed == 1 if n_sv > 4 else _ABSENT)
-    g_2sv_4.rtcmCorrUsed = (r_2sv_4_12rtcmCorrUsed == 1 if n_sv > 4 else _ABSENT)
-    g_2sv_4.slasCorrUsed = (r_2sv_4_12slasCorrUsed == 1 if n_sv > 4 else _ABSENT)
-    g_2sv_4.spartnCorrUsed = (r_2sv_4_14spartnCorrUsed == 1 if n_sv > 4 else _ABSENT)
-    g_2sv_4.prCorrUsed = (r_2sv_4_10prCorrUsed == 1 if n_sv > 4 else _ABSENT)
-    g_2sv_4.crCorrUsed = (r_2sv_4_10crCorrUsed == 1 if n_sv > 4 else _ABSENT)
-    g_2sv_4.doCorrUsed = (r_2sv_4_10doCorrUsed == 1 if n_sv > 4 else _ABSENT)
-    g_2sv_4.clasCorrUsed = (r_2sv_4_12clasCorrUsed == 1 if n_sv > 4 else _ABSENT)
-    g_2sv_4.lppCorrUsed = (r_2sv_4_11lppCorrUsed == 1 if n_sv > 4 else _ABSENT)
-    g_2sv_4.hasCorrUsed = (r_2sv_4_11hasCorrUsed == 1 if n_sv > 4 else _ABSENT)
+    g_2sv_4.sbasCorrUsed = (_sent(r_2sv_4_12sbasCorrUsed == 1) if n_sv > 4 else _ABSENT)
+    g_2sv_4.rtcmCorrUsed = (_sent(r_2sv_4_12rtcmCorrUsed == 1) if n_sv > 4 else _ABSENT)
+    g_2sv_4.slasCorrUsed = (_sent(r_2sv_4_12slasCorrUsed == 1) if n_sv > 4 else _ABSENT)
+    g_2sv_4.spartnCorrUsed = (_sent(r_2sv_4_14spartnCorrUsed == 1) if n_sv > 4 else _ABSENT)
+    g_2sv_4.prCorrUsed = (_sent(r_2sv_4_10prCorrUsed == 1) if n_sv > 4 else _ABSENT)
+    g_2sv_4.crCorrUsed = (_sent(r_2sv_4_10crCorrUsed == 1) if n_sv > 4 else _ABSENT)
+    g_2sv_4.doCorrUsed = (_sent(r_2sv_4_10doCorrUsed == 1) if n_sv > 4 else _ABSENT)
+    g_2sv_4.clasCorrUsed = (_sent(r_2sv_4_12clasCorrUsed == 1) if n_sv > 4 else _ABSENT)
+    g_2sv_4.lppCorrUsed = (_sent(r_2sv_4_11lppCorrUsed == 1) if n_sv > 4 else _ABSENT)
+    g_2sv_4.hasCorrUsed = (_sent(r_2sv_4_11hasCorrUsed == 1) if n_sv > 4 else _ABSENT)
     g_2sv_5 = _object_new(NavSatSv)
     g_2sv_5.gnssId = r_2sv_5_6gnssId
     g_2sv_5.svId = r_2sv_5_4svId
     g_2sv_5.cno = r_2sv_5_3cno
     g_2sv_5.elev = r_2sv_5_4elev
     g_2sv_5.azim = r_2sv_5_4azim
-    g_2sv_5.prRes = (r_2sv_5_5prRes * 0.1 if n_sv > 5 else _ABSENT)
+    g_2sv_5.prRes = (_sent(r_2sv_5_5prRes * 0.1) if n_sv > 5 else _ABSENT)
     g_2sv_5.qualityInd = r_2sv_5_10qualityInd
-    g_2sv_5.svUsed = (r_2sv_5_6svUsed == 1 if n_sv > 5 else _ABSENT)
+    g_2sv_5.svUsed = (_sent(r_2sv_5_6svUsed == 1) if n_sv > 5 else _ABSENT)
     g_2sv_5.health = r_2sv_5_6health
-    g_2sv_5.diffCorr = (r_2sv_5_8diffCorr == 1 if n_sv > 5 else _ABSENT)
-    g_2sv_5.smoothed = (r_2sv_5_8smoothed == 1 if n_sv > 5 else _ABSENT)
+    g_2sv_5.diffCorr = (_sent(r_2sv_5_8diffCorr == 1) if n_sv > 5 else _ABSENT)
+    g_2sv_5.smoothed = (_sent(r_2sv_5_8smoothed == 1) if n_sv > 5 else _ABSENT)
     g_2sv_5.orbitSource = r_2sv_5_11orbitSource
-    g_2sv_5.ephAvail = (r_2sv_5_8ephAvail == 1 if n_sv > 5 else _ABSENT)
-    g_2sv_5.almAvail = (r_2sv_5_8almAvail == 1 if n_sv > 5 else _ABSENT)
-    g_2sv_5.anoAvail = (r_2sv_5_8anoAvail == 1 if n_sv > 5 else _ABSENT)
-    g_2sv_5.aopAvail = (r_2sv_5_8aopAvail == 1 if n_sv > 5 else _ABSENT)
+    g_2sv_5.ephAvail = (_sent(r_2sv_5_8ephAvail == 1) if n_sv > 5 else _ABSENT)
+    g_2sv_5.almAvail = (_sent(r_2sv_5_8almAvail == 1) if n_sv > 5 else _ABSENT)
+    g_2sv_5.anoAvail = (_sent(r_2sv_5_8anoAvail == 1) if n_sv > 5 else _ABSENT)
+    g_2sv_5.aopAvail = (_sent(r_2sv_5_8aopAvail == 1) if n_sv > 5 else _ABSENT)
     g_2sv_5.reserved13 = r_2sv_5_10reserved13
-    g_2sv_5.sbasCorrUsed = (r_2sv_5_12sbasCorrUsed == 1 if n_sv > 5 else _ABSENT)
-    g_2sv_5.rtcmCorrUsed = (r_2sv_5_12rtcmCorrUsed == 1 if n_sv > 5 else _ABSENT)
-    g_2sv_5.slasCorrUsed = (r_2sv_5_12slasCorrUsed == 1 if n_sv > 5 else _ABSENT)
-    g_2sv_5.spartnCorrUsed = (r_2sv_5_14spartnCorrUsed == 1 if n_sv > 5 else _ABSENT)
-    g_2sv_5.prCorrUsed = (r_2sv_5_10prCorrUsed == 1 if n_sv > 5 else _ABSENT)
-    g_2sv_5.crCorrUsed = (r_2sv_5_10crCorrUsed == 1 if n_sv > 5 else _ABSENT)
-    g_2sv_5.doCorrUsed = (r_2sv_5_10doCorrUsed == 1 if n_sv > 5 else _ABSENT)
-    g_2sv_5.clasCorrUsed = (r_2sv_5_12clasCorrUsed == 1 if n_sv > 5 else _ABSENT)
-    g_2sv_5.lppCorrUsed = (r_2sv_5_11lppCorrUsed == 1 if n_sv > 5 else _ABSENT)
-    g_2sv_5.hasCorrUsed = (r_2sv_5_11hasCorrUsed == 1 if n_sv > 5 else _ABSENT)
+    g_2sv_5.sbasCorrUsed = (_sent(r_2sv_5_12sbasCorrUsed == 1) if n_sv > 5 else _ABSENT)
+    g_2sv_5.rtcmCorrUsed = (_sent(r_2sv_5_12rtcmCorrUsed == 1) if n_sv > 5 else _ABSENT)
+    g_2sv_5.slasCorrUsed = (_sent(r_2sv_5_12slasCorrUsed == 1) if n_sv > 5 else _ABSENT)
+    g_2sv_5.spartnCorrUsed = (_sent(r_2sv_5_14spartnCorrUsed == 1) if n_sv > 5 else _ABSENT)
+    g_2sv_5.prCorrUsed = (_sent(r_2sv_5_10prCorrUsed == 1) if n_sv > 5 else _ABSENT)
+    g_2sv_5.crCorrUsed = (_sent(r_2sv_5_10crCorrUsed == 1) if n_sv > 5 else _ABSENT)
+    g_2sv_5.doCorrUsed = (_sent(r_2sv_5_10doCorrUsed == 1) if n_sv > 5 else _ABSENT)
+    g_2sv_5.clasCorrUsed = (_sent(r_2sv_5_12clasCorrUsed == 1) if n_sv > 5 else _ABSENT)
+    g_2sv_5.lppCorrUsed = (_sent(r_2sv_5_11lppCorrUsed == 1) if n_sv > 5 else _ABSENT)
+    g_2sv_5.hasCorrUsed = (_sent(r_2sv_5_11hasCorrUsed == 1) if n_sv > 5 else _ABSENT)
     g_2sv_6 = _object_new(NavSatSv)
     g_2sv_6.gnssId = r_2sv_6_6gnssId
     g_2sv_6.svId = r_2sv_6_4svId
     g_2sv_6.cno = r_2sv_6_3cno
     g_2sv_6.elev = r_2sv_6_4elev
     g_2sv_6.azim = r_2sv_6_4azim
-    g_2sv_6.prRes = (r_2sv_6_5prRes * 0.1 if n_sv > 6 else _ABSENT)
+    g_2sv_6.prRes = (_sent(r_2sv_6_5prRes * 0.1) if n_sv > 6 else _ABSENT)
     g_2sv_6.qualityInd = r_2sv_6_10qualityInd
-    g_2sv_6.svUsed = (r_2sv_6_6svUsed == 1 if n_sv > 6 else _ABSENT)
+    g_2sv_6.svUsed = (_sent(r_2sv_6_6svUsed == 1) if n_sv > 6 else _ABSENT)
     g_2sv_6.health = r_2sv_6_6health
-    g_2sv_6.diffCorr = (r_2sv_6_8diffCorr == 1 if n_sv > 6 else _ABSENT)
-    g_2sv_6.smoothed = (r_2sv_6_8smoothed == 1 if n_sv > 6 else _ABSENT)
+    g_2sv_6.diffCorr = (_sent(r_2sv_6_8diffCorr == 1) if n_sv > 6 else _ABSENT)
+    g_2sv_6.smoothed = (_sent(r_2sv_6_8smoothed == 1) if n_sv > 6 else _ABSENT)
     g_2sv_6.orbitSource = r_2sv_6_11orbitSource
-    g_2sv_6.ephAvail = (r_2sv_6_8ephAvail == 1 if n_sv > 6 else _ABSENT)
-    g_2sv_6.almAvail = (r_2sv_6_8almAvail == 1 if n_sv > 6 else _ABSENT)
-    g_2sv_6.anoAvail = (r_2sv_6_8anoAvail == 1 if n_sv > 6 else _ABSENT)
-    g_2sv_6.aopAvail = (r_2sv_6_8aopAvail == 1 if n_sv > 6 else _ABSENT)
+    g_2sv_6.ephAvail = (_sent(r_2sv_6_8ephAvail == 1) if n_sv > 6 else _ABSENT)
+    g_2sv_6.almAvail = (_sent(r_2sv_6_8almAvail == 1) if n_sv > 6 else _ABSENT)
+    g_2sv_6.anoAvail = (_sent(r_2sv_6_8anoAvail == 1) if n_sv > 6 else _ABSENT)
+    g_2sv_6.aopAvail = (_sent(r_2sv_6_8aopAvail == 1) if n_sv > 6 else _ABSENT)
     g_2sv_6.reserved13 = r_2sv_6_10reserved13
-    g_2sv_6.sbasCorrUsed = (r_2sv_6_12sbasCorrUsed == 1 if n_sv > 6 else _ABSENT)
-    g_2sv_6.rtcmCorrUsed = (r_2sv_6_12rtcmCorrUsed == 1 if n_sv > 6 else _ABSENT)
-    g_2sv_6.slasCorrUsed = (r_2sv_6_12slasCorrUsed == 1 if n_sv > 6 else _ABSENT)
-    g_2sv_6.spartnCorrUsed = (r_2sv_6_14spartnCorrUsed == 1 if n_sv > 6 else _ABSENT)
-    g_2sv_6.prCorrUsed = (r_2sv_6_10prCorrUsed == 1 if n_sv > 6 else _ABSENT)
-    g_2sv_6.crCorrUsed = (r_2sv_6_10crCorrUsed == 1 if n_sv > 6 else _ABSENT)
-    g_2sv_6.doCorrUsed = (r_2sv_6_10doCorrUsed == 1 if n_sv > 6 else _ABSENT)
-    g_2sv_6.clasCorrUsed = (r_2sv_6_12clasCorrUsed == 1 if n_sv > 6 else _ABSENT)
-    g_2sv_6.lppCorrUsed = (r_2sv_6_11lppCorrUsed == 1 if n_sv > 6 else _ABSENT)
-    g_2sv_6.hasCorrUsed = (r_2sv_6_11hasCorrUsed == 1 if n_sv > 6 else _ABSENT)
+    g_2sv_6.sbasCorrUsed = (_sent(r_2sv_6_12sbasCorrUsed == 1) if n_sv > 6 else _ABSENT)
+    g_2sv_6.rtcmCorrUsed = (_sent(r_2sv_6_12rtcmCorrUsed == 1) if n_sv > 6 else _ABSENT)
+    g_2sv_6.slasCorrUsed = (_sent(r_2sv_6_12slasCorrUsed == 1) if n_sv > 6 else _ABSENT)
+    g_2sv_6.spartnCorrUsed = (_sent(r_2sv_6_14spartnCorrUsed == 1) if n_sv > 6 else _ABSENT)
+    g_2sv_6.prCorrUsed = (_sent(r_2sv_6_10prCorrUsed == 1) if n_sv > 6 else _ABSENT)
+    g_2sv_6.crCorrUsed = (_sent(r_2sv_6_10crCorrUsed == 1) if n_sv > 6 else _ABSENT)
+    g_2sv_6.doCorrUsed = (_sent(r_2sv_6_10doCorrUsed == 1) if n_sv > 6 else _ABSENT)
+    g_2sv_6.clasCorrUsed = (_sent(r_2sv_6_12clasCorrUsed == 1) if n_sv > 6 else _ABSENT)
+    g_2sv_6.lppCorrUsed = (_sent(r_2sv_6_11lppCorrUsed == 1) if n_sv > 6 else _ABSENT)
+    g_2sv_6.hasCorrUsed = (_sent(r_2sv_6_11hasCorrUsed == 1) if n_sv > 6 else _ABSENT)
     g_2sv_7 = _object_new(NavSatSv)
     g_2sv_7.gnssId = r_2sv_7_6gnssId
     g_2sv_7.svId = r_2sv_7_4svId
     g_2sv_7.cno = r_2sv_7_3cno
     g_2sv_7.elev = r_2sv_7_4elev
     g_2sv_7.azim = r_2sv_7_4azim
-    g_2sv_7.prRes = (r_2sv_7_5prRes * 0.1 if n_sv > 7 else _ABSENT)
+    g_2sv_7.prRes = (_sent(r_2sv_7_5prRes * 0.1) if n_sv > 7 else _ABSENT)
     g_2sv_7.qualityInd = r_2sv_7_10qualityInd
-    g_2sv_7.svUsed = (r_2sv_7_6svUsed == 1 if n_sv > 7 else _ABSENT)
+    g_2sv_7.svUsed = (_sent(r_2sv_7_6svUsed == 1) if n_sv > 7 else _ABSENT)
     g_2sv_7.health = r_2sv_7_6health
-    g_2sv_7.diffCorr = (r_2sv_7_8diffCorr == 1 if n_sv > 7 else _ABSENT)
-    g_2sv_7.smoothed = (r_2sv_7_8smoothed == 1 if n_sv > 7 else _ABSENT)
+    g_2sv_7.diffCorr = (_sent(r_2sv_7_8diffCorr == 1) if n_sv > 7 else _ABSENT)
+    g_2sv_7.smoothed = (_sent(r_2sv_7_8smoothed == 1) if n_sv > 7 else _ABSENT)
     g_2sv_7.orbitSource = r_2sv_7_11orbitSource
-    g_2sv_7.ephAvail = (r_2sv_7_8ephAvail == 1 if n_sv > 7 else _ABSENT)
-    g_2sv_7.almAvail = (r_2sv_7_8almAvail == 1 if n_sv > 7 else _ABSENT)
-    g_2sv_7.anoAvail = (r_2sv_7_8anoAvail == 1 if n_sv > 7 else _ABSENT)
-    g_2sv_7.aopAvail = (r_2sv_7_8aopAvail == 1 if n_sv > 7 else _ABSENT)
+    g_2sv_7.ephAvail = (_sent(r_2sv_7_8ephAvail == 1) if n_sv > 7 else _ABSENT)
+    g_2sv_7.almAvail = (_sent(r_2sv_7_8almAvail == 1) if n_sv > 7 else _ABSENT)
+    g_2sv_7.anoAvail = (_sent(r_2sv_7_8anoAvail == 1) if n_sv > 7 else _ABSENT)
+    g_2sv_7.aopAvail = (_sent(r_2sv_7_8aopAvail == 1) if n_sv > 7 else _ABSENT)
     g_2sv_7.reserved13 = r_2sv_7_10reserved13
-    g_2sv_7.sbasCorrUsed = (r_2sv_7_12sbasCorrUsed == 1 if n_sv > 7 else _ABSENT)
-    g_2sv_7.rtcmCorrUsed = (r_2sv_7_12rtcmCorrUsed == 1 if n_sv > 7 else _ABSENT)
-    g_2sv_7.slasCorrUsed = (r_2sv_7_12slasCorrUsed == 1 if n_sv > 7 else _ABSENT)
-    g_2sv_7.spartnCorrUsed = (r_2sv_7_14spartnCorrUsed == 1 if n_sv > 7 else _ABSENT)
-    g_2sv_7.prCorrUsed = (r_2sv_7_10prCorrUsed == 1 if n_sv > 7 else _ABSENT)
-    g_2sv_7.crCorrUsed = (r_2sv_7_10crCorrUsed == 1 if n_sv > 7 else _ABSENT)
-    g_2sv_7.doCorrUsed = (r_2sv_7_10doCorrUsed == 1 if n_sv > 7 else _ABSENT)
-    g_2sv_7.clasCorrUsed = (r_2sv_7_12clasCorrUsed == 1 if n_sv > 7 else _ABSENT)
-    g_2sv_7.lppCorrUsed = (r_2sv_7_11lppCorrUsed == 1 if n_sv > 7 else _ABSENT)
-    g_2sv_7.hasCorrUsed = (r_2sv_7_11hasCorrUsed == 1 if n_sv > 7 else _ABSENT)
+    g_2sv_7.sbasCorrUsed = (_sent(r_2sv_7_12sbasCorrUsed == 1) if n_sv > 7 else _ABSENT)
+    g_2sv_7.rtcmCorrUsed = (_sent(r_2sv_7_12rtcmCorrUsed == 1) if n_sv > 7 else _ABSENT)
+    g_2sv_7.slasCorrUsed = (_sent(r_2sv_7_12slasCorrUsed == 1) if n_sv > 7 else _ABSENT)
+    g_2sv_7.spartnCorrUsed = (_sent(r_2sv_7_14spartnCorrUsed == 1) if n_sv > 7 else _ABSENT)
+    g_2sv_7.prCorrUsed = (_sent(r_2sv_7_10prCorrUsed == 1) if n_sv > 7 else _ABSENT)
+    g_2sv_7.crCorrUsed = (_sent(r_2sv_7_10crCorrUsed == 1) if n_sv > 7 else _ABSENT)
+    g_2sv_7.doCorrUsed = (_sent(r_2sv_7_10doCorrUsed == 1) if n_sv > 7 else _ABSENT)
+    g_2sv_7.clasCorrUsed = (_sent(r_2sv_7_12clasCorrUsed == 1) if n_sv > 7 else _ABSENT)
+    g_2sv_7.lppCorrUsed = (_sent(r_2sv_7_11lppCorrUsed == 1) if n_sv > 7 else _ABSENT)
+    g_2sv_7.hasCorrUsed = (_sent(r_2sv_7_11hasCorrUsed == 1) if n_sv > 7 else _ABSENT)
     g_2sv_8 = _object_new(NavSatSv)
     g_2sv_8.gnssId = r_2sv_8_6gnssId
     g_2sv_8.svId = r_2sv_8_4svId
     g_2sv_8.cno = r_2sv_8_3cno
     g_2sv_8.elev = r_2sv_8_4elev
     g_2sv_8.azim = r_2sv_8_4azim
-    g_2sv_8.prRes = (r_2sv_8_5prRes * 0.1 if n_sv > 8 else _ABSENT)
+    g_2sv_8.prRes = (_sent(r_2sv_8_5prRes * 0.1) if n_sv > 8 else _ABSENT)
     g_2sv_8.qualityInd = r_2sv_8_10qualityInd
-    g_2sv_8.svUsed = (r_2sv_8_6svUsed == 1 if n_sv > 8 else _ABSENT)
+    g_2sv_8.svUsed = (_sent(r_2sv_8_6svUsed == 1) if n_sv > 8 else _ABSENT)
     g_2sv_8.health = r_2sv_8_6health
-    g_2sv_8.diffCorr = (r_2sv_8_8diffCorr == 1 if n_sv > 8 else _ABSENT)
-    g_2sv_8.smoothed = (r_2sv_8_8smoothed == 1 if n_sv > 8 else _ABSENT)
+    g_2sv_8.diffCorr = (_sent(r_2sv_8_8diffCorr == 1) if n_sv > 8 else _ABSENT)
+    g_2sv_8.smoothed = (_sent(r_2sv_8_8smoothed == 1) if n_sv > 8 else _ABSENT)
     g_2sv_8.orbitSource = r_2sv_8_11orbitSource
-    g_2sv_8.ephAvail = (r_2sv_8_8ephAvail == 1 if n_sv > 8 else _ABSENT)
-    g_2sv_8.almAvail = (r_2sv_8_8almAvail == 1 if n_sv > 8 else _ABSENT)
-    g_2sv_8.anoAvail = (r_2sv_8_8anoAvail == 1 if n_sv > 8 else _ABSENT)
-    g_2sv_8.aopAvail = (r_2sv_8_8aopAvail == 1 if n_sv > 8 else _ABSENT)
+    g_2sv_8.ephAvail = (_sent(r_2sv_8_8ephAvail == 1) if n_sv > 8 else _ABSENT)
+    g_2sv_8.almAvail = (_sent(r_2sv_8_8almAvail == 1) if n_sv > 8 else _ABSENT)
+    g_2sv_8.anoAvail = (_sent(r_2sv_8_8anoAvail == 1) if n_sv > 8 else _ABSENT)
+    g_2sv_8.aopAvail = (_sent(r_2sv_8_8aopAvail == 1) if n_sv > 8 else _ABSENT)
     g_2sv_8.reserved13 = r_2sv_8_10reserved13
-    g_2sv_8.sbasCorrUsed = (r_2sv_8_12sbasCorrUsed == 1 if n_sv > 8 else _ABSENT)
-    g_2sv_8.rtcmCorrUsed = (r_2sv_8_12rtcmCorrUsed == 1 if n_sv > 8 else _ABSENT)
-    g_2sv_8.slasCorrUsed = (r_2sv_8_12slasCorrUsed == 1 if n_sv > 8 else _ABSENT)
-    g_2sv_8.spartnCorrUsed = (r_2sv_8_14spartnCorrUsed == 1 if n_sv > 8 else _ABSENT)
-    g_2sv_8.prCorrUsed = (r_2sv_8_10prCorrUsed == 1 if n_sv > 8 else _ABSENT)
-    g_2sv_8.crCorrUsed = (r_2sv_8_10crCorrUsed == 1 if n_sv > 8 else _ABSENT)
-    g_2sv_8.doCorrUsed = (r_2sv_8_10doCorrUsed == 1 if n_sv > 8 else _ABSENT)
-    g_2sv_8.clasCorrUsed = (r_2sv_8_12clasCorrUsed == 1 if n_sv > 8 else _ABSENT)
-    g_2sv_8.lppCorrUsed = (r_2sv_8_11lppCorrUsed == 1 if n_sv > 8 else _ABSENT)
-    g_2sv_8.hasCorrUsed = (r_2sv_8_11hasCorrUsed == 1 if n_sv > 8 else _ABSENT)
+    g_2sv_8.sbasCorrUsed = (_sent(r_2sv_8_12sbasCorrUsed == 1) if n_sv > 8 else _ABSENT)
+    g_2sv_8.rtcmCorrUsed = (_sent(r_2sv_8_12rtcmCorrUsed == 1) if n_sv > 8 else _ABSENT)
+    g_2sv_8.slasCorrUsed = (_sent(r_2sv_8_12slasCorrUsed == 1) if n_sv > 8 else _ABSENT)
+    g_2sv_8.spartnCorrUsed = (_sent(r_2sv_8_14spartnCorrUsed == 1) if n_sv > 8 else _ABSENT)
+    g_2sv_8.prCorrUsed = (_sent(r_2sv_8_10prCorrUsed == 1) if n_sv > 8 else _ABSENT)
+    g_2sv_8.crCorrUsed = (_sent(r_2sv_8_10crCorrUsed == 1) if n_sv > 8 else _ABSENT)
+    g_2sv_8.doCorrUsed = (_sent(r_2sv_8_10doCorrUsed == 1) if n_sv > 8 else _ABSENT)
+    g_2sv_8.clasCorrUsed = (_sent(r_2sv_8_12clasCorrUsed == 1) if n_sv > 8 else _ABSENT)
+    g_2sv_8.lppCorrUsed = (_sent(r_2sv_8_11lppCorrUsed == 1) if n_sv > 8 else _ABSENT)
+    g_2sv_8.hasCorrUsed = (_sent(r_2sv_8_11hasCorrUsed == 1) if n_sv > 8 else _ABSENT)
     g_2sv_9 = _object_new(NavSatSv)
     g_2sv_9.gnssId = r_2sv_9_6gnssId
     g_2sv_9.svId = r_2sv_9_4svId
     g_2sv_9.cno = r_2sv_9_3cno
     g_2sv_9.elev = r_2sv_9_4elev
     g_2sv_9.azim = r_2sv_9_4azim
-    g_2sv_9.prRes = (r_2sv_9_5prRes * 0.1 if n_sv > 9 else _ABSENT)
+    g_2sv_9.prRes = (_sent(r_2sv_9_5prRes * 0.1) if n_sv > 9 else _ABSENT)
     g_2sv_9.qualityInd = r_2sv_9_10qualityInd
-    g_2sv_9.svUsed = (r_2sv_9_6svUsed == 1 if n_sv > 9 else _ABSENT)
+    g_2sv_9.svUsed = (_sent(r_2sv_9_6svUsed == 1) if n_sv > 9 else _ABSENT)
     g_2sv_9.health = r_2sv_9_6health
-    g_2sv_9.diffCorr = (r_2sv_9_8diffCorr == 1 if n_sv > 9 else _ABSENT)
-    g_2sv_9.smoothed = (r_2sv_9_8smoothed == 1 if n_sv > 9 else _ABSENT)
+    g_2sv_9.diffCorr = (_sent(r_2sv_9_8diffCorr == 1) if n_sv > 9 else _ABSENT)
+    g_2sv_9.smoothed = (_sent(r_2sv_9_8smoothed == 1) if n_sv > 9 else _ABSENT)
     g_2sv_9.orbitSource = r_2sv_9_11orbitSource
-    g_2sv_9.ephAvail = (r_2sv_9_8ephAvail == 1 if n_sv > 9 else _ABSENT)
-    g_2sv_9.almAvail = (r_2sv_9_8almAvail == 1 if n_sv > 9 else _ABSENT)
-    g_2sv_9.anoAvail = (r_2sv_9_8anoAvail == 1 if n_sv > 9 else _ABSENT)
-    g_2sv_9.aopAvail = (r_2sv_9_8aopAvail == 1 if n_sv > 9 else _ABSENT)
+    g_2sv_9.ephAvail = (_sent(r_2sv_9_8ephAvail == 1) if n_sv > 9 else _ABSENT)
+    g_2sv_9.almAvail = (_sent(r_2sv_9_8almAvail == 1) if n_sv > 9 else _ABSENT)
+    g_2sv_9.anoAvail = (_sent(r_2sv_9_8anoAvail == 1) if n_sv > 9 else _ABSENT)
+    g_2sv_9.aopAvail = (_sent(r_2sv_9_8aopAvail == 1) if n_sv > 9 else _ABSENT)
     g_2sv_9.reserved13 = r_2sv_9_10reserved13
-    g_2sv_9.sbasCorrUsed = (r_2sv_9_12sbasCorrUsed == 1 if n_sv > 9 else _ABSENT)
-    g_2sv_9.rtcmCorrUsed = (r_2sv_9_12rtcmCorrUsed == 1 if n_sv > 9 else _ABSENT)
-    g_2sv_9.slasCorrUsed = (r_2sv_9_12slasCorrUsed == 1 if n_sv > 9 else _ABSENT)
-    g_2sv_9.spartnCorrUsed = (r_2sv_9_14spartnCorrUsed == 1 if n_sv > 9 else _ABSENT)
-    g_2sv_9.prCorrUsed = (r_2sv_9_10prCorrUsed == 1 if n_sv > 9 else _ABSENT)
-    g_2sv_9.crCorrUsed = (r_2sv_9_10crCorrUsed == 1 if n_sv > 9 else _ABSENT)
-    g_2sv_9.doCorrUsed = (r_2sv_9_10doCorrUsed == 1 if n_sv > 9 else _ABSENT)
-    g_2sv_9.clasCorrUsed = (r_2sv_9_12clasCorrUsed == 1 if n_sv > 9 else _ABSENT)
-    g_2sv_9.lppCorrUsed = (r_2sv_9_11lppCorrUsed == 1 if n_sv > 9 else _ABSENT)
-    g_2sv_9.hasCorrUsed = (r_2sv_9_11hasCorrUsed == 1 if n_sv > 9 else _ABSENT)
+    g_2sv_9.sbasCorrUsed = (_sent(r_2sv_9_12sbasCorrUsed == 1) if n_sv > 9 else _ABSENT)
+    g_2sv_9.rtcmCorrUsed = (_sent(r_2sv_9_12rtcmCorrUsed == 1) if n_sv > 9 else _ABSENT)
+    g_2sv_9.slasCorrUsed = (_sent(r_2sv_9_12slasCorrUsed == 1) if n_sv > 9 else _ABSENT)
+    g_2sv_9.spartnCorrUsed = (_sent(r_2sv_9_14spartnCorrUsed == 1) if n_sv > 9 else _ABSENT)
+    g_2sv_9.prCorrUsed = (_sent(r_2sv_9_10prCorrUsed == 1) if n_sv > 9 else _ABSENT)
+    g_2sv_9.crCorrUsed = (_sent(r_2sv_9_10crCorrUsed == 1) if n_sv > 9 else _ABSENT)
+    g_2sv_9.doCorrUsed = (_sent(r_2sv_9_10doCorrUsed == 1) if n_sv > 9 else _ABSENT)
+    g_2sv_9.clasCorrUsed = (_sent(r_2sv_9_12clasCorrUsed == 1) if n_sv > 9 else _ABSENT)
+    g_2sv_9.lppCorrUsed = (_sent(r_2sv_9_11lppCorrUsed == 1) if n_sv > 9 else _ABSENT)
+    g_2sv_9.hasCorrUsed = (_sent(r_2sv_9_11hasCorrUsed == 1) if n_sv > 9 else _ABSENT)
     g_2sv_10 = _object_new(NavSatSv)
     g_2sv_10.gnssId = r_2sv_10_6gnssId
     g_2sv_10.svId = r_2sv_10_4svId
     g_2sv_10.cno = r_2sv_10_3cno
     g_2sv_10.elev = r_2sv_10_4elev
     g_2sv_10.azim = r_2sv_10_4azim
-    g_2sv_10.prRes = (r_2sv_10_5prRes * 0.1 if n_sv > 10 else _ABSENT)
+    g_2sv_10.prRes = (_sent(r_2sv_10_5prRes * 0.1) if n_sv > 10 else _ABSENT)
     g_2sv_10.qualityInd = r_2sv_10_10qualityInd
-    g_2sv_10.svUsed = (r_2sv_10_6svUsed == 1 if n_sv > 10 else _ABSENT)
+    g_2sv_10.svUsed = (_sent(r_2sv_10_6svUsed == 1) if n_sv > 10 else _ABSENT)
     g_2sv_10.health = r_2sv_10_6health
-    g_2sv_10.diffCorr = (r_2sv_10_8diffCorr == 1 if n_sv > 10 else _ABSENT)
-    g_2sv_10.smoothed = (r_2sv_10_8smoothed == 1 if n_sv > 10 else _ABSENT)
+    g_2sv_10.diffCorr = (_sent(r_2sv_10_8diffCorr == 1) if n_sv > 10 else _ABSENT)
+    g_2sv_10.smoothed = (_sent(r_2sv_10_8smoothed == 1) if n_sv > 10 else _ABSENT)
     g_2sv_10.orbitSource = r_2sv_10_11orbitSource
-    g_2sv_10.ephAvail = (r_2sv_10_8ephAvail == 1 if n_sv > 10 else _ABSENT)
-    g_2sv_10.almAvail = (r_2sv_10_8almAvail == 1 if n_sv > 10 else _ABSENT)
-    g_2sv_10.anoAvail = (r_2sv_10_8anoAvail == 1 if n_sv > 10 else _ABSENT)
-    g_2sv_10.aopAvail = (r_2sv_10_8aopAvail == 1 if n_sv > 10 else _ABSENT)
+    g_2sv_10.ephAvail = (_sent(r_2sv_10_8ephAvail == 1) if n_sv > 10 else _ABSENT)
+    g_2sv_10.almAvail = (_sent(r_2sv_10_8almAvail == 1) if n_sv > 10 else _ABSENT)
+    g_2sv_10.anoAvail = (_sent(r_2sv_10_8anoAvail == 1) if n_sv > 10 else _ABSENT)
+    g_2sv_10.aopAvail = (_sent(r_2sv_10_8aopAvail == 1) if n_sv > 10 else _ABSENT)
     g_2sv_10.reserved13 = r_2sv_10_10reserved13
-    g_2sv_10.sbasCorrUsed = (r_2sv_10_12sbasCorrUsed == 1 if n_sv > 10 else _ABSENT)
-    g_2sv_10.rtcmCorrUsed = (r_2sv_10_12rtcmCorrUsed == 1 if n_sv > 10 else _ABSENT)
-    g_2sv_10.slasCorrUsed = (r_2sv_10_12slasCorrUsed == 1 if n_sv > 10 else _ABSENT)
-    g_2sv_10.spartnCorrUsed = (r_2sv_10_14spartnCorrUsed == 1 if n_sv > 10 else _ABSENT)
-    g_2sv_10.prCorrUsed = (r_2sv_10_10prCorrUsed == 1 if n_sv > 10 else _ABSENT)
-    g_2sv_10.crCorrUsed = (r_2sv_10_10crCorrUsed == 1 if n_sv > 10 else _ABSENT)
-    g_2sv_10.doCorrUsed = (r_2sv_10_10doCorrUsed == 1 if n_sv > 10 else _ABSENT)
-    g_2sv_10.clasCorrUsed = (r_2sv_10_12clasCorrUsed == 1 if n_sv > 10 else _ABSENT)
-    g_2sv_10.lppCorrUsed = (r_2sv_10_11lppCorrUsed == 1 if n_sv > 10 else _ABSENT)
-    g_2sv_10.hasCorrUsed = (r_2sv_10_11hasCorrUsed == 1 if n_sv > 10 else _ABSENT)
+    g_2sv_10.sbasCorrUsed = (_sent(r_2sv_10_12sbasCorrUsed == 1) if n_sv > 10 else _ABSENT)
+    g_2sv_10.rtcmCorrUsed = (_sent(r_2sv_10_12rtcmCorrUsed == 1) if n_sv > 10 else _ABSENT)
+    g_2sv_10.slasCorrUsed = (_sent(r_2sv_10_12slasCorrUsed == 1) if n_sv > 10 else _ABSENT)
+    g_2sv_10.spartnCorrUsed = (_sent(r_2sv_10_14spartnCorrUsed == 1) if n_sv > 10 else _ABSENT)
+    g_2sv_10.prCorrUsed = (_sent(r_2sv_10_10prCorrUsed == 1) if n_sv > 10 else _ABSENT)
+    g_2sv_10.crCorrUsed = (_sent(r_2sv_10_10crCorrUsed == 1) if n_sv > 10 else _ABSENT)
+    g_2sv_10.doCorrUsed = (_sent(r_2sv_10_10doCorrUsed == 1) if n_sv > 10 else _ABSENT)
+    g_2sv_10.clasCorrUsed = (_sent(r_2sv_10_12clasCorrUsed == 1) if n_sv > 10 else _ABSENT)
+    g_2sv_10.lppCorrUsed = (_sent(r_2sv_10_11lppCorrUsed == 1) if n_sv > 10 else _ABSENT)
+    g_2sv_10.hasCorrUsed = (_sent(r_2sv_10_11hasCorrUsed == 1) if n_sv > 10 else _ABSENT)
     g_2sv_11 = _object_new(NavSatSv)
     g_2sv_11.gnssId = r_2sv_11_6gnssId
     g_2sv_11.svId = r_2sv_11_4svId
     g_2sv_11.cno = r_2sv_11_3cno
     g_2sv_11.elev = r_2sv_11_4elev
     g_2sv_11.azim = r_2sv_11_4azim
-    g_2sv_11.prRes = (r_2sv_11_5prRes * 0.1 if n_sv > 11 else _ABSENT)
+    g_2sv_11.prRes = (_sent(r_2sv_11_5prRes * 0.1) if n_sv > 11 else _ABSENT)
     g_2sv_11.qualityInd = r_2sv_11_10qualityInd
-    g_2sv_11.svUsed = (r_2sv_11_6svUsed == 1 if n_sv > 11 else _ABSENT)
+    g_2sv_11.svUsed = (_sent(r_2sv_11_6svUsed == 1) if n_sv > 11 else _ABSENT)
     g_2sv_11.health = r_2sv_11_6health
-    g_2sv_11.diffCorr = (r_2sv_11_8diffCorr == 1 if n_sv > 11 else _ABSENT)
-    g_2sv_11.smoothed = (r_2sv_11_8smoothed == 1 if n_sv > 11 else _ABSENT)
+    g_2sv_11.diffCorr = (_sent(r_2sv_11_8diffCorr == 1) if n_sv > 11 else _ABSENT)
+    g_2sv_11.smoothed = (_sent(r_2sv_11_8smoothed == 1) if n_sv > 11 else _ABSENT)
     g_2sv_11.orbitSource = r_2sv_11_11orbitSource
-    g_2sv_11.ephAvail = (r_2sv_11_8ephAvail == 1 if n_sv > 11 else _ABSENT)
-    g_2sv_11.almAvail = (r_2sv_11_8almAvail == 1 if n_sv > 11 else _ABSENT)
-    g_2sv_11.anoAvail = (r_2sv_11_8anoAvail == 1 if n_sv > 11 else _ABSENT)
-    g_2sv_11.aopAvail = (r_2sv_11_8aopAvail == 1 if n_sv > 11 else _ABSENT)
+    g_2sv_11.ephAvail = (_sent(r_2sv_11_8ephAvail == 1) if n_sv > 11 else _ABSENT)
+    g_2sv_11.almAvail = (_sent(r_2sv_11_8almAvail == 1) if n_sv > 11 else _ABSENT)
+    g_2sv_11.anoAvail = (_sent(r_2sv_11_8anoAvail == 1) if n_sv > 11 else _ABSENT)
+    g_2sv_11.aopAvail = (_sent(r_2sv_11_8aopAvail == 1) if n_sv > 11 else _ABSENT)
     g_2sv_11.reserved13 = r_2sv_11_10reserved13
-    g_2sv_11.sbasCorrUsed = (r_2sv_11_12sbasCorrUsed == 1 if n_sv > 11 else _ABSENT)
-    g_2sv_11.rtcmCorrUsed = (r_2sv_11_12rtcmCorrUsed == 1 if n_sv > 11 else _ABSENT)
-    g_2sv_11.slasCorrUsed = (r_2sv_11_12slasCorrUsed == 1 if n_sv > 11 else _ABSENT)
-    g_2sv_11.spartnCorrUsed = (r_2sv_11_14spartnCorrUsed == 1 if n_sv > 11 else _ABSENT)
-    g_2sv_11.prCorrUsed = (r_2sv_11_10prCorrUsed == 1 if n_sv > 11 else _ABSENT)
-    g_2sv_11.crCorrUsed = (r_2sv_11_10crCorrUsed == 1 if n_sv > 11 else _ABSENT)
-    g_2sv_11.doCorrUsed = (r_2sv_11_10doCorrUsed == 1 if n_sv > 11 else _ABSENT)
-    g_2sv_11.clasCorrUsed = (r_2sv_11_12clasCorrUsed == 1 if n_sv > 11 else _ABSENT)
-    g_2sv_11.lppCorrUsed = (r_2sv_11_11lppCorrUsed == 1 if n_sv > 11 else _ABSENT)
-    g_2sv_11.hasCorrUsed = (r_2sv_11_11hasCorrUsed == 1 if n_sv > 11 else _ABSENT)
+    g_2sv_11.sbasCorrUsed = (_sent(r_2sv_11_12sbasCorrUsed == 1) if n_sv > 11 else _ABSENT)
+    g_2sv_11.rtcmCorrUsed = (_sent(r_2sv_11_12rtcmCorrUsed == 1) if n_sv > 11 else _ABSENT)
+    g_2sv_11.slasCorrUsed = (_sent(r_2sv_11_12slasCorrUsed == 1) if n_sv > 11 else _ABSENT)
+    g_2sv_11.spartnCorrUsed = (_sent(r_2sv_11_14spartnCorrUsed == 1) if n_sv > 11 else _ABSENT)
+    g_2sv_11.prCorrUsed = (_sent(r_2sv_11_10prCorrUsed == 1) if n_sv > 11 else _ABSENT)
+    g_2sv_11.crCorrUsed = (_sent(r_2sv_11_10crCorrUsed == 1) if n_sv > 11 else _ABSENT)
+    g_2sv_11.doCorrUsed = (_sent(r_2sv_11_10doCorrUsed == 1) if n_sv > 11 else _ABSENT)
+    g_2sv_11.clasCorrUsed = (_sent(r_2sv_11_12clasCorrUsed == 1) if n_sv > 11 else _ABSENT)
+    g_2sv_11.lppCorrUsed = (_sent(r_2sv_11_11lppCorrUsed == 1) if n_sv > 11 else _ABSENT)
+    g_2sv_11.hasCorrUsed = (_sent(r_2sv_11_11hasCorrUsed == 1) if n_sv > 11 else _ABSENT)
     g_2sv_12 = _object_new(NavSatSv)
     g_2sv_12.gnssId = r_2sv_12_6gnssId
     g_2sv_12.svId = r_2sv_12_4svId
     g_2sv_12.cno = r_2sv_12_3cno
     g_2sv_12.elev = r_2sv_12_4elev
     g_2sv_12.azim = r_2sv_12_4azim
-    g_2sv_12.prRes = (r_2sv_12_5prRes * 0.1 if n_sv > 12 else _ABSENT)
+    g_2sv_12.prRes = (_sent(r_2sv_12_5prRes * 0.1) if n_sv > 12 else _ABSENT)
     g_2sv_12.qualityInd = r_2sv_12_10qualityInd
-    g_2sv_12.svUsed = (r_2sv_12_6svUsed == 1 if n_sv > 12 else _ABSENT)
+    g_2sv_12.svUsed = (_sent(r_2sv_12_6svUsed == 1) if n_sv > 12 else _ABSENT)
     g_2sv_12.health = r_2sv_12_6health
-    g_2sv_12.diffCorr = (r_2sv_12_8diffCorr == 1 if n_sv > 12 else _ABSENT)
-    g_2sv_12.smoothed = (r_2sv_12_8smoothed == 1 if n_sv > 12 else _ABSENT)
+    g_2sv_12.diffCorr = (_sent(r_2sv_12_8diffCorr == 1) if n_sv > 12 else _ABSENT)
+    g_2sv_12.smoothed = (_sent(r_2sv_12_8smoothed == 1) if n_sv > 12 else _ABSENT)
     g_2sv_12.orbitSource = r_2sv_12_11orbitSource
-    g_2sv_12.ephAvail = (r_2sv_12_8ephAvail == 1 if n_sv > 12 else _ABSENT)
-    g_2sv_12.almAvail = (r_2sv_12_8almAvail == 1 if n_sv > 12 else _ABSENT)
-    g_2sv_12.anoAvail = (r_2sv_12_8anoAvail == 1 if n_sv > 12 else _ABSENT)
-    g_2sv_12.aopAvail = (r_2sv_12_8aopAvail == 1 if n_sv > 12 else _ABSENT)
+    g_2sv_12.ephAvail = (_sent(r_2sv_12_8ephAvail == 1) if n_sv > 12 else _ABSENT)
+    g_2sv_12.almAvail = (_sent(r_2sv_12_8almAvail == 1) if n_sv > 12 else _ABSENT)
+    g_2sv_12.anoAvail = (_sent(r_2sv_12_8anoAvail == 1) if n_sv > 12 else _ABSENT)
+    g_2sv_12.aopAvail = (_sent(r_2sv_12_8aopAvail == 1) if n_sv > 12 else _ABSENT)
     g_2sv_12.reserved13 = r_2sv_12_10reserved13
-    g_2sv_12.sbasCorrUsed = (r_2sv_12_12sbasCorrUsed == 1 if n_sv > 12 else _ABSENT)
-    g_2sv_12.rtcmCorrUsed = (r_2sv_12_12rtcmCorrUsed == 1 if n_sv > 12 else _ABSENT)
-    g_2sv_12.slasCorrUsed = (r_2sv_12_12slasCorrUsed == 1 if n_sv > 12 else _ABSENT)
-    g_2sv_12.spartnCorrUsed = (r_2sv_12_14spartnCorrUsed == 1 if n_sv > 12 else _ABSENT)
-    g_2sv_12.prCorrUsed = (r_2sv_12_10prCorrUsed == 1 if n_sv > 12 else _ABSENT)
-    g_2sv_12.crCorrUsed = (r_2sv_12_10crCorrUsed == 1 if n_sv > 12 else _ABSENT)
-    g_2sv_12.doCorrUsed = (r_2sv_12_10doCorrUsed == 1 if n_sv > 12 else _ABSENT)
-    g_2sv_12.clasCorrUsed = (r_2sv_12_12clasCorrUsed == 1 if n_sv > 12 else _ABSENT)
-    g_2sv_12.lppCorrUsed = (r_2sv_12_11lppCorrUsed == 1 if n_sv > 12 else _ABSENT)
-    g_2sv_12.hasCorrUsed = (r_2sv_12_11hasCorrUsed == 1 if n_sv > 12 else _ABSENT)
+    g_2sv_12.sbasCorrUsed = (_sent(r_2sv_12_12sbasCorrUsed == 1) if n_sv > 12 else _ABSENT)
+    g_2sv_12.rtcmCorrUsed = (_sent(r_2sv_12_12rtcmCorrUsed == 1) if n_sv > 12 else _ABSENT)
+    g_2sv_12.slasCorrUsed = (_sent(r_2sv_12_12slasCorrUsed == 1) if n_sv > 12 else _ABSENT)
+    g_2sv_12.spartnCorrUsed = (_sent(r_2sv_12_14spartnCorrUsed == 1) if n_sv > 12 else _ABSENT)
+    g_2sv_12.prCorrUsed = (_sent(r_2sv_12_10prCorrUsed == 1) if n_sv > 12 else _ABSENT)
+    g_2sv_12.crCorrUsed = (_sent(r_2sv_12_10crCorrUsed == 1) if n_sv > 12 else _ABSENT)
+    g_2sv_12.doCorrUsed = (_sent(r_2sv_12_10doCorrUsed == 1) if n_sv > 12 else _ABSENT)
+    g_2sv_12.clasCorrUsed = (_sent(r_2sv_12_12clasCorrUsed == 1) if n_sv > 12 else _ABSENT)
+    g_2sv_12.lppCorrUsed = (_sent(r_2sv_12_11lppCorrUsed == 1) if n_sv > 12 else _ABSENT)
+    g_2sv_12.hasCorrUsed = (_sent(r_2sv_12_11hasCorrUsed == 1) if n_sv > 12 else _ABSENT)
     g_2sv_13 = _object_new(NavSatSv)
     g_2sv_13.gnssId = r_2sv_13_6gnssId
     g_2sv_13.svId = r_2sv_13_4svId
     g_2sv_13.cno = r_2sv_13_3cno
     g_2sv_13.elev = r_2sv_13_4elev
     g_2sv_13.azim = r_2sv_13_4azim
-    g_2sv_13.prRes = (r_2sv_13_5prRes * 0.1 if n_sv > 13 else _ABSENT)
+    g_2sv_13.prRes = (_sent(r_2sv_13_5prRes * 0.1) if n_sv > 13 else _ABSENT)
     g_2sv_13.qualityInd = r_2sv_13_10qualityInd
-    g_2sv_13.svUsed = (r_2sv_13_6svUsed == 1 if n_sv > 13 else _ABSENT)
+    g_2sv_13.svUsed = (_sent(r_2sv_13_6svUsed == 1) if n_sv > 13 else _ABSENT)
     g_2sv_13.health = r_2sv_13_6health
-    g_2sv_13.diffCorr = (r_2sv_13_8diffCorr == 1 if n_sv > 13 else _ABSENT)
-    g_2sv_13.smoothed = (r_2sv_13_8smoothed == 1 if n_sv > 13 else _ABSENT)
+    g_2sv_13.diffCorr = (_sent(r_2sv_13_8diffCorr == 1) if n_sv > 13 else _ABSENT)
+    g_2sv_13.smoothed = (_sent(r_2sv_13_8smoothed == 1) if n_sv > 13 else _ABSENT)
     g_2sv_13.orbitSource = r_2sv_13_11orbitSource
-    g_2sv_13.ephAvail = (r_2sv_13_8ephAvail == 1 if n_sv > 13 else _ABSENT)
-    g_2sv_13.almAvail = (r_2sv_13_8almAvail == 1 if n_sv > 13 else _ABSENT)
-    g_2sv_13.anoAvail = (r_2sv_13_8anoAvail == 1 if n_sv > 13 else _ABSENT)
-    g_2sv_13.aopAvail = (r_2sv_13_8aopAvail == 1 if n_sv > 13 else _ABSENT)
+    g_2sv_13.ephAvail = (_sent(r_2sv_13_8ephAvail == 1) if n_sv > 13 else _ABSENT)
+    g_2sv_13.almAvail = (_sent(r_2sv_13_8almAvail == 1) if n_sv > 13 else _ABSENT)
+    g_2sv_13.anoAvail = (_sent(r_2sv_13_8anoAvail == 1) if n_sv > 13 else _ABSENT)
+    g_2sv_13.aopAvail = (_sent(r_2sv_13_8aopAvail == 1) if n_sv > 13 else _ABSENT)
     g_2sv_13.reserved13 = r_2sv_13_10reserved13
-    g_2sv_13.sbasCorrUsed = (r_2sv_13_12sbasCorrUsed == 1 if n_sv > 13 else _ABSENT)
-    g_2sv_13.rtcmCorrUsed = (r_2sv_13_12rtcmCorrUsed == 1 if n_sv > 13 else _ABSENT)
-    g_2sv_13.slasCorrUsed = (r_2sv_13_12slasCorrUsed == 1 if n_sv > 13 else _ABSENT)
-    g_2sv_13.spartnCorrUsed = (r_2sv_13_14spartnCorrUsed == 1 if n_sv > 13 else _ABSENT)
-    g_2sv_13.prCorrUsed = (r_2sv_13_10prCorrUsed == 1 if n_sv > 13 else _ABSENT)
-    g_2sv_13.crCorrUsed = (r_2sv_13_10crCorrUsed == 1 if n_sv > 13 else _ABSENT)
-    g_2sv_13.doCorrUsed = (r_2sv_13_10doCorrUsed == 1 if n_sv > 13 else _ABSENT)
-    g_2sv_13.clasCorrUsed = (r_2sv_13_12clasCorrUsed == 1 if n_sv > 13 else _ABSENT)
-    g_2sv_13.lppCorrUsed = (r_2sv_13_11lppCorrUsed == 1 if n_sv > 13 else _ABSENT)
-    g_2sv_13.hasCorrUsed = (r_2sv_13_11hasCorrUsed == 1 if n_sv > 13 else _ABSENT)
+    g_2sv_13.sbasCorrUsed = (_sent(r_2sv_13_12sbasCorrUsed == 1) if n_sv > 13 else _ABSENT)
+    g_2sv_13.rtcmCorrUsed = (_sent(r_2sv_13_12rtcmCorrUsed == 1) if n_sv > 13 else _ABSENT)
+    g_2sv_13.slasCorrUsed = (_sent(r_2sv_13_12slasCorrUsed == 1) if n_sv > 13 else _ABSENT)
+    g_2sv_13.spartnCorrUsed = (_sent(r_2sv_13_14spartnCorrUsed == 1) if n_sv > 13 else _ABSENT)
+    g_2sv_13.prCorrUsed = (_sent(r_2sv_13_10prCorrUsed == 1) if n_sv > 13 else _ABSENT)
+    g_2sv_13.crCorrUsed = (_sent(r_2sv_13_10crCorrUsed == 1) if n_sv > 13 else _ABSENT)
+    g_2sv_13.doCorrUsed = (_sent(r_2sv_13_10doCorrUsed == 1) if n_sv > 13 else _ABSENT)
+    g_2sv_13.clasCorrUsed = (_sent(r_2sv_13_12clasCorrUsed == 1) if n_sv > 13 else _ABSENT)
+    g_2sv_13.lppCorrUsed = (_sent(r_2sv_13_11lppCorrUsed == 1) if n_sv > 13 else _ABSENT)
+    g_2sv_13.hasCorrUsed = (_sent(r_2sv_13_11hasCorrUsed == 1) if n_sv > 13 else _ABSENT)
     g_2sv_14 = _object_new(NavSatSv)
     g_2sv_14.gnssId = r_2sv_14_6gnssId
     g_2sv_14.svId = r_2sv_14_4svId
     g_2sv_14.cno = r_2sv_14_3cno
     g_2sv_14.elev = r_2sv_14_4elev
     g_2sv_14.azim = r_2sv_14_4azim
-    g_2sv_14.prRes = (r_2sv_14_5prRes * 0.1 if n_sv > 14 else _ABSENT)
+    g_2sv_14.prRes = (_sent(r_2sv_14_5prRes * 0.1) if n_sv > 14 else _ABSENT)
     g_2sv_14.qualityInd = r_2sv_14_10qualityInd
-    g_2sv_14.svUsed = (r_2sv_14_6svUsed == 1 if n_sv > 14 else _ABSENT)
+    g_2sv_14.svUsed = (_sent(r_2sv_14_6svUsed == 1) if n_sv > 14 else _ABSENT)
     g_2sv_14.health = r_2sv_14_6health
-    g_2sv_14.diffCorr = (r_2sv_14_8diffCorr == 1 if n_sv > 14 else _ABSENT)
-    g_2sv_14.smoothed = (r_2sv_14_8smoothed == 1 if n_sv > 14 else _ABSENT)
+    g_2sv_14.diffCorr = (_sent(r_2sv_14_8diffCorr == 1) if n_sv > 14 else _ABSENT)
+    g_2sv_14.smoothed = (_sent(r_2sv_14_8smoothed == 1) if n_sv > 14 else _ABSENT)
     g_2sv_14.orbitSource = r_2sv_14_11orbitSource
-    g_2sv_14.ephAvail = (r_2sv_14_8ephAvail == 1 if n_sv > 14 else _ABSENT)
-    g_2sv_14.almAvail = (r_2sv_14_8almAvail == 1 if n_sv > 14 else _ABSENT)
-    g_2sv_14.anoAvail = (r_2sv_14_8anoAvail == 1 if n_sv > 14 else _ABSENT)
-    g_2sv_14.aopAvail = (r_2sv_14_8aopAvail == 1 if n_sv > 14 else _ABSENT)
+    g_2sv_14.ephAvail = (_sent(r_2sv_14_8ephAvail == 1) if n_sv > 14 else _ABSENT)
+    g_2sv_14.almAvail = (_sent(r_2sv_14_8almAvail == 1) if n_sv > 14 else _ABSENT)
+    g_2sv_14.anoAvail = (_sent(r_2sv_14_8anoAvail == 1) if n_sv > 14 else _ABSENT)
+    g_2sv_14.aopAvail = (_sent(r_2sv_14_8aopAvail == 1) if n_sv > 14 else _ABSENT)
     g_2sv_14.reserved13 = r_2sv_14_10reserved13
-    g_2sv_14.sbasCorrUsed = (r_2sv_14_12sbasCorrUsed == 1 if n_sv > 14 else _ABSENT)
-    g_2sv_14.rtcmCorrUsed = (r_2sv_14_12rtcmCorrUsed == 1 if n_sv > 14 else _ABSENT)
-    g_2sv_14.slasCorrUsed = (r_2sv_14_12slasCorrUsed == 1 if n_sv > 14 else _ABSENT)
-    g_2sv_14.spartnCorrUsed = (r_2sv_14_14spartnCorrUsed == 1 if n_sv > 14 else _ABSENT)
-    g_2sv_14.prCorrUsed = (r_2sv_14_10prCorrUsed == 1 if n_sv > 14 else _ABSENT)
-    g_2sv_14.crCorrUsed = (r_2sv_14_10crCorrUsed == 1 if n_sv > 14 else _ABSENT)
-    g_2sv_14.doCorrUsed = (r_2sv_14_10doCorrUsed == 1 if n_sv > 14 else _ABSENT)
-    g_2sv_14.clasCorrUsed = (r_2sv_14_12clasCorrUsed == 1 if n_sv > 14 else _ABSENT)
-    g_2sv_14.lppCorrUsed = (r_2sv_14_11lppCorrUsed == 1 if n_sv > 14 else _ABSENT)
-    g_2sv_14.hasCorrUsed = (r_2sv_14_11hasCorrUsed == 1 if n_sv > 14 else _ABSENT)
+    g_2sv_14.sbasCorrUsed = (_sent(r_2sv_14_12sbasCorrUsed == 1) if n_sv > 14 else _ABSENT)
+    g_2sv_14.rtcmCorrUsed = (_sent(r_2sv_14_12rtcmCorrUsed == 1) if n_sv > 14 else _ABSENT)
+    g_2sv_14.slasCorrUsed = (_sent(r_2sv_14_12slasCorrUsed == 1) if n_sv > 14 else _ABSENT)
+    g_2sv_14.spartnCorrUsed = (_sent(r_2sv_14_14spartnCorrUsed == 1) if n_sv > 14 else _ABSENT)
+    g_2sv_14.prCorrUsed = (_sent(r_2sv_14_10prCorrUsed == 1) if n_sv > 14 else _ABSENT)
+    g_2sv_14.crCorrUsed = (_sent(r_2sv_14_10crCorrUsed == 1) if n_sv > 14 else _ABSENT)
+    g_2sv_14.doCorrUsed = (_sent(r_2sv_14_10doCorrUsed == 1) if n_sv > 14 else _ABSENT)
+    g_2sv_14.clasCorrUsed = (_sent(r_2sv_14_12clasCorrUsed == 1) if n_sv > 14 else _ABSENT)
+    g_2sv_14.lppCorrUsed = (_sent(r_2sv_14_11lppCorrUsed == 1) if n_sv > 14 else _ABSENT)
+    g_2sv_14.hasCorrUsed = (_sent(r_2sv_14_11hasCorrUsed == 1) if n_sv > 14 else _ABSENT)
     g_2sv_15 = _object_new(NavSatSv)
     g_2sv_15.gnssId = r_2sv_15_6gnssId
     g_2sv_15.svId = r_2sv_15_4svId
     g_2sv_15.cno = r_2sv_15_3cno
     g_2sv_15.elev = r_2sv_15_4elev
     g_2sv_15.azim = r_2sv_15_4azim
-    g_2sv_15.prRes = (r_2sv_15_5prRes * 0.1 if n_sv > 15 else _ABSENT)
+    g_2sv_15.prRes = (_sent(r_2sv_15_5prRes * 0.1) if n_sv > 15 else _ABSENT)
     g_2sv_15.qualityInd = r_2sv_15_10qualityInd
-    g_2sv_15.svUsed = (r_2sv_15_6svUsed == 1 if n_sv > 15 else _ABSENT)
+    g_2sv_15.svUsed = (_sent(r_2sv_15_6svUsed == 1) if n_sv > 15 else _ABSENT)
     g_2sv_15.health = r_2sv_15_6health
-    g_2sv_15.diffCorr = (r_2sv_15_8diffCorr == 1 if n_sv > 15 else _ABSENT)
-    g_2sv_15.smoothed = (r_2sv_15_8smoothed == 1 if n_sv > 15 else _ABSENT)
+    g_2sv_15.diffCorr = (_sent(r_2sv_15_8diffCorr == 1) if n_sv > 15 else _ABSENT)
+    g_2sv_15.smoothed = (_sent(r_2sv_15_8smoothed == 1) if n_sv > 15 else _ABSENT)
     g_2sv_15.orbitSource = r_2sv_15_11orbitSource
-    g_2sv_15.ephAvail = (r_2sv_15_8ephAvail == 1 if n_sv > 15 else _ABSENT)
-    g_2sv_15.almAvail = (r_2sv_15_8almAvail == 1 if n_sv > 15 else _ABSENT)
-    g_2sv_15.anoAvail = (r_2sv_15_8anoAvail == 1 if n_sv > 15 else _ABSENT)
-    g_2sv_15.aopAvail = (r_2sv_15_8aopAvail == 1 if n_sv > 15 else _ABSENT)
+    g_2sv_15.ephAvail = (_sent(r_2sv_15_8ephAvail == 1) if n_sv > 15 else _ABSENT)
+    g_2sv_15.almAvail = (_sent(r_2sv_15_8almAvail == 1) if n_sv > 15 else _ABSENT)
+    g_2sv_15.anoAvail = (_sent(r_2sv_15_8anoAvail == 1) if n_sv > 15 else _ABSENT)
+    g_2sv_15.aopAvail = (_sent(r_2sv_15_8aopAvail == 1) if n_sv > 15 else _ABSENT)
     g_2sv_15.reserved13 = r_2sv_15_10reserved13
-    g_2sv_15.sbasCorrUsed = (r_2sv_15_12sbasCorrUsed == 1 if n_sv > 15 else _ABSENT)
-    g_2sv_15.rtcmCorrUsed = (r_2sv_15_12rtcmCorrUsed == 1 if n_sv > 15 else _ABSENT)
-    g_2sv_15.slasCorrUsed = (r_2sv_15_12slasCorrUsed == 1 if n_sv > 15 else _ABSENT)
-    g_2sv_15.spartnCorrUsed = (r_2sv_15_14spartnCorrUsed == 1 if n_sv > 15 else _ABSENT)
-    g_2sv_15.prCorrUsed = (r_2sv_15_10prCorrUsed == 1 if n_sv > 15 else _ABSENT)
-    g_2sv_15.crCorrUsed = (r_2sv_15_10crCorrUsed == 1 if n_sv > 15 else _ABSENT)
-    g_2sv_15.doCorrUsed = (r_2sv_15_10doCorrUsed == 1 if n_sv > 15 else _ABSENT)
-    g_2sv_15.clasCorrUsed = (r_2sv_15_12clasCorrUsed == 1 if n_sv > 15 else _ABSENT)
-    g_2sv_15.lppCorrUsed = (r_2sv_15_11lppCorrUsed == 1 if n_sv > 15 else _ABSENT)
-    g_2sv_15.hasCorrUsed = (r_2sv_15_11hasCorrUsed == 1 if n_sv > 15 else _ABSENT)
+    g_2sv_15.sbasCorrUsed = (_sent(r_2sv_15_12sbasCorrUsed == 1) if n_sv > 15 else _ABSENT)
+    g_2sv_15.rtcmCorrUsed = (_sent(r_2sv_15_12rtcmCorrUsed == 1) if n_sv > 15 else _ABSENT)
+    g_2sv_15.slasCorrUsed = (_sent(r_2sv_15_12slasCorrUsed == 1) if n_sv > 15 else _ABSENT)
+    g_2sv_15.spartnCorrUsed = (_sent(r_2sv_15_14spartnCorrUsed == 1) if n_sv > 15 else _ABSENT)
+    g_2sv_15.prCorrUsed = (_sent(r_2sv_15_10prCorrUsed == 1) if n_sv > 15 else _ABSENT)
+    g_2sv_15.crCorrUsed = (_sent(r_2sv_15_10crCorrUsed == 1) if n_sv > 15 else _ABSENT)
+    g_2sv_15.doCorrUsed = (_sent(r_2sv_15_10doCorrUsed == 1) if n_sv > 15 else _ABSENT)
+    g_2sv_15.clasCorrUsed = (_sent(r_2sv_15_12clasCorrUsed == 1) if n_sv > 15 else _ABSENT)
+    g_2sv_15.lppCorrUsed = (_sent(r_2sv_15_11lppCorrUsed == 1) if n_sv > 15 else _ABSENT)
+    g_2sv_15.hasCorrUsed = (_sent(r_2sv_15_11hasCorrUsed == 1) if n_sv > 15 else _ABSENT)
     g_2sv_16 = _object_new(NavSatSv)
     g_2sv_16.gnssId = r_2sv_16_6gnssId
     g_2sv_16.svId = r_2sv_16_4svId
     g_2sv_16.cno = r_2sv_16_3cno
     g_2sv_16.elev = r_2sv_16_4elev
     g_2sv_16.azim = r_2sv_16_4azim
-    g_2sv_16.prRes = (r_2sv_16_5prRes * 0.1 if n_sv > 16 else _ABSENT)
+    g_2sv_16.prRes = (_sent(r_2sv_16_5prRes * 0.1) if n_sv > 16 else _ABSENT)
     g_2sv_16.qualityInd = r_2sv_16_10qualityInd
-    g_2sv_16.svUsed = (r_2sv_16_6svUsed == 1 if n_sv > 16 else _ABSENT)
+    g_2sv_16.svUsed = (_sent(r_2sv_16_6svUsed == 1) if n_sv > 16 else _ABSENT)
     g_2sv_16.health = r_2sv_16_6health
-    g_2sv_16.diffCorr = (r_2sv_16_8diffCorr == 1 if n_sv > 16 else _ABSENT)
-    g_2sv_16.smoothed = (r_2sv_16_8smoothed == 1 if n_sv > 16 else _ABSENT)
+    g_2sv_16.diffCorr = (_sent(r_2sv_16_8diffCorr == 1) if n_sv > 16 else _ABSENT)
+    g_2sv_16.smoothed = (_sent(r_2sv_16_8smoothed == 1) if n_sv > 16 else _ABSENT)
     g_2sv_16.orbitSource = r_2sv_16_11orbitSource
-    g_2sv_16.ephAvail = (r_2sv_16_8ephAvail == 1 if n_sv > 16 else _ABSENT)
-    g_2sv_16.almAvail = (r_2sv_16_8almAvail == 1 if n_sv > 16 else _ABSENT)
-    g_2sv_16.anoAvail = (r_2sv_16_8anoAvail == 1 if n_sv > 16 else _ABSENT)
-    g_2sv_16.aopAvail = (r_2sv_16_8aopAvail == 1 if n_sv > 16 else _ABSENT)
+    g_2sv_16.ephAvail = (_sent(r_2sv_16_8ephAvail == 1) if n_sv > 16 else _ABSENT)
+    g_2sv_16.almAvail = (_sent(r_2sv_16_8almAvail == 1) if n_sv > 16 else _ABSENT)
+    g_2sv_16.anoAvail = (_sent(r_2sv_16_8anoAvail == 1) if n_sv > 16 else _ABSENT)
+    g_2sv_16.aopAvail = (_sent(r_2sv_16_8aopAvail == 1) if n_sv > 16 else _ABSENT)
     g_2sv_16.reserved13 = r_2sv_16_10reserved13
-    g_2sv_16.sbasCorrUsed = (r_2sv_16_12sbasCorrUsed == 1 if n_sv > 16 else _ABSENT)
-    g_2sv_16.rtcmCorrUsed = (r_2sv_16_12rtcmCorrUsed == 1 if n_sv > 16 else _ABSENT)
-    g_2sv_16.slasCorrUsed = (r_2sv_16_12slasCorrUsed == 1 if n_sv > 16 else _ABSENT)
-    g_2sv_16.spartnCorrUsed = (r_2sv_16_14spartnCorrUsed == 1 if n_sv > 16 else _ABSENT)
-    g_2sv_16.prCorrUsed = (r_2sv_16_10prCorrUsed == 1 if n_sv > 16 else _ABSENT)
-    g_2sv_16.crCorrUsed = (r_2sv_16_10crCorrUsed == 1 if n_sv > 16 else _ABSENT)
-    g_2sv_16.doCorrUsed = (r_2sv_16_10doCorrUsed == 1 if n_sv > 16 else _ABSENT)
-    g_2sv_16.clasCorrUsed = (r_2sv_16_12clasCorrUsed == 1 if n_sv > 16 else _ABSENT)
-    g_2sv_16.lppCorrUsed = (r_2sv_16_11lppCorrUsed == 1 if n_sv > 16 else _ABSENT)
-    g_2sv_16.hasCorrUsed = (r_2sv_16_11hasCorrUsed == 1 if n_sv > 16 else _ABSENT)
+    g_2sv_16.sbasCorrUsed = (_sent(r_2sv_16_12sbasCorrUsed == 1) if n_sv > 16 else _ABSENT)
+    g_2sv_16.rtcmCorrUsed = (_sent(r_2sv_16_12rtcmCorrUsed == 1) if n_sv > 16 else _ABSENT)
+    g_2sv_16.slasCorrUsed = (_sent(r_2sv_16_12slasCorrUsed == 1) if n_sv > 16 else _ABSENT)
+    g_2sv_16.spartnCorrUsed = (_sent(r_2sv_16_14spartnCorrUsed == 1) if n_sv > 16 else _ABSENT)
+    g_2sv_16.prCorrUsed = (_sent(r_2sv_16_10prCorrUsed == 1) if n_sv > 16 else _ABSENT)
+    g_2sv_16.crCorrUsed = (_sent(r_2sv_16_10crCorrUsed == 1) if n_sv > 16 else _ABSENT)
+    g_2sv_16.doCorrUsed = (_sent(r_2sv_16_10doCorrUsed == 1) if n_sv > 16 else _ABSENT)
+    g_2sv_16.clasCorrUsed = (_sent(r_2sv_16_12clasCorrUsed == 1) if n_sv > 16 else _ABSENT)
+    g_2sv_16.lppCorrUsed = (_sent(r_2sv_16_11lppCorrUsed == 1) if n_sv > 16 else _ABSENT)
+    g_2sv_16.hasCorrUsed = (_sent(r_2sv_16_11hasCorrUsed == 1) if n_sv > 16 else _ABSENT)
     g_2sv_17 = _object_new(NavSatSv)
     g_2sv_17.gnssId = r_2sv_17_6gnssId
     g_2sv_17.svId = r_2sv_17_4svId
     g_2sv_17.cno = r_2sv_17_3cno
     g_2sv_17.elev = r_2sv_17_4elev
     g_2sv_17.azim = r_2sv_17_4azim
-    g_2sv_17.prRes = (r_2sv_17_5prRes * 0.1 if n_sv > 17 else _ABSENT)
+    g_2sv_17.prRes = (_sent(r_2sv_17_5prRes * 0.1) if n_sv > 17 else _ABSENT)
     g_2sv_17.qualityInd = r_2sv_17_10qualityInd
-    g_2sv_17.svUsed = (r_2sv_17_6svUsed == 1 if n_sv > 17 else _ABSENT)
+    g_2sv_17.svUsed = (_sent(r_2sv_17_6svUsed == 1) if n_sv > 17 else _ABSENT)
     g_2sv_17.health = r_2sv_17_6health
-    g_2sv_17.diffCorr = (r_2sv_17_8diffCorr == 1 if n_sv > 17 else _ABSENT)
-    g_2sv_17.smoothed = (r_2sv_17_8smoothed == 1 if n_sv > 17 else _ABSENT)
+    g_2sv_17.diffCorr = (_sent(r_2sv_17_8diffCorr == 1) if n_sv > 17 else _ABSENT)
+    g_2sv_17.smoothed = (_sent(r_2sv_17_8smoothed == 1) if n_sv > 17 else _ABSENT)
     g_2sv_17.orbitSource = r_2sv_17_11orbitSource
-    g_2sv_17.ephAvail = (r_2sv_17_8ephAvail == 1 if n_sv > 17 else _ABSENT)
-    g_2sv_17.almAvail = (r_2sv_17_8almAvail == 1 if n_sv > 17 else _ABSENT)
-    g_2sv_17.anoAvail = (r_2sv_17_8anoAvail == 1 if n_sv > 17 else _ABSENT)
-    g_2sv_17.aopAvail = (r_2sv_17_8aopAvail == 1 if n_sv > 17 else _ABSENT)
+    g_2sv_17.ephAvail = (_sent(r_2sv_17_8ephAvail == 1) if n_sv > 17 else _ABSENT)
+    g_2sv_17.almAvail = (_sent(r_2sv_17_8almAvail == 1) if n_sv > 17 else _ABSENT)
+    g_2sv_17.anoAvail = (_sent(r_2sv_17_8anoAvail == 1) if n_sv > 17 else _ABSENT)
+    g_2sv_17.aopAvail = (_sent(r_2sv_17_8aopAvail == 1) if n_sv > 17 else _ABSENT)
     g_2sv_17.reserved13 = r_2sv_17_10reserved13
-    g_2sv_17.sbasCorrUsed = (r_2sv_17_12sbasCorrUsed == 1 if n_sv > 17 else _ABSENT)
-    g_2sv_17.rtcmCorrUsed = (r_2sv_17_12rtcmCorrUsed == 1 if n_sv > 17 else _ABSENT)
-    g_2sv_17.slasCorrUsed = (r_2sv_17_12slasCorrUsed == 1 if n_sv > 17 else _ABSENT)
-    g_2sv_17.spartnCorrUsed = (r_2sv_17_14spartnCorrUsed == 1 if n_sv > 17 else _ABSENT)
-    g_2sv_17.prCorrUsed = (r_2sv_17_10prCorrUsed == 1 if n_sv > 17 else _ABSENT)
-    g_2sv_17.crCorrUsed = (r_2sv_17_10crCorrUsed == 1 if n_sv > 17 else _ABSENT)
-    g_2sv_17.doCorrUsed = (r_2sv_17_10doCorrUsed == 1 if n_sv > 17 else _ABSENT)
-    g_2sv_17.clasCorrUsed = (r_2sv_17_12clasCorrUsed == 1 if n_sv > 17 else _ABSENT)
-    g_2sv_17.lppCorrUsed = (r_2sv_17_11lppCorrUsed == 1 if n_sv > 17 else _ABSENT)
-    g_2sv_17.hasCorrUsed = (r_2sv_17_11hasCorrUsed == 1 if n_sv > 17 else _ABSENT)
+    g_2sv_17.sbasCorrUsed = (_sent(r_2sv_17_12sbasCorrUsed == 1) if n_sv > 17 else _ABSENT)
+    g_2sv_17.rtcmCorrUsed = (_sent(r_2sv_17_12rtcmCorrUsed == 1) if n_sv > 17 else _ABSENT)
+    g_2sv_17.slasCorrUsed = (_sent(r_2sv_17_12slasCorrUsed == 1) if n_sv > 17 else _ABSENT)
+    g_2sv_17.spartnCorrUsed = (_sent(r_2sv_17_14spartnCorrUsed == 1) if n_sv > 17 else _ABSENT)
+    g_2sv_17.prCorrUsed = (_sent(r_2sv_17_10prCorrUsed == 1) if n_sv > 17 else _ABSENT)
+    g_2sv_17.crCorrUsed = (_sent(r_2sv_17_10crCorrUsed == 1) if n_sv > 17 else _ABSENT)
+    g_2sv_17.doCorrUsed = (_sent(r_2sv_17_10doCorrUsed == 1) if n_sv > 17 else _ABSENT)
+    g_2sv_17.clasCorrUsed = (_sent(r_2sv_17_12clasCorrUsed == 1) if n_sv > 17 else _ABSENT)
+    g_2sv_17.lppCorrUsed = (_sent(r_2sv_17_11lppCorrUsed == 1) if n_sv > 17 else _ABSENT)
+    g_2sv_17.hasCorrUsed = (_sent(r_2sv_17_11hasCorrUsed == 1) if n_sv > 17 else _ABSENT)
     g_2sv_18 = _object_new(NavSatSv)
     g_2sv_18.gnssId = r_2sv_18_6gnssId
     g_2sv_18.svId = r_2sv_18_4svId
     g_2sv_18.cno = r_2sv_18_3cno
     g_2sv_18.elev = r_2sv_18_4elev
     g_2sv_18.azim = r_2sv_18_4azim
-    g_2sv_18.prRes = (r_2sv_18_5prRes * 0.1 if n_sv > 18 else _ABSENT)
+    g_2sv_18.prRes = (_sent(r_2sv_18_5prRes * 0.1) if n_sv > 18 else _ABSENT)
     g_2sv_18.qualityInd = r_2sv_18_10qualityInd
-    g_2sv_18.svUsed = (r_2sv_18_6svUsed == 1 if n_sv > 18 else _ABSENT)
+    g_2sv_18.svUsed = (_sent(r_2sv_18_6svUsed == 1) if n_sv > 18 else _ABSENT)
     g_2sv_18.health = r_2sv_18_6health
-    g_2sv_18.diffCorr = (r_2sv_18_8diffCorr == 1 if n_sv > 18 else _ABSENT)
-    g_2sv_18.smoothed = (r_2sv_18_8smoothed == 1 if n_sv > 18 else _ABSENT)
+    g_2sv_18.diffCorr = (_sent(r_2sv_18_8diffCorr == 1) if n_sv > 18 else _ABSENT)
+    g_2sv_18.smoothed = (_sent(r_2sv_18_8smoothed == 1) if n_sv > 18 else _ABSENT)
     g_2sv_18.orbitSource = r_2sv_18_11orbitSource
-    g_2sv_18.ephAvail = (r_2sv_18_8ephAvail == 1 if n_sv > 18 else _ABSENT)
-    g_2sv_18.almAvail = (r_2sv_18_8almAvail == 1 if n_sv > 18 else _ABSENT)
-    g_2sv_18.anoAvail = (r_2sv_18_8anoAvail == 1 if n_sv > 18 else _ABSENT)
-    g_2sv_18.aopAvail = (r_2sv_18_8aopAvail == 1 if n_sv > 18 else _ABSENT)
+    g_2sv_18.ephAvail = (_sent(r_2sv_18_8ephAvail == 1) if n_sv > 18 else _ABSENT)
+    g_2sv_18.almAvail = (_sent(r_2sv_18_8almAvail == 1) if n_sv > 18 else _ABSENT)
+    g_2sv_18.anoAvail = (_sent(r_2sv_18_8anoAvail == 1) if n_sv > 18 else _ABSENT)
+    g_2sv_18.aopAvail = (_sent(r_2sv_18_8aopAvail == 1) if n_sv > 18 else _ABSENT)
     g_2sv_18.reserved13 = r_2sv_18_10reserved13
-    g_2sv_18.sbasCorrUsed = (r_2sv_18_12sbasCorrUsed == 1 if n_sv > 18 else _ABSENT)
-    g_2sv_18.rtcmCorrUsed = (r_2sv_18_12rtcmCorrUsed == 1 if n_sv > 18 else _ABSENT)
-    g_2sv_18.slasCorrUsed = (r_2sv_18_12slasCorrUsed == 1 if n_sv > 18 else _ABSENT)
-    g_2sv_18.spartnCorrUsed = (r_2sv_18_14spartnCorrUsed == 1 if n_sv > 18 else _ABSENT)
-    g_2sv_18.prCorrUsed = (r_2sv_18_10prCorrUsed == 1 if n_sv > 18 else _ABSENT)
-    g_2sv_18.crCorrUsed = (r_2sv_18_10crCorrUsed == 1 if n_sv > 18 else _ABSENT)
-    g_2sv_18.doCorrUsed = (r_2sv_18_10doCorrUsed == 1 if n_sv > 18 else _ABSENT)
-    g_2sv_18.clasCorrUsed = (r_2sv_18_12clasCorrUsed == 1 if n_sv > 18 else _ABSENT)
-    g_2sv_18.lppCorrUsed = (r_2sv_18_11lppCorrUsed == 1 if n_sv > 18 else _ABSENT)
-    g_2sv_18.hasCorrUsed = (r_2sv_18_11hasCorrUsed == 1 if n_sv > 18 else _ABSENT)
+    g_2sv_18.sbasCorrUsed = (_sent(r_2sv_18_12sbasCorrUsed == 1) if n_sv > 18 else _ABSENT)
+    g_2sv_18.rtcmCorrUsed = (_sent(r_2sv_18_12rtcmCorrUsed == 1) if n_sv > 18 else _ABSENT)
+    g_2sv_18.slasCorrUsed = (_sent(r_2sv_18_12slasCorrUsed == 1) if n_sv > 18 else _ABSENT)
+    g_2sv_18.spartnCorrUsed = (_sent(r_2sv_18_14spartnCorrUsed == 1) if n_sv > 18 else _ABSENT)
+    g_2sv_18.prCorrUsed = (_sent(r_2sv_18_10prCorrUsed == 1) if n_sv > 18 else _ABSENT)
+    g_2sv_18.crCorrUsed = (_sent(r_2sv_18_10crCorrUsed == 1) if n_sv > 18 else _ABSENT)
+    g_2sv_18.doCorrUsed = (_sent(r_2sv_18_10doCorrUsed == 1) if n_sv > 18 else _ABSENT)
+    g_2sv_18.clasCorrUsed = (_sent(r_2sv_18_12clasCorrUsed == 1) if n_sv > 18 else _ABSENT)
+    g_2sv_18.lppCorrUsed = (_sent(r_2sv_18_11lppCorrUsed == 1) if n_sv > 18 else _ABSENT)
+    g_2sv_18.hasCorrUsed = (_sent(r_2sv_18_11hasCorrUsed == 1) if n_sv > 18 else _ABSENT)
     g_2sv_19 = _object_new(NavSatSv)
     g_2sv_19.gnssId = r_2sv_19_6gnssId
     g_2sv_19.svId = r_2sv_19_4svId
     g_2sv_19.cno = r_2sv_19_3cno
     g_2sv_19.elev = r_2sv_19_4elev
     g_2sv_19.azim = r_2sv_19_4azim
-    g_2sv_19.prRes = (r_2sv_19_5prRes * 0.1 if n_sv > 19 else _ABSENT)
+    g_2sv_19.prRes = (_sent(r_2sv_19_5prRes * 0.1) if n_sv > 19 else _ABSENT)
     g_2sv_19.qualityInd = r_2sv_19_10qualityInd
-    g_2sv_19.svUsed = (r_2sv_19_6svUsed == 1 if n_sv > 19 else _ABSENT)
+    g_2sv_19.svUsed = (_sent(r_2sv_19_6svUsed == 1) if n_sv > 19 else _ABSENT)
     g_2sv_19.health = r_2sv_19_6health
-    g_2sv_19.diffCorr = (r_2sv_19_8diffCorr == 1 if n_sv > 19 else _ABSENT)
-    g_2sv_19.smoothed = (r_2sv_19_8smoothed == 1 if n_sv > 19 else _ABSENT)
+    g_2sv_19.diffCorr = (_sent(r_2sv_19_8diffCorr == 1) if n_sv > 19 else _ABSENT)
+    g_2sv_19.smoothed = (_sent(r_2sv_19_8smoothed == 1) if n_sv > 19 else _ABSENT)
     g_2sv_19.orbitSource = r_2sv_19_11orbitSource
-    g_2sv_19.ephAvail = (r_2sv_19_8ephAvail == 1 if n_sv > 19 else _ABSENT)
-    g_2sv_19.almAvail = (r_2sv_19_8almAvail == 1 if n_sv > 19 else _ABSENT)
-    g_2sv_19.anoAvail = (r_2sv_19_8anoAvail == 1 if n_sv > 19 else _ABSENT)
-    g_2sv_19.aopAvail = (r_2sv_19_8aopAvail == 1 if n_sv > 19 else _ABSENT)
+    g_2sv_19.ephAvail = (_sent(r_2sv_19_8ephAvail == 1) if n_sv > 19 else _ABSENT)
+    g_2sv_19.almAvail = (_sent(r_2sv_19_8almAvail == 1) if n_sv > 19 else _ABSENT)
+    g_2sv_19.anoAvail = (_sent(r_2sv_19_8anoAvail == 1) if n_sv > 19 else _ABSENT)
+    g_2sv_19.aopAvail = (_sent(r_2sv_19_8aopAvail == 1) if n_sv > 19 else _ABSENT)
     g_2sv_19.reserved13 = r_2sv_19_10reserved13
-    g_2sv_19.sbasCorrUsed = (r_2sv_19_12sbasCorrUsed == 1 if n_sv > 19 else _ABSENT)
-    g_2sv_19.rtcmCorrUsed = (r_2sv_19_12rtcmCorrUsed == 1 if n_sv > 19 else _ABSENT)
-    g_2sv_19.slasCorrUsed = (r_2sv_19_12slasCorrUsed == 1 if n_sv > 19 else _ABSENT)
-    g_2sv_19.spartnCorrUsed = (r_2sv_19_14spartnCorrUsed == 1 if n_sv > 19 else _ABSENT)
-    g_2sv_19.prCorrUsed = (r_2sv_19_10prCorrUsed == 1 if n_sv > 19 else _ABSENT)
-    g_2sv_19.crCorrUsed = (r_2sv_19_10crCorrUsed == 1 if n_sv > 19 else _ABSENT)
-    g_2sv_19.doCorrUsed = (r_2sv_19_10doCorrUsed == 1 if n_sv > 19 else _ABSENT)
-    g_2sv_19.clasCorrUsed = (r_2sv_19_12clasCorrUsed == 1 if n_sv > 19 else _ABSENT)
-    g_2sv_19.lppCorrUsed = (r_2sv_19_11lppCorrUsed == 1 if n_sv > 19 else _ABSENT)
-    g_2sv_19.hasCorrUsed = (r_2sv_19_11hasCorrUsed == 1 if n_sv > 19 else _ABSENT)
+    g_2sv_19.sbasCorrUsed = (_sent(r_2sv_19_12sbasCorrUsed == 1) if n_sv > 19 else _ABSENT)
+    g_2sv_19.rtcmCorrUsed = (_sent(r_2sv_19_12rtcmCorrUsed == 1) if n_sv > 19 else _ABSENT)
+    g_2sv_19.slasCorrUsed = (_sent(r_2sv_19_12slasCorrUsed == 1) if n_sv > 19 else _ABSENT)
+    g_2sv_19.spartnCorrUsed = (_sent(r_2sv_19_14spartnCorrUsed == 1) if n_sv > 19 else _ABSENT)
+    g_2sv_19.prCorrUsed = (_sent(r_2sv_19_10prCorrUsed == 1) if n_sv > 19 else _ABSENT)
+    g_2sv_19.crCorrUsed = (_sent(r_2sv_19_10crCorrUsed == 1) if n_sv > 19 else _ABSENT)
+    g_2sv_19.doCorrUsed = (_sent(r_2sv_19_10doCorrUsed == 1) if n_sv > 19 else _ABSENT)
+    g_2sv_19.clasCorrUsed = (_sent(r_2sv_19_12clasCorrUsed == 1) if n_sv > 19 else _ABSENT)
+    g_2sv_19.lppCorrUsed = (_sent(r_2sv_19_11lppCorrUsed == 1) if n_sv > 19 else _ABSENT)
+    g_2sv_19.hasCorrUsed = (_sent(r_2sv_19_11hasCorrUsed == 1) if n_sv > 19 else _ABSENT)
     g_2sv_20 = _object_new(NavSatSv)
     g_2sv_20.gnssId = r_2sv_20_6gnssId
     g_2sv_20.svId = r_2sv_20_4svId
     g_2sv_20.cno = r_2sv_20_3cno
     g_2sv_20.elev = r_2sv_20_4elev
     g_2sv_20.azim = r_2sv_20_4azim
-    g_2sv_20.prRes = (r_2sv_20_5prRes * 0.1 if n_sv > 20 else _ABSENT)
+    g_2sv_20.prRes = (_sent(r_2sv_20_5prRes * 0.1) if n_sv > 20 else _ABSENT)
     g_2sv_20.qualityInd = r_2sv_20_10qualityInd
-    g_2sv_20.svUsed = (r_2sv_20_6svUsed == 1 if n_sv > 20 else _ABSENT)
+    g_2sv_20.svUsed = (_sent(r_2sv_20_6svUsed == 1) if n_sv > 20 else _ABSENT)
     g_2sv_20.health = r_2sv_20_6health
-    g_2sv_20.diffCorr = (r_2sv_20_8diffCorr == 1 if n_sv > 20 else _ABSENT)
-    g_2sv_20.smoothed = (r_2sv_20_8smoothed == 1 if n_sv > 20 else _ABSENT)
+    g_2sv_20.diffCorr = (_sent(r_2sv_20_8diffCorr == 1) if n_sv > 20 else _ABSENT)
+    g_2sv_20.smoothed = (_sent(r_2sv_20_8smoothed == 1) if n_sv > 20 else _ABSENT)
     g_2sv_20.orbitSource = r_2sv_20_11orbitSource
-    g_2sv_20.ephAvail = (r_2sv_20_8ephAvail == 1 if n_sv > 20 else _ABSENT)
-    g_2sv_20.almAvail = (r_2sv_20_8almAvail == 1 if n_sv > 20 else _ABSENT)
-    g_2sv_20.anoAvail = (r_2sv_20_8anoAvail == 1 if n_sv > 20 else _ABSENT)
-    g_2sv_20.aopAvail = (r_2sv_20_8aopAvail == 1 if n_sv > 20 else _ABSENT)
+    g_2sv_20.ephAvail = (_sent(r_2sv_20_8ephAvail == 1) if n_sv > 20 else _ABSENT)
+    g_2sv_20.almAvail = (_sent(r_2sv_20_8almAvail == 1) if n_sv > 20 else _ABSENT)
+    g_2sv_20.anoAvail = (_sent(r_2sv_20_8anoAvail == 1) if n_sv > 20 else _ABSENT)
+    g_2sv_20.aopAvail = (_sent(r_2sv_20_8aopAvail == 1) if n_sv > 20 else _ABSENT)
     g_2sv_20.reserved13 = r_2sv_20_10reserved13
-    g_2sv_20.sbasCorrUsed = (r_2sv_20_12sbasCorrUsed == 1 if n_sv > 20 else _ABSENT)
-    g_2sv_20.rtcmCorrUsed = (r_2sv_20_12rtcmCorrUsed == 1 if n_sv > 20 else _ABSENT)
-    g_2sv_20.slasCorrUsed = (r_2sv_20_12slasCorrUsed == 1 if n_sv > 20 else _ABSENT)
-    g_2sv_20.spartnCorrUsed = (r_2sv_20_14spartnCorrUsed == 1 if n_sv > 20 else _ABSENT)
-    g_2sv_20.prCorrUsed = (r_2sv_20_10prCorrUsed == 1 if n_sv > 20 else _ABSENT)
-    g_2sv_20.crCorrUsed = (r_2sv_20_10crCorrUsed == 1 if n_sv > 20 else _ABSENT)
-    g_2sv_20.doCorrUsed = (r_2sv_20_10doCorrUsed == 1 if n_sv > 20 else _ABSENT)
-    g_2sv_20.clasCorrUsed = (r_2sv_20_12clasCorrUsed == 1 if n_sv > 20 else _ABSENT)
-    g_2sv_20.lppCorrUsed = (r_2sv_20_11lppCorrUsed == 1 if n_sv > 20 else _ABSENT)
-    g_2sv_20.hasCorrUsed = (r_2sv_20_11hasCorrUsed == 1 if n_sv > 20 else _ABSENT)
+    g_2sv_20.sbasCorrUsed = (_sent(r_2sv_20_12sbasCorrUsed == 1) if n_sv > 20 else _ABSENT)
+    g_2sv_20.rtcmCorrUsed = (_sent(r_2sv_20_12rtcmCorrUsed == 1) if n_sv > 20 else _ABSENT)
+    g_2sv_20.slasCorrUsed = (_sent(r_2sv_20_12slasCorrUsed == 1) if n_sv > 20 else _ABSENT)
+    g_2sv_20.spartnCorrUsed = (_sent(r_2sv_20_14spartnCorrUsed == 1) if n_sv > 20 else _ABSENT)
+    g_2sv_20.prCorrUsed = (_sent(r_2sv_20_10prCorrUsed == 1) if n_sv > 20 else _ABSENT)
+    g_2sv_20.crCorrUsed = (_sent(r_2sv_20_10crCorrUsed == 1) if n_sv > 20 else _ABSENT)
+    g_2sv_20.doCorrUsed = (_sent(r_2sv_20_10doCorrUsed == 1) if n_sv > 20 else _ABSENT)
+    g_2sv_20.clasCorrUsed = (_sent(r_2sv_20_12clasCorrUsed == 1) if n_sv > 20 else _ABSENT)
+    g_2sv_20.lppCorrUsed = (_sent(r_2sv_20_11lppCorrUsed == 1) if n_sv > 20 else _ABSENT)
+    g_2sv_20.hasCorrUsed = (_sent(r_2sv_20_11hasCorrUsed == 1) if n_sv > 20 else _ABSENT)
     g_2sv_21 = _object_new(NavSatSv)
     g_2sv_21.gnssId = r_2sv_21_6gnssId
     g_2sv_21.svId = r_2sv_21_4svId
     g_2sv_21.cno = r_2sv_21_3cno
     g_2sv_21.elev = r_2sv_21_4elev
     g_2sv_21.azim = r_2sv_21_4azim
-    g_2sv_21.prRes = (r_2sv_21_5prRes * 0.1 if n_sv > 21 else _ABSENT)
+    g_2sv_21.prRes = (_sent(r_2sv_21_5prRes * 0.1) if n_sv > 21 else _ABSENT)
     g_2sv_21.qualityInd = r_2sv_21_10qualityInd
-    g_2sv_21.svUsed = (r_2sv_21_6svUsed == 1 if n_sv > 21 else _ABSENT)
+    g_2sv_21.svUsed = (_sent(r_2sv_21_6svUsed == 1) if n_sv > 21 else _ABSENT)
     g_2sv_21.health = r_2sv_21_6health
-    g_2sv_21.diffCorr = (r_2sv_21_8diffCorr == 1 if n_sv > 21 else _ABSENT)
-    g_2sv_21.smoothed = (r_2sv_21_8smoothed == 1 if n_sv > 21 else _ABSENT)
+    g_2sv_21.diffCorr = (_sent(r_2sv_21_8diffCorr == 1) if n_sv > 21 else _ABSENT)
+    g_2sv_21.smoothed = (_sent(r_2sv_21_8smoothed == 1) if n_sv > 21 else _ABSENT)
     g_2sv_21.orbitSource = r_2sv_21_11orbitSource
-    g_2sv_21.ephAvail = (r_2sv_21_8ephAvail == 1 if n_sv > 21 else _ABSENT)
-    g_2sv_21.almAvail = (r_2sv_21_8almAvail == 1 if n_sv > 21 else _ABSENT)
-    g_2sv_21.anoAvail = (r_2sv_21_8anoAvail == 1 if n_sv > 21 else _ABSENT)
-    g_2sv_21.aopAvail = (r_2sv_21_8aopAvail == 1 if n_sv > 21 else _ABSENT)
+    g_2sv_21.ephAvail = (_sent(r_2sv_21_8ephAvail == 1) if n_sv > 21 else _ABSENT)
+    g_2sv_21.almAvail = (_sent(r_2sv_21_8almAvail == 1) if n_sv > 21 else _ABSENT)
+    g_2sv_21.anoAvail = (_sent(r_2sv_21_8anoAvail == 1) if n_sv > 21 else _ABSENT)
+    g_2sv_21.aopAvail = (_sent(r_2sv_21_8aopAvail == 1) if n_sv > 21 else _ABSENT)
     g_2sv_21.reserved13 = r_2sv_21_10reserved13
-    g_2sv_21.sbasCorrUsed = (r_2sv_21_12sbasCorrUsed == 1 if n_sv > 21 else _ABSENT)
-    g_2sv_21.rtcmCorrUsed = (r_2sv_21_12rtcmCorrUsed == 1 if n_sv > 21 else _ABSENT)
-    g_2sv_21.slasCorrUsed = (r_2sv_21_12slasCorrUsed == 1 if n_sv > 21 else _ABSENT)
-    g_2sv_21.spartnCorrUsed = (r_2sv_21_14spartnCorrUsed == 1 if n_sv > 21 else _ABSENT)
-    g_2sv_21.prCorrUsed = (r_2sv_21_10prCorrUsed == 1 if n_sv > 21 else _ABSENT)
-    g_2sv_21.crCorrUsed = (r_2sv_21_10crCorrUsed == 1 if n_sv > 21 else _ABSENT)
-    g_2sv_21.doCorrUsed = (r_2sv_21_10doCorrUsed == 1 if n_sv > 21 else _ABSENT)
-    g_2sv_21.clasCorrUsed = (r_2sv_21_12clasCorrUsed == 1 if n_sv > 21 else _ABSENT)
-    g_2sv_21.lppCorrUsed = (r_2sv_21_11lppCorrUsed == 1 if n_sv > 21 else _ABSENT)
-    g_2sv_21.hasCorrUsed = (r_2sv_21_11hasCorrUsed == 1 if n_sv > 21 else _ABSENT)
+    g_2sv_21.sbasCorrUsed = (_sent(r_2sv_21_12sbasCorrUsed == 1) if n_sv > 21 else _ABSENT)
+    g_2sv_21.rtcmCorrUsed = (_sent(r_2sv_21_12rtcmCorrUsed == 1) if n_sv > 21 else _ABSENT)
+    g_2sv_21.slasCorrUsed = (_sent(r_2sv_21_12slasCorrUsed == 1) if n_sv > 21 else _ABSENT)
+    g_2sv_21.spartnCorrUsed = (_sent(r_2sv_21_14spartnCorrUsed == 1) if n_sv > 21 else _ABSENT)
+    g_2sv_21.prCorrUsed = (_sent(r_2sv_21_10prCorrUsed == 1) if n_sv > 21 else _ABSENT)
+    g_2sv_21.crCorrUsed = (_sent(r_2sv_21_10crCorrUsed == 1) if n_sv > 21 else _ABSENT)
+    g_2sv_21.doCorrUsed = (_sent(r_2sv_21_10doCorrUsed == 1) if n_sv > 21 else _ABSENT)
+    g_2sv_21.clasCorrUsed = (_sent(r_2sv_21_12clasCorrUsed == 1) if n_sv > 21 else _ABSENT)
+    g_2sv_21.lppCorrUsed = (_sent(r_2sv_21_11lppCorrUsed == 1) if n_sv > 21 else _ABSENT)
+    g_2sv_21.hasCorrUsed = (_sent(r_2sv_21_11hasCorrUsed == 1) if n_sv > 21 else _ABSENT)
     g_2sv_22 = _object_new(NavSatSv)
     g_2sv_22.gnssId = r_2sv_22_6gnssId
     g_2sv_22.svId = r_2sv_22_4svId
     g_2sv_22.cno = r_2sv_22_3cno
     g_2sv_22.elev = r_2sv_22_4elev
     g_2sv_22.azim = r_2sv_22_4azim
-    g_2sv_22.prRes = (r_2sv_22_5prRes * 0.1 if n_sv > 22 else _ABSENT)
+    g_2sv_22.prRes = (_sent(r_2sv_22_5prRes * 0.1) if n_sv > 22 else _ABSENT)
     g_2sv_22.qualityInd = r_2sv_22_10qualityInd
-    g_2sv_22.svUsed = (r_2sv_22_6svUsed == 1 if n_sv > 22 else _ABSENT)
+    g_2sv_22.svUsed = (_sent(r_2sv_22_6svUsed == 1) if n_sv > 22 else _ABSENT)
     g_2sv_22.health = r_2sv_22_6health
-    g_2sv_22.diffCorr = (r_2sv_22_8diffCorr == 1 if n_sv > 22 else _ABSENT)
-    g_2sv_22.smoothed = (r_2sv_22_8smoothed == 1 if n_sv > 22 else _ABSENT)
+    g_2sv_22.diffCorr = (_sent(r_2sv_22_8diffCorr == 1) if n_sv > 22 else _ABSENT)
+    g_2sv_22.smoothed = (_sent(r_2sv_22_8smoothed == 1) if n_sv > 22 else _ABSENT)
     g_2sv_22.orbitSource = r_2sv_22_11orbitSource
-    g_2sv_22.ephAvail = (r_2sv_22_8ephAvail == 1 if n_sv > 22 else _ABSENT)
-    g_2sv_22.almAvail = (r_2sv_22_8almAvail == 1 if n_sv > 22 else _ABSENT)
-    g_2sv_22.anoAvail = (r_2sv_22_8anoAvail == 1 if n_sv > 22 else _ABSENT)
-    g_2sv_22.aopAvail = (r_2sv_22_8aopAvail == 1 if n_sv > 22 else _ABSENT)
+    g_2sv_22.ephAvail = (_sent(r_2sv_22_8ephAvail == 1) if n_sv > 22 else _ABSENT)
+    g_2sv_22.almAvail = (_sent(r_2sv_22_8almAvail == 1) if n_sv > 22 else _ABSENT)
+    g_2sv_22.anoAvail = (_sent(r_2sv_22_8anoAvail == 1) if n_sv > 22 else _ABSENT)
+    g_2sv_22.aopAvail = (_sent(r_2sv_22_8aopAvail == 1) if n_sv > 22 else _ABSENT)
     g_2sv_22.reserved13 = r_2sv_22_10reserved13
-    g_2sv_22.sbasCorrUsed = (r_2sv_22_12sbasCorrUsed == 1 if n_sv > 22 else _ABSENT)
-    g_2sv_22.rtcmCorrUsed = (r_2sv_22_12rtcmCorrUsed == 1 if n_sv > 22 else _ABSENT)
-    g_2sv_22.slasCorrUsed = (r_2sv_22_12slasCorrUsed == 1 if n_sv > 22 else _ABSENT)
-    g_2sv_22.spartnCorrUsed = (r_2sv_22_14spartnCorrUsed == 1 if n_sv > 22 else _ABSENT)
-    g_2sv_22.prCorrUsed = (r_2sv_22_10prCorrUsed == 1 if n_sv > 22 else _ABSENT)
-    g_2sv_22.crCorrUsed = (r_2sv_22_10crCorrUsed == 1 if n_sv > 22 else _ABSENT)
-    g_2sv_22.doCorrUsed = (r_2sv_22_10doCorrUsed == 1 if n_sv > 22 else _ABSENT)
-    g_2sv_22.clasCorrUsed = (r_2sv_22_12clasCorrUsed == 1 if n_sv > 22 else _ABSENT)
-    g_2sv_22.lppCorrUsed = (r_2sv_22_11lppCorrUsed == 1 if n_sv > 22 else _ABSENT)
-    g_2sv_22.hasCorrUsed = (r_2sv_22_11hasCorrUsed == 1 if n_sv > 22 else _ABSENT)
+    g_2sv_22.sbasCorrUsed = (_sent(r_2sv_22_12sbasCorrUsed == 1) if n_sv > 22 else _ABSENT)
+    g_2sv_22.rtcmCorrUsed = (_sent(r_2sv_22_12rtcmCorrUsed == 1) if n_sv > 22 else _ABSENT)
+    g_2sv_22.slasCorrUsed = (_sent(r_2sv_22_12slasCorrUsed == 1) if n_sv > 22 else _ABSENT)
+    g_2sv_22.spartnCorrUsed = (_sent(r_2sv_22_14spartnCorrUsed == 1) if n_sv > 22 else _ABSENT)
+    g_2sv_22.prCorrUsed = (_sent(r_2sv_22_10prCorrUsed == 1) if n_sv > 22 else _ABSENT)
+    g_2sv_22.crCorrUsed = (_sent(r_2sv_22_10crCorrUsed == 1) if n_sv > 22 else _ABSENT)
+    g_2sv_22.doCorrUsed = (_sent(r_2sv_22_10doCorrUsed == 1) if n_sv > 22 else _ABSENT)
+    g_2sv_22.clasCorrUsed = (_sent(r_2sv_22_12clasCorrUsed == 1) if n_sv > 22 else _ABSENT)
+    g_2sv_22.lppCorrUsed = (_sent(r_2sv_22_11lppCorrUsed == 1) if n_sv > 22 else _ABSENT)
+    g_2sv_22.hasCorrUsed = (_sent(r_2sv_22_11hasCorrUsed == 1) if n_sv > 22 else _ABSENT)
     g_2sv_23 = _object_new(NavSatSv)
     g_2sv_23.gnssId = r_2sv_23_6gnssId
     g_2sv_23.svId = r_2sv_23_4svId
     g_2sv_23.cno = r_2sv_23_3cno
     g_2sv_23.elev = r_2sv_23_4elev
     g_2sv_23.azim = r_2sv_23_4azim
-    g_2sv_23.prRes = (r_2sv_23_5prRes * 0.1 if n_sv > 23 else _ABSENT)
+    g_2sv_23.prRes = (_sent(r_2sv_23_5prRes * 0.1) if n_sv > 23 else _ABSENT)
     g_2sv_23.qualityInd = r_2sv_23_10qualityInd
-    g_2sv_23.svUsed = (r_2sv_23_6svUsed == 1 if n_sv > 23 else _ABSENT)
+    g_2sv_23.svUsed = (_sent(r_2sv_23_6svUsed == 1) if n_sv > 23 else _ABSENT)
     g_2sv_23.health = r_2sv_23_6health
-    g_2sv_23.diffCorr = (r_2sv_23_8diffCorr == 1 if n_sv > 23 else _ABSENT)
-    g_2sv_23.smoothed = (r_2sv_23_8smoothed == 1 if n_sv > 23 else _ABSENT)
+    g_2sv_23.diffCorr = (_sent(r_2sv_23_8diffCorr == 1) if n_sv > 23 else _ABSENT)
+    g_2sv_23.smoothed = (_sent(r_2sv_23_8smoothed == 1) if n_sv > 23 else _ABSENT)
     g_2sv_23.orbitSource = r_2sv_23_11orbitSource
-    g_2sv_23.ephAvail = (r_2sv_23_8ephAvail == 1 if n_sv > 23 else _ABSENT)
-    g_2sv_23.almAvail = (r_2sv_23_8almAvail == 1 if n_sv > 23 else _ABSENT)
-    g_2sv_23.anoAvail = (r_2sv_23_8anoAvail == 1 if n_sv > 23 else _ABSENT)
-    g_2sv_23.aopAvail = (r_2sv_23_8aopAvail == 1 if n_sv > 23 else _ABSENT)
+    g_2sv_23.ephAvail = (_sent(r_2sv_23_8ephAvail == 1) if n_sv > 23 else _ABSENT)
+    g_2sv_23.almAvail = (_sent(r_2sv_23_8almAvail == 1) if n_sv > 23 else _ABSENT)
+    g_2sv_23.anoAvail = (_sent(r_2sv_23_8anoAvail == 1) if n_sv > 23 else _ABSENT)
+    g_2sv_23.aopAvail = (_sent(r_2sv_23_8aopAvail == 1) if n_sv > 23 else _ABSENT)
     g_2sv_23.reserved13 = r_2sv_23_10reserved13
-    g_2sv_23.sbasCorrUsed = (r_2sv_23_12sbasCorrUsed == 1 if n_sv > 23 else _ABSENT)
-    g_2sv_23.rtcmCorrUsed = (r_2sv_23_12rtcmCorrUsed == 1 if n_sv > 23 else _ABSENT)
-    g_2sv_23.slasCorrUsed = (r_2sv_23_12slasCorrUsed == 1 if n_sv > 23 else _ABSENT)
-    g_2sv_23.spartnCorrUsed = (r_2sv_23_14spartnCorrUsed == 1 if n_sv > 23 else _ABSENT)
-    g_2sv_23.prCorrUsed = (r_2sv_23_10prCorrUsed == 1 if n_sv > 23 else _ABSENT)
-    g_2sv_23.crCorrUsed = (r_2sv_23_10crCorrUsed == 1 if n_sv > 23 else _ABSENT)
-    g_2sv_23.doCorrUsed = (r_2sv_23_10doCorrUsed == 1 if n_sv > 23 else _ABSENT)
-    g_2sv_23.clasCorrUsed = (r_2sv_23_12clasCorrUsed == 1 if n_sv > 23 else _ABSENT)
-    g_2sv_23.lppCorrUsed = (r_2sv_23_11lppCorrUsed == 1 if n_sv > 23 else _ABSENT)
-    g_2sv_23.hasCorrUsed = (r_2sv_23_11hasCorrUsed == 1 if n_sv > 23 else _ABSENT)
+    g_2sv_23.sbasCorrUsed = (_sent(r_2sv_23_12sbasCorrUsed == 1) if n_sv > 23 else _ABSENT)
+    g_2sv_23.rtcmCorrUsed = (_sent(r_2sv_23_12rtcmCorrUsed == 1) if n_sv > 23 else _ABSENT)
+    g_2sv_23.slasCorrUsed = (_sent(r_2sv_23_12slasCorrUsed == 1) if n_sv > 23 else _ABSENT)
+    g_2sv_23.spartnCorrUsed = (_sent(r_2sv_23_14spartnCorrUsed == 1) if n_sv > 23 else _ABSENT)
+    g_2sv_23.prCorrUsed = (_sent(r_2sv_23_10prCorrUsed == 1) if n_sv > 23 else _ABSENT)
+    g_2sv_23.crCorrUsed = (_sent(r_2sv_23_10crCorrUsed == 1) if n_sv > 23 else _ABSENT)
+    g_2sv_23.doCorrUsed = (_sent(r_2sv_23_10doCorrUsed == 1) if n_sv > 23 else _ABSENT)
+    g_2sv_23.clasCorrUsed = (_sent(r_2sv_23_12clasCorrUsed == 1) if n_sv > 23 else _ABSENT)
+    g_2sv_23.lppCorrUsed = (_sent(r_2sv_23_11lppCorrUsed == 1) if n_sv > 23 else _ABSENT)
+    g_2sv_23.hasCorrUsed = (_sent(r_2sv_23_11hasCorrUsed == 1) if n_sv > 23 else _ABSENT)
     g_2sv_24 = _object_new(NavSatSv)
     g_2sv_24.gnssId = r_2sv_24_6gnssId
     g_2sv_24.svId = r_2sv_24_4svId
     g_2sv_24.cno = r_2sv_24_3cno
     g_2sv_24.elev = r_2sv_24_4elev
     g_2sv_24.azim = r_2sv_24_4azim
-    g_2sv_24.prRes = (r_2sv_24_5prRes * 0.1 if n_sv > 24 else _ABSENT)
+    g_2sv_24.prRes = (_sent(r_2sv_24_5prRes * 0.1) if n_sv > 24 else _ABSENT)
     g_2sv_24.qualityInd = r_2sv_24_10qualityInd
-    g_2sv_24.svUsed = (r_2sv_24_6svUsed == 1 if n_sv > 24 else _ABSENT)
+    g_2sv_24.svUsed = (_sent(r_2sv_24_6svUsed == 1) if n_sv > 24 else _ABSENT)
     g_2sv_24.health = r_2sv_24_6health
-    g_2sv_24.diffCorr = (r_2sv_24_8diffCorr == 1 if n_sv > 24 else _ABSENT)
-    g_2sv_24.smoothed = (r_2sv_24_8smoothed == 1 if n_sv > 24 else _ABSENT)
+    g_2sv_24.diffCorr = (_sent(r_2sv_24_8diffCorr == 1) if n_sv > 24 else _ABSENT)
+    g_2sv_24.smoothed = (_sent(r_2sv_24_8smoothed == 1) if n_sv > 24 else _ABSENT)
     g_2sv_24.orbitSource = r_2sv_24_11orbitSource
-    g_2sv_24.ephAvail = (r_2sv_24_8ephAvail == 1 if n_sv > 24 else _ABSENT)
-    g_2sv_24.almAvail = (r_2sv_24_8almAvail == 1 if n_sv > 24 else _ABSENT)
-    g_2sv_24.anoAvail = (r_2sv_24_8anoAvail == 1 if n_sv > 24 else _ABSENT)
-    g_2sv_24.aopAvail = (r_2sv_24_8aopAvail == 1 if n_sv > 24 else _ABSENT)
+    g_2sv_24.ephAvail = (_sent(r_2sv_24_8ephAvail == 1) if n_sv > 24 else _ABSENT)
+    g_2sv_24.almAvail = (_sent(r_2sv_24_8almAvail == 1) if n_sv > 24 else _ABSENT)
+    g_2sv_24.anoAvail = (_sent(r_2sv_24_8anoAvail == 1) if n_sv > 24 else _ABSENT)
+    g_2sv_24.aopAvail = (_sent(r_2sv_24_8aopAvail == 1) if n_sv > 24 else _ABSENT)
     g_2sv_24.reserved13 = r_2sv_24_10reserved13
-    g_2sv_24.sbasCorrUsed = (r_2sv_24_12sbasCorrUsed == 1 if n_sv > 24 else _ABSENT)
-    g_2sv_24.rtcmCorrUsed = (r_2sv_24_12rtcmCorrUsed == 1 if n_sv > 24 else _ABSENT)
-    g_2sv_24.slasCorrUsed = (r_2sv_24_12slasCorrUsed == 1 if n_sv > 24 else _ABSENT)
-    g_2sv_24.spartnCorrUsed = (r_2sv_24_14spartnCorrUsed == 1 if n_sv > 24 else _ABSENT)
-    g_2sv_24.prCorrUsed = (r_2sv_24_10prCorrUsed == 1 if n_sv > 24 else _ABSENT)
-    g_2sv_24.crCorrUsed = (r_2sv_24_10crCorrUsed == 1 if n_sv > 24 else _ABSENT)
-    g_2sv_24.doCorrUsed = (r_2sv_24_10doCorrUsed == 1 if n_sv > 24 else _ABSENT)
-    g_2sv_24.clasCorrUsed = (r_2sv_24_12clasCorrUsed == 1 if n_sv > 24 else _ABSENT)
-    g_2sv_24.lppCorrUsed = (r_2sv_24_11lppCorrUsed == 1 if n_sv > 24 else _ABSENT)
-    g_2sv_24.hasCorrUsed = (r_2sv_24_11hasCorrUsed == 1 if n_sv > 24 else _ABSENT)
+    g_2sv_24.sbasCorrUsed = (_sent(r_2sv_24_12sbasCorrUsed == 1) if n_sv > 24 else _ABSENT)
+    g_2sv_24.rtcmCorrUsed = (_sent(r_2sv_24_12rtcmCorrUsed == 1) if n_sv > 24 else _ABSENT)
+    g_2sv_24.slasCorrUsed = (_sent(r_2sv_24_12slasCorrUsed == 1) if n_sv > 24 else _ABSENT)
+    g_2sv_24.spartnCorrUsed = (_sent(r_2sv_24_14spartnCorrUsed == 1) if n_sv > 24 else _ABSENT)
+    g_2sv_24.prCorrUsed = (_sent(r_2sv_24_10prCorrUsed == 1) if n_sv > 24 else _ABSENT)
+    g_2sv_24.crCorrUsed = (_sent(r_2sv_24_10crCorrUsed == 1) if n_sv > 24 else _ABSENT)
+    g_2sv_24.doCorrUsed = (_sent(r_2sv_24_10doCorrUsed == 1) if n_sv > 24 else _ABSENT)
+    g_2sv_24.clasCorrUsed = (_sent(r_2sv_24_12clasCorrUsed == 1) if n_sv > 24 else _ABSENT)
+    g_2sv_24.lppCorrUsed = (_sent(r_2sv_24_11lppCorrUsed == 1) if n_sv > 24 else _ABSENT)
+    g_2sv_24.hasCorrUsed = (_sent(r_2sv_24_11hasCorrUsed == 1) if n_sv > 24 else _ABSENT)
     g_2sv_25 = _object_new(NavSatSv)
     g_2sv_25.gnssId = r_2sv_25_6gnssId
     g_2sv_25.svId = r_2sv_25_4svId
     g_2sv_25.cno = r_2sv_25_3cno
     g_2sv_25.elev = r_2sv_25_4elev
     g_2sv_25.azim = r_2sv_25_4azim
-    g_2sv_25.prRes = (r_2sv_25_5prRes * 0.1 if n_sv > 25 else _ABSENT)
+    g_2sv_25.prRes = (_sent(r_2sv_25_5prRes * 0.1) if n_sv > 25 else _ABSENT)
     g_2sv_25.qualityInd = r_2sv_25_10qualityInd
-    g_2sv_25.svUsed = (r_2sv_25_6svUsed == 1 if n_sv > 25 else _ABSENT)
+    g_2sv_25.svUsed = (_sent(r_2sv_25_6svUsed == 1) if n_sv > 25 else _ABSENT)
     g_2sv_25.health = r_2sv_25_6health
-    g_2sv_25.diffCorr = (r_2sv_25_8diffCorr == 1 if n_sv > 25 else _ABSENT)
-    g_2sv_25.smoothed = (r_2sv_25_8smoothed == 1 if n_sv > 25 else _ABSENT)
+    g_2sv_25.diffCorr = (_sent(r_2sv_25_8diffCorr == 1) if n_sv > 25 else _ABSENT)
+    g_2sv_25.smoothed = (_sent(r_2sv_25_8smoothed == 1) if n_sv > 25 else _ABSENT)
     g_2sv_25.orbitSource = r_2sv_25_11orbitSource
-    g_2sv_25.ephAvail = (r_2sv_25_8ephAvail == 1 if n_sv > 25 else _ABSENT)
-    g_2sv_25.almAvail = (r_2sv_25_8almAvail == 1 if n_sv > 25 else _ABSENT)
-    g_2sv_25.anoAvail = (r_2sv_25_8anoAvail == 1 if n_sv > 25 else _ABSENT)
-    g_2sv_25.aopAvail = (r_2sv_25_8aopAvail == 1 if n_sv > 25 else _ABSENT)
+    g_2sv_25.ephAvail = (_sent(r_2sv_25_8ephAvail == 1) if n_sv > 25 else _ABSENT)
+    g_2sv_25.almAvail = (_sent(r_2sv_25_8almAvail == 1) if n_sv > 25 else _ABSENT)
+    g_2sv_25.anoAvail = (_sent(r_2sv_25_8anoAvail == 1) if n_sv > 25 else _ABSENT)
+    g_2sv_25.aopAvail = (_sent(r_2sv_25_8aopAvail == 1) if n_sv > 25 else _ABSENT)
     g_2sv_25.reserved13 = r_2sv_25_10reserved13
-    g_2sv_25.sbasCorrUsed = (r_2sv_25_12sbasCorrUsed == 1 if n_sv > 25 else _ABSENT)
-    g_2sv_25.rtcmCorrUsed = (r_2sv_25_12rtcmCorrUsed == 1 if n_sv > 25 else _ABSENT)
-    g_2sv_25.slasCorrUsed = (r_2sv_25_12slasCorrUsed == 1 if n_sv > 25 else _ABSENT)
-    g_2sv_25.spartnCorrUsed = (r_2sv_25_14spartnCorrUsed == 1 if n_sv > 25 else _ABSENT)
-    g_2sv_25.prCorrUsed = (r_2sv_25_10prCorrUsed == 1 if n_sv > 25 else _ABSENT)
-    g_2sv_25.crCorrUsed = (r_2sv_25_10crCorrUsed == 1 if n_sv > 25 else _ABSENT)
-    g_2sv_25.doCorrUsed = (r_2sv_25_10doCorrUsed == 1 if n_sv > 25 else _ABSENT)
-    g_2sv_25.clasCorrUsed = (r_2sv_25_12clasCorrUsed == 1 if n_sv > 25 else _ABSENT)
-    g_2sv_25.lppCorrUsed = (r_2sv_25_11lppCorrUsed == 1 if n_sv > 25 else _ABSENT)
-    g_2sv_25.hasCorrUsed = (r_2sv_25_11hasCorrUsed == 1 if n_sv > 25 else _ABSENT)
+    g_2sv_25.sbasCorrUsed = (_sent(r_2sv_25_12sbasCorrUsed == 1) if n_sv > 25 else _ABSENT)
+    g_2sv_25.rtcmCorrUsed = (_sent(r_2sv_25_12rtcmCorrUsed == 1) if n_sv > 25 else _ABSENT)
+    g_2sv_25.slasCorrUsed = (_sent(r_2sv_25_12slasCorrUsed == 1) if n_sv > 25 else _ABSENT)
+    g_2sv_25.spartnCorrUsed = (_sent(r_2sv_25_14spartnCorrUsed == 1) if n_sv > 25 else _ABSENT)
+    g_2sv_25.prCorrUsed = (_sent(r_2sv_25_10prCorrUsed == 1) if n_sv > 25 else _ABSENT)
+    g_2sv_25.crCorrUsed = (_sent(r_2sv_25_10crCorrUsed == 1) if n_sv > 25 else _ABSENT)
+    g_2sv_25.doCorrUsed = (_sent(r_2sv_25_10doCorrUsed == 1) if n_sv > 25 else _ABSENT)
+    g_2sv_25.clasCorrUsed = (_sent(r_2sv_25_12clasCorrUsed == 1) if n_sv > 25 else _ABSENT)
+    g_2sv_25.lppCorrUsed = (_sent(r_2sv_25_11lppCorrUsed == 1) if n_sv > 25 else _ABSENT)
+    g_2sv_25.hasCorrUsed = (_sent(r_2sv_25_11hasCorrUsed == 1) if n_sv > 25 else _ABSENT)
     g_2sv_26 = _object_new(NavSatSv)
     g_2sv_26.gnssId = r_2sv_26_6gnssId
     g_2sv_26.svId = r_2sv_26_4svId
     g_2sv_26.cno = r_2sv_26_3cno
     g_2sv_26.elev = r_2sv_26_4elev
     g_2sv_26.azim = r_2sv_26_4azim
-    g_2sv_26.prRes = (r_2sv_26_5prRes * 0.1 if n_sv > 26 else _ABSENT)
+    g_2sv_26.prRes = (_sent(r_2sv_26_5prRes * 0.1) if n_sv > 26 else _ABSENT)
     g_2sv_26.qualityInd = r_2sv_26_10qualityInd
-    g_2sv_26.svUsed = (r_2sv_26_6svUsed == 1 if n_sv > 26 else _ABSENT)
+    g_2sv_26.svUsed = (_sent(r_2sv_26_6svUsed == 1) if n_sv > 26 else _ABSENT)
     g_2sv_26.health = r_2sv_26_6health
-    g_2sv_26.diffCorr = (r_2sv_26_8diffCorr == 1 if n_sv > 26 else _ABSENT)
-    g_2sv_26.smoothed = (r_2sv_26_8smoothed == 1 if n_sv > 26 else _ABSENT)
+    g_2sv_26.diffCorr = (_sent(r_2sv_26_8diffCorr == 1) if n_sv > 26 else _ABSENT)
+    g_2sv_26.smoothed = (_sent(r_2sv_26_8smoothed == 1) if n_sv > 26 else _ABSENT)
     g_2sv_26.orbitSource = r_2sv_26_11orbitSource
-    g_2sv_26.ephAvail = (r_2sv_26_8ephAvail == 1 if n_sv > 26 else _ABSENT)
-    g_2sv_26.almAvail = (r_2sv_26_8almAvail == 1 if n_sv > 26 else _ABSENT)
-    g_2sv_26.anoAvail = (r_2sv_26_8anoAvail == 1 if n_sv > 26 else _ABSENT)
-    g_2sv_26.aopAvail = (r_2sv_26_8aopAvail == 1 if n_sv > 26 else _ABSENT)
+    g_2sv_26.ephAvail = (_sent(r_2sv_26_8ephAvail == 1) if n_sv > 26 else _ABSENT)
+    g_2sv_26.almAvail = (_sent(r_2sv_26_8almAvail == 1) if n_sv > 26 else _ABSENT)
+    g_2sv_26.anoAvail = (_sent(r_2sv_26_8anoAvail == 1) if n_sv > 26 else _ABSENT)
+    g_2sv_26.aopAvail = (_sent(r_2sv_26_8aopAvail == 1) if n_sv > 26 else _ABSENT)
     g_2sv_26.reserved13 = r_2sv_26_10reserved13
-    g_2sv_26.sbasCorrUsed = (r_2sv_26_12sbasCorrUsed == 1 if n_sv > 26 else _ABSENT)
-    g_2sv_26.rtcmCorrUsed = (r_2sv_26_12rtcmCorrUsed == 1 if n_sv > 26 else _ABSENT)
-    g_2sv_26.slasCorrUsed = (r_2sv_26_12slasCorrUsed == 1 if n_sv > 26 else _ABSENT)
-    g_2sv_26.spartnCorrUsed = (r_2sv_26_14spartnCorrUsed == 1 if n_sv > 26 else _ABSENT)
-    g_2sv_26.prCorrUsed = (r_2sv_26_10prCorrUsed == 1 if n_sv > 26 else _ABSENT)
-    g_2sv_26.crCorrUsed = (r_2sv_26_10crCorrUsed == 1 if n_sv > 26 else _ABSENT)
-    g_2sv_26.doCorrUsed = (r_2sv_26_10doCorrUsed == 1 if n_sv > 26 else _ABSENT)
-    g_2sv_26.clasCorrUsed = (r_2sv_26_12clasCorrUsed == 1 if n_sv > 26 else _ABSENT)
-    g_2sv_26.lppCorrUsed = (r_2sv_26_11lppCorrUsed == 1 if n_sv > 26 else _ABSENT)
-    g_2sv_26.hasCorrUsed = (r_2sv_26_11hasCorrUsed == 1 if n_sv > 26 else _ABSENT)
+    g_2sv_26.sbasCorrUsed = (_sent(r_2sv_26_12sbasCorrUsed == 1) if n_sv > 26 else _ABSENT)
+    g_2sv_26.rtcmCorrUsed = (_sent(r_2sv_26_12rtcmCorrUsed == 1) if n_sv > 26 else _ABSENT)
+    g_2sv_26.slasCorrUsed = (_sent(r_2sv_26_12slasCorrUsed == 1) if n_sv > 26 else _ABSENT)
+    g_2sv_26.spartnCorrUsed = (_sent(r_2sv_26_14spartnCorrUsed == 1) if n_sv > 26 else _ABSENT)
+    g_2sv_26.prCorrUsed = (_sent(r_2sv_26_10prCorrUsed == 1) if n_sv > 26 else _ABSENT)
+    g_2sv_26.crCorrUsed = (_sent(r_2sv_26_10crCorrUsed == 1) if n_sv > 26 else _ABSENT)
+    g_2sv_26.doCorrUsed = (_sent(r_2sv_26_10doCorrUsed == 1) if n_sv > 26 else _ABSENT)
+    g_2sv_26.clasCorrUsed = (_sent(r_2sv_26_12clasCorrUsed == 1) if n_sv > 26 else _ABSENT)
+    g_2sv_26.lppCorrUsed = (_sent(r_2sv_26_11lppCorrUsed == 1) if n_sv > 26 else _ABSENT)
+    g_2sv_26.hasCorrUsed = (_sent(r_2sv_26_11hasCorrUsed == 1) if n_sv > 26 else _ABSENT)
     g_2sv_27 = _object_new(NavSatSv)
     g_2sv_27.gnssId = r_2sv_27_6gnssId
     g_2sv_27.svId = r_2sv_27_4svId
     g_2sv_27.cno = r_2sv_27_3cno
     g_2sv_27.elev = r_2sv_27_4elev
     g_2sv_27.azim = r_2sv_27_4azim
-    g_2sv_27.prRes = (r_2sv_27_5prRes * 0.1 if n_sv > 27 else _ABSENT)
+    g_2sv_27.prRes = (_sent(r_2sv_27_5prRes * 0.1) if n_sv > 27 else _ABSENT)
     g_2sv_27.qualityInd = r_2sv_27_10qualityInd
-    g_2sv_27.svUsed = (r_2sv_27_6svUsed == 1 if n_sv > 27 else _ABSENT)
+    g_2sv_27.svUsed = (_sent(r_2sv_27_6svUsed == 1) if n_sv > 27 else _ABSENT)
     g_2sv_27.health = r_2sv_27_6health
-    g_2sv_27.diffCorr = (r_2sv_27_8diffCorr == 1 if n_sv > 27 else _ABSENT)
-    g_2sv_27.smoothed = (r_2sv_27_8smoothed == 1 if n_sv > 27 else _ABSENT)
+    g_2sv_27.diffCorr = (_sent(r_2sv_27_8diffCorr == 1) if n_sv > 27 else _ABSENT)
+    g_2sv_27.smoothed = (_sent(r_2sv_27_8smoothed == 1) if n_sv > 27 else _ABSENT)
     g_2sv_27.orbitSource = r_2sv_27_11orbitSource
-    g_2sv_27.ephAvail = (r_2sv_27_8ephAvail == 1 if n_sv > 27 else _ABSENT)
-    g_2sv_27.almAvail = (r_2sv_27_8almAvail == 1 if n_sv > 27 else _ABSENT)
-    g_2sv_27.anoAvail = (r_2sv_27_8anoAvail == 1 if n_sv > 27 else _ABSENT)
-    g_2sv_27.aopAvail = (r_2sv_27_8aopAvail == 1 if n_sv > 27 else _ABSENT)
+    g_2sv_27.ephAvail = (_sent(r_2sv_27_8ephAvail == 1) if n_sv > 27 else _ABSENT)
+    g_2sv_27.almAvail = (_sent(r_2sv_27_8almAvail == 1) if n_sv > 27 else _ABSENT)
+    g_2sv_27.anoAvail = (_sent(r_2sv_27_8anoAvail == 1) if n_sv > 27 else _ABSENT)
+    g_2sv_27.aopAvail = (_sent(r_2sv_27_8aopAvail == 1) if n_sv > 27 else _ABSENT)
     g_2sv_27.reserved13 = r_2sv_27_10reserved13
-    g_2sv_27.sbasCorrUsed = (r_2sv_27_12sbasCorrUsed == 1 if n_sv > 27 else _ABSENT)
-    g_2sv_27.rtcmCorrUsed = (r_2sv_27_12rtcmCorrUsed == 1 if n_sv > 27 else _ABSENT)
-    g_2sv_27.slasCorrUsed = (r_2sv_27_12slasCorrUsed == 1 if n_sv > 27 else _ABSENT)
-    g_2sv_27.spartnCorrUsed = (r_2sv_27_14spartnCorrUsed == 1 if n_sv > 27 else _ABSENT)
-    g_2sv_27.prCorrUsed = (r_2sv_27_10prCorrUsed == 1 if n_sv > 27 else _ABSENT)
-    g_2sv_27.crCorrUsed = (r_2sv_27_10crCorrUsed == 1 if n_sv > 27 else _ABSENT)
-    g_2sv_27.doCorrUsed = (r_2sv_27_10doCorrUsed == 1 if n_sv > 27 else _ABSENT)
-    g_2sv_27.clasCorrUsed = (r_2sv_27_12clasCorrUsed == 1 if n_sv > 27 else _ABSENT)
-    g_2sv_27.lppCorrUsed = (r_2sv_27_11lppCorrUsed == 1 if n_sv > 27 else _ABSENT)
-    g_2sv_27.hasCorrUsed = (r_2sv_27_11hasCorrUsed == 1 if n_sv > 27 else _ABSENT)
+    g_2sv_27.sbasCorrUsed = (_sent(r_2sv_27_12sbasCorrUsed == 1) if n_sv > 27 else _ABSENT)
+    g_2sv_27.rtcmCorrUsed = (_sent(r_2sv_27_12rtcmCorrUsed == 1) if n_sv > 27 else _ABSENT)
+    g_2sv_27.slasCorrUsed = (_sent(r_2sv_27_12slasCorrUsed == 1) if n_sv > 27 else _ABSENT)
+    g_2sv_27.spartnCorrUsed = (_sent(r_2sv_27_14spartnCorrUsed == 1) if n_sv > 27 else _ABSENT)
+    g_2sv_27.prCorrUsed = (_sent(r_2sv_27_10prCorrUsed == 1) if n_sv > 27 else _ABSENT)
+    g_2sv_27.crCorrUsed = (_sent(r_2sv_27_10crCorrUsed == 1) if n_sv > 27 else _ABSENT)
+    g_2sv_27.doCorrUsed = (_sent(r_2sv_27_10doCorrUsed == 1) if n_sv > 27 else _ABSENT)
+    g_2sv_27.clasCorrUsed = (_sent(r_2sv_27_12clasCorrUsed == 1) if n_sv > 27 else _ABSENT)
+    g_2sv_27.lppCorrUsed = (_sent(r_2sv_27_11lppCorrUsed == 1) if n_sv > 27 else _ABSENT)
+    g_2sv_27.hasCorrUsed = (_sent(r_2sv_27_11hasCorrUsed == 1) if n_sv > 27 else _ABSENT)
     g_2sv_28 = _object_new(NavSatSv)
     g_2sv_28.gnssId = r_2sv_28_6gnssId
     g_2sv_28.svId = r_2sv_28_4svId
     g_2sv_28.cno = r_2sv_28_3cno
     g_2sv_28.elev = r_2sv_28_4elev
     g_2sv_28.azim = r_2sv_28_4azim
-    g_2sv_28.prRes = (r_2sv_28_5prRes * 0.1 if n_sv > 28 else _ABSENT)
+    g_2sv_28.prRes = (_sent(r_2sv_28_5prRes * 0.1) if n_sv > 28 else _ABSENT)
     g_2sv_28.qualityInd = r_2sv_28_10qualityInd
-    g_2sv_28.svUsed = (r_2sv_28_6svUsed == 1 if n_sv > 28 else _ABSENT)
+    g_2sv_28.svUsed = (_sent(r_2sv_28_6svUsed == 1) if n_sv > 28 else _ABSENT)
     g_2sv_28.health = r_2sv_28_6health
-    g_2sv_28.diffCorr = (r_2sv_28_8diffCorr == 1 if n_sv > 28 else _ABSENT)
-    g_2sv_28.smoothed = (r_2sv_28_8smoothed == 1 if n_sv > 28 else _ABSENT)
+    g_2sv_28.diffCorr = (_sent(r_2sv_28_8diffCorr == 1) if n_sv > 28 else _ABSENT)
+    g_2sv_28.smoothed = (_sent(r_2sv_28_8smoothed == 1) if n_sv > 28 else _ABSENT)
     g_2sv_28.orbitSource = r_2sv_28_11orbitSource
-    g_2sv_28.ephAvail = (r_2sv_28_8ephAvail == 1 if n_sv > 28 else _ABSENT)
-    g_2sv_28.almAvail = (r_2sv_28_8almAvail == 1 if n_sv > 28 else _ABSENT)
-    g_2sv_28.anoAvail = (r_2sv_28_8anoAvail == 1 if n_sv > 28 else _ABSENT)
-    g_2sv_28.aopAvail = (r_2sv_28_8aopAvail == 1 if n_sv > 28 else _ABSENT)
+    g_2sv_28.ephAvail = (_sent(r_2sv_28_8ephAvail == 1) if n_sv > 28 else _ABSENT)
+    g_2sv_28.almAvail = (_sent(r_2sv_28_8almAvail == 1) if n_sv > 28 else _ABSENT)
+    g_2sv_28.anoAvail = (_sent(r_2sv_28_8anoAvail == 1) if n_sv > 28 else _ABSENT)
+    g_2sv_28.aopAvail = (_sent(r_2sv_28_8aopAvail == 1) if n_sv > 28 else _ABSENT)
     g_2sv_28.reserved13 = r_2sv_28_10reserved13
-    g_2sv_28.sbasCorrUsed = (r_2sv_28_12sbasCorrUsed == 1 if n_sv > 28 else _ABSENT)
-    g_2sv_28.rtcmCorrUsed = (r_2sv_28_12rtcmCorrUsed == 1 if n_sv > 28 else _ABSENT)
-    g_2sv_28.slasCorrUsed = (r_2sv_28_12slasCorrUsed == 1 if n_sv > 28 else _ABSENT)
-    g_2sv_28.spartnCorrUsed = (r_2sv_28_14spartnCorrUsed == 1 if n_sv > 28 else _ABSENT)
-    g_2sv_28.prCorrUsed = (r_2sv_28_10prCorrUsed == 1 if n_sv > 28 else _ABSENT)
-    g_2sv_28.crCorrUsed = (r_2sv_28_10crCorrUsed == 1 if n_sv > 28 else _ABSENT)
-    g_2sv_28.doCorrUsed = (r_2sv_28_10doCorrUsed == 1 if n_sv > 28 else _ABSENT)
-    g_2sv_28.clasCorrUsed = (r_2sv_28_12clasCorrUsed == 1 if n_sv > 28 else _ABSENT)
-    g_2sv_28.lppCorrUsed = (r_2sv_28_11lppCorrUsed == 1 if n_sv > 28 else _ABSENT)
-    g_2sv_28.hasCorrUsed = (r_2sv_28_11hasCorrUsed == 1 if n_sv > 28 else _ABSENT)
+    g_2sv_28.sbasCorrUsed = (_sent(r_2sv_28_12sbasCorrUsed == 1) if n_sv > 28 else _ABSENT)
+    g_2sv_28.rtcmCorrUsed = (_sent(r_2sv_28_12rtcmCorrUsed == 1) if n_sv > 28 else _ABSENT)
+    g_2sv_28.slasCorrUsed = (_sent(r_2sv_28_12slasCorrUsed == 1) if n_sv > 28 else _ABSENT)
+    g_2sv_28.spartnCorrUsed = (_sent(r_2sv_28_14spartnCorrUsed == 1) if n_sv > 28 else _ABSENT)
+    g_2sv_28.prCorrUsed = (_sent(r_2sv_28_10prCorrUsed == 1) if n_sv > 28 else _ABSENT)
+    g_2sv_28.crCorrUsed = (_sent(r_2sv_28_10crCorrUsed == 1) if n_sv > 28 else _ABSENT)
+    g_2sv_28.doCorrUsed = (_sent(r_2sv_28_10doCorrUsed == 1) if n_sv > 28 else _ABSENT)
+    g_2sv_28.clasCorrUsed = (_sent(r_2sv_28_12clasCorrUsed == 1) if n_sv > 28 else _ABSENT)
+    g_2sv_28.lppCorrUsed = (_sent(r_2sv_28_11lppCorrUsed == 1) if n_sv > 28 else _ABSENT)
+    g_2sv_28.hasCorrUsed = (_sent(r_2sv_28_11hasCorrUsed == 1) if n_sv > 28 else _ABSENT)
     g_2sv_29 = _object_new(NavSatSv)
     g_2sv_29.gnssId = r_2sv_29_6gnssId
     g_2sv_29.svId = r_2sv_29_4svId
     g_2sv_29.cno = r_2sv_29_3cno
     g_2sv_29.elev = r_2sv_29_4elev
     g_2sv_29.azim = r_2sv_29_4azim
-    g_2sv_29.prRes = (r_2sv_29_5prRes * 0.1 if n_sv > 29 else _ABSENT)
+    g_2sv_29.prRes = (_sent(r_2sv_29_5prRes * 0.1) if n_sv > 29 else _ABSENT)
     g_2sv_29.qualityInd = r_2sv_29_10qualityInd
-    g_2sv_29.svUsed = (r_2sv_29_6svUsed == 1 if n_sv > 29 else _ABSENT)
+    g_2sv_29.svUsed = (_sent(r_2sv_29_6svUsed == 1) if n_sv > 29 else _ABSENT)
     g_2sv_29.health = r_2sv_29_6health
-    g_2sv_29.diffCorr = (r_2sv_29_8diffCorr == 1 if n_sv > 29 else _ABSENT)
-    g_2sv_29.smoothed = (r_2sv_29_8smoothed == 1 if n_sv > 29 else _ABSENT)
+    g_2sv_29.diffCorr = (_sent(r_2sv_29_8diffCorr == 1) if n_sv > 29 else _ABSENT)
+    g_2sv_29.smoothed = (_sent(r_2sv_29_8smoothed == 1) if n_sv > 29 else _ABSENT)
     g_2sv_29.orbitSource = r_2sv_29_11orbitSource
-    g_2sv_29.ephAvail = (r_2sv_29_8ephAvail == 1 if n_sv > 29 else _ABSENT)
-    g_2sv_29.almAvail = (r_2sv_29_8almAvail == 1 if n_sv > 29 else _ABSENT)
-    g_2sv_29.anoAvail = (r_2sv_29_8anoAvail == 1 if n_sv > 29 else _ABSENT)
-    g_2sv_29.aopAvail = (r_2sv_29_8aopAvail == 1 if n_sv > 29 else _ABSENT)
+    g_2sv_29.ephAvail = (_sent(r_2sv_29_8ephAvail == 1) if n_sv > 29 else _ABSENT)
+    g_2sv_29.almAvail = (_sent(r_2sv_29_8almAvail == 1) if n_sv > 29 else _ABSENT)
+    g_2sv_29.anoAvail = (_sent(r_2sv_29_8anoAvail == 1) if n_sv > 29 else _ABSENT)
+    g_2sv_29.aopAvail = (_sent(r_2sv_29_8aopAvail == 1) if n_sv > 29 else _ABSENT)
     g_2sv_29.reserved13 = r_2sv_29_10reserved13
-    g_2sv_29.sbasCorrUsed = (r_2sv_29_12sbasCorrUsed == 1 if n_sv > 29 else _ABSENT)
-    g_2sv_29.rtcmCorrUsed = (r_2sv_29_12rtcmCorrUsed == 1 if n_sv > 29 else _ABSENT)
-    g_2sv_29.slasCorrUsed = (r_2sv_29_12slasCorrUsed == 1 if n_sv > 29 else _ABSENT)
-    g_2sv_29.spartnCorrUsed = (r_2sv_29_14spartnCorrUsed == 1 if n_sv > 29 else _ABSENT)
-    g_2sv_29.prCorrUsed = (r_2sv_29_10prCorrUsed == 1 if n_sv > 29 else _ABSENT)
-    g_2sv_29.crCorrUsed = (r_2sv_29_10crCorrUsed == 1 if n_sv > 29 else _ABSENT)
-    g_2sv_29.doCorrUsed = (r_2sv_29_10doCorrUsed == 1 if n_sv > 29 else _ABSENT)
-    g_2sv_29.clasCorrUsed = (r_2sv_29_12clasCorrUsed == 1 if n_sv > 29 else _ABSENT)
-    g_2sv_29.lppCorrUsed = (r_2sv_29_11lppCorrUsed == 1 if n_sv > 29 else _ABSENT)
-    g_2sv_29.hasCorrUsed = (r_2sv_29_11hasCorrUsed == 1 if n_sv > 29 else _ABSENT)
+    g_2sv_29.sbasCorrUsed = (_sent(r_2sv_29_12sbasCorrUsed == 1) if n_sv > 29 else _ABSENT)
+    g_2sv_29.rtcmCorrUsed = (_sent(r_2sv_29_12rtcmCorrUsed == 1) if n_sv > 29 else _ABSENT)
+    g_2sv_29.slasCorrUsed = (_sent(r_2sv_29_12slasCorrUsed == 1) if n_sv > 29 else _ABSENT)
+    g_2sv_29.spartnCorrUsed = (_sent(r_2sv_29_14spartnCorrUsed == 1) if n_sv > 29 else _ABSENT)
+    g_2sv_29.prCorrUsed = (_sent(r_2sv_29_10prCorrUsed == 1) if n_sv > 29 else _ABSENT)
+    g_2sv_29.crCorrUsed = (_sent(r_2sv_29_10crCorrUsed == 1) if n_sv > 29 else _ABSENT)
+    g_2sv_29.doCorrUsed = (_sent(r_2sv_29_10doCorrUsed == 1) if n_sv > 29 else _ABSENT)
+    g_2sv_29.clasCorrUsed = (_sent(r_2sv_29_12clasCorrUsed == 1) if n_sv > 29 else _ABSENT)
+    g_2sv_29.lppCorrUsed = (_sent(r_2sv_29_11lppCorrUsed == 1) if n_sv > 29 else _ABSENT)
+    g_2sv_29.hasCorrUsed = (_sent(r_2sv_29_11hasCorrUsed == 1) if n_sv > 29 else _ABSENT)
     g_2sv_30 = _object_new(NavSatSv)
     g_2sv_30.gnssId = r_2sv_30_6gnssId
     g_2sv_30.svId = r_2sv_30_4svId
     g_2sv_30.cno = r_2sv_30_3cno
     g_2sv_30.elev = r_2sv_30_4elev
     g_2sv_30.azim = r_2sv_30_4azim
-    g_2sv_30.prRes = (r_2sv_30_5prRes * 0.1 if n_sv > 30 else _ABSENT)
+    g_2sv_30.prRes = (_sent(r_2sv_30_5prRes * 0.1) if n_sv > 30 else _ABSENT)
     g_2sv_30.qualityInd = r_2sv_30_10qualityInd
-    g_2sv_30.svUsed = (r_2sv_30_6svUsed == 1 if n_sv > 30 else _ABSENT)
+    g_2sv_30.svUsed = (_sent(r_2sv_30_6svUsed == 1) if n_sv > 30 else _ABSENT)
     g_2sv_30.health = r_2sv_30_6health
-    g_2sv_30.diffCorr = (r_2sv_30_8diffCorr == 1 if n_sv > 30 else _ABSENT)
-    g_2sv_30.smoothed = (r_2sv_30_8smoothed == 1 if n_sv > 30 else _ABSENT)
+    g_2sv_30.diffCorr = (_sent(r_2sv_30_8diffCorr == 1) if n_sv > 30 else _ABSENT)
+    g_2sv_30.smoothed = (_sent(r_2sv_30_8smoothed == 1) if n_sv > 30 else _ABSENT)
     g_2sv_30.orbitSource = r_2sv_30_11orbitSource
-    g_2sv_30.ephAvail = (r_2sv_30_8ephAvail == 1 if n_sv > 30 else _ABSENT)
-    g_2sv_30.almAvail = (r_2sv_30_8almAvail == 1 if n_sv > 30 else _ABSENT)
-    g_2sv_30.anoAvail = (r_2sv_30_8anoAvail == 1 if n_sv > 30 else _ABSENT)
-    g_2sv_30.aopAvail = (r_2sv_30_8aopAvail == 1 if n_sv > 30 else _ABSENT)
+    g_2sv_30.ephAvail = (_sent(r_2sv_30_8ephAvail == 1) if n_sv > 30 else _ABSENT)
+    g_2sv_30.almAvail = (_sent(r_2sv_30_8almAvail == 1) if n_sv > 30 else _ABSENT)
+    g_2sv_30.anoAvail = (_sent(r_2sv_30_8anoAvail == 1) if n_sv > 30 else _ABSENT)
+    g_2sv_30.aopAvail = (_sent(r_2sv_30_8aopAvail == 1) if n_sv > 30 else _ABSENT)
     g_2sv_30.reserved13 = r_2sv_30_10reserved13
-    g_2sv_30.sbasCorrUsed = (r_2sv_30_12sbasCorrUsed == 1 if n_sv > 30 else _ABSENT)
-    g_2sv_30.rtcmCorrUsed = (r_2sv_30_12rtcmCorrUsed == 1 if n_sv > 30 else _ABSENT)
-    g_2sv_30.slasCorrUsed = (r_2sv_30_12slasCorrUsed == 1 if n_sv > 30 else _ABSENT)
-    g_2sv_30.spartnCorrUsed = (r_2sv_30_14spartnCorrUsed == 1 if n_sv > 30 else _ABSENT)
-    g_2sv_30.prCorrUsed = (r_2sv_30_10prCorrUsed == 1 if n_sv > 30 else _ABSENT)
-    g_2sv_30.crCorrUsed = (r_2sv_30_10crCorrUsed == 1 if n_sv > 30 else _ABSENT)
-    g_2sv_30.doCorrUsed = (r_2sv_30_10doCorrUsed == 1 if n_sv > 30 else _ABSENT)
-    g_2sv_30.clasCorrUsed = (r_2sv_30_12clasCorrUsed == 1 if n_sv > 30 else _ABSENT)
-    g_2sv_30.lppCorrUsed = (r_2sv_30_11lppCorrUsed == 1 if n_sv > 30 else _ABSENT)
-    g_2sv_30.hasCorrUsed = (r_2sv_30_11hasCorrUsed == 1 if n_sv > 30 else _ABSENT)
+    g_2sv_30.sbasCorrUsed = (_sent(r_2sv_30_12sbasCorrUsed == 1) if n_sv > 30 else _ABSENT)
+    g_2sv_30.rtcmCorrUsed = (_sent(r_2sv_30_12rtcmCorrUsed == 1) if n_sv > 30 else _ABSENT)
+    g_2sv_30.slasCorrUsed = (_sent(r_2sv_30_12slasCorrUsed == 1) if n_sv > 30 else _ABSENT)
+    g_2sv_30.spartnCorrUsed = (_sent(r_2sv_30_14spartnCorrUsed == 1) if n_sv > 30 else _ABSENT)
+    g_2sv_30.prCorrUsed = (_sent(r_2sv_30_10prCorrUsed == 1) if n_sv > 30 else _ABSENT)
+    g_2sv_30.crCorrUsed = (_sent(r_2sv_30_10crCorrUsed == 1) if n_sv > 30 else _ABSENT)
+    g_2sv_30.doCorrUsed = (_sent(r_2sv_30_10doCorrUsed == 1) if n_sv > 30 else _ABSENT)
+    g_2sv_30.clasCorrUsed = (_sent(r_2sv_30_12clasCorrUsed == 1) if n_sv > 30 else _ABSENT)
+    g_2sv_30.lppCorrUsed = (_sent(r_2sv_30_11lppCorrUsed == 1) if n_sv > 30 else _ABSENT)
+    g_2sv_30.hasCorrUsed = (_sent(r_2sv_30_11hasCorrUsed == 1) if n_sv > 30 else _ABSENT)
     g_2sv_31 = _object_new(NavSatSv)
     g_2sv_31.gnssId = r_2sv_31_6gnssId
     g_2sv_31.svId = r_2sv_31_4svId
     g_2sv_31.cno = r_2sv_31_3cno
     g_2sv_31.elev = r_2sv_31_4elev
     g_2sv_31.azim = r_2sv_31_4azim
-    g_2sv_31.prRes = (r_2sv_31_5prRes * 0.1 if n_sv > 31 else _ABSENT)
+    g_2sv_31.prRes = (_sent(r_2sv_31_5prRes * 0.1) if n_sv > 31 else _ABSENT)
     g_2sv_31.qualityInd = r_2sv_31_10qualityInd
-    g_2sv_31.svUsed = (r_2sv_31_6svUsed == 1 if n_sv > 31 else _ABSENT)
+    g_2sv_31.svUsed = (_sent(r_2sv_31_6svUsed == 1) if n_sv > 31 else _ABSENT)
     g_2sv_31.health = r_2sv_31_6health
-    g_2sv_31.diffCorr = (r_2sv_31_8diffCorr == 1 if n_sv > 31 else _ABSENT)
-    g_2sv_31.smoothed = (r_2sv_31_8smoothed == 1 if n_sv > 31 else _ABSENT)
+    g_2sv_31.diffCorr = (_sent(r_2sv_31_8diffCorr == 1) if n_sv > 31 else _ABSENT)
+    g_2sv_31.smoothed = (_sent(r_2sv_31_8smoothed == 1) if n_sv > 31 else _ABSENT)
     g_2sv_31.orbitSource = r_2sv_31_11orbitSource
-    g_2sv_31.ephAvail = (r_2sv_31_8ephAvail == 1 if n_sv > 31 else _ABSENT)
-    g_2sv_31.almAvail = (r_2sv_31_8almAvail == 1 if n_sv > 31 else _ABSENT)
-    g_2sv_31.anoAvail = (r_2sv_31_8anoAvail == 1 if n_sv > 31 else _ABSENT)
-    g_2sv_31.aopAvail = (r_2sv_31_8aopAvail == 1 if n_sv > 31 else _ABSENT)
+    g_2sv_31.ephAvail = (_sent(r_2sv_31_8ephAvail == 1) if n_sv > 31 else _ABSENT)
+    g_2sv_31.almAvail = (_sent(r_2sv_31_8almAvail == 1) if n_sv > 31 else _ABSENT)
+    g_2sv_31.anoAvail = (_sent(r_2sv_31_8anoAvail == 1) if n_sv > 31 else _ABSENT)
+    g_2sv_31.aopAvail = (_sent(r_2sv_31_8aopAvail == 1) if n_sv > 31 else _ABSENT)
     g_2sv_31.reserved13 = r_2sv_31_10reserved13
-    g_2sv_31.sbasCorrUsed = (r_2sv_31_12sbasCorrUsed == 1 if n_sv > 31 else _ABSENT)
-    g_2sv_31.rtcmCorrUsed = (r_2sv_31_12rtcmCorrUsed == 1 if n_sv > 31 else _ABSENT)
-    g_2sv_31.slasCorrUsed = (r_2sv_31_12slasCorrUsed == 1 if n_sv > 31 else _ABSENT)
-    g_2sv_31.spartnCorrUsed = (r_2sv_31_14spartnCorrUsed == 1 if n_sv > 31 else _ABSENT)
-    g_2sv_31.prCorrUsed = (r_2sv_31_10prCorrUsed == 1 if n_sv > 31 else _ABSENT)
-    g_2sv_31.crCorrUsed = (r_2sv_31_10crCorrUsed == 1 if n_sv > 31 else _ABSENT)
-    g_2sv_31.doCorrUsed = (r_2sv_31_10doCorrUsed == 1 if n_sv > 31 else _ABSENT)
-    g_2sv_31.clasCorrUsed = (r_2sv_31_12clasCorrUsed == 1 if n_sv > 31 else _ABSENT)
-    g_2sv_31.lppCorrUsed = (r_2sv_31_11lppCorrUsed == 1 if n_sv > 31 else _ABSENT)
-    g_2sv_31.hasCorrUsed = (r_2sv_31_11hasCorrUsed == 1 if n_sv > 31 else _ABSENT)
+    g_2sv_31.sbasCorrUsed = (_sent(r_2sv_31_12sbasCorrUsed == 1) if n_sv > 31 else _ABSENT)
+    g_2sv_31.rtcmCorrUsed = (_sent(r_2sv_31_12rtcmCorrUsed == 1) if n_sv > 31 else _ABSENT)
+    g_2sv_31.slasCorrUsed = (_sent(r_2sv_31_12slasCorrUsed == 1) if n_sv > 31 else _ABSENT)
+    g_2sv_31.spartnCorrUsed = (_sent(r_2sv_31_14spartnCorrUsed == 1) if n_sv > 31 else _ABSENT)
+    g_2sv_31.prCorrUsed = (_sent(r_2sv_31_10prCorrUsed == 1) if n_sv > 31 else _ABSENT)
+    g_2sv_31.crCorrUsed = (_sent(r_2sv_31_10crCorrUsed == 1) if n_sv > 31 else _ABSENT)
+    g_2sv_31.doCorrUsed = (_sent(r_2sv_31_10doCorrUsed == 1) if n_sv > 31 else _ABSENT)
+    g_2sv_31.clasCorrUsed = (_sent(r_2sv_31_12clasCorrUsed == 1) if n_sv > 31 else _ABSENT)
+    g_2sv_31.lppCorrUsed = (_sent(r_2sv_31_11lppCorrUsed == 1) if n_sv > 31 else _ABSENT)
+    g_2sv_31.hasCorrUsed = (_sent(r_2sv_31_11hasCorrUsed == 1) if n_sv > 31 else _ABSENT)
     o = _object_new(NavSat)
     o.iTOW = r_iTOW
     o.version = r_version
     o.reserved0 = r_reserved0
     o.sv = [g_2sv_0, g_2sv_1, g_2sv_2, g_2sv_3, g_2sv_4, g_2sv_5, g_2sv_6, g_2sv_7, g_2sv_8, g_2sv_9, g_2sv_10, g_2sv_11, g_2sv_12, g_2sv_13, g_2sv_14, g_2sv_15, g_2sv_16, g_2sv_17, g_2sv_18, g_2sv_19, g_2sv_20, g_2sv_21, g_2sv_22, g_2sv_23, g_2sv_24, g_2sv_25, g_2sv_26, g_2sv_27, g_2sv_28, g_2sv_29, g_2sv_30, g_2sv_31][:n_sv]
     return o
+
+
+def _raw_mon_ver_3ext_0(g_3ext_0: Any) -> tuple[Any, ...]:
+    r_3ext_0_9extension = g_3ext_0.extension
+    if not isinstance(r_3ext_0_9extension, (bytes, bytearray)) or len(r_3ext_0_9extension) != 30:
+        raise _enc('mon_ver', 'ext[0].extension', r_3ext_0_9extension, 'length', 'bytes of length 30')
+    if r_3ext_0_9extension.__class__ is not bytes:
+        r_3ext_0_9extension = bytes(r_3ext_0_9extension)
+    return (r_3ext_0_9extension, )
+
+
+def _raw_mon_ver_3ext_1(g_3ext_1: Any) -> tuple[Any, ...]:
+    r_3ext_1_9extension = g_3ext_1.extension
+    if not isinstance(r_3ext_1_9extension, (bytes, bytearray)) or len(r_3ext_1_9extension) != 30:
+        raise _enc('mon_ver', 'ext[1].extension', r_3ext_1_9extension, 'length', 'bytes of length 30')
+    if r_3ext_1_9extension.__class__ is not bytes:
+        r_3ext_1_9extension = bytes(r_3ext_1_9extension)
+    return (r_3ext_1_9extension, )
+
+
+def _raw_mon_ver_3ext_2(g_3ext_2: Any) -> tuple[Any, ...]:
+    r_3ext_2_9extension = g_3ext_2.extension
+    if not isinstance(r_3ext_2_9extension, (bytes, bytearray)) or len(r_3ext_2_9extension) != 30:
+        raise _enc('mon_ver', 'ext[2].extension', r_3ext_2_9extension, 'length', 'bytes of length 30')
+    if r_3ext_2_9extension.__class__ is not bytes:
+        r_3ext_2_9extension = bytes(r_3ext_2_9extension)
+    return (r_3ext_2_9extension, )
+
+
+def _raw_mon_ver_3ext_3(g_3ext_3: Any) -> tuple[Any, ...]:
+    r_3ext_3_9extension = g_3ext_3.extension
+    if not isinstance(r_3ext_3_9extension, (bytes, bytearray)) or len(r_3ext_3_9extension) != 30:
+        raise _enc('mon_ver', 'ext[3].extension', r_3ext_3_9extension, 'length', 'bytes of length 30')
+    if r_3ext_3_9extension.__class__ is not bytes:
+        r_3ext_3_9extension = bytes(r_3ext_3_9extension)
+    return (r_3ext_3_9extension, )
+
+
+def _raw_mon_ver_3ext_4(g_3ext_4: Any) -> tuple[Any, ...]:
+    r_3ext_4_9extension = g_3ext_4.extension
+    if not isinstance(r_3ext_4_9extension, (bytes, bytearray)) or len(r_3ext_4_9extension) != 30:
+        raise _enc('mon_ver', 'ext[4].extension', r_3ext_4_9extension, 'length', 'bytes of length 30')
+    if r_3ext_4_9extension.__class__ is not bytes:
+        r_3ext_4_9extension = bytes(r_3ext_4_9extension)
+    return (r_3ext_4_9extension, )
+
+
+def _raw_mon_ver_3ext_5(g_3ext_5: Any) -> tuple[Any, ...]:
+    r_3ext_5_9extension = g_3ext_5.extension
+    if not isinstance(r_3ext_5_9extension, (bytes, bytearray)) or len(r_3ext_5_9extension) != 30:
+        raise _enc('mon_ver', 'ext[5].extension', r_3ext_5_9extension, 'length', 'bytes of length 30')
+    if r_3ext_5_9extension.__class__ is not bytes:
+        r_3ext_5_9extension = bytes(r_3ext_5_9extension)
+    return (r_3ext_5_9extension, )
+
+
+def _raw_mon_ver_3ext_6(g_3ext_6: Any) -> tuple[Any, ...]:
+    r_3ext_6_9extension = g_3ext_6.extension
+    if not isinstance(r_3ext_6_9extension, (bytes, bytearray)) or len(r_3ext_6_9extension) != 30:
+        raise _enc('mon_ver', 'ext[6].extension', r_3ext_6_9extension, 'length', 'bytes of length 30')
+    if r_3ext_6_9extension.__class__ is not bytes:
+        r_3ext_6_9extension = bytes(r_3ext_6_9extension)
+    return (r_3ext_6_9extension, )
+
+
+def _raw_mon_ver_3ext_7(g_3ext_7: Any) -> tuple[Any, ...]:
+    r_3ext_7_9extension = g_3ext_7.extension
+    if not isinstance(r_3ext_7_9extension, (bytes, bytearray)) or len(r_3ext_7_9extension) != 30:
+        raise _enc('mon_ver', 'ext[7].extension', r_3ext_7_9extension, 'length', 'bytes of length 30')
+    if r_3ext_7_9extension.__class__ is not bytes:
+        r_3ext_7_9extension = bytes(r_3ext_7_9extension)
+    return (r_3ext_7_9extension, )
+
+
+def _raw_mon_ver_3ext_8(g_3ext_8: Any) -> tuple[Any, ...]:
+    r_3ext_8_9extension = g_3ext_8.extension
+    if not isinstance(r_3ext_8_9extension, (bytes, bytearray)) or len(r_3ext_8_9extension) != 30:
+        raise _enc('mon_ver', 'ext[8].extension', r_3ext_8_9extension, 'length', 'bytes of length 30')
+    if r_3ext_8_9extension.__class__ is not bytes:
+        r_3ext_8_9extension = bytes(r_3ext_8_9extension)
+    return (r_3ext_8_9extension, )
+
+
+def _raw_mon_ver_3ext_9(g_3ext_9: Any) -> tuple[Any, ...]:
+    r_3ext_9_9extension = g_3ext_9.extension
+    if not isinstance(r_3ext_9_9extension, (bytes, bytearray)) or len(r_3ext_9_9extension) != 30:
+        raise _enc('mon_ver', 'ext[9].extension', r_3ext_9_9extension, 'length', 'bytes of length 30')
+    if r_3ext_9_9extension.__class__ is not bytes:
+        r_3ext_9_9extension = bytes(r_3ext_9_9extension)
+    return (r_3ext_9_9extension, )
 
 
 def _encode_mon_ver(m: MonVer) -> bytes:
@@ -9586,94 +8081,44 @@ def _encode_mon_ver(m: MonVer) -> bytes:
     g_ext = m.ext
     if not isinstance(g_ext, (list, tuple)) or len(g_ext) > 10:
         raise _enc('mon_ver', 'ext', g_ext, 'count', 'a list of at most 10 values')
-    g_3ext_0: Any = cast(Any, g_ext[0] if len(g_ext) > 0 else None)
     if len(g_ext) > 0:
-        r_3ext_0_9extension = g_3ext_0.extension
-        if not isinstance(r_3ext_0_9extension, (bytes, bytearray)) or len(r_3ext_0_9extension) != 30:
-            raise _enc('mon_ver', 'ext[0].extension', r_3ext_0_9extension, 'length', 'bytes of length 30')
-        if r_3ext_0_9extension.__class__ is not bytes:
-            r_3ext_0_9extension = bytes(r_3ext_0_9extension)
+        r_3ext_0_9extension, = _raw_mon_ver_3ext_0(g_ext[0])
     else:
         r_3ext_0_9extension = bytes(30)
-    g_3ext_1: Any = cast(Any, g_ext[1] if len(g_ext) > 1 else None)
     if len(g_ext) > 1:
-        r_3ext_1_9extension = g_3ext_1.extension
-        if not isinstance(r_3ext_1_9extension, (bytes, bytearray)) or len(r_3ext_1_9extension) != 30:
-            raise _enc('mon_ver', 'ext[1].extension', r_3ext_1_9extension, 'length', 'bytes of length 30')
-        if r_3ext_1_9extension.__class__ is not bytes:
-            r_3ext_1_9extension = bytes(r_3ext_1_9extension)
+        r_3ext_1_9extension, = _raw_mon_ver_3ext_1(g_ext[1])
     else:
         r_3ext_1_9extension = bytes(30)
-    g_3ext_2: Any = cast(Any, g_ext[2] if len(g_ext) > 2 else None)
     if len(g_ext) > 2:
-        r_3ext_2_9extension = g_3ext_2.extension
-        if not isinstance(r_3ext_2_9extension, (bytes, bytearray)) or len(r_3ext_2_9extension) != 30:
-            raise _enc('mon_ver', 'ext[2].extension', r_3ext_2_9extension, 'length', 'bytes of length 30')
-        if r_3ext_2_9extension.__class__ is not bytes:
-            r_3ext_2_9extension = bytes(r_3ext_2_9extension)
+        r_3ext_2_9extension, = _raw_mon_ver_3ext_2(g_ext[2])
     else:
         r_3ext_2_9extension = bytes(30)
-    g_3ext_3: Any = cast(Any, g_ext[3] if len(g_ext) > 3 else None)
     if len(g_ext) > 3:
-        r_3ext_3_9extension = g_3ext_3.extension
-        if not isinstance(r_3ext_3_9extension, (bytes, bytearray)) or len(r_3ext_3_9extension) != 30:
-            raise _enc('mon_ver', 'ext[3].extension', r_3ext_3_9extension, 'length', 'bytes of length 30')
-        if r_3ext_3_9extension.__class__ is not bytes:
-            r_3ext_3_9extension = bytes(r_3ext_3_9extension)
+        r_3ext_3_9extension, = _raw_mon_ver_3ext_3(g_ext[3])
     else:
         r_3ext_3_9extension = bytes(30)
-    g_3ext_4: Any = cast(Any, g_ext[4] if len(g_ext) > 4 else None)
     if len(g_ext) > 4:
-        r_3ext_4_9extension = g_3ext_4.extension
-        if not isinstance(r_3ext_4_9extension, (bytes, bytearray)) or len(r_3ext_4_9extension) != 30:
-            raise _enc('mon_ver', 'ext[4].extension', r_3ext_4_9extension, 'length', 'bytes of length 30')
-        if r_3ext_4_9extension.__class__ is not bytes:
-            r_3ext_4_9extension = bytes(r_3ext_4_9extension)
+        r_3ext_4_9extension, = _raw_mon_ver_3ext_4(g_ext[4])
     else:
         r_3ext_4_9extension = bytes(30)
-    g_3ext_5: Any = cast(Any, g_ext[5] if len(g_ext) > 5 else None)
     if len(g_ext) > 5:
-        r_3ext_5_9extension = g_3ext_5.extension
-        if not isinstance(r_3ext_5_9extension, (bytes, bytearray)) or len(r_3ext_5_9extension) != 30:
-            raise _enc('mon_ver', 'ext[5].extension', r_3ext_5_9extension, 'length', 'bytes of length 30')
-        if r_3ext_5_9extension.__class__ is not bytes:
-            r_3ext_5_9extension = bytes(r_3ext_5_9extension)
+        r_3ext_5_9extension, = _raw_mon_ver_3ext_5(g_ext[5])
     else:
         r_3ext_5_9extension = bytes(30)
-    g_3ext_6: Any = cast(Any, g_ext[6] if len(g_ext) > 6 else None)
     if len(g_ext) > 6:
-        r_3ext_6_9extension = g_3ext_6.extension
-        if not isinstance(r_3ext_6_9extension, (bytes, bytearray)) or len(r_3ext_6_9extension) != 30:
-            raise _enc('mon_ver', 'ext[6].extension', r_3ext_6_9extension, 'length', 'bytes of length 30')
-        if r_3ext_6_9extension.__class__ is not bytes:
-            r_3ext_6_9extension = bytes(r_3ext_6_9extension)
+        r_3ext_6_9extension, = _raw_mon_ver_3ext_6(g_ext[6])
     else:
         r_3ext_6_9extension = bytes(30)
-    g_3ext_7: Any = cast(Any, g_ext[7] if len(g_ext) > 7 else None)
     if len(g_ext) > 7:
-        r_3ext_7_9extension = g_3ext_7.extension
-        if not isinstance(r_3ext_7_9extension, (bytes, bytearray)) or len(r_3ext_7_9extension) != 30:
-            raise _enc('mon_ver', 'ext[7].extension', r_3ext_7_9extension, 'length', 'bytes of length 30')
-        if r_3ext_7_9extension.__class__ is not bytes:
-            r_3ext_7_9extension = bytes(r_3ext_7_9extension)
+        r_3ext_7_9extension, = _raw_mon_ver_3ext_7(g_ext[7])
     else:
         r_3ext_7_9extension = bytes(30)
-    g_3ext_8: Any = cast(Any, g_ext[8] if len(g_ext) > 8 else None)
     if len(g_ext) > 8:
-        r_3ext_8_9extension = g_3ext_8.extension
-        if not isinstance(r_3ext_8_9extension, (bytes, bytearray)) or len(r_3ext_8_9extension) != 30:
-            raise _enc('mon_ver', 'ext[8].extension', r_3ext_8_9extension, 'length', 'bytes of length 30')
-        if r_3ext_8_9extension.__class__ is not bytes:
-            r_3ext_8_9extension = bytes(r_3ext_8_9extension)
+        r_3ext_8_9extension, = _raw_mon_ver_3ext_8(g_ext[8])
     else:
         r_3ext_8_9extension = bytes(30)
-    g_3ext_9: Any = cast(Any, g_ext[9] if len(g_ext) > 9 else None)
     if len(g_ext) > 9:
-        r_3ext_9_9extension = g_3ext_9.extension
-        if not isinstance(r_3ext_9_9extension, (bytes, bytearray)) or len(r_3ext_9_9extension) != 30:
-            raise _enc('mon_ver', 'ext[9].extension', r_3ext_9_9extension, 'length', 'bytes of length 30')
-        if r_3ext_9_9extension.__class__ is not bytes:
-            r_3ext_9_9extension = bytes(r_3ext_9_9extension)
+        r_3ext_9_9extension, = _raw_mon_ver_3ext_9(g_ext[9])
     else:
         r_3ext_9_9extension = bytes(30)
     r_checksum = 0
