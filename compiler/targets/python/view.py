@@ -608,16 +608,13 @@ class MessageCode:
                     groups.add(prefix)
                     parent = self.group_var(prefix[:-1])
                     value = access(parent, prefix[-1])
-                    if held and held[1].counter and depth == 2:  # an element past the list's end is None
-                        value += f" if len({parent}) > {prefix[1]} else None"
-                    elif held and depth > (2 if held[1].counter else 1):  # inside what may be None
-                        value += f" if {parent} is not None else None"
-                    # None where a frame leaves it out: a checker takes it as Any, as the guards below read it
-                    maybe_none = held is not None and bool(held[1].presence or depth > 1)
-                    out(f"{self.group_var(prefix)}: Any = cast(Any, {value})" if maybe_none
+                    # a conditional field is None where a frame leaves it out: a checker takes it as
+                    # Any, as the guards read it; what lies inside is read under its guard
+                    absent_ok = held is not None and held[1].presence is not None and depth == 1
+                    out(f"{self.group_var(prefix)}: Any = cast(Any, {value})" if absent_ok
                         else f"{self.group_var(prefix)} = {value}")
                     if isinstance(leaf.path[depth], int):
-                        self.check_list(out, prefix, maybe_none=maybe_none)
+                        self.check_list(out, prefix, "absent_ok" if absent_ok else "any" if held else "typed")
             if leaf.field.counts:
                 continue  # set from the list's length below
             run.open(guard)
@@ -696,9 +693,10 @@ class MessageCode:
         c(f"    raise _enc({name!r}, {gap.field!r}, m.{gap.field}, 'present', "
           f"{('a value when ' + says + ', else None')!r})")
 
-    def check_list(self, c: Code, path: tuple, maybe_none: bool = False) -> None:
-        """An array member must be a list (or tuple) of exactly its count of elements
-        (`maybe_none`: or None, inside what a frame leaves out)."""
+    def check_list(self, c: Code, path: tuple, held: str = "typed") -> None:
+        """An array member must be a list (or tuple) of exactly its count of elements. `held`:
+        "typed" (its declared type), "any" (a value a checker takes as Any: checked by a call, which
+        keeps it so) or "absent_ok" (the same, or None: a conditional field a frame leaves out)."""
         array = field_at(self.m.layout, ".".join(p for p in path if isinstance(p, str)))
         count = array.count
         v = self.group_var(path)
@@ -706,7 +704,8 @@ class MessageCode:
             c(f"if not isinstance({v}, (list, tuple)) or len({v}) > {count}:")
             c(f"    raise _enc({self.m.name!r}, {dotted(path)!r}, {v}, 'count', 'a list of at most {count} values')")
             return
-        c(f"if not _absent_or_list_of({v}, {count}):" if maybe_none else
+        c(f"if not _absent_or_list_of({v}, {count}):" if held == "absent_ok" else
+          f"if not _is_list_of({v}, {count}):" if held == "any" else
           f"if not isinstance({v}, (list, tuple)) or len({v}) != {count}:")
         c(f"    raise _enc({self.m.name!r}, {dotted(path)!r}, {v}, 'count', 'a list of {count} values')")
 
@@ -742,19 +741,24 @@ class MessageCode:
         bounded: the values were read from their bits (binary), not parsed from text;
         word: they were read from the integer `w` (parity is then one bit count)."""
         values: dict[tuple, str] = {}
-        opened = None  # the guard of the `if` the last checks went into
+        run = GuardedRun(c)  # a value the frame left out is neither checked nor kept
         for leaf in self.leaves:
             guard = self.sent_guard(leaf, gap_of(self.m, leaf), encoding=False)
             checks = Code()
-            checks.depth = c.depth + (guard is not None)
             expr = self.view.decode_leaf(checks, self.m, leaf, self.sent_offset(leaf), bounded)
-            if guard and checks.lines and guard != opened:  # a value the frame left out is not checked
-                c(f"if {guard}:")
-            if checks.lines:
-                opened = guard
-            c.lines.extend(checks.lines)
+            kept = expr is not None and guard is not None and expr != leaf.var  # read under the guard
+            if guard != run.guard and (checks.lines or kept or guard is None):
+                run.close()
+            if checks.lines or kept:
+                run.open(guard)
+            c.lines.extend("    " * c.depth + line for line in checks.lines)
+            if kept:
+                c(f"v_{leaf.var[2:]} = _sent({expr})")
+                run.unsent(f"v_{leaf.var[2:]}", "_ABSENT")
+                expr = f"v_{leaf.var[2:]}"
             if expr is not None:
-                values[leaf.path] = expr if guard is None or expr == leaf.var else f"(_sent({expr}) if {guard} else _ABSENT)"
+                values[leaf.path] = expr
+        run.close()
         for leaf in self.leaves:
             cs = leaf.field.checksum
             if cs and cs.over != "bytes":

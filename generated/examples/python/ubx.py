@@ -6973,997 +6973,2181 @@ def _decode_nav_sat(d: _Buffer) -> NavSat:
     if r_length != 392 - cut:
         raise _dec('nav_sat', 'length', r_length, 'length', f'{392 - cut} for nav_sat', 32, None)
     if n_sv > 0:
+        v_2sv_0_5prRes = _sent(r_2sv_0_5prRes * 0.1)
+        v_2sv_0_6svUsed = _sent(r_2sv_0_6svUsed == 1)
+        v_2sv_0_8diffCorr = _sent(r_2sv_0_8diffCorr == 1)
+        v_2sv_0_8smoothed = _sent(r_2sv_0_8smoothed == 1)
+        v_2sv_0_8ephAvail = _sent(r_2sv_0_8ephAvail == 1)
+        v_2sv_0_8almAvail = _sent(r_2sv_0_8almAvail == 1)
+        v_2sv_0_8anoAvail = _sent(r_2sv_0_8anoAvail == 1)
+        v_2sv_0_8aopAvail = _sent(r_2sv_0_8aopAvail == 1)
+        v_2sv_0_12sbasCorrUsed = _sent(r_2sv_0_12sbasCorrUsed == 1)
+        v_2sv_0_12rtcmCorrUsed = _sent(r_2sv_0_12rtcmCorrUsed == 1)
+        v_2sv_0_12slasCorrUsed = _sent(r_2sv_0_12slasCorrUsed == 1)
+        v_2sv_0_14spartnCorrUsed = _sent(r_2sv_0_14spartnCorrUsed == 1)
+        v_2sv_0_10prCorrUsed = _sent(r_2sv_0_10prCorrUsed == 1)
+        v_2sv_0_10crCorrUsed = _sent(r_2sv_0_10crCorrUsed == 1)
+        v_2sv_0_10doCorrUsed = _sent(r_2sv_0_10doCorrUsed == 1)
+        v_2sv_0_12clasCorrUsed = _sent(r_2sv_0_12clasCorrUsed == 1)
+        v_2sv_0_11lppCorrUsed = _sent(r_2sv_0_11lppCorrUsed == 1)
+        v_2sv_0_11hasCorrUsed = _sent(r_2sv_0_11hasCorrUsed == 1)
         if r_2sv_0_11flags_spare:
             raise _dec('nav_sat', 'sv[0].flags_spare', r_2sv_0_11flags_spare, 'reserved', '0', 202, None)
+    else:
+        v_2sv_0_5prRes = _ABSENT
+        v_2sv_0_6svUsed = _ABSENT
+        v_2sv_0_8diffCorr = _ABSENT
+        v_2sv_0_8smoothed = _ABSENT
+        v_2sv_0_8ephAvail = _ABSENT
+        v_2sv_0_8almAvail = _ABSENT
+        v_2sv_0_8anoAvail = _ABSENT
+        v_2sv_0_8aopAvail = _ABSENT
+        v_2sv_0_12sbasCorrUsed = _ABSENT
+        v_2sv_0_12rtcmCorrUsed = _ABSENT
+        v_2sv_0_12slasCorrUsed = _ABSENT
+        v_2sv_0_14spartnCorrUsed = _ABSENT
+        v_2sv_0_10prCorrUsed = _ABSENT
+        v_2sv_0_10crCorrUsed = _ABSENT
+        v_2sv_0_10doCorrUsed = _ABSENT
+        v_2sv_0_12clasCorrUsed = _ABSENT
+        v_2sv_0_11lppCorrUsed = _ABSENT
+        v_2sv_0_11hasCorrUsed = _ABSENT
     if n_sv > 1:
+        v_2sv_1_5prRes = _sent(r_2sv_1_5prRes * 0.1)
+        v_2sv_1_6svUsed = _sent(r_2sv_1_6svUsed == 1)
+        v_2sv_1_8diffCorr = _sent(r_2sv_1_8diffCorr == 1)
+        v_2sv_1_8smoothed = _sent(r_2sv_1_8smoothed == 1)
+        v_2sv_1_8ephAvail = _sent(r_2sv_1_8ephAvail == 1)
+        v_2sv_1_8almAvail = _sent(r_2sv_1_8almAvail == 1)
+        v_2sv_1_8anoAvail = _sent(r_2sv_1_8anoAvail == 1)
+        v_2sv_1_8aopAvail = _sent(r_2sv_1_8aopAvail == 1)
+        v_2sv_1_12sbasCorrUsed = _sent(r_2sv_1_12sbasCorrUsed == 1)
+        v_2sv_1_12rtcmCorrUsed = _sent(r_2sv_1_12rtcmCorrUsed == 1)
+        v_2sv_1_12slasCorrUsed = _sent(r_2sv_1_12slasCorrUsed == 1)
+        v_2sv_1_14spartnCorrUsed = _sent(r_2sv_1_14spartnCorrUsed == 1)
+        v_2sv_1_10prCorrUsed = _sent(r_2sv_1_10prCorrUsed == 1)
+        v_2sv_1_10crCorrUsed = _sent(r_2sv_1_10crCorrUsed == 1)
+        v_2sv_1_10doCorrUsed = _sent(r_2sv_1_10doCorrUsed == 1)
+        v_2sv_1_12clasCorrUsed = _sent(r_2sv_1_12clasCorrUsed == 1)
+        v_2sv_1_11lppCorrUsed = _sent(r_2sv_1_11lppCorrUsed == 1)
+        v_2sv_1_11hasCorrUsed = _sent(r_2sv_1_11hasCorrUsed == 1)
         if r_2sv_1_11flags_spare:
             raise _dec('nav_sat', 'sv[1].flags_spare', r_2sv_1_11flags_spare, 'reserved', '0', 298, None)
+    else:
+        v_2sv_1_5prRes = _ABSENT
+        v_2sv_1_6svUsed = _ABSENT
+        v_2sv_1_8diffCorr = _ABSENT
+        v_2sv_1_8smoothed = _ABSENT
+        v_2sv_1_8ephAvail = _ABSENT
+        v_2sv_1_8almAvail = _ABSENT
+        v_2sv_1_8anoAvail = _ABSENT
+        v_2sv_1_8aopAvail = _ABSENT
+        v_2sv_1_12sbasCorrUsed = _ABSENT
+        v_2sv_1_12rtcmCorrUsed = _ABSENT
+        v_2sv_1_12slasCorrUsed = _ABSENT
+        v_2sv_1_14spartnCorrUsed = _ABSENT
+        v_2sv_1_10prCorrUsed = _ABSENT
+        v_2sv_1_10crCorrUsed = _ABSENT
+        v_2sv_1_10doCorrUsed = _ABSENT
+        v_2sv_1_12clasCorrUsed = _ABSENT
+        v_2sv_1_11lppCorrUsed = _ABSENT
+        v_2sv_1_11hasCorrUsed = _ABSENT
     if n_sv > 2:
+        v_2sv_2_5prRes = _sent(r_2sv_2_5prRes * 0.1)
+        v_2sv_2_6svUsed = _sent(r_2sv_2_6svUsed == 1)
+        v_2sv_2_8diffCorr = _sent(r_2sv_2_8diffCorr == 1)
+        v_2sv_2_8smoothed = _sent(r_2sv_2_8smoothed == 1)
+        v_2sv_2_8ephAvail = _sent(r_2sv_2_8ephAvail == 1)
+        v_2sv_2_8almAvail = _sent(r_2sv_2_8almAvail == 1)
+        v_2sv_2_8anoAvail = _sent(r_2sv_2_8anoAvail == 1)
+        v_2sv_2_8aopAvail = _sent(r_2sv_2_8aopAvail == 1)
+        v_2sv_2_12sbasCorrUsed = _sent(r_2sv_2_12sbasCorrUsed == 1)
+        v_2sv_2_12rtcmCorrUsed = _sent(r_2sv_2_12rtcmCorrUsed == 1)
+        v_2sv_2_12slasCorrUsed = _sent(r_2sv_2_12slasCorrUsed == 1)
+        v_2sv_2_14spartnCorrUsed = _sent(r_2sv_2_14spartnCorrUsed == 1)
+        v_2sv_2_10prCorrUsed = _sent(r_2sv_2_10prCorrUsed == 1)
+        v_2sv_2_10crCorrUsed = _sent(r_2sv_2_10crCorrUsed == 1)
+        v_2sv_2_10doCorrUsed = _sent(r_2sv_2_10doCorrUsed == 1)
+        v_2sv_2_12clasCorrUsed = _sent(r_2sv_2_12clasCorrUsed == 1)
+        v_2sv_2_11lppCorrUsed = _sent(r_2sv_2_11lppCorrUsed == 1)
+        v_2sv_2_11hasCorrUsed = _sent(r_2sv_2_11hasCorrUsed == 1)
         if r_2sv_2_11flags_spare:
             raise _dec('nav_sat', 'sv[2].flags_spare', r_2sv_2_11flags_spare, 'reserved', '0', 394, None)
+    else:
+        v_2sv_2_5prRes = _ABSENT
+        v_2sv_2_6svUsed = _ABSENT
+        v_2sv_2_8diffCorr = _ABSENT
+        v_2sv_2_8smoothed = _ABSENT
+        v_2sv_2_8ephAvail = _ABSENT
+        v_2sv_2_8almAvail = _ABSENT
+        v_2sv_2_8anoAvail = _ABSENT
+        v_2sv_2_8aopAvail = _ABSENT
+        v_2sv_2_12sbasCorrUsed = _ABSENT
+        v_2sv_2_12rtcmCorrUsed = _ABSENT
+        v_2sv_2_12slasCorrUsed = _ABSENT
+        v_2sv_2_14spartnCorrUsed = _ABSENT
+        v_2sv_2_10prCorrUsed = _ABSENT
+        v_2sv_2_10crCorrUsed = _ABSENT
+        v_2sv_2_10doCorrUsed = _ABSENT
+        v_2sv_2_12clasCorrUsed = _ABSENT
+        v_2sv_2_11lppCorrUsed = _ABSENT
+        v_2sv_2_11hasCorrUsed = _ABSENT
     if n_sv > 3:
+        v_2sv_3_5prRes = _sent(r_2sv_3_5prRes * 0.1)
+        v_2sv_3_6svUsed = _sent(r_2sv_3_6svUsed == 1)
+        v_2sv_3_8diffCorr = _sent(r_2sv_3_8diffCorr == 1)
+        v_2sv_3_8smoothed = _sent(r_2sv_3_8smoothed == 1)
+        v_2sv_3_8ephAvail = _sent(r_2sv_3_8ephAvail == 1)
+        v_2sv_3_8almAvail = _sent(r_2sv_3_8almAvail == 1)
+        v_2sv_3_8anoAvail = _sent(r_2sv_3_8anoAvail == 1)
+        v_2sv_3_8aopAvail = _sent(r_2sv_3_8aopAvail == 1)
+        v_2sv_3_12sbasCorrUsed = _sent(r_2sv_3_12sbasCorrUsed == 1)
+        v_2sv_3_12rtcmCorrUsed = _sent(r_2sv_3_12rtcmCorrUsed == 1)
+        v_2sv_3_12slasCorrUsed = _sent(r_2sv_3_12slasCorrUsed == 1)
+        v_2sv_3_14spartnCorrUsed = _sent(r_2sv_3_14spartnCorrUsed == 1)
+        v_2sv_3_10prCorrUsed = _sent(r_2sv_3_10prCorrUsed == 1)
+        v_2sv_3_10crCorrUsed = _sent(r_2sv_3_10crCorrUsed == 1)
+        v_2sv_3_10doCorrUsed = _sent(r_2sv_3_10doCorrUsed == 1)
+        v_2sv_3_12clasCorrUsed = _sent(r_2sv_3_12clasCorrUsed == 1)
+        v_2sv_3_11lppCorrUsed = _sent(r_2sv_3_11lppCorrUsed == 1)
+        v_2sv_3_11hasCorrUsed = _sent(r_2sv_3_11hasCorrUsed == 1)
         if r_2sv_3_11flags_spare:
             raise _dec('nav_sat', 'sv[3].flags_spare', r_2sv_3_11flags_spare, 'reserved', '0', 490, None)
+    else:
+        v_2sv_3_5prRes = _ABSENT
+        v_2sv_3_6svUsed = _ABSENT
+        v_2sv_3_8diffCorr = _ABSENT
+        v_2sv_3_8smoothed = _ABSENT
+        v_2sv_3_8ephAvail = _ABSENT
+        v_2sv_3_8almAvail = _ABSENT
+        v_2sv_3_8anoAvail = _ABSENT
+        v_2sv_3_8aopAvail = _ABSENT
+        v_2sv_3_12sbasCorrUsed = _ABSENT
+        v_2sv_3_12rtcmCorrUsed = _ABSENT
+        v_2sv_3_12slasCorrUsed = _ABSENT
+        v_2sv_3_14spartnCorrUsed = _ABSENT
+        v_2sv_3_10prCorrUsed = _ABSENT
+        v_2sv_3_10crCorrUsed = _ABSENT
+        v_2sv_3_10doCorrUsed = _ABSENT
+        v_2sv_3_12clasCorrUsed = _ABSENT
+        v_2sv_3_11lppCorrUsed = _ABSENT
+        v_2sv_3_11hasCorrUsed = _ABSENT
     if n_sv > 4:
+        v_2sv_4_5prRes = _sent(r_2sv_4_5prRes * 0.1)
+        v_2sv_4_6svUsed = _sent(r_2sv_4_6svUsed == 1)
+        v_2sv_4_8diffCorr = _sent(r_2sv_4_8diffCorr == 1)
+        v_2sv_4_8smoothed = _sent(r_2sv_4_8smoothed == 1)
+        v_2sv_4_8ephAvail = _sent(r_2sv_4_8ephAvail == 1)
+        v_2sv_4_8almAvail = _sent(r_2sv_4_8almAvail == 1)
+        v_2sv_4_8anoAvail = _sent(r_2sv_4_8anoAvail == 1)
+        v_2sv_4_8aopAvail = _sent(r_2sv_4_8aopAvail == 1)
+        v_2sv_4_12sbasCorrUsed = _sent(r_2sv_4_12sbasCorrUsed == 1)
+        v_2sv_4_12rtcmCorrUsed = _sent(r_2sv_4_12rtcmCorrUsed == 1)
+        v_2sv_4_12slasCorrUsed = _sent(r_2sv_4_12slasCorrUsed == 1)
+        v_2sv_4_14spartnCorrUsed = _sent(r_2sv_4_14spartnCorrUsed == 1)
+        v_2sv_4_10prCorrUsed = _sent(r_2sv_4_10prCorrUsed == 1)
+        v_2sv_4_10crCorrUsed = _sent(r_2sv_4_10crCorrUsed == 1)
+        v_2sv_4_10doCorrUsed = _sent(r_2sv_4_10doCorrUsed == 1)
+        v_2sv_4_12clasCorrUsed = _sent(r_2sv_4_12clasCorrUsed == 1)
+        v_2sv_4_11lppCorrUsed = _sent(r_2sv_4_11lppCorrUsed == 1)
+        v_2sv_4_11hasCorrUsed = _sent(r_2sv_4_11hasCorrUsed == 1)
         if r_2sv_4_11flags_spare:
             raise _dec('nav_sat', 'sv[4].flags_spare', r_2sv_4_11flags_spare, 'reserved', '0', 586, None)
+    else:
+        v_2sv_4_5prRes = _ABSENT
+        v_2sv_4_6svUsed = _ABSENT
+        v_2sv_4_8diffCorr = _ABSENT
+        v_2sv_4_8smoothed = _ABSENT
+        v_2sv_4_8ephAvail = _ABSENT
+        v_2sv_4_8almAvail = _ABSENT
+        v_2sv_4_8anoAvail = _ABSENT
+        v_2sv_4_8aopAvail = _ABSENT
+        v_2sv_4_12sbasCorrUsed = _ABSENT
+        v_2sv_4_12rtcmCorrUsed = _ABSENT
+        v_2sv_4_12slasCorrUsed = _ABSENT
+        v_2sv_4_14spartnCorrUsed = _ABSENT
+        v_2sv_4_10prCorrUsed = _ABSENT
+        v_2sv_4_10crCorrUsed = _ABSENT
+        v_2sv_4_10doCorrUsed = _ABSENT
+        v_2sv_4_12clasCorrUsed = _ABSENT
+        v_2sv_4_11lppCorrUsed = _ABSENT
+        v_2sv_4_11hasCorrUsed = _ABSENT
     if n_sv > 5:
+        v_2sv_5_5prRes = _sent(r_2sv_5_5prRes * 0.1)
+        v_2sv_5_6svUsed = _sent(r_2sv_5_6svUsed == 1)
+        v_2sv_5_8diffCorr = _sent(r_2sv_5_8diffCorr == 1)
+        v_2sv_5_8smoothed = _sent(r_2sv_5_8smoothed == 1)
+        v_2sv_5_8ephAvail = _sent(r_2sv_5_8ephAvail == 1)
+        v_2sv_5_8almAvail = _sent(r_2sv_5_8almAvail == 1)
+        v_2sv_5_8anoAvail = _sent(r_2sv_5_8anoAvail == 1)
+        v_2sv_5_8aopAvail = _sent(r_2sv_5_8aopAvail == 1)
+        v_2sv_5_12sbasCorrUsed = _sent(r_2sv_5_12sbasCorrUsed == 1)
+        v_2sv_5_12rtcmCorrUsed = _sent(r_2sv_5_12rtcmCorrUsed == 1)
+        v_2sv_5_12slasCorrUsed = _sent(r_2sv_5_12slasCorrUsed == 1)
+        v_2sv_5_14spartnCorrUsed = _sent(r_2sv_5_14spartnCorrUsed == 1)
+        v_2sv_5_10prCorrUsed = _sent(r_2sv_5_10prCorrUsed == 1)
+        v_2sv_5_10crCorrUsed = _sent(r_2sv_5_10crCorrUsed == 1)
+        v_2sv_5_10doCorrUsed = _sent(r_2sv_5_10doCorrUsed == 1)
+        v_2sv_5_12clasCorrUsed = _sent(r_2sv_5_12clasCorrUsed == 1)
+        v_2sv_5_11lppCorrUsed = _sent(r_2sv_5_11lppCorrUsed == 1)
+        v_2sv_5_11hasCorrUsed = _sent(r_2sv_5_11hasCorrUsed == 1)
         if r_2sv_5_11flags_spare:
             raise _dec('nav_sat', 'sv[5].flags_spare', r_2sv_5_11flags_spare, 'reserved', '0', 682, None)
+    else:
+        v_2sv_5_5prRes = _ABSENT
+        v_2sv_5_6svUsed = _ABSENT
+        v_2sv_5_8diffCorr = _ABSENT
+        v_2sv_5_8smoothed = _ABSENT
+        v_2sv_5_8ephAvail = _ABSENT
+        v_2sv_5_8almAvail = _ABSENT
+        v_2sv_5_8anoAvail = _ABSENT
+        v_2sv_5_8aopAvail = _ABSENT
+        v_2sv_5_12sbasCorrUsed = _ABSENT
+        v_2sv_5_12rtcmCorrUsed = _ABSENT
+        v_2sv_5_12slasCorrUsed = _ABSENT
+        v_2sv_5_14spartnCorrUsed = _ABSENT
+        v_2sv_5_10prCorrUsed = _ABSENT
+        v_2sv_5_10crCorrUsed = _ABSENT
+        v_2sv_5_10doCorrUsed = _ABSENT
+        v_2sv_5_12clasCorrUsed = _ABSENT
+        v_2sv_5_11lppCorrUsed = _ABSENT
+        v_2sv_5_11hasCorrUsed = _ABSENT
     if n_sv > 6:
+        v_2sv_6_5prRes = _sent(r_2sv_6_5prRes * 0.1)
+        v_2sv_6_6svUsed = _sent(r_2sv_6_6svUsed == 1)
+        v_2sv_6_8diffCorr = _sent(r_2sv_6_8diffCorr == 1)
+        v_2sv_6_8smoothed = _sent(r_2sv_6_8smoothed == 1)
+        v_2sv_6_8ephAvail = _sent(r_2sv_6_8ephAvail == 1)
+        v_2sv_6_8almAvail = _sent(r_2sv_6_8almAvail == 1)
+        v_2sv_6_8anoAvail = _sent(r_2sv_6_8anoAvail == 1)
+        v_2sv_6_8aopAvail = _sent(r_2sv_6_8aopAvail == 1)
+        v_2sv_6_12sbasCorrUsed = _sent(r_2sv_6_12sbasCorrUsed == 1)
+        v_2sv_6_12rtcmCorrUsed = _sent(r_2sv_6_12rtcmCorrUsed == 1)
+        v_2sv_6_12slasCorrUsed = _sent(r_2sv_6_12slasCorrUsed == 1)
+        v_2sv_6_14spartnCorrUsed = _sent(r_2sv_6_14spartnCorrUsed == 1)
+        v_2sv_6_10prCorrUsed = _sent(r_2sv_6_10prCorrUsed == 1)
+        v_2sv_6_10crCorrUsed = _sent(r_2sv_6_10crCorrUsed == 1)
+        v_2sv_6_10doCorrUsed = _sent(r_2sv_6_10doCorrUsed == 1)
+        v_2sv_6_12clasCorrUsed = _sent(r_2sv_6_12clasCorrUsed == 1)
+        v_2sv_6_11lppCorrUsed = _sent(r_2sv_6_11lppCorrUsed == 1)
+        v_2sv_6_11hasCorrUsed = _sent(r_2sv_6_11hasCorrUsed == 1)
         if r_2sv_6_11flags_spare:
             raise _dec('nav_sat', 'sv[6].flags_spare', r_2sv_6_11flags_spare, 'reserved', '0', 778, None)
+    else:
+        v_2sv_6_5prRes = _ABSENT
+        v_2sv_6_6svUsed = _ABSENT
+        v_2sv_6_8diffCorr = _ABSENT
+        v_2sv_6_8smoothed = _ABSENT
+        v_2sv_6_8ephAvail = _ABSENT
+        v_2sv_6_8almAvail = _ABSENT
+        v_2sv_6_8anoAvail = _ABSENT
+        v_2sv_6_8aopAvail = _ABSENT
+        v_2sv_6_12sbasCorrUsed = _ABSENT
+        v_2sv_6_12rtcmCorrUsed = _ABSENT
+        v_2sv_6_12slasCorrUsed = _ABSENT
+        v_2sv_6_14spartnCorrUsed = _ABSENT
+        v_2sv_6_10prCorrUsed = _ABSENT
+        v_2sv_6_10crCorrUsed = _ABSENT
+        v_2sv_6_10doCorrUsed = _ABSENT
+        v_2sv_6_12clasCorrUsed = _ABSENT
+        v_2sv_6_11lppCorrUsed = _ABSENT
+        v_2sv_6_11hasCorrUsed = _ABSENT
     if n_sv > 7:
+        v_2sv_7_5prRes = _sent(r_2sv_7_5prRes * 0.1)
+        v_2sv_7_6svUsed = _sent(r_2sv_7_6svUsed == 1)
+        v_2sv_7_8diffCorr = _sent(r_2sv_7_8diffCorr == 1)
+        v_2sv_7_8smoothed = _sent(r_2sv_7_8smoothed == 1)
+        v_2sv_7_8ephAvail = _sent(r_2sv_7_8ephAvail == 1)
+        v_2sv_7_8almAvail = _sent(r_2sv_7_8almAvail == 1)
+        v_2sv_7_8anoAvail = _sent(r_2sv_7_8anoAvail == 1)
+        v_2sv_7_8aopAvail = _sent(r_2sv_7_8aopAvail == 1)
+        v_2sv_7_12sbasCorrUsed = _sent(r_2sv_7_12sbasCorrUsed == 1)
+        v_2sv_7_12rtcmCorrUsed = _sent(r_2sv_7_12rtcmCorrUsed == 1)
+        v_2sv_7_12slasCorrUsed = _sent(r_2sv_7_12slasCorrUsed == 1)
+        v_2sv_7_14spartnCorrUsed = _sent(r_2sv_7_14spartnCorrUsed == 1)
+        v_2sv_7_10prCorrUsed = _sent(r_2sv_7_10prCorrUsed == 1)
+        v_2sv_7_10crCorrUsed = _sent(r_2sv_7_10crCorrUsed == 1)
+        v_2sv_7_10doCorrUsed = _sent(r_2sv_7_10doCorrUsed == 1)
+        v_2sv_7_12clasCorrUsed = _sent(r_2sv_7_12clasCorrUsed == 1)
+        v_2sv_7_11lppCorrUsed = _sent(r_2sv_7_11lppCorrUsed == 1)
+        v_2sv_7_11hasCorrUsed = _sent(r_2sv_7_11hasCorrUsed == 1)
         if r_2sv_7_11flags_spare:
             raise _dec('nav_sat', 'sv[7].flags_spare', r_2sv_7_11flags_spare, 'reserved', '0', 874, None)
+    else:
+        v_2sv_7_5prRes = _ABSENT
+        v_2sv_7_6svUsed = _ABSENT
+        v_2sv_7_8diffCorr = _ABSENT
+        v_2sv_7_8smoothed = _ABSENT
+        v_2sv_7_8ephAvail = _ABSENT
+        v_2sv_7_8almAvail = _ABSENT
+        v_2sv_7_8anoAvail = _ABSENT
+        v_2sv_7_8aopAvail = _ABSENT
+        v_2sv_7_12sbasCorrUsed = _ABSENT
+        v_2sv_7_12rtcmCorrUsed = _ABSENT
+        v_2sv_7_12slasCorrUsed = _ABSENT
+        v_2sv_7_14spartnCorrUsed = _ABSENT
+        v_2sv_7_10prCorrUsed = _ABSENT
+        v_2sv_7_10crCorrUsed = _ABSENT
+        v_2sv_7_10doCorrUsed = _ABSENT
+        v_2sv_7_12clasCorrUsed = _ABSENT
+        v_2sv_7_11lppCorrUsed = _ABSENT
+        v_2sv_7_11hasCorrUsed = _ABSENT
     if n_sv > 8:
+        v_2sv_8_5prRes = _sent(r_2sv_8_5prRes * 0.1)
+        v_2sv_8_6svUsed = _sent(r_2sv_8_6svUsed == 1)
+        v_2sv_8_8diffCorr = _sent(r_2sv_8_8diffCorr == 1)
+        v_2sv_8_8smoothed = _sent(r_2sv_8_8smoothed == 1)
+        v_2sv_8_8ephAvail = _sent(r_2sv_8_8ephAvail == 1)
+        v_2sv_8_8almAvail = _sent(r_2sv_8_8almAvail == 1)
+        v_2sv_8_8anoAvail = _sent(r_2sv_8_8anoAvail == 1)
+        v_2sv_8_8aopAvail = _sent(r_2sv_8_8aopAvail == 1)
+        v_2sv_8_12sbasCorrUsed = _sent(r_2sv_8_12sbasCorrUsed == 1)
+        v_2sv_8_12rtcmCorrUsed = _sent(r_2sv_8_12rtcmCorrUsed == 1)
+        v_2sv_8_12slasCorrUsed = _sent(r_2sv_8_12slasCorrUsed == 1)
+        v_2sv_8_14spartnCorrUsed = _sent(r_2sv_8_14spartnCorrUsed == 1)
+        v_2sv_8_10prCorrUsed = _sent(r_2sv_8_10prCorrUsed == 1)
+        v_2sv_8_10crCorrUsed = _sent(r_2sv_8_10crCorrUsed == 1)
+        v_2sv_8_10doCorrUsed = _sent(r_2sv_8_10doCorrUsed == 1)
+        v_2sv_8_12clasCorrUsed = _sent(r_2sv_8_12clasCorrUsed == 1)
+        v_2sv_8_11lppCorrUsed = _sent(r_2sv_8_11lppCorrUsed == 1)
+        v_2sv_8_11hasCorrUsed = _sent(r_2sv_8_11hasCorrUsed == 1)
         if r_2sv_8_11flags_spare:
             raise _dec('nav_sat', 'sv[8].flags_spare', r_2sv_8_11flags_spare, 'reserved', '0', 970, None)
+    else:
+        v_2sv_8_5prRes = _ABSENT
+        v_2sv_8_6svUsed = _ABSENT
+        v_2sv_8_8diffCorr = _ABSENT
+        v_2sv_8_8smoothed = _ABSENT
+        v_2sv_8_8ephAvail = _ABSENT
+        v_2sv_8_8almAvail = _ABSENT
+        v_2sv_8_8anoAvail = _ABSENT
+        v_2sv_8_8aopAvail = _ABSENT
+        v_2sv_8_12sbasCorrUsed = _ABSENT
+        v_2sv_8_12rtcmCorrUsed = _ABSENT
+        v_2sv_8_12slasCorrUsed = _ABSENT
+        v_2sv_8_14spartnCorrUsed = _ABSENT
+        v_2sv_8_10prCorrUsed = _ABSENT
+        v_2sv_8_10crCorrUsed = _ABSENT
+        v_2sv_8_10doCorrUsed = _ABSENT
+        v_2sv_8_12clasCorrUsed = _ABSENT
+        v_2sv_8_11lppCorrUsed = _ABSENT
+        v_2sv_8_11hasCorrUsed = _ABSENT
     if n_sv > 9:
+        v_2sv_9_5prRes = _sent(r_2sv_9_5prRes * 0.1)
+        v_2sv_9_6svUsed = _sent(r_2sv_9_6svUsed == 1)
+        v_2sv_9_8diffCorr = _sent(r_2sv_9_8diffCorr == 1)
+        v_2sv_9_8smoothed = _sent(r_2sv_9_8smoothed == 1)
+        v_2sv_9_8ephAvail = _sent(r_2sv_9_8ephAvail == 1)
+        v_2sv_9_8almAvail = _sent(r_2sv_9_8almAvail == 1)
+        v_2sv_9_8anoAvail = _sent(r_2sv_9_8anoAvail == 1)
+        v_2sv_9_8aopAvail = _sent(r_2sv_9_8aopAvail == 1)
+        v_2sv_9_12sbasCorrUsed = _sent(r_2sv_9_12sbasCorrUsed == 1)
+        v_2sv_9_12rtcmCorrUsed = _sent(r_2sv_9_12rtcmCorrUsed == 1)
+        v_2sv_9_12slasCorrUsed = _sent(r_2sv_9_12slasCorrUsed == 1)
+        v_2sv_9_14spartnCorrUsed = _sent(r_2sv_9_14spartnCorrUsed == 1)
+        v_2sv_9_10prCorrUsed = _sent(r_2sv_9_10prCorrUsed == 1)
+        v_2sv_9_10crCorrUsed = _sent(r_2sv_9_10crCorrUsed == 1)
+        v_2sv_9_10doCorrUsed = _sent(r_2sv_9_10doCorrUsed == 1)
+        v_2sv_9_12clasCorrUsed = _sent(r_2sv_9_12clasCorrUsed == 1)
+        v_2sv_9_11lppCorrUsed = _sent(r_2sv_9_11lppCorrUsed == 1)
+        v_2sv_9_11hasCorrUsed = _sent(r_2sv_9_11hasCorrUsed == 1)
         if r_2sv_9_11flags_spare:
             raise _dec('nav_sat', 'sv[9].flags_spare', r_2sv_9_11flags_spare, 'reserved', '0', 1066, None)
+    else:
+        v_2sv_9_5prRes = _ABSENT
+        v_2sv_9_6svUsed = _ABSENT
+        v_2sv_9_8diffCorr = _ABSENT
+        v_2sv_9_8smoothed = _ABSENT
+        v_2sv_9_8ephAvail = _ABSENT
+        v_2sv_9_8almAvail = _ABSENT
+        v_2sv_9_8anoAvail = _ABSENT
+        v_2sv_9_8aopAvail = _ABSENT
+        v_2sv_9_12sbasCorrUsed = _ABSENT
+        v_2sv_9_12rtcmCorrUsed = _ABSENT
+        v_2sv_9_12slasCorrUsed = _ABSENT
+        v_2sv_9_14spartnCorrUsed = _ABSENT
+        v_2sv_9_10prCorrUsed = _ABSENT
+        v_2sv_9_10crCorrUsed = _ABSENT
+        v_2sv_9_10doCorrUsed = _ABSENT
+        v_2sv_9_12clasCorrUsed = _ABSENT
+        v_2sv_9_11lppCorrUsed = _ABSENT
+        v_2sv_9_11hasCorrUsed = _ABSENT
     if n_sv > 10:
+        v_2sv_10_5prRes = _sent(r_2sv_10_5prRes * 0.1)
+        v_2sv_10_6svUsed = _sent(r_2sv_10_6svUsed == 1)
+        v_2sv_10_8diffCorr = _sent(r_2sv_10_8diffCorr == 1)
+        v_2sv_10_8smoothed = _sent(r_2sv_10_8smoothed == 1)
+        v_2sv_10_8ephAvail = _sent(r_2sv_10_8ephAvail == 1)
+        v_2sv_10_8almAvail = _sent(r_2sv_10_8almAvail == 1)
+        v_2sv_10_8anoAvail = _sent(r_2sv_10_8anoAvail == 1)
+        v_2sv_10_8aopAvail = _sent(r_2sv_10_8aopAvail == 1)
+        v_2sv_10_12sbasCorrUsed = _sent(r_2sv_10_12sbasCorrUsed == 1)
+        v_2sv_10_12rtcmCorrUsed = _sent(r_2sv_10_12rtcmCorrUsed == 1)
+        v_2sv_10_12slasCorrUsed = _sent(r_2sv_10_12slasCorrUsed == 1)
+        v_2sv_10_14spartnCorrUsed = _sent(r_2sv_10_14spartnCorrUsed == 1)
+        v_2sv_10_10prCorrUsed = _sent(r_2sv_10_10prCorrUsed == 1)
+        v_2sv_10_10crCorrUsed = _sent(r_2sv_10_10crCorrUsed == 1)
+        v_2sv_10_10doCorrUsed = _sent(r_2sv_10_10doCorrUsed == 1)
+        v_2sv_10_12clasCorrUsed = _sent(r_2sv_10_12clasCorrUsed == 1)
+        v_2sv_10_11lppCorrUsed = _sent(r_2sv_10_11lppCorrUsed == 1)
+        v_2sv_10_11hasCorrUsed = _sent(r_2sv_10_11hasCorrUsed == 1)
         if r_2sv_10_11flags_spare:
             raise _dec('nav_sat', 'sv[10].flags_spare', r_2sv_10_11flags_spare, 'reserved', '0', 1162, None)
+    else:
+        v_2sv_10_5prRes = _ABSENT
+        v_2sv_10_6svUsed = _ABSENT
+        v_2sv_10_8diffCorr = _ABSENT
+        v_2sv_10_8smoothed = _ABSENT
+        v_2sv_10_8ephAvail = _ABSENT
+        v_2sv_10_8almAvail = _ABSENT
+        v_2sv_10_8anoAvail = _ABSENT
+        v_2sv_10_8aopAvail = _ABSENT
+        v_2sv_10_12sbasCorrUsed = _ABSENT
+        v_2sv_10_12rtcmCorrUsed = _ABSENT
+        v_2sv_10_12slasCorrUsed = _ABSENT
+        v_2sv_10_14spartnCorrUsed = _ABSENT
+        v_2sv_10_10prCorrUsed = _ABSENT
+        v_2sv_10_10crCorrUsed = _ABSENT
+        v_2sv_10_10doCorrUsed = _ABSENT
+        v_2sv_10_12clasCorrUsed = _ABSENT
+        v_2sv_10_11lppCorrUsed = _ABSENT
+        v_2sv_10_11hasCorrUsed = _ABSENT
     if n_sv > 11:
+        v_2sv_11_5prRes = _sent(r_2sv_11_5prRes * 0.1)
+        v_2sv_11_6svUsed = _sent(r_2sv_11_6svUsed == 1)
+        v_2sv_11_8diffCorr = _sent(r_2sv_11_8diffCorr == 1)
+        v_2sv_11_8smoothed = _sent(r_2sv_11_8smoothed == 1)
+        v_2sv_11_8ephAvail = _sent(r_2sv_11_8ephAvail == 1)
+        v_2sv_11_8almAvail = _sent(r_2sv_11_8almAvail == 1)
+        v_2sv_11_8anoAvail = _sent(r_2sv_11_8anoAvail == 1)
+        v_2sv_11_8aopAvail = _sent(r_2sv_11_8aopAvail == 1)
+        v_2sv_11_12sbasCorrUsed = _sent(r_2sv_11_12sbasCorrUsed == 1)
+        v_2sv_11_12rtcmCorrUsed = _sent(r_2sv_11_12rtcmCorrUsed == 1)
+        v_2sv_11_12slasCorrUsed = _sent(r_2sv_11_12slasCorrUsed == 1)
+        v_2sv_11_14spartnCorrUsed = _sent(r_2sv_11_14spartnCorrUsed == 1)
+        v_2sv_11_10prCorrUsed = _sent(r_2sv_11_10prCorrUsed == 1)
+        v_2sv_11_10crCorrUsed = _sent(r_2sv_11_10crCorrUsed == 1)
+        v_2sv_11_10doCorrUsed = _sent(r_2sv_11_10doCorrUsed == 1)
+        v_2sv_11_12clasCorrUsed = _sent(r_2sv_11_12clasCorrUsed == 1)
+        v_2sv_11_11lppCorrUsed = _sent(r_2sv_11_11lppCorrUsed == 1)
+        v_2sv_11_11hasCorrUsed = _sent(r_2sv_11_11hasCorrUsed == 1)
         if r_2sv_11_11flags_spare:
             raise _dec('nav_sat', 'sv[11].flags_spare', r_2sv_11_11flags_spare, 'reserved', '0', 1258, None)
+    else:
+        v_2sv_11_5prRes = _ABSENT
+        v_2sv_11_6svUsed = _ABSENT
+        v_2sv_11_8diffCorr = _ABSENT
+        v_2sv_11_8smoothed = _ABSENT
+        v_2sv_11_8ephAvail = _ABSENT
+        v_2sv_11_8almAvail = _ABSENT
+        v_2sv_11_8anoAvail = _ABSENT
+        v_2sv_11_8aopAvail = _ABSENT
+        v_2sv_11_12sbasCorrUsed = _ABSENT
+        v_2sv_11_12rtcmCorrUsed = _ABSENT
+        v_2sv_11_12slasCorrUsed = _ABSENT
+        v_2sv_11_14spartnCorrUsed = _ABSENT
+        v_2sv_11_10prCorrUsed = _ABSENT
+        v_2sv_11_10crCorrUsed = _ABSENT
+        v_2sv_11_10doCorrUsed = _ABSENT
+        v_2sv_11_12clasCorrUsed = _ABSENT
+        v_2sv_11_11lppCorrUsed = _ABSENT
+        v_2sv_11_11hasCorrUsed = _ABSENT
     if n_sv > 12:
+        v_2sv_12_5prRes = _sent(r_2sv_12_5prRes * 0.1)
+        v_2sv_12_6svUsed = _sent(r_2sv_12_6svUsed == 1)
+        v_2sv_12_8diffCorr = _sent(r_2sv_12_8diffCorr == 1)
+        v_2sv_12_8smoothed = _sent(r_2sv_12_8smoothed == 1)
+        v_2sv_12_8ephAvail = _sent(r_2sv_12_8ephAvail == 1)
+        v_2sv_12_8almAvail = _sent(r_2sv_12_8almAvail == 1)
+        v_2sv_12_8anoAvail = _sent(r_2sv_12_8anoAvail == 1)
+        v_2sv_12_8aopAvail = _sent(r_2sv_12_8aopAvail == 1)
+        v_2sv_12_12sbasCorrUsed = _sent(r_2sv_12_12sbasCorrUsed == 1)
+        v_2sv_12_12rtcmCorrUsed = _sent(r_2sv_12_12rtcmCorrUsed == 1)
+        v_2sv_12_12slasCorrUsed = _sent(r_2sv_12_12slasCorrUsed == 1)
+        v_2sv_12_14spartnCorrUsed = _sent(r_2sv_12_14spartnCorrUsed == 1)
+        v_2sv_12_10prCorrUsed = _sent(r_2sv_12_10prCorrUsed == 1)
+        v_2sv_12_10crCorrUsed = _sent(r_2sv_12_10crCorrUsed == 1)
+        v_2sv_12_10doCorrUsed = _sent(r_2sv_12_10doCorrUsed == 1)
+        v_2sv_12_12clasCorrUsed = _sent(r_2sv_12_12clasCorrUsed == 1)
+        v_2sv_12_11lppCorrUsed = _sent(r_2sv_12_11lppCorrUsed == 1)
+        v_2sv_12_11hasCorrUsed = _sent(r_2sv_12_11hasCorrUsed == 1)
         if r_2sv_12_11flags_spare:
             raise _dec('nav_sat', 'sv[12].flags_spare', r_2sv_12_11flags_spare, 'reserved', '0', 1354, None)
+    else:
+        v_2sv_12_5prRes = _ABSENT
+        v_2sv_12_6svUsed = _ABSENT
+        v_2sv_12_8diffCorr = _ABSENT
+        v_2sv_12_8smoothed = _ABSENT
+        v_2sv_12_8ephAvail = _ABSENT
+        v_2sv_12_8almAvail = _ABSENT
+        v_2sv_12_8anoAvail = _ABSENT
+        v_2sv_12_8aopAvail = _ABSENT
+        v_2sv_12_12sbasCorrUsed = _ABSENT
+        v_2sv_12_12rtcmCorrUsed = _ABSENT
+        v_2sv_12_12slasCorrUsed = _ABSENT
+        v_2sv_12_14spartnCorrUsed = _ABSENT
+        v_2sv_12_10prCorrUsed = _ABSENT
+        v_2sv_12_10crCorrUsed = _ABSENT
+        v_2sv_12_10doCorrUsed = _ABSENT
+        v_2sv_12_12clasCorrUsed = _ABSENT
+        v_2sv_12_11lppCorrUsed = _ABSENT
+        v_2sv_12_11hasCorrUsed = _ABSENT
     if n_sv > 13:
+        v_2sv_13_5prRes = _sent(r_2sv_13_5prRes * 0.1)
+        v_2sv_13_6svUsed = _sent(r_2sv_13_6svUsed == 1)
+        v_2sv_13_8diffCorr = _sent(r_2sv_13_8diffCorr == 1)
+        v_2sv_13_8smoothed = _sent(r_2sv_13_8smoothed == 1)
+        v_2sv_13_8ephAvail = _sent(r_2sv_13_8ephAvail == 1)
+        v_2sv_13_8almAvail = _sent(r_2sv_13_8almAvail == 1)
+        v_2sv_13_8anoAvail = _sent(r_2sv_13_8anoAvail == 1)
+        v_2sv_13_8aopAvail = _sent(r_2sv_13_8aopAvail == 1)
+        v_2sv_13_12sbasCorrUsed = _sent(r_2sv_13_12sbasCorrUsed == 1)
+        v_2sv_13_12rtcmCorrUsed = _sent(r_2sv_13_12rtcmCorrUsed == 1)
+        v_2sv_13_12slasCorrUsed = _sent(r_2sv_13_12slasCorrUsed == 1)
+        v_2sv_13_14spartnCorrUsed = _sent(r_2sv_13_14spartnCorrUsed == 1)
+        v_2sv_13_10prCorrUsed = _sent(r_2sv_13_10prCorrUsed == 1)
+        v_2sv_13_10crCorrUsed = _sent(r_2sv_13_10crCorrUsed == 1)
+        v_2sv_13_10doCorrUsed = _sent(r_2sv_13_10doCorrUsed == 1)
+        v_2sv_13_12clasCorrUsed = _sent(r_2sv_13_12clasCorrUsed == 1)
+        v_2sv_13_11lppCorrUsed = _sent(r_2sv_13_11lppCorrUsed == 1)
+        v_2sv_13_11hasCorrUsed = _sent(r_2sv_13_11hasCorrUsed == 1)
         if r_2sv_13_11flags_spare:
             raise _dec('nav_sat', 'sv[13].flags_spare', r_2sv_13_11flags_spare, 'reserved', '0', 1450, None)
+    else:
+        v_2sv_13_5prRes = _ABSENT
+        v_2sv_13_6svUsed = _ABSENT
+        v_2sv_13_8diffCorr = _ABSENT
+        v_2sv_13_8smoothed = _ABSENT
+        v_2sv_13_8ephAvail = _ABSENT
+        v_2sv_13_8almAvail = _ABSENT
+        v_2sv_13_8anoAvail = _ABSENT
+        v_2sv_13_8aopAvail = _ABSENT
+        v_2sv_13_12sbasCorrUsed = _ABSENT
+        v_2sv_13_12rtcmCorrUsed = _ABSENT
+        v_2sv_13_12slasCorrUsed = _ABSENT
+        v_2sv_13_14spartnCorrUsed = _ABSENT
+        v_2sv_13_10prCorrUsed = _ABSENT
+        v_2sv_13_10crCorrUsed = _ABSENT
+        v_2sv_13_10doCorrUsed = _ABSENT
+        v_2sv_13_12clasCorrUsed = _ABSENT
+        v_2sv_13_11lppCorrUsed = _ABSENT
+        v_2sv_13_11hasCorrUsed = _ABSENT
     if n_sv > 14:
+        v_2sv_14_5prRes = _sent(r_2sv_14_5prRes * 0.1)
+        v_2sv_14_6svUsed = _sent(r_2sv_14_6svUsed == 1)
+        v_2sv_14_8diffCorr = _sent(r_2sv_14_8diffCorr == 1)
+        v_2sv_14_8smoothed = _sent(r_2sv_14_8smoothed == 1)
+        v_2sv_14_8ephAvail = _sent(r_2sv_14_8ephAvail == 1)
+        v_2sv_14_8almAvail = _sent(r_2sv_14_8almAvail == 1)
+        v_2sv_14_8anoAvail = _sent(r_2sv_14_8anoAvail == 1)
+        v_2sv_14_8aopAvail = _sent(r_2sv_14_8aopAvail == 1)
+        v_2sv_14_12sbasCorrUsed = _sent(r_2sv_14_12sbasCorrUsed == 1)
+        v_2sv_14_12rtcmCorrUsed = _sent(r_2sv_14_12rtcmCorrUsed == 1)
+        v_2sv_14_12slasCorrUsed = _sent(r_2sv_14_12slasCorrUsed == 1)
+        v_2sv_14_14spartnCorrUsed = _sent(r_2sv_14_14spartnCorrUsed == 1)
+        v_2sv_14_10prCorrUsed = _sent(r_2sv_14_10prCorrUsed == 1)
+        v_2sv_14_10crCorrUsed = _sent(r_2sv_14_10crCorrUsed == 1)
+        v_2sv_14_10doCorrUsed = _sent(r_2sv_14_10doCorrUsed == 1)
+        v_2sv_14_12clasCorrUsed = _sent(r_2sv_14_12clasCorrUsed == 1)
+        v_2sv_14_11lppCorrUsed = _sent(r_2sv_14_11lppCorrUsed == 1)
+        v_2sv_14_11hasCorrUsed = _sent(r_2sv_14_11hasCorrUsed == 1)
         if r_2sv_14_11flags_spare:
             raise _dec('nav_sat', 'sv[14].flags_spare', r_2sv_14_11flags_spare, 'reserved', '0', 1546, None)
+    else:
+        v_2sv_14_5prRes = _ABSENT
+        v_2sv_14_6svUsed = _ABSENT
+        v_2sv_14_8diffCorr = _ABSENT
+        v_2sv_14_8smoothed = _ABSENT
+        v_2sv_14_8ephAvail = _ABSENT
+        v_2sv_14_8almAvail = _ABSENT
+        v_2sv_14_8anoAvail = _ABSENT
+        v_2sv_14_8aopAvail = _ABSENT
+        v_2sv_14_12sbasCorrUsed = _ABSENT
+        v_2sv_14_12rtcmCorrUsed = _ABSENT
+        v_2sv_14_12slasCorrUsed = _ABSENT
+        v_2sv_14_14spartnCorrUsed = _ABSENT
+        v_2sv_14_10prCorrUsed = _ABSENT
+        v_2sv_14_10crCorrUsed = _ABSENT
+        v_2sv_14_10doCorrUsed = _ABSENT
+        v_2sv_14_12clasCorrUsed = _ABSENT
+        v_2sv_14_11lppCorrUsed = _ABSENT
+        v_2sv_14_11hasCorrUsed = _ABSENT
     if n_sv > 15:
+        v_2sv_15_5prRes = _sent(r_2sv_15_5prRes * 0.1)
+        v_2sv_15_6svUsed = _sent(r_2sv_15_6svUsed == 1)
+        v_2sv_15_8diffCorr = _sent(r_2sv_15_8diffCorr == 1)
+        v_2sv_15_8smoothed = _sent(r_2sv_15_8smoothed == 1)
+        v_2sv_15_8ephAvail = _sent(r_2sv_15_8ephAvail == 1)
+        v_2sv_15_8almAvail = _sent(r_2sv_15_8almAvail == 1)
+        v_2sv_15_8anoAvail = _sent(r_2sv_15_8anoAvail == 1)
+        v_2sv_15_8aopAvail = _sent(r_2sv_15_8aopAvail == 1)
+        v_2sv_15_12sbasCorrUsed = _sent(r_2sv_15_12sbasCorrUsed == 1)
+        v_2sv_15_12rtcmCorrUsed = _sent(r_2sv_15_12rtcmCorrUsed == 1)
+        v_2sv_15_12slasCorrUsed = _sent(r_2sv_15_12slasCorrUsed == 1)
+        v_2sv_15_14spartnCorrUsed = _sent(r_2sv_15_14spartnCorrUsed == 1)
+        v_2sv_15_10prCorrUsed = _sent(r_2sv_15_10prCorrUsed == 1)
+        v_2sv_15_10crCorrUsed = _sent(r_2sv_15_10crCorrUsed == 1)
+        v_2sv_15_10doCorrUsed = _sent(r_2sv_15_10doCorrUsed == 1)
+        v_2sv_15_12clasCorrUsed = _sent(r_2sv_15_12clasCorrUsed == 1)
+        v_2sv_15_11lppCorrUsed = _sent(r_2sv_15_11lppCorrUsed == 1)
+        v_2sv_15_11hasCorrUsed = _sent(r_2sv_15_11hasCorrUsed == 1)
         if r_2sv_15_11flags_spare:
             raise _dec('nav_sat', 'sv[15].flags_spare', r_2sv_15_11flags_spare, 'reserved', '0', 1642, None)
+    else:
+        v_2sv_15_5prRes = _ABSENT
+        v_2sv_15_6svUsed = _ABSENT
+        v_2sv_15_8diffCorr = _ABSENT
+        v_2sv_15_8smoothed = _ABSENT
+        v_2sv_15_8ephAvail = _ABSENT
+        v_2sv_15_8almAvail = _ABSENT
+        v_2sv_15_8anoAvail = _ABSENT
+        v_2sv_15_8aopAvail = _ABSENT
+        v_2sv_15_12sbasCorrUsed = _ABSENT
+        v_2sv_15_12rtcmCorrUsed = _ABSENT
+        v_2sv_15_12slasCorrUsed = _ABSENT
+        v_2sv_15_14spartnCorrUsed = _ABSENT
+        v_2sv_15_10prCorrUsed = _ABSENT
+        v_2sv_15_10crCorrUsed = _ABSENT
+        v_2sv_15_10doCorrUsed = _ABSENT
+        v_2sv_15_12clasCorrUsed = _ABSENT
+        v_2sv_15_11lppCorrUsed = _ABSENT
+        v_2sv_15_11hasCorrUsed = _ABSENT
     if n_sv > 16:
+        v_2sv_16_5prRes = _sent(r_2sv_16_5prRes * 0.1)
+        v_2sv_16_6svUsed = _sent(r_2sv_16_6svUsed == 1)
+        v_2sv_16_8diffCorr = _sent(r_2sv_16_8diffCorr == 1)
+        v_2sv_16_8smoothed = _sent(r_2sv_16_8smoothed == 1)
+        v_2sv_16_8ephAvail = _sent(r_2sv_16_8ephAvail == 1)
+        v_2sv_16_8almAvail = _sent(r_2sv_16_8almAvail == 1)
+        v_2sv_16_8anoAvail = _sent(r_2sv_16_8anoAvail == 1)
+        v_2sv_16_8aopAvail = _sent(r_2sv_16_8aopAvail == 1)
+        v_2sv_16_12sbasCorrUsed = _sent(r_2sv_16_12sbasCorrUsed == 1)
+        v_2sv_16_12rtcmCorrUsed = _sent(r_2sv_16_12rtcmCorrUsed == 1)
+        v_2sv_16_12slasCorrUsed = _sent(r_2sv_16_12slasCorrUsed == 1)
+        v_2sv_16_14spartnCorrUsed = _sent(r_2sv_16_14spartnCorrUsed == 1)
+        v_2sv_16_10prCorrUsed = _sent(r_2sv_16_10prCorrUsed == 1)
+        v_2sv_16_10crCorrUsed = _sent(r_2sv_16_10crCorrUsed == 1)
+        v_2sv_16_10doCorrUsed = _sent(r_2sv_16_10doCorrUsed == 1)
+        v_2sv_16_12clasCorrUsed = _sent(r_2sv_16_12clasCorrUsed == 1)
+        v_2sv_16_11lppCorrUsed = _sent(r_2sv_16_11lppCorrUsed == 1)
+        v_2sv_16_11hasCorrUsed = _sent(r_2sv_16_11hasCorrUsed == 1)
         if r_2sv_16_11flags_spare:
             raise _dec('nav_sat', 'sv[16].flags_spare', r_2sv_16_11flags_spare, 'reserved', '0', 1738, None)
+    else:
+        v_2sv_16_5prRes = _ABSENT
+        v_2sv_16_6svUsed = _ABSENT
+        v_2sv_16_8diffCorr = _ABSENT
+        v_2sv_16_8smoothed = _ABSENT
+        v_2sv_16_8ephAvail = _ABSENT
+        v_2sv_16_8almAvail = _ABSENT
+        v_2sv_16_8anoAvail = _ABSENT
+        v_2sv_16_8aopAvail = _ABSENT
+        v_2sv_16_12sbasCorrUsed = _ABSENT
+        v_2sv_16_12rtcmCorrUsed = _ABSENT
+        v_2sv_16_12slasCorrUsed = _ABSENT
+        v_2sv_16_14spartnCorrUsed = _ABSENT
+        v_2sv_16_10prCorrUsed = _ABSENT
+        v_2sv_16_10crCorrUsed = _ABSENT
+        v_2sv_16_10doCorrUsed = _ABSENT
+        v_2sv_16_12clasCorrUsed = _ABSENT
+        v_2sv_16_11lppCorrUsed = _ABSENT
+        v_2sv_16_11hasCorrUsed = _ABSENT
     if n_sv > 17:
+        v_2sv_17_5prRes = _sent(r_2sv_17_5prRes * 0.1)
+        v_2sv_17_6svUsed = _sent(r_2sv_17_6svUsed == 1)
+        v_2sv_17_8diffCorr = _sent(r_2sv_17_8diffCorr == 1)
+        v_2sv_17_8smoothed = _sent(r_2sv_17_8smoothed == 1)
+        v_2sv_17_8ephAvail = _sent(r_2sv_17_8ephAvail == 1)
+        v_2sv_17_8almAvail = _sent(r_2sv_17_8almAvail == 1)
+        v_2sv_17_8anoAvail = _sent(r_2sv_17_8anoAvail == 1)
+        v_2sv_17_8aopAvail = _sent(r_2sv_17_8aopAvail == 1)
+        v_2sv_17_12sbasCorrUsed = _sent(r_2sv_17_12sbasCorrUsed == 1)
+        v_2sv_17_12rtcmCorrUsed = _sent(r_2sv_17_12rtcmCorrUsed == 1)
+        v_2sv_17_12slasCorrUsed = _sent(r_2sv_17_12slasCorrUsed == 1)
+        v_2sv_17_14spartnCorrUsed = _sent(r_2sv_17_14spartnCorrUsed == 1)
+        v_2sv_17_10prCorrUsed = _sent(r_2sv_17_10prCorrUsed == 1)
+        v_2sv_17_10crCorrUsed = _sent(r_2sv_17_10crCorrUsed == 1)
+        v_2sv_17_10doCorrUsed = _sent(r_2sv_17_10doCorrUsed == 1)
+        v_2sv_17_12clasCorrUsed = _sent(r_2sv_17_12clasCorrUsed == 1)
+        v_2sv_17_11lppCorrUsed = _sent(r_2sv_17_11lppCorrUsed == 1)
+        v_2sv_17_11hasCorrUsed = _sent(r_2sv_17_11hasCorrUsed == 1)
         if r_2sv_17_11flags_spare:
             raise _dec('nav_sat', 'sv[17].flags_spare', r_2sv_17_11flags_spare, 'reserved', '0', 1834, None)
+    else:
+        v_2sv_17_5prRes = _ABSENT
+        v_2sv_17_6svUsed = _ABSENT
+        v_2sv_17_8diffCorr = _ABSENT
+        v_2sv_17_8smoothed = _ABSENT
+        v_2sv_17_8ephAvail = _ABSENT
+        v_2sv_17_8almAvail = _ABSENT
+        v_2sv_17_8anoAvail = _ABSENT
+        v_2sv_17_8aopAvail = _ABSENT
+        v_2sv_17_12sbasCorrUsed = _ABSENT
+        v_2sv_17_12rtcmCorrUsed = _ABSENT
+        v_2sv_17_12slasCorrUsed = _ABSENT
+        v_2sv_17_14spartnCorrUsed = _ABSENT
+        v_2sv_17_10prCorrUsed = _ABSENT
+        v_2sv_17_10crCorrUsed = _ABSENT
+        v_2sv_17_10doCorrUsed = _ABSENT
+        v_2sv_17_12clasCorrUsed = _ABSENT
+        v_2sv_17_11lppCorrUsed = _ABSENT
+        v_2sv_17_11hasCorrUsed = _ABSENT
     if n_sv > 18:
+        v_2sv_18_5prRes = _sent(r_2sv_18_5prRes * 0.1)
+        v_2sv_18_6svUsed = _sent(r_2sv_18_6svUsed == 1)
+        v_2sv_18_8diffCorr = _sent(r_2sv_18_8diffCorr == 1)
+        v_2sv_18_8smoothed = _sent(r_2sv_18_8smoothed == 1)
+        v_2sv_18_8ephAvail = _sent(r_2sv_18_8ephAvail == 1)
+        v_2sv_18_8almAvail = _sent(r_2sv_18_8almAvail == 1)
+        v_2sv_18_8anoAvail = _sent(r_2sv_18_8anoAvail == 1)
+        v_2sv_18_8aopAvail = _sent(r_2sv_18_8aopAvail == 1)
+        v_2sv_18_12sbasCorrUsed = _sent(r_2sv_18_12sbasCorrUsed == 1)
+        v_2sv_18_12rtcmCorrUsed = _sent(r_2sv_18_12rtcmCorrUsed == 1)
+        v_2sv_18_12slasCorrUsed = _sent(r_2sv_18_12slasCorrUsed == 1)
+        v_2sv_18_14spartnCorrUsed = _sent(r_2sv_18_14spartnCorrUsed == 1)
+        v_2sv_18_10prCorrUsed = _sent(r_2sv_18_10prCorrUsed == 1)
+        v_2sv_18_10crCorrUsed = _sent(r_2sv_18_10crCorrUsed == 1)
+        v_2sv_18_10doCorrUsed = _sent(r_2sv_18_10doCorrUsed == 1)
+        v_2sv_18_12clasCorrUsed = _sent(r_2sv_18_12clasCorrUsed == 1)
+        v_2sv_18_11lppCorrUsed = _sent(r_2sv_18_11lppCorrUsed == 1)
+        v_2sv_18_11hasCorrUsed = _sent(r_2sv_18_11hasCorrUsed == 1)
         if r_2sv_18_11flags_spare:
             raise _dec('nav_sat', 'sv[18].flags_spare', r_2sv_18_11flags_spare, 'reserved', '0', 1930, None)
+    else:
+        v_2sv_18_5prRes = _ABSENT
+        v_2sv_18_6svUsed = _ABSENT
+        v_2sv_18_8diffCorr = _ABSENT
+        v_2sv_18_8smoothed = _ABSENT
+        v_2sv_18_8ephAvail = _ABSENT
+        v_2sv_18_8almAvail = _ABSENT
+        v_2sv_18_8anoAvail = _ABSENT
+        v_2sv_18_8aopAvail = _ABSENT
+        v_2sv_18_12sbasCorrUsed = _ABSENT
+        v_2sv_18_12rtcmCorrUsed = _ABSENT
+        v_2sv_18_12slasCorrUsed = _ABSENT
+        v_2sv_18_14spartnCorrUsed = _ABSENT
+        v_2sv_18_10prCorrUsed = _ABSENT
+        v_2sv_18_10crCorrUsed = _ABSENT
+        v_2sv_18_10doCorrUsed = _ABSENT
+        v_2sv_18_12clasCorrUsed = _ABSENT
+        v_2sv_18_11lppCorrUsed = _ABSENT
+        v_2sv_18_11hasCorrUsed = _ABSENT
     if n_sv > 19:
+        v_2sv_19_5prRes = _sent(r_2sv_19_5prRes * 0.1)
+        v_2sv_19_6svUsed = _sent(r_2sv_19_6svUsed == 1)
+        v_2sv_19_8diffCorr = _sent(r_2sv_19_8diffCorr == 1)
+        v_2sv_19_8smoothed = _sent(r_2sv_19_8smoothed == 1)
+        v_2sv_19_8ephAvail = _sent(r_2sv_19_8ephAvail == 1)
+        v_2sv_19_8almAvail = _sent(r_2sv_19_8almAvail == 1)
+        v_2sv_19_8anoAvail = _sent(r_2sv_19_8anoAvail == 1)
+        v_2sv_19_8aopAvail = _sent(r_2sv_19_8aopAvail == 1)
+        v_2sv_19_12sbasCorrUsed = _sent(r_2sv_19_12sbasCorrUsed == 1)
+        v_2sv_19_12rtcmCorrUsed = _sent(r_2sv_19_12rtcmCorrUsed == 1)
+        v_2sv_19_12slasCorrUsed = _sent(r_2sv_19_12slasCorrUsed == 1)
+        v_2sv_19_14spartnCorrUsed = _sent(r_2sv_19_14spartnCorrUsed == 1)
+        v_2sv_19_10prCorrUsed = _sent(r_2sv_19_10prCorrUsed == 1)
+        v_2sv_19_10crCorrUsed = _sent(r_2sv_19_10crCorrUsed == 1)
+        v_2sv_19_10doCorrUsed = _sent(r_2sv_19_10doCorrUsed == 1)
+        v_2sv_19_12clasCorrUsed = _sent(r_2sv_19_12clasCorrUsed == 1)
+        v_2sv_19_11lppCorrUsed = _sent(r_2sv_19_11lppCorrUsed == 1)
+        v_2sv_19_11hasCorrUsed = _sent(r_2sv_19_11hasCorrUsed == 1)
         if r_2sv_19_11flags_spare:
             raise _dec('nav_sat', 'sv[19].flags_spare', r_2sv_19_11flags_spare, 'reserved', '0', 2026, None)
+    else:
+        v_2sv_19_5prRes = _ABSENT
+        v_2sv_19_6svUsed = _ABSENT
+        v_2sv_19_8diffCorr = _ABSENT
+        v_2sv_19_8smoothed = _ABSENT
+        v_2sv_19_8ephAvail = _ABSENT
+        v_2sv_19_8almAvail = _ABSENT
+        v_2sv_19_8anoAvail = _ABSENT
+        v_2sv_19_8aopAvail = _ABSENT
+        v_2sv_19_12sbasCorrUsed = _ABSENT
+        v_2sv_19_12rtcmCorrUsed = _ABSENT
+        v_2sv_19_12slasCorrUsed = _ABSENT
+        v_2sv_19_14spartnCorrUsed = _ABSENT
+        v_2sv_19_10prCorrUsed = _ABSENT
+        v_2sv_19_10crCorrUsed = _ABSENT
+        v_2sv_19_10doCorrUsed = _ABSENT
+        v_2sv_19_12clasCorrUsed = _ABSENT
+        v_2sv_19_11lppCorrUsed = _ABSENT
+        v_2sv_19_11hasCorrUsed = _ABSENT
     if n_sv > 20:
+        v_2sv_20_5prRes = _sent(r_2sv_20_5prRes * 0.1)
+        v_2sv_20_6svUsed = _sent(r_2sv_20_6svUsed == 1)
+        v_2sv_20_8diffCorr = _sent(r_2sv_20_8diffCorr == 1)
+        v_2sv_20_8smoothed = _sent(r_2sv_20_8smoothed == 1)
+        v_2sv_20_8ephAvail = _sent(r_2sv_20_8ephAvail == 1)
+        v_2sv_20_8almAvail = _sent(r_2sv_20_8almAvail == 1)
+        v_2sv_20_8anoAvail = _sent(r_2sv_20_8anoAvail == 1)
+        v_2sv_20_8aopAvail = _sent(r_2sv_20_8aopAvail == 1)
+        v_2sv_20_12sbasCorrUsed = _sent(r_2sv_20_12sbasCorrUsed == 1)
+        v_2sv_20_12rtcmCorrUsed = _sent(r_2sv_20_12rtcmCorrUsed == 1)
+        v_2sv_20_12slasCorrUsed = _sent(r_2sv_20_12slasCorrUsed == 1)
+        v_2sv_20_14spartnCorrUsed = _sent(r_2sv_20_14spartnCorrUsed == 1)
+        v_2sv_20_10prCorrUsed = _sent(r_2sv_20_10prCorrUsed == 1)
+        v_2sv_20_10crCorrUsed = _sent(r_2sv_20_10crCorrUsed == 1)
+        v_2sv_20_10doCorrUsed = _sent(r_2sv_20_10doCorrUsed == 1)
+        v_2sv_20_12clasCorrUsed = _sent(r_2sv_20_12clasCorrUsed == 1)
+        v_2sv_20_11lppCorrUsed = _sent(r_2sv_20_11lppCorrUsed == 1)
+        v_2sv_20_11hasCorrUsed = _sent(r_2sv_20_11hasCorrUsed == 1)
         if r_2sv_20_11flags_spare:
             raise _dec('nav_sat', 'sv[20].flags_spare', r_2sv_20_11flags_spare, 'reserved', '0', 2122, None)
+    else:
+        v_2sv_20_5prRes = _ABSENT
+        v_2sv_20_6svUsed = _ABSENT
+        v_2sv_20_8diffCorr = _ABSENT
+        v_2sv_20_8smoothed = _ABSENT
+        v_2sv_20_8ephAvail = _ABSENT
+        v_2sv_20_8almAvail = _ABSENT
+        v_2sv_20_8anoAvail = _ABSENT
+        v_2sv_20_8aopAvail = _ABSENT
+        v_2sv_20_12sbasCorrUsed = _ABSENT
+        v_2sv_20_12rtcmCorrUsed = _ABSENT
+        v_2sv_20_12slasCorrUsed = _ABSENT
+        v_2sv_20_14spartnCorrUsed = _ABSENT
+        v_2sv_20_10prCorrUsed = _ABSENT
+        v_2sv_20_10crCorrUsed = _ABSENT
+        v_2sv_20_10doCorrUsed = _ABSENT
+        v_2sv_20_12clasCorrUsed = _ABSENT
+        v_2sv_20_11lppCorrUsed = _ABSENT
+        v_2sv_20_11hasCorrUsed = _ABSENT
     if n_sv > 21:
+        v_2sv_21_5prRes = _sent(r_2sv_21_5prRes * 0.1)
+        v_2sv_21_6svUsed = _sent(r_2sv_21_6svUsed == 1)
+        v_2sv_21_8diffCorr = _sent(r_2sv_21_8diffCorr == 1)
+        v_2sv_21_8smoothed = _sent(r_2sv_21_8smoothed == 1)
+        v_2sv_21_8ephAvail = _sent(r_2sv_21_8ephAvail == 1)
+        v_2sv_21_8almAvail = _sent(r_2sv_21_8almAvail == 1)
+        v_2sv_21_8anoAvail = _sent(r_2sv_21_8anoAvail == 1)
+        v_2sv_21_8aopAvail = _sent(r_2sv_21_8aopAvail == 1)
+        v_2sv_21_12sbasCorrUsed = _sent(r_2sv_21_12sbasCorrUsed == 1)
+        v_2sv_21_12rtcmCorrUsed = _sent(r_2sv_21_12rtcmCorrUsed == 1)
+        v_2sv_21_12slasCorrUsed = _sent(r_2sv_21_12slasCorrUsed == 1)
+        v_2sv_21_14spartnCorrUsed = _sent(r_2sv_21_14spartnCorrUsed == 1)
+        v_2sv_21_10prCorrUsed = _sent(r_2sv_21_10prCorrUsed == 1)
+        v_2sv_21_10crCorrUsed = _sent(r_2sv_21_10crCorrUsed == 1)
+        v_2sv_21_10doCorrUsed = _sent(r_2sv_21_10doCorrUsed == 1)
+        v_2sv_21_12clasCorrUsed = _sent(r_2sv_21_12clasCorrUsed == 1)
+        v_2sv_21_11lppCorrUsed = _sent(r_2sv_21_11lppCorrUsed == 1)
+        v_2sv_21_11hasCorrUsed = _sent(r_2sv_21_11hasCorrUsed == 1)
         if r_2sv_21_11flags_spare:
             raise _dec('nav_sat', 'sv[21].flags_spare', r_2sv_21_11flags_spare, 'reserved', '0', 2218, None)
+    else:
+        v_2sv_21_5prRes = _ABSENT
+        v_2sv_21_6svUsed = _ABSENT
+        v_2sv_21_8diffCorr = _ABSENT
+        v_2sv_21_8smoothed = _ABSENT
+        v_2sv_21_8ephAvail = _ABSENT
+        v_2sv_21_8almAvail = _ABSENT
+        v_2sv_21_8anoAvail = _ABSENT
+        v_2sv_21_8aopAvail = _ABSENT
+        v_2sv_21_12sbasCorrUsed = _ABSENT
+        v_2sv_21_12rtcmCorrUsed = _ABSENT
+        v_2sv_21_12slasCorrUsed = _ABSENT
+        v_2sv_21_14spartnCorrUsed = _ABSENT
+        v_2sv_21_10prCorrUsed = _ABSENT
+        v_2sv_21_10crCorrUsed = _ABSENT
+        v_2sv_21_10doCorrUsed = _ABSENT
+        v_2sv_21_12clasCorrUsed = _ABSENT
+        v_2sv_21_11lppCorrUsed = _ABSENT
+        v_2sv_21_11hasCorrUsed = _ABSENT
     if n_sv > 22:
+        v_2sv_22_5prRes = _sent(r_2sv_22_5prRes * 0.1)
+        v_2sv_22_6svUsed = _sent(r_2sv_22_6svUsed == 1)
+        v_2sv_22_8diffCorr = _sent(r_2sv_22_8diffCorr == 1)
+        v_2sv_22_8smoothed = _sent(r_2sv_22_8smoothed == 1)
+        v_2sv_22_8ephAvail = _sent(r_2sv_22_8ephAvail == 1)
+        v_2sv_22_8almAvail = _sent(r_2sv_22_8almAvail == 1)
+        v_2sv_22_8anoAvail = _sent(r_2sv_22_8anoAvail == 1)
+        v_2sv_22_8aopAvail = _sent(r_2sv_22_8aopAvail == 1)
+        v_2sv_22_12sbasCorrUsed = _sent(r_2sv_22_12sbasCorrUsed == 1)
+        v_2sv_22_12rtcmCorrUsed = _sent(r_2sv_22_12rtcmCorrUsed == 1)
+        v_2sv_22_12slasCorrUsed = _sent(r_2sv_22_12slasCorrUsed == 1)
+        v_2sv_22_14spartnCorrUsed = _sent(r_2sv_22_14spartnCorrUsed == 1)
+        v_2sv_22_10prCorrUsed = _sent(r_2sv_22_10prCorrUsed == 1)
+        v_2sv_22_10crCorrUsed = _sent(r_2sv_22_10crCorrUsed == 1)
+        v_2sv_22_10doCorrUsed = _sent(r_2sv_22_10doCorrUsed == 1)
+        v_2sv_22_12clasCorrUsed = _sent(r_2sv_22_12clasCorrUsed == 1)
+        v_2sv_22_11lppCorrUsed = _sent(r_2sv_22_11lppCorrUsed == 1)
+        v_2sv_22_11hasCorrUsed = _sent(r_2sv_22_11hasCorrUsed == 1)
         if r_2sv_22_11flags_spare:
             raise _dec('nav_sat', 'sv[22].flags_spare', r_2sv_22_11flags_spare, 'reserved', '0', 2314, None)
+    else:
+        v_2sv_22_5prRes = _ABSENT
+        v_2sv_22_6svUsed = _ABSENT
+        v_2sv_22_8diffCorr = _ABSENT
+        v_2sv_22_8smoothed = _ABSENT
+        v_2sv_22_8ephAvail = _ABSENT
+        v_2sv_22_8almAvail = _ABSENT
+        v_2sv_22_8anoAvail = _ABSENT
+        v_2sv_22_8aopAvail = _ABSENT
+        v_2sv_22_12sbasCorrUsed = _ABSENT
+        v_2sv_22_12rtcmCorrUsed = _ABSENT
+        v_2sv_22_12slasCorrUsed = _ABSENT
+        v_2sv_22_14spartnCorrUsed = _ABSENT
+        v_2sv_22_10prCorrUsed = _ABSENT
+        v_2sv_22_10crCorrUsed = _ABSENT
+        v_2sv_22_10doCorrUsed = _ABSENT
+        v_2sv_22_12clasCorrUsed = _ABSENT
+        v_2sv_22_11lppCorrUsed = _ABSENT
+        v_2sv_22_11hasCorrUsed = _ABSENT
     if n_sv > 23:
+        v_2sv_23_5prRes = _sent(r_2sv_23_5prRes * 0.1)
+        v_2sv_23_6svUsed = _sent(r_2sv_23_6svUsed == 1)
+        v_2sv_23_8diffCorr = _sent(r_2sv_23_8diffCorr == 1)
+        v_2sv_23_8smoothed = _sent(r_2sv_23_8smoothed == 1)
+        v_2sv_23_8ephAvail = _sent(r_2sv_23_8ephAvail == 1)
+        v_2sv_23_8almAvail = _sent(r_2sv_23_8almAvail == 1)
+        v_2sv_23_8anoAvail = _sent(r_2sv_23_8anoAvail == 1)
+        v_2sv_23_8aopAvail = _sent(r_2sv_23_8aopAvail == 1)
+        v_2sv_23_12sbasCorrUsed = _sent(r_2sv_23_12sbasCorrUsed == 1)
+        v_2sv_23_12rtcmCorrUsed = _sent(r_2sv_23_12rtcmCorrUsed == 1)
+        v_2sv_23_12slasCorrUsed = _sent(r_2sv_23_12slasCorrUsed == 1)
+        v_2sv_23_14spartnCorrUsed = _sent(r_2sv_23_14spartnCorrUsed == 1)
+        v_2sv_23_10prCorrUsed = _sent(r_2sv_23_10prCorrUsed == 1)
+        v_2sv_23_10crCorrUsed = _sent(r_2sv_23_10crCorrUsed == 1)
+        v_2sv_23_10doCorrUsed = _sent(r_2sv_23_10doCorrUsed == 1)
+        v_2sv_23_12clasCorrUsed = _sent(r_2sv_23_12clasCorrUsed == 1)
+        v_2sv_23_11lppCorrUsed = _sent(r_2sv_23_11lppCorrUsed == 1)
+        v_2sv_23_11hasCorrUsed = _sent(r_2sv_23_11hasCorrUsed == 1)
         if r_2sv_23_11flags_spare:
             raise _dec('nav_sat', 'sv[23].flags_spare', r_2sv_23_11flags_spare, 'reserved', '0', 2410, None)
+    else:
+        v_2sv_23_5prRes = _ABSENT
+        v_2sv_23_6svUsed = _ABSENT
+        v_2sv_23_8diffCorr = _ABSENT
+        v_2sv_23_8smoothed = _ABSENT
+        v_2sv_23_8ephAvail = _ABSENT
+        v_2sv_23_8almAvail = _ABSENT
+        v_2sv_23_8anoAvail = _ABSENT
+        v_2sv_23_8aopAvail = _ABSENT
+        v_2sv_23_12sbasCorrUsed = _ABSENT
+        v_2sv_23_12rtcmCorrUsed = _ABSENT
+        v_2sv_23_12slasCorrUsed = _ABSENT
+        v_2sv_23_14spartnCorrUsed = _ABSENT
+        v_2sv_23_10prCorrUsed = _ABSENT
+        v_2sv_23_10crCorrUsed = _ABSENT
+        v_2sv_23_10doCorrUsed = _ABSENT
+        v_2sv_23_12clasCorrUsed = _ABSENT
+        v_2sv_23_11lppCorrUsed = _ABSENT
+        v_2sv_23_11hasCorrUsed = _ABSENT
     if n_sv > 24:
+        v_2sv_24_5prRes = _sent(r_2sv_24_5prRes * 0.1)
+        v_2sv_24_6svUsed = _sent(r_2sv_24_6svUsed == 1)
+        v_2sv_24_8diffCorr = _sent(r_2sv_24_8diffCorr == 1)
+        v_2sv_24_8smoothed = _sent(r_2sv_24_8smoothed == 1)
+        v_2sv_24_8ephAvail = _sent(r_2sv_24_8ephAvail == 1)
+        v_2sv_24_8almAvail = _sent(r_2sv_24_8almAvail == 1)
+        v_2sv_24_8anoAvail = _sent(r_2sv_24_8anoAvail == 1)
+        v_2sv_24_8aopAvail = _sent(r_2sv_24_8aopAvail == 1)
+        v_2sv_24_12sbasCorrUsed = _sent(r_2sv_24_12sbasCorrUsed == 1)
+        v_2sv_24_12rtcmCorrUsed = _sent(r_2sv_24_12rtcmCorrUsed == 1)
+        v_2sv_24_12slasCorrUsed = _sent(r_2sv_24_12slasCorrUsed == 1)
+        v_2sv_24_14spartnCorrUsed = _sent(r_2sv_24_14spartnCorrUsed == 1)
+        v_2sv_24_10prCorrUsed = _sent(r_2sv_24_10prCorrUsed == 1)
+        v_2sv_24_10crCorrUsed = _sent(r_2sv_24_10crCorrUsed == 1)
+        v_2sv_24_10doCorrUsed = _sent(r_2sv_24_10doCorrUsed == 1)
+        v_2sv_24_12clasCorrUsed = _sent(r_2sv_24_12clasCorrUsed == 1)
+        v_2sv_24_11lppCorrUsed = _sent(r_2sv_24_11lppCorrUsed == 1)
+        v_2sv_24_11hasCorrUsed = _sent(r_2sv_24_11hasCorrUsed == 1)
         if r_2sv_24_11flags_spare:
             raise _dec('nav_sat', 'sv[24].flags_spare', r_2sv_24_11flags_spare, 'reserved', '0', 2506, None)
+    else:
+        v_2sv_24_5prRes = _ABSENT
+        v_2sv_24_6svUsed = _ABSENT
+        v_2sv_24_8diffCorr = _ABSENT
+        v_2sv_24_8smoothed = _ABSENT
+        v_2sv_24_8ephAvail = _ABSENT
+        v_2sv_24_8almAvail = _ABSENT
+        v_2sv_24_8anoAvail = _ABSENT
+        v_2sv_24_8aopAvail = _ABSENT
+        v_2sv_24_12sbasCorrUsed = _ABSENT
+        v_2sv_24_12rtcmCorrUsed = _ABSENT
+        v_2sv_24_12slasCorrUsed = _ABSENT
+        v_2sv_24_14spartnCorrUsed = _ABSENT
+        v_2sv_24_10prCorrUsed = _ABSENT
+        v_2sv_24_10crCorrUsed = _ABSENT
+        v_2sv_24_10doCorrUsed = _ABSENT
+        v_2sv_24_12clasCorrUsed = _ABSENT
+        v_2sv_24_11lppCorrUsed = _ABSENT
+        v_2sv_24_11hasCorrUsed = _ABSENT
     if n_sv > 25:
+        v_2sv_25_5prRes = _sent(r_2sv_25_5prRes * 0.1)
+        v_2sv_25_6svUsed = _sent(r_2sv_25_6svUsed == 1)
+        v_2sv_25_8diffCorr = _sent(r_2sv_25_8diffCorr == 1)
+        v_2sv_25_8smoothed = _sent(r_2sv_25_8smoothed == 1)
+        v_2sv_25_8ephAvail = _sent(r_2sv_25_8ephAvail == 1)
+        v_2sv_25_8almAvail = _sent(r_2sv_25_8almAvail == 1)
+        v_2sv_25_8anoAvail = _sent(r_2sv_25_8anoAvail == 1)
+        v_2sv_25_8aopAvail = _sent(r_2sv_25_8aopAvail == 1)
+        v_2sv_25_12sbasCorrUsed = _sent(r_2sv_25_12sbasCorrUsed == 1)
+        v_2sv_25_12rtcmCorrUsed = _sent(r_2sv_25_12rtcmCorrUsed == 1)
+        v_2sv_25_12slasCorrUsed = _sent(r_2sv_25_12slasCorrUsed == 1)
+        v_2sv_25_14spartnCorrUsed = _sent(r_2sv_25_14spartnCorrUsed == 1)
+        v_2sv_25_10prCorrUsed = _sent(r_2sv_25_10prCorrUsed == 1)
+        v_2sv_25_10crCorrUsed = _sent(r_2sv_25_10crCorrUsed == 1)
+        v_2sv_25_10doCorrUsed = _sent(r_2sv_25_10doCorrUsed == 1)
+        v_2sv_25_12clasCorrUsed = _sent(r_2sv_25_12clasCorrUsed == 1)
+        v_2sv_25_11lppCorrUsed = _sent(r_2sv_25_11lppCorrUsed == 1)
+        v_2sv_25_11hasCorrUsed = _sent(r_2sv_25_11hasCorrUsed == 1)
         if r_2sv_25_11flags_spare:
             raise _dec('nav_sat', 'sv[25].flags_spare', r_2sv_25_11flags_spare, 'reserved', '0', 2602, None)
+    else:
+        v_2sv_25_5prRes = _ABSENT
+        v_2sv_25_6svUsed = _ABSENT
+        v_2sv_25_8diffCorr = _ABSENT
+        v_2sv_25_8smoothed = _ABSENT
+        v_2sv_25_8ephAvail = _ABSENT
+        v_2sv_25_8almAvail = _ABSENT
+        v_2sv_25_8anoAvail = _ABSENT
+        v_2sv_25_8aopAvail = _ABSENT
+        v_2sv_25_12sbasCorrUsed = _ABSENT
+        v_2sv_25_12rtcmCorrUsed = _ABSENT
+        v_2sv_25_12slasCorrUsed = _ABSENT
+        v_2sv_25_14spartnCorrUsed = _ABSENT
+        v_2sv_25_10prCorrUsed = _ABSENT
+        v_2sv_25_10crCorrUsed = _ABSENT
+        v_2sv_25_10doCorrUsed = _ABSENT
+        v_2sv_25_12clasCorrUsed = _ABSENT
+        v_2sv_25_11lppCorrUsed = _ABSENT
+        v_2sv_25_11hasCorrUsed = _ABSENT
     if n_sv > 26:
+        v_2sv_26_5prRes = _sent(r_2sv_26_5prRes * 0.1)
+        v_2sv_26_6svUsed = _sent(r_2sv_26_6svUsed == 1)
+        v_2sv_26_8diffCorr = _sent(r_2sv_26_8diffCorr == 1)
+        v_2sv_26_8smoothed = _sent(r_2sv_26_8smoothed == 1)
+        v_2sv_26_8ephAvail = _sent(r_2sv_26_8ephAvail == 1)
+        v_2sv_26_8almAvail = _sent(r_2sv_26_8almAvail == 1)
+        v_2sv_26_8anoAvail = _sent(r_2sv_26_8anoAvail == 1)
+        v_2sv_26_8aopAvail = _sent(r_2sv_26_8aopAvail == 1)
+        v_2sv_26_12sbasCorrUsed = _sent(r_2sv_26_12sbasCorrUsed == 1)
+        v_2sv_26_12rtcmCorrUsed = _sent(r_2sv_26_12rtcmCorrUsed == 1)
+        v_2sv_26_12slasCorrUsed = _sent(r_2sv_26_12slasCorrUsed == 1)
+        v_2sv_26_14spartnCorrUsed = _sent(r_2sv_26_14spartnCorrUsed == 1)
+        v_2sv_26_10prCorrUsed = _sent(r_2sv_26_10prCorrUsed == 1)
+        v_2sv_26_10crCorrUsed = _sent(r_2sv_26_10crCorrUsed == 1)
+        v_2sv_26_10doCorrUsed = _sent(r_2sv_26_10doCorrUsed == 1)
+        v_2sv_26_12clasCorrUsed = _sent(r_2sv_26_12clasCorrUsed == 1)
+        v_2sv_26_11lppCorrUsed = _sent(r_2sv_26_11lppCorrUsed == 1)
+        v_2sv_26_11hasCorrUsed = _sent(r_2sv_26_11hasCorrUsed == 1)
         if r_2sv_26_11flags_spare:
             raise _dec('nav_sat', 'sv[26].flags_spare', r_2sv_26_11flags_spare, 'reserved', '0', 2698, None)
+    else:
+        v_2sv_26_5prRes = _ABSENT
+        v_2sv_26_6svUsed = _ABSENT
+        v_2sv_26_8diffCorr = _ABSENT
+        v_2sv_26_8smoothed = _ABSENT
+        v_2sv_26_8ephAvail = _ABSENT
+        v_2sv_26_8almAvail = _ABSENT
+        v_2sv_26_8anoAvail = _ABSENT
+        v_2sv_26_8aopAvail = _ABSENT
+        v_2sv_26_12sbasCorrUsed = _ABSENT
+        v_2sv_26_12rtcmCorrUsed = _ABSENT
+        v_2sv_26_12slasCorrUsed = _ABSENT
+        v_2sv_26_14spartnCorrUsed = _ABSENT
+        v_2sv_26_10prCorrUsed = _ABSENT
+        v_2sv_26_10crCorrUsed = _ABSENT
+        v_2sv_26_10doCorrUsed = _ABSENT
+        v_2sv_26_12clasCorrUsed = _ABSENT
+        v_2sv_26_11lppCorrUsed = _ABSENT
+        v_2sv_26_11hasCorrUsed = _ABSENT
     if n_sv > 27:
+        v_2sv_27_5prRes = _sent(r_2sv_27_5prRes * 0.1)
+        v_2sv_27_6svUsed = _sent(r_2sv_27_6svUsed == 1)
+        v_2sv_27_8diffCorr = _sent(r_2sv_27_8diffCorr == 1)
+        v_2sv_27_8smoothed = _sent(r_2sv_27_8smoothed == 1)
+        v_2sv_27_8ephAvail = _sent(r_2sv_27_8ephAvail == 1)
+        v_2sv_27_8almAvail = _sent(r_2sv_27_8almAvail == 1)
+        v_2sv_27_8anoAvail = _sent(r_2sv_27_8anoAvail == 1)
+        v_2sv_27_8aopAvail = _sent(r_2sv_27_8aopAvail == 1)
+        v_2sv_27_12sbasCorrUsed = _sent(r_2sv_27_12sbasCorrUsed == 1)
+        v_2sv_27_12rtcmCorrUsed = _sent(r_2sv_27_12rtcmCorrUsed == 1)
+        v_2sv_27_12slasCorrUsed = _sent(r_2sv_27_12slasCorrUsed == 1)
+        v_2sv_27_14spartnCorrUsed = _sent(r_2sv_27_14spartnCorrUsed == 1)
+        v_2sv_27_10prCorrUsed = _sent(r_2sv_27_10prCorrUsed == 1)
+        v_2sv_27_10crCorrUsed = _sent(r_2sv_27_10crCorrUsed == 1)
+        v_2sv_27_10doCorrUsed = _sent(r_2sv_27_10doCorrUsed == 1)
+        v_2sv_27_12clasCorrUsed = _sent(r_2sv_27_12clasCorrUsed == 1)
+        v_2sv_27_11lppCorrUsed = _sent(r_2sv_27_11lppCorrUsed == 1)
+        v_2sv_27_11hasCorrUsed = _sent(r_2sv_27_11hasCorrUsed == 1)
         if r_2sv_27_11flags_spare:
             raise _dec('nav_sat', 'sv[27].flags_spare', r_2sv_27_11flags_spare, 'reserved', '0', 2794, None)
+    else:
+        v_2sv_27_5prRes = _ABSENT
+        v_2sv_27_6svUsed = _ABSENT
+        v_2sv_27_8diffCorr = _ABSENT
+        v_2sv_27_8smoothed = _ABSENT
+        v_2sv_27_8ephAvail = _ABSENT
+        v_2sv_27_8almAvail = _ABSENT
+        v_2sv_27_8anoAvail = _ABSENT
+        v_2sv_27_8aopAvail = _ABSENT
+        v_2sv_27_12sbasCorrUsed = _ABSENT
+        v_2sv_27_12rtcmCorrUsed = _ABSENT
+        v_2sv_27_12slasCorrUsed = _ABSENT
+        v_2sv_27_14spartnCorrUsed = _ABSENT
+        v_2sv_27_10prCorrUsed = _ABSENT
+        v_2sv_27_10crCorrUsed = _ABSENT
+        v_2sv_27_10doCorrUsed = _ABSENT
+        v_2sv_27_12clasCorrUsed = _ABSENT
+        v_2sv_27_11lppCorrUsed = _ABSENT
+        v_2sv_27_11hasCorrUsed = _ABSENT
     if n_sv > 28:
+        v_2sv_28_5prRes = _sent(r_2sv_28_5prRes * 0.1)
+        v_2sv_28_6svUsed = _sent(r_2sv_28_6svUsed == 1)
+        v_2sv_28_8diffCorr = _sent(r_2sv_28_8diffCorr == 1)
+        v_2sv_28_8smoothed = _sent(r_2sv_28_8smoothed == 1)
+        v_2sv_28_8ephAvail = _sent(r_2sv_28_8ephAvail == 1)
+        v_2sv_28_8almAvail = _sent(r_2sv_28_8almAvail == 1)
+        v_2sv_28_8anoAvail = _sent(r_2sv_28_8anoAvail == 1)
+        v_2sv_28_8aopAvail = _sent(r_2sv_28_8aopAvail == 1)
+        v_2sv_28_12sbasCorrUsed = _sent(r_2sv_28_12sbasCorrUsed == 1)
+        v_2sv_28_12rtcmCorrUsed = _sent(r_2sv_28_12rtcmCorrUsed == 1)
+        v_2sv_28_12slasCorrUsed = _sent(r_2sv_28_12slasCorrUsed == 1)
+        v_2sv_28_14spartnCorrUsed = _sent(r_2sv_28_14spartnCorrUsed == 1)
+        v_2sv_28_10prCorrUsed = _sent(r_2sv_28_10prCorrUsed == 1)
+        v_2sv_28_10crCorrUsed = _sent(r_2sv_28_10crCorrUsed == 1)
+        v_2sv_28_10doCorrUsed = _sent(r_2sv_28_10doCorrUsed == 1)
+        v_2sv_28_12clasCorrUsed = _sent(r_2sv_28_12clasCorrUsed == 1)
+        v_2sv_28_11lppCorrUsed = _sent(r_2sv_28_11lppCorrUsed == 1)
+        v_2sv_28_11hasCorrUsed = _sent(r_2sv_28_11hasCorrUsed == 1)
         if r_2sv_28_11flags_spare:
             raise _dec('nav_sat', 'sv[28].flags_spare', r_2sv_28_11flags_spare, 'reserved', '0', 2890, None)
+    else:
+        v_2sv_28_5prRes = _ABSENT
+        v_2sv_28_6svUsed = _ABSENT
+        v_2sv_28_8diffCorr = _ABSENT
+        v_2sv_28_8smoothed = _ABSENT
+        v_2sv_28_8ephAvail = _ABSENT
+        v_2sv_28_8almAvail = _ABSENT
+        v_2sv_28_8anoAvail = _ABSENT
+        v_2sv_28_8aopAvail = _ABSENT
+        v_2sv_28_12sbasCorrUsed = _ABSENT
+        v_2sv_28_12rtcmCorrUsed = _ABSENT
+        v_2sv_28_12slasCorrUsed = _ABSENT
+        v_2sv_28_14spartnCorrUsed = _ABSENT
+        v_2sv_28_10prCorrUsed = _ABSENT
+        v_2sv_28_10crCorrUsed = _ABSENT
+        v_2sv_28_10doCorrUsed = _ABSENT
+        v_2sv_28_12clasCorrUsed = _ABSENT
+        v_2sv_28_11lppCorrUsed = _ABSENT
+        v_2sv_28_11hasCorrUsed = _ABSENT
     if n_sv > 29:
+        v_2sv_29_5prRes = _sent(r_2sv_29_5prRes * 0.1)
+        v_2sv_29_6svUsed = _sent(r_2sv_29_6svUsed == 1)
+        v_2sv_29_8diffCorr = _sent(r_2sv_29_8diffCorr == 1)
+        v_2sv_29_8smoothed = _sent(r_2sv_29_8smoothed == 1)
+        v_2sv_29_8ephAvail = _sent(r_2sv_29_8ephAvail == 1)
+        v_2sv_29_8almAvail = _sent(r_2sv_29_8almAvail == 1)
+        v_2sv_29_8anoAvail = _sent(r_2sv_29_8anoAvail == 1)
+        v_2sv_29_8aopAvail = _sent(r_2sv_29_8aopAvail == 1)
+        v_2sv_29_12sbasCorrUsed = _sent(r_2sv_29_12sbasCorrUsed == 1)
+        v_2sv_29_12rtcmCorrUsed = _sent(r_2sv_29_12rtcmCorrUsed == 1)
+        v_2sv_29_12slasCorrUsed = _sent(r_2sv_29_12slasCorrUsed == 1)
+        v_2sv_29_14spartnCorrUsed = _sent(r_2sv_29_14spartnCorrUsed == 1)
+        v_2sv_29_10prCorrUsed = _sent(r_2sv_29_10prCorrUsed == 1)
+        v_2sv_29_10crCorrUsed = _sent(r_2sv_29_10crCorrUsed == 1)
+        v_2sv_29_10doCorrUsed = _sent(r_2sv_29_10doCorrUsed == 1)
+        v_2sv_29_12clasCorrUsed = _sent(r_2sv_29_12clasCorrUsed == 1)
+        v_2sv_29_11lppCorrUsed = _sent(r_2sv_29_11lppCorrUsed == 1)
+        v_2sv_29_11hasCorrUsed = _sent(r_2sv_29_11hasCorrUsed == 1)
         if r_2sv_29_11flags_spare:
             raise _dec('nav_sat', 'sv[29].flags_spare', r_2sv_29_11flags_spare, 'reserved', '0', 2986, None)
+    else:
+        v_2sv_29_5prRes = _ABSENT
+        v_2sv_29_6svUsed = _ABSENT
+        v_2sv_29_8diffCorr = _ABSENT
+        v_2sv_29_8smoothed = _ABSENT
+        v_2sv_29_8ephAvail = _ABSENT
+        v_2sv_29_8almAvail = _ABSENT
+        v_2sv_29_8anoAvail = _ABSENT
+        v_2sv_29_8aopAvail = _ABSENT
+        v_2sv_29_12sbasCorrUsed = _ABSENT
+        v_2sv_29_12rtcmCorrUsed = _ABSENT
+        v_2sv_29_12slasCorrUsed = _ABSENT
+        v_2sv_29_14spartnCorrUsed = _ABSENT
+        v_2sv_29_10prCorrUsed = _ABSENT
+        v_2sv_29_10crCorrUsed = _ABSENT
+        v_2sv_29_10doCorrUsed = _ABSENT
+        v_2sv_29_12clasCorrUsed = _ABSENT
+        v_2sv_29_11lppCorrUsed = _ABSENT
+        v_2sv_29_11hasCorrUsed = _ABSENT
     if n_sv > 30:
+        v_2sv_30_5prRes = _sent(r_2sv_30_5prRes * 0.1)
+        v_2sv_30_6svUsed = _sent(r_2sv_30_6svUsed == 1)
+        v_2sv_30_8diffCorr = _sent(r_2sv_30_8diffCorr == 1)
+        v_2sv_30_8smoothed = _sent(r_2sv_30_8smoothed == 1)
+        v_2sv_30_8ephAvail = _sent(r_2sv_30_8ephAvail == 1)
+        v_2sv_30_8almAvail = _sent(r_2sv_30_8almAvail == 1)
+        v_2sv_30_8anoAvail = _sent(r_2sv_30_8anoAvail == 1)
+        v_2sv_30_8aopAvail = _sent(r_2sv_30_8aopAvail == 1)
+        v_2sv_30_12sbasCorrUsed = _sent(r_2sv_30_12sbasCorrUsed == 1)
+        v_2sv_30_12rtcmCorrUsed = _sent(r_2sv_30_12rtcmCorrUsed == 1)
+        v_2sv_30_12slasCorrUsed = _sent(r_2sv_30_12slasCorrUsed == 1)
+        v_2sv_30_14spartnCorrUsed = _sent(r_2sv_30_14spartnCorrUsed == 1)
+        v_2sv_30_10prCorrUsed = _sent(r_2sv_30_10prCorrUsed == 1)
+        v_2sv_30_10crCorrUsed = _sent(r_2sv_30_10crCorrUsed == 1)
+        v_2sv_30_10doCorrUsed = _sent(r_2sv_30_10doCorrUsed == 1)
+        v_2sv_30_12clasCorrUsed = _sent(r_2sv_30_12clasCorrUsed == 1)
+        v_2sv_30_11lppCorrUsed = _sent(r_2sv_30_11lppCorrUsed == 1)
+        v_2sv_30_11hasCorrUsed = _sent(r_2sv_30_11hasCorrUsed == 1)
         if r_2sv_30_11flags_spare:
             raise _dec('nav_sat', 'sv[30].flags_spare', r_2sv_30_11flags_spare, 'reserved', '0', 3082, None)
+    else:
+        v_2sv_30_5prRes = _ABSENT
+        v_2sv_30_6svUsed = _ABSENT
+        v_2sv_30_8diffCorr = _ABSENT
+        v_2sv_30_8smoothed = _ABSENT
+        v_2sv_30_8ephAvail = _ABSENT
+        v_2sv_30_8almAvail = _ABSENT
+        v_2sv_30_8anoAvail = _ABSENT
+        v_2sv_30_8aopAvail = _ABSENT
+        v_2sv_30_12sbasCorrUsed = _ABSENT
+        v_2sv_30_12rtcmCorrUsed = _ABSENT
+        v_2sv_30_12slasCorrUsed = _ABSENT
+        v_2sv_30_14spartnCorrUsed = _ABSENT
+        v_2sv_30_10prCorrUsed = _ABSENT
+        v_2sv_30_10crCorrUsed = _ABSENT
+        v_2sv_30_10doCorrUsed = _ABSENT
+        v_2sv_30_12clasCorrUsed = _ABSENT
+        v_2sv_30_11lppCorrUsed = _ABSENT
+        v_2sv_30_11hasCorrUsed = _ABSENT
     if n_sv > 31:
+        v_2sv_31_5prRes = _sent(r_2sv_31_5prRes * 0.1)
+        v_2sv_31_6svUsed = _sent(r_2sv_31_6svUsed == 1)
+        v_2sv_31_8diffCorr = _sent(r_2sv_31_8diffCorr == 1)
+        v_2sv_31_8smoothed = _sent(r_2sv_31_8smoothed == 1)
+        v_2sv_31_8ephAvail = _sent(r_2sv_31_8ephAvail == 1)
+        v_2sv_31_8almAvail = _sent(r_2sv_31_8almAvail == 1)
+        v_2sv_31_8anoAvail = _sent(r_2sv_31_8anoAvail == 1)
+        v_2sv_31_8aopAvail = _sent(r_2sv_31_8aopAvail == 1)
+        v_2sv_31_12sbasCorrUsed = _sent(r_2sv_31_12sbasCorrUsed == 1)
+        v_2sv_31_12rtcmCorrUsed = _sent(r_2sv_31_12rtcmCorrUsed == 1)
+        v_2sv_31_12slasCorrUsed = _sent(r_2sv_31_12slasCorrUsed == 1)
+        v_2sv_31_14spartnCorrUsed = _sent(r_2sv_31_14spartnCorrUsed == 1)
+        v_2sv_31_10prCorrUsed = _sent(r_2sv_31_10prCorrUsed == 1)
+        v_2sv_31_10crCorrUsed = _sent(r_2sv_31_10crCorrUsed == 1)
+        v_2sv_31_10doCorrUsed = _sent(r_2sv_31_10doCorrUsed == 1)
+        v_2sv_31_12clasCorrUsed = _sent(r_2sv_31_12clasCorrUsed == 1)
+        v_2sv_31_11lppCorrUsed = _sent(r_2sv_31_11lppCorrUsed == 1)
+        v_2sv_31_11hasCorrUsed = _sent(r_2sv_31_11hasCorrUsed == 1)
         if r_2sv_31_11flags_spare:
             raise _dec('nav_sat', 'sv[31].flags_spare', r_2sv_31_11flags_spare, 'reserved', '0', 3178, None)
+    else:
+        v_2sv_31_5prRes = _ABSENT
+        v_2sv_31_6svUsed = _ABSENT
+        v_2sv_31_8diffCorr = _ABSENT
+        v_2sv_31_8smoothed = _ABSENT
+        v_2sv_31_8ephAvail = _ABSENT
+        v_2sv_31_8almAvail = _ABSENT
+        v_2sv_31_8anoAvail = _ABSENT
+        v_2sv_31_8aopAvail = _ABSENT
+        v_2sv_31_12sbasCorrUsed = _ABSENT
+        v_2sv_31_12rtcmCorrUsed = _ABSENT
+        v_2sv_31_12slasCorrUsed = _ABSENT
+        v_2sv_31_14spartnCorrUsed = _ABSENT
+        v_2sv_31_10prCorrUsed = _ABSENT
+        v_2sv_31_10crCorrUsed = _ABSENT
+        v_2sv_31_10doCorrUsed = _ABSENT
+        v_2sv_31_12clasCorrUsed = _ABSENT
+        v_2sv_31_11lppCorrUsed = _ABSENT
+        v_2sv_31_11hasCorrUsed = _ABSENT
     g_2sv_0 = _object_new(NavSatSv)
     g_2sv_0.gnssId = r_2sv_0_6gnssId
     g_2sv_0.svId = r_2sv_0_4svId
     g_2sv_0.cno = r_2sv_0_3cno
     g_2sv_0.elev = r_2sv_0_4elev
     g_2sv_0.azim = r_2sv_0_4azim
-    g_2sv_0.prRes = (_sent(r_2sv_0_5prRes * 0.1) if n_sv > 0 else _ABSENT)
+    g_2sv_0.prRes = v_2sv_0_5prRes
     g_2sv_0.qualityInd = r_2sv_0_10qualityInd
-    g_2sv_0.svUsed = (_sent(r_2sv_0_6svUsed == 1) if n_sv > 0 else _ABSENT)
+    g_2sv_0.svUsed = v_2sv_0_6svUsed
     g_2sv_0.health = r_2sv_0_6health
-    g_2sv_0.diffCorr = (_sent(r_2sv_0_8diffCorr == 1) if n_sv > 0 else _ABSENT)
-    g_2sv_0.smoothed = (_sent(r_2sv_0_8smoothed == 1) if n_sv > 0 else _ABSENT)
+    g_2sv_0.diffCorr = v_2sv_0_8diffCorr
+    g_2sv_0.smoothed = v_2sv_0_8smoothed
     g_2sv_0.orbitSource = r_2sv_0_11orbitSource
-    g_2sv_0.ephAvail = (_sent(r_2sv_0_8ephAvail == 1) if n_sv > 0 else _ABSENT)
-    g_2sv_0.almAvail = (_sent(r_2sv_0_8almAvail == 1) if n_sv > 0 else _ABSENT)
-    g_2sv_0.anoAvail = (_sent(r_2sv_0_8anoAvail == 1) if n_sv > 0 else _ABSENT)
-    g_2sv_0.aopAvail = (_sent(r_2sv_0_8aopAvail == 1) if n_sv > 0 else _ABSENT)
+    g_2sv_0.ephAvail = v_2sv_0_8ephAvail
+    g_2sv_0.almAvail = v_2sv_0_8almAvail
+    g_2sv_0.anoAvail = v_2sv_0_8anoAvail
+    g_2sv_0.aopAvail = v_2sv_0_8aopAvail
     g_2sv_0.reserved13 = r_2sv_0_10reserved13
-    g_2sv_0.sbasCorrUsed = (_sent(r_2sv_0_12sbasCorrUsed == 1) if n_sv > 0 else _ABSENT)
-    g_2sv_0.rtcmCorrUsed = (_sent(r_2sv_0_12rtcmCorrUsed == 1) if n_sv > 0 else _ABSENT)
-    g_2sv_0.slasCorrUsed = (_sent(r_2sv_0_12slasCorrUsed == 1) if n_sv > 0 else _ABSENT)
-    g_2sv_0.spartnCorrUsed = (_sent(r_2sv_0_14spartnCorrUsed == 1) if n_sv > 0 else _ABSENT)
-    g_2sv_0.prCorrUsed = (_sent(r_2sv_0_10prCorrUsed == 1) if n_sv > 0 else _ABSENT)
-    g_2sv_0.crCorrUsed = (_sent(r_2sv_0_10crCorrUsed == 1) if n_sv > 0 else _ABSENT)
-    g_2sv_0.doCorrUsed = (_sent(r_2sv_0_10doCorrUsed == 1) if n_sv > 0 else _ABSENT)
-    g_2sv_0.clasCorrUsed = (_sent(r_2sv_0_12clasCorrUsed == 1) if n_sv > 0 else _ABSENT)
-    g_2sv_0.lppCorrUsed = (_sent(r_2sv_0_11lppCorrUsed == 1) if n_sv > 0 else _ABSENT)
-    g_2sv_0.hasCorrUsed = (_sent(r_2sv_0_11hasCorrUsed == 1) if n_sv > 0 else _ABSENT)
+    g_2sv_0.sbasCorrUsed = v_2sv_0_12sbasCorrUsed
+    g_2sv_0.rtcmCorrUsed = v_2sv_0_12rtcmCorrUsed
+    g_2sv_0.slasCorrUsed = v_2sv_0_12slasCorrUsed
+    g_2sv_0.spartnCorrUsed = v_2sv_0_14spartnCorrUsed
+    g_2sv_0.prCorrUsed = v_2sv_0_10prCorrUsed
+    g_2sv_0.crCorrUsed = v_2sv_0_10crCorrUsed
+    g_2sv_0.doCorrUsed = v_2sv_0_10doCorrUsed
+    g_2sv_0.clasCorrUsed = v_2sv_0_12clasCorrUsed
+    g_2sv_0.lppCorrUsed = v_2sv_0_11lppCorrUsed
+    g_2sv_0.hasCorrUsed = v_2sv_0_11hasCorrUsed
     g_2sv_1 = _object_new(NavSatSv)
     g_2sv_1.gnssId = r_2sv_1_6gnssId
     g_2sv_1.svId = r_2sv_1_4svId
     g_2sv_1.cno = r_2sv_1_3cno
     g_2sv_1.elev = r_2sv_1_4elev
     g_2sv_1.azim = r_2sv_1_4azim
-    g_2sv_1.prRes = (_sent(r_2sv_1_5prRes * 0.1) if n_sv > 1 else _ABSENT)
+    g_2sv_1.prRes = v_2sv_1_5prRes
     g_2sv_1.qualityInd = r_2sv_1_10qualityInd
-    g_2sv_1.svUsed = (_sent(r_2sv_1_6svUsed == 1) if n_sv > 1 else _ABSENT)
+    g_2sv_1.svUsed = v_2sv_1_6svUsed
     g_2sv_1.health = r_2sv_1_6health
-    g_2sv_1.diffCorr = (_sent(r_2sv_1_8diffCorr == 1) if n_sv > 1 else _ABSENT)
-    g_2sv_1.smoothed = (_sent(r_2sv_1_8smoothed == 1) if n_sv > 1 else _ABSENT)
+    g_2sv_1.diffCorr = v_2sv_1_8diffCorr
+    g_2sv_1.smoothed = v_2sv_1_8smoothed
     g_2sv_1.orbitSource = r_2sv_1_11orbitSource
-    g_2sv_1.ephAvail = (_sent(r_2sv_1_8ephAvail == 1) if n_sv > 1 else _ABSENT)
-    g_2sv_1.almAvail = (_sent(r_2sv_1_8almAvail == 1) if n_sv > 1 else _ABSENT)
-    g_2sv_1.anoAvail = (_sent(r_2sv_1_8anoAvail == 1) if n_sv > 1 else _ABSENT)
-    g_2sv_1.aopAvail = (_sent(r_2sv_1_8aopAvail == 1) if n_sv > 1 else _ABSENT)
+    g_2sv_1.ephAvail = v_2sv_1_8ephAvail
+    g_2sv_1.almAvail = v_2sv_1_8almAvail
+    g_2sv_1.anoAvail = v_2sv_1_8anoAvail
+    g_2sv_1.aopAvail = v_2sv_1_8aopAvail
     g_2sv_1.reserved13 = r_2sv_1_10reserved13
-    g_2sv_1.sbasCorrUsed = (_sent(r_2sv_1_12sbasCorrUsed == 1) if n_sv > 1 else _ABSENT)
-    g_2sv_1.rtcmCorrUsed = (_sent(r_2sv_1_12rtcmCorrUsed == 1) if n_sv > 1 else _ABSENT)
-    g_2sv_1.slasCorrUsed = (_sent(r_2sv_1_12slasCorrUsed == 1) if n_sv > 1 else _ABSENT)
-    g_2sv_1.spartnCorrUsed = (_sent(r_2sv_1_14spartnCorrUsed == 1) if n_sv > 1 else _ABSENT)
-    g_2sv_1.prCorrUsed = (_sent(r_2sv_1_10prCorrUsed == 1) if n_sv > 1 else _ABSENT)
-    g_2sv_1.crCorrUsed = (_sent(r_2sv_1_10crCorrUsed == 1) if n_sv > 1 else _ABSENT)
-    g_2sv_1.doCorrUsed = (_sent(r_2sv_1_10doCorrUsed == 1) if n_sv > 1 else _ABSENT)
-    g_2sv_1.clasCorrUsed = (_sent(r_2sv_1_12clasCorrUsed == 1) if n_sv > 1 else _ABSENT)
-    g_2sv_1.lppCorrUsed = (_sent(r_2sv_1_11lppCorrUsed == 1) if n_sv > 1 else _ABSENT)
-    g_2sv_1.hasCorrUsed = (_sent(r_2sv_1_11hasCorrUsed == 1) if n_sv > 1 else _ABSENT)
+    g_2sv_1.sbasCorrUsed = v_2sv_1_12sbasCorrUsed
+    g_2sv_1.rtcmCorrUsed = v_2sv_1_12rtcmCorrUsed
+    g_2sv_1.slasCorrUsed = v_2sv_1_12slasCorrUsed
+    g_2sv_1.spartnCorrUsed = v_2sv_1_14spartnCorrUsed
+    g_2sv_1.prCorrUsed = v_2sv_1_10prCorrUsed
+    g_2sv_1.crCorrUsed = v_2sv_1_10crCorrUsed
+    g_2sv_1.doCorrUsed = v_2sv_1_10doCorrUsed
+    g_2sv_1.clasCorrUsed = v_2sv_1_12clasCorrUsed
+    g_2sv_1.lppCorrUsed = v_2sv_1_11lppCorrUsed
+    g_2sv_1.hasCorrUsed = v_2sv_1_11hasCorrUsed
     g_2sv_2 = _object_new(NavSatSv)
     g_2sv_2.gnssId = r_2sv_2_6gnssId
     g_2sv_2.svId = r_2sv_2_4svId
     g_2sv_2.cno = r_2sv_2_3cno
     g_2sv_2.elev = r_2sv_2_4elev
     g_2sv_2.azim = r_2sv_2_4azim
-    g_2sv_2.prRes = (_sent(r_2sv_2_5prRes * 0.1) if n_sv > 2 else _ABSENT)
+    g_2sv_2.prRes = v_2sv_2_5prRes
     g_2sv_2.qualityInd = r_2sv_2_10qualityInd
-    g_2sv_2.svUsed = (_sent(r_2sv_2_6svUsed == 1) if n_sv > 2 else _ABSENT)
+    g_2sv_2.svUsed = v_2sv_2_6svUsed
     g_2sv_2.health = r_2sv_2_6health
-    g_2sv_2.diffCorr = (_sent(r_2sv_2_8diffCorr == 1) if n_sv > 2 else _ABSENT)
-    g_2sv_2.smoothed = (_sent(r_2sv_2_8smoothed == 1) if n_sv > 2 else _ABSENT)
+    g_2sv_2.diffCorr = v_2sv_2_8diffCorr
+    g_2sv_2.smoothed = v_2sv_2_8smoothed
     g_2sv_2.orbitSource = r_2sv_2_11orbitSource
-    g_2sv_2.ephAvail = (_sent(r_2sv_2_8ephAvail == 1) if n_sv > 2 else _ABSENT)
-    g_2sv_2.almAvail = (_sent(r_2sv_2_8almAvail == 1) if n_sv > 2 else _ABSENT)
-    g_2sv_2.anoAvail = (_sent(r_2sv_2_8anoAvail == 1) if n_sv > 2 else _ABSENT)
-    g_2sv_2.aopAvail = (_sent(r_2sv_2_8aopAvail == 1) if n_sv > 2 else _ABSENT)
+    g_2sv_2.ephAvail = v_2sv_2_8ephAvail
+    g_2sv_2.almAvail = v_2sv_2_8almAvail
+    g_2sv_2.anoAvail = v_2sv_2_8anoAvail
+    g_2sv_2.aopAvail = v_2sv_2_8aopAvail
     g_2sv_2.reserved13 = r_2sv_2_10reserved13
-    g_2sv_2.sbasCorrUsed = (_sent(r_2sv_2_12sbasCorrUsed == 1) if n_sv > 2 else _ABSENT)
-    g_2sv_2.rtcmCorrUsed = (_sent(r_2sv_2_12rtcmCorrUsed == 1) if n_sv > 2 else _ABSENT)
-    g_2sv_2.slasCorrUsed = (_sent(r_2sv_2_12slasCorrUsed == 1) if n_sv > 2 else _ABSENT)
-    g_2sv_2.spartnCorrUsed = (_sent(r_2sv_2_14spartnCorrUsed == 1) if n_sv > 2 else _ABSENT)
-    g_2sv_2.prCorrUsed = (_sent(r_2sv_2_10prCorrUsed == 1) if n_sv > 2 else _ABSENT)
-    g_2sv_2.crCorrUsed = (_sent(r_2sv_2_10crCorrUsed == 1) if n_sv > 2 else _ABSENT)
-    g_2sv_2.doCorrUsed = (_sent(r_2sv_2_10doCorrUsed == 1) if n_sv > 2 else _ABSENT)
-    g_2sv_2.clasCorrUsed = (_sent(r_2sv_2_12clasCorrUsed == 1) if n_sv > 2 else _ABSENT)
-    g_2sv_2.lppCorrUsed = (_sent(r_2sv_2_11lppCorrUsed == 1) if n_sv > 2 else _ABSENT)
-    g_2sv_2.hasCorrUsed = (_sent(r_2sv_2_11hasCorrUsed == 1) if n_sv > 2 else _ABSENT)
+    g_2sv_2.sbasCorrUsed = v_2sv_2_12sbasCorrUsed
+    g_2sv_2.rtcmCorrUsed = v_2sv_2_12rtcmCorrUsed
+    g_2sv_2.slasCorrUsed = v_2sv_2_12slasCorrUsed
+    g_2sv_2.spartnCorrUsed = v_2sv_2_14spartnCorrUsed
+    g_2sv_2.prCorrUsed = v_2sv_2_10prCorrUsed
+    g_2sv_2.crCorrUsed = v_2sv_2_10crCorrUsed
+    g_2sv_2.doCorrUsed = v_2sv_2_10doCorrUsed
+    g_2sv_2.clasCorrUsed = v_2sv_2_12clasCorrUsed
+    g_2sv_2.lppCorrUsed = v_2sv_2_11lppCorrUsed
+    g_2sv_2.hasCorrUsed = v_2sv_2_11hasCorrUsed
     g_2sv_3 = _object_new(NavSatSv)
     g_2sv_3.gnssId = r_2sv_3_6gnssId
     g_2sv_3.svId = r_2sv_3_4svId
     g_2sv_3.cno = r_2sv_3_3cno
     g_2sv_3.elev = r_2sv_3_4elev
     g_2sv_3.azim = r_2sv_3_4azim
-    g_2sv_3.prRes = (_sent(r_2sv_3_5prRes * 0.1) if n_sv > 3 else _ABSENT)
+    g_2sv_3.prRes = v_2sv_3_5prRes
     g_2sv_3.qualityInd = r_2sv_3_10qualityInd
-    g_2sv_3.svUsed = (_sent(r_2sv_3_6svUsed == 1) if n_sv > 3 else _ABSENT)
+    g_2sv_3.svUsed = v_2sv_3_6svUsed
     g_2sv_3.health = r_2sv_3_6health
-    g_2sv_3.diffCorr = (_sent(r_2sv_3_8diffCorr == 1) if n_sv > 3 else _ABSENT)
-    g_2sv_3.smoothed = (_sent(r_2sv_3_8smoothed == 1) if n_sv > 3 else _ABSENT)
+    g_2sv_3.diffCorr = v_2sv_3_8diffCorr
+    g_2sv_3.smoothed = v_2sv_3_8smoothed
     g_2sv_3.orbitSource = r_2sv_3_11orbitSource
-    g_2sv_3.ephAvail = (_sent(r_2sv_3_8ephAvail == 1) if n_sv > 3 else _ABSENT)
-    g_2sv_3.almAvail = (_sent(r_2sv_3_8almAvail == 1) if n_sv > 3 else _ABSENT)
-    g_2sv_3.anoAvail = (_sent(r_2sv_3_8anoAvail == 1) if n_sv > 3 else _ABSENT)
-    g_2sv_3.aopAvail = (_sent(r_2sv_3_8aopAvail == 1) if n_sv > 3 else _ABSENT)
+    g_2sv_3.ephAvail = v_2sv_3_8ephAvail
+    g_2sv_3.almAvail = v_2sv_3_8almAvail
+    g_2sv_3.anoAvail = v_2sv_3_8anoAvail
+    g_2sv_3.aopAvail = v_2sv_3_8aopAvail
     g_2sv_3.reserved13 = r_2sv_3_10reserved13
-    g_2sv_3.sbasCorrUsed = (_sent(r_2sv_3_12sbasCorrUsed == 1) if n_sv > 3 else _ABSENT)
-    g_2sv_3.rtcmCorrUsed = (_sent(r_2sv_3_12rtcmCorrUsed == 1) if n_sv > 3 else _ABSENT)
-    g_2sv_3.slasCorrUsed = (_sent(r_2sv_3_12slasCorrUsed == 1) if n_sv > 3 else _ABSENT)
-    g_2sv_3.spartnCorrUsed = (_sent(r_2sv_3_14spartnCorrUsed == 1) if n_sv > 3 else _ABSENT)
-    g_2sv_3.prCorrUsed = (_sent(r_2sv_3_10prCorrUsed == 1) if n_sv > 3 else _ABSENT)
-    g_2sv_3.crCorrUsed = (_sent(r_2sv_3_10crCorrUsed == 1) if n_sv > 3 else _ABSENT)
-    g_2sv_3.doCorrUsed = (_sent(r_2sv_3_10doCorrUsed == 1) if n_sv > 3 else _ABSENT)
-    g_2sv_3.clasCorrUsed = (_sent(r_2sv_3_12clasCorrUsed == 1) if n_sv > 3 else _ABSENT)
-    g_2sv_3.lppCorrUsed = (_sent(r_2sv_3_11lppCorrUsed == 1) if n_sv > 3 else _ABSENT)
-    g_2sv_3.hasCorrUsed = (_sent(r_2sv_3_11hasCorrUsed == 1) if n_sv > 3 else _ABSENT)
+    g_2sv_3.sbasCorrUsed = v_2sv_3_12sbasCorrUsed
+    g_2sv_3.rtcmCorrUsed = v_2sv_3_12rtcmCorrUsed
+    g_2sv_3.slasCorrUsed = v_2sv_3_12slasCorrUsed
+    g_2sv_3.spartnCorrUsed = v_2sv_3_14spartnCorrUsed
+    g_2sv_3.prCorrUsed = v_2sv_3_10prCorrUsed
+    g_2sv_3.crCorrUsed = v_2sv_3_10crCorrUsed
+    g_2sv_3.doCorrUsed = v_2sv_3_10doCorrUsed
+    g_2sv_3.clasCorrUsed = v_2sv_3_12clasCorrUsed
+    g_2sv_3.lppCorrUsed = v_2sv_3_11lppCorrUsed
+    g_2sv_3.hasCorrUsed = v_2sv_3_11hasCorrUsed
     g_2sv_4 = _object_new(NavSatSv)
     g_2sv_4.gnssId = r_2sv_4_6gnssId
     g_2sv_4.svId = r_2sv_4_4svId
     g_2sv_4.cno = r_2sv_4_3cno
     g_2sv_4.elev = r_2sv_4_4elev
     g_2sv_4.azim = r_2sv_4_4azim
-    g_2sv_4.prRes = (_sent(r_2sv_4_5prRes * 0.1) if n_sv > 4 else _ABSENT)
+    g_2sv_4.prRes = v_2sv_4_5prRes
     g_2sv_4.qualityInd = r_2sv_4_10qualityInd
-    g_2sv_4.svUsed = (_sent(r_2sv_4_6svUsed == 1) if n_sv > 4 else _ABSENT)
+    g_2sv_4.svUsed = v_2sv_4_6svUsed
     g_2sv_4.health = r_2sv_4_6health
-    g_2sv_4.diffCorr = (_sent(r_2sv_4_8diffCorr == 1) if n_sv > 4 else _ABSENT)
-    g_2sv_4.smoothed = (_sent(r_2sv_4_8smoothed == 1) if n_sv > 4 else _ABSENT)
+    g_2sv_4.diffCorr = v_2sv_4_8diffCorr
+    g_2sv_4.smoothed = v_2sv_4_8smoothed
     g_2sv_4.orbitSource = r_2sv_4_11orbitSource
-    g_2sv_4.ephAvail = (_sent(r_2sv_4_8ephAvail == 1) if n_sv > 4 else _ABSENT)
-    g_2sv_4.almAvail = (_sent(r_2sv_4_8almAvail == 1) if n_sv > 4 else _ABSENT)
-    g_2sv_4.anoAvail = (_sent(r_2sv_4_8anoAvail == 1) if n_sv > 4 else _ABSENT)
-    g_2sv_4.aopAvail = (_sent(r_2sv_4_8aopAvail == 1) if n_sv > 4 else _ABSENT)
+    g_2sv_4.ephAvail = v_2sv_4_8ephAvail
+    g_2sv_4.almAvail = v_2sv_4_8almAvail
+    g_2sv_4.anoAvail = v_2sv_4_8anoAvail
+    g_2sv_4.aopAvail = v_2sv_4_8aopAvail
     g_2sv_4.reserved13 = r_2sv_4_10reserved13
-    g_2sv_4.sbasCorrUsed = (_sent(r_2sv_4_12sbasCorrUsed == 1) if n_sv > 4 else _ABSENT)
-    g_2sv_4.rtcmCorrUsed = (_sent(r_2sv_4_12rtcmCorrUsed == 1) if n_sv > 4 else _ABSENT)
-    g_2sv_4.slasCorrUsed = (_sent(r_2sv_4_12slasCorrUsed == 1) if n_sv > 4 else _ABSENT)
-    g_2sv_4.spartnCorrUsed = (_sent(r_2sv_4_14spartnCorrUsed == 1) if n_sv > 4 else _ABSENT)
-    g_2sv_4.prCorrUsed = (_sent(r_2sv_4_10prCorrUsed == 1) if n_sv > 4 else _ABSENT)
-    g_2sv_4.crCorrUsed = (_sent(r_2sv_4_10crCorrUsed == 1) if n_sv > 4 else _ABSENT)
-    g_2sv_4.doCorrUsed = (_sent(r_2sv_4_10doCorrUsed == 1) if n_sv > 4 else _ABSENT)
-    g_2sv_4.clasCorrUsed = (_sent(r_2sv_4_12clasCorrUsed == 1) if n_sv > 4 else _ABSENT)
-    g_2sv_4.lppCorrUsed = (_sent(r_2sv_4_11lppCorrUsed == 1) if n_sv > 4 else _ABSENT)
-    g_2sv_4.hasCorrUsed = (_sent(r_2sv_4_11hasCorrUsed == 1) if n_sv > 4 else _ABSENT)
+    g_2sv_4.sbasCorrUsed = v_2sv_4_12sbasCorrUsed
+    g_2sv_4.rtcmCorrUsed = v_2sv_4_12rtcmCorrUsed
+    g_2sv_4.slasCorrUsed = v_2sv_4_12slasCorrUsed
+    g_2sv_4.spartnCorrUsed = v_2sv_4_14spartnCorrUsed
+    g_2sv_4.prCorrUsed = v_2sv_4_10prCorrUsed
+    g_2sv_4.crCorrUsed = v_2sv_4_10crCorrUsed
+    g_2sv_4.doCorrUsed = v_2sv_4_10doCorrUsed
+    g_2sv_4.clasCorrUsed = v_2sv_4_12clasCorrUsed
+    g_2sv_4.lppCorrUsed = v_2sv_4_11lppCorrUsed
+    g_2sv_4.hasCorrUsed = v_2sv_4_11hasCorrUsed
     g_2sv_5 = _object_new(NavSatSv)
     g_2sv_5.gnssId = r_2sv_5_6gnssId
     g_2sv_5.svId = r_2sv_5_4svId
     g_2sv_5.cno = r_2sv_5_3cno
     g_2sv_5.elev = r_2sv_5_4elev
     g_2sv_5.azim = r_2sv_5_4azim
-    g_2sv_5.prRes = (_sent(r_2sv_5_5prRes * 0.1) if n_sv > 5 else _ABSENT)
+    g_2sv_5.prRes = v_2sv_5_5prRes
     g_2sv_5.qualityInd = r_2sv_5_10qualityInd
-    g_2sv_5.svUsed = (_sent(r_2sv_5_6svUsed == 1) if n_sv > 5 else _ABSENT)
+    g_2sv_5.svUsed = v_2sv_5_6svUsed
     g_2sv_5.health = r_2sv_5_6health
-    g_2sv_5.diffCorr = (_sent(r_2sv_5_8diffCorr == 1) if n_sv > 5 else _ABSENT)
-    g_2sv_5.smoothed = (_sent(r_2sv_5_8smoothed == 1) if n_sv > 5 else _ABSENT)
+    g_2sv_5.diffCorr = v_2sv_5_8diffCorr
+    g_2sv_5.smoothed = v_2sv_5_8smoothed
     g_2sv_5.orbitSource = r_2sv_5_11orbitSource
-    g_2sv_5.ephAvail = (_sent(r_2sv_5_8ephAvail == 1) if n_sv > 5 else _ABSENT)
-    g_2sv_5.almAvail = (_sent(r_2sv_5_8almAvail == 1) if n_sv > 5 else _ABSENT)
-    g_2sv_5.anoAvail = (_sent(r_2sv_5_8anoAvail == 1) if n_sv > 5 else _ABSENT)
-    g_2sv_5.aopAvail = (_sent(r_2sv_5_8aopAvail == 1) if n_sv > 5 else _ABSENT)
+    g_2sv_5.ephAvail = v_2sv_5_8ephAvail
+    g_2sv_5.almAvail = v_2sv_5_8almAvail
+    g_2sv_5.anoAvail = v_2sv_5_8anoAvail
+    g_2sv_5.aopAvail = v_2sv_5_8aopAvail
     g_2sv_5.reserved13 = r_2sv_5_10reserved13
-    g_2sv_5.sbasCorrUsed = (_sent(r_2sv_5_12sbasCorrUsed == 1) if n_sv > 5 else _ABSENT)
-    g_2sv_5.rtcmCorrUsed = (_sent(r_2sv_5_12rtcmCorrUsed == 1) if n_sv > 5 else _ABSENT)
-    g_2sv_5.slasCorrUsed = (_sent(r_2sv_5_12slasCorrUsed == 1) if n_sv > 5 else _ABSENT)
-    g_2sv_5.spartnCorrUsed = (_sent(r_2sv_5_14spartnCorrUsed == 1) if n_sv > 5 else _ABSENT)
-    g_2sv_5.prCorrUsed = (_sent(r_2sv_5_10prCorrUsed == 1) if n_sv > 5 else _ABSENT)
-    g_2sv_5.crCorrUsed = (_sent(r_2sv_5_10crCorrUsed == 1) if n_sv > 5 else _ABSENT)
-    g_2sv_5.doCorrUsed = (_sent(r_2sv_5_10doCorrUsed == 1) if n_sv > 5 else _ABSENT)
-    g_2sv_5.clasCorrUsed = (_sent(r_2sv_5_12clasCorrUsed == 1) if n_sv > 5 else _ABSENT)
-    g_2sv_5.lppCorrUsed = (_sent(r_2sv_5_11lppCorrUsed == 1) if n_sv > 5 else _ABSENT)
-    g_2sv_5.hasCorrUsed = (_sent(r_2sv_5_11hasCorrUsed == 1) if n_sv > 5 else _ABSENT)
+    g_2sv_5.sbasCorrUsed = v_2sv_5_12sbasCorrUsed
+    g_2sv_5.rtcmCorrUsed = v_2sv_5_12rtcmCorrUsed
+    g_2sv_5.slasCorrUsed = v_2sv_5_12slasCorrUsed
+    g_2sv_5.spartnCorrUsed = v_2sv_5_14spartnCorrUsed
+    g_2sv_5.prCorrUsed = v_2sv_5_10prCorrUsed
+    g_2sv_5.crCorrUsed = v_2sv_5_10crCorrUsed
+    g_2sv_5.doCorrUsed = v_2sv_5_10doCorrUsed
+    g_2sv_5.clasCorrUsed = v_2sv_5_12clasCorrUsed
+    g_2sv_5.lppCorrUsed = v_2sv_5_11lppCorrUsed
+    g_2sv_5.hasCorrUsed = v_2sv_5_11hasCorrUsed
     g_2sv_6 = _object_new(NavSatSv)
     g_2sv_6.gnssId = r_2sv_6_6gnssId
     g_2sv_6.svId = r_2sv_6_4svId
     g_2sv_6.cno = r_2sv_6_3cno
     g_2sv_6.elev = r_2sv_6_4elev
     g_2sv_6.azim = r_2sv_6_4azim
-    g_2sv_6.prRes = (_sent(r_2sv_6_5prRes * 0.1) if n_sv > 6 else _ABSENT)
+    g_2sv_6.prRes = v_2sv_6_5prRes
     g_2sv_6.qualityInd = r_2sv_6_10qualityInd
-    g_2sv_6.svUsed = (_sent(r_2sv_6_6svUsed == 1) if n_sv > 6 else _ABSENT)
+    g_2sv_6.svUsed = v_2sv_6_6svUsed
     g_2sv_6.health = r_2sv_6_6health
-    g_2sv_6.diffCorr = (_sent(r_2sv_6_8diffCorr == 1) if n_sv > 6 else _ABSENT)
-    g_2sv_6.smoothed = (_sent(r_2sv_6_8smoothed == 1) if n_sv > 6 else _ABSENT)
+    g_2sv_6.diffCorr = v_2sv_6_8diffCorr
+    g_2sv_6.smoothed = v_2sv_6_8smoothed
     g_2sv_6.orbitSource = r_2sv_6_11orbitSource
-    g_2sv_6.ephAvail = (_sent(r_2sv_6_8ephAvail == 1) if n_sv > 6 else _ABSENT)
-    g_2sv_6.almAvail = (_sent(r_2sv_6_8almAvail == 1) if n_sv > 6 else _ABSENT)
-    g_2sv_6.anoAvail = (_sent(r_2sv_6_8anoAvail == 1) if n_sv > 6 else _ABSENT)
-    g_2sv_6.aopAvail = (_sent(r_2sv_6_8aopAvail == 1) if n_sv > 6 else _ABSENT)
+    g_2sv_6.ephAvail = v_2sv_6_8ephAvail
+    g_2sv_6.almAvail = v_2sv_6_8almAvail
+    g_2sv_6.anoAvail = v_2sv_6_8anoAvail
+    g_2sv_6.aopAvail = v_2sv_6_8aopAvail
     g_2sv_6.reserved13 = r_2sv_6_10reserved13
-    g_2sv_6.sbasCorrUsed = (_sent(r_2sv_6_12sbasCorrUsed == 1) if n_sv > 6 else _ABSENT)
-    g_2sv_6.rtcmCorrUsed = (_sent(r_2sv_6_12rtcmCorrUsed == 1) if n_sv > 6 else _ABSENT)
-    g_2sv_6.slasCorrUsed = (_sent(r_2sv_6_12slasCorrUsed == 1) if n_sv > 6 else _ABSENT)
-    g_2sv_6.spartnCorrUsed = (_sent(r_2sv_6_14spartnCorrUsed == 1) if n_sv > 6 else _ABSENT)
-    g_2sv_6.prCorrUsed = (_sent(r_2sv_6_10prCorrUsed == 1) if n_sv > 6 else _ABSENT)
-    g_2sv_6.crCorrUsed = (_sent(r_2sv_6_10crCorrUsed == 1) if n_sv > 6 else _ABSENT)
-    g_2sv_6.doCorrUsed = (_sent(r_2sv_6_10doCorrUsed == 1) if n_sv > 6 else _ABSENT)
-    g_2sv_6.clasCorrUsed = (_sent(r_2sv_6_12clasCorrUsed == 1) if n_sv > 6 else _ABSENT)
-    g_2sv_6.lppCorrUsed = (_sent(r_2sv_6_11lppCorrUsed == 1) if n_sv > 6 else _ABSENT)
-    g_2sv_6.hasCorrUsed = (_sent(r_2sv_6_11hasCorrUsed == 1) if n_sv > 6 else _ABSENT)
+    g_2sv_6.sbasCorrUsed = v_2sv_6_12sbasCorrUsed
+    g_2sv_6.rtcmCorrUsed = v_2sv_6_12rtcmCorrUsed
+    g_2sv_6.slasCorrUsed = v_2sv_6_12slasCorrUsed
+    g_2sv_6.spartnCorrUsed = v_2sv_6_14spartnCorrUsed
+    g_2sv_6.prCorrUsed = v_2sv_6_10prCorrUsed
+    g_2sv_6.crCorrUsed = v_2sv_6_10crCorrUsed
+    g_2sv_6.doCorrUsed = v_2sv_6_10doCorrUsed
+    g_2sv_6.clasCorrUsed = v_2sv_6_12clasCorrUsed
+    g_2sv_6.lppCorrUsed = v_2sv_6_11lppCorrUsed
+    g_2sv_6.hasCorrUsed = v_2sv_6_11hasCorrUsed
     g_2sv_7 = _object_new(NavSatSv)
     g_2sv_7.gnssId = r_2sv_7_6gnssId
     g_2sv_7.svId = r_2sv_7_4svId
     g_2sv_7.cno = r_2sv_7_3cno
     g_2sv_7.elev = r_2sv_7_4elev
     g_2sv_7.azim = r_2sv_7_4azim
-    g_2sv_7.prRes = (_sent(r_2sv_7_5prRes * 0.1) if n_sv > 7 else _ABSENT)
+    g_2sv_7.prRes = v_2sv_7_5prRes
     g_2sv_7.qualityInd = r_2sv_7_10qualityInd
-    g_2sv_7.svUsed = (_sent(r_2sv_7_6svUsed == 1) if n_sv > 7 else _ABSENT)
+    g_2sv_7.svUsed = v_2sv_7_6svUsed
     g_2sv_7.health = r_2sv_7_6health
-    g_2sv_7.diffCorr = (_sent(r_2sv_7_8diffCorr == 1) if n_sv > 7 else _ABSENT)
-    g_2sv_7.smoothed = (_sent(r_2sv_7_8smoothed == 1) if n_sv > 7 else _ABSENT)
+    g_2sv_7.diffCorr = v_2sv_7_8diffCorr
+    g_2sv_7.smoothed = v_2sv_7_8smoothed
     g_2sv_7.orbitSource = r_2sv_7_11orbitSource
-    g_2sv_7.ephAvail = (_sent(r_2sv_7_8ephAvail == 1) if n_sv > 7 else _ABSENT)
-    g_2sv_7.almAvail = (_sent(r_2sv_7_8almAvail == 1) if n_sv > 7 else _ABSENT)
-    g_2sv_7.anoAvail = (_sent(r_2sv_7_8anoAvail == 1) if n_sv > 7 else _ABSENT)
-    g_2sv_7.aopAvail = (_sent(r_2sv_7_8aopAvail == 1) if n_sv > 7 else _ABSENT)
+    g_2sv_7.ephAvail = v_2sv_7_8ephAvail
+    g_2sv_7.almAvail = v_2sv_7_8almAvail
+    g_2sv_7.anoAvail = v_2sv_7_8anoAvail
+    g_2sv_7.aopAvail = v_2sv_7_8aopAvail
     g_2sv_7.reserved13 = r_2sv_7_10reserved13
-    g_2sv_7.sbasCorrUsed = (_sent(r_2sv_7_12sbasCorrUsed == 1) if n_sv > 7 else _ABSENT)
-    g_2sv_7.rtcmCorrUsed = (_sent(r_2sv_7_12rtcmCorrUsed == 1) if n_sv > 7 else _ABSENT)
-    g_2sv_7.slasCorrUsed = (_sent(r_2sv_7_12slasCorrUsed == 1) if n_sv > 7 else _ABSENT)
-    g_2sv_7.spartnCorrUsed = (_sent(r_2sv_7_14spartnCorrUsed == 1) if n_sv > 7 else _ABSENT)
-    g_2sv_7.prCorrUsed = (_sent(r_2sv_7_10prCorrUsed == 1) if n_sv > 7 else _ABSENT)
-    g_2sv_7.crCorrUsed = (_sent(r_2sv_7_10crCorrUsed == 1) if n_sv > 7 else _ABSENT)
-    g_2sv_7.doCorrUsed = (_sent(r_2sv_7_10doCorrUsed == 1) if n_sv > 7 else _ABSENT)
-    g_2sv_7.clasCorrUsed = (_sent(r_2sv_7_12clasCorrUsed == 1) if n_sv > 7 else _ABSENT)
-    g_2sv_7.lppCorrUsed = (_sent(r_2sv_7_11lppCorrUsed == 1) if n_sv > 7 else _ABSENT)
-    g_2sv_7.hasCorrUsed = (_sent(r_2sv_7_11hasCorrUsed == 1) if n_sv > 7 else _ABSENT)
+    g_2sv_7.sbasCorrUsed = v_2sv_7_12sbasCorrUsed
+    g_2sv_7.rtcmCorrUsed = v_2sv_7_12rtcmCorrUsed
+    g_2sv_7.slasCorrUsed = v_2sv_7_12slasCorrUsed
+    g_2sv_7.spartnCorrUsed = v_2sv_7_14spartnCorrUsed
+    g_2sv_7.prCorrUsed = v_2sv_7_10prCorrUsed
+    g_2sv_7.crCorrUsed = v_2sv_7_10crCorrUsed
+    g_2sv_7.doCorrUsed = v_2sv_7_10doCorrUsed
+    g_2sv_7.clasCorrUsed = v_2sv_7_12clasCorrUsed
+    g_2sv_7.lppCorrUsed = v_2sv_7_11lppCorrUsed
+    g_2sv_7.hasCorrUsed = v_2sv_7_11hasCorrUsed
     g_2sv_8 = _object_new(NavSatSv)
     g_2sv_8.gnssId = r_2sv_8_6gnssId
     g_2sv_8.svId = r_2sv_8_4svId
     g_2sv_8.cno = r_2sv_8_3cno
     g_2sv_8.elev = r_2sv_8_4elev
     g_2sv_8.azim = r_2sv_8_4azim
-    g_2sv_8.prRes = (_sent(r_2sv_8_5prRes * 0.1) if n_sv > 8 else _ABSENT)
+    g_2sv_8.prRes = v_2sv_8_5prRes
     g_2sv_8.qualityInd = r_2sv_8_10qualityInd
-    g_2sv_8.svUsed = (_sent(r_2sv_8_6svUsed == 1) if n_sv > 8 else _ABSENT)
+    g_2sv_8.svUsed = v_2sv_8_6svUsed
     g_2sv_8.health = r_2sv_8_6health
-    g_2sv_8.diffCorr = (_sent(r_2sv_8_8diffCorr == 1) if n_sv > 8 else _ABSENT)
-    g_2sv_8.smoothed = (_sent(r_2sv_8_8smoothed == 1) if n_sv > 8 else _ABSENT)
+    g_2sv_8.diffCorr = v_2sv_8_8diffCorr
+    g_2sv_8.smoothed = v_2sv_8_8smoothed
     g_2sv_8.orbitSource = r_2sv_8_11orbitSource
-    g_2sv_8.ephAvail = (_sent(r_2sv_8_8ephAvail == 1) if n_sv > 8 else _ABSENT)
-    g_2sv_8.almAvail = (_sent(r_2sv_8_8almAvail == 1) if n_sv > 8 else _ABSENT)
-    g_2sv_8.anoAvail = (_sent(r_2sv_8_8anoAvail == 1) if n_sv > 8 else _ABSENT)
-    g_2sv_8.aopAvail = (_sent(r_2sv_8_8aopAvail == 1) if n_sv > 8 else _ABSENT)
+    g_2sv_8.ephAvail = v_2sv_8_8ephAvail
+    g_2sv_8.almAvail = v_2sv_8_8almAvail
+    g_2sv_8.anoAvail = v_2sv_8_8anoAvail
+    g_2sv_8.aopAvail = v_2sv_8_8aopAvail
     g_2sv_8.reserved13 = r_2sv_8_10reserved13
-    g_2sv_8.sbasCorrUsed = (_sent(r_2sv_8_12sbasCorrUsed == 1) if n_sv > 8 else _ABSENT)
-    g_2sv_8.rtcmCorrUsed = (_sent(r_2sv_8_12rtcmCorrUsed == 1) if n_sv > 8 else _ABSENT)
-    g_2sv_8.slasCorrUsed = (_sent(r_2sv_8_12slasCorrUsed == 1) if n_sv > 8 else _ABSENT)
-    g_2sv_8.spartnCorrUsed = (_sent(r_2sv_8_14spartnCorrUsed == 1) if n_sv > 8 else _ABSENT)
-    g_2sv_8.prCorrUsed = (_sent(r_2sv_8_10prCorrUsed == 1) if n_sv > 8 else _ABSENT)
-    g_2sv_8.crCorrUsed = (_sent(r_2sv_8_10crCorrUsed == 1) if n_sv > 8 else _ABSENT)
-    g_2sv_8.doCorrUsed = (_sent(r_2sv_8_10doCorrUsed == 1) if n_sv > 8 else _ABSENT)
-    g_2sv_8.clasCorrUsed = (_sent(r_2sv_8_12clasCorrUsed == 1) if n_sv > 8 else _ABSENT)
-    g_2sv_8.lppCorrUsed = (_sent(r_2sv_8_11lppCorrUsed == 1) if n_sv > 8 else _ABSENT)
-    g_2sv_8.hasCorrUsed = (_sent(r_2sv_8_11hasCorrUsed == 1) if n_sv > 8 else _ABSENT)
+    g_2sv_8.sbasCorrUsed = v_2sv_8_12sbasCorrUsed
+    g_2sv_8.rtcmCorrUsed = v_2sv_8_12rtcmCorrUsed
+    g_2sv_8.slasCorrUsed = v_2sv_8_12slasCorrUsed
+    g_2sv_8.spartnCorrUsed = v_2sv_8_14spartnCorrUsed
+    g_2sv_8.prCorrUsed = v_2sv_8_10prCorrUsed
+    g_2sv_8.crCorrUsed = v_2sv_8_10crCorrUsed
+    g_2sv_8.doCorrUsed = v_2sv_8_10doCorrUsed
+    g_2sv_8.clasCorrUsed = v_2sv_8_12clasCorrUsed
+    g_2sv_8.lppCorrUsed = v_2sv_8_11lppCorrUsed
+    g_2sv_8.hasCorrUsed = v_2sv_8_11hasCorrUsed
     g_2sv_9 = _object_new(NavSatSv)
     g_2sv_9.gnssId = r_2sv_9_6gnssId
     g_2sv_9.svId = r_2sv_9_4svId
     g_2sv_9.cno = r_2sv_9_3cno
     g_2sv_9.elev = r_2sv_9_4elev
     g_2sv_9.azim = r_2sv_9_4azim
-    g_2sv_9.prRes = (_sent(r_2sv_9_5prRes * 0.1) if n_sv > 9 else _ABSENT)
+    g_2sv_9.prRes = v_2sv_9_5prRes
     g_2sv_9.qualityInd = r_2sv_9_10qualityInd
-    g_2sv_9.svUsed = (_sent(r_2sv_9_6svUsed == 1) if n_sv > 9 else _ABSENT)
+    g_2sv_9.svUsed = v_2sv_9_6svUsed
     g_2sv_9.health = r_2sv_9_6health
-    g_2sv_9.diffCorr = (_sent(r_2sv_9_8diffCorr == 1) if n_sv > 9 else _ABSENT)
-    g_2sv_9.smoothed = (_sent(r_2sv_9_8smoothed == 1) if n_sv > 9 else _ABSENT)
+    g_2sv_9.diffCorr = v_2sv_9_8diffCorr
+    g_2sv_9.smoothed = v_2sv_9_8smoothed
     g_2sv_9.orbitSource = r_2sv_9_11orbitSource
-    g_2sv_9.ephAvail = (_sent(r_2sv_9_8ephAvail == 1) if n_sv > 9 else _ABSENT)
-    g_2sv_9.almAvail = (_sent(r_2sv_9_8almAvail == 1) if n_sv > 9 else _ABSENT)
-    g_2sv_9.anoAvail = (_sent(r_2sv_9_8anoAvail == 1) if n_sv > 9 else _ABSENT)
-    g_2sv_9.aopAvail = (_sent(r_2sv_9_8aopAvail == 1) if n_sv > 9 else _ABSENT)
+    g_2sv_9.ephAvail = v_2sv_9_8ephAvail
+    g_2sv_9.almAvail = v_2sv_9_8almAvail
+    g_2sv_9.anoAvail = v_2sv_9_8anoAvail
+    g_2sv_9.aopAvail = v_2sv_9_8aopAvail
     g_2sv_9.reserved13 = r_2sv_9_10reserved13
-    g_2sv_9.sbasCorrUsed = (_sent(r_2sv_9_12sbasCorrUsed == 1) if n_sv > 9 else _ABSENT)
-    g_2sv_9.rtcmCorrUsed = (_sent(r_2sv_9_12rtcmCorrUsed == 1) if n_sv > 9 else _ABSENT)
-    g_2sv_9.slasCorrUsed = (_sent(r_2sv_9_12slasCorrUsed == 1) if n_sv > 9 else _ABSENT)
-    g_2sv_9.spartnCorrUsed = (_sent(r_2sv_9_14spartnCorrUsed == 1) if n_sv > 9 else _ABSENT)
-    g_2sv_9.prCorrUsed = (_sent(r_2sv_9_10prCorrUsed == 1) if n_sv > 9 else _ABSENT)
-    g_2sv_9.crCorrUsed = (_sent(r_2sv_9_10crCorrUsed == 1) if n_sv > 9 else _ABSENT)
-    g_2sv_9.doCorrUsed = (_sent(r_2sv_9_10doCorrUsed == 1) if n_sv > 9 else _ABSENT)
-    g_2sv_9.clasCorrUsed = (_sent(r_2sv_9_12clasCorrUsed == 1) if n_sv > 9 else _ABSENT)
-    g_2sv_9.lppCorrUsed = (_sent(r_2sv_9_11lppCorrUsed == 1) if n_sv > 9 else _ABSENT)
-    g_2sv_9.hasCorrUsed = (_sent(r_2sv_9_11hasCorrUsed == 1) if n_sv > 9 else _ABSENT)
+    g_2sv_9.sbasCorrUsed = v_2sv_9_12sbasCorrUsed
+    g_2sv_9.rtcmCorrUsed = v_2sv_9_12rtcmCorrUsed
+    g_2sv_9.slasCorrUsed = v_2sv_9_12slasCorrUsed
+    g_2sv_9.spartnCorrUsed = v_2sv_9_14spartnCorrUsed
+    g_2sv_9.prCorrUsed = v_2sv_9_10prCorrUsed
+    g_2sv_9.crCorrUsed = v_2sv_9_10crCorrUsed
+    g_2sv_9.doCorrUsed = v_2sv_9_10doCorrUsed
+    g_2sv_9.clasCorrUsed = v_2sv_9_12clasCorrUsed
+    g_2sv_9.lppCorrUsed = v_2sv_9_11lppCorrUsed
+    g_2sv_9.hasCorrUsed = v_2sv_9_11hasCorrUsed
     g_2sv_10 = _object_new(NavSatSv)
     g_2sv_10.gnssId = r_2sv_10_6gnssId
     g_2sv_10.svId = r_2sv_10_4svId
     g_2sv_10.cno = r_2sv_10_3cno
     g_2sv_10.elev = r_2sv_10_4elev
     g_2sv_10.azim = r_2sv_10_4azim
-    g_2sv_10.prRes = (_sent(r_2sv_10_5prRes * 0.1) if n_sv > 10 else _ABSENT)
+    g_2sv_10.prRes = v_2sv_10_5prRes
     g_2sv_10.qualityInd = r_2sv_10_10qualityInd
-    g_2sv_10.svUsed = (_sent(r_2sv_10_6svUsed == 1) if n_sv > 10 else _ABSENT)
+    g_2sv_10.svUsed = v_2sv_10_6svUsed
     g_2sv_10.health = r_2sv_10_6health
-    g_2sv_10.diffCorr = (_sent(r_2sv_10_8diffCorr == 1) if n_sv > 10 else _ABSENT)
-    g_2sv_10.smoothed = (_sent(r_2sv_10_8smoothed == 1) if n_sv > 10 else _ABSENT)
+    g_2sv_10.diffCorr = v_2sv_10_8diffCorr
+    g_2sv_10.smoothed = v_2sv_10_8smoothed
     g_2sv_10.orbitSource = r_2sv_10_11orbitSource
-    g_2sv_10.ephAvail = (_sent(r_2sv_10_8ephAvail == 1) if n_sv > 10 else _ABSENT)
-    g_2sv_10.almAvail = (_sent(r_2sv_10_8almAvail == 1) if n_sv > 10 else _ABSENT)
-    g_2sv_10.anoAvail = (_sent(r_2sv_10_8anoAvail == 1) if n_sv > 10 else _ABSENT)
-    g_2sv_10.aopAvail = (_sent(r_2sv_10_8aopAvail == 1) if n_sv > 10 else _ABSENT)
+    g_2sv_10.ephAvail = v_2sv_10_8ephAvail
+    g_2sv_10.almAvail = v_2sv_10_8almAvail
+    g_2sv_10.anoAvail = v_2sv_10_8anoAvail
+    g_2sv_10.aopAvail = v_2sv_10_8aopAvail
     g_2sv_10.reserved13 = r_2sv_10_10reserved13
-    g_2sv_10.sbasCorrUsed = (_sent(r_2sv_10_12sbasCorrUsed == 1) if n_sv > 10 else _ABSENT)
-    g_2sv_10.rtcmCorrUsed = (_sent(r_2sv_10_12rtcmCorrUsed == 1) if n_sv > 10 else _ABSENT)
-    g_2sv_10.slasCorrUsed = (_sent(r_2sv_10_12slasCorrUsed == 1) if n_sv > 10 else _ABSENT)
-    g_2sv_10.spartnCorrUsed = (_sent(r_2sv_10_14spartnCorrUsed == 1) if n_sv > 10 else _ABSENT)
-    g_2sv_10.prCorrUsed = (_sent(r_2sv_10_10prCorrUsed == 1) if n_sv > 10 else _ABSENT)
-    g_2sv_10.crCorrUsed = (_sent(r_2sv_10_10crCorrUsed == 1) if n_sv > 10 else _ABSENT)
-    g_2sv_10.doCorrUsed = (_sent(r_2sv_10_10doCorrUsed == 1) if n_sv > 10 else _ABSENT)
-    g_2sv_10.clasCorrUsed = (_sent(r_2sv_10_12clasCorrUsed == 1) if n_sv > 10 else _ABSENT)
-    g_2sv_10.lppCorrUsed = (_sent(r_2sv_10_11lppCorrUsed == 1) if n_sv > 10 else _ABSENT)
-    g_2sv_10.hasCorrUsed = (_sent(r_2sv_10_11hasCorrUsed == 1) if n_sv > 10 else _ABSENT)
+    g_2sv_10.sbasCorrUsed = v_2sv_10_12sbasCorrUsed
+    g_2sv_10.rtcmCorrUsed = v_2sv_10_12rtcmCorrUsed
+    g_2sv_10.slasCorrUsed = v_2sv_10_12slasCorrUsed
+    g_2sv_10.spartnCorrUsed = v_2sv_10_14spartnCorrUsed
+    g_2sv_10.prCorrUsed = v_2sv_10_10prCorrUsed
+    g_2sv_10.crCorrUsed = v_2sv_10_10crCorrUsed
+    g_2sv_10.doCorrUsed = v_2sv_10_10doCorrUsed
+    g_2sv_10.clasCorrUsed = v_2sv_10_12clasCorrUsed
+    g_2sv_10.lppCorrUsed = v_2sv_10_11lppCorrUsed
+    g_2sv_10.hasCorrUsed = v_2sv_10_11hasCorrUsed
     g_2sv_11 = _object_new(NavSatSv)
     g_2sv_11.gnssId = r_2sv_11_6gnssId
     g_2sv_11.svId = r_2sv_11_4svId
     g_2sv_11.cno = r_2sv_11_3cno
     g_2sv_11.elev = r_2sv_11_4elev
     g_2sv_11.azim = r_2sv_11_4azim
-    g_2sv_11.prRes = (_sent(r_2sv_11_5prRes * 0.1) if n_sv > 11 else _ABSENT)
+    g_2sv_11.prRes = v_2sv_11_5prRes
     g_2sv_11.qualityInd = r_2sv_11_10qualityInd
-    g_2sv_11.svUsed = (_sent(r_2sv_11_6svUsed == 1) if n_sv > 11 else _ABSENT)
+    g_2sv_11.svUsed = v_2sv_11_6svUsed
     g_2sv_11.health = r_2sv_11_6health
-    g_2sv_11.diffCorr = (_sent(r_2sv_11_8diffCorr == 1) if n_sv > 11 else _ABSENT)
-    g_2sv_11.smoothed = (_sent(r_2sv_11_8smoothed == 1) if n_sv > 11 else _ABSENT)
+    g_2sv_11.diffCorr = v_2sv_11_8diffCorr
+    g_2sv_11.smoothed = v_2sv_11_8smoothed
     g_2sv_11.orbitSource = r_2sv_11_11orbitSource
-    g_2sv_11.ephAvail = (_sent(r_2sv_11_8ephAvail == 1) if n_sv > 11 else _ABSENT)
-    g_2sv_11.almAvail = (_sent(r_2sv_11_8almAvail == 1) if n_sv > 11 else _ABSENT)
-    g_2sv_11.anoAvail = (_sent(r_2sv_11_8anoAvail == 1) if n_sv > 11 else _ABSENT)
-    g_2sv_11.aopAvail = (_sent(r_2sv_11_8aopAvail == 1) if n_sv > 11 else _ABSENT)
+    g_2sv_11.ephAvail = v_2sv_11_8ephAvail
+    g_2sv_11.almAvail = v_2sv_11_8almAvail
+    g_2sv_11.anoAvail = v_2sv_11_8anoAvail
+    g_2sv_11.aopAvail = v_2sv_11_8aopAvail
     g_2sv_11.reserved13 = r_2sv_11_10reserved13
-    g_2sv_11.sbasCorrUsed = (_sent(r_2sv_11_12sbasCorrUsed == 1) if n_sv > 11 else _ABSENT)
-    g_2sv_11.rtcmCorrUsed = (_sent(r_2sv_11_12rtcmCorrUsed == 1) if n_sv > 11 else _ABSENT)
-    g_2sv_11.slasCorrUsed = (_sent(r_2sv_11_12slasCorrUsed == 1) if n_sv > 11 else _ABSENT)
-    g_2sv_11.spartnCorrUsed = (_sent(r_2sv_11_14spartnCorrUsed == 1) if n_sv > 11 else _ABSENT)
-    g_2sv_11.prCorrUsed = (_sent(r_2sv_11_10prCorrUsed == 1) if n_sv > 11 else _ABSENT)
-    g_2sv_11.crCorrUsed = (_sent(r_2sv_11_10crCorrUsed == 1) if n_sv > 11 else _ABSENT)
-    g_2sv_11.doCorrUsed = (_sent(r_2sv_11_10doCorrUsed == 1) if n_sv > 11 else _ABSENT)
-    g_2sv_11.clasCorrUsed = (_sent(r_2sv_11_12clasCorrUsed == 1) if n_sv > 11 else _ABSENT)
-    g_2sv_11.lppCorrUsed = (_sent(r_2sv_11_11lppCorrUsed == 1) if n_sv > 11 else _ABSENT)
-    g_2sv_11.hasCorrUsed = (_sent(r_2sv_11_11hasCorrUsed == 1) if n_sv > 11 else _ABSENT)
+    g_2sv_11.sbasCorrUsed = v_2sv_11_12sbasCorrUsed
+    g_2sv_11.rtcmCorrUsed = v_2sv_11_12rtcmCorrUsed
+    g_2sv_11.slasCorrUsed = v_2sv_11_12slasCorrUsed
+    g_2sv_11.spartnCorrUsed = v_2sv_11_14spartnCorrUsed
+    g_2sv_11.prCorrUsed = v_2sv_11_10prCorrUsed
+    g_2sv_11.crCorrUsed = v_2sv_11_10crCorrUsed
+    g_2sv_11.doCorrUsed = v_2sv_11_10doCorrUsed
+    g_2sv_11.clasCorrUsed = v_2sv_11_12clasCorrUsed
+    g_2sv_11.lppCorrUsed = v_2sv_11_11lppCorrUsed
+    g_2sv_11.hasCorrUsed = v_2sv_11_11hasCorrUsed
     g_2sv_12 = _object_new(NavSatSv)
     g_2sv_12.gnssId = r_2sv_12_6gnssId
     g_2sv_12.svId = r_2sv_12_4svId
     g_2sv_12.cno = r_2sv_12_3cno
     g_2sv_12.elev = r_2sv_12_4elev
     g_2sv_12.azim = r_2sv_12_4azim
-    g_2sv_12.prRes = (_sent(r_2sv_12_5prRes * 0.1) if n_sv > 12 else _ABSENT)
+    g_2sv_12.prRes = v_2sv_12_5prRes
     g_2sv_12.qualityInd = r_2sv_12_10qualityInd
-    g_2sv_12.svUsed = (_sent(r_2sv_12_6svUsed == 1) if n_sv > 12 else _ABSENT)
+    g_2sv_12.svUsed = v_2sv_12_6svUsed
     g_2sv_12.health = r_2sv_12_6health
-    g_2sv_12.diffCorr = (_sent(r_2sv_12_8diffCorr == 1) if n_sv > 12 else _ABSENT)
-    g_2sv_12.smoothed = (_sent(r_2sv_12_8smoothed == 1) if n_sv > 12 else _ABSENT)
+    g_2sv_12.diffCorr = v_2sv_12_8diffCorr
+    g_2sv_12.smoothed = v_2sv_12_8smoothed
     g_2sv_12.orbitSource = r_2sv_12_11orbitSource
-    g_2sv_12.ephAvail = (_sent(r_2sv_12_8ephAvail == 1) if n_sv > 12 else _ABSENT)
-    g_2sv_12.almAvail = (_sent(r_2sv_12_8almAvail == 1) if n_sv > 12 else _ABSENT)
-    g_2sv_12.anoAvail = (_sent(r_2sv_12_8anoAvail == 1) if n_sv > 12 else _ABSENT)
-    g_2sv_12.aopAvail = (_sent(r_2sv_12_8aopAvail == 1) if n_sv > 12 else _ABSENT)
+    g_2sv_12.ephAvail = v_2sv_12_8ephAvail
+    g_2sv_12.almAvail = v_2sv_12_8almAvail
+    g_2sv_12.anoAvail = v_2sv_12_8anoAvail
+    g_2sv_12.aopAvail = v_2sv_12_8aopAvail
     g_2sv_12.reserved13 = r_2sv_12_10reserved13
-    g_2sv_12.sbasCorrUsed = (_sent(r_2sv_12_12sbasCorrUsed == 1) if n_sv > 12 else _ABSENT)
-    g_2sv_12.rtcmCorrUsed = (_sent(r_2sv_12_12rtcmCorrUsed == 1) if n_sv > 12 else _ABSENT)
-    g_2sv_12.slasCorrUsed = (_sent(r_2sv_12_12slasCorrUsed == 1) if n_sv > 12 else _ABSENT)
-    g_2sv_12.spartnCorrUsed = (_sent(r_2sv_12_14spartnCorrUsed == 1) if n_sv > 12 else _ABSENT)
-    g_2sv_12.prCorrUsed = (_sent(r_2sv_12_10prCorrUsed == 1) if n_sv > 12 else _ABSENT)
-    g_2sv_12.crCorrUsed = (_sent(r_2sv_12_10crCorrUsed == 1) if n_sv > 12 else _ABSENT)
-    g_2sv_12.doCorrUsed = (_sent(r_2sv_12_10doCorrUsed == 1) if n_sv > 12 else _ABSENT)
-    g_2sv_12.clasCorrUsed = (_sent(r_2sv_12_12clasCorrUsed == 1) if n_sv > 12 else _ABSENT)
-    g_2sv_12.lppCorrUsed = (_sent(r_2sv_12_11lppCorrUsed == 1) if n_sv > 12 else _ABSENT)
-    g_2sv_12.hasCorrUsed = (_sent(r_2sv_12_11hasCorrUsed == 1) if n_sv > 12 else _ABSENT)
+    g_2sv_12.sbasCorrUsed = v_2sv_12_12sbasCorrUsed
+    g_2sv_12.rtcmCorrUsed = v_2sv_12_12rtcmCorrUsed
+    g_2sv_12.slasCorrUsed = v_2sv_12_12slasCorrUsed
+    g_2sv_12.spartnCorrUsed = v_2sv_12_14spartnCorrUsed
+    g_2sv_12.prCorrUsed = v_2sv_12_10prCorrUsed
+    g_2sv_12.crCorrUsed = v_2sv_12_10crCorrUsed
+    g_2sv_12.doCorrUsed = v_2sv_12_10doCorrUsed
+    g_2sv_12.clasCorrUsed = v_2sv_12_12clasCorrUsed
+    g_2sv_12.lppCorrUsed = v_2sv_12_11lppCorrUsed
+    g_2sv_12.hasCorrUsed = v_2sv_12_11hasCorrUsed
     g_2sv_13 = _object_new(NavSatSv)
     g_2sv_13.gnssId = r_2sv_13_6gnssId
     g_2sv_13.svId = r_2sv_13_4svId
     g_2sv_13.cno = r_2sv_13_3cno
     g_2sv_13.elev = r_2sv_13_4elev
     g_2sv_13.azim = r_2sv_13_4azim
-    g_2sv_13.prRes = (_sent(r_2sv_13_5prRes * 0.1) if n_sv > 13 else _ABSENT)
+    g_2sv_13.prRes = v_2sv_13_5prRes
     g_2sv_13.qualityInd = r_2sv_13_10qualityInd
-    g_2sv_13.svUsed = (_sent(r_2sv_13_6svUsed == 1) if n_sv > 13 else _ABSENT)
+    g_2sv_13.svUsed = v_2sv_13_6svUsed
     g_2sv_13.health = r_2sv_13_6health
-    g_2sv_13.diffCorr = (_sent(r_2sv_13_8diffCorr == 1) if n_sv > 13 else _ABSENT)
-    g_2sv_13.smoothed = (_sent(r_2sv_13_8smoothed == 1) if n_sv > 13 else _ABSENT)
+    g_2sv_13.diffCorr = v_2sv_13_8diffCorr
+    g_2sv_13.smoothed = v_2sv_13_8smoothed
     g_2sv_13.orbitSource = r_2sv_13_11orbitSource
-    g_2sv_13.ephAvail = (_sent(r_2sv_13_8ephAvail == 1) if n_sv > 13 else _ABSENT)
-    g_2sv_13.almAvail = (_sent(r_2sv_13_8almAvail == 1) if n_sv > 13 else _ABSENT)
-    g_2sv_13.anoAvail = (_sent(r_2sv_13_8anoAvail == 1) if n_sv > 13 else _ABSENT)
-    g_2sv_13.aopAvail = (_sent(r_2sv_13_8aopAvail == 1) if n_sv > 13 else _ABSENT)
+    g_2sv_13.ephAvail = v_2sv_13_8ephAvail
+    g_2sv_13.almAvail = v_2sv_13_8almAvail
+    g_2sv_13.anoAvail = v_2sv_13_8anoAvail
+    g_2sv_13.aopAvail = v_2sv_13_8aopAvail
     g_2sv_13.reserved13 = r_2sv_13_10reserved13
-    g_2sv_13.sbasCorrUsed = (_sent(r_2sv_13_12sbasCorrUsed == 1) if n_sv > 13 else _ABSENT)
-    g_2sv_13.rtcmCorrUsed = (_sent(r_2sv_13_12rtcmCorrUsed == 1) if n_sv > 13 else _ABSENT)
-    g_2sv_13.slasCorrUsed = (_sent(r_2sv_13_12slasCorrUsed == 1) if n_sv > 13 else _ABSENT)
-    g_2sv_13.spartnCorrUsed = (_sent(r_2sv_13_14spartnCorrUsed == 1) if n_sv > 13 else _ABSENT)
-    g_2sv_13.prCorrUsed = (_sent(r_2sv_13_10prCorrUsed == 1) if n_sv > 13 else _ABSENT)
-    g_2sv_13.crCorrUsed = (_sent(r_2sv_13_10crCorrUsed == 1) if n_sv > 13 else _ABSENT)
-    g_2sv_13.doCorrUsed = (_sent(r_2sv_13_10doCorrUsed == 1) if n_sv > 13 else _ABSENT)
-    g_2sv_13.clasCorrUsed = (_sent(r_2sv_13_12clasCorrUsed == 1) if n_sv > 13 else _ABSENT)
-    g_2sv_13.lppCorrUsed = (_sent(r_2sv_13_11lppCorrUsed == 1) if n_sv > 13 else _ABSENT)
-    g_2sv_13.hasCorrUsed = (_sent(r_2sv_13_11hasCorrUsed == 1) if n_sv > 13 else _ABSENT)
+    g_2sv_13.sbasCorrUsed = v_2sv_13_12sbasCorrUsed
+    g_2sv_13.rtcmCorrUsed = v_2sv_13_12rtcmCorrUsed
+    g_2sv_13.slasCorrUsed = v_2sv_13_12slasCorrUsed
+    g_2sv_13.spartnCorrUsed = v_2sv_13_14spartnCorrUsed
+    g_2sv_13.prCorrUsed = v_2sv_13_10prCorrUsed
+    g_2sv_13.crCorrUsed = v_2sv_13_10crCorrUsed
+    g_2sv_13.doCorrUsed = v_2sv_13_10doCorrUsed
+    g_2sv_13.clasCorrUsed = v_2sv_13_12clasCorrUsed
+    g_2sv_13.lppCorrUsed = v_2sv_13_11lppCorrUsed
+    g_2sv_13.hasCorrUsed = v_2sv_13_11hasCorrUsed
     g_2sv_14 = _object_new(NavSatSv)
     g_2sv_14.gnssId = r_2sv_14_6gnssId
     g_2sv_14.svId = r_2sv_14_4svId
     g_2sv_14.cno = r_2sv_14_3cno
     g_2sv_14.elev = r_2sv_14_4elev
     g_2sv_14.azim = r_2sv_14_4azim
-    g_2sv_14.prRes = (_sent(r_2sv_14_5prRes * 0.1) if n_sv > 14 else _ABSENT)
+    g_2sv_14.prRes = v_2sv_14_5prRes
     g_2sv_14.qualityInd = r_2sv_14_10qualityInd
-    g_2sv_14.svUsed = (_sent(r_2sv_14_6svUsed == 1) if n_sv > 14 else _ABSENT)
+    g_2sv_14.svUsed = v_2sv_14_6svUsed
     g_2sv_14.health = r_2sv_14_6health
-    g_2sv_14.diffCorr = (_sent(r_2sv_14_8diffCorr == 1) if n_sv > 14 else _ABSENT)
-    g_2sv_14.smoothed = (_sent(r_2sv_14_8smoothed == 1) if n_sv > 14 else _ABSENT)
+    g_2sv_14.diffCorr = v_2sv_14_8diffCorr
+    g_2sv_14.smoothed = v_2sv_14_8smoothed
     g_2sv_14.orbitSource = r_2sv_14_11orbitSource
-    g_2sv_14.ephAvail = (_sent(r_2sv_14_8ephAvail == 1) if n_sv > 14 else _ABSENT)
-    g_2sv_14.almAvail = (_sent(r_2sv_14_8almAvail == 1) if n_sv > 14 else _ABSENT)
-    g_2sv_14.anoAvail = (_sent(r_2sv_14_8anoAvail == 1) if n_sv > 14 else _ABSENT)
-    g_2sv_14.aopAvail = (_sent(r_2sv_14_8aopAvail == 1) if n_sv > 14 else _ABSENT)
+    g_2sv_14.ephAvail = v_2sv_14_8ephAvail
+    g_2sv_14.almAvail = v_2sv_14_8almAvail
+    g_2sv_14.anoAvail = v_2sv_14_8anoAvail
+    g_2sv_14.aopAvail = v_2sv_14_8aopAvail
     g_2sv_14.reserved13 = r_2sv_14_10reserved13
-    g_2sv_14.sbasCorrUsed = (_sent(r_2sv_14_12sbasCorrUsed == 1) if n_sv > 14 else _ABSENT)
-    g_2sv_14.rtcmCorrUsed = (_sent(r_2sv_14_12rtcmCorrUsed == 1) if n_sv > 14 else _ABSENT)
-    g_2sv_14.slasCorrUsed = (_sent(r_2sv_14_12slasCorrUsed == 1) if n_sv > 14 else _ABSENT)
-    g_2sv_14.spartnCorrUsed = (_sent(r_2sv_14_14spartnCorrUsed == 1) if n_sv > 14 else _ABSENT)
-    g_2sv_14.prCorrUsed = (_sent(r_2sv_14_10prCorrUsed == 1) if n_sv > 14 else _ABSENT)
-    g_2sv_14.crCorrUsed = (_sent(r_2sv_14_10crCorrUsed == 1) if n_sv > 14 else _ABSENT)
-    g_2sv_14.doCorrUsed = (_sent(r_2sv_14_10doCorrUsed == 1) if n_sv > 14 else _ABSENT)
-    g_2sv_14.clasCorrUsed = (_sent(r_2sv_14_12clasCorrUsed == 1) if n_sv > 14 else _ABSENT)
-    g_2sv_14.lppCorrUsed = (_sent(r_2sv_14_11lppCorrUsed == 1) if n_sv > 14 else _ABSENT)
-    g_2sv_14.hasCorrUsed = (_sent(r_2sv_14_11hasCorrUsed == 1) if n_sv > 14 else _ABSENT)
+    g_2sv_14.sbasCorrUsed = v_2sv_14_12sbasCorrUsed
+    g_2sv_14.rtcmCorrUsed = v_2sv_14_12rtcmCorrUsed
+    g_2sv_14.slasCorrUsed = v_2sv_14_12slasCorrUsed
+    g_2sv_14.spartnCorrUsed = v_2sv_14_14spartnCorrUsed
+    g_2sv_14.prCorrUsed = v_2sv_14_10prCorrUsed
+    g_2sv_14.crCorrUsed = v_2sv_14_10crCorrUsed
+    g_2sv_14.doCorrUsed = v_2sv_14_10doCorrUsed
+    g_2sv_14.clasCorrUsed = v_2sv_14_12clasCorrUsed
+    g_2sv_14.lppCorrUsed = v_2sv_14_11lppCorrUsed
+    g_2sv_14.hasCorrUsed = v_2sv_14_11hasCorrUsed
     g_2sv_15 = _object_new(NavSatSv)
     g_2sv_15.gnssId = r_2sv_15_6gnssId
     g_2sv_15.svId = r_2sv_15_4svId
     g_2sv_15.cno = r_2sv_15_3cno
     g_2sv_15.elev = r_2sv_15_4elev
     g_2sv_15.azim = r_2sv_15_4azim
-    g_2sv_15.prRes = (_sent(r_2sv_15_5prRes * 0.1) if n_sv > 15 else _ABSENT)
+    g_2sv_15.prRes = v_2sv_15_5prRes
     g_2sv_15.qualityInd = r_2sv_15_10qualityInd
-    g_2sv_15.svUsed = (_sent(r_2sv_15_6svUsed == 1) if n_sv > 15 else _ABSENT)
+    g_2sv_15.svUsed = v_2sv_15_6svUsed
     g_2sv_15.health = r_2sv_15_6health
-    g_2sv_15.diffCorr = (_sent(r_2sv_15_8diffCorr == 1) if n_sv > 15 else _ABSENT)
-    g_2sv_15.smoothed = (_sent(r_2sv_15_8smoothed == 1) if n_sv > 15 else _ABSENT)
+    g_2sv_15.diffCorr = v_2sv_15_8diffCorr
+    g_2sv_15.smoothed = v_2sv_15_8smoothed
     g_2sv_15.orbitSource = r_2sv_15_11orbitSource
-    g_2sv_15.ephAvail = (_sent(r_2sv_15_8ephAvail == 1) if n_sv > 15 else _ABSENT)
-    g_2sv_15.almAvail = (_sent(r_2sv_15_8almAvail == 1) if n_sv > 15 else _ABSENT)
-    g_2sv_15.anoAvail = (_sent(r_2sv_15_8anoAvail == 1) if n_sv > 15 else _ABSENT)
-    g_2sv_15.aopAvail = (_sent(r_2sv_15_8aopAvail == 1) if n_sv > 15 else _ABSENT)
+    g_2sv_15.ephAvail = v_2sv_15_8ephAvail
+    g_2sv_15.almAvail = v_2sv_15_8almAvail
+    g_2sv_15.anoAvail = v_2sv_15_8anoAvail
+    g_2sv_15.aopAvail = v_2sv_15_8aopAvail
     g_2sv_15.reserved13 = r_2sv_15_10reserved13
-    g_2sv_15.sbasCorrUsed = (_sent(r_2sv_15_12sbasCorrUsed == 1) if n_sv > 15 else _ABSENT)
-    g_2sv_15.rtcmCorrUsed = (_sent(r_2sv_15_12rtcmCorrUsed == 1) if n_sv > 15 else _ABSENT)
-    g_2sv_15.slasCorrUsed = (_sent(r_2sv_15_12slasCorrUsed == 1) if n_sv > 15 else _ABSENT)
-    g_2sv_15.spartnCorrUsed = (_sent(r_2sv_15_14spartnCorrUsed == 1) if n_sv > 15 else _ABSENT)
-    g_2sv_15.prCorrUsed = (_sent(r_2sv_15_10prCorrUsed == 1) if n_sv > 15 else _ABSENT)
-    g_2sv_15.crCorrUsed = (_sent(r_2sv_15_10crCorrUsed == 1) if n_sv > 15 else _ABSENT)
-    g_2sv_15.doCorrUsed = (_sent(r_2sv_15_10doCorrUsed == 1) if n_sv > 15 else _ABSENT)
-    g_2sv_15.clasCorrUsed = (_sent(r_2sv_15_12clasCorrUsed == 1) if n_sv > 15 else _ABSENT)
-    g_2sv_15.lppCorrUsed = (_sent(r_2sv_15_11lppCorrUsed == 1) if n_sv > 15 else _ABSENT)
-    g_2sv_15.hasCorrUsed = (_sent(r_2sv_15_11hasCorrUsed == 1) if n_sv > 15 else _ABSENT)
+    g_2sv_15.sbasCorrUsed = v_2sv_15_12sbasCorrUsed
+    g_2sv_15.rtcmCorrUsed = v_2sv_15_12rtcmCorrUsed
+    g_2sv_15.slasCorrUsed = v_2sv_15_12slasCorrUsed
+    g_2sv_15.spartnCorrUsed = v_2sv_15_14spartnCorrUsed
+    g_2sv_15.prCorrUsed = v_2sv_15_10prCorrUsed
+    g_2sv_15.crCorrUsed = v_2sv_15_10crCorrUsed
+    g_2sv_15.doCorrUsed = v_2sv_15_10doCorrUsed
+    g_2sv_15.clasCorrUsed = v_2sv_15_12clasCorrUsed
+    g_2sv_15.lppCorrUsed = v_2sv_15_11lppCorrUsed
+    g_2sv_15.hasCorrUsed = v_2sv_15_11hasCorrUsed
     g_2sv_16 = _object_new(NavSatSv)
     g_2sv_16.gnssId = r_2sv_16_6gnssId
     g_2sv_16.svId = r_2sv_16_4svId
     g_2sv_16.cno = r_2sv_16_3cno
     g_2sv_16.elev = r_2sv_16_4elev
     g_2sv_16.azim = r_2sv_16_4azim
-    g_2sv_16.prRes = (_sent(r_2sv_16_5prRes * 0.1) if n_sv > 16 else _ABSENT)
+    g_2sv_16.prRes = v_2sv_16_5prRes
     g_2sv_16.qualityInd = r_2sv_16_10qualityInd
-    g_2sv_16.svUsed = (_sent(r_2sv_16_6svUsed == 1) if n_sv > 16 else _ABSENT)
+    g_2sv_16.svUsed = v_2sv_16_6svUsed
     g_2sv_16.health = r_2sv_16_6health
-    g_2sv_16.diffCorr = (_sent(r_2sv_16_8diffCorr == 1) if n_sv > 16 else _ABSENT)
-    g_2sv_16.smoothed = (_sent(r_2sv_16_8smoothed == 1) if n_sv > 16 else _ABSENT)
+    g_2sv_16.diffCorr = v_2sv_16_8diffCorr
+    g_2sv_16.smoothed = v_2sv_16_8smoothed
     g_2sv_16.orbitSource = r_2sv_16_11orbitSource
-    g_2sv_16.ephAvail = (_sent(r_2sv_16_8ephAvail == 1) if n_sv > 16 else _ABSENT)
-    g_2sv_16.almAvail = (_sent(r_2sv_16_8almAvail == 1) if n_sv > 16 else _ABSENT)
-    g_2sv_16.anoAvail = (_sent(r_2sv_16_8anoAvail == 1) if n_sv > 16 else _ABSENT)
-    g_2sv_16.aopAvail = (_sent(r_2sv_16_8aopAvail == 1) if n_sv > 16 else _ABSENT)
+    g_2sv_16.ephAvail = v_2sv_16_8ephAvail
+    g_2sv_16.almAvail = v_2sv_16_8almAvail
+    g_2sv_16.anoAvail = v_2sv_16_8anoAvail
+    g_2sv_16.aopAvail = v_2sv_16_8aopAvail
     g_2sv_16.reserved13 = r_2sv_16_10reserved13
-    g_2sv_16.sbasCorrUsed = (_sent(r_2sv_16_12sbasCorrUsed == 1) if n_sv > 16 else _ABSENT)
-    g_2sv_16.rtcmCorrUsed = (_sent(r_2sv_16_12rtcmCorrUsed == 1) if n_sv > 16 else _ABSENT)
-    g_2sv_16.slasCorrUsed = (_sent(r_2sv_16_12slasCorrUsed == 1) if n_sv > 16 else _ABSENT)
-    g_2sv_16.spartnCorrUsed = (_sent(r_2sv_16_14spartnCorrUsed == 1) if n_sv > 16 else _ABSENT)
-    g_2sv_16.prCorrUsed = (_sent(r_2sv_16_10prCorrUsed == 1) if n_sv > 16 else _ABSENT)
-    g_2sv_16.crCorrUsed = (_sent(r_2sv_16_10crCorrUsed == 1) if n_sv > 16 else _ABSENT)
-    g_2sv_16.doCorrUsed = (_sent(r_2sv_16_10doCorrUsed == 1) if n_sv > 16 else _ABSENT)
-    g_2sv_16.clasCorrUsed = (_sent(r_2sv_16_12clasCorrUsed == 1) if n_sv > 16 else _ABSENT)
-    g_2sv_16.lppCorrUsed = (_sent(r_2sv_16_11lppCorrUsed == 1) if n_sv > 16 else _ABSENT)
-    g_2sv_16.hasCorrUsed = (_sent(r_2sv_16_11hasCorrUsed == 1) if n_sv > 16 else _ABSENT)
+    g_2sv_16.sbasCorrUsed = v_2sv_16_12sbasCorrUsed
+    g_2sv_16.rtcmCorrUsed = v_2sv_16_12rtcmCorrUsed
+    g_2sv_16.slasCorrUsed = v_2sv_16_12slasCorrUsed
+    g_2sv_16.spartnCorrUsed = v_2sv_16_14spartnCorrUsed
+    g_2sv_16.prCorrUsed = v_2sv_16_10prCorrUsed
+    g_2sv_16.crCorrUsed = v_2sv_16_10crCorrUsed
+    g_2sv_16.doCorrUsed = v_2sv_16_10doCorrUsed
+    g_2sv_16.clasCorrUsed = v_2sv_16_12clasCorrUsed
+    g_2sv_16.lppCorrUsed = v_2sv_16_11lppCorrUsed
+    g_2sv_16.hasCorrUsed = v_2sv_16_11hasCorrUsed
     g_2sv_17 = _object_new(NavSatSv)
     g_2sv_17.gnssId = r_2sv_17_6gnssId
     g_2sv_17.svId = r_2sv_17_4svId
     g_2sv_17.cno = r_2sv_17_3cno
     g_2sv_17.elev = r_2sv_17_4elev
     g_2sv_17.azim = r_2sv_17_4azim
-    g_2sv_17.prRes = (_sent(r_2sv_17_5prRes * 0.1) if n_sv > 17 else _ABSENT)
+    g_2sv_17.prRes = v_2sv_17_5prRes
     g_2sv_17.qualityInd = r_2sv_17_10qualityInd
-    g_2sv_17.svUsed = (_sent(r_2sv_17_6svUsed == 1) if n_sv > 17 else _ABSENT)
+    g_2sv_17.svUsed = v_2sv_17_6svUsed
     g_2sv_17.health = r_2sv_17_6health
-    g_2sv_17.diffCorr = (_sent(r_2sv_17_8diffCorr == 1) if n_sv > 17 else _ABSENT)
-    g_2sv_17.smoothed = (_sent(r_2sv_17_8smoothed == 1) if n_sv > 17 else _ABSENT)
+    g_2sv_17.diffCorr = v_2sv_17_8diffCorr
+    g_2sv_17.smoothed = v_2sv_17_8smoothed
     g_2sv_17.orbitSource = r_2sv_17_11orbitSource
-    g_2sv_17.ephAvail = (_sent(r_2sv_17_8ephAvail == 1) if n_sv > 17 else _ABSENT)
-    g_2sv_17.almAvail = (_sent(r_2sv_17_8almAvail == 1) if n_sv > 17 else _ABSENT)
-    g_2sv_17.anoAvail = (_sent(r_2sv_17_8anoAvail == 1) if n_sv > 17 else _ABSENT)
-    g_2sv_17.aopAvail = (_sent(r_2sv_17_8aopAvail == 1) if n_sv > 17 else _ABSENT)
+    g_2sv_17.ephAvail = v_2sv_17_8ephAvail
+    g_2sv_17.almAvail = v_2sv_17_8almAvail
+    g_2sv_17.anoAvail = v_2sv_17_8anoAvail
+    g_2sv_17.aopAvail = v_2sv_17_8aopAvail
     g_2sv_17.reserved13 = r_2sv_17_10reserved13
-    g_2sv_17.sbasCorrUsed = (_sent(r_2sv_17_12sbasCorrUsed == 1) if n_sv > 17 else _ABSENT)
-    g_2sv_17.rtcmCorrUsed = (_sent(r_2sv_17_12rtcmCorrUsed == 1) if n_sv > 17 else _ABSENT)
-    g_2sv_17.slasCorrUsed = (_sent(r_2sv_17_12slasCorrUsed == 1) if n_sv > 17 else _ABSENT)
-    g_2sv_17.spartnCorrUsed = (_sent(r_2sv_17_14spartnCorrUsed == 1) if n_sv > 17 else _ABSENT)
-    g_2sv_17.prCorrUsed = (_sent(r_2sv_17_10prCorrUsed == 1) if n_sv > 17 else _ABSENT)
-    g_2sv_17.crCorrUsed = (_sent(r_2sv_17_10crCorrUsed == 1) if n_sv > 17 else _ABSENT)
-    g_2sv_17.doCorrUsed = (_sent(r_2sv_17_10doCorrUsed == 1) if n_sv > 17 else _ABSENT)
-    g_2sv_17.clasCorrUsed = (_sent(r_2sv_17_12clasCorrUsed == 1) if n_sv > 17 else _ABSENT)
-    g_2sv_17.lppCorrUsed = (_sent(r_2sv_17_11lppCorrUsed == 1) if n_sv > 17 else _ABSENT)
-    g_2sv_17.hasCorrUsed = (_sent(r_2sv_17_11hasCorrUsed == 1) if n_sv > 17 else _ABSENT)
+    g_2sv_17.sbasCorrUsed = v_2sv_17_12sbasCorrUsed
+    g_2sv_17.rtcmCorrUsed = v_2sv_17_12rtcmCorrUsed
+    g_2sv_17.slasCorrUsed = v_2sv_17_12slasCorrUsed
+    g_2sv_17.spartnCorrUsed = v_2sv_17_14spartnCorrUsed
+    g_2sv_17.prCorrUsed = v_2sv_17_10prCorrUsed
+    g_2sv_17.crCorrUsed = v_2sv_17_10crCorrUsed
+    g_2sv_17.doCorrUsed = v_2sv_17_10doCorrUsed
+    g_2sv_17.clasCorrUsed = v_2sv_17_12clasCorrUsed
+    g_2sv_17.lppCorrUsed = v_2sv_17_11lppCorrUsed
+    g_2sv_17.hasCorrUsed = v_2sv_17_11hasCorrUsed
     g_2sv_18 = _object_new(NavSatSv)
     g_2sv_18.gnssId = r_2sv_18_6gnssId
     g_2sv_18.svId = r_2sv_18_4svId
     g_2sv_18.cno = r_2sv_18_3cno
     g_2sv_18.elev = r_2sv_18_4elev
     g_2sv_18.azim = r_2sv_18_4azim
-    g_2sv_18.prRes = (_sent(r_2sv_18_5prRes * 0.1) if n_sv > 18 else _ABSENT)
+    g_2sv_18.prRes = v_2sv_18_5prRes
     g_2sv_18.qualityInd = r_2sv_18_10qualityInd
-    g_2sv_18.svUsed = (_sent(r_2sv_18_6svUsed == 1) if n_sv > 18 else _ABSENT)
+    g_2sv_18.svUsed = v_2sv_18_6svUsed
     g_2sv_18.health = r_2sv_18_6health
-    g_2sv_18.diffCorr = (_sent(r_2sv_18_8diffCorr == 1) if n_sv > 18 else _ABSENT)
-    g_2sv_18.smoothed = (_sent(r_2sv_18_8smoothed == 1) if n_sv > 18 else _ABSENT)
+    g_2sv_18.diffCorr = v_2sv_18_8diffCorr
+    g_2sv_18.smoothed = v_2sv_18_8smoothed
     g_2sv_18.orbitSource = r_2sv_18_11orbitSource
-    g_2sv_18.ephAvail = (_sent(r_2sv_18_8ephAvail == 1) if n_sv > 18 else _ABSENT)
-    g_2sv_18.almAvail = (_sent(r_2sv_18_8almAvail == 1) if n_sv > 18 else _ABSENT)
-    g_2sv_18.anoAvail = (_sent(r_2sv_18_8anoAvail == 1) if n_sv > 18 else _ABSENT)
-    g_2sv_18.aopAvail = (_sent(r_2sv_18_8aopAvail == 1) if n_sv > 18 else _ABSENT)
+    g_2sv_18.ephAvail = v_2sv_18_8ephAvail
+    g_2sv_18.almAvail = v_2sv_18_8almAvail
+    g_2sv_18.anoAvail = v_2sv_18_8anoAvail
+    g_2sv_18.aopAvail = v_2sv_18_8aopAvail
     g_2sv_18.reserved13 = r_2sv_18_10reserved13
-    g_2sv_18.sbasCorrUsed = (_sent(r_2sv_18_12sbasCorrUsed == 1) if n_sv > 18 else _ABSENT)
-    g_2sv_18.rtcmCorrUsed = (_sent(r_2sv_18_12rtcmCorrUsed == 1) if n_sv > 18 else _ABSENT)
-    g_2sv_18.slasCorrUsed = (_sent(r_2sv_18_12slasCorrUsed == 1) if n_sv > 18 else _ABSENT)
-    g_2sv_18.spartnCorrUsed = (_sent(r_2sv_18_14spartnCorrUsed == 1) if n_sv > 18 else _ABSENT)
-    g_2sv_18.prCorrUsed = (_sent(r_2sv_18_10prCorrUsed == 1) if n_sv > 18 else _ABSENT)
-    g_2sv_18.crCorrUsed = (_sent(r_2sv_18_10crCorrUsed == 1) if n_sv > 18 else _ABSENT)
-    g_2sv_18.doCorrUsed = (_sent(r_2sv_18_10doCorrUsed == 1) if n_sv > 18 else _ABSENT)
-    g_2sv_18.clasCorrUsed = (_sent(r_2sv_18_12clasCorrUsed == 1) if n_sv > 18 else _ABSENT)
-    g_2sv_18.lppCorrUsed = (_sent(r_2sv_18_11lppCorrUsed == 1) if n_sv > 18 else _ABSENT)
-    g_2sv_18.hasCorrUsed = (_sent(r_2sv_18_11hasCorrUsed == 1) if n_sv > 18 else _ABSENT)
+    g_2sv_18.sbasCorrUsed = v_2sv_18_12sbasCorrUsed
+    g_2sv_18.rtcmCorrUsed = v_2sv_18_12rtcmCorrUsed
+    g_2sv_18.slasCorrUsed = v_2sv_18_12slasCorrUsed
+    g_2sv_18.spartnCorrUsed = v_2sv_18_14spartnCorrUsed
+    g_2sv_18.prCorrUsed = v_2sv_18_10prCorrUsed
+    g_2sv_18.crCorrUsed = v_2sv_18_10crCorrUsed
+    g_2sv_18.doCorrUsed = v_2sv_18_10doCorrUsed
+    g_2sv_18.clasCorrUsed = v_2sv_18_12clasCorrUsed
+    g_2sv_18.lppCorrUsed = v_2sv_18_11lppCorrUsed
+    g_2sv_18.hasCorrUsed = v_2sv_18_11hasCorrUsed
     g_2sv_19 = _object_new(NavSatSv)
     g_2sv_19.gnssId = r_2sv_19_6gnssId
     g_2sv_19.svId = r_2sv_19_4svId
     g_2sv_19.cno = r_2sv_19_3cno
     g_2sv_19.elev = r_2sv_19_4elev
     g_2sv_19.azim = r_2sv_19_4azim
-    g_2sv_19.prRes = (_sent(r_2sv_19_5prRes * 0.1) if n_sv > 19 else _ABSENT)
+    g_2sv_19.prRes = v_2sv_19_5prRes
     g_2sv_19.qualityInd = r_2sv_19_10qualityInd
-    g_2sv_19.svUsed = (_sent(r_2sv_19_6svUsed == 1) if n_sv > 19 else _ABSENT)
+    g_2sv_19.svUsed = v_2sv_19_6svUsed
     g_2sv_19.health = r_2sv_19_6health
-    g_2sv_19.diffCorr = (_sent(r_2sv_19_8diffCorr == 1) if n_sv > 19 else _ABSENT)
-    g_2sv_19.smoothed = (_sent(r_2sv_19_8smoothed == 1) if n_sv > 19 else _ABSENT)
+    g_2sv_19.diffCorr = v_2sv_19_8diffCorr
+    g_2sv_19.smoothed = v_2sv_19_8smoothed
     g_2sv_19.orbitSource = r_2sv_19_11orbitSource
-    g_2sv_19.ephAvail = (_sent(r_2sv_19_8ephAvail == 1) if n_sv > 19 else _ABSENT)
-    g_2sv_19.almAvail = (_sent(r_2sv_19_8almAvail == 1) if n_sv > 19 else _ABSENT)
-    g_2sv_19.anoAvail = (_sent(r_2sv_19_8anoAvail == 1) if n_sv > 19 else _ABSENT)
-    g_2sv_19.aopAvail = (_sent(r_2sv_19_8aopAvail == 1) if n_sv > 19 else _ABSENT)
+    g_2sv_19.ephAvail = v_2sv_19_8ephAvail
+    g_2sv_19.almAvail = v_2sv_19_8almAvail
+    g_2sv_19.anoAvail = v_2sv_19_8anoAvail
+    g_2sv_19.aopAvail = v_2sv_19_8aopAvail
     g_2sv_19.reserved13 = r_2sv_19_10reserved13
-    g_2sv_19.sbasCorrUsed = (_sent(r_2sv_19_12sbasCorrUsed == 1) if n_sv > 19 else _ABSENT)
-    g_2sv_19.rtcmCorrUsed = (_sent(r_2sv_19_12rtcmCorrUsed == 1) if n_sv > 19 else _ABSENT)
-    g_2sv_19.slasCorrUsed = (_sent(r_2sv_19_12slasCorrUsed == 1) if n_sv > 19 else _ABSENT)
-    g_2sv_19.spartnCorrUsed = (_sent(r_2sv_19_14spartnCorrUsed == 1) if n_sv > 19 else _ABSENT)
-    g_2sv_19.prCorrUsed = (_sent(r_2sv_19_10prCorrUsed == 1) if n_sv > 19 else _ABSENT)
-    g_2sv_19.crCorrUsed = (_sent(r_2sv_19_10crCorrUsed == 1) if n_sv > 19 else _ABSENT)
-    g_2sv_19.doCorrUsed = (_sent(r_2sv_19_10doCorrUsed == 1) if n_sv > 19 else _ABSENT)
-    g_2sv_19.clasCorrUsed = (_sent(r_2sv_19_12clasCorrUsed == 1) if n_sv > 19 else _ABSENT)
-    g_2sv_19.lppCorrUsed = (_sent(r_2sv_19_11lppCorrUsed == 1) if n_sv > 19 else _ABSENT)
-    g_2sv_19.hasCorrUsed = (_sent(r_2sv_19_11hasCorrUsed == 1) if n_sv > 19 else _ABSENT)
+    g_2sv_19.sbasCorrUsed = v_2sv_19_12sbasCorrUsed
+    g_2sv_19.rtcmCorrUsed = v_2sv_19_12rtcmCorrUsed
+    g_2sv_19.slasCorrUsed = v_2sv_19_12slasCorrUsed
+    g_2sv_19.spartnCorrUsed = v_2sv_19_14spartnCorrUsed
+    g_2sv_19.prCorrUsed = v_2sv_19_10prCorrUsed
+    g_2sv_19.crCorrUsed = v_2sv_19_10crCorrUsed
+    g_2sv_19.doCorrUsed = v_2sv_19_10doCorrUsed
+    g_2sv_19.clasCorrUsed = v_2sv_19_12clasCorrUsed
+    g_2sv_19.lppCorrUsed = v_2sv_19_11lppCorrUsed
+    g_2sv_19.hasCorrUsed = v_2sv_19_11hasCorrUsed
     g_2sv_20 = _object_new(NavSatSv)
     g_2sv_20.gnssId = r_2sv_20_6gnssId
     g_2sv_20.svId = r_2sv_20_4svId
     g_2sv_20.cno = r_2sv_20_3cno
     g_2sv_20.elev = r_2sv_20_4elev
     g_2sv_20.azim = r_2sv_20_4azim
-    g_2sv_20.prRes = (_sent(r_2sv_20_5prRes * 0.1) if n_sv > 20 else _ABSENT)
+    g_2sv_20.prRes = v_2sv_20_5prRes
     g_2sv_20.qualityInd = r_2sv_20_10qualityInd
-    g_2sv_20.svUsed = (_sent(r_2sv_20_6svUsed == 1) if n_sv > 20 else _ABSENT)
+    g_2sv_20.svUsed = v_2sv_20_6svUsed
     g_2sv_20.health = r_2sv_20_6health
-    g_2sv_20.diffCorr = (_sent(r_2sv_20_8diffCorr == 1) if n_sv > 20 else _ABSENT)
-    g_2sv_20.smoothed = (_sent(r_2sv_20_8smoothed == 1) if n_sv > 20 else _ABSENT)
+    g_2sv_20.diffCorr = v_2sv_20_8diffCorr
+    g_2sv_20.smoothed = v_2sv_20_8smoothed
     g_2sv_20.orbitSource = r_2sv_20_11orbitSource
-    g_2sv_20.ephAvail = (_sent(r_2sv_20_8ephAvail == 1) if n_sv > 20 else _ABSENT)
-    g_2sv_20.almAvail = (_sent(r_2sv_20_8almAvail == 1) if n_sv > 20 else _ABSENT)
-    g_2sv_20.anoAvail = (_sent(r_2sv_20_8anoAvail == 1) if n_sv > 20 else _ABSENT)
-    g_2sv_20.aopAvail = (_sent(r_2sv_20_8aopAvail == 1) if n_sv > 20 else _ABSENT)
+    g_2sv_20.ephAvail = v_2sv_20_8ephAvail
+    g_2sv_20.almAvail = v_2sv_20_8almAvail
+    g_2sv_20.anoAvail = v_2sv_20_8anoAvail
+    g_2sv_20.aopAvail = v_2sv_20_8aopAvail
     g_2sv_20.reserved13 = r_2sv_20_10reserved13
-    g_2sv_20.sbasCorrUsed = (_sent(r_2sv_20_12sbasCorrUsed == 1) if n_sv > 20 else _ABSENT)
-    g_2sv_20.rtcmCorrUsed = (_sent(r_2sv_20_12rtcmCorrUsed == 1) if n_sv > 20 else _ABSENT)
-    g_2sv_20.slasCorrUsed = (_sent(r_2sv_20_12slasCorrUsed == 1) if n_sv > 20 else _ABSENT)
-    g_2sv_20.spartnCorrUsed = (_sent(r_2sv_20_14spartnCorrUsed == 1) if n_sv > 20 else _ABSENT)
-    g_2sv_20.prCorrUsed = (_sent(r_2sv_20_10prCorrUsed == 1) if n_sv > 20 else _ABSENT)
-    g_2sv_20.crCorrUsed = (_sent(r_2sv_20_10crCorrUsed == 1) if n_sv > 20 else _ABSENT)
-    g_2sv_20.doCorrUsed = (_sent(r_2sv_20_10doCorrUsed == 1) if n_sv > 20 else _ABSENT)
-    g_2sv_20.clasCorrUsed = (_sent(r_2sv_20_12clasCorrUsed == 1) if n_sv > 20 else _ABSENT)
-    g_2sv_20.lppCorrUsed = (_sent(r_2sv_20_11lppCorrUsed == 1) if n_sv > 20 else _ABSENT)
-    g_2sv_20.hasCorrUsed = (_sent(r_2sv_20_11hasCorrUsed == 1) if n_sv > 20 else _ABSENT)
+    g_2sv_20.sbasCorrUsed = v_2sv_20_12sbasCorrUsed
+    g_2sv_20.rtcmCorrUsed = v_2sv_20_12rtcmCorrUsed
+    g_2sv_20.slasCorrUsed = v_2sv_20_12slasCorrUsed
+    g_2sv_20.spartnCorrUsed = v_2sv_20_14spartnCorrUsed
+    g_2sv_20.prCorrUsed = v_2sv_20_10prCorrUsed
+    g_2sv_20.crCorrUsed = v_2sv_20_10crCorrUsed
+    g_2sv_20.doCorrUsed = v_2sv_20_10doCorrUsed
+    g_2sv_20.clasCorrUsed = v_2sv_20_12clasCorrUsed
+    g_2sv_20.lppCorrUsed = v_2sv_20_11lppCorrUsed
+    g_2sv_20.hasCorrUsed = v_2sv_20_11hasCorrUsed
     g_2sv_21 = _object_new(NavSatSv)
     g_2sv_21.gnssId = r_2sv_21_6gnssId
     g_2sv_21.svId = r_2sv_21_4svId
     g_2sv_21.cno = r_2sv_21_3cno
     g_2sv_21.elev = r_2sv_21_4elev
     g_2sv_21.azim = r_2sv_21_4azim
-    g_2sv_21.prRes = (_sent(r_2sv_21_5prRes * 0.1) if n_sv > 21 else _ABSENT)
+    g_2sv_21.prRes = v_2sv_21_5prRes
     g_2sv_21.qualityInd = r_2sv_21_10qualityInd
-    g_2sv_21.svUsed = (_sent(r_2sv_21_6svUsed == 1) if n_sv > 21 else _ABSENT)
+    g_2sv_21.svUsed = v_2sv_21_6svUsed
     g_2sv_21.health = r_2sv_21_6health
-    g_2sv_21.diffCorr = (_sent(r_2sv_21_8diffCorr == 1) if n_sv > 21 else _ABSENT)
-    g_2sv_21.smoothed = (_sent(r_2sv_21_8smoothed == 1) if n_sv > 21 else _ABSENT)
+    g_2sv_21.diffCorr = v_2sv_21_8diffCorr
+    g_2sv_21.smoothed = v_2sv_21_8smoothed
     g_2sv_21.orbitSource = r_2sv_21_11orbitSource
-    g_2sv_21.ephAvail = (_sent(r_2sv_21_8ephAvail == 1) if n_sv > 21 else _ABSENT)
-    g_2sv_21.almAvail = (_sent(r_2sv_21_8almAvail == 1) if n_sv > 21 else _ABSENT)
-    g_2sv_21.anoAvail = (_sent(r_2sv_21_8anoAvail == 1) if n_sv > 21 else _ABSENT)
-    g_2sv_21.aopAvail = (_sent(r_2sv_21_8aopAvail == 1) if n_sv > 21 else _ABSENT)
+    g_2sv_21.ephAvail = v_2sv_21_8ephAvail
+    g_2sv_21.almAvail = v_2sv_21_8almAvail
+    g_2sv_21.anoAvail = v_2sv_21_8anoAvail
+    g_2sv_21.aopAvail = v_2sv_21_8aopAvail
     g_2sv_21.reserved13 = r_2sv_21_10reserved13
-    g_2sv_21.sbasCorrUsed = (_sent(r_2sv_21_12sbasCorrUsed == 1) if n_sv > 21 else _ABSENT)
-    g_2sv_21.rtcmCorrUsed = (_sent(r_2sv_21_12rtcmCorrUsed == 1) if n_sv > 21 else _ABSENT)
-    g_2sv_21.slasCorrUsed = (_sent(r_2sv_21_12slasCorrUsed == 1) if n_sv > 21 else _ABSENT)
-    g_2sv_21.spartnCorrUsed = (_sent(r_2sv_21_14spartnCorrUsed == 1) if n_sv > 21 else _ABSENT)
-    g_2sv_21.prCorrUsed = (_sent(r_2sv_21_10prCorrUsed == 1) if n_sv > 21 else _ABSENT)
-    g_2sv_21.crCorrUsed = (_sent(r_2sv_21_10crCorrUsed == 1) if n_sv > 21 else _ABSENT)
-    g_2sv_21.doCorrUsed = (_sent(r_2sv_21_10doCorrUsed == 1) if n_sv > 21 else _ABSENT)
-    g_2sv_21.clasCorrUsed = (_sent(r_2sv_21_12clasCorrUsed == 1) if n_sv > 21 else _ABSENT)
-    g_2sv_21.lppCorrUsed = (_sent(r_2sv_21_11lppCorrUsed == 1) if n_sv > 21 else _ABSENT)
-    g_2sv_21.hasCorrUsed = (_sent(r_2sv_21_11hasCorrUsed == 1) if n_sv > 21 else _ABSENT)
+    g_2sv_21.sbasCorrUsed = v_2sv_21_12sbasCorrUsed
+    g_2sv_21.rtcmCorrUsed = v_2sv_21_12rtcmCorrUsed
+    g_2sv_21.slasCorrUsed = v_2sv_21_12slasCorrUsed
+    g_2sv_21.spartnCorrUsed = v_2sv_21_14spartnCorrUsed
+    g_2sv_21.prCorrUsed = v_2sv_21_10prCorrUsed
+    g_2sv_21.crCorrUsed = v_2sv_21_10crCorrUsed
+    g_2sv_21.doCorrUsed = v_2sv_21_10doCorrUsed
+    g_2sv_21.clasCorrUsed = v_2sv_21_12clasCorrUsed
+    g_2sv_21.lppCorrUsed = v_2sv_21_11lppCorrUsed
+    g_2sv_21.hasCorrUsed = v_2sv_21_11hasCorrUsed
     g_2sv_22 = _object_new(NavSatSv)
     g_2sv_22.gnssId = r_2sv_22_6gnssId
     g_2sv_22.svId = r_2sv_22_4svId
     g_2sv_22.cno = r_2sv_22_3cno
     g_2sv_22.elev = r_2sv_22_4elev
     g_2sv_22.azim = r_2sv_22_4azim
-    g_2sv_22.prRes = (_sent(r_2sv_22_5prRes * 0.1) if n_sv > 22 else _ABSENT)
+    g_2sv_22.prRes = v_2sv_22_5prRes
     g_2sv_22.qualityInd = r_2sv_22_10qualityInd
-    g_2sv_22.svUsed = (_sent(r_2sv_22_6svUsed == 1) if n_sv > 22 else _ABSENT)
+    g_2sv_22.svUsed = v_2sv_22_6svUsed
     g_2sv_22.health = r_2sv_22_6health
-    g_2sv_22.diffCorr = (_sent(r_2sv_22_8diffCorr == 1) if n_sv > 22 else _ABSENT)
-    g_2sv_22.smoothed = (_sent(r_2sv_22_8smoothed == 1) if n_sv > 22 else _ABSENT)
+    g_2sv_22.diffCorr = v_2sv_22_8diffCorr
+    g_2sv_22.smoothed = v_2sv_22_8smoothed
     g_2sv_22.orbitSource = r_2sv_22_11orbitSource
-    g_2sv_22.ephAvail = (_sent(r_2sv_22_8ephAvail == 1) if n_sv > 22 else _ABSENT)
-    g_2sv_22.almAvail = (_sent(r_2sv_22_8almAvail == 1) if n_sv > 22 else _ABSENT)
-    g_2sv_22.anoAvail = (_sent(r_2sv_22_8anoAvail == 1) if n_sv > 22 else _ABSENT)
-    g_2sv_22.aopAvail = (_sent(r_2sv_22_8aopAvail == 1) if n_sv > 22 else _ABSENT)
+    g_2sv_22.ephAvail = v_2sv_22_8ephAvail
+    g_2sv_22.almAvail = v_2sv_22_8almAvail
+    g_2sv_22.anoAvail = v_2sv_22_8anoAvail
+    g_2sv_22.aopAvail = v_2sv_22_8aopAvail
     g_2sv_22.reserved13 = r_2sv_22_10reserved13
-    g_2sv_22.sbasCorrUsed = (_sent(r_2sv_22_12sbasCorrUsed == 1) if n_sv > 22 else _ABSENT)
-    g_2sv_22.rtcmCorrUsed = (_sent(r_2sv_22_12rtcmCorrUsed == 1) if n_sv > 22 else _ABSENT)
-    g_2sv_22.slasCorrUsed = (_sent(r_2sv_22_12slasCorrUsed == 1) if n_sv > 22 else _ABSENT)
-    g_2sv_22.spartnCorrUsed = (_sent(r_2sv_22_14spartnCorrUsed == 1) if n_sv > 22 else _ABSENT)
-    g_2sv_22.prCorrUsed = (_sent(r_2sv_22_10prCorrUsed == 1) if n_sv > 22 else _ABSENT)
-    g_2sv_22.crCorrUsed = (_sent(r_2sv_22_10crCorrUsed == 1) if n_sv > 22 else _ABSENT)
-    g_2sv_22.doCorrUsed = (_sent(r_2sv_22_10doCorrUsed == 1) if n_sv > 22 else _ABSENT)
-    g_2sv_22.clasCorrUsed = (_sent(r_2sv_22_12clasCorrUsed == 1) if n_sv > 22 else _ABSENT)
-    g_2sv_22.lppCorrUsed = (_sent(r_2sv_22_11lppCorrUsed == 1) if n_sv > 22 else _ABSENT)
-    g_2sv_22.hasCorrUsed = (_sent(r_2sv_22_11hasCorrUsed == 1) if n_sv > 22 else _ABSENT)
+    g_2sv_22.sbasCorrUsed = v_2sv_22_12sbasCorrUsed
+    g_2sv_22.rtcmCorrUsed = v_2sv_22_12rtcmCorrUsed
+    g_2sv_22.slasCorrUsed = v_2sv_22_12slasCorrUsed
+    g_2sv_22.spartnCorrUsed = v_2sv_22_14spartnCorrUsed
+    g_2sv_22.prCorrUsed = v_2sv_22_10prCorrUsed
+    g_2sv_22.crCorrUsed = v_2sv_22_10crCorrUsed
+    g_2sv_22.doCorrUsed = v_2sv_22_10doCorrUsed
+    g_2sv_22.clasCorrUsed = v_2sv_22_12clasCorrUsed
+    g_2sv_22.lppCorrUsed = v_2sv_22_11lppCorrUsed
+    g_2sv_22.hasCorrUsed = v_2sv_22_11hasCorrUsed
     g_2sv_23 = _object_new(NavSatSv)
     g_2sv_23.gnssId = r_2sv_23_6gnssId
     g_2sv_23.svId = r_2sv_23_4svId
     g_2sv_23.cno = r_2sv_23_3cno
     g_2sv_23.elev = r_2sv_23_4elev
     g_2sv_23.azim = r_2sv_23_4azim
-    g_2sv_23.prRes = (_sent(r_2sv_23_5prRes * 0.1) if n_sv > 23 else _ABSENT)
+    g_2sv_23.prRes = v_2sv_23_5prRes
     g_2sv_23.qualityInd = r_2sv_23_10qualityInd
-    g_2sv_23.svUsed = (_sent(r_2sv_23_6svUsed == 1) if n_sv > 23 else _ABSENT)
+    g_2sv_23.svUsed = v_2sv_23_6svUsed
     g_2sv_23.health = r_2sv_23_6health
-    g_2sv_23.diffCorr = (_sent(r_2sv_23_8diffCorr == 1) if n_sv > 23 else _ABSENT)
-    g_2sv_23.smoothed = (_sent(r_2sv_23_8smoothed == 1) if n_sv > 23 else _ABSENT)
+    g_2sv_23.diffCorr = v_2sv_23_8diffCorr
+    g_2sv_23.smoothed = v_2sv_23_8smoothed
     g_2sv_23.orbitSource = r_2sv_23_11orbitSource
-    g_2sv_23.ephAvail = (_sent(r_2sv_23_8ephAvail == 1) if n_sv > 23 else _ABSENT)
-    g_2sv_23.almAvail = (_sent(r_2sv_23_8almAvail == 1) if n_sv > 23 else _ABSENT)
-    g_2sv_23.anoAvail = (_sent(r_2sv_23_8anoAvail == 1) if n_sv > 23 else _ABSENT)
-    g_2sv_23.aopAvail = (_sent(r_2sv_23_8aopAvail == 1) if n_sv > 23 else _ABSENT)
+    g_2sv_23.ephAvail = v_2sv_23_8ephAvail
+    g_2sv_23.almAvail = v_2sv_23_8almAvail
+    g_2sv_23.anoAvail = v_2sv_23_8anoAvail
+    g_2sv_23.aopAvail = v_2sv_23_8aopAvail
     g_2sv_23.reserved13 = r_2sv_23_10reserved13
-    g_2sv_23.sbasCorrUsed = (_sent(r_2sv_23_12sbasCorrUsed == 1) if n_sv > 23 else _ABSENT)
-    g_2sv_23.rtcmCorrUsed = (_sent(r_2sv_23_12rtcmCorrUsed == 1) if n_sv > 23 else _ABSENT)
-    g_2sv_23.slasCorrUsed = (_sent(r_2sv_23_12slasCorrUsed == 1) if n_sv > 23 else _ABSENT)
-    g_2sv_23.spartnCorrUsed = (_sent(r_2sv_23_14spartnCorrUsed == 1) if n_sv > 23 else _ABSENT)
-    g_2sv_23.prCorrUsed = (_sent(r_2sv_23_10prCorrUsed == 1) if n_sv > 23 else _ABSENT)
-    g_2sv_23.crCorrUsed = (_sent(r_2sv_23_10crCorrUsed == 1) if n_sv > 23 else _ABSENT)
-    g_2sv_23.doCorrUsed = (_sent(r_2sv_23_10doCorrUsed == 1) if n_sv > 23 else _ABSENT)
-    g_2sv_23.clasCorrUsed = (_sent(r_2sv_23_12clasCorrUsed == 1) if n_sv > 23 else _ABSENT)
-    g_2sv_23.lppCorrUsed = (_sent(r_2sv_23_11lppCorrUsed == 1) if n_sv > 23 else _ABSENT)
-    g_2sv_23.hasCorrUsed = (_sent(r_2sv_23_11hasCorrUsed == 1) if n_sv > 23 else _ABSENT)
+    g_2sv_23.sbasCorrUsed = v_2sv_23_12sbasCorrUsed
+    g_2sv_23.rtcmCorrUsed = v_2sv_23_12rtcmCorrUsed
+    g_2sv_23.slasCorrUsed = v_2sv_23_12slasCorrUsed
+    g_2sv_23.spartnCorrUsed = v_2sv_23_14spartnCorrUsed
+    g_2sv_23.prCorrUsed = v_2sv_23_10prCorrUsed
+    g_2sv_23.crCorrUsed = v_2sv_23_10crCorrUsed
+    g_2sv_23.doCorrUsed = v_2sv_23_10doCorrUsed
+    g_2sv_23.clasCorrUsed = v_2sv_23_12clasCorrUsed
+    g_2sv_23.lppCorrUsed = v_2sv_23_11lppCorrUsed
+    g_2sv_23.hasCorrUsed = v_2sv_23_11hasCorrUsed
     g_2sv_24 = _object_new(NavSatSv)
     g_2sv_24.gnssId = r_2sv_24_6gnssId
     g_2sv_24.svId = r_2sv_24_4svId
     g_2sv_24.cno = r_2sv_24_3cno
     g_2sv_24.elev = r_2sv_24_4elev
     g_2sv_24.azim = r_2sv_24_4azim
-    g_2sv_24.prRes = (_sent(r_2sv_24_5prRes * 0.1) if n_sv > 24 else _ABSENT)
+    g_2sv_24.prRes = v_2sv_24_5prRes
     g_2sv_24.qualityInd = r_2sv_24_10qualityInd
-    g_2sv_24.svUsed = (_sent(r_2sv_24_6svUsed == 1) if n_sv > 24 else _ABSENT)
+    g_2sv_24.svUsed = v_2sv_24_6svUsed
     g_2sv_24.health = r_2sv_24_6health
-    g_2sv_24.diffCorr = (_sent(r_2sv_24_8diffCorr == 1) if n_sv > 24 else _ABSENT)
-    g_2sv_24.smoothed = (_sent(r_2sv_24_8smoothed == 1) if n_sv > 24 else _ABSENT)
+    g_2sv_24.diffCorr = v_2sv_24_8diffCorr
+    g_2sv_24.smoothed = v_2sv_24_8smoothed
     g_2sv_24.orbitSource = r_2sv_24_11orbitSource
-    g_2sv_24.ephAvail = (_sent(r_2sv_24_8ephAvail == 1) if n_sv > 24 else _ABSENT)
-    g_2sv_24.almAvail = (_sent(r_2sv_24_8almAvail == 1) if n_sv > 24 else _ABSENT)
-    g_2sv_24.anoAvail = (_sent(r_2sv_24_8anoAvail == 1) if n_sv > 24 else _ABSENT)
-    g_2sv_24.aopAvail = (_sent(r_2sv_24_8aopAvail == 1) if n_sv > 24 else _ABSENT)
+    g_2sv_24.ephAvail = v_2sv_24_8ephAvail
+    g_2sv_24.almAvail = v_2sv_24_8almAvail
+    g_2sv_24.anoAvail = v_2sv_24_8anoAvail
+    g_2sv_24.aopAvail = v_2sv_24_8aopAvail
     g_2sv_24.reserved13 = r_2sv_24_10reserved13
-    g_2sv_24.sbasCorrUsed = (_sent(r_2sv_24_12sbasCorrUsed == 1) if n_sv > 24 else _ABSENT)
-    g_2sv_24.rtcmCorrUsed = (_sent(r_2sv_24_12rtcmCorrUsed == 1) if n_sv > 24 else _ABSENT)
-    g_2sv_24.slasCorrUsed = (_sent(r_2sv_24_12slasCorrUsed == 1) if n_sv > 24 else _ABSENT)
-    g_2sv_24.spartnCorrUsed = (_sent(r_2sv_24_14spartnCorrUsed == 1) if n_sv > 24 else _ABSENT)
-    g_2sv_24.prCorrUsed = (_sent(r_2sv_24_10prCorrUsed == 1) if n_sv > 24 else _ABSENT)
-    g_2sv_24.crCorrUsed = (_sent(r_2sv_24_10crCorrUsed == 1) if n_sv > 24 else _ABSENT)
-    g_2sv_24.doCorrUsed = (_sent(r_2sv_24_10doCorrUsed == 1) if n_sv > 24 else _ABSENT)
-    g_2sv_24.clasCorrUsed = (_sent(r_2sv_24_12clasCorrUsed == 1) if n_sv > 24 else _ABSENT)
-    g_2sv_24.lppCorrUsed = (_sent(r_2sv_24_11lppCorrUsed == 1) if n_sv > 24 else _ABSENT)
-    g_2sv_24.hasCorrUsed = (_sent(r_2sv_24_11hasCorrUsed == 1) if n_sv > 24 else _ABSENT)
+    g_2sv_24.sbasCorrUsed = v_2sv_24_12sbasCorrUsed
+    g_2sv_24.rtcmCorrUsed = v_2sv_24_12rtcmCorrUsed
+    g_2sv_24.slasCorrUsed = v_2sv_24_12slasCorrUsed
+    g_2sv_24.spartnCorrUsed = v_2sv_24_14spartnCorrUsed
+    g_2sv_24.prCorrUsed = v_2sv_24_10prCorrUsed
+    g_2sv_24.crCorrUsed = v_2sv_24_10crCorrUsed
+    g_2sv_24.doCorrUsed = v_2sv_24_10doCorrUsed
+    g_2sv_24.clasCorrUsed = v_2sv_24_12clasCorrUsed
+    g_2sv_24.lppCorrUsed = v_2sv_24_11lppCorrUsed
+    g_2sv_24.hasCorrUsed = v_2sv_24_11hasCorrUsed
     g_2sv_25 = _object_new(NavSatSv)
     g_2sv_25.gnssId = r_2sv_25_6gnssId
     g_2sv_25.svId = r_2sv_25_4svId
     g_2sv_25.cno = r_2sv_25_3cno
     g_2sv_25.elev = r_2sv_25_4elev
     g_2sv_25.azim = r_2sv_25_4azim
-    g_2sv_25.prRes = (_sent(r_2sv_25_5prRes * 0.1) if n_sv > 25 else _ABSENT)
+    g_2sv_25.prRes = v_2sv_25_5prRes
     g_2sv_25.qualityInd = r_2sv_25_10qualityInd
-    g_2sv_25.svUsed = (_sent(r_2sv_25_6svUsed == 1) if n_sv > 25 else _ABSENT)
+    g_2sv_25.svUsed = v_2sv_25_6svUsed
     g_2sv_25.health = r_2sv_25_6health
-    g_2sv_25.diffCorr = (_sent(r_2sv_25_8diffCorr == 1) if n_sv > 25 else _ABSENT)
-    g_2sv_25.smoothed = (_sent(r_2sv_25_8smoothed == 1) if n_sv > 25 else _ABSENT)
+    g_2sv_25.diffCorr = v_2sv_25_8diffCorr
+    g_2sv_25.smoothed = v_2sv_25_8smoothed
     g_2sv_25.orbitSource = r_2sv_25_11orbitSource
-    g_2sv_25.ephAvail = (_sent(r_2sv_25_8ephAvail == 1) if n_sv > 25 else _ABSENT)
-    g_2sv_25.almAvail = (_sent(r_2sv_25_8almAvail == 1) if n_sv > 25 else _ABSENT)
-    g_2sv_25.anoAvail = (_sent(r_2sv_25_8anoAvail == 1) if n_sv > 25 else _ABSENT)
-    g_2sv_25.aopAvail = (_sent(r_2sv_25_8aopAvail == 1) if n_sv > 25 else _ABSENT)
+    g_2sv_25.ephAvail = v_2sv_25_8ephAvail
+    g_2sv_25.almAvail = v_2sv_25_8almAvail
+    g_2sv_25.anoAvail = v_2sv_25_8anoAvail
+    g_2sv_25.aopAvail = v_2sv_25_8aopAvail
     g_2sv_25.reserved13 = r_2sv_25_10reserved13
-    g_2sv_25.sbasCorrUsed = (_sent(r_2sv_25_12sbasCorrUsed == 1) if n_sv > 25 else _ABSENT)
-    g_2sv_25.rtcmCorrUsed = (_sent(r_2sv_25_12rtcmCorrUsed == 1) if n_sv > 25 else _ABSENT)
-    g_2sv_25.slasCorrUsed = (_sent(r_2sv_25_12slasCorrUsed == 1) if n_sv > 25 else _ABSENT)
-    g_2sv_25.spartnCorrUsed = (_sent(r_2sv_25_14spartnCorrUsed == 1) if n_sv > 25 else _ABSENT)
-    g_2sv_25.prCorrUsed = (_sent(r_2sv_25_10prCorrUsed == 1) if n_sv > 25 else _ABSENT)
-    g_2sv_25.crCorrUsed = (_sent(r_2sv_25_10crCorrUsed == 1) if n_sv > 25 else _ABSENT)
-    g_2sv_25.doCorrUsed = (_sent(r_2sv_25_10doCorrUsed == 1) if n_sv > 25 else _ABSENT)
-    g_2sv_25.clasCorrUsed = (_sent(r_2sv_25_12clasCorrUsed == 1) if n_sv > 25 else _ABSENT)
-    g_2sv_25.lppCorrUsed = (_sent(r_2sv_25_11lppCorrUsed == 1) if n_sv > 25 else _ABSENT)
-    g_2sv_25.hasCorrUsed = (_sent(r_2sv_25_11hasCorrUsed == 1) if n_sv > 25 else _ABSENT)
+    g_2sv_25.sbasCorrUsed = v_2sv_25_12sbasCorrUsed
+    g_2sv_25.rtcmCorrUsed = v_2sv_25_12rtcmCorrUsed
+    g_2sv_25.slasCorrUsed = v_2sv_25_12slasCorrUsed
+    g_2sv_25.spartnCorrUsed = v_2sv_25_14spartnCorrUsed
+    g_2sv_25.prCorrUsed = v_2sv_25_10prCorrUsed
+    g_2sv_25.crCorrUsed = v_2sv_25_10crCorrUsed
+    g_2sv_25.doCorrUsed = v_2sv_25_10doCorrUsed
+    g_2sv_25.clasCorrUsed = v_2sv_25_12clasCorrUsed
+    g_2sv_25.lppCorrUsed = v_2sv_25_11lppCorrUsed
+    g_2sv_25.hasCorrUsed = v_2sv_25_11hasCorrUsed
     g_2sv_26 = _object_new(NavSatSv)
     g_2sv_26.gnssId = r_2sv_26_6gnssId
     g_2sv_26.svId = r_2sv_26_4svId
     g_2sv_26.cno = r_2sv_26_3cno
     g_2sv_26.elev = r_2sv_26_4elev
     g_2sv_26.azim = r_2sv_26_4azim
-    g_2sv_26.prRes = (_sent(r_2sv_26_5prRes * 0.1) if n_sv > 26 else _ABSENT)
+    g_2sv_26.prRes = v_2sv_26_5prRes
     g_2sv_26.qualityInd = r_2sv_26_10qualityInd
-    g_2sv_26.svUsed = (_sent(r_2sv_26_6svUsed == 1) if n_sv > 26 else _ABSENT)
+    g_2sv_26.svUsed = v_2sv_26_6svUsed
     g_2sv_26.health = r_2sv_26_6health
-    g_2sv_26.diffCorr = (_sent(r_2sv_26_8diffCorr == 1) if n_sv > 26 else _ABSENT)
-    g_2sv_26.smoothed = (_sent(r_2sv_26_8smoothed == 1) if n_sv > 26 else _ABSENT)
+    g_2sv_26.diffCorr = v_2sv_26_8diffCorr
+    g_2sv_26.smoothed = v_2sv_26_8smoothed
     g_2sv_26.orbitSource = r_2sv_26_11orbitSource
-    g_2sv_26.ephAvail = (_sent(r_2sv_26_8ephAvail == 1) if n_sv > 26 else _ABSENT)
-    g_2sv_26.almAvail = (_sent(r_2sv_26_8almAvail == 1) if n_sv > 26 else _ABSENT)
-    g_2sv_26.anoAvail = (_sent(r_2sv_26_8anoAvail == 1) if n_sv > 26 else _ABSENT)
-    g_2sv_26.aopAvail = (_sent(r_2sv_26_8aopAvail == 1) if n_sv > 26 else _ABSENT)
+    g_2sv_26.ephAvail = v_2sv_26_8ephAvail
+    g_2sv_26.almAvail = v_2sv_26_8almAvail
+    g_2sv_26.anoAvail = v_2sv_26_8anoAvail
+    g_2sv_26.aopAvail = v_2sv_26_8aopAvail
     g_2sv_26.reserved13 = r_2sv_26_10reserved13
-    g_2sv_26.sbasCorrUsed = (_sent(r_2sv_26_12sbasCorrUsed == 1) if n_sv > 26 else _ABSENT)
-    g_2sv_26.rtcmCorrUsed = (_sent(r_2sv_26_12rtcmCorrUsed == 1) if n_sv > 26 else _ABSENT)
-    g_2sv_26.slasCorrUsed = (_sent(r_2sv_26_12slasCorrUsed == 1) if n_sv > 26 else _ABSENT)
-    g_2sv_26.spartnCorrUsed = (_sent(r_2sv_26_14spartnCorrUsed == 1) if n_sv > 26 else _ABSENT)
-    g_2sv_26.prCorrUsed = (_sent(r_2sv_26_10prCorrUsed == 1) if n_sv > 26 else _ABSENT)
-    g_2sv_26.crCorrUsed = (_sent(r_2sv_26_10crCorrUsed == 1) if n_sv > 26 else _ABSENT)
-    g_2sv_26.doCorrUsed = (_sent(r_2sv_26_10doCorrUsed == 1) if n_sv > 26 else _ABSENT)
-    g_2sv_26.clasCorrUsed = (_sent(r_2sv_26_12clasCorrUsed == 1) if n_sv > 26 else _ABSENT)
-    g_2sv_26.lppCorrUsed = (_sent(r_2sv_26_11lppCorrUsed == 1) if n_sv > 26 else _ABSENT)
-    g_2sv_26.hasCorrUsed = (_sent(r_2sv_26_11hasCorrUsed == 1) if n_sv > 26 else _ABSENT)
+    g_2sv_26.sbasCorrUsed = v_2sv_26_12sbasCorrUsed
+    g_2sv_26.rtcmCorrUsed = v_2sv_26_12rtcmCorrUsed
+    g_2sv_26.slasCorrUsed = v_2sv_26_12slasCorrUsed
+    g_2sv_26.spartnCorrUsed = v_2sv_26_14spartnCorrUsed
+    g_2sv_26.prCorrUsed = v_2sv_26_10prCorrUsed
+    g_2sv_26.crCorrUsed = v_2sv_26_10crCorrUsed
+    g_2sv_26.doCorrUsed = v_2sv_26_10doCorrUsed
+    g_2sv_26.clasCorrUsed = v_2sv_26_12clasCorrUsed
+    g_2sv_26.lppCorrUsed = v_2sv_26_11lppCorrUsed
+    g_2sv_26.hasCorrUsed = v_2sv_26_11hasCorrUsed
     g_2sv_27 = _object_new(NavSatSv)
     g_2sv_27.gnssId = r_2sv_27_6gnssId
     g_2sv_27.svId = r_2sv_27_4svId
     g_2sv_27.cno = r_2sv_27_3cno
     g_2sv_27.elev = r_2sv_27_4elev
     g_2sv_27.azim = r_2sv_27_4azim
-    g_2sv_27.prRes = (_sent(r_2sv_27_5prRes * 0.1) if n_sv > 27 else _ABSENT)
+    g_2sv_27.prRes = v_2sv_27_5prRes
     g_2sv_27.qualityInd = r_2sv_27_10qualityInd
-    g_2sv_27.svUsed = (_sent(r_2sv_27_6svUsed == 1) if n_sv > 27 else _ABSENT)
+    g_2sv_27.svUsed = v_2sv_27_6svUsed
     g_2sv_27.health = r_2sv_27_6health
-    g_2sv_27.diffCorr = (_sent(r_2sv_27_8diffCorr == 1) if n_sv > 27 else _ABSENT)
-    g_2sv_27.smoothed = (_sent(r_2sv_27_8smoothed == 1) if n_sv > 27 else _ABSENT)
+    g_2sv_27.diffCorr = v_2sv_27_8diffCorr
+    g_2sv_27.smoothed = v_2sv_27_8smoothed
     g_2sv_27.orbitSource = r_2sv_27_11orbitSource
-    g_2sv_27.ephAvail = (_sent(r_2sv_27_8ephAvail == 1) if n_sv > 27 else _ABSENT)
-    g_2sv_27.almAvail = (_sent(r_2sv_27_8almAvail == 1) if n_sv > 27 else _ABSENT)
-    g_2sv_27.anoAvail = (_sent(r_2sv_27_8anoAvail == 1) if n_sv > 27 else _ABSENT)
-    g_2sv_27.aopAvail = (_sent(r_2sv_27_8aopAvail == 1) if n_sv > 27 else _ABSENT)
+    g_2sv_27.ephAvail = v_2sv_27_8ephAvail
+    g_2sv_27.almAvail = v_2sv_27_8almAvail
+    g_2sv_27.anoAvail = v_2sv_27_8anoAvail
+    g_2sv_27.aopAvail = v_2sv_27_8aopAvail
     g_2sv_27.reserved13 = r_2sv_27_10reserved13
-    g_2sv_27.sbasCorrUsed = (_sent(r_2sv_27_12sbasCorrUsed == 1) if n_sv > 27 else _ABSENT)
-    g_2sv_27.rtcmCorrUsed = (_sent(r_2sv_27_12rtcmCorrUsed == 1) if n_sv > 27 else _ABSENT)
-    g_2sv_27.slasCorrUsed = (_sent(r_2sv_27_12slasCorrUsed == 1) if n_sv > 27 else _ABSENT)
-    g_2sv_27.spartnCorrUsed = (_sent(r_2sv_27_14spartnCorrUsed == 1) if n_sv > 27 else _ABSENT)
-    g_2sv_27.prCorrUsed = (_sent(r_2sv_27_10prCorrUsed == 1) if n_sv > 27 else _ABSENT)
-    g_2sv_27.crCorrUsed = (_sent(r_2sv_27_10crCorrUsed == 1) if n_sv > 27 else _ABSENT)
-    g_2sv_27.doCorrUsed = (_sent(r_2sv_27_10doCorrUsed == 1) if n_sv > 27 else _ABSENT)
-    g_2sv_27.clasCorrUsed = (_sent(r_2sv_27_12clasCorrUsed == 1) if n_sv > 27 else _ABSENT)
-    g_2sv_27.lppCorrUsed = (_sent(r_2sv_27_11lppCorrUsed == 1) if n_sv > 27 else _ABSENT)
-    g_2sv_27.hasCorrUsed = (_sent(r_2sv_27_11hasCorrUsed == 1) if n_sv > 27 else _ABSENT)
+    g_2sv_27.sbasCorrUsed = v_2sv_27_12sbasCorrUsed
+    g_2sv_27.rtcmCorrUsed = v_2sv_27_12rtcmCorrUsed
+    g_2sv_27.slasCorrUsed = v_2sv_27_12slasCorrUsed
+    g_2sv_27.spartnCorrUsed = v_2sv_27_14spartnCorrUsed
+    g_2sv_27.prCorrUsed = v_2sv_27_10prCorrUsed
+    g_2sv_27.crCorrUsed = v_2sv_27_10crCorrUsed
+    g_2sv_27.doCorrUsed = v_2sv_27_10doCorrUsed
+    g_2sv_27.clasCorrUsed = v_2sv_27_12clasCorrUsed
+    g_2sv_27.lppCorrUsed = v_2sv_27_11lppCorrUsed
+    g_2sv_27.hasCorrUsed = v_2sv_27_11hasCorrUsed
     g_2sv_28 = _object_new(NavSatSv)
     g_2sv_28.gnssId = r_2sv_28_6gnssId
     g_2sv_28.svId = r_2sv_28_4svId
     g_2sv_28.cno = r_2sv_28_3cno
     g_2sv_28.elev = r_2sv_28_4elev
     g_2sv_28.azim = r_2sv_28_4azim
-    g_2sv_28.prRes = (_sent(r_2sv_28_5prRes * 0.1) if n_sv > 28 else _ABSENT)
+    g_2sv_28.prRes = v_2sv_28_5prRes
     g_2sv_28.qualityInd = r_2sv_28_10qualityInd
-    g_2sv_28.svUsed = (_sent(r_2sv_28_6svUsed == 1) if n_sv > 28 else _ABSENT)
+    g_2sv_28.svUsed = v_2sv_28_6svUsed
     g_2sv_28.health = r_2sv_28_6health
-    g_2sv_28.diffCorr = (_sent(r_2sv_28_8diffCorr == 1) if n_sv > 28 else _ABSENT)
-    g_2sv_28.smoothed = (_sent(r_2sv_28_8smoothed == 1) if n_sv > 28 else _ABSENT)
+    g_2sv_28.diffCorr = v_2sv_28_8diffCorr
+    g_2sv_28.smoothed = v_2sv_28_8smoothed
     g_2sv_28.orbitSource = r_2sv_28_11orbitSource
-    g_2sv_28.ephAvail = (_sent(r_2sv_28_8ephAvail == 1) if n_sv > 28 else _ABSENT)
-    g_2sv_28.almAvail = (_sent(r_2sv_28_8almAvail == 1) if n_sv > 28 else _ABSENT)
-    g_2sv_28.anoAvail = (_sent(r_2sv_28_8anoAvail == 1) if n_sv > 28 else _ABSENT)
-    g_2sv_28.aopAvail = (_sent(r_2sv_28_8aopAvail == 1) if n_sv > 28 else _ABSENT)
+    g_2sv_28.ephAvail = v_2sv_28_8ephAvail
+    g_2sv_28.almAvail = v_2sv_28_8almAvail
+    g_2sv_28.anoAvail = v_2sv_28_8anoAvail
+    g_2sv_28.aopAvail = v_2sv_28_8aopAvail
     g_2sv_28.reserved13 = r_2sv_28_10reserved13
-    g_2sv_28.sbasCorrUsed = (_sent(r_2sv_28_12sbasCorrUsed == 1) if n_sv > 28 else _ABSENT)
-    g_2sv_28.rtcmCorrUsed = (_sent(r_2sv_28_12rtcmCorrUsed == 1) if n_sv > 28 else _ABSENT)
-    g_2sv_28.slasCorrUsed = (_sent(r_2sv_28_12slasCorrUsed == 1) if n_sv > 28 else _ABSENT)
-    g_2sv_28.spartnCorrUsed = (_sent(r_2sv_28_14spartnCorrUsed == 1) if n_sv > 28 else _ABSENT)
-    g_2sv_28.prCorrUsed = (_sent(r_2sv_28_10prCorrUsed == 1) if n_sv > 28 else _ABSENT)
-    g_2sv_28.crCorrUsed = (_sent(r_2sv_28_10crCorrUsed == 1) if n_sv > 28 else _ABSENT)
-    g_2sv_28.doCorrUsed = (_sent(r_2sv_28_10doCorrUsed == 1) if n_sv > 28 else _ABSENT)
-    g_2sv_28.clasCorrUsed = (_sent(r_2sv_28_12clasCorrUsed == 1) if n_sv > 28 else _ABSENT)
-    g_2sv_28.lppCorrUsed = (_sent(r_2sv_28_11lppCorrUsed == 1) if n_sv > 28 else _ABSENT)
-    g_2sv_28.hasCorrUsed = (_sent(r_2sv_28_11hasCorrUsed == 1) if n_sv > 28 else _ABSENT)
+    g_2sv_28.sbasCorrUsed = v_2sv_28_12sbasCorrUsed
+    g_2sv_28.rtcmCorrUsed = v_2sv_28_12rtcmCorrUsed
+    g_2sv_28.slasCorrUsed = v_2sv_28_12slasCorrUsed
+    g_2sv_28.spartnCorrUsed = v_2sv_28_14spartnCorrUsed
+    g_2sv_28.prCorrUsed = v_2sv_28_10prCorrUsed
+    g_2sv_28.crCorrUsed = v_2sv_28_10crCorrUsed
+    g_2sv_28.doCorrUsed = v_2sv_28_10doCorrUsed
+    g_2sv_28.clasCorrUsed = v_2sv_28_12clasCorrUsed
+    g_2sv_28.lppCorrUsed = v_2sv_28_11lppCorrUsed
+    g_2sv_28.hasCorrUsed = v_2sv_28_11hasCorrUsed
     g_2sv_29 = _object_new(NavSatSv)
     g_2sv_29.gnssId = r_2sv_29_6gnssId
     g_2sv_29.svId = r_2sv_29_4svId
     g_2sv_29.cno = r_2sv_29_3cno
     g_2sv_29.elev = r_2sv_29_4elev
     g_2sv_29.azim = r_2sv_29_4azim
-    g_2sv_29.prRes = (_sent(r_2sv_29_5prRes * 0.1) if n_sv > 29 else _ABSENT)
+    g_2sv_29.prRes = v_2sv_29_5prRes
     g_2sv_29.qualityInd = r_2sv_29_10qualityInd
-    g_2sv_29.svUsed = (_sent(r_2sv_29_6svUsed == 1) if n_sv > 29 else _ABSENT)
+    g_2sv_29.svUsed = v_2sv_29_6svUsed
     g_2sv_29.health = r_2sv_29_6health
-    g_2sv_29.diffCorr = (_sent(r_2sv_29_8diffCorr == 1) if n_sv > 29 else _ABSENT)
-    g_2sv_29.smoothed = (_sent(r_2sv_29_8smoothed == 1) if n_sv > 29 else _ABSENT)
+    g_2sv_29.diffCorr = v_2sv_29_8diffCorr
+    g_2sv_29.smoothed = v_2sv_29_8smoothed
     g_2sv_29.orbitSource = r_2sv_29_11orbitSource
-    g_2sv_29.ephAvail = (_sent(r_2sv_29_8ephAvail == 1) if n_sv > 29 else _ABSENT)
-    g_2sv_29.almAvail = (_sent(r_2sv_29_8almAvail == 1) if n_sv > 29 else _ABSENT)
-    g_2sv_29.anoAvail = (_sent(r_2sv_29_8anoAvail == 1) if n_sv > 29 else _ABSENT)
-    g_2sv_29.aopAvail = (_sent(r_2sv_29_8aopAvail == 1) if n_sv > 29 else _ABSENT)
+    g_2sv_29.ephAvail = v_2sv_29_8ephAvail
+    g_2sv_29.almAvail = v_2sv_29_8almAvail
+    g_2sv_29.anoAvail = v_2sv_29_8anoAvail
+    g_2sv_29.aopAvail = v_2sv_29_8aopAvail
     g_2sv_29.reserved13 = r_2sv_29_10reserved13
-    g_2sv_29.sbasCorrUsed = (_sent(r_2sv_29_12sbasCorrUsed == 1) if n_sv > 29 else _ABSENT)
-    g_2sv_29.rtcmCorrUsed = (_sent(r_2sv_29_12rtcmCorrUsed == 1) if n_sv > 29 else _ABSENT)
-    g_2sv_29.slasCorrUsed = (_sent(r_2sv_29_12slasCorrUsed == 1) if n_sv > 29 else _ABSENT)
-    g_2sv_29.spartnCorrUsed = (_sent(r_2sv_29_14spartnCorrUsed == 1) if n_sv > 29 else _ABSENT)
-    g_2sv_29.prCorrUsed = (_sent(r_2sv_29_10prCorrUsed == 1) if n_sv > 29 else _ABSENT)
-    g_2sv_29.crCorrUsed = (_sent(r_2sv_29_10crCorrUsed == 1) if n_sv > 29 else _ABSENT)
-    g_2sv_29.doCorrUsed = (_sent(r_2sv_29_10doCorrUsed == 1) if n_sv > 29 else _ABSENT)
-    g_2sv_29.clasCorrUsed = (_sent(r_2sv_29_12clasCorrUsed == 1) if n_sv > 29 else _ABSENT)
-    g_2sv_29.lppCorrUsed = (_sent(r_2sv_29_11lppCorrUsed == 1) if n_sv > 29 else _ABSENT)
-    g_2sv_29.hasCorrUsed = (_sent(r_2sv_29_11hasCorrUsed == 1) if n_sv > 29 else _ABSENT)
+    g_2sv_29.sbasCorrUsed = v_2sv_29_12sbasCorrUsed
+    g_2sv_29.rtcmCorrUsed = v_2sv_29_12rtcmCorrUsed
+    g_2sv_29.slasCorrUsed = v_2sv_29_12slasCorrUsed
+    g_2sv_29.spartnCorrUsed = v_2sv_29_14spartnCorrUsed
+    g_2sv_29.prCorrUsed = v_2sv_29_10prCorrUsed
+    g_2sv_29.crCorrUsed = v_2sv_29_10crCorrUsed
+    g_2sv_29.doCorrUsed = v_2sv_29_10doCorrUsed
+    g_2sv_29.clasCorrUsed = v_2sv_29_12clasCorrUsed
+    g_2sv_29.lppCorrUsed = v_2sv_29_11lppCorrUsed
+    g_2sv_29.hasCorrUsed = v_2sv_29_11hasCorrUsed
     g_2sv_30 = _object_new(NavSatSv)
     g_2sv_30.gnssId = r_2sv_30_6gnssId
     g_2sv_30.svId = r_2sv_30_4svId
     g_2sv_30.cno = r_2sv_30_3cno
     g_2sv_30.elev = r_2sv_30_4elev
     g_2sv_30.azim = r_2sv_30_4azim
-    g_2sv_30.prRes = (_sent(r_2sv_30_5prRes * 0.1) if n_sv > 30 else _ABSENT)
+    g_2sv_30.prRes = v_2sv_30_5prRes
     g_2sv_30.qualityInd = r_2sv_30_10qualityInd
-    g_2sv_30.svUsed = (_sent(r_2sv_30_6svUsed == 1) if n_sv > 30 else _ABSENT)
+    g_2sv_30.svUsed = v_2sv_30_6svUsed
     g_2sv_30.health = r_2sv_30_6health
-    g_2sv_30.diffCorr = (_sent(r_2sv_30_8diffCorr == 1) if n_sv > 30 else _ABSENT)
-    g_2sv_30.smoothed = (_sent(r_2sv_30_8smoothed == 1) if n_sv > 30 else _ABSENT)
+    g_2sv_30.diffCorr = v_2sv_30_8diffCorr
+    g_2sv_30.smoothed = v_2sv_30_8smoothed
     g_2sv_30.orbitSource = r_2sv_30_11orbitSource
-    g_2sv_30.ephAvail = (_sent(r_2sv_30_8ephAvail == 1) if n_sv > 30 else _ABSENT)
-    g_2sv_30.almAvail = (_sent(r_2sv_30_8almAvail == 1) if n_sv > 30 else _ABSENT)
-    g_2sv_30.anoAvail = (_sent(r_2sv_30_8anoAvail == 1) if n_sv > 30 else _ABSENT)
-    g_2sv_30.aopAvail = (_sent(r_2sv_30_8aopAvail == 1) if n_sv > 30 else _ABSENT)
+    g_2sv_30.ephAvail = v_2sv_30_8ephAvail
+    g_2sv_30.almAvail = v_2sv_30_8almAvail
+    g_2sv_30.anoAvail = v_2sv_30_8anoAvail
+    g_2sv_30.aopAvail = v_2sv_30_8aopAvail
     g_2sv_30.reserved13 = r_2sv_30_10reserved13
-    g_2sv_30.sbasCorrUsed = (_sent(r_2sv_30_12sbasCorrUsed == 1) if n_sv > 30 else _ABSENT)
-    g_2sv_30.rtcmCorrUsed = (_sent(r_2sv_30_12rtcmCorrUsed == 1) if n_sv > 30 else _ABSENT)
-    g_2sv_30.slasCorrUsed = (_sent(r_2sv_30_12slasCorrUsed == 1) if n_sv > 30 else _ABSENT)
-    g_2sv_30.spartnCorrUsed = (_sent(r_2sv_30_14spartnCorrUsed == 1) if n_sv > 30 else _ABSENT)
-    g_2sv_30.prCorrUsed = (_sent(r_2sv_30_10prCorrUsed == 1) if n_sv > 30 else _ABSENT)
-    g_2sv_30.crCorrUsed = (_sent(r_2sv_30_10crCorrUsed == 1) if n_sv > 30 else _ABSENT)
-    g_2sv_30.doCorrUsed = (_sent(r_2sv_30_10doCorrUsed == 1) if n_sv > 30 else _ABSENT)
-    g_2sv_30.clasCorrUsed = (_sent(r_2sv_30_12clasCorrUsed == 1) if n_sv > 30 else _ABSENT)
-    g_2sv_30.lppCorrUsed = (_sent(r_2sv_30_11lppCorrUsed == 1) if n_sv > 30 else _ABSENT)
-    g_2sv_30.hasCorrUsed = (_sent(r_2sv_30_11hasCorrUsed == 1) if n_sv > 30 else _ABSENT)
+    g_2sv_30.sbasCorrUsed = v_2sv_30_12sbasCorrUsed
+    g_2sv_30.rtcmCorrUsed = v_2sv_30_12rtcmCorrUsed
+    g_2sv_30.slasCorrUsed = v_2sv_30_12slasCorrUsed
+    g_2sv_30.spartnCorrUsed = v_2sv_30_14spartnCorrUsed
+    g_2sv_30.prCorrUsed = v_2sv_30_10prCorrUsed
+    g_2sv_30.crCorrUsed = v_2sv_30_10crCorrUsed
+    g_2sv_30.doCorrUsed = v_2sv_30_10doCorrUsed
+    g_2sv_30.clasCorrUsed = v_2sv_30_12clasCorrUsed
+    g_2sv_30.lppCorrUsed = v_2sv_30_11lppCorrUsed
+    g_2sv_30.hasCorrUsed = v_2sv_30_11hasCorrUsed
     g_2sv_31 = _object_new(NavSatSv)
     g_2sv_31.gnssId = r_2sv_31_6gnssId
     g_2sv_31.svId = r_2sv_31_4svId
     g_2sv_31.cno = r_2sv_31_3cno
     g_2sv_31.elev = r_2sv_31_4elev
     g_2sv_31.azim = r_2sv_31_4azim
-    g_2sv_31.prRes = (_sent(r_2sv_31_5prRes * 0.1) if n_sv > 31 else _ABSENT)
+    g_2sv_31.prRes = v_2sv_31_5prRes
     g_2sv_31.qualityInd = r_2sv_31_10qualityInd
-    g_2sv_31.svUsed = (_sent(r_2sv_31_6svUsed == 1) if n_sv > 31 else _ABSENT)
+    g_2sv_31.svUsed = v_2sv_31_6svUsed
     g_2sv_31.health = r_2sv_31_6health
-    g_2sv_31.diffCorr = (_sent(r_2sv_31_8diffCorr == 1) if n_sv > 31 else _ABSENT)
-    g_2sv_31.smoothed = (_sent(r_2sv_31_8smoothed == 1) if n_sv > 31 else _ABSENT)
+    g_2sv_31.diffCorr = v_2sv_31_8diffCorr
+    g_2sv_31.smoothed = v_2sv_31_8smoothed
     g_2sv_31.orbitSource = r_2sv_31_11orbitSource
-    g_2sv_31.ephAvail = (_sent(r_2sv_31_8ephAvail == 1) if n_sv > 31 else _ABSENT)
-    g_2sv_31.almAvail = (_sent(r_2sv_31_8almAvail == 1) if n_sv > 31 else _ABSENT)
-    g_2sv_31.anoAvail = (_sent(r_2sv_31_8anoAvail == 1) if n_sv > 31 else _ABSENT)
-    g_2sv_31.aopAvail = (_sent(r_2sv_31_8aopAvail == 1) if n_sv > 31 else _ABSENT)
+    g_2sv_31.ephAvail = v_2sv_31_8ephAvail
+    g_2sv_31.almAvail = v_2sv_31_8almAvail
+    g_2sv_31.anoAvail = v_2sv_31_8anoAvail
+    g_2sv_31.aopAvail = v_2sv_31_8aopAvail
     g_2sv_31.reserved13 = r_2sv_31_10reserved13
-    g_2sv_31.sbasCorrUsed = (_sent(r_2sv_31_12sbasCorrUsed == 1) if n_sv > 31 else _ABSENT)
-    g_2sv_31.rtcmCorrUsed = (_sent(r_2sv_31_12rtcmCorrUsed == 1) if n_sv > 31 else _ABSENT)
-    g_2sv_31.slasCorrUsed = (_sent(r_2sv_31_12slasCorrUsed == 1) if n_sv > 31 else _ABSENT)
-    g_2sv_31.spartnCorrUsed = (_sent(r_2sv_31_14spartnCorrUsed == 1) if n_sv > 31 else _ABSENT)
-    g_2sv_31.prCorrUsed = (_sent(r_2sv_31_10prCorrUsed == 1) if n_sv > 31 else _ABSENT)
-    g_2sv_31.crCorrUsed = (_sent(r_2sv_31_10crCorrUsed == 1) if n_sv > 31 else _ABSENT)
-    g_2sv_31.doCorrUsed = (_sent(r_2sv_31_10doCorrUsed == 1) if n_sv > 31 else _ABSENT)
-    g_2sv_31.clasCorrUsed = (_sent(r_2sv_31_12clasCorrUsed == 1) if n_sv > 31 else _ABSENT)
-    g_2sv_31.lppCorrUsed = (_sent(r_2sv_31_11lppCorrUsed == 1) if n_sv > 31 else _ABSENT)
-    g_2sv_31.hasCorrUsed = (_sent(r_2sv_31_11hasCorrUsed == 1) if n_sv > 31 else _ABSENT)
+    g_2sv_31.sbasCorrUsed = v_2sv_31_12sbasCorrUsed
+    g_2sv_31.rtcmCorrUsed = v_2sv_31_12rtcmCorrUsed
+    g_2sv_31.slasCorrUsed = v_2sv_31_12slasCorrUsed
+    g_2sv_31.spartnCorrUsed = v_2sv_31_14spartnCorrUsed
+    g_2sv_31.prCorrUsed = v_2sv_31_10prCorrUsed
+    g_2sv_31.crCorrUsed = v_2sv_31_10crCorrUsed
+    g_2sv_31.doCorrUsed = v_2sv_31_10doCorrUsed
+    g_2sv_31.clasCorrUsed = v_2sv_31_12clasCorrUsed
+    g_2sv_31.lppCorrUsed = v_2sv_31_11lppCorrUsed
+    g_2sv_31.hasCorrUsed = v_2sv_31_11hasCorrUsed
     o = _object_new(NavSat)
     o.iTOW = r_iTOW
     o.version = r_version
