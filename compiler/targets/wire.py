@@ -129,10 +129,10 @@ def gap_reads(p: Protocol, m: Message) -> list[dict]:
     return out
 
 
-def gap_of(m: Message, leaf: Leaf) -> Optional[tuple[int, Gap]]:
-    """The gap (index, gap) that holds `leaf`, if a frame may leave it out."""
+def gap_of(m: Message, leaf: Leaf) -> Optional[Gap]:
+    """The gap that holds `leaf`, if a frame may leave it out."""
     gaps = m.shortening.gaps if m.shortening else ()
-    return next(((k, g) for k, g in enumerate(gaps) if leaf.path[0] == g.field), None)
+    return next((g for g in gaps if leaf.path[0] == g.field), None)
 
 
 def counted_sizes(p: Protocol) -> dict[str, dict]:

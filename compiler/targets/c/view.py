@@ -690,10 +690,9 @@ class CView:
     def sent_guard(self, m: Message, leaf: Leaf, raws: dict[str, str]) -> Optional[str]:
         """The condition under which a leaf in a gap is in the frame (None: always, or all of a
         counted bytes field)."""
-        held = gap_of(m, leaf)
-        if held is None:
+        gap = gap_of(m, leaf)
+        if gap is None:
             return None
-        gap = held[1]
         if gap.presence:
             return self.presence_test(m, gap)
         return f"m->{gap.field}_count > {leaf.path[1]}u" if len(leaf.path) > 1 else None

@@ -9,7 +9,7 @@ from dataclasses import dataclass, replace
 from typing import Any, Optional
 
 from ...crc import reflect
-from ...model import (Field, Leaf, Message, Protocol, Rule, Run, Sequence, SequenceItem, dotted,
+from ...model import (Field, Gap, Leaf, Message, Protocol, Rule, Run, Sequence, SequenceItem, dotted,
                       field_at, path_name)
 from ...names import camel
 from ..code import Code, times_over
@@ -587,14 +587,14 @@ class MessageCode:
         for leaf in self.leaves:
             held = gap_of(self.m, leaf)
             guard = None if leaf.field.counts else self.sent_guard(leaf, held, encoding=True)
-            of = leaf.path[:2] if held and held[1].counter and len(leaf.path) > 2 else None
+            of = leaf.path[:2] if held and held.counter and len(leaf.path) > 2 else None
             if element is not None and element.path != of:
                 element.call(c)
                 element = None
             if guard != run.guard:
                 run.close()
-            if held and held[1].presence and leaf is self.first_leaf(held[1].field):
-                self.check_presence(c, held[1])
+            if held and held.presence and leaf is self.first_leaf(held.field):
+                self.check_presence(c, held)
             for depth in range(1, len(leaf.path)):  # each group object and array is read once
                 prefix = leaf.path[:depth]
                 if depth == 2 and of is not None and element is None:  # its function reads the rest
@@ -610,7 +610,7 @@ class MessageCode:
                     value = access(parent, prefix[-1])
                     # a conditional field is None where a frame leaves it out: a checker takes it as
                     # Any, as the guards read it; what lies inside is read under its guard
-                    absent_ok = held is not None and held[1].presence is not None and depth == 1
+                    absent_ok = held is not None and held.presence is not None and depth == 1
                     out(f"{self.group_var(prefix)}: Any = cast(Any, {value})" if absent_ok
                         else f"{self.group_var(prefix)} = {value}")
                     if isinstance(leaf.path[depth], int):
@@ -663,12 +663,11 @@ class MessageCode:
             return f"{value} == {cond.values[0]}" if full else f"({value}) == {cond.values[0]:#x}"
         return f"{value} in {cond.values!r}" if full else f"({value}) in {cond.values!r}"
 
-    def sent_guard(self, leaf: Leaf, held, encoding: bool) -> Optional[str]:
-        """The condition under which a leaf in a gap is sent (None: always, or all of a counted
+    def sent_guard(self, leaf: Leaf, gap: Optional[Gap], encoding: bool) -> Optional[str]:
+        """The condition under which a leaf in `gap` is sent (None: always, or all of a counted
         bytes field, which is padded to its most)."""
-        if held is None:
+        if gap is None:
             return None
-        gap = held[1]
         if gap.presence:
             return self.presence_test(gap) if encoding else f"p_{gap.field}"
         if len(leaf.path) == 1:
