@@ -10,6 +10,7 @@ import types
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from .accelerate import is_accelerator
 from .diagnostics import Diagnostic, Loc, SchemaError
 from .examples import check_examples
 from .loader import load_file
@@ -19,6 +20,7 @@ from .pyload import load_module
 from .resolver import resolve
 from .spool import InPlace, Spool, file_sha256
 from . import cache
+from .targets import accelerator as accelerator_target
 from .targets import python as python_target
 from .targets import c as c_target
 from .targets.c.view import CTargetError
@@ -50,6 +52,7 @@ def render_with_codec(p: Protocol) -> tuple[dict[str, str], types.ModuleType]:
     try:
         files.update(python_target.render(p))
         files.update(c_target.render(p))
+        files.update(accelerator_target.render(p))
     except (CTargetError, MachineTargetError) as exc:  # a shape a target cannot serve: say so against the schema
         target = "C target" if isinstance(exc, CTargetError) else "machines"
         fallback = p.machines[0].loc if isinstance(exc, MachineTargetError) and p.machines else Loc(p.file, 1, 1)
@@ -184,7 +187,7 @@ def build(schemas: list[Path], out: Path | Project, check: bool = False, root: P
                 continue
             for existing in sorted(folder.rglob("*")):
                 if existing.is_file() and existing not in known and existing.parent in ours \
-                        and "__pycache__" not in existing.parts:
+                        and "__pycache__" not in existing.parts and not is_accelerator(existing):
                     result.extra.append(existing)
     return result
 

@@ -78,6 +78,28 @@ def cmd_build(args: argparse.Namespace) -> int:
     return OK
 
 
+def cmd_accelerate(args: argparse.Namespace) -> int:
+    from .accelerate import CompileError, accelerate
+    project = _project(args)
+    folder = project.folder("python") / (project.python_package or "")
+    try:
+        outcome = accelerate(_schemas(args, project), folder)
+    except SchemaError as exc:
+        for diagnostic in exc.diagnostics:
+            print(diagnostic, file=sys.stderr)
+        print("fix the schema, then run `codeword build` and `codeword accelerate` again", file=sys.stderr)
+        return USAGE
+    except CompileError as exc:
+        print(f"codeword accelerate: {exc}", file=sys.stderr)
+        return INTERNAL
+    for note in outcome.notes:
+        print(f"note: {note}", file=sys.stderr)
+    for path in outcome.built:
+        print(f"built {path}")
+    print(f"{len(outcome.built)} built, {len(outcome.unchanged)} unchanged in {folder}/")
+    return OK
+
+
 def cmd_lint(args: argparse.Namespace) -> int:
     from .build import compile_schema, render_with_codec
     project = _project(args)
@@ -183,6 +205,11 @@ def parser() -> argparse.ArgumentParser:
                         "or codeword.toml's `targets`)")
     b.add_argument("--check", action="store_true",
                    help="compare with the files on disk instead of writing; exit 1 if any is stale")
+    a = command("accelerate", cmd_accelerate, "compile the optional C accelerators of the Python modules' "
+                "decoders (pure Python where none is built)")
+    a.add_argument("schemas", nargs="*", metavar="SCHEMA",
+                   help="schema files or protocol names (default: every schema of the project)")
+    a.add_argument("--out", metavar="DIR", help="the build's output folder: accelerators go to DIR/python/")
     lint = command("lint", cmd_lint, "check schemas without writing anything")
     lint.add_argument("schemas", nargs="*", metavar="SCHEMA", help="schema files or protocol names "
                                                                    "(default: every schema of the project)")

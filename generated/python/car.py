@@ -8,7 +8,9 @@
 from __future__ import annotations
 
 import enum
+import importlib
 import math
+import os
 
 
 from dataclasses import dataclass, field
@@ -677,6 +679,26 @@ def _decode_slave_control(d: _Buffer) -> SlaveControl:
     o.voice = r_voice == 1
     o.body_sensor = r_body_sensor == 1
     return o
+
+
+def _accelerator() -> Any:
+    """The compiled decoders `codeword accelerate` built for this module, or None to
+    decode in Python: none built, CODEWORD_PURE_PYTHON set, or built from another
+    version of the schema or of codeword."""
+    if os.environ.get("CODEWORD_PURE_PYTHON"):
+        return None
+    name = "_car_accel"
+    try:
+        module = importlib.import_module(f"{__package__}.{name}" if __package__ else name)
+    except ImportError:
+        return None
+    return module if getattr(module, "SOURCE", None) == 'e84da7b18f17c10d' else None
+
+
+ACCELERATOR = _accelerator()
+"""The compiled accelerator in use, or None: every decoder is Python's."""
+if ACCELERATOR is not None:
+    globals().update(ACCELERATOR.bind(globals()))  # compiled decoders in place of Python's
 
 
 _ENCODERS: dict[type[Any], Callable[[Any], bytes]] = {Header: _encode_header, MasterControl: _encode_master_control, SlaveControl: _encode_slave_control, }

@@ -8,7 +8,9 @@
 from __future__ import annotations
 
 import enum
+import importlib
 import math
+import os
 import re
 
 from dataclasses import dataclass
@@ -749,6 +751,26 @@ def _decode_text_end(tokens: list[int]) -> End:
     if r_cs > 7:
         raise _dec('end', 'cs', r_cs, 'range', '0..7', 0)
     return _build_end(r_hdr, r_kind, r_cs, text_form=True)
+
+
+def _accelerator() -> Any:
+    """The compiled decoders `codeword accelerate` built for this module, or None to
+    decode in Python: none built, CODEWORD_PURE_PYTHON set, or built from another
+    version of the schema or of codeword."""
+    if os.environ.get("CODEWORD_PURE_PYTHON"):
+        return None
+    name = "_route_accel"
+    try:
+        module = importlib.import_module(f"{__package__}.{name}" if __package__ else name)
+    except ImportError:
+        return None
+    return module if getattr(module, "SOURCE", None) == '774f55b3d74bfa7b' else None
+
+
+ACCELERATOR = _accelerator()
+"""The compiled accelerator in use, or None: every decoder is Python's."""
+if ACCELERATOR is not None:
+    globals().update(ACCELERATOR.bind(globals()))  # compiled decoders in place of Python's
 
 
 _Decoder = Callable[[_Buffer], AnyMessage]

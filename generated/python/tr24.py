@@ -8,7 +8,9 @@
 from __future__ import annotations
 
 
+import importlib
 import math
+import os
 
 import struct
 from dataclasses import dataclass
@@ -324,6 +326,26 @@ def _decode_reply(d: _Buffer) -> Reply:
     o.receiver = r_receiver
     o.data = r_data
     return o
+
+
+def _accelerator() -> Any:
+    """The compiled decoders `codeword accelerate` built for this module, or None to
+    decode in Python: none built, CODEWORD_PURE_PYTHON set, or built from another
+    version of the schema or of codeword."""
+    if os.environ.get("CODEWORD_PURE_PYTHON"):
+        return None
+    name = "_tr24_accel"
+    try:
+        module = importlib.import_module(f"{__package__}.{name}" if __package__ else name)
+    except ImportError:
+        return None
+    return module if getattr(module, "SOURCE", None) == '595d21c020f7cb3b' else None
+
+
+ACCELERATOR = _accelerator()
+"""The compiled accelerator in use, or None: every decoder is Python's."""
+if ACCELERATOR is not None:
+    globals().update(ACCELERATOR.bind(globals()))  # compiled decoders in place of Python's
 
 
 _Decoder = Callable[[_Buffer], AnyMessage]

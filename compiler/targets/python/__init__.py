@@ -7,6 +7,7 @@ from .machines import machines_view
 from .prune import prune
 from .view import module_view
 from ..wire import text_form_head
+from ..accelerator.scope import serves, source_tag
 from ..escape import py_docstring
 from ..render import environment, tidy
 
@@ -18,5 +19,5 @@ def render(p: Protocol) -> dict[str, str]:
     source = environment().get_template("python/module.py.j2").render(
         docstring=docstring, fingerprint=fingerprint(p), fingerprint32=f"{fingerprint32(p):#010x}",
         text_head=text_form_head(p) if p.framing.text_form and head else [],
-        machines=machines_view(p), **view)
+        accelerator=source_tag(p) if serves(p) else None, machines=machines_view(p), **view)
     return {f"python/{p.name}.py": tidy(prune(source), max_blank=2)}

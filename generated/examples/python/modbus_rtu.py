@@ -8,7 +8,9 @@
 from __future__ import annotations
 
 import enum
+import importlib
 import math
+import os
 
 import struct
 from dataclasses import dataclass
@@ -2731,6 +2733,26 @@ def _decode_exception_response(d: _Buffer) -> ExceptionResponse:
     o.function = r_function
     o.exception_code = e_exception_code
     return o
+
+
+def _accelerator() -> Any:
+    """The compiled decoders `codeword accelerate` built for this module, or None to
+    decode in Python: none built, CODEWORD_PURE_PYTHON set, or built from another
+    version of the schema or of codeword."""
+    if os.environ.get("CODEWORD_PURE_PYTHON"):
+        return None
+    name = "_modbus_rtu_accel"
+    try:
+        module = importlib.import_module(f"{__package__}.{name}" if __package__ else name)
+    except ImportError:
+        return None
+    return module if getattr(module, "SOURCE", None) == '0a396cac0e09bfa2' else None
+
+
+ACCELERATOR = _accelerator()
+"""The compiled accelerator in use, or None: every decoder is Python's."""
+if ACCELERATOR is not None:
+    globals().update(ACCELERATOR.bind(globals()))  # compiled decoders in place of Python's
 
 
 _Decoder = Callable[[_Buffer], AnyMessage]

@@ -8,7 +8,9 @@
 from __future__ import annotations
 
 
+import importlib
 import math
+import os
 
 import struct
 from dataclasses import dataclass
@@ -9367,6 +9369,26 @@ def _decode_mon_ver(d: _Buffer) -> MonVer:
     o.hwVersion = r_hwVersion
     o.ext = [g_3ext_0, g_3ext_1, g_3ext_2, g_3ext_3, g_3ext_4, g_3ext_5, g_3ext_6, g_3ext_7, g_3ext_8, g_3ext_9][:n_ext]
     return o
+
+
+def _accelerator() -> Any:
+    """The compiled decoders `codeword accelerate` built for this module, or None to
+    decode in Python: none built, CODEWORD_PURE_PYTHON set, or built from another
+    version of the schema or of codeword."""
+    if os.environ.get("CODEWORD_PURE_PYTHON"):
+        return None
+    name = "_ubx_accel"
+    try:
+        module = importlib.import_module(f"{__package__}.{name}" if __package__ else name)
+    except ImportError:
+        return None
+    return module if getattr(module, "SOURCE", None) == '807688ab01fb885d' else None
+
+
+ACCELERATOR = _accelerator()
+"""The compiled accelerator in use, or None: every decoder is Python's."""
+if ACCELERATOR is not None:
+    globals().update(ACCELERATOR.bind(globals()))  # compiled decoders in place of Python's
 
 
 _Decoder = Callable[[_Buffer], AnyMessage]

@@ -1,0 +1,23 @@
+"""Accelerator target: the C source of an optional compiled module that decodes frames
+for a protocol's Python module (python/_<name>_accel.c), built from the generated C
+decoders by `codeword accelerate`."""
+from __future__ import annotations
+
+from ...model import Protocol
+from ..render import environment, tidy
+from .scope import serves, source_tag
+from .view import AcceleratorView
+
+HELPERS = ("acc_lookup", "acc_flags", "acc_scaled")  # written only where a decoder calls them
+
+
+def render(p: Protocol) -> dict[str, str]:
+    if not serves(p):
+        return {}
+    view = AcceleratorView(p)
+    functions = view.functions()
+    helpers = {name for name in HELPERS if any(f"{name}(" in f["body"] for f in functions)}
+    source = environment().get_template("accelerator/module.c.j2").render(
+        px=p.name, tag=source_tag(p), functions=functions, helpers=helpers, globals=view.names.globals,
+        attributes=view.names.attributes, constants=view.constants())
+    return {f"python/_{p.name}_accel.c": tidy(source, max_blank=1)}

@@ -1,0 +1,49 @@
+"""Which messages the accelerator serves, and the tag that pairs a Python module with
+its accelerator (kept apart from the view: the Python target needs both)."""
+from __future__ import annotations
+
+import hashlib
+
+from ... import __version__
+from ...model import Field, Message, Protocol
+
+
+def source_tag(p: Protocol) -> str:
+    """What a Python module and its accelerator must both have been made from: the same
+    schema with the same codeword. A module finds a stale accelerator by it and leaves it."""
+    return hashlib.sha256(f"{p.sha256} {__version__}".encode()).hexdigest()[:16]
+
+
+def serves(p: Protocol) -> bool:
+    return any(servable(p, m) for m in p.messages)
+
+
+def servable(p: Protocol, m: Message) -> bool:
+    """Whether every value of the message is built in C exactly as Python builds it."""
+    if p.framing.kind == "text" or m.size is None:
+        return False
+    if m.shortening and m.shortening.gaps:  # values that may be absent
+        return False
+    return all(_field_servable(f) for f in m.layout if f.is_member)
+
+
+def _field_servable(f: Field) -> bool:
+    if f.optional or f.present_if or f.varies:
+        return False
+    if f.kind == "group":
+        return all(_field_servable(x) for x in f.fields if x.is_member)
+    f = f.element
+    if f.kind == "bool":
+        return f.bits == 1  # Python reads `raw == 1`, C `raw != 0`
+    if f.kind in ("float", "bytes"):
+        return True
+    if f.kind not in ("uint", "int") or f.one_hot or f.decimals:
+        return False
+    if f.enum is not None:
+        return f.enum.kind != "char" and f.scale is None and not f.offset
+    if f.flags is not None:
+        return f.scale is None and not f.offset
+    numbers = [x for x in (f.scale, f.offset) if x is not None]
+    if f.scale is None:  # C keeps raw + offset as an integer, Python adds them
+        return all(isinstance(x, int) for x in numbers)
+    return all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in numbers)

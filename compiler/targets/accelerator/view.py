@@ -1,0 +1,138 @@
+"""What the compiled accelerator of a protocol's Python module does: for each message
+it can serve, a C function that decodes a frame with the generated C decoder and
+builds the same object the Python decoder builds, value for value.
+
+A frame the C decoder refuses goes to the Python decoder, so errors are Python's own.
+A message with a value the accelerator cannot build exactly as Python does (text,
+optional and conditional values, frames that may be cut short, one-hot fields) is
+left to Python."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from ...model import Field, Message, Protocol
+from ..c.view import CView
+from ..code import Code
+from ..python.view import PythonView, lit
+from .scope import servable
+
+
+@dataclass
+class Names:
+    """The Python objects the C code uses, each given a slot: module globals (classes,
+    tables, the Python decoders), attribute names and numeric constants."""
+
+    globals: list[str] = field(default_factory=list)
+    attributes: list[str] = field(default_factory=list)
+    constants: list[str] = field(default_factory=list)  # Python literals: ints and floats
+
+    @staticmethod
+    def _slot(table: list[str], name: str) -> int:
+        if name not in table:
+            table.append(name)
+        return table.index(name)
+
+    def g(self, name: str) -> str:
+        return f"G[{self._slot(self.globals, name)}]"
+
+    def a(self, name: str) -> str:
+        return f"A[{self._slot(self.attributes, name)}]"
+
+    def k(self, literal: str) -> str:
+        return f"K[{self._slot(self.constants, literal)}]"
+
+
+class AcceleratorView:
+    def __init__(self, p: Protocol):
+        self.p = p
+        self.c = CView(p)
+        self.py = PythonView(p)
+        self.names = Names()
+        self.count = 0  # locals made so far: each name is used once
+
+    def messages(self) -> list[Message]:
+        return [m for m in self.p.messages if servable(self.p, m)]
+
+    def functions(self) -> list[dict]:
+        out = []
+        for m in self.messages():
+            body = Code()
+            body.indent()
+            self.build(body, m, m.layout, (), "o", "m->")
+            out.append({"name": m.name, "cls": self.names.g(self.py.class_name(m)),
+                        "pure": self.names.g(f"_decode_{m.name}"), "decode": self.c.fn(m, "decode"),
+                        "ctype": self.c.tname(m), "body": body.text()})
+        return out
+
+    def build(self, c: Code, m: Message, fields: tuple[Field, ...], path: tuple, var: str, member: str) -> None:
+        """Code that fills the object in `var` (held by the message object) from the C
+        struct members named `member` + field name. Each object made is given to its
+        owner at once, so `goto fail` has only the message object to release."""
+        for f in fields:
+            if f.is_member:
+                self.assign(c, m, f, path + (f.name,), var, member + f.name)
+
+    def assign(self, c: Code, m: Message, f: Field, path: tuple, owner: str, at: str) -> None:
+        attribute = self.names.a(f.name)
+        if f.count is None:
+            if f.kind == "group":
+                group = self.local("g")
+                c(f"PyObject *{group} = acc_new({self.names.g(self.py.group_class(m, path))});")
+                c(f"if (acc_put({owner}, {attribute}, {group}) < 0) goto fail;")
+                self.build(c, m, f.fields, path, group, at + ".")
+            else:
+                c(f"if (acc_put({owner}, {attribute}, {self.value(f, at)}) < 0) goto fail;")
+            return
+        items, i = self.local("l"), self.local("i")
+        c(f"PyObject *{items} = PyList_New({f.count});")
+        c(f"if (acc_put({owner}, {attribute}, {items}) < 0) goto fail;")
+        c(f"for (Py_ssize_t {i} = 0; {i} < {f.count}; {i}++) {{")
+        c.indent()
+        element = path + (0,)
+        item = self.local("g" if f.kind == "group" else "v")
+        if f.kind == "group":
+            c(f"PyObject *{item} = acc_new({self.names.g(self.py.group_class(m, element))});")
+        else:
+            c(f"PyObject *{item} = {self.value(f, f'{at}[{i}]')};")
+        c(f"if ({item} == NULL) goto fail;")
+        c(f"PyList_SET_ITEM({items}, {i}, {item});")
+        if f.kind == "group":
+            self.build(c, m, f.fields, element, item, f"{at}[{i}].")
+        c.dedent()
+        c("}")
+
+    def local(self, prefix: str) -> str:
+        self.count += 1
+        return f"{prefix}{self.count}"
+
+    def value(self, f: Field, at: str) -> str:
+        """A C expression giving a leaf's Python value: a new reference, NULL on error."""
+        f = f.element
+        if f.kind == "bool":
+            return f"PyBool_FromLong({at})"
+        if f.kind == "float":
+            return f"PyFloat_FromDouble((double){at})"
+        if f.kind == "bytes":
+            return f"PyBytes_FromStringAndSize((const char *){at}, {f.length})"
+        number = self.int_value(f, at)
+        if f.enum is not None:
+            return f"acc_lookup({self.names.g(f'_ENUM_{f.enum.name}')}, {number})"
+        if f.flags is not None:
+            table = self.names.g(f"_FLAGS_{f.flags.name}")
+            if f.exactly_one or PythonView.all_flag_values(f.flags):
+                return f"acc_lookup({table}, {number})"
+            cls = self.names.g(PythonView.enum_class(f.flags.name))
+            return f"acc_flags({table}, {cls}, {self.names.g('_flag')}, {number})"
+        if f.scale is None:
+            return number
+        offset = self.names.k(lit(f.offset)) if f.offset else "NULL"
+        return f"acc_scaled({number}, {self.names.k(lit(f.scale))}, {offset})"
+
+    def int_value(self, f: Field, at: str) -> str:
+        if self.c.rep(f).ctype.startswith("u"):
+            return f"PyLong_FromUnsignedLongLong((unsigned long long){at})"
+        return f"PyLong_FromLongLong((long long){at})"
+
+    def constants(self) -> list[tuple[str, bool]]:
+        """Each constant as a C literal and whether it is a float."""
+        return [(x, "." in x or "e" in x) for x in self.names.constants]
