@@ -21,6 +21,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Optional
 
+from .loader import load_file
+from .resolver import resolve
 from .targets import accelerator as accelerator_target
 from .targets import c as c_target
 
@@ -59,7 +61,6 @@ def python_headers() -> Optional[Path]:
 
 def accelerate(schemas: list[Path], folder: Path, extra_flags: tuple[str, ...] = ()) -> Outcome:
     """Build the accelerator of each schema whose Python module has one, into `folder`."""
-    from .build import compile_schema  # build imports this module
     outcome = Outcome()
     cc, include = compiler(), python_headers()
     if cc is None or include is None:
@@ -67,7 +68,7 @@ def accelerate(schemas: list[Path], folder: Path, extra_flags: tuple[str, ...] =
         outcome.notes.append(f"no accelerators built: {missing} not found; the Python modules decode in pure Python")
         return outcome
     for schema in schemas:
-        p = compile_schema(schema)
+        p = resolve(load_file(schema))
         sources = {**c_target.render(p), **accelerator_target.render(p)}
         main = f"python/_{p.name}_accel.c"
         if main not in sources:

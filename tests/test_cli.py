@@ -137,7 +137,7 @@ def test_configuration_places_each_target_and_the_python_package(tmp_path):
     assert (tmp_path / "firmware" / "include" / "car.h").is_file()
     assert (tmp_path / "firmware" / "include" / "codeword.h").is_file()
     package = tmp_path / "gen" / "python" / "robotlink"
-    assert sorted(p.name for p in package.iterdir()) == ["__init__.py", "car.py", "py.typed"]
+    assert sorted(p.name for p in package.iterdir()) == ["__init__.py", "_car_accel.c", "car.py", "py.typed"]
     check = subprocess.run([sys.executable, "-c", "import robotlink.car as c; print(c.__name__)"],
                            cwd=tmp_path / "gen" / "python", capture_output=True, text=True)
     assert check.stdout.strip() == "robotlink.car", check.stderr

@@ -18,6 +18,6 @@ def render(p: Protocol) -> dict[str, str]:
     functions = view.functions()
     helpers = {name for name in HELPERS if any(f"{name}(" in f["body"] for f in functions)}
     source = environment().get_template("accelerator/module.c.j2").render(
-        px=p.name, tag=source_tag(p), functions=functions, helpers=helpers, globals=view.names.globals,
+        p=p, px=p.name, tag=source_tag(p), functions=functions, helpers=helpers, globals=view.names.globals,
         attributes=view.names.attributes, constants=view.constants())
     return {f"python/_{p.name}_accel.c": tidy(source, max_blank=1)}
