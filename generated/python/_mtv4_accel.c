@@ -10,6 +10,11 @@
  * Messages not listed here are decoded in Python. */
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
+#include <float.h>
+
+#if FLT_EVAL_METHOD != 0  /* scaled values are computed in double, rounded as Python rounds them */
+#error "the accelerator needs double arithmetic without excess precision (on x86: SSE2)"
+#endif
 
 #define MTV4_CRC_TABLE  /* memory is plentiful here: table-driven CRCs */
 #include "mtv4.h"
@@ -23,7 +28,6 @@ const char cw_accel_build[] = "codeword-accelerator-build:" CW_ACCEL_BUILD;
  * names and numeric constants: filled by bind(). */
 static PyObject *G[12];
 static PyObject *A[14];
-static PyObject *K[1];
 
 static inline PyObject *acc_new(PyObject *cls)
 {
@@ -53,22 +57,6 @@ static inline PyObject *acc_lookup(PyObject *table, PyObject *key)
     return value;
 }
 
-/* `raw * scale + offset` with Python's arithmetic; releases raw. */
-static inline PyObject *acc_scaled(PyObject *raw, PyObject *scale, PyObject *offset)
-{
-    if (raw == NULL) {
-        return NULL;
-    }
-    PyObject *value = PyNumber_Multiply(raw, scale);
-    Py_DECREF(raw);
-    if (value != NULL && offset != NULL) {
-        PyObject *sum = PyNumber_Add(value, offset);
-        Py_DECREF(value);
-        value = sum;
-    }
-    return value;
-}
-
 static PyObject *build_set_wheels_velocities(const mtv4_set_wheels_velocities_t *m)
 {
     PyObject *o = acc_new(G[1]);
@@ -78,8 +66,8 @@ static PyObject *build_set_wheels_velocities(const mtv4_set_wheels_velocities_t 
     if (acc_put(o, A[0], PyLong_FromUnsignedLongLong((unsigned long long)m->group)) < 0) goto fail;
     if (acc_put(o, A[1], PyLong_FromUnsignedLongLong((unsigned long long)m->radio_crc_flag)) < 0) goto fail;
     if (acc_put(o, A[2], acc_lookup(G[0], PyLong_FromUnsignedLongLong((unsigned long long)m->robots))) < 0) goto fail;
-    if (acc_put(o, A[3], acc_scaled(PyLong_FromLongLong((long long)m->vl), K[0], NULL)) < 0) goto fail;
-    if (acc_put(o, A[4], acc_scaled(PyLong_FromLongLong((long long)m->vr), K[0], NULL)) < 0) goto fail;
+    if (acc_put(o, A[3], PyFloat_FromDouble((double)m->vl * 0.125)) < 0) goto fail;
+    if (acc_put(o, A[4], PyFloat_FromDouble((double)m->vr * 0.125)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -157,8 +145,8 @@ static PyObject *build_set_wheels_velocities_with_odometry(const mtv4_set_wheels
     if (acc_put(o, A[1], PyLong_FromUnsignedLongLong((unsigned long long)m->radio_crc_flag)) < 0) goto fail;
     if (acc_put(o, A[2], acc_lookup(G[0], PyLong_FromUnsignedLongLong((unsigned long long)m->robots))) < 0) goto fail;
     if (acc_put(o, A[9], acc_lookup(G[5], PyLong_FromUnsignedLongLong((unsigned long long)m->status))) < 0) goto fail;
-    if (acc_put(o, A[3], acc_scaled(PyLong_FromLongLong((long long)m->vl), K[0], NULL)) < 0) goto fail;
-    if (acc_put(o, A[4], acc_scaled(PyLong_FromLongLong((long long)m->vr), K[0], NULL)) < 0) goto fail;
+    if (acc_put(o, A[3], PyFloat_FromDouble((double)m->vl * 0.125)) < 0) goto fail;
+    if (acc_put(o, A[4], PyFloat_FromDouble((double)m->vr * 0.125)) < 0) goto fail;
     if (acc_put(o, A[10], PyFloat_FromDouble((double)m->x)) < 0) goto fail;
     if (acc_put(o, A[11], PyFloat_FromDouble((double)m->y)) < 0) goto fail;
     if (acc_put(o, A[12], PyFloat_FromDouble((double)m->th)) < 0) goto fail;
@@ -266,12 +254,102 @@ static PyObject *decode_odometry_reply(PyObject *self, PyObject *data)
     return build_odometry_reply(&m);
 }
 
+/* The direction code of a StreamDecoder's direction; 0: not one of the protocol's. */
+static int acc_direction(PyObject *direction, int *code)
+{
+    if (direction == Py_None) {
+        *code = MTV4_DIR_ANY;
+        return 1;
+    }
+    if (PyUnicode_Check(direction) && PyUnicode_CompareWithASCIIString(direction, "host_to_robot") == 0) {
+        *code = MTV4_DIR_HOST_TO_ROBOT;
+        return 1;
+    }
+    if (PyUnicode_Check(direction) && PyUnicode_CompareWithASCIIString(direction, "robot_to_host") == 0) {
+        *code = MTV4_DIR_ROBOT_TO_HOST;
+        return 1;
+    }
+    return 0;
+}
+
+/* _run_frames(buf, pos, direction, out, spans, base) -> the position after the frames
+ * decoded: from buf[pos], each frame that starts right there and that the C decoder
+ * accepts is appended to out, with (base + its position, its size) to spans. It stops
+ * at anything else (garbage, a bad or partial frame, a message decoded in Python),
+ * which the StreamDecoder's Python loop then handles. */
+static PyObject *run_frames(PyObject *self, PyObject *const *args, Py_ssize_t nargs)
+{
+    (void)self;
+    if (nargs != 6 || !PyBytes_CheckExact(args[0]) || !PyList_Check(args[3]) || !PyList_Check(args[4])) {
+        PyErr_SetString(PyExc_TypeError, "_run_frames(bytes, pos, direction, out, spans, base)");
+        return NULL;
+    }
+    const uint8_t *buf = (const uint8_t *)PyBytes_AS_STRING(args[0]);
+    Py_ssize_t end = PyBytes_GET_SIZE(args[0]);
+    Py_ssize_t pos = PyLong_AsSsize_t(args[1]);
+    Py_ssize_t base = PyLong_AsSsize_t(args[5]);
+    int direction;
+    if (PyErr_Occurred()) {
+        return NULL;
+    }
+    if (pos < 0 || pos > end || !acc_direction(args[2], &direction)) {
+        return PyLong_FromSsize_t(pos);
+    }
+    while (pos < end) {
+        mtv4_message_t msg;
+        size_t at, size;
+        PyObject *item;
+        if (mtv4_frame_at(buf + pos, (size_t)(end - pos), direction, &at, &size, &msg) != 1 || at != 0) {
+            break;
+        }
+        switch (msg.kind) {
+        case MTV4_MSG_SET_WHEELS_VELOCITIES:
+            item = build_set_wheels_velocities(&msg.as.set_wheels_velocities);
+            break;
+        case MTV4_MSG_SET_LED:
+            item = build_set_led(&msg.as.set_led);
+            break;
+        case MTV4_MSG_SET_WHEELS_VELOCITIES_WITH_ODOMETRY:
+            item = build_set_wheels_velocities_with_odometry(&msg.as.set_wheels_velocities_with_odometry);
+            break;
+        case MTV4_MSG_ACK:
+            item = build_ack(&msg.as.ack);
+            break;
+        case MTV4_MSG_ODOMETRY_REPLY:
+            item = build_odometry_reply(&msg.as.odometry_reply);
+            break;
+        default:  /* a message decoded in Python */
+            return PyLong_FromSsize_t(pos);
+        }
+        if (item == NULL) {
+            return NULL;
+        }
+        PyObject *span = PyTuple_New(2);
+        if (span != NULL) {
+            PyTuple_SET_ITEM(span, 0, PyLong_FromSsize_t(base + pos));
+            PyTuple_SET_ITEM(span, 1, PyLong_FromSsize_t((Py_ssize_t)size));
+            if (PyTuple_GET_ITEM(span, 0) == NULL || PyTuple_GET_ITEM(span, 1) == NULL) {
+                Py_CLEAR(span);
+            }
+        }
+        int failed = span == NULL || PyList_Append(args[3], item) < 0 || PyList_Append(args[4], span) < 0;
+        Py_DECREF(item);
+        Py_XDECREF(span);
+        if (failed) {
+            return NULL;
+        }
+        pos += (Py_ssize_t)size;
+    }
+    return PyLong_FromSsize_t(pos);
+}
+
 static PyMethodDef decoders[] = {
     {"_decode_set_wheels_velocities", decode_set_wheels_velocities, METH_O, NULL},
     {"_decode_set_led", decode_set_led, METH_O, NULL},
     {"_decode_set_wheels_velocities_with_odometry", decode_set_wheels_velocities_with_odometry, METH_O, NULL},
     {"_decode_ack", decode_ack, METH_O, NULL},
     {"_decode_odometry_reply", decode_odometry_reply, METH_O, NULL},
+    {"_run_frames", (PyCFunction)(void (*)(void))run_frames, METH_FASTCALL, NULL},
     {NULL, NULL, 0, NULL}
 };
 
@@ -340,7 +418,6 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
     Py_XSETREF(A[11], PyUnicode_InternFromString(attribute_names[11]));
     Py_XSETREF(A[12], PyUnicode_InternFromString(attribute_names[12]));
     Py_XSETREF(A[13], PyUnicode_InternFromString(attribute_names[13]));
-    Py_XSETREF(K[0], PyFloat_FromDouble(0.125));
     if (PyErr_Occurred()) {
         return NULL;
     }

@@ -10,6 +10,11 @@
  * Messages not listed here are decoded in Python. */
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
+#include <float.h>
+
+#if FLT_EVAL_METHOD != 0  /* scaled values are computed in double, rounded as Python rounds them */
+#error "the accelerator needs double arithmetic without excess precision (on x86: SSE2)"
+#endif
 
 #define ROUTE_CRC_TABLE  /* memory is plentiful here: table-driven CRCs */
 #include "route.h"

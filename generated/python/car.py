@@ -695,6 +695,7 @@ def _accelerator() -> Any:
     return module if getattr(module, "SOURCE", None) == 'e84da7b18f17c10d' else None
 
 
+_run_frames: Optional[Callable[..., int]] = None  # the accelerator's stream loop, if it has one
 ACCELERATOR = _accelerator()
 """The compiled accelerator in use, or None: every decoder is Python's."""
 if ACCELERATOR is not None:

@@ -1108,6 +1108,7 @@ def _accelerator() -> Any:
     return module if getattr(module, "SOURCE", None) == '7a5d61089cccb621' else None
 
 
+_run_frames: Optional[Callable[..., int]] = None  # the accelerator's stream loop, if it has one
 ACCELERATOR = _accelerator()
 """The compiled accelerator in use, or None: every decoder is Python's."""
 if ACCELERATOR is not None:
@@ -1190,6 +1191,10 @@ class StreamDecoder:
         spans: list[tuple[int, int]] = []
         base, skipped, direction, resyncing = self.offset, 0, self.direction, self._resyncing
         while True:
+            if _run_frames is not None:  # the compiled accelerator decodes the frames that need no Python
+                moved = _run_frames(buf, pos, direction, out, spans, base)
+                if moved != pos:
+                    pos, resyncing = moved, False
             start = buf.find(170, pos)
             if start < 0:
                 skipped += end - pos

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from ...model import Protocol
 from ..render import environment, tidy
-from .scope import serves, source_tag
+from .scope import runs_streams, serves, source_tag
 from .view import AcceleratorView
 
 HELPERS = ("acc_lookup", "acc_flags", "acc_scaled")  # written only where a decoder calls them
@@ -18,6 +18,6 @@ def render(p: Protocol) -> dict[str, str]:
     functions = view.functions()
     helpers = {name for name in HELPERS if any(f"{name}(" in f["body"] for f in functions)}
     source = environment().get_template("accelerator/module.c.j2").render(
-        p=p, px=p.name, tag=source_tag(p), functions=functions, helpers=helpers, globals=view.names.globals,
+        p=p, px=p.name, PX=p.name.upper(), stream=runs_streams(p), directions=view.c.directions(), tag=source_tag(p), functions=functions, helpers=helpers, globals=view.names.globals,
         attributes=view.names.attributes, constants=view.constants())
     return {f"python/_{p.name}_accel.c": tidy(source, max_blank=1)}

@@ -6,6 +6,7 @@ import hashlib
 
 from ... import __version__
 from ...model import Field, Message, Protocol
+from ..wire import stream_facts
 
 
 def source_tag(p: Protocol) -> str:
@@ -16,6 +17,12 @@ def source_tag(p: Protocol) -> str:
 
 def serves(p: Protocol) -> bool:
     return any(servable(p, m) for m in p.messages)
+
+
+def runs_streams(p: Protocol) -> bool:
+    """Whether the accelerator also decodes the frames of a byte stream (an unstuffed one,
+    where the C decoder finds frames as the Python StreamDecoder does)."""
+    return serves(p) and p.framing.kind == "bytes" and not p.framing.encoding and bool(stream_facts(p))
 
 
 def servable(p: Protocol, m: Message) -> bool:

@@ -61,7 +61,7 @@ class AcceleratorView:
             self.build(body, m, m.layout, (), "o", "m->")
             out.append({"name": m.name, "cls": self.names.g(self.py.class_name(m)),
                         "pure": self.names.g(f"_decode_{m.name}"), "decode": self.c.fn(m, "decode"),
-                        "ctype": self.c.tname(m), "body": body.text()})
+                        "ctype": self.c.tname(m), "kind": self.c.upper("MSG", m.name), "body": body.text()})
         return out
 
     def build(self, c: Code, m: Message, fields: tuple[Field, ...], path: tuple, var: str, member: str) -> None:
@@ -125,6 +125,10 @@ class AcceleratorView:
             return f"acc_flags({table}, {cls}, {self.names.g('_flag')}, {number})"
         if f.scale is None:
             return number
+        if isinstance(f.scale, float) and abs(f.offset or 0) < 2 ** 53 and f.bits <= 53:
+            # the raw value is exact as a double, so C's product (and sum) round as Python's
+            offset = f" + {float(f.offset)!r}" if f.offset else ""
+            return f"PyFloat_FromDouble((double){at} * {f.scale!r}{offset})"
         offset = self.names.k(lit(f.offset)) if f.offset else "NULL"
         return f"acc_scaled({number}, {self.names.k(lit(f.scale))}, {offset})"
 

@@ -10,6 +10,11 @@
  * Messages not listed here are decoded in Python. */
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
+#include <float.h>
+
+#if FLT_EVAL_METHOD != 0  /* scaled values are computed in double, rounded as Python rounds them */
+#error "the accelerator needs double arithmetic without excess precision (on x86: SSE2)"
+#endif
 
 #define MAVLINK1_CRC_TABLE  /* memory is plentiful here: table-driven CRCs */
 #include "mavlink1.h"
@@ -309,6 +314,90 @@ static PyObject *decode_command_long(PyObject *self, PyObject *data)
     return build_command_long(&m);
 }
 
+/* The direction code of a StreamDecoder's direction; 0: not one of the protocol's. */
+static int acc_direction(PyObject *direction, int *code)
+{
+    if (direction == Py_None) {
+        *code = MAVLINK1_DIR_ANY;
+        return 1;
+    }
+    return 0;
+}
+
+/* _run_frames(buf, pos, direction, out, spans, base) -> the position after the frames
+ * decoded: from buf[pos], each frame that starts right there and that the C decoder
+ * accepts is appended to out, with (base + its position, its size) to spans. It stops
+ * at anything else (garbage, a bad or partial frame, a message decoded in Python),
+ * which the StreamDecoder's Python loop then handles. */
+static PyObject *run_frames(PyObject *self, PyObject *const *args, Py_ssize_t nargs)
+{
+    (void)self;
+    if (nargs != 6 || !PyBytes_CheckExact(args[0]) || !PyList_Check(args[3]) || !PyList_Check(args[4])) {
+        PyErr_SetString(PyExc_TypeError, "_run_frames(bytes, pos, direction, out, spans, base)");
+        return NULL;
+    }
+    const uint8_t *buf = (const uint8_t *)PyBytes_AS_STRING(args[0]);
+    Py_ssize_t end = PyBytes_GET_SIZE(args[0]);
+    Py_ssize_t pos = PyLong_AsSsize_t(args[1]);
+    Py_ssize_t base = PyLong_AsSsize_t(args[5]);
+    int direction;
+    if (PyErr_Occurred()) {
+        return NULL;
+    }
+    if (pos < 0 || pos > end || !acc_direction(args[2], &direction)) {
+        return PyLong_FromSsize_t(pos);
+    }
+    while (pos < end) {
+        mavlink1_message_t msg;
+        size_t at, size;
+        PyObject *item;
+        if (mavlink1_frame_at(buf + pos, (size_t)(end - pos), direction, &at, &size, &msg) != 1 || at != 0) {
+            break;
+        }
+        switch (msg.kind) {
+        case MAVLINK1_MSG_HEARTBEAT:
+            item = build_heartbeat(&msg.as.heartbeat);
+            break;
+        case MAVLINK1_MSG_SYS_STATUS:
+            item = build_sys_status(&msg.as.sys_status);
+            break;
+        case MAVLINK1_MSG_PARAM_VALUE:
+            item = build_param_value(&msg.as.param_value);
+            break;
+        case MAVLINK1_MSG_GPS_RAW_INT:
+            item = build_gps_raw_int(&msg.as.gps_raw_int);
+            break;
+        case MAVLINK1_MSG_ATTITUDE:
+            item = build_attitude(&msg.as.attitude);
+            break;
+        case MAVLINK1_MSG_COMMAND_LONG:
+            item = build_command_long(&msg.as.command_long);
+            break;
+        default:  /* a message decoded in Python */
+            return PyLong_FromSsize_t(pos);
+        }
+        if (item == NULL) {
+            return NULL;
+        }
+        PyObject *span = PyTuple_New(2);
+        if (span != NULL) {
+            PyTuple_SET_ITEM(span, 0, PyLong_FromSsize_t(base + pos));
+            PyTuple_SET_ITEM(span, 1, PyLong_FromSsize_t((Py_ssize_t)size));
+            if (PyTuple_GET_ITEM(span, 0) == NULL || PyTuple_GET_ITEM(span, 1) == NULL) {
+                Py_CLEAR(span);
+            }
+        }
+        int failed = span == NULL || PyList_Append(args[3], item) < 0 || PyList_Append(args[4], span) < 0;
+        Py_DECREF(item);
+        Py_XDECREF(span);
+        if (failed) {
+            return NULL;
+        }
+        pos += (Py_ssize_t)size;
+    }
+    return PyLong_FromSsize_t(pos);
+}
+
 static PyMethodDef decoders[] = {
     {"_decode_heartbeat", decode_heartbeat, METH_O, NULL},
     {"_decode_sys_status", decode_sys_status, METH_O, NULL},
@@ -316,6 +405,7 @@ static PyMethodDef decoders[] = {
     {"_decode_gps_raw_int", decode_gps_raw_int, METH_O, NULL},
     {"_decode_attitude", decode_attitude, METH_O, NULL},
     {"_decode_command_long", decode_command_long, METH_O, NULL},
+    {"_run_frames", (PyCFunction)(void (*)(void))run_frames, METH_FASTCALL, NULL},
     {NULL, NULL, 0, NULL}
 };
 

@@ -10,6 +10,11 @@
  * Messages not listed here are decoded in Python. */
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
+#include <float.h>
+
+#if FLT_EVAL_METHOD != 0  /* scaled values are computed in double, rounded as Python rounds them */
+#error "the accelerator needs double arithmetic without excess precision (on x86: SSE2)"
+#endif
 
 #define UBX_CRC_TABLE  /* memory is plentiful here: table-driven CRCs */
 #include "ubx.h"
@@ -23,7 +28,6 @@ const char cw_accel_build[] = "codeword-accelerator-build:" CW_ACCEL_BUILD;
  * names and numeric constants: filled by bind(). */
 static PyObject *G[12];
 static PyObject *A[52];
-static PyObject *K[3];
 
 static inline PyObject *acc_new(PyObject *cls)
 {
@@ -40,22 +44,6 @@ static inline int acc_put(PyObject *obj, PyObject *name, PyObject *value)
     int rc = PyObject_SetAttr(obj, name, value);
     Py_DECREF(value);
     return rc;
-}
-
-/* `raw * scale + offset` with Python's arithmetic; releases raw. */
-static inline PyObject *acc_scaled(PyObject *raw, PyObject *scale, PyObject *offset)
-{
-    if (raw == NULL) {
-        return NULL;
-    }
-    PyObject *value = PyNumber_Multiply(raw, scale);
-    Py_DECREF(raw);
-    if (value != NULL && offset != NULL) {
-        PyObject *sum = PyNumber_Add(value, offset);
-        Py_DECREF(value);
-        value = sum;
-    }
-    return value;
 }
 
 static PyObject *build_ack_nak(const ubx_ack_nak_t *m)
@@ -198,8 +186,8 @@ static PyObject *build_nav_posllh(const ubx_nav_posllh_t *m)
         return NULL;
     }
     if (acc_put(o, A[5], PyLong_FromUnsignedLongLong((unsigned long long)m->iTOW)) < 0) goto fail;
-    if (acc_put(o, A[6], acc_scaled(PyLong_FromLongLong((long long)m->lon), K[0], NULL)) < 0) goto fail;
-    if (acc_put(o, A[7], acc_scaled(PyLong_FromLongLong((long long)m->lat), K[0], NULL)) < 0) goto fail;
+    if (acc_put(o, A[6], PyFloat_FromDouble((double)m->lon * 1e-07)) < 0) goto fail;
+    if (acc_put(o, A[7], PyFloat_FromDouble((double)m->lat * 1e-07)) < 0) goto fail;
     if (acc_put(o, A[8], PyLong_FromLongLong((long long)m->height)) < 0) goto fail;
     if (acc_put(o, A[9], PyLong_FromLongLong((long long)m->hMSL)) < 0) goto fail;
     if (acc_put(o, A[10], PyLong_FromUnsignedLongLong((unsigned long long)m->hAcc)) < 0) goto fail;
@@ -261,8 +249,8 @@ static PyObject *build_nav_pvt(const ubx_nav_pvt_t *m)
     if (acc_put(o, A[32], PyBool_FromLong(m->confirmedDate)) < 0) goto fail;
     if (acc_put(o, A[33], PyBool_FromLong(m->confirmedTime)) < 0) goto fail;
     if (acc_put(o, A[34], PyLong_FromUnsignedLongLong((unsigned long long)m->numSV)) < 0) goto fail;
-    if (acc_put(o, A[6], acc_scaled(PyLong_FromLongLong((long long)m->lon), K[0], NULL)) < 0) goto fail;
-    if (acc_put(o, A[7], acc_scaled(PyLong_FromLongLong((long long)m->lat), K[0], NULL)) < 0) goto fail;
+    if (acc_put(o, A[6], PyFloat_FromDouble((double)m->lon * 1e-07)) < 0) goto fail;
+    if (acc_put(o, A[7], PyFloat_FromDouble((double)m->lat * 1e-07)) < 0) goto fail;
     if (acc_put(o, A[8], PyLong_FromLongLong((long long)m->height)) < 0) goto fail;
     if (acc_put(o, A[9], PyLong_FromLongLong((long long)m->hMSL)) < 0) goto fail;
     if (acc_put(o, A[10], PyLong_FromUnsignedLongLong((unsigned long long)m->hAcc)) < 0) goto fail;
@@ -271,19 +259,19 @@ static PyObject *build_nav_pvt(const ubx_nav_pvt_t *m)
     if (acc_put(o, A[36], PyLong_FromLongLong((long long)m->velE)) < 0) goto fail;
     if (acc_put(o, A[37], PyLong_FromLongLong((long long)m->velD)) < 0) goto fail;
     if (acc_put(o, A[38], PyLong_FromLongLong((long long)m->gSpeed)) < 0) goto fail;
-    if (acc_put(o, A[39], acc_scaled(PyLong_FromLongLong((long long)m->headMot), K[1], NULL)) < 0) goto fail;
+    if (acc_put(o, A[39], PyFloat_FromDouble((double)m->headMot * 1e-05)) < 0) goto fail;
     if (acc_put(o, A[40], PyLong_FromUnsignedLongLong((unsigned long long)m->sAcc)) < 0) goto fail;
-    if (acc_put(o, A[41], acc_scaled(PyLong_FromUnsignedLongLong((unsigned long long)m->headAcc), K[1], NULL)) < 0) goto fail;
-    if (acc_put(o, A[42], acc_scaled(PyLong_FromUnsignedLongLong((unsigned long long)m->pDOP), K[2], NULL)) < 0) goto fail;
+    if (acc_put(o, A[41], PyFloat_FromDouble((double)m->headAcc * 1e-05)) < 0) goto fail;
+    if (acc_put(o, A[42], PyFloat_FromDouble((double)m->pDOP * 0.01)) < 0) goto fail;
     if (acc_put(o, A[43], PyBool_FromLong(m->invalidLlh)) < 0) goto fail;
     if (acc_put(o, A[44], PyLong_FromUnsignedLongLong((unsigned long long)m->lastCorrectionAge)) < 0) goto fail;
     if (acc_put(o, A[45], PyLong_FromUnsignedLongLong((unsigned long long)m->reserved1)) < 0) goto fail;
     if (acc_put(o, A[46], PyBool_FromLong(m->authTime)) < 0) goto fail;
     if (acc_put(o, A[47], PyBool_FromLong(m->nmaFixStatus)) < 0) goto fail;
     if (acc_put(o, A[48], PyLong_FromUnsignedLongLong((unsigned long long)m->reserved0)) < 0) goto fail;
-    if (acc_put(o, A[49], acc_scaled(PyLong_FromLongLong((long long)m->headVeh), K[1], NULL)) < 0) goto fail;
-    if (acc_put(o, A[50], acc_scaled(PyLong_FromLongLong((long long)m->magDec), K[2], NULL)) < 0) goto fail;
-    if (acc_put(o, A[51], acc_scaled(PyLong_FromUnsignedLongLong((unsigned long long)m->magAcc), K[2], NULL)) < 0) goto fail;
+    if (acc_put(o, A[49], PyFloat_FromDouble((double)m->headVeh * 1e-05)) < 0) goto fail;
+    if (acc_put(o, A[50], PyFloat_FromDouble((double)m->magDec * 0.01)) < 0) goto fail;
+    if (acc_put(o, A[51], PyFloat_FromDouble((double)m->magAcc * 0.01)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -311,6 +299,90 @@ static PyObject *decode_nav_pvt(PyObject *self, PyObject *data)
     return build_nav_pvt(&m);
 }
 
+/* The direction code of a StreamDecoder's direction; 0: not one of the protocol's. */
+static int acc_direction(PyObject *direction, int *code)
+{
+    if (direction == Py_None) {
+        *code = UBX_DIR_ANY;
+        return 1;
+    }
+    return 0;
+}
+
+/* _run_frames(buf, pos, direction, out, spans, base) -> the position after the frames
+ * decoded: from buf[pos], each frame that starts right there and that the C decoder
+ * accepts is appended to out, with (base + its position, its size) to spans. It stops
+ * at anything else (garbage, a bad or partial frame, a message decoded in Python),
+ * which the StreamDecoder's Python loop then handles. */
+static PyObject *run_frames(PyObject *self, PyObject *const *args, Py_ssize_t nargs)
+{
+    (void)self;
+    if (nargs != 6 || !PyBytes_CheckExact(args[0]) || !PyList_Check(args[3]) || !PyList_Check(args[4])) {
+        PyErr_SetString(PyExc_TypeError, "_run_frames(bytes, pos, direction, out, spans, base)");
+        return NULL;
+    }
+    const uint8_t *buf = (const uint8_t *)PyBytes_AS_STRING(args[0]);
+    Py_ssize_t end = PyBytes_GET_SIZE(args[0]);
+    Py_ssize_t pos = PyLong_AsSsize_t(args[1]);
+    Py_ssize_t base = PyLong_AsSsize_t(args[5]);
+    int direction;
+    if (PyErr_Occurred()) {
+        return NULL;
+    }
+    if (pos < 0 || pos > end || !acc_direction(args[2], &direction)) {
+        return PyLong_FromSsize_t(pos);
+    }
+    while (pos < end) {
+        ubx_message_t msg;
+        size_t at, size;
+        PyObject *item;
+        if (ubx_frame_at(buf + pos, (size_t)(end - pos), direction, &at, &size, &msg) != 1 || at != 0) {
+            break;
+        }
+        switch (msg.kind) {
+        case UBX_MSG_ACK_NAK:
+            item = build_ack_nak(&msg.as.ack_nak);
+            break;
+        case UBX_MSG_ACK_ACK:
+            item = build_ack_ack(&msg.as.ack_ack);
+            break;
+        case UBX_MSG_CFG_RATE_POLL:
+            item = build_cfg_rate_poll(&msg.as.cfg_rate_poll);
+            break;
+        case UBX_MSG_CFG_RATE:
+            item = build_cfg_rate(&msg.as.cfg_rate);
+            break;
+        case UBX_MSG_NAV_POSLLH:
+            item = build_nav_posllh(&msg.as.nav_posllh);
+            break;
+        case UBX_MSG_NAV_PVT:
+            item = build_nav_pvt(&msg.as.nav_pvt);
+            break;
+        default:  /* a message decoded in Python */
+            return PyLong_FromSsize_t(pos);
+        }
+        if (item == NULL) {
+            return NULL;
+        }
+        PyObject *span = PyTuple_New(2);
+        if (span != NULL) {
+            PyTuple_SET_ITEM(span, 0, PyLong_FromSsize_t(base + pos));
+            PyTuple_SET_ITEM(span, 1, PyLong_FromSsize_t((Py_ssize_t)size));
+            if (PyTuple_GET_ITEM(span, 0) == NULL || PyTuple_GET_ITEM(span, 1) == NULL) {
+                Py_CLEAR(span);
+            }
+        }
+        int failed = span == NULL || PyList_Append(args[3], item) < 0 || PyList_Append(args[4], span) < 0;
+        Py_DECREF(item);
+        Py_XDECREF(span);
+        if (failed) {
+            return NULL;
+        }
+        pos += (Py_ssize_t)size;
+    }
+    return PyLong_FromSsize_t(pos);
+}
+
 static PyMethodDef decoders[] = {
     {"_decode_ack_nak", decode_ack_nak, METH_O, NULL},
     {"_decode_ack_ack", decode_ack_ack, METH_O, NULL},
@@ -318,6 +390,7 @@ static PyMethodDef decoders[] = {
     {"_decode_cfg_rate", decode_cfg_rate, METH_O, NULL},
     {"_decode_nav_posllh", decode_nav_posllh, METH_O, NULL},
     {"_decode_nav_pvt", decode_nav_pvt, METH_O, NULL},
+    {"_run_frames", (PyCFunction)(void (*)(void))run_frames, METH_FASTCALL, NULL},
     {NULL, NULL, 0, NULL}
 };
 
@@ -462,9 +535,6 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
     Py_XSETREF(A[49], PyUnicode_InternFromString(attribute_names[49]));
     Py_XSETREF(A[50], PyUnicode_InternFromString(attribute_names[50]));
     Py_XSETREF(A[51], PyUnicode_InternFromString(attribute_names[51]));
-    Py_XSETREF(K[0], PyFloat_FromDouble(1e-07));
-    Py_XSETREF(K[1], PyFloat_FromDouble(1e-05));
-    Py_XSETREF(K[2], PyFloat_FromDouble(0.01));
     if (PyErr_Occurred()) {
         return NULL;
     }

@@ -2749,6 +2749,7 @@ def _accelerator() -> Any:
     return module if getattr(module, "SOURCE", None) == '0a396cac0e09bfa2' else None
 
 
+_run_frames: Optional[Callable[..., int]] = None  # the accelerator's stream loop, if it has one
 ACCELERATOR = _accelerator()
 """The compiled accelerator in use, or None: every decoder is Python's."""
 if ACCELERATOR is not None:
@@ -2834,6 +2835,10 @@ class StreamDecoder:
         spans: list[tuple[int, int]] = []
         base, skipped, direction, resyncing = self.offset, 0, self.direction, self._resyncing
         while True:
+            if _run_frames is not None:  # the compiled accelerator decodes the frames that need no Python
+                moved = _run_frames(buf, pos, direction, out, spans, base)
+                if moved != pos:
+                    pos, resyncing = moved, False
             if end - pos < 2:
                 break
             key = buf[pos + 1]
