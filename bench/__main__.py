@@ -26,7 +26,7 @@ def main(argv=None):
     parser.add_argument("--smoke", action="store_true", help="one repetition, small inputs, print only")
     parser.add_argument("--no-install", action="store_true", help="do not pip install the bench extra")
     parser.add_argument("--profile", action="store_true", help="profile codeword's per-message calls, print")
-    parser.add_argument("--only", choices=["compiler"], help="measure one section again, keep the others")
+    parser.add_argument("--only", choices=["compiler", "accelerator"], help="measure one section again, keep the others")
     parser.add_argument("--out", default=str(ROOT / "bench" / "RESULTS.md"))
     parser.add_argument("--stream-mb", type=float, default=50.0, help="size of the mtv4 capture")
     # every size the scaling target names; 5,000 messages take about 2 CPU minutes and under 0.5 GB
@@ -38,13 +38,26 @@ def main(argv=None):
         from bench import profile
         print(profile.profile())
         return 0
-    from bench import runner  # imports the peers, so only after installing them
+    from bench import runner, timing  # runner imports the peers, so only after installing them
     sizes = tuple(int(x) for x in args.scaling_sizes.split(","))
     if args.only == "compiler":
         with tempfile.TemporaryDirectory(prefix="codeword-bench-") as tmp:
             results = runner.run_compiler(Path(tmp), (10,) if args.smoke else sizes, 1 if args.smoke else 3)
         out = Path(args.out)
-        text = runner.splice_compiler(out.read_text(encoding="utf-8"), results)
+        text = runner.splice(out.read_text(encoding="utf-8"), 5, runner.compiler_section(results, []),
+                             "python3 -m bench --only compiler")
+        if args.smoke:
+            print(text)
+        else:
+            out.write_text(text, encoding="utf-8")
+            print(f"wrote {out}")
+        return 0
+    if args.only == "accelerator":
+        results = runner.run_accelerator(1 if args.smoke else 7, 200_000 if args.smoke else int(args.stream_mb * 1e6),
+                                         0.002 if args.smoke else timing.TARGET_SECONDS, 1 if args.smoke else 3)
+        out = Path(args.out)
+        text = runner.splice(out.read_text(encoding="utf-8"), 6, runner.accelerator_section(results, []),
+                             "python3 -m bench --only accelerator")
         if args.smoke:
             print(text)
         else:

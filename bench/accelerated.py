@@ -10,7 +10,7 @@ before timing.
 import importlib.util
 import sys
 
-from bench import peers, streams, timing
+from bench import streams, timing
 from bench.protocols import ROOT
 
 NAMES = ("route", "car", "mtv4", "tr24")  # tank is a text protocol: no accelerator

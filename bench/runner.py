@@ -7,7 +7,7 @@ import sys
 import time
 from pathlib import Path
 
-from bench import avr, c_host, messages, peers_c, scaling, streams, timing
+from bench import accelerated, avr, c_host, messages, peers_c, scaling, streams, timing
 
 # The issue's targets.
 FLOOR_MAX = 1.5  # codeword / hand-written, Python, encode and decode
@@ -49,6 +49,8 @@ def run(tmp: Path, repeats, stream_bytes, c_rounds, scaling_sizes, timing_target
     seconds = timing.interleaved_once({k: v[0] for k, v in jobs.items()}, stream_repeats)
     results["streams"] = {k: (jobs[k][1] / seconds[k] / 1e6, jobs[k][2] / seconds[k], jobs[k][1],
                               jobs[k][2], min(jobs[k][3])) for k in jobs}
+    _progress("Python with the accelerator", start)
+    results["accelerator"] = run_accelerator(repeats, stream_bytes, timing_target, stream_repeats)
     _progress("C on the host and on AVR", start)
     mavlink_dir = peers_c.generate_mavlink(tmp / "mavlink")
     cantools_dir = peers_c.generate_cantools(tmp / "cantools")
@@ -273,8 +275,9 @@ def report(r):
         lines.append(f"| {label} | {mode} | {flash:,} | {ram:,} |")
     lines += crc_choice(r["crc_choice"], c)
 
-    # 5
+    # 5, 6
     lines += [""] + compiler_section(r, verdicts)
+    lines += accelerator_section(r["accelerator"], verdicts)
     lines += ["", "## Summary", "", f"{sum(verdicts)} of {len(verdicts)} targets met; the misses are marked "
               "**NOT met** above.", ""]
     return "\n".join(lines)
@@ -291,18 +294,34 @@ def run_compiler(tmp: Path, scaling_sizes, scaling_repeats=1):
     return results
 
 
-def splice_compiler(text: str, r) -> str:
-    """RESULTS.md with section 5 measured again and the summary counted again; the
+def run_accelerator(repeats, stream_bytes, timing_target=timing.TARGET_SECONDS, stream_repeats=1):
+    """Section 6 alone (`python3 -m bench --only accelerator`)."""
+    try:
+        return accelerated.measure(messages.cases(), repeats, timing_target, stream_bytes, stream_repeats)
+    except accelerated.NotBuilt as exc:
+        return str(exc)
+
+
+def accelerator_section(r, verdicts) -> list[str]:
+    if isinstance(r, str):  # not built: the section says why
+        return ["", "## 6. Python with the compiled accelerator", "", f"Not measured: {r}."]
+    return accelerated.report(r, verdicts, _met)
+
+
+def splice(text: str, number: int, lines: list[str], command: str) -> str:
+    """RESULTS.md with one section measured again and the summary counted again; the
     other sections stay as their run wrote them, and a note says so."""
-    head, rest = text.split("## 5. Compiler scaling", 1)
-    lines = compiler_section(r, [])
-    lines += ["", f"Section 5 was measured again on its own (`python3 -m bench --only compiler`, "
-              f"{time.strftime('%Y-%m-%d')}); the sections above are from the last full run.", ""]
-    body = head + "\n".join(lines) + "\n"
+    sections = re.split(r"(?m)^(?=## )", text)
+    new = "\n".join(lines).strip("\n") + "\n\n" + (
+        f"Section {number} was measured again on its own (`{command}`, {time.strftime('%Y-%m-%d')}); "
+        "the other sections are from the last full run.\n\n")
+    kept = [new if part.startswith(f"## {number}.") else part for part in sections if not part.startswith("## Summary")]
+    if not any(part.startswith(f"## {number}.") for part in sections):
+        kept.append(new)
+    body = "".join(kept)
     met = len(re.findall(r"(?<!NOT )\bmet\b", body))
     missed = body.count("**NOT met**")
     summary = ["## Summary", "", f"{met} of {met + missed} targets met; the misses are marked **NOT met** above.", ""]
-    del rest
     return body + "\n".join(summary)
 
 
