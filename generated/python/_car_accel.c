@@ -10,6 +10,7 @@
  * Messages not listed here are decoded in Python. */
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
+#include <structmember.h>
 #include <float.h>
 
 #if FLT_EVAL_METHOD != 0  /* scaled values are computed in double, rounded as Python rounds them */
@@ -28,6 +29,34 @@ const char cw_accel_build[] = "codeword-accelerator-build:" CW_ACCEL_BUILD;
  * names and numeric constants: filled by bind(). */
 static PyObject *G[8];
 static PyObject *A[12];
+/* For each slot: the class and the attribute (indices into G and A), and where the
+ * class's instances keep it (0: not a plain slot, set through setattr). */
+static const unsigned short slot_of[23][2] = {
+    {0, 0},
+    {0, 1},
+    {0, 2},
+    {1, 3},
+    {1, 4},
+    {1, 5},
+    {1, 6},
+    {0, 7},
+    {3, 7},
+    {3, 6},
+    {0, 8},
+    {4, 3},
+    {4, 9},
+    {4, 6},
+    {0, 10},
+    {0, 11},
+    {6, 0},
+    {6, 1},
+    {6, 2},
+    {6, 7},
+    {6, 8},
+    {6, 10},
+    {6, 11},
+};
+static Py_ssize_t S[23];
 
 static inline PyObject *acc_new(PyObject *cls)
 {
@@ -35,13 +64,20 @@ static inline PyObject *acc_new(PyObject *cls)
     return type->tp_alloc(type, 0);
 }
 
-/* Sets obj.name = value and releases value (NULL: an error already set). */
-static inline int acc_put(PyObject *obj, PyObject *name, PyObject *value)
+/* Sets attribute `slot` of obj to value and releases value (NULL: an error already set):
+ * straight into the instance's slot where the class has one, as its member descriptor
+ * would, else through setattr. */
+static inline int acc_set(PyObject *obj, int slot, PyObject *value)
 {
     if (value == NULL) {
         return -1;
     }
-    int rc = PyObject_SetAttr(obj, name, value);
+    if (S[slot] > 0) {
+        PyObject **place = (PyObject **)(void *)((char *)obj + S[slot]);
+        Py_XSETREF(*place, value);
+        return 0;
+    }
+    int rc = PyObject_SetAttr(obj, A[slot_of[slot][1]], value);
     Py_DECREF(value);
     return rc;
 }
@@ -59,29 +95,29 @@ static inline PyObject *acc_lookup(PyObject *table, PyObject *key)
 
 static PyObject *build_master_control(const car_master_control_t *m)
 {
-    PyObject *o = acc_new(G[4]);
+    PyObject *o = acc_new(G[0]);
     if (o == NULL) {
         return NULL;
     }
-    if (acc_put(o, A[0], PyBool_FromLong(m->accept_ir)) < 0) goto fail;
-    if (acc_put(o, A[1], PyBool_FromLong(m->forward_words)) < 0) goto fail;
-    PyObject *g1 = acc_new(G[0]);
-    if (acc_put(o, A[2], g1) < 0) goto fail;
-    if (acc_put(g1, A[3], PyBool_FromLong(m->motor.enable)) < 0) goto fail;
-    if (acc_put(g1, A[4], acc_lookup(G[1], PyLong_FromUnsignedLongLong((unsigned long long)m->motor.direction))) < 0) goto fail;
-    if (acc_put(g1, A[5], PyLong_FromUnsignedLongLong((unsigned long long)m->motor.speed)) < 0) goto fail;
-    if (acc_put(g1, A[6], PyLong_FromUnsignedLongLong((unsigned long long)m->motor.duration)) < 0) goto fail;
-    PyObject *g2 = acc_new(G[2]);
-    if (acc_put(o, A[7], g2) < 0) goto fail;
-    if (acc_put(g2, A[7], PyLong_FromUnsignedLongLong((unsigned long long)m->led.led)) < 0) goto fail;
-    if (acc_put(g2, A[6], PyLong_FromUnsignedLongLong((unsigned long long)m->led.duration)) < 0) goto fail;
-    PyObject *g3 = acc_new(G[3]);
-    if (acc_put(o, A[8], g3) < 0) goto fail;
-    if (acc_put(g3, A[3], PyBool_FromLong(m->ultrasonic.enable)) < 0) goto fail;
-    if (acc_put(g3, A[9], PyLong_FromUnsignedLongLong((unsigned long long)m->ultrasonic.radius)) < 0) goto fail;
-    if (acc_put(g3, A[6], PyLong_FromUnsignedLongLong((unsigned long long)m->ultrasonic.duration)) < 0) goto fail;
-    if (acc_put(o, A[10], PyBool_FromLong(m->voice)) < 0) goto fail;
-    if (acc_put(o, A[11], PyBool_FromLong(m->body_sensor)) < 0) goto fail;
+    if (acc_set(o, 0, PyBool_FromLong(m->accept_ir)) < 0) goto fail;
+    if (acc_set(o, 1, PyBool_FromLong(m->forward_words)) < 0) goto fail;
+    PyObject *g1 = acc_new(G[1]);
+    if (acc_set(o, 2, g1) < 0) goto fail;
+    if (acc_set(g1, 3, PyBool_FromLong(m->motor.enable)) < 0) goto fail;
+    if (acc_set(g1, 4, acc_lookup(G[2], PyLong_FromUnsignedLongLong((unsigned long long)m->motor.direction))) < 0) goto fail;
+    if (acc_set(g1, 5, PyLong_FromUnsignedLongLong((unsigned long long)m->motor.speed)) < 0) goto fail;
+    if (acc_set(g1, 6, PyLong_FromUnsignedLongLong((unsigned long long)m->motor.duration)) < 0) goto fail;
+    PyObject *g2 = acc_new(G[3]);
+    if (acc_set(o, 7, g2) < 0) goto fail;
+    if (acc_set(g2, 8, PyLong_FromUnsignedLongLong((unsigned long long)m->led.led)) < 0) goto fail;
+    if (acc_set(g2, 9, PyLong_FromUnsignedLongLong((unsigned long long)m->led.duration)) < 0) goto fail;
+    PyObject *g3 = acc_new(G[4]);
+    if (acc_set(o, 10, g3) < 0) goto fail;
+    if (acc_set(g3, 11, PyBool_FromLong(m->ultrasonic.enable)) < 0) goto fail;
+    if (acc_set(g3, 12, PyLong_FromUnsignedLongLong((unsigned long long)m->ultrasonic.radius)) < 0) goto fail;
+    if (acc_set(g3, 13, PyLong_FromUnsignedLongLong((unsigned long long)m->ultrasonic.duration)) < 0) goto fail;
+    if (acc_set(o, 14, PyBool_FromLong(m->voice)) < 0) goto fail;
+    if (acc_set(o, 15, PyBool_FromLong(m->body_sensor)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -115,25 +151,25 @@ static PyObject *build_slave_control(const car_slave_control_t *m)
     if (o == NULL) {
         return NULL;
     }
-    if (acc_put(o, A[0], PyBool_FromLong(m->accept_ir)) < 0) goto fail;
-    if (acc_put(o, A[1], PyBool_FromLong(m->forward_words)) < 0) goto fail;
-    PyObject *g4 = acc_new(G[0]);
-    if (acc_put(o, A[2], g4) < 0) goto fail;
-    if (acc_put(g4, A[3], PyBool_FromLong(m->motor.enable)) < 0) goto fail;
-    if (acc_put(g4, A[4], acc_lookup(G[1], PyLong_FromUnsignedLongLong((unsigned long long)m->motor.direction))) < 0) goto fail;
-    if (acc_put(g4, A[5], PyLong_FromUnsignedLongLong((unsigned long long)m->motor.speed)) < 0) goto fail;
-    if (acc_put(g4, A[6], PyLong_FromUnsignedLongLong((unsigned long long)m->motor.duration)) < 0) goto fail;
-    PyObject *g5 = acc_new(G[2]);
-    if (acc_put(o, A[7], g5) < 0) goto fail;
-    if (acc_put(g5, A[7], PyLong_FromUnsignedLongLong((unsigned long long)m->led.led)) < 0) goto fail;
-    if (acc_put(g5, A[6], PyLong_FromUnsignedLongLong((unsigned long long)m->led.duration)) < 0) goto fail;
-    PyObject *g6 = acc_new(G[3]);
-    if (acc_put(o, A[8], g6) < 0) goto fail;
-    if (acc_put(g6, A[3], PyBool_FromLong(m->ultrasonic.enable)) < 0) goto fail;
-    if (acc_put(g6, A[9], PyLong_FromUnsignedLongLong((unsigned long long)m->ultrasonic.radius)) < 0) goto fail;
-    if (acc_put(g6, A[6], PyLong_FromUnsignedLongLong((unsigned long long)m->ultrasonic.duration)) < 0) goto fail;
-    if (acc_put(o, A[10], PyBool_FromLong(m->voice)) < 0) goto fail;
-    if (acc_put(o, A[11], PyBool_FromLong(m->body_sensor)) < 0) goto fail;
+    if (acc_set(o, 16, PyBool_FromLong(m->accept_ir)) < 0) goto fail;
+    if (acc_set(o, 17, PyBool_FromLong(m->forward_words)) < 0) goto fail;
+    PyObject *g4 = acc_new(G[1]);
+    if (acc_set(o, 18, g4) < 0) goto fail;
+    if (acc_set(g4, 3, PyBool_FromLong(m->motor.enable)) < 0) goto fail;
+    if (acc_set(g4, 4, acc_lookup(G[2], PyLong_FromUnsignedLongLong((unsigned long long)m->motor.direction))) < 0) goto fail;
+    if (acc_set(g4, 5, PyLong_FromUnsignedLongLong((unsigned long long)m->motor.speed)) < 0) goto fail;
+    if (acc_set(g4, 6, PyLong_FromUnsignedLongLong((unsigned long long)m->motor.duration)) < 0) goto fail;
+    PyObject *g5 = acc_new(G[3]);
+    if (acc_set(o, 19, g5) < 0) goto fail;
+    if (acc_set(g5, 8, PyLong_FromUnsignedLongLong((unsigned long long)m->led.led)) < 0) goto fail;
+    if (acc_set(g5, 9, PyLong_FromUnsignedLongLong((unsigned long long)m->led.duration)) < 0) goto fail;
+    PyObject *g6 = acc_new(G[4]);
+    if (acc_set(o, 20, g6) < 0) goto fail;
+    if (acc_set(g6, 11, PyBool_FromLong(m->ultrasonic.enable)) < 0) goto fail;
+    if (acc_set(g6, 12, PyLong_FromUnsignedLongLong((unsigned long long)m->ultrasonic.radius)) < 0) goto fail;
+    if (acc_set(g6, 13, PyLong_FromUnsignedLongLong((unsigned long long)m->ultrasonic.duration)) < 0) goto fail;
+    if (acc_set(o, 21, PyBool_FromLong(m->voice)) < 0) goto fail;
+    if (acc_set(o, 22, PyBool_FromLong(m->body_sensor)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -168,11 +204,11 @@ static PyMethodDef decoders[] = {
 };
 
 static const char *const global_names[] = {
+    "MasterControl",
     "ControlWordMotor",
     "_ENUM_motor_direction",
     "ControlWordLed",
     "ControlWordUltrasonic",
-    "MasterControl",
     "_decode_master_control",
     "SlaveControl",
     "_decode_slave_control",
@@ -226,6 +262,21 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
     Py_XSETREF(A[11], PyUnicode_InternFromString(attribute_names[11]));
     if (PyErr_Occurred()) {
         return NULL;
+    }
+    for (size_t i = 0; i < sizeof S / sizeof S[0]; i++) {
+        PyObject *descr = PyObject_GetAttr(G[slot_of[i][0]], A[slot_of[i][1]]);
+        S[i] = 0;
+        if (descr == NULL) {
+            PyErr_Clear();
+            continue;
+        }
+        if (Py_IS_TYPE(descr, &PyMemberDescr_Type)) {
+            PyMemberDef *def = ((PyMemberDescrObject *)descr)->d_member;
+            if (def->type == T_OBJECT_EX && !(def->flags & READONLY)) {
+                S[i] = def->offset;
+            }
+        }
+        Py_DECREF(descr);
     }
     PyObject *out = PyDict_New();
     for (PyMethodDef *def = decoders; out != NULL && def->ml_name != NULL; def++) {

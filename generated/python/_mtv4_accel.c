@@ -10,6 +10,7 @@
  * Messages not listed here are decoded in Python. */
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
+#include <structmember.h>
 #include <float.h>
 
 #if FLT_EVAL_METHOD != 0  /* scaled values are computed in double, rounded as Python rounds them */
@@ -28,6 +29,43 @@ const char cw_accel_build[] = "codeword-accelerator-build:" CW_ACCEL_BUILD;
  * names and numeric constants: filled by bind(). */
 static PyObject *G[12];
 static PyObject *A[14];
+/* For each slot: the class and the attribute (indices into G and A), and where the
+ * class's instances keep it (0: not a plain slot, set through setattr). */
+static const unsigned short slot_of[32][2] = {
+    {0, 0},
+    {0, 1},
+    {0, 2},
+    {0, 3},
+    {0, 4},
+    {3, 0},
+    {3, 1},
+    {3, 2},
+    {3, 5},
+    {3, 6},
+    {3, 7},
+    {3, 8},
+    {5, 0},
+    {5, 1},
+    {5, 2},
+    {5, 9},
+    {5, 3},
+    {5, 4},
+    {5, 10},
+    {5, 11},
+    {5, 12},
+    {8, 0},
+    {8, 1},
+    {8, 13},
+    {8, 2},
+    {10, 0},
+    {10, 1},
+    {10, 2},
+    {10, 9},
+    {10, 10},
+    {10, 11},
+    {10, 12},
+};
+static Py_ssize_t S[32];
 
 static inline PyObject *acc_new(PyObject *cls)
 {
@@ -35,13 +73,20 @@ static inline PyObject *acc_new(PyObject *cls)
     return type->tp_alloc(type, 0);
 }
 
-/* Sets obj.name = value and releases value (NULL: an error already set). */
-static inline int acc_put(PyObject *obj, PyObject *name, PyObject *value)
+/* Sets attribute `slot` of obj to value and releases value (NULL: an error already set):
+ * straight into the instance's slot where the class has one, as its member descriptor
+ * would, else through setattr. */
+static inline int acc_set(PyObject *obj, int slot, PyObject *value)
 {
     if (value == NULL) {
         return -1;
     }
-    int rc = PyObject_SetAttr(obj, name, value);
+    if (S[slot] > 0) {
+        PyObject **place = (PyObject **)(void *)((char *)obj + S[slot]);
+        Py_XSETREF(*place, value);
+        return 0;
+    }
+    int rc = PyObject_SetAttr(obj, A[slot_of[slot][1]], value);
     Py_DECREF(value);
     return rc;
 }
@@ -59,15 +104,15 @@ static inline PyObject *acc_lookup(PyObject *table, PyObject *key)
 
 static PyObject *build_set_wheels_velocities(const mtv4_set_wheels_velocities_t *m)
 {
-    PyObject *o = acc_new(G[1]);
+    PyObject *o = acc_new(G[0]);
     if (o == NULL) {
         return NULL;
     }
-    if (acc_put(o, A[0], PyLong_FromUnsignedLongLong((unsigned long long)m->group)) < 0) goto fail;
-    if (acc_put(o, A[1], PyLong_FromUnsignedLongLong((unsigned long long)m->radio_crc_flag)) < 0) goto fail;
-    if (acc_put(o, A[2], acc_lookup(G[0], PyLong_FromUnsignedLongLong((unsigned long long)m->robots))) < 0) goto fail;
-    if (acc_put(o, A[3], PyFloat_FromDouble((double)m->vl * 0.125)) < 0) goto fail;
-    if (acc_put(o, A[4], PyFloat_FromDouble((double)m->vr * 0.125)) < 0) goto fail;
+    if (acc_set(o, 0, PyLong_FromUnsignedLongLong((unsigned long long)m->group)) < 0) goto fail;
+    if (acc_set(o, 1, PyLong_FromUnsignedLongLong((unsigned long long)m->radio_crc_flag)) < 0) goto fail;
+    if (acc_set(o, 2, acc_lookup(G[1], PyLong_FromUnsignedLongLong((unsigned long long)m->robots))) < 0) goto fail;
+    if (acc_set(o, 3, PyFloat_FromDouble((double)m->vl * 0.125)) < 0) goto fail;
+    if (acc_set(o, 4, PyFloat_FromDouble((double)m->vr * 0.125)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -101,13 +146,13 @@ static PyObject *build_set_led(const mtv4_set_led_t *m)
     if (o == NULL) {
         return NULL;
     }
-    if (acc_put(o, A[0], PyLong_FromUnsignedLongLong((unsigned long long)m->group)) < 0) goto fail;
-    if (acc_put(o, A[1], PyLong_FromUnsignedLongLong((unsigned long long)m->radio_crc_flag)) < 0) goto fail;
-    if (acc_put(o, A[2], acc_lookup(G[0], PyLong_FromUnsignedLongLong((unsigned long long)m->robots))) < 0) goto fail;
-    if (acc_put(o, A[5], PyLong_FromUnsignedLongLong((unsigned long long)m->d1)) < 0) goto fail;
-    if (acc_put(o, A[6], PyLong_FromUnsignedLongLong((unsigned long long)m->d2)) < 0) goto fail;
-    if (acc_put(o, A[7], PyLong_FromUnsignedLongLong((unsigned long long)m->d3)) < 0) goto fail;
-    if (acc_put(o, A[8], PyLong_FromUnsignedLongLong((unsigned long long)m->d4)) < 0) goto fail;
+    if (acc_set(o, 5, PyLong_FromUnsignedLongLong((unsigned long long)m->group)) < 0) goto fail;
+    if (acc_set(o, 6, PyLong_FromUnsignedLongLong((unsigned long long)m->radio_crc_flag)) < 0) goto fail;
+    if (acc_set(o, 7, acc_lookup(G[1], PyLong_FromUnsignedLongLong((unsigned long long)m->robots))) < 0) goto fail;
+    if (acc_set(o, 8, PyLong_FromUnsignedLongLong((unsigned long long)m->d1)) < 0) goto fail;
+    if (acc_set(o, 9, PyLong_FromUnsignedLongLong((unsigned long long)m->d2)) < 0) goto fail;
+    if (acc_set(o, 10, PyLong_FromUnsignedLongLong((unsigned long long)m->d3)) < 0) goto fail;
+    if (acc_set(o, 11, PyLong_FromUnsignedLongLong((unsigned long long)m->d4)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -137,19 +182,19 @@ static PyObject *decode_set_led(PyObject *self, PyObject *data)
 
 static PyObject *build_set_wheels_velocities_with_odometry(const mtv4_set_wheels_velocities_with_odometry_t *m)
 {
-    PyObject *o = acc_new(G[6]);
+    PyObject *o = acc_new(G[5]);
     if (o == NULL) {
         return NULL;
     }
-    if (acc_put(o, A[0], PyLong_FromUnsignedLongLong((unsigned long long)m->group)) < 0) goto fail;
-    if (acc_put(o, A[1], PyLong_FromUnsignedLongLong((unsigned long long)m->radio_crc_flag)) < 0) goto fail;
-    if (acc_put(o, A[2], acc_lookup(G[0], PyLong_FromUnsignedLongLong((unsigned long long)m->robots))) < 0) goto fail;
-    if (acc_put(o, A[9], acc_lookup(G[5], PyLong_FromUnsignedLongLong((unsigned long long)m->status))) < 0) goto fail;
-    if (acc_put(o, A[3], PyFloat_FromDouble((double)m->vl * 0.125)) < 0) goto fail;
-    if (acc_put(o, A[4], PyFloat_FromDouble((double)m->vr * 0.125)) < 0) goto fail;
-    if (acc_put(o, A[10], PyFloat_FromDouble((double)m->x)) < 0) goto fail;
-    if (acc_put(o, A[11], PyFloat_FromDouble((double)m->y)) < 0) goto fail;
-    if (acc_put(o, A[12], PyFloat_FromDouble((double)m->th)) < 0) goto fail;
+    if (acc_set(o, 12, PyLong_FromUnsignedLongLong((unsigned long long)m->group)) < 0) goto fail;
+    if (acc_set(o, 13, PyLong_FromUnsignedLongLong((unsigned long long)m->radio_crc_flag)) < 0) goto fail;
+    if (acc_set(o, 14, acc_lookup(G[1], PyLong_FromUnsignedLongLong((unsigned long long)m->robots))) < 0) goto fail;
+    if (acc_set(o, 15, acc_lookup(G[6], PyLong_FromUnsignedLongLong((unsigned long long)m->status))) < 0) goto fail;
+    if (acc_set(o, 16, PyFloat_FromDouble((double)m->vl * 0.125)) < 0) goto fail;
+    if (acc_set(o, 17, PyFloat_FromDouble((double)m->vr * 0.125)) < 0) goto fail;
+    if (acc_set(o, 18, PyFloat_FromDouble((double)m->x)) < 0) goto fail;
+    if (acc_set(o, 19, PyFloat_FromDouble((double)m->y)) < 0) goto fail;
+    if (acc_set(o, 20, PyFloat_FromDouble((double)m->th)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -183,10 +228,10 @@ static PyObject *build_ack(const mtv4_ack_t *m)
     if (o == NULL) {
         return NULL;
     }
-    if (acc_put(o, A[0], PyLong_FromUnsignedLongLong((unsigned long long)m->group)) < 0) goto fail;
-    if (acc_put(o, A[1], PyLong_FromUnsignedLongLong((unsigned long long)m->radio_crc_flag)) < 0) goto fail;
-    if (acc_put(o, A[13], PyLong_FromUnsignedLongLong((unsigned long long)m->command)) < 0) goto fail;
-    if (acc_put(o, A[2], acc_lookup(G[0], PyLong_FromUnsignedLongLong((unsigned long long)m->robots))) < 0) goto fail;
+    if (acc_set(o, 21, PyLong_FromUnsignedLongLong((unsigned long long)m->group)) < 0) goto fail;
+    if (acc_set(o, 22, PyLong_FromUnsignedLongLong((unsigned long long)m->radio_crc_flag)) < 0) goto fail;
+    if (acc_set(o, 23, PyLong_FromUnsignedLongLong((unsigned long long)m->command)) < 0) goto fail;
+    if (acc_set(o, 24, acc_lookup(G[1], PyLong_FromUnsignedLongLong((unsigned long long)m->robots))) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -220,13 +265,13 @@ static PyObject *build_odometry_reply(const mtv4_odometry_reply_t *m)
     if (o == NULL) {
         return NULL;
     }
-    if (acc_put(o, A[0], PyLong_FromUnsignedLongLong((unsigned long long)m->group)) < 0) goto fail;
-    if (acc_put(o, A[1], PyLong_FromUnsignedLongLong((unsigned long long)m->radio_crc_flag)) < 0) goto fail;
-    if (acc_put(o, A[2], acc_lookup(G[0], PyLong_FromUnsignedLongLong((unsigned long long)m->robots))) < 0) goto fail;
-    if (acc_put(o, A[9], PyLong_FromUnsignedLongLong((unsigned long long)m->status)) < 0) goto fail;
-    if (acc_put(o, A[10], PyFloat_FromDouble((double)m->x)) < 0) goto fail;
-    if (acc_put(o, A[11], PyFloat_FromDouble((double)m->y)) < 0) goto fail;
-    if (acc_put(o, A[12], PyFloat_FromDouble((double)m->th)) < 0) goto fail;
+    if (acc_set(o, 25, PyLong_FromUnsignedLongLong((unsigned long long)m->group)) < 0) goto fail;
+    if (acc_set(o, 26, PyLong_FromUnsignedLongLong((unsigned long long)m->radio_crc_flag)) < 0) goto fail;
+    if (acc_set(o, 27, acc_lookup(G[1], PyLong_FromUnsignedLongLong((unsigned long long)m->robots))) < 0) goto fail;
+    if (acc_set(o, 28, PyLong_FromUnsignedLongLong((unsigned long long)m->status)) < 0) goto fail;
+    if (acc_set(o, 29, PyFloat_FromDouble((double)m->x)) < 0) goto fail;
+    if (acc_set(o, 30, PyFloat_FromDouble((double)m->y)) < 0) goto fail;
+    if (acc_set(o, 31, PyFloat_FromDouble((double)m->th)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -354,13 +399,13 @@ static PyMethodDef decoders[] = {
 };
 
 static const char *const global_names[] = {
-    "_FLAGS_robots",
     "SetWheelsVelocities",
+    "_FLAGS_robots",
     "_decode_set_wheels_velocities",
     "SetLed",
     "_decode_set_led",
-    "_FLAGS_status",
     "SetWheelsVelocitiesWithOdometry",
+    "_FLAGS_status",
     "_decode_set_wheels_velocities_with_odometry",
     "Ack",
     "_decode_ack",
@@ -420,6 +465,21 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
     Py_XSETREF(A[13], PyUnicode_InternFromString(attribute_names[13]));
     if (PyErr_Occurred()) {
         return NULL;
+    }
+    for (size_t i = 0; i < sizeof S / sizeof S[0]; i++) {
+        PyObject *descr = PyObject_GetAttr(G[slot_of[i][0]], A[slot_of[i][1]]);
+        S[i] = 0;
+        if (descr == NULL) {
+            PyErr_Clear();
+            continue;
+        }
+        if (Py_IS_TYPE(descr, &PyMemberDescr_Type)) {
+            PyMemberDef *def = ((PyMemberDescrObject *)descr)->d_member;
+            if (def->type == T_OBJECT_EX && !(def->flags & READONLY)) {
+                S[i] = def->offset;
+            }
+        }
+        Py_DECREF(descr);
     }
     PyObject *out = PyDict_New();
     for (PyMethodDef *def = decoders; out != NULL && def->ml_name != NULL; def++) {

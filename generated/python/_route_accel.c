@@ -10,6 +10,7 @@
  * Messages not listed here are decoded in Python. */
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
+#include <structmember.h>
 #include <float.h>
 
 #if FLT_EVAL_METHOD != 0  /* scaled values are computed in double, rounded as Python rounds them */
@@ -28,6 +29,23 @@ const char cw_accel_build[] = "codeword-accelerator-build:" CW_ACCEL_BUILD;
  * names and numeric constants: filled by bind(). */
 static PyObject *G[9];
 static PyObject *A[10];
+/* For each slot: the class and the attribute (indices into G and A), and where the
+ * class's instances keep it (0: not a plain slot, set through setattr). */
+static const unsigned short slot_of[12][2] = {
+    {2, 0},
+    {2, 1},
+    {2, 2},
+    {2, 3},
+    {2, 4},
+    {2, 5},
+    {2, 6},
+    {2, 7},
+    {4, 0},
+    {4, 1},
+    {4, 8},
+    {4, 9},
+};
+static Py_ssize_t S[12];
 
 static inline PyObject *acc_new(PyObject *cls)
 {
@@ -35,13 +53,20 @@ static inline PyObject *acc_new(PyObject *cls)
     return type->tp_alloc(type, 0);
 }
 
-/* Sets obj.name = value and releases value (NULL: an error already set). */
-static inline int acc_put(PyObject *obj, PyObject *name, PyObject *value)
+/* Sets attribute `slot` of obj to value and releases value (NULL: an error already set):
+ * straight into the instance's slot where the class has one, as its member descriptor
+ * would, else through setattr. */
+static inline int acc_set(PyObject *obj, int slot, PyObject *value)
 {
     if (value == NULL) {
         return -1;
     }
-    int rc = PyObject_SetAttr(obj, name, value);
+    if (S[slot] > 0) {
+        PyObject **place = (PyObject **)(void *)((char *)obj + S[slot]);
+        Py_XSETREF(*place, value);
+        return 0;
+    }
+    int rc = PyObject_SetAttr(obj, A[slot_of[slot][1]], value);
     Py_DECREF(value);
     return rc;
 }
@@ -90,14 +115,14 @@ static PyObject *build_object(const route_object_t *m)
     if (o == NULL) {
         return NULL;
     }
-    if (acc_put(o, A[0], PyLong_FromUnsignedLongLong((unsigned long long)m->ns)) < 0) goto fail;
-    if (acc_put(o, A[1], PyLong_FromUnsignedLongLong((unsigned long long)m->nl)) < 0) goto fail;
-    if (acc_put(o, A[2], PyLong_FromUnsignedLongLong((unsigned long long)m->no)) < 0) goto fail;
-    if (acc_put(o, A[3], PyLong_FromUnsignedLongLong((unsigned long long)m->na)) < 0) goto fail;
-    if (acc_put(o, A[4], PyLong_FromUnsignedLongLong((unsigned long long)m->dl)) < 0) goto fail;
-    if (acc_put(o, A[5], PyLong_FromUnsignedLongLong((unsigned long long)m->rc)) < 0) goto fail;
-    if (acc_put(o, A[6], PyLong_FromUnsignedLongLong((unsigned long long)m->dr)) < 0) goto fail;
-    if (acc_put(o, A[7], PyLong_FromUnsignedLongLong((unsigned long long)m->cm)) < 0) goto fail;
+    if (acc_set(o, 0, PyLong_FromUnsignedLongLong((unsigned long long)m->ns)) < 0) goto fail;
+    if (acc_set(o, 1, PyLong_FromUnsignedLongLong((unsigned long long)m->nl)) < 0) goto fail;
+    if (acc_set(o, 2, PyLong_FromUnsignedLongLong((unsigned long long)m->no)) < 0) goto fail;
+    if (acc_set(o, 3, PyLong_FromUnsignedLongLong((unsigned long long)m->na)) < 0) goto fail;
+    if (acc_set(o, 4, PyLong_FromUnsignedLongLong((unsigned long long)m->dl)) < 0) goto fail;
+    if (acc_set(o, 5, PyLong_FromUnsignedLongLong((unsigned long long)m->rc)) < 0) goto fail;
+    if (acc_set(o, 6, PyLong_FromUnsignedLongLong((unsigned long long)m->dr)) < 0) goto fail;
+    if (acc_set(o, 7, PyLong_FromUnsignedLongLong((unsigned long long)m->cm)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -127,14 +152,14 @@ static PyObject *decode_object(PyObject *self, PyObject *data)
 
 static PyObject *build_scene(const route_scene_t *m)
 {
-    PyObject *o = acc_new(G[5]);
+    PyObject *o = acc_new(G[4]);
     if (o == NULL) {
         return NULL;
     }
-    if (acc_put(o, A[0], PyLong_FromUnsignedLongLong((unsigned long long)m->ns)) < 0) goto fail;
-    if (acc_put(o, A[1], PyLong_FromUnsignedLongLong((unsigned long long)m->nl)) < 0) goto fail;
-    if (acc_put(o, A[8], acc_lookup(G[4], PyLong_FromUnsignedLongLong((unsigned long long)m->db))) < 0) goto fail;
-    if (acc_put(o, A[9], PyLong_FromUnsignedLongLong((unsigned long long)m->nt)) < 0) goto fail;
+    if (acc_set(o, 8, PyLong_FromUnsignedLongLong((unsigned long long)m->ns)) < 0) goto fail;
+    if (acc_set(o, 9, PyLong_FromUnsignedLongLong((unsigned long long)m->nl)) < 0) goto fail;
+    if (acc_set(o, 10, acc_lookup(G[5], PyLong_FromUnsignedLongLong((unsigned long long)m->db))) < 0) goto fail;
+    if (acc_set(o, 11, PyLong_FromUnsignedLongLong((unsigned long long)m->nt)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -202,8 +227,8 @@ static const char *const global_names[] = {
     "_decode_start",
     "Object",
     "_decode_object",
-    "_ENUM_pass_side",
     "Scene",
+    "_ENUM_pass_side",
     "_decode_scene",
     "End",
     "_decode_end",
@@ -253,6 +278,21 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
     Py_XSETREF(A[9], PyUnicode_InternFromString(attribute_names[9]));
     if (PyErr_Occurred()) {
         return NULL;
+    }
+    for (size_t i = 0; i < sizeof S / sizeof S[0]; i++) {
+        PyObject *descr = PyObject_GetAttr(G[slot_of[i][0]], A[slot_of[i][1]]);
+        S[i] = 0;
+        if (descr == NULL) {
+            PyErr_Clear();
+            continue;
+        }
+        if (Py_IS_TYPE(descr, &PyMemberDescr_Type)) {
+            PyMemberDef *def = ((PyMemberDescrObject *)descr)->d_member;
+            if (def->type == T_OBJECT_EX && !(def->flags & READONLY)) {
+                S[i] = def->offset;
+            }
+        }
+        Py_DECREF(descr);
     }
     PyObject *out = PyDict_New();
     for (PyMethodDef *def = decoders; out != NULL && def->ml_name != NULL; def++) {

@@ -25,9 +25,10 @@ class Names:
     globals: list[str] = field(default_factory=list)
     attributes: list[str] = field(default_factory=list)
     constants: list[str] = field(default_factory=list)  # Python literals: ints and floats
+    slots: list[tuple[int, int]] = field(default_factory=list)  # (class, attribute): an instance's slot
 
     @staticmethod
-    def _slot(table: list[str], name: str) -> int:
+    def _slot(table: list, name) -> int:
         if name not in table:
             table.append(name)
         return table.index(name)
@@ -37,6 +38,11 @@ class Names:
 
     def a(self, name: str) -> str:
         return f"A[{self._slot(self.attributes, name)}]"
+
+    def s(self, cls: str, attribute: str) -> str:
+        """The index of the slot that holds `attribute` in instances of `cls`."""
+        pair = (self._slot(self.globals, cls), self._slot(self.attributes, attribute))
+        return str(self._slot(self.slots, pair))
 
     def k(self, literal: str) -> str:
         return f"K[{self._slot(self.constants, literal)}]"
@@ -58,34 +64,35 @@ class AcceleratorView:
         for m in self.messages():
             body = Code()
             body.indent()
-            self.build(body, m, m.layout, (), "o", "m->")
+            self.build(body, m, m.layout, (), "o", self.py.class_name(m), "m->")
             out.append({"name": m.name, "cls": self.names.g(self.py.class_name(m)),
                         "pure": self.names.g(f"_decode_{m.name}"), "decode": self.c.fn(m, "decode"),
                         "ctype": self.c.tname(m), "kind": self.c.upper("MSG", m.name), "body": body.text()})
         return out
 
-    def build(self, c: Code, m: Message, fields: tuple[Field, ...], path: tuple, var: str, member: str) -> None:
-        """Code that fills the object in `var` (held by the message object) from the C
-        struct members named `member` + field name. Each object made is given to its
-        owner at once, so `goto fail` has only the message object to release."""
+    def build(self, c: Code, m: Message, fields: tuple[Field, ...], path: tuple, var: str, cls: str,
+              member: str) -> None:
+        """Code that fills the object in `var` (of class `cls`, held by the message object)
+        from the C struct members named `member` + field name. Each object made is given
+        to its owner at once, so `goto fail` has only the message object to release."""
         for f in fields:
             if f.is_member:
-                self.assign(c, m, f, path + (f.name,), var, member + f.name)
+                self.assign(c, m, f, path + (f.name,), var, cls, member + f.name)
 
-    def assign(self, c: Code, m: Message, f: Field, path: tuple, owner: str, at: str) -> None:
-        attribute = self.names.a(f.name)
+    def assign(self, c: Code, m: Message, f: Field, path: tuple, owner: str, cls: str, at: str) -> None:
+        slot = self.names.s(cls, f.name)
         if f.count is None:
             if f.kind == "group":
-                group = self.local("g")
-                c(f"PyObject *{group} = acc_new({self.names.g(self.py.group_class(m, path))});")
-                c(f"if (acc_put({owner}, {attribute}, {group}) < 0) goto fail;")
-                self.build(c, m, f.fields, path, group, at + ".")
+                group, group_cls = self.local("g"), self.py.group_class(m, path)
+                c(f"PyObject *{group} = acc_new({self.names.g(group_cls)});")
+                c(f"if (acc_set({owner}, {slot}, {group}) < 0) goto fail;")
+                self.build(c, m, f.fields, path, group, group_cls, at + ".")
             else:
-                c(f"if (acc_put({owner}, {attribute}, {self.value(f, at)}) < 0) goto fail;")
+                c(f"if (acc_set({owner}, {slot}, {self.value(f, at)}) < 0) goto fail;")
             return
         items, i = self.local("l"), self.local("i")
         c(f"PyObject *{items} = PyList_New({f.count});")
-        c(f"if (acc_put({owner}, {attribute}, {items}) < 0) goto fail;")
+        c(f"if (acc_set({owner}, {slot}, {items}) < 0) goto fail;")
         c(f"for (Py_ssize_t {i} = 0; {i} < {f.count}; {i}++) {{")
         c.indent()
         element = path + (0,)
@@ -97,7 +104,7 @@ class AcceleratorView:
         c(f"if ({item} == NULL) goto fail;")
         c(f"PyList_SET_ITEM({items}, {i}, {item});")
         if f.kind == "group":
-            self.build(c, m, f.fields, element, item, f"{at}[{i}].")
+            self.build(c, m, f.fields, element, item, self.py.group_class(m, element), f"{at}[{i}].")
         c.dedent()
         c("}")
 

@@ -10,6 +10,7 @@
  * Messages not listed here are decoded in Python. */
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
+#include <structmember.h>
 #include <float.h>
 
 #if FLT_EVAL_METHOD != 0  /* scaled values are computed in double, rounded as Python rounds them */
@@ -28,6 +29,81 @@ const char cw_accel_build[] = "codeword-accelerator-build:" CW_ACCEL_BUILD;
  * names and numeric constants: filled by bind(). */
 static PyObject *G[12];
 static PyObject *A[55];
+/* For each slot: the class and the attribute (indices into G and A), and where the
+ * class's instances keep it (0: not a plain slot, set through setattr). */
+static const unsigned short slot_of[70][2] = {
+    {0, 0},
+    {0, 1},
+    {0, 2},
+    {0, 3},
+    {0, 4},
+    {0, 5},
+    {0, 6},
+    {0, 7},
+    {0, 8},
+    {2, 0},
+    {2, 1},
+    {2, 2},
+    {2, 9},
+    {2, 10},
+    {2, 11},
+    {2, 12},
+    {2, 13},
+    {2, 14},
+    {2, 15},
+    {2, 16},
+    {2, 17},
+    {2, 18},
+    {2, 19},
+    {2, 20},
+    {2, 21},
+    {4, 0},
+    {4, 1},
+    {4, 2},
+    {4, 22},
+    {4, 23},
+    {4, 24},
+    {4, 25},
+    {4, 26},
+    {6, 0},
+    {6, 1},
+    {6, 2},
+    {6, 27},
+    {6, 28},
+    {6, 29},
+    {6, 30},
+    {6, 31},
+    {6, 32},
+    {6, 33},
+    {6, 34},
+    {6, 35},
+    {6, 36},
+    {8, 0},
+    {8, 1},
+    {8, 2},
+    {8, 37},
+    {8, 38},
+    {8, 39},
+    {8, 40},
+    {8, 41},
+    {8, 42},
+    {8, 43},
+    {10, 0},
+    {10, 1},
+    {10, 2},
+    {10, 44},
+    {10, 45},
+    {10, 46},
+    {10, 47},
+    {10, 48},
+    {10, 49},
+    {10, 50},
+    {10, 51},
+    {10, 52},
+    {10, 53},
+    {10, 54},
+};
+static Py_ssize_t S[70];
 
 static inline PyObject *acc_new(PyObject *cls)
 {
@@ -35,13 +111,20 @@ static inline PyObject *acc_new(PyObject *cls)
     return type->tp_alloc(type, 0);
 }
 
-/* Sets obj.name = value and releases value (NULL: an error already set). */
-static inline int acc_put(PyObject *obj, PyObject *name, PyObject *value)
+/* Sets attribute `slot` of obj to value and releases value (NULL: an error already set):
+ * straight into the instance's slot where the class has one, as its member descriptor
+ * would, else through setattr. */
+static inline int acc_set(PyObject *obj, int slot, PyObject *value)
 {
     if (value == NULL) {
         return -1;
     }
-    int rc = PyObject_SetAttr(obj, name, value);
+    if (S[slot] > 0) {
+        PyObject **place = (PyObject **)(void *)((char *)obj + S[slot]);
+        Py_XSETREF(*place, value);
+        return 0;
+    }
+    int rc = PyObject_SetAttr(obj, A[slot_of[slot][1]], value);
     Py_DECREF(value);
     return rc;
 }
@@ -52,15 +135,15 @@ static PyObject *build_heartbeat(const mavlink1_heartbeat_t *m)
     if (o == NULL) {
         return NULL;
     }
-    if (acc_put(o, A[0], PyLong_FromUnsignedLongLong((unsigned long long)m->seq)) < 0) goto fail;
-    if (acc_put(o, A[1], PyLong_FromUnsignedLongLong((unsigned long long)m->sysid)) < 0) goto fail;
-    if (acc_put(o, A[2], PyLong_FromUnsignedLongLong((unsigned long long)m->compid)) < 0) goto fail;
-    if (acc_put(o, A[3], PyLong_FromUnsignedLongLong((unsigned long long)m->custom_mode)) < 0) goto fail;
-    if (acc_put(o, A[4], PyLong_FromUnsignedLongLong((unsigned long long)m->type)) < 0) goto fail;
-    if (acc_put(o, A[5], PyLong_FromUnsignedLongLong((unsigned long long)m->autopilot)) < 0) goto fail;
-    if (acc_put(o, A[6], PyLong_FromUnsignedLongLong((unsigned long long)m->base_mode)) < 0) goto fail;
-    if (acc_put(o, A[7], PyLong_FromUnsignedLongLong((unsigned long long)m->system_status)) < 0) goto fail;
-    if (acc_put(o, A[8], PyLong_FromUnsignedLongLong((unsigned long long)m->mavlink_version)) < 0) goto fail;
+    if (acc_set(o, 0, PyLong_FromUnsignedLongLong((unsigned long long)m->seq)) < 0) goto fail;
+    if (acc_set(o, 1, PyLong_FromUnsignedLongLong((unsigned long long)m->sysid)) < 0) goto fail;
+    if (acc_set(o, 2, PyLong_FromUnsignedLongLong((unsigned long long)m->compid)) < 0) goto fail;
+    if (acc_set(o, 3, PyLong_FromUnsignedLongLong((unsigned long long)m->custom_mode)) < 0) goto fail;
+    if (acc_set(o, 4, PyLong_FromUnsignedLongLong((unsigned long long)m->type)) < 0) goto fail;
+    if (acc_set(o, 5, PyLong_FromUnsignedLongLong((unsigned long long)m->autopilot)) < 0) goto fail;
+    if (acc_set(o, 6, PyLong_FromUnsignedLongLong((unsigned long long)m->base_mode)) < 0) goto fail;
+    if (acc_set(o, 7, PyLong_FromUnsignedLongLong((unsigned long long)m->system_status)) < 0) goto fail;
+    if (acc_set(o, 8, PyLong_FromUnsignedLongLong((unsigned long long)m->mavlink_version)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -94,22 +177,22 @@ static PyObject *build_sys_status(const mavlink1_sys_status_t *m)
     if (o == NULL) {
         return NULL;
     }
-    if (acc_put(o, A[0], PyLong_FromUnsignedLongLong((unsigned long long)m->seq)) < 0) goto fail;
-    if (acc_put(o, A[1], PyLong_FromUnsignedLongLong((unsigned long long)m->sysid)) < 0) goto fail;
-    if (acc_put(o, A[2], PyLong_FromUnsignedLongLong((unsigned long long)m->compid)) < 0) goto fail;
-    if (acc_put(o, A[9], PyLong_FromUnsignedLongLong((unsigned long long)m->onboard_control_sensors_present)) < 0) goto fail;
-    if (acc_put(o, A[10], PyLong_FromUnsignedLongLong((unsigned long long)m->onboard_control_sensors_enabled)) < 0) goto fail;
-    if (acc_put(o, A[11], PyLong_FromUnsignedLongLong((unsigned long long)m->onboard_control_sensors_health)) < 0) goto fail;
-    if (acc_put(o, A[12], PyLong_FromUnsignedLongLong((unsigned long long)m->load)) < 0) goto fail;
-    if (acc_put(o, A[13], PyLong_FromUnsignedLongLong((unsigned long long)m->voltage_battery)) < 0) goto fail;
-    if (acc_put(o, A[14], PyLong_FromLongLong((long long)m->current_battery)) < 0) goto fail;
-    if (acc_put(o, A[15], PyLong_FromUnsignedLongLong((unsigned long long)m->drop_rate_comm)) < 0) goto fail;
-    if (acc_put(o, A[16], PyLong_FromUnsignedLongLong((unsigned long long)m->errors_comm)) < 0) goto fail;
-    if (acc_put(o, A[17], PyLong_FromUnsignedLongLong((unsigned long long)m->errors_count1)) < 0) goto fail;
-    if (acc_put(o, A[18], PyLong_FromUnsignedLongLong((unsigned long long)m->errors_count2)) < 0) goto fail;
-    if (acc_put(o, A[19], PyLong_FromUnsignedLongLong((unsigned long long)m->errors_count3)) < 0) goto fail;
-    if (acc_put(o, A[20], PyLong_FromUnsignedLongLong((unsigned long long)m->errors_count4)) < 0) goto fail;
-    if (acc_put(o, A[21], PyLong_FromLongLong((long long)m->battery_remaining)) < 0) goto fail;
+    if (acc_set(o, 9, PyLong_FromUnsignedLongLong((unsigned long long)m->seq)) < 0) goto fail;
+    if (acc_set(o, 10, PyLong_FromUnsignedLongLong((unsigned long long)m->sysid)) < 0) goto fail;
+    if (acc_set(o, 11, PyLong_FromUnsignedLongLong((unsigned long long)m->compid)) < 0) goto fail;
+    if (acc_set(o, 12, PyLong_FromUnsignedLongLong((unsigned long long)m->onboard_control_sensors_present)) < 0) goto fail;
+    if (acc_set(o, 13, PyLong_FromUnsignedLongLong((unsigned long long)m->onboard_control_sensors_enabled)) < 0) goto fail;
+    if (acc_set(o, 14, PyLong_FromUnsignedLongLong((unsigned long long)m->onboard_control_sensors_health)) < 0) goto fail;
+    if (acc_set(o, 15, PyLong_FromUnsignedLongLong((unsigned long long)m->load)) < 0) goto fail;
+    if (acc_set(o, 16, PyLong_FromUnsignedLongLong((unsigned long long)m->voltage_battery)) < 0) goto fail;
+    if (acc_set(o, 17, PyLong_FromLongLong((long long)m->current_battery)) < 0) goto fail;
+    if (acc_set(o, 18, PyLong_FromUnsignedLongLong((unsigned long long)m->drop_rate_comm)) < 0) goto fail;
+    if (acc_set(o, 19, PyLong_FromUnsignedLongLong((unsigned long long)m->errors_comm)) < 0) goto fail;
+    if (acc_set(o, 20, PyLong_FromUnsignedLongLong((unsigned long long)m->errors_count1)) < 0) goto fail;
+    if (acc_set(o, 21, PyLong_FromUnsignedLongLong((unsigned long long)m->errors_count2)) < 0) goto fail;
+    if (acc_set(o, 22, PyLong_FromUnsignedLongLong((unsigned long long)m->errors_count3)) < 0) goto fail;
+    if (acc_set(o, 23, PyLong_FromUnsignedLongLong((unsigned long long)m->errors_count4)) < 0) goto fail;
+    if (acc_set(o, 24, PyLong_FromLongLong((long long)m->battery_remaining)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -143,14 +226,14 @@ static PyObject *build_param_value(const mavlink1_param_value_t *m)
     if (o == NULL) {
         return NULL;
     }
-    if (acc_put(o, A[0], PyLong_FromUnsignedLongLong((unsigned long long)m->seq)) < 0) goto fail;
-    if (acc_put(o, A[1], PyLong_FromUnsignedLongLong((unsigned long long)m->sysid)) < 0) goto fail;
-    if (acc_put(o, A[2], PyLong_FromUnsignedLongLong((unsigned long long)m->compid)) < 0) goto fail;
-    if (acc_put(o, A[22], PyFloat_FromDouble((double)m->param_value)) < 0) goto fail;
-    if (acc_put(o, A[23], PyLong_FromUnsignedLongLong((unsigned long long)m->param_count)) < 0) goto fail;
-    if (acc_put(o, A[24], PyLong_FromUnsignedLongLong((unsigned long long)m->param_index)) < 0) goto fail;
-    if (acc_put(o, A[25], PyBytes_FromStringAndSize((const char *)m->param_id, 16)) < 0) goto fail;
-    if (acc_put(o, A[26], PyLong_FromUnsignedLongLong((unsigned long long)m->param_type)) < 0) goto fail;
+    if (acc_set(o, 25, PyLong_FromUnsignedLongLong((unsigned long long)m->seq)) < 0) goto fail;
+    if (acc_set(o, 26, PyLong_FromUnsignedLongLong((unsigned long long)m->sysid)) < 0) goto fail;
+    if (acc_set(o, 27, PyLong_FromUnsignedLongLong((unsigned long long)m->compid)) < 0) goto fail;
+    if (acc_set(o, 28, PyFloat_FromDouble((double)m->param_value)) < 0) goto fail;
+    if (acc_set(o, 29, PyLong_FromUnsignedLongLong((unsigned long long)m->param_count)) < 0) goto fail;
+    if (acc_set(o, 30, PyLong_FromUnsignedLongLong((unsigned long long)m->param_index)) < 0) goto fail;
+    if (acc_set(o, 31, PyBytes_FromStringAndSize((const char *)m->param_id, 16)) < 0) goto fail;
+    if (acc_set(o, 32, PyLong_FromUnsignedLongLong((unsigned long long)m->param_type)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -184,19 +267,19 @@ static PyObject *build_gps_raw_int(const mavlink1_gps_raw_int_t *m)
     if (o == NULL) {
         return NULL;
     }
-    if (acc_put(o, A[0], PyLong_FromUnsignedLongLong((unsigned long long)m->seq)) < 0) goto fail;
-    if (acc_put(o, A[1], PyLong_FromUnsignedLongLong((unsigned long long)m->sysid)) < 0) goto fail;
-    if (acc_put(o, A[2], PyLong_FromUnsignedLongLong((unsigned long long)m->compid)) < 0) goto fail;
-    if (acc_put(o, A[27], PyLong_FromUnsignedLongLong((unsigned long long)m->time_usec)) < 0) goto fail;
-    if (acc_put(o, A[28], PyLong_FromLongLong((long long)m->lat)) < 0) goto fail;
-    if (acc_put(o, A[29], PyLong_FromLongLong((long long)m->lon)) < 0) goto fail;
-    if (acc_put(o, A[30], PyLong_FromLongLong((long long)m->alt)) < 0) goto fail;
-    if (acc_put(o, A[31], PyLong_FromUnsignedLongLong((unsigned long long)m->eph)) < 0) goto fail;
-    if (acc_put(o, A[32], PyLong_FromUnsignedLongLong((unsigned long long)m->epv)) < 0) goto fail;
-    if (acc_put(o, A[33], PyLong_FromUnsignedLongLong((unsigned long long)m->vel)) < 0) goto fail;
-    if (acc_put(o, A[34], PyLong_FromUnsignedLongLong((unsigned long long)m->cog)) < 0) goto fail;
-    if (acc_put(o, A[35], PyLong_FromUnsignedLongLong((unsigned long long)m->fix_type)) < 0) goto fail;
-    if (acc_put(o, A[36], PyLong_FromUnsignedLongLong((unsigned long long)m->satellites_visible)) < 0) goto fail;
+    if (acc_set(o, 33, PyLong_FromUnsignedLongLong((unsigned long long)m->seq)) < 0) goto fail;
+    if (acc_set(o, 34, PyLong_FromUnsignedLongLong((unsigned long long)m->sysid)) < 0) goto fail;
+    if (acc_set(o, 35, PyLong_FromUnsignedLongLong((unsigned long long)m->compid)) < 0) goto fail;
+    if (acc_set(o, 36, PyLong_FromUnsignedLongLong((unsigned long long)m->time_usec)) < 0) goto fail;
+    if (acc_set(o, 37, PyLong_FromLongLong((long long)m->lat)) < 0) goto fail;
+    if (acc_set(o, 38, PyLong_FromLongLong((long long)m->lon)) < 0) goto fail;
+    if (acc_set(o, 39, PyLong_FromLongLong((long long)m->alt)) < 0) goto fail;
+    if (acc_set(o, 40, PyLong_FromUnsignedLongLong((unsigned long long)m->eph)) < 0) goto fail;
+    if (acc_set(o, 41, PyLong_FromUnsignedLongLong((unsigned long long)m->epv)) < 0) goto fail;
+    if (acc_set(o, 42, PyLong_FromUnsignedLongLong((unsigned long long)m->vel)) < 0) goto fail;
+    if (acc_set(o, 43, PyLong_FromUnsignedLongLong((unsigned long long)m->cog)) < 0) goto fail;
+    if (acc_set(o, 44, PyLong_FromUnsignedLongLong((unsigned long long)m->fix_type)) < 0) goto fail;
+    if (acc_set(o, 45, PyLong_FromUnsignedLongLong((unsigned long long)m->satellites_visible)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -230,16 +313,16 @@ static PyObject *build_attitude(const mavlink1_attitude_t *m)
     if (o == NULL) {
         return NULL;
     }
-    if (acc_put(o, A[0], PyLong_FromUnsignedLongLong((unsigned long long)m->seq)) < 0) goto fail;
-    if (acc_put(o, A[1], PyLong_FromUnsignedLongLong((unsigned long long)m->sysid)) < 0) goto fail;
-    if (acc_put(o, A[2], PyLong_FromUnsignedLongLong((unsigned long long)m->compid)) < 0) goto fail;
-    if (acc_put(o, A[37], PyLong_FromUnsignedLongLong((unsigned long long)m->time_boot_ms)) < 0) goto fail;
-    if (acc_put(o, A[38], PyFloat_FromDouble((double)m->roll)) < 0) goto fail;
-    if (acc_put(o, A[39], PyFloat_FromDouble((double)m->pitch)) < 0) goto fail;
-    if (acc_put(o, A[40], PyFloat_FromDouble((double)m->yaw)) < 0) goto fail;
-    if (acc_put(o, A[41], PyFloat_FromDouble((double)m->rollspeed)) < 0) goto fail;
-    if (acc_put(o, A[42], PyFloat_FromDouble((double)m->pitchspeed)) < 0) goto fail;
-    if (acc_put(o, A[43], PyFloat_FromDouble((double)m->yawspeed)) < 0) goto fail;
+    if (acc_set(o, 46, PyLong_FromUnsignedLongLong((unsigned long long)m->seq)) < 0) goto fail;
+    if (acc_set(o, 47, PyLong_FromUnsignedLongLong((unsigned long long)m->sysid)) < 0) goto fail;
+    if (acc_set(o, 48, PyLong_FromUnsignedLongLong((unsigned long long)m->compid)) < 0) goto fail;
+    if (acc_set(o, 49, PyLong_FromUnsignedLongLong((unsigned long long)m->time_boot_ms)) < 0) goto fail;
+    if (acc_set(o, 50, PyFloat_FromDouble((double)m->roll)) < 0) goto fail;
+    if (acc_set(o, 51, PyFloat_FromDouble((double)m->pitch)) < 0) goto fail;
+    if (acc_set(o, 52, PyFloat_FromDouble((double)m->yaw)) < 0) goto fail;
+    if (acc_set(o, 53, PyFloat_FromDouble((double)m->rollspeed)) < 0) goto fail;
+    if (acc_set(o, 54, PyFloat_FromDouble((double)m->pitchspeed)) < 0) goto fail;
+    if (acc_set(o, 55, PyFloat_FromDouble((double)m->yawspeed)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -273,20 +356,20 @@ static PyObject *build_command_long(const mavlink1_command_long_t *m)
     if (o == NULL) {
         return NULL;
     }
-    if (acc_put(o, A[0], PyLong_FromUnsignedLongLong((unsigned long long)m->seq)) < 0) goto fail;
-    if (acc_put(o, A[1], PyLong_FromUnsignedLongLong((unsigned long long)m->sysid)) < 0) goto fail;
-    if (acc_put(o, A[2], PyLong_FromUnsignedLongLong((unsigned long long)m->compid)) < 0) goto fail;
-    if (acc_put(o, A[44], PyFloat_FromDouble((double)m->param1)) < 0) goto fail;
-    if (acc_put(o, A[45], PyFloat_FromDouble((double)m->param2)) < 0) goto fail;
-    if (acc_put(o, A[46], PyFloat_FromDouble((double)m->param3)) < 0) goto fail;
-    if (acc_put(o, A[47], PyFloat_FromDouble((double)m->param4)) < 0) goto fail;
-    if (acc_put(o, A[48], PyFloat_FromDouble((double)m->param5)) < 0) goto fail;
-    if (acc_put(o, A[49], PyFloat_FromDouble((double)m->param6)) < 0) goto fail;
-    if (acc_put(o, A[50], PyFloat_FromDouble((double)m->param7)) < 0) goto fail;
-    if (acc_put(o, A[51], PyLong_FromUnsignedLongLong((unsigned long long)m->command)) < 0) goto fail;
-    if (acc_put(o, A[52], PyLong_FromUnsignedLongLong((unsigned long long)m->target_system)) < 0) goto fail;
-    if (acc_put(o, A[53], PyLong_FromUnsignedLongLong((unsigned long long)m->target_component)) < 0) goto fail;
-    if (acc_put(o, A[54], PyLong_FromUnsignedLongLong((unsigned long long)m->confirmation)) < 0) goto fail;
+    if (acc_set(o, 56, PyLong_FromUnsignedLongLong((unsigned long long)m->seq)) < 0) goto fail;
+    if (acc_set(o, 57, PyLong_FromUnsignedLongLong((unsigned long long)m->sysid)) < 0) goto fail;
+    if (acc_set(o, 58, PyLong_FromUnsignedLongLong((unsigned long long)m->compid)) < 0) goto fail;
+    if (acc_set(o, 59, PyFloat_FromDouble((double)m->param1)) < 0) goto fail;
+    if (acc_set(o, 60, PyFloat_FromDouble((double)m->param2)) < 0) goto fail;
+    if (acc_set(o, 61, PyFloat_FromDouble((double)m->param3)) < 0) goto fail;
+    if (acc_set(o, 62, PyFloat_FromDouble((double)m->param4)) < 0) goto fail;
+    if (acc_set(o, 63, PyFloat_FromDouble((double)m->param5)) < 0) goto fail;
+    if (acc_set(o, 64, PyFloat_FromDouble((double)m->param6)) < 0) goto fail;
+    if (acc_set(o, 65, PyFloat_FromDouble((double)m->param7)) < 0) goto fail;
+    if (acc_set(o, 66, PyLong_FromUnsignedLongLong((unsigned long long)m->command)) < 0) goto fail;
+    if (acc_set(o, 67, PyLong_FromUnsignedLongLong((unsigned long long)m->target_system)) < 0) goto fail;
+    if (acc_set(o, 68, PyLong_FromUnsignedLongLong((unsigned long long)m->target_component)) < 0) goto fail;
+    if (acc_set(o, 69, PyLong_FromUnsignedLongLong((unsigned long long)m->confirmation)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -558,6 +641,21 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
     Py_XSETREF(A[54], PyUnicode_InternFromString(attribute_names[54]));
     if (PyErr_Occurred()) {
         return NULL;
+    }
+    for (size_t i = 0; i < sizeof S / sizeof S[0]; i++) {
+        PyObject *descr = PyObject_GetAttr(G[slot_of[i][0]], A[slot_of[i][1]]);
+        S[i] = 0;
+        if (descr == NULL) {
+            PyErr_Clear();
+            continue;
+        }
+        if (Py_IS_TYPE(descr, &PyMemberDescr_Type)) {
+            PyMemberDef *def = ((PyMemberDescrObject *)descr)->d_member;
+            if (def->type == T_OBJECT_EX && !(def->flags & READONLY)) {
+                S[i] = def->offset;
+            }
+        }
+        Py_DECREF(descr);
     }
     PyObject *out = PyDict_New();
     for (PyMethodDef *def = decoders; out != NULL && def->ml_name != NULL; def++) {

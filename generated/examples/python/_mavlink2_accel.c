@@ -10,6 +10,7 @@
  * Messages not listed here are decoded in Python. */
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
+#include <structmember.h>
 #include <float.h>
 
 #if FLT_EVAL_METHOD != 0  /* scaled values are computed in double, rounded as Python rounds them */
@@ -28,6 +29,91 @@ const char cw_accel_build[] = "codeword-accelerator-build:" CW_ACCEL_BUILD;
  * names and numeric constants: filled by bind(). */
 static PyObject *G[12];
 static PyObject *A[59];
+/* For each slot: the class and the attribute (indices into G and A), and where the
+ * class's instances keep it (0: not a plain slot, set through setattr). */
+static const unsigned short slot_of[80][2] = {
+    {0, 0},
+    {0, 1},
+    {0, 2},
+    {0, 3},
+    {0, 4},
+    {0, 5},
+    {0, 6},
+    {0, 7},
+    {0, 8},
+    {0, 9},
+    {2, 0},
+    {2, 1},
+    {2, 2},
+    {2, 3},
+    {2, 10},
+    {2, 11},
+    {2, 12},
+    {2, 13},
+    {2, 14},
+    {2, 15},
+    {2, 16},
+    {2, 17},
+    {2, 18},
+    {2, 19},
+    {2, 20},
+    {2, 21},
+    {2, 22},
+    {2, 23},
+    {2, 24},
+    {2, 25},
+    {4, 0},
+    {4, 1},
+    {4, 2},
+    {4, 3},
+    {4, 26},
+    {4, 27},
+    {4, 28},
+    {4, 29},
+    {4, 30},
+    {6, 0},
+    {6, 1},
+    {6, 2},
+    {6, 3},
+    {6, 31},
+    {6, 32},
+    {6, 33},
+    {6, 34},
+    {6, 35},
+    {6, 36},
+    {6, 37},
+    {6, 38},
+    {6, 39},
+    {6, 40},
+    {6, 41},
+    {6, 42},
+    {6, 43},
+    {6, 44},
+    {6, 45},
+    {6, 46},
+    {8, 0},
+    {8, 1},
+    {8, 2},
+    {8, 3},
+    {8, 47},
+    {8, 48},
+    {8, 49},
+    {8, 46},
+    {8, 50},
+    {8, 51},
+    {8, 52},
+    {10, 0},
+    {10, 1},
+    {10, 2},
+    {10, 3},
+    {10, 53},
+    {10, 54},
+    {10, 55},
+    {10, 56},
+    {10, 57},
+    {10, 58},
+};
+static Py_ssize_t S[80];
 
 static inline PyObject *acc_new(PyObject *cls)
 {
@@ -35,13 +121,20 @@ static inline PyObject *acc_new(PyObject *cls)
     return type->tp_alloc(type, 0);
 }
 
-/* Sets obj.name = value and releases value (NULL: an error already set). */
-static inline int acc_put(PyObject *obj, PyObject *name, PyObject *value)
+/* Sets attribute `slot` of obj to value and releases value (NULL: an error already set):
+ * straight into the instance's slot where the class has one, as its member descriptor
+ * would, else through setattr. */
+static inline int acc_set(PyObject *obj, int slot, PyObject *value)
 {
     if (value == NULL) {
         return -1;
     }
-    int rc = PyObject_SetAttr(obj, name, value);
+    if (S[slot] > 0) {
+        PyObject **place = (PyObject **)(void *)((char *)obj + S[slot]);
+        Py_XSETREF(*place, value);
+        return 0;
+    }
+    int rc = PyObject_SetAttr(obj, A[slot_of[slot][1]], value);
     Py_DECREF(value);
     return rc;
 }
@@ -52,16 +145,16 @@ static PyObject *build_heartbeat(const mavlink2_heartbeat_t *m)
     if (o == NULL) {
         return NULL;
     }
-    if (acc_put(o, A[0], PyLong_FromUnsignedLongLong((unsigned long long)m->compat_flags)) < 0) goto fail;
-    if (acc_put(o, A[1], PyLong_FromUnsignedLongLong((unsigned long long)m->seq)) < 0) goto fail;
-    if (acc_put(o, A[2], PyLong_FromUnsignedLongLong((unsigned long long)m->sysid)) < 0) goto fail;
-    if (acc_put(o, A[3], PyLong_FromUnsignedLongLong((unsigned long long)m->compid)) < 0) goto fail;
-    if (acc_put(o, A[4], PyLong_FromUnsignedLongLong((unsigned long long)m->custom_mode)) < 0) goto fail;
-    if (acc_put(o, A[5], PyLong_FromUnsignedLongLong((unsigned long long)m->type)) < 0) goto fail;
-    if (acc_put(o, A[6], PyLong_FromUnsignedLongLong((unsigned long long)m->autopilot)) < 0) goto fail;
-    if (acc_put(o, A[7], PyLong_FromUnsignedLongLong((unsigned long long)m->base_mode)) < 0) goto fail;
-    if (acc_put(o, A[8], PyLong_FromUnsignedLongLong((unsigned long long)m->system_status)) < 0) goto fail;
-    if (acc_put(o, A[9], PyLong_FromUnsignedLongLong((unsigned long long)m->mavlink_version)) < 0) goto fail;
+    if (acc_set(o, 0, PyLong_FromUnsignedLongLong((unsigned long long)m->compat_flags)) < 0) goto fail;
+    if (acc_set(o, 1, PyLong_FromUnsignedLongLong((unsigned long long)m->seq)) < 0) goto fail;
+    if (acc_set(o, 2, PyLong_FromUnsignedLongLong((unsigned long long)m->sysid)) < 0) goto fail;
+    if (acc_set(o, 3, PyLong_FromUnsignedLongLong((unsigned long long)m->compid)) < 0) goto fail;
+    if (acc_set(o, 4, PyLong_FromUnsignedLongLong((unsigned long long)m->custom_mode)) < 0) goto fail;
+    if (acc_set(o, 5, PyLong_FromUnsignedLongLong((unsigned long long)m->type)) < 0) goto fail;
+    if (acc_set(o, 6, PyLong_FromUnsignedLongLong((unsigned long long)m->autopilot)) < 0) goto fail;
+    if (acc_set(o, 7, PyLong_FromUnsignedLongLong((unsigned long long)m->base_mode)) < 0) goto fail;
+    if (acc_set(o, 8, PyLong_FromUnsignedLongLong((unsigned long long)m->system_status)) < 0) goto fail;
+    if (acc_set(o, 9, PyLong_FromUnsignedLongLong((unsigned long long)m->mavlink_version)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -95,26 +188,26 @@ static PyObject *build_sys_status(const mavlink2_sys_status_t *m)
     if (o == NULL) {
         return NULL;
     }
-    if (acc_put(o, A[0], PyLong_FromUnsignedLongLong((unsigned long long)m->compat_flags)) < 0) goto fail;
-    if (acc_put(o, A[1], PyLong_FromUnsignedLongLong((unsigned long long)m->seq)) < 0) goto fail;
-    if (acc_put(o, A[2], PyLong_FromUnsignedLongLong((unsigned long long)m->sysid)) < 0) goto fail;
-    if (acc_put(o, A[3], PyLong_FromUnsignedLongLong((unsigned long long)m->compid)) < 0) goto fail;
-    if (acc_put(o, A[10], PyLong_FromUnsignedLongLong((unsigned long long)m->onboard_control_sensors_present)) < 0) goto fail;
-    if (acc_put(o, A[11], PyLong_FromUnsignedLongLong((unsigned long long)m->onboard_control_sensors_enabled)) < 0) goto fail;
-    if (acc_put(o, A[12], PyLong_FromUnsignedLongLong((unsigned long long)m->onboard_control_sensors_health)) < 0) goto fail;
-    if (acc_put(o, A[13], PyLong_FromUnsignedLongLong((unsigned long long)m->load)) < 0) goto fail;
-    if (acc_put(o, A[14], PyLong_FromUnsignedLongLong((unsigned long long)m->voltage_battery)) < 0) goto fail;
-    if (acc_put(o, A[15], PyLong_FromLongLong((long long)m->current_battery)) < 0) goto fail;
-    if (acc_put(o, A[16], PyLong_FromUnsignedLongLong((unsigned long long)m->drop_rate_comm)) < 0) goto fail;
-    if (acc_put(o, A[17], PyLong_FromUnsignedLongLong((unsigned long long)m->errors_comm)) < 0) goto fail;
-    if (acc_put(o, A[18], PyLong_FromUnsignedLongLong((unsigned long long)m->errors_count1)) < 0) goto fail;
-    if (acc_put(o, A[19], PyLong_FromUnsignedLongLong((unsigned long long)m->errors_count2)) < 0) goto fail;
-    if (acc_put(o, A[20], PyLong_FromUnsignedLongLong((unsigned long long)m->errors_count3)) < 0) goto fail;
-    if (acc_put(o, A[21], PyLong_FromUnsignedLongLong((unsigned long long)m->errors_count4)) < 0) goto fail;
-    if (acc_put(o, A[22], PyLong_FromLongLong((long long)m->battery_remaining)) < 0) goto fail;
-    if (acc_put(o, A[23], PyLong_FromUnsignedLongLong((unsigned long long)m->onboard_control_sensors_present_extended)) < 0) goto fail;
-    if (acc_put(o, A[24], PyLong_FromUnsignedLongLong((unsigned long long)m->onboard_control_sensors_enabled_extended)) < 0) goto fail;
-    if (acc_put(o, A[25], PyLong_FromUnsignedLongLong((unsigned long long)m->onboard_control_sensors_health_extended)) < 0) goto fail;
+    if (acc_set(o, 10, PyLong_FromUnsignedLongLong((unsigned long long)m->compat_flags)) < 0) goto fail;
+    if (acc_set(o, 11, PyLong_FromUnsignedLongLong((unsigned long long)m->seq)) < 0) goto fail;
+    if (acc_set(o, 12, PyLong_FromUnsignedLongLong((unsigned long long)m->sysid)) < 0) goto fail;
+    if (acc_set(o, 13, PyLong_FromUnsignedLongLong((unsigned long long)m->compid)) < 0) goto fail;
+    if (acc_set(o, 14, PyLong_FromUnsignedLongLong((unsigned long long)m->onboard_control_sensors_present)) < 0) goto fail;
+    if (acc_set(o, 15, PyLong_FromUnsignedLongLong((unsigned long long)m->onboard_control_sensors_enabled)) < 0) goto fail;
+    if (acc_set(o, 16, PyLong_FromUnsignedLongLong((unsigned long long)m->onboard_control_sensors_health)) < 0) goto fail;
+    if (acc_set(o, 17, PyLong_FromUnsignedLongLong((unsigned long long)m->load)) < 0) goto fail;
+    if (acc_set(o, 18, PyLong_FromUnsignedLongLong((unsigned long long)m->voltage_battery)) < 0) goto fail;
+    if (acc_set(o, 19, PyLong_FromLongLong((long long)m->current_battery)) < 0) goto fail;
+    if (acc_set(o, 20, PyLong_FromUnsignedLongLong((unsigned long long)m->drop_rate_comm)) < 0) goto fail;
+    if (acc_set(o, 21, PyLong_FromUnsignedLongLong((unsigned long long)m->errors_comm)) < 0) goto fail;
+    if (acc_set(o, 22, PyLong_FromUnsignedLongLong((unsigned long long)m->errors_count1)) < 0) goto fail;
+    if (acc_set(o, 23, PyLong_FromUnsignedLongLong((unsigned long long)m->errors_count2)) < 0) goto fail;
+    if (acc_set(o, 24, PyLong_FromUnsignedLongLong((unsigned long long)m->errors_count3)) < 0) goto fail;
+    if (acc_set(o, 25, PyLong_FromUnsignedLongLong((unsigned long long)m->errors_count4)) < 0) goto fail;
+    if (acc_set(o, 26, PyLong_FromLongLong((long long)m->battery_remaining)) < 0) goto fail;
+    if (acc_set(o, 27, PyLong_FromUnsignedLongLong((unsigned long long)m->onboard_control_sensors_present_extended)) < 0) goto fail;
+    if (acc_set(o, 28, PyLong_FromUnsignedLongLong((unsigned long long)m->onboard_control_sensors_enabled_extended)) < 0) goto fail;
+    if (acc_set(o, 29, PyLong_FromUnsignedLongLong((unsigned long long)m->onboard_control_sensors_health_extended)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -148,15 +241,15 @@ static PyObject *build_param_value(const mavlink2_param_value_t *m)
     if (o == NULL) {
         return NULL;
     }
-    if (acc_put(o, A[0], PyLong_FromUnsignedLongLong((unsigned long long)m->compat_flags)) < 0) goto fail;
-    if (acc_put(o, A[1], PyLong_FromUnsignedLongLong((unsigned long long)m->seq)) < 0) goto fail;
-    if (acc_put(o, A[2], PyLong_FromUnsignedLongLong((unsigned long long)m->sysid)) < 0) goto fail;
-    if (acc_put(o, A[3], PyLong_FromUnsignedLongLong((unsigned long long)m->compid)) < 0) goto fail;
-    if (acc_put(o, A[26], PyFloat_FromDouble((double)m->param_value)) < 0) goto fail;
-    if (acc_put(o, A[27], PyLong_FromUnsignedLongLong((unsigned long long)m->param_count)) < 0) goto fail;
-    if (acc_put(o, A[28], PyLong_FromUnsignedLongLong((unsigned long long)m->param_index)) < 0) goto fail;
-    if (acc_put(o, A[29], PyBytes_FromStringAndSize((const char *)m->param_id, 16)) < 0) goto fail;
-    if (acc_put(o, A[30], PyLong_FromUnsignedLongLong((unsigned long long)m->param_type)) < 0) goto fail;
+    if (acc_set(o, 30, PyLong_FromUnsignedLongLong((unsigned long long)m->compat_flags)) < 0) goto fail;
+    if (acc_set(o, 31, PyLong_FromUnsignedLongLong((unsigned long long)m->seq)) < 0) goto fail;
+    if (acc_set(o, 32, PyLong_FromUnsignedLongLong((unsigned long long)m->sysid)) < 0) goto fail;
+    if (acc_set(o, 33, PyLong_FromUnsignedLongLong((unsigned long long)m->compid)) < 0) goto fail;
+    if (acc_set(o, 34, PyFloat_FromDouble((double)m->param_value)) < 0) goto fail;
+    if (acc_set(o, 35, PyLong_FromUnsignedLongLong((unsigned long long)m->param_count)) < 0) goto fail;
+    if (acc_set(o, 36, PyLong_FromUnsignedLongLong((unsigned long long)m->param_index)) < 0) goto fail;
+    if (acc_set(o, 37, PyBytes_FromStringAndSize((const char *)m->param_id, 16)) < 0) goto fail;
+    if (acc_set(o, 38, PyLong_FromUnsignedLongLong((unsigned long long)m->param_type)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -190,26 +283,26 @@ static PyObject *build_gps_raw_int(const mavlink2_gps_raw_int_t *m)
     if (o == NULL) {
         return NULL;
     }
-    if (acc_put(o, A[0], PyLong_FromUnsignedLongLong((unsigned long long)m->compat_flags)) < 0) goto fail;
-    if (acc_put(o, A[1], PyLong_FromUnsignedLongLong((unsigned long long)m->seq)) < 0) goto fail;
-    if (acc_put(o, A[2], PyLong_FromUnsignedLongLong((unsigned long long)m->sysid)) < 0) goto fail;
-    if (acc_put(o, A[3], PyLong_FromUnsignedLongLong((unsigned long long)m->compid)) < 0) goto fail;
-    if (acc_put(o, A[31], PyLong_FromUnsignedLongLong((unsigned long long)m->time_usec)) < 0) goto fail;
-    if (acc_put(o, A[32], PyLong_FromLongLong((long long)m->lat)) < 0) goto fail;
-    if (acc_put(o, A[33], PyLong_FromLongLong((long long)m->lon)) < 0) goto fail;
-    if (acc_put(o, A[34], PyLong_FromLongLong((long long)m->alt)) < 0) goto fail;
-    if (acc_put(o, A[35], PyLong_FromUnsignedLongLong((unsigned long long)m->eph)) < 0) goto fail;
-    if (acc_put(o, A[36], PyLong_FromUnsignedLongLong((unsigned long long)m->epv)) < 0) goto fail;
-    if (acc_put(o, A[37], PyLong_FromUnsignedLongLong((unsigned long long)m->vel)) < 0) goto fail;
-    if (acc_put(o, A[38], PyLong_FromUnsignedLongLong((unsigned long long)m->cog)) < 0) goto fail;
-    if (acc_put(o, A[39], PyLong_FromUnsignedLongLong((unsigned long long)m->fix_type)) < 0) goto fail;
-    if (acc_put(o, A[40], PyLong_FromUnsignedLongLong((unsigned long long)m->satellites_visible)) < 0) goto fail;
-    if (acc_put(o, A[41], PyLong_FromLongLong((long long)m->alt_ellipsoid)) < 0) goto fail;
-    if (acc_put(o, A[42], PyLong_FromUnsignedLongLong((unsigned long long)m->h_acc)) < 0) goto fail;
-    if (acc_put(o, A[43], PyLong_FromUnsignedLongLong((unsigned long long)m->v_acc)) < 0) goto fail;
-    if (acc_put(o, A[44], PyLong_FromUnsignedLongLong((unsigned long long)m->vel_acc)) < 0) goto fail;
-    if (acc_put(o, A[45], PyLong_FromUnsignedLongLong((unsigned long long)m->hdg_acc)) < 0) goto fail;
-    if (acc_put(o, A[46], PyLong_FromUnsignedLongLong((unsigned long long)m->yaw)) < 0) goto fail;
+    if (acc_set(o, 39, PyLong_FromUnsignedLongLong((unsigned long long)m->compat_flags)) < 0) goto fail;
+    if (acc_set(o, 40, PyLong_FromUnsignedLongLong((unsigned long long)m->seq)) < 0) goto fail;
+    if (acc_set(o, 41, PyLong_FromUnsignedLongLong((unsigned long long)m->sysid)) < 0) goto fail;
+    if (acc_set(o, 42, PyLong_FromUnsignedLongLong((unsigned long long)m->compid)) < 0) goto fail;
+    if (acc_set(o, 43, PyLong_FromUnsignedLongLong((unsigned long long)m->time_usec)) < 0) goto fail;
+    if (acc_set(o, 44, PyLong_FromLongLong((long long)m->lat)) < 0) goto fail;
+    if (acc_set(o, 45, PyLong_FromLongLong((long long)m->lon)) < 0) goto fail;
+    if (acc_set(o, 46, PyLong_FromLongLong((long long)m->alt)) < 0) goto fail;
+    if (acc_set(o, 47, PyLong_FromUnsignedLongLong((unsigned long long)m->eph)) < 0) goto fail;
+    if (acc_set(o, 48, PyLong_FromUnsignedLongLong((unsigned long long)m->epv)) < 0) goto fail;
+    if (acc_set(o, 49, PyLong_FromUnsignedLongLong((unsigned long long)m->vel)) < 0) goto fail;
+    if (acc_set(o, 50, PyLong_FromUnsignedLongLong((unsigned long long)m->cog)) < 0) goto fail;
+    if (acc_set(o, 51, PyLong_FromUnsignedLongLong((unsigned long long)m->fix_type)) < 0) goto fail;
+    if (acc_set(o, 52, PyLong_FromUnsignedLongLong((unsigned long long)m->satellites_visible)) < 0) goto fail;
+    if (acc_set(o, 53, PyLong_FromLongLong((long long)m->alt_ellipsoid)) < 0) goto fail;
+    if (acc_set(o, 54, PyLong_FromUnsignedLongLong((unsigned long long)m->h_acc)) < 0) goto fail;
+    if (acc_set(o, 55, PyLong_FromUnsignedLongLong((unsigned long long)m->v_acc)) < 0) goto fail;
+    if (acc_set(o, 56, PyLong_FromUnsignedLongLong((unsigned long long)m->vel_acc)) < 0) goto fail;
+    if (acc_set(o, 57, PyLong_FromUnsignedLongLong((unsigned long long)m->hdg_acc)) < 0) goto fail;
+    if (acc_set(o, 58, PyLong_FromUnsignedLongLong((unsigned long long)m->yaw)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -243,17 +336,17 @@ static PyObject *build_attitude(const mavlink2_attitude_t *m)
     if (o == NULL) {
         return NULL;
     }
-    if (acc_put(o, A[0], PyLong_FromUnsignedLongLong((unsigned long long)m->compat_flags)) < 0) goto fail;
-    if (acc_put(o, A[1], PyLong_FromUnsignedLongLong((unsigned long long)m->seq)) < 0) goto fail;
-    if (acc_put(o, A[2], PyLong_FromUnsignedLongLong((unsigned long long)m->sysid)) < 0) goto fail;
-    if (acc_put(o, A[3], PyLong_FromUnsignedLongLong((unsigned long long)m->compid)) < 0) goto fail;
-    if (acc_put(o, A[47], PyLong_FromUnsignedLongLong((unsigned long long)m->time_boot_ms)) < 0) goto fail;
-    if (acc_put(o, A[48], PyFloat_FromDouble((double)m->roll)) < 0) goto fail;
-    if (acc_put(o, A[49], PyFloat_FromDouble((double)m->pitch)) < 0) goto fail;
-    if (acc_put(o, A[46], PyFloat_FromDouble((double)m->yaw)) < 0) goto fail;
-    if (acc_put(o, A[50], PyFloat_FromDouble((double)m->rollspeed)) < 0) goto fail;
-    if (acc_put(o, A[51], PyFloat_FromDouble((double)m->pitchspeed)) < 0) goto fail;
-    if (acc_put(o, A[52], PyFloat_FromDouble((double)m->yawspeed)) < 0) goto fail;
+    if (acc_set(o, 59, PyLong_FromUnsignedLongLong((unsigned long long)m->compat_flags)) < 0) goto fail;
+    if (acc_set(o, 60, PyLong_FromUnsignedLongLong((unsigned long long)m->seq)) < 0) goto fail;
+    if (acc_set(o, 61, PyLong_FromUnsignedLongLong((unsigned long long)m->sysid)) < 0) goto fail;
+    if (acc_set(o, 62, PyLong_FromUnsignedLongLong((unsigned long long)m->compid)) < 0) goto fail;
+    if (acc_set(o, 63, PyLong_FromUnsignedLongLong((unsigned long long)m->time_boot_ms)) < 0) goto fail;
+    if (acc_set(o, 64, PyFloat_FromDouble((double)m->roll)) < 0) goto fail;
+    if (acc_set(o, 65, PyFloat_FromDouble((double)m->pitch)) < 0) goto fail;
+    if (acc_set(o, 66, PyFloat_FromDouble((double)m->yaw)) < 0) goto fail;
+    if (acc_set(o, 67, PyFloat_FromDouble((double)m->rollspeed)) < 0) goto fail;
+    if (acc_set(o, 68, PyFloat_FromDouble((double)m->pitchspeed)) < 0) goto fail;
+    if (acc_set(o, 69, PyFloat_FromDouble((double)m->yawspeed)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -287,16 +380,16 @@ static PyObject *build_command_ack(const mavlink2_command_ack_t *m)
     if (o == NULL) {
         return NULL;
     }
-    if (acc_put(o, A[0], PyLong_FromUnsignedLongLong((unsigned long long)m->compat_flags)) < 0) goto fail;
-    if (acc_put(o, A[1], PyLong_FromUnsignedLongLong((unsigned long long)m->seq)) < 0) goto fail;
-    if (acc_put(o, A[2], PyLong_FromUnsignedLongLong((unsigned long long)m->sysid)) < 0) goto fail;
-    if (acc_put(o, A[3], PyLong_FromUnsignedLongLong((unsigned long long)m->compid)) < 0) goto fail;
-    if (acc_put(o, A[53], PyLong_FromUnsignedLongLong((unsigned long long)m->command)) < 0) goto fail;
-    if (acc_put(o, A[54], PyLong_FromUnsignedLongLong((unsigned long long)m->result)) < 0) goto fail;
-    if (acc_put(o, A[55], PyLong_FromUnsignedLongLong((unsigned long long)m->progress)) < 0) goto fail;
-    if (acc_put(o, A[56], PyLong_FromLongLong((long long)m->result_param2)) < 0) goto fail;
-    if (acc_put(o, A[57], PyLong_FromUnsignedLongLong((unsigned long long)m->target_system)) < 0) goto fail;
-    if (acc_put(o, A[58], PyLong_FromUnsignedLongLong((unsigned long long)m->target_component)) < 0) goto fail;
+    if (acc_set(o, 70, PyLong_FromUnsignedLongLong((unsigned long long)m->compat_flags)) < 0) goto fail;
+    if (acc_set(o, 71, PyLong_FromUnsignedLongLong((unsigned long long)m->seq)) < 0) goto fail;
+    if (acc_set(o, 72, PyLong_FromUnsignedLongLong((unsigned long long)m->sysid)) < 0) goto fail;
+    if (acc_set(o, 73, PyLong_FromUnsignedLongLong((unsigned long long)m->compid)) < 0) goto fail;
+    if (acc_set(o, 74, PyLong_FromUnsignedLongLong((unsigned long long)m->command)) < 0) goto fail;
+    if (acc_set(o, 75, PyLong_FromUnsignedLongLong((unsigned long long)m->result)) < 0) goto fail;
+    if (acc_set(o, 76, PyLong_FromUnsignedLongLong((unsigned long long)m->progress)) < 0) goto fail;
+    if (acc_set(o, 77, PyLong_FromLongLong((long long)m->result_param2)) < 0) goto fail;
+    if (acc_set(o, 78, PyLong_FromUnsignedLongLong((unsigned long long)m->target_system)) < 0) goto fail;
+    if (acc_set(o, 79, PyLong_FromUnsignedLongLong((unsigned long long)m->target_component)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -576,6 +669,21 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
     Py_XSETREF(A[58], PyUnicode_InternFromString(attribute_names[58]));
     if (PyErr_Occurred()) {
         return NULL;
+    }
+    for (size_t i = 0; i < sizeof S / sizeof S[0]; i++) {
+        PyObject *descr = PyObject_GetAttr(G[slot_of[i][0]], A[slot_of[i][1]]);
+        S[i] = 0;
+        if (descr == NULL) {
+            PyErr_Clear();
+            continue;
+        }
+        if (Py_IS_TYPE(descr, &PyMemberDescr_Type)) {
+            PyMemberDef *def = ((PyMemberDescrObject *)descr)->d_member;
+            if (def->type == T_OBJECT_EX && !(def->flags & READONLY)) {
+                S[i] = def->offset;
+            }
+        }
+        Py_DECREF(descr);
     }
     PyObject *out = PyDict_New();
     for (PyMethodDef *def = decoders; out != NULL && def->ml_name != NULL; def++) {

@@ -10,6 +10,7 @@
  * Messages not listed here are decoded in Python. */
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
+#include <structmember.h>
 #include <float.h>
 
 #if FLT_EVAL_METHOD != 0  /* scaled values are computed in double, rounded as Python rounds them */
@@ -28,6 +29,20 @@ const char cw_accel_build[] = "codeword-accelerator-build:" CW_ACCEL_BUILD;
  * names and numeric constants: filled by bind(). */
 static PyObject *G[7];
 static PyObject *A[5];
+/* For each slot: the class and the attribute (indices into G and A), and where the
+ * class's instances keep it (0: not a plain slot, set through setattr). */
+static const unsigned short slot_of[9][2] = {
+    {0, 0},
+    {0, 1},
+    {0, 2},
+    {2, 0},
+    {2, 1},
+    {2, 2},
+    {4, 0},
+    {4, 3},
+    {4, 4},
+};
+static Py_ssize_t S[9];
 
 static inline PyObject *acc_new(PyObject *cls)
 {
@@ -35,13 +50,20 @@ static inline PyObject *acc_new(PyObject *cls)
     return type->tp_alloc(type, 0);
 }
 
-/* Sets obj.name = value and releases value (NULL: an error already set). */
-static inline int acc_put(PyObject *obj, PyObject *name, PyObject *value)
+/* Sets attribute `slot` of obj to value and releases value (NULL: an error already set):
+ * straight into the instance's slot where the class has one, as its member descriptor
+ * would, else through setattr. */
+static inline int acc_set(PyObject *obj, int slot, PyObject *value)
 {
     if (value == NULL) {
         return -1;
     }
-    int rc = PyObject_SetAttr(obj, name, value);
+    if (S[slot] > 0) {
+        PyObject **place = (PyObject **)(void *)((char *)obj + S[slot]);
+        Py_XSETREF(*place, value);
+        return 0;
+    }
+    int rc = PyObject_SetAttr(obj, A[slot_of[slot][1]], value);
     Py_DECREF(value);
     return rc;
 }
@@ -63,9 +85,9 @@ static PyObject *build_read_holding_registers(const modbus_rtu_read_holding_regi
     if (o == NULL) {
         return NULL;
     }
-    if (acc_put(o, A[0], PyLong_FromUnsignedLongLong((unsigned long long)m->address)) < 0) goto fail;
-    if (acc_put(o, A[1], PyLong_FromUnsignedLongLong((unsigned long long)m->start)) < 0) goto fail;
-    if (acc_put(o, A[2], PyLong_FromUnsignedLongLong((unsigned long long)m->quantity)) < 0) goto fail;
+    if (acc_set(o, 0, PyLong_FromUnsignedLongLong((unsigned long long)m->address)) < 0) goto fail;
+    if (acc_set(o, 1, PyLong_FromUnsignedLongLong((unsigned long long)m->start)) < 0) goto fail;
+    if (acc_set(o, 2, PyLong_FromUnsignedLongLong((unsigned long long)m->quantity)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -99,9 +121,9 @@ static PyObject *build_write_multiple_registers_response(const modbus_rtu_write_
     if (o == NULL) {
         return NULL;
     }
-    if (acc_put(o, A[0], PyLong_FromUnsignedLongLong((unsigned long long)m->address)) < 0) goto fail;
-    if (acc_put(o, A[1], PyLong_FromUnsignedLongLong((unsigned long long)m->start)) < 0) goto fail;
-    if (acc_put(o, A[2], PyLong_FromUnsignedLongLong((unsigned long long)m->quantity)) < 0) goto fail;
+    if (acc_set(o, 3, PyLong_FromUnsignedLongLong((unsigned long long)m->address)) < 0) goto fail;
+    if (acc_set(o, 4, PyLong_FromUnsignedLongLong((unsigned long long)m->start)) < 0) goto fail;
+    if (acc_set(o, 5, PyLong_FromUnsignedLongLong((unsigned long long)m->quantity)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -131,13 +153,13 @@ static PyObject *decode_write_multiple_registers_response(PyObject *self, PyObje
 
 static PyObject *build_exception_response(const modbus_rtu_exception_response_t *m)
 {
-    PyObject *o = acc_new(G[5]);
+    PyObject *o = acc_new(G[4]);
     if (o == NULL) {
         return NULL;
     }
-    if (acc_put(o, A[0], PyLong_FromUnsignedLongLong((unsigned long long)m->address)) < 0) goto fail;
-    if (acc_put(o, A[3], PyLong_FromUnsignedLongLong((unsigned long long)m->function)) < 0) goto fail;
-    if (acc_put(o, A[4], acc_lookup(G[4], PyLong_FromUnsignedLongLong((unsigned long long)m->exception_code))) < 0) goto fail;
+    if (acc_set(o, 6, PyLong_FromUnsignedLongLong((unsigned long long)m->address)) < 0) goto fail;
+    if (acc_set(o, 7, PyLong_FromUnsignedLongLong((unsigned long long)m->function)) < 0) goto fail;
+    if (acc_set(o, 8, acc_lookup(G[5], PyLong_FromUnsignedLongLong((unsigned long long)m->exception_code))) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -261,8 +283,8 @@ static const char *const global_names[] = {
     "_decode_read_holding_registers",
     "WriteMultipleRegistersResponse",
     "_decode_write_multiple_registers_response",
-    "_ENUM_exception_code",
     "ExceptionResponse",
+    "_ENUM_exception_code",
     "_decode_exception_response",
 };
 
@@ -300,6 +322,21 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
     Py_XSETREF(A[4], PyUnicode_InternFromString(attribute_names[4]));
     if (PyErr_Occurred()) {
         return NULL;
+    }
+    for (size_t i = 0; i < sizeof S / sizeof S[0]; i++) {
+        PyObject *descr = PyObject_GetAttr(G[slot_of[i][0]], A[slot_of[i][1]]);
+        S[i] = 0;
+        if (descr == NULL) {
+            PyErr_Clear();
+            continue;
+        }
+        if (Py_IS_TYPE(descr, &PyMemberDescr_Type)) {
+            PyMemberDef *def = ((PyMemberDescrObject *)descr)->d_member;
+            if (def->type == T_OBJECT_EX && !(def->flags & READONLY)) {
+                S[i] = def->offset;
+            }
+        }
+        Py_DECREF(descr);
     }
     PyObject *out = PyDict_New();
     for (PyMethodDef *def = decoders; out != NULL && def->ml_name != NULL; def++) {

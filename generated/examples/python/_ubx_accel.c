@@ -10,6 +10,7 @@
  * Messages not listed here are decoded in Python. */
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
+#include <structmember.h>
 #include <float.h>
 
 #if FLT_EVAL_METHOD != 0  /* scaled values are computed in double, rounded as Python rounds them */
@@ -28,6 +29,72 @@ const char cw_accel_build[] = "codeword-accelerator-build:" CW_ACCEL_BUILD;
  * names and numeric constants: filled by bind(). */
 static PyObject *G[12];
 static PyObject *A[52];
+/* For each slot: the class and the attribute (indices into G and A), and where the
+ * class's instances keep it (0: not a plain slot, set through setattr). */
+static const unsigned short slot_of[61][2] = {
+    {0, 0},
+    {0, 1},
+    {2, 0},
+    {2, 1},
+    {6, 2},
+    {6, 3},
+    {6, 4},
+    {8, 5},
+    {8, 6},
+    {8, 7},
+    {8, 8},
+    {8, 9},
+    {8, 10},
+    {8, 11},
+    {10, 5},
+    {10, 12},
+    {10, 13},
+    {10, 14},
+    {10, 15},
+    {10, 16},
+    {10, 17},
+    {10, 18},
+    {10, 19},
+    {10, 20},
+    {10, 21},
+    {10, 22},
+    {10, 23},
+    {10, 24},
+    {10, 25},
+    {10, 26},
+    {10, 27},
+    {10, 28},
+    {10, 29},
+    {10, 30},
+    {10, 31},
+    {10, 32},
+    {10, 33},
+    {10, 34},
+    {10, 6},
+    {10, 7},
+    {10, 8},
+    {10, 9},
+    {10, 10},
+    {10, 11},
+    {10, 35},
+    {10, 36},
+    {10, 37},
+    {10, 38},
+    {10, 39},
+    {10, 40},
+    {10, 41},
+    {10, 42},
+    {10, 43},
+    {10, 44},
+    {10, 45},
+    {10, 46},
+    {10, 47},
+    {10, 48},
+    {10, 49},
+    {10, 50},
+    {10, 51},
+};
+static Py_ssize_t S[61];
 
 static inline PyObject *acc_new(PyObject *cls)
 {
@@ -35,13 +102,20 @@ static inline PyObject *acc_new(PyObject *cls)
     return type->tp_alloc(type, 0);
 }
 
-/* Sets obj.name = value and releases value (NULL: an error already set). */
-static inline int acc_put(PyObject *obj, PyObject *name, PyObject *value)
+/* Sets attribute `slot` of obj to value and releases value (NULL: an error already set):
+ * straight into the instance's slot where the class has one, as its member descriptor
+ * would, else through setattr. */
+static inline int acc_set(PyObject *obj, int slot, PyObject *value)
 {
     if (value == NULL) {
         return -1;
     }
-    int rc = PyObject_SetAttr(obj, name, value);
+    if (S[slot] > 0) {
+        PyObject **place = (PyObject **)(void *)((char *)obj + S[slot]);
+        Py_XSETREF(*place, value);
+        return 0;
+    }
+    int rc = PyObject_SetAttr(obj, A[slot_of[slot][1]], value);
     Py_DECREF(value);
     return rc;
 }
@@ -52,8 +126,8 @@ static PyObject *build_ack_nak(const ubx_ack_nak_t *m)
     if (o == NULL) {
         return NULL;
     }
-    if (acc_put(o, A[0], PyLong_FromUnsignedLongLong((unsigned long long)m->clsID)) < 0) goto fail;
-    if (acc_put(o, A[1], PyLong_FromUnsignedLongLong((unsigned long long)m->msgID)) < 0) goto fail;
+    if (acc_set(o, 0, PyLong_FromUnsignedLongLong((unsigned long long)m->clsID)) < 0) goto fail;
+    if (acc_set(o, 1, PyLong_FromUnsignedLongLong((unsigned long long)m->msgID)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -87,8 +161,8 @@ static PyObject *build_ack_ack(const ubx_ack_ack_t *m)
     if (o == NULL) {
         return NULL;
     }
-    if (acc_put(o, A[0], PyLong_FromUnsignedLongLong((unsigned long long)m->clsID)) < 0) goto fail;
-    if (acc_put(o, A[1], PyLong_FromUnsignedLongLong((unsigned long long)m->msgID)) < 0) goto fail;
+    if (acc_set(o, 2, PyLong_FromUnsignedLongLong((unsigned long long)m->clsID)) < 0) goto fail;
+    if (acc_set(o, 3, PyLong_FromUnsignedLongLong((unsigned long long)m->msgID)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -149,9 +223,9 @@ static PyObject *build_cfg_rate(const ubx_cfg_rate_t *m)
     if (o == NULL) {
         return NULL;
     }
-    if (acc_put(o, A[2], PyLong_FromUnsignedLongLong((unsigned long long)m->measRate)) < 0) goto fail;
-    if (acc_put(o, A[3], PyLong_FromUnsignedLongLong((unsigned long long)m->navRate)) < 0) goto fail;
-    if (acc_put(o, A[4], PyLong_FromUnsignedLongLong((unsigned long long)m->timeRef)) < 0) goto fail;
+    if (acc_set(o, 4, PyLong_FromUnsignedLongLong((unsigned long long)m->measRate)) < 0) goto fail;
+    if (acc_set(o, 5, PyLong_FromUnsignedLongLong((unsigned long long)m->navRate)) < 0) goto fail;
+    if (acc_set(o, 6, PyLong_FromUnsignedLongLong((unsigned long long)m->timeRef)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -185,13 +259,13 @@ static PyObject *build_nav_posllh(const ubx_nav_posllh_t *m)
     if (o == NULL) {
         return NULL;
     }
-    if (acc_put(o, A[5], PyLong_FromUnsignedLongLong((unsigned long long)m->iTOW)) < 0) goto fail;
-    if (acc_put(o, A[6], PyFloat_FromDouble((double)m->lon * 1e-07)) < 0) goto fail;
-    if (acc_put(o, A[7], PyFloat_FromDouble((double)m->lat * 1e-07)) < 0) goto fail;
-    if (acc_put(o, A[8], PyLong_FromLongLong((long long)m->height)) < 0) goto fail;
-    if (acc_put(o, A[9], PyLong_FromLongLong((long long)m->hMSL)) < 0) goto fail;
-    if (acc_put(o, A[10], PyLong_FromUnsignedLongLong((unsigned long long)m->hAcc)) < 0) goto fail;
-    if (acc_put(o, A[11], PyLong_FromUnsignedLongLong((unsigned long long)m->vAcc)) < 0) goto fail;
+    if (acc_set(o, 7, PyLong_FromUnsignedLongLong((unsigned long long)m->iTOW)) < 0) goto fail;
+    if (acc_set(o, 8, PyFloat_FromDouble((double)m->lon * 1e-07)) < 0) goto fail;
+    if (acc_set(o, 9, PyFloat_FromDouble((double)m->lat * 1e-07)) < 0) goto fail;
+    if (acc_set(o, 10, PyLong_FromLongLong((long long)m->height)) < 0) goto fail;
+    if (acc_set(o, 11, PyLong_FromLongLong((long long)m->hMSL)) < 0) goto fail;
+    if (acc_set(o, 12, PyLong_FromUnsignedLongLong((unsigned long long)m->hAcc)) < 0) goto fail;
+    if (acc_set(o, 13, PyLong_FromUnsignedLongLong((unsigned long long)m->vAcc)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -225,53 +299,53 @@ static PyObject *build_nav_pvt(const ubx_nav_pvt_t *m)
     if (o == NULL) {
         return NULL;
     }
-    if (acc_put(o, A[5], PyLong_FromUnsignedLongLong((unsigned long long)m->iTOW)) < 0) goto fail;
-    if (acc_put(o, A[12], PyLong_FromUnsignedLongLong((unsigned long long)m->year)) < 0) goto fail;
-    if (acc_put(o, A[13], PyLong_FromUnsignedLongLong((unsigned long long)m->month)) < 0) goto fail;
-    if (acc_put(o, A[14], PyLong_FromUnsignedLongLong((unsigned long long)m->day)) < 0) goto fail;
-    if (acc_put(o, A[15], PyLong_FromUnsignedLongLong((unsigned long long)m->hour)) < 0) goto fail;
-    if (acc_put(o, A[16], PyLong_FromUnsignedLongLong((unsigned long long)m->min)) < 0) goto fail;
-    if (acc_put(o, A[17], PyLong_FromUnsignedLongLong((unsigned long long)m->second)) < 0) goto fail;
-    if (acc_put(o, A[18], PyBool_FromLong(m->validDate)) < 0) goto fail;
-    if (acc_put(o, A[19], PyBool_FromLong(m->validTime)) < 0) goto fail;
-    if (acc_put(o, A[20], PyBool_FromLong(m->fullyResolved)) < 0) goto fail;
-    if (acc_put(o, A[21], PyBool_FromLong(m->validMag)) < 0) goto fail;
-    if (acc_put(o, A[22], PyLong_FromUnsignedLongLong((unsigned long long)m->tAcc)) < 0) goto fail;
-    if (acc_put(o, A[23], PyLong_FromLongLong((long long)m->nano)) < 0) goto fail;
-    if (acc_put(o, A[24], PyLong_FromUnsignedLongLong((unsigned long long)m->fixType)) < 0) goto fail;
-    if (acc_put(o, A[25], PyBool_FromLong(m->gnssFixOk)) < 0) goto fail;
-    if (acc_put(o, A[26], PyBool_FromLong(m->diffSoln)) < 0) goto fail;
-    if (acc_put(o, A[27], PyLong_FromUnsignedLongLong((unsigned long long)m->psmState)) < 0) goto fail;
-    if (acc_put(o, A[28], PyBool_FromLong(m->headVehValid)) < 0) goto fail;
-    if (acc_put(o, A[29], PyLong_FromUnsignedLongLong((unsigned long long)m->carrSoln)) < 0) goto fail;
-    if (acc_put(o, A[30], PyLong_FromUnsignedLongLong((unsigned long long)m->reserved)) < 0) goto fail;
-    if (acc_put(o, A[31], PyBool_FromLong(m->confirmedAvai)) < 0) goto fail;
-    if (acc_put(o, A[32], PyBool_FromLong(m->confirmedDate)) < 0) goto fail;
-    if (acc_put(o, A[33], PyBool_FromLong(m->confirmedTime)) < 0) goto fail;
-    if (acc_put(o, A[34], PyLong_FromUnsignedLongLong((unsigned long long)m->numSV)) < 0) goto fail;
-    if (acc_put(o, A[6], PyFloat_FromDouble((double)m->lon * 1e-07)) < 0) goto fail;
-    if (acc_put(o, A[7], PyFloat_FromDouble((double)m->lat * 1e-07)) < 0) goto fail;
-    if (acc_put(o, A[8], PyLong_FromLongLong((long long)m->height)) < 0) goto fail;
-    if (acc_put(o, A[9], PyLong_FromLongLong((long long)m->hMSL)) < 0) goto fail;
-    if (acc_put(o, A[10], PyLong_FromUnsignedLongLong((unsigned long long)m->hAcc)) < 0) goto fail;
-    if (acc_put(o, A[11], PyLong_FromUnsignedLongLong((unsigned long long)m->vAcc)) < 0) goto fail;
-    if (acc_put(o, A[35], PyLong_FromLongLong((long long)m->velN)) < 0) goto fail;
-    if (acc_put(o, A[36], PyLong_FromLongLong((long long)m->velE)) < 0) goto fail;
-    if (acc_put(o, A[37], PyLong_FromLongLong((long long)m->velD)) < 0) goto fail;
-    if (acc_put(o, A[38], PyLong_FromLongLong((long long)m->gSpeed)) < 0) goto fail;
-    if (acc_put(o, A[39], PyFloat_FromDouble((double)m->headMot * 1e-05)) < 0) goto fail;
-    if (acc_put(o, A[40], PyLong_FromUnsignedLongLong((unsigned long long)m->sAcc)) < 0) goto fail;
-    if (acc_put(o, A[41], PyFloat_FromDouble((double)m->headAcc * 1e-05)) < 0) goto fail;
-    if (acc_put(o, A[42], PyFloat_FromDouble((double)m->pDOP * 0.01)) < 0) goto fail;
-    if (acc_put(o, A[43], PyBool_FromLong(m->invalidLlh)) < 0) goto fail;
-    if (acc_put(o, A[44], PyLong_FromUnsignedLongLong((unsigned long long)m->lastCorrectionAge)) < 0) goto fail;
-    if (acc_put(o, A[45], PyLong_FromUnsignedLongLong((unsigned long long)m->reserved1)) < 0) goto fail;
-    if (acc_put(o, A[46], PyBool_FromLong(m->authTime)) < 0) goto fail;
-    if (acc_put(o, A[47], PyBool_FromLong(m->nmaFixStatus)) < 0) goto fail;
-    if (acc_put(o, A[48], PyLong_FromUnsignedLongLong((unsigned long long)m->reserved0)) < 0) goto fail;
-    if (acc_put(o, A[49], PyFloat_FromDouble((double)m->headVeh * 1e-05)) < 0) goto fail;
-    if (acc_put(o, A[50], PyFloat_FromDouble((double)m->magDec * 0.01)) < 0) goto fail;
-    if (acc_put(o, A[51], PyFloat_FromDouble((double)m->magAcc * 0.01)) < 0) goto fail;
+    if (acc_set(o, 14, PyLong_FromUnsignedLongLong((unsigned long long)m->iTOW)) < 0) goto fail;
+    if (acc_set(o, 15, PyLong_FromUnsignedLongLong((unsigned long long)m->year)) < 0) goto fail;
+    if (acc_set(o, 16, PyLong_FromUnsignedLongLong((unsigned long long)m->month)) < 0) goto fail;
+    if (acc_set(o, 17, PyLong_FromUnsignedLongLong((unsigned long long)m->day)) < 0) goto fail;
+    if (acc_set(o, 18, PyLong_FromUnsignedLongLong((unsigned long long)m->hour)) < 0) goto fail;
+    if (acc_set(o, 19, PyLong_FromUnsignedLongLong((unsigned long long)m->min)) < 0) goto fail;
+    if (acc_set(o, 20, PyLong_FromUnsignedLongLong((unsigned long long)m->second)) < 0) goto fail;
+    if (acc_set(o, 21, PyBool_FromLong(m->validDate)) < 0) goto fail;
+    if (acc_set(o, 22, PyBool_FromLong(m->validTime)) < 0) goto fail;
+    if (acc_set(o, 23, PyBool_FromLong(m->fullyResolved)) < 0) goto fail;
+    if (acc_set(o, 24, PyBool_FromLong(m->validMag)) < 0) goto fail;
+    if (acc_set(o, 25, PyLong_FromUnsignedLongLong((unsigned long long)m->tAcc)) < 0) goto fail;
+    if (acc_set(o, 26, PyLong_FromLongLong((long long)m->nano)) < 0) goto fail;
+    if (acc_set(o, 27, PyLong_FromUnsignedLongLong((unsigned long long)m->fixType)) < 0) goto fail;
+    if (acc_set(o, 28, PyBool_FromLong(m->gnssFixOk)) < 0) goto fail;
+    if (acc_set(o, 29, PyBool_FromLong(m->diffSoln)) < 0) goto fail;
+    if (acc_set(o, 30, PyLong_FromUnsignedLongLong((unsigned long long)m->psmState)) < 0) goto fail;
+    if (acc_set(o, 31, PyBool_FromLong(m->headVehValid)) < 0) goto fail;
+    if (acc_set(o, 32, PyLong_FromUnsignedLongLong((unsigned long long)m->carrSoln)) < 0) goto fail;
+    if (acc_set(o, 33, PyLong_FromUnsignedLongLong((unsigned long long)m->reserved)) < 0) goto fail;
+    if (acc_set(o, 34, PyBool_FromLong(m->confirmedAvai)) < 0) goto fail;
+    if (acc_set(o, 35, PyBool_FromLong(m->confirmedDate)) < 0) goto fail;
+    if (acc_set(o, 36, PyBool_FromLong(m->confirmedTime)) < 0) goto fail;
+    if (acc_set(o, 37, PyLong_FromUnsignedLongLong((unsigned long long)m->numSV)) < 0) goto fail;
+    if (acc_set(o, 38, PyFloat_FromDouble((double)m->lon * 1e-07)) < 0) goto fail;
+    if (acc_set(o, 39, PyFloat_FromDouble((double)m->lat * 1e-07)) < 0) goto fail;
+    if (acc_set(o, 40, PyLong_FromLongLong((long long)m->height)) < 0) goto fail;
+    if (acc_set(o, 41, PyLong_FromLongLong((long long)m->hMSL)) < 0) goto fail;
+    if (acc_set(o, 42, PyLong_FromUnsignedLongLong((unsigned long long)m->hAcc)) < 0) goto fail;
+    if (acc_set(o, 43, PyLong_FromUnsignedLongLong((unsigned long long)m->vAcc)) < 0) goto fail;
+    if (acc_set(o, 44, PyLong_FromLongLong((long long)m->velN)) < 0) goto fail;
+    if (acc_set(o, 45, PyLong_FromLongLong((long long)m->velE)) < 0) goto fail;
+    if (acc_set(o, 46, PyLong_FromLongLong((long long)m->velD)) < 0) goto fail;
+    if (acc_set(o, 47, PyLong_FromLongLong((long long)m->gSpeed)) < 0) goto fail;
+    if (acc_set(o, 48, PyFloat_FromDouble((double)m->headMot * 1e-05)) < 0) goto fail;
+    if (acc_set(o, 49, PyLong_FromUnsignedLongLong((unsigned long long)m->sAcc)) < 0) goto fail;
+    if (acc_set(o, 50, PyFloat_FromDouble((double)m->headAcc * 1e-05)) < 0) goto fail;
+    if (acc_set(o, 51, PyFloat_FromDouble((double)m->pDOP * 0.01)) < 0) goto fail;
+    if (acc_set(o, 52, PyBool_FromLong(m->invalidLlh)) < 0) goto fail;
+    if (acc_set(o, 53, PyLong_FromUnsignedLongLong((unsigned long long)m->lastCorrectionAge)) < 0) goto fail;
+    if (acc_set(o, 54, PyLong_FromUnsignedLongLong((unsigned long long)m->reserved1)) < 0) goto fail;
+    if (acc_set(o, 55, PyBool_FromLong(m->authTime)) < 0) goto fail;
+    if (acc_set(o, 56, PyBool_FromLong(m->nmaFixStatus)) < 0) goto fail;
+    if (acc_set(o, 57, PyLong_FromUnsignedLongLong((unsigned long long)m->reserved0)) < 0) goto fail;
+    if (acc_set(o, 58, PyFloat_FromDouble((double)m->headVeh * 1e-05)) < 0) goto fail;
+    if (acc_set(o, 59, PyFloat_FromDouble((double)m->magDec * 0.01)) < 0) goto fail;
+    if (acc_set(o, 60, PyFloat_FromDouble((double)m->magAcc * 0.01)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -537,6 +611,21 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
     Py_XSETREF(A[51], PyUnicode_InternFromString(attribute_names[51]));
     if (PyErr_Occurred()) {
         return NULL;
+    }
+    for (size_t i = 0; i < sizeof S / sizeof S[0]; i++) {
+        PyObject *descr = PyObject_GetAttr(G[slot_of[i][0]], A[slot_of[i][1]]);
+        S[i] = 0;
+        if (descr == NULL) {
+            PyErr_Clear();
+            continue;
+        }
+        if (Py_IS_TYPE(descr, &PyMemberDescr_Type)) {
+            PyMemberDef *def = ((PyMemberDescrObject *)descr)->d_member;
+            if (def->type == T_OBJECT_EX && !(def->flags & READONLY)) {
+                S[i] = def->offset;
+            }
+        }
+        Py_DECREF(descr);
     }
     PyObject *out = PyDict_New();
     for (PyMethodDef *def = decoders; out != NULL && def->ml_name != NULL; def++) {
