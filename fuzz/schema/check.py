@@ -1,6 +1,7 @@
 """One generated schema through every target: build (Python, C, docs, vectors,
-Promela), the Python codec on its vectors and on damaged frames, and the C codec
-compiled with the strict warning flags and run against the same vectors."""
+Promela), the Python codec on its vectors and on damaged frames, the C codec
+compiled with the strict warning flags and run against the same vectors, and the
+compiled accelerator of the Python module against its pure-Python decoders."""
 from __future__ import annotations
 
 import importlib.util
@@ -15,8 +16,10 @@ import traceback
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from codeword import accelerate
 from codeword.build import build, compile_schema
 
+from . import accelerated
 from .features import DEFAULT
 from .generate import generate
 
@@ -82,7 +85,30 @@ def check_text(text: str, name: str, where: Path, outcome: Outcome) -> None:
     if problem:
         outcome.detail = problem
         return
+    outcome.stage = "accelerator"
+    problem = accelerator_checks(path, out / "python", where / "accelerators", vectors)
+    if problem:
+        outcome.detail = problem
+        return
     outcome.stage = "ok"
+
+
+def accelerator_checks(schema: Path, python: Path, folder: Path, vectors: dict) -> str:
+    """Where the module has an accelerator: built (-O0, warnings as errors), used, and
+    deciding every vector, damaged frame and stream as the pure-Python module does."""
+    name = schema.stem
+    if not (python / f"_{name}_accel.c").exists() or accelerate.compiler() is None \
+            or accelerate.python_headers() is None:
+        return ""
+    accelerate.accelerate([schema], folder, ("-O0", "-Wall", "-Wextra", "-Werror"))
+    fast = accelerated.load(python / f"{name}.py", f"_fuzz_fast_{name}", folder)
+    pure = accelerated.load(python / f"{name}.py", f"_fuzz_pure_{name}", None)
+    for module in (fast, pure):
+        sys.modules.pop(module.__name__, None)
+    if fast.ACCELERATOR is None:
+        return "the accelerator was built but the module does not use it"
+    valid = [bytes.fromhex(case["hex"]) for case in vectors["valid"]]
+    return accelerated.difference(fast, pure, vectors, [b"".join(valid)])[0]
 
 
 def _load(path: Path):

@@ -428,7 +428,6 @@ static const char *const attribute_names[] = {
     "y",
     "th",
     "command",
-    NULL
 };
 
 /* bind(module_globals) -> {name: decoder}: the decoders, each in place of the
@@ -449,20 +448,9 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
         Py_INCREF(value);
         Py_XSETREF(G[i], value);
     }
-    Py_XSETREF(A[0], PyUnicode_InternFromString(attribute_names[0]));
-    Py_XSETREF(A[1], PyUnicode_InternFromString(attribute_names[1]));
-    Py_XSETREF(A[2], PyUnicode_InternFromString(attribute_names[2]));
-    Py_XSETREF(A[3], PyUnicode_InternFromString(attribute_names[3]));
-    Py_XSETREF(A[4], PyUnicode_InternFromString(attribute_names[4]));
-    Py_XSETREF(A[5], PyUnicode_InternFromString(attribute_names[5]));
-    Py_XSETREF(A[6], PyUnicode_InternFromString(attribute_names[6]));
-    Py_XSETREF(A[7], PyUnicode_InternFromString(attribute_names[7]));
-    Py_XSETREF(A[8], PyUnicode_InternFromString(attribute_names[8]));
-    Py_XSETREF(A[9], PyUnicode_InternFromString(attribute_names[9]));
-    Py_XSETREF(A[10], PyUnicode_InternFromString(attribute_names[10]));
-    Py_XSETREF(A[11], PyUnicode_InternFromString(attribute_names[11]));
-    Py_XSETREF(A[12], PyUnicode_InternFromString(attribute_names[12]));
-    Py_XSETREF(A[13], PyUnicode_InternFromString(attribute_names[13]));
+    for (size_t i = 0; i < sizeof A / sizeof A[0]; i++) {
+        Py_XSETREF(A[i], PyUnicode_InternFromString(attribute_names[i]));
+    }
     if (PyErr_Occurred()) {
         return NULL;
     }

@@ -240,7 +240,6 @@ static const char *const attribute_names[] = {
     "sender",
     "receiver",
     "data",
-    NULL
 };
 
 /* bind(module_globals) -> {name: decoder}: the decoders, each in place of the
@@ -261,10 +260,9 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
         Py_INCREF(value);
         Py_XSETREF(G[i], value);
     }
-    Py_XSETREF(A[0], PyUnicode_InternFromString(attribute_names[0]));
-    Py_XSETREF(A[1], PyUnicode_InternFromString(attribute_names[1]));
-    Py_XSETREF(A[2], PyUnicode_InternFromString(attribute_names[2]));
-    Py_XSETREF(A[3], PyUnicode_InternFromString(attribute_names[3]));
+    for (size_t i = 0; i < sizeof A / sizeof A[0]; i++) {
+        Py_XSETREF(A[i], PyUnicode_InternFromString(attribute_names[i]));
+    }
     if (PyErr_Occurred()) {
         return NULL;
     }

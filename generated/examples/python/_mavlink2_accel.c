@@ -587,7 +587,6 @@ static const char *const attribute_names[] = {
     "result_param2",
     "target_system",
     "target_component",
-    NULL
 };
 
 /* bind(module_globals) -> {name: decoder}: the decoders, each in place of the
@@ -608,65 +607,9 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
         Py_INCREF(value);
         Py_XSETREF(G[i], value);
     }
-    Py_XSETREF(A[0], PyUnicode_InternFromString(attribute_names[0]));
-    Py_XSETREF(A[1], PyUnicode_InternFromString(attribute_names[1]));
-    Py_XSETREF(A[2], PyUnicode_InternFromString(attribute_names[2]));
-    Py_XSETREF(A[3], PyUnicode_InternFromString(attribute_names[3]));
-    Py_XSETREF(A[4], PyUnicode_InternFromString(attribute_names[4]));
-    Py_XSETREF(A[5], PyUnicode_InternFromString(attribute_names[5]));
-    Py_XSETREF(A[6], PyUnicode_InternFromString(attribute_names[6]));
-    Py_XSETREF(A[7], PyUnicode_InternFromString(attribute_names[7]));
-    Py_XSETREF(A[8], PyUnicode_InternFromString(attribute_names[8]));
-    Py_XSETREF(A[9], PyUnicode_InternFromString(attribute_names[9]));
-    Py_XSETREF(A[10], PyUnicode_InternFromString(attribute_names[10]));
-    Py_XSETREF(A[11], PyUnicode_InternFromString(attribute_names[11]));
-    Py_XSETREF(A[12], PyUnicode_InternFromString(attribute_names[12]));
-    Py_XSETREF(A[13], PyUnicode_InternFromString(attribute_names[13]));
-    Py_XSETREF(A[14], PyUnicode_InternFromString(attribute_names[14]));
-    Py_XSETREF(A[15], PyUnicode_InternFromString(attribute_names[15]));
-    Py_XSETREF(A[16], PyUnicode_InternFromString(attribute_names[16]));
-    Py_XSETREF(A[17], PyUnicode_InternFromString(attribute_names[17]));
-    Py_XSETREF(A[18], PyUnicode_InternFromString(attribute_names[18]));
-    Py_XSETREF(A[19], PyUnicode_InternFromString(attribute_names[19]));
-    Py_XSETREF(A[20], PyUnicode_InternFromString(attribute_names[20]));
-    Py_XSETREF(A[21], PyUnicode_InternFromString(attribute_names[21]));
-    Py_XSETREF(A[22], PyUnicode_InternFromString(attribute_names[22]));
-    Py_XSETREF(A[23], PyUnicode_InternFromString(attribute_names[23]));
-    Py_XSETREF(A[24], PyUnicode_InternFromString(attribute_names[24]));
-    Py_XSETREF(A[25], PyUnicode_InternFromString(attribute_names[25]));
-    Py_XSETREF(A[26], PyUnicode_InternFromString(attribute_names[26]));
-    Py_XSETREF(A[27], PyUnicode_InternFromString(attribute_names[27]));
-    Py_XSETREF(A[28], PyUnicode_InternFromString(attribute_names[28]));
-    Py_XSETREF(A[29], PyUnicode_InternFromString(attribute_names[29]));
-    Py_XSETREF(A[30], PyUnicode_InternFromString(attribute_names[30]));
-    Py_XSETREF(A[31], PyUnicode_InternFromString(attribute_names[31]));
-    Py_XSETREF(A[32], PyUnicode_InternFromString(attribute_names[32]));
-    Py_XSETREF(A[33], PyUnicode_InternFromString(attribute_names[33]));
-    Py_XSETREF(A[34], PyUnicode_InternFromString(attribute_names[34]));
-    Py_XSETREF(A[35], PyUnicode_InternFromString(attribute_names[35]));
-    Py_XSETREF(A[36], PyUnicode_InternFromString(attribute_names[36]));
-    Py_XSETREF(A[37], PyUnicode_InternFromString(attribute_names[37]));
-    Py_XSETREF(A[38], PyUnicode_InternFromString(attribute_names[38]));
-    Py_XSETREF(A[39], PyUnicode_InternFromString(attribute_names[39]));
-    Py_XSETREF(A[40], PyUnicode_InternFromString(attribute_names[40]));
-    Py_XSETREF(A[41], PyUnicode_InternFromString(attribute_names[41]));
-    Py_XSETREF(A[42], PyUnicode_InternFromString(attribute_names[42]));
-    Py_XSETREF(A[43], PyUnicode_InternFromString(attribute_names[43]));
-    Py_XSETREF(A[44], PyUnicode_InternFromString(attribute_names[44]));
-    Py_XSETREF(A[45], PyUnicode_InternFromString(attribute_names[45]));
-    Py_XSETREF(A[46], PyUnicode_InternFromString(attribute_names[46]));
-    Py_XSETREF(A[47], PyUnicode_InternFromString(attribute_names[47]));
-    Py_XSETREF(A[48], PyUnicode_InternFromString(attribute_names[48]));
-    Py_XSETREF(A[49], PyUnicode_InternFromString(attribute_names[49]));
-    Py_XSETREF(A[50], PyUnicode_InternFromString(attribute_names[50]));
-    Py_XSETREF(A[51], PyUnicode_InternFromString(attribute_names[51]));
-    Py_XSETREF(A[52], PyUnicode_InternFromString(attribute_names[52]));
-    Py_XSETREF(A[53], PyUnicode_InternFromString(attribute_names[53]));
-    Py_XSETREF(A[54], PyUnicode_InternFromString(attribute_names[54]));
-    Py_XSETREF(A[55], PyUnicode_InternFromString(attribute_names[55]));
-    Py_XSETREF(A[56], PyUnicode_InternFromString(attribute_names[56]));
-    Py_XSETREF(A[57], PyUnicode_InternFromString(attribute_names[57]));
-    Py_XSETREF(A[58], PyUnicode_InternFromString(attribute_names[58]));
+    for (size_t i = 0; i < sizeof A / sizeof A[0]; i++) {
+        Py_XSETREF(A[i], PyUnicode_InternFromString(attribute_names[i]));
+    }
     if (PyErr_Occurred()) {
         return NULL;
     }
