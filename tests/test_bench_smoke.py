@@ -10,6 +10,8 @@ import tempfile
 from pathlib import Path
 
 from bench import c_host, messages, peers_c, runner, streams, timing
+from bench import handwritten as hw
+from bench.protocols import car, mtv4, route, tank, tr24
 
 
 def test_every_contender_writes_the_expected_bytes_and_reads_back_the_same_values():
@@ -86,3 +88,45 @@ def test_peer_wrappers_count_parity_bits_rather_than_add_field_values():
     assert peers.bitstruct_car_encode(tuple(raw.values())) == expected
     assert peers.construct_car_encode(raw) == expected
     assert peers.cantools_car_encode(raw) == expected
+
+
+def _outcome(decode, data):
+    try:
+        return decode(data)
+    except ValueError:
+        return None
+
+
+def _damaged(case):
+    """The example's frame with each bit flipped (an mtv4 frame also with its CRC made right
+    again, so the checks behind the CRC are reached), or the tank line with each token
+    replaced by text some rule refuses or accepts."""
+    if isinstance(case.wire, str):
+        tokens = case.wire[2:-1].split(",")
+        for i in range(len(tokens)):
+            for bad in ("", " 7 ", "nan", "inf", "1e400", "1_0", "1e-310", "0.1234567890123456", "-0", "5.", "101",
+                        "256", "6", "x y", "ab", ";", "9" * 25, "x" * 33):
+                yield "$:" + ",".join(tokens[:i] + [bad] + tokens[i + 1:]) + ";"
+        return
+    for bit in range(8 * len(case.wire)):
+        frame = bytearray(case.wire)
+        frame[bit // 8] ^= 0x80 >> bit % 8
+        yield bytes(frame)
+        if case.key == "mtv4":
+            frame[24:26] = hw.crc16_cms(frame).to_bytes(2, "big")
+            yield bytes(frame)
+
+
+def test_the_floor_refuses_what_codeword_refuses_and_reads_the_same_values():
+    decoders = {"route": (route.Object.decode, hw.route_object_decode),
+                "car": (car.MasterControl.decode, hw.car_master_decode),
+                "mtv4": (mtv4.SetWheelsVelocitiesWithOdometry.decode, hw.mtv4_odometry_decode),
+                "tank": (tank.Telemetry.decode, hw.tank_telemetry_decode),
+                "tr24": (tr24.Command.decode, hw.tr24_command_decode)}
+    for case in messages.cases():
+        cw, own = decoders[case.key]
+        for data in _damaged(case):
+            a, b = _outcome(cw, data), _outcome(own, data)
+            assert (a is None) == (b is None), (case.key, data)
+            if a is not None:
+                assert messages.differences(b, a) == [], (case.key, data)
