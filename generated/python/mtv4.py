@@ -692,11 +692,8 @@ def _encode_set_wheels_velocities(m: SetWheelsVelocities) -> bytes:
         raise _enc('set_wheels_velocities', 'vr', r_vr, 'range', '-4096..4095.875', 'MTV4-D5')
     r_vr = _floor(r_vr / 0.125 + 0.5)
     r_crc = 0
-    b = bytearray(12)
-    _S_set_wheels_velocities_0.pack_into(b, 0, 170, 8, r_group, r_radio_crc_flag << 7 | 0x1, r_robots, r_vl, r_vr)
-    _S_set_wheels_velocities_1.pack_into(b, 10, r_crc)
-    b[10:12] = _checksum_crc16_8005_ffff_nn_0_9(b, 1).to_bytes(2, 'big')
-    return bytes(b)
+    h = _S_set_wheels_velocities_0.pack(170, 8, r_group, r_radio_crc_flag << 7 | 0x1, r_robots, r_vl, r_vr)
+    return h + _checksum_crc16_8005_ffff_nn_0_9(h, 1).to_bytes(2, 'big')
 
 
 def _decode_set_wheels_velocities(d: _Buffer) -> SetWheelsVelocities:
@@ -771,11 +768,8 @@ def _encode_set_led(m: SetLed) -> bytes:
     if not 0 <= r_d4 <= 255:
         raise _enc('set_led', 'd4', r_d4, 'range', '0..255', None)
     r_crc = 0
-    b = bytearray(12)
-    _S_set_led_0.pack_into(b, 0, 170, 8, r_group, r_radio_crc_flag << 7 | 0x2, r_robots, r_d1, r_d2, r_d3, r_d4)
-    _S_set_led_1.pack_into(b, 10, r_crc)
-    b[10:12] = _checksum_crc16_8005_ffff_nn_0_9(b, 1).to_bytes(2, 'big')
-    return bytes(b)
+    h = _S_set_led_0.pack(170, 8, r_group, r_radio_crc_flag << 7 | 0x2, r_robots, r_d1, r_d2, r_d3, r_d4)
+    return h + _checksum_crc16_8005_ffff_nn_0_9(h, 1).to_bytes(2, 'big')
 
 
 def _decode_set_led(d: _Buffer) -> SetLed:
@@ -880,11 +874,8 @@ def _encode_set_wheels_velocities_with_odometry(m: SetWheelsVelocitiesWithOdomet
     if r_th > 3.4028234663852886e38 or r_th < -3.4028234663852886e38:
         raise _enc('set_wheels_velocities_with_odometry', 'th', r_th, 'range', 'a binary32 value')
     r_crc = 0
-    b = bytearray(26)
-    _S_set_wheels_velocities_with_odometry_0.pack_into(b, 0, 170, 22, r_group, r_radio_crc_flag << 7 | 0x3, r_robots, r_status, r_vl, r_vr, r_x, r_y, r_th)
-    _S_set_wheels_velocities_with_odometry_1.pack_into(b, 24, r_crc)
-    b[24:26] = _checksum_crc16_8005_ffff_nn_0_23(b, 1).to_bytes(2, 'big')
-    return bytes(b)
+    h = _S_set_wheels_velocities_with_odometry_0.pack(170, 22, r_group, r_radio_crc_flag << 7 | 0x3, r_robots, r_status, r_vl, r_vr, r_x, r_y, r_th)
+    return h + _checksum_crc16_8005_ffff_nn_0_23(h, 1).to_bytes(2, 'big')
 
 
 def _decode_set_wheels_velocities_with_odometry(d: _Buffer) -> SetWheelsVelocitiesWithOdometry:
@@ -957,11 +948,8 @@ def _encode_ack(m: Ack) -> bytes:
     if r_robots == 0 or r_robots & (r_robots - 1):
         raise _enc('ack', 'robots', r_robots, 'exactly_one', 'exactly one bit set', 'MTV4-D3', 'an individual command or reply addresses exactly one robot')
     r_crc = 0
-    b = bytearray(8)
-    _S_ack_0.pack_into(b, 0, 170, 4, r_group, r_radio_crc_flag << 7 | r_command, r_robots)
-    _S_ack_1.pack_into(b, 6, r_crc)
-    b[6:8] = _checksum_crc16_8005_ffff_nn_0_5(b, 1).to_bytes(2, 'big')
-    return bytes(b)
+    h = _S_ack_0.pack(170, 4, r_group, r_radio_crc_flag << 7 | r_command, r_robots)
+    return h + _checksum_crc16_8005_ffff_nn_0_5(h, 1).to_bytes(2, 'big')
 
 
 def _decode_ack(d: _Buffer) -> Ack:
@@ -1050,11 +1038,8 @@ def _encode_odometry_reply(m: OdometryReply) -> bytes:
     if r_th > 3.4028234663852886e38 or r_th < -3.4028234663852886e38:
         raise _enc('odometry_reply', 'th', r_th, 'range', 'a binary32 value')
     r_crc = 0
-    b = bytearray(22)
-    _S_odometry_reply_0.pack_into(b, 0, 170, 18, r_group, r_radio_crc_flag << 7 | 0x3, r_robots, r_status, r_x, r_y, r_th)
-    _S_odometry_reply_1.pack_into(b, 20, r_crc)
-    b[20:22] = _checksum_crc16_8005_ffff_nn_0_19(b, 1).to_bytes(2, 'big')
-    return bytes(b)
+    h = _S_odometry_reply_0.pack(170, 18, r_group, r_radio_crc_flag << 7 | 0x3, r_robots, r_status, r_x, r_y, r_th)
+    return h + _checksum_crc16_8005_ffff_nn_0_19(h, 1).to_bytes(2, 'big')
 
 
 def _decode_odometry_reply(d: _Buffer) -> OdometryReply:

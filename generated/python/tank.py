@@ -599,7 +599,8 @@ def _encode_telemetry(m: Telemetry) -> str:
             raise _enc('telemetry', 'lcurr', r_lcurr, 'finite', 'a finite number')
     if not _isfinite(r_lcurr):
         raise _enc('telemetry', 'lcurr', r_lcurr, 'finite', 'a finite number')
-    if _significant(_format_float(r_lcurr)) > 15 or r_lcurr and -1e-307 < r_lcurr < 1e-307:
+    s_lcurr = _format_float(r_lcurr)  # written as it is checked
+    if len(s_lcurr) > 15 and _significant(s_lcurr) > 15 or r_lcurr and -1e-307 < r_lcurr < 1e-307:
         raise _enc('telemetry', 'lcurr', r_lcurr, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_rcurr = m.rcurr
     if r_rcurr.__class__ is not float:
@@ -609,7 +610,8 @@ def _encode_telemetry(m: Telemetry) -> str:
             raise _enc('telemetry', 'rcurr', r_rcurr, 'finite', 'a finite number')
     if not _isfinite(r_rcurr):
         raise _enc('telemetry', 'rcurr', r_rcurr, 'finite', 'a finite number')
-    if _significant(_format_float(r_rcurr)) > 15 or r_rcurr and -1e-307 < r_rcurr < 1e-307:
+    s_rcurr = _format_float(r_rcurr)  # written as it is checked
+    if len(s_rcurr) > 15 and _significant(s_rcurr) > 15 or r_rcurr and -1e-307 < r_rcurr < 1e-307:
         raise _enc('telemetry', 'rcurr', r_rcurr, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_accx = m.accx
     if r_accx.__class__ is not float:
@@ -619,7 +621,8 @@ def _encode_telemetry(m: Telemetry) -> str:
             raise _enc('telemetry', 'accx', r_accx, 'finite', 'a finite number')
     if not _isfinite(r_accx):
         raise _enc('telemetry', 'accx', r_accx, 'finite', 'a finite number')
-    if _significant(_format_float(r_accx)) > 15 or r_accx and -1e-307 < r_accx < 1e-307:
+    s_accx = _format_float(r_accx)  # written as it is checked
+    if len(s_accx) > 15 and _significant(s_accx) > 15 or r_accx and -1e-307 < r_accx < 1e-307:
         raise _enc('telemetry', 'accx', r_accx, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_accy = m.accy
     if r_accy.__class__ is not float:
@@ -629,7 +632,8 @@ def _encode_telemetry(m: Telemetry) -> str:
             raise _enc('telemetry', 'accy', r_accy, 'finite', 'a finite number')
     if not _isfinite(r_accy):
         raise _enc('telemetry', 'accy', r_accy, 'finite', 'a finite number')
-    if _significant(_format_float(r_accy)) > 15 or r_accy and -1e-307 < r_accy < 1e-307:
+    s_accy = _format_float(r_accy)  # written as it is checked
+    if len(s_accy) > 15 and _significant(s_accy) > 15 or r_accy and -1e-307 < r_accy < 1e-307:
         raise _enc('telemetry', 'accy', r_accy, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_accz = m.accz
     if r_accz.__class__ is not float:
@@ -639,7 +643,8 @@ def _encode_telemetry(m: Telemetry) -> str:
             raise _enc('telemetry', 'accz', r_accz, 'finite', 'a finite number')
     if not _isfinite(r_accz):
         raise _enc('telemetry', 'accz', r_accz, 'finite', 'a finite number')
-    if _significant(_format_float(r_accz)) > 15 or r_accz and -1e-307 < r_accz < 1e-307:
+    s_accz = _format_float(r_accz)  # written as it is checked
+    if len(s_accz) > 15 and _significant(s_accz) > 15 or r_accz and -1e-307 < r_accz < 1e-307:
         raise _enc('telemetry', 'accz', r_accz, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_gyrox = m.gyrox
     if r_gyrox.__class__ is not float:
@@ -649,7 +654,8 @@ def _encode_telemetry(m: Telemetry) -> str:
             raise _enc('telemetry', 'gyrox', r_gyrox, 'finite', 'a finite number')
     if not _isfinite(r_gyrox):
         raise _enc('telemetry', 'gyrox', r_gyrox, 'finite', 'a finite number')
-    if _significant(_format_float(r_gyrox)) > 15 or r_gyrox and -1e-307 < r_gyrox < 1e-307:
+    s_gyrox = _format_float(r_gyrox)  # written as it is checked
+    if len(s_gyrox) > 15 and _significant(s_gyrox) > 15 or r_gyrox and -1e-307 < r_gyrox < 1e-307:
         raise _enc('telemetry', 'gyrox', r_gyrox, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_gyroy = m.gyroy
     if r_gyroy.__class__ is not float:
@@ -659,7 +665,8 @@ def _encode_telemetry(m: Telemetry) -> str:
             raise _enc('telemetry', 'gyroy', r_gyroy, 'finite', 'a finite number')
     if not _isfinite(r_gyroy):
         raise _enc('telemetry', 'gyroy', r_gyroy, 'finite', 'a finite number')
-    if _significant(_format_float(r_gyroy)) > 15 or r_gyroy and -1e-307 < r_gyroy < 1e-307:
+    s_gyroy = _format_float(r_gyroy)  # written as it is checked
+    if len(s_gyroy) > 15 and _significant(s_gyroy) > 15 or r_gyroy and -1e-307 < r_gyroy < 1e-307:
         raise _enc('telemetry', 'gyroy', r_gyroy, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_gyroz = m.gyroz
     if r_gyroz.__class__ is not float:
@@ -669,7 +676,8 @@ def _encode_telemetry(m: Telemetry) -> str:
             raise _enc('telemetry', 'gyroz', r_gyroz, 'finite', 'a finite number')
     if not _isfinite(r_gyroz):
         raise _enc('telemetry', 'gyroz', r_gyroz, 'finite', 'a finite number')
-    if _significant(_format_float(r_gyroz)) > 15 or r_gyroz and -1e-307 < r_gyroz < 1e-307:
+    s_gyroz = _format_float(r_gyroz)  # written as it is checked
+    if len(s_gyroz) > 15 and _significant(s_gyroz) > 15 or r_gyroz and -1e-307 < r_gyroz < 1e-307:
         raise _enc('telemetry', 'gyroz', r_gyroz, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_magx = m.magx
     if r_magx.__class__ is not float:
@@ -679,7 +687,8 @@ def _encode_telemetry(m: Telemetry) -> str:
             raise _enc('telemetry', 'magx', r_magx, 'finite', 'a finite number')
     if not _isfinite(r_magx):
         raise _enc('telemetry', 'magx', r_magx, 'finite', 'a finite number')
-    if _significant(_format_float(r_magx)) > 15 or r_magx and -1e-307 < r_magx < 1e-307:
+    s_magx = _format_float(r_magx)  # written as it is checked
+    if len(s_magx) > 15 and _significant(s_magx) > 15 or r_magx and -1e-307 < r_magx < 1e-307:
         raise _enc('telemetry', 'magx', r_magx, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_magy = m.magy
     if r_magy.__class__ is not float:
@@ -689,7 +698,8 @@ def _encode_telemetry(m: Telemetry) -> str:
             raise _enc('telemetry', 'magy', r_magy, 'finite', 'a finite number')
     if not _isfinite(r_magy):
         raise _enc('telemetry', 'magy', r_magy, 'finite', 'a finite number')
-    if _significant(_format_float(r_magy)) > 15 or r_magy and -1e-307 < r_magy < 1e-307:
+    s_magy = _format_float(r_magy)  # written as it is checked
+    if len(s_magy) > 15 and _significant(s_magy) > 15 or r_magy and -1e-307 < r_magy < 1e-307:
         raise _enc('telemetry', 'magy', r_magy, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_magz = m.magz
     if r_magz.__class__ is not float:
@@ -699,7 +709,8 @@ def _encode_telemetry(m: Telemetry) -> str:
             raise _enc('telemetry', 'magz', r_magz, 'finite', 'a finite number')
     if not _isfinite(r_magz):
         raise _enc('telemetry', 'magz', r_magz, 'finite', 'a finite number')
-    if _significant(_format_float(r_magz)) > 15 or r_magz and -1e-307 < r_magz < 1e-307:
+    s_magz = _format_float(r_magz)  # written as it is checked
+    if len(s_magz) > 15 and _significant(s_magz) > 15 or r_magz and -1e-307 < r_magz < 1e-307:
         raise _enc('telemetry', 'magz', r_magz, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_lan = m.lan
     if not isinstance(r_lan, str):
@@ -727,7 +738,8 @@ def _encode_telemetry(m: Telemetry) -> str:
             raise _enc('telemetry', 'vbat', r_vbat, 'finite', 'a finite number')
     if not _isfinite(r_vbat):
         raise _enc('telemetry', 'vbat', r_vbat, 'finite', 'a finite number')
-    if _significant(_format_float(r_vbat)) > 15 or r_vbat and -1e-307 < r_vbat < 1e-307:
+    s_vbat = _format_float(r_vbat)  # written as it is checked
+    if len(s_vbat) > 15 and _significant(s_vbat) > 15 or r_vbat and -1e-307 < r_vbat < 1e-307:
         raise _enc('telemetry', 'vbat', r_vbat, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_systemstatus: Any = m.systemstatus
     if r_systemstatus.__class__ is not SystemStatus and (not isinstance(r_systemstatus, int) or r_systemstatus.__class__ is bool or isinstance(r_systemstatus, enum.Enum) or r_systemstatus not in _VALUES_system_status):
@@ -742,7 +754,7 @@ def _encode_telemetry(m: Telemetry) -> str:
     if r_extstatus.__class__ is not ExtStatus and (not isinstance(r_extstatus, int) or r_extstatus.__class__ is bool or isinstance(r_extstatus, enum.Enum) or r_extstatus not in _VALUES_ext_status):
         raise _enc('telemetry', 'extstatus', r_extstatus, 'enum', 'ExtStatus', None)
     r_extstatus = int(r_extstatus)
-    return '$:' + ','.join((_ENUM_move[r_move]._value_, str(r_speed), r_value, _format_float(r_lcurr), _format_float(r_rcurr), _format_float(r_accx), _format_float(r_accy), _format_float(r_accz), _format_float(r_gyrox), _format_float(r_gyroy), _format_float(r_gyroz), _format_float(r_magx), _format_float(r_magy), _format_float(r_magz), r_lan, r_lon, _format_float(r_vbat), str(r_systemstatus), str(r_extid), str(r_extstatus), )) + ';'
+    return '$:' + ','.join((_ENUM_move[r_move]._value_, str(r_speed), r_value, s_lcurr, s_rcurr, s_accx, s_accy, s_accz, s_gyrox, s_gyroy, s_gyroz, s_magx, s_magy, s_magz, r_lan, r_lon, s_vbat, str(r_systemstatus), str(r_extid), str(r_extstatus), )) + ';'
 
 
 def _decode_telemetry(body: str, base: int) -> Telemetry:
@@ -880,7 +892,8 @@ def _encode_command(m: Command) -> str:
             raise _enc('command', 'gpio1', r_gpio1, 'finite', 'a finite number')
     if not _isfinite(r_gpio1):
         raise _enc('command', 'gpio1', r_gpio1, 'finite', 'a finite number')
-    if _significant(_format_float(r_gpio1)) > 15 or r_gpio1 and -1e-307 < r_gpio1 < 1e-307:
+    s_gpio1 = _format_float(r_gpio1)  # written as it is checked
+    if len(s_gpio1) > 15 and _significant(s_gpio1) > 15 or r_gpio1 and -1e-307 < r_gpio1 < 1e-307:
         raise _enc('command', 'gpio1', r_gpio1, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_gpio2 = m.gpio2
     if r_gpio2.__class__ is not float:
@@ -890,7 +903,8 @@ def _encode_command(m: Command) -> str:
             raise _enc('command', 'gpio2', r_gpio2, 'finite', 'a finite number')
     if not _isfinite(r_gpio2):
         raise _enc('command', 'gpio2', r_gpio2, 'finite', 'a finite number')
-    if _significant(_format_float(r_gpio2)) > 15 or r_gpio2 and -1e-307 < r_gpio2 < 1e-307:
+    s_gpio2 = _format_float(r_gpio2)  # written as it is checked
+    if len(s_gpio2) > 15 and _significant(s_gpio2) > 15 or r_gpio2 and -1e-307 < r_gpio2 < 1e-307:
         raise _enc('command', 'gpio2', r_gpio2, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_gpio3 = m.gpio3
     if r_gpio3.__class__ is not float:
@@ -900,7 +914,8 @@ def _encode_command(m: Command) -> str:
             raise _enc('command', 'gpio3', r_gpio3, 'finite', 'a finite number')
     if not _isfinite(r_gpio3):
         raise _enc('command', 'gpio3', r_gpio3, 'finite', 'a finite number')
-    if _significant(_format_float(r_gpio3)) > 15 or r_gpio3 and -1e-307 < r_gpio3 < 1e-307:
+    s_gpio3 = _format_float(r_gpio3)  # written as it is checked
+    if len(s_gpio3) > 15 and _significant(s_gpio3) > 15 or r_gpio3 and -1e-307 < r_gpio3 < 1e-307:
         raise _enc('command', 'gpio3', r_gpio3, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_gpio4 = m.gpio4
     if r_gpio4.__class__ is not float:
@@ -910,7 +925,8 @@ def _encode_command(m: Command) -> str:
             raise _enc('command', 'gpio4', r_gpio4, 'finite', 'a finite number')
     if not _isfinite(r_gpio4):
         raise _enc('command', 'gpio4', r_gpio4, 'finite', 'a finite number')
-    if _significant(_format_float(r_gpio4)) > 15 or r_gpio4 and -1e-307 < r_gpio4 < 1e-307:
+    s_gpio4 = _format_float(r_gpio4)  # written as it is checked
+    if len(s_gpio4) > 15 and _significant(s_gpio4) > 15 or r_gpio4 and -1e-307 < r_gpio4 < 1e-307:
         raise _enc('command', 'gpio4', r_gpio4, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_systemstatus: Any = m.systemstatus
     if r_systemstatus.__class__ is not SystemStatus and (not isinstance(r_systemstatus, int) or r_systemstatus.__class__ is bool or isinstance(r_systemstatus, enum.Enum) or r_systemstatus not in _VALUES_system_status):
@@ -931,7 +947,7 @@ def _encode_command(m: Command) -> str:
         t9 = r_data
     else:
         t9 = None
-    p: list[Any] = [_ENUM_move[r_move]._value_, str(r_speed), r_value, str(r_azimutloc), _format_float(r_gpio1), _format_float(r_gpio2), _format_float(r_gpio3), _format_float(r_gpio4), str(r_systemstatus), t9]
+    p: list[Any] = [_ENUM_move[r_move]._value_, str(r_speed), r_value, str(r_azimutloc), s_gpio1, s_gpio2, s_gpio3, s_gpio4, str(r_systemstatus), t9]
     while p and p[-1] is None:  # absent values at the end are left out, separators and all
         p.pop()
     return '%:' + ','.join(p) + ';'

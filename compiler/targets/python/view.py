@@ -270,7 +270,10 @@ class PythonView:
             c(f"if not _isfinite({v}):")
             c(f"    raise _enc({where}, {v}, 'finite', 'a finite number')")
             if self.p.framing.kind == "text":  # the decimals a C peer's cw_decimal_t holds too
-                c(f"if _significant(_format_float({v})) > 15 or {v} and -1e-307 < {v} < 1e-307:")
+                c(f"{self.float_text(leaf)} = _format_float({v})  # written as it is checked")
+                # a text of 15 characters or fewer cannot hold 16 digits: most are not counted
+                c(f"if len({self.float_text(leaf)}) > 15 and _significant({self.float_text(leaf)}) > 15 "
+                  f"or {v} and -1e-307 < {v} < 1e-307:")
                 c(f"    raise _enc({where}, {v}, 'precision', {TEXT_FLOAT!r})")
             if f.range:
                 c(f"if not {lit(f.range[0])} <= {v} <= {lit(f.range[1])}:")
@@ -288,6 +291,11 @@ class PythonView:
             c(f"if {v}.__class__ is not bytes:")
             c(f"    {var} = bytes({v})")
         # text kinds are checked and written by the text writer
+
+    @staticmethod
+    def float_text(leaf: Leaf) -> str:
+        """The local holding a text float's written form."""
+        return "s_" + leaf.var[2:]
 
     @staticmethod
     def enum_value(f: Field, value: Any) -> Any:
@@ -865,6 +873,14 @@ class MessageCode:
                 if leaf.field.checksum and leaf.field.checksum.over == "bytes"]
         truncates = bool(self.m.shortening and (self.m.shortening.trailing_zeros or self.m.shortening.gaps))
         single = len(segments) == 1 and not crcs and not truncates
+        if not truncates and self.checksum_last(segments, crcs):
+            leaf, cs = crcs[0]
+            values = ", ".join(self.chunk_value(ch) for ch in segments[0].chunks)
+            c(f"h = _S_{self.fn}_0.pack({values})")
+            order = leaf.field.byte_order or self.view.p.framing.byte_order
+            value = self.view.checksum_call(cs, "h", cs.byte_span[0], cs.byte_span[1], self.m.crc_extra, False)
+            c(f"return h + {value}.to_bytes({segments[1].chunks[0].nbytes}, {order!r})")
+            return c.text()
         if not single:
             c(f"b = bytearray({size})")
         for n, seg in enumerate(segments):
@@ -893,6 +909,15 @@ class MessageCode:
         if not single:
             c("return bytes(b)")
         return c.text()
+
+    def checksum_last(self, segments: list[Segment], crcs: list) -> bool:
+        """The frame is one struct's bytes and then its one checksum, alone and last, over
+        bytes before it: the checksum is appended to the packed bytes, not patched in."""
+        if len(crcs) != 1 or len(segments) != 2 or len(segments[1].chunks) != 1:
+            return False
+        chunk, (leaf, cs) = segments[1].chunks[0], crcs[0]
+        return (chunk.lone and chunk.leaves[0][0] is leaf and chunk.start + chunk.nbytes == self.m.size
+                and cs.byte_span[1] <= chunk.start and segments[0].start == 0)
 
     def leave_out_gaps(self, c: Code) -> None:
         """Drop the bytes of each gap that the frame does not send, the last gap first so
@@ -1172,7 +1197,7 @@ class MessageCode:
             else:
                 self.view.encode_leaf(c, self.m, leaf)
                 if f.kind == "float":
-                    out = f"_format_float({leaf.var})"
+                    out = self.view.float_text(leaf)
                 elif f.enum is not None and f.enum.kind == "char":
                     out = f"_ENUM_{f.enum.name}[{leaf.var}]._value_"
                 elif f.fixed_spelling:
