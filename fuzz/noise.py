@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import argparse
 import importlib.util
+import os
 import json
 import random
 import sys
@@ -44,7 +45,14 @@ def load(name: str):
         spec = importlib.util.spec_from_file_location(key, ROOT / "generated" / "python" / f"{name}.py")
         mod = importlib.util.module_from_spec(spec)
         sys.modules[key] = mod
-        spec.loader.exec_module(mod)
+        # pure Python: the harness watches each frame the stream decoder decodes through `decode`
+        saved = os.environ.get("CODEWORD_PURE_PYTHON")
+        os.environ["CODEWORD_PURE_PYTHON"] = "1"
+        try:
+            spec.loader.exec_module(mod)
+        finally:
+            if saved is None:
+                del os.environ["CODEWORD_PURE_PYTHON"]
     return sys.modules[key]
 
 

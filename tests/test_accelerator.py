@@ -120,3 +120,19 @@ def test_without_a_compiler_nothing_is_built(tmp_path, monkeypatch):
     result = accel.accelerate([ROOT / "schemas" / "mtv4.yaml"], tmp_path)
     assert result.built == [] and not list(tmp_path.iterdir())
     assert "no accelerators built: a C compiler" in result.notes[0]
+
+
+def test_two_copies_of_a_module_each_build_their_own_objects(built):
+    """Each copy of a module binds the accelerator for itself: a decoder of one copy
+    never builds the classes of another."""
+    folder, _ = built
+    path = ROOT / "generated" / "python" / "mtv4.py"
+    one = load(path, f"_accel_one_{folder.name}", folder)
+    two = load(path, f"_accel_two_{folder.name}", folder)
+    assert one.ACCELERATOR is not None and two.ACCELERATOR is not None
+    vectors = json.loads((ROOT / "generated" / "vectors" / "mtv4.json").read_text(encoding="utf-8"))
+    for case in vectors["valid"]:
+        frame = bytes.fromhex(case["hex"])
+        assert type(one.decode(frame, case["direction"])) is one.MESSAGES[case["message"]]
+        assert type(two.decode(frame, case["direction"])) is two.MESSAGES[case["message"]]
+        assert type(one.StreamDecoder(case["direction"]).feed(frame)[0]) is one.MESSAGES[case["message"]]

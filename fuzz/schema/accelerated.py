@@ -14,6 +14,8 @@ def load(path: Path, key: str, accelerators: Optional[Path]):
     """The generated module at `path`, imported as `key`: with the accelerators built in
     `accelerators`, or in pure Python (None)."""
     saved = os.environ.pop("CODEWORD_PURE_PYTHON", None)
+    accelerator = f"_{path.stem}_accel"
+    sys.modules.pop(accelerator, None)  # this folder's build, not one imported before
     if accelerators is None:
         os.environ["CODEWORD_PURE_PYTHON"] = "1"
     else:
@@ -29,6 +31,7 @@ def load(path: Path, key: str, accelerators: Optional[Path]):
             os.environ["CODEWORD_PURE_PYTHON"] = saved
         if accelerators is not None:
             sys.path.remove(str(accelerators))
+        sys.modules.pop(accelerator, None)  # nor found by a module imported after this one
     return module
 
 

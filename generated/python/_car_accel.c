@@ -25,12 +25,16 @@
 const char cw_accel_build[] = "codeword-accelerator-build:" CW_ACCEL_BUILD;
 #endif
 
-/* Module globals the functions use (classes, tables, the Python decoders), attribute
- * names and numeric constants: filled by bind(). */
-static PyObject *G[8];
-static PyObject *A[12];
-/* For each slot: the class and the attribute (indices into G and A), and where the
- * class's instances keep it (0: not a plain slot, set through setattr). */
+/* What the functions bound to one copy of the module use: its globals (classes,
+ * tables, the Python decoders), attribute names, numeric constants and where its
+ * classes keep each attribute. Each bind() makes one, held by its functions. */
+typedef struct {
+    PyObject *G[8];
+    PyObject *A[12];
+    Py_ssize_t S[23];  /* offset of the slot in the instance; 0: set through setattr */
+} acc_state;
+
+/* For each slot: the class and the attribute (indices into G and A). */
 static const unsigned short slot_of[23][2] = {
     {0, 0},
     {0, 1},
@@ -56,7 +60,13 @@ static const unsigned short slot_of[23][2] = {
     {6, 10},
     {6, 11},
 };
-static Py_ssize_t S[23];
+
+#define ACC_CAPSULE "codeword.car.accelerator"
+
+static inline acc_state *acc_state_of(PyObject *capsule)
+{
+    return (acc_state *)PyCapsule_GetPointer(capsule, ACC_CAPSULE);
+}
 
 static inline PyObject *acc_new(PyObject *cls)
 {
@@ -67,17 +77,17 @@ static inline PyObject *acc_new(PyObject *cls)
 /* Sets attribute `slot` of obj to value and releases value (NULL: an error already set):
  * straight into the instance's slot where the class has one, as its member descriptor
  * would, else through setattr. */
-static inline int acc_set(PyObject *obj, int slot, PyObject *value)
+static inline int acc_set(const acc_state *st, PyObject *obj, int slot, PyObject *value)
 {
     if (value == NULL) {
         return -1;
     }
-    if (S[slot] > 0) {
-        PyObject **place = (PyObject **)(void *)((char *)obj + S[slot]);
+    if (st->S[slot] > 0) {
+        PyObject **place = (PyObject **)(void *)((char *)obj + st->S[slot]);
         Py_XSETREF(*place, value);
         return 0;
     }
-    int rc = PyObject_SetAttr(obj, A[slot_of[slot][1]], value);
+    int rc = PyObject_SetAttr(obj, st->A[slot_of[slot][1]], value);
     Py_DECREF(value);
     return rc;
 }
@@ -93,31 +103,31 @@ static inline PyObject *acc_lookup(PyObject *table, PyObject *key)
     return value;
 }
 
-static PyObject *build_master_control(const car_master_control_t *m)
+static PyObject *build_master_control(const acc_state *st, const car_master_control_t *m)
 {
-    PyObject *o = acc_new(G[0]);
+    PyObject *o = acc_new(st->G[0]);
     if (o == NULL) {
         return NULL;
     }
-    if (acc_set(o, 0, PyBool_FromLong(m->accept_ir)) < 0) goto fail;
-    if (acc_set(o, 1, PyBool_FromLong(m->forward_words)) < 0) goto fail;
-    PyObject *g1 = acc_new(G[1]);
-    if (acc_set(o, 2, g1) < 0) goto fail;
-    if (acc_set(g1, 3, PyBool_FromLong(m->motor.enable)) < 0) goto fail;
-    if (acc_set(g1, 4, acc_lookup(G[2], PyLong_FromUnsignedLongLong((unsigned long long)m->motor.direction))) < 0) goto fail;
-    if (acc_set(g1, 5, PyLong_FromUnsignedLongLong((unsigned long long)m->motor.speed)) < 0) goto fail;
-    if (acc_set(g1, 6, PyLong_FromUnsignedLongLong((unsigned long long)m->motor.duration)) < 0) goto fail;
-    PyObject *g2 = acc_new(G[3]);
-    if (acc_set(o, 7, g2) < 0) goto fail;
-    if (acc_set(g2, 8, PyLong_FromUnsignedLongLong((unsigned long long)m->led.led)) < 0) goto fail;
-    if (acc_set(g2, 9, PyLong_FromUnsignedLongLong((unsigned long long)m->led.duration)) < 0) goto fail;
-    PyObject *g3 = acc_new(G[4]);
-    if (acc_set(o, 10, g3) < 0) goto fail;
-    if (acc_set(g3, 11, PyBool_FromLong(m->ultrasonic.enable)) < 0) goto fail;
-    if (acc_set(g3, 12, PyLong_FromUnsignedLongLong((unsigned long long)m->ultrasonic.radius)) < 0) goto fail;
-    if (acc_set(g3, 13, PyLong_FromUnsignedLongLong((unsigned long long)m->ultrasonic.duration)) < 0) goto fail;
-    if (acc_set(o, 14, PyBool_FromLong(m->voice)) < 0) goto fail;
-    if (acc_set(o, 15, PyBool_FromLong(m->body_sensor)) < 0) goto fail;
+    if (acc_set(st, o, 0, PyBool_FromLong(m->accept_ir)) < 0) goto fail;
+    if (acc_set(st, o, 1, PyBool_FromLong(m->forward_words)) < 0) goto fail;
+    PyObject *g1 = acc_new(st->G[1]);
+    if (acc_set(st, o, 2, g1) < 0) goto fail;
+    if (acc_set(st, g1, 3, PyBool_FromLong(m->motor.enable)) < 0) goto fail;
+    if (acc_set(st, g1, 4, acc_lookup(st->G[2], PyLong_FromUnsignedLongLong((unsigned long long)m->motor.direction))) < 0) goto fail;
+    if (acc_set(st, g1, 5, PyLong_FromUnsignedLongLong((unsigned long long)m->motor.speed)) < 0) goto fail;
+    if (acc_set(st, g1, 6, PyLong_FromUnsignedLongLong((unsigned long long)m->motor.duration)) < 0) goto fail;
+    PyObject *g2 = acc_new(st->G[3]);
+    if (acc_set(st, o, 7, g2) < 0) goto fail;
+    if (acc_set(st, g2, 8, PyLong_FromUnsignedLongLong((unsigned long long)m->led.led)) < 0) goto fail;
+    if (acc_set(st, g2, 9, PyLong_FromUnsignedLongLong((unsigned long long)m->led.duration)) < 0) goto fail;
+    PyObject *g3 = acc_new(st->G[4]);
+    if (acc_set(st, o, 10, g3) < 0) goto fail;
+    if (acc_set(st, g3, 11, PyBool_FromLong(m->ultrasonic.enable)) < 0) goto fail;
+    if (acc_set(st, g3, 12, PyLong_FromUnsignedLongLong((unsigned long long)m->ultrasonic.radius)) < 0) goto fail;
+    if (acc_set(st, g3, 13, PyLong_FromUnsignedLongLong((unsigned long long)m->ultrasonic.duration)) < 0) goto fail;
+    if (acc_set(st, o, 14, PyBool_FromLong(m->voice)) < 0) goto fail;
+    if (acc_set(st, o, 15, PyBool_FromLong(m->body_sensor)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -126,10 +136,13 @@ fail:
 
 static PyObject *decode_master_control(PyObject *self, PyObject *data)
 {
+    const acc_state *st = acc_state_of(self);
     car_master_control_t m;
     Py_buffer view;
     int rc;
-    (void)self;
+    if (st == NULL) {
+        return NULL;
+    }
     if (PyBytes_CheckExact(data)) {
         rc = car_master_control_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
     } else if (PyObject_GetBuffer(data, &view, PyBUF_SIMPLE) == 0) {
@@ -140,36 +153,36 @@ static PyObject *decode_master_control(PyObject *self, PyObject *data)
         rc = CW_ERR_LENGTH;
     }
     if (rc != CW_OK) {  /* the Python decoder says why */
-        return PyObject_CallOneArg(G[5], data);
+        return PyObject_CallOneArg(st->G[5], data);
     }
-    return build_master_control(&m);
+    return build_master_control(st, &m);
 }
 
-static PyObject *build_slave_control(const car_slave_control_t *m)
+static PyObject *build_slave_control(const acc_state *st, const car_slave_control_t *m)
 {
-    PyObject *o = acc_new(G[6]);
+    PyObject *o = acc_new(st->G[6]);
     if (o == NULL) {
         return NULL;
     }
-    if (acc_set(o, 16, PyBool_FromLong(m->accept_ir)) < 0) goto fail;
-    if (acc_set(o, 17, PyBool_FromLong(m->forward_words)) < 0) goto fail;
-    PyObject *g4 = acc_new(G[1]);
-    if (acc_set(o, 18, g4) < 0) goto fail;
-    if (acc_set(g4, 3, PyBool_FromLong(m->motor.enable)) < 0) goto fail;
-    if (acc_set(g4, 4, acc_lookup(G[2], PyLong_FromUnsignedLongLong((unsigned long long)m->motor.direction))) < 0) goto fail;
-    if (acc_set(g4, 5, PyLong_FromUnsignedLongLong((unsigned long long)m->motor.speed)) < 0) goto fail;
-    if (acc_set(g4, 6, PyLong_FromUnsignedLongLong((unsigned long long)m->motor.duration)) < 0) goto fail;
-    PyObject *g5 = acc_new(G[3]);
-    if (acc_set(o, 19, g5) < 0) goto fail;
-    if (acc_set(g5, 8, PyLong_FromUnsignedLongLong((unsigned long long)m->led.led)) < 0) goto fail;
-    if (acc_set(g5, 9, PyLong_FromUnsignedLongLong((unsigned long long)m->led.duration)) < 0) goto fail;
-    PyObject *g6 = acc_new(G[4]);
-    if (acc_set(o, 20, g6) < 0) goto fail;
-    if (acc_set(g6, 11, PyBool_FromLong(m->ultrasonic.enable)) < 0) goto fail;
-    if (acc_set(g6, 12, PyLong_FromUnsignedLongLong((unsigned long long)m->ultrasonic.radius)) < 0) goto fail;
-    if (acc_set(g6, 13, PyLong_FromUnsignedLongLong((unsigned long long)m->ultrasonic.duration)) < 0) goto fail;
-    if (acc_set(o, 21, PyBool_FromLong(m->voice)) < 0) goto fail;
-    if (acc_set(o, 22, PyBool_FromLong(m->body_sensor)) < 0) goto fail;
+    if (acc_set(st, o, 16, PyBool_FromLong(m->accept_ir)) < 0) goto fail;
+    if (acc_set(st, o, 17, PyBool_FromLong(m->forward_words)) < 0) goto fail;
+    PyObject *g4 = acc_new(st->G[1]);
+    if (acc_set(st, o, 18, g4) < 0) goto fail;
+    if (acc_set(st, g4, 3, PyBool_FromLong(m->motor.enable)) < 0) goto fail;
+    if (acc_set(st, g4, 4, acc_lookup(st->G[2], PyLong_FromUnsignedLongLong((unsigned long long)m->motor.direction))) < 0) goto fail;
+    if (acc_set(st, g4, 5, PyLong_FromUnsignedLongLong((unsigned long long)m->motor.speed)) < 0) goto fail;
+    if (acc_set(st, g4, 6, PyLong_FromUnsignedLongLong((unsigned long long)m->motor.duration)) < 0) goto fail;
+    PyObject *g5 = acc_new(st->G[3]);
+    if (acc_set(st, o, 19, g5) < 0) goto fail;
+    if (acc_set(st, g5, 8, PyLong_FromUnsignedLongLong((unsigned long long)m->led.led)) < 0) goto fail;
+    if (acc_set(st, g5, 9, PyLong_FromUnsignedLongLong((unsigned long long)m->led.duration)) < 0) goto fail;
+    PyObject *g6 = acc_new(st->G[4]);
+    if (acc_set(st, o, 20, g6) < 0) goto fail;
+    if (acc_set(st, g6, 11, PyBool_FromLong(m->ultrasonic.enable)) < 0) goto fail;
+    if (acc_set(st, g6, 12, PyLong_FromUnsignedLongLong((unsigned long long)m->ultrasonic.radius)) < 0) goto fail;
+    if (acc_set(st, g6, 13, PyLong_FromUnsignedLongLong((unsigned long long)m->ultrasonic.duration)) < 0) goto fail;
+    if (acc_set(st, o, 21, PyBool_FromLong(m->voice)) < 0) goto fail;
+    if (acc_set(st, o, 22, PyBool_FromLong(m->body_sensor)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -178,10 +191,13 @@ fail:
 
 static PyObject *decode_slave_control(PyObject *self, PyObject *data)
 {
+    const acc_state *st = acc_state_of(self);
     car_slave_control_t m;
     Py_buffer view;
     int rc;
-    (void)self;
+    if (st == NULL) {
+        return NULL;
+    }
     if (PyBytes_CheckExact(data)) {
         rc = car_slave_control_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
     } else if (PyObject_GetBuffer(data, &view, PyBUF_SIMPLE) == 0) {
@@ -192,9 +208,9 @@ static PyObject *decode_slave_control(PyObject *self, PyObject *data)
         rc = CW_ERR_LENGTH;
     }
     if (rc != CW_OK) {  /* the Python decoder says why */
-        return PyObject_CallOneArg(G[7], data);
+        return PyObject_CallOneArg(st->G[7], data);
     }
-    return build_slave_control(&m);
+    return build_slave_control(st, &m);
 }
 
 static PyMethodDef decoders[] = {
@@ -229,33 +245,43 @@ static const char *const attribute_names[] = {
     "body_sensor",
 };
 
-/* bind(module_globals) -> {name: decoder}: the decoders, each in place of the
- * Python function of the same name. */
-static PyObject *bind(PyObject *self, PyObject *module_globals)
+static void acc_free(PyObject *capsule)
 {
-    (void)self;
-    if (!PyDict_Check(module_globals)) {
-        PyErr_SetString(PyExc_TypeError, "bind() takes the module's globals()");
-        return NULL;
+    acc_state *st = acc_state_of(capsule);
+    if (st == NULL) {
+        PyErr_Clear();
+        return;
     }
-    for (size_t i = 0; i < sizeof G / sizeof G[0]; i++) {
+    for (size_t i = 0; i < sizeof st->G / sizeof st->G[0]; i++) {
+        Py_CLEAR(st->G[i]);
+    }
+    for (size_t i = 0; i < sizeof st->A / sizeof st->A[0]; i++) {
+        Py_CLEAR(st->A[i]);
+    }
+    PyMem_Free(st);
+}
+
+/* Fills st from the module's globals; -1 with an error set if one is missing. */
+static int acc_fill(acc_state *st, PyObject *module_globals)
+{
+    for (size_t i = 0; i < sizeof st->G / sizeof st->G[0]; i++) {
         PyObject *value = PyDict_GetItemString(module_globals, global_names[i]);
         if (value == NULL) {
             PyErr_Format(PyExc_ImportError, "the car module has no %s: rebuild the accelerator", global_names[i]);
-            return NULL;
+            return -1;
         }
         Py_INCREF(value);
-        Py_XSETREF(G[i], value);
+        st->G[i] = value;
     }
-    for (size_t i = 0; i < sizeof A / sizeof A[0]; i++) {
-        Py_XSETREF(A[i], PyUnicode_InternFromString(attribute_names[i]));
+    for (size_t i = 0; i < sizeof st->A / sizeof st->A[0]; i++) {
+        st->A[i] = PyUnicode_InternFromString(attribute_names[i]);
     }
     if (PyErr_Occurred()) {
-        return NULL;
+        return -1;
     }
-    for (size_t i = 0; i < sizeof S / sizeof S[0]; i++) {
-        PyObject *descr = PyObject_GetAttr(G[slot_of[i][0]], A[slot_of[i][1]]);
-        S[i] = 0;
+    for (size_t i = 0; i < sizeof st->S / sizeof st->S[0]; i++) {
+        PyObject *descr = PyObject_GetAttr(st->G[slot_of[i][0]], st->A[slot_of[i][1]]);
+        st->S[i] = 0;
         if (descr == NULL) {
             PyErr_Clear();
             continue;
@@ -263,21 +289,41 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
         if (Py_IS_TYPE(descr, &PyMemberDescr_Type)) {
             PyMemberDef *def = ((PyMemberDescrObject *)descr)->d_member;
             if (def->type == T_OBJECT_EX && !(def->flags & READONLY)) {
-                S[i] = def->offset;
+                st->S[i] = def->offset;
             }
         }
         Py_DECREF(descr);
     }
-    PyObject *out = PyDict_New();
-    for (PyMethodDef *def = decoders; out != NULL && def->ml_name != NULL; def++) {
-        PyObject *fn = PyCFunction_New(def, NULL);
-        if (fn == NULL || PyDict_SetItemString(out, def->ml_name, fn) < 0) {
-            Py_XDECREF(fn);
-            Py_CLEAR(out);
-            break;
-        }
-        Py_DECREF(fn);
+    return 0;
+}
+
+/* bind(module_globals) -> {name: decoder}: the decoders for one copy of the module,
+ * each in place of the Python function of the same name. */
+static PyObject *bind(PyObject *self, PyObject *module_globals)
+{
+    (void)self;
+    if (!PyDict_Check(module_globals)) {
+        PyErr_SetString(PyExc_TypeError, "bind() takes the module's globals()");
+        return NULL;
     }
+    acc_state *st = PyMem_Calloc(1, sizeof *st);
+    if (st == NULL) {
+        return PyErr_NoMemory();
+    }
+    PyObject *capsule = PyCapsule_New(st, ACC_CAPSULE, acc_free);
+    if (capsule == NULL) {
+        PyMem_Free(st);
+        return NULL;
+    }
+    PyObject *out = acc_fill(st, module_globals) < 0 ? NULL : PyDict_New();
+    for (PyMethodDef *def = decoders; out != NULL && def->ml_name != NULL; def++) {
+        PyObject *fn = PyCFunction_New(def, capsule);
+        if (fn == NULL || PyDict_SetItemString(out, def->ml_name, fn) < 0) {
+            Py_CLEAR(out);
+        }
+        Py_XDECREF(fn);
+    }
+    Py_DECREF(capsule);  /* the functions hold it */
     return out;
 }
 

@@ -25,12 +25,16 @@
 const char cw_accel_build[] = "codeword-accelerator-build:" CW_ACCEL_BUILD;
 #endif
 
-/* Module globals the functions use (classes, tables, the Python decoders), attribute
- * names and numeric constants: filled by bind(). */
-static PyObject *G[12];
-static PyObject *A[14];
-/* For each slot: the class and the attribute (indices into G and A), and where the
- * class's instances keep it (0: not a plain slot, set through setattr). */
+/* What the functions bound to one copy of the module use: its globals (classes,
+ * tables, the Python decoders), attribute names, numeric constants and where its
+ * classes keep each attribute. Each bind() makes one, held by its functions. */
+typedef struct {
+    PyObject *G[12];
+    PyObject *A[14];
+    Py_ssize_t S[32];  /* offset of the slot in the instance; 0: set through setattr */
+} acc_state;
+
+/* For each slot: the class and the attribute (indices into G and A). */
 static const unsigned short slot_of[32][2] = {
     {0, 0},
     {0, 1},
@@ -65,7 +69,13 @@ static const unsigned short slot_of[32][2] = {
     {10, 11},
     {10, 12},
 };
-static Py_ssize_t S[32];
+
+#define ACC_CAPSULE "codeword.mtv4.accelerator"
+
+static inline acc_state *acc_state_of(PyObject *capsule)
+{
+    return (acc_state *)PyCapsule_GetPointer(capsule, ACC_CAPSULE);
+}
 
 static inline PyObject *acc_new(PyObject *cls)
 {
@@ -76,17 +86,17 @@ static inline PyObject *acc_new(PyObject *cls)
 /* Sets attribute `slot` of obj to value and releases value (NULL: an error already set):
  * straight into the instance's slot where the class has one, as its member descriptor
  * would, else through setattr. */
-static inline int acc_set(PyObject *obj, int slot, PyObject *value)
+static inline int acc_set(const acc_state *st, PyObject *obj, int slot, PyObject *value)
 {
     if (value == NULL) {
         return -1;
     }
-    if (S[slot] > 0) {
-        PyObject **place = (PyObject **)(void *)((char *)obj + S[slot]);
+    if (st->S[slot] > 0) {
+        PyObject **place = (PyObject **)(void *)((char *)obj + st->S[slot]);
         Py_XSETREF(*place, value);
         return 0;
     }
-    int rc = PyObject_SetAttr(obj, A[slot_of[slot][1]], value);
+    int rc = PyObject_SetAttr(obj, st->A[slot_of[slot][1]], value);
     Py_DECREF(value);
     return rc;
 }
@@ -102,17 +112,17 @@ static inline PyObject *acc_lookup(PyObject *table, PyObject *key)
     return value;
 }
 
-static PyObject *build_set_wheels_velocities(const mtv4_set_wheels_velocities_t *m)
+static PyObject *build_set_wheels_velocities(const acc_state *st, const mtv4_set_wheels_velocities_t *m)
 {
-    PyObject *o = acc_new(G[0]);
+    PyObject *o = acc_new(st->G[0]);
     if (o == NULL) {
         return NULL;
     }
-    if (acc_set(o, 0, PyLong_FromUnsignedLongLong((unsigned long long)m->group)) < 0) goto fail;
-    if (acc_set(o, 1, PyLong_FromUnsignedLongLong((unsigned long long)m->radio_crc_flag)) < 0) goto fail;
-    if (acc_set(o, 2, acc_lookup(G[1], PyLong_FromUnsignedLongLong((unsigned long long)m->robots))) < 0) goto fail;
-    if (acc_set(o, 3, PyFloat_FromDouble((double)m->vl * 0.125)) < 0) goto fail;
-    if (acc_set(o, 4, PyFloat_FromDouble((double)m->vr * 0.125)) < 0) goto fail;
+    if (acc_set(st, o, 0, PyLong_FromUnsignedLongLong((unsigned long long)m->group)) < 0) goto fail;
+    if (acc_set(st, o, 1, PyLong_FromUnsignedLongLong((unsigned long long)m->radio_crc_flag)) < 0) goto fail;
+    if (acc_set(st, o, 2, acc_lookup(st->G[1], PyLong_FromUnsignedLongLong((unsigned long long)m->robots))) < 0) goto fail;
+    if (acc_set(st, o, 3, PyFloat_FromDouble((double)m->vl * 0.125)) < 0) goto fail;
+    if (acc_set(st, o, 4, PyFloat_FromDouble((double)m->vr * 0.125)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -121,10 +131,13 @@ fail:
 
 static PyObject *decode_set_wheels_velocities(PyObject *self, PyObject *data)
 {
+    const acc_state *st = acc_state_of(self);
     mtv4_set_wheels_velocities_t m;
     Py_buffer view;
     int rc;
-    (void)self;
+    if (st == NULL) {
+        return NULL;
+    }
     if (PyBytes_CheckExact(data)) {
         rc = mtv4_set_wheels_velocities_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
     } else if (PyObject_GetBuffer(data, &view, PyBUF_SIMPLE) == 0) {
@@ -135,24 +148,24 @@ static PyObject *decode_set_wheels_velocities(PyObject *self, PyObject *data)
         rc = CW_ERR_LENGTH;
     }
     if (rc != CW_OK) {  /* the Python decoder says why */
-        return PyObject_CallOneArg(G[2], data);
+        return PyObject_CallOneArg(st->G[2], data);
     }
-    return build_set_wheels_velocities(&m);
+    return build_set_wheels_velocities(st, &m);
 }
 
-static PyObject *build_set_led(const mtv4_set_led_t *m)
+static PyObject *build_set_led(const acc_state *st, const mtv4_set_led_t *m)
 {
-    PyObject *o = acc_new(G[3]);
+    PyObject *o = acc_new(st->G[3]);
     if (o == NULL) {
         return NULL;
     }
-    if (acc_set(o, 5, PyLong_FromUnsignedLongLong((unsigned long long)m->group)) < 0) goto fail;
-    if (acc_set(o, 6, PyLong_FromUnsignedLongLong((unsigned long long)m->radio_crc_flag)) < 0) goto fail;
-    if (acc_set(o, 7, acc_lookup(G[1], PyLong_FromUnsignedLongLong((unsigned long long)m->robots))) < 0) goto fail;
-    if (acc_set(o, 8, PyLong_FromUnsignedLongLong((unsigned long long)m->d1)) < 0) goto fail;
-    if (acc_set(o, 9, PyLong_FromUnsignedLongLong((unsigned long long)m->d2)) < 0) goto fail;
-    if (acc_set(o, 10, PyLong_FromUnsignedLongLong((unsigned long long)m->d3)) < 0) goto fail;
-    if (acc_set(o, 11, PyLong_FromUnsignedLongLong((unsigned long long)m->d4)) < 0) goto fail;
+    if (acc_set(st, o, 5, PyLong_FromUnsignedLongLong((unsigned long long)m->group)) < 0) goto fail;
+    if (acc_set(st, o, 6, PyLong_FromUnsignedLongLong((unsigned long long)m->radio_crc_flag)) < 0) goto fail;
+    if (acc_set(st, o, 7, acc_lookup(st->G[1], PyLong_FromUnsignedLongLong((unsigned long long)m->robots))) < 0) goto fail;
+    if (acc_set(st, o, 8, PyLong_FromUnsignedLongLong((unsigned long long)m->d1)) < 0) goto fail;
+    if (acc_set(st, o, 9, PyLong_FromUnsignedLongLong((unsigned long long)m->d2)) < 0) goto fail;
+    if (acc_set(st, o, 10, PyLong_FromUnsignedLongLong((unsigned long long)m->d3)) < 0) goto fail;
+    if (acc_set(st, o, 11, PyLong_FromUnsignedLongLong((unsigned long long)m->d4)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -161,10 +174,13 @@ fail:
 
 static PyObject *decode_set_led(PyObject *self, PyObject *data)
 {
+    const acc_state *st = acc_state_of(self);
     mtv4_set_led_t m;
     Py_buffer view;
     int rc;
-    (void)self;
+    if (st == NULL) {
+        return NULL;
+    }
     if (PyBytes_CheckExact(data)) {
         rc = mtv4_set_led_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
     } else if (PyObject_GetBuffer(data, &view, PyBUF_SIMPLE) == 0) {
@@ -175,26 +191,26 @@ static PyObject *decode_set_led(PyObject *self, PyObject *data)
         rc = CW_ERR_LENGTH;
     }
     if (rc != CW_OK) {  /* the Python decoder says why */
-        return PyObject_CallOneArg(G[4], data);
+        return PyObject_CallOneArg(st->G[4], data);
     }
-    return build_set_led(&m);
+    return build_set_led(st, &m);
 }
 
-static PyObject *build_set_wheels_velocities_with_odometry(const mtv4_set_wheels_velocities_with_odometry_t *m)
+static PyObject *build_set_wheels_velocities_with_odometry(const acc_state *st, const mtv4_set_wheels_velocities_with_odometry_t *m)
 {
-    PyObject *o = acc_new(G[5]);
+    PyObject *o = acc_new(st->G[5]);
     if (o == NULL) {
         return NULL;
     }
-    if (acc_set(o, 12, PyLong_FromUnsignedLongLong((unsigned long long)m->group)) < 0) goto fail;
-    if (acc_set(o, 13, PyLong_FromUnsignedLongLong((unsigned long long)m->radio_crc_flag)) < 0) goto fail;
-    if (acc_set(o, 14, acc_lookup(G[1], PyLong_FromUnsignedLongLong((unsigned long long)m->robots))) < 0) goto fail;
-    if (acc_set(o, 15, acc_lookup(G[6], PyLong_FromUnsignedLongLong((unsigned long long)m->status))) < 0) goto fail;
-    if (acc_set(o, 16, PyFloat_FromDouble((double)m->vl * 0.125)) < 0) goto fail;
-    if (acc_set(o, 17, PyFloat_FromDouble((double)m->vr * 0.125)) < 0) goto fail;
-    if (acc_set(o, 18, PyFloat_FromDouble((double)m->x)) < 0) goto fail;
-    if (acc_set(o, 19, PyFloat_FromDouble((double)m->y)) < 0) goto fail;
-    if (acc_set(o, 20, PyFloat_FromDouble((double)m->th)) < 0) goto fail;
+    if (acc_set(st, o, 12, PyLong_FromUnsignedLongLong((unsigned long long)m->group)) < 0) goto fail;
+    if (acc_set(st, o, 13, PyLong_FromUnsignedLongLong((unsigned long long)m->radio_crc_flag)) < 0) goto fail;
+    if (acc_set(st, o, 14, acc_lookup(st->G[1], PyLong_FromUnsignedLongLong((unsigned long long)m->robots))) < 0) goto fail;
+    if (acc_set(st, o, 15, acc_lookup(st->G[6], PyLong_FromUnsignedLongLong((unsigned long long)m->status))) < 0) goto fail;
+    if (acc_set(st, o, 16, PyFloat_FromDouble((double)m->vl * 0.125)) < 0) goto fail;
+    if (acc_set(st, o, 17, PyFloat_FromDouble((double)m->vr * 0.125)) < 0) goto fail;
+    if (acc_set(st, o, 18, PyFloat_FromDouble((double)m->x)) < 0) goto fail;
+    if (acc_set(st, o, 19, PyFloat_FromDouble((double)m->y)) < 0) goto fail;
+    if (acc_set(st, o, 20, PyFloat_FromDouble((double)m->th)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -203,10 +219,13 @@ fail:
 
 static PyObject *decode_set_wheels_velocities_with_odometry(PyObject *self, PyObject *data)
 {
+    const acc_state *st = acc_state_of(self);
     mtv4_set_wheels_velocities_with_odometry_t m;
     Py_buffer view;
     int rc;
-    (void)self;
+    if (st == NULL) {
+        return NULL;
+    }
     if (PyBytes_CheckExact(data)) {
         rc = mtv4_set_wheels_velocities_with_odometry_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
     } else if (PyObject_GetBuffer(data, &view, PyBUF_SIMPLE) == 0) {
@@ -217,21 +236,21 @@ static PyObject *decode_set_wheels_velocities_with_odometry(PyObject *self, PyOb
         rc = CW_ERR_LENGTH;
     }
     if (rc != CW_OK) {  /* the Python decoder says why */
-        return PyObject_CallOneArg(G[7], data);
+        return PyObject_CallOneArg(st->G[7], data);
     }
-    return build_set_wheels_velocities_with_odometry(&m);
+    return build_set_wheels_velocities_with_odometry(st, &m);
 }
 
-static PyObject *build_ack(const mtv4_ack_t *m)
+static PyObject *build_ack(const acc_state *st, const mtv4_ack_t *m)
 {
-    PyObject *o = acc_new(G[8]);
+    PyObject *o = acc_new(st->G[8]);
     if (o == NULL) {
         return NULL;
     }
-    if (acc_set(o, 21, PyLong_FromUnsignedLongLong((unsigned long long)m->group)) < 0) goto fail;
-    if (acc_set(o, 22, PyLong_FromUnsignedLongLong((unsigned long long)m->radio_crc_flag)) < 0) goto fail;
-    if (acc_set(o, 23, PyLong_FromUnsignedLongLong((unsigned long long)m->command)) < 0) goto fail;
-    if (acc_set(o, 24, acc_lookup(G[1], PyLong_FromUnsignedLongLong((unsigned long long)m->robots))) < 0) goto fail;
+    if (acc_set(st, o, 21, PyLong_FromUnsignedLongLong((unsigned long long)m->group)) < 0) goto fail;
+    if (acc_set(st, o, 22, PyLong_FromUnsignedLongLong((unsigned long long)m->radio_crc_flag)) < 0) goto fail;
+    if (acc_set(st, o, 23, PyLong_FromUnsignedLongLong((unsigned long long)m->command)) < 0) goto fail;
+    if (acc_set(st, o, 24, acc_lookup(st->G[1], PyLong_FromUnsignedLongLong((unsigned long long)m->robots))) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -240,10 +259,13 @@ fail:
 
 static PyObject *decode_ack(PyObject *self, PyObject *data)
 {
+    const acc_state *st = acc_state_of(self);
     mtv4_ack_t m;
     Py_buffer view;
     int rc;
-    (void)self;
+    if (st == NULL) {
+        return NULL;
+    }
     if (PyBytes_CheckExact(data)) {
         rc = mtv4_ack_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
     } else if (PyObject_GetBuffer(data, &view, PyBUF_SIMPLE) == 0) {
@@ -254,24 +276,24 @@ static PyObject *decode_ack(PyObject *self, PyObject *data)
         rc = CW_ERR_LENGTH;
     }
     if (rc != CW_OK) {  /* the Python decoder says why */
-        return PyObject_CallOneArg(G[9], data);
+        return PyObject_CallOneArg(st->G[9], data);
     }
-    return build_ack(&m);
+    return build_ack(st, &m);
 }
 
-static PyObject *build_odometry_reply(const mtv4_odometry_reply_t *m)
+static PyObject *build_odometry_reply(const acc_state *st, const mtv4_odometry_reply_t *m)
 {
-    PyObject *o = acc_new(G[10]);
+    PyObject *o = acc_new(st->G[10]);
     if (o == NULL) {
         return NULL;
     }
-    if (acc_set(o, 25, PyLong_FromUnsignedLongLong((unsigned long long)m->group)) < 0) goto fail;
-    if (acc_set(o, 26, PyLong_FromUnsignedLongLong((unsigned long long)m->radio_crc_flag)) < 0) goto fail;
-    if (acc_set(o, 27, acc_lookup(G[1], PyLong_FromUnsignedLongLong((unsigned long long)m->robots))) < 0) goto fail;
-    if (acc_set(o, 28, PyLong_FromUnsignedLongLong((unsigned long long)m->status)) < 0) goto fail;
-    if (acc_set(o, 29, PyFloat_FromDouble((double)m->x)) < 0) goto fail;
-    if (acc_set(o, 30, PyFloat_FromDouble((double)m->y)) < 0) goto fail;
-    if (acc_set(o, 31, PyFloat_FromDouble((double)m->th)) < 0) goto fail;
+    if (acc_set(st, o, 25, PyLong_FromUnsignedLongLong((unsigned long long)m->group)) < 0) goto fail;
+    if (acc_set(st, o, 26, PyLong_FromUnsignedLongLong((unsigned long long)m->radio_crc_flag)) < 0) goto fail;
+    if (acc_set(st, o, 27, acc_lookup(st->G[1], PyLong_FromUnsignedLongLong((unsigned long long)m->robots))) < 0) goto fail;
+    if (acc_set(st, o, 28, PyLong_FromUnsignedLongLong((unsigned long long)m->status)) < 0) goto fail;
+    if (acc_set(st, o, 29, PyFloat_FromDouble((double)m->x)) < 0) goto fail;
+    if (acc_set(st, o, 30, PyFloat_FromDouble((double)m->y)) < 0) goto fail;
+    if (acc_set(st, o, 31, PyFloat_FromDouble((double)m->th)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -280,10 +302,13 @@ fail:
 
 static PyObject *decode_odometry_reply(PyObject *self, PyObject *data)
 {
+    const acc_state *st = acc_state_of(self);
     mtv4_odometry_reply_t m;
     Py_buffer view;
     int rc;
-    (void)self;
+    if (st == NULL) {
+        return NULL;
+    }
     if (PyBytes_CheckExact(data)) {
         rc = mtv4_odometry_reply_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
     } else if (PyObject_GetBuffer(data, &view, PyBUF_SIMPLE) == 0) {
@@ -294,9 +319,9 @@ static PyObject *decode_odometry_reply(PyObject *self, PyObject *data)
         rc = CW_ERR_LENGTH;
     }
     if (rc != CW_OK) {  /* the Python decoder says why */
-        return PyObject_CallOneArg(G[11], data);
+        return PyObject_CallOneArg(st->G[11], data);
     }
-    return build_odometry_reply(&m);
+    return build_odometry_reply(st, &m);
 }
 
 /* The direction code of a StreamDecoder's direction; 0: not one of the protocol's. */
@@ -324,7 +349,10 @@ static int acc_direction(PyObject *direction, int *code)
  * which the StreamDecoder's Python loop then handles. */
 static PyObject *run_frames(PyObject *self, PyObject *const *args, Py_ssize_t nargs)
 {
-    (void)self;
+    const acc_state *st = acc_state_of(self);
+    if (st == NULL) {
+        return NULL;
+    }
     if (nargs != 6 || !PyBytes_CheckExact(args[0]) || !PyList_Check(args[3]) || !PyList_Check(args[4])) {
         PyErr_SetString(PyExc_TypeError, "_run_frames(bytes, pos, direction, out, spans, base)");
         return NULL;
@@ -349,19 +377,19 @@ static PyObject *run_frames(PyObject *self, PyObject *const *args, Py_ssize_t na
         }
         switch (msg.kind) {
         case MTV4_MSG_SET_WHEELS_VELOCITIES:
-            item = build_set_wheels_velocities(&msg.as.set_wheels_velocities);
+            item = build_set_wheels_velocities(st, &msg.as.set_wheels_velocities);
             break;
         case MTV4_MSG_SET_LED:
-            item = build_set_led(&msg.as.set_led);
+            item = build_set_led(st, &msg.as.set_led);
             break;
         case MTV4_MSG_SET_WHEELS_VELOCITIES_WITH_ODOMETRY:
-            item = build_set_wheels_velocities_with_odometry(&msg.as.set_wheels_velocities_with_odometry);
+            item = build_set_wheels_velocities_with_odometry(st, &msg.as.set_wheels_velocities_with_odometry);
             break;
         case MTV4_MSG_ACK:
-            item = build_ack(&msg.as.ack);
+            item = build_ack(st, &msg.as.ack);
             break;
         case MTV4_MSG_ODOMETRY_REPLY:
-            item = build_odometry_reply(&msg.as.odometry_reply);
+            item = build_odometry_reply(st, &msg.as.odometry_reply);
             break;
         default:  /* a message decoded in Python */
             return PyLong_FromSsize_t(pos);
@@ -430,33 +458,43 @@ static const char *const attribute_names[] = {
     "command",
 };
 
-/* bind(module_globals) -> {name: decoder}: the decoders, each in place of the
- * Python function of the same name. */
-static PyObject *bind(PyObject *self, PyObject *module_globals)
+static void acc_free(PyObject *capsule)
 {
-    (void)self;
-    if (!PyDict_Check(module_globals)) {
-        PyErr_SetString(PyExc_TypeError, "bind() takes the module's globals()");
-        return NULL;
+    acc_state *st = acc_state_of(capsule);
+    if (st == NULL) {
+        PyErr_Clear();
+        return;
     }
-    for (size_t i = 0; i < sizeof G / sizeof G[0]; i++) {
+    for (size_t i = 0; i < sizeof st->G / sizeof st->G[0]; i++) {
+        Py_CLEAR(st->G[i]);
+    }
+    for (size_t i = 0; i < sizeof st->A / sizeof st->A[0]; i++) {
+        Py_CLEAR(st->A[i]);
+    }
+    PyMem_Free(st);
+}
+
+/* Fills st from the module's globals; -1 with an error set if one is missing. */
+static int acc_fill(acc_state *st, PyObject *module_globals)
+{
+    for (size_t i = 0; i < sizeof st->G / sizeof st->G[0]; i++) {
         PyObject *value = PyDict_GetItemString(module_globals, global_names[i]);
         if (value == NULL) {
             PyErr_Format(PyExc_ImportError, "the mtv4 module has no %s: rebuild the accelerator", global_names[i]);
-            return NULL;
+            return -1;
         }
         Py_INCREF(value);
-        Py_XSETREF(G[i], value);
+        st->G[i] = value;
     }
-    for (size_t i = 0; i < sizeof A / sizeof A[0]; i++) {
-        Py_XSETREF(A[i], PyUnicode_InternFromString(attribute_names[i]));
+    for (size_t i = 0; i < sizeof st->A / sizeof st->A[0]; i++) {
+        st->A[i] = PyUnicode_InternFromString(attribute_names[i]);
     }
     if (PyErr_Occurred()) {
-        return NULL;
+        return -1;
     }
-    for (size_t i = 0; i < sizeof S / sizeof S[0]; i++) {
-        PyObject *descr = PyObject_GetAttr(G[slot_of[i][0]], A[slot_of[i][1]]);
-        S[i] = 0;
+    for (size_t i = 0; i < sizeof st->S / sizeof st->S[0]; i++) {
+        PyObject *descr = PyObject_GetAttr(st->G[slot_of[i][0]], st->A[slot_of[i][1]]);
+        st->S[i] = 0;
         if (descr == NULL) {
             PyErr_Clear();
             continue;
@@ -464,21 +502,41 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
         if (Py_IS_TYPE(descr, &PyMemberDescr_Type)) {
             PyMemberDef *def = ((PyMemberDescrObject *)descr)->d_member;
             if (def->type == T_OBJECT_EX && !(def->flags & READONLY)) {
-                S[i] = def->offset;
+                st->S[i] = def->offset;
             }
         }
         Py_DECREF(descr);
     }
-    PyObject *out = PyDict_New();
-    for (PyMethodDef *def = decoders; out != NULL && def->ml_name != NULL; def++) {
-        PyObject *fn = PyCFunction_New(def, NULL);
-        if (fn == NULL || PyDict_SetItemString(out, def->ml_name, fn) < 0) {
-            Py_XDECREF(fn);
-            Py_CLEAR(out);
-            break;
-        }
-        Py_DECREF(fn);
+    return 0;
+}
+
+/* bind(module_globals) -> {name: decoder}: the decoders for one copy of the module,
+ * each in place of the Python function of the same name. */
+static PyObject *bind(PyObject *self, PyObject *module_globals)
+{
+    (void)self;
+    if (!PyDict_Check(module_globals)) {
+        PyErr_SetString(PyExc_TypeError, "bind() takes the module's globals()");
+        return NULL;
     }
+    acc_state *st = PyMem_Calloc(1, sizeof *st);
+    if (st == NULL) {
+        return PyErr_NoMemory();
+    }
+    PyObject *capsule = PyCapsule_New(st, ACC_CAPSULE, acc_free);
+    if (capsule == NULL) {
+        PyMem_Free(st);
+        return NULL;
+    }
+    PyObject *out = acc_fill(st, module_globals) < 0 ? NULL : PyDict_New();
+    for (PyMethodDef *def = decoders; out != NULL && def->ml_name != NULL; def++) {
+        PyObject *fn = PyCFunction_New(def, capsule);
+        if (fn == NULL || PyDict_SetItemString(out, def->ml_name, fn) < 0) {
+            Py_CLEAR(out);
+        }
+        Py_XDECREF(fn);
+    }
+    Py_DECREF(capsule);  /* the functions hold it */
     return out;
 }
 

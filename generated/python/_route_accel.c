@@ -25,12 +25,16 @@
 const char cw_accel_build[] = "codeword-accelerator-build:" CW_ACCEL_BUILD;
 #endif
 
-/* Module globals the functions use (classes, tables, the Python decoders), attribute
- * names and numeric constants: filled by bind(). */
-static PyObject *G[9];
-static PyObject *A[10];
-/* For each slot: the class and the attribute (indices into G and A), and where the
- * class's instances keep it (0: not a plain slot, set through setattr). */
+/* What the functions bound to one copy of the module use: its globals (classes,
+ * tables, the Python decoders), attribute names, numeric constants and where its
+ * classes keep each attribute. Each bind() makes one, held by its functions. */
+typedef struct {
+    PyObject *G[9];
+    PyObject *A[10];
+    Py_ssize_t S[12];  /* offset of the slot in the instance; 0: set through setattr */
+} acc_state;
+
+/* For each slot: the class and the attribute (indices into G and A). */
 static const unsigned short slot_of[12][2] = {
     {2, 0},
     {2, 1},
@@ -45,7 +49,13 @@ static const unsigned short slot_of[12][2] = {
     {4, 8},
     {4, 9},
 };
-static Py_ssize_t S[12];
+
+#define ACC_CAPSULE "codeword.route.accelerator"
+
+static inline acc_state *acc_state_of(PyObject *capsule)
+{
+    return (acc_state *)PyCapsule_GetPointer(capsule, ACC_CAPSULE);
+}
 
 static inline PyObject *acc_new(PyObject *cls)
 {
@@ -56,17 +66,17 @@ static inline PyObject *acc_new(PyObject *cls)
 /* Sets attribute `slot` of obj to value and releases value (NULL: an error already set):
  * straight into the instance's slot where the class has one, as its member descriptor
  * would, else through setattr. */
-static inline int acc_set(PyObject *obj, int slot, PyObject *value)
+static inline int acc_set(const acc_state *st, PyObject *obj, int slot, PyObject *value)
 {
     if (value == NULL) {
         return -1;
     }
-    if (S[slot] > 0) {
-        PyObject **place = (PyObject **)(void *)((char *)obj + S[slot]);
+    if (st->S[slot] > 0) {
+        PyObject **place = (PyObject **)(void *)((char *)obj + st->S[slot]);
         Py_XSETREF(*place, value);
         return 0;
     }
-    int rc = PyObject_SetAttr(obj, A[slot_of[slot][1]], value);
+    int rc = PyObject_SetAttr(obj, st->A[slot_of[slot][1]], value);
     Py_DECREF(value);
     return rc;
 }
@@ -82,18 +92,21 @@ static inline PyObject *acc_lookup(PyObject *table, PyObject *key)
     return value;
 }
 
-static PyObject *build_start(const route_start_t *m)
+static PyObject *build_start(const acc_state *st, const route_start_t *m)
 {
     (void)m;  /* the message has no values */
-    return acc_new(G[0]);
+    return acc_new(st->G[0]);
 }
 
 static PyObject *decode_start(PyObject *self, PyObject *data)
 {
+    const acc_state *st = acc_state_of(self);
     route_start_t m;
     Py_buffer view;
     int rc;
-    (void)self;
+    if (st == NULL) {
+        return NULL;
+    }
     if (PyBytes_CheckExact(data)) {
         rc = route_start_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
     } else if (PyObject_GetBuffer(data, &view, PyBUF_SIMPLE) == 0) {
@@ -104,25 +117,25 @@ static PyObject *decode_start(PyObject *self, PyObject *data)
         rc = CW_ERR_LENGTH;
     }
     if (rc != CW_OK) {  /* the Python decoder says why */
-        return PyObject_CallOneArg(G[1], data);
+        return PyObject_CallOneArg(st->G[1], data);
     }
-    return build_start(&m);
+    return build_start(st, &m);
 }
 
-static PyObject *build_object(const route_object_t *m)
+static PyObject *build_object(const acc_state *st, const route_object_t *m)
 {
-    PyObject *o = acc_new(G[2]);
+    PyObject *o = acc_new(st->G[2]);
     if (o == NULL) {
         return NULL;
     }
-    if (acc_set(o, 0, PyLong_FromUnsignedLongLong((unsigned long long)m->ns)) < 0) goto fail;
-    if (acc_set(o, 1, PyLong_FromUnsignedLongLong((unsigned long long)m->nl)) < 0) goto fail;
-    if (acc_set(o, 2, PyLong_FromUnsignedLongLong((unsigned long long)m->no)) < 0) goto fail;
-    if (acc_set(o, 3, PyLong_FromUnsignedLongLong((unsigned long long)m->na)) < 0) goto fail;
-    if (acc_set(o, 4, PyLong_FromUnsignedLongLong((unsigned long long)m->dl)) < 0) goto fail;
-    if (acc_set(o, 5, PyLong_FromUnsignedLongLong((unsigned long long)m->rc)) < 0) goto fail;
-    if (acc_set(o, 6, PyLong_FromUnsignedLongLong((unsigned long long)m->dr)) < 0) goto fail;
-    if (acc_set(o, 7, PyLong_FromUnsignedLongLong((unsigned long long)m->cm)) < 0) goto fail;
+    if (acc_set(st, o, 0, PyLong_FromUnsignedLongLong((unsigned long long)m->ns)) < 0) goto fail;
+    if (acc_set(st, o, 1, PyLong_FromUnsignedLongLong((unsigned long long)m->nl)) < 0) goto fail;
+    if (acc_set(st, o, 2, PyLong_FromUnsignedLongLong((unsigned long long)m->no)) < 0) goto fail;
+    if (acc_set(st, o, 3, PyLong_FromUnsignedLongLong((unsigned long long)m->na)) < 0) goto fail;
+    if (acc_set(st, o, 4, PyLong_FromUnsignedLongLong((unsigned long long)m->dl)) < 0) goto fail;
+    if (acc_set(st, o, 5, PyLong_FromUnsignedLongLong((unsigned long long)m->rc)) < 0) goto fail;
+    if (acc_set(st, o, 6, PyLong_FromUnsignedLongLong((unsigned long long)m->dr)) < 0) goto fail;
+    if (acc_set(st, o, 7, PyLong_FromUnsignedLongLong((unsigned long long)m->cm)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -131,10 +144,13 @@ fail:
 
 static PyObject *decode_object(PyObject *self, PyObject *data)
 {
+    const acc_state *st = acc_state_of(self);
     route_object_t m;
     Py_buffer view;
     int rc;
-    (void)self;
+    if (st == NULL) {
+        return NULL;
+    }
     if (PyBytes_CheckExact(data)) {
         rc = route_object_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
     } else if (PyObject_GetBuffer(data, &view, PyBUF_SIMPLE) == 0) {
@@ -145,21 +161,21 @@ static PyObject *decode_object(PyObject *self, PyObject *data)
         rc = CW_ERR_LENGTH;
     }
     if (rc != CW_OK) {  /* the Python decoder says why */
-        return PyObject_CallOneArg(G[3], data);
+        return PyObject_CallOneArg(st->G[3], data);
     }
-    return build_object(&m);
+    return build_object(st, &m);
 }
 
-static PyObject *build_scene(const route_scene_t *m)
+static PyObject *build_scene(const acc_state *st, const route_scene_t *m)
 {
-    PyObject *o = acc_new(G[4]);
+    PyObject *o = acc_new(st->G[4]);
     if (o == NULL) {
         return NULL;
     }
-    if (acc_set(o, 8, PyLong_FromUnsignedLongLong((unsigned long long)m->ns)) < 0) goto fail;
-    if (acc_set(o, 9, PyLong_FromUnsignedLongLong((unsigned long long)m->nl)) < 0) goto fail;
-    if (acc_set(o, 10, acc_lookup(G[5], PyLong_FromUnsignedLongLong((unsigned long long)m->db))) < 0) goto fail;
-    if (acc_set(o, 11, PyLong_FromUnsignedLongLong((unsigned long long)m->nt)) < 0) goto fail;
+    if (acc_set(st, o, 8, PyLong_FromUnsignedLongLong((unsigned long long)m->ns)) < 0) goto fail;
+    if (acc_set(st, o, 9, PyLong_FromUnsignedLongLong((unsigned long long)m->nl)) < 0) goto fail;
+    if (acc_set(st, o, 10, acc_lookup(st->G[5], PyLong_FromUnsignedLongLong((unsigned long long)m->db))) < 0) goto fail;
+    if (acc_set(st, o, 11, PyLong_FromUnsignedLongLong((unsigned long long)m->nt)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -168,10 +184,13 @@ fail:
 
 static PyObject *decode_scene(PyObject *self, PyObject *data)
 {
+    const acc_state *st = acc_state_of(self);
     route_scene_t m;
     Py_buffer view;
     int rc;
-    (void)self;
+    if (st == NULL) {
+        return NULL;
+    }
     if (PyBytes_CheckExact(data)) {
         rc = route_scene_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
     } else if (PyObject_GetBuffer(data, &view, PyBUF_SIMPLE) == 0) {
@@ -182,23 +201,26 @@ static PyObject *decode_scene(PyObject *self, PyObject *data)
         rc = CW_ERR_LENGTH;
     }
     if (rc != CW_OK) {  /* the Python decoder says why */
-        return PyObject_CallOneArg(G[6], data);
+        return PyObject_CallOneArg(st->G[6], data);
     }
-    return build_scene(&m);
+    return build_scene(st, &m);
 }
 
-static PyObject *build_end(const route_end_t *m)
+static PyObject *build_end(const acc_state *st, const route_end_t *m)
 {
     (void)m;  /* the message has no values */
-    return acc_new(G[7]);
+    return acc_new(st->G[7]);
 }
 
 static PyObject *decode_end(PyObject *self, PyObject *data)
 {
+    const acc_state *st = acc_state_of(self);
     route_end_t m;
     Py_buffer view;
     int rc;
-    (void)self;
+    if (st == NULL) {
+        return NULL;
+    }
     if (PyBytes_CheckExact(data)) {
         rc = route_end_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
     } else if (PyObject_GetBuffer(data, &view, PyBUF_SIMPLE) == 0) {
@@ -209,9 +231,9 @@ static PyObject *decode_end(PyObject *self, PyObject *data)
         rc = CW_ERR_LENGTH;
     }
     if (rc != CW_OK) {  /* the Python decoder says why */
-        return PyObject_CallOneArg(G[8], data);
+        return PyObject_CallOneArg(st->G[8], data);
     }
-    return build_end(&m);
+    return build_end(st, &m);
 }
 
 static PyMethodDef decoders[] = {
@@ -247,33 +269,43 @@ static const char *const attribute_names[] = {
     "nt",
 };
 
-/* bind(module_globals) -> {name: decoder}: the decoders, each in place of the
- * Python function of the same name. */
-static PyObject *bind(PyObject *self, PyObject *module_globals)
+static void acc_free(PyObject *capsule)
 {
-    (void)self;
-    if (!PyDict_Check(module_globals)) {
-        PyErr_SetString(PyExc_TypeError, "bind() takes the module's globals()");
-        return NULL;
+    acc_state *st = acc_state_of(capsule);
+    if (st == NULL) {
+        PyErr_Clear();
+        return;
     }
-    for (size_t i = 0; i < sizeof G / sizeof G[0]; i++) {
+    for (size_t i = 0; i < sizeof st->G / sizeof st->G[0]; i++) {
+        Py_CLEAR(st->G[i]);
+    }
+    for (size_t i = 0; i < sizeof st->A / sizeof st->A[0]; i++) {
+        Py_CLEAR(st->A[i]);
+    }
+    PyMem_Free(st);
+}
+
+/* Fills st from the module's globals; -1 with an error set if one is missing. */
+static int acc_fill(acc_state *st, PyObject *module_globals)
+{
+    for (size_t i = 0; i < sizeof st->G / sizeof st->G[0]; i++) {
         PyObject *value = PyDict_GetItemString(module_globals, global_names[i]);
         if (value == NULL) {
             PyErr_Format(PyExc_ImportError, "the route module has no %s: rebuild the accelerator", global_names[i]);
-            return NULL;
+            return -1;
         }
         Py_INCREF(value);
-        Py_XSETREF(G[i], value);
+        st->G[i] = value;
     }
-    for (size_t i = 0; i < sizeof A / sizeof A[0]; i++) {
-        Py_XSETREF(A[i], PyUnicode_InternFromString(attribute_names[i]));
+    for (size_t i = 0; i < sizeof st->A / sizeof st->A[0]; i++) {
+        st->A[i] = PyUnicode_InternFromString(attribute_names[i]);
     }
     if (PyErr_Occurred()) {
-        return NULL;
+        return -1;
     }
-    for (size_t i = 0; i < sizeof S / sizeof S[0]; i++) {
-        PyObject *descr = PyObject_GetAttr(G[slot_of[i][0]], A[slot_of[i][1]]);
-        S[i] = 0;
+    for (size_t i = 0; i < sizeof st->S / sizeof st->S[0]; i++) {
+        PyObject *descr = PyObject_GetAttr(st->G[slot_of[i][0]], st->A[slot_of[i][1]]);
+        st->S[i] = 0;
         if (descr == NULL) {
             PyErr_Clear();
             continue;
@@ -281,21 +313,41 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
         if (Py_IS_TYPE(descr, &PyMemberDescr_Type)) {
             PyMemberDef *def = ((PyMemberDescrObject *)descr)->d_member;
             if (def->type == T_OBJECT_EX && !(def->flags & READONLY)) {
-                S[i] = def->offset;
+                st->S[i] = def->offset;
             }
         }
         Py_DECREF(descr);
     }
-    PyObject *out = PyDict_New();
-    for (PyMethodDef *def = decoders; out != NULL && def->ml_name != NULL; def++) {
-        PyObject *fn = PyCFunction_New(def, NULL);
-        if (fn == NULL || PyDict_SetItemString(out, def->ml_name, fn) < 0) {
-            Py_XDECREF(fn);
-            Py_CLEAR(out);
-            break;
-        }
-        Py_DECREF(fn);
+    return 0;
+}
+
+/* bind(module_globals) -> {name: decoder}: the decoders for one copy of the module,
+ * each in place of the Python function of the same name. */
+static PyObject *bind(PyObject *self, PyObject *module_globals)
+{
+    (void)self;
+    if (!PyDict_Check(module_globals)) {
+        PyErr_SetString(PyExc_TypeError, "bind() takes the module's globals()");
+        return NULL;
     }
+    acc_state *st = PyMem_Calloc(1, sizeof *st);
+    if (st == NULL) {
+        return PyErr_NoMemory();
+    }
+    PyObject *capsule = PyCapsule_New(st, ACC_CAPSULE, acc_free);
+    if (capsule == NULL) {
+        PyMem_Free(st);
+        return NULL;
+    }
+    PyObject *out = acc_fill(st, module_globals) < 0 ? NULL : PyDict_New();
+    for (PyMethodDef *def = decoders; out != NULL && def->ml_name != NULL; def++) {
+        PyObject *fn = PyCFunction_New(def, capsule);
+        if (fn == NULL || PyDict_SetItemString(out, def->ml_name, fn) < 0) {
+            Py_CLEAR(out);
+        }
+        Py_XDECREF(fn);
+    }
+    Py_DECREF(capsule);  /* the functions hold it */
     return out;
 }
 

@@ -379,15 +379,17 @@ def _encode_header(m: Header) -> bytes:
     if m.h2_count != 0 and not (m.h2_time is not None):
         raise _enc('header', 'h2_time', m.h2_time, 'rule', 'if h2_count ne 0 then h2_time ne None', decision='CAR-D3', user_message='With slave words (h2_count > 0) h2_time must give one of the 8 send-time levels / 每个控制字的发送时长用独热码表示，共分8个档位')
     r_h1 = m.h1
-    if r_h1.__class__ is not int and (not isinstance(r_h1, int) or r_h1.__class__ is bool):
-        raise _enc('header', 'h1', r_h1, 'type', 'an int')
-    if not 0 <= r_h1 <= 255:
-        raise _enc('header', 'h1', r_h1, 'range', '0..255', None, 'The number of parallel modules used already exceeds 255 / 所用的并行模块数目已经大于255')
+    if r_h1.__class__ is not int or not 0 <= r_h1 <= 255:
+        if not isinstance(r_h1, int) or r_h1.__class__ is bool:
+            raise _enc('header', 'h1', r_h1, 'type', 'an int')
+        if not 0 <= r_h1 <= 255:
+            raise _enc('header', 'h1', r_h1, 'range', '0..255', None, 'The number of parallel modules used already exceeds 255 / 所用的并行模块数目已经大于255')
     r_h2_count = m.h2_count
-    if r_h2_count.__class__ is not int and (not isinstance(r_h2_count, int) or r_h2_count.__class__ is bool):
-        raise _enc('header', 'h2_count', r_h2_count, 'type', 'an int')
-    if not 0 <= r_h2_count <= 255:
-        raise _enc('header', 'h2_count', r_h2_count, 'range', '0..255', None)
+    if r_h2_count.__class__ is not int or not 0 <= r_h2_count <= 255:
+        if not isinstance(r_h2_count, int) or r_h2_count.__class__ is bool:
+            raise _enc('header', 'h2_count', r_h2_count, 'type', 'an int')
+        if not 0 <= r_h2_count <= 255:
+            raise _enc('header', 'h2_count', r_h2_count, 'range', '0..255', None)
     r_h2_time = m.h2_time
     if r_h2_time is None:
         r_h2_time = 0
@@ -395,7 +397,6 @@ def _encode_header(m: Header) -> bytes:
         if r_h2_time.__class__ is not int and not isinstance(r_h2_time, int) or not 0 <= r_h2_time <= 7:
             raise _enc('header', 'h2_time', r_h2_time, 'range', '0..7 or None', 'CAR-D3')
         r_h2_time = 1 << r_h2_time
-    r_h3 = 0
     w: int = r_h1 << 24 | r_h2_count << 16 | r_h2_time << 8
     return w.to_bytes(4, 'big')
 
@@ -447,28 +448,32 @@ def _encode_master_control(m: MasterControl) -> bytes:
     r_5motor_9direction: Any = g_motor.direction
     if r_5motor_9direction.__class__ is not MotorDirection and (not isinstance(r_5motor_9direction, int) or r_5motor_9direction.__class__ is bool or isinstance(r_5motor_9direction, enum.Enum) or r_5motor_9direction not in _VALUES_motor_direction):
         raise _enc('master_control', 'motor.direction', r_5motor_9direction, 'enum', 'MotorDirection', None)
-    r_5motor_9direction = int(r_5motor_9direction)
+    r_5motor_9direction = cast(Any, r_5motor_9direction)._value_ if r_5motor_9direction.__class__ is MotorDirection else int(r_5motor_9direction)
     r_5motor_5speed = g_motor.speed
-    if r_5motor_5speed.__class__ is not int and (not isinstance(r_5motor_5speed, int) or r_5motor_5speed.__class__ is bool):
-        raise _enc('master_control', 'motor.speed', r_5motor_5speed, 'type', 'an int')
-    if not 0 <= r_5motor_5speed <= 3:
-        raise _enc('master_control', 'motor.speed', r_5motor_5speed, 'range', '0..3', None)
+    if r_5motor_5speed.__class__ is not int or not 0 <= r_5motor_5speed <= 3:
+        if not isinstance(r_5motor_5speed, int) or r_5motor_5speed.__class__ is bool:
+            raise _enc('master_control', 'motor.speed', r_5motor_5speed, 'type', 'an int')
+        if not 0 <= r_5motor_5speed <= 3:
+            raise _enc('master_control', 'motor.speed', r_5motor_5speed, 'range', '0..3', None)
     r_5motor_8duration = g_motor.duration
-    if r_5motor_8duration.__class__ is not int and (not isinstance(r_5motor_8duration, int) or r_5motor_8duration.__class__ is bool):
-        raise _enc('master_control', 'motor.duration', r_5motor_8duration, 'type', 'an int')
-    if not 0 <= r_5motor_8duration <= 3:
-        raise _enc('master_control', 'motor.duration', r_5motor_8duration, 'range', '0..3', None)
+    if r_5motor_8duration.__class__ is not int or not 0 <= r_5motor_8duration <= 3:
+        if not isinstance(r_5motor_8duration, int) or r_5motor_8duration.__class__ is bool:
+            raise _enc('master_control', 'motor.duration', r_5motor_8duration, 'type', 'an int')
+        if not 0 <= r_5motor_8duration <= 3:
+            raise _enc('master_control', 'motor.duration', r_5motor_8duration, 'range', '0..3', None)
     g_led = m.led
     r_3led_3led = g_led.led
-    if r_3led_3led.__class__ is not int and (not isinstance(r_3led_3led, int) or r_3led_3led.__class__ is bool):
-        raise _enc('master_control', 'led.led', r_3led_3led, 'type', 'an int')
-    if not 0 <= r_3led_3led <= 3:
-        raise _enc('master_control', 'led.led', r_3led_3led, 'range', '0..3', None)
+    if r_3led_3led.__class__ is not int or not 0 <= r_3led_3led <= 3:
+        if not isinstance(r_3led_3led, int) or r_3led_3led.__class__ is bool:
+            raise _enc('master_control', 'led.led', r_3led_3led, 'type', 'an int')
+        if not 0 <= r_3led_3led <= 3:
+            raise _enc('master_control', 'led.led', r_3led_3led, 'range', '0..3', None)
     r_3led_8duration = g_led.duration
-    if r_3led_8duration.__class__ is not int and (not isinstance(r_3led_8duration, int) or r_3led_8duration.__class__ is bool):
-        raise _enc('master_control', 'led.duration', r_3led_8duration, 'type', 'an int')
-    if not 0 <= r_3led_8duration <= 3:
-        raise _enc('master_control', 'led.duration', r_3led_8duration, 'range', '0..3', None)
+    if r_3led_8duration.__class__ is not int or not 0 <= r_3led_8duration <= 3:
+        if not isinstance(r_3led_8duration, int) or r_3led_8duration.__class__ is bool:
+            raise _enc('master_control', 'led.duration', r_3led_8duration, 'type', 'an int')
+        if not 0 <= r_3led_8duration <= 3:
+            raise _enc('master_control', 'led.duration', r_3led_8duration, 'range', '0..3', None)
     g_ultrasonic = m.ultrasonic
     r_10ultrasonic_6enable: Any = g_ultrasonic.enable
     if r_10ultrasonic_6enable is not True and r_10ultrasonic_6enable is not False:
@@ -476,15 +481,17 @@ def _encode_master_control(m: MasterControl) -> bytes:
             raise _enc('master_control', 'ultrasonic.enable', r_10ultrasonic_6enable, 'type', 'a bool')
         r_10ultrasonic_6enable = 1 if r_10ultrasonic_6enable else 0
     r_10ultrasonic_6radius = g_ultrasonic.radius
-    if r_10ultrasonic_6radius.__class__ is not int and (not isinstance(r_10ultrasonic_6radius, int) or r_10ultrasonic_6radius.__class__ is bool):
-        raise _enc('master_control', 'ultrasonic.radius', r_10ultrasonic_6radius, 'type', 'an int')
-    if not 0 <= r_10ultrasonic_6radius <= 3:
-        raise _enc('master_control', 'ultrasonic.radius', r_10ultrasonic_6radius, 'range', '0..3', None)
+    if r_10ultrasonic_6radius.__class__ is not int or not 0 <= r_10ultrasonic_6radius <= 3:
+        if not isinstance(r_10ultrasonic_6radius, int) or r_10ultrasonic_6radius.__class__ is bool:
+            raise _enc('master_control', 'ultrasonic.radius', r_10ultrasonic_6radius, 'type', 'an int')
+        if not 0 <= r_10ultrasonic_6radius <= 3:
+            raise _enc('master_control', 'ultrasonic.radius', r_10ultrasonic_6radius, 'range', '0..3', None)
     r_10ultrasonic_8duration = g_ultrasonic.duration
-    if r_10ultrasonic_8duration.__class__ is not int and (not isinstance(r_10ultrasonic_8duration, int) or r_10ultrasonic_8duration.__class__ is bool):
-        raise _enc('master_control', 'ultrasonic.duration', r_10ultrasonic_8duration, 'type', 'an int')
-    if not 0 <= r_10ultrasonic_8duration <= 3:
-        raise _enc('master_control', 'ultrasonic.duration', r_10ultrasonic_8duration, 'range', '0..3', None)
+    if r_10ultrasonic_8duration.__class__ is not int or not 0 <= r_10ultrasonic_8duration <= 3:
+        if not isinstance(r_10ultrasonic_8duration, int) or r_10ultrasonic_8duration.__class__ is bool:
+            raise _enc('master_control', 'ultrasonic.duration', r_10ultrasonic_8duration, 'type', 'an int')
+        if not 0 <= r_10ultrasonic_8duration <= 3:
+            raise _enc('master_control', 'ultrasonic.duration', r_10ultrasonic_8duration, 'range', '0..3', None)
     r_voice: Any = m.voice
     if r_voice is not True and r_voice is not False:
         if r_voice != 0 and r_voice != 1:
@@ -495,8 +502,6 @@ def _encode_master_control(m: MasterControl) -> bytes:
         if r_body_sensor != 0 and r_body_sensor != 1:
             raise _enc('master_control', 'body_sensor', r_body_sensor, 'type', 'a bool')
         r_body_sensor = 1 if r_body_sensor else 0
-    r_reserved_bits = 0
-    r_parity = 0
     w: int = r_accept_ir << 31 | r_forward_words << 30 | r_5motor_6enable << 29 | r_5motor_9direction << 27 | r_5motor_5speed << 25 | r_5motor_8duration << 23 | r_3led_3led << 21 | r_3led_8duration << 19 | r_10ultrasonic_6enable << 18 | r_10ultrasonic_6radius << 16 | r_10ultrasonic_8duration << 14 | r_voice << 13 | r_body_sensor << 12
     w |= w.bit_count() & 1
     return w.to_bytes(4, 'big')
@@ -576,28 +581,32 @@ def _encode_slave_control(m: SlaveControl) -> bytes:
     r_5motor_9direction: Any = g_motor.direction
     if r_5motor_9direction.__class__ is not MotorDirection and (not isinstance(r_5motor_9direction, int) or r_5motor_9direction.__class__ is bool or isinstance(r_5motor_9direction, enum.Enum) or r_5motor_9direction not in _VALUES_motor_direction):
         raise _enc('slave_control', 'motor.direction', r_5motor_9direction, 'enum', 'MotorDirection', None)
-    r_5motor_9direction = int(r_5motor_9direction)
+    r_5motor_9direction = cast(Any, r_5motor_9direction)._value_ if r_5motor_9direction.__class__ is MotorDirection else int(r_5motor_9direction)
     r_5motor_5speed = g_motor.speed
-    if r_5motor_5speed.__class__ is not int and (not isinstance(r_5motor_5speed, int) or r_5motor_5speed.__class__ is bool):
-        raise _enc('slave_control', 'motor.speed', r_5motor_5speed, 'type', 'an int')
-    if not 0 <= r_5motor_5speed <= 3:
-        raise _enc('slave_control', 'motor.speed', r_5motor_5speed, 'range', '0..3', None)
+    if r_5motor_5speed.__class__ is not int or not 0 <= r_5motor_5speed <= 3:
+        if not isinstance(r_5motor_5speed, int) or r_5motor_5speed.__class__ is bool:
+            raise _enc('slave_control', 'motor.speed', r_5motor_5speed, 'type', 'an int')
+        if not 0 <= r_5motor_5speed <= 3:
+            raise _enc('slave_control', 'motor.speed', r_5motor_5speed, 'range', '0..3', None)
     r_5motor_8duration = g_motor.duration
-    if r_5motor_8duration.__class__ is not int and (not isinstance(r_5motor_8duration, int) or r_5motor_8duration.__class__ is bool):
-        raise _enc('slave_control', 'motor.duration', r_5motor_8duration, 'type', 'an int')
-    if not 0 <= r_5motor_8duration <= 3:
-        raise _enc('slave_control', 'motor.duration', r_5motor_8duration, 'range', '0..3', None)
+    if r_5motor_8duration.__class__ is not int or not 0 <= r_5motor_8duration <= 3:
+        if not isinstance(r_5motor_8duration, int) or r_5motor_8duration.__class__ is bool:
+            raise _enc('slave_control', 'motor.duration', r_5motor_8duration, 'type', 'an int')
+        if not 0 <= r_5motor_8duration <= 3:
+            raise _enc('slave_control', 'motor.duration', r_5motor_8duration, 'range', '0..3', None)
     g_led = m.led
     r_3led_3led = g_led.led
-    if r_3led_3led.__class__ is not int and (not isinstance(r_3led_3led, int) or r_3led_3led.__class__ is bool):
-        raise _enc('slave_control', 'led.led', r_3led_3led, 'type', 'an int')
-    if not 0 <= r_3led_3led <= 3:
-        raise _enc('slave_control', 'led.led', r_3led_3led, 'range', '0..3', None)
+    if r_3led_3led.__class__ is not int or not 0 <= r_3led_3led <= 3:
+        if not isinstance(r_3led_3led, int) or r_3led_3led.__class__ is bool:
+            raise _enc('slave_control', 'led.led', r_3led_3led, 'type', 'an int')
+        if not 0 <= r_3led_3led <= 3:
+            raise _enc('slave_control', 'led.led', r_3led_3led, 'range', '0..3', None)
     r_3led_8duration = g_led.duration
-    if r_3led_8duration.__class__ is not int and (not isinstance(r_3led_8duration, int) or r_3led_8duration.__class__ is bool):
-        raise _enc('slave_control', 'led.duration', r_3led_8duration, 'type', 'an int')
-    if not 0 <= r_3led_8duration <= 3:
-        raise _enc('slave_control', 'led.duration', r_3led_8duration, 'range', '0..3', None)
+    if r_3led_8duration.__class__ is not int or not 0 <= r_3led_8duration <= 3:
+        if not isinstance(r_3led_8duration, int) or r_3led_8duration.__class__ is bool:
+            raise _enc('slave_control', 'led.duration', r_3led_8duration, 'type', 'an int')
+        if not 0 <= r_3led_8duration <= 3:
+            raise _enc('slave_control', 'led.duration', r_3led_8duration, 'range', '0..3', None)
     g_ultrasonic = m.ultrasonic
     r_10ultrasonic_6enable: Any = g_ultrasonic.enable
     if r_10ultrasonic_6enable is not True and r_10ultrasonic_6enable is not False:
@@ -605,15 +614,17 @@ def _encode_slave_control(m: SlaveControl) -> bytes:
             raise _enc('slave_control', 'ultrasonic.enable', r_10ultrasonic_6enable, 'type', 'a bool')
         r_10ultrasonic_6enable = 1 if r_10ultrasonic_6enable else 0
     r_10ultrasonic_6radius = g_ultrasonic.radius
-    if r_10ultrasonic_6radius.__class__ is not int and (not isinstance(r_10ultrasonic_6radius, int) or r_10ultrasonic_6radius.__class__ is bool):
-        raise _enc('slave_control', 'ultrasonic.radius', r_10ultrasonic_6radius, 'type', 'an int')
-    if not 0 <= r_10ultrasonic_6radius <= 3:
-        raise _enc('slave_control', 'ultrasonic.radius', r_10ultrasonic_6radius, 'range', '0..3', None)
+    if r_10ultrasonic_6radius.__class__ is not int or not 0 <= r_10ultrasonic_6radius <= 3:
+        if not isinstance(r_10ultrasonic_6radius, int) or r_10ultrasonic_6radius.__class__ is bool:
+            raise _enc('slave_control', 'ultrasonic.radius', r_10ultrasonic_6radius, 'type', 'an int')
+        if not 0 <= r_10ultrasonic_6radius <= 3:
+            raise _enc('slave_control', 'ultrasonic.radius', r_10ultrasonic_6radius, 'range', '0..3', None)
     r_10ultrasonic_8duration = g_ultrasonic.duration
-    if r_10ultrasonic_8duration.__class__ is not int and (not isinstance(r_10ultrasonic_8duration, int) or r_10ultrasonic_8duration.__class__ is bool):
-        raise _enc('slave_control', 'ultrasonic.duration', r_10ultrasonic_8duration, 'type', 'an int')
-    if not 0 <= r_10ultrasonic_8duration <= 3:
-        raise _enc('slave_control', 'ultrasonic.duration', r_10ultrasonic_8duration, 'range', '0..3', None)
+    if r_10ultrasonic_8duration.__class__ is not int or not 0 <= r_10ultrasonic_8duration <= 3:
+        if not isinstance(r_10ultrasonic_8duration, int) or r_10ultrasonic_8duration.__class__ is bool:
+            raise _enc('slave_control', 'ultrasonic.duration', r_10ultrasonic_8duration, 'type', 'an int')
+        if not 0 <= r_10ultrasonic_8duration <= 3:
+            raise _enc('slave_control', 'ultrasonic.duration', r_10ultrasonic_8duration, 'range', '0..3', None)
     r_voice: Any = m.voice
     if r_voice is not True and r_voice is not False:
         if r_voice != 0 and r_voice != 1:
@@ -624,8 +635,6 @@ def _encode_slave_control(m: SlaveControl) -> bytes:
         if r_body_sensor != 0 and r_body_sensor != 1:
             raise _enc('slave_control', 'body_sensor', r_body_sensor, 'type', 'a bool')
         r_body_sensor = 1 if r_body_sensor else 0
-    r_reserved_bits = 0
-    r_parity = 0
     w: int = r_accept_ir << 31 | r_forward_words << 30 | r_5motor_6enable << 29 | r_5motor_9direction << 27 | r_5motor_5speed << 25 | r_5motor_8duration << 23 | r_3led_3led << 21 | r_3led_8duration << 19 | r_10ultrasonic_6enable << 18 | r_10ultrasonic_6radius << 16 | r_10ultrasonic_8duration << 14 | r_voice << 13 | r_body_sensor << 12
     w |= w.bit_count() & 1
     return w.to_bytes(4, 'big')
@@ -703,6 +712,9 @@ if ACCELERATOR is not None:
 
 
 _ENCODERS: dict[type[Any], Callable[[Any], bytes]] = {Header: _encode_header, MasterControl: _encode_master_control, SlaveControl: _encode_slave_control, }
+for _cls, _encoder in _ENCODERS.items():  # each encoder is its class's encode method: one call, not two
+    _encoder.__doc__ = _cls.encode.__doc__
+    setattr(_cls, "encode", _encoder)
 MESSAGES: dict[str, type[AnyMessage]] = {'header': Header, 'master_control': MasterControl, 'slave_control': SlaveControl, }
 
 

@@ -658,19 +658,18 @@ def _as_input(data: object) -> _Buffer:
 
 
 def _encode_set_wheels_velocities(m: SetWheelsVelocities) -> bytes:
-    r_sync = 170
-    r_length = 8
     r_group = m.group
-    if r_group.__class__ is not int and (not isinstance(r_group, int) or r_group.__class__ is bool):
-        raise _enc('set_wheels_velocities', 'group', r_group, 'type', 'an int')
-    if not 0 <= r_group <= 15:
-        raise _enc('set_wheels_velocities', 'group', r_group, 'range', '0..15', None)
+    if r_group.__class__ is not int or not 0 <= r_group <= 15:
+        if not isinstance(r_group, int) or r_group.__class__ is bool:
+            raise _enc('set_wheels_velocities', 'group', r_group, 'type', 'an int')
+        if not 0 <= r_group <= 15:
+            raise _enc('set_wheels_velocities', 'group', r_group, 'range', '0..15', None)
     r_radio_crc_flag = m.radio_crc_flag
-    if r_radio_crc_flag.__class__ is not int and (not isinstance(r_radio_crc_flag, int) or r_radio_crc_flag.__class__ is bool):
-        raise _enc('set_wheels_velocities', 'radio_crc_flag', r_radio_crc_flag, 'type', 'an int')
-    if not 0 <= r_radio_crc_flag <= 1:
-        raise _enc('set_wheels_velocities', 'radio_crc_flag', r_radio_crc_flag, 'range', '0..1', 'MTV4-D4')
-    r_command = 1
+    if r_radio_crc_flag.__class__ is not int or not 0 <= r_radio_crc_flag <= 1:
+        if not isinstance(r_radio_crc_flag, int) or r_radio_crc_flag.__class__ is bool:
+            raise _enc('set_wheels_velocities', 'radio_crc_flag', r_radio_crc_flag, 'type', 'an int')
+        if not 0 <= r_radio_crc_flag <= 1:
+            raise _enc('set_wheels_velocities', 'radio_crc_flag', r_radio_crc_flag, 'range', '0..1', 'MTV4-D4')
     r_robots: Any = m.robots
     if r_robots.__class__ is not int and r_robots.__class__ is not Robots and (not isinstance(r_robots, int) or r_robots.__class__ is bool or isinstance(r_robots, enum.Enum)):
         raise _enc('set_wheels_velocities', 'robots', r_robots, 'type', 'an int or Robots')
@@ -680,18 +679,19 @@ def _encode_set_wheels_velocities(m: SetWheelsVelocities) -> bytes:
     if r_robots == 0 or r_robots & (r_robots - 1):
         raise _enc('set_wheels_velocities', 'robots', r_robots, 'exactly_one', 'exactly one bit set', 'MTV4-D3', 'an individual command or reply addresses exactly one robot')
     r_vl = m.vl
-    if r_vl.__class__ is not float and (not isinstance(r_vl, (int, float)) or r_vl.__class__ is bool):
-        raise _enc('set_wheels_velocities', 'vl', r_vl, 'type', 'a number')
-    if not -4096 <= r_vl <= 4095.875:
-        raise _enc('set_wheels_velocities', 'vl', r_vl, 'range', '-4096..4095.875', 'MTV4-D5')
+    if r_vl.__class__ is not float or not -4096 <= r_vl <= 4095.875:
+        if not isinstance(r_vl, (int, float)) or r_vl.__class__ is bool:
+            raise _enc('set_wheels_velocities', 'vl', r_vl, 'type', 'a number')
+        if not -4096 <= r_vl <= 4095.875:
+            raise _enc('set_wheels_velocities', 'vl', r_vl, 'range', '-4096..4095.875', 'MTV4-D5')
     r_vl = _floor(r_vl / 0.125 + 0.5)
     r_vr = m.vr
-    if r_vr.__class__ is not float and (not isinstance(r_vr, (int, float)) or r_vr.__class__ is bool):
-        raise _enc('set_wheels_velocities', 'vr', r_vr, 'type', 'a number')
-    if not -4096 <= r_vr <= 4095.875:
-        raise _enc('set_wheels_velocities', 'vr', r_vr, 'range', '-4096..4095.875', 'MTV4-D5')
+    if r_vr.__class__ is not float or not -4096 <= r_vr <= 4095.875:
+        if not isinstance(r_vr, (int, float)) or r_vr.__class__ is bool:
+            raise _enc('set_wheels_velocities', 'vr', r_vr, 'type', 'a number')
+        if not -4096 <= r_vr <= 4095.875:
+            raise _enc('set_wheels_velocities', 'vr', r_vr, 'range', '-4096..4095.875', 'MTV4-D5')
     r_vr = _floor(r_vr / 0.125 + 0.5)
-    r_crc = 0
     h = _S_set_wheels_velocities_0.pack(170, 8, r_group, r_radio_crc_flag << 7 | 0x1, r_robots, r_vl, r_vr)
     return h + _checksum_crc16_8005_ffff_nn_0_9(h, 1).to_bytes(2, 'big')
 
@@ -726,19 +726,18 @@ def _decode_set_wheels_velocities(d: _Buffer) -> SetWheelsVelocities:
 
 
 def _encode_set_led(m: SetLed) -> bytes:
-    r_sync = 170
-    r_length = 8
     r_group = m.group
-    if r_group.__class__ is not int and (not isinstance(r_group, int) or r_group.__class__ is bool):
-        raise _enc('set_led', 'group', r_group, 'type', 'an int')
-    if not 0 <= r_group <= 15:
-        raise _enc('set_led', 'group', r_group, 'range', '0..15', None)
+    if r_group.__class__ is not int or not 0 <= r_group <= 15:
+        if not isinstance(r_group, int) or r_group.__class__ is bool:
+            raise _enc('set_led', 'group', r_group, 'type', 'an int')
+        if not 0 <= r_group <= 15:
+            raise _enc('set_led', 'group', r_group, 'range', '0..15', None)
     r_radio_crc_flag = m.radio_crc_flag
-    if r_radio_crc_flag.__class__ is not int and (not isinstance(r_radio_crc_flag, int) or r_radio_crc_flag.__class__ is bool):
-        raise _enc('set_led', 'radio_crc_flag', r_radio_crc_flag, 'type', 'an int')
-    if not 0 <= r_radio_crc_flag <= 1:
-        raise _enc('set_led', 'radio_crc_flag', r_radio_crc_flag, 'range', '0..1', 'MTV4-D4')
-    r_command = 2
+    if r_radio_crc_flag.__class__ is not int or not 0 <= r_radio_crc_flag <= 1:
+        if not isinstance(r_radio_crc_flag, int) or r_radio_crc_flag.__class__ is bool:
+            raise _enc('set_led', 'radio_crc_flag', r_radio_crc_flag, 'type', 'an int')
+        if not 0 <= r_radio_crc_flag <= 1:
+            raise _enc('set_led', 'radio_crc_flag', r_radio_crc_flag, 'range', '0..1', 'MTV4-D4')
     r_robots: Any = m.robots
     if r_robots.__class__ is not int and r_robots.__class__ is not Robots and (not isinstance(r_robots, int) or r_robots.__class__ is bool or isinstance(r_robots, enum.Enum)):
         raise _enc('set_led', 'robots', r_robots, 'type', 'an int or Robots')
@@ -748,26 +747,29 @@ def _encode_set_led(m: SetLed) -> bytes:
     if r_robots == 0 or r_robots & (r_robots - 1):
         raise _enc('set_led', 'robots', r_robots, 'exactly_one', 'exactly one bit set', 'MTV4-D3', 'an individual command or reply addresses exactly one robot')
     r_d1 = m.d1
-    if r_d1.__class__ is not int and (not isinstance(r_d1, int) or r_d1.__class__ is bool):
-        raise _enc('set_led', 'd1', r_d1, 'type', 'an int')
-    if not 0 <= r_d1 <= 255:
-        raise _enc('set_led', 'd1', r_d1, 'range', '0..255', None)
+    if r_d1.__class__ is not int or not 0 <= r_d1 <= 255:
+        if not isinstance(r_d1, int) or r_d1.__class__ is bool:
+            raise _enc('set_led', 'd1', r_d1, 'type', 'an int')
+        if not 0 <= r_d1 <= 255:
+            raise _enc('set_led', 'd1', r_d1, 'range', '0..255', None)
     r_d2 = m.d2
-    if r_d2.__class__ is not int and (not isinstance(r_d2, int) or r_d2.__class__ is bool):
-        raise _enc('set_led', 'd2', r_d2, 'type', 'an int')
-    if not 0 <= r_d2 <= 255:
-        raise _enc('set_led', 'd2', r_d2, 'range', '0..255', None)
+    if r_d2.__class__ is not int or not 0 <= r_d2 <= 255:
+        if not isinstance(r_d2, int) or r_d2.__class__ is bool:
+            raise _enc('set_led', 'd2', r_d2, 'type', 'an int')
+        if not 0 <= r_d2 <= 255:
+            raise _enc('set_led', 'd2', r_d2, 'range', '0..255', None)
     r_d3 = m.d3
-    if r_d3.__class__ is not int and (not isinstance(r_d3, int) or r_d3.__class__ is bool):
-        raise _enc('set_led', 'd3', r_d3, 'type', 'an int')
-    if not 0 <= r_d3 <= 255:
-        raise _enc('set_led', 'd3', r_d3, 'range', '0..255', None)
+    if r_d3.__class__ is not int or not 0 <= r_d3 <= 255:
+        if not isinstance(r_d3, int) or r_d3.__class__ is bool:
+            raise _enc('set_led', 'd3', r_d3, 'type', 'an int')
+        if not 0 <= r_d3 <= 255:
+            raise _enc('set_led', 'd3', r_d3, 'range', '0..255', None)
     r_d4 = m.d4
-    if r_d4.__class__ is not int and (not isinstance(r_d4, int) or r_d4.__class__ is bool):
-        raise _enc('set_led', 'd4', r_d4, 'type', 'an int')
-    if not 0 <= r_d4 <= 255:
-        raise _enc('set_led', 'd4', r_d4, 'range', '0..255', None)
-    r_crc = 0
+    if r_d4.__class__ is not int or not 0 <= r_d4 <= 255:
+        if not isinstance(r_d4, int) or r_d4.__class__ is bool:
+            raise _enc('set_led', 'd4', r_d4, 'type', 'an int')
+        if not 0 <= r_d4 <= 255:
+            raise _enc('set_led', 'd4', r_d4, 'range', '0..255', None)
     h = _S_set_led_0.pack(170, 8, r_group, r_radio_crc_flag << 7 | 0x2, r_robots, r_d1, r_d2, r_d3, r_d4)
     return h + _checksum_crc16_8005_ffff_nn_0_9(h, 1).to_bytes(2, 'big')
 
@@ -804,19 +806,18 @@ def _decode_set_led(d: _Buffer) -> SetLed:
 
 
 def _encode_set_wheels_velocities_with_odometry(m: SetWheelsVelocitiesWithOdometry) -> bytes:
-    r_sync = 170
-    r_length = 22
     r_group = m.group
-    if r_group.__class__ is not int and (not isinstance(r_group, int) or r_group.__class__ is bool):
-        raise _enc('set_wheels_velocities_with_odometry', 'group', r_group, 'type', 'an int')
-    if not 0 <= r_group <= 15:
-        raise _enc('set_wheels_velocities_with_odometry', 'group', r_group, 'range', '0..15', None)
+    if r_group.__class__ is not int or not 0 <= r_group <= 15:
+        if not isinstance(r_group, int) or r_group.__class__ is bool:
+            raise _enc('set_wheels_velocities_with_odometry', 'group', r_group, 'type', 'an int')
+        if not 0 <= r_group <= 15:
+            raise _enc('set_wheels_velocities_with_odometry', 'group', r_group, 'range', '0..15', None)
     r_radio_crc_flag = m.radio_crc_flag
-    if r_radio_crc_flag.__class__ is not int and (not isinstance(r_radio_crc_flag, int) or r_radio_crc_flag.__class__ is bool):
-        raise _enc('set_wheels_velocities_with_odometry', 'radio_crc_flag', r_radio_crc_flag, 'type', 'an int')
-    if not 0 <= r_radio_crc_flag <= 1:
-        raise _enc('set_wheels_velocities_with_odometry', 'radio_crc_flag', r_radio_crc_flag, 'range', '0..1', 'MTV4-D4')
-    r_command = 3
+    if r_radio_crc_flag.__class__ is not int or not 0 <= r_radio_crc_flag <= 1:
+        if not isinstance(r_radio_crc_flag, int) or r_radio_crc_flag.__class__ is bool:
+            raise _enc('set_wheels_velocities_with_odometry', 'radio_crc_flag', r_radio_crc_flag, 'type', 'an int')
+        if not 0 <= r_radio_crc_flag <= 1:
+            raise _enc('set_wheels_velocities_with_odometry', 'radio_crc_flag', r_radio_crc_flag, 'range', '0..1', 'MTV4-D4')
     r_robots: Any = m.robots
     if r_robots.__class__ is not int and r_robots.__class__ is not Robots and (not isinstance(r_robots, int) or r_robots.__class__ is bool or isinstance(r_robots, enum.Enum)):
         raise _enc('set_wheels_velocities_with_odometry', 'robots', r_robots, 'type', 'an int or Robots')
@@ -832,16 +833,18 @@ def _encode_set_wheels_velocities_with_odometry(m: SetWheelsVelocitiesWithOdomet
     if r_status < 0 or r_status & 0xfff8 or r_status > 0xffff:
         raise _enc('set_wheels_velocities_with_odometry', 'status', r_status, 'flags', 'only the bits of status', None)
     r_vl = m.vl
-    if r_vl.__class__ is not float and (not isinstance(r_vl, (int, float)) or r_vl.__class__ is bool):
-        raise _enc('set_wheels_velocities_with_odometry', 'vl', r_vl, 'type', 'a number')
-    if not -4096 <= r_vl <= 4095.875:
-        raise _enc('set_wheels_velocities_with_odometry', 'vl', r_vl, 'range', '-4096..4095.875', 'MTV4-D5')
+    if r_vl.__class__ is not float or not -4096 <= r_vl <= 4095.875:
+        if not isinstance(r_vl, (int, float)) or r_vl.__class__ is bool:
+            raise _enc('set_wheels_velocities_with_odometry', 'vl', r_vl, 'type', 'a number')
+        if not -4096 <= r_vl <= 4095.875:
+            raise _enc('set_wheels_velocities_with_odometry', 'vl', r_vl, 'range', '-4096..4095.875', 'MTV4-D5')
     r_vl = _floor(r_vl / 0.125 + 0.5)
     r_vr = m.vr
-    if r_vr.__class__ is not float and (not isinstance(r_vr, (int, float)) or r_vr.__class__ is bool):
-        raise _enc('set_wheels_velocities_with_odometry', 'vr', r_vr, 'type', 'a number')
-    if not -4096 <= r_vr <= 4095.875:
-        raise _enc('set_wheels_velocities_with_odometry', 'vr', r_vr, 'range', '-4096..4095.875', 'MTV4-D5')
+    if r_vr.__class__ is not float or not -4096 <= r_vr <= 4095.875:
+        if not isinstance(r_vr, (int, float)) or r_vr.__class__ is bool:
+            raise _enc('set_wheels_velocities_with_odometry', 'vr', r_vr, 'type', 'a number')
+        if not -4096 <= r_vr <= 4095.875:
+            raise _enc('set_wheels_velocities_with_odometry', 'vr', r_vr, 'range', '-4096..4095.875', 'MTV4-D5')
     r_vr = _floor(r_vr / 0.125 + 0.5)
     r_x = m.x
     if r_x.__class__ is not float:
@@ -873,7 +876,6 @@ def _encode_set_wheels_velocities_with_odometry(m: SetWheelsVelocitiesWithOdomet
         raise _enc('set_wheels_velocities_with_odometry', 'th', r_th, 'finite', 'a finite number')
     if r_th > 3.4028234663852886e38 or r_th < -3.4028234663852886e38:
         raise _enc('set_wheels_velocities_with_odometry', 'th', r_th, 'range', 'a binary32 value')
-    r_crc = 0
     h = _S_set_wheels_velocities_with_odometry_0.pack(170, 22, r_group, r_radio_crc_flag << 7 | 0x3, r_robots, r_status, r_vl, r_vr, r_x, r_y, r_th)
     return h + _checksum_crc16_8005_ffff_nn_0_23(h, 1).to_bytes(2, 'big')
 
@@ -920,23 +922,24 @@ def _decode_set_wheels_velocities_with_odometry(d: _Buffer) -> SetWheelsVelociti
 
 
 def _encode_ack(m: Ack) -> bytes:
-    r_sync = 170
-    r_length = 4
     r_group = m.group
-    if r_group.__class__ is not int and (not isinstance(r_group, int) or r_group.__class__ is bool):
-        raise _enc('ack', 'group', r_group, 'type', 'an int')
-    if not 0 <= r_group <= 15:
-        raise _enc('ack', 'group', r_group, 'range', '0..15', None)
+    if r_group.__class__ is not int or not 0 <= r_group <= 15:
+        if not isinstance(r_group, int) or r_group.__class__ is bool:
+            raise _enc('ack', 'group', r_group, 'type', 'an int')
+        if not 0 <= r_group <= 15:
+            raise _enc('ack', 'group', r_group, 'range', '0..15', None)
     r_radio_crc_flag = m.radio_crc_flag
-    if r_radio_crc_flag.__class__ is not int and (not isinstance(r_radio_crc_flag, int) or r_radio_crc_flag.__class__ is bool):
-        raise _enc('ack', 'radio_crc_flag', r_radio_crc_flag, 'type', 'an int')
-    if not 0 <= r_radio_crc_flag <= 1:
-        raise _enc('ack', 'radio_crc_flag', r_radio_crc_flag, 'range', '0..1', 'MTV4-D4')
+    if r_radio_crc_flag.__class__ is not int or not 0 <= r_radio_crc_flag <= 1:
+        if not isinstance(r_radio_crc_flag, int) or r_radio_crc_flag.__class__ is bool:
+            raise _enc('ack', 'radio_crc_flag', r_radio_crc_flag, 'type', 'an int')
+        if not 0 <= r_radio_crc_flag <= 1:
+            raise _enc('ack', 'radio_crc_flag', r_radio_crc_flag, 'range', '0..1', 'MTV4-D4')
     r_command = m.command
-    if r_command.__class__ is not int and (not isinstance(r_command, int) or r_command.__class__ is bool):
-        raise _enc('ack', 'command', r_command, 'type', 'an int')
-    if not 0 <= r_command <= 127:
-        raise _enc('ack', 'command', r_command, 'range', '0..127', 'MTV4-D4')
+    if r_command.__class__ is not int or not 0 <= r_command <= 127:
+        if not isinstance(r_command, int) or r_command.__class__ is bool:
+            raise _enc('ack', 'command', r_command, 'type', 'an int')
+        if not 0 <= r_command <= 127:
+            raise _enc('ack', 'command', r_command, 'range', '0..127', 'MTV4-D4')
     if r_command not in (1, 2):
         raise _enc('ack', 'command', r_command, 'values', '1, 2', 'MTV4-D4')
     r_robots: Any = m.robots
@@ -947,7 +950,6 @@ def _encode_ack(m: Ack) -> bytes:
         raise _enc('ack', 'robots', r_robots, 'flags', 'only the bits of robots', 'MTV4-D3', 'an individual command or reply addresses exactly one robot')
     if r_robots == 0 or r_robots & (r_robots - 1):
         raise _enc('ack', 'robots', r_robots, 'exactly_one', 'exactly one bit set', 'MTV4-D3', 'an individual command or reply addresses exactly one robot')
-    r_crc = 0
     h = _S_ack_0.pack(170, 4, r_group, r_radio_crc_flag << 7 | r_command, r_robots)
     return h + _checksum_crc16_8005_ffff_nn_0_5(h, 1).to_bytes(2, 'big')
 
@@ -981,19 +983,18 @@ def _decode_ack(d: _Buffer) -> Ack:
 
 
 def _encode_odometry_reply(m: OdometryReply) -> bytes:
-    r_sync = 170
-    r_length = 18
     r_group = m.group
-    if r_group.__class__ is not int and (not isinstance(r_group, int) or r_group.__class__ is bool):
-        raise _enc('odometry_reply', 'group', r_group, 'type', 'an int')
-    if not 0 <= r_group <= 15:
-        raise _enc('odometry_reply', 'group', r_group, 'range', '0..15', None)
+    if r_group.__class__ is not int or not 0 <= r_group <= 15:
+        if not isinstance(r_group, int) or r_group.__class__ is bool:
+            raise _enc('odometry_reply', 'group', r_group, 'type', 'an int')
+        if not 0 <= r_group <= 15:
+            raise _enc('odometry_reply', 'group', r_group, 'range', '0..15', None)
     r_radio_crc_flag = m.radio_crc_flag
-    if r_radio_crc_flag.__class__ is not int and (not isinstance(r_radio_crc_flag, int) or r_radio_crc_flag.__class__ is bool):
-        raise _enc('odometry_reply', 'radio_crc_flag', r_radio_crc_flag, 'type', 'an int')
-    if not 0 <= r_radio_crc_flag <= 1:
-        raise _enc('odometry_reply', 'radio_crc_flag', r_radio_crc_flag, 'range', '0..1', 'MTV4-D4')
-    r_command = 3
+    if r_radio_crc_flag.__class__ is not int or not 0 <= r_radio_crc_flag <= 1:
+        if not isinstance(r_radio_crc_flag, int) or r_radio_crc_flag.__class__ is bool:
+            raise _enc('odometry_reply', 'radio_crc_flag', r_radio_crc_flag, 'type', 'an int')
+        if not 0 <= r_radio_crc_flag <= 1:
+            raise _enc('odometry_reply', 'radio_crc_flag', r_radio_crc_flag, 'range', '0..1', 'MTV4-D4')
     r_robots: Any = m.robots
     if r_robots.__class__ is not int and r_robots.__class__ is not Robots and (not isinstance(r_robots, int) or r_robots.__class__ is bool or isinstance(r_robots, enum.Enum)):
         raise _enc('odometry_reply', 'robots', r_robots, 'type', 'an int or Robots')
@@ -1003,10 +1004,11 @@ def _encode_odometry_reply(m: OdometryReply) -> bytes:
     if r_robots == 0 or r_robots & (r_robots - 1):
         raise _enc('odometry_reply', 'robots', r_robots, 'exactly_one', 'exactly one bit set', 'MTV4-D3', 'an individual command or reply addresses exactly one robot')
     r_status = m.status
-    if r_status.__class__ is not int and (not isinstance(r_status, int) or r_status.__class__ is bool):
-        raise _enc('odometry_reply', 'status', r_status, 'type', 'an int')
-    if not 0 <= r_status <= 65535:
-        raise _enc('odometry_reply', 'status', r_status, 'range', '0..65535', None)
+    if r_status.__class__ is not int or not 0 <= r_status <= 65535:
+        if not isinstance(r_status, int) or r_status.__class__ is bool:
+            raise _enc('odometry_reply', 'status', r_status, 'type', 'an int')
+        if not 0 <= r_status <= 65535:
+            raise _enc('odometry_reply', 'status', r_status, 'range', '0..65535', None)
     r_x = m.x
     if r_x.__class__ is not float:
         if not isinstance(r_x, (int, float)) or r_x.__class__ is bool:
@@ -1037,7 +1039,6 @@ def _encode_odometry_reply(m: OdometryReply) -> bytes:
         raise _enc('odometry_reply', 'th', r_th, 'finite', 'a finite number')
     if r_th > 3.4028234663852886e38 or r_th < -3.4028234663852886e38:
         raise _enc('odometry_reply', 'th', r_th, 'range', 'a binary32 value')
-    r_crc = 0
     h = _S_odometry_reply_0.pack(170, 18, r_group, r_radio_crc_flag << 7 | 0x3, r_robots, r_status, r_x, r_y, r_th)
     return h + _checksum_crc16_8005_ffff_nn_0_19(h, 1).to_bytes(2, 'big')
 
@@ -1237,6 +1238,9 @@ class StreamDecoder:
 
 
 _ENCODERS: dict[type[Any], Callable[[Any], bytes]] = {SetWheelsVelocities: _encode_set_wheels_velocities, SetLed: _encode_set_led, SetWheelsVelocitiesWithOdometry: _encode_set_wheels_velocities_with_odometry, Ack: _encode_ack, OdometryReply: _encode_odometry_reply, }
+for _cls, _encoder in _ENCODERS.items():  # each encoder is its class's encode method: one call, not two
+    _encoder.__doc__ = _cls.encode.__doc__
+    setattr(_cls, "encode", _encoder)
 MESSAGES: dict[str, type[AnyMessage]] = {'set_wheels_velocities': SetWheelsVelocities, 'set_led': SetLed, 'set_wheels_velocities_with_odometry': SetWheelsVelocitiesWithOdometry, 'ack': Ack, 'odometry_reply': OdometryReply, }
 
 

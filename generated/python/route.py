@@ -381,46 +381,54 @@ def _decode_text_start(tokens: list[int]) -> Start:
 def _encode_object(m: Object) -> bytes:
     r_hdr = 1
     r_ns = m.ns
-    if r_ns.__class__ is not int and (not isinstance(r_ns, int) or r_ns.__class__ is bool):
-        raise _enc('object', 'ns', r_ns, 'type', 'an int')
-    if not 0 <= r_ns <= 7:
-        raise _enc('object', 'ns', r_ns, 'range', '0..7', None)
+    if r_ns.__class__ is not int or not 0 <= r_ns <= 7:
+        if not isinstance(r_ns, int) or r_ns.__class__ is bool:
+            raise _enc('object', 'ns', r_ns, 'type', 'an int')
+        if not 0 <= r_ns <= 7:
+            raise _enc('object', 'ns', r_ns, 'range', '0..7', None)
     r_nl = m.nl
-    if r_nl.__class__ is not int and (not isinstance(r_nl, int) or r_nl.__class__ is bool):
-        raise _enc('object', 'nl', r_nl, 'type', 'an int')
-    if not 0 <= r_nl <= 7:
-        raise _enc('object', 'nl', r_nl, 'range', '0..7', None)
+    if r_nl.__class__ is not int or not 0 <= r_nl <= 7:
+        if not isinstance(r_nl, int) or r_nl.__class__ is bool:
+            raise _enc('object', 'nl', r_nl, 'type', 'an int')
+        if not 0 <= r_nl <= 7:
+            raise _enc('object', 'nl', r_nl, 'range', '0..7', None)
     r_no = m.no
-    if r_no.__class__ is not int and (not isinstance(r_no, int) or r_no.__class__ is bool):
-        raise _enc('object', 'no', r_no, 'type', 'an int')
-    if not 0 <= r_no <= 7:
-        raise _enc('object', 'no', r_no, 'range', '0..7', None)
+    if r_no.__class__ is not int or not 0 <= r_no <= 7:
+        if not isinstance(r_no, int) or r_no.__class__ is bool:
+            raise _enc('object', 'no', r_no, 'type', 'an int')
+        if not 0 <= r_no <= 7:
+            raise _enc('object', 'no', r_no, 'range', '0..7', None)
     r_na = m.na
-    if r_na.__class__ is not int and (not isinstance(r_na, int) or r_na.__class__ is bool):
-        raise _enc('object', 'na', r_na, 'type', 'an int')
-    if not 10 <= r_na <= 17:
-        raise _enc('object', 'na', r_na, 'range', '10..17', 'ROUTE-D6')
+    if r_na.__class__ is not int or not 10 <= r_na <= 17:
+        if not isinstance(r_na, int) or r_na.__class__ is bool:
+            raise _enc('object', 'na', r_na, 'type', 'an int')
+        if not 10 <= r_na <= 17:
+            raise _enc('object', 'na', r_na, 'range', '10..17', 'ROUTE-D6')
     r_na = (r_na - 10)
     r_dl = m.dl
-    if r_dl.__class__ is not int and (not isinstance(r_dl, int) or r_dl.__class__ is bool):
-        raise _enc('object', 'dl', r_dl, 'type', 'an int')
-    if not 1 <= r_dl <= 5:
-        raise _enc('object', 'dl', r_dl, 'range', '1..5', None)
+    if r_dl.__class__ is not int or not 1 <= r_dl <= 5:
+        if not isinstance(r_dl, int) or r_dl.__class__ is bool:
+            raise _enc('object', 'dl', r_dl, 'type', 'an int')
+        if not 1 <= r_dl <= 5:
+            raise _enc('object', 'dl', r_dl, 'range', '1..5', None)
     r_rc = m.rc
-    if r_rc.__class__ is not int and (not isinstance(r_rc, int) or r_rc.__class__ is bool):
-        raise _enc('object', 'rc', r_rc, 'type', 'an int')
-    if not 0 <= r_rc <= 3:
-        raise _enc('object', 'rc', r_rc, 'range', '0..3', 'ROUTE-D3')
+    if r_rc.__class__ is not int or not 0 <= r_rc <= 3:
+        if not isinstance(r_rc, int) or r_rc.__class__ is bool:
+            raise _enc('object', 'rc', r_rc, 'type', 'an int')
+        if not 0 <= r_rc <= 3:
+            raise _enc('object', 'rc', r_rc, 'range', '0..3', 'ROUTE-D3')
     r_dr = m.dr
-    if r_dr.__class__ is not int and (not isinstance(r_dr, int) or r_dr.__class__ is bool):
-        raise _enc('object', 'dr', r_dr, 'type', 'an int')
-    if not 1 <= r_dr <= 5:
-        raise _enc('object', 'dr', r_dr, 'range', '1..5', None)
+    if r_dr.__class__ is not int or not 1 <= r_dr <= 5:
+        if not isinstance(r_dr, int) or r_dr.__class__ is bool:
+            raise _enc('object', 'dr', r_dr, 'type', 'an int')
+        if not 1 <= r_dr <= 5:
+            raise _enc('object', 'dr', r_dr, 'range', '1..5', None)
     r_cm = m.cm
-    if r_cm.__class__ is not int and (not isinstance(r_cm, int) or r_cm.__class__ is bool):
-        raise _enc('object', 'cm', r_cm, 'type', 'an int')
-    if not 1 <= r_cm <= 15:
-        raise _enc('object', 'cm', r_cm, 'range', '1..15', None)
+    if r_cm.__class__ is not int or not 1 <= r_cm <= 15:
+        if not isinstance(r_cm, int) or r_cm.__class__ is bool:
+            raise _enc('object', 'cm', r_cm, 'type', 'an int')
+        if not 1 <= r_cm <= 15:
+            raise _enc('object', 'cm', r_cm, 'range', '1..15', None)
     r_cs = 0
     r_cs = (r_hdr + r_ns + r_nl + r_no + r_na + r_dl + r_rc + r_dr + r_cm) % 8
     w: int = r_ns << 27 | r_nl << 24 | r_no << 21 | r_na << 18 | r_dl << 15 | r_rc << 13 | r_dr << 10 | r_cm << 6 | r_cs << 3 | 0x40000000
@@ -470,46 +478,54 @@ def _raw_object(m: Object) -> tuple[int, ...]:
     """Check a object and return its raw wire values, in wire order."""
     r_hdr = 1
     r_ns = m.ns
-    if r_ns.__class__ is not int and (not isinstance(r_ns, int) or r_ns.__class__ is bool):
-        raise _enc('object', 'ns', r_ns, 'type', 'an int')
-    if not 0 <= r_ns <= 7:
-        raise _enc('object', 'ns', r_ns, 'range', '0..7', None)
+    if r_ns.__class__ is not int or not 0 <= r_ns <= 7:
+        if not isinstance(r_ns, int) or r_ns.__class__ is bool:
+            raise _enc('object', 'ns', r_ns, 'type', 'an int')
+        if not 0 <= r_ns <= 7:
+            raise _enc('object', 'ns', r_ns, 'range', '0..7', None)
     r_nl = m.nl
-    if r_nl.__class__ is not int and (not isinstance(r_nl, int) or r_nl.__class__ is bool):
-        raise _enc('object', 'nl', r_nl, 'type', 'an int')
-    if not 0 <= r_nl <= 7:
-        raise _enc('object', 'nl', r_nl, 'range', '0..7', None)
+    if r_nl.__class__ is not int or not 0 <= r_nl <= 7:
+        if not isinstance(r_nl, int) or r_nl.__class__ is bool:
+            raise _enc('object', 'nl', r_nl, 'type', 'an int')
+        if not 0 <= r_nl <= 7:
+            raise _enc('object', 'nl', r_nl, 'range', '0..7', None)
     r_no = m.no
-    if r_no.__class__ is not int and (not isinstance(r_no, int) or r_no.__class__ is bool):
-        raise _enc('object', 'no', r_no, 'type', 'an int')
-    if not 0 <= r_no <= 7:
-        raise _enc('object', 'no', r_no, 'range', '0..7', None)
+    if r_no.__class__ is not int or not 0 <= r_no <= 7:
+        if not isinstance(r_no, int) or r_no.__class__ is bool:
+            raise _enc('object', 'no', r_no, 'type', 'an int')
+        if not 0 <= r_no <= 7:
+            raise _enc('object', 'no', r_no, 'range', '0..7', None)
     r_na = m.na
-    if r_na.__class__ is not int and (not isinstance(r_na, int) or r_na.__class__ is bool):
-        raise _enc('object', 'na', r_na, 'type', 'an int')
-    if not 10 <= r_na <= 17:
-        raise _enc('object', 'na', r_na, 'range', '10..17', 'ROUTE-D6')
+    if r_na.__class__ is not int or not 10 <= r_na <= 17:
+        if not isinstance(r_na, int) or r_na.__class__ is bool:
+            raise _enc('object', 'na', r_na, 'type', 'an int')
+        if not 10 <= r_na <= 17:
+            raise _enc('object', 'na', r_na, 'range', '10..17', 'ROUTE-D6')
     r_na = (r_na - 10)
     r_dl = m.dl
-    if r_dl.__class__ is not int and (not isinstance(r_dl, int) or r_dl.__class__ is bool):
-        raise _enc('object', 'dl', r_dl, 'type', 'an int')
-    if not 1 <= r_dl <= 5:
-        raise _enc('object', 'dl', r_dl, 'range', '1..5', None)
+    if r_dl.__class__ is not int or not 1 <= r_dl <= 5:
+        if not isinstance(r_dl, int) or r_dl.__class__ is bool:
+            raise _enc('object', 'dl', r_dl, 'type', 'an int')
+        if not 1 <= r_dl <= 5:
+            raise _enc('object', 'dl', r_dl, 'range', '1..5', None)
     r_rc = m.rc
-    if r_rc.__class__ is not int and (not isinstance(r_rc, int) or r_rc.__class__ is bool):
-        raise _enc('object', 'rc', r_rc, 'type', 'an int')
-    if not 0 <= r_rc <= 3:
-        raise _enc('object', 'rc', r_rc, 'range', '0..3', 'ROUTE-D3')
+    if r_rc.__class__ is not int or not 0 <= r_rc <= 3:
+        if not isinstance(r_rc, int) or r_rc.__class__ is bool:
+            raise _enc('object', 'rc', r_rc, 'type', 'an int')
+        if not 0 <= r_rc <= 3:
+            raise _enc('object', 'rc', r_rc, 'range', '0..3', 'ROUTE-D3')
     r_dr = m.dr
-    if r_dr.__class__ is not int and (not isinstance(r_dr, int) or r_dr.__class__ is bool):
-        raise _enc('object', 'dr', r_dr, 'type', 'an int')
-    if not 1 <= r_dr <= 5:
-        raise _enc('object', 'dr', r_dr, 'range', '1..5', None)
+    if r_dr.__class__ is not int or not 1 <= r_dr <= 5:
+        if not isinstance(r_dr, int) or r_dr.__class__ is bool:
+            raise _enc('object', 'dr', r_dr, 'type', 'an int')
+        if not 1 <= r_dr <= 5:
+            raise _enc('object', 'dr', r_dr, 'range', '1..5', None)
     r_cm = m.cm
-    if r_cm.__class__ is not int and (not isinstance(r_cm, int) or r_cm.__class__ is bool):
-        raise _enc('object', 'cm', r_cm, 'type', 'an int')
-    if not 1 <= r_cm <= 15:
-        raise _enc('object', 'cm', r_cm, 'range', '1..15', None)
+    if r_cm.__class__ is not int or not 1 <= r_cm <= 15:
+        if not isinstance(r_cm, int) or r_cm.__class__ is bool:
+            raise _enc('object', 'cm', r_cm, 'type', 'an int')
+        if not 1 <= r_cm <= 15:
+            raise _enc('object', 'cm', r_cm, 'range', '1..15', None)
     r_cs = 0
     r_cs = (r_hdr + r_ns + r_nl + r_no + r_na + r_dl + r_rc + r_dr + r_cm) % 8
     return (r_hdr, r_ns, r_nl, r_no, r_na, r_dl, r_rc, r_dr, r_cm, r_cs, )
@@ -567,24 +583,27 @@ def _decode_text_object(tokens: list[int]) -> Object:
 def _encode_scene(m: Scene) -> bytes:
     r_hdr = 2
     r_ns = m.ns
-    if r_ns.__class__ is not int and (not isinstance(r_ns, int) or r_ns.__class__ is bool):
-        raise _enc('scene', 'ns', r_ns, 'type', 'an int')
-    if not 0 <= r_ns <= 7:
-        raise _enc('scene', 'ns', r_ns, 'range', '0..7', None)
+    if r_ns.__class__ is not int or not 0 <= r_ns <= 7:
+        if not isinstance(r_ns, int) or r_ns.__class__ is bool:
+            raise _enc('scene', 'ns', r_ns, 'type', 'an int')
+        if not 0 <= r_ns <= 7:
+            raise _enc('scene', 'ns', r_ns, 'range', '0..7', None)
     r_nl = m.nl
-    if r_nl.__class__ is not int and (not isinstance(r_nl, int) or r_nl.__class__ is bool):
-        raise _enc('scene', 'nl', r_nl, 'type', 'an int')
-    if not 0 <= r_nl <= 7:
-        raise _enc('scene', 'nl', r_nl, 'range', '0..7', None)
+    if r_nl.__class__ is not int or not 0 <= r_nl <= 7:
+        if not isinstance(r_nl, int) or r_nl.__class__ is bool:
+            raise _enc('scene', 'nl', r_nl, 'type', 'an int')
+        if not 0 <= r_nl <= 7:
+            raise _enc('scene', 'nl', r_nl, 'range', '0..7', None)
     r_db: Any = m.db
     if r_db.__class__ is not PassSide and (not isinstance(r_db, int) or r_db.__class__ is bool or isinstance(r_db, enum.Enum) or r_db not in _VALUES_pass_side):
         raise _enc('scene', 'db', r_db, 'enum', 'PassSide', None)
-    r_db = int(r_db)
+    r_db = cast(Any, r_db)._value_ if r_db.__class__ is PassSide else int(r_db)
     r_nt = m.nt
-    if r_nt.__class__ is not int and (not isinstance(r_nt, int) or r_nt.__class__ is bool):
-        raise _enc('scene', 'nt', r_nt, 'type', 'an int')
-    if not 0 <= r_nt <= 32767:
-        raise _enc('scene', 'nt', r_nt, 'range', '0..32767', None)
+    if r_nt.__class__ is not int or not 0 <= r_nt <= 32767:
+        if not isinstance(r_nt, int) or r_nt.__class__ is bool:
+            raise _enc('scene', 'nt', r_nt, 'type', 'an int')
+        if not 0 <= r_nt <= 32767:
+            raise _enc('scene', 'nt', r_nt, 'range', '0..32767', None)
     r_cs = 0
     r_cs = (r_hdr + r_ns + r_nl + r_db + r_nt) % 8
     w: int = r_ns << 27 | r_nl << 24 | r_db << 21 | r_nt << 6 | r_cs << 3 | 0x80000000
@@ -623,24 +642,27 @@ def _raw_scene(m: Scene) -> tuple[int, ...]:
     """Check a scene and return its raw wire values, in wire order."""
     r_hdr = 2
     r_ns = m.ns
-    if r_ns.__class__ is not int and (not isinstance(r_ns, int) or r_ns.__class__ is bool):
-        raise _enc('scene', 'ns', r_ns, 'type', 'an int')
-    if not 0 <= r_ns <= 7:
-        raise _enc('scene', 'ns', r_ns, 'range', '0..7', None)
+    if r_ns.__class__ is not int or not 0 <= r_ns <= 7:
+        if not isinstance(r_ns, int) or r_ns.__class__ is bool:
+            raise _enc('scene', 'ns', r_ns, 'type', 'an int')
+        if not 0 <= r_ns <= 7:
+            raise _enc('scene', 'ns', r_ns, 'range', '0..7', None)
     r_nl = m.nl
-    if r_nl.__class__ is not int and (not isinstance(r_nl, int) or r_nl.__class__ is bool):
-        raise _enc('scene', 'nl', r_nl, 'type', 'an int')
-    if not 0 <= r_nl <= 7:
-        raise _enc('scene', 'nl', r_nl, 'range', '0..7', None)
+    if r_nl.__class__ is not int or not 0 <= r_nl <= 7:
+        if not isinstance(r_nl, int) or r_nl.__class__ is bool:
+            raise _enc('scene', 'nl', r_nl, 'type', 'an int')
+        if not 0 <= r_nl <= 7:
+            raise _enc('scene', 'nl', r_nl, 'range', '0..7', None)
     r_db: Any = m.db
     if r_db.__class__ is not PassSide and (not isinstance(r_db, int) or r_db.__class__ is bool or isinstance(r_db, enum.Enum) or r_db not in _VALUES_pass_side):
         raise _enc('scene', 'db', r_db, 'enum', 'PassSide', None)
-    r_db = int(r_db)
+    r_db = cast(Any, r_db)._value_ if r_db.__class__ is PassSide else int(r_db)
     r_nt = m.nt
-    if r_nt.__class__ is not int and (not isinstance(r_nt, int) or r_nt.__class__ is bool):
-        raise _enc('scene', 'nt', r_nt, 'type', 'an int')
-    if not 0 <= r_nt <= 32767:
-        raise _enc('scene', 'nt', r_nt, 'range', '0..32767', None)
+    if r_nt.__class__ is not int or not 0 <= r_nt <= 32767:
+        if not isinstance(r_nt, int) or r_nt.__class__ is bool:
+            raise _enc('scene', 'nt', r_nt, 'type', 'an int')
+        if not 0 <= r_nt <= 32767:
+            raise _enc('scene', 'nt', r_nt, 'range', '0..32767', None)
     r_cs = 0
     r_cs = (r_hdr + r_ns + r_nl + r_db + r_nt) % 8
     return (r_hdr, r_ns, r_nl, r_db, r_nt, r_cs, )
@@ -933,6 +955,9 @@ def _as_text_block(text: object) -> str:
 
 
 _ENCODERS: dict[type[Any], Callable[[Any], bytes]] = {Start: _encode_start, Object: _encode_object, Scene: _encode_scene, End: _encode_end, }
+for _cls, _encoder in _ENCODERS.items():  # each encoder is its class's encode method: one call, not two
+    _encoder.__doc__ = _cls.encode.__doc__
+    setattr(_cls, "encode", _encoder)
 _TEXT_ENCODERS: dict[type[Any], Callable[[Any], str]] = {Start: _encode_text_start, Object: _encode_text_object, Scene: _encode_text_scene, End: _encode_text_end, }
 _TEXT_INDEX: dict[_TextDecoder, dict[str, int]] = {_decode_text_start: {'hdr': 0, 'kind': 1, 'cs': 2, }, _decode_text_object: {'hdr': 0, 'ns': 1, 'nl': 2, 'no': 3, 'na': 4, 'dl': 5, 'rc': 6, 'dr': 7, 'cm': 8, 'cs': 9, }, _decode_text_scene: {'hdr': 0, 'ns': 1, 'nl': 2, 'db': 3, 'nt': 4, 'cs': 5, }, _decode_text_end: {'hdr': 0, 'kind': 1, 'cs': 2, }, }
 _TEXT_HEAD: list[tuple[int, int]] = [(2, 0), (3, 0)]  # (bits taken, low bits dropped) of each leading value

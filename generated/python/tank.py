@@ -12,7 +12,7 @@ import math
 import re
 
 from dataclasses import dataclass
-from typing import Any, Callable, ClassVar, Literal, Optional, TypeVar, Union, overload
+from typing import Any, Callable, ClassVar, Literal, Optional, TypeVar, Union, cast, overload
 
 _Buffer = Union[bytes, bytearray, "memoryview[int]"]  # what a binary decoder reads
 _Input = Union[str, bytes, bytearray]  # what a decoder reads: text, or its ASCII bytes
@@ -580,10 +580,11 @@ def _encode_telemetry(m: Telemetry) -> str:
     if r_move.__class__ is not Move and (not isinstance(r_move, str) or isinstance(r_move, enum.Enum) or r_move not in _VALUES_move):
         raise _enc('telemetry', 'move', r_move, 'enum', 'Move', None)
     r_speed = m.speed
-    if r_speed.__class__ is not int and (not isinstance(r_speed, int) or r_speed.__class__ is bool):
-        raise _enc('telemetry', 'speed', r_speed, 'type', 'an int')
-    if not 0 <= r_speed <= 100:
-        raise _enc('telemetry', 'speed', r_speed, 'range', '0..100', 'TANK-D3')
+    if r_speed.__class__ is not int or not 0 <= r_speed <= 100:
+        if not isinstance(r_speed, int) or r_speed.__class__ is bool:
+            raise _enc('telemetry', 'speed', r_speed, 'type', 'an int')
+        if not 0 <= r_speed <= 100:
+            raise _enc('telemetry', 'speed', r_speed, 'range', '0..100', 'TANK-D3')
     r_value = m.value
     if not isinstance(r_value, str) or len(r_value) != 1:
         raise _enc('telemetry', 'value', r_value, 'type', 'one character')
@@ -744,16 +745,17 @@ def _encode_telemetry(m: Telemetry) -> str:
     r_systemstatus: Any = m.systemstatus
     if r_systemstatus.__class__ is not SystemStatus and (not isinstance(r_systemstatus, int) or r_systemstatus.__class__ is bool or isinstance(r_systemstatus, enum.Enum) or r_systemstatus not in _VALUES_system_status):
         raise _enc('telemetry', 'systemstatus', r_systemstatus, 'enum', 'SystemStatus', None)
-    r_systemstatus = int(r_systemstatus)
+    r_systemstatus = cast(Any, r_systemstatus)._value_ if r_systemstatus.__class__ is SystemStatus else int(r_systemstatus)
     r_extid = m.extid
-    if r_extid.__class__ is not int and (not isinstance(r_extid, int) or r_extid.__class__ is bool):
-        raise _enc('telemetry', 'extid', r_extid, 'type', 'an int')
-    if not 0 <= r_extid <= 255:
-        raise _enc('telemetry', 'extid', r_extid, 'range', '0..255', None)
+    if r_extid.__class__ is not int or not 0 <= r_extid <= 255:
+        if not isinstance(r_extid, int) or r_extid.__class__ is bool:
+            raise _enc('telemetry', 'extid', r_extid, 'type', 'an int')
+        if not 0 <= r_extid <= 255:
+            raise _enc('telemetry', 'extid', r_extid, 'range', '0..255', None)
     r_extstatus: Any = m.extstatus
     if r_extstatus.__class__ is not ExtStatus and (not isinstance(r_extstatus, int) or r_extstatus.__class__ is bool or isinstance(r_extstatus, enum.Enum) or r_extstatus not in _VALUES_ext_status):
         raise _enc('telemetry', 'extstatus', r_extstatus, 'enum', 'ExtStatus', None)
-    r_extstatus = int(r_extstatus)
+    r_extstatus = cast(Any, r_extstatus)._value_ if r_extstatus.__class__ is ExtStatus else int(r_extstatus)
     return '$:' + ','.join((_ENUM_move[r_move]._value_, str(r_speed), r_value, s_lcurr, s_rcurr, s_accx, s_accy, s_accz, s_gyrox, s_gyroy, s_gyroz, s_magx, s_magy, s_magz, r_lan, r_lon, s_vbat, str(r_systemstatus), str(r_extid), str(r_extstatus), )) + ';'
 
 
@@ -868,10 +870,11 @@ def _encode_command(m: Command) -> str:
     if r_move.__class__ is not Move and (not isinstance(r_move, str) or isinstance(r_move, enum.Enum) or r_move not in _VALUES_move):
         raise _enc('command', 'move', r_move, 'enum', 'Move', None)
     r_speed = m.speed
-    if r_speed.__class__ is not int and (not isinstance(r_speed, int) or r_speed.__class__ is bool):
-        raise _enc('command', 'speed', r_speed, 'type', 'an int')
-    if not 0 <= r_speed <= 100:
-        raise _enc('command', 'speed', r_speed, 'range', '0..100', 'TANK-D3')
+    if r_speed.__class__ is not int or not 0 <= r_speed <= 100:
+        if not isinstance(r_speed, int) or r_speed.__class__ is bool:
+            raise _enc('command', 'speed', r_speed, 'type', 'an int')
+        if not 0 <= r_speed <= 100:
+            raise _enc('command', 'speed', r_speed, 'range', '0..100', 'TANK-D3')
     r_value = m.value
     if not isinstance(r_value, str) or len(r_value) != 1:
         raise _enc('command', 'value', r_value, 'type', 'one character')
@@ -880,10 +883,11 @@ def _encode_command(m: Command) -> str:
         if bad:
             raise _enc('command', 'value', r_value, 'text', bad, 'TANK-D3')
     r_azimutloc = m.azimutloc
-    if r_azimutloc.__class__ is not int and (not isinstance(r_azimutloc, int) or r_azimutloc.__class__ is bool):
-        raise _enc('command', 'azimutloc', r_azimutloc, 'type', 'an int')
-    if not -32768 <= r_azimutloc <= 32767:
-        raise _enc('command', 'azimutloc', r_azimutloc, 'range', '-32768..32767', None)
+    if r_azimutloc.__class__ is not int or not -32768 <= r_azimutloc <= 32767:
+        if not isinstance(r_azimutloc, int) or r_azimutloc.__class__ is bool:
+            raise _enc('command', 'azimutloc', r_azimutloc, 'type', 'an int')
+        if not -32768 <= r_azimutloc <= 32767:
+            raise _enc('command', 'azimutloc', r_azimutloc, 'range', '-32768..32767', None)
     r_gpio1 = m.gpio1
     if r_gpio1.__class__ is not float:
         if not isinstance(r_gpio1, (int, float)) or r_gpio1.__class__ is bool:
@@ -933,7 +937,7 @@ def _encode_command(m: Command) -> str:
         raise _enc('command', 'systemstatus', r_systemstatus, 'enum', 'SystemStatus', 'TANK-D2', 'systemstatus 5 (Error) and 6 (Exception) are sent only by the platform / Только с платформы')
     if r_systemstatus not in (0, 1, 2, 3, 4):
         raise _enc('command', 'systemstatus', r_systemstatus, 'values', '0, 1, 2, 3, 4', 'TANK-D2', 'systemstatus 5 (Error) and 6 (Exception) are sent only by the platform / Только с платформы')
-    r_systemstatus = int(r_systemstatus)
+    r_systemstatus = cast(Any, r_systemstatus)._value_ if r_systemstatus.__class__ is SystemStatus else int(r_systemstatus)
     if m.data is not None:
         r_data = m.data
         if not isinstance(r_data, str):
@@ -1083,19 +1087,19 @@ def _encode_gpio_config(m: GpioConfig) -> str:
     r_gpio1: Any = m.gpio1
     if r_gpio1.__class__ is not GpioMode and (not isinstance(r_gpio1, int) or r_gpio1.__class__ is bool or isinstance(r_gpio1, enum.Enum) or r_gpio1 not in _VALUES_gpio_mode):
         raise _enc('gpio_config', 'gpio1', r_gpio1, 'enum', 'GpioMode', None)
-    r_gpio1 = int(r_gpio1)
+    r_gpio1 = cast(Any, r_gpio1)._value_ if r_gpio1.__class__ is GpioMode else int(r_gpio1)
     r_gpio2: Any = m.gpio2
     if r_gpio2.__class__ is not GpioMode and (not isinstance(r_gpio2, int) or r_gpio2.__class__ is bool or isinstance(r_gpio2, enum.Enum) or r_gpio2 not in _VALUES_gpio_mode):
         raise _enc('gpio_config', 'gpio2', r_gpio2, 'enum', 'GpioMode', None)
-    r_gpio2 = int(r_gpio2)
+    r_gpio2 = cast(Any, r_gpio2)._value_ if r_gpio2.__class__ is GpioMode else int(r_gpio2)
     r_gpio3: Any = m.gpio3
     if r_gpio3.__class__ is not GpioMode and (not isinstance(r_gpio3, int) or r_gpio3.__class__ is bool or isinstance(r_gpio3, enum.Enum) or r_gpio3 not in _VALUES_gpio_mode):
         raise _enc('gpio_config', 'gpio3', r_gpio3, 'enum', 'GpioMode', None)
-    r_gpio3 = int(r_gpio3)
+    r_gpio3 = cast(Any, r_gpio3)._value_ if r_gpio3.__class__ is GpioMode else int(r_gpio3)
     r_gpio4: Any = m.gpio4
     if r_gpio4.__class__ is not GpioMode and (not isinstance(r_gpio4, int) or r_gpio4.__class__ is bool or isinstance(r_gpio4, enum.Enum) or r_gpio4 not in _VALUES_gpio_mode):
         raise _enc('gpio_config', 'gpio4', r_gpio4, 'enum', 'GpioMode', None)
-    r_gpio4 = int(r_gpio4)
+    r_gpio4 = cast(Any, r_gpio4)._value_ if r_gpio4.__class__ is GpioMode else int(r_gpio4)
     return '-:' + ','.join((str(r_gpio1), str(r_gpio2), str(r_gpio3), str(r_gpio4), )) + ';'
 
 
@@ -1241,6 +1245,9 @@ class StreamDecoder:
 
 
 _ENCODERS: dict[type[Any], Callable[[Any], bytes | str]] = {Telemetry: _encode_telemetry, Command: _encode_command, PayloadCommand: _encode_payload_command, PayloadReply: _encode_payload_reply, GpioConfig: _encode_gpio_config, }
+for _cls, _encoder in _ENCODERS.items():  # each encoder is its class's encode method: one call, not two
+    _encoder.__doc__ = _cls.encode.__doc__
+    setattr(_cls, "encode", _encoder)
 MESSAGES: dict[str, type[AnyMessage]] = {'telemetry': Telemetry, 'command': Command, 'payload_command': PayloadCommand, 'payload_reply': PayloadReply, 'gpio_config': GpioConfig, }
 
 

@@ -227,30 +227,29 @@ def _as_input(data: object) -> _Buffer:
 
 
 def _encode_command(m: Command) -> bytes:
-    r_start = 2
-    r_reserved = 0
-    r_type = 0
     r_seq = m.seq
-    if r_seq.__class__ is not int and (not isinstance(r_seq, int) or r_seq.__class__ is bool):
-        raise _enc('command', 'seq', r_seq, 'type', 'an int')
-    if not 0 <= r_seq <= 1:
-        raise _enc('command', 'seq', r_seq, 'range', '0..1', 'TR24-D1')
+    if r_seq.__class__ is not int or not 0 <= r_seq <= 1:
+        if not isinstance(r_seq, int) or r_seq.__class__ is bool:
+            raise _enc('command', 'seq', r_seq, 'type', 'an int')
+        if not 0 <= r_seq <= 1:
+            raise _enc('command', 'seq', r_seq, 'range', '0..1', 'TR24-D1')
     r_sender = m.sender
-    if r_sender.__class__ is not int and (not isinstance(r_sender, int) or r_sender.__class__ is bool):
-        raise _enc('command', 'sender', r_sender, 'type', 'an int')
-    if not 0 <= r_sender <= 255:
-        raise _enc('command', 'sender', r_sender, 'range', '0..255', 'TR24-D3')
+    if r_sender.__class__ is not int or not 0 <= r_sender <= 255:
+        if not isinstance(r_sender, int) or r_sender.__class__ is bool:
+            raise _enc('command', 'sender', r_sender, 'type', 'an int')
+        if not 0 <= r_sender <= 255:
+            raise _enc('command', 'sender', r_sender, 'range', '0..255', 'TR24-D3')
     r_receiver = m.receiver
-    if r_receiver.__class__ is not int and (not isinstance(r_receiver, int) or r_receiver.__class__ is bool):
-        raise _enc('command', 'receiver', r_receiver, 'type', 'an int')
-    if not 0 <= r_receiver <= 255:
-        raise _enc('command', 'receiver', r_receiver, 'range', '0..255', 'TR24-D3')
+    if r_receiver.__class__ is not int or not 0 <= r_receiver <= 255:
+        if not isinstance(r_receiver, int) or r_receiver.__class__ is bool:
+            raise _enc('command', 'receiver', r_receiver, 'type', 'an int')
+        if not 0 <= r_receiver <= 255:
+            raise _enc('command', 'receiver', r_receiver, 'range', '0..255', 'TR24-D3')
     r_data = m.data
-    if not isinstance(r_data, (bytes, bytearray)) or len(r_data) != 7:
-        raise _enc('command', 'data', r_data, 'length', 'bytes of length 7')
-    if r_data.__class__ is not bytes:
+    if r_data.__class__ is not bytes or len(r_data) != 7:
+        if not isinstance(r_data, (bytes, bytearray)) or len(r_data) != 7:
+            raise _enc('command', 'data', r_data, 'length', 'bytes of length 7')
         r_data = bytes(r_data)
-    r_stop = 3
     return _S_command_0.pack(2, r_seq, r_sender, r_receiver, r_data, 3)
 
 
@@ -278,30 +277,29 @@ def _decode_command(d: _Buffer) -> Command:
 
 
 def _encode_reply(m: Reply) -> bytes:
-    r_start = 2
-    r_reserved = 0
-    r_type = 1
     r_seq = m.seq
-    if r_seq.__class__ is not int and (not isinstance(r_seq, int) or r_seq.__class__ is bool):
-        raise _enc('reply', 'seq', r_seq, 'type', 'an int')
-    if not 0 <= r_seq <= 1:
-        raise _enc('reply', 'seq', r_seq, 'range', '0..1', 'TR24-D1')
+    if r_seq.__class__ is not int or not 0 <= r_seq <= 1:
+        if not isinstance(r_seq, int) or r_seq.__class__ is bool:
+            raise _enc('reply', 'seq', r_seq, 'type', 'an int')
+        if not 0 <= r_seq <= 1:
+            raise _enc('reply', 'seq', r_seq, 'range', '0..1', 'TR24-D1')
     r_sender = m.sender
-    if r_sender.__class__ is not int and (not isinstance(r_sender, int) or r_sender.__class__ is bool):
-        raise _enc('reply', 'sender', r_sender, 'type', 'an int')
-    if not 0 <= r_sender <= 255:
-        raise _enc('reply', 'sender', r_sender, 'range', '0..255', 'TR24-D3')
+    if r_sender.__class__ is not int or not 0 <= r_sender <= 255:
+        if not isinstance(r_sender, int) or r_sender.__class__ is bool:
+            raise _enc('reply', 'sender', r_sender, 'type', 'an int')
+        if not 0 <= r_sender <= 255:
+            raise _enc('reply', 'sender', r_sender, 'range', '0..255', 'TR24-D3')
     r_receiver = m.receiver
-    if r_receiver.__class__ is not int and (not isinstance(r_receiver, int) or r_receiver.__class__ is bool):
-        raise _enc('reply', 'receiver', r_receiver, 'type', 'an int')
-    if not 0 <= r_receiver <= 255:
-        raise _enc('reply', 'receiver', r_receiver, 'range', '0..255', 'TR24-D3')
+    if r_receiver.__class__ is not int or not 0 <= r_receiver <= 255:
+        if not isinstance(r_receiver, int) or r_receiver.__class__ is bool:
+            raise _enc('reply', 'receiver', r_receiver, 'type', 'an int')
+        if not 0 <= r_receiver <= 255:
+            raise _enc('reply', 'receiver', r_receiver, 'range', '0..255', 'TR24-D3')
     r_data = m.data
-    if not isinstance(r_data, (bytes, bytearray)) or len(r_data) != 7:
-        raise _enc('reply', 'data', r_data, 'length', 'bytes of length 7')
-    if r_data.__class__ is not bytes:
+    if r_data.__class__ is not bytes or len(r_data) != 7:
+        if not isinstance(r_data, (bytes, bytearray)) or len(r_data) != 7:
+            raise _enc('reply', 'data', r_data, 'length', 'bytes of length 7')
         r_data = bytes(r_data)
-    r_stop = 3
     return _S_reply_0.pack(2, r_seq | 0x2, r_sender, r_receiver, r_data, 3)
 
 
@@ -484,6 +482,9 @@ class StreamDecoder:
 
 
 _ENCODERS: dict[type[Any], Callable[[Any], bytes]] = {Command: _encode_command, Reply: _encode_reply, }
+for _cls, _encoder in _ENCODERS.items():  # each encoder is its class's encode method: one call, not two
+    _encoder.__doc__ = _cls.encode.__doc__
+    setattr(_cls, "encode", _encoder)
 MESSAGES: dict[str, type[AnyMessage]] = {'command': Command, 'reply': Reply, }
 
 

@@ -34,10 +34,10 @@ class Names:
         return table.index(name)
 
     def g(self, name: str) -> str:
-        return f"G[{self._slot(self.globals, name)}]"
+        return f"st->G[{self._slot(self.globals, name)}]"
 
     def a(self, name: str) -> str:
-        return f"A[{self._slot(self.attributes, name)}]"
+        return f"st->A[{self._slot(self.attributes, name)}]"
 
     def s(self, cls: str, attribute: str) -> str:
         """The index of the slot that holds `attribute` in instances of `cls`."""
@@ -45,7 +45,7 @@ class Names:
         return str(self._slot(self.slots, pair))
 
     def k(self, literal: str) -> str:
-        return f"K[{self._slot(self.constants, literal)}]"
+        return f"st->K[{self._slot(self.constants, literal)}]"
 
 
 class AcceleratorView:
@@ -85,14 +85,14 @@ class AcceleratorView:
             if f.kind == "group":
                 group, group_cls = self.local("g"), self.py.group_class(m, path)
                 c(f"PyObject *{group} = acc_new({self.names.g(group_cls)});")
-                c(f"if (acc_set({owner}, {slot}, {group}) < 0) goto fail;")
+                c(f"if (acc_set(st, {owner}, {slot}, {group}) < 0) goto fail;")
                 self.build(c, m, f.fields, path, group, group_cls, at + ".")
             else:
-                c(f"if (acc_set({owner}, {slot}, {self.value(f, at)}) < 0) goto fail;")
+                c(f"if (acc_set(st, {owner}, {slot}, {self.value(f, at)}) < 0) goto fail;")
             return
         items, i = self.local("l"), self.local("i")
         c(f"PyObject *{items} = PyList_New({f.count});")
-        c(f"if (acc_set({owner}, {slot}, {items}) < 0) goto fail;")
+        c(f"if (acc_set(st, {owner}, {slot}, {items}) < 0) goto fail;")
         c(f"for (Py_ssize_t {i} = 0; {i} < {f.count}; {i}++) {{")
         c.indent()
         element = path + (0,)

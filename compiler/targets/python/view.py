@@ -219,8 +219,8 @@ class PythonView:
                 allowed = tuple(self.enum_value(f, x) for x in f.values)
                 c(f"if {v} not in {lit(allowed)}:")
                 c(f"    raise _enc({where}, {v}, 'values', {', '.join(map(str, allowed))!r}, {f.rule!r}{self.user(f, False)})")
-            if f.enum.kind != "char":
-                c(f"{var} = int({v})")
+            if f.enum.kind != "char":  # a member's value is read, not converted: int() is a call
+                c(f"{var} = cast(Any, {v})._value_ if {v}.__class__ is {cls} else int({v})")
         elif f.flags is not None:
             cls = self.enum_class(f.flags.name)
             c(f"if {v}.__class__ is not int and {v}.__class__ is not {cls} and "
@@ -243,10 +243,12 @@ class PythonView:
         elif f.kind in ("uint", "int"):
             lo, hi = f.range if f.range else self.logical_limits(f)
             numeric = "(int, float)" if f.scale is not None else "int"
-            c(f"if {v}.__class__ is not {'int' if numeric == 'int' else 'float'} and (not isinstance({v}, {numeric}) or {v}.__class__ is bool):")
-            c(f"    raise _enc({where}, {v}, 'type', {'a number' if numeric != 'int' else 'an int'!r})")
-            c(f"if not {lit(lo)} <= {v} <= {lit(hi)}:")
-            c(f"    raise _enc({where}, {v}, 'range', '{lit(lo)}..{lit(hi)}', {f.rule!r}{self.user(f, False)})")
+            # one test passes the usual value (of the usual class, in range); the others say what is wrong
+            c(f"if {v}.__class__ is not {'int' if numeric == 'int' else 'float'} or not {lit(lo)} <= {v} <= {lit(hi)}:")
+            c(f"    if not isinstance({v}, {numeric}) or {v}.__class__ is bool:")
+            c(f"        raise _enc({where}, {v}, 'type', {'a number' if numeric != 'int' else 'an int'!r})")
+            c(f"    if not {lit(lo)} <= {v} <= {lit(hi)}:")
+            c(f"        raise _enc({where}, {v}, 'range', '{lit(lo)}..{lit(hi)}', {f.rule!r}{self.user(f, False)})")
             if f.values:
                 c(f"if {v} not in {lit(tuple(f.values))}:")
                 c(f"    raise _enc({where}, {v}, 'values', {', '.join(map(str, f.values))!r}, {f.rule!r}{self.user(f, False)})")
@@ -286,9 +288,9 @@ class PythonView:
             c(f"    raise _enc({where}, {v}, 'length', 'bytes of length 0..{f.length}')")
             c(f"{var} = bytes({v}).ljust({f.length}, b'\\0')")
         elif f.kind == "bytes":
-            c(f"if not isinstance({v}, (bytes, bytearray)) or len({v}) != %d:" % f.length)
-            c(f"    raise _enc({where}, {v}, 'length', 'bytes of length {f.length}')")
-            c(f"if {v}.__class__ is not bytes:")
+            c(f"if {v}.__class__ is not bytes or len({v}) != {f.length}:")  # else bytes of the length
+            c(f"    if not isinstance({v}, (bytes, bytearray)) or len({v}) != {f.length}:")
+            c(f"        raise _enc({where}, {v}, 'length', 'bytes of length {f.length}')")
             c(f"    {var} = bytes({v})")
         # text kinds are checked and written by the text writer
 
@@ -519,6 +521,18 @@ def segments_of(chunks: list[Chunk]) -> list[Segment]:
                 continue
         out.append(Segment(chunk.start, [chunk]))
     return out
+
+
+_CONSTANT = re.compile(r"^ +(r_\w+) = -?\d+\n", re.M)
+
+
+def unread_constants_dropped(function: str) -> str:
+    """A function without the constants it assigns and never reads (a field's fixed
+    value that was written into the packing as a literal)."""
+    for match in reversed(list(_CONSTANT.finditer(function))):
+        if len(re.findall(rf"\b{match.group(1)}\b", function)) == 1:
+            function = function[:match.start()] + function[match.end():]
+    return function
 
 
 class GuardedRun:
@@ -852,6 +866,9 @@ class MessageCode:
         return "\n\n\n".join(self.helpers + [code])
 
     def encode_bytes_body(self) -> str:
+        return unread_constants_dropped(self.encode_bytes_code())
+
+    def encode_bytes_code(self) -> str:
         c = Code()
         size = self.m.size
         c(f"def _encode_{self.fn}(m: {self.cls}) -> {self.output}:")

@@ -25,12 +25,16 @@
 const char cw_accel_build[] = "codeword-accelerator-build:" CW_ACCEL_BUILD;
 #endif
 
-/* Module globals the functions use (classes, tables, the Python decoders), attribute
- * names and numeric constants: filled by bind(). */
-static PyObject *G[12];
-static PyObject *A[55];
-/* For each slot: the class and the attribute (indices into G and A), and where the
- * class's instances keep it (0: not a plain slot, set through setattr). */
+/* What the functions bound to one copy of the module use: its globals (classes,
+ * tables, the Python decoders), attribute names, numeric constants and where its
+ * classes keep each attribute. Each bind() makes one, held by its functions. */
+typedef struct {
+    PyObject *G[12];
+    PyObject *A[55];
+    Py_ssize_t S[70];  /* offset of the slot in the instance; 0: set through setattr */
+} acc_state;
+
+/* For each slot: the class and the attribute (indices into G and A). */
 static const unsigned short slot_of[70][2] = {
     {0, 0},
     {0, 1},
@@ -103,7 +107,13 @@ static const unsigned short slot_of[70][2] = {
     {10, 53},
     {10, 54},
 };
-static Py_ssize_t S[70];
+
+#define ACC_CAPSULE "codeword.mavlink1.accelerator"
+
+static inline acc_state *acc_state_of(PyObject *capsule)
+{
+    return (acc_state *)PyCapsule_GetPointer(capsule, ACC_CAPSULE);
+}
 
 static inline PyObject *acc_new(PyObject *cls)
 {
@@ -114,36 +124,36 @@ static inline PyObject *acc_new(PyObject *cls)
 /* Sets attribute `slot` of obj to value and releases value (NULL: an error already set):
  * straight into the instance's slot where the class has one, as its member descriptor
  * would, else through setattr. */
-static inline int acc_set(PyObject *obj, int slot, PyObject *value)
+static inline int acc_set(const acc_state *st, PyObject *obj, int slot, PyObject *value)
 {
     if (value == NULL) {
         return -1;
     }
-    if (S[slot] > 0) {
-        PyObject **place = (PyObject **)(void *)((char *)obj + S[slot]);
+    if (st->S[slot] > 0) {
+        PyObject **place = (PyObject **)(void *)((char *)obj + st->S[slot]);
         Py_XSETREF(*place, value);
         return 0;
     }
-    int rc = PyObject_SetAttr(obj, A[slot_of[slot][1]], value);
+    int rc = PyObject_SetAttr(obj, st->A[slot_of[slot][1]], value);
     Py_DECREF(value);
     return rc;
 }
 
-static PyObject *build_heartbeat(const mavlink1_heartbeat_t *m)
+static PyObject *build_heartbeat(const acc_state *st, const mavlink1_heartbeat_t *m)
 {
-    PyObject *o = acc_new(G[0]);
+    PyObject *o = acc_new(st->G[0]);
     if (o == NULL) {
         return NULL;
     }
-    if (acc_set(o, 0, PyLong_FromUnsignedLongLong((unsigned long long)m->seq)) < 0) goto fail;
-    if (acc_set(o, 1, PyLong_FromUnsignedLongLong((unsigned long long)m->sysid)) < 0) goto fail;
-    if (acc_set(o, 2, PyLong_FromUnsignedLongLong((unsigned long long)m->compid)) < 0) goto fail;
-    if (acc_set(o, 3, PyLong_FromUnsignedLongLong((unsigned long long)m->custom_mode)) < 0) goto fail;
-    if (acc_set(o, 4, PyLong_FromUnsignedLongLong((unsigned long long)m->type)) < 0) goto fail;
-    if (acc_set(o, 5, PyLong_FromUnsignedLongLong((unsigned long long)m->autopilot)) < 0) goto fail;
-    if (acc_set(o, 6, PyLong_FromUnsignedLongLong((unsigned long long)m->base_mode)) < 0) goto fail;
-    if (acc_set(o, 7, PyLong_FromUnsignedLongLong((unsigned long long)m->system_status)) < 0) goto fail;
-    if (acc_set(o, 8, PyLong_FromUnsignedLongLong((unsigned long long)m->mavlink_version)) < 0) goto fail;
+    if (acc_set(st, o, 0, PyLong_FromUnsignedLongLong((unsigned long long)m->seq)) < 0) goto fail;
+    if (acc_set(st, o, 1, PyLong_FromUnsignedLongLong((unsigned long long)m->sysid)) < 0) goto fail;
+    if (acc_set(st, o, 2, PyLong_FromUnsignedLongLong((unsigned long long)m->compid)) < 0) goto fail;
+    if (acc_set(st, o, 3, PyLong_FromUnsignedLongLong((unsigned long long)m->custom_mode)) < 0) goto fail;
+    if (acc_set(st, o, 4, PyLong_FromUnsignedLongLong((unsigned long long)m->type)) < 0) goto fail;
+    if (acc_set(st, o, 5, PyLong_FromUnsignedLongLong((unsigned long long)m->autopilot)) < 0) goto fail;
+    if (acc_set(st, o, 6, PyLong_FromUnsignedLongLong((unsigned long long)m->base_mode)) < 0) goto fail;
+    if (acc_set(st, o, 7, PyLong_FromUnsignedLongLong((unsigned long long)m->system_status)) < 0) goto fail;
+    if (acc_set(st, o, 8, PyLong_FromUnsignedLongLong((unsigned long long)m->mavlink_version)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -152,10 +162,13 @@ fail:
 
 static PyObject *decode_heartbeat(PyObject *self, PyObject *data)
 {
+    const acc_state *st = acc_state_of(self);
     mavlink1_heartbeat_t m;
     Py_buffer view;
     int rc;
-    (void)self;
+    if (st == NULL) {
+        return NULL;
+    }
     if (PyBytes_CheckExact(data)) {
         rc = mavlink1_heartbeat_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
     } else if (PyObject_GetBuffer(data, &view, PyBUF_SIMPLE) == 0) {
@@ -166,33 +179,33 @@ static PyObject *decode_heartbeat(PyObject *self, PyObject *data)
         rc = CW_ERR_LENGTH;
     }
     if (rc != CW_OK) {  /* the Python decoder says why */
-        return PyObject_CallOneArg(G[1], data);
+        return PyObject_CallOneArg(st->G[1], data);
     }
-    return build_heartbeat(&m);
+    return build_heartbeat(st, &m);
 }
 
-static PyObject *build_sys_status(const mavlink1_sys_status_t *m)
+static PyObject *build_sys_status(const acc_state *st, const mavlink1_sys_status_t *m)
 {
-    PyObject *o = acc_new(G[2]);
+    PyObject *o = acc_new(st->G[2]);
     if (o == NULL) {
         return NULL;
     }
-    if (acc_set(o, 9, PyLong_FromUnsignedLongLong((unsigned long long)m->seq)) < 0) goto fail;
-    if (acc_set(o, 10, PyLong_FromUnsignedLongLong((unsigned long long)m->sysid)) < 0) goto fail;
-    if (acc_set(o, 11, PyLong_FromUnsignedLongLong((unsigned long long)m->compid)) < 0) goto fail;
-    if (acc_set(o, 12, PyLong_FromUnsignedLongLong((unsigned long long)m->onboard_control_sensors_present)) < 0) goto fail;
-    if (acc_set(o, 13, PyLong_FromUnsignedLongLong((unsigned long long)m->onboard_control_sensors_enabled)) < 0) goto fail;
-    if (acc_set(o, 14, PyLong_FromUnsignedLongLong((unsigned long long)m->onboard_control_sensors_health)) < 0) goto fail;
-    if (acc_set(o, 15, PyLong_FromUnsignedLongLong((unsigned long long)m->load)) < 0) goto fail;
-    if (acc_set(o, 16, PyLong_FromUnsignedLongLong((unsigned long long)m->voltage_battery)) < 0) goto fail;
-    if (acc_set(o, 17, PyLong_FromLongLong((long long)m->current_battery)) < 0) goto fail;
-    if (acc_set(o, 18, PyLong_FromUnsignedLongLong((unsigned long long)m->drop_rate_comm)) < 0) goto fail;
-    if (acc_set(o, 19, PyLong_FromUnsignedLongLong((unsigned long long)m->errors_comm)) < 0) goto fail;
-    if (acc_set(o, 20, PyLong_FromUnsignedLongLong((unsigned long long)m->errors_count1)) < 0) goto fail;
-    if (acc_set(o, 21, PyLong_FromUnsignedLongLong((unsigned long long)m->errors_count2)) < 0) goto fail;
-    if (acc_set(o, 22, PyLong_FromUnsignedLongLong((unsigned long long)m->errors_count3)) < 0) goto fail;
-    if (acc_set(o, 23, PyLong_FromUnsignedLongLong((unsigned long long)m->errors_count4)) < 0) goto fail;
-    if (acc_set(o, 24, PyLong_FromLongLong((long long)m->battery_remaining)) < 0) goto fail;
+    if (acc_set(st, o, 9, PyLong_FromUnsignedLongLong((unsigned long long)m->seq)) < 0) goto fail;
+    if (acc_set(st, o, 10, PyLong_FromUnsignedLongLong((unsigned long long)m->sysid)) < 0) goto fail;
+    if (acc_set(st, o, 11, PyLong_FromUnsignedLongLong((unsigned long long)m->compid)) < 0) goto fail;
+    if (acc_set(st, o, 12, PyLong_FromUnsignedLongLong((unsigned long long)m->onboard_control_sensors_present)) < 0) goto fail;
+    if (acc_set(st, o, 13, PyLong_FromUnsignedLongLong((unsigned long long)m->onboard_control_sensors_enabled)) < 0) goto fail;
+    if (acc_set(st, o, 14, PyLong_FromUnsignedLongLong((unsigned long long)m->onboard_control_sensors_health)) < 0) goto fail;
+    if (acc_set(st, o, 15, PyLong_FromUnsignedLongLong((unsigned long long)m->load)) < 0) goto fail;
+    if (acc_set(st, o, 16, PyLong_FromUnsignedLongLong((unsigned long long)m->voltage_battery)) < 0) goto fail;
+    if (acc_set(st, o, 17, PyLong_FromLongLong((long long)m->current_battery)) < 0) goto fail;
+    if (acc_set(st, o, 18, PyLong_FromUnsignedLongLong((unsigned long long)m->drop_rate_comm)) < 0) goto fail;
+    if (acc_set(st, o, 19, PyLong_FromUnsignedLongLong((unsigned long long)m->errors_comm)) < 0) goto fail;
+    if (acc_set(st, o, 20, PyLong_FromUnsignedLongLong((unsigned long long)m->errors_count1)) < 0) goto fail;
+    if (acc_set(st, o, 21, PyLong_FromUnsignedLongLong((unsigned long long)m->errors_count2)) < 0) goto fail;
+    if (acc_set(st, o, 22, PyLong_FromUnsignedLongLong((unsigned long long)m->errors_count3)) < 0) goto fail;
+    if (acc_set(st, o, 23, PyLong_FromUnsignedLongLong((unsigned long long)m->errors_count4)) < 0) goto fail;
+    if (acc_set(st, o, 24, PyLong_FromLongLong((long long)m->battery_remaining)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -201,10 +214,13 @@ fail:
 
 static PyObject *decode_sys_status(PyObject *self, PyObject *data)
 {
+    const acc_state *st = acc_state_of(self);
     mavlink1_sys_status_t m;
     Py_buffer view;
     int rc;
-    (void)self;
+    if (st == NULL) {
+        return NULL;
+    }
     if (PyBytes_CheckExact(data)) {
         rc = mavlink1_sys_status_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
     } else if (PyObject_GetBuffer(data, &view, PyBUF_SIMPLE) == 0) {
@@ -215,25 +231,25 @@ static PyObject *decode_sys_status(PyObject *self, PyObject *data)
         rc = CW_ERR_LENGTH;
     }
     if (rc != CW_OK) {  /* the Python decoder says why */
-        return PyObject_CallOneArg(G[3], data);
+        return PyObject_CallOneArg(st->G[3], data);
     }
-    return build_sys_status(&m);
+    return build_sys_status(st, &m);
 }
 
-static PyObject *build_param_value(const mavlink1_param_value_t *m)
+static PyObject *build_param_value(const acc_state *st, const mavlink1_param_value_t *m)
 {
-    PyObject *o = acc_new(G[4]);
+    PyObject *o = acc_new(st->G[4]);
     if (o == NULL) {
         return NULL;
     }
-    if (acc_set(o, 25, PyLong_FromUnsignedLongLong((unsigned long long)m->seq)) < 0) goto fail;
-    if (acc_set(o, 26, PyLong_FromUnsignedLongLong((unsigned long long)m->sysid)) < 0) goto fail;
-    if (acc_set(o, 27, PyLong_FromUnsignedLongLong((unsigned long long)m->compid)) < 0) goto fail;
-    if (acc_set(o, 28, PyFloat_FromDouble((double)m->param_value)) < 0) goto fail;
-    if (acc_set(o, 29, PyLong_FromUnsignedLongLong((unsigned long long)m->param_count)) < 0) goto fail;
-    if (acc_set(o, 30, PyLong_FromUnsignedLongLong((unsigned long long)m->param_index)) < 0) goto fail;
-    if (acc_set(o, 31, PyBytes_FromStringAndSize((const char *)m->param_id, 16)) < 0) goto fail;
-    if (acc_set(o, 32, PyLong_FromUnsignedLongLong((unsigned long long)m->param_type)) < 0) goto fail;
+    if (acc_set(st, o, 25, PyLong_FromUnsignedLongLong((unsigned long long)m->seq)) < 0) goto fail;
+    if (acc_set(st, o, 26, PyLong_FromUnsignedLongLong((unsigned long long)m->sysid)) < 0) goto fail;
+    if (acc_set(st, o, 27, PyLong_FromUnsignedLongLong((unsigned long long)m->compid)) < 0) goto fail;
+    if (acc_set(st, o, 28, PyFloat_FromDouble((double)m->param_value)) < 0) goto fail;
+    if (acc_set(st, o, 29, PyLong_FromUnsignedLongLong((unsigned long long)m->param_count)) < 0) goto fail;
+    if (acc_set(st, o, 30, PyLong_FromUnsignedLongLong((unsigned long long)m->param_index)) < 0) goto fail;
+    if (acc_set(st, o, 31, PyBytes_FromStringAndSize((const char *)m->param_id, 16)) < 0) goto fail;
+    if (acc_set(st, o, 32, PyLong_FromUnsignedLongLong((unsigned long long)m->param_type)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -242,10 +258,13 @@ fail:
 
 static PyObject *decode_param_value(PyObject *self, PyObject *data)
 {
+    const acc_state *st = acc_state_of(self);
     mavlink1_param_value_t m;
     Py_buffer view;
     int rc;
-    (void)self;
+    if (st == NULL) {
+        return NULL;
+    }
     if (PyBytes_CheckExact(data)) {
         rc = mavlink1_param_value_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
     } else if (PyObject_GetBuffer(data, &view, PyBUF_SIMPLE) == 0) {
@@ -256,30 +275,30 @@ static PyObject *decode_param_value(PyObject *self, PyObject *data)
         rc = CW_ERR_LENGTH;
     }
     if (rc != CW_OK) {  /* the Python decoder says why */
-        return PyObject_CallOneArg(G[5], data);
+        return PyObject_CallOneArg(st->G[5], data);
     }
-    return build_param_value(&m);
+    return build_param_value(st, &m);
 }
 
-static PyObject *build_gps_raw_int(const mavlink1_gps_raw_int_t *m)
+static PyObject *build_gps_raw_int(const acc_state *st, const mavlink1_gps_raw_int_t *m)
 {
-    PyObject *o = acc_new(G[6]);
+    PyObject *o = acc_new(st->G[6]);
     if (o == NULL) {
         return NULL;
     }
-    if (acc_set(o, 33, PyLong_FromUnsignedLongLong((unsigned long long)m->seq)) < 0) goto fail;
-    if (acc_set(o, 34, PyLong_FromUnsignedLongLong((unsigned long long)m->sysid)) < 0) goto fail;
-    if (acc_set(o, 35, PyLong_FromUnsignedLongLong((unsigned long long)m->compid)) < 0) goto fail;
-    if (acc_set(o, 36, PyLong_FromUnsignedLongLong((unsigned long long)m->time_usec)) < 0) goto fail;
-    if (acc_set(o, 37, PyLong_FromLongLong((long long)m->lat)) < 0) goto fail;
-    if (acc_set(o, 38, PyLong_FromLongLong((long long)m->lon)) < 0) goto fail;
-    if (acc_set(o, 39, PyLong_FromLongLong((long long)m->alt)) < 0) goto fail;
-    if (acc_set(o, 40, PyLong_FromUnsignedLongLong((unsigned long long)m->eph)) < 0) goto fail;
-    if (acc_set(o, 41, PyLong_FromUnsignedLongLong((unsigned long long)m->epv)) < 0) goto fail;
-    if (acc_set(o, 42, PyLong_FromUnsignedLongLong((unsigned long long)m->vel)) < 0) goto fail;
-    if (acc_set(o, 43, PyLong_FromUnsignedLongLong((unsigned long long)m->cog)) < 0) goto fail;
-    if (acc_set(o, 44, PyLong_FromUnsignedLongLong((unsigned long long)m->fix_type)) < 0) goto fail;
-    if (acc_set(o, 45, PyLong_FromUnsignedLongLong((unsigned long long)m->satellites_visible)) < 0) goto fail;
+    if (acc_set(st, o, 33, PyLong_FromUnsignedLongLong((unsigned long long)m->seq)) < 0) goto fail;
+    if (acc_set(st, o, 34, PyLong_FromUnsignedLongLong((unsigned long long)m->sysid)) < 0) goto fail;
+    if (acc_set(st, o, 35, PyLong_FromUnsignedLongLong((unsigned long long)m->compid)) < 0) goto fail;
+    if (acc_set(st, o, 36, PyLong_FromUnsignedLongLong((unsigned long long)m->time_usec)) < 0) goto fail;
+    if (acc_set(st, o, 37, PyLong_FromLongLong((long long)m->lat)) < 0) goto fail;
+    if (acc_set(st, o, 38, PyLong_FromLongLong((long long)m->lon)) < 0) goto fail;
+    if (acc_set(st, o, 39, PyLong_FromLongLong((long long)m->alt)) < 0) goto fail;
+    if (acc_set(st, o, 40, PyLong_FromUnsignedLongLong((unsigned long long)m->eph)) < 0) goto fail;
+    if (acc_set(st, o, 41, PyLong_FromUnsignedLongLong((unsigned long long)m->epv)) < 0) goto fail;
+    if (acc_set(st, o, 42, PyLong_FromUnsignedLongLong((unsigned long long)m->vel)) < 0) goto fail;
+    if (acc_set(st, o, 43, PyLong_FromUnsignedLongLong((unsigned long long)m->cog)) < 0) goto fail;
+    if (acc_set(st, o, 44, PyLong_FromUnsignedLongLong((unsigned long long)m->fix_type)) < 0) goto fail;
+    if (acc_set(st, o, 45, PyLong_FromUnsignedLongLong((unsigned long long)m->satellites_visible)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -288,10 +307,13 @@ fail:
 
 static PyObject *decode_gps_raw_int(PyObject *self, PyObject *data)
 {
+    const acc_state *st = acc_state_of(self);
     mavlink1_gps_raw_int_t m;
     Py_buffer view;
     int rc;
-    (void)self;
+    if (st == NULL) {
+        return NULL;
+    }
     if (PyBytes_CheckExact(data)) {
         rc = mavlink1_gps_raw_int_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
     } else if (PyObject_GetBuffer(data, &view, PyBUF_SIMPLE) == 0) {
@@ -302,27 +324,27 @@ static PyObject *decode_gps_raw_int(PyObject *self, PyObject *data)
         rc = CW_ERR_LENGTH;
     }
     if (rc != CW_OK) {  /* the Python decoder says why */
-        return PyObject_CallOneArg(G[7], data);
+        return PyObject_CallOneArg(st->G[7], data);
     }
-    return build_gps_raw_int(&m);
+    return build_gps_raw_int(st, &m);
 }
 
-static PyObject *build_attitude(const mavlink1_attitude_t *m)
+static PyObject *build_attitude(const acc_state *st, const mavlink1_attitude_t *m)
 {
-    PyObject *o = acc_new(G[8]);
+    PyObject *o = acc_new(st->G[8]);
     if (o == NULL) {
         return NULL;
     }
-    if (acc_set(o, 46, PyLong_FromUnsignedLongLong((unsigned long long)m->seq)) < 0) goto fail;
-    if (acc_set(o, 47, PyLong_FromUnsignedLongLong((unsigned long long)m->sysid)) < 0) goto fail;
-    if (acc_set(o, 48, PyLong_FromUnsignedLongLong((unsigned long long)m->compid)) < 0) goto fail;
-    if (acc_set(o, 49, PyLong_FromUnsignedLongLong((unsigned long long)m->time_boot_ms)) < 0) goto fail;
-    if (acc_set(o, 50, PyFloat_FromDouble((double)m->roll)) < 0) goto fail;
-    if (acc_set(o, 51, PyFloat_FromDouble((double)m->pitch)) < 0) goto fail;
-    if (acc_set(o, 52, PyFloat_FromDouble((double)m->yaw)) < 0) goto fail;
-    if (acc_set(o, 53, PyFloat_FromDouble((double)m->rollspeed)) < 0) goto fail;
-    if (acc_set(o, 54, PyFloat_FromDouble((double)m->pitchspeed)) < 0) goto fail;
-    if (acc_set(o, 55, PyFloat_FromDouble((double)m->yawspeed)) < 0) goto fail;
+    if (acc_set(st, o, 46, PyLong_FromUnsignedLongLong((unsigned long long)m->seq)) < 0) goto fail;
+    if (acc_set(st, o, 47, PyLong_FromUnsignedLongLong((unsigned long long)m->sysid)) < 0) goto fail;
+    if (acc_set(st, o, 48, PyLong_FromUnsignedLongLong((unsigned long long)m->compid)) < 0) goto fail;
+    if (acc_set(st, o, 49, PyLong_FromUnsignedLongLong((unsigned long long)m->time_boot_ms)) < 0) goto fail;
+    if (acc_set(st, o, 50, PyFloat_FromDouble((double)m->roll)) < 0) goto fail;
+    if (acc_set(st, o, 51, PyFloat_FromDouble((double)m->pitch)) < 0) goto fail;
+    if (acc_set(st, o, 52, PyFloat_FromDouble((double)m->yaw)) < 0) goto fail;
+    if (acc_set(st, o, 53, PyFloat_FromDouble((double)m->rollspeed)) < 0) goto fail;
+    if (acc_set(st, o, 54, PyFloat_FromDouble((double)m->pitchspeed)) < 0) goto fail;
+    if (acc_set(st, o, 55, PyFloat_FromDouble((double)m->yawspeed)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -331,10 +353,13 @@ fail:
 
 static PyObject *decode_attitude(PyObject *self, PyObject *data)
 {
+    const acc_state *st = acc_state_of(self);
     mavlink1_attitude_t m;
     Py_buffer view;
     int rc;
-    (void)self;
+    if (st == NULL) {
+        return NULL;
+    }
     if (PyBytes_CheckExact(data)) {
         rc = mavlink1_attitude_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
     } else if (PyObject_GetBuffer(data, &view, PyBUF_SIMPLE) == 0) {
@@ -345,31 +370,31 @@ static PyObject *decode_attitude(PyObject *self, PyObject *data)
         rc = CW_ERR_LENGTH;
     }
     if (rc != CW_OK) {  /* the Python decoder says why */
-        return PyObject_CallOneArg(G[9], data);
+        return PyObject_CallOneArg(st->G[9], data);
     }
-    return build_attitude(&m);
+    return build_attitude(st, &m);
 }
 
-static PyObject *build_command_long(const mavlink1_command_long_t *m)
+static PyObject *build_command_long(const acc_state *st, const mavlink1_command_long_t *m)
 {
-    PyObject *o = acc_new(G[10]);
+    PyObject *o = acc_new(st->G[10]);
     if (o == NULL) {
         return NULL;
     }
-    if (acc_set(o, 56, PyLong_FromUnsignedLongLong((unsigned long long)m->seq)) < 0) goto fail;
-    if (acc_set(o, 57, PyLong_FromUnsignedLongLong((unsigned long long)m->sysid)) < 0) goto fail;
-    if (acc_set(o, 58, PyLong_FromUnsignedLongLong((unsigned long long)m->compid)) < 0) goto fail;
-    if (acc_set(o, 59, PyFloat_FromDouble((double)m->param1)) < 0) goto fail;
-    if (acc_set(o, 60, PyFloat_FromDouble((double)m->param2)) < 0) goto fail;
-    if (acc_set(o, 61, PyFloat_FromDouble((double)m->param3)) < 0) goto fail;
-    if (acc_set(o, 62, PyFloat_FromDouble((double)m->param4)) < 0) goto fail;
-    if (acc_set(o, 63, PyFloat_FromDouble((double)m->param5)) < 0) goto fail;
-    if (acc_set(o, 64, PyFloat_FromDouble((double)m->param6)) < 0) goto fail;
-    if (acc_set(o, 65, PyFloat_FromDouble((double)m->param7)) < 0) goto fail;
-    if (acc_set(o, 66, PyLong_FromUnsignedLongLong((unsigned long long)m->command)) < 0) goto fail;
-    if (acc_set(o, 67, PyLong_FromUnsignedLongLong((unsigned long long)m->target_system)) < 0) goto fail;
-    if (acc_set(o, 68, PyLong_FromUnsignedLongLong((unsigned long long)m->target_component)) < 0) goto fail;
-    if (acc_set(o, 69, PyLong_FromUnsignedLongLong((unsigned long long)m->confirmation)) < 0) goto fail;
+    if (acc_set(st, o, 56, PyLong_FromUnsignedLongLong((unsigned long long)m->seq)) < 0) goto fail;
+    if (acc_set(st, o, 57, PyLong_FromUnsignedLongLong((unsigned long long)m->sysid)) < 0) goto fail;
+    if (acc_set(st, o, 58, PyLong_FromUnsignedLongLong((unsigned long long)m->compid)) < 0) goto fail;
+    if (acc_set(st, o, 59, PyFloat_FromDouble((double)m->param1)) < 0) goto fail;
+    if (acc_set(st, o, 60, PyFloat_FromDouble((double)m->param2)) < 0) goto fail;
+    if (acc_set(st, o, 61, PyFloat_FromDouble((double)m->param3)) < 0) goto fail;
+    if (acc_set(st, o, 62, PyFloat_FromDouble((double)m->param4)) < 0) goto fail;
+    if (acc_set(st, o, 63, PyFloat_FromDouble((double)m->param5)) < 0) goto fail;
+    if (acc_set(st, o, 64, PyFloat_FromDouble((double)m->param6)) < 0) goto fail;
+    if (acc_set(st, o, 65, PyFloat_FromDouble((double)m->param7)) < 0) goto fail;
+    if (acc_set(st, o, 66, PyLong_FromUnsignedLongLong((unsigned long long)m->command)) < 0) goto fail;
+    if (acc_set(st, o, 67, PyLong_FromUnsignedLongLong((unsigned long long)m->target_system)) < 0) goto fail;
+    if (acc_set(st, o, 68, PyLong_FromUnsignedLongLong((unsigned long long)m->target_component)) < 0) goto fail;
+    if (acc_set(st, o, 69, PyLong_FromUnsignedLongLong((unsigned long long)m->confirmation)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -378,10 +403,13 @@ fail:
 
 static PyObject *decode_command_long(PyObject *self, PyObject *data)
 {
+    const acc_state *st = acc_state_of(self);
     mavlink1_command_long_t m;
     Py_buffer view;
     int rc;
-    (void)self;
+    if (st == NULL) {
+        return NULL;
+    }
     if (PyBytes_CheckExact(data)) {
         rc = mavlink1_command_long_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
     } else if (PyObject_GetBuffer(data, &view, PyBUF_SIMPLE) == 0) {
@@ -392,9 +420,9 @@ static PyObject *decode_command_long(PyObject *self, PyObject *data)
         rc = CW_ERR_LENGTH;
     }
     if (rc != CW_OK) {  /* the Python decoder says why */
-        return PyObject_CallOneArg(G[11], data);
+        return PyObject_CallOneArg(st->G[11], data);
     }
-    return build_command_long(&m);
+    return build_command_long(st, &m);
 }
 
 /* The direction code of a StreamDecoder's direction; 0: not one of the protocol's. */
@@ -414,7 +442,10 @@ static int acc_direction(PyObject *direction, int *code)
  * which the StreamDecoder's Python loop then handles. */
 static PyObject *run_frames(PyObject *self, PyObject *const *args, Py_ssize_t nargs)
 {
-    (void)self;
+    const acc_state *st = acc_state_of(self);
+    if (st == NULL) {
+        return NULL;
+    }
     if (nargs != 6 || !PyBytes_CheckExact(args[0]) || !PyList_Check(args[3]) || !PyList_Check(args[4])) {
         PyErr_SetString(PyExc_TypeError, "_run_frames(bytes, pos, direction, out, spans, base)");
         return NULL;
@@ -439,22 +470,22 @@ static PyObject *run_frames(PyObject *self, PyObject *const *args, Py_ssize_t na
         }
         switch (msg.kind) {
         case MAVLINK1_MSG_HEARTBEAT:
-            item = build_heartbeat(&msg.as.heartbeat);
+            item = build_heartbeat(st, &msg.as.heartbeat);
             break;
         case MAVLINK1_MSG_SYS_STATUS:
-            item = build_sys_status(&msg.as.sys_status);
+            item = build_sys_status(st, &msg.as.sys_status);
             break;
         case MAVLINK1_MSG_PARAM_VALUE:
-            item = build_param_value(&msg.as.param_value);
+            item = build_param_value(st, &msg.as.param_value);
             break;
         case MAVLINK1_MSG_GPS_RAW_INT:
-            item = build_gps_raw_int(&msg.as.gps_raw_int);
+            item = build_gps_raw_int(st, &msg.as.gps_raw_int);
             break;
         case MAVLINK1_MSG_ATTITUDE:
-            item = build_attitude(&msg.as.attitude);
+            item = build_attitude(st, &msg.as.attitude);
             break;
         case MAVLINK1_MSG_COMMAND_LONG:
-            item = build_command_long(&msg.as.command_long);
+            item = build_command_long(st, &msg.as.command_long);
             break;
         default:  /* a message decoded in Python */
             return PyLong_FromSsize_t(pos);
@@ -565,33 +596,43 @@ static const char *const attribute_names[] = {
     "confirmation",
 };
 
-/* bind(module_globals) -> {name: decoder}: the decoders, each in place of the
- * Python function of the same name. */
-static PyObject *bind(PyObject *self, PyObject *module_globals)
+static void acc_free(PyObject *capsule)
 {
-    (void)self;
-    if (!PyDict_Check(module_globals)) {
-        PyErr_SetString(PyExc_TypeError, "bind() takes the module's globals()");
-        return NULL;
+    acc_state *st = acc_state_of(capsule);
+    if (st == NULL) {
+        PyErr_Clear();
+        return;
     }
-    for (size_t i = 0; i < sizeof G / sizeof G[0]; i++) {
+    for (size_t i = 0; i < sizeof st->G / sizeof st->G[0]; i++) {
+        Py_CLEAR(st->G[i]);
+    }
+    for (size_t i = 0; i < sizeof st->A / sizeof st->A[0]; i++) {
+        Py_CLEAR(st->A[i]);
+    }
+    PyMem_Free(st);
+}
+
+/* Fills st from the module's globals; -1 with an error set if one is missing. */
+static int acc_fill(acc_state *st, PyObject *module_globals)
+{
+    for (size_t i = 0; i < sizeof st->G / sizeof st->G[0]; i++) {
         PyObject *value = PyDict_GetItemString(module_globals, global_names[i]);
         if (value == NULL) {
             PyErr_Format(PyExc_ImportError, "the mavlink1 module has no %s: rebuild the accelerator", global_names[i]);
-            return NULL;
+            return -1;
         }
         Py_INCREF(value);
-        Py_XSETREF(G[i], value);
+        st->G[i] = value;
     }
-    for (size_t i = 0; i < sizeof A / sizeof A[0]; i++) {
-        Py_XSETREF(A[i], PyUnicode_InternFromString(attribute_names[i]));
+    for (size_t i = 0; i < sizeof st->A / sizeof st->A[0]; i++) {
+        st->A[i] = PyUnicode_InternFromString(attribute_names[i]);
     }
     if (PyErr_Occurred()) {
-        return NULL;
+        return -1;
     }
-    for (size_t i = 0; i < sizeof S / sizeof S[0]; i++) {
-        PyObject *descr = PyObject_GetAttr(G[slot_of[i][0]], A[slot_of[i][1]]);
-        S[i] = 0;
+    for (size_t i = 0; i < sizeof st->S / sizeof st->S[0]; i++) {
+        PyObject *descr = PyObject_GetAttr(st->G[slot_of[i][0]], st->A[slot_of[i][1]]);
+        st->S[i] = 0;
         if (descr == NULL) {
             PyErr_Clear();
             continue;
@@ -599,21 +640,41 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
         if (Py_IS_TYPE(descr, &PyMemberDescr_Type)) {
             PyMemberDef *def = ((PyMemberDescrObject *)descr)->d_member;
             if (def->type == T_OBJECT_EX && !(def->flags & READONLY)) {
-                S[i] = def->offset;
+                st->S[i] = def->offset;
             }
         }
         Py_DECREF(descr);
     }
-    PyObject *out = PyDict_New();
-    for (PyMethodDef *def = decoders; out != NULL && def->ml_name != NULL; def++) {
-        PyObject *fn = PyCFunction_New(def, NULL);
-        if (fn == NULL || PyDict_SetItemString(out, def->ml_name, fn) < 0) {
-            Py_XDECREF(fn);
-            Py_CLEAR(out);
-            break;
-        }
-        Py_DECREF(fn);
+    return 0;
+}
+
+/* bind(module_globals) -> {name: decoder}: the decoders for one copy of the module,
+ * each in place of the Python function of the same name. */
+static PyObject *bind(PyObject *self, PyObject *module_globals)
+{
+    (void)self;
+    if (!PyDict_Check(module_globals)) {
+        PyErr_SetString(PyExc_TypeError, "bind() takes the module's globals()");
+        return NULL;
     }
+    acc_state *st = PyMem_Calloc(1, sizeof *st);
+    if (st == NULL) {
+        return PyErr_NoMemory();
+    }
+    PyObject *capsule = PyCapsule_New(st, ACC_CAPSULE, acc_free);
+    if (capsule == NULL) {
+        PyMem_Free(st);
+        return NULL;
+    }
+    PyObject *out = acc_fill(st, module_globals) < 0 ? NULL : PyDict_New();
+    for (PyMethodDef *def = decoders; out != NULL && def->ml_name != NULL; def++) {
+        PyObject *fn = PyCFunction_New(def, capsule);
+        if (fn == NULL || PyDict_SetItemString(out, def->ml_name, fn) < 0) {
+            Py_CLEAR(out);
+        }
+        Py_XDECREF(fn);
+    }
+    Py_DECREF(capsule);  /* the functions hold it */
     return out;
 }
 

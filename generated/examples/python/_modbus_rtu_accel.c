@@ -25,12 +25,16 @@
 const char cw_accel_build[] = "codeword-accelerator-build:" CW_ACCEL_BUILD;
 #endif
 
-/* Module globals the functions use (classes, tables, the Python decoders), attribute
- * names and numeric constants: filled by bind(). */
-static PyObject *G[7];
-static PyObject *A[5];
-/* For each slot: the class and the attribute (indices into G and A), and where the
- * class's instances keep it (0: not a plain slot, set through setattr). */
+/* What the functions bound to one copy of the module use: its globals (classes,
+ * tables, the Python decoders), attribute names, numeric constants and where its
+ * classes keep each attribute. Each bind() makes one, held by its functions. */
+typedef struct {
+    PyObject *G[7];
+    PyObject *A[5];
+    Py_ssize_t S[9];  /* offset of the slot in the instance; 0: set through setattr */
+} acc_state;
+
+/* For each slot: the class and the attribute (indices into G and A). */
 static const unsigned short slot_of[9][2] = {
     {0, 0},
     {0, 1},
@@ -42,7 +46,13 @@ static const unsigned short slot_of[9][2] = {
     {4, 3},
     {4, 4},
 };
-static Py_ssize_t S[9];
+
+#define ACC_CAPSULE "codeword.modbus_rtu.accelerator"
+
+static inline acc_state *acc_state_of(PyObject *capsule)
+{
+    return (acc_state *)PyCapsule_GetPointer(capsule, ACC_CAPSULE);
+}
 
 static inline PyObject *acc_new(PyObject *cls)
 {
@@ -53,17 +63,17 @@ static inline PyObject *acc_new(PyObject *cls)
 /* Sets attribute `slot` of obj to value and releases value (NULL: an error already set):
  * straight into the instance's slot where the class has one, as its member descriptor
  * would, else through setattr. */
-static inline int acc_set(PyObject *obj, int slot, PyObject *value)
+static inline int acc_set(const acc_state *st, PyObject *obj, int slot, PyObject *value)
 {
     if (value == NULL) {
         return -1;
     }
-    if (S[slot] > 0) {
-        PyObject **place = (PyObject **)(void *)((char *)obj + S[slot]);
+    if (st->S[slot] > 0) {
+        PyObject **place = (PyObject **)(void *)((char *)obj + st->S[slot]);
         Py_XSETREF(*place, value);
         return 0;
     }
-    int rc = PyObject_SetAttr(obj, A[slot_of[slot][1]], value);
+    int rc = PyObject_SetAttr(obj, st->A[slot_of[slot][1]], value);
     Py_DECREF(value);
     return rc;
 }
@@ -79,15 +89,15 @@ static inline PyObject *acc_lookup(PyObject *table, PyObject *key)
     return value;
 }
 
-static PyObject *build_read_holding_registers(const modbus_rtu_read_holding_registers_t *m)
+static PyObject *build_read_holding_registers(const acc_state *st, const modbus_rtu_read_holding_registers_t *m)
 {
-    PyObject *o = acc_new(G[0]);
+    PyObject *o = acc_new(st->G[0]);
     if (o == NULL) {
         return NULL;
     }
-    if (acc_set(o, 0, PyLong_FromUnsignedLongLong((unsigned long long)m->address)) < 0) goto fail;
-    if (acc_set(o, 1, PyLong_FromUnsignedLongLong((unsigned long long)m->start)) < 0) goto fail;
-    if (acc_set(o, 2, PyLong_FromUnsignedLongLong((unsigned long long)m->quantity)) < 0) goto fail;
+    if (acc_set(st, o, 0, PyLong_FromUnsignedLongLong((unsigned long long)m->address)) < 0) goto fail;
+    if (acc_set(st, o, 1, PyLong_FromUnsignedLongLong((unsigned long long)m->start)) < 0) goto fail;
+    if (acc_set(st, o, 2, PyLong_FromUnsignedLongLong((unsigned long long)m->quantity)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -96,10 +106,13 @@ fail:
 
 static PyObject *decode_read_holding_registers(PyObject *self, PyObject *data)
 {
+    const acc_state *st = acc_state_of(self);
     modbus_rtu_read_holding_registers_t m;
     Py_buffer view;
     int rc;
-    (void)self;
+    if (st == NULL) {
+        return NULL;
+    }
     if (PyBytes_CheckExact(data)) {
         rc = modbus_rtu_read_holding_registers_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
     } else if (PyObject_GetBuffer(data, &view, PyBUF_SIMPLE) == 0) {
@@ -110,20 +123,20 @@ static PyObject *decode_read_holding_registers(PyObject *self, PyObject *data)
         rc = CW_ERR_LENGTH;
     }
     if (rc != CW_OK) {  /* the Python decoder says why */
-        return PyObject_CallOneArg(G[1], data);
+        return PyObject_CallOneArg(st->G[1], data);
     }
-    return build_read_holding_registers(&m);
+    return build_read_holding_registers(st, &m);
 }
 
-static PyObject *build_write_multiple_registers_response(const modbus_rtu_write_multiple_registers_response_t *m)
+static PyObject *build_write_multiple_registers_response(const acc_state *st, const modbus_rtu_write_multiple_registers_response_t *m)
 {
-    PyObject *o = acc_new(G[2]);
+    PyObject *o = acc_new(st->G[2]);
     if (o == NULL) {
         return NULL;
     }
-    if (acc_set(o, 3, PyLong_FromUnsignedLongLong((unsigned long long)m->address)) < 0) goto fail;
-    if (acc_set(o, 4, PyLong_FromUnsignedLongLong((unsigned long long)m->start)) < 0) goto fail;
-    if (acc_set(o, 5, PyLong_FromUnsignedLongLong((unsigned long long)m->quantity)) < 0) goto fail;
+    if (acc_set(st, o, 3, PyLong_FromUnsignedLongLong((unsigned long long)m->address)) < 0) goto fail;
+    if (acc_set(st, o, 4, PyLong_FromUnsignedLongLong((unsigned long long)m->start)) < 0) goto fail;
+    if (acc_set(st, o, 5, PyLong_FromUnsignedLongLong((unsigned long long)m->quantity)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -132,10 +145,13 @@ fail:
 
 static PyObject *decode_write_multiple_registers_response(PyObject *self, PyObject *data)
 {
+    const acc_state *st = acc_state_of(self);
     modbus_rtu_write_multiple_registers_response_t m;
     Py_buffer view;
     int rc;
-    (void)self;
+    if (st == NULL) {
+        return NULL;
+    }
     if (PyBytes_CheckExact(data)) {
         rc = modbus_rtu_write_multiple_registers_response_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
     } else if (PyObject_GetBuffer(data, &view, PyBUF_SIMPLE) == 0) {
@@ -146,20 +162,20 @@ static PyObject *decode_write_multiple_registers_response(PyObject *self, PyObje
         rc = CW_ERR_LENGTH;
     }
     if (rc != CW_OK) {  /* the Python decoder says why */
-        return PyObject_CallOneArg(G[3], data);
+        return PyObject_CallOneArg(st->G[3], data);
     }
-    return build_write_multiple_registers_response(&m);
+    return build_write_multiple_registers_response(st, &m);
 }
 
-static PyObject *build_exception_response(const modbus_rtu_exception_response_t *m)
+static PyObject *build_exception_response(const acc_state *st, const modbus_rtu_exception_response_t *m)
 {
-    PyObject *o = acc_new(G[4]);
+    PyObject *o = acc_new(st->G[4]);
     if (o == NULL) {
         return NULL;
     }
-    if (acc_set(o, 6, PyLong_FromUnsignedLongLong((unsigned long long)m->address)) < 0) goto fail;
-    if (acc_set(o, 7, PyLong_FromUnsignedLongLong((unsigned long long)m->function)) < 0) goto fail;
-    if (acc_set(o, 8, acc_lookup(G[5], PyLong_FromUnsignedLongLong((unsigned long long)m->exception_code))) < 0) goto fail;
+    if (acc_set(st, o, 6, PyLong_FromUnsignedLongLong((unsigned long long)m->address)) < 0) goto fail;
+    if (acc_set(st, o, 7, PyLong_FromUnsignedLongLong((unsigned long long)m->function)) < 0) goto fail;
+    if (acc_set(st, o, 8, acc_lookup(st->G[5], PyLong_FromUnsignedLongLong((unsigned long long)m->exception_code))) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -168,10 +184,13 @@ fail:
 
 static PyObject *decode_exception_response(PyObject *self, PyObject *data)
 {
+    const acc_state *st = acc_state_of(self);
     modbus_rtu_exception_response_t m;
     Py_buffer view;
     int rc;
-    (void)self;
+    if (st == NULL) {
+        return NULL;
+    }
     if (PyBytes_CheckExact(data)) {
         rc = modbus_rtu_exception_response_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
     } else if (PyObject_GetBuffer(data, &view, PyBUF_SIMPLE) == 0) {
@@ -182,9 +201,9 @@ static PyObject *decode_exception_response(PyObject *self, PyObject *data)
         rc = CW_ERR_LENGTH;
     }
     if (rc != CW_OK) {  /* the Python decoder says why */
-        return PyObject_CallOneArg(G[6], data);
+        return PyObject_CallOneArg(st->G[6], data);
     }
-    return build_exception_response(&m);
+    return build_exception_response(st, &m);
 }
 
 /* The direction code of a StreamDecoder's direction; 0: not one of the protocol's. */
@@ -212,7 +231,10 @@ static int acc_direction(PyObject *direction, int *code)
  * which the StreamDecoder's Python loop then handles. */
 static PyObject *run_frames(PyObject *self, PyObject *const *args, Py_ssize_t nargs)
 {
-    (void)self;
+    const acc_state *st = acc_state_of(self);
+    if (st == NULL) {
+        return NULL;
+    }
     if (nargs != 6 || !PyBytes_CheckExact(args[0]) || !PyList_Check(args[3]) || !PyList_Check(args[4])) {
         PyErr_SetString(PyExc_TypeError, "_run_frames(bytes, pos, direction, out, spans, base)");
         return NULL;
@@ -237,13 +259,13 @@ static PyObject *run_frames(PyObject *self, PyObject *const *args, Py_ssize_t na
         }
         switch (msg.kind) {
         case MODBUS_RTU_MSG_READ_HOLDING_REGISTERS:
-            item = build_read_holding_registers(&msg.as.read_holding_registers);
+            item = build_read_holding_registers(st, &msg.as.read_holding_registers);
             break;
         case MODBUS_RTU_MSG_WRITE_MULTIPLE_REGISTERS_RESPONSE:
-            item = build_write_multiple_registers_response(&msg.as.write_multiple_registers_response);
+            item = build_write_multiple_registers_response(st, &msg.as.write_multiple_registers_response);
             break;
         case MODBUS_RTU_MSG_EXCEPTION_RESPONSE:
-            item = build_exception_response(&msg.as.exception_response);
+            item = build_exception_response(st, &msg.as.exception_response);
             break;
         default:  /* a message decoded in Python */
             return PyLong_FromSsize_t(pos);
@@ -296,33 +318,43 @@ static const char *const attribute_names[] = {
     "exception_code",
 };
 
-/* bind(module_globals) -> {name: decoder}: the decoders, each in place of the
- * Python function of the same name. */
-static PyObject *bind(PyObject *self, PyObject *module_globals)
+static void acc_free(PyObject *capsule)
 {
-    (void)self;
-    if (!PyDict_Check(module_globals)) {
-        PyErr_SetString(PyExc_TypeError, "bind() takes the module's globals()");
-        return NULL;
+    acc_state *st = acc_state_of(capsule);
+    if (st == NULL) {
+        PyErr_Clear();
+        return;
     }
-    for (size_t i = 0; i < sizeof G / sizeof G[0]; i++) {
+    for (size_t i = 0; i < sizeof st->G / sizeof st->G[0]; i++) {
+        Py_CLEAR(st->G[i]);
+    }
+    for (size_t i = 0; i < sizeof st->A / sizeof st->A[0]; i++) {
+        Py_CLEAR(st->A[i]);
+    }
+    PyMem_Free(st);
+}
+
+/* Fills st from the module's globals; -1 with an error set if one is missing. */
+static int acc_fill(acc_state *st, PyObject *module_globals)
+{
+    for (size_t i = 0; i < sizeof st->G / sizeof st->G[0]; i++) {
         PyObject *value = PyDict_GetItemString(module_globals, global_names[i]);
         if (value == NULL) {
             PyErr_Format(PyExc_ImportError, "the modbus_rtu module has no %s: rebuild the accelerator", global_names[i]);
-            return NULL;
+            return -1;
         }
         Py_INCREF(value);
-        Py_XSETREF(G[i], value);
+        st->G[i] = value;
     }
-    for (size_t i = 0; i < sizeof A / sizeof A[0]; i++) {
-        Py_XSETREF(A[i], PyUnicode_InternFromString(attribute_names[i]));
+    for (size_t i = 0; i < sizeof st->A / sizeof st->A[0]; i++) {
+        st->A[i] = PyUnicode_InternFromString(attribute_names[i]);
     }
     if (PyErr_Occurred()) {
-        return NULL;
+        return -1;
     }
-    for (size_t i = 0; i < sizeof S / sizeof S[0]; i++) {
-        PyObject *descr = PyObject_GetAttr(G[slot_of[i][0]], A[slot_of[i][1]]);
-        S[i] = 0;
+    for (size_t i = 0; i < sizeof st->S / sizeof st->S[0]; i++) {
+        PyObject *descr = PyObject_GetAttr(st->G[slot_of[i][0]], st->A[slot_of[i][1]]);
+        st->S[i] = 0;
         if (descr == NULL) {
             PyErr_Clear();
             continue;
@@ -330,21 +362,41 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
         if (Py_IS_TYPE(descr, &PyMemberDescr_Type)) {
             PyMemberDef *def = ((PyMemberDescrObject *)descr)->d_member;
             if (def->type == T_OBJECT_EX && !(def->flags & READONLY)) {
-                S[i] = def->offset;
+                st->S[i] = def->offset;
             }
         }
         Py_DECREF(descr);
     }
-    PyObject *out = PyDict_New();
-    for (PyMethodDef *def = decoders; out != NULL && def->ml_name != NULL; def++) {
-        PyObject *fn = PyCFunction_New(def, NULL);
-        if (fn == NULL || PyDict_SetItemString(out, def->ml_name, fn) < 0) {
-            Py_XDECREF(fn);
-            Py_CLEAR(out);
-            break;
-        }
-        Py_DECREF(fn);
+    return 0;
+}
+
+/* bind(module_globals) -> {name: decoder}: the decoders for one copy of the module,
+ * each in place of the Python function of the same name. */
+static PyObject *bind(PyObject *self, PyObject *module_globals)
+{
+    (void)self;
+    if (!PyDict_Check(module_globals)) {
+        PyErr_SetString(PyExc_TypeError, "bind() takes the module's globals()");
+        return NULL;
     }
+    acc_state *st = PyMem_Calloc(1, sizeof *st);
+    if (st == NULL) {
+        return PyErr_NoMemory();
+    }
+    PyObject *capsule = PyCapsule_New(st, ACC_CAPSULE, acc_free);
+    if (capsule == NULL) {
+        PyMem_Free(st);
+        return NULL;
+    }
+    PyObject *out = acc_fill(st, module_globals) < 0 ? NULL : PyDict_New();
+    for (PyMethodDef *def = decoders; out != NULL && def->ml_name != NULL; def++) {
+        PyObject *fn = PyCFunction_New(def, capsule);
+        if (fn == NULL || PyDict_SetItemString(out, def->ml_name, fn) < 0) {
+            Py_CLEAR(out);
+        }
+        Py_XDECREF(fn);
+    }
+    Py_DECREF(capsule);  /* the functions hold it */
     return out;
 }
 

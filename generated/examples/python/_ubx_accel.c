@@ -25,12 +25,16 @@
 const char cw_accel_build[] = "codeword-accelerator-build:" CW_ACCEL_BUILD;
 #endif
 
-/* Module globals the functions use (classes, tables, the Python decoders), attribute
- * names and numeric constants: filled by bind(). */
-static PyObject *G[12];
-static PyObject *A[52];
-/* For each slot: the class and the attribute (indices into G and A), and where the
- * class's instances keep it (0: not a plain slot, set through setattr). */
+/* What the functions bound to one copy of the module use: its globals (classes,
+ * tables, the Python decoders), attribute names, numeric constants and where its
+ * classes keep each attribute. Each bind() makes one, held by its functions. */
+typedef struct {
+    PyObject *G[12];
+    PyObject *A[52];
+    Py_ssize_t S[61];  /* offset of the slot in the instance; 0: set through setattr */
+} acc_state;
+
+/* For each slot: the class and the attribute (indices into G and A). */
 static const unsigned short slot_of[61][2] = {
     {0, 0},
     {0, 1},
@@ -94,7 +98,13 @@ static const unsigned short slot_of[61][2] = {
     {10, 50},
     {10, 51},
 };
-static Py_ssize_t S[61];
+
+#define ACC_CAPSULE "codeword.ubx.accelerator"
+
+static inline acc_state *acc_state_of(PyObject *capsule)
+{
+    return (acc_state *)PyCapsule_GetPointer(capsule, ACC_CAPSULE);
+}
 
 static inline PyObject *acc_new(PyObject *cls)
 {
@@ -105,29 +115,29 @@ static inline PyObject *acc_new(PyObject *cls)
 /* Sets attribute `slot` of obj to value and releases value (NULL: an error already set):
  * straight into the instance's slot where the class has one, as its member descriptor
  * would, else through setattr. */
-static inline int acc_set(PyObject *obj, int slot, PyObject *value)
+static inline int acc_set(const acc_state *st, PyObject *obj, int slot, PyObject *value)
 {
     if (value == NULL) {
         return -1;
     }
-    if (S[slot] > 0) {
-        PyObject **place = (PyObject **)(void *)((char *)obj + S[slot]);
+    if (st->S[slot] > 0) {
+        PyObject **place = (PyObject **)(void *)((char *)obj + st->S[slot]);
         Py_XSETREF(*place, value);
         return 0;
     }
-    int rc = PyObject_SetAttr(obj, A[slot_of[slot][1]], value);
+    int rc = PyObject_SetAttr(obj, st->A[slot_of[slot][1]], value);
     Py_DECREF(value);
     return rc;
 }
 
-static PyObject *build_ack_nak(const ubx_ack_nak_t *m)
+static PyObject *build_ack_nak(const acc_state *st, const ubx_ack_nak_t *m)
 {
-    PyObject *o = acc_new(G[0]);
+    PyObject *o = acc_new(st->G[0]);
     if (o == NULL) {
         return NULL;
     }
-    if (acc_set(o, 0, PyLong_FromUnsignedLongLong((unsigned long long)m->clsID)) < 0) goto fail;
-    if (acc_set(o, 1, PyLong_FromUnsignedLongLong((unsigned long long)m->msgID)) < 0) goto fail;
+    if (acc_set(st, o, 0, PyLong_FromUnsignedLongLong((unsigned long long)m->clsID)) < 0) goto fail;
+    if (acc_set(st, o, 1, PyLong_FromUnsignedLongLong((unsigned long long)m->msgID)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -136,10 +146,13 @@ fail:
 
 static PyObject *decode_ack_nak(PyObject *self, PyObject *data)
 {
+    const acc_state *st = acc_state_of(self);
     ubx_ack_nak_t m;
     Py_buffer view;
     int rc;
-    (void)self;
+    if (st == NULL) {
+        return NULL;
+    }
     if (PyBytes_CheckExact(data)) {
         rc = ubx_ack_nak_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
     } else if (PyObject_GetBuffer(data, &view, PyBUF_SIMPLE) == 0) {
@@ -150,19 +163,19 @@ static PyObject *decode_ack_nak(PyObject *self, PyObject *data)
         rc = CW_ERR_LENGTH;
     }
     if (rc != CW_OK) {  /* the Python decoder says why */
-        return PyObject_CallOneArg(G[1], data);
+        return PyObject_CallOneArg(st->G[1], data);
     }
-    return build_ack_nak(&m);
+    return build_ack_nak(st, &m);
 }
 
-static PyObject *build_ack_ack(const ubx_ack_ack_t *m)
+static PyObject *build_ack_ack(const acc_state *st, const ubx_ack_ack_t *m)
 {
-    PyObject *o = acc_new(G[2]);
+    PyObject *o = acc_new(st->G[2]);
     if (o == NULL) {
         return NULL;
     }
-    if (acc_set(o, 2, PyLong_FromUnsignedLongLong((unsigned long long)m->clsID)) < 0) goto fail;
-    if (acc_set(o, 3, PyLong_FromUnsignedLongLong((unsigned long long)m->msgID)) < 0) goto fail;
+    if (acc_set(st, o, 2, PyLong_FromUnsignedLongLong((unsigned long long)m->clsID)) < 0) goto fail;
+    if (acc_set(st, o, 3, PyLong_FromUnsignedLongLong((unsigned long long)m->msgID)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -171,10 +184,13 @@ fail:
 
 static PyObject *decode_ack_ack(PyObject *self, PyObject *data)
 {
+    const acc_state *st = acc_state_of(self);
     ubx_ack_ack_t m;
     Py_buffer view;
     int rc;
-    (void)self;
+    if (st == NULL) {
+        return NULL;
+    }
     if (PyBytes_CheckExact(data)) {
         rc = ubx_ack_ack_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
     } else if (PyObject_GetBuffer(data, &view, PyBUF_SIMPLE) == 0) {
@@ -185,23 +201,26 @@ static PyObject *decode_ack_ack(PyObject *self, PyObject *data)
         rc = CW_ERR_LENGTH;
     }
     if (rc != CW_OK) {  /* the Python decoder says why */
-        return PyObject_CallOneArg(G[3], data);
+        return PyObject_CallOneArg(st->G[3], data);
     }
-    return build_ack_ack(&m);
+    return build_ack_ack(st, &m);
 }
 
-static PyObject *build_cfg_rate_poll(const ubx_cfg_rate_poll_t *m)
+static PyObject *build_cfg_rate_poll(const acc_state *st, const ubx_cfg_rate_poll_t *m)
 {
     (void)m;  /* the message has no values */
-    return acc_new(G[4]);
+    return acc_new(st->G[4]);
 }
 
 static PyObject *decode_cfg_rate_poll(PyObject *self, PyObject *data)
 {
+    const acc_state *st = acc_state_of(self);
     ubx_cfg_rate_poll_t m;
     Py_buffer view;
     int rc;
-    (void)self;
+    if (st == NULL) {
+        return NULL;
+    }
     if (PyBytes_CheckExact(data)) {
         rc = ubx_cfg_rate_poll_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
     } else if (PyObject_GetBuffer(data, &view, PyBUF_SIMPLE) == 0) {
@@ -212,20 +231,20 @@ static PyObject *decode_cfg_rate_poll(PyObject *self, PyObject *data)
         rc = CW_ERR_LENGTH;
     }
     if (rc != CW_OK) {  /* the Python decoder says why */
-        return PyObject_CallOneArg(G[5], data);
+        return PyObject_CallOneArg(st->G[5], data);
     }
-    return build_cfg_rate_poll(&m);
+    return build_cfg_rate_poll(st, &m);
 }
 
-static PyObject *build_cfg_rate(const ubx_cfg_rate_t *m)
+static PyObject *build_cfg_rate(const acc_state *st, const ubx_cfg_rate_t *m)
 {
-    PyObject *o = acc_new(G[6]);
+    PyObject *o = acc_new(st->G[6]);
     if (o == NULL) {
         return NULL;
     }
-    if (acc_set(o, 4, PyLong_FromUnsignedLongLong((unsigned long long)m->measRate)) < 0) goto fail;
-    if (acc_set(o, 5, PyLong_FromUnsignedLongLong((unsigned long long)m->navRate)) < 0) goto fail;
-    if (acc_set(o, 6, PyLong_FromUnsignedLongLong((unsigned long long)m->timeRef)) < 0) goto fail;
+    if (acc_set(st, o, 4, PyLong_FromUnsignedLongLong((unsigned long long)m->measRate)) < 0) goto fail;
+    if (acc_set(st, o, 5, PyLong_FromUnsignedLongLong((unsigned long long)m->navRate)) < 0) goto fail;
+    if (acc_set(st, o, 6, PyLong_FromUnsignedLongLong((unsigned long long)m->timeRef)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -234,10 +253,13 @@ fail:
 
 static PyObject *decode_cfg_rate(PyObject *self, PyObject *data)
 {
+    const acc_state *st = acc_state_of(self);
     ubx_cfg_rate_t m;
     Py_buffer view;
     int rc;
-    (void)self;
+    if (st == NULL) {
+        return NULL;
+    }
     if (PyBytes_CheckExact(data)) {
         rc = ubx_cfg_rate_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
     } else if (PyObject_GetBuffer(data, &view, PyBUF_SIMPLE) == 0) {
@@ -248,24 +270,24 @@ static PyObject *decode_cfg_rate(PyObject *self, PyObject *data)
         rc = CW_ERR_LENGTH;
     }
     if (rc != CW_OK) {  /* the Python decoder says why */
-        return PyObject_CallOneArg(G[7], data);
+        return PyObject_CallOneArg(st->G[7], data);
     }
-    return build_cfg_rate(&m);
+    return build_cfg_rate(st, &m);
 }
 
-static PyObject *build_nav_posllh(const ubx_nav_posllh_t *m)
+static PyObject *build_nav_posllh(const acc_state *st, const ubx_nav_posllh_t *m)
 {
-    PyObject *o = acc_new(G[8]);
+    PyObject *o = acc_new(st->G[8]);
     if (o == NULL) {
         return NULL;
     }
-    if (acc_set(o, 7, PyLong_FromUnsignedLongLong((unsigned long long)m->iTOW)) < 0) goto fail;
-    if (acc_set(o, 8, PyFloat_FromDouble((double)m->lon * 1e-07)) < 0) goto fail;
-    if (acc_set(o, 9, PyFloat_FromDouble((double)m->lat * 1e-07)) < 0) goto fail;
-    if (acc_set(o, 10, PyLong_FromLongLong((long long)m->height)) < 0) goto fail;
-    if (acc_set(o, 11, PyLong_FromLongLong((long long)m->hMSL)) < 0) goto fail;
-    if (acc_set(o, 12, PyLong_FromUnsignedLongLong((unsigned long long)m->hAcc)) < 0) goto fail;
-    if (acc_set(o, 13, PyLong_FromUnsignedLongLong((unsigned long long)m->vAcc)) < 0) goto fail;
+    if (acc_set(st, o, 7, PyLong_FromUnsignedLongLong((unsigned long long)m->iTOW)) < 0) goto fail;
+    if (acc_set(st, o, 8, PyFloat_FromDouble((double)m->lon * 1e-07)) < 0) goto fail;
+    if (acc_set(st, o, 9, PyFloat_FromDouble((double)m->lat * 1e-07)) < 0) goto fail;
+    if (acc_set(st, o, 10, PyLong_FromLongLong((long long)m->height)) < 0) goto fail;
+    if (acc_set(st, o, 11, PyLong_FromLongLong((long long)m->hMSL)) < 0) goto fail;
+    if (acc_set(st, o, 12, PyLong_FromUnsignedLongLong((unsigned long long)m->hAcc)) < 0) goto fail;
+    if (acc_set(st, o, 13, PyLong_FromUnsignedLongLong((unsigned long long)m->vAcc)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -274,10 +296,13 @@ fail:
 
 static PyObject *decode_nav_posllh(PyObject *self, PyObject *data)
 {
+    const acc_state *st = acc_state_of(self);
     ubx_nav_posllh_t m;
     Py_buffer view;
     int rc;
-    (void)self;
+    if (st == NULL) {
+        return NULL;
+    }
     if (PyBytes_CheckExact(data)) {
         rc = ubx_nav_posllh_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
     } else if (PyObject_GetBuffer(data, &view, PyBUF_SIMPLE) == 0) {
@@ -288,64 +313,64 @@ static PyObject *decode_nav_posllh(PyObject *self, PyObject *data)
         rc = CW_ERR_LENGTH;
     }
     if (rc != CW_OK) {  /* the Python decoder says why */
-        return PyObject_CallOneArg(G[9], data);
+        return PyObject_CallOneArg(st->G[9], data);
     }
-    return build_nav_posllh(&m);
+    return build_nav_posllh(st, &m);
 }
 
-static PyObject *build_nav_pvt(const ubx_nav_pvt_t *m)
+static PyObject *build_nav_pvt(const acc_state *st, const ubx_nav_pvt_t *m)
 {
-    PyObject *o = acc_new(G[10]);
+    PyObject *o = acc_new(st->G[10]);
     if (o == NULL) {
         return NULL;
     }
-    if (acc_set(o, 14, PyLong_FromUnsignedLongLong((unsigned long long)m->iTOW)) < 0) goto fail;
-    if (acc_set(o, 15, PyLong_FromUnsignedLongLong((unsigned long long)m->year)) < 0) goto fail;
-    if (acc_set(o, 16, PyLong_FromUnsignedLongLong((unsigned long long)m->month)) < 0) goto fail;
-    if (acc_set(o, 17, PyLong_FromUnsignedLongLong((unsigned long long)m->day)) < 0) goto fail;
-    if (acc_set(o, 18, PyLong_FromUnsignedLongLong((unsigned long long)m->hour)) < 0) goto fail;
-    if (acc_set(o, 19, PyLong_FromUnsignedLongLong((unsigned long long)m->min)) < 0) goto fail;
-    if (acc_set(o, 20, PyLong_FromUnsignedLongLong((unsigned long long)m->second)) < 0) goto fail;
-    if (acc_set(o, 21, PyBool_FromLong(m->validDate)) < 0) goto fail;
-    if (acc_set(o, 22, PyBool_FromLong(m->validTime)) < 0) goto fail;
-    if (acc_set(o, 23, PyBool_FromLong(m->fullyResolved)) < 0) goto fail;
-    if (acc_set(o, 24, PyBool_FromLong(m->validMag)) < 0) goto fail;
-    if (acc_set(o, 25, PyLong_FromUnsignedLongLong((unsigned long long)m->tAcc)) < 0) goto fail;
-    if (acc_set(o, 26, PyLong_FromLongLong((long long)m->nano)) < 0) goto fail;
-    if (acc_set(o, 27, PyLong_FromUnsignedLongLong((unsigned long long)m->fixType)) < 0) goto fail;
-    if (acc_set(o, 28, PyBool_FromLong(m->gnssFixOk)) < 0) goto fail;
-    if (acc_set(o, 29, PyBool_FromLong(m->diffSoln)) < 0) goto fail;
-    if (acc_set(o, 30, PyLong_FromUnsignedLongLong((unsigned long long)m->psmState)) < 0) goto fail;
-    if (acc_set(o, 31, PyBool_FromLong(m->headVehValid)) < 0) goto fail;
-    if (acc_set(o, 32, PyLong_FromUnsignedLongLong((unsigned long long)m->carrSoln)) < 0) goto fail;
-    if (acc_set(o, 33, PyLong_FromUnsignedLongLong((unsigned long long)m->reserved)) < 0) goto fail;
-    if (acc_set(o, 34, PyBool_FromLong(m->confirmedAvai)) < 0) goto fail;
-    if (acc_set(o, 35, PyBool_FromLong(m->confirmedDate)) < 0) goto fail;
-    if (acc_set(o, 36, PyBool_FromLong(m->confirmedTime)) < 0) goto fail;
-    if (acc_set(o, 37, PyLong_FromUnsignedLongLong((unsigned long long)m->numSV)) < 0) goto fail;
-    if (acc_set(o, 38, PyFloat_FromDouble((double)m->lon * 1e-07)) < 0) goto fail;
-    if (acc_set(o, 39, PyFloat_FromDouble((double)m->lat * 1e-07)) < 0) goto fail;
-    if (acc_set(o, 40, PyLong_FromLongLong((long long)m->height)) < 0) goto fail;
-    if (acc_set(o, 41, PyLong_FromLongLong((long long)m->hMSL)) < 0) goto fail;
-    if (acc_set(o, 42, PyLong_FromUnsignedLongLong((unsigned long long)m->hAcc)) < 0) goto fail;
-    if (acc_set(o, 43, PyLong_FromUnsignedLongLong((unsigned long long)m->vAcc)) < 0) goto fail;
-    if (acc_set(o, 44, PyLong_FromLongLong((long long)m->velN)) < 0) goto fail;
-    if (acc_set(o, 45, PyLong_FromLongLong((long long)m->velE)) < 0) goto fail;
-    if (acc_set(o, 46, PyLong_FromLongLong((long long)m->velD)) < 0) goto fail;
-    if (acc_set(o, 47, PyLong_FromLongLong((long long)m->gSpeed)) < 0) goto fail;
-    if (acc_set(o, 48, PyFloat_FromDouble((double)m->headMot * 1e-05)) < 0) goto fail;
-    if (acc_set(o, 49, PyLong_FromUnsignedLongLong((unsigned long long)m->sAcc)) < 0) goto fail;
-    if (acc_set(o, 50, PyFloat_FromDouble((double)m->headAcc * 1e-05)) < 0) goto fail;
-    if (acc_set(o, 51, PyFloat_FromDouble((double)m->pDOP * 0.01)) < 0) goto fail;
-    if (acc_set(o, 52, PyBool_FromLong(m->invalidLlh)) < 0) goto fail;
-    if (acc_set(o, 53, PyLong_FromUnsignedLongLong((unsigned long long)m->lastCorrectionAge)) < 0) goto fail;
-    if (acc_set(o, 54, PyLong_FromUnsignedLongLong((unsigned long long)m->reserved1)) < 0) goto fail;
-    if (acc_set(o, 55, PyBool_FromLong(m->authTime)) < 0) goto fail;
-    if (acc_set(o, 56, PyBool_FromLong(m->nmaFixStatus)) < 0) goto fail;
-    if (acc_set(o, 57, PyLong_FromUnsignedLongLong((unsigned long long)m->reserved0)) < 0) goto fail;
-    if (acc_set(o, 58, PyFloat_FromDouble((double)m->headVeh * 1e-05)) < 0) goto fail;
-    if (acc_set(o, 59, PyFloat_FromDouble((double)m->magDec * 0.01)) < 0) goto fail;
-    if (acc_set(o, 60, PyFloat_FromDouble((double)m->magAcc * 0.01)) < 0) goto fail;
+    if (acc_set(st, o, 14, PyLong_FromUnsignedLongLong((unsigned long long)m->iTOW)) < 0) goto fail;
+    if (acc_set(st, o, 15, PyLong_FromUnsignedLongLong((unsigned long long)m->year)) < 0) goto fail;
+    if (acc_set(st, o, 16, PyLong_FromUnsignedLongLong((unsigned long long)m->month)) < 0) goto fail;
+    if (acc_set(st, o, 17, PyLong_FromUnsignedLongLong((unsigned long long)m->day)) < 0) goto fail;
+    if (acc_set(st, o, 18, PyLong_FromUnsignedLongLong((unsigned long long)m->hour)) < 0) goto fail;
+    if (acc_set(st, o, 19, PyLong_FromUnsignedLongLong((unsigned long long)m->min)) < 0) goto fail;
+    if (acc_set(st, o, 20, PyLong_FromUnsignedLongLong((unsigned long long)m->second)) < 0) goto fail;
+    if (acc_set(st, o, 21, PyBool_FromLong(m->validDate)) < 0) goto fail;
+    if (acc_set(st, o, 22, PyBool_FromLong(m->validTime)) < 0) goto fail;
+    if (acc_set(st, o, 23, PyBool_FromLong(m->fullyResolved)) < 0) goto fail;
+    if (acc_set(st, o, 24, PyBool_FromLong(m->validMag)) < 0) goto fail;
+    if (acc_set(st, o, 25, PyLong_FromUnsignedLongLong((unsigned long long)m->tAcc)) < 0) goto fail;
+    if (acc_set(st, o, 26, PyLong_FromLongLong((long long)m->nano)) < 0) goto fail;
+    if (acc_set(st, o, 27, PyLong_FromUnsignedLongLong((unsigned long long)m->fixType)) < 0) goto fail;
+    if (acc_set(st, o, 28, PyBool_FromLong(m->gnssFixOk)) < 0) goto fail;
+    if (acc_set(st, o, 29, PyBool_FromLong(m->diffSoln)) < 0) goto fail;
+    if (acc_set(st, o, 30, PyLong_FromUnsignedLongLong((unsigned long long)m->psmState)) < 0) goto fail;
+    if (acc_set(st, o, 31, PyBool_FromLong(m->headVehValid)) < 0) goto fail;
+    if (acc_set(st, o, 32, PyLong_FromUnsignedLongLong((unsigned long long)m->carrSoln)) < 0) goto fail;
+    if (acc_set(st, o, 33, PyLong_FromUnsignedLongLong((unsigned long long)m->reserved)) < 0) goto fail;
+    if (acc_set(st, o, 34, PyBool_FromLong(m->confirmedAvai)) < 0) goto fail;
+    if (acc_set(st, o, 35, PyBool_FromLong(m->confirmedDate)) < 0) goto fail;
+    if (acc_set(st, o, 36, PyBool_FromLong(m->confirmedTime)) < 0) goto fail;
+    if (acc_set(st, o, 37, PyLong_FromUnsignedLongLong((unsigned long long)m->numSV)) < 0) goto fail;
+    if (acc_set(st, o, 38, PyFloat_FromDouble((double)m->lon * 1e-07)) < 0) goto fail;
+    if (acc_set(st, o, 39, PyFloat_FromDouble((double)m->lat * 1e-07)) < 0) goto fail;
+    if (acc_set(st, o, 40, PyLong_FromLongLong((long long)m->height)) < 0) goto fail;
+    if (acc_set(st, o, 41, PyLong_FromLongLong((long long)m->hMSL)) < 0) goto fail;
+    if (acc_set(st, o, 42, PyLong_FromUnsignedLongLong((unsigned long long)m->hAcc)) < 0) goto fail;
+    if (acc_set(st, o, 43, PyLong_FromUnsignedLongLong((unsigned long long)m->vAcc)) < 0) goto fail;
+    if (acc_set(st, o, 44, PyLong_FromLongLong((long long)m->velN)) < 0) goto fail;
+    if (acc_set(st, o, 45, PyLong_FromLongLong((long long)m->velE)) < 0) goto fail;
+    if (acc_set(st, o, 46, PyLong_FromLongLong((long long)m->velD)) < 0) goto fail;
+    if (acc_set(st, o, 47, PyLong_FromLongLong((long long)m->gSpeed)) < 0) goto fail;
+    if (acc_set(st, o, 48, PyFloat_FromDouble((double)m->headMot * 1e-05)) < 0) goto fail;
+    if (acc_set(st, o, 49, PyLong_FromUnsignedLongLong((unsigned long long)m->sAcc)) < 0) goto fail;
+    if (acc_set(st, o, 50, PyFloat_FromDouble((double)m->headAcc * 1e-05)) < 0) goto fail;
+    if (acc_set(st, o, 51, PyFloat_FromDouble((double)m->pDOP * 0.01)) < 0) goto fail;
+    if (acc_set(st, o, 52, PyBool_FromLong(m->invalidLlh)) < 0) goto fail;
+    if (acc_set(st, o, 53, PyLong_FromUnsignedLongLong((unsigned long long)m->lastCorrectionAge)) < 0) goto fail;
+    if (acc_set(st, o, 54, PyLong_FromUnsignedLongLong((unsigned long long)m->reserved1)) < 0) goto fail;
+    if (acc_set(st, o, 55, PyBool_FromLong(m->authTime)) < 0) goto fail;
+    if (acc_set(st, o, 56, PyBool_FromLong(m->nmaFixStatus)) < 0) goto fail;
+    if (acc_set(st, o, 57, PyLong_FromUnsignedLongLong((unsigned long long)m->reserved0)) < 0) goto fail;
+    if (acc_set(st, o, 58, PyFloat_FromDouble((double)m->headVeh * 1e-05)) < 0) goto fail;
+    if (acc_set(st, o, 59, PyFloat_FromDouble((double)m->magDec * 0.01)) < 0) goto fail;
+    if (acc_set(st, o, 60, PyFloat_FromDouble((double)m->magAcc * 0.01)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -354,10 +379,13 @@ fail:
 
 static PyObject *decode_nav_pvt(PyObject *self, PyObject *data)
 {
+    const acc_state *st = acc_state_of(self);
     ubx_nav_pvt_t m;
     Py_buffer view;
     int rc;
-    (void)self;
+    if (st == NULL) {
+        return NULL;
+    }
     if (PyBytes_CheckExact(data)) {
         rc = ubx_nav_pvt_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
     } else if (PyObject_GetBuffer(data, &view, PyBUF_SIMPLE) == 0) {
@@ -368,9 +396,9 @@ static PyObject *decode_nav_pvt(PyObject *self, PyObject *data)
         rc = CW_ERR_LENGTH;
     }
     if (rc != CW_OK) {  /* the Python decoder says why */
-        return PyObject_CallOneArg(G[11], data);
+        return PyObject_CallOneArg(st->G[11], data);
     }
-    return build_nav_pvt(&m);
+    return build_nav_pvt(st, &m);
 }
 
 /* The direction code of a StreamDecoder's direction; 0: not one of the protocol's. */
@@ -390,7 +418,10 @@ static int acc_direction(PyObject *direction, int *code)
  * which the StreamDecoder's Python loop then handles. */
 static PyObject *run_frames(PyObject *self, PyObject *const *args, Py_ssize_t nargs)
 {
-    (void)self;
+    const acc_state *st = acc_state_of(self);
+    if (st == NULL) {
+        return NULL;
+    }
     if (nargs != 6 || !PyBytes_CheckExact(args[0]) || !PyList_Check(args[3]) || !PyList_Check(args[4])) {
         PyErr_SetString(PyExc_TypeError, "_run_frames(bytes, pos, direction, out, spans, base)");
         return NULL;
@@ -415,22 +446,22 @@ static PyObject *run_frames(PyObject *self, PyObject *const *args, Py_ssize_t na
         }
         switch (msg.kind) {
         case UBX_MSG_ACK_NAK:
-            item = build_ack_nak(&msg.as.ack_nak);
+            item = build_ack_nak(st, &msg.as.ack_nak);
             break;
         case UBX_MSG_ACK_ACK:
-            item = build_ack_ack(&msg.as.ack_ack);
+            item = build_ack_ack(st, &msg.as.ack_ack);
             break;
         case UBX_MSG_CFG_RATE_POLL:
-            item = build_cfg_rate_poll(&msg.as.cfg_rate_poll);
+            item = build_cfg_rate_poll(st, &msg.as.cfg_rate_poll);
             break;
         case UBX_MSG_CFG_RATE:
-            item = build_cfg_rate(&msg.as.cfg_rate);
+            item = build_cfg_rate(st, &msg.as.cfg_rate);
             break;
         case UBX_MSG_NAV_POSLLH:
-            item = build_nav_posllh(&msg.as.nav_posllh);
+            item = build_nav_posllh(st, &msg.as.nav_posllh);
             break;
         case UBX_MSG_NAV_PVT:
-            item = build_nav_pvt(&msg.as.nav_pvt);
+            item = build_nav_pvt(st, &msg.as.nav_pvt);
             break;
         default:  /* a message decoded in Python */
             return PyLong_FromSsize_t(pos);
@@ -538,33 +569,43 @@ static const char *const attribute_names[] = {
     "magAcc",
 };
 
-/* bind(module_globals) -> {name: decoder}: the decoders, each in place of the
- * Python function of the same name. */
-static PyObject *bind(PyObject *self, PyObject *module_globals)
+static void acc_free(PyObject *capsule)
 {
-    (void)self;
-    if (!PyDict_Check(module_globals)) {
-        PyErr_SetString(PyExc_TypeError, "bind() takes the module's globals()");
-        return NULL;
+    acc_state *st = acc_state_of(capsule);
+    if (st == NULL) {
+        PyErr_Clear();
+        return;
     }
-    for (size_t i = 0; i < sizeof G / sizeof G[0]; i++) {
+    for (size_t i = 0; i < sizeof st->G / sizeof st->G[0]; i++) {
+        Py_CLEAR(st->G[i]);
+    }
+    for (size_t i = 0; i < sizeof st->A / sizeof st->A[0]; i++) {
+        Py_CLEAR(st->A[i]);
+    }
+    PyMem_Free(st);
+}
+
+/* Fills st from the module's globals; -1 with an error set if one is missing. */
+static int acc_fill(acc_state *st, PyObject *module_globals)
+{
+    for (size_t i = 0; i < sizeof st->G / sizeof st->G[0]; i++) {
         PyObject *value = PyDict_GetItemString(module_globals, global_names[i]);
         if (value == NULL) {
             PyErr_Format(PyExc_ImportError, "the ubx module has no %s: rebuild the accelerator", global_names[i]);
-            return NULL;
+            return -1;
         }
         Py_INCREF(value);
-        Py_XSETREF(G[i], value);
+        st->G[i] = value;
     }
-    for (size_t i = 0; i < sizeof A / sizeof A[0]; i++) {
-        Py_XSETREF(A[i], PyUnicode_InternFromString(attribute_names[i]));
+    for (size_t i = 0; i < sizeof st->A / sizeof st->A[0]; i++) {
+        st->A[i] = PyUnicode_InternFromString(attribute_names[i]);
     }
     if (PyErr_Occurred()) {
-        return NULL;
+        return -1;
     }
-    for (size_t i = 0; i < sizeof S / sizeof S[0]; i++) {
-        PyObject *descr = PyObject_GetAttr(G[slot_of[i][0]], A[slot_of[i][1]]);
-        S[i] = 0;
+    for (size_t i = 0; i < sizeof st->S / sizeof st->S[0]; i++) {
+        PyObject *descr = PyObject_GetAttr(st->G[slot_of[i][0]], st->A[slot_of[i][1]]);
+        st->S[i] = 0;
         if (descr == NULL) {
             PyErr_Clear();
             continue;
@@ -572,21 +613,41 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
         if (Py_IS_TYPE(descr, &PyMemberDescr_Type)) {
             PyMemberDef *def = ((PyMemberDescrObject *)descr)->d_member;
             if (def->type == T_OBJECT_EX && !(def->flags & READONLY)) {
-                S[i] = def->offset;
+                st->S[i] = def->offset;
             }
         }
         Py_DECREF(descr);
     }
-    PyObject *out = PyDict_New();
-    for (PyMethodDef *def = decoders; out != NULL && def->ml_name != NULL; def++) {
-        PyObject *fn = PyCFunction_New(def, NULL);
-        if (fn == NULL || PyDict_SetItemString(out, def->ml_name, fn) < 0) {
-            Py_XDECREF(fn);
-            Py_CLEAR(out);
-            break;
-        }
-        Py_DECREF(fn);
+    return 0;
+}
+
+/* bind(module_globals) -> {name: decoder}: the decoders for one copy of the module,
+ * each in place of the Python function of the same name. */
+static PyObject *bind(PyObject *self, PyObject *module_globals)
+{
+    (void)self;
+    if (!PyDict_Check(module_globals)) {
+        PyErr_SetString(PyExc_TypeError, "bind() takes the module's globals()");
+        return NULL;
     }
+    acc_state *st = PyMem_Calloc(1, sizeof *st);
+    if (st == NULL) {
+        return PyErr_NoMemory();
+    }
+    PyObject *capsule = PyCapsule_New(st, ACC_CAPSULE, acc_free);
+    if (capsule == NULL) {
+        PyMem_Free(st);
+        return NULL;
+    }
+    PyObject *out = acc_fill(st, module_globals) < 0 ? NULL : PyDict_New();
+    for (PyMethodDef *def = decoders; out != NULL && def->ml_name != NULL; def++) {
+        PyObject *fn = PyCFunction_New(def, capsule);
+        if (fn == NULL || PyDict_SetItemString(out, def->ml_name, fn) < 0) {
+            Py_CLEAR(out);
+        }
+        Py_XDECREF(fn);
+    }
+    Py_DECREF(capsule);  /* the functions hold it */
     return out;
 }
 

@@ -510,27 +510,25 @@ def _as_input(data: object) -> _Buffer:
 
 def _encode_read_holding_registers(m: ReadHoldingRegisters) -> bytes:
     r_address = m.address
-    if r_address.__class__ is not int and (not isinstance(r_address, int) or r_address.__class__ is bool):
-        raise _enc('read_holding_registers', 'address', r_address, 'type', 'an int')
-    if not 0 <= r_address <= 255:
-        raise _enc('read_holding_registers', 'address', r_address, 'range', '0..255', None)
-    r_function = 3
+    if r_address.__class__ is not int or not 0 <= r_address <= 255:
+        if not isinstance(r_address, int) or r_address.__class__ is bool:
+            raise _enc('read_holding_registers', 'address', r_address, 'type', 'an int')
+        if not 0 <= r_address <= 255:
+            raise _enc('read_holding_registers', 'address', r_address, 'range', '0..255', None)
     r_start = m.start
-    if r_start.__class__ is not int and (not isinstance(r_start, int) or r_start.__class__ is bool):
-        raise _enc('read_holding_registers', 'start', r_start, 'type', 'an int')
-    if not 0 <= r_start <= 65535:
-        raise _enc('read_holding_registers', 'start', r_start, 'range', '0..65535', None)
+    if r_start.__class__ is not int or not 0 <= r_start <= 65535:
+        if not isinstance(r_start, int) or r_start.__class__ is bool:
+            raise _enc('read_holding_registers', 'start', r_start, 'type', 'an int')
+        if not 0 <= r_start <= 65535:
+            raise _enc('read_holding_registers', 'start', r_start, 'range', '0..65535', None)
     r_quantity = m.quantity
-    if r_quantity.__class__ is not int and (not isinstance(r_quantity, int) or r_quantity.__class__ is bool):
-        raise _enc('read_holding_registers', 'quantity', r_quantity, 'type', 'an int')
-    if not 1 <= r_quantity <= 125:
-        raise _enc('read_holding_registers', 'quantity', r_quantity, 'range', '1..125', None)
-    r_crc = 0
-    b = bytearray(8)
-    _S_read_holding_registers_0.pack_into(b, 0, r_address, 3, r_start, r_quantity)
-    _S_read_holding_registers_1.pack_into(b, 6, r_crc)
-    b[6:8] = _checksum_crc16_8005_ffff_rr_0_6(b, 0).to_bytes(2, 'little')
-    return bytes(b)
+    if r_quantity.__class__ is not int or not 1 <= r_quantity <= 125:
+        if not isinstance(r_quantity, int) or r_quantity.__class__ is bool:
+            raise _enc('read_holding_registers', 'quantity', r_quantity, 'type', 'an int')
+        if not 1 <= r_quantity <= 125:
+            raise _enc('read_holding_registers', 'quantity', r_quantity, 'range', '1..125', None)
+    h = _S_read_holding_registers_0.pack(r_address, 3, r_start, r_quantity)
+    return h + _checksum_crc16_8005_ffff_rr_0_6(h, 0).to_bytes(2, 'little')
 
 
 def _decode_read_holding_registers(d: _Buffer) -> ReadHoldingRegisters:
@@ -554,1012 +552,1137 @@ def _decode_read_holding_registers(d: _Buffer) -> ReadHoldingRegisters:
 
 def _encode_read_holding_registers_response(m: ReadHoldingRegistersResponse) -> bytes:
     r_address = m.address
-    if r_address.__class__ is not int and (not isinstance(r_address, int) or r_address.__class__ is bool):
-        raise _enc('read_holding_registers_response', 'address', r_address, 'type', 'an int')
-    if not 0 <= r_address <= 255:
-        raise _enc('read_holding_registers_response', 'address', r_address, 'range', '0..255', None)
-    r_function = 3
+    if r_address.__class__ is not int or not 0 <= r_address <= 255:
+        if not isinstance(r_address, int) or r_address.__class__ is bool:
+            raise _enc('read_holding_registers_response', 'address', r_address, 'type', 'an int')
+        if not 0 <= r_address <= 255:
+            raise _enc('read_holding_registers_response', 'address', r_address, 'range', '0..255', None)
     g_registers = m.registers
     if not isinstance(g_registers, (list, tuple)) or len(g_registers) > 125:
         raise _enc('read_holding_registers_response', 'registers', g_registers, 'count', 'a list of at most 125 values')
     if len(g_registers) > 0:
         r_9registers_0 = g_registers[0]
-        if r_9registers_0.__class__ is not int and (not isinstance(r_9registers_0, int) or r_9registers_0.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[0]', r_9registers_0, 'type', 'an int')
-        if not 0 <= r_9registers_0 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[0]', r_9registers_0, 'range', '0..65535', None)
+        if r_9registers_0.__class__ is not int or not 0 <= r_9registers_0 <= 65535:
+            if not isinstance(r_9registers_0, int) or r_9registers_0.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[0]', r_9registers_0, 'type', 'an int')
+            if not 0 <= r_9registers_0 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[0]', r_9registers_0, 'range', '0..65535', None)
     else:
         r_9registers_0 = 0
     if len(g_registers) > 1:
         r_9registers_1 = g_registers[1]
-        if r_9registers_1.__class__ is not int and (not isinstance(r_9registers_1, int) or r_9registers_1.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[1]', r_9registers_1, 'type', 'an int')
-        if not 0 <= r_9registers_1 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[1]', r_9registers_1, 'range', '0..65535', None)
+        if r_9registers_1.__class__ is not int or not 0 <= r_9registers_1 <= 65535:
+            if not isinstance(r_9registers_1, int) or r_9registers_1.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[1]', r_9registers_1, 'type', 'an int')
+            if not 0 <= r_9registers_1 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[1]', r_9registers_1, 'range', '0..65535', None)
     else:
         r_9registers_1 = 0
     if len(g_registers) > 2:
         r_9registers_2 = g_registers[2]
-        if r_9registers_2.__class__ is not int and (not isinstance(r_9registers_2, int) or r_9registers_2.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[2]', r_9registers_2, 'type', 'an int')
-        if not 0 <= r_9registers_2 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[2]', r_9registers_2, 'range', '0..65535', None)
+        if r_9registers_2.__class__ is not int or not 0 <= r_9registers_2 <= 65535:
+            if not isinstance(r_9registers_2, int) or r_9registers_2.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[2]', r_9registers_2, 'type', 'an int')
+            if not 0 <= r_9registers_2 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[2]', r_9registers_2, 'range', '0..65535', None)
     else:
         r_9registers_2 = 0
     if len(g_registers) > 3:
         r_9registers_3 = g_registers[3]
-        if r_9registers_3.__class__ is not int and (not isinstance(r_9registers_3, int) or r_9registers_3.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[3]', r_9registers_3, 'type', 'an int')
-        if not 0 <= r_9registers_3 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[3]', r_9registers_3, 'range', '0..65535', None)
+        if r_9registers_3.__class__ is not int or not 0 <= r_9registers_3 <= 65535:
+            if not isinstance(r_9registers_3, int) or r_9registers_3.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[3]', r_9registers_3, 'type', 'an int')
+            if not 0 <= r_9registers_3 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[3]', r_9registers_3, 'range', '0..65535', None)
     else:
         r_9registers_3 = 0
     if len(g_registers) > 4:
         r_9registers_4 = g_registers[4]
-        if r_9registers_4.__class__ is not int and (not isinstance(r_9registers_4, int) or r_9registers_4.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[4]', r_9registers_4, 'type', 'an int')
-        if not 0 <= r_9registers_4 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[4]', r_9registers_4, 'range', '0..65535', None)
+        if r_9registers_4.__class__ is not int or not 0 <= r_9registers_4 <= 65535:
+            if not isinstance(r_9registers_4, int) or r_9registers_4.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[4]', r_9registers_4, 'type', 'an int')
+            if not 0 <= r_9registers_4 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[4]', r_9registers_4, 'range', '0..65535', None)
     else:
         r_9registers_4 = 0
     if len(g_registers) > 5:
         r_9registers_5 = g_registers[5]
-        if r_9registers_5.__class__ is not int and (not isinstance(r_9registers_5, int) or r_9registers_5.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[5]', r_9registers_5, 'type', 'an int')
-        if not 0 <= r_9registers_5 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[5]', r_9registers_5, 'range', '0..65535', None)
+        if r_9registers_5.__class__ is not int or not 0 <= r_9registers_5 <= 65535:
+            if not isinstance(r_9registers_5, int) or r_9registers_5.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[5]', r_9registers_5, 'type', 'an int')
+            if not 0 <= r_9registers_5 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[5]', r_9registers_5, 'range', '0..65535', None)
     else:
         r_9registers_5 = 0
     if len(g_registers) > 6:
         r_9registers_6 = g_registers[6]
-        if r_9registers_6.__class__ is not int and (not isinstance(r_9registers_6, int) or r_9registers_6.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[6]', r_9registers_6, 'type', 'an int')
-        if not 0 <= r_9registers_6 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[6]', r_9registers_6, 'range', '0..65535', None)
+        if r_9registers_6.__class__ is not int or not 0 <= r_9registers_6 <= 65535:
+            if not isinstance(r_9registers_6, int) or r_9registers_6.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[6]', r_9registers_6, 'type', 'an int')
+            if not 0 <= r_9registers_6 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[6]', r_9registers_6, 'range', '0..65535', None)
     else:
         r_9registers_6 = 0
     if len(g_registers) > 7:
         r_9registers_7 = g_registers[7]
-        if r_9registers_7.__class__ is not int and (not isinstance(r_9registers_7, int) or r_9registers_7.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[7]', r_9registers_7, 'type', 'an int')
-        if not 0 <= r_9registers_7 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[7]', r_9registers_7, 'range', '0..65535', None)
+        if r_9registers_7.__class__ is not int or not 0 <= r_9registers_7 <= 65535:
+            if not isinstance(r_9registers_7, int) or r_9registers_7.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[7]', r_9registers_7, 'type', 'an int')
+            if not 0 <= r_9registers_7 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[7]', r_9registers_7, 'range', '0..65535', None)
     else:
         r_9registers_7 = 0
     if len(g_registers) > 8:
         r_9registers_8 = g_registers[8]
-        if r_9registers_8.__class__ is not int and (not isinstance(r_9registers_8, int) or r_9registers_8.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[8]', r_9registers_8, 'type', 'an int')
-        if not 0 <= r_9registers_8 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[8]', r_9registers_8, 'range', '0..65535', None)
+        if r_9registers_8.__class__ is not int or not 0 <= r_9registers_8 <= 65535:
+            if not isinstance(r_9registers_8, int) or r_9registers_8.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[8]', r_9registers_8, 'type', 'an int')
+            if not 0 <= r_9registers_8 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[8]', r_9registers_8, 'range', '0..65535', None)
     else:
         r_9registers_8 = 0
     if len(g_registers) > 9:
         r_9registers_9 = g_registers[9]
-        if r_9registers_9.__class__ is not int and (not isinstance(r_9registers_9, int) or r_9registers_9.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[9]', r_9registers_9, 'type', 'an int')
-        if not 0 <= r_9registers_9 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[9]', r_9registers_9, 'range', '0..65535', None)
+        if r_9registers_9.__class__ is not int or not 0 <= r_9registers_9 <= 65535:
+            if not isinstance(r_9registers_9, int) or r_9registers_9.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[9]', r_9registers_9, 'type', 'an int')
+            if not 0 <= r_9registers_9 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[9]', r_9registers_9, 'range', '0..65535', None)
     else:
         r_9registers_9 = 0
     if len(g_registers) > 10:
         r_9registers_10 = g_registers[10]
-        if r_9registers_10.__class__ is not int and (not isinstance(r_9registers_10, int) or r_9registers_10.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[10]', r_9registers_10, 'type', 'an int')
-        if not 0 <= r_9registers_10 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[10]', r_9registers_10, 'range', '0..65535', None)
+        if r_9registers_10.__class__ is not int or not 0 <= r_9registers_10 <= 65535:
+            if not isinstance(r_9registers_10, int) or r_9registers_10.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[10]', r_9registers_10, 'type', 'an int')
+            if not 0 <= r_9registers_10 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[10]', r_9registers_10, 'range', '0..65535', None)
     else:
         r_9registers_10 = 0
     if len(g_registers) > 11:
         r_9registers_11 = g_registers[11]
-        if r_9registers_11.__class__ is not int and (not isinstance(r_9registers_11, int) or r_9registers_11.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[11]', r_9registers_11, 'type', 'an int')
-        if not 0 <= r_9registers_11 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[11]', r_9registers_11, 'range', '0..65535', None)
+        if r_9registers_11.__class__ is not int or not 0 <= r_9registers_11 <= 65535:
+            if not isinstance(r_9registers_11, int) or r_9registers_11.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[11]', r_9registers_11, 'type', 'an int')
+            if not 0 <= r_9registers_11 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[11]', r_9registers_11, 'range', '0..65535', None)
     else:
         r_9registers_11 = 0
     if len(g_registers) > 12:
         r_9registers_12 = g_registers[12]
-        if r_9registers_12.__class__ is not int and (not isinstance(r_9registers_12, int) or r_9registers_12.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[12]', r_9registers_12, 'type', 'an int')
-        if not 0 <= r_9registers_12 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[12]', r_9registers_12, 'range', '0..65535', None)
+        if r_9registers_12.__class__ is not int or not 0 <= r_9registers_12 <= 65535:
+            if not isinstance(r_9registers_12, int) or r_9registers_12.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[12]', r_9registers_12, 'type', 'an int')
+            if not 0 <= r_9registers_12 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[12]', r_9registers_12, 'range', '0..65535', None)
     else:
         r_9registers_12 = 0
     if len(g_registers) > 13:
         r_9registers_13 = g_registers[13]
-        if r_9registers_13.__class__ is not int and (not isinstance(r_9registers_13, int) or r_9registers_13.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[13]', r_9registers_13, 'type', 'an int')
-        if not 0 <= r_9registers_13 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[13]', r_9registers_13, 'range', '0..65535', None)
+        if r_9registers_13.__class__ is not int or not 0 <= r_9registers_13 <= 65535:
+            if not isinstance(r_9registers_13, int) or r_9registers_13.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[13]', r_9registers_13, 'type', 'an int')
+            if not 0 <= r_9registers_13 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[13]', r_9registers_13, 'range', '0..65535', None)
     else:
         r_9registers_13 = 0
     if len(g_registers) > 14:
         r_9registers_14 = g_registers[14]
-        if r_9registers_14.__class__ is not int and (not isinstance(r_9registers_14, int) or r_9registers_14.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[14]', r_9registers_14, 'type', 'an int')
-        if not 0 <= r_9registers_14 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[14]', r_9registers_14, 'range', '0..65535', None)
+        if r_9registers_14.__class__ is not int or not 0 <= r_9registers_14 <= 65535:
+            if not isinstance(r_9registers_14, int) or r_9registers_14.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[14]', r_9registers_14, 'type', 'an int')
+            if not 0 <= r_9registers_14 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[14]', r_9registers_14, 'range', '0..65535', None)
     else:
         r_9registers_14 = 0
     if len(g_registers) > 15:
         r_9registers_15 = g_registers[15]
-        if r_9registers_15.__class__ is not int and (not isinstance(r_9registers_15, int) or r_9registers_15.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[15]', r_9registers_15, 'type', 'an int')
-        if not 0 <= r_9registers_15 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[15]', r_9registers_15, 'range', '0..65535', None)
+        if r_9registers_15.__class__ is not int or not 0 <= r_9registers_15 <= 65535:
+            if not isinstance(r_9registers_15, int) or r_9registers_15.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[15]', r_9registers_15, 'type', 'an int')
+            if not 0 <= r_9registers_15 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[15]', r_9registers_15, 'range', '0..65535', None)
     else:
         r_9registers_15 = 0
     if len(g_registers) > 16:
         r_9registers_16 = g_registers[16]
-        if r_9registers_16.__class__ is not int and (not isinstance(r_9registers_16, int) or r_9registers_16.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[16]', r_9registers_16, 'type', 'an int')
-        if not 0 <= r_9registers_16 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[16]', r_9registers_16, 'range', '0..65535', None)
+        if r_9registers_16.__class__ is not int or not 0 <= r_9registers_16 <= 65535:
+            if not isinstance(r_9registers_16, int) or r_9registers_16.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[16]', r_9registers_16, 'type', 'an int')
+            if not 0 <= r_9registers_16 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[16]', r_9registers_16, 'range', '0..65535', None)
     else:
         r_9registers_16 = 0
     if len(g_registers) > 17:
         r_9registers_17 = g_registers[17]
-        if r_9registers_17.__class__ is not int and (not isinstance(r_9registers_17, int) or r_9registers_17.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[17]', r_9registers_17, 'type', 'an int')
-        if not 0 <= r_9registers_17 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[17]', r_9registers_17, 'range', '0..65535', None)
+        if r_9registers_17.__class__ is not int or not 0 <= r_9registers_17 <= 65535:
+            if not isinstance(r_9registers_17, int) or r_9registers_17.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[17]', r_9registers_17, 'type', 'an int')
+            if not 0 <= r_9registers_17 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[17]', r_9registers_17, 'range', '0..65535', None)
     else:
         r_9registers_17 = 0
     if len(g_registers) > 18:
         r_9registers_18 = g_registers[18]
-        if r_9registers_18.__class__ is not int and (not isinstance(r_9registers_18, int) or r_9registers_18.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[18]', r_9registers_18, 'type', 'an int')
-        if not 0 <= r_9registers_18 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[18]', r_9registers_18, 'range', '0..65535', None)
+        if r_9registers_18.__class__ is not int or not 0 <= r_9registers_18 <= 65535:
+            if not isinstance(r_9registers_18, int) or r_9registers_18.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[18]', r_9registers_18, 'type', 'an int')
+            if not 0 <= r_9registers_18 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[18]', r_9registers_18, 'range', '0..65535', None)
     else:
         r_9registers_18 = 0
     if len(g_registers) > 19:
         r_9registers_19 = g_registers[19]
-        if r_9registers_19.__class__ is not int and (not isinstance(r_9registers_19, int) or r_9registers_19.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[19]', r_9registers_19, 'type', 'an int')
-        if not 0 <= r_9registers_19 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[19]', r_9registers_19, 'range', '0..65535', None)
+        if r_9registers_19.__class__ is not int or not 0 <= r_9registers_19 <= 65535:
+            if not isinstance(r_9registers_19, int) or r_9registers_19.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[19]', r_9registers_19, 'type', 'an int')
+            if not 0 <= r_9registers_19 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[19]', r_9registers_19, 'range', '0..65535', None)
     else:
         r_9registers_19 = 0
     if len(g_registers) > 20:
         r_9registers_20 = g_registers[20]
-        if r_9registers_20.__class__ is not int and (not isinstance(r_9registers_20, int) or r_9registers_20.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[20]', r_9registers_20, 'type', 'an int')
-        if not 0 <= r_9registers_20 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[20]', r_9registers_20, 'range', '0..65535', None)
+        if r_9registers_20.__class__ is not int or not 0 <= r_9registers_20 <= 65535:
+            if not isinstance(r_9registers_20, int) or r_9registers_20.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[20]', r_9registers_20, 'type', 'an int')
+            if not 0 <= r_9registers_20 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[20]', r_9registers_20, 'range', '0..65535', None)
     else:
         r_9registers_20 = 0
     if len(g_registers) > 21:
         r_9registers_21 = g_registers[21]
-        if r_9registers_21.__class__ is not int and (not isinstance(r_9registers_21, int) or r_9registers_21.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[21]', r_9registers_21, 'type', 'an int')
-        if not 0 <= r_9registers_21 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[21]', r_9registers_21, 'range', '0..65535', None)
+        if r_9registers_21.__class__ is not int or not 0 <= r_9registers_21 <= 65535:
+            if not isinstance(r_9registers_21, int) or r_9registers_21.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[21]', r_9registers_21, 'type', 'an int')
+            if not 0 <= r_9registers_21 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[21]', r_9registers_21, 'range', '0..65535', None)
     else:
         r_9registers_21 = 0
     if len(g_registers) > 22:
         r_9registers_22 = g_registers[22]
-        if r_9registers_22.__class__ is not int and (not isinstance(r_9registers_22, int) or r_9registers_22.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[22]', r_9registers_22, 'type', 'an int')
-        if not 0 <= r_9registers_22 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[22]', r_9registers_22, 'range', '0..65535', None)
+        if r_9registers_22.__class__ is not int or not 0 <= r_9registers_22 <= 65535:
+            if not isinstance(r_9registers_22, int) or r_9registers_22.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[22]', r_9registers_22, 'type', 'an int')
+            if not 0 <= r_9registers_22 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[22]', r_9registers_22, 'range', '0..65535', None)
     else:
         r_9registers_22 = 0
     if len(g_registers) > 23:
         r_9registers_23 = g_registers[23]
-        if r_9registers_23.__class__ is not int and (not isinstance(r_9registers_23, int) or r_9registers_23.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[23]', r_9registers_23, 'type', 'an int')
-        if not 0 <= r_9registers_23 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[23]', r_9registers_23, 'range', '0..65535', None)
+        if r_9registers_23.__class__ is not int or not 0 <= r_9registers_23 <= 65535:
+            if not isinstance(r_9registers_23, int) or r_9registers_23.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[23]', r_9registers_23, 'type', 'an int')
+            if not 0 <= r_9registers_23 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[23]', r_9registers_23, 'range', '0..65535', None)
     else:
         r_9registers_23 = 0
     if len(g_registers) > 24:
         r_9registers_24 = g_registers[24]
-        if r_9registers_24.__class__ is not int and (not isinstance(r_9registers_24, int) or r_9registers_24.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[24]', r_9registers_24, 'type', 'an int')
-        if not 0 <= r_9registers_24 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[24]', r_9registers_24, 'range', '0..65535', None)
+        if r_9registers_24.__class__ is not int or not 0 <= r_9registers_24 <= 65535:
+            if not isinstance(r_9registers_24, int) or r_9registers_24.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[24]', r_9registers_24, 'type', 'an int')
+            if not 0 <= r_9registers_24 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[24]', r_9registers_24, 'range', '0..65535', None)
     else:
         r_9registers_24 = 0
     if len(g_registers) > 25:
         r_9registers_25 = g_registers[25]
-        if r_9registers_25.__class__ is not int and (not isinstance(r_9registers_25, int) or r_9registers_25.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[25]', r_9registers_25, 'type', 'an int')
-        if not 0 <= r_9registers_25 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[25]', r_9registers_25, 'range', '0..65535', None)
+        if r_9registers_25.__class__ is not int or not 0 <= r_9registers_25 <= 65535:
+            if not isinstance(r_9registers_25, int) or r_9registers_25.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[25]', r_9registers_25, 'type', 'an int')
+            if not 0 <= r_9registers_25 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[25]', r_9registers_25, 'range', '0..65535', None)
     else:
         r_9registers_25 = 0
     if len(g_registers) > 26:
         r_9registers_26 = g_registers[26]
-        if r_9registers_26.__class__ is not int and (not isinstance(r_9registers_26, int) or r_9registers_26.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[26]', r_9registers_26, 'type', 'an int')
-        if not 0 <= r_9registers_26 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[26]', r_9registers_26, 'range', '0..65535', None)
+        if r_9registers_26.__class__ is not int or not 0 <= r_9registers_26 <= 65535:
+            if not isinstance(r_9registers_26, int) or r_9registers_26.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[26]', r_9registers_26, 'type', 'an int')
+            if not 0 <= r_9registers_26 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[26]', r_9registers_26, 'range', '0..65535', None)
     else:
         r_9registers_26 = 0
     if len(g_registers) > 27:
         r_9registers_27 = g_registers[27]
-        if r_9registers_27.__class__ is not int and (not isinstance(r_9registers_27, int) or r_9registers_27.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[27]', r_9registers_27, 'type', 'an int')
-        if not 0 <= r_9registers_27 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[27]', r_9registers_27, 'range', '0..65535', None)
+        if r_9registers_27.__class__ is not int or not 0 <= r_9registers_27 <= 65535:
+            if not isinstance(r_9registers_27, int) or r_9registers_27.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[27]', r_9registers_27, 'type', 'an int')
+            if not 0 <= r_9registers_27 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[27]', r_9registers_27, 'range', '0..65535', None)
     else:
         r_9registers_27 = 0
     if len(g_registers) > 28:
         r_9registers_28 = g_registers[28]
-        if r_9registers_28.__class__ is not int and (not isinstance(r_9registers_28, int) or r_9registers_28.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[28]', r_9registers_28, 'type', 'an int')
-        if not 0 <= r_9registers_28 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[28]', r_9registers_28, 'range', '0..65535', None)
+        if r_9registers_28.__class__ is not int or not 0 <= r_9registers_28 <= 65535:
+            if not isinstance(r_9registers_28, int) or r_9registers_28.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[28]', r_9registers_28, 'type', 'an int')
+            if not 0 <= r_9registers_28 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[28]', r_9registers_28, 'range', '0..65535', None)
     else:
         r_9registers_28 = 0
     if len(g_registers) > 29:
         r_9registers_29 = g_registers[29]
-        if r_9registers_29.__class__ is not int and (not isinstance(r_9registers_29, int) or r_9registers_29.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[29]', r_9registers_29, 'type', 'an int')
-        if not 0 <= r_9registers_29 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[29]', r_9registers_29, 'range', '0..65535', None)
+        if r_9registers_29.__class__ is not int or not 0 <= r_9registers_29 <= 65535:
+            if not isinstance(r_9registers_29, int) or r_9registers_29.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[29]', r_9registers_29, 'type', 'an int')
+            if not 0 <= r_9registers_29 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[29]', r_9registers_29, 'range', '0..65535', None)
     else:
         r_9registers_29 = 0
     if len(g_registers) > 30:
         r_9registers_30 = g_registers[30]
-        if r_9registers_30.__class__ is not int and (not isinstance(r_9registers_30, int) or r_9registers_30.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[30]', r_9registers_30, 'type', 'an int')
-        if not 0 <= r_9registers_30 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[30]', r_9registers_30, 'range', '0..65535', None)
+        if r_9registers_30.__class__ is not int or not 0 <= r_9registers_30 <= 65535:
+            if not isinstance(r_9registers_30, int) or r_9registers_30.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[30]', r_9registers_30, 'type', 'an int')
+            if not 0 <= r_9registers_30 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[30]', r_9registers_30, 'range', '0..65535', None)
     else:
         r_9registers_30 = 0
     if len(g_registers) > 31:
         r_9registers_31 = g_registers[31]
-        if r_9registers_31.__class__ is not int and (not isinstance(r_9registers_31, int) or r_9registers_31.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[31]', r_9registers_31, 'type', 'an int')
-        if not 0 <= r_9registers_31 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[31]', r_9registers_31, 'range', '0..65535', None)
+        if r_9registers_31.__class__ is not int or not 0 <= r_9registers_31 <= 65535:
+            if not isinstance(r_9registers_31, int) or r_9registers_31.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[31]', r_9registers_31, 'type', 'an int')
+            if not 0 <= r_9registers_31 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[31]', r_9registers_31, 'range', '0..65535', None)
     else:
         r_9registers_31 = 0
     if len(g_registers) > 32:
         r_9registers_32 = g_registers[32]
-        if r_9registers_32.__class__ is not int and (not isinstance(r_9registers_32, int) or r_9registers_32.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[32]', r_9registers_32, 'type', 'an int')
-        if not 0 <= r_9registers_32 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[32]', r_9registers_32, 'range', '0..65535', None)
+        if r_9registers_32.__class__ is not int or not 0 <= r_9registers_32 <= 65535:
+            if not isinstance(r_9registers_32, int) or r_9registers_32.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[32]', r_9registers_32, 'type', 'an int')
+            if not 0 <= r_9registers_32 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[32]', r_9registers_32, 'range', '0..65535', None)
     else:
         r_9registers_32 = 0
     if len(g_registers) > 33:
         r_9registers_33 = g_registers[33]
-        if r_9registers_33.__class__ is not int and (not isinstance(r_9registers_33, int) or r_9registers_33.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[33]', r_9registers_33, 'type', 'an int')
-        if not 0 <= r_9registers_33 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[33]', r_9registers_33, 'range', '0..65535', None)
+        if r_9registers_33.__class__ is not int or not 0 <= r_9registers_33 <= 65535:
+            if not isinstance(r_9registers_33, int) or r_9registers_33.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[33]', r_9registers_33, 'type', 'an int')
+            if not 0 <= r_9registers_33 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[33]', r_9registers_33, 'range', '0..65535', None)
     else:
         r_9registers_33 = 0
     if len(g_registers) > 34:
         r_9registers_34 = g_registers[34]
-        if r_9registers_34.__class__ is not int and (not isinstance(r_9registers_34, int) or r_9registers_34.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[34]', r_9registers_34, 'type', 'an int')
-        if not 0 <= r_9registers_34 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[34]', r_9registers_34, 'range', '0..65535', None)
+        if r_9registers_34.__class__ is not int or not 0 <= r_9registers_34 <= 65535:
+            if not isinstance(r_9registers_34, int) or r_9registers_34.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[34]', r_9registers_34, 'type', 'an int')
+            if not 0 <= r_9registers_34 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[34]', r_9registers_34, 'range', '0..65535', None)
     else:
         r_9registers_34 = 0
     if len(g_registers) > 35:
         r_9registers_35 = g_registers[35]
-        if r_9registers_35.__class__ is not int and (not isinstance(r_9registers_35, int) or r_9registers_35.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[35]', r_9registers_35, 'type', 'an int')
-        if not 0 <= r_9registers_35 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[35]', r_9registers_35, 'range', '0..65535', None)
+        if r_9registers_35.__class__ is not int or not 0 <= r_9registers_35 <= 65535:
+            if not isinstance(r_9registers_35, int) or r_9registers_35.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[35]', r_9registers_35, 'type', 'an int')
+            if not 0 <= r_9registers_35 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[35]', r_9registers_35, 'range', '0..65535', None)
     else:
         r_9registers_35 = 0
     if len(g_registers) > 36:
         r_9registers_36 = g_registers[36]
-        if r_9registers_36.__class__ is not int and (not isinstance(r_9registers_36, int) or r_9registers_36.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[36]', r_9registers_36, 'type', 'an int')
-        if not 0 <= r_9registers_36 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[36]', r_9registers_36, 'range', '0..65535', None)
+        if r_9registers_36.__class__ is not int or not 0 <= r_9registers_36 <= 65535:
+            if not isinstance(r_9registers_36, int) or r_9registers_36.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[36]', r_9registers_36, 'type', 'an int')
+            if not 0 <= r_9registers_36 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[36]', r_9registers_36, 'range', '0..65535', None)
     else:
         r_9registers_36 = 0
     if len(g_registers) > 37:
         r_9registers_37 = g_registers[37]
-        if r_9registers_37.__class__ is not int and (not isinstance(r_9registers_37, int) or r_9registers_37.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[37]', r_9registers_37, 'type', 'an int')
-        if not 0 <= r_9registers_37 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[37]', r_9registers_37, 'range', '0..65535', None)
+        if r_9registers_37.__class__ is not int or not 0 <= r_9registers_37 <= 65535:
+            if not isinstance(r_9registers_37, int) or r_9registers_37.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[37]', r_9registers_37, 'type', 'an int')
+            if not 0 <= r_9registers_37 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[37]', r_9registers_37, 'range', '0..65535', None)
     else:
         r_9registers_37 = 0
     if len(g_registers) > 38:
         r_9registers_38 = g_registers[38]
-        if r_9registers_38.__class__ is not int and (not isinstance(r_9registers_38, int) or r_9registers_38.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[38]', r_9registers_38, 'type', 'an int')
-        if not 0 <= r_9registers_38 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[38]', r_9registers_38, 'range', '0..65535', None)
+        if r_9registers_38.__class__ is not int or not 0 <= r_9registers_38 <= 65535:
+            if not isinstance(r_9registers_38, int) or r_9registers_38.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[38]', r_9registers_38, 'type', 'an int')
+            if not 0 <= r_9registers_38 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[38]', r_9registers_38, 'range', '0..65535', None)
     else:
         r_9registers_38 = 0
     if len(g_registers) > 39:
         r_9registers_39 = g_registers[39]
-        if r_9registers_39.__class__ is not int and (not isinstance(r_9registers_39, int) or r_9registers_39.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[39]', r_9registers_39, 'type', 'an int')
-        if not 0 <= r_9registers_39 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[39]', r_9registers_39, 'range', '0..65535', None)
+        if r_9registers_39.__class__ is not int or not 0 <= r_9registers_39 <= 65535:
+            if not isinstance(r_9registers_39, int) or r_9registers_39.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[39]', r_9registers_39, 'type', 'an int')
+            if not 0 <= r_9registers_39 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[39]', r_9registers_39, 'range', '0..65535', None)
     else:
         r_9registers_39 = 0
     if len(g_registers) > 40:
         r_9registers_40 = g_registers[40]
-        if r_9registers_40.__class__ is not int and (not isinstance(r_9registers_40, int) or r_9registers_40.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[40]', r_9registers_40, 'type', 'an int')
-        if not 0 <= r_9registers_40 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[40]', r_9registers_40, 'range', '0..65535', None)
+        if r_9registers_40.__class__ is not int or not 0 <= r_9registers_40 <= 65535:
+            if not isinstance(r_9registers_40, int) or r_9registers_40.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[40]', r_9registers_40, 'type', 'an int')
+            if not 0 <= r_9registers_40 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[40]', r_9registers_40, 'range', '0..65535', None)
     else:
         r_9registers_40 = 0
     if len(g_registers) > 41:
         r_9registers_41 = g_registers[41]
-        if r_9registers_41.__class__ is not int and (not isinstance(r_9registers_41, int) or r_9registers_41.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[41]', r_9registers_41, 'type', 'an int')
-        if not 0 <= r_9registers_41 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[41]', r_9registers_41, 'range', '0..65535', None)
+        if r_9registers_41.__class__ is not int or not 0 <= r_9registers_41 <= 65535:
+            if not isinstance(r_9registers_41, int) or r_9registers_41.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[41]', r_9registers_41, 'type', 'an int')
+            if not 0 <= r_9registers_41 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[41]', r_9registers_41, 'range', '0..65535', None)
     else:
         r_9registers_41 = 0
     if len(g_registers) > 42:
         r_9registers_42 = g_registers[42]
-        if r_9registers_42.__class__ is not int and (not isinstance(r_9registers_42, int) or r_9registers_42.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[42]', r_9registers_42, 'type', 'an int')
-        if not 0 <= r_9registers_42 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[42]', r_9registers_42, 'range', '0..65535', None)
+        if r_9registers_42.__class__ is not int or not 0 <= r_9registers_42 <= 65535:
+            if not isinstance(r_9registers_42, int) or r_9registers_42.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[42]', r_9registers_42, 'type', 'an int')
+            if not 0 <= r_9registers_42 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[42]', r_9registers_42, 'range', '0..65535', None)
     else:
         r_9registers_42 = 0
     if len(g_registers) > 43:
         r_9registers_43 = g_registers[43]
-        if r_9registers_43.__class__ is not int and (not isinstance(r_9registers_43, int) or r_9registers_43.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[43]', r_9registers_43, 'type', 'an int')
-        if not 0 <= r_9registers_43 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[43]', r_9registers_43, 'range', '0..65535', None)
+        if r_9registers_43.__class__ is not int or not 0 <= r_9registers_43 <= 65535:
+            if not isinstance(r_9registers_43, int) or r_9registers_43.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[43]', r_9registers_43, 'type', 'an int')
+            if not 0 <= r_9registers_43 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[43]', r_9registers_43, 'range', '0..65535', None)
     else:
         r_9registers_43 = 0
     if len(g_registers) > 44:
         r_9registers_44 = g_registers[44]
-        if r_9registers_44.__class__ is not int and (not isinstance(r_9registers_44, int) or r_9registers_44.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[44]', r_9registers_44, 'type', 'an int')
-        if not 0 <= r_9registers_44 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[44]', r_9registers_44, 'range', '0..65535', None)
+        if r_9registers_44.__class__ is not int or not 0 <= r_9registers_44 <= 65535:
+            if not isinstance(r_9registers_44, int) or r_9registers_44.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[44]', r_9registers_44, 'type', 'an int')
+            if not 0 <= r_9registers_44 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[44]', r_9registers_44, 'range', '0..65535', None)
     else:
         r_9registers_44 = 0
     if len(g_registers) > 45:
         r_9registers_45 = g_registers[45]
-        if r_9registers_45.__class__ is not int and (not isinstance(r_9registers_45, int) or r_9registers_45.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[45]', r_9registers_45, 'type', 'an int')
-        if not 0 <= r_9registers_45 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[45]', r_9registers_45, 'range', '0..65535', None)
+        if r_9registers_45.__class__ is not int or not 0 <= r_9registers_45 <= 65535:
+            if not isinstance(r_9registers_45, int) or r_9registers_45.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[45]', r_9registers_45, 'type', 'an int')
+            if not 0 <= r_9registers_45 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[45]', r_9registers_45, 'range', '0..65535', None)
     else:
         r_9registers_45 = 0
     if len(g_registers) > 46:
         r_9registers_46 = g_registers[46]
-        if r_9registers_46.__class__ is not int and (not isinstance(r_9registers_46, int) or r_9registers_46.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[46]', r_9registers_46, 'type', 'an int')
-        if not 0 <= r_9registers_46 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[46]', r_9registers_46, 'range', '0..65535', None)
+        if r_9registers_46.__class__ is not int or not 0 <= r_9registers_46 <= 65535:
+            if not isinstance(r_9registers_46, int) or r_9registers_46.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[46]', r_9registers_46, 'type', 'an int')
+            if not 0 <= r_9registers_46 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[46]', r_9registers_46, 'range', '0..65535', None)
     else:
         r_9registers_46 = 0
     if len(g_registers) > 47:
         r_9registers_47 = g_registers[47]
-        if r_9registers_47.__class__ is not int and (not isinstance(r_9registers_47, int) or r_9registers_47.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[47]', r_9registers_47, 'type', 'an int')
-        if not 0 <= r_9registers_47 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[47]', r_9registers_47, 'range', '0..65535', None)
+        if r_9registers_47.__class__ is not int or not 0 <= r_9registers_47 <= 65535:
+            if not isinstance(r_9registers_47, int) or r_9registers_47.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[47]', r_9registers_47, 'type', 'an int')
+            if not 0 <= r_9registers_47 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[47]', r_9registers_47, 'range', '0..65535', None)
     else:
         r_9registers_47 = 0
     if len(g_registers) > 48:
         r_9registers_48 = g_registers[48]
-        if r_9registers_48.__class__ is not int and (not isinstance(r_9registers_48, int) or r_9registers_48.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[48]', r_9registers_48, 'type', 'an int')
-        if not 0 <= r_9registers_48 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[48]', r_9registers_48, 'range', '0..65535', None)
+        if r_9registers_48.__class__ is not int or not 0 <= r_9registers_48 <= 65535:
+            if not isinstance(r_9registers_48, int) or r_9registers_48.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[48]', r_9registers_48, 'type', 'an int')
+            if not 0 <= r_9registers_48 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[48]', r_9registers_48, 'range', '0..65535', None)
     else:
         r_9registers_48 = 0
     if len(g_registers) > 49:
         r_9registers_49 = g_registers[49]
-        if r_9registers_49.__class__ is not int and (not isinstance(r_9registers_49, int) or r_9registers_49.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[49]', r_9registers_49, 'type', 'an int')
-        if not 0 <= r_9registers_49 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[49]', r_9registers_49, 'range', '0..65535', None)
+        if r_9registers_49.__class__ is not int or not 0 <= r_9registers_49 <= 65535:
+            if not isinstance(r_9registers_49, int) or r_9registers_49.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[49]', r_9registers_49, 'type', 'an int')
+            if not 0 <= r_9registers_49 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[49]', r_9registers_49, 'range', '0..65535', None)
     else:
         r_9registers_49 = 0
     if len(g_registers) > 50:
         r_9registers_50 = g_registers[50]
-        if r_9registers_50.__class__ is not int and (not isinstance(r_9registers_50, int) or r_9registers_50.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[50]', r_9registers_50, 'type', 'an int')
-        if not 0 <= r_9registers_50 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[50]', r_9registers_50, 'range', '0..65535', None)
+        if r_9registers_50.__class__ is not int or not 0 <= r_9registers_50 <= 65535:
+            if not isinstance(r_9registers_50, int) or r_9registers_50.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[50]', r_9registers_50, 'type', 'an int')
+            if not 0 <= r_9registers_50 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[50]', r_9registers_50, 'range', '0..65535', None)
     else:
         r_9registers_50 = 0
     if len(g_registers) > 51:
         r_9registers_51 = g_registers[51]
-        if r_9registers_51.__class__ is not int and (not isinstance(r_9registers_51, int) or r_9registers_51.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[51]', r_9registers_51, 'type', 'an int')
-        if not 0 <= r_9registers_51 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[51]', r_9registers_51, 'range', '0..65535', None)
+        if r_9registers_51.__class__ is not int or not 0 <= r_9registers_51 <= 65535:
+            if not isinstance(r_9registers_51, int) or r_9registers_51.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[51]', r_9registers_51, 'type', 'an int')
+            if not 0 <= r_9registers_51 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[51]', r_9registers_51, 'range', '0..65535', None)
     else:
         r_9registers_51 = 0
     if len(g_registers) > 52:
         r_9registers_52 = g_registers[52]
-        if r_9registers_52.__class__ is not int and (not isinstance(r_9registers_52, int) or r_9registers_52.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[52]', r_9registers_52, 'type', 'an int')
-        if not 0 <= r_9registers_52 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[52]', r_9registers_52, 'range', '0..65535', None)
+        if r_9registers_52.__class__ is not int or not 0 <= r_9registers_52 <= 65535:
+            if not isinstance(r_9registers_52, int) or r_9registers_52.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[52]', r_9registers_52, 'type', 'an int')
+            if not 0 <= r_9registers_52 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[52]', r_9registers_52, 'range', '0..65535', None)
     else:
         r_9registers_52 = 0
     if len(g_registers) > 53:
         r_9registers_53 = g_registers[53]
-        if r_9registers_53.__class__ is not int and (not isinstance(r_9registers_53, int) or r_9registers_53.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[53]', r_9registers_53, 'type', 'an int')
-        if not 0 <= r_9registers_53 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[53]', r_9registers_53, 'range', '0..65535', None)
+        if r_9registers_53.__class__ is not int or not 0 <= r_9registers_53 <= 65535:
+            if not isinstance(r_9registers_53, int) or r_9registers_53.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[53]', r_9registers_53, 'type', 'an int')
+            if not 0 <= r_9registers_53 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[53]', r_9registers_53, 'range', '0..65535', None)
     else:
         r_9registers_53 = 0
     if len(g_registers) > 54:
         r_9registers_54 = g_registers[54]
-        if r_9registers_54.__class__ is not int and (not isinstance(r_9registers_54, int) or r_9registers_54.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[54]', r_9registers_54, 'type', 'an int')
-        if not 0 <= r_9registers_54 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[54]', r_9registers_54, 'range', '0..65535', None)
+        if r_9registers_54.__class__ is not int or not 0 <= r_9registers_54 <= 65535:
+            if not isinstance(r_9registers_54, int) or r_9registers_54.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[54]', r_9registers_54, 'type', 'an int')
+            if not 0 <= r_9registers_54 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[54]', r_9registers_54, 'range', '0..65535', None)
     else:
         r_9registers_54 = 0
     if len(g_registers) > 55:
         r_9registers_55 = g_registers[55]
-        if r_9registers_55.__class__ is not int and (not isinstance(r_9registers_55, int) or r_9registers_55.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[55]', r_9registers_55, 'type', 'an int')
-        if not 0 <= r_9registers_55 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[55]', r_9registers_55, 'range', '0..65535', None)
+        if r_9registers_55.__class__ is not int or not 0 <= r_9registers_55 <= 65535:
+            if not isinstance(r_9registers_55, int) or r_9registers_55.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[55]', r_9registers_55, 'type', 'an int')
+            if not 0 <= r_9registers_55 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[55]', r_9registers_55, 'range', '0..65535', None)
     else:
         r_9registers_55 = 0
     if len(g_registers) > 56:
         r_9registers_56 = g_registers[56]
-        if r_9registers_56.__class__ is not int and (not isinstance(r_9registers_56, int) or r_9registers_56.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[56]', r_9registers_56, 'type', 'an int')
-        if not 0 <= r_9registers_56 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[56]', r_9registers_56, 'range', '0..65535', None)
+        if r_9registers_56.__class__ is not int or not 0 <= r_9registers_56 <= 65535:
+            if not isinstance(r_9registers_56, int) or r_9registers_56.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[56]', r_9registers_56, 'type', 'an int')
+            if not 0 <= r_9registers_56 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[56]', r_9registers_56, 'range', '0..65535', None)
     else:
         r_9registers_56 = 0
     if len(g_registers) > 57:
         r_9registers_57 = g_registers[57]
-        if r_9registers_57.__class__ is not int and (not isinstance(r_9registers_57, int) or r_9registers_57.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[57]', r_9registers_57, 'type', 'an int')
-        if not 0 <= r_9registers_57 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[57]', r_9registers_57, 'range', '0..65535', None)
+        if r_9registers_57.__class__ is not int or not 0 <= r_9registers_57 <= 65535:
+            if not isinstance(r_9registers_57, int) or r_9registers_57.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[57]', r_9registers_57, 'type', 'an int')
+            if not 0 <= r_9registers_57 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[57]', r_9registers_57, 'range', '0..65535', None)
     else:
         r_9registers_57 = 0
     if len(g_registers) > 58:
         r_9registers_58 = g_registers[58]
-        if r_9registers_58.__class__ is not int and (not isinstance(r_9registers_58, int) or r_9registers_58.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[58]', r_9registers_58, 'type', 'an int')
-        if not 0 <= r_9registers_58 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[58]', r_9registers_58, 'range', '0..65535', None)
+        if r_9registers_58.__class__ is not int or not 0 <= r_9registers_58 <= 65535:
+            if not isinstance(r_9registers_58, int) or r_9registers_58.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[58]', r_9registers_58, 'type', 'an int')
+            if not 0 <= r_9registers_58 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[58]', r_9registers_58, 'range', '0..65535', None)
     else:
         r_9registers_58 = 0
     if len(g_registers) > 59:
         r_9registers_59 = g_registers[59]
-        if r_9registers_59.__class__ is not int and (not isinstance(r_9registers_59, int) or r_9registers_59.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[59]', r_9registers_59, 'type', 'an int')
-        if not 0 <= r_9registers_59 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[59]', r_9registers_59, 'range', '0..65535', None)
+        if r_9registers_59.__class__ is not int or not 0 <= r_9registers_59 <= 65535:
+            if not isinstance(r_9registers_59, int) or r_9registers_59.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[59]', r_9registers_59, 'type', 'an int')
+            if not 0 <= r_9registers_59 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[59]', r_9registers_59, 'range', '0..65535', None)
     else:
         r_9registers_59 = 0
     if len(g_registers) > 60:
         r_9registers_60 = g_registers[60]
-        if r_9registers_60.__class__ is not int and (not isinstance(r_9registers_60, int) or r_9registers_60.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[60]', r_9registers_60, 'type', 'an int')
-        if not 0 <= r_9registers_60 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[60]', r_9registers_60, 'range', '0..65535', None)
+        if r_9registers_60.__class__ is not int or not 0 <= r_9registers_60 <= 65535:
+            if not isinstance(r_9registers_60, int) or r_9registers_60.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[60]', r_9registers_60, 'type', 'an int')
+            if not 0 <= r_9registers_60 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[60]', r_9registers_60, 'range', '0..65535', None)
     else:
         r_9registers_60 = 0
     if len(g_registers) > 61:
         r_9registers_61 = g_registers[61]
-        if r_9registers_61.__class__ is not int and (not isinstance(r_9registers_61, int) or r_9registers_61.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[61]', r_9registers_61, 'type', 'an int')
-        if not 0 <= r_9registers_61 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[61]', r_9registers_61, 'range', '0..65535', None)
+        if r_9registers_61.__class__ is not int or not 0 <= r_9registers_61 <= 65535:
+            if not isinstance(r_9registers_61, int) or r_9registers_61.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[61]', r_9registers_61, 'type', 'an int')
+            if not 0 <= r_9registers_61 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[61]', r_9registers_61, 'range', '0..65535', None)
     else:
         r_9registers_61 = 0
     if len(g_registers) > 62:
         r_9registers_62 = g_registers[62]
-        if r_9registers_62.__class__ is not int and (not isinstance(r_9registers_62, int) or r_9registers_62.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[62]', r_9registers_62, 'type', 'an int')
-        if not 0 <= r_9registers_62 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[62]', r_9registers_62, 'range', '0..65535', None)
+        if r_9registers_62.__class__ is not int or not 0 <= r_9registers_62 <= 65535:
+            if not isinstance(r_9registers_62, int) or r_9registers_62.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[62]', r_9registers_62, 'type', 'an int')
+            if not 0 <= r_9registers_62 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[62]', r_9registers_62, 'range', '0..65535', None)
     else:
         r_9registers_62 = 0
     if len(g_registers) > 63:
         r_9registers_63 = g_registers[63]
-        if r_9registers_63.__class__ is not int and (not isinstance(r_9registers_63, int) or r_9registers_63.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[63]', r_9registers_63, 'type', 'an int')
-        if not 0 <= r_9registers_63 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[63]', r_9registers_63, 'range', '0..65535', None)
+        if r_9registers_63.__class__ is not int or not 0 <= r_9registers_63 <= 65535:
+            if not isinstance(r_9registers_63, int) or r_9registers_63.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[63]', r_9registers_63, 'type', 'an int')
+            if not 0 <= r_9registers_63 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[63]', r_9registers_63, 'range', '0..65535', None)
     else:
         r_9registers_63 = 0
     if len(g_registers) > 64:
         r_9registers_64 = g_registers[64]
-        if r_9registers_64.__class__ is not int and (not isinstance(r_9registers_64, int) or r_9registers_64.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[64]', r_9registers_64, 'type', 'an int')
-        if not 0 <= r_9registers_64 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[64]', r_9registers_64, 'range', '0..65535', None)
+        if r_9registers_64.__class__ is not int or not 0 <= r_9registers_64 <= 65535:
+            if not isinstance(r_9registers_64, int) or r_9registers_64.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[64]', r_9registers_64, 'type', 'an int')
+            if not 0 <= r_9registers_64 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[64]', r_9registers_64, 'range', '0..65535', None)
     else:
         r_9registers_64 = 0
     if len(g_registers) > 65:
         r_9registers_65 = g_registers[65]
-        if r_9registers_65.__class__ is not int and (not isinstance(r_9registers_65, int) or r_9registers_65.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[65]', r_9registers_65, 'type', 'an int')
-        if not 0 <= r_9registers_65 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[65]', r_9registers_65, 'range', '0..65535', None)
+        if r_9registers_65.__class__ is not int or not 0 <= r_9registers_65 <= 65535:
+            if not isinstance(r_9registers_65, int) or r_9registers_65.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[65]', r_9registers_65, 'type', 'an int')
+            if not 0 <= r_9registers_65 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[65]', r_9registers_65, 'range', '0..65535', None)
     else:
         r_9registers_65 = 0
     if len(g_registers) > 66:
         r_9registers_66 = g_registers[66]
-        if r_9registers_66.__class__ is not int and (not isinstance(r_9registers_66, int) or r_9registers_66.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[66]', r_9registers_66, 'type', 'an int')
-        if not 0 <= r_9registers_66 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[66]', r_9registers_66, 'range', '0..65535', None)
+        if r_9registers_66.__class__ is not int or not 0 <= r_9registers_66 <= 65535:
+            if not isinstance(r_9registers_66, int) or r_9registers_66.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[66]', r_9registers_66, 'type', 'an int')
+            if not 0 <= r_9registers_66 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[66]', r_9registers_66, 'range', '0..65535', None)
     else:
         r_9registers_66 = 0
     if len(g_registers) > 67:
         r_9registers_67 = g_registers[67]
-        if r_9registers_67.__class__ is not int and (not isinstance(r_9registers_67, int) or r_9registers_67.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[67]', r_9registers_67, 'type', 'an int')
-        if not 0 <= r_9registers_67 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[67]', r_9registers_67, 'range', '0..65535', None)
+        if r_9registers_67.__class__ is not int or not 0 <= r_9registers_67 <= 65535:
+            if not isinstance(r_9registers_67, int) or r_9registers_67.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[67]', r_9registers_67, 'type', 'an int')
+            if not 0 <= r_9registers_67 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[67]', r_9registers_67, 'range', '0..65535', None)
     else:
         r_9registers_67 = 0
     if len(g_registers) > 68:
         r_9registers_68 = g_registers[68]
-        if r_9registers_68.__class__ is not int and (not isinstance(r_9registers_68, int) or r_9registers_68.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[68]', r_9registers_68, 'type', 'an int')
-        if not 0 <= r_9registers_68 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[68]', r_9registers_68, 'range', '0..65535', None)
+        if r_9registers_68.__class__ is not int or not 0 <= r_9registers_68 <= 65535:
+            if not isinstance(r_9registers_68, int) or r_9registers_68.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[68]', r_9registers_68, 'type', 'an int')
+            if not 0 <= r_9registers_68 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[68]', r_9registers_68, 'range', '0..65535', None)
     else:
         r_9registers_68 = 0
     if len(g_registers) > 69:
         r_9registers_69 = g_registers[69]
-        if r_9registers_69.__class__ is not int and (not isinstance(r_9registers_69, int) or r_9registers_69.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[69]', r_9registers_69, 'type', 'an int')
-        if not 0 <= r_9registers_69 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[69]', r_9registers_69, 'range', '0..65535', None)
+        if r_9registers_69.__class__ is not int or not 0 <= r_9registers_69 <= 65535:
+            if not isinstance(r_9registers_69, int) or r_9registers_69.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[69]', r_9registers_69, 'type', 'an int')
+            if not 0 <= r_9registers_69 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[69]', r_9registers_69, 'range', '0..65535', None)
     else:
         r_9registers_69 = 0
     if len(g_registers) > 70:
         r_9registers_70 = g_registers[70]
-        if r_9registers_70.__class__ is not int and (not isinstance(r_9registers_70, int) or r_9registers_70.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[70]', r_9registers_70, 'type', 'an int')
-        if not 0 <= r_9registers_70 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[70]', r_9registers_70, 'range', '0..65535', None)
+        if r_9registers_70.__class__ is not int or not 0 <= r_9registers_70 <= 65535:
+            if not isinstance(r_9registers_70, int) or r_9registers_70.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[70]', r_9registers_70, 'type', 'an int')
+            if not 0 <= r_9registers_70 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[70]', r_9registers_70, 'range', '0..65535', None)
     else:
         r_9registers_70 = 0
     if len(g_registers) > 71:
         r_9registers_71 = g_registers[71]
-        if r_9registers_71.__class__ is not int and (not isinstance(r_9registers_71, int) or r_9registers_71.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[71]', r_9registers_71, 'type', 'an int')
-        if not 0 <= r_9registers_71 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[71]', r_9registers_71, 'range', '0..65535', None)
+        if r_9registers_71.__class__ is not int or not 0 <= r_9registers_71 <= 65535:
+            if not isinstance(r_9registers_71, int) or r_9registers_71.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[71]', r_9registers_71, 'type', 'an int')
+            if not 0 <= r_9registers_71 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[71]', r_9registers_71, 'range', '0..65535', None)
     else:
         r_9registers_71 = 0
     if len(g_registers) > 72:
         r_9registers_72 = g_registers[72]
-        if r_9registers_72.__class__ is not int and (not isinstance(r_9registers_72, int) or r_9registers_72.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[72]', r_9registers_72, 'type', 'an int')
-        if not 0 <= r_9registers_72 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[72]', r_9registers_72, 'range', '0..65535', None)
+        if r_9registers_72.__class__ is not int or not 0 <= r_9registers_72 <= 65535:
+            if not isinstance(r_9registers_72, int) or r_9registers_72.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[72]', r_9registers_72, 'type', 'an int')
+            if not 0 <= r_9registers_72 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[72]', r_9registers_72, 'range', '0..65535', None)
     else:
         r_9registers_72 = 0
     if len(g_registers) > 73:
         r_9registers_73 = g_registers[73]
-        if r_9registers_73.__class__ is not int and (not isinstance(r_9registers_73, int) or r_9registers_73.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[73]', r_9registers_73, 'type', 'an int')
-        if not 0 <= r_9registers_73 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[73]', r_9registers_73, 'range', '0..65535', None)
+        if r_9registers_73.__class__ is not int or not 0 <= r_9registers_73 <= 65535:
+            if not isinstance(r_9registers_73, int) or r_9registers_73.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[73]', r_9registers_73, 'type', 'an int')
+            if not 0 <= r_9registers_73 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[73]', r_9registers_73, 'range', '0..65535', None)
     else:
         r_9registers_73 = 0
     if len(g_registers) > 74:
         r_9registers_74 = g_registers[74]
-        if r_9registers_74.__class__ is not int and (not isinstance(r_9registers_74, int) or r_9registers_74.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[74]', r_9registers_74, 'type', 'an int')
-        if not 0 <= r_9registers_74 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[74]', r_9registers_74, 'range', '0..65535', None)
+        if r_9registers_74.__class__ is not int or not 0 <= r_9registers_74 <= 65535:
+            if not isinstance(r_9registers_74, int) or r_9registers_74.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[74]', r_9registers_74, 'type', 'an int')
+            if not 0 <= r_9registers_74 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[74]', r_9registers_74, 'range', '0..65535', None)
     else:
         r_9registers_74 = 0
     if len(g_registers) > 75:
         r_9registers_75 = g_registers[75]
-        if r_9registers_75.__class__ is not int and (not isinstance(r_9registers_75, int) or r_9registers_75.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[75]', r_9registers_75, 'type', 'an int')
-        if not 0 <= r_9registers_75 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[75]', r_9registers_75, 'range', '0..65535', None)
+        if r_9registers_75.__class__ is not int or not 0 <= r_9registers_75 <= 65535:
+            if not isinstance(r_9registers_75, int) or r_9registers_75.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[75]', r_9registers_75, 'type', 'an int')
+            if not 0 <= r_9registers_75 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[75]', r_9registers_75, 'range', '0..65535', None)
     else:
         r_9registers_75 = 0
     if len(g_registers) > 76:
         r_9registers_76 = g_registers[76]
-        if r_9registers_76.__class__ is not int and (not isinstance(r_9registers_76, int) or r_9registers_76.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[76]', r_9registers_76, 'type', 'an int')
-        if not 0 <= r_9registers_76 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[76]', r_9registers_76, 'range', '0..65535', None)
+        if r_9registers_76.__class__ is not int or not 0 <= r_9registers_76 <= 65535:
+            if not isinstance(r_9registers_76, int) or r_9registers_76.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[76]', r_9registers_76, 'type', 'an int')
+            if not 0 <= r_9registers_76 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[76]', r_9registers_76, 'range', '0..65535', None)
     else:
         r_9registers_76 = 0
     if len(g_registers) > 77:
         r_9registers_77 = g_registers[77]
-        if r_9registers_77.__class__ is not int and (not isinstance(r_9registers_77, int) or r_9registers_77.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[77]', r_9registers_77, 'type', 'an int')
-        if not 0 <= r_9registers_77 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[77]', r_9registers_77, 'range', '0..65535', None)
+        if r_9registers_77.__class__ is not int or not 0 <= r_9registers_77 <= 65535:
+            if not isinstance(r_9registers_77, int) or r_9registers_77.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[77]', r_9registers_77, 'type', 'an int')
+            if not 0 <= r_9registers_77 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[77]', r_9registers_77, 'range', '0..65535', None)
     else:
         r_9registers_77 = 0
     if len(g_registers) > 78:
         r_9registers_78 = g_registers[78]
-        if r_9registers_78.__class__ is not int and (not isinstance(r_9registers_78, int) or r_9registers_78.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[78]', r_9registers_78, 'type', 'an int')
-        if not 0 <= r_9registers_78 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[78]', r_9registers_78, 'range', '0..65535', None)
+        if r_9registers_78.__class__ is not int or not 0 <= r_9registers_78 <= 65535:
+            if not isinstance(r_9registers_78, int) or r_9registers_78.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[78]', r_9registers_78, 'type', 'an int')
+            if not 0 <= r_9registers_78 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[78]', r_9registers_78, 'range', '0..65535', None)
     else:
         r_9registers_78 = 0
     if len(g_registers) > 79:
         r_9registers_79 = g_registers[79]
-        if r_9registers_79.__class__ is not int and (not isinstance(r_9registers_79, int) or r_9registers_79.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[79]', r_9registers_79, 'type', 'an int')
-        if not 0 <= r_9registers_79 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[79]', r_9registers_79, 'range', '0..65535', None)
+        if r_9registers_79.__class__ is not int or not 0 <= r_9registers_79 <= 65535:
+            if not isinstance(r_9registers_79, int) or r_9registers_79.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[79]', r_9registers_79, 'type', 'an int')
+            if not 0 <= r_9registers_79 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[79]', r_9registers_79, 'range', '0..65535', None)
     else:
         r_9registers_79 = 0
     if len(g_registers) > 80:
         r_9registers_80 = g_registers[80]
-        if r_9registers_80.__class__ is not int and (not isinstance(r_9registers_80, int) or r_9registers_80.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[80]', r_9registers_80, 'type', 'an int')
-        if not 0 <= r_9registers_80 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[80]', r_9registers_80, 'range', '0..65535', None)
+        if r_9registers_80.__class__ is not int or not 0 <= r_9registers_80 <= 65535:
+            if not isinstance(r_9registers_80, int) or r_9registers_80.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[80]', r_9registers_80, 'type', 'an int')
+            if not 0 <= r_9registers_80 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[80]', r_9registers_80, 'range', '0..65535', None)
     else:
         r_9registers_80 = 0
     if len(g_registers) > 81:
         r_9registers_81 = g_registers[81]
-        if r_9registers_81.__class__ is not int and (not isinstance(r_9registers_81, int) or r_9registers_81.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[81]', r_9registers_81, 'type', 'an int')
-        if not 0 <= r_9registers_81 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[81]', r_9registers_81, 'range', '0..65535', None)
+        if r_9registers_81.__class__ is not int or not 0 <= r_9registers_81 <= 65535:
+            if not isinstance(r_9registers_81, int) or r_9registers_81.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[81]', r_9registers_81, 'type', 'an int')
+            if not 0 <= r_9registers_81 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[81]', r_9registers_81, 'range', '0..65535', None)
     else:
         r_9registers_81 = 0
     if len(g_registers) > 82:
         r_9registers_82 = g_registers[82]
-        if r_9registers_82.__class__ is not int and (not isinstance(r_9registers_82, int) or r_9registers_82.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[82]', r_9registers_82, 'type', 'an int')
-        if not 0 <= r_9registers_82 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[82]', r_9registers_82, 'range', '0..65535', None)
+        if r_9registers_82.__class__ is not int or not 0 <= r_9registers_82 <= 65535:
+            if not isinstance(r_9registers_82, int) or r_9registers_82.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[82]', r_9registers_82, 'type', 'an int')
+            if not 0 <= r_9registers_82 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[82]', r_9registers_82, 'range', '0..65535', None)
     else:
         r_9registers_82 = 0
     if len(g_registers) > 83:
         r_9registers_83 = g_registers[83]
-        if r_9registers_83.__class__ is not int and (not isinstance(r_9registers_83, int) or r_9registers_83.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[83]', r_9registers_83, 'type', 'an int')
-        if not 0 <= r_9registers_83 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[83]', r_9registers_83, 'range', '0..65535', None)
+        if r_9registers_83.__class__ is not int or not 0 <= r_9registers_83 <= 65535:
+            if not isinstance(r_9registers_83, int) or r_9registers_83.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[83]', r_9registers_83, 'type', 'an int')
+            if not 0 <= r_9registers_83 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[83]', r_9registers_83, 'range', '0..65535', None)
     else:
         r_9registers_83 = 0
     if len(g_registers) > 84:
         r_9registers_84 = g_registers[84]
-        if r_9registers_84.__class__ is not int and (not isinstance(r_9registers_84, int) or r_9registers_84.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[84]', r_9registers_84, 'type', 'an int')
-        if not 0 <= r_9registers_84 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[84]', r_9registers_84, 'range', '0..65535', None)
+        if r_9registers_84.__class__ is not int or not 0 <= r_9registers_84 <= 65535:
+            if not isinstance(r_9registers_84, int) or r_9registers_84.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[84]', r_9registers_84, 'type', 'an int')
+            if not 0 <= r_9registers_84 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[84]', r_9registers_84, 'range', '0..65535', None)
     else:
         r_9registers_84 = 0
     if len(g_registers) > 85:
         r_9registers_85 = g_registers[85]
-        if r_9registers_85.__class__ is not int and (not isinstance(r_9registers_85, int) or r_9registers_85.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[85]', r_9registers_85, 'type', 'an int')
-        if not 0 <= r_9registers_85 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[85]', r_9registers_85, 'range', '0..65535', None)
+        if r_9registers_85.__class__ is not int or not 0 <= r_9registers_85 <= 65535:
+            if not isinstance(r_9registers_85, int) or r_9registers_85.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[85]', r_9registers_85, 'type', 'an int')
+            if not 0 <= r_9registers_85 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[85]', r_9registers_85, 'range', '0..65535', None)
     else:
         r_9registers_85 = 0
     if len(g_registers) > 86:
         r_9registers_86 = g_registers[86]
-        if r_9registers_86.__class__ is not int and (not isinstance(r_9registers_86, int) or r_9registers_86.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[86]', r_9registers_86, 'type', 'an int')
-        if not 0 <= r_9registers_86 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[86]', r_9registers_86, 'range', '0..65535', None)
+        if r_9registers_86.__class__ is not int or not 0 <= r_9registers_86 <= 65535:
+            if not isinstance(r_9registers_86, int) or r_9registers_86.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[86]', r_9registers_86, 'type', 'an int')
+            if not 0 <= r_9registers_86 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[86]', r_9registers_86, 'range', '0..65535', None)
     else:
         r_9registers_86 = 0
     if len(g_registers) > 87:
         r_9registers_87 = g_registers[87]
-        if r_9registers_87.__class__ is not int and (not isinstance(r_9registers_87, int) or r_9registers_87.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[87]', r_9registers_87, 'type', 'an int')
-        if not 0 <= r_9registers_87 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[87]', r_9registers_87, 'range', '0..65535', None)
+        if r_9registers_87.__class__ is not int or not 0 <= r_9registers_87 <= 65535:
+            if not isinstance(r_9registers_87, int) or r_9registers_87.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[87]', r_9registers_87, 'type', 'an int')
+            if not 0 <= r_9registers_87 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[87]', r_9registers_87, 'range', '0..65535', None)
     else:
         r_9registers_87 = 0
     if len(g_registers) > 88:
         r_9registers_88 = g_registers[88]
-        if r_9registers_88.__class__ is not int and (not isinstance(r_9registers_88, int) or r_9registers_88.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[88]', r_9registers_88, 'type', 'an int')
-        if not 0 <= r_9registers_88 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[88]', r_9registers_88, 'range', '0..65535', None)
+        if r_9registers_88.__class__ is not int or not 0 <= r_9registers_88 <= 65535:
+            if not isinstance(r_9registers_88, int) or r_9registers_88.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[88]', r_9registers_88, 'type', 'an int')
+            if not 0 <= r_9registers_88 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[88]', r_9registers_88, 'range', '0..65535', None)
     else:
         r_9registers_88 = 0
     if len(g_registers) > 89:
         r_9registers_89 = g_registers[89]
-        if r_9registers_89.__class__ is not int and (not isinstance(r_9registers_89, int) or r_9registers_89.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[89]', r_9registers_89, 'type', 'an int')
-        if not 0 <= r_9registers_89 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[89]', r_9registers_89, 'range', '0..65535', None)
+        if r_9registers_89.__class__ is not int or not 0 <= r_9registers_89 <= 65535:
+            if not isinstance(r_9registers_89, int) or r_9registers_89.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[89]', r_9registers_89, 'type', 'an int')
+            if not 0 <= r_9registers_89 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[89]', r_9registers_89, 'range', '0..65535', None)
     else:
         r_9registers_89 = 0
     if len(g_registers) > 90:
         r_9registers_90 = g_registers[90]
-        if r_9registers_90.__class__ is not int and (not isinstance(r_9registers_90, int) or r_9registers_90.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[90]', r_9registers_90, 'type', 'an int')
-        if not 0 <= r_9registers_90 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[90]', r_9registers_90, 'range', '0..65535', None)
+        if r_9registers_90.__class__ is not int or not 0 <= r_9registers_90 <= 65535:
+            if not isinstance(r_9registers_90, int) or r_9registers_90.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[90]', r_9registers_90, 'type', 'an int')
+            if not 0 <= r_9registers_90 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[90]', r_9registers_90, 'range', '0..65535', None)
     else:
         r_9registers_90 = 0
     if len(g_registers) > 91:
         r_9registers_91 = g_registers[91]
-        if r_9registers_91.__class__ is not int and (not isinstance(r_9registers_91, int) or r_9registers_91.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[91]', r_9registers_91, 'type', 'an int')
-        if not 0 <= r_9registers_91 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[91]', r_9registers_91, 'range', '0..65535', None)
+        if r_9registers_91.__class__ is not int or not 0 <= r_9registers_91 <= 65535:
+            if not isinstance(r_9registers_91, int) or r_9registers_91.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[91]', r_9registers_91, 'type', 'an int')
+            if not 0 <= r_9registers_91 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[91]', r_9registers_91, 'range', '0..65535', None)
     else:
         r_9registers_91 = 0
     if len(g_registers) > 92:
         r_9registers_92 = g_registers[92]
-        if r_9registers_92.__class__ is not int and (not isinstance(r_9registers_92, int) or r_9registers_92.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[92]', r_9registers_92, 'type', 'an int')
-        if not 0 <= r_9registers_92 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[92]', r_9registers_92, 'range', '0..65535', None)
+        if r_9registers_92.__class__ is not int or not 0 <= r_9registers_92 <= 65535:
+            if not isinstance(r_9registers_92, int) or r_9registers_92.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[92]', r_9registers_92, 'type', 'an int')
+            if not 0 <= r_9registers_92 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[92]', r_9registers_92, 'range', '0..65535', None)
     else:
         r_9registers_92 = 0
     if len(g_registers) > 93:
         r_9registers_93 = g_registers[93]
-        if r_9registers_93.__class__ is not int and (not isinstance(r_9registers_93, int) or r_9registers_93.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[93]', r_9registers_93, 'type', 'an int')
-        if not 0 <= r_9registers_93 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[93]', r_9registers_93, 'range', '0..65535', None)
+        if r_9registers_93.__class__ is not int or not 0 <= r_9registers_93 <= 65535:
+            if not isinstance(r_9registers_93, int) or r_9registers_93.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[93]', r_9registers_93, 'type', 'an int')
+            if not 0 <= r_9registers_93 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[93]', r_9registers_93, 'range', '0..65535', None)
     else:
         r_9registers_93 = 0
     if len(g_registers) > 94:
         r_9registers_94 = g_registers[94]
-        if r_9registers_94.__class__ is not int and (not isinstance(r_9registers_94, int) or r_9registers_94.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[94]', r_9registers_94, 'type', 'an int')
-        if not 0 <= r_9registers_94 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[94]', r_9registers_94, 'range', '0..65535', None)
+        if r_9registers_94.__class__ is not int or not 0 <= r_9registers_94 <= 65535:
+            if not isinstance(r_9registers_94, int) or r_9registers_94.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[94]', r_9registers_94, 'type', 'an int')
+            if not 0 <= r_9registers_94 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[94]', r_9registers_94, 'range', '0..65535', None)
     else:
         r_9registers_94 = 0
     if len(g_registers) > 95:
         r_9registers_95 = g_registers[95]
-        if r_9registers_95.__class__ is not int and (not isinstance(r_9registers_95, int) or r_9registers_95.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[95]', r_9registers_95, 'type', 'an int')
-        if not 0 <= r_9registers_95 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[95]', r_9registers_95, 'range', '0..65535', None)
+        if r_9registers_95.__class__ is not int or not 0 <= r_9registers_95 <= 65535:
+            if not isinstance(r_9registers_95, int) or r_9registers_95.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[95]', r_9registers_95, 'type', 'an int')
+            if not 0 <= r_9registers_95 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[95]', r_9registers_95, 'range', '0..65535', None)
     else:
         r_9registers_95 = 0
     if len(g_registers) > 96:
         r_9registers_96 = g_registers[96]
-        if r_9registers_96.__class__ is not int and (not isinstance(r_9registers_96, int) or r_9registers_96.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[96]', r_9registers_96, 'type', 'an int')
-        if not 0 <= r_9registers_96 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[96]', r_9registers_96, 'range', '0..65535', None)
+        if r_9registers_96.__class__ is not int or not 0 <= r_9registers_96 <= 65535:
+            if not isinstance(r_9registers_96, int) or r_9registers_96.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[96]', r_9registers_96, 'type', 'an int')
+            if not 0 <= r_9registers_96 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[96]', r_9registers_96, 'range', '0..65535', None)
     else:
         r_9registers_96 = 0
     if len(g_registers) > 97:
         r_9registers_97 = g_registers[97]
-        if r_9registers_97.__class__ is not int and (not isinstance(r_9registers_97, int) or r_9registers_97.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[97]', r_9registers_97, 'type', 'an int')
-        if not 0 <= r_9registers_97 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[97]', r_9registers_97, 'range', '0..65535', None)
+        if r_9registers_97.__class__ is not int or not 0 <= r_9registers_97 <= 65535:
+            if not isinstance(r_9registers_97, int) or r_9registers_97.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[97]', r_9registers_97, 'type', 'an int')
+            if not 0 <= r_9registers_97 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[97]', r_9registers_97, 'range', '0..65535', None)
     else:
         r_9registers_97 = 0
     if len(g_registers) > 98:
         r_9registers_98 = g_registers[98]
-        if r_9registers_98.__class__ is not int and (not isinstance(r_9registers_98, int) or r_9registers_98.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[98]', r_9registers_98, 'type', 'an int')
-        if not 0 <= r_9registers_98 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[98]', r_9registers_98, 'range', '0..65535', None)
+        if r_9registers_98.__class__ is not int or not 0 <= r_9registers_98 <= 65535:
+            if not isinstance(r_9registers_98, int) or r_9registers_98.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[98]', r_9registers_98, 'type', 'an int')
+            if not 0 <= r_9registers_98 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[98]', r_9registers_98, 'range', '0..65535', None)
     else:
         r_9registers_98 = 0
     if len(g_registers) > 99:
         r_9registers_99 = g_registers[99]
-        if r_9registers_99.__class__ is not int and (not isinstance(r_9registers_99, int) or r_9registers_99.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[99]', r_9registers_99, 'type', 'an int')
-        if not 0 <= r_9registers_99 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[99]', r_9registers_99, 'range', '0..65535', None)
+        if r_9registers_99.__class__ is not int or not 0 <= r_9registers_99 <= 65535:
+            if not isinstance(r_9registers_99, int) or r_9registers_99.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[99]', r_9registers_99, 'type', 'an int')
+            if not 0 <= r_9registers_99 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[99]', r_9registers_99, 'range', '0..65535', None)
     else:
         r_9registers_99 = 0
     if len(g_registers) > 100:
         r_9registers_100 = g_registers[100]
-        if r_9registers_100.__class__ is not int and (not isinstance(r_9registers_100, int) or r_9registers_100.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[100]', r_9registers_100, 'type', 'an int')
-        if not 0 <= r_9registers_100 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[100]', r_9registers_100, 'range', '0..65535', None)
+        if r_9registers_100.__class__ is not int or not 0 <= r_9registers_100 <= 65535:
+            if not isinstance(r_9registers_100, int) or r_9registers_100.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[100]', r_9registers_100, 'type', 'an int')
+            if not 0 <= r_9registers_100 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[100]', r_9registers_100, 'range', '0..65535', None)
     else:
         r_9registers_100 = 0
     if len(g_registers) > 101:
         r_9registers_101 = g_registers[101]
-        if r_9registers_101.__class__ is not int and (not isinstance(r_9registers_101, int) or r_9registers_101.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[101]', r_9registers_101, 'type', 'an int')
-        if not 0 <= r_9registers_101 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[101]', r_9registers_101, 'range', '0..65535', None)
+        if r_9registers_101.__class__ is not int or not 0 <= r_9registers_101 <= 65535:
+            if not isinstance(r_9registers_101, int) or r_9registers_101.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[101]', r_9registers_101, 'type', 'an int')
+            if not 0 <= r_9registers_101 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[101]', r_9registers_101, 'range', '0..65535', None)
     else:
         r_9registers_101 = 0
     if len(g_registers) > 102:
         r_9registers_102 = g_registers[102]
-        if r_9registers_102.__class__ is not int and (not isinstance(r_9registers_102, int) or r_9registers_102.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[102]', r_9registers_102, 'type', 'an int')
-        if not 0 <= r_9registers_102 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[102]', r_9registers_102, 'range', '0..65535', None)
+        if r_9registers_102.__class__ is not int or not 0 <= r_9registers_102 <= 65535:
+            if not isinstance(r_9registers_102, int) or r_9registers_102.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[102]', r_9registers_102, 'type', 'an int')
+            if not 0 <= r_9registers_102 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[102]', r_9registers_102, 'range', '0..65535', None)
     else:
         r_9registers_102 = 0
     if len(g_registers) > 103:
         r_9registers_103 = g_registers[103]
-        if r_9registers_103.__class__ is not int and (not isinstance(r_9registers_103, int) or r_9registers_103.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[103]', r_9registers_103, 'type', 'an int')
-        if not 0 <= r_9registers_103 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[103]', r_9registers_103, 'range', '0..65535', None)
+        if r_9registers_103.__class__ is not int or not 0 <= r_9registers_103 <= 65535:
+            if not isinstance(r_9registers_103, int) or r_9registers_103.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[103]', r_9registers_103, 'type', 'an int')
+            if not 0 <= r_9registers_103 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[103]', r_9registers_103, 'range', '0..65535', None)
     else:
         r_9registers_103 = 0
     if len(g_registers) > 104:
         r_9registers_104 = g_registers[104]
-        if r_9registers_104.__class__ is not int and (not isinstance(r_9registers_104, int) or r_9registers_104.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[104]', r_9registers_104, 'type', 'an int')
-        if not 0 <= r_9registers_104 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[104]', r_9registers_104, 'range', '0..65535', None)
+        if r_9registers_104.__class__ is not int or not 0 <= r_9registers_104 <= 65535:
+            if not isinstance(r_9registers_104, int) or r_9registers_104.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[104]', r_9registers_104, 'type', 'an int')
+            if not 0 <= r_9registers_104 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[104]', r_9registers_104, 'range', '0..65535', None)
     else:
         r_9registers_104 = 0
     if len(g_registers) > 105:
         r_9registers_105 = g_registers[105]
-        if r_9registers_105.__class__ is not int and (not isinstance(r_9registers_105, int) or r_9registers_105.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[105]', r_9registers_105, 'type', 'an int')
-        if not 0 <= r_9registers_105 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[105]', r_9registers_105, 'range', '0..65535', None)
+        if r_9registers_105.__class__ is not int or not 0 <= r_9registers_105 <= 65535:
+            if not isinstance(r_9registers_105, int) or r_9registers_105.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[105]', r_9registers_105, 'type', 'an int')
+            if not 0 <= r_9registers_105 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[105]', r_9registers_105, 'range', '0..65535', None)
     else:
         r_9registers_105 = 0
     if len(g_registers) > 106:
         r_9registers_106 = g_registers[106]
-        if r_9registers_106.__class__ is not int and (not isinstance(r_9registers_106, int) or r_9registers_106.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[106]', r_9registers_106, 'type', 'an int')
-        if not 0 <= r_9registers_106 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[106]', r_9registers_106, 'range', '0..65535', None)
+        if r_9registers_106.__class__ is not int or not 0 <= r_9registers_106 <= 65535:
+            if not isinstance(r_9registers_106, int) or r_9registers_106.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[106]', r_9registers_106, 'type', 'an int')
+            if not 0 <= r_9registers_106 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[106]', r_9registers_106, 'range', '0..65535', None)
     else:
         r_9registers_106 = 0
     if len(g_registers) > 107:
         r_9registers_107 = g_registers[107]
-        if r_9registers_107.__class__ is not int and (not isinstance(r_9registers_107, int) or r_9registers_107.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[107]', r_9registers_107, 'type', 'an int')
-        if not 0 <= r_9registers_107 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[107]', r_9registers_107, 'range', '0..65535', None)
+        if r_9registers_107.__class__ is not int or not 0 <= r_9registers_107 <= 65535:
+            if not isinstance(r_9registers_107, int) or r_9registers_107.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[107]', r_9registers_107, 'type', 'an int')
+            if not 0 <= r_9registers_107 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[107]', r_9registers_107, 'range', '0..65535', None)
     else:
         r_9registers_107 = 0
     if len(g_registers) > 108:
         r_9registers_108 = g_registers[108]
-        if r_9registers_108.__class__ is not int and (not isinstance(r_9registers_108, int) or r_9registers_108.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[108]', r_9registers_108, 'type', 'an int')
-        if not 0 <= r_9registers_108 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[108]', r_9registers_108, 'range', '0..65535', None)
+        if r_9registers_108.__class__ is not int or not 0 <= r_9registers_108 <= 65535:
+            if not isinstance(r_9registers_108, int) or r_9registers_108.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[108]', r_9registers_108, 'type', 'an int')
+            if not 0 <= r_9registers_108 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[108]', r_9registers_108, 'range', '0..65535', None)
     else:
         r_9registers_108 = 0
     if len(g_registers) > 109:
         r_9registers_109 = g_registers[109]
-        if r_9registers_109.__class__ is not int and (not isinstance(r_9registers_109, int) or r_9registers_109.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[109]', r_9registers_109, 'type', 'an int')
-        if not 0 <= r_9registers_109 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[109]', r_9registers_109, 'range', '0..65535', None)
+        if r_9registers_109.__class__ is not int or not 0 <= r_9registers_109 <= 65535:
+            if not isinstance(r_9registers_109, int) or r_9registers_109.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[109]', r_9registers_109, 'type', 'an int')
+            if not 0 <= r_9registers_109 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[109]', r_9registers_109, 'range', '0..65535', None)
     else:
         r_9registers_109 = 0
     if len(g_registers) > 110:
         r_9registers_110 = g_registers[110]
-        if r_9registers_110.__class__ is not int and (not isinstance(r_9registers_110, int) or r_9registers_110.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[110]', r_9registers_110, 'type', 'an int')
-        if not 0 <= r_9registers_110 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[110]', r_9registers_110, 'range', '0..65535', None)
+        if r_9registers_110.__class__ is not int or not 0 <= r_9registers_110 <= 65535:
+            if not isinstance(r_9registers_110, int) or r_9registers_110.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[110]', r_9registers_110, 'type', 'an int')
+            if not 0 <= r_9registers_110 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[110]', r_9registers_110, 'range', '0..65535', None)
     else:
         r_9registers_110 = 0
     if len(g_registers) > 111:
         r_9registers_111 = g_registers[111]
-        if r_9registers_111.__class__ is not int and (not isinstance(r_9registers_111, int) or r_9registers_111.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[111]', r_9registers_111, 'type', 'an int')
-        if not 0 <= r_9registers_111 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[111]', r_9registers_111, 'range', '0..65535', None)
+        if r_9registers_111.__class__ is not int or not 0 <= r_9registers_111 <= 65535:
+            if not isinstance(r_9registers_111, int) or r_9registers_111.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[111]', r_9registers_111, 'type', 'an int')
+            if not 0 <= r_9registers_111 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[111]', r_9registers_111, 'range', '0..65535', None)
     else:
         r_9registers_111 = 0
     if len(g_registers) > 112:
         r_9registers_112 = g_registers[112]
-        if r_9registers_112.__class__ is not int and (not isinstance(r_9registers_112, int) or r_9registers_112.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[112]', r_9registers_112, 'type', 'an int')
-        if not 0 <= r_9registers_112 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[112]', r_9registers_112, 'range', '0..65535', None)
+        if r_9registers_112.__class__ is not int or not 0 <= r_9registers_112 <= 65535:
+            if not isinstance(r_9registers_112, int) or r_9registers_112.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[112]', r_9registers_112, 'type', 'an int')
+            if not 0 <= r_9registers_112 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[112]', r_9registers_112, 'range', '0..65535', None)
     else:
         r_9registers_112 = 0
     if len(g_registers) > 113:
         r_9registers_113 = g_registers[113]
-        if r_9registers_113.__class__ is not int and (not isinstance(r_9registers_113, int) or r_9registers_113.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[113]', r_9registers_113, 'type', 'an int')
-        if not 0 <= r_9registers_113 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[113]', r_9registers_113, 'range', '0..65535', None)
+        if r_9registers_113.__class__ is not int or not 0 <= r_9registers_113 <= 65535:
+            if not isinstance(r_9registers_113, int) or r_9registers_113.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[113]', r_9registers_113, 'type', 'an int')
+            if not 0 <= r_9registers_113 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[113]', r_9registers_113, 'range', '0..65535', None)
     else:
         r_9registers_113 = 0
     if len(g_registers) > 114:
         r_9registers_114 = g_registers[114]
-        if r_9registers_114.__class__ is not int and (not isinstance(r_9registers_114, int) or r_9registers_114.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[114]', r_9registers_114, 'type', 'an int')
-        if not 0 <= r_9registers_114 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[114]', r_9registers_114, 'range', '0..65535', None)
+        if r_9registers_114.__class__ is not int or not 0 <= r_9registers_114 <= 65535:
+            if not isinstance(r_9registers_114, int) or r_9registers_114.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[114]', r_9registers_114, 'type', 'an int')
+            if not 0 <= r_9registers_114 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[114]', r_9registers_114, 'range', '0..65535', None)
     else:
         r_9registers_114 = 0
     if len(g_registers) > 115:
         r_9registers_115 = g_registers[115]
-        if r_9registers_115.__class__ is not int and (not isinstance(r_9registers_115, int) or r_9registers_115.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[115]', r_9registers_115, 'type', 'an int')
-        if not 0 <= r_9registers_115 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[115]', r_9registers_115, 'range', '0..65535', None)
+        if r_9registers_115.__class__ is not int or not 0 <= r_9registers_115 <= 65535:
+            if not isinstance(r_9registers_115, int) or r_9registers_115.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[115]', r_9registers_115, 'type', 'an int')
+            if not 0 <= r_9registers_115 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[115]', r_9registers_115, 'range', '0..65535', None)
     else:
         r_9registers_115 = 0
     if len(g_registers) > 116:
         r_9registers_116 = g_registers[116]
-        if r_9registers_116.__class__ is not int and (not isinstance(r_9registers_116, int) or r_9registers_116.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[116]', r_9registers_116, 'type', 'an int')
-        if not 0 <= r_9registers_116 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[116]', r_9registers_116, 'range', '0..65535', None)
+        if r_9registers_116.__class__ is not int or not 0 <= r_9registers_116 <= 65535:
+            if not isinstance(r_9registers_116, int) or r_9registers_116.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[116]', r_9registers_116, 'type', 'an int')
+            if not 0 <= r_9registers_116 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[116]', r_9registers_116, 'range', '0..65535', None)
     else:
         r_9registers_116 = 0
     if len(g_registers) > 117:
         r_9registers_117 = g_registers[117]
-        if r_9registers_117.__class__ is not int and (not isinstance(r_9registers_117, int) or r_9registers_117.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[117]', r_9registers_117, 'type', 'an int')
-        if not 0 <= r_9registers_117 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[117]', r_9registers_117, 'range', '0..65535', None)
+        if r_9registers_117.__class__ is not int or not 0 <= r_9registers_117 <= 65535:
+            if not isinstance(r_9registers_117, int) or r_9registers_117.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[117]', r_9registers_117, 'type', 'an int')
+            if not 0 <= r_9registers_117 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[117]', r_9registers_117, 'range', '0..65535', None)
     else:
         r_9registers_117 = 0
     if len(g_registers) > 118:
         r_9registers_118 = g_registers[118]
-        if r_9registers_118.__class__ is not int and (not isinstance(r_9registers_118, int) or r_9registers_118.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[118]', r_9registers_118, 'type', 'an int')
-        if not 0 <= r_9registers_118 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[118]', r_9registers_118, 'range', '0..65535', None)
+        if r_9registers_118.__class__ is not int or not 0 <= r_9registers_118 <= 65535:
+            if not isinstance(r_9registers_118, int) or r_9registers_118.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[118]', r_9registers_118, 'type', 'an int')
+            if not 0 <= r_9registers_118 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[118]', r_9registers_118, 'range', '0..65535', None)
     else:
         r_9registers_118 = 0
     if len(g_registers) > 119:
         r_9registers_119 = g_registers[119]
-        if r_9registers_119.__class__ is not int and (not isinstance(r_9registers_119, int) or r_9registers_119.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[119]', r_9registers_119, 'type', 'an int')
-        if not 0 <= r_9registers_119 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[119]', r_9registers_119, 'range', '0..65535', None)
+        if r_9registers_119.__class__ is not int or not 0 <= r_9registers_119 <= 65535:
+            if not isinstance(r_9registers_119, int) or r_9registers_119.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[119]', r_9registers_119, 'type', 'an int')
+            if not 0 <= r_9registers_119 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[119]', r_9registers_119, 'range', '0..65535', None)
     else:
         r_9registers_119 = 0
     if len(g_registers) > 120:
         r_9registers_120 = g_registers[120]
-        if r_9registers_120.__class__ is not int and (not isinstance(r_9registers_120, int) or r_9registers_120.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[120]', r_9registers_120, 'type', 'an int')
-        if not 0 <= r_9registers_120 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[120]', r_9registers_120, 'range', '0..65535', None)
+        if r_9registers_120.__class__ is not int or not 0 <= r_9registers_120 <= 65535:
+            if not isinstance(r_9registers_120, int) or r_9registers_120.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[120]', r_9registers_120, 'type', 'an int')
+            if not 0 <= r_9registers_120 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[120]', r_9registers_120, 'range', '0..65535', None)
     else:
         r_9registers_120 = 0
     if len(g_registers) > 121:
         r_9registers_121 = g_registers[121]
-        if r_9registers_121.__class__ is not int and (not isinstance(r_9registers_121, int) or r_9registers_121.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[121]', r_9registers_121, 'type', 'an int')
-        if not 0 <= r_9registers_121 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[121]', r_9registers_121, 'range', '0..65535', None)
+        if r_9registers_121.__class__ is not int or not 0 <= r_9registers_121 <= 65535:
+            if not isinstance(r_9registers_121, int) or r_9registers_121.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[121]', r_9registers_121, 'type', 'an int')
+            if not 0 <= r_9registers_121 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[121]', r_9registers_121, 'range', '0..65535', None)
     else:
         r_9registers_121 = 0
     if len(g_registers) > 122:
         r_9registers_122 = g_registers[122]
-        if r_9registers_122.__class__ is not int and (not isinstance(r_9registers_122, int) or r_9registers_122.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[122]', r_9registers_122, 'type', 'an int')
-        if not 0 <= r_9registers_122 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[122]', r_9registers_122, 'range', '0..65535', None)
+        if r_9registers_122.__class__ is not int or not 0 <= r_9registers_122 <= 65535:
+            if not isinstance(r_9registers_122, int) or r_9registers_122.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[122]', r_9registers_122, 'type', 'an int')
+            if not 0 <= r_9registers_122 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[122]', r_9registers_122, 'range', '0..65535', None)
     else:
         r_9registers_122 = 0
     if len(g_registers) > 123:
         r_9registers_123 = g_registers[123]
-        if r_9registers_123.__class__ is not int and (not isinstance(r_9registers_123, int) or r_9registers_123.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[123]', r_9registers_123, 'type', 'an int')
-        if not 0 <= r_9registers_123 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[123]', r_9registers_123, 'range', '0..65535', None)
+        if r_9registers_123.__class__ is not int or not 0 <= r_9registers_123 <= 65535:
+            if not isinstance(r_9registers_123, int) or r_9registers_123.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[123]', r_9registers_123, 'type', 'an int')
+            if not 0 <= r_9registers_123 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[123]', r_9registers_123, 'range', '0..65535', None)
     else:
         r_9registers_123 = 0
     if len(g_registers) > 124:
         r_9registers_124 = g_registers[124]
-        if r_9registers_124.__class__ is not int and (not isinstance(r_9registers_124, int) or r_9registers_124.__class__ is bool):
-            raise _enc('read_holding_registers_response', 'registers[124]', r_9registers_124, 'type', 'an int')
-        if not 0 <= r_9registers_124 <= 65535:
-            raise _enc('read_holding_registers_response', 'registers[124]', r_9registers_124, 'range', '0..65535', None)
+        if r_9registers_124.__class__ is not int or not 0 <= r_9registers_124 <= 65535:
+            if not isinstance(r_9registers_124, int) or r_9registers_124.__class__ is bool:
+                raise _enc('read_holding_registers_response', 'registers[124]', r_9registers_124, 'type', 'an int')
+            if not 0 <= r_9registers_124 <= 65535:
+                raise _enc('read_holding_registers_response', 'registers[124]', r_9registers_124, 'range', '0..65535', None)
     else:
         r_9registers_124 = 0
     r_crc = 0
@@ -1604,1006 +1727,1131 @@ def _decode_read_holding_registers_response(d: _Buffer) -> ReadHoldingRegistersR
 
 def _encode_write_multiple_registers(m: WriteMultipleRegisters) -> bytes:
     r_address = m.address
-    if r_address.__class__ is not int and (not isinstance(r_address, int) or r_address.__class__ is bool):
-        raise _enc('write_multiple_registers', 'address', r_address, 'type', 'an int')
-    if not 0 <= r_address <= 255:
-        raise _enc('write_multiple_registers', 'address', r_address, 'range', '0..255', None)
-    r_function = 16
+    if r_address.__class__ is not int or not 0 <= r_address <= 255:
+        if not isinstance(r_address, int) or r_address.__class__ is bool:
+            raise _enc('write_multiple_registers', 'address', r_address, 'type', 'an int')
+        if not 0 <= r_address <= 255:
+            raise _enc('write_multiple_registers', 'address', r_address, 'range', '0..255', None)
     r_start = m.start
-    if r_start.__class__ is not int and (not isinstance(r_start, int) or r_start.__class__ is bool):
-        raise _enc('write_multiple_registers', 'start', r_start, 'type', 'an int')
-    if not 0 <= r_start <= 65535:
-        raise _enc('write_multiple_registers', 'start', r_start, 'range', '0..65535', None)
+    if r_start.__class__ is not int or not 0 <= r_start <= 65535:
+        if not isinstance(r_start, int) or r_start.__class__ is bool:
+            raise _enc('write_multiple_registers', 'start', r_start, 'type', 'an int')
+        if not 0 <= r_start <= 65535:
+            raise _enc('write_multiple_registers', 'start', r_start, 'range', '0..65535', None)
     r_quantity = m.quantity
-    if r_quantity.__class__ is not int and (not isinstance(r_quantity, int) or r_quantity.__class__ is bool):
-        raise _enc('write_multiple_registers', 'quantity', r_quantity, 'type', 'an int')
-    if not 1 <= r_quantity <= 123:
-        raise _enc('write_multiple_registers', 'quantity', r_quantity, 'range', '1..123', None)
+    if r_quantity.__class__ is not int or not 1 <= r_quantity <= 123:
+        if not isinstance(r_quantity, int) or r_quantity.__class__ is bool:
+            raise _enc('write_multiple_registers', 'quantity', r_quantity, 'type', 'an int')
+        if not 1 <= r_quantity <= 123:
+            raise _enc('write_multiple_registers', 'quantity', r_quantity, 'range', '1..123', None)
     g_values = m.values
     if not isinstance(g_values, (list, tuple)) or len(g_values) > 123:
         raise _enc('write_multiple_registers', 'values', g_values, 'count', 'a list of at most 123 values')
     if len(g_values) > 0:
         r_6values_0 = g_values[0]
-        if r_6values_0.__class__ is not int and (not isinstance(r_6values_0, int) or r_6values_0.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[0]', r_6values_0, 'type', 'an int')
-        if not 0 <= r_6values_0 <= 65535:
-            raise _enc('write_multiple_registers', 'values[0]', r_6values_0, 'range', '0..65535', None)
+        if r_6values_0.__class__ is not int or not 0 <= r_6values_0 <= 65535:
+            if not isinstance(r_6values_0, int) or r_6values_0.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[0]', r_6values_0, 'type', 'an int')
+            if not 0 <= r_6values_0 <= 65535:
+                raise _enc('write_multiple_registers', 'values[0]', r_6values_0, 'range', '0..65535', None)
     else:
         r_6values_0 = 0
     if len(g_values) > 1:
         r_6values_1 = g_values[1]
-        if r_6values_1.__class__ is not int and (not isinstance(r_6values_1, int) or r_6values_1.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[1]', r_6values_1, 'type', 'an int')
-        if not 0 <= r_6values_1 <= 65535:
-            raise _enc('write_multiple_registers', 'values[1]', r_6values_1, 'range', '0..65535', None)
+        if r_6values_1.__class__ is not int or not 0 <= r_6values_1 <= 65535:
+            if not isinstance(r_6values_1, int) or r_6values_1.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[1]', r_6values_1, 'type', 'an int')
+            if not 0 <= r_6values_1 <= 65535:
+                raise _enc('write_multiple_registers', 'values[1]', r_6values_1, 'range', '0..65535', None)
     else:
         r_6values_1 = 0
     if len(g_values) > 2:
         r_6values_2 = g_values[2]
-        if r_6values_2.__class__ is not int and (not isinstance(r_6values_2, int) or r_6values_2.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[2]', r_6values_2, 'type', 'an int')
-        if not 0 <= r_6values_2 <= 65535:
-            raise _enc('write_multiple_registers', 'values[2]', r_6values_2, 'range', '0..65535', None)
+        if r_6values_2.__class__ is not int or not 0 <= r_6values_2 <= 65535:
+            if not isinstance(r_6values_2, int) or r_6values_2.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[2]', r_6values_2, 'type', 'an int')
+            if not 0 <= r_6values_2 <= 65535:
+                raise _enc('write_multiple_registers', 'values[2]', r_6values_2, 'range', '0..65535', None)
     else:
         r_6values_2 = 0
     if len(g_values) > 3:
         r_6values_3 = g_values[3]
-        if r_6values_3.__class__ is not int and (not isinstance(r_6values_3, int) or r_6values_3.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[3]', r_6values_3, 'type', 'an int')
-        if not 0 <= r_6values_3 <= 65535:
-            raise _enc('write_multiple_registers', 'values[3]', r_6values_3, 'range', '0..65535', None)
+        if r_6values_3.__class__ is not int or not 0 <= r_6values_3 <= 65535:
+            if not isinstance(r_6values_3, int) or r_6values_3.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[3]', r_6values_3, 'type', 'an int')
+            if not 0 <= r_6values_3 <= 65535:
+                raise _enc('write_multiple_registers', 'values[3]', r_6values_3, 'range', '0..65535', None)
     else:
         r_6values_3 = 0
     if len(g_values) > 4:
         r_6values_4 = g_values[4]
-        if r_6values_4.__class__ is not int and (not isinstance(r_6values_4, int) or r_6values_4.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[4]', r_6values_4, 'type', 'an int')
-        if not 0 <= r_6values_4 <= 65535:
-            raise _enc('write_multiple_registers', 'values[4]', r_6values_4, 'range', '0..65535', None)
+        if r_6values_4.__class__ is not int or not 0 <= r_6values_4 <= 65535:
+            if not isinstance(r_6values_4, int) or r_6values_4.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[4]', r_6values_4, 'type', 'an int')
+            if not 0 <= r_6values_4 <= 65535:
+                raise _enc('write_multiple_registers', 'values[4]', r_6values_4, 'range', '0..65535', None)
     else:
         r_6values_4 = 0
     if len(g_values) > 5:
         r_6values_5 = g_values[5]
-        if r_6values_5.__class__ is not int and (not isinstance(r_6values_5, int) or r_6values_5.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[5]', r_6values_5, 'type', 'an int')
-        if not 0 <= r_6values_5 <= 65535:
-            raise _enc('write_multiple_registers', 'values[5]', r_6values_5, 'range', '0..65535', None)
+        if r_6values_5.__class__ is not int or not 0 <= r_6values_5 <= 65535:
+            if not isinstance(r_6values_5, int) or r_6values_5.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[5]', r_6values_5, 'type', 'an int')
+            if not 0 <= r_6values_5 <= 65535:
+                raise _enc('write_multiple_registers', 'values[5]', r_6values_5, 'range', '0..65535', None)
     else:
         r_6values_5 = 0
     if len(g_values) > 6:
         r_6values_6 = g_values[6]
-        if r_6values_6.__class__ is not int and (not isinstance(r_6values_6, int) or r_6values_6.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[6]', r_6values_6, 'type', 'an int')
-        if not 0 <= r_6values_6 <= 65535:
-            raise _enc('write_multiple_registers', 'values[6]', r_6values_6, 'range', '0..65535', None)
+        if r_6values_6.__class__ is not int or not 0 <= r_6values_6 <= 65535:
+            if not isinstance(r_6values_6, int) or r_6values_6.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[6]', r_6values_6, 'type', 'an int')
+            if not 0 <= r_6values_6 <= 65535:
+                raise _enc('write_multiple_registers', 'values[6]', r_6values_6, 'range', '0..65535', None)
     else:
         r_6values_6 = 0
     if len(g_values) > 7:
         r_6values_7 = g_values[7]
-        if r_6values_7.__class__ is not int and (not isinstance(r_6values_7, int) or r_6values_7.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[7]', r_6values_7, 'type', 'an int')
-        if not 0 <= r_6values_7 <= 65535:
-            raise _enc('write_multiple_registers', 'values[7]', r_6values_7, 'range', '0..65535', None)
+        if r_6values_7.__class__ is not int or not 0 <= r_6values_7 <= 65535:
+            if not isinstance(r_6values_7, int) or r_6values_7.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[7]', r_6values_7, 'type', 'an int')
+            if not 0 <= r_6values_7 <= 65535:
+                raise _enc('write_multiple_registers', 'values[7]', r_6values_7, 'range', '0..65535', None)
     else:
         r_6values_7 = 0
     if len(g_values) > 8:
         r_6values_8 = g_values[8]
-        if r_6values_8.__class__ is not int and (not isinstance(r_6values_8, int) or r_6values_8.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[8]', r_6values_8, 'type', 'an int')
-        if not 0 <= r_6values_8 <= 65535:
-            raise _enc('write_multiple_registers', 'values[8]', r_6values_8, 'range', '0..65535', None)
+        if r_6values_8.__class__ is not int or not 0 <= r_6values_8 <= 65535:
+            if not isinstance(r_6values_8, int) or r_6values_8.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[8]', r_6values_8, 'type', 'an int')
+            if not 0 <= r_6values_8 <= 65535:
+                raise _enc('write_multiple_registers', 'values[8]', r_6values_8, 'range', '0..65535', None)
     else:
         r_6values_8 = 0
     if len(g_values) > 9:
         r_6values_9 = g_values[9]
-        if r_6values_9.__class__ is not int and (not isinstance(r_6values_9, int) or r_6values_9.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[9]', r_6values_9, 'type', 'an int')
-        if not 0 <= r_6values_9 <= 65535:
-            raise _enc('write_multiple_registers', 'values[9]', r_6values_9, 'range', '0..65535', None)
+        if r_6values_9.__class__ is not int or not 0 <= r_6values_9 <= 65535:
+            if not isinstance(r_6values_9, int) or r_6values_9.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[9]', r_6values_9, 'type', 'an int')
+            if not 0 <= r_6values_9 <= 65535:
+                raise _enc('write_multiple_registers', 'values[9]', r_6values_9, 'range', '0..65535', None)
     else:
         r_6values_9 = 0
     if len(g_values) > 10:
         r_6values_10 = g_values[10]
-        if r_6values_10.__class__ is not int and (not isinstance(r_6values_10, int) or r_6values_10.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[10]', r_6values_10, 'type', 'an int')
-        if not 0 <= r_6values_10 <= 65535:
-            raise _enc('write_multiple_registers', 'values[10]', r_6values_10, 'range', '0..65535', None)
+        if r_6values_10.__class__ is not int or not 0 <= r_6values_10 <= 65535:
+            if not isinstance(r_6values_10, int) or r_6values_10.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[10]', r_6values_10, 'type', 'an int')
+            if not 0 <= r_6values_10 <= 65535:
+                raise _enc('write_multiple_registers', 'values[10]', r_6values_10, 'range', '0..65535', None)
     else:
         r_6values_10 = 0
     if len(g_values) > 11:
         r_6values_11 = g_values[11]
-        if r_6values_11.__class__ is not int and (not isinstance(r_6values_11, int) or r_6values_11.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[11]', r_6values_11, 'type', 'an int')
-        if not 0 <= r_6values_11 <= 65535:
-            raise _enc('write_multiple_registers', 'values[11]', r_6values_11, 'range', '0..65535', None)
+        if r_6values_11.__class__ is not int or not 0 <= r_6values_11 <= 65535:
+            if not isinstance(r_6values_11, int) or r_6values_11.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[11]', r_6values_11, 'type', 'an int')
+            if not 0 <= r_6values_11 <= 65535:
+                raise _enc('write_multiple_registers', 'values[11]', r_6values_11, 'range', '0..65535', None)
     else:
         r_6values_11 = 0
     if len(g_values) > 12:
         r_6values_12 = g_values[12]
-        if r_6values_12.__class__ is not int and (not isinstance(r_6values_12, int) or r_6values_12.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[12]', r_6values_12, 'type', 'an int')
-        if not 0 <= r_6values_12 <= 65535:
-            raise _enc('write_multiple_registers', 'values[12]', r_6values_12, 'range', '0..65535', None)
+        if r_6values_12.__class__ is not int or not 0 <= r_6values_12 <= 65535:
+            if not isinstance(r_6values_12, int) or r_6values_12.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[12]', r_6values_12, 'type', 'an int')
+            if not 0 <= r_6values_12 <= 65535:
+                raise _enc('write_multiple_registers', 'values[12]', r_6values_12, 'range', '0..65535', None)
     else:
         r_6values_12 = 0
     if len(g_values) > 13:
         r_6values_13 = g_values[13]
-        if r_6values_13.__class__ is not int and (not isinstance(r_6values_13, int) or r_6values_13.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[13]', r_6values_13, 'type', 'an int')
-        if not 0 <= r_6values_13 <= 65535:
-            raise _enc('write_multiple_registers', 'values[13]', r_6values_13, 'range', '0..65535', None)
+        if r_6values_13.__class__ is not int or not 0 <= r_6values_13 <= 65535:
+            if not isinstance(r_6values_13, int) or r_6values_13.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[13]', r_6values_13, 'type', 'an int')
+            if not 0 <= r_6values_13 <= 65535:
+                raise _enc('write_multiple_registers', 'values[13]', r_6values_13, 'range', '0..65535', None)
     else:
         r_6values_13 = 0
     if len(g_values) > 14:
         r_6values_14 = g_values[14]
-        if r_6values_14.__class__ is not int and (not isinstance(r_6values_14, int) or r_6values_14.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[14]', r_6values_14, 'type', 'an int')
-        if not 0 <= r_6values_14 <= 65535:
-            raise _enc('write_multiple_registers', 'values[14]', r_6values_14, 'range', '0..65535', None)
+        if r_6values_14.__class__ is not int or not 0 <= r_6values_14 <= 65535:
+            if not isinstance(r_6values_14, int) or r_6values_14.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[14]', r_6values_14, 'type', 'an int')
+            if not 0 <= r_6values_14 <= 65535:
+                raise _enc('write_multiple_registers', 'values[14]', r_6values_14, 'range', '0..65535', None)
     else:
         r_6values_14 = 0
     if len(g_values) > 15:
         r_6values_15 = g_values[15]
-        if r_6values_15.__class__ is not int and (not isinstance(r_6values_15, int) or r_6values_15.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[15]', r_6values_15, 'type', 'an int')
-        if not 0 <= r_6values_15 <= 65535:
-            raise _enc('write_multiple_registers', 'values[15]', r_6values_15, 'range', '0..65535', None)
+        if r_6values_15.__class__ is not int or not 0 <= r_6values_15 <= 65535:
+            if not isinstance(r_6values_15, int) or r_6values_15.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[15]', r_6values_15, 'type', 'an int')
+            if not 0 <= r_6values_15 <= 65535:
+                raise _enc('write_multiple_registers', 'values[15]', r_6values_15, 'range', '0..65535', None)
     else:
         r_6values_15 = 0
     if len(g_values) > 16:
         r_6values_16 = g_values[16]
-        if r_6values_16.__class__ is not int and (not isinstance(r_6values_16, int) or r_6values_16.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[16]', r_6values_16, 'type', 'an int')
-        if not 0 <= r_6values_16 <= 65535:
-            raise _enc('write_multiple_registers', 'values[16]', r_6values_16, 'range', '0..65535', None)
+        if r_6values_16.__class__ is not int or not 0 <= r_6values_16 <= 65535:
+            if not isinstance(r_6values_16, int) or r_6values_16.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[16]', r_6values_16, 'type', 'an int')
+            if not 0 <= r_6values_16 <= 65535:
+                raise _enc('write_multiple_registers', 'values[16]', r_6values_16, 'range', '0..65535', None)
     else:
         r_6values_16 = 0
     if len(g_values) > 17:
         r_6values_17 = g_values[17]
-        if r_6values_17.__class__ is not int and (not isinstance(r_6values_17, int) or r_6values_17.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[17]', r_6values_17, 'type', 'an int')
-        if not 0 <= r_6values_17 <= 65535:
-            raise _enc('write_multiple_registers', 'values[17]', r_6values_17, 'range', '0..65535', None)
+        if r_6values_17.__class__ is not int or not 0 <= r_6values_17 <= 65535:
+            if not isinstance(r_6values_17, int) or r_6values_17.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[17]', r_6values_17, 'type', 'an int')
+            if not 0 <= r_6values_17 <= 65535:
+                raise _enc('write_multiple_registers', 'values[17]', r_6values_17, 'range', '0..65535', None)
     else:
         r_6values_17 = 0
     if len(g_values) > 18:
         r_6values_18 = g_values[18]
-        if r_6values_18.__class__ is not int and (not isinstance(r_6values_18, int) or r_6values_18.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[18]', r_6values_18, 'type', 'an int')
-        if not 0 <= r_6values_18 <= 65535:
-            raise _enc('write_multiple_registers', 'values[18]', r_6values_18, 'range', '0..65535', None)
+        if r_6values_18.__class__ is not int or not 0 <= r_6values_18 <= 65535:
+            if not isinstance(r_6values_18, int) or r_6values_18.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[18]', r_6values_18, 'type', 'an int')
+            if not 0 <= r_6values_18 <= 65535:
+                raise _enc('write_multiple_registers', 'values[18]', r_6values_18, 'range', '0..65535', None)
     else:
         r_6values_18 = 0
     if len(g_values) > 19:
         r_6values_19 = g_values[19]
-        if r_6values_19.__class__ is not int and (not isinstance(r_6values_19, int) or r_6values_19.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[19]', r_6values_19, 'type', 'an int')
-        if not 0 <= r_6values_19 <= 65535:
-            raise _enc('write_multiple_registers', 'values[19]', r_6values_19, 'range', '0..65535', None)
+        if r_6values_19.__class__ is not int or not 0 <= r_6values_19 <= 65535:
+            if not isinstance(r_6values_19, int) or r_6values_19.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[19]', r_6values_19, 'type', 'an int')
+            if not 0 <= r_6values_19 <= 65535:
+                raise _enc('write_multiple_registers', 'values[19]', r_6values_19, 'range', '0..65535', None)
     else:
         r_6values_19 = 0
     if len(g_values) > 20:
         r_6values_20 = g_values[20]
-        if r_6values_20.__class__ is not int and (not isinstance(r_6values_20, int) or r_6values_20.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[20]', r_6values_20, 'type', 'an int')
-        if not 0 <= r_6values_20 <= 65535:
-            raise _enc('write_multiple_registers', 'values[20]', r_6values_20, 'range', '0..65535', None)
+        if r_6values_20.__class__ is not int or not 0 <= r_6values_20 <= 65535:
+            if not isinstance(r_6values_20, int) or r_6values_20.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[20]', r_6values_20, 'type', 'an int')
+            if not 0 <= r_6values_20 <= 65535:
+                raise _enc('write_multiple_registers', 'values[20]', r_6values_20, 'range', '0..65535', None)
     else:
         r_6values_20 = 0
     if len(g_values) > 21:
         r_6values_21 = g_values[21]
-        if r_6values_21.__class__ is not int and (not isinstance(r_6values_21, int) or r_6values_21.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[21]', r_6values_21, 'type', 'an int')
-        if not 0 <= r_6values_21 <= 65535:
-            raise _enc('write_multiple_registers', 'values[21]', r_6values_21, 'range', '0..65535', None)
+        if r_6values_21.__class__ is not int or not 0 <= r_6values_21 <= 65535:
+            if not isinstance(r_6values_21, int) or r_6values_21.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[21]', r_6values_21, 'type', 'an int')
+            if not 0 <= r_6values_21 <= 65535:
+                raise _enc('write_multiple_registers', 'values[21]', r_6values_21, 'range', '0..65535', None)
     else:
         r_6values_21 = 0
     if len(g_values) > 22:
         r_6values_22 = g_values[22]
-        if r_6values_22.__class__ is not int and (not isinstance(r_6values_22, int) or r_6values_22.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[22]', r_6values_22, 'type', 'an int')
-        if not 0 <= r_6values_22 <= 65535:
-            raise _enc('write_multiple_registers', 'values[22]', r_6values_22, 'range', '0..65535', None)
+        if r_6values_22.__class__ is not int or not 0 <= r_6values_22 <= 65535:
+            if not isinstance(r_6values_22, int) or r_6values_22.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[22]', r_6values_22, 'type', 'an int')
+            if not 0 <= r_6values_22 <= 65535:
+                raise _enc('write_multiple_registers', 'values[22]', r_6values_22, 'range', '0..65535', None)
     else:
         r_6values_22 = 0
     if len(g_values) > 23:
         r_6values_23 = g_values[23]
-        if r_6values_23.__class__ is not int and (not isinstance(r_6values_23, int) or r_6values_23.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[23]', r_6values_23, 'type', 'an int')
-        if not 0 <= r_6values_23 <= 65535:
-            raise _enc('write_multiple_registers', 'values[23]', r_6values_23, 'range', '0..65535', None)
+        if r_6values_23.__class__ is not int or not 0 <= r_6values_23 <= 65535:
+            if not isinstance(r_6values_23, int) or r_6values_23.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[23]', r_6values_23, 'type', 'an int')
+            if not 0 <= r_6values_23 <= 65535:
+                raise _enc('write_multiple_registers', 'values[23]', r_6values_23, 'range', '0..65535', None)
     else:
         r_6values_23 = 0
     if len(g_values) > 24:
         r_6values_24 = g_values[24]
-        if r_6values_24.__class__ is not int and (not isinstance(r_6values_24, int) or r_6values_24.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[24]', r_6values_24, 'type', 'an int')
-        if not 0 <= r_6values_24 <= 65535:
-            raise _enc('write_multiple_registers', 'values[24]', r_6values_24, 'range', '0..65535', None)
+        if r_6values_24.__class__ is not int or not 0 <= r_6values_24 <= 65535:
+            if not isinstance(r_6values_24, int) or r_6values_24.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[24]', r_6values_24, 'type', 'an int')
+            if not 0 <= r_6values_24 <= 65535:
+                raise _enc('write_multiple_registers', 'values[24]', r_6values_24, 'range', '0..65535', None)
     else:
         r_6values_24 = 0
     if len(g_values) > 25:
         r_6values_25 = g_values[25]
-        if r_6values_25.__class__ is not int and (not isinstance(r_6values_25, int) or r_6values_25.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[25]', r_6values_25, 'type', 'an int')
-        if not 0 <= r_6values_25 <= 65535:
-            raise _enc('write_multiple_registers', 'values[25]', r_6values_25, 'range', '0..65535', None)
+        if r_6values_25.__class__ is not int or not 0 <= r_6values_25 <= 65535:
+            if not isinstance(r_6values_25, int) or r_6values_25.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[25]', r_6values_25, 'type', 'an int')
+            if not 0 <= r_6values_25 <= 65535:
+                raise _enc('write_multiple_registers', 'values[25]', r_6values_25, 'range', '0..65535', None)
     else:
         r_6values_25 = 0
     if len(g_values) > 26:
         r_6values_26 = g_values[26]
-        if r_6values_26.__class__ is not int and (not isinstance(r_6values_26, int) or r_6values_26.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[26]', r_6values_26, 'type', 'an int')
-        if not 0 <= r_6values_26 <= 65535:
-            raise _enc('write_multiple_registers', 'values[26]', r_6values_26, 'range', '0..65535', None)
+        if r_6values_26.__class__ is not int or not 0 <= r_6values_26 <= 65535:
+            if not isinstance(r_6values_26, int) or r_6values_26.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[26]', r_6values_26, 'type', 'an int')
+            if not 0 <= r_6values_26 <= 65535:
+                raise _enc('write_multiple_registers', 'values[26]', r_6values_26, 'range', '0..65535', None)
     else:
         r_6values_26 = 0
     if len(g_values) > 27:
         r_6values_27 = g_values[27]
-        if r_6values_27.__class__ is not int and (not isinstance(r_6values_27, int) or r_6values_27.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[27]', r_6values_27, 'type', 'an int')
-        if not 0 <= r_6values_27 <= 65535:
-            raise _enc('write_multiple_registers', 'values[27]', r_6values_27, 'range', '0..65535', None)
+        if r_6values_27.__class__ is not int or not 0 <= r_6values_27 <= 65535:
+            if not isinstance(r_6values_27, int) or r_6values_27.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[27]', r_6values_27, 'type', 'an int')
+            if not 0 <= r_6values_27 <= 65535:
+                raise _enc('write_multiple_registers', 'values[27]', r_6values_27, 'range', '0..65535', None)
     else:
         r_6values_27 = 0
     if len(g_values) > 28:
         r_6values_28 = g_values[28]
-        if r_6values_28.__class__ is not int and (not isinstance(r_6values_28, int) or r_6values_28.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[28]', r_6values_28, 'type', 'an int')
-        if not 0 <= r_6values_28 <= 65535:
-            raise _enc('write_multiple_registers', 'values[28]', r_6values_28, 'range', '0..65535', None)
+        if r_6values_28.__class__ is not int or not 0 <= r_6values_28 <= 65535:
+            if not isinstance(r_6values_28, int) or r_6values_28.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[28]', r_6values_28, 'type', 'an int')
+            if not 0 <= r_6values_28 <= 65535:
+                raise _enc('write_multiple_registers', 'values[28]', r_6values_28, 'range', '0..65535', None)
     else:
         r_6values_28 = 0
     if len(g_values) > 29:
         r_6values_29 = g_values[29]
-        if r_6values_29.__class__ is not int and (not isinstance(r_6values_29, int) or r_6values_29.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[29]', r_6values_29, 'type', 'an int')
-        if not 0 <= r_6values_29 <= 65535:
-            raise _enc('write_multiple_registers', 'values[29]', r_6values_29, 'range', '0..65535', None)
+        if r_6values_29.__class__ is not int or not 0 <= r_6values_29 <= 65535:
+            if not isinstance(r_6values_29, int) or r_6values_29.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[29]', r_6values_29, 'type', 'an int')
+            if not 0 <= r_6values_29 <= 65535:
+                raise _enc('write_multiple_registers', 'values[29]', r_6values_29, 'range', '0..65535', None)
     else:
         r_6values_29 = 0
     if len(g_values) > 30:
         r_6values_30 = g_values[30]
-        if r_6values_30.__class__ is not int and (not isinstance(r_6values_30, int) or r_6values_30.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[30]', r_6values_30, 'type', 'an int')
-        if not 0 <= r_6values_30 <= 65535:
-            raise _enc('write_multiple_registers', 'values[30]', r_6values_30, 'range', '0..65535', None)
+        if r_6values_30.__class__ is not int or not 0 <= r_6values_30 <= 65535:
+            if not isinstance(r_6values_30, int) or r_6values_30.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[30]', r_6values_30, 'type', 'an int')
+            if not 0 <= r_6values_30 <= 65535:
+                raise _enc('write_multiple_registers', 'values[30]', r_6values_30, 'range', '0..65535', None)
     else:
         r_6values_30 = 0
     if len(g_values) > 31:
         r_6values_31 = g_values[31]
-        if r_6values_31.__class__ is not int and (not isinstance(r_6values_31, int) or r_6values_31.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[31]', r_6values_31, 'type', 'an int')
-        if not 0 <= r_6values_31 <= 65535:
-            raise _enc('write_multiple_registers', 'values[31]', r_6values_31, 'range', '0..65535', None)
+        if r_6values_31.__class__ is not int or not 0 <= r_6values_31 <= 65535:
+            if not isinstance(r_6values_31, int) or r_6values_31.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[31]', r_6values_31, 'type', 'an int')
+            if not 0 <= r_6values_31 <= 65535:
+                raise _enc('write_multiple_registers', 'values[31]', r_6values_31, 'range', '0..65535', None)
     else:
         r_6values_31 = 0
     if len(g_values) > 32:
         r_6values_32 = g_values[32]
-        if r_6values_32.__class__ is not int and (not isinstance(r_6values_32, int) or r_6values_32.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[32]', r_6values_32, 'type', 'an int')
-        if not 0 <= r_6values_32 <= 65535:
-            raise _enc('write_multiple_registers', 'values[32]', r_6values_32, 'range', '0..65535', None)
+        if r_6values_32.__class__ is not int or not 0 <= r_6values_32 <= 65535:
+            if not isinstance(r_6values_32, int) or r_6values_32.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[32]', r_6values_32, 'type', 'an int')
+            if not 0 <= r_6values_32 <= 65535:
+                raise _enc('write_multiple_registers', 'values[32]', r_6values_32, 'range', '0..65535', None)
     else:
         r_6values_32 = 0
     if len(g_values) > 33:
         r_6values_33 = g_values[33]
-        if r_6values_33.__class__ is not int and (not isinstance(r_6values_33, int) or r_6values_33.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[33]', r_6values_33, 'type', 'an int')
-        if not 0 <= r_6values_33 <= 65535:
-            raise _enc('write_multiple_registers', 'values[33]', r_6values_33, 'range', '0..65535', None)
+        if r_6values_33.__class__ is not int or not 0 <= r_6values_33 <= 65535:
+            if not isinstance(r_6values_33, int) or r_6values_33.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[33]', r_6values_33, 'type', 'an int')
+            if not 0 <= r_6values_33 <= 65535:
+                raise _enc('write_multiple_registers', 'values[33]', r_6values_33, 'range', '0..65535', None)
     else:
         r_6values_33 = 0
     if len(g_values) > 34:
         r_6values_34 = g_values[34]
-        if r_6values_34.__class__ is not int and (not isinstance(r_6values_34, int) or r_6values_34.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[34]', r_6values_34, 'type', 'an int')
-        if not 0 <= r_6values_34 <= 65535:
-            raise _enc('write_multiple_registers', 'values[34]', r_6values_34, 'range', '0..65535', None)
+        if r_6values_34.__class__ is not int or not 0 <= r_6values_34 <= 65535:
+            if not isinstance(r_6values_34, int) or r_6values_34.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[34]', r_6values_34, 'type', 'an int')
+            if not 0 <= r_6values_34 <= 65535:
+                raise _enc('write_multiple_registers', 'values[34]', r_6values_34, 'range', '0..65535', None)
     else:
         r_6values_34 = 0
     if len(g_values) > 35:
         r_6values_35 = g_values[35]
-        if r_6values_35.__class__ is not int and (not isinstance(r_6values_35, int) or r_6values_35.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[35]', r_6values_35, 'type', 'an int')
-        if not 0 <= r_6values_35 <= 65535:
-            raise _enc('write_multiple_registers', 'values[35]', r_6values_35, 'range', '0..65535', None)
+        if r_6values_35.__class__ is not int or not 0 <= r_6values_35 <= 65535:
+            if not isinstance(r_6values_35, int) or r_6values_35.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[35]', r_6values_35, 'type', 'an int')
+            if not 0 <= r_6values_35 <= 65535:
+                raise _enc('write_multiple_registers', 'values[35]', r_6values_35, 'range', '0..65535', None)
     else:
         r_6values_35 = 0
     if len(g_values) > 36:
         r_6values_36 = g_values[36]
-        if r_6values_36.__class__ is not int and (not isinstance(r_6values_36, int) or r_6values_36.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[36]', r_6values_36, 'type', 'an int')
-        if not 0 <= r_6values_36 <= 65535:
-            raise _enc('write_multiple_registers', 'values[36]', r_6values_36, 'range', '0..65535', None)
+        if r_6values_36.__class__ is not int or not 0 <= r_6values_36 <= 65535:
+            if not isinstance(r_6values_36, int) or r_6values_36.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[36]', r_6values_36, 'type', 'an int')
+            if not 0 <= r_6values_36 <= 65535:
+                raise _enc('write_multiple_registers', 'values[36]', r_6values_36, 'range', '0..65535', None)
     else:
         r_6values_36 = 0
     if len(g_values) > 37:
         r_6values_37 = g_values[37]
-        if r_6values_37.__class__ is not int and (not isinstance(r_6values_37, int) or r_6values_37.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[37]', r_6values_37, 'type', 'an int')
-        if not 0 <= r_6values_37 <= 65535:
-            raise _enc('write_multiple_registers', 'values[37]', r_6values_37, 'range', '0..65535', None)
+        if r_6values_37.__class__ is not int or not 0 <= r_6values_37 <= 65535:
+            if not isinstance(r_6values_37, int) or r_6values_37.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[37]', r_6values_37, 'type', 'an int')
+            if not 0 <= r_6values_37 <= 65535:
+                raise _enc('write_multiple_registers', 'values[37]', r_6values_37, 'range', '0..65535', None)
     else:
         r_6values_37 = 0
     if len(g_values) > 38:
         r_6values_38 = g_values[38]
-        if r_6values_38.__class__ is not int and (not isinstance(r_6values_38, int) or r_6values_38.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[38]', r_6values_38, 'type', 'an int')
-        if not 0 <= r_6values_38 <= 65535:
-            raise _enc('write_multiple_registers', 'values[38]', r_6values_38, 'range', '0..65535', None)
+        if r_6values_38.__class__ is not int or not 0 <= r_6values_38 <= 65535:
+            if not isinstance(r_6values_38, int) or r_6values_38.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[38]', r_6values_38, 'type', 'an int')
+            if not 0 <= r_6values_38 <= 65535:
+                raise _enc('write_multiple_registers', 'values[38]', r_6values_38, 'range', '0..65535', None)
     else:
         r_6values_38 = 0
     if len(g_values) > 39:
         r_6values_39 = g_values[39]
-        if r_6values_39.__class__ is not int and (not isinstance(r_6values_39, int) or r_6values_39.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[39]', r_6values_39, 'type', 'an int')
-        if not 0 <= r_6values_39 <= 65535:
-            raise _enc('write_multiple_registers', 'values[39]', r_6values_39, 'range', '0..65535', None)
+        if r_6values_39.__class__ is not int or not 0 <= r_6values_39 <= 65535:
+            if not isinstance(r_6values_39, int) or r_6values_39.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[39]', r_6values_39, 'type', 'an int')
+            if not 0 <= r_6values_39 <= 65535:
+                raise _enc('write_multiple_registers', 'values[39]', r_6values_39, 'range', '0..65535', None)
     else:
         r_6values_39 = 0
     if len(g_values) > 40:
         r_6values_40 = g_values[40]
-        if r_6values_40.__class__ is not int and (not isinstance(r_6values_40, int) or r_6values_40.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[40]', r_6values_40, 'type', 'an int')
-        if not 0 <= r_6values_40 <= 65535:
-            raise _enc('write_multiple_registers', 'values[40]', r_6values_40, 'range', '0..65535', None)
+        if r_6values_40.__class__ is not int or not 0 <= r_6values_40 <= 65535:
+            if not isinstance(r_6values_40, int) or r_6values_40.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[40]', r_6values_40, 'type', 'an int')
+            if not 0 <= r_6values_40 <= 65535:
+                raise _enc('write_multiple_registers', 'values[40]', r_6values_40, 'range', '0..65535', None)
     else:
         r_6values_40 = 0
     if len(g_values) > 41:
         r_6values_41 = g_values[41]
-        if r_6values_41.__class__ is not int and (not isinstance(r_6values_41, int) or r_6values_41.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[41]', r_6values_41, 'type', 'an int')
-        if not 0 <= r_6values_41 <= 65535:
-            raise _enc('write_multiple_registers', 'values[41]', r_6values_41, 'range', '0..65535', None)
+        if r_6values_41.__class__ is not int or not 0 <= r_6values_41 <= 65535:
+            if not isinstance(r_6values_41, int) or r_6values_41.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[41]', r_6values_41, 'type', 'an int')
+            if not 0 <= r_6values_41 <= 65535:
+                raise _enc('write_multiple_registers', 'values[41]', r_6values_41, 'range', '0..65535', None)
     else:
         r_6values_41 = 0
     if len(g_values) > 42:
         r_6values_42 = g_values[42]
-        if r_6values_42.__class__ is not int and (not isinstance(r_6values_42, int) or r_6values_42.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[42]', r_6values_42, 'type', 'an int')
-        if not 0 <= r_6values_42 <= 65535:
-            raise _enc('write_multiple_registers', 'values[42]', r_6values_42, 'range', '0..65535', None)
+        if r_6values_42.__class__ is not int or not 0 <= r_6values_42 <= 65535:
+            if not isinstance(r_6values_42, int) or r_6values_42.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[42]', r_6values_42, 'type', 'an int')
+            if not 0 <= r_6values_42 <= 65535:
+                raise _enc('write_multiple_registers', 'values[42]', r_6values_42, 'range', '0..65535', None)
     else:
         r_6values_42 = 0
     if len(g_values) > 43:
         r_6values_43 = g_values[43]
-        if r_6values_43.__class__ is not int and (not isinstance(r_6values_43, int) or r_6values_43.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[43]', r_6values_43, 'type', 'an int')
-        if not 0 <= r_6values_43 <= 65535:
-            raise _enc('write_multiple_registers', 'values[43]', r_6values_43, 'range', '0..65535', None)
+        if r_6values_43.__class__ is not int or not 0 <= r_6values_43 <= 65535:
+            if not isinstance(r_6values_43, int) or r_6values_43.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[43]', r_6values_43, 'type', 'an int')
+            if not 0 <= r_6values_43 <= 65535:
+                raise _enc('write_multiple_registers', 'values[43]', r_6values_43, 'range', '0..65535', None)
     else:
         r_6values_43 = 0
     if len(g_values) > 44:
         r_6values_44 = g_values[44]
-        if r_6values_44.__class__ is not int and (not isinstance(r_6values_44, int) or r_6values_44.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[44]', r_6values_44, 'type', 'an int')
-        if not 0 <= r_6values_44 <= 65535:
-            raise _enc('write_multiple_registers', 'values[44]', r_6values_44, 'range', '0..65535', None)
+        if r_6values_44.__class__ is not int or not 0 <= r_6values_44 <= 65535:
+            if not isinstance(r_6values_44, int) or r_6values_44.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[44]', r_6values_44, 'type', 'an int')
+            if not 0 <= r_6values_44 <= 65535:
+                raise _enc('write_multiple_registers', 'values[44]', r_6values_44, 'range', '0..65535', None)
     else:
         r_6values_44 = 0
     if len(g_values) > 45:
         r_6values_45 = g_values[45]
-        if r_6values_45.__class__ is not int and (not isinstance(r_6values_45, int) or r_6values_45.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[45]', r_6values_45, 'type', 'an int')
-        if not 0 <= r_6values_45 <= 65535:
-            raise _enc('write_multiple_registers', 'values[45]', r_6values_45, 'range', '0..65535', None)
+        if r_6values_45.__class__ is not int or not 0 <= r_6values_45 <= 65535:
+            if not isinstance(r_6values_45, int) or r_6values_45.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[45]', r_6values_45, 'type', 'an int')
+            if not 0 <= r_6values_45 <= 65535:
+                raise _enc('write_multiple_registers', 'values[45]', r_6values_45, 'range', '0..65535', None)
     else:
         r_6values_45 = 0
     if len(g_values) > 46:
         r_6values_46 = g_values[46]
-        if r_6values_46.__class__ is not int and (not isinstance(r_6values_46, int) or r_6values_46.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[46]', r_6values_46, 'type', 'an int')
-        if not 0 <= r_6values_46 <= 65535:
-            raise _enc('write_multiple_registers', 'values[46]', r_6values_46, 'range', '0..65535', None)
+        if r_6values_46.__class__ is not int or not 0 <= r_6values_46 <= 65535:
+            if not isinstance(r_6values_46, int) or r_6values_46.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[46]', r_6values_46, 'type', 'an int')
+            if not 0 <= r_6values_46 <= 65535:
+                raise _enc('write_multiple_registers', 'values[46]', r_6values_46, 'range', '0..65535', None)
     else:
         r_6values_46 = 0
     if len(g_values) > 47:
         r_6values_47 = g_values[47]
-        if r_6values_47.__class__ is not int and (not isinstance(r_6values_47, int) or r_6values_47.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[47]', r_6values_47, 'type', 'an int')
-        if not 0 <= r_6values_47 <= 65535:
-            raise _enc('write_multiple_registers', 'values[47]', r_6values_47, 'range', '0..65535', None)
+        if r_6values_47.__class__ is not int or not 0 <= r_6values_47 <= 65535:
+            if not isinstance(r_6values_47, int) or r_6values_47.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[47]', r_6values_47, 'type', 'an int')
+            if not 0 <= r_6values_47 <= 65535:
+                raise _enc('write_multiple_registers', 'values[47]', r_6values_47, 'range', '0..65535', None)
     else:
         r_6values_47 = 0
     if len(g_values) > 48:
         r_6values_48 = g_values[48]
-        if r_6values_48.__class__ is not int and (not isinstance(r_6values_48, int) or r_6values_48.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[48]', r_6values_48, 'type', 'an int')
-        if not 0 <= r_6values_48 <= 65535:
-            raise _enc('write_multiple_registers', 'values[48]', r_6values_48, 'range', '0..65535', None)
+        if r_6values_48.__class__ is not int or not 0 <= r_6values_48 <= 65535:
+            if not isinstance(r_6values_48, int) or r_6values_48.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[48]', r_6values_48, 'type', 'an int')
+            if not 0 <= r_6values_48 <= 65535:
+                raise _enc('write_multiple_registers', 'values[48]', r_6values_48, 'range', '0..65535', None)
     else:
         r_6values_48 = 0
     if len(g_values) > 49:
         r_6values_49 = g_values[49]
-        if r_6values_49.__class__ is not int and (not isinstance(r_6values_49, int) or r_6values_49.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[49]', r_6values_49, 'type', 'an int')
-        if not 0 <= r_6values_49 <= 65535:
-            raise _enc('write_multiple_registers', 'values[49]', r_6values_49, 'range', '0..65535', None)
+        if r_6values_49.__class__ is not int or not 0 <= r_6values_49 <= 65535:
+            if not isinstance(r_6values_49, int) or r_6values_49.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[49]', r_6values_49, 'type', 'an int')
+            if not 0 <= r_6values_49 <= 65535:
+                raise _enc('write_multiple_registers', 'values[49]', r_6values_49, 'range', '0..65535', None)
     else:
         r_6values_49 = 0
     if len(g_values) > 50:
         r_6values_50 = g_values[50]
-        if r_6values_50.__class__ is not int and (not isinstance(r_6values_50, int) or r_6values_50.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[50]', r_6values_50, 'type', 'an int')
-        if not 0 <= r_6values_50 <= 65535:
-            raise _enc('write_multiple_registers', 'values[50]', r_6values_50, 'range', '0..65535', None)
+        if r_6values_50.__class__ is not int or not 0 <= r_6values_50 <= 65535:
+            if not isinstance(r_6values_50, int) or r_6values_50.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[50]', r_6values_50, 'type', 'an int')
+            if not 0 <= r_6values_50 <= 65535:
+                raise _enc('write_multiple_registers', 'values[50]', r_6values_50, 'range', '0..65535', None)
     else:
         r_6values_50 = 0
     if len(g_values) > 51:
         r_6values_51 = g_values[51]
-        if r_6values_51.__class__ is not int and (not isinstance(r_6values_51, int) or r_6values_51.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[51]', r_6values_51, 'type', 'an int')
-        if not 0 <= r_6values_51 <= 65535:
-            raise _enc('write_multiple_registers', 'values[51]', r_6values_51, 'range', '0..65535', None)
+        if r_6values_51.__class__ is not int or not 0 <= r_6values_51 <= 65535:
+            if not isinstance(r_6values_51, int) or r_6values_51.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[51]', r_6values_51, 'type', 'an int')
+            if not 0 <= r_6values_51 <= 65535:
+                raise _enc('write_multiple_registers', 'values[51]', r_6values_51, 'range', '0..65535', None)
     else:
         r_6values_51 = 0
     if len(g_values) > 52:
         r_6values_52 = g_values[52]
-        if r_6values_52.__class__ is not int and (not isinstance(r_6values_52, int) or r_6values_52.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[52]', r_6values_52, 'type', 'an int')
-        if not 0 <= r_6values_52 <= 65535:
-            raise _enc('write_multiple_registers', 'values[52]', r_6values_52, 'range', '0..65535', None)
+        if r_6values_52.__class__ is not int or not 0 <= r_6values_52 <= 65535:
+            if not isinstance(r_6values_52, int) or r_6values_52.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[52]', r_6values_52, 'type', 'an int')
+            if not 0 <= r_6values_52 <= 65535:
+                raise _enc('write_multiple_registers', 'values[52]', r_6values_52, 'range', '0..65535', None)
     else:
         r_6values_52 = 0
     if len(g_values) > 53:
         r_6values_53 = g_values[53]
-        if r_6values_53.__class__ is not int and (not isinstance(r_6values_53, int) or r_6values_53.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[53]', r_6values_53, 'type', 'an int')
-        if not 0 <= r_6values_53 <= 65535:
-            raise _enc('write_multiple_registers', 'values[53]', r_6values_53, 'range', '0..65535', None)
+        if r_6values_53.__class__ is not int or not 0 <= r_6values_53 <= 65535:
+            if not isinstance(r_6values_53, int) or r_6values_53.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[53]', r_6values_53, 'type', 'an int')
+            if not 0 <= r_6values_53 <= 65535:
+                raise _enc('write_multiple_registers', 'values[53]', r_6values_53, 'range', '0..65535', None)
     else:
         r_6values_53 = 0
     if len(g_values) > 54:
         r_6values_54 = g_values[54]
-        if r_6values_54.__class__ is not int and (not isinstance(r_6values_54, int) or r_6values_54.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[54]', r_6values_54, 'type', 'an int')
-        if not 0 <= r_6values_54 <= 65535:
-            raise _enc('write_multiple_registers', 'values[54]', r_6values_54, 'range', '0..65535', None)
+        if r_6values_54.__class__ is not int or not 0 <= r_6values_54 <= 65535:
+            if not isinstance(r_6values_54, int) or r_6values_54.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[54]', r_6values_54, 'type', 'an int')
+            if not 0 <= r_6values_54 <= 65535:
+                raise _enc('write_multiple_registers', 'values[54]', r_6values_54, 'range', '0..65535', None)
     else:
         r_6values_54 = 0
     if len(g_values) > 55:
         r_6values_55 = g_values[55]
-        if r_6values_55.__class__ is not int and (not isinstance(r_6values_55, int) or r_6values_55.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[55]', r_6values_55, 'type', 'an int')
-        if not 0 <= r_6values_55 <= 65535:
-            raise _enc('write_multiple_registers', 'values[55]', r_6values_55, 'range', '0..65535', None)
+        if r_6values_55.__class__ is not int or not 0 <= r_6values_55 <= 65535:
+            if not isinstance(r_6values_55, int) or r_6values_55.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[55]', r_6values_55, 'type', 'an int')
+            if not 0 <= r_6values_55 <= 65535:
+                raise _enc('write_multiple_registers', 'values[55]', r_6values_55, 'range', '0..65535', None)
     else:
         r_6values_55 = 0
     if len(g_values) > 56:
         r_6values_56 = g_values[56]
-        if r_6values_56.__class__ is not int and (not isinstance(r_6values_56, int) or r_6values_56.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[56]', r_6values_56, 'type', 'an int')
-        if not 0 <= r_6values_56 <= 65535:
-            raise _enc('write_multiple_registers', 'values[56]', r_6values_56, 'range', '0..65535', None)
+        if r_6values_56.__class__ is not int or not 0 <= r_6values_56 <= 65535:
+            if not isinstance(r_6values_56, int) or r_6values_56.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[56]', r_6values_56, 'type', 'an int')
+            if not 0 <= r_6values_56 <= 65535:
+                raise _enc('write_multiple_registers', 'values[56]', r_6values_56, 'range', '0..65535', None)
     else:
         r_6values_56 = 0
     if len(g_values) > 57:
         r_6values_57 = g_values[57]
-        if r_6values_57.__class__ is not int and (not isinstance(r_6values_57, int) or r_6values_57.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[57]', r_6values_57, 'type', 'an int')
-        if not 0 <= r_6values_57 <= 65535:
-            raise _enc('write_multiple_registers', 'values[57]', r_6values_57, 'range', '0..65535', None)
+        if r_6values_57.__class__ is not int or not 0 <= r_6values_57 <= 65535:
+            if not isinstance(r_6values_57, int) or r_6values_57.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[57]', r_6values_57, 'type', 'an int')
+            if not 0 <= r_6values_57 <= 65535:
+                raise _enc('write_multiple_registers', 'values[57]', r_6values_57, 'range', '0..65535', None)
     else:
         r_6values_57 = 0
     if len(g_values) > 58:
         r_6values_58 = g_values[58]
-        if r_6values_58.__class__ is not int and (not isinstance(r_6values_58, int) or r_6values_58.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[58]', r_6values_58, 'type', 'an int')
-        if not 0 <= r_6values_58 <= 65535:
-            raise _enc('write_multiple_registers', 'values[58]', r_6values_58, 'range', '0..65535', None)
+        if r_6values_58.__class__ is not int or not 0 <= r_6values_58 <= 65535:
+            if not isinstance(r_6values_58, int) or r_6values_58.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[58]', r_6values_58, 'type', 'an int')
+            if not 0 <= r_6values_58 <= 65535:
+                raise _enc('write_multiple_registers', 'values[58]', r_6values_58, 'range', '0..65535', None)
     else:
         r_6values_58 = 0
     if len(g_values) > 59:
         r_6values_59 = g_values[59]
-        if r_6values_59.__class__ is not int and (not isinstance(r_6values_59, int) or r_6values_59.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[59]', r_6values_59, 'type', 'an int')
-        if not 0 <= r_6values_59 <= 65535:
-            raise _enc('write_multiple_registers', 'values[59]', r_6values_59, 'range', '0..65535', None)
+        if r_6values_59.__class__ is not int or not 0 <= r_6values_59 <= 65535:
+            if not isinstance(r_6values_59, int) or r_6values_59.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[59]', r_6values_59, 'type', 'an int')
+            if not 0 <= r_6values_59 <= 65535:
+                raise _enc('write_multiple_registers', 'values[59]', r_6values_59, 'range', '0..65535', None)
     else:
         r_6values_59 = 0
     if len(g_values) > 60:
         r_6values_60 = g_values[60]
-        if r_6values_60.__class__ is not int and (not isinstance(r_6values_60, int) or r_6values_60.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[60]', r_6values_60, 'type', 'an int')
-        if not 0 <= r_6values_60 <= 65535:
-            raise _enc('write_multiple_registers', 'values[60]', r_6values_60, 'range', '0..65535', None)
+        if r_6values_60.__class__ is not int or not 0 <= r_6values_60 <= 65535:
+            if not isinstance(r_6values_60, int) or r_6values_60.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[60]', r_6values_60, 'type', 'an int')
+            if not 0 <= r_6values_60 <= 65535:
+                raise _enc('write_multiple_registers', 'values[60]', r_6values_60, 'range', '0..65535', None)
     else:
         r_6values_60 = 0
     if len(g_values) > 61:
         r_6values_61 = g_values[61]
-        if r_6values_61.__class__ is not int and (not isinstance(r_6values_61, int) or r_6values_61.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[61]', r_6values_61, 'type', 'an int')
-        if not 0 <= r_6values_61 <= 65535:
-            raise _enc('write_multiple_registers', 'values[61]', r_6values_61, 'range', '0..65535', None)
+        if r_6values_61.__class__ is not int or not 0 <= r_6values_61 <= 65535:
+            if not isinstance(r_6values_61, int) or r_6values_61.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[61]', r_6values_61, 'type', 'an int')
+            if not 0 <= r_6values_61 <= 65535:
+                raise _enc('write_multiple_registers', 'values[61]', r_6values_61, 'range', '0..65535', None)
     else:
         r_6values_61 = 0
     if len(g_values) > 62:
         r_6values_62 = g_values[62]
-        if r_6values_62.__class__ is not int and (not isinstance(r_6values_62, int) or r_6values_62.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[62]', r_6values_62, 'type', 'an int')
-        if not 0 <= r_6values_62 <= 65535:
-            raise _enc('write_multiple_registers', 'values[62]', r_6values_62, 'range', '0..65535', None)
+        if r_6values_62.__class__ is not int or not 0 <= r_6values_62 <= 65535:
+            if not isinstance(r_6values_62, int) or r_6values_62.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[62]', r_6values_62, 'type', 'an int')
+            if not 0 <= r_6values_62 <= 65535:
+                raise _enc('write_multiple_registers', 'values[62]', r_6values_62, 'range', '0..65535', None)
     else:
         r_6values_62 = 0
     if len(g_values) > 63:
         r_6values_63 = g_values[63]
-        if r_6values_63.__class__ is not int and (not isinstance(r_6values_63, int) or r_6values_63.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[63]', r_6values_63, 'type', 'an int')
-        if not 0 <= r_6values_63 <= 65535:
-            raise _enc('write_multiple_registers', 'values[63]', r_6values_63, 'range', '0..65535', None)
+        if r_6values_63.__class__ is not int or not 0 <= r_6values_63 <= 65535:
+            if not isinstance(r_6values_63, int) or r_6values_63.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[63]', r_6values_63, 'type', 'an int')
+            if not 0 <= r_6values_63 <= 65535:
+                raise _enc('write_multiple_registers', 'values[63]', r_6values_63, 'range', '0..65535', None)
     else:
         r_6values_63 = 0
     if len(g_values) > 64:
         r_6values_64 = g_values[64]
-        if r_6values_64.__class__ is not int and (not isinstance(r_6values_64, int) or r_6values_64.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[64]', r_6values_64, 'type', 'an int')
-        if not 0 <= r_6values_64 <= 65535:
-            raise _enc('write_multiple_registers', 'values[64]', r_6values_64, 'range', '0..65535', None)
+        if r_6values_64.__class__ is not int or not 0 <= r_6values_64 <= 65535:
+            if not isinstance(r_6values_64, int) or r_6values_64.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[64]', r_6values_64, 'type', 'an int')
+            if not 0 <= r_6values_64 <= 65535:
+                raise _enc('write_multiple_registers', 'values[64]', r_6values_64, 'range', '0..65535', None)
     else:
         r_6values_64 = 0
     if len(g_values) > 65:
         r_6values_65 = g_values[65]
-        if r_6values_65.__class__ is not int and (not isinstance(r_6values_65, int) or r_6values_65.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[65]', r_6values_65, 'type', 'an int')
-        if not 0 <= r_6values_65 <= 65535:
-            raise _enc('write_multiple_registers', 'values[65]', r_6values_65, 'range', '0..65535', None)
+        if r_6values_65.__class__ is not int or not 0 <= r_6values_65 <= 65535:
+            if not isinstance(r_6values_65, int) or r_6values_65.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[65]', r_6values_65, 'type', 'an int')
+            if not 0 <= r_6values_65 <= 65535:
+                raise _enc('write_multiple_registers', 'values[65]', r_6values_65, 'range', '0..65535', None)
     else:
         r_6values_65 = 0
     if len(g_values) > 66:
         r_6values_66 = g_values[66]
-        if r_6values_66.__class__ is not int and (not isinstance(r_6values_66, int) or r_6values_66.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[66]', r_6values_66, 'type', 'an int')
-        if not 0 <= r_6values_66 <= 65535:
-            raise _enc('write_multiple_registers', 'values[66]', r_6values_66, 'range', '0..65535', None)
+        if r_6values_66.__class__ is not int or not 0 <= r_6values_66 <= 65535:
+            if not isinstance(r_6values_66, int) or r_6values_66.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[66]', r_6values_66, 'type', 'an int')
+            if not 0 <= r_6values_66 <= 65535:
+                raise _enc('write_multiple_registers', 'values[66]', r_6values_66, 'range', '0..65535', None)
     else:
         r_6values_66 = 0
     if len(g_values) > 67:
         r_6values_67 = g_values[67]
-        if r_6values_67.__class__ is not int and (not isinstance(r_6values_67, int) or r_6values_67.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[67]', r_6values_67, 'type', 'an int')
-        if not 0 <= r_6values_67 <= 65535:
-            raise _enc('write_multiple_registers', 'values[67]', r_6values_67, 'range', '0..65535', None)
+        if r_6values_67.__class__ is not int or not 0 <= r_6values_67 <= 65535:
+            if not isinstance(r_6values_67, int) or r_6values_67.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[67]', r_6values_67, 'type', 'an int')
+            if not 0 <= r_6values_67 <= 65535:
+                raise _enc('write_multiple_registers', 'values[67]', r_6values_67, 'range', '0..65535', None)
     else:
         r_6values_67 = 0
     if len(g_values) > 68:
         r_6values_68 = g_values[68]
-        if r_6values_68.__class__ is not int and (not isinstance(r_6values_68, int) or r_6values_68.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[68]', r_6values_68, 'type', 'an int')
-        if not 0 <= r_6values_68 <= 65535:
-            raise _enc('write_multiple_registers', 'values[68]', r_6values_68, 'range', '0..65535', None)
+        if r_6values_68.__class__ is not int or not 0 <= r_6values_68 <= 65535:
+            if not isinstance(r_6values_68, int) or r_6values_68.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[68]', r_6values_68, 'type', 'an int')
+            if not 0 <= r_6values_68 <= 65535:
+                raise _enc('write_multiple_registers', 'values[68]', r_6values_68, 'range', '0..65535', None)
     else:
         r_6values_68 = 0
     if len(g_values) > 69:
         r_6values_69 = g_values[69]
-        if r_6values_69.__class__ is not int and (not isinstance(r_6values_69, int) or r_6values_69.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[69]', r_6values_69, 'type', 'an int')
-        if not 0 <= r_6values_69 <= 65535:
-            raise _enc('write_multiple_registers', 'values[69]', r_6values_69, 'range', '0..65535', None)
+        if r_6values_69.__class__ is not int or not 0 <= r_6values_69 <= 65535:
+            if not isinstance(r_6values_69, int) or r_6values_69.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[69]', r_6values_69, 'type', 'an int')
+            if not 0 <= r_6values_69 <= 65535:
+                raise _enc('write_multiple_registers', 'values[69]', r_6values_69, 'range', '0..65535', None)
     else:
         r_6values_69 = 0
     if len(g_values) > 70:
         r_6values_70 = g_values[70]
-        if r_6values_70.__class__ is not int and (not isinstance(r_6values_70, int) or r_6values_70.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[70]', r_6values_70, 'type', 'an int')
-        if not 0 <= r_6values_70 <= 65535:
-            raise _enc('write_multiple_registers', 'values[70]', r_6values_70, 'range', '0..65535', None)
+        if r_6values_70.__class__ is not int or not 0 <= r_6values_70 <= 65535:
+            if not isinstance(r_6values_70, int) or r_6values_70.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[70]', r_6values_70, 'type', 'an int')
+            if not 0 <= r_6values_70 <= 65535:
+                raise _enc('write_multiple_registers', 'values[70]', r_6values_70, 'range', '0..65535', None)
     else:
         r_6values_70 = 0
     if len(g_values) > 71:
         r_6values_71 = g_values[71]
-        if r_6values_71.__class__ is not int and (not isinstance(r_6values_71, int) or r_6values_71.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[71]', r_6values_71, 'type', 'an int')
-        if not 0 <= r_6values_71 <= 65535:
-            raise _enc('write_multiple_registers', 'values[71]', r_6values_71, 'range', '0..65535', None)
+        if r_6values_71.__class__ is not int or not 0 <= r_6values_71 <= 65535:
+            if not isinstance(r_6values_71, int) or r_6values_71.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[71]', r_6values_71, 'type', 'an int')
+            if not 0 <= r_6values_71 <= 65535:
+                raise _enc('write_multiple_registers', 'values[71]', r_6values_71, 'range', '0..65535', None)
     else:
         r_6values_71 = 0
     if len(g_values) > 72:
         r_6values_72 = g_values[72]
-        if r_6values_72.__class__ is not int and (not isinstance(r_6values_72, int) or r_6values_72.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[72]', r_6values_72, 'type', 'an int')
-        if not 0 <= r_6values_72 <= 65535:
-            raise _enc('write_multiple_registers', 'values[72]', r_6values_72, 'range', '0..65535', None)
+        if r_6values_72.__class__ is not int or not 0 <= r_6values_72 <= 65535:
+            if not isinstance(r_6values_72, int) or r_6values_72.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[72]', r_6values_72, 'type', 'an int')
+            if not 0 <= r_6values_72 <= 65535:
+                raise _enc('write_multiple_registers', 'values[72]', r_6values_72, 'range', '0..65535', None)
     else:
         r_6values_72 = 0
     if len(g_values) > 73:
         r_6values_73 = g_values[73]
-        if r_6values_73.__class__ is not int and (not isinstance(r_6values_73, int) or r_6values_73.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[73]', r_6values_73, 'type', 'an int')
-        if not 0 <= r_6values_73 <= 65535:
-            raise _enc('write_multiple_registers', 'values[73]', r_6values_73, 'range', '0..65535', None)
+        if r_6values_73.__class__ is not int or not 0 <= r_6values_73 <= 65535:
+            if not isinstance(r_6values_73, int) or r_6values_73.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[73]', r_6values_73, 'type', 'an int')
+            if not 0 <= r_6values_73 <= 65535:
+                raise _enc('write_multiple_registers', 'values[73]', r_6values_73, 'range', '0..65535', None)
     else:
         r_6values_73 = 0
     if len(g_values) > 74:
         r_6values_74 = g_values[74]
-        if r_6values_74.__class__ is not int and (not isinstance(r_6values_74, int) or r_6values_74.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[74]', r_6values_74, 'type', 'an int')
-        if not 0 <= r_6values_74 <= 65535:
-            raise _enc('write_multiple_registers', 'values[74]', r_6values_74, 'range', '0..65535', None)
+        if r_6values_74.__class__ is not int or not 0 <= r_6values_74 <= 65535:
+            if not isinstance(r_6values_74, int) or r_6values_74.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[74]', r_6values_74, 'type', 'an int')
+            if not 0 <= r_6values_74 <= 65535:
+                raise _enc('write_multiple_registers', 'values[74]', r_6values_74, 'range', '0..65535', None)
     else:
         r_6values_74 = 0
     if len(g_values) > 75:
         r_6values_75 = g_values[75]
-        if r_6values_75.__class__ is not int and (not isinstance(r_6values_75, int) or r_6values_75.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[75]', r_6values_75, 'type', 'an int')
-        if not 0 <= r_6values_75 <= 65535:
-            raise _enc('write_multiple_registers', 'values[75]', r_6values_75, 'range', '0..65535', None)
+        if r_6values_75.__class__ is not int or not 0 <= r_6values_75 <= 65535:
+            if not isinstance(r_6values_75, int) or r_6values_75.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[75]', r_6values_75, 'type', 'an int')
+            if not 0 <= r_6values_75 <= 65535:
+                raise _enc('write_multiple_registers', 'values[75]', r_6values_75, 'range', '0..65535', None)
     else:
         r_6values_75 = 0
     if len(g_values) > 76:
         r_6values_76 = g_values[76]
-        if r_6values_76.__class__ is not int and (not isinstance(r_6values_76, int) or r_6values_76.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[76]', r_6values_76, 'type', 'an int')
-        if not 0 <= r_6values_76 <= 65535:
-            raise _enc('write_multiple_registers', 'values[76]', r_6values_76, 'range', '0..65535', None)
+        if r_6values_76.__class__ is not int or not 0 <= r_6values_76 <= 65535:
+            if not isinstance(r_6values_76, int) or r_6values_76.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[76]', r_6values_76, 'type', 'an int')
+            if not 0 <= r_6values_76 <= 65535:
+                raise _enc('write_multiple_registers', 'values[76]', r_6values_76, 'range', '0..65535', None)
     else:
         r_6values_76 = 0
     if len(g_values) > 77:
         r_6values_77 = g_values[77]
-        if r_6values_77.__class__ is not int and (not isinstance(r_6values_77, int) or r_6values_77.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[77]', r_6values_77, 'type', 'an int')
-        if not 0 <= r_6values_77 <= 65535:
-            raise _enc('write_multiple_registers', 'values[77]', r_6values_77, 'range', '0..65535', None)
+        if r_6values_77.__class__ is not int or not 0 <= r_6values_77 <= 65535:
+            if not isinstance(r_6values_77, int) or r_6values_77.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[77]', r_6values_77, 'type', 'an int')
+            if not 0 <= r_6values_77 <= 65535:
+                raise _enc('write_multiple_registers', 'values[77]', r_6values_77, 'range', '0..65535', None)
     else:
         r_6values_77 = 0
     if len(g_values) > 78:
         r_6values_78 = g_values[78]
-        if r_6values_78.__class__ is not int and (not isinstance(r_6values_78, int) or r_6values_78.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[78]', r_6values_78, 'type', 'an int')
-        if not 0 <= r_6values_78 <= 65535:
-            raise _enc('write_multiple_registers', 'values[78]', r_6values_78, 'range', '0..65535', None)
+        if r_6values_78.__class__ is not int or not 0 <= r_6values_78 <= 65535:
+            if not isinstance(r_6values_78, int) or r_6values_78.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[78]', r_6values_78, 'type', 'an int')
+            if not 0 <= r_6values_78 <= 65535:
+                raise _enc('write_multiple_registers', 'values[78]', r_6values_78, 'range', '0..65535', None)
     else:
         r_6values_78 = 0
     if len(g_values) > 79:
         r_6values_79 = g_values[79]
-        if r_6values_79.__class__ is not int and (not isinstance(r_6values_79, int) or r_6values_79.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[79]', r_6values_79, 'type', 'an int')
-        if not 0 <= r_6values_79 <= 65535:
-            raise _enc('write_multiple_registers', 'values[79]', r_6values_79, 'range', '0..65535', None)
+        if r_6values_79.__class__ is not int or not 0 <= r_6values_79 <= 65535:
+            if not isinstance(r_6values_79, int) or r_6values_79.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[79]', r_6values_79, 'type', 'an int')
+            if not 0 <= r_6values_79 <= 65535:
+                raise _enc('write_multiple_registers', 'values[79]', r_6values_79, 'range', '0..65535', None)
     else:
         r_6values_79 = 0
     if len(g_values) > 80:
         r_6values_80 = g_values[80]
-        if r_6values_80.__class__ is not int and (not isinstance(r_6values_80, int) or r_6values_80.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[80]', r_6values_80, 'type', 'an int')
-        if not 0 <= r_6values_80 <= 65535:
-            raise _enc('write_multiple_registers', 'values[80]', r_6values_80, 'range', '0..65535', None)
+        if r_6values_80.__class__ is not int or not 0 <= r_6values_80 <= 65535:
+            if not isinstance(r_6values_80, int) or r_6values_80.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[80]', r_6values_80, 'type', 'an int')
+            if not 0 <= r_6values_80 <= 65535:
+                raise _enc('write_multiple_registers', 'values[80]', r_6values_80, 'range', '0..65535', None)
     else:
         r_6values_80 = 0
     if len(g_values) > 81:
         r_6values_81 = g_values[81]
-        if r_6values_81.__class__ is not int and (not isinstance(r_6values_81, int) or r_6values_81.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[81]', r_6values_81, 'type', 'an int')
-        if not 0 <= r_6values_81 <= 65535:
-            raise _enc('write_multiple_registers', 'values[81]', r_6values_81, 'range', '0..65535', None)
+        if r_6values_81.__class__ is not int or not 0 <= r_6values_81 <= 65535:
+            if not isinstance(r_6values_81, int) or r_6values_81.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[81]', r_6values_81, 'type', 'an int')
+            if not 0 <= r_6values_81 <= 65535:
+                raise _enc('write_multiple_registers', 'values[81]', r_6values_81, 'range', '0..65535', None)
     else:
         r_6values_81 = 0
     if len(g_values) > 82:
         r_6values_82 = g_values[82]
-        if r_6values_82.__class__ is not int and (not isinstance(r_6values_82, int) or r_6values_82.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[82]', r_6values_82, 'type', 'an int')
-        if not 0 <= r_6values_82 <= 65535:
-            raise _enc('write_multiple_registers', 'values[82]', r_6values_82, 'range', '0..65535', None)
+        if r_6values_82.__class__ is not int or not 0 <= r_6values_82 <= 65535:
+            if not isinstance(r_6values_82, int) or r_6values_82.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[82]', r_6values_82, 'type', 'an int')
+            if not 0 <= r_6values_82 <= 65535:
+                raise _enc('write_multiple_registers', 'values[82]', r_6values_82, 'range', '0..65535', None)
     else:
         r_6values_82 = 0
     if len(g_values) > 83:
         r_6values_83 = g_values[83]
-        if r_6values_83.__class__ is not int and (not isinstance(r_6values_83, int) or r_6values_83.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[83]', r_6values_83, 'type', 'an int')
-        if not 0 <= r_6values_83 <= 65535:
-            raise _enc('write_multiple_registers', 'values[83]', r_6values_83, 'range', '0..65535', None)
+        if r_6values_83.__class__ is not int or not 0 <= r_6values_83 <= 65535:
+            if not isinstance(r_6values_83, int) or r_6values_83.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[83]', r_6values_83, 'type', 'an int')
+            if not 0 <= r_6values_83 <= 65535:
+                raise _enc('write_multiple_registers', 'values[83]', r_6values_83, 'range', '0..65535', None)
     else:
         r_6values_83 = 0
     if len(g_values) > 84:
         r_6values_84 = g_values[84]
-        if r_6values_84.__class__ is not int and (not isinstance(r_6values_84, int) or r_6values_84.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[84]', r_6values_84, 'type', 'an int')
-        if not 0 <= r_6values_84 <= 65535:
-            raise _enc('write_multiple_registers', 'values[84]', r_6values_84, 'range', '0..65535', None)
+        if r_6values_84.__class__ is not int or not 0 <= r_6values_84 <= 65535:
+            if not isinstance(r_6values_84, int) or r_6values_84.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[84]', r_6values_84, 'type', 'an int')
+            if not 0 <= r_6values_84 <= 65535:
+                raise _enc('write_multiple_registers', 'values[84]', r_6values_84, 'range', '0..65535', None)
     else:
         r_6values_84 = 0
     if len(g_values) > 85:
         r_6values_85 = g_values[85]
-        if r_6values_85.__class__ is not int and (not isinstance(r_6values_85, int) or r_6values_85.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[85]', r_6values_85, 'type', 'an int')
-        if not 0 <= r_6values_85 <= 65535:
-            raise _enc('write_multiple_registers', 'values[85]', r_6values_85, 'range', '0..65535', None)
+        if r_6values_85.__class__ is not int or not 0 <= r_6values_85 <= 65535:
+            if not isinstance(r_6values_85, int) or r_6values_85.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[85]', r_6values_85, 'type', 'an int')
+            if not 0 <= r_6values_85 <= 65535:
+                raise _enc('write_multiple_registers', 'values[85]', r_6values_85, 'range', '0..65535', None)
     else:
         r_6values_85 = 0
     if len(g_values) > 86:
         r_6values_86 = g_values[86]
-        if r_6values_86.__class__ is not int and (not isinstance(r_6values_86, int) or r_6values_86.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[86]', r_6values_86, 'type', 'an int')
-        if not 0 <= r_6values_86 <= 65535:
-            raise _enc('write_multiple_registers', 'values[86]', r_6values_86, 'range', '0..65535', None)
+        if r_6values_86.__class__ is not int or not 0 <= r_6values_86 <= 65535:
+            if not isinstance(r_6values_86, int) or r_6values_86.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[86]', r_6values_86, 'type', 'an int')
+            if not 0 <= r_6values_86 <= 65535:
+                raise _enc('write_multiple_registers', 'values[86]', r_6values_86, 'range', '0..65535', None)
     else:
         r_6values_86 = 0
     if len(g_values) > 87:
         r_6values_87 = g_values[87]
-        if r_6values_87.__class__ is not int and (not isinstance(r_6values_87, int) or r_6values_87.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[87]', r_6values_87, 'type', 'an int')
-        if not 0 <= r_6values_87 <= 65535:
-            raise _enc('write_multiple_registers', 'values[87]', r_6values_87, 'range', '0..65535', None)
+        if r_6values_87.__class__ is not int or not 0 <= r_6values_87 <= 65535:
+            if not isinstance(r_6values_87, int) or r_6values_87.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[87]', r_6values_87, 'type', 'an int')
+            if not 0 <= r_6values_87 <= 65535:
+                raise _enc('write_multiple_registers', 'values[87]', r_6values_87, 'range', '0..65535', None)
     else:
         r_6values_87 = 0
     if len(g_values) > 88:
         r_6values_88 = g_values[88]
-        if r_6values_88.__class__ is not int and (not isinstance(r_6values_88, int) or r_6values_88.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[88]', r_6values_88, 'type', 'an int')
-        if not 0 <= r_6values_88 <= 65535:
-            raise _enc('write_multiple_registers', 'values[88]', r_6values_88, 'range', '0..65535', None)
+        if r_6values_88.__class__ is not int or not 0 <= r_6values_88 <= 65535:
+            if not isinstance(r_6values_88, int) or r_6values_88.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[88]', r_6values_88, 'type', 'an int')
+            if not 0 <= r_6values_88 <= 65535:
+                raise _enc('write_multiple_registers', 'values[88]', r_6values_88, 'range', '0..65535', None)
     else:
         r_6values_88 = 0
     if len(g_values) > 89:
         r_6values_89 = g_values[89]
-        if r_6values_89.__class__ is not int and (not isinstance(r_6values_89, int) or r_6values_89.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[89]', r_6values_89, 'type', 'an int')
-        if not 0 <= r_6values_89 <= 65535:
-            raise _enc('write_multiple_registers', 'values[89]', r_6values_89, 'range', '0..65535', None)
+        if r_6values_89.__class__ is not int or not 0 <= r_6values_89 <= 65535:
+            if not isinstance(r_6values_89, int) or r_6values_89.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[89]', r_6values_89, 'type', 'an int')
+            if not 0 <= r_6values_89 <= 65535:
+                raise _enc('write_multiple_registers', 'values[89]', r_6values_89, 'range', '0..65535', None)
     else:
         r_6values_89 = 0
     if len(g_values) > 90:
         r_6values_90 = g_values[90]
-        if r_6values_90.__class__ is not int and (not isinstance(r_6values_90, int) or r_6values_90.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[90]', r_6values_90, 'type', 'an int')
-        if not 0 <= r_6values_90 <= 65535:
-            raise _enc('write_multiple_registers', 'values[90]', r_6values_90, 'range', '0..65535', None)
+        if r_6values_90.__class__ is not int or not 0 <= r_6values_90 <= 65535:
+            if not isinstance(r_6values_90, int) or r_6values_90.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[90]', r_6values_90, 'type', 'an int')
+            if not 0 <= r_6values_90 <= 65535:
+                raise _enc('write_multiple_registers', 'values[90]', r_6values_90, 'range', '0..65535', None)
     else:
         r_6values_90 = 0
     if len(g_values) > 91:
         r_6values_91 = g_values[91]
-        if r_6values_91.__class__ is not int and (not isinstance(r_6values_91, int) or r_6values_91.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[91]', r_6values_91, 'type', 'an int')
-        if not 0 <= r_6values_91 <= 65535:
-            raise _enc('write_multiple_registers', 'values[91]', r_6values_91, 'range', '0..65535', None)
+        if r_6values_91.__class__ is not int or not 0 <= r_6values_91 <= 65535:
+            if not isinstance(r_6values_91, int) or r_6values_91.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[91]', r_6values_91, 'type', 'an int')
+            if not 0 <= r_6values_91 <= 65535:
+                raise _enc('write_multiple_registers', 'values[91]', r_6values_91, 'range', '0..65535', None)
     else:
         r_6values_91 = 0
     if len(g_values) > 92:
         r_6values_92 = g_values[92]
-        if r_6values_92.__class__ is not int and (not isinstance(r_6values_92, int) or r_6values_92.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[92]', r_6values_92, 'type', 'an int')
-        if not 0 <= r_6values_92 <= 65535:
-            raise _enc('write_multiple_registers', 'values[92]', r_6values_92, 'range', '0..65535', None)
+        if r_6values_92.__class__ is not int or not 0 <= r_6values_92 <= 65535:
+            if not isinstance(r_6values_92, int) or r_6values_92.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[92]', r_6values_92, 'type', 'an int')
+            if not 0 <= r_6values_92 <= 65535:
+                raise _enc('write_multiple_registers', 'values[92]', r_6values_92, 'range', '0..65535', None)
     else:
         r_6values_92 = 0
     if len(g_values) > 93:
         r_6values_93 = g_values[93]
-        if r_6values_93.__class__ is not int and (not isinstance(r_6values_93, int) or r_6values_93.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[93]', r_6values_93, 'type', 'an int')
-        if not 0 <= r_6values_93 <= 65535:
-            raise _enc('write_multiple_registers', 'values[93]', r_6values_93, 'range', '0..65535', None)
+        if r_6values_93.__class__ is not int or not 0 <= r_6values_93 <= 65535:
+            if not isinstance(r_6values_93, int) or r_6values_93.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[93]', r_6values_93, 'type', 'an int')
+            if not 0 <= r_6values_93 <= 65535:
+                raise _enc('write_multiple_registers', 'values[93]', r_6values_93, 'range', '0..65535', None)
     else:
         r_6values_93 = 0
     if len(g_values) > 94:
         r_6values_94 = g_values[94]
-        if r_6values_94.__class__ is not int and (not isinstance(r_6values_94, int) or r_6values_94.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[94]', r_6values_94, 'type', 'an int')
-        if not 0 <= r_6values_94 <= 65535:
-            raise _enc('write_multiple_registers', 'values[94]', r_6values_94, 'range', '0..65535', None)
+        if r_6values_94.__class__ is not int or not 0 <= r_6values_94 <= 65535:
+            if not isinstance(r_6values_94, int) or r_6values_94.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[94]', r_6values_94, 'type', 'an int')
+            if not 0 <= r_6values_94 <= 65535:
+                raise _enc('write_multiple_registers', 'values[94]', r_6values_94, 'range', '0..65535', None)
     else:
         r_6values_94 = 0
     if len(g_values) > 95:
         r_6values_95 = g_values[95]
-        if r_6values_95.__class__ is not int and (not isinstance(r_6values_95, int) or r_6values_95.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[95]', r_6values_95, 'type', 'an int')
-        if not 0 <= r_6values_95 <= 65535:
-            raise _enc('write_multiple_registers', 'values[95]', r_6values_95, 'range', '0..65535', None)
+        if r_6values_95.__class__ is not int or not 0 <= r_6values_95 <= 65535:
+            if not isinstance(r_6values_95, int) or r_6values_95.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[95]', r_6values_95, 'type', 'an int')
+            if not 0 <= r_6values_95 <= 65535:
+                raise _enc('write_multiple_registers', 'values[95]', r_6values_95, 'range', '0..65535', None)
     else:
         r_6values_95 = 0
     if len(g_values) > 96:
         r_6values_96 = g_values[96]
-        if r_6values_96.__class__ is not int and (not isinstance(r_6values_96, int) or r_6values_96.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[96]', r_6values_96, 'type', 'an int')
-        if not 0 <= r_6values_96 <= 65535:
-            raise _enc('write_multiple_registers', 'values[96]', r_6values_96, 'range', '0..65535', None)
+        if r_6values_96.__class__ is not int or not 0 <= r_6values_96 <= 65535:
+            if not isinstance(r_6values_96, int) or r_6values_96.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[96]', r_6values_96, 'type', 'an int')
+            if not 0 <= r_6values_96 <= 65535:
+                raise _enc('write_multiple_registers', 'values[96]', r_6values_96, 'range', '0..65535', None)
     else:
         r_6values_96 = 0
     if len(g_values) > 97:
         r_6values_97 = g_values[97]
-        if r_6values_97.__class__ is not int and (not isinstance(r_6values_97, int) or r_6values_97.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[97]', r_6values_97, 'type', 'an int')
-        if not 0 <= r_6values_97 <= 65535:
-            raise _enc('write_multiple_registers', 'values[97]', r_6values_97, 'range', '0..65535', None)
+        if r_6values_97.__class__ is not int or not 0 <= r_6values_97 <= 65535:
+            if not isinstance(r_6values_97, int) or r_6values_97.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[97]', r_6values_97, 'type', 'an int')
+            if not 0 <= r_6values_97 <= 65535:
+                raise _enc('write_multiple_registers', 'values[97]', r_6values_97, 'range', '0..65535', None)
     else:
         r_6values_97 = 0
     if len(g_values) > 98:
         r_6values_98 = g_values[98]
-        if r_6values_98.__class__ is not int and (not isinstance(r_6values_98, int) or r_6values_98.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[98]', r_6values_98, 'type', 'an int')
-        if not 0 <= r_6values_98 <= 65535:
-            raise _enc('write_multiple_registers', 'values[98]', r_6values_98, 'range', '0..65535', None)
+        if r_6values_98.__class__ is not int or not 0 <= r_6values_98 <= 65535:
+            if not isinstance(r_6values_98, int) or r_6values_98.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[98]', r_6values_98, 'type', 'an int')
+            if not 0 <= r_6values_98 <= 65535:
+                raise _enc('write_multiple_registers', 'values[98]', r_6values_98, 'range', '0..65535', None)
     else:
         r_6values_98 = 0
     if len(g_values) > 99:
         r_6values_99 = g_values[99]
-        if r_6values_99.__class__ is not int and (not isinstance(r_6values_99, int) or r_6values_99.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[99]', r_6values_99, 'type', 'an int')
-        if not 0 <= r_6values_99 <= 65535:
-            raise _enc('write_multiple_registers', 'values[99]', r_6values_99, 'range', '0..65535', None)
+        if r_6values_99.__class__ is not int or not 0 <= r_6values_99 <= 65535:
+            if not isinstance(r_6values_99, int) or r_6values_99.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[99]', r_6values_99, 'type', 'an int')
+            if not 0 <= r_6values_99 <= 65535:
+                raise _enc('write_multiple_registers', 'values[99]', r_6values_99, 'range', '0..65535', None)
     else:
         r_6values_99 = 0
     if len(g_values) > 100:
         r_6values_100 = g_values[100]
-        if r_6values_100.__class__ is not int and (not isinstance(r_6values_100, int) or r_6values_100.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[100]', r_6values_100, 'type', 'an int')
-        if not 0 <= r_6values_100 <= 65535:
-            raise _enc('write_multiple_registers', 'values[100]', r_6values_100, 'range', '0..65535', None)
+        if r_6values_100.__class__ is not int or not 0 <= r_6values_100 <= 65535:
+            if not isinstance(r_6values_100, int) or r_6values_100.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[100]', r_6values_100, 'type', 'an int')
+            if not 0 <= r_6values_100 <= 65535:
+                raise _enc('write_multiple_registers', 'values[100]', r_6values_100, 'range', '0..65535', None)
     else:
         r_6values_100 = 0
     if len(g_values) > 101:
         r_6values_101 = g_values[101]
-        if r_6values_101.__class__ is not int and (not isinstance(r_6values_101, int) or r_6values_101.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[101]', r_6values_101, 'type', 'an int')
-        if not 0 <= r_6values_101 <= 65535:
-            raise _enc('write_multiple_registers', 'values[101]', r_6values_101, 'range', '0..65535', None)
+        if r_6values_101.__class__ is not int or not 0 <= r_6values_101 <= 65535:
+            if not isinstance(r_6values_101, int) or r_6values_101.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[101]', r_6values_101, 'type', 'an int')
+            if not 0 <= r_6values_101 <= 65535:
+                raise _enc('write_multiple_registers', 'values[101]', r_6values_101, 'range', '0..65535', None)
     else:
         r_6values_101 = 0
     if len(g_values) > 102:
         r_6values_102 = g_values[102]
-        if r_6values_102.__class__ is not int and (not isinstance(r_6values_102, int) or r_6values_102.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[102]', r_6values_102, 'type', 'an int')
-        if not 0 <= r_6values_102 <= 65535:
-            raise _enc('write_multiple_registers', 'values[102]', r_6values_102, 'range', '0..65535', None)
+        if r_6values_102.__class__ is not int or not 0 <= r_6values_102 <= 65535:
+            if not isinstance(r_6values_102, int) or r_6values_102.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[102]', r_6values_102, 'type', 'an int')
+            if not 0 <= r_6values_102 <= 65535:
+                raise _enc('write_multiple_registers', 'values[102]', r_6values_102, 'range', '0..65535', None)
     else:
         r_6values_102 = 0
     if len(g_values) > 103:
         r_6values_103 = g_values[103]
-        if r_6values_103.__class__ is not int and (not isinstance(r_6values_103, int) or r_6values_103.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[103]', r_6values_103, 'type', 'an int')
-        if not 0 <= r_6values_103 <= 65535:
-            raise _enc('write_multiple_registers', 'values[103]', r_6values_103, 'range', '0..65535', None)
+        if r_6values_103.__class__ is not int or not 0 <= r_6values_103 <= 65535:
+            if not isinstance(r_6values_103, int) or r_6values_103.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[103]', r_6values_103, 'type', 'an int')
+            if not 0 <= r_6values_103 <= 65535:
+                raise _enc('write_multiple_registers', 'values[103]', r_6values_103, 'range', '0..65535', None)
     else:
         r_6values_103 = 0
     if len(g_values) > 104:
         r_6values_104 = g_values[104]
-        if r_6values_104.__class__ is not int and (not isinstance(r_6values_104, int) or r_6values_104.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[104]', r_6values_104, 'type', 'an int')
-        if not 0 <= r_6values_104 <= 65535:
-            raise _enc('write_multiple_registers', 'values[104]', r_6values_104, 'range', '0..65535', None)
+        if r_6values_104.__class__ is not int or not 0 <= r_6values_104 <= 65535:
+            if not isinstance(r_6values_104, int) or r_6values_104.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[104]', r_6values_104, 'type', 'an int')
+            if not 0 <= r_6values_104 <= 65535:
+                raise _enc('write_multiple_registers', 'values[104]', r_6values_104, 'range', '0..65535', None)
     else:
         r_6values_104 = 0
     if len(g_values) > 105:
         r_6values_105 = g_values[105]
-        if r_6values_105.__class__ is not int and (not isinstance(r_6values_105, int) or r_6values_105.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[105]', r_6values_105, 'type', 'an int')
-        if not 0 <= r_6values_105 <= 65535:
-            raise _enc('write_multiple_registers', 'values[105]', r_6values_105, 'range', '0..65535', None)
+        if r_6values_105.__class__ is not int or not 0 <= r_6values_105 <= 65535:
+            if not isinstance(r_6values_105, int) or r_6values_105.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[105]', r_6values_105, 'type', 'an int')
+            if not 0 <= r_6values_105 <= 65535:
+                raise _enc('write_multiple_registers', 'values[105]', r_6values_105, 'range', '0..65535', None)
     else:
         r_6values_105 = 0
     if len(g_values) > 106:
         r_6values_106 = g_values[106]
-        if r_6values_106.__class__ is not int and (not isinstance(r_6values_106, int) or r_6values_106.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[106]', r_6values_106, 'type', 'an int')
-        if not 0 <= r_6values_106 <= 65535:
-            raise _enc('write_multiple_registers', 'values[106]', r_6values_106, 'range', '0..65535', None)
+        if r_6values_106.__class__ is not int or not 0 <= r_6values_106 <= 65535:
+            if not isinstance(r_6values_106, int) or r_6values_106.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[106]', r_6values_106, 'type', 'an int')
+            if not 0 <= r_6values_106 <= 65535:
+                raise _enc('write_multiple_registers', 'values[106]', r_6values_106, 'range', '0..65535', None)
     else:
         r_6values_106 = 0
     if len(g_values) > 107:
         r_6values_107 = g_values[107]
-        if r_6values_107.__class__ is not int and (not isinstance(r_6values_107, int) or r_6values_107.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[107]', r_6values_107, 'type', 'an int')
-        if not 0 <= r_6values_107 <= 65535:
-            raise _enc('write_multiple_registers', 'values[107]', r_6values_107, 'range', '0..65535', None)
+        if r_6values_107.__class__ is not int or not 0 <= r_6values_107 <= 65535:
+            if not isinstance(r_6values_107, int) or r_6values_107.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[107]', r_6values_107, 'type', 'an int')
+            if not 0 <= r_6values_107 <= 65535:
+                raise _enc('write_multiple_registers', 'values[107]', r_6values_107, 'range', '0..65535', None)
     else:
         r_6values_107 = 0
     if len(g_values) > 108:
         r_6values_108 = g_values[108]
-        if r_6values_108.__class__ is not int and (not isinstance(r_6values_108, int) or r_6values_108.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[108]', r_6values_108, 'type', 'an int')
-        if not 0 <= r_6values_108 <= 65535:
-            raise _enc('write_multiple_registers', 'values[108]', r_6values_108, 'range', '0..65535', None)
+        if r_6values_108.__class__ is not int or not 0 <= r_6values_108 <= 65535:
+            if not isinstance(r_6values_108, int) or r_6values_108.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[108]', r_6values_108, 'type', 'an int')
+            if not 0 <= r_6values_108 <= 65535:
+                raise _enc('write_multiple_registers', 'values[108]', r_6values_108, 'range', '0..65535', None)
     else:
         r_6values_108 = 0
     if len(g_values) > 109:
         r_6values_109 = g_values[109]
-        if r_6values_109.__class__ is not int and (not isinstance(r_6values_109, int) or r_6values_109.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[109]', r_6values_109, 'type', 'an int')
-        if not 0 <= r_6values_109 <= 65535:
-            raise _enc('write_multiple_registers', 'values[109]', r_6values_109, 'range', '0..65535', None)
+        if r_6values_109.__class__ is not int or not 0 <= r_6values_109 <= 65535:
+            if not isinstance(r_6values_109, int) or r_6values_109.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[109]', r_6values_109, 'type', 'an int')
+            if not 0 <= r_6values_109 <= 65535:
+                raise _enc('write_multiple_registers', 'values[109]', r_6values_109, 'range', '0..65535', None)
     else:
         r_6values_109 = 0
     if len(g_values) > 110:
         r_6values_110 = g_values[110]
-        if r_6values_110.__class__ is not int and (not isinstance(r_6values_110, int) or r_6values_110.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[110]', r_6values_110, 'type', 'an int')
-        if not 0 <= r_6values_110 <= 65535:
-            raise _enc('write_multiple_registers', 'values[110]', r_6values_110, 'range', '0..65535', None)
+        if r_6values_110.__class__ is not int or not 0 <= r_6values_110 <= 65535:
+            if not isinstance(r_6values_110, int) or r_6values_110.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[110]', r_6values_110, 'type', 'an int')
+            if not 0 <= r_6values_110 <= 65535:
+                raise _enc('write_multiple_registers', 'values[110]', r_6values_110, 'range', '0..65535', None)
     else:
         r_6values_110 = 0
     if len(g_values) > 111:
         r_6values_111 = g_values[111]
-        if r_6values_111.__class__ is not int and (not isinstance(r_6values_111, int) or r_6values_111.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[111]', r_6values_111, 'type', 'an int')
-        if not 0 <= r_6values_111 <= 65535:
-            raise _enc('write_multiple_registers', 'values[111]', r_6values_111, 'range', '0..65535', None)
+        if r_6values_111.__class__ is not int or not 0 <= r_6values_111 <= 65535:
+            if not isinstance(r_6values_111, int) or r_6values_111.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[111]', r_6values_111, 'type', 'an int')
+            if not 0 <= r_6values_111 <= 65535:
+                raise _enc('write_multiple_registers', 'values[111]', r_6values_111, 'range', '0..65535', None)
     else:
         r_6values_111 = 0
     if len(g_values) > 112:
         r_6values_112 = g_values[112]
-        if r_6values_112.__class__ is not int and (not isinstance(r_6values_112, int) or r_6values_112.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[112]', r_6values_112, 'type', 'an int')
-        if not 0 <= r_6values_112 <= 65535:
-            raise _enc('write_multiple_registers', 'values[112]', r_6values_112, 'range', '0..65535', None)
+        if r_6values_112.__class__ is not int or not 0 <= r_6values_112 <= 65535:
+            if not isinstance(r_6values_112, int) or r_6values_112.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[112]', r_6values_112, 'type', 'an int')
+            if not 0 <= r_6values_112 <= 65535:
+                raise _enc('write_multiple_registers', 'values[112]', r_6values_112, 'range', '0..65535', None)
     else:
         r_6values_112 = 0
     if len(g_values) > 113:
         r_6values_113 = g_values[113]
-        if r_6values_113.__class__ is not int and (not isinstance(r_6values_113, int) or r_6values_113.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[113]', r_6values_113, 'type', 'an int')
-        if not 0 <= r_6values_113 <= 65535:
-            raise _enc('write_multiple_registers', 'values[113]', r_6values_113, 'range', '0..65535', None)
+        if r_6values_113.__class__ is not int or not 0 <= r_6values_113 <= 65535:
+            if not isinstance(r_6values_113, int) or r_6values_113.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[113]', r_6values_113, 'type', 'an int')
+            if not 0 <= r_6values_113 <= 65535:
+                raise _enc('write_multiple_registers', 'values[113]', r_6values_113, 'range', '0..65535', None)
     else:
         r_6values_113 = 0
     if len(g_values) > 114:
         r_6values_114 = g_values[114]
-        if r_6values_114.__class__ is not int and (not isinstance(r_6values_114, int) or r_6values_114.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[114]', r_6values_114, 'type', 'an int')
-        if not 0 <= r_6values_114 <= 65535:
-            raise _enc('write_multiple_registers', 'values[114]', r_6values_114, 'range', '0..65535', None)
+        if r_6values_114.__class__ is not int or not 0 <= r_6values_114 <= 65535:
+            if not isinstance(r_6values_114, int) or r_6values_114.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[114]', r_6values_114, 'type', 'an int')
+            if not 0 <= r_6values_114 <= 65535:
+                raise _enc('write_multiple_registers', 'values[114]', r_6values_114, 'range', '0..65535', None)
     else:
         r_6values_114 = 0
     if len(g_values) > 115:
         r_6values_115 = g_values[115]
-        if r_6values_115.__class__ is not int and (not isinstance(r_6values_115, int) or r_6values_115.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[115]', r_6values_115, 'type', 'an int')
-        if not 0 <= r_6values_115 <= 65535:
-            raise _enc('write_multiple_registers', 'values[115]', r_6values_115, 'range', '0..65535', None)
+        if r_6values_115.__class__ is not int or not 0 <= r_6values_115 <= 65535:
+            if not isinstance(r_6values_115, int) or r_6values_115.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[115]', r_6values_115, 'type', 'an int')
+            if not 0 <= r_6values_115 <= 65535:
+                raise _enc('write_multiple_registers', 'values[115]', r_6values_115, 'range', '0..65535', None)
     else:
         r_6values_115 = 0
     if len(g_values) > 116:
         r_6values_116 = g_values[116]
-        if r_6values_116.__class__ is not int and (not isinstance(r_6values_116, int) or r_6values_116.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[116]', r_6values_116, 'type', 'an int')
-        if not 0 <= r_6values_116 <= 65535:
-            raise _enc('write_multiple_registers', 'values[116]', r_6values_116, 'range', '0..65535', None)
+        if r_6values_116.__class__ is not int or not 0 <= r_6values_116 <= 65535:
+            if not isinstance(r_6values_116, int) or r_6values_116.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[116]', r_6values_116, 'type', 'an int')
+            if not 0 <= r_6values_116 <= 65535:
+                raise _enc('write_multiple_registers', 'values[116]', r_6values_116, 'range', '0..65535', None)
     else:
         r_6values_116 = 0
     if len(g_values) > 117:
         r_6values_117 = g_values[117]
-        if r_6values_117.__class__ is not int and (not isinstance(r_6values_117, int) or r_6values_117.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[117]', r_6values_117, 'type', 'an int')
-        if not 0 <= r_6values_117 <= 65535:
-            raise _enc('write_multiple_registers', 'values[117]', r_6values_117, 'range', '0..65535', None)
+        if r_6values_117.__class__ is not int or not 0 <= r_6values_117 <= 65535:
+            if not isinstance(r_6values_117, int) or r_6values_117.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[117]', r_6values_117, 'type', 'an int')
+            if not 0 <= r_6values_117 <= 65535:
+                raise _enc('write_multiple_registers', 'values[117]', r_6values_117, 'range', '0..65535', None)
     else:
         r_6values_117 = 0
     if len(g_values) > 118:
         r_6values_118 = g_values[118]
-        if r_6values_118.__class__ is not int and (not isinstance(r_6values_118, int) or r_6values_118.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[118]', r_6values_118, 'type', 'an int')
-        if not 0 <= r_6values_118 <= 65535:
-            raise _enc('write_multiple_registers', 'values[118]', r_6values_118, 'range', '0..65535', None)
+        if r_6values_118.__class__ is not int or not 0 <= r_6values_118 <= 65535:
+            if not isinstance(r_6values_118, int) or r_6values_118.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[118]', r_6values_118, 'type', 'an int')
+            if not 0 <= r_6values_118 <= 65535:
+                raise _enc('write_multiple_registers', 'values[118]', r_6values_118, 'range', '0..65535', None)
     else:
         r_6values_118 = 0
     if len(g_values) > 119:
         r_6values_119 = g_values[119]
-        if r_6values_119.__class__ is not int and (not isinstance(r_6values_119, int) or r_6values_119.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[119]', r_6values_119, 'type', 'an int')
-        if not 0 <= r_6values_119 <= 65535:
-            raise _enc('write_multiple_registers', 'values[119]', r_6values_119, 'range', '0..65535', None)
+        if r_6values_119.__class__ is not int or not 0 <= r_6values_119 <= 65535:
+            if not isinstance(r_6values_119, int) or r_6values_119.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[119]', r_6values_119, 'type', 'an int')
+            if not 0 <= r_6values_119 <= 65535:
+                raise _enc('write_multiple_registers', 'values[119]', r_6values_119, 'range', '0..65535', None)
     else:
         r_6values_119 = 0
     if len(g_values) > 120:
         r_6values_120 = g_values[120]
-        if r_6values_120.__class__ is not int and (not isinstance(r_6values_120, int) or r_6values_120.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[120]', r_6values_120, 'type', 'an int')
-        if not 0 <= r_6values_120 <= 65535:
-            raise _enc('write_multiple_registers', 'values[120]', r_6values_120, 'range', '0..65535', None)
+        if r_6values_120.__class__ is not int or not 0 <= r_6values_120 <= 65535:
+            if not isinstance(r_6values_120, int) or r_6values_120.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[120]', r_6values_120, 'type', 'an int')
+            if not 0 <= r_6values_120 <= 65535:
+                raise _enc('write_multiple_registers', 'values[120]', r_6values_120, 'range', '0..65535', None)
     else:
         r_6values_120 = 0
     if len(g_values) > 121:
         r_6values_121 = g_values[121]
-        if r_6values_121.__class__ is not int and (not isinstance(r_6values_121, int) or r_6values_121.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[121]', r_6values_121, 'type', 'an int')
-        if not 0 <= r_6values_121 <= 65535:
-            raise _enc('write_multiple_registers', 'values[121]', r_6values_121, 'range', '0..65535', None)
+        if r_6values_121.__class__ is not int or not 0 <= r_6values_121 <= 65535:
+            if not isinstance(r_6values_121, int) or r_6values_121.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[121]', r_6values_121, 'type', 'an int')
+            if not 0 <= r_6values_121 <= 65535:
+                raise _enc('write_multiple_registers', 'values[121]', r_6values_121, 'range', '0..65535', None)
     else:
         r_6values_121 = 0
     if len(g_values) > 122:
         r_6values_122 = g_values[122]
-        if r_6values_122.__class__ is not int and (not isinstance(r_6values_122, int) or r_6values_122.__class__ is bool):
-            raise _enc('write_multiple_registers', 'values[122]', r_6values_122, 'type', 'an int')
-        if not 0 <= r_6values_122 <= 65535:
-            raise _enc('write_multiple_registers', 'values[122]', r_6values_122, 'range', '0..65535', None)
+        if r_6values_122.__class__ is not int or not 0 <= r_6values_122 <= 65535:
+            if not isinstance(r_6values_122, int) or r_6values_122.__class__ is bool:
+                raise _enc('write_multiple_registers', 'values[122]', r_6values_122, 'type', 'an int')
+            if not 0 <= r_6values_122 <= 65535:
+                raise _enc('write_multiple_registers', 'values[122]', r_6values_122, 'range', '0..65535', None)
     else:
         r_6values_122 = 0
     r_crc = 0
@@ -2652,27 +2900,25 @@ def _decode_write_multiple_registers(d: _Buffer) -> WriteMultipleRegisters:
 
 def _encode_write_multiple_registers_response(m: WriteMultipleRegistersResponse) -> bytes:
     r_address = m.address
-    if r_address.__class__ is not int and (not isinstance(r_address, int) or r_address.__class__ is bool):
-        raise _enc('write_multiple_registers_response', 'address', r_address, 'type', 'an int')
-    if not 0 <= r_address <= 255:
-        raise _enc('write_multiple_registers_response', 'address', r_address, 'range', '0..255', None)
-    r_function = 16
+    if r_address.__class__ is not int or not 0 <= r_address <= 255:
+        if not isinstance(r_address, int) or r_address.__class__ is bool:
+            raise _enc('write_multiple_registers_response', 'address', r_address, 'type', 'an int')
+        if not 0 <= r_address <= 255:
+            raise _enc('write_multiple_registers_response', 'address', r_address, 'range', '0..255', None)
     r_start = m.start
-    if r_start.__class__ is not int and (not isinstance(r_start, int) or r_start.__class__ is bool):
-        raise _enc('write_multiple_registers_response', 'start', r_start, 'type', 'an int')
-    if not 0 <= r_start <= 65535:
-        raise _enc('write_multiple_registers_response', 'start', r_start, 'range', '0..65535', None)
+    if r_start.__class__ is not int or not 0 <= r_start <= 65535:
+        if not isinstance(r_start, int) or r_start.__class__ is bool:
+            raise _enc('write_multiple_registers_response', 'start', r_start, 'type', 'an int')
+        if not 0 <= r_start <= 65535:
+            raise _enc('write_multiple_registers_response', 'start', r_start, 'range', '0..65535', None)
     r_quantity = m.quantity
-    if r_quantity.__class__ is not int and (not isinstance(r_quantity, int) or r_quantity.__class__ is bool):
-        raise _enc('write_multiple_registers_response', 'quantity', r_quantity, 'type', 'an int')
-    if not 0 <= r_quantity <= 65535:
-        raise _enc('write_multiple_registers_response', 'quantity', r_quantity, 'range', '0..65535', None)
-    r_crc = 0
-    b = bytearray(8)
-    _S_write_multiple_registers_response_0.pack_into(b, 0, r_address, 16, r_start, r_quantity)
-    _S_write_multiple_registers_response_1.pack_into(b, 6, r_crc)
-    b[6:8] = _checksum_crc16_8005_ffff_rr_0_6(b, 0).to_bytes(2, 'little')
-    return bytes(b)
+    if r_quantity.__class__ is not int or not 0 <= r_quantity <= 65535:
+        if not isinstance(r_quantity, int) or r_quantity.__class__ is bool:
+            raise _enc('write_multiple_registers_response', 'quantity', r_quantity, 'type', 'an int')
+        if not 0 <= r_quantity <= 65535:
+            raise _enc('write_multiple_registers_response', 'quantity', r_quantity, 'range', '0..65535', None)
+    h = _S_write_multiple_registers_response_0.pack(r_address, 16, r_start, r_quantity)
+    return h + _checksum_crc16_8005_ffff_rr_0_6(h, 0).to_bytes(2, 'little')
 
 
 def _decode_write_multiple_registers_response(d: _Buffer) -> WriteMultipleRegistersResponse:
@@ -2694,21 +2940,23 @@ def _decode_write_multiple_registers_response(d: _Buffer) -> WriteMultipleRegist
 
 def _encode_exception_response(m: ExceptionResponse) -> bytes:
     r_address = m.address
-    if r_address.__class__ is not int and (not isinstance(r_address, int) or r_address.__class__ is bool):
-        raise _enc('exception_response', 'address', r_address, 'type', 'an int')
-    if not 0 <= r_address <= 255:
-        raise _enc('exception_response', 'address', r_address, 'range', '0..255', None)
+    if r_address.__class__ is not int or not 0 <= r_address <= 255:
+        if not isinstance(r_address, int) or r_address.__class__ is bool:
+            raise _enc('exception_response', 'address', r_address, 'type', 'an int')
+        if not 0 <= r_address <= 255:
+            raise _enc('exception_response', 'address', r_address, 'range', '0..255', None)
     r_function = m.function
-    if r_function.__class__ is not int and (not isinstance(r_function, int) or r_function.__class__ is bool):
-        raise _enc('exception_response', 'function', r_function, 'type', 'an int')
-    if not 0 <= r_function <= 255:
-        raise _enc('exception_response', 'function', r_function, 'range', '0..255', None)
+    if r_function.__class__ is not int or not 0 <= r_function <= 255:
+        if not isinstance(r_function, int) or r_function.__class__ is bool:
+            raise _enc('exception_response', 'function', r_function, 'type', 'an int')
+        if not 0 <= r_function <= 255:
+            raise _enc('exception_response', 'function', r_function, 'range', '0..255', None)
     if r_function not in (129, 130, 131, 132, 133, 134, 143, 144):
         raise _enc('exception_response', 'function', r_function, 'values', '129, 130, 131, 132, 133, 134, 143, 144', None)
     r_exception_code: Any = m.exception_code
     if r_exception_code.__class__ is not ExceptionCode and (not isinstance(r_exception_code, int) or r_exception_code.__class__ is bool or isinstance(r_exception_code, enum.Enum) or r_exception_code not in _VALUES_exception_code):
         raise _enc('exception_response', 'exception_code', r_exception_code, 'enum', 'ExceptionCode', None)
-    r_exception_code = int(r_exception_code)
+    r_exception_code = cast(Any, r_exception_code)._value_ if r_exception_code.__class__ is ExceptionCode else int(r_exception_code)
     r_crc = 0
     b = bytearray(5)
     _S_exception_response_0.pack_into(b, 0, r_address, r_function, r_exception_code, r_crc)
@@ -2907,6 +3155,9 @@ class StreamDecoder:
 
 
 _ENCODERS: dict[type[Any], Callable[[Any], bytes]] = {ReadHoldingRegisters: _encode_read_holding_registers, ReadHoldingRegistersResponse: _encode_read_holding_registers_response, WriteMultipleRegisters: _encode_write_multiple_registers, WriteMultipleRegistersResponse: _encode_write_multiple_registers_response, ExceptionResponse: _encode_exception_response, }
+for _cls, _encoder in _ENCODERS.items():  # each encoder is its class's encode method: one call, not two
+    _encoder.__doc__ = _cls.encode.__doc__
+    setattr(_cls, "encode", _encoder)
 MESSAGES: dict[str, type[AnyMessage]] = {'read_holding_registers': ReadHoldingRegisters, 'read_holding_registers_response': ReadHoldingRegistersResponse, 'write_multiple_registers': WriteMultipleRegisters, 'write_multiple_registers_response': WriteMultipleRegistersResponse, 'exception_response': ExceptionResponse, }
 
 

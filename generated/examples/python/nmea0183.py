@@ -459,16 +459,18 @@ def _as_input(data: object) -> str:
 
 def _encode_gga(m: Gga) -> str:
     r_timestamp = m.timestamp
-    if r_timestamp.__class__ is not int and (not isinstance(r_timestamp, int) or r_timestamp.__class__ is bool):
-        raise _enc('gga', 'timestamp', r_timestamp, 'type', 'an int')
-    if not 0 <= r_timestamp <= 235960:
-        raise _enc('gga', 'timestamp', r_timestamp, 'range', '0..235960', 'NMEA-D2')
+    if r_timestamp.__class__ is not int or not 0 <= r_timestamp <= 235960:
+        if not isinstance(r_timestamp, int) or r_timestamp.__class__ is bool:
+            raise _enc('gga', 'timestamp', r_timestamp, 'type', 'an int')
+        if not 0 <= r_timestamp <= 235960:
+            raise _enc('gga', 'timestamp', r_timestamp, 'range', '0..235960', 'NMEA-D2')
     if m.lat is not None:
         r_lat = m.lat
-        if r_lat.__class__ is not float and (not isinstance(r_lat, (int, float)) or r_lat.__class__ is bool):
-            raise _enc('gga', 'lat', r_lat, 'type', 'a number')
-        if not 0 <= r_lat <= 9000:
-            raise _enc('gga', 'lat', r_lat, 'range', '0..9000', 'NMEA-D2')
+        if r_lat.__class__ is not float or not 0 <= r_lat <= 9000:
+            if not isinstance(r_lat, (int, float)) or r_lat.__class__ is bool:
+                raise _enc('gga', 'lat', r_lat, 'type', 'a number')
+            if not 0 <= r_lat <= 9000:
+                raise _enc('gga', 'lat', r_lat, 'range', '0..9000', 'NMEA-D2')
         r_lat = _floor(r_lat / 0.001 + 0.5)
         t1 = _fixed(r_lat, 3, 8)
     else:
@@ -482,10 +484,11 @@ def _encode_gga(m: Gga) -> str:
         t2 = ''
     if m.lon is not None:
         r_lon = m.lon
-        if r_lon.__class__ is not float and (not isinstance(r_lon, (int, float)) or r_lon.__class__ is bool):
-            raise _enc('gga', 'lon', r_lon, 'type', 'a number')
-        if not 0 <= r_lon <= 18000:
-            raise _enc('gga', 'lon', r_lon, 'range', '0..18000', 'NMEA-D2')
+        if r_lon.__class__ is not float or not 0 <= r_lon <= 18000:
+            if not isinstance(r_lon, (int, float)) or r_lon.__class__ is bool:
+                raise _enc('gga', 'lon', r_lon, 'type', 'a number')
+            if not 0 <= r_lon <= 18000:
+                raise _enc('gga', 'lon', r_lon, 'range', '0..18000', 'NMEA-D2')
         r_lon = _floor(r_lon / 0.001 + 0.5)
         t3 = _fixed(r_lon, 3, 9)
     else:
@@ -498,31 +501,35 @@ def _encode_gga(m: Gga) -> str:
     else:
         t4 = ''
     r_gps_qual = m.gps_qual
-    if r_gps_qual.__class__ is not int and (not isinstance(r_gps_qual, int) or r_gps_qual.__class__ is bool):
-        raise _enc('gga', 'gps_qual', r_gps_qual, 'type', 'an int')
-    if not 0 <= r_gps_qual <= 8:
-        raise _enc('gga', 'gps_qual', r_gps_qual, 'range', '0..8', None)
+    if r_gps_qual.__class__ is not int or not 0 <= r_gps_qual <= 8:
+        if not isinstance(r_gps_qual, int) or r_gps_qual.__class__ is bool:
+            raise _enc('gga', 'gps_qual', r_gps_qual, 'type', 'an int')
+        if not 0 <= r_gps_qual <= 8:
+            raise _enc('gga', 'gps_qual', r_gps_qual, 'range', '0..8', None)
     r_num_sats = m.num_sats
-    if r_num_sats.__class__ is not int and (not isinstance(r_num_sats, int) or r_num_sats.__class__ is bool):
-        raise _enc('gga', 'num_sats', r_num_sats, 'type', 'an int')
-    if not 0 <= r_num_sats <= 255:
-        raise _enc('gga', 'num_sats', r_num_sats, 'range', '0..255', None)
+    if r_num_sats.__class__ is not int or not 0 <= r_num_sats <= 255:
+        if not isinstance(r_num_sats, int) or r_num_sats.__class__ is bool:
+            raise _enc('gga', 'num_sats', r_num_sats, 'type', 'an int')
+        if not 0 <= r_num_sats <= 255:
+            raise _enc('gga', 'num_sats', r_num_sats, 'range', '0..255', None)
     if m.horizontal_dil is not None:
         r_horizontal_dil = m.horizontal_dil
-        if r_horizontal_dil.__class__ is not float and (not isinstance(r_horizontal_dil, (int, float)) or r_horizontal_dil.__class__ is bool):
-            raise _enc('gga', 'horizontal_dil', r_horizontal_dil, 'type', 'a number')
-        if not 0 <= r_horizontal_dil <= 99999:
-            raise _enc('gga', 'horizontal_dil', r_horizontal_dil, 'range', '0..99999', None)
+        if r_horizontal_dil.__class__ is not float or not 0 <= r_horizontal_dil <= 99999:
+            if not isinstance(r_horizontal_dil, (int, float)) or r_horizontal_dil.__class__ is bool:
+                raise _enc('gga', 'horizontal_dil', r_horizontal_dil, 'type', 'a number')
+            if not 0 <= r_horizontal_dil <= 99999:
+                raise _enc('gga', 'horizontal_dil', r_horizontal_dil, 'range', '0..99999', None)
         r_horizontal_dil = _floor(r_horizontal_dil / 0.1 + 0.5)
         t7 = _fixed(r_horizontal_dil, 1, 0)
     else:
         t7 = ''
     if m.altitude is not None:
         r_altitude = m.altitude
-        if r_altitude.__class__ is not float and (not isinstance(r_altitude, (int, float)) or r_altitude.__class__ is bool):
-            raise _enc('gga', 'altitude', r_altitude, 'type', 'a number')
-        if not -9999.9 <= r_altitude <= 99999.9:
-            raise _enc('gga', 'altitude', r_altitude, 'range', '-9999.9..99999.9', None)
+        if r_altitude.__class__ is not float or not -9999.9 <= r_altitude <= 99999.9:
+            if not isinstance(r_altitude, (int, float)) or r_altitude.__class__ is bool:
+                raise _enc('gga', 'altitude', r_altitude, 'type', 'a number')
+            if not -9999.9 <= r_altitude <= 99999.9:
+                raise _enc('gga', 'altitude', r_altitude, 'range', '-9999.9..99999.9', None)
         r_altitude = _floor(r_altitude / 0.1 + 0.5)
         t8 = _fixed(r_altitude, 1, 0)
     else:
@@ -536,10 +543,11 @@ def _encode_gga(m: Gga) -> str:
         t9 = ''
     if m.geo_sep is not None:
         r_geo_sep = m.geo_sep
-        if r_geo_sep.__class__ is not float and (not isinstance(r_geo_sep, (int, float)) or r_geo_sep.__class__ is bool):
-            raise _enc('gga', 'geo_sep', r_geo_sep, 'type', 'a number')
-        if not -9999.9 <= r_geo_sep <= 9999.9:
-            raise _enc('gga', 'geo_sep', r_geo_sep, 'range', '-9999.9..9999.9', None)
+        if r_geo_sep.__class__ is not float or not -9999.9 <= r_geo_sep <= 9999.9:
+            if not isinstance(r_geo_sep, (int, float)) or r_geo_sep.__class__ is bool:
+                raise _enc('gga', 'geo_sep', r_geo_sep, 'type', 'a number')
+            if not -9999.9 <= r_geo_sep <= 9999.9:
+                raise _enc('gga', 'geo_sep', r_geo_sep, 'range', '-9999.9..9999.9', None)
         r_geo_sep = _floor(r_geo_sep / 0.1 + 0.5)
         t10 = _fixed(r_geo_sep, 1, 0)
     else:
@@ -553,20 +561,22 @@ def _encode_gga(m: Gga) -> str:
         t11 = ''
     if m.age_gps_data is not None:
         r_age_gps_data = m.age_gps_data
-        if r_age_gps_data.__class__ is not float and (not isinstance(r_age_gps_data, (int, float)) or r_age_gps_data.__class__ is bool):
-            raise _enc('gga', 'age_gps_data', r_age_gps_data, 'type', 'a number')
-        if not 0 <= r_age_gps_data <= 99999:
-            raise _enc('gga', 'age_gps_data', r_age_gps_data, 'range', '0..99999', None)
+        if r_age_gps_data.__class__ is not float or not 0 <= r_age_gps_data <= 99999:
+            if not isinstance(r_age_gps_data, (int, float)) or r_age_gps_data.__class__ is bool:
+                raise _enc('gga', 'age_gps_data', r_age_gps_data, 'type', 'a number')
+            if not 0 <= r_age_gps_data <= 99999:
+                raise _enc('gga', 'age_gps_data', r_age_gps_data, 'range', '0..99999', None)
         r_age_gps_data = _floor(r_age_gps_data / 0.1 + 0.5)
         t12 = _fixed(r_age_gps_data, 1, 0)
     else:
         t12 = ''
     if m.ref_station_id is not None:
         r_ref_station_id = m.ref_station_id
-        if r_ref_station_id.__class__ is not int and (not isinstance(r_ref_station_id, int) or r_ref_station_id.__class__ is bool):
-            raise _enc('gga', 'ref_station_id', r_ref_station_id, 'type', 'an int')
-        if not 0 <= r_ref_station_id <= 1023:
-            raise _enc('gga', 'ref_station_id', r_ref_station_id, 'range', '0..1023', None)
+        if r_ref_station_id.__class__ is not int or not 0 <= r_ref_station_id <= 1023:
+            if not isinstance(r_ref_station_id, int) or r_ref_station_id.__class__ is bool:
+                raise _enc('gga', 'ref_station_id', r_ref_station_id, 'type', 'an int')
+            if not 0 <= r_ref_station_id <= 1023:
+                raise _enc('gga', 'ref_station_id', r_ref_station_id, 'range', '0..1023', None)
         t13 = _fixed(r_ref_station_id, 0, 4)
     else:
         t13 = ''
@@ -689,19 +699,21 @@ def _decode_gga(body: str, base: int) -> Gga:
 
 def _encode_rmc(m: Rmc) -> str:
     r_timestamp = m.timestamp
-    if r_timestamp.__class__ is not int and (not isinstance(r_timestamp, int) or r_timestamp.__class__ is bool):
-        raise _enc('rmc', 'timestamp', r_timestamp, 'type', 'an int')
-    if not 0 <= r_timestamp <= 235960:
-        raise _enc('rmc', 'timestamp', r_timestamp, 'range', '0..235960', 'NMEA-D2')
+    if r_timestamp.__class__ is not int or not 0 <= r_timestamp <= 235960:
+        if not isinstance(r_timestamp, int) or r_timestamp.__class__ is bool:
+            raise _enc('rmc', 'timestamp', r_timestamp, 'type', 'an int')
+        if not 0 <= r_timestamp <= 235960:
+            raise _enc('rmc', 'timestamp', r_timestamp, 'range', '0..235960', 'NMEA-D2')
     r_status: Any = m.status
     if r_status.__class__ is not Validity and (not isinstance(r_status, str) or isinstance(r_status, enum.Enum) or r_status not in _VALUES_validity):
         raise _enc('rmc', 'status', r_status, 'enum', 'Validity', None)
     if m.lat is not None:
         r_lat = m.lat
-        if r_lat.__class__ is not float and (not isinstance(r_lat, (int, float)) or r_lat.__class__ is bool):
-            raise _enc('rmc', 'lat', r_lat, 'type', 'a number')
-        if not 0 <= r_lat <= 9000:
-            raise _enc('rmc', 'lat', r_lat, 'range', '0..9000', 'NMEA-D2')
+        if r_lat.__class__ is not float or not 0 <= r_lat <= 9000:
+            if not isinstance(r_lat, (int, float)) or r_lat.__class__ is bool:
+                raise _enc('rmc', 'lat', r_lat, 'type', 'a number')
+            if not 0 <= r_lat <= 9000:
+                raise _enc('rmc', 'lat', r_lat, 'range', '0..9000', 'NMEA-D2')
         r_lat = _floor(r_lat / 0.001 + 0.5)
         t2 = _fixed(r_lat, 3, 8)
     else:
@@ -715,10 +727,11 @@ def _encode_rmc(m: Rmc) -> str:
         t3 = ''
     if m.lon is not None:
         r_lon = m.lon
-        if r_lon.__class__ is not float and (not isinstance(r_lon, (int, float)) or r_lon.__class__ is bool):
-            raise _enc('rmc', 'lon', r_lon, 'type', 'a number')
-        if not 0 <= r_lon <= 18000:
-            raise _enc('rmc', 'lon', r_lon, 'range', '0..18000', 'NMEA-D2')
+        if r_lon.__class__ is not float or not 0 <= r_lon <= 18000:
+            if not isinstance(r_lon, (int, float)) or r_lon.__class__ is bool:
+                raise _enc('rmc', 'lon', r_lon, 'type', 'a number')
+            if not 0 <= r_lon <= 18000:
+                raise _enc('rmc', 'lon', r_lon, 'range', '0..18000', 'NMEA-D2')
         r_lon = _floor(r_lon / 0.001 + 0.5)
         t4 = _fixed(r_lon, 3, 9)
     else:
@@ -732,35 +745,39 @@ def _encode_rmc(m: Rmc) -> str:
         t5 = ''
     if m.spd_over_grnd is not None:
         r_spd_over_grnd = m.spd_over_grnd
-        if r_spd_over_grnd.__class__ is not float and (not isinstance(r_spd_over_grnd, (int, float)) or r_spd_over_grnd.__class__ is bool):
-            raise _enc('rmc', 'spd_over_grnd', r_spd_over_grnd, 'type', 'a number')
-        if not 0 <= r_spd_over_grnd <= 999.9:
-            raise _enc('rmc', 'spd_over_grnd', r_spd_over_grnd, 'range', '0..999.9', None)
+        if r_spd_over_grnd.__class__ is not float or not 0 <= r_spd_over_grnd <= 999.9:
+            if not isinstance(r_spd_over_grnd, (int, float)) or r_spd_over_grnd.__class__ is bool:
+                raise _enc('rmc', 'spd_over_grnd', r_spd_over_grnd, 'type', 'a number')
+            if not 0 <= r_spd_over_grnd <= 999.9:
+                raise _enc('rmc', 'spd_over_grnd', r_spd_over_grnd, 'range', '0..999.9', None)
         r_spd_over_grnd = _floor(r_spd_over_grnd / 0.1 + 0.5)
         t6 = _fixed(r_spd_over_grnd, 1, 5)
     else:
         t6 = ''
     if m.true_course is not None:
         r_true_course = m.true_course
-        if r_true_course.__class__ is not float and (not isinstance(r_true_course, (int, float)) or r_true_course.__class__ is bool):
-            raise _enc('rmc', 'true_course', r_true_course, 'type', 'a number')
-        if not 0 <= r_true_course <= 999.9:
-            raise _enc('rmc', 'true_course', r_true_course, 'range', '0..999.9', None)
+        if r_true_course.__class__ is not float or not 0 <= r_true_course <= 999.9:
+            if not isinstance(r_true_course, (int, float)) or r_true_course.__class__ is bool:
+                raise _enc('rmc', 'true_course', r_true_course, 'type', 'a number')
+            if not 0 <= r_true_course <= 999.9:
+                raise _enc('rmc', 'true_course', r_true_course, 'range', '0..999.9', None)
         r_true_course = _floor(r_true_course / 0.1 + 0.5)
         t7 = _fixed(r_true_course, 1, 5)
     else:
         t7 = ''
     r_datestamp = m.datestamp
-    if r_datestamp.__class__ is not int and (not isinstance(r_datestamp, int) or r_datestamp.__class__ is bool):
-        raise _enc('rmc', 'datestamp', r_datestamp, 'type', 'an int')
-    if not 10100 <= r_datestamp <= 311299:
-        raise _enc('rmc', 'datestamp', r_datestamp, 'range', '10100..311299', None)
+    if r_datestamp.__class__ is not int or not 10100 <= r_datestamp <= 311299:
+        if not isinstance(r_datestamp, int) or r_datestamp.__class__ is bool:
+            raise _enc('rmc', 'datestamp', r_datestamp, 'type', 'an int')
+        if not 10100 <= r_datestamp <= 311299:
+            raise _enc('rmc', 'datestamp', r_datestamp, 'range', '10100..311299', None)
     if m.mag_variation is not None:
         r_mag_variation = m.mag_variation
-        if r_mag_variation.__class__ is not float and (not isinstance(r_mag_variation, (int, float)) or r_mag_variation.__class__ is bool):
-            raise _enc('rmc', 'mag_variation', r_mag_variation, 'type', 'a number')
-        if not 0 <= r_mag_variation <= 999.9:
-            raise _enc('rmc', 'mag_variation', r_mag_variation, 'range', '0..999.9', None)
+        if r_mag_variation.__class__ is not float or not 0 <= r_mag_variation <= 999.9:
+            if not isinstance(r_mag_variation, (int, float)) or r_mag_variation.__class__ is bool:
+                raise _enc('rmc', 'mag_variation', r_mag_variation, 'type', 'a number')
+            if not 0 <= r_mag_variation <= 999.9:
+                raise _enc('rmc', 'mag_variation', r_mag_variation, 'range', '0..999.9', None)
         r_mag_variation = _floor(r_mag_variation / 0.1 + 0.5)
         t9 = _fixed(r_mag_variation, 1, 5)
     else:
@@ -870,10 +887,11 @@ def _decode_rmc(body: str, base: int) -> Rmc:
 def _encode_vtg(m: Vtg) -> str:
     if m.true_track is not None:
         r_true_track = m.true_track
-        if r_true_track.__class__ is not float and (not isinstance(r_true_track, (int, float)) or r_true_track.__class__ is bool):
-            raise _enc('vtg', 'true_track', r_true_track, 'type', 'a number')
-        if not 0 <= r_true_track <= 999.9:
-            raise _enc('vtg', 'true_track', r_true_track, 'range', '0..999.9', None)
+        if r_true_track.__class__ is not float or not 0 <= r_true_track <= 999.9:
+            if not isinstance(r_true_track, (int, float)) or r_true_track.__class__ is bool:
+                raise _enc('vtg', 'true_track', r_true_track, 'type', 'a number')
+            if not 0 <= r_true_track <= 999.9:
+                raise _enc('vtg', 'true_track', r_true_track, 'range', '0..999.9', None)
         r_true_track = _floor(r_true_track / 0.1 + 0.5)
         t0 = _fixed(r_true_track, 1, 5)
     else:
@@ -883,10 +901,11 @@ def _encode_vtg(m: Vtg) -> str:
         raise _enc('vtg', 'true_track_sym', r_true_track_sym, 'enum', 'TrackTrue', None)
     if m.mag_track is not None:
         r_mag_track = m.mag_track
-        if r_mag_track.__class__ is not float and (not isinstance(r_mag_track, (int, float)) or r_mag_track.__class__ is bool):
-            raise _enc('vtg', 'mag_track', r_mag_track, 'type', 'a number')
-        if not 0 <= r_mag_track <= 999.9:
-            raise _enc('vtg', 'mag_track', r_mag_track, 'range', '0..999.9', None)
+        if r_mag_track.__class__ is not float or not 0 <= r_mag_track <= 999.9:
+            if not isinstance(r_mag_track, (int, float)) or r_mag_track.__class__ is bool:
+                raise _enc('vtg', 'mag_track', r_mag_track, 'type', 'a number')
+            if not 0 <= r_mag_track <= 999.9:
+                raise _enc('vtg', 'mag_track', r_mag_track, 'range', '0..999.9', None)
         r_mag_track = _floor(r_mag_track / 0.1 + 0.5)
         t2 = _fixed(r_mag_track, 1, 5)
     else:
@@ -896,10 +915,11 @@ def _encode_vtg(m: Vtg) -> str:
         raise _enc('vtg', 'mag_track_sym', r_mag_track_sym, 'enum', 'TrackMagnetic', None)
     if m.spd_over_grnd_kts is not None:
         r_spd_over_grnd_kts = m.spd_over_grnd_kts
-        if r_spd_over_grnd_kts.__class__ is not float and (not isinstance(r_spd_over_grnd_kts, (int, float)) or r_spd_over_grnd_kts.__class__ is bool):
-            raise _enc('vtg', 'spd_over_grnd_kts', r_spd_over_grnd_kts, 'type', 'a number')
-        if not 0 <= r_spd_over_grnd_kts <= 999.9:
-            raise _enc('vtg', 'spd_over_grnd_kts', r_spd_over_grnd_kts, 'range', '0..999.9', None)
+        if r_spd_over_grnd_kts.__class__ is not float or not 0 <= r_spd_over_grnd_kts <= 999.9:
+            if not isinstance(r_spd_over_grnd_kts, (int, float)) or r_spd_over_grnd_kts.__class__ is bool:
+                raise _enc('vtg', 'spd_over_grnd_kts', r_spd_over_grnd_kts, 'type', 'a number')
+            if not 0 <= r_spd_over_grnd_kts <= 999.9:
+                raise _enc('vtg', 'spd_over_grnd_kts', r_spd_over_grnd_kts, 'range', '0..999.9', None)
         r_spd_over_grnd_kts = _floor(r_spd_over_grnd_kts / 0.1 + 0.5)
         t4 = _fixed(r_spd_over_grnd_kts, 1, 5)
     else:
@@ -909,10 +929,11 @@ def _encode_vtg(m: Vtg) -> str:
         raise _enc('vtg', 'spd_over_grnd_kts_sym', r_spd_over_grnd_kts_sym, 'enum', 'SpeedKnots', None)
     if m.spd_over_grnd_kmph is not None:
         r_spd_over_grnd_kmph = m.spd_over_grnd_kmph
-        if r_spd_over_grnd_kmph.__class__ is not float and (not isinstance(r_spd_over_grnd_kmph, (int, float)) or r_spd_over_grnd_kmph.__class__ is bool):
-            raise _enc('vtg', 'spd_over_grnd_kmph', r_spd_over_grnd_kmph, 'type', 'a number')
-        if not 0 <= r_spd_over_grnd_kmph <= 999.9:
-            raise _enc('vtg', 'spd_over_grnd_kmph', r_spd_over_grnd_kmph, 'range', '0..999.9', None)
+        if r_spd_over_grnd_kmph.__class__ is not float or not 0 <= r_spd_over_grnd_kmph <= 999.9:
+            if not isinstance(r_spd_over_grnd_kmph, (int, float)) or r_spd_over_grnd_kmph.__class__ is bool:
+                raise _enc('vtg', 'spd_over_grnd_kmph', r_spd_over_grnd_kmph, 'type', 'a number')
+            if not 0 <= r_spd_over_grnd_kmph <= 999.9:
+                raise _enc('vtg', 'spd_over_grnd_kmph', r_spd_over_grnd_kmph, 'range', '0..999.9', None)
         r_spd_over_grnd_kmph = _floor(r_spd_over_grnd_kmph / 0.1 + 0.5)
         t6 = _fixed(r_spd_over_grnd_kmph, 1, 5)
     else:
@@ -1118,6 +1139,9 @@ class StreamDecoder:
 
 
 _ENCODERS: dict[type[Any], Callable[[Any], bytes | str]] = {Gga: _encode_gga, Rmc: _encode_rmc, Vtg: _encode_vtg, }
+for _cls, _encoder in _ENCODERS.items():  # each encoder is its class's encode method: one call, not two
+    _encoder.__doc__ = _cls.encode.__doc__
+    setattr(_cls, "encode", _encoder)
 MESSAGES: dict[str, type[AnyMessage]] = {'gga': Gga, 'rmc': Rmc, 'vtg': Vtg, }
 
 

@@ -655,21 +655,18 @@ def _as_input(data: object) -> _Buffer:
 
 
 def _encode_ack_nak(m: AckNak) -> bytes:
-    r_sync1 = 181
-    r_sync2 = 98
-    r_msg_class = 5
-    r_msg_id = 0
-    r_length = 2
     r_clsID = m.clsID
-    if r_clsID.__class__ is not int and (not isinstance(r_clsID, int) or r_clsID.__class__ is bool):
-        raise _enc('ack_nak', 'clsID', r_clsID, 'type', 'an int')
-    if not 0 <= r_clsID <= 255:
-        raise _enc('ack_nak', 'clsID', r_clsID, 'range', '0..255', None)
+    if r_clsID.__class__ is not int or not 0 <= r_clsID <= 255:
+        if not isinstance(r_clsID, int) or r_clsID.__class__ is bool:
+            raise _enc('ack_nak', 'clsID', r_clsID, 'type', 'an int')
+        if not 0 <= r_clsID <= 255:
+            raise _enc('ack_nak', 'clsID', r_clsID, 'range', '0..255', None)
     r_msgID = m.msgID
-    if r_msgID.__class__ is not int and (not isinstance(r_msgID, int) or r_msgID.__class__ is bool):
-        raise _enc('ack_nak', 'msgID', r_msgID, 'type', 'an int')
-    if not 0 <= r_msgID <= 255:
-        raise _enc('ack_nak', 'msgID', r_msgID, 'range', '0..255', None)
+    if r_msgID.__class__ is not int or not 0 <= r_msgID <= 255:
+        if not isinstance(r_msgID, int) or r_msgID.__class__ is bool:
+            raise _enc('ack_nak', 'msgID', r_msgID, 'type', 'an int')
+        if not 0 <= r_msgID <= 255:
+            raise _enc('ack_nak', 'msgID', r_msgID, 'range', '0..255', None)
     r_checksum = 0
     b = bytearray(10)
     _S_ack_nak_0.pack_into(b, 0, 181, 98, 5, 0, 2, r_clsID, r_msgID, r_checksum)
@@ -701,21 +698,18 @@ def _decode_ack_nak(d: _Buffer) -> AckNak:
 
 
 def _encode_ack_ack(m: AckAck) -> bytes:
-    r_sync1 = 181
-    r_sync2 = 98
-    r_msg_class = 5
-    r_msg_id = 1
-    r_length = 2
     r_clsID = m.clsID
-    if r_clsID.__class__ is not int and (not isinstance(r_clsID, int) or r_clsID.__class__ is bool):
-        raise _enc('ack_ack', 'clsID', r_clsID, 'type', 'an int')
-    if not 0 <= r_clsID <= 255:
-        raise _enc('ack_ack', 'clsID', r_clsID, 'range', '0..255', None)
+    if r_clsID.__class__ is not int or not 0 <= r_clsID <= 255:
+        if not isinstance(r_clsID, int) or r_clsID.__class__ is bool:
+            raise _enc('ack_ack', 'clsID', r_clsID, 'type', 'an int')
+        if not 0 <= r_clsID <= 255:
+            raise _enc('ack_ack', 'clsID', r_clsID, 'range', '0..255', None)
     r_msgID = m.msgID
-    if r_msgID.__class__ is not int and (not isinstance(r_msgID, int) or r_msgID.__class__ is bool):
-        raise _enc('ack_ack', 'msgID', r_msgID, 'type', 'an int')
-    if not 0 <= r_msgID <= 255:
-        raise _enc('ack_ack', 'msgID', r_msgID, 'range', '0..255', None)
+    if r_msgID.__class__ is not int or not 0 <= r_msgID <= 255:
+        if not isinstance(r_msgID, int) or r_msgID.__class__ is bool:
+            raise _enc('ack_ack', 'msgID', r_msgID, 'type', 'an int')
+        if not 0 <= r_msgID <= 255:
+            raise _enc('ack_ack', 'msgID', r_msgID, 'range', '0..255', None)
     r_checksum = 0
     b = bytearray(10)
     _S_ack_ack_0.pack_into(b, 0, 181, 98, 5, 1, 2, r_clsID, r_msgID, r_checksum)
@@ -747,11 +741,6 @@ def _decode_ack_ack(d: _Buffer) -> AckAck:
 
 
 def _encode_cfg_rate_poll(m: CfgRatePoll) -> bytes:
-    r_sync1 = 181
-    r_sync2 = 98
-    r_msg_class = 6
-    r_msg_id = 8
-    r_length = 0
     r_checksum = 0
     b = bytearray(8)
     _S_cfg_rate_poll_0.pack_into(b, 0, 181, 98, 6, 8, 0, r_checksum)
@@ -781,26 +770,24 @@ def _decode_cfg_rate_poll(d: _Buffer) -> CfgRatePoll:
 
 
 def _encode_cfg_rate(m: CfgRate) -> bytes:
-    r_sync1 = 181
-    r_sync2 = 98
-    r_msg_class = 6
-    r_msg_id = 8
-    r_length = 6
     r_measRate = m.measRate
-    if r_measRate.__class__ is not int and (not isinstance(r_measRate, int) or r_measRate.__class__ is bool):
-        raise _enc('cfg_rate', 'measRate', r_measRate, 'type', 'an int')
-    if not 0 <= r_measRate <= 65535:
-        raise _enc('cfg_rate', 'measRate', r_measRate, 'range', '0..65535', None)
+    if r_measRate.__class__ is not int or not 0 <= r_measRate <= 65535:
+        if not isinstance(r_measRate, int) or r_measRate.__class__ is bool:
+            raise _enc('cfg_rate', 'measRate', r_measRate, 'type', 'an int')
+        if not 0 <= r_measRate <= 65535:
+            raise _enc('cfg_rate', 'measRate', r_measRate, 'range', '0..65535', None)
     r_navRate = m.navRate
-    if r_navRate.__class__ is not int and (not isinstance(r_navRate, int) or r_navRate.__class__ is bool):
-        raise _enc('cfg_rate', 'navRate', r_navRate, 'type', 'an int')
-    if not 0 <= r_navRate <= 65535:
-        raise _enc('cfg_rate', 'navRate', r_navRate, 'range', '0..65535', None)
+    if r_navRate.__class__ is not int or not 0 <= r_navRate <= 65535:
+        if not isinstance(r_navRate, int) or r_navRate.__class__ is bool:
+            raise _enc('cfg_rate', 'navRate', r_navRate, 'type', 'an int')
+        if not 0 <= r_navRate <= 65535:
+            raise _enc('cfg_rate', 'navRate', r_navRate, 'range', '0..65535', None)
     r_timeRef = m.timeRef
-    if r_timeRef.__class__ is not int and (not isinstance(r_timeRef, int) or r_timeRef.__class__ is bool):
-        raise _enc('cfg_rate', 'timeRef', r_timeRef, 'type', 'an int')
-    if not 0 <= r_timeRef <= 65535:
-        raise _enc('cfg_rate', 'timeRef', r_timeRef, 'range', '0..65535', None)
+    if r_timeRef.__class__ is not int or not 0 <= r_timeRef <= 65535:
+        if not isinstance(r_timeRef, int) or r_timeRef.__class__ is bool:
+            raise _enc('cfg_rate', 'timeRef', r_timeRef, 'type', 'an int')
+        if not 0 <= r_timeRef <= 65535:
+            raise _enc('cfg_rate', 'timeRef', r_timeRef, 'range', '0..65535', None)
     r_checksum = 0
     b = bytearray(14)
     _S_cfg_rate_0.pack_into(b, 0, 181, 98, 6, 8, 6, r_measRate, r_navRate, r_timeRef, r_checksum)
@@ -833,48 +820,50 @@ def _decode_cfg_rate(d: _Buffer) -> CfgRate:
 
 
 def _encode_nav_posllh(m: NavPosllh) -> bytes:
-    r_sync1 = 181
-    r_sync2 = 98
-    r_msg_class = 1
-    r_msg_id = 2
-    r_length = 28
     r_iTOW = m.iTOW
-    if r_iTOW.__class__ is not int and (not isinstance(r_iTOW, int) or r_iTOW.__class__ is bool):
-        raise _enc('nav_posllh', 'iTOW', r_iTOW, 'type', 'an int')
-    if not 0 <= r_iTOW <= 4294967295:
-        raise _enc('nav_posllh', 'iTOW', r_iTOW, 'range', '0..4294967295', None)
+    if r_iTOW.__class__ is not int or not 0 <= r_iTOW <= 4294967295:
+        if not isinstance(r_iTOW, int) or r_iTOW.__class__ is bool:
+            raise _enc('nav_posllh', 'iTOW', r_iTOW, 'type', 'an int')
+        if not 0 <= r_iTOW <= 4294967295:
+            raise _enc('nav_posllh', 'iTOW', r_iTOW, 'range', '0..4294967295', None)
     r_lon = m.lon
-    if r_lon.__class__ is not float and (not isinstance(r_lon, (int, float)) or r_lon.__class__ is bool):
-        raise _enc('nav_posllh', 'lon', r_lon, 'type', 'a number')
-    if not -214.7483648 <= r_lon <= 214.7483647:
-        raise _enc('nav_posllh', 'lon', r_lon, 'range', '-214.7483648..214.7483647', None)
+    if r_lon.__class__ is not float or not -214.7483648 <= r_lon <= 214.7483647:
+        if not isinstance(r_lon, (int, float)) or r_lon.__class__ is bool:
+            raise _enc('nav_posllh', 'lon', r_lon, 'type', 'a number')
+        if not -214.7483648 <= r_lon <= 214.7483647:
+            raise _enc('nav_posllh', 'lon', r_lon, 'range', '-214.7483648..214.7483647', None)
     r_lon = _floor(r_lon / 1e-07 + 0.5)
     r_lat = m.lat
-    if r_lat.__class__ is not float and (not isinstance(r_lat, (int, float)) or r_lat.__class__ is bool):
-        raise _enc('nav_posllh', 'lat', r_lat, 'type', 'a number')
-    if not -214.7483648 <= r_lat <= 214.7483647:
-        raise _enc('nav_posllh', 'lat', r_lat, 'range', '-214.7483648..214.7483647', None)
+    if r_lat.__class__ is not float or not -214.7483648 <= r_lat <= 214.7483647:
+        if not isinstance(r_lat, (int, float)) or r_lat.__class__ is bool:
+            raise _enc('nav_posllh', 'lat', r_lat, 'type', 'a number')
+        if not -214.7483648 <= r_lat <= 214.7483647:
+            raise _enc('nav_posllh', 'lat', r_lat, 'range', '-214.7483648..214.7483647', None)
     r_lat = _floor(r_lat / 1e-07 + 0.5)
     r_height = m.height
-    if r_height.__class__ is not int and (not isinstance(r_height, int) or r_height.__class__ is bool):
-        raise _enc('nav_posllh', 'height', r_height, 'type', 'an int')
-    if not -2147483648 <= r_height <= 2147483647:
-        raise _enc('nav_posllh', 'height', r_height, 'range', '-2147483648..2147483647', None)
+    if r_height.__class__ is not int or not -2147483648 <= r_height <= 2147483647:
+        if not isinstance(r_height, int) or r_height.__class__ is bool:
+            raise _enc('nav_posllh', 'height', r_height, 'type', 'an int')
+        if not -2147483648 <= r_height <= 2147483647:
+            raise _enc('nav_posllh', 'height', r_height, 'range', '-2147483648..2147483647', None)
     r_hMSL = m.hMSL
-    if r_hMSL.__class__ is not int and (not isinstance(r_hMSL, int) or r_hMSL.__class__ is bool):
-        raise _enc('nav_posllh', 'hMSL', r_hMSL, 'type', 'an int')
-    if not -2147483648 <= r_hMSL <= 2147483647:
-        raise _enc('nav_posllh', 'hMSL', r_hMSL, 'range', '-2147483648..2147483647', None)
+    if r_hMSL.__class__ is not int or not -2147483648 <= r_hMSL <= 2147483647:
+        if not isinstance(r_hMSL, int) or r_hMSL.__class__ is bool:
+            raise _enc('nav_posllh', 'hMSL', r_hMSL, 'type', 'an int')
+        if not -2147483648 <= r_hMSL <= 2147483647:
+            raise _enc('nav_posllh', 'hMSL', r_hMSL, 'range', '-2147483648..2147483647', None)
     r_hAcc = m.hAcc
-    if r_hAcc.__class__ is not int and (not isinstance(r_hAcc, int) or r_hAcc.__class__ is bool):
-        raise _enc('nav_posllh', 'hAcc', r_hAcc, 'type', 'an int')
-    if not 0 <= r_hAcc <= 4294967295:
-        raise _enc('nav_posllh', 'hAcc', r_hAcc, 'range', '0..4294967295', None)
+    if r_hAcc.__class__ is not int or not 0 <= r_hAcc <= 4294967295:
+        if not isinstance(r_hAcc, int) or r_hAcc.__class__ is bool:
+            raise _enc('nav_posllh', 'hAcc', r_hAcc, 'type', 'an int')
+        if not 0 <= r_hAcc <= 4294967295:
+            raise _enc('nav_posllh', 'hAcc', r_hAcc, 'range', '0..4294967295', None)
     r_vAcc = m.vAcc
-    if r_vAcc.__class__ is not int and (not isinstance(r_vAcc, int) or r_vAcc.__class__ is bool):
-        raise _enc('nav_posllh', 'vAcc', r_vAcc, 'type', 'an int')
-    if not 0 <= r_vAcc <= 4294967295:
-        raise _enc('nav_posllh', 'vAcc', r_vAcc, 'range', '0..4294967295', None)
+    if r_vAcc.__class__ is not int or not 0 <= r_vAcc <= 4294967295:
+        if not isinstance(r_vAcc, int) or r_vAcc.__class__ is bool:
+            raise _enc('nav_posllh', 'vAcc', r_vAcc, 'type', 'an int')
+        if not 0 <= r_vAcc <= 4294967295:
+            raise _enc('nav_posllh', 'vAcc', r_vAcc, 'range', '0..4294967295', None)
     r_checksum = 0
     b = bytearray(36)
     _S_nav_posllh_0.pack_into(b, 0, 181, 98, 1, 2, 28, r_iTOW, r_lon, r_lat, r_height, r_hMSL, r_hAcc, r_vAcc, r_checksum)
@@ -911,46 +900,48 @@ def _decode_nav_posllh(d: _Buffer) -> NavPosllh:
 
 
 def _encode_nav_pvt(m: NavPvt) -> bytes:
-    r_sync1 = 181
-    r_sync2 = 98
-    r_msg_class = 1
-    r_msg_id = 7
-    r_length = 92
     r_iTOW = m.iTOW
-    if r_iTOW.__class__ is not int and (not isinstance(r_iTOW, int) or r_iTOW.__class__ is bool):
-        raise _enc('nav_pvt', 'iTOW', r_iTOW, 'type', 'an int')
-    if not 0 <= r_iTOW <= 4294967295:
-        raise _enc('nav_pvt', 'iTOW', r_iTOW, 'range', '0..4294967295', None)
+    if r_iTOW.__class__ is not int or not 0 <= r_iTOW <= 4294967295:
+        if not isinstance(r_iTOW, int) or r_iTOW.__class__ is bool:
+            raise _enc('nav_pvt', 'iTOW', r_iTOW, 'type', 'an int')
+        if not 0 <= r_iTOW <= 4294967295:
+            raise _enc('nav_pvt', 'iTOW', r_iTOW, 'range', '0..4294967295', None)
     r_year = m.year
-    if r_year.__class__ is not int and (not isinstance(r_year, int) or r_year.__class__ is bool):
-        raise _enc('nav_pvt', 'year', r_year, 'type', 'an int')
-    if not 0 <= r_year <= 65535:
-        raise _enc('nav_pvt', 'year', r_year, 'range', '0..65535', None)
+    if r_year.__class__ is not int or not 0 <= r_year <= 65535:
+        if not isinstance(r_year, int) or r_year.__class__ is bool:
+            raise _enc('nav_pvt', 'year', r_year, 'type', 'an int')
+        if not 0 <= r_year <= 65535:
+            raise _enc('nav_pvt', 'year', r_year, 'range', '0..65535', None)
     r_month = m.month
-    if r_month.__class__ is not int and (not isinstance(r_month, int) or r_month.__class__ is bool):
-        raise _enc('nav_pvt', 'month', r_month, 'type', 'an int')
-    if not 0 <= r_month <= 255:
-        raise _enc('nav_pvt', 'month', r_month, 'range', '0..255', None)
+    if r_month.__class__ is not int or not 0 <= r_month <= 255:
+        if not isinstance(r_month, int) or r_month.__class__ is bool:
+            raise _enc('nav_pvt', 'month', r_month, 'type', 'an int')
+        if not 0 <= r_month <= 255:
+            raise _enc('nav_pvt', 'month', r_month, 'range', '0..255', None)
     r_day = m.day
-    if r_day.__class__ is not int and (not isinstance(r_day, int) or r_day.__class__ is bool):
-        raise _enc('nav_pvt', 'day', r_day, 'type', 'an int')
-    if not 0 <= r_day <= 255:
-        raise _enc('nav_pvt', 'day', r_day, 'range', '0..255', None)
+    if r_day.__class__ is not int or not 0 <= r_day <= 255:
+        if not isinstance(r_day, int) or r_day.__class__ is bool:
+            raise _enc('nav_pvt', 'day', r_day, 'type', 'an int')
+        if not 0 <= r_day <= 255:
+            raise _enc('nav_pvt', 'day', r_day, 'range', '0..255', None)
     r_hour = m.hour
-    if r_hour.__class__ is not int and (not isinstance(r_hour, int) or r_hour.__class__ is bool):
-        raise _enc('nav_pvt', 'hour', r_hour, 'type', 'an int')
-    if not 0 <= r_hour <= 255:
-        raise _enc('nav_pvt', 'hour', r_hour, 'range', '0..255', None)
+    if r_hour.__class__ is not int or not 0 <= r_hour <= 255:
+        if not isinstance(r_hour, int) or r_hour.__class__ is bool:
+            raise _enc('nav_pvt', 'hour', r_hour, 'type', 'an int')
+        if not 0 <= r_hour <= 255:
+            raise _enc('nav_pvt', 'hour', r_hour, 'range', '0..255', None)
     r_min = m.min
-    if r_min.__class__ is not int and (not isinstance(r_min, int) or r_min.__class__ is bool):
-        raise _enc('nav_pvt', 'min', r_min, 'type', 'an int')
-    if not 0 <= r_min <= 255:
-        raise _enc('nav_pvt', 'min', r_min, 'range', '0..255', None)
+    if r_min.__class__ is not int or not 0 <= r_min <= 255:
+        if not isinstance(r_min, int) or r_min.__class__ is bool:
+            raise _enc('nav_pvt', 'min', r_min, 'type', 'an int')
+        if not 0 <= r_min <= 255:
+            raise _enc('nav_pvt', 'min', r_min, 'range', '0..255', None)
     r_second = m.second
-    if r_second.__class__ is not int and (not isinstance(r_second, int) or r_second.__class__ is bool):
-        raise _enc('nav_pvt', 'second', r_second, 'type', 'an int')
-    if not 0 <= r_second <= 255:
-        raise _enc('nav_pvt', 'second', r_second, 'range', '0..255', None)
+    if r_second.__class__ is not int or not 0 <= r_second <= 255:
+        if not isinstance(r_second, int) or r_second.__class__ is bool:
+            raise _enc('nav_pvt', 'second', r_second, 'type', 'an int')
+        if not 0 <= r_second <= 255:
+            raise _enc('nav_pvt', 'second', r_second, 'range', '0..255', None)
     r_validDate: Any = m.validDate
     if r_validDate is not True and r_validDate is not False and r_validDate != 0 and r_validDate != 1:
         raise _enc('nav_pvt', 'validDate', r_validDate, 'type', 'a bool')
@@ -967,22 +958,24 @@ def _encode_nav_pvt(m: NavPvt) -> bytes:
     if r_validMag is not True and r_validMag is not False and r_validMag != 0 and r_validMag != 1:
         raise _enc('nav_pvt', 'validMag', r_validMag, 'type', 'a bool')
     r_validMag = 1 if r_validMag else 0
-    r_valid_spare = 0
     r_tAcc = m.tAcc
-    if r_tAcc.__class__ is not int and (not isinstance(r_tAcc, int) or r_tAcc.__class__ is bool):
-        raise _enc('nav_pvt', 'tAcc', r_tAcc, 'type', 'an int')
-    if not 0 <= r_tAcc <= 4294967295:
-        raise _enc('nav_pvt', 'tAcc', r_tAcc, 'range', '0..4294967295', None)
+    if r_tAcc.__class__ is not int or not 0 <= r_tAcc <= 4294967295:
+        if not isinstance(r_tAcc, int) or r_tAcc.__class__ is bool:
+            raise _enc('nav_pvt', 'tAcc', r_tAcc, 'type', 'an int')
+        if not 0 <= r_tAcc <= 4294967295:
+            raise _enc('nav_pvt', 'tAcc', r_tAcc, 'range', '0..4294967295', None)
     r_nano = m.nano
-    if r_nano.__class__ is not int and (not isinstance(r_nano, int) or r_nano.__class__ is bool):
-        raise _enc('nav_pvt', 'nano', r_nano, 'type', 'an int')
-    if not -2147483648 <= r_nano <= 2147483647:
-        raise _enc('nav_pvt', 'nano', r_nano, 'range', '-2147483648..2147483647', None)
+    if r_nano.__class__ is not int or not -2147483648 <= r_nano <= 2147483647:
+        if not isinstance(r_nano, int) or r_nano.__class__ is bool:
+            raise _enc('nav_pvt', 'nano', r_nano, 'type', 'an int')
+        if not -2147483648 <= r_nano <= 2147483647:
+            raise _enc('nav_pvt', 'nano', r_nano, 'range', '-2147483648..2147483647', None)
     r_fixType = m.fixType
-    if r_fixType.__class__ is not int and (not isinstance(r_fixType, int) or r_fixType.__class__ is bool):
-        raise _enc('nav_pvt', 'fixType', r_fixType, 'type', 'an int')
-    if not 0 <= r_fixType <= 255:
-        raise _enc('nav_pvt', 'fixType', r_fixType, 'range', '0..255', None)
+    if r_fixType.__class__ is not int or not 0 <= r_fixType <= 255:
+        if not isinstance(r_fixType, int) or r_fixType.__class__ is bool:
+            raise _enc('nav_pvt', 'fixType', r_fixType, 'type', 'an int')
+        if not 0 <= r_fixType <= 255:
+            raise _enc('nav_pvt', 'fixType', r_fixType, 'range', '0..255', None)
     r_gnssFixOk: Any = m.gnssFixOk
     if r_gnssFixOk is not True and r_gnssFixOk is not False and r_gnssFixOk != 0 and r_gnssFixOk != 1:
         raise _enc('nav_pvt', 'gnssFixOk', r_gnssFixOk, 'type', 'a bool')
@@ -992,24 +985,27 @@ def _encode_nav_pvt(m: NavPvt) -> bytes:
         raise _enc('nav_pvt', 'diffSoln', r_diffSoln, 'type', 'a bool')
     r_diffSoln = 1 if r_diffSoln else 0
     r_psmState = m.psmState
-    if r_psmState.__class__ is not int and (not isinstance(r_psmState, int) or r_psmState.__class__ is bool):
-        raise _enc('nav_pvt', 'psmState', r_psmState, 'type', 'an int')
-    if not 0 <= r_psmState <= 7:
-        raise _enc('nav_pvt', 'psmState', r_psmState, 'range', '0..7', None)
+    if r_psmState.__class__ is not int or not 0 <= r_psmState <= 7:
+        if not isinstance(r_psmState, int) or r_psmState.__class__ is bool:
+            raise _enc('nav_pvt', 'psmState', r_psmState, 'type', 'an int')
+        if not 0 <= r_psmState <= 7:
+            raise _enc('nav_pvt', 'psmState', r_psmState, 'range', '0..7', None)
     r_headVehValid: Any = m.headVehValid
     if r_headVehValid is not True and r_headVehValid is not False and r_headVehValid != 0 and r_headVehValid != 1:
         raise _enc('nav_pvt', 'headVehValid', r_headVehValid, 'type', 'a bool')
     r_headVehValid = 1 if r_headVehValid else 0
     r_carrSoln = m.carrSoln
-    if r_carrSoln.__class__ is not int and (not isinstance(r_carrSoln, int) or r_carrSoln.__class__ is bool):
-        raise _enc('nav_pvt', 'carrSoln', r_carrSoln, 'type', 'an int')
-    if not 0 <= r_carrSoln <= 3:
-        raise _enc('nav_pvt', 'carrSoln', r_carrSoln, 'range', '0..3', None)
+    if r_carrSoln.__class__ is not int or not 0 <= r_carrSoln <= 3:
+        if not isinstance(r_carrSoln, int) or r_carrSoln.__class__ is bool:
+            raise _enc('nav_pvt', 'carrSoln', r_carrSoln, 'type', 'an int')
+        if not 0 <= r_carrSoln <= 3:
+            raise _enc('nav_pvt', 'carrSoln', r_carrSoln, 'range', '0..3', None)
     r_reserved = m.reserved
-    if r_reserved.__class__ is not int and (not isinstance(r_reserved, int) or r_reserved.__class__ is bool):
-        raise _enc('nav_pvt', 'reserved', r_reserved, 'type', 'an int')
-    if not 0 <= r_reserved <= 31:
-        raise _enc('nav_pvt', 'reserved', r_reserved, 'range', '0..31', None)
+    if r_reserved.__class__ is not int or not 0 <= r_reserved <= 31:
+        if not isinstance(r_reserved, int) or r_reserved.__class__ is bool:
+            raise _enc('nav_pvt', 'reserved', r_reserved, 'type', 'an int')
+        if not 0 <= r_reserved <= 31:
+            raise _enc('nav_pvt', 'reserved', r_reserved, 'range', '0..31', None)
     r_confirmedAvai: Any = m.confirmedAvai
     if r_confirmedAvai is not True and r_confirmedAvai is not False and r_confirmedAvai != 0 and r_confirmedAvai != 1:
         raise _enc('nav_pvt', 'confirmedAvai', r_confirmedAvai, 'type', 'a bool')
@@ -1023,99 +1019,116 @@ def _encode_nav_pvt(m: NavPvt) -> bytes:
         raise _enc('nav_pvt', 'confirmedTime', r_confirmedTime, 'type', 'a bool')
     r_confirmedTime = 1 if r_confirmedTime else 0
     r_numSV = m.numSV
-    if r_numSV.__class__ is not int and (not isinstance(r_numSV, int) or r_numSV.__class__ is bool):
-        raise _enc('nav_pvt', 'numSV', r_numSV, 'type', 'an int')
-    if not 0 <= r_numSV <= 255:
-        raise _enc('nav_pvt', 'numSV', r_numSV, 'range', '0..255', None)
+    if r_numSV.__class__ is not int or not 0 <= r_numSV <= 255:
+        if not isinstance(r_numSV, int) or r_numSV.__class__ is bool:
+            raise _enc('nav_pvt', 'numSV', r_numSV, 'type', 'an int')
+        if not 0 <= r_numSV <= 255:
+            raise _enc('nav_pvt', 'numSV', r_numSV, 'range', '0..255', None)
     r_lon = m.lon
-    if r_lon.__class__ is not float and (not isinstance(r_lon, (int, float)) or r_lon.__class__ is bool):
-        raise _enc('nav_pvt', 'lon', r_lon, 'type', 'a number')
-    if not -214.7483648 <= r_lon <= 214.7483647:
-        raise _enc('nav_pvt', 'lon', r_lon, 'range', '-214.7483648..214.7483647', None)
+    if r_lon.__class__ is not float or not -214.7483648 <= r_lon <= 214.7483647:
+        if not isinstance(r_lon, (int, float)) or r_lon.__class__ is bool:
+            raise _enc('nav_pvt', 'lon', r_lon, 'type', 'a number')
+        if not -214.7483648 <= r_lon <= 214.7483647:
+            raise _enc('nav_pvt', 'lon', r_lon, 'range', '-214.7483648..214.7483647', None)
     r_lon = _floor(r_lon / 1e-07 + 0.5)
     r_lat = m.lat
-    if r_lat.__class__ is not float and (not isinstance(r_lat, (int, float)) or r_lat.__class__ is bool):
-        raise _enc('nav_pvt', 'lat', r_lat, 'type', 'a number')
-    if not -214.7483648 <= r_lat <= 214.7483647:
-        raise _enc('nav_pvt', 'lat', r_lat, 'range', '-214.7483648..214.7483647', None)
+    if r_lat.__class__ is not float or not -214.7483648 <= r_lat <= 214.7483647:
+        if not isinstance(r_lat, (int, float)) or r_lat.__class__ is bool:
+            raise _enc('nav_pvt', 'lat', r_lat, 'type', 'a number')
+        if not -214.7483648 <= r_lat <= 214.7483647:
+            raise _enc('nav_pvt', 'lat', r_lat, 'range', '-214.7483648..214.7483647', None)
     r_lat = _floor(r_lat / 1e-07 + 0.5)
     r_height = m.height
-    if r_height.__class__ is not int and (not isinstance(r_height, int) or r_height.__class__ is bool):
-        raise _enc('nav_pvt', 'height', r_height, 'type', 'an int')
-    if not -2147483648 <= r_height <= 2147483647:
-        raise _enc('nav_pvt', 'height', r_height, 'range', '-2147483648..2147483647', None)
+    if r_height.__class__ is not int or not -2147483648 <= r_height <= 2147483647:
+        if not isinstance(r_height, int) or r_height.__class__ is bool:
+            raise _enc('nav_pvt', 'height', r_height, 'type', 'an int')
+        if not -2147483648 <= r_height <= 2147483647:
+            raise _enc('nav_pvt', 'height', r_height, 'range', '-2147483648..2147483647', None)
     r_hMSL = m.hMSL
-    if r_hMSL.__class__ is not int and (not isinstance(r_hMSL, int) or r_hMSL.__class__ is bool):
-        raise _enc('nav_pvt', 'hMSL', r_hMSL, 'type', 'an int')
-    if not -2147483648 <= r_hMSL <= 2147483647:
-        raise _enc('nav_pvt', 'hMSL', r_hMSL, 'range', '-2147483648..2147483647', None)
+    if r_hMSL.__class__ is not int or not -2147483648 <= r_hMSL <= 2147483647:
+        if not isinstance(r_hMSL, int) or r_hMSL.__class__ is bool:
+            raise _enc('nav_pvt', 'hMSL', r_hMSL, 'type', 'an int')
+        if not -2147483648 <= r_hMSL <= 2147483647:
+            raise _enc('nav_pvt', 'hMSL', r_hMSL, 'range', '-2147483648..2147483647', None)
     r_hAcc = m.hAcc
-    if r_hAcc.__class__ is not int and (not isinstance(r_hAcc, int) or r_hAcc.__class__ is bool):
-        raise _enc('nav_pvt', 'hAcc', r_hAcc, 'type', 'an int')
-    if not 0 <= r_hAcc <= 4294967295:
-        raise _enc('nav_pvt', 'hAcc', r_hAcc, 'range', '0..4294967295', None)
+    if r_hAcc.__class__ is not int or not 0 <= r_hAcc <= 4294967295:
+        if not isinstance(r_hAcc, int) or r_hAcc.__class__ is bool:
+            raise _enc('nav_pvt', 'hAcc', r_hAcc, 'type', 'an int')
+        if not 0 <= r_hAcc <= 4294967295:
+            raise _enc('nav_pvt', 'hAcc', r_hAcc, 'range', '0..4294967295', None)
     r_vAcc = m.vAcc
-    if r_vAcc.__class__ is not int and (not isinstance(r_vAcc, int) or r_vAcc.__class__ is bool):
-        raise _enc('nav_pvt', 'vAcc', r_vAcc, 'type', 'an int')
-    if not 0 <= r_vAcc <= 4294967295:
-        raise _enc('nav_pvt', 'vAcc', r_vAcc, 'range', '0..4294967295', None)
+    if r_vAcc.__class__ is not int or not 0 <= r_vAcc <= 4294967295:
+        if not isinstance(r_vAcc, int) or r_vAcc.__class__ is bool:
+            raise _enc('nav_pvt', 'vAcc', r_vAcc, 'type', 'an int')
+        if not 0 <= r_vAcc <= 4294967295:
+            raise _enc('nav_pvt', 'vAcc', r_vAcc, 'range', '0..4294967295', None)
     r_velN = m.velN
-    if r_velN.__class__ is not int and (not isinstance(r_velN, int) or r_velN.__class__ is bool):
-        raise _enc('nav_pvt', 'velN', r_velN, 'type', 'an int')
-    if not -2147483648 <= r_velN <= 2147483647:
-        raise _enc('nav_pvt', 'velN', r_velN, 'range', '-2147483648..2147483647', None)
+    if r_velN.__class__ is not int or not -2147483648 <= r_velN <= 2147483647:
+        if not isinstance(r_velN, int) or r_velN.__class__ is bool:
+            raise _enc('nav_pvt', 'velN', r_velN, 'type', 'an int')
+        if not -2147483648 <= r_velN <= 2147483647:
+            raise _enc('nav_pvt', 'velN', r_velN, 'range', '-2147483648..2147483647', None)
     r_velE = m.velE
-    if r_velE.__class__ is not int and (not isinstance(r_velE, int) or r_velE.__class__ is bool):
-        raise _enc('nav_pvt', 'velE', r_velE, 'type', 'an int')
-    if not -2147483648 <= r_velE <= 2147483647:
-        raise _enc('nav_pvt', 'velE', r_velE, 'range', '-2147483648..2147483647', None)
+    if r_velE.__class__ is not int or not -2147483648 <= r_velE <= 2147483647:
+        if not isinstance(r_velE, int) or r_velE.__class__ is bool:
+            raise _enc('nav_pvt', 'velE', r_velE, 'type', 'an int')
+        if not -2147483648 <= r_velE <= 2147483647:
+            raise _enc('nav_pvt', 'velE', r_velE, 'range', '-2147483648..2147483647', None)
     r_velD = m.velD
-    if r_velD.__class__ is not int and (not isinstance(r_velD, int) or r_velD.__class__ is bool):
-        raise _enc('nav_pvt', 'velD', r_velD, 'type', 'an int')
-    if not -2147483648 <= r_velD <= 2147483647:
-        raise _enc('nav_pvt', 'velD', r_velD, 'range', '-2147483648..2147483647', None)
+    if r_velD.__class__ is not int or not -2147483648 <= r_velD <= 2147483647:
+        if not isinstance(r_velD, int) or r_velD.__class__ is bool:
+            raise _enc('nav_pvt', 'velD', r_velD, 'type', 'an int')
+        if not -2147483648 <= r_velD <= 2147483647:
+            raise _enc('nav_pvt', 'velD', r_velD, 'range', '-2147483648..2147483647', None)
     r_gSpeed = m.gSpeed
-    if r_gSpeed.__class__ is not int and (not isinstance(r_gSpeed, int) or r_gSpeed.__class__ is bool):
-        raise _enc('nav_pvt', 'gSpeed', r_gSpeed, 'type', 'an int')
-    if not -2147483648 <= r_gSpeed <= 2147483647:
-        raise _enc('nav_pvt', 'gSpeed', r_gSpeed, 'range', '-2147483648..2147483647', None)
+    if r_gSpeed.__class__ is not int or not -2147483648 <= r_gSpeed <= 2147483647:
+        if not isinstance(r_gSpeed, int) or r_gSpeed.__class__ is bool:
+            raise _enc('nav_pvt', 'gSpeed', r_gSpeed, 'type', 'an int')
+        if not -2147483648 <= r_gSpeed <= 2147483647:
+            raise _enc('nav_pvt', 'gSpeed', r_gSpeed, 'range', '-2147483648..2147483647', None)
     r_headMot = m.headMot
-    if r_headMot.__class__ is not float and (not isinstance(r_headMot, (int, float)) or r_headMot.__class__ is bool):
-        raise _enc('nav_pvt', 'headMot', r_headMot, 'type', 'a number')
-    if not -21474.83648 <= r_headMot <= 21474.836470000002:
-        raise _enc('nav_pvt', 'headMot', r_headMot, 'range', '-21474.83648..21474.836470000002', None)
+    if r_headMot.__class__ is not float or not -21474.83648 <= r_headMot <= 21474.836470000002:
+        if not isinstance(r_headMot, (int, float)) or r_headMot.__class__ is bool:
+            raise _enc('nav_pvt', 'headMot', r_headMot, 'type', 'a number')
+        if not -21474.83648 <= r_headMot <= 21474.836470000002:
+            raise _enc('nav_pvt', 'headMot', r_headMot, 'range', '-21474.83648..21474.836470000002', None)
     r_headMot = _floor(r_headMot / 1e-05 + 0.5)
     r_sAcc = m.sAcc
-    if r_sAcc.__class__ is not int and (not isinstance(r_sAcc, int) or r_sAcc.__class__ is bool):
-        raise _enc('nav_pvt', 'sAcc', r_sAcc, 'type', 'an int')
-    if not 0 <= r_sAcc <= 4294967295:
-        raise _enc('nav_pvt', 'sAcc', r_sAcc, 'range', '0..4294967295', None)
+    if r_sAcc.__class__ is not int or not 0 <= r_sAcc <= 4294967295:
+        if not isinstance(r_sAcc, int) or r_sAcc.__class__ is bool:
+            raise _enc('nav_pvt', 'sAcc', r_sAcc, 'type', 'an int')
+        if not 0 <= r_sAcc <= 4294967295:
+            raise _enc('nav_pvt', 'sAcc', r_sAcc, 'range', '0..4294967295', None)
     r_headAcc = m.headAcc
-    if r_headAcc.__class__ is not float and (not isinstance(r_headAcc, (int, float)) or r_headAcc.__class__ is bool):
-        raise _enc('nav_pvt', 'headAcc', r_headAcc, 'type', 'a number')
-    if not 0.0 <= r_headAcc <= 42949.67295:
-        raise _enc('nav_pvt', 'headAcc', r_headAcc, 'range', '0.0..42949.67295', None)
+    if r_headAcc.__class__ is not float or not 0.0 <= r_headAcc <= 42949.67295:
+        if not isinstance(r_headAcc, (int, float)) or r_headAcc.__class__ is bool:
+            raise _enc('nav_pvt', 'headAcc', r_headAcc, 'type', 'a number')
+        if not 0.0 <= r_headAcc <= 42949.67295:
+            raise _enc('nav_pvt', 'headAcc', r_headAcc, 'range', '0.0..42949.67295', None)
     r_headAcc = _floor(r_headAcc / 1e-05 + 0.5)
     r_pDOP = m.pDOP
-    if r_pDOP.__class__ is not float and (not isinstance(r_pDOP, (int, float)) or r_pDOP.__class__ is bool):
-        raise _enc('nav_pvt', 'pDOP', r_pDOP, 'type', 'a number')
-    if not 0.0 <= r_pDOP <= 655.35:
-        raise _enc('nav_pvt', 'pDOP', r_pDOP, 'range', '0.0..655.35', None)
+    if r_pDOP.__class__ is not float or not 0.0 <= r_pDOP <= 655.35:
+        if not isinstance(r_pDOP, (int, float)) or r_pDOP.__class__ is bool:
+            raise _enc('nav_pvt', 'pDOP', r_pDOP, 'type', 'a number')
+        if not 0.0 <= r_pDOP <= 655.35:
+            raise _enc('nav_pvt', 'pDOP', r_pDOP, 'range', '0.0..655.35', None)
     r_pDOP = _floor(r_pDOP / 0.01 + 0.5)
     r_invalidLlh: Any = m.invalidLlh
     if r_invalidLlh is not True and r_invalidLlh is not False and r_invalidLlh != 0 and r_invalidLlh != 1:
         raise _enc('nav_pvt', 'invalidLlh', r_invalidLlh, 'type', 'a bool')
     r_invalidLlh = 1 if r_invalidLlh else 0
     r_lastCorrectionAge = m.lastCorrectionAge
-    if r_lastCorrectionAge.__class__ is not int and (not isinstance(r_lastCorrectionAge, int) or r_lastCorrectionAge.__class__ is bool):
-        raise _enc('nav_pvt', 'lastCorrectionAge', r_lastCorrectionAge, 'type', 'an int')
-    if not 0 <= r_lastCorrectionAge <= 15:
-        raise _enc('nav_pvt', 'lastCorrectionAge', r_lastCorrectionAge, 'range', '0..15', None)
+    if r_lastCorrectionAge.__class__ is not int or not 0 <= r_lastCorrectionAge <= 15:
+        if not isinstance(r_lastCorrectionAge, int) or r_lastCorrectionAge.__class__ is bool:
+            raise _enc('nav_pvt', 'lastCorrectionAge', r_lastCorrectionAge, 'type', 'an int')
+        if not 0 <= r_lastCorrectionAge <= 15:
+            raise _enc('nav_pvt', 'lastCorrectionAge', r_lastCorrectionAge, 'range', '0..15', None)
     r_reserved1 = m.reserved1
-    if r_reserved1.__class__ is not int and (not isinstance(r_reserved1, int) or r_reserved1.__class__ is bool):
-        raise _enc('nav_pvt', 'reserved1', r_reserved1, 'type', 'an int')
-    if not 0 <= r_reserved1 <= 255:
-        raise _enc('nav_pvt', 'reserved1', r_reserved1, 'range', '0..255', None)
+    if r_reserved1.__class__ is not int or not 0 <= r_reserved1 <= 255:
+        if not isinstance(r_reserved1, int) or r_reserved1.__class__ is bool:
+            raise _enc('nav_pvt', 'reserved1', r_reserved1, 'type', 'an int')
+        if not 0 <= r_reserved1 <= 255:
+            raise _enc('nav_pvt', 'reserved1', r_reserved1, 'range', '0..255', None)
     r_authTime: Any = m.authTime
     if r_authTime is not True and r_authTime is not False and r_authTime != 0 and r_authTime != 1:
         raise _enc('nav_pvt', 'authTime', r_authTime, 'type', 'a bool')
@@ -1124,29 +1137,32 @@ def _encode_nav_pvt(m: NavPvt) -> bytes:
     if r_nmaFixStatus is not True and r_nmaFixStatus is not False and r_nmaFixStatus != 0 and r_nmaFixStatus != 1:
         raise _enc('nav_pvt', 'nmaFixStatus', r_nmaFixStatus, 'type', 'a bool')
     r_nmaFixStatus = 1 if r_nmaFixStatus else 0
-    r_flags3_spare = 0
     r_reserved0 = m.reserved0
-    if r_reserved0.__class__ is not int and (not isinstance(r_reserved0, int) or r_reserved0.__class__ is bool):
-        raise _enc('nav_pvt', 'reserved0', r_reserved0, 'type', 'an int')
-    if not 0 <= r_reserved0 <= 4294967295:
-        raise _enc('nav_pvt', 'reserved0', r_reserved0, 'range', '0..4294967295', None)
+    if r_reserved0.__class__ is not int or not 0 <= r_reserved0 <= 4294967295:
+        if not isinstance(r_reserved0, int) or r_reserved0.__class__ is bool:
+            raise _enc('nav_pvt', 'reserved0', r_reserved0, 'type', 'an int')
+        if not 0 <= r_reserved0 <= 4294967295:
+            raise _enc('nav_pvt', 'reserved0', r_reserved0, 'range', '0..4294967295', None)
     r_headVeh = m.headVeh
-    if r_headVeh.__class__ is not float and (not isinstance(r_headVeh, (int, float)) or r_headVeh.__class__ is bool):
-        raise _enc('nav_pvt', 'headVeh', r_headVeh, 'type', 'a number')
-    if not -21474.83648 <= r_headVeh <= 21474.836470000002:
-        raise _enc('nav_pvt', 'headVeh', r_headVeh, 'range', '-21474.83648..21474.836470000002', None)
+    if r_headVeh.__class__ is not float or not -21474.83648 <= r_headVeh <= 21474.836470000002:
+        if not isinstance(r_headVeh, (int, float)) or r_headVeh.__class__ is bool:
+            raise _enc('nav_pvt', 'headVeh', r_headVeh, 'type', 'a number')
+        if not -21474.83648 <= r_headVeh <= 21474.836470000002:
+            raise _enc('nav_pvt', 'headVeh', r_headVeh, 'range', '-21474.83648..21474.836470000002', None)
     r_headVeh = _floor(r_headVeh / 1e-05 + 0.5)
     r_magDec = m.magDec
-    if r_magDec.__class__ is not float and (not isinstance(r_magDec, (int, float)) or r_magDec.__class__ is bool):
-        raise _enc('nav_pvt', 'magDec', r_magDec, 'type', 'a number')
-    if not -327.68 <= r_magDec <= 327.67:
-        raise _enc('nav_pvt', 'magDec', r_magDec, 'range', '-327.68..327.67', None)
+    if r_magDec.__class__ is not float or not -327.68 <= r_magDec <= 327.67:
+        if not isinstance(r_magDec, (int, float)) or r_magDec.__class__ is bool:
+            raise _enc('nav_pvt', 'magDec', r_magDec, 'type', 'a number')
+        if not -327.68 <= r_magDec <= 327.67:
+            raise _enc('nav_pvt', 'magDec', r_magDec, 'range', '-327.68..327.67', None)
     r_magDec = _floor(r_magDec / 0.01 + 0.5)
     r_magAcc = m.magAcc
-    if r_magAcc.__class__ is not float and (not isinstance(r_magAcc, (int, float)) or r_magAcc.__class__ is bool):
-        raise _enc('nav_pvt', 'magAcc', r_magAcc, 'type', 'a number')
-    if not 0.0 <= r_magAcc <= 655.35:
-        raise _enc('nav_pvt', 'magAcc', r_magAcc, 'range', '0.0..655.35', None)
+    if r_magAcc.__class__ is not float or not 0.0 <= r_magAcc <= 655.35:
+        if not isinstance(r_magAcc, (int, float)) or r_magAcc.__class__ is bool:
+            raise _enc('nav_pvt', 'magAcc', r_magAcc, 'type', 'a number')
+        if not 0.0 <= r_magAcc <= 655.35:
+            raise _enc('nav_pvt', 'magAcc', r_magAcc, 'range', '0.0..655.35', None)
     r_magAcc = _floor(r_magAcc / 0.01 + 0.5)
     r_checksum = 0
     b = bytearray(100)
@@ -1249,50 +1265,58 @@ def _decode_nav_pvt(d: _Buffer) -> NavPvt:
 
 def _raw_nav_sat_2sv_0(g_2sv_0: Any) -> tuple[Any, ...]:
     r_2sv_0_6gnssId = g_2sv_0.gnssId
-    if r_2sv_0_6gnssId.__class__ is not int and (not isinstance(r_2sv_0_6gnssId, int) or r_2sv_0_6gnssId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[0].gnssId', r_2sv_0_6gnssId, 'type', 'an int')
-    if not 0 <= r_2sv_0_6gnssId <= 255:
-        raise _enc('nav_sat', 'sv[0].gnssId', r_2sv_0_6gnssId, 'range', '0..255', None)
+    if r_2sv_0_6gnssId.__class__ is not int or not 0 <= r_2sv_0_6gnssId <= 255:
+        if not isinstance(r_2sv_0_6gnssId, int) or r_2sv_0_6gnssId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[0].gnssId', r_2sv_0_6gnssId, 'type', 'an int')
+        if not 0 <= r_2sv_0_6gnssId <= 255:
+            raise _enc('nav_sat', 'sv[0].gnssId', r_2sv_0_6gnssId, 'range', '0..255', None)
     r_2sv_0_4svId = g_2sv_0.svId
-    if r_2sv_0_4svId.__class__ is not int and (not isinstance(r_2sv_0_4svId, int) or r_2sv_0_4svId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[0].svId', r_2sv_0_4svId, 'type', 'an int')
-    if not 0 <= r_2sv_0_4svId <= 255:
-        raise _enc('nav_sat', 'sv[0].svId', r_2sv_0_4svId, 'range', '0..255', None)
+    if r_2sv_0_4svId.__class__ is not int or not 0 <= r_2sv_0_4svId <= 255:
+        if not isinstance(r_2sv_0_4svId, int) or r_2sv_0_4svId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[0].svId', r_2sv_0_4svId, 'type', 'an int')
+        if not 0 <= r_2sv_0_4svId <= 255:
+            raise _enc('nav_sat', 'sv[0].svId', r_2sv_0_4svId, 'range', '0..255', None)
     r_2sv_0_3cno = g_2sv_0.cno
-    if r_2sv_0_3cno.__class__ is not int and (not isinstance(r_2sv_0_3cno, int) or r_2sv_0_3cno.__class__ is bool):
-        raise _enc('nav_sat', 'sv[0].cno', r_2sv_0_3cno, 'type', 'an int')
-    if not 0 <= r_2sv_0_3cno <= 255:
-        raise _enc('nav_sat', 'sv[0].cno', r_2sv_0_3cno, 'range', '0..255', None)
+    if r_2sv_0_3cno.__class__ is not int or not 0 <= r_2sv_0_3cno <= 255:
+        if not isinstance(r_2sv_0_3cno, int) or r_2sv_0_3cno.__class__ is bool:
+            raise _enc('nav_sat', 'sv[0].cno', r_2sv_0_3cno, 'type', 'an int')
+        if not 0 <= r_2sv_0_3cno <= 255:
+            raise _enc('nav_sat', 'sv[0].cno', r_2sv_0_3cno, 'range', '0..255', None)
     r_2sv_0_4elev = g_2sv_0.elev
-    if r_2sv_0_4elev.__class__ is not int and (not isinstance(r_2sv_0_4elev, int) or r_2sv_0_4elev.__class__ is bool):
-        raise _enc('nav_sat', 'sv[0].elev', r_2sv_0_4elev, 'type', 'an int')
-    if not -128 <= r_2sv_0_4elev <= 127:
-        raise _enc('nav_sat', 'sv[0].elev', r_2sv_0_4elev, 'range', '-128..127', None)
+    if r_2sv_0_4elev.__class__ is not int or not -128 <= r_2sv_0_4elev <= 127:
+        if not isinstance(r_2sv_0_4elev, int) or r_2sv_0_4elev.__class__ is bool:
+            raise _enc('nav_sat', 'sv[0].elev', r_2sv_0_4elev, 'type', 'an int')
+        if not -128 <= r_2sv_0_4elev <= 127:
+            raise _enc('nav_sat', 'sv[0].elev', r_2sv_0_4elev, 'range', '-128..127', None)
     r_2sv_0_4azim = g_2sv_0.azim
-    if r_2sv_0_4azim.__class__ is not int and (not isinstance(r_2sv_0_4azim, int) or r_2sv_0_4azim.__class__ is bool):
-        raise _enc('nav_sat', 'sv[0].azim', r_2sv_0_4azim, 'type', 'an int')
-    if not -32768 <= r_2sv_0_4azim <= 32767:
-        raise _enc('nav_sat', 'sv[0].azim', r_2sv_0_4azim, 'range', '-32768..32767', None)
+    if r_2sv_0_4azim.__class__ is not int or not -32768 <= r_2sv_0_4azim <= 32767:
+        if not isinstance(r_2sv_0_4azim, int) or r_2sv_0_4azim.__class__ is bool:
+            raise _enc('nav_sat', 'sv[0].azim', r_2sv_0_4azim, 'type', 'an int')
+        if not -32768 <= r_2sv_0_4azim <= 32767:
+            raise _enc('nav_sat', 'sv[0].azim', r_2sv_0_4azim, 'range', '-32768..32767', None)
     r_2sv_0_5prRes = g_2sv_0.prRes
-    if r_2sv_0_5prRes.__class__ is not float and (not isinstance(r_2sv_0_5prRes, (int, float)) or r_2sv_0_5prRes.__class__ is bool):
-        raise _enc('nav_sat', 'sv[0].prRes', r_2sv_0_5prRes, 'type', 'a number')
-    if not -3276.8 <= r_2sv_0_5prRes <= 3276.7000000000003:
-        raise _enc('nav_sat', 'sv[0].prRes', r_2sv_0_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    if r_2sv_0_5prRes.__class__ is not float or not -3276.8 <= r_2sv_0_5prRes <= 3276.7000000000003:
+        if not isinstance(r_2sv_0_5prRes, (int, float)) or r_2sv_0_5prRes.__class__ is bool:
+            raise _enc('nav_sat', 'sv[0].prRes', r_2sv_0_5prRes, 'type', 'a number')
+        if not -3276.8 <= r_2sv_0_5prRes <= 3276.7000000000003:
+            raise _enc('nav_sat', 'sv[0].prRes', r_2sv_0_5prRes, 'range', '-3276.8..3276.7000000000003', None)
     r_2sv_0_5prRes = _floor(r_2sv_0_5prRes / 0.1 + 0.5)
     r_2sv_0_10qualityInd = g_2sv_0.qualityInd
-    if r_2sv_0_10qualityInd.__class__ is not int and (not isinstance(r_2sv_0_10qualityInd, int) or r_2sv_0_10qualityInd.__class__ is bool):
-        raise _enc('nav_sat', 'sv[0].qualityInd', r_2sv_0_10qualityInd, 'type', 'an int')
-    if not 0 <= r_2sv_0_10qualityInd <= 7:
-        raise _enc('nav_sat', 'sv[0].qualityInd', r_2sv_0_10qualityInd, 'range', '0..7', None)
+    if r_2sv_0_10qualityInd.__class__ is not int or not 0 <= r_2sv_0_10qualityInd <= 7:
+        if not isinstance(r_2sv_0_10qualityInd, int) or r_2sv_0_10qualityInd.__class__ is bool:
+            raise _enc('nav_sat', 'sv[0].qualityInd', r_2sv_0_10qualityInd, 'type', 'an int')
+        if not 0 <= r_2sv_0_10qualityInd <= 7:
+            raise _enc('nav_sat', 'sv[0].qualityInd', r_2sv_0_10qualityInd, 'range', '0..7', None)
     r_2sv_0_6svUsed: Any = g_2sv_0.svUsed
     if r_2sv_0_6svUsed is not True and r_2sv_0_6svUsed is not False and r_2sv_0_6svUsed != 0 and r_2sv_0_6svUsed != 1:
         raise _enc('nav_sat', 'sv[0].svUsed', r_2sv_0_6svUsed, 'type', 'a bool')
     r_2sv_0_6svUsed = 1 if r_2sv_0_6svUsed else 0
     r_2sv_0_6health = g_2sv_0.health
-    if r_2sv_0_6health.__class__ is not int and (not isinstance(r_2sv_0_6health, int) or r_2sv_0_6health.__class__ is bool):
-        raise _enc('nav_sat', 'sv[0].health', r_2sv_0_6health, 'type', 'an int')
-    if not 0 <= r_2sv_0_6health <= 3:
-        raise _enc('nav_sat', 'sv[0].health', r_2sv_0_6health, 'range', '0..3', None)
+    if r_2sv_0_6health.__class__ is not int or not 0 <= r_2sv_0_6health <= 3:
+        if not isinstance(r_2sv_0_6health, int) or r_2sv_0_6health.__class__ is bool:
+            raise _enc('nav_sat', 'sv[0].health', r_2sv_0_6health, 'type', 'an int')
+        if not 0 <= r_2sv_0_6health <= 3:
+            raise _enc('nav_sat', 'sv[0].health', r_2sv_0_6health, 'range', '0..3', None)
     r_2sv_0_8diffCorr: Any = g_2sv_0.diffCorr
     if r_2sv_0_8diffCorr is not True and r_2sv_0_8diffCorr is not False and r_2sv_0_8diffCorr != 0 and r_2sv_0_8diffCorr != 1:
         raise _enc('nav_sat', 'sv[0].diffCorr', r_2sv_0_8diffCorr, 'type', 'a bool')
@@ -1302,10 +1326,11 @@ def _raw_nav_sat_2sv_0(g_2sv_0: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[0].smoothed', r_2sv_0_8smoothed, 'type', 'a bool')
     r_2sv_0_8smoothed = 1 if r_2sv_0_8smoothed else 0
     r_2sv_0_11orbitSource = g_2sv_0.orbitSource
-    if r_2sv_0_11orbitSource.__class__ is not int and (not isinstance(r_2sv_0_11orbitSource, int) or r_2sv_0_11orbitSource.__class__ is bool):
-        raise _enc('nav_sat', 'sv[0].orbitSource', r_2sv_0_11orbitSource, 'type', 'an int')
-    if not 0 <= r_2sv_0_11orbitSource <= 7:
-        raise _enc('nav_sat', 'sv[0].orbitSource', r_2sv_0_11orbitSource, 'range', '0..7', None)
+    if r_2sv_0_11orbitSource.__class__ is not int or not 0 <= r_2sv_0_11orbitSource <= 7:
+        if not isinstance(r_2sv_0_11orbitSource, int) or r_2sv_0_11orbitSource.__class__ is bool:
+            raise _enc('nav_sat', 'sv[0].orbitSource', r_2sv_0_11orbitSource, 'type', 'an int')
+        if not 0 <= r_2sv_0_11orbitSource <= 7:
+            raise _enc('nav_sat', 'sv[0].orbitSource', r_2sv_0_11orbitSource, 'range', '0..7', None)
     r_2sv_0_8ephAvail: Any = g_2sv_0.ephAvail
     if r_2sv_0_8ephAvail is not True and r_2sv_0_8ephAvail is not False and r_2sv_0_8ephAvail != 0 and r_2sv_0_8ephAvail != 1:
         raise _enc('nav_sat', 'sv[0].ephAvail', r_2sv_0_8ephAvail, 'type', 'a bool')
@@ -1323,10 +1348,11 @@ def _raw_nav_sat_2sv_0(g_2sv_0: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[0].aopAvail', r_2sv_0_8aopAvail, 'type', 'a bool')
     r_2sv_0_8aopAvail = 1 if r_2sv_0_8aopAvail else 0
     r_2sv_0_10reserved13 = g_2sv_0.reserved13
-    if r_2sv_0_10reserved13.__class__ is not int and (not isinstance(r_2sv_0_10reserved13, int) or r_2sv_0_10reserved13.__class__ is bool):
-        raise _enc('nav_sat', 'sv[0].reserved13', r_2sv_0_10reserved13, 'type', 'an int')
-    if not 0 <= r_2sv_0_10reserved13 <= 1:
-        raise _enc('nav_sat', 'sv[0].reserved13', r_2sv_0_10reserved13, 'range', '0..1', None)
+    if r_2sv_0_10reserved13.__class__ is not int or not 0 <= r_2sv_0_10reserved13 <= 1:
+        if not isinstance(r_2sv_0_10reserved13, int) or r_2sv_0_10reserved13.__class__ is bool:
+            raise _enc('nav_sat', 'sv[0].reserved13', r_2sv_0_10reserved13, 'type', 'an int')
+        if not 0 <= r_2sv_0_10reserved13 <= 1:
+            raise _enc('nav_sat', 'sv[0].reserved13', r_2sv_0_10reserved13, 'range', '0..1', None)
     r_2sv_0_12sbasCorrUsed: Any = g_2sv_0.sbasCorrUsed
     if r_2sv_0_12sbasCorrUsed is not True and r_2sv_0_12sbasCorrUsed is not False and r_2sv_0_12sbasCorrUsed != 0 and r_2sv_0_12sbasCorrUsed != 1:
         raise _enc('nav_sat', 'sv[0].sbasCorrUsed', r_2sv_0_12sbasCorrUsed, 'type', 'a bool')
@@ -1373,50 +1399,58 @@ def _raw_nav_sat_2sv_0(g_2sv_0: Any) -> tuple[Any, ...]:
 
 def _raw_nav_sat_2sv_1(g_2sv_1: Any) -> tuple[Any, ...]:
     r_2sv_1_6gnssId = g_2sv_1.gnssId
-    if r_2sv_1_6gnssId.__class__ is not int and (not isinstance(r_2sv_1_6gnssId, int) or r_2sv_1_6gnssId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[1].gnssId', r_2sv_1_6gnssId, 'type', 'an int')
-    if not 0 <= r_2sv_1_6gnssId <= 255:
-        raise _enc('nav_sat', 'sv[1].gnssId', r_2sv_1_6gnssId, 'range', '0..255', None)
+    if r_2sv_1_6gnssId.__class__ is not int or not 0 <= r_2sv_1_6gnssId <= 255:
+        if not isinstance(r_2sv_1_6gnssId, int) or r_2sv_1_6gnssId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[1].gnssId', r_2sv_1_6gnssId, 'type', 'an int')
+        if not 0 <= r_2sv_1_6gnssId <= 255:
+            raise _enc('nav_sat', 'sv[1].gnssId', r_2sv_1_6gnssId, 'range', '0..255', None)
     r_2sv_1_4svId = g_2sv_1.svId
-    if r_2sv_1_4svId.__class__ is not int and (not isinstance(r_2sv_1_4svId, int) or r_2sv_1_4svId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[1].svId', r_2sv_1_4svId, 'type', 'an int')
-    if not 0 <= r_2sv_1_4svId <= 255:
-        raise _enc('nav_sat', 'sv[1].svId', r_2sv_1_4svId, 'range', '0..255', None)
+    if r_2sv_1_4svId.__class__ is not int or not 0 <= r_2sv_1_4svId <= 255:
+        if not isinstance(r_2sv_1_4svId, int) or r_2sv_1_4svId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[1].svId', r_2sv_1_4svId, 'type', 'an int')
+        if not 0 <= r_2sv_1_4svId <= 255:
+            raise _enc('nav_sat', 'sv[1].svId', r_2sv_1_4svId, 'range', '0..255', None)
     r_2sv_1_3cno = g_2sv_1.cno
-    if r_2sv_1_3cno.__class__ is not int and (not isinstance(r_2sv_1_3cno, int) or r_2sv_1_3cno.__class__ is bool):
-        raise _enc('nav_sat', 'sv[1].cno', r_2sv_1_3cno, 'type', 'an int')
-    if not 0 <= r_2sv_1_3cno <= 255:
-        raise _enc('nav_sat', 'sv[1].cno', r_2sv_1_3cno, 'range', '0..255', None)
+    if r_2sv_1_3cno.__class__ is not int or not 0 <= r_2sv_1_3cno <= 255:
+        if not isinstance(r_2sv_1_3cno, int) or r_2sv_1_3cno.__class__ is bool:
+            raise _enc('nav_sat', 'sv[1].cno', r_2sv_1_3cno, 'type', 'an int')
+        if not 0 <= r_2sv_1_3cno <= 255:
+            raise _enc('nav_sat', 'sv[1].cno', r_2sv_1_3cno, 'range', '0..255', None)
     r_2sv_1_4elev = g_2sv_1.elev
-    if r_2sv_1_4elev.__class__ is not int and (not isinstance(r_2sv_1_4elev, int) or r_2sv_1_4elev.__class__ is bool):
-        raise _enc('nav_sat', 'sv[1].elev', r_2sv_1_4elev, 'type', 'an int')
-    if not -128 <= r_2sv_1_4elev <= 127:
-        raise _enc('nav_sat', 'sv[1].elev', r_2sv_1_4elev, 'range', '-128..127', None)
+    if r_2sv_1_4elev.__class__ is not int or not -128 <= r_2sv_1_4elev <= 127:
+        if not isinstance(r_2sv_1_4elev, int) or r_2sv_1_4elev.__class__ is bool:
+            raise _enc('nav_sat', 'sv[1].elev', r_2sv_1_4elev, 'type', 'an int')
+        if not -128 <= r_2sv_1_4elev <= 127:
+            raise _enc('nav_sat', 'sv[1].elev', r_2sv_1_4elev, 'range', '-128..127', None)
     r_2sv_1_4azim = g_2sv_1.azim
-    if r_2sv_1_4azim.__class__ is not int and (not isinstance(r_2sv_1_4azim, int) or r_2sv_1_4azim.__class__ is bool):
-        raise _enc('nav_sat', 'sv[1].azim', r_2sv_1_4azim, 'type', 'an int')
-    if not -32768 <= r_2sv_1_4azim <= 32767:
-        raise _enc('nav_sat', 'sv[1].azim', r_2sv_1_4azim, 'range', '-32768..32767', None)
+    if r_2sv_1_4azim.__class__ is not int or not -32768 <= r_2sv_1_4azim <= 32767:
+        if not isinstance(r_2sv_1_4azim, int) or r_2sv_1_4azim.__class__ is bool:
+            raise _enc('nav_sat', 'sv[1].azim', r_2sv_1_4azim, 'type', 'an int')
+        if not -32768 <= r_2sv_1_4azim <= 32767:
+            raise _enc('nav_sat', 'sv[1].azim', r_2sv_1_4azim, 'range', '-32768..32767', None)
     r_2sv_1_5prRes = g_2sv_1.prRes
-    if r_2sv_1_5prRes.__class__ is not float and (not isinstance(r_2sv_1_5prRes, (int, float)) or r_2sv_1_5prRes.__class__ is bool):
-        raise _enc('nav_sat', 'sv[1].prRes', r_2sv_1_5prRes, 'type', 'a number')
-    if not -3276.8 <= r_2sv_1_5prRes <= 3276.7000000000003:
-        raise _enc('nav_sat', 'sv[1].prRes', r_2sv_1_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    if r_2sv_1_5prRes.__class__ is not float or not -3276.8 <= r_2sv_1_5prRes <= 3276.7000000000003:
+        if not isinstance(r_2sv_1_5prRes, (int, float)) or r_2sv_1_5prRes.__class__ is bool:
+            raise _enc('nav_sat', 'sv[1].prRes', r_2sv_1_5prRes, 'type', 'a number')
+        if not -3276.8 <= r_2sv_1_5prRes <= 3276.7000000000003:
+            raise _enc('nav_sat', 'sv[1].prRes', r_2sv_1_5prRes, 'range', '-3276.8..3276.7000000000003', None)
     r_2sv_1_5prRes = _floor(r_2sv_1_5prRes / 0.1 + 0.5)
     r_2sv_1_10qualityInd = g_2sv_1.qualityInd
-    if r_2sv_1_10qualityInd.__class__ is not int and (not isinstance(r_2sv_1_10qualityInd, int) or r_2sv_1_10qualityInd.__class__ is bool):
-        raise _enc('nav_sat', 'sv[1].qualityInd', r_2sv_1_10qualityInd, 'type', 'an int')
-    if not 0 <= r_2sv_1_10qualityInd <= 7:
-        raise _enc('nav_sat', 'sv[1].qualityInd', r_2sv_1_10qualityInd, 'range', '0..7', None)
+    if r_2sv_1_10qualityInd.__class__ is not int or not 0 <= r_2sv_1_10qualityInd <= 7:
+        if not isinstance(r_2sv_1_10qualityInd, int) or r_2sv_1_10qualityInd.__class__ is bool:
+            raise _enc('nav_sat', 'sv[1].qualityInd', r_2sv_1_10qualityInd, 'type', 'an int')
+        if not 0 <= r_2sv_1_10qualityInd <= 7:
+            raise _enc('nav_sat', 'sv[1].qualityInd', r_2sv_1_10qualityInd, 'range', '0..7', None)
     r_2sv_1_6svUsed: Any = g_2sv_1.svUsed
     if r_2sv_1_6svUsed is not True and r_2sv_1_6svUsed is not False and r_2sv_1_6svUsed != 0 and r_2sv_1_6svUsed != 1:
         raise _enc('nav_sat', 'sv[1].svUsed', r_2sv_1_6svUsed, 'type', 'a bool')
     r_2sv_1_6svUsed = 1 if r_2sv_1_6svUsed else 0
     r_2sv_1_6health = g_2sv_1.health
-    if r_2sv_1_6health.__class__ is not int and (not isinstance(r_2sv_1_6health, int) or r_2sv_1_6health.__class__ is bool):
-        raise _enc('nav_sat', 'sv[1].health', r_2sv_1_6health, 'type', 'an int')
-    if not 0 <= r_2sv_1_6health <= 3:
-        raise _enc('nav_sat', 'sv[1].health', r_2sv_1_6health, 'range', '0..3', None)
+    if r_2sv_1_6health.__class__ is not int or not 0 <= r_2sv_1_6health <= 3:
+        if not isinstance(r_2sv_1_6health, int) or r_2sv_1_6health.__class__ is bool:
+            raise _enc('nav_sat', 'sv[1].health', r_2sv_1_6health, 'type', 'an int')
+        if not 0 <= r_2sv_1_6health <= 3:
+            raise _enc('nav_sat', 'sv[1].health', r_2sv_1_6health, 'range', '0..3', None)
     r_2sv_1_8diffCorr: Any = g_2sv_1.diffCorr
     if r_2sv_1_8diffCorr is not True and r_2sv_1_8diffCorr is not False and r_2sv_1_8diffCorr != 0 and r_2sv_1_8diffCorr != 1:
         raise _enc('nav_sat', 'sv[1].diffCorr', r_2sv_1_8diffCorr, 'type', 'a bool')
@@ -1426,10 +1460,11 @@ def _raw_nav_sat_2sv_1(g_2sv_1: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[1].smoothed', r_2sv_1_8smoothed, 'type', 'a bool')
     r_2sv_1_8smoothed = 1 if r_2sv_1_8smoothed else 0
     r_2sv_1_11orbitSource = g_2sv_1.orbitSource
-    if r_2sv_1_11orbitSource.__class__ is not int and (not isinstance(r_2sv_1_11orbitSource, int) or r_2sv_1_11orbitSource.__class__ is bool):
-        raise _enc('nav_sat', 'sv[1].orbitSource', r_2sv_1_11orbitSource, 'type', 'an int')
-    if not 0 <= r_2sv_1_11orbitSource <= 7:
-        raise _enc('nav_sat', 'sv[1].orbitSource', r_2sv_1_11orbitSource, 'range', '0..7', None)
+    if r_2sv_1_11orbitSource.__class__ is not int or not 0 <= r_2sv_1_11orbitSource <= 7:
+        if not isinstance(r_2sv_1_11orbitSource, int) or r_2sv_1_11orbitSource.__class__ is bool:
+            raise _enc('nav_sat', 'sv[1].orbitSource', r_2sv_1_11orbitSource, 'type', 'an int')
+        if not 0 <= r_2sv_1_11orbitSource <= 7:
+            raise _enc('nav_sat', 'sv[1].orbitSource', r_2sv_1_11orbitSource, 'range', '0..7', None)
     r_2sv_1_8ephAvail: Any = g_2sv_1.ephAvail
     if r_2sv_1_8ephAvail is not True and r_2sv_1_8ephAvail is not False and r_2sv_1_8ephAvail != 0 and r_2sv_1_8ephAvail != 1:
         raise _enc('nav_sat', 'sv[1].ephAvail', r_2sv_1_8ephAvail, 'type', 'a bool')
@@ -1447,10 +1482,11 @@ def _raw_nav_sat_2sv_1(g_2sv_1: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[1].aopAvail', r_2sv_1_8aopAvail, 'type', 'a bool')
     r_2sv_1_8aopAvail = 1 if r_2sv_1_8aopAvail else 0
     r_2sv_1_10reserved13 = g_2sv_1.reserved13
-    if r_2sv_1_10reserved13.__class__ is not int and (not isinstance(r_2sv_1_10reserved13, int) or r_2sv_1_10reserved13.__class__ is bool):
-        raise _enc('nav_sat', 'sv[1].reserved13', r_2sv_1_10reserved13, 'type', 'an int')
-    if not 0 <= r_2sv_1_10reserved13 <= 1:
-        raise _enc('nav_sat', 'sv[1].reserved13', r_2sv_1_10reserved13, 'range', '0..1', None)
+    if r_2sv_1_10reserved13.__class__ is not int or not 0 <= r_2sv_1_10reserved13 <= 1:
+        if not isinstance(r_2sv_1_10reserved13, int) or r_2sv_1_10reserved13.__class__ is bool:
+            raise _enc('nav_sat', 'sv[1].reserved13', r_2sv_1_10reserved13, 'type', 'an int')
+        if not 0 <= r_2sv_1_10reserved13 <= 1:
+            raise _enc('nav_sat', 'sv[1].reserved13', r_2sv_1_10reserved13, 'range', '0..1', None)
     r_2sv_1_12sbasCorrUsed: Any = g_2sv_1.sbasCorrUsed
     if r_2sv_1_12sbasCorrUsed is not True and r_2sv_1_12sbasCorrUsed is not False and r_2sv_1_12sbasCorrUsed != 0 and r_2sv_1_12sbasCorrUsed != 1:
         raise _enc('nav_sat', 'sv[1].sbasCorrUsed', r_2sv_1_12sbasCorrUsed, 'type', 'a bool')
@@ -1497,50 +1533,58 @@ def _raw_nav_sat_2sv_1(g_2sv_1: Any) -> tuple[Any, ...]:
 
 def _raw_nav_sat_2sv_2(g_2sv_2: Any) -> tuple[Any, ...]:
     r_2sv_2_6gnssId = g_2sv_2.gnssId
-    if r_2sv_2_6gnssId.__class__ is not int and (not isinstance(r_2sv_2_6gnssId, int) or r_2sv_2_6gnssId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[2].gnssId', r_2sv_2_6gnssId, 'type', 'an int')
-    if not 0 <= r_2sv_2_6gnssId <= 255:
-        raise _enc('nav_sat', 'sv[2].gnssId', r_2sv_2_6gnssId, 'range', '0..255', None)
+    if r_2sv_2_6gnssId.__class__ is not int or not 0 <= r_2sv_2_6gnssId <= 255:
+        if not isinstance(r_2sv_2_6gnssId, int) or r_2sv_2_6gnssId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[2].gnssId', r_2sv_2_6gnssId, 'type', 'an int')
+        if not 0 <= r_2sv_2_6gnssId <= 255:
+            raise _enc('nav_sat', 'sv[2].gnssId', r_2sv_2_6gnssId, 'range', '0..255', None)
     r_2sv_2_4svId = g_2sv_2.svId
-    if r_2sv_2_4svId.__class__ is not int and (not isinstance(r_2sv_2_4svId, int) or r_2sv_2_4svId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[2].svId', r_2sv_2_4svId, 'type', 'an int')
-    if not 0 <= r_2sv_2_4svId <= 255:
-        raise _enc('nav_sat', 'sv[2].svId', r_2sv_2_4svId, 'range', '0..255', None)
+    if r_2sv_2_4svId.__class__ is not int or not 0 <= r_2sv_2_4svId <= 255:
+        if not isinstance(r_2sv_2_4svId, int) or r_2sv_2_4svId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[2].svId', r_2sv_2_4svId, 'type', 'an int')
+        if not 0 <= r_2sv_2_4svId <= 255:
+            raise _enc('nav_sat', 'sv[2].svId', r_2sv_2_4svId, 'range', '0..255', None)
     r_2sv_2_3cno = g_2sv_2.cno
-    if r_2sv_2_3cno.__class__ is not int and (not isinstance(r_2sv_2_3cno, int) or r_2sv_2_3cno.__class__ is bool):
-        raise _enc('nav_sat', 'sv[2].cno', r_2sv_2_3cno, 'type', 'an int')
-    if not 0 <= r_2sv_2_3cno <= 255:
-        raise _enc('nav_sat', 'sv[2].cno', r_2sv_2_3cno, 'range', '0..255', None)
+    if r_2sv_2_3cno.__class__ is not int or not 0 <= r_2sv_2_3cno <= 255:
+        if not isinstance(r_2sv_2_3cno, int) or r_2sv_2_3cno.__class__ is bool:
+            raise _enc('nav_sat', 'sv[2].cno', r_2sv_2_3cno, 'type', 'an int')
+        if not 0 <= r_2sv_2_3cno <= 255:
+            raise _enc('nav_sat', 'sv[2].cno', r_2sv_2_3cno, 'range', '0..255', None)
     r_2sv_2_4elev = g_2sv_2.elev
-    if r_2sv_2_4elev.__class__ is not int and (not isinstance(r_2sv_2_4elev, int) or r_2sv_2_4elev.__class__ is bool):
-        raise _enc('nav_sat', 'sv[2].elev', r_2sv_2_4elev, 'type', 'an int')
-    if not -128 <= r_2sv_2_4elev <= 127:
-        raise _enc('nav_sat', 'sv[2].elev', r_2sv_2_4elev, 'range', '-128..127', None)
+    if r_2sv_2_4elev.__class__ is not int or not -128 <= r_2sv_2_4elev <= 127:
+        if not isinstance(r_2sv_2_4elev, int) or r_2sv_2_4elev.__class__ is bool:
+            raise _enc('nav_sat', 'sv[2].elev', r_2sv_2_4elev, 'type', 'an int')
+        if not -128 <= r_2sv_2_4elev <= 127:
+            raise _enc('nav_sat', 'sv[2].elev', r_2sv_2_4elev, 'range', '-128..127', None)
     r_2sv_2_4azim = g_2sv_2.azim
-    if r_2sv_2_4azim.__class__ is not int and (not isinstance(r_2sv_2_4azim, int) or r_2sv_2_4azim.__class__ is bool):
-        raise _enc('nav_sat', 'sv[2].azim', r_2sv_2_4azim, 'type', 'an int')
-    if not -32768 <= r_2sv_2_4azim <= 32767:
-        raise _enc('nav_sat', 'sv[2].azim', r_2sv_2_4azim, 'range', '-32768..32767', None)
+    if r_2sv_2_4azim.__class__ is not int or not -32768 <= r_2sv_2_4azim <= 32767:
+        if not isinstance(r_2sv_2_4azim, int) or r_2sv_2_4azim.__class__ is bool:
+            raise _enc('nav_sat', 'sv[2].azim', r_2sv_2_4azim, 'type', 'an int')
+        if not -32768 <= r_2sv_2_4azim <= 32767:
+            raise _enc('nav_sat', 'sv[2].azim', r_2sv_2_4azim, 'range', '-32768..32767', None)
     r_2sv_2_5prRes = g_2sv_2.prRes
-    if r_2sv_2_5prRes.__class__ is not float and (not isinstance(r_2sv_2_5prRes, (int, float)) or r_2sv_2_5prRes.__class__ is bool):
-        raise _enc('nav_sat', 'sv[2].prRes', r_2sv_2_5prRes, 'type', 'a number')
-    if not -3276.8 <= r_2sv_2_5prRes <= 3276.7000000000003:
-        raise _enc('nav_sat', 'sv[2].prRes', r_2sv_2_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    if r_2sv_2_5prRes.__class__ is not float or not -3276.8 <= r_2sv_2_5prRes <= 3276.7000000000003:
+        if not isinstance(r_2sv_2_5prRes, (int, float)) or r_2sv_2_5prRes.__class__ is bool:
+            raise _enc('nav_sat', 'sv[2].prRes', r_2sv_2_5prRes, 'type', 'a number')
+        if not -3276.8 <= r_2sv_2_5prRes <= 3276.7000000000003:
+            raise _enc('nav_sat', 'sv[2].prRes', r_2sv_2_5prRes, 'range', '-3276.8..3276.7000000000003', None)
     r_2sv_2_5prRes = _floor(r_2sv_2_5prRes / 0.1 + 0.5)
     r_2sv_2_10qualityInd = g_2sv_2.qualityInd
-    if r_2sv_2_10qualityInd.__class__ is not int and (not isinstance(r_2sv_2_10qualityInd, int) or r_2sv_2_10qualityInd.__class__ is bool):
-        raise _enc('nav_sat', 'sv[2].qualityInd', r_2sv_2_10qualityInd, 'type', 'an int')
-    if not 0 <= r_2sv_2_10qualityInd <= 7:
-        raise _enc('nav_sat', 'sv[2].qualityInd', r_2sv_2_10qualityInd, 'range', '0..7', None)
+    if r_2sv_2_10qualityInd.__class__ is not int or not 0 <= r_2sv_2_10qualityInd <= 7:
+        if not isinstance(r_2sv_2_10qualityInd, int) or r_2sv_2_10qualityInd.__class__ is bool:
+            raise _enc('nav_sat', 'sv[2].qualityInd', r_2sv_2_10qualityInd, 'type', 'an int')
+        if not 0 <= r_2sv_2_10qualityInd <= 7:
+            raise _enc('nav_sat', 'sv[2].qualityInd', r_2sv_2_10qualityInd, 'range', '0..7', None)
     r_2sv_2_6svUsed: Any = g_2sv_2.svUsed
     if r_2sv_2_6svUsed is not True and r_2sv_2_6svUsed is not False and r_2sv_2_6svUsed != 0 and r_2sv_2_6svUsed != 1:
         raise _enc('nav_sat', 'sv[2].svUsed', r_2sv_2_6svUsed, 'type', 'a bool')
     r_2sv_2_6svUsed = 1 if r_2sv_2_6svUsed else 0
     r_2sv_2_6health = g_2sv_2.health
-    if r_2sv_2_6health.__class__ is not int and (not isinstance(r_2sv_2_6health, int) or r_2sv_2_6health.__class__ is bool):
-        raise _enc('nav_sat', 'sv[2].health', r_2sv_2_6health, 'type', 'an int')
-    if not 0 <= r_2sv_2_6health <= 3:
-        raise _enc('nav_sat', 'sv[2].health', r_2sv_2_6health, 'range', '0..3', None)
+    if r_2sv_2_6health.__class__ is not int or not 0 <= r_2sv_2_6health <= 3:
+        if not isinstance(r_2sv_2_6health, int) or r_2sv_2_6health.__class__ is bool:
+            raise _enc('nav_sat', 'sv[2].health', r_2sv_2_6health, 'type', 'an int')
+        if not 0 <= r_2sv_2_6health <= 3:
+            raise _enc('nav_sat', 'sv[2].health', r_2sv_2_6health, 'range', '0..3', None)
     r_2sv_2_8diffCorr: Any = g_2sv_2.diffCorr
     if r_2sv_2_8diffCorr is not True and r_2sv_2_8diffCorr is not False and r_2sv_2_8diffCorr != 0 and r_2sv_2_8diffCorr != 1:
         raise _enc('nav_sat', 'sv[2].diffCorr', r_2sv_2_8diffCorr, 'type', 'a bool')
@@ -1550,10 +1594,11 @@ def _raw_nav_sat_2sv_2(g_2sv_2: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[2].smoothed', r_2sv_2_8smoothed, 'type', 'a bool')
     r_2sv_2_8smoothed = 1 if r_2sv_2_8smoothed else 0
     r_2sv_2_11orbitSource = g_2sv_2.orbitSource
-    if r_2sv_2_11orbitSource.__class__ is not int and (not isinstance(r_2sv_2_11orbitSource, int) or r_2sv_2_11orbitSource.__class__ is bool):
-        raise _enc('nav_sat', 'sv[2].orbitSource', r_2sv_2_11orbitSource, 'type', 'an int')
-    if not 0 <= r_2sv_2_11orbitSource <= 7:
-        raise _enc('nav_sat', 'sv[2].orbitSource', r_2sv_2_11orbitSource, 'range', '0..7', None)
+    if r_2sv_2_11orbitSource.__class__ is not int or not 0 <= r_2sv_2_11orbitSource <= 7:
+        if not isinstance(r_2sv_2_11orbitSource, int) or r_2sv_2_11orbitSource.__class__ is bool:
+            raise _enc('nav_sat', 'sv[2].orbitSource', r_2sv_2_11orbitSource, 'type', 'an int')
+        if not 0 <= r_2sv_2_11orbitSource <= 7:
+            raise _enc('nav_sat', 'sv[2].orbitSource', r_2sv_2_11orbitSource, 'range', '0..7', None)
     r_2sv_2_8ephAvail: Any = g_2sv_2.ephAvail
     if r_2sv_2_8ephAvail is not True and r_2sv_2_8ephAvail is not False and r_2sv_2_8ephAvail != 0 and r_2sv_2_8ephAvail != 1:
         raise _enc('nav_sat', 'sv[2].ephAvail', r_2sv_2_8ephAvail, 'type', 'a bool')
@@ -1571,10 +1616,11 @@ def _raw_nav_sat_2sv_2(g_2sv_2: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[2].aopAvail', r_2sv_2_8aopAvail, 'type', 'a bool')
     r_2sv_2_8aopAvail = 1 if r_2sv_2_8aopAvail else 0
     r_2sv_2_10reserved13 = g_2sv_2.reserved13
-    if r_2sv_2_10reserved13.__class__ is not int and (not isinstance(r_2sv_2_10reserved13, int) or r_2sv_2_10reserved13.__class__ is bool):
-        raise _enc('nav_sat', 'sv[2].reserved13', r_2sv_2_10reserved13, 'type', 'an int')
-    if not 0 <= r_2sv_2_10reserved13 <= 1:
-        raise _enc('nav_sat', 'sv[2].reserved13', r_2sv_2_10reserved13, 'range', '0..1', None)
+    if r_2sv_2_10reserved13.__class__ is not int or not 0 <= r_2sv_2_10reserved13 <= 1:
+        if not isinstance(r_2sv_2_10reserved13, int) or r_2sv_2_10reserved13.__class__ is bool:
+            raise _enc('nav_sat', 'sv[2].reserved13', r_2sv_2_10reserved13, 'type', 'an int')
+        if not 0 <= r_2sv_2_10reserved13 <= 1:
+            raise _enc('nav_sat', 'sv[2].reserved13', r_2sv_2_10reserved13, 'range', '0..1', None)
     r_2sv_2_12sbasCorrUsed: Any = g_2sv_2.sbasCorrUsed
     if r_2sv_2_12sbasCorrUsed is not True and r_2sv_2_12sbasCorrUsed is not False and r_2sv_2_12sbasCorrUsed != 0 and r_2sv_2_12sbasCorrUsed != 1:
         raise _enc('nav_sat', 'sv[2].sbasCorrUsed', r_2sv_2_12sbasCorrUsed, 'type', 'a bool')
@@ -1621,50 +1667,58 @@ def _raw_nav_sat_2sv_2(g_2sv_2: Any) -> tuple[Any, ...]:
 
 def _raw_nav_sat_2sv_3(g_2sv_3: Any) -> tuple[Any, ...]:
     r_2sv_3_6gnssId = g_2sv_3.gnssId
-    if r_2sv_3_6gnssId.__class__ is not int and (not isinstance(r_2sv_3_6gnssId, int) or r_2sv_3_6gnssId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[3].gnssId', r_2sv_3_6gnssId, 'type', 'an int')
-    if not 0 <= r_2sv_3_6gnssId <= 255:
-        raise _enc('nav_sat', 'sv[3].gnssId', r_2sv_3_6gnssId, 'range', '0..255', None)
+    if r_2sv_3_6gnssId.__class__ is not int or not 0 <= r_2sv_3_6gnssId <= 255:
+        if not isinstance(r_2sv_3_6gnssId, int) or r_2sv_3_6gnssId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[3].gnssId', r_2sv_3_6gnssId, 'type', 'an int')
+        if not 0 <= r_2sv_3_6gnssId <= 255:
+            raise _enc('nav_sat', 'sv[3].gnssId', r_2sv_3_6gnssId, 'range', '0..255', None)
     r_2sv_3_4svId = g_2sv_3.svId
-    if r_2sv_3_4svId.__class__ is not int and (not isinstance(r_2sv_3_4svId, int) or r_2sv_3_4svId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[3].svId', r_2sv_3_4svId, 'type', 'an int')
-    if not 0 <= r_2sv_3_4svId <= 255:
-        raise _enc('nav_sat', 'sv[3].svId', r_2sv_3_4svId, 'range', '0..255', None)
+    if r_2sv_3_4svId.__class__ is not int or not 0 <= r_2sv_3_4svId <= 255:
+        if not isinstance(r_2sv_3_4svId, int) or r_2sv_3_4svId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[3].svId', r_2sv_3_4svId, 'type', 'an int')
+        if not 0 <= r_2sv_3_4svId <= 255:
+            raise _enc('nav_sat', 'sv[3].svId', r_2sv_3_4svId, 'range', '0..255', None)
     r_2sv_3_3cno = g_2sv_3.cno
-    if r_2sv_3_3cno.__class__ is not int and (not isinstance(r_2sv_3_3cno, int) or r_2sv_3_3cno.__class__ is bool):
-        raise _enc('nav_sat', 'sv[3].cno', r_2sv_3_3cno, 'type', 'an int')
-    if not 0 <= r_2sv_3_3cno <= 255:
-        raise _enc('nav_sat', 'sv[3].cno', r_2sv_3_3cno, 'range', '0..255', None)
+    if r_2sv_3_3cno.__class__ is not int or not 0 <= r_2sv_3_3cno <= 255:
+        if not isinstance(r_2sv_3_3cno, int) or r_2sv_3_3cno.__class__ is bool:
+            raise _enc('nav_sat', 'sv[3].cno', r_2sv_3_3cno, 'type', 'an int')
+        if not 0 <= r_2sv_3_3cno <= 255:
+            raise _enc('nav_sat', 'sv[3].cno', r_2sv_3_3cno, 'range', '0..255', None)
     r_2sv_3_4elev = g_2sv_3.elev
-    if r_2sv_3_4elev.__class__ is not int and (not isinstance(r_2sv_3_4elev, int) or r_2sv_3_4elev.__class__ is bool):
-        raise _enc('nav_sat', 'sv[3].elev', r_2sv_3_4elev, 'type', 'an int')
-    if not -128 <= r_2sv_3_4elev <= 127:
-        raise _enc('nav_sat', 'sv[3].elev', r_2sv_3_4elev, 'range', '-128..127', None)
+    if r_2sv_3_4elev.__class__ is not int or not -128 <= r_2sv_3_4elev <= 127:
+        if not isinstance(r_2sv_3_4elev, int) or r_2sv_3_4elev.__class__ is bool:
+            raise _enc('nav_sat', 'sv[3].elev', r_2sv_3_4elev, 'type', 'an int')
+        if not -128 <= r_2sv_3_4elev <= 127:
+            raise _enc('nav_sat', 'sv[3].elev', r_2sv_3_4elev, 'range', '-128..127', None)
     r_2sv_3_4azim = g_2sv_3.azim
-    if r_2sv_3_4azim.__class__ is not int and (not isinstance(r_2sv_3_4azim, int) or r_2sv_3_4azim.__class__ is bool):
-        raise _enc('nav_sat', 'sv[3].azim', r_2sv_3_4azim, 'type', 'an int')
-    if not -32768 <= r_2sv_3_4azim <= 32767:
-        raise _enc('nav_sat', 'sv[3].azim', r_2sv_3_4azim, 'range', '-32768..32767', None)
+    if r_2sv_3_4azim.__class__ is not int or not -32768 <= r_2sv_3_4azim <= 32767:
+        if not isinstance(r_2sv_3_4azim, int) or r_2sv_3_4azim.__class__ is bool:
+            raise _enc('nav_sat', 'sv[3].azim', r_2sv_3_4azim, 'type', 'an int')
+        if not -32768 <= r_2sv_3_4azim <= 32767:
+            raise _enc('nav_sat', 'sv[3].azim', r_2sv_3_4azim, 'range', '-32768..32767', None)
     r_2sv_3_5prRes = g_2sv_3.prRes
-    if r_2sv_3_5prRes.__class__ is not float and (not isinstance(r_2sv_3_5prRes, (int, float)) or r_2sv_3_5prRes.__class__ is bool):
-        raise _enc('nav_sat', 'sv[3].prRes', r_2sv_3_5prRes, 'type', 'a number')
-    if not -3276.8 <= r_2sv_3_5prRes <= 3276.7000000000003:
-        raise _enc('nav_sat', 'sv[3].prRes', r_2sv_3_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    if r_2sv_3_5prRes.__class__ is not float or not -3276.8 <= r_2sv_3_5prRes <= 3276.7000000000003:
+        if not isinstance(r_2sv_3_5prRes, (int, float)) or r_2sv_3_5prRes.__class__ is bool:
+            raise _enc('nav_sat', 'sv[3].prRes', r_2sv_3_5prRes, 'type', 'a number')
+        if not -3276.8 <= r_2sv_3_5prRes <= 3276.7000000000003:
+            raise _enc('nav_sat', 'sv[3].prRes', r_2sv_3_5prRes, 'range', '-3276.8..3276.7000000000003', None)
     r_2sv_3_5prRes = _floor(r_2sv_3_5prRes / 0.1 + 0.5)
     r_2sv_3_10qualityInd = g_2sv_3.qualityInd
-    if r_2sv_3_10qualityInd.__class__ is not int and (not isinstance(r_2sv_3_10qualityInd, int) or r_2sv_3_10qualityInd.__class__ is bool):
-        raise _enc('nav_sat', 'sv[3].qualityInd', r_2sv_3_10qualityInd, 'type', 'an int')
-    if not 0 <= r_2sv_3_10qualityInd <= 7:
-        raise _enc('nav_sat', 'sv[3].qualityInd', r_2sv_3_10qualityInd, 'range', '0..7', None)
+    if r_2sv_3_10qualityInd.__class__ is not int or not 0 <= r_2sv_3_10qualityInd <= 7:
+        if not isinstance(r_2sv_3_10qualityInd, int) or r_2sv_3_10qualityInd.__class__ is bool:
+            raise _enc('nav_sat', 'sv[3].qualityInd', r_2sv_3_10qualityInd, 'type', 'an int')
+        if not 0 <= r_2sv_3_10qualityInd <= 7:
+            raise _enc('nav_sat', 'sv[3].qualityInd', r_2sv_3_10qualityInd, 'range', '0..7', None)
     r_2sv_3_6svUsed: Any = g_2sv_3.svUsed
     if r_2sv_3_6svUsed is not True and r_2sv_3_6svUsed is not False and r_2sv_3_6svUsed != 0 and r_2sv_3_6svUsed != 1:
         raise _enc('nav_sat', 'sv[3].svUsed', r_2sv_3_6svUsed, 'type', 'a bool')
     r_2sv_3_6svUsed = 1 if r_2sv_3_6svUsed else 0
     r_2sv_3_6health = g_2sv_3.health
-    if r_2sv_3_6health.__class__ is not int and (not isinstance(r_2sv_3_6health, int) or r_2sv_3_6health.__class__ is bool):
-        raise _enc('nav_sat', 'sv[3].health', r_2sv_3_6health, 'type', 'an int')
-    if not 0 <= r_2sv_3_6health <= 3:
-        raise _enc('nav_sat', 'sv[3].health', r_2sv_3_6health, 'range', '0..3', None)
+    if r_2sv_3_6health.__class__ is not int or not 0 <= r_2sv_3_6health <= 3:
+        if not isinstance(r_2sv_3_6health, int) or r_2sv_3_6health.__class__ is bool:
+            raise _enc('nav_sat', 'sv[3].health', r_2sv_3_6health, 'type', 'an int')
+        if not 0 <= r_2sv_3_6health <= 3:
+            raise _enc('nav_sat', 'sv[3].health', r_2sv_3_6health, 'range', '0..3', None)
     r_2sv_3_8diffCorr: Any = g_2sv_3.diffCorr
     if r_2sv_3_8diffCorr is not True and r_2sv_3_8diffCorr is not False and r_2sv_3_8diffCorr != 0 and r_2sv_3_8diffCorr != 1:
         raise _enc('nav_sat', 'sv[3].diffCorr', r_2sv_3_8diffCorr, 'type', 'a bool')
@@ -1674,10 +1728,11 @@ def _raw_nav_sat_2sv_3(g_2sv_3: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[3].smoothed', r_2sv_3_8smoothed, 'type', 'a bool')
     r_2sv_3_8smoothed = 1 if r_2sv_3_8smoothed else 0
     r_2sv_3_11orbitSource = g_2sv_3.orbitSource
-    if r_2sv_3_11orbitSource.__class__ is not int and (not isinstance(r_2sv_3_11orbitSource, int) or r_2sv_3_11orbitSource.__class__ is bool):
-        raise _enc('nav_sat', 'sv[3].orbitSource', r_2sv_3_11orbitSource, 'type', 'an int')
-    if not 0 <= r_2sv_3_11orbitSource <= 7:
-        raise _enc('nav_sat', 'sv[3].orbitSource', r_2sv_3_11orbitSource, 'range', '0..7', None)
+    if r_2sv_3_11orbitSource.__class__ is not int or not 0 <= r_2sv_3_11orbitSource <= 7:
+        if not isinstance(r_2sv_3_11orbitSource, int) or r_2sv_3_11orbitSource.__class__ is bool:
+            raise _enc('nav_sat', 'sv[3].orbitSource', r_2sv_3_11orbitSource, 'type', 'an int')
+        if not 0 <= r_2sv_3_11orbitSource <= 7:
+            raise _enc('nav_sat', 'sv[3].orbitSource', r_2sv_3_11orbitSource, 'range', '0..7', None)
     r_2sv_3_8ephAvail: Any = g_2sv_3.ephAvail
     if r_2sv_3_8ephAvail is not True and r_2sv_3_8ephAvail is not False and r_2sv_3_8ephAvail != 0 and r_2sv_3_8ephAvail != 1:
         raise _enc('nav_sat', 'sv[3].ephAvail', r_2sv_3_8ephAvail, 'type', 'a bool')
@@ -1695,10 +1750,11 @@ def _raw_nav_sat_2sv_3(g_2sv_3: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[3].aopAvail', r_2sv_3_8aopAvail, 'type', 'a bool')
     r_2sv_3_8aopAvail = 1 if r_2sv_3_8aopAvail else 0
     r_2sv_3_10reserved13 = g_2sv_3.reserved13
-    if r_2sv_3_10reserved13.__class__ is not int and (not isinstance(r_2sv_3_10reserved13, int) or r_2sv_3_10reserved13.__class__ is bool):
-        raise _enc('nav_sat', 'sv[3].reserved13', r_2sv_3_10reserved13, 'type', 'an int')
-    if not 0 <= r_2sv_3_10reserved13 <= 1:
-        raise _enc('nav_sat', 'sv[3].reserved13', r_2sv_3_10reserved13, 'range', '0..1', None)
+    if r_2sv_3_10reserved13.__class__ is not int or not 0 <= r_2sv_3_10reserved13 <= 1:
+        if not isinstance(r_2sv_3_10reserved13, int) or r_2sv_3_10reserved13.__class__ is bool:
+            raise _enc('nav_sat', 'sv[3].reserved13', r_2sv_3_10reserved13, 'type', 'an int')
+        if not 0 <= r_2sv_3_10reserved13 <= 1:
+            raise _enc('nav_sat', 'sv[3].reserved13', r_2sv_3_10reserved13, 'range', '0..1', None)
     r_2sv_3_12sbasCorrUsed: Any = g_2sv_3.sbasCorrUsed
     if r_2sv_3_12sbasCorrUsed is not True and r_2sv_3_12sbasCorrUsed is not False and r_2sv_3_12sbasCorrUsed != 0 and r_2sv_3_12sbasCorrUsed != 1:
         raise _enc('nav_sat', 'sv[3].sbasCorrUsed', r_2sv_3_12sbasCorrUsed, 'type', 'a bool')
@@ -1745,50 +1801,58 @@ def _raw_nav_sat_2sv_3(g_2sv_3: Any) -> tuple[Any, ...]:
 
 def _raw_nav_sat_2sv_4(g_2sv_4: Any) -> tuple[Any, ...]:
     r_2sv_4_6gnssId = g_2sv_4.gnssId
-    if r_2sv_4_6gnssId.__class__ is not int and (not isinstance(r_2sv_4_6gnssId, int) or r_2sv_4_6gnssId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[4].gnssId', r_2sv_4_6gnssId, 'type', 'an int')
-    if not 0 <= r_2sv_4_6gnssId <= 255:
-        raise _enc('nav_sat', 'sv[4].gnssId', r_2sv_4_6gnssId, 'range', '0..255', None)
+    if r_2sv_4_6gnssId.__class__ is not int or not 0 <= r_2sv_4_6gnssId <= 255:
+        if not isinstance(r_2sv_4_6gnssId, int) or r_2sv_4_6gnssId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[4].gnssId', r_2sv_4_6gnssId, 'type', 'an int')
+        if not 0 <= r_2sv_4_6gnssId <= 255:
+            raise _enc('nav_sat', 'sv[4].gnssId', r_2sv_4_6gnssId, 'range', '0..255', None)
     r_2sv_4_4svId = g_2sv_4.svId
-    if r_2sv_4_4svId.__class__ is not int and (not isinstance(r_2sv_4_4svId, int) or r_2sv_4_4svId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[4].svId', r_2sv_4_4svId, 'type', 'an int')
-    if not 0 <= r_2sv_4_4svId <= 255:
-        raise _enc('nav_sat', 'sv[4].svId', r_2sv_4_4svId, 'range', '0..255', None)
+    if r_2sv_4_4svId.__class__ is not int or not 0 <= r_2sv_4_4svId <= 255:
+        if not isinstance(r_2sv_4_4svId, int) or r_2sv_4_4svId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[4].svId', r_2sv_4_4svId, 'type', 'an int')
+        if not 0 <= r_2sv_4_4svId <= 255:
+            raise _enc('nav_sat', 'sv[4].svId', r_2sv_4_4svId, 'range', '0..255', None)
     r_2sv_4_3cno = g_2sv_4.cno
-    if r_2sv_4_3cno.__class__ is not int and (not isinstance(r_2sv_4_3cno, int) or r_2sv_4_3cno.__class__ is bool):
-        raise _enc('nav_sat', 'sv[4].cno', r_2sv_4_3cno, 'type', 'an int')
-    if not 0 <= r_2sv_4_3cno <= 255:
-        raise _enc('nav_sat', 'sv[4].cno', r_2sv_4_3cno, 'range', '0..255', None)
+    if r_2sv_4_3cno.__class__ is not int or not 0 <= r_2sv_4_3cno <= 255:
+        if not isinstance(r_2sv_4_3cno, int) or r_2sv_4_3cno.__class__ is bool:
+            raise _enc('nav_sat', 'sv[4].cno', r_2sv_4_3cno, 'type', 'an int')
+        if not 0 <= r_2sv_4_3cno <= 255:
+            raise _enc('nav_sat', 'sv[4].cno', r_2sv_4_3cno, 'range', '0..255', None)
     r_2sv_4_4elev = g_2sv_4.elev
-    if r_2sv_4_4elev.__class__ is not int and (not isinstance(r_2sv_4_4elev, int) or r_2sv_4_4elev.__class__ is bool):
-        raise _enc('nav_sat', 'sv[4].elev', r_2sv_4_4elev, 'type', 'an int')
-    if not -128 <= r_2sv_4_4elev <= 127:
-        raise _enc('nav_sat', 'sv[4].elev', r_2sv_4_4elev, 'range', '-128..127', None)
+    if r_2sv_4_4elev.__class__ is not int or not -128 <= r_2sv_4_4elev <= 127:
+        if not isinstance(r_2sv_4_4elev, int) or r_2sv_4_4elev.__class__ is bool:
+            raise _enc('nav_sat', 'sv[4].elev', r_2sv_4_4elev, 'type', 'an int')
+        if not -128 <= r_2sv_4_4elev <= 127:
+            raise _enc('nav_sat', 'sv[4].elev', r_2sv_4_4elev, 'range', '-128..127', None)
     r_2sv_4_4azim = g_2sv_4.azim
-    if r_2sv_4_4azim.__class__ is not int and (not isinstance(r_2sv_4_4azim, int) or r_2sv_4_4azim.__class__ is bool):
-        raise _enc('nav_sat', 'sv[4].azim', r_2sv_4_4azim, 'type', 'an int')
-    if not -32768 <= r_2sv_4_4azim <= 32767:
-        raise _enc('nav_sat', 'sv[4].azim', r_2sv_4_4azim, 'range', '-32768..32767', None)
+    if r_2sv_4_4azim.__class__ is not int or not -32768 <= r_2sv_4_4azim <= 32767:
+        if not isinstance(r_2sv_4_4azim, int) or r_2sv_4_4azim.__class__ is bool:
+            raise _enc('nav_sat', 'sv[4].azim', r_2sv_4_4azim, 'type', 'an int')
+        if not -32768 <= r_2sv_4_4azim <= 32767:
+            raise _enc('nav_sat', 'sv[4].azim', r_2sv_4_4azim, 'range', '-32768..32767', None)
     r_2sv_4_5prRes = g_2sv_4.prRes
-    if r_2sv_4_5prRes.__class__ is not float and (not isinstance(r_2sv_4_5prRes, (int, float)) or r_2sv_4_5prRes.__class__ is bool):
-        raise _enc('nav_sat', 'sv[4].prRes', r_2sv_4_5prRes, 'type', 'a number')
-    if not -3276.8 <= r_2sv_4_5prRes <= 3276.7000000000003:
-        raise _enc('nav_sat', 'sv[4].prRes', r_2sv_4_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    if r_2sv_4_5prRes.__class__ is not float or not -3276.8 <= r_2sv_4_5prRes <= 3276.7000000000003:
+        if not isinstance(r_2sv_4_5prRes, (int, float)) or r_2sv_4_5prRes.__class__ is bool:
+            raise _enc('nav_sat', 'sv[4].prRes', r_2sv_4_5prRes, 'type', 'a number')
+        if not -3276.8 <= r_2sv_4_5prRes <= 3276.7000000000003:
+            raise _enc('nav_sat', 'sv[4].prRes', r_2sv_4_5prRes, 'range', '-3276.8..3276.7000000000003', None)
     r_2sv_4_5prRes = _floor(r_2sv_4_5prRes / 0.1 + 0.5)
     r_2sv_4_10qualityInd = g_2sv_4.qualityInd
-    if r_2sv_4_10qualityInd.__class__ is not int and (not isinstance(r_2sv_4_10qualityInd, int) or r_2sv_4_10qualityInd.__class__ is bool):
-        raise _enc('nav_sat', 'sv[4].qualityInd', r_2sv_4_10qualityInd, 'type', 'an int')
-    if not 0 <= r_2sv_4_10qualityInd <= 7:
-        raise _enc('nav_sat', 'sv[4].qualityInd', r_2sv_4_10qualityInd, 'range', '0..7', None)
+    if r_2sv_4_10qualityInd.__class__ is not int or not 0 <= r_2sv_4_10qualityInd <= 7:
+        if not isinstance(r_2sv_4_10qualityInd, int) or r_2sv_4_10qualityInd.__class__ is bool:
+            raise _enc('nav_sat', 'sv[4].qualityInd', r_2sv_4_10qualityInd, 'type', 'an int')
+        if not 0 <= r_2sv_4_10qualityInd <= 7:
+            raise _enc('nav_sat', 'sv[4].qualityInd', r_2sv_4_10qualityInd, 'range', '0..7', None)
     r_2sv_4_6svUsed: Any = g_2sv_4.svUsed
     if r_2sv_4_6svUsed is not True and r_2sv_4_6svUsed is not False and r_2sv_4_6svUsed != 0 and r_2sv_4_6svUsed != 1:
         raise _enc('nav_sat', 'sv[4].svUsed', r_2sv_4_6svUsed, 'type', 'a bool')
     r_2sv_4_6svUsed = 1 if r_2sv_4_6svUsed else 0
     r_2sv_4_6health = g_2sv_4.health
-    if r_2sv_4_6health.__class__ is not int and (not isinstance(r_2sv_4_6health, int) or r_2sv_4_6health.__class__ is bool):
-        raise _enc('nav_sat', 'sv[4].health', r_2sv_4_6health, 'type', 'an int')
-    if not 0 <= r_2sv_4_6health <= 3:
-        raise _enc('nav_sat', 'sv[4].health', r_2sv_4_6health, 'range', '0..3', None)
+    if r_2sv_4_6health.__class__ is not int or not 0 <= r_2sv_4_6health <= 3:
+        if not isinstance(r_2sv_4_6health, int) or r_2sv_4_6health.__class__ is bool:
+            raise _enc('nav_sat', 'sv[4].health', r_2sv_4_6health, 'type', 'an int')
+        if not 0 <= r_2sv_4_6health <= 3:
+            raise _enc('nav_sat', 'sv[4].health', r_2sv_4_6health, 'range', '0..3', None)
     r_2sv_4_8diffCorr: Any = g_2sv_4.diffCorr
     if r_2sv_4_8diffCorr is not True and r_2sv_4_8diffCorr is not False and r_2sv_4_8diffCorr != 0 and r_2sv_4_8diffCorr != 1:
         raise _enc('nav_sat', 'sv[4].diffCorr', r_2sv_4_8diffCorr, 'type', 'a bool')
@@ -1798,10 +1862,11 @@ def _raw_nav_sat_2sv_4(g_2sv_4: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[4].smoothed', r_2sv_4_8smoothed, 'type', 'a bool')
     r_2sv_4_8smoothed = 1 if r_2sv_4_8smoothed else 0
     r_2sv_4_11orbitSource = g_2sv_4.orbitSource
-    if r_2sv_4_11orbitSource.__class__ is not int and (not isinstance(r_2sv_4_11orbitSource, int) or r_2sv_4_11orbitSource.__class__ is bool):
-        raise _enc('nav_sat', 'sv[4].orbitSource', r_2sv_4_11orbitSource, 'type', 'an int')
-    if not 0 <= r_2sv_4_11orbitSource <= 7:
-        raise _enc('nav_sat', 'sv[4].orbitSource', r_2sv_4_11orbitSource, 'range', '0..7', None)
+    if r_2sv_4_11orbitSource.__class__ is not int or not 0 <= r_2sv_4_11orbitSource <= 7:
+        if not isinstance(r_2sv_4_11orbitSource, int) or r_2sv_4_11orbitSource.__class__ is bool:
+            raise _enc('nav_sat', 'sv[4].orbitSource', r_2sv_4_11orbitSource, 'type', 'an int')
+        if not 0 <= r_2sv_4_11orbitSource <= 7:
+            raise _enc('nav_sat', 'sv[4].orbitSource', r_2sv_4_11orbitSource, 'range', '0..7', None)
     r_2sv_4_8ephAvail: Any = g_2sv_4.ephAvail
     if r_2sv_4_8ephAvail is not True and r_2sv_4_8ephAvail is not False and r_2sv_4_8ephAvail != 0 and r_2sv_4_8ephAvail != 1:
         raise _enc('nav_sat', 'sv[4].ephAvail', r_2sv_4_8ephAvail, 'type', 'a bool')
@@ -1819,10 +1884,11 @@ def _raw_nav_sat_2sv_4(g_2sv_4: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[4].aopAvail', r_2sv_4_8aopAvail, 'type', 'a bool')
     r_2sv_4_8aopAvail = 1 if r_2sv_4_8aopAvail else 0
     r_2sv_4_10reserved13 = g_2sv_4.reserved13
-    if r_2sv_4_10reserved13.__class__ is not int and (not isinstance(r_2sv_4_10reserved13, int) or r_2sv_4_10reserved13.__class__ is bool):
-        raise _enc('nav_sat', 'sv[4].reserved13', r_2sv_4_10reserved13, 'type', 'an int')
-    if not 0 <= r_2sv_4_10reserved13 <= 1:
-        raise _enc('nav_sat', 'sv[4].reserved13', r_2sv_4_10reserved13, 'range', '0..1', None)
+    if r_2sv_4_10reserved13.__class__ is not int or not 0 <= r_2sv_4_10reserved13 <= 1:
+        if not isinstance(r_2sv_4_10reserved13, int) or r_2sv_4_10reserved13.__class__ is bool:
+            raise _enc('nav_sat', 'sv[4].reserved13', r_2sv_4_10reserved13, 'type', 'an int')
+        if not 0 <= r_2sv_4_10reserved13 <= 1:
+            raise _enc('nav_sat', 'sv[4].reserved13', r_2sv_4_10reserved13, 'range', '0..1', None)
     r_2sv_4_12sbasCorrUsed: Any = g_2sv_4.sbasCorrUsed
     if r_2sv_4_12sbasCorrUsed is not True and r_2sv_4_12sbasCorrUsed is not False and r_2sv_4_12sbasCorrUsed != 0 and r_2sv_4_12sbasCorrUsed != 1:
         raise _enc('nav_sat', 'sv[4].sbasCorrUsed', r_2sv_4_12sbasCorrUsed, 'type', 'a bool')
@@ -1869,50 +1935,58 @@ def _raw_nav_sat_2sv_4(g_2sv_4: Any) -> tuple[Any, ...]:
 
 def _raw_nav_sat_2sv_5(g_2sv_5: Any) -> tuple[Any, ...]:
     r_2sv_5_6gnssId = g_2sv_5.gnssId
-    if r_2sv_5_6gnssId.__class__ is not int and (not isinstance(r_2sv_5_6gnssId, int) or r_2sv_5_6gnssId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[5].gnssId', r_2sv_5_6gnssId, 'type', 'an int')
-    if not 0 <= r_2sv_5_6gnssId <= 255:
-        raise _enc('nav_sat', 'sv[5].gnssId', r_2sv_5_6gnssId, 'range', '0..255', None)
+    if r_2sv_5_6gnssId.__class__ is not int or not 0 <= r_2sv_5_6gnssId <= 255:
+        if not isinstance(r_2sv_5_6gnssId, int) or r_2sv_5_6gnssId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[5].gnssId', r_2sv_5_6gnssId, 'type', 'an int')
+        if not 0 <= r_2sv_5_6gnssId <= 255:
+            raise _enc('nav_sat', 'sv[5].gnssId', r_2sv_5_6gnssId, 'range', '0..255', None)
     r_2sv_5_4svId = g_2sv_5.svId
-    if r_2sv_5_4svId.__class__ is not int and (not isinstance(r_2sv_5_4svId, int) or r_2sv_5_4svId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[5].svId', r_2sv_5_4svId, 'type', 'an int')
-    if not 0 <= r_2sv_5_4svId <= 255:
-        raise _enc('nav_sat', 'sv[5].svId', r_2sv_5_4svId, 'range', '0..255', None)
+    if r_2sv_5_4svId.__class__ is not int or not 0 <= r_2sv_5_4svId <= 255:
+        if not isinstance(r_2sv_5_4svId, int) or r_2sv_5_4svId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[5].svId', r_2sv_5_4svId, 'type', 'an int')
+        if not 0 <= r_2sv_5_4svId <= 255:
+            raise _enc('nav_sat', 'sv[5].svId', r_2sv_5_4svId, 'range', '0..255', None)
     r_2sv_5_3cno = g_2sv_5.cno
-    if r_2sv_5_3cno.__class__ is not int and (not isinstance(r_2sv_5_3cno, int) or r_2sv_5_3cno.__class__ is bool):
-        raise _enc('nav_sat', 'sv[5].cno', r_2sv_5_3cno, 'type', 'an int')
-    if not 0 <= r_2sv_5_3cno <= 255:
-        raise _enc('nav_sat', 'sv[5].cno', r_2sv_5_3cno, 'range', '0..255', None)
+    if r_2sv_5_3cno.__class__ is not int or not 0 <= r_2sv_5_3cno <= 255:
+        if not isinstance(r_2sv_5_3cno, int) or r_2sv_5_3cno.__class__ is bool:
+            raise _enc('nav_sat', 'sv[5].cno', r_2sv_5_3cno, 'type', 'an int')
+        if not 0 <= r_2sv_5_3cno <= 255:
+            raise _enc('nav_sat', 'sv[5].cno', r_2sv_5_3cno, 'range', '0..255', None)
     r_2sv_5_4elev = g_2sv_5.elev
-    if r_2sv_5_4elev.__class__ is not int and (not isinstance(r_2sv_5_4elev, int) or r_2sv_5_4elev.__class__ is bool):
-        raise _enc('nav_sat', 'sv[5].elev', r_2sv_5_4elev, 'type', 'an int')
-    if not -128 <= r_2sv_5_4elev <= 127:
-        raise _enc('nav_sat', 'sv[5].elev', r_2sv_5_4elev, 'range', '-128..127', None)
+    if r_2sv_5_4elev.__class__ is not int or not -128 <= r_2sv_5_4elev <= 127:
+        if not isinstance(r_2sv_5_4elev, int) or r_2sv_5_4elev.__class__ is bool:
+            raise _enc('nav_sat', 'sv[5].elev', r_2sv_5_4elev, 'type', 'an int')
+        if not -128 <= r_2sv_5_4elev <= 127:
+            raise _enc('nav_sat', 'sv[5].elev', r_2sv_5_4elev, 'range', '-128..127', None)
     r_2sv_5_4azim = g_2sv_5.azim
-    if r_2sv_5_4azim.__class__ is not int and (not isinstance(r_2sv_5_4azim, int) or r_2sv_5_4azim.__class__ is bool):
-        raise _enc('nav_sat', 'sv[5].azim', r_2sv_5_4azim, 'type', 'an int')
-    if not -32768 <= r_2sv_5_4azim <= 32767:
-        raise _enc('nav_sat', 'sv[5].azim', r_2sv_5_4azim, 'range', '-32768..32767', None)
+    if r_2sv_5_4azim.__class__ is not int or not -32768 <= r_2sv_5_4azim <= 32767:
+        if not isinstance(r_2sv_5_4azim, int) or r_2sv_5_4azim.__class__ is bool:
+            raise _enc('nav_sat', 'sv[5].azim', r_2sv_5_4azim, 'type', 'an int')
+        if not -32768 <= r_2sv_5_4azim <= 32767:
+            raise _enc('nav_sat', 'sv[5].azim', r_2sv_5_4azim, 'range', '-32768..32767', None)
     r_2sv_5_5prRes = g_2sv_5.prRes
-    if r_2sv_5_5prRes.__class__ is not float and (not isinstance(r_2sv_5_5prRes, (int, float)) or r_2sv_5_5prRes.__class__ is bool):
-        raise _enc('nav_sat', 'sv[5].prRes', r_2sv_5_5prRes, 'type', 'a number')
-    if not -3276.8 <= r_2sv_5_5prRes <= 3276.7000000000003:
-        raise _enc('nav_sat', 'sv[5].prRes', r_2sv_5_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    if r_2sv_5_5prRes.__class__ is not float or not -3276.8 <= r_2sv_5_5prRes <= 3276.7000000000003:
+        if not isinstance(r_2sv_5_5prRes, (int, float)) or r_2sv_5_5prRes.__class__ is bool:
+            raise _enc('nav_sat', 'sv[5].prRes', r_2sv_5_5prRes, 'type', 'a number')
+        if not -3276.8 <= r_2sv_5_5prRes <= 3276.7000000000003:
+            raise _enc('nav_sat', 'sv[5].prRes', r_2sv_5_5prRes, 'range', '-3276.8..3276.7000000000003', None)
     r_2sv_5_5prRes = _floor(r_2sv_5_5prRes / 0.1 + 0.5)
     r_2sv_5_10qualityInd = g_2sv_5.qualityInd
-    if r_2sv_5_10qualityInd.__class__ is not int and (not isinstance(r_2sv_5_10qualityInd, int) or r_2sv_5_10qualityInd.__class__ is bool):
-        raise _enc('nav_sat', 'sv[5].qualityInd', r_2sv_5_10qualityInd, 'type', 'an int')
-    if not 0 <= r_2sv_5_10qualityInd <= 7:
-        raise _enc('nav_sat', 'sv[5].qualityInd', r_2sv_5_10qualityInd, 'range', '0..7', None)
+    if r_2sv_5_10qualityInd.__class__ is not int or not 0 <= r_2sv_5_10qualityInd <= 7:
+        if not isinstance(r_2sv_5_10qualityInd, int) or r_2sv_5_10qualityInd.__class__ is bool:
+            raise _enc('nav_sat', 'sv[5].qualityInd', r_2sv_5_10qualityInd, 'type', 'an int')
+        if not 0 <= r_2sv_5_10qualityInd <= 7:
+            raise _enc('nav_sat', 'sv[5].qualityInd', r_2sv_5_10qualityInd, 'range', '0..7', None)
     r_2sv_5_6svUsed: Any = g_2sv_5.svUsed
     if r_2sv_5_6svUsed is not True and r_2sv_5_6svUsed is not False and r_2sv_5_6svUsed != 0 and r_2sv_5_6svUsed != 1:
         raise _enc('nav_sat', 'sv[5].svUsed', r_2sv_5_6svUsed, 'type', 'a bool')
     r_2sv_5_6svUsed = 1 if r_2sv_5_6svUsed else 0
     r_2sv_5_6health = g_2sv_5.health
-    if r_2sv_5_6health.__class__ is not int and (not isinstance(r_2sv_5_6health, int) or r_2sv_5_6health.__class__ is bool):
-        raise _enc('nav_sat', 'sv[5].health', r_2sv_5_6health, 'type', 'an int')
-    if not 0 <= r_2sv_5_6health <= 3:
-        raise _enc('nav_sat', 'sv[5].health', r_2sv_5_6health, 'range', '0..3', None)
+    if r_2sv_5_6health.__class__ is not int or not 0 <= r_2sv_5_6health <= 3:
+        if not isinstance(r_2sv_5_6health, int) or r_2sv_5_6health.__class__ is bool:
+            raise _enc('nav_sat', 'sv[5].health', r_2sv_5_6health, 'type', 'an int')
+        if not 0 <= r_2sv_5_6health <= 3:
+            raise _enc('nav_sat', 'sv[5].health', r_2sv_5_6health, 'range', '0..3', None)
     r_2sv_5_8diffCorr: Any = g_2sv_5.diffCorr
     if r_2sv_5_8diffCorr is not True and r_2sv_5_8diffCorr is not False and r_2sv_5_8diffCorr != 0 and r_2sv_5_8diffCorr != 1:
         raise _enc('nav_sat', 'sv[5].diffCorr', r_2sv_5_8diffCorr, 'type', 'a bool')
@@ -1922,10 +1996,11 @@ def _raw_nav_sat_2sv_5(g_2sv_5: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[5].smoothed', r_2sv_5_8smoothed, 'type', 'a bool')
     r_2sv_5_8smoothed = 1 if r_2sv_5_8smoothed else 0
     r_2sv_5_11orbitSource = g_2sv_5.orbitSource
-    if r_2sv_5_11orbitSource.__class__ is not int and (not isinstance(r_2sv_5_11orbitSource, int) or r_2sv_5_11orbitSource.__class__ is bool):
-        raise _enc('nav_sat', 'sv[5].orbitSource', r_2sv_5_11orbitSource, 'type', 'an int')
-    if not 0 <= r_2sv_5_11orbitSource <= 7:
-        raise _enc('nav_sat', 'sv[5].orbitSource', r_2sv_5_11orbitSource, 'range', '0..7', None)
+    if r_2sv_5_11orbitSource.__class__ is not int or not 0 <= r_2sv_5_11orbitSource <= 7:
+        if not isinstance(r_2sv_5_11orbitSource, int) or r_2sv_5_11orbitSource.__class__ is bool:
+            raise _enc('nav_sat', 'sv[5].orbitSource', r_2sv_5_11orbitSource, 'type', 'an int')
+        if not 0 <= r_2sv_5_11orbitSource <= 7:
+            raise _enc('nav_sat', 'sv[5].orbitSource', r_2sv_5_11orbitSource, 'range', '0..7', None)
     r_2sv_5_8ephAvail: Any = g_2sv_5.ephAvail
     if r_2sv_5_8ephAvail is not True and r_2sv_5_8ephAvail is not False and r_2sv_5_8ephAvail != 0 and r_2sv_5_8ephAvail != 1:
         raise _enc('nav_sat', 'sv[5].ephAvail', r_2sv_5_8ephAvail, 'type', 'a bool')
@@ -1943,10 +2018,11 @@ def _raw_nav_sat_2sv_5(g_2sv_5: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[5].aopAvail', r_2sv_5_8aopAvail, 'type', 'a bool')
     r_2sv_5_8aopAvail = 1 if r_2sv_5_8aopAvail else 0
     r_2sv_5_10reserved13 = g_2sv_5.reserved13
-    if r_2sv_5_10reserved13.__class__ is not int and (not isinstance(r_2sv_5_10reserved13, int) or r_2sv_5_10reserved13.__class__ is bool):
-        raise _enc('nav_sat', 'sv[5].reserved13', r_2sv_5_10reserved13, 'type', 'an int')
-    if not 0 <= r_2sv_5_10reserved13 <= 1:
-        raise _enc('nav_sat', 'sv[5].reserved13', r_2sv_5_10reserved13, 'range', '0..1', None)
+    if r_2sv_5_10reserved13.__class__ is not int or not 0 <= r_2sv_5_10reserved13 <= 1:
+        if not isinstance(r_2sv_5_10reserved13, int) or r_2sv_5_10reserved13.__class__ is bool:
+            raise _enc('nav_sat', 'sv[5].reserved13', r_2sv_5_10reserved13, 'type', 'an int')
+        if not 0 <= r_2sv_5_10reserved13 <= 1:
+            raise _enc('nav_sat', 'sv[5].reserved13', r_2sv_5_10reserved13, 'range', '0..1', None)
     r_2sv_5_12sbasCorrUsed: Any = g_2sv_5.sbasCorrUsed
     if r_2sv_5_12sbasCorrUsed is not True and r_2sv_5_12sbasCorrUsed is not False and r_2sv_5_12sbasCorrUsed != 0 and r_2sv_5_12sbasCorrUsed != 1:
         raise _enc('nav_sat', 'sv[5].sbasCorrUsed', r_2sv_5_12sbasCorrUsed, 'type', 'a bool')
@@ -1993,50 +2069,58 @@ def _raw_nav_sat_2sv_5(g_2sv_5: Any) -> tuple[Any, ...]:
 
 def _raw_nav_sat_2sv_6(g_2sv_6: Any) -> tuple[Any, ...]:
     r_2sv_6_6gnssId = g_2sv_6.gnssId
-    if r_2sv_6_6gnssId.__class__ is not int and (not isinstance(r_2sv_6_6gnssId, int) or r_2sv_6_6gnssId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[6].gnssId', r_2sv_6_6gnssId, 'type', 'an int')
-    if not 0 <= r_2sv_6_6gnssId <= 255:
-        raise _enc('nav_sat', 'sv[6].gnssId', r_2sv_6_6gnssId, 'range', '0..255', None)
+    if r_2sv_6_6gnssId.__class__ is not int or not 0 <= r_2sv_6_6gnssId <= 255:
+        if not isinstance(r_2sv_6_6gnssId, int) or r_2sv_6_6gnssId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[6].gnssId', r_2sv_6_6gnssId, 'type', 'an int')
+        if not 0 <= r_2sv_6_6gnssId <= 255:
+            raise _enc('nav_sat', 'sv[6].gnssId', r_2sv_6_6gnssId, 'range', '0..255', None)
     r_2sv_6_4svId = g_2sv_6.svId
-    if r_2sv_6_4svId.__class__ is not int and (not isinstance(r_2sv_6_4svId, int) or r_2sv_6_4svId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[6].svId', r_2sv_6_4svId, 'type', 'an int')
-    if not 0 <= r_2sv_6_4svId <= 255:
-        raise _enc('nav_sat', 'sv[6].svId', r_2sv_6_4svId, 'range', '0..255', None)
+    if r_2sv_6_4svId.__class__ is not int or not 0 <= r_2sv_6_4svId <= 255:
+        if not isinstance(r_2sv_6_4svId, int) or r_2sv_6_4svId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[6].svId', r_2sv_6_4svId, 'type', 'an int')
+        if not 0 <= r_2sv_6_4svId <= 255:
+            raise _enc('nav_sat', 'sv[6].svId', r_2sv_6_4svId, 'range', '0..255', None)
     r_2sv_6_3cno = g_2sv_6.cno
-    if r_2sv_6_3cno.__class__ is not int and (not isinstance(r_2sv_6_3cno, int) or r_2sv_6_3cno.__class__ is bool):
-        raise _enc('nav_sat', 'sv[6].cno', r_2sv_6_3cno, 'type', 'an int')
-    if not 0 <= r_2sv_6_3cno <= 255:
-        raise _enc('nav_sat', 'sv[6].cno', r_2sv_6_3cno, 'range', '0..255', None)
+    if r_2sv_6_3cno.__class__ is not int or not 0 <= r_2sv_6_3cno <= 255:
+        if not isinstance(r_2sv_6_3cno, int) or r_2sv_6_3cno.__class__ is bool:
+            raise _enc('nav_sat', 'sv[6].cno', r_2sv_6_3cno, 'type', 'an int')
+        if not 0 <= r_2sv_6_3cno <= 255:
+            raise _enc('nav_sat', 'sv[6].cno', r_2sv_6_3cno, 'range', '0..255', None)
     r_2sv_6_4elev = g_2sv_6.elev
-    if r_2sv_6_4elev.__class__ is not int and (not isinstance(r_2sv_6_4elev, int) or r_2sv_6_4elev.__class__ is bool):
-        raise _enc('nav_sat', 'sv[6].elev', r_2sv_6_4elev, 'type', 'an int')
-    if not -128 <= r_2sv_6_4elev <= 127:
-        raise _enc('nav_sat', 'sv[6].elev', r_2sv_6_4elev, 'range', '-128..127', None)
+    if r_2sv_6_4elev.__class__ is not int or not -128 <= r_2sv_6_4elev <= 127:
+        if not isinstance(r_2sv_6_4elev, int) or r_2sv_6_4elev.__class__ is bool:
+            raise _enc('nav_sat', 'sv[6].elev', r_2sv_6_4elev, 'type', 'an int')
+        if not -128 <= r_2sv_6_4elev <= 127:
+            raise _enc('nav_sat', 'sv[6].elev', r_2sv_6_4elev, 'range', '-128..127', None)
     r_2sv_6_4azim = g_2sv_6.azim
-    if r_2sv_6_4azim.__class__ is not int and (not isinstance(r_2sv_6_4azim, int) or r_2sv_6_4azim.__class__ is bool):
-        raise _enc('nav_sat', 'sv[6].azim', r_2sv_6_4azim, 'type', 'an int')
-    if not -32768 <= r_2sv_6_4azim <= 32767:
-        raise _enc('nav_sat', 'sv[6].azim', r_2sv_6_4azim, 'range', '-32768..32767', None)
+    if r_2sv_6_4azim.__class__ is not int or not -32768 <= r_2sv_6_4azim <= 32767:
+        if not isinstance(r_2sv_6_4azim, int) or r_2sv_6_4azim.__class__ is bool:
+            raise _enc('nav_sat', 'sv[6].azim', r_2sv_6_4azim, 'type', 'an int')
+        if not -32768 <= r_2sv_6_4azim <= 32767:
+            raise _enc('nav_sat', 'sv[6].azim', r_2sv_6_4azim, 'range', '-32768..32767', None)
     r_2sv_6_5prRes = g_2sv_6.prRes
-    if r_2sv_6_5prRes.__class__ is not float and (not isinstance(r_2sv_6_5prRes, (int, float)) or r_2sv_6_5prRes.__class__ is bool):
-        raise _enc('nav_sat', 'sv[6].prRes', r_2sv_6_5prRes, 'type', 'a number')
-    if not -3276.8 <= r_2sv_6_5prRes <= 3276.7000000000003:
-        raise _enc('nav_sat', 'sv[6].prRes', r_2sv_6_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    if r_2sv_6_5prRes.__class__ is not float or not -3276.8 <= r_2sv_6_5prRes <= 3276.7000000000003:
+        if not isinstance(r_2sv_6_5prRes, (int, float)) or r_2sv_6_5prRes.__class__ is bool:
+            raise _enc('nav_sat', 'sv[6].prRes', r_2sv_6_5prRes, 'type', 'a number')
+        if not -3276.8 <= r_2sv_6_5prRes <= 3276.7000000000003:
+            raise _enc('nav_sat', 'sv[6].prRes', r_2sv_6_5prRes, 'range', '-3276.8..3276.7000000000003', None)
     r_2sv_6_5prRes = _floor(r_2sv_6_5prRes / 0.1 + 0.5)
     r_2sv_6_10qualityInd = g_2sv_6.qualityInd
-    if r_2sv_6_10qualityInd.__class__ is not int and (not isinstance(r_2sv_6_10qualityInd, int) or r_2sv_6_10qualityInd.__class__ is bool):
-        raise _enc('nav_sat', 'sv[6].qualityInd', r_2sv_6_10qualityInd, 'type', 'an int')
-    if not 0 <= r_2sv_6_10qualityInd <= 7:
-        raise _enc('nav_sat', 'sv[6].qualityInd', r_2sv_6_10qualityInd, 'range', '0..7', None)
+    if r_2sv_6_10qualityInd.__class__ is not int or not 0 <= r_2sv_6_10qualityInd <= 7:
+        if not isinstance(r_2sv_6_10qualityInd, int) or r_2sv_6_10qualityInd.__class__ is bool:
+            raise _enc('nav_sat', 'sv[6].qualityInd', r_2sv_6_10qualityInd, 'type', 'an int')
+        if not 0 <= r_2sv_6_10qualityInd <= 7:
+            raise _enc('nav_sat', 'sv[6].qualityInd', r_2sv_6_10qualityInd, 'range', '0..7', None)
     r_2sv_6_6svUsed: Any = g_2sv_6.svUsed
     if r_2sv_6_6svUsed is not True and r_2sv_6_6svUsed is not False and r_2sv_6_6svUsed != 0 and r_2sv_6_6svUsed != 1:
         raise _enc('nav_sat', 'sv[6].svUsed', r_2sv_6_6svUsed, 'type', 'a bool')
     r_2sv_6_6svUsed = 1 if r_2sv_6_6svUsed else 0
     r_2sv_6_6health = g_2sv_6.health
-    if r_2sv_6_6health.__class__ is not int and (not isinstance(r_2sv_6_6health, int) or r_2sv_6_6health.__class__ is bool):
-        raise _enc('nav_sat', 'sv[6].health', r_2sv_6_6health, 'type', 'an int')
-    if not 0 <= r_2sv_6_6health <= 3:
-        raise _enc('nav_sat', 'sv[6].health', r_2sv_6_6health, 'range', '0..3', None)
+    if r_2sv_6_6health.__class__ is not int or not 0 <= r_2sv_6_6health <= 3:
+        if not isinstance(r_2sv_6_6health, int) or r_2sv_6_6health.__class__ is bool:
+            raise _enc('nav_sat', 'sv[6].health', r_2sv_6_6health, 'type', 'an int')
+        if not 0 <= r_2sv_6_6health <= 3:
+            raise _enc('nav_sat', 'sv[6].health', r_2sv_6_6health, 'range', '0..3', None)
     r_2sv_6_8diffCorr: Any = g_2sv_6.diffCorr
     if r_2sv_6_8diffCorr is not True and r_2sv_6_8diffCorr is not False and r_2sv_6_8diffCorr != 0 and r_2sv_6_8diffCorr != 1:
         raise _enc('nav_sat', 'sv[6].diffCorr', r_2sv_6_8diffCorr, 'type', 'a bool')
@@ -2046,10 +2130,11 @@ def _raw_nav_sat_2sv_6(g_2sv_6: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[6].smoothed', r_2sv_6_8smoothed, 'type', 'a bool')
     r_2sv_6_8smoothed = 1 if r_2sv_6_8smoothed else 0
     r_2sv_6_11orbitSource = g_2sv_6.orbitSource
-    if r_2sv_6_11orbitSource.__class__ is not int and (not isinstance(r_2sv_6_11orbitSource, int) or r_2sv_6_11orbitSource.__class__ is bool):
-        raise _enc('nav_sat', 'sv[6].orbitSource', r_2sv_6_11orbitSource, 'type', 'an int')
-    if not 0 <= r_2sv_6_11orbitSource <= 7:
-        raise _enc('nav_sat', 'sv[6].orbitSource', r_2sv_6_11orbitSource, 'range', '0..7', None)
+    if r_2sv_6_11orbitSource.__class__ is not int or not 0 <= r_2sv_6_11orbitSource <= 7:
+        if not isinstance(r_2sv_6_11orbitSource, int) or r_2sv_6_11orbitSource.__class__ is bool:
+            raise _enc('nav_sat', 'sv[6].orbitSource', r_2sv_6_11orbitSource, 'type', 'an int')
+        if not 0 <= r_2sv_6_11orbitSource <= 7:
+            raise _enc('nav_sat', 'sv[6].orbitSource', r_2sv_6_11orbitSource, 'range', '0..7', None)
     r_2sv_6_8ephAvail: Any = g_2sv_6.ephAvail
     if r_2sv_6_8ephAvail is not True and r_2sv_6_8ephAvail is not False and r_2sv_6_8ephAvail != 0 and r_2sv_6_8ephAvail != 1:
         raise _enc('nav_sat', 'sv[6].ephAvail', r_2sv_6_8ephAvail, 'type', 'a bool')
@@ -2067,10 +2152,11 @@ def _raw_nav_sat_2sv_6(g_2sv_6: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[6].aopAvail', r_2sv_6_8aopAvail, 'type', 'a bool')
     r_2sv_6_8aopAvail = 1 if r_2sv_6_8aopAvail else 0
     r_2sv_6_10reserved13 = g_2sv_6.reserved13
-    if r_2sv_6_10reserved13.__class__ is not int and (not isinstance(r_2sv_6_10reserved13, int) or r_2sv_6_10reserved13.__class__ is bool):
-        raise _enc('nav_sat', 'sv[6].reserved13', r_2sv_6_10reserved13, 'type', 'an int')
-    if not 0 <= r_2sv_6_10reserved13 <= 1:
-        raise _enc('nav_sat', 'sv[6].reserved13', r_2sv_6_10reserved13, 'range', '0..1', None)
+    if r_2sv_6_10reserved13.__class__ is not int or not 0 <= r_2sv_6_10reserved13 <= 1:
+        if not isinstance(r_2sv_6_10reserved13, int) or r_2sv_6_10reserved13.__class__ is bool:
+            raise _enc('nav_sat', 'sv[6].reserved13', r_2sv_6_10reserved13, 'type', 'an int')
+        if not 0 <= r_2sv_6_10reserved13 <= 1:
+            raise _enc('nav_sat', 'sv[6].reserved13', r_2sv_6_10reserved13, 'range', '0..1', None)
     r_2sv_6_12sbasCorrUsed: Any = g_2sv_6.sbasCorrUsed
     if r_2sv_6_12sbasCorrUsed is not True and r_2sv_6_12sbasCorrUsed is not False and r_2sv_6_12sbasCorrUsed != 0 and r_2sv_6_12sbasCorrUsed != 1:
         raise _enc('nav_sat', 'sv[6].sbasCorrUsed', r_2sv_6_12sbasCorrUsed, 'type', 'a bool')
@@ -2117,50 +2203,58 @@ def _raw_nav_sat_2sv_6(g_2sv_6: Any) -> tuple[Any, ...]:
 
 def _raw_nav_sat_2sv_7(g_2sv_7: Any) -> tuple[Any, ...]:
     r_2sv_7_6gnssId = g_2sv_7.gnssId
-    if r_2sv_7_6gnssId.__class__ is not int and (not isinstance(r_2sv_7_6gnssId, int) or r_2sv_7_6gnssId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[7].gnssId', r_2sv_7_6gnssId, 'type', 'an int')
-    if not 0 <= r_2sv_7_6gnssId <= 255:
-        raise _enc('nav_sat', 'sv[7].gnssId', r_2sv_7_6gnssId, 'range', '0..255', None)
+    if r_2sv_7_6gnssId.__class__ is not int or not 0 <= r_2sv_7_6gnssId <= 255:
+        if not isinstance(r_2sv_7_6gnssId, int) or r_2sv_7_6gnssId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[7].gnssId', r_2sv_7_6gnssId, 'type', 'an int')
+        if not 0 <= r_2sv_7_6gnssId <= 255:
+            raise _enc('nav_sat', 'sv[7].gnssId', r_2sv_7_6gnssId, 'range', '0..255', None)
     r_2sv_7_4svId = g_2sv_7.svId
-    if r_2sv_7_4svId.__class__ is not int and (not isinstance(r_2sv_7_4svId, int) or r_2sv_7_4svId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[7].svId', r_2sv_7_4svId, 'type', 'an int')
-    if not 0 <= r_2sv_7_4svId <= 255:
-        raise _enc('nav_sat', 'sv[7].svId', r_2sv_7_4svId, 'range', '0..255', None)
+    if r_2sv_7_4svId.__class__ is not int or not 0 <= r_2sv_7_4svId <= 255:
+        if not isinstance(r_2sv_7_4svId, int) or r_2sv_7_4svId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[7].svId', r_2sv_7_4svId, 'type', 'an int')
+        if not 0 <= r_2sv_7_4svId <= 255:
+            raise _enc('nav_sat', 'sv[7].svId', r_2sv_7_4svId, 'range', '0..255', None)
     r_2sv_7_3cno = g_2sv_7.cno
-    if r_2sv_7_3cno.__class__ is not int and (not isinstance(r_2sv_7_3cno, int) or r_2sv_7_3cno.__class__ is bool):
-        raise _enc('nav_sat', 'sv[7].cno', r_2sv_7_3cno, 'type', 'an int')
-    if not 0 <= r_2sv_7_3cno <= 255:
-        raise _enc('nav_sat', 'sv[7].cno', r_2sv_7_3cno, 'range', '0..255', None)
+    if r_2sv_7_3cno.__class__ is not int or not 0 <= r_2sv_7_3cno <= 255:
+        if not isinstance(r_2sv_7_3cno, int) or r_2sv_7_3cno.__class__ is bool:
+            raise _enc('nav_sat', 'sv[7].cno', r_2sv_7_3cno, 'type', 'an int')
+        if not 0 <= r_2sv_7_3cno <= 255:
+            raise _enc('nav_sat', 'sv[7].cno', r_2sv_7_3cno, 'range', '0..255', None)
     r_2sv_7_4elev = g_2sv_7.elev
-    if r_2sv_7_4elev.__class__ is not int and (not isinstance(r_2sv_7_4elev, int) or r_2sv_7_4elev.__class__ is bool):
-        raise _enc('nav_sat', 'sv[7].elev', r_2sv_7_4elev, 'type', 'an int')
-    if not -128 <= r_2sv_7_4elev <= 127:
-        raise _enc('nav_sat', 'sv[7].elev', r_2sv_7_4elev, 'range', '-128..127', None)
+    if r_2sv_7_4elev.__class__ is not int or not -128 <= r_2sv_7_4elev <= 127:
+        if not isinstance(r_2sv_7_4elev, int) or r_2sv_7_4elev.__class__ is bool:
+            raise _enc('nav_sat', 'sv[7].elev', r_2sv_7_4elev, 'type', 'an int')
+        if not -128 <= r_2sv_7_4elev <= 127:
+            raise _enc('nav_sat', 'sv[7].elev', r_2sv_7_4elev, 'range', '-128..127', None)
     r_2sv_7_4azim = g_2sv_7.azim
-    if r_2sv_7_4azim.__class__ is not int and (not isinstance(r_2sv_7_4azim, int) or r_2sv_7_4azim.__class__ is bool):
-        raise _enc('nav_sat', 'sv[7].azim', r_2sv_7_4azim, 'type', 'an int')
-    if not -32768 <= r_2sv_7_4azim <= 32767:
-        raise _enc('nav_sat', 'sv[7].azim', r_2sv_7_4azim, 'range', '-32768..32767', None)
+    if r_2sv_7_4azim.__class__ is not int or not -32768 <= r_2sv_7_4azim <= 32767:
+        if not isinstance(r_2sv_7_4azim, int) or r_2sv_7_4azim.__class__ is bool:
+            raise _enc('nav_sat', 'sv[7].azim', r_2sv_7_4azim, 'type', 'an int')
+        if not -32768 <= r_2sv_7_4azim <= 32767:
+            raise _enc('nav_sat', 'sv[7].azim', r_2sv_7_4azim, 'range', '-32768..32767', None)
     r_2sv_7_5prRes = g_2sv_7.prRes
-    if r_2sv_7_5prRes.__class__ is not float and (not isinstance(r_2sv_7_5prRes, (int, float)) or r_2sv_7_5prRes.__class__ is bool):
-        raise _enc('nav_sat', 'sv[7].prRes', r_2sv_7_5prRes, 'type', 'a number')
-    if not -3276.8 <= r_2sv_7_5prRes <= 3276.7000000000003:
-        raise _enc('nav_sat', 'sv[7].prRes', r_2sv_7_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    if r_2sv_7_5prRes.__class__ is not float or not -3276.8 <= r_2sv_7_5prRes <= 3276.7000000000003:
+        if not isinstance(r_2sv_7_5prRes, (int, float)) or r_2sv_7_5prRes.__class__ is bool:
+            raise _enc('nav_sat', 'sv[7].prRes', r_2sv_7_5prRes, 'type', 'a number')
+        if not -3276.8 <= r_2sv_7_5prRes <= 3276.7000000000003:
+            raise _enc('nav_sat', 'sv[7].prRes', r_2sv_7_5prRes, 'range', '-3276.8..3276.7000000000003', None)
     r_2sv_7_5prRes = _floor(r_2sv_7_5prRes / 0.1 + 0.5)
     r_2sv_7_10qualityInd = g_2sv_7.qualityInd
-    if r_2sv_7_10qualityInd.__class__ is not int and (not isinstance(r_2sv_7_10qualityInd, int) or r_2sv_7_10qualityInd.__class__ is bool):
-        raise _enc('nav_sat', 'sv[7].qualityInd', r_2sv_7_10qualityInd, 'type', 'an int')
-    if not 0 <= r_2sv_7_10qualityInd <= 7:
-        raise _enc('nav_sat', 'sv[7].qualityInd', r_2sv_7_10qualityInd, 'range', '0..7', None)
+    if r_2sv_7_10qualityInd.__class__ is not int or not 0 <= r_2sv_7_10qualityInd <= 7:
+        if not isinstance(r_2sv_7_10qualityInd, int) or r_2sv_7_10qualityInd.__class__ is bool:
+            raise _enc('nav_sat', 'sv[7].qualityInd', r_2sv_7_10qualityInd, 'type', 'an int')
+        if not 0 <= r_2sv_7_10qualityInd <= 7:
+            raise _enc('nav_sat', 'sv[7].qualityInd', r_2sv_7_10qualityInd, 'range', '0..7', None)
     r_2sv_7_6svUsed: Any = g_2sv_7.svUsed
     if r_2sv_7_6svUsed is not True and r_2sv_7_6svUsed is not False and r_2sv_7_6svUsed != 0 and r_2sv_7_6svUsed != 1:
         raise _enc('nav_sat', 'sv[7].svUsed', r_2sv_7_6svUsed, 'type', 'a bool')
     r_2sv_7_6svUsed = 1 if r_2sv_7_6svUsed else 0
     r_2sv_7_6health = g_2sv_7.health
-    if r_2sv_7_6health.__class__ is not int and (not isinstance(r_2sv_7_6health, int) or r_2sv_7_6health.__class__ is bool):
-        raise _enc('nav_sat', 'sv[7].health', r_2sv_7_6health, 'type', 'an int')
-    if not 0 <= r_2sv_7_6health <= 3:
-        raise _enc('nav_sat', 'sv[7].health', r_2sv_7_6health, 'range', '0..3', None)
+    if r_2sv_7_6health.__class__ is not int or not 0 <= r_2sv_7_6health <= 3:
+        if not isinstance(r_2sv_7_6health, int) or r_2sv_7_6health.__class__ is bool:
+            raise _enc('nav_sat', 'sv[7].health', r_2sv_7_6health, 'type', 'an int')
+        if not 0 <= r_2sv_7_6health <= 3:
+            raise _enc('nav_sat', 'sv[7].health', r_2sv_7_6health, 'range', '0..3', None)
     r_2sv_7_8diffCorr: Any = g_2sv_7.diffCorr
     if r_2sv_7_8diffCorr is not True and r_2sv_7_8diffCorr is not False and r_2sv_7_8diffCorr != 0 and r_2sv_7_8diffCorr != 1:
         raise _enc('nav_sat', 'sv[7].diffCorr', r_2sv_7_8diffCorr, 'type', 'a bool')
@@ -2170,10 +2264,11 @@ def _raw_nav_sat_2sv_7(g_2sv_7: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[7].smoothed', r_2sv_7_8smoothed, 'type', 'a bool')
     r_2sv_7_8smoothed = 1 if r_2sv_7_8smoothed else 0
     r_2sv_7_11orbitSource = g_2sv_7.orbitSource
-    if r_2sv_7_11orbitSource.__class__ is not int and (not isinstance(r_2sv_7_11orbitSource, int) or r_2sv_7_11orbitSource.__class__ is bool):
-        raise _enc('nav_sat', 'sv[7].orbitSource', r_2sv_7_11orbitSource, 'type', 'an int')
-    if not 0 <= r_2sv_7_11orbitSource <= 7:
-        raise _enc('nav_sat', 'sv[7].orbitSource', r_2sv_7_11orbitSource, 'range', '0..7', None)
+    if r_2sv_7_11orbitSource.__class__ is not int or not 0 <= r_2sv_7_11orbitSource <= 7:
+        if not isinstance(r_2sv_7_11orbitSource, int) or r_2sv_7_11orbitSource.__class__ is bool:
+            raise _enc('nav_sat', 'sv[7].orbitSource', r_2sv_7_11orbitSource, 'type', 'an int')
+        if not 0 <= r_2sv_7_11orbitSource <= 7:
+            raise _enc('nav_sat', 'sv[7].orbitSource', r_2sv_7_11orbitSource, 'range', '0..7', None)
     r_2sv_7_8ephAvail: Any = g_2sv_7.ephAvail
     if r_2sv_7_8ephAvail is not True and r_2sv_7_8ephAvail is not False and r_2sv_7_8ephAvail != 0 and r_2sv_7_8ephAvail != 1:
         raise _enc('nav_sat', 'sv[7].ephAvail', r_2sv_7_8ephAvail, 'type', 'a bool')
@@ -2191,10 +2286,11 @@ def _raw_nav_sat_2sv_7(g_2sv_7: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[7].aopAvail', r_2sv_7_8aopAvail, 'type', 'a bool')
     r_2sv_7_8aopAvail = 1 if r_2sv_7_8aopAvail else 0
     r_2sv_7_10reserved13 = g_2sv_7.reserved13
-    if r_2sv_7_10reserved13.__class__ is not int and (not isinstance(r_2sv_7_10reserved13, int) or r_2sv_7_10reserved13.__class__ is bool):
-        raise _enc('nav_sat', 'sv[7].reserved13', r_2sv_7_10reserved13, 'type', 'an int')
-    if not 0 <= r_2sv_7_10reserved13 <= 1:
-        raise _enc('nav_sat', 'sv[7].reserved13', r_2sv_7_10reserved13, 'range', '0..1', None)
+    if r_2sv_7_10reserved13.__class__ is not int or not 0 <= r_2sv_7_10reserved13 <= 1:
+        if not isinstance(r_2sv_7_10reserved13, int) or r_2sv_7_10reserved13.__class__ is bool:
+            raise _enc('nav_sat', 'sv[7].reserved13', r_2sv_7_10reserved13, 'type', 'an int')
+        if not 0 <= r_2sv_7_10reserved13 <= 1:
+            raise _enc('nav_sat', 'sv[7].reserved13', r_2sv_7_10reserved13, 'range', '0..1', None)
     r_2sv_7_12sbasCorrUsed: Any = g_2sv_7.sbasCorrUsed
     if r_2sv_7_12sbasCorrUsed is not True and r_2sv_7_12sbasCorrUsed is not False and r_2sv_7_12sbasCorrUsed != 0 and r_2sv_7_12sbasCorrUsed != 1:
         raise _enc('nav_sat', 'sv[7].sbasCorrUsed', r_2sv_7_12sbasCorrUsed, 'type', 'a bool')
@@ -2241,50 +2337,58 @@ def _raw_nav_sat_2sv_7(g_2sv_7: Any) -> tuple[Any, ...]:
 
 def _raw_nav_sat_2sv_8(g_2sv_8: Any) -> tuple[Any, ...]:
     r_2sv_8_6gnssId = g_2sv_8.gnssId
-    if r_2sv_8_6gnssId.__class__ is not int and (not isinstance(r_2sv_8_6gnssId, int) or r_2sv_8_6gnssId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[8].gnssId', r_2sv_8_6gnssId, 'type', 'an int')
-    if not 0 <= r_2sv_8_6gnssId <= 255:
-        raise _enc('nav_sat', 'sv[8].gnssId', r_2sv_8_6gnssId, 'range', '0..255', None)
+    if r_2sv_8_6gnssId.__class__ is not int or not 0 <= r_2sv_8_6gnssId <= 255:
+        if not isinstance(r_2sv_8_6gnssId, int) or r_2sv_8_6gnssId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[8].gnssId', r_2sv_8_6gnssId, 'type', 'an int')
+        if not 0 <= r_2sv_8_6gnssId <= 255:
+            raise _enc('nav_sat', 'sv[8].gnssId', r_2sv_8_6gnssId, 'range', '0..255', None)
     r_2sv_8_4svId = g_2sv_8.svId
-    if r_2sv_8_4svId.__class__ is not int and (not isinstance(r_2sv_8_4svId, int) or r_2sv_8_4svId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[8].svId', r_2sv_8_4svId, 'type', 'an int')
-    if not 0 <= r_2sv_8_4svId <= 255:
-        raise _enc('nav_sat', 'sv[8].svId', r_2sv_8_4svId, 'range', '0..255', None)
+    if r_2sv_8_4svId.__class__ is not int or not 0 <= r_2sv_8_4svId <= 255:
+        if not isinstance(r_2sv_8_4svId, int) or r_2sv_8_4svId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[8].svId', r_2sv_8_4svId, 'type', 'an int')
+        if not 0 <= r_2sv_8_4svId <= 255:
+            raise _enc('nav_sat', 'sv[8].svId', r_2sv_8_4svId, 'range', '0..255', None)
     r_2sv_8_3cno = g_2sv_8.cno
-    if r_2sv_8_3cno.__class__ is not int and (not isinstance(r_2sv_8_3cno, int) or r_2sv_8_3cno.__class__ is bool):
-        raise _enc('nav_sat', 'sv[8].cno', r_2sv_8_3cno, 'type', 'an int')
-    if not 0 <= r_2sv_8_3cno <= 255:
-        raise _enc('nav_sat', 'sv[8].cno', r_2sv_8_3cno, 'range', '0..255', None)
+    if r_2sv_8_3cno.__class__ is not int or not 0 <= r_2sv_8_3cno <= 255:
+        if not isinstance(r_2sv_8_3cno, int) or r_2sv_8_3cno.__class__ is bool:
+            raise _enc('nav_sat', 'sv[8].cno', r_2sv_8_3cno, 'type', 'an int')
+        if not 0 <= r_2sv_8_3cno <= 255:
+            raise _enc('nav_sat', 'sv[8].cno', r_2sv_8_3cno, 'range', '0..255', None)
     r_2sv_8_4elev = g_2sv_8.elev
-    if r_2sv_8_4elev.__class__ is not int and (not isinstance(r_2sv_8_4elev, int) or r_2sv_8_4elev.__class__ is bool):
-        raise _enc('nav_sat', 'sv[8].elev', r_2sv_8_4elev, 'type', 'an int')
-    if not -128 <= r_2sv_8_4elev <= 127:
-        raise _enc('nav_sat', 'sv[8].elev', r_2sv_8_4elev, 'range', '-128..127', None)
+    if r_2sv_8_4elev.__class__ is not int or not -128 <= r_2sv_8_4elev <= 127:
+        if not isinstance(r_2sv_8_4elev, int) or r_2sv_8_4elev.__class__ is bool:
+            raise _enc('nav_sat', 'sv[8].elev', r_2sv_8_4elev, 'type', 'an int')
+        if not -128 <= r_2sv_8_4elev <= 127:
+            raise _enc('nav_sat', 'sv[8].elev', r_2sv_8_4elev, 'range', '-128..127', None)
     r_2sv_8_4azim = g_2sv_8.azim
-    if r_2sv_8_4azim.__class__ is not int and (not isinstance(r_2sv_8_4azim, int) or r_2sv_8_4azim.__class__ is bool):
-        raise _enc('nav_sat', 'sv[8].azim', r_2sv_8_4azim, 'type', 'an int')
-    if not -32768 <= r_2sv_8_4azim <= 32767:
-        raise _enc('nav_sat', 'sv[8].azim', r_2sv_8_4azim, 'range', '-32768..32767', None)
+    if r_2sv_8_4azim.__class__ is not int or not -32768 <= r_2sv_8_4azim <= 32767:
+        if not isinstance(r_2sv_8_4azim, int) or r_2sv_8_4azim.__class__ is bool:
+            raise _enc('nav_sat', 'sv[8].azim', r_2sv_8_4azim, 'type', 'an int')
+        if not -32768 <= r_2sv_8_4azim <= 32767:
+            raise _enc('nav_sat', 'sv[8].azim', r_2sv_8_4azim, 'range', '-32768..32767', None)
     r_2sv_8_5prRes = g_2sv_8.prRes
-    if r_2sv_8_5prRes.__class__ is not float and (not isinstance(r_2sv_8_5prRes, (int, float)) or r_2sv_8_5prRes.__class__ is bool):
-        raise _enc('nav_sat', 'sv[8].prRes', r_2sv_8_5prRes, 'type', 'a number')
-    if not -3276.8 <= r_2sv_8_5prRes <= 3276.7000000000003:
-        raise _enc('nav_sat', 'sv[8].prRes', r_2sv_8_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    if r_2sv_8_5prRes.__class__ is not float or not -3276.8 <= r_2sv_8_5prRes <= 3276.7000000000003:
+        if not isinstance(r_2sv_8_5prRes, (int, float)) or r_2sv_8_5prRes.__class__ is bool:
+            raise _enc('nav_sat', 'sv[8].prRes', r_2sv_8_5prRes, 'type', 'a number')
+        if not -3276.8 <= r_2sv_8_5prRes <= 3276.7000000000003:
+            raise _enc('nav_sat', 'sv[8].prRes', r_2sv_8_5prRes, 'range', '-3276.8..3276.7000000000003', None)
     r_2sv_8_5prRes = _floor(r_2sv_8_5prRes / 0.1 + 0.5)
     r_2sv_8_10qualityInd = g_2sv_8.qualityInd
-    if r_2sv_8_10qualityInd.__class__ is not int and (not isinstance(r_2sv_8_10qualityInd, int) or r_2sv_8_10qualityInd.__class__ is bool):
-        raise _enc('nav_sat', 'sv[8].qualityInd', r_2sv_8_10qualityInd, 'type', 'an int')
-    if not 0 <= r_2sv_8_10qualityInd <= 7:
-        raise _enc('nav_sat', 'sv[8].qualityInd', r_2sv_8_10qualityInd, 'range', '0..7', None)
+    if r_2sv_8_10qualityInd.__class__ is not int or not 0 <= r_2sv_8_10qualityInd <= 7:
+        if not isinstance(r_2sv_8_10qualityInd, int) or r_2sv_8_10qualityInd.__class__ is bool:
+            raise _enc('nav_sat', 'sv[8].qualityInd', r_2sv_8_10qualityInd, 'type', 'an int')
+        if not 0 <= r_2sv_8_10qualityInd <= 7:
+            raise _enc('nav_sat', 'sv[8].qualityInd', r_2sv_8_10qualityInd, 'range', '0..7', None)
     r_2sv_8_6svUsed: Any = g_2sv_8.svUsed
     if r_2sv_8_6svUsed is not True and r_2sv_8_6svUsed is not False and r_2sv_8_6svUsed != 0 and r_2sv_8_6svUsed != 1:
         raise _enc('nav_sat', 'sv[8].svUsed', r_2sv_8_6svUsed, 'type', 'a bool')
     r_2sv_8_6svUsed = 1 if r_2sv_8_6svUsed else 0
     r_2sv_8_6health = g_2sv_8.health
-    if r_2sv_8_6health.__class__ is not int and (not isinstance(r_2sv_8_6health, int) or r_2sv_8_6health.__class__ is bool):
-        raise _enc('nav_sat', 'sv[8].health', r_2sv_8_6health, 'type', 'an int')
-    if not 0 <= r_2sv_8_6health <= 3:
-        raise _enc('nav_sat', 'sv[8].health', r_2sv_8_6health, 'range', '0..3', None)
+    if r_2sv_8_6health.__class__ is not int or not 0 <= r_2sv_8_6health <= 3:
+        if not isinstance(r_2sv_8_6health, int) or r_2sv_8_6health.__class__ is bool:
+            raise _enc('nav_sat', 'sv[8].health', r_2sv_8_6health, 'type', 'an int')
+        if not 0 <= r_2sv_8_6health <= 3:
+            raise _enc('nav_sat', 'sv[8].health', r_2sv_8_6health, 'range', '0..3', None)
     r_2sv_8_8diffCorr: Any = g_2sv_8.diffCorr
     if r_2sv_8_8diffCorr is not True and r_2sv_8_8diffCorr is not False and r_2sv_8_8diffCorr != 0 and r_2sv_8_8diffCorr != 1:
         raise _enc('nav_sat', 'sv[8].diffCorr', r_2sv_8_8diffCorr, 'type', 'a bool')
@@ -2294,10 +2398,11 @@ def _raw_nav_sat_2sv_8(g_2sv_8: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[8].smoothed', r_2sv_8_8smoothed, 'type', 'a bool')
     r_2sv_8_8smoothed = 1 if r_2sv_8_8smoothed else 0
     r_2sv_8_11orbitSource = g_2sv_8.orbitSource
-    if r_2sv_8_11orbitSource.__class__ is not int and (not isinstance(r_2sv_8_11orbitSource, int) or r_2sv_8_11orbitSource.__class__ is bool):
-        raise _enc('nav_sat', 'sv[8].orbitSource', r_2sv_8_11orbitSource, 'type', 'an int')
-    if not 0 <= r_2sv_8_11orbitSource <= 7:
-        raise _enc('nav_sat', 'sv[8].orbitSource', r_2sv_8_11orbitSource, 'range', '0..7', None)
+    if r_2sv_8_11orbitSource.__class__ is not int or not 0 <= r_2sv_8_11orbitSource <= 7:
+        if not isinstance(r_2sv_8_11orbitSource, int) or r_2sv_8_11orbitSource.__class__ is bool:
+            raise _enc('nav_sat', 'sv[8].orbitSource', r_2sv_8_11orbitSource, 'type', 'an int')
+        if not 0 <= r_2sv_8_11orbitSource <= 7:
+            raise _enc('nav_sat', 'sv[8].orbitSource', r_2sv_8_11orbitSource, 'range', '0..7', None)
     r_2sv_8_8ephAvail: Any = g_2sv_8.ephAvail
     if r_2sv_8_8ephAvail is not True and r_2sv_8_8ephAvail is not False and r_2sv_8_8ephAvail != 0 and r_2sv_8_8ephAvail != 1:
         raise _enc('nav_sat', 'sv[8].ephAvail', r_2sv_8_8ephAvail, 'type', 'a bool')
@@ -2315,10 +2420,11 @@ def _raw_nav_sat_2sv_8(g_2sv_8: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[8].aopAvail', r_2sv_8_8aopAvail, 'type', 'a bool')
     r_2sv_8_8aopAvail = 1 if r_2sv_8_8aopAvail else 0
     r_2sv_8_10reserved13 = g_2sv_8.reserved13
-    if r_2sv_8_10reserved13.__class__ is not int and (not isinstance(r_2sv_8_10reserved13, int) or r_2sv_8_10reserved13.__class__ is bool):
-        raise _enc('nav_sat', 'sv[8].reserved13', r_2sv_8_10reserved13, 'type', 'an int')
-    if not 0 <= r_2sv_8_10reserved13 <= 1:
-        raise _enc('nav_sat', 'sv[8].reserved13', r_2sv_8_10reserved13, 'range', '0..1', None)
+    if r_2sv_8_10reserved13.__class__ is not int or not 0 <= r_2sv_8_10reserved13 <= 1:
+        if not isinstance(r_2sv_8_10reserved13, int) or r_2sv_8_10reserved13.__class__ is bool:
+            raise _enc('nav_sat', 'sv[8].reserved13', r_2sv_8_10reserved13, 'type', 'an int')
+        if not 0 <= r_2sv_8_10reserved13 <= 1:
+            raise _enc('nav_sat', 'sv[8].reserved13', r_2sv_8_10reserved13, 'range', '0..1', None)
     r_2sv_8_12sbasCorrUsed: Any = g_2sv_8.sbasCorrUsed
     if r_2sv_8_12sbasCorrUsed is not True and r_2sv_8_12sbasCorrUsed is not False and r_2sv_8_12sbasCorrUsed != 0 and r_2sv_8_12sbasCorrUsed != 1:
         raise _enc('nav_sat', 'sv[8].sbasCorrUsed', r_2sv_8_12sbasCorrUsed, 'type', 'a bool')
@@ -2365,50 +2471,58 @@ def _raw_nav_sat_2sv_8(g_2sv_8: Any) -> tuple[Any, ...]:
 
 def _raw_nav_sat_2sv_9(g_2sv_9: Any) -> tuple[Any, ...]:
     r_2sv_9_6gnssId = g_2sv_9.gnssId
-    if r_2sv_9_6gnssId.__class__ is not int and (not isinstance(r_2sv_9_6gnssId, int) or r_2sv_9_6gnssId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[9].gnssId', r_2sv_9_6gnssId, 'type', 'an int')
-    if not 0 <= r_2sv_9_6gnssId <= 255:
-        raise _enc('nav_sat', 'sv[9].gnssId', r_2sv_9_6gnssId, 'range', '0..255', None)
+    if r_2sv_9_6gnssId.__class__ is not int or not 0 <= r_2sv_9_6gnssId <= 255:
+        if not isinstance(r_2sv_9_6gnssId, int) or r_2sv_9_6gnssId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[9].gnssId', r_2sv_9_6gnssId, 'type', 'an int')
+        if not 0 <= r_2sv_9_6gnssId <= 255:
+            raise _enc('nav_sat', 'sv[9].gnssId', r_2sv_9_6gnssId, 'range', '0..255', None)
     r_2sv_9_4svId = g_2sv_9.svId
-    if r_2sv_9_4svId.__class__ is not int and (not isinstance(r_2sv_9_4svId, int) or r_2sv_9_4svId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[9].svId', r_2sv_9_4svId, 'type', 'an int')
-    if not 0 <= r_2sv_9_4svId <= 255:
-        raise _enc('nav_sat', 'sv[9].svId', r_2sv_9_4svId, 'range', '0..255', None)
+    if r_2sv_9_4svId.__class__ is not int or not 0 <= r_2sv_9_4svId <= 255:
+        if not isinstance(r_2sv_9_4svId, int) or r_2sv_9_4svId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[9].svId', r_2sv_9_4svId, 'type', 'an int')
+        if not 0 <= r_2sv_9_4svId <= 255:
+            raise _enc('nav_sat', 'sv[9].svId', r_2sv_9_4svId, 'range', '0..255', None)
     r_2sv_9_3cno = g_2sv_9.cno
-    if r_2sv_9_3cno.__class__ is not int and (not isinstance(r_2sv_9_3cno, int) or r_2sv_9_3cno.__class__ is bool):
-        raise _enc('nav_sat', 'sv[9].cno', r_2sv_9_3cno, 'type', 'an int')
-    if not 0 <= r_2sv_9_3cno <= 255:
-        raise _enc('nav_sat', 'sv[9].cno', r_2sv_9_3cno, 'range', '0..255', None)
+    if r_2sv_9_3cno.__class__ is not int or not 0 <= r_2sv_9_3cno <= 255:
+        if not isinstance(r_2sv_9_3cno, int) or r_2sv_9_3cno.__class__ is bool:
+            raise _enc('nav_sat', 'sv[9].cno', r_2sv_9_3cno, 'type', 'an int')
+        if not 0 <= r_2sv_9_3cno <= 255:
+            raise _enc('nav_sat', 'sv[9].cno', r_2sv_9_3cno, 'range', '0..255', None)
     r_2sv_9_4elev = g_2sv_9.elev
-    if r_2sv_9_4elev.__class__ is not int and (not isinstance(r_2sv_9_4elev, int) or r_2sv_9_4elev.__class__ is bool):
-        raise _enc('nav_sat', 'sv[9].elev', r_2sv_9_4elev, 'type', 'an int')
-    if not -128 <= r_2sv_9_4elev <= 127:
-        raise _enc('nav_sat', 'sv[9].elev', r_2sv_9_4elev, 'range', '-128..127', None)
+    if r_2sv_9_4elev.__class__ is not int or not -128 <= r_2sv_9_4elev <= 127:
+        if not isinstance(r_2sv_9_4elev, int) or r_2sv_9_4elev.__class__ is bool:
+            raise _enc('nav_sat', 'sv[9].elev', r_2sv_9_4elev, 'type', 'an int')
+        if not -128 <= r_2sv_9_4elev <= 127:
+            raise _enc('nav_sat', 'sv[9].elev', r_2sv_9_4elev, 'range', '-128..127', None)
     r_2sv_9_4azim = g_2sv_9.azim
-    if r_2sv_9_4azim.__class__ is not int and (not isinstance(r_2sv_9_4azim, int) or r_2sv_9_4azim.__class__ is bool):
-        raise _enc('nav_sat', 'sv[9].azim', r_2sv_9_4azim, 'type', 'an int')
-    if not -32768 <= r_2sv_9_4azim <= 32767:
-        raise _enc('nav_sat', 'sv[9].azim', r_2sv_9_4azim, 'range', '-32768..32767', None)
+    if r_2sv_9_4azim.__class__ is not int or not -32768 <= r_2sv_9_4azim <= 32767:
+        if not isinstance(r_2sv_9_4azim, int) or r_2sv_9_4azim.__class__ is bool:
+            raise _enc('nav_sat', 'sv[9].azim', r_2sv_9_4azim, 'type', 'an int')
+        if not -32768 <= r_2sv_9_4azim <= 32767:
+            raise _enc('nav_sat', 'sv[9].azim', r_2sv_9_4azim, 'range', '-32768..32767', None)
     r_2sv_9_5prRes = g_2sv_9.prRes
-    if r_2sv_9_5prRes.__class__ is not float and (not isinstance(r_2sv_9_5prRes, (int, float)) or r_2sv_9_5prRes.__class__ is bool):
-        raise _enc('nav_sat', 'sv[9].prRes', r_2sv_9_5prRes, 'type', 'a number')
-    if not -3276.8 <= r_2sv_9_5prRes <= 3276.7000000000003:
-        raise _enc('nav_sat', 'sv[9].prRes', r_2sv_9_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    if r_2sv_9_5prRes.__class__ is not float or not -3276.8 <= r_2sv_9_5prRes <= 3276.7000000000003:
+        if not isinstance(r_2sv_9_5prRes, (int, float)) or r_2sv_9_5prRes.__class__ is bool:
+            raise _enc('nav_sat', 'sv[9].prRes', r_2sv_9_5prRes, 'type', 'a number')
+        if not -3276.8 <= r_2sv_9_5prRes <= 3276.7000000000003:
+            raise _enc('nav_sat', 'sv[9].prRes', r_2sv_9_5prRes, 'range', '-3276.8..3276.7000000000003', None)
     r_2sv_9_5prRes = _floor(r_2sv_9_5prRes / 0.1 + 0.5)
     r_2sv_9_10qualityInd = g_2sv_9.qualityInd
-    if r_2sv_9_10qualityInd.__class__ is not int and (not isinstance(r_2sv_9_10qualityInd, int) or r_2sv_9_10qualityInd.__class__ is bool):
-        raise _enc('nav_sat', 'sv[9].qualityInd', r_2sv_9_10qualityInd, 'type', 'an int')
-    if not 0 <= r_2sv_9_10qualityInd <= 7:
-        raise _enc('nav_sat', 'sv[9].qualityInd', r_2sv_9_10qualityInd, 'range', '0..7', None)
+    if r_2sv_9_10qualityInd.__class__ is not int or not 0 <= r_2sv_9_10qualityInd <= 7:
+        if not isinstance(r_2sv_9_10qualityInd, int) or r_2sv_9_10qualityInd.__class__ is bool:
+            raise _enc('nav_sat', 'sv[9].qualityInd', r_2sv_9_10qualityInd, 'type', 'an int')
+        if not 0 <= r_2sv_9_10qualityInd <= 7:
+            raise _enc('nav_sat', 'sv[9].qualityInd', r_2sv_9_10qualityInd, 'range', '0..7', None)
     r_2sv_9_6svUsed: Any = g_2sv_9.svUsed
     if r_2sv_9_6svUsed is not True and r_2sv_9_6svUsed is not False and r_2sv_9_6svUsed != 0 and r_2sv_9_6svUsed != 1:
         raise _enc('nav_sat', 'sv[9].svUsed', r_2sv_9_6svUsed, 'type', 'a bool')
     r_2sv_9_6svUsed = 1 if r_2sv_9_6svUsed else 0
     r_2sv_9_6health = g_2sv_9.health
-    if r_2sv_9_6health.__class__ is not int and (not isinstance(r_2sv_9_6health, int) or r_2sv_9_6health.__class__ is bool):
-        raise _enc('nav_sat', 'sv[9].health', r_2sv_9_6health, 'type', 'an int')
-    if not 0 <= r_2sv_9_6health <= 3:
-        raise _enc('nav_sat', 'sv[9].health', r_2sv_9_6health, 'range', '0..3', None)
+    if r_2sv_9_6health.__class__ is not int or not 0 <= r_2sv_9_6health <= 3:
+        if not isinstance(r_2sv_9_6health, int) or r_2sv_9_6health.__class__ is bool:
+            raise _enc('nav_sat', 'sv[9].health', r_2sv_9_6health, 'type', 'an int')
+        if not 0 <= r_2sv_9_6health <= 3:
+            raise _enc('nav_sat', 'sv[9].health', r_2sv_9_6health, 'range', '0..3', None)
     r_2sv_9_8diffCorr: Any = g_2sv_9.diffCorr
     if r_2sv_9_8diffCorr is not True and r_2sv_9_8diffCorr is not False and r_2sv_9_8diffCorr != 0 and r_2sv_9_8diffCorr != 1:
         raise _enc('nav_sat', 'sv[9].diffCorr', r_2sv_9_8diffCorr, 'type', 'a bool')
@@ -2418,10 +2532,11 @@ def _raw_nav_sat_2sv_9(g_2sv_9: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[9].smoothed', r_2sv_9_8smoothed, 'type', 'a bool')
     r_2sv_9_8smoothed = 1 if r_2sv_9_8smoothed else 0
     r_2sv_9_11orbitSource = g_2sv_9.orbitSource
-    if r_2sv_9_11orbitSource.__class__ is not int and (not isinstance(r_2sv_9_11orbitSource, int) or r_2sv_9_11orbitSource.__class__ is bool):
-        raise _enc('nav_sat', 'sv[9].orbitSource', r_2sv_9_11orbitSource, 'type', 'an int')
-    if not 0 <= r_2sv_9_11orbitSource <= 7:
-        raise _enc('nav_sat', 'sv[9].orbitSource', r_2sv_9_11orbitSource, 'range', '0..7', None)
+    if r_2sv_9_11orbitSource.__class__ is not int or not 0 <= r_2sv_9_11orbitSource <= 7:
+        if not isinstance(r_2sv_9_11orbitSource, int) or r_2sv_9_11orbitSource.__class__ is bool:
+            raise _enc('nav_sat', 'sv[9].orbitSource', r_2sv_9_11orbitSource, 'type', 'an int')
+        if not 0 <= r_2sv_9_11orbitSource <= 7:
+            raise _enc('nav_sat', 'sv[9].orbitSource', r_2sv_9_11orbitSource, 'range', '0..7', None)
     r_2sv_9_8ephAvail: Any = g_2sv_9.ephAvail
     if r_2sv_9_8ephAvail is not True and r_2sv_9_8ephAvail is not False and r_2sv_9_8ephAvail != 0 and r_2sv_9_8ephAvail != 1:
         raise _enc('nav_sat', 'sv[9].ephAvail', r_2sv_9_8ephAvail, 'type', 'a bool')
@@ -2439,10 +2554,11 @@ def _raw_nav_sat_2sv_9(g_2sv_9: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[9].aopAvail', r_2sv_9_8aopAvail, 'type', 'a bool')
     r_2sv_9_8aopAvail = 1 if r_2sv_9_8aopAvail else 0
     r_2sv_9_10reserved13 = g_2sv_9.reserved13
-    if r_2sv_9_10reserved13.__class__ is not int and (not isinstance(r_2sv_9_10reserved13, int) or r_2sv_9_10reserved13.__class__ is bool):
-        raise _enc('nav_sat', 'sv[9].reserved13', r_2sv_9_10reserved13, 'type', 'an int')
-    if not 0 <= r_2sv_9_10reserved13 <= 1:
-        raise _enc('nav_sat', 'sv[9].reserved13', r_2sv_9_10reserved13, 'range', '0..1', None)
+    if r_2sv_9_10reserved13.__class__ is not int or not 0 <= r_2sv_9_10reserved13 <= 1:
+        if not isinstance(r_2sv_9_10reserved13, int) or r_2sv_9_10reserved13.__class__ is bool:
+            raise _enc('nav_sat', 'sv[9].reserved13', r_2sv_9_10reserved13, 'type', 'an int')
+        if not 0 <= r_2sv_9_10reserved13 <= 1:
+            raise _enc('nav_sat', 'sv[9].reserved13', r_2sv_9_10reserved13, 'range', '0..1', None)
     r_2sv_9_12sbasCorrUsed: Any = g_2sv_9.sbasCorrUsed
     if r_2sv_9_12sbasCorrUsed is not True and r_2sv_9_12sbasCorrUsed is not False and r_2sv_9_12sbasCorrUsed != 0 and r_2sv_9_12sbasCorrUsed != 1:
         raise _enc('nav_sat', 'sv[9].sbasCorrUsed', r_2sv_9_12sbasCorrUsed, 'type', 'a bool')
@@ -2489,50 +2605,58 @@ def _raw_nav_sat_2sv_9(g_2sv_9: Any) -> tuple[Any, ...]:
 
 def _raw_nav_sat_2sv_10(g_2sv_10: Any) -> tuple[Any, ...]:
     r_2sv_10_6gnssId = g_2sv_10.gnssId
-    if r_2sv_10_6gnssId.__class__ is not int and (not isinstance(r_2sv_10_6gnssId, int) or r_2sv_10_6gnssId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[10].gnssId', r_2sv_10_6gnssId, 'type', 'an int')
-    if not 0 <= r_2sv_10_6gnssId <= 255:
-        raise _enc('nav_sat', 'sv[10].gnssId', r_2sv_10_6gnssId, 'range', '0..255', None)
+    if r_2sv_10_6gnssId.__class__ is not int or not 0 <= r_2sv_10_6gnssId <= 255:
+        if not isinstance(r_2sv_10_6gnssId, int) or r_2sv_10_6gnssId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[10].gnssId', r_2sv_10_6gnssId, 'type', 'an int')
+        if not 0 <= r_2sv_10_6gnssId <= 255:
+            raise _enc('nav_sat', 'sv[10].gnssId', r_2sv_10_6gnssId, 'range', '0..255', None)
     r_2sv_10_4svId = g_2sv_10.svId
-    if r_2sv_10_4svId.__class__ is not int and (not isinstance(r_2sv_10_4svId, int) or r_2sv_10_4svId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[10].svId', r_2sv_10_4svId, 'type', 'an int')
-    if not 0 <= r_2sv_10_4svId <= 255:
-        raise _enc('nav_sat', 'sv[10].svId', r_2sv_10_4svId, 'range', '0..255', None)
+    if r_2sv_10_4svId.__class__ is not int or not 0 <= r_2sv_10_4svId <= 255:
+        if not isinstance(r_2sv_10_4svId, int) or r_2sv_10_4svId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[10].svId', r_2sv_10_4svId, 'type', 'an int')
+        if not 0 <= r_2sv_10_4svId <= 255:
+            raise _enc('nav_sat', 'sv[10].svId', r_2sv_10_4svId, 'range', '0..255', None)
     r_2sv_10_3cno = g_2sv_10.cno
-    if r_2sv_10_3cno.__class__ is not int and (not isinstance(r_2sv_10_3cno, int) or r_2sv_10_3cno.__class__ is bool):
-        raise _enc('nav_sat', 'sv[10].cno', r_2sv_10_3cno, 'type', 'an int')
-    if not 0 <= r_2sv_10_3cno <= 255:
-        raise _enc('nav_sat', 'sv[10].cno', r_2sv_10_3cno, 'range', '0..255', None)
+    if r_2sv_10_3cno.__class__ is not int or not 0 <= r_2sv_10_3cno <= 255:
+        if not isinstance(r_2sv_10_3cno, int) or r_2sv_10_3cno.__class__ is bool:
+            raise _enc('nav_sat', 'sv[10].cno', r_2sv_10_3cno, 'type', 'an int')
+        if not 0 <= r_2sv_10_3cno <= 255:
+            raise _enc('nav_sat', 'sv[10].cno', r_2sv_10_3cno, 'range', '0..255', None)
     r_2sv_10_4elev = g_2sv_10.elev
-    if r_2sv_10_4elev.__class__ is not int and (not isinstance(r_2sv_10_4elev, int) or r_2sv_10_4elev.__class__ is bool):
-        raise _enc('nav_sat', 'sv[10].elev', r_2sv_10_4elev, 'type', 'an int')
-    if not -128 <= r_2sv_10_4elev <= 127:
-        raise _enc('nav_sat', 'sv[10].elev', r_2sv_10_4elev, 'range', '-128..127', None)
+    if r_2sv_10_4elev.__class__ is not int or not -128 <= r_2sv_10_4elev <= 127:
+        if not isinstance(r_2sv_10_4elev, int) or r_2sv_10_4elev.__class__ is bool:
+            raise _enc('nav_sat', 'sv[10].elev', r_2sv_10_4elev, 'type', 'an int')
+        if not -128 <= r_2sv_10_4elev <= 127:
+            raise _enc('nav_sat', 'sv[10].elev', r_2sv_10_4elev, 'range', '-128..127', None)
     r_2sv_10_4azim = g_2sv_10.azim
-    if r_2sv_10_4azim.__class__ is not int and (not isinstance(r_2sv_10_4azim, int) or r_2sv_10_4azim.__class__ is bool):
-        raise _enc('nav_sat', 'sv[10].azim', r_2sv_10_4azim, 'type', 'an int')
-    if not -32768 <= r_2sv_10_4azim <= 32767:
-        raise _enc('nav_sat', 'sv[10].azim', r_2sv_10_4azim, 'range', '-32768..32767', None)
+    if r_2sv_10_4azim.__class__ is not int or not -32768 <= r_2sv_10_4azim <= 32767:
+        if not isinstance(r_2sv_10_4azim, int) or r_2sv_10_4azim.__class__ is bool:
+            raise _enc('nav_sat', 'sv[10].azim', r_2sv_10_4azim, 'type', 'an int')
+        if not -32768 <= r_2sv_10_4azim <= 32767:
+            raise _enc('nav_sat', 'sv[10].azim', r_2sv_10_4azim, 'range', '-32768..32767', None)
     r_2sv_10_5prRes = g_2sv_10.prRes
-    if r_2sv_10_5prRes.__class__ is not float and (not isinstance(r_2sv_10_5prRes, (int, float)) or r_2sv_10_5prRes.__class__ is bool):
-        raise _enc('nav_sat', 'sv[10].prRes', r_2sv_10_5prRes, 'type', 'a number')
-    if not -3276.8 <= r_2sv_10_5prRes <= 3276.7000000000003:
-        raise _enc('nav_sat', 'sv[10].prRes', r_2sv_10_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    if r_2sv_10_5prRes.__class__ is not float or not -3276.8 <= r_2sv_10_5prRes <= 3276.7000000000003:
+        if not isinstance(r_2sv_10_5prRes, (int, float)) or r_2sv_10_5prRes.__class__ is bool:
+            raise _enc('nav_sat', 'sv[10].prRes', r_2sv_10_5prRes, 'type', 'a number')
+        if not -3276.8 <= r_2sv_10_5prRes <= 3276.7000000000003:
+            raise _enc('nav_sat', 'sv[10].prRes', r_2sv_10_5prRes, 'range', '-3276.8..3276.7000000000003', None)
     r_2sv_10_5prRes = _floor(r_2sv_10_5prRes / 0.1 + 0.5)
     r_2sv_10_10qualityInd = g_2sv_10.qualityInd
-    if r_2sv_10_10qualityInd.__class__ is not int and (not isinstance(r_2sv_10_10qualityInd, int) or r_2sv_10_10qualityInd.__class__ is bool):
-        raise _enc('nav_sat', 'sv[10].qualityInd', r_2sv_10_10qualityInd, 'type', 'an int')
-    if not 0 <= r_2sv_10_10qualityInd <= 7:
-        raise _enc('nav_sat', 'sv[10].qualityInd', r_2sv_10_10qualityInd, 'range', '0..7', None)
+    if r_2sv_10_10qualityInd.__class__ is not int or not 0 <= r_2sv_10_10qualityInd <= 7:
+        if not isinstance(r_2sv_10_10qualityInd, int) or r_2sv_10_10qualityInd.__class__ is bool:
+            raise _enc('nav_sat', 'sv[10].qualityInd', r_2sv_10_10qualityInd, 'type', 'an int')
+        if not 0 <= r_2sv_10_10qualityInd <= 7:
+            raise _enc('nav_sat', 'sv[10].qualityInd', r_2sv_10_10qualityInd, 'range', '0..7', None)
     r_2sv_10_6svUsed: Any = g_2sv_10.svUsed
     if r_2sv_10_6svUsed is not True and r_2sv_10_6svUsed is not False and r_2sv_10_6svUsed != 0 and r_2sv_10_6svUsed != 1:
         raise _enc('nav_sat', 'sv[10].svUsed', r_2sv_10_6svUsed, 'type', 'a bool')
     r_2sv_10_6svUsed = 1 if r_2sv_10_6svUsed else 0
     r_2sv_10_6health = g_2sv_10.health
-    if r_2sv_10_6health.__class__ is not int and (not isinstance(r_2sv_10_6health, int) or r_2sv_10_6health.__class__ is bool):
-        raise _enc('nav_sat', 'sv[10].health', r_2sv_10_6health, 'type', 'an int')
-    if not 0 <= r_2sv_10_6health <= 3:
-        raise _enc('nav_sat', 'sv[10].health', r_2sv_10_6health, 'range', '0..3', None)
+    if r_2sv_10_6health.__class__ is not int or not 0 <= r_2sv_10_6health <= 3:
+        if not isinstance(r_2sv_10_6health, int) or r_2sv_10_6health.__class__ is bool:
+            raise _enc('nav_sat', 'sv[10].health', r_2sv_10_6health, 'type', 'an int')
+        if not 0 <= r_2sv_10_6health <= 3:
+            raise _enc('nav_sat', 'sv[10].health', r_2sv_10_6health, 'range', '0..3', None)
     r_2sv_10_8diffCorr: Any = g_2sv_10.diffCorr
     if r_2sv_10_8diffCorr is not True and r_2sv_10_8diffCorr is not False and r_2sv_10_8diffCorr != 0 and r_2sv_10_8diffCorr != 1:
         raise _enc('nav_sat', 'sv[10].diffCorr', r_2sv_10_8diffCorr, 'type', 'a bool')
@@ -2542,10 +2666,11 @@ def _raw_nav_sat_2sv_10(g_2sv_10: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[10].smoothed', r_2sv_10_8smoothed, 'type', 'a bool')
     r_2sv_10_8smoothed = 1 if r_2sv_10_8smoothed else 0
     r_2sv_10_11orbitSource = g_2sv_10.orbitSource
-    if r_2sv_10_11orbitSource.__class__ is not int and (not isinstance(r_2sv_10_11orbitSource, int) or r_2sv_10_11orbitSource.__class__ is bool):
-        raise _enc('nav_sat', 'sv[10].orbitSource', r_2sv_10_11orbitSource, 'type', 'an int')
-    if not 0 <= r_2sv_10_11orbitSource <= 7:
-        raise _enc('nav_sat', 'sv[10].orbitSource', r_2sv_10_11orbitSource, 'range', '0..7', None)
+    if r_2sv_10_11orbitSource.__class__ is not int or not 0 <= r_2sv_10_11orbitSource <= 7:
+        if not isinstance(r_2sv_10_11orbitSource, int) or r_2sv_10_11orbitSource.__class__ is bool:
+            raise _enc('nav_sat', 'sv[10].orbitSource', r_2sv_10_11orbitSource, 'type', 'an int')
+        if not 0 <= r_2sv_10_11orbitSource <= 7:
+            raise _enc('nav_sat', 'sv[10].orbitSource', r_2sv_10_11orbitSource, 'range', '0..7', None)
     r_2sv_10_8ephAvail: Any = g_2sv_10.ephAvail
     if r_2sv_10_8ephAvail is not True and r_2sv_10_8ephAvail is not False and r_2sv_10_8ephAvail != 0 and r_2sv_10_8ephAvail != 1:
         raise _enc('nav_sat', 'sv[10].ephAvail', r_2sv_10_8ephAvail, 'type', 'a bool')
@@ -2563,10 +2688,11 @@ def _raw_nav_sat_2sv_10(g_2sv_10: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[10].aopAvail', r_2sv_10_8aopAvail, 'type', 'a bool')
     r_2sv_10_8aopAvail = 1 if r_2sv_10_8aopAvail else 0
     r_2sv_10_10reserved13 = g_2sv_10.reserved13
-    if r_2sv_10_10reserved13.__class__ is not int and (not isinstance(r_2sv_10_10reserved13, int) or r_2sv_10_10reserved13.__class__ is bool):
-        raise _enc('nav_sat', 'sv[10].reserved13', r_2sv_10_10reserved13, 'type', 'an int')
-    if not 0 <= r_2sv_10_10reserved13 <= 1:
-        raise _enc('nav_sat', 'sv[10].reserved13', r_2sv_10_10reserved13, 'range', '0..1', None)
+    if r_2sv_10_10reserved13.__class__ is not int or not 0 <= r_2sv_10_10reserved13 <= 1:
+        if not isinstance(r_2sv_10_10reserved13, int) or r_2sv_10_10reserved13.__class__ is bool:
+            raise _enc('nav_sat', 'sv[10].reserved13', r_2sv_10_10reserved13, 'type', 'an int')
+        if not 0 <= r_2sv_10_10reserved13 <= 1:
+            raise _enc('nav_sat', 'sv[10].reserved13', r_2sv_10_10reserved13, 'range', '0..1', None)
     r_2sv_10_12sbasCorrUsed: Any = g_2sv_10.sbasCorrUsed
     if r_2sv_10_12sbasCorrUsed is not True and r_2sv_10_12sbasCorrUsed is not False and r_2sv_10_12sbasCorrUsed != 0 and r_2sv_10_12sbasCorrUsed != 1:
         raise _enc('nav_sat', 'sv[10].sbasCorrUsed', r_2sv_10_12sbasCorrUsed, 'type', 'a bool')
@@ -2613,50 +2739,58 @@ def _raw_nav_sat_2sv_10(g_2sv_10: Any) -> tuple[Any, ...]:
 
 def _raw_nav_sat_2sv_11(g_2sv_11: Any) -> tuple[Any, ...]:
     r_2sv_11_6gnssId = g_2sv_11.gnssId
-    if r_2sv_11_6gnssId.__class__ is not int and (not isinstance(r_2sv_11_6gnssId, int) or r_2sv_11_6gnssId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[11].gnssId', r_2sv_11_6gnssId, 'type', 'an int')
-    if not 0 <= r_2sv_11_6gnssId <= 255:
-        raise _enc('nav_sat', 'sv[11].gnssId', r_2sv_11_6gnssId, 'range', '0..255', None)
+    if r_2sv_11_6gnssId.__class__ is not int or not 0 <= r_2sv_11_6gnssId <= 255:
+        if not isinstance(r_2sv_11_6gnssId, int) or r_2sv_11_6gnssId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[11].gnssId', r_2sv_11_6gnssId, 'type', 'an int')
+        if not 0 <= r_2sv_11_6gnssId <= 255:
+            raise _enc('nav_sat', 'sv[11].gnssId', r_2sv_11_6gnssId, 'range', '0..255', None)
     r_2sv_11_4svId = g_2sv_11.svId
-    if r_2sv_11_4svId.__class__ is not int and (not isinstance(r_2sv_11_4svId, int) or r_2sv_11_4svId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[11].svId', r_2sv_11_4svId, 'type', 'an int')
-    if not 0 <= r_2sv_11_4svId <= 255:
-        raise _enc('nav_sat', 'sv[11].svId', r_2sv_11_4svId, 'range', '0..255', None)
+    if r_2sv_11_4svId.__class__ is not int or not 0 <= r_2sv_11_4svId <= 255:
+        if not isinstance(r_2sv_11_4svId, int) or r_2sv_11_4svId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[11].svId', r_2sv_11_4svId, 'type', 'an int')
+        if not 0 <= r_2sv_11_4svId <= 255:
+            raise _enc('nav_sat', 'sv[11].svId', r_2sv_11_4svId, 'range', '0..255', None)
     r_2sv_11_3cno = g_2sv_11.cno
-    if r_2sv_11_3cno.__class__ is not int and (not isinstance(r_2sv_11_3cno, int) or r_2sv_11_3cno.__class__ is bool):
-        raise _enc('nav_sat', 'sv[11].cno', r_2sv_11_3cno, 'type', 'an int')
-    if not 0 <= r_2sv_11_3cno <= 255:
-        raise _enc('nav_sat', 'sv[11].cno', r_2sv_11_3cno, 'range', '0..255', None)
+    if r_2sv_11_3cno.__class__ is not int or not 0 <= r_2sv_11_3cno <= 255:
+        if not isinstance(r_2sv_11_3cno, int) or r_2sv_11_3cno.__class__ is bool:
+            raise _enc('nav_sat', 'sv[11].cno', r_2sv_11_3cno, 'type', 'an int')
+        if not 0 <= r_2sv_11_3cno <= 255:
+            raise _enc('nav_sat', 'sv[11].cno', r_2sv_11_3cno, 'range', '0..255', None)
     r_2sv_11_4elev = g_2sv_11.elev
-    if r_2sv_11_4elev.__class__ is not int and (not isinstance(r_2sv_11_4elev, int) or r_2sv_11_4elev.__class__ is bool):
-        raise _enc('nav_sat', 'sv[11].elev', r_2sv_11_4elev, 'type', 'an int')
-    if not -128 <= r_2sv_11_4elev <= 127:
-        raise _enc('nav_sat', 'sv[11].elev', r_2sv_11_4elev, 'range', '-128..127', None)
+    if r_2sv_11_4elev.__class__ is not int or not -128 <= r_2sv_11_4elev <= 127:
+        if not isinstance(r_2sv_11_4elev, int) or r_2sv_11_4elev.__class__ is bool:
+            raise _enc('nav_sat', 'sv[11].elev', r_2sv_11_4elev, 'type', 'an int')
+        if not -128 <= r_2sv_11_4elev <= 127:
+            raise _enc('nav_sat', 'sv[11].elev', r_2sv_11_4elev, 'range', '-128..127', None)
     r_2sv_11_4azim = g_2sv_11.azim
-    if r_2sv_11_4azim.__class__ is not int and (not isinstance(r_2sv_11_4azim, int) or r_2sv_11_4azim.__class__ is bool):
-        raise _enc('nav_sat', 'sv[11].azim', r_2sv_11_4azim, 'type', 'an int')
-    if not -32768 <= r_2sv_11_4azim <= 32767:
-        raise _enc('nav_sat', 'sv[11].azim', r_2sv_11_4azim, 'range', '-32768..32767', None)
+    if r_2sv_11_4azim.__class__ is not int or not -32768 <= r_2sv_11_4azim <= 32767:
+        if not isinstance(r_2sv_11_4azim, int) or r_2sv_11_4azim.__class__ is bool:
+            raise _enc('nav_sat', 'sv[11].azim', r_2sv_11_4azim, 'type', 'an int')
+        if not -32768 <= r_2sv_11_4azim <= 32767:
+            raise _enc('nav_sat', 'sv[11].azim', r_2sv_11_4azim, 'range', '-32768..32767', None)
     r_2sv_11_5prRes = g_2sv_11.prRes
-    if r_2sv_11_5prRes.__class__ is not float and (not isinstance(r_2sv_11_5prRes, (int, float)) or r_2sv_11_5prRes.__class__ is bool):
-        raise _enc('nav_sat', 'sv[11].prRes', r_2sv_11_5prRes, 'type', 'a number')
-    if not -3276.8 <= r_2sv_11_5prRes <= 3276.7000000000003:
-        raise _enc('nav_sat', 'sv[11].prRes', r_2sv_11_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    if r_2sv_11_5prRes.__class__ is not float or not -3276.8 <= r_2sv_11_5prRes <= 3276.7000000000003:
+        if not isinstance(r_2sv_11_5prRes, (int, float)) or r_2sv_11_5prRes.__class__ is bool:
+            raise _enc('nav_sat', 'sv[11].prRes', r_2sv_11_5prRes, 'type', 'a number')
+        if not -3276.8 <= r_2sv_11_5prRes <= 3276.7000000000003:
+            raise _enc('nav_sat', 'sv[11].prRes', r_2sv_11_5prRes, 'range', '-3276.8..3276.7000000000003', None)
     r_2sv_11_5prRes = _floor(r_2sv_11_5prRes / 0.1 + 0.5)
     r_2sv_11_10qualityInd = g_2sv_11.qualityInd
-    if r_2sv_11_10qualityInd.__class__ is not int and (not isinstance(r_2sv_11_10qualityInd, int) or r_2sv_11_10qualityInd.__class__ is bool):
-        raise _enc('nav_sat', 'sv[11].qualityInd', r_2sv_11_10qualityInd, 'type', 'an int')
-    if not 0 <= r_2sv_11_10qualityInd <= 7:
-        raise _enc('nav_sat', 'sv[11].qualityInd', r_2sv_11_10qualityInd, 'range', '0..7', None)
+    if r_2sv_11_10qualityInd.__class__ is not int or not 0 <= r_2sv_11_10qualityInd <= 7:
+        if not isinstance(r_2sv_11_10qualityInd, int) or r_2sv_11_10qualityInd.__class__ is bool:
+            raise _enc('nav_sat', 'sv[11].qualityInd', r_2sv_11_10qualityInd, 'type', 'an int')
+        if not 0 <= r_2sv_11_10qualityInd <= 7:
+            raise _enc('nav_sat', 'sv[11].qualityInd', r_2sv_11_10qualityInd, 'range', '0..7', None)
     r_2sv_11_6svUsed: Any = g_2sv_11.svUsed
     if r_2sv_11_6svUsed is not True and r_2sv_11_6svUsed is not False and r_2sv_11_6svUsed != 0 and r_2sv_11_6svUsed != 1:
         raise _enc('nav_sat', 'sv[11].svUsed', r_2sv_11_6svUsed, 'type', 'a bool')
     r_2sv_11_6svUsed = 1 if r_2sv_11_6svUsed else 0
     r_2sv_11_6health = g_2sv_11.health
-    if r_2sv_11_6health.__class__ is not int and (not isinstance(r_2sv_11_6health, int) or r_2sv_11_6health.__class__ is bool):
-        raise _enc('nav_sat', 'sv[11].health', r_2sv_11_6health, 'type', 'an int')
-    if not 0 <= r_2sv_11_6health <= 3:
-        raise _enc('nav_sat', 'sv[11].health', r_2sv_11_6health, 'range', '0..3', None)
+    if r_2sv_11_6health.__class__ is not int or not 0 <= r_2sv_11_6health <= 3:
+        if not isinstance(r_2sv_11_6health, int) or r_2sv_11_6health.__class__ is bool:
+            raise _enc('nav_sat', 'sv[11].health', r_2sv_11_6health, 'type', 'an int')
+        if not 0 <= r_2sv_11_6health <= 3:
+            raise _enc('nav_sat', 'sv[11].health', r_2sv_11_6health, 'range', '0..3', None)
     r_2sv_11_8diffCorr: Any = g_2sv_11.diffCorr
     if r_2sv_11_8diffCorr is not True and r_2sv_11_8diffCorr is not False and r_2sv_11_8diffCorr != 0 and r_2sv_11_8diffCorr != 1:
         raise _enc('nav_sat', 'sv[11].diffCorr', r_2sv_11_8diffCorr, 'type', 'a bool')
@@ -2666,10 +2800,11 @@ def _raw_nav_sat_2sv_11(g_2sv_11: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[11].smoothed', r_2sv_11_8smoothed, 'type', 'a bool')
     r_2sv_11_8smoothed = 1 if r_2sv_11_8smoothed else 0
     r_2sv_11_11orbitSource = g_2sv_11.orbitSource
-    if r_2sv_11_11orbitSource.__class__ is not int and (not isinstance(r_2sv_11_11orbitSource, int) or r_2sv_11_11orbitSource.__class__ is bool):
-        raise _enc('nav_sat', 'sv[11].orbitSource', r_2sv_11_11orbitSource, 'type', 'an int')
-    if not 0 <= r_2sv_11_11orbitSource <= 7:
-        raise _enc('nav_sat', 'sv[11].orbitSource', r_2sv_11_11orbitSource, 'range', '0..7', None)
+    if r_2sv_11_11orbitSource.__class__ is not int or not 0 <= r_2sv_11_11orbitSource <= 7:
+        if not isinstance(r_2sv_11_11orbitSource, int) or r_2sv_11_11orbitSource.__class__ is bool:
+            raise _enc('nav_sat', 'sv[11].orbitSource', r_2sv_11_11orbitSource, 'type', 'an int')
+        if not 0 <= r_2sv_11_11orbitSource <= 7:
+            raise _enc('nav_sat', 'sv[11].orbitSource', r_2sv_11_11orbitSource, 'range', '0..7', None)
     r_2sv_11_8ephAvail: Any = g_2sv_11.ephAvail
     if r_2sv_11_8ephAvail is not True and r_2sv_11_8ephAvail is not False and r_2sv_11_8ephAvail != 0 and r_2sv_11_8ephAvail != 1:
         raise _enc('nav_sat', 'sv[11].ephAvail', r_2sv_11_8ephAvail, 'type', 'a bool')
@@ -2687,10 +2822,11 @@ def _raw_nav_sat_2sv_11(g_2sv_11: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[11].aopAvail', r_2sv_11_8aopAvail, 'type', 'a bool')
     r_2sv_11_8aopAvail = 1 if r_2sv_11_8aopAvail else 0
     r_2sv_11_10reserved13 = g_2sv_11.reserved13
-    if r_2sv_11_10reserved13.__class__ is not int and (not isinstance(r_2sv_11_10reserved13, int) or r_2sv_11_10reserved13.__class__ is bool):
-        raise _enc('nav_sat', 'sv[11].reserved13', r_2sv_11_10reserved13, 'type', 'an int')
-    if not 0 <= r_2sv_11_10reserved13 <= 1:
-        raise _enc('nav_sat', 'sv[11].reserved13', r_2sv_11_10reserved13, 'range', '0..1', None)
+    if r_2sv_11_10reserved13.__class__ is not int or not 0 <= r_2sv_11_10reserved13 <= 1:
+        if not isinstance(r_2sv_11_10reserved13, int) or r_2sv_11_10reserved13.__class__ is bool:
+            raise _enc('nav_sat', 'sv[11].reserved13', r_2sv_11_10reserved13, 'type', 'an int')
+        if not 0 <= r_2sv_11_10reserved13 <= 1:
+            raise _enc('nav_sat', 'sv[11].reserved13', r_2sv_11_10reserved13, 'range', '0..1', None)
     r_2sv_11_12sbasCorrUsed: Any = g_2sv_11.sbasCorrUsed
     if r_2sv_11_12sbasCorrUsed is not True and r_2sv_11_12sbasCorrUsed is not False and r_2sv_11_12sbasCorrUsed != 0 and r_2sv_11_12sbasCorrUsed != 1:
         raise _enc('nav_sat', 'sv[11].sbasCorrUsed', r_2sv_11_12sbasCorrUsed, 'type', 'a bool')
@@ -2737,50 +2873,58 @@ def _raw_nav_sat_2sv_11(g_2sv_11: Any) -> tuple[Any, ...]:
 
 def _raw_nav_sat_2sv_12(g_2sv_12: Any) -> tuple[Any, ...]:
     r_2sv_12_6gnssId = g_2sv_12.gnssId
-    if r_2sv_12_6gnssId.__class__ is not int and (not isinstance(r_2sv_12_6gnssId, int) or r_2sv_12_6gnssId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[12].gnssId', r_2sv_12_6gnssId, 'type', 'an int')
-    if not 0 <= r_2sv_12_6gnssId <= 255:
-        raise _enc('nav_sat', 'sv[12].gnssId', r_2sv_12_6gnssId, 'range', '0..255', None)
+    if r_2sv_12_6gnssId.__class__ is not int or not 0 <= r_2sv_12_6gnssId <= 255:
+        if not isinstance(r_2sv_12_6gnssId, int) or r_2sv_12_6gnssId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[12].gnssId', r_2sv_12_6gnssId, 'type', 'an int')
+        if not 0 <= r_2sv_12_6gnssId <= 255:
+            raise _enc('nav_sat', 'sv[12].gnssId', r_2sv_12_6gnssId, 'range', '0..255', None)
     r_2sv_12_4svId = g_2sv_12.svId
-    if r_2sv_12_4svId.__class__ is not int and (not isinstance(r_2sv_12_4svId, int) or r_2sv_12_4svId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[12].svId', r_2sv_12_4svId, 'type', 'an int')
-    if not 0 <= r_2sv_12_4svId <= 255:
-        raise _enc('nav_sat', 'sv[12].svId', r_2sv_12_4svId, 'range', '0..255', None)
+    if r_2sv_12_4svId.__class__ is not int or not 0 <= r_2sv_12_4svId <= 255:
+        if not isinstance(r_2sv_12_4svId, int) or r_2sv_12_4svId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[12].svId', r_2sv_12_4svId, 'type', 'an int')
+        if not 0 <= r_2sv_12_4svId <= 255:
+            raise _enc('nav_sat', 'sv[12].svId', r_2sv_12_4svId, 'range', '0..255', None)
     r_2sv_12_3cno = g_2sv_12.cno
-    if r_2sv_12_3cno.__class__ is not int and (not isinstance(r_2sv_12_3cno, int) or r_2sv_12_3cno.__class__ is bool):
-        raise _enc('nav_sat', 'sv[12].cno', r_2sv_12_3cno, 'type', 'an int')
-    if not 0 <= r_2sv_12_3cno <= 255:
-        raise _enc('nav_sat', 'sv[12].cno', r_2sv_12_3cno, 'range', '0..255', None)
+    if r_2sv_12_3cno.__class__ is not int or not 0 <= r_2sv_12_3cno <= 255:
+        if not isinstance(r_2sv_12_3cno, int) or r_2sv_12_3cno.__class__ is bool:
+            raise _enc('nav_sat', 'sv[12].cno', r_2sv_12_3cno, 'type', 'an int')
+        if not 0 <= r_2sv_12_3cno <= 255:
+            raise _enc('nav_sat', 'sv[12].cno', r_2sv_12_3cno, 'range', '0..255', None)
     r_2sv_12_4elev = g_2sv_12.elev
-    if r_2sv_12_4elev.__class__ is not int and (not isinstance(r_2sv_12_4elev, int) or r_2sv_12_4elev.__class__ is bool):
-        raise _enc('nav_sat', 'sv[12].elev', r_2sv_12_4elev, 'type', 'an int')
-    if not -128 <= r_2sv_12_4elev <= 127:
-        raise _enc('nav_sat', 'sv[12].elev', r_2sv_12_4elev, 'range', '-128..127', None)
+    if r_2sv_12_4elev.__class__ is not int or not -128 <= r_2sv_12_4elev <= 127:
+        if not isinstance(r_2sv_12_4elev, int) or r_2sv_12_4elev.__class__ is bool:
+            raise _enc('nav_sat', 'sv[12].elev', r_2sv_12_4elev, 'type', 'an int')
+        if not -128 <= r_2sv_12_4elev <= 127:
+            raise _enc('nav_sat', 'sv[12].elev', r_2sv_12_4elev, 'range', '-128..127', None)
     r_2sv_12_4azim = g_2sv_12.azim
-    if r_2sv_12_4azim.__class__ is not int and (not isinstance(r_2sv_12_4azim, int) or r_2sv_12_4azim.__class__ is bool):
-        raise _enc('nav_sat', 'sv[12].azim', r_2sv_12_4azim, 'type', 'an int')
-    if not -32768 <= r_2sv_12_4azim <= 32767:
-        raise _enc('nav_sat', 'sv[12].azim', r_2sv_12_4azim, 'range', '-32768..32767', None)
+    if r_2sv_12_4azim.__class__ is not int or not -32768 <= r_2sv_12_4azim <= 32767:
+        if not isinstance(r_2sv_12_4azim, int) or r_2sv_12_4azim.__class__ is bool:
+            raise _enc('nav_sat', 'sv[12].azim', r_2sv_12_4azim, 'type', 'an int')
+        if not -32768 <= r_2sv_12_4azim <= 32767:
+            raise _enc('nav_sat', 'sv[12].azim', r_2sv_12_4azim, 'range', '-32768..32767', None)
     r_2sv_12_5prRes = g_2sv_12.prRes
-    if r_2sv_12_5prRes.__class__ is not float and (not isinstance(r_2sv_12_5prRes, (int, float)) or r_2sv_12_5prRes.__class__ is bool):
-        raise _enc('nav_sat', 'sv[12].prRes', r_2sv_12_5prRes, 'type', 'a number')
-    if not -3276.8 <= r_2sv_12_5prRes <= 3276.7000000000003:
-        raise _enc('nav_sat', 'sv[12].prRes', r_2sv_12_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    if r_2sv_12_5prRes.__class__ is not float or not -3276.8 <= r_2sv_12_5prRes <= 3276.7000000000003:
+        if not isinstance(r_2sv_12_5prRes, (int, float)) or r_2sv_12_5prRes.__class__ is bool:
+            raise _enc('nav_sat', 'sv[12].prRes', r_2sv_12_5prRes, 'type', 'a number')
+        if not -3276.8 <= r_2sv_12_5prRes <= 3276.7000000000003:
+            raise _enc('nav_sat', 'sv[12].prRes', r_2sv_12_5prRes, 'range', '-3276.8..3276.7000000000003', None)
     r_2sv_12_5prRes = _floor(r_2sv_12_5prRes / 0.1 + 0.5)
     r_2sv_12_10qualityInd = g_2sv_12.qualityInd
-    if r_2sv_12_10qualityInd.__class__ is not int and (not isinstance(r_2sv_12_10qualityInd, int) or r_2sv_12_10qualityInd.__class__ is bool):
-        raise _enc('nav_sat', 'sv[12].qualityInd', r_2sv_12_10qualityInd, 'type', 'an int')
-    if not 0 <= r_2sv_12_10qualityInd <= 7:
-        raise _enc('nav_sat', 'sv[12].qualityInd', r_2sv_12_10qualityInd, 'range', '0..7', None)
+    if r_2sv_12_10qualityInd.__class__ is not int or not 0 <= r_2sv_12_10qualityInd <= 7:
+        if not isinstance(r_2sv_12_10qualityInd, int) or r_2sv_12_10qualityInd.__class__ is bool:
+            raise _enc('nav_sat', 'sv[12].qualityInd', r_2sv_12_10qualityInd, 'type', 'an int')
+        if not 0 <= r_2sv_12_10qualityInd <= 7:
+            raise _enc('nav_sat', 'sv[12].qualityInd', r_2sv_12_10qualityInd, 'range', '0..7', None)
     r_2sv_12_6svUsed: Any = g_2sv_12.svUsed
     if r_2sv_12_6svUsed is not True and r_2sv_12_6svUsed is not False and r_2sv_12_6svUsed != 0 and r_2sv_12_6svUsed != 1:
         raise _enc('nav_sat', 'sv[12].svUsed', r_2sv_12_6svUsed, 'type', 'a bool')
     r_2sv_12_6svUsed = 1 if r_2sv_12_6svUsed else 0
     r_2sv_12_6health = g_2sv_12.health
-    if r_2sv_12_6health.__class__ is not int and (not isinstance(r_2sv_12_6health, int) or r_2sv_12_6health.__class__ is bool):
-        raise _enc('nav_sat', 'sv[12].health', r_2sv_12_6health, 'type', 'an int')
-    if not 0 <= r_2sv_12_6health <= 3:
-        raise _enc('nav_sat', 'sv[12].health', r_2sv_12_6health, 'range', '0..3', None)
+    if r_2sv_12_6health.__class__ is not int or not 0 <= r_2sv_12_6health <= 3:
+        if not isinstance(r_2sv_12_6health, int) or r_2sv_12_6health.__class__ is bool:
+            raise _enc('nav_sat', 'sv[12].health', r_2sv_12_6health, 'type', 'an int')
+        if not 0 <= r_2sv_12_6health <= 3:
+            raise _enc('nav_sat', 'sv[12].health', r_2sv_12_6health, 'range', '0..3', None)
     r_2sv_12_8diffCorr: Any = g_2sv_12.diffCorr
     if r_2sv_12_8diffCorr is not True and r_2sv_12_8diffCorr is not False and r_2sv_12_8diffCorr != 0 and r_2sv_12_8diffCorr != 1:
         raise _enc('nav_sat', 'sv[12].diffCorr', r_2sv_12_8diffCorr, 'type', 'a bool')
@@ -2790,10 +2934,11 @@ def _raw_nav_sat_2sv_12(g_2sv_12: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[12].smoothed', r_2sv_12_8smoothed, 'type', 'a bool')
     r_2sv_12_8smoothed = 1 if r_2sv_12_8smoothed else 0
     r_2sv_12_11orbitSource = g_2sv_12.orbitSource
-    if r_2sv_12_11orbitSource.__class__ is not int and (not isinstance(r_2sv_12_11orbitSource, int) or r_2sv_12_11orbitSource.__class__ is bool):
-        raise _enc('nav_sat', 'sv[12].orbitSource', r_2sv_12_11orbitSource, 'type', 'an int')
-    if not 0 <= r_2sv_12_11orbitSource <= 7:
-        raise _enc('nav_sat', 'sv[12].orbitSource', r_2sv_12_11orbitSource, 'range', '0..7', None)
+    if r_2sv_12_11orbitSource.__class__ is not int or not 0 <= r_2sv_12_11orbitSource <= 7:
+        if not isinstance(r_2sv_12_11orbitSource, int) or r_2sv_12_11orbitSource.__class__ is bool:
+            raise _enc('nav_sat', 'sv[12].orbitSource', r_2sv_12_11orbitSource, 'type', 'an int')
+        if not 0 <= r_2sv_12_11orbitSource <= 7:
+            raise _enc('nav_sat', 'sv[12].orbitSource', r_2sv_12_11orbitSource, 'range', '0..7', None)
     r_2sv_12_8ephAvail: Any = g_2sv_12.ephAvail
     if r_2sv_12_8ephAvail is not True and r_2sv_12_8ephAvail is not False and r_2sv_12_8ephAvail != 0 and r_2sv_12_8ephAvail != 1:
         raise _enc('nav_sat', 'sv[12].ephAvail', r_2sv_12_8ephAvail, 'type', 'a bool')
@@ -2811,10 +2956,11 @@ def _raw_nav_sat_2sv_12(g_2sv_12: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[12].aopAvail', r_2sv_12_8aopAvail, 'type', 'a bool')
     r_2sv_12_8aopAvail = 1 if r_2sv_12_8aopAvail else 0
     r_2sv_12_10reserved13 = g_2sv_12.reserved13
-    if r_2sv_12_10reserved13.__class__ is not int and (not isinstance(r_2sv_12_10reserved13, int) or r_2sv_12_10reserved13.__class__ is bool):
-        raise _enc('nav_sat', 'sv[12].reserved13', r_2sv_12_10reserved13, 'type', 'an int')
-    if not 0 <= r_2sv_12_10reserved13 <= 1:
-        raise _enc('nav_sat', 'sv[12].reserved13', r_2sv_12_10reserved13, 'range', '0..1', None)
+    if r_2sv_12_10reserved13.__class__ is not int or not 0 <= r_2sv_12_10reserved13 <= 1:
+        if not isinstance(r_2sv_12_10reserved13, int) or r_2sv_12_10reserved13.__class__ is bool:
+            raise _enc('nav_sat', 'sv[12].reserved13', r_2sv_12_10reserved13, 'type', 'an int')
+        if not 0 <= r_2sv_12_10reserved13 <= 1:
+            raise _enc('nav_sat', 'sv[12].reserved13', r_2sv_12_10reserved13, 'range', '0..1', None)
     r_2sv_12_12sbasCorrUsed: Any = g_2sv_12.sbasCorrUsed
     if r_2sv_12_12sbasCorrUsed is not True and r_2sv_12_12sbasCorrUsed is not False and r_2sv_12_12sbasCorrUsed != 0 and r_2sv_12_12sbasCorrUsed != 1:
         raise _enc('nav_sat', 'sv[12].sbasCorrUsed', r_2sv_12_12sbasCorrUsed, 'type', 'a bool')
@@ -2861,50 +3007,58 @@ def _raw_nav_sat_2sv_12(g_2sv_12: Any) -> tuple[Any, ...]:
 
 def _raw_nav_sat_2sv_13(g_2sv_13: Any) -> tuple[Any, ...]:
     r_2sv_13_6gnssId = g_2sv_13.gnssId
-    if r_2sv_13_6gnssId.__class__ is not int and (not isinstance(r_2sv_13_6gnssId, int) or r_2sv_13_6gnssId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[13].gnssId', r_2sv_13_6gnssId, 'type', 'an int')
-    if not 0 <= r_2sv_13_6gnssId <= 255:
-        raise _enc('nav_sat', 'sv[13].gnssId', r_2sv_13_6gnssId, 'range', '0..255', None)
+    if r_2sv_13_6gnssId.__class__ is not int or not 0 <= r_2sv_13_6gnssId <= 255:
+        if not isinstance(r_2sv_13_6gnssId, int) or r_2sv_13_6gnssId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[13].gnssId', r_2sv_13_6gnssId, 'type', 'an int')
+        if not 0 <= r_2sv_13_6gnssId <= 255:
+            raise _enc('nav_sat', 'sv[13].gnssId', r_2sv_13_6gnssId, 'range', '0..255', None)
     r_2sv_13_4svId = g_2sv_13.svId
-    if r_2sv_13_4svId.__class__ is not int and (not isinstance(r_2sv_13_4svId, int) or r_2sv_13_4svId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[13].svId', r_2sv_13_4svId, 'type', 'an int')
-    if not 0 <= r_2sv_13_4svId <= 255:
-        raise _enc('nav_sat', 'sv[13].svId', r_2sv_13_4svId, 'range', '0..255', None)
+    if r_2sv_13_4svId.__class__ is not int or not 0 <= r_2sv_13_4svId <= 255:
+        if not isinstance(r_2sv_13_4svId, int) or r_2sv_13_4svId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[13].svId', r_2sv_13_4svId, 'type', 'an int')
+        if not 0 <= r_2sv_13_4svId <= 255:
+            raise _enc('nav_sat', 'sv[13].svId', r_2sv_13_4svId, 'range', '0..255', None)
     r_2sv_13_3cno = g_2sv_13.cno
-    if r_2sv_13_3cno.__class__ is not int and (not isinstance(r_2sv_13_3cno, int) or r_2sv_13_3cno.__class__ is bool):
-        raise _enc('nav_sat', 'sv[13].cno', r_2sv_13_3cno, 'type', 'an int')
-    if not 0 <= r_2sv_13_3cno <= 255:
-        raise _enc('nav_sat', 'sv[13].cno', r_2sv_13_3cno, 'range', '0..255', None)
+    if r_2sv_13_3cno.__class__ is not int or not 0 <= r_2sv_13_3cno <= 255:
+        if not isinstance(r_2sv_13_3cno, int) or r_2sv_13_3cno.__class__ is bool:
+            raise _enc('nav_sat', 'sv[13].cno', r_2sv_13_3cno, 'type', 'an int')
+        if not 0 <= r_2sv_13_3cno <= 255:
+            raise _enc('nav_sat', 'sv[13].cno', r_2sv_13_3cno, 'range', '0..255', None)
     r_2sv_13_4elev = g_2sv_13.elev
-    if r_2sv_13_4elev.__class__ is not int and (not isinstance(r_2sv_13_4elev, int) or r_2sv_13_4elev.__class__ is bool):
-        raise _enc('nav_sat', 'sv[13].elev', r_2sv_13_4elev, 'type', 'an int')
-    if not -128 <= r_2sv_13_4elev <= 127:
-        raise _enc('nav_sat', 'sv[13].elev', r_2sv_13_4elev, 'range', '-128..127', None)
+    if r_2sv_13_4elev.__class__ is not int or not -128 <= r_2sv_13_4elev <= 127:
+        if not isinstance(r_2sv_13_4elev, int) or r_2sv_13_4elev.__class__ is bool:
+            raise _enc('nav_sat', 'sv[13].elev', r_2sv_13_4elev, 'type', 'an int')
+        if not -128 <= r_2sv_13_4elev <= 127:
+            raise _enc('nav_sat', 'sv[13].elev', r_2sv_13_4elev, 'range', '-128..127', None)
     r_2sv_13_4azim = g_2sv_13.azim
-    if r_2sv_13_4azim.__class__ is not int and (not isinstance(r_2sv_13_4azim, int) or r_2sv_13_4azim.__class__ is bool):
-        raise _enc('nav_sat', 'sv[13].azim', r_2sv_13_4azim, 'type', 'an int')
-    if not -32768 <= r_2sv_13_4azim <= 32767:
-        raise _enc('nav_sat', 'sv[13].azim', r_2sv_13_4azim, 'range', '-32768..32767', None)
+    if r_2sv_13_4azim.__class__ is not int or not -32768 <= r_2sv_13_4azim <= 32767:
+        if not isinstance(r_2sv_13_4azim, int) or r_2sv_13_4azim.__class__ is bool:
+            raise _enc('nav_sat', 'sv[13].azim', r_2sv_13_4azim, 'type', 'an int')
+        if not -32768 <= r_2sv_13_4azim <= 32767:
+            raise _enc('nav_sat', 'sv[13].azim', r_2sv_13_4azim, 'range', '-32768..32767', None)
     r_2sv_13_5prRes = g_2sv_13.prRes
-    if r_2sv_13_5prRes.__class__ is not float and (not isinstance(r_2sv_13_5prRes, (int, float)) or r_2sv_13_5prRes.__class__ is bool):
-        raise _enc('nav_sat', 'sv[13].prRes', r_2sv_13_5prRes, 'type', 'a number')
-    if not -3276.8 <= r_2sv_13_5prRes <= 3276.7000000000003:
-        raise _enc('nav_sat', 'sv[13].prRes', r_2sv_13_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    if r_2sv_13_5prRes.__class__ is not float or not -3276.8 <= r_2sv_13_5prRes <= 3276.7000000000003:
+        if not isinstance(r_2sv_13_5prRes, (int, float)) or r_2sv_13_5prRes.__class__ is bool:
+            raise _enc('nav_sat', 'sv[13].prRes', r_2sv_13_5prRes, 'type', 'a number')
+        if not -3276.8 <= r_2sv_13_5prRes <= 3276.7000000000003:
+            raise _enc('nav_sat', 'sv[13].prRes', r_2sv_13_5prRes, 'range', '-3276.8..3276.7000000000003', None)
     r_2sv_13_5prRes = _floor(r_2sv_13_5prRes / 0.1 + 0.5)
     r_2sv_13_10qualityInd = g_2sv_13.qualityInd
-    if r_2sv_13_10qualityInd.__class__ is not int and (not isinstance(r_2sv_13_10qualityInd, int) or r_2sv_13_10qualityInd.__class__ is bool):
-        raise _enc('nav_sat', 'sv[13].qualityInd', r_2sv_13_10qualityInd, 'type', 'an int')
-    if not 0 <= r_2sv_13_10qualityInd <= 7:
-        raise _enc('nav_sat', 'sv[13].qualityInd', r_2sv_13_10qualityInd, 'range', '0..7', None)
+    if r_2sv_13_10qualityInd.__class__ is not int or not 0 <= r_2sv_13_10qualityInd <= 7:
+        if not isinstance(r_2sv_13_10qualityInd, int) or r_2sv_13_10qualityInd.__class__ is bool:
+            raise _enc('nav_sat', 'sv[13].qualityInd', r_2sv_13_10qualityInd, 'type', 'an int')
+        if not 0 <= r_2sv_13_10qualityInd <= 7:
+            raise _enc('nav_sat', 'sv[13].qualityInd', r_2sv_13_10qualityInd, 'range', '0..7', None)
     r_2sv_13_6svUsed: Any = g_2sv_13.svUsed
     if r_2sv_13_6svUsed is not True and r_2sv_13_6svUsed is not False and r_2sv_13_6svUsed != 0 and r_2sv_13_6svUsed != 1:
         raise _enc('nav_sat', 'sv[13].svUsed', r_2sv_13_6svUsed, 'type', 'a bool')
     r_2sv_13_6svUsed = 1 if r_2sv_13_6svUsed else 0
     r_2sv_13_6health = g_2sv_13.health
-    if r_2sv_13_6health.__class__ is not int and (not isinstance(r_2sv_13_6health, int) or r_2sv_13_6health.__class__ is bool):
-        raise _enc('nav_sat', 'sv[13].health', r_2sv_13_6health, 'type', 'an int')
-    if not 0 <= r_2sv_13_6health <= 3:
-        raise _enc('nav_sat', 'sv[13].health', r_2sv_13_6health, 'range', '0..3', None)
+    if r_2sv_13_6health.__class__ is not int or not 0 <= r_2sv_13_6health <= 3:
+        if not isinstance(r_2sv_13_6health, int) or r_2sv_13_6health.__class__ is bool:
+            raise _enc('nav_sat', 'sv[13].health', r_2sv_13_6health, 'type', 'an int')
+        if not 0 <= r_2sv_13_6health <= 3:
+            raise _enc('nav_sat', 'sv[13].health', r_2sv_13_6health, 'range', '0..3', None)
     r_2sv_13_8diffCorr: Any = g_2sv_13.diffCorr
     if r_2sv_13_8diffCorr is not True and r_2sv_13_8diffCorr is not False and r_2sv_13_8diffCorr != 0 and r_2sv_13_8diffCorr != 1:
         raise _enc('nav_sat', 'sv[13].diffCorr', r_2sv_13_8diffCorr, 'type', 'a bool')
@@ -2914,10 +3068,11 @@ def _raw_nav_sat_2sv_13(g_2sv_13: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[13].smoothed', r_2sv_13_8smoothed, 'type', 'a bool')
     r_2sv_13_8smoothed = 1 if r_2sv_13_8smoothed else 0
     r_2sv_13_11orbitSource = g_2sv_13.orbitSource
-    if r_2sv_13_11orbitSource.__class__ is not int and (not isinstance(r_2sv_13_11orbitSource, int) or r_2sv_13_11orbitSource.__class__ is bool):
-        raise _enc('nav_sat', 'sv[13].orbitSource', r_2sv_13_11orbitSource, 'type', 'an int')
-    if not 0 <= r_2sv_13_11orbitSource <= 7:
-        raise _enc('nav_sat', 'sv[13].orbitSource', r_2sv_13_11orbitSource, 'range', '0..7', None)
+    if r_2sv_13_11orbitSource.__class__ is not int or not 0 <= r_2sv_13_11orbitSource <= 7:
+        if not isinstance(r_2sv_13_11orbitSource, int) or r_2sv_13_11orbitSource.__class__ is bool:
+            raise _enc('nav_sat', 'sv[13].orbitSource', r_2sv_13_11orbitSource, 'type', 'an int')
+        if not 0 <= r_2sv_13_11orbitSource <= 7:
+            raise _enc('nav_sat', 'sv[13].orbitSource', r_2sv_13_11orbitSource, 'range', '0..7', None)
     r_2sv_13_8ephAvail: Any = g_2sv_13.ephAvail
     if r_2sv_13_8ephAvail is not True and r_2sv_13_8ephAvail is not False and r_2sv_13_8ephAvail != 0 and r_2sv_13_8ephAvail != 1:
         raise _enc('nav_sat', 'sv[13].ephAvail', r_2sv_13_8ephAvail, 'type', 'a bool')
@@ -2935,10 +3090,11 @@ def _raw_nav_sat_2sv_13(g_2sv_13: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[13].aopAvail', r_2sv_13_8aopAvail, 'type', 'a bool')
     r_2sv_13_8aopAvail = 1 if r_2sv_13_8aopAvail else 0
     r_2sv_13_10reserved13 = g_2sv_13.reserved13
-    if r_2sv_13_10reserved13.__class__ is not int and (not isinstance(r_2sv_13_10reserved13, int) or r_2sv_13_10reserved13.__class__ is bool):
-        raise _enc('nav_sat', 'sv[13].reserved13', r_2sv_13_10reserved13, 'type', 'an int')
-    if not 0 <= r_2sv_13_10reserved13 <= 1:
-        raise _enc('nav_sat', 'sv[13].reserved13', r_2sv_13_10reserved13, 'range', '0..1', None)
+    if r_2sv_13_10reserved13.__class__ is not int or not 0 <= r_2sv_13_10reserved13 <= 1:
+        if not isinstance(r_2sv_13_10reserved13, int) or r_2sv_13_10reserved13.__class__ is bool:
+            raise _enc('nav_sat', 'sv[13].reserved13', r_2sv_13_10reserved13, 'type', 'an int')
+        if not 0 <= r_2sv_13_10reserved13 <= 1:
+            raise _enc('nav_sat', 'sv[13].reserved13', r_2sv_13_10reserved13, 'range', '0..1', None)
     r_2sv_13_12sbasCorrUsed: Any = g_2sv_13.sbasCorrUsed
     if r_2sv_13_12sbasCorrUsed is not True and r_2sv_13_12sbasCorrUsed is not False and r_2sv_13_12sbasCorrUsed != 0 and r_2sv_13_12sbasCorrUsed != 1:
         raise _enc('nav_sat', 'sv[13].sbasCorrUsed', r_2sv_13_12sbasCorrUsed, 'type', 'a bool')
@@ -2985,50 +3141,58 @@ def _raw_nav_sat_2sv_13(g_2sv_13: Any) -> tuple[Any, ...]:
 
 def _raw_nav_sat_2sv_14(g_2sv_14: Any) -> tuple[Any, ...]:
     r_2sv_14_6gnssId = g_2sv_14.gnssId
-    if r_2sv_14_6gnssId.__class__ is not int and (not isinstance(r_2sv_14_6gnssId, int) or r_2sv_14_6gnssId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[14].gnssId', r_2sv_14_6gnssId, 'type', 'an int')
-    if not 0 <= r_2sv_14_6gnssId <= 255:
-        raise _enc('nav_sat', 'sv[14].gnssId', r_2sv_14_6gnssId, 'range', '0..255', None)
+    if r_2sv_14_6gnssId.__class__ is not int or not 0 <= r_2sv_14_6gnssId <= 255:
+        if not isinstance(r_2sv_14_6gnssId, int) or r_2sv_14_6gnssId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[14].gnssId', r_2sv_14_6gnssId, 'type', 'an int')
+        if not 0 <= r_2sv_14_6gnssId <= 255:
+            raise _enc('nav_sat', 'sv[14].gnssId', r_2sv_14_6gnssId, 'range', '0..255', None)
     r_2sv_14_4svId = g_2sv_14.svId
-    if r_2sv_14_4svId.__class__ is not int and (not isinstance(r_2sv_14_4svId, int) or r_2sv_14_4svId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[14].svId', r_2sv_14_4svId, 'type', 'an int')
-    if not 0 <= r_2sv_14_4svId <= 255:
-        raise _enc('nav_sat', 'sv[14].svId', r_2sv_14_4svId, 'range', '0..255', None)
+    if r_2sv_14_4svId.__class__ is not int or not 0 <= r_2sv_14_4svId <= 255:
+        if not isinstance(r_2sv_14_4svId, int) or r_2sv_14_4svId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[14].svId', r_2sv_14_4svId, 'type', 'an int')
+        if not 0 <= r_2sv_14_4svId <= 255:
+            raise _enc('nav_sat', 'sv[14].svId', r_2sv_14_4svId, 'range', '0..255', None)
     r_2sv_14_3cno = g_2sv_14.cno
-    if r_2sv_14_3cno.__class__ is not int and (not isinstance(r_2sv_14_3cno, int) or r_2sv_14_3cno.__class__ is bool):
-        raise _enc('nav_sat', 'sv[14].cno', r_2sv_14_3cno, 'type', 'an int')
-    if not 0 <= r_2sv_14_3cno <= 255:
-        raise _enc('nav_sat', 'sv[14].cno', r_2sv_14_3cno, 'range', '0..255', None)
+    if r_2sv_14_3cno.__class__ is not int or not 0 <= r_2sv_14_3cno <= 255:
+        if not isinstance(r_2sv_14_3cno, int) or r_2sv_14_3cno.__class__ is bool:
+            raise _enc('nav_sat', 'sv[14].cno', r_2sv_14_3cno, 'type', 'an int')
+        if not 0 <= r_2sv_14_3cno <= 255:
+            raise _enc('nav_sat', 'sv[14].cno', r_2sv_14_3cno, 'range', '0..255', None)
     r_2sv_14_4elev = g_2sv_14.elev
-    if r_2sv_14_4elev.__class__ is not int and (not isinstance(r_2sv_14_4elev, int) or r_2sv_14_4elev.__class__ is bool):
-        raise _enc('nav_sat', 'sv[14].elev', r_2sv_14_4elev, 'type', 'an int')
-    if not -128 <= r_2sv_14_4elev <= 127:
-        raise _enc('nav_sat', 'sv[14].elev', r_2sv_14_4elev, 'range', '-128..127', None)
+    if r_2sv_14_4elev.__class__ is not int or not -128 <= r_2sv_14_4elev <= 127:
+        if not isinstance(r_2sv_14_4elev, int) or r_2sv_14_4elev.__class__ is bool:
+            raise _enc('nav_sat', 'sv[14].elev', r_2sv_14_4elev, 'type', 'an int')
+        if not -128 <= r_2sv_14_4elev <= 127:
+            raise _enc('nav_sat', 'sv[14].elev', r_2sv_14_4elev, 'range', '-128..127', None)
     r_2sv_14_4azim = g_2sv_14.azim
-    if r_2sv_14_4azim.__class__ is not int and (not isinstance(r_2sv_14_4azim, int) or r_2sv_14_4azim.__class__ is bool):
-        raise _enc('nav_sat', 'sv[14].azim', r_2sv_14_4azim, 'type', 'an int')
-    if not -32768 <= r_2sv_14_4azim <= 32767:
-        raise _enc('nav_sat', 'sv[14].azim', r_2sv_14_4azim, 'range', '-32768..32767', None)
+    if r_2sv_14_4azim.__class__ is not int or not -32768 <= r_2sv_14_4azim <= 32767:
+        if not isinstance(r_2sv_14_4azim, int) or r_2sv_14_4azim.__class__ is bool:
+            raise _enc('nav_sat', 'sv[14].azim', r_2sv_14_4azim, 'type', 'an int')
+        if not -32768 <= r_2sv_14_4azim <= 32767:
+            raise _enc('nav_sat', 'sv[14].azim', r_2sv_14_4azim, 'range', '-32768..32767', None)
     r_2sv_14_5prRes = g_2sv_14.prRes
-    if r_2sv_14_5prRes.__class__ is not float and (not isinstance(r_2sv_14_5prRes, (int, float)) or r_2sv_14_5prRes.__class__ is bool):
-        raise _enc('nav_sat', 'sv[14].prRes', r_2sv_14_5prRes, 'type', 'a number')
-    if not -3276.8 <= r_2sv_14_5prRes <= 3276.7000000000003:
-        raise _enc('nav_sat', 'sv[14].prRes', r_2sv_14_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    if r_2sv_14_5prRes.__class__ is not float or not -3276.8 <= r_2sv_14_5prRes <= 3276.7000000000003:
+        if not isinstance(r_2sv_14_5prRes, (int, float)) or r_2sv_14_5prRes.__class__ is bool:
+            raise _enc('nav_sat', 'sv[14].prRes', r_2sv_14_5prRes, 'type', 'a number')
+        if not -3276.8 <= r_2sv_14_5prRes <= 3276.7000000000003:
+            raise _enc('nav_sat', 'sv[14].prRes', r_2sv_14_5prRes, 'range', '-3276.8..3276.7000000000003', None)
     r_2sv_14_5prRes = _floor(r_2sv_14_5prRes / 0.1 + 0.5)
     r_2sv_14_10qualityInd = g_2sv_14.qualityInd
-    if r_2sv_14_10qualityInd.__class__ is not int and (not isinstance(r_2sv_14_10qualityInd, int) or r_2sv_14_10qualityInd.__class__ is bool):
-        raise _enc('nav_sat', 'sv[14].qualityInd', r_2sv_14_10qualityInd, 'type', 'an int')
-    if not 0 <= r_2sv_14_10qualityInd <= 7:
-        raise _enc('nav_sat', 'sv[14].qualityInd', r_2sv_14_10qualityInd, 'range', '0..7', None)
+    if r_2sv_14_10qualityInd.__class__ is not int or not 0 <= r_2sv_14_10qualityInd <= 7:
+        if not isinstance(r_2sv_14_10qualityInd, int) or r_2sv_14_10qualityInd.__class__ is bool:
+            raise _enc('nav_sat', 'sv[14].qualityInd', r_2sv_14_10qualityInd, 'type', 'an int')
+        if not 0 <= r_2sv_14_10qualityInd <= 7:
+            raise _enc('nav_sat', 'sv[14].qualityInd', r_2sv_14_10qualityInd, 'range', '0..7', None)
     r_2sv_14_6svUsed: Any = g_2sv_14.svUsed
     if r_2sv_14_6svUsed is not True and r_2sv_14_6svUsed is not False and r_2sv_14_6svUsed != 0 and r_2sv_14_6svUsed != 1:
         raise _enc('nav_sat', 'sv[14].svUsed', r_2sv_14_6svUsed, 'type', 'a bool')
     r_2sv_14_6svUsed = 1 if r_2sv_14_6svUsed else 0
     r_2sv_14_6health = g_2sv_14.health
-    if r_2sv_14_6health.__class__ is not int and (not isinstance(r_2sv_14_6health, int) or r_2sv_14_6health.__class__ is bool):
-        raise _enc('nav_sat', 'sv[14].health', r_2sv_14_6health, 'type', 'an int')
-    if not 0 <= r_2sv_14_6health <= 3:
-        raise _enc('nav_sat', 'sv[14].health', r_2sv_14_6health, 'range', '0..3', None)
+    if r_2sv_14_6health.__class__ is not int or not 0 <= r_2sv_14_6health <= 3:
+        if not isinstance(r_2sv_14_6health, int) or r_2sv_14_6health.__class__ is bool:
+            raise _enc('nav_sat', 'sv[14].health', r_2sv_14_6health, 'type', 'an int')
+        if not 0 <= r_2sv_14_6health <= 3:
+            raise _enc('nav_sat', 'sv[14].health', r_2sv_14_6health, 'range', '0..3', None)
     r_2sv_14_8diffCorr: Any = g_2sv_14.diffCorr
     if r_2sv_14_8diffCorr is not True and r_2sv_14_8diffCorr is not False and r_2sv_14_8diffCorr != 0 and r_2sv_14_8diffCorr != 1:
         raise _enc('nav_sat', 'sv[14].diffCorr', r_2sv_14_8diffCorr, 'type', 'a bool')
@@ -3038,10 +3202,11 @@ def _raw_nav_sat_2sv_14(g_2sv_14: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[14].smoothed', r_2sv_14_8smoothed, 'type', 'a bool')
     r_2sv_14_8smoothed = 1 if r_2sv_14_8smoothed else 0
     r_2sv_14_11orbitSource = g_2sv_14.orbitSource
-    if r_2sv_14_11orbitSource.__class__ is not int and (not isinstance(r_2sv_14_11orbitSource, int) or r_2sv_14_11orbitSource.__class__ is bool):
-        raise _enc('nav_sat', 'sv[14].orbitSource', r_2sv_14_11orbitSource, 'type', 'an int')
-    if not 0 <= r_2sv_14_11orbitSource <= 7:
-        raise _enc('nav_sat', 'sv[14].orbitSource', r_2sv_14_11orbitSource, 'range', '0..7', None)
+    if r_2sv_14_11orbitSource.__class__ is not int or not 0 <= r_2sv_14_11orbitSource <= 7:
+        if not isinstance(r_2sv_14_11orbitSource, int) or r_2sv_14_11orbitSource.__class__ is bool:
+            raise _enc('nav_sat', 'sv[14].orbitSource', r_2sv_14_11orbitSource, 'type', 'an int')
+        if not 0 <= r_2sv_14_11orbitSource <= 7:
+            raise _enc('nav_sat', 'sv[14].orbitSource', r_2sv_14_11orbitSource, 'range', '0..7', None)
     r_2sv_14_8ephAvail: Any = g_2sv_14.ephAvail
     if r_2sv_14_8ephAvail is not True and r_2sv_14_8ephAvail is not False and r_2sv_14_8ephAvail != 0 and r_2sv_14_8ephAvail != 1:
         raise _enc('nav_sat', 'sv[14].ephAvail', r_2sv_14_8ephAvail, 'type', 'a bool')
@@ -3059,10 +3224,11 @@ def _raw_nav_sat_2sv_14(g_2sv_14: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[14].aopAvail', r_2sv_14_8aopAvail, 'type', 'a bool')
     r_2sv_14_8aopAvail = 1 if r_2sv_14_8aopAvail else 0
     r_2sv_14_10reserved13 = g_2sv_14.reserved13
-    if r_2sv_14_10reserved13.__class__ is not int and (not isinstance(r_2sv_14_10reserved13, int) or r_2sv_14_10reserved13.__class__ is bool):
-        raise _enc('nav_sat', 'sv[14].reserved13', r_2sv_14_10reserved13, 'type', 'an int')
-    if not 0 <= r_2sv_14_10reserved13 <= 1:
-        raise _enc('nav_sat', 'sv[14].reserved13', r_2sv_14_10reserved13, 'range', '0..1', None)
+    if r_2sv_14_10reserved13.__class__ is not int or not 0 <= r_2sv_14_10reserved13 <= 1:
+        if not isinstance(r_2sv_14_10reserved13, int) or r_2sv_14_10reserved13.__class__ is bool:
+            raise _enc('nav_sat', 'sv[14].reserved13', r_2sv_14_10reserved13, 'type', 'an int')
+        if not 0 <= r_2sv_14_10reserved13 <= 1:
+            raise _enc('nav_sat', 'sv[14].reserved13', r_2sv_14_10reserved13, 'range', '0..1', None)
     r_2sv_14_12sbasCorrUsed: Any = g_2sv_14.sbasCorrUsed
     if r_2sv_14_12sbasCorrUsed is not True and r_2sv_14_12sbasCorrUsed is not False and r_2sv_14_12sbasCorrUsed != 0 and r_2sv_14_12sbasCorrUsed != 1:
         raise _enc('nav_sat', 'sv[14].sbasCorrUsed', r_2sv_14_12sbasCorrUsed, 'type', 'a bool')
@@ -3109,50 +3275,58 @@ def _raw_nav_sat_2sv_14(g_2sv_14: Any) -> tuple[Any, ...]:
 
 def _raw_nav_sat_2sv_15(g_2sv_15: Any) -> tuple[Any, ...]:
     r_2sv_15_6gnssId = g_2sv_15.gnssId
-    if r_2sv_15_6gnssId.__class__ is not int and (not isinstance(r_2sv_15_6gnssId, int) or r_2sv_15_6gnssId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[15].gnssId', r_2sv_15_6gnssId, 'type', 'an int')
-    if not 0 <= r_2sv_15_6gnssId <= 255:
-        raise _enc('nav_sat', 'sv[15].gnssId', r_2sv_15_6gnssId, 'range', '0..255', None)
+    if r_2sv_15_6gnssId.__class__ is not int or not 0 <= r_2sv_15_6gnssId <= 255:
+        if not isinstance(r_2sv_15_6gnssId, int) or r_2sv_15_6gnssId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[15].gnssId', r_2sv_15_6gnssId, 'type', 'an int')
+        if not 0 <= r_2sv_15_6gnssId <= 255:
+            raise _enc('nav_sat', 'sv[15].gnssId', r_2sv_15_6gnssId, 'range', '0..255', None)
     r_2sv_15_4svId = g_2sv_15.svId
-    if r_2sv_15_4svId.__class__ is not int and (not isinstance(r_2sv_15_4svId, int) or r_2sv_15_4svId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[15].svId', r_2sv_15_4svId, 'type', 'an int')
-    if not 0 <= r_2sv_15_4svId <= 255:
-        raise _enc('nav_sat', 'sv[15].svId', r_2sv_15_4svId, 'range', '0..255', None)
+    if r_2sv_15_4svId.__class__ is not int or not 0 <= r_2sv_15_4svId <= 255:
+        if not isinstance(r_2sv_15_4svId, int) or r_2sv_15_4svId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[15].svId', r_2sv_15_4svId, 'type', 'an int')
+        if not 0 <= r_2sv_15_4svId <= 255:
+            raise _enc('nav_sat', 'sv[15].svId', r_2sv_15_4svId, 'range', '0..255', None)
     r_2sv_15_3cno = g_2sv_15.cno
-    if r_2sv_15_3cno.__class__ is not int and (not isinstance(r_2sv_15_3cno, int) or r_2sv_15_3cno.__class__ is bool):
-        raise _enc('nav_sat', 'sv[15].cno', r_2sv_15_3cno, 'type', 'an int')
-    if not 0 <= r_2sv_15_3cno <= 255:
-        raise _enc('nav_sat', 'sv[15].cno', r_2sv_15_3cno, 'range', '0..255', None)
+    if r_2sv_15_3cno.__class__ is not int or not 0 <= r_2sv_15_3cno <= 255:
+        if not isinstance(r_2sv_15_3cno, int) or r_2sv_15_3cno.__class__ is bool:
+            raise _enc('nav_sat', 'sv[15].cno', r_2sv_15_3cno, 'type', 'an int')
+        if not 0 <= r_2sv_15_3cno <= 255:
+            raise _enc('nav_sat', 'sv[15].cno', r_2sv_15_3cno, 'range', '0..255', None)
     r_2sv_15_4elev = g_2sv_15.elev
-    if r_2sv_15_4elev.__class__ is not int and (not isinstance(r_2sv_15_4elev, int) or r_2sv_15_4elev.__class__ is bool):
-        raise _enc('nav_sat', 'sv[15].elev', r_2sv_15_4elev, 'type', 'an int')
-    if not -128 <= r_2sv_15_4elev <= 127:
-        raise _enc('nav_sat', 'sv[15].elev', r_2sv_15_4elev, 'range', '-128..127', None)
+    if r_2sv_15_4elev.__class__ is not int or not -128 <= r_2sv_15_4elev <= 127:
+        if not isinstance(r_2sv_15_4elev, int) or r_2sv_15_4elev.__class__ is bool:
+            raise _enc('nav_sat', 'sv[15].elev', r_2sv_15_4elev, 'type', 'an int')
+        if not -128 <= r_2sv_15_4elev <= 127:
+            raise _enc('nav_sat', 'sv[15].elev', r_2sv_15_4elev, 'range', '-128..127', None)
     r_2sv_15_4azim = g_2sv_15.azim
-    if r_2sv_15_4azim.__class__ is not int and (not isinstance(r_2sv_15_4azim, int) or r_2sv_15_4azim.__class__ is bool):
-        raise _enc('nav_sat', 'sv[15].azim', r_2sv_15_4azim, 'type', 'an int')
-    if not -32768 <= r_2sv_15_4azim <= 32767:
-        raise _enc('nav_sat', 'sv[15].azim', r_2sv_15_4azim, 'range', '-32768..32767', None)
+    if r_2sv_15_4azim.__class__ is not int or not -32768 <= r_2sv_15_4azim <= 32767:
+        if not isinstance(r_2sv_15_4azim, int) or r_2sv_15_4azim.__class__ is bool:
+            raise _enc('nav_sat', 'sv[15].azim', r_2sv_15_4azim, 'type', 'an int')
+        if not -32768 <= r_2sv_15_4azim <= 32767:
+            raise _enc('nav_sat', 'sv[15].azim', r_2sv_15_4azim, 'range', '-32768..32767', None)
     r_2sv_15_5prRes = g_2sv_15.prRes
-    if r_2sv_15_5prRes.__class__ is not float and (not isinstance(r_2sv_15_5prRes, (int, float)) or r_2sv_15_5prRes.__class__ is bool):
-        raise _enc('nav_sat', 'sv[15].prRes', r_2sv_15_5prRes, 'type', 'a number')
-    if not -3276.8 <= r_2sv_15_5prRes <= 3276.7000000000003:
-        raise _enc('nav_sat', 'sv[15].prRes', r_2sv_15_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    if r_2sv_15_5prRes.__class__ is not float or not -3276.8 <= r_2sv_15_5prRes <= 3276.7000000000003:
+        if not isinstance(r_2sv_15_5prRes, (int, float)) or r_2sv_15_5prRes.__class__ is bool:
+            raise _enc('nav_sat', 'sv[15].prRes', r_2sv_15_5prRes, 'type', 'a number')
+        if not -3276.8 <= r_2sv_15_5prRes <= 3276.7000000000003:
+            raise _enc('nav_sat', 'sv[15].prRes', r_2sv_15_5prRes, 'range', '-3276.8..3276.7000000000003', None)
     r_2sv_15_5prRes = _floor(r_2sv_15_5prRes / 0.1 + 0.5)
     r_2sv_15_10qualityInd = g_2sv_15.qualityInd
-    if r_2sv_15_10qualityInd.__class__ is not int and (not isinstance(r_2sv_15_10qualityInd, int) or r_2sv_15_10qualityInd.__class__ is bool):
-        raise _enc('nav_sat', 'sv[15].qualityInd', r_2sv_15_10qualityInd, 'type', 'an int')
-    if not 0 <= r_2sv_15_10qualityInd <= 7:
-        raise _enc('nav_sat', 'sv[15].qualityInd', r_2sv_15_10qualityInd, 'range', '0..7', None)
+    if r_2sv_15_10qualityInd.__class__ is not int or not 0 <= r_2sv_15_10qualityInd <= 7:
+        if not isinstance(r_2sv_15_10qualityInd, int) or r_2sv_15_10qualityInd.__class__ is bool:
+            raise _enc('nav_sat', 'sv[15].qualityInd', r_2sv_15_10qualityInd, 'type', 'an int')
+        if not 0 <= r_2sv_15_10qualityInd <= 7:
+            raise _enc('nav_sat', 'sv[15].qualityInd', r_2sv_15_10qualityInd, 'range', '0..7', None)
     r_2sv_15_6svUsed: Any = g_2sv_15.svUsed
     if r_2sv_15_6svUsed is not True and r_2sv_15_6svUsed is not False and r_2sv_15_6svUsed != 0 and r_2sv_15_6svUsed != 1:
         raise _enc('nav_sat', 'sv[15].svUsed', r_2sv_15_6svUsed, 'type', 'a bool')
     r_2sv_15_6svUsed = 1 if r_2sv_15_6svUsed else 0
     r_2sv_15_6health = g_2sv_15.health
-    if r_2sv_15_6health.__class__ is not int and (not isinstance(r_2sv_15_6health, int) or r_2sv_15_6health.__class__ is bool):
-        raise _enc('nav_sat', 'sv[15].health', r_2sv_15_6health, 'type', 'an int')
-    if not 0 <= r_2sv_15_6health <= 3:
-        raise _enc('nav_sat', 'sv[15].health', r_2sv_15_6health, 'range', '0..3', None)
+    if r_2sv_15_6health.__class__ is not int or not 0 <= r_2sv_15_6health <= 3:
+        if not isinstance(r_2sv_15_6health, int) or r_2sv_15_6health.__class__ is bool:
+            raise _enc('nav_sat', 'sv[15].health', r_2sv_15_6health, 'type', 'an int')
+        if not 0 <= r_2sv_15_6health <= 3:
+            raise _enc('nav_sat', 'sv[15].health', r_2sv_15_6health, 'range', '0..3', None)
     r_2sv_15_8diffCorr: Any = g_2sv_15.diffCorr
     if r_2sv_15_8diffCorr is not True and r_2sv_15_8diffCorr is not False and r_2sv_15_8diffCorr != 0 and r_2sv_15_8diffCorr != 1:
         raise _enc('nav_sat', 'sv[15].diffCorr', r_2sv_15_8diffCorr, 'type', 'a bool')
@@ -3162,10 +3336,11 @@ def _raw_nav_sat_2sv_15(g_2sv_15: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[15].smoothed', r_2sv_15_8smoothed, 'type', 'a bool')
     r_2sv_15_8smoothed = 1 if r_2sv_15_8smoothed else 0
     r_2sv_15_11orbitSource = g_2sv_15.orbitSource
-    if r_2sv_15_11orbitSource.__class__ is not int and (not isinstance(r_2sv_15_11orbitSource, int) or r_2sv_15_11orbitSource.__class__ is bool):
-        raise _enc('nav_sat', 'sv[15].orbitSource', r_2sv_15_11orbitSource, 'type', 'an int')
-    if not 0 <= r_2sv_15_11orbitSource <= 7:
-        raise _enc('nav_sat', 'sv[15].orbitSource', r_2sv_15_11orbitSource, 'range', '0..7', None)
+    if r_2sv_15_11orbitSource.__class__ is not int or not 0 <= r_2sv_15_11orbitSource <= 7:
+        if not isinstance(r_2sv_15_11orbitSource, int) or r_2sv_15_11orbitSource.__class__ is bool:
+            raise _enc('nav_sat', 'sv[15].orbitSource', r_2sv_15_11orbitSource, 'type', 'an int')
+        if not 0 <= r_2sv_15_11orbitSource <= 7:
+            raise _enc('nav_sat', 'sv[15].orbitSource', r_2sv_15_11orbitSource, 'range', '0..7', None)
     r_2sv_15_8ephAvail: Any = g_2sv_15.ephAvail
     if r_2sv_15_8ephAvail is not True and r_2sv_15_8ephAvail is not False and r_2sv_15_8ephAvail != 0 and r_2sv_15_8ephAvail != 1:
         raise _enc('nav_sat', 'sv[15].ephAvail', r_2sv_15_8ephAvail, 'type', 'a bool')
@@ -3183,10 +3358,11 @@ def _raw_nav_sat_2sv_15(g_2sv_15: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[15].aopAvail', r_2sv_15_8aopAvail, 'type', 'a bool')
     r_2sv_15_8aopAvail = 1 if r_2sv_15_8aopAvail else 0
     r_2sv_15_10reserved13 = g_2sv_15.reserved13
-    if r_2sv_15_10reserved13.__class__ is not int and (not isinstance(r_2sv_15_10reserved13, int) or r_2sv_15_10reserved13.__class__ is bool):
-        raise _enc('nav_sat', 'sv[15].reserved13', r_2sv_15_10reserved13, 'type', 'an int')
-    if not 0 <= r_2sv_15_10reserved13 <= 1:
-        raise _enc('nav_sat', 'sv[15].reserved13', r_2sv_15_10reserved13, 'range', '0..1', None)
+    if r_2sv_15_10reserved13.__class__ is not int or not 0 <= r_2sv_15_10reserved13 <= 1:
+        if not isinstance(r_2sv_15_10reserved13, int) or r_2sv_15_10reserved13.__class__ is bool:
+            raise _enc('nav_sat', 'sv[15].reserved13', r_2sv_15_10reserved13, 'type', 'an int')
+        if not 0 <= r_2sv_15_10reserved13 <= 1:
+            raise _enc('nav_sat', 'sv[15].reserved13', r_2sv_15_10reserved13, 'range', '0..1', None)
     r_2sv_15_12sbasCorrUsed: Any = g_2sv_15.sbasCorrUsed
     if r_2sv_15_12sbasCorrUsed is not True and r_2sv_15_12sbasCorrUsed is not False and r_2sv_15_12sbasCorrUsed != 0 and r_2sv_15_12sbasCorrUsed != 1:
         raise _enc('nav_sat', 'sv[15].sbasCorrUsed', r_2sv_15_12sbasCorrUsed, 'type', 'a bool')
@@ -3233,50 +3409,58 @@ def _raw_nav_sat_2sv_15(g_2sv_15: Any) -> tuple[Any, ...]:
 
 def _raw_nav_sat_2sv_16(g_2sv_16: Any) -> tuple[Any, ...]:
     r_2sv_16_6gnssId = g_2sv_16.gnssId
-    if r_2sv_16_6gnssId.__class__ is not int and (not isinstance(r_2sv_16_6gnssId, int) or r_2sv_16_6gnssId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[16].gnssId', r_2sv_16_6gnssId, 'type', 'an int')
-    if not 0 <= r_2sv_16_6gnssId <= 255:
-        raise _enc('nav_sat', 'sv[16].gnssId', r_2sv_16_6gnssId, 'range', '0..255', None)
+    if r_2sv_16_6gnssId.__class__ is not int or not 0 <= r_2sv_16_6gnssId <= 255:
+        if not isinstance(r_2sv_16_6gnssId, int) or r_2sv_16_6gnssId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[16].gnssId', r_2sv_16_6gnssId, 'type', 'an int')
+        if not 0 <= r_2sv_16_6gnssId <= 255:
+            raise _enc('nav_sat', 'sv[16].gnssId', r_2sv_16_6gnssId, 'range', '0..255', None)
     r_2sv_16_4svId = g_2sv_16.svId
-    if r_2sv_16_4svId.__class__ is not int and (not isinstance(r_2sv_16_4svId, int) or r_2sv_16_4svId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[16].svId', r_2sv_16_4svId, 'type', 'an int')
-    if not 0 <= r_2sv_16_4svId <= 255:
-        raise _enc('nav_sat', 'sv[16].svId', r_2sv_16_4svId, 'range', '0..255', None)
+    if r_2sv_16_4svId.__class__ is not int or not 0 <= r_2sv_16_4svId <= 255:
+        if not isinstance(r_2sv_16_4svId, int) or r_2sv_16_4svId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[16].svId', r_2sv_16_4svId, 'type', 'an int')
+        if not 0 <= r_2sv_16_4svId <= 255:
+            raise _enc('nav_sat', 'sv[16].svId', r_2sv_16_4svId, 'range', '0..255', None)
     r_2sv_16_3cno = g_2sv_16.cno
-    if r_2sv_16_3cno.__class__ is not int and (not isinstance(r_2sv_16_3cno, int) or r_2sv_16_3cno.__class__ is bool):
-        raise _enc('nav_sat', 'sv[16].cno', r_2sv_16_3cno, 'type', 'an int')
-    if not 0 <= r_2sv_16_3cno <= 255:
-        raise _enc('nav_sat', 'sv[16].cno', r_2sv_16_3cno, 'range', '0..255', None)
+    if r_2sv_16_3cno.__class__ is not int or not 0 <= r_2sv_16_3cno <= 255:
+        if not isinstance(r_2sv_16_3cno, int) or r_2sv_16_3cno.__class__ is bool:
+            raise _enc('nav_sat', 'sv[16].cno', r_2sv_16_3cno, 'type', 'an int')
+        if not 0 <= r_2sv_16_3cno <= 255:
+            raise _enc('nav_sat', 'sv[16].cno', r_2sv_16_3cno, 'range', '0..255', None)
     r_2sv_16_4elev = g_2sv_16.elev
-    if r_2sv_16_4elev.__class__ is not int and (not isinstance(r_2sv_16_4elev, int) or r_2sv_16_4elev.__class__ is bool):
-        raise _enc('nav_sat', 'sv[16].elev', r_2sv_16_4elev, 'type', 'an int')
-    if not -128 <= r_2sv_16_4elev <= 127:
-        raise _enc('nav_sat', 'sv[16].elev', r_2sv_16_4elev, 'range', '-128..127', None)
+    if r_2sv_16_4elev.__class__ is not int or not -128 <= r_2sv_16_4elev <= 127:
+        if not isinstance(r_2sv_16_4elev, int) or r_2sv_16_4elev.__class__ is bool:
+            raise _enc('nav_sat', 'sv[16].elev', r_2sv_16_4elev, 'type', 'an int')
+        if not -128 <= r_2sv_16_4elev <= 127:
+            raise _enc('nav_sat', 'sv[16].elev', r_2sv_16_4elev, 'range', '-128..127', None)
     r_2sv_16_4azim = g_2sv_16.azim
-    if r_2sv_16_4azim.__class__ is not int and (not isinstance(r_2sv_16_4azim, int) or r_2sv_16_4azim.__class__ is bool):
-        raise _enc('nav_sat', 'sv[16].azim', r_2sv_16_4azim, 'type', 'an int')
-    if not -32768 <= r_2sv_16_4azim <= 32767:
-        raise _enc('nav_sat', 'sv[16].azim', r_2sv_16_4azim, 'range', '-32768..32767', None)
+    if r_2sv_16_4azim.__class__ is not int or not -32768 <= r_2sv_16_4azim <= 32767:
+        if not isinstance(r_2sv_16_4azim, int) or r_2sv_16_4azim.__class__ is bool:
+            raise _enc('nav_sat', 'sv[16].azim', r_2sv_16_4azim, 'type', 'an int')
+        if not -32768 <= r_2sv_16_4azim <= 32767:
+            raise _enc('nav_sat', 'sv[16].azim', r_2sv_16_4azim, 'range', '-32768..32767', None)
     r_2sv_16_5prRes = g_2sv_16.prRes
-    if r_2sv_16_5prRes.__class__ is not float and (not isinstance(r_2sv_16_5prRes, (int, float)) or r_2sv_16_5prRes.__class__ is bool):
-        raise _enc('nav_sat', 'sv[16].prRes', r_2sv_16_5prRes, 'type', 'a number')
-    if not -3276.8 <= r_2sv_16_5prRes <= 3276.7000000000003:
-        raise _enc('nav_sat', 'sv[16].prRes', r_2sv_16_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    if r_2sv_16_5prRes.__class__ is not float or not -3276.8 <= r_2sv_16_5prRes <= 3276.7000000000003:
+        if not isinstance(r_2sv_16_5prRes, (int, float)) or r_2sv_16_5prRes.__class__ is bool:
+            raise _enc('nav_sat', 'sv[16].prRes', r_2sv_16_5prRes, 'type', 'a number')
+        if not -3276.8 <= r_2sv_16_5prRes <= 3276.7000000000003:
+            raise _enc('nav_sat', 'sv[16].prRes', r_2sv_16_5prRes, 'range', '-3276.8..3276.7000000000003', None)
     r_2sv_16_5prRes = _floor(r_2sv_16_5prRes / 0.1 + 0.5)
     r_2sv_16_10qualityInd = g_2sv_16.qualityInd
-    if r_2sv_16_10qualityInd.__class__ is not int and (not isinstance(r_2sv_16_10qualityInd, int) or r_2sv_16_10qualityInd.__class__ is bool):
-        raise _enc('nav_sat', 'sv[16].qualityInd', r_2sv_16_10qualityInd, 'type', 'an int')
-    if not 0 <= r_2sv_16_10qualityInd <= 7:
-        raise _enc('nav_sat', 'sv[16].qualityInd', r_2sv_16_10qualityInd, 'range', '0..7', None)
+    if r_2sv_16_10qualityInd.__class__ is not int or not 0 <= r_2sv_16_10qualityInd <= 7:
+        if not isinstance(r_2sv_16_10qualityInd, int) or r_2sv_16_10qualityInd.__class__ is bool:
+            raise _enc('nav_sat', 'sv[16].qualityInd', r_2sv_16_10qualityInd, 'type', 'an int')
+        if not 0 <= r_2sv_16_10qualityInd <= 7:
+            raise _enc('nav_sat', 'sv[16].qualityInd', r_2sv_16_10qualityInd, 'range', '0..7', None)
     r_2sv_16_6svUsed: Any = g_2sv_16.svUsed
     if r_2sv_16_6svUsed is not True and r_2sv_16_6svUsed is not False and r_2sv_16_6svUsed != 0 and r_2sv_16_6svUsed != 1:
         raise _enc('nav_sat', 'sv[16].svUsed', r_2sv_16_6svUsed, 'type', 'a bool')
     r_2sv_16_6svUsed = 1 if r_2sv_16_6svUsed else 0
     r_2sv_16_6health = g_2sv_16.health
-    if r_2sv_16_6health.__class__ is not int and (not isinstance(r_2sv_16_6health, int) or r_2sv_16_6health.__class__ is bool):
-        raise _enc('nav_sat', 'sv[16].health', r_2sv_16_6health, 'type', 'an int')
-    if not 0 <= r_2sv_16_6health <= 3:
-        raise _enc('nav_sat', 'sv[16].health', r_2sv_16_6health, 'range', '0..3', None)
+    if r_2sv_16_6health.__class__ is not int or not 0 <= r_2sv_16_6health <= 3:
+        if not isinstance(r_2sv_16_6health, int) or r_2sv_16_6health.__class__ is bool:
+            raise _enc('nav_sat', 'sv[16].health', r_2sv_16_6health, 'type', 'an int')
+        if not 0 <= r_2sv_16_6health <= 3:
+            raise _enc('nav_sat', 'sv[16].health', r_2sv_16_6health, 'range', '0..3', None)
     r_2sv_16_8diffCorr: Any = g_2sv_16.diffCorr
     if r_2sv_16_8diffCorr is not True and r_2sv_16_8diffCorr is not False and r_2sv_16_8diffCorr != 0 and r_2sv_16_8diffCorr != 1:
         raise _enc('nav_sat', 'sv[16].diffCorr', r_2sv_16_8diffCorr, 'type', 'a bool')
@@ -3286,10 +3470,11 @@ def _raw_nav_sat_2sv_16(g_2sv_16: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[16].smoothed', r_2sv_16_8smoothed, 'type', 'a bool')
     r_2sv_16_8smoothed = 1 if r_2sv_16_8smoothed else 0
     r_2sv_16_11orbitSource = g_2sv_16.orbitSource
-    if r_2sv_16_11orbitSource.__class__ is not int and (not isinstance(r_2sv_16_11orbitSource, int) or r_2sv_16_11orbitSource.__class__ is bool):
-        raise _enc('nav_sat', 'sv[16].orbitSource', r_2sv_16_11orbitSource, 'type', 'an int')
-    if not 0 <= r_2sv_16_11orbitSource <= 7:
-        raise _enc('nav_sat', 'sv[16].orbitSource', r_2sv_16_11orbitSource, 'range', '0..7', None)
+    if r_2sv_16_11orbitSource.__class__ is not int or not 0 <= r_2sv_16_11orbitSource <= 7:
+        if not isinstance(r_2sv_16_11orbitSource, int) or r_2sv_16_11orbitSource.__class__ is bool:
+            raise _enc('nav_sat', 'sv[16].orbitSource', r_2sv_16_11orbitSource, 'type', 'an int')
+        if not 0 <= r_2sv_16_11orbitSource <= 7:
+            raise _enc('nav_sat', 'sv[16].orbitSource', r_2sv_16_11orbitSource, 'range', '0..7', None)
     r_2sv_16_8ephAvail: Any = g_2sv_16.ephAvail
     if r_2sv_16_8ephAvail is not True and r_2sv_16_8ephAvail is not False and r_2sv_16_8ephAvail != 0 and r_2sv_16_8ephAvail != 1:
         raise _enc('nav_sat', 'sv[16].ephAvail', r_2sv_16_8ephAvail, 'type', 'a bool')
@@ -3307,10 +3492,11 @@ def _raw_nav_sat_2sv_16(g_2sv_16: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[16].aopAvail', r_2sv_16_8aopAvail, 'type', 'a bool')
     r_2sv_16_8aopAvail = 1 if r_2sv_16_8aopAvail else 0
     r_2sv_16_10reserved13 = g_2sv_16.reserved13
-    if r_2sv_16_10reserved13.__class__ is not int and (not isinstance(r_2sv_16_10reserved13, int) or r_2sv_16_10reserved13.__class__ is bool):
-        raise _enc('nav_sat', 'sv[16].reserved13', r_2sv_16_10reserved13, 'type', 'an int')
-    if not 0 <= r_2sv_16_10reserved13 <= 1:
-        raise _enc('nav_sat', 'sv[16].reserved13', r_2sv_16_10reserved13, 'range', '0..1', None)
+    if r_2sv_16_10reserved13.__class__ is not int or not 0 <= r_2sv_16_10reserved13 <= 1:
+        if not isinstance(r_2sv_16_10reserved13, int) or r_2sv_16_10reserved13.__class__ is bool:
+            raise _enc('nav_sat', 'sv[16].reserved13', r_2sv_16_10reserved13, 'type', 'an int')
+        if not 0 <= r_2sv_16_10reserved13 <= 1:
+            raise _enc('nav_sat', 'sv[16].reserved13', r_2sv_16_10reserved13, 'range', '0..1', None)
     r_2sv_16_12sbasCorrUsed: Any = g_2sv_16.sbasCorrUsed
     if r_2sv_16_12sbasCorrUsed is not True and r_2sv_16_12sbasCorrUsed is not False and r_2sv_16_12sbasCorrUsed != 0 and r_2sv_16_12sbasCorrUsed != 1:
         raise _enc('nav_sat', 'sv[16].sbasCorrUsed', r_2sv_16_12sbasCorrUsed, 'type', 'a bool')
@@ -3357,50 +3543,58 @@ def _raw_nav_sat_2sv_16(g_2sv_16: Any) -> tuple[Any, ...]:
 
 def _raw_nav_sat_2sv_17(g_2sv_17: Any) -> tuple[Any, ...]:
     r_2sv_17_6gnssId = g_2sv_17.gnssId
-    if r_2sv_17_6gnssId.__class__ is not int and (not isinstance(r_2sv_17_6gnssId, int) or r_2sv_17_6gnssId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[17].gnssId', r_2sv_17_6gnssId, 'type', 'an int')
-    if not 0 <= r_2sv_17_6gnssId <= 255:
-        raise _enc('nav_sat', 'sv[17].gnssId', r_2sv_17_6gnssId, 'range', '0..255', None)
+    if r_2sv_17_6gnssId.__class__ is not int or not 0 <= r_2sv_17_6gnssId <= 255:
+        if not isinstance(r_2sv_17_6gnssId, int) or r_2sv_17_6gnssId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[17].gnssId', r_2sv_17_6gnssId, 'type', 'an int')
+        if not 0 <= r_2sv_17_6gnssId <= 255:
+            raise _enc('nav_sat', 'sv[17].gnssId', r_2sv_17_6gnssId, 'range', '0..255', None)
     r_2sv_17_4svId = g_2sv_17.svId
-    if r_2sv_17_4svId.__class__ is not int and (not isinstance(r_2sv_17_4svId, int) or r_2sv_17_4svId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[17].svId', r_2sv_17_4svId, 'type', 'an int')
-    if not 0 <= r_2sv_17_4svId <= 255:
-        raise _enc('nav_sat', 'sv[17].svId', r_2sv_17_4svId, 'range', '0..255', None)
+    if r_2sv_17_4svId.__class__ is not int or not 0 <= r_2sv_17_4svId <= 255:
+        if not isinstance(r_2sv_17_4svId, int) or r_2sv_17_4svId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[17].svId', r_2sv_17_4svId, 'type', 'an int')
+        if not 0 <= r_2sv_17_4svId <= 255:
+            raise _enc('nav_sat', 'sv[17].svId', r_2sv_17_4svId, 'range', '0..255', None)
     r_2sv_17_3cno = g_2sv_17.cno
-    if r_2sv_17_3cno.__class__ is not int and (not isinstance(r_2sv_17_3cno, int) or r_2sv_17_3cno.__class__ is bool):
-        raise _enc('nav_sat', 'sv[17].cno', r_2sv_17_3cno, 'type', 'an int')
-    if not 0 <= r_2sv_17_3cno <= 255:
-        raise _enc('nav_sat', 'sv[17].cno', r_2sv_17_3cno, 'range', '0..255', None)
+    if r_2sv_17_3cno.__class__ is not int or not 0 <= r_2sv_17_3cno <= 255:
+        if not isinstance(r_2sv_17_3cno, int) or r_2sv_17_3cno.__class__ is bool:
+            raise _enc('nav_sat', 'sv[17].cno', r_2sv_17_3cno, 'type', 'an int')
+        if not 0 <= r_2sv_17_3cno <= 255:
+            raise _enc('nav_sat', 'sv[17].cno', r_2sv_17_3cno, 'range', '0..255', None)
     r_2sv_17_4elev = g_2sv_17.elev
-    if r_2sv_17_4elev.__class__ is not int and (not isinstance(r_2sv_17_4elev, int) or r_2sv_17_4elev.__class__ is bool):
-        raise _enc('nav_sat', 'sv[17].elev', r_2sv_17_4elev, 'type', 'an int')
-    if not -128 <= r_2sv_17_4elev <= 127:
-        raise _enc('nav_sat', 'sv[17].elev', r_2sv_17_4elev, 'range', '-128..127', None)
+    if r_2sv_17_4elev.__class__ is not int or not -128 <= r_2sv_17_4elev <= 127:
+        if not isinstance(r_2sv_17_4elev, int) or r_2sv_17_4elev.__class__ is bool:
+            raise _enc('nav_sat', 'sv[17].elev', r_2sv_17_4elev, 'type', 'an int')
+        if not -128 <= r_2sv_17_4elev <= 127:
+            raise _enc('nav_sat', 'sv[17].elev', r_2sv_17_4elev, 'range', '-128..127', None)
     r_2sv_17_4azim = g_2sv_17.azim
-    if r_2sv_17_4azim.__class__ is not int and (not isinstance(r_2sv_17_4azim, int) or r_2sv_17_4azim.__class__ is bool):
-        raise _enc('nav_sat', 'sv[17].azim', r_2sv_17_4azim, 'type', 'an int')
-    if not -32768 <= r_2sv_17_4azim <= 32767:
-        raise _enc('nav_sat', 'sv[17].azim', r_2sv_17_4azim, 'range', '-32768..32767', None)
+    if r_2sv_17_4azim.__class__ is not int or not -32768 <= r_2sv_17_4azim <= 32767:
+        if not isinstance(r_2sv_17_4azim, int) or r_2sv_17_4azim.__class__ is bool:
+            raise _enc('nav_sat', 'sv[17].azim', r_2sv_17_4azim, 'type', 'an int')
+        if not -32768 <= r_2sv_17_4azim <= 32767:
+            raise _enc('nav_sat', 'sv[17].azim', r_2sv_17_4azim, 'range', '-32768..32767', None)
     r_2sv_17_5prRes = g_2sv_17.prRes
-    if r_2sv_17_5prRes.__class__ is not float and (not isinstance(r_2sv_17_5prRes, (int, float)) or r_2sv_17_5prRes.__class__ is bool):
-        raise _enc('nav_sat', 'sv[17].prRes', r_2sv_17_5prRes, 'type', 'a number')
-    if not -3276.8 <= r_2sv_17_5prRes <= 3276.7000000000003:
-        raise _enc('nav_sat', 'sv[17].prRes', r_2sv_17_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    if r_2sv_17_5prRes.__class__ is not float or not -3276.8 <= r_2sv_17_5prRes <= 3276.7000000000003:
+        if not isinstance(r_2sv_17_5prRes, (int, float)) or r_2sv_17_5prRes.__class__ is bool:
+            raise _enc('nav_sat', 'sv[17].prRes', r_2sv_17_5prRes, 'type', 'a number')
+        if not -3276.8 <= r_2sv_17_5prRes <= 3276.7000000000003:
+            raise _enc('nav_sat', 'sv[17].prRes', r_2sv_17_5prRes, 'range', '-3276.8..3276.7000000000003', None)
     r_2sv_17_5prRes = _floor(r_2sv_17_5prRes / 0.1 + 0.5)
     r_2sv_17_10qualityInd = g_2sv_17.qualityInd
-    if r_2sv_17_10qualityInd.__class__ is not int and (not isinstance(r_2sv_17_10qualityInd, int) or r_2sv_17_10qualityInd.__class__ is bool):
-        raise _enc('nav_sat', 'sv[17].qualityInd', r_2sv_17_10qualityInd, 'type', 'an int')
-    if not 0 <= r_2sv_17_10qualityInd <= 7:
-        raise _enc('nav_sat', 'sv[17].qualityInd', r_2sv_17_10qualityInd, 'range', '0..7', None)
+    if r_2sv_17_10qualityInd.__class__ is not int or not 0 <= r_2sv_17_10qualityInd <= 7:
+        if not isinstance(r_2sv_17_10qualityInd, int) or r_2sv_17_10qualityInd.__class__ is bool:
+            raise _enc('nav_sat', 'sv[17].qualityInd', r_2sv_17_10qualityInd, 'type', 'an int')
+        if not 0 <= r_2sv_17_10qualityInd <= 7:
+            raise _enc('nav_sat', 'sv[17].qualityInd', r_2sv_17_10qualityInd, 'range', '0..7', None)
     r_2sv_17_6svUsed: Any = g_2sv_17.svUsed
     if r_2sv_17_6svUsed is not True and r_2sv_17_6svUsed is not False and r_2sv_17_6svUsed != 0 and r_2sv_17_6svUsed != 1:
         raise _enc('nav_sat', 'sv[17].svUsed', r_2sv_17_6svUsed, 'type', 'a bool')
     r_2sv_17_6svUsed = 1 if r_2sv_17_6svUsed else 0
     r_2sv_17_6health = g_2sv_17.health
-    if r_2sv_17_6health.__class__ is not int and (not isinstance(r_2sv_17_6health, int) or r_2sv_17_6health.__class__ is bool):
-        raise _enc('nav_sat', 'sv[17].health', r_2sv_17_6health, 'type', 'an int')
-    if not 0 <= r_2sv_17_6health <= 3:
-        raise _enc('nav_sat', 'sv[17].health', r_2sv_17_6health, 'range', '0..3', None)
+    if r_2sv_17_6health.__class__ is not int or not 0 <= r_2sv_17_6health <= 3:
+        if not isinstance(r_2sv_17_6health, int) or r_2sv_17_6health.__class__ is bool:
+            raise _enc('nav_sat', 'sv[17].health', r_2sv_17_6health, 'type', 'an int')
+        if not 0 <= r_2sv_17_6health <= 3:
+            raise _enc('nav_sat', 'sv[17].health', r_2sv_17_6health, 'range', '0..3', None)
     r_2sv_17_8diffCorr: Any = g_2sv_17.diffCorr
     if r_2sv_17_8diffCorr is not True and r_2sv_17_8diffCorr is not False and r_2sv_17_8diffCorr != 0 and r_2sv_17_8diffCorr != 1:
         raise _enc('nav_sat', 'sv[17].diffCorr', r_2sv_17_8diffCorr, 'type', 'a bool')
@@ -3410,10 +3604,11 @@ def _raw_nav_sat_2sv_17(g_2sv_17: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[17].smoothed', r_2sv_17_8smoothed, 'type', 'a bool')
     r_2sv_17_8smoothed = 1 if r_2sv_17_8smoothed else 0
     r_2sv_17_11orbitSource = g_2sv_17.orbitSource
-    if r_2sv_17_11orbitSource.__class__ is not int and (not isinstance(r_2sv_17_11orbitSource, int) or r_2sv_17_11orbitSource.__class__ is bool):
-        raise _enc('nav_sat', 'sv[17].orbitSource', r_2sv_17_11orbitSource, 'type', 'an int')
-    if not 0 <= r_2sv_17_11orbitSource <= 7:
-        raise _enc('nav_sat', 'sv[17].orbitSource', r_2sv_17_11orbitSource, 'range', '0..7', None)
+    if r_2sv_17_11orbitSource.__class__ is not int or not 0 <= r_2sv_17_11orbitSource <= 7:
+        if not isinstance(r_2sv_17_11orbitSource, int) or r_2sv_17_11orbitSource.__class__ is bool:
+            raise _enc('nav_sat', 'sv[17].orbitSource', r_2sv_17_11orbitSource, 'type', 'an int')
+        if not 0 <= r_2sv_17_11orbitSource <= 7:
+            raise _enc('nav_sat', 'sv[17].orbitSource', r_2sv_17_11orbitSource, 'range', '0..7', None)
     r_2sv_17_8ephAvail: Any = g_2sv_17.ephAvail
     if r_2sv_17_8ephAvail is not True and r_2sv_17_8ephAvail is not False and r_2sv_17_8ephAvail != 0 and r_2sv_17_8ephAvail != 1:
         raise _enc('nav_sat', 'sv[17].ephAvail', r_2sv_17_8ephAvail, 'type', 'a bool')
@@ -3431,10 +3626,11 @@ def _raw_nav_sat_2sv_17(g_2sv_17: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[17].aopAvail', r_2sv_17_8aopAvail, 'type', 'a bool')
     r_2sv_17_8aopAvail = 1 if r_2sv_17_8aopAvail else 0
     r_2sv_17_10reserved13 = g_2sv_17.reserved13
-    if r_2sv_17_10reserved13.__class__ is not int and (not isinstance(r_2sv_17_10reserved13, int) or r_2sv_17_10reserved13.__class__ is bool):
-        raise _enc('nav_sat', 'sv[17].reserved13', r_2sv_17_10reserved13, 'type', 'an int')
-    if not 0 <= r_2sv_17_10reserved13 <= 1:
-        raise _enc('nav_sat', 'sv[17].reserved13', r_2sv_17_10reserved13, 'range', '0..1', None)
+    if r_2sv_17_10reserved13.__class__ is not int or not 0 <= r_2sv_17_10reserved13 <= 1:
+        if not isinstance(r_2sv_17_10reserved13, int) or r_2sv_17_10reserved13.__class__ is bool:
+            raise _enc('nav_sat', 'sv[17].reserved13', r_2sv_17_10reserved13, 'type', 'an int')
+        if not 0 <= r_2sv_17_10reserved13 <= 1:
+            raise _enc('nav_sat', 'sv[17].reserved13', r_2sv_17_10reserved13, 'range', '0..1', None)
     r_2sv_17_12sbasCorrUsed: Any = g_2sv_17.sbasCorrUsed
     if r_2sv_17_12sbasCorrUsed is not True and r_2sv_17_12sbasCorrUsed is not False and r_2sv_17_12sbasCorrUsed != 0 and r_2sv_17_12sbasCorrUsed != 1:
         raise _enc('nav_sat', 'sv[17].sbasCorrUsed', r_2sv_17_12sbasCorrUsed, 'type', 'a bool')
@@ -3481,50 +3677,58 @@ def _raw_nav_sat_2sv_17(g_2sv_17: Any) -> tuple[Any, ...]:
 
 def _raw_nav_sat_2sv_18(g_2sv_18: Any) -> tuple[Any, ...]:
     r_2sv_18_6gnssId = g_2sv_18.gnssId
-    if r_2sv_18_6gnssId.__class__ is not int and (not isinstance(r_2sv_18_6gnssId, int) or r_2sv_18_6gnssId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[18].gnssId', r_2sv_18_6gnssId, 'type', 'an int')
-    if not 0 <= r_2sv_18_6gnssId <= 255:
-        raise _enc('nav_sat', 'sv[18].gnssId', r_2sv_18_6gnssId, 'range', '0..255', None)
+    if r_2sv_18_6gnssId.__class__ is not int or not 0 <= r_2sv_18_6gnssId <= 255:
+        if not isinstance(r_2sv_18_6gnssId, int) or r_2sv_18_6gnssId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[18].gnssId', r_2sv_18_6gnssId, 'type', 'an int')
+        if not 0 <= r_2sv_18_6gnssId <= 255:
+            raise _enc('nav_sat', 'sv[18].gnssId', r_2sv_18_6gnssId, 'range', '0..255', None)
     r_2sv_18_4svId = g_2sv_18.svId
-    if r_2sv_18_4svId.__class__ is not int and (not isinstance(r_2sv_18_4svId, int) or r_2sv_18_4svId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[18].svId', r_2sv_18_4svId, 'type', 'an int')
-    if not 0 <= r_2sv_18_4svId <= 255:
-        raise _enc('nav_sat', 'sv[18].svId', r_2sv_18_4svId, 'range', '0..255', None)
+    if r_2sv_18_4svId.__class__ is not int or not 0 <= r_2sv_18_4svId <= 255:
+        if not isinstance(r_2sv_18_4svId, int) or r_2sv_18_4svId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[18].svId', r_2sv_18_4svId, 'type', 'an int')
+        if not 0 <= r_2sv_18_4svId <= 255:
+            raise _enc('nav_sat', 'sv[18].svId', r_2sv_18_4svId, 'range', '0..255', None)
     r_2sv_18_3cno = g_2sv_18.cno
-    if r_2sv_18_3cno.__class__ is not int and (not isinstance(r_2sv_18_3cno, int) or r_2sv_18_3cno.__class__ is bool):
-        raise _enc('nav_sat', 'sv[18].cno', r_2sv_18_3cno, 'type', 'an int')
-    if not 0 <= r_2sv_18_3cno <= 255:
-        raise _enc('nav_sat', 'sv[18].cno', r_2sv_18_3cno, 'range', '0..255', None)
+    if r_2sv_18_3cno.__class__ is not int or not 0 <= r_2sv_18_3cno <= 255:
+        if not isinstance(r_2sv_18_3cno, int) or r_2sv_18_3cno.__class__ is bool:
+            raise _enc('nav_sat', 'sv[18].cno', r_2sv_18_3cno, 'type', 'an int')
+        if not 0 <= r_2sv_18_3cno <= 255:
+            raise _enc('nav_sat', 'sv[18].cno', r_2sv_18_3cno, 'range', '0..255', None)
     r_2sv_18_4elev = g_2sv_18.elev
-    if r_2sv_18_4elev.__class__ is not int and (not isinstance(r_2sv_18_4elev, int) or r_2sv_18_4elev.__class__ is bool):
-        raise _enc('nav_sat', 'sv[18].elev', r_2sv_18_4elev, 'type', 'an int')
-    if not -128 <= r_2sv_18_4elev <= 127:
-        raise _enc('nav_sat', 'sv[18].elev', r_2sv_18_4elev, 'range', '-128..127', None)
+    if r_2sv_18_4elev.__class__ is not int or not -128 <= r_2sv_18_4elev <= 127:
+        if not isinstance(r_2sv_18_4elev, int) or r_2sv_18_4elev.__class__ is bool:
+            raise _enc('nav_sat', 'sv[18].elev', r_2sv_18_4elev, 'type', 'an int')
+        if not -128 <= r_2sv_18_4elev <= 127:
+            raise _enc('nav_sat', 'sv[18].elev', r_2sv_18_4elev, 'range', '-128..127', None)
     r_2sv_18_4azim = g_2sv_18.azim
-    if r_2sv_18_4azim.__class__ is not int and (not isinstance(r_2sv_18_4azim, int) or r_2sv_18_4azim.__class__ is bool):
-        raise _enc('nav_sat', 'sv[18].azim', r_2sv_18_4azim, 'type', 'an int')
-    if not -32768 <= r_2sv_18_4azim <= 32767:
-        raise _enc('nav_sat', 'sv[18].azim', r_2sv_18_4azim, 'range', '-32768..32767', None)
+    if r_2sv_18_4azim.__class__ is not int or not -32768 <= r_2sv_18_4azim <= 32767:
+        if not isinstance(r_2sv_18_4azim, int) or r_2sv_18_4azim.__class__ is bool:
+            raise _enc('nav_sat', 'sv[18].azim', r_2sv_18_4azim, 'type', 'an int')
+        if not -32768 <= r_2sv_18_4azim <= 32767:
+            raise _enc('nav_sat', 'sv[18].azim', r_2sv_18_4azim, 'range', '-32768..32767', None)
     r_2sv_18_5prRes = g_2sv_18.prRes
-    if r_2sv_18_5prRes.__class__ is not float and (not isinstance(r_2sv_18_5prRes, (int, float)) or r_2sv_18_5prRes.__class__ is bool):
-        raise _enc('nav_sat', 'sv[18].prRes', r_2sv_18_5prRes, 'type', 'a number')
-    if not -3276.8 <= r_2sv_18_5prRes <= 3276.7000000000003:
-        raise _enc('nav_sat', 'sv[18].prRes', r_2sv_18_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    if r_2sv_18_5prRes.__class__ is not float or not -3276.8 <= r_2sv_18_5prRes <= 3276.7000000000003:
+        if not isinstance(r_2sv_18_5prRes, (int, float)) or r_2sv_18_5prRes.__class__ is bool:
+            raise _enc('nav_sat', 'sv[18].prRes', r_2sv_18_5prRes, 'type', 'a number')
+        if not -3276.8 <= r_2sv_18_5prRes <= 3276.7000000000003:
+            raise _enc('nav_sat', 'sv[18].prRes', r_2sv_18_5prRes, 'range', '-3276.8..3276.7000000000003', None)
     r_2sv_18_5prRes = _floor(r_2sv_18_5prRes / 0.1 + 0.5)
     r_2sv_18_10qualityInd = g_2sv_18.qualityInd
-    if r_2sv_18_10qualityInd.__class__ is not int and (not isinstance(r_2sv_18_10qualityInd, int) or r_2sv_18_10qualityInd.__class__ is bool):
-        raise _enc('nav_sat', 'sv[18].qualityInd', r_2sv_18_10qualityInd, 'type', 'an int')
-    if not 0 <= r_2sv_18_10qualityInd <= 7:
-        raise _enc('nav_sat', 'sv[18].qualityInd', r_2sv_18_10qualityInd, 'range', '0..7', None)
+    if r_2sv_18_10qualityInd.__class__ is not int or not 0 <= r_2sv_18_10qualityInd <= 7:
+        if not isinstance(r_2sv_18_10qualityInd, int) or r_2sv_18_10qualityInd.__class__ is bool:
+            raise _enc('nav_sat', 'sv[18].qualityInd', r_2sv_18_10qualityInd, 'type', 'an int')
+        if not 0 <= r_2sv_18_10qualityInd <= 7:
+            raise _enc('nav_sat', 'sv[18].qualityInd', r_2sv_18_10qualityInd, 'range', '0..7', None)
     r_2sv_18_6svUsed: Any = g_2sv_18.svUsed
     if r_2sv_18_6svUsed is not True and r_2sv_18_6svUsed is not False and r_2sv_18_6svUsed != 0 and r_2sv_18_6svUsed != 1:
         raise _enc('nav_sat', 'sv[18].svUsed', r_2sv_18_6svUsed, 'type', 'a bool')
     r_2sv_18_6svUsed = 1 if r_2sv_18_6svUsed else 0
     r_2sv_18_6health = g_2sv_18.health
-    if r_2sv_18_6health.__class__ is not int and (not isinstance(r_2sv_18_6health, int) or r_2sv_18_6health.__class__ is bool):
-        raise _enc('nav_sat', 'sv[18].health', r_2sv_18_6health, 'type', 'an int')
-    if not 0 <= r_2sv_18_6health <= 3:
-        raise _enc('nav_sat', 'sv[18].health', r_2sv_18_6health, 'range', '0..3', None)
+    if r_2sv_18_6health.__class__ is not int or not 0 <= r_2sv_18_6health <= 3:
+        if not isinstance(r_2sv_18_6health, int) or r_2sv_18_6health.__class__ is bool:
+            raise _enc('nav_sat', 'sv[18].health', r_2sv_18_6health, 'type', 'an int')
+        if not 0 <= r_2sv_18_6health <= 3:
+            raise _enc('nav_sat', 'sv[18].health', r_2sv_18_6health, 'range', '0..3', None)
     r_2sv_18_8diffCorr: Any = g_2sv_18.diffCorr
     if r_2sv_18_8diffCorr is not True and r_2sv_18_8diffCorr is not False and r_2sv_18_8diffCorr != 0 and r_2sv_18_8diffCorr != 1:
         raise _enc('nav_sat', 'sv[18].diffCorr', r_2sv_18_8diffCorr, 'type', 'a bool')
@@ -3534,10 +3738,11 @@ def _raw_nav_sat_2sv_18(g_2sv_18: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[18].smoothed', r_2sv_18_8smoothed, 'type', 'a bool')
     r_2sv_18_8smoothed = 1 if r_2sv_18_8smoothed else 0
     r_2sv_18_11orbitSource = g_2sv_18.orbitSource
-    if r_2sv_18_11orbitSource.__class__ is not int and (not isinstance(r_2sv_18_11orbitSource, int) or r_2sv_18_11orbitSource.__class__ is bool):
-        raise _enc('nav_sat', 'sv[18].orbitSource', r_2sv_18_11orbitSource, 'type', 'an int')
-    if not 0 <= r_2sv_18_11orbitSource <= 7:
-        raise _enc('nav_sat', 'sv[18].orbitSource', r_2sv_18_11orbitSource, 'range', '0..7', None)
+    if r_2sv_18_11orbitSource.__class__ is not int or not 0 <= r_2sv_18_11orbitSource <= 7:
+        if not isinstance(r_2sv_18_11orbitSource, int) or r_2sv_18_11orbitSource.__class__ is bool:
+            raise _enc('nav_sat', 'sv[18].orbitSource', r_2sv_18_11orbitSource, 'type', 'an int')
+        if not 0 <= r_2sv_18_11orbitSource <= 7:
+            raise _enc('nav_sat', 'sv[18].orbitSource', r_2sv_18_11orbitSource, 'range', '0..7', None)
     r_2sv_18_8ephAvail: Any = g_2sv_18.ephAvail
     if r_2sv_18_8ephAvail is not True and r_2sv_18_8ephAvail is not False and r_2sv_18_8ephAvail != 0 and r_2sv_18_8ephAvail != 1:
         raise _enc('nav_sat', 'sv[18].ephAvail', r_2sv_18_8ephAvail, 'type', 'a bool')
@@ -3555,10 +3760,11 @@ def _raw_nav_sat_2sv_18(g_2sv_18: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[18].aopAvail', r_2sv_18_8aopAvail, 'type', 'a bool')
     r_2sv_18_8aopAvail = 1 if r_2sv_18_8aopAvail else 0
     r_2sv_18_10reserved13 = g_2sv_18.reserved13
-    if r_2sv_18_10reserved13.__class__ is not int and (not isinstance(r_2sv_18_10reserved13, int) or r_2sv_18_10reserved13.__class__ is bool):
-        raise _enc('nav_sat', 'sv[18].reserved13', r_2sv_18_10reserved13, 'type', 'an int')
-    if not 0 <= r_2sv_18_10reserved13 <= 1:
-        raise _enc('nav_sat', 'sv[18].reserved13', r_2sv_18_10reserved13, 'range', '0..1', None)
+    if r_2sv_18_10reserved13.__class__ is not int or not 0 <= r_2sv_18_10reserved13 <= 1:
+        if not isinstance(r_2sv_18_10reserved13, int) or r_2sv_18_10reserved13.__class__ is bool:
+            raise _enc('nav_sat', 'sv[18].reserved13', r_2sv_18_10reserved13, 'type', 'an int')
+        if not 0 <= r_2sv_18_10reserved13 <= 1:
+            raise _enc('nav_sat', 'sv[18].reserved13', r_2sv_18_10reserved13, 'range', '0..1', None)
     r_2sv_18_12sbasCorrUsed: Any = g_2sv_18.sbasCorrUsed
     if r_2sv_18_12sbasCorrUsed is not True and r_2sv_18_12sbasCorrUsed is not False and r_2sv_18_12sbasCorrUsed != 0 and r_2sv_18_12sbasCorrUsed != 1:
         raise _enc('nav_sat', 'sv[18].sbasCorrUsed', r_2sv_18_12sbasCorrUsed, 'type', 'a bool')
@@ -3605,50 +3811,58 @@ def _raw_nav_sat_2sv_18(g_2sv_18: Any) -> tuple[Any, ...]:
 
 def _raw_nav_sat_2sv_19(g_2sv_19: Any) -> tuple[Any, ...]:
     r_2sv_19_6gnssId = g_2sv_19.gnssId
-    if r_2sv_19_6gnssId.__class__ is not int and (not isinstance(r_2sv_19_6gnssId, int) or r_2sv_19_6gnssId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[19].gnssId', r_2sv_19_6gnssId, 'type', 'an int')
-    if not 0 <= r_2sv_19_6gnssId <= 255:
-        raise _enc('nav_sat', 'sv[19].gnssId', r_2sv_19_6gnssId, 'range', '0..255', None)
+    if r_2sv_19_6gnssId.__class__ is not int or not 0 <= r_2sv_19_6gnssId <= 255:
+        if not isinstance(r_2sv_19_6gnssId, int) or r_2sv_19_6gnssId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[19].gnssId', r_2sv_19_6gnssId, 'type', 'an int')
+        if not 0 <= r_2sv_19_6gnssId <= 255:
+            raise _enc('nav_sat', 'sv[19].gnssId', r_2sv_19_6gnssId, 'range', '0..255', None)
     r_2sv_19_4svId = g_2sv_19.svId
-    if r_2sv_19_4svId.__class__ is not int and (not isinstance(r_2sv_19_4svId, int) or r_2sv_19_4svId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[19].svId', r_2sv_19_4svId, 'type', 'an int')
-    if not 0 <= r_2sv_19_4svId <= 255:
-        raise _enc('nav_sat', 'sv[19].svId', r_2sv_19_4svId, 'range', '0..255', None)
+    if r_2sv_19_4svId.__class__ is not int or not 0 <= r_2sv_19_4svId <= 255:
+        if not isinstance(r_2sv_19_4svId, int) or r_2sv_19_4svId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[19].svId', r_2sv_19_4svId, 'type', 'an int')
+        if not 0 <= r_2sv_19_4svId <= 255:
+            raise _enc('nav_sat', 'sv[19].svId', r_2sv_19_4svId, 'range', '0..255', None)
     r_2sv_19_3cno = g_2sv_19.cno
-    if r_2sv_19_3cno.__class__ is not int and (not isinstance(r_2sv_19_3cno, int) or r_2sv_19_3cno.__class__ is bool):
-        raise _enc('nav_sat', 'sv[19].cno', r_2sv_19_3cno, 'type', 'an int')
-    if not 0 <= r_2sv_19_3cno <= 255:
-        raise _enc('nav_sat', 'sv[19].cno', r_2sv_19_3cno, 'range', '0..255', None)
+    if r_2sv_19_3cno.__class__ is not int or not 0 <= r_2sv_19_3cno <= 255:
+        if not isinstance(r_2sv_19_3cno, int) or r_2sv_19_3cno.__class__ is bool:
+            raise _enc('nav_sat', 'sv[19].cno', r_2sv_19_3cno, 'type', 'an int')
+        if not 0 <= r_2sv_19_3cno <= 255:
+            raise _enc('nav_sat', 'sv[19].cno', r_2sv_19_3cno, 'range', '0..255', None)
     r_2sv_19_4elev = g_2sv_19.elev
-    if r_2sv_19_4elev.__class__ is not int and (not isinstance(r_2sv_19_4elev, int) or r_2sv_19_4elev.__class__ is bool):
-        raise _enc('nav_sat', 'sv[19].elev', r_2sv_19_4elev, 'type', 'an int')
-    if not -128 <= r_2sv_19_4elev <= 127:
-        raise _enc('nav_sat', 'sv[19].elev', r_2sv_19_4elev, 'range', '-128..127', None)
+    if r_2sv_19_4elev.__class__ is not int or not -128 <= r_2sv_19_4elev <= 127:
+        if not isinstance(r_2sv_19_4elev, int) or r_2sv_19_4elev.__class__ is bool:
+            raise _enc('nav_sat', 'sv[19].elev', r_2sv_19_4elev, 'type', 'an int')
+        if not -128 <= r_2sv_19_4elev <= 127:
+            raise _enc('nav_sat', 'sv[19].elev', r_2sv_19_4elev, 'range', '-128..127', None)
     r_2sv_19_4azim = g_2sv_19.azim
-    if r_2sv_19_4azim.__class__ is not int and (not isinstance(r_2sv_19_4azim, int) or r_2sv_19_4azim.__class__ is bool):
-        raise _enc('nav_sat', 'sv[19].azim', r_2sv_19_4azim, 'type', 'an int')
-    if not -32768 <= r_2sv_19_4azim <= 32767:
-        raise _enc('nav_sat', 'sv[19].azim', r_2sv_19_4azim, 'range', '-32768..32767', None)
+    if r_2sv_19_4azim.__class__ is not int or not -32768 <= r_2sv_19_4azim <= 32767:
+        if not isinstance(r_2sv_19_4azim, int) or r_2sv_19_4azim.__class__ is bool:
+            raise _enc('nav_sat', 'sv[19].azim', r_2sv_19_4azim, 'type', 'an int')
+        if not -32768 <= r_2sv_19_4azim <= 32767:
+            raise _enc('nav_sat', 'sv[19].azim', r_2sv_19_4azim, 'range', '-32768..32767', None)
     r_2sv_19_5prRes = g_2sv_19.prRes
-    if r_2sv_19_5prRes.__class__ is not float and (not isinstance(r_2sv_19_5prRes, (int, float)) or r_2sv_19_5prRes.__class__ is bool):
-        raise _enc('nav_sat', 'sv[19].prRes', r_2sv_19_5prRes, 'type', 'a number')
-    if not -3276.8 <= r_2sv_19_5prRes <= 3276.7000000000003:
-        raise _enc('nav_sat', 'sv[19].prRes', r_2sv_19_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    if r_2sv_19_5prRes.__class__ is not float or not -3276.8 <= r_2sv_19_5prRes <= 3276.7000000000003:
+        if not isinstance(r_2sv_19_5prRes, (int, float)) or r_2sv_19_5prRes.__class__ is bool:
+            raise _enc('nav_sat', 'sv[19].prRes', r_2sv_19_5prRes, 'type', 'a number')
+        if not -3276.8 <= r_2sv_19_5prRes <= 3276.7000000000003:
+            raise _enc('nav_sat', 'sv[19].prRes', r_2sv_19_5prRes, 'range', '-3276.8..3276.7000000000003', None)
     r_2sv_19_5prRes = _floor(r_2sv_19_5prRes / 0.1 + 0.5)
     r_2sv_19_10qualityInd = g_2sv_19.qualityInd
-    if r_2sv_19_10qualityInd.__class__ is not int and (not isinstance(r_2sv_19_10qualityInd, int) or r_2sv_19_10qualityInd.__class__ is bool):
-        raise _enc('nav_sat', 'sv[19].qualityInd', r_2sv_19_10qualityInd, 'type', 'an int')
-    if not 0 <= r_2sv_19_10qualityInd <= 7:
-        raise _enc('nav_sat', 'sv[19].qualityInd', r_2sv_19_10qualityInd, 'range', '0..7', None)
+    if r_2sv_19_10qualityInd.__class__ is not int or not 0 <= r_2sv_19_10qualityInd <= 7:
+        if not isinstance(r_2sv_19_10qualityInd, int) or r_2sv_19_10qualityInd.__class__ is bool:
+            raise _enc('nav_sat', 'sv[19].qualityInd', r_2sv_19_10qualityInd, 'type', 'an int')
+        if not 0 <= r_2sv_19_10qualityInd <= 7:
+            raise _enc('nav_sat', 'sv[19].qualityInd', r_2sv_19_10qualityInd, 'range', '0..7', None)
     r_2sv_19_6svUsed: Any = g_2sv_19.svUsed
     if r_2sv_19_6svUsed is not True and r_2sv_19_6svUsed is not False and r_2sv_19_6svUsed != 0 and r_2sv_19_6svUsed != 1:
         raise _enc('nav_sat', 'sv[19].svUsed', r_2sv_19_6svUsed, 'type', 'a bool')
     r_2sv_19_6svUsed = 1 if r_2sv_19_6svUsed else 0
     r_2sv_19_6health = g_2sv_19.health
-    if r_2sv_19_6health.__class__ is not int and (not isinstance(r_2sv_19_6health, int) or r_2sv_19_6health.__class__ is bool):
-        raise _enc('nav_sat', 'sv[19].health', r_2sv_19_6health, 'type', 'an int')
-    if not 0 <= r_2sv_19_6health <= 3:
-        raise _enc('nav_sat', 'sv[19].health', r_2sv_19_6health, 'range', '0..3', None)
+    if r_2sv_19_6health.__class__ is not int or not 0 <= r_2sv_19_6health <= 3:
+        if not isinstance(r_2sv_19_6health, int) or r_2sv_19_6health.__class__ is bool:
+            raise _enc('nav_sat', 'sv[19].health', r_2sv_19_6health, 'type', 'an int')
+        if not 0 <= r_2sv_19_6health <= 3:
+            raise _enc('nav_sat', 'sv[19].health', r_2sv_19_6health, 'range', '0..3', None)
     r_2sv_19_8diffCorr: Any = g_2sv_19.diffCorr
     if r_2sv_19_8diffCorr is not True and r_2sv_19_8diffCorr is not False and r_2sv_19_8diffCorr != 0 and r_2sv_19_8diffCorr != 1:
         raise _enc('nav_sat', 'sv[19].diffCorr', r_2sv_19_8diffCorr, 'type', 'a bool')
@@ -3658,10 +3872,11 @@ def _raw_nav_sat_2sv_19(g_2sv_19: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[19].smoothed', r_2sv_19_8smoothed, 'type', 'a bool')
     r_2sv_19_8smoothed = 1 if r_2sv_19_8smoothed else 0
     r_2sv_19_11orbitSource = g_2sv_19.orbitSource
-    if r_2sv_19_11orbitSource.__class__ is not int and (not isinstance(r_2sv_19_11orbitSource, int) or r_2sv_19_11orbitSource.__class__ is bool):
-        raise _enc('nav_sat', 'sv[19].orbitSource', r_2sv_19_11orbitSource, 'type', 'an int')
-    if not 0 <= r_2sv_19_11orbitSource <= 7:
-        raise _enc('nav_sat', 'sv[19].orbitSource', r_2sv_19_11orbitSource, 'range', '0..7', None)
+    if r_2sv_19_11orbitSource.__class__ is not int or not 0 <= r_2sv_19_11orbitSource <= 7:
+        if not isinstance(r_2sv_19_11orbitSource, int) or r_2sv_19_11orbitSource.__class__ is bool:
+            raise _enc('nav_sat', 'sv[19].orbitSource', r_2sv_19_11orbitSource, 'type', 'an int')
+        if not 0 <= r_2sv_19_11orbitSource <= 7:
+            raise _enc('nav_sat', 'sv[19].orbitSource', r_2sv_19_11orbitSource, 'range', '0..7', None)
     r_2sv_19_8ephAvail: Any = g_2sv_19.ephAvail
     if r_2sv_19_8ephAvail is not True and r_2sv_19_8ephAvail is not False and r_2sv_19_8ephAvail != 0 and r_2sv_19_8ephAvail != 1:
         raise _enc('nav_sat', 'sv[19].ephAvail', r_2sv_19_8ephAvail, 'type', 'a bool')
@@ -3679,10 +3894,11 @@ def _raw_nav_sat_2sv_19(g_2sv_19: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[19].aopAvail', r_2sv_19_8aopAvail, 'type', 'a bool')
     r_2sv_19_8aopAvail = 1 if r_2sv_19_8aopAvail else 0
     r_2sv_19_10reserved13 = g_2sv_19.reserved13
-    if r_2sv_19_10reserved13.__class__ is not int and (not isinstance(r_2sv_19_10reserved13, int) or r_2sv_19_10reserved13.__class__ is bool):
-        raise _enc('nav_sat', 'sv[19].reserved13', r_2sv_19_10reserved13, 'type', 'an int')
-    if not 0 <= r_2sv_19_10reserved13 <= 1:
-        raise _enc('nav_sat', 'sv[19].reserved13', r_2sv_19_10reserved13, 'range', '0..1', None)
+    if r_2sv_19_10reserved13.__class__ is not int or not 0 <= r_2sv_19_10reserved13 <= 1:
+        if not isinstance(r_2sv_19_10reserved13, int) or r_2sv_19_10reserved13.__class__ is bool:
+            raise _enc('nav_sat', 'sv[19].reserved13', r_2sv_19_10reserved13, 'type', 'an int')
+        if not 0 <= r_2sv_19_10reserved13 <= 1:
+            raise _enc('nav_sat', 'sv[19].reserved13', r_2sv_19_10reserved13, 'range', '0..1', None)
     r_2sv_19_12sbasCorrUsed: Any = g_2sv_19.sbasCorrUsed
     if r_2sv_19_12sbasCorrUsed is not True and r_2sv_19_12sbasCorrUsed is not False and r_2sv_19_12sbasCorrUsed != 0 and r_2sv_19_12sbasCorrUsed != 1:
         raise _enc('nav_sat', 'sv[19].sbasCorrUsed', r_2sv_19_12sbasCorrUsed, 'type', 'a bool')
@@ -3729,50 +3945,58 @@ def _raw_nav_sat_2sv_19(g_2sv_19: Any) -> tuple[Any, ...]:
 
 def _raw_nav_sat_2sv_20(g_2sv_20: Any) -> tuple[Any, ...]:
     r_2sv_20_6gnssId = g_2sv_20.gnssId
-    if r_2sv_20_6gnssId.__class__ is not int and (not isinstance(r_2sv_20_6gnssId, int) or r_2sv_20_6gnssId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[20].gnssId', r_2sv_20_6gnssId, 'type', 'an int')
-    if not 0 <= r_2sv_20_6gnssId <= 255:
-        raise _enc('nav_sat', 'sv[20].gnssId', r_2sv_20_6gnssId, 'range', '0..255', None)
+    if r_2sv_20_6gnssId.__class__ is not int or not 0 <= r_2sv_20_6gnssId <= 255:
+        if not isinstance(r_2sv_20_6gnssId, int) or r_2sv_20_6gnssId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[20].gnssId', r_2sv_20_6gnssId, 'type', 'an int')
+        if not 0 <= r_2sv_20_6gnssId <= 255:
+            raise _enc('nav_sat', 'sv[20].gnssId', r_2sv_20_6gnssId, 'range', '0..255', None)
     r_2sv_20_4svId = g_2sv_20.svId
-    if r_2sv_20_4svId.__class__ is not int and (not isinstance(r_2sv_20_4svId, int) or r_2sv_20_4svId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[20].svId', r_2sv_20_4svId, 'type', 'an int')
-    if not 0 <= r_2sv_20_4svId <= 255:
-        raise _enc('nav_sat', 'sv[20].svId', r_2sv_20_4svId, 'range', '0..255', None)
+    if r_2sv_20_4svId.__class__ is not int or not 0 <= r_2sv_20_4svId <= 255:
+        if not isinstance(r_2sv_20_4svId, int) or r_2sv_20_4svId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[20].svId', r_2sv_20_4svId, 'type', 'an int')
+        if not 0 <= r_2sv_20_4svId <= 255:
+            raise _enc('nav_sat', 'sv[20].svId', r_2sv_20_4svId, 'range', '0..255', None)
     r_2sv_20_3cno = g_2sv_20.cno
-    if r_2sv_20_3cno.__class__ is not int and (not isinstance(r_2sv_20_3cno, int) or r_2sv_20_3cno.__class__ is bool):
-        raise _enc('nav_sat', 'sv[20].cno', r_2sv_20_3cno, 'type', 'an int')
-    if not 0 <= r_2sv_20_3cno <= 255:
-        raise _enc('nav_sat', 'sv[20].cno', r_2sv_20_3cno, 'range', '0..255', None)
+    if r_2sv_20_3cno.__class__ is not int or not 0 <= r_2sv_20_3cno <= 255:
+        if not isinstance(r_2sv_20_3cno, int) or r_2sv_20_3cno.__class__ is bool:
+            raise _enc('nav_sat', 'sv[20].cno', r_2sv_20_3cno, 'type', 'an int')
+        if not 0 <= r_2sv_20_3cno <= 255:
+            raise _enc('nav_sat', 'sv[20].cno', r_2sv_20_3cno, 'range', '0..255', None)
     r_2sv_20_4elev = g_2sv_20.elev
-    if r_2sv_20_4elev.__class__ is not int and (not isinstance(r_2sv_20_4elev, int) or r_2sv_20_4elev.__class__ is bool):
-        raise _enc('nav_sat', 'sv[20].elev', r_2sv_20_4elev, 'type', 'an int')
-    if not -128 <= r_2sv_20_4elev <= 127:
-        raise _enc('nav_sat', 'sv[20].elev', r_2sv_20_4elev, 'range', '-128..127', None)
+    if r_2sv_20_4elev.__class__ is not int or not -128 <= r_2sv_20_4elev <= 127:
+        if not isinstance(r_2sv_20_4elev, int) or r_2sv_20_4elev.__class__ is bool:
+            raise _enc('nav_sat', 'sv[20].elev', r_2sv_20_4elev, 'type', 'an int')
+        if not -128 <= r_2sv_20_4elev <= 127:
+            raise _enc('nav_sat', 'sv[20].elev', r_2sv_20_4elev, 'range', '-128..127', None)
     r_2sv_20_4azim = g_2sv_20.azim
-    if r_2sv_20_4azim.__class__ is not int and (not isinstance(r_2sv_20_4azim, int) or r_2sv_20_4azim.__class__ is bool):
-        raise _enc('nav_sat', 'sv[20].azim', r_2sv_20_4azim, 'type', 'an int')
-    if not -32768 <= r_2sv_20_4azim <= 32767:
-        raise _enc('nav_sat', 'sv[20].azim', r_2sv_20_4azim, 'range', '-32768..32767', None)
+    if r_2sv_20_4azim.__class__ is not int or not -32768 <= r_2sv_20_4azim <= 32767:
+        if not isinstance(r_2sv_20_4azim, int) or r_2sv_20_4azim.__class__ is bool:
+            raise _enc('nav_sat', 'sv[20].azim', r_2sv_20_4azim, 'type', 'an int')
+        if not -32768 <= r_2sv_20_4azim <= 32767:
+            raise _enc('nav_sat', 'sv[20].azim', r_2sv_20_4azim, 'range', '-32768..32767', None)
     r_2sv_20_5prRes = g_2sv_20.prRes
-    if r_2sv_20_5prRes.__class__ is not float and (not isinstance(r_2sv_20_5prRes, (int, float)) or r_2sv_20_5prRes.__class__ is bool):
-        raise _enc('nav_sat', 'sv[20].prRes', r_2sv_20_5prRes, 'type', 'a number')
-    if not -3276.8 <= r_2sv_20_5prRes <= 3276.7000000000003:
-        raise _enc('nav_sat', 'sv[20].prRes', r_2sv_20_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    if r_2sv_20_5prRes.__class__ is not float or not -3276.8 <= r_2sv_20_5prRes <= 3276.7000000000003:
+        if not isinstance(r_2sv_20_5prRes, (int, float)) or r_2sv_20_5prRes.__class__ is bool:
+            raise _enc('nav_sat', 'sv[20].prRes', r_2sv_20_5prRes, 'type', 'a number')
+        if not -3276.8 <= r_2sv_20_5prRes <= 3276.7000000000003:
+            raise _enc('nav_sat', 'sv[20].prRes', r_2sv_20_5prRes, 'range', '-3276.8..3276.7000000000003', None)
     r_2sv_20_5prRes = _floor(r_2sv_20_5prRes / 0.1 + 0.5)
     r_2sv_20_10qualityInd = g_2sv_20.qualityInd
-    if r_2sv_20_10qualityInd.__class__ is not int and (not isinstance(r_2sv_20_10qualityInd, int) or r_2sv_20_10qualityInd.__class__ is bool):
-        raise _enc('nav_sat', 'sv[20].qualityInd', r_2sv_20_10qualityInd, 'type', 'an int')
-    if not 0 <= r_2sv_20_10qualityInd <= 7:
-        raise _enc('nav_sat', 'sv[20].qualityInd', r_2sv_20_10qualityInd, 'range', '0..7', None)
+    if r_2sv_20_10qualityInd.__class__ is not int or not 0 <= r_2sv_20_10qualityInd <= 7:
+        if not isinstance(r_2sv_20_10qualityInd, int) or r_2sv_20_10qualityInd.__class__ is bool:
+            raise _enc('nav_sat', 'sv[20].qualityInd', r_2sv_20_10qualityInd, 'type', 'an int')
+        if not 0 <= r_2sv_20_10qualityInd <= 7:
+            raise _enc('nav_sat', 'sv[20].qualityInd', r_2sv_20_10qualityInd, 'range', '0..7', None)
     r_2sv_20_6svUsed: Any = g_2sv_20.svUsed
     if r_2sv_20_6svUsed is not True and r_2sv_20_6svUsed is not False and r_2sv_20_6svUsed != 0 and r_2sv_20_6svUsed != 1:
         raise _enc('nav_sat', 'sv[20].svUsed', r_2sv_20_6svUsed, 'type', 'a bool')
     r_2sv_20_6svUsed = 1 if r_2sv_20_6svUsed else 0
     r_2sv_20_6health = g_2sv_20.health
-    if r_2sv_20_6health.__class__ is not int and (not isinstance(r_2sv_20_6health, int) or r_2sv_20_6health.__class__ is bool):
-        raise _enc('nav_sat', 'sv[20].health', r_2sv_20_6health, 'type', 'an int')
-    if not 0 <= r_2sv_20_6health <= 3:
-        raise _enc('nav_sat', 'sv[20].health', r_2sv_20_6health, 'range', '0..3', None)
+    if r_2sv_20_6health.__class__ is not int or not 0 <= r_2sv_20_6health <= 3:
+        if not isinstance(r_2sv_20_6health, int) or r_2sv_20_6health.__class__ is bool:
+            raise _enc('nav_sat', 'sv[20].health', r_2sv_20_6health, 'type', 'an int')
+        if not 0 <= r_2sv_20_6health <= 3:
+            raise _enc('nav_sat', 'sv[20].health', r_2sv_20_6health, 'range', '0..3', None)
     r_2sv_20_8diffCorr: Any = g_2sv_20.diffCorr
     if r_2sv_20_8diffCorr is not True and r_2sv_20_8diffCorr is not False and r_2sv_20_8diffCorr != 0 and r_2sv_20_8diffCorr != 1:
         raise _enc('nav_sat', 'sv[20].diffCorr', r_2sv_20_8diffCorr, 'type', 'a bool')
@@ -3782,10 +4006,11 @@ def _raw_nav_sat_2sv_20(g_2sv_20: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[20].smoothed', r_2sv_20_8smoothed, 'type', 'a bool')
     r_2sv_20_8smoothed = 1 if r_2sv_20_8smoothed else 0
     r_2sv_20_11orbitSource = g_2sv_20.orbitSource
-    if r_2sv_20_11orbitSource.__class__ is not int and (not isinstance(r_2sv_20_11orbitSource, int) or r_2sv_20_11orbitSource.__class__ is bool):
-        raise _enc('nav_sat', 'sv[20].orbitSource', r_2sv_20_11orbitSource, 'type', 'an int')
-    if not 0 <= r_2sv_20_11orbitSource <= 7:
-        raise _enc('nav_sat', 'sv[20].orbitSource', r_2sv_20_11orbitSource, 'range', '0..7', None)
+    if r_2sv_20_11orbitSource.__class__ is not int or not 0 <= r_2sv_20_11orbitSource <= 7:
+        if not isinstance(r_2sv_20_11orbitSource, int) or r_2sv_20_11orbitSource.__class__ is bool:
+            raise _enc('nav_sat', 'sv[20].orbitSource', r_2sv_20_11orbitSource, 'type', 'an int')
+        if not 0 <= r_2sv_20_11orbitSource <= 7:
+            raise _enc('nav_sat', 'sv[20].orbitSource', r_2sv_20_11orbitSource, 'range', '0..7', None)
     r_2sv_20_8ephAvail: Any = g_2sv_20.ephAvail
     if r_2sv_20_8ephAvail is not True and r_2sv_20_8ephAvail is not False and r_2sv_20_8ephAvail != 0 and r_2sv_20_8ephAvail != 1:
         raise _enc('nav_sat', 'sv[20].ephAvail', r_2sv_20_8ephAvail, 'type', 'a bool')
@@ -3803,10 +4028,11 @@ def _raw_nav_sat_2sv_20(g_2sv_20: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[20].aopAvail', r_2sv_20_8aopAvail, 'type', 'a bool')
     r_2sv_20_8aopAvail = 1 if r_2sv_20_8aopAvail else 0
     r_2sv_20_10reserved13 = g_2sv_20.reserved13
-    if r_2sv_20_10reserved13.__class__ is not int and (not isinstance(r_2sv_20_10reserved13, int) or r_2sv_20_10reserved13.__class__ is bool):
-        raise _enc('nav_sat', 'sv[20].reserved13', r_2sv_20_10reserved13, 'type', 'an int')
-    if not 0 <= r_2sv_20_10reserved13 <= 1:
-        raise _enc('nav_sat', 'sv[20].reserved13', r_2sv_20_10reserved13, 'range', '0..1', None)
+    if r_2sv_20_10reserved13.__class__ is not int or not 0 <= r_2sv_20_10reserved13 <= 1:
+        if not isinstance(r_2sv_20_10reserved13, int) or r_2sv_20_10reserved13.__class__ is bool:
+            raise _enc('nav_sat', 'sv[20].reserved13', r_2sv_20_10reserved13, 'type', 'an int')
+        if not 0 <= r_2sv_20_10reserved13 <= 1:
+            raise _enc('nav_sat', 'sv[20].reserved13', r_2sv_20_10reserved13, 'range', '0..1', None)
     r_2sv_20_12sbasCorrUsed: Any = g_2sv_20.sbasCorrUsed
     if r_2sv_20_12sbasCorrUsed is not True and r_2sv_20_12sbasCorrUsed is not False and r_2sv_20_12sbasCorrUsed != 0 and r_2sv_20_12sbasCorrUsed != 1:
         raise _enc('nav_sat', 'sv[20].sbasCorrUsed', r_2sv_20_12sbasCorrUsed, 'type', 'a bool')
@@ -3853,50 +4079,58 @@ def _raw_nav_sat_2sv_20(g_2sv_20: Any) -> tuple[Any, ...]:
 
 def _raw_nav_sat_2sv_21(g_2sv_21: Any) -> tuple[Any, ...]:
     r_2sv_21_6gnssId = g_2sv_21.gnssId
-    if r_2sv_21_6gnssId.__class__ is not int and (not isinstance(r_2sv_21_6gnssId, int) or r_2sv_21_6gnssId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[21].gnssId', r_2sv_21_6gnssId, 'type', 'an int')
-    if not 0 <= r_2sv_21_6gnssId <= 255:
-        raise _enc('nav_sat', 'sv[21].gnssId', r_2sv_21_6gnssId, 'range', '0..255', None)
+    if r_2sv_21_6gnssId.__class__ is not int or not 0 <= r_2sv_21_6gnssId <= 255:
+        if not isinstance(r_2sv_21_6gnssId, int) or r_2sv_21_6gnssId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[21].gnssId', r_2sv_21_6gnssId, 'type', 'an int')
+        if not 0 <= r_2sv_21_6gnssId <= 255:
+            raise _enc('nav_sat', 'sv[21].gnssId', r_2sv_21_6gnssId, 'range', '0..255', None)
     r_2sv_21_4svId = g_2sv_21.svId
-    if r_2sv_21_4svId.__class__ is not int and (not isinstance(r_2sv_21_4svId, int) or r_2sv_21_4svId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[21].svId', r_2sv_21_4svId, 'type', 'an int')
-    if not 0 <= r_2sv_21_4svId <= 255:
-        raise _enc('nav_sat', 'sv[21].svId', r_2sv_21_4svId, 'range', '0..255', None)
+    if r_2sv_21_4svId.__class__ is not int or not 0 <= r_2sv_21_4svId <= 255:
+        if not isinstance(r_2sv_21_4svId, int) or r_2sv_21_4svId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[21].svId', r_2sv_21_4svId, 'type', 'an int')
+        if not 0 <= r_2sv_21_4svId <= 255:
+            raise _enc('nav_sat', 'sv[21].svId', r_2sv_21_4svId, 'range', '0..255', None)
     r_2sv_21_3cno = g_2sv_21.cno
-    if r_2sv_21_3cno.__class__ is not int and (not isinstance(r_2sv_21_3cno, int) or r_2sv_21_3cno.__class__ is bool):
-        raise _enc('nav_sat', 'sv[21].cno', r_2sv_21_3cno, 'type', 'an int')
-    if not 0 <= r_2sv_21_3cno <= 255:
-        raise _enc('nav_sat', 'sv[21].cno', r_2sv_21_3cno, 'range', '0..255', None)
+    if r_2sv_21_3cno.__class__ is not int or not 0 <= r_2sv_21_3cno <= 255:
+        if not isinstance(r_2sv_21_3cno, int) or r_2sv_21_3cno.__class__ is bool:
+            raise _enc('nav_sat', 'sv[21].cno', r_2sv_21_3cno, 'type', 'an int')
+        if not 0 <= r_2sv_21_3cno <= 255:
+            raise _enc('nav_sat', 'sv[21].cno', r_2sv_21_3cno, 'range', '0..255', None)
     r_2sv_21_4elev = g_2sv_21.elev
-    if r_2sv_21_4elev.__class__ is not int and (not isinstance(r_2sv_21_4elev, int) or r_2sv_21_4elev.__class__ is bool):
-        raise _enc('nav_sat', 'sv[21].elev', r_2sv_21_4elev, 'type', 'an int')
-    if not -128 <= r_2sv_21_4elev <= 127:
-        raise _enc('nav_sat', 'sv[21].elev', r_2sv_21_4elev, 'range', '-128..127', None)
+    if r_2sv_21_4elev.__class__ is not int or not -128 <= r_2sv_21_4elev <= 127:
+        if not isinstance(r_2sv_21_4elev, int) or r_2sv_21_4elev.__class__ is bool:
+            raise _enc('nav_sat', 'sv[21].elev', r_2sv_21_4elev, 'type', 'an int')
+        if not -128 <= r_2sv_21_4elev <= 127:
+            raise _enc('nav_sat', 'sv[21].elev', r_2sv_21_4elev, 'range', '-128..127', None)
     r_2sv_21_4azim = g_2sv_21.azim
-    if r_2sv_21_4azim.__class__ is not int and (not isinstance(r_2sv_21_4azim, int) or r_2sv_21_4azim.__class__ is bool):
-        raise _enc('nav_sat', 'sv[21].azim', r_2sv_21_4azim, 'type', 'an int')
-    if not -32768 <= r_2sv_21_4azim <= 32767:
-        raise _enc('nav_sat', 'sv[21].azim', r_2sv_21_4azim, 'range', '-32768..32767', None)
+    if r_2sv_21_4azim.__class__ is not int or not -32768 <= r_2sv_21_4azim <= 32767:
+        if not isinstance(r_2sv_21_4azim, int) or r_2sv_21_4azim.__class__ is bool:
+            raise _enc('nav_sat', 'sv[21].azim', r_2sv_21_4azim, 'type', 'an int')
+        if not -32768 <= r_2sv_21_4azim <= 32767:
+            raise _enc('nav_sat', 'sv[21].azim', r_2sv_21_4azim, 'range', '-32768..32767', None)
     r_2sv_21_5prRes = g_2sv_21.prRes
-    if r_2sv_21_5prRes.__class__ is not float and (not isinstance(r_2sv_21_5prRes, (int, float)) or r_2sv_21_5prRes.__class__ is bool):
-        raise _enc('nav_sat', 'sv[21].prRes', r_2sv_21_5prRes, 'type', 'a number')
-    if not -3276.8 <= r_2sv_21_5prRes <= 3276.7000000000003:
-        raise _enc('nav_sat', 'sv[21].prRes', r_2sv_21_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    if r_2sv_21_5prRes.__class__ is not float or not -3276.8 <= r_2sv_21_5prRes <= 3276.7000000000003:
+        if not isinstance(r_2sv_21_5prRes, (int, float)) or r_2sv_21_5prRes.__class__ is bool:
+            raise _enc('nav_sat', 'sv[21].prRes', r_2sv_21_5prRes, 'type', 'a number')
+        if not -3276.8 <= r_2sv_21_5prRes <= 3276.7000000000003:
+            raise _enc('nav_sat', 'sv[21].prRes', r_2sv_21_5prRes, 'range', '-3276.8..3276.7000000000003', None)
     r_2sv_21_5prRes = _floor(r_2sv_21_5prRes / 0.1 + 0.5)
     r_2sv_21_10qualityInd = g_2sv_21.qualityInd
-    if r_2sv_21_10qualityInd.__class__ is not int and (not isinstance(r_2sv_21_10qualityInd, int) or r_2sv_21_10qualityInd.__class__ is bool):
-        raise _enc('nav_sat', 'sv[21].qualityInd', r_2sv_21_10qualityInd, 'type', 'an int')
-    if not 0 <= r_2sv_21_10qualityInd <= 7:
-        raise _enc('nav_sat', 'sv[21].qualityInd', r_2sv_21_10qualityInd, 'range', '0..7', None)
+    if r_2sv_21_10qualityInd.__class__ is not int or not 0 <= r_2sv_21_10qualityInd <= 7:
+        if not isinstance(r_2sv_21_10qualityInd, int) or r_2sv_21_10qualityInd.__class__ is bool:
+            raise _enc('nav_sat', 'sv[21].qualityInd', r_2sv_21_10qualityInd, 'type', 'an int')
+        if not 0 <= r_2sv_21_10qualityInd <= 7:
+            raise _enc('nav_sat', 'sv[21].qualityInd', r_2sv_21_10qualityInd, 'range', '0..7', None)
     r_2sv_21_6svUsed: Any = g_2sv_21.svUsed
     if r_2sv_21_6svUsed is not True and r_2sv_21_6svUsed is not False and r_2sv_21_6svUsed != 0 and r_2sv_21_6svUsed != 1:
         raise _enc('nav_sat', 'sv[21].svUsed', r_2sv_21_6svUsed, 'type', 'a bool')
     r_2sv_21_6svUsed = 1 if r_2sv_21_6svUsed else 0
     r_2sv_21_6health = g_2sv_21.health
-    if r_2sv_21_6health.__class__ is not int and (not isinstance(r_2sv_21_6health, int) or r_2sv_21_6health.__class__ is bool):
-        raise _enc('nav_sat', 'sv[21].health', r_2sv_21_6health, 'type', 'an int')
-    if not 0 <= r_2sv_21_6health <= 3:
-        raise _enc('nav_sat', 'sv[21].health', r_2sv_21_6health, 'range', '0..3', None)
+    if r_2sv_21_6health.__class__ is not int or not 0 <= r_2sv_21_6health <= 3:
+        if not isinstance(r_2sv_21_6health, int) or r_2sv_21_6health.__class__ is bool:
+            raise _enc('nav_sat', 'sv[21].health', r_2sv_21_6health, 'type', 'an int')
+        if not 0 <= r_2sv_21_6health <= 3:
+            raise _enc('nav_sat', 'sv[21].health', r_2sv_21_6health, 'range', '0..3', None)
     r_2sv_21_8diffCorr: Any = g_2sv_21.diffCorr
     if r_2sv_21_8diffCorr is not True and r_2sv_21_8diffCorr is not False and r_2sv_21_8diffCorr != 0 and r_2sv_21_8diffCorr != 1:
         raise _enc('nav_sat', 'sv[21].diffCorr', r_2sv_21_8diffCorr, 'type', 'a bool')
@@ -3906,10 +4140,11 @@ def _raw_nav_sat_2sv_21(g_2sv_21: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[21].smoothed', r_2sv_21_8smoothed, 'type', 'a bool')
     r_2sv_21_8smoothed = 1 if r_2sv_21_8smoothed else 0
     r_2sv_21_11orbitSource = g_2sv_21.orbitSource
-    if r_2sv_21_11orbitSource.__class__ is not int and (not isinstance(r_2sv_21_11orbitSource, int) or r_2sv_21_11orbitSource.__class__ is bool):
-        raise _enc('nav_sat', 'sv[21].orbitSource', r_2sv_21_11orbitSource, 'type', 'an int')
-    if not 0 <= r_2sv_21_11orbitSource <= 7:
-        raise _enc('nav_sat', 'sv[21].orbitSource', r_2sv_21_11orbitSource, 'range', '0..7', None)
+    if r_2sv_21_11orbitSource.__class__ is not int or not 0 <= r_2sv_21_11orbitSource <= 7:
+        if not isinstance(r_2sv_21_11orbitSource, int) or r_2sv_21_11orbitSource.__class__ is bool:
+            raise _enc('nav_sat', 'sv[21].orbitSource', r_2sv_21_11orbitSource, 'type', 'an int')
+        if not 0 <= r_2sv_21_11orbitSource <= 7:
+            raise _enc('nav_sat', 'sv[21].orbitSource', r_2sv_21_11orbitSource, 'range', '0..7', None)
     r_2sv_21_8ephAvail: Any = g_2sv_21.ephAvail
     if r_2sv_21_8ephAvail is not True and r_2sv_21_8ephAvail is not False and r_2sv_21_8ephAvail != 0 and r_2sv_21_8ephAvail != 1:
         raise _enc('nav_sat', 'sv[21].ephAvail', r_2sv_21_8ephAvail, 'type', 'a bool')
@@ -3927,10 +4162,11 @@ def _raw_nav_sat_2sv_21(g_2sv_21: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[21].aopAvail', r_2sv_21_8aopAvail, 'type', 'a bool')
     r_2sv_21_8aopAvail = 1 if r_2sv_21_8aopAvail else 0
     r_2sv_21_10reserved13 = g_2sv_21.reserved13
-    if r_2sv_21_10reserved13.__class__ is not int and (not isinstance(r_2sv_21_10reserved13, int) or r_2sv_21_10reserved13.__class__ is bool):
-        raise _enc('nav_sat', 'sv[21].reserved13', r_2sv_21_10reserved13, 'type', 'an int')
-    if not 0 <= r_2sv_21_10reserved13 <= 1:
-        raise _enc('nav_sat', 'sv[21].reserved13', r_2sv_21_10reserved13, 'range', '0..1', None)
+    if r_2sv_21_10reserved13.__class__ is not int or not 0 <= r_2sv_21_10reserved13 <= 1:
+        if not isinstance(r_2sv_21_10reserved13, int) or r_2sv_21_10reserved13.__class__ is bool:
+            raise _enc('nav_sat', 'sv[21].reserved13', r_2sv_21_10reserved13, 'type', 'an int')
+        if not 0 <= r_2sv_21_10reserved13 <= 1:
+            raise _enc('nav_sat', 'sv[21].reserved13', r_2sv_21_10reserved13, 'range', '0..1', None)
     r_2sv_21_12sbasCorrUsed: Any = g_2sv_21.sbasCorrUsed
     if r_2sv_21_12sbasCorrUsed is not True and r_2sv_21_12sbasCorrUsed is not False and r_2sv_21_12sbasCorrUsed != 0 and r_2sv_21_12sbasCorrUsed != 1:
         raise _enc('nav_sat', 'sv[21].sbasCorrUsed', r_2sv_21_12sbasCorrUsed, 'type', 'a bool')
@@ -3977,50 +4213,58 @@ def _raw_nav_sat_2sv_21(g_2sv_21: Any) -> tuple[Any, ...]:
 
 def _raw_nav_sat_2sv_22(g_2sv_22: Any) -> tuple[Any, ...]:
     r_2sv_22_6gnssId = g_2sv_22.gnssId
-    if r_2sv_22_6gnssId.__class__ is not int and (not isinstance(r_2sv_22_6gnssId, int) or r_2sv_22_6gnssId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[22].gnssId', r_2sv_22_6gnssId, 'type', 'an int')
-    if not 0 <= r_2sv_22_6gnssId <= 255:
-        raise _enc('nav_sat', 'sv[22].gnssId', r_2sv_22_6gnssId, 'range', '0..255', None)
+    if r_2sv_22_6gnssId.__class__ is not int or not 0 <= r_2sv_22_6gnssId <= 255:
+        if not isinstance(r_2sv_22_6gnssId, int) or r_2sv_22_6gnssId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[22].gnssId', r_2sv_22_6gnssId, 'type', 'an int')
+        if not 0 <= r_2sv_22_6gnssId <= 255:
+            raise _enc('nav_sat', 'sv[22].gnssId', r_2sv_22_6gnssId, 'range', '0..255', None)
     r_2sv_22_4svId = g_2sv_22.svId
-    if r_2sv_22_4svId.__class__ is not int and (not isinstance(r_2sv_22_4svId, int) or r_2sv_22_4svId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[22].svId', r_2sv_22_4svId, 'type', 'an int')
-    if not 0 <= r_2sv_22_4svId <= 255:
-        raise _enc('nav_sat', 'sv[22].svId', r_2sv_22_4svId, 'range', '0..255', None)
+    if r_2sv_22_4svId.__class__ is not int or not 0 <= r_2sv_22_4svId <= 255:
+        if not isinstance(r_2sv_22_4svId, int) or r_2sv_22_4svId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[22].svId', r_2sv_22_4svId, 'type', 'an int')
+        if not 0 <= r_2sv_22_4svId <= 255:
+            raise _enc('nav_sat', 'sv[22].svId', r_2sv_22_4svId, 'range', '0..255', None)
     r_2sv_22_3cno = g_2sv_22.cno
-    if r_2sv_22_3cno.__class__ is not int and (not isinstance(r_2sv_22_3cno, int) or r_2sv_22_3cno.__class__ is bool):
-        raise _enc('nav_sat', 'sv[22].cno', r_2sv_22_3cno, 'type', 'an int')
-    if not 0 <= r_2sv_22_3cno <= 255:
-        raise _enc('nav_sat', 'sv[22].cno', r_2sv_22_3cno, 'range', '0..255', None)
+    if r_2sv_22_3cno.__class__ is not int or not 0 <= r_2sv_22_3cno <= 255:
+        if not isinstance(r_2sv_22_3cno, int) or r_2sv_22_3cno.__class__ is bool:
+            raise _enc('nav_sat', 'sv[22].cno', r_2sv_22_3cno, 'type', 'an int')
+        if not 0 <= r_2sv_22_3cno <= 255:
+            raise _enc('nav_sat', 'sv[22].cno', r_2sv_22_3cno, 'range', '0..255', None)
     r_2sv_22_4elev = g_2sv_22.elev
-    if r_2sv_22_4elev.__class__ is not int and (not isinstance(r_2sv_22_4elev, int) or r_2sv_22_4elev.__class__ is bool):
-        raise _enc('nav_sat', 'sv[22].elev', r_2sv_22_4elev, 'type', 'an int')
-    if not -128 <= r_2sv_22_4elev <= 127:
-        raise _enc('nav_sat', 'sv[22].elev', r_2sv_22_4elev, 'range', '-128..127', None)
+    if r_2sv_22_4elev.__class__ is not int or not -128 <= r_2sv_22_4elev <= 127:
+        if not isinstance(r_2sv_22_4elev, int) or r_2sv_22_4elev.__class__ is bool:
+            raise _enc('nav_sat', 'sv[22].elev', r_2sv_22_4elev, 'type', 'an int')
+        if not -128 <= r_2sv_22_4elev <= 127:
+            raise _enc('nav_sat', 'sv[22].elev', r_2sv_22_4elev, 'range', '-128..127', None)
     r_2sv_22_4azim = g_2sv_22.azim
-    if r_2sv_22_4azim.__class__ is not int and (not isinstance(r_2sv_22_4azim, int) or r_2sv_22_4azim.__class__ is bool):
-        raise _enc('nav_sat', 'sv[22].azim', r_2sv_22_4azim, 'type', 'an int')
-    if not -32768 <= r_2sv_22_4azim <= 32767:
-        raise _enc('nav_sat', 'sv[22].azim', r_2sv_22_4azim, 'range', '-32768..32767', None)
+    if r_2sv_22_4azim.__class__ is not int or not -32768 <= r_2sv_22_4azim <= 32767:
+        if not isinstance(r_2sv_22_4azim, int) or r_2sv_22_4azim.__class__ is bool:
+            raise _enc('nav_sat', 'sv[22].azim', r_2sv_22_4azim, 'type', 'an int')
+        if not -32768 <= r_2sv_22_4azim <= 32767:
+            raise _enc('nav_sat', 'sv[22].azim', r_2sv_22_4azim, 'range', '-32768..32767', None)
     r_2sv_22_5prRes = g_2sv_22.prRes
-    if r_2sv_22_5prRes.__class__ is not float and (not isinstance(r_2sv_22_5prRes, (int, float)) or r_2sv_22_5prRes.__class__ is bool):
-        raise _enc('nav_sat', 'sv[22].prRes', r_2sv_22_5prRes, 'type', 'a number')
-    if not -3276.8 <= r_2sv_22_5prRes <= 3276.7000000000003:
-        raise _enc('nav_sat', 'sv[22].prRes', r_2sv_22_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    if r_2sv_22_5prRes.__class__ is not float or not -3276.8 <= r_2sv_22_5prRes <= 3276.7000000000003:
+        if not isinstance(r_2sv_22_5prRes, (int, float)) or r_2sv_22_5prRes.__class__ is bool:
+            raise _enc('nav_sat', 'sv[22].prRes', r_2sv_22_5prRes, 'type', 'a number')
+        if not -3276.8 <= r_2sv_22_5prRes <= 3276.7000000000003:
+            raise _enc('nav_sat', 'sv[22].prRes', r_2sv_22_5prRes, 'range', '-3276.8..3276.7000000000003', None)
     r_2sv_22_5prRes = _floor(r_2sv_22_5prRes / 0.1 + 0.5)
     r_2sv_22_10qualityInd = g_2sv_22.qualityInd
-    if r_2sv_22_10qualityInd.__class__ is not int and (not isinstance(r_2sv_22_10qualityInd, int) or r_2sv_22_10qualityInd.__class__ is bool):
-        raise _enc('nav_sat', 'sv[22].qualityInd', r_2sv_22_10qualityInd, 'type', 'an int')
-    if not 0 <= r_2sv_22_10qualityInd <= 7:
-        raise _enc('nav_sat', 'sv[22].qualityInd', r_2sv_22_10qualityInd, 'range', '0..7', None)
+    if r_2sv_22_10qualityInd.__class__ is not int or not 0 <= r_2sv_22_10qualityInd <= 7:
+        if not isinstance(r_2sv_22_10qualityInd, int) or r_2sv_22_10qualityInd.__class__ is bool:
+            raise _enc('nav_sat', 'sv[22].qualityInd', r_2sv_22_10qualityInd, 'type', 'an int')
+        if not 0 <= r_2sv_22_10qualityInd <= 7:
+            raise _enc('nav_sat', 'sv[22].qualityInd', r_2sv_22_10qualityInd, 'range', '0..7', None)
     r_2sv_22_6svUsed: Any = g_2sv_22.svUsed
     if r_2sv_22_6svUsed is not True and r_2sv_22_6svUsed is not False and r_2sv_22_6svUsed != 0 and r_2sv_22_6svUsed != 1:
         raise _enc('nav_sat', 'sv[22].svUsed', r_2sv_22_6svUsed, 'type', 'a bool')
     r_2sv_22_6svUsed = 1 if r_2sv_22_6svUsed else 0
     r_2sv_22_6health = g_2sv_22.health
-    if r_2sv_22_6health.__class__ is not int and (not isinstance(r_2sv_22_6health, int) or r_2sv_22_6health.__class__ is bool):
-        raise _enc('nav_sat', 'sv[22].health', r_2sv_22_6health, 'type', 'an int')
-    if not 0 <= r_2sv_22_6health <= 3:
-        raise _enc('nav_sat', 'sv[22].health', r_2sv_22_6health, 'range', '0..3', None)
+    if r_2sv_22_6health.__class__ is not int or not 0 <= r_2sv_22_6health <= 3:
+        if not isinstance(r_2sv_22_6health, int) or r_2sv_22_6health.__class__ is bool:
+            raise _enc('nav_sat', 'sv[22].health', r_2sv_22_6health, 'type', 'an int')
+        if not 0 <= r_2sv_22_6health <= 3:
+            raise _enc('nav_sat', 'sv[22].health', r_2sv_22_6health, 'range', '0..3', None)
     r_2sv_22_8diffCorr: Any = g_2sv_22.diffCorr
     if r_2sv_22_8diffCorr is not True and r_2sv_22_8diffCorr is not False and r_2sv_22_8diffCorr != 0 and r_2sv_22_8diffCorr != 1:
         raise _enc('nav_sat', 'sv[22].diffCorr', r_2sv_22_8diffCorr, 'type', 'a bool')
@@ -4030,10 +4274,11 @@ def _raw_nav_sat_2sv_22(g_2sv_22: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[22].smoothed', r_2sv_22_8smoothed, 'type', 'a bool')
     r_2sv_22_8smoothed = 1 if r_2sv_22_8smoothed else 0
     r_2sv_22_11orbitSource = g_2sv_22.orbitSource
-    if r_2sv_22_11orbitSource.__class__ is not int and (not isinstance(r_2sv_22_11orbitSource, int) or r_2sv_22_11orbitSource.__class__ is bool):
-        raise _enc('nav_sat', 'sv[22].orbitSource', r_2sv_22_11orbitSource, 'type', 'an int')
-    if not 0 <= r_2sv_22_11orbitSource <= 7:
-        raise _enc('nav_sat', 'sv[22].orbitSource', r_2sv_22_11orbitSource, 'range', '0..7', None)
+    if r_2sv_22_11orbitSource.__class__ is not int or not 0 <= r_2sv_22_11orbitSource <= 7:
+        if not isinstance(r_2sv_22_11orbitSource, int) or r_2sv_22_11orbitSource.__class__ is bool:
+            raise _enc('nav_sat', 'sv[22].orbitSource', r_2sv_22_11orbitSource, 'type', 'an int')
+        if not 0 <= r_2sv_22_11orbitSource <= 7:
+            raise _enc('nav_sat', 'sv[22].orbitSource', r_2sv_22_11orbitSource, 'range', '0..7', None)
     r_2sv_22_8ephAvail: Any = g_2sv_22.ephAvail
     if r_2sv_22_8ephAvail is not True and r_2sv_22_8ephAvail is not False and r_2sv_22_8ephAvail != 0 and r_2sv_22_8ephAvail != 1:
         raise _enc('nav_sat', 'sv[22].ephAvail', r_2sv_22_8ephAvail, 'type', 'a bool')
@@ -4051,10 +4296,11 @@ def _raw_nav_sat_2sv_22(g_2sv_22: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[22].aopAvail', r_2sv_22_8aopAvail, 'type', 'a bool')
     r_2sv_22_8aopAvail = 1 if r_2sv_22_8aopAvail else 0
     r_2sv_22_10reserved13 = g_2sv_22.reserved13
-    if r_2sv_22_10reserved13.__class__ is not int and (not isinstance(r_2sv_22_10reserved13, int) or r_2sv_22_10reserved13.__class__ is bool):
-        raise _enc('nav_sat', 'sv[22].reserved13', r_2sv_22_10reserved13, 'type', 'an int')
-    if not 0 <= r_2sv_22_10reserved13 <= 1:
-        raise _enc('nav_sat', 'sv[22].reserved13', r_2sv_22_10reserved13, 'range', '0..1', None)
+    if r_2sv_22_10reserved13.__class__ is not int or not 0 <= r_2sv_22_10reserved13 <= 1:
+        if not isinstance(r_2sv_22_10reserved13, int) or r_2sv_22_10reserved13.__class__ is bool:
+            raise _enc('nav_sat', 'sv[22].reserved13', r_2sv_22_10reserved13, 'type', 'an int')
+        if not 0 <= r_2sv_22_10reserved13 <= 1:
+            raise _enc('nav_sat', 'sv[22].reserved13', r_2sv_22_10reserved13, 'range', '0..1', None)
     r_2sv_22_12sbasCorrUsed: Any = g_2sv_22.sbasCorrUsed
     if r_2sv_22_12sbasCorrUsed is not True and r_2sv_22_12sbasCorrUsed is not False and r_2sv_22_12sbasCorrUsed != 0 and r_2sv_22_12sbasCorrUsed != 1:
         raise _enc('nav_sat', 'sv[22].sbasCorrUsed', r_2sv_22_12sbasCorrUsed, 'type', 'a bool')
@@ -4101,50 +4347,58 @@ def _raw_nav_sat_2sv_22(g_2sv_22: Any) -> tuple[Any, ...]:
 
 def _raw_nav_sat_2sv_23(g_2sv_23: Any) -> tuple[Any, ...]:
     r_2sv_23_6gnssId = g_2sv_23.gnssId
-    if r_2sv_23_6gnssId.__class__ is not int and (not isinstance(r_2sv_23_6gnssId, int) or r_2sv_23_6gnssId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[23].gnssId', r_2sv_23_6gnssId, 'type', 'an int')
-    if not 0 <= r_2sv_23_6gnssId <= 255:
-        raise _enc('nav_sat', 'sv[23].gnssId', r_2sv_23_6gnssId, 'range', '0..255', None)
+    if r_2sv_23_6gnssId.__class__ is not int or not 0 <= r_2sv_23_6gnssId <= 255:
+        if not isinstance(r_2sv_23_6gnssId, int) or r_2sv_23_6gnssId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[23].gnssId', r_2sv_23_6gnssId, 'type', 'an int')
+        if not 0 <= r_2sv_23_6gnssId <= 255:
+            raise _enc('nav_sat', 'sv[23].gnssId', r_2sv_23_6gnssId, 'range', '0..255', None)
     r_2sv_23_4svId = g_2sv_23.svId
-    if r_2sv_23_4svId.__class__ is not int and (not isinstance(r_2sv_23_4svId, int) or r_2sv_23_4svId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[23].svId', r_2sv_23_4svId, 'type', 'an int')
-    if not 0 <= r_2sv_23_4svId <= 255:
-        raise _enc('nav_sat', 'sv[23].svId', r_2sv_23_4svId, 'range', '0..255', None)
+    if r_2sv_23_4svId.__class__ is not int or not 0 <= r_2sv_23_4svId <= 255:
+        if not isinstance(r_2sv_23_4svId, int) or r_2sv_23_4svId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[23].svId', r_2sv_23_4svId, 'type', 'an int')
+        if not 0 <= r_2sv_23_4svId <= 255:
+            raise _enc('nav_sat', 'sv[23].svId', r_2sv_23_4svId, 'range', '0..255', None)
     r_2sv_23_3cno = g_2sv_23.cno
-    if r_2sv_23_3cno.__class__ is not int and (not isinstance(r_2sv_23_3cno, int) or r_2sv_23_3cno.__class__ is bool):
-        raise _enc('nav_sat', 'sv[23].cno', r_2sv_23_3cno, 'type', 'an int')
-    if not 0 <= r_2sv_23_3cno <= 255:
-        raise _enc('nav_sat', 'sv[23].cno', r_2sv_23_3cno, 'range', '0..255', None)
+    if r_2sv_23_3cno.__class__ is not int or not 0 <= r_2sv_23_3cno <= 255:
+        if not isinstance(r_2sv_23_3cno, int) or r_2sv_23_3cno.__class__ is bool:
+            raise _enc('nav_sat', 'sv[23].cno', r_2sv_23_3cno, 'type', 'an int')
+        if not 0 <= r_2sv_23_3cno <= 255:
+            raise _enc('nav_sat', 'sv[23].cno', r_2sv_23_3cno, 'range', '0..255', None)
     r_2sv_23_4elev = g_2sv_23.elev
-    if r_2sv_23_4elev.__class__ is not int and (not isinstance(r_2sv_23_4elev, int) or r_2sv_23_4elev.__class__ is bool):
-        raise _enc('nav_sat', 'sv[23].elev', r_2sv_23_4elev, 'type', 'an int')
-    if not -128 <= r_2sv_23_4elev <= 127:
-        raise _enc('nav_sat', 'sv[23].elev', r_2sv_23_4elev, 'range', '-128..127', None)
+    if r_2sv_23_4elev.__class__ is not int or not -128 <= r_2sv_23_4elev <= 127:
+        if not isinstance(r_2sv_23_4elev, int) or r_2sv_23_4elev.__class__ is bool:
+            raise _enc('nav_sat', 'sv[23].elev', r_2sv_23_4elev, 'type', 'an int')
+        if not -128 <= r_2sv_23_4elev <= 127:
+            raise _enc('nav_sat', 'sv[23].elev', r_2sv_23_4elev, 'range', '-128..127', None)
     r_2sv_23_4azim = g_2sv_23.azim
-    if r_2sv_23_4azim.__class__ is not int and (not isinstance(r_2sv_23_4azim, int) or r_2sv_23_4azim.__class__ is bool):
-        raise _enc('nav_sat', 'sv[23].azim', r_2sv_23_4azim, 'type', 'an int')
-    if not -32768 <= r_2sv_23_4azim <= 32767:
-        raise _enc('nav_sat', 'sv[23].azim', r_2sv_23_4azim, 'range', '-32768..32767', None)
+    if r_2sv_23_4azim.__class__ is not int or not -32768 <= r_2sv_23_4azim <= 32767:
+        if not isinstance(r_2sv_23_4azim, int) or r_2sv_23_4azim.__class__ is bool:
+            raise _enc('nav_sat', 'sv[23].azim', r_2sv_23_4azim, 'type', 'an int')
+        if not -32768 <= r_2sv_23_4azim <= 32767:
+            raise _enc('nav_sat', 'sv[23].azim', r_2sv_23_4azim, 'range', '-32768..32767', None)
     r_2sv_23_5prRes = g_2sv_23.prRes
-    if r_2sv_23_5prRes.__class__ is not float and (not isinstance(r_2sv_23_5prRes, (int, float)) or r_2sv_23_5prRes.__class__ is bool):
-        raise _enc('nav_sat', 'sv[23].prRes', r_2sv_23_5prRes, 'type', 'a number')
-    if not -3276.8 <= r_2sv_23_5prRes <= 3276.7000000000003:
-        raise _enc('nav_sat', 'sv[23].prRes', r_2sv_23_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    if r_2sv_23_5prRes.__class__ is not float or not -3276.8 <= r_2sv_23_5prRes <= 3276.7000000000003:
+        if not isinstance(r_2sv_23_5prRes, (int, float)) or r_2sv_23_5prRes.__class__ is bool:
+            raise _enc('nav_sat', 'sv[23].prRes', r_2sv_23_5prRes, 'type', 'a number')
+        if not -3276.8 <= r_2sv_23_5prRes <= 3276.7000000000003:
+            raise _enc('nav_sat', 'sv[23].prRes', r_2sv_23_5prRes, 'range', '-3276.8..3276.7000000000003', None)
     r_2sv_23_5prRes = _floor(r_2sv_23_5prRes / 0.1 + 0.5)
     r_2sv_23_10qualityInd = g_2sv_23.qualityInd
-    if r_2sv_23_10qualityInd.__class__ is not int and (not isinstance(r_2sv_23_10qualityInd, int) or r_2sv_23_10qualityInd.__class__ is bool):
-        raise _enc('nav_sat', 'sv[23].qualityInd', r_2sv_23_10qualityInd, 'type', 'an int')
-    if not 0 <= r_2sv_23_10qualityInd <= 7:
-        raise _enc('nav_sat', 'sv[23].qualityInd', r_2sv_23_10qualityInd, 'range', '0..7', None)
+    if r_2sv_23_10qualityInd.__class__ is not int or not 0 <= r_2sv_23_10qualityInd <= 7:
+        if not isinstance(r_2sv_23_10qualityInd, int) or r_2sv_23_10qualityInd.__class__ is bool:
+            raise _enc('nav_sat', 'sv[23].qualityInd', r_2sv_23_10qualityInd, 'type', 'an int')
+        if not 0 <= r_2sv_23_10qualityInd <= 7:
+            raise _enc('nav_sat', 'sv[23].qualityInd', r_2sv_23_10qualityInd, 'range', '0..7', None)
     r_2sv_23_6svUsed: Any = g_2sv_23.svUsed
     if r_2sv_23_6svUsed is not True and r_2sv_23_6svUsed is not False and r_2sv_23_6svUsed != 0 and r_2sv_23_6svUsed != 1:
         raise _enc('nav_sat', 'sv[23].svUsed', r_2sv_23_6svUsed, 'type', 'a bool')
     r_2sv_23_6svUsed = 1 if r_2sv_23_6svUsed else 0
     r_2sv_23_6health = g_2sv_23.health
-    if r_2sv_23_6health.__class__ is not int and (not isinstance(r_2sv_23_6health, int) or r_2sv_23_6health.__class__ is bool):
-        raise _enc('nav_sat', 'sv[23].health', r_2sv_23_6health, 'type', 'an int')
-    if not 0 <= r_2sv_23_6health <= 3:
-        raise _enc('nav_sat', 'sv[23].health', r_2sv_23_6health, 'range', '0..3', None)
+    if r_2sv_23_6health.__class__ is not int or not 0 <= r_2sv_23_6health <= 3:
+        if not isinstance(r_2sv_23_6health, int) or r_2sv_23_6health.__class__ is bool:
+            raise _enc('nav_sat', 'sv[23].health', r_2sv_23_6health, 'type', 'an int')
+        if not 0 <= r_2sv_23_6health <= 3:
+            raise _enc('nav_sat', 'sv[23].health', r_2sv_23_6health, 'range', '0..3', None)
     r_2sv_23_8diffCorr: Any = g_2sv_23.diffCorr
     if r_2sv_23_8diffCorr is not True and r_2sv_23_8diffCorr is not False and r_2sv_23_8diffCorr != 0 and r_2sv_23_8diffCorr != 1:
         raise _enc('nav_sat', 'sv[23].diffCorr', r_2sv_23_8diffCorr, 'type', 'a bool')
@@ -4154,10 +4408,11 @@ def _raw_nav_sat_2sv_23(g_2sv_23: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[23].smoothed', r_2sv_23_8smoothed, 'type', 'a bool')
     r_2sv_23_8smoothed = 1 if r_2sv_23_8smoothed else 0
     r_2sv_23_11orbitSource = g_2sv_23.orbitSource
-    if r_2sv_23_11orbitSource.__class__ is not int and (not isinstance(r_2sv_23_11orbitSource, int) or r_2sv_23_11orbitSource.__class__ is bool):
-        raise _enc('nav_sat', 'sv[23].orbitSource', r_2sv_23_11orbitSource, 'type', 'an int')
-    if not 0 <= r_2sv_23_11orbitSource <= 7:
-        raise _enc('nav_sat', 'sv[23].orbitSource', r_2sv_23_11orbitSource, 'range', '0..7', None)
+    if r_2sv_23_11orbitSource.__class__ is not int or not 0 <= r_2sv_23_11orbitSource <= 7:
+        if not isinstance(r_2sv_23_11orbitSource, int) or r_2sv_23_11orbitSource.__class__ is bool:
+            raise _enc('nav_sat', 'sv[23].orbitSource', r_2sv_23_11orbitSource, 'type', 'an int')
+        if not 0 <= r_2sv_23_11orbitSource <= 7:
+            raise _enc('nav_sat', 'sv[23].orbitSource', r_2sv_23_11orbitSource, 'range', '0..7', None)
     r_2sv_23_8ephAvail: Any = g_2sv_23.ephAvail
     if r_2sv_23_8ephAvail is not True and r_2sv_23_8ephAvail is not False and r_2sv_23_8ephAvail != 0 and r_2sv_23_8ephAvail != 1:
         raise _enc('nav_sat', 'sv[23].ephAvail', r_2sv_23_8ephAvail, 'type', 'a bool')
@@ -4175,10 +4430,11 @@ def _raw_nav_sat_2sv_23(g_2sv_23: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[23].aopAvail', r_2sv_23_8aopAvail, 'type', 'a bool')
     r_2sv_23_8aopAvail = 1 if r_2sv_23_8aopAvail else 0
     r_2sv_23_10reserved13 = g_2sv_23.reserved13
-    if r_2sv_23_10reserved13.__class__ is not int and (not isinstance(r_2sv_23_10reserved13, int) or r_2sv_23_10reserved13.__class__ is bool):
-        raise _enc('nav_sat', 'sv[23].reserved13', r_2sv_23_10reserved13, 'type', 'an int')
-    if not 0 <= r_2sv_23_10reserved13 <= 1:
-        raise _enc('nav_sat', 'sv[23].reserved13', r_2sv_23_10reserved13, 'range', '0..1', None)
+    if r_2sv_23_10reserved13.__class__ is not int or not 0 <= r_2sv_23_10reserved13 <= 1:
+        if not isinstance(r_2sv_23_10reserved13, int) or r_2sv_23_10reserved13.__class__ is bool:
+            raise _enc('nav_sat', 'sv[23].reserved13', r_2sv_23_10reserved13, 'type', 'an int')
+        if not 0 <= r_2sv_23_10reserved13 <= 1:
+            raise _enc('nav_sat', 'sv[23].reserved13', r_2sv_23_10reserved13, 'range', '0..1', None)
     r_2sv_23_12sbasCorrUsed: Any = g_2sv_23.sbasCorrUsed
     if r_2sv_23_12sbasCorrUsed is not True and r_2sv_23_12sbasCorrUsed is not False and r_2sv_23_12sbasCorrUsed != 0 and r_2sv_23_12sbasCorrUsed != 1:
         raise _enc('nav_sat', 'sv[23].sbasCorrUsed', r_2sv_23_12sbasCorrUsed, 'type', 'a bool')
@@ -4225,50 +4481,58 @@ def _raw_nav_sat_2sv_23(g_2sv_23: Any) -> tuple[Any, ...]:
 
 def _raw_nav_sat_2sv_24(g_2sv_24: Any) -> tuple[Any, ...]:
     r_2sv_24_6gnssId = g_2sv_24.gnssId
-    if r_2sv_24_6gnssId.__class__ is not int and (not isinstance(r_2sv_24_6gnssId, int) or r_2sv_24_6gnssId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[24].gnssId', r_2sv_24_6gnssId, 'type', 'an int')
-    if not 0 <= r_2sv_24_6gnssId <= 255:
-        raise _enc('nav_sat', 'sv[24].gnssId', r_2sv_24_6gnssId, 'range', '0..255', None)
+    if r_2sv_24_6gnssId.__class__ is not int or not 0 <= r_2sv_24_6gnssId <= 255:
+        if not isinstance(r_2sv_24_6gnssId, int) or r_2sv_24_6gnssId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[24].gnssId', r_2sv_24_6gnssId, 'type', 'an int')
+        if not 0 <= r_2sv_24_6gnssId <= 255:
+            raise _enc('nav_sat', 'sv[24].gnssId', r_2sv_24_6gnssId, 'range', '0..255', None)
     r_2sv_24_4svId = g_2sv_24.svId
-    if r_2sv_24_4svId.__class__ is not int and (not isinstance(r_2sv_24_4svId, int) or r_2sv_24_4svId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[24].svId', r_2sv_24_4svId, 'type', 'an int')
-    if not 0 <= r_2sv_24_4svId <= 255:
-        raise _enc('nav_sat', 'sv[24].svId', r_2sv_24_4svId, 'range', '0..255', None)
+    if r_2sv_24_4svId.__class__ is not int or not 0 <= r_2sv_24_4svId <= 255:
+        if not isinstance(r_2sv_24_4svId, int) or r_2sv_24_4svId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[24].svId', r_2sv_24_4svId, 'type', 'an int')
+        if not 0 <= r_2sv_24_4svId <= 255:
+            raise _enc('nav_sat', 'sv[24].svId', r_2sv_24_4svId, 'range', '0..255', None)
     r_2sv_24_3cno = g_2sv_24.cno
-    if r_2sv_24_3cno.__class__ is not int and (not isinstance(r_2sv_24_3cno, int) or r_2sv_24_3cno.__class__ is bool):
-        raise _enc('nav_sat', 'sv[24].cno', r_2sv_24_3cno, 'type', 'an int')
-    if not 0 <= r_2sv_24_3cno <= 255:
-        raise _enc('nav_sat', 'sv[24].cno', r_2sv_24_3cno, 'range', '0..255', None)
+    if r_2sv_24_3cno.__class__ is not int or not 0 <= r_2sv_24_3cno <= 255:
+        if not isinstance(r_2sv_24_3cno, int) or r_2sv_24_3cno.__class__ is bool:
+            raise _enc('nav_sat', 'sv[24].cno', r_2sv_24_3cno, 'type', 'an int')
+        if not 0 <= r_2sv_24_3cno <= 255:
+            raise _enc('nav_sat', 'sv[24].cno', r_2sv_24_3cno, 'range', '0..255', None)
     r_2sv_24_4elev = g_2sv_24.elev
-    if r_2sv_24_4elev.__class__ is not int and (not isinstance(r_2sv_24_4elev, int) or r_2sv_24_4elev.__class__ is bool):
-        raise _enc('nav_sat', 'sv[24].elev', r_2sv_24_4elev, 'type', 'an int')
-    if not -128 <= r_2sv_24_4elev <= 127:
-        raise _enc('nav_sat', 'sv[24].elev', r_2sv_24_4elev, 'range', '-128..127', None)
+    if r_2sv_24_4elev.__class__ is not int or not -128 <= r_2sv_24_4elev <= 127:
+        if not isinstance(r_2sv_24_4elev, int) or r_2sv_24_4elev.__class__ is bool:
+            raise _enc('nav_sat', 'sv[24].elev', r_2sv_24_4elev, 'type', 'an int')
+        if not -128 <= r_2sv_24_4elev <= 127:
+            raise _enc('nav_sat', 'sv[24].elev', r_2sv_24_4elev, 'range', '-128..127', None)
     r_2sv_24_4azim = g_2sv_24.azim
-    if r_2sv_24_4azim.__class__ is not int and (not isinstance(r_2sv_24_4azim, int) or r_2sv_24_4azim.__class__ is bool):
-        raise _enc('nav_sat', 'sv[24].azim', r_2sv_24_4azim, 'type', 'an int')
-    if not -32768 <= r_2sv_24_4azim <= 32767:
-        raise _enc('nav_sat', 'sv[24].azim', r_2sv_24_4azim, 'range', '-32768..32767', None)
+    if r_2sv_24_4azim.__class__ is not int or not -32768 <= r_2sv_24_4azim <= 32767:
+        if not isinstance(r_2sv_24_4azim, int) or r_2sv_24_4azim.__class__ is bool:
+            raise _enc('nav_sat', 'sv[24].azim', r_2sv_24_4azim, 'type', 'an int')
+        if not -32768 <= r_2sv_24_4azim <= 32767:
+            raise _enc('nav_sat', 'sv[24].azim', r_2sv_24_4azim, 'range', '-32768..32767', None)
     r_2sv_24_5prRes = g_2sv_24.prRes
-    if r_2sv_24_5prRes.__class__ is not float and (not isinstance(r_2sv_24_5prRes, (int, float)) or r_2sv_24_5prRes.__class__ is bool):
-        raise _enc('nav_sat', 'sv[24].prRes', r_2sv_24_5prRes, 'type', 'a number')
-    if not -3276.8 <= r_2sv_24_5prRes <= 3276.7000000000003:
-        raise _enc('nav_sat', 'sv[24].prRes', r_2sv_24_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    if r_2sv_24_5prRes.__class__ is not float or not -3276.8 <= r_2sv_24_5prRes <= 3276.7000000000003:
+        if not isinstance(r_2sv_24_5prRes, (int, float)) or r_2sv_24_5prRes.__class__ is bool:
+            raise _enc('nav_sat', 'sv[24].prRes', r_2sv_24_5prRes, 'type', 'a number')
+        if not -3276.8 <= r_2sv_24_5prRes <= 3276.7000000000003:
+            raise _enc('nav_sat', 'sv[24].prRes', r_2sv_24_5prRes, 'range', '-3276.8..3276.7000000000003', None)
     r_2sv_24_5prRes = _floor(r_2sv_24_5prRes / 0.1 + 0.5)
     r_2sv_24_10qualityInd = g_2sv_24.qualityInd
-    if r_2sv_24_10qualityInd.__class__ is not int and (not isinstance(r_2sv_24_10qualityInd, int) or r_2sv_24_10qualityInd.__class__ is bool):
-        raise _enc('nav_sat', 'sv[24].qualityInd', r_2sv_24_10qualityInd, 'type', 'an int')
-    if not 0 <= r_2sv_24_10qualityInd <= 7:
-        raise _enc('nav_sat', 'sv[24].qualityInd', r_2sv_24_10qualityInd, 'range', '0..7', None)
+    if r_2sv_24_10qualityInd.__class__ is not int or not 0 <= r_2sv_24_10qualityInd <= 7:
+        if not isinstance(r_2sv_24_10qualityInd, int) or r_2sv_24_10qualityInd.__class__ is bool:
+            raise _enc('nav_sat', 'sv[24].qualityInd', r_2sv_24_10qualityInd, 'type', 'an int')
+        if not 0 <= r_2sv_24_10qualityInd <= 7:
+            raise _enc('nav_sat', 'sv[24].qualityInd', r_2sv_24_10qualityInd, 'range', '0..7', None)
     r_2sv_24_6svUsed: Any = g_2sv_24.svUsed
     if r_2sv_24_6svUsed is not True and r_2sv_24_6svUsed is not False and r_2sv_24_6svUsed != 0 and r_2sv_24_6svUsed != 1:
         raise _enc('nav_sat', 'sv[24].svUsed', r_2sv_24_6svUsed, 'type', 'a bool')
     r_2sv_24_6svUsed = 1 if r_2sv_24_6svUsed else 0
     r_2sv_24_6health = g_2sv_24.health
-    if r_2sv_24_6health.__class__ is not int and (not isinstance(r_2sv_24_6health, int) or r_2sv_24_6health.__class__ is bool):
-        raise _enc('nav_sat', 'sv[24].health', r_2sv_24_6health, 'type', 'an int')
-    if not 0 <= r_2sv_24_6health <= 3:
-        raise _enc('nav_sat', 'sv[24].health', r_2sv_24_6health, 'range', '0..3', None)
+    if r_2sv_24_6health.__class__ is not int or not 0 <= r_2sv_24_6health <= 3:
+        if not isinstance(r_2sv_24_6health, int) or r_2sv_24_6health.__class__ is bool:
+            raise _enc('nav_sat', 'sv[24].health', r_2sv_24_6health, 'type', 'an int')
+        if not 0 <= r_2sv_24_6health <= 3:
+            raise _enc('nav_sat', 'sv[24].health', r_2sv_24_6health, 'range', '0..3', None)
     r_2sv_24_8diffCorr: Any = g_2sv_24.diffCorr
     if r_2sv_24_8diffCorr is not True and r_2sv_24_8diffCorr is not False and r_2sv_24_8diffCorr != 0 and r_2sv_24_8diffCorr != 1:
         raise _enc('nav_sat', 'sv[24].diffCorr', r_2sv_24_8diffCorr, 'type', 'a bool')
@@ -4278,10 +4542,11 @@ def _raw_nav_sat_2sv_24(g_2sv_24: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[24].smoothed', r_2sv_24_8smoothed, 'type', 'a bool')
     r_2sv_24_8smoothed = 1 if r_2sv_24_8smoothed else 0
     r_2sv_24_11orbitSource = g_2sv_24.orbitSource
-    if r_2sv_24_11orbitSource.__class__ is not int and (not isinstance(r_2sv_24_11orbitSource, int) or r_2sv_24_11orbitSource.__class__ is bool):
-        raise _enc('nav_sat', 'sv[24].orbitSource', r_2sv_24_11orbitSource, 'type', 'an int')
-    if not 0 <= r_2sv_24_11orbitSource <= 7:
-        raise _enc('nav_sat', 'sv[24].orbitSource', r_2sv_24_11orbitSource, 'range', '0..7', None)
+    if r_2sv_24_11orbitSource.__class__ is not int or not 0 <= r_2sv_24_11orbitSource <= 7:
+        if not isinstance(r_2sv_24_11orbitSource, int) or r_2sv_24_11orbitSource.__class__ is bool:
+            raise _enc('nav_sat', 'sv[24].orbitSource', r_2sv_24_11orbitSource, 'type', 'an int')
+        if not 0 <= r_2sv_24_11orbitSource <= 7:
+            raise _enc('nav_sat', 'sv[24].orbitSource', r_2sv_24_11orbitSource, 'range', '0..7', None)
     r_2sv_24_8ephAvail: Any = g_2sv_24.ephAvail
     if r_2sv_24_8ephAvail is not True and r_2sv_24_8ephAvail is not False and r_2sv_24_8ephAvail != 0 and r_2sv_24_8ephAvail != 1:
         raise _enc('nav_sat', 'sv[24].ephAvail', r_2sv_24_8ephAvail, 'type', 'a bool')
@@ -4299,10 +4564,11 @@ def _raw_nav_sat_2sv_24(g_2sv_24: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[24].aopAvail', r_2sv_24_8aopAvail, 'type', 'a bool')
     r_2sv_24_8aopAvail = 1 if r_2sv_24_8aopAvail else 0
     r_2sv_24_10reserved13 = g_2sv_24.reserved13
-    if r_2sv_24_10reserved13.__class__ is not int and (not isinstance(r_2sv_24_10reserved13, int) or r_2sv_24_10reserved13.__class__ is bool):
-        raise _enc('nav_sat', 'sv[24].reserved13', r_2sv_24_10reserved13, 'type', 'an int')
-    if not 0 <= r_2sv_24_10reserved13 <= 1:
-        raise _enc('nav_sat', 'sv[24].reserved13', r_2sv_24_10reserved13, 'range', '0..1', None)
+    if r_2sv_24_10reserved13.__class__ is not int or not 0 <= r_2sv_24_10reserved13 <= 1:
+        if not isinstance(r_2sv_24_10reserved13, int) or r_2sv_24_10reserved13.__class__ is bool:
+            raise _enc('nav_sat', 'sv[24].reserved13', r_2sv_24_10reserved13, 'type', 'an int')
+        if not 0 <= r_2sv_24_10reserved13 <= 1:
+            raise _enc('nav_sat', 'sv[24].reserved13', r_2sv_24_10reserved13, 'range', '0..1', None)
     r_2sv_24_12sbasCorrUsed: Any = g_2sv_24.sbasCorrUsed
     if r_2sv_24_12sbasCorrUsed is not True and r_2sv_24_12sbasCorrUsed is not False and r_2sv_24_12sbasCorrUsed != 0 and r_2sv_24_12sbasCorrUsed != 1:
         raise _enc('nav_sat', 'sv[24].sbasCorrUsed', r_2sv_24_12sbasCorrUsed, 'type', 'a bool')
@@ -4349,50 +4615,58 @@ def _raw_nav_sat_2sv_24(g_2sv_24: Any) -> tuple[Any, ...]:
 
 def _raw_nav_sat_2sv_25(g_2sv_25: Any) -> tuple[Any, ...]:
     r_2sv_25_6gnssId = g_2sv_25.gnssId
-    if r_2sv_25_6gnssId.__class__ is not int and (not isinstance(r_2sv_25_6gnssId, int) or r_2sv_25_6gnssId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[25].gnssId', r_2sv_25_6gnssId, 'type', 'an int')
-    if not 0 <= r_2sv_25_6gnssId <= 255:
-        raise _enc('nav_sat', 'sv[25].gnssId', r_2sv_25_6gnssId, 'range', '0..255', None)
+    if r_2sv_25_6gnssId.__class__ is not int or not 0 <= r_2sv_25_6gnssId <= 255:
+        if not isinstance(r_2sv_25_6gnssId, int) or r_2sv_25_6gnssId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[25].gnssId', r_2sv_25_6gnssId, 'type', 'an int')
+        if not 0 <= r_2sv_25_6gnssId <= 255:
+            raise _enc('nav_sat', 'sv[25].gnssId', r_2sv_25_6gnssId, 'range', '0..255', None)
     r_2sv_25_4svId = g_2sv_25.svId
-    if r_2sv_25_4svId.__class__ is not int and (not isinstance(r_2sv_25_4svId, int) or r_2sv_25_4svId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[25].svId', r_2sv_25_4svId, 'type', 'an int')
-    if not 0 <= r_2sv_25_4svId <= 255:
-        raise _enc('nav_sat', 'sv[25].svId', r_2sv_25_4svId, 'range', '0..255', None)
+    if r_2sv_25_4svId.__class__ is not int or not 0 <= r_2sv_25_4svId <= 255:
+        if not isinstance(r_2sv_25_4svId, int) or r_2sv_25_4svId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[25].svId', r_2sv_25_4svId, 'type', 'an int')
+        if not 0 <= r_2sv_25_4svId <= 255:
+            raise _enc('nav_sat', 'sv[25].svId', r_2sv_25_4svId, 'range', '0..255', None)
     r_2sv_25_3cno = g_2sv_25.cno
-    if r_2sv_25_3cno.__class__ is not int and (not isinstance(r_2sv_25_3cno, int) or r_2sv_25_3cno.__class__ is bool):
-        raise _enc('nav_sat', 'sv[25].cno', r_2sv_25_3cno, 'type', 'an int')
-    if not 0 <= r_2sv_25_3cno <= 255:
-        raise _enc('nav_sat', 'sv[25].cno', r_2sv_25_3cno, 'range', '0..255', None)
+    if r_2sv_25_3cno.__class__ is not int or not 0 <= r_2sv_25_3cno <= 255:
+        if not isinstance(r_2sv_25_3cno, int) or r_2sv_25_3cno.__class__ is bool:
+            raise _enc('nav_sat', 'sv[25].cno', r_2sv_25_3cno, 'type', 'an int')
+        if not 0 <= r_2sv_25_3cno <= 255:
+            raise _enc('nav_sat', 'sv[25].cno', r_2sv_25_3cno, 'range', '0..255', None)
     r_2sv_25_4elev = g_2sv_25.elev
-    if r_2sv_25_4elev.__class__ is not int and (not isinstance(r_2sv_25_4elev, int) or r_2sv_25_4elev.__class__ is bool):
-        raise _enc('nav_sat', 'sv[25].elev', r_2sv_25_4elev, 'type', 'an int')
-    if not -128 <= r_2sv_25_4elev <= 127:
-        raise _enc('nav_sat', 'sv[25].elev', r_2sv_25_4elev, 'range', '-128..127', None)
+    if r_2sv_25_4elev.__class__ is not int or not -128 <= r_2sv_25_4elev <= 127:
+        if not isinstance(r_2sv_25_4elev, int) or r_2sv_25_4elev.__class__ is bool:
+            raise _enc('nav_sat', 'sv[25].elev', r_2sv_25_4elev, 'type', 'an int')
+        if not -128 <= r_2sv_25_4elev <= 127:
+            raise _enc('nav_sat', 'sv[25].elev', r_2sv_25_4elev, 'range', '-128..127', None)
     r_2sv_25_4azim = g_2sv_25.azim
-    if r_2sv_25_4azim.__class__ is not int and (not isinstance(r_2sv_25_4azim, int) or r_2sv_25_4azim.__class__ is bool):
-        raise _enc('nav_sat', 'sv[25].azim', r_2sv_25_4azim, 'type', 'an int')
-    if not -32768 <= r_2sv_25_4azim <= 32767:
-        raise _enc('nav_sat', 'sv[25].azim', r_2sv_25_4azim, 'range', '-32768..32767', None)
+    if r_2sv_25_4azim.__class__ is not int or not -32768 <= r_2sv_25_4azim <= 32767:
+        if not isinstance(r_2sv_25_4azim, int) or r_2sv_25_4azim.__class__ is bool:
+            raise _enc('nav_sat', 'sv[25].azim', r_2sv_25_4azim, 'type', 'an int')
+        if not -32768 <= r_2sv_25_4azim <= 32767:
+            raise _enc('nav_sat', 'sv[25].azim', r_2sv_25_4azim, 'range', '-32768..32767', None)
     r_2sv_25_5prRes = g_2sv_25.prRes
-    if r_2sv_25_5prRes.__class__ is not float and (not isinstance(r_2sv_25_5prRes, (int, float)) or r_2sv_25_5prRes.__class__ is bool):
-        raise _enc('nav_sat', 'sv[25].prRes', r_2sv_25_5prRes, 'type', 'a number')
-    if not -3276.8 <= r_2sv_25_5prRes <= 3276.7000000000003:
-        raise _enc('nav_sat', 'sv[25].prRes', r_2sv_25_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    if r_2sv_25_5prRes.__class__ is not float or not -3276.8 <= r_2sv_25_5prRes <= 3276.7000000000003:
+        if not isinstance(r_2sv_25_5prRes, (int, float)) or r_2sv_25_5prRes.__class__ is bool:
+            raise _enc('nav_sat', 'sv[25].prRes', r_2sv_25_5prRes, 'type', 'a number')
+        if not -3276.8 <= r_2sv_25_5prRes <= 3276.7000000000003:
+            raise _enc('nav_sat', 'sv[25].prRes', r_2sv_25_5prRes, 'range', '-3276.8..3276.7000000000003', None)
     r_2sv_25_5prRes = _floor(r_2sv_25_5prRes / 0.1 + 0.5)
     r_2sv_25_10qualityInd = g_2sv_25.qualityInd
-    if r_2sv_25_10qualityInd.__class__ is not int and (not isinstance(r_2sv_25_10qualityInd, int) or r_2sv_25_10qualityInd.__class__ is bool):
-        raise _enc('nav_sat', 'sv[25].qualityInd', r_2sv_25_10qualityInd, 'type', 'an int')
-    if not 0 <= r_2sv_25_10qualityInd <= 7:
-        raise _enc('nav_sat', 'sv[25].qualityInd', r_2sv_25_10qualityInd, 'range', '0..7', None)
+    if r_2sv_25_10qualityInd.__class__ is not int or not 0 <= r_2sv_25_10qualityInd <= 7:
+        if not isinstance(r_2sv_25_10qualityInd, int) or r_2sv_25_10qualityInd.__class__ is bool:
+            raise _enc('nav_sat', 'sv[25].qualityInd', r_2sv_25_10qualityInd, 'type', 'an int')
+        if not 0 <= r_2sv_25_10qualityInd <= 7:
+            raise _enc('nav_sat', 'sv[25].qualityInd', r_2sv_25_10qualityInd, 'range', '0..7', None)
     r_2sv_25_6svUsed: Any = g_2sv_25.svUsed
     if r_2sv_25_6svUsed is not True and r_2sv_25_6svUsed is not False and r_2sv_25_6svUsed != 0 and r_2sv_25_6svUsed != 1:
         raise _enc('nav_sat', 'sv[25].svUsed', r_2sv_25_6svUsed, 'type', 'a bool')
     r_2sv_25_6svUsed = 1 if r_2sv_25_6svUsed else 0
     r_2sv_25_6health = g_2sv_25.health
-    if r_2sv_25_6health.__class__ is not int and (not isinstance(r_2sv_25_6health, int) or r_2sv_25_6health.__class__ is bool):
-        raise _enc('nav_sat', 'sv[25].health', r_2sv_25_6health, 'type', 'an int')
-    if not 0 <= r_2sv_25_6health <= 3:
-        raise _enc('nav_sat', 'sv[25].health', r_2sv_25_6health, 'range', '0..3', None)
+    if r_2sv_25_6health.__class__ is not int or not 0 <= r_2sv_25_6health <= 3:
+        if not isinstance(r_2sv_25_6health, int) or r_2sv_25_6health.__class__ is bool:
+            raise _enc('nav_sat', 'sv[25].health', r_2sv_25_6health, 'type', 'an int')
+        if not 0 <= r_2sv_25_6health <= 3:
+            raise _enc('nav_sat', 'sv[25].health', r_2sv_25_6health, 'range', '0..3', None)
     r_2sv_25_8diffCorr: Any = g_2sv_25.diffCorr
     if r_2sv_25_8diffCorr is not True and r_2sv_25_8diffCorr is not False and r_2sv_25_8diffCorr != 0 and r_2sv_25_8diffCorr != 1:
         raise _enc('nav_sat', 'sv[25].diffCorr', r_2sv_25_8diffCorr, 'type', 'a bool')
@@ -4402,10 +4676,11 @@ def _raw_nav_sat_2sv_25(g_2sv_25: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[25].smoothed', r_2sv_25_8smoothed, 'type', 'a bool')
     r_2sv_25_8smoothed = 1 if r_2sv_25_8smoothed else 0
     r_2sv_25_11orbitSource = g_2sv_25.orbitSource
-    if r_2sv_25_11orbitSource.__class__ is not int and (not isinstance(r_2sv_25_11orbitSource, int) or r_2sv_25_11orbitSource.__class__ is bool):
-        raise _enc('nav_sat', 'sv[25].orbitSource', r_2sv_25_11orbitSource, 'type', 'an int')
-    if not 0 <= r_2sv_25_11orbitSource <= 7:
-        raise _enc('nav_sat', 'sv[25].orbitSource', r_2sv_25_11orbitSource, 'range', '0..7', None)
+    if r_2sv_25_11orbitSource.__class__ is not int or not 0 <= r_2sv_25_11orbitSource <= 7:
+        if not isinstance(r_2sv_25_11orbitSource, int) or r_2sv_25_11orbitSource.__class__ is bool:
+            raise _enc('nav_sat', 'sv[25].orbitSource', r_2sv_25_11orbitSource, 'type', 'an int')
+        if not 0 <= r_2sv_25_11orbitSource <= 7:
+            raise _enc('nav_sat', 'sv[25].orbitSource', r_2sv_25_11orbitSource, 'range', '0..7', None)
     r_2sv_25_8ephAvail: Any = g_2sv_25.ephAvail
     if r_2sv_25_8ephAvail is not True and r_2sv_25_8ephAvail is not False and r_2sv_25_8ephAvail != 0 and r_2sv_25_8ephAvail != 1:
         raise _enc('nav_sat', 'sv[25].ephAvail', r_2sv_25_8ephAvail, 'type', 'a bool')
@@ -4423,10 +4698,11 @@ def _raw_nav_sat_2sv_25(g_2sv_25: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[25].aopAvail', r_2sv_25_8aopAvail, 'type', 'a bool')
     r_2sv_25_8aopAvail = 1 if r_2sv_25_8aopAvail else 0
     r_2sv_25_10reserved13 = g_2sv_25.reserved13
-    if r_2sv_25_10reserved13.__class__ is not int and (not isinstance(r_2sv_25_10reserved13, int) or r_2sv_25_10reserved13.__class__ is bool):
-        raise _enc('nav_sat', 'sv[25].reserved13', r_2sv_25_10reserved13, 'type', 'an int')
-    if not 0 <= r_2sv_25_10reserved13 <= 1:
-        raise _enc('nav_sat', 'sv[25].reserved13', r_2sv_25_10reserved13, 'range', '0..1', None)
+    if r_2sv_25_10reserved13.__class__ is not int or not 0 <= r_2sv_25_10reserved13 <= 1:
+        if not isinstance(r_2sv_25_10reserved13, int) or r_2sv_25_10reserved13.__class__ is bool:
+            raise _enc('nav_sat', 'sv[25].reserved13', r_2sv_25_10reserved13, 'type', 'an int')
+        if not 0 <= r_2sv_25_10reserved13 <= 1:
+            raise _enc('nav_sat', 'sv[25].reserved13', r_2sv_25_10reserved13, 'range', '0..1', None)
     r_2sv_25_12sbasCorrUsed: Any = g_2sv_25.sbasCorrUsed
     if r_2sv_25_12sbasCorrUsed is not True and r_2sv_25_12sbasCorrUsed is not False and r_2sv_25_12sbasCorrUsed != 0 and r_2sv_25_12sbasCorrUsed != 1:
         raise _enc('nav_sat', 'sv[25].sbasCorrUsed', r_2sv_25_12sbasCorrUsed, 'type', 'a bool')
@@ -4473,50 +4749,58 @@ def _raw_nav_sat_2sv_25(g_2sv_25: Any) -> tuple[Any, ...]:
 
 def _raw_nav_sat_2sv_26(g_2sv_26: Any) -> tuple[Any, ...]:
     r_2sv_26_6gnssId = g_2sv_26.gnssId
-    if r_2sv_26_6gnssId.__class__ is not int and (not isinstance(r_2sv_26_6gnssId, int) or r_2sv_26_6gnssId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[26].gnssId', r_2sv_26_6gnssId, 'type', 'an int')
-    if not 0 <= r_2sv_26_6gnssId <= 255:
-        raise _enc('nav_sat', 'sv[26].gnssId', r_2sv_26_6gnssId, 'range', '0..255', None)
+    if r_2sv_26_6gnssId.__class__ is not int or not 0 <= r_2sv_26_6gnssId <= 255:
+        if not isinstance(r_2sv_26_6gnssId, int) or r_2sv_26_6gnssId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[26].gnssId', r_2sv_26_6gnssId, 'type', 'an int')
+        if not 0 <= r_2sv_26_6gnssId <= 255:
+            raise _enc('nav_sat', 'sv[26].gnssId', r_2sv_26_6gnssId, 'range', '0..255', None)
     r_2sv_26_4svId = g_2sv_26.svId
-    if r_2sv_26_4svId.__class__ is not int and (not isinstance(r_2sv_26_4svId, int) or r_2sv_26_4svId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[26].svId', r_2sv_26_4svId, 'type', 'an int')
-    if not 0 <= r_2sv_26_4svId <= 255:
-        raise _enc('nav_sat', 'sv[26].svId', r_2sv_26_4svId, 'range', '0..255', None)
+    if r_2sv_26_4svId.__class__ is not int or not 0 <= r_2sv_26_4svId <= 255:
+        if not isinstance(r_2sv_26_4svId, int) or r_2sv_26_4svId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[26].svId', r_2sv_26_4svId, 'type', 'an int')
+        if not 0 <= r_2sv_26_4svId <= 255:
+            raise _enc('nav_sat', 'sv[26].svId', r_2sv_26_4svId, 'range', '0..255', None)
     r_2sv_26_3cno = g_2sv_26.cno
-    if r_2sv_26_3cno.__class__ is not int and (not isinstance(r_2sv_26_3cno, int) or r_2sv_26_3cno.__class__ is bool):
-        raise _enc('nav_sat', 'sv[26].cno', r_2sv_26_3cno, 'type', 'an int')
-    if not 0 <= r_2sv_26_3cno <= 255:
-        raise _enc('nav_sat', 'sv[26].cno', r_2sv_26_3cno, 'range', '0..255', None)
+    if r_2sv_26_3cno.__class__ is not int or not 0 <= r_2sv_26_3cno <= 255:
+        if not isinstance(r_2sv_26_3cno, int) or r_2sv_26_3cno.__class__ is bool:
+            raise _enc('nav_sat', 'sv[26].cno', r_2sv_26_3cno, 'type', 'an int')
+        if not 0 <= r_2sv_26_3cno <= 255:
+            raise _enc('nav_sat', 'sv[26].cno', r_2sv_26_3cno, 'range', '0..255', None)
     r_2sv_26_4elev = g_2sv_26.elev
-    if r_2sv_26_4elev.__class__ is not int and (not isinstance(r_2sv_26_4elev, int) or r_2sv_26_4elev.__class__ is bool):
-        raise _enc('nav_sat', 'sv[26].elev', r_2sv_26_4elev, 'type', 'an int')
-    if not -128 <= r_2sv_26_4elev <= 127:
-        raise _enc('nav_sat', 'sv[26].elev', r_2sv_26_4elev, 'range', '-128..127', None)
+    if r_2sv_26_4elev.__class__ is not int or not -128 <= r_2sv_26_4elev <= 127:
+        if not isinstance(r_2sv_26_4elev, int) or r_2sv_26_4elev.__class__ is bool:
+            raise _enc('nav_sat', 'sv[26].elev', r_2sv_26_4elev, 'type', 'an int')
+        if not -128 <= r_2sv_26_4elev <= 127:
+            raise _enc('nav_sat', 'sv[26].elev', r_2sv_26_4elev, 'range', '-128..127', None)
     r_2sv_26_4azim = g_2sv_26.azim
-    if r_2sv_26_4azim.__class__ is not int and (not isinstance(r_2sv_26_4azim, int) or r_2sv_26_4azim.__class__ is bool):
-        raise _enc('nav_sat', 'sv[26].azim', r_2sv_26_4azim, 'type', 'an int')
-    if not -32768 <= r_2sv_26_4azim <= 32767:
-        raise _enc('nav_sat', 'sv[26].azim', r_2sv_26_4azim, 'range', '-32768..32767', None)
+    if r_2sv_26_4azim.__class__ is not int or not -32768 <= r_2sv_26_4azim <= 32767:
+        if not isinstance(r_2sv_26_4azim, int) or r_2sv_26_4azim.__class__ is bool:
+            raise _enc('nav_sat', 'sv[26].azim', r_2sv_26_4azim, 'type', 'an int')
+        if not -32768 <= r_2sv_26_4azim <= 32767:
+            raise _enc('nav_sat', 'sv[26].azim', r_2sv_26_4azim, 'range', '-32768..32767', None)
     r_2sv_26_5prRes = g_2sv_26.prRes
-    if r_2sv_26_5prRes.__class__ is not float and (not isinstance(r_2sv_26_5prRes, (int, float)) or r_2sv_26_5prRes.__class__ is bool):
-        raise _enc('nav_sat', 'sv[26].prRes', r_2sv_26_5prRes, 'type', 'a number')
-    if not -3276.8 <= r_2sv_26_5prRes <= 3276.7000000000003:
-        raise _enc('nav_sat', 'sv[26].prRes', r_2sv_26_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    if r_2sv_26_5prRes.__class__ is not float or not -3276.8 <= r_2sv_26_5prRes <= 3276.7000000000003:
+        if not isinstance(r_2sv_26_5prRes, (int, float)) or r_2sv_26_5prRes.__class__ is bool:
+            raise _enc('nav_sat', 'sv[26].prRes', r_2sv_26_5prRes, 'type', 'a number')
+        if not -3276.8 <= r_2sv_26_5prRes <= 3276.7000000000003:
+            raise _enc('nav_sat', 'sv[26].prRes', r_2sv_26_5prRes, 'range', '-3276.8..3276.7000000000003', None)
     r_2sv_26_5prRes = _floor(r_2sv_26_5prRes / 0.1 + 0.5)
     r_2sv_26_10qualityInd = g_2sv_26.qualityInd
-    if r_2sv_26_10qualityInd.__class__ is not int and (not isinstance(r_2sv_26_10qualityInd, int) or r_2sv_26_10qualityInd.__class__ is bool):
-        raise _enc('nav_sat', 'sv[26].qualityInd', r_2sv_26_10qualityInd, 'type', 'an int')
-    if not 0 <= r_2sv_26_10qualityInd <= 7:
-        raise _enc('nav_sat', 'sv[26].qualityInd', r_2sv_26_10qualityInd, 'range', '0..7', None)
+    if r_2sv_26_10qualityInd.__class__ is not int or not 0 <= r_2sv_26_10qualityInd <= 7:
+        if not isinstance(r_2sv_26_10qualityInd, int) or r_2sv_26_10qualityInd.__class__ is bool:
+            raise _enc('nav_sat', 'sv[26].qualityInd', r_2sv_26_10qualityInd, 'type', 'an int')
+        if not 0 <= r_2sv_26_10qualityInd <= 7:
+            raise _enc('nav_sat', 'sv[26].qualityInd', r_2sv_26_10qualityInd, 'range', '0..7', None)
     r_2sv_26_6svUsed: Any = g_2sv_26.svUsed
     if r_2sv_26_6svUsed is not True and r_2sv_26_6svUsed is not False and r_2sv_26_6svUsed != 0 and r_2sv_26_6svUsed != 1:
         raise _enc('nav_sat', 'sv[26].svUsed', r_2sv_26_6svUsed, 'type', 'a bool')
     r_2sv_26_6svUsed = 1 if r_2sv_26_6svUsed else 0
     r_2sv_26_6health = g_2sv_26.health
-    if r_2sv_26_6health.__class__ is not int and (not isinstance(r_2sv_26_6health, int) or r_2sv_26_6health.__class__ is bool):
-        raise _enc('nav_sat', 'sv[26].health', r_2sv_26_6health, 'type', 'an int')
-    if not 0 <= r_2sv_26_6health <= 3:
-        raise _enc('nav_sat', 'sv[26].health', r_2sv_26_6health, 'range', '0..3', None)
+    if r_2sv_26_6health.__class__ is not int or not 0 <= r_2sv_26_6health <= 3:
+        if not isinstance(r_2sv_26_6health, int) or r_2sv_26_6health.__class__ is bool:
+            raise _enc('nav_sat', 'sv[26].health', r_2sv_26_6health, 'type', 'an int')
+        if not 0 <= r_2sv_26_6health <= 3:
+            raise _enc('nav_sat', 'sv[26].health', r_2sv_26_6health, 'range', '0..3', None)
     r_2sv_26_8diffCorr: Any = g_2sv_26.diffCorr
     if r_2sv_26_8diffCorr is not True and r_2sv_26_8diffCorr is not False and r_2sv_26_8diffCorr != 0 and r_2sv_26_8diffCorr != 1:
         raise _enc('nav_sat', 'sv[26].diffCorr', r_2sv_26_8diffCorr, 'type', 'a bool')
@@ -4526,10 +4810,11 @@ def _raw_nav_sat_2sv_26(g_2sv_26: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[26].smoothed', r_2sv_26_8smoothed, 'type', 'a bool')
     r_2sv_26_8smoothed = 1 if r_2sv_26_8smoothed else 0
     r_2sv_26_11orbitSource = g_2sv_26.orbitSource
-    if r_2sv_26_11orbitSource.__class__ is not int and (not isinstance(r_2sv_26_11orbitSource, int) or r_2sv_26_11orbitSource.__class__ is bool):
-        raise _enc('nav_sat', 'sv[26].orbitSource', r_2sv_26_11orbitSource, 'type', 'an int')
-    if not 0 <= r_2sv_26_11orbitSource <= 7:
-        raise _enc('nav_sat', 'sv[26].orbitSource', r_2sv_26_11orbitSource, 'range', '0..7', None)
+    if r_2sv_26_11orbitSource.__class__ is not int or not 0 <= r_2sv_26_11orbitSource <= 7:
+        if not isinstance(r_2sv_26_11orbitSource, int) or r_2sv_26_11orbitSource.__class__ is bool:
+            raise _enc('nav_sat', 'sv[26].orbitSource', r_2sv_26_11orbitSource, 'type', 'an int')
+        if not 0 <= r_2sv_26_11orbitSource <= 7:
+            raise _enc('nav_sat', 'sv[26].orbitSource', r_2sv_26_11orbitSource, 'range', '0..7', None)
     r_2sv_26_8ephAvail: Any = g_2sv_26.ephAvail
     if r_2sv_26_8ephAvail is not True and r_2sv_26_8ephAvail is not False and r_2sv_26_8ephAvail != 0 and r_2sv_26_8ephAvail != 1:
         raise _enc('nav_sat', 'sv[26].ephAvail', r_2sv_26_8ephAvail, 'type', 'a bool')
@@ -4547,10 +4832,11 @@ def _raw_nav_sat_2sv_26(g_2sv_26: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[26].aopAvail', r_2sv_26_8aopAvail, 'type', 'a bool')
     r_2sv_26_8aopAvail = 1 if r_2sv_26_8aopAvail else 0
     r_2sv_26_10reserved13 = g_2sv_26.reserved13
-    if r_2sv_26_10reserved13.__class__ is not int and (not isinstance(r_2sv_26_10reserved13, int) or r_2sv_26_10reserved13.__class__ is bool):
-        raise _enc('nav_sat', 'sv[26].reserved13', r_2sv_26_10reserved13, 'type', 'an int')
-    if not 0 <= r_2sv_26_10reserved13 <= 1:
-        raise _enc('nav_sat', 'sv[26].reserved13', r_2sv_26_10reserved13, 'range', '0..1', None)
+    if r_2sv_26_10reserved13.__class__ is not int or not 0 <= r_2sv_26_10reserved13 <= 1:
+        if not isinstance(r_2sv_26_10reserved13, int) or r_2sv_26_10reserved13.__class__ is bool:
+            raise _enc('nav_sat', 'sv[26].reserved13', r_2sv_26_10reserved13, 'type', 'an int')
+        if not 0 <= r_2sv_26_10reserved13 <= 1:
+            raise _enc('nav_sat', 'sv[26].reserved13', r_2sv_26_10reserved13, 'range', '0..1', None)
     r_2sv_26_12sbasCorrUsed: Any = g_2sv_26.sbasCorrUsed
     if r_2sv_26_12sbasCorrUsed is not True and r_2sv_26_12sbasCorrUsed is not False and r_2sv_26_12sbasCorrUsed != 0 and r_2sv_26_12sbasCorrUsed != 1:
         raise _enc('nav_sat', 'sv[26].sbasCorrUsed', r_2sv_26_12sbasCorrUsed, 'type', 'a bool')
@@ -4597,50 +4883,58 @@ def _raw_nav_sat_2sv_26(g_2sv_26: Any) -> tuple[Any, ...]:
 
 def _raw_nav_sat_2sv_27(g_2sv_27: Any) -> tuple[Any, ...]:
     r_2sv_27_6gnssId = g_2sv_27.gnssId
-    if r_2sv_27_6gnssId.__class__ is not int and (not isinstance(r_2sv_27_6gnssId, int) or r_2sv_27_6gnssId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[27].gnssId', r_2sv_27_6gnssId, 'type', 'an int')
-    if not 0 <= r_2sv_27_6gnssId <= 255:
-        raise _enc('nav_sat', 'sv[27].gnssId', r_2sv_27_6gnssId, 'range', '0..255', None)
+    if r_2sv_27_6gnssId.__class__ is not int or not 0 <= r_2sv_27_6gnssId <= 255:
+        if not isinstance(r_2sv_27_6gnssId, int) or r_2sv_27_6gnssId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[27].gnssId', r_2sv_27_6gnssId, 'type', 'an int')
+        if not 0 <= r_2sv_27_6gnssId <= 255:
+            raise _enc('nav_sat', 'sv[27].gnssId', r_2sv_27_6gnssId, 'range', '0..255', None)
     r_2sv_27_4svId = g_2sv_27.svId
-    if r_2sv_27_4svId.__class__ is not int and (not isinstance(r_2sv_27_4svId, int) or r_2sv_27_4svId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[27].svId', r_2sv_27_4svId, 'type', 'an int')
-    if not 0 <= r_2sv_27_4svId <= 255:
-        raise _enc('nav_sat', 'sv[27].svId', r_2sv_27_4svId, 'range', '0..255', None)
+    if r_2sv_27_4svId.__class__ is not int or not 0 <= r_2sv_27_4svId <= 255:
+        if not isinstance(r_2sv_27_4svId, int) or r_2sv_27_4svId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[27].svId', r_2sv_27_4svId, 'type', 'an int')
+        if not 0 <= r_2sv_27_4svId <= 255:
+            raise _enc('nav_sat', 'sv[27].svId', r_2sv_27_4svId, 'range', '0..255', None)
     r_2sv_27_3cno = g_2sv_27.cno
-    if r_2sv_27_3cno.__class__ is not int and (not isinstance(r_2sv_27_3cno, int) or r_2sv_27_3cno.__class__ is bool):
-        raise _enc('nav_sat', 'sv[27].cno', r_2sv_27_3cno, 'type', 'an int')
-    if not 0 <= r_2sv_27_3cno <= 255:
-        raise _enc('nav_sat', 'sv[27].cno', r_2sv_27_3cno, 'range', '0..255', None)
+    if r_2sv_27_3cno.__class__ is not int or not 0 <= r_2sv_27_3cno <= 255:
+        if not isinstance(r_2sv_27_3cno, int) or r_2sv_27_3cno.__class__ is bool:
+            raise _enc('nav_sat', 'sv[27].cno', r_2sv_27_3cno, 'type', 'an int')
+        if not 0 <= r_2sv_27_3cno <= 255:
+            raise _enc('nav_sat', 'sv[27].cno', r_2sv_27_3cno, 'range', '0..255', None)
     r_2sv_27_4elev = g_2sv_27.elev
-    if r_2sv_27_4elev.__class__ is not int and (not isinstance(r_2sv_27_4elev, int) or r_2sv_27_4elev.__class__ is bool):
-        raise _enc('nav_sat', 'sv[27].elev', r_2sv_27_4elev, 'type', 'an int')
-    if not -128 <= r_2sv_27_4elev <= 127:
-        raise _enc('nav_sat', 'sv[27].elev', r_2sv_27_4elev, 'range', '-128..127', None)
+    if r_2sv_27_4elev.__class__ is not int or not -128 <= r_2sv_27_4elev <= 127:
+        if not isinstance(r_2sv_27_4elev, int) or r_2sv_27_4elev.__class__ is bool:
+            raise _enc('nav_sat', 'sv[27].elev', r_2sv_27_4elev, 'type', 'an int')
+        if not -128 <= r_2sv_27_4elev <= 127:
+            raise _enc('nav_sat', 'sv[27].elev', r_2sv_27_4elev, 'range', '-128..127', None)
     r_2sv_27_4azim = g_2sv_27.azim
-    if r_2sv_27_4azim.__class__ is not int and (not isinstance(r_2sv_27_4azim, int) or r_2sv_27_4azim.__class__ is bool):
-        raise _enc('nav_sat', 'sv[27].azim', r_2sv_27_4azim, 'type', 'an int')
-    if not -32768 <= r_2sv_27_4azim <= 32767:
-        raise _enc('nav_sat', 'sv[27].azim', r_2sv_27_4azim, 'range', '-32768..32767', None)
+    if r_2sv_27_4azim.__class__ is not int or not -32768 <= r_2sv_27_4azim <= 32767:
+        if not isinstance(r_2sv_27_4azim, int) or r_2sv_27_4azim.__class__ is bool:
+            raise _enc('nav_sat', 'sv[27].azim', r_2sv_27_4azim, 'type', 'an int')
+        if not -32768 <= r_2sv_27_4azim <= 32767:
+            raise _enc('nav_sat', 'sv[27].azim', r_2sv_27_4azim, 'range', '-32768..32767', None)
     r_2sv_27_5prRes = g_2sv_27.prRes
-    if r_2sv_27_5prRes.__class__ is not float and (not isinstance(r_2sv_27_5prRes, (int, float)) or r_2sv_27_5prRes.__class__ is bool):
-        raise _enc('nav_sat', 'sv[27].prRes', r_2sv_27_5prRes, 'type', 'a number')
-    if not -3276.8 <= r_2sv_27_5prRes <= 3276.7000000000003:
-        raise _enc('nav_sat', 'sv[27].prRes', r_2sv_27_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    if r_2sv_27_5prRes.__class__ is not float or not -3276.8 <= r_2sv_27_5prRes <= 3276.7000000000003:
+        if not isinstance(r_2sv_27_5prRes, (int, float)) or r_2sv_27_5prRes.__class__ is bool:
+            raise _enc('nav_sat', 'sv[27].prRes', r_2sv_27_5prRes, 'type', 'a number')
+        if not -3276.8 <= r_2sv_27_5prRes <= 3276.7000000000003:
+            raise _enc('nav_sat', 'sv[27].prRes', r_2sv_27_5prRes, 'range', '-3276.8..3276.7000000000003', None)
     r_2sv_27_5prRes = _floor(r_2sv_27_5prRes / 0.1 + 0.5)
     r_2sv_27_10qualityInd = g_2sv_27.qualityInd
-    if r_2sv_27_10qualityInd.__class__ is not int and (not isinstance(r_2sv_27_10qualityInd, int) or r_2sv_27_10qualityInd.__class__ is bool):
-        raise _enc('nav_sat', 'sv[27].qualityInd', r_2sv_27_10qualityInd, 'type', 'an int')
-    if not 0 <= r_2sv_27_10qualityInd <= 7:
-        raise _enc('nav_sat', 'sv[27].qualityInd', r_2sv_27_10qualityInd, 'range', '0..7', None)
+    if r_2sv_27_10qualityInd.__class__ is not int or not 0 <= r_2sv_27_10qualityInd <= 7:
+        if not isinstance(r_2sv_27_10qualityInd, int) or r_2sv_27_10qualityInd.__class__ is bool:
+            raise _enc('nav_sat', 'sv[27].qualityInd', r_2sv_27_10qualityInd, 'type', 'an int')
+        if not 0 <= r_2sv_27_10qualityInd <= 7:
+            raise _enc('nav_sat', 'sv[27].qualityInd', r_2sv_27_10qualityInd, 'range', '0..7', None)
     r_2sv_27_6svUsed: Any = g_2sv_27.svUsed
     if r_2sv_27_6svUsed is not True and r_2sv_27_6svUsed is not False and r_2sv_27_6svUsed != 0 and r_2sv_27_6svUsed != 1:
         raise _enc('nav_sat', 'sv[27].svUsed', r_2sv_27_6svUsed, 'type', 'a bool')
     r_2sv_27_6svUsed = 1 if r_2sv_27_6svUsed else 0
     r_2sv_27_6health = g_2sv_27.health
-    if r_2sv_27_6health.__class__ is not int and (not isinstance(r_2sv_27_6health, int) or r_2sv_27_6health.__class__ is bool):
-        raise _enc('nav_sat', 'sv[27].health', r_2sv_27_6health, 'type', 'an int')
-    if not 0 <= r_2sv_27_6health <= 3:
-        raise _enc('nav_sat', 'sv[27].health', r_2sv_27_6health, 'range', '0..3', None)
+    if r_2sv_27_6health.__class__ is not int or not 0 <= r_2sv_27_6health <= 3:
+        if not isinstance(r_2sv_27_6health, int) or r_2sv_27_6health.__class__ is bool:
+            raise _enc('nav_sat', 'sv[27].health', r_2sv_27_6health, 'type', 'an int')
+        if not 0 <= r_2sv_27_6health <= 3:
+            raise _enc('nav_sat', 'sv[27].health', r_2sv_27_6health, 'range', '0..3', None)
     r_2sv_27_8diffCorr: Any = g_2sv_27.diffCorr
     if r_2sv_27_8diffCorr is not True and r_2sv_27_8diffCorr is not False and r_2sv_27_8diffCorr != 0 and r_2sv_27_8diffCorr != 1:
         raise _enc('nav_sat', 'sv[27].diffCorr', r_2sv_27_8diffCorr, 'type', 'a bool')
@@ -4650,10 +4944,11 @@ def _raw_nav_sat_2sv_27(g_2sv_27: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[27].smoothed', r_2sv_27_8smoothed, 'type', 'a bool')
     r_2sv_27_8smoothed = 1 if r_2sv_27_8smoothed else 0
     r_2sv_27_11orbitSource = g_2sv_27.orbitSource
-    if r_2sv_27_11orbitSource.__class__ is not int and (not isinstance(r_2sv_27_11orbitSource, int) or r_2sv_27_11orbitSource.__class__ is bool):
-        raise _enc('nav_sat', 'sv[27].orbitSource', r_2sv_27_11orbitSource, 'type', 'an int')
-    if not 0 <= r_2sv_27_11orbitSource <= 7:
-        raise _enc('nav_sat', 'sv[27].orbitSource', r_2sv_27_11orbitSource, 'range', '0..7', None)
+    if r_2sv_27_11orbitSource.__class__ is not int or not 0 <= r_2sv_27_11orbitSource <= 7:
+        if not isinstance(r_2sv_27_11orbitSource, int) or r_2sv_27_11orbitSource.__class__ is bool:
+            raise _enc('nav_sat', 'sv[27].orbitSource', r_2sv_27_11orbitSource, 'type', 'an int')
+        if not 0 <= r_2sv_27_11orbitSource <= 7:
+            raise _enc('nav_sat', 'sv[27].orbitSource', r_2sv_27_11orbitSource, 'range', '0..7', None)
     r_2sv_27_8ephAvail: Any = g_2sv_27.ephAvail
     if r_2sv_27_8ephAvail is not True and r_2sv_27_8ephAvail is not False and r_2sv_27_8ephAvail != 0 and r_2sv_27_8ephAvail != 1:
         raise _enc('nav_sat', 'sv[27].ephAvail', r_2sv_27_8ephAvail, 'type', 'a bool')
@@ -4671,10 +4966,11 @@ def _raw_nav_sat_2sv_27(g_2sv_27: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[27].aopAvail', r_2sv_27_8aopAvail, 'type', 'a bool')
     r_2sv_27_8aopAvail = 1 if r_2sv_27_8aopAvail else 0
     r_2sv_27_10reserved13 = g_2sv_27.reserved13
-    if r_2sv_27_10reserved13.__class__ is not int and (not isinstance(r_2sv_27_10reserved13, int) or r_2sv_27_10reserved13.__class__ is bool):
-        raise _enc('nav_sat', 'sv[27].reserved13', r_2sv_27_10reserved13, 'type', 'an int')
-    if not 0 <= r_2sv_27_10reserved13 <= 1:
-        raise _enc('nav_sat', 'sv[27].reserved13', r_2sv_27_10reserved13, 'range', '0..1', None)
+    if r_2sv_27_10reserved13.__class__ is not int or not 0 <= r_2sv_27_10reserved13 <= 1:
+        if not isinstance(r_2sv_27_10reserved13, int) or r_2sv_27_10reserved13.__class__ is bool:
+            raise _enc('nav_sat', 'sv[27].reserved13', r_2sv_27_10reserved13, 'type', 'an int')
+        if not 0 <= r_2sv_27_10reserved13 <= 1:
+            raise _enc('nav_sat', 'sv[27].reserved13', r_2sv_27_10reserved13, 'range', '0..1', None)
     r_2sv_27_12sbasCorrUsed: Any = g_2sv_27.sbasCorrUsed
     if r_2sv_27_12sbasCorrUsed is not True and r_2sv_27_12sbasCorrUsed is not False and r_2sv_27_12sbasCorrUsed != 0 and r_2sv_27_12sbasCorrUsed != 1:
         raise _enc('nav_sat', 'sv[27].sbasCorrUsed', r_2sv_27_12sbasCorrUsed, 'type', 'a bool')
@@ -4721,50 +5017,58 @@ def _raw_nav_sat_2sv_27(g_2sv_27: Any) -> tuple[Any, ...]:
 
 def _raw_nav_sat_2sv_28(g_2sv_28: Any) -> tuple[Any, ...]:
     r_2sv_28_6gnssId = g_2sv_28.gnssId
-    if r_2sv_28_6gnssId.__class__ is not int and (not isinstance(r_2sv_28_6gnssId, int) or r_2sv_28_6gnssId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[28].gnssId', r_2sv_28_6gnssId, 'type', 'an int')
-    if not 0 <= r_2sv_28_6gnssId <= 255:
-        raise _enc('nav_sat', 'sv[28].gnssId', r_2sv_28_6gnssId, 'range', '0..255', None)
+    if r_2sv_28_6gnssId.__class__ is not int or not 0 <= r_2sv_28_6gnssId <= 255:
+        if not isinstance(r_2sv_28_6gnssId, int) or r_2sv_28_6gnssId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[28].gnssId', r_2sv_28_6gnssId, 'type', 'an int')
+        if not 0 <= r_2sv_28_6gnssId <= 255:
+            raise _enc('nav_sat', 'sv[28].gnssId', r_2sv_28_6gnssId, 'range', '0..255', None)
     r_2sv_28_4svId = g_2sv_28.svId
-    if r_2sv_28_4svId.__class__ is not int and (not isinstance(r_2sv_28_4svId, int) or r_2sv_28_4svId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[28].svId', r_2sv_28_4svId, 'type', 'an int')
-    if not 0 <= r_2sv_28_4svId <= 255:
-        raise _enc('nav_sat', 'sv[28].svId', r_2sv_28_4svId, 'range', '0..255', None)
+    if r_2sv_28_4svId.__class__ is not int or not 0 <= r_2sv_28_4svId <= 255:
+        if not isinstance(r_2sv_28_4svId, int) or r_2sv_28_4svId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[28].svId', r_2sv_28_4svId, 'type', 'an int')
+        if not 0 <= r_2sv_28_4svId <= 255:
+            raise _enc('nav_sat', 'sv[28].svId', r_2sv_28_4svId, 'range', '0..255', None)
     r_2sv_28_3cno = g_2sv_28.cno
-    if r_2sv_28_3cno.__class__ is not int and (not isinstance(r_2sv_28_3cno, int) or r_2sv_28_3cno.__class__ is bool):
-        raise _enc('nav_sat', 'sv[28].cno', r_2sv_28_3cno, 'type', 'an int')
-    if not 0 <= r_2sv_28_3cno <= 255:
-        raise _enc('nav_sat', 'sv[28].cno', r_2sv_28_3cno, 'range', '0..255', None)
+    if r_2sv_28_3cno.__class__ is not int or not 0 <= r_2sv_28_3cno <= 255:
+        if not isinstance(r_2sv_28_3cno, int) or r_2sv_28_3cno.__class__ is bool:
+            raise _enc('nav_sat', 'sv[28].cno', r_2sv_28_3cno, 'type', 'an int')
+        if not 0 <= r_2sv_28_3cno <= 255:
+            raise _enc('nav_sat', 'sv[28].cno', r_2sv_28_3cno, 'range', '0..255', None)
     r_2sv_28_4elev = g_2sv_28.elev
-    if r_2sv_28_4elev.__class__ is not int and (not isinstance(r_2sv_28_4elev, int) or r_2sv_28_4elev.__class__ is bool):
-        raise _enc('nav_sat', 'sv[28].elev', r_2sv_28_4elev, 'type', 'an int')
-    if not -128 <= r_2sv_28_4elev <= 127:
-        raise _enc('nav_sat', 'sv[28].elev', r_2sv_28_4elev, 'range', '-128..127', None)
+    if r_2sv_28_4elev.__class__ is not int or not -128 <= r_2sv_28_4elev <= 127:
+        if not isinstance(r_2sv_28_4elev, int) or r_2sv_28_4elev.__class__ is bool:
+            raise _enc('nav_sat', 'sv[28].elev', r_2sv_28_4elev, 'type', 'an int')
+        if not -128 <= r_2sv_28_4elev <= 127:
+            raise _enc('nav_sat', 'sv[28].elev', r_2sv_28_4elev, 'range', '-128..127', None)
     r_2sv_28_4azim = g_2sv_28.azim
-    if r_2sv_28_4azim.__class__ is not int and (not isinstance(r_2sv_28_4azim, int) or r_2sv_28_4azim.__class__ is bool):
-        raise _enc('nav_sat', 'sv[28].azim', r_2sv_28_4azim, 'type', 'an int')
-    if not -32768 <= r_2sv_28_4azim <= 32767:
-        raise _enc('nav_sat', 'sv[28].azim', r_2sv_28_4azim, 'range', '-32768..32767', None)
+    if r_2sv_28_4azim.__class__ is not int or not -32768 <= r_2sv_28_4azim <= 32767:
+        if not isinstance(r_2sv_28_4azim, int) or r_2sv_28_4azim.__class__ is bool:
+            raise _enc('nav_sat', 'sv[28].azim', r_2sv_28_4azim, 'type', 'an int')
+        if not -32768 <= r_2sv_28_4azim <= 32767:
+            raise _enc('nav_sat', 'sv[28].azim', r_2sv_28_4azim, 'range', '-32768..32767', None)
     r_2sv_28_5prRes = g_2sv_28.prRes
-    if r_2sv_28_5prRes.__class__ is not float and (not isinstance(r_2sv_28_5prRes, (int, float)) or r_2sv_28_5prRes.__class__ is bool):
-        raise _enc('nav_sat', 'sv[28].prRes', r_2sv_28_5prRes, 'type', 'a number')
-    if not -3276.8 <= r_2sv_28_5prRes <= 3276.7000000000003:
-        raise _enc('nav_sat', 'sv[28].prRes', r_2sv_28_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    if r_2sv_28_5prRes.__class__ is not float or not -3276.8 <= r_2sv_28_5prRes <= 3276.7000000000003:
+        if not isinstance(r_2sv_28_5prRes, (int, float)) or r_2sv_28_5prRes.__class__ is bool:
+            raise _enc('nav_sat', 'sv[28].prRes', r_2sv_28_5prRes, 'type', 'a number')
+        if not -3276.8 <= r_2sv_28_5prRes <= 3276.7000000000003:
+            raise _enc('nav_sat', 'sv[28].prRes', r_2sv_28_5prRes, 'range', '-3276.8..3276.7000000000003', None)
     r_2sv_28_5prRes = _floor(r_2sv_28_5prRes / 0.1 + 0.5)
     r_2sv_28_10qualityInd = g_2sv_28.qualityInd
-    if r_2sv_28_10qualityInd.__class__ is not int and (not isinstance(r_2sv_28_10qualityInd, int) or r_2sv_28_10qualityInd.__class__ is bool):
-        raise _enc('nav_sat', 'sv[28].qualityInd', r_2sv_28_10qualityInd, 'type', 'an int')
-    if not 0 <= r_2sv_28_10qualityInd <= 7:
-        raise _enc('nav_sat', 'sv[28].qualityInd', r_2sv_28_10qualityInd, 'range', '0..7', None)
+    if r_2sv_28_10qualityInd.__class__ is not int or not 0 <= r_2sv_28_10qualityInd <= 7:
+        if not isinstance(r_2sv_28_10qualityInd, int) or r_2sv_28_10qualityInd.__class__ is bool:
+            raise _enc('nav_sat', 'sv[28].qualityInd', r_2sv_28_10qualityInd, 'type', 'an int')
+        if not 0 <= r_2sv_28_10qualityInd <= 7:
+            raise _enc('nav_sat', 'sv[28].qualityInd', r_2sv_28_10qualityInd, 'range', '0..7', None)
     r_2sv_28_6svUsed: Any = g_2sv_28.svUsed
     if r_2sv_28_6svUsed is not True and r_2sv_28_6svUsed is not False and r_2sv_28_6svUsed != 0 and r_2sv_28_6svUsed != 1:
         raise _enc('nav_sat', 'sv[28].svUsed', r_2sv_28_6svUsed, 'type', 'a bool')
     r_2sv_28_6svUsed = 1 if r_2sv_28_6svUsed else 0
     r_2sv_28_6health = g_2sv_28.health
-    if r_2sv_28_6health.__class__ is not int and (not isinstance(r_2sv_28_6health, int) or r_2sv_28_6health.__class__ is bool):
-        raise _enc('nav_sat', 'sv[28].health', r_2sv_28_6health, 'type', 'an int')
-    if not 0 <= r_2sv_28_6health <= 3:
-        raise _enc('nav_sat', 'sv[28].health', r_2sv_28_6health, 'range', '0..3', None)
+    if r_2sv_28_6health.__class__ is not int or not 0 <= r_2sv_28_6health <= 3:
+        if not isinstance(r_2sv_28_6health, int) or r_2sv_28_6health.__class__ is bool:
+            raise _enc('nav_sat', 'sv[28].health', r_2sv_28_6health, 'type', 'an int')
+        if not 0 <= r_2sv_28_6health <= 3:
+            raise _enc('nav_sat', 'sv[28].health', r_2sv_28_6health, 'range', '0..3', None)
     r_2sv_28_8diffCorr: Any = g_2sv_28.diffCorr
     if r_2sv_28_8diffCorr is not True and r_2sv_28_8diffCorr is not False and r_2sv_28_8diffCorr != 0 and r_2sv_28_8diffCorr != 1:
         raise _enc('nav_sat', 'sv[28].diffCorr', r_2sv_28_8diffCorr, 'type', 'a bool')
@@ -4774,10 +5078,11 @@ def _raw_nav_sat_2sv_28(g_2sv_28: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[28].smoothed', r_2sv_28_8smoothed, 'type', 'a bool')
     r_2sv_28_8smoothed = 1 if r_2sv_28_8smoothed else 0
     r_2sv_28_11orbitSource = g_2sv_28.orbitSource
-    if r_2sv_28_11orbitSource.__class__ is not int and (not isinstance(r_2sv_28_11orbitSource, int) or r_2sv_28_11orbitSource.__class__ is bool):
-        raise _enc('nav_sat', 'sv[28].orbitSource', r_2sv_28_11orbitSource, 'type', 'an int')
-    if not 0 <= r_2sv_28_11orbitSource <= 7:
-        raise _enc('nav_sat', 'sv[28].orbitSource', r_2sv_28_11orbitSource, 'range', '0..7', None)
+    if r_2sv_28_11orbitSource.__class__ is not int or not 0 <= r_2sv_28_11orbitSource <= 7:
+        if not isinstance(r_2sv_28_11orbitSource, int) or r_2sv_28_11orbitSource.__class__ is bool:
+            raise _enc('nav_sat', 'sv[28].orbitSource', r_2sv_28_11orbitSource, 'type', 'an int')
+        if not 0 <= r_2sv_28_11orbitSource <= 7:
+            raise _enc('nav_sat', 'sv[28].orbitSource', r_2sv_28_11orbitSource, 'range', '0..7', None)
     r_2sv_28_8ephAvail: Any = g_2sv_28.ephAvail
     if r_2sv_28_8ephAvail is not True and r_2sv_28_8ephAvail is not False and r_2sv_28_8ephAvail != 0 and r_2sv_28_8ephAvail != 1:
         raise _enc('nav_sat', 'sv[28].ephAvail', r_2sv_28_8ephAvail, 'type', 'a bool')
@@ -4795,10 +5100,11 @@ def _raw_nav_sat_2sv_28(g_2sv_28: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[28].aopAvail', r_2sv_28_8aopAvail, 'type', 'a bool')
     r_2sv_28_8aopAvail = 1 if r_2sv_28_8aopAvail else 0
     r_2sv_28_10reserved13 = g_2sv_28.reserved13
-    if r_2sv_28_10reserved13.__class__ is not int and (not isinstance(r_2sv_28_10reserved13, int) or r_2sv_28_10reserved13.__class__ is bool):
-        raise _enc('nav_sat', 'sv[28].reserved13', r_2sv_28_10reserved13, 'type', 'an int')
-    if not 0 <= r_2sv_28_10reserved13 <= 1:
-        raise _enc('nav_sat', 'sv[28].reserved13', r_2sv_28_10reserved13, 'range', '0..1', None)
+    if r_2sv_28_10reserved13.__class__ is not int or not 0 <= r_2sv_28_10reserved13 <= 1:
+        if not isinstance(r_2sv_28_10reserved13, int) or r_2sv_28_10reserved13.__class__ is bool:
+            raise _enc('nav_sat', 'sv[28].reserved13', r_2sv_28_10reserved13, 'type', 'an int')
+        if not 0 <= r_2sv_28_10reserved13 <= 1:
+            raise _enc('nav_sat', 'sv[28].reserved13', r_2sv_28_10reserved13, 'range', '0..1', None)
     r_2sv_28_12sbasCorrUsed: Any = g_2sv_28.sbasCorrUsed
     if r_2sv_28_12sbasCorrUsed is not True and r_2sv_28_12sbasCorrUsed is not False and r_2sv_28_12sbasCorrUsed != 0 and r_2sv_28_12sbasCorrUsed != 1:
         raise _enc('nav_sat', 'sv[28].sbasCorrUsed', r_2sv_28_12sbasCorrUsed, 'type', 'a bool')
@@ -4845,50 +5151,58 @@ def _raw_nav_sat_2sv_28(g_2sv_28: Any) -> tuple[Any, ...]:
 
 def _raw_nav_sat_2sv_29(g_2sv_29: Any) -> tuple[Any, ...]:
     r_2sv_29_6gnssId = g_2sv_29.gnssId
-    if r_2sv_29_6gnssId.__class__ is not int and (not isinstance(r_2sv_29_6gnssId, int) or r_2sv_29_6gnssId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[29].gnssId', r_2sv_29_6gnssId, 'type', 'an int')
-    if not 0 <= r_2sv_29_6gnssId <= 255:
-        raise _enc('nav_sat', 'sv[29].gnssId', r_2sv_29_6gnssId, 'range', '0..255', None)
+    if r_2sv_29_6gnssId.__class__ is not int or not 0 <= r_2sv_29_6gnssId <= 255:
+        if not isinstance(r_2sv_29_6gnssId, int) or r_2sv_29_6gnssId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[29].gnssId', r_2sv_29_6gnssId, 'type', 'an int')
+        if not 0 <= r_2sv_29_6gnssId <= 255:
+            raise _enc('nav_sat', 'sv[29].gnssId', r_2sv_29_6gnssId, 'range', '0..255', None)
     r_2sv_29_4svId = g_2sv_29.svId
-    if r_2sv_29_4svId.__class__ is not int and (not isinstance(r_2sv_29_4svId, int) or r_2sv_29_4svId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[29].svId', r_2sv_29_4svId, 'type', 'an int')
-    if not 0 <= r_2sv_29_4svId <= 255:
-        raise _enc('nav_sat', 'sv[29].svId', r_2sv_29_4svId, 'range', '0..255', None)
+    if r_2sv_29_4svId.__class__ is not int or not 0 <= r_2sv_29_4svId <= 255:
+        if not isinstance(r_2sv_29_4svId, int) or r_2sv_29_4svId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[29].svId', r_2sv_29_4svId, 'type', 'an int')
+        if not 0 <= r_2sv_29_4svId <= 255:
+            raise _enc('nav_sat', 'sv[29].svId', r_2sv_29_4svId, 'range', '0..255', None)
     r_2sv_29_3cno = g_2sv_29.cno
-    if r_2sv_29_3cno.__class__ is not int and (not isinstance(r_2sv_29_3cno, int) or r_2sv_29_3cno.__class__ is bool):
-        raise _enc('nav_sat', 'sv[29].cno', r_2sv_29_3cno, 'type', 'an int')
-    if not 0 <= r_2sv_29_3cno <= 255:
-        raise _enc('nav_sat', 'sv[29].cno', r_2sv_29_3cno, 'range', '0..255', None)
+    if r_2sv_29_3cno.__class__ is not int or not 0 <= r_2sv_29_3cno <= 255:
+        if not isinstance(r_2sv_29_3cno, int) or r_2sv_29_3cno.__class__ is bool:
+            raise _enc('nav_sat', 'sv[29].cno', r_2sv_29_3cno, 'type', 'an int')
+        if not 0 <= r_2sv_29_3cno <= 255:
+            raise _enc('nav_sat', 'sv[29].cno', r_2sv_29_3cno, 'range', '0..255', None)
     r_2sv_29_4elev = g_2sv_29.elev
-    if r_2sv_29_4elev.__class__ is not int and (not isinstance(r_2sv_29_4elev, int) or r_2sv_29_4elev.__class__ is bool):
-        raise _enc('nav_sat', 'sv[29].elev', r_2sv_29_4elev, 'type', 'an int')
-    if not -128 <= r_2sv_29_4elev <= 127:
-        raise _enc('nav_sat', 'sv[29].elev', r_2sv_29_4elev, 'range', '-128..127', None)
+    if r_2sv_29_4elev.__class__ is not int or not -128 <= r_2sv_29_4elev <= 127:
+        if not isinstance(r_2sv_29_4elev, int) or r_2sv_29_4elev.__class__ is bool:
+            raise _enc('nav_sat', 'sv[29].elev', r_2sv_29_4elev, 'type', 'an int')
+        if not -128 <= r_2sv_29_4elev <= 127:
+            raise _enc('nav_sat', 'sv[29].elev', r_2sv_29_4elev, 'range', '-128..127', None)
     r_2sv_29_4azim = g_2sv_29.azim
-    if r_2sv_29_4azim.__class__ is not int and (not isinstance(r_2sv_29_4azim, int) or r_2sv_29_4azim.__class__ is bool):
-        raise _enc('nav_sat', 'sv[29].azim', r_2sv_29_4azim, 'type', 'an int')
-    if not -32768 <= r_2sv_29_4azim <= 32767:
-        raise _enc('nav_sat', 'sv[29].azim', r_2sv_29_4azim, 'range', '-32768..32767', None)
+    if r_2sv_29_4azim.__class__ is not int or not -32768 <= r_2sv_29_4azim <= 32767:
+        if not isinstance(r_2sv_29_4azim, int) or r_2sv_29_4azim.__class__ is bool:
+            raise _enc('nav_sat', 'sv[29].azim', r_2sv_29_4azim, 'type', 'an int')
+        if not -32768 <= r_2sv_29_4azim <= 32767:
+            raise _enc('nav_sat', 'sv[29].azim', r_2sv_29_4azim, 'range', '-32768..32767', None)
     r_2sv_29_5prRes = g_2sv_29.prRes
-    if r_2sv_29_5prRes.__class__ is not float and (not isinstance(r_2sv_29_5prRes, (int, float)) or r_2sv_29_5prRes.__class__ is bool):
-        raise _enc('nav_sat', 'sv[29].prRes', r_2sv_29_5prRes, 'type', 'a number')
-    if not -3276.8 <= r_2sv_29_5prRes <= 3276.7000000000003:
-        raise _enc('nav_sat', 'sv[29].prRes', r_2sv_29_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    if r_2sv_29_5prRes.__class__ is not float or not -3276.8 <= r_2sv_29_5prRes <= 3276.7000000000003:
+        if not isinstance(r_2sv_29_5prRes, (int, float)) or r_2sv_29_5prRes.__class__ is bool:
+            raise _enc('nav_sat', 'sv[29].prRes', r_2sv_29_5prRes, 'type', 'a number')
+        if not -3276.8 <= r_2sv_29_5prRes <= 3276.7000000000003:
+            raise _enc('nav_sat', 'sv[29].prRes', r_2sv_29_5prRes, 'range', '-3276.8..3276.7000000000003', None)
     r_2sv_29_5prRes = _floor(r_2sv_29_5prRes / 0.1 + 0.5)
     r_2sv_29_10qualityInd = g_2sv_29.qualityInd
-    if r_2sv_29_10qualityInd.__class__ is not int and (not isinstance(r_2sv_29_10qualityInd, int) or r_2sv_29_10qualityInd.__class__ is bool):
-        raise _enc('nav_sat', 'sv[29].qualityInd', r_2sv_29_10qualityInd, 'type', 'an int')
-    if not 0 <= r_2sv_29_10qualityInd <= 7:
-        raise _enc('nav_sat', 'sv[29].qualityInd', r_2sv_29_10qualityInd, 'range', '0..7', None)
+    if r_2sv_29_10qualityInd.__class__ is not int or not 0 <= r_2sv_29_10qualityInd <= 7:
+        if not isinstance(r_2sv_29_10qualityInd, int) or r_2sv_29_10qualityInd.__class__ is bool:
+            raise _enc('nav_sat', 'sv[29].qualityInd', r_2sv_29_10qualityInd, 'type', 'an int')
+        if not 0 <= r_2sv_29_10qualityInd <= 7:
+            raise _enc('nav_sat', 'sv[29].qualityInd', r_2sv_29_10qualityInd, 'range', '0..7', None)
     r_2sv_29_6svUsed: Any = g_2sv_29.svUsed
     if r_2sv_29_6svUsed is not True and r_2sv_29_6svUsed is not False and r_2sv_29_6svUsed != 0 and r_2sv_29_6svUsed != 1:
         raise _enc('nav_sat', 'sv[29].svUsed', r_2sv_29_6svUsed, 'type', 'a bool')
     r_2sv_29_6svUsed = 1 if r_2sv_29_6svUsed else 0
     r_2sv_29_6health = g_2sv_29.health
-    if r_2sv_29_6health.__class__ is not int and (not isinstance(r_2sv_29_6health, int) or r_2sv_29_6health.__class__ is bool):
-        raise _enc('nav_sat', 'sv[29].health', r_2sv_29_6health, 'type', 'an int')
-    if not 0 <= r_2sv_29_6health <= 3:
-        raise _enc('nav_sat', 'sv[29].health', r_2sv_29_6health, 'range', '0..3', None)
+    if r_2sv_29_6health.__class__ is not int or not 0 <= r_2sv_29_6health <= 3:
+        if not isinstance(r_2sv_29_6health, int) or r_2sv_29_6health.__class__ is bool:
+            raise _enc('nav_sat', 'sv[29].health', r_2sv_29_6health, 'type', 'an int')
+        if not 0 <= r_2sv_29_6health <= 3:
+            raise _enc('nav_sat', 'sv[29].health', r_2sv_29_6health, 'range', '0..3', None)
     r_2sv_29_8diffCorr: Any = g_2sv_29.diffCorr
     if r_2sv_29_8diffCorr is not True and r_2sv_29_8diffCorr is not False and r_2sv_29_8diffCorr != 0 and r_2sv_29_8diffCorr != 1:
         raise _enc('nav_sat', 'sv[29].diffCorr', r_2sv_29_8diffCorr, 'type', 'a bool')
@@ -4898,10 +5212,11 @@ def _raw_nav_sat_2sv_29(g_2sv_29: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[29].smoothed', r_2sv_29_8smoothed, 'type', 'a bool')
     r_2sv_29_8smoothed = 1 if r_2sv_29_8smoothed else 0
     r_2sv_29_11orbitSource = g_2sv_29.orbitSource
-    if r_2sv_29_11orbitSource.__class__ is not int and (not isinstance(r_2sv_29_11orbitSource, int) or r_2sv_29_11orbitSource.__class__ is bool):
-        raise _enc('nav_sat', 'sv[29].orbitSource', r_2sv_29_11orbitSource, 'type', 'an int')
-    if not 0 <= r_2sv_29_11orbitSource <= 7:
-        raise _enc('nav_sat', 'sv[29].orbitSource', r_2sv_29_11orbitSource, 'range', '0..7', None)
+    if r_2sv_29_11orbitSource.__class__ is not int or not 0 <= r_2sv_29_11orbitSource <= 7:
+        if not isinstance(r_2sv_29_11orbitSource, int) or r_2sv_29_11orbitSource.__class__ is bool:
+            raise _enc('nav_sat', 'sv[29].orbitSource', r_2sv_29_11orbitSource, 'type', 'an int')
+        if not 0 <= r_2sv_29_11orbitSource <= 7:
+            raise _enc('nav_sat', 'sv[29].orbitSource', r_2sv_29_11orbitSource, 'range', '0..7', None)
     r_2sv_29_8ephAvail: Any = g_2sv_29.ephAvail
     if r_2sv_29_8ephAvail is not True and r_2sv_29_8ephAvail is not False and r_2sv_29_8ephAvail != 0 and r_2sv_29_8ephAvail != 1:
         raise _enc('nav_sat', 'sv[29].ephAvail', r_2sv_29_8ephAvail, 'type', 'a bool')
@@ -4919,10 +5234,11 @@ def _raw_nav_sat_2sv_29(g_2sv_29: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[29].aopAvail', r_2sv_29_8aopAvail, 'type', 'a bool')
     r_2sv_29_8aopAvail = 1 if r_2sv_29_8aopAvail else 0
     r_2sv_29_10reserved13 = g_2sv_29.reserved13
-    if r_2sv_29_10reserved13.__class__ is not int and (not isinstance(r_2sv_29_10reserved13, int) or r_2sv_29_10reserved13.__class__ is bool):
-        raise _enc('nav_sat', 'sv[29].reserved13', r_2sv_29_10reserved13, 'type', 'an int')
-    if not 0 <= r_2sv_29_10reserved13 <= 1:
-        raise _enc('nav_sat', 'sv[29].reserved13', r_2sv_29_10reserved13, 'range', '0..1', None)
+    if r_2sv_29_10reserved13.__class__ is not int or not 0 <= r_2sv_29_10reserved13 <= 1:
+        if not isinstance(r_2sv_29_10reserved13, int) or r_2sv_29_10reserved13.__class__ is bool:
+            raise _enc('nav_sat', 'sv[29].reserved13', r_2sv_29_10reserved13, 'type', 'an int')
+        if not 0 <= r_2sv_29_10reserved13 <= 1:
+            raise _enc('nav_sat', 'sv[29].reserved13', r_2sv_29_10reserved13, 'range', '0..1', None)
     r_2sv_29_12sbasCorrUsed: Any = g_2sv_29.sbasCorrUsed
     if r_2sv_29_12sbasCorrUsed is not True and r_2sv_29_12sbasCorrUsed is not False and r_2sv_29_12sbasCorrUsed != 0 and r_2sv_29_12sbasCorrUsed != 1:
         raise _enc('nav_sat', 'sv[29].sbasCorrUsed', r_2sv_29_12sbasCorrUsed, 'type', 'a bool')
@@ -4969,50 +5285,58 @@ def _raw_nav_sat_2sv_29(g_2sv_29: Any) -> tuple[Any, ...]:
 
 def _raw_nav_sat_2sv_30(g_2sv_30: Any) -> tuple[Any, ...]:
     r_2sv_30_6gnssId = g_2sv_30.gnssId
-    if r_2sv_30_6gnssId.__class__ is not int and (not isinstance(r_2sv_30_6gnssId, int) or r_2sv_30_6gnssId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[30].gnssId', r_2sv_30_6gnssId, 'type', 'an int')
-    if not 0 <= r_2sv_30_6gnssId <= 255:
-        raise _enc('nav_sat', 'sv[30].gnssId', r_2sv_30_6gnssId, 'range', '0..255', None)
+    if r_2sv_30_6gnssId.__class__ is not int or not 0 <= r_2sv_30_6gnssId <= 255:
+        if not isinstance(r_2sv_30_6gnssId, int) or r_2sv_30_6gnssId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[30].gnssId', r_2sv_30_6gnssId, 'type', 'an int')
+        if not 0 <= r_2sv_30_6gnssId <= 255:
+            raise _enc('nav_sat', 'sv[30].gnssId', r_2sv_30_6gnssId, 'range', '0..255', None)
     r_2sv_30_4svId = g_2sv_30.svId
-    if r_2sv_30_4svId.__class__ is not int and (not isinstance(r_2sv_30_4svId, int) or r_2sv_30_4svId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[30].svId', r_2sv_30_4svId, 'type', 'an int')
-    if not 0 <= r_2sv_30_4svId <= 255:
-        raise _enc('nav_sat', 'sv[30].svId', r_2sv_30_4svId, 'range', '0..255', None)
+    if r_2sv_30_4svId.__class__ is not int or not 0 <= r_2sv_30_4svId <= 255:
+        if not isinstance(r_2sv_30_4svId, int) or r_2sv_30_4svId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[30].svId', r_2sv_30_4svId, 'type', 'an int')
+        if not 0 <= r_2sv_30_4svId <= 255:
+            raise _enc('nav_sat', 'sv[30].svId', r_2sv_30_4svId, 'range', '0..255', None)
     r_2sv_30_3cno = g_2sv_30.cno
-    if r_2sv_30_3cno.__class__ is not int and (not isinstance(r_2sv_30_3cno, int) or r_2sv_30_3cno.__class__ is bool):
-        raise _enc('nav_sat', 'sv[30].cno', r_2sv_30_3cno, 'type', 'an int')
-    if not 0 <= r_2sv_30_3cno <= 255:
-        raise _enc('nav_sat', 'sv[30].cno', r_2sv_30_3cno, 'range', '0..255', None)
+    if r_2sv_30_3cno.__class__ is not int or not 0 <= r_2sv_30_3cno <= 255:
+        if not isinstance(r_2sv_30_3cno, int) or r_2sv_30_3cno.__class__ is bool:
+            raise _enc('nav_sat', 'sv[30].cno', r_2sv_30_3cno, 'type', 'an int')
+        if not 0 <= r_2sv_30_3cno <= 255:
+            raise _enc('nav_sat', 'sv[30].cno', r_2sv_30_3cno, 'range', '0..255', None)
     r_2sv_30_4elev = g_2sv_30.elev
-    if r_2sv_30_4elev.__class__ is not int and (not isinstance(r_2sv_30_4elev, int) or r_2sv_30_4elev.__class__ is bool):
-        raise _enc('nav_sat', 'sv[30].elev', r_2sv_30_4elev, 'type', 'an int')
-    if not -128 <= r_2sv_30_4elev <= 127:
-        raise _enc('nav_sat', 'sv[30].elev', r_2sv_30_4elev, 'range', '-128..127', None)
+    if r_2sv_30_4elev.__class__ is not int or not -128 <= r_2sv_30_4elev <= 127:
+        if not isinstance(r_2sv_30_4elev, int) or r_2sv_30_4elev.__class__ is bool:
+            raise _enc('nav_sat', 'sv[30].elev', r_2sv_30_4elev, 'type', 'an int')
+        if not -128 <= r_2sv_30_4elev <= 127:
+            raise _enc('nav_sat', 'sv[30].elev', r_2sv_30_4elev, 'range', '-128..127', None)
     r_2sv_30_4azim = g_2sv_30.azim
-    if r_2sv_30_4azim.__class__ is not int and (not isinstance(r_2sv_30_4azim, int) or r_2sv_30_4azim.__class__ is bool):
-        raise _enc('nav_sat', 'sv[30].azim', r_2sv_30_4azim, 'type', 'an int')
-    if not -32768 <= r_2sv_30_4azim <= 32767:
-        raise _enc('nav_sat', 'sv[30].azim', r_2sv_30_4azim, 'range', '-32768..32767', None)
+    if r_2sv_30_4azim.__class__ is not int or not -32768 <= r_2sv_30_4azim <= 32767:
+        if not isinstance(r_2sv_30_4azim, int) or r_2sv_30_4azim.__class__ is bool:
+            raise _enc('nav_sat', 'sv[30].azim', r_2sv_30_4azim, 'type', 'an int')
+        if not -32768 <= r_2sv_30_4azim <= 32767:
+            raise _enc('nav_sat', 'sv[30].azim', r_2sv_30_4azim, 'range', '-32768..32767', None)
     r_2sv_30_5prRes = g_2sv_30.prRes
-    if r_2sv_30_5prRes.__class__ is not float and (not isinstance(r_2sv_30_5prRes, (int, float)) or r_2sv_30_5prRes.__class__ is bool):
-        raise _enc('nav_sat', 'sv[30].prRes', r_2sv_30_5prRes, 'type', 'a number')
-    if not -3276.8 <= r_2sv_30_5prRes <= 3276.7000000000003:
-        raise _enc('nav_sat', 'sv[30].prRes', r_2sv_30_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    if r_2sv_30_5prRes.__class__ is not float or not -3276.8 <= r_2sv_30_5prRes <= 3276.7000000000003:
+        if not isinstance(r_2sv_30_5prRes, (int, float)) or r_2sv_30_5prRes.__class__ is bool:
+            raise _enc('nav_sat', 'sv[30].prRes', r_2sv_30_5prRes, 'type', 'a number')
+        if not -3276.8 <= r_2sv_30_5prRes <= 3276.7000000000003:
+            raise _enc('nav_sat', 'sv[30].prRes', r_2sv_30_5prRes, 'range', '-3276.8..3276.7000000000003', None)
     r_2sv_30_5prRes = _floor(r_2sv_30_5prRes / 0.1 + 0.5)
     r_2sv_30_10qualityInd = g_2sv_30.qualityInd
-    if r_2sv_30_10qualityInd.__class__ is not int and (not isinstance(r_2sv_30_10qualityInd, int) or r_2sv_30_10qualityInd.__class__ is bool):
-        raise _enc('nav_sat', 'sv[30].qualityInd', r_2sv_30_10qualityInd, 'type', 'an int')
-    if not 0 <= r_2sv_30_10qualityInd <= 7:
-        raise _enc('nav_sat', 'sv[30].qualityInd', r_2sv_30_10qualityInd, 'range', '0..7', None)
+    if r_2sv_30_10qualityInd.__class__ is not int or not 0 <= r_2sv_30_10qualityInd <= 7:
+        if not isinstance(r_2sv_30_10qualityInd, int) or r_2sv_30_10qualityInd.__class__ is bool:
+            raise _enc('nav_sat', 'sv[30].qualityInd', r_2sv_30_10qualityInd, 'type', 'an int')
+        if not 0 <= r_2sv_30_10qualityInd <= 7:
+            raise _enc('nav_sat', 'sv[30].qualityInd', r_2sv_30_10qualityInd, 'range', '0..7', None)
     r_2sv_30_6svUsed: Any = g_2sv_30.svUsed
     if r_2sv_30_6svUsed is not True and r_2sv_30_6svUsed is not False and r_2sv_30_6svUsed != 0 and r_2sv_30_6svUsed != 1:
         raise _enc('nav_sat', 'sv[30].svUsed', r_2sv_30_6svUsed, 'type', 'a bool')
     r_2sv_30_6svUsed = 1 if r_2sv_30_6svUsed else 0
     r_2sv_30_6health = g_2sv_30.health
-    if r_2sv_30_6health.__class__ is not int and (not isinstance(r_2sv_30_6health, int) or r_2sv_30_6health.__class__ is bool):
-        raise _enc('nav_sat', 'sv[30].health', r_2sv_30_6health, 'type', 'an int')
-    if not 0 <= r_2sv_30_6health <= 3:
-        raise _enc('nav_sat', 'sv[30].health', r_2sv_30_6health, 'range', '0..3', None)
+    if r_2sv_30_6health.__class__ is not int or not 0 <= r_2sv_30_6health <= 3:
+        if not isinstance(r_2sv_30_6health, int) or r_2sv_30_6health.__class__ is bool:
+            raise _enc('nav_sat', 'sv[30].health', r_2sv_30_6health, 'type', 'an int')
+        if not 0 <= r_2sv_30_6health <= 3:
+            raise _enc('nav_sat', 'sv[30].health', r_2sv_30_6health, 'range', '0..3', None)
     r_2sv_30_8diffCorr: Any = g_2sv_30.diffCorr
     if r_2sv_30_8diffCorr is not True and r_2sv_30_8diffCorr is not False and r_2sv_30_8diffCorr != 0 and r_2sv_30_8diffCorr != 1:
         raise _enc('nav_sat', 'sv[30].diffCorr', r_2sv_30_8diffCorr, 'type', 'a bool')
@@ -5022,10 +5346,11 @@ def _raw_nav_sat_2sv_30(g_2sv_30: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[30].smoothed', r_2sv_30_8smoothed, 'type', 'a bool')
     r_2sv_30_8smoothed = 1 if r_2sv_30_8smoothed else 0
     r_2sv_30_11orbitSource = g_2sv_30.orbitSource
-    if r_2sv_30_11orbitSource.__class__ is not int and (not isinstance(r_2sv_30_11orbitSource, int) or r_2sv_30_11orbitSource.__class__ is bool):
-        raise _enc('nav_sat', 'sv[30].orbitSource', r_2sv_30_11orbitSource, 'type', 'an int')
-    if not 0 <= r_2sv_30_11orbitSource <= 7:
-        raise _enc('nav_sat', 'sv[30].orbitSource', r_2sv_30_11orbitSource, 'range', '0..7', None)
+    if r_2sv_30_11orbitSource.__class__ is not int or not 0 <= r_2sv_30_11orbitSource <= 7:
+        if not isinstance(r_2sv_30_11orbitSource, int) or r_2sv_30_11orbitSource.__class__ is bool:
+            raise _enc('nav_sat', 'sv[30].orbitSource', r_2sv_30_11orbitSource, 'type', 'an int')
+        if not 0 <= r_2sv_30_11orbitSource <= 7:
+            raise _enc('nav_sat', 'sv[30].orbitSource', r_2sv_30_11orbitSource, 'range', '0..7', None)
     r_2sv_30_8ephAvail: Any = g_2sv_30.ephAvail
     if r_2sv_30_8ephAvail is not True and r_2sv_30_8ephAvail is not False and r_2sv_30_8ephAvail != 0 and r_2sv_30_8ephAvail != 1:
         raise _enc('nav_sat', 'sv[30].ephAvail', r_2sv_30_8ephAvail, 'type', 'a bool')
@@ -5043,10 +5368,11 @@ def _raw_nav_sat_2sv_30(g_2sv_30: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[30].aopAvail', r_2sv_30_8aopAvail, 'type', 'a bool')
     r_2sv_30_8aopAvail = 1 if r_2sv_30_8aopAvail else 0
     r_2sv_30_10reserved13 = g_2sv_30.reserved13
-    if r_2sv_30_10reserved13.__class__ is not int and (not isinstance(r_2sv_30_10reserved13, int) or r_2sv_30_10reserved13.__class__ is bool):
-        raise _enc('nav_sat', 'sv[30].reserved13', r_2sv_30_10reserved13, 'type', 'an int')
-    if not 0 <= r_2sv_30_10reserved13 <= 1:
-        raise _enc('nav_sat', 'sv[30].reserved13', r_2sv_30_10reserved13, 'range', '0..1', None)
+    if r_2sv_30_10reserved13.__class__ is not int or not 0 <= r_2sv_30_10reserved13 <= 1:
+        if not isinstance(r_2sv_30_10reserved13, int) or r_2sv_30_10reserved13.__class__ is bool:
+            raise _enc('nav_sat', 'sv[30].reserved13', r_2sv_30_10reserved13, 'type', 'an int')
+        if not 0 <= r_2sv_30_10reserved13 <= 1:
+            raise _enc('nav_sat', 'sv[30].reserved13', r_2sv_30_10reserved13, 'range', '0..1', None)
     r_2sv_30_12sbasCorrUsed: Any = g_2sv_30.sbasCorrUsed
     if r_2sv_30_12sbasCorrUsed is not True and r_2sv_30_12sbasCorrUsed is not False and r_2sv_30_12sbasCorrUsed != 0 and r_2sv_30_12sbasCorrUsed != 1:
         raise _enc('nav_sat', 'sv[30].sbasCorrUsed', r_2sv_30_12sbasCorrUsed, 'type', 'a bool')
@@ -5093,50 +5419,58 @@ def _raw_nav_sat_2sv_30(g_2sv_30: Any) -> tuple[Any, ...]:
 
 def _raw_nav_sat_2sv_31(g_2sv_31: Any) -> tuple[Any, ...]:
     r_2sv_31_6gnssId = g_2sv_31.gnssId
-    if r_2sv_31_6gnssId.__class__ is not int and (not isinstance(r_2sv_31_6gnssId, int) or r_2sv_31_6gnssId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[31].gnssId', r_2sv_31_6gnssId, 'type', 'an int')
-    if not 0 <= r_2sv_31_6gnssId <= 255:
-        raise _enc('nav_sat', 'sv[31].gnssId', r_2sv_31_6gnssId, 'range', '0..255', None)
+    if r_2sv_31_6gnssId.__class__ is not int or not 0 <= r_2sv_31_6gnssId <= 255:
+        if not isinstance(r_2sv_31_6gnssId, int) or r_2sv_31_6gnssId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[31].gnssId', r_2sv_31_6gnssId, 'type', 'an int')
+        if not 0 <= r_2sv_31_6gnssId <= 255:
+            raise _enc('nav_sat', 'sv[31].gnssId', r_2sv_31_6gnssId, 'range', '0..255', None)
     r_2sv_31_4svId = g_2sv_31.svId
-    if r_2sv_31_4svId.__class__ is not int and (not isinstance(r_2sv_31_4svId, int) or r_2sv_31_4svId.__class__ is bool):
-        raise _enc('nav_sat', 'sv[31].svId', r_2sv_31_4svId, 'type', 'an int')
-    if not 0 <= r_2sv_31_4svId <= 255:
-        raise _enc('nav_sat', 'sv[31].svId', r_2sv_31_4svId, 'range', '0..255', None)
+    if r_2sv_31_4svId.__class__ is not int or not 0 <= r_2sv_31_4svId <= 255:
+        if not isinstance(r_2sv_31_4svId, int) or r_2sv_31_4svId.__class__ is bool:
+            raise _enc('nav_sat', 'sv[31].svId', r_2sv_31_4svId, 'type', 'an int')
+        if not 0 <= r_2sv_31_4svId <= 255:
+            raise _enc('nav_sat', 'sv[31].svId', r_2sv_31_4svId, 'range', '0..255', None)
     r_2sv_31_3cno = g_2sv_31.cno
-    if r_2sv_31_3cno.__class__ is not int and (not isinstance(r_2sv_31_3cno, int) or r_2sv_31_3cno.__class__ is bool):
-        raise _enc('nav_sat', 'sv[31].cno', r_2sv_31_3cno, 'type', 'an int')
-    if not 0 <= r_2sv_31_3cno <= 255:
-        raise _enc('nav_sat', 'sv[31].cno', r_2sv_31_3cno, 'range', '0..255', None)
+    if r_2sv_31_3cno.__class__ is not int or not 0 <= r_2sv_31_3cno <= 255:
+        if not isinstance(r_2sv_31_3cno, int) or r_2sv_31_3cno.__class__ is bool:
+            raise _enc('nav_sat', 'sv[31].cno', r_2sv_31_3cno, 'type', 'an int')
+        if not 0 <= r_2sv_31_3cno <= 255:
+            raise _enc('nav_sat', 'sv[31].cno', r_2sv_31_3cno, 'range', '0..255', None)
     r_2sv_31_4elev = g_2sv_31.elev
-    if r_2sv_31_4elev.__class__ is not int and (not isinstance(r_2sv_31_4elev, int) or r_2sv_31_4elev.__class__ is bool):
-        raise _enc('nav_sat', 'sv[31].elev', r_2sv_31_4elev, 'type', 'an int')
-    if not -128 <= r_2sv_31_4elev <= 127:
-        raise _enc('nav_sat', 'sv[31].elev', r_2sv_31_4elev, 'range', '-128..127', None)
+    if r_2sv_31_4elev.__class__ is not int or not -128 <= r_2sv_31_4elev <= 127:
+        if not isinstance(r_2sv_31_4elev, int) or r_2sv_31_4elev.__class__ is bool:
+            raise _enc('nav_sat', 'sv[31].elev', r_2sv_31_4elev, 'type', 'an int')
+        if not -128 <= r_2sv_31_4elev <= 127:
+            raise _enc('nav_sat', 'sv[31].elev', r_2sv_31_4elev, 'range', '-128..127', None)
     r_2sv_31_4azim = g_2sv_31.azim
-    if r_2sv_31_4azim.__class__ is not int and (not isinstance(r_2sv_31_4azim, int) or r_2sv_31_4azim.__class__ is bool):
-        raise _enc('nav_sat', 'sv[31].azim', r_2sv_31_4azim, 'type', 'an int')
-    if not -32768 <= r_2sv_31_4azim <= 32767:
-        raise _enc('nav_sat', 'sv[31].azim', r_2sv_31_4azim, 'range', '-32768..32767', None)
+    if r_2sv_31_4azim.__class__ is not int or not -32768 <= r_2sv_31_4azim <= 32767:
+        if not isinstance(r_2sv_31_4azim, int) or r_2sv_31_4azim.__class__ is bool:
+            raise _enc('nav_sat', 'sv[31].azim', r_2sv_31_4azim, 'type', 'an int')
+        if not -32768 <= r_2sv_31_4azim <= 32767:
+            raise _enc('nav_sat', 'sv[31].azim', r_2sv_31_4azim, 'range', '-32768..32767', None)
     r_2sv_31_5prRes = g_2sv_31.prRes
-    if r_2sv_31_5prRes.__class__ is not float and (not isinstance(r_2sv_31_5prRes, (int, float)) or r_2sv_31_5prRes.__class__ is bool):
-        raise _enc('nav_sat', 'sv[31].prRes', r_2sv_31_5prRes, 'type', 'a number')
-    if not -3276.8 <= r_2sv_31_5prRes <= 3276.7000000000003:
-        raise _enc('nav_sat', 'sv[31].prRes', r_2sv_31_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+    if r_2sv_31_5prRes.__class__ is not float or not -3276.8 <= r_2sv_31_5prRes <= 3276.7000000000003:
+        if not isinstance(r_2sv_31_5prRes, (int, float)) or r_2sv_31_5prRes.__class__ is bool:
+            raise _enc('nav_sat', 'sv[31].prRes', r_2sv_31_5prRes, 'type', 'a number')
+        if not -3276.8 <= r_2sv_31_5prRes <= 3276.7000000000003:
+            raise _enc('nav_sat', 'sv[31].prRes', r_2sv_31_5prRes, 'range', '-3276.8..3276.7000000000003', None)
     r_2sv_31_5prRes = _floor(r_2sv_31_5prRes / 0.1 + 0.5)
     r_2sv_31_10qualityInd = g_2sv_31.qualityInd
-    if r_2sv_31_10qualityInd.__class__ is not int and (not isinstance(r_2sv_31_10qualityInd, int) or r_2sv_31_10qualityInd.__class__ is bool):
-        raise _enc('nav_sat', 'sv[31].qualityInd', r_2sv_31_10qualityInd, 'type', 'an int')
-    if not 0 <= r_2sv_31_10qualityInd <= 7:
-        raise _enc('nav_sat', 'sv[31].qualityInd', r_2sv_31_10qualityInd, 'range', '0..7', None)
+    if r_2sv_31_10qualityInd.__class__ is not int or not 0 <= r_2sv_31_10qualityInd <= 7:
+        if not isinstance(r_2sv_31_10qualityInd, int) or r_2sv_31_10qualityInd.__class__ is bool:
+            raise _enc('nav_sat', 'sv[31].qualityInd', r_2sv_31_10qualityInd, 'type', 'an int')
+        if not 0 <= r_2sv_31_10qualityInd <= 7:
+            raise _enc('nav_sat', 'sv[31].qualityInd', r_2sv_31_10qualityInd, 'range', '0..7', None)
     r_2sv_31_6svUsed: Any = g_2sv_31.svUsed
     if r_2sv_31_6svUsed is not True and r_2sv_31_6svUsed is not False and r_2sv_31_6svUsed != 0 and r_2sv_31_6svUsed != 1:
         raise _enc('nav_sat', 'sv[31].svUsed', r_2sv_31_6svUsed, 'type', 'a bool')
     r_2sv_31_6svUsed = 1 if r_2sv_31_6svUsed else 0
     r_2sv_31_6health = g_2sv_31.health
-    if r_2sv_31_6health.__class__ is not int and (not isinstance(r_2sv_31_6health, int) or r_2sv_31_6health.__class__ is bool):
-        raise _enc('nav_sat', 'sv[31].health', r_2sv_31_6health, 'type', 'an int')
-    if not 0 <= r_2sv_31_6health <= 3:
-        raise _enc('nav_sat', 'sv[31].health', r_2sv_31_6health, 'range', '0..3', None)
+    if r_2sv_31_6health.__class__ is not int or not 0 <= r_2sv_31_6health <= 3:
+        if not isinstance(r_2sv_31_6health, int) or r_2sv_31_6health.__class__ is bool:
+            raise _enc('nav_sat', 'sv[31].health', r_2sv_31_6health, 'type', 'an int')
+        if not 0 <= r_2sv_31_6health <= 3:
+            raise _enc('nav_sat', 'sv[31].health', r_2sv_31_6health, 'range', '0..3', None)
     r_2sv_31_8diffCorr: Any = g_2sv_31.diffCorr
     if r_2sv_31_8diffCorr is not True and r_2sv_31_8diffCorr is not False and r_2sv_31_8diffCorr != 0 and r_2sv_31_8diffCorr != 1:
         raise _enc('nav_sat', 'sv[31].diffCorr', r_2sv_31_8diffCorr, 'type', 'a bool')
@@ -5146,10 +5480,11 @@ def _raw_nav_sat_2sv_31(g_2sv_31: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[31].smoothed', r_2sv_31_8smoothed, 'type', 'a bool')
     r_2sv_31_8smoothed = 1 if r_2sv_31_8smoothed else 0
     r_2sv_31_11orbitSource = g_2sv_31.orbitSource
-    if r_2sv_31_11orbitSource.__class__ is not int and (not isinstance(r_2sv_31_11orbitSource, int) or r_2sv_31_11orbitSource.__class__ is bool):
-        raise _enc('nav_sat', 'sv[31].orbitSource', r_2sv_31_11orbitSource, 'type', 'an int')
-    if not 0 <= r_2sv_31_11orbitSource <= 7:
-        raise _enc('nav_sat', 'sv[31].orbitSource', r_2sv_31_11orbitSource, 'range', '0..7', None)
+    if r_2sv_31_11orbitSource.__class__ is not int or not 0 <= r_2sv_31_11orbitSource <= 7:
+        if not isinstance(r_2sv_31_11orbitSource, int) or r_2sv_31_11orbitSource.__class__ is bool:
+            raise _enc('nav_sat', 'sv[31].orbitSource', r_2sv_31_11orbitSource, 'type', 'an int')
+        if not 0 <= r_2sv_31_11orbitSource <= 7:
+            raise _enc('nav_sat', 'sv[31].orbitSource', r_2sv_31_11orbitSource, 'range', '0..7', None)
     r_2sv_31_8ephAvail: Any = g_2sv_31.ephAvail
     if r_2sv_31_8ephAvail is not True and r_2sv_31_8ephAvail is not False and r_2sv_31_8ephAvail != 0 and r_2sv_31_8ephAvail != 1:
         raise _enc('nav_sat', 'sv[31].ephAvail', r_2sv_31_8ephAvail, 'type', 'a bool')
@@ -5167,10 +5502,11 @@ def _raw_nav_sat_2sv_31(g_2sv_31: Any) -> tuple[Any, ...]:
         raise _enc('nav_sat', 'sv[31].aopAvail', r_2sv_31_8aopAvail, 'type', 'a bool')
     r_2sv_31_8aopAvail = 1 if r_2sv_31_8aopAvail else 0
     r_2sv_31_10reserved13 = g_2sv_31.reserved13
-    if r_2sv_31_10reserved13.__class__ is not int and (not isinstance(r_2sv_31_10reserved13, int) or r_2sv_31_10reserved13.__class__ is bool):
-        raise _enc('nav_sat', 'sv[31].reserved13', r_2sv_31_10reserved13, 'type', 'an int')
-    if not 0 <= r_2sv_31_10reserved13 <= 1:
-        raise _enc('nav_sat', 'sv[31].reserved13', r_2sv_31_10reserved13, 'range', '0..1', None)
+    if r_2sv_31_10reserved13.__class__ is not int or not 0 <= r_2sv_31_10reserved13 <= 1:
+        if not isinstance(r_2sv_31_10reserved13, int) or r_2sv_31_10reserved13.__class__ is bool:
+            raise _enc('nav_sat', 'sv[31].reserved13', r_2sv_31_10reserved13, 'type', 'an int')
+        if not 0 <= r_2sv_31_10reserved13 <= 1:
+            raise _enc('nav_sat', 'sv[31].reserved13', r_2sv_31_10reserved13, 'range', '0..1', None)
     r_2sv_31_12sbasCorrUsed: Any = g_2sv_31.sbasCorrUsed
     if r_2sv_31_12sbasCorrUsed is not True and r_2sv_31_12sbasCorrUsed is not False and r_2sv_31_12sbasCorrUsed != 0 and r_2sv_31_12sbasCorrUsed != 1:
         raise _enc('nav_sat', 'sv[31].sbasCorrUsed', r_2sv_31_12sbasCorrUsed, 'type', 'a bool')
@@ -5216,26 +5552,24 @@ def _raw_nav_sat_2sv_31(g_2sv_31: Any) -> tuple[Any, ...]:
 
 
 def _encode_nav_sat(m: NavSat) -> bytes:
-    r_sync1 = 181
-    r_sync2 = 98
-    r_msg_class = 1
-    r_msg_id = 53
-    r_length = 392
     r_iTOW = m.iTOW
-    if r_iTOW.__class__ is not int and (not isinstance(r_iTOW, int) or r_iTOW.__class__ is bool):
-        raise _enc('nav_sat', 'iTOW', r_iTOW, 'type', 'an int')
-    if not 0 <= r_iTOW <= 4294967295:
-        raise _enc('nav_sat', 'iTOW', r_iTOW, 'range', '0..4294967295', None)
+    if r_iTOW.__class__ is not int or not 0 <= r_iTOW <= 4294967295:
+        if not isinstance(r_iTOW, int) or r_iTOW.__class__ is bool:
+            raise _enc('nav_sat', 'iTOW', r_iTOW, 'type', 'an int')
+        if not 0 <= r_iTOW <= 4294967295:
+            raise _enc('nav_sat', 'iTOW', r_iTOW, 'range', '0..4294967295', None)
     r_version = m.version
-    if r_version.__class__ is not int and (not isinstance(r_version, int) or r_version.__class__ is bool):
-        raise _enc('nav_sat', 'version', r_version, 'type', 'an int')
-    if not 0 <= r_version <= 255:
-        raise _enc('nav_sat', 'version', r_version, 'range', '0..255', None)
+    if r_version.__class__ is not int or not 0 <= r_version <= 255:
+        if not isinstance(r_version, int) or r_version.__class__ is bool:
+            raise _enc('nav_sat', 'version', r_version, 'type', 'an int')
+        if not 0 <= r_version <= 255:
+            raise _enc('nav_sat', 'version', r_version, 'range', '0..255', None)
     r_reserved0 = m.reserved0
-    if r_reserved0.__class__ is not int and (not isinstance(r_reserved0, int) or r_reserved0.__class__ is bool):
-        raise _enc('nav_sat', 'reserved0', r_reserved0, 'type', 'an int')
-    if not 0 <= r_reserved0 <= 65535:
-        raise _enc('nav_sat', 'reserved0', r_reserved0, 'range', '0..65535', None)
+    if r_reserved0.__class__ is not int or not 0 <= r_reserved0 <= 65535:
+        if not isinstance(r_reserved0, int) or r_reserved0.__class__ is bool:
+            raise _enc('nav_sat', 'reserved0', r_reserved0, 'type', 'an int')
+        if not 0 <= r_reserved0 <= 65535:
+            raise _enc('nav_sat', 'reserved0', r_reserved0, 'range', '0..65535', None)
     g_sv = m.sv
     if not isinstance(g_sv, (list, tuple)) or len(g_sv) > 32:
         raise _enc('nav_sat', 'sv', g_sv, 'count', 'a list of at most 32 values')
@@ -9160,109 +9494,104 @@ def _decode_nav_sat(d: _Buffer) -> NavSat:
 
 def _raw_mon_ver_3ext_0(g_3ext_0: Any) -> tuple[Any, ...]:
     r_3ext_0_9extension = g_3ext_0.extension
-    if not isinstance(r_3ext_0_9extension, (bytes, bytearray)) or len(r_3ext_0_9extension) != 30:
-        raise _enc('mon_ver', 'ext[0].extension', r_3ext_0_9extension, 'length', 'bytes of length 30')
-    if r_3ext_0_9extension.__class__ is not bytes:
+    if r_3ext_0_9extension.__class__ is not bytes or len(r_3ext_0_9extension) != 30:
+        if not isinstance(r_3ext_0_9extension, (bytes, bytearray)) or len(r_3ext_0_9extension) != 30:
+            raise _enc('mon_ver', 'ext[0].extension', r_3ext_0_9extension, 'length', 'bytes of length 30')
         r_3ext_0_9extension = bytes(r_3ext_0_9extension)
     return (r_3ext_0_9extension, )
 
 
 def _raw_mon_ver_3ext_1(g_3ext_1: Any) -> tuple[Any, ...]:
     r_3ext_1_9extension = g_3ext_1.extension
-    if not isinstance(r_3ext_1_9extension, (bytes, bytearray)) or len(r_3ext_1_9extension) != 30:
-        raise _enc('mon_ver', 'ext[1].extension', r_3ext_1_9extension, 'length', 'bytes of length 30')
-    if r_3ext_1_9extension.__class__ is not bytes:
+    if r_3ext_1_9extension.__class__ is not bytes or len(r_3ext_1_9extension) != 30:
+        if not isinstance(r_3ext_1_9extension, (bytes, bytearray)) or len(r_3ext_1_9extension) != 30:
+            raise _enc('mon_ver', 'ext[1].extension', r_3ext_1_9extension, 'length', 'bytes of length 30')
         r_3ext_1_9extension = bytes(r_3ext_1_9extension)
     return (r_3ext_1_9extension, )
 
 
 def _raw_mon_ver_3ext_2(g_3ext_2: Any) -> tuple[Any, ...]:
     r_3ext_2_9extension = g_3ext_2.extension
-    if not isinstance(r_3ext_2_9extension, (bytes, bytearray)) or len(r_3ext_2_9extension) != 30:
-        raise _enc('mon_ver', 'ext[2].extension', r_3ext_2_9extension, 'length', 'bytes of length 30')
-    if r_3ext_2_9extension.__class__ is not bytes:
+    if r_3ext_2_9extension.__class__ is not bytes or len(r_3ext_2_9extension) != 30:
+        if not isinstance(r_3ext_2_9extension, (bytes, bytearray)) or len(r_3ext_2_9extension) != 30:
+            raise _enc('mon_ver', 'ext[2].extension', r_3ext_2_9extension, 'length', 'bytes of length 30')
         r_3ext_2_9extension = bytes(r_3ext_2_9extension)
     return (r_3ext_2_9extension, )
 
 
 def _raw_mon_ver_3ext_3(g_3ext_3: Any) -> tuple[Any, ...]:
     r_3ext_3_9extension = g_3ext_3.extension
-    if not isinstance(r_3ext_3_9extension, (bytes, bytearray)) or len(r_3ext_3_9extension) != 30:
-        raise _enc('mon_ver', 'ext[3].extension', r_3ext_3_9extension, 'length', 'bytes of length 30')
-    if r_3ext_3_9extension.__class__ is not bytes:
+    if r_3ext_3_9extension.__class__ is not bytes or len(r_3ext_3_9extension) != 30:
+        if not isinstance(r_3ext_3_9extension, (bytes, bytearray)) or len(r_3ext_3_9extension) != 30:
+            raise _enc('mon_ver', 'ext[3].extension', r_3ext_3_9extension, 'length', 'bytes of length 30')
         r_3ext_3_9extension = bytes(r_3ext_3_9extension)
     return (r_3ext_3_9extension, )
 
 
 def _raw_mon_ver_3ext_4(g_3ext_4: Any) -> tuple[Any, ...]:
     r_3ext_4_9extension = g_3ext_4.extension
-    if not isinstance(r_3ext_4_9extension, (bytes, bytearray)) or len(r_3ext_4_9extension) != 30:
-        raise _enc('mon_ver', 'ext[4].extension', r_3ext_4_9extension, 'length', 'bytes of length 30')
-    if r_3ext_4_9extension.__class__ is not bytes:
+    if r_3ext_4_9extension.__class__ is not bytes or len(r_3ext_4_9extension) != 30:
+        if not isinstance(r_3ext_4_9extension, (bytes, bytearray)) or len(r_3ext_4_9extension) != 30:
+            raise _enc('mon_ver', 'ext[4].extension', r_3ext_4_9extension, 'length', 'bytes of length 30')
         r_3ext_4_9extension = bytes(r_3ext_4_9extension)
     return (r_3ext_4_9extension, )
 
 
 def _raw_mon_ver_3ext_5(g_3ext_5: Any) -> tuple[Any, ...]:
     r_3ext_5_9extension = g_3ext_5.extension
-    if not isinstance(r_3ext_5_9extension, (bytes, bytearray)) or len(r_3ext_5_9extension) != 30:
-        raise _enc('mon_ver', 'ext[5].extension', r_3ext_5_9extension, 'length', 'bytes of length 30')
-    if r_3ext_5_9extension.__class__ is not bytes:
+    if r_3ext_5_9extension.__class__ is not bytes or len(r_3ext_5_9extension) != 30:
+        if not isinstance(r_3ext_5_9extension, (bytes, bytearray)) or len(r_3ext_5_9extension) != 30:
+            raise _enc('mon_ver', 'ext[5].extension', r_3ext_5_9extension, 'length', 'bytes of length 30')
         r_3ext_5_9extension = bytes(r_3ext_5_9extension)
     return (r_3ext_5_9extension, )
 
 
 def _raw_mon_ver_3ext_6(g_3ext_6: Any) -> tuple[Any, ...]:
     r_3ext_6_9extension = g_3ext_6.extension
-    if not isinstance(r_3ext_6_9extension, (bytes, bytearray)) or len(r_3ext_6_9extension) != 30:
-        raise _enc('mon_ver', 'ext[6].extension', r_3ext_6_9extension, 'length', 'bytes of length 30')
-    if r_3ext_6_9extension.__class__ is not bytes:
+    if r_3ext_6_9extension.__class__ is not bytes or len(r_3ext_6_9extension) != 30:
+        if not isinstance(r_3ext_6_9extension, (bytes, bytearray)) or len(r_3ext_6_9extension) != 30:
+            raise _enc('mon_ver', 'ext[6].extension', r_3ext_6_9extension, 'length', 'bytes of length 30')
         r_3ext_6_9extension = bytes(r_3ext_6_9extension)
     return (r_3ext_6_9extension, )
 
 
 def _raw_mon_ver_3ext_7(g_3ext_7: Any) -> tuple[Any, ...]:
     r_3ext_7_9extension = g_3ext_7.extension
-    if not isinstance(r_3ext_7_9extension, (bytes, bytearray)) or len(r_3ext_7_9extension) != 30:
-        raise _enc('mon_ver', 'ext[7].extension', r_3ext_7_9extension, 'length', 'bytes of length 30')
-    if r_3ext_7_9extension.__class__ is not bytes:
+    if r_3ext_7_9extension.__class__ is not bytes or len(r_3ext_7_9extension) != 30:
+        if not isinstance(r_3ext_7_9extension, (bytes, bytearray)) or len(r_3ext_7_9extension) != 30:
+            raise _enc('mon_ver', 'ext[7].extension', r_3ext_7_9extension, 'length', 'bytes of length 30')
         r_3ext_7_9extension = bytes(r_3ext_7_9extension)
     return (r_3ext_7_9extension, )
 
 
 def _raw_mon_ver_3ext_8(g_3ext_8: Any) -> tuple[Any, ...]:
     r_3ext_8_9extension = g_3ext_8.extension
-    if not isinstance(r_3ext_8_9extension, (bytes, bytearray)) or len(r_3ext_8_9extension) != 30:
-        raise _enc('mon_ver', 'ext[8].extension', r_3ext_8_9extension, 'length', 'bytes of length 30')
-    if r_3ext_8_9extension.__class__ is not bytes:
+    if r_3ext_8_9extension.__class__ is not bytes or len(r_3ext_8_9extension) != 30:
+        if not isinstance(r_3ext_8_9extension, (bytes, bytearray)) or len(r_3ext_8_9extension) != 30:
+            raise _enc('mon_ver', 'ext[8].extension', r_3ext_8_9extension, 'length', 'bytes of length 30')
         r_3ext_8_9extension = bytes(r_3ext_8_9extension)
     return (r_3ext_8_9extension, )
 
 
 def _raw_mon_ver_3ext_9(g_3ext_9: Any) -> tuple[Any, ...]:
     r_3ext_9_9extension = g_3ext_9.extension
-    if not isinstance(r_3ext_9_9extension, (bytes, bytearray)) or len(r_3ext_9_9extension) != 30:
-        raise _enc('mon_ver', 'ext[9].extension', r_3ext_9_9extension, 'length', 'bytes of length 30')
-    if r_3ext_9_9extension.__class__ is not bytes:
+    if r_3ext_9_9extension.__class__ is not bytes or len(r_3ext_9_9extension) != 30:
+        if not isinstance(r_3ext_9_9extension, (bytes, bytearray)) or len(r_3ext_9_9extension) != 30:
+            raise _enc('mon_ver', 'ext[9].extension', r_3ext_9_9extension, 'length', 'bytes of length 30')
         r_3ext_9_9extension = bytes(r_3ext_9_9extension)
     return (r_3ext_9_9extension, )
 
 
 def _encode_mon_ver(m: MonVer) -> bytes:
-    r_sync1 = 181
-    r_sync2 = 98
-    r_msg_class = 10
-    r_msg_id = 4
-    r_length = 340
     r_swVersion = m.swVersion
-    if not isinstance(r_swVersion, (bytes, bytearray)) or len(r_swVersion) != 30:
-        raise _enc('mon_ver', 'swVersion', r_swVersion, 'length', 'bytes of length 30')
-    if r_swVersion.__class__ is not bytes:
+    if r_swVersion.__class__ is not bytes or len(r_swVersion) != 30:
+        if not isinstance(r_swVersion, (bytes, bytearray)) or len(r_swVersion) != 30:
+            raise _enc('mon_ver', 'swVersion', r_swVersion, 'length', 'bytes of length 30')
         r_swVersion = bytes(r_swVersion)
     r_hwVersion = m.hwVersion
-    if not isinstance(r_hwVersion, (bytes, bytearray)) or len(r_hwVersion) != 10:
-        raise _enc('mon_ver', 'hwVersion', r_hwVersion, 'length', 'bytes of length 10')
-    if r_hwVersion.__class__ is not bytes:
+    if r_hwVersion.__class__ is not bytes or len(r_hwVersion) != 10:
+        if not isinstance(r_hwVersion, (bytes, bytearray)) or len(r_hwVersion) != 10:
+            raise _enc('mon_ver', 'hwVersion', r_hwVersion, 'length', 'bytes of length 10')
         r_hwVersion = bytes(r_hwVersion)
     g_ext = m.ext
     if not isinstance(g_ext, (list, tuple)) or len(g_ext) > 10:
@@ -9523,6 +9852,9 @@ class StreamDecoder:
 
 
 _ENCODERS: dict[type[Any], Callable[[Any], bytes]] = {AckNak: _encode_ack_nak, AckAck: _encode_ack_ack, CfgRatePoll: _encode_cfg_rate_poll, CfgRate: _encode_cfg_rate, NavPosllh: _encode_nav_posllh, NavPvt: _encode_nav_pvt, NavSat: _encode_nav_sat, MonVer: _encode_mon_ver, }
+for _cls, _encoder in _ENCODERS.items():  # each encoder is its class's encode method: one call, not two
+    _encoder.__doc__ = _cls.encode.__doc__
+    setattr(_cls, "encode", _encoder)
 MESSAGES: dict[str, type[AnyMessage]] = {'ack_nak': AckNak, 'ack_ack': AckAck, 'cfg_rate_poll': CfgRatePoll, 'cfg_rate': CfgRate, 'nav_posllh': NavPosllh, 'nav_pvt': NavPvt, 'nav_sat': NavSat, 'mon_ver': MonVer, }
 
 
