@@ -1662,7 +1662,8 @@ class ModuleView(PythonView):
             for f in m.wire.leaves:
                 cs = f.field.checksum
                 if cs and cs.over == "bytes":
-                    seen.setdefault(_checksum_name(cs), _checksum_code(cs))
+                    if _checksum_name(cs) not in seen:  # written once, however many messages use it
+                        seen[_checksum_name(cs)] = _checksum_code(cs)
                     truncated = m.shortening and m.shortening.trailing_zeros and m.counts_sent(cs)
                     if cs.algorithm == "crc" and not _stdlib_crc(cs.crc) and not truncated:
                         start, end = cs.byte_span
