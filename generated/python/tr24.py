@@ -423,10 +423,6 @@ class StreamDecoder:
         spans: list[tuple[int, int]] = []
         base, skipped, direction, resyncing = self.offset, 0, self.direction, self._resyncing
         while True:
-            if _run_frames is not None:  # the compiled accelerator decodes the frames that need no Python
-                moved = _run_frames(buf, pos, direction, out, spans, base)
-                if moved != pos:
-                    pos, resyncing = moved, False
             start = buf.find(2, pos)
             if start < 0:
                 skipped += end - pos
@@ -434,6 +430,11 @@ class StreamDecoder:
                 break
             skipped += start - pos
             pos = start
+            if _run_frames is not None:  # the compiled accelerator decodes the frames that need no Python
+                moved = _run_frames(buf, pos, direction, out, spans, base)
+                if moved != pos:
+                    pos, resyncing = moved, False
+                    continue
             size = 12
             if size not in self._SIZES:
                 if not resyncing:

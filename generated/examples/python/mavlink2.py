@@ -1464,10 +1464,6 @@ class StreamDecoder:
         spans: list[tuple[int, int]] = []
         base, skipped, direction, resyncing = self.offset, 0, self.direction, self._resyncing
         while True:
-            if _run_frames is not None:  # the compiled accelerator decodes the frames that need no Python
-                moved = _run_frames(buf, pos, direction, out, spans, base)
-                if moved != pos:
-                    pos, resyncing = moved, False
             start = buf.find(253, pos)
             if start < 0:
                 skipped += end - pos
@@ -1475,6 +1471,11 @@ class StreamDecoder:
                 break
             skipped += start - pos
             pos = start
+            if _run_frames is not None:  # the compiled accelerator decodes the frames that need no Python
+                moved = _run_frames(buf, pos, direction, out, spans, base)
+                if moved != pos:
+                    pos, resyncing = moved, False
+                    continue
             if end - pos < 2:
                 break
             size = buf[pos + 1] + 12
