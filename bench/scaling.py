@@ -200,7 +200,8 @@ def versus_mavgen(tmp: Path, repeats: int, xml: Path):
     tmp.mkdir(parents=True, exist_ok=True)
     schema = tmp / f"mav{n}.yaml"
     schema.write_text(mavlink_shaped_schema(n))
-    build = ["build", str(schema), "--out", str(tmp / "codeword")]
+    # not a folder named codeword: `python -c` in tmp would import it as the package
+    build = ["build", str(schema), "--out", str(tmp / "out")]
     warm = dict(os.environ, CODEWORD_CACHE=str(tmp / "cache"))
     _child(build, tmp, env=warm)  # fills the cache the rebuilds find
     jobs = {"mavgen": lambda: _child([str(xml), str(tmp / "mavgen")], tmp, MAVGEN_CHILD),
@@ -216,8 +217,9 @@ def versus_mavgen(tmp: Path, repeats: int, xml: Path):
 
 
 def _child(args, cwd, code=CHILD, env=None):
-    out = subprocess.run([sys.executable, "-c", code, *args], capture_output=True, text=True,
-                         cwd=cwd, check=True, env=env)
+    out = subprocess.run([sys.executable, "-c", code, *args], capture_output=True, text=True, cwd=cwd, env=env)
+    if out.returncode != 0:
+        raise RuntimeError(f"{' '.join(args)} failed ({out.returncode}): {out.stderr[-2000:]}")
     result = json.loads(out.stdout.strip().splitlines()[-1])
     if result["rc"] != 0:
         raise RuntimeError(f"codeword {' '.join(args)} exited {result['rc']}: {out.stderr[-2000:]}")
