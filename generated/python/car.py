@@ -402,6 +402,9 @@ def _encode_header(m: Header) -> bytes:
 
 
 def _decode_header(d: _Buffer) -> Header:
+    """The header message in `d`, as Header.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if len(d) != 4:
         raise _dec('header', None, len(d), 'length', '4 bytes', 0)
     w = int.from_bytes(d, 'big')
@@ -508,6 +511,9 @@ def _encode_master_control(m: MasterControl) -> bytes:
 
 
 def _decode_master_control(d: _Buffer) -> MasterControl:
+    """The master_control message in `d`, as MasterControl.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if len(d) != 4:
         raise _dec('master_control', None, len(d), 'length', '4 bytes', 0)
     w = int.from_bytes(d, 'big')
@@ -641,6 +647,9 @@ def _encode_slave_control(m: SlaveControl) -> bytes:
 
 
 def _decode_slave_control(d: _Buffer) -> SlaveControl:
+    """The slave_control message in `d`, as SlaveControl.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if len(d) != 4:
         raise _dec('slave_control', None, len(d), 'length', '4 bytes', 0)
     w = int.from_bytes(d, 'big')
@@ -709,6 +718,12 @@ ACCELERATOR = _accelerator()
 """The compiled accelerator in use, or None: every decoder is Python's."""
 if ACCELERATOR is not None:
     globals().update(ACCELERATOR.bind(globals()))  # compiled decoders in place of Python's
+
+
+# each message's decoder is its class's decode: one call, not two
+setattr(Header, "decode", staticmethod(_decode_header))
+setattr(MasterControl, "decode", staticmethod(_decode_master_control))
+setattr(SlaveControl, "decode", staticmethod(_decode_slave_control))
 
 
 _ENCODERS: dict[type[Any], Callable[[Any], bytes]] = {Header: _encode_header, MasterControl: _encode_master_control, SlaveControl: _encode_slave_control, }

@@ -697,6 +697,9 @@ def _encode_set_wheels_velocities(m: SetWheelsVelocities) -> bytes:
 
 
 def _decode_set_wheels_velocities(d: _Buffer) -> SetWheelsVelocities:
+    """The set_wheels_velocities message in `d`, as SetWheelsVelocities.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if len(d) != 12:
         raise _dec('set_wheels_velocities', None, len(d), 'length', '12 bytes', 0)
     r_sync, r_length, r_group, c0_3, r_robots, r_vl, r_vr, = _S_set_wheels_velocities_0.unpack_from(d, 0)
@@ -775,6 +778,9 @@ def _encode_set_led(m: SetLed) -> bytes:
 
 
 def _decode_set_led(d: _Buffer) -> SetLed:
+    """The set_led message in `d`, as SetLed.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if len(d) != 12:
         raise _dec('set_led', None, len(d), 'length', '12 bytes', 0)
     r_sync, r_length, r_group, c0_3, r_robots, r_d1, r_d2, r_d3, r_d4, = _S_set_led_0.unpack_from(d, 0)
@@ -881,6 +887,9 @@ def _encode_set_wheels_velocities_with_odometry(m: SetWheelsVelocitiesWithOdomet
 
 
 def _decode_set_wheels_velocities_with_odometry(d: _Buffer) -> SetWheelsVelocitiesWithOdometry:
+    """The set_wheels_velocities_with_odometry message in `d`, as SetWheelsVelocitiesWithOdometry.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if len(d) != 26:
         raise _dec('set_wheels_velocities_with_odometry', None, len(d), 'length', '26 bytes', 0)
     r_sync, r_length, r_group, c0_3, r_robots, r_status, r_vl, r_vr, r_x, r_y, r_th, = _S_set_wheels_velocities_with_odometry_0.unpack_from(d, 0)
@@ -955,6 +964,9 @@ def _encode_ack(m: Ack) -> bytes:
 
 
 def _decode_ack(d: _Buffer) -> Ack:
+    """The ack message in `d`, as Ack.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if len(d) != 8:
         raise _dec('ack', None, len(d), 'length', '8 bytes', 0)
     r_sync, r_length, r_group, c0_3, r_robots, = _S_ack_0.unpack_from(d, 0)
@@ -1044,6 +1056,9 @@ def _encode_odometry_reply(m: OdometryReply) -> bytes:
 
 
 def _decode_odometry_reply(d: _Buffer) -> OdometryReply:
+    """The odometry_reply message in `d`, as OdometryReply.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if len(d) != 22:
         raise _dec('odometry_reply', None, len(d), 'length', '22 bytes', 0)
     r_sync, r_length, r_group, c0_3, r_robots, r_status, r_x, r_y, r_th, = _S_odometry_reply_0.unpack_from(d, 0)
@@ -1099,6 +1114,14 @@ ACCELERATOR = _accelerator()
 """The compiled accelerator in use, or None: every decoder is Python's."""
 if ACCELERATOR is not None:
     globals().update(ACCELERATOR.bind(globals()))  # compiled decoders in place of Python's
+
+
+# each message's decoder is its class's decode: one call, not two
+setattr(SetWheelsVelocities, "decode", staticmethod(_decode_set_wheels_velocities))
+setattr(SetLed, "decode", staticmethod(_decode_set_led))
+setattr(SetWheelsVelocitiesWithOdometry, "decode", staticmethod(_decode_set_wheels_velocities_with_odometry))
+setattr(Ack, "decode", staticmethod(_decode_ack))
+setattr(OdometryReply, "decode", staticmethod(_decode_odometry_reply))
 
 
 _Decoder = Callable[[_Buffer], AnyMessage]

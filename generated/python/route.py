@@ -323,6 +323,9 @@ def _encode_start(m: Start) -> bytes:
 
 
 def _decode_start(d: _Buffer) -> Start:
+    """The start message in `d`, as Start.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if len(d) != 1:
         raise _dec('start', None, len(d), 'length', '1 bytes', 0)
     w = int.from_bytes(d, 'big')
@@ -436,6 +439,9 @@ def _encode_object(m: Object) -> bytes:
 
 
 def _decode_object(d: _Buffer) -> Object:
+    """The object message in `d`, as Object.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if len(d) != 4:
         raise _dec('object', None, len(d), 'length', '4 bytes', 0)
     w = int.from_bytes(d, 'big')
@@ -611,6 +617,9 @@ def _encode_scene(m: Scene) -> bytes:
 
 
 def _decode_scene(d: _Buffer) -> Scene:
+    """The scene message in `d`, as Scene.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if len(d) != 4:
         raise _dec('scene', None, len(d), 'length', '4 bytes', 0)
     w = int.from_bytes(d, 'big')
@@ -720,6 +729,9 @@ def _encode_end(m: End) -> bytes:
 
 
 def _decode_end(d: _Buffer) -> End:
+    """The end message in `d`, as End.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if len(d) != 1:
         raise _dec('end', None, len(d), 'length', '1 bytes', 0)
     w = int.from_bytes(d, 'big')
@@ -794,6 +806,13 @@ ACCELERATOR = _accelerator()
 """The compiled accelerator in use, or None: every decoder is Python's."""
 if ACCELERATOR is not None:
     globals().update(ACCELERATOR.bind(globals()))  # compiled decoders in place of Python's
+
+
+# each message's decoder is its class's decode: one call, not two
+setattr(Start, "decode", staticmethod(_decode_start))
+setattr(Object, "decode", staticmethod(_decode_object))
+setattr(Scene, "decode", staticmethod(_decode_scene))
+setattr(End, "decode", staticmethod(_decode_end))
 
 
 _Decoder = Callable[[_Buffer], AnyMessage]

@@ -254,6 +254,9 @@ def _encode_command(m: Command) -> bytes:
 
 
 def _decode_command(d: _Buffer) -> Command:
+    """The command message in `d`, as Command.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if len(d) != 12:
         raise _dec('command', None, len(d), 'length', '12 bytes', 0)
     r_start, c0_1, r_sender, r_receiver, r_data, r_stop, = _S_command_0.unpack_from(d, 0)
@@ -304,6 +307,9 @@ def _encode_reply(m: Reply) -> bytes:
 
 
 def _decode_reply(d: _Buffer) -> Reply:
+    """The reply message in `d`, as Reply.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if len(d) != 12:
         raise _dec('reply', None, len(d), 'length', '12 bytes', 0)
     r_start, c0_1, r_sender, r_receiver, r_data, r_stop, = _S_reply_0.unpack_from(d, 0)
@@ -345,6 +351,11 @@ ACCELERATOR = _accelerator()
 """The compiled accelerator in use, or None: every decoder is Python's."""
 if ACCELERATOR is not None:
     globals().update(ACCELERATOR.bind(globals()))  # compiled decoders in place of Python's
+
+
+# each message's decoder is its class's decode: one call, not two
+setattr(Command, "decode", staticmethod(_decode_command))
+setattr(Reply, "decode", staticmethod(_decode_reply))
 
 
 _Decoder = Callable[[_Buffer], AnyMessage]

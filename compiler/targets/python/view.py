@@ -1006,6 +1006,9 @@ class MessageCode:
         size = self.m.size
         c(f"def _decode_{self.fn}(d: _Buffer) -> {self.cls}:")
         c.indent()
+        c(f'"""The {self.m.name} message in `d`, as {self.cls}.decode: any bytes-like object."""')
+        c("if d.__class__ is not bytes:")
+        c("    d = _as_input(d)")
         sh = self.m.shortening
         if sh:
             least = self.m.min_size

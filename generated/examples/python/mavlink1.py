@@ -833,6 +833,9 @@ def _encode_heartbeat(m: Heartbeat) -> bytes:
 
 
 def _decode_heartbeat(d: _Buffer) -> Heartbeat:
+    """The heartbeat message in `d`, as Heartbeat.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if len(d) != 17:
         raise _dec('heartbeat', None, len(d), 'length', '17 bytes', 0)
     r_stx, r_len, r_seq, r_sysid, r_compid, r_msgid, r_custom_mode, r_type, r_autopilot, r_base_mode, r_system_status, r_mavlink_version, r_checksum, = _S_heartbeat_0.unpack_from(d, 0)
@@ -963,6 +966,9 @@ def _encode_sys_status(m: SysStatus) -> bytes:
 
 
 def _decode_sys_status(d: _Buffer) -> SysStatus:
+    """The sys_status message in `d`, as SysStatus.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if len(d) != 39:
         raise _dec('sys_status', None, len(d), 'length', '39 bytes', 0)
     r_stx, r_len, r_seq, r_sysid, r_compid, r_msgid, r_onboard_control_sensors_present, r_onboard_control_sensors_enabled, r_onboard_control_sensors_health, r_load, r_voltage_battery, r_current_battery, r_drop_rate_comm, r_errors_comm, r_errors_count1, r_errors_count2, r_errors_count3, r_errors_count4, r_battery_remaining, r_checksum, = _S_sys_status_0.unpack_from(d, 0)
@@ -1055,6 +1061,9 @@ def _encode_param_value(m: ParamValue) -> bytes:
 
 
 def _decode_param_value(d: _Buffer) -> ParamValue:
+    """The param_value message in `d`, as ParamValue.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if len(d) != 33:
         raise _dec('param_value', None, len(d), 'length', '33 bytes', 0)
     r_stx, r_len, r_seq, r_sysid, r_compid, r_msgid, r_param_value, r_param_count, r_param_index, r_param_id, r_param_type, r_checksum, = _S_param_value_0.unpack_from(d, 0)
@@ -1168,6 +1177,9 @@ def _encode_gps_raw_int(m: GpsRawInt) -> bytes:
 
 
 def _decode_gps_raw_int(d: _Buffer) -> GpsRawInt:
+    """The gps_raw_int message in `d`, as GpsRawInt.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if len(d) != 38:
         raise _dec('gps_raw_int', None, len(d), 'length', '38 bytes', 0)
     r_stx, r_len, r_seq, r_sysid, r_compid, r_msgid, r_time_usec, r_lat, r_lon, r_alt, r_eph, r_epv, r_vel, r_cog, r_fix_type, r_satellites_visible, r_checksum, = _S_gps_raw_int_0.unpack_from(d, 0)
@@ -1290,6 +1302,9 @@ def _encode_attitude(m: Attitude) -> bytes:
 
 
 def _decode_attitude(d: _Buffer) -> Attitude:
+    """The attitude message in `d`, as Attitude.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if len(d) != 36:
         raise _dec('attitude', None, len(d), 'length', '36 bytes', 0)
     r_stx, r_len, r_seq, r_sysid, r_compid, r_msgid, r_time_boot_ms, r_roll, r_pitch, r_yaw, r_rollspeed, r_pitchspeed, r_yawspeed, r_checksum, = _S_attitude_0.unpack_from(d, 0)
@@ -1449,6 +1464,9 @@ def _encode_command_long(m: CommandLong) -> bytes:
 
 
 def _decode_command_long(d: _Buffer) -> CommandLong:
+    """The command_long message in `d`, as CommandLong.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if len(d) != 41:
         raise _dec('command_long', None, len(d), 'length', '41 bytes', 0)
     r_stx, r_len, r_seq, r_sysid, r_compid, r_msgid, r_param1, r_param2, r_param3, r_param4, r_param5, r_param6, r_param7, r_command, r_target_system, r_target_component, r_confirmation, r_checksum, = _S_command_long_0.unpack_from(d, 0)
@@ -1512,6 +1530,15 @@ ACCELERATOR = _accelerator()
 """The compiled accelerator in use, or None: every decoder is Python's."""
 if ACCELERATOR is not None:
     globals().update(ACCELERATOR.bind(globals()))  # compiled decoders in place of Python's
+
+
+# each message's decoder is its class's decode: one call, not two
+setattr(Heartbeat, "decode", staticmethod(_decode_heartbeat))
+setattr(SysStatus, "decode", staticmethod(_decode_sys_status))
+setattr(ParamValue, "decode", staticmethod(_decode_param_value))
+setattr(GpsRawInt, "decode", staticmethod(_decode_gps_raw_int))
+setattr(Attitude, "decode", staticmethod(_decode_attitude))
+setattr(CommandLong, "decode", staticmethod(_decode_command_long))
 
 
 _Decoder = Callable[[_Buffer], AnyMessage]

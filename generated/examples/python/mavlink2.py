@@ -641,6 +641,9 @@ def _encode_heartbeat(m: Heartbeat) -> bytes:
 
 
 def _decode_heartbeat(d: _Buffer) -> Heartbeat:
+    """The heartbeat message in `d`, as Heartbeat.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if not 13 <= len(d) <= 21:
         raise _dec('heartbeat', None, len(d), 'length', '13..21 bytes', 0)
     s, cut = d, 21 - len(d)
@@ -806,6 +809,9 @@ def _encode_sys_status(m: SysStatus) -> bytes:
 
 
 def _decode_sys_status(d: _Buffer) -> SysStatus:
+    """The sys_status message in `d`, as SysStatus.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if not 13 <= len(d) <= 55:
         raise _dec('sys_status', None, len(d), 'length', '13..55 bytes', 0)
     s, cut = d, 55 - len(d)
@@ -918,6 +924,9 @@ def _encode_param_value(m: ParamValue) -> bytes:
 
 
 def _decode_param_value(d: _Buffer) -> ParamValue:
+    """The param_value message in `d`, as ParamValue.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if not 13 <= len(d) <= 37:
         raise _dec('param_value', None, len(d), 'length', '13..37 bytes', 0)
     s, cut = d, 37 - len(d)
@@ -1084,6 +1093,9 @@ def _encode_gps_raw_int(m: GpsRawInt) -> bytes:
 
 
 def _decode_gps_raw_int(d: _Buffer) -> GpsRawInt:
+    """The gps_raw_int message in `d`, as GpsRawInt.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if not 13 <= len(d) <= 64:
         raise _dec('gps_raw_int', None, len(d), 'length', '13..64 bytes', 0)
     s, cut = d, 64 - len(d)
@@ -1229,6 +1241,9 @@ def _encode_attitude(m: Attitude) -> bytes:
 
 
 def _decode_attitude(d: _Buffer) -> Attitude:
+    """The attitude message in `d`, as Attitude.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if not 13 <= len(d) <= 40:
         raise _dec('attitude', None, len(d), 'length', '13..40 bytes', 0)
     s, cut = d, 40 - len(d)
@@ -1347,6 +1362,9 @@ def _encode_command_ack(m: CommandAck) -> bytes:
 
 
 def _decode_command_ack(d: _Buffer) -> CommandAck:
+    """The command_ack message in `d`, as CommandAck.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if not 13 <= len(d) <= 22:
         raise _dec('command_ack', None, len(d), 'length', '13..22 bytes', 0)
     s, cut = d, 22 - len(d)
@@ -1398,6 +1416,15 @@ ACCELERATOR = _accelerator()
 """The compiled accelerator in use, or None: every decoder is Python's."""
 if ACCELERATOR is not None:
     globals().update(ACCELERATOR.bind(globals()))  # compiled decoders in place of Python's
+
+
+# each message's decoder is its class's decode: one call, not two
+setattr(Heartbeat, "decode", staticmethod(_decode_heartbeat))
+setattr(SysStatus, "decode", staticmethod(_decode_sys_status))
+setattr(ParamValue, "decode", staticmethod(_decode_param_value))
+setattr(GpsRawInt, "decode", staticmethod(_decode_gps_raw_int))
+setattr(Attitude, "decode", staticmethod(_decode_attitude))
+setattr(CommandAck, "decode", staticmethod(_decode_command_ack))
 
 
 _Decoder = Callable[[_Buffer], AnyMessage]

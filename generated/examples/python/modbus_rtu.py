@@ -532,6 +532,9 @@ def _encode_read_holding_registers(m: ReadHoldingRegisters) -> bytes:
 
 
 def _decode_read_holding_registers(d: _Buffer) -> ReadHoldingRegisters:
+    """The read_holding_registers message in `d`, as ReadHoldingRegisters.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if len(d) != 8:
         raise _dec('read_holding_registers', None, len(d), 'length', '8 bytes', 0)
     r_address, r_function, r_start, r_quantity, = _S_read_holding_registers_0.unpack_from(d, 0)
@@ -1698,6 +1701,9 @@ def _encode_read_holding_registers_response(m: ReadHoldingRegistersResponse) -> 
 
 
 def _decode_read_holding_registers_response(d: _Buffer) -> ReadHoldingRegistersResponse:
+    """The read_holding_registers_response message in `d`, as ReadHoldingRegistersResponse.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if not 5 <= len(d) <= 255:
         raise _dec('read_holding_registers_response', None, len(d), 'length', '5..255 bytes', 0)
     s, cut = d, 255 - len(d)
@@ -2867,6 +2873,9 @@ def _encode_write_multiple_registers(m: WriteMultipleRegisters) -> bytes:
 
 
 def _decode_write_multiple_registers(d: _Buffer) -> WriteMultipleRegisters:
+    """The write_multiple_registers message in `d`, as WriteMultipleRegisters.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if not 9 <= len(d) <= 255:
         raise _dec('write_multiple_registers', None, len(d), 'length', '9..255 bytes', 0)
     s, cut = d, 255 - len(d)
@@ -2922,6 +2931,9 @@ def _encode_write_multiple_registers_response(m: WriteMultipleRegistersResponse)
 
 
 def _decode_write_multiple_registers_response(d: _Buffer) -> WriteMultipleRegistersResponse:
+    """The write_multiple_registers_response message in `d`, as WriteMultipleRegistersResponse.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if len(d) != 8:
         raise _dec('write_multiple_registers_response', None, len(d), 'length', '8 bytes', 0)
     r_address, r_function, r_start, r_quantity, = _S_write_multiple_registers_response_0.unpack_from(d, 0)
@@ -2965,6 +2977,9 @@ def _encode_exception_response(m: ExceptionResponse) -> bytes:
 
 
 def _decode_exception_response(d: _Buffer) -> ExceptionResponse:
+    """The exception_response message in `d`, as ExceptionResponse.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if len(d) != 5:
         raise _dec('exception_response', None, len(d), 'length', '5 bytes', 0)
     r_address, r_function, r_exception_code, r_crc, = _S_exception_response_0.unpack_from(d, 0)
@@ -3002,6 +3017,14 @@ ACCELERATOR = _accelerator()
 """The compiled accelerator in use, or None: every decoder is Python's."""
 if ACCELERATOR is not None:
     globals().update(ACCELERATOR.bind(globals()))  # compiled decoders in place of Python's
+
+
+# each message's decoder is its class's decode: one call, not two
+setattr(ReadHoldingRegisters, "decode", staticmethod(_decode_read_holding_registers))
+setattr(ReadHoldingRegistersResponse, "decode", staticmethod(_decode_read_holding_registers_response))
+setattr(WriteMultipleRegisters, "decode", staticmethod(_decode_write_multiple_registers))
+setattr(WriteMultipleRegistersResponse, "decode", staticmethod(_decode_write_multiple_registers_response))
+setattr(ExceptionResponse, "decode", staticmethod(_decode_exception_response))
 
 
 _Decoder = Callable[[_Buffer], AnyMessage]

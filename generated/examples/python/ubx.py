@@ -675,6 +675,9 @@ def _encode_ack_nak(m: AckNak) -> bytes:
 
 
 def _decode_ack_nak(d: _Buffer) -> AckNak:
+    """The ack_nak message in `d`, as AckNak.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if len(d) != 10:
         raise _dec('ack_nak', None, len(d), 'length', '10 bytes', 0)
     r_sync1, r_sync2, r_msg_class, r_msg_id, r_length, r_clsID, r_msgID, r_checksum, = _S_ack_nak_0.unpack_from(d, 0)
@@ -718,6 +721,9 @@ def _encode_ack_ack(m: AckAck) -> bytes:
 
 
 def _decode_ack_ack(d: _Buffer) -> AckAck:
+    """The ack_ack message in `d`, as AckAck.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if len(d) != 10:
         raise _dec('ack_ack', None, len(d), 'length', '10 bytes', 0)
     r_sync1, r_sync2, r_msg_class, r_msg_id, r_length, r_clsID, r_msgID, r_checksum, = _S_ack_ack_0.unpack_from(d, 0)
@@ -749,6 +755,9 @@ def _encode_cfg_rate_poll(m: CfgRatePoll) -> bytes:
 
 
 def _decode_cfg_rate_poll(d: _Buffer) -> CfgRatePoll:
+    """The cfg_rate_poll message in `d`, as CfgRatePoll.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if len(d) != 8:
         raise _dec('cfg_rate_poll', None, len(d), 'length', '8 bytes', 0)
     r_sync1, r_sync2, r_msg_class, r_msg_id, r_length, r_checksum, = _S_cfg_rate_poll_0.unpack_from(d, 0)
@@ -796,6 +805,9 @@ def _encode_cfg_rate(m: CfgRate) -> bytes:
 
 
 def _decode_cfg_rate(d: _Buffer) -> CfgRate:
+    """The cfg_rate message in `d`, as CfgRate.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if len(d) != 14:
         raise _dec('cfg_rate', None, len(d), 'length', '14 bytes', 0)
     r_sync1, r_sync2, r_msg_class, r_msg_id, r_length, r_measRate, r_navRate, r_timeRef, r_checksum, = _S_cfg_rate_0.unpack_from(d, 0)
@@ -872,6 +884,9 @@ def _encode_nav_posllh(m: NavPosllh) -> bytes:
 
 
 def _decode_nav_posllh(d: _Buffer) -> NavPosllh:
+    """The nav_posllh message in `d`, as NavPosllh.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if len(d) != 36:
         raise _dec('nav_posllh', None, len(d), 'length', '36 bytes', 0)
     r_sync1, r_sync2, r_msg_class, r_msg_id, r_length, r_iTOW, r_lon, r_lat, r_height, r_hMSL, r_hAcc, r_vAcc, r_checksum, = _S_nav_posllh_0.unpack_from(d, 0)
@@ -1172,6 +1187,9 @@ def _encode_nav_pvt(m: NavPvt) -> bytes:
 
 
 def _decode_nav_pvt(d: _Buffer) -> NavPvt:
+    """The nav_pvt message in `d`, as NavPvt.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if len(d) != 100:
         raise _dec('nav_pvt', None, len(d), 'length', '100 bytes', 0)
     r_sync1, r_sync2, r_msg_class, r_msg_id, r_length, r_iTOW, r_year, r_month, r_day, r_hour, r_min, r_second, c0_12, r_tAcc, r_nano, r_fixType, c0_16, c0_17, r_numSV, r_lon, r_lat, r_height, r_hMSL, r_hAcc, r_vAcc, r_velN, r_velE, r_velD, r_gSpeed, r_headMot, r_sAcc, r_headAcc, r_pDOP, c0_33, r_reserved0, r_headVeh, r_magDec, r_magAcc, r_checksum, = _S_nav_pvt_0.unpack_from(d, 0)
@@ -6578,6 +6596,9 @@ def _encode_nav_sat(m: NavSat) -> bytes:
 
 
 def _decode_nav_sat(d: _Buffer) -> NavSat:
+    """The nav_sat message in `d`, as NavSat.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if not 16 <= len(d) <= 400:
         raise _dec('nav_sat', None, len(d), 'length', '16..400 bytes', 0)
     s, cut = d, 400 - len(d)
@@ -9648,6 +9669,9 @@ def _encode_mon_ver(m: MonVer) -> bytes:
 
 
 def _decode_mon_ver(d: _Buffer) -> MonVer:
+    """The mon_ver message in `d`, as MonVer.decode: any bytes-like object."""
+    if d.__class__ is not bytes:
+        d = _as_input(d)
     if not 48 <= len(d) <= 348:
         raise _dec('mon_ver', None, len(d), 'length', '48..348 bytes', 0)
     s, cut = d, 348 - len(d)
@@ -9719,6 +9743,17 @@ ACCELERATOR = _accelerator()
 """The compiled accelerator in use, or None: every decoder is Python's."""
 if ACCELERATOR is not None:
     globals().update(ACCELERATOR.bind(globals()))  # compiled decoders in place of Python's
+
+
+# each message's decoder is its class's decode: one call, not two
+setattr(AckNak, "decode", staticmethod(_decode_ack_nak))
+setattr(AckAck, "decode", staticmethod(_decode_ack_ack))
+setattr(CfgRatePoll, "decode", staticmethod(_decode_cfg_rate_poll))
+setattr(CfgRate, "decode", staticmethod(_decode_cfg_rate))
+setattr(NavPosllh, "decode", staticmethod(_decode_nav_posllh))
+setattr(NavPvt, "decode", staticmethod(_decode_nav_pvt))
+setattr(NavSat, "decode", staticmethod(_decode_nav_sat))
+setattr(MonVer, "decode", staticmethod(_decode_mon_ver))
 
 
 _Decoder = Callable[[_Buffer], AnyMessage]
