@@ -11,7 +11,7 @@ _FROM_IMPORT = re.compile(r"^from (?!__future__ )(\S+) import (.+)$", re.M)
 _IMPORT = re.compile(r"^import (\w+)$", re.M)
 # names that also serve as parameter names in every module: only a call counts as a use
 _CALLED = {"field"}
-_NAME = re.compile(r"(?<![\w.])([A-Za-z_]\w*)(\()?")
+_NAME = re.compile(r"(?<![\w.])[A-Za-z_]\w*")
 
 
 def prune(source: str) -> str:
@@ -29,7 +29,10 @@ def prune(source: str) -> str:
 def _counts(source: str) -> Counter[str]:
     """How often each name is used in `source`: where no word character or dot comes
     before it (an attribute is not a use), and for _CALLED names only in a call."""
-    return Counter(m.group(1) for m in _NAME.finditer(source) if m.group(1) not in _CALLED or m.group(2))
+    uses = Counter(_NAME.findall(source))
+    for name in _CALLED:
+        uses[name] = len(re.findall(rf"(?<![\w.]){name}\(", source))
+    return uses
 
 
 def _drop_unused_functions(source: str, uses: Counter[str]) -> tuple[str, list[str]]:
@@ -56,6 +59,9 @@ def _drop_unused_imports(source: str, uses: Counter[str]) -> str:
         return f"from {m.group(1)} import {', '.join(kept)}" if kept else ""
 
     def import_line(m: re.Match[str]) -> str:
-        return m.group(0) if re.search(rf"\b{m.group(1)}\.", source[m.end():]) else ""
+        at = source.find(m.group(1) + ".", m.end())  # a use is the module's name and a dot
+        while at >= 0 and (source[at - 1].isalnum() or source[at - 1] == "_"):
+            at = source.find(m.group(1) + ".", at + 1)
+        return m.group(0) if at >= 0 else ""
     source = _FROM_IMPORT.sub(from_line, source)
     return _IMPORT.sub(import_line, source)

@@ -125,14 +125,15 @@ class PythonView:
             seen.add(name)
             members = [f for f in fields if f.is_member]
             required = [f for f in members if self.default_expr(f, message, path + (f.name,)) is None]
-            optional = [f for f in members if f not in required]
+            needed = {id(f) for f in required}  # by identity: comparing frozen fields field by field is slow
+            optional = [f for f in members if id(f) not in needed]
             out.append({
                 "name": name, "doc": doc, "message": message.name if is_message else None,
                 "fields": [{"name": f.name, "annotation": self.annotation(f, message, path + (f.name,)),
                             "default": self.default_expr(f, message, path + (f.name,)),
                             "doc": self.field_comment(f)}
                            for f in required + optional],
-                "spec": "(" + "".join(self.plain_spec(f, message, path + (f.name,), f in required) + ", "
+                "spec": "(" + "".join(self.plain_spec(f, message, path + (f.name,), id(f) in needed) + ", "
                                       for f in required + optional) + ")",
             })
 
