@@ -140,6 +140,7 @@ class MotorDirection(enum.IntEnum):
 
 _ENUM_motor_direction: dict[int, MotorDirection] = {0: MotorDirection.forward, 1: MotorDirection.left, 2: MotorDirection.right, 3: MotorDirection.random, }
 _VALUES_motor_direction = frozenset(_ENUM_motor_direction)
+_RAW_motor_direction: dict[int, int] = {v: v for v in _VALUES_motor_direction}  # a member or its value → the int, in one lookup
 
 
 # How to_dict and from_dict convert each field: (name, kind, class, optional, array, required);
@@ -379,17 +380,18 @@ def _encode_header(m: Header) -> bytes:
     if m.h2_count != 0 and not (m.h2_time is not None):
         raise _enc('header', 'h2_time', m.h2_time, 'rule', 'if h2_count ne 0 then h2_time ne None', decision='CAR-D3', user_message='With slave words (h2_count > 0) h2_time must give one of the 8 send-time levels / 每个控制字的发送时长用独热码表示，共分8个档位')
     r_h1 = m.h1
-    if r_h1.__class__ is not int or not 0 <= r_h1 <= 255:
-        if not isinstance(r_h1, int) or r_h1.__class__ is bool:
-            raise _enc('header', 'h1', r_h1, 'type', 'an int')
-        if not 0 <= r_h1 <= 255:
-            raise _enc('header', 'h1', r_h1, 'range', '0..255', None, 'The number of parallel modules used already exceeds 255 / 所用的并行模块数目已经大于255')
     r_h2_count = m.h2_count
-    if r_h2_count.__class__ is not int or not 0 <= r_h2_count <= 255:
-        if not isinstance(r_h2_count, int) or r_h2_count.__class__ is bool:
-            raise _enc('header', 'h2_count', r_h2_count, 'type', 'an int')
-        if not 0 <= r_h2_count <= 255:
-            raise _enc('header', 'h2_count', r_h2_count, 'range', '0..255', None)
+    if (r_h1.__class__ is not int or not 0 <= r_h1 <= 255) or (r_h2_count.__class__ is not int or not 0 <= r_h2_count <= 255):
+        if r_h1.__class__ is not int or not 0 <= r_h1 <= 255:
+            if not isinstance(r_h1, int) or r_h1.__class__ is bool:
+                raise _enc('header', 'h1', r_h1, 'type', 'an int')
+            if not 0 <= r_h1 <= 255:
+                raise _enc('header', 'h1', r_h1, 'range', '0..255', None, 'The number of parallel modules used already exceeds 255 / 所用的并行模块数目已经大于255')
+        if r_h2_count.__class__ is not int or not 0 <= r_h2_count <= 255:
+            if not isinstance(r_h2_count, int) or r_h2_count.__class__ is bool:
+                raise _enc('header', 'h2_count', r_h2_count, 'type', 'an int')
+            if not 0 <= r_h2_count <= 255:
+                raise _enc('header', 'h2_count', r_h2_count, 'range', '0..255', None)
     r_h2_time = m.h2_time
     if r_h2_time is None:
         r_h2_time = 0
@@ -451,32 +453,34 @@ def _encode_master_control(m: MasterControl) -> bytes:
     r_5motor_9direction: Any = g_motor.direction
     if r_5motor_9direction.__class__ is not MotorDirection and (not isinstance(r_5motor_9direction, int) or r_5motor_9direction.__class__ is bool or isinstance(r_5motor_9direction, enum.Enum) or r_5motor_9direction not in _VALUES_motor_direction):
         raise _enc('master_control', 'motor.direction', r_5motor_9direction, 'enum', 'MotorDirection', None)
-    r_5motor_9direction = cast(Any, r_5motor_9direction)._value_ if r_5motor_9direction.__class__ is MotorDirection else int(r_5motor_9direction)
+    r_5motor_9direction = _RAW_motor_direction[r_5motor_9direction]
     r_5motor_5speed = g_motor.speed
-    if r_5motor_5speed.__class__ is not int or not 0 <= r_5motor_5speed <= 3:
-        if not isinstance(r_5motor_5speed, int) or r_5motor_5speed.__class__ is bool:
-            raise _enc('master_control', 'motor.speed', r_5motor_5speed, 'type', 'an int')
-        if not 0 <= r_5motor_5speed <= 3:
-            raise _enc('master_control', 'motor.speed', r_5motor_5speed, 'range', '0..3', None)
     r_5motor_8duration = g_motor.duration
-    if r_5motor_8duration.__class__ is not int or not 0 <= r_5motor_8duration <= 3:
-        if not isinstance(r_5motor_8duration, int) or r_5motor_8duration.__class__ is bool:
-            raise _enc('master_control', 'motor.duration', r_5motor_8duration, 'type', 'an int')
-        if not 0 <= r_5motor_8duration <= 3:
-            raise _enc('master_control', 'motor.duration', r_5motor_8duration, 'range', '0..3', None)
+    if (r_5motor_5speed.__class__ is not int or not 0 <= r_5motor_5speed <= 3) or (r_5motor_8duration.__class__ is not int or not 0 <= r_5motor_8duration <= 3):
+        if r_5motor_5speed.__class__ is not int or not 0 <= r_5motor_5speed <= 3:
+            if not isinstance(r_5motor_5speed, int) or r_5motor_5speed.__class__ is bool:
+                raise _enc('master_control', 'motor.speed', r_5motor_5speed, 'type', 'an int')
+            if not 0 <= r_5motor_5speed <= 3:
+                raise _enc('master_control', 'motor.speed', r_5motor_5speed, 'range', '0..3', None)
+        if r_5motor_8duration.__class__ is not int or not 0 <= r_5motor_8duration <= 3:
+            if not isinstance(r_5motor_8duration, int) or r_5motor_8duration.__class__ is bool:
+                raise _enc('master_control', 'motor.duration', r_5motor_8duration, 'type', 'an int')
+            if not 0 <= r_5motor_8duration <= 3:
+                raise _enc('master_control', 'motor.duration', r_5motor_8duration, 'range', '0..3', None)
     g_led = m.led
     r_3led_3led = g_led.led
-    if r_3led_3led.__class__ is not int or not 0 <= r_3led_3led <= 3:
-        if not isinstance(r_3led_3led, int) or r_3led_3led.__class__ is bool:
-            raise _enc('master_control', 'led.led', r_3led_3led, 'type', 'an int')
-        if not 0 <= r_3led_3led <= 3:
-            raise _enc('master_control', 'led.led', r_3led_3led, 'range', '0..3', None)
     r_3led_8duration = g_led.duration
-    if r_3led_8duration.__class__ is not int or not 0 <= r_3led_8duration <= 3:
-        if not isinstance(r_3led_8duration, int) or r_3led_8duration.__class__ is bool:
-            raise _enc('master_control', 'led.duration', r_3led_8duration, 'type', 'an int')
-        if not 0 <= r_3led_8duration <= 3:
-            raise _enc('master_control', 'led.duration', r_3led_8duration, 'range', '0..3', None)
+    if (r_3led_3led.__class__ is not int or not 0 <= r_3led_3led <= 3) or (r_3led_8duration.__class__ is not int or not 0 <= r_3led_8duration <= 3):
+        if r_3led_3led.__class__ is not int or not 0 <= r_3led_3led <= 3:
+            if not isinstance(r_3led_3led, int) or r_3led_3led.__class__ is bool:
+                raise _enc('master_control', 'led.led', r_3led_3led, 'type', 'an int')
+            if not 0 <= r_3led_3led <= 3:
+                raise _enc('master_control', 'led.led', r_3led_3led, 'range', '0..3', None)
+        if r_3led_8duration.__class__ is not int or not 0 <= r_3led_8duration <= 3:
+            if not isinstance(r_3led_8duration, int) or r_3led_8duration.__class__ is bool:
+                raise _enc('master_control', 'led.duration', r_3led_8duration, 'type', 'an int')
+            if not 0 <= r_3led_8duration <= 3:
+                raise _enc('master_control', 'led.duration', r_3led_8duration, 'range', '0..3', None)
     g_ultrasonic = m.ultrasonic
     r_10ultrasonic_6enable: Any = g_ultrasonic.enable
     if r_10ultrasonic_6enable is not True and r_10ultrasonic_6enable is not False:
@@ -484,17 +488,18 @@ def _encode_master_control(m: MasterControl) -> bytes:
             raise _enc('master_control', 'ultrasonic.enable', r_10ultrasonic_6enable, 'type', 'a bool')
         r_10ultrasonic_6enable = 1 if r_10ultrasonic_6enable else 0
     r_10ultrasonic_6radius = g_ultrasonic.radius
-    if r_10ultrasonic_6radius.__class__ is not int or not 0 <= r_10ultrasonic_6radius <= 3:
-        if not isinstance(r_10ultrasonic_6radius, int) or r_10ultrasonic_6radius.__class__ is bool:
-            raise _enc('master_control', 'ultrasonic.radius', r_10ultrasonic_6radius, 'type', 'an int')
-        if not 0 <= r_10ultrasonic_6radius <= 3:
-            raise _enc('master_control', 'ultrasonic.radius', r_10ultrasonic_6radius, 'range', '0..3', None)
     r_10ultrasonic_8duration = g_ultrasonic.duration
-    if r_10ultrasonic_8duration.__class__ is not int or not 0 <= r_10ultrasonic_8duration <= 3:
-        if not isinstance(r_10ultrasonic_8duration, int) or r_10ultrasonic_8duration.__class__ is bool:
-            raise _enc('master_control', 'ultrasonic.duration', r_10ultrasonic_8duration, 'type', 'an int')
-        if not 0 <= r_10ultrasonic_8duration <= 3:
-            raise _enc('master_control', 'ultrasonic.duration', r_10ultrasonic_8duration, 'range', '0..3', None)
+    if (r_10ultrasonic_6radius.__class__ is not int or not 0 <= r_10ultrasonic_6radius <= 3) or (r_10ultrasonic_8duration.__class__ is not int or not 0 <= r_10ultrasonic_8duration <= 3):
+        if r_10ultrasonic_6radius.__class__ is not int or not 0 <= r_10ultrasonic_6radius <= 3:
+            if not isinstance(r_10ultrasonic_6radius, int) or r_10ultrasonic_6radius.__class__ is bool:
+                raise _enc('master_control', 'ultrasonic.radius', r_10ultrasonic_6radius, 'type', 'an int')
+            if not 0 <= r_10ultrasonic_6radius <= 3:
+                raise _enc('master_control', 'ultrasonic.radius', r_10ultrasonic_6radius, 'range', '0..3', None)
+        if r_10ultrasonic_8duration.__class__ is not int or not 0 <= r_10ultrasonic_8duration <= 3:
+            if not isinstance(r_10ultrasonic_8duration, int) or r_10ultrasonic_8duration.__class__ is bool:
+                raise _enc('master_control', 'ultrasonic.duration', r_10ultrasonic_8duration, 'type', 'an int')
+            if not 0 <= r_10ultrasonic_8duration <= 3:
+                raise _enc('master_control', 'ultrasonic.duration', r_10ultrasonic_8duration, 'range', '0..3', None)
     r_voice: Any = m.voice
     if r_voice is not True and r_voice is not False:
         if r_voice != 0 and r_voice != 1:
@@ -587,32 +592,34 @@ def _encode_slave_control(m: SlaveControl) -> bytes:
     r_5motor_9direction: Any = g_motor.direction
     if r_5motor_9direction.__class__ is not MotorDirection and (not isinstance(r_5motor_9direction, int) or r_5motor_9direction.__class__ is bool or isinstance(r_5motor_9direction, enum.Enum) or r_5motor_9direction not in _VALUES_motor_direction):
         raise _enc('slave_control', 'motor.direction', r_5motor_9direction, 'enum', 'MotorDirection', None)
-    r_5motor_9direction = cast(Any, r_5motor_9direction)._value_ if r_5motor_9direction.__class__ is MotorDirection else int(r_5motor_9direction)
+    r_5motor_9direction = _RAW_motor_direction[r_5motor_9direction]
     r_5motor_5speed = g_motor.speed
-    if r_5motor_5speed.__class__ is not int or not 0 <= r_5motor_5speed <= 3:
-        if not isinstance(r_5motor_5speed, int) or r_5motor_5speed.__class__ is bool:
-            raise _enc('slave_control', 'motor.speed', r_5motor_5speed, 'type', 'an int')
-        if not 0 <= r_5motor_5speed <= 3:
-            raise _enc('slave_control', 'motor.speed', r_5motor_5speed, 'range', '0..3', None)
     r_5motor_8duration = g_motor.duration
-    if r_5motor_8duration.__class__ is not int or not 0 <= r_5motor_8duration <= 3:
-        if not isinstance(r_5motor_8duration, int) or r_5motor_8duration.__class__ is bool:
-            raise _enc('slave_control', 'motor.duration', r_5motor_8duration, 'type', 'an int')
-        if not 0 <= r_5motor_8duration <= 3:
-            raise _enc('slave_control', 'motor.duration', r_5motor_8duration, 'range', '0..3', None)
+    if (r_5motor_5speed.__class__ is not int or not 0 <= r_5motor_5speed <= 3) or (r_5motor_8duration.__class__ is not int or not 0 <= r_5motor_8duration <= 3):
+        if r_5motor_5speed.__class__ is not int or not 0 <= r_5motor_5speed <= 3:
+            if not isinstance(r_5motor_5speed, int) or r_5motor_5speed.__class__ is bool:
+                raise _enc('slave_control', 'motor.speed', r_5motor_5speed, 'type', 'an int')
+            if not 0 <= r_5motor_5speed <= 3:
+                raise _enc('slave_control', 'motor.speed', r_5motor_5speed, 'range', '0..3', None)
+        if r_5motor_8duration.__class__ is not int or not 0 <= r_5motor_8duration <= 3:
+            if not isinstance(r_5motor_8duration, int) or r_5motor_8duration.__class__ is bool:
+                raise _enc('slave_control', 'motor.duration', r_5motor_8duration, 'type', 'an int')
+            if not 0 <= r_5motor_8duration <= 3:
+                raise _enc('slave_control', 'motor.duration', r_5motor_8duration, 'range', '0..3', None)
     g_led = m.led
     r_3led_3led = g_led.led
-    if r_3led_3led.__class__ is not int or not 0 <= r_3led_3led <= 3:
-        if not isinstance(r_3led_3led, int) or r_3led_3led.__class__ is bool:
-            raise _enc('slave_control', 'led.led', r_3led_3led, 'type', 'an int')
-        if not 0 <= r_3led_3led <= 3:
-            raise _enc('slave_control', 'led.led', r_3led_3led, 'range', '0..3', None)
     r_3led_8duration = g_led.duration
-    if r_3led_8duration.__class__ is not int or not 0 <= r_3led_8duration <= 3:
-        if not isinstance(r_3led_8duration, int) or r_3led_8duration.__class__ is bool:
-            raise _enc('slave_control', 'led.duration', r_3led_8duration, 'type', 'an int')
-        if not 0 <= r_3led_8duration <= 3:
-            raise _enc('slave_control', 'led.duration', r_3led_8duration, 'range', '0..3', None)
+    if (r_3led_3led.__class__ is not int or not 0 <= r_3led_3led <= 3) or (r_3led_8duration.__class__ is not int or not 0 <= r_3led_8duration <= 3):
+        if r_3led_3led.__class__ is not int or not 0 <= r_3led_3led <= 3:
+            if not isinstance(r_3led_3led, int) or r_3led_3led.__class__ is bool:
+                raise _enc('slave_control', 'led.led', r_3led_3led, 'type', 'an int')
+            if not 0 <= r_3led_3led <= 3:
+                raise _enc('slave_control', 'led.led', r_3led_3led, 'range', '0..3', None)
+        if r_3led_8duration.__class__ is not int or not 0 <= r_3led_8duration <= 3:
+            if not isinstance(r_3led_8duration, int) or r_3led_8duration.__class__ is bool:
+                raise _enc('slave_control', 'led.duration', r_3led_8duration, 'type', 'an int')
+            if not 0 <= r_3led_8duration <= 3:
+                raise _enc('slave_control', 'led.duration', r_3led_8duration, 'range', '0..3', None)
     g_ultrasonic = m.ultrasonic
     r_10ultrasonic_6enable: Any = g_ultrasonic.enable
     if r_10ultrasonic_6enable is not True and r_10ultrasonic_6enable is not False:
@@ -620,17 +627,18 @@ def _encode_slave_control(m: SlaveControl) -> bytes:
             raise _enc('slave_control', 'ultrasonic.enable', r_10ultrasonic_6enable, 'type', 'a bool')
         r_10ultrasonic_6enable = 1 if r_10ultrasonic_6enable else 0
     r_10ultrasonic_6radius = g_ultrasonic.radius
-    if r_10ultrasonic_6radius.__class__ is not int or not 0 <= r_10ultrasonic_6radius <= 3:
-        if not isinstance(r_10ultrasonic_6radius, int) or r_10ultrasonic_6radius.__class__ is bool:
-            raise _enc('slave_control', 'ultrasonic.radius', r_10ultrasonic_6radius, 'type', 'an int')
-        if not 0 <= r_10ultrasonic_6radius <= 3:
-            raise _enc('slave_control', 'ultrasonic.radius', r_10ultrasonic_6radius, 'range', '0..3', None)
     r_10ultrasonic_8duration = g_ultrasonic.duration
-    if r_10ultrasonic_8duration.__class__ is not int or not 0 <= r_10ultrasonic_8duration <= 3:
-        if not isinstance(r_10ultrasonic_8duration, int) or r_10ultrasonic_8duration.__class__ is bool:
-            raise _enc('slave_control', 'ultrasonic.duration', r_10ultrasonic_8duration, 'type', 'an int')
-        if not 0 <= r_10ultrasonic_8duration <= 3:
-            raise _enc('slave_control', 'ultrasonic.duration', r_10ultrasonic_8duration, 'range', '0..3', None)
+    if (r_10ultrasonic_6radius.__class__ is not int or not 0 <= r_10ultrasonic_6radius <= 3) or (r_10ultrasonic_8duration.__class__ is not int or not 0 <= r_10ultrasonic_8duration <= 3):
+        if r_10ultrasonic_6radius.__class__ is not int or not 0 <= r_10ultrasonic_6radius <= 3:
+            if not isinstance(r_10ultrasonic_6radius, int) or r_10ultrasonic_6radius.__class__ is bool:
+                raise _enc('slave_control', 'ultrasonic.radius', r_10ultrasonic_6radius, 'type', 'an int')
+            if not 0 <= r_10ultrasonic_6radius <= 3:
+                raise _enc('slave_control', 'ultrasonic.radius', r_10ultrasonic_6radius, 'range', '0..3', None)
+        if r_10ultrasonic_8duration.__class__ is not int or not 0 <= r_10ultrasonic_8duration <= 3:
+            if not isinstance(r_10ultrasonic_8duration, int) or r_10ultrasonic_8duration.__class__ is bool:
+                raise _enc('slave_control', 'ultrasonic.duration', r_10ultrasonic_8duration, 'type', 'an int')
+            if not 0 <= r_10ultrasonic_8duration <= 3:
+                raise _enc('slave_control', 'ultrasonic.duration', r_10ultrasonic_8duration, 'range', '0..3', None)
     r_voice: Any = m.voice
     if r_voice is not True and r_voice is not False:
         if r_voice != 0 and r_voice != 1:

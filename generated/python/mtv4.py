@@ -659,17 +659,18 @@ def _as_input(data: object) -> _Buffer:
 
 def _encode_set_wheels_velocities(m: SetWheelsVelocities) -> bytes:
     r_group = m.group
-    if r_group.__class__ is not int or not 0 <= r_group <= 15:
-        if not isinstance(r_group, int) or r_group.__class__ is bool:
-            raise _enc('set_wheels_velocities', 'group', r_group, 'type', 'an int')
-        if not 0 <= r_group <= 15:
-            raise _enc('set_wheels_velocities', 'group', r_group, 'range', '0..15', None)
     r_radio_crc_flag = m.radio_crc_flag
-    if r_radio_crc_flag.__class__ is not int or not 0 <= r_radio_crc_flag <= 1:
-        if not isinstance(r_radio_crc_flag, int) or r_radio_crc_flag.__class__ is bool:
-            raise _enc('set_wheels_velocities', 'radio_crc_flag', r_radio_crc_flag, 'type', 'an int')
-        if not 0 <= r_radio_crc_flag <= 1:
-            raise _enc('set_wheels_velocities', 'radio_crc_flag', r_radio_crc_flag, 'range', '0..1', 'MTV4-D4')
+    if (r_group.__class__ is not int or not 0 <= r_group <= 15) or (r_radio_crc_flag.__class__ is not int or not 0 <= r_radio_crc_flag <= 1):
+        if r_group.__class__ is not int or not 0 <= r_group <= 15:
+            if not isinstance(r_group, int) or r_group.__class__ is bool:
+                raise _enc('set_wheels_velocities', 'group', r_group, 'type', 'an int')
+            if not 0 <= r_group <= 15:
+                raise _enc('set_wheels_velocities', 'group', r_group, 'range', '0..15', None)
+        if r_radio_crc_flag.__class__ is not int or not 0 <= r_radio_crc_flag <= 1:
+            if not isinstance(r_radio_crc_flag, int) or r_radio_crc_flag.__class__ is bool:
+                raise _enc('set_wheels_velocities', 'radio_crc_flag', r_radio_crc_flag, 'type', 'an int')
+            if not 0 <= r_radio_crc_flag <= 1:
+                raise _enc('set_wheels_velocities', 'radio_crc_flag', r_radio_crc_flag, 'range', '0..1', 'MTV4-D4')
     r_robots: Any = m.robots
     if r_robots.__class__ is not int and r_robots.__class__ is not Robots and (not isinstance(r_robots, int) or r_robots.__class__ is bool or isinstance(r_robots, enum.Enum)):
         raise _enc('set_wheels_velocities', 'robots', r_robots, 'type', 'an int or Robots')
@@ -730,17 +731,18 @@ def _decode_set_wheels_velocities(d: _Buffer) -> SetWheelsVelocities:
 
 def _encode_set_led(m: SetLed) -> bytes:
     r_group = m.group
-    if r_group.__class__ is not int or not 0 <= r_group <= 15:
-        if not isinstance(r_group, int) or r_group.__class__ is bool:
-            raise _enc('set_led', 'group', r_group, 'type', 'an int')
-        if not 0 <= r_group <= 15:
-            raise _enc('set_led', 'group', r_group, 'range', '0..15', None)
     r_radio_crc_flag = m.radio_crc_flag
-    if r_radio_crc_flag.__class__ is not int or not 0 <= r_radio_crc_flag <= 1:
-        if not isinstance(r_radio_crc_flag, int) or r_radio_crc_flag.__class__ is bool:
-            raise _enc('set_led', 'radio_crc_flag', r_radio_crc_flag, 'type', 'an int')
-        if not 0 <= r_radio_crc_flag <= 1:
-            raise _enc('set_led', 'radio_crc_flag', r_radio_crc_flag, 'range', '0..1', 'MTV4-D4')
+    if (r_group.__class__ is not int or not 0 <= r_group <= 15) or (r_radio_crc_flag.__class__ is not int or not 0 <= r_radio_crc_flag <= 1):
+        if r_group.__class__ is not int or not 0 <= r_group <= 15:
+            if not isinstance(r_group, int) or r_group.__class__ is bool:
+                raise _enc('set_led', 'group', r_group, 'type', 'an int')
+            if not 0 <= r_group <= 15:
+                raise _enc('set_led', 'group', r_group, 'range', '0..15', None)
+        if r_radio_crc_flag.__class__ is not int or not 0 <= r_radio_crc_flag <= 1:
+            if not isinstance(r_radio_crc_flag, int) or r_radio_crc_flag.__class__ is bool:
+                raise _enc('set_led', 'radio_crc_flag', r_radio_crc_flag, 'type', 'an int')
+            if not 0 <= r_radio_crc_flag <= 1:
+                raise _enc('set_led', 'radio_crc_flag', r_radio_crc_flag, 'range', '0..1', 'MTV4-D4')
     r_robots: Any = m.robots
     if r_robots.__class__ is not int and r_robots.__class__ is not Robots and (not isinstance(r_robots, int) or r_robots.__class__ is bool or isinstance(r_robots, enum.Enum)):
         raise _enc('set_led', 'robots', r_robots, 'type', 'an int or Robots')
@@ -750,29 +752,30 @@ def _encode_set_led(m: SetLed) -> bytes:
     if r_robots == 0 or r_robots & (r_robots - 1):
         raise _enc('set_led', 'robots', r_robots, 'exactly_one', 'exactly one bit set', 'MTV4-D3', 'an individual command or reply addresses exactly one robot')
     r_d1 = m.d1
-    if r_d1.__class__ is not int or not 0 <= r_d1 <= 255:
-        if not isinstance(r_d1, int) or r_d1.__class__ is bool:
-            raise _enc('set_led', 'd1', r_d1, 'type', 'an int')
-        if not 0 <= r_d1 <= 255:
-            raise _enc('set_led', 'd1', r_d1, 'range', '0..255', None)
     r_d2 = m.d2
-    if r_d2.__class__ is not int or not 0 <= r_d2 <= 255:
-        if not isinstance(r_d2, int) or r_d2.__class__ is bool:
-            raise _enc('set_led', 'd2', r_d2, 'type', 'an int')
-        if not 0 <= r_d2 <= 255:
-            raise _enc('set_led', 'd2', r_d2, 'range', '0..255', None)
     r_d3 = m.d3
-    if r_d3.__class__ is not int or not 0 <= r_d3 <= 255:
-        if not isinstance(r_d3, int) or r_d3.__class__ is bool:
-            raise _enc('set_led', 'd3', r_d3, 'type', 'an int')
-        if not 0 <= r_d3 <= 255:
-            raise _enc('set_led', 'd3', r_d3, 'range', '0..255', None)
     r_d4 = m.d4
-    if r_d4.__class__ is not int or not 0 <= r_d4 <= 255:
-        if not isinstance(r_d4, int) or r_d4.__class__ is bool:
-            raise _enc('set_led', 'd4', r_d4, 'type', 'an int')
-        if not 0 <= r_d4 <= 255:
-            raise _enc('set_led', 'd4', r_d4, 'range', '0..255', None)
+    if (r_d1.__class__ is not int or not 0 <= r_d1 <= 255) or (r_d2.__class__ is not int or not 0 <= r_d2 <= 255) or (r_d3.__class__ is not int or not 0 <= r_d3 <= 255) or (r_d4.__class__ is not int or not 0 <= r_d4 <= 255):
+        if r_d1.__class__ is not int or not 0 <= r_d1 <= 255:
+            if not isinstance(r_d1, int) or r_d1.__class__ is bool:
+                raise _enc('set_led', 'd1', r_d1, 'type', 'an int')
+            if not 0 <= r_d1 <= 255:
+                raise _enc('set_led', 'd1', r_d1, 'range', '0..255', None)
+        if r_d2.__class__ is not int or not 0 <= r_d2 <= 255:
+            if not isinstance(r_d2, int) or r_d2.__class__ is bool:
+                raise _enc('set_led', 'd2', r_d2, 'type', 'an int')
+            if not 0 <= r_d2 <= 255:
+                raise _enc('set_led', 'd2', r_d2, 'range', '0..255', None)
+        if r_d3.__class__ is not int or not 0 <= r_d3 <= 255:
+            if not isinstance(r_d3, int) or r_d3.__class__ is bool:
+                raise _enc('set_led', 'd3', r_d3, 'type', 'an int')
+            if not 0 <= r_d3 <= 255:
+                raise _enc('set_led', 'd3', r_d3, 'range', '0..255', None)
+        if r_d4.__class__ is not int or not 0 <= r_d4 <= 255:
+            if not isinstance(r_d4, int) or r_d4.__class__ is bool:
+                raise _enc('set_led', 'd4', r_d4, 'type', 'an int')
+            if not 0 <= r_d4 <= 255:
+                raise _enc('set_led', 'd4', r_d4, 'range', '0..255', None)
     h = _S_set_led_0.pack(170, 8, r_group, r_radio_crc_flag << 7 | 0x2, r_robots, r_d1, r_d2, r_d3, r_d4)
     return h + _checksum_crc16_8005_ffff_nn_0_9(h, 1).to_bytes(2, 'big')
 
@@ -813,17 +816,18 @@ def _decode_set_led(d: _Buffer) -> SetLed:
 
 def _encode_set_wheels_velocities_with_odometry(m: SetWheelsVelocitiesWithOdometry) -> bytes:
     r_group = m.group
-    if r_group.__class__ is not int or not 0 <= r_group <= 15:
-        if not isinstance(r_group, int) or r_group.__class__ is bool:
-            raise _enc('set_wheels_velocities_with_odometry', 'group', r_group, 'type', 'an int')
-        if not 0 <= r_group <= 15:
-            raise _enc('set_wheels_velocities_with_odometry', 'group', r_group, 'range', '0..15', None)
     r_radio_crc_flag = m.radio_crc_flag
-    if r_radio_crc_flag.__class__ is not int or not 0 <= r_radio_crc_flag <= 1:
-        if not isinstance(r_radio_crc_flag, int) or r_radio_crc_flag.__class__ is bool:
-            raise _enc('set_wheels_velocities_with_odometry', 'radio_crc_flag', r_radio_crc_flag, 'type', 'an int')
-        if not 0 <= r_radio_crc_flag <= 1:
-            raise _enc('set_wheels_velocities_with_odometry', 'radio_crc_flag', r_radio_crc_flag, 'range', '0..1', 'MTV4-D4')
+    if (r_group.__class__ is not int or not 0 <= r_group <= 15) or (r_radio_crc_flag.__class__ is not int or not 0 <= r_radio_crc_flag <= 1):
+        if r_group.__class__ is not int or not 0 <= r_group <= 15:
+            if not isinstance(r_group, int) or r_group.__class__ is bool:
+                raise _enc('set_wheels_velocities_with_odometry', 'group', r_group, 'type', 'an int')
+            if not 0 <= r_group <= 15:
+                raise _enc('set_wheels_velocities_with_odometry', 'group', r_group, 'range', '0..15', None)
+        if r_radio_crc_flag.__class__ is not int or not 0 <= r_radio_crc_flag <= 1:
+            if not isinstance(r_radio_crc_flag, int) or r_radio_crc_flag.__class__ is bool:
+                raise _enc('set_wheels_velocities_with_odometry', 'radio_crc_flag', r_radio_crc_flag, 'type', 'an int')
+            if not 0 <= r_radio_crc_flag <= 1:
+                raise _enc('set_wheels_velocities_with_odometry', 'radio_crc_flag', r_radio_crc_flag, 'range', '0..1', 'MTV4-D4')
     r_robots: Any = m.robots
     if r_robots.__class__ is not int and r_robots.__class__ is not Robots and (not isinstance(r_robots, int) or r_robots.__class__ is bool or isinstance(r_robots, enum.Enum)):
         raise _enc('set_wheels_velocities_with_odometry', 'robots', r_robots, 'type', 'an int or Robots')
@@ -932,23 +936,24 @@ def _decode_set_wheels_velocities_with_odometry(d: _Buffer) -> SetWheelsVelociti
 
 def _encode_ack(m: Ack) -> bytes:
     r_group = m.group
-    if r_group.__class__ is not int or not 0 <= r_group <= 15:
-        if not isinstance(r_group, int) or r_group.__class__ is bool:
-            raise _enc('ack', 'group', r_group, 'type', 'an int')
-        if not 0 <= r_group <= 15:
-            raise _enc('ack', 'group', r_group, 'range', '0..15', None)
     r_radio_crc_flag = m.radio_crc_flag
-    if r_radio_crc_flag.__class__ is not int or not 0 <= r_radio_crc_flag <= 1:
-        if not isinstance(r_radio_crc_flag, int) or r_radio_crc_flag.__class__ is bool:
-            raise _enc('ack', 'radio_crc_flag', r_radio_crc_flag, 'type', 'an int')
-        if not 0 <= r_radio_crc_flag <= 1:
-            raise _enc('ack', 'radio_crc_flag', r_radio_crc_flag, 'range', '0..1', 'MTV4-D4')
     r_command = m.command
-    if r_command.__class__ is not int or not 0 <= r_command <= 127:
-        if not isinstance(r_command, int) or r_command.__class__ is bool:
-            raise _enc('ack', 'command', r_command, 'type', 'an int')
-        if not 0 <= r_command <= 127:
-            raise _enc('ack', 'command', r_command, 'range', '0..127', 'MTV4-D4')
+    if (r_group.__class__ is not int or not 0 <= r_group <= 15) or (r_radio_crc_flag.__class__ is not int or not 0 <= r_radio_crc_flag <= 1) or (r_command.__class__ is not int or not 0 <= r_command <= 127):
+        if r_group.__class__ is not int or not 0 <= r_group <= 15:
+            if not isinstance(r_group, int) or r_group.__class__ is bool:
+                raise _enc('ack', 'group', r_group, 'type', 'an int')
+            if not 0 <= r_group <= 15:
+                raise _enc('ack', 'group', r_group, 'range', '0..15', None)
+        if r_radio_crc_flag.__class__ is not int or not 0 <= r_radio_crc_flag <= 1:
+            if not isinstance(r_radio_crc_flag, int) or r_radio_crc_flag.__class__ is bool:
+                raise _enc('ack', 'radio_crc_flag', r_radio_crc_flag, 'type', 'an int')
+            if not 0 <= r_radio_crc_flag <= 1:
+                raise _enc('ack', 'radio_crc_flag', r_radio_crc_flag, 'range', '0..1', 'MTV4-D4')
+        if r_command.__class__ is not int or not 0 <= r_command <= 127:
+            if not isinstance(r_command, int) or r_command.__class__ is bool:
+                raise _enc('ack', 'command', r_command, 'type', 'an int')
+            if not 0 <= r_command <= 127:
+                raise _enc('ack', 'command', r_command, 'range', '0..127', 'MTV4-D4')
     if r_command not in (1, 2):
         raise _enc('ack', 'command', r_command, 'values', '1, 2', 'MTV4-D4')
     r_robots: Any = m.robots
@@ -996,17 +1001,18 @@ def _decode_ack(d: _Buffer) -> Ack:
 
 def _encode_odometry_reply(m: OdometryReply) -> bytes:
     r_group = m.group
-    if r_group.__class__ is not int or not 0 <= r_group <= 15:
-        if not isinstance(r_group, int) or r_group.__class__ is bool:
-            raise _enc('odometry_reply', 'group', r_group, 'type', 'an int')
-        if not 0 <= r_group <= 15:
-            raise _enc('odometry_reply', 'group', r_group, 'range', '0..15', None)
     r_radio_crc_flag = m.radio_crc_flag
-    if r_radio_crc_flag.__class__ is not int or not 0 <= r_radio_crc_flag <= 1:
-        if not isinstance(r_radio_crc_flag, int) or r_radio_crc_flag.__class__ is bool:
-            raise _enc('odometry_reply', 'radio_crc_flag', r_radio_crc_flag, 'type', 'an int')
-        if not 0 <= r_radio_crc_flag <= 1:
-            raise _enc('odometry_reply', 'radio_crc_flag', r_radio_crc_flag, 'range', '0..1', 'MTV4-D4')
+    if (r_group.__class__ is not int or not 0 <= r_group <= 15) or (r_radio_crc_flag.__class__ is not int or not 0 <= r_radio_crc_flag <= 1):
+        if r_group.__class__ is not int or not 0 <= r_group <= 15:
+            if not isinstance(r_group, int) or r_group.__class__ is bool:
+                raise _enc('odometry_reply', 'group', r_group, 'type', 'an int')
+            if not 0 <= r_group <= 15:
+                raise _enc('odometry_reply', 'group', r_group, 'range', '0..15', None)
+        if r_radio_crc_flag.__class__ is not int or not 0 <= r_radio_crc_flag <= 1:
+            if not isinstance(r_radio_crc_flag, int) or r_radio_crc_flag.__class__ is bool:
+                raise _enc('odometry_reply', 'radio_crc_flag', r_radio_crc_flag, 'type', 'an int')
+            if not 0 <= r_radio_crc_flag <= 1:
+                raise _enc('odometry_reply', 'radio_crc_flag', r_radio_crc_flag, 'range', '0..1', 'MTV4-D4')
     r_robots: Any = m.robots
     if r_robots.__class__ is not int and r_robots.__class__ is not Robots and (not isinstance(r_robots, int) or r_robots.__class__ is bool or isinstance(r_robots, enum.Enum)):
         raise _enc('odometry_reply', 'robots', r_robots, 'type', 'an int or Robots')

@@ -146,6 +146,7 @@ class PassSide(enum.IntEnum):
 
 _ENUM_pass_side: dict[int, PassSide] = {1: PassSide.left, 2: PassSide.straight, 3: PassSide.right, }
 _VALUES_pass_side = frozenset(_ENUM_pass_side)
+_RAW_pass_side: dict[int, int] = {v: v for v in _VALUES_pass_side}  # a member or its value → the int, in one lookup
 
 
 # How to_dict and from_dict convert each field: (name, kind, class, optional, array, required);
@@ -384,54 +385,56 @@ def _decode_text_start(tokens: list[int]) -> Start:
 def _encode_object(m: Object) -> bytes:
     r_hdr = 1
     r_ns = m.ns
-    if r_ns.__class__ is not int or not 0 <= r_ns <= 7:
-        if not isinstance(r_ns, int) or r_ns.__class__ is bool:
-            raise _enc('object', 'ns', r_ns, 'type', 'an int')
-        if not 0 <= r_ns <= 7:
-            raise _enc('object', 'ns', r_ns, 'range', '0..7', None)
     r_nl = m.nl
-    if r_nl.__class__ is not int or not 0 <= r_nl <= 7:
-        if not isinstance(r_nl, int) or r_nl.__class__ is bool:
-            raise _enc('object', 'nl', r_nl, 'type', 'an int')
-        if not 0 <= r_nl <= 7:
-            raise _enc('object', 'nl', r_nl, 'range', '0..7', None)
     r_no = m.no
-    if r_no.__class__ is not int or not 0 <= r_no <= 7:
-        if not isinstance(r_no, int) or r_no.__class__ is bool:
-            raise _enc('object', 'no', r_no, 'type', 'an int')
-        if not 0 <= r_no <= 7:
-            raise _enc('object', 'no', r_no, 'range', '0..7', None)
     r_na = m.na
-    if r_na.__class__ is not int or not 10 <= r_na <= 17:
-        if not isinstance(r_na, int) or r_na.__class__ is bool:
-            raise _enc('object', 'na', r_na, 'type', 'an int')
-        if not 10 <= r_na <= 17:
-            raise _enc('object', 'na', r_na, 'range', '10..17', 'ROUTE-D6')
+    if (r_ns.__class__ is not int or not 0 <= r_ns <= 7) or (r_nl.__class__ is not int or not 0 <= r_nl <= 7) or (r_no.__class__ is not int or not 0 <= r_no <= 7) or (r_na.__class__ is not int or not 10 <= r_na <= 17):
+        if r_ns.__class__ is not int or not 0 <= r_ns <= 7:
+            if not isinstance(r_ns, int) or r_ns.__class__ is bool:
+                raise _enc('object', 'ns', r_ns, 'type', 'an int')
+            if not 0 <= r_ns <= 7:
+                raise _enc('object', 'ns', r_ns, 'range', '0..7', None)
+        if r_nl.__class__ is not int or not 0 <= r_nl <= 7:
+            if not isinstance(r_nl, int) or r_nl.__class__ is bool:
+                raise _enc('object', 'nl', r_nl, 'type', 'an int')
+            if not 0 <= r_nl <= 7:
+                raise _enc('object', 'nl', r_nl, 'range', '0..7', None)
+        if r_no.__class__ is not int or not 0 <= r_no <= 7:
+            if not isinstance(r_no, int) or r_no.__class__ is bool:
+                raise _enc('object', 'no', r_no, 'type', 'an int')
+            if not 0 <= r_no <= 7:
+                raise _enc('object', 'no', r_no, 'range', '0..7', None)
+        if r_na.__class__ is not int or not 10 <= r_na <= 17:
+            if not isinstance(r_na, int) or r_na.__class__ is bool:
+                raise _enc('object', 'na', r_na, 'type', 'an int')
+            if not 10 <= r_na <= 17:
+                raise _enc('object', 'na', r_na, 'range', '10..17', 'ROUTE-D6')
     r_na = (r_na - 10)
     r_dl = m.dl
-    if r_dl.__class__ is not int or not 1 <= r_dl <= 5:
-        if not isinstance(r_dl, int) or r_dl.__class__ is bool:
-            raise _enc('object', 'dl', r_dl, 'type', 'an int')
-        if not 1 <= r_dl <= 5:
-            raise _enc('object', 'dl', r_dl, 'range', '1..5', None)
     r_rc = m.rc
-    if r_rc.__class__ is not int or not 0 <= r_rc <= 3:
-        if not isinstance(r_rc, int) or r_rc.__class__ is bool:
-            raise _enc('object', 'rc', r_rc, 'type', 'an int')
-        if not 0 <= r_rc <= 3:
-            raise _enc('object', 'rc', r_rc, 'range', '0..3', 'ROUTE-D3')
     r_dr = m.dr
-    if r_dr.__class__ is not int or not 1 <= r_dr <= 5:
-        if not isinstance(r_dr, int) or r_dr.__class__ is bool:
-            raise _enc('object', 'dr', r_dr, 'type', 'an int')
-        if not 1 <= r_dr <= 5:
-            raise _enc('object', 'dr', r_dr, 'range', '1..5', None)
     r_cm = m.cm
-    if r_cm.__class__ is not int or not 1 <= r_cm <= 15:
-        if not isinstance(r_cm, int) or r_cm.__class__ is bool:
-            raise _enc('object', 'cm', r_cm, 'type', 'an int')
-        if not 1 <= r_cm <= 15:
-            raise _enc('object', 'cm', r_cm, 'range', '1..15', None)
+    if (r_dl.__class__ is not int or not 1 <= r_dl <= 5) or (r_rc.__class__ is not int or not 0 <= r_rc <= 3) or (r_dr.__class__ is not int or not 1 <= r_dr <= 5) or (r_cm.__class__ is not int or not 1 <= r_cm <= 15):
+        if r_dl.__class__ is not int or not 1 <= r_dl <= 5:
+            if not isinstance(r_dl, int) or r_dl.__class__ is bool:
+                raise _enc('object', 'dl', r_dl, 'type', 'an int')
+            if not 1 <= r_dl <= 5:
+                raise _enc('object', 'dl', r_dl, 'range', '1..5', None)
+        if r_rc.__class__ is not int or not 0 <= r_rc <= 3:
+            if not isinstance(r_rc, int) or r_rc.__class__ is bool:
+                raise _enc('object', 'rc', r_rc, 'type', 'an int')
+            if not 0 <= r_rc <= 3:
+                raise _enc('object', 'rc', r_rc, 'range', '0..3', 'ROUTE-D3')
+        if r_dr.__class__ is not int or not 1 <= r_dr <= 5:
+            if not isinstance(r_dr, int) or r_dr.__class__ is bool:
+                raise _enc('object', 'dr', r_dr, 'type', 'an int')
+            if not 1 <= r_dr <= 5:
+                raise _enc('object', 'dr', r_dr, 'range', '1..5', None)
+        if r_cm.__class__ is not int or not 1 <= r_cm <= 15:
+            if not isinstance(r_cm, int) or r_cm.__class__ is bool:
+                raise _enc('object', 'cm', r_cm, 'type', 'an int')
+            if not 1 <= r_cm <= 15:
+                raise _enc('object', 'cm', r_cm, 'range', '1..15', None)
     r_cs = 0
     r_cs = (r_hdr + r_ns + r_nl + r_no + r_na + r_dl + r_rc + r_dr + r_cm) % 8
     w: int = r_ns << 27 | r_nl << 24 | r_no << 21 | r_na << 18 | r_dl << 15 | r_rc << 13 | r_dr << 10 | r_cm << 6 | r_cs << 3 | 0x40000000
@@ -589,21 +592,22 @@ def _decode_text_object(tokens: list[int]) -> Object:
 def _encode_scene(m: Scene) -> bytes:
     r_hdr = 2
     r_ns = m.ns
-    if r_ns.__class__ is not int or not 0 <= r_ns <= 7:
-        if not isinstance(r_ns, int) or r_ns.__class__ is bool:
-            raise _enc('scene', 'ns', r_ns, 'type', 'an int')
-        if not 0 <= r_ns <= 7:
-            raise _enc('scene', 'ns', r_ns, 'range', '0..7', None)
     r_nl = m.nl
-    if r_nl.__class__ is not int or not 0 <= r_nl <= 7:
-        if not isinstance(r_nl, int) or r_nl.__class__ is bool:
-            raise _enc('scene', 'nl', r_nl, 'type', 'an int')
-        if not 0 <= r_nl <= 7:
-            raise _enc('scene', 'nl', r_nl, 'range', '0..7', None)
+    if (r_ns.__class__ is not int or not 0 <= r_ns <= 7) or (r_nl.__class__ is not int or not 0 <= r_nl <= 7):
+        if r_ns.__class__ is not int or not 0 <= r_ns <= 7:
+            if not isinstance(r_ns, int) or r_ns.__class__ is bool:
+                raise _enc('scene', 'ns', r_ns, 'type', 'an int')
+            if not 0 <= r_ns <= 7:
+                raise _enc('scene', 'ns', r_ns, 'range', '0..7', None)
+        if r_nl.__class__ is not int or not 0 <= r_nl <= 7:
+            if not isinstance(r_nl, int) or r_nl.__class__ is bool:
+                raise _enc('scene', 'nl', r_nl, 'type', 'an int')
+            if not 0 <= r_nl <= 7:
+                raise _enc('scene', 'nl', r_nl, 'range', '0..7', None)
     r_db: Any = m.db
     if r_db.__class__ is not PassSide and (not isinstance(r_db, int) or r_db.__class__ is bool or isinstance(r_db, enum.Enum) or r_db not in _VALUES_pass_side):
         raise _enc('scene', 'db', r_db, 'enum', 'PassSide', None)
-    r_db = cast(Any, r_db)._value_ if r_db.__class__ is PassSide else int(r_db)
+    r_db = _RAW_pass_side[r_db]
     r_nt = m.nt
     if r_nt.__class__ is not int or not 0 <= r_nt <= 32767:
         if not isinstance(r_nt, int) or r_nt.__class__ is bool:
@@ -665,7 +669,7 @@ def _raw_scene(m: Scene) -> tuple[int, ...]:
     r_db: Any = m.db
     if r_db.__class__ is not PassSide and (not isinstance(r_db, int) or r_db.__class__ is bool or isinstance(r_db, enum.Enum) or r_db not in _VALUES_pass_side):
         raise _enc('scene', 'db', r_db, 'enum', 'PassSide', None)
-    r_db = cast(Any, r_db)._value_ if r_db.__class__ is PassSide else int(r_db)
+    r_db = _RAW_pass_side[r_db]
     r_nt = m.nt
     if r_nt.__class__ is not int or not 0 <= r_nt <= 32767:
         if not isinstance(r_nt, int) or r_nt.__class__ is bool:

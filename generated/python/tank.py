@@ -12,7 +12,7 @@ import math
 import re
 
 from dataclasses import dataclass
-from typing import Any, Callable, ClassVar, Literal, Optional, TypeVar, Union, cast, overload
+from typing import Any, Callable, ClassVar, Literal, Optional, TypeVar, Union, overload
 
 _Buffer = Union[bytes, bytearray, "memoryview[int]"]  # what a binary decoder reads
 _Input = Union[str, bytes, bytearray]  # what a decoder reads: text, or its ASCII bytes
@@ -180,6 +180,7 @@ class SystemStatus(enum.IntEnum):
 
 _ENUM_system_status: dict[int, SystemStatus] = {0: SystemStatus.stop, 1: SystemStatus.work, 2: SystemStatus.shutdown, 3: SystemStatus.eco, 4: SystemStatus.e_mode, 5: SystemStatus.error, 6: SystemStatus.exception, }
 _VALUES_system_status = frozenset(_ENUM_system_status)
+_RAW_system_status: dict[int, int] = {v: v for v in _VALUES_system_status}  # a member or its value → the int, in one lookup
 
 class ExtStatus(enum.IntEnum):
     """external device (payload) status"""
@@ -205,6 +206,7 @@ class ExtStatus(enum.IntEnum):
 
 _ENUM_ext_status: dict[int, ExtStatus] = {0: ExtStatus.disconnected, 1: ExtStatus.working, 2: ExtStatus.initialisation, 3: ExtStatus.exception, 4: ExtStatus.unknown, 5: ExtStatus.error, }
 _VALUES_ext_status = frozenset(_ENUM_ext_status)
+_RAW_ext_status: dict[int, int] = {v: v for v in _VALUES_ext_status}  # a member or its value → the int, in one lookup
 
 class GpioMode(enum.IntEnum):
     """MasterLink GPIO pin mode"""
@@ -224,6 +226,7 @@ class GpioMode(enum.IntEnum):
 
 _ENUM_gpio_mode: dict[int, GpioMode] = {0: GpioMode.off, 1: GpioMode.digital_in, 2: GpioMode.digital_out, 3: GpioMode.analog_in, }
 _VALUES_gpio_mode = frozenset(_ENUM_gpio_mode)
+_RAW_gpio_mode: dict[int, int] = {v: v for v in _VALUES_gpio_mode}  # a member or its value → the int, in one lookup
 
 
 # How to_dict and from_dict convert each field: (name, kind, class, optional, array, required);
@@ -745,7 +748,7 @@ def _encode_telemetry(m: Telemetry) -> str:
     r_systemstatus: Any = m.systemstatus
     if r_systemstatus.__class__ is not SystemStatus and (not isinstance(r_systemstatus, int) or r_systemstatus.__class__ is bool or isinstance(r_systemstatus, enum.Enum) or r_systemstatus not in _VALUES_system_status):
         raise _enc('telemetry', 'systemstatus', r_systemstatus, 'enum', 'SystemStatus', None)
-    r_systemstatus = cast(Any, r_systemstatus)._value_ if r_systemstatus.__class__ is SystemStatus else int(r_systemstatus)
+    r_systemstatus = _RAW_system_status[r_systemstatus]
     r_extid = m.extid
     if r_extid.__class__ is not int or not 0 <= r_extid <= 255:
         if not isinstance(r_extid, int) or r_extid.__class__ is bool:
@@ -755,7 +758,7 @@ def _encode_telemetry(m: Telemetry) -> str:
     r_extstatus: Any = m.extstatus
     if r_extstatus.__class__ is not ExtStatus and (not isinstance(r_extstatus, int) or r_extstatus.__class__ is bool or isinstance(r_extstatus, enum.Enum) or r_extstatus not in _VALUES_ext_status):
         raise _enc('telemetry', 'extstatus', r_extstatus, 'enum', 'ExtStatus', None)
-    r_extstatus = cast(Any, r_extstatus)._value_ if r_extstatus.__class__ is ExtStatus else int(r_extstatus)
+    r_extstatus = _RAW_ext_status[r_extstatus]
     return '$:' + ','.join((_ENUM_move[r_move]._value_, str(r_speed), r_value, s_lcurr, s_rcurr, s_accx, s_accy, s_accz, s_gyrox, s_gyroy, s_gyroz, s_magx, s_magy, s_magz, r_lan, r_lon, s_vbat, str(r_systemstatus), str(r_extid), str(r_extstatus), )) + ';'
 
 
@@ -937,7 +940,7 @@ def _encode_command(m: Command) -> str:
         raise _enc('command', 'systemstatus', r_systemstatus, 'enum', 'SystemStatus', 'TANK-D2', 'systemstatus 5 (Error) and 6 (Exception) are sent only by the platform / Только с платформы')
     if r_systemstatus not in (0, 1, 2, 3, 4):
         raise _enc('command', 'systemstatus', r_systemstatus, 'values', '0, 1, 2, 3, 4', 'TANK-D2', 'systemstatus 5 (Error) and 6 (Exception) are sent only by the platform / Только с платформы')
-    r_systemstatus = cast(Any, r_systemstatus)._value_ if r_systemstatus.__class__ is SystemStatus else int(r_systemstatus)
+    r_systemstatus = _RAW_system_status[r_systemstatus]
     if m.data is not None:
         r_data = m.data
         if not isinstance(r_data, str):
@@ -1087,19 +1090,19 @@ def _encode_gpio_config(m: GpioConfig) -> str:
     r_gpio1: Any = m.gpio1
     if r_gpio1.__class__ is not GpioMode and (not isinstance(r_gpio1, int) or r_gpio1.__class__ is bool or isinstance(r_gpio1, enum.Enum) or r_gpio1 not in _VALUES_gpio_mode):
         raise _enc('gpio_config', 'gpio1', r_gpio1, 'enum', 'GpioMode', None)
-    r_gpio1 = cast(Any, r_gpio1)._value_ if r_gpio1.__class__ is GpioMode else int(r_gpio1)
+    r_gpio1 = _RAW_gpio_mode[r_gpio1]
     r_gpio2: Any = m.gpio2
     if r_gpio2.__class__ is not GpioMode and (not isinstance(r_gpio2, int) or r_gpio2.__class__ is bool or isinstance(r_gpio2, enum.Enum) or r_gpio2 not in _VALUES_gpio_mode):
         raise _enc('gpio_config', 'gpio2', r_gpio2, 'enum', 'GpioMode', None)
-    r_gpio2 = cast(Any, r_gpio2)._value_ if r_gpio2.__class__ is GpioMode else int(r_gpio2)
+    r_gpio2 = _RAW_gpio_mode[r_gpio2]
     r_gpio3: Any = m.gpio3
     if r_gpio3.__class__ is not GpioMode and (not isinstance(r_gpio3, int) or r_gpio3.__class__ is bool or isinstance(r_gpio3, enum.Enum) or r_gpio3 not in _VALUES_gpio_mode):
         raise _enc('gpio_config', 'gpio3', r_gpio3, 'enum', 'GpioMode', None)
-    r_gpio3 = cast(Any, r_gpio3)._value_ if r_gpio3.__class__ is GpioMode else int(r_gpio3)
+    r_gpio3 = _RAW_gpio_mode[r_gpio3]
     r_gpio4: Any = m.gpio4
     if r_gpio4.__class__ is not GpioMode and (not isinstance(r_gpio4, int) or r_gpio4.__class__ is bool or isinstance(r_gpio4, enum.Enum) or r_gpio4 not in _VALUES_gpio_mode):
         raise _enc('gpio_config', 'gpio4', r_gpio4, 'enum', 'GpioMode', None)
-    r_gpio4 = cast(Any, r_gpio4)._value_ if r_gpio4.__class__ is GpioMode else int(r_gpio4)
+    r_gpio4 = _RAW_gpio_mode[r_gpio4]
     return '-:' + ','.join((str(r_gpio1), str(r_gpio2), str(r_gpio3), str(r_gpio4), )) + ';'
 
 

@@ -228,23 +228,24 @@ def _as_input(data: object) -> _Buffer:
 
 def _encode_command(m: Command) -> bytes:
     r_seq = m.seq
-    if r_seq.__class__ is not int or not 0 <= r_seq <= 1:
-        if not isinstance(r_seq, int) or r_seq.__class__ is bool:
-            raise _enc('command', 'seq', r_seq, 'type', 'an int')
-        if not 0 <= r_seq <= 1:
-            raise _enc('command', 'seq', r_seq, 'range', '0..1', 'TR24-D1')
     r_sender = m.sender
-    if r_sender.__class__ is not int or not 0 <= r_sender <= 255:
-        if not isinstance(r_sender, int) or r_sender.__class__ is bool:
-            raise _enc('command', 'sender', r_sender, 'type', 'an int')
-        if not 0 <= r_sender <= 255:
-            raise _enc('command', 'sender', r_sender, 'range', '0..255', 'TR24-D3')
     r_receiver = m.receiver
-    if r_receiver.__class__ is not int or not 0 <= r_receiver <= 255:
-        if not isinstance(r_receiver, int) or r_receiver.__class__ is bool:
-            raise _enc('command', 'receiver', r_receiver, 'type', 'an int')
-        if not 0 <= r_receiver <= 255:
-            raise _enc('command', 'receiver', r_receiver, 'range', '0..255', 'TR24-D3')
+    if (r_seq.__class__ is not int or not 0 <= r_seq <= 1) or (r_sender.__class__ is not int or not 0 <= r_sender <= 255) or (r_receiver.__class__ is not int or not 0 <= r_receiver <= 255):
+        if r_seq.__class__ is not int or not 0 <= r_seq <= 1:
+            if not isinstance(r_seq, int) or r_seq.__class__ is bool:
+                raise _enc('command', 'seq', r_seq, 'type', 'an int')
+            if not 0 <= r_seq <= 1:
+                raise _enc('command', 'seq', r_seq, 'range', '0..1', 'TR24-D1')
+        if r_sender.__class__ is not int or not 0 <= r_sender <= 255:
+            if not isinstance(r_sender, int) or r_sender.__class__ is bool:
+                raise _enc('command', 'sender', r_sender, 'type', 'an int')
+            if not 0 <= r_sender <= 255:
+                raise _enc('command', 'sender', r_sender, 'range', '0..255', 'TR24-D3')
+        if r_receiver.__class__ is not int or not 0 <= r_receiver <= 255:
+            if not isinstance(r_receiver, int) or r_receiver.__class__ is bool:
+                raise _enc('command', 'receiver', r_receiver, 'type', 'an int')
+            if not 0 <= r_receiver <= 255:
+                raise _enc('command', 'receiver', r_receiver, 'range', '0..255', 'TR24-D3')
     r_data = m.data
     if r_data.__class__ is not bytes or len(r_data) != 7:
         if not isinstance(r_data, (bytes, bytearray)) or len(r_data) != 7:
@@ -281,23 +282,24 @@ def _decode_command(d: _Buffer) -> Command:
 
 def _encode_reply(m: Reply) -> bytes:
     r_seq = m.seq
-    if r_seq.__class__ is not int or not 0 <= r_seq <= 1:
-        if not isinstance(r_seq, int) or r_seq.__class__ is bool:
-            raise _enc('reply', 'seq', r_seq, 'type', 'an int')
-        if not 0 <= r_seq <= 1:
-            raise _enc('reply', 'seq', r_seq, 'range', '0..1', 'TR24-D1')
     r_sender = m.sender
-    if r_sender.__class__ is not int or not 0 <= r_sender <= 255:
-        if not isinstance(r_sender, int) or r_sender.__class__ is bool:
-            raise _enc('reply', 'sender', r_sender, 'type', 'an int')
-        if not 0 <= r_sender <= 255:
-            raise _enc('reply', 'sender', r_sender, 'range', '0..255', 'TR24-D3')
     r_receiver = m.receiver
-    if r_receiver.__class__ is not int or not 0 <= r_receiver <= 255:
-        if not isinstance(r_receiver, int) or r_receiver.__class__ is bool:
-            raise _enc('reply', 'receiver', r_receiver, 'type', 'an int')
-        if not 0 <= r_receiver <= 255:
-            raise _enc('reply', 'receiver', r_receiver, 'range', '0..255', 'TR24-D3')
+    if (r_seq.__class__ is not int or not 0 <= r_seq <= 1) or (r_sender.__class__ is not int or not 0 <= r_sender <= 255) or (r_receiver.__class__ is not int or not 0 <= r_receiver <= 255):
+        if r_seq.__class__ is not int or not 0 <= r_seq <= 1:
+            if not isinstance(r_seq, int) or r_seq.__class__ is bool:
+                raise _enc('reply', 'seq', r_seq, 'type', 'an int')
+            if not 0 <= r_seq <= 1:
+                raise _enc('reply', 'seq', r_seq, 'range', '0..1', 'TR24-D1')
+        if r_sender.__class__ is not int or not 0 <= r_sender <= 255:
+            if not isinstance(r_sender, int) or r_sender.__class__ is bool:
+                raise _enc('reply', 'sender', r_sender, 'type', 'an int')
+            if not 0 <= r_sender <= 255:
+                raise _enc('reply', 'sender', r_sender, 'range', '0..255', 'TR24-D3')
+        if r_receiver.__class__ is not int or not 0 <= r_receiver <= 255:
+            if not isinstance(r_receiver, int) or r_receiver.__class__ is bool:
+                raise _enc('reply', 'receiver', r_receiver, 'type', 'an int')
+            if not 0 <= r_receiver <= 255:
+                raise _enc('reply', 'receiver', r_receiver, 'range', '0..255', 'TR24-D3')
     r_data = m.data
     if r_data.__class__ is not bytes or len(r_data) != 7:
         if not isinstance(r_data, (bytes, bytearray)) or len(r_data) != 7:

@@ -220,8 +220,8 @@ class PythonView:
                 allowed = tuple(self.enum_value(f, x) for x in f.values)
                 c(f"if {v} not in {lit(allowed)}:")
                 c(f"    raise _enc({where}, {v}, 'values', {', '.join(map(str, allowed))!r}, {f.rule!r}{self.user(f, False)})")
-            if f.enum.kind != "char":  # a member's value is read, not converted: int() is a call
-                c(f"{var} = cast(Any, {v})._value_ if {v}.__class__ is {cls} else int({v})")
+            if f.enum.kind != "char":  # a member's value is looked up, not converted: int() is a call
+                c(f"{var} = _RAW_{f.enum.name}[{v}]")
         elif f.flags is not None:
             cls = self.enum_class(f.flags.name)
             c(f"if {v}.__class__ is not int and {v}.__class__ is not {cls} and "
@@ -525,6 +525,38 @@ def segments_of(chunks: list[Chunk]) -> list[Segment]:
 
 
 _CONSTANT = re.compile(r"^ +(r_\w+) = -?\d+\n", re.M)
+# an integer field's read and checks, as encode_leaf writes them: the value of the usual
+# class and in range passes the first `if`; inside, the checks that say what is wrong
+_INT_CHECK = re.compile(r"( *)(r_\w+) = (\S+)\n\1if (\2\.__class__ is not int or not [^\n]*):\n"
+                        r"(\1    if not isinstance\(\2, int\)[^\n]*\n\1        raise [^\n]*\n"
+                        r"\1    if not [^\n]*\n\1        raise [^\n]*\n)")
+
+
+def int_checks_merged(function: str) -> str:
+    """A function whose consecutive integer fields are read first and tested by one `if`
+    (the usual values pass it at once), inside which each field's checks run in order,
+    so the first value that is wrong is still the one reported."""
+    out, at = [], 0
+    for run in _int_check_runs(function):
+        indent = run[0].group(1)
+        out.append(function[at:run[0].start()])
+        out.extend(f"{indent}{m.group(2)} = {m.group(3)}\n" for m in run)
+        out.append(f"{indent}if {' or '.join(f'({m.group(4)})' for m in run)}:\n")
+        out.extend("".join("    " + line + "\n" for line in (
+            f"{indent}if {m.group(4)}:\n" + m.group(5)).splitlines()) for m in run)
+        at = run[-1].end()
+    return "".join(out) + function[at:]
+
+
+def _int_check_runs(function: str) -> list[list[re.Match[str]]]:
+    """Runs of two or more integer checks, one right after another at one indentation."""
+    runs: list[list[re.Match[str]]] = []
+    for m in _INT_CHECK.finditer(function):
+        if runs and runs[-1][-1].end() == m.start() and runs[-1][-1].group(1) == m.group(1):
+            runs[-1].append(m)
+        else:
+            runs.append([m])
+    return [run for run in runs if len(run) > 1]
 
 
 def unread_constants_dropped(function: str) -> str:
@@ -867,7 +899,7 @@ class MessageCode:
         return "\n\n\n".join(self.helpers + [code])
 
     def encode_bytes_body(self) -> str:
-        return unread_constants_dropped(self.encode_bytes_code())
+        return int_checks_merged(unread_constants_dropped(self.encode_bytes_code()))
 
     def encode_bytes_code(self) -> str:
         c = Code()

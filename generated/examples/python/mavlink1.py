@@ -772,59 +772,60 @@ def _as_input(data: object) -> _Buffer:
 
 def _encode_heartbeat(m: Heartbeat) -> bytes:
     r_seq = m.seq
-    if r_seq.__class__ is not int or not 0 <= r_seq <= 255:
-        if not isinstance(r_seq, int) or r_seq.__class__ is bool:
-            raise _enc('heartbeat', 'seq', r_seq, 'type', 'an int')
-        if not 0 <= r_seq <= 255:
-            raise _enc('heartbeat', 'seq', r_seq, 'range', '0..255', None)
     r_sysid = m.sysid
-    if r_sysid.__class__ is not int or not 0 <= r_sysid <= 255:
-        if not isinstance(r_sysid, int) or r_sysid.__class__ is bool:
-            raise _enc('heartbeat', 'sysid', r_sysid, 'type', 'an int')
-        if not 0 <= r_sysid <= 255:
-            raise _enc('heartbeat', 'sysid', r_sysid, 'range', '0..255', None)
     r_compid = m.compid
-    if r_compid.__class__ is not int or not 0 <= r_compid <= 255:
-        if not isinstance(r_compid, int) or r_compid.__class__ is bool:
-            raise _enc('heartbeat', 'compid', r_compid, 'type', 'an int')
-        if not 0 <= r_compid <= 255:
-            raise _enc('heartbeat', 'compid', r_compid, 'range', '0..255', None)
     r_custom_mode = m.custom_mode
-    if r_custom_mode.__class__ is not int or not 0 <= r_custom_mode <= 4294967295:
-        if not isinstance(r_custom_mode, int) or r_custom_mode.__class__ is bool:
-            raise _enc('heartbeat', 'custom_mode', r_custom_mode, 'type', 'an int')
-        if not 0 <= r_custom_mode <= 4294967295:
-            raise _enc('heartbeat', 'custom_mode', r_custom_mode, 'range', '0..4294967295', None)
     r_type = m.type
-    if r_type.__class__ is not int or not 0 <= r_type <= 255:
-        if not isinstance(r_type, int) or r_type.__class__ is bool:
-            raise _enc('heartbeat', 'type', r_type, 'type', 'an int')
-        if not 0 <= r_type <= 255:
-            raise _enc('heartbeat', 'type', r_type, 'range', '0..255', None)
     r_autopilot = m.autopilot
-    if r_autopilot.__class__ is not int or not 0 <= r_autopilot <= 255:
-        if not isinstance(r_autopilot, int) or r_autopilot.__class__ is bool:
-            raise _enc('heartbeat', 'autopilot', r_autopilot, 'type', 'an int')
-        if not 0 <= r_autopilot <= 255:
-            raise _enc('heartbeat', 'autopilot', r_autopilot, 'range', '0..255', None)
     r_base_mode = m.base_mode
-    if r_base_mode.__class__ is not int or not 0 <= r_base_mode <= 255:
-        if not isinstance(r_base_mode, int) or r_base_mode.__class__ is bool:
-            raise _enc('heartbeat', 'base_mode', r_base_mode, 'type', 'an int')
-        if not 0 <= r_base_mode <= 255:
-            raise _enc('heartbeat', 'base_mode', r_base_mode, 'range', '0..255', None)
     r_system_status = m.system_status
-    if r_system_status.__class__ is not int or not 0 <= r_system_status <= 255:
-        if not isinstance(r_system_status, int) or r_system_status.__class__ is bool:
-            raise _enc('heartbeat', 'system_status', r_system_status, 'type', 'an int')
-        if not 0 <= r_system_status <= 255:
-            raise _enc('heartbeat', 'system_status', r_system_status, 'range', '0..255', None)
     r_mavlink_version = m.mavlink_version
-    if r_mavlink_version.__class__ is not int or not 0 <= r_mavlink_version <= 255:
-        if not isinstance(r_mavlink_version, int) or r_mavlink_version.__class__ is bool:
-            raise _enc('heartbeat', 'mavlink_version', r_mavlink_version, 'type', 'an int')
-        if not 0 <= r_mavlink_version <= 255:
-            raise _enc('heartbeat', 'mavlink_version', r_mavlink_version, 'range', '0..255', None)
+    if (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255) or (r_custom_mode.__class__ is not int or not 0 <= r_custom_mode <= 4294967295) or (r_type.__class__ is not int or not 0 <= r_type <= 255) or (r_autopilot.__class__ is not int or not 0 <= r_autopilot <= 255) or (r_base_mode.__class__ is not int or not 0 <= r_base_mode <= 255) or (r_system_status.__class__ is not int or not 0 <= r_system_status <= 255) or (r_mavlink_version.__class__ is not int or not 0 <= r_mavlink_version <= 255):
+        if r_seq.__class__ is not int or not 0 <= r_seq <= 255:
+            if not isinstance(r_seq, int) or r_seq.__class__ is bool:
+                raise _enc('heartbeat', 'seq', r_seq, 'type', 'an int')
+            if not 0 <= r_seq <= 255:
+                raise _enc('heartbeat', 'seq', r_seq, 'range', '0..255', None)
+        if r_sysid.__class__ is not int or not 0 <= r_sysid <= 255:
+            if not isinstance(r_sysid, int) or r_sysid.__class__ is bool:
+                raise _enc('heartbeat', 'sysid', r_sysid, 'type', 'an int')
+            if not 0 <= r_sysid <= 255:
+                raise _enc('heartbeat', 'sysid', r_sysid, 'range', '0..255', None)
+        if r_compid.__class__ is not int or not 0 <= r_compid <= 255:
+            if not isinstance(r_compid, int) or r_compid.__class__ is bool:
+                raise _enc('heartbeat', 'compid', r_compid, 'type', 'an int')
+            if not 0 <= r_compid <= 255:
+                raise _enc('heartbeat', 'compid', r_compid, 'range', '0..255', None)
+        if r_custom_mode.__class__ is not int or not 0 <= r_custom_mode <= 4294967295:
+            if not isinstance(r_custom_mode, int) or r_custom_mode.__class__ is bool:
+                raise _enc('heartbeat', 'custom_mode', r_custom_mode, 'type', 'an int')
+            if not 0 <= r_custom_mode <= 4294967295:
+                raise _enc('heartbeat', 'custom_mode', r_custom_mode, 'range', '0..4294967295', None)
+        if r_type.__class__ is not int or not 0 <= r_type <= 255:
+            if not isinstance(r_type, int) or r_type.__class__ is bool:
+                raise _enc('heartbeat', 'type', r_type, 'type', 'an int')
+            if not 0 <= r_type <= 255:
+                raise _enc('heartbeat', 'type', r_type, 'range', '0..255', None)
+        if r_autopilot.__class__ is not int or not 0 <= r_autopilot <= 255:
+            if not isinstance(r_autopilot, int) or r_autopilot.__class__ is bool:
+                raise _enc('heartbeat', 'autopilot', r_autopilot, 'type', 'an int')
+            if not 0 <= r_autopilot <= 255:
+                raise _enc('heartbeat', 'autopilot', r_autopilot, 'range', '0..255', None)
+        if r_base_mode.__class__ is not int or not 0 <= r_base_mode <= 255:
+            if not isinstance(r_base_mode, int) or r_base_mode.__class__ is bool:
+                raise _enc('heartbeat', 'base_mode', r_base_mode, 'type', 'an int')
+            if not 0 <= r_base_mode <= 255:
+                raise _enc('heartbeat', 'base_mode', r_base_mode, 'range', '0..255', None)
+        if r_system_status.__class__ is not int or not 0 <= r_system_status <= 255:
+            if not isinstance(r_system_status, int) or r_system_status.__class__ is bool:
+                raise _enc('heartbeat', 'system_status', r_system_status, 'type', 'an int')
+            if not 0 <= r_system_status <= 255:
+                raise _enc('heartbeat', 'system_status', r_system_status, 'range', '0..255', None)
+        if r_mavlink_version.__class__ is not int or not 0 <= r_mavlink_version <= 255:
+            if not isinstance(r_mavlink_version, int) or r_mavlink_version.__class__ is bool:
+                raise _enc('heartbeat', 'mavlink_version', r_mavlink_version, 'type', 'an int')
+            if not 0 <= r_mavlink_version <= 255:
+                raise _enc('heartbeat', 'mavlink_version', r_mavlink_version, 'range', '0..255', None)
     r_checksum = 0
     b = bytearray(17)
     _S_heartbeat_0.pack_into(b, 0, 254, 9, r_seq, r_sysid, r_compid, 0, r_custom_mode, r_type, r_autopilot, r_base_mode, r_system_status, r_mavlink_version, r_checksum)
@@ -863,101 +864,102 @@ def _decode_heartbeat(d: _Buffer) -> Heartbeat:
 
 def _encode_sys_status(m: SysStatus) -> bytes:
     r_seq = m.seq
-    if r_seq.__class__ is not int or not 0 <= r_seq <= 255:
-        if not isinstance(r_seq, int) or r_seq.__class__ is bool:
-            raise _enc('sys_status', 'seq', r_seq, 'type', 'an int')
-        if not 0 <= r_seq <= 255:
-            raise _enc('sys_status', 'seq', r_seq, 'range', '0..255', None)
     r_sysid = m.sysid
-    if r_sysid.__class__ is not int or not 0 <= r_sysid <= 255:
-        if not isinstance(r_sysid, int) or r_sysid.__class__ is bool:
-            raise _enc('sys_status', 'sysid', r_sysid, 'type', 'an int')
-        if not 0 <= r_sysid <= 255:
-            raise _enc('sys_status', 'sysid', r_sysid, 'range', '0..255', None)
     r_compid = m.compid
-    if r_compid.__class__ is not int or not 0 <= r_compid <= 255:
-        if not isinstance(r_compid, int) or r_compid.__class__ is bool:
-            raise _enc('sys_status', 'compid', r_compid, 'type', 'an int')
-        if not 0 <= r_compid <= 255:
-            raise _enc('sys_status', 'compid', r_compid, 'range', '0..255', None)
     r_onboard_control_sensors_present = m.onboard_control_sensors_present
-    if r_onboard_control_sensors_present.__class__ is not int or not 0 <= r_onboard_control_sensors_present <= 4294967295:
-        if not isinstance(r_onboard_control_sensors_present, int) or r_onboard_control_sensors_present.__class__ is bool:
-            raise _enc('sys_status', 'onboard_control_sensors_present', r_onboard_control_sensors_present, 'type', 'an int')
-        if not 0 <= r_onboard_control_sensors_present <= 4294967295:
-            raise _enc('sys_status', 'onboard_control_sensors_present', r_onboard_control_sensors_present, 'range', '0..4294967295', None)
     r_onboard_control_sensors_enabled = m.onboard_control_sensors_enabled
-    if r_onboard_control_sensors_enabled.__class__ is not int or not 0 <= r_onboard_control_sensors_enabled <= 4294967295:
-        if not isinstance(r_onboard_control_sensors_enabled, int) or r_onboard_control_sensors_enabled.__class__ is bool:
-            raise _enc('sys_status', 'onboard_control_sensors_enabled', r_onboard_control_sensors_enabled, 'type', 'an int')
-        if not 0 <= r_onboard_control_sensors_enabled <= 4294967295:
-            raise _enc('sys_status', 'onboard_control_sensors_enabled', r_onboard_control_sensors_enabled, 'range', '0..4294967295', None)
     r_onboard_control_sensors_health = m.onboard_control_sensors_health
-    if r_onboard_control_sensors_health.__class__ is not int or not 0 <= r_onboard_control_sensors_health <= 4294967295:
-        if not isinstance(r_onboard_control_sensors_health, int) or r_onboard_control_sensors_health.__class__ is bool:
-            raise _enc('sys_status', 'onboard_control_sensors_health', r_onboard_control_sensors_health, 'type', 'an int')
-        if not 0 <= r_onboard_control_sensors_health <= 4294967295:
-            raise _enc('sys_status', 'onboard_control_sensors_health', r_onboard_control_sensors_health, 'range', '0..4294967295', None)
     r_load = m.load
-    if r_load.__class__ is not int or not 0 <= r_load <= 65535:
-        if not isinstance(r_load, int) or r_load.__class__ is bool:
-            raise _enc('sys_status', 'load', r_load, 'type', 'an int')
-        if not 0 <= r_load <= 65535:
-            raise _enc('sys_status', 'load', r_load, 'range', '0..65535', None)
     r_voltage_battery = m.voltage_battery
-    if r_voltage_battery.__class__ is not int or not 0 <= r_voltage_battery <= 65535:
-        if not isinstance(r_voltage_battery, int) or r_voltage_battery.__class__ is bool:
-            raise _enc('sys_status', 'voltage_battery', r_voltage_battery, 'type', 'an int')
-        if not 0 <= r_voltage_battery <= 65535:
-            raise _enc('sys_status', 'voltage_battery', r_voltage_battery, 'range', '0..65535', None)
     r_current_battery = m.current_battery
-    if r_current_battery.__class__ is not int or not -32768 <= r_current_battery <= 32767:
-        if not isinstance(r_current_battery, int) or r_current_battery.__class__ is bool:
-            raise _enc('sys_status', 'current_battery', r_current_battery, 'type', 'an int')
-        if not -32768 <= r_current_battery <= 32767:
-            raise _enc('sys_status', 'current_battery', r_current_battery, 'range', '-32768..32767', None)
     r_drop_rate_comm = m.drop_rate_comm
-    if r_drop_rate_comm.__class__ is not int or not 0 <= r_drop_rate_comm <= 65535:
-        if not isinstance(r_drop_rate_comm, int) or r_drop_rate_comm.__class__ is bool:
-            raise _enc('sys_status', 'drop_rate_comm', r_drop_rate_comm, 'type', 'an int')
-        if not 0 <= r_drop_rate_comm <= 65535:
-            raise _enc('sys_status', 'drop_rate_comm', r_drop_rate_comm, 'range', '0..65535', None)
     r_errors_comm = m.errors_comm
-    if r_errors_comm.__class__ is not int or not 0 <= r_errors_comm <= 65535:
-        if not isinstance(r_errors_comm, int) or r_errors_comm.__class__ is bool:
-            raise _enc('sys_status', 'errors_comm', r_errors_comm, 'type', 'an int')
-        if not 0 <= r_errors_comm <= 65535:
-            raise _enc('sys_status', 'errors_comm', r_errors_comm, 'range', '0..65535', None)
     r_errors_count1 = m.errors_count1
-    if r_errors_count1.__class__ is not int or not 0 <= r_errors_count1 <= 65535:
-        if not isinstance(r_errors_count1, int) or r_errors_count1.__class__ is bool:
-            raise _enc('sys_status', 'errors_count1', r_errors_count1, 'type', 'an int')
-        if not 0 <= r_errors_count1 <= 65535:
-            raise _enc('sys_status', 'errors_count1', r_errors_count1, 'range', '0..65535', None)
     r_errors_count2 = m.errors_count2
-    if r_errors_count2.__class__ is not int or not 0 <= r_errors_count2 <= 65535:
-        if not isinstance(r_errors_count2, int) or r_errors_count2.__class__ is bool:
-            raise _enc('sys_status', 'errors_count2', r_errors_count2, 'type', 'an int')
-        if not 0 <= r_errors_count2 <= 65535:
-            raise _enc('sys_status', 'errors_count2', r_errors_count2, 'range', '0..65535', None)
     r_errors_count3 = m.errors_count3
-    if r_errors_count3.__class__ is not int or not 0 <= r_errors_count3 <= 65535:
-        if not isinstance(r_errors_count3, int) or r_errors_count3.__class__ is bool:
-            raise _enc('sys_status', 'errors_count3', r_errors_count3, 'type', 'an int')
-        if not 0 <= r_errors_count3 <= 65535:
-            raise _enc('sys_status', 'errors_count3', r_errors_count3, 'range', '0..65535', None)
     r_errors_count4 = m.errors_count4
-    if r_errors_count4.__class__ is not int or not 0 <= r_errors_count4 <= 65535:
-        if not isinstance(r_errors_count4, int) or r_errors_count4.__class__ is bool:
-            raise _enc('sys_status', 'errors_count4', r_errors_count4, 'type', 'an int')
-        if not 0 <= r_errors_count4 <= 65535:
-            raise _enc('sys_status', 'errors_count4', r_errors_count4, 'range', '0..65535', None)
     r_battery_remaining = m.battery_remaining
-    if r_battery_remaining.__class__ is not int or not -128 <= r_battery_remaining <= 127:
-        if not isinstance(r_battery_remaining, int) or r_battery_remaining.__class__ is bool:
-            raise _enc('sys_status', 'battery_remaining', r_battery_remaining, 'type', 'an int')
-        if not -128 <= r_battery_remaining <= 127:
-            raise _enc('sys_status', 'battery_remaining', r_battery_remaining, 'range', '-128..127', None)
+    if (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255) or (r_onboard_control_sensors_present.__class__ is not int or not 0 <= r_onboard_control_sensors_present <= 4294967295) or (r_onboard_control_sensors_enabled.__class__ is not int or not 0 <= r_onboard_control_sensors_enabled <= 4294967295) or (r_onboard_control_sensors_health.__class__ is not int or not 0 <= r_onboard_control_sensors_health <= 4294967295) or (r_load.__class__ is not int or not 0 <= r_load <= 65535) or (r_voltage_battery.__class__ is not int or not 0 <= r_voltage_battery <= 65535) or (r_current_battery.__class__ is not int or not -32768 <= r_current_battery <= 32767) or (r_drop_rate_comm.__class__ is not int or not 0 <= r_drop_rate_comm <= 65535) or (r_errors_comm.__class__ is not int or not 0 <= r_errors_comm <= 65535) or (r_errors_count1.__class__ is not int or not 0 <= r_errors_count1 <= 65535) or (r_errors_count2.__class__ is not int or not 0 <= r_errors_count2 <= 65535) or (r_errors_count3.__class__ is not int or not 0 <= r_errors_count3 <= 65535) or (r_errors_count4.__class__ is not int or not 0 <= r_errors_count4 <= 65535) or (r_battery_remaining.__class__ is not int or not -128 <= r_battery_remaining <= 127):
+        if r_seq.__class__ is not int or not 0 <= r_seq <= 255:
+            if not isinstance(r_seq, int) or r_seq.__class__ is bool:
+                raise _enc('sys_status', 'seq', r_seq, 'type', 'an int')
+            if not 0 <= r_seq <= 255:
+                raise _enc('sys_status', 'seq', r_seq, 'range', '0..255', None)
+        if r_sysid.__class__ is not int or not 0 <= r_sysid <= 255:
+            if not isinstance(r_sysid, int) or r_sysid.__class__ is bool:
+                raise _enc('sys_status', 'sysid', r_sysid, 'type', 'an int')
+            if not 0 <= r_sysid <= 255:
+                raise _enc('sys_status', 'sysid', r_sysid, 'range', '0..255', None)
+        if r_compid.__class__ is not int or not 0 <= r_compid <= 255:
+            if not isinstance(r_compid, int) or r_compid.__class__ is bool:
+                raise _enc('sys_status', 'compid', r_compid, 'type', 'an int')
+            if not 0 <= r_compid <= 255:
+                raise _enc('sys_status', 'compid', r_compid, 'range', '0..255', None)
+        if r_onboard_control_sensors_present.__class__ is not int or not 0 <= r_onboard_control_sensors_present <= 4294967295:
+            if not isinstance(r_onboard_control_sensors_present, int) or r_onboard_control_sensors_present.__class__ is bool:
+                raise _enc('sys_status', 'onboard_control_sensors_present', r_onboard_control_sensors_present, 'type', 'an int')
+            if not 0 <= r_onboard_control_sensors_present <= 4294967295:
+                raise _enc('sys_status', 'onboard_control_sensors_present', r_onboard_control_sensors_present, 'range', '0..4294967295', None)
+        if r_onboard_control_sensors_enabled.__class__ is not int or not 0 <= r_onboard_control_sensors_enabled <= 4294967295:
+            if not isinstance(r_onboard_control_sensors_enabled, int) or r_onboard_control_sensors_enabled.__class__ is bool:
+                raise _enc('sys_status', 'onboard_control_sensors_enabled', r_onboard_control_sensors_enabled, 'type', 'an int')
+            if not 0 <= r_onboard_control_sensors_enabled <= 4294967295:
+                raise _enc('sys_status', 'onboard_control_sensors_enabled', r_onboard_control_sensors_enabled, 'range', '0..4294967295', None)
+        if r_onboard_control_sensors_health.__class__ is not int or not 0 <= r_onboard_control_sensors_health <= 4294967295:
+            if not isinstance(r_onboard_control_sensors_health, int) or r_onboard_control_sensors_health.__class__ is bool:
+                raise _enc('sys_status', 'onboard_control_sensors_health', r_onboard_control_sensors_health, 'type', 'an int')
+            if not 0 <= r_onboard_control_sensors_health <= 4294967295:
+                raise _enc('sys_status', 'onboard_control_sensors_health', r_onboard_control_sensors_health, 'range', '0..4294967295', None)
+        if r_load.__class__ is not int or not 0 <= r_load <= 65535:
+            if not isinstance(r_load, int) or r_load.__class__ is bool:
+                raise _enc('sys_status', 'load', r_load, 'type', 'an int')
+            if not 0 <= r_load <= 65535:
+                raise _enc('sys_status', 'load', r_load, 'range', '0..65535', None)
+        if r_voltage_battery.__class__ is not int or not 0 <= r_voltage_battery <= 65535:
+            if not isinstance(r_voltage_battery, int) or r_voltage_battery.__class__ is bool:
+                raise _enc('sys_status', 'voltage_battery', r_voltage_battery, 'type', 'an int')
+            if not 0 <= r_voltage_battery <= 65535:
+                raise _enc('sys_status', 'voltage_battery', r_voltage_battery, 'range', '0..65535', None)
+        if r_current_battery.__class__ is not int or not -32768 <= r_current_battery <= 32767:
+            if not isinstance(r_current_battery, int) or r_current_battery.__class__ is bool:
+                raise _enc('sys_status', 'current_battery', r_current_battery, 'type', 'an int')
+            if not -32768 <= r_current_battery <= 32767:
+                raise _enc('sys_status', 'current_battery', r_current_battery, 'range', '-32768..32767', None)
+        if r_drop_rate_comm.__class__ is not int or not 0 <= r_drop_rate_comm <= 65535:
+            if not isinstance(r_drop_rate_comm, int) or r_drop_rate_comm.__class__ is bool:
+                raise _enc('sys_status', 'drop_rate_comm', r_drop_rate_comm, 'type', 'an int')
+            if not 0 <= r_drop_rate_comm <= 65535:
+                raise _enc('sys_status', 'drop_rate_comm', r_drop_rate_comm, 'range', '0..65535', None)
+        if r_errors_comm.__class__ is not int or not 0 <= r_errors_comm <= 65535:
+            if not isinstance(r_errors_comm, int) or r_errors_comm.__class__ is bool:
+                raise _enc('sys_status', 'errors_comm', r_errors_comm, 'type', 'an int')
+            if not 0 <= r_errors_comm <= 65535:
+                raise _enc('sys_status', 'errors_comm', r_errors_comm, 'range', '0..65535', None)
+        if r_errors_count1.__class__ is not int or not 0 <= r_errors_count1 <= 65535:
+            if not isinstance(r_errors_count1, int) or r_errors_count1.__class__ is bool:
+                raise _enc('sys_status', 'errors_count1', r_errors_count1, 'type', 'an int')
+            if not 0 <= r_errors_count1 <= 65535:
+                raise _enc('sys_status', 'errors_count1', r_errors_count1, 'range', '0..65535', None)
+        if r_errors_count2.__class__ is not int or not 0 <= r_errors_count2 <= 65535:
+            if not isinstance(r_errors_count2, int) or r_errors_count2.__class__ is bool:
+                raise _enc('sys_status', 'errors_count2', r_errors_count2, 'type', 'an int')
+            if not 0 <= r_errors_count2 <= 65535:
+                raise _enc('sys_status', 'errors_count2', r_errors_count2, 'range', '0..65535', None)
+        if r_errors_count3.__class__ is not int or not 0 <= r_errors_count3 <= 65535:
+            if not isinstance(r_errors_count3, int) or r_errors_count3.__class__ is bool:
+                raise _enc('sys_status', 'errors_count3', r_errors_count3, 'type', 'an int')
+            if not 0 <= r_errors_count3 <= 65535:
+                raise _enc('sys_status', 'errors_count3', r_errors_count3, 'range', '0..65535', None)
+        if r_errors_count4.__class__ is not int or not 0 <= r_errors_count4 <= 65535:
+            if not isinstance(r_errors_count4, int) or r_errors_count4.__class__ is bool:
+                raise _enc('sys_status', 'errors_count4', r_errors_count4, 'type', 'an int')
+            if not 0 <= r_errors_count4 <= 65535:
+                raise _enc('sys_status', 'errors_count4', r_errors_count4, 'range', '0..65535', None)
+        if r_battery_remaining.__class__ is not int or not -128 <= r_battery_remaining <= 127:
+            if not isinstance(r_battery_remaining, int) or r_battery_remaining.__class__ is bool:
+                raise _enc('sys_status', 'battery_remaining', r_battery_remaining, 'type', 'an int')
+            if not -128 <= r_battery_remaining <= 127:
+                raise _enc('sys_status', 'battery_remaining', r_battery_remaining, 'range', '-128..127', None)
     r_checksum = 0
     b = bytearray(39)
     _S_sys_status_0.pack_into(b, 0, 254, 31, r_seq, r_sysid, r_compid, 1, r_onboard_control_sensors_present, r_onboard_control_sensors_enabled, r_onboard_control_sensors_health, r_load, r_voltage_battery, r_current_battery, r_drop_rate_comm, r_errors_comm, r_errors_count1, r_errors_count2, r_errors_count3, r_errors_count4, r_battery_remaining, r_checksum)
@@ -1003,23 +1005,24 @@ def _decode_sys_status(d: _Buffer) -> SysStatus:
 
 def _encode_param_value(m: ParamValue) -> bytes:
     r_seq = m.seq
-    if r_seq.__class__ is not int or not 0 <= r_seq <= 255:
-        if not isinstance(r_seq, int) or r_seq.__class__ is bool:
-            raise _enc('param_value', 'seq', r_seq, 'type', 'an int')
-        if not 0 <= r_seq <= 255:
-            raise _enc('param_value', 'seq', r_seq, 'range', '0..255', None)
     r_sysid = m.sysid
-    if r_sysid.__class__ is not int or not 0 <= r_sysid <= 255:
-        if not isinstance(r_sysid, int) or r_sysid.__class__ is bool:
-            raise _enc('param_value', 'sysid', r_sysid, 'type', 'an int')
-        if not 0 <= r_sysid <= 255:
-            raise _enc('param_value', 'sysid', r_sysid, 'range', '0..255', None)
     r_compid = m.compid
-    if r_compid.__class__ is not int or not 0 <= r_compid <= 255:
-        if not isinstance(r_compid, int) or r_compid.__class__ is bool:
-            raise _enc('param_value', 'compid', r_compid, 'type', 'an int')
-        if not 0 <= r_compid <= 255:
-            raise _enc('param_value', 'compid', r_compid, 'range', '0..255', None)
+    if (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255):
+        if r_seq.__class__ is not int or not 0 <= r_seq <= 255:
+            if not isinstance(r_seq, int) or r_seq.__class__ is bool:
+                raise _enc('param_value', 'seq', r_seq, 'type', 'an int')
+            if not 0 <= r_seq <= 255:
+                raise _enc('param_value', 'seq', r_seq, 'range', '0..255', None)
+        if r_sysid.__class__ is not int or not 0 <= r_sysid <= 255:
+            if not isinstance(r_sysid, int) or r_sysid.__class__ is bool:
+                raise _enc('param_value', 'sysid', r_sysid, 'type', 'an int')
+            if not 0 <= r_sysid <= 255:
+                raise _enc('param_value', 'sysid', r_sysid, 'range', '0..255', None)
+        if r_compid.__class__ is not int or not 0 <= r_compid <= 255:
+            if not isinstance(r_compid, int) or r_compid.__class__ is bool:
+                raise _enc('param_value', 'compid', r_compid, 'type', 'an int')
+            if not 0 <= r_compid <= 255:
+                raise _enc('param_value', 'compid', r_compid, 'range', '0..255', None)
     r_param_value = m.param_value
     if r_param_value.__class__ is not float:
         if not isinstance(r_param_value, (int, float)) or r_param_value.__class__ is bool:
@@ -1031,17 +1034,18 @@ def _encode_param_value(m: ParamValue) -> bytes:
     if r_param_value > 3.4028234663852886e38 or r_param_value < -3.4028234663852886e38:
         raise _enc('param_value', 'param_value', r_param_value, 'range', 'a binary32 value')
     r_param_count = m.param_count
-    if r_param_count.__class__ is not int or not 0 <= r_param_count <= 65535:
-        if not isinstance(r_param_count, int) or r_param_count.__class__ is bool:
-            raise _enc('param_value', 'param_count', r_param_count, 'type', 'an int')
-        if not 0 <= r_param_count <= 65535:
-            raise _enc('param_value', 'param_count', r_param_count, 'range', '0..65535', None)
     r_param_index = m.param_index
-    if r_param_index.__class__ is not int or not 0 <= r_param_index <= 65535:
-        if not isinstance(r_param_index, int) or r_param_index.__class__ is bool:
-            raise _enc('param_value', 'param_index', r_param_index, 'type', 'an int')
-        if not 0 <= r_param_index <= 65535:
-            raise _enc('param_value', 'param_index', r_param_index, 'range', '0..65535', None)
+    if (r_param_count.__class__ is not int or not 0 <= r_param_count <= 65535) or (r_param_index.__class__ is not int or not 0 <= r_param_index <= 65535):
+        if r_param_count.__class__ is not int or not 0 <= r_param_count <= 65535:
+            if not isinstance(r_param_count, int) or r_param_count.__class__ is bool:
+                raise _enc('param_value', 'param_count', r_param_count, 'type', 'an int')
+            if not 0 <= r_param_count <= 65535:
+                raise _enc('param_value', 'param_count', r_param_count, 'range', '0..65535', None)
+        if r_param_index.__class__ is not int or not 0 <= r_param_index <= 65535:
+            if not isinstance(r_param_index, int) or r_param_index.__class__ is bool:
+                raise _enc('param_value', 'param_index', r_param_index, 'type', 'an int')
+            if not 0 <= r_param_index <= 65535:
+                raise _enc('param_value', 'param_index', r_param_index, 'range', '0..65535', None)
     r_param_id = m.param_id
     if r_param_id.__class__ is not bytes or len(r_param_id) != 16:
         if not isinstance(r_param_id, (bytes, bytearray)) or len(r_param_id) != 16:
@@ -1092,83 +1096,84 @@ def _decode_param_value(d: _Buffer) -> ParamValue:
 
 def _encode_gps_raw_int(m: GpsRawInt) -> bytes:
     r_seq = m.seq
-    if r_seq.__class__ is not int or not 0 <= r_seq <= 255:
-        if not isinstance(r_seq, int) or r_seq.__class__ is bool:
-            raise _enc('gps_raw_int', 'seq', r_seq, 'type', 'an int')
-        if not 0 <= r_seq <= 255:
-            raise _enc('gps_raw_int', 'seq', r_seq, 'range', '0..255', None)
     r_sysid = m.sysid
-    if r_sysid.__class__ is not int or not 0 <= r_sysid <= 255:
-        if not isinstance(r_sysid, int) or r_sysid.__class__ is bool:
-            raise _enc('gps_raw_int', 'sysid', r_sysid, 'type', 'an int')
-        if not 0 <= r_sysid <= 255:
-            raise _enc('gps_raw_int', 'sysid', r_sysid, 'range', '0..255', None)
     r_compid = m.compid
-    if r_compid.__class__ is not int or not 0 <= r_compid <= 255:
-        if not isinstance(r_compid, int) or r_compid.__class__ is bool:
-            raise _enc('gps_raw_int', 'compid', r_compid, 'type', 'an int')
-        if not 0 <= r_compid <= 255:
-            raise _enc('gps_raw_int', 'compid', r_compid, 'range', '0..255', None)
     r_time_usec = m.time_usec
-    if r_time_usec.__class__ is not int or not 0 <= r_time_usec <= 18446744073709551615:
-        if not isinstance(r_time_usec, int) or r_time_usec.__class__ is bool:
-            raise _enc('gps_raw_int', 'time_usec', r_time_usec, 'type', 'an int')
-        if not 0 <= r_time_usec <= 18446744073709551615:
-            raise _enc('gps_raw_int', 'time_usec', r_time_usec, 'range', '0..18446744073709551615', None)
     r_lat = m.lat
-    if r_lat.__class__ is not int or not -2147483648 <= r_lat <= 2147483647:
-        if not isinstance(r_lat, int) or r_lat.__class__ is bool:
-            raise _enc('gps_raw_int', 'lat', r_lat, 'type', 'an int')
-        if not -2147483648 <= r_lat <= 2147483647:
-            raise _enc('gps_raw_int', 'lat', r_lat, 'range', '-2147483648..2147483647', None)
     r_lon = m.lon
-    if r_lon.__class__ is not int or not -2147483648 <= r_lon <= 2147483647:
-        if not isinstance(r_lon, int) or r_lon.__class__ is bool:
-            raise _enc('gps_raw_int', 'lon', r_lon, 'type', 'an int')
-        if not -2147483648 <= r_lon <= 2147483647:
-            raise _enc('gps_raw_int', 'lon', r_lon, 'range', '-2147483648..2147483647', None)
     r_alt = m.alt
-    if r_alt.__class__ is not int or not -2147483648 <= r_alt <= 2147483647:
-        if not isinstance(r_alt, int) or r_alt.__class__ is bool:
-            raise _enc('gps_raw_int', 'alt', r_alt, 'type', 'an int')
-        if not -2147483648 <= r_alt <= 2147483647:
-            raise _enc('gps_raw_int', 'alt', r_alt, 'range', '-2147483648..2147483647', None)
     r_eph = m.eph
-    if r_eph.__class__ is not int or not 0 <= r_eph <= 65535:
-        if not isinstance(r_eph, int) or r_eph.__class__ is bool:
-            raise _enc('gps_raw_int', 'eph', r_eph, 'type', 'an int')
-        if not 0 <= r_eph <= 65535:
-            raise _enc('gps_raw_int', 'eph', r_eph, 'range', '0..65535', None)
     r_epv = m.epv
-    if r_epv.__class__ is not int or not 0 <= r_epv <= 65535:
-        if not isinstance(r_epv, int) or r_epv.__class__ is bool:
-            raise _enc('gps_raw_int', 'epv', r_epv, 'type', 'an int')
-        if not 0 <= r_epv <= 65535:
-            raise _enc('gps_raw_int', 'epv', r_epv, 'range', '0..65535', None)
     r_vel = m.vel
-    if r_vel.__class__ is not int or not 0 <= r_vel <= 65535:
-        if not isinstance(r_vel, int) or r_vel.__class__ is bool:
-            raise _enc('gps_raw_int', 'vel', r_vel, 'type', 'an int')
-        if not 0 <= r_vel <= 65535:
-            raise _enc('gps_raw_int', 'vel', r_vel, 'range', '0..65535', None)
     r_cog = m.cog
-    if r_cog.__class__ is not int or not 0 <= r_cog <= 65535:
-        if not isinstance(r_cog, int) or r_cog.__class__ is bool:
-            raise _enc('gps_raw_int', 'cog', r_cog, 'type', 'an int')
-        if not 0 <= r_cog <= 65535:
-            raise _enc('gps_raw_int', 'cog', r_cog, 'range', '0..65535', None)
     r_fix_type = m.fix_type
-    if r_fix_type.__class__ is not int or not 0 <= r_fix_type <= 255:
-        if not isinstance(r_fix_type, int) or r_fix_type.__class__ is bool:
-            raise _enc('gps_raw_int', 'fix_type', r_fix_type, 'type', 'an int')
-        if not 0 <= r_fix_type <= 255:
-            raise _enc('gps_raw_int', 'fix_type', r_fix_type, 'range', '0..255', None)
     r_satellites_visible = m.satellites_visible
-    if r_satellites_visible.__class__ is not int or not 0 <= r_satellites_visible <= 255:
-        if not isinstance(r_satellites_visible, int) or r_satellites_visible.__class__ is bool:
-            raise _enc('gps_raw_int', 'satellites_visible', r_satellites_visible, 'type', 'an int')
-        if not 0 <= r_satellites_visible <= 255:
-            raise _enc('gps_raw_int', 'satellites_visible', r_satellites_visible, 'range', '0..255', None)
+    if (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255) or (r_time_usec.__class__ is not int or not 0 <= r_time_usec <= 18446744073709551615) or (r_lat.__class__ is not int or not -2147483648 <= r_lat <= 2147483647) or (r_lon.__class__ is not int or not -2147483648 <= r_lon <= 2147483647) or (r_alt.__class__ is not int or not -2147483648 <= r_alt <= 2147483647) or (r_eph.__class__ is not int or not 0 <= r_eph <= 65535) or (r_epv.__class__ is not int or not 0 <= r_epv <= 65535) or (r_vel.__class__ is not int or not 0 <= r_vel <= 65535) or (r_cog.__class__ is not int or not 0 <= r_cog <= 65535) or (r_fix_type.__class__ is not int or not 0 <= r_fix_type <= 255) or (r_satellites_visible.__class__ is not int or not 0 <= r_satellites_visible <= 255):
+        if r_seq.__class__ is not int or not 0 <= r_seq <= 255:
+            if not isinstance(r_seq, int) or r_seq.__class__ is bool:
+                raise _enc('gps_raw_int', 'seq', r_seq, 'type', 'an int')
+            if not 0 <= r_seq <= 255:
+                raise _enc('gps_raw_int', 'seq', r_seq, 'range', '0..255', None)
+        if r_sysid.__class__ is not int or not 0 <= r_sysid <= 255:
+            if not isinstance(r_sysid, int) or r_sysid.__class__ is bool:
+                raise _enc('gps_raw_int', 'sysid', r_sysid, 'type', 'an int')
+            if not 0 <= r_sysid <= 255:
+                raise _enc('gps_raw_int', 'sysid', r_sysid, 'range', '0..255', None)
+        if r_compid.__class__ is not int or not 0 <= r_compid <= 255:
+            if not isinstance(r_compid, int) or r_compid.__class__ is bool:
+                raise _enc('gps_raw_int', 'compid', r_compid, 'type', 'an int')
+            if not 0 <= r_compid <= 255:
+                raise _enc('gps_raw_int', 'compid', r_compid, 'range', '0..255', None)
+        if r_time_usec.__class__ is not int or not 0 <= r_time_usec <= 18446744073709551615:
+            if not isinstance(r_time_usec, int) or r_time_usec.__class__ is bool:
+                raise _enc('gps_raw_int', 'time_usec', r_time_usec, 'type', 'an int')
+            if not 0 <= r_time_usec <= 18446744073709551615:
+                raise _enc('gps_raw_int', 'time_usec', r_time_usec, 'range', '0..18446744073709551615', None)
+        if r_lat.__class__ is not int or not -2147483648 <= r_lat <= 2147483647:
+            if not isinstance(r_lat, int) or r_lat.__class__ is bool:
+                raise _enc('gps_raw_int', 'lat', r_lat, 'type', 'an int')
+            if not -2147483648 <= r_lat <= 2147483647:
+                raise _enc('gps_raw_int', 'lat', r_lat, 'range', '-2147483648..2147483647', None)
+        if r_lon.__class__ is not int or not -2147483648 <= r_lon <= 2147483647:
+            if not isinstance(r_lon, int) or r_lon.__class__ is bool:
+                raise _enc('gps_raw_int', 'lon', r_lon, 'type', 'an int')
+            if not -2147483648 <= r_lon <= 2147483647:
+                raise _enc('gps_raw_int', 'lon', r_lon, 'range', '-2147483648..2147483647', None)
+        if r_alt.__class__ is not int or not -2147483648 <= r_alt <= 2147483647:
+            if not isinstance(r_alt, int) or r_alt.__class__ is bool:
+                raise _enc('gps_raw_int', 'alt', r_alt, 'type', 'an int')
+            if not -2147483648 <= r_alt <= 2147483647:
+                raise _enc('gps_raw_int', 'alt', r_alt, 'range', '-2147483648..2147483647', None)
+        if r_eph.__class__ is not int or not 0 <= r_eph <= 65535:
+            if not isinstance(r_eph, int) or r_eph.__class__ is bool:
+                raise _enc('gps_raw_int', 'eph', r_eph, 'type', 'an int')
+            if not 0 <= r_eph <= 65535:
+                raise _enc('gps_raw_int', 'eph', r_eph, 'range', '0..65535', None)
+        if r_epv.__class__ is not int or not 0 <= r_epv <= 65535:
+            if not isinstance(r_epv, int) or r_epv.__class__ is bool:
+                raise _enc('gps_raw_int', 'epv', r_epv, 'type', 'an int')
+            if not 0 <= r_epv <= 65535:
+                raise _enc('gps_raw_int', 'epv', r_epv, 'range', '0..65535', None)
+        if r_vel.__class__ is not int or not 0 <= r_vel <= 65535:
+            if not isinstance(r_vel, int) or r_vel.__class__ is bool:
+                raise _enc('gps_raw_int', 'vel', r_vel, 'type', 'an int')
+            if not 0 <= r_vel <= 65535:
+                raise _enc('gps_raw_int', 'vel', r_vel, 'range', '0..65535', None)
+        if r_cog.__class__ is not int or not 0 <= r_cog <= 65535:
+            if not isinstance(r_cog, int) or r_cog.__class__ is bool:
+                raise _enc('gps_raw_int', 'cog', r_cog, 'type', 'an int')
+            if not 0 <= r_cog <= 65535:
+                raise _enc('gps_raw_int', 'cog', r_cog, 'range', '0..65535', None)
+        if r_fix_type.__class__ is not int or not 0 <= r_fix_type <= 255:
+            if not isinstance(r_fix_type, int) or r_fix_type.__class__ is bool:
+                raise _enc('gps_raw_int', 'fix_type', r_fix_type, 'type', 'an int')
+            if not 0 <= r_fix_type <= 255:
+                raise _enc('gps_raw_int', 'fix_type', r_fix_type, 'range', '0..255', None)
+        if r_satellites_visible.__class__ is not int or not 0 <= r_satellites_visible <= 255:
+            if not isinstance(r_satellites_visible, int) or r_satellites_visible.__class__ is bool:
+                raise _enc('gps_raw_int', 'satellites_visible', r_satellites_visible, 'type', 'an int')
+            if not 0 <= r_satellites_visible <= 255:
+                raise _enc('gps_raw_int', 'satellites_visible', r_satellites_visible, 'range', '0..255', None)
     r_checksum = 0
     b = bytearray(38)
     _S_gps_raw_int_0.pack_into(b, 0, 254, 30, r_seq, r_sysid, r_compid, 24, r_time_usec, r_lat, r_lon, r_alt, r_eph, r_epv, r_vel, r_cog, r_fix_type, r_satellites_visible, r_checksum)
@@ -1211,29 +1216,30 @@ def _decode_gps_raw_int(d: _Buffer) -> GpsRawInt:
 
 def _encode_attitude(m: Attitude) -> bytes:
     r_seq = m.seq
-    if r_seq.__class__ is not int or not 0 <= r_seq <= 255:
-        if not isinstance(r_seq, int) or r_seq.__class__ is bool:
-            raise _enc('attitude', 'seq', r_seq, 'type', 'an int')
-        if not 0 <= r_seq <= 255:
-            raise _enc('attitude', 'seq', r_seq, 'range', '0..255', None)
     r_sysid = m.sysid
-    if r_sysid.__class__ is not int or not 0 <= r_sysid <= 255:
-        if not isinstance(r_sysid, int) or r_sysid.__class__ is bool:
-            raise _enc('attitude', 'sysid', r_sysid, 'type', 'an int')
-        if not 0 <= r_sysid <= 255:
-            raise _enc('attitude', 'sysid', r_sysid, 'range', '0..255', None)
     r_compid = m.compid
-    if r_compid.__class__ is not int or not 0 <= r_compid <= 255:
-        if not isinstance(r_compid, int) or r_compid.__class__ is bool:
-            raise _enc('attitude', 'compid', r_compid, 'type', 'an int')
-        if not 0 <= r_compid <= 255:
-            raise _enc('attitude', 'compid', r_compid, 'range', '0..255', None)
     r_time_boot_ms = m.time_boot_ms
-    if r_time_boot_ms.__class__ is not int or not 0 <= r_time_boot_ms <= 4294967295:
-        if not isinstance(r_time_boot_ms, int) or r_time_boot_ms.__class__ is bool:
-            raise _enc('attitude', 'time_boot_ms', r_time_boot_ms, 'type', 'an int')
-        if not 0 <= r_time_boot_ms <= 4294967295:
-            raise _enc('attitude', 'time_boot_ms', r_time_boot_ms, 'range', '0..4294967295', None)
+    if (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255) or (r_time_boot_ms.__class__ is not int or not 0 <= r_time_boot_ms <= 4294967295):
+        if r_seq.__class__ is not int or not 0 <= r_seq <= 255:
+            if not isinstance(r_seq, int) or r_seq.__class__ is bool:
+                raise _enc('attitude', 'seq', r_seq, 'type', 'an int')
+            if not 0 <= r_seq <= 255:
+                raise _enc('attitude', 'seq', r_seq, 'range', '0..255', None)
+        if r_sysid.__class__ is not int or not 0 <= r_sysid <= 255:
+            if not isinstance(r_sysid, int) or r_sysid.__class__ is bool:
+                raise _enc('attitude', 'sysid', r_sysid, 'type', 'an int')
+            if not 0 <= r_sysid <= 255:
+                raise _enc('attitude', 'sysid', r_sysid, 'range', '0..255', None)
+        if r_compid.__class__ is not int or not 0 <= r_compid <= 255:
+            if not isinstance(r_compid, int) or r_compid.__class__ is bool:
+                raise _enc('attitude', 'compid', r_compid, 'type', 'an int')
+            if not 0 <= r_compid <= 255:
+                raise _enc('attitude', 'compid', r_compid, 'range', '0..255', None)
+        if r_time_boot_ms.__class__ is not int or not 0 <= r_time_boot_ms <= 4294967295:
+            if not isinstance(r_time_boot_ms, int) or r_time_boot_ms.__class__ is bool:
+                raise _enc('attitude', 'time_boot_ms', r_time_boot_ms, 'type', 'an int')
+            if not 0 <= r_time_boot_ms <= 4294967295:
+                raise _enc('attitude', 'time_boot_ms', r_time_boot_ms, 'range', '0..4294967295', None)
     r_roll = m.roll
     if r_roll.__class__ is not float:
         if not isinstance(r_roll, (int, float)) or r_roll.__class__ is bool:
@@ -1345,23 +1351,24 @@ def _decode_attitude(d: _Buffer) -> Attitude:
 
 def _encode_command_long(m: CommandLong) -> bytes:
     r_seq = m.seq
-    if r_seq.__class__ is not int or not 0 <= r_seq <= 255:
-        if not isinstance(r_seq, int) or r_seq.__class__ is bool:
-            raise _enc('command_long', 'seq', r_seq, 'type', 'an int')
-        if not 0 <= r_seq <= 255:
-            raise _enc('command_long', 'seq', r_seq, 'range', '0..255', None)
     r_sysid = m.sysid
-    if r_sysid.__class__ is not int or not 0 <= r_sysid <= 255:
-        if not isinstance(r_sysid, int) or r_sysid.__class__ is bool:
-            raise _enc('command_long', 'sysid', r_sysid, 'type', 'an int')
-        if not 0 <= r_sysid <= 255:
-            raise _enc('command_long', 'sysid', r_sysid, 'range', '0..255', None)
     r_compid = m.compid
-    if r_compid.__class__ is not int or not 0 <= r_compid <= 255:
-        if not isinstance(r_compid, int) or r_compid.__class__ is bool:
-            raise _enc('command_long', 'compid', r_compid, 'type', 'an int')
-        if not 0 <= r_compid <= 255:
-            raise _enc('command_long', 'compid', r_compid, 'range', '0..255', None)
+    if (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255):
+        if r_seq.__class__ is not int or not 0 <= r_seq <= 255:
+            if not isinstance(r_seq, int) or r_seq.__class__ is bool:
+                raise _enc('command_long', 'seq', r_seq, 'type', 'an int')
+            if not 0 <= r_seq <= 255:
+                raise _enc('command_long', 'seq', r_seq, 'range', '0..255', None)
+        if r_sysid.__class__ is not int or not 0 <= r_sysid <= 255:
+            if not isinstance(r_sysid, int) or r_sysid.__class__ is bool:
+                raise _enc('command_long', 'sysid', r_sysid, 'type', 'an int')
+            if not 0 <= r_sysid <= 255:
+                raise _enc('command_long', 'sysid', r_sysid, 'range', '0..255', None)
+        if r_compid.__class__ is not int or not 0 <= r_compid <= 255:
+            if not isinstance(r_compid, int) or r_compid.__class__ is bool:
+                raise _enc('command_long', 'compid', r_compid, 'type', 'an int')
+            if not 0 <= r_compid <= 255:
+                raise _enc('command_long', 'compid', r_compid, 'range', '0..255', None)
     r_param1 = m.param1
     if r_param1.__class__ is not float:
         if not isinstance(r_param1, (int, float)) or r_param1.__class__ is bool:
@@ -1433,29 +1440,30 @@ def _encode_command_long(m: CommandLong) -> bytes:
     if r_param7 > 3.4028234663852886e38 or r_param7 < -3.4028234663852886e38:
         raise _enc('command_long', 'param7', r_param7, 'range', 'a binary32 value')
     r_command = m.command
-    if r_command.__class__ is not int or not 0 <= r_command <= 65535:
-        if not isinstance(r_command, int) or r_command.__class__ is bool:
-            raise _enc('command_long', 'command', r_command, 'type', 'an int')
-        if not 0 <= r_command <= 65535:
-            raise _enc('command_long', 'command', r_command, 'range', '0..65535', None)
     r_target_system = m.target_system
-    if r_target_system.__class__ is not int or not 0 <= r_target_system <= 255:
-        if not isinstance(r_target_system, int) or r_target_system.__class__ is bool:
-            raise _enc('command_long', 'target_system', r_target_system, 'type', 'an int')
-        if not 0 <= r_target_system <= 255:
-            raise _enc('command_long', 'target_system', r_target_system, 'range', '0..255', None)
     r_target_component = m.target_component
-    if r_target_component.__class__ is not int or not 0 <= r_target_component <= 255:
-        if not isinstance(r_target_component, int) or r_target_component.__class__ is bool:
-            raise _enc('command_long', 'target_component', r_target_component, 'type', 'an int')
-        if not 0 <= r_target_component <= 255:
-            raise _enc('command_long', 'target_component', r_target_component, 'range', '0..255', None)
     r_confirmation = m.confirmation
-    if r_confirmation.__class__ is not int or not 0 <= r_confirmation <= 255:
-        if not isinstance(r_confirmation, int) or r_confirmation.__class__ is bool:
-            raise _enc('command_long', 'confirmation', r_confirmation, 'type', 'an int')
-        if not 0 <= r_confirmation <= 255:
-            raise _enc('command_long', 'confirmation', r_confirmation, 'range', '0..255', None)
+    if (r_command.__class__ is not int or not 0 <= r_command <= 65535) or (r_target_system.__class__ is not int or not 0 <= r_target_system <= 255) or (r_target_component.__class__ is not int or not 0 <= r_target_component <= 255) or (r_confirmation.__class__ is not int or not 0 <= r_confirmation <= 255):
+        if r_command.__class__ is not int or not 0 <= r_command <= 65535:
+            if not isinstance(r_command, int) or r_command.__class__ is bool:
+                raise _enc('command_long', 'command', r_command, 'type', 'an int')
+            if not 0 <= r_command <= 65535:
+                raise _enc('command_long', 'command', r_command, 'range', '0..65535', None)
+        if r_target_system.__class__ is not int or not 0 <= r_target_system <= 255:
+            if not isinstance(r_target_system, int) or r_target_system.__class__ is bool:
+                raise _enc('command_long', 'target_system', r_target_system, 'type', 'an int')
+            if not 0 <= r_target_system <= 255:
+                raise _enc('command_long', 'target_system', r_target_system, 'range', '0..255', None)
+        if r_target_component.__class__ is not int or not 0 <= r_target_component <= 255:
+            if not isinstance(r_target_component, int) or r_target_component.__class__ is bool:
+                raise _enc('command_long', 'target_component', r_target_component, 'type', 'an int')
+            if not 0 <= r_target_component <= 255:
+                raise _enc('command_long', 'target_component', r_target_component, 'range', '0..255', None)
+        if r_confirmation.__class__ is not int or not 0 <= r_confirmation <= 255:
+            if not isinstance(r_confirmation, int) or r_confirmation.__class__ is bool:
+                raise _enc('command_long', 'confirmation', r_confirmation, 'type', 'an int')
+            if not 0 <= r_confirmation <= 255:
+                raise _enc('command_long', 'confirmation', r_confirmation, 'range', '0..255', None)
     r_checksum = 0
     b = bytearray(41)
     _S_command_long_0.pack_into(b, 0, 254, 33, r_seq, r_sysid, r_compid, 76, r_param1, r_param2, r_param3, r_param4, r_param5, r_param6, r_param7, r_command, r_target_system, r_target_component, r_confirmation, r_checksum)

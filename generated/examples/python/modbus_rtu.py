@@ -147,6 +147,7 @@ class ExceptionCode(enum.IntEnum):
 
 _ENUM_exception_code: dict[int, ExceptionCode] = {1: ExceptionCode.illegal_function, 2: ExceptionCode.illegal_data_address, 3: ExceptionCode.illegal_data_value, 4: ExceptionCode.server_device_failure, 5: ExceptionCode.acknowledge, 6: ExceptionCode.server_device_busy, 8: ExceptionCode.memory_parity_error, 10: ExceptionCode.gateway_path_unavailable, 11: ExceptionCode.gateway_target_failed, }
 _VALUES_exception_code = frozenset(_ENUM_exception_code)
+_RAW_exception_code: dict[int, int] = {v: v for v in _VALUES_exception_code}  # a member or its value → the int, in one lookup
 
 
 # How to_dict and from_dict convert each field: (name, kind, class, optional, array, required);
@@ -510,23 +511,24 @@ def _as_input(data: object) -> _Buffer:
 
 def _encode_read_holding_registers(m: ReadHoldingRegisters) -> bytes:
     r_address = m.address
-    if r_address.__class__ is not int or not 0 <= r_address <= 255:
-        if not isinstance(r_address, int) or r_address.__class__ is bool:
-            raise _enc('read_holding_registers', 'address', r_address, 'type', 'an int')
-        if not 0 <= r_address <= 255:
-            raise _enc('read_holding_registers', 'address', r_address, 'range', '0..255', None)
     r_start = m.start
-    if r_start.__class__ is not int or not 0 <= r_start <= 65535:
-        if not isinstance(r_start, int) or r_start.__class__ is bool:
-            raise _enc('read_holding_registers', 'start', r_start, 'type', 'an int')
-        if not 0 <= r_start <= 65535:
-            raise _enc('read_holding_registers', 'start', r_start, 'range', '0..65535', None)
     r_quantity = m.quantity
-    if r_quantity.__class__ is not int or not 1 <= r_quantity <= 125:
-        if not isinstance(r_quantity, int) or r_quantity.__class__ is bool:
-            raise _enc('read_holding_registers', 'quantity', r_quantity, 'type', 'an int')
-        if not 1 <= r_quantity <= 125:
-            raise _enc('read_holding_registers', 'quantity', r_quantity, 'range', '1..125', None)
+    if (r_address.__class__ is not int or not 0 <= r_address <= 255) or (r_start.__class__ is not int or not 0 <= r_start <= 65535) or (r_quantity.__class__ is not int or not 1 <= r_quantity <= 125):
+        if r_address.__class__ is not int or not 0 <= r_address <= 255:
+            if not isinstance(r_address, int) or r_address.__class__ is bool:
+                raise _enc('read_holding_registers', 'address', r_address, 'type', 'an int')
+            if not 0 <= r_address <= 255:
+                raise _enc('read_holding_registers', 'address', r_address, 'range', '0..255', None)
+        if r_start.__class__ is not int or not 0 <= r_start <= 65535:
+            if not isinstance(r_start, int) or r_start.__class__ is bool:
+                raise _enc('read_holding_registers', 'start', r_start, 'type', 'an int')
+            if not 0 <= r_start <= 65535:
+                raise _enc('read_holding_registers', 'start', r_start, 'range', '0..65535', None)
+        if r_quantity.__class__ is not int or not 1 <= r_quantity <= 125:
+            if not isinstance(r_quantity, int) or r_quantity.__class__ is bool:
+                raise _enc('read_holding_registers', 'quantity', r_quantity, 'type', 'an int')
+            if not 1 <= r_quantity <= 125:
+                raise _enc('read_holding_registers', 'quantity', r_quantity, 'range', '1..125', None)
     h = _S_read_holding_registers_0.pack(r_address, 3, r_start, r_quantity)
     return h + _checksum_crc16_8005_ffff_rr_0_6(h, 0).to_bytes(2, 'little')
 
@@ -1733,23 +1735,24 @@ def _decode_read_holding_registers_response(d: _Buffer) -> ReadHoldingRegistersR
 
 def _encode_write_multiple_registers(m: WriteMultipleRegisters) -> bytes:
     r_address = m.address
-    if r_address.__class__ is not int or not 0 <= r_address <= 255:
-        if not isinstance(r_address, int) or r_address.__class__ is bool:
-            raise _enc('write_multiple_registers', 'address', r_address, 'type', 'an int')
-        if not 0 <= r_address <= 255:
-            raise _enc('write_multiple_registers', 'address', r_address, 'range', '0..255', None)
     r_start = m.start
-    if r_start.__class__ is not int or not 0 <= r_start <= 65535:
-        if not isinstance(r_start, int) or r_start.__class__ is bool:
-            raise _enc('write_multiple_registers', 'start', r_start, 'type', 'an int')
-        if not 0 <= r_start <= 65535:
-            raise _enc('write_multiple_registers', 'start', r_start, 'range', '0..65535', None)
     r_quantity = m.quantity
-    if r_quantity.__class__ is not int or not 1 <= r_quantity <= 123:
-        if not isinstance(r_quantity, int) or r_quantity.__class__ is bool:
-            raise _enc('write_multiple_registers', 'quantity', r_quantity, 'type', 'an int')
-        if not 1 <= r_quantity <= 123:
-            raise _enc('write_multiple_registers', 'quantity', r_quantity, 'range', '1..123', None)
+    if (r_address.__class__ is not int or not 0 <= r_address <= 255) or (r_start.__class__ is not int or not 0 <= r_start <= 65535) or (r_quantity.__class__ is not int or not 1 <= r_quantity <= 123):
+        if r_address.__class__ is not int or not 0 <= r_address <= 255:
+            if not isinstance(r_address, int) or r_address.__class__ is bool:
+                raise _enc('write_multiple_registers', 'address', r_address, 'type', 'an int')
+            if not 0 <= r_address <= 255:
+                raise _enc('write_multiple_registers', 'address', r_address, 'range', '0..255', None)
+        if r_start.__class__ is not int or not 0 <= r_start <= 65535:
+            if not isinstance(r_start, int) or r_start.__class__ is bool:
+                raise _enc('write_multiple_registers', 'start', r_start, 'type', 'an int')
+            if not 0 <= r_start <= 65535:
+                raise _enc('write_multiple_registers', 'start', r_start, 'range', '0..65535', None)
+        if r_quantity.__class__ is not int or not 1 <= r_quantity <= 123:
+            if not isinstance(r_quantity, int) or r_quantity.__class__ is bool:
+                raise _enc('write_multiple_registers', 'quantity', r_quantity, 'type', 'an int')
+            if not 1 <= r_quantity <= 123:
+                raise _enc('write_multiple_registers', 'quantity', r_quantity, 'range', '1..123', None)
     g_values = m.values
     if not isinstance(g_values, (list, tuple)) or len(g_values) > 123:
         raise _enc('write_multiple_registers', 'values', g_values, 'count', 'a list of at most 123 values')
@@ -2909,23 +2912,24 @@ def _decode_write_multiple_registers(d: _Buffer) -> WriteMultipleRegisters:
 
 def _encode_write_multiple_registers_response(m: WriteMultipleRegistersResponse) -> bytes:
     r_address = m.address
-    if r_address.__class__ is not int or not 0 <= r_address <= 255:
-        if not isinstance(r_address, int) or r_address.__class__ is bool:
-            raise _enc('write_multiple_registers_response', 'address', r_address, 'type', 'an int')
-        if not 0 <= r_address <= 255:
-            raise _enc('write_multiple_registers_response', 'address', r_address, 'range', '0..255', None)
     r_start = m.start
-    if r_start.__class__ is not int or not 0 <= r_start <= 65535:
-        if not isinstance(r_start, int) or r_start.__class__ is bool:
-            raise _enc('write_multiple_registers_response', 'start', r_start, 'type', 'an int')
-        if not 0 <= r_start <= 65535:
-            raise _enc('write_multiple_registers_response', 'start', r_start, 'range', '0..65535', None)
     r_quantity = m.quantity
-    if r_quantity.__class__ is not int or not 0 <= r_quantity <= 65535:
-        if not isinstance(r_quantity, int) or r_quantity.__class__ is bool:
-            raise _enc('write_multiple_registers_response', 'quantity', r_quantity, 'type', 'an int')
-        if not 0 <= r_quantity <= 65535:
-            raise _enc('write_multiple_registers_response', 'quantity', r_quantity, 'range', '0..65535', None)
+    if (r_address.__class__ is not int or not 0 <= r_address <= 255) or (r_start.__class__ is not int or not 0 <= r_start <= 65535) or (r_quantity.__class__ is not int or not 0 <= r_quantity <= 65535):
+        if r_address.__class__ is not int or not 0 <= r_address <= 255:
+            if not isinstance(r_address, int) or r_address.__class__ is bool:
+                raise _enc('write_multiple_registers_response', 'address', r_address, 'type', 'an int')
+            if not 0 <= r_address <= 255:
+                raise _enc('write_multiple_registers_response', 'address', r_address, 'range', '0..255', None)
+        if r_start.__class__ is not int or not 0 <= r_start <= 65535:
+            if not isinstance(r_start, int) or r_start.__class__ is bool:
+                raise _enc('write_multiple_registers_response', 'start', r_start, 'type', 'an int')
+            if not 0 <= r_start <= 65535:
+                raise _enc('write_multiple_registers_response', 'start', r_start, 'range', '0..65535', None)
+        if r_quantity.__class__ is not int or not 0 <= r_quantity <= 65535:
+            if not isinstance(r_quantity, int) or r_quantity.__class__ is bool:
+                raise _enc('write_multiple_registers_response', 'quantity', r_quantity, 'type', 'an int')
+            if not 0 <= r_quantity <= 65535:
+                raise _enc('write_multiple_registers_response', 'quantity', r_quantity, 'range', '0..65535', None)
     h = _S_write_multiple_registers_response_0.pack(r_address, 16, r_start, r_quantity)
     return h + _checksum_crc16_8005_ffff_rr_0_6(h, 0).to_bytes(2, 'little')
 
@@ -2952,23 +2956,24 @@ def _decode_write_multiple_registers_response(d: _Buffer) -> WriteMultipleRegist
 
 def _encode_exception_response(m: ExceptionResponse) -> bytes:
     r_address = m.address
-    if r_address.__class__ is not int or not 0 <= r_address <= 255:
-        if not isinstance(r_address, int) or r_address.__class__ is bool:
-            raise _enc('exception_response', 'address', r_address, 'type', 'an int')
-        if not 0 <= r_address <= 255:
-            raise _enc('exception_response', 'address', r_address, 'range', '0..255', None)
     r_function = m.function
-    if r_function.__class__ is not int or not 0 <= r_function <= 255:
-        if not isinstance(r_function, int) or r_function.__class__ is bool:
-            raise _enc('exception_response', 'function', r_function, 'type', 'an int')
-        if not 0 <= r_function <= 255:
-            raise _enc('exception_response', 'function', r_function, 'range', '0..255', None)
+    if (r_address.__class__ is not int or not 0 <= r_address <= 255) or (r_function.__class__ is not int or not 0 <= r_function <= 255):
+        if r_address.__class__ is not int or not 0 <= r_address <= 255:
+            if not isinstance(r_address, int) or r_address.__class__ is bool:
+                raise _enc('exception_response', 'address', r_address, 'type', 'an int')
+            if not 0 <= r_address <= 255:
+                raise _enc('exception_response', 'address', r_address, 'range', '0..255', None)
+        if r_function.__class__ is not int or not 0 <= r_function <= 255:
+            if not isinstance(r_function, int) or r_function.__class__ is bool:
+                raise _enc('exception_response', 'function', r_function, 'type', 'an int')
+            if not 0 <= r_function <= 255:
+                raise _enc('exception_response', 'function', r_function, 'range', '0..255', None)
     if r_function not in (129, 130, 131, 132, 133, 134, 143, 144):
         raise _enc('exception_response', 'function', r_function, 'values', '129, 130, 131, 132, 133, 134, 143, 144', None)
     r_exception_code: Any = m.exception_code
     if r_exception_code.__class__ is not ExceptionCode and (not isinstance(r_exception_code, int) or r_exception_code.__class__ is bool or isinstance(r_exception_code, enum.Enum) or r_exception_code not in _VALUES_exception_code):
         raise _enc('exception_response', 'exception_code', r_exception_code, 'enum', 'ExceptionCode', None)
-    r_exception_code = cast(Any, r_exception_code)._value_ if r_exception_code.__class__ is ExceptionCode else int(r_exception_code)
+    r_exception_code = _RAW_exception_code[r_exception_code]
     r_crc = 0
     b = bytearray(5)
     _S_exception_response_0.pack_into(b, 0, r_address, r_function, r_exception_code, r_crc)

@@ -656,17 +656,18 @@ def _as_input(data: object) -> _Buffer:
 
 def _encode_ack_nak(m: AckNak) -> bytes:
     r_clsID = m.clsID
-    if r_clsID.__class__ is not int or not 0 <= r_clsID <= 255:
-        if not isinstance(r_clsID, int) or r_clsID.__class__ is bool:
-            raise _enc('ack_nak', 'clsID', r_clsID, 'type', 'an int')
-        if not 0 <= r_clsID <= 255:
-            raise _enc('ack_nak', 'clsID', r_clsID, 'range', '0..255', None)
     r_msgID = m.msgID
-    if r_msgID.__class__ is not int or not 0 <= r_msgID <= 255:
-        if not isinstance(r_msgID, int) or r_msgID.__class__ is bool:
-            raise _enc('ack_nak', 'msgID', r_msgID, 'type', 'an int')
-        if not 0 <= r_msgID <= 255:
-            raise _enc('ack_nak', 'msgID', r_msgID, 'range', '0..255', None)
+    if (r_clsID.__class__ is not int or not 0 <= r_clsID <= 255) or (r_msgID.__class__ is not int or not 0 <= r_msgID <= 255):
+        if r_clsID.__class__ is not int or not 0 <= r_clsID <= 255:
+            if not isinstance(r_clsID, int) or r_clsID.__class__ is bool:
+                raise _enc('ack_nak', 'clsID', r_clsID, 'type', 'an int')
+            if not 0 <= r_clsID <= 255:
+                raise _enc('ack_nak', 'clsID', r_clsID, 'range', '0..255', None)
+        if r_msgID.__class__ is not int or not 0 <= r_msgID <= 255:
+            if not isinstance(r_msgID, int) or r_msgID.__class__ is bool:
+                raise _enc('ack_nak', 'msgID', r_msgID, 'type', 'an int')
+            if not 0 <= r_msgID <= 255:
+                raise _enc('ack_nak', 'msgID', r_msgID, 'range', '0..255', None)
     r_checksum = 0
     b = bytearray(10)
     _S_ack_nak_0.pack_into(b, 0, 181, 98, 5, 0, 2, r_clsID, r_msgID, r_checksum)
@@ -702,17 +703,18 @@ def _decode_ack_nak(d: _Buffer) -> AckNak:
 
 def _encode_ack_ack(m: AckAck) -> bytes:
     r_clsID = m.clsID
-    if r_clsID.__class__ is not int or not 0 <= r_clsID <= 255:
-        if not isinstance(r_clsID, int) or r_clsID.__class__ is bool:
-            raise _enc('ack_ack', 'clsID', r_clsID, 'type', 'an int')
-        if not 0 <= r_clsID <= 255:
-            raise _enc('ack_ack', 'clsID', r_clsID, 'range', '0..255', None)
     r_msgID = m.msgID
-    if r_msgID.__class__ is not int or not 0 <= r_msgID <= 255:
-        if not isinstance(r_msgID, int) or r_msgID.__class__ is bool:
-            raise _enc('ack_ack', 'msgID', r_msgID, 'type', 'an int')
-        if not 0 <= r_msgID <= 255:
-            raise _enc('ack_ack', 'msgID', r_msgID, 'range', '0..255', None)
+    if (r_clsID.__class__ is not int or not 0 <= r_clsID <= 255) or (r_msgID.__class__ is not int or not 0 <= r_msgID <= 255):
+        if r_clsID.__class__ is not int or not 0 <= r_clsID <= 255:
+            if not isinstance(r_clsID, int) or r_clsID.__class__ is bool:
+                raise _enc('ack_ack', 'clsID', r_clsID, 'type', 'an int')
+            if not 0 <= r_clsID <= 255:
+                raise _enc('ack_ack', 'clsID', r_clsID, 'range', '0..255', None)
+        if r_msgID.__class__ is not int or not 0 <= r_msgID <= 255:
+            if not isinstance(r_msgID, int) or r_msgID.__class__ is bool:
+                raise _enc('ack_ack', 'msgID', r_msgID, 'type', 'an int')
+            if not 0 <= r_msgID <= 255:
+                raise _enc('ack_ack', 'msgID', r_msgID, 'range', '0..255', None)
     r_checksum = 0
     b = bytearray(10)
     _S_ack_ack_0.pack_into(b, 0, 181, 98, 5, 1, 2, r_clsID, r_msgID, r_checksum)
@@ -780,23 +782,24 @@ def _decode_cfg_rate_poll(d: _Buffer) -> CfgRatePoll:
 
 def _encode_cfg_rate(m: CfgRate) -> bytes:
     r_measRate = m.measRate
-    if r_measRate.__class__ is not int or not 0 <= r_measRate <= 65535:
-        if not isinstance(r_measRate, int) or r_measRate.__class__ is bool:
-            raise _enc('cfg_rate', 'measRate', r_measRate, 'type', 'an int')
-        if not 0 <= r_measRate <= 65535:
-            raise _enc('cfg_rate', 'measRate', r_measRate, 'range', '0..65535', None)
     r_navRate = m.navRate
-    if r_navRate.__class__ is not int or not 0 <= r_navRate <= 65535:
-        if not isinstance(r_navRate, int) or r_navRate.__class__ is bool:
-            raise _enc('cfg_rate', 'navRate', r_navRate, 'type', 'an int')
-        if not 0 <= r_navRate <= 65535:
-            raise _enc('cfg_rate', 'navRate', r_navRate, 'range', '0..65535', None)
     r_timeRef = m.timeRef
-    if r_timeRef.__class__ is not int or not 0 <= r_timeRef <= 65535:
-        if not isinstance(r_timeRef, int) or r_timeRef.__class__ is bool:
-            raise _enc('cfg_rate', 'timeRef', r_timeRef, 'type', 'an int')
-        if not 0 <= r_timeRef <= 65535:
-            raise _enc('cfg_rate', 'timeRef', r_timeRef, 'range', '0..65535', None)
+    if (r_measRate.__class__ is not int or not 0 <= r_measRate <= 65535) or (r_navRate.__class__ is not int or not 0 <= r_navRate <= 65535) or (r_timeRef.__class__ is not int or not 0 <= r_timeRef <= 65535):
+        if r_measRate.__class__ is not int or not 0 <= r_measRate <= 65535:
+            if not isinstance(r_measRate, int) or r_measRate.__class__ is bool:
+                raise _enc('cfg_rate', 'measRate', r_measRate, 'type', 'an int')
+            if not 0 <= r_measRate <= 65535:
+                raise _enc('cfg_rate', 'measRate', r_measRate, 'range', '0..65535', None)
+        if r_navRate.__class__ is not int or not 0 <= r_navRate <= 65535:
+            if not isinstance(r_navRate, int) or r_navRate.__class__ is bool:
+                raise _enc('cfg_rate', 'navRate', r_navRate, 'type', 'an int')
+            if not 0 <= r_navRate <= 65535:
+                raise _enc('cfg_rate', 'navRate', r_navRate, 'range', '0..65535', None)
+        if r_timeRef.__class__ is not int or not 0 <= r_timeRef <= 65535:
+            if not isinstance(r_timeRef, int) or r_timeRef.__class__ is bool:
+                raise _enc('cfg_rate', 'timeRef', r_timeRef, 'type', 'an int')
+            if not 0 <= r_timeRef <= 65535:
+                raise _enc('cfg_rate', 'timeRef', r_timeRef, 'range', '0..65535', None)
     r_checksum = 0
     b = bytearray(14)
     _S_cfg_rate_0.pack_into(b, 0, 181, 98, 6, 8, 6, r_measRate, r_navRate, r_timeRef, r_checksum)
@@ -853,29 +856,30 @@ def _encode_nav_posllh(m: NavPosllh) -> bytes:
             raise _enc('nav_posllh', 'lat', r_lat, 'range', '-214.7483648..214.7483647', None)
     r_lat = _floor(r_lat / 1e-07 + 0.5)
     r_height = m.height
-    if r_height.__class__ is not int or not -2147483648 <= r_height <= 2147483647:
-        if not isinstance(r_height, int) or r_height.__class__ is bool:
-            raise _enc('nav_posllh', 'height', r_height, 'type', 'an int')
-        if not -2147483648 <= r_height <= 2147483647:
-            raise _enc('nav_posllh', 'height', r_height, 'range', '-2147483648..2147483647', None)
     r_hMSL = m.hMSL
-    if r_hMSL.__class__ is not int or not -2147483648 <= r_hMSL <= 2147483647:
-        if not isinstance(r_hMSL, int) or r_hMSL.__class__ is bool:
-            raise _enc('nav_posllh', 'hMSL', r_hMSL, 'type', 'an int')
-        if not -2147483648 <= r_hMSL <= 2147483647:
-            raise _enc('nav_posllh', 'hMSL', r_hMSL, 'range', '-2147483648..2147483647', None)
     r_hAcc = m.hAcc
-    if r_hAcc.__class__ is not int or not 0 <= r_hAcc <= 4294967295:
-        if not isinstance(r_hAcc, int) or r_hAcc.__class__ is bool:
-            raise _enc('nav_posllh', 'hAcc', r_hAcc, 'type', 'an int')
-        if not 0 <= r_hAcc <= 4294967295:
-            raise _enc('nav_posllh', 'hAcc', r_hAcc, 'range', '0..4294967295', None)
     r_vAcc = m.vAcc
-    if r_vAcc.__class__ is not int or not 0 <= r_vAcc <= 4294967295:
-        if not isinstance(r_vAcc, int) or r_vAcc.__class__ is bool:
-            raise _enc('nav_posllh', 'vAcc', r_vAcc, 'type', 'an int')
-        if not 0 <= r_vAcc <= 4294967295:
-            raise _enc('nav_posllh', 'vAcc', r_vAcc, 'range', '0..4294967295', None)
+    if (r_height.__class__ is not int or not -2147483648 <= r_height <= 2147483647) or (r_hMSL.__class__ is not int or not -2147483648 <= r_hMSL <= 2147483647) or (r_hAcc.__class__ is not int or not 0 <= r_hAcc <= 4294967295) or (r_vAcc.__class__ is not int or not 0 <= r_vAcc <= 4294967295):
+        if r_height.__class__ is not int or not -2147483648 <= r_height <= 2147483647:
+            if not isinstance(r_height, int) or r_height.__class__ is bool:
+                raise _enc('nav_posllh', 'height', r_height, 'type', 'an int')
+            if not -2147483648 <= r_height <= 2147483647:
+                raise _enc('nav_posllh', 'height', r_height, 'range', '-2147483648..2147483647', None)
+        if r_hMSL.__class__ is not int or not -2147483648 <= r_hMSL <= 2147483647:
+            if not isinstance(r_hMSL, int) or r_hMSL.__class__ is bool:
+                raise _enc('nav_posllh', 'hMSL', r_hMSL, 'type', 'an int')
+            if not -2147483648 <= r_hMSL <= 2147483647:
+                raise _enc('nav_posllh', 'hMSL', r_hMSL, 'range', '-2147483648..2147483647', None)
+        if r_hAcc.__class__ is not int or not 0 <= r_hAcc <= 4294967295:
+            if not isinstance(r_hAcc, int) or r_hAcc.__class__ is bool:
+                raise _enc('nav_posllh', 'hAcc', r_hAcc, 'type', 'an int')
+            if not 0 <= r_hAcc <= 4294967295:
+                raise _enc('nav_posllh', 'hAcc', r_hAcc, 'range', '0..4294967295', None)
+        if r_vAcc.__class__ is not int or not 0 <= r_vAcc <= 4294967295:
+            if not isinstance(r_vAcc, int) or r_vAcc.__class__ is bool:
+                raise _enc('nav_posllh', 'vAcc', r_vAcc, 'type', 'an int')
+            if not 0 <= r_vAcc <= 4294967295:
+                raise _enc('nav_posllh', 'vAcc', r_vAcc, 'range', '0..4294967295', None)
     r_checksum = 0
     b = bytearray(36)
     _S_nav_posllh_0.pack_into(b, 0, 181, 98, 1, 2, 28, r_iTOW, r_lon, r_lat, r_height, r_hMSL, r_hAcc, r_vAcc, r_checksum)
@@ -916,47 +920,48 @@ def _decode_nav_posllh(d: _Buffer) -> NavPosllh:
 
 def _encode_nav_pvt(m: NavPvt) -> bytes:
     r_iTOW = m.iTOW
-    if r_iTOW.__class__ is not int or not 0 <= r_iTOW <= 4294967295:
-        if not isinstance(r_iTOW, int) or r_iTOW.__class__ is bool:
-            raise _enc('nav_pvt', 'iTOW', r_iTOW, 'type', 'an int')
-        if not 0 <= r_iTOW <= 4294967295:
-            raise _enc('nav_pvt', 'iTOW', r_iTOW, 'range', '0..4294967295', None)
     r_year = m.year
-    if r_year.__class__ is not int or not 0 <= r_year <= 65535:
-        if not isinstance(r_year, int) or r_year.__class__ is bool:
-            raise _enc('nav_pvt', 'year', r_year, 'type', 'an int')
-        if not 0 <= r_year <= 65535:
-            raise _enc('nav_pvt', 'year', r_year, 'range', '0..65535', None)
     r_month = m.month
-    if r_month.__class__ is not int or not 0 <= r_month <= 255:
-        if not isinstance(r_month, int) or r_month.__class__ is bool:
-            raise _enc('nav_pvt', 'month', r_month, 'type', 'an int')
-        if not 0 <= r_month <= 255:
-            raise _enc('nav_pvt', 'month', r_month, 'range', '0..255', None)
     r_day = m.day
-    if r_day.__class__ is not int or not 0 <= r_day <= 255:
-        if not isinstance(r_day, int) or r_day.__class__ is bool:
-            raise _enc('nav_pvt', 'day', r_day, 'type', 'an int')
-        if not 0 <= r_day <= 255:
-            raise _enc('nav_pvt', 'day', r_day, 'range', '0..255', None)
     r_hour = m.hour
-    if r_hour.__class__ is not int or not 0 <= r_hour <= 255:
-        if not isinstance(r_hour, int) or r_hour.__class__ is bool:
-            raise _enc('nav_pvt', 'hour', r_hour, 'type', 'an int')
-        if not 0 <= r_hour <= 255:
-            raise _enc('nav_pvt', 'hour', r_hour, 'range', '0..255', None)
     r_min = m.min
-    if r_min.__class__ is not int or not 0 <= r_min <= 255:
-        if not isinstance(r_min, int) or r_min.__class__ is bool:
-            raise _enc('nav_pvt', 'min', r_min, 'type', 'an int')
-        if not 0 <= r_min <= 255:
-            raise _enc('nav_pvt', 'min', r_min, 'range', '0..255', None)
     r_second = m.second
-    if r_second.__class__ is not int or not 0 <= r_second <= 255:
-        if not isinstance(r_second, int) or r_second.__class__ is bool:
-            raise _enc('nav_pvt', 'second', r_second, 'type', 'an int')
-        if not 0 <= r_second <= 255:
-            raise _enc('nav_pvt', 'second', r_second, 'range', '0..255', None)
+    if (r_iTOW.__class__ is not int or not 0 <= r_iTOW <= 4294967295) or (r_year.__class__ is not int or not 0 <= r_year <= 65535) or (r_month.__class__ is not int or not 0 <= r_month <= 255) or (r_day.__class__ is not int or not 0 <= r_day <= 255) or (r_hour.__class__ is not int or not 0 <= r_hour <= 255) or (r_min.__class__ is not int or not 0 <= r_min <= 255) or (r_second.__class__ is not int or not 0 <= r_second <= 255):
+        if r_iTOW.__class__ is not int or not 0 <= r_iTOW <= 4294967295:
+            if not isinstance(r_iTOW, int) or r_iTOW.__class__ is bool:
+                raise _enc('nav_pvt', 'iTOW', r_iTOW, 'type', 'an int')
+            if not 0 <= r_iTOW <= 4294967295:
+                raise _enc('nav_pvt', 'iTOW', r_iTOW, 'range', '0..4294967295', None)
+        if r_year.__class__ is not int or not 0 <= r_year <= 65535:
+            if not isinstance(r_year, int) or r_year.__class__ is bool:
+                raise _enc('nav_pvt', 'year', r_year, 'type', 'an int')
+            if not 0 <= r_year <= 65535:
+                raise _enc('nav_pvt', 'year', r_year, 'range', '0..65535', None)
+        if r_month.__class__ is not int or not 0 <= r_month <= 255:
+            if not isinstance(r_month, int) or r_month.__class__ is bool:
+                raise _enc('nav_pvt', 'month', r_month, 'type', 'an int')
+            if not 0 <= r_month <= 255:
+                raise _enc('nav_pvt', 'month', r_month, 'range', '0..255', None)
+        if r_day.__class__ is not int or not 0 <= r_day <= 255:
+            if not isinstance(r_day, int) or r_day.__class__ is bool:
+                raise _enc('nav_pvt', 'day', r_day, 'type', 'an int')
+            if not 0 <= r_day <= 255:
+                raise _enc('nav_pvt', 'day', r_day, 'range', '0..255', None)
+        if r_hour.__class__ is not int or not 0 <= r_hour <= 255:
+            if not isinstance(r_hour, int) or r_hour.__class__ is bool:
+                raise _enc('nav_pvt', 'hour', r_hour, 'type', 'an int')
+            if not 0 <= r_hour <= 255:
+                raise _enc('nav_pvt', 'hour', r_hour, 'range', '0..255', None)
+        if r_min.__class__ is not int or not 0 <= r_min <= 255:
+            if not isinstance(r_min, int) or r_min.__class__ is bool:
+                raise _enc('nav_pvt', 'min', r_min, 'type', 'an int')
+            if not 0 <= r_min <= 255:
+                raise _enc('nav_pvt', 'min', r_min, 'range', '0..255', None)
+        if r_second.__class__ is not int or not 0 <= r_second <= 255:
+            if not isinstance(r_second, int) or r_second.__class__ is bool:
+                raise _enc('nav_pvt', 'second', r_second, 'type', 'an int')
+            if not 0 <= r_second <= 255:
+                raise _enc('nav_pvt', 'second', r_second, 'range', '0..255', None)
     r_validDate: Any = m.validDate
     if r_validDate is not True and r_validDate is not False and r_validDate != 0 and r_validDate != 1:
         raise _enc('nav_pvt', 'validDate', r_validDate, 'type', 'a bool')
@@ -974,23 +979,24 @@ def _encode_nav_pvt(m: NavPvt) -> bytes:
         raise _enc('nav_pvt', 'validMag', r_validMag, 'type', 'a bool')
     r_validMag = 1 if r_validMag else 0
     r_tAcc = m.tAcc
-    if r_tAcc.__class__ is not int or not 0 <= r_tAcc <= 4294967295:
-        if not isinstance(r_tAcc, int) or r_tAcc.__class__ is bool:
-            raise _enc('nav_pvt', 'tAcc', r_tAcc, 'type', 'an int')
-        if not 0 <= r_tAcc <= 4294967295:
-            raise _enc('nav_pvt', 'tAcc', r_tAcc, 'range', '0..4294967295', None)
     r_nano = m.nano
-    if r_nano.__class__ is not int or not -2147483648 <= r_nano <= 2147483647:
-        if not isinstance(r_nano, int) or r_nano.__class__ is bool:
-            raise _enc('nav_pvt', 'nano', r_nano, 'type', 'an int')
-        if not -2147483648 <= r_nano <= 2147483647:
-            raise _enc('nav_pvt', 'nano', r_nano, 'range', '-2147483648..2147483647', None)
     r_fixType = m.fixType
-    if r_fixType.__class__ is not int or not 0 <= r_fixType <= 255:
-        if not isinstance(r_fixType, int) or r_fixType.__class__ is bool:
-            raise _enc('nav_pvt', 'fixType', r_fixType, 'type', 'an int')
-        if not 0 <= r_fixType <= 255:
-            raise _enc('nav_pvt', 'fixType', r_fixType, 'range', '0..255', None)
+    if (r_tAcc.__class__ is not int or not 0 <= r_tAcc <= 4294967295) or (r_nano.__class__ is not int or not -2147483648 <= r_nano <= 2147483647) or (r_fixType.__class__ is not int or not 0 <= r_fixType <= 255):
+        if r_tAcc.__class__ is not int or not 0 <= r_tAcc <= 4294967295:
+            if not isinstance(r_tAcc, int) or r_tAcc.__class__ is bool:
+                raise _enc('nav_pvt', 'tAcc', r_tAcc, 'type', 'an int')
+            if not 0 <= r_tAcc <= 4294967295:
+                raise _enc('nav_pvt', 'tAcc', r_tAcc, 'range', '0..4294967295', None)
+        if r_nano.__class__ is not int or not -2147483648 <= r_nano <= 2147483647:
+            if not isinstance(r_nano, int) or r_nano.__class__ is bool:
+                raise _enc('nav_pvt', 'nano', r_nano, 'type', 'an int')
+            if not -2147483648 <= r_nano <= 2147483647:
+                raise _enc('nav_pvt', 'nano', r_nano, 'range', '-2147483648..2147483647', None)
+        if r_fixType.__class__ is not int or not 0 <= r_fixType <= 255:
+            if not isinstance(r_fixType, int) or r_fixType.__class__ is bool:
+                raise _enc('nav_pvt', 'fixType', r_fixType, 'type', 'an int')
+            if not 0 <= r_fixType <= 255:
+                raise _enc('nav_pvt', 'fixType', r_fixType, 'range', '0..255', None)
     r_gnssFixOk: Any = m.gnssFixOk
     if r_gnssFixOk is not True and r_gnssFixOk is not False and r_gnssFixOk != 0 and r_gnssFixOk != 1:
         raise _enc('nav_pvt', 'gnssFixOk', r_gnssFixOk, 'type', 'a bool')
@@ -1010,17 +1016,18 @@ def _encode_nav_pvt(m: NavPvt) -> bytes:
         raise _enc('nav_pvt', 'headVehValid', r_headVehValid, 'type', 'a bool')
     r_headVehValid = 1 if r_headVehValid else 0
     r_carrSoln = m.carrSoln
-    if r_carrSoln.__class__ is not int or not 0 <= r_carrSoln <= 3:
-        if not isinstance(r_carrSoln, int) or r_carrSoln.__class__ is bool:
-            raise _enc('nav_pvt', 'carrSoln', r_carrSoln, 'type', 'an int')
-        if not 0 <= r_carrSoln <= 3:
-            raise _enc('nav_pvt', 'carrSoln', r_carrSoln, 'range', '0..3', None)
     r_reserved = m.reserved
-    if r_reserved.__class__ is not int or not 0 <= r_reserved <= 31:
-        if not isinstance(r_reserved, int) or r_reserved.__class__ is bool:
-            raise _enc('nav_pvt', 'reserved', r_reserved, 'type', 'an int')
-        if not 0 <= r_reserved <= 31:
-            raise _enc('nav_pvt', 'reserved', r_reserved, 'range', '0..31', None)
+    if (r_carrSoln.__class__ is not int or not 0 <= r_carrSoln <= 3) or (r_reserved.__class__ is not int or not 0 <= r_reserved <= 31):
+        if r_carrSoln.__class__ is not int or not 0 <= r_carrSoln <= 3:
+            if not isinstance(r_carrSoln, int) or r_carrSoln.__class__ is bool:
+                raise _enc('nav_pvt', 'carrSoln', r_carrSoln, 'type', 'an int')
+            if not 0 <= r_carrSoln <= 3:
+                raise _enc('nav_pvt', 'carrSoln', r_carrSoln, 'range', '0..3', None)
+        if r_reserved.__class__ is not int or not 0 <= r_reserved <= 31:
+            if not isinstance(r_reserved, int) or r_reserved.__class__ is bool:
+                raise _enc('nav_pvt', 'reserved', r_reserved, 'type', 'an int')
+            if not 0 <= r_reserved <= 31:
+                raise _enc('nav_pvt', 'reserved', r_reserved, 'range', '0..31', None)
     r_confirmedAvai: Any = m.confirmedAvai
     if r_confirmedAvai is not True and r_confirmedAvai is not False and r_confirmedAvai != 0 and r_confirmedAvai != 1:
         raise _enc('nav_pvt', 'confirmedAvai', r_confirmedAvai, 'type', 'a bool')
@@ -1054,53 +1061,54 @@ def _encode_nav_pvt(m: NavPvt) -> bytes:
             raise _enc('nav_pvt', 'lat', r_lat, 'range', '-214.7483648..214.7483647', None)
     r_lat = _floor(r_lat / 1e-07 + 0.5)
     r_height = m.height
-    if r_height.__class__ is not int or not -2147483648 <= r_height <= 2147483647:
-        if not isinstance(r_height, int) or r_height.__class__ is bool:
-            raise _enc('nav_pvt', 'height', r_height, 'type', 'an int')
-        if not -2147483648 <= r_height <= 2147483647:
-            raise _enc('nav_pvt', 'height', r_height, 'range', '-2147483648..2147483647', None)
     r_hMSL = m.hMSL
-    if r_hMSL.__class__ is not int or not -2147483648 <= r_hMSL <= 2147483647:
-        if not isinstance(r_hMSL, int) or r_hMSL.__class__ is bool:
-            raise _enc('nav_pvt', 'hMSL', r_hMSL, 'type', 'an int')
-        if not -2147483648 <= r_hMSL <= 2147483647:
-            raise _enc('nav_pvt', 'hMSL', r_hMSL, 'range', '-2147483648..2147483647', None)
     r_hAcc = m.hAcc
-    if r_hAcc.__class__ is not int or not 0 <= r_hAcc <= 4294967295:
-        if not isinstance(r_hAcc, int) or r_hAcc.__class__ is bool:
-            raise _enc('nav_pvt', 'hAcc', r_hAcc, 'type', 'an int')
-        if not 0 <= r_hAcc <= 4294967295:
-            raise _enc('nav_pvt', 'hAcc', r_hAcc, 'range', '0..4294967295', None)
     r_vAcc = m.vAcc
-    if r_vAcc.__class__ is not int or not 0 <= r_vAcc <= 4294967295:
-        if not isinstance(r_vAcc, int) or r_vAcc.__class__ is bool:
-            raise _enc('nav_pvt', 'vAcc', r_vAcc, 'type', 'an int')
-        if not 0 <= r_vAcc <= 4294967295:
-            raise _enc('nav_pvt', 'vAcc', r_vAcc, 'range', '0..4294967295', None)
     r_velN = m.velN
-    if r_velN.__class__ is not int or not -2147483648 <= r_velN <= 2147483647:
-        if not isinstance(r_velN, int) or r_velN.__class__ is bool:
-            raise _enc('nav_pvt', 'velN', r_velN, 'type', 'an int')
-        if not -2147483648 <= r_velN <= 2147483647:
-            raise _enc('nav_pvt', 'velN', r_velN, 'range', '-2147483648..2147483647', None)
     r_velE = m.velE
-    if r_velE.__class__ is not int or not -2147483648 <= r_velE <= 2147483647:
-        if not isinstance(r_velE, int) or r_velE.__class__ is bool:
-            raise _enc('nav_pvt', 'velE', r_velE, 'type', 'an int')
-        if not -2147483648 <= r_velE <= 2147483647:
-            raise _enc('nav_pvt', 'velE', r_velE, 'range', '-2147483648..2147483647', None)
     r_velD = m.velD
-    if r_velD.__class__ is not int or not -2147483648 <= r_velD <= 2147483647:
-        if not isinstance(r_velD, int) or r_velD.__class__ is bool:
-            raise _enc('nav_pvt', 'velD', r_velD, 'type', 'an int')
-        if not -2147483648 <= r_velD <= 2147483647:
-            raise _enc('nav_pvt', 'velD', r_velD, 'range', '-2147483648..2147483647', None)
     r_gSpeed = m.gSpeed
-    if r_gSpeed.__class__ is not int or not -2147483648 <= r_gSpeed <= 2147483647:
-        if not isinstance(r_gSpeed, int) or r_gSpeed.__class__ is bool:
-            raise _enc('nav_pvt', 'gSpeed', r_gSpeed, 'type', 'an int')
-        if not -2147483648 <= r_gSpeed <= 2147483647:
-            raise _enc('nav_pvt', 'gSpeed', r_gSpeed, 'range', '-2147483648..2147483647', None)
+    if (r_height.__class__ is not int or not -2147483648 <= r_height <= 2147483647) or (r_hMSL.__class__ is not int or not -2147483648 <= r_hMSL <= 2147483647) or (r_hAcc.__class__ is not int or not 0 <= r_hAcc <= 4294967295) or (r_vAcc.__class__ is not int or not 0 <= r_vAcc <= 4294967295) or (r_velN.__class__ is not int or not -2147483648 <= r_velN <= 2147483647) or (r_velE.__class__ is not int or not -2147483648 <= r_velE <= 2147483647) or (r_velD.__class__ is not int or not -2147483648 <= r_velD <= 2147483647) or (r_gSpeed.__class__ is not int or not -2147483648 <= r_gSpeed <= 2147483647):
+        if r_height.__class__ is not int or not -2147483648 <= r_height <= 2147483647:
+            if not isinstance(r_height, int) or r_height.__class__ is bool:
+                raise _enc('nav_pvt', 'height', r_height, 'type', 'an int')
+            if not -2147483648 <= r_height <= 2147483647:
+                raise _enc('nav_pvt', 'height', r_height, 'range', '-2147483648..2147483647', None)
+        if r_hMSL.__class__ is not int or not -2147483648 <= r_hMSL <= 2147483647:
+            if not isinstance(r_hMSL, int) or r_hMSL.__class__ is bool:
+                raise _enc('nav_pvt', 'hMSL', r_hMSL, 'type', 'an int')
+            if not -2147483648 <= r_hMSL <= 2147483647:
+                raise _enc('nav_pvt', 'hMSL', r_hMSL, 'range', '-2147483648..2147483647', None)
+        if r_hAcc.__class__ is not int or not 0 <= r_hAcc <= 4294967295:
+            if not isinstance(r_hAcc, int) or r_hAcc.__class__ is bool:
+                raise _enc('nav_pvt', 'hAcc', r_hAcc, 'type', 'an int')
+            if not 0 <= r_hAcc <= 4294967295:
+                raise _enc('nav_pvt', 'hAcc', r_hAcc, 'range', '0..4294967295', None)
+        if r_vAcc.__class__ is not int or not 0 <= r_vAcc <= 4294967295:
+            if not isinstance(r_vAcc, int) or r_vAcc.__class__ is bool:
+                raise _enc('nav_pvt', 'vAcc', r_vAcc, 'type', 'an int')
+            if not 0 <= r_vAcc <= 4294967295:
+                raise _enc('nav_pvt', 'vAcc', r_vAcc, 'range', '0..4294967295', None)
+        if r_velN.__class__ is not int or not -2147483648 <= r_velN <= 2147483647:
+            if not isinstance(r_velN, int) or r_velN.__class__ is bool:
+                raise _enc('nav_pvt', 'velN', r_velN, 'type', 'an int')
+            if not -2147483648 <= r_velN <= 2147483647:
+                raise _enc('nav_pvt', 'velN', r_velN, 'range', '-2147483648..2147483647', None)
+        if r_velE.__class__ is not int or not -2147483648 <= r_velE <= 2147483647:
+            if not isinstance(r_velE, int) or r_velE.__class__ is bool:
+                raise _enc('nav_pvt', 'velE', r_velE, 'type', 'an int')
+            if not -2147483648 <= r_velE <= 2147483647:
+                raise _enc('nav_pvt', 'velE', r_velE, 'range', '-2147483648..2147483647', None)
+        if r_velD.__class__ is not int or not -2147483648 <= r_velD <= 2147483647:
+            if not isinstance(r_velD, int) or r_velD.__class__ is bool:
+                raise _enc('nav_pvt', 'velD', r_velD, 'type', 'an int')
+            if not -2147483648 <= r_velD <= 2147483647:
+                raise _enc('nav_pvt', 'velD', r_velD, 'range', '-2147483648..2147483647', None)
+        if r_gSpeed.__class__ is not int or not -2147483648 <= r_gSpeed <= 2147483647:
+            if not isinstance(r_gSpeed, int) or r_gSpeed.__class__ is bool:
+                raise _enc('nav_pvt', 'gSpeed', r_gSpeed, 'type', 'an int')
+            if not -2147483648 <= r_gSpeed <= 2147483647:
+                raise _enc('nav_pvt', 'gSpeed', r_gSpeed, 'range', '-2147483648..2147483647', None)
     r_headMot = m.headMot
     if r_headMot.__class__ is not float or not -21474.83648 <= r_headMot <= 21474.836470000002:
         if not isinstance(r_headMot, (int, float)) or r_headMot.__class__ is bool:
@@ -1133,17 +1141,18 @@ def _encode_nav_pvt(m: NavPvt) -> bytes:
         raise _enc('nav_pvt', 'invalidLlh', r_invalidLlh, 'type', 'a bool')
     r_invalidLlh = 1 if r_invalidLlh else 0
     r_lastCorrectionAge = m.lastCorrectionAge
-    if r_lastCorrectionAge.__class__ is not int or not 0 <= r_lastCorrectionAge <= 15:
-        if not isinstance(r_lastCorrectionAge, int) or r_lastCorrectionAge.__class__ is bool:
-            raise _enc('nav_pvt', 'lastCorrectionAge', r_lastCorrectionAge, 'type', 'an int')
-        if not 0 <= r_lastCorrectionAge <= 15:
-            raise _enc('nav_pvt', 'lastCorrectionAge', r_lastCorrectionAge, 'range', '0..15', None)
     r_reserved1 = m.reserved1
-    if r_reserved1.__class__ is not int or not 0 <= r_reserved1 <= 255:
-        if not isinstance(r_reserved1, int) or r_reserved1.__class__ is bool:
-            raise _enc('nav_pvt', 'reserved1', r_reserved1, 'type', 'an int')
-        if not 0 <= r_reserved1 <= 255:
-            raise _enc('nav_pvt', 'reserved1', r_reserved1, 'range', '0..255', None)
+    if (r_lastCorrectionAge.__class__ is not int or not 0 <= r_lastCorrectionAge <= 15) or (r_reserved1.__class__ is not int or not 0 <= r_reserved1 <= 255):
+        if r_lastCorrectionAge.__class__ is not int or not 0 <= r_lastCorrectionAge <= 15:
+            if not isinstance(r_lastCorrectionAge, int) or r_lastCorrectionAge.__class__ is bool:
+                raise _enc('nav_pvt', 'lastCorrectionAge', r_lastCorrectionAge, 'type', 'an int')
+            if not 0 <= r_lastCorrectionAge <= 15:
+                raise _enc('nav_pvt', 'lastCorrectionAge', r_lastCorrectionAge, 'range', '0..15', None)
+        if r_reserved1.__class__ is not int or not 0 <= r_reserved1 <= 255:
+            if not isinstance(r_reserved1, int) or r_reserved1.__class__ is bool:
+                raise _enc('nav_pvt', 'reserved1', r_reserved1, 'type', 'an int')
+            if not 0 <= r_reserved1 <= 255:
+                raise _enc('nav_pvt', 'reserved1', r_reserved1, 'range', '0..255', None)
     r_authTime: Any = m.authTime
     if r_authTime is not True and r_authTime is not False and r_authTime != 0 and r_authTime != 1:
         raise _enc('nav_pvt', 'authTime', r_authTime, 'type', 'a bool')
@@ -5571,23 +5580,24 @@ def _raw_nav_sat_2sv_31(g_2sv_31: Any) -> tuple[Any, ...]:
 
 def _encode_nav_sat(m: NavSat) -> bytes:
     r_iTOW = m.iTOW
-    if r_iTOW.__class__ is not int or not 0 <= r_iTOW <= 4294967295:
-        if not isinstance(r_iTOW, int) or r_iTOW.__class__ is bool:
-            raise _enc('nav_sat', 'iTOW', r_iTOW, 'type', 'an int')
-        if not 0 <= r_iTOW <= 4294967295:
-            raise _enc('nav_sat', 'iTOW', r_iTOW, 'range', '0..4294967295', None)
     r_version = m.version
-    if r_version.__class__ is not int or not 0 <= r_version <= 255:
-        if not isinstance(r_version, int) or r_version.__class__ is bool:
-            raise _enc('nav_sat', 'version', r_version, 'type', 'an int')
-        if not 0 <= r_version <= 255:
-            raise _enc('nav_sat', 'version', r_version, 'range', '0..255', None)
     r_reserved0 = m.reserved0
-    if r_reserved0.__class__ is not int or not 0 <= r_reserved0 <= 65535:
-        if not isinstance(r_reserved0, int) or r_reserved0.__class__ is bool:
-            raise _enc('nav_sat', 'reserved0', r_reserved0, 'type', 'an int')
-        if not 0 <= r_reserved0 <= 65535:
-            raise _enc('nav_sat', 'reserved0', r_reserved0, 'range', '0..65535', None)
+    if (r_iTOW.__class__ is not int or not 0 <= r_iTOW <= 4294967295) or (r_version.__class__ is not int or not 0 <= r_version <= 255) or (r_reserved0.__class__ is not int or not 0 <= r_reserved0 <= 65535):
+        if r_iTOW.__class__ is not int or not 0 <= r_iTOW <= 4294967295:
+            if not isinstance(r_iTOW, int) or r_iTOW.__class__ is bool:
+                raise _enc('nav_sat', 'iTOW', r_iTOW, 'type', 'an int')
+            if not 0 <= r_iTOW <= 4294967295:
+                raise _enc('nav_sat', 'iTOW', r_iTOW, 'range', '0..4294967295', None)
+        if r_version.__class__ is not int or not 0 <= r_version <= 255:
+            if not isinstance(r_version, int) or r_version.__class__ is bool:
+                raise _enc('nav_sat', 'version', r_version, 'type', 'an int')
+            if not 0 <= r_version <= 255:
+                raise _enc('nav_sat', 'version', r_version, 'range', '0..255', None)
+        if r_reserved0.__class__ is not int or not 0 <= r_reserved0 <= 65535:
+            if not isinstance(r_reserved0, int) or r_reserved0.__class__ is bool:
+                raise _enc('nav_sat', 'reserved0', r_reserved0, 'type', 'an int')
+            if not 0 <= r_reserved0 <= 65535:
+                raise _enc('nav_sat', 'reserved0', r_reserved0, 'range', '0..65535', None)
     g_sv = m.sv
     if not isinstance(g_sv, (list, tuple)) or len(g_sv) > 32:
         raise _enc('nav_sat', 'sv', g_sv, 'count', 'a list of at most 32 values')
