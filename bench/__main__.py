@@ -43,27 +43,11 @@ def main(argv=None):
     if args.only == "compiler":
         with tempfile.TemporaryDirectory(prefix="codeword-bench-") as tmp:
             results = runner.run_compiler(Path(tmp), (10,) if args.smoke else sizes, 1 if args.smoke else 3)
-        out = Path(args.out)
-        text = runner.splice(out.read_text(encoding="utf-8"), 5, runner.compiler_section(results, []),
-                             "python3 -m bench --only compiler")
-        if args.smoke:
-            print(text)
-        else:
-            out.write_text(text, encoding="utf-8")
-            print(f"wrote {out}")
-        return 0
+        return _splice(args, 5, runner.compiler_section(results, []))
     if args.only == "accelerator":
         results = runner.run_accelerator(1 if args.smoke else 7, 200_000 if args.smoke else int(args.stream_mb * 1e6),
                                          0.002 if args.smoke else timing.TARGET_SECONDS, 1 if args.smoke else 3)
-        out = Path(args.out)
-        text = runner.splice(out.read_text(encoding="utf-8"), 6, runner.accelerator_section(results, []),
-                             "python3 -m bench --only accelerator")
-        if args.smoke:
-            print(text)
-        else:
-            out.write_text(text, encoding="utf-8")
-            print(f"wrote {out}")
-        return 0
+        return _splice(args, 6, runner.accelerator_section(results, []))
     with tempfile.TemporaryDirectory(prefix="codeword-bench-") as tmp:
         if args.smoke:
             results = runner.run(Path(tmp), repeats=1, stream_bytes=200_000, c_rounds=1,
@@ -78,6 +62,19 @@ def main(argv=None):
     else:
         Path(args.out).write_text(text)
         print(f"wrote {args.out}")
+    return 0
+
+
+def _splice(args, number: int, lines: list[str]) -> int:
+    """RESULTS.md with section `number` measured again (printed only, for --smoke)."""
+    from bench import runner
+    out = Path(args.out)
+    text = runner.splice(out.read_text(encoding="utf-8"), number, lines, f"python3 -m bench --only {args.only}")
+    if args.smoke:
+        print(text)
+    else:
+        out.write_text(text, encoding="utf-8")
+        print(f"wrote {out}")
     return 0
 
 
