@@ -73,8 +73,10 @@ def record(args, chosen: frozenset[str], summary: str, failed) -> None:
     lines += [f"- `{line}`" for line in failed[:20]]
     text = RESULTS.read_text(encoding="utf-8") if RESULTS.exists() else ""
     head, _, rest = text.partition(MARK)
-    tail = rest[rest.find("\n## "):] if "\n## " in rest else ""
-    RESULTS.write_text(head.rstrip() + "\n\n" + "\n".join(lines) + "\n" + tail, encoding="utf-8")
+    end = rest.find("\n## ") if "\n## " in rest else len(rest)
+    earlier, tail = rest[:end].strip("\n"), rest[end:]  # the runs recorded before stay, after this one
+    RESULTS.write_text(head.rstrip() + "\n\n" + "\n".join(lines) + "\n" + ("\n" + earlier + "\n" if earlier else "")
+                       + tail, encoding="utf-8")
 
 
 if __name__ == "__main__":
