@@ -35,7 +35,7 @@ typedef struct {
 } acc_state;
 
 /* For each slot: the class and the attribute (indices into G and A). */
-static const unsigned short slot_of[32][2] = {
+static const unsigned int slot_of[32][2] = {
     {0, 0},
     {0, 1},
     {0, 2},

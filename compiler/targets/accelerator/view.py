@@ -26,12 +26,14 @@ class Names:
     attributes: list[str] = field(default_factory=list)
     constants: list[str] = field(default_factory=list)  # Python literals: ints and floats
     slots: list[tuple[int, int]] = field(default_factory=list)  # (class, attribute): an instance's slot
+    places: dict[tuple[int, object], int] = field(default_factory=dict)  # (table, entry) → index
 
-    @staticmethod
-    def _slot(table: list, name) -> int:
-        if name not in table:
+    def _slot(self, table: list, name) -> int:
+        key = (id(table), name)
+        if key not in self.places:
+            self.places[key] = len(table)
             table.append(name)
-        return table.index(name)
+        return self.places[key]
 
     def g(self, name: str) -> str:
         return f"st->G[{self._slot(self.globals, name)}]"
