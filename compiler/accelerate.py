@@ -15,6 +15,7 @@ import os
 import shlex
 import shutil
 import subprocess
+import sys
 import sysconfig
 import tempfile
 from dataclasses import dataclass, field
@@ -28,6 +29,8 @@ from .targets import c as c_target
 
 BUILD_MARK = b"codeword-accelerator-build:"
 FLAGS = ("-O2", "-shared", "-fPIC", "-ffp-contract=off")  # no fused multiply-add: C rounds as Python does
+# macOS links an extension against the interpreter that loads it, not against libpython
+PLATFORM_FLAGS = ("-undefined", "dynamic_lookup") if sys.platform == "darwin" else ()
 
 
 @dataclass
@@ -62,6 +65,10 @@ def python_headers() -> Optional[Path]:
 def accelerate(schemas: list[Path], folder: Path, extra_flags: tuple[str, ...] = ()) -> Outcome:
     """Build the accelerator of each schema whose Python module has one, into `folder`."""
     outcome = Outcome()
+    if sys.platform == "win32":  # MSVC takes other flags: not supported yet
+        outcome.notes.append("no accelerators built: Windows is not supported yet; the Python modules "
+                             "decode in pure Python")
+        return outcome
     cc, include = compiler(), python_headers()
     if cc is None or include is None:
         missing = "a C compiler (cc, or $CC)" if cc is None else f"Python's headers ({sysconfig.get_paths()['include']})"
@@ -74,7 +81,7 @@ def accelerate(schemas: list[Path], folder: Path, extra_flags: tuple[str, ...] =
         if main not in sources:
             outcome.notes.append(f"{p.name}: no message the accelerator serves; decoded in pure Python")
             continue
-        command = [*cc, *FLAGS, *extra_flags, f"-I{include}"]
+        command = [*cc, *FLAGS, *PLATFORM_FLAGS, *extra_flags, f"-I{include}"]
         digest = hashlib.sha256(repr((command, sorted(sources.items()))).encode()).hexdigest()[:32]
         target = folder / f"_{p.name}_accel{extension_suffix()}"
         if target.is_file() and BUILD_MARK + digest.encode() in target.read_bytes():
