@@ -10,7 +10,7 @@ before timing.
 import importlib.util
 import sys
 
-from bench import streams, timing
+from bench import messages, streams, timing
 from bench.protocols import ROOT
 
 NAMES = ("route", "car", "mtv4", "tr24")  # tank is a text protocol: no accelerator
@@ -57,7 +57,7 @@ def contenders(cases):
             if repr(module.decode(wire)) != repr(pure_call()):
                 raise AssertionError("mtv4.decode: the accelerated decode differs from the pure-Python one")
             out[("mtv4", "accelerated, any message")] = lambda m=module, w=wire: m.decode(w)
-            out[("mtv4", "pure Python, any message")] = case.contenders["codeword, any message (mtv4.decode)"].decode
+            out[("mtv4", "pure Python, any message")] = case.contenders[messages.DISPATCHING].decode
             out[("mtv4", "pymavlink ATTITUDE")] = case.contenders["pymavlink ATTITUDE (40 B)"].decode
     return out, fast
 

@@ -713,7 +713,7 @@ def _accelerator() -> Any:
     version of the schema or of codeword."""
     if os.environ.get("CODEWORD_PURE_PYTHON"):
         return None
-    name = "_car_accel"
+    name = '_car_accel'
     try:
         module = importlib.import_module(f"{__package__}.{name}" if __package__ else name)
     except ImportError:

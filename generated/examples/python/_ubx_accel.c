@@ -100,6 +100,7 @@ static const unsigned int slot_of[61][2] = {
 };
 
 #define ACC_CAPSULE "codeword.ubx.accelerator"
+#define ACC_MODULE "ubx"
 
 static inline acc_state *acc_state_of(PyObject *capsule)
 {
@@ -591,7 +592,7 @@ static int acc_fill(acc_state *st, PyObject *module_globals)
     for (size_t i = 0; i < sizeof st->G / sizeof st->G[0]; i++) {
         PyObject *value = PyDict_GetItemString(module_globals, global_names[i]);
         if (value == NULL) {
-            PyErr_Format(PyExc_ImportError, "the ubx module has no %s: rebuild the accelerator", global_names[i]);
+            PyErr_Format(PyExc_ImportError, "the %s module has no %s: rebuild the accelerator", ACC_MODULE, global_names[i]);
             return -1;
         }
         Py_INCREF(value);

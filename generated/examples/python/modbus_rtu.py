@@ -3009,7 +3009,7 @@ def _accelerator() -> Any:
     version of the schema or of codeword."""
     if os.environ.get("CODEWORD_PURE_PYTHON"):
         return None
-    name = "_modbus_rtu_accel"
+    name = '_modbus_rtu_accel'
     try:
         module = importlib.import_module(f"{__package__}.{name}" if __package__ else name)
     except ImportError:
