@@ -19,7 +19,7 @@ import pytest
 from codeword import accelerate as accel
 from codeword.build import compile_schema
 from codeword.targets.accelerator.scope import servable
-from fuzz.schema.accelerated import damaged, difference, load
+from fuzz.schema.accelerated import buffer_difference, damaged, difference, load, stream_state_difference
 
 ROOT = Path(__file__).resolve().parent.parent
 SETS = {"schemas": (ROOT / "schemas", ROOT / "generated"),
@@ -136,3 +136,133 @@ def test_two_copies_of_a_module_each_build_their_own_objects(built):
         assert type(one.decode(frame, case["direction"])) is one.MESSAGES[case["message"]]
         assert type(two.decode(frame, case["direction"])) is two.MESSAGES[case["message"]]
         assert type(one.StreamDecoder(case["direction"]).feed(frame)[0]) is one.MESSAGES[case["message"]]
+
+
+@pytest.mark.parametrize("group,schema", schemas(), ids=[path.stem for _, path in schemas()])
+def test_input_of_any_type_decodes_as_in_pure_python(built, group, schema):
+    """bytes, bytearray, memoryviews of every shape and format (strided, 2-D, 'b', 'c',
+    'H', released), arrays, mmap, subclasses, str, numbers and None: the accelerated
+    module returns the message or raises the error pure Python does, and its
+    StreamDecoder agrees from any offset (huge, negative, not an int) and direction."""
+    folder, _ = built
+    p = compile_schema(schema)
+    if not any(servable(p, m) for m in p.messages):
+        return
+    out = SETS[group][1]
+    module_path = out / "python" / f"{p.name}.py"
+    fast = load(module_path, f"_accel_types_{folder.name}_{p.name}", folder)
+    pure = load(module_path, f"_accel_types_pure_{folder.name}_{p.name}", None)
+    assert fast.ACCELERATOR is not None
+    vectors = json.loads((out / "vectors" / f"{p.name}.json").read_text(encoding="utf-8"))
+    firsts = {case["message"]: bytes.fromhex(case["hex"]) for case in reversed(vectors["valid"])}
+    for message, frame in firsts.items():
+        for data in (frame, frame[:-1], b""):
+            problem = buffer_difference(fast, pure, data, message)
+            assert not problem, problem
+    if hasattr(pure, "StreamDecoder"):
+        directions = sorted({case["direction"] for case in vectors["valid"] if case.get("direction")})
+        problem = stream_state_difference(fast, pure, b"".join(firsts.values()), directions)
+        assert not problem, problem
+
+
+HOSTILE_CALLS = r"""
+import json, sys
+from pathlib import Path
+from fuzz.schema.accelerated import load
+
+fast = load(Path(sys.argv[1]), "_hostile_mtv4", Path(sys.argv[2]))
+bind = fast.ACCELERATOR.bind
+frame = bytes.fromhex(sys.argv[3])
+mine = dict(vars(fast))
+run_frames = bind(mine)["_run_frames"]
+
+
+class Other:
+    __slots__ = ("x",)
+
+
+def foreign_members(cls):
+    # a class holding another class's member descriptors, whose offsets are not its own
+    return type("Foreign", (), {name: getattr(cls, name) for name in cls.__slots__})
+
+
+def attempt(label, call):
+    print(label, end=": ", flush=True)
+    try:
+        result = call()
+    except Exception as exc:
+        print(type(exc).__name__, flush=True)
+        return
+    print("returned", type(result).__name__, flush=True)
+
+
+def bound_with(**changes):
+    table = bind({**mine, **changes})  # refused here, or the decoders below are used
+    for name, fn in table.items():
+        if name.startswith("_decode_"):
+            fn(frame)
+    return table
+
+
+cls = type(fast.decode(frame, "host_to_robot")).__name__
+flags = sorted(name for name in mine if name.startswith("_FLAGS_"))[0]
+for label, value in [("an int", 5), ("dict", dict), ("int", int), ("a class with another's slots",
+                     foreign_members(mine[cls])), ("a class of another layout", Other),
+                     ("the capsule", run_frames.__self__), ("None", None)]:
+    attempt(f"bind: {cls} is {label}", lambda: bound_with(**{cls: value}))
+attempt("bind: flags table is a list", lambda: bound_with(**{flags: [1, 2]}))
+attempt("bind: a str", lambda: bind("globals"))
+attempt("bind: no globals", lambda: bind({}))
+out, spans = [], []
+for args in [(), (frame,) * 6, (frame, 0, None, out, spans, 2 ** 70), (frame, 2 ** 70, None, out, spans, 0),
+             (frame, -2 ** 70, None, out, spans, 0), (frame, 0, None, out, spans, sys.maxsize),
+             (frame, 0, None, out, spans, "x"), (frame, 0, None, out, spans, None), (frame, 0, 5, out, spans, 0),
+             (frame, 0, None, (), spans, 0), (bytearray(frame), 0, None, out, spans, 0)]:
+    attempt(f"_run_frames{tuple(type(a).__name__ for a in args)}", lambda: run_frames(*args))
+for name, fn in sorted(bind(mine).items()):
+    if name.startswith("_decode_"):
+        attempt(f"{name}(None)", lambda: fn(None))
+print("done", flush=True)
+"""
+
+
+def test_no_entry_point_crashes_the_interpreter(built, tmp_path):
+    """bind() given anything but the module's own globals (a class replaced by an int,
+    a built-in type, the capsule, a class with another's slot descriptors), and the
+    bound stream loop and decoders given hostile arguments: each returns or raises,
+    and bind() refuses every class that is not one whose instances it may fill."""
+    folder, _ = built
+    frame = bytes.fromhex(json.loads((ROOT / "generated" / "vectors" / "mtv4.json").read_text())["valid"][0]["hex"])
+    run = subprocess.run([sys.executable, "-c", HOSTILE_CALLS, str(ROOT / "generated" / "python" / "mtv4.py"),
+                          str(folder), frame.hex()], cwd=ROOT, capture_output=True, text=True, timeout=120)
+    lines = run.stdout.splitlines()
+    assert run.returncode == 0 and lines[-1:] == ["done"], \
+        f"the interpreter died (status {run.returncode}) at {lines[-1:]}: {run.stderr[-2000:]}"
+    bound = [line for line in lines if line.startswith("bind: ")]
+    assert len(bound) == 10 and not any("returned" in line for line in bound), bound
+    # what acc_new cannot make safely, or whose slots are not its own, is refused by bind()
+    unsafe = ("an int", "dict", "int", "a class with another's slots", "the capsule", "None")
+    assert {line for line in bound if line.endswith("TypeError")} >= {f"bind: {cls} is {x}: TypeError" for x in unsafe
+                                                                       for cls in [bound[0].split()[1]]}, bound
+
+
+def test_an_accelerator_elsewhere_on_sys_path_is_not_loaded(tmp_path):
+    """A module loads `_<name>_accel` only from its own folder: one found first on
+    sys.path (here a Python module with the right tag and a bind() that would replace
+    every decoder) is never imported."""
+    from codeword.targets.accelerator.scope import source_tag
+    tag = source_tag(compile_schema(ROOT / "schemas" / "mtv4.yaml"))
+    elsewhere, beside = tmp_path / "elsewhere", tmp_path / "module"
+    elsewhere.mkdir()
+    beside.mkdir()
+    (elsewhere / "_mtv4_accel.py").write_text(
+        f"SOURCE = {tag!r}\nimport builtins\nbuiltins.planted = True\n"
+        "def bind(g):\n    return {'decode': lambda *a: 'planted'}\n", encoding="utf-8")
+    shutil.copyfile(ROOT / "generated" / "python" / "mtv4.py", beside / "mtv4.py")
+    script = ("import builtins, mtv4; print(mtv4.ACCELERATOR, getattr(builtins, 'planted', False), "
+              "mtv4.decode(b'') if False else '')")
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(elsewhere), str(beside)])}
+    env.pop("CODEWORD_PURE_PYTHON", None)
+    run = subprocess.run([sys.executable, "-c", script], cwd=tmp_path, env=env, capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.split()[:2] == ["None", "False"], run.stdout

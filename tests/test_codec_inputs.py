@@ -13,11 +13,21 @@ import pytest
 
 from conftest import PROTOCOLS, load_generated
 
+def released_view() -> memoryview:
+    view = memoryview(b"\xaa\x08\x03\x01" * 3)
+    view.release()
+    return view
+
+
 HOSTILE = [
     None, 0, 5, -1, 2 ** 70, 10 ** 400, 1.5, float("nan"), float("inf"), True, False,
     "", "x", "\u00a0", "\u0661", "9" * 5000, "$:" + "9" * 5000 + ";",
     b"", b"\x00", b"\x02" * 40, b"9" * 5000, bytearray(b"\xaa\x08"), memoryview(b"abcdefgh")[::2],
     memoryview(bytes(range(16))).cast("I"), [], [1, 2], {}, {"a": 1}, (1,), object(), type, ...,
+    # memoryviews whose items are not ints 0..255, or not in one row, or gone
+    *(memoryview(frame).cast(form) for frame in (b"\xaa\x08\x03\x01" * 3, b"\x02\x03\x03\x01" * 3,
+                                                 b"\xb5\x62\x01\x07" * 25) for form in ("c", "b")),
+    memoryview(b"\xaa\x08\x03\x01" * 3).cast("B", (3, 4)), released_view(),
 ]
 
 

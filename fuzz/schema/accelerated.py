@@ -3,8 +3,11 @@ and their types, as repr shows them) and the same errors, frame by frame and thr
 the stream decoder. Shared by the schema fuzzer and tests/test_accelerator.py."""
 from __future__ import annotations
 
+import array
 import importlib.util
+import mmap
 import os
+import shutil
 import sys
 from pathlib import Path
 from typing import Any, Callable, Iterable, Optional
@@ -12,14 +15,13 @@ from typing import Any, Callable, Iterable, Optional
 
 def load(path: Path, key: str, accelerators: Optional[Path]):
     """The generated module at `path`, imported as `key`: with the accelerators built in
-    `accelerators`, or in pure Python (None)."""
+    `accelerators` (a copy of the module beside them, the only place a module loads its
+    accelerator from), or in pure Python (None)."""
     saved = os.environ.pop("CODEWORD_PURE_PYTHON", None)
-    accelerator = f"_{path.stem}_accel"
-    sys.modules.pop(accelerator, None)  # this folder's build, not one imported before
     if accelerators is None:
         os.environ["CODEWORD_PURE_PYTHON"] = "1"
-    else:
-        sys.path.insert(0, str(accelerators))
+    elif path.parent.resolve() != accelerators.resolve():
+        path = Path(shutil.copyfile(path, accelerators / f"{key}.py"))
     try:
         spec = importlib.util.spec_from_file_location(key, path)
         module = importlib.util.module_from_spec(spec)
@@ -29,9 +31,6 @@ def load(path: Path, key: str, accelerators: Optional[Path]):
         os.environ.pop("CODEWORD_PURE_PYTHON", None)
         if saved is not None:
             os.environ["CODEWORD_PURE_PYTHON"] = saved
-        if accelerators is not None:
-            sys.path.remove(str(accelerators))
-        sys.modules.pop(accelerator, None)  # nor found by a module imported after this one
     return module
 
 
@@ -74,6 +73,97 @@ def stream_difference(fast, pure, data: bytes, piece: int = 7) -> str:
     return ""
 
 
+class _Bytes(bytes):
+    """A bytes subclass: read through its own methods, as any object would be."""
+
+
+class _ByteArray(bytearray):
+    pass
+
+
+class _Name(str):
+    """A str subclass spelling a direction: not the protocol's direction name."""
+
+
+def _released(frame: bytes) -> memoryview:
+    view = memoryview(frame)
+    view.release()
+    return view
+
+
+def _mapped(frame: bytes) -> object:
+    mapped = mmap.mmap(-1, len(frame))
+    mapped.write(frame)
+    return mapped
+
+
+def buffer_kinds(frame: bytes) -> list[tuple[str, Callable[[], Any]]]:
+    """The frame as every kind of object a caller may pass for bytes (each made anew
+    for each call: a decoder may keep none of them), and objects that are not bytes."""
+    even = frame + bytes(len(frame) % 2)
+    kinds: list[tuple[str, Callable[[], Any]]] = [
+        ("bytes", lambda: frame), ("bytearray", lambda: bytearray(frame)),
+        ("memoryview", lambda: memoryview(frame)), ("memoryview of a bytearray", lambda: memoryview(bytearray(frame))),
+        ("strided memoryview", lambda: memoryview(frame + frame)[::2]),
+        ("reversed memoryview", lambda: memoryview(frame)[::-1]),
+        ("memoryview 'b'", lambda: memoryview(frame).cast("b")), ("memoryview 'c'", lambda: memoryview(frame).cast("c")),
+        ("memoryview 'H'", lambda: memoryview(even).cast("H")),
+        ("2-D memoryview", lambda: memoryview(frame).cast("B", (1, len(frame))) if frame else memoryview(frame)),
+        ("0-D memoryview", lambda: memoryview(frame[:1] or b"\0").cast("B", ())),
+        ("released memoryview", lambda: _released(frame)),
+        ("memoryview of array('H')", lambda: memoryview(array.array("H", even))),
+        ("array('B')", lambda: array.array("B", frame)), ("array('H')", lambda: array.array("H", even)),
+        ("bytes subclass", lambda: _Bytes(frame)), ("bytearray subclass", lambda: _ByteArray(frame)),
+        ("str", lambda: frame.decode("latin-1")), ("list of ints", lambda: list(frame)), ("int", lambda: len(frame)),
+        ("huge int", lambda: 2 ** 70), ("float", lambda: 1.5), ("None", lambda: None), ("object", object),
+    ]
+    if frame:  # mmap takes no empty mapping
+        kinds.append(("mmap", lambda: _mapped(frame)))
+    return kinds
+
+
+def buffer_difference(fast, pure, frame: bytes, message: Optional[str]) -> str:
+    """How the two modules differ on the frame passed as each kind of object, to decode,
+    the message's decode and a StreamDecoder; "" if they agree."""
+    for label, make in buffer_kinds(frame):
+        calls = [("decode", lambda m: m.decode(make()))]
+        if message in fast.MESSAGES:
+            calls.append((f"{message}.decode", lambda m: m.MESSAGES[message].decode(make())))
+        if hasattr(pure, "StreamDecoder"):
+            def feed(m):
+                decoder = m.StreamDecoder()
+                got = [outcome(lambda x=x: x) for x in decoder.feed(make())]
+                return got, decoder.spans, decoder.offset, decoder.skipped
+            calls.append(("StreamDecoder.feed", feed))
+        for name, call in calls:
+            got, expected = outcome(call, fast), outcome(call, pure)
+            if got != expected:
+                return f"{name}({label} of {frame.hex()}): accelerated {got}, pure Python {expected}"
+    return ""
+
+
+HOSTILE_OFFSETS = (sys.maxsize - 1, sys.maxsize, sys.maxsize + 1, 2 ** 70, -2 ** 70, -sys.maxsize - 2, -1,
+                   1.5, True, "x", None)
+
+
+def stream_state_difference(fast, pure, data: bytes, directions: Iterable[str]) -> str:
+    """How the two StreamDecoders differ on `data` from any stream offset a caller may
+    set (huge, negative, not an int) and any direction (a str subclass, not a str);
+    "" if they agree."""
+    def run(module, offset, direction):
+        decoder = module.StreamDecoder(direction)
+        decoder.offset = offset
+        return [outcome(decoder.feed, data), outcome(decoder.finish), repr(decoder.spans), repr(decoder.offset)]
+    cases = [(offset, None) for offset in HOSTILE_OFFSETS]
+    cases += [(0, direction) for name in directions for direction in (_Name(name), name.encode(), 5)]
+    for offset, direction in cases:
+        got, expected = run(fast, offset, direction), run(pure, offset, direction)
+        if got != expected:
+            return f"stream {data.hex()} from offset {offset!r}, direction {direction!r}: " \
+                   f"accelerated {got}, pure Python {expected}"
+    return ""
+
+
 def damaged(frame: bytes) -> list[bytes]:
     """The frame with one bit flipped in each byte, cut short by one, and one longer."""
     out = [frame[:i] + bytes([frame[i] ^ (1 << (i % 8))]) + frame[i + 1:] for i in range(len(frame))]
@@ -91,7 +181,17 @@ def difference(fast, pure, vectors: dict, streams: Iterable[bytes] = ()) -> tupl
             if problem:
                 return f"{case['name']}: {problem}", compared
             compared += 1
+    firsts = {case.get("message"): bytes.fromhex(case["hex"]) for case in reversed(vectors["valid"])}
+    for message, frame in firsts.items():  # one frame of each message, as every kind of object
+        problem = buffer_difference(fast, pure, frame, message)
+        if problem:
+            return f"{message}: {problem}", compared
+        compared += 1
     if hasattr(pure, "StreamDecoder"):
+        directions = sorted({case["direction"] for case in vectors["valid"] if case.get("direction")})
+        problem = stream_state_difference(fast, pure, b"".join(firsts.values()), directions)
+        if problem:
+            return problem, compared
         for data in [bytes.fromhex(s["hex"]) for s in vectors.get("streams", [])] + list(streams):
             problem = stream_difference(fast, pure, data)
             if problem:

@@ -69,10 +69,35 @@ static inline acc_state *acc_state_of(PyObject *capsule)
     return (acc_state *)PyCapsule_GetPointer(capsule, ACC_CAPSULE);
 }
 
+/* cls.__new__ without __init__: bind() let in only classes object.__new__ makes safely */
 static inline PyObject *acc_new(PyObject *cls)
 {
     PyTypeObject *type = (PyTypeObject *)cls;
     return type->tp_alloc(type, 0);
+}
+
+/* 1 when the Python decoder reads `data` as its raw bytes too (exact bytearray, or a
+ * memoryview of unsigned bytes in one C-contiguous row), view then holding them to be
+ * released; 0 for anything else (subclasses, other formats and shapes, arrays, mmap,
+ * released views, not bytes at all), which the Python decoder decides as it always does. */
+static int acc_plain_bytes(PyObject *data, Py_buffer *view)
+{
+    if (PyByteArray_CheckExact(data)) {
+        return PyObject_GetBuffer(data, view, PyBUF_SIMPLE) == 0 ? 1 : -1;
+    }
+    if (!PyMemoryView_Check(data)) {
+        return 0;
+    }
+    if (PyObject_GetBuffer(data, view, PyBUF_FULL_RO) < 0) {  /* released */
+        PyErr_Clear();
+        return 0;
+    }
+    if (view->ndim == 1 && view->itemsize == 1 && view->format != NULL && strcmp(view->format, "B") == 0
+        && (view->strides == NULL || view->shape[0] == 1 || view->strides[0] == 1)) {
+        return 1;
+    }
+    PyBuffer_Release(view);
+    return 0;
 }
 
 /* Sets attribute `slot` of obj to value and releases value (NULL: an error already set):
@@ -139,19 +164,20 @@ static PyObject *decode_master_control(PyObject *self, PyObject *data)
 {
     const acc_state *st = acc_state_of(self);
     car_master_control_t m;
-    Py_buffer view;
     int rc;
     if (st == NULL) {
         return NULL;
     }
     if (PyBytes_CheckExact(data)) {
         rc = car_master_control_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
-    } else if (PyObject_GetBuffer(data, &view, PyBUF_SIMPLE) == 0) {
+    } else {
+        Py_buffer view;
+        int plain = acc_plain_bytes(data, &view);
+        if (plain <= 0) {  /* an error, or what Python reads otherwise: Python decides */
+            return plain < 0 ? NULL : PyObject_CallOneArg(st->G[5], data);
+        }
         rc = car_master_control_decode((const uint8_t *)view.buf, (size_t)view.len, &m);
         PyBuffer_Release(&view);
-    } else {
-        PyErr_Clear();
-        rc = CW_ERR_LENGTH;
     }
     if (rc != CW_OK) {  /* the Python decoder says why */
         return PyObject_CallOneArg(st->G[5], data);
@@ -194,19 +220,20 @@ static PyObject *decode_slave_control(PyObject *self, PyObject *data)
 {
     const acc_state *st = acc_state_of(self);
     car_slave_control_t m;
-    Py_buffer view;
     int rc;
     if (st == NULL) {
         return NULL;
     }
     if (PyBytes_CheckExact(data)) {
         rc = car_slave_control_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
-    } else if (PyObject_GetBuffer(data, &view, PyBUF_SIMPLE) == 0) {
+    } else {
+        Py_buffer view;
+        int plain = acc_plain_bytes(data, &view);
+        if (plain <= 0) {  /* an error, or what Python reads otherwise: Python decides */
+            return plain < 0 ? NULL : PyObject_CallOneArg(st->G[7], data);
+        }
         rc = car_slave_control_decode((const uint8_t *)view.buf, (size_t)view.len, &m);
         PyBuffer_Release(&view);
-    } else {
-        PyErr_Clear();
-        rc = CW_ERR_LENGTH;
     }
     if (rc != CW_OK) {  /* the Python decoder says why */
         return PyObject_CallOneArg(st->G[7], data);
@@ -230,6 +257,31 @@ static const char *const global_names[] = {
     "SlaveControl",
     "_decode_slave_control",
 };
+
+/* The globals whose instances acc_new makes, and those read as dicts (indices into G). */
+static const unsigned int class_globals[] = { 0, 1, 3, 4, 6, };
+
+/* -1 with TypeError unless every class global is one whose instances object.__new__ makes
+ * (so acc_new may: a type, of object's layout and allocation) and every dict global a
+ * dict: bind() is public, and may be given any dict. */
+static int acc_check(const acc_state *st)
+{
+    PyObject *object_new = PyObject_GetAttrString((PyObject *)&PyBaseObject_Type, "__new__");
+    if (object_new == NULL) {
+        return -1;
+    }
+    for (size_t i = 0; i < sizeof class_globals / sizeof class_globals[0]; i++) {
+        PyObject *made = PyObject_CallOneArg(object_new, st->G[class_globals[i]]);
+        if (made == NULL) {
+            Py_DECREF(object_new);
+            PyErr_Format(PyExc_TypeError, "bind(): %s is not a class of the %s module", global_names[class_globals[i]], ACC_MODULE);
+            return -1;
+        }
+        Py_DECREF(made);
+    }
+    Py_DECREF(object_new);
+    return 0;
+}
 
 static const char *const attribute_names[] = {
     "accept_ir",
@@ -277,7 +329,7 @@ static int acc_fill(acc_state *st, PyObject *module_globals)
     for (size_t i = 0; i < sizeof st->A / sizeof st->A[0]; i++) {
         st->A[i] = PyUnicode_InternFromString(attribute_names[i]);
     }
-    if (PyErr_Occurred()) {
+    if (PyErr_Occurred() || acc_check(st) < 0) {
         return -1;
     }
     for (size_t i = 0; i < sizeof st->S / sizeof st->S[0]; i++) {
@@ -287,7 +339,10 @@ static int acc_fill(acc_state *st, PyObject *module_globals)
             PyErr_Clear();
             continue;
         }
-        if (Py_IS_TYPE(descr, &PyMemberDescr_Type)) {
+        /* only a slot of the class itself or of a base: another class's descriptor, set
+         * on it as a plain attribute, holds an offset into that other class's instances */
+        if (Py_IS_TYPE(descr, &PyMemberDescr_Type)
+            && PyType_IsSubtype((PyTypeObject *)st->G[slot_of[i][0]], PyDescr_TYPE(descr))) {
             PyMemberDef *def = ((PyMemberDescrObject *)descr)->d_member;
             if (def->type == T_OBJECT_EX && !(def->flags & READONLY)) {
                 st->S[i] = def->offset;

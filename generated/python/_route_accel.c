@@ -58,10 +58,35 @@ static inline acc_state *acc_state_of(PyObject *capsule)
     return (acc_state *)PyCapsule_GetPointer(capsule, ACC_CAPSULE);
 }
 
+/* cls.__new__ without __init__: bind() let in only classes object.__new__ makes safely */
 static inline PyObject *acc_new(PyObject *cls)
 {
     PyTypeObject *type = (PyTypeObject *)cls;
     return type->tp_alloc(type, 0);
+}
+
+/* 1 when the Python decoder reads `data` as its raw bytes too (exact bytearray, or a
+ * memoryview of unsigned bytes in one C-contiguous row), view then holding them to be
+ * released; 0 for anything else (subclasses, other formats and shapes, arrays, mmap,
+ * released views, not bytes at all), which the Python decoder decides as it always does. */
+static int acc_plain_bytes(PyObject *data, Py_buffer *view)
+{
+    if (PyByteArray_CheckExact(data)) {
+        return PyObject_GetBuffer(data, view, PyBUF_SIMPLE) == 0 ? 1 : -1;
+    }
+    if (!PyMemoryView_Check(data)) {
+        return 0;
+    }
+    if (PyObject_GetBuffer(data, view, PyBUF_FULL_RO) < 0) {  /* released */
+        PyErr_Clear();
+        return 0;
+    }
+    if (view->ndim == 1 && view->itemsize == 1 && view->format != NULL && strcmp(view->format, "B") == 0
+        && (view->strides == NULL || view->shape[0] == 1 || view->strides[0] == 1)) {
+        return 1;
+    }
+    PyBuffer_Release(view);
+    return 0;
 }
 
 /* Sets attribute `slot` of obj to value and releases value (NULL: an error already set):
@@ -103,19 +128,20 @@ static PyObject *decode_start(PyObject *self, PyObject *data)
 {
     const acc_state *st = acc_state_of(self);
     route_start_t m;
-    Py_buffer view;
     int rc;
     if (st == NULL) {
         return NULL;
     }
     if (PyBytes_CheckExact(data)) {
         rc = route_start_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
-    } else if (PyObject_GetBuffer(data, &view, PyBUF_SIMPLE) == 0) {
+    } else {
+        Py_buffer view;
+        int plain = acc_plain_bytes(data, &view);
+        if (plain <= 0) {  /* an error, or what Python reads otherwise: Python decides */
+            return plain < 0 ? NULL : PyObject_CallOneArg(st->G[1], data);
+        }
         rc = route_start_decode((const uint8_t *)view.buf, (size_t)view.len, &m);
         PyBuffer_Release(&view);
-    } else {
-        PyErr_Clear();
-        rc = CW_ERR_LENGTH;
     }
     if (rc != CW_OK) {  /* the Python decoder says why */
         return PyObject_CallOneArg(st->G[1], data);
@@ -147,19 +173,20 @@ static PyObject *decode_object(PyObject *self, PyObject *data)
 {
     const acc_state *st = acc_state_of(self);
     route_object_t m;
-    Py_buffer view;
     int rc;
     if (st == NULL) {
         return NULL;
     }
     if (PyBytes_CheckExact(data)) {
         rc = route_object_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
-    } else if (PyObject_GetBuffer(data, &view, PyBUF_SIMPLE) == 0) {
+    } else {
+        Py_buffer view;
+        int plain = acc_plain_bytes(data, &view);
+        if (plain <= 0) {  /* an error, or what Python reads otherwise: Python decides */
+            return plain < 0 ? NULL : PyObject_CallOneArg(st->G[3], data);
+        }
         rc = route_object_decode((const uint8_t *)view.buf, (size_t)view.len, &m);
         PyBuffer_Release(&view);
-    } else {
-        PyErr_Clear();
-        rc = CW_ERR_LENGTH;
     }
     if (rc != CW_OK) {  /* the Python decoder says why */
         return PyObject_CallOneArg(st->G[3], data);
@@ -187,19 +214,20 @@ static PyObject *decode_scene(PyObject *self, PyObject *data)
 {
     const acc_state *st = acc_state_of(self);
     route_scene_t m;
-    Py_buffer view;
     int rc;
     if (st == NULL) {
         return NULL;
     }
     if (PyBytes_CheckExact(data)) {
         rc = route_scene_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
-    } else if (PyObject_GetBuffer(data, &view, PyBUF_SIMPLE) == 0) {
+    } else {
+        Py_buffer view;
+        int plain = acc_plain_bytes(data, &view);
+        if (plain <= 0) {  /* an error, or what Python reads otherwise: Python decides */
+            return plain < 0 ? NULL : PyObject_CallOneArg(st->G[6], data);
+        }
         rc = route_scene_decode((const uint8_t *)view.buf, (size_t)view.len, &m);
         PyBuffer_Release(&view);
-    } else {
-        PyErr_Clear();
-        rc = CW_ERR_LENGTH;
     }
     if (rc != CW_OK) {  /* the Python decoder says why */
         return PyObject_CallOneArg(st->G[6], data);
@@ -217,19 +245,20 @@ static PyObject *decode_end(PyObject *self, PyObject *data)
 {
     const acc_state *st = acc_state_of(self);
     route_end_t m;
-    Py_buffer view;
     int rc;
     if (st == NULL) {
         return NULL;
     }
     if (PyBytes_CheckExact(data)) {
         rc = route_end_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
-    } else if (PyObject_GetBuffer(data, &view, PyBUF_SIMPLE) == 0) {
+    } else {
+        Py_buffer view;
+        int plain = acc_plain_bytes(data, &view);
+        if (plain <= 0) {  /* an error, or what Python reads otherwise: Python decides */
+            return plain < 0 ? NULL : PyObject_CallOneArg(st->G[8], data);
+        }
         rc = route_end_decode((const uint8_t *)view.buf, (size_t)view.len, &m);
         PyBuffer_Release(&view);
-    } else {
-        PyErr_Clear();
-        rc = CW_ERR_LENGTH;
     }
     if (rc != CW_OK) {  /* the Python decoder says why */
         return PyObject_CallOneArg(st->G[8], data);
@@ -256,6 +285,31 @@ static const char *const global_names[] = {
     "End",
     "_decode_end",
 };
+
+/* The globals whose instances acc_new makes, and those read as dicts (indices into G). */
+static const unsigned int class_globals[] = { 0, 2, 4, 7, };
+
+/* -1 with TypeError unless every class global is one whose instances object.__new__ makes
+ * (so acc_new may: a type, of object's layout and allocation) and every dict global a
+ * dict: bind() is public, and may be given any dict. */
+static int acc_check(const acc_state *st)
+{
+    PyObject *object_new = PyObject_GetAttrString((PyObject *)&PyBaseObject_Type, "__new__");
+    if (object_new == NULL) {
+        return -1;
+    }
+    for (size_t i = 0; i < sizeof class_globals / sizeof class_globals[0]; i++) {
+        PyObject *made = PyObject_CallOneArg(object_new, st->G[class_globals[i]]);
+        if (made == NULL) {
+            Py_DECREF(object_new);
+            PyErr_Format(PyExc_TypeError, "bind(): %s is not a class of the %s module", global_names[class_globals[i]], ACC_MODULE);
+            return -1;
+        }
+        Py_DECREF(made);
+    }
+    Py_DECREF(object_new);
+    return 0;
+}
 
 static const char *const attribute_names[] = {
     "ns",
@@ -301,7 +355,7 @@ static int acc_fill(acc_state *st, PyObject *module_globals)
     for (size_t i = 0; i < sizeof st->A / sizeof st->A[0]; i++) {
         st->A[i] = PyUnicode_InternFromString(attribute_names[i]);
     }
-    if (PyErr_Occurred()) {
+    if (PyErr_Occurred() || acc_check(st) < 0) {
         return -1;
     }
     for (size_t i = 0; i < sizeof st->S / sizeof st->S[0]; i++) {
@@ -311,7 +365,10 @@ static int acc_fill(acc_state *st, PyObject *module_globals)
             PyErr_Clear();
             continue;
         }
-        if (Py_IS_TYPE(descr, &PyMemberDescr_Type)) {
+        /* only a slot of the class itself or of a base: another class's descriptor, set
+         * on it as a plain attribute, holds an offset into that other class's instances */
+        if (Py_IS_TYPE(descr, &PyMemberDescr_Type)
+            && PyType_IsSubtype((PyTypeObject *)st->G[slot_of[i][0]], PyDescr_TYPE(descr))) {
             PyMemberDef *def = ((PyMemberDescrObject *)descr)->d_member;
             if (def->type == T_OBJECT_EX && !(def->flags & READONLY)) {
                 st->S[i] = def->offset;

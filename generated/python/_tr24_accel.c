@@ -54,10 +54,35 @@ static inline acc_state *acc_state_of(PyObject *capsule)
     return (acc_state *)PyCapsule_GetPointer(capsule, ACC_CAPSULE);
 }
 
+/* cls.__new__ without __init__: bind() let in only classes object.__new__ makes safely */
 static inline PyObject *acc_new(PyObject *cls)
 {
     PyTypeObject *type = (PyTypeObject *)cls;
     return type->tp_alloc(type, 0);
+}
+
+/* 1 when the Python decoder reads `data` as its raw bytes too (exact bytearray, or a
+ * memoryview of unsigned bytes in one C-contiguous row), view then holding them to be
+ * released; 0 for anything else (subclasses, other formats and shapes, arrays, mmap,
+ * released views, not bytes at all), which the Python decoder decides as it always does. */
+static int acc_plain_bytes(PyObject *data, Py_buffer *view)
+{
+    if (PyByteArray_CheckExact(data)) {
+        return PyObject_GetBuffer(data, view, PyBUF_SIMPLE) == 0 ? 1 : -1;
+    }
+    if (!PyMemoryView_Check(data)) {
+        return 0;
+    }
+    if (PyObject_GetBuffer(data, view, PyBUF_FULL_RO) < 0) {  /* released */
+        PyErr_Clear();
+        return 0;
+    }
+    if (view->ndim == 1 && view->itemsize == 1 && view->format != NULL && strcmp(view->format, "B") == 0
+        && (view->strides == NULL || view->shape[0] == 1 || view->strides[0] == 1)) {
+        return 1;
+    }
+    PyBuffer_Release(view);
+    return 0;
 }
 
 /* Sets attribute `slot` of obj to value and releases value (NULL: an error already set):
@@ -98,19 +123,20 @@ static PyObject *decode_command(PyObject *self, PyObject *data)
 {
     const acc_state *st = acc_state_of(self);
     tr24_command_t m;
-    Py_buffer view;
     int rc;
     if (st == NULL) {
         return NULL;
     }
     if (PyBytes_CheckExact(data)) {
         rc = tr24_command_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
-    } else if (PyObject_GetBuffer(data, &view, PyBUF_SIMPLE) == 0) {
+    } else {
+        Py_buffer view;
+        int plain = acc_plain_bytes(data, &view);
+        if (plain <= 0) {  /* an error, or what Python reads otherwise: Python decides */
+            return plain < 0 ? NULL : PyObject_CallOneArg(st->G[1], data);
+        }
         rc = tr24_command_decode((const uint8_t *)view.buf, (size_t)view.len, &m);
         PyBuffer_Release(&view);
-    } else {
-        PyErr_Clear();
-        rc = CW_ERR_LENGTH;
     }
     if (rc != CW_OK) {  /* the Python decoder says why */
         return PyObject_CallOneArg(st->G[1], data);
@@ -138,19 +164,20 @@ static PyObject *decode_reply(PyObject *self, PyObject *data)
 {
     const acc_state *st = acc_state_of(self);
     tr24_reply_t m;
-    Py_buffer view;
     int rc;
     if (st == NULL) {
         return NULL;
     }
     if (PyBytes_CheckExact(data)) {
         rc = tr24_reply_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
-    } else if (PyObject_GetBuffer(data, &view, PyBUF_SIMPLE) == 0) {
+    } else {
+        Py_buffer view;
+        int plain = acc_plain_bytes(data, &view);
+        if (plain <= 0) {  /* an error, or what Python reads otherwise: Python decides */
+            return plain < 0 ? NULL : PyObject_CallOneArg(st->G[3], data);
+        }
         rc = tr24_reply_decode((const uint8_t *)view.buf, (size_t)view.len, &m);
         PyBuffer_Release(&view);
-    } else {
-        PyErr_Clear();
-        rc = CW_ERR_LENGTH;
     }
     if (rc != CW_OK) {  /* the Python decoder says why */
         return PyObject_CallOneArg(st->G[3], data);
@@ -158,22 +185,39 @@ static PyObject *decode_reply(PyObject *self, PyObject *data)
     return build_reply(st, &m);
 }
 
-/* The direction code of a StreamDecoder's direction; 0: not one of the protocol's. */
+/* The direction code of a StreamDecoder's direction; 0: not one of the protocol's, or
+ * not a str (the Python decoder reads a str subclass as no direction). */
 static int acc_direction(PyObject *direction, int *code)
 {
     if (direction == Py_None) {
         *code = TR24_DIR_ANY;
         return 1;
     }
-    if (PyUnicode_Check(direction) && PyUnicode_CompareWithASCIIString(direction, "master_to_slave") == 0) {
+    if (PyUnicode_CheckExact(direction) && PyUnicode_CompareWithASCIIString(direction, "master_to_slave") == 0) {
         *code = TR24_DIR_MASTER_TO_SLAVE;
         return 1;
     }
-    if (PyUnicode_Check(direction) && PyUnicode_CompareWithASCIIString(direction, "slave_to_master") == 0) {
+    if (PyUnicode_CheckExact(direction) && PyUnicode_CompareWithASCIIString(direction, "slave_to_master") == 0) {
         *code = TR24_DIR_SLAVE_TO_MASTER;
         return 1;
     }
     return 0;
+}
+
+/* base + pos, as Python adds them: in C while an exact int base keeps the sum in range,
+ * else through Python's addition (a huge or negative offset, or one that is no int). */
+static PyObject *acc_offset(PyObject *base, int exact, Py_ssize_t small, Py_ssize_t pos)
+{
+    if (exact) {
+        return PyLong_FromSsize_t(small + pos);
+    }
+    PyObject *at = PyLong_FromSsize_t(pos);
+    if (at == NULL) {
+        return NULL;
+    }
+    PyObject *sum = PyNumber_Add(base, at);
+    Py_DECREF(at);
+    return sum;
 }
 
 /* _run_frames(buf, pos, direction, out, spans, base) -> the position after the frames
@@ -194,10 +238,16 @@ static PyObject *run_frames(PyObject *self, PyObject *const *args, Py_ssize_t na
     const uint8_t *buf = (const uint8_t *)PyBytes_AS_STRING(args[0]);
     Py_ssize_t end = PyBytes_GET_SIZE(args[0]);
     Py_ssize_t pos = PyLong_AsSsize_t(args[1]);
-    Py_ssize_t base = PyLong_AsSsize_t(args[5]);
-    int direction;
-    if (PyErr_Occurred()) {
+    PyObject *base = args[5];
+    Py_ssize_t small = 0;
+    int exact = 0, direction;
+    if (pos == -1 && PyErr_Occurred()) {
         return NULL;
+    }
+    if (PyLong_CheckExact(base)) {
+        small = PyLong_AsSsize_t(base);
+        exact = !(small == -1 && PyErr_Occurred()) && small <= PY_SSIZE_T_MAX - end;
+        PyErr_Clear();
     }
     if (pos < 0 || pos > end || !acc_direction(args[2], &direction)) {
         return PyLong_FromSsize_t(pos);
@@ -224,7 +274,7 @@ static PyObject *run_frames(PyObject *self, PyObject *const *args, Py_ssize_t na
         }
         PyObject *span = PyTuple_New(2);
         if (span != NULL) {
-            PyTuple_SET_ITEM(span, 0, PyLong_FromSsize_t(base + pos));
+            PyTuple_SET_ITEM(span, 0, acc_offset(base, exact, small, pos));
             PyTuple_SET_ITEM(span, 1, PyLong_FromSsize_t((Py_ssize_t)size));
             if (PyTuple_GET_ITEM(span, 0) == NULL || PyTuple_GET_ITEM(span, 1) == NULL) {
                 Py_CLEAR(span);
@@ -254,6 +304,31 @@ static const char *const global_names[] = {
     "Reply",
     "_decode_reply",
 };
+
+/* The globals whose instances acc_new makes, and those read as dicts (indices into G). */
+static const unsigned int class_globals[] = { 0, 2, };
+
+/* -1 with TypeError unless every class global is one whose instances object.__new__ makes
+ * (so acc_new may: a type, of object's layout and allocation) and every dict global a
+ * dict: bind() is public, and may be given any dict. */
+static int acc_check(const acc_state *st)
+{
+    PyObject *object_new = PyObject_GetAttrString((PyObject *)&PyBaseObject_Type, "__new__");
+    if (object_new == NULL) {
+        return -1;
+    }
+    for (size_t i = 0; i < sizeof class_globals / sizeof class_globals[0]; i++) {
+        PyObject *made = PyObject_CallOneArg(object_new, st->G[class_globals[i]]);
+        if (made == NULL) {
+            Py_DECREF(object_new);
+            PyErr_Format(PyExc_TypeError, "bind(): %s is not a class of the %s module", global_names[class_globals[i]], ACC_MODULE);
+            return -1;
+        }
+        Py_DECREF(made);
+    }
+    Py_DECREF(object_new);
+    return 0;
+}
 
 static const char *const attribute_names[] = {
     "seq",
@@ -293,7 +368,7 @@ static int acc_fill(acc_state *st, PyObject *module_globals)
     for (size_t i = 0; i < sizeof st->A / sizeof st->A[0]; i++) {
         st->A[i] = PyUnicode_InternFromString(attribute_names[i]);
     }
-    if (PyErr_Occurred()) {
+    if (PyErr_Occurred() || acc_check(st) < 0) {
         return -1;
     }
     for (size_t i = 0; i < sizeof st->S / sizeof st->S[0]; i++) {
@@ -303,7 +378,10 @@ static int acc_fill(acc_state *st, PyObject *module_globals)
             PyErr_Clear();
             continue;
         }
-        if (Py_IS_TYPE(descr, &PyMemberDescr_Type)) {
+        /* only a slot of the class itself or of a base: another class's descriptor, set
+         * on it as a plain attribute, holds an offset into that other class's instances */
+        if (Py_IS_TYPE(descr, &PyMemberDescr_Type)
+            && PyType_IsSubtype((PyTypeObject *)st->G[slot_of[i][0]], PyDescr_TYPE(descr))) {
             PyMemberDef *def = ((PyMemberDescrObject *)descr)->d_member;
             if (def->type == T_OBJECT_EX && !(def->flags & READONLY)) {
                 st->S[i] = def->offset;

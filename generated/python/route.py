@@ -8,7 +8,8 @@
 from __future__ import annotations
 
 import enum
-import importlib
+import importlib.machinery
+import importlib.util
 import math
 import os
 import re
@@ -309,8 +310,12 @@ AnyMessage = Union[Start, Object, Scene, End, ]
 def _as_input(data: object) -> _Buffer:
     if not isinstance(data, (bytes, bytearray, memoryview)):
         raise _dec(None, None, type(data).__name__, 'type', 'bytes')
-    if isinstance(data, memoryview) and (data.itemsize != 1 or not data.c_contiguous):
-        return data.tobytes()  # the bytes it shows, however it is shaped or strided
+    if isinstance(data, memoryview):
+        try:
+            if data.format != "B" or data.ndim != 1 or not data.c_contiguous:
+                return data.tobytes()  # the bytes it shows, however it is typed, shaped or strided
+        except ValueError:  # released: it shows nothing
+            raise _dec(None, None, 'released memoryview', 'type', 'bytes') from None
     return cast("_Buffer", data)
 
 
@@ -798,8 +803,20 @@ def _accelerator() -> Any:
     if os.environ.get("CODEWORD_PURE_PYTHON"):
         return None
     name = '_route_accel'
+    origin = __spec__.origin if __spec__ is not None else None
+    if not origin or not os.path.isfile(origin):  # loaded from no file: no folder to look in
+        return None
+    # only from this module's own folder, never from elsewhere on sys.path
+    here = os.path.dirname(os.path.abspath(origin))
+    found = [path for path in (os.path.join(here, name + suffix) for suffix in importlib.machinery.EXTENSION_SUFFIXES)
+             if os.path.isfile(path)]
+    spec = importlib.util.spec_from_file_location(f"{__package__}.{name}" if __package__ else name, found[0]) \
+        if found else None
+    if spec is None or spec.loader is None:
+        return None
     try:
-        module = importlib.import_module(f"{__package__}.{name}" if __package__ else name)
+        module = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(module)
     except ImportError:
         return None
     return module if getattr(module, "SOURCE", None) == '774f55b3d74bfa7b' else None

@@ -1207,7 +1207,10 @@ class StreamDecoder:
     def feed(self, data: Union[str, _Buffer]) -> list[Union[AnyMessage, DecodeError]]:
         # any byte is taken here: a message holding one that is not ASCII is a DecodeError in its turn
         if isinstance(data, (bytes, bytearray, memoryview)):
-            data = bytes(data).decode("latin-1")
+            try:
+                data = bytes(data).decode("latin-1")
+            except ValueError:  # a released memoryview: it shows nothing
+                raise _dec(None, None, 'released memoryview', 'type', 'str or bytes') from None
         elif not isinstance(data, str):
             raise _dec(None, None, type(data).__name__, 'type', 'str or bytes')
         self._buffer += data

@@ -19,5 +19,6 @@ def render(p: Protocol) -> dict[str, str]:
     helpers = {name for name in HELPERS if any(f"{name}(" in f["body"] for f in functions)}
     source = environment().get_template("accelerator/module.c.j2").render(
         p=p, px=p.name, PX=p.name.upper(), stream=runs_streams(p), directions=view.c.directions(), tag=source_tag(p), functions=functions, helpers=helpers, globals=view.names.globals,
-        attributes=view.names.attributes, slots=view.names.slots, constants=view.constants())
+        attributes=view.names.attributes, slots=view.names.slots, constants=view.constants(),
+        classes=sorted(view.names.classes), dicts=sorted(view.names.dicts))
     return {f"python/_{p.name}_accel.c": tidy(source, max_blank=1)}

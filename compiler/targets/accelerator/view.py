@@ -27,6 +27,8 @@ class Names:
     constants: list[str] = field(default_factory=list)  # Python literals: ints and floats
     slots: list[tuple[int, int]] = field(default_factory=list)  # (class, attribute): an instance's slot
     places: dict[tuple[int, object], int] = field(default_factory=dict)  # (table, entry) → index
+    classes: set[int] = field(default_factory=set)  # globals whose instances C makes: bind() checks each
+    dicts: set[int] = field(default_factory=set)  # globals C reads as dicts: bind() checks each
 
     def _slot(self, table: list, name) -> int:
         key = (id(table), name)
@@ -40,6 +42,16 @@ class Names:
 
     def a(self, name: str) -> str:
         return f"st->A[{self._slot(self.attributes, name)}]"
+
+    def class_global(self, name: str) -> str:
+        """A class global whose instances the C code makes."""
+        self.classes.add(self._slot(self.globals, name))
+        return self.g(name)
+
+    def dict_global(self, name: str) -> str:
+        """A global the C code reads with the dict API."""
+        self.dicts.add(self._slot(self.globals, name))
+        return self.g(name)
 
     def s(self, cls: str, attribute: str) -> str:
         """The index of the slot that holds `attribute` in instances of `cls`."""
@@ -67,7 +79,7 @@ class AcceleratorView:
             body = Code()
             body.indent()
             self.build(body, m, m.layout, (), "o", self.py.class_name(m), "m->")
-            out.append({"name": m.name, "cls": self.names.g(self.py.class_name(m)),
+            out.append({"name": m.name, "cls": self.names.class_global(self.py.class_name(m)),
                         "pure": self.names.g(f"_decode_{m.name}"), "decode": self.c.fn(m, "decode"),
                         "ctype": self.c.tname(m), "kind": self.c.upper("MSG", m.name), "body": body.text()})
         return out
@@ -86,7 +98,7 @@ class AcceleratorView:
         if f.count is None:
             if f.kind == "group":
                 group, group_cls = self.local("g"), self.py.group_class(m, path)
-                c(f"PyObject *{group} = acc_new({self.names.g(group_cls)});")
+                c(f"PyObject *{group} = acc_new({self.names.class_global(group_cls)});")
                 c(f"if (acc_set(st, {owner}, {slot}, {group}) < 0) goto fail;")
                 self.build(c, m, f.fields, path, group, group_cls, at + ".")
             else:
@@ -100,7 +112,7 @@ class AcceleratorView:
         element = path + (0,)
         item = self.local("g" if f.kind == "group" else "v")
         if f.kind == "group":
-            c(f"PyObject *{item} = acc_new({self.names.g(self.py.group_class(m, element))});")
+            c(f"PyObject *{item} = acc_new({self.names.class_global(self.py.group_class(m, element))});")
         else:
             c(f"PyObject *{item} = {self.value(f, f'{at}[{i}]')};")
         c(f"if ({item} == NULL) goto fail;")
@@ -127,9 +139,9 @@ class AcceleratorView:
         if f.enum is not None:
             return f"acc_lookup({self.names.g(f'_ENUM_{f.enum.name}')}, {number})"
         if f.flags is not None:
-            table = self.names.g(f"_FLAGS_{f.flags.name}")
             if f.exactly_one or PythonView.all_flag_values(f.flags):
-                return f"acc_lookup({table}, {number})"
+                return f"acc_lookup({self.names.g(f'_FLAGS_{f.flags.name}')}, {number})"
+            table = self.names.dict_global(f"_FLAGS_{f.flags.name}")
             cls = self.names.g(PythonView.enum_class(f.flags.name))
             return f"acc_flags({table}, {cls}, {self.names.g('_flag')}, {number})"
         if f.scale is None:
