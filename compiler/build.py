@@ -14,6 +14,7 @@ from .accelerate import is_accelerator
 from .diagnostics import Diagnostic, Loc, SchemaError
 from .examples import check_examples
 from .loader import load_file
+from .ownership import written_by_codeword
 from .model import Protocol
 from .project import Project
 from .pyload import load_module
@@ -115,6 +116,7 @@ class BuildResult:
     unchanged: list[Path] = field(default_factory=list)
     stale: list[Path] = field(default_factory=list)  # check mode: differ or missing
     extra: list[Path] = field(default_factory=list)  # check mode: generated files with no schema
+    foreign: list[Path] = field(default_factory=list)  # files in the way that codeword did not write: nothing written
     notes: list[str] = field(default_factory=list)  # what the build left alone, and why
     errors: list[Diagnostic] = field(default_factory=list)
 
@@ -156,25 +158,31 @@ def build(schemas: list[Path], out: Path | Project, check: bool = False, root: P
         placed[package / "__init__.py"] = package_init(listed)
         placed[package / "py.typed"] = ""  # PEP 561: type checkers read the modules' annotations
     placed.update(_site(project, listed, result))
+    changed = []
     for target, text in sorted(placed.items()):
-        rel = target
         if isinstance(text, InPlace):
             same = text.path == target
         elif isinstance(text, Spool):
             same = text.same_as(target)
         else:
-            same = (target.read_text(encoding="utf-8") if target.is_file() else None) == text
+            same = (_read(target) if target.is_file() else None) == text
         if same:
-            result.unchanged.append(rel)
+            result.unchanged.append(target)
         elif check:
-            result.stale.append(rel)
+            result.stale.append(target)
+        elif not written_by_codeword(target, text if isinstance(text, str) else ""):
+            result.foreign.append(target)
         else:
-            target.parent.mkdir(parents=True, exist_ok=True)
-            if isinstance(text, Spool):
-                text.write_to(target)
-            else:
-                target.write_text(text, encoding="utf-8")
-            result.written.append(rel)
+            changed.append((target, text))
+    if result.foreign:  # a file of someone else's in the way: write none, rather than some
+        changed = []
+    for target, text in changed:
+        target.parent.mkdir(parents=True, exist_ok=True)
+        if isinstance(text, Spool):
+            text.write_to(target)
+        else:
+            target.write_text(text, encoding="utf-8")
+        result.written.append(target)
     _close(expected)
     if check and building_all:
         known = set(placed)
@@ -190,6 +198,14 @@ def build(schemas: list[Path], out: Path | Project, check: bool = False, root: P
                         and "__pycache__" not in existing.parts and not is_accelerator(existing):
                     result.extra.append(existing)
     return result
+
+
+def _read(path: Path) -> str | None:
+    """A file's text; None if it is not UTF-8 text (then it is not the same as any output)."""
+    try:
+        return path.read_text(encoding="utf-8")
+    except UnicodeDecodeError:
+        return None
 
 
 def _site(project: Project, listed: list[Protocol], result: BuildResult) -> dict[Path, str]:

@@ -28,10 +28,13 @@ class Spool:
         if not path.exists():
             return False
         with open(path, encoding="utf-8") as current:
-            for chunk in self.chunks():
-                if current.read(len(chunk)) != chunk:
-                    return False
-            return current.read(1) == ""
+            try:
+                for chunk in self.chunks():
+                    if current.read(len(chunk)) != chunk:
+                        return False
+                return current.read(1) == ""
+            except UnicodeDecodeError:  # not text: not these vectors
+                return False
 
     def sha256(self) -> str:
         """The hash of the text as UTF-8, as written to a file on a system with \\n line ends."""

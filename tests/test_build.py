@@ -84,3 +84,33 @@ def test_generated_modules_stand_alone():
             "print('ok')\n")
     proc = subprocess.run([sys.executable, "-c", code], cwd=GENERATED, capture_output=True, text=True)
     assert proc.stdout.strip() == "ok", proc.stderr
+
+
+def test_build_never_overwrites_a_file_codeword_did_not_write(tmp_path):
+    """`build --out .` into a folder holding hand-written files with generated names
+    (docs/index.md, python/<p>.py, a vectors file): each is named, the build exits 1 and
+    writes nothing; files codeword wrote (they carry its banner) are rewritten as usual."""
+    (tmp_path / "schemas").mkdir()
+    shutil.copyfile(SCHEMAS / "route.yaml", tmp_path / "schemas" / "route.yaml")
+    mine = {"docs/index.md": "# My notes\n", "python/route.py": "print('hand-written')\n",
+            "vectors/route.json": '{"mine": true}\n'}
+    for rel, text in mine.items():
+        (tmp_path / rel).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / rel).write_text(text, encoding="utf-8")
+
+    def codeword(*args):
+        return subprocess.run([sys.executable, "-m", "codeword", *args], cwd=tmp_path, capture_output=True,
+                              text=True, timeout=300)
+    refused = codeword("build", "--out", ".")
+    assert refused.returncode == 1, refused.stdout + refused.stderr
+    for rel, text in mine.items():
+        assert rel in refused.stderr, refused.stderr
+        assert (tmp_path / rel).read_text(encoding="utf-8") == text
+    assert not (tmp_path / "c").exists() and not (tmp_path / "docs" / "route.md").exists()
+
+    for rel in mine:  # moved away: the build writes, and then rewrites its own stale files
+        (tmp_path / rel).unlink()
+    assert codeword("build", "--out", ".").returncode == 0
+    (tmp_path / "python" / "route.py").write_text((tmp_path / "python" / "route.py").read_text() + "# edited\n")
+    again = codeword("build", "--out", ".")
+    assert again.returncode == 0 and "wrote python/route.py" in again.stdout, again.stdout + again.stderr
