@@ -177,3 +177,19 @@ def test_monitor_replays_a_capture_as_json(tmp_path):
 def test_monitor_names_a_port_it_cannot_open(tmp_path):
     proc = codeword("monitor", "mtv4", "--port", str(tmp_path / "ttyNONE"))
     assert proc.returncode == 2 and b"cannot open" in proc.stderr and b"Traceback" not in proc.stderr
+
+
+def test_decode_csv_writes_no_control_character_from_the_wire(tmp_path):
+    """Control characters in a line (an ANSI escape, a bell, CR LF between lines) reach
+    the CSV escaped as the table shows them, and every row stays one line of valid CSV."""
+    import csv
+    import io
+    log = tmp_path / "tank.log"
+    log.write_bytes(TANK_LINE.encode() + b"\r\n%:f\x1b[2J\x07,1;" + b"%:f,100,\x1b]0;x\x07,10,1,0,0,0,1;")
+    proc = codeword("decode", "tank", str(log), "--format", "csv")
+    out = proc.stdout.decode()
+    assert not [c for c in out if (ord(c) < 0x20 and c != "\n") or ord(c) == 0x7f], repr(out)
+    rows = list(csv.reader(io.StringIO(out)))
+    assert len(rows) == len(out.splitlines()) and all(len(row) == 6 for row in rows), rows
+    frames = [row[1] for row in rows]
+    assert "\\r\\n" in frames and "%:f\\x1b[2J\\x07,1;" in frames, frames

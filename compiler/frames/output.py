@@ -17,12 +17,13 @@ def write(rows: list[Row], fmt: str, out: TextIO) -> None:
     elif fmt == "csv":
         writer = csv.writer(out, lineterminator="\n")
         writer.writerow(["offset", "frame", "message", "field", "value", "error"])
-        for row in rows:
+        for row in rows:  # text from the wire is escaped as the table shows it: no control character reaches a terminal
             if row.error is not None:
-                writer.writerow([row.offset, row.frame, "", "", "", row.error])
+                writer.writerow([row.offset, _visible(row.frame), "", "", "", _visible(row.error)])
             for name, _, value in row.values:
                 shown = json.dumps(value, ensure_ascii=False) if isinstance(value, (list, dict)) else value
-                writer.writerow([row.offset, row.frame, row.message, name, shown, ""])
+                writer.writerow([row.offset, _visible(row.frame), row.message, name,
+                                 _visible(shown) if isinstance(shown, str) else shown, ""])
     else:
         out.write(table(rows))
 
