@@ -49,7 +49,7 @@ def _schemas(args: argparse.Namespace, project: Project) -> list[Path]:
 
 def cmd_build(args: argparse.Namespace) -> int:
     from .build import build
-    project = _project(args)
+    project = _project(args).writable()
     schemas = _schemas(args, project)
     result = build(schemas, project, check=args.check, root=project.root, all_schemas=project.schema_files())
     for diagnostic in result.errors:
@@ -88,7 +88,7 @@ def cmd_build(args: argparse.Namespace) -> int:
 
 def cmd_accelerate(args: argparse.Namespace) -> int:
     from .accelerate import CompileError, accelerate
-    project = _project(args)
+    project = _project(args).writable()
     folder = project.folder("python") / (project.python_package or "")
     try:
         outcome = accelerate(_schemas(args, project), folder)

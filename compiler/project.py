@@ -6,6 +6,12 @@ current folder or the nearest folder above it; without either, the defaults
 (every `schemas/*.yaml`, every target, into `generated/<target>/`, the MkDocs
 configuration of the docs as `mkdocs.yml`). Paths in the configuration are
 relative to the file that holds it.
+
+A configuration may come from someone else (a cloned repository): the folders and
+files it has written to (`out`, `[outputs]`, `[docs] site`) must lie inside the
+project, the repository holding the configuration (or, outside one, the
+configuration's own folder). A folder elsewhere is written only when the command
+line names it (`--out`).
 """
 from __future__ import annotations
 
@@ -43,6 +49,15 @@ class Project:
     # the MkDocs configuration written for the docs; None: none (a build into
     # another folder, or a project that configures `[docs] site = false`)
     site: Optional[Path] = None
+    # what the configuration names to write outside the project: (key, why refused)
+    outside: tuple[tuple[str, str], ...] = ()
+
+    def writable(self) -> "Project":
+        """The project, if every place it writes to lies inside it (or was named on the
+        command line); else a ProjectError at the configuration's line."""
+        if self.outside:
+            raise ProjectError(self.outside[0][1])
+        return self
 
     def folder(self, target: str) -> Path:
         """Where a target's files go, relative to the working folder."""
@@ -82,6 +97,7 @@ class Project:
             changes["out"] = Path(out)
             changes["outputs"] = ()
             changes["site"] = None
+            changes["outside"] = ()  # every place the build writes to is now the command line's
         if targets is not None:
             changes["targets"] = parse_targets([t.strip() for t in targets.split(",") if t.strip()], "--targets")
         if not changes:
@@ -121,6 +137,26 @@ def _read(path: Path) -> dict:
         raise ProjectError(f"{path}: {exc}") from None
 
 
+def project_bounds(config: Path) -> Path:
+    """The folder a configuration may write into: the repository holding it, found by
+    its `.git`, or else the configuration's own folder."""
+    folder = config.resolve().parent
+    for candidate in (folder, *folder.parents):
+        if (candidate / ".git").exists():
+            return candidate
+    return folder
+
+
+def _line_of(path: Path, value: str) -> Optional[int]:
+    """The line of the configuration that spells `value` (a path), for the error."""
+    try:
+        lines = path.read_text(encoding="utf-8").splitlines()
+    except (OSError, UnicodeDecodeError):
+        return None
+    quoted = (f'"{value}"', f"'{value}'", f'"{value.replace(chr(92), chr(92) * 2)}"')
+    return next((n for n, line in enumerate(lines, 1) if any(q in line for q in quoted)), None)
+
+
 def load_project(cwd: Optional[Path] = None) -> Project:
     cwd = cwd or Path.cwd()
     found = find_config(cwd)
@@ -148,11 +184,18 @@ def from_table(table: dict, path: Path, cwd: Path) -> Project:
     if unknown:
         raise ProjectError(f"{where}: unknown key {unknown[0]!r} (keys: {', '.join(sorted(KEYS))})")
     base = path.parent
+    bounds = project_bounds(path)
+    outside: list[tuple[str, str]] = []
 
-    def place(value: Any, key: str) -> Path:
+    def place(value: Any, key: str, written: bool = True) -> Path:
         if not isinstance(value, str) or not value:
             raise ProjectError(f"{where}: {key} must be a path (a non-empty string)")
         full = (base / value)
+        if written and not full.resolve().is_relative_to(bounds):  # resolve(): `..` and links too
+            line = _line_of(path, value)
+            outside.append((key, f"{where}{f':{line}' if line else ''}: {key} = {value!r} is outside the project "
+                                 f"({bounds}): a configuration writes only inside it; name a folder elsewhere "
+                                 "on the command line (--out) to write there"))
         try:
             return full.relative_to(cwd)
         except ValueError:
@@ -182,9 +225,9 @@ def from_table(table: dict, path: Path, cwd: Path) -> Project:
             raise ProjectError(f"{where}: python.package {problem}")
     return Project(
         root=base, config=path, site=_site(table.get("docs", {}), where, place),
-        schema_paths=tuple(place(s, "schemas") for s in schemas),
+        schema_paths=tuple(place(s, "schemas", written=False) for s in schemas),
         targets=parse_targets(targets, f"{where}: targets"),
         out=place(table.get("out", "generated"), "out"),
         outputs=tuple(sorted((t, place(f, f"outputs.{t}")) for t, f in outputs.items())),
-        python_package=package,
+        python_package=package, outside=tuple(outside),
     )

@@ -224,3 +224,31 @@ def test_schema_command_prints_and_writes_the_json_schema(tmp_path):
     assert json.loads(proc.stdout) == shipped
     proc = codeword("schema", "--write", "editor/cw.json", cwd=tmp_path)
     assert proc.returncode == 0 and json.loads((tmp_path / "editor" / "cw.json").read_text()) == shipped
+
+
+@pytest.mark.parametrize("text, line", [
+    ('out = "../elsewhere"\n', 1),
+    ('schemas = ["schemas"]\nout = "gen/../../elsewhere"\n', 2),
+    ('out = "gen"\n\n[outputs]\nc = "{outside}"\n', 4),
+    ('[docs]\nsite = "../mkdocs.yml"\n', 2),
+    ('out = "link/gen"\n', 1),  # a folder inside that is a link to one outside
+])
+def test_a_configuration_never_writes_outside_its_project(tmp_path, text, line):
+    """A configuration from someone else may name no folder outside the project (absolute,
+    `../`, or through a link) to write to: refused at its file and line, nothing written;
+    the command line may name such a folder."""
+    project, outside = tmp_path / "project", tmp_path / "elsewhere"
+    (project / "schemas").mkdir(parents=True)
+    shutil.copy(SCHEMAS / "car.yaml", project / "schemas")
+    (project / "link").symlink_to(tmp_path, target_is_directory=True)
+    (project / "codeword.toml").write_text(text.replace("{outside}", str(outside)), encoding="utf-8")
+    for command in ("build", "accelerate"):
+        proc = codeword(command, cwd=project)
+        assert proc.returncode == 2, proc.stdout + proc.stderr
+        assert f"codeword.toml:{line}: " in proc.stderr and "outside the project" in proc.stderr, proc.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["project"]
+    assert sorted(p.name for p in project.iterdir()) == ["codeword.toml", "link", "schemas"]
+    if "site" not in text:
+        named = codeword("build", "--out", "../elsewhere", cwd=project)
+        assert named.returncode == 0, named.stderr
+        assert (outside / "c" / "car.h").is_file()
