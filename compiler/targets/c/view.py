@@ -124,13 +124,10 @@ class CView:
         return Rep(int_ctype(lo, hi), has_flag=f.optional, lo=lo, hi=hi)
 
     def stored_range(self, f: Field) -> tuple[int, int]:
-        """The integers the struct member holds: raw when scaled, else logical."""
+        """The integers the struct member holds: raw when scaled, else logical. Every value
+        the wire type gives, whatever the range: widening a range keeps the C API."""
         raw = f.raw_range or (-(1 << 31), (1 << 31) - 1)
-        if f.scale is not None:
-            return raw
-        off = int(f.offset or 0)
-        if f.range is not None and f.enum is None and f.flags is None:
-            return int(math.ceil(f.range[0])), int(math.floor(f.range[1]))
+        off = int(f.offset or 0) if f.scale is None else 0
         return raw[0] + off, raw[1] + off
 
     def raw_bounds(self, f: Field) -> tuple[int, int]:
@@ -501,39 +498,19 @@ class CView:
             expr = f"({total} + {clit(int(f.offset), True)})"
         else:
             expr = raw
-        # a member sized by the range cannot hold every wire value: check before narrowing
-        full = self.wire_type(f)
-        narrowed = full != r.ctype and (f.range is not None or f.values)
-        checked, ctype = ("value", full) if narrowed else (v, r.ctype)
-        if narrowed:
-            c("{")
-            c.indent()
-            c(f"{full} value = ({full}){expr};")
-        else:
-            c(f"{v} = ({r.ctype}){expr};")
+        c(f"{v} = ({r.ctype}){expr};")  # the member holds every value of the wire type
         if f.enum is not None and f.kind == "int":
             cond = self.enum_cond(v, [x.value for x in f.enum.members], r.ctype)
             if cond:
                 self.fail_if(c, cond, "enum")
         if f.range is not None and f.enum is None:
             lo, hi = self.raw_bounds(f)
-            cond = self.range_cond(checked, lo, hi, ctype)
+            cond = self.range_cond(v, lo, hi, r.ctype)
             if cond:
                 self.fail_if(c, cond, "range")
         if f.values:
             allowed = [self.enum_wire(f, x) for x in f.values]
-            self.fail_if(c, " && ".join(f"{checked} != {self.literal_of(x, ctype)}" for x in allowed),
-                         "values")
-        if narrowed:
-            c(f"{v} = ({r.ctype})value;")
-            c.dedent()
-            c("}")
-
-    def wire_type(self, f: Field) -> str:
-        """The C type of every logical value a field's wire bits can give (before its range)."""
-        lo, hi = f.raw_range or (-(1 << 31), (1 << 31) - 1)
-        off = int(f.offset or 0) if f.scale is None else 0
-        return int_ctype(lo + off, hi + off)
+            self.fail_if(c, " && ".join(f"{v} != {self.literal_of(x, r.ctype)}" for x in allowed), "values")
 
     @staticmethod
     def fail_if(c: Code, cond: str, kind: str) -> None:

@@ -85,7 +85,7 @@ enum {
 
 /* Global positioning system fix data */
 typedef struct {
-    uint32_t timestamp;  /* UTC time of day as hhmmss (123519 is 12:35:19); range 0..235960; (NMEA-D2) */
+    int32_t timestamp;  /* UTC time of day as hhmmss (123519 is 12:35:19); range 0..235960; (NMEA-D2) */
     bool has_lat;  /* 0 = absent */
     int32_t lat;  /* latitude as ddmm.mmm (4807.038 is 48 degrees 7.038 minutes); raw: value = raw * 0.001; range 0..9000; (NMEA-D2) */
     bool has_lat_dir;  /* 0 = absent */
@@ -114,7 +114,7 @@ typedef struct {
 
 /* Recommended minimum specific GPS data */
 typedef struct {
-    uint32_t timestamp;  /* UTC time of day as hhmmss (123519 is 12:35:19); range 0..235960; (NMEA-D2) */
+    int32_t timestamp;  /* UTC time of day as hhmmss (123519 is 12:35:19); range 0..235960; (NMEA-D2) */
     char status;  /* NMEA0183_VALIDITY_* */
     bool has_lat;  /* 0 = absent */
     int32_t lat;  /* latitude as ddmm.mmm (4807.038 is 48 degrees 7.038 minutes); raw: value = raw * 0.001; range 0..9000; (NMEA-D2) */
@@ -128,7 +128,7 @@ typedef struct {
     int32_t spd_over_grnd;  /* speed over ground; raw: value = raw * 0.1 kn; range 0..999.9 */
     bool has_true_course;  /* 0 = absent */
     int32_t true_course;  /* track made good, true; raw: value = raw * 0.1 deg; range 0..999.9 */
-    uint32_t datestamp;  /* date as ddmmyy (230394 is 23 March 1994); range 10100..311299 */
+    int32_t datestamp;  /* date as ddmmyy (230394 is 23 March 1994); range 10100..311299 */
     bool has_mag_variation;  /* 0 = absent */
     int32_t mag_variation;  /* magnetic variation; raw: value = raw * 0.1 deg; range 0..999.9 */
     bool has_mag_var_dir;  /* 0 = absent */
@@ -201,7 +201,7 @@ static inline int nmea0183_split(const char *text, size_t len, const char **pb, 
 static inline int nmea0183_gga_encode(const nmea0183_gga_t *m, char *buf, size_t cap)
 {
     cw_writer_t w;
-    if (m->timestamp > 0x399b8UL) {
+    if (m->timestamp < 0 || m->timestamp > 0x399b8L) {
         return CW_ERR_RANGE;
     }
     if (m->has_lat) {
@@ -351,7 +351,7 @@ static inline int nmea0183_gga_parse_body(const char *s, const char *end, nmea01
         if (rc != CW_OK) {
             return rc;
         }
-        m->timestamp = (uint32_t)value;
+        m->timestamp = (int32_t)value;
     }
     /* lat */
     m->has_lat = false;
@@ -706,7 +706,7 @@ static inline int nmea0183_gga_set_age_gps_data_units(nmea0183_gga_t *m, float u
 static inline int nmea0183_rmc_encode(const nmea0183_rmc_t *m, char *buf, size_t cap)
 {
     cw_writer_t w;
-    if (m->timestamp > 0x399b8UL) {
+    if (m->timestamp < 0 || m->timestamp > 0x399b8L) {
         return CW_ERR_RANGE;
     }
     if (m->status != 'A' && m->status != 'V') {
@@ -742,7 +742,7 @@ static inline int nmea0183_rmc_encode(const nmea0183_rmc_t *m, char *buf, size_t
             return CW_ERR_RANGE;
         }
     }
-    if (m->datestamp < 0x2774u || m->datestamp > 0x4c003UL) {
+    if (m->datestamp < 0x2774 || m->datestamp > 0x4c003L) {
         return CW_ERR_RANGE;
     }
     if (m->has_mag_variation) {
@@ -827,7 +827,7 @@ static inline int nmea0183_rmc_parse_body(const char *s, const char *end, nmea01
         if (rc != CW_OK) {
             return rc;
         }
-        m->timestamp = (uint32_t)value;
+        m->timestamp = (int32_t)value;
     }
     /* status */
     v = cw_value(s, ends, 1u, false);
@@ -940,7 +940,7 @@ static inline int nmea0183_rmc_parse_body(const char *s, const char *end, nmea01
         if (rc != CW_OK) {
             return rc;
         }
-        m->datestamp = (uint32_t)value;
+        m->datestamp = (int32_t)value;
     }
     /* mag_variation */
     m->has_mag_variation = false;
