@@ -16,7 +16,7 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any, Optional
 
-from ... import binary64
+from ... import binary32, binary64
 from ...crc import reflect
 from ...model import Checksum, CrcParams, Field, Leaf, Message, Protocol, dotted, field_at
 from ..code import Code, times_over
@@ -224,6 +224,8 @@ class CView:
             return f"!{leaf_has}" if cond.op == "eq" else leaf_has
         if f is not None and self.rep(f).ctype == "cw_f64_t":
             return self.f64_condition(cond.op, f"cw_f64_to_bits({left})", value)
+        if f is not None and self.rep(f).ctype == "float" and cond.op == "range":
+            return f"!({self.f32_outside(left, *value)})"
         if cond.op in ("eq", "ne"):
             if f is not None and f.kind == "bool":
                 want = bool(value) == (cond.op == "eq")
@@ -257,6 +259,20 @@ class CView:
             parts.append(f"cw_f64_order({bits}) < {clit(binary64.order_of(low), True)} /* {low!r} */")
         if high < binary64.LARGEST:
             parts.append(f"cw_f64_order({bits}) > {clit(binary64.order_of(high), True)} /* {high!r} */")
+        return " || ".join(parts) or "false"
+
+    @staticmethod
+    def f32_outside(v: str, lo: Any, hi: Any) -> str:
+        """The float `v` (finite) outside [lo, hi], compared exactly as Python compares
+        the decoded value: the bounds are the nearest floats inside, float literals."""
+        low, high = binary32.at_least(lo), binary32.at_most(hi)
+        if low == math.inf or high == -math.inf:  # no float lies inside
+            return "true"
+        parts = []
+        if low > -binary32.LARGEST:
+            parts.append(f"{v} < {binary32.literal(low)}")
+        if high < binary32.LARGEST:
+            parts.append(f"{v} > {binary32.literal(high)}")
         return " || ".join(parts) or "false"
 
     def rule_checks(self, c: Code, m: Message, obj: str) -> None:
@@ -314,9 +330,7 @@ class CView:
             c("    return CW_ERR_FINITE;")
             c("}")
             if f.range is not None:
-                c(f"if (!({v} >= {f.range[0]!r}f && {v} <= {f.range[1]!r}f)) {{")
-                c("    return CW_ERR_RANGE;")
-                c("}")
+                self.fail_if(c, self.f32_outside(v, *f.range), "range")
         elif f.kind == "bytes":
             return
         elif f.one_hot:
@@ -459,7 +473,7 @@ class CView:
             self.fail_if(c, f"!cw_f32_bits_finite({raw})", "finite")
             c(f"{v} = cw_f32_from_bits({raw});")
             if f.range is not None:
-                self.fail_if(c, f"!({v} >= {f.range[0]!r}f && {v} <= {f.range[1]!r}f)", "range")
+                self.fail_if(c, self.f32_outside(v, *f.range), "range")
             return
         # a signed field's raw bits are two's complement: its enum is tested once sign-extended
         if f.enum is not None and f.kind != "int":
