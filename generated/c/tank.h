@@ -20,15 +20,15 @@ extern "C" {
 #define TANK_FINGERPRINT "9d70d29ed1cf46f3"  /* hash of the wire-relevant schema (codeword diff) */
 #define TANK_FINGERPRINT32 0x9d70d29eu  /* its first 32 bits */
 #define TANK_TELEMETRY_MAX_TEXT 445u  /* chars, with the NUL: buffer size for encode */
-#define TANK_TELEMETRY_ID '$'
+#define TANK_TELEMETRY_ID "$"  /* the prefix */
 #define TANK_COMMAND_MAX_TEXT 216u  /* chars, with the NUL: buffer size for encode */
-#define TANK_COMMAND_ID '%'
+#define TANK_COMMAND_ID "%"  /* the prefix */
 #define TANK_PAYLOAD_COMMAND_MAX_TEXT 204u  /* chars, with the NUL: buffer size for encode */
-#define TANK_PAYLOAD_COMMAND_ID '*'
+#define TANK_PAYLOAD_COMMAND_ID "*"  /* the prefix */
 #define TANK_PAYLOAD_REPLY_MAX_TEXT 204u  /* chars, with the NUL: buffer size for encode */
-#define TANK_PAYLOAD_REPLY_ID '^'
+#define TANK_PAYLOAD_REPLY_ID "^"  /* the prefix */
 #define TANK_GPIO_CONFIG_MAX_TEXT 51u  /* chars, with the NUL: buffer size for encode */
-#define TANK_GPIO_CONFIG_ID '-'
+#define TANK_GPIO_CONFIG_ID "-"  /* the prefix */
 #define TANK_MAX_TEXT 445u  /* chars, with the NUL: largest encoded message */
 
 /* direction of motion */
@@ -501,7 +501,7 @@ static inline int tank_telemetry_decode(const char *text, size_t len, tank_telem
 {
     const char *pb, *pe, *body, *end;
     int rc = tank_split(text, len, &pb, &pe, &body, &end);
-    if (rc == CW_OK && ((size_t)(pe - pb) != 1u || memcmp(pb, "$", 1u) != 0)) {
+    if (rc == CW_OK && ((size_t)(pe - pb) != 1u || memcmp(pb, TANK_TELEMETRY_ID, 1u) != 0)) {
         rc = CW_ERR_DISPATCH;
     } else if (rc == CW_OK) {
         rc = tank_telemetry_parse_body(body, end, m);
@@ -693,7 +693,7 @@ static inline int tank_command_decode(const char *text, size_t len, tank_command
 {
     const char *pb, *pe, *body, *end;
     int rc = tank_split(text, len, &pb, &pe, &body, &end);
-    if (rc == CW_OK && ((size_t)(pe - pb) != 1u || memcmp(pb, "%", 1u) != 0)) {
+    if (rc == CW_OK && ((size_t)(pe - pb) != 1u || memcmp(pb, TANK_COMMAND_ID, 1u) != 0)) {
         rc = CW_ERR_DISPATCH;
     } else if (rc == CW_OK) {
         rc = tank_command_parse_body(body, end, m);
@@ -742,7 +742,7 @@ static inline int tank_payload_command_decode(const char *text, size_t len, tank
 {
     const char *pb, *pe, *body, *end;
     int rc = tank_split(text, len, &pb, &pe, &body, &end);
-    if (rc == CW_OK && ((size_t)(pe - pb) != 1u || memcmp(pb, "*", 1u) != 0)) {
+    if (rc == CW_OK && ((size_t)(pe - pb) != 1u || memcmp(pb, TANK_PAYLOAD_COMMAND_ID, 1u) != 0)) {
         rc = CW_ERR_DISPATCH;
     } else if (rc == CW_OK) {
         rc = tank_payload_command_parse_body(body, end, m);
@@ -791,7 +791,7 @@ static inline int tank_payload_reply_decode(const char *text, size_t len, tank_p
 {
     const char *pb, *pe, *body, *end;
     int rc = tank_split(text, len, &pb, &pe, &body, &end);
-    if (rc == CW_OK && ((size_t)(pe - pb) != 1u || memcmp(pb, "^", 1u) != 0)) {
+    if (rc == CW_OK && ((size_t)(pe - pb) != 1u || memcmp(pb, TANK_PAYLOAD_REPLY_ID, 1u) != 0)) {
         rc = CW_ERR_DISPATCH;
     } else if (rc == CW_OK) {
         rc = tank_payload_reply_parse_body(body, end, m);
@@ -905,7 +905,7 @@ static inline int tank_gpio_config_decode(const char *text, size_t len, tank_gpi
 {
     const char *pb, *pe, *body, *end;
     int rc = tank_split(text, len, &pb, &pe, &body, &end);
-    if (rc == CW_OK && ((size_t)(pe - pb) != 1u || memcmp(pb, "-", 1u) != 0)) {
+    if (rc == CW_OK && ((size_t)(pe - pb) != 1u || memcmp(pb, TANK_GPIO_CONFIG_ID, 1u) != 0)) {
         rc = CW_ERR_DISPATCH;
     } else if (rc == CW_OK) {
         rc = tank_gpio_config_parse_body(body, end, m);
@@ -942,19 +942,19 @@ static inline int tank_decode(const char *text, size_t len, int direction, tank_
         return cw_text_verdict(text, len, rc);
     }
     n = (size_t)(pe - pb);
-    if (n == 1u && memcmp(pb, "$", 1u) == 0 && (direction == TANK_DIR_ANY || direction == TANK_DIR_PLATFORM_TO_COMPUTER)) {
+    if (n == 1u && memcmp(pb, TANK_TELEMETRY_ID, 1u) == 0 && (direction == TANK_DIR_ANY || direction == TANK_DIR_PLATFORM_TO_COMPUTER)) {
         out->kind = TANK_MSG_TELEMETRY;
         rc = tank_telemetry_parse_body(body, end, &out->as.telemetry);
-    } else if (n == 1u && memcmp(pb, "%", 1u) == 0 && (direction == TANK_DIR_ANY || direction == TANK_DIR_COMPUTER_TO_PLATFORM)) {
+    } else if (n == 1u && memcmp(pb, TANK_COMMAND_ID, 1u) == 0 && (direction == TANK_DIR_ANY || direction == TANK_DIR_COMPUTER_TO_PLATFORM)) {
         out->kind = TANK_MSG_COMMAND;
         rc = tank_command_parse_body(body, end, &out->as.command);
-    } else if (n == 1u && memcmp(pb, "*", 1u) == 0 && (direction == TANK_DIR_ANY || direction == TANK_DIR_COMPUTER_TO_PAYLOAD)) {
+    } else if (n == 1u && memcmp(pb, TANK_PAYLOAD_COMMAND_ID, 1u) == 0 && (direction == TANK_DIR_ANY || direction == TANK_DIR_COMPUTER_TO_PAYLOAD)) {
         out->kind = TANK_MSG_PAYLOAD_COMMAND;
         rc = tank_payload_command_parse_body(body, end, &out->as.payload_command);
-    } else if (n == 1u && memcmp(pb, "^", 1u) == 0 && (direction == TANK_DIR_ANY || direction == TANK_DIR_PAYLOAD_TO_COMPUTER)) {
+    } else if (n == 1u && memcmp(pb, TANK_PAYLOAD_REPLY_ID, 1u) == 0 && (direction == TANK_DIR_ANY || direction == TANK_DIR_PAYLOAD_TO_COMPUTER)) {
         out->kind = TANK_MSG_PAYLOAD_REPLY;
         rc = tank_payload_reply_parse_body(body, end, &out->as.payload_reply);
-    } else if (n == 1u && memcmp(pb, "-", 1u) == 0 && (direction == TANK_DIR_ANY || direction == TANK_DIR_COMPUTER_TO_PLATFORM)) {
+    } else if (n == 1u && memcmp(pb, TANK_GPIO_CONFIG_ID, 1u) == 0 && (direction == TANK_DIR_ANY || direction == TANK_DIR_COMPUTER_TO_PLATFORM)) {
         out->kind = TANK_MSG_GPIO_CONFIG;
         rc = tank_gpio_config_parse_body(body, end, &out->as.gpio_config);
     } else {

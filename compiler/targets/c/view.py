@@ -98,6 +98,14 @@ class CView:
         path[name] = "has_" + path[name]
         return f"{obj}->" + dotted(tuple(path))
 
+    def id_const(self, m: Message, i: int = 0) -> str:
+        """The constant of a message's id (`<P>_<MSG>_ID`, or `_ID<i>` for one of several):
+        an integer, or a text prefix as a string literal the text decoders compare with."""
+        return self.upper(m.name, "ID") if len(m.ids) == 1 else self.upper(m.name, f"ID{i}")
+
+    def id_literal(self, value: Any) -> str:
+        return cstr(value) if isinstance(value, str) else f"{value}u"
+
     def enum_const(self, enum_name: str, member: str) -> str:
         return self.upper(enum_name, member)
 
@@ -1412,7 +1420,7 @@ class CView:
         c.indent()
         c("const char *pb, *pe, *body, *end;")
         c(f"int rc = {self.px}_split(text, len, &pb, &pe, &body, &end);")
-        c(f"if (rc == CW_OK && ((size_t)(pe - pb) != {len(prefix)}u || memcmp(pb, {cstr(prefix)}, {len(prefix)}u) != 0)) {{")
+        c(f"if (rc == CW_OK && ((size_t)(pe - pb) != {len(prefix)}u || memcmp(pb, {self.id_const(m)}, {len(prefix)}u) != 0)) {{")
         c("    rc = CW_ERR_DISPATCH;")
         c("} else if (rc == CW_OK) {")
         c(f"    rc = {self.fn(m, 'parse_body')}(body, end, m);")

@@ -20,11 +20,11 @@ extern "C" {
 #define NMEA0183_FINGERPRINT "59a682c1a27b4ac7"  /* hash of the wire-relevant schema (codeword diff) */
 #define NMEA0183_FINGERPRINT32 0x59a682c1u  /* its first 32 bits */
 #define NMEA0183_GGA_MAX_TEXT 149u  /* chars, with the NUL: buffer size for encode */
-#define NMEA0183_GGA_ID 'GPGGA'
+#define NMEA0183_GGA_ID "GPGGA"  /* the prefix */
 #define NMEA0183_RMC_MAX_TEXT 111u  /* chars, with the NUL: buffer size for encode */
-#define NMEA0183_RMC_ID 'GPRMC'
+#define NMEA0183_RMC_ID "GPRMC"  /* the prefix */
 #define NMEA0183_VTG_MAX_TEXT 72u  /* chars, with the NUL: buffer size for encode */
-#define NMEA0183_VTG_ID 'GPVTG'
+#define NMEA0183_VTG_ID "GPVTG"  /* the prefix */
 #define NMEA0183_MAX_TEXT 149u  /* chars, with the NUL: largest encoded message */
 
 /* north_south */
@@ -555,7 +555,7 @@ static inline int nmea0183_gga_decode(const char *text, size_t len, nmea0183_gga
 {
     const char *pb, *pe, *body, *end;
     int rc = nmea0183_split(text, len, &pb, &pe, &body, &end);
-    if (rc == CW_OK && ((size_t)(pe - pb) != 5u || memcmp(pb, "GPGGA", 5u) != 0)) {
+    if (rc == CW_OK && ((size_t)(pe - pb) != 5u || memcmp(pb, NMEA0183_GGA_ID, 5u) != 0)) {
         rc = CW_ERR_DISPATCH;
     } else if (rc == CW_OK) {
         rc = nmea0183_gga_parse_body(body, end, m);
@@ -980,7 +980,7 @@ static inline int nmea0183_rmc_decode(const char *text, size_t len, nmea0183_rmc
 {
     const char *pb, *pe, *body, *end;
     int rc = nmea0183_split(text, len, &pb, &pe, &body, &end);
-    if (rc == CW_OK && ((size_t)(pe - pb) != 5u || memcmp(pb, "GPRMC", 5u) != 0)) {
+    if (rc == CW_OK && ((size_t)(pe - pb) != 5u || memcmp(pb, NMEA0183_RMC_ID, 5u) != 0)) {
         rc = CW_ERR_DISPATCH;
     } else if (rc == CW_OK) {
         rc = nmea0183_rmc_parse_body(body, end, m);
@@ -1286,7 +1286,7 @@ static inline int nmea0183_vtg_decode(const char *text, size_t len, nmea0183_vtg
 {
     const char *pb, *pe, *body, *end;
     int rc = nmea0183_split(text, len, &pb, &pe, &body, &end);
-    if (rc == CW_OK && ((size_t)(pe - pb) != 5u || memcmp(pb, "GPVTG", 5u) != 0)) {
+    if (rc == CW_OK && ((size_t)(pe - pb) != 5u || memcmp(pb, NMEA0183_VTG_ID, 5u) != 0)) {
         rc = CW_ERR_DISPATCH;
     } else if (rc == CW_OK) {
         rc = nmea0183_vtg_parse_body(body, end, m);
@@ -1411,13 +1411,13 @@ static inline int nmea0183_decode(const char *text, size_t len, int direction, n
         return cw_text_verdict(text, len, rc);
     }
     n = (size_t)(pe - pb);
-    if (n == 5u && memcmp(pb, "GPGGA", 5u) == 0 && (direction == NMEA0183_DIR_ANY || direction == NMEA0183_DIR_RECEIVER_TO_HOST)) {
+    if (n == 5u && memcmp(pb, NMEA0183_GGA_ID, 5u) == 0 && (direction == NMEA0183_DIR_ANY || direction == NMEA0183_DIR_RECEIVER_TO_HOST)) {
         out->kind = NMEA0183_MSG_GGA;
         rc = nmea0183_gga_parse_body(body, end, &out->as.gga);
-    } else if (n == 5u && memcmp(pb, "GPRMC", 5u) == 0 && (direction == NMEA0183_DIR_ANY || direction == NMEA0183_DIR_RECEIVER_TO_HOST)) {
+    } else if (n == 5u && memcmp(pb, NMEA0183_RMC_ID, 5u) == 0 && (direction == NMEA0183_DIR_ANY || direction == NMEA0183_DIR_RECEIVER_TO_HOST)) {
         out->kind = NMEA0183_MSG_RMC;
         rc = nmea0183_rmc_parse_body(body, end, &out->as.rmc);
-    } else if (n == 5u && memcmp(pb, "GPVTG", 5u) == 0 && (direction == NMEA0183_DIR_ANY || direction == NMEA0183_DIR_RECEIVER_TO_HOST)) {
+    } else if (n == 5u && memcmp(pb, NMEA0183_VTG_ID, 5u) == 0 && (direction == NMEA0183_DIR_ANY || direction == NMEA0183_DIR_RECEIVER_TO_HOST)) {
         out->kind = NMEA0183_MSG_VTG;
         rc = nmea0183_vtg_parse_body(body, end, &out->as.vtg);
     } else {
