@@ -18,7 +18,8 @@ from typing import Any, Optional
 
 from ... import binary32, binary64
 from ...crc import reflect
-from ...model import Checksum, CrcParams, Field, Leaf, Message, Protocol, dotted, field_at
+from ...model import (Checksum, CrcParams, Field, Leaf, Message, Protocol, count_member, dotted, field_at,
+                      presence_member)
 from ..code import Code, times_over
 from ..escape import c_char as cchar, c_comment as comment, c_string as cstr
 from . import pack as cpack
@@ -95,7 +96,7 @@ class CView:
     def has(self, leaf: Leaf, obj: str = "m") -> str:
         path = list(leaf.path)
         name = max(i for i, p in enumerate(path) if isinstance(p, str))  # an array's flags are an array too
-        path[name] = "has_" + path[name]
+        path[name] = presence_member(path[name])
         return f"{obj}->" + dotted(tuple(path))
 
     def id_const(self, m: Message, i: int = 0) -> str:
@@ -161,12 +162,12 @@ class CView:
             else:
                 r = self.rep(f.element)
                 if r.has_flag:
-                    out.append(f"{pad}bool has_{f.name}{count};  /* {'0 = absent' if f.optional else '0 = no bit set'} */")
+                    out.append(f"{pad}bool {presence_member(f.name)}{count};  /* {'0 = absent' if f.optional else '0 = no bit set'} */")
                 arr = f"[{r.array}]" if r.array else ""
                 out.append(f"{pad}{r.ctype} {f.name}{count}{arr};" + (f"  /* {note} */" if note else ""))
             if f.varies:
                 most, what = (f.length, "bytes") if f.kind == "bytes" else (f.count, "elements")
-                out.append(f"{pad}{unsigned_type(most.bit_length())} {f.name}_count;  "
+                out.append(f"{pad}{unsigned_type(most.bit_length())} {count_member(f.name)};  "
                            f"/* {what} in use, 0..{most} */")
         return out
 
@@ -226,7 +227,7 @@ class CView:
     def condition(self, cond, obj: str, m: Message) -> str:
         f = field_at(m.layout, cond.path)
         left = f"{obj}->{cond.path}"
-        leaf_has = f"{obj}->" + ".".join(cond.path.split(".")[:-1] + ["has_" + cond.path.split(".")[-1]])
+        leaf_has = f"{obj}->" + ".".join(cond.path.split(".")[:-1] + [presence_member(cond.path.split(".")[-1])])
         value = cond.value
         if cond.op in ("eq", "ne") and value is None:
             return f"!{leaf_has}" if cond.op == "eq" else leaf_has
@@ -643,14 +644,14 @@ class CView:
         gaps = m.shortening.gaps if m.shortening else ()
         for gap in gaps:
             if gap.counter:
-                self.fail_if(c, f"m->{gap.field}_count > {gap.counter.most}u", "range")
+                self.fail_if(c, f"m->{count_member(gap.field)} > {gap.counter.most}u", "range")
         counts = {g.control: g for g in gaps if g.counter}
         for leaf in wired:
             if leaf.var not in raws:
                 continue
             if leaf.field.counts:  # set from the array's count
                 counter = counts[leaf.field.name].counter
-                count = f"(uint32_t)m->{counter.field}_count"
+                count = f"(uint32_t)m->{count_member(counter.field)}"
                 if counter.element_step != 1:  # the elements must fill whole units
                     self.fail_if(c, f"{count} % {counter.element_step}u != 0u", "range")
                 c(f"{raws[leaf.var]} = ({rt})({times_over(count, counter.element_bytes, counter.unit, '/', 'u')});")
@@ -694,7 +695,7 @@ class CView:
             return None
         if gap.presence:
             return self.presence_test(m, gap)
-        return f"m->{gap.field}_count > {leaf.path[1]}u" if len(leaf.path) > 1 else None
+        return f"m->{count_member(gap.field)} > {leaf.path[1]}u" if len(leaf.path) > 1 else None
 
     def pack_value(self, span: Span, raws: dict[str, str]) -> str:
         """The integer of a "pack" span, from the raw values of its pieces
@@ -781,7 +782,7 @@ class CView:
         for k, gap in enumerate(gaps):
             if gap.counter:
                 per = gap.counter.element_bytes
-                c(f"size_t lost{k} = (size_t)({gap.counter.most}u - m->{gap.field}_count) * {per}u;")
+                c(f"size_t lost{k} = (size_t)({gap.counter.most}u - m->{count_member(gap.field)}) * {per}u;")
             else:
                 c(f"size_t lost{k} = ({self.presence_test(m, gap)}) ? 0u : {gap.size}u;")
         for k, gap in reversed(list(enumerate(gaps))):
@@ -858,7 +859,7 @@ class CView:
                 self.fail_if(c, f"n > {counter.most_value}u", "range")
                 if counter.step != 1:  # its bytes must hold whole elements
                     self.fail_if(c, f"n % {counter.step}u != 0u", "length")
-                c(f"m->{gap.field}_count = ({unsigned_type(counter.most.bit_length())})"
+                c(f"m->{count_member(gap.field)} = ({unsigned_type(counter.most.bit_length())})"
                   f"({times_over('n', counter.unit, counter.element_bytes, '/', 'u')});")
                 c(f"size_t lost{k} = {counter.most * counter.element_bytes}u - n * {counter.unit}u;")
             else:
@@ -881,7 +882,7 @@ class CView:
         self.fail_if(c, f"len > {m.size}u{lost}", "length")
         c(f"size_t lost{k} = {m.size}u{lost} - len;")
         self.fail_if(c, f"lost{k} > {gap.size}u || ({gap.size}u - lost{k}) % {counter.element_bytes}u != 0u", "length")
-        c(f"m->{gap.field}_count = ({unsigned_type(counter.most.bit_length())})"
+        c(f"m->{count_member(gap.field)} = ({unsigned_type(counter.most.bit_length())})"
           f"(({gap.size}u - lost{k}) / {counter.element_bytes}u);")
 
     def decode_function(self, m: Message) -> str:
