@@ -26,6 +26,7 @@ FULL = frozenset({
     "signed", "scale", "offset", "range",   # integer options
     "enum", "flags", "bool", "bytes_field", "f32", "f64",
     "f32_range",                            # f32 fields with a range: integer or decimal ends
+    "collisions",                           # mutants: protocol named like a system header, has_/_count fields
     "wide",                                 # integers of 33..64 bits
     "optional", "str", "char", "text_float", "newline",  # text options
     "long_marks", "line_checksum",          # text: marks of several characters, a start marker; `*hh`
