@@ -238,6 +238,15 @@ class Field:
                     or self.const is not None or self.counts)
 
     @property
+    def generated_members(self) -> tuple[str, ...]:
+        """Struct members C declares beside this field's own: the presence flag of an
+        optional or one-hot value, and the count in use of an array or bytes that varies."""
+        if not self.is_member or self.kind == "group":
+            return (count_member(self.name),) if self.is_member and self.varies else ()
+        flag = (presence_member(self.name),) if self.optional or self.one_hot else ()
+        return flag + ((count_member(self.name),) if self.varies else ())
+
+    @property
     def signed(self) -> bool:
         return self.kind == "int"
 
@@ -338,6 +347,16 @@ class Leaf:
     def dotted(self) -> str:
         """The path as Python and C spell an access to it: `pts[1].x`."""
         return dotted(self.path)
+
+
+def presence_member(name: str) -> str:
+    """The C member that says whether an optional (or one-hot) field `name` is present."""
+    return "has_" + name
+
+
+def count_member(name: str) -> str:
+    """The C member that holds how many elements (or bytes) of field `name` are in use."""
+    return name + "_count"
 
 
 def path_name(path: tuple[Union[str, int], ...]) -> str:

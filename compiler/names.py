@@ -41,6 +41,25 @@ GENERATED_CLASSES = frozenset({
 # must not shadow a standard module for code that puts generated/python on
 # sys.path, nor replace the shared C runtime header codeword.h (prefix cw_).
 RESERVED_PROTOCOLS = frozenset(sys.stdlib_module_names) | {"codeword", "cw"}
+# Nor may <name>.h stand for a system header under `-I generated/c` (`#include
+# <stdint.h>` would find the protocol's): the C89..C23 standard headers, common
+# POSIX ones, and those the generated C includes (Python.h and structmember.h in
+# the accelerators); a header in a folder (<sys/types.h>) cannot be met. Compared
+# without case, as file systems on macOS and Windows do.
+C_STANDARD_HEADERS = frozenset("""
+assert complex ctype errno fenv float inttypes iso646 limits locale math setjmp signal
+stdalign stdarg stdatomic stdbit stdbool stdckdint stddef stdint stdio stdlib stdnoreturn
+string tgmath threads time uchar wchar wctype
+""".split())
+POSIX_HEADERS = frozenset("""
+aio cpio dirent dlfcn fcntl fmtmsg fnmatch ftw glob grp iconv langinfo libgen
+monetary mqueue ndbm netdb nl_types poll pthread pwd regex sched search
+semaphore spawn strings stropts syslog tar termios trace ulimit unistd utime utmpx
+wordexp alloca endian err getopt malloc memory features
+""".split())
+GENERATED_C_INCLUDES = frozenset({"python", "structmember"})
+RESERVED_HEADERS = C_STANDARD_HEADERS | POSIX_HEADERS | GENERATED_C_INCLUDES
+_RESERVED_MODULES = frozenset(n.lower() for n in RESERVED_PROTOCOLS)
 # It is also generated/docs/<name>.md: `index` would overwrite the list of protocols.
 RESERVED_PAGES = frozenset({"index"})
 
@@ -67,8 +86,11 @@ def name_problem(name: str) -> str | None:
 def protocol_name_problem(name: str) -> str | None:
     """Why `name` cannot name a protocol (a module and a header), or None."""
     problem = name_problem(name)
-    if problem is None and name in RESERVED_PROTOCOLS:
+    if problem is None and name.lower() in _RESERVED_MODULES:
         problem = f"{name!r} is a Python standard module or codeword's own runtime"
+    if problem is None and name.lower() in RESERVED_HEADERS:
+        problem = (f"{name!r} is a C standard or system header: with -I generated/c, "
+                   f"#include <{name.lower()}.h> would find the protocol's {name}.h")
     if problem is None and name in RESERVED_PAGES:
         problem = f"{name!r} would replace the docs page {name}.md"
     return problem

@@ -210,6 +210,7 @@ class Driver:
                        + [m.size for m in p.messages if m.size is not None and p.framing.kind == "bytes"])
         return env.from_string(TEMPLATE.read_text()).render(
             p=p, px=p.name, PX=p.name.upper(), messages=messages, invalid=invalid, streams=streams,
+            ids=self.id_checks() if part == 0 else [],
             wires=wires, wire_index={w: i for i, w in enumerate(wires)},
             decimals=self.text and any(leaf.field.kind == "float" for m in p.messages for leaf in m.wire.leaves),
             text=self.text, wire_max=wire_max + 1, self_identifying=p.self_identifying,
@@ -222,6 +223,19 @@ class Driver:
             scan_window=f"{p.name.upper()}_STREAM_MAX + 8u" if not p.framing.encoding else "16u",
             scan_left=f"{p.name.upper()}_STREAM_MAX" if not p.framing.encoding else "1u",
             seq_cap=self.seq_cap(sequences))
+
+    def id_checks(self) -> list[str]:
+        """Conditions true when a message's id constant (`<P>_<MSG>_ID`, `_ID<i>` for one
+        of several) is not the schema's id: a text prefix is a string, any other an integer."""
+        out = []
+        for m in self.p.messages:
+            for i, value in enumerate(m.ids):
+                name = f"{self.p.name}_{m.name}_ID".upper() if len(m.ids) == 1 else f"{self.p.name}_{m.name}_ID{i}".upper()
+                if isinstance(value, str):
+                    out.append(f"strcmp({name}, {cstr(value)}) != 0")
+                else:
+                    out.append(f"(unsigned long){name} != {value}UL")
+        return out
 
     def seq_cap(self, sequences: list[dict]) -> int:
         """Room for the messages of any sequence vector: a rejected one is decoded up to

@@ -64,10 +64,10 @@ messages:
 """
 
 
-def test_range_is_checked_before_a_narrow_member_holds_the_value(tmp_path):
-    """The members are int8_t and uint8_t (from the ranges), the wire values 9 and 7 bits:
-    -201 (1 0011 0111) would wrap to 55 and 0x7f is fine, but both must be range errors
-    or not exactly as in Python, never pass after narrowing."""
+def test_range_is_checked_on_every_value_of_the_wire_type(tmp_path):
+    """The members are int16_t and uint8_t (the wire types i9 and u7, not the ranges):
+    -201 (1 0011 0111) would wrap to 55 in an int8_t and 0x7f is fine, but both must be
+    range errors exactly as in Python."""
     render(tmp_path, "narrow", NARROW)
     mod = load(tmp_path / "narrow.py")
     frames = {"55 9b 80": "range",   # level -201: 1 0011 0111, count 0

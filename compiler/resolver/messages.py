@@ -54,6 +54,7 @@ class MessagesMixin(ResolverBase):
             self.check_field_checksums(name, layout)
             if framing.kind == "bytes" and bits is not None:
                 shortening = self.shortening(name, layout, framing, path)
+        self.check_generated_members(name, layout)
         crc_extra = self.crc_extra(name, m, layout, path)
         rules = tuple(self.resolve_rule(r, path + ("rules", i), layout)
                       for i, r in enumerate(m.get("rules", [])))
@@ -65,6 +66,29 @@ class MessagesMixin(ResolverBase):
             answered_by=tuple(m.get("answered_by", [])), fields=own, layout=layout, bits=bits,
             rules=rules, examples=examples, dispatch_key=dispatch_key, crc_extra=crc_extra, wire=wire_of(layout, bits, framing.wire_order),
             layout_type=layout_type, shortening=shortening)
+
+    def check_generated_members(self, name: str, fields: tuple[Field, ...]) -> None:
+        """The C struct adds `has_<f>` beside an optional or one-hot field and `<f>_count`
+        beside one that varies: no other member of the same struct may be called so."""
+        owners: dict[str, Field] = {}
+        for f in fields:
+            for member in f.generated_members:
+                owners.setdefault(member, f)
+        for f in fields:
+            owner = owners.get(f.name) if f.is_member else None
+            if owner is not None:
+                self.report.error(f.loc, f"message {name!r}: field {f.name!r} has the name of the C member "
+                                         f"that field {owner.name!r} brings ({f.name})",
+                                  f"rename {f.name!r}; the C struct declares {f.name} for {owner.name!r}")
+        generated = [m for f in fields for m in f.generated_members]
+        for member in {m for m in generated if generated.count(m) > 1}:
+            first, *others = [f for f in fields if member in f.generated_members]
+            for f in others:
+                self.report.error(f.loc, f"message {name!r}: fields {first.name!r} and {f.name!r} would both "
+                                         f"bring the C member {member}", f"rename {f.name!r}")
+        for f in fields:
+            if f.kind == "group":
+                self.check_generated_members(name, f.fields)
 
     def crc_extra(self, name: str, m: dict, layout: tuple[Field, ...], path: tuple) -> Optional[int]:
         """The byte a CRC with `extra: message` takes after its coverage: every message declares it."""

@@ -25,6 +25,8 @@ FULL = frozenset({
     "lsb_first",                            # bytes framing: bit fields least significant bit first
     "signed", "scale", "offset", "range",   # integer options
     "enum", "flags", "bool", "bytes_field", "f32", "f64",
+    "f32_range",                            # f32 fields with a range: integer or decimal ends
+    "collisions",                           # mutants: protocol named like a system header, has_/_count fields
     "wide",                                 # integers of 33..64 bits
     "optional", "str", "char", "text_float", "newline",  # text options
     "long_marks", "line_checksum",          # text: marks of several characters, a start marker; `*hh`

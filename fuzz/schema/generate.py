@@ -337,10 +337,26 @@ class Generator:
             length = rng.randint(1, 4)
             return {"name": name, "type": "bytes", "length": length}, 8 * length
         if choice < 0.41 and "f32" in self.on:
-            return {"name": name, "type": "f32"}, 32
+            return self.binary32(name), 32
         if choice < 0.46 and "f64" in self.on:
             return self.binary64(name), 64
         return self.integer(name)
+
+    def binary32(self, name: str) -> dict:
+        """An f32 field, sometimes with a range: integer ends (C spells them as float
+        literals), decimals that fall between floats, or integers past 2**24."""
+        rng = self.rng
+        field: dict = {"name": name, "type": "f32"}
+        if self.has("f32_range", 0.4):
+            kind = rng.random()
+            if kind < 0.5:
+                ends = [rng.randint(-1000, 1000) for _ in range(2)]
+            elif kind < 0.8:
+                ends = [round(rng.uniform(-1e4, 1e4), rng.randint(1, 4)) for _ in range(2)]
+            else:
+                ends = [rng.randint(-(1 << 40), 1 << 40) for _ in range(2)]
+            field["range"] = sorted(ends)
+        return field
 
     def binary64(self, name: str) -> dict:
         """An f64 field: sometimes in its own byte order, sometimes with a range

@@ -3,6 +3,7 @@ diagnostic or build for every target; an internal error is a failure."""
 from __future__ import annotations
 
 import random
+import re
 import tempfile
 import traceback
 from pathlib import Path
@@ -52,8 +53,99 @@ def mutate(doc: dict, rng: random.Random) -> str:
     return f"{'/'.join(map(str, path))}: {'replaced' if how < 0.6 else 'dropped' if how < 0.8 else 'duplicated'}"
 
 
+# Names of C standard, POSIX and Python standard headers and modules: a protocol called
+# so would stand for them (`-I generated/c` finds its stdint.h for <stdint.h>).
+SYSTEM_NAMES = ["stdint", "stdio", "stdlib", "string", "limits", "stddef", "stdbool", "inttypes", "ctype", "errno",
+                "math", "time", "signal", "setjmp", "wchar", "threads", "stdatomic", "unistd", "fcntl", "pthread",
+                "termios", "dirent", "struct", "json", "socket", "random", "array", "types", "select", "codeword"]
+
+
+def _referenced(text: str, name: str) -> bool:
+    """Whether `name` appears in the schema text other than as one field's name."""
+    return len(re.findall(rf"(?<![A-Za-z0-9_]){re.escape(name)}(?![A-Za-z0-9_])", text)) > 1
+
+
+def _fields_lists(node: Any) -> list[list]:
+    """Every list of fields in the messages (groups included)."""
+    out = []
+    if isinstance(node, dict):
+        if isinstance(node.get("fields"), list):
+            out.append(node["fields"])
+        for value in node.values():
+            out += _fields_lists(value)
+    elif isinstance(node, list):
+        for value in node:
+            out += _fields_lists(value)
+    return out
+
+
+def _member_owner(f: dict) -> str | None:
+    """The C member a field brings beside its own: has_<f> (optional, one-hot) or <f>_count
+    (an array or bytes whose count varies); None if it brings none."""
+    if not isinstance(f, dict) or not isinstance(f.get("name"), str):
+        return None
+    if f.get("optional") or f.get("one_hot"):
+        return f"has_{f['name']}"
+    if isinstance(f.get("count"), dict) or isinstance(f.get("length"), dict) or f.get("to_end"):
+        return f"{f['name']}_count"
+    return None
+
+
+def collide(doc: dict, rng: random.Random) -> tuple[str, str] | None:
+    """A name that meets one the generated code needs: the protocol named like a system
+    header or module, or a field renamed to the C member a sibling brings. Returns what
+    was done and the text of the line that must be refused; None if the schema offers none."""
+    text = yaml.safe_dump(doc, sort_keys=False, allow_unicode=True)
+    choices = []
+    for fields in _fields_lists(doc.get("messages", {})):
+        for owner in fields:
+            member = _member_owner(owner)
+            if member is None:
+                continue
+            for other in fields:
+                plain = isinstance(other, dict) and isinstance(other.get("name"), str) and other is not owner \
+                    and not {"const", "reserved", "dispatch", "checksum", "length_of"} & set(other)
+                if plain and not _referenced(text, other["name"]):
+                    choices.append((other, member))
+    if choices and rng.random() < 0.9:
+        other, member = rng.choice(choices)
+        was, other["name"] = other["name"], member
+        return f"field {was} renamed {member}", f"name: {member}"
+    name = rng.choice(SYSTEM_NAMES)
+    doc["protocol"] = name
+    return f"protocol named {name}", f"protocol: {name}"
+
+
+def check_collision(seed: int, features: frozenset[str] = DEFAULT) -> str:
+    """'' when a schema with a colliding name is refused at that name's line."""
+    doc = Generator(seed, features).schema()
+    what, line_text = collide(doc, random.Random(f"collide {seed}"))
+    text = yaml.safe_dump(doc, sort_keys=False, allow_unicode=True)
+    lines = [i for i, line in enumerate(text.splitlines(), 1) if line.strip().lstrip("- ") == line_text]
+    with tempfile.TemporaryDirectory(prefix=f"col{seed}-") as tmp:
+        path = Path(tmp) / f"fz{seed}.yaml"
+        path.write_text(text, encoding="utf-8")
+        try:
+            result = build([path], Path(tmp) / "out", root=Path(tmp))
+        except Exception:
+            return f"collision {seed} ({what}): internal error: {traceback.format_exc(limit=-1).strip().splitlines()[-1]}"
+    if not result.errors:
+        return f"collision {seed} ({what}): built, not refused at line {lines}"
+    if not any(d.loc.line in lines and d.hint.strip() for d in result.errors):
+        return f"collision {seed} ({what}): refused elsewhere: {str(result.errors[0]).splitlines()[0]}"
+    return ""
+
+
 def check_mutant(seed: int, features: frozenset[str] = DEFAULT) -> str:
-    """'' when the mutant is refused at a location or builds; else what went wrong."""
+    """'' when the mutant is refused at a location or builds (and, with `collisions`, a
+    schema with a colliding name is refused at its line); else what went wrong."""
+    problem = _check_mutant(seed, features)
+    if not problem and "collisions" in features:
+        problem = check_collision(seed, features)
+    return problem
+
+
+def _check_mutant(seed: int, features: frozenset[str] = DEFAULT) -> str:
     rng = random.Random(seed)
     doc = Generator(seed, features).schema()
     what = mutate(doc, rng)

@@ -20,15 +20,15 @@ extern "C" {
 #define TANK_FINGERPRINT "9d70d29ed1cf46f3"  /* hash of the wire-relevant schema (codeword diff) */
 #define TANK_FINGERPRINT32 0x9d70d29eu  /* its first 32 bits */
 #define TANK_TELEMETRY_MAX_TEXT 445u  /* chars, with the NUL: buffer size for encode */
-#define TANK_TELEMETRY_ID '$'
+#define TANK_TELEMETRY_ID "$"  /* the prefix */
 #define TANK_COMMAND_MAX_TEXT 216u  /* chars, with the NUL: buffer size for encode */
-#define TANK_COMMAND_ID '%'
+#define TANK_COMMAND_ID "%"  /* the prefix */
 #define TANK_PAYLOAD_COMMAND_MAX_TEXT 204u  /* chars, with the NUL: buffer size for encode */
-#define TANK_PAYLOAD_COMMAND_ID '*'
+#define TANK_PAYLOAD_COMMAND_ID "*"  /* the prefix */
 #define TANK_PAYLOAD_REPLY_MAX_TEXT 204u  /* chars, with the NUL: buffer size for encode */
-#define TANK_PAYLOAD_REPLY_ID '^'
+#define TANK_PAYLOAD_REPLY_ID "^"  /* the prefix */
 #define TANK_GPIO_CONFIG_MAX_TEXT 51u  /* chars, with the NUL: buffer size for encode */
-#define TANK_GPIO_CONFIG_ID '-'
+#define TANK_GPIO_CONFIG_ID "-"  /* the prefix */
 #define TANK_MAX_TEXT 445u  /* chars, with the NUL: largest encoded message */
 
 /* direction of motion */
@@ -93,7 +93,7 @@ enum {
 /* Telemetry */
 typedef struct {
     char move;  /* current direction of motion; TANK_MOVE_* */
-    uint8_t speed;  /* current speed in percent, 0-100 (TANK-D3); [%]; range 0..100; (TANK-D3) */
+    int32_t speed;  /* current speed in percent, 0-100 (TANK-D3); [%]; range 0..100; (TANK-D3) */
     char value;  /* acceleration type, one character (TANK-D3); (TANK-D3) */
     cw_decimal_t lcurr;  /* left motor current */
     cw_decimal_t rcurr;  /* right motor current */
@@ -110,16 +110,16 @@ typedef struct {
     char lon[33];  /* longitude, as text (no format given; no ',' or ';', TANK-D5); NUL-terminated, at most 32 characters; (TANK-D5) */
     cw_decimal_t vbat;  /* battery voltage in volts; [V] */
     uint8_t systemstatus;  /* platform status; all values 0-6 allowed here (5, 6 only from the platform); TANK_SYSTEM_STATUS_* */
-    uint8_t extid;  /* Identifier of the external device: 0 = works through GPIO/SPI, 1 or more = works through UART. The seed writes ">1", which leaves 1 undefined; we read it as ">= 1". The range 0-255 is this schema's bound; the seed gives none.; range 0..255 */
+    int32_t extid;  /* Identifier of the external device: 0 = works through GPIO/SPI, 1 or more = works through UART. The seed writes ">1", which leaves 1 undefined; we read it as ">= 1". The range 0-255 is this schema's bound; the seed gives none.; range 0..255 */
     uint8_t extstatus;  /* external device status; TANK_EXT_STATUS_* */
 } tank_telemetry_t;
 
 /* Command */
 typedef struct {
     char move;  /* direction of motion; TANK_MOVE_* */
-    uint8_t speed;  /* speed in percent, 0-100 (TANK-D3); [%]; range 0..100; (TANK-D3) */
+    int32_t speed;  /* speed in percent, 0-100 (TANK-D3); [%]; range 0..100; (TANK-D3) */
     char value;  /* acceleration type, one character (TANK-D3); (TANK-D3) */
-    int16_t azimutloc;  /* Azimuth of motion (the seed's name, "azimutloc"). The seed says only "int": no unit, no range. We accept a 16-bit signed int (the size of an `int` on the 8/16-bit controllers such a platform is built on), without assuming degrees 0-359.; range -32768..32767 */
+    int32_t azimutloc;  /* Azimuth of motion (the seed's name, "azimutloc"). The seed says only "int": no unit, no range. We accept a 16-bit signed int (the size of an `int` on the 8/16-bit controllers such a platform is built on), without assuming degrees 0-359.; range -32768..32767 */
     cw_decimal_t gpio1;  /* value of MasterLink GPIO1 (pin 8, SCL) */
     cw_decimal_t gpio2;  /* value of MasterLink GPIO2 (pin 9, MISO / Analog2) */
     cw_decimal_t gpio3;  /* value of MasterLink GPIO3 (pin 10, MOSI / Analog3) */
@@ -197,7 +197,7 @@ static inline int tank_telemetry_encode(const tank_telemetry_t *m, char *buf, si
     if (m->move != 'f' && m->move != 'b' && m->move != 'l' && m->move != 'r' && m->move != 'a' && m->move != 'c' && m->move != 'd' && m->move != 'e') {
         return CW_ERR_ENUM;
     }
-    if (m->speed > 100u) {
+    if (m->speed < 0 || m->speed > 100) {
         return CW_ERR_RANGE;
     }
     if (!cw_text_ok(&m->value, 1u, ',', ';', true)) {
@@ -292,6 +292,9 @@ static inline int tank_telemetry_encode(const tank_telemetry_t *m, char *buf, si
     if (m->systemstatus > 6u) {
         return CW_ERR_ENUM;
     }
+    if (m->extid < 0 || m->extid > 255) {
+        return CW_ERR_RANGE;
+    }
     if (m->extstatus > 5u) {
         return CW_ERR_ENUM;
     }
@@ -346,7 +349,7 @@ static inline int tank_telemetry_parse_body(const char *s, const char *end, tank
         if (rc != CW_OK) {
             return rc;
         }
-        m->speed = (uint8_t)value;
+        m->speed = (int32_t)value;
     }
     /* value */
     v = cw_value(s, ends, 2u, true);
@@ -473,7 +476,7 @@ static inline int tank_telemetry_parse_body(const char *s, const char *end, tank
         if (rc != CW_OK) {
             return rc;
         }
-        m->extid = (uint8_t)value;
+        m->extid = (int32_t)value;
     }
     /* extstatus */
     v = cw_value(s, ends, 19u, true);
@@ -498,7 +501,7 @@ static inline int tank_telemetry_decode(const char *text, size_t len, tank_telem
 {
     const char *pb, *pe, *body, *end;
     int rc = tank_split(text, len, &pb, &pe, &body, &end);
-    if (rc == CW_OK && ((size_t)(pe - pb) != 1u || memcmp(pb, "$", 1u) != 0)) {
+    if (rc == CW_OK && ((size_t)(pe - pb) != 1u || memcmp(pb, TANK_TELEMETRY_ID, 1u) != 0)) {
         rc = CW_ERR_DISPATCH;
     } else if (rc == CW_OK) {
         rc = tank_telemetry_parse_body(body, end, m);
@@ -515,11 +518,14 @@ static inline int tank_command_encode(const tank_command_t *m, char *buf, size_t
     if (m->move != 'f' && m->move != 'b' && m->move != 'l' && m->move != 'r' && m->move != 'a' && m->move != 'c' && m->move != 'd' && m->move != 'e') {
         return CW_ERR_ENUM;
     }
-    if (m->speed > 100u) {
+    if (m->speed < 0 || m->speed > 100) {
         return CW_ERR_RANGE;
     }
     if (!cw_text_ok(&m->value, 1u, ',', ';', true)) {
         return CW_ERR_TEXT;
+    }
+    if (m->azimutloc < (-32767 - 1) || m->azimutloc > 0x7fff) {
+        return CW_ERR_RANGE;
     }
     {
         int decimal_rc = cw_decimal_check(&m->gpio1);
@@ -603,7 +609,7 @@ static inline int tank_command_parse_body(const char *s, const char *end, tank_c
         if (rc != CW_OK) {
             return rc;
         }
-        m->speed = (uint8_t)value;
+        m->speed = (int32_t)value;
     }
     /* value */
     v = cw_value(s, ends, 2u, true);
@@ -622,7 +628,7 @@ static inline int tank_command_parse_body(const char *s, const char *end, tank_c
         if (rc != CW_OK) {
             return rc;
         }
-        m->azimutloc = (int16_t)value;
+        m->azimutloc = (int32_t)value;
     }
     /* gpio1 */
     v = cw_value(s, ends, 4u, true);
@@ -687,7 +693,7 @@ static inline int tank_command_decode(const char *text, size_t len, tank_command
 {
     const char *pb, *pe, *body, *end;
     int rc = tank_split(text, len, &pb, &pe, &body, &end);
-    if (rc == CW_OK && ((size_t)(pe - pb) != 1u || memcmp(pb, "%", 1u) != 0)) {
+    if (rc == CW_OK && ((size_t)(pe - pb) != 1u || memcmp(pb, TANK_COMMAND_ID, 1u) != 0)) {
         rc = CW_ERR_DISPATCH;
     } else if (rc == CW_OK) {
         rc = tank_command_parse_body(body, end, m);
@@ -736,7 +742,7 @@ static inline int tank_payload_command_decode(const char *text, size_t len, tank
 {
     const char *pb, *pe, *body, *end;
     int rc = tank_split(text, len, &pb, &pe, &body, &end);
-    if (rc == CW_OK && ((size_t)(pe - pb) != 1u || memcmp(pb, "*", 1u) != 0)) {
+    if (rc == CW_OK && ((size_t)(pe - pb) != 1u || memcmp(pb, TANK_PAYLOAD_COMMAND_ID, 1u) != 0)) {
         rc = CW_ERR_DISPATCH;
     } else if (rc == CW_OK) {
         rc = tank_payload_command_parse_body(body, end, m);
@@ -785,7 +791,7 @@ static inline int tank_payload_reply_decode(const char *text, size_t len, tank_p
 {
     const char *pb, *pe, *body, *end;
     int rc = tank_split(text, len, &pb, &pe, &body, &end);
-    if (rc == CW_OK && ((size_t)(pe - pb) != 1u || memcmp(pb, "^", 1u) != 0)) {
+    if (rc == CW_OK && ((size_t)(pe - pb) != 1u || memcmp(pb, TANK_PAYLOAD_REPLY_ID, 1u) != 0)) {
         rc = CW_ERR_DISPATCH;
     } else if (rc == CW_OK) {
         rc = tank_payload_reply_parse_body(body, end, m);
@@ -899,7 +905,7 @@ static inline int tank_gpio_config_decode(const char *text, size_t len, tank_gpi
 {
     const char *pb, *pe, *body, *end;
     int rc = tank_split(text, len, &pb, &pe, &body, &end);
-    if (rc == CW_OK && ((size_t)(pe - pb) != 1u || memcmp(pb, "-", 1u) != 0)) {
+    if (rc == CW_OK && ((size_t)(pe - pb) != 1u || memcmp(pb, TANK_GPIO_CONFIG_ID, 1u) != 0)) {
         rc = CW_ERR_DISPATCH;
     } else if (rc == CW_OK) {
         rc = tank_gpio_config_parse_body(body, end, m);
@@ -936,19 +942,19 @@ static inline int tank_decode(const char *text, size_t len, int direction, tank_
         return cw_text_verdict(text, len, rc);
     }
     n = (size_t)(pe - pb);
-    if (n == 1u && memcmp(pb, "$", 1u) == 0 && (direction == TANK_DIR_ANY || direction == TANK_DIR_PLATFORM_TO_COMPUTER)) {
+    if (n == 1u && memcmp(pb, TANK_TELEMETRY_ID, 1u) == 0 && (direction == TANK_DIR_ANY || direction == TANK_DIR_PLATFORM_TO_COMPUTER)) {
         out->kind = TANK_MSG_TELEMETRY;
         rc = tank_telemetry_parse_body(body, end, &out->as.telemetry);
-    } else if (n == 1u && memcmp(pb, "%", 1u) == 0 && (direction == TANK_DIR_ANY || direction == TANK_DIR_COMPUTER_TO_PLATFORM)) {
+    } else if (n == 1u && memcmp(pb, TANK_COMMAND_ID, 1u) == 0 && (direction == TANK_DIR_ANY || direction == TANK_DIR_COMPUTER_TO_PLATFORM)) {
         out->kind = TANK_MSG_COMMAND;
         rc = tank_command_parse_body(body, end, &out->as.command);
-    } else if (n == 1u && memcmp(pb, "*", 1u) == 0 && (direction == TANK_DIR_ANY || direction == TANK_DIR_COMPUTER_TO_PAYLOAD)) {
+    } else if (n == 1u && memcmp(pb, TANK_PAYLOAD_COMMAND_ID, 1u) == 0 && (direction == TANK_DIR_ANY || direction == TANK_DIR_COMPUTER_TO_PAYLOAD)) {
         out->kind = TANK_MSG_PAYLOAD_COMMAND;
         rc = tank_payload_command_parse_body(body, end, &out->as.payload_command);
-    } else if (n == 1u && memcmp(pb, "^", 1u) == 0 && (direction == TANK_DIR_ANY || direction == TANK_DIR_PAYLOAD_TO_COMPUTER)) {
+    } else if (n == 1u && memcmp(pb, TANK_PAYLOAD_REPLY_ID, 1u) == 0 && (direction == TANK_DIR_ANY || direction == TANK_DIR_PAYLOAD_TO_COMPUTER)) {
         out->kind = TANK_MSG_PAYLOAD_REPLY;
         rc = tank_payload_reply_parse_body(body, end, &out->as.payload_reply);
-    } else if (n == 1u && memcmp(pb, "-", 1u) == 0 && (direction == TANK_DIR_ANY || direction == TANK_DIR_COMPUTER_TO_PLATFORM)) {
+    } else if (n == 1u && memcmp(pb, TANK_GPIO_CONFIG_ID, 1u) == 0 && (direction == TANK_DIR_ANY || direction == TANK_DIR_COMPUTER_TO_PLATFORM)) {
         out->kind = TANK_MSG_GPIO_CONFIG;
         rc = tank_gpio_config_parse_body(body, end, &out->as.gpio_config);
     } else {

@@ -27,10 +27,9 @@ def constants(v: CView) -> list[tuple[str, str, str]]:
             out.append((v.upper(m.name, "MAX_TEXT"), f"{v.max_text(m) + 1}u",
                         "chars, with the NUL: buffer size for encode"))
         for i, value in enumerate(m.ids):
-            name = v.upper(m.name, "ID") if len(m.ids) == 1 else v.upper(m.name, f"ID{i}")
             made_of = ", ".join(name for name, _ in m.id_fields)
-            out.append((name, cchar(value) if isinstance(value, str) else f"{value}u",
-                        f"the key {made_of} make together" if made_of else ""))
+            out.append((v.id_const(m, i), v.id_literal(value),
+                        f"the key {made_of} make together" if made_of else "the prefix" if v.text else ""))
     sizes = [m.size for m in p.messages if m.size is not None]
     if sizes:
         out.append((v.upper("MAX_FRAME"), f"{max(sizes)}u", "bytes: largest frame"))

@@ -16,9 +16,10 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any, Optional
 
-from ... import binary64
+from ... import binary32, binary64
 from ...crc import reflect
-from ...model import Checksum, CrcParams, Field, Leaf, Message, Protocol, dotted, field_at
+from ...model import (Checksum, CrcParams, Field, Leaf, Message, Protocol, count_member, dotted, field_at,
+                      presence_member)
 from ..code import Code, times_over
 from ..escape import c_char as cchar, c_comment as comment, c_string as cstr
 from . import pack as cpack
@@ -95,8 +96,16 @@ class CView:
     def has(self, leaf: Leaf, obj: str = "m") -> str:
         path = list(leaf.path)
         name = max(i for i, p in enumerate(path) if isinstance(p, str))  # an array's flags are an array too
-        path[name] = "has_" + path[name]
+        path[name] = presence_member(path[name])
         return f"{obj}->" + dotted(tuple(path))
+
+    def id_const(self, m: Message, i: int = 0) -> str:
+        """The constant of a message's id (`<P>_<MSG>_ID`, or `_ID<i>` for one of several):
+        an integer, or a text prefix as a string literal the text decoders compare with."""
+        return self.upper(m.name, "ID") if len(m.ids) == 1 else self.upper(m.name, f"ID{i}")
+
+    def id_literal(self, value: Any) -> str:
+        return cstr(value) if isinstance(value, str) else f"{value}u"
 
     def enum_const(self, enum_name: str, member: str) -> str:
         return self.upper(enum_name, member)
@@ -124,13 +133,10 @@ class CView:
         return Rep(int_ctype(lo, hi), has_flag=f.optional, lo=lo, hi=hi)
 
     def stored_range(self, f: Field) -> tuple[int, int]:
-        """The integers the struct member holds: raw when scaled, else logical."""
+        """The integers the struct member holds: raw when scaled, else logical. Every value
+        the wire type gives, whatever the range: widening a range keeps the C API."""
         raw = f.raw_range or (-(1 << 31), (1 << 31) - 1)
-        if f.scale is not None:
-            return raw
-        off = int(f.offset or 0)
-        if f.range is not None and f.enum is None and f.flags is None:
-            return int(math.ceil(f.range[0])), int(math.floor(f.range[1]))
+        off = int(f.offset or 0) if f.scale is None else 0
         return raw[0] + off, raw[1] + off
 
     def raw_bounds(self, f: Field) -> tuple[int, int]:
@@ -156,12 +162,12 @@ class CView:
             else:
                 r = self.rep(f.element)
                 if r.has_flag:
-                    out.append(f"{pad}bool has_{f.name}{count};  /* {'0 = absent' if f.optional else '0 = no bit set'} */")
+                    out.append(f"{pad}bool {presence_member(f.name)}{count};  /* {'0 = absent' if f.optional else '0 = no bit set'} */")
                 arr = f"[{r.array}]" if r.array else ""
                 out.append(f"{pad}{r.ctype} {f.name}{count}{arr};" + (f"  /* {note} */" if note else ""))
             if f.varies:
                 most, what = (f.length, "bytes") if f.kind == "bytes" else (f.count, "elements")
-                out.append(f"{pad}{unsigned_type(most.bit_length())} {f.name}_count;  "
+                out.append(f"{pad}{unsigned_type(most.bit_length())} {count_member(f.name)};  "
                            f"/* {what} in use, 0..{most} */")
         return out
 
@@ -221,12 +227,14 @@ class CView:
     def condition(self, cond, obj: str, m: Message) -> str:
         f = field_at(m.layout, cond.path)
         left = f"{obj}->{cond.path}"
-        leaf_has = f"{obj}->" + ".".join(cond.path.split(".")[:-1] + ["has_" + cond.path.split(".")[-1]])
+        leaf_has = f"{obj}->" + ".".join(cond.path.split(".")[:-1] + [presence_member(cond.path.split(".")[-1])])
         value = cond.value
         if cond.op in ("eq", "ne") and value is None:
             return f"!{leaf_has}" if cond.op == "eq" else leaf_has
         if f is not None and self.rep(f).ctype == "cw_f64_t":
             return self.f64_condition(cond.op, f"cw_f64_to_bits({left})", value)
+        if f is not None and self.rep(f).ctype == "float" and cond.op == "range":
+            return f"!({self.f32_outside(left, *value)})"
         if cond.op in ("eq", "ne"):
             if f is not None and f.kind == "bool":
                 want = bool(value) == (cond.op == "eq")
@@ -260,6 +268,20 @@ class CView:
             parts.append(f"cw_f64_order({bits}) < {clit(binary64.order_of(low), True)} /* {low!r} */")
         if high < binary64.LARGEST:
             parts.append(f"cw_f64_order({bits}) > {clit(binary64.order_of(high), True)} /* {high!r} */")
+        return " || ".join(parts) or "false"
+
+    @staticmethod
+    def f32_outside(v: str, lo: Any, hi: Any) -> str:
+        """The float `v` (finite) outside [lo, hi], compared exactly as Python compares
+        the decoded value: the bounds are the nearest floats inside, float literals."""
+        low, high = binary32.at_least(lo), binary32.at_most(hi)
+        if low == math.inf or high == -math.inf:  # no float lies inside
+            return "true"
+        parts = []
+        if low > -binary32.LARGEST:
+            parts.append(f"{v} < {binary32.literal(low)}")
+        if high < binary32.LARGEST:
+            parts.append(f"{v} > {binary32.literal(high)}")
         return " || ".join(parts) or "false"
 
     def rule_checks(self, c: Code, m: Message, obj: str) -> None:
@@ -317,9 +339,7 @@ class CView:
             c("    return CW_ERR_FINITE;")
             c("}")
             if f.range is not None:
-                c(f"if (!({v} >= {f.range[0]!r}f && {v} <= {f.range[1]!r}f)) {{")
-                c("    return CW_ERR_RANGE;")
-                c("}")
+                self.fail_if(c, self.f32_outside(v, *f.range), "range")
         elif f.kind == "bytes":
             return
         elif f.one_hot:
@@ -462,7 +482,7 @@ class CView:
             self.fail_if(c, f"!cw_f32_bits_finite({raw})", "finite")
             c(f"{v} = cw_f32_from_bits({raw});")
             if f.range is not None:
-                self.fail_if(c, f"!({v} >= {f.range[0]!r}f && {v} <= {f.range[1]!r}f)", "range")
+                self.fail_if(c, self.f32_outside(v, *f.range), "range")
             return
         # a signed field's raw bits are two's complement: its enum is tested once sign-extended
         if f.enum is not None and f.kind != "int":
@@ -501,39 +521,19 @@ class CView:
             expr = f"({total} + {clit(int(f.offset), True)})"
         else:
             expr = raw
-        # a member sized by the range cannot hold every wire value: check before narrowing
-        full = self.wire_type(f)
-        narrowed = full != r.ctype and (f.range is not None or f.values)
-        checked, ctype = ("value", full) if narrowed else (v, r.ctype)
-        if narrowed:
-            c("{")
-            c.indent()
-            c(f"{full} value = ({full}){expr};")
-        else:
-            c(f"{v} = ({r.ctype}){expr};")
+        c(f"{v} = ({r.ctype}){expr};")  # the member holds every value of the wire type
         if f.enum is not None and f.kind == "int":
             cond = self.enum_cond(v, [x.value for x in f.enum.members], r.ctype)
             if cond:
                 self.fail_if(c, cond, "enum")
         if f.range is not None and f.enum is None:
             lo, hi = self.raw_bounds(f)
-            cond = self.range_cond(checked, lo, hi, ctype)
+            cond = self.range_cond(v, lo, hi, r.ctype)
             if cond:
                 self.fail_if(c, cond, "range")
         if f.values:
             allowed = [self.enum_wire(f, x) for x in f.values]
-            self.fail_if(c, " && ".join(f"{checked} != {self.literal_of(x, ctype)}" for x in allowed),
-                         "values")
-        if narrowed:
-            c(f"{v} = ({r.ctype})value;")
-            c.dedent()
-            c("}")
-
-    def wire_type(self, f: Field) -> str:
-        """The C type of every logical value a field's wire bits can give (before its range)."""
-        lo, hi = f.raw_range or (-(1 << 31), (1 << 31) - 1)
-        off = int(f.offset or 0) if f.scale is None else 0
-        return int_ctype(lo + off, hi + off)
+            self.fail_if(c, " && ".join(f"{v} != {self.literal_of(x, r.ctype)}" for x in allowed), "values")
 
     @staticmethod
     def fail_if(c: Code, cond: str, kind: str) -> None:
@@ -644,14 +644,14 @@ class CView:
         gaps = m.shortening.gaps if m.shortening else ()
         for gap in gaps:
             if gap.counter:
-                self.fail_if(c, f"m->{gap.field}_count > {gap.counter.most}u", "range")
+                self.fail_if(c, f"m->{count_member(gap.field)} > {gap.counter.most}u", "range")
         counts = {g.control: g for g in gaps if g.counter}
         for leaf in wired:
             if leaf.var not in raws:
                 continue
             if leaf.field.counts:  # set from the array's count
                 counter = counts[leaf.field.name].counter
-                count = f"(uint32_t)m->{counter.field}_count"
+                count = f"(uint32_t)m->{count_member(counter.field)}"
                 if counter.element_step != 1:  # the elements must fill whole units
                     self.fail_if(c, f"{count} % {counter.element_step}u != 0u", "range")
                 c(f"{raws[leaf.var]} = ({rt})({times_over(count, counter.element_bytes, counter.unit, '/', 'u')});")
@@ -695,7 +695,7 @@ class CView:
             return None
         if gap.presence:
             return self.presence_test(m, gap)
-        return f"m->{gap.field}_count > {leaf.path[1]}u" if len(leaf.path) > 1 else None
+        return f"m->{count_member(gap.field)} > {leaf.path[1]}u" if len(leaf.path) > 1 else None
 
     def pack_value(self, span: Span, raws: dict[str, str]) -> str:
         """The integer of a "pack" span, from the raw values of its pieces
@@ -782,7 +782,7 @@ class CView:
         for k, gap in enumerate(gaps):
             if gap.counter:
                 per = gap.counter.element_bytes
-                c(f"size_t lost{k} = (size_t)({gap.counter.most}u - m->{gap.field}_count) * {per}u;")
+                c(f"size_t lost{k} = (size_t)({gap.counter.most}u - m->{count_member(gap.field)}) * {per}u;")
             else:
                 c(f"size_t lost{k} = ({self.presence_test(m, gap)}) ? 0u : {gap.size}u;")
         for k, gap in reversed(list(enumerate(gaps))):
@@ -859,7 +859,7 @@ class CView:
                 self.fail_if(c, f"n > {counter.most_value}u", "range")
                 if counter.step != 1:  # its bytes must hold whole elements
                     self.fail_if(c, f"n % {counter.step}u != 0u", "length")
-                c(f"m->{gap.field}_count = ({unsigned_type(counter.most.bit_length())})"
+                c(f"m->{count_member(gap.field)} = ({unsigned_type(counter.most.bit_length())})"
                   f"({times_over('n', counter.unit, counter.element_bytes, '/', 'u')});")
                 c(f"size_t lost{k} = {counter.most * counter.element_bytes}u - n * {counter.unit}u;")
             else:
@@ -882,7 +882,7 @@ class CView:
         self.fail_if(c, f"len > {m.size}u{lost}", "length")
         c(f"size_t lost{k} = {m.size}u{lost} - len;")
         self.fail_if(c, f"lost{k} > {gap.size}u || ({gap.size}u - lost{k}) % {counter.element_bytes}u != 0u", "length")
-        c(f"m->{gap.field}_count = ({unsigned_type(counter.most.bit_length())})"
+        c(f"m->{count_member(gap.field)} = ({unsigned_type(counter.most.bit_length())})"
           f"(({gap.size}u - lost{k}) / {counter.element_bytes}u);")
 
     def decode_function(self, m: Message) -> str:
@@ -1421,7 +1421,7 @@ class CView:
         c.indent()
         c("const char *pb, *pe, *body, *end;")
         c(f"int rc = {self.px}_split(text, len, &pb, &pe, &body, &end);")
-        c(f"if (rc == CW_OK && ((size_t)(pe - pb) != {len(prefix)}u || memcmp(pb, {cstr(prefix)}, {len(prefix)}u) != 0)) {{")
+        c(f"if (rc == CW_OK && ((size_t)(pe - pb) != {len(prefix)}u || memcmp(pb, {self.id_const(m)}, {len(prefix)}u) != 0)) {{")
         c("    rc = CW_ERR_DISPATCH;")
         c("} else if (rc == CW_OK) {")
         c(f"    rc = {self.fn(m, 'parse_body')}(body, end, m);")

@@ -73,7 +73,7 @@ enum {
 typedef struct {
     uint8_t address;  /* server address (1..247; 0 broadcasts a write) */
     uint16_t start;  /* address of the first register (register 40001 is 0) */
-    uint8_t quantity;  /* registers to read; range 1..125 */
+    uint16_t quantity;  /* registers to read; range 1..125 */
 } modbus_rtu_read_holding_registers_t;
 
 /* The registers read, two bytes each. */
@@ -87,7 +87,7 @@ typedef struct {
 typedef struct {
     uint8_t address;  /* server address (1..247; 0 broadcasts a write) */
     uint16_t start;  /* address of the first register */
-    uint8_t quantity;  /* registers to write; range 1..123 */
+    uint16_t quantity;  /* registers to write; range 1..123 */
     uint16_t values[123];
     uint8_t values_count;  /* elements in use, 0..123 */
 } modbus_rtu_write_multiple_registers_t;
@@ -205,12 +205,9 @@ static inline int modbus_rtu_read_holding_registers_check_raw(const uint16_t *r,
         return CW_ERR_CONST;
     }
     m->start = (uint16_t)r[2];
-    {
-        uint16_t value = (uint16_t)r[3];
-        if (value < 1u || value > 125u) {
-            return CW_ERR_RANGE;
-        }
-        m->quantity = (uint8_t)value;
+    m->quantity = (uint16_t)r[3];
+    if (m->quantity < 1u || m->quantity > 125u) {
+        return CW_ERR_RANGE;
     }
     return CW_OK;
 }
@@ -2102,12 +2099,9 @@ static inline int modbus_rtu_write_multiple_registers_check_raw(const uint16_t *
         return CW_ERR_CONST;
     }
     m->start = (uint16_t)r[2];
-    {
-        uint16_t value = (uint16_t)r[3];
-        if (value < 1u || value > 123u) {
-            return CW_ERR_RANGE;
-        }
-        m->quantity = (uint8_t)value;
+    m->quantity = (uint16_t)r[3];
+    if (m->quantity < 1u || m->quantity > 123u) {
+        return CW_ERR_RANGE;
     }
     m->values[0] = (uint16_t)r[5];
     m->values[1] = (uint16_t)r[6];

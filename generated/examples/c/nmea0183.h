@@ -20,11 +20,11 @@ extern "C" {
 #define NMEA0183_FINGERPRINT "59a682c1a27b4ac7"  /* hash of the wire-relevant schema (codeword diff) */
 #define NMEA0183_FINGERPRINT32 0x59a682c1u  /* its first 32 bits */
 #define NMEA0183_GGA_MAX_TEXT 149u  /* chars, with the NUL: buffer size for encode */
-#define NMEA0183_GGA_ID 'GPGGA'
+#define NMEA0183_GGA_ID "GPGGA"  /* the prefix */
 #define NMEA0183_RMC_MAX_TEXT 111u  /* chars, with the NUL: buffer size for encode */
-#define NMEA0183_RMC_ID 'GPRMC'
+#define NMEA0183_RMC_ID "GPRMC"  /* the prefix */
 #define NMEA0183_VTG_MAX_TEXT 72u  /* chars, with the NUL: buffer size for encode */
-#define NMEA0183_VTG_ID 'GPVTG'
+#define NMEA0183_VTG_ID "GPVTG"  /* the prefix */
 #define NMEA0183_MAX_TEXT 149u  /* chars, with the NUL: largest encoded message */
 
 /* north_south */
@@ -85,7 +85,7 @@ enum {
 
 /* Global positioning system fix data */
 typedef struct {
-    uint32_t timestamp;  /* UTC time of day as hhmmss (123519 is 12:35:19); range 0..235960; (NMEA-D2) */
+    int32_t timestamp;  /* UTC time of day as hhmmss (123519 is 12:35:19); range 0..235960; (NMEA-D2) */
     bool has_lat;  /* 0 = absent */
     int32_t lat;  /* latitude as ddmm.mmm (4807.038 is 48 degrees 7.038 minutes); raw: value = raw * 0.001; range 0..9000; (NMEA-D2) */
     bool has_lat_dir;  /* 0 = absent */
@@ -114,7 +114,7 @@ typedef struct {
 
 /* Recommended minimum specific GPS data */
 typedef struct {
-    uint32_t timestamp;  /* UTC time of day as hhmmss (123519 is 12:35:19); range 0..235960; (NMEA-D2) */
+    int32_t timestamp;  /* UTC time of day as hhmmss (123519 is 12:35:19); range 0..235960; (NMEA-D2) */
     char status;  /* NMEA0183_VALIDITY_* */
     bool has_lat;  /* 0 = absent */
     int32_t lat;  /* latitude as ddmm.mmm (4807.038 is 48 degrees 7.038 minutes); raw: value = raw * 0.001; range 0..9000; (NMEA-D2) */
@@ -128,7 +128,7 @@ typedef struct {
     int32_t spd_over_grnd;  /* speed over ground; raw: value = raw * 0.1 kn; range 0..999.9 */
     bool has_true_course;  /* 0 = absent */
     int32_t true_course;  /* track made good, true; raw: value = raw * 0.1 deg; range 0..999.9 */
-    uint32_t datestamp;  /* date as ddmmyy (230394 is 23 March 1994); range 10100..311299 */
+    int32_t datestamp;  /* date as ddmmyy (230394 is 23 March 1994); range 10100..311299 */
     bool has_mag_variation;  /* 0 = absent */
     int32_t mag_variation;  /* magnetic variation; raw: value = raw * 0.1 deg; range 0..999.9 */
     bool has_mag_var_dir;  /* 0 = absent */
@@ -201,7 +201,7 @@ static inline int nmea0183_split(const char *text, size_t len, const char **pb, 
 static inline int nmea0183_gga_encode(const nmea0183_gga_t *m, char *buf, size_t cap)
 {
     cw_writer_t w;
-    if (m->timestamp > 0x399b8UL) {
+    if (m->timestamp < 0 || m->timestamp > 0x399b8L) {
         return CW_ERR_RANGE;
     }
     if (m->has_lat) {
@@ -351,7 +351,7 @@ static inline int nmea0183_gga_parse_body(const char *s, const char *end, nmea01
         if (rc != CW_OK) {
             return rc;
         }
-        m->timestamp = (uint32_t)value;
+        m->timestamp = (int32_t)value;
     }
     /* lat */
     m->has_lat = false;
@@ -555,7 +555,7 @@ static inline int nmea0183_gga_decode(const char *text, size_t len, nmea0183_gga
 {
     const char *pb, *pe, *body, *end;
     int rc = nmea0183_split(text, len, &pb, &pe, &body, &end);
-    if (rc == CW_OK && ((size_t)(pe - pb) != 5u || memcmp(pb, "GPGGA", 5u) != 0)) {
+    if (rc == CW_OK && ((size_t)(pe - pb) != 5u || memcmp(pb, NMEA0183_GGA_ID, 5u) != 0)) {
         rc = CW_ERR_DISPATCH;
     } else if (rc == CW_OK) {
         rc = nmea0183_gga_parse_body(body, end, m);
@@ -706,7 +706,7 @@ static inline int nmea0183_gga_set_age_gps_data_units(nmea0183_gga_t *m, float u
 static inline int nmea0183_rmc_encode(const nmea0183_rmc_t *m, char *buf, size_t cap)
 {
     cw_writer_t w;
-    if (m->timestamp > 0x399b8UL) {
+    if (m->timestamp < 0 || m->timestamp > 0x399b8L) {
         return CW_ERR_RANGE;
     }
     if (m->status != 'A' && m->status != 'V') {
@@ -742,7 +742,7 @@ static inline int nmea0183_rmc_encode(const nmea0183_rmc_t *m, char *buf, size_t
             return CW_ERR_RANGE;
         }
     }
-    if (m->datestamp < 0x2774u || m->datestamp > 0x4c003UL) {
+    if (m->datestamp < 0x2774 || m->datestamp > 0x4c003L) {
         return CW_ERR_RANGE;
     }
     if (m->has_mag_variation) {
@@ -827,7 +827,7 @@ static inline int nmea0183_rmc_parse_body(const char *s, const char *end, nmea01
         if (rc != CW_OK) {
             return rc;
         }
-        m->timestamp = (uint32_t)value;
+        m->timestamp = (int32_t)value;
     }
     /* status */
     v = cw_value(s, ends, 1u, false);
@@ -940,7 +940,7 @@ static inline int nmea0183_rmc_parse_body(const char *s, const char *end, nmea01
         if (rc != CW_OK) {
             return rc;
         }
-        m->datestamp = (uint32_t)value;
+        m->datestamp = (int32_t)value;
     }
     /* mag_variation */
     m->has_mag_variation = false;
@@ -980,7 +980,7 @@ static inline int nmea0183_rmc_decode(const char *text, size_t len, nmea0183_rmc
 {
     const char *pb, *pe, *body, *end;
     int rc = nmea0183_split(text, len, &pb, &pe, &body, &end);
-    if (rc == CW_OK && ((size_t)(pe - pb) != 5u || memcmp(pb, "GPRMC", 5u) != 0)) {
+    if (rc == CW_OK && ((size_t)(pe - pb) != 5u || memcmp(pb, NMEA0183_RMC_ID, 5u) != 0)) {
         rc = CW_ERR_DISPATCH;
     } else if (rc == CW_OK) {
         rc = nmea0183_rmc_parse_body(body, end, m);
@@ -1286,7 +1286,7 @@ static inline int nmea0183_vtg_decode(const char *text, size_t len, nmea0183_vtg
 {
     const char *pb, *pe, *body, *end;
     int rc = nmea0183_split(text, len, &pb, &pe, &body, &end);
-    if (rc == CW_OK && ((size_t)(pe - pb) != 5u || memcmp(pb, "GPVTG", 5u) != 0)) {
+    if (rc == CW_OK && ((size_t)(pe - pb) != 5u || memcmp(pb, NMEA0183_VTG_ID, 5u) != 0)) {
         rc = CW_ERR_DISPATCH;
     } else if (rc == CW_OK) {
         rc = nmea0183_vtg_parse_body(body, end, m);
@@ -1411,13 +1411,13 @@ static inline int nmea0183_decode(const char *text, size_t len, int direction, n
         return cw_text_verdict(text, len, rc);
     }
     n = (size_t)(pe - pb);
-    if (n == 5u && memcmp(pb, "GPGGA", 5u) == 0 && (direction == NMEA0183_DIR_ANY || direction == NMEA0183_DIR_RECEIVER_TO_HOST)) {
+    if (n == 5u && memcmp(pb, NMEA0183_GGA_ID, 5u) == 0 && (direction == NMEA0183_DIR_ANY || direction == NMEA0183_DIR_RECEIVER_TO_HOST)) {
         out->kind = NMEA0183_MSG_GGA;
         rc = nmea0183_gga_parse_body(body, end, &out->as.gga);
-    } else if (n == 5u && memcmp(pb, "GPRMC", 5u) == 0 && (direction == NMEA0183_DIR_ANY || direction == NMEA0183_DIR_RECEIVER_TO_HOST)) {
+    } else if (n == 5u && memcmp(pb, NMEA0183_RMC_ID, 5u) == 0 && (direction == NMEA0183_DIR_ANY || direction == NMEA0183_DIR_RECEIVER_TO_HOST)) {
         out->kind = NMEA0183_MSG_RMC;
         rc = nmea0183_rmc_parse_body(body, end, &out->as.rmc);
-    } else if (n == 5u && memcmp(pb, "GPVTG", 5u) == 0 && (direction == NMEA0183_DIR_ANY || direction == NMEA0183_DIR_RECEIVER_TO_HOST)) {
+    } else if (n == 5u && memcmp(pb, NMEA0183_VTG_ID, 5u) == 0 && (direction == NMEA0183_DIR_ANY || direction == NMEA0183_DIR_RECEIVER_TO_HOST)) {
         out->kind = NMEA0183_MSG_VTG;
         rc = nmea0183_vtg_parse_body(body, end, &out->as.vtg);
     } else {
