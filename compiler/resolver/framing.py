@@ -222,6 +222,14 @@ class FramingMixin(ResolverBase):
     def check_text_fields(self, name: str, own: tuple[Field, ...], path: tuple, keep_empty: bool) -> None:
         optional_str = None  # an empty value is an empty str, so a str is absent only at the end
         for i, f in enumerate(own):
+            if f.const is not None:  # written always; read as absent when empty, whatever its kind
+                if optional_str is not None:
+                    self.error(path + ("fields", i), f"message {name!r}: constant {f.name!r}, which "
+                                                     f"writers always write, follows the optional str "
+                                                     f"{optional_str.name!r}",
+                               "an empty value reads as an empty str, so only trailing str fields may be "
+                               "optional; make the str required, or move the constant before it")
+                continue
             if f.optional and f.kind == "str" and keep_empty:
                 self.error(path + ("fields", i, "optional"), f"message {name!r}: optional str {f.name!r} in a "
                            "line that keeps empty values (keep_empty): an empty value reads as an empty str",

@@ -1127,8 +1127,8 @@ class CView:
             self.text_check(c, leaf)
         trailing = self.trailing_from(leaves)
         for n in range(trailing, len(leaves) - 1):  # an absent str is left out, never written empty
-            if leaves[n].field.kind == "str":
-                later = " || ".join(self.has(x) for x in leaves[n + 1:])
+            if leaves[n].field.kind == "str" and leaves[n].field.const is None:
+                later = self.any_written(leaves[n + 1:])
                 self.fail_if(c, f"!{self.has(leaves[n])} && ({later})", "count")
         head = fr.start + m.ids[0] + fr.prefix_separator
         lead_first = bool(leaves) and not leaves[0].field.optional and len(fr.prefix_separator) == 1
@@ -1147,8 +1147,9 @@ class CView:
                 c(f"cw_write_text(&w, {cstr(text)}, {len(text)}u);  /* const */")
                 continue
             slot = (i < trailing or i < len(leaves) - 1) and f.optional and led  # absent: its separator alone
-            if f.optional and i >= trailing and slot:  # at the end, only while a later value is present
-                c(f"if ({' || '.join(self.has(x) for x in leaves[i:])}) {{")
+            ends_run = f.optional and i >= trailing and slot and self.any_written(leaves[i:]) != "true"
+            if ends_run:  # at the end, only while a later value is present
+                c(f"if ({self.any_written(leaves[i:])}) {{")
                 c.indent()
             if f.optional:
                 c(f"if ({self.has(leaf)}) {{")
@@ -1168,7 +1169,7 @@ class CView:
                     c("} else {")
                     c(f"    cw_write_text(&w, {cstr(mark)}, {len(mark)}u);")
                 c("}")
-            if f.optional and i >= trailing and slot:
+            if ends_run:
                 c.dedent()
                 c("}")
         if self.line["simple"]:
@@ -1182,6 +1183,12 @@ class CView:
         c.dedent()
         c("}")
         return c.text()
+
+    def any_written(self, leaves) -> str:
+        """The condition that one of these values is written: a constant always is."""
+        if any(x.field.const is not None for x in leaves):
+            return "true"
+        return " || ".join(self.has(x) for x in leaves)
 
     @staticmethod
     def text_const(f: Field) -> str:
@@ -1302,9 +1309,17 @@ class CView:
             c(f"/* {leaf.dotted} */")
             if f.const is not None:  # the token must read as the constant's text
                 text = self.text_const(f)
-                c(f"v = {self.value_call(i, trim)};")
-                self.fail_if(c, f"(size_t)(v.e - v.b) != {len(text)}u || memcmp(v.b, {cstr(text)}, {len(text)}u) != 0",
-                             "const")
+                wrong = f"(size_t)(v.e - v.b) != {len(text)}u || memcmp(v.b, {cstr(text)}, {len(text)}u) != 0"
+                if f.optional:  # or be empty, or be missing at the end of the line
+                    c(f"if (count > {i}u) {{")
+                    c.indent()
+                    c(f"v = {self.value_call(i, trim)};")
+                    self.fail_if(c, f"v.b != v.e && ({wrong})", "const")
+                    c.dedent()
+                    c("}")
+                else:
+                    c(f"v = {self.value_call(i, trim)};")
+                    self.fail_if(c, wrong, "const")
                 continue
             if f.optional and f.kind != "str":  # an empty value is an absent one
                 c(f"{self.has(leaf)} = false;")
