@@ -113,3 +113,58 @@ def test_an_optional_str_before_a_constant_is_refused_at_its_line(tmp_path):
         compile_schema(path)
     assert any(d.loc.line == 11 and "constant 'unit'" in d.message and "optional str 'height'" in d.message
                for d in info.value.diagnostics), info.value.diagnostics
+
+
+KINDS = """codeword: 1
+protocol: kinds
+title: t
+source: s
+framing: {kind: text, prefix_separator: ",", separator: ",", terminator: ";"}
+messages:
+  k:
+    id: K
+    fields:
+      - {name: n, type: u8}
+      - {name: level, type: i16, const: -20}
+      - {name: unit, type: char, const: M}
+      - {name: label, type: str, max_length: 3, const: geo}
+"""
+# a damaged constant and the error both codecs give for it, as each kind is read
+DAMAGED = [("K,1,--20,M,geo;", "syntax"), ("K,1,-2a,M,geo;", "syntax"), ("K,1,-020,M,geo;", None),
+           ("K,1,99999999999999999999,M,geo;", "const"), ("K,1,-21,M,geo;", "const"),
+           ("K,1,-20,MM,geo;", "type"), ("K,1,-20,N,geo;", "const"),
+           ("K,1,-20,M,geos;", "length"), ("K,1,-20,M,gps;", "const")]
+
+
+def test_a_damaged_constant_gives_its_kinds_error_in_python_and_c(tmp_path):
+    render(tmp_path, "kinds", KINDS)
+    mod = load(tmp_path / "kinds.py")
+    for line, rule in DAMAGED:
+        if rule is None:
+            assert mod.decode(line) == mod.K(n=1), line
+            continue
+        with pytest.raises(mod.DecodeError) as info:
+            mod.decode(line)
+        assert info.value.rule == rule, line
+    codes = {None: "CW_OK", "syntax": "CW_ERR_SYNTAX", "const": "CW_ERR_CONST", "type": "CW_ERR_TYPE",
+             "length": "CW_ERR_LENGTH"}
+    checks = "\n".join(f'    printf("%d\\n", kinds_k_decode("{line}", {len(line)}u, &m) == {codes[rule]});'
+                       for line, rule in DAMAGED)
+    driver = '#include <stdio.h>\n#include "kinds.h"\nint main(void) {\n    kinds_k_t m;\n' + checks + "\n    return 0;\n}\n"
+    assert run_c(tmp_path, driver) == ["1"] * len(DAMAGED)
+
+
+def test_a_line_of_constants_alone_compiles_warning_free(tmp_path):
+    render(tmp_path, "kinds", KINDS.replace("      - {name: n, type: u8}\n", ""))
+    driver = r"""
+#include <stdio.h>
+#include "kinds.h"
+int main(void) {
+    kinds_k_t m;
+    char out[32];
+    printf("%d %s\n", kinds_k_encode(&m, out, sizeof out), out);
+    printf("%d\n", kinds_k_decode("K,-20,M,geo;", 12u, &m));
+    return 0;
+}
+"""
+    assert run_c(tmp_path, driver) == ["12 K,-20,M,geo;", "0"]
