@@ -29,8 +29,44 @@ def catalogue() -> dict[str, CrcParams]:
     return entries
 
 
+# Names the catalogue gives one entry but that documents in the field use for
+# several, so taking the catalogue's reading would silently disagree with half of
+# the peers: the CCITT names (RevEng lists them for KERMIT, many datasheets mean
+# IBM-3740, XMODEM or AUG-CCITT) and names that give only the width.
+AMBIGUOUS: dict[str, tuple[str, ...]] = {
+    "CRC-16/CCITT": ("CRC-16/KERMIT", "CRC-16/IBM-3740", "CRC-16/XMODEM", "CRC-16/SPI-FUJITSU"),
+    "CRC-CCITT": ("CRC-16/KERMIT", "CRC-16/IBM-3740", "CRC-16/XMODEM", "CRC-16/SPI-FUJITSU"),
+    "CRC-16": ("CRC-16/ARC", "CRC-16/MODBUS", "CRC-16/UMTS", "CRC-16/IBM-3740"),
+    "CRC-8": ("CRC-8/SMBUS", "CRC-8/MAXIM-DOW", "CRC-8/AUTOSAR", "CRC-8/I-432-1"),
+}
+
+
 def lookup(name: str) -> CrcParams | None:
+    """The entry a catalogue name or alias names; None for an unknown or ambiguous name."""
+    if name.upper() in AMBIGUOUS:
+        return None
     return catalogue().get(name.upper())
+
+
+def candidates(name: str) -> tuple[CrcParams, ...]:
+    """The entries an ambiguous name may mean (none for an unambiguous or unknown name)."""
+    return tuple(catalogue()[c] for c in AMBIGUOUS.get(name.upper(), ()))
+
+
+def near_names(name: str, count: int = 3) -> list[str]:
+    """Catalogue names and aliases spelt most like `name`, closest first."""
+    import difflib
+    names = [n for n in catalogue() if n not in AMBIGUOUS]
+    return difflib.get_close_matches(name.upper(), names, n=count, cutoff=0.75)
+
+
+def describe(params: CrcParams) -> str:
+    """The Rocksoft parameters of an entry, and its check value, in one line."""
+    digits = (params.width + 3) // 4
+    return (f"{params.name} (width {params.width}, poly 0x{params.poly:0{digits}x}, "
+            f"init 0x{params.init:0{digits}x}, refin {str(params.refin).lower()}, "
+            f"refout {str(params.refout).lower()}, xorout 0x{params.xorout:0{digits}x}; "
+            f"CRC of ASCII 123456789 = 0x{params.check:0{digits}x})")
 
 
 def reflect(value: int, width: int) -> int:

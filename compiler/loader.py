@@ -117,17 +117,28 @@ class Document:
         return self.locs.get(path, Loc(self.file, 1, 1))
 
 
-def _too_deep(text: str, loader) -> yaml.Event | None:
-    """The first collection nested deeper than MAX_DEPTH, counted on the parser's
-    event stream, which does not recurse (the composers do, into a stack overflow)."""
-    depth = 0
+def _shape_problem(text: str, loader, file: str) -> Diagnostic | None:
+    """A collection nested deeper than MAX_DEPTH, or an alias inside the collection
+    its anchor names (`a: &x [*x]`, a document without end), found on the parser's
+    event stream, which does not recurse (the composers and any walk of the composed
+    nodes do, into a stack overflow)."""
+    open_anchors: list = []  # the anchor of each collection being read, innermost last
     for event in yaml.parse(text, Loader=loader):
         if isinstance(event, yaml.CollectionStartEvent):
-            depth += 1
-            if depth > MAX_DEPTH:
-                return event
+            open_anchors.append(event.anchor)
+            if len(open_anchors) > MAX_DEPTH:
+                mark = event.start_mark
+                return Diagnostic(Loc(file, mark.line + 1, mark.column + 1),
+                                  f"nesting deeper than {MAX_DEPTH}", "flatten the schema")
         elif isinstance(event, yaml.CollectionEndEvent):
-            depth -= 1
+            open_anchors.pop()
+        elif isinstance(event, yaml.AliasEvent) and event.anchor in open_anchors:
+            mark = event.start_mark
+            return Diagnostic(Loc(file, mark.line + 1, mark.column + 1),
+                              f"alias *{event.anchor} refers to the collection that contains it "
+                              "(a document without end)",
+                              f"write the data out instead of *{event.anchor}, or anchor a "
+                              "collection outside this one")
     return None
 
 
@@ -137,16 +148,14 @@ def _compose(text: str, file: str) -> yaml.Node | None:
     loaders = [_FastLoader, _Loader] if _FastLoader is not None else [_Loader]
     for loader in loaders:
         try:
-            deep = _too_deep(text, loader)
-            if deep is None:
+            problem = _shape_problem(text, loader, file)
+            if problem is None:
                 return yaml.compose(text, Loader=loader)
         except yaml.YAMLError:
             if loader is _Loader:
                 raise
             continue
-        mark = deep.start_mark
-        raise SchemaError([Diagnostic(Loc(file, mark.line + 1, mark.column + 1),
-                                      f"nesting deeper than {MAX_DEPTH}", "flatten the schema")])
+        raise SchemaError([problem])
 
 
 def _children(n: yaml.Node) -> list:

@@ -52,9 +52,7 @@ class ChecksumsMixin(ResolverBase):
         else:
             params = crc.lookup(algorithm)
             if params is None:
-                self.error(path + ("algorithm",), f"unknown checksum algorithm {algorithm!r}",
-                           "use parity, sum, xor, fletcher, crc (with parameters) or a RevEng "
-                           "catalogue name such as CRC-16/CMS")
+                self.unknown_crc_name(algorithm, path + ("algorithm",))
                 return Checksum("crc", over, covers)
         if params is not None:
             algorithm = "crc"
@@ -91,6 +89,20 @@ class ChecksumsMixin(ResolverBase):
         return Checksum(algorithm, over, covers, c.get("parity", "even"), modulo, params,
                         loc=self.loc(*(path + ("covers",))) if "covers" in c else self.loc(*path),
                         complement=complement, xorout=xorout, width=width, extra=extra)
+
+    def unknown_crc_name(self, algorithm: str, path: tuple) -> None:
+        meanings = crc.candidates(algorithm)
+        if meanings:
+            self.error(path, f"CRC name {algorithm!r} is ambiguous: documents use it for "
+                             f"{len(meanings)} different CRCs",
+                       "name the one your peer computes (compare its check value with your "
+                       "reference): " + "; ".join(crc.describe(p) for p in meanings))
+            return
+        near = crc.near_names(algorithm)
+        self.error(path, f"unknown checksum algorithm {algorithm!r}",
+                   (f"did you mean {' or '.join(near)}? Otherwise use " if near else "use ")
+                   + "parity, sum, xor, fletcher, crc (with parameters) or a RevEng "
+                   "catalogue name such as CRC-16/CMS")
 
     def check_crc(self, params: CrcParams, path: tuple, bits: Optional[int], over: str) -> None:
         mask = (1 << params.width) - 1

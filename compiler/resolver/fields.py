@@ -317,7 +317,14 @@ class FieldsMixin(ResolverBase):
             self.error(path + ("one_hot",), f"field {name!r}: one_hot needs an unsigned type")
         if f.exactly_one and f.flags is None:
             self.error(path + ("exactly_one",), f"field {name!r}: exactly_one applies to flag fields")
-        if f.byte_order and (bits is None or bits % 8 or bits <= 8):
+        if f.byte_order and bits is not None and bits % 8 and bits > 8:
+            self.error(path + ("byte_order",), f"field {name!r}: byte_order applies to fields of whole "
+                                               f"bytes, not to {bits} bits",
+                       "drop it: a field that crosses bytes follows the bit order (little-endian with "
+                       "`bit_order: lsb_first`, big-endian with msb_first); where the framing's "
+                       "`byte_order` differs, set the framing's to the bits' order and give the other "
+                       "`byte_order` to the whole-byte fields that keep it")
+        elif f.byte_order and (bits is None or bits % 8 or bits <= 8):
             self.error(path + ("byte_order",), f"field {name!r}: byte_order needs a multi-byte field")
         if f.reserved and kind not in ("uint", "int"):
             self.error(path + ("reserved",), f"field {name!r}: reserved bits are an unsigned integer")

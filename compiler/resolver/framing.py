@@ -222,6 +222,14 @@ class FramingMixin(ResolverBase):
     def check_text_fields(self, name: str, own: tuple[Field, ...], path: tuple, keep_empty: bool) -> None:
         optional_str = None  # an empty value is an empty str, so a str is absent only at the end
         for i, f in enumerate(own):
+            if f.const is not None:  # written always; read as absent when empty, whatever its kind
+                if optional_str is not None:
+                    self.error(path + ("fields", i), f"message {name!r}: constant {f.name!r}, which "
+                                                     f"writers always write, follows the optional str "
+                                                     f"{optional_str.name!r}",
+                               "an empty value reads as an empty str, so only trailing str fields may be "
+                               "optional; make the str required, or move the constant before it")
+                continue
             if f.optional and f.kind == "str" and keep_empty:
                 self.error(path + ("fields", i, "optional"), f"message {name!r}: optional str {f.name!r} in a "
                            "line that keeps empty values (keep_empty): an empty value reads as an empty str",
@@ -252,12 +260,28 @@ class FramingMixin(ResolverBase):
             order = f.byte_order or framing.byte_order
             multibyte = f.bits and f.bits > 8 and f.kind in ("uint", "int") and order != natural
             if (f.kind in ("float", "bytes") or multibyte) and (leaf.pos % 8 or f.bits % 8):
-                hint = "add padding bits before it"
-                if multibyte:
-                    hint += f", or make it {natural}-endian (the byte order of {framing.bit_order} bits)"
                 self.error(path, f"message {name!r}: field {leaf.dotted!r} must be byte-aligned and whole "
-                                 f"bytes (it starts at bit {leaf.pos}, {f.bits} bits)", hint)
+                                 f"bytes (it starts at bit {leaf.pos}, {f.bits} bits)",
+                           self.alignment_hint(leaf, placed, framing) if multibyte else "add padding bits before it")
                 break
+
+    @staticmethod
+    def alignment_hint(leaf, placed: list[Field], framing: Framing) -> str:
+        """What makes a field that crosses bytes in the other byte order than its bits run
+        readable: own byte_order applies to whole bytes only, so either the field becomes
+        whole bytes on a boundary, or the framing's byte order becomes the bits' one and
+        the whole-byte fields that keep the other order say so themselves."""
+        f, natural = leaf.field, framing.wire_order
+        other = "big" if natural == "little" else "little"
+        if f.byte_order:  # its own order: drop it, or pad a whole-byte field onto a boundary
+            return (f"drop its `byte_order: {f.byte_order}` (a field crossing bytes is {natural}-endian with "
+                    f"{framing.bit_order} bits)" + (", or add padding bits before it" if f.bits % 8 == 0 else ""))
+        keep = [x.dotted for x in leaves_of(tuple(placed)) if x.pos is not None and whole_bytes(x)
+                and x.bits > 8 and x.field.kind in ("uint", "int", "float") and not x.field.byte_order]
+        advice = (f"set the framing's `byte_order: {natural}` (the default with {framing.bit_order} bits), "
+                  f"and give `byte_order: {other}` to the whole-byte fields that stay {other}-endian"
+                  + (f" (here: {', '.join(f'`{k}`' for k in keep)})" if keep else ""))
+        return ("add padding bits before it, or " + advice) if f.bits % 8 == 0 else advice
 
     def check_size(self, name: str, m: dict, layout: tuple[Field, ...], bits: Optional[int],
                    framing: Framing, path: tuple) -> None:

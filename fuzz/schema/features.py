@@ -14,6 +14,7 @@ FULL = frozenset({
     "length_range",                         # a length that counts itself (and the checksum), adjusted
     "sync2", "two_keys", "by_direction",    # a sync of two bytes; two dispatch fields; a direction byte
     "sum", "xor", "crc", "fletcher",        # checksums over bytes
+    "crc_alias",                            # a CRC named by a catalogue alias with one meaning, in any case
     "complement", "crc_extra",              # a sum's complement, xorout; a CRC's per-message extra byte
     "encoding",                             # SLIP, COBS or HDLC byte stuffing around frames
     "extension", "truncate",                # bytes: extension fields at a message's end; trailing zeros not sent
@@ -32,6 +33,7 @@ FULL = frozenset({
     "long_marks", "line_checksum",          # text: marks of several characters, a start marker; `*hh`
     "empty_values",                         # text: optional values anywhere, absent ones empty
     "fixed_spelling",                       # text: integers with fixed decimals and zero padding
+    "text_const",                           # text: char, str and integer constants, some optional (unit letters)
 })
 
 KNOWN_OPEN = {

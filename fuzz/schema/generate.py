@@ -111,7 +111,8 @@ class Generator:
             first = layout[1 if sync else 0]["name"] if not single else ("sync" if sync else "payload")
             if algorithm == "crc":
                 width = rng.choice(sorted(CRCS))
-                check = {"algorithm": rng.choice(CRCS[width]), "covers": {"from": first, "to": "payload"}}
+                check = {"algorithm": self.crc_name(rng.choice(CRCS[width])),
+                         "covers": {"from": first, "to": "payload"}}
                 if self.has("crc_extra", 0.3):  # each message's byte after the coverage (MAVLink)
                     check["extra"] = "message"
             elif algorithm == "fletcher":  # sums modulo 2**(width/2) - 1 (classic) or 2**(width/2)
@@ -160,6 +161,15 @@ class Generator:
         if self.has("encoding", 0.4):
             self.encode_frames(framing, messages, ids if not two_keys and not single and id_bits == 8 else None)
         return framing, messages
+
+    def crc_name(self, name: str) -> str:
+        """The catalogue name, or one of its aliases that names nothing else, in any case."""
+        if not self.has("crc_alias", 0.5):
+            return name
+        from codeword import crc
+        aliases = sorted(k for k, p in crc.catalogue().items() if p.name == name and crc.lookup(k) is not None)
+        chosen = self.rng.choice(aliases)
+        return self.rng.choice([chosen, chosen.lower(), chosen.title()])
 
     def final_step(self, check: dict, width: int) -> int:
         """A sum's complement (in 8, 16, 32 or 64 bits) and a sum's or xor's xorout; the width."""
@@ -523,8 +533,30 @@ class Generator:
                 for field in fields:
                     if field["type"] == "str":
                         field.pop("optional", None)
+            if self.has("text_const", 0.4):
+                self.text_constants(fields, terminator + separator + framing.get("separator", ""))
             messages[self.name()] = {"id": prefix, "fields": fields}
         return framing, messages
+
+    def text_constants(self, fields: list[dict], marks: str) -> None:
+        """Constants among the values (NMEA's unit letters), some a line may leave empty;
+        none after an optional str (whose empty value is an empty str)."""
+        rng = self.rng
+        before_str = next((i for i, f in enumerate(fields) if f["type"] == "str" and f.get("optional")), len(fields))
+        for _ in range(rng.randint(1, 2)):
+            letters = [x for x in "KMNTV" if x not in marks]
+            const = rng.choice([
+                {"type": "char", "const": rng.choice(letters)},
+                {"type": "u8", "const": rng.randrange(256)},
+                {"type": "i16", "const": rng.randint(-300, 300)},
+                {"type": "str", "max_length": 4, "const": "".join(rng.choice(letters) for _ in range(rng.randint(1, 4)))},
+            ])
+            field = {"name": self.name(), **const}
+            if rng.random() < 0.6:
+                field["optional"] = True
+            at = rng.randint(0, before_str)
+            fields.insert(at, field)
+            before_str += 1
 
     def text_field(self) -> dict:
         rng = self.rng

@@ -82,8 +82,8 @@ def _fields_lists(node: Any) -> list[list]:
 def _member_owner(f: dict) -> str | None:
     """The C member a field brings beside its own: has_<f> (optional, one-hot) or <f>_count
     (an array or bytes whose count varies); None if it brings none."""
-    if not isinstance(f, dict) or not isinstance(f.get("name"), str):
-        return None
+    if not isinstance(f, dict) or not isinstance(f.get("name"), str) or "const" in f:
+        return None  # a constant is no member, so it brings none beside it
     if f.get("optional") or f.get("one_hot"):
         return f"has_{f['name']}"
     if isinstance(f.get("count"), dict) or isinstance(f.get("length"), dict) or f.get("to_end"):
@@ -116,19 +116,26 @@ def collide(doc: dict, rng: random.Random) -> tuple[str, str] | None:
     return f"protocol named {name}", f"protocol: {name}"
 
 
+def _build(text: str, seed: int, what: str):
+    """The build result of a schema text, or the line saying it raised an internal error."""
+    with tempfile.TemporaryDirectory(prefix=f"mut{seed}-") as tmp:
+        path = Path(tmp) / f"fz{seed}.yaml"
+        path.write_text(text, encoding="utf-8")
+        try:
+            return build([path], Path(tmp) / "out", root=Path(tmp)), ""
+        except Exception:
+            return None, f"{what}: internal error: {traceback.format_exc(limit=-1).strip().splitlines()[-1]}"
+
+
 def check_collision(seed: int, features: frozenset[str] = DEFAULT) -> str:
     """'' when a schema with a colliding name is refused at that name's line."""
     doc = Generator(seed, features).schema()
     what, line_text = collide(doc, random.Random(f"collide {seed}"))
     text = yaml.safe_dump(doc, sort_keys=False, allow_unicode=True)
     lines = [i for i, line in enumerate(text.splitlines(), 1) if line.strip().lstrip("- ") == line_text]
-    with tempfile.TemporaryDirectory(prefix=f"col{seed}-") as tmp:
-        path = Path(tmp) / f"fz{seed}.yaml"
-        path.write_text(text, encoding="utf-8")
-        try:
-            result = build([path], Path(tmp) / "out", root=Path(tmp))
-        except Exception:
-            return f"collision {seed} ({what}): internal error: {traceback.format_exc(limit=-1).strip().splitlines()[-1]}"
+    result, crashed = _build(text, seed, f"collision {seed} ({what})")
+    if crashed:
+        return crashed
     if not result.errors:
         return f"collision {seed} ({what}): built, not refused at line {lines}"
     if not any(d.loc.line in lines and d.hint.strip() for d in result.errors):
@@ -136,10 +143,44 @@ def check_collision(seed: int, features: frozenset[str] = DEFAULT) -> str:
     return ""
 
 
+# names that documents use for several CRCs of one width: a schema must say which
+AMBIGUOUS_CRC_NAMES = {8: ["CRC-8", "crc-8"], 16: ["CRC-16/CCITT", "CRC-CCITT", "crc-16", "Crc-16/Ccitt"]}
+
+
+def ambiguous_crc(doc: dict, rng: random.Random) -> str | None:
+    """Give the schema's CRC over bytes an ambiguous name; the name, or None without one."""
+    for f in doc.get("framing", {}).get("layout", []):
+        algorithm = str(f.get("checksum", {}).get("algorithm", "")).lower()
+        width = int(f["type"][1:]) if algorithm else 0
+        if algorithm not in ("", "sum", "xor", "fletcher", "parity", "crc") and width in AMBIGUOUS_CRC_NAMES:
+            f["checksum"]["algorithm"] = rng.choice(AMBIGUOUS_CRC_NAMES[width])
+            return f["checksum"]["algorithm"]
+    return None
+
+
+def check_ambiguous_crc(seed: int, features: frozenset[str]) -> str:
+    """A CRC named ambiguously must be refused on the name's line, the candidates named."""
+    rng = random.Random(~seed)
+    doc = Generator(seed, features).schema()
+    name = ambiguous_crc(doc, rng) if "crc_alias" in features else None
+    if name is None:
+        return ""
+    text = yaml.safe_dump(doc, sort_keys=False, allow_unicode=True)
+    line = next(i for i, x in enumerate(text.splitlines(), 1) if "algorithm:" in x and name in x)
+    result, crashed = _build(text, seed, f"mutant {seed} (CRC named {name})")
+    if crashed:
+        return crashed
+    if not any(d.loc.line == line and "ambiguous" in d.message and "poly 0x" in d.hint for d in result.errors):
+        got = str(result.errors[0]).splitlines()[0] if result.errors else "built"
+        return f"mutant {seed} (CRC named {name}): not refused as ambiguous at line {line}: {got}"
+    return ""
+
+
 def check_mutant(seed: int, features: frozenset[str] = DEFAULT) -> str:
-    """'' when the mutant is refused at a location or builds (and, with `collisions`, a
-    schema with a colliding name is refused at its line); else what went wrong."""
-    problem = _check_mutant(seed, features)
+    """'' when the mutant is refused at a location or builds, a CRC named ambiguously is
+    refused at its name and (with `collisions`) a schema with a colliding name is refused
+    at its line; else what went wrong."""
+    problem = check_ambiguous_crc(seed, features) or _check_mutant(seed, features)
     if not problem and "collisions" in features:
         problem = check_collision(seed, features)
     return problem
@@ -150,14 +191,10 @@ def _check_mutant(seed: int, features: frozenset[str] = DEFAULT) -> str:
     doc = Generator(seed, features).schema()
     what = mutate(doc, rng)
     text = yaml.safe_dump(doc, sort_keys=False, allow_unicode=True)
-    with tempfile.TemporaryDirectory(prefix=f"mut{seed}-") as tmp:
-        path = Path(tmp) / f"fz{seed}.yaml"
-        path.write_text(text, encoding="utf-8")
-        try:
-            result = build([path], Path(tmp) / "out", root=Path(tmp))
-        except Exception:
-            return f"mutant {seed} ({what}): internal error: {traceback.format_exc(limit=-1).strip().splitlines()[-1]}"
-        for diagnostic in result.errors:
-            if diagnostic.loc.line < 1 or "codeword bug" in str(diagnostic):
-                return f"mutant {seed} ({what}): {str(diagnostic).splitlines()[0]}"
+    result, crashed = _build(text, seed, f"mutant {seed} ({what})")
+    if crashed:
+        return crashed
+    for diagnostic in result.errors:
+        if diagnostic.loc.line < 1 or "codeword bug" in str(diagnostic):
+            return f"mutant {seed} ({what}): {str(diagnostic).splitlines()[0]}"
     return ""

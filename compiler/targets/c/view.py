@@ -1122,13 +1122,15 @@ class CView:
         for leaf in leaves:
             if leaf.field.kind == "str" and leaf.field.const is None:  # a constant is written as spelt
                 c(f"size_t {self.text_len(leaf)} = 0;")
+        if all(leaf.field.const is not None for leaf in leaves) and not m.rules:
+            c("(void)m;  /* no member: the line is written from the schema */")
         self.rule_checks(c, m, "m")
         for leaf in leaves:
             self.text_check(c, leaf)
         trailing = self.trailing_from(leaves)
         for n in range(trailing, len(leaves) - 1):  # an absent str is left out, never written empty
-            if leaves[n].field.kind == "str":
-                later = " || ".join(self.has(x) for x in leaves[n + 1:])
+            if leaves[n].field.kind == "str" and leaves[n].field.const is None:
+                later = self.any_written(leaves[n + 1:])
                 self.fail_if(c, f"!{self.has(leaves[n])} && ({later})", "count")
         head = fr.start + m.ids[0] + fr.prefix_separator
         lead_first = bool(leaves) and not leaves[0].field.optional and len(fr.prefix_separator) == 1
@@ -1147,8 +1149,9 @@ class CView:
                 c(f"cw_write_text(&w, {cstr(text)}, {len(text)}u);  /* const */")
                 continue
             slot = (i < trailing or i < len(leaves) - 1) and f.optional and led  # absent: its separator alone
-            if f.optional and i >= trailing and slot:  # at the end, only while a later value is present
-                c(f"if ({' || '.join(self.has(x) for x in leaves[i:])}) {{")
+            ends_run = f.optional and i >= trailing and slot and self.any_written(leaves[i:]) != "true"
+            if ends_run:  # at the end, only while a later value is present
+                c(f"if ({self.any_written(leaves[i:])}) {{")
                 c.indent()
             if f.optional:
                 c(f"if ({self.has(leaf)}) {{")
@@ -1168,7 +1171,7 @@ class CView:
                     c("} else {")
                     c(f"    cw_write_text(&w, {cstr(mark)}, {len(mark)}u);")
                 c("}")
-            if f.optional and i >= trailing and slot:
+            if ends_run:
                 c.dedent()
                 c("}")
         if self.line["simple"]:
@@ -1182,6 +1185,12 @@ class CView:
         c.dedent()
         c("}")
         return c.text()
+
+    def any_written(self, leaves) -> str:
+        """The condition that one of these values is written: a constant always is."""
+        if any(x.field.const is not None for x in leaves):
+            return "true"
+        return " || ".join(self.has(x) for x in leaves)
 
     @staticmethod
     def text_const(f: Field) -> str:
@@ -1276,7 +1285,9 @@ class CView:
             return c.text()
         c(f"const char *ends[{total}];  /* where each value ends: cw_value */")
         c("cw_span_t v;")
-        if any(x.field.kind not in ("char", "str") for x in leaves):
+        if all(x.field.const is not None for x in leaves) and not m.rules:
+            c("(void)m;  /* no member: every value is a constant */")
+        if any(x.field.kind not in ("char", "str") and x.field.const is None for x in leaves):
             c("int rc;")
         if total == 1 and last_to_end and required == 1:
             c("ends[0] = end;  /* the one value runs to the end */")
@@ -1300,11 +1311,16 @@ class CView:
             t = self.member(leaf)
             r = self.rep(f)
             c(f"/* {leaf.dotted} */")
-            if f.const is not None:  # the token must read as the constant's text
-                text = self.text_const(f)
-                c(f"v = {self.value_call(i, trim)};")
-                self.fail_if(c, f"(size_t)(v.e - v.b) != {len(text)}u || memcmp(v.b, {cstr(text)}, {len(text)}u) != 0",
-                             "const")
+            if f.const is not None:
+                if f.optional:  # or be empty, or be missing at the end of the line
+                    c(f"if (count > {i}u && (v = {self.value_call(i, trim)}, v.b != v.e)) {{")
+                    c.indent()
+                else:
+                    c(f"v = {self.value_call(i, trim)};")
+                self.text_const_check(c, f)
+                if f.optional:
+                    c.dedent()
+                    c("}")
                 continue
             if f.optional and f.kind != "str":  # an empty value is an absent one
                 c(f"{self.has(leaf)} = false;")
@@ -1387,6 +1403,35 @@ class CView:
         c.dedent()
         c("}")
         return c.text()
+
+    def text_const_check(self, c: Code, f: Field) -> None:
+        """The value `v` must be the constant: read as its kind is read, with that kind's
+        errors first (as Python's), then compared."""
+        text = self.text_const(f)
+        if f.kind == "char":
+            self.fail_if(c, "v.e - v.b != 1", "type")
+            self.fail_if(c, "!" + self.text_read_ok("1u", f.to_end), "text")
+            self.fail_if(c, f"*v.b != {cchar(text)}", "const")
+        elif f.kind == "str":
+            self.fail_if(c, "!" + self.text_read_ok("(size_t)(v.e - v.b)", f.to_end), "text")
+            self.fail_if(c, f"(size_t)(v.e - v.b) > {f.max_length}u", "length")
+            self.fail_if(c, f"(size_t)(v.e - v.b) != {len(text)}u || memcmp(v.b, {cstr(text)}, {len(text)}u) != 0",
+                         "const")
+        else:  # an integer: its number, however spelt, is compared; any other number is not it
+            value = int(text)
+            wide = "u64" if value > (1 << 63) - 1 else "i64"
+            vtype = {"i64": "int64_t", "u64": "uint64_t"}[wide]
+            lo, hi = ("0u", "UINT64_MAX") if wide == "u64" else ("INT64_MIN", "INT64_MAX")
+            c("{")
+            c.indent()
+            c(f"{vtype} value;")
+            c(f"int const_rc = cw_parse_{wide}(v.b, v.e, {lo}, {hi}, &value);")
+            c("if (const_rc != CW_OK && const_rc != CW_ERR_RANGE) {")
+            c("    return const_rc;")
+            c("}")
+            self.fail_if(c, f"const_rc == CW_ERR_RANGE || value != {self.literal_of(value, vtype)}", "const")
+            c.dedent()
+            c("}")
 
     def trailing_from(self, leaves) -> int:
         """Where the run of optional values at the end of a line starts (as Python's)."""

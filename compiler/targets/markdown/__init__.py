@@ -15,6 +15,7 @@ from ...model import Message, Protocol
 from .budget import longest_text_line, transport_views
 from .checksum import checksum_sections
 from .delivery import delivery_view
+from .errors import error_claims
 from .examples import message_example, sequence_example
 from .layout import diagram, field_columns, field_rows, payload_note, shown, slots, text_line
 from .stuffing import encoding_lines
@@ -185,8 +186,8 @@ def framing_view(p: Protocol, linker: DecisionLinker) -> dict:
         else:
             lines.append("**Stream resynchronisation.** A stream decoder skips bytes up to the next sync byte"
                          + (", checks the length byte against the known frame sizes" if facts.get("length") else "")
-                         + ", and decodes a whole frame. After a bad frame (wrong length, checksum, constant or "
-                         "unknown id) it reports the error, drops one byte and searches for the next sync byte, so "
+                         + ", and decodes a whole frame. After a bad frame (of a size no message has, a wrong "
+                         "checksum or constant, an unknown id) it reports the error, drops one byte and searches for the next sync byte, so "
                          "one damaged frame never hides the next good one. It holds at most one largest frame "
                          f"({facts['max']} bytes).")
     else:
@@ -200,9 +201,7 @@ def framing_view(p: Protocol, linker: DecisionLinker) -> dict:
             what = "XOR" if cs.algorithm == "xor" else "sum modulo 256"
             after = f"after {code(shown(fr.start))}" if fr.start else "from the start of the line"
             lines.append(f"`hh` is the {what} of the characters {after} up to {code(shown(cs.suffix))}, "
-                         "written as two uppercase hex digits; readers accept only that spelling and refuse a "
-                         "line whose checksum differs (error `checksum`, at the offset of "
-                         f"{code(shown(cs.suffix))}).")
+                         "written as two uppercase hex digits; readers accept only that spelling.")
         if fr.trim:
             lines.append("Readers accept spaces around a value; writers emit none.")
         if fr.ignore_between:
@@ -213,6 +212,7 @@ def framing_view(p: Protocol, linker: DecisionLinker) -> dict:
         if fr.float_format == "shortest":
             lines.append("Decimal numbers are written in the shortest form that reads back to the same value "
                          "(1.0 is written `1`).")
+    lines.extend(claim["text"] for claim in error_claims(p))
     view["lines"] = [linker.link(x) for x in lines]
     return view
 

@@ -184,7 +184,9 @@ def values_text(f: Field) -> str:
         out.append("exactly one bit set")
     if f.kind == "bool":
         out.append("0 false, 1 true")
-    if f.optional:
+    if f.optional and f.const is not None:
+        out.append("optional: always written; a reader also takes it empty or left out at the end")
+    elif f.optional:
         out.append("optional")
     return "; ".join(out)
 

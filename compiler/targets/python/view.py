@@ -1228,7 +1228,9 @@ class MessageCode:
         for n, leaf in enumerate(self.leaves):
             f = leaf.field
             where = f"{self.m.name!r}, {leaf.dotted!r}"
-            if f.optional:
+            if f.optional and f.const is not None:
+                pass  # no member: a constant that a line may leave empty is always written
+            elif f.optional:
                 c(f"if m.{leaf.dotted} is not None:")
                 c.indent()
             if f.kind in ("char", "str") and f.enum is None and f.const is not None:
@@ -1257,7 +1259,7 @@ class MessageCode:
                     out = f"_fixed({leaf.var}, {f.decimals or 0}, {f.width or 0})"
                 else:
                     out = f"str({leaf.var})"
-            if f.optional:  # absent: an empty value, or none at all at the end of the line
+            if f.optional and f.const is None:  # absent: an empty value, or none at all at the end of the line
                 c(f"t{n} = {out}")
                 c.dedent()
                 c("else:")
@@ -1362,7 +1364,7 @@ class MessageCode:
             f = leaf.field
             at = f"{self.m.name!r}, {leaf.dotted!r}"
             where = f"_token_offsets(t, base)[{n}]"  # computed only for an error
-            if f.optional and f.kind == "str":  # an empty value is an empty str
+            if f.optional and f.kind == "str" and f.const is None:  # an empty value is an empty str
                 c(f"if len(t) > {n}:")
                 c.indent()
             elif f.optional:  # an empty value is an absent one
