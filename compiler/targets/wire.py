@@ -227,7 +227,9 @@ def encoding_facts(p: Protocol) -> dict:
     return dict(ENCODINGS[fr.encoding], kind=fr.encoding, frame_max=frame_max,
                 wire_max=encoded_size(fr.encoding, frame_max),
                 # a stretch this long without a delimiter cannot unstuff into a frame
-                unit_max=2 * frame_max + 2)
+                unit_max=2 * frame_max + 2,
+                # stuffing never makes a frame shorter: a shorter stretch holds none
+                unit_min=min(m.min_size for m in p.messages))
 
 
 def text_line_facts(p: Protocol) -> dict:
