@@ -126,6 +126,7 @@ class Generator:
             counter = next((f for f in layout if f.get("length_of", {}).get("adjust") is not None), None)
             if counter is not None and rng.random() < 0.5:  # and the checksum after the payload
                 counter["length_of"]["to"] = "check"
+        self.end_marker(layout)
         self.little = self.lsb or self.has("little")
         framing = {"kind": "bytes", "byte_order": "little" if self.little else "big", "layout": layout}
         if shortens and self.has("truncate", 0.35):
@@ -160,6 +161,12 @@ class Generator:
         if self.has("encoding", 0.4):
             self.encode_frames(framing, messages, ids if not two_keys and not single and id_bits == 8 else None)
         return framing, messages
+
+    def end_marker(self, layout: list[dict]) -> None:
+        """A constant byte after the payload (and its checksum) that closes each frame, as
+        tr24's stop byte: no part of the sync, even right after it."""
+        if self.has("end_marker", 0.3):
+            layout.append({"name": "end_mark", "type": "u8", "const": self.rng.choice([0x03, 0x0A, 0x55, 0xAA, 0x7E])})
 
     def final_step(self, check: dict, width: int) -> int:
         """A sum's complement (in 8, 16, 32 or 64 bits) and a sum's or xor's xorout; the width."""
