@@ -1,6 +1,7 @@
 """Random valid schemas, each determined by its seed and the feature switches."""
 from __future__ import annotations
 
+import copy
 import random
 import string
 
@@ -155,12 +156,26 @@ class Generator:
                     and self.has("counted", 0.25):
                 body["fields"] += self.counted_fields()
             messages[self.name()] = body
+        self.share_an_id(messages, layout)
         if any(f.get("checksum", {}).get("extra") for f in layout):
             for body in messages.values():
                 body["crc_extra"] = rng.randrange(256)
         if self.has("encoding", 0.4):
             self.encode_frames(framing, messages, ids if not two_keys and not single and id_bits == 8 else None)
         return framing, messages
+
+    def share_an_id(self, messages: dict, layout: list[dict]) -> None:
+        """With no length field but a checksum, a second message with the first one's id and
+        a byte more: stream decoders try each size of the id, as Modbus RTU's are found."""
+        bodies = list(messages.values())
+        if len(bodies) < 2 or any("length_of" in f for f in layout) or not any("checksum" in f for f in layout) \
+                or not self.has("shared_id", 0.4):
+            return
+        first, second = bodies[0], bodies[1]
+        if any(isinstance(f.get("count"), dict) or "present_if" in f for f in first["fields"]):
+            return  # a fixed size only
+        second["id"] = first["id"]
+        second["fields"] = copy.deepcopy(first["fields"]) + [{"name": self.name(), "type": "u8"}]
 
     def end_marker(self, layout: list[dict]) -> None:
         """A constant byte after the payload (and its checksum) that closes each frame, as
