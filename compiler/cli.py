@@ -110,6 +110,7 @@ def cmd_accelerate(args: argparse.Namespace) -> int:
 
 def cmd_lint(args: argparse.Namespace) -> int:
     from .build import compile_schema, render_with_codec
+    from .resolver.advice import warnings_of
     project = _project(args)
     failed = 0
     for path in _schemas(args, project):
@@ -121,6 +122,8 @@ def cmd_lint(args: argparse.Namespace) -> int:
                 print(diagnostic, file=sys.stderr)
             failed += len(exc.diagnostics)
             continue
+        for warning in warnings_of(protocol):  # reported, never a failure
+            print(warning, file=sys.stderr)
         print(f"{path}: ok ({len(protocol.messages)} messages)")
     return FINDINGS if failed else OK
 

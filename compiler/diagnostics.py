@@ -21,9 +21,10 @@ class Diagnostic:
     loc: Loc
     message: str
     hint: str = ""
+    severity: str = "error"  # or "warning": the schema builds, but its author should look
 
     def __str__(self) -> str:
-        text = f"{self.loc}: error: {self.message}"
+        text = f"{self.loc}: {self.severity}: {self.message}"
         if self.hint:
             text += f"\n  hint: {self.hint}"
         return text

@@ -33,7 +33,7 @@ from typing import Any, Callable, TextIO
 from . import binary64, jsontext
 
 from .model import Field, Message, Protocol
-from .targets.wire import ENCODINGS
+from .targets.wire import ENCODINGS, encoding_facts
 from .vector_sequences import sequence_vectors
 
 FORMAT = "codeword-vectors/1"
@@ -550,17 +550,43 @@ class Generator:
                     parts.append(frame[:rng.randint(1, len(frame) - 1)])
                 parts.append(frame)
             stream = b"".join(parts)
-            decoder = self.mod.StreamDecoder()
-            events = []
-            step = 1 if len(stream) <= STREAM_BYTE_BY_BYTE else 997
-            for at in range(0, len(stream), step):
-                for item in decoder.feed(stream[at:at + step]):
-                    if isinstance(item, self.mod.DecodeError):
-                        events.append({"error": item.rule})
-                    else:
-                        events.append({"message": type(item).NAME, "values": plain(item)})
-            out.append({"name": f"stream {n}", "hex": stream.hex(), "events": events})
+            out.append(self.stream_events(f"stream {n}", stream))
+        if self.p.framing.encoding and frames:
+            out.extend(self.short_garbage(frames))
         return out
+
+    def short_garbage(self, frames: list[bytes]) -> list[dict]:
+        """A stream of frames with runs of short stretches between delimiters before each,
+        none of them a frame: one error per run, not per stretch."""
+        delimiter = encoding_facts(self.p)["delimiter"]
+        others = [b for b in range(1, 256) if b != delimiter]
+        run = b"".join(bytes((self.rng.choice(others), delimiter)) for _ in range(self.rng.randint(2, 9)))
+        for garbage in (run, bytes((others[0], delimiter))):
+            if all(self.refused(bytes((b, delimiter))) for b in garbage[::2]):
+                stream = b"".join(garbage + frame for frame in frames[:4]) + garbage
+                return [self.stream_events("runs of short garbage", stream)]
+        return []
+
+    def refused(self, wire: bytes) -> bool:
+        try:
+            self.mod.decode(wire)
+        except self.mod.CodecError:
+            return True
+        return False
+
+    def stream_events(self, name: str, stream: bytes) -> dict:
+        """The stream with the events the Python StreamDecoder gives when fed one byte
+        at a time (in chunks, for long streams: the events are the same)."""
+        decoder = self.mod.StreamDecoder()
+        events = []
+        step = 1 if len(stream) <= STREAM_BYTE_BY_BYTE else 997
+        for at in range(0, len(stream), step):
+            for item in decoder.feed(stream[at:at + step]):
+                if isinstance(item, self.mod.DecodeError):
+                    events.append({"error": item.rule})
+                else:
+                    events.append({"message": type(item).NAME, "values": plain(item)})
+        return {"name": name, "hex": stream.hex(), "events": events}
 
 
 def write_vectors(p: Protocol, module: Any, out: TextIO) -> None:

@@ -14,6 +14,7 @@ from .rows import Row, error_row, message_row, units_of
 
 _HEX = re.compile(r"(?:[0-9a-fA-F\s:,]|0[xX]|#[^\n]*)*\Z")
 _SEPARATORS = re.compile(r"#[^\n]*|0[xX]|[\s:,]")
+GAP_HELD = 1 << 16  # bytes skipped between rows held to be shown; a longer stretch is shown at once
 
 
 def open_codec(name: str):
@@ -82,20 +83,33 @@ class Stream:
     def finish(self) -> list[Row]:
         if self.decoder is None:
             return self._words(final=True)
-        return self._rows(self.decoder.finish())
+        rows = self._rows(self.decoder.finish())
+        if self.decoder.offset > self._shown:  # skipped bytes at the end, after the last row
+            rows.append(self._gap(self.decoder.offset))
+            self._forget(self._shown)
+        return rows
 
     def _rows(self, items) -> list[Row]:
         rows = []
         for item, (start, length) in zip(items, self.decoder.spans):
             if start > self._shown:  # bytes between frames: skipped while resynchronising
-                gap = self._held[self._shown - self._held_at:start - self._held_at]
-                rows.append(Row(self._shown, self._raw(gap), error=f"{len(gap)} byte(s) skipped: not a frame",
-                                skipped=len(gap)))
+                rows.append(self._gap(start))
             raw = self._held[start - self._held_at:start - self._held_at + length]
             rows.append(self._row(item, start, self._raw(raw)))
             self._shown = max(self._shown, start + length)
-        self._forget(self.decoder.offset)
+        # Skipped bytes are kept until the row after them shows them, however many reads
+        # they came in; a stretch of GAP_HELD is shown at once, so memory stays bounded.
+        if self.decoder.offset - self._shown > GAP_HELD:
+            rows.append(self._gap(self.decoder.offset))
+        self._forget(min(self.decoder.offset, self._shown))
         return rows
+
+    def _gap(self, upto: int) -> Row:
+        """The row of the bytes skipped from the last row shown up to stream offset `upto`."""
+        gap = self._held[self._shown - self._held_at:upto - self._held_at]
+        row = Row(self._shown, self._raw(gap), error=f"{len(gap)} byte(s) skipped: not a frame", skipped=len(gap))
+        self._shown = upto
+        return row
 
     def _raw(self, data: bytes):
         return data.decode("latin-1") if self.kind == "text" else data

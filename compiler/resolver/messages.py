@@ -227,16 +227,22 @@ class MessagesMixin(ResolverBase):
         if any(f.length_of for m in messages for f in m.layout) or len({m.size for m in messages}) < 2 \
                 or any(m.size is None for m in messages):  # a field without a width says why itself
             return
+        # with a checksum, a stream decoder tries each fixed size of an id, smallest first,
+        # and takes the first frame whose checksum holds
+        checked = any(f.checksum for f in messages[0].layout if f.from_envelope)
         size_of: dict = {}
         for m in messages:  # a counted array's size is read from its count, by direction and id
             counted = bool(m.shortening and m.shortening.counter)
             for value in m.ids or (None,):
                 first = size_of.setdefault((m.direction, value) if counted else value, m)
-                if first.sizes != m.sizes:
+                fixed = not m.shortening and not first.shortening
+                if first.sizes != m.sizes and not (fixed and checked):
                     self.error(("messages", m.name), f"message {m.name!r} is {m.size} bytes but {first.name!r}, "
                                f"with the same id, is {first.size}; with no length field a stream decoder "
-                               "finds a frame's size from its id",
-                               "give them different ids, or add a length field to the framing")
+                               "finds a frame's size from its id" + ("" if checked else ", and with no checksum "
+                                                                     "it could not tell one size from another"),
+                               "give them different ids, or add a length field (or a checksum) to the framing"
+                               if fixed else "give them different ids, or add a length field to the framing")
                     return
 
     @staticmethod

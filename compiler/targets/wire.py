@@ -82,8 +82,10 @@ def stream_facts(p: Protocol) -> dict:
     fr = p.framing
     if fr.kind != "bytes":
         return {}
-    leaves = leaves_of(fr.envelope)
-    pattern = sync_pattern(leaves, fr.byte_order)
+    # only the fields before the payload can start a frame: a constant after it (an end
+    # marker) is no part of the sync
+    head = fr.envelope[:next(i for i, f in enumerate(fr.envelope) if f.is_payload)]
+    pattern = sync_pattern(leaves_of(head), fr.byte_order)
     sync = pattern[0] if pattern else None
     length = None
     for leaf in p.messages[0].wire.leaves:
@@ -96,10 +98,17 @@ def stream_facts(p: Protocol) -> dict:
     if length is None and len(sizes) > 1:  # no length field: the dispatch value gives the size
         dispatch = dispatch_facts(p)
         counted = counted_sizes(p)
-        size_of = {value: size for value, size, _, name in dispatch["frames"] if name not in counted}
+        sizes_of: dict[int, set[int]] = {}
+        for value, size, _, name in dispatch["frames"]:
+            if name not in counted:
+                sizes_of.setdefault(value, set()).add(size)
+        # an id of several sizes (the resolver allows it when a checksum tells them apart):
+        # each is tried, smallest first, and the first whose frame decodes is taken
+        size_of = {value: min(sizes) for value, sizes in sizes_of.items()}
         by_key = {"at": dispatch["first"], "last": dispatch["last"], "bytes": dispatch["bytes"], "shift": dispatch["shift"],
                   "mask": dispatch["mask"], "byte_order": dispatch["byte_order"],
-                  "sizes": sorted(size_of.items()), "counted": []}
+                  "sizes": sorted(size_of.items()), "counted": [],
+                  "several": sorted((value, sorted(sizes)) for value, sizes in sizes_of.items() if len(sizes) > 1)}
         if counted:  # the count field gives these frames' sizes, looked up by direction and id
             by_key["counted"] = [dict(counted[name], value=value, direction=direction, any=value not in size_of)
                                  for value, _, direction, name in dispatch["frames"] if name in counted]
@@ -218,7 +227,9 @@ def encoding_facts(p: Protocol) -> dict:
     return dict(ENCODINGS[fr.encoding], kind=fr.encoding, frame_max=frame_max,
                 wire_max=encoded_size(fr.encoding, frame_max),
                 # a stretch this long without a delimiter cannot unstuff into a frame
-                unit_max=2 * frame_max + 2)
+                unit_max=2 * frame_max + 2,
+                # stuffing never makes a frame shorter: a shorter stretch holds none
+                unit_min=min(m.min_size for m in p.messages))
 
 
 def text_line_facts(p: Protocol) -> dict:

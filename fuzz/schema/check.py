@@ -145,6 +145,9 @@ def python_checks(mod, vectors: dict, text: bool, rng: random.Random) -> str:
         except mod.DecodeError:
             continue
         return f"invalid {case['name']!r} decoded"
+    problem = stream_checks(mod, vectors, frames) if not text and hasattr(mod, "StreamDecoder") else ""
+    if problem:
+        return problem
     for frame in frames[:10]:
         for _ in range(MUTATIONS // 10 or 1):
             bad = _damage(frame, rng)
@@ -155,6 +158,28 @@ def python_checks(mod, vectors: dict, text: bool, rng: random.Random) -> str:
             again = mod.encode(obj)
             if mod.decode(again) != obj:
                 return f"damaged {bad!r} decodes to {obj!r}, whose encoding decodes differently"
+    return ""
+
+
+def stream_checks(mod, vectors: dict, frames: list[bytes]) -> str:
+    """Frames back to back give their messages, in order and nothing else; in a stuffed
+    framing, a run of short stretches between delimiters gives one error, never two."""
+    alone = []
+    for frame in frames[:40]:
+        try:
+            alone.append(mod.decode(frame))  # a frame that needs its direction is left out
+        except mod.CodecError:
+            continue
+    if alone:
+        stream = b"".join(mod.encode(m) for m in alone)
+        d = mod.StreamDecoder()
+        got = d.feed(stream) + d.finish()
+        if got != alone:
+            return f"stream of {len(alone)} frames back to back {stream.hex()}: decoded as {got!r}"
+    for case in vectors.get("streams", []):
+        kinds = ["error" if "error" in e else "message" for e in case["events"]]
+        if case["name"] == "runs of short garbage" and ("error", "error") in zip(kinds, kinds[1:]):
+            return f"stream {case['hex']}: two errors in one run of garbage ({' '.join(kinds)})"
     return ""
 
 

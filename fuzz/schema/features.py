@@ -17,6 +17,8 @@ FULL = frozenset({
     "crc_alias",                            # a CRC named by a catalogue alias with one meaning, in any case
     "complement", "crc_extra",              # a sum's complement, xorout; a CRC's per-message extra byte
     "encoding",                             # SLIP, COBS or HDLC byte stuffing around frames
+    "end_marker",                           # bytes: a constant byte after the payload closes each frame
+    "shared_id",                            # bytes without length: two messages of one id at two sizes
     "extension", "truncate",                # bytes: extension fields at a message's end; trailing zeros not sent
     "little", "field_order",                # byte orders: the framing's, and per field
     "bitfields",                            # fields narrower than a byte, packed

@@ -1,6 +1,7 @@
 """Random valid schemas, each determined by its seed and the feature switches."""
 from __future__ import annotations
 
+import copy
 import random
 import string
 
@@ -127,6 +128,7 @@ class Generator:
             counter = next((f for f in layout if f.get("length_of", {}).get("adjust") is not None), None)
             if counter is not None and rng.random() < 0.5:  # and the checksum after the payload
                 counter["length_of"]["to"] = "check"
+        self.end_marker(layout)
         self.little = self.lsb or self.has("little")
         framing = {"kind": "bytes", "byte_order": "little" if self.little else "big", "layout": layout}
         if shortens and self.has("truncate", 0.35):
@@ -155,6 +157,7 @@ class Generator:
                     and self.has("counted", 0.25):
                 body["fields"] += self.counted_fields()
             messages[self.name()] = body
+        self.share_an_id(messages, layout)
         if any(f.get("checksum", {}).get("extra") for f in layout):
             for body in messages.values():
                 body["crc_extra"] = rng.randrange(256)
@@ -170,6 +173,25 @@ class Generator:
         aliases = sorted(k for k, p in crc.catalogue().items() if p.name == name and crc.lookup(k) is not None)
         chosen = self.rng.choice(aliases)
         return self.rng.choice([chosen, chosen.lower(), chosen.title()])
+
+    def share_an_id(self, messages: dict, layout: list[dict]) -> None:
+        """With no length field but a checksum, a second message with the first one's id and
+        a byte more: stream decoders try each size of the id, as Modbus RTU's are found."""
+        bodies = list(messages.values())
+        if len(bodies) < 2 or any("length_of" in f for f in layout) or not any("checksum" in f for f in layout) \
+                or not self.has("shared_id", 0.4):
+            return
+        first, second = bodies[0], bodies[1]
+        if any(isinstance(f.get("count"), dict) or "present_if" in f for f in first["fields"]):
+            return  # a fixed size only
+        second["id"] = first["id"]
+        second["fields"] = copy.deepcopy(first["fields"]) + [{"name": self.name(), "type": "u8"}]
+
+    def end_marker(self, layout: list[dict]) -> None:
+        """A constant byte after the payload (and its checksum) that closes each frame, as
+        tr24's stop byte: no part of the sync, even right after it."""
+        if self.has("end_marker", 0.3):
+            layout.append({"name": "end_mark", "type": "u8", "const": self.rng.choice([0x03, 0x0A, 0x55, 0xAA, 0x7E])})
 
     def final_step(self, check: dict, width: int) -> int:
         """A sum's complement (in 8, 16, 32 or 64 bits) and a sum's or xor's xorout; the width."""
