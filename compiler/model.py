@@ -359,6 +359,16 @@ def count_member(name: str) -> str:
     return name + "_count"
 
 
+def length_argument(name: str) -> str:
+    """The C parameter that carries the length of a machine event's bytes argument `name`."""
+    return name + "_len"
+
+
+# Parameters every generated machine event function takes before its arguments (C: the
+# machine, the time, the outputs; Python: self and the time): no argument may share them.
+EVENT_PARAMETERS = ("m", "now", "out", "self")
+
+
 def path_name(path: tuple[Union[str, int], ...]) -> str:
     """A path as one identifier, the only path spelt so and with no `__` (C++ reserves
     it): a top-level field is its name (`speed`); a deeper path is each name led by

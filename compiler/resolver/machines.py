@@ -10,8 +10,8 @@ from __future__ import annotations
 from typing import Any, Optional
 
 from .text import text
-from ..model import (Action, Condition, Event, Field, Handler, Machine, Message, Source, State,
-                    Transition, Variable)
+from ..model import (EVENT_PARAMETERS, Action, Condition, Event, Field, Handler, Machine, Message, Source,
+                     State, Transition, Variable, length_argument)
 
 ACTION_KINDS = ("set", "flip", "increment", "keep", "transmit", "start_timer", "stop_timer",
                 "deliver", "execute", "fail")
@@ -93,6 +93,7 @@ class MachineResolver:
                 if request in self.messages and self.field_of(request, arg) is None:
                     self.error(epath + ("args",), f"event {en!r}: {request!r} has no field {arg!r}",
                                "arguments are fields of the request's message")
+            self.check_argument_names(en, request, e.get("args", []), epath + ("args",))
             self.events[en] = Event(en, e.get("message"), bool(e.get("timer")), self.r_text(e.get("doc")),
                                     request, tuple(e.get("args", [])))
         if len(timers) > 1:
@@ -100,6 +101,21 @@ class MachineResolver:
                        "keep one event with `timer: true`")
         for an, a in raw.get("actions", {}).items():
             self.actions[an] = self.resolve_action(an, a)
+
+    def check_argument_names(self, event: str, request: Optional[str], args: list, path: tuple) -> None:
+        """The generated event function takes its own parameters and, after each bytes
+        argument, that argument's length: an argument named like either would be declared twice."""
+        lengths = {length_argument(a): a for a in args
+                   if (f := self.field_of(request, a)) is not None and f.kind == "bytes"}
+        for arg in args:
+            if arg in EVENT_PARAMETERS:
+                self.error(path, f"event {event!r}: argument {arg!r} has the name of a parameter every "
+                                 f"event function takes ({', '.join(EVENT_PARAMETERS)})",
+                           f"rename the field {arg!r} of {request!r}")
+            elif arg in lengths:
+                self.error(path, f"event {event!r}: argument {arg!r} has the name of the length the "
+                                 f"event function takes after the bytes argument {lengths[arg]!r}",
+                           f"rename the field {arg!r} of {request!r}")
 
     @staticmethod
     def r_text(value: Any):

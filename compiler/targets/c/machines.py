@@ -8,7 +8,7 @@ no transition produces more).
 """
 from __future__ import annotations
 
-from ...model import Action, Machine, Protocol
+from ...model import Action, Machine, Protocol, length_argument
 from ..machines.lowering import Lowering
 from ..machines.packets import MachineTargetError, PacketLayout, machine_messages, max_packet, packet_layout
 
@@ -144,9 +144,9 @@ def machine_view(p: Protocol, machine: Machine, px: str) -> dict:
             for arg in e.args:
                 f = next(x for x in message.members if x.name == arg)
                 if f.kind == "bytes":
-                    args += [f"const uint8_t *{arg}", f"size_t {arg}_len"]
+                    args += [f"const uint8_t *{arg}", f"size_t {length_argument(arg)}"]
                     size = low.param(f.length_param) if f.length_param else f"{f.length}u"
-                    checks.append(f"{arg} == NULL || {arg}_len != {size}")
+                    checks.append(f"{arg} == NULL || {length_argument(arg)} != {size}")
                 else:
                     args.append(f"{ctype(f.bits)} {arg}")
                     if f.bits < 8:
