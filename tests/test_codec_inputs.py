@@ -1,17 +1,27 @@
 """The generated Python codecs raise only their CodecError subclasses, for any input
 of any type: every public entry point of every seed protocol is called with values
-of the wrong type, shape and size, and every field of every message is set to them
-before encoding. Returning normally is allowed (a decoder may accept what it can
-read); any other exception is a defect."""
+of the wrong type, shape and size, and every field of every message (of the seed
+protocols and the examples) is set to them before encoding. A decoder may return
+normally (it may accept what it can read); an encoder given a value of the wrong
+type, shape or size for its field raises its EncodeError; any other exception is a
+defect."""
 from __future__ import annotations
 
 import dataclasses
 import enum
+import importlib.util
 import itertools
+import json
+import sys
+import typing
+from decimal import Decimal
+from fractions import Fraction
 
 import pytest
 
-from conftest import PROTOCOLS, load_generated
+from conftest import PROTOCOLS, ROOT, load_generated
+
+EXAMPLES = ("mavlink1", "mavlink2", "modbus_rtu", "nmea0183", "ubx")
 
 HOSTILE = [
     None, 0, 5, -1, 2 ** 70, 10 ** 400, 1.5, float("nan"), float("inf"), True, False,
@@ -61,11 +71,27 @@ def test_entry_points_raise_only_codec_errors(name):
                 raise AssertionError(f"{name}.{label}({value!r:.40}) raised {type(exc).__name__}: {exc}") from exc
 
 
+GENERATED = {**{name: (ROOT / "generated" / "python", ROOT / "generated" / "vectors") for name in PROTOCOLS},
+             **{name: (ROOT / "generated" / "examples" / "python", ROOT / "generated" / "examples" / "vectors")
+                for name in EXAMPLES}}
+
+
+def codec_of(name: str):
+    """A seed protocol's module (conftest's), or an example's, imported the same stand-alone way."""
+    if name in PROTOCOLS:
+        return load_generated(name)
+    key = f"generated_example_{name}"
+    if key not in sys.modules:
+        spec = importlib.util.spec_from_file_location(key, GENERATED[name][0] / f"{name}.py")
+        module = importlib.util.module_from_spec(spec)
+        sys.modules[key] = module
+        spec.loader.exec_module(module)
+    return sys.modules[key]
+
+
 def example_objects(codec):
     """One valid object per message: decoded from the vectors the build wrote."""
-    import json
-    from conftest import ROOT
-    vectors = json.loads((ROOT / "generated" / "vectors" / f"{codec.PROTOCOL}.json").read_text())
+    vectors = json.loads((GENERATED[codec.PROTOCOL][1] / f"{codec.PROTOCOL}.json").read_text())
     seen = {}
     for case in vectors["valid"]:
         if case["message"] not in seen:
@@ -82,26 +108,102 @@ def leaf_paths(obj, prefix=()):
             yield prefix + (f.name,)
 
 
+def member_paths(obj, prefix=()):
+    """Every field's path, a group's as well as the fields inside it."""
+    for f in dataclasses.fields(obj):
+        yield prefix + (f.name,)
+        value = getattr(obj, f.name)
+        if dataclasses.is_dataclass(value):
+            yield from member_paths(value, prefix + (f.name,))
+
+
 def with_value(obj, path, value):
     if len(path) == 1:
         return dataclasses.replace(obj, **{path[0]: value})
     return dataclasses.replace(obj, **{path[0]: with_value(getattr(obj, path[0]), path[1:], value)})
 
 
-@pytest.mark.parametrize("name", PROTOCOLS)
+def declared(codec, obj, path):
+    """The annotation of the field at `path`, and its current value."""
+    for part in path[:-1]:
+        obj = getattr(obj, part)
+    return typing.get_type_hints(type(obj), vars(codec))[path[-1]], getattr(obj, path[-1])
+
+
+class Foreign(enum.IntEnum):
+    """A member of no generated set, equal to small ints."""
+    zero = 0
+    one = 1
+
+
+# values that are no value of a field of the type, whatever its range: each must be an EncodeError
+NOT_A_NUMBER = ["", "5", "1.5", b"\x05", bytearray(b"\x05"), [5], (5,), {}, {"a": 1}, object(), type, ...,
+                Decimal("5"), Fraction(1, 2), complex(1, 0)]
+WRONG = {
+    int: [1.5, 1.0, float("nan"), float("inf"), float("-inf"), True, False, 2 ** 70, -2 ** 70, 10 ** 400,
+          *NOT_A_NUMBER],
+    float: [True, False, float("nan"), float("inf"), float("-inf"), 10 ** 400, -10 ** 400, *NOT_A_NUMBER],
+    bool: [2, -1, 5, 2 ** 70, 1.0, 0.0, 1.5, float("nan"), "True", "1", "", b"\x01", [True], (), {}, object(),
+           Decimal(1), Fraction(1)],
+    str: [0, 5, 1.5, True, False, b"x", bytearray(b"x"), ["x"], ("x",), {}, object()],
+    bytes: [0, 5, 1.5, True, "", "\x00" * 7, [0] * 7, (0,) * 7, {}, object(), bytes(100_000),
+            memoryview(bytes(28)).cast("I")],
+}
+NOT_A_GROUP = [0, 1, True, "x", b"x", {}, (), [], object()]
+NOT_A_LIST = [0, 1, True, "x", b"\x00\x00", {}, object()]
+
+
+def wrong_values(codec, obj, path):
+    """Values of the wrong type, shape or size for the field at `path`."""
+    hint, current = declared(codec, obj, path)
+    args = typing.get_args(hint)
+    optional = typing.get_origin(hint) is typing.Union and type(None) in args
+    if optional:
+        hint = next(a for a in args if a is not type(None))
+    out = [] if optional else [None]
+    if typing.get_origin(hint) is list:
+        out += NOT_A_LIST + [[object()] * max(len(current), 1), [None] * max(len(current), 1)]
+        if current:  # more elements than any count of these schemas
+            out.append(current[:1] * 100_000)
+    elif dataclasses.is_dataclass(hint):
+        out += NOT_A_GROUP + [obj]  # the message is not its own group
+    elif isinstance(hint, type) and issubclass(hint, enum.Enum):
+        if issubclass(hint, str):
+            out += [5, True, 1.5, b"x", ["x"], {}, object()]
+        else:
+            out += [True, False, 1.5, 1.0, float("nan"), 2 ** 70, -2 ** 70, "1", b"\x01", [1], {}, object()]
+        out += [m for cls in vars(codec).values() if isinstance(cls, type) and issubclass(cls, enum.Enum)
+                and cls.__module__ == codec.__name__ and cls is not hint for m in cls][:3]
+        out += [Foreign.zero, Foreign.one] if not issubclass(hint, str) else []
+    else:
+        out += WRONG[hint]
+    return out
+
+
+ALL = PROTOCOLS + EXAMPLES
+
+
+@pytest.mark.parametrize("name", ALL)
 def test_every_field_refuses_hostile_values_with_an_encode_error(name):
-    codec = load_generated(name)
+    """Any value: an EncodeError or a frame. A value of the wrong type, shape or size for
+    the field: an EncodeError, never a frame."""
+    codec = codec_of(name)
+    checked = 0
     for obj in example_objects(codec):
-        for path in leaf_paths(obj):
-            for value in HOSTILE:
+        for path in member_paths(obj):
+            where = f"{name} {type(obj).__name__}.{'.'.join(path)}"
+            wrong = wrong_values(codec, obj, path)
+            for value in HOSTILE + wrong:
                 bad = with_value(obj, path, value)
                 try:
                     codec.encode(bad)
                 except codec.EncodeError:
-                    pass
+                    checked += any(value is w for w in wrong)
+                    continue
                 except Exception as exc:  # noqa: BLE001
-                    raise AssertionError(f"{name} {type(obj).__name__}.{'.'.join(path)} = {value!r:.40}: "
-                                         f"{type(exc).__name__}: {exc}") from exc
+                    raise AssertionError(f"{where} = {value!r:.40}: {type(exc).__name__}: {exc}") from exc
+                assert not any(value is w for w in wrong), f"{where} = {value!r:.40} was encoded, not refused"
+    assert checked > 100, name
 
 
 @pytest.mark.parametrize("name", [p for p in PROTOCOLS if p != "tr24"])  # tr24 has no enums or flags
