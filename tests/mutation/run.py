@@ -1,0 +1,149 @@
+"""Mutation run: each mutant of tests/mutation/mutants.py is applied to a fresh copy of
+the checkout (never to the working tree), generated/ is rebuilt from the mutated
+generator, and the mutant's tests run there. A mutant is caught when they fail.
+
+    python -m tests.mutation                 # every mutant: a table on stdout
+    python -m tests.mutation --only NAME ... # some of them
+    python -m tests.mutation --record        # and write tests/mutation/RESULTS.md
+
+Slow (one build and test run per mutant): not part of the default test run."""
+from __future__ import annotations
+
+import argparse
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+from .mutants import MUTANTS, Mutant
+
+ROOT = Path(__file__).resolve().parents[2]
+RESULTS = Path(__file__).resolve().parent / "RESULTS.md"
+
+
+def apply(text: str, find: str, replace: str, where: str) -> str:
+    count = text.count(find)
+    if count != 1:
+        raise ValueError(f"{where}: the text to replace occurs {count} times, not once: {find[:60]!r}")
+    return text.replace(find, replace)
+
+
+def checkout_files() -> list[str]:
+    """The checkout as it stands: tracked files and new ones git does not ignore."""
+    listed = subprocess.run(["git", "ls-files", "-z", "--cached", "--others", "--exclude-standard"],
+                            cwd=ROOT, capture_output=True, check=True).stdout
+    return [name for name in listed.decode().split("\0") if name and (ROOT / name).is_file()]
+
+
+def copy_checkout(files: list[str], dest: Path) -> Path:
+    """A copy of the checkout at dest/repo (a git repository of one commit, before any
+    mutant) and, in dest/path, a `codeword` that is its
+    compiler/ (put first on PYTHONPATH, ahead of the editable install)."""
+    repo = dest / "repo"
+    for name in files:
+        target = repo / name
+        target.parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy2(ROOT / name, target)
+    git = ["git", "-c", "user.name=mutation", "-c", "user.email=mutation@localhost", "-c", "commit.gpgsign=false"]
+    for args in (["init", "-q"], ["add", "-A"], ["commit", "-q", "-m", "checkout"]):  # tests read git:HEAD:…
+        subprocess.run(git + args, cwd=repo, capture_output=True, check=True)
+    (dest / "path").mkdir()
+    (dest / "path" / "codeword").symlink_to(repo / "compiler", target_is_directory=True)
+    return repo
+
+
+def environment(dest: Path) -> dict[str, str]:
+    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "CODEWORD_CACHE")}
+    env["PYTHONPATH"] = str(dest / "path")
+    env["CODEWORD_PURE_PYTHON"] = "1"  # a compiled accelerator of the working tree is not the mutant's
+    env["CODEWORD_CACHE"] = str(dest / "cache")  # nothing built from the unmutated sources is reused
+    return env
+
+
+def run(cmd: list[str], cwd: Path, env: dict[str, str], timeout: int) -> subprocess.CompletedProcess[str]:
+    return subprocess.run(cmd, cwd=cwd, env=env, capture_output=True, text=True, timeout=timeout)
+
+
+def trial(mutant: Mutant | None, files: list[str], tests: tuple[str, ...], timeout: int) -> tuple[str, str]:
+    """(verdict, detail) of one mutant (None: the unmutated checkout, the baseline)."""
+    with tempfile.TemporaryDirectory(prefix="codeword-mutant-") as tmp:
+        dest = Path(tmp)
+        repo = copy_checkout(files, dest)
+        env = environment(dest)
+        for file, find, replace in mutant.patches if mutant else ():
+            path = repo / file
+            path.write_text(apply(path.read_text(encoding="utf-8"), find, replace, file), encoding="utf-8")
+        for folder in (repo, repo / "examples"):  # generated/ as the mutated generator writes it
+            build = run([sys.executable, "-m", "codeword", "build"], folder, env, timeout)
+            if build.returncode != 0:
+                return "caught by the build", (build.stdout + build.stderr).strip().splitlines()[-1:][0][:200]
+        started = time.monotonic()
+        result = run([sys.executable, "-m", "pytest", "-q", "-x", "-p", "no:cacheprovider", *tests],
+                     repo, env, timeout)
+        took = f"{time.monotonic() - started:.0f} s"
+        last = (result.stdout.strip().splitlines() or [""])[-1][:200]
+        if result.returncode == 0:
+            return "SURVIVED", f"{last} ({took})"
+        if result.returncode == 1:
+            failed = next((line for line in result.stdout.splitlines() if line.startswith("FAILED")), last)
+            return "caught", f"{failed[:200]} ({took})"
+        return f"error (pytest exit {result.returncode})", f"{last} ({took})"
+
+
+def table(rows: list[tuple[Mutant, str, str]], baseline: tuple[str, str]) -> str:
+    out = ["| mutant | bug | tests | result | detail |", "|---|---|---|---|---|"]
+    for m, verdict, detail in rows:
+        note = f" Note: {m.note}." if m.note else ""
+        cell = lambda s: s.replace("|", "\\|").replace("\n", " ")  # noqa: E731
+        out.append(f"| `{m.name}` | {cell(m.what)}.{cell(note)} | `{cell(' '.join(m.tests))}` | **{verdict}** "
+                   f"| {cell(detail)} |")
+    out += ["", f"Baseline (no mutant, every test named above): {baseline[0]}, {baseline[1]}."]
+    return "\n".join(out)
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="python -m tests.mutation", description=__doc__.split("\n\n")[0])
+    parser.add_argument("--only", nargs="+", metavar="NAME", help="run these mutants only")
+    parser.add_argument("--record", action="store_true", help=f"write the table to {RESULTS.relative_to(ROOT)}")
+    parser.add_argument("--timeout", type=int, default=1800, help="seconds per build or test run")
+    parser.add_argument("--list", action="store_true", help="list the mutants and exit")
+    args = parser.parse_args(argv)
+    mutants = [m for m in MUTANTS if not args.only or m.name in args.only]
+    if args.list or not mutants:
+        for m in MUTANTS:
+            print(f"{m.name}: {m.what}")
+        return 0 if mutants else 2
+    files = checkout_files()
+    named = tuple(dict.fromkeys(t for m in mutants for t in m.tests if t.startswith("tests/")))
+    print(f"baseline: {' '.join(named)}", flush=True)
+    baseline = trial(None, files, named, args.timeout)
+    print(f"  {baseline[0]}: {baseline[1]}", flush=True)
+    if baseline[0] != "SURVIVED":  # the unmutated checkout must pass its tests, or nothing is measured
+        print("the tests fail without a mutant: fix that first", file=sys.stderr)
+        return 2
+    baseline = ("passed", baseline[1])
+    rows = []
+    for m in mutants:
+        print(f"{m.name}: {' '.join(m.tests)}", flush=True)
+        verdict, detail = trial(m, files, m.tests, args.timeout)
+        print(f"  {verdict}: {detail}", flush=True)
+        rows.append((m, verdict, detail))
+    text = table(rows, baseline)
+    print()
+    print(text)
+    if args.record:
+        commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True,
+                                text=True).stdout.strip()
+        dirty = " (with uncommitted changes)" if subprocess.run(
+            ["git", "status", "--porcelain"], cwd=ROOT, capture_output=True, text=True).stdout.strip() else ""
+        RESULTS.write_text(
+            "# Mutation results\n\nWritten by `python -m tests.mutation --record`; run it again after changing "
+            "the mutants or the tests.\n\nEach mutant is a plausible bug patched into a copy of the checkout "
+            f"(`tests/mutation/mutants.py`); generated/ is rebuilt from the mutated generator and the named "
+            f"tests run. Caught: they fail. SURVIVED: they pass with the bug in.\n\nCheckout: {commit}{dirty}; "
+            f"{time.strftime('%Y-%m-%d')}.\n\n{text}\n", encoding="utf-8")
+        print(f"\nwrote {RESULTS.relative_to(ROOT)}")
+    return 0
