@@ -11,11 +11,11 @@ from __future__ import annotations
 
 import argparse
 import os
-import shutil
 import subprocess
 import sys
 import tempfile
 import time
+from dataclasses import replace
 from pathlib import Path
 
 from .mutants import MUTANTS, Mutant
@@ -31,22 +31,28 @@ def apply(text: str, find: str, replace: str, where: str) -> str:
     return text.replace(find, replace)
 
 
-def checkout_files() -> list[str]:
-    """The checkout as it stands: tracked files and new ones git does not ignore."""
+Snapshot = dict[str, tuple[bytes, int]]  # path -> (content, mode)
+
+
+def snapshot() -> Snapshot:
+    """The checkout as it stands when the run starts (tracked files and new ones git does
+    not ignore): every trial starts from it, whatever is edited meanwhile."""
     listed = subprocess.run(["git", "ls-files", "-z", "--cached", "--others", "--exclude-standard"],
                             cwd=ROOT, capture_output=True, check=True).stdout
-    return [name for name in listed.decode().split("\0") if name and (ROOT / name).is_file()]
+    names = [name for name in listed.decode().split("\0") if name and (ROOT / name).is_file()]
+    return {name: ((ROOT / name).read_bytes(), (ROOT / name).stat().st_mode & 0o777) for name in names}
 
 
-def copy_checkout(files: list[str], dest: Path) -> Path:
+def copy_checkout(files: Snapshot, dest: Path) -> Path:
     """A copy of the checkout at dest/repo (a git repository of one commit, before any
     mutant) and, in dest/path, a `codeword` that is its
     compiler/ (put first on PYTHONPATH, ahead of the editable install)."""
     repo = dest / "repo"
-    for name in files:
+    for name, (content, mode) in files.items():
         target = repo / name
         target.parent.mkdir(parents=True, exist_ok=True)
-        shutil.copy2(ROOT / name, target)
+        target.write_bytes(content)
+        target.chmod(mode)
     git = ["git", "-c", "user.name=mutation", "-c", "user.email=mutation@localhost", "-c", "commit.gpgsign=false"]
     for args in (["init", "-q"], ["add", "-A"], ["commit", "-q", "-m", "checkout"]):  # tests read git:HEAD:…
         subprocess.run(git + args, cwd=repo, capture_output=True, check=True)
@@ -67,7 +73,7 @@ def run(cmd: list[str], cwd: Path, env: dict[str, str], timeout: int) -> subproc
     return subprocess.run(cmd, cwd=cwd, env=env, capture_output=True, text=True, timeout=timeout)
 
 
-def trial(mutant: Mutant | None, files: list[str], tests: tuple[str, ...], timeout: int) -> tuple[str, str]:
+def trial(mutant: Mutant | None, files: Snapshot, tests: tuple[str, ...], timeout: int) -> tuple[str, str]:
     """(verdict, detail) of one mutant (None: the unmutated checkout, the baseline)."""
     with tempfile.TemporaryDirectory(prefix="codeword-mutant-") as tmp:
         dest = Path(tmp)
@@ -93,14 +99,15 @@ def trial(mutant: Mutant | None, files: list[str], tests: tuple[str, ...], timeo
         return f"error (pytest exit {result.returncode})", f"{last} ({took})"
 
 
-def table(rows: list[tuple[Mutant, str, str]], baseline: tuple[str, str]) -> str:
+def table(rows: list[tuple[Mutant, str, str]], baselines: dict[tuple[str, ...], tuple[str, str]]) -> str:
     out = ["| mutant | bug | tests | result | detail |", "|---|---|---|---|---|"]
     for m, verdict, detail in rows:
         note = f" Note: {m.note}." if m.note else ""
         cell = lambda s: s.replace("|", "\\|").replace("\n", " ")  # noqa: E731
         out.append(f"| `{m.name}` | {cell(m.what)}.{cell(note)} | `{cell(' '.join(m.tests))}` | **{verdict}** "
                    f"| {cell(detail)} |")
-    out += ["", f"Baseline (no mutant, every test named above): {baseline[0]}, {baseline[1]}."]
+    out += ["", "Baselines (the same tests without a mutant):", ""]
+    out += [f"- `{' '.join(tests)}`: {verdict}, {detail}" for tests, (verdict, detail) in baselines.items()]
     return "\n".join(out)
 
 
@@ -110,40 +117,44 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--record", action="store_true", help=f"write the table to {RESULTS.relative_to(ROOT)}")
     parser.add_argument("--timeout", type=int, default=1800, help="seconds per build or test run")
     parser.add_argument("--list", action="store_true", help="list the mutants and exit")
+    parser.add_argument("--tests", nargs="+", metavar="ARG", help="pytest arguments in place of each mutant's tests")
     args = parser.parse_args(argv)
     mutants = [m for m in MUTANTS if not args.only or m.name in args.only]
+    if args.tests:
+        mutants = [replace(m, tests=tuple(args.tests)) for m in mutants]
     if args.list or not mutants:
         for m in MUTANTS:
             print(f"{m.name}: {m.what}")
         return 0 if mutants else 2
-    files = checkout_files()
-    named = tuple(dict.fromkeys(t for m in mutants for t in m.tests if t.startswith("tests/")))
-    print(f"baseline: {' '.join(named)}", flush=True)
-    baseline = trial(None, files, named, args.timeout)
-    print(f"  {baseline[0]}: {baseline[1]}", flush=True)
-    if baseline[0] != "SURVIVED":  # the unmutated checkout must pass its tests, or nothing is measured
-        print("the tests fail without a mutant: fix that first", file=sys.stderr)
-        return 2
-    baseline = ("passed", baseline[1])
+    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True,
+                            text=True).stdout.strip()
+    if subprocess.run(["git", "status", "--porcelain"], cwd=ROOT, capture_output=True, text=True).stdout.strip():
+        commit += " with uncommitted changes"
+    files = snapshot()
+    baselines: dict[tuple[str, ...], tuple[str, str]] = {}  # the unmutated checkout must pass each mutant's tests
     rows = []
     for m in mutants:
+        if m.tests not in baselines:
+            print(f"baseline: {' '.join(m.tests)}", flush=True)
+            verdict, detail = trial(None, files, m.tests, args.timeout)
+            baselines[m.tests] = ("passed" if verdict == "SURVIVED" else "FAILED: " + verdict, detail)
+            print(f"  {baselines[m.tests][0]}: {detail}", flush=True)
+        if baselines[m.tests][0] != "passed":
+            rows.append((m, "not measured", "the tests fail without the mutant"))
+            continue
         print(f"{m.name}: {' '.join(m.tests)}", flush=True)
         verdict, detail = trial(m, files, m.tests, args.timeout)
         print(f"  {verdict}: {detail}", flush=True)
         rows.append((m, verdict, detail))
-    text = table(rows, baseline)
+    text = table(rows, baselines)
     print()
     print(text)
     if args.record:
-        commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True,
-                                text=True).stdout.strip()
-        dirty = " (with uncommitted changes)" if subprocess.run(
-            ["git", "status", "--porcelain"], cwd=ROOT, capture_output=True, text=True).stdout.strip() else ""
         RESULTS.write_text(
             "# Mutation results\n\nWritten by `python -m tests.mutation --record`; run it again after changing "
             "the mutants or the tests.\n\nEach mutant is a plausible bug patched into a copy of the checkout "
             f"(`tests/mutation/mutants.py`); generated/ is rebuilt from the mutated generator and the named "
-            f"tests run. Caught: they fail. SURVIVED: they pass with the bug in.\n\nCheckout: {commit}{dirty}; "
+            f"tests run. Caught: they fail. SURVIVED: they pass with the bug in.\n\nCheckout: {commit}; "
             f"{time.strftime('%Y-%m-%d')}.\n\n{text}\n", encoding="utf-8")
         print(f"\nwrote {RESULTS.relative_to(ROOT)}")
     return 0
