@@ -45,6 +45,14 @@ MUTANTS = (
         ("tests/test_resynchronisation.py", "tests/test_noise_streams.py"),
         "a test aimed at it is added on another branch"),
     Mutant(
+        "c-resync-skips-claimed-size",
+        "C stream parser: after a frame that fails to decode it skips the whole claimed size, not one byte",
+        (("templates/c/stream_parser.h.j2",
+          "        pos += 1u;  /* no frame starts at this byte */\n        s->skipped += 1u;",
+          "        pos += size > 0u ? size : 1u;\n        s->skipped += (uint32_t)(size > 0u ? size : 1u);"),),
+        ("tests/test_resynchronisation.py", "tests/test_unsynced_frames.py", "tests/test_payload_length.py"),
+        "a test aimed at it is added on another branch"),
+    Mutant(
         "python-one-hot-takes-bool",
         "Python encoders: a one-hot field takes True as the value 1",
         (("compiler/targets/python/view.py",

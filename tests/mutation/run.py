@@ -99,16 +99,25 @@ def trial(mutant: Mutant | None, files: Snapshot, tests: tuple[str, ...], timeou
         return f"error (pytest exit {result.returncode})", f"{last} ({took})"
 
 
-def table(rows: list[tuple[Mutant, str, str]], baselines: dict[tuple[str, ...], tuple[str, str]]) -> str:
-    out = ["| mutant | bug | tests | result | detail |", "|---|---|---|---|---|"]
-    for m, verdict, detail in rows:
-        note = f" Note: {m.note}." if m.note else ""
-        cell = lambda s: s.replace("|", "\\|").replace("\n", " ")  # noqa: E731
-        out.append(f"| `{m.name}` | {cell(m.what)}.{cell(note)} | `{cell(' '.join(m.tests))}` | **{verdict}** "
-                   f"| {cell(detail)} |")
-    out += ["", "Baselines (the same tests without a mutant):", ""]
-    out += [f"- `{' '.join(tests)}`: {verdict}, {detail}" for tests, (verdict, detail) in baselines.items()]
-    return "\n".join(out)
+def row(m: Mutant, verdict: str, detail: str, baseline: str, checkout: str) -> str:
+    """One line of the results table."""
+    def cell(text: str) -> str:
+        return text.replace("|", "\\|").replace("\n", " ")
+    note = f" Note: {m.note}." if m.note else ""
+    return (f"| `{m.name}` | {cell(m.what)}.{cell(note)} | `{cell(' '.join(m.tests))}` | **{verdict}** "
+            f"| {cell(detail)} | {cell(baseline)} | {checkout} |")
+
+
+HEAD = ["| mutant | bug | tests | result | detail | without the mutant | checkout |",
+        "|---|---|---|---|---|---|---|"]
+
+
+def recorded() -> dict[str, str]:
+    """The rows of RESULTS.md by mutant name: a run of some mutants keeps the others'."""
+    if not RESULTS.is_file():
+        return {}
+    lines = RESULTS.read_text(encoding="utf-8").splitlines()
+    return {line.split("`")[1]: line for line in lines if line.startswith("| `")}
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -132,29 +141,32 @@ def main(argv: list[str] | None = None) -> int:
         commit += " with uncommitted changes"
     files = snapshot()
     baselines: dict[tuple[str, ...], tuple[str, str]] = {}  # the unmutated checkout must pass each mutant's tests
-    rows = []
+    rows = {}
     for m in mutants:
         if m.tests not in baselines:
             print(f"baseline: {' '.join(m.tests)}", flush=True)
             verdict, detail = trial(None, files, m.tests, args.timeout)
             baselines[m.tests] = ("passed" if verdict == "SURVIVED" else "FAILED: " + verdict, detail)
             print(f"  {baselines[m.tests][0]}: {detail}", flush=True)
-        if baselines[m.tests][0] != "passed":
-            rows.append((m, "not measured", "the tests fail without the mutant"))
+        state, summary = baselines[m.tests]
+        if state != "passed":
+            rows[m.name] = row(m, "not measured", "the tests fail without the mutant", f"{state}: {summary}", commit)
             continue
         print(f"{m.name}: {' '.join(m.tests)}", flush=True)
         verdict, detail = trial(m, files, m.tests, args.timeout)
         print(f"  {verdict}: {detail}", flush=True)
-        rows.append((m, verdict, detail))
-    text = table(rows, baselines)
+        rows[m.name] = row(m, verdict, detail, summary, commit)
     print()
-    print(text)
+    print("\n".join(HEAD + list(rows.values())))
     if args.record:
+        kept = {**recorded(), **rows}
+        lines = [kept[m.name] for m in MUTANTS if m.name in kept]
         RESULTS.write_text(
-            "# Mutation results\n\nWritten by `python -m tests.mutation --record`; run it again after changing "
-            "the mutants or the tests.\n\nEach mutant is a plausible bug patched into a copy of the checkout "
-            f"(`tests/mutation/mutants.py`); generated/ is rebuilt from the mutated generator and the named "
-            f"tests run. Caught: they fail. SURVIVED: they pass with the bug in.\n\nCheckout: {commit}; "
-            f"{time.strftime('%Y-%m-%d')}.\n\n{text}\n", encoding="utf-8")
+            "# Mutation results\n\nWritten by `python -m tests.mutation --record` (a run of some mutants, "
+            "`--only`, replaces their rows); run it again after changing the mutants or the tests.\n\n"
+            "Each mutant is a plausible bug patched into a copy of the checkout (`tests/mutation/mutants.py`); "
+            "generated/ is rebuilt from the mutated generator and the named tests run, with `-x`. Caught: "
+            "they fail. SURVIVED: they pass with the bug in. The same tests pass without the mutant "
+            "(the column before the checkout).\n\n" + "\n".join(HEAD + lines) + "\n", encoding="utf-8")
         print(f"\nwrote {RESULTS.relative_to(ROOT)}")
     return 0
