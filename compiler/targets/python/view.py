@@ -752,8 +752,8 @@ class MessageCode:
           f"{('a value when ' + says + ', else None')!r})")
 
     def check_group(self, c: Code, path: tuple, absent_ok: bool = False) -> None:
-        """A group member must be an object of its class: its fields are read by name, and
-        anything else would fail there with an AttributeError, or pass with the same names."""
+        """A group member must be an object of its class (None too where a frame may leave it
+        out): its fields are read by name, which fails on anything else with an AttributeError."""
         cls, v = self.view.group_class(self.m, path), self.group_var(path)
         absent = f"{v} is not None and " if absent_ok else ""
         c(f"if {absent}{v}.__class__ is not {cls} and not isinstance({v}, {cls}):")
