@@ -160,3 +160,39 @@ def test_a_broken_schema_rule_is_named_by_its_id():
     with pytest.raises(car.EncodeError) as err:
         car.encode(car.Header(h1=0, h2_count=0, h2_time=0))
     assert str(err.value).startswith("header.h2_time: 0 breaks rule CAR-D3 (expected if h2_count == 0 then")
+
+
+def integer_limits(field):
+    """The schema's bounds of a plain integer field: its range, else its type's width
+    (uN: 0..2**N - 1, iN: -2**(N-1)..2**(N-1) - 1); None for any other field."""
+    if field.kind not in ("uint", "int") or not field.is_member or field.dispatch or not field.bits \
+            or field.scale is not None or field.offset or field.one_hot or field.values or field.enum or field.flags:
+        return None
+    if field.range:
+        return field.range
+    if field.kind == "uint":
+        return 0, (1 << field.bits) - 1
+    return -(1 << (field.bits - 1)), (1 << (field.bits - 1)) - 1
+
+
+@pytest.mark.parametrize("name", ALL)
+def test_integer_fields_refuse_one_past_either_end_of_their_range(name):
+    """lo - 1 and hi + 1 of each plain integer field, bounds read from the schema: an
+    EncodeError, never a frame, nor a value masked into its neighbours' bits."""
+    from codeword.build import compile_schema
+    codec = codec_of(name)
+    schema = (ROOT / "schemas" if name in PROTOCOLS else ROOT / "examples") / f"{name}.yaml"
+    protocol = compile_schema(schema)
+    checked = 0
+    for obj in example_objects(codec):
+        message = next(m for m in protocol.messages if m.name == obj.NAME)
+        fields = {leaf.path: leaf.field for leaf in message.wire.leaves if all(isinstance(p, str) for p in leaf.path)}
+        for path in leaf_paths(obj):
+            limits = integer_limits(fields[path]) if path in fields else None
+            if limits is None:
+                continue
+            for value in (limits[0] - 1, limits[1] + 1):
+                with pytest.raises(codec.EncodeError):
+                    codec.encode(with_value(obj, path, value))
+                checked += 1
+    assert checked >= 4, name
