@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import shlex
 import subprocess
 import sys
 import tempfile
@@ -126,11 +127,12 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--record", action="store_true", help=f"write the table to {RESULTS.relative_to(ROOT)}")
     parser.add_argument("--timeout", type=int, default=1800, help="seconds per build or test run")
     parser.add_argument("--list", action="store_true", help="list the mutants and exit")
-    parser.add_argument("--tests", nargs="+", metavar="ARG", help="pytest arguments in place of each mutant's tests")
+    parser.add_argument("--tests", metavar="ARGS",
+                        help="pytest arguments in place of each mutant's tests, as one string (\"tests/test_x.py -k y\")")
     args = parser.parse_args(argv)
     mutants = [m for m in MUTANTS if not args.only or m.name in args.only]
     if args.tests:
-        mutants = [replace(m, tests=tuple(args.tests)) for m in mutants]
+        mutants = [replace(m, tests=tuple(shlex.split(args.tests))) for m in mutants]
     if args.list or not mutants:
         for m in MUTANTS:
             print(f"{m.name}: {m.what}")
