@@ -89,7 +89,7 @@ MUTANTS = (
         ("tests/test_vectors.py", "tests/test_signed_enum.py", "tests/test_bitstruct_oracle.py")),
     Mutant(
         "c-lsb-first-bit-order",
-        "C runtime: cw_get_bits_lsb reads each byte's bits from the top (MSB-first) ",
+        "C runtime: cw_get_bits_lsb reads each byte's bits from the top (MSB-first)",
         (("templates/c/codeword.h.j2",
           "        if (((unsigned)p[bit >> 3] >> (bit & 7u)) & 1u) {\n            v |= (uint32_t)1u << i;",
           "        if (((unsigned)p[bit >> 3] >> (7u - (bit & 7u))) & 1u) {\n            v |= (uint32_t)1u << i;"),),
