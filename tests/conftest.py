@@ -18,6 +18,29 @@ PROTOCOLS = ("route", "car", "tank", "mtv4", "tr24")
 
 sys.path.insert(0, str(ROOT))
 
+
+def imported_codeword() -> Path:
+    """The folder the `codeword` package is imported from."""
+    import codeword
+    return Path(codeword.__file__).resolve().parent
+
+
+def pytest_sessionstart(session) -> None:
+    """The tests test this checkout: an editable install of another clone (or a released
+    codeword) would be tested in its place, and pass or fail for the wrong code."""
+    found = imported_codeword()
+    if found != ROOT / "compiler":
+        raise pytest.UsageError(f"`import codeword` finds {found}, not this checkout's {ROOT / 'compiler'}; "
+                                f"run `pip install -e .` in {ROOT} (with the Python that runs the tests)")
+
+
+def needs(what: str, install: str) -> None:
+    """A test whose tool is missing skips on a developer's machine and fails in CI (CI set,
+    as .ci/run sets it), where scripts/install-toolchains and scripts/setup install it."""
+    if os.environ.get("CI"):
+        pytest.fail(f"{what} is missing; {install}")
+    pytest.skip(f"{what} is not installed ({install})")
+
 # the build cache (compiler/cache.py) of this run, apart from the user's; builds in subprocesses inherit it
 _CACHE = tempfile.TemporaryDirectory(prefix="codeword-test-cache-")
 os.environ["CODEWORD_CACHE"] = _CACHE.name

@@ -1,17 +1,25 @@
 """The generated Python codecs raise only their CodecError subclasses, for any input
 of any type: every public entry point of every seed protocol is called with values
-of the wrong type, shape and size, and every field of every message is set to them
-before encoding. Returning normally is allowed (a decoder may accept what it can
-read); any other exception is a defect."""
+of the wrong type, shape and size, and every field of every message (of the seed
+protocols and the examples) is set to them before encoding. A decoder may return
+normally (it may accept what it can read); an encoder given a value of the wrong
+type, shape or size for its field raises its EncodeError; any other exception is a
+defect."""
 from __future__ import annotations
 
 import dataclasses
 import enum
+import importlib.util
 import itertools
+import json
+import sys
 
 import pytest
 
-from conftest import PROTOCOLS, load_generated
+from conftest import PROTOCOLS, ROOT, load_generated
+from wrong_values import member_paths, with_value, wrong_values
+
+EXAMPLES = ("mavlink1", "mavlink2", "modbus_rtu", "nmea0183", "ubx")
 
 def released_view() -> memoryview:
     view = memoryview(b"\xaa\x08\x03\x01" * 3)
@@ -71,11 +79,27 @@ def test_entry_points_raise_only_codec_errors(name):
                 raise AssertionError(f"{name}.{label}({value!r:.40}) raised {type(exc).__name__}: {exc}") from exc
 
 
+GENERATED = {**{name: (ROOT / "generated" / "python", ROOT / "generated" / "vectors") for name in PROTOCOLS},
+             **{name: (ROOT / "generated" / "examples" / "python", ROOT / "generated" / "examples" / "vectors")
+                for name in EXAMPLES}}
+
+
+def codec_of(name: str):
+    """A seed protocol's module (conftest's), or an example's, imported the same stand-alone way."""
+    if name in PROTOCOLS:
+        return load_generated(name)
+    key = f"generated_example_{name}"
+    if key not in sys.modules:
+        spec = importlib.util.spec_from_file_location(key, GENERATED[name][0] / f"{name}.py")
+        module = importlib.util.module_from_spec(spec)
+        sys.modules[key] = module
+        spec.loader.exec_module(module)
+    return sys.modules[key]
+
+
 def example_objects(codec):
     """One valid object per message: decoded from the vectors the build wrote."""
-    import json
-    from conftest import ROOT
-    vectors = json.loads((ROOT / "generated" / "vectors" / f"{codec.PROTOCOL}.json").read_text())
+    vectors = json.loads((GENERATED[codec.PROTOCOL][1] / f"{codec.PROTOCOL}.json").read_text())
     seen = {}
     for case in vectors["valid"]:
         if case["message"] not in seen:
@@ -92,26 +116,30 @@ def leaf_paths(obj, prefix=()):
             yield prefix + (f.name,)
 
 
-def with_value(obj, path, value):
-    if len(path) == 1:
-        return dataclasses.replace(obj, **{path[0]: value})
-    return dataclasses.replace(obj, **{path[0]: with_value(getattr(obj, path[0]), path[1:], value)})
+ALL = PROTOCOLS + EXAMPLES
 
 
-@pytest.mark.parametrize("name", PROTOCOLS)
+@pytest.mark.parametrize("name", ALL)
 def test_every_field_refuses_hostile_values_with_an_encode_error(name):
-    codec = load_generated(name)
+    """Any value: an EncodeError or a frame. A value of the wrong type, shape or size for
+    the field: an EncodeError, never a frame."""
+    codec = codec_of(name)
+    checked = 0
     for obj in example_objects(codec):
-        for path in leaf_paths(obj):
-            for value in HOSTILE:
+        for path in member_paths(obj):
+            where = f"{name} {type(obj).__name__}.{'.'.join(path)}"
+            wrong = wrong_values(codec, obj, path)
+            for value in HOSTILE + wrong:
                 bad = with_value(obj, path, value)
                 try:
                     codec.encode(bad)
                 except codec.EncodeError:
-                    pass
+                    checked += any(value is w for w in wrong)
+                    continue
                 except Exception as exc:  # noqa: BLE001
-                    raise AssertionError(f"{name} {type(obj).__name__}.{'.'.join(path)} = {value!r:.40}: "
-                                         f"{type(exc).__name__}: {exc}") from exc
+                    raise AssertionError(f"{where} = {value!r:.40}: {type(exc).__name__}: {exc}") from exc
+                assert not any(value is w for w in wrong), f"{where} = {value!r:.40} was encoded, not refused"
+    assert checked > 100, name
 
 
 @pytest.mark.parametrize("name", [p for p in PROTOCOLS if p != "tr24"])  # tr24 has no enums or flags
@@ -142,3 +170,39 @@ def test_a_broken_schema_rule_is_named_by_its_id():
     with pytest.raises(car.EncodeError) as err:
         car.encode(car.Header(h1=0, h2_count=0, h2_time=0))
     assert str(err.value).startswith("header.h2_time: 0 breaks rule CAR-D3 (expected if h2_count == 0 then")
+
+
+def integer_limits(field):
+    """The schema's bounds of a plain integer field: its range, else its type's width
+    (uN: 0..2**N - 1, iN: -2**(N-1)..2**(N-1) - 1); None for any other field."""
+    if field.kind not in ("uint", "int") or not field.is_member or field.dispatch or not field.bits \
+            or field.scale is not None or field.offset or field.one_hot or field.values or field.enum or field.flags:
+        return None
+    if field.range:
+        return field.range
+    if field.kind == "uint":
+        return 0, (1 << field.bits) - 1
+    return -(1 << (field.bits - 1)), (1 << (field.bits - 1)) - 1
+
+
+@pytest.mark.parametrize("name", ALL)
+def test_integer_fields_refuse_one_past_either_end_of_their_range(name):
+    """lo - 1 and hi + 1 of each plain integer field, bounds read from the schema: an
+    EncodeError, never a frame, nor a value masked into its neighbours' bits."""
+    from codeword.build import compile_schema
+    codec = codec_of(name)
+    schema = (ROOT / "schemas" if name in PROTOCOLS else ROOT / "examples") / f"{name}.yaml"
+    protocol = compile_schema(schema)
+    checked = 0
+    for obj in example_objects(codec):
+        message = next(m for m in protocol.messages if m.name == obj.NAME)
+        fields = {leaf.path: leaf.field for leaf in message.wire.leaves if all(isinstance(p, str) for p in leaf.path)}
+        for path in leaf_paths(obj):
+            limits = integer_limits(fields[path]) if path in fields else None
+            if limits is None:
+                continue
+            for value in (limits[0] - 1, limits[1] + 1):
+                with pytest.raises(codec.EncodeError):
+                    codec.encode(with_value(obj, path, value))
+                checked += 1
+    assert checked >= 4, name

@@ -1,6 +1,8 @@
-"""Every entry of the RevEng CRC catalogue reproduces its check value, both in
-the reference implementation and in the code the Python target generates."""
+"""Every entry of the RevEng CRC catalogue reproduces its check value, in the
+reference implementation and in the code the Python and C targets generate."""
 from __future__ import annotations
+
+import shutil
 
 import pytest
 
@@ -8,6 +10,7 @@ from codeword import crc
 from codeword.model import Checksum
 from codeword.pyload import load_module
 from codeword.targets.python.view import _checksum_code, _checksum_name, _fixed_span_crc_code, _positional_crc_code
+from conftest import ROOT
 
 HEAD = "from __future__ import annotations\n"  # as in a generated module: annotations are not evaluated
 ENTRIES = sorted({p.name: p for p in crc.catalogue().values()}.values(), key=lambda p: p.name)
@@ -65,3 +68,19 @@ def test_lookup_by_alias_is_case_insensitive():
     assert crc.lookup("crc-16/cms").check == 0xAEE7
     assert crc.lookup("XFER").name == "CRC-32/XFER"
     assert crc.lookup("CRC-16/NOPE") is None
+
+
+@pytest.mark.parametrize("table", [False, True], ids=["bitwise", "table"])
+def test_generated_c_reproduces_every_check(tmp_path, table):
+    """The C a header holds for each catalogue CRC (bitwise, and table-driven under
+    <GUARD>_CRC_TABLE) gives the catalogue's check value for "123456789"."""
+    from codeword.targets.c.view import checksum_code
+    from schema_in_a_test import run_c
+    functions = [checksum_code(f"crc_{i}", Checksum("crc", "bytes", ("a", "b"), crc=p), "CAT")
+                 for i, p in enumerate(ENTRIES)]
+    calls = "\n".join(f'    printf("%llu\\n", (unsigned long long)crc_{i}(check, 9));' for i in range(len(ENTRIES)))
+    driver = ("#include <stdio.h>\n#include \"codeword.h\"\n" + "\n".join(functions) +
+              "\nint main(void)\n{\n    static const uint8_t check[] = \"123456789\";\n" + calls + "\n    return 0;\n}\n")
+    shutil.copy(ROOT / "generated" / "c" / "codeword.h", tmp_path / "codeword.h")
+    lines = run_c(tmp_path, driver, ("-DCAT_CRC_TABLE",) if table else ())
+    assert {p.name: int(line) for p, line in zip(ENTRIES, lines)} == {p.name: p.check for p in ENTRIES}

@@ -284,3 +284,87 @@ def test_a_changed_condition_or_maximum_is_breaking(tmp_path):
     assert ("field volts", "sent when parts has battery, now parts has gps") in changes(d, BREAKING)
     d = diff_of(tmp_path, tele, "max_count: 3", "max_count: 4")
     assert d.breaking
+
+
+def verdict(tmp_path: Path, source: Path, old: str, new: str, capsys) -> tuple[int, str]:
+    """`codeword diff`'s exit status and text for `source` against it edited."""
+    folder = tmp_path / f"edit{len(list(tmp_path.iterdir()))}"
+    folder.mkdir()
+    status = main(["diff", str(source), str(edited(folder, source, old, new))])
+    return status, capsys.readouterr().out
+
+
+# tank's systemstatus takes 0..4 of its enum's seven values (TANK-D2: 5 and 6 come only from the platform)
+SYSTEMSTATUS = "        values: [0, 1, 2, 3, 4]\n"
+
+
+def test_allowed_values_narrowed_break_the_wire_and_fail_the_gate(tmp_path, capsys):
+    """A frame with systemstatus 4 is valid to an old decoder; a new one refuses it. The
+    gate (exit 1) must not pass it, nor a list that trades 4 for 5."""
+    tank = SCHEMAS / "tank.yaml"
+    narrowed = diff_of(tmp_path, tank, SYSTEMSTATUS, SYSTEMSTATUS.replace(", 4]", "]"))
+    assert narrowed.breaking
+    assert changes(narrowed, BREAKING) == {("field systemstatus", "allowed values narrowed: ['4']")}
+    assert not narrowed.of_kind(COMPATIBLE)
+    status, out = verdict(tmp_path, tank, SYSTEMSTATUS, SYSTEMSTATUS.replace(", 4]", "]"), capsys)
+    assert status == 1 and "result: WIRE-BREAKING" in out
+    traded = diff_of(tmp_path, tank, SYSTEMSTATUS, SYSTEMSTATUS.replace(", 4]", ", 5]"))
+    assert changes(traded, BREAKING) == {("field systemstatus", "allowed values narrowed: ['4']")}
+    assert verdict(tmp_path, tank, SYSTEMSTATUS, SYSTEMSTATUS.replace(", 4]", ", 5]"), capsys)[0] == 1
+    # a list where there was none restricts a field that took every value of its enum
+    unrestricted = tmp_path / "unrestricted" / "tank.yaml"
+    unrestricted.parent.mkdir()
+    unrestricted.write_text(tank.read_text(encoding="utf-8").replace(SYSTEMSTATUS, ""), encoding="utf-8")
+    restricted = compare(compile_schema(unrestricted), compile_schema(tank))
+    assert changes(restricted, BREAKING) == {("field systemstatus", "allowed values narrowed: now restricted")}
+    assert main(["diff", str(unrestricted), str(tank)]) == 1
+
+
+def test_allowed_values_widened_keep_the_wire_and_pass_the_gate(tmp_path, capsys):
+    """Every frame valid before (systemstatus 0..4) is valid after: compatible, exit 0."""
+    tank = SCHEMAS / "tank.yaml"
+    widened = diff_of(tmp_path, tank, SYSTEMSTATUS, SYSTEMSTATUS.replace(", 4]", ", 4, 5]"))
+    assert not widened.breaking
+    assert changes(widened, COMPATIBLE) == {("field systemstatus", "allowed values widened: ['5']")}
+    status, out = verdict(tmp_path, tank, SYSTEMSTATUS, SYSTEMSTATUS.replace(", 4]", ", 4, 5]"), capsys)
+    assert status == 0 and "WIRE-BREAKING" not in out
+    dropped = diff_of(tmp_path, tank, SYSTEMSTATUS, "")
+    assert not dropped.breaking
+    assert changes(dropped, COMPATIBLE) == {("field systemstatus", "allowed values widened: no longer restricted")}
+    assert verdict(tmp_path, tank, SYSTEMSTATUS, "", capsys)[0] == 0
+    # the same set in another order is the same wire
+    reordered = diff_of(tmp_path, tank, SYSTEMSTATUS, SYSTEMSTATUS.replace("0, 1, 2, 3, 4", "4, 3, 2, 1, 0"))
+    assert not reordered.breaking
+    assert changes(reordered, COMPATIBLE) == {("field systemstatus", "allowed values reordered (the same set)")}
+
+
+SPEED = "    range: [0, 100]\n"  # tank's speed_percent (TANK-D3)
+
+
+def test_a_range_moved_added_or_removed(tmp_path, capsys):
+    """0..100 to 10..120 loses 0..9: breaking though it grew at the top; to -10..90 loses
+    91..100. A range where there was none narrows an i32 to it; dropping it widens."""
+    tank = SCHEMAS / "tank.yaml"
+    for new, what in [("[10, 120]", "range narrowed from 0..100 to 10..120"),
+                      ("[-10, 90]", "range narrowed from 0..100 to -10..90"),
+                      ("[0, 99]", "range narrowed from 0..100 to 0..99"),
+                      ("[1, 100]", "range narrowed from 0..100 to 1..100")]:
+        d = diff_of(tmp_path, tank, SPEED, SPEED.replace("[0, 100]", new))
+        assert ("field speed", what) in changes(d, BREAKING), new
+        assert not d.of_kind(COMPATIBLE), new
+        assert verdict(tmp_path, tank, SPEED, SPEED.replace("[0, 100]", new), capsys)[0] == 1
+    for new, what in [("[-1, 100]", "range widened from 0..100 to -1..100"),
+                      ("[0, 101]", "range widened from 0..100 to 0..101")]:
+        d = diff_of(tmp_path, tank, SPEED, SPEED.replace("[0, 100]", new))
+        assert not d.breaking and ("field speed", what) in changes(d, COMPATIBLE), new
+        assert verdict(tmp_path, tank, SPEED, SPEED.replace("[0, 100]", new), capsys)[0] == 0
+    dropped = diff_of(tmp_path, tank, SPEED, "")
+    assert not dropped.breaking
+    assert ("field speed", "range 0..100 removed (widened)") in changes(dropped, COMPATIBLE)
+    assert verdict(tmp_path, tank, SPEED, "", capsys)[0] == 0
+    unranged = tmp_path / "unranged" / "tank.yaml"
+    unranged.parent.mkdir()
+    unranged.write_text(tank.read_text(encoding="utf-8").replace(SPEED, ""), encoding="utf-8")
+    added = compare(compile_schema(unranged), compile_schema(tank))
+    assert ("field speed", "range 0..100 added (narrowed)") in changes(added, BREAKING)
+    assert main(["diff", str(unranged), str(tank)]) == 1

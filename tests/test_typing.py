@@ -14,6 +14,8 @@ from pathlib import Path
 
 import pytest
 
+from conftest import needs
+
 ROOT = Path(__file__).resolve().parent.parent
 FOLDERS = [ROOT / "generated" / "python", ROOT / "generated" / "examples" / "python"]
 MODULES = sorted(path for folder in FOLDERS for path in folder.glob("*.py"))
@@ -64,7 +66,10 @@ def cache(tmp_path_factory) -> Path:
 
 
 def _mypy(paths: list[Path], cwd: Path, cache: Path) -> subprocess.CompletedProcess[str]:
-    pytest.importorskip("mypy", reason="pip install mypy (the test extra)")
+    try:
+        import mypy  # noqa: F401 - only whether it is there
+    except ImportError:
+        needs("mypy", "pip install mypy (the test extra)")
     return subprocess.run([sys.executable, "-m", "mypy", "--strict", "--cache-dir", str(cache), *map(str, paths)],
                           cwd=cwd, capture_output=True, text=True,
                           env={"MYPYPATH": str(FOLDERS[0]), "PATH": "/usr/bin:/bin"})
@@ -72,7 +77,7 @@ def _mypy(paths: list[Path], cwd: Path, cache: Path) -> subprocess.CompletedProc
 
 def _pyright(paths: list[Path], cwd: Path) -> subprocess.CompletedProcess[str]:
     if shutil.which("pyright") is None:
-        pytest.skip("pip install pyright (the test extra)")
+        needs("pyright", "pip install pyright (the test extra)")
     config = cwd / "pyrightconfig.json"
     config.write_text(json.dumps({"typeCheckingMode": "strict", "extraPaths": [str(FOLDERS[0])]}), encoding="utf-8")
     return subprocess.run(["pyright", "-p", str(config), *map(str, paths)], cwd=cwd, capture_output=True, text=True)

@@ -309,7 +309,9 @@ def _value_set(a, b, what: str, add) -> None:
     if a == b:
         return
     sa, sb = set(a or ()), set(b or ())
-    if a is None or b is not None and not sa <= sb:
+    if a is not None and b is not None and sa == sb:  # the order of a list of allowed values means nothing
+        add(COMPATIBLE, f"{what} reordered (the same set)")
+    elif a is None or b is not None and not sa <= sb:
         add(BREAKING, f"{what} narrowed: {sorted(map(str, sa - sb)) or 'now restricted'}")
     else:
         add(COMPATIBLE, f"{what} widened: {sorted(map(str, sb - sa)) or 'no longer restricted'}")

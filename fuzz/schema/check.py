@@ -26,6 +26,7 @@ from .generate import generate
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tests"))  # the conformance driver writer, shared with tests/test_c.py
 from cdriver import Driver  # noqa: E402
+from wrong_values import refusals  # noqa: E402 - shared with tests/test_codec_inputs.py
 
 STRICT = ["-std=c99", "-O0", "-Wall", "-Wextra", "-Wpedantic", "-Wconversion", "-Wsign-conversion", "-Wshadow",
           "-Werror", "-fsanitize=undefined", "-fno-sanitize-recover=all"]
@@ -129,11 +130,15 @@ def _wire(case: dict, text: bool):
 
 def python_checks(mod, vectors: dict, text: bool, rng: random.Random) -> str:
     """Every valid vector decodes and encodes back; every invalid one is refused with
-    a DecodeError; damaged frames give only codec errors, and what decodes encodes."""
+    a DecodeError; a value of the wrong type, shape or size in any field of a decoded
+    message is refused with an EncodeError; damaged frames give only codec errors, and
+    what decodes encodes."""
     frames = []
+    objects = {}  # one decoded message of each class
     for case in vectors["valid"]:
         wire = _wire(case, text)
         obj = mod.decode(wire, case.get("direction"))
+        objects.setdefault(type(obj), obj)
         again = mod.encode(obj)
         canonical = case.get("canonical", case.get("text") if text else case.get("hex"))
         if again != (canonical if text else bytes.fromhex(canonical)):
@@ -146,8 +151,9 @@ def python_checks(mod, vectors: dict, text: bool, rng: random.Random) -> str:
             continue
         return f"invalid {case['name']!r} decoded"
     problem = stream_checks(mod, vectors, frames) if not text and hasattr(mod, "StreamDecoder") else ""
-    if problem:
-        return problem
+    refused = "" if problem else refusals(mod, objects.values())
+    if problem or refused:
+        return problem or f"wrong value: {refused}"
     for frame in frames[:10]:
         for _ in range(MUTATIONS // 10 or 1):
             bad = _damage(frame, rng)

@@ -401,7 +401,7 @@ def _encode_header(m: Header) -> bytes:
     if r_h2_time is None:
         r_h2_time = 0
     else:
-        if r_h2_time.__class__ is not int and not isinstance(r_h2_time, int) or not 0 <= r_h2_time <= 7:
+        if r_h2_time.__class__ is not int and (not isinstance(r_h2_time, int) or r_h2_time.__class__ is bool) or not 0 <= r_h2_time <= 7:
             raise _enc('header', 'h2_time', r_h2_time, 'range', '0..7 or None', 'CAR-D3')
         r_h2_time = 1 << r_h2_time
     w: int = r_h1 << 24 | r_h2_count << 16 | r_h2_time << 8
@@ -441,18 +441,20 @@ def _encode_master_control(m: MasterControl) -> bytes:
         raise _enc('master_control', 'forward_words', m.forward_words, 'rule', 'forward_words == True', decision='CAR-R2', user_message='c2 is always 1 in a master word (the master forwards the slave words); it is hidden from the user / 在用户编写主机的行为时，默认主机该位为1，即对用户隐藏')
     r_accept_ir: Any = m.accept_ir
     if r_accept_ir is not True and r_accept_ir is not False:
-        if r_accept_ir != 0 and r_accept_ir != 1:
+        if not isinstance(r_accept_ir, int) or r_accept_ir != 0 and r_accept_ir != 1:
             raise _enc('master_control', 'accept_ir', r_accept_ir, 'type', 'a bool')
         r_accept_ir = 1 if r_accept_ir else 0
     r_forward_words: Any = m.forward_words
     if r_forward_words is not True and r_forward_words is not False:
-        if r_forward_words != 0 and r_forward_words != 1:
+        if not isinstance(r_forward_words, int) or r_forward_words != 0 and r_forward_words != 1:
             raise _enc('master_control', 'forward_words', r_forward_words, 'type', 'a bool')
         r_forward_words = 1 if r_forward_words else 0
     g_motor = m.motor
+    if g_motor.__class__ is not ControlWordMotor and not isinstance(g_motor, ControlWordMotor):
+        raise _enc('master_control', 'motor', g_motor, 'type', 'a ControlWordMotor')
     r_5motor_6enable: Any = g_motor.enable
     if r_5motor_6enable is not True and r_5motor_6enable is not False:
-        if r_5motor_6enable != 0 and r_5motor_6enable != 1:
+        if not isinstance(r_5motor_6enable, int) or r_5motor_6enable != 0 and r_5motor_6enable != 1:
             raise _enc('master_control', 'motor.enable', r_5motor_6enable, 'type', 'a bool')
         r_5motor_6enable = 1 if r_5motor_6enable else 0
     r_5motor_9direction: Any = g_motor.direction
@@ -473,6 +475,8 @@ def _encode_master_control(m: MasterControl) -> bytes:
             if not 0 <= r_5motor_8duration <= 3:
                 raise _enc('master_control', 'motor.duration', r_5motor_8duration, 'range', '0..3', None)
     g_led = m.led
+    if g_led.__class__ is not ControlWordLed and not isinstance(g_led, ControlWordLed):
+        raise _enc('master_control', 'led', g_led, 'type', 'a ControlWordLed')
     r_3led_3led = g_led.led
     r_3led_8duration = g_led.duration
     if (r_3led_3led.__class__ is not int or not 0 <= r_3led_3led <= 3) or (r_3led_8duration.__class__ is not int or not 0 <= r_3led_8duration <= 3):
@@ -487,9 +491,11 @@ def _encode_master_control(m: MasterControl) -> bytes:
             if not 0 <= r_3led_8duration <= 3:
                 raise _enc('master_control', 'led.duration', r_3led_8duration, 'range', '0..3', None)
     g_ultrasonic = m.ultrasonic
+    if g_ultrasonic.__class__ is not ControlWordUltrasonic and not isinstance(g_ultrasonic, ControlWordUltrasonic):
+        raise _enc('master_control', 'ultrasonic', g_ultrasonic, 'type', 'a ControlWordUltrasonic')
     r_10ultrasonic_6enable: Any = g_ultrasonic.enable
     if r_10ultrasonic_6enable is not True and r_10ultrasonic_6enable is not False:
-        if r_10ultrasonic_6enable != 0 and r_10ultrasonic_6enable != 1:
+        if not isinstance(r_10ultrasonic_6enable, int) or r_10ultrasonic_6enable != 0 and r_10ultrasonic_6enable != 1:
             raise _enc('master_control', 'ultrasonic.enable', r_10ultrasonic_6enable, 'type', 'a bool')
         r_10ultrasonic_6enable = 1 if r_10ultrasonic_6enable else 0
     r_10ultrasonic_6radius = g_ultrasonic.radius
@@ -507,12 +513,12 @@ def _encode_master_control(m: MasterControl) -> bytes:
                 raise _enc('master_control', 'ultrasonic.duration', r_10ultrasonic_8duration, 'range', '0..3', None)
     r_voice: Any = m.voice
     if r_voice is not True and r_voice is not False:
-        if r_voice != 0 and r_voice != 1:
+        if not isinstance(r_voice, int) or r_voice != 0 and r_voice != 1:
             raise _enc('master_control', 'voice', r_voice, 'type', 'a bool')
         r_voice = 1 if r_voice else 0
     r_body_sensor: Any = m.body_sensor
     if r_body_sensor is not True and r_body_sensor is not False:
-        if r_body_sensor != 0 and r_body_sensor != 1:
+        if not isinstance(r_body_sensor, int) or r_body_sensor != 0 and r_body_sensor != 1:
             raise _enc('master_control', 'body_sensor', r_body_sensor, 'type', 'a bool')
         r_body_sensor = 1 if r_body_sensor else 0
     w: int = r_accept_ir << 31 | r_forward_words << 30 | r_5motor_6enable << 29 | r_5motor_9direction << 27 | r_5motor_5speed << 25 | r_5motor_8duration << 23 | r_3led_3led << 21 | r_3led_8duration << 19 | r_10ultrasonic_6enable << 18 | r_10ultrasonic_6radius << 16 | r_10ultrasonic_8duration << 14 | r_voice << 13 | r_body_sensor << 12
@@ -580,18 +586,20 @@ def _decode_master_control(d: _Buffer) -> MasterControl:
 def _encode_slave_control(m: SlaveControl) -> bytes:
     r_accept_ir: Any = m.accept_ir
     if r_accept_ir is not True and r_accept_ir is not False:
-        if r_accept_ir != 0 and r_accept_ir != 1:
+        if not isinstance(r_accept_ir, int) or r_accept_ir != 0 and r_accept_ir != 1:
             raise _enc('slave_control', 'accept_ir', r_accept_ir, 'type', 'a bool')
         r_accept_ir = 1 if r_accept_ir else 0
     r_forward_words: Any = m.forward_words
     if r_forward_words is not True and r_forward_words is not False:
-        if r_forward_words != 0 and r_forward_words != 1:
+        if not isinstance(r_forward_words, int) or r_forward_words != 0 and r_forward_words != 1:
             raise _enc('slave_control', 'forward_words', r_forward_words, 'type', 'a bool')
         r_forward_words = 1 if r_forward_words else 0
     g_motor = m.motor
+    if g_motor.__class__ is not ControlWordMotor and not isinstance(g_motor, ControlWordMotor):
+        raise _enc('slave_control', 'motor', g_motor, 'type', 'a ControlWordMotor')
     r_5motor_6enable: Any = g_motor.enable
     if r_5motor_6enable is not True and r_5motor_6enable is not False:
-        if r_5motor_6enable != 0 and r_5motor_6enable != 1:
+        if not isinstance(r_5motor_6enable, int) or r_5motor_6enable != 0 and r_5motor_6enable != 1:
             raise _enc('slave_control', 'motor.enable', r_5motor_6enable, 'type', 'a bool')
         r_5motor_6enable = 1 if r_5motor_6enable else 0
     r_5motor_9direction: Any = g_motor.direction
@@ -612,6 +620,8 @@ def _encode_slave_control(m: SlaveControl) -> bytes:
             if not 0 <= r_5motor_8duration <= 3:
                 raise _enc('slave_control', 'motor.duration', r_5motor_8duration, 'range', '0..3', None)
     g_led = m.led
+    if g_led.__class__ is not ControlWordLed and not isinstance(g_led, ControlWordLed):
+        raise _enc('slave_control', 'led', g_led, 'type', 'a ControlWordLed')
     r_3led_3led = g_led.led
     r_3led_8duration = g_led.duration
     if (r_3led_3led.__class__ is not int or not 0 <= r_3led_3led <= 3) or (r_3led_8duration.__class__ is not int or not 0 <= r_3led_8duration <= 3):
@@ -626,9 +636,11 @@ def _encode_slave_control(m: SlaveControl) -> bytes:
             if not 0 <= r_3led_8duration <= 3:
                 raise _enc('slave_control', 'led.duration', r_3led_8duration, 'range', '0..3', None)
     g_ultrasonic = m.ultrasonic
+    if g_ultrasonic.__class__ is not ControlWordUltrasonic and not isinstance(g_ultrasonic, ControlWordUltrasonic):
+        raise _enc('slave_control', 'ultrasonic', g_ultrasonic, 'type', 'a ControlWordUltrasonic')
     r_10ultrasonic_6enable: Any = g_ultrasonic.enable
     if r_10ultrasonic_6enable is not True and r_10ultrasonic_6enable is not False:
-        if r_10ultrasonic_6enable != 0 and r_10ultrasonic_6enable != 1:
+        if not isinstance(r_10ultrasonic_6enable, int) or r_10ultrasonic_6enable != 0 and r_10ultrasonic_6enable != 1:
             raise _enc('slave_control', 'ultrasonic.enable', r_10ultrasonic_6enable, 'type', 'a bool')
         r_10ultrasonic_6enable = 1 if r_10ultrasonic_6enable else 0
     r_10ultrasonic_6radius = g_ultrasonic.radius
@@ -646,12 +658,12 @@ def _encode_slave_control(m: SlaveControl) -> bytes:
                 raise _enc('slave_control', 'ultrasonic.duration', r_10ultrasonic_8duration, 'range', '0..3', None)
     r_voice: Any = m.voice
     if r_voice is not True and r_voice is not False:
-        if r_voice != 0 and r_voice != 1:
+        if not isinstance(r_voice, int) or r_voice != 0 and r_voice != 1:
             raise _enc('slave_control', 'voice', r_voice, 'type', 'a bool')
         r_voice = 1 if r_voice else 0
     r_body_sensor: Any = m.body_sensor
     if r_body_sensor is not True and r_body_sensor is not False:
-        if r_body_sensor != 0 and r_body_sensor != 1:
+        if not isinstance(r_body_sensor, int) or r_body_sensor != 0 and r_body_sensor != 1:
             raise _enc('slave_control', 'body_sensor', r_body_sensor, 'type', 'a bool')
         r_body_sensor = 1 if r_body_sensor else 0
     w: int = r_accept_ir << 31 | r_forward_words << 30 | r_5motor_6enable << 29 | r_5motor_9direction << 27 | r_5motor_5speed << 25 | r_5motor_8duration << 23 | r_3led_3led << 21 | r_3led_8duration << 19 | r_10ultrasonic_6enable << 18 | r_10ultrasonic_6radius << 16 | r_10ultrasonic_8duration << 14 | r_voice << 13 | r_body_sensor << 12

@@ -200,11 +200,11 @@ class PythonView:
         c(f"{v}{typed} = cast(Any, {read})" if maybe_none else f"{v}{typed} = {read}")
         if f.kind == "bool" and keep_bool:
             c(f"if {v} is not True and {v} is not False:")
-            c(f"    if {v} != 0 and {v} != 1:")
+            c(f"    if not isinstance({v}, int) or {v} != 0 and {v} != 1:")  # 1.0 == 1, yet is no bool
             c(f"        raise _enc({where}, {v}, 'type', 'a bool')")
             c(f"    {var} = 1 if {v} else 0")
         elif f.kind == "bool":
-            c(f"if {v} is not True and {v} is not False and {v} != 0 and {v} != 1:")
+            c(f"if {v} is not True and {v} is not False and (not isinstance({v}, int) or {v} != 0 and {v} != 1):")
             c(f"    raise _enc({where}, {v}, 'type', 'a bool')")
             c(f"{var} = 1 if {v} else 0")
         elif f.enum is not None:
@@ -238,7 +238,8 @@ class PythonView:
             c(f"    {var} = 0")
             c("else:")
             lo, hi = f.range or (0, f.bits - 1)
-            c(f"    if {v}.__class__ is not int and not isinstance({v}, int) or not {lo} <= {v} <= {hi}:")
+            c(f"    if {v}.__class__ is not int and (not isinstance({v}, int) or {v}.__class__ is bool) "
+              f"or not {lo} <= {v} <= {hi}:")
             c(f"        raise _enc({where}, {v}, 'range', '{lo}..{hi} or None', {f.rule!r}{self.user(f, False)})")
             c(f"    {var} = 1 << {v}")
         elif f.kind in ("uint", "int"):
@@ -656,6 +657,7 @@ class MessageCode:
                     run.open(guard)
                     element = ElementHelper(self, of)
                     groups.add(of)
+                    self.check_group(element.code, of)
                 out = element.code if element is not None else c
                 if prefix not in groups:
                     if depth > 1:  # inside an element or a conditional field: under its guard
@@ -670,6 +672,8 @@ class MessageCode:
                         else f"{self.group_var(prefix)} = {value}")
                     if isinstance(leaf.path[depth], int):
                         self.check_list(out, prefix, "absent_ok" if absent_ok else "any" if held else "typed")
+                    else:
+                        self.check_group(out, prefix, absent_ok)
             if leaf.field.counts:
                 continue  # set from the list's length below
             run.open(guard)
@@ -746,6 +750,14 @@ class MessageCode:
         c(f"if ({self.presence_test(gap)}) != (m.{gap.field} is not None):")
         c(f"    raise _enc({name!r}, {gap.field!r}, m.{gap.field}, 'present', "
           f"{('a value when ' + says + ', else None')!r})")
+
+    def check_group(self, c: Code, path: tuple, absent_ok: bool = False) -> None:
+        """A group member must be an object of its class (None too where a frame may leave it
+        out): its fields are read by name, which fails on anything else with an AttributeError."""
+        cls, v = self.view.group_class(self.m, path), self.group_var(path)
+        absent = f"{v} is not None and " if absent_ok else ""
+        c(f"if {absent}{v}.__class__ is not {cls} and not isinstance({v}, {cls}):")
+        c(f"    raise _enc({self.m.name!r}, {dotted(path)!r}, {v}, 'type', 'a {cls}')")
 
     def check_list(self, c: Code, path: tuple, held: str = "typed") -> None:
         """An array member must be a list (or tuple) of exactly its count of elements. `held`:

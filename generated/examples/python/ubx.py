@@ -968,19 +968,19 @@ def _encode_nav_pvt(m: NavPvt) -> bytes:
             if not 0 <= r_second <= 255:
                 raise _enc('nav_pvt', 'second', r_second, 'range', '0..255', None)
     r_validDate: Any = m.validDate
-    if r_validDate is not True and r_validDate is not False and r_validDate != 0 and r_validDate != 1:
+    if r_validDate is not True and r_validDate is not False and (not isinstance(r_validDate, int) or r_validDate != 0 and r_validDate != 1):
         raise _enc('nav_pvt', 'validDate', r_validDate, 'type', 'a bool')
     r_validDate = 1 if r_validDate else 0
     r_validTime: Any = m.validTime
-    if r_validTime is not True and r_validTime is not False and r_validTime != 0 and r_validTime != 1:
+    if r_validTime is not True and r_validTime is not False and (not isinstance(r_validTime, int) or r_validTime != 0 and r_validTime != 1):
         raise _enc('nav_pvt', 'validTime', r_validTime, 'type', 'a bool')
     r_validTime = 1 if r_validTime else 0
     r_fullyResolved: Any = m.fullyResolved
-    if r_fullyResolved is not True and r_fullyResolved is not False and r_fullyResolved != 0 and r_fullyResolved != 1:
+    if r_fullyResolved is not True and r_fullyResolved is not False and (not isinstance(r_fullyResolved, int) or r_fullyResolved != 0 and r_fullyResolved != 1):
         raise _enc('nav_pvt', 'fullyResolved', r_fullyResolved, 'type', 'a bool')
     r_fullyResolved = 1 if r_fullyResolved else 0
     r_validMag: Any = m.validMag
-    if r_validMag is not True and r_validMag is not False and r_validMag != 0 and r_validMag != 1:
+    if r_validMag is not True and r_validMag is not False and (not isinstance(r_validMag, int) or r_validMag != 0 and r_validMag != 1):
         raise _enc('nav_pvt', 'validMag', r_validMag, 'type', 'a bool')
     r_validMag = 1 if r_validMag else 0
     r_tAcc = m.tAcc
@@ -1003,11 +1003,11 @@ def _encode_nav_pvt(m: NavPvt) -> bytes:
             if not 0 <= r_fixType <= 255:
                 raise _enc('nav_pvt', 'fixType', r_fixType, 'range', '0..255', None)
     r_gnssFixOk: Any = m.gnssFixOk
-    if r_gnssFixOk is not True and r_gnssFixOk is not False and r_gnssFixOk != 0 and r_gnssFixOk != 1:
+    if r_gnssFixOk is not True and r_gnssFixOk is not False and (not isinstance(r_gnssFixOk, int) or r_gnssFixOk != 0 and r_gnssFixOk != 1):
         raise _enc('nav_pvt', 'gnssFixOk', r_gnssFixOk, 'type', 'a bool')
     r_gnssFixOk = 1 if r_gnssFixOk else 0
     r_diffSoln: Any = m.diffSoln
-    if r_diffSoln is not True and r_diffSoln is not False and r_diffSoln != 0 and r_diffSoln != 1:
+    if r_diffSoln is not True and r_diffSoln is not False and (not isinstance(r_diffSoln, int) or r_diffSoln != 0 and r_diffSoln != 1):
         raise _enc('nav_pvt', 'diffSoln', r_diffSoln, 'type', 'a bool')
     r_diffSoln = 1 if r_diffSoln else 0
     r_psmState = m.psmState
@@ -1017,7 +1017,7 @@ def _encode_nav_pvt(m: NavPvt) -> bytes:
         if not 0 <= r_psmState <= 7:
             raise _enc('nav_pvt', 'psmState', r_psmState, 'range', '0..7', None)
     r_headVehValid: Any = m.headVehValid
-    if r_headVehValid is not True and r_headVehValid is not False and r_headVehValid != 0 and r_headVehValid != 1:
+    if r_headVehValid is not True and r_headVehValid is not False and (not isinstance(r_headVehValid, int) or r_headVehValid != 0 and r_headVehValid != 1):
         raise _enc('nav_pvt', 'headVehValid', r_headVehValid, 'type', 'a bool')
     r_headVehValid = 1 if r_headVehValid else 0
     r_carrSoln = m.carrSoln
@@ -1034,15 +1034,15 @@ def _encode_nav_pvt(m: NavPvt) -> bytes:
             if not 0 <= r_reserved <= 31:
                 raise _enc('nav_pvt', 'reserved', r_reserved, 'range', '0..31', None)
     r_confirmedAvai: Any = m.confirmedAvai
-    if r_confirmedAvai is not True and r_confirmedAvai is not False and r_confirmedAvai != 0 and r_confirmedAvai != 1:
+    if r_confirmedAvai is not True and r_confirmedAvai is not False and (not isinstance(r_confirmedAvai, int) or r_confirmedAvai != 0 and r_confirmedAvai != 1):
         raise _enc('nav_pvt', 'confirmedAvai', r_confirmedAvai, 'type', 'a bool')
     r_confirmedAvai = 1 if r_confirmedAvai else 0
     r_confirmedDate: Any = m.confirmedDate
-    if r_confirmedDate is not True and r_confirmedDate is not False and r_confirmedDate != 0 and r_confirmedDate != 1:
+    if r_confirmedDate is not True and r_confirmedDate is not False and (not isinstance(r_confirmedDate, int) or r_confirmedDate != 0 and r_confirmedDate != 1):
         raise _enc('nav_pvt', 'confirmedDate', r_confirmedDate, 'type', 'a bool')
     r_confirmedDate = 1 if r_confirmedDate else 0
     r_confirmedTime: Any = m.confirmedTime
-    if r_confirmedTime is not True and r_confirmedTime is not False and r_confirmedTime != 0 and r_confirmedTime != 1:
+    if r_confirmedTime is not True and r_confirmedTime is not False and (not isinstance(r_confirmedTime, int) or r_confirmedTime != 0 and r_confirmedTime != 1):
         raise _enc('nav_pvt', 'confirmedTime', r_confirmedTime, 'type', 'a bool')
     r_confirmedTime = 1 if r_confirmedTime else 0
     r_numSV = m.numSV
@@ -1142,7 +1142,7 @@ def _encode_nav_pvt(m: NavPvt) -> bytes:
             raise _enc('nav_pvt', 'pDOP', r_pDOP, 'range', '0.0..655.35', None)
     r_pDOP = _floor(r_pDOP / 0.01 + 0.5)
     r_invalidLlh: Any = m.invalidLlh
-    if r_invalidLlh is not True and r_invalidLlh is not False and r_invalidLlh != 0 and r_invalidLlh != 1:
+    if r_invalidLlh is not True and r_invalidLlh is not False and (not isinstance(r_invalidLlh, int) or r_invalidLlh != 0 and r_invalidLlh != 1):
         raise _enc('nav_pvt', 'invalidLlh', r_invalidLlh, 'type', 'a bool')
     r_invalidLlh = 1 if r_invalidLlh else 0
     r_lastCorrectionAge = m.lastCorrectionAge
@@ -1159,11 +1159,11 @@ def _encode_nav_pvt(m: NavPvt) -> bytes:
             if not 0 <= r_reserved1 <= 255:
                 raise _enc('nav_pvt', 'reserved1', r_reserved1, 'range', '0..255', None)
     r_authTime: Any = m.authTime
-    if r_authTime is not True and r_authTime is not False and r_authTime != 0 and r_authTime != 1:
+    if r_authTime is not True and r_authTime is not False and (not isinstance(r_authTime, int) or r_authTime != 0 and r_authTime != 1):
         raise _enc('nav_pvt', 'authTime', r_authTime, 'type', 'a bool')
     r_authTime = 1 if r_authTime else 0
     r_nmaFixStatus: Any = m.nmaFixStatus
-    if r_nmaFixStatus is not True and r_nmaFixStatus is not False and r_nmaFixStatus != 0 and r_nmaFixStatus != 1:
+    if r_nmaFixStatus is not True and r_nmaFixStatus is not False and (not isinstance(r_nmaFixStatus, int) or r_nmaFixStatus != 0 and r_nmaFixStatus != 1):
         raise _enc('nav_pvt', 'nmaFixStatus', r_nmaFixStatus, 'type', 'a bool')
     r_nmaFixStatus = 1 if r_nmaFixStatus else 0
     r_reserved0 = m.reserved0
@@ -1296,6 +1296,8 @@ def _decode_nav_pvt(d: _Buffer) -> NavPvt:
 
 
 def _raw_nav_sat_2sv_0(g_2sv_0: Any) -> tuple[Any, ...]:
+    if g_2sv_0.__class__ is not NavSatSv and not isinstance(g_2sv_0, NavSatSv):
+        raise _enc('nav_sat', 'sv[0]', g_2sv_0, 'type', 'a NavSatSv')
     r_2sv_0_6gnssId = g_2sv_0.gnssId
     if r_2sv_0_6gnssId.__class__ is not int or not 0 <= r_2sv_0_6gnssId <= 255:
         if not isinstance(r_2sv_0_6gnssId, int) or r_2sv_0_6gnssId.__class__ is bool:
@@ -1340,7 +1342,7 @@ def _raw_nav_sat_2sv_0(g_2sv_0: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_0_10qualityInd <= 7:
             raise _enc('nav_sat', 'sv[0].qualityInd', r_2sv_0_10qualityInd, 'range', '0..7', None)
     r_2sv_0_6svUsed: Any = g_2sv_0.svUsed
-    if r_2sv_0_6svUsed is not True and r_2sv_0_6svUsed is not False and r_2sv_0_6svUsed != 0 and r_2sv_0_6svUsed != 1:
+    if r_2sv_0_6svUsed is not True and r_2sv_0_6svUsed is not False and (not isinstance(r_2sv_0_6svUsed, int) or r_2sv_0_6svUsed != 0 and r_2sv_0_6svUsed != 1):
         raise _enc('nav_sat', 'sv[0].svUsed', r_2sv_0_6svUsed, 'type', 'a bool')
     r_2sv_0_6svUsed = 1 if r_2sv_0_6svUsed else 0
     r_2sv_0_6health = g_2sv_0.health
@@ -1350,11 +1352,11 @@ def _raw_nav_sat_2sv_0(g_2sv_0: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_0_6health <= 3:
             raise _enc('nav_sat', 'sv[0].health', r_2sv_0_6health, 'range', '0..3', None)
     r_2sv_0_8diffCorr: Any = g_2sv_0.diffCorr
-    if r_2sv_0_8diffCorr is not True and r_2sv_0_8diffCorr is not False and r_2sv_0_8diffCorr != 0 and r_2sv_0_8diffCorr != 1:
+    if r_2sv_0_8diffCorr is not True and r_2sv_0_8diffCorr is not False and (not isinstance(r_2sv_0_8diffCorr, int) or r_2sv_0_8diffCorr != 0 and r_2sv_0_8diffCorr != 1):
         raise _enc('nav_sat', 'sv[0].diffCorr', r_2sv_0_8diffCorr, 'type', 'a bool')
     r_2sv_0_8diffCorr = 1 if r_2sv_0_8diffCorr else 0
     r_2sv_0_8smoothed: Any = g_2sv_0.smoothed
-    if r_2sv_0_8smoothed is not True and r_2sv_0_8smoothed is not False and r_2sv_0_8smoothed != 0 and r_2sv_0_8smoothed != 1:
+    if r_2sv_0_8smoothed is not True and r_2sv_0_8smoothed is not False and (not isinstance(r_2sv_0_8smoothed, int) or r_2sv_0_8smoothed != 0 and r_2sv_0_8smoothed != 1):
         raise _enc('nav_sat', 'sv[0].smoothed', r_2sv_0_8smoothed, 'type', 'a bool')
     r_2sv_0_8smoothed = 1 if r_2sv_0_8smoothed else 0
     r_2sv_0_11orbitSource = g_2sv_0.orbitSource
@@ -1364,19 +1366,19 @@ def _raw_nav_sat_2sv_0(g_2sv_0: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_0_11orbitSource <= 7:
             raise _enc('nav_sat', 'sv[0].orbitSource', r_2sv_0_11orbitSource, 'range', '0..7', None)
     r_2sv_0_8ephAvail: Any = g_2sv_0.ephAvail
-    if r_2sv_0_8ephAvail is not True and r_2sv_0_8ephAvail is not False and r_2sv_0_8ephAvail != 0 and r_2sv_0_8ephAvail != 1:
+    if r_2sv_0_8ephAvail is not True and r_2sv_0_8ephAvail is not False and (not isinstance(r_2sv_0_8ephAvail, int) or r_2sv_0_8ephAvail != 0 and r_2sv_0_8ephAvail != 1):
         raise _enc('nav_sat', 'sv[0].ephAvail', r_2sv_0_8ephAvail, 'type', 'a bool')
     r_2sv_0_8ephAvail = 1 if r_2sv_0_8ephAvail else 0
     r_2sv_0_8almAvail: Any = g_2sv_0.almAvail
-    if r_2sv_0_8almAvail is not True and r_2sv_0_8almAvail is not False and r_2sv_0_8almAvail != 0 and r_2sv_0_8almAvail != 1:
+    if r_2sv_0_8almAvail is not True and r_2sv_0_8almAvail is not False and (not isinstance(r_2sv_0_8almAvail, int) or r_2sv_0_8almAvail != 0 and r_2sv_0_8almAvail != 1):
         raise _enc('nav_sat', 'sv[0].almAvail', r_2sv_0_8almAvail, 'type', 'a bool')
     r_2sv_0_8almAvail = 1 if r_2sv_0_8almAvail else 0
     r_2sv_0_8anoAvail: Any = g_2sv_0.anoAvail
-    if r_2sv_0_8anoAvail is not True and r_2sv_0_8anoAvail is not False and r_2sv_0_8anoAvail != 0 and r_2sv_0_8anoAvail != 1:
+    if r_2sv_0_8anoAvail is not True and r_2sv_0_8anoAvail is not False and (not isinstance(r_2sv_0_8anoAvail, int) or r_2sv_0_8anoAvail != 0 and r_2sv_0_8anoAvail != 1):
         raise _enc('nav_sat', 'sv[0].anoAvail', r_2sv_0_8anoAvail, 'type', 'a bool')
     r_2sv_0_8anoAvail = 1 if r_2sv_0_8anoAvail else 0
     r_2sv_0_8aopAvail: Any = g_2sv_0.aopAvail
-    if r_2sv_0_8aopAvail is not True and r_2sv_0_8aopAvail is not False and r_2sv_0_8aopAvail != 0 and r_2sv_0_8aopAvail != 1:
+    if r_2sv_0_8aopAvail is not True and r_2sv_0_8aopAvail is not False and (not isinstance(r_2sv_0_8aopAvail, int) or r_2sv_0_8aopAvail != 0 and r_2sv_0_8aopAvail != 1):
         raise _enc('nav_sat', 'sv[0].aopAvail', r_2sv_0_8aopAvail, 'type', 'a bool')
     r_2sv_0_8aopAvail = 1 if r_2sv_0_8aopAvail else 0
     r_2sv_0_10reserved13 = g_2sv_0.reserved13
@@ -1386,43 +1388,43 @@ def _raw_nav_sat_2sv_0(g_2sv_0: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_0_10reserved13 <= 1:
             raise _enc('nav_sat', 'sv[0].reserved13', r_2sv_0_10reserved13, 'range', '0..1', None)
     r_2sv_0_12sbasCorrUsed: Any = g_2sv_0.sbasCorrUsed
-    if r_2sv_0_12sbasCorrUsed is not True and r_2sv_0_12sbasCorrUsed is not False and r_2sv_0_12sbasCorrUsed != 0 and r_2sv_0_12sbasCorrUsed != 1:
+    if r_2sv_0_12sbasCorrUsed is not True and r_2sv_0_12sbasCorrUsed is not False and (not isinstance(r_2sv_0_12sbasCorrUsed, int) or r_2sv_0_12sbasCorrUsed != 0 and r_2sv_0_12sbasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[0].sbasCorrUsed', r_2sv_0_12sbasCorrUsed, 'type', 'a bool')
     r_2sv_0_12sbasCorrUsed = 1 if r_2sv_0_12sbasCorrUsed else 0
     r_2sv_0_12rtcmCorrUsed: Any = g_2sv_0.rtcmCorrUsed
-    if r_2sv_0_12rtcmCorrUsed is not True and r_2sv_0_12rtcmCorrUsed is not False and r_2sv_0_12rtcmCorrUsed != 0 and r_2sv_0_12rtcmCorrUsed != 1:
+    if r_2sv_0_12rtcmCorrUsed is not True and r_2sv_0_12rtcmCorrUsed is not False and (not isinstance(r_2sv_0_12rtcmCorrUsed, int) or r_2sv_0_12rtcmCorrUsed != 0 and r_2sv_0_12rtcmCorrUsed != 1):
         raise _enc('nav_sat', 'sv[0].rtcmCorrUsed', r_2sv_0_12rtcmCorrUsed, 'type', 'a bool')
     r_2sv_0_12rtcmCorrUsed = 1 if r_2sv_0_12rtcmCorrUsed else 0
     r_2sv_0_12slasCorrUsed: Any = g_2sv_0.slasCorrUsed
-    if r_2sv_0_12slasCorrUsed is not True and r_2sv_0_12slasCorrUsed is not False and r_2sv_0_12slasCorrUsed != 0 and r_2sv_0_12slasCorrUsed != 1:
+    if r_2sv_0_12slasCorrUsed is not True and r_2sv_0_12slasCorrUsed is not False and (not isinstance(r_2sv_0_12slasCorrUsed, int) or r_2sv_0_12slasCorrUsed != 0 and r_2sv_0_12slasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[0].slasCorrUsed', r_2sv_0_12slasCorrUsed, 'type', 'a bool')
     r_2sv_0_12slasCorrUsed = 1 if r_2sv_0_12slasCorrUsed else 0
     r_2sv_0_14spartnCorrUsed: Any = g_2sv_0.spartnCorrUsed
-    if r_2sv_0_14spartnCorrUsed is not True and r_2sv_0_14spartnCorrUsed is not False and r_2sv_0_14spartnCorrUsed != 0 and r_2sv_0_14spartnCorrUsed != 1:
+    if r_2sv_0_14spartnCorrUsed is not True and r_2sv_0_14spartnCorrUsed is not False and (not isinstance(r_2sv_0_14spartnCorrUsed, int) or r_2sv_0_14spartnCorrUsed != 0 and r_2sv_0_14spartnCorrUsed != 1):
         raise _enc('nav_sat', 'sv[0].spartnCorrUsed', r_2sv_0_14spartnCorrUsed, 'type', 'a bool')
     r_2sv_0_14spartnCorrUsed = 1 if r_2sv_0_14spartnCorrUsed else 0
     r_2sv_0_10prCorrUsed: Any = g_2sv_0.prCorrUsed
-    if r_2sv_0_10prCorrUsed is not True and r_2sv_0_10prCorrUsed is not False and r_2sv_0_10prCorrUsed != 0 and r_2sv_0_10prCorrUsed != 1:
+    if r_2sv_0_10prCorrUsed is not True and r_2sv_0_10prCorrUsed is not False and (not isinstance(r_2sv_0_10prCorrUsed, int) or r_2sv_0_10prCorrUsed != 0 and r_2sv_0_10prCorrUsed != 1):
         raise _enc('nav_sat', 'sv[0].prCorrUsed', r_2sv_0_10prCorrUsed, 'type', 'a bool')
     r_2sv_0_10prCorrUsed = 1 if r_2sv_0_10prCorrUsed else 0
     r_2sv_0_10crCorrUsed: Any = g_2sv_0.crCorrUsed
-    if r_2sv_0_10crCorrUsed is not True and r_2sv_0_10crCorrUsed is not False and r_2sv_0_10crCorrUsed != 0 and r_2sv_0_10crCorrUsed != 1:
+    if r_2sv_0_10crCorrUsed is not True and r_2sv_0_10crCorrUsed is not False and (not isinstance(r_2sv_0_10crCorrUsed, int) or r_2sv_0_10crCorrUsed != 0 and r_2sv_0_10crCorrUsed != 1):
         raise _enc('nav_sat', 'sv[0].crCorrUsed', r_2sv_0_10crCorrUsed, 'type', 'a bool')
     r_2sv_0_10crCorrUsed = 1 if r_2sv_0_10crCorrUsed else 0
     r_2sv_0_10doCorrUsed: Any = g_2sv_0.doCorrUsed
-    if r_2sv_0_10doCorrUsed is not True and r_2sv_0_10doCorrUsed is not False and r_2sv_0_10doCorrUsed != 0 and r_2sv_0_10doCorrUsed != 1:
+    if r_2sv_0_10doCorrUsed is not True and r_2sv_0_10doCorrUsed is not False and (not isinstance(r_2sv_0_10doCorrUsed, int) or r_2sv_0_10doCorrUsed != 0 and r_2sv_0_10doCorrUsed != 1):
         raise _enc('nav_sat', 'sv[0].doCorrUsed', r_2sv_0_10doCorrUsed, 'type', 'a bool')
     r_2sv_0_10doCorrUsed = 1 if r_2sv_0_10doCorrUsed else 0
     r_2sv_0_12clasCorrUsed: Any = g_2sv_0.clasCorrUsed
-    if r_2sv_0_12clasCorrUsed is not True and r_2sv_0_12clasCorrUsed is not False and r_2sv_0_12clasCorrUsed != 0 and r_2sv_0_12clasCorrUsed != 1:
+    if r_2sv_0_12clasCorrUsed is not True and r_2sv_0_12clasCorrUsed is not False and (not isinstance(r_2sv_0_12clasCorrUsed, int) or r_2sv_0_12clasCorrUsed != 0 and r_2sv_0_12clasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[0].clasCorrUsed', r_2sv_0_12clasCorrUsed, 'type', 'a bool')
     r_2sv_0_12clasCorrUsed = 1 if r_2sv_0_12clasCorrUsed else 0
     r_2sv_0_11lppCorrUsed: Any = g_2sv_0.lppCorrUsed
-    if r_2sv_0_11lppCorrUsed is not True and r_2sv_0_11lppCorrUsed is not False and r_2sv_0_11lppCorrUsed != 0 and r_2sv_0_11lppCorrUsed != 1:
+    if r_2sv_0_11lppCorrUsed is not True and r_2sv_0_11lppCorrUsed is not False and (not isinstance(r_2sv_0_11lppCorrUsed, int) or r_2sv_0_11lppCorrUsed != 0 and r_2sv_0_11lppCorrUsed != 1):
         raise _enc('nav_sat', 'sv[0].lppCorrUsed', r_2sv_0_11lppCorrUsed, 'type', 'a bool')
     r_2sv_0_11lppCorrUsed = 1 if r_2sv_0_11lppCorrUsed else 0
     r_2sv_0_11hasCorrUsed: Any = g_2sv_0.hasCorrUsed
-    if r_2sv_0_11hasCorrUsed is not True and r_2sv_0_11hasCorrUsed is not False and r_2sv_0_11hasCorrUsed != 0 and r_2sv_0_11hasCorrUsed != 1:
+    if r_2sv_0_11hasCorrUsed is not True and r_2sv_0_11hasCorrUsed is not False and (not isinstance(r_2sv_0_11hasCorrUsed, int) or r_2sv_0_11hasCorrUsed != 0 and r_2sv_0_11hasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[0].hasCorrUsed', r_2sv_0_11hasCorrUsed, 'type', 'a bool')
     r_2sv_0_11hasCorrUsed = 1 if r_2sv_0_11hasCorrUsed else 0
     r_2sv_0_11flags_spare = 0
@@ -1430,6 +1432,8 @@ def _raw_nav_sat_2sv_0(g_2sv_0: Any) -> tuple[Any, ...]:
 
 
 def _raw_nav_sat_2sv_1(g_2sv_1: Any) -> tuple[Any, ...]:
+    if g_2sv_1.__class__ is not NavSatSv and not isinstance(g_2sv_1, NavSatSv):
+        raise _enc('nav_sat', 'sv[1]', g_2sv_1, 'type', 'a NavSatSv')
     r_2sv_1_6gnssId = g_2sv_1.gnssId
     if r_2sv_1_6gnssId.__class__ is not int or not 0 <= r_2sv_1_6gnssId <= 255:
         if not isinstance(r_2sv_1_6gnssId, int) or r_2sv_1_6gnssId.__class__ is bool:
@@ -1474,7 +1478,7 @@ def _raw_nav_sat_2sv_1(g_2sv_1: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_1_10qualityInd <= 7:
             raise _enc('nav_sat', 'sv[1].qualityInd', r_2sv_1_10qualityInd, 'range', '0..7', None)
     r_2sv_1_6svUsed: Any = g_2sv_1.svUsed
-    if r_2sv_1_6svUsed is not True and r_2sv_1_6svUsed is not False and r_2sv_1_6svUsed != 0 and r_2sv_1_6svUsed != 1:
+    if r_2sv_1_6svUsed is not True and r_2sv_1_6svUsed is not False and (not isinstance(r_2sv_1_6svUsed, int) or r_2sv_1_6svUsed != 0 and r_2sv_1_6svUsed != 1):
         raise _enc('nav_sat', 'sv[1].svUsed', r_2sv_1_6svUsed, 'type', 'a bool')
     r_2sv_1_6svUsed = 1 if r_2sv_1_6svUsed else 0
     r_2sv_1_6health = g_2sv_1.health
@@ -1484,11 +1488,11 @@ def _raw_nav_sat_2sv_1(g_2sv_1: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_1_6health <= 3:
             raise _enc('nav_sat', 'sv[1].health', r_2sv_1_6health, 'range', '0..3', None)
     r_2sv_1_8diffCorr: Any = g_2sv_1.diffCorr
-    if r_2sv_1_8diffCorr is not True and r_2sv_1_8diffCorr is not False and r_2sv_1_8diffCorr != 0 and r_2sv_1_8diffCorr != 1:
+    if r_2sv_1_8diffCorr is not True and r_2sv_1_8diffCorr is not False and (not isinstance(r_2sv_1_8diffCorr, int) or r_2sv_1_8diffCorr != 0 and r_2sv_1_8diffCorr != 1):
         raise _enc('nav_sat', 'sv[1].diffCorr', r_2sv_1_8diffCorr, 'type', 'a bool')
     r_2sv_1_8diffCorr = 1 if r_2sv_1_8diffCorr else 0
     r_2sv_1_8smoothed: Any = g_2sv_1.smoothed
-    if r_2sv_1_8smoothed is not True and r_2sv_1_8smoothed is not False and r_2sv_1_8smoothed != 0 and r_2sv_1_8smoothed != 1:
+    if r_2sv_1_8smoothed is not True and r_2sv_1_8smoothed is not False and (not isinstance(r_2sv_1_8smoothed, int) or r_2sv_1_8smoothed != 0 and r_2sv_1_8smoothed != 1):
         raise _enc('nav_sat', 'sv[1].smoothed', r_2sv_1_8smoothed, 'type', 'a bool')
     r_2sv_1_8smoothed = 1 if r_2sv_1_8smoothed else 0
     r_2sv_1_11orbitSource = g_2sv_1.orbitSource
@@ -1498,19 +1502,19 @@ def _raw_nav_sat_2sv_1(g_2sv_1: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_1_11orbitSource <= 7:
             raise _enc('nav_sat', 'sv[1].orbitSource', r_2sv_1_11orbitSource, 'range', '0..7', None)
     r_2sv_1_8ephAvail: Any = g_2sv_1.ephAvail
-    if r_2sv_1_8ephAvail is not True and r_2sv_1_8ephAvail is not False and r_2sv_1_8ephAvail != 0 and r_2sv_1_8ephAvail != 1:
+    if r_2sv_1_8ephAvail is not True and r_2sv_1_8ephAvail is not False and (not isinstance(r_2sv_1_8ephAvail, int) or r_2sv_1_8ephAvail != 0 and r_2sv_1_8ephAvail != 1):
         raise _enc('nav_sat', 'sv[1].ephAvail', r_2sv_1_8ephAvail, 'type', 'a bool')
     r_2sv_1_8ephAvail = 1 if r_2sv_1_8ephAvail else 0
     r_2sv_1_8almAvail: Any = g_2sv_1.almAvail
-    if r_2sv_1_8almAvail is not True and r_2sv_1_8almAvail is not False and r_2sv_1_8almAvail != 0 and r_2sv_1_8almAvail != 1:
+    if r_2sv_1_8almAvail is not True and r_2sv_1_8almAvail is not False and (not isinstance(r_2sv_1_8almAvail, int) or r_2sv_1_8almAvail != 0 and r_2sv_1_8almAvail != 1):
         raise _enc('nav_sat', 'sv[1].almAvail', r_2sv_1_8almAvail, 'type', 'a bool')
     r_2sv_1_8almAvail = 1 if r_2sv_1_8almAvail else 0
     r_2sv_1_8anoAvail: Any = g_2sv_1.anoAvail
-    if r_2sv_1_8anoAvail is not True and r_2sv_1_8anoAvail is not False and r_2sv_1_8anoAvail != 0 and r_2sv_1_8anoAvail != 1:
+    if r_2sv_1_8anoAvail is not True and r_2sv_1_8anoAvail is not False and (not isinstance(r_2sv_1_8anoAvail, int) or r_2sv_1_8anoAvail != 0 and r_2sv_1_8anoAvail != 1):
         raise _enc('nav_sat', 'sv[1].anoAvail', r_2sv_1_8anoAvail, 'type', 'a bool')
     r_2sv_1_8anoAvail = 1 if r_2sv_1_8anoAvail else 0
     r_2sv_1_8aopAvail: Any = g_2sv_1.aopAvail
-    if r_2sv_1_8aopAvail is not True and r_2sv_1_8aopAvail is not False and r_2sv_1_8aopAvail != 0 and r_2sv_1_8aopAvail != 1:
+    if r_2sv_1_8aopAvail is not True and r_2sv_1_8aopAvail is not False and (not isinstance(r_2sv_1_8aopAvail, int) or r_2sv_1_8aopAvail != 0 and r_2sv_1_8aopAvail != 1):
         raise _enc('nav_sat', 'sv[1].aopAvail', r_2sv_1_8aopAvail, 'type', 'a bool')
     r_2sv_1_8aopAvail = 1 if r_2sv_1_8aopAvail else 0
     r_2sv_1_10reserved13 = g_2sv_1.reserved13
@@ -1520,43 +1524,43 @@ def _raw_nav_sat_2sv_1(g_2sv_1: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_1_10reserved13 <= 1:
             raise _enc('nav_sat', 'sv[1].reserved13', r_2sv_1_10reserved13, 'range', '0..1', None)
     r_2sv_1_12sbasCorrUsed: Any = g_2sv_1.sbasCorrUsed
-    if r_2sv_1_12sbasCorrUsed is not True and r_2sv_1_12sbasCorrUsed is not False and r_2sv_1_12sbasCorrUsed != 0 and r_2sv_1_12sbasCorrUsed != 1:
+    if r_2sv_1_12sbasCorrUsed is not True and r_2sv_1_12sbasCorrUsed is not False and (not isinstance(r_2sv_1_12sbasCorrUsed, int) or r_2sv_1_12sbasCorrUsed != 0 and r_2sv_1_12sbasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[1].sbasCorrUsed', r_2sv_1_12sbasCorrUsed, 'type', 'a bool')
     r_2sv_1_12sbasCorrUsed = 1 if r_2sv_1_12sbasCorrUsed else 0
     r_2sv_1_12rtcmCorrUsed: Any = g_2sv_1.rtcmCorrUsed
-    if r_2sv_1_12rtcmCorrUsed is not True and r_2sv_1_12rtcmCorrUsed is not False and r_2sv_1_12rtcmCorrUsed != 0 and r_2sv_1_12rtcmCorrUsed != 1:
+    if r_2sv_1_12rtcmCorrUsed is not True and r_2sv_1_12rtcmCorrUsed is not False and (not isinstance(r_2sv_1_12rtcmCorrUsed, int) or r_2sv_1_12rtcmCorrUsed != 0 and r_2sv_1_12rtcmCorrUsed != 1):
         raise _enc('nav_sat', 'sv[1].rtcmCorrUsed', r_2sv_1_12rtcmCorrUsed, 'type', 'a bool')
     r_2sv_1_12rtcmCorrUsed = 1 if r_2sv_1_12rtcmCorrUsed else 0
     r_2sv_1_12slasCorrUsed: Any = g_2sv_1.slasCorrUsed
-    if r_2sv_1_12slasCorrUsed is not True and r_2sv_1_12slasCorrUsed is not False and r_2sv_1_12slasCorrUsed != 0 and r_2sv_1_12slasCorrUsed != 1:
+    if r_2sv_1_12slasCorrUsed is not True and r_2sv_1_12slasCorrUsed is not False and (not isinstance(r_2sv_1_12slasCorrUsed, int) or r_2sv_1_12slasCorrUsed != 0 and r_2sv_1_12slasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[1].slasCorrUsed', r_2sv_1_12slasCorrUsed, 'type', 'a bool')
     r_2sv_1_12slasCorrUsed = 1 if r_2sv_1_12slasCorrUsed else 0
     r_2sv_1_14spartnCorrUsed: Any = g_2sv_1.spartnCorrUsed
-    if r_2sv_1_14spartnCorrUsed is not True and r_2sv_1_14spartnCorrUsed is not False and r_2sv_1_14spartnCorrUsed != 0 and r_2sv_1_14spartnCorrUsed != 1:
+    if r_2sv_1_14spartnCorrUsed is not True and r_2sv_1_14spartnCorrUsed is not False and (not isinstance(r_2sv_1_14spartnCorrUsed, int) or r_2sv_1_14spartnCorrUsed != 0 and r_2sv_1_14spartnCorrUsed != 1):
         raise _enc('nav_sat', 'sv[1].spartnCorrUsed', r_2sv_1_14spartnCorrUsed, 'type', 'a bool')
     r_2sv_1_14spartnCorrUsed = 1 if r_2sv_1_14spartnCorrUsed else 0
     r_2sv_1_10prCorrUsed: Any = g_2sv_1.prCorrUsed
-    if r_2sv_1_10prCorrUsed is not True and r_2sv_1_10prCorrUsed is not False and r_2sv_1_10prCorrUsed != 0 and r_2sv_1_10prCorrUsed != 1:
+    if r_2sv_1_10prCorrUsed is not True and r_2sv_1_10prCorrUsed is not False and (not isinstance(r_2sv_1_10prCorrUsed, int) or r_2sv_1_10prCorrUsed != 0 and r_2sv_1_10prCorrUsed != 1):
         raise _enc('nav_sat', 'sv[1].prCorrUsed', r_2sv_1_10prCorrUsed, 'type', 'a bool')
     r_2sv_1_10prCorrUsed = 1 if r_2sv_1_10prCorrUsed else 0
     r_2sv_1_10crCorrUsed: Any = g_2sv_1.crCorrUsed
-    if r_2sv_1_10crCorrUsed is not True and r_2sv_1_10crCorrUsed is not False and r_2sv_1_10crCorrUsed != 0 and r_2sv_1_10crCorrUsed != 1:
+    if r_2sv_1_10crCorrUsed is not True and r_2sv_1_10crCorrUsed is not False and (not isinstance(r_2sv_1_10crCorrUsed, int) or r_2sv_1_10crCorrUsed != 0 and r_2sv_1_10crCorrUsed != 1):
         raise _enc('nav_sat', 'sv[1].crCorrUsed', r_2sv_1_10crCorrUsed, 'type', 'a bool')
     r_2sv_1_10crCorrUsed = 1 if r_2sv_1_10crCorrUsed else 0
     r_2sv_1_10doCorrUsed: Any = g_2sv_1.doCorrUsed
-    if r_2sv_1_10doCorrUsed is not True and r_2sv_1_10doCorrUsed is not False and r_2sv_1_10doCorrUsed != 0 and r_2sv_1_10doCorrUsed != 1:
+    if r_2sv_1_10doCorrUsed is not True and r_2sv_1_10doCorrUsed is not False and (not isinstance(r_2sv_1_10doCorrUsed, int) or r_2sv_1_10doCorrUsed != 0 and r_2sv_1_10doCorrUsed != 1):
         raise _enc('nav_sat', 'sv[1].doCorrUsed', r_2sv_1_10doCorrUsed, 'type', 'a bool')
     r_2sv_1_10doCorrUsed = 1 if r_2sv_1_10doCorrUsed else 0
     r_2sv_1_12clasCorrUsed: Any = g_2sv_1.clasCorrUsed
-    if r_2sv_1_12clasCorrUsed is not True and r_2sv_1_12clasCorrUsed is not False and r_2sv_1_12clasCorrUsed != 0 and r_2sv_1_12clasCorrUsed != 1:
+    if r_2sv_1_12clasCorrUsed is not True and r_2sv_1_12clasCorrUsed is not False and (not isinstance(r_2sv_1_12clasCorrUsed, int) or r_2sv_1_12clasCorrUsed != 0 and r_2sv_1_12clasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[1].clasCorrUsed', r_2sv_1_12clasCorrUsed, 'type', 'a bool')
     r_2sv_1_12clasCorrUsed = 1 if r_2sv_1_12clasCorrUsed else 0
     r_2sv_1_11lppCorrUsed: Any = g_2sv_1.lppCorrUsed
-    if r_2sv_1_11lppCorrUsed is not True and r_2sv_1_11lppCorrUsed is not False and r_2sv_1_11lppCorrUsed != 0 and r_2sv_1_11lppCorrUsed != 1:
+    if r_2sv_1_11lppCorrUsed is not True and r_2sv_1_11lppCorrUsed is not False and (not isinstance(r_2sv_1_11lppCorrUsed, int) or r_2sv_1_11lppCorrUsed != 0 and r_2sv_1_11lppCorrUsed != 1):
         raise _enc('nav_sat', 'sv[1].lppCorrUsed', r_2sv_1_11lppCorrUsed, 'type', 'a bool')
     r_2sv_1_11lppCorrUsed = 1 if r_2sv_1_11lppCorrUsed else 0
     r_2sv_1_11hasCorrUsed: Any = g_2sv_1.hasCorrUsed
-    if r_2sv_1_11hasCorrUsed is not True and r_2sv_1_11hasCorrUsed is not False and r_2sv_1_11hasCorrUsed != 0 and r_2sv_1_11hasCorrUsed != 1:
+    if r_2sv_1_11hasCorrUsed is not True and r_2sv_1_11hasCorrUsed is not False and (not isinstance(r_2sv_1_11hasCorrUsed, int) or r_2sv_1_11hasCorrUsed != 0 and r_2sv_1_11hasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[1].hasCorrUsed', r_2sv_1_11hasCorrUsed, 'type', 'a bool')
     r_2sv_1_11hasCorrUsed = 1 if r_2sv_1_11hasCorrUsed else 0
     r_2sv_1_11flags_spare = 0
@@ -1564,6 +1568,8 @@ def _raw_nav_sat_2sv_1(g_2sv_1: Any) -> tuple[Any, ...]:
 
 
 def _raw_nav_sat_2sv_2(g_2sv_2: Any) -> tuple[Any, ...]:
+    if g_2sv_2.__class__ is not NavSatSv and not isinstance(g_2sv_2, NavSatSv):
+        raise _enc('nav_sat', 'sv[2]', g_2sv_2, 'type', 'a NavSatSv')
     r_2sv_2_6gnssId = g_2sv_2.gnssId
     if r_2sv_2_6gnssId.__class__ is not int or not 0 <= r_2sv_2_6gnssId <= 255:
         if not isinstance(r_2sv_2_6gnssId, int) or r_2sv_2_6gnssId.__class__ is bool:
@@ -1608,7 +1614,7 @@ def _raw_nav_sat_2sv_2(g_2sv_2: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_2_10qualityInd <= 7:
             raise _enc('nav_sat', 'sv[2].qualityInd', r_2sv_2_10qualityInd, 'range', '0..7', None)
     r_2sv_2_6svUsed: Any = g_2sv_2.svUsed
-    if r_2sv_2_6svUsed is not True and r_2sv_2_6svUsed is not False and r_2sv_2_6svUsed != 0 and r_2sv_2_6svUsed != 1:
+    if r_2sv_2_6svUsed is not True and r_2sv_2_6svUsed is not False and (not isinstance(r_2sv_2_6svUsed, int) or r_2sv_2_6svUsed != 0 and r_2sv_2_6svUsed != 1):
         raise _enc('nav_sat', 'sv[2].svUsed', r_2sv_2_6svUsed, 'type', 'a bool')
     r_2sv_2_6svUsed = 1 if r_2sv_2_6svUsed else 0
     r_2sv_2_6health = g_2sv_2.health
@@ -1618,11 +1624,11 @@ def _raw_nav_sat_2sv_2(g_2sv_2: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_2_6health <= 3:
             raise _enc('nav_sat', 'sv[2].health', r_2sv_2_6health, 'range', '0..3', None)
     r_2sv_2_8diffCorr: Any = g_2sv_2.diffCorr
-    if r_2sv_2_8diffCorr is not True and r_2sv_2_8diffCorr is not False and r_2sv_2_8diffCorr != 0 and r_2sv_2_8diffCorr != 1:
+    if r_2sv_2_8diffCorr is not True and r_2sv_2_8diffCorr is not False and (not isinstance(r_2sv_2_8diffCorr, int) or r_2sv_2_8diffCorr != 0 and r_2sv_2_8diffCorr != 1):
         raise _enc('nav_sat', 'sv[2].diffCorr', r_2sv_2_8diffCorr, 'type', 'a bool')
     r_2sv_2_8diffCorr = 1 if r_2sv_2_8diffCorr else 0
     r_2sv_2_8smoothed: Any = g_2sv_2.smoothed
-    if r_2sv_2_8smoothed is not True and r_2sv_2_8smoothed is not False and r_2sv_2_8smoothed != 0 and r_2sv_2_8smoothed != 1:
+    if r_2sv_2_8smoothed is not True and r_2sv_2_8smoothed is not False and (not isinstance(r_2sv_2_8smoothed, int) or r_2sv_2_8smoothed != 0 and r_2sv_2_8smoothed != 1):
         raise _enc('nav_sat', 'sv[2].smoothed', r_2sv_2_8smoothed, 'type', 'a bool')
     r_2sv_2_8smoothed = 1 if r_2sv_2_8smoothed else 0
     r_2sv_2_11orbitSource = g_2sv_2.orbitSource
@@ -1632,19 +1638,19 @@ def _raw_nav_sat_2sv_2(g_2sv_2: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_2_11orbitSource <= 7:
             raise _enc('nav_sat', 'sv[2].orbitSource', r_2sv_2_11orbitSource, 'range', '0..7', None)
     r_2sv_2_8ephAvail: Any = g_2sv_2.ephAvail
-    if r_2sv_2_8ephAvail is not True and r_2sv_2_8ephAvail is not False and r_2sv_2_8ephAvail != 0 and r_2sv_2_8ephAvail != 1:
+    if r_2sv_2_8ephAvail is not True and r_2sv_2_8ephAvail is not False and (not isinstance(r_2sv_2_8ephAvail, int) or r_2sv_2_8ephAvail != 0 and r_2sv_2_8ephAvail != 1):
         raise _enc('nav_sat', 'sv[2].ephAvail', r_2sv_2_8ephAvail, 'type', 'a bool')
     r_2sv_2_8ephAvail = 1 if r_2sv_2_8ephAvail else 0
     r_2sv_2_8almAvail: Any = g_2sv_2.almAvail
-    if r_2sv_2_8almAvail is not True and r_2sv_2_8almAvail is not False and r_2sv_2_8almAvail != 0 and r_2sv_2_8almAvail != 1:
+    if r_2sv_2_8almAvail is not True and r_2sv_2_8almAvail is not False and (not isinstance(r_2sv_2_8almAvail, int) or r_2sv_2_8almAvail != 0 and r_2sv_2_8almAvail != 1):
         raise _enc('nav_sat', 'sv[2].almAvail', r_2sv_2_8almAvail, 'type', 'a bool')
     r_2sv_2_8almAvail = 1 if r_2sv_2_8almAvail else 0
     r_2sv_2_8anoAvail: Any = g_2sv_2.anoAvail
-    if r_2sv_2_8anoAvail is not True and r_2sv_2_8anoAvail is not False and r_2sv_2_8anoAvail != 0 and r_2sv_2_8anoAvail != 1:
+    if r_2sv_2_8anoAvail is not True and r_2sv_2_8anoAvail is not False and (not isinstance(r_2sv_2_8anoAvail, int) or r_2sv_2_8anoAvail != 0 and r_2sv_2_8anoAvail != 1):
         raise _enc('nav_sat', 'sv[2].anoAvail', r_2sv_2_8anoAvail, 'type', 'a bool')
     r_2sv_2_8anoAvail = 1 if r_2sv_2_8anoAvail else 0
     r_2sv_2_8aopAvail: Any = g_2sv_2.aopAvail
-    if r_2sv_2_8aopAvail is not True and r_2sv_2_8aopAvail is not False and r_2sv_2_8aopAvail != 0 and r_2sv_2_8aopAvail != 1:
+    if r_2sv_2_8aopAvail is not True and r_2sv_2_8aopAvail is not False and (not isinstance(r_2sv_2_8aopAvail, int) or r_2sv_2_8aopAvail != 0 and r_2sv_2_8aopAvail != 1):
         raise _enc('nav_sat', 'sv[2].aopAvail', r_2sv_2_8aopAvail, 'type', 'a bool')
     r_2sv_2_8aopAvail = 1 if r_2sv_2_8aopAvail else 0
     r_2sv_2_10reserved13 = g_2sv_2.reserved13
@@ -1654,43 +1660,43 @@ def _raw_nav_sat_2sv_2(g_2sv_2: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_2_10reserved13 <= 1:
             raise _enc('nav_sat', 'sv[2].reserved13', r_2sv_2_10reserved13, 'range', '0..1', None)
     r_2sv_2_12sbasCorrUsed: Any = g_2sv_2.sbasCorrUsed
-    if r_2sv_2_12sbasCorrUsed is not True and r_2sv_2_12sbasCorrUsed is not False and r_2sv_2_12sbasCorrUsed != 0 and r_2sv_2_12sbasCorrUsed != 1:
+    if r_2sv_2_12sbasCorrUsed is not True and r_2sv_2_12sbasCorrUsed is not False and (not isinstance(r_2sv_2_12sbasCorrUsed, int) or r_2sv_2_12sbasCorrUsed != 0 and r_2sv_2_12sbasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[2].sbasCorrUsed', r_2sv_2_12sbasCorrUsed, 'type', 'a bool')
     r_2sv_2_12sbasCorrUsed = 1 if r_2sv_2_12sbasCorrUsed else 0
     r_2sv_2_12rtcmCorrUsed: Any = g_2sv_2.rtcmCorrUsed
-    if r_2sv_2_12rtcmCorrUsed is not True and r_2sv_2_12rtcmCorrUsed is not False and r_2sv_2_12rtcmCorrUsed != 0 and r_2sv_2_12rtcmCorrUsed != 1:
+    if r_2sv_2_12rtcmCorrUsed is not True and r_2sv_2_12rtcmCorrUsed is not False and (not isinstance(r_2sv_2_12rtcmCorrUsed, int) or r_2sv_2_12rtcmCorrUsed != 0 and r_2sv_2_12rtcmCorrUsed != 1):
         raise _enc('nav_sat', 'sv[2].rtcmCorrUsed', r_2sv_2_12rtcmCorrUsed, 'type', 'a bool')
     r_2sv_2_12rtcmCorrUsed = 1 if r_2sv_2_12rtcmCorrUsed else 0
     r_2sv_2_12slasCorrUsed: Any = g_2sv_2.slasCorrUsed
-    if r_2sv_2_12slasCorrUsed is not True and r_2sv_2_12slasCorrUsed is not False and r_2sv_2_12slasCorrUsed != 0 and r_2sv_2_12slasCorrUsed != 1:
+    if r_2sv_2_12slasCorrUsed is not True and r_2sv_2_12slasCorrUsed is not False and (not isinstance(r_2sv_2_12slasCorrUsed, int) or r_2sv_2_12slasCorrUsed != 0 and r_2sv_2_12slasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[2].slasCorrUsed', r_2sv_2_12slasCorrUsed, 'type', 'a bool')
     r_2sv_2_12slasCorrUsed = 1 if r_2sv_2_12slasCorrUsed else 0
     r_2sv_2_14spartnCorrUsed: Any = g_2sv_2.spartnCorrUsed
-    if r_2sv_2_14spartnCorrUsed is not True and r_2sv_2_14spartnCorrUsed is not False and r_2sv_2_14spartnCorrUsed != 0 and r_2sv_2_14spartnCorrUsed != 1:
+    if r_2sv_2_14spartnCorrUsed is not True and r_2sv_2_14spartnCorrUsed is not False and (not isinstance(r_2sv_2_14spartnCorrUsed, int) or r_2sv_2_14spartnCorrUsed != 0 and r_2sv_2_14spartnCorrUsed != 1):
         raise _enc('nav_sat', 'sv[2].spartnCorrUsed', r_2sv_2_14spartnCorrUsed, 'type', 'a bool')
     r_2sv_2_14spartnCorrUsed = 1 if r_2sv_2_14spartnCorrUsed else 0
     r_2sv_2_10prCorrUsed: Any = g_2sv_2.prCorrUsed
-    if r_2sv_2_10prCorrUsed is not True and r_2sv_2_10prCorrUsed is not False and r_2sv_2_10prCorrUsed != 0 and r_2sv_2_10prCorrUsed != 1:
+    if r_2sv_2_10prCorrUsed is not True and r_2sv_2_10prCorrUsed is not False and (not isinstance(r_2sv_2_10prCorrUsed, int) or r_2sv_2_10prCorrUsed != 0 and r_2sv_2_10prCorrUsed != 1):
         raise _enc('nav_sat', 'sv[2].prCorrUsed', r_2sv_2_10prCorrUsed, 'type', 'a bool')
     r_2sv_2_10prCorrUsed = 1 if r_2sv_2_10prCorrUsed else 0
     r_2sv_2_10crCorrUsed: Any = g_2sv_2.crCorrUsed
-    if r_2sv_2_10crCorrUsed is not True and r_2sv_2_10crCorrUsed is not False and r_2sv_2_10crCorrUsed != 0 and r_2sv_2_10crCorrUsed != 1:
+    if r_2sv_2_10crCorrUsed is not True and r_2sv_2_10crCorrUsed is not False and (not isinstance(r_2sv_2_10crCorrUsed, int) or r_2sv_2_10crCorrUsed != 0 and r_2sv_2_10crCorrUsed != 1):
         raise _enc('nav_sat', 'sv[2].crCorrUsed', r_2sv_2_10crCorrUsed, 'type', 'a bool')
     r_2sv_2_10crCorrUsed = 1 if r_2sv_2_10crCorrUsed else 0
     r_2sv_2_10doCorrUsed: Any = g_2sv_2.doCorrUsed
-    if r_2sv_2_10doCorrUsed is not True and r_2sv_2_10doCorrUsed is not False and r_2sv_2_10doCorrUsed != 0 and r_2sv_2_10doCorrUsed != 1:
+    if r_2sv_2_10doCorrUsed is not True and r_2sv_2_10doCorrUsed is not False and (not isinstance(r_2sv_2_10doCorrUsed, int) or r_2sv_2_10doCorrUsed != 0 and r_2sv_2_10doCorrUsed != 1):
         raise _enc('nav_sat', 'sv[2].doCorrUsed', r_2sv_2_10doCorrUsed, 'type', 'a bool')
     r_2sv_2_10doCorrUsed = 1 if r_2sv_2_10doCorrUsed else 0
     r_2sv_2_12clasCorrUsed: Any = g_2sv_2.clasCorrUsed
-    if r_2sv_2_12clasCorrUsed is not True and r_2sv_2_12clasCorrUsed is not False and r_2sv_2_12clasCorrUsed != 0 and r_2sv_2_12clasCorrUsed != 1:
+    if r_2sv_2_12clasCorrUsed is not True and r_2sv_2_12clasCorrUsed is not False and (not isinstance(r_2sv_2_12clasCorrUsed, int) or r_2sv_2_12clasCorrUsed != 0 and r_2sv_2_12clasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[2].clasCorrUsed', r_2sv_2_12clasCorrUsed, 'type', 'a bool')
     r_2sv_2_12clasCorrUsed = 1 if r_2sv_2_12clasCorrUsed else 0
     r_2sv_2_11lppCorrUsed: Any = g_2sv_2.lppCorrUsed
-    if r_2sv_2_11lppCorrUsed is not True and r_2sv_2_11lppCorrUsed is not False and r_2sv_2_11lppCorrUsed != 0 and r_2sv_2_11lppCorrUsed != 1:
+    if r_2sv_2_11lppCorrUsed is not True and r_2sv_2_11lppCorrUsed is not False and (not isinstance(r_2sv_2_11lppCorrUsed, int) or r_2sv_2_11lppCorrUsed != 0 and r_2sv_2_11lppCorrUsed != 1):
         raise _enc('nav_sat', 'sv[2].lppCorrUsed', r_2sv_2_11lppCorrUsed, 'type', 'a bool')
     r_2sv_2_11lppCorrUsed = 1 if r_2sv_2_11lppCorrUsed else 0
     r_2sv_2_11hasCorrUsed: Any = g_2sv_2.hasCorrUsed
-    if r_2sv_2_11hasCorrUsed is not True and r_2sv_2_11hasCorrUsed is not False and r_2sv_2_11hasCorrUsed != 0 and r_2sv_2_11hasCorrUsed != 1:
+    if r_2sv_2_11hasCorrUsed is not True and r_2sv_2_11hasCorrUsed is not False and (not isinstance(r_2sv_2_11hasCorrUsed, int) or r_2sv_2_11hasCorrUsed != 0 and r_2sv_2_11hasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[2].hasCorrUsed', r_2sv_2_11hasCorrUsed, 'type', 'a bool')
     r_2sv_2_11hasCorrUsed = 1 if r_2sv_2_11hasCorrUsed else 0
     r_2sv_2_11flags_spare = 0
@@ -1698,6 +1704,8 @@ def _raw_nav_sat_2sv_2(g_2sv_2: Any) -> tuple[Any, ...]:
 
 
 def _raw_nav_sat_2sv_3(g_2sv_3: Any) -> tuple[Any, ...]:
+    if g_2sv_3.__class__ is not NavSatSv and not isinstance(g_2sv_3, NavSatSv):
+        raise _enc('nav_sat', 'sv[3]', g_2sv_3, 'type', 'a NavSatSv')
     r_2sv_3_6gnssId = g_2sv_3.gnssId
     if r_2sv_3_6gnssId.__class__ is not int or not 0 <= r_2sv_3_6gnssId <= 255:
         if not isinstance(r_2sv_3_6gnssId, int) or r_2sv_3_6gnssId.__class__ is bool:
@@ -1742,7 +1750,7 @@ def _raw_nav_sat_2sv_3(g_2sv_3: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_3_10qualityInd <= 7:
             raise _enc('nav_sat', 'sv[3].qualityInd', r_2sv_3_10qualityInd, 'range', '0..7', None)
     r_2sv_3_6svUsed: Any = g_2sv_3.svUsed
-    if r_2sv_3_6svUsed is not True and r_2sv_3_6svUsed is not False and r_2sv_3_6svUsed != 0 and r_2sv_3_6svUsed != 1:
+    if r_2sv_3_6svUsed is not True and r_2sv_3_6svUsed is not False and (not isinstance(r_2sv_3_6svUsed, int) or r_2sv_3_6svUsed != 0 and r_2sv_3_6svUsed != 1):
         raise _enc('nav_sat', 'sv[3].svUsed', r_2sv_3_6svUsed, 'type', 'a bool')
     r_2sv_3_6svUsed = 1 if r_2sv_3_6svUsed else 0
     r_2sv_3_6health = g_2sv_3.health
@@ -1752,11 +1760,11 @@ def _raw_nav_sat_2sv_3(g_2sv_3: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_3_6health <= 3:
             raise _enc('nav_sat', 'sv[3].health', r_2sv_3_6health, 'range', '0..3', None)
     r_2sv_3_8diffCorr: Any = g_2sv_3.diffCorr
-    if r_2sv_3_8diffCorr is not True and r_2sv_3_8diffCorr is not False and r_2sv_3_8diffCorr != 0 and r_2sv_3_8diffCorr != 1:
+    if r_2sv_3_8diffCorr is not True and r_2sv_3_8diffCorr is not False and (not isinstance(r_2sv_3_8diffCorr, int) or r_2sv_3_8diffCorr != 0 and r_2sv_3_8diffCorr != 1):
         raise _enc('nav_sat', 'sv[3].diffCorr', r_2sv_3_8diffCorr, 'type', 'a bool')
     r_2sv_3_8diffCorr = 1 if r_2sv_3_8diffCorr else 0
     r_2sv_3_8smoothed: Any = g_2sv_3.smoothed
-    if r_2sv_3_8smoothed is not True and r_2sv_3_8smoothed is not False and r_2sv_3_8smoothed != 0 and r_2sv_3_8smoothed != 1:
+    if r_2sv_3_8smoothed is not True and r_2sv_3_8smoothed is not False and (not isinstance(r_2sv_3_8smoothed, int) or r_2sv_3_8smoothed != 0 and r_2sv_3_8smoothed != 1):
         raise _enc('nav_sat', 'sv[3].smoothed', r_2sv_3_8smoothed, 'type', 'a bool')
     r_2sv_3_8smoothed = 1 if r_2sv_3_8smoothed else 0
     r_2sv_3_11orbitSource = g_2sv_3.orbitSource
@@ -1766,19 +1774,19 @@ def _raw_nav_sat_2sv_3(g_2sv_3: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_3_11orbitSource <= 7:
             raise _enc('nav_sat', 'sv[3].orbitSource', r_2sv_3_11orbitSource, 'range', '0..7', None)
     r_2sv_3_8ephAvail: Any = g_2sv_3.ephAvail
-    if r_2sv_3_8ephAvail is not True and r_2sv_3_8ephAvail is not False and r_2sv_3_8ephAvail != 0 and r_2sv_3_8ephAvail != 1:
+    if r_2sv_3_8ephAvail is not True and r_2sv_3_8ephAvail is not False and (not isinstance(r_2sv_3_8ephAvail, int) or r_2sv_3_8ephAvail != 0 and r_2sv_3_8ephAvail != 1):
         raise _enc('nav_sat', 'sv[3].ephAvail', r_2sv_3_8ephAvail, 'type', 'a bool')
     r_2sv_3_8ephAvail = 1 if r_2sv_3_8ephAvail else 0
     r_2sv_3_8almAvail: Any = g_2sv_3.almAvail
-    if r_2sv_3_8almAvail is not True and r_2sv_3_8almAvail is not False and r_2sv_3_8almAvail != 0 and r_2sv_3_8almAvail != 1:
+    if r_2sv_3_8almAvail is not True and r_2sv_3_8almAvail is not False and (not isinstance(r_2sv_3_8almAvail, int) or r_2sv_3_8almAvail != 0 and r_2sv_3_8almAvail != 1):
         raise _enc('nav_sat', 'sv[3].almAvail', r_2sv_3_8almAvail, 'type', 'a bool')
     r_2sv_3_8almAvail = 1 if r_2sv_3_8almAvail else 0
     r_2sv_3_8anoAvail: Any = g_2sv_3.anoAvail
-    if r_2sv_3_8anoAvail is not True and r_2sv_3_8anoAvail is not False and r_2sv_3_8anoAvail != 0 and r_2sv_3_8anoAvail != 1:
+    if r_2sv_3_8anoAvail is not True and r_2sv_3_8anoAvail is not False and (not isinstance(r_2sv_3_8anoAvail, int) or r_2sv_3_8anoAvail != 0 and r_2sv_3_8anoAvail != 1):
         raise _enc('nav_sat', 'sv[3].anoAvail', r_2sv_3_8anoAvail, 'type', 'a bool')
     r_2sv_3_8anoAvail = 1 if r_2sv_3_8anoAvail else 0
     r_2sv_3_8aopAvail: Any = g_2sv_3.aopAvail
-    if r_2sv_3_8aopAvail is not True and r_2sv_3_8aopAvail is not False and r_2sv_3_8aopAvail != 0 and r_2sv_3_8aopAvail != 1:
+    if r_2sv_3_8aopAvail is not True and r_2sv_3_8aopAvail is not False and (not isinstance(r_2sv_3_8aopAvail, int) or r_2sv_3_8aopAvail != 0 and r_2sv_3_8aopAvail != 1):
         raise _enc('nav_sat', 'sv[3].aopAvail', r_2sv_3_8aopAvail, 'type', 'a bool')
     r_2sv_3_8aopAvail = 1 if r_2sv_3_8aopAvail else 0
     r_2sv_3_10reserved13 = g_2sv_3.reserved13
@@ -1788,43 +1796,43 @@ def _raw_nav_sat_2sv_3(g_2sv_3: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_3_10reserved13 <= 1:
             raise _enc('nav_sat', 'sv[3].reserved13', r_2sv_3_10reserved13, 'range', '0..1', None)
     r_2sv_3_12sbasCorrUsed: Any = g_2sv_3.sbasCorrUsed
-    if r_2sv_3_12sbasCorrUsed is not True and r_2sv_3_12sbasCorrUsed is not False and r_2sv_3_12sbasCorrUsed != 0 and r_2sv_3_12sbasCorrUsed != 1:
+    if r_2sv_3_12sbasCorrUsed is not True and r_2sv_3_12sbasCorrUsed is not False and (not isinstance(r_2sv_3_12sbasCorrUsed, int) or r_2sv_3_12sbasCorrUsed != 0 and r_2sv_3_12sbasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[3].sbasCorrUsed', r_2sv_3_12sbasCorrUsed, 'type', 'a bool')
     r_2sv_3_12sbasCorrUsed = 1 if r_2sv_3_12sbasCorrUsed else 0
     r_2sv_3_12rtcmCorrUsed: Any = g_2sv_3.rtcmCorrUsed
-    if r_2sv_3_12rtcmCorrUsed is not True and r_2sv_3_12rtcmCorrUsed is not False and r_2sv_3_12rtcmCorrUsed != 0 and r_2sv_3_12rtcmCorrUsed != 1:
+    if r_2sv_3_12rtcmCorrUsed is not True and r_2sv_3_12rtcmCorrUsed is not False and (not isinstance(r_2sv_3_12rtcmCorrUsed, int) or r_2sv_3_12rtcmCorrUsed != 0 and r_2sv_3_12rtcmCorrUsed != 1):
         raise _enc('nav_sat', 'sv[3].rtcmCorrUsed', r_2sv_3_12rtcmCorrUsed, 'type', 'a bool')
     r_2sv_3_12rtcmCorrUsed = 1 if r_2sv_3_12rtcmCorrUsed else 0
     r_2sv_3_12slasCorrUsed: Any = g_2sv_3.slasCorrUsed
-    if r_2sv_3_12slasCorrUsed is not True and r_2sv_3_12slasCorrUsed is not False and r_2sv_3_12slasCorrUsed != 0 and r_2sv_3_12slasCorrUsed != 1:
+    if r_2sv_3_12slasCorrUsed is not True and r_2sv_3_12slasCorrUsed is not False and (not isinstance(r_2sv_3_12slasCorrUsed, int) or r_2sv_3_12slasCorrUsed != 0 and r_2sv_3_12slasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[3].slasCorrUsed', r_2sv_3_12slasCorrUsed, 'type', 'a bool')
     r_2sv_3_12slasCorrUsed = 1 if r_2sv_3_12slasCorrUsed else 0
     r_2sv_3_14spartnCorrUsed: Any = g_2sv_3.spartnCorrUsed
-    if r_2sv_3_14spartnCorrUsed is not True and r_2sv_3_14spartnCorrUsed is not False and r_2sv_3_14spartnCorrUsed != 0 and r_2sv_3_14spartnCorrUsed != 1:
+    if r_2sv_3_14spartnCorrUsed is not True and r_2sv_3_14spartnCorrUsed is not False and (not isinstance(r_2sv_3_14spartnCorrUsed, int) or r_2sv_3_14spartnCorrUsed != 0 and r_2sv_3_14spartnCorrUsed != 1):
         raise _enc('nav_sat', 'sv[3].spartnCorrUsed', r_2sv_3_14spartnCorrUsed, 'type', 'a bool')
     r_2sv_3_14spartnCorrUsed = 1 if r_2sv_3_14spartnCorrUsed else 0
     r_2sv_3_10prCorrUsed: Any = g_2sv_3.prCorrUsed
-    if r_2sv_3_10prCorrUsed is not True and r_2sv_3_10prCorrUsed is not False and r_2sv_3_10prCorrUsed != 0 and r_2sv_3_10prCorrUsed != 1:
+    if r_2sv_3_10prCorrUsed is not True and r_2sv_3_10prCorrUsed is not False and (not isinstance(r_2sv_3_10prCorrUsed, int) or r_2sv_3_10prCorrUsed != 0 and r_2sv_3_10prCorrUsed != 1):
         raise _enc('nav_sat', 'sv[3].prCorrUsed', r_2sv_3_10prCorrUsed, 'type', 'a bool')
     r_2sv_3_10prCorrUsed = 1 if r_2sv_3_10prCorrUsed else 0
     r_2sv_3_10crCorrUsed: Any = g_2sv_3.crCorrUsed
-    if r_2sv_3_10crCorrUsed is not True and r_2sv_3_10crCorrUsed is not False and r_2sv_3_10crCorrUsed != 0 and r_2sv_3_10crCorrUsed != 1:
+    if r_2sv_3_10crCorrUsed is not True and r_2sv_3_10crCorrUsed is not False and (not isinstance(r_2sv_3_10crCorrUsed, int) or r_2sv_3_10crCorrUsed != 0 and r_2sv_3_10crCorrUsed != 1):
         raise _enc('nav_sat', 'sv[3].crCorrUsed', r_2sv_3_10crCorrUsed, 'type', 'a bool')
     r_2sv_3_10crCorrUsed = 1 if r_2sv_3_10crCorrUsed else 0
     r_2sv_3_10doCorrUsed: Any = g_2sv_3.doCorrUsed
-    if r_2sv_3_10doCorrUsed is not True and r_2sv_3_10doCorrUsed is not False and r_2sv_3_10doCorrUsed != 0 and r_2sv_3_10doCorrUsed != 1:
+    if r_2sv_3_10doCorrUsed is not True and r_2sv_3_10doCorrUsed is not False and (not isinstance(r_2sv_3_10doCorrUsed, int) or r_2sv_3_10doCorrUsed != 0 and r_2sv_3_10doCorrUsed != 1):
         raise _enc('nav_sat', 'sv[3].doCorrUsed', r_2sv_3_10doCorrUsed, 'type', 'a bool')
     r_2sv_3_10doCorrUsed = 1 if r_2sv_3_10doCorrUsed else 0
     r_2sv_3_12clasCorrUsed: Any = g_2sv_3.clasCorrUsed
-    if r_2sv_3_12clasCorrUsed is not True and r_2sv_3_12clasCorrUsed is not False and r_2sv_3_12clasCorrUsed != 0 and r_2sv_3_12clasCorrUsed != 1:
+    if r_2sv_3_12clasCorrUsed is not True and r_2sv_3_12clasCorrUsed is not False and (not isinstance(r_2sv_3_12clasCorrUsed, int) or r_2sv_3_12clasCorrUsed != 0 and r_2sv_3_12clasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[3].clasCorrUsed', r_2sv_3_12clasCorrUsed, 'type', 'a bool')
     r_2sv_3_12clasCorrUsed = 1 if r_2sv_3_12clasCorrUsed else 0
     r_2sv_3_11lppCorrUsed: Any = g_2sv_3.lppCorrUsed
-    if r_2sv_3_11lppCorrUsed is not True and r_2sv_3_11lppCorrUsed is not False and r_2sv_3_11lppCorrUsed != 0 and r_2sv_3_11lppCorrUsed != 1:
+    if r_2sv_3_11lppCorrUsed is not True and r_2sv_3_11lppCorrUsed is not False and (not isinstance(r_2sv_3_11lppCorrUsed, int) or r_2sv_3_11lppCorrUsed != 0 and r_2sv_3_11lppCorrUsed != 1):
         raise _enc('nav_sat', 'sv[3].lppCorrUsed', r_2sv_3_11lppCorrUsed, 'type', 'a bool')
     r_2sv_3_11lppCorrUsed = 1 if r_2sv_3_11lppCorrUsed else 0
     r_2sv_3_11hasCorrUsed: Any = g_2sv_3.hasCorrUsed
-    if r_2sv_3_11hasCorrUsed is not True and r_2sv_3_11hasCorrUsed is not False and r_2sv_3_11hasCorrUsed != 0 and r_2sv_3_11hasCorrUsed != 1:
+    if r_2sv_3_11hasCorrUsed is not True and r_2sv_3_11hasCorrUsed is not False and (not isinstance(r_2sv_3_11hasCorrUsed, int) or r_2sv_3_11hasCorrUsed != 0 and r_2sv_3_11hasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[3].hasCorrUsed', r_2sv_3_11hasCorrUsed, 'type', 'a bool')
     r_2sv_3_11hasCorrUsed = 1 if r_2sv_3_11hasCorrUsed else 0
     r_2sv_3_11flags_spare = 0
@@ -1832,6 +1840,8 @@ def _raw_nav_sat_2sv_3(g_2sv_3: Any) -> tuple[Any, ...]:
 
 
 def _raw_nav_sat_2sv_4(g_2sv_4: Any) -> tuple[Any, ...]:
+    if g_2sv_4.__class__ is not NavSatSv and not isinstance(g_2sv_4, NavSatSv):
+        raise _enc('nav_sat', 'sv[4]', g_2sv_4, 'type', 'a NavSatSv')
     r_2sv_4_6gnssId = g_2sv_4.gnssId
     if r_2sv_4_6gnssId.__class__ is not int or not 0 <= r_2sv_4_6gnssId <= 255:
         if not isinstance(r_2sv_4_6gnssId, int) or r_2sv_4_6gnssId.__class__ is bool:
@@ -1876,7 +1886,7 @@ def _raw_nav_sat_2sv_4(g_2sv_4: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_4_10qualityInd <= 7:
             raise _enc('nav_sat', 'sv[4].qualityInd', r_2sv_4_10qualityInd, 'range', '0..7', None)
     r_2sv_4_6svUsed: Any = g_2sv_4.svUsed
-    if r_2sv_4_6svUsed is not True and r_2sv_4_6svUsed is not False and r_2sv_4_6svUsed != 0 and r_2sv_4_6svUsed != 1:
+    if r_2sv_4_6svUsed is not True and r_2sv_4_6svUsed is not False and (not isinstance(r_2sv_4_6svUsed, int) or r_2sv_4_6svUsed != 0 and r_2sv_4_6svUsed != 1):
         raise _enc('nav_sat', 'sv[4].svUsed', r_2sv_4_6svUsed, 'type', 'a bool')
     r_2sv_4_6svUsed = 1 if r_2sv_4_6svUsed else 0
     r_2sv_4_6health = g_2sv_4.health
@@ -1886,11 +1896,11 @@ def _raw_nav_sat_2sv_4(g_2sv_4: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_4_6health <= 3:
             raise _enc('nav_sat', 'sv[4].health', r_2sv_4_6health, 'range', '0..3', None)
     r_2sv_4_8diffCorr: Any = g_2sv_4.diffCorr
-    if r_2sv_4_8diffCorr is not True and r_2sv_4_8diffCorr is not False and r_2sv_4_8diffCorr != 0 and r_2sv_4_8diffCorr != 1:
+    if r_2sv_4_8diffCorr is not True and r_2sv_4_8diffCorr is not False and (not isinstance(r_2sv_4_8diffCorr, int) or r_2sv_4_8diffCorr != 0 and r_2sv_4_8diffCorr != 1):
         raise _enc('nav_sat', 'sv[4].diffCorr', r_2sv_4_8diffCorr, 'type', 'a bool')
     r_2sv_4_8diffCorr = 1 if r_2sv_4_8diffCorr else 0
     r_2sv_4_8smoothed: Any = g_2sv_4.smoothed
-    if r_2sv_4_8smoothed is not True and r_2sv_4_8smoothed is not False and r_2sv_4_8smoothed != 0 and r_2sv_4_8smoothed != 1:
+    if r_2sv_4_8smoothed is not True and r_2sv_4_8smoothed is not False and (not isinstance(r_2sv_4_8smoothed, int) or r_2sv_4_8smoothed != 0 and r_2sv_4_8smoothed != 1):
         raise _enc('nav_sat', 'sv[4].smoothed', r_2sv_4_8smoothed, 'type', 'a bool')
     r_2sv_4_8smoothed = 1 if r_2sv_4_8smoothed else 0
     r_2sv_4_11orbitSource = g_2sv_4.orbitSource
@@ -1900,19 +1910,19 @@ def _raw_nav_sat_2sv_4(g_2sv_4: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_4_11orbitSource <= 7:
             raise _enc('nav_sat', 'sv[4].orbitSource', r_2sv_4_11orbitSource, 'range', '0..7', None)
     r_2sv_4_8ephAvail: Any = g_2sv_4.ephAvail
-    if r_2sv_4_8ephAvail is not True and r_2sv_4_8ephAvail is not False and r_2sv_4_8ephAvail != 0 and r_2sv_4_8ephAvail != 1:
+    if r_2sv_4_8ephAvail is not True and r_2sv_4_8ephAvail is not False and (not isinstance(r_2sv_4_8ephAvail, int) or r_2sv_4_8ephAvail != 0 and r_2sv_4_8ephAvail != 1):
         raise _enc('nav_sat', 'sv[4].ephAvail', r_2sv_4_8ephAvail, 'type', 'a bool')
     r_2sv_4_8ephAvail = 1 if r_2sv_4_8ephAvail else 0
     r_2sv_4_8almAvail: Any = g_2sv_4.almAvail
-    if r_2sv_4_8almAvail is not True and r_2sv_4_8almAvail is not False and r_2sv_4_8almAvail != 0 and r_2sv_4_8almAvail != 1:
+    if r_2sv_4_8almAvail is not True and r_2sv_4_8almAvail is not False and (not isinstance(r_2sv_4_8almAvail, int) or r_2sv_4_8almAvail != 0 and r_2sv_4_8almAvail != 1):
         raise _enc('nav_sat', 'sv[4].almAvail', r_2sv_4_8almAvail, 'type', 'a bool')
     r_2sv_4_8almAvail = 1 if r_2sv_4_8almAvail else 0
     r_2sv_4_8anoAvail: Any = g_2sv_4.anoAvail
-    if r_2sv_4_8anoAvail is not True and r_2sv_4_8anoAvail is not False and r_2sv_4_8anoAvail != 0 and r_2sv_4_8anoAvail != 1:
+    if r_2sv_4_8anoAvail is not True and r_2sv_4_8anoAvail is not False and (not isinstance(r_2sv_4_8anoAvail, int) or r_2sv_4_8anoAvail != 0 and r_2sv_4_8anoAvail != 1):
         raise _enc('nav_sat', 'sv[4].anoAvail', r_2sv_4_8anoAvail, 'type', 'a bool')
     r_2sv_4_8anoAvail = 1 if r_2sv_4_8anoAvail else 0
     r_2sv_4_8aopAvail: Any = g_2sv_4.aopAvail
-    if r_2sv_4_8aopAvail is not True and r_2sv_4_8aopAvail is not False and r_2sv_4_8aopAvail != 0 and r_2sv_4_8aopAvail != 1:
+    if r_2sv_4_8aopAvail is not True and r_2sv_4_8aopAvail is not False and (not isinstance(r_2sv_4_8aopAvail, int) or r_2sv_4_8aopAvail != 0 and r_2sv_4_8aopAvail != 1):
         raise _enc('nav_sat', 'sv[4].aopAvail', r_2sv_4_8aopAvail, 'type', 'a bool')
     r_2sv_4_8aopAvail = 1 if r_2sv_4_8aopAvail else 0
     r_2sv_4_10reserved13 = g_2sv_4.reserved13
@@ -1922,43 +1932,43 @@ def _raw_nav_sat_2sv_4(g_2sv_4: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_4_10reserved13 <= 1:
             raise _enc('nav_sat', 'sv[4].reserved13', r_2sv_4_10reserved13, 'range', '0..1', None)
     r_2sv_4_12sbasCorrUsed: Any = g_2sv_4.sbasCorrUsed
-    if r_2sv_4_12sbasCorrUsed is not True and r_2sv_4_12sbasCorrUsed is not False and r_2sv_4_12sbasCorrUsed != 0 and r_2sv_4_12sbasCorrUsed != 1:
+    if r_2sv_4_12sbasCorrUsed is not True and r_2sv_4_12sbasCorrUsed is not False and (not isinstance(r_2sv_4_12sbasCorrUsed, int) or r_2sv_4_12sbasCorrUsed != 0 and r_2sv_4_12sbasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[4].sbasCorrUsed', r_2sv_4_12sbasCorrUsed, 'type', 'a bool')
     r_2sv_4_12sbasCorrUsed = 1 if r_2sv_4_12sbasCorrUsed else 0
     r_2sv_4_12rtcmCorrUsed: Any = g_2sv_4.rtcmCorrUsed
-    if r_2sv_4_12rtcmCorrUsed is not True and r_2sv_4_12rtcmCorrUsed is not False and r_2sv_4_12rtcmCorrUsed != 0 and r_2sv_4_12rtcmCorrUsed != 1:
+    if r_2sv_4_12rtcmCorrUsed is not True and r_2sv_4_12rtcmCorrUsed is not False and (not isinstance(r_2sv_4_12rtcmCorrUsed, int) or r_2sv_4_12rtcmCorrUsed != 0 and r_2sv_4_12rtcmCorrUsed != 1):
         raise _enc('nav_sat', 'sv[4].rtcmCorrUsed', r_2sv_4_12rtcmCorrUsed, 'type', 'a bool')
     r_2sv_4_12rtcmCorrUsed = 1 if r_2sv_4_12rtcmCorrUsed else 0
     r_2sv_4_12slasCorrUsed: Any = g_2sv_4.slasCorrUsed
-    if r_2sv_4_12slasCorrUsed is not True and r_2sv_4_12slasCorrUsed is not False and r_2sv_4_12slasCorrUsed != 0 and r_2sv_4_12slasCorrUsed != 1:
+    if r_2sv_4_12slasCorrUsed is not True and r_2sv_4_12slasCorrUsed is not False and (not isinstance(r_2sv_4_12slasCorrUsed, int) or r_2sv_4_12slasCorrUsed != 0 and r_2sv_4_12slasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[4].slasCorrUsed', r_2sv_4_12slasCorrUsed, 'type', 'a bool')
     r_2sv_4_12slasCorrUsed = 1 if r_2sv_4_12slasCorrUsed else 0
     r_2sv_4_14spartnCorrUsed: Any = g_2sv_4.spartnCorrUsed
-    if r_2sv_4_14spartnCorrUsed is not True and r_2sv_4_14spartnCorrUsed is not False and r_2sv_4_14spartnCorrUsed != 0 and r_2sv_4_14spartnCorrUsed != 1:
+    if r_2sv_4_14spartnCorrUsed is not True and r_2sv_4_14spartnCorrUsed is not False and (not isinstance(r_2sv_4_14spartnCorrUsed, int) or r_2sv_4_14spartnCorrUsed != 0 and r_2sv_4_14spartnCorrUsed != 1):
         raise _enc('nav_sat', 'sv[4].spartnCorrUsed', r_2sv_4_14spartnCorrUsed, 'type', 'a bool')
     r_2sv_4_14spartnCorrUsed = 1 if r_2sv_4_14spartnCorrUsed else 0
     r_2sv_4_10prCorrUsed: Any = g_2sv_4.prCorrUsed
-    if r_2sv_4_10prCorrUsed is not True and r_2sv_4_10prCorrUsed is not False and r_2sv_4_10prCorrUsed != 0 and r_2sv_4_10prCorrUsed != 1:
+    if r_2sv_4_10prCorrUsed is not True and r_2sv_4_10prCorrUsed is not False and (not isinstance(r_2sv_4_10prCorrUsed, int) or r_2sv_4_10prCorrUsed != 0 and r_2sv_4_10prCorrUsed != 1):
         raise _enc('nav_sat', 'sv[4].prCorrUsed', r_2sv_4_10prCorrUsed, 'type', 'a bool')
     r_2sv_4_10prCorrUsed = 1 if r_2sv_4_10prCorrUsed else 0
     r_2sv_4_10crCorrUsed: Any = g_2sv_4.crCorrUsed
-    if r_2sv_4_10crCorrUsed is not True and r_2sv_4_10crCorrUsed is not False and r_2sv_4_10crCorrUsed != 0 and r_2sv_4_10crCorrUsed != 1:
+    if r_2sv_4_10crCorrUsed is not True and r_2sv_4_10crCorrUsed is not False and (not isinstance(r_2sv_4_10crCorrUsed, int) or r_2sv_4_10crCorrUsed != 0 and r_2sv_4_10crCorrUsed != 1):
         raise _enc('nav_sat', 'sv[4].crCorrUsed', r_2sv_4_10crCorrUsed, 'type', 'a bool')
     r_2sv_4_10crCorrUsed = 1 if r_2sv_4_10crCorrUsed else 0
     r_2sv_4_10doCorrUsed: Any = g_2sv_4.doCorrUsed
-    if r_2sv_4_10doCorrUsed is not True and r_2sv_4_10doCorrUsed is not False and r_2sv_4_10doCorrUsed != 0 and r_2sv_4_10doCorrUsed != 1:
+    if r_2sv_4_10doCorrUsed is not True and r_2sv_4_10doCorrUsed is not False and (not isinstance(r_2sv_4_10doCorrUsed, int) or r_2sv_4_10doCorrUsed != 0 and r_2sv_4_10doCorrUsed != 1):
         raise _enc('nav_sat', 'sv[4].doCorrUsed', r_2sv_4_10doCorrUsed, 'type', 'a bool')
     r_2sv_4_10doCorrUsed = 1 if r_2sv_4_10doCorrUsed else 0
     r_2sv_4_12clasCorrUsed: Any = g_2sv_4.clasCorrUsed
-    if r_2sv_4_12clasCorrUsed is not True and r_2sv_4_12clasCorrUsed is not False and r_2sv_4_12clasCorrUsed != 0 and r_2sv_4_12clasCorrUsed != 1:
+    if r_2sv_4_12clasCorrUsed is not True and r_2sv_4_12clasCorrUsed is not False and (not isinstance(r_2sv_4_12clasCorrUsed, int) or r_2sv_4_12clasCorrUsed != 0 and r_2sv_4_12clasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[4].clasCorrUsed', r_2sv_4_12clasCorrUsed, 'type', 'a bool')
     r_2sv_4_12clasCorrUsed = 1 if r_2sv_4_12clasCorrUsed else 0
     r_2sv_4_11lppCorrUsed: Any = g_2sv_4.lppCorrUsed
-    if r_2sv_4_11lppCorrUsed is not True and r_2sv_4_11lppCorrUsed is not False and r_2sv_4_11lppCorrUsed != 0 and r_2sv_4_11lppCorrUsed != 1:
+    if r_2sv_4_11lppCorrUsed is not True and r_2sv_4_11lppCorrUsed is not False and (not isinstance(r_2sv_4_11lppCorrUsed, int) or r_2sv_4_11lppCorrUsed != 0 and r_2sv_4_11lppCorrUsed != 1):
         raise _enc('nav_sat', 'sv[4].lppCorrUsed', r_2sv_4_11lppCorrUsed, 'type', 'a bool')
     r_2sv_4_11lppCorrUsed = 1 if r_2sv_4_11lppCorrUsed else 0
     r_2sv_4_11hasCorrUsed: Any = g_2sv_4.hasCorrUsed
-    if r_2sv_4_11hasCorrUsed is not True and r_2sv_4_11hasCorrUsed is not False and r_2sv_4_11hasCorrUsed != 0 and r_2sv_4_11hasCorrUsed != 1:
+    if r_2sv_4_11hasCorrUsed is not True and r_2sv_4_11hasCorrUsed is not False and (not isinstance(r_2sv_4_11hasCorrUsed, int) or r_2sv_4_11hasCorrUsed != 0 and r_2sv_4_11hasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[4].hasCorrUsed', r_2sv_4_11hasCorrUsed, 'type', 'a bool')
     r_2sv_4_11hasCorrUsed = 1 if r_2sv_4_11hasCorrUsed else 0
     r_2sv_4_11flags_spare = 0
@@ -1966,6 +1976,8 @@ def _raw_nav_sat_2sv_4(g_2sv_4: Any) -> tuple[Any, ...]:
 
 
 def _raw_nav_sat_2sv_5(g_2sv_5: Any) -> tuple[Any, ...]:
+    if g_2sv_5.__class__ is not NavSatSv and not isinstance(g_2sv_5, NavSatSv):
+        raise _enc('nav_sat', 'sv[5]', g_2sv_5, 'type', 'a NavSatSv')
     r_2sv_5_6gnssId = g_2sv_5.gnssId
     if r_2sv_5_6gnssId.__class__ is not int or not 0 <= r_2sv_5_6gnssId <= 255:
         if not isinstance(r_2sv_5_6gnssId, int) or r_2sv_5_6gnssId.__class__ is bool:
@@ -2010,7 +2022,7 @@ def _raw_nav_sat_2sv_5(g_2sv_5: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_5_10qualityInd <= 7:
             raise _enc('nav_sat', 'sv[5].qualityInd', r_2sv_5_10qualityInd, 'range', '0..7', None)
     r_2sv_5_6svUsed: Any = g_2sv_5.svUsed
-    if r_2sv_5_6svUsed is not True and r_2sv_5_6svUsed is not False and r_2sv_5_6svUsed != 0 and r_2sv_5_6svUsed != 1:
+    if r_2sv_5_6svUsed is not True and r_2sv_5_6svUsed is not False and (not isinstance(r_2sv_5_6svUsed, int) or r_2sv_5_6svUsed != 0 and r_2sv_5_6svUsed != 1):
         raise _enc('nav_sat', 'sv[5].svUsed', r_2sv_5_6svUsed, 'type', 'a bool')
     r_2sv_5_6svUsed = 1 if r_2sv_5_6svUsed else 0
     r_2sv_5_6health = g_2sv_5.health
@@ -2020,11 +2032,11 @@ def _raw_nav_sat_2sv_5(g_2sv_5: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_5_6health <= 3:
             raise _enc('nav_sat', 'sv[5].health', r_2sv_5_6health, 'range', '0..3', None)
     r_2sv_5_8diffCorr: Any = g_2sv_5.diffCorr
-    if r_2sv_5_8diffCorr is not True and r_2sv_5_8diffCorr is not False and r_2sv_5_8diffCorr != 0 and r_2sv_5_8diffCorr != 1:
+    if r_2sv_5_8diffCorr is not True and r_2sv_5_8diffCorr is not False and (not isinstance(r_2sv_5_8diffCorr, int) or r_2sv_5_8diffCorr != 0 and r_2sv_5_8diffCorr != 1):
         raise _enc('nav_sat', 'sv[5].diffCorr', r_2sv_5_8diffCorr, 'type', 'a bool')
     r_2sv_5_8diffCorr = 1 if r_2sv_5_8diffCorr else 0
     r_2sv_5_8smoothed: Any = g_2sv_5.smoothed
-    if r_2sv_5_8smoothed is not True and r_2sv_5_8smoothed is not False and r_2sv_5_8smoothed != 0 and r_2sv_5_8smoothed != 1:
+    if r_2sv_5_8smoothed is not True and r_2sv_5_8smoothed is not False and (not isinstance(r_2sv_5_8smoothed, int) or r_2sv_5_8smoothed != 0 and r_2sv_5_8smoothed != 1):
         raise _enc('nav_sat', 'sv[5].smoothed', r_2sv_5_8smoothed, 'type', 'a bool')
     r_2sv_5_8smoothed = 1 if r_2sv_5_8smoothed else 0
     r_2sv_5_11orbitSource = g_2sv_5.orbitSource
@@ -2034,19 +2046,19 @@ def _raw_nav_sat_2sv_5(g_2sv_5: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_5_11orbitSource <= 7:
             raise _enc('nav_sat', 'sv[5].orbitSource', r_2sv_5_11orbitSource, 'range', '0..7', None)
     r_2sv_5_8ephAvail: Any = g_2sv_5.ephAvail
-    if r_2sv_5_8ephAvail is not True and r_2sv_5_8ephAvail is not False and r_2sv_5_8ephAvail != 0 and r_2sv_5_8ephAvail != 1:
+    if r_2sv_5_8ephAvail is not True and r_2sv_5_8ephAvail is not False and (not isinstance(r_2sv_5_8ephAvail, int) or r_2sv_5_8ephAvail != 0 and r_2sv_5_8ephAvail != 1):
         raise _enc('nav_sat', 'sv[5].ephAvail', r_2sv_5_8ephAvail, 'type', 'a bool')
     r_2sv_5_8ephAvail = 1 if r_2sv_5_8ephAvail else 0
     r_2sv_5_8almAvail: Any = g_2sv_5.almAvail
-    if r_2sv_5_8almAvail is not True and r_2sv_5_8almAvail is not False and r_2sv_5_8almAvail != 0 and r_2sv_5_8almAvail != 1:
+    if r_2sv_5_8almAvail is not True and r_2sv_5_8almAvail is not False and (not isinstance(r_2sv_5_8almAvail, int) or r_2sv_5_8almAvail != 0 and r_2sv_5_8almAvail != 1):
         raise _enc('nav_sat', 'sv[5].almAvail', r_2sv_5_8almAvail, 'type', 'a bool')
     r_2sv_5_8almAvail = 1 if r_2sv_5_8almAvail else 0
     r_2sv_5_8anoAvail: Any = g_2sv_5.anoAvail
-    if r_2sv_5_8anoAvail is not True and r_2sv_5_8anoAvail is not False and r_2sv_5_8anoAvail != 0 and r_2sv_5_8anoAvail != 1:
+    if r_2sv_5_8anoAvail is not True and r_2sv_5_8anoAvail is not False and (not isinstance(r_2sv_5_8anoAvail, int) or r_2sv_5_8anoAvail != 0 and r_2sv_5_8anoAvail != 1):
         raise _enc('nav_sat', 'sv[5].anoAvail', r_2sv_5_8anoAvail, 'type', 'a bool')
     r_2sv_5_8anoAvail = 1 if r_2sv_5_8anoAvail else 0
     r_2sv_5_8aopAvail: Any = g_2sv_5.aopAvail
-    if r_2sv_5_8aopAvail is not True and r_2sv_5_8aopAvail is not False and r_2sv_5_8aopAvail != 0 and r_2sv_5_8aopAvail != 1:
+    if r_2sv_5_8aopAvail is not True and r_2sv_5_8aopAvail is not False and (not isinstance(r_2sv_5_8aopAvail, int) or r_2sv_5_8aopAvail != 0 and r_2sv_5_8aopAvail != 1):
         raise _enc('nav_sat', 'sv[5].aopAvail', r_2sv_5_8aopAvail, 'type', 'a bool')
     r_2sv_5_8aopAvail = 1 if r_2sv_5_8aopAvail else 0
     r_2sv_5_10reserved13 = g_2sv_5.reserved13
@@ -2056,43 +2068,43 @@ def _raw_nav_sat_2sv_5(g_2sv_5: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_5_10reserved13 <= 1:
             raise _enc('nav_sat', 'sv[5].reserved13', r_2sv_5_10reserved13, 'range', '0..1', None)
     r_2sv_5_12sbasCorrUsed: Any = g_2sv_5.sbasCorrUsed
-    if r_2sv_5_12sbasCorrUsed is not True and r_2sv_5_12sbasCorrUsed is not False and r_2sv_5_12sbasCorrUsed != 0 and r_2sv_5_12sbasCorrUsed != 1:
+    if r_2sv_5_12sbasCorrUsed is not True and r_2sv_5_12sbasCorrUsed is not False and (not isinstance(r_2sv_5_12sbasCorrUsed, int) or r_2sv_5_12sbasCorrUsed != 0 and r_2sv_5_12sbasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[5].sbasCorrUsed', r_2sv_5_12sbasCorrUsed, 'type', 'a bool')
     r_2sv_5_12sbasCorrUsed = 1 if r_2sv_5_12sbasCorrUsed else 0
     r_2sv_5_12rtcmCorrUsed: Any = g_2sv_5.rtcmCorrUsed
-    if r_2sv_5_12rtcmCorrUsed is not True and r_2sv_5_12rtcmCorrUsed is not False and r_2sv_5_12rtcmCorrUsed != 0 and r_2sv_5_12rtcmCorrUsed != 1:
+    if r_2sv_5_12rtcmCorrUsed is not True and r_2sv_5_12rtcmCorrUsed is not False and (not isinstance(r_2sv_5_12rtcmCorrUsed, int) or r_2sv_5_12rtcmCorrUsed != 0 and r_2sv_5_12rtcmCorrUsed != 1):
         raise _enc('nav_sat', 'sv[5].rtcmCorrUsed', r_2sv_5_12rtcmCorrUsed, 'type', 'a bool')
     r_2sv_5_12rtcmCorrUsed = 1 if r_2sv_5_12rtcmCorrUsed else 0
     r_2sv_5_12slasCorrUsed: Any = g_2sv_5.slasCorrUsed
-    if r_2sv_5_12slasCorrUsed is not True and r_2sv_5_12slasCorrUsed is not False and r_2sv_5_12slasCorrUsed != 0 and r_2sv_5_12slasCorrUsed != 1:
+    if r_2sv_5_12slasCorrUsed is not True and r_2sv_5_12slasCorrUsed is not False and (not isinstance(r_2sv_5_12slasCorrUsed, int) or r_2sv_5_12slasCorrUsed != 0 and r_2sv_5_12slasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[5].slasCorrUsed', r_2sv_5_12slasCorrUsed, 'type', 'a bool')
     r_2sv_5_12slasCorrUsed = 1 if r_2sv_5_12slasCorrUsed else 0
     r_2sv_5_14spartnCorrUsed: Any = g_2sv_5.spartnCorrUsed
-    if r_2sv_5_14spartnCorrUsed is not True and r_2sv_5_14spartnCorrUsed is not False and r_2sv_5_14spartnCorrUsed != 0 and r_2sv_5_14spartnCorrUsed != 1:
+    if r_2sv_5_14spartnCorrUsed is not True and r_2sv_5_14spartnCorrUsed is not False and (not isinstance(r_2sv_5_14spartnCorrUsed, int) or r_2sv_5_14spartnCorrUsed != 0 and r_2sv_5_14spartnCorrUsed != 1):
         raise _enc('nav_sat', 'sv[5].spartnCorrUsed', r_2sv_5_14spartnCorrUsed, 'type', 'a bool')
     r_2sv_5_14spartnCorrUsed = 1 if r_2sv_5_14spartnCorrUsed else 0
     r_2sv_5_10prCorrUsed: Any = g_2sv_5.prCorrUsed
-    if r_2sv_5_10prCorrUsed is not True and r_2sv_5_10prCorrUsed is not False and r_2sv_5_10prCorrUsed != 0 and r_2sv_5_10prCorrUsed != 1:
+    if r_2sv_5_10prCorrUsed is not True and r_2sv_5_10prCorrUsed is not False and (not isinstance(r_2sv_5_10prCorrUsed, int) or r_2sv_5_10prCorrUsed != 0 and r_2sv_5_10prCorrUsed != 1):
         raise _enc('nav_sat', 'sv[5].prCorrUsed', r_2sv_5_10prCorrUsed, 'type', 'a bool')
     r_2sv_5_10prCorrUsed = 1 if r_2sv_5_10prCorrUsed else 0
     r_2sv_5_10crCorrUsed: Any = g_2sv_5.crCorrUsed
-    if r_2sv_5_10crCorrUsed is not True and r_2sv_5_10crCorrUsed is not False and r_2sv_5_10crCorrUsed != 0 and r_2sv_5_10crCorrUsed != 1:
+    if r_2sv_5_10crCorrUsed is not True and r_2sv_5_10crCorrUsed is not False and (not isinstance(r_2sv_5_10crCorrUsed, int) or r_2sv_5_10crCorrUsed != 0 and r_2sv_5_10crCorrUsed != 1):
         raise _enc('nav_sat', 'sv[5].crCorrUsed', r_2sv_5_10crCorrUsed, 'type', 'a bool')
     r_2sv_5_10crCorrUsed = 1 if r_2sv_5_10crCorrUsed else 0
     r_2sv_5_10doCorrUsed: Any = g_2sv_5.doCorrUsed
-    if r_2sv_5_10doCorrUsed is not True and r_2sv_5_10doCorrUsed is not False and r_2sv_5_10doCorrUsed != 0 and r_2sv_5_10doCorrUsed != 1:
+    if r_2sv_5_10doCorrUsed is not True and r_2sv_5_10doCorrUsed is not False and (not isinstance(r_2sv_5_10doCorrUsed, int) or r_2sv_5_10doCorrUsed != 0 and r_2sv_5_10doCorrUsed != 1):
         raise _enc('nav_sat', 'sv[5].doCorrUsed', r_2sv_5_10doCorrUsed, 'type', 'a bool')
     r_2sv_5_10doCorrUsed = 1 if r_2sv_5_10doCorrUsed else 0
     r_2sv_5_12clasCorrUsed: Any = g_2sv_5.clasCorrUsed
-    if r_2sv_5_12clasCorrUsed is not True and r_2sv_5_12clasCorrUsed is not False and r_2sv_5_12clasCorrUsed != 0 and r_2sv_5_12clasCorrUsed != 1:
+    if r_2sv_5_12clasCorrUsed is not True and r_2sv_5_12clasCorrUsed is not False and (not isinstance(r_2sv_5_12clasCorrUsed, int) or r_2sv_5_12clasCorrUsed != 0 and r_2sv_5_12clasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[5].clasCorrUsed', r_2sv_5_12clasCorrUsed, 'type', 'a bool')
     r_2sv_5_12clasCorrUsed = 1 if r_2sv_5_12clasCorrUsed else 0
     r_2sv_5_11lppCorrUsed: Any = g_2sv_5.lppCorrUsed
-    if r_2sv_5_11lppCorrUsed is not True and r_2sv_5_11lppCorrUsed is not False and r_2sv_5_11lppCorrUsed != 0 and r_2sv_5_11lppCorrUsed != 1:
+    if r_2sv_5_11lppCorrUsed is not True and r_2sv_5_11lppCorrUsed is not False and (not isinstance(r_2sv_5_11lppCorrUsed, int) or r_2sv_5_11lppCorrUsed != 0 and r_2sv_5_11lppCorrUsed != 1):
         raise _enc('nav_sat', 'sv[5].lppCorrUsed', r_2sv_5_11lppCorrUsed, 'type', 'a bool')
     r_2sv_5_11lppCorrUsed = 1 if r_2sv_5_11lppCorrUsed else 0
     r_2sv_5_11hasCorrUsed: Any = g_2sv_5.hasCorrUsed
-    if r_2sv_5_11hasCorrUsed is not True and r_2sv_5_11hasCorrUsed is not False and r_2sv_5_11hasCorrUsed != 0 and r_2sv_5_11hasCorrUsed != 1:
+    if r_2sv_5_11hasCorrUsed is not True and r_2sv_5_11hasCorrUsed is not False and (not isinstance(r_2sv_5_11hasCorrUsed, int) or r_2sv_5_11hasCorrUsed != 0 and r_2sv_5_11hasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[5].hasCorrUsed', r_2sv_5_11hasCorrUsed, 'type', 'a bool')
     r_2sv_5_11hasCorrUsed = 1 if r_2sv_5_11hasCorrUsed else 0
     r_2sv_5_11flags_spare = 0
@@ -2100,6 +2112,8 @@ def _raw_nav_sat_2sv_5(g_2sv_5: Any) -> tuple[Any, ...]:
 
 
 def _raw_nav_sat_2sv_6(g_2sv_6: Any) -> tuple[Any, ...]:
+    if g_2sv_6.__class__ is not NavSatSv and not isinstance(g_2sv_6, NavSatSv):
+        raise _enc('nav_sat', 'sv[6]', g_2sv_6, 'type', 'a NavSatSv')
     r_2sv_6_6gnssId = g_2sv_6.gnssId
     if r_2sv_6_6gnssId.__class__ is not int or not 0 <= r_2sv_6_6gnssId <= 255:
         if not isinstance(r_2sv_6_6gnssId, int) or r_2sv_6_6gnssId.__class__ is bool:
@@ -2144,7 +2158,7 @@ def _raw_nav_sat_2sv_6(g_2sv_6: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_6_10qualityInd <= 7:
             raise _enc('nav_sat', 'sv[6].qualityInd', r_2sv_6_10qualityInd, 'range', '0..7', None)
     r_2sv_6_6svUsed: Any = g_2sv_6.svUsed
-    if r_2sv_6_6svUsed is not True and r_2sv_6_6svUsed is not False and r_2sv_6_6svUsed != 0 and r_2sv_6_6svUsed != 1:
+    if r_2sv_6_6svUsed is not True and r_2sv_6_6svUsed is not False and (not isinstance(r_2sv_6_6svUsed, int) or r_2sv_6_6svUsed != 0 and r_2sv_6_6svUsed != 1):
         raise _enc('nav_sat', 'sv[6].svUsed', r_2sv_6_6svUsed, 'type', 'a bool')
     r_2sv_6_6svUsed = 1 if r_2sv_6_6svUsed else 0
     r_2sv_6_6health = g_2sv_6.health
@@ -2154,11 +2168,11 @@ def _raw_nav_sat_2sv_6(g_2sv_6: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_6_6health <= 3:
             raise _enc('nav_sat', 'sv[6].health', r_2sv_6_6health, 'range', '0..3', None)
     r_2sv_6_8diffCorr: Any = g_2sv_6.diffCorr
-    if r_2sv_6_8diffCorr is not True and r_2sv_6_8diffCorr is not False and r_2sv_6_8diffCorr != 0 and r_2sv_6_8diffCorr != 1:
+    if r_2sv_6_8diffCorr is not True and r_2sv_6_8diffCorr is not False and (not isinstance(r_2sv_6_8diffCorr, int) or r_2sv_6_8diffCorr != 0 and r_2sv_6_8diffCorr != 1):
         raise _enc('nav_sat', 'sv[6].diffCorr', r_2sv_6_8diffCorr, 'type', 'a bool')
     r_2sv_6_8diffCorr = 1 if r_2sv_6_8diffCorr else 0
     r_2sv_6_8smoothed: Any = g_2sv_6.smoothed
-    if r_2sv_6_8smoothed is not True and r_2sv_6_8smoothed is not False and r_2sv_6_8smoothed != 0 and r_2sv_6_8smoothed != 1:
+    if r_2sv_6_8smoothed is not True and r_2sv_6_8smoothed is not False and (not isinstance(r_2sv_6_8smoothed, int) or r_2sv_6_8smoothed != 0 and r_2sv_6_8smoothed != 1):
         raise _enc('nav_sat', 'sv[6].smoothed', r_2sv_6_8smoothed, 'type', 'a bool')
     r_2sv_6_8smoothed = 1 if r_2sv_6_8smoothed else 0
     r_2sv_6_11orbitSource = g_2sv_6.orbitSource
@@ -2168,19 +2182,19 @@ def _raw_nav_sat_2sv_6(g_2sv_6: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_6_11orbitSource <= 7:
             raise _enc('nav_sat', 'sv[6].orbitSource', r_2sv_6_11orbitSource, 'range', '0..7', None)
     r_2sv_6_8ephAvail: Any = g_2sv_6.ephAvail
-    if r_2sv_6_8ephAvail is not True and r_2sv_6_8ephAvail is not False and r_2sv_6_8ephAvail != 0 and r_2sv_6_8ephAvail != 1:
+    if r_2sv_6_8ephAvail is not True and r_2sv_6_8ephAvail is not False and (not isinstance(r_2sv_6_8ephAvail, int) or r_2sv_6_8ephAvail != 0 and r_2sv_6_8ephAvail != 1):
         raise _enc('nav_sat', 'sv[6].ephAvail', r_2sv_6_8ephAvail, 'type', 'a bool')
     r_2sv_6_8ephAvail = 1 if r_2sv_6_8ephAvail else 0
     r_2sv_6_8almAvail: Any = g_2sv_6.almAvail
-    if r_2sv_6_8almAvail is not True and r_2sv_6_8almAvail is not False and r_2sv_6_8almAvail != 0 and r_2sv_6_8almAvail != 1:
+    if r_2sv_6_8almAvail is not True and r_2sv_6_8almAvail is not False and (not isinstance(r_2sv_6_8almAvail, int) or r_2sv_6_8almAvail != 0 and r_2sv_6_8almAvail != 1):
         raise _enc('nav_sat', 'sv[6].almAvail', r_2sv_6_8almAvail, 'type', 'a bool')
     r_2sv_6_8almAvail = 1 if r_2sv_6_8almAvail else 0
     r_2sv_6_8anoAvail: Any = g_2sv_6.anoAvail
-    if r_2sv_6_8anoAvail is not True and r_2sv_6_8anoAvail is not False and r_2sv_6_8anoAvail != 0 and r_2sv_6_8anoAvail != 1:
+    if r_2sv_6_8anoAvail is not True and r_2sv_6_8anoAvail is not False and (not isinstance(r_2sv_6_8anoAvail, int) or r_2sv_6_8anoAvail != 0 and r_2sv_6_8anoAvail != 1):
         raise _enc('nav_sat', 'sv[6].anoAvail', r_2sv_6_8anoAvail, 'type', 'a bool')
     r_2sv_6_8anoAvail = 1 if r_2sv_6_8anoAvail else 0
     r_2sv_6_8aopAvail: Any = g_2sv_6.aopAvail
-    if r_2sv_6_8aopAvail is not True and r_2sv_6_8aopAvail is not False and r_2sv_6_8aopAvail != 0 and r_2sv_6_8aopAvail != 1:
+    if r_2sv_6_8aopAvail is not True and r_2sv_6_8aopAvail is not False and (not isinstance(r_2sv_6_8aopAvail, int) or r_2sv_6_8aopAvail != 0 and r_2sv_6_8aopAvail != 1):
         raise _enc('nav_sat', 'sv[6].aopAvail', r_2sv_6_8aopAvail, 'type', 'a bool')
     r_2sv_6_8aopAvail = 1 if r_2sv_6_8aopAvail else 0
     r_2sv_6_10reserved13 = g_2sv_6.reserved13
@@ -2190,43 +2204,43 @@ def _raw_nav_sat_2sv_6(g_2sv_6: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_6_10reserved13 <= 1:
             raise _enc('nav_sat', 'sv[6].reserved13', r_2sv_6_10reserved13, 'range', '0..1', None)
     r_2sv_6_12sbasCorrUsed: Any = g_2sv_6.sbasCorrUsed
-    if r_2sv_6_12sbasCorrUsed is not True and r_2sv_6_12sbasCorrUsed is not False and r_2sv_6_12sbasCorrUsed != 0 and r_2sv_6_12sbasCorrUsed != 1:
+    if r_2sv_6_12sbasCorrUsed is not True and r_2sv_6_12sbasCorrUsed is not False and (not isinstance(r_2sv_6_12sbasCorrUsed, int) or r_2sv_6_12sbasCorrUsed != 0 and r_2sv_6_12sbasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[6].sbasCorrUsed', r_2sv_6_12sbasCorrUsed, 'type', 'a bool')
     r_2sv_6_12sbasCorrUsed = 1 if r_2sv_6_12sbasCorrUsed else 0
     r_2sv_6_12rtcmCorrUsed: Any = g_2sv_6.rtcmCorrUsed
-    if r_2sv_6_12rtcmCorrUsed is not True and r_2sv_6_12rtcmCorrUsed is not False and r_2sv_6_12rtcmCorrUsed != 0 and r_2sv_6_12rtcmCorrUsed != 1:
+    if r_2sv_6_12rtcmCorrUsed is not True and r_2sv_6_12rtcmCorrUsed is not False and (not isinstance(r_2sv_6_12rtcmCorrUsed, int) or r_2sv_6_12rtcmCorrUsed != 0 and r_2sv_6_12rtcmCorrUsed != 1):
         raise _enc('nav_sat', 'sv[6].rtcmCorrUsed', r_2sv_6_12rtcmCorrUsed, 'type', 'a bool')
     r_2sv_6_12rtcmCorrUsed = 1 if r_2sv_6_12rtcmCorrUsed else 0
     r_2sv_6_12slasCorrUsed: Any = g_2sv_6.slasCorrUsed
-    if r_2sv_6_12slasCorrUsed is not True and r_2sv_6_12slasCorrUsed is not False and r_2sv_6_12slasCorrUsed != 0 and r_2sv_6_12slasCorrUsed != 1:
+    if r_2sv_6_12slasCorrUsed is not True and r_2sv_6_12slasCorrUsed is not False and (not isinstance(r_2sv_6_12slasCorrUsed, int) or r_2sv_6_12slasCorrUsed != 0 and r_2sv_6_12slasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[6].slasCorrUsed', r_2sv_6_12slasCorrUsed, 'type', 'a bool')
     r_2sv_6_12slasCorrUsed = 1 if r_2sv_6_12slasCorrUsed else 0
     r_2sv_6_14spartnCorrUsed: Any = g_2sv_6.spartnCorrUsed
-    if r_2sv_6_14spartnCorrUsed is not True and r_2sv_6_14spartnCorrUsed is not False and r_2sv_6_14spartnCorrUsed != 0 and r_2sv_6_14spartnCorrUsed != 1:
+    if r_2sv_6_14spartnCorrUsed is not True and r_2sv_6_14spartnCorrUsed is not False and (not isinstance(r_2sv_6_14spartnCorrUsed, int) or r_2sv_6_14spartnCorrUsed != 0 and r_2sv_6_14spartnCorrUsed != 1):
         raise _enc('nav_sat', 'sv[6].spartnCorrUsed', r_2sv_6_14spartnCorrUsed, 'type', 'a bool')
     r_2sv_6_14spartnCorrUsed = 1 if r_2sv_6_14spartnCorrUsed else 0
     r_2sv_6_10prCorrUsed: Any = g_2sv_6.prCorrUsed
-    if r_2sv_6_10prCorrUsed is not True and r_2sv_6_10prCorrUsed is not False and r_2sv_6_10prCorrUsed != 0 and r_2sv_6_10prCorrUsed != 1:
+    if r_2sv_6_10prCorrUsed is not True and r_2sv_6_10prCorrUsed is not False and (not isinstance(r_2sv_6_10prCorrUsed, int) or r_2sv_6_10prCorrUsed != 0 and r_2sv_6_10prCorrUsed != 1):
         raise _enc('nav_sat', 'sv[6].prCorrUsed', r_2sv_6_10prCorrUsed, 'type', 'a bool')
     r_2sv_6_10prCorrUsed = 1 if r_2sv_6_10prCorrUsed else 0
     r_2sv_6_10crCorrUsed: Any = g_2sv_6.crCorrUsed
-    if r_2sv_6_10crCorrUsed is not True and r_2sv_6_10crCorrUsed is not False and r_2sv_6_10crCorrUsed != 0 and r_2sv_6_10crCorrUsed != 1:
+    if r_2sv_6_10crCorrUsed is not True and r_2sv_6_10crCorrUsed is not False and (not isinstance(r_2sv_6_10crCorrUsed, int) or r_2sv_6_10crCorrUsed != 0 and r_2sv_6_10crCorrUsed != 1):
         raise _enc('nav_sat', 'sv[6].crCorrUsed', r_2sv_6_10crCorrUsed, 'type', 'a bool')
     r_2sv_6_10crCorrUsed = 1 if r_2sv_6_10crCorrUsed else 0
     r_2sv_6_10doCorrUsed: Any = g_2sv_6.doCorrUsed
-    if r_2sv_6_10doCorrUsed is not True and r_2sv_6_10doCorrUsed is not False and r_2sv_6_10doCorrUsed != 0 and r_2sv_6_10doCorrUsed != 1:
+    if r_2sv_6_10doCorrUsed is not True and r_2sv_6_10doCorrUsed is not False and (not isinstance(r_2sv_6_10doCorrUsed, int) or r_2sv_6_10doCorrUsed != 0 and r_2sv_6_10doCorrUsed != 1):
         raise _enc('nav_sat', 'sv[6].doCorrUsed', r_2sv_6_10doCorrUsed, 'type', 'a bool')
     r_2sv_6_10doCorrUsed = 1 if r_2sv_6_10doCorrUsed else 0
     r_2sv_6_12clasCorrUsed: Any = g_2sv_6.clasCorrUsed
-    if r_2sv_6_12clasCorrUsed is not True and r_2sv_6_12clasCorrUsed is not False and r_2sv_6_12clasCorrUsed != 0 and r_2sv_6_12clasCorrUsed != 1:
+    if r_2sv_6_12clasCorrUsed is not True and r_2sv_6_12clasCorrUsed is not False and (not isinstance(r_2sv_6_12clasCorrUsed, int) or r_2sv_6_12clasCorrUsed != 0 and r_2sv_6_12clasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[6].clasCorrUsed', r_2sv_6_12clasCorrUsed, 'type', 'a bool')
     r_2sv_6_12clasCorrUsed = 1 if r_2sv_6_12clasCorrUsed else 0
     r_2sv_6_11lppCorrUsed: Any = g_2sv_6.lppCorrUsed
-    if r_2sv_6_11lppCorrUsed is not True and r_2sv_6_11lppCorrUsed is not False and r_2sv_6_11lppCorrUsed != 0 and r_2sv_6_11lppCorrUsed != 1:
+    if r_2sv_6_11lppCorrUsed is not True and r_2sv_6_11lppCorrUsed is not False and (not isinstance(r_2sv_6_11lppCorrUsed, int) or r_2sv_6_11lppCorrUsed != 0 and r_2sv_6_11lppCorrUsed != 1):
         raise _enc('nav_sat', 'sv[6].lppCorrUsed', r_2sv_6_11lppCorrUsed, 'type', 'a bool')
     r_2sv_6_11lppCorrUsed = 1 if r_2sv_6_11lppCorrUsed else 0
     r_2sv_6_11hasCorrUsed: Any = g_2sv_6.hasCorrUsed
-    if r_2sv_6_11hasCorrUsed is not True and r_2sv_6_11hasCorrUsed is not False and r_2sv_6_11hasCorrUsed != 0 and r_2sv_6_11hasCorrUsed != 1:
+    if r_2sv_6_11hasCorrUsed is not True and r_2sv_6_11hasCorrUsed is not False and (not isinstance(r_2sv_6_11hasCorrUsed, int) or r_2sv_6_11hasCorrUsed != 0 and r_2sv_6_11hasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[6].hasCorrUsed', r_2sv_6_11hasCorrUsed, 'type', 'a bool')
     r_2sv_6_11hasCorrUsed = 1 if r_2sv_6_11hasCorrUsed else 0
     r_2sv_6_11flags_spare = 0
@@ -2234,6 +2248,8 @@ def _raw_nav_sat_2sv_6(g_2sv_6: Any) -> tuple[Any, ...]:
 
 
 def _raw_nav_sat_2sv_7(g_2sv_7: Any) -> tuple[Any, ...]:
+    if g_2sv_7.__class__ is not NavSatSv and not isinstance(g_2sv_7, NavSatSv):
+        raise _enc('nav_sat', 'sv[7]', g_2sv_7, 'type', 'a NavSatSv')
     r_2sv_7_6gnssId = g_2sv_7.gnssId
     if r_2sv_7_6gnssId.__class__ is not int or not 0 <= r_2sv_7_6gnssId <= 255:
         if not isinstance(r_2sv_7_6gnssId, int) or r_2sv_7_6gnssId.__class__ is bool:
@@ -2278,7 +2294,7 @@ def _raw_nav_sat_2sv_7(g_2sv_7: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_7_10qualityInd <= 7:
             raise _enc('nav_sat', 'sv[7].qualityInd', r_2sv_7_10qualityInd, 'range', '0..7', None)
     r_2sv_7_6svUsed: Any = g_2sv_7.svUsed
-    if r_2sv_7_6svUsed is not True and r_2sv_7_6svUsed is not False and r_2sv_7_6svUsed != 0 and r_2sv_7_6svUsed != 1:
+    if r_2sv_7_6svUsed is not True and r_2sv_7_6svUsed is not False and (not isinstance(r_2sv_7_6svUsed, int) or r_2sv_7_6svUsed != 0 and r_2sv_7_6svUsed != 1):
         raise _enc('nav_sat', 'sv[7].svUsed', r_2sv_7_6svUsed, 'type', 'a bool')
     r_2sv_7_6svUsed = 1 if r_2sv_7_6svUsed else 0
     r_2sv_7_6health = g_2sv_7.health
@@ -2288,11 +2304,11 @@ def _raw_nav_sat_2sv_7(g_2sv_7: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_7_6health <= 3:
             raise _enc('nav_sat', 'sv[7].health', r_2sv_7_6health, 'range', '0..3', None)
     r_2sv_7_8diffCorr: Any = g_2sv_7.diffCorr
-    if r_2sv_7_8diffCorr is not True and r_2sv_7_8diffCorr is not False and r_2sv_7_8diffCorr != 0 and r_2sv_7_8diffCorr != 1:
+    if r_2sv_7_8diffCorr is not True and r_2sv_7_8diffCorr is not False and (not isinstance(r_2sv_7_8diffCorr, int) or r_2sv_7_8diffCorr != 0 and r_2sv_7_8diffCorr != 1):
         raise _enc('nav_sat', 'sv[7].diffCorr', r_2sv_7_8diffCorr, 'type', 'a bool')
     r_2sv_7_8diffCorr = 1 if r_2sv_7_8diffCorr else 0
     r_2sv_7_8smoothed: Any = g_2sv_7.smoothed
-    if r_2sv_7_8smoothed is not True and r_2sv_7_8smoothed is not False and r_2sv_7_8smoothed != 0 and r_2sv_7_8smoothed != 1:
+    if r_2sv_7_8smoothed is not True and r_2sv_7_8smoothed is not False and (not isinstance(r_2sv_7_8smoothed, int) or r_2sv_7_8smoothed != 0 and r_2sv_7_8smoothed != 1):
         raise _enc('nav_sat', 'sv[7].smoothed', r_2sv_7_8smoothed, 'type', 'a bool')
     r_2sv_7_8smoothed = 1 if r_2sv_7_8smoothed else 0
     r_2sv_7_11orbitSource = g_2sv_7.orbitSource
@@ -2302,19 +2318,19 @@ def _raw_nav_sat_2sv_7(g_2sv_7: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_7_11orbitSource <= 7:
             raise _enc('nav_sat', 'sv[7].orbitSource', r_2sv_7_11orbitSource, 'range', '0..7', None)
     r_2sv_7_8ephAvail: Any = g_2sv_7.ephAvail
-    if r_2sv_7_8ephAvail is not True and r_2sv_7_8ephAvail is not False and r_2sv_7_8ephAvail != 0 and r_2sv_7_8ephAvail != 1:
+    if r_2sv_7_8ephAvail is not True and r_2sv_7_8ephAvail is not False and (not isinstance(r_2sv_7_8ephAvail, int) or r_2sv_7_8ephAvail != 0 and r_2sv_7_8ephAvail != 1):
         raise _enc('nav_sat', 'sv[7].ephAvail', r_2sv_7_8ephAvail, 'type', 'a bool')
     r_2sv_7_8ephAvail = 1 if r_2sv_7_8ephAvail else 0
     r_2sv_7_8almAvail: Any = g_2sv_7.almAvail
-    if r_2sv_7_8almAvail is not True and r_2sv_7_8almAvail is not False and r_2sv_7_8almAvail != 0 and r_2sv_7_8almAvail != 1:
+    if r_2sv_7_8almAvail is not True and r_2sv_7_8almAvail is not False and (not isinstance(r_2sv_7_8almAvail, int) or r_2sv_7_8almAvail != 0 and r_2sv_7_8almAvail != 1):
         raise _enc('nav_sat', 'sv[7].almAvail', r_2sv_7_8almAvail, 'type', 'a bool')
     r_2sv_7_8almAvail = 1 if r_2sv_7_8almAvail else 0
     r_2sv_7_8anoAvail: Any = g_2sv_7.anoAvail
-    if r_2sv_7_8anoAvail is not True and r_2sv_7_8anoAvail is not False and r_2sv_7_8anoAvail != 0 and r_2sv_7_8anoAvail != 1:
+    if r_2sv_7_8anoAvail is not True and r_2sv_7_8anoAvail is not False and (not isinstance(r_2sv_7_8anoAvail, int) or r_2sv_7_8anoAvail != 0 and r_2sv_7_8anoAvail != 1):
         raise _enc('nav_sat', 'sv[7].anoAvail', r_2sv_7_8anoAvail, 'type', 'a bool')
     r_2sv_7_8anoAvail = 1 if r_2sv_7_8anoAvail else 0
     r_2sv_7_8aopAvail: Any = g_2sv_7.aopAvail
-    if r_2sv_7_8aopAvail is not True and r_2sv_7_8aopAvail is not False and r_2sv_7_8aopAvail != 0 and r_2sv_7_8aopAvail != 1:
+    if r_2sv_7_8aopAvail is not True and r_2sv_7_8aopAvail is not False and (not isinstance(r_2sv_7_8aopAvail, int) or r_2sv_7_8aopAvail != 0 and r_2sv_7_8aopAvail != 1):
         raise _enc('nav_sat', 'sv[7].aopAvail', r_2sv_7_8aopAvail, 'type', 'a bool')
     r_2sv_7_8aopAvail = 1 if r_2sv_7_8aopAvail else 0
     r_2sv_7_10reserved13 = g_2sv_7.reserved13
@@ -2324,43 +2340,43 @@ def _raw_nav_sat_2sv_7(g_2sv_7: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_7_10reserved13 <= 1:
             raise _enc('nav_sat', 'sv[7].reserved13', r_2sv_7_10reserved13, 'range', '0..1', None)
     r_2sv_7_12sbasCorrUsed: Any = g_2sv_7.sbasCorrUsed
-    if r_2sv_7_12sbasCorrUsed is not True and r_2sv_7_12sbasCorrUsed is not False and r_2sv_7_12sbasCorrUsed != 0 and r_2sv_7_12sbasCorrUsed != 1:
+    if r_2sv_7_12sbasCorrUsed is not True and r_2sv_7_12sbasCorrUsed is not False and (not isinstance(r_2sv_7_12sbasCorrUsed, int) or r_2sv_7_12sbasCorrUsed != 0 and r_2sv_7_12sbasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[7].sbasCorrUsed', r_2sv_7_12sbasCorrUsed, 'type', 'a bool')
     r_2sv_7_12sbasCorrUsed = 1 if r_2sv_7_12sbasCorrUsed else 0
     r_2sv_7_12rtcmCorrUsed: Any = g_2sv_7.rtcmCorrUsed
-    if r_2sv_7_12rtcmCorrUsed is not True and r_2sv_7_12rtcmCorrUsed is not False and r_2sv_7_12rtcmCorrUsed != 0 and r_2sv_7_12rtcmCorrUsed != 1:
+    if r_2sv_7_12rtcmCorrUsed is not True and r_2sv_7_12rtcmCorrUsed is not False and (not isinstance(r_2sv_7_12rtcmCorrUsed, int) or r_2sv_7_12rtcmCorrUsed != 0 and r_2sv_7_12rtcmCorrUsed != 1):
         raise _enc('nav_sat', 'sv[7].rtcmCorrUsed', r_2sv_7_12rtcmCorrUsed, 'type', 'a bool')
     r_2sv_7_12rtcmCorrUsed = 1 if r_2sv_7_12rtcmCorrUsed else 0
     r_2sv_7_12slasCorrUsed: Any = g_2sv_7.slasCorrUsed
-    if r_2sv_7_12slasCorrUsed is not True and r_2sv_7_12slasCorrUsed is not False and r_2sv_7_12slasCorrUsed != 0 and r_2sv_7_12slasCorrUsed != 1:
+    if r_2sv_7_12slasCorrUsed is not True and r_2sv_7_12slasCorrUsed is not False and (not isinstance(r_2sv_7_12slasCorrUsed, int) or r_2sv_7_12slasCorrUsed != 0 and r_2sv_7_12slasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[7].slasCorrUsed', r_2sv_7_12slasCorrUsed, 'type', 'a bool')
     r_2sv_7_12slasCorrUsed = 1 if r_2sv_7_12slasCorrUsed else 0
     r_2sv_7_14spartnCorrUsed: Any = g_2sv_7.spartnCorrUsed
-    if r_2sv_7_14spartnCorrUsed is not True and r_2sv_7_14spartnCorrUsed is not False and r_2sv_7_14spartnCorrUsed != 0 and r_2sv_7_14spartnCorrUsed != 1:
+    if r_2sv_7_14spartnCorrUsed is not True and r_2sv_7_14spartnCorrUsed is not False and (not isinstance(r_2sv_7_14spartnCorrUsed, int) or r_2sv_7_14spartnCorrUsed != 0 and r_2sv_7_14spartnCorrUsed != 1):
         raise _enc('nav_sat', 'sv[7].spartnCorrUsed', r_2sv_7_14spartnCorrUsed, 'type', 'a bool')
     r_2sv_7_14spartnCorrUsed = 1 if r_2sv_7_14spartnCorrUsed else 0
     r_2sv_7_10prCorrUsed: Any = g_2sv_7.prCorrUsed
-    if r_2sv_7_10prCorrUsed is not True and r_2sv_7_10prCorrUsed is not False and r_2sv_7_10prCorrUsed != 0 and r_2sv_7_10prCorrUsed != 1:
+    if r_2sv_7_10prCorrUsed is not True and r_2sv_7_10prCorrUsed is not False and (not isinstance(r_2sv_7_10prCorrUsed, int) or r_2sv_7_10prCorrUsed != 0 and r_2sv_7_10prCorrUsed != 1):
         raise _enc('nav_sat', 'sv[7].prCorrUsed', r_2sv_7_10prCorrUsed, 'type', 'a bool')
     r_2sv_7_10prCorrUsed = 1 if r_2sv_7_10prCorrUsed else 0
     r_2sv_7_10crCorrUsed: Any = g_2sv_7.crCorrUsed
-    if r_2sv_7_10crCorrUsed is not True and r_2sv_7_10crCorrUsed is not False and r_2sv_7_10crCorrUsed != 0 and r_2sv_7_10crCorrUsed != 1:
+    if r_2sv_7_10crCorrUsed is not True and r_2sv_7_10crCorrUsed is not False and (not isinstance(r_2sv_7_10crCorrUsed, int) or r_2sv_7_10crCorrUsed != 0 and r_2sv_7_10crCorrUsed != 1):
         raise _enc('nav_sat', 'sv[7].crCorrUsed', r_2sv_7_10crCorrUsed, 'type', 'a bool')
     r_2sv_7_10crCorrUsed = 1 if r_2sv_7_10crCorrUsed else 0
     r_2sv_7_10doCorrUsed: Any = g_2sv_7.doCorrUsed
-    if r_2sv_7_10doCorrUsed is not True and r_2sv_7_10doCorrUsed is not False and r_2sv_7_10doCorrUsed != 0 and r_2sv_7_10doCorrUsed != 1:
+    if r_2sv_7_10doCorrUsed is not True and r_2sv_7_10doCorrUsed is not False and (not isinstance(r_2sv_7_10doCorrUsed, int) or r_2sv_7_10doCorrUsed != 0 and r_2sv_7_10doCorrUsed != 1):
         raise _enc('nav_sat', 'sv[7].doCorrUsed', r_2sv_7_10doCorrUsed, 'type', 'a bool')
     r_2sv_7_10doCorrUsed = 1 if r_2sv_7_10doCorrUsed else 0
     r_2sv_7_12clasCorrUsed: Any = g_2sv_7.clasCorrUsed
-    if r_2sv_7_12clasCorrUsed is not True and r_2sv_7_12clasCorrUsed is not False and r_2sv_7_12clasCorrUsed != 0 and r_2sv_7_12clasCorrUsed != 1:
+    if r_2sv_7_12clasCorrUsed is not True and r_2sv_7_12clasCorrUsed is not False and (not isinstance(r_2sv_7_12clasCorrUsed, int) or r_2sv_7_12clasCorrUsed != 0 and r_2sv_7_12clasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[7].clasCorrUsed', r_2sv_7_12clasCorrUsed, 'type', 'a bool')
     r_2sv_7_12clasCorrUsed = 1 if r_2sv_7_12clasCorrUsed else 0
     r_2sv_7_11lppCorrUsed: Any = g_2sv_7.lppCorrUsed
-    if r_2sv_7_11lppCorrUsed is not True and r_2sv_7_11lppCorrUsed is not False and r_2sv_7_11lppCorrUsed != 0 and r_2sv_7_11lppCorrUsed != 1:
+    if r_2sv_7_11lppCorrUsed is not True and r_2sv_7_11lppCorrUsed is not False and (not isinstance(r_2sv_7_11lppCorrUsed, int) or r_2sv_7_11lppCorrUsed != 0 and r_2sv_7_11lppCorrUsed != 1):
         raise _enc('nav_sat', 'sv[7].lppCorrUsed', r_2sv_7_11lppCorrUsed, 'type', 'a bool')
     r_2sv_7_11lppCorrUsed = 1 if r_2sv_7_11lppCorrUsed else 0
     r_2sv_7_11hasCorrUsed: Any = g_2sv_7.hasCorrUsed
-    if r_2sv_7_11hasCorrUsed is not True and r_2sv_7_11hasCorrUsed is not False and r_2sv_7_11hasCorrUsed != 0 and r_2sv_7_11hasCorrUsed != 1:
+    if r_2sv_7_11hasCorrUsed is not True and r_2sv_7_11hasCorrUsed is not False and (not isinstance(r_2sv_7_11hasCorrUsed, int) or r_2sv_7_11hasCorrUsed != 0 and r_2sv_7_11hasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[7].hasCorrUsed', r_2sv_7_11hasCorrUsed, 'type', 'a bool')
     r_2sv_7_11hasCorrUsed = 1 if r_2sv_7_11hasCorrUsed else 0
     r_2sv_7_11flags_spare = 0
@@ -2368,6 +2384,8 @@ def _raw_nav_sat_2sv_7(g_2sv_7: Any) -> tuple[Any, ...]:
 
 
 def _raw_nav_sat_2sv_8(g_2sv_8: Any) -> tuple[Any, ...]:
+    if g_2sv_8.__class__ is not NavSatSv and not isinstance(g_2sv_8, NavSatSv):
+        raise _enc('nav_sat', 'sv[8]', g_2sv_8, 'type', 'a NavSatSv')
     r_2sv_8_6gnssId = g_2sv_8.gnssId
     if r_2sv_8_6gnssId.__class__ is not int or not 0 <= r_2sv_8_6gnssId <= 255:
         if not isinstance(r_2sv_8_6gnssId, int) or r_2sv_8_6gnssId.__class__ is bool:
@@ -2412,7 +2430,7 @@ def _raw_nav_sat_2sv_8(g_2sv_8: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_8_10qualityInd <= 7:
             raise _enc('nav_sat', 'sv[8].qualityInd', r_2sv_8_10qualityInd, 'range', '0..7', None)
     r_2sv_8_6svUsed: Any = g_2sv_8.svUsed
-    if r_2sv_8_6svUsed is not True and r_2sv_8_6svUsed is not False and r_2sv_8_6svUsed != 0 and r_2sv_8_6svUsed != 1:
+    if r_2sv_8_6svUsed is not True and r_2sv_8_6svUsed is not False and (not isinstance(r_2sv_8_6svUsed, int) or r_2sv_8_6svUsed != 0 and r_2sv_8_6svUsed != 1):
         raise _enc('nav_sat', 'sv[8].svUsed', r_2sv_8_6svUsed, 'type', 'a bool')
     r_2sv_8_6svUsed = 1 if r_2sv_8_6svUsed else 0
     r_2sv_8_6health = g_2sv_8.health
@@ -2422,11 +2440,11 @@ def _raw_nav_sat_2sv_8(g_2sv_8: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_8_6health <= 3:
             raise _enc('nav_sat', 'sv[8].health', r_2sv_8_6health, 'range', '0..3', None)
     r_2sv_8_8diffCorr: Any = g_2sv_8.diffCorr
-    if r_2sv_8_8diffCorr is not True and r_2sv_8_8diffCorr is not False and r_2sv_8_8diffCorr != 0 and r_2sv_8_8diffCorr != 1:
+    if r_2sv_8_8diffCorr is not True and r_2sv_8_8diffCorr is not False and (not isinstance(r_2sv_8_8diffCorr, int) or r_2sv_8_8diffCorr != 0 and r_2sv_8_8diffCorr != 1):
         raise _enc('nav_sat', 'sv[8].diffCorr', r_2sv_8_8diffCorr, 'type', 'a bool')
     r_2sv_8_8diffCorr = 1 if r_2sv_8_8diffCorr else 0
     r_2sv_8_8smoothed: Any = g_2sv_8.smoothed
-    if r_2sv_8_8smoothed is not True and r_2sv_8_8smoothed is not False and r_2sv_8_8smoothed != 0 and r_2sv_8_8smoothed != 1:
+    if r_2sv_8_8smoothed is not True and r_2sv_8_8smoothed is not False and (not isinstance(r_2sv_8_8smoothed, int) or r_2sv_8_8smoothed != 0 and r_2sv_8_8smoothed != 1):
         raise _enc('nav_sat', 'sv[8].smoothed', r_2sv_8_8smoothed, 'type', 'a bool')
     r_2sv_8_8smoothed = 1 if r_2sv_8_8smoothed else 0
     r_2sv_8_11orbitSource = g_2sv_8.orbitSource
@@ -2436,19 +2454,19 @@ def _raw_nav_sat_2sv_8(g_2sv_8: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_8_11orbitSource <= 7:
             raise _enc('nav_sat', 'sv[8].orbitSource', r_2sv_8_11orbitSource, 'range', '0..7', None)
     r_2sv_8_8ephAvail: Any = g_2sv_8.ephAvail
-    if r_2sv_8_8ephAvail is not True and r_2sv_8_8ephAvail is not False and r_2sv_8_8ephAvail != 0 and r_2sv_8_8ephAvail != 1:
+    if r_2sv_8_8ephAvail is not True and r_2sv_8_8ephAvail is not False and (not isinstance(r_2sv_8_8ephAvail, int) or r_2sv_8_8ephAvail != 0 and r_2sv_8_8ephAvail != 1):
         raise _enc('nav_sat', 'sv[8].ephAvail', r_2sv_8_8ephAvail, 'type', 'a bool')
     r_2sv_8_8ephAvail = 1 if r_2sv_8_8ephAvail else 0
     r_2sv_8_8almAvail: Any = g_2sv_8.almAvail
-    if r_2sv_8_8almAvail is not True and r_2sv_8_8almAvail is not False and r_2sv_8_8almAvail != 0 and r_2sv_8_8almAvail != 1:
+    if r_2sv_8_8almAvail is not True and r_2sv_8_8almAvail is not False and (not isinstance(r_2sv_8_8almAvail, int) or r_2sv_8_8almAvail != 0 and r_2sv_8_8almAvail != 1):
         raise _enc('nav_sat', 'sv[8].almAvail', r_2sv_8_8almAvail, 'type', 'a bool')
     r_2sv_8_8almAvail = 1 if r_2sv_8_8almAvail else 0
     r_2sv_8_8anoAvail: Any = g_2sv_8.anoAvail
-    if r_2sv_8_8anoAvail is not True and r_2sv_8_8anoAvail is not False and r_2sv_8_8anoAvail != 0 and r_2sv_8_8anoAvail != 1:
+    if r_2sv_8_8anoAvail is not True and r_2sv_8_8anoAvail is not False and (not isinstance(r_2sv_8_8anoAvail, int) or r_2sv_8_8anoAvail != 0 and r_2sv_8_8anoAvail != 1):
         raise _enc('nav_sat', 'sv[8].anoAvail', r_2sv_8_8anoAvail, 'type', 'a bool')
     r_2sv_8_8anoAvail = 1 if r_2sv_8_8anoAvail else 0
     r_2sv_8_8aopAvail: Any = g_2sv_8.aopAvail
-    if r_2sv_8_8aopAvail is not True and r_2sv_8_8aopAvail is not False and r_2sv_8_8aopAvail != 0 and r_2sv_8_8aopAvail != 1:
+    if r_2sv_8_8aopAvail is not True and r_2sv_8_8aopAvail is not False and (not isinstance(r_2sv_8_8aopAvail, int) or r_2sv_8_8aopAvail != 0 and r_2sv_8_8aopAvail != 1):
         raise _enc('nav_sat', 'sv[8].aopAvail', r_2sv_8_8aopAvail, 'type', 'a bool')
     r_2sv_8_8aopAvail = 1 if r_2sv_8_8aopAvail else 0
     r_2sv_8_10reserved13 = g_2sv_8.reserved13
@@ -2458,43 +2476,43 @@ def _raw_nav_sat_2sv_8(g_2sv_8: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_8_10reserved13 <= 1:
             raise _enc('nav_sat', 'sv[8].reserved13', r_2sv_8_10reserved13, 'range', '0..1', None)
     r_2sv_8_12sbasCorrUsed: Any = g_2sv_8.sbasCorrUsed
-    if r_2sv_8_12sbasCorrUsed is not True and r_2sv_8_12sbasCorrUsed is not False and r_2sv_8_12sbasCorrUsed != 0 and r_2sv_8_12sbasCorrUsed != 1:
+    if r_2sv_8_12sbasCorrUsed is not True and r_2sv_8_12sbasCorrUsed is not False and (not isinstance(r_2sv_8_12sbasCorrUsed, int) or r_2sv_8_12sbasCorrUsed != 0 and r_2sv_8_12sbasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[8].sbasCorrUsed', r_2sv_8_12sbasCorrUsed, 'type', 'a bool')
     r_2sv_8_12sbasCorrUsed = 1 if r_2sv_8_12sbasCorrUsed else 0
     r_2sv_8_12rtcmCorrUsed: Any = g_2sv_8.rtcmCorrUsed
-    if r_2sv_8_12rtcmCorrUsed is not True and r_2sv_8_12rtcmCorrUsed is not False and r_2sv_8_12rtcmCorrUsed != 0 and r_2sv_8_12rtcmCorrUsed != 1:
+    if r_2sv_8_12rtcmCorrUsed is not True and r_2sv_8_12rtcmCorrUsed is not False and (not isinstance(r_2sv_8_12rtcmCorrUsed, int) or r_2sv_8_12rtcmCorrUsed != 0 and r_2sv_8_12rtcmCorrUsed != 1):
         raise _enc('nav_sat', 'sv[8].rtcmCorrUsed', r_2sv_8_12rtcmCorrUsed, 'type', 'a bool')
     r_2sv_8_12rtcmCorrUsed = 1 if r_2sv_8_12rtcmCorrUsed else 0
     r_2sv_8_12slasCorrUsed: Any = g_2sv_8.slasCorrUsed
-    if r_2sv_8_12slasCorrUsed is not True and r_2sv_8_12slasCorrUsed is not False and r_2sv_8_12slasCorrUsed != 0 and r_2sv_8_12slasCorrUsed != 1:
+    if r_2sv_8_12slasCorrUsed is not True and r_2sv_8_12slasCorrUsed is not False and (not isinstance(r_2sv_8_12slasCorrUsed, int) or r_2sv_8_12slasCorrUsed != 0 and r_2sv_8_12slasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[8].slasCorrUsed', r_2sv_8_12slasCorrUsed, 'type', 'a bool')
     r_2sv_8_12slasCorrUsed = 1 if r_2sv_8_12slasCorrUsed else 0
     r_2sv_8_14spartnCorrUsed: Any = g_2sv_8.spartnCorrUsed
-    if r_2sv_8_14spartnCorrUsed is not True and r_2sv_8_14spartnCorrUsed is not False and r_2sv_8_14spartnCorrUsed != 0 and r_2sv_8_14spartnCorrUsed != 1:
+    if r_2sv_8_14spartnCorrUsed is not True and r_2sv_8_14spartnCorrUsed is not False and (not isinstance(r_2sv_8_14spartnCorrUsed, int) or r_2sv_8_14spartnCorrUsed != 0 and r_2sv_8_14spartnCorrUsed != 1):
         raise _enc('nav_sat', 'sv[8].spartnCorrUsed', r_2sv_8_14spartnCorrUsed, 'type', 'a bool')
     r_2sv_8_14spartnCorrUsed = 1 if r_2sv_8_14spartnCorrUsed else 0
     r_2sv_8_10prCorrUsed: Any = g_2sv_8.prCorrUsed
-    if r_2sv_8_10prCorrUsed is not True and r_2sv_8_10prCorrUsed is not False and r_2sv_8_10prCorrUsed != 0 and r_2sv_8_10prCorrUsed != 1:
+    if r_2sv_8_10prCorrUsed is not True and r_2sv_8_10prCorrUsed is not False and (not isinstance(r_2sv_8_10prCorrUsed, int) or r_2sv_8_10prCorrUsed != 0 and r_2sv_8_10prCorrUsed != 1):
         raise _enc('nav_sat', 'sv[8].prCorrUsed', r_2sv_8_10prCorrUsed, 'type', 'a bool')
     r_2sv_8_10prCorrUsed = 1 if r_2sv_8_10prCorrUsed else 0
     r_2sv_8_10crCorrUsed: Any = g_2sv_8.crCorrUsed
-    if r_2sv_8_10crCorrUsed is not True and r_2sv_8_10crCorrUsed is not False and r_2sv_8_10crCorrUsed != 0 and r_2sv_8_10crCorrUsed != 1:
+    if r_2sv_8_10crCorrUsed is not True and r_2sv_8_10crCorrUsed is not False and (not isinstance(r_2sv_8_10crCorrUsed, int) or r_2sv_8_10crCorrUsed != 0 and r_2sv_8_10crCorrUsed != 1):
         raise _enc('nav_sat', 'sv[8].crCorrUsed', r_2sv_8_10crCorrUsed, 'type', 'a bool')
     r_2sv_8_10crCorrUsed = 1 if r_2sv_8_10crCorrUsed else 0
     r_2sv_8_10doCorrUsed: Any = g_2sv_8.doCorrUsed
-    if r_2sv_8_10doCorrUsed is not True and r_2sv_8_10doCorrUsed is not False and r_2sv_8_10doCorrUsed != 0 and r_2sv_8_10doCorrUsed != 1:
+    if r_2sv_8_10doCorrUsed is not True and r_2sv_8_10doCorrUsed is not False and (not isinstance(r_2sv_8_10doCorrUsed, int) or r_2sv_8_10doCorrUsed != 0 and r_2sv_8_10doCorrUsed != 1):
         raise _enc('nav_sat', 'sv[8].doCorrUsed', r_2sv_8_10doCorrUsed, 'type', 'a bool')
     r_2sv_8_10doCorrUsed = 1 if r_2sv_8_10doCorrUsed else 0
     r_2sv_8_12clasCorrUsed: Any = g_2sv_8.clasCorrUsed
-    if r_2sv_8_12clasCorrUsed is not True and r_2sv_8_12clasCorrUsed is not False and r_2sv_8_12clasCorrUsed != 0 and r_2sv_8_12clasCorrUsed != 1:
+    if r_2sv_8_12clasCorrUsed is not True and r_2sv_8_12clasCorrUsed is not False and (not isinstance(r_2sv_8_12clasCorrUsed, int) or r_2sv_8_12clasCorrUsed != 0 and r_2sv_8_12clasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[8].clasCorrUsed', r_2sv_8_12clasCorrUsed, 'type', 'a bool')
     r_2sv_8_12clasCorrUsed = 1 if r_2sv_8_12clasCorrUsed else 0
     r_2sv_8_11lppCorrUsed: Any = g_2sv_8.lppCorrUsed
-    if r_2sv_8_11lppCorrUsed is not True and r_2sv_8_11lppCorrUsed is not False and r_2sv_8_11lppCorrUsed != 0 and r_2sv_8_11lppCorrUsed != 1:
+    if r_2sv_8_11lppCorrUsed is not True and r_2sv_8_11lppCorrUsed is not False and (not isinstance(r_2sv_8_11lppCorrUsed, int) or r_2sv_8_11lppCorrUsed != 0 and r_2sv_8_11lppCorrUsed != 1):
         raise _enc('nav_sat', 'sv[8].lppCorrUsed', r_2sv_8_11lppCorrUsed, 'type', 'a bool')
     r_2sv_8_11lppCorrUsed = 1 if r_2sv_8_11lppCorrUsed else 0
     r_2sv_8_11hasCorrUsed: Any = g_2sv_8.hasCorrUsed
-    if r_2sv_8_11hasCorrUsed is not True and r_2sv_8_11hasCorrUsed is not False and r_2sv_8_11hasCorrUsed != 0 and r_2sv_8_11hasCorrUsed != 1:
+    if r_2sv_8_11hasCorrUsed is not True and r_2sv_8_11hasCorrUsed is not False and (not isinstance(r_2sv_8_11hasCorrUsed, int) or r_2sv_8_11hasCorrUsed != 0 and r_2sv_8_11hasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[8].hasCorrUsed', r_2sv_8_11hasCorrUsed, 'type', 'a bool')
     r_2sv_8_11hasCorrUsed = 1 if r_2sv_8_11hasCorrUsed else 0
     r_2sv_8_11flags_spare = 0
@@ -2502,6 +2520,8 @@ def _raw_nav_sat_2sv_8(g_2sv_8: Any) -> tuple[Any, ...]:
 
 
 def _raw_nav_sat_2sv_9(g_2sv_9: Any) -> tuple[Any, ...]:
+    if g_2sv_9.__class__ is not NavSatSv and not isinstance(g_2sv_9, NavSatSv):
+        raise _enc('nav_sat', 'sv[9]', g_2sv_9, 'type', 'a NavSatSv')
     r_2sv_9_6gnssId = g_2sv_9.gnssId
     if r_2sv_9_6gnssId.__class__ is not int or not 0 <= r_2sv_9_6gnssId <= 255:
         if not isinstance(r_2sv_9_6gnssId, int) or r_2sv_9_6gnssId.__class__ is bool:
@@ -2546,7 +2566,7 @@ def _raw_nav_sat_2sv_9(g_2sv_9: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_9_10qualityInd <= 7:
             raise _enc('nav_sat', 'sv[9].qualityInd', r_2sv_9_10qualityInd, 'range', '0..7', None)
     r_2sv_9_6svUsed: Any = g_2sv_9.svUsed
-    if r_2sv_9_6svUsed is not True and r_2sv_9_6svUsed is not False and r_2sv_9_6svUsed != 0 and r_2sv_9_6svUsed != 1:
+    if r_2sv_9_6svUsed is not True and r_2sv_9_6svUsed is not False and (not isinstance(r_2sv_9_6svUsed, int) or r_2sv_9_6svUsed != 0 and r_2sv_9_6svUsed != 1):
         raise _enc('nav_sat', 'sv[9].svUsed', r_2sv_9_6svUsed, 'type', 'a bool')
     r_2sv_9_6svUsed = 1 if r_2sv_9_6svUsed else 0
     r_2sv_9_6health = g_2sv_9.health
@@ -2556,11 +2576,11 @@ def _raw_nav_sat_2sv_9(g_2sv_9: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_9_6health <= 3:
             raise _enc('nav_sat', 'sv[9].health', r_2sv_9_6health, 'range', '0..3', None)
     r_2sv_9_8diffCorr: Any = g_2sv_9.diffCorr
-    if r_2sv_9_8diffCorr is not True and r_2sv_9_8diffCorr is not False and r_2sv_9_8diffCorr != 0 and r_2sv_9_8diffCorr != 1:
+    if r_2sv_9_8diffCorr is not True and r_2sv_9_8diffCorr is not False and (not isinstance(r_2sv_9_8diffCorr, int) or r_2sv_9_8diffCorr != 0 and r_2sv_9_8diffCorr != 1):
         raise _enc('nav_sat', 'sv[9].diffCorr', r_2sv_9_8diffCorr, 'type', 'a bool')
     r_2sv_9_8diffCorr = 1 if r_2sv_9_8diffCorr else 0
     r_2sv_9_8smoothed: Any = g_2sv_9.smoothed
-    if r_2sv_9_8smoothed is not True and r_2sv_9_8smoothed is not False and r_2sv_9_8smoothed != 0 and r_2sv_9_8smoothed != 1:
+    if r_2sv_9_8smoothed is not True and r_2sv_9_8smoothed is not False and (not isinstance(r_2sv_9_8smoothed, int) or r_2sv_9_8smoothed != 0 and r_2sv_9_8smoothed != 1):
         raise _enc('nav_sat', 'sv[9].smoothed', r_2sv_9_8smoothed, 'type', 'a bool')
     r_2sv_9_8smoothed = 1 if r_2sv_9_8smoothed else 0
     r_2sv_9_11orbitSource = g_2sv_9.orbitSource
@@ -2570,19 +2590,19 @@ def _raw_nav_sat_2sv_9(g_2sv_9: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_9_11orbitSource <= 7:
             raise _enc('nav_sat', 'sv[9].orbitSource', r_2sv_9_11orbitSource, 'range', '0..7', None)
     r_2sv_9_8ephAvail: Any = g_2sv_9.ephAvail
-    if r_2sv_9_8ephAvail is not True and r_2sv_9_8ephAvail is not False and r_2sv_9_8ephAvail != 0 and r_2sv_9_8ephAvail != 1:
+    if r_2sv_9_8ephAvail is not True and r_2sv_9_8ephAvail is not False and (not isinstance(r_2sv_9_8ephAvail, int) or r_2sv_9_8ephAvail != 0 and r_2sv_9_8ephAvail != 1):
         raise _enc('nav_sat', 'sv[9].ephAvail', r_2sv_9_8ephAvail, 'type', 'a bool')
     r_2sv_9_8ephAvail = 1 if r_2sv_9_8ephAvail else 0
     r_2sv_9_8almAvail: Any = g_2sv_9.almAvail
-    if r_2sv_9_8almAvail is not True and r_2sv_9_8almAvail is not False and r_2sv_9_8almAvail != 0 and r_2sv_9_8almAvail != 1:
+    if r_2sv_9_8almAvail is not True and r_2sv_9_8almAvail is not False and (not isinstance(r_2sv_9_8almAvail, int) or r_2sv_9_8almAvail != 0 and r_2sv_9_8almAvail != 1):
         raise _enc('nav_sat', 'sv[9].almAvail', r_2sv_9_8almAvail, 'type', 'a bool')
     r_2sv_9_8almAvail = 1 if r_2sv_9_8almAvail else 0
     r_2sv_9_8anoAvail: Any = g_2sv_9.anoAvail
-    if r_2sv_9_8anoAvail is not True and r_2sv_9_8anoAvail is not False and r_2sv_9_8anoAvail != 0 and r_2sv_9_8anoAvail != 1:
+    if r_2sv_9_8anoAvail is not True and r_2sv_9_8anoAvail is not False and (not isinstance(r_2sv_9_8anoAvail, int) or r_2sv_9_8anoAvail != 0 and r_2sv_9_8anoAvail != 1):
         raise _enc('nav_sat', 'sv[9].anoAvail', r_2sv_9_8anoAvail, 'type', 'a bool')
     r_2sv_9_8anoAvail = 1 if r_2sv_9_8anoAvail else 0
     r_2sv_9_8aopAvail: Any = g_2sv_9.aopAvail
-    if r_2sv_9_8aopAvail is not True and r_2sv_9_8aopAvail is not False and r_2sv_9_8aopAvail != 0 and r_2sv_9_8aopAvail != 1:
+    if r_2sv_9_8aopAvail is not True and r_2sv_9_8aopAvail is not False and (not isinstance(r_2sv_9_8aopAvail, int) or r_2sv_9_8aopAvail != 0 and r_2sv_9_8aopAvail != 1):
         raise _enc('nav_sat', 'sv[9].aopAvail', r_2sv_9_8aopAvail, 'type', 'a bool')
     r_2sv_9_8aopAvail = 1 if r_2sv_9_8aopAvail else 0
     r_2sv_9_10reserved13 = g_2sv_9.reserved13
@@ -2592,43 +2612,43 @@ def _raw_nav_sat_2sv_9(g_2sv_9: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_9_10reserved13 <= 1:
             raise _enc('nav_sat', 'sv[9].reserved13', r_2sv_9_10reserved13, 'range', '0..1', None)
     r_2sv_9_12sbasCorrUsed: Any = g_2sv_9.sbasCorrUsed
-    if r_2sv_9_12sbasCorrUsed is not True and r_2sv_9_12sbasCorrUsed is not False and r_2sv_9_12sbasCorrUsed != 0 and r_2sv_9_12sbasCorrUsed != 1:
+    if r_2sv_9_12sbasCorrUsed is not True and r_2sv_9_12sbasCorrUsed is not False and (not isinstance(r_2sv_9_12sbasCorrUsed, int) or r_2sv_9_12sbasCorrUsed != 0 and r_2sv_9_12sbasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[9].sbasCorrUsed', r_2sv_9_12sbasCorrUsed, 'type', 'a bool')
     r_2sv_9_12sbasCorrUsed = 1 if r_2sv_9_12sbasCorrUsed else 0
     r_2sv_9_12rtcmCorrUsed: Any = g_2sv_9.rtcmCorrUsed
-    if r_2sv_9_12rtcmCorrUsed is not True and r_2sv_9_12rtcmCorrUsed is not False and r_2sv_9_12rtcmCorrUsed != 0 and r_2sv_9_12rtcmCorrUsed != 1:
+    if r_2sv_9_12rtcmCorrUsed is not True and r_2sv_9_12rtcmCorrUsed is not False and (not isinstance(r_2sv_9_12rtcmCorrUsed, int) or r_2sv_9_12rtcmCorrUsed != 0 and r_2sv_9_12rtcmCorrUsed != 1):
         raise _enc('nav_sat', 'sv[9].rtcmCorrUsed', r_2sv_9_12rtcmCorrUsed, 'type', 'a bool')
     r_2sv_9_12rtcmCorrUsed = 1 if r_2sv_9_12rtcmCorrUsed else 0
     r_2sv_9_12slasCorrUsed: Any = g_2sv_9.slasCorrUsed
-    if r_2sv_9_12slasCorrUsed is not True and r_2sv_9_12slasCorrUsed is not False and r_2sv_9_12slasCorrUsed != 0 and r_2sv_9_12slasCorrUsed != 1:
+    if r_2sv_9_12slasCorrUsed is not True and r_2sv_9_12slasCorrUsed is not False and (not isinstance(r_2sv_9_12slasCorrUsed, int) or r_2sv_9_12slasCorrUsed != 0 and r_2sv_9_12slasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[9].slasCorrUsed', r_2sv_9_12slasCorrUsed, 'type', 'a bool')
     r_2sv_9_12slasCorrUsed = 1 if r_2sv_9_12slasCorrUsed else 0
     r_2sv_9_14spartnCorrUsed: Any = g_2sv_9.spartnCorrUsed
-    if r_2sv_9_14spartnCorrUsed is not True and r_2sv_9_14spartnCorrUsed is not False and r_2sv_9_14spartnCorrUsed != 0 and r_2sv_9_14spartnCorrUsed != 1:
+    if r_2sv_9_14spartnCorrUsed is not True and r_2sv_9_14spartnCorrUsed is not False and (not isinstance(r_2sv_9_14spartnCorrUsed, int) or r_2sv_9_14spartnCorrUsed != 0 and r_2sv_9_14spartnCorrUsed != 1):
         raise _enc('nav_sat', 'sv[9].spartnCorrUsed', r_2sv_9_14spartnCorrUsed, 'type', 'a bool')
     r_2sv_9_14spartnCorrUsed = 1 if r_2sv_9_14spartnCorrUsed else 0
     r_2sv_9_10prCorrUsed: Any = g_2sv_9.prCorrUsed
-    if r_2sv_9_10prCorrUsed is not True and r_2sv_9_10prCorrUsed is not False and r_2sv_9_10prCorrUsed != 0 and r_2sv_9_10prCorrUsed != 1:
+    if r_2sv_9_10prCorrUsed is not True and r_2sv_9_10prCorrUsed is not False and (not isinstance(r_2sv_9_10prCorrUsed, int) or r_2sv_9_10prCorrUsed != 0 and r_2sv_9_10prCorrUsed != 1):
         raise _enc('nav_sat', 'sv[9].prCorrUsed', r_2sv_9_10prCorrUsed, 'type', 'a bool')
     r_2sv_9_10prCorrUsed = 1 if r_2sv_9_10prCorrUsed else 0
     r_2sv_9_10crCorrUsed: Any = g_2sv_9.crCorrUsed
-    if r_2sv_9_10crCorrUsed is not True and r_2sv_9_10crCorrUsed is not False and r_2sv_9_10crCorrUsed != 0 and r_2sv_9_10crCorrUsed != 1:
+    if r_2sv_9_10crCorrUsed is not True and r_2sv_9_10crCorrUsed is not False and (not isinstance(r_2sv_9_10crCorrUsed, int) or r_2sv_9_10crCorrUsed != 0 and r_2sv_9_10crCorrUsed != 1):
         raise _enc('nav_sat', 'sv[9].crCorrUsed', r_2sv_9_10crCorrUsed, 'type', 'a bool')
     r_2sv_9_10crCorrUsed = 1 if r_2sv_9_10crCorrUsed else 0
     r_2sv_9_10doCorrUsed: Any = g_2sv_9.doCorrUsed
-    if r_2sv_9_10doCorrUsed is not True and r_2sv_9_10doCorrUsed is not False and r_2sv_9_10doCorrUsed != 0 and r_2sv_9_10doCorrUsed != 1:
+    if r_2sv_9_10doCorrUsed is not True and r_2sv_9_10doCorrUsed is not False and (not isinstance(r_2sv_9_10doCorrUsed, int) or r_2sv_9_10doCorrUsed != 0 and r_2sv_9_10doCorrUsed != 1):
         raise _enc('nav_sat', 'sv[9].doCorrUsed', r_2sv_9_10doCorrUsed, 'type', 'a bool')
     r_2sv_9_10doCorrUsed = 1 if r_2sv_9_10doCorrUsed else 0
     r_2sv_9_12clasCorrUsed: Any = g_2sv_9.clasCorrUsed
-    if r_2sv_9_12clasCorrUsed is not True and r_2sv_9_12clasCorrUsed is not False and r_2sv_9_12clasCorrUsed != 0 and r_2sv_9_12clasCorrUsed != 1:
+    if r_2sv_9_12clasCorrUsed is not True and r_2sv_9_12clasCorrUsed is not False and (not isinstance(r_2sv_9_12clasCorrUsed, int) or r_2sv_9_12clasCorrUsed != 0 and r_2sv_9_12clasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[9].clasCorrUsed', r_2sv_9_12clasCorrUsed, 'type', 'a bool')
     r_2sv_9_12clasCorrUsed = 1 if r_2sv_9_12clasCorrUsed else 0
     r_2sv_9_11lppCorrUsed: Any = g_2sv_9.lppCorrUsed
-    if r_2sv_9_11lppCorrUsed is not True and r_2sv_9_11lppCorrUsed is not False and r_2sv_9_11lppCorrUsed != 0 and r_2sv_9_11lppCorrUsed != 1:
+    if r_2sv_9_11lppCorrUsed is not True and r_2sv_9_11lppCorrUsed is not False and (not isinstance(r_2sv_9_11lppCorrUsed, int) or r_2sv_9_11lppCorrUsed != 0 and r_2sv_9_11lppCorrUsed != 1):
         raise _enc('nav_sat', 'sv[9].lppCorrUsed', r_2sv_9_11lppCorrUsed, 'type', 'a bool')
     r_2sv_9_11lppCorrUsed = 1 if r_2sv_9_11lppCorrUsed else 0
     r_2sv_9_11hasCorrUsed: Any = g_2sv_9.hasCorrUsed
-    if r_2sv_9_11hasCorrUsed is not True and r_2sv_9_11hasCorrUsed is not False and r_2sv_9_11hasCorrUsed != 0 and r_2sv_9_11hasCorrUsed != 1:
+    if r_2sv_9_11hasCorrUsed is not True and r_2sv_9_11hasCorrUsed is not False and (not isinstance(r_2sv_9_11hasCorrUsed, int) or r_2sv_9_11hasCorrUsed != 0 and r_2sv_9_11hasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[9].hasCorrUsed', r_2sv_9_11hasCorrUsed, 'type', 'a bool')
     r_2sv_9_11hasCorrUsed = 1 if r_2sv_9_11hasCorrUsed else 0
     r_2sv_9_11flags_spare = 0
@@ -2636,6 +2656,8 @@ def _raw_nav_sat_2sv_9(g_2sv_9: Any) -> tuple[Any, ...]:
 
 
 def _raw_nav_sat_2sv_10(g_2sv_10: Any) -> tuple[Any, ...]:
+    if g_2sv_10.__class__ is not NavSatSv and not isinstance(g_2sv_10, NavSatSv):
+        raise _enc('nav_sat', 'sv[10]', g_2sv_10, 'type', 'a NavSatSv')
     r_2sv_10_6gnssId = g_2sv_10.gnssId
     if r_2sv_10_6gnssId.__class__ is not int or not 0 <= r_2sv_10_6gnssId <= 255:
         if not isinstance(r_2sv_10_6gnssId, int) or r_2sv_10_6gnssId.__class__ is bool:
@@ -2680,7 +2702,7 @@ def _raw_nav_sat_2sv_10(g_2sv_10: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_10_10qualityInd <= 7:
             raise _enc('nav_sat', 'sv[10].qualityInd', r_2sv_10_10qualityInd, 'range', '0..7', None)
     r_2sv_10_6svUsed: Any = g_2sv_10.svUsed
-    if r_2sv_10_6svUsed is not True and r_2sv_10_6svUsed is not False and r_2sv_10_6svUsed != 0 and r_2sv_10_6svUsed != 1:
+    if r_2sv_10_6svUsed is not True and r_2sv_10_6svUsed is not False and (not isinstance(r_2sv_10_6svUsed, int) or r_2sv_10_6svUsed != 0 and r_2sv_10_6svUsed != 1):
         raise _enc('nav_sat', 'sv[10].svUsed', r_2sv_10_6svUsed, 'type', 'a bool')
     r_2sv_10_6svUsed = 1 if r_2sv_10_6svUsed else 0
     r_2sv_10_6health = g_2sv_10.health
@@ -2690,11 +2712,11 @@ def _raw_nav_sat_2sv_10(g_2sv_10: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_10_6health <= 3:
             raise _enc('nav_sat', 'sv[10].health', r_2sv_10_6health, 'range', '0..3', None)
     r_2sv_10_8diffCorr: Any = g_2sv_10.diffCorr
-    if r_2sv_10_8diffCorr is not True and r_2sv_10_8diffCorr is not False and r_2sv_10_8diffCorr != 0 and r_2sv_10_8diffCorr != 1:
+    if r_2sv_10_8diffCorr is not True and r_2sv_10_8diffCorr is not False and (not isinstance(r_2sv_10_8diffCorr, int) or r_2sv_10_8diffCorr != 0 and r_2sv_10_8diffCorr != 1):
         raise _enc('nav_sat', 'sv[10].diffCorr', r_2sv_10_8diffCorr, 'type', 'a bool')
     r_2sv_10_8diffCorr = 1 if r_2sv_10_8diffCorr else 0
     r_2sv_10_8smoothed: Any = g_2sv_10.smoothed
-    if r_2sv_10_8smoothed is not True and r_2sv_10_8smoothed is not False and r_2sv_10_8smoothed != 0 and r_2sv_10_8smoothed != 1:
+    if r_2sv_10_8smoothed is not True and r_2sv_10_8smoothed is not False and (not isinstance(r_2sv_10_8smoothed, int) or r_2sv_10_8smoothed != 0 and r_2sv_10_8smoothed != 1):
         raise _enc('nav_sat', 'sv[10].smoothed', r_2sv_10_8smoothed, 'type', 'a bool')
     r_2sv_10_8smoothed = 1 if r_2sv_10_8smoothed else 0
     r_2sv_10_11orbitSource = g_2sv_10.orbitSource
@@ -2704,19 +2726,19 @@ def _raw_nav_sat_2sv_10(g_2sv_10: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_10_11orbitSource <= 7:
             raise _enc('nav_sat', 'sv[10].orbitSource', r_2sv_10_11orbitSource, 'range', '0..7', None)
     r_2sv_10_8ephAvail: Any = g_2sv_10.ephAvail
-    if r_2sv_10_8ephAvail is not True and r_2sv_10_8ephAvail is not False and r_2sv_10_8ephAvail != 0 and r_2sv_10_8ephAvail != 1:
+    if r_2sv_10_8ephAvail is not True and r_2sv_10_8ephAvail is not False and (not isinstance(r_2sv_10_8ephAvail, int) or r_2sv_10_8ephAvail != 0 and r_2sv_10_8ephAvail != 1):
         raise _enc('nav_sat', 'sv[10].ephAvail', r_2sv_10_8ephAvail, 'type', 'a bool')
     r_2sv_10_8ephAvail = 1 if r_2sv_10_8ephAvail else 0
     r_2sv_10_8almAvail: Any = g_2sv_10.almAvail
-    if r_2sv_10_8almAvail is not True and r_2sv_10_8almAvail is not False and r_2sv_10_8almAvail != 0 and r_2sv_10_8almAvail != 1:
+    if r_2sv_10_8almAvail is not True and r_2sv_10_8almAvail is not False and (not isinstance(r_2sv_10_8almAvail, int) or r_2sv_10_8almAvail != 0 and r_2sv_10_8almAvail != 1):
         raise _enc('nav_sat', 'sv[10].almAvail', r_2sv_10_8almAvail, 'type', 'a bool')
     r_2sv_10_8almAvail = 1 if r_2sv_10_8almAvail else 0
     r_2sv_10_8anoAvail: Any = g_2sv_10.anoAvail
-    if r_2sv_10_8anoAvail is not True and r_2sv_10_8anoAvail is not False and r_2sv_10_8anoAvail != 0 and r_2sv_10_8anoAvail != 1:
+    if r_2sv_10_8anoAvail is not True and r_2sv_10_8anoAvail is not False and (not isinstance(r_2sv_10_8anoAvail, int) or r_2sv_10_8anoAvail != 0 and r_2sv_10_8anoAvail != 1):
         raise _enc('nav_sat', 'sv[10].anoAvail', r_2sv_10_8anoAvail, 'type', 'a bool')
     r_2sv_10_8anoAvail = 1 if r_2sv_10_8anoAvail else 0
     r_2sv_10_8aopAvail: Any = g_2sv_10.aopAvail
-    if r_2sv_10_8aopAvail is not True and r_2sv_10_8aopAvail is not False and r_2sv_10_8aopAvail != 0 and r_2sv_10_8aopAvail != 1:
+    if r_2sv_10_8aopAvail is not True and r_2sv_10_8aopAvail is not False and (not isinstance(r_2sv_10_8aopAvail, int) or r_2sv_10_8aopAvail != 0 and r_2sv_10_8aopAvail != 1):
         raise _enc('nav_sat', 'sv[10].aopAvail', r_2sv_10_8aopAvail, 'type', 'a bool')
     r_2sv_10_8aopAvail = 1 if r_2sv_10_8aopAvail else 0
     r_2sv_10_10reserved13 = g_2sv_10.reserved13
@@ -2726,43 +2748,43 @@ def _raw_nav_sat_2sv_10(g_2sv_10: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_10_10reserved13 <= 1:
             raise _enc('nav_sat', 'sv[10].reserved13', r_2sv_10_10reserved13, 'range', '0..1', None)
     r_2sv_10_12sbasCorrUsed: Any = g_2sv_10.sbasCorrUsed
-    if r_2sv_10_12sbasCorrUsed is not True and r_2sv_10_12sbasCorrUsed is not False and r_2sv_10_12sbasCorrUsed != 0 and r_2sv_10_12sbasCorrUsed != 1:
+    if r_2sv_10_12sbasCorrUsed is not True and r_2sv_10_12sbasCorrUsed is not False and (not isinstance(r_2sv_10_12sbasCorrUsed, int) or r_2sv_10_12sbasCorrUsed != 0 and r_2sv_10_12sbasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[10].sbasCorrUsed', r_2sv_10_12sbasCorrUsed, 'type', 'a bool')
     r_2sv_10_12sbasCorrUsed = 1 if r_2sv_10_12sbasCorrUsed else 0
     r_2sv_10_12rtcmCorrUsed: Any = g_2sv_10.rtcmCorrUsed
-    if r_2sv_10_12rtcmCorrUsed is not True and r_2sv_10_12rtcmCorrUsed is not False and r_2sv_10_12rtcmCorrUsed != 0 and r_2sv_10_12rtcmCorrUsed != 1:
+    if r_2sv_10_12rtcmCorrUsed is not True and r_2sv_10_12rtcmCorrUsed is not False and (not isinstance(r_2sv_10_12rtcmCorrUsed, int) or r_2sv_10_12rtcmCorrUsed != 0 and r_2sv_10_12rtcmCorrUsed != 1):
         raise _enc('nav_sat', 'sv[10].rtcmCorrUsed', r_2sv_10_12rtcmCorrUsed, 'type', 'a bool')
     r_2sv_10_12rtcmCorrUsed = 1 if r_2sv_10_12rtcmCorrUsed else 0
     r_2sv_10_12slasCorrUsed: Any = g_2sv_10.slasCorrUsed
-    if r_2sv_10_12slasCorrUsed is not True and r_2sv_10_12slasCorrUsed is not False and r_2sv_10_12slasCorrUsed != 0 and r_2sv_10_12slasCorrUsed != 1:
+    if r_2sv_10_12slasCorrUsed is not True and r_2sv_10_12slasCorrUsed is not False and (not isinstance(r_2sv_10_12slasCorrUsed, int) or r_2sv_10_12slasCorrUsed != 0 and r_2sv_10_12slasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[10].slasCorrUsed', r_2sv_10_12slasCorrUsed, 'type', 'a bool')
     r_2sv_10_12slasCorrUsed = 1 if r_2sv_10_12slasCorrUsed else 0
     r_2sv_10_14spartnCorrUsed: Any = g_2sv_10.spartnCorrUsed
-    if r_2sv_10_14spartnCorrUsed is not True and r_2sv_10_14spartnCorrUsed is not False and r_2sv_10_14spartnCorrUsed != 0 and r_2sv_10_14spartnCorrUsed != 1:
+    if r_2sv_10_14spartnCorrUsed is not True and r_2sv_10_14spartnCorrUsed is not False and (not isinstance(r_2sv_10_14spartnCorrUsed, int) or r_2sv_10_14spartnCorrUsed != 0 and r_2sv_10_14spartnCorrUsed != 1):
         raise _enc('nav_sat', 'sv[10].spartnCorrUsed', r_2sv_10_14spartnCorrUsed, 'type', 'a bool')
     r_2sv_10_14spartnCorrUsed = 1 if r_2sv_10_14spartnCorrUsed else 0
     r_2sv_10_10prCorrUsed: Any = g_2sv_10.prCorrUsed
-    if r_2sv_10_10prCorrUsed is not True and r_2sv_10_10prCorrUsed is not False and r_2sv_10_10prCorrUsed != 0 and r_2sv_10_10prCorrUsed != 1:
+    if r_2sv_10_10prCorrUsed is not True and r_2sv_10_10prCorrUsed is not False and (not isinstance(r_2sv_10_10prCorrUsed, int) or r_2sv_10_10prCorrUsed != 0 and r_2sv_10_10prCorrUsed != 1):
         raise _enc('nav_sat', 'sv[10].prCorrUsed', r_2sv_10_10prCorrUsed, 'type', 'a bool')
     r_2sv_10_10prCorrUsed = 1 if r_2sv_10_10prCorrUsed else 0
     r_2sv_10_10crCorrUsed: Any = g_2sv_10.crCorrUsed
-    if r_2sv_10_10crCorrUsed is not True and r_2sv_10_10crCorrUsed is not False and r_2sv_10_10crCorrUsed != 0 and r_2sv_10_10crCorrUsed != 1:
+    if r_2sv_10_10crCorrUsed is not True and r_2sv_10_10crCorrUsed is not False and (not isinstance(r_2sv_10_10crCorrUsed, int) or r_2sv_10_10crCorrUsed != 0 and r_2sv_10_10crCorrUsed != 1):
         raise _enc('nav_sat', 'sv[10].crCorrUsed', r_2sv_10_10crCorrUsed, 'type', 'a bool')
     r_2sv_10_10crCorrUsed = 1 if r_2sv_10_10crCorrUsed else 0
     r_2sv_10_10doCorrUsed: Any = g_2sv_10.doCorrUsed
-    if r_2sv_10_10doCorrUsed is not True and r_2sv_10_10doCorrUsed is not False and r_2sv_10_10doCorrUsed != 0 and r_2sv_10_10doCorrUsed != 1:
+    if r_2sv_10_10doCorrUsed is not True and r_2sv_10_10doCorrUsed is not False and (not isinstance(r_2sv_10_10doCorrUsed, int) or r_2sv_10_10doCorrUsed != 0 and r_2sv_10_10doCorrUsed != 1):
         raise _enc('nav_sat', 'sv[10].doCorrUsed', r_2sv_10_10doCorrUsed, 'type', 'a bool')
     r_2sv_10_10doCorrUsed = 1 if r_2sv_10_10doCorrUsed else 0
     r_2sv_10_12clasCorrUsed: Any = g_2sv_10.clasCorrUsed
-    if r_2sv_10_12clasCorrUsed is not True and r_2sv_10_12clasCorrUsed is not False and r_2sv_10_12clasCorrUsed != 0 and r_2sv_10_12clasCorrUsed != 1:
+    if r_2sv_10_12clasCorrUsed is not True and r_2sv_10_12clasCorrUsed is not False and (not isinstance(r_2sv_10_12clasCorrUsed, int) or r_2sv_10_12clasCorrUsed != 0 and r_2sv_10_12clasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[10].clasCorrUsed', r_2sv_10_12clasCorrUsed, 'type', 'a bool')
     r_2sv_10_12clasCorrUsed = 1 if r_2sv_10_12clasCorrUsed else 0
     r_2sv_10_11lppCorrUsed: Any = g_2sv_10.lppCorrUsed
-    if r_2sv_10_11lppCorrUsed is not True and r_2sv_10_11lppCorrUsed is not False and r_2sv_10_11lppCorrUsed != 0 and r_2sv_10_11lppCorrUsed != 1:
+    if r_2sv_10_11lppCorrUsed is not True and r_2sv_10_11lppCorrUsed is not False and (not isinstance(r_2sv_10_11lppCorrUsed, int) or r_2sv_10_11lppCorrUsed != 0 and r_2sv_10_11lppCorrUsed != 1):
         raise _enc('nav_sat', 'sv[10].lppCorrUsed', r_2sv_10_11lppCorrUsed, 'type', 'a bool')
     r_2sv_10_11lppCorrUsed = 1 if r_2sv_10_11lppCorrUsed else 0
     r_2sv_10_11hasCorrUsed: Any = g_2sv_10.hasCorrUsed
-    if r_2sv_10_11hasCorrUsed is not True and r_2sv_10_11hasCorrUsed is not False and r_2sv_10_11hasCorrUsed != 0 and r_2sv_10_11hasCorrUsed != 1:
+    if r_2sv_10_11hasCorrUsed is not True and r_2sv_10_11hasCorrUsed is not False and (not isinstance(r_2sv_10_11hasCorrUsed, int) or r_2sv_10_11hasCorrUsed != 0 and r_2sv_10_11hasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[10].hasCorrUsed', r_2sv_10_11hasCorrUsed, 'type', 'a bool')
     r_2sv_10_11hasCorrUsed = 1 if r_2sv_10_11hasCorrUsed else 0
     r_2sv_10_11flags_spare = 0
@@ -2770,6 +2792,8 @@ def _raw_nav_sat_2sv_10(g_2sv_10: Any) -> tuple[Any, ...]:
 
 
 def _raw_nav_sat_2sv_11(g_2sv_11: Any) -> tuple[Any, ...]:
+    if g_2sv_11.__class__ is not NavSatSv and not isinstance(g_2sv_11, NavSatSv):
+        raise _enc('nav_sat', 'sv[11]', g_2sv_11, 'type', 'a NavSatSv')
     r_2sv_11_6gnssId = g_2sv_11.gnssId
     if r_2sv_11_6gnssId.__class__ is not int or not 0 <= r_2sv_11_6gnssId <= 255:
         if not isinstance(r_2sv_11_6gnssId, int) or r_2sv_11_6gnssId.__class__ is bool:
@@ -2814,7 +2838,7 @@ def _raw_nav_sat_2sv_11(g_2sv_11: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_11_10qualityInd <= 7:
             raise _enc('nav_sat', 'sv[11].qualityInd', r_2sv_11_10qualityInd, 'range', '0..7', None)
     r_2sv_11_6svUsed: Any = g_2sv_11.svUsed
-    if r_2sv_11_6svUsed is not True and r_2sv_11_6svUsed is not False and r_2sv_11_6svUsed != 0 and r_2sv_11_6svUsed != 1:
+    if r_2sv_11_6svUsed is not True and r_2sv_11_6svUsed is not False and (not isinstance(r_2sv_11_6svUsed, int) or r_2sv_11_6svUsed != 0 and r_2sv_11_6svUsed != 1):
         raise _enc('nav_sat', 'sv[11].svUsed', r_2sv_11_6svUsed, 'type', 'a bool')
     r_2sv_11_6svUsed = 1 if r_2sv_11_6svUsed else 0
     r_2sv_11_6health = g_2sv_11.health
@@ -2824,11 +2848,11 @@ def _raw_nav_sat_2sv_11(g_2sv_11: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_11_6health <= 3:
             raise _enc('nav_sat', 'sv[11].health', r_2sv_11_6health, 'range', '0..3', None)
     r_2sv_11_8diffCorr: Any = g_2sv_11.diffCorr
-    if r_2sv_11_8diffCorr is not True and r_2sv_11_8diffCorr is not False and r_2sv_11_8diffCorr != 0 and r_2sv_11_8diffCorr != 1:
+    if r_2sv_11_8diffCorr is not True and r_2sv_11_8diffCorr is not False and (not isinstance(r_2sv_11_8diffCorr, int) or r_2sv_11_8diffCorr != 0 and r_2sv_11_8diffCorr != 1):
         raise _enc('nav_sat', 'sv[11].diffCorr', r_2sv_11_8diffCorr, 'type', 'a bool')
     r_2sv_11_8diffCorr = 1 if r_2sv_11_8diffCorr else 0
     r_2sv_11_8smoothed: Any = g_2sv_11.smoothed
-    if r_2sv_11_8smoothed is not True and r_2sv_11_8smoothed is not False and r_2sv_11_8smoothed != 0 and r_2sv_11_8smoothed != 1:
+    if r_2sv_11_8smoothed is not True and r_2sv_11_8smoothed is not False and (not isinstance(r_2sv_11_8smoothed, int) or r_2sv_11_8smoothed != 0 and r_2sv_11_8smoothed != 1):
         raise _enc('nav_sat', 'sv[11].smoothed', r_2sv_11_8smoothed, 'type', 'a bool')
     r_2sv_11_8smoothed = 1 if r_2sv_11_8smoothed else 0
     r_2sv_11_11orbitSource = g_2sv_11.orbitSource
@@ -2838,19 +2862,19 @@ def _raw_nav_sat_2sv_11(g_2sv_11: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_11_11orbitSource <= 7:
             raise _enc('nav_sat', 'sv[11].orbitSource', r_2sv_11_11orbitSource, 'range', '0..7', None)
     r_2sv_11_8ephAvail: Any = g_2sv_11.ephAvail
-    if r_2sv_11_8ephAvail is not True and r_2sv_11_8ephAvail is not False and r_2sv_11_8ephAvail != 0 and r_2sv_11_8ephAvail != 1:
+    if r_2sv_11_8ephAvail is not True and r_2sv_11_8ephAvail is not False and (not isinstance(r_2sv_11_8ephAvail, int) or r_2sv_11_8ephAvail != 0 and r_2sv_11_8ephAvail != 1):
         raise _enc('nav_sat', 'sv[11].ephAvail', r_2sv_11_8ephAvail, 'type', 'a bool')
     r_2sv_11_8ephAvail = 1 if r_2sv_11_8ephAvail else 0
     r_2sv_11_8almAvail: Any = g_2sv_11.almAvail
-    if r_2sv_11_8almAvail is not True and r_2sv_11_8almAvail is not False and r_2sv_11_8almAvail != 0 and r_2sv_11_8almAvail != 1:
+    if r_2sv_11_8almAvail is not True and r_2sv_11_8almAvail is not False and (not isinstance(r_2sv_11_8almAvail, int) or r_2sv_11_8almAvail != 0 and r_2sv_11_8almAvail != 1):
         raise _enc('nav_sat', 'sv[11].almAvail', r_2sv_11_8almAvail, 'type', 'a bool')
     r_2sv_11_8almAvail = 1 if r_2sv_11_8almAvail else 0
     r_2sv_11_8anoAvail: Any = g_2sv_11.anoAvail
-    if r_2sv_11_8anoAvail is not True and r_2sv_11_8anoAvail is not False and r_2sv_11_8anoAvail != 0 and r_2sv_11_8anoAvail != 1:
+    if r_2sv_11_8anoAvail is not True and r_2sv_11_8anoAvail is not False and (not isinstance(r_2sv_11_8anoAvail, int) or r_2sv_11_8anoAvail != 0 and r_2sv_11_8anoAvail != 1):
         raise _enc('nav_sat', 'sv[11].anoAvail', r_2sv_11_8anoAvail, 'type', 'a bool')
     r_2sv_11_8anoAvail = 1 if r_2sv_11_8anoAvail else 0
     r_2sv_11_8aopAvail: Any = g_2sv_11.aopAvail
-    if r_2sv_11_8aopAvail is not True and r_2sv_11_8aopAvail is not False and r_2sv_11_8aopAvail != 0 and r_2sv_11_8aopAvail != 1:
+    if r_2sv_11_8aopAvail is not True and r_2sv_11_8aopAvail is not False and (not isinstance(r_2sv_11_8aopAvail, int) or r_2sv_11_8aopAvail != 0 and r_2sv_11_8aopAvail != 1):
         raise _enc('nav_sat', 'sv[11].aopAvail', r_2sv_11_8aopAvail, 'type', 'a bool')
     r_2sv_11_8aopAvail = 1 if r_2sv_11_8aopAvail else 0
     r_2sv_11_10reserved13 = g_2sv_11.reserved13
@@ -2860,43 +2884,43 @@ def _raw_nav_sat_2sv_11(g_2sv_11: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_11_10reserved13 <= 1:
             raise _enc('nav_sat', 'sv[11].reserved13', r_2sv_11_10reserved13, 'range', '0..1', None)
     r_2sv_11_12sbasCorrUsed: Any = g_2sv_11.sbasCorrUsed
-    if r_2sv_11_12sbasCorrUsed is not True and r_2sv_11_12sbasCorrUsed is not False and r_2sv_11_12sbasCorrUsed != 0 and r_2sv_11_12sbasCorrUsed != 1:
+    if r_2sv_11_12sbasCorrUsed is not True and r_2sv_11_12sbasCorrUsed is not False and (not isinstance(r_2sv_11_12sbasCorrUsed, int) or r_2sv_11_12sbasCorrUsed != 0 and r_2sv_11_12sbasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[11].sbasCorrUsed', r_2sv_11_12sbasCorrUsed, 'type', 'a bool')
     r_2sv_11_12sbasCorrUsed = 1 if r_2sv_11_12sbasCorrUsed else 0
     r_2sv_11_12rtcmCorrUsed: Any = g_2sv_11.rtcmCorrUsed
-    if r_2sv_11_12rtcmCorrUsed is not True and r_2sv_11_12rtcmCorrUsed is not False and r_2sv_11_12rtcmCorrUsed != 0 and r_2sv_11_12rtcmCorrUsed != 1:
+    if r_2sv_11_12rtcmCorrUsed is not True and r_2sv_11_12rtcmCorrUsed is not False and (not isinstance(r_2sv_11_12rtcmCorrUsed, int) or r_2sv_11_12rtcmCorrUsed != 0 and r_2sv_11_12rtcmCorrUsed != 1):
         raise _enc('nav_sat', 'sv[11].rtcmCorrUsed', r_2sv_11_12rtcmCorrUsed, 'type', 'a bool')
     r_2sv_11_12rtcmCorrUsed = 1 if r_2sv_11_12rtcmCorrUsed else 0
     r_2sv_11_12slasCorrUsed: Any = g_2sv_11.slasCorrUsed
-    if r_2sv_11_12slasCorrUsed is not True and r_2sv_11_12slasCorrUsed is not False and r_2sv_11_12slasCorrUsed != 0 and r_2sv_11_12slasCorrUsed != 1:
+    if r_2sv_11_12slasCorrUsed is not True and r_2sv_11_12slasCorrUsed is not False and (not isinstance(r_2sv_11_12slasCorrUsed, int) or r_2sv_11_12slasCorrUsed != 0 and r_2sv_11_12slasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[11].slasCorrUsed', r_2sv_11_12slasCorrUsed, 'type', 'a bool')
     r_2sv_11_12slasCorrUsed = 1 if r_2sv_11_12slasCorrUsed else 0
     r_2sv_11_14spartnCorrUsed: Any = g_2sv_11.spartnCorrUsed
-    if r_2sv_11_14spartnCorrUsed is not True and r_2sv_11_14spartnCorrUsed is not False and r_2sv_11_14spartnCorrUsed != 0 and r_2sv_11_14spartnCorrUsed != 1:
+    if r_2sv_11_14spartnCorrUsed is not True and r_2sv_11_14spartnCorrUsed is not False and (not isinstance(r_2sv_11_14spartnCorrUsed, int) or r_2sv_11_14spartnCorrUsed != 0 and r_2sv_11_14spartnCorrUsed != 1):
         raise _enc('nav_sat', 'sv[11].spartnCorrUsed', r_2sv_11_14spartnCorrUsed, 'type', 'a bool')
     r_2sv_11_14spartnCorrUsed = 1 if r_2sv_11_14spartnCorrUsed else 0
     r_2sv_11_10prCorrUsed: Any = g_2sv_11.prCorrUsed
-    if r_2sv_11_10prCorrUsed is not True and r_2sv_11_10prCorrUsed is not False and r_2sv_11_10prCorrUsed != 0 and r_2sv_11_10prCorrUsed != 1:
+    if r_2sv_11_10prCorrUsed is not True and r_2sv_11_10prCorrUsed is not False and (not isinstance(r_2sv_11_10prCorrUsed, int) or r_2sv_11_10prCorrUsed != 0 and r_2sv_11_10prCorrUsed != 1):
         raise _enc('nav_sat', 'sv[11].prCorrUsed', r_2sv_11_10prCorrUsed, 'type', 'a bool')
     r_2sv_11_10prCorrUsed = 1 if r_2sv_11_10prCorrUsed else 0
     r_2sv_11_10crCorrUsed: Any = g_2sv_11.crCorrUsed
-    if r_2sv_11_10crCorrUsed is not True and r_2sv_11_10crCorrUsed is not False and r_2sv_11_10crCorrUsed != 0 and r_2sv_11_10crCorrUsed != 1:
+    if r_2sv_11_10crCorrUsed is not True and r_2sv_11_10crCorrUsed is not False and (not isinstance(r_2sv_11_10crCorrUsed, int) or r_2sv_11_10crCorrUsed != 0 and r_2sv_11_10crCorrUsed != 1):
         raise _enc('nav_sat', 'sv[11].crCorrUsed', r_2sv_11_10crCorrUsed, 'type', 'a bool')
     r_2sv_11_10crCorrUsed = 1 if r_2sv_11_10crCorrUsed else 0
     r_2sv_11_10doCorrUsed: Any = g_2sv_11.doCorrUsed
-    if r_2sv_11_10doCorrUsed is not True and r_2sv_11_10doCorrUsed is not False and r_2sv_11_10doCorrUsed != 0 and r_2sv_11_10doCorrUsed != 1:
+    if r_2sv_11_10doCorrUsed is not True and r_2sv_11_10doCorrUsed is not False and (not isinstance(r_2sv_11_10doCorrUsed, int) or r_2sv_11_10doCorrUsed != 0 and r_2sv_11_10doCorrUsed != 1):
         raise _enc('nav_sat', 'sv[11].doCorrUsed', r_2sv_11_10doCorrUsed, 'type', 'a bool')
     r_2sv_11_10doCorrUsed = 1 if r_2sv_11_10doCorrUsed else 0
     r_2sv_11_12clasCorrUsed: Any = g_2sv_11.clasCorrUsed
-    if r_2sv_11_12clasCorrUsed is not True and r_2sv_11_12clasCorrUsed is not False and r_2sv_11_12clasCorrUsed != 0 and r_2sv_11_12clasCorrUsed != 1:
+    if r_2sv_11_12clasCorrUsed is not True and r_2sv_11_12clasCorrUsed is not False and (not isinstance(r_2sv_11_12clasCorrUsed, int) or r_2sv_11_12clasCorrUsed != 0 and r_2sv_11_12clasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[11].clasCorrUsed', r_2sv_11_12clasCorrUsed, 'type', 'a bool')
     r_2sv_11_12clasCorrUsed = 1 if r_2sv_11_12clasCorrUsed else 0
     r_2sv_11_11lppCorrUsed: Any = g_2sv_11.lppCorrUsed
-    if r_2sv_11_11lppCorrUsed is not True and r_2sv_11_11lppCorrUsed is not False and r_2sv_11_11lppCorrUsed != 0 and r_2sv_11_11lppCorrUsed != 1:
+    if r_2sv_11_11lppCorrUsed is not True and r_2sv_11_11lppCorrUsed is not False and (not isinstance(r_2sv_11_11lppCorrUsed, int) or r_2sv_11_11lppCorrUsed != 0 and r_2sv_11_11lppCorrUsed != 1):
         raise _enc('nav_sat', 'sv[11].lppCorrUsed', r_2sv_11_11lppCorrUsed, 'type', 'a bool')
     r_2sv_11_11lppCorrUsed = 1 if r_2sv_11_11lppCorrUsed else 0
     r_2sv_11_11hasCorrUsed: Any = g_2sv_11.hasCorrUsed
-    if r_2sv_11_11hasCorrUsed is not True and r_2sv_11_11hasCorrUsed is not False and r_2sv_11_11hasCorrUsed != 0 and r_2sv_11_11hasCorrUsed != 1:
+    if r_2sv_11_11hasCorrUsed is not True and r_2sv_11_11hasCorrUsed is not False and (not isinstance(r_2sv_11_11hasCorrUsed, int) or r_2sv_11_11hasCorrUsed != 0 and r_2sv_11_11hasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[11].hasCorrUsed', r_2sv_11_11hasCorrUsed, 'type', 'a bool')
     r_2sv_11_11hasCorrUsed = 1 if r_2sv_11_11hasCorrUsed else 0
     r_2sv_11_11flags_spare = 0
@@ -2904,6 +2928,8 @@ def _raw_nav_sat_2sv_11(g_2sv_11: Any) -> tuple[Any, ...]:
 
 
 def _raw_nav_sat_2sv_12(g_2sv_12: Any) -> tuple[Any, ...]:
+    if g_2sv_12.__class__ is not NavSatSv and not isinstance(g_2sv_12, NavSatSv):
+        raise _enc('nav_sat', 'sv[12]', g_2sv_12, 'type', 'a NavSatSv')
     r_2sv_12_6gnssId = g_2sv_12.gnssId
     if r_2sv_12_6gnssId.__class__ is not int or not 0 <= r_2sv_12_6gnssId <= 255:
         if not isinstance(r_2sv_12_6gnssId, int) or r_2sv_12_6gnssId.__class__ is bool:
@@ -2948,7 +2974,7 @@ def _raw_nav_sat_2sv_12(g_2sv_12: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_12_10qualityInd <= 7:
             raise _enc('nav_sat', 'sv[12].qualityInd', r_2sv_12_10qualityInd, 'range', '0..7', None)
     r_2sv_12_6svUsed: Any = g_2sv_12.svUsed
-    if r_2sv_12_6svUsed is not True and r_2sv_12_6svUsed is not False and r_2sv_12_6svUsed != 0 and r_2sv_12_6svUsed != 1:
+    if r_2sv_12_6svUsed is not True and r_2sv_12_6svUsed is not False and (not isinstance(r_2sv_12_6svUsed, int) or r_2sv_12_6svUsed != 0 and r_2sv_12_6svUsed != 1):
         raise _enc('nav_sat', 'sv[12].svUsed', r_2sv_12_6svUsed, 'type', 'a bool')
     r_2sv_12_6svUsed = 1 if r_2sv_12_6svUsed else 0
     r_2sv_12_6health = g_2sv_12.health
@@ -2958,11 +2984,11 @@ def _raw_nav_sat_2sv_12(g_2sv_12: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_12_6health <= 3:
             raise _enc('nav_sat', 'sv[12].health', r_2sv_12_6health, 'range', '0..3', None)
     r_2sv_12_8diffCorr: Any = g_2sv_12.diffCorr
-    if r_2sv_12_8diffCorr is not True and r_2sv_12_8diffCorr is not False and r_2sv_12_8diffCorr != 0 and r_2sv_12_8diffCorr != 1:
+    if r_2sv_12_8diffCorr is not True and r_2sv_12_8diffCorr is not False and (not isinstance(r_2sv_12_8diffCorr, int) or r_2sv_12_8diffCorr != 0 and r_2sv_12_8diffCorr != 1):
         raise _enc('nav_sat', 'sv[12].diffCorr', r_2sv_12_8diffCorr, 'type', 'a bool')
     r_2sv_12_8diffCorr = 1 if r_2sv_12_8diffCorr else 0
     r_2sv_12_8smoothed: Any = g_2sv_12.smoothed
-    if r_2sv_12_8smoothed is not True and r_2sv_12_8smoothed is not False and r_2sv_12_8smoothed != 0 and r_2sv_12_8smoothed != 1:
+    if r_2sv_12_8smoothed is not True and r_2sv_12_8smoothed is not False and (not isinstance(r_2sv_12_8smoothed, int) or r_2sv_12_8smoothed != 0 and r_2sv_12_8smoothed != 1):
         raise _enc('nav_sat', 'sv[12].smoothed', r_2sv_12_8smoothed, 'type', 'a bool')
     r_2sv_12_8smoothed = 1 if r_2sv_12_8smoothed else 0
     r_2sv_12_11orbitSource = g_2sv_12.orbitSource
@@ -2972,19 +2998,19 @@ def _raw_nav_sat_2sv_12(g_2sv_12: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_12_11orbitSource <= 7:
             raise _enc('nav_sat', 'sv[12].orbitSource', r_2sv_12_11orbitSource, 'range', '0..7', None)
     r_2sv_12_8ephAvail: Any = g_2sv_12.ephAvail
-    if r_2sv_12_8ephAvail is not True and r_2sv_12_8ephAvail is not False and r_2sv_12_8ephAvail != 0 and r_2sv_12_8ephAvail != 1:
+    if r_2sv_12_8ephAvail is not True and r_2sv_12_8ephAvail is not False and (not isinstance(r_2sv_12_8ephAvail, int) or r_2sv_12_8ephAvail != 0 and r_2sv_12_8ephAvail != 1):
         raise _enc('nav_sat', 'sv[12].ephAvail', r_2sv_12_8ephAvail, 'type', 'a bool')
     r_2sv_12_8ephAvail = 1 if r_2sv_12_8ephAvail else 0
     r_2sv_12_8almAvail: Any = g_2sv_12.almAvail
-    if r_2sv_12_8almAvail is not True and r_2sv_12_8almAvail is not False and r_2sv_12_8almAvail != 0 and r_2sv_12_8almAvail != 1:
+    if r_2sv_12_8almAvail is not True and r_2sv_12_8almAvail is not False and (not isinstance(r_2sv_12_8almAvail, int) or r_2sv_12_8almAvail != 0 and r_2sv_12_8almAvail != 1):
         raise _enc('nav_sat', 'sv[12].almAvail', r_2sv_12_8almAvail, 'type', 'a bool')
     r_2sv_12_8almAvail = 1 if r_2sv_12_8almAvail else 0
     r_2sv_12_8anoAvail: Any = g_2sv_12.anoAvail
-    if r_2sv_12_8anoAvail is not True and r_2sv_12_8anoAvail is not False and r_2sv_12_8anoAvail != 0 and r_2sv_12_8anoAvail != 1:
+    if r_2sv_12_8anoAvail is not True and r_2sv_12_8anoAvail is not False and (not isinstance(r_2sv_12_8anoAvail, int) or r_2sv_12_8anoAvail != 0 and r_2sv_12_8anoAvail != 1):
         raise _enc('nav_sat', 'sv[12].anoAvail', r_2sv_12_8anoAvail, 'type', 'a bool')
     r_2sv_12_8anoAvail = 1 if r_2sv_12_8anoAvail else 0
     r_2sv_12_8aopAvail: Any = g_2sv_12.aopAvail
-    if r_2sv_12_8aopAvail is not True and r_2sv_12_8aopAvail is not False and r_2sv_12_8aopAvail != 0 and r_2sv_12_8aopAvail != 1:
+    if r_2sv_12_8aopAvail is not True and r_2sv_12_8aopAvail is not False and (not isinstance(r_2sv_12_8aopAvail, int) or r_2sv_12_8aopAvail != 0 and r_2sv_12_8aopAvail != 1):
         raise _enc('nav_sat', 'sv[12].aopAvail', r_2sv_12_8aopAvail, 'type', 'a bool')
     r_2sv_12_8aopAvail = 1 if r_2sv_12_8aopAvail else 0
     r_2sv_12_10reserved13 = g_2sv_12.reserved13
@@ -2994,43 +3020,43 @@ def _raw_nav_sat_2sv_12(g_2sv_12: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_12_10reserved13 <= 1:
             raise _enc('nav_sat', 'sv[12].reserved13', r_2sv_12_10reserved13, 'range', '0..1', None)
     r_2sv_12_12sbasCorrUsed: Any = g_2sv_12.sbasCorrUsed
-    if r_2sv_12_12sbasCorrUsed is not True and r_2sv_12_12sbasCorrUsed is not False and r_2sv_12_12sbasCorrUsed != 0 and r_2sv_12_12sbasCorrUsed != 1:
+    if r_2sv_12_12sbasCorrUsed is not True and r_2sv_12_12sbasCorrUsed is not False and (not isinstance(r_2sv_12_12sbasCorrUsed, int) or r_2sv_12_12sbasCorrUsed != 0 and r_2sv_12_12sbasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[12].sbasCorrUsed', r_2sv_12_12sbasCorrUsed, 'type', 'a bool')
     r_2sv_12_12sbasCorrUsed = 1 if r_2sv_12_12sbasCorrUsed else 0
     r_2sv_12_12rtcmCorrUsed: Any = g_2sv_12.rtcmCorrUsed
-    if r_2sv_12_12rtcmCorrUsed is not True and r_2sv_12_12rtcmCorrUsed is not False and r_2sv_12_12rtcmCorrUsed != 0 and r_2sv_12_12rtcmCorrUsed != 1:
+    if r_2sv_12_12rtcmCorrUsed is not True and r_2sv_12_12rtcmCorrUsed is not False and (not isinstance(r_2sv_12_12rtcmCorrUsed, int) or r_2sv_12_12rtcmCorrUsed != 0 and r_2sv_12_12rtcmCorrUsed != 1):
         raise _enc('nav_sat', 'sv[12].rtcmCorrUsed', r_2sv_12_12rtcmCorrUsed, 'type', 'a bool')
     r_2sv_12_12rtcmCorrUsed = 1 if r_2sv_12_12rtcmCorrUsed else 0
     r_2sv_12_12slasCorrUsed: Any = g_2sv_12.slasCorrUsed
-    if r_2sv_12_12slasCorrUsed is not True and r_2sv_12_12slasCorrUsed is not False and r_2sv_12_12slasCorrUsed != 0 and r_2sv_12_12slasCorrUsed != 1:
+    if r_2sv_12_12slasCorrUsed is not True and r_2sv_12_12slasCorrUsed is not False and (not isinstance(r_2sv_12_12slasCorrUsed, int) or r_2sv_12_12slasCorrUsed != 0 and r_2sv_12_12slasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[12].slasCorrUsed', r_2sv_12_12slasCorrUsed, 'type', 'a bool')
     r_2sv_12_12slasCorrUsed = 1 if r_2sv_12_12slasCorrUsed else 0
     r_2sv_12_14spartnCorrUsed: Any = g_2sv_12.spartnCorrUsed
-    if r_2sv_12_14spartnCorrUsed is not True and r_2sv_12_14spartnCorrUsed is not False and r_2sv_12_14spartnCorrUsed != 0 and r_2sv_12_14spartnCorrUsed != 1:
+    if r_2sv_12_14spartnCorrUsed is not True and r_2sv_12_14spartnCorrUsed is not False and (not isinstance(r_2sv_12_14spartnCorrUsed, int) or r_2sv_12_14spartnCorrUsed != 0 and r_2sv_12_14spartnCorrUsed != 1):
         raise _enc('nav_sat', 'sv[12].spartnCorrUsed', r_2sv_12_14spartnCorrUsed, 'type', 'a bool')
     r_2sv_12_14spartnCorrUsed = 1 if r_2sv_12_14spartnCorrUsed else 0
     r_2sv_12_10prCorrUsed: Any = g_2sv_12.prCorrUsed
-    if r_2sv_12_10prCorrUsed is not True and r_2sv_12_10prCorrUsed is not False and r_2sv_12_10prCorrUsed != 0 and r_2sv_12_10prCorrUsed != 1:
+    if r_2sv_12_10prCorrUsed is not True and r_2sv_12_10prCorrUsed is not False and (not isinstance(r_2sv_12_10prCorrUsed, int) or r_2sv_12_10prCorrUsed != 0 and r_2sv_12_10prCorrUsed != 1):
         raise _enc('nav_sat', 'sv[12].prCorrUsed', r_2sv_12_10prCorrUsed, 'type', 'a bool')
     r_2sv_12_10prCorrUsed = 1 if r_2sv_12_10prCorrUsed else 0
     r_2sv_12_10crCorrUsed: Any = g_2sv_12.crCorrUsed
-    if r_2sv_12_10crCorrUsed is not True and r_2sv_12_10crCorrUsed is not False and r_2sv_12_10crCorrUsed != 0 and r_2sv_12_10crCorrUsed != 1:
+    if r_2sv_12_10crCorrUsed is not True and r_2sv_12_10crCorrUsed is not False and (not isinstance(r_2sv_12_10crCorrUsed, int) or r_2sv_12_10crCorrUsed != 0 and r_2sv_12_10crCorrUsed != 1):
         raise _enc('nav_sat', 'sv[12].crCorrUsed', r_2sv_12_10crCorrUsed, 'type', 'a bool')
     r_2sv_12_10crCorrUsed = 1 if r_2sv_12_10crCorrUsed else 0
     r_2sv_12_10doCorrUsed: Any = g_2sv_12.doCorrUsed
-    if r_2sv_12_10doCorrUsed is not True and r_2sv_12_10doCorrUsed is not False and r_2sv_12_10doCorrUsed != 0 and r_2sv_12_10doCorrUsed != 1:
+    if r_2sv_12_10doCorrUsed is not True and r_2sv_12_10doCorrUsed is not False and (not isinstance(r_2sv_12_10doCorrUsed, int) or r_2sv_12_10doCorrUsed != 0 and r_2sv_12_10doCorrUsed != 1):
         raise _enc('nav_sat', 'sv[12].doCorrUsed', r_2sv_12_10doCorrUsed, 'type', 'a bool')
     r_2sv_12_10doCorrUsed = 1 if r_2sv_12_10doCorrUsed else 0
     r_2sv_12_12clasCorrUsed: Any = g_2sv_12.clasCorrUsed
-    if r_2sv_12_12clasCorrUsed is not True and r_2sv_12_12clasCorrUsed is not False and r_2sv_12_12clasCorrUsed != 0 and r_2sv_12_12clasCorrUsed != 1:
+    if r_2sv_12_12clasCorrUsed is not True and r_2sv_12_12clasCorrUsed is not False and (not isinstance(r_2sv_12_12clasCorrUsed, int) or r_2sv_12_12clasCorrUsed != 0 and r_2sv_12_12clasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[12].clasCorrUsed', r_2sv_12_12clasCorrUsed, 'type', 'a bool')
     r_2sv_12_12clasCorrUsed = 1 if r_2sv_12_12clasCorrUsed else 0
     r_2sv_12_11lppCorrUsed: Any = g_2sv_12.lppCorrUsed
-    if r_2sv_12_11lppCorrUsed is not True and r_2sv_12_11lppCorrUsed is not False and r_2sv_12_11lppCorrUsed != 0 and r_2sv_12_11lppCorrUsed != 1:
+    if r_2sv_12_11lppCorrUsed is not True and r_2sv_12_11lppCorrUsed is not False and (not isinstance(r_2sv_12_11lppCorrUsed, int) or r_2sv_12_11lppCorrUsed != 0 and r_2sv_12_11lppCorrUsed != 1):
         raise _enc('nav_sat', 'sv[12].lppCorrUsed', r_2sv_12_11lppCorrUsed, 'type', 'a bool')
     r_2sv_12_11lppCorrUsed = 1 if r_2sv_12_11lppCorrUsed else 0
     r_2sv_12_11hasCorrUsed: Any = g_2sv_12.hasCorrUsed
-    if r_2sv_12_11hasCorrUsed is not True and r_2sv_12_11hasCorrUsed is not False and r_2sv_12_11hasCorrUsed != 0 and r_2sv_12_11hasCorrUsed != 1:
+    if r_2sv_12_11hasCorrUsed is not True and r_2sv_12_11hasCorrUsed is not False and (not isinstance(r_2sv_12_11hasCorrUsed, int) or r_2sv_12_11hasCorrUsed != 0 and r_2sv_12_11hasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[12].hasCorrUsed', r_2sv_12_11hasCorrUsed, 'type', 'a bool')
     r_2sv_12_11hasCorrUsed = 1 if r_2sv_12_11hasCorrUsed else 0
     r_2sv_12_11flags_spare = 0
@@ -3038,6 +3064,8 @@ def _raw_nav_sat_2sv_12(g_2sv_12: Any) -> tuple[Any, ...]:
 
 
 def _raw_nav_sat_2sv_13(g_2sv_13: Any) -> tuple[Any, ...]:
+    if g_2sv_13.__class__ is not NavSatSv and not isinstance(g_2sv_13, NavSatSv):
+        raise _enc('nav_sat', 'sv[13]', g_2sv_13, 'type', 'a NavSatSv')
     r_2sv_13_6gnssId = g_2sv_13.gnssId
     if r_2sv_13_6gnssId.__class__ is not int or not 0 <= r_2sv_13_6gnssId <= 255:
         if not isinstance(r_2sv_13_6gnssId, int) or r_2sv_13_6gnssId.__class__ is bool:
@@ -3082,7 +3110,7 @@ def _raw_nav_sat_2sv_13(g_2sv_13: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_13_10qualityInd <= 7:
             raise _enc('nav_sat', 'sv[13].qualityInd', r_2sv_13_10qualityInd, 'range', '0..7', None)
     r_2sv_13_6svUsed: Any = g_2sv_13.svUsed
-    if r_2sv_13_6svUsed is not True and r_2sv_13_6svUsed is not False and r_2sv_13_6svUsed != 0 and r_2sv_13_6svUsed != 1:
+    if r_2sv_13_6svUsed is not True and r_2sv_13_6svUsed is not False and (not isinstance(r_2sv_13_6svUsed, int) or r_2sv_13_6svUsed != 0 and r_2sv_13_6svUsed != 1):
         raise _enc('nav_sat', 'sv[13].svUsed', r_2sv_13_6svUsed, 'type', 'a bool')
     r_2sv_13_6svUsed = 1 if r_2sv_13_6svUsed else 0
     r_2sv_13_6health = g_2sv_13.health
@@ -3092,11 +3120,11 @@ def _raw_nav_sat_2sv_13(g_2sv_13: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_13_6health <= 3:
             raise _enc('nav_sat', 'sv[13].health', r_2sv_13_6health, 'range', '0..3', None)
     r_2sv_13_8diffCorr: Any = g_2sv_13.diffCorr
-    if r_2sv_13_8diffCorr is not True and r_2sv_13_8diffCorr is not False and r_2sv_13_8diffCorr != 0 and r_2sv_13_8diffCorr != 1:
+    if r_2sv_13_8diffCorr is not True and r_2sv_13_8diffCorr is not False and (not isinstance(r_2sv_13_8diffCorr, int) or r_2sv_13_8diffCorr != 0 and r_2sv_13_8diffCorr != 1):
         raise _enc('nav_sat', 'sv[13].diffCorr', r_2sv_13_8diffCorr, 'type', 'a bool')
     r_2sv_13_8diffCorr = 1 if r_2sv_13_8diffCorr else 0
     r_2sv_13_8smoothed: Any = g_2sv_13.smoothed
-    if r_2sv_13_8smoothed is not True and r_2sv_13_8smoothed is not False and r_2sv_13_8smoothed != 0 and r_2sv_13_8smoothed != 1:
+    if r_2sv_13_8smoothed is not True and r_2sv_13_8smoothed is not False and (not isinstance(r_2sv_13_8smoothed, int) or r_2sv_13_8smoothed != 0 and r_2sv_13_8smoothed != 1):
         raise _enc('nav_sat', 'sv[13].smoothed', r_2sv_13_8smoothed, 'type', 'a bool')
     r_2sv_13_8smoothed = 1 if r_2sv_13_8smoothed else 0
     r_2sv_13_11orbitSource = g_2sv_13.orbitSource
@@ -3106,19 +3134,19 @@ def _raw_nav_sat_2sv_13(g_2sv_13: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_13_11orbitSource <= 7:
             raise _enc('nav_sat', 'sv[13].orbitSource', r_2sv_13_11orbitSource, 'range', '0..7', None)
     r_2sv_13_8ephAvail: Any = g_2sv_13.ephAvail
-    if r_2sv_13_8ephAvail is not True and r_2sv_13_8ephAvail is not False and r_2sv_13_8ephAvail != 0 and r_2sv_13_8ephAvail != 1:
+    if r_2sv_13_8ephAvail is not True and r_2sv_13_8ephAvail is not False and (not isinstance(r_2sv_13_8ephAvail, int) or r_2sv_13_8ephAvail != 0 and r_2sv_13_8ephAvail != 1):
         raise _enc('nav_sat', 'sv[13].ephAvail', r_2sv_13_8ephAvail, 'type', 'a bool')
     r_2sv_13_8ephAvail = 1 if r_2sv_13_8ephAvail else 0
     r_2sv_13_8almAvail: Any = g_2sv_13.almAvail
-    if r_2sv_13_8almAvail is not True and r_2sv_13_8almAvail is not False and r_2sv_13_8almAvail != 0 and r_2sv_13_8almAvail != 1:
+    if r_2sv_13_8almAvail is not True and r_2sv_13_8almAvail is not False and (not isinstance(r_2sv_13_8almAvail, int) or r_2sv_13_8almAvail != 0 and r_2sv_13_8almAvail != 1):
         raise _enc('nav_sat', 'sv[13].almAvail', r_2sv_13_8almAvail, 'type', 'a bool')
     r_2sv_13_8almAvail = 1 if r_2sv_13_8almAvail else 0
     r_2sv_13_8anoAvail: Any = g_2sv_13.anoAvail
-    if r_2sv_13_8anoAvail is not True and r_2sv_13_8anoAvail is not False and r_2sv_13_8anoAvail != 0 and r_2sv_13_8anoAvail != 1:
+    if r_2sv_13_8anoAvail is not True and r_2sv_13_8anoAvail is not False and (not isinstance(r_2sv_13_8anoAvail, int) or r_2sv_13_8anoAvail != 0 and r_2sv_13_8anoAvail != 1):
         raise _enc('nav_sat', 'sv[13].anoAvail', r_2sv_13_8anoAvail, 'type', 'a bool')
     r_2sv_13_8anoAvail = 1 if r_2sv_13_8anoAvail else 0
     r_2sv_13_8aopAvail: Any = g_2sv_13.aopAvail
-    if r_2sv_13_8aopAvail is not True and r_2sv_13_8aopAvail is not False and r_2sv_13_8aopAvail != 0 and r_2sv_13_8aopAvail != 1:
+    if r_2sv_13_8aopAvail is not True and r_2sv_13_8aopAvail is not False and (not isinstance(r_2sv_13_8aopAvail, int) or r_2sv_13_8aopAvail != 0 and r_2sv_13_8aopAvail != 1):
         raise _enc('nav_sat', 'sv[13].aopAvail', r_2sv_13_8aopAvail, 'type', 'a bool')
     r_2sv_13_8aopAvail = 1 if r_2sv_13_8aopAvail else 0
     r_2sv_13_10reserved13 = g_2sv_13.reserved13
@@ -3128,43 +3156,43 @@ def _raw_nav_sat_2sv_13(g_2sv_13: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_13_10reserved13 <= 1:
             raise _enc('nav_sat', 'sv[13].reserved13', r_2sv_13_10reserved13, 'range', '0..1', None)
     r_2sv_13_12sbasCorrUsed: Any = g_2sv_13.sbasCorrUsed
-    if r_2sv_13_12sbasCorrUsed is not True and r_2sv_13_12sbasCorrUsed is not False and r_2sv_13_12sbasCorrUsed != 0 and r_2sv_13_12sbasCorrUsed != 1:
+    if r_2sv_13_12sbasCorrUsed is not True and r_2sv_13_12sbasCorrUsed is not False and (not isinstance(r_2sv_13_12sbasCorrUsed, int) or r_2sv_13_12sbasCorrUsed != 0 and r_2sv_13_12sbasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[13].sbasCorrUsed', r_2sv_13_12sbasCorrUsed, 'type', 'a bool')
     r_2sv_13_12sbasCorrUsed = 1 if r_2sv_13_12sbasCorrUsed else 0
     r_2sv_13_12rtcmCorrUsed: Any = g_2sv_13.rtcmCorrUsed
-    if r_2sv_13_12rtcmCorrUsed is not True and r_2sv_13_12rtcmCorrUsed is not False and r_2sv_13_12rtcmCorrUsed != 0 and r_2sv_13_12rtcmCorrUsed != 1:
+    if r_2sv_13_12rtcmCorrUsed is not True and r_2sv_13_12rtcmCorrUsed is not False and (not isinstance(r_2sv_13_12rtcmCorrUsed, int) or r_2sv_13_12rtcmCorrUsed != 0 and r_2sv_13_12rtcmCorrUsed != 1):
         raise _enc('nav_sat', 'sv[13].rtcmCorrUsed', r_2sv_13_12rtcmCorrUsed, 'type', 'a bool')
     r_2sv_13_12rtcmCorrUsed = 1 if r_2sv_13_12rtcmCorrUsed else 0
     r_2sv_13_12slasCorrUsed: Any = g_2sv_13.slasCorrUsed
-    if r_2sv_13_12slasCorrUsed is not True and r_2sv_13_12slasCorrUsed is not False and r_2sv_13_12slasCorrUsed != 0 and r_2sv_13_12slasCorrUsed != 1:
+    if r_2sv_13_12slasCorrUsed is not True and r_2sv_13_12slasCorrUsed is not False and (not isinstance(r_2sv_13_12slasCorrUsed, int) or r_2sv_13_12slasCorrUsed != 0 and r_2sv_13_12slasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[13].slasCorrUsed', r_2sv_13_12slasCorrUsed, 'type', 'a bool')
     r_2sv_13_12slasCorrUsed = 1 if r_2sv_13_12slasCorrUsed else 0
     r_2sv_13_14spartnCorrUsed: Any = g_2sv_13.spartnCorrUsed
-    if r_2sv_13_14spartnCorrUsed is not True and r_2sv_13_14spartnCorrUsed is not False and r_2sv_13_14spartnCorrUsed != 0 and r_2sv_13_14spartnCorrUsed != 1:
+    if r_2sv_13_14spartnCorrUsed is not True and r_2sv_13_14spartnCorrUsed is not False and (not isinstance(r_2sv_13_14spartnCorrUsed, int) or r_2sv_13_14spartnCorrUsed != 0 and r_2sv_13_14spartnCorrUsed != 1):
         raise _enc('nav_sat', 'sv[13].spartnCorrUsed', r_2sv_13_14spartnCorrUsed, 'type', 'a bool')
     r_2sv_13_14spartnCorrUsed = 1 if r_2sv_13_14spartnCorrUsed else 0
     r_2sv_13_10prCorrUsed: Any = g_2sv_13.prCorrUsed
-    if r_2sv_13_10prCorrUsed is not True and r_2sv_13_10prCorrUsed is not False and r_2sv_13_10prCorrUsed != 0 and r_2sv_13_10prCorrUsed != 1:
+    if r_2sv_13_10prCorrUsed is not True and r_2sv_13_10prCorrUsed is not False and (not isinstance(r_2sv_13_10prCorrUsed, int) or r_2sv_13_10prCorrUsed != 0 and r_2sv_13_10prCorrUsed != 1):
         raise _enc('nav_sat', 'sv[13].prCorrUsed', r_2sv_13_10prCorrUsed, 'type', 'a bool')
     r_2sv_13_10prCorrUsed = 1 if r_2sv_13_10prCorrUsed else 0
     r_2sv_13_10crCorrUsed: Any = g_2sv_13.crCorrUsed
-    if r_2sv_13_10crCorrUsed is not True and r_2sv_13_10crCorrUsed is not False and r_2sv_13_10crCorrUsed != 0 and r_2sv_13_10crCorrUsed != 1:
+    if r_2sv_13_10crCorrUsed is not True and r_2sv_13_10crCorrUsed is not False and (not isinstance(r_2sv_13_10crCorrUsed, int) or r_2sv_13_10crCorrUsed != 0 and r_2sv_13_10crCorrUsed != 1):
         raise _enc('nav_sat', 'sv[13].crCorrUsed', r_2sv_13_10crCorrUsed, 'type', 'a bool')
     r_2sv_13_10crCorrUsed = 1 if r_2sv_13_10crCorrUsed else 0
     r_2sv_13_10doCorrUsed: Any = g_2sv_13.doCorrUsed
-    if r_2sv_13_10doCorrUsed is not True and r_2sv_13_10doCorrUsed is not False and r_2sv_13_10doCorrUsed != 0 and r_2sv_13_10doCorrUsed != 1:
+    if r_2sv_13_10doCorrUsed is not True and r_2sv_13_10doCorrUsed is not False and (not isinstance(r_2sv_13_10doCorrUsed, int) or r_2sv_13_10doCorrUsed != 0 and r_2sv_13_10doCorrUsed != 1):
         raise _enc('nav_sat', 'sv[13].doCorrUsed', r_2sv_13_10doCorrUsed, 'type', 'a bool')
     r_2sv_13_10doCorrUsed = 1 if r_2sv_13_10doCorrUsed else 0
     r_2sv_13_12clasCorrUsed: Any = g_2sv_13.clasCorrUsed
-    if r_2sv_13_12clasCorrUsed is not True and r_2sv_13_12clasCorrUsed is not False and r_2sv_13_12clasCorrUsed != 0 and r_2sv_13_12clasCorrUsed != 1:
+    if r_2sv_13_12clasCorrUsed is not True and r_2sv_13_12clasCorrUsed is not False and (not isinstance(r_2sv_13_12clasCorrUsed, int) or r_2sv_13_12clasCorrUsed != 0 and r_2sv_13_12clasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[13].clasCorrUsed', r_2sv_13_12clasCorrUsed, 'type', 'a bool')
     r_2sv_13_12clasCorrUsed = 1 if r_2sv_13_12clasCorrUsed else 0
     r_2sv_13_11lppCorrUsed: Any = g_2sv_13.lppCorrUsed
-    if r_2sv_13_11lppCorrUsed is not True and r_2sv_13_11lppCorrUsed is not False and r_2sv_13_11lppCorrUsed != 0 and r_2sv_13_11lppCorrUsed != 1:
+    if r_2sv_13_11lppCorrUsed is not True and r_2sv_13_11lppCorrUsed is not False and (not isinstance(r_2sv_13_11lppCorrUsed, int) or r_2sv_13_11lppCorrUsed != 0 and r_2sv_13_11lppCorrUsed != 1):
         raise _enc('nav_sat', 'sv[13].lppCorrUsed', r_2sv_13_11lppCorrUsed, 'type', 'a bool')
     r_2sv_13_11lppCorrUsed = 1 if r_2sv_13_11lppCorrUsed else 0
     r_2sv_13_11hasCorrUsed: Any = g_2sv_13.hasCorrUsed
-    if r_2sv_13_11hasCorrUsed is not True and r_2sv_13_11hasCorrUsed is not False and r_2sv_13_11hasCorrUsed != 0 and r_2sv_13_11hasCorrUsed != 1:
+    if r_2sv_13_11hasCorrUsed is not True and r_2sv_13_11hasCorrUsed is not False and (not isinstance(r_2sv_13_11hasCorrUsed, int) or r_2sv_13_11hasCorrUsed != 0 and r_2sv_13_11hasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[13].hasCorrUsed', r_2sv_13_11hasCorrUsed, 'type', 'a bool')
     r_2sv_13_11hasCorrUsed = 1 if r_2sv_13_11hasCorrUsed else 0
     r_2sv_13_11flags_spare = 0
@@ -3172,6 +3200,8 @@ def _raw_nav_sat_2sv_13(g_2sv_13: Any) -> tuple[Any, ...]:
 
 
 def _raw_nav_sat_2sv_14(g_2sv_14: Any) -> tuple[Any, ...]:
+    if g_2sv_14.__class__ is not NavSatSv and not isinstance(g_2sv_14, NavSatSv):
+        raise _enc('nav_sat', 'sv[14]', g_2sv_14, 'type', 'a NavSatSv')
     r_2sv_14_6gnssId = g_2sv_14.gnssId
     if r_2sv_14_6gnssId.__class__ is not int or not 0 <= r_2sv_14_6gnssId <= 255:
         if not isinstance(r_2sv_14_6gnssId, int) or r_2sv_14_6gnssId.__class__ is bool:
@@ -3216,7 +3246,7 @@ def _raw_nav_sat_2sv_14(g_2sv_14: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_14_10qualityInd <= 7:
             raise _enc('nav_sat', 'sv[14].qualityInd', r_2sv_14_10qualityInd, 'range', '0..7', None)
     r_2sv_14_6svUsed: Any = g_2sv_14.svUsed
-    if r_2sv_14_6svUsed is not True and r_2sv_14_6svUsed is not False and r_2sv_14_6svUsed != 0 and r_2sv_14_6svUsed != 1:
+    if r_2sv_14_6svUsed is not True and r_2sv_14_6svUsed is not False and (not isinstance(r_2sv_14_6svUsed, int) or r_2sv_14_6svUsed != 0 and r_2sv_14_6svUsed != 1):
         raise _enc('nav_sat', 'sv[14].svUsed', r_2sv_14_6svUsed, 'type', 'a bool')
     r_2sv_14_6svUsed = 1 if r_2sv_14_6svUsed else 0
     r_2sv_14_6health = g_2sv_14.health
@@ -3226,11 +3256,11 @@ def _raw_nav_sat_2sv_14(g_2sv_14: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_14_6health <= 3:
             raise _enc('nav_sat', 'sv[14].health', r_2sv_14_6health, 'range', '0..3', None)
     r_2sv_14_8diffCorr: Any = g_2sv_14.diffCorr
-    if r_2sv_14_8diffCorr is not True and r_2sv_14_8diffCorr is not False and r_2sv_14_8diffCorr != 0 and r_2sv_14_8diffCorr != 1:
+    if r_2sv_14_8diffCorr is not True and r_2sv_14_8diffCorr is not False and (not isinstance(r_2sv_14_8diffCorr, int) or r_2sv_14_8diffCorr != 0 and r_2sv_14_8diffCorr != 1):
         raise _enc('nav_sat', 'sv[14].diffCorr', r_2sv_14_8diffCorr, 'type', 'a bool')
     r_2sv_14_8diffCorr = 1 if r_2sv_14_8diffCorr else 0
     r_2sv_14_8smoothed: Any = g_2sv_14.smoothed
-    if r_2sv_14_8smoothed is not True and r_2sv_14_8smoothed is not False and r_2sv_14_8smoothed != 0 and r_2sv_14_8smoothed != 1:
+    if r_2sv_14_8smoothed is not True and r_2sv_14_8smoothed is not False and (not isinstance(r_2sv_14_8smoothed, int) or r_2sv_14_8smoothed != 0 and r_2sv_14_8smoothed != 1):
         raise _enc('nav_sat', 'sv[14].smoothed', r_2sv_14_8smoothed, 'type', 'a bool')
     r_2sv_14_8smoothed = 1 if r_2sv_14_8smoothed else 0
     r_2sv_14_11orbitSource = g_2sv_14.orbitSource
@@ -3240,19 +3270,19 @@ def _raw_nav_sat_2sv_14(g_2sv_14: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_14_11orbitSource <= 7:
             raise _enc('nav_sat', 'sv[14].orbitSource', r_2sv_14_11orbitSource, 'range', '0..7', None)
     r_2sv_14_8ephAvail: Any = g_2sv_14.ephAvail
-    if r_2sv_14_8ephAvail is not True and r_2sv_14_8ephAvail is not False and r_2sv_14_8ephAvail != 0 and r_2sv_14_8ephAvail != 1:
+    if r_2sv_14_8ephAvail is not True and r_2sv_14_8ephAvail is not False and (not isinstance(r_2sv_14_8ephAvail, int) or r_2sv_14_8ephAvail != 0 and r_2sv_14_8ephAvail != 1):
         raise _enc('nav_sat', 'sv[14].ephAvail', r_2sv_14_8ephAvail, 'type', 'a bool')
     r_2sv_14_8ephAvail = 1 if r_2sv_14_8ephAvail else 0
     r_2sv_14_8almAvail: Any = g_2sv_14.almAvail
-    if r_2sv_14_8almAvail is not True and r_2sv_14_8almAvail is not False and r_2sv_14_8almAvail != 0 and r_2sv_14_8almAvail != 1:
+    if r_2sv_14_8almAvail is not True and r_2sv_14_8almAvail is not False and (not isinstance(r_2sv_14_8almAvail, int) or r_2sv_14_8almAvail != 0 and r_2sv_14_8almAvail != 1):
         raise _enc('nav_sat', 'sv[14].almAvail', r_2sv_14_8almAvail, 'type', 'a bool')
     r_2sv_14_8almAvail = 1 if r_2sv_14_8almAvail else 0
     r_2sv_14_8anoAvail: Any = g_2sv_14.anoAvail
-    if r_2sv_14_8anoAvail is not True and r_2sv_14_8anoAvail is not False and r_2sv_14_8anoAvail != 0 and r_2sv_14_8anoAvail != 1:
+    if r_2sv_14_8anoAvail is not True and r_2sv_14_8anoAvail is not False and (not isinstance(r_2sv_14_8anoAvail, int) or r_2sv_14_8anoAvail != 0 and r_2sv_14_8anoAvail != 1):
         raise _enc('nav_sat', 'sv[14].anoAvail', r_2sv_14_8anoAvail, 'type', 'a bool')
     r_2sv_14_8anoAvail = 1 if r_2sv_14_8anoAvail else 0
     r_2sv_14_8aopAvail: Any = g_2sv_14.aopAvail
-    if r_2sv_14_8aopAvail is not True and r_2sv_14_8aopAvail is not False and r_2sv_14_8aopAvail != 0 and r_2sv_14_8aopAvail != 1:
+    if r_2sv_14_8aopAvail is not True and r_2sv_14_8aopAvail is not False and (not isinstance(r_2sv_14_8aopAvail, int) or r_2sv_14_8aopAvail != 0 and r_2sv_14_8aopAvail != 1):
         raise _enc('nav_sat', 'sv[14].aopAvail', r_2sv_14_8aopAvail, 'type', 'a bool')
     r_2sv_14_8aopAvail = 1 if r_2sv_14_8aopAvail else 0
     r_2sv_14_10reserved13 = g_2sv_14.reserved13
@@ -3262,43 +3292,43 @@ def _raw_nav_sat_2sv_14(g_2sv_14: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_14_10reserved13 <= 1:
             raise _enc('nav_sat', 'sv[14].reserved13', r_2sv_14_10reserved13, 'range', '0..1', None)
     r_2sv_14_12sbasCorrUsed: Any = g_2sv_14.sbasCorrUsed
-    if r_2sv_14_12sbasCorrUsed is not True and r_2sv_14_12sbasCorrUsed is not False and r_2sv_14_12sbasCorrUsed != 0 and r_2sv_14_12sbasCorrUsed != 1:
+    if r_2sv_14_12sbasCorrUsed is not True and r_2sv_14_12sbasCorrUsed is not False and (not isinstance(r_2sv_14_12sbasCorrUsed, int) or r_2sv_14_12sbasCorrUsed != 0 and r_2sv_14_12sbasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[14].sbasCorrUsed', r_2sv_14_12sbasCorrUsed, 'type', 'a bool')
     r_2sv_14_12sbasCorrUsed = 1 if r_2sv_14_12sbasCorrUsed else 0
     r_2sv_14_12rtcmCorrUsed: Any = g_2sv_14.rtcmCorrUsed
-    if r_2sv_14_12rtcmCorrUsed is not True and r_2sv_14_12rtcmCorrUsed is not False and r_2sv_14_12rtcmCorrUsed != 0 and r_2sv_14_12rtcmCorrUsed != 1:
+    if r_2sv_14_12rtcmCorrUsed is not True and r_2sv_14_12rtcmCorrUsed is not False and (not isinstance(r_2sv_14_12rtcmCorrUsed, int) or r_2sv_14_12rtcmCorrUsed != 0 and r_2sv_14_12rtcmCorrUsed != 1):
         raise _enc('nav_sat', 'sv[14].rtcmCorrUsed', r_2sv_14_12rtcmCorrUsed, 'type', 'a bool')
     r_2sv_14_12rtcmCorrUsed = 1 if r_2sv_14_12rtcmCorrUsed else 0
     r_2sv_14_12slasCorrUsed: Any = g_2sv_14.slasCorrUsed
-    if r_2sv_14_12slasCorrUsed is not True and r_2sv_14_12slasCorrUsed is not False and r_2sv_14_12slasCorrUsed != 0 and r_2sv_14_12slasCorrUsed != 1:
+    if r_2sv_14_12slasCorrUsed is not True and r_2sv_14_12slasCorrUsed is not False and (not isinstance(r_2sv_14_12slasCorrUsed, int) or r_2sv_14_12slasCorrUsed != 0 and r_2sv_14_12slasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[14].slasCorrUsed', r_2sv_14_12slasCorrUsed, 'type', 'a bool')
     r_2sv_14_12slasCorrUsed = 1 if r_2sv_14_12slasCorrUsed else 0
     r_2sv_14_14spartnCorrUsed: Any = g_2sv_14.spartnCorrUsed
-    if r_2sv_14_14spartnCorrUsed is not True and r_2sv_14_14spartnCorrUsed is not False and r_2sv_14_14spartnCorrUsed != 0 and r_2sv_14_14spartnCorrUsed != 1:
+    if r_2sv_14_14spartnCorrUsed is not True and r_2sv_14_14spartnCorrUsed is not False and (not isinstance(r_2sv_14_14spartnCorrUsed, int) or r_2sv_14_14spartnCorrUsed != 0 and r_2sv_14_14spartnCorrUsed != 1):
         raise _enc('nav_sat', 'sv[14].spartnCorrUsed', r_2sv_14_14spartnCorrUsed, 'type', 'a bool')
     r_2sv_14_14spartnCorrUsed = 1 if r_2sv_14_14spartnCorrUsed else 0
     r_2sv_14_10prCorrUsed: Any = g_2sv_14.prCorrUsed
-    if r_2sv_14_10prCorrUsed is not True and r_2sv_14_10prCorrUsed is not False and r_2sv_14_10prCorrUsed != 0 and r_2sv_14_10prCorrUsed != 1:
+    if r_2sv_14_10prCorrUsed is not True and r_2sv_14_10prCorrUsed is not False and (not isinstance(r_2sv_14_10prCorrUsed, int) or r_2sv_14_10prCorrUsed != 0 and r_2sv_14_10prCorrUsed != 1):
         raise _enc('nav_sat', 'sv[14].prCorrUsed', r_2sv_14_10prCorrUsed, 'type', 'a bool')
     r_2sv_14_10prCorrUsed = 1 if r_2sv_14_10prCorrUsed else 0
     r_2sv_14_10crCorrUsed: Any = g_2sv_14.crCorrUsed
-    if r_2sv_14_10crCorrUsed is not True and r_2sv_14_10crCorrUsed is not False and r_2sv_14_10crCorrUsed != 0 and r_2sv_14_10crCorrUsed != 1:
+    if r_2sv_14_10crCorrUsed is not True and r_2sv_14_10crCorrUsed is not False and (not isinstance(r_2sv_14_10crCorrUsed, int) or r_2sv_14_10crCorrUsed != 0 and r_2sv_14_10crCorrUsed != 1):
         raise _enc('nav_sat', 'sv[14].crCorrUsed', r_2sv_14_10crCorrUsed, 'type', 'a bool')
     r_2sv_14_10crCorrUsed = 1 if r_2sv_14_10crCorrUsed else 0
     r_2sv_14_10doCorrUsed: Any = g_2sv_14.doCorrUsed
-    if r_2sv_14_10doCorrUsed is not True and r_2sv_14_10doCorrUsed is not False and r_2sv_14_10doCorrUsed != 0 and r_2sv_14_10doCorrUsed != 1:
+    if r_2sv_14_10doCorrUsed is not True and r_2sv_14_10doCorrUsed is not False and (not isinstance(r_2sv_14_10doCorrUsed, int) or r_2sv_14_10doCorrUsed != 0 and r_2sv_14_10doCorrUsed != 1):
         raise _enc('nav_sat', 'sv[14].doCorrUsed', r_2sv_14_10doCorrUsed, 'type', 'a bool')
     r_2sv_14_10doCorrUsed = 1 if r_2sv_14_10doCorrUsed else 0
     r_2sv_14_12clasCorrUsed: Any = g_2sv_14.clasCorrUsed
-    if r_2sv_14_12clasCorrUsed is not True and r_2sv_14_12clasCorrUsed is not False and r_2sv_14_12clasCorrUsed != 0 and r_2sv_14_12clasCorrUsed != 1:
+    if r_2sv_14_12clasCorrUsed is not True and r_2sv_14_12clasCorrUsed is not False and (not isinstance(r_2sv_14_12clasCorrUsed, int) or r_2sv_14_12clasCorrUsed != 0 and r_2sv_14_12clasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[14].clasCorrUsed', r_2sv_14_12clasCorrUsed, 'type', 'a bool')
     r_2sv_14_12clasCorrUsed = 1 if r_2sv_14_12clasCorrUsed else 0
     r_2sv_14_11lppCorrUsed: Any = g_2sv_14.lppCorrUsed
-    if r_2sv_14_11lppCorrUsed is not True and r_2sv_14_11lppCorrUsed is not False and r_2sv_14_11lppCorrUsed != 0 and r_2sv_14_11lppCorrUsed != 1:
+    if r_2sv_14_11lppCorrUsed is not True and r_2sv_14_11lppCorrUsed is not False and (not isinstance(r_2sv_14_11lppCorrUsed, int) or r_2sv_14_11lppCorrUsed != 0 and r_2sv_14_11lppCorrUsed != 1):
         raise _enc('nav_sat', 'sv[14].lppCorrUsed', r_2sv_14_11lppCorrUsed, 'type', 'a bool')
     r_2sv_14_11lppCorrUsed = 1 if r_2sv_14_11lppCorrUsed else 0
     r_2sv_14_11hasCorrUsed: Any = g_2sv_14.hasCorrUsed
-    if r_2sv_14_11hasCorrUsed is not True and r_2sv_14_11hasCorrUsed is not False and r_2sv_14_11hasCorrUsed != 0 and r_2sv_14_11hasCorrUsed != 1:
+    if r_2sv_14_11hasCorrUsed is not True and r_2sv_14_11hasCorrUsed is not False and (not isinstance(r_2sv_14_11hasCorrUsed, int) or r_2sv_14_11hasCorrUsed != 0 and r_2sv_14_11hasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[14].hasCorrUsed', r_2sv_14_11hasCorrUsed, 'type', 'a bool')
     r_2sv_14_11hasCorrUsed = 1 if r_2sv_14_11hasCorrUsed else 0
     r_2sv_14_11flags_spare = 0
@@ -3306,6 +3336,8 @@ def _raw_nav_sat_2sv_14(g_2sv_14: Any) -> tuple[Any, ...]:
 
 
 def _raw_nav_sat_2sv_15(g_2sv_15: Any) -> tuple[Any, ...]:
+    if g_2sv_15.__class__ is not NavSatSv and not isinstance(g_2sv_15, NavSatSv):
+        raise _enc('nav_sat', 'sv[15]', g_2sv_15, 'type', 'a NavSatSv')
     r_2sv_15_6gnssId = g_2sv_15.gnssId
     if r_2sv_15_6gnssId.__class__ is not int or not 0 <= r_2sv_15_6gnssId <= 255:
         if not isinstance(r_2sv_15_6gnssId, int) or r_2sv_15_6gnssId.__class__ is bool:
@@ -3350,7 +3382,7 @@ def _raw_nav_sat_2sv_15(g_2sv_15: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_15_10qualityInd <= 7:
             raise _enc('nav_sat', 'sv[15].qualityInd', r_2sv_15_10qualityInd, 'range', '0..7', None)
     r_2sv_15_6svUsed: Any = g_2sv_15.svUsed
-    if r_2sv_15_6svUsed is not True and r_2sv_15_6svUsed is not False and r_2sv_15_6svUsed != 0 and r_2sv_15_6svUsed != 1:
+    if r_2sv_15_6svUsed is not True and r_2sv_15_6svUsed is not False and (not isinstance(r_2sv_15_6svUsed, int) or r_2sv_15_6svUsed != 0 and r_2sv_15_6svUsed != 1):
         raise _enc('nav_sat', 'sv[15].svUsed', r_2sv_15_6svUsed, 'type', 'a bool')
     r_2sv_15_6svUsed = 1 if r_2sv_15_6svUsed else 0
     r_2sv_15_6health = g_2sv_15.health
@@ -3360,11 +3392,11 @@ def _raw_nav_sat_2sv_15(g_2sv_15: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_15_6health <= 3:
             raise _enc('nav_sat', 'sv[15].health', r_2sv_15_6health, 'range', '0..3', None)
     r_2sv_15_8diffCorr: Any = g_2sv_15.diffCorr
-    if r_2sv_15_8diffCorr is not True and r_2sv_15_8diffCorr is not False and r_2sv_15_8diffCorr != 0 and r_2sv_15_8diffCorr != 1:
+    if r_2sv_15_8diffCorr is not True and r_2sv_15_8diffCorr is not False and (not isinstance(r_2sv_15_8diffCorr, int) or r_2sv_15_8diffCorr != 0 and r_2sv_15_8diffCorr != 1):
         raise _enc('nav_sat', 'sv[15].diffCorr', r_2sv_15_8diffCorr, 'type', 'a bool')
     r_2sv_15_8diffCorr = 1 if r_2sv_15_8diffCorr else 0
     r_2sv_15_8smoothed: Any = g_2sv_15.smoothed
-    if r_2sv_15_8smoothed is not True and r_2sv_15_8smoothed is not False and r_2sv_15_8smoothed != 0 and r_2sv_15_8smoothed != 1:
+    if r_2sv_15_8smoothed is not True and r_2sv_15_8smoothed is not False and (not isinstance(r_2sv_15_8smoothed, int) or r_2sv_15_8smoothed != 0 and r_2sv_15_8smoothed != 1):
         raise _enc('nav_sat', 'sv[15].smoothed', r_2sv_15_8smoothed, 'type', 'a bool')
     r_2sv_15_8smoothed = 1 if r_2sv_15_8smoothed else 0
     r_2sv_15_11orbitSource = g_2sv_15.orbitSource
@@ -3374,19 +3406,19 @@ def _raw_nav_sat_2sv_15(g_2sv_15: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_15_11orbitSource <= 7:
             raise _enc('nav_sat', 'sv[15].orbitSource', r_2sv_15_11orbitSource, 'range', '0..7', None)
     r_2sv_15_8ephAvail: Any = g_2sv_15.ephAvail
-    if r_2sv_15_8ephAvail is not True and r_2sv_15_8ephAvail is not False and r_2sv_15_8ephAvail != 0 and r_2sv_15_8ephAvail != 1:
+    if r_2sv_15_8ephAvail is not True and r_2sv_15_8ephAvail is not False and (not isinstance(r_2sv_15_8ephAvail, int) or r_2sv_15_8ephAvail != 0 and r_2sv_15_8ephAvail != 1):
         raise _enc('nav_sat', 'sv[15].ephAvail', r_2sv_15_8ephAvail, 'type', 'a bool')
     r_2sv_15_8ephAvail = 1 if r_2sv_15_8ephAvail else 0
     r_2sv_15_8almAvail: Any = g_2sv_15.almAvail
-    if r_2sv_15_8almAvail is not True and r_2sv_15_8almAvail is not False and r_2sv_15_8almAvail != 0 and r_2sv_15_8almAvail != 1:
+    if r_2sv_15_8almAvail is not True and r_2sv_15_8almAvail is not False and (not isinstance(r_2sv_15_8almAvail, int) or r_2sv_15_8almAvail != 0 and r_2sv_15_8almAvail != 1):
         raise _enc('nav_sat', 'sv[15].almAvail', r_2sv_15_8almAvail, 'type', 'a bool')
     r_2sv_15_8almAvail = 1 if r_2sv_15_8almAvail else 0
     r_2sv_15_8anoAvail: Any = g_2sv_15.anoAvail
-    if r_2sv_15_8anoAvail is not True and r_2sv_15_8anoAvail is not False and r_2sv_15_8anoAvail != 0 and r_2sv_15_8anoAvail != 1:
+    if r_2sv_15_8anoAvail is not True and r_2sv_15_8anoAvail is not False and (not isinstance(r_2sv_15_8anoAvail, int) or r_2sv_15_8anoAvail != 0 and r_2sv_15_8anoAvail != 1):
         raise _enc('nav_sat', 'sv[15].anoAvail', r_2sv_15_8anoAvail, 'type', 'a bool')
     r_2sv_15_8anoAvail = 1 if r_2sv_15_8anoAvail else 0
     r_2sv_15_8aopAvail: Any = g_2sv_15.aopAvail
-    if r_2sv_15_8aopAvail is not True and r_2sv_15_8aopAvail is not False and r_2sv_15_8aopAvail != 0 and r_2sv_15_8aopAvail != 1:
+    if r_2sv_15_8aopAvail is not True and r_2sv_15_8aopAvail is not False and (not isinstance(r_2sv_15_8aopAvail, int) or r_2sv_15_8aopAvail != 0 and r_2sv_15_8aopAvail != 1):
         raise _enc('nav_sat', 'sv[15].aopAvail', r_2sv_15_8aopAvail, 'type', 'a bool')
     r_2sv_15_8aopAvail = 1 if r_2sv_15_8aopAvail else 0
     r_2sv_15_10reserved13 = g_2sv_15.reserved13
@@ -3396,43 +3428,43 @@ def _raw_nav_sat_2sv_15(g_2sv_15: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_15_10reserved13 <= 1:
             raise _enc('nav_sat', 'sv[15].reserved13', r_2sv_15_10reserved13, 'range', '0..1', None)
     r_2sv_15_12sbasCorrUsed: Any = g_2sv_15.sbasCorrUsed
-    if r_2sv_15_12sbasCorrUsed is not True and r_2sv_15_12sbasCorrUsed is not False and r_2sv_15_12sbasCorrUsed != 0 and r_2sv_15_12sbasCorrUsed != 1:
+    if r_2sv_15_12sbasCorrUsed is not True and r_2sv_15_12sbasCorrUsed is not False and (not isinstance(r_2sv_15_12sbasCorrUsed, int) or r_2sv_15_12sbasCorrUsed != 0 and r_2sv_15_12sbasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[15].sbasCorrUsed', r_2sv_15_12sbasCorrUsed, 'type', 'a bool')
     r_2sv_15_12sbasCorrUsed = 1 if r_2sv_15_12sbasCorrUsed else 0
     r_2sv_15_12rtcmCorrUsed: Any = g_2sv_15.rtcmCorrUsed
-    if r_2sv_15_12rtcmCorrUsed is not True and r_2sv_15_12rtcmCorrUsed is not False and r_2sv_15_12rtcmCorrUsed != 0 and r_2sv_15_12rtcmCorrUsed != 1:
+    if r_2sv_15_12rtcmCorrUsed is not True and r_2sv_15_12rtcmCorrUsed is not False and (not isinstance(r_2sv_15_12rtcmCorrUsed, int) or r_2sv_15_12rtcmCorrUsed != 0 and r_2sv_15_12rtcmCorrUsed != 1):
         raise _enc('nav_sat', 'sv[15].rtcmCorrUsed', r_2sv_15_12rtcmCorrUsed, 'type', 'a bool')
     r_2sv_15_12rtcmCorrUsed = 1 if r_2sv_15_12rtcmCorrUsed else 0
     r_2sv_15_12slasCorrUsed: Any = g_2sv_15.slasCorrUsed
-    if r_2sv_15_12slasCorrUsed is not True and r_2sv_15_12slasCorrUsed is not False and r_2sv_15_12slasCorrUsed != 0 and r_2sv_15_12slasCorrUsed != 1:
+    if r_2sv_15_12slasCorrUsed is not True and r_2sv_15_12slasCorrUsed is not False and (not isinstance(r_2sv_15_12slasCorrUsed, int) or r_2sv_15_12slasCorrUsed != 0 and r_2sv_15_12slasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[15].slasCorrUsed', r_2sv_15_12slasCorrUsed, 'type', 'a bool')
     r_2sv_15_12slasCorrUsed = 1 if r_2sv_15_12slasCorrUsed else 0
     r_2sv_15_14spartnCorrUsed: Any = g_2sv_15.spartnCorrUsed
-    if r_2sv_15_14spartnCorrUsed is not True and r_2sv_15_14spartnCorrUsed is not False and r_2sv_15_14spartnCorrUsed != 0 and r_2sv_15_14spartnCorrUsed != 1:
+    if r_2sv_15_14spartnCorrUsed is not True and r_2sv_15_14spartnCorrUsed is not False and (not isinstance(r_2sv_15_14spartnCorrUsed, int) or r_2sv_15_14spartnCorrUsed != 0 and r_2sv_15_14spartnCorrUsed != 1):
         raise _enc('nav_sat', 'sv[15].spartnCorrUsed', r_2sv_15_14spartnCorrUsed, 'type', 'a bool')
     r_2sv_15_14spartnCorrUsed = 1 if r_2sv_15_14spartnCorrUsed else 0
     r_2sv_15_10prCorrUsed: Any = g_2sv_15.prCorrUsed
-    if r_2sv_15_10prCorrUsed is not True and r_2sv_15_10prCorrUsed is not False and r_2sv_15_10prCorrUsed != 0 and r_2sv_15_10prCorrUsed != 1:
+    if r_2sv_15_10prCorrUsed is not True and r_2sv_15_10prCorrUsed is not False and (not isinstance(r_2sv_15_10prCorrUsed, int) or r_2sv_15_10prCorrUsed != 0 and r_2sv_15_10prCorrUsed != 1):
         raise _enc('nav_sat', 'sv[15].prCorrUsed', r_2sv_15_10prCorrUsed, 'type', 'a bool')
     r_2sv_15_10prCorrUsed = 1 if r_2sv_15_10prCorrUsed else 0
     r_2sv_15_10crCorrUsed: Any = g_2sv_15.crCorrUsed
-    if r_2sv_15_10crCorrUsed is not True and r_2sv_15_10crCorrUsed is not False and r_2sv_15_10crCorrUsed != 0 and r_2sv_15_10crCorrUsed != 1:
+    if r_2sv_15_10crCorrUsed is not True and r_2sv_15_10crCorrUsed is not False and (not isinstance(r_2sv_15_10crCorrUsed, int) or r_2sv_15_10crCorrUsed != 0 and r_2sv_15_10crCorrUsed != 1):
         raise _enc('nav_sat', 'sv[15].crCorrUsed', r_2sv_15_10crCorrUsed, 'type', 'a bool')
     r_2sv_15_10crCorrUsed = 1 if r_2sv_15_10crCorrUsed else 0
     r_2sv_15_10doCorrUsed: Any = g_2sv_15.doCorrUsed
-    if r_2sv_15_10doCorrUsed is not True and r_2sv_15_10doCorrUsed is not False and r_2sv_15_10doCorrUsed != 0 and r_2sv_15_10doCorrUsed != 1:
+    if r_2sv_15_10doCorrUsed is not True and r_2sv_15_10doCorrUsed is not False and (not isinstance(r_2sv_15_10doCorrUsed, int) or r_2sv_15_10doCorrUsed != 0 and r_2sv_15_10doCorrUsed != 1):
         raise _enc('nav_sat', 'sv[15].doCorrUsed', r_2sv_15_10doCorrUsed, 'type', 'a bool')
     r_2sv_15_10doCorrUsed = 1 if r_2sv_15_10doCorrUsed else 0
     r_2sv_15_12clasCorrUsed: Any = g_2sv_15.clasCorrUsed
-    if r_2sv_15_12clasCorrUsed is not True and r_2sv_15_12clasCorrUsed is not False and r_2sv_15_12clasCorrUsed != 0 and r_2sv_15_12clasCorrUsed != 1:
+    if r_2sv_15_12clasCorrUsed is not True and r_2sv_15_12clasCorrUsed is not False and (not isinstance(r_2sv_15_12clasCorrUsed, int) or r_2sv_15_12clasCorrUsed != 0 and r_2sv_15_12clasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[15].clasCorrUsed', r_2sv_15_12clasCorrUsed, 'type', 'a bool')
     r_2sv_15_12clasCorrUsed = 1 if r_2sv_15_12clasCorrUsed else 0
     r_2sv_15_11lppCorrUsed: Any = g_2sv_15.lppCorrUsed
-    if r_2sv_15_11lppCorrUsed is not True and r_2sv_15_11lppCorrUsed is not False and r_2sv_15_11lppCorrUsed != 0 and r_2sv_15_11lppCorrUsed != 1:
+    if r_2sv_15_11lppCorrUsed is not True and r_2sv_15_11lppCorrUsed is not False and (not isinstance(r_2sv_15_11lppCorrUsed, int) or r_2sv_15_11lppCorrUsed != 0 and r_2sv_15_11lppCorrUsed != 1):
         raise _enc('nav_sat', 'sv[15].lppCorrUsed', r_2sv_15_11lppCorrUsed, 'type', 'a bool')
     r_2sv_15_11lppCorrUsed = 1 if r_2sv_15_11lppCorrUsed else 0
     r_2sv_15_11hasCorrUsed: Any = g_2sv_15.hasCorrUsed
-    if r_2sv_15_11hasCorrUsed is not True and r_2sv_15_11hasCorrUsed is not False and r_2sv_15_11hasCorrUsed != 0 and r_2sv_15_11hasCorrUsed != 1:
+    if r_2sv_15_11hasCorrUsed is not True and r_2sv_15_11hasCorrUsed is not False and (not isinstance(r_2sv_15_11hasCorrUsed, int) or r_2sv_15_11hasCorrUsed != 0 and r_2sv_15_11hasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[15].hasCorrUsed', r_2sv_15_11hasCorrUsed, 'type', 'a bool')
     r_2sv_15_11hasCorrUsed = 1 if r_2sv_15_11hasCorrUsed else 0
     r_2sv_15_11flags_spare = 0
@@ -3440,6 +3472,8 @@ def _raw_nav_sat_2sv_15(g_2sv_15: Any) -> tuple[Any, ...]:
 
 
 def _raw_nav_sat_2sv_16(g_2sv_16: Any) -> tuple[Any, ...]:
+    if g_2sv_16.__class__ is not NavSatSv and not isinstance(g_2sv_16, NavSatSv):
+        raise _enc('nav_sat', 'sv[16]', g_2sv_16, 'type', 'a NavSatSv')
     r_2sv_16_6gnssId = g_2sv_16.gnssId
     if r_2sv_16_6gnssId.__class__ is not int or not 0 <= r_2sv_16_6gnssId <= 255:
         if not isinstance(r_2sv_16_6gnssId, int) or r_2sv_16_6gnssId.__class__ is bool:
@@ -3484,7 +3518,7 @@ def _raw_nav_sat_2sv_16(g_2sv_16: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_16_10qualityInd <= 7:
             raise _enc('nav_sat', 'sv[16].qualityInd', r_2sv_16_10qualityInd, 'range', '0..7', None)
     r_2sv_16_6svUsed: Any = g_2sv_16.svUsed
-    if r_2sv_16_6svUsed is not True and r_2sv_16_6svUsed is not False and r_2sv_16_6svUsed != 0 and r_2sv_16_6svUsed != 1:
+    if r_2sv_16_6svUsed is not True and r_2sv_16_6svUsed is not False and (not isinstance(r_2sv_16_6svUsed, int) or r_2sv_16_6svUsed != 0 and r_2sv_16_6svUsed != 1):
         raise _enc('nav_sat', 'sv[16].svUsed', r_2sv_16_6svUsed, 'type', 'a bool')
     r_2sv_16_6svUsed = 1 if r_2sv_16_6svUsed else 0
     r_2sv_16_6health = g_2sv_16.health
@@ -3494,11 +3528,11 @@ def _raw_nav_sat_2sv_16(g_2sv_16: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_16_6health <= 3:
             raise _enc('nav_sat', 'sv[16].health', r_2sv_16_6health, 'range', '0..3', None)
     r_2sv_16_8diffCorr: Any = g_2sv_16.diffCorr
-    if r_2sv_16_8diffCorr is not True and r_2sv_16_8diffCorr is not False and r_2sv_16_8diffCorr != 0 and r_2sv_16_8diffCorr != 1:
+    if r_2sv_16_8diffCorr is not True and r_2sv_16_8diffCorr is not False and (not isinstance(r_2sv_16_8diffCorr, int) or r_2sv_16_8diffCorr != 0 and r_2sv_16_8diffCorr != 1):
         raise _enc('nav_sat', 'sv[16].diffCorr', r_2sv_16_8diffCorr, 'type', 'a bool')
     r_2sv_16_8diffCorr = 1 if r_2sv_16_8diffCorr else 0
     r_2sv_16_8smoothed: Any = g_2sv_16.smoothed
-    if r_2sv_16_8smoothed is not True and r_2sv_16_8smoothed is not False and r_2sv_16_8smoothed != 0 and r_2sv_16_8smoothed != 1:
+    if r_2sv_16_8smoothed is not True and r_2sv_16_8smoothed is not False and (not isinstance(r_2sv_16_8smoothed, int) or r_2sv_16_8smoothed != 0 and r_2sv_16_8smoothed != 1):
         raise _enc('nav_sat', 'sv[16].smoothed', r_2sv_16_8smoothed, 'type', 'a bool')
     r_2sv_16_8smoothed = 1 if r_2sv_16_8smoothed else 0
     r_2sv_16_11orbitSource = g_2sv_16.orbitSource
@@ -3508,19 +3542,19 @@ def _raw_nav_sat_2sv_16(g_2sv_16: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_16_11orbitSource <= 7:
             raise _enc('nav_sat', 'sv[16].orbitSource', r_2sv_16_11orbitSource, 'range', '0..7', None)
     r_2sv_16_8ephAvail: Any = g_2sv_16.ephAvail
-    if r_2sv_16_8ephAvail is not True and r_2sv_16_8ephAvail is not False and r_2sv_16_8ephAvail != 0 and r_2sv_16_8ephAvail != 1:
+    if r_2sv_16_8ephAvail is not True and r_2sv_16_8ephAvail is not False and (not isinstance(r_2sv_16_8ephAvail, int) or r_2sv_16_8ephAvail != 0 and r_2sv_16_8ephAvail != 1):
         raise _enc('nav_sat', 'sv[16].ephAvail', r_2sv_16_8ephAvail, 'type', 'a bool')
     r_2sv_16_8ephAvail = 1 if r_2sv_16_8ephAvail else 0
     r_2sv_16_8almAvail: Any = g_2sv_16.almAvail
-    if r_2sv_16_8almAvail is not True and r_2sv_16_8almAvail is not False and r_2sv_16_8almAvail != 0 and r_2sv_16_8almAvail != 1:
+    if r_2sv_16_8almAvail is not True and r_2sv_16_8almAvail is not False and (not isinstance(r_2sv_16_8almAvail, int) or r_2sv_16_8almAvail != 0 and r_2sv_16_8almAvail != 1):
         raise _enc('nav_sat', 'sv[16].almAvail', r_2sv_16_8almAvail, 'type', 'a bool')
     r_2sv_16_8almAvail = 1 if r_2sv_16_8almAvail else 0
     r_2sv_16_8anoAvail: Any = g_2sv_16.anoAvail
-    if r_2sv_16_8anoAvail is not True and r_2sv_16_8anoAvail is not False and r_2sv_16_8anoAvail != 0 and r_2sv_16_8anoAvail != 1:
+    if r_2sv_16_8anoAvail is not True and r_2sv_16_8anoAvail is not False and (not isinstance(r_2sv_16_8anoAvail, int) or r_2sv_16_8anoAvail != 0 and r_2sv_16_8anoAvail != 1):
         raise _enc('nav_sat', 'sv[16].anoAvail', r_2sv_16_8anoAvail, 'type', 'a bool')
     r_2sv_16_8anoAvail = 1 if r_2sv_16_8anoAvail else 0
     r_2sv_16_8aopAvail: Any = g_2sv_16.aopAvail
-    if r_2sv_16_8aopAvail is not True and r_2sv_16_8aopAvail is not False and r_2sv_16_8aopAvail != 0 and r_2sv_16_8aopAvail != 1:
+    if r_2sv_16_8aopAvail is not True and r_2sv_16_8aopAvail is not False and (not isinstance(r_2sv_16_8aopAvail, int) or r_2sv_16_8aopAvail != 0 and r_2sv_16_8aopAvail != 1):
         raise _enc('nav_sat', 'sv[16].aopAvail', r_2sv_16_8aopAvail, 'type', 'a bool')
     r_2sv_16_8aopAvail = 1 if r_2sv_16_8aopAvail else 0
     r_2sv_16_10reserved13 = g_2sv_16.reserved13
@@ -3530,43 +3564,43 @@ def _raw_nav_sat_2sv_16(g_2sv_16: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_16_10reserved13 <= 1:
             raise _enc('nav_sat', 'sv[16].reserved13', r_2sv_16_10reserved13, 'range', '0..1', None)
     r_2sv_16_12sbasCorrUsed: Any = g_2sv_16.sbasCorrUsed
-    if r_2sv_16_12sbasCorrUsed is not True and r_2sv_16_12sbasCorrUsed is not False and r_2sv_16_12sbasCorrUsed != 0 and r_2sv_16_12sbasCorrUsed != 1:
+    if r_2sv_16_12sbasCorrUsed is not True and r_2sv_16_12sbasCorrUsed is not False and (not isinstance(r_2sv_16_12sbasCorrUsed, int) or r_2sv_16_12sbasCorrUsed != 0 and r_2sv_16_12sbasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[16].sbasCorrUsed', r_2sv_16_12sbasCorrUsed, 'type', 'a bool')
     r_2sv_16_12sbasCorrUsed = 1 if r_2sv_16_12sbasCorrUsed else 0
     r_2sv_16_12rtcmCorrUsed: Any = g_2sv_16.rtcmCorrUsed
-    if r_2sv_16_12rtcmCorrUsed is not True and r_2sv_16_12rtcmCorrUsed is not False and r_2sv_16_12rtcmCorrUsed != 0 and r_2sv_16_12rtcmCorrUsed != 1:
+    if r_2sv_16_12rtcmCorrUsed is not True and r_2sv_16_12rtcmCorrUsed is not False and (not isinstance(r_2sv_16_12rtcmCorrUsed, int) or r_2sv_16_12rtcmCorrUsed != 0 and r_2sv_16_12rtcmCorrUsed != 1):
         raise _enc('nav_sat', 'sv[16].rtcmCorrUsed', r_2sv_16_12rtcmCorrUsed, 'type', 'a bool')
     r_2sv_16_12rtcmCorrUsed = 1 if r_2sv_16_12rtcmCorrUsed else 0
     r_2sv_16_12slasCorrUsed: Any = g_2sv_16.slasCorrUsed
-    if r_2sv_16_12slasCorrUsed is not True and r_2sv_16_12slasCorrUsed is not False and r_2sv_16_12slasCorrUsed != 0 and r_2sv_16_12slasCorrUsed != 1:
+    if r_2sv_16_12slasCorrUsed is not True and r_2sv_16_12slasCorrUsed is not False and (not isinstance(r_2sv_16_12slasCorrUsed, int) or r_2sv_16_12slasCorrUsed != 0 and r_2sv_16_12slasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[16].slasCorrUsed', r_2sv_16_12slasCorrUsed, 'type', 'a bool')
     r_2sv_16_12slasCorrUsed = 1 if r_2sv_16_12slasCorrUsed else 0
     r_2sv_16_14spartnCorrUsed: Any = g_2sv_16.spartnCorrUsed
-    if r_2sv_16_14spartnCorrUsed is not True and r_2sv_16_14spartnCorrUsed is not False and r_2sv_16_14spartnCorrUsed != 0 and r_2sv_16_14spartnCorrUsed != 1:
+    if r_2sv_16_14spartnCorrUsed is not True and r_2sv_16_14spartnCorrUsed is not False and (not isinstance(r_2sv_16_14spartnCorrUsed, int) or r_2sv_16_14spartnCorrUsed != 0 and r_2sv_16_14spartnCorrUsed != 1):
         raise _enc('nav_sat', 'sv[16].spartnCorrUsed', r_2sv_16_14spartnCorrUsed, 'type', 'a bool')
     r_2sv_16_14spartnCorrUsed = 1 if r_2sv_16_14spartnCorrUsed else 0
     r_2sv_16_10prCorrUsed: Any = g_2sv_16.prCorrUsed
-    if r_2sv_16_10prCorrUsed is not True and r_2sv_16_10prCorrUsed is not False and r_2sv_16_10prCorrUsed != 0 and r_2sv_16_10prCorrUsed != 1:
+    if r_2sv_16_10prCorrUsed is not True and r_2sv_16_10prCorrUsed is not False and (not isinstance(r_2sv_16_10prCorrUsed, int) or r_2sv_16_10prCorrUsed != 0 and r_2sv_16_10prCorrUsed != 1):
         raise _enc('nav_sat', 'sv[16].prCorrUsed', r_2sv_16_10prCorrUsed, 'type', 'a bool')
     r_2sv_16_10prCorrUsed = 1 if r_2sv_16_10prCorrUsed else 0
     r_2sv_16_10crCorrUsed: Any = g_2sv_16.crCorrUsed
-    if r_2sv_16_10crCorrUsed is not True and r_2sv_16_10crCorrUsed is not False and r_2sv_16_10crCorrUsed != 0 and r_2sv_16_10crCorrUsed != 1:
+    if r_2sv_16_10crCorrUsed is not True and r_2sv_16_10crCorrUsed is not False and (not isinstance(r_2sv_16_10crCorrUsed, int) or r_2sv_16_10crCorrUsed != 0 and r_2sv_16_10crCorrUsed != 1):
         raise _enc('nav_sat', 'sv[16].crCorrUsed', r_2sv_16_10crCorrUsed, 'type', 'a bool')
     r_2sv_16_10crCorrUsed = 1 if r_2sv_16_10crCorrUsed else 0
     r_2sv_16_10doCorrUsed: Any = g_2sv_16.doCorrUsed
-    if r_2sv_16_10doCorrUsed is not True and r_2sv_16_10doCorrUsed is not False and r_2sv_16_10doCorrUsed != 0 and r_2sv_16_10doCorrUsed != 1:
+    if r_2sv_16_10doCorrUsed is not True and r_2sv_16_10doCorrUsed is not False and (not isinstance(r_2sv_16_10doCorrUsed, int) or r_2sv_16_10doCorrUsed != 0 and r_2sv_16_10doCorrUsed != 1):
         raise _enc('nav_sat', 'sv[16].doCorrUsed', r_2sv_16_10doCorrUsed, 'type', 'a bool')
     r_2sv_16_10doCorrUsed = 1 if r_2sv_16_10doCorrUsed else 0
     r_2sv_16_12clasCorrUsed: Any = g_2sv_16.clasCorrUsed
-    if r_2sv_16_12clasCorrUsed is not True and r_2sv_16_12clasCorrUsed is not False and r_2sv_16_12clasCorrUsed != 0 and r_2sv_16_12clasCorrUsed != 1:
+    if r_2sv_16_12clasCorrUsed is not True and r_2sv_16_12clasCorrUsed is not False and (not isinstance(r_2sv_16_12clasCorrUsed, int) or r_2sv_16_12clasCorrUsed != 0 and r_2sv_16_12clasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[16].clasCorrUsed', r_2sv_16_12clasCorrUsed, 'type', 'a bool')
     r_2sv_16_12clasCorrUsed = 1 if r_2sv_16_12clasCorrUsed else 0
     r_2sv_16_11lppCorrUsed: Any = g_2sv_16.lppCorrUsed
-    if r_2sv_16_11lppCorrUsed is not True and r_2sv_16_11lppCorrUsed is not False and r_2sv_16_11lppCorrUsed != 0 and r_2sv_16_11lppCorrUsed != 1:
+    if r_2sv_16_11lppCorrUsed is not True and r_2sv_16_11lppCorrUsed is not False and (not isinstance(r_2sv_16_11lppCorrUsed, int) or r_2sv_16_11lppCorrUsed != 0 and r_2sv_16_11lppCorrUsed != 1):
         raise _enc('nav_sat', 'sv[16].lppCorrUsed', r_2sv_16_11lppCorrUsed, 'type', 'a bool')
     r_2sv_16_11lppCorrUsed = 1 if r_2sv_16_11lppCorrUsed else 0
     r_2sv_16_11hasCorrUsed: Any = g_2sv_16.hasCorrUsed
-    if r_2sv_16_11hasCorrUsed is not True and r_2sv_16_11hasCorrUsed is not False and r_2sv_16_11hasCorrUsed != 0 and r_2sv_16_11hasCorrUsed != 1:
+    if r_2sv_16_11hasCorrUsed is not True and r_2sv_16_11hasCorrUsed is not False and (not isinstance(r_2sv_16_11hasCorrUsed, int) or r_2sv_16_11hasCorrUsed != 0 and r_2sv_16_11hasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[16].hasCorrUsed', r_2sv_16_11hasCorrUsed, 'type', 'a bool')
     r_2sv_16_11hasCorrUsed = 1 if r_2sv_16_11hasCorrUsed else 0
     r_2sv_16_11flags_spare = 0
@@ -3574,6 +3608,8 @@ def _raw_nav_sat_2sv_16(g_2sv_16: Any) -> tuple[Any, ...]:
 
 
 def _raw_nav_sat_2sv_17(g_2sv_17: Any) -> tuple[Any, ...]:
+    if g_2sv_17.__class__ is not NavSatSv and not isinstance(g_2sv_17, NavSatSv):
+        raise _enc('nav_sat', 'sv[17]', g_2sv_17, 'type', 'a NavSatSv')
     r_2sv_17_6gnssId = g_2sv_17.gnssId
     if r_2sv_17_6gnssId.__class__ is not int or not 0 <= r_2sv_17_6gnssId <= 255:
         if not isinstance(r_2sv_17_6gnssId, int) or r_2sv_17_6gnssId.__class__ is bool:
@@ -3618,7 +3654,7 @@ def _raw_nav_sat_2sv_17(g_2sv_17: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_17_10qualityInd <= 7:
             raise _enc('nav_sat', 'sv[17].qualityInd', r_2sv_17_10qualityInd, 'range', '0..7', None)
     r_2sv_17_6svUsed: Any = g_2sv_17.svUsed
-    if r_2sv_17_6svUsed is not True and r_2sv_17_6svUsed is not False and r_2sv_17_6svUsed != 0 and r_2sv_17_6svUsed != 1:
+    if r_2sv_17_6svUsed is not True and r_2sv_17_6svUsed is not False and (not isinstance(r_2sv_17_6svUsed, int) or r_2sv_17_6svUsed != 0 and r_2sv_17_6svUsed != 1):
         raise _enc('nav_sat', 'sv[17].svUsed', r_2sv_17_6svUsed, 'type', 'a bool')
     r_2sv_17_6svUsed = 1 if r_2sv_17_6svUsed else 0
     r_2sv_17_6health = g_2sv_17.health
@@ -3628,11 +3664,11 @@ def _raw_nav_sat_2sv_17(g_2sv_17: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_17_6health <= 3:
             raise _enc('nav_sat', 'sv[17].health', r_2sv_17_6health, 'range', '0..3', None)
     r_2sv_17_8diffCorr: Any = g_2sv_17.diffCorr
-    if r_2sv_17_8diffCorr is not True and r_2sv_17_8diffCorr is not False and r_2sv_17_8diffCorr != 0 and r_2sv_17_8diffCorr != 1:
+    if r_2sv_17_8diffCorr is not True and r_2sv_17_8diffCorr is not False and (not isinstance(r_2sv_17_8diffCorr, int) or r_2sv_17_8diffCorr != 0 and r_2sv_17_8diffCorr != 1):
         raise _enc('nav_sat', 'sv[17].diffCorr', r_2sv_17_8diffCorr, 'type', 'a bool')
     r_2sv_17_8diffCorr = 1 if r_2sv_17_8diffCorr else 0
     r_2sv_17_8smoothed: Any = g_2sv_17.smoothed
-    if r_2sv_17_8smoothed is not True and r_2sv_17_8smoothed is not False and r_2sv_17_8smoothed != 0 and r_2sv_17_8smoothed != 1:
+    if r_2sv_17_8smoothed is not True and r_2sv_17_8smoothed is not False and (not isinstance(r_2sv_17_8smoothed, int) or r_2sv_17_8smoothed != 0 and r_2sv_17_8smoothed != 1):
         raise _enc('nav_sat', 'sv[17].smoothed', r_2sv_17_8smoothed, 'type', 'a bool')
     r_2sv_17_8smoothed = 1 if r_2sv_17_8smoothed else 0
     r_2sv_17_11orbitSource = g_2sv_17.orbitSource
@@ -3642,19 +3678,19 @@ def _raw_nav_sat_2sv_17(g_2sv_17: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_17_11orbitSource <= 7:
             raise _enc('nav_sat', 'sv[17].orbitSource', r_2sv_17_11orbitSource, 'range', '0..7', None)
     r_2sv_17_8ephAvail: Any = g_2sv_17.ephAvail
-    if r_2sv_17_8ephAvail is not True and r_2sv_17_8ephAvail is not False and r_2sv_17_8ephAvail != 0 and r_2sv_17_8ephAvail != 1:
+    if r_2sv_17_8ephAvail is not True and r_2sv_17_8ephAvail is not False and (not isinstance(r_2sv_17_8ephAvail, int) or r_2sv_17_8ephAvail != 0 and r_2sv_17_8ephAvail != 1):
         raise _enc('nav_sat', 'sv[17].ephAvail', r_2sv_17_8ephAvail, 'type', 'a bool')
     r_2sv_17_8ephAvail = 1 if r_2sv_17_8ephAvail else 0
     r_2sv_17_8almAvail: Any = g_2sv_17.almAvail
-    if r_2sv_17_8almAvail is not True and r_2sv_17_8almAvail is not False and r_2sv_17_8almAvail != 0 and r_2sv_17_8almAvail != 1:
+    if r_2sv_17_8almAvail is not True and r_2sv_17_8almAvail is not False and (not isinstance(r_2sv_17_8almAvail, int) or r_2sv_17_8almAvail != 0 and r_2sv_17_8almAvail != 1):
         raise _enc('nav_sat', 'sv[17].almAvail', r_2sv_17_8almAvail, 'type', 'a bool')
     r_2sv_17_8almAvail = 1 if r_2sv_17_8almAvail else 0
     r_2sv_17_8anoAvail: Any = g_2sv_17.anoAvail
-    if r_2sv_17_8anoAvail is not True and r_2sv_17_8anoAvail is not False and r_2sv_17_8anoAvail != 0 and r_2sv_17_8anoAvail != 1:
+    if r_2sv_17_8anoAvail is not True and r_2sv_17_8anoAvail is not False and (not isinstance(r_2sv_17_8anoAvail, int) or r_2sv_17_8anoAvail != 0 and r_2sv_17_8anoAvail != 1):
         raise _enc('nav_sat', 'sv[17].anoAvail', r_2sv_17_8anoAvail, 'type', 'a bool')
     r_2sv_17_8anoAvail = 1 if r_2sv_17_8anoAvail else 0
     r_2sv_17_8aopAvail: Any = g_2sv_17.aopAvail
-    if r_2sv_17_8aopAvail is not True and r_2sv_17_8aopAvail is not False and r_2sv_17_8aopAvail != 0 and r_2sv_17_8aopAvail != 1:
+    if r_2sv_17_8aopAvail is not True and r_2sv_17_8aopAvail is not False and (not isinstance(r_2sv_17_8aopAvail, int) or r_2sv_17_8aopAvail != 0 and r_2sv_17_8aopAvail != 1):
         raise _enc('nav_sat', 'sv[17].aopAvail', r_2sv_17_8aopAvail, 'type', 'a bool')
     r_2sv_17_8aopAvail = 1 if r_2sv_17_8aopAvail else 0
     r_2sv_17_10reserved13 = g_2sv_17.reserved13
@@ -3664,43 +3700,43 @@ def _raw_nav_sat_2sv_17(g_2sv_17: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_17_10reserved13 <= 1:
             raise _enc('nav_sat', 'sv[17].reserved13', r_2sv_17_10reserved13, 'range', '0..1', None)
     r_2sv_17_12sbasCorrUsed: Any = g_2sv_17.sbasCorrUsed
-    if r_2sv_17_12sbasCorrUsed is not True and r_2sv_17_12sbasCorrUsed is not False and r_2sv_17_12sbasCorrUsed != 0 and r_2sv_17_12sbasCorrUsed != 1:
+    if r_2sv_17_12sbasCorrUsed is not True and r_2sv_17_12sbasCorrUsed is not False and (not isinstance(r_2sv_17_12sbasCorrUsed, int) or r_2sv_17_12sbasCorrUsed != 0 and r_2sv_17_12sbasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[17].sbasCorrUsed', r_2sv_17_12sbasCorrUsed, 'type', 'a bool')
     r_2sv_17_12sbasCorrUsed = 1 if r_2sv_17_12sbasCorrUsed else 0
     r_2sv_17_12rtcmCorrUsed: Any = g_2sv_17.rtcmCorrUsed
-    if r_2sv_17_12rtcmCorrUsed is not True and r_2sv_17_12rtcmCorrUsed is not False and r_2sv_17_12rtcmCorrUsed != 0 and r_2sv_17_12rtcmCorrUsed != 1:
+    if r_2sv_17_12rtcmCorrUsed is not True and r_2sv_17_12rtcmCorrUsed is not False and (not isinstance(r_2sv_17_12rtcmCorrUsed, int) or r_2sv_17_12rtcmCorrUsed != 0 and r_2sv_17_12rtcmCorrUsed != 1):
         raise _enc('nav_sat', 'sv[17].rtcmCorrUsed', r_2sv_17_12rtcmCorrUsed, 'type', 'a bool')
     r_2sv_17_12rtcmCorrUsed = 1 if r_2sv_17_12rtcmCorrUsed else 0
     r_2sv_17_12slasCorrUsed: Any = g_2sv_17.slasCorrUsed
-    if r_2sv_17_12slasCorrUsed is not True and r_2sv_17_12slasCorrUsed is not False and r_2sv_17_12slasCorrUsed != 0 and r_2sv_17_12slasCorrUsed != 1:
+    if r_2sv_17_12slasCorrUsed is not True and r_2sv_17_12slasCorrUsed is not False and (not isinstance(r_2sv_17_12slasCorrUsed, int) or r_2sv_17_12slasCorrUsed != 0 and r_2sv_17_12slasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[17].slasCorrUsed', r_2sv_17_12slasCorrUsed, 'type', 'a bool')
     r_2sv_17_12slasCorrUsed = 1 if r_2sv_17_12slasCorrUsed else 0
     r_2sv_17_14spartnCorrUsed: Any = g_2sv_17.spartnCorrUsed
-    if r_2sv_17_14spartnCorrUsed is not True and r_2sv_17_14spartnCorrUsed is not False and r_2sv_17_14spartnCorrUsed != 0 and r_2sv_17_14spartnCorrUsed != 1:
+    if r_2sv_17_14spartnCorrUsed is not True and r_2sv_17_14spartnCorrUsed is not False and (not isinstance(r_2sv_17_14spartnCorrUsed, int) or r_2sv_17_14spartnCorrUsed != 0 and r_2sv_17_14spartnCorrUsed != 1):
         raise _enc('nav_sat', 'sv[17].spartnCorrUsed', r_2sv_17_14spartnCorrUsed, 'type', 'a bool')
     r_2sv_17_14spartnCorrUsed = 1 if r_2sv_17_14spartnCorrUsed else 0
     r_2sv_17_10prCorrUsed: Any = g_2sv_17.prCorrUsed
-    if r_2sv_17_10prCorrUsed is not True and r_2sv_17_10prCorrUsed is not False and r_2sv_17_10prCorrUsed != 0 and r_2sv_17_10prCorrUsed != 1:
+    if r_2sv_17_10prCorrUsed is not True and r_2sv_17_10prCorrUsed is not False and (not isinstance(r_2sv_17_10prCorrUsed, int) or r_2sv_17_10prCorrUsed != 0 and r_2sv_17_10prCorrUsed != 1):
         raise _enc('nav_sat', 'sv[17].prCorrUsed', r_2sv_17_10prCorrUsed, 'type', 'a bool')
     r_2sv_17_10prCorrUsed = 1 if r_2sv_17_10prCorrUsed else 0
     r_2sv_17_10crCorrUsed: Any = g_2sv_17.crCorrUsed
-    if r_2sv_17_10crCorrUsed is not True and r_2sv_17_10crCorrUsed is not False and r_2sv_17_10crCorrUsed != 0 and r_2sv_17_10crCorrUsed != 1:
+    if r_2sv_17_10crCorrUsed is not True and r_2sv_17_10crCorrUsed is not False and (not isinstance(r_2sv_17_10crCorrUsed, int) or r_2sv_17_10crCorrUsed != 0 and r_2sv_17_10crCorrUsed != 1):
         raise _enc('nav_sat', 'sv[17].crCorrUsed', r_2sv_17_10crCorrUsed, 'type', 'a bool')
     r_2sv_17_10crCorrUsed = 1 if r_2sv_17_10crCorrUsed else 0
     r_2sv_17_10doCorrUsed: Any = g_2sv_17.doCorrUsed
-    if r_2sv_17_10doCorrUsed is not True and r_2sv_17_10doCorrUsed is not False and r_2sv_17_10doCorrUsed != 0 and r_2sv_17_10doCorrUsed != 1:
+    if r_2sv_17_10doCorrUsed is not True and r_2sv_17_10doCorrUsed is not False and (not isinstance(r_2sv_17_10doCorrUsed, int) or r_2sv_17_10doCorrUsed != 0 and r_2sv_17_10doCorrUsed != 1):
         raise _enc('nav_sat', 'sv[17].doCorrUsed', r_2sv_17_10doCorrUsed, 'type', 'a bool')
     r_2sv_17_10doCorrUsed = 1 if r_2sv_17_10doCorrUsed else 0
     r_2sv_17_12clasCorrUsed: Any = g_2sv_17.clasCorrUsed
-    if r_2sv_17_12clasCorrUsed is not True and r_2sv_17_12clasCorrUsed is not False and r_2sv_17_12clasCorrUsed != 0 and r_2sv_17_12clasCorrUsed != 1:
+    if r_2sv_17_12clasCorrUsed is not True and r_2sv_17_12clasCorrUsed is not False and (not isinstance(r_2sv_17_12clasCorrUsed, int) or r_2sv_17_12clasCorrUsed != 0 and r_2sv_17_12clasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[17].clasCorrUsed', r_2sv_17_12clasCorrUsed, 'type', 'a bool')
     r_2sv_17_12clasCorrUsed = 1 if r_2sv_17_12clasCorrUsed else 0
     r_2sv_17_11lppCorrUsed: Any = g_2sv_17.lppCorrUsed
-    if r_2sv_17_11lppCorrUsed is not True and r_2sv_17_11lppCorrUsed is not False and r_2sv_17_11lppCorrUsed != 0 and r_2sv_17_11lppCorrUsed != 1:
+    if r_2sv_17_11lppCorrUsed is not True and r_2sv_17_11lppCorrUsed is not False and (not isinstance(r_2sv_17_11lppCorrUsed, int) or r_2sv_17_11lppCorrUsed != 0 and r_2sv_17_11lppCorrUsed != 1):
         raise _enc('nav_sat', 'sv[17].lppCorrUsed', r_2sv_17_11lppCorrUsed, 'type', 'a bool')
     r_2sv_17_11lppCorrUsed = 1 if r_2sv_17_11lppCorrUsed else 0
     r_2sv_17_11hasCorrUsed: Any = g_2sv_17.hasCorrUsed
-    if r_2sv_17_11hasCorrUsed is not True and r_2sv_17_11hasCorrUsed is not False and r_2sv_17_11hasCorrUsed != 0 and r_2sv_17_11hasCorrUsed != 1:
+    if r_2sv_17_11hasCorrUsed is not True and r_2sv_17_11hasCorrUsed is not False and (not isinstance(r_2sv_17_11hasCorrUsed, int) or r_2sv_17_11hasCorrUsed != 0 and r_2sv_17_11hasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[17].hasCorrUsed', r_2sv_17_11hasCorrUsed, 'type', 'a bool')
     r_2sv_17_11hasCorrUsed = 1 if r_2sv_17_11hasCorrUsed else 0
     r_2sv_17_11flags_spare = 0
@@ -3708,6 +3744,8 @@ def _raw_nav_sat_2sv_17(g_2sv_17: Any) -> tuple[Any, ...]:
 
 
 def _raw_nav_sat_2sv_18(g_2sv_18: Any) -> tuple[Any, ...]:
+    if g_2sv_18.__class__ is not NavSatSv and not isinstance(g_2sv_18, NavSatSv):
+        raise _enc('nav_sat', 'sv[18]', g_2sv_18, 'type', 'a NavSatSv')
     r_2sv_18_6gnssId = g_2sv_18.gnssId
     if r_2sv_18_6gnssId.__class__ is not int or not 0 <= r_2sv_18_6gnssId <= 255:
         if not isinstance(r_2sv_18_6gnssId, int) or r_2sv_18_6gnssId.__class__ is bool:
@@ -3752,7 +3790,7 @@ def _raw_nav_sat_2sv_18(g_2sv_18: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_18_10qualityInd <= 7:
             raise _enc('nav_sat', 'sv[18].qualityInd', r_2sv_18_10qualityInd, 'range', '0..7', None)
     r_2sv_18_6svUsed: Any = g_2sv_18.svUsed
-    if r_2sv_18_6svUsed is not True and r_2sv_18_6svUsed is not False and r_2sv_18_6svUsed != 0 and r_2sv_18_6svUsed != 1:
+    if r_2sv_18_6svUsed is not True and r_2sv_18_6svUsed is not False and (not isinstance(r_2sv_18_6svUsed, int) or r_2sv_18_6svUsed != 0 and r_2sv_18_6svUsed != 1):
         raise _enc('nav_sat', 'sv[18].svUsed', r_2sv_18_6svUsed, 'type', 'a bool')
     r_2sv_18_6svUsed = 1 if r_2sv_18_6svUsed else 0
     r_2sv_18_6health = g_2sv_18.health
@@ -3762,11 +3800,11 @@ def _raw_nav_sat_2sv_18(g_2sv_18: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_18_6health <= 3:
             raise _enc('nav_sat', 'sv[18].health', r_2sv_18_6health, 'range', '0..3', None)
     r_2sv_18_8diffCorr: Any = g_2sv_18.diffCorr
-    if r_2sv_18_8diffCorr is not True and r_2sv_18_8diffCorr is not False and r_2sv_18_8diffCorr != 0 and r_2sv_18_8diffCorr != 1:
+    if r_2sv_18_8diffCorr is not True and r_2sv_18_8diffCorr is not False and (not isinstance(r_2sv_18_8diffCorr, int) or r_2sv_18_8diffCorr != 0 and r_2sv_18_8diffCorr != 1):
         raise _enc('nav_sat', 'sv[18].diffCorr', r_2sv_18_8diffCorr, 'type', 'a bool')
     r_2sv_18_8diffCorr = 1 if r_2sv_18_8diffCorr else 0
     r_2sv_18_8smoothed: Any = g_2sv_18.smoothed
-    if r_2sv_18_8smoothed is not True and r_2sv_18_8smoothed is not False and r_2sv_18_8smoothed != 0 and r_2sv_18_8smoothed != 1:
+    if r_2sv_18_8smoothed is not True and r_2sv_18_8smoothed is not False and (not isinstance(r_2sv_18_8smoothed, int) or r_2sv_18_8smoothed != 0 and r_2sv_18_8smoothed != 1):
         raise _enc('nav_sat', 'sv[18].smoothed', r_2sv_18_8smoothed, 'type', 'a bool')
     r_2sv_18_8smoothed = 1 if r_2sv_18_8smoothed else 0
     r_2sv_18_11orbitSource = g_2sv_18.orbitSource
@@ -3776,19 +3814,19 @@ def _raw_nav_sat_2sv_18(g_2sv_18: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_18_11orbitSource <= 7:
             raise _enc('nav_sat', 'sv[18].orbitSource', r_2sv_18_11orbitSource, 'range', '0..7', None)
     r_2sv_18_8ephAvail: Any = g_2sv_18.ephAvail
-    if r_2sv_18_8ephAvail is not True and r_2sv_18_8ephAvail is not False and r_2sv_18_8ephAvail != 0 and r_2sv_18_8ephAvail != 1:
+    if r_2sv_18_8ephAvail is not True and r_2sv_18_8ephAvail is not False and (not isinstance(r_2sv_18_8ephAvail, int) or r_2sv_18_8ephAvail != 0 and r_2sv_18_8ephAvail != 1):
         raise _enc('nav_sat', 'sv[18].ephAvail', r_2sv_18_8ephAvail, 'type', 'a bool')
     r_2sv_18_8ephAvail = 1 if r_2sv_18_8ephAvail else 0
     r_2sv_18_8almAvail: Any = g_2sv_18.almAvail
-    if r_2sv_18_8almAvail is not True and r_2sv_18_8almAvail is not False and r_2sv_18_8almAvail != 0 and r_2sv_18_8almAvail != 1:
+    if r_2sv_18_8almAvail is not True and r_2sv_18_8almAvail is not False and (not isinstance(r_2sv_18_8almAvail, int) or r_2sv_18_8almAvail != 0 and r_2sv_18_8almAvail != 1):
         raise _enc('nav_sat', 'sv[18].almAvail', r_2sv_18_8almAvail, 'type', 'a bool')
     r_2sv_18_8almAvail = 1 if r_2sv_18_8almAvail else 0
     r_2sv_18_8anoAvail: Any = g_2sv_18.anoAvail
-    if r_2sv_18_8anoAvail is not True and r_2sv_18_8anoAvail is not False and r_2sv_18_8anoAvail != 0 and r_2sv_18_8anoAvail != 1:
+    if r_2sv_18_8anoAvail is not True and r_2sv_18_8anoAvail is not False and (not isinstance(r_2sv_18_8anoAvail, int) or r_2sv_18_8anoAvail != 0 and r_2sv_18_8anoAvail != 1):
         raise _enc('nav_sat', 'sv[18].anoAvail', r_2sv_18_8anoAvail, 'type', 'a bool')
     r_2sv_18_8anoAvail = 1 if r_2sv_18_8anoAvail else 0
     r_2sv_18_8aopAvail: Any = g_2sv_18.aopAvail
-    if r_2sv_18_8aopAvail is not True and r_2sv_18_8aopAvail is not False and r_2sv_18_8aopAvail != 0 and r_2sv_18_8aopAvail != 1:
+    if r_2sv_18_8aopAvail is not True and r_2sv_18_8aopAvail is not False and (not isinstance(r_2sv_18_8aopAvail, int) or r_2sv_18_8aopAvail != 0 and r_2sv_18_8aopAvail != 1):
         raise _enc('nav_sat', 'sv[18].aopAvail', r_2sv_18_8aopAvail, 'type', 'a bool')
     r_2sv_18_8aopAvail = 1 if r_2sv_18_8aopAvail else 0
     r_2sv_18_10reserved13 = g_2sv_18.reserved13
@@ -3798,43 +3836,43 @@ def _raw_nav_sat_2sv_18(g_2sv_18: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_18_10reserved13 <= 1:
             raise _enc('nav_sat', 'sv[18].reserved13', r_2sv_18_10reserved13, 'range', '0..1', None)
     r_2sv_18_12sbasCorrUsed: Any = g_2sv_18.sbasCorrUsed
-    if r_2sv_18_12sbasCorrUsed is not True and r_2sv_18_12sbasCorrUsed is not False and r_2sv_18_12sbasCorrUsed != 0 and r_2sv_18_12sbasCorrUsed != 1:
+    if r_2sv_18_12sbasCorrUsed is not True and r_2sv_18_12sbasCorrUsed is not False and (not isinstance(r_2sv_18_12sbasCorrUsed, int) or r_2sv_18_12sbasCorrUsed != 0 and r_2sv_18_12sbasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[18].sbasCorrUsed', r_2sv_18_12sbasCorrUsed, 'type', 'a bool')
     r_2sv_18_12sbasCorrUsed = 1 if r_2sv_18_12sbasCorrUsed else 0
     r_2sv_18_12rtcmCorrUsed: Any = g_2sv_18.rtcmCorrUsed
-    if r_2sv_18_12rtcmCorrUsed is not True and r_2sv_18_12rtcmCorrUsed is not False and r_2sv_18_12rtcmCorrUsed != 0 and r_2sv_18_12rtcmCorrUsed != 1:
+    if r_2sv_18_12rtcmCorrUsed is not True and r_2sv_18_12rtcmCorrUsed is not False and (not isinstance(r_2sv_18_12rtcmCorrUsed, int) or r_2sv_18_12rtcmCorrUsed != 0 and r_2sv_18_12rtcmCorrUsed != 1):
         raise _enc('nav_sat', 'sv[18].rtcmCorrUsed', r_2sv_18_12rtcmCorrUsed, 'type', 'a bool')
     r_2sv_18_12rtcmCorrUsed = 1 if r_2sv_18_12rtcmCorrUsed else 0
     r_2sv_18_12slasCorrUsed: Any = g_2sv_18.slasCorrUsed
-    if r_2sv_18_12slasCorrUsed is not True and r_2sv_18_12slasCorrUsed is not False and r_2sv_18_12slasCorrUsed != 0 and r_2sv_18_12slasCorrUsed != 1:
+    if r_2sv_18_12slasCorrUsed is not True and r_2sv_18_12slasCorrUsed is not False and (not isinstance(r_2sv_18_12slasCorrUsed, int) or r_2sv_18_12slasCorrUsed != 0 and r_2sv_18_12slasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[18].slasCorrUsed', r_2sv_18_12slasCorrUsed, 'type', 'a bool')
     r_2sv_18_12slasCorrUsed = 1 if r_2sv_18_12slasCorrUsed else 0
     r_2sv_18_14spartnCorrUsed: Any = g_2sv_18.spartnCorrUsed
-    if r_2sv_18_14spartnCorrUsed is not True and r_2sv_18_14spartnCorrUsed is not False and r_2sv_18_14spartnCorrUsed != 0 and r_2sv_18_14spartnCorrUsed != 1:
+    if r_2sv_18_14spartnCorrUsed is not True and r_2sv_18_14spartnCorrUsed is not False and (not isinstance(r_2sv_18_14spartnCorrUsed, int) or r_2sv_18_14spartnCorrUsed != 0 and r_2sv_18_14spartnCorrUsed != 1):
         raise _enc('nav_sat', 'sv[18].spartnCorrUsed', r_2sv_18_14spartnCorrUsed, 'type', 'a bool')
     r_2sv_18_14spartnCorrUsed = 1 if r_2sv_18_14spartnCorrUsed else 0
     r_2sv_18_10prCorrUsed: Any = g_2sv_18.prCorrUsed
-    if r_2sv_18_10prCorrUsed is not True and r_2sv_18_10prCorrUsed is not False and r_2sv_18_10prCorrUsed != 0 and r_2sv_18_10prCorrUsed != 1:
+    if r_2sv_18_10prCorrUsed is not True and r_2sv_18_10prCorrUsed is not False and (not isinstance(r_2sv_18_10prCorrUsed, int) or r_2sv_18_10prCorrUsed != 0 and r_2sv_18_10prCorrUsed != 1):
         raise _enc('nav_sat', 'sv[18].prCorrUsed', r_2sv_18_10prCorrUsed, 'type', 'a bool')
     r_2sv_18_10prCorrUsed = 1 if r_2sv_18_10prCorrUsed else 0
     r_2sv_18_10crCorrUsed: Any = g_2sv_18.crCorrUsed
-    if r_2sv_18_10crCorrUsed is not True and r_2sv_18_10crCorrUsed is not False and r_2sv_18_10crCorrUsed != 0 and r_2sv_18_10crCorrUsed != 1:
+    if r_2sv_18_10crCorrUsed is not True and r_2sv_18_10crCorrUsed is not False and (not isinstance(r_2sv_18_10crCorrUsed, int) or r_2sv_18_10crCorrUsed != 0 and r_2sv_18_10crCorrUsed != 1):
         raise _enc('nav_sat', 'sv[18].crCorrUsed', r_2sv_18_10crCorrUsed, 'type', 'a bool')
     r_2sv_18_10crCorrUsed = 1 if r_2sv_18_10crCorrUsed else 0
     r_2sv_18_10doCorrUsed: Any = g_2sv_18.doCorrUsed
-    if r_2sv_18_10doCorrUsed is not True and r_2sv_18_10doCorrUsed is not False and r_2sv_18_10doCorrUsed != 0 and r_2sv_18_10doCorrUsed != 1:
+    if r_2sv_18_10doCorrUsed is not True and r_2sv_18_10doCorrUsed is not False and (not isinstance(r_2sv_18_10doCorrUsed, int) or r_2sv_18_10doCorrUsed != 0 and r_2sv_18_10doCorrUsed != 1):
         raise _enc('nav_sat', 'sv[18].doCorrUsed', r_2sv_18_10doCorrUsed, 'type', 'a bool')
     r_2sv_18_10doCorrUsed = 1 if r_2sv_18_10doCorrUsed else 0
     r_2sv_18_12clasCorrUsed: Any = g_2sv_18.clasCorrUsed
-    if r_2sv_18_12clasCorrUsed is not True and r_2sv_18_12clasCorrUsed is not False and r_2sv_18_12clasCorrUsed != 0 and r_2sv_18_12clasCorrUsed != 1:
+    if r_2sv_18_12clasCorrUsed is not True and r_2sv_18_12clasCorrUsed is not False and (not isinstance(r_2sv_18_12clasCorrUsed, int) or r_2sv_18_12clasCorrUsed != 0 and r_2sv_18_12clasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[18].clasCorrUsed', r_2sv_18_12clasCorrUsed, 'type', 'a bool')
     r_2sv_18_12clasCorrUsed = 1 if r_2sv_18_12clasCorrUsed else 0
     r_2sv_18_11lppCorrUsed: Any = g_2sv_18.lppCorrUsed
-    if r_2sv_18_11lppCorrUsed is not True and r_2sv_18_11lppCorrUsed is not False and r_2sv_18_11lppCorrUsed != 0 and r_2sv_18_11lppCorrUsed != 1:
+    if r_2sv_18_11lppCorrUsed is not True and r_2sv_18_11lppCorrUsed is not False and (not isinstance(r_2sv_18_11lppCorrUsed, int) or r_2sv_18_11lppCorrUsed != 0 and r_2sv_18_11lppCorrUsed != 1):
         raise _enc('nav_sat', 'sv[18].lppCorrUsed', r_2sv_18_11lppCorrUsed, 'type', 'a bool')
     r_2sv_18_11lppCorrUsed = 1 if r_2sv_18_11lppCorrUsed else 0
     r_2sv_18_11hasCorrUsed: Any = g_2sv_18.hasCorrUsed
-    if r_2sv_18_11hasCorrUsed is not True and r_2sv_18_11hasCorrUsed is not False and r_2sv_18_11hasCorrUsed != 0 and r_2sv_18_11hasCorrUsed != 1:
+    if r_2sv_18_11hasCorrUsed is not True and r_2sv_18_11hasCorrUsed is not False and (not isinstance(r_2sv_18_11hasCorrUsed, int) or r_2sv_18_11hasCorrUsed != 0 and r_2sv_18_11hasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[18].hasCorrUsed', r_2sv_18_11hasCorrUsed, 'type', 'a bool')
     r_2sv_18_11hasCorrUsed = 1 if r_2sv_18_11hasCorrUsed else 0
     r_2sv_18_11flags_spare = 0
@@ -3842,6 +3880,8 @@ def _raw_nav_sat_2sv_18(g_2sv_18: Any) -> tuple[Any, ...]:
 
 
 def _raw_nav_sat_2sv_19(g_2sv_19: Any) -> tuple[Any, ...]:
+    if g_2sv_19.__class__ is not NavSatSv and not isinstance(g_2sv_19, NavSatSv):
+        raise _enc('nav_sat', 'sv[19]', g_2sv_19, 'type', 'a NavSatSv')
     r_2sv_19_6gnssId = g_2sv_19.gnssId
     if r_2sv_19_6gnssId.__class__ is not int or not 0 <= r_2sv_19_6gnssId <= 255:
         if not isinstance(r_2sv_19_6gnssId, int) or r_2sv_19_6gnssId.__class__ is bool:
@@ -3886,7 +3926,7 @@ def _raw_nav_sat_2sv_19(g_2sv_19: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_19_10qualityInd <= 7:
             raise _enc('nav_sat', 'sv[19].qualityInd', r_2sv_19_10qualityInd, 'range', '0..7', None)
     r_2sv_19_6svUsed: Any = g_2sv_19.svUsed
-    if r_2sv_19_6svUsed is not True and r_2sv_19_6svUsed is not False and r_2sv_19_6svUsed != 0 and r_2sv_19_6svUsed != 1:
+    if r_2sv_19_6svUsed is not True and r_2sv_19_6svUsed is not False and (not isinstance(r_2sv_19_6svUsed, int) or r_2sv_19_6svUsed != 0 and r_2sv_19_6svUsed != 1):
         raise _enc('nav_sat', 'sv[19].svUsed', r_2sv_19_6svUsed, 'type', 'a bool')
     r_2sv_19_6svUsed = 1 if r_2sv_19_6svUsed else 0
     r_2sv_19_6health = g_2sv_19.health
@@ -3896,11 +3936,11 @@ def _raw_nav_sat_2sv_19(g_2sv_19: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_19_6health <= 3:
             raise _enc('nav_sat', 'sv[19].health', r_2sv_19_6health, 'range', '0..3', None)
     r_2sv_19_8diffCorr: Any = g_2sv_19.diffCorr
-    if r_2sv_19_8diffCorr is not True and r_2sv_19_8diffCorr is not False and r_2sv_19_8diffCorr != 0 and r_2sv_19_8diffCorr != 1:
+    if r_2sv_19_8diffCorr is not True and r_2sv_19_8diffCorr is not False and (not isinstance(r_2sv_19_8diffCorr, int) or r_2sv_19_8diffCorr != 0 and r_2sv_19_8diffCorr != 1):
         raise _enc('nav_sat', 'sv[19].diffCorr', r_2sv_19_8diffCorr, 'type', 'a bool')
     r_2sv_19_8diffCorr = 1 if r_2sv_19_8diffCorr else 0
     r_2sv_19_8smoothed: Any = g_2sv_19.smoothed
-    if r_2sv_19_8smoothed is not True and r_2sv_19_8smoothed is not False and r_2sv_19_8smoothed != 0 and r_2sv_19_8smoothed != 1:
+    if r_2sv_19_8smoothed is not True and r_2sv_19_8smoothed is not False and (not isinstance(r_2sv_19_8smoothed, int) or r_2sv_19_8smoothed != 0 and r_2sv_19_8smoothed != 1):
         raise _enc('nav_sat', 'sv[19].smoothed', r_2sv_19_8smoothed, 'type', 'a bool')
     r_2sv_19_8smoothed = 1 if r_2sv_19_8smoothed else 0
     r_2sv_19_11orbitSource = g_2sv_19.orbitSource
@@ -3910,19 +3950,19 @@ def _raw_nav_sat_2sv_19(g_2sv_19: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_19_11orbitSource <= 7:
             raise _enc('nav_sat', 'sv[19].orbitSource', r_2sv_19_11orbitSource, 'range', '0..7', None)
     r_2sv_19_8ephAvail: Any = g_2sv_19.ephAvail
-    if r_2sv_19_8ephAvail is not True and r_2sv_19_8ephAvail is not False and r_2sv_19_8ephAvail != 0 and r_2sv_19_8ephAvail != 1:
+    if r_2sv_19_8ephAvail is not True and r_2sv_19_8ephAvail is not False and (not isinstance(r_2sv_19_8ephAvail, int) or r_2sv_19_8ephAvail != 0 and r_2sv_19_8ephAvail != 1):
         raise _enc('nav_sat', 'sv[19].ephAvail', r_2sv_19_8ephAvail, 'type', 'a bool')
     r_2sv_19_8ephAvail = 1 if r_2sv_19_8ephAvail else 0
     r_2sv_19_8almAvail: Any = g_2sv_19.almAvail
-    if r_2sv_19_8almAvail is not True and r_2sv_19_8almAvail is not False and r_2sv_19_8almAvail != 0 and r_2sv_19_8almAvail != 1:
+    if r_2sv_19_8almAvail is not True and r_2sv_19_8almAvail is not False and (not isinstance(r_2sv_19_8almAvail, int) or r_2sv_19_8almAvail != 0 and r_2sv_19_8almAvail != 1):
         raise _enc('nav_sat', 'sv[19].almAvail', r_2sv_19_8almAvail, 'type', 'a bool')
     r_2sv_19_8almAvail = 1 if r_2sv_19_8almAvail else 0
     r_2sv_19_8anoAvail: Any = g_2sv_19.anoAvail
-    if r_2sv_19_8anoAvail is not True and r_2sv_19_8anoAvail is not False and r_2sv_19_8anoAvail != 0 and r_2sv_19_8anoAvail != 1:
+    if r_2sv_19_8anoAvail is not True and r_2sv_19_8anoAvail is not False and (not isinstance(r_2sv_19_8anoAvail, int) or r_2sv_19_8anoAvail != 0 and r_2sv_19_8anoAvail != 1):
         raise _enc('nav_sat', 'sv[19].anoAvail', r_2sv_19_8anoAvail, 'type', 'a bool')
     r_2sv_19_8anoAvail = 1 if r_2sv_19_8anoAvail else 0
     r_2sv_19_8aopAvail: Any = g_2sv_19.aopAvail
-    if r_2sv_19_8aopAvail is not True and r_2sv_19_8aopAvail is not False and r_2sv_19_8aopAvail != 0 and r_2sv_19_8aopAvail != 1:
+    if r_2sv_19_8aopAvail is not True and r_2sv_19_8aopAvail is not False and (not isinstance(r_2sv_19_8aopAvail, int) or r_2sv_19_8aopAvail != 0 and r_2sv_19_8aopAvail != 1):
         raise _enc('nav_sat', 'sv[19].aopAvail', r_2sv_19_8aopAvail, 'type', 'a bool')
     r_2sv_19_8aopAvail = 1 if r_2sv_19_8aopAvail else 0
     r_2sv_19_10reserved13 = g_2sv_19.reserved13
@@ -3932,43 +3972,43 @@ def _raw_nav_sat_2sv_19(g_2sv_19: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_19_10reserved13 <= 1:
             raise _enc('nav_sat', 'sv[19].reserved13', r_2sv_19_10reserved13, 'range', '0..1', None)
     r_2sv_19_12sbasCorrUsed: Any = g_2sv_19.sbasCorrUsed
-    if r_2sv_19_12sbasCorrUsed is not True and r_2sv_19_12sbasCorrUsed is not False and r_2sv_19_12sbasCorrUsed != 0 and r_2sv_19_12sbasCorrUsed != 1:
+    if r_2sv_19_12sbasCorrUsed is not True and r_2sv_19_12sbasCorrUsed is not False and (not isinstance(r_2sv_19_12sbasCorrUsed, int) or r_2sv_19_12sbasCorrUsed != 0 and r_2sv_19_12sbasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[19].sbasCorrUsed', r_2sv_19_12sbasCorrUsed, 'type', 'a bool')
     r_2sv_19_12sbasCorrUsed = 1 if r_2sv_19_12sbasCorrUsed else 0
     r_2sv_19_12rtcmCorrUsed: Any = g_2sv_19.rtcmCorrUsed
-    if r_2sv_19_12rtcmCorrUsed is not True and r_2sv_19_12rtcmCorrUsed is not False and r_2sv_19_12rtcmCorrUsed != 0 and r_2sv_19_12rtcmCorrUsed != 1:
+    if r_2sv_19_12rtcmCorrUsed is not True and r_2sv_19_12rtcmCorrUsed is not False and (not isinstance(r_2sv_19_12rtcmCorrUsed, int) or r_2sv_19_12rtcmCorrUsed != 0 and r_2sv_19_12rtcmCorrUsed != 1):
         raise _enc('nav_sat', 'sv[19].rtcmCorrUsed', r_2sv_19_12rtcmCorrUsed, 'type', 'a bool')
     r_2sv_19_12rtcmCorrUsed = 1 if r_2sv_19_12rtcmCorrUsed else 0
     r_2sv_19_12slasCorrUsed: Any = g_2sv_19.slasCorrUsed
-    if r_2sv_19_12slasCorrUsed is not True and r_2sv_19_12slasCorrUsed is not False and r_2sv_19_12slasCorrUsed != 0 and r_2sv_19_12slasCorrUsed != 1:
+    if r_2sv_19_12slasCorrUsed is not True and r_2sv_19_12slasCorrUsed is not False and (not isinstance(r_2sv_19_12slasCorrUsed, int) or r_2sv_19_12slasCorrUsed != 0 and r_2sv_19_12slasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[19].slasCorrUsed', r_2sv_19_12slasCorrUsed, 'type', 'a bool')
     r_2sv_19_12slasCorrUsed = 1 if r_2sv_19_12slasCorrUsed else 0
     r_2sv_19_14spartnCorrUsed: Any = g_2sv_19.spartnCorrUsed
-    if r_2sv_19_14spartnCorrUsed is not True and r_2sv_19_14spartnCorrUsed is not False and r_2sv_19_14spartnCorrUsed != 0 and r_2sv_19_14spartnCorrUsed != 1:
+    if r_2sv_19_14spartnCorrUsed is not True and r_2sv_19_14spartnCorrUsed is not False and (not isinstance(r_2sv_19_14spartnCorrUsed, int) or r_2sv_19_14spartnCorrUsed != 0 and r_2sv_19_14spartnCorrUsed != 1):
         raise _enc('nav_sat', 'sv[19].spartnCorrUsed', r_2sv_19_14spartnCorrUsed, 'type', 'a bool')
     r_2sv_19_14spartnCorrUsed = 1 if r_2sv_19_14spartnCorrUsed else 0
     r_2sv_19_10prCorrUsed: Any = g_2sv_19.prCorrUsed
-    if r_2sv_19_10prCorrUsed is not True and r_2sv_19_10prCorrUsed is not False and r_2sv_19_10prCorrUsed != 0 and r_2sv_19_10prCorrUsed != 1:
+    if r_2sv_19_10prCorrUsed is not True and r_2sv_19_10prCorrUsed is not False and (not isinstance(r_2sv_19_10prCorrUsed, int) or r_2sv_19_10prCorrUsed != 0 and r_2sv_19_10prCorrUsed != 1):
         raise _enc('nav_sat', 'sv[19].prCorrUsed', r_2sv_19_10prCorrUsed, 'type', 'a bool')
     r_2sv_19_10prCorrUsed = 1 if r_2sv_19_10prCorrUsed else 0
     r_2sv_19_10crCorrUsed: Any = g_2sv_19.crCorrUsed
-    if r_2sv_19_10crCorrUsed is not True and r_2sv_19_10crCorrUsed is not False and r_2sv_19_10crCorrUsed != 0 and r_2sv_19_10crCorrUsed != 1:
+    if r_2sv_19_10crCorrUsed is not True and r_2sv_19_10crCorrUsed is not False and (not isinstance(r_2sv_19_10crCorrUsed, int) or r_2sv_19_10crCorrUsed != 0 and r_2sv_19_10crCorrUsed != 1):
         raise _enc('nav_sat', 'sv[19].crCorrUsed', r_2sv_19_10crCorrUsed, 'type', 'a bool')
     r_2sv_19_10crCorrUsed = 1 if r_2sv_19_10crCorrUsed else 0
     r_2sv_19_10doCorrUsed: Any = g_2sv_19.doCorrUsed
-    if r_2sv_19_10doCorrUsed is not True and r_2sv_19_10doCorrUsed is not False and r_2sv_19_10doCorrUsed != 0 and r_2sv_19_10doCorrUsed != 1:
+    if r_2sv_19_10doCorrUsed is not True and r_2sv_19_10doCorrUsed is not False and (not isinstance(r_2sv_19_10doCorrUsed, int) or r_2sv_19_10doCorrUsed != 0 and r_2sv_19_10doCorrUsed != 1):
         raise _enc('nav_sat', 'sv[19].doCorrUsed', r_2sv_19_10doCorrUsed, 'type', 'a bool')
     r_2sv_19_10doCorrUsed = 1 if r_2sv_19_10doCorrUsed else 0
     r_2sv_19_12clasCorrUsed: Any = g_2sv_19.clasCorrUsed
-    if r_2sv_19_12clasCorrUsed is not True and r_2sv_19_12clasCorrUsed is not False and r_2sv_19_12clasCorrUsed != 0 and r_2sv_19_12clasCorrUsed != 1:
+    if r_2sv_19_12clasCorrUsed is not True and r_2sv_19_12clasCorrUsed is not False and (not isinstance(r_2sv_19_12clasCorrUsed, int) or r_2sv_19_12clasCorrUsed != 0 and r_2sv_19_12clasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[19].clasCorrUsed', r_2sv_19_12clasCorrUsed, 'type', 'a bool')
     r_2sv_19_12clasCorrUsed = 1 if r_2sv_19_12clasCorrUsed else 0
     r_2sv_19_11lppCorrUsed: Any = g_2sv_19.lppCorrUsed
-    if r_2sv_19_11lppCorrUsed is not True and r_2sv_19_11lppCorrUsed is not False and r_2sv_19_11lppCorrUsed != 0 and r_2sv_19_11lppCorrUsed != 1:
+    if r_2sv_19_11lppCorrUsed is not True and r_2sv_19_11lppCorrUsed is not False and (not isinstance(r_2sv_19_11lppCorrUsed, int) or r_2sv_19_11lppCorrUsed != 0 and r_2sv_19_11lppCorrUsed != 1):
         raise _enc('nav_sat', 'sv[19].lppCorrUsed', r_2sv_19_11lppCorrUsed, 'type', 'a bool')
     r_2sv_19_11lppCorrUsed = 1 if r_2sv_19_11lppCorrUsed else 0
     r_2sv_19_11hasCorrUsed: Any = g_2sv_19.hasCorrUsed
-    if r_2sv_19_11hasCorrUsed is not True and r_2sv_19_11hasCorrUsed is not False and r_2sv_19_11hasCorrUsed != 0 and r_2sv_19_11hasCorrUsed != 1:
+    if r_2sv_19_11hasCorrUsed is not True and r_2sv_19_11hasCorrUsed is not False and (not isinstance(r_2sv_19_11hasCorrUsed, int) or r_2sv_19_11hasCorrUsed != 0 and r_2sv_19_11hasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[19].hasCorrUsed', r_2sv_19_11hasCorrUsed, 'type', 'a bool')
     r_2sv_19_11hasCorrUsed = 1 if r_2sv_19_11hasCorrUsed else 0
     r_2sv_19_11flags_spare = 0
@@ -3976,6 +4016,8 @@ def _raw_nav_sat_2sv_19(g_2sv_19: Any) -> tuple[Any, ...]:
 
 
 def _raw_nav_sat_2sv_20(g_2sv_20: Any) -> tuple[Any, ...]:
+    if g_2sv_20.__class__ is not NavSatSv and not isinstance(g_2sv_20, NavSatSv):
+        raise _enc('nav_sat', 'sv[20]', g_2sv_20, 'type', 'a NavSatSv')
     r_2sv_20_6gnssId = g_2sv_20.gnssId
     if r_2sv_20_6gnssId.__class__ is not int or not 0 <= r_2sv_20_6gnssId <= 255:
         if not isinstance(r_2sv_20_6gnssId, int) or r_2sv_20_6gnssId.__class__ is bool:
@@ -4020,7 +4062,7 @@ def _raw_nav_sat_2sv_20(g_2sv_20: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_20_10qualityInd <= 7:
             raise _enc('nav_sat', 'sv[20].qualityInd', r_2sv_20_10qualityInd, 'range', '0..7', None)
     r_2sv_20_6svUsed: Any = g_2sv_20.svUsed
-    if r_2sv_20_6svUsed is not True and r_2sv_20_6svUsed is not False and r_2sv_20_6svUsed != 0 and r_2sv_20_6svUsed != 1:
+    if r_2sv_20_6svUsed is not True and r_2sv_20_6svUsed is not False and (not isinstance(r_2sv_20_6svUsed, int) or r_2sv_20_6svUsed != 0 and r_2sv_20_6svUsed != 1):
         raise _enc('nav_sat', 'sv[20].svUsed', r_2sv_20_6svUsed, 'type', 'a bool')
     r_2sv_20_6svUsed = 1 if r_2sv_20_6svUsed else 0
     r_2sv_20_6health = g_2sv_20.health
@@ -4030,11 +4072,11 @@ def _raw_nav_sat_2sv_20(g_2sv_20: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_20_6health <= 3:
             raise _enc('nav_sat', 'sv[20].health', r_2sv_20_6health, 'range', '0..3', None)
     r_2sv_20_8diffCorr: Any = g_2sv_20.diffCorr
-    if r_2sv_20_8diffCorr is not True and r_2sv_20_8diffCorr is not False and r_2sv_20_8diffCorr != 0 and r_2sv_20_8diffCorr != 1:
+    if r_2sv_20_8diffCorr is not True and r_2sv_20_8diffCorr is not False and (not isinstance(r_2sv_20_8diffCorr, int) or r_2sv_20_8diffCorr != 0 and r_2sv_20_8diffCorr != 1):
         raise _enc('nav_sat', 'sv[20].diffCorr', r_2sv_20_8diffCorr, 'type', 'a bool')
     r_2sv_20_8diffCorr = 1 if r_2sv_20_8diffCorr else 0
     r_2sv_20_8smoothed: Any = g_2sv_20.smoothed
-    if r_2sv_20_8smoothed is not True and r_2sv_20_8smoothed is not False and r_2sv_20_8smoothed != 0 and r_2sv_20_8smoothed != 1:
+    if r_2sv_20_8smoothed is not True and r_2sv_20_8smoothed is not False and (not isinstance(r_2sv_20_8smoothed, int) or r_2sv_20_8smoothed != 0 and r_2sv_20_8smoothed != 1):
         raise _enc('nav_sat', 'sv[20].smoothed', r_2sv_20_8smoothed, 'type', 'a bool')
     r_2sv_20_8smoothed = 1 if r_2sv_20_8smoothed else 0
     r_2sv_20_11orbitSource = g_2sv_20.orbitSource
@@ -4044,19 +4086,19 @@ def _raw_nav_sat_2sv_20(g_2sv_20: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_20_11orbitSource <= 7:
             raise _enc('nav_sat', 'sv[20].orbitSource', r_2sv_20_11orbitSource, 'range', '0..7', None)
     r_2sv_20_8ephAvail: Any = g_2sv_20.ephAvail
-    if r_2sv_20_8ephAvail is not True and r_2sv_20_8ephAvail is not False and r_2sv_20_8ephAvail != 0 and r_2sv_20_8ephAvail != 1:
+    if r_2sv_20_8ephAvail is not True and r_2sv_20_8ephAvail is not False and (not isinstance(r_2sv_20_8ephAvail, int) or r_2sv_20_8ephAvail != 0 and r_2sv_20_8ephAvail != 1):
         raise _enc('nav_sat', 'sv[20].ephAvail', r_2sv_20_8ephAvail, 'type', 'a bool')
     r_2sv_20_8ephAvail = 1 if r_2sv_20_8ephAvail else 0
     r_2sv_20_8almAvail: Any = g_2sv_20.almAvail
-    if r_2sv_20_8almAvail is not True and r_2sv_20_8almAvail is not False and r_2sv_20_8almAvail != 0 and r_2sv_20_8almAvail != 1:
+    if r_2sv_20_8almAvail is not True and r_2sv_20_8almAvail is not False and (not isinstance(r_2sv_20_8almAvail, int) or r_2sv_20_8almAvail != 0 and r_2sv_20_8almAvail != 1):
         raise _enc('nav_sat', 'sv[20].almAvail', r_2sv_20_8almAvail, 'type', 'a bool')
     r_2sv_20_8almAvail = 1 if r_2sv_20_8almAvail else 0
     r_2sv_20_8anoAvail: Any = g_2sv_20.anoAvail
-    if r_2sv_20_8anoAvail is not True and r_2sv_20_8anoAvail is not False and r_2sv_20_8anoAvail != 0 and r_2sv_20_8anoAvail != 1:
+    if r_2sv_20_8anoAvail is not True and r_2sv_20_8anoAvail is not False and (not isinstance(r_2sv_20_8anoAvail, int) or r_2sv_20_8anoAvail != 0 and r_2sv_20_8anoAvail != 1):
         raise _enc('nav_sat', 'sv[20].anoAvail', r_2sv_20_8anoAvail, 'type', 'a bool')
     r_2sv_20_8anoAvail = 1 if r_2sv_20_8anoAvail else 0
     r_2sv_20_8aopAvail: Any = g_2sv_20.aopAvail
-    if r_2sv_20_8aopAvail is not True and r_2sv_20_8aopAvail is not False and r_2sv_20_8aopAvail != 0 and r_2sv_20_8aopAvail != 1:
+    if r_2sv_20_8aopAvail is not True and r_2sv_20_8aopAvail is not False and (not isinstance(r_2sv_20_8aopAvail, int) or r_2sv_20_8aopAvail != 0 and r_2sv_20_8aopAvail != 1):
         raise _enc('nav_sat', 'sv[20].aopAvail', r_2sv_20_8aopAvail, 'type', 'a bool')
     r_2sv_20_8aopAvail = 1 if r_2sv_20_8aopAvail else 0
     r_2sv_20_10reserved13 = g_2sv_20.reserved13
@@ -4066,43 +4108,43 @@ def _raw_nav_sat_2sv_20(g_2sv_20: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_20_10reserved13 <= 1:
             raise _enc('nav_sat', 'sv[20].reserved13', r_2sv_20_10reserved13, 'range', '0..1', None)
     r_2sv_20_12sbasCorrUsed: Any = g_2sv_20.sbasCorrUsed
-    if r_2sv_20_12sbasCorrUsed is not True and r_2sv_20_12sbasCorrUsed is not False and r_2sv_20_12sbasCorrUsed != 0 and r_2sv_20_12sbasCorrUsed != 1:
+    if r_2sv_20_12sbasCorrUsed is not True and r_2sv_20_12sbasCorrUsed is not False and (not isinstance(r_2sv_20_12sbasCorrUsed, int) or r_2sv_20_12sbasCorrUsed != 0 and r_2sv_20_12sbasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[20].sbasCorrUsed', r_2sv_20_12sbasCorrUsed, 'type', 'a bool')
     r_2sv_20_12sbasCorrUsed = 1 if r_2sv_20_12sbasCorrUsed else 0
     r_2sv_20_12rtcmCorrUsed: Any = g_2sv_20.rtcmCorrUsed
-    if r_2sv_20_12rtcmCorrUsed is not True and r_2sv_20_12rtcmCorrUsed is not False and r_2sv_20_12rtcmCorrUsed != 0 and r_2sv_20_12rtcmCorrUsed != 1:
+    if r_2sv_20_12rtcmCorrUsed is not True and r_2sv_20_12rtcmCorrUsed is not False and (not isinstance(r_2sv_20_12rtcmCorrUsed, int) or r_2sv_20_12rtcmCorrUsed != 0 and r_2sv_20_12rtcmCorrUsed != 1):
         raise _enc('nav_sat', 'sv[20].rtcmCorrUsed', r_2sv_20_12rtcmCorrUsed, 'type', 'a bool')
     r_2sv_20_12rtcmCorrUsed = 1 if r_2sv_20_12rtcmCorrUsed else 0
     r_2sv_20_12slasCorrUsed: Any = g_2sv_20.slasCorrUsed
-    if r_2sv_20_12slasCorrUsed is not True and r_2sv_20_12slasCorrUsed is not False and r_2sv_20_12slasCorrUsed != 0 and r_2sv_20_12slasCorrUsed != 1:
+    if r_2sv_20_12slasCorrUsed is not True and r_2sv_20_12slasCorrUsed is not False and (not isinstance(r_2sv_20_12slasCorrUsed, int) or r_2sv_20_12slasCorrUsed != 0 and r_2sv_20_12slasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[20].slasCorrUsed', r_2sv_20_12slasCorrUsed, 'type', 'a bool')
     r_2sv_20_12slasCorrUsed = 1 if r_2sv_20_12slasCorrUsed else 0
     r_2sv_20_14spartnCorrUsed: Any = g_2sv_20.spartnCorrUsed
-    if r_2sv_20_14spartnCorrUsed is not True and r_2sv_20_14spartnCorrUsed is not False and r_2sv_20_14spartnCorrUsed != 0 and r_2sv_20_14spartnCorrUsed != 1:
+    if r_2sv_20_14spartnCorrUsed is not True and r_2sv_20_14spartnCorrUsed is not False and (not isinstance(r_2sv_20_14spartnCorrUsed, int) or r_2sv_20_14spartnCorrUsed != 0 and r_2sv_20_14spartnCorrUsed != 1):
         raise _enc('nav_sat', 'sv[20].spartnCorrUsed', r_2sv_20_14spartnCorrUsed, 'type', 'a bool')
     r_2sv_20_14spartnCorrUsed = 1 if r_2sv_20_14spartnCorrUsed else 0
     r_2sv_20_10prCorrUsed: Any = g_2sv_20.prCorrUsed
-    if r_2sv_20_10prCorrUsed is not True and r_2sv_20_10prCorrUsed is not False and r_2sv_20_10prCorrUsed != 0 and r_2sv_20_10prCorrUsed != 1:
+    if r_2sv_20_10prCorrUsed is not True and r_2sv_20_10prCorrUsed is not False and (not isinstance(r_2sv_20_10prCorrUsed, int) or r_2sv_20_10prCorrUsed != 0 and r_2sv_20_10prCorrUsed != 1):
         raise _enc('nav_sat', 'sv[20].prCorrUsed', r_2sv_20_10prCorrUsed, 'type', 'a bool')
     r_2sv_20_10prCorrUsed = 1 if r_2sv_20_10prCorrUsed else 0
     r_2sv_20_10crCorrUsed: Any = g_2sv_20.crCorrUsed
-    if r_2sv_20_10crCorrUsed is not True and r_2sv_20_10crCorrUsed is not False and r_2sv_20_10crCorrUsed != 0 and r_2sv_20_10crCorrUsed != 1:
+    if r_2sv_20_10crCorrUsed is not True and r_2sv_20_10crCorrUsed is not False and (not isinstance(r_2sv_20_10crCorrUsed, int) or r_2sv_20_10crCorrUsed != 0 and r_2sv_20_10crCorrUsed != 1):
         raise _enc('nav_sat', 'sv[20].crCorrUsed', r_2sv_20_10crCorrUsed, 'type', 'a bool')
     r_2sv_20_10crCorrUsed = 1 if r_2sv_20_10crCorrUsed else 0
     r_2sv_20_10doCorrUsed: Any = g_2sv_20.doCorrUsed
-    if r_2sv_20_10doCorrUsed is not True and r_2sv_20_10doCorrUsed is not False and r_2sv_20_10doCorrUsed != 0 and r_2sv_20_10doCorrUsed != 1:
+    if r_2sv_20_10doCorrUsed is not True and r_2sv_20_10doCorrUsed is not False and (not isinstance(r_2sv_20_10doCorrUsed, int) or r_2sv_20_10doCorrUsed != 0 and r_2sv_20_10doCorrUsed != 1):
         raise _enc('nav_sat', 'sv[20].doCorrUsed', r_2sv_20_10doCorrUsed, 'type', 'a bool')
     r_2sv_20_10doCorrUsed = 1 if r_2sv_20_10doCorrUsed else 0
     r_2sv_20_12clasCorrUsed: Any = g_2sv_20.clasCorrUsed
-    if r_2sv_20_12clasCorrUsed is not True and r_2sv_20_12clasCorrUsed is not False and r_2sv_20_12clasCorrUsed != 0 and r_2sv_20_12clasCorrUsed != 1:
+    if r_2sv_20_12clasCorrUsed is not True and r_2sv_20_12clasCorrUsed is not False and (not isinstance(r_2sv_20_12clasCorrUsed, int) or r_2sv_20_12clasCorrUsed != 0 and r_2sv_20_12clasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[20].clasCorrUsed', r_2sv_20_12clasCorrUsed, 'type', 'a bool')
     r_2sv_20_12clasCorrUsed = 1 if r_2sv_20_12clasCorrUsed else 0
     r_2sv_20_11lppCorrUsed: Any = g_2sv_20.lppCorrUsed
-    if r_2sv_20_11lppCorrUsed is not True and r_2sv_20_11lppCorrUsed is not False and r_2sv_20_11lppCorrUsed != 0 and r_2sv_20_11lppCorrUsed != 1:
+    if r_2sv_20_11lppCorrUsed is not True and r_2sv_20_11lppCorrUsed is not False and (not isinstance(r_2sv_20_11lppCorrUsed, int) or r_2sv_20_11lppCorrUsed != 0 and r_2sv_20_11lppCorrUsed != 1):
         raise _enc('nav_sat', 'sv[20].lppCorrUsed', r_2sv_20_11lppCorrUsed, 'type', 'a bool')
     r_2sv_20_11lppCorrUsed = 1 if r_2sv_20_11lppCorrUsed else 0
     r_2sv_20_11hasCorrUsed: Any = g_2sv_20.hasCorrUsed
-    if r_2sv_20_11hasCorrUsed is not True and r_2sv_20_11hasCorrUsed is not False and r_2sv_20_11hasCorrUsed != 0 and r_2sv_20_11hasCorrUsed != 1:
+    if r_2sv_20_11hasCorrUsed is not True and r_2sv_20_11hasCorrUsed is not False and (not isinstance(r_2sv_20_11hasCorrUsed, int) or r_2sv_20_11hasCorrUsed != 0 and r_2sv_20_11hasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[20].hasCorrUsed', r_2sv_20_11hasCorrUsed, 'type', 'a bool')
     r_2sv_20_11hasCorrUsed = 1 if r_2sv_20_11hasCorrUsed else 0
     r_2sv_20_11flags_spare = 0
@@ -4110,6 +4152,8 @@ def _raw_nav_sat_2sv_20(g_2sv_20: Any) -> tuple[Any, ...]:
 
 
 def _raw_nav_sat_2sv_21(g_2sv_21: Any) -> tuple[Any, ...]:
+    if g_2sv_21.__class__ is not NavSatSv and not isinstance(g_2sv_21, NavSatSv):
+        raise _enc('nav_sat', 'sv[21]', g_2sv_21, 'type', 'a NavSatSv')
     r_2sv_21_6gnssId = g_2sv_21.gnssId
     if r_2sv_21_6gnssId.__class__ is not int or not 0 <= r_2sv_21_6gnssId <= 255:
         if not isinstance(r_2sv_21_6gnssId, int) or r_2sv_21_6gnssId.__class__ is bool:
@@ -4154,7 +4198,7 @@ def _raw_nav_sat_2sv_21(g_2sv_21: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_21_10qualityInd <= 7:
             raise _enc('nav_sat', 'sv[21].qualityInd', r_2sv_21_10qualityInd, 'range', '0..7', None)
     r_2sv_21_6svUsed: Any = g_2sv_21.svUsed
-    if r_2sv_21_6svUsed is not True and r_2sv_21_6svUsed is not False and r_2sv_21_6svUsed != 0 and r_2sv_21_6svUsed != 1:
+    if r_2sv_21_6svUsed is not True and r_2sv_21_6svUsed is not False and (not isinstance(r_2sv_21_6svUsed, int) or r_2sv_21_6svUsed != 0 and r_2sv_21_6svUsed != 1):
         raise _enc('nav_sat', 'sv[21].svUsed', r_2sv_21_6svUsed, 'type', 'a bool')
     r_2sv_21_6svUsed = 1 if r_2sv_21_6svUsed else 0
     r_2sv_21_6health = g_2sv_21.health
@@ -4164,11 +4208,11 @@ def _raw_nav_sat_2sv_21(g_2sv_21: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_21_6health <= 3:
             raise _enc('nav_sat', 'sv[21].health', r_2sv_21_6health, 'range', '0..3', None)
     r_2sv_21_8diffCorr: Any = g_2sv_21.diffCorr
-    if r_2sv_21_8diffCorr is not True and r_2sv_21_8diffCorr is not False and r_2sv_21_8diffCorr != 0 and r_2sv_21_8diffCorr != 1:
+    if r_2sv_21_8diffCorr is not True and r_2sv_21_8diffCorr is not False and (not isinstance(r_2sv_21_8diffCorr, int) or r_2sv_21_8diffCorr != 0 and r_2sv_21_8diffCorr != 1):
         raise _enc('nav_sat', 'sv[21].diffCorr', r_2sv_21_8diffCorr, 'type', 'a bool')
     r_2sv_21_8diffCorr = 1 if r_2sv_21_8diffCorr else 0
     r_2sv_21_8smoothed: Any = g_2sv_21.smoothed
-    if r_2sv_21_8smoothed is not True and r_2sv_21_8smoothed is not False and r_2sv_21_8smoothed != 0 and r_2sv_21_8smoothed != 1:
+    if r_2sv_21_8smoothed is not True and r_2sv_21_8smoothed is not False and (not isinstance(r_2sv_21_8smoothed, int) or r_2sv_21_8smoothed != 0 and r_2sv_21_8smoothed != 1):
         raise _enc('nav_sat', 'sv[21].smoothed', r_2sv_21_8smoothed, 'type', 'a bool')
     r_2sv_21_8smoothed = 1 if r_2sv_21_8smoothed else 0
     r_2sv_21_11orbitSource = g_2sv_21.orbitSource
@@ -4178,19 +4222,19 @@ def _raw_nav_sat_2sv_21(g_2sv_21: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_21_11orbitSource <= 7:
             raise _enc('nav_sat', 'sv[21].orbitSource', r_2sv_21_11orbitSource, 'range', '0..7', None)
     r_2sv_21_8ephAvail: Any = g_2sv_21.ephAvail
-    if r_2sv_21_8ephAvail is not True and r_2sv_21_8ephAvail is not False and r_2sv_21_8ephAvail != 0 and r_2sv_21_8ephAvail != 1:
+    if r_2sv_21_8ephAvail is not True and r_2sv_21_8ephAvail is not False and (not isinstance(r_2sv_21_8ephAvail, int) or r_2sv_21_8ephAvail != 0 and r_2sv_21_8ephAvail != 1):
         raise _enc('nav_sat', 'sv[21].ephAvail', r_2sv_21_8ephAvail, 'type', 'a bool')
     r_2sv_21_8ephAvail = 1 if r_2sv_21_8ephAvail else 0
     r_2sv_21_8almAvail: Any = g_2sv_21.almAvail
-    if r_2sv_21_8almAvail is not True and r_2sv_21_8almAvail is not False and r_2sv_21_8almAvail != 0 and r_2sv_21_8almAvail != 1:
+    if r_2sv_21_8almAvail is not True and r_2sv_21_8almAvail is not False and (not isinstance(r_2sv_21_8almAvail, int) or r_2sv_21_8almAvail != 0 and r_2sv_21_8almAvail != 1):
         raise _enc('nav_sat', 'sv[21].almAvail', r_2sv_21_8almAvail, 'type', 'a bool')
     r_2sv_21_8almAvail = 1 if r_2sv_21_8almAvail else 0
     r_2sv_21_8anoAvail: Any = g_2sv_21.anoAvail
-    if r_2sv_21_8anoAvail is not True and r_2sv_21_8anoAvail is not False and r_2sv_21_8anoAvail != 0 and r_2sv_21_8anoAvail != 1:
+    if r_2sv_21_8anoAvail is not True and r_2sv_21_8anoAvail is not False and (not isinstance(r_2sv_21_8anoAvail, int) or r_2sv_21_8anoAvail != 0 and r_2sv_21_8anoAvail != 1):
         raise _enc('nav_sat', 'sv[21].anoAvail', r_2sv_21_8anoAvail, 'type', 'a bool')
     r_2sv_21_8anoAvail = 1 if r_2sv_21_8anoAvail else 0
     r_2sv_21_8aopAvail: Any = g_2sv_21.aopAvail
-    if r_2sv_21_8aopAvail is not True and r_2sv_21_8aopAvail is not False and r_2sv_21_8aopAvail != 0 and r_2sv_21_8aopAvail != 1:
+    if r_2sv_21_8aopAvail is not True and r_2sv_21_8aopAvail is not False and (not isinstance(r_2sv_21_8aopAvail, int) or r_2sv_21_8aopAvail != 0 and r_2sv_21_8aopAvail != 1):
         raise _enc('nav_sat', 'sv[21].aopAvail', r_2sv_21_8aopAvail, 'type', 'a bool')
     r_2sv_21_8aopAvail = 1 if r_2sv_21_8aopAvail else 0
     r_2sv_21_10reserved13 = g_2sv_21.reserved13
@@ -4200,43 +4244,43 @@ def _raw_nav_sat_2sv_21(g_2sv_21: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_21_10reserved13 <= 1:
             raise _enc('nav_sat', 'sv[21].reserved13', r_2sv_21_10reserved13, 'range', '0..1', None)
     r_2sv_21_12sbasCorrUsed: Any = g_2sv_21.sbasCorrUsed
-    if r_2sv_21_12sbasCorrUsed is not True and r_2sv_21_12sbasCorrUsed is not False and r_2sv_21_12sbasCorrUsed != 0 and r_2sv_21_12sbasCorrUsed != 1:
+    if r_2sv_21_12sbasCorrUsed is not True and r_2sv_21_12sbasCorrUsed is not False and (not isinstance(r_2sv_21_12sbasCorrUsed, int) or r_2sv_21_12sbasCorrUsed != 0 and r_2sv_21_12sbasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[21].sbasCorrUsed', r_2sv_21_12sbasCorrUsed, 'type', 'a bool')
     r_2sv_21_12sbasCorrUsed = 1 if r_2sv_21_12sbasCorrUsed else 0
     r_2sv_21_12rtcmCorrUsed: Any = g_2sv_21.rtcmCorrUsed
-    if r_2sv_21_12rtcmCorrUsed is not True and r_2sv_21_12rtcmCorrUsed is not False and r_2sv_21_12rtcmCorrUsed != 0 and r_2sv_21_12rtcmCorrUsed != 1:
+    if r_2sv_21_12rtcmCorrUsed is not True and r_2sv_21_12rtcmCorrUsed is not False and (not isinstance(r_2sv_21_12rtcmCorrUsed, int) or r_2sv_21_12rtcmCorrUsed != 0 and r_2sv_21_12rtcmCorrUsed != 1):
         raise _enc('nav_sat', 'sv[21].rtcmCorrUsed', r_2sv_21_12rtcmCorrUsed, 'type', 'a bool')
     r_2sv_21_12rtcmCorrUsed = 1 if r_2sv_21_12rtcmCorrUsed else 0
     r_2sv_21_12slasCorrUsed: Any = g_2sv_21.slasCorrUsed
-    if r_2sv_21_12slasCorrUsed is not True and r_2sv_21_12slasCorrUsed is not False and r_2sv_21_12slasCorrUsed != 0 and r_2sv_21_12slasCorrUsed != 1:
+    if r_2sv_21_12slasCorrUsed is not True and r_2sv_21_12slasCorrUsed is not False and (not isinstance(r_2sv_21_12slasCorrUsed, int) or r_2sv_21_12slasCorrUsed != 0 and r_2sv_21_12slasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[21].slasCorrUsed', r_2sv_21_12slasCorrUsed, 'type', 'a bool')
     r_2sv_21_12slasCorrUsed = 1 if r_2sv_21_12slasCorrUsed else 0
     r_2sv_21_14spartnCorrUsed: Any = g_2sv_21.spartnCorrUsed
-    if r_2sv_21_14spartnCorrUsed is not True and r_2sv_21_14spartnCorrUsed is not False and r_2sv_21_14spartnCorrUsed != 0 and r_2sv_21_14spartnCorrUsed != 1:
+    if r_2sv_21_14spartnCorrUsed is not True and r_2sv_21_14spartnCorrUsed is not False and (not isinstance(r_2sv_21_14spartnCorrUsed, int) or r_2sv_21_14spartnCorrUsed != 0 and r_2sv_21_14spartnCorrUsed != 1):
         raise _enc('nav_sat', 'sv[21].spartnCorrUsed', r_2sv_21_14spartnCorrUsed, 'type', 'a bool')
     r_2sv_21_14spartnCorrUsed = 1 if r_2sv_21_14spartnCorrUsed else 0
     r_2sv_21_10prCorrUsed: Any = g_2sv_21.prCorrUsed
-    if r_2sv_21_10prCorrUsed is not True and r_2sv_21_10prCorrUsed is not False and r_2sv_21_10prCorrUsed != 0 and r_2sv_21_10prCorrUsed != 1:
+    if r_2sv_21_10prCorrUsed is not True and r_2sv_21_10prCorrUsed is not False and (not isinstance(r_2sv_21_10prCorrUsed, int) or r_2sv_21_10prCorrUsed != 0 and r_2sv_21_10prCorrUsed != 1):
         raise _enc('nav_sat', 'sv[21].prCorrUsed', r_2sv_21_10prCorrUsed, 'type', 'a bool')
     r_2sv_21_10prCorrUsed = 1 if r_2sv_21_10prCorrUsed else 0
     r_2sv_21_10crCorrUsed: Any = g_2sv_21.crCorrUsed
-    if r_2sv_21_10crCorrUsed is not True and r_2sv_21_10crCorrUsed is not False and r_2sv_21_10crCorrUsed != 0 and r_2sv_21_10crCorrUsed != 1:
+    if r_2sv_21_10crCorrUsed is not True and r_2sv_21_10crCorrUsed is not False and (not isinstance(r_2sv_21_10crCorrUsed, int) or r_2sv_21_10crCorrUsed != 0 and r_2sv_21_10crCorrUsed != 1):
         raise _enc('nav_sat', 'sv[21].crCorrUsed', r_2sv_21_10crCorrUsed, 'type', 'a bool')
     r_2sv_21_10crCorrUsed = 1 if r_2sv_21_10crCorrUsed else 0
     r_2sv_21_10doCorrUsed: Any = g_2sv_21.doCorrUsed
-    if r_2sv_21_10doCorrUsed is not True and r_2sv_21_10doCorrUsed is not False and r_2sv_21_10doCorrUsed != 0 and r_2sv_21_10doCorrUsed != 1:
+    if r_2sv_21_10doCorrUsed is not True and r_2sv_21_10doCorrUsed is not False and (not isinstance(r_2sv_21_10doCorrUsed, int) or r_2sv_21_10doCorrUsed != 0 and r_2sv_21_10doCorrUsed != 1):
         raise _enc('nav_sat', 'sv[21].doCorrUsed', r_2sv_21_10doCorrUsed, 'type', 'a bool')
     r_2sv_21_10doCorrUsed = 1 if r_2sv_21_10doCorrUsed else 0
     r_2sv_21_12clasCorrUsed: Any = g_2sv_21.clasCorrUsed
-    if r_2sv_21_12clasCorrUsed is not True and r_2sv_21_12clasCorrUsed is not False and r_2sv_21_12clasCorrUsed != 0 and r_2sv_21_12clasCorrUsed != 1:
+    if r_2sv_21_12clasCorrUsed is not True and r_2sv_21_12clasCorrUsed is not False and (not isinstance(r_2sv_21_12clasCorrUsed, int) or r_2sv_21_12clasCorrUsed != 0 and r_2sv_21_12clasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[21].clasCorrUsed', r_2sv_21_12clasCorrUsed, 'type', 'a bool')
     r_2sv_21_12clasCorrUsed = 1 if r_2sv_21_12clasCorrUsed else 0
     r_2sv_21_11lppCorrUsed: Any = g_2sv_21.lppCorrUsed
-    if r_2sv_21_11lppCorrUsed is not True and r_2sv_21_11lppCorrUsed is not False and r_2sv_21_11lppCorrUsed != 0 and r_2sv_21_11lppCorrUsed != 1:
+    if r_2sv_21_11lppCorrUsed is not True and r_2sv_21_11lppCorrUsed is not False and (not isinstance(r_2sv_21_11lppCorrUsed, int) or r_2sv_21_11lppCorrUsed != 0 and r_2sv_21_11lppCorrUsed != 1):
         raise _enc('nav_sat', 'sv[21].lppCorrUsed', r_2sv_21_11lppCorrUsed, 'type', 'a bool')
     r_2sv_21_11lppCorrUsed = 1 if r_2sv_21_11lppCorrUsed else 0
     r_2sv_21_11hasCorrUsed: Any = g_2sv_21.hasCorrUsed
-    if r_2sv_21_11hasCorrUsed is not True and r_2sv_21_11hasCorrUsed is not False and r_2sv_21_11hasCorrUsed != 0 and r_2sv_21_11hasCorrUsed != 1:
+    if r_2sv_21_11hasCorrUsed is not True and r_2sv_21_11hasCorrUsed is not False and (not isinstance(r_2sv_21_11hasCorrUsed, int) or r_2sv_21_11hasCorrUsed != 0 and r_2sv_21_11hasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[21].hasCorrUsed', r_2sv_21_11hasCorrUsed, 'type', 'a bool')
     r_2sv_21_11hasCorrUsed = 1 if r_2sv_21_11hasCorrUsed else 0
     r_2sv_21_11flags_spare = 0
@@ -4244,6 +4288,8 @@ def _raw_nav_sat_2sv_21(g_2sv_21: Any) -> tuple[Any, ...]:
 
 
 def _raw_nav_sat_2sv_22(g_2sv_22: Any) -> tuple[Any, ...]:
+    if g_2sv_22.__class__ is not NavSatSv and not isinstance(g_2sv_22, NavSatSv):
+        raise _enc('nav_sat', 'sv[22]', g_2sv_22, 'type', 'a NavSatSv')
     r_2sv_22_6gnssId = g_2sv_22.gnssId
     if r_2sv_22_6gnssId.__class__ is not int or not 0 <= r_2sv_22_6gnssId <= 255:
         if not isinstance(r_2sv_22_6gnssId, int) or r_2sv_22_6gnssId.__class__ is bool:
@@ -4288,7 +4334,7 @@ def _raw_nav_sat_2sv_22(g_2sv_22: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_22_10qualityInd <= 7:
             raise _enc('nav_sat', 'sv[22].qualityInd', r_2sv_22_10qualityInd, 'range', '0..7', None)
     r_2sv_22_6svUsed: Any = g_2sv_22.svUsed
-    if r_2sv_22_6svUsed is not True and r_2sv_22_6svUsed is not False and r_2sv_22_6svUsed != 0 and r_2sv_22_6svUsed != 1:
+    if r_2sv_22_6svUsed is not True and r_2sv_22_6svUsed is not False and (not isinstance(r_2sv_22_6svUsed, int) or r_2sv_22_6svUsed != 0 and r_2sv_22_6svUsed != 1):
         raise _enc('nav_sat', 'sv[22].svUsed', r_2sv_22_6svUsed, 'type', 'a bool')
     r_2sv_22_6svUsed = 1 if r_2sv_22_6svUsed else 0
     r_2sv_22_6health = g_2sv_22.health
@@ -4298,11 +4344,11 @@ def _raw_nav_sat_2sv_22(g_2sv_22: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_22_6health <= 3:
             raise _enc('nav_sat', 'sv[22].health', r_2sv_22_6health, 'range', '0..3', None)
     r_2sv_22_8diffCorr: Any = g_2sv_22.diffCorr
-    if r_2sv_22_8diffCorr is not True and r_2sv_22_8diffCorr is not False and r_2sv_22_8diffCorr != 0 and r_2sv_22_8diffCorr != 1:
+    if r_2sv_22_8diffCorr is not True and r_2sv_22_8diffCorr is not False and (not isinstance(r_2sv_22_8diffCorr, int) or r_2sv_22_8diffCorr != 0 and r_2sv_22_8diffCorr != 1):
         raise _enc('nav_sat', 'sv[22].diffCorr', r_2sv_22_8diffCorr, 'type', 'a bool')
     r_2sv_22_8diffCorr = 1 if r_2sv_22_8diffCorr else 0
     r_2sv_22_8smoothed: Any = g_2sv_22.smoothed
-    if r_2sv_22_8smoothed is not True and r_2sv_22_8smoothed is not False and r_2sv_22_8smoothed != 0 and r_2sv_22_8smoothed != 1:
+    if r_2sv_22_8smoothed is not True and r_2sv_22_8smoothed is not False and (not isinstance(r_2sv_22_8smoothed, int) or r_2sv_22_8smoothed != 0 and r_2sv_22_8smoothed != 1):
         raise _enc('nav_sat', 'sv[22].smoothed', r_2sv_22_8smoothed, 'type', 'a bool')
     r_2sv_22_8smoothed = 1 if r_2sv_22_8smoothed else 0
     r_2sv_22_11orbitSource = g_2sv_22.orbitSource
@@ -4312,19 +4358,19 @@ def _raw_nav_sat_2sv_22(g_2sv_22: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_22_11orbitSource <= 7:
             raise _enc('nav_sat', 'sv[22].orbitSource', r_2sv_22_11orbitSource, 'range', '0..7', None)
     r_2sv_22_8ephAvail: Any = g_2sv_22.ephAvail
-    if r_2sv_22_8ephAvail is not True and r_2sv_22_8ephAvail is not False and r_2sv_22_8ephAvail != 0 and r_2sv_22_8ephAvail != 1:
+    if r_2sv_22_8ephAvail is not True and r_2sv_22_8ephAvail is not False and (not isinstance(r_2sv_22_8ephAvail, int) or r_2sv_22_8ephAvail != 0 and r_2sv_22_8ephAvail != 1):
         raise _enc('nav_sat', 'sv[22].ephAvail', r_2sv_22_8ephAvail, 'type', 'a bool')
     r_2sv_22_8ephAvail = 1 if r_2sv_22_8ephAvail else 0
     r_2sv_22_8almAvail: Any = g_2sv_22.almAvail
-    if r_2sv_22_8almAvail is not True and r_2sv_22_8almAvail is not False and r_2sv_22_8almAvail != 0 and r_2sv_22_8almAvail != 1:
+    if r_2sv_22_8almAvail is not True and r_2sv_22_8almAvail is not False and (not isinstance(r_2sv_22_8almAvail, int) or r_2sv_22_8almAvail != 0 and r_2sv_22_8almAvail != 1):
         raise _enc('nav_sat', 'sv[22].almAvail', r_2sv_22_8almAvail, 'type', 'a bool')
     r_2sv_22_8almAvail = 1 if r_2sv_22_8almAvail else 0
     r_2sv_22_8anoAvail: Any = g_2sv_22.anoAvail
-    if r_2sv_22_8anoAvail is not True and r_2sv_22_8anoAvail is not False and r_2sv_22_8anoAvail != 0 and r_2sv_22_8anoAvail != 1:
+    if r_2sv_22_8anoAvail is not True and r_2sv_22_8anoAvail is not False and (not isinstance(r_2sv_22_8anoAvail, int) or r_2sv_22_8anoAvail != 0 and r_2sv_22_8anoAvail != 1):
         raise _enc('nav_sat', 'sv[22].anoAvail', r_2sv_22_8anoAvail, 'type', 'a bool')
     r_2sv_22_8anoAvail = 1 if r_2sv_22_8anoAvail else 0
     r_2sv_22_8aopAvail: Any = g_2sv_22.aopAvail
-    if r_2sv_22_8aopAvail is not True and r_2sv_22_8aopAvail is not False and r_2sv_22_8aopAvail != 0 and r_2sv_22_8aopAvail != 1:
+    if r_2sv_22_8aopAvail is not True and r_2sv_22_8aopAvail is not False and (not isinstance(r_2sv_22_8aopAvail, int) or r_2sv_22_8aopAvail != 0 and r_2sv_22_8aopAvail != 1):
         raise _enc('nav_sat', 'sv[22].aopAvail', r_2sv_22_8aopAvail, 'type', 'a bool')
     r_2sv_22_8aopAvail = 1 if r_2sv_22_8aopAvail else 0
     r_2sv_22_10reserved13 = g_2sv_22.reserved13
@@ -4334,43 +4380,43 @@ def _raw_nav_sat_2sv_22(g_2sv_22: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_22_10reserved13 <= 1:
             raise _enc('nav_sat', 'sv[22].reserved13', r_2sv_22_10reserved13, 'range', '0..1', None)
     r_2sv_22_12sbasCorrUsed: Any = g_2sv_22.sbasCorrUsed
-    if r_2sv_22_12sbasCorrUsed is not True and r_2sv_22_12sbasCorrUsed is not False and r_2sv_22_12sbasCorrUsed != 0 and r_2sv_22_12sbasCorrUsed != 1:
+    if r_2sv_22_12sbasCorrUsed is not True and r_2sv_22_12sbasCorrUsed is not False and (not isinstance(r_2sv_22_12sbasCorrUsed, int) or r_2sv_22_12sbasCorrUsed != 0 and r_2sv_22_12sbasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[22].sbasCorrUsed', r_2sv_22_12sbasCorrUsed, 'type', 'a bool')
     r_2sv_22_12sbasCorrUsed = 1 if r_2sv_22_12sbasCorrUsed else 0
     r_2sv_22_12rtcmCorrUsed: Any = g_2sv_22.rtcmCorrUsed
-    if r_2sv_22_12rtcmCorrUsed is not True and r_2sv_22_12rtcmCorrUsed is not False and r_2sv_22_12rtcmCorrUsed != 0 and r_2sv_22_12rtcmCorrUsed != 1:
+    if r_2sv_22_12rtcmCorrUsed is not True and r_2sv_22_12rtcmCorrUsed is not False and (not isinstance(r_2sv_22_12rtcmCorrUsed, int) or r_2sv_22_12rtcmCorrUsed != 0 and r_2sv_22_12rtcmCorrUsed != 1):
         raise _enc('nav_sat', 'sv[22].rtcmCorrUsed', r_2sv_22_12rtcmCorrUsed, 'type', 'a bool')
     r_2sv_22_12rtcmCorrUsed = 1 if r_2sv_22_12rtcmCorrUsed else 0
     r_2sv_22_12slasCorrUsed: Any = g_2sv_22.slasCorrUsed
-    if r_2sv_22_12slasCorrUsed is not True and r_2sv_22_12slasCorrUsed is not False and r_2sv_22_12slasCorrUsed != 0 and r_2sv_22_12slasCorrUsed != 1:
+    if r_2sv_22_12slasCorrUsed is not True and r_2sv_22_12slasCorrUsed is not False and (not isinstance(r_2sv_22_12slasCorrUsed, int) or r_2sv_22_12slasCorrUsed != 0 and r_2sv_22_12slasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[22].slasCorrUsed', r_2sv_22_12slasCorrUsed, 'type', 'a bool')
     r_2sv_22_12slasCorrUsed = 1 if r_2sv_22_12slasCorrUsed else 0
     r_2sv_22_14spartnCorrUsed: Any = g_2sv_22.spartnCorrUsed
-    if r_2sv_22_14spartnCorrUsed is not True and r_2sv_22_14spartnCorrUsed is not False and r_2sv_22_14spartnCorrUsed != 0 and r_2sv_22_14spartnCorrUsed != 1:
+    if r_2sv_22_14spartnCorrUsed is not True and r_2sv_22_14spartnCorrUsed is not False and (not isinstance(r_2sv_22_14spartnCorrUsed, int) or r_2sv_22_14spartnCorrUsed != 0 and r_2sv_22_14spartnCorrUsed != 1):
         raise _enc('nav_sat', 'sv[22].spartnCorrUsed', r_2sv_22_14spartnCorrUsed, 'type', 'a bool')
     r_2sv_22_14spartnCorrUsed = 1 if r_2sv_22_14spartnCorrUsed else 0
     r_2sv_22_10prCorrUsed: Any = g_2sv_22.prCorrUsed
-    if r_2sv_22_10prCorrUsed is not True and r_2sv_22_10prCorrUsed is not False and r_2sv_22_10prCorrUsed != 0 and r_2sv_22_10prCorrUsed != 1:
+    if r_2sv_22_10prCorrUsed is not True and r_2sv_22_10prCorrUsed is not False and (not isinstance(r_2sv_22_10prCorrUsed, int) or r_2sv_22_10prCorrUsed != 0 and r_2sv_22_10prCorrUsed != 1):
         raise _enc('nav_sat', 'sv[22].prCorrUsed', r_2sv_22_10prCorrUsed, 'type', 'a bool')
     r_2sv_22_10prCorrUsed = 1 if r_2sv_22_10prCorrUsed else 0
     r_2sv_22_10crCorrUsed: Any = g_2sv_22.crCorrUsed
-    if r_2sv_22_10crCorrUsed is not True and r_2sv_22_10crCorrUsed is not False and r_2sv_22_10crCorrUsed != 0 and r_2sv_22_10crCorrUsed != 1:
+    if r_2sv_22_10crCorrUsed is not True and r_2sv_22_10crCorrUsed is not False and (not isinstance(r_2sv_22_10crCorrUsed, int) or r_2sv_22_10crCorrUsed != 0 and r_2sv_22_10crCorrUsed != 1):
         raise _enc('nav_sat', 'sv[22].crCorrUsed', r_2sv_22_10crCorrUsed, 'type', 'a bool')
     r_2sv_22_10crCorrUsed = 1 if r_2sv_22_10crCorrUsed else 0
     r_2sv_22_10doCorrUsed: Any = g_2sv_22.doCorrUsed
-    if r_2sv_22_10doCorrUsed is not True and r_2sv_22_10doCorrUsed is not False and r_2sv_22_10doCorrUsed != 0 and r_2sv_22_10doCorrUsed != 1:
+    if r_2sv_22_10doCorrUsed is not True and r_2sv_22_10doCorrUsed is not False and (not isinstance(r_2sv_22_10doCorrUsed, int) or r_2sv_22_10doCorrUsed != 0 and r_2sv_22_10doCorrUsed != 1):
         raise _enc('nav_sat', 'sv[22].doCorrUsed', r_2sv_22_10doCorrUsed, 'type', 'a bool')
     r_2sv_22_10doCorrUsed = 1 if r_2sv_22_10doCorrUsed else 0
     r_2sv_22_12clasCorrUsed: Any = g_2sv_22.clasCorrUsed
-    if r_2sv_22_12clasCorrUsed is not True and r_2sv_22_12clasCorrUsed is not False and r_2sv_22_12clasCorrUsed != 0 and r_2sv_22_12clasCorrUsed != 1:
+    if r_2sv_22_12clasCorrUsed is not True and r_2sv_22_12clasCorrUsed is not False and (not isinstance(r_2sv_22_12clasCorrUsed, int) or r_2sv_22_12clasCorrUsed != 0 and r_2sv_22_12clasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[22].clasCorrUsed', r_2sv_22_12clasCorrUsed, 'type', 'a bool')
     r_2sv_22_12clasCorrUsed = 1 if r_2sv_22_12clasCorrUsed else 0
     r_2sv_22_11lppCorrUsed: Any = g_2sv_22.lppCorrUsed
-    if r_2sv_22_11lppCorrUsed is not True and r_2sv_22_11lppCorrUsed is not False and r_2sv_22_11lppCorrUsed != 0 and r_2sv_22_11lppCorrUsed != 1:
+    if r_2sv_22_11lppCorrUsed is not True and r_2sv_22_11lppCorrUsed is not False and (not isinstance(r_2sv_22_11lppCorrUsed, int) or r_2sv_22_11lppCorrUsed != 0 and r_2sv_22_11lppCorrUsed != 1):
         raise _enc('nav_sat', 'sv[22].lppCorrUsed', r_2sv_22_11lppCorrUsed, 'type', 'a bool')
     r_2sv_22_11lppCorrUsed = 1 if r_2sv_22_11lppCorrUsed else 0
     r_2sv_22_11hasCorrUsed: Any = g_2sv_22.hasCorrUsed
-    if r_2sv_22_11hasCorrUsed is not True and r_2sv_22_11hasCorrUsed is not False and r_2sv_22_11hasCorrUsed != 0 and r_2sv_22_11hasCorrUsed != 1:
+    if r_2sv_22_11hasCorrUsed is not True and r_2sv_22_11hasCorrUsed is not False and (not isinstance(r_2sv_22_11hasCorrUsed, int) or r_2sv_22_11hasCorrUsed != 0 and r_2sv_22_11hasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[22].hasCorrUsed', r_2sv_22_11hasCorrUsed, 'type', 'a bool')
     r_2sv_22_11hasCorrUsed = 1 if r_2sv_22_11hasCorrUsed else 0
     r_2sv_22_11flags_spare = 0
@@ -4378,6 +4424,8 @@ def _raw_nav_sat_2sv_22(g_2sv_22: Any) -> tuple[Any, ...]:
 
 
 def _raw_nav_sat_2sv_23(g_2sv_23: Any) -> tuple[Any, ...]:
+    if g_2sv_23.__class__ is not NavSatSv and not isinstance(g_2sv_23, NavSatSv):
+        raise _enc('nav_sat', 'sv[23]', g_2sv_23, 'type', 'a NavSatSv')
     r_2sv_23_6gnssId = g_2sv_23.gnssId
     if r_2sv_23_6gnssId.__class__ is not int or not 0 <= r_2sv_23_6gnssId <= 255:
         if not isinstance(r_2sv_23_6gnssId, int) or r_2sv_23_6gnssId.__class__ is bool:
@@ -4422,7 +4470,7 @@ def _raw_nav_sat_2sv_23(g_2sv_23: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_23_10qualityInd <= 7:
             raise _enc('nav_sat', 'sv[23].qualityInd', r_2sv_23_10qualityInd, 'range', '0..7', None)
     r_2sv_23_6svUsed: Any = g_2sv_23.svUsed
-    if r_2sv_23_6svUsed is not True and r_2sv_23_6svUsed is not False and r_2sv_23_6svUsed != 0 and r_2sv_23_6svUsed != 1:
+    if r_2sv_23_6svUsed is not True and r_2sv_23_6svUsed is not False and (not isinstance(r_2sv_23_6svUsed, int) or r_2sv_23_6svUsed != 0 and r_2sv_23_6svUsed != 1):
         raise _enc('nav_sat', 'sv[23].svUsed', r_2sv_23_6svUsed, 'type', 'a bool')
     r_2sv_23_6svUsed = 1 if r_2sv_23_6svUsed else 0
     r_2sv_23_6health = g_2sv_23.health
@@ -4432,11 +4480,11 @@ def _raw_nav_sat_2sv_23(g_2sv_23: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_23_6health <= 3:
             raise _enc('nav_sat', 'sv[23].health', r_2sv_23_6health, 'range', '0..3', None)
     r_2sv_23_8diffCorr: Any = g_2sv_23.diffCorr
-    if r_2sv_23_8diffCorr is not True and r_2sv_23_8diffCorr is not False and r_2sv_23_8diffCorr != 0 and r_2sv_23_8diffCorr != 1:
+    if r_2sv_23_8diffCorr is not True and r_2sv_23_8diffCorr is not False and (not isinstance(r_2sv_23_8diffCorr, int) or r_2sv_23_8diffCorr != 0 and r_2sv_23_8diffCorr != 1):
         raise _enc('nav_sat', 'sv[23].diffCorr', r_2sv_23_8diffCorr, 'type', 'a bool')
     r_2sv_23_8diffCorr = 1 if r_2sv_23_8diffCorr else 0
     r_2sv_23_8smoothed: Any = g_2sv_23.smoothed
-    if r_2sv_23_8smoothed is not True and r_2sv_23_8smoothed is not False and r_2sv_23_8smoothed != 0 and r_2sv_23_8smoothed != 1:
+    if r_2sv_23_8smoothed is not True and r_2sv_23_8smoothed is not False and (not isinstance(r_2sv_23_8smoothed, int) or r_2sv_23_8smoothed != 0 and r_2sv_23_8smoothed != 1):
         raise _enc('nav_sat', 'sv[23].smoothed', r_2sv_23_8smoothed, 'type', 'a bool')
     r_2sv_23_8smoothed = 1 if r_2sv_23_8smoothed else 0
     r_2sv_23_11orbitSource = g_2sv_23.orbitSource
@@ -4446,19 +4494,19 @@ def _raw_nav_sat_2sv_23(g_2sv_23: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_23_11orbitSource <= 7:
             raise _enc('nav_sat', 'sv[23].orbitSource', r_2sv_23_11orbitSource, 'range', '0..7', None)
     r_2sv_23_8ephAvail: Any = g_2sv_23.ephAvail
-    if r_2sv_23_8ephAvail is not True and r_2sv_23_8ephAvail is not False and r_2sv_23_8ephAvail != 0 and r_2sv_23_8ephAvail != 1:
+    if r_2sv_23_8ephAvail is not True and r_2sv_23_8ephAvail is not False and (not isinstance(r_2sv_23_8ephAvail, int) or r_2sv_23_8ephAvail != 0 and r_2sv_23_8ephAvail != 1):
         raise _enc('nav_sat', 'sv[23].ephAvail', r_2sv_23_8ephAvail, 'type', 'a bool')
     r_2sv_23_8ephAvail = 1 if r_2sv_23_8ephAvail else 0
     r_2sv_23_8almAvail: Any = g_2sv_23.almAvail
-    if r_2sv_23_8almAvail is not True and r_2sv_23_8almAvail is not False and r_2sv_23_8almAvail != 0 and r_2sv_23_8almAvail != 1:
+    if r_2sv_23_8almAvail is not True and r_2sv_23_8almAvail is not False and (not isinstance(r_2sv_23_8almAvail, int) or r_2sv_23_8almAvail != 0 and r_2sv_23_8almAvail != 1):
         raise _enc('nav_sat', 'sv[23].almAvail', r_2sv_23_8almAvail, 'type', 'a bool')
     r_2sv_23_8almAvail = 1 if r_2sv_23_8almAvail else 0
     r_2sv_23_8anoAvail: Any = g_2sv_23.anoAvail
-    if r_2sv_23_8anoAvail is not True and r_2sv_23_8anoAvail is not False and r_2sv_23_8anoAvail != 0 and r_2sv_23_8anoAvail != 1:
+    if r_2sv_23_8anoAvail is not True and r_2sv_23_8anoAvail is not False and (not isinstance(r_2sv_23_8anoAvail, int) or r_2sv_23_8anoAvail != 0 and r_2sv_23_8anoAvail != 1):
         raise _enc('nav_sat', 'sv[23].anoAvail', r_2sv_23_8anoAvail, 'type', 'a bool')
     r_2sv_23_8anoAvail = 1 if r_2sv_23_8anoAvail else 0
     r_2sv_23_8aopAvail: Any = g_2sv_23.aopAvail
-    if r_2sv_23_8aopAvail is not True and r_2sv_23_8aopAvail is not False and r_2sv_23_8aopAvail != 0 and r_2sv_23_8aopAvail != 1:
+    if r_2sv_23_8aopAvail is not True and r_2sv_23_8aopAvail is not False and (not isinstance(r_2sv_23_8aopAvail, int) or r_2sv_23_8aopAvail != 0 and r_2sv_23_8aopAvail != 1):
         raise _enc('nav_sat', 'sv[23].aopAvail', r_2sv_23_8aopAvail, 'type', 'a bool')
     r_2sv_23_8aopAvail = 1 if r_2sv_23_8aopAvail else 0
     r_2sv_23_10reserved13 = g_2sv_23.reserved13
@@ -4468,43 +4516,43 @@ def _raw_nav_sat_2sv_23(g_2sv_23: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_23_10reserved13 <= 1:
             raise _enc('nav_sat', 'sv[23].reserved13', r_2sv_23_10reserved13, 'range', '0..1', None)
     r_2sv_23_12sbasCorrUsed: Any = g_2sv_23.sbasCorrUsed
-    if r_2sv_23_12sbasCorrUsed is not True and r_2sv_23_12sbasCorrUsed is not False and r_2sv_23_12sbasCorrUsed != 0 and r_2sv_23_12sbasCorrUsed != 1:
+    if r_2sv_23_12sbasCorrUsed is not True and r_2sv_23_12sbasCorrUsed is not False and (not isinstance(r_2sv_23_12sbasCorrUsed, int) or r_2sv_23_12sbasCorrUsed != 0 and r_2sv_23_12sbasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[23].sbasCorrUsed', r_2sv_23_12sbasCorrUsed, 'type', 'a bool')
     r_2sv_23_12sbasCorrUsed = 1 if r_2sv_23_12sbasCorrUsed else 0
     r_2sv_23_12rtcmCorrUsed: Any = g_2sv_23.rtcmCorrUsed
-    if r_2sv_23_12rtcmCorrUsed is not True and r_2sv_23_12rtcmCorrUsed is not False and r_2sv_23_12rtcmCorrUsed != 0 and r_2sv_23_12rtcmCorrUsed != 1:
+    if r_2sv_23_12rtcmCorrUsed is not True and r_2sv_23_12rtcmCorrUsed is not False and (not isinstance(r_2sv_23_12rtcmCorrUsed, int) or r_2sv_23_12rtcmCorrUsed != 0 and r_2sv_23_12rtcmCorrUsed != 1):
         raise _enc('nav_sat', 'sv[23].rtcmCorrUsed', r_2sv_23_12rtcmCorrUsed, 'type', 'a bool')
     r_2sv_23_12rtcmCorrUsed = 1 if r_2sv_23_12rtcmCorrUsed else 0
     r_2sv_23_12slasCorrUsed: Any = g_2sv_23.slasCorrUsed
-    if r_2sv_23_12slasCorrUsed is not True and r_2sv_23_12slasCorrUsed is not False and r_2sv_23_12slasCorrUsed != 0 and r_2sv_23_12slasCorrUsed != 1:
+    if r_2sv_23_12slasCorrUsed is not True and r_2sv_23_12slasCorrUsed is not False and (not isinstance(r_2sv_23_12slasCorrUsed, int) or r_2sv_23_12slasCorrUsed != 0 and r_2sv_23_12slasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[23].slasCorrUsed', r_2sv_23_12slasCorrUsed, 'type', 'a bool')
     r_2sv_23_12slasCorrUsed = 1 if r_2sv_23_12slasCorrUsed else 0
     r_2sv_23_14spartnCorrUsed: Any = g_2sv_23.spartnCorrUsed
-    if r_2sv_23_14spartnCorrUsed is not True and r_2sv_23_14spartnCorrUsed is not False and r_2sv_23_14spartnCorrUsed != 0 and r_2sv_23_14spartnCorrUsed != 1:
+    if r_2sv_23_14spartnCorrUsed is not True and r_2sv_23_14spartnCorrUsed is not False and (not isinstance(r_2sv_23_14spartnCorrUsed, int) or r_2sv_23_14spartnCorrUsed != 0 and r_2sv_23_14spartnCorrUsed != 1):
         raise _enc('nav_sat', 'sv[23].spartnCorrUsed', r_2sv_23_14spartnCorrUsed, 'type', 'a bool')
     r_2sv_23_14spartnCorrUsed = 1 if r_2sv_23_14spartnCorrUsed else 0
     r_2sv_23_10prCorrUsed: Any = g_2sv_23.prCorrUsed
-    if r_2sv_23_10prCorrUsed is not True and r_2sv_23_10prCorrUsed is not False and r_2sv_23_10prCorrUsed != 0 and r_2sv_23_10prCorrUsed != 1:
+    if r_2sv_23_10prCorrUsed is not True and r_2sv_23_10prCorrUsed is not False and (not isinstance(r_2sv_23_10prCorrUsed, int) or r_2sv_23_10prCorrUsed != 0 and r_2sv_23_10prCorrUsed != 1):
         raise _enc('nav_sat', 'sv[23].prCorrUsed', r_2sv_23_10prCorrUsed, 'type', 'a bool')
     r_2sv_23_10prCorrUsed = 1 if r_2sv_23_10prCorrUsed else 0
     r_2sv_23_10crCorrUsed: Any = g_2sv_23.crCorrUsed
-    if r_2sv_23_10crCorrUsed is not True and r_2sv_23_10crCorrUsed is not False and r_2sv_23_10crCorrUsed != 0 and r_2sv_23_10crCorrUsed != 1:
+    if r_2sv_23_10crCorrUsed is not True and r_2sv_23_10crCorrUsed is not False and (not isinstance(r_2sv_23_10crCorrUsed, int) or r_2sv_23_10crCorrUsed != 0 and r_2sv_23_10crCorrUsed != 1):
         raise _enc('nav_sat', 'sv[23].crCorrUsed', r_2sv_23_10crCorrUsed, 'type', 'a bool')
     r_2sv_23_10crCorrUsed = 1 if r_2sv_23_10crCorrUsed else 0
     r_2sv_23_10doCorrUsed: Any = g_2sv_23.doCorrUsed
-    if r_2sv_23_10doCorrUsed is not True and r_2sv_23_10doCorrUsed is not False and r_2sv_23_10doCorrUsed != 0 and r_2sv_23_10doCorrUsed != 1:
+    if r_2sv_23_10doCorrUsed is not True and r_2sv_23_10doCorrUsed is not False and (not isinstance(r_2sv_23_10doCorrUsed, int) or r_2sv_23_10doCorrUsed != 0 and r_2sv_23_10doCorrUsed != 1):
         raise _enc('nav_sat', 'sv[23].doCorrUsed', r_2sv_23_10doCorrUsed, 'type', 'a bool')
     r_2sv_23_10doCorrUsed = 1 if r_2sv_23_10doCorrUsed else 0
     r_2sv_23_12clasCorrUsed: Any = g_2sv_23.clasCorrUsed
-    if r_2sv_23_12clasCorrUsed is not True and r_2sv_23_12clasCorrUsed is not False and r_2sv_23_12clasCorrUsed != 0 and r_2sv_23_12clasCorrUsed != 1:
+    if r_2sv_23_12clasCorrUsed is not True and r_2sv_23_12clasCorrUsed is not False and (not isinstance(r_2sv_23_12clasCorrUsed, int) or r_2sv_23_12clasCorrUsed != 0 and r_2sv_23_12clasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[23].clasCorrUsed', r_2sv_23_12clasCorrUsed, 'type', 'a bool')
     r_2sv_23_12clasCorrUsed = 1 if r_2sv_23_12clasCorrUsed else 0
     r_2sv_23_11lppCorrUsed: Any = g_2sv_23.lppCorrUsed
-    if r_2sv_23_11lppCorrUsed is not True and r_2sv_23_11lppCorrUsed is not False and r_2sv_23_11lppCorrUsed != 0 and r_2sv_23_11lppCorrUsed != 1:
+    if r_2sv_23_11lppCorrUsed is not True and r_2sv_23_11lppCorrUsed is not False and (not isinstance(r_2sv_23_11lppCorrUsed, int) or r_2sv_23_11lppCorrUsed != 0 and r_2sv_23_11lppCorrUsed != 1):
         raise _enc('nav_sat', 'sv[23].lppCorrUsed', r_2sv_23_11lppCorrUsed, 'type', 'a bool')
     r_2sv_23_11lppCorrUsed = 1 if r_2sv_23_11lppCorrUsed else 0
     r_2sv_23_11hasCorrUsed: Any = g_2sv_23.hasCorrUsed
-    if r_2sv_23_11hasCorrUsed is not True and r_2sv_23_11hasCorrUsed is not False and r_2sv_23_11hasCorrUsed != 0 and r_2sv_23_11hasCorrUsed != 1:
+    if r_2sv_23_11hasCorrUsed is not True and r_2sv_23_11hasCorrUsed is not False and (not isinstance(r_2sv_23_11hasCorrUsed, int) or r_2sv_23_11hasCorrUsed != 0 and r_2sv_23_11hasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[23].hasCorrUsed', r_2sv_23_11hasCorrUsed, 'type', 'a bool')
     r_2sv_23_11hasCorrUsed = 1 if r_2sv_23_11hasCorrUsed else 0
     r_2sv_23_11flags_spare = 0
@@ -4512,6 +4560,8 @@ def _raw_nav_sat_2sv_23(g_2sv_23: Any) -> tuple[Any, ...]:
 
 
 def _raw_nav_sat_2sv_24(g_2sv_24: Any) -> tuple[Any, ...]:
+    if g_2sv_24.__class__ is not NavSatSv and not isinstance(g_2sv_24, NavSatSv):
+        raise _enc('nav_sat', 'sv[24]', g_2sv_24, 'type', 'a NavSatSv')
     r_2sv_24_6gnssId = g_2sv_24.gnssId
     if r_2sv_24_6gnssId.__class__ is not int or not 0 <= r_2sv_24_6gnssId <= 255:
         if not isinstance(r_2sv_24_6gnssId, int) or r_2sv_24_6gnssId.__class__ is bool:
@@ -4556,7 +4606,7 @@ def _raw_nav_sat_2sv_24(g_2sv_24: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_24_10qualityInd <= 7:
             raise _enc('nav_sat', 'sv[24].qualityInd', r_2sv_24_10qualityInd, 'range', '0..7', None)
     r_2sv_24_6svUsed: Any = g_2sv_24.svUsed
-    if r_2sv_24_6svUsed is not True and r_2sv_24_6svUsed is not False and r_2sv_24_6svUsed != 0 and r_2sv_24_6svUsed != 1:
+    if r_2sv_24_6svUsed is not True and r_2sv_24_6svUsed is not False and (not isinstance(r_2sv_24_6svUsed, int) or r_2sv_24_6svUsed != 0 and r_2sv_24_6svUsed != 1):
         raise _enc('nav_sat', 'sv[24].svUsed', r_2sv_24_6svUsed, 'type', 'a bool')
     r_2sv_24_6svUsed = 1 if r_2sv_24_6svUsed else 0
     r_2sv_24_6health = g_2sv_24.health
@@ -4566,11 +4616,11 @@ def _raw_nav_sat_2sv_24(g_2sv_24: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_24_6health <= 3:
             raise _enc('nav_sat', 'sv[24].health', r_2sv_24_6health, 'range', '0..3', None)
     r_2sv_24_8diffCorr: Any = g_2sv_24.diffCorr
-    if r_2sv_24_8diffCorr is not True and r_2sv_24_8diffCorr is not False and r_2sv_24_8diffCorr != 0 and r_2sv_24_8diffCorr != 1:
+    if r_2sv_24_8diffCorr is not True and r_2sv_24_8diffCorr is not False and (not isinstance(r_2sv_24_8diffCorr, int) or r_2sv_24_8diffCorr != 0 and r_2sv_24_8diffCorr != 1):
         raise _enc('nav_sat', 'sv[24].diffCorr', r_2sv_24_8diffCorr, 'type', 'a bool')
     r_2sv_24_8diffCorr = 1 if r_2sv_24_8diffCorr else 0
     r_2sv_24_8smoothed: Any = g_2sv_24.smoothed
-    if r_2sv_24_8smoothed is not True and r_2sv_24_8smoothed is not False and r_2sv_24_8smoothed != 0 and r_2sv_24_8smoothed != 1:
+    if r_2sv_24_8smoothed is not True and r_2sv_24_8smoothed is not False and (not isinstance(r_2sv_24_8smoothed, int) or r_2sv_24_8smoothed != 0 and r_2sv_24_8smoothed != 1):
         raise _enc('nav_sat', 'sv[24].smoothed', r_2sv_24_8smoothed, 'type', 'a bool')
     r_2sv_24_8smoothed = 1 if r_2sv_24_8smoothed else 0
     r_2sv_24_11orbitSource = g_2sv_24.orbitSource
@@ -4580,19 +4630,19 @@ def _raw_nav_sat_2sv_24(g_2sv_24: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_24_11orbitSource <= 7:
             raise _enc('nav_sat', 'sv[24].orbitSource', r_2sv_24_11orbitSource, 'range', '0..7', None)
     r_2sv_24_8ephAvail: Any = g_2sv_24.ephAvail
-    if r_2sv_24_8ephAvail is not True and r_2sv_24_8ephAvail is not False and r_2sv_24_8ephAvail != 0 and r_2sv_24_8ephAvail != 1:
+    if r_2sv_24_8ephAvail is not True and r_2sv_24_8ephAvail is not False and (not isinstance(r_2sv_24_8ephAvail, int) or r_2sv_24_8ephAvail != 0 and r_2sv_24_8ephAvail != 1):
         raise _enc('nav_sat', 'sv[24].ephAvail', r_2sv_24_8ephAvail, 'type', 'a bool')
     r_2sv_24_8ephAvail = 1 if r_2sv_24_8ephAvail else 0
     r_2sv_24_8almAvail: Any = g_2sv_24.almAvail
-    if r_2sv_24_8almAvail is not True and r_2sv_24_8almAvail is not False and r_2sv_24_8almAvail != 0 and r_2sv_24_8almAvail != 1:
+    if r_2sv_24_8almAvail is not True and r_2sv_24_8almAvail is not False and (not isinstance(r_2sv_24_8almAvail, int) or r_2sv_24_8almAvail != 0 and r_2sv_24_8almAvail != 1):
         raise _enc('nav_sat', 'sv[24].almAvail', r_2sv_24_8almAvail, 'type', 'a bool')
     r_2sv_24_8almAvail = 1 if r_2sv_24_8almAvail else 0
     r_2sv_24_8anoAvail: Any = g_2sv_24.anoAvail
-    if r_2sv_24_8anoAvail is not True and r_2sv_24_8anoAvail is not False and r_2sv_24_8anoAvail != 0 and r_2sv_24_8anoAvail != 1:
+    if r_2sv_24_8anoAvail is not True and r_2sv_24_8anoAvail is not False and (not isinstance(r_2sv_24_8anoAvail, int) or r_2sv_24_8anoAvail != 0 and r_2sv_24_8anoAvail != 1):
         raise _enc('nav_sat', 'sv[24].anoAvail', r_2sv_24_8anoAvail, 'type', 'a bool')
     r_2sv_24_8anoAvail = 1 if r_2sv_24_8anoAvail else 0
     r_2sv_24_8aopAvail: Any = g_2sv_24.aopAvail
-    if r_2sv_24_8aopAvail is not True and r_2sv_24_8aopAvail is not False and r_2sv_24_8aopAvail != 0 and r_2sv_24_8aopAvail != 1:
+    if r_2sv_24_8aopAvail is not True and r_2sv_24_8aopAvail is not False and (not isinstance(r_2sv_24_8aopAvail, int) or r_2sv_24_8aopAvail != 0 and r_2sv_24_8aopAvail != 1):
         raise _enc('nav_sat', 'sv[24].aopAvail', r_2sv_24_8aopAvail, 'type', 'a bool')
     r_2sv_24_8aopAvail = 1 if r_2sv_24_8aopAvail else 0
     r_2sv_24_10reserved13 = g_2sv_24.reserved13
@@ -4602,43 +4652,43 @@ def _raw_nav_sat_2sv_24(g_2sv_24: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_24_10reserved13 <= 1:
             raise _enc('nav_sat', 'sv[24].reserved13', r_2sv_24_10reserved13, 'range', '0..1', None)
     r_2sv_24_12sbasCorrUsed: Any = g_2sv_24.sbasCorrUsed
-    if r_2sv_24_12sbasCorrUsed is not True and r_2sv_24_12sbasCorrUsed is not False and r_2sv_24_12sbasCorrUsed != 0 and r_2sv_24_12sbasCorrUsed != 1:
+    if r_2sv_24_12sbasCorrUsed is not True and r_2sv_24_12sbasCorrUsed is not False and (not isinstance(r_2sv_24_12sbasCorrUsed, int) or r_2sv_24_12sbasCorrUsed != 0 and r_2sv_24_12sbasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[24].sbasCorrUsed', r_2sv_24_12sbasCorrUsed, 'type', 'a bool')
     r_2sv_24_12sbasCorrUsed = 1 if r_2sv_24_12sbasCorrUsed else 0
     r_2sv_24_12rtcmCorrUsed: Any = g_2sv_24.rtcmCorrUsed
-    if r_2sv_24_12rtcmCorrUsed is not True and r_2sv_24_12rtcmCorrUsed is not False and r_2sv_24_12rtcmCorrUsed != 0 and r_2sv_24_12rtcmCorrUsed != 1:
+    if r_2sv_24_12rtcmCorrUsed is not True and r_2sv_24_12rtcmCorrUsed is not False and (not isinstance(r_2sv_24_12rtcmCorrUsed, int) or r_2sv_24_12rtcmCorrUsed != 0 and r_2sv_24_12rtcmCorrUsed != 1):
         raise _enc('nav_sat', 'sv[24].rtcmCorrUsed', r_2sv_24_12rtcmCorrUsed, 'type', 'a bool')
     r_2sv_24_12rtcmCorrUsed = 1 if r_2sv_24_12rtcmCorrUsed else 0
     r_2sv_24_12slasCorrUsed: Any = g_2sv_24.slasCorrUsed
-    if r_2sv_24_12slasCorrUsed is not True and r_2sv_24_12slasCorrUsed is not False and r_2sv_24_12slasCorrUsed != 0 and r_2sv_24_12slasCorrUsed != 1:
+    if r_2sv_24_12slasCorrUsed is not True and r_2sv_24_12slasCorrUsed is not False and (not isinstance(r_2sv_24_12slasCorrUsed, int) or r_2sv_24_12slasCorrUsed != 0 and r_2sv_24_12slasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[24].slasCorrUsed', r_2sv_24_12slasCorrUsed, 'type', 'a bool')
     r_2sv_24_12slasCorrUsed = 1 if r_2sv_24_12slasCorrUsed else 0
     r_2sv_24_14spartnCorrUsed: Any = g_2sv_24.spartnCorrUsed
-    if r_2sv_24_14spartnCorrUsed is not True and r_2sv_24_14spartnCorrUsed is not False and r_2sv_24_14spartnCorrUsed != 0 and r_2sv_24_14spartnCorrUsed != 1:
+    if r_2sv_24_14spartnCorrUsed is not True and r_2sv_24_14spartnCorrUsed is not False and (not isinstance(r_2sv_24_14spartnCorrUsed, int) or r_2sv_24_14spartnCorrUsed != 0 and r_2sv_24_14spartnCorrUsed != 1):
         raise _enc('nav_sat', 'sv[24].spartnCorrUsed', r_2sv_24_14spartnCorrUsed, 'type', 'a bool')
     r_2sv_24_14spartnCorrUsed = 1 if r_2sv_24_14spartnCorrUsed else 0
     r_2sv_24_10prCorrUsed: Any = g_2sv_24.prCorrUsed
-    if r_2sv_24_10prCorrUsed is not True and r_2sv_24_10prCorrUsed is not False and r_2sv_24_10prCorrUsed != 0 and r_2sv_24_10prCorrUsed != 1:
+    if r_2sv_24_10prCorrUsed is not True and r_2sv_24_10prCorrUsed is not False and (not isinstance(r_2sv_24_10prCorrUsed, int) or r_2sv_24_10prCorrUsed != 0 and r_2sv_24_10prCorrUsed != 1):
         raise _enc('nav_sat', 'sv[24].prCorrUsed', r_2sv_24_10prCorrUsed, 'type', 'a bool')
     r_2sv_24_10prCorrUsed = 1 if r_2sv_24_10prCorrUsed else 0
     r_2sv_24_10crCorrUsed: Any = g_2sv_24.crCorrUsed
-    if r_2sv_24_10crCorrUsed is not True and r_2sv_24_10crCorrUsed is not False and r_2sv_24_10crCorrUsed != 0 and r_2sv_24_10crCorrUsed != 1:
+    if r_2sv_24_10crCorrUsed is not True and r_2sv_24_10crCorrUsed is not False and (not isinstance(r_2sv_24_10crCorrUsed, int) or r_2sv_24_10crCorrUsed != 0 and r_2sv_24_10crCorrUsed != 1):
         raise _enc('nav_sat', 'sv[24].crCorrUsed', r_2sv_24_10crCorrUsed, 'type', 'a bool')
     r_2sv_24_10crCorrUsed = 1 if r_2sv_24_10crCorrUsed else 0
     r_2sv_24_10doCorrUsed: Any = g_2sv_24.doCorrUsed
-    if r_2sv_24_10doCorrUsed is not True and r_2sv_24_10doCorrUsed is not False and r_2sv_24_10doCorrUsed != 0 and r_2sv_24_10doCorrUsed != 1:
+    if r_2sv_24_10doCorrUsed is not True and r_2sv_24_10doCorrUsed is not False and (not isinstance(r_2sv_24_10doCorrUsed, int) or r_2sv_24_10doCorrUsed != 0 and r_2sv_24_10doCorrUsed != 1):
         raise _enc('nav_sat', 'sv[24].doCorrUsed', r_2sv_24_10doCorrUsed, 'type', 'a bool')
     r_2sv_24_10doCorrUsed = 1 if r_2sv_24_10doCorrUsed else 0
     r_2sv_24_12clasCorrUsed: Any = g_2sv_24.clasCorrUsed
-    if r_2sv_24_12clasCorrUsed is not True and r_2sv_24_12clasCorrUsed is not False and r_2sv_24_12clasCorrUsed != 0 and r_2sv_24_12clasCorrUsed != 1:
+    if r_2sv_24_12clasCorrUsed is not True and r_2sv_24_12clasCorrUsed is not False and (not isinstance(r_2sv_24_12clasCorrUsed, int) or r_2sv_24_12clasCorrUsed != 0 and r_2sv_24_12clasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[24].clasCorrUsed', r_2sv_24_12clasCorrUsed, 'type', 'a bool')
     r_2sv_24_12clasCorrUsed = 1 if r_2sv_24_12clasCorrUsed else 0
     r_2sv_24_11lppCorrUsed: Any = g_2sv_24.lppCorrUsed
-    if r_2sv_24_11lppCorrUsed is not True and r_2sv_24_11lppCorrUsed is not False and r_2sv_24_11lppCorrUsed != 0 and r_2sv_24_11lppCorrUsed != 1:
+    if r_2sv_24_11lppCorrUsed is not True and r_2sv_24_11lppCorrUsed is not False and (not isinstance(r_2sv_24_11lppCorrUsed, int) or r_2sv_24_11lppCorrUsed != 0 and r_2sv_24_11lppCorrUsed != 1):
         raise _enc('nav_sat', 'sv[24].lppCorrUsed', r_2sv_24_11lppCorrUsed, 'type', 'a bool')
     r_2sv_24_11lppCorrUsed = 1 if r_2sv_24_11lppCorrUsed else 0
     r_2sv_24_11hasCorrUsed: Any = g_2sv_24.hasCorrUsed
-    if r_2sv_24_11hasCorrUsed is not True and r_2sv_24_11hasCorrUsed is not False and r_2sv_24_11hasCorrUsed != 0 and r_2sv_24_11hasCorrUsed != 1:
+    if r_2sv_24_11hasCorrUsed is not True and r_2sv_24_11hasCorrUsed is not False and (not isinstance(r_2sv_24_11hasCorrUsed, int) or r_2sv_24_11hasCorrUsed != 0 and r_2sv_24_11hasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[24].hasCorrUsed', r_2sv_24_11hasCorrUsed, 'type', 'a bool')
     r_2sv_24_11hasCorrUsed = 1 if r_2sv_24_11hasCorrUsed else 0
     r_2sv_24_11flags_spare = 0
@@ -4646,6 +4696,8 @@ def _raw_nav_sat_2sv_24(g_2sv_24: Any) -> tuple[Any, ...]:
 
 
 def _raw_nav_sat_2sv_25(g_2sv_25: Any) -> tuple[Any, ...]:
+    if g_2sv_25.__class__ is not NavSatSv and not isinstance(g_2sv_25, NavSatSv):
+        raise _enc('nav_sat', 'sv[25]', g_2sv_25, 'type', 'a NavSatSv')
     r_2sv_25_6gnssId = g_2sv_25.gnssId
     if r_2sv_25_6gnssId.__class__ is not int or not 0 <= r_2sv_25_6gnssId <= 255:
         if not isinstance(r_2sv_25_6gnssId, int) or r_2sv_25_6gnssId.__class__ is bool:
@@ -4690,7 +4742,7 @@ def _raw_nav_sat_2sv_25(g_2sv_25: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_25_10qualityInd <= 7:
             raise _enc('nav_sat', 'sv[25].qualityInd', r_2sv_25_10qualityInd, 'range', '0..7', None)
     r_2sv_25_6svUsed: Any = g_2sv_25.svUsed
-    if r_2sv_25_6svUsed is not True and r_2sv_25_6svUsed is not False and r_2sv_25_6svUsed != 0 and r_2sv_25_6svUsed != 1:
+    if r_2sv_25_6svUsed is not True and r_2sv_25_6svUsed is not False and (not isinstance(r_2sv_25_6svUsed, int) or r_2sv_25_6svUsed != 0 and r_2sv_25_6svUsed != 1):
         raise _enc('nav_sat', 'sv[25].svUsed', r_2sv_25_6svUsed, 'type', 'a bool')
     r_2sv_25_6svUsed = 1 if r_2sv_25_6svUsed else 0
     r_2sv_25_6health = g_2sv_25.health
@@ -4700,11 +4752,11 @@ def _raw_nav_sat_2sv_25(g_2sv_25: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_25_6health <= 3:
             raise _enc('nav_sat', 'sv[25].health', r_2sv_25_6health, 'range', '0..3', None)
     r_2sv_25_8diffCorr: Any = g_2sv_25.diffCorr
-    if r_2sv_25_8diffCorr is not True and r_2sv_25_8diffCorr is not False and r_2sv_25_8diffCorr != 0 and r_2sv_25_8diffCorr != 1:
+    if r_2sv_25_8diffCorr is not True and r_2sv_25_8diffCorr is not False and (not isinstance(r_2sv_25_8diffCorr, int) or r_2sv_25_8diffCorr != 0 and r_2sv_25_8diffCorr != 1):
         raise _enc('nav_sat', 'sv[25].diffCorr', r_2sv_25_8diffCorr, 'type', 'a bool')
     r_2sv_25_8diffCorr = 1 if r_2sv_25_8diffCorr else 0
     r_2sv_25_8smoothed: Any = g_2sv_25.smoothed
-    if r_2sv_25_8smoothed is not True and r_2sv_25_8smoothed is not False and r_2sv_25_8smoothed != 0 and r_2sv_25_8smoothed != 1:
+    if r_2sv_25_8smoothed is not True and r_2sv_25_8smoothed is not False and (not isinstance(r_2sv_25_8smoothed, int) or r_2sv_25_8smoothed != 0 and r_2sv_25_8smoothed != 1):
         raise _enc('nav_sat', 'sv[25].smoothed', r_2sv_25_8smoothed, 'type', 'a bool')
     r_2sv_25_8smoothed = 1 if r_2sv_25_8smoothed else 0
     r_2sv_25_11orbitSource = g_2sv_25.orbitSource
@@ -4714,19 +4766,19 @@ def _raw_nav_sat_2sv_25(g_2sv_25: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_25_11orbitSource <= 7:
             raise _enc('nav_sat', 'sv[25].orbitSource', r_2sv_25_11orbitSource, 'range', '0..7', None)
     r_2sv_25_8ephAvail: Any = g_2sv_25.ephAvail
-    if r_2sv_25_8ephAvail is not True and r_2sv_25_8ephAvail is not False and r_2sv_25_8ephAvail != 0 and r_2sv_25_8ephAvail != 1:
+    if r_2sv_25_8ephAvail is not True and r_2sv_25_8ephAvail is not False and (not isinstance(r_2sv_25_8ephAvail, int) or r_2sv_25_8ephAvail != 0 and r_2sv_25_8ephAvail != 1):
         raise _enc('nav_sat', 'sv[25].ephAvail', r_2sv_25_8ephAvail, 'type', 'a bool')
     r_2sv_25_8ephAvail = 1 if r_2sv_25_8ephAvail else 0
     r_2sv_25_8almAvail: Any = g_2sv_25.almAvail
-    if r_2sv_25_8almAvail is not True and r_2sv_25_8almAvail is not False and r_2sv_25_8almAvail != 0 and r_2sv_25_8almAvail != 1:
+    if r_2sv_25_8almAvail is not True and r_2sv_25_8almAvail is not False and (not isinstance(r_2sv_25_8almAvail, int) or r_2sv_25_8almAvail != 0 and r_2sv_25_8almAvail != 1):
         raise _enc('nav_sat', 'sv[25].almAvail', r_2sv_25_8almAvail, 'type', 'a bool')
     r_2sv_25_8almAvail = 1 if r_2sv_25_8almAvail else 0
     r_2sv_25_8anoAvail: Any = g_2sv_25.anoAvail
-    if r_2sv_25_8anoAvail is not True and r_2sv_25_8anoAvail is not False and r_2sv_25_8anoAvail != 0 and r_2sv_25_8anoAvail != 1:
+    if r_2sv_25_8anoAvail is not True and r_2sv_25_8anoAvail is not False and (not isinstance(r_2sv_25_8anoAvail, int) or r_2sv_25_8anoAvail != 0 and r_2sv_25_8anoAvail != 1):
         raise _enc('nav_sat', 'sv[25].anoAvail', r_2sv_25_8anoAvail, 'type', 'a bool')
     r_2sv_25_8anoAvail = 1 if r_2sv_25_8anoAvail else 0
     r_2sv_25_8aopAvail: Any = g_2sv_25.aopAvail
-    if r_2sv_25_8aopAvail is not True and r_2sv_25_8aopAvail is not False and r_2sv_25_8aopAvail != 0 and r_2sv_25_8aopAvail != 1:
+    if r_2sv_25_8aopAvail is not True and r_2sv_25_8aopAvail is not False and (not isinstance(r_2sv_25_8aopAvail, int) or r_2sv_25_8aopAvail != 0 and r_2sv_25_8aopAvail != 1):
         raise _enc('nav_sat', 'sv[25].aopAvail', r_2sv_25_8aopAvail, 'type', 'a bool')
     r_2sv_25_8aopAvail = 1 if r_2sv_25_8aopAvail else 0
     r_2sv_25_10reserved13 = g_2sv_25.reserved13
@@ -4736,43 +4788,43 @@ def _raw_nav_sat_2sv_25(g_2sv_25: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_25_10reserved13 <= 1:
             raise _enc('nav_sat', 'sv[25].reserved13', r_2sv_25_10reserved13, 'range', '0..1', None)
     r_2sv_25_12sbasCorrUsed: Any = g_2sv_25.sbasCorrUsed
-    if r_2sv_25_12sbasCorrUsed is not True and r_2sv_25_12sbasCorrUsed is not False and r_2sv_25_12sbasCorrUsed != 0 and r_2sv_25_12sbasCorrUsed != 1:
+    if r_2sv_25_12sbasCorrUsed is not True and r_2sv_25_12sbasCorrUsed is not False and (not isinstance(r_2sv_25_12sbasCorrUsed, int) or r_2sv_25_12sbasCorrUsed != 0 and r_2sv_25_12sbasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[25].sbasCorrUsed', r_2sv_25_12sbasCorrUsed, 'type', 'a bool')
     r_2sv_25_12sbasCorrUsed = 1 if r_2sv_25_12sbasCorrUsed else 0
     r_2sv_25_12rtcmCorrUsed: Any = g_2sv_25.rtcmCorrUsed
-    if r_2sv_25_12rtcmCorrUsed is not True and r_2sv_25_12rtcmCorrUsed is not False and r_2sv_25_12rtcmCorrUsed != 0 and r_2sv_25_12rtcmCorrUsed != 1:
+    if r_2sv_25_12rtcmCorrUsed is not True and r_2sv_25_12rtcmCorrUsed is not False and (not isinstance(r_2sv_25_12rtcmCorrUsed, int) or r_2sv_25_12rtcmCorrUsed != 0 and r_2sv_25_12rtcmCorrUsed != 1):
         raise _enc('nav_sat', 'sv[25].rtcmCorrUsed', r_2sv_25_12rtcmCorrUsed, 'type', 'a bool')
     r_2sv_25_12rtcmCorrUsed = 1 if r_2sv_25_12rtcmCorrUsed else 0
     r_2sv_25_12slasCorrUsed: Any = g_2sv_25.slasCorrUsed
-    if r_2sv_25_12slasCorrUsed is not True and r_2sv_25_12slasCorrUsed is not False and r_2sv_25_12slasCorrUsed != 0 and r_2sv_25_12slasCorrUsed != 1:
+    if r_2sv_25_12slasCorrUsed is not True and r_2sv_25_12slasCorrUsed is not False and (not isinstance(r_2sv_25_12slasCorrUsed, int) or r_2sv_25_12slasCorrUsed != 0 and r_2sv_25_12slasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[25].slasCorrUsed', r_2sv_25_12slasCorrUsed, 'type', 'a bool')
     r_2sv_25_12slasCorrUsed = 1 if r_2sv_25_12slasCorrUsed else 0
     r_2sv_25_14spartnCorrUsed: Any = g_2sv_25.spartnCorrUsed
-    if r_2sv_25_14spartnCorrUsed is not True and r_2sv_25_14spartnCorrUsed is not False and r_2sv_25_14spartnCorrUsed != 0 and r_2sv_25_14spartnCorrUsed != 1:
+    if r_2sv_25_14spartnCorrUsed is not True and r_2sv_25_14spartnCorrUsed is not False and (not isinstance(r_2sv_25_14spartnCorrUsed, int) or r_2sv_25_14spartnCorrUsed != 0 and r_2sv_25_14spartnCorrUsed != 1):
         raise _enc('nav_sat', 'sv[25].spartnCorrUsed', r_2sv_25_14spartnCorrUsed, 'type', 'a bool')
     r_2sv_25_14spartnCorrUsed = 1 if r_2sv_25_14spartnCorrUsed else 0
     r_2sv_25_10prCorrUsed: Any = g_2sv_25.prCorrUsed
-    if r_2sv_25_10prCorrUsed is not True and r_2sv_25_10prCorrUsed is not False and r_2sv_25_10prCorrUsed != 0 and r_2sv_25_10prCorrUsed != 1:
+    if r_2sv_25_10prCorrUsed is not True and r_2sv_25_10prCorrUsed is not False and (not isinstance(r_2sv_25_10prCorrUsed, int) or r_2sv_25_10prCorrUsed != 0 and r_2sv_25_10prCorrUsed != 1):
         raise _enc('nav_sat', 'sv[25].prCorrUsed', r_2sv_25_10prCorrUsed, 'type', 'a bool')
     r_2sv_25_10prCorrUsed = 1 if r_2sv_25_10prCorrUsed else 0
     r_2sv_25_10crCorrUsed: Any = g_2sv_25.crCorrUsed
-    if r_2sv_25_10crCorrUsed is not True and r_2sv_25_10crCorrUsed is not False and r_2sv_25_10crCorrUsed != 0 and r_2sv_25_10crCorrUsed != 1:
+    if r_2sv_25_10crCorrUsed is not True and r_2sv_25_10crCorrUsed is not False and (not isinstance(r_2sv_25_10crCorrUsed, int) or r_2sv_25_10crCorrUsed != 0 and r_2sv_25_10crCorrUsed != 1):
         raise _enc('nav_sat', 'sv[25].crCorrUsed', r_2sv_25_10crCorrUsed, 'type', 'a bool')
     r_2sv_25_10crCorrUsed = 1 if r_2sv_25_10crCorrUsed else 0
     r_2sv_25_10doCorrUsed: Any = g_2sv_25.doCorrUsed
-    if r_2sv_25_10doCorrUsed is not True and r_2sv_25_10doCorrUsed is not False and r_2sv_25_10doCorrUsed != 0 and r_2sv_25_10doCorrUsed != 1:
+    if r_2sv_25_10doCorrUsed is not True and r_2sv_25_10doCorrUsed is not False and (not isinstance(r_2sv_25_10doCorrUsed, int) or r_2sv_25_10doCorrUsed != 0 and r_2sv_25_10doCorrUsed != 1):
         raise _enc('nav_sat', 'sv[25].doCorrUsed', r_2sv_25_10doCorrUsed, 'type', 'a bool')
     r_2sv_25_10doCorrUsed = 1 if r_2sv_25_10doCorrUsed else 0
     r_2sv_25_12clasCorrUsed: Any = g_2sv_25.clasCorrUsed
-    if r_2sv_25_12clasCorrUsed is not True and r_2sv_25_12clasCorrUsed is not False and r_2sv_25_12clasCorrUsed != 0 and r_2sv_25_12clasCorrUsed != 1:
+    if r_2sv_25_12clasCorrUsed is not True and r_2sv_25_12clasCorrUsed is not False and (not isinstance(r_2sv_25_12clasCorrUsed, int) or r_2sv_25_12clasCorrUsed != 0 and r_2sv_25_12clasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[25].clasCorrUsed', r_2sv_25_12clasCorrUsed, 'type', 'a bool')
     r_2sv_25_12clasCorrUsed = 1 if r_2sv_25_12clasCorrUsed else 0
     r_2sv_25_11lppCorrUsed: Any = g_2sv_25.lppCorrUsed
-    if r_2sv_25_11lppCorrUsed is not True and r_2sv_25_11lppCorrUsed is not False and r_2sv_25_11lppCorrUsed != 0 and r_2sv_25_11lppCorrUsed != 1:
+    if r_2sv_25_11lppCorrUsed is not True and r_2sv_25_11lppCorrUsed is not False and (not isinstance(r_2sv_25_11lppCorrUsed, int) or r_2sv_25_11lppCorrUsed != 0 and r_2sv_25_11lppCorrUsed != 1):
         raise _enc('nav_sat', 'sv[25].lppCorrUsed', r_2sv_25_11lppCorrUsed, 'type', 'a bool')
     r_2sv_25_11lppCorrUsed = 1 if r_2sv_25_11lppCorrUsed else 0
     r_2sv_25_11hasCorrUsed: Any = g_2sv_25.hasCorrUsed
-    if r_2sv_25_11hasCorrUsed is not True and r_2sv_25_11hasCorrUsed is not False and r_2sv_25_11hasCorrUsed != 0 and r_2sv_25_11hasCorrUsed != 1:
+    if r_2sv_25_11hasCorrUsed is not True and r_2sv_25_11hasCorrUsed is not False and (not isinstance(r_2sv_25_11hasCorrUsed, int) or r_2sv_25_11hasCorrUsed != 0 and r_2sv_25_11hasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[25].hasCorrUsed', r_2sv_25_11hasCorrUsed, 'type', 'a bool')
     r_2sv_25_11hasCorrUsed = 1 if r_2sv_25_11hasCorrUsed else 0
     r_2sv_25_11flags_spare = 0
@@ -4780,6 +4832,8 @@ def _raw_nav_sat_2sv_25(g_2sv_25: Any) -> tuple[Any, ...]:
 
 
 def _raw_nav_sat_2sv_26(g_2sv_26: Any) -> tuple[Any, ...]:
+    if g_2sv_26.__class__ is not NavSatSv and not isinstance(g_2sv_26, NavSatSv):
+        raise _enc('nav_sat', 'sv[26]', g_2sv_26, 'type', 'a NavSatSv')
     r_2sv_26_6gnssId = g_2sv_26.gnssId
     if r_2sv_26_6gnssId.__class__ is not int or not 0 <= r_2sv_26_6gnssId <= 255:
         if not isinstance(r_2sv_26_6gnssId, int) or r_2sv_26_6gnssId.__class__ is bool:
@@ -4824,7 +4878,7 @@ def _raw_nav_sat_2sv_26(g_2sv_26: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_26_10qualityInd <= 7:
             raise _enc('nav_sat', 'sv[26].qualityInd', r_2sv_26_10qualityInd, 'range', '0..7', None)
     r_2sv_26_6svUsed: Any = g_2sv_26.svUsed
-    if r_2sv_26_6svUsed is not True and r_2sv_26_6svUsed is not False and r_2sv_26_6svUsed != 0 and r_2sv_26_6svUsed != 1:
+    if r_2sv_26_6svUsed is not True and r_2sv_26_6svUsed is not False and (not isinstance(r_2sv_26_6svUsed, int) or r_2sv_26_6svUsed != 0 and r_2sv_26_6svUsed != 1):
         raise _enc('nav_sat', 'sv[26].svUsed', r_2sv_26_6svUsed, 'type', 'a bool')
     r_2sv_26_6svUsed = 1 if r_2sv_26_6svUsed else 0
     r_2sv_26_6health = g_2sv_26.health
@@ -4834,11 +4888,11 @@ def _raw_nav_sat_2sv_26(g_2sv_26: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_26_6health <= 3:
             raise _enc('nav_sat', 'sv[26].health', r_2sv_26_6health, 'range', '0..3', None)
     r_2sv_26_8diffCorr: Any = g_2sv_26.diffCorr
-    if r_2sv_26_8diffCorr is not True and r_2sv_26_8diffCorr is not False and r_2sv_26_8diffCorr != 0 and r_2sv_26_8diffCorr != 1:
+    if r_2sv_26_8diffCorr is not True and r_2sv_26_8diffCorr is not False and (not isinstance(r_2sv_26_8diffCorr, int) or r_2sv_26_8diffCorr != 0 and r_2sv_26_8diffCorr != 1):
         raise _enc('nav_sat', 'sv[26].diffCorr', r_2sv_26_8diffCorr, 'type', 'a bool')
     r_2sv_26_8diffCorr = 1 if r_2sv_26_8diffCorr else 0
     r_2sv_26_8smoothed: Any = g_2sv_26.smoothed
-    if r_2sv_26_8smoothed is not True and r_2sv_26_8smoothed is not False and r_2sv_26_8smoothed != 0 and r_2sv_26_8smoothed != 1:
+    if r_2sv_26_8smoothed is not True and r_2sv_26_8smoothed is not False and (not isinstance(r_2sv_26_8smoothed, int) or r_2sv_26_8smoothed != 0 and r_2sv_26_8smoothed != 1):
         raise _enc('nav_sat', 'sv[26].smoothed', r_2sv_26_8smoothed, 'type', 'a bool')
     r_2sv_26_8smoothed = 1 if r_2sv_26_8smoothed else 0
     r_2sv_26_11orbitSource = g_2sv_26.orbitSource
@@ -4848,19 +4902,19 @@ def _raw_nav_sat_2sv_26(g_2sv_26: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_26_11orbitSource <= 7:
             raise _enc('nav_sat', 'sv[26].orbitSource', r_2sv_26_11orbitSource, 'range', '0..7', None)
     r_2sv_26_8ephAvail: Any = g_2sv_26.ephAvail
-    if r_2sv_26_8ephAvail is not True and r_2sv_26_8ephAvail is not False and r_2sv_26_8ephAvail != 0 and r_2sv_26_8ephAvail != 1:
+    if r_2sv_26_8ephAvail is not True and r_2sv_26_8ephAvail is not False and (not isinstance(r_2sv_26_8ephAvail, int) or r_2sv_26_8ephAvail != 0 and r_2sv_26_8ephAvail != 1):
         raise _enc('nav_sat', 'sv[26].ephAvail', r_2sv_26_8ephAvail, 'type', 'a bool')
     r_2sv_26_8ephAvail = 1 if r_2sv_26_8ephAvail else 0
     r_2sv_26_8almAvail: Any = g_2sv_26.almAvail
-    if r_2sv_26_8almAvail is not True and r_2sv_26_8almAvail is not False and r_2sv_26_8almAvail != 0 and r_2sv_26_8almAvail != 1:
+    if r_2sv_26_8almAvail is not True and r_2sv_26_8almAvail is not False and (not isinstance(r_2sv_26_8almAvail, int) or r_2sv_26_8almAvail != 0 and r_2sv_26_8almAvail != 1):
         raise _enc('nav_sat', 'sv[26].almAvail', r_2sv_26_8almAvail, 'type', 'a bool')
     r_2sv_26_8almAvail = 1 if r_2sv_26_8almAvail else 0
     r_2sv_26_8anoAvail: Any = g_2sv_26.anoAvail
-    if r_2sv_26_8anoAvail is not True and r_2sv_26_8anoAvail is not False and r_2sv_26_8anoAvail != 0 and r_2sv_26_8anoAvail != 1:
+    if r_2sv_26_8anoAvail is not True and r_2sv_26_8anoAvail is not False and (not isinstance(r_2sv_26_8anoAvail, int) or r_2sv_26_8anoAvail != 0 and r_2sv_26_8anoAvail != 1):
         raise _enc('nav_sat', 'sv[26].anoAvail', r_2sv_26_8anoAvail, 'type', 'a bool')
     r_2sv_26_8anoAvail = 1 if r_2sv_26_8anoAvail else 0
     r_2sv_26_8aopAvail: Any = g_2sv_26.aopAvail
-    if r_2sv_26_8aopAvail is not True and r_2sv_26_8aopAvail is not False and r_2sv_26_8aopAvail != 0 and r_2sv_26_8aopAvail != 1:
+    if r_2sv_26_8aopAvail is not True and r_2sv_26_8aopAvail is not False and (not isinstance(r_2sv_26_8aopAvail, int) or r_2sv_26_8aopAvail != 0 and r_2sv_26_8aopAvail != 1):
         raise _enc('nav_sat', 'sv[26].aopAvail', r_2sv_26_8aopAvail, 'type', 'a bool')
     r_2sv_26_8aopAvail = 1 if r_2sv_26_8aopAvail else 0
     r_2sv_26_10reserved13 = g_2sv_26.reserved13
@@ -4870,43 +4924,43 @@ def _raw_nav_sat_2sv_26(g_2sv_26: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_26_10reserved13 <= 1:
             raise _enc('nav_sat', 'sv[26].reserved13', r_2sv_26_10reserved13, 'range', '0..1', None)
     r_2sv_26_12sbasCorrUsed: Any = g_2sv_26.sbasCorrUsed
-    if r_2sv_26_12sbasCorrUsed is not True and r_2sv_26_12sbasCorrUsed is not False and r_2sv_26_12sbasCorrUsed != 0 and r_2sv_26_12sbasCorrUsed != 1:
+    if r_2sv_26_12sbasCorrUsed is not True and r_2sv_26_12sbasCorrUsed is not False and (not isinstance(r_2sv_26_12sbasCorrUsed, int) or r_2sv_26_12sbasCorrUsed != 0 and r_2sv_26_12sbasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[26].sbasCorrUsed', r_2sv_26_12sbasCorrUsed, 'type', 'a bool')
     r_2sv_26_12sbasCorrUsed = 1 if r_2sv_26_12sbasCorrUsed else 0
     r_2sv_26_12rtcmCorrUsed: Any = g_2sv_26.rtcmCorrUsed
-    if r_2sv_26_12rtcmCorrUsed is not True and r_2sv_26_12rtcmCorrUsed is not False and r_2sv_26_12rtcmCorrUsed != 0 and r_2sv_26_12rtcmCorrUsed != 1:
+    if r_2sv_26_12rtcmCorrUsed is not True and r_2sv_26_12rtcmCorrUsed is not False and (not isinstance(r_2sv_26_12rtcmCorrUsed, int) or r_2sv_26_12rtcmCorrUsed != 0 and r_2sv_26_12rtcmCorrUsed != 1):
         raise _enc('nav_sat', 'sv[26].rtcmCorrUsed', r_2sv_26_12rtcmCorrUsed, 'type', 'a bool')
     r_2sv_26_12rtcmCorrUsed = 1 if r_2sv_26_12rtcmCorrUsed else 0
     r_2sv_26_12slasCorrUsed: Any = g_2sv_26.slasCorrUsed
-    if r_2sv_26_12slasCorrUsed is not True and r_2sv_26_12slasCorrUsed is not False and r_2sv_26_12slasCorrUsed != 0 and r_2sv_26_12slasCorrUsed != 1:
+    if r_2sv_26_12slasCorrUsed is not True and r_2sv_26_12slasCorrUsed is not False and (not isinstance(r_2sv_26_12slasCorrUsed, int) or r_2sv_26_12slasCorrUsed != 0 and r_2sv_26_12slasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[26].slasCorrUsed', r_2sv_26_12slasCorrUsed, 'type', 'a bool')
     r_2sv_26_12slasCorrUsed = 1 if r_2sv_26_12slasCorrUsed else 0
     r_2sv_26_14spartnCorrUsed: Any = g_2sv_26.spartnCorrUsed
-    if r_2sv_26_14spartnCorrUsed is not True and r_2sv_26_14spartnCorrUsed is not False and r_2sv_26_14spartnCorrUsed != 0 and r_2sv_26_14spartnCorrUsed != 1:
+    if r_2sv_26_14spartnCorrUsed is not True and r_2sv_26_14spartnCorrUsed is not False and (not isinstance(r_2sv_26_14spartnCorrUsed, int) or r_2sv_26_14spartnCorrUsed != 0 and r_2sv_26_14spartnCorrUsed != 1):
         raise _enc('nav_sat', 'sv[26].spartnCorrUsed', r_2sv_26_14spartnCorrUsed, 'type', 'a bool')
     r_2sv_26_14spartnCorrUsed = 1 if r_2sv_26_14spartnCorrUsed else 0
     r_2sv_26_10prCorrUsed: Any = g_2sv_26.prCorrUsed
-    if r_2sv_26_10prCorrUsed is not True and r_2sv_26_10prCorrUsed is not False and r_2sv_26_10prCorrUsed != 0 and r_2sv_26_10prCorrUsed != 1:
+    if r_2sv_26_10prCorrUsed is not True and r_2sv_26_10prCorrUsed is not False and (not isinstance(r_2sv_26_10prCorrUsed, int) or r_2sv_26_10prCorrUsed != 0 and r_2sv_26_10prCorrUsed != 1):
         raise _enc('nav_sat', 'sv[26].prCorrUsed', r_2sv_26_10prCorrUsed, 'type', 'a bool')
     r_2sv_26_10prCorrUsed = 1 if r_2sv_26_10prCorrUsed else 0
     r_2sv_26_10crCorrUsed: Any = g_2sv_26.crCorrUsed
-    if r_2sv_26_10crCorrUsed is not True and r_2sv_26_10crCorrUsed is not False and r_2sv_26_10crCorrUsed != 0 and r_2sv_26_10crCorrUsed != 1:
+    if r_2sv_26_10crCorrUsed is not True and r_2sv_26_10crCorrUsed is not False and (not isinstance(r_2sv_26_10crCorrUsed, int) or r_2sv_26_10crCorrUsed != 0 and r_2sv_26_10crCorrUsed != 1):
         raise _enc('nav_sat', 'sv[26].crCorrUsed', r_2sv_26_10crCorrUsed, 'type', 'a bool')
     r_2sv_26_10crCorrUsed = 1 if r_2sv_26_10crCorrUsed else 0
     r_2sv_26_10doCorrUsed: Any = g_2sv_26.doCorrUsed
-    if r_2sv_26_10doCorrUsed is not True and r_2sv_26_10doCorrUsed is not False and r_2sv_26_10doCorrUsed != 0 and r_2sv_26_10doCorrUsed != 1:
+    if r_2sv_26_10doCorrUsed is not True and r_2sv_26_10doCorrUsed is not False and (not isinstance(r_2sv_26_10doCorrUsed, int) or r_2sv_26_10doCorrUsed != 0 and r_2sv_26_10doCorrUsed != 1):
         raise _enc('nav_sat', 'sv[26].doCorrUsed', r_2sv_26_10doCorrUsed, 'type', 'a bool')
     r_2sv_26_10doCorrUsed = 1 if r_2sv_26_10doCorrUsed else 0
     r_2sv_26_12clasCorrUsed: Any = g_2sv_26.clasCorrUsed
-    if r_2sv_26_12clasCorrUsed is not True and r_2sv_26_12clasCorrUsed is not False and r_2sv_26_12clasCorrUsed != 0 and r_2sv_26_12clasCorrUsed != 1:
+    if r_2sv_26_12clasCorrUsed is not True and r_2sv_26_12clasCorrUsed is not False and (not isinstance(r_2sv_26_12clasCorrUsed, int) or r_2sv_26_12clasCorrUsed != 0 and r_2sv_26_12clasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[26].clasCorrUsed', r_2sv_26_12clasCorrUsed, 'type', 'a bool')
     r_2sv_26_12clasCorrUsed = 1 if r_2sv_26_12clasCorrUsed else 0
     r_2sv_26_11lppCorrUsed: Any = g_2sv_26.lppCorrUsed
-    if r_2sv_26_11lppCorrUsed is not True and r_2sv_26_11lppCorrUsed is not False and r_2sv_26_11lppCorrUsed != 0 and r_2sv_26_11lppCorrUsed != 1:
+    if r_2sv_26_11lppCorrUsed is not True and r_2sv_26_11lppCorrUsed is not False and (not isinstance(r_2sv_26_11lppCorrUsed, int) or r_2sv_26_11lppCorrUsed != 0 and r_2sv_26_11lppCorrUsed != 1):
         raise _enc('nav_sat', 'sv[26].lppCorrUsed', r_2sv_26_11lppCorrUsed, 'type', 'a bool')
     r_2sv_26_11lppCorrUsed = 1 if r_2sv_26_11lppCorrUsed else 0
     r_2sv_26_11hasCorrUsed: Any = g_2sv_26.hasCorrUsed
-    if r_2sv_26_11hasCorrUsed is not True and r_2sv_26_11hasCorrUsed is not False and r_2sv_26_11hasCorrUsed != 0 and r_2sv_26_11hasCorrUsed != 1:
+    if r_2sv_26_11hasCorrUsed is not True and r_2sv_26_11hasCorrUsed is not False and (not isinstance(r_2sv_26_11hasCorrUsed, int) or r_2sv_26_11hasCorrUsed != 0 and r_2sv_26_11hasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[26].hasCorrUsed', r_2sv_26_11hasCorrUsed, 'type', 'a bool')
     r_2sv_26_11hasCorrUsed = 1 if r_2sv_26_11hasCorrUsed else 0
     r_2sv_26_11flags_spare = 0
@@ -4914,6 +4968,8 @@ def _raw_nav_sat_2sv_26(g_2sv_26: Any) -> tuple[Any, ...]:
 
 
 def _raw_nav_sat_2sv_27(g_2sv_27: Any) -> tuple[Any, ...]:
+    if g_2sv_27.__class__ is not NavSatSv and not isinstance(g_2sv_27, NavSatSv):
+        raise _enc('nav_sat', 'sv[27]', g_2sv_27, 'type', 'a NavSatSv')
     r_2sv_27_6gnssId = g_2sv_27.gnssId
     if r_2sv_27_6gnssId.__class__ is not int or not 0 <= r_2sv_27_6gnssId <= 255:
         if not isinstance(r_2sv_27_6gnssId, int) or r_2sv_27_6gnssId.__class__ is bool:
@@ -4958,7 +5014,7 @@ def _raw_nav_sat_2sv_27(g_2sv_27: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_27_10qualityInd <= 7:
             raise _enc('nav_sat', 'sv[27].qualityInd', r_2sv_27_10qualityInd, 'range', '0..7', None)
     r_2sv_27_6svUsed: Any = g_2sv_27.svUsed
-    if r_2sv_27_6svUsed is not True and r_2sv_27_6svUsed is not False and r_2sv_27_6svUsed != 0 and r_2sv_27_6svUsed != 1:
+    if r_2sv_27_6svUsed is not True and r_2sv_27_6svUsed is not False and (not isinstance(r_2sv_27_6svUsed, int) or r_2sv_27_6svUsed != 0 and r_2sv_27_6svUsed != 1):
         raise _enc('nav_sat', 'sv[27].svUsed', r_2sv_27_6svUsed, 'type', 'a bool')
     r_2sv_27_6svUsed = 1 if r_2sv_27_6svUsed else 0
     r_2sv_27_6health = g_2sv_27.health
@@ -4968,11 +5024,11 @@ def _raw_nav_sat_2sv_27(g_2sv_27: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_27_6health <= 3:
             raise _enc('nav_sat', 'sv[27].health', r_2sv_27_6health, 'range', '0..3', None)
     r_2sv_27_8diffCorr: Any = g_2sv_27.diffCorr
-    if r_2sv_27_8diffCorr is not True and r_2sv_27_8diffCorr is not False and r_2sv_27_8diffCorr != 0 and r_2sv_27_8diffCorr != 1:
+    if r_2sv_27_8diffCorr is not True and r_2sv_27_8diffCorr is not False and (not isinstance(r_2sv_27_8diffCorr, int) or r_2sv_27_8diffCorr != 0 and r_2sv_27_8diffCorr != 1):
         raise _enc('nav_sat', 'sv[27].diffCorr', r_2sv_27_8diffCorr, 'type', 'a bool')
     r_2sv_27_8diffCorr = 1 if r_2sv_27_8diffCorr else 0
     r_2sv_27_8smoothed: Any = g_2sv_27.smoothed
-    if r_2sv_27_8smoothed is not True and r_2sv_27_8smoothed is not False and r_2sv_27_8smoothed != 0 and r_2sv_27_8smoothed != 1:
+    if r_2sv_27_8smoothed is not True and r_2sv_27_8smoothed is not False and (not isinstance(r_2sv_27_8smoothed, int) or r_2sv_27_8smoothed != 0 and r_2sv_27_8smoothed != 1):
         raise _enc('nav_sat', 'sv[27].smoothed', r_2sv_27_8smoothed, 'type', 'a bool')
     r_2sv_27_8smoothed = 1 if r_2sv_27_8smoothed else 0
     r_2sv_27_11orbitSource = g_2sv_27.orbitSource
@@ -4982,19 +5038,19 @@ def _raw_nav_sat_2sv_27(g_2sv_27: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_27_11orbitSource <= 7:
             raise _enc('nav_sat', 'sv[27].orbitSource', r_2sv_27_11orbitSource, 'range', '0..7', None)
     r_2sv_27_8ephAvail: Any = g_2sv_27.ephAvail
-    if r_2sv_27_8ephAvail is not True and r_2sv_27_8ephAvail is not False and r_2sv_27_8ephAvail != 0 and r_2sv_27_8ephAvail != 1:
+    if r_2sv_27_8ephAvail is not True and r_2sv_27_8ephAvail is not False and (not isinstance(r_2sv_27_8ephAvail, int) or r_2sv_27_8ephAvail != 0 and r_2sv_27_8ephAvail != 1):
         raise _enc('nav_sat', 'sv[27].ephAvail', r_2sv_27_8ephAvail, 'type', 'a bool')
     r_2sv_27_8ephAvail = 1 if r_2sv_27_8ephAvail else 0
     r_2sv_27_8almAvail: Any = g_2sv_27.almAvail
-    if r_2sv_27_8almAvail is not True and r_2sv_27_8almAvail is not False and r_2sv_27_8almAvail != 0 and r_2sv_27_8almAvail != 1:
+    if r_2sv_27_8almAvail is not True and r_2sv_27_8almAvail is not False and (not isinstance(r_2sv_27_8almAvail, int) or r_2sv_27_8almAvail != 0 and r_2sv_27_8almAvail != 1):
         raise _enc('nav_sat', 'sv[27].almAvail', r_2sv_27_8almAvail, 'type', 'a bool')
     r_2sv_27_8almAvail = 1 if r_2sv_27_8almAvail else 0
     r_2sv_27_8anoAvail: Any = g_2sv_27.anoAvail
-    if r_2sv_27_8anoAvail is not True and r_2sv_27_8anoAvail is not False and r_2sv_27_8anoAvail != 0 and r_2sv_27_8anoAvail != 1:
+    if r_2sv_27_8anoAvail is not True and r_2sv_27_8anoAvail is not False and (not isinstance(r_2sv_27_8anoAvail, int) or r_2sv_27_8anoAvail != 0 and r_2sv_27_8anoAvail != 1):
         raise _enc('nav_sat', 'sv[27].anoAvail', r_2sv_27_8anoAvail, 'type', 'a bool')
     r_2sv_27_8anoAvail = 1 if r_2sv_27_8anoAvail else 0
     r_2sv_27_8aopAvail: Any = g_2sv_27.aopAvail
-    if r_2sv_27_8aopAvail is not True and r_2sv_27_8aopAvail is not False and r_2sv_27_8aopAvail != 0 and r_2sv_27_8aopAvail != 1:
+    if r_2sv_27_8aopAvail is not True and r_2sv_27_8aopAvail is not False and (not isinstance(r_2sv_27_8aopAvail, int) or r_2sv_27_8aopAvail != 0 and r_2sv_27_8aopAvail != 1):
         raise _enc('nav_sat', 'sv[27].aopAvail', r_2sv_27_8aopAvail, 'type', 'a bool')
     r_2sv_27_8aopAvail = 1 if r_2sv_27_8aopAvail else 0
     r_2sv_27_10reserved13 = g_2sv_27.reserved13
@@ -5004,43 +5060,43 @@ def _raw_nav_sat_2sv_27(g_2sv_27: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_27_10reserved13 <= 1:
             raise _enc('nav_sat', 'sv[27].reserved13', r_2sv_27_10reserved13, 'range', '0..1', None)
     r_2sv_27_12sbasCorrUsed: Any = g_2sv_27.sbasCorrUsed
-    if r_2sv_27_12sbasCorrUsed is not True and r_2sv_27_12sbasCorrUsed is not False and r_2sv_27_12sbasCorrUsed != 0 and r_2sv_27_12sbasCorrUsed != 1:
+    if r_2sv_27_12sbasCorrUsed is not True and r_2sv_27_12sbasCorrUsed is not False and (not isinstance(r_2sv_27_12sbasCorrUsed, int) or r_2sv_27_12sbasCorrUsed != 0 and r_2sv_27_12sbasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[27].sbasCorrUsed', r_2sv_27_12sbasCorrUsed, 'type', 'a bool')
     r_2sv_27_12sbasCorrUsed = 1 if r_2sv_27_12sbasCorrUsed else 0
     r_2sv_27_12rtcmCorrUsed: Any = g_2sv_27.rtcmCorrUsed
-    if r_2sv_27_12rtcmCorrUsed is not True and r_2sv_27_12rtcmCorrUsed is not False and r_2sv_27_12rtcmCorrUsed != 0 and r_2sv_27_12rtcmCorrUsed != 1:
+    if r_2sv_27_12rtcmCorrUsed is not True and r_2sv_27_12rtcmCorrUsed is not False and (not isinstance(r_2sv_27_12rtcmCorrUsed, int) or r_2sv_27_12rtcmCorrUsed != 0 and r_2sv_27_12rtcmCorrUsed != 1):
         raise _enc('nav_sat', 'sv[27].rtcmCorrUsed', r_2sv_27_12rtcmCorrUsed, 'type', 'a bool')
     r_2sv_27_12rtcmCorrUsed = 1 if r_2sv_27_12rtcmCorrUsed else 0
     r_2sv_27_12slasCorrUsed: Any = g_2sv_27.slasCorrUsed
-    if r_2sv_27_12slasCorrUsed is not True and r_2sv_27_12slasCorrUsed is not False and r_2sv_27_12slasCorrUsed != 0 and r_2sv_27_12slasCorrUsed != 1:
+    if r_2sv_27_12slasCorrUsed is not True and r_2sv_27_12slasCorrUsed is not False and (not isinstance(r_2sv_27_12slasCorrUsed, int) or r_2sv_27_12slasCorrUsed != 0 and r_2sv_27_12slasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[27].slasCorrUsed', r_2sv_27_12slasCorrUsed, 'type', 'a bool')
     r_2sv_27_12slasCorrUsed = 1 if r_2sv_27_12slasCorrUsed else 0
     r_2sv_27_14spartnCorrUsed: Any = g_2sv_27.spartnCorrUsed
-    if r_2sv_27_14spartnCorrUsed is not True and r_2sv_27_14spartnCorrUsed is not False and r_2sv_27_14spartnCorrUsed != 0 and r_2sv_27_14spartnCorrUsed != 1:
+    if r_2sv_27_14spartnCorrUsed is not True and r_2sv_27_14spartnCorrUsed is not False and (not isinstance(r_2sv_27_14spartnCorrUsed, int) or r_2sv_27_14spartnCorrUsed != 0 and r_2sv_27_14spartnCorrUsed != 1):
         raise _enc('nav_sat', 'sv[27].spartnCorrUsed', r_2sv_27_14spartnCorrUsed, 'type', 'a bool')
     r_2sv_27_14spartnCorrUsed = 1 if r_2sv_27_14spartnCorrUsed else 0
     r_2sv_27_10prCorrUsed: Any = g_2sv_27.prCorrUsed
-    if r_2sv_27_10prCorrUsed is not True and r_2sv_27_10prCorrUsed is not False and r_2sv_27_10prCorrUsed != 0 and r_2sv_27_10prCorrUsed != 1:
+    if r_2sv_27_10prCorrUsed is not True and r_2sv_27_10prCorrUsed is not False and (not isinstance(r_2sv_27_10prCorrUsed, int) or r_2sv_27_10prCorrUsed != 0 and r_2sv_27_10prCorrUsed != 1):
         raise _enc('nav_sat', 'sv[27].prCorrUsed', r_2sv_27_10prCorrUsed, 'type', 'a bool')
     r_2sv_27_10prCorrUsed = 1 if r_2sv_27_10prCorrUsed else 0
     r_2sv_27_10crCorrUsed: Any = g_2sv_27.crCorrUsed
-    if r_2sv_27_10crCorrUsed is not True and r_2sv_27_10crCorrUsed is not False and r_2sv_27_10crCorrUsed != 0 and r_2sv_27_10crCorrUsed != 1:
+    if r_2sv_27_10crCorrUsed is not True and r_2sv_27_10crCorrUsed is not False and (not isinstance(r_2sv_27_10crCorrUsed, int) or r_2sv_27_10crCorrUsed != 0 and r_2sv_27_10crCorrUsed != 1):
         raise _enc('nav_sat', 'sv[27].crCorrUsed', r_2sv_27_10crCorrUsed, 'type', 'a bool')
     r_2sv_27_10crCorrUsed = 1 if r_2sv_27_10crCorrUsed else 0
     r_2sv_27_10doCorrUsed: Any = g_2sv_27.doCorrUsed
-    if r_2sv_27_10doCorrUsed is not True and r_2sv_27_10doCorrUsed is not False and r_2sv_27_10doCorrUsed != 0 and r_2sv_27_10doCorrUsed != 1:
+    if r_2sv_27_10doCorrUsed is not True and r_2sv_27_10doCorrUsed is not False and (not isinstance(r_2sv_27_10doCorrUsed, int) or r_2sv_27_10doCorrUsed != 0 and r_2sv_27_10doCorrUsed != 1):
         raise _enc('nav_sat', 'sv[27].doCorrUsed', r_2sv_27_10doCorrUsed, 'type', 'a bool')
     r_2sv_27_10doCorrUsed = 1 if r_2sv_27_10doCorrUsed else 0
     r_2sv_27_12clasCorrUsed: Any = g_2sv_27.clasCorrUsed
-    if r_2sv_27_12clasCorrUsed is not True and r_2sv_27_12clasCorrUsed is not False and r_2sv_27_12clasCorrUsed != 0 and r_2sv_27_12clasCorrUsed != 1:
+    if r_2sv_27_12clasCorrUsed is not True and r_2sv_27_12clasCorrUsed is not False and (not isinstance(r_2sv_27_12clasCorrUsed, int) or r_2sv_27_12clasCorrUsed != 0 and r_2sv_27_12clasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[27].clasCorrUsed', r_2sv_27_12clasCorrUsed, 'type', 'a bool')
     r_2sv_27_12clasCorrUsed = 1 if r_2sv_27_12clasCorrUsed else 0
     r_2sv_27_11lppCorrUsed: Any = g_2sv_27.lppCorrUsed
-    if r_2sv_27_11lppCorrUsed is not True and r_2sv_27_11lppCorrUsed is not False and r_2sv_27_11lppCorrUsed != 0 and r_2sv_27_11lppCorrUsed != 1:
+    if r_2sv_27_11lppCorrUsed is not True and r_2sv_27_11lppCorrUsed is not False and (not isinstance(r_2sv_27_11lppCorrUsed, int) or r_2sv_27_11lppCorrUsed != 0 and r_2sv_27_11lppCorrUsed != 1):
         raise _enc('nav_sat', 'sv[27].lppCorrUsed', r_2sv_27_11lppCorrUsed, 'type', 'a bool')
     r_2sv_27_11lppCorrUsed = 1 if r_2sv_27_11lppCorrUsed else 0
     r_2sv_27_11hasCorrUsed: Any = g_2sv_27.hasCorrUsed
-    if r_2sv_27_11hasCorrUsed is not True and r_2sv_27_11hasCorrUsed is not False and r_2sv_27_11hasCorrUsed != 0 and r_2sv_27_11hasCorrUsed != 1:
+    if r_2sv_27_11hasCorrUsed is not True and r_2sv_27_11hasCorrUsed is not False and (not isinstance(r_2sv_27_11hasCorrUsed, int) or r_2sv_27_11hasCorrUsed != 0 and r_2sv_27_11hasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[27].hasCorrUsed', r_2sv_27_11hasCorrUsed, 'type', 'a bool')
     r_2sv_27_11hasCorrUsed = 1 if r_2sv_27_11hasCorrUsed else 0
     r_2sv_27_11flags_spare = 0
@@ -5048,6 +5104,8 @@ def _raw_nav_sat_2sv_27(g_2sv_27: Any) -> tuple[Any, ...]:
 
 
 def _raw_nav_sat_2sv_28(g_2sv_28: Any) -> tuple[Any, ...]:
+    if g_2sv_28.__class__ is not NavSatSv and not isinstance(g_2sv_28, NavSatSv):
+        raise _enc('nav_sat', 'sv[28]', g_2sv_28, 'type', 'a NavSatSv')
     r_2sv_28_6gnssId = g_2sv_28.gnssId
     if r_2sv_28_6gnssId.__class__ is not int or not 0 <= r_2sv_28_6gnssId <= 255:
         if not isinstance(r_2sv_28_6gnssId, int) or r_2sv_28_6gnssId.__class__ is bool:
@@ -5092,7 +5150,7 @@ def _raw_nav_sat_2sv_28(g_2sv_28: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_28_10qualityInd <= 7:
             raise _enc('nav_sat', 'sv[28].qualityInd', r_2sv_28_10qualityInd, 'range', '0..7', None)
     r_2sv_28_6svUsed: Any = g_2sv_28.svUsed
-    if r_2sv_28_6svUsed is not True and r_2sv_28_6svUsed is not False and r_2sv_28_6svUsed != 0 and r_2sv_28_6svUsed != 1:
+    if r_2sv_28_6svUsed is not True and r_2sv_28_6svUsed is not False and (not isinstance(r_2sv_28_6svUsed, int) or r_2sv_28_6svUsed != 0 and r_2sv_28_6svUsed != 1):
         raise _enc('nav_sat', 'sv[28].svUsed', r_2sv_28_6svUsed, 'type', 'a bool')
     r_2sv_28_6svUsed = 1 if r_2sv_28_6svUsed else 0
     r_2sv_28_6health = g_2sv_28.health
@@ -5102,11 +5160,11 @@ def _raw_nav_sat_2sv_28(g_2sv_28: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_28_6health <= 3:
             raise _enc('nav_sat', 'sv[28].health', r_2sv_28_6health, 'range', '0..3', None)
     r_2sv_28_8diffCorr: Any = g_2sv_28.diffCorr
-    if r_2sv_28_8diffCorr is not True and r_2sv_28_8diffCorr is not False and r_2sv_28_8diffCorr != 0 and r_2sv_28_8diffCorr != 1:
+    if r_2sv_28_8diffCorr is not True and r_2sv_28_8diffCorr is not False and (not isinstance(r_2sv_28_8diffCorr, int) or r_2sv_28_8diffCorr != 0 and r_2sv_28_8diffCorr != 1):
         raise _enc('nav_sat', 'sv[28].diffCorr', r_2sv_28_8diffCorr, 'type', 'a bool')
     r_2sv_28_8diffCorr = 1 if r_2sv_28_8diffCorr else 0
     r_2sv_28_8smoothed: Any = g_2sv_28.smoothed
-    if r_2sv_28_8smoothed is not True and r_2sv_28_8smoothed is not False and r_2sv_28_8smoothed != 0 and r_2sv_28_8smoothed != 1:
+    if r_2sv_28_8smoothed is not True and r_2sv_28_8smoothed is not False and (not isinstance(r_2sv_28_8smoothed, int) or r_2sv_28_8smoothed != 0 and r_2sv_28_8smoothed != 1):
         raise _enc('nav_sat', 'sv[28].smoothed', r_2sv_28_8smoothed, 'type', 'a bool')
     r_2sv_28_8smoothed = 1 if r_2sv_28_8smoothed else 0
     r_2sv_28_11orbitSource = g_2sv_28.orbitSource
@@ -5116,19 +5174,19 @@ def _raw_nav_sat_2sv_28(g_2sv_28: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_28_11orbitSource <= 7:
             raise _enc('nav_sat', 'sv[28].orbitSource', r_2sv_28_11orbitSource, 'range', '0..7', None)
     r_2sv_28_8ephAvail: Any = g_2sv_28.ephAvail
-    if r_2sv_28_8ephAvail is not True and r_2sv_28_8ephAvail is not False and r_2sv_28_8ephAvail != 0 and r_2sv_28_8ephAvail != 1:
+    if r_2sv_28_8ephAvail is not True and r_2sv_28_8ephAvail is not False and (not isinstance(r_2sv_28_8ephAvail, int) or r_2sv_28_8ephAvail != 0 and r_2sv_28_8ephAvail != 1):
         raise _enc('nav_sat', 'sv[28].ephAvail', r_2sv_28_8ephAvail, 'type', 'a bool')
     r_2sv_28_8ephAvail = 1 if r_2sv_28_8ephAvail else 0
     r_2sv_28_8almAvail: Any = g_2sv_28.almAvail
-    if r_2sv_28_8almAvail is not True and r_2sv_28_8almAvail is not False and r_2sv_28_8almAvail != 0 and r_2sv_28_8almAvail != 1:
+    if r_2sv_28_8almAvail is not True and r_2sv_28_8almAvail is not False and (not isinstance(r_2sv_28_8almAvail, int) or r_2sv_28_8almAvail != 0 and r_2sv_28_8almAvail != 1):
         raise _enc('nav_sat', 'sv[28].almAvail', r_2sv_28_8almAvail, 'type', 'a bool')
     r_2sv_28_8almAvail = 1 if r_2sv_28_8almAvail else 0
     r_2sv_28_8anoAvail: Any = g_2sv_28.anoAvail
-    if r_2sv_28_8anoAvail is not True and r_2sv_28_8anoAvail is not False and r_2sv_28_8anoAvail != 0 and r_2sv_28_8anoAvail != 1:
+    if r_2sv_28_8anoAvail is not True and r_2sv_28_8anoAvail is not False and (not isinstance(r_2sv_28_8anoAvail, int) or r_2sv_28_8anoAvail != 0 and r_2sv_28_8anoAvail != 1):
         raise _enc('nav_sat', 'sv[28].anoAvail', r_2sv_28_8anoAvail, 'type', 'a bool')
     r_2sv_28_8anoAvail = 1 if r_2sv_28_8anoAvail else 0
     r_2sv_28_8aopAvail: Any = g_2sv_28.aopAvail
-    if r_2sv_28_8aopAvail is not True and r_2sv_28_8aopAvail is not False and r_2sv_28_8aopAvail != 0 and r_2sv_28_8aopAvail != 1:
+    if r_2sv_28_8aopAvail is not True and r_2sv_28_8aopAvail is not False and (not isinstance(r_2sv_28_8aopAvail, int) or r_2sv_28_8aopAvail != 0 and r_2sv_28_8aopAvail != 1):
         raise _enc('nav_sat', 'sv[28].aopAvail', r_2sv_28_8aopAvail, 'type', 'a bool')
     r_2sv_28_8aopAvail = 1 if r_2sv_28_8aopAvail else 0
     r_2sv_28_10reserved13 = g_2sv_28.reserved13
@@ -5138,43 +5196,43 @@ def _raw_nav_sat_2sv_28(g_2sv_28: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_28_10reserved13 <= 1:
             raise _enc('nav_sat', 'sv[28].reserved13', r_2sv_28_10reserved13, 'range', '0..1', None)
     r_2sv_28_12sbasCorrUsed: Any = g_2sv_28.sbasCorrUsed
-    if r_2sv_28_12sbasCorrUsed is not True and r_2sv_28_12sbasCorrUsed is not False and r_2sv_28_12sbasCorrUsed != 0 and r_2sv_28_12sbasCorrUsed != 1:
+    if r_2sv_28_12sbasCorrUsed is not True and r_2sv_28_12sbasCorrUsed is not False and (not isinstance(r_2sv_28_12sbasCorrUsed, int) or r_2sv_28_12sbasCorrUsed != 0 and r_2sv_28_12sbasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[28].sbasCorrUsed', r_2sv_28_12sbasCorrUsed, 'type', 'a bool')
     r_2sv_28_12sbasCorrUsed = 1 if r_2sv_28_12sbasCorrUsed else 0
     r_2sv_28_12rtcmCorrUsed: Any = g_2sv_28.rtcmCorrUsed
-    if r_2sv_28_12rtcmCorrUsed is not True and r_2sv_28_12rtcmCorrUsed is not False and r_2sv_28_12rtcmCorrUsed != 0 and r_2sv_28_12rtcmCorrUsed != 1:
+    if r_2sv_28_12rtcmCorrUsed is not True and r_2sv_28_12rtcmCorrUsed is not False and (not isinstance(r_2sv_28_12rtcmCorrUsed, int) or r_2sv_28_12rtcmCorrUsed != 0 and r_2sv_28_12rtcmCorrUsed != 1):
         raise _enc('nav_sat', 'sv[28].rtcmCorrUsed', r_2sv_28_12rtcmCorrUsed, 'type', 'a bool')
     r_2sv_28_12rtcmCorrUsed = 1 if r_2sv_28_12rtcmCorrUsed else 0
     r_2sv_28_12slasCorrUsed: Any = g_2sv_28.slasCorrUsed
-    if r_2sv_28_12slasCorrUsed is not True and r_2sv_28_12slasCorrUsed is not False and r_2sv_28_12slasCorrUsed != 0 and r_2sv_28_12slasCorrUsed != 1:
+    if r_2sv_28_12slasCorrUsed is not True and r_2sv_28_12slasCorrUsed is not False and (not isinstance(r_2sv_28_12slasCorrUsed, int) or r_2sv_28_12slasCorrUsed != 0 and r_2sv_28_12slasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[28].slasCorrUsed', r_2sv_28_12slasCorrUsed, 'type', 'a bool')
     r_2sv_28_12slasCorrUsed = 1 if r_2sv_28_12slasCorrUsed else 0
     r_2sv_28_14spartnCorrUsed: Any = g_2sv_28.spartnCorrUsed
-    if r_2sv_28_14spartnCorrUsed is not True and r_2sv_28_14spartnCorrUsed is not False and r_2sv_28_14spartnCorrUsed != 0 and r_2sv_28_14spartnCorrUsed != 1:
+    if r_2sv_28_14spartnCorrUsed is not True and r_2sv_28_14spartnCorrUsed is not False and (not isinstance(r_2sv_28_14spartnCorrUsed, int) or r_2sv_28_14spartnCorrUsed != 0 and r_2sv_28_14spartnCorrUsed != 1):
         raise _enc('nav_sat', 'sv[28].spartnCorrUsed', r_2sv_28_14spartnCorrUsed, 'type', 'a bool')
     r_2sv_28_14spartnCorrUsed = 1 if r_2sv_28_14spartnCorrUsed else 0
     r_2sv_28_10prCorrUsed: Any = g_2sv_28.prCorrUsed
-    if r_2sv_28_10prCorrUsed is not True and r_2sv_28_10prCorrUsed is not False and r_2sv_28_10prCorrUsed != 0 and r_2sv_28_10prCorrUsed != 1:
+    if r_2sv_28_10prCorrUsed is not True and r_2sv_28_10prCorrUsed is not False and (not isinstance(r_2sv_28_10prCorrUsed, int) or r_2sv_28_10prCorrUsed != 0 and r_2sv_28_10prCorrUsed != 1):
         raise _enc('nav_sat', 'sv[28].prCorrUsed', r_2sv_28_10prCorrUsed, 'type', 'a bool')
     r_2sv_28_10prCorrUsed = 1 if r_2sv_28_10prCorrUsed else 0
     r_2sv_28_10crCorrUsed: Any = g_2sv_28.crCorrUsed
-    if r_2sv_28_10crCorrUsed is not True and r_2sv_28_10crCorrUsed is not False and r_2sv_28_10crCorrUsed != 0 and r_2sv_28_10crCorrUsed != 1:
+    if r_2sv_28_10crCorrUsed is not True and r_2sv_28_10crCorrUsed is not False and (not isinstance(r_2sv_28_10crCorrUsed, int) or r_2sv_28_10crCorrUsed != 0 and r_2sv_28_10crCorrUsed != 1):
         raise _enc('nav_sat', 'sv[28].crCorrUsed', r_2sv_28_10crCorrUsed, 'type', 'a bool')
     r_2sv_28_10crCorrUsed = 1 if r_2sv_28_10crCorrUsed else 0
     r_2sv_28_10doCorrUsed: Any = g_2sv_28.doCorrUsed
-    if r_2sv_28_10doCorrUsed is not True and r_2sv_28_10doCorrUsed is not False and r_2sv_28_10doCorrUsed != 0 and r_2sv_28_10doCorrUsed != 1:
+    if r_2sv_28_10doCorrUsed is not True and r_2sv_28_10doCorrUsed is not False and (not isinstance(r_2sv_28_10doCorrUsed, int) or r_2sv_28_10doCorrUsed != 0 and r_2sv_28_10doCorrUsed != 1):
         raise _enc('nav_sat', 'sv[28].doCorrUsed', r_2sv_28_10doCorrUsed, 'type', 'a bool')
     r_2sv_28_10doCorrUsed = 1 if r_2sv_28_10doCorrUsed else 0
     r_2sv_28_12clasCorrUsed: Any = g_2sv_28.clasCorrUsed
-    if r_2sv_28_12clasCorrUsed is not True and r_2sv_28_12clasCorrUsed is not False and r_2sv_28_12clasCorrUsed != 0 and r_2sv_28_12clasCorrUsed != 1:
+    if r_2sv_28_12clasCorrUsed is not True and r_2sv_28_12clasCorrUsed is not False and (not isinstance(r_2sv_28_12clasCorrUsed, int) or r_2sv_28_12clasCorrUsed != 0 and r_2sv_28_12clasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[28].clasCorrUsed', r_2sv_28_12clasCorrUsed, 'type', 'a bool')
     r_2sv_28_12clasCorrUsed = 1 if r_2sv_28_12clasCorrUsed else 0
     r_2sv_28_11lppCorrUsed: Any = g_2sv_28.lppCorrUsed
-    if r_2sv_28_11lppCorrUsed is not True and r_2sv_28_11lppCorrUsed is not False and r_2sv_28_11lppCorrUsed != 0 and r_2sv_28_11lppCorrUsed != 1:
+    if r_2sv_28_11lppCorrUsed is not True and r_2sv_28_11lppCorrUsed is not False and (not isinstance(r_2sv_28_11lppCorrUsed, int) or r_2sv_28_11lppCorrUsed != 0 and r_2sv_28_11lppCorrUsed != 1):
         raise _enc('nav_sat', 'sv[28].lppCorrUsed', r_2sv_28_11lppCorrUsed, 'type', 'a bool')
     r_2sv_28_11lppCorrUsed = 1 if r_2sv_28_11lppCorrUsed else 0
     r_2sv_28_11hasCorrUsed: Any = g_2sv_28.hasCorrUsed
-    if r_2sv_28_11hasCorrUsed is not True and r_2sv_28_11hasCorrUsed is not False and r_2sv_28_11hasCorrUsed != 0 and r_2sv_28_11hasCorrUsed != 1:
+    if r_2sv_28_11hasCorrUsed is not True and r_2sv_28_11hasCorrUsed is not False and (not isinstance(r_2sv_28_11hasCorrUsed, int) or r_2sv_28_11hasCorrUsed != 0 and r_2sv_28_11hasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[28].hasCorrUsed', r_2sv_28_11hasCorrUsed, 'type', 'a bool')
     r_2sv_28_11hasCorrUsed = 1 if r_2sv_28_11hasCorrUsed else 0
     r_2sv_28_11flags_spare = 0
@@ -5182,6 +5240,8 @@ def _raw_nav_sat_2sv_28(g_2sv_28: Any) -> tuple[Any, ...]:
 
 
 def _raw_nav_sat_2sv_29(g_2sv_29: Any) -> tuple[Any, ...]:
+    if g_2sv_29.__class__ is not NavSatSv and not isinstance(g_2sv_29, NavSatSv):
+        raise _enc('nav_sat', 'sv[29]', g_2sv_29, 'type', 'a NavSatSv')
     r_2sv_29_6gnssId = g_2sv_29.gnssId
     if r_2sv_29_6gnssId.__class__ is not int or not 0 <= r_2sv_29_6gnssId <= 255:
         if not isinstance(r_2sv_29_6gnssId, int) or r_2sv_29_6gnssId.__class__ is bool:
@@ -5226,7 +5286,7 @@ def _raw_nav_sat_2sv_29(g_2sv_29: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_29_10qualityInd <= 7:
             raise _enc('nav_sat', 'sv[29].qualityInd', r_2sv_29_10qualityInd, 'range', '0..7', None)
     r_2sv_29_6svUsed: Any = g_2sv_29.svUsed
-    if r_2sv_29_6svUsed is not True and r_2sv_29_6svUsed is not False and r_2sv_29_6svUsed != 0 and r_2sv_29_6svUsed != 1:
+    if r_2sv_29_6svUsed is not True and r_2sv_29_6svUsed is not False and (not isinstance(r_2sv_29_6svUsed, int) or r_2sv_29_6svUsed != 0 and r_2sv_29_6svUsed != 1):
         raise _enc('nav_sat', 'sv[29].svUsed', r_2sv_29_6svUsed, 'type', 'a bool')
     r_2sv_29_6svUsed = 1 if r_2sv_29_6svUsed else 0
     r_2sv_29_6health = g_2sv_29.health
@@ -5236,11 +5296,11 @@ def _raw_nav_sat_2sv_29(g_2sv_29: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_29_6health <= 3:
             raise _enc('nav_sat', 'sv[29].health', r_2sv_29_6health, 'range', '0..3', None)
     r_2sv_29_8diffCorr: Any = g_2sv_29.diffCorr
-    if r_2sv_29_8diffCorr is not True and r_2sv_29_8diffCorr is not False and r_2sv_29_8diffCorr != 0 and r_2sv_29_8diffCorr != 1:
+    if r_2sv_29_8diffCorr is not True and r_2sv_29_8diffCorr is not False and (not isinstance(r_2sv_29_8diffCorr, int) or r_2sv_29_8diffCorr != 0 and r_2sv_29_8diffCorr != 1):
         raise _enc('nav_sat', 'sv[29].diffCorr', r_2sv_29_8diffCorr, 'type', 'a bool')
     r_2sv_29_8diffCorr = 1 if r_2sv_29_8diffCorr else 0
     r_2sv_29_8smoothed: Any = g_2sv_29.smoothed
-    if r_2sv_29_8smoothed is not True and r_2sv_29_8smoothed is not False and r_2sv_29_8smoothed != 0 and r_2sv_29_8smoothed != 1:
+    if r_2sv_29_8smoothed is not True and r_2sv_29_8smoothed is not False and (not isinstance(r_2sv_29_8smoothed, int) or r_2sv_29_8smoothed != 0 and r_2sv_29_8smoothed != 1):
         raise _enc('nav_sat', 'sv[29].smoothed', r_2sv_29_8smoothed, 'type', 'a bool')
     r_2sv_29_8smoothed = 1 if r_2sv_29_8smoothed else 0
     r_2sv_29_11orbitSource = g_2sv_29.orbitSource
@@ -5250,19 +5310,19 @@ def _raw_nav_sat_2sv_29(g_2sv_29: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_29_11orbitSource <= 7:
             raise _enc('nav_sat', 'sv[29].orbitSource', r_2sv_29_11orbitSource, 'range', '0..7', None)
     r_2sv_29_8ephAvail: Any = g_2sv_29.ephAvail
-    if r_2sv_29_8ephAvail is not True and r_2sv_29_8ephAvail is not False and r_2sv_29_8ephAvail != 0 and r_2sv_29_8ephAvail != 1:
+    if r_2sv_29_8ephAvail is not True and r_2sv_29_8ephAvail is not False and (not isinstance(r_2sv_29_8ephAvail, int) or r_2sv_29_8ephAvail != 0 and r_2sv_29_8ephAvail != 1):
         raise _enc('nav_sat', 'sv[29].ephAvail', r_2sv_29_8ephAvail, 'type', 'a bool')
     r_2sv_29_8ephAvail = 1 if r_2sv_29_8ephAvail else 0
     r_2sv_29_8almAvail: Any = g_2sv_29.almAvail
-    if r_2sv_29_8almAvail is not True and r_2sv_29_8almAvail is not False and r_2sv_29_8almAvail != 0 and r_2sv_29_8almAvail != 1:
+    if r_2sv_29_8almAvail is not True and r_2sv_29_8almAvail is not False and (not isinstance(r_2sv_29_8almAvail, int) or r_2sv_29_8almAvail != 0 and r_2sv_29_8almAvail != 1):
         raise _enc('nav_sat', 'sv[29].almAvail', r_2sv_29_8almAvail, 'type', 'a bool')
     r_2sv_29_8almAvail = 1 if r_2sv_29_8almAvail else 0
     r_2sv_29_8anoAvail: Any = g_2sv_29.anoAvail
-    if r_2sv_29_8anoAvail is not True and r_2sv_29_8anoAvail is not False and r_2sv_29_8anoAvail != 0 and r_2sv_29_8anoAvail != 1:
+    if r_2sv_29_8anoAvail is not True and r_2sv_29_8anoAvail is not False and (not isinstance(r_2sv_29_8anoAvail, int) or r_2sv_29_8anoAvail != 0 and r_2sv_29_8anoAvail != 1):
         raise _enc('nav_sat', 'sv[29].anoAvail', r_2sv_29_8anoAvail, 'type', 'a bool')
     r_2sv_29_8anoAvail = 1 if r_2sv_29_8anoAvail else 0
     r_2sv_29_8aopAvail: Any = g_2sv_29.aopAvail
-    if r_2sv_29_8aopAvail is not True and r_2sv_29_8aopAvail is not False and r_2sv_29_8aopAvail != 0 and r_2sv_29_8aopAvail != 1:
+    if r_2sv_29_8aopAvail is not True and r_2sv_29_8aopAvail is not False and (not isinstance(r_2sv_29_8aopAvail, int) or r_2sv_29_8aopAvail != 0 and r_2sv_29_8aopAvail != 1):
         raise _enc('nav_sat', 'sv[29].aopAvail', r_2sv_29_8aopAvail, 'type', 'a bool')
     r_2sv_29_8aopAvail = 1 if r_2sv_29_8aopAvail else 0
     r_2sv_29_10reserved13 = g_2sv_29.reserved13
@@ -5272,43 +5332,43 @@ def _raw_nav_sat_2sv_29(g_2sv_29: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_29_10reserved13 <= 1:
             raise _enc('nav_sat', 'sv[29].reserved13', r_2sv_29_10reserved13, 'range', '0..1', None)
     r_2sv_29_12sbasCorrUsed: Any = g_2sv_29.sbasCorrUsed
-    if r_2sv_29_12sbasCorrUsed is not True and r_2sv_29_12sbasCorrUsed is not False and r_2sv_29_12sbasCorrUsed != 0 and r_2sv_29_12sbasCorrUsed != 1:
+    if r_2sv_29_12sbasCorrUsed is not True and r_2sv_29_12sbasCorrUsed is not False and (not isinstance(r_2sv_29_12sbasCorrUsed, int) or r_2sv_29_12sbasCorrUsed != 0 and r_2sv_29_12sbasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[29].sbasCorrUsed', r_2sv_29_12sbasCorrUsed, 'type', 'a bool')
     r_2sv_29_12sbasCorrUsed = 1 if r_2sv_29_12sbasCorrUsed else 0
     r_2sv_29_12rtcmCorrUsed: Any = g_2sv_29.rtcmCorrUsed
-    if r_2sv_29_12rtcmCorrUsed is not True and r_2sv_29_12rtcmCorrUsed is not False and r_2sv_29_12rtcmCorrUsed != 0 and r_2sv_29_12rtcmCorrUsed != 1:
+    if r_2sv_29_12rtcmCorrUsed is not True and r_2sv_29_12rtcmCorrUsed is not False and (not isinstance(r_2sv_29_12rtcmCorrUsed, int) or r_2sv_29_12rtcmCorrUsed != 0 and r_2sv_29_12rtcmCorrUsed != 1):
         raise _enc('nav_sat', 'sv[29].rtcmCorrUsed', r_2sv_29_12rtcmCorrUsed, 'type', 'a bool')
     r_2sv_29_12rtcmCorrUsed = 1 if r_2sv_29_12rtcmCorrUsed else 0
     r_2sv_29_12slasCorrUsed: Any = g_2sv_29.slasCorrUsed
-    if r_2sv_29_12slasCorrUsed is not True and r_2sv_29_12slasCorrUsed is not False and r_2sv_29_12slasCorrUsed != 0 and r_2sv_29_12slasCorrUsed != 1:
+    if r_2sv_29_12slasCorrUsed is not True and r_2sv_29_12slasCorrUsed is not False and (not isinstance(r_2sv_29_12slasCorrUsed, int) or r_2sv_29_12slasCorrUsed != 0 and r_2sv_29_12slasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[29].slasCorrUsed', r_2sv_29_12slasCorrUsed, 'type', 'a bool')
     r_2sv_29_12slasCorrUsed = 1 if r_2sv_29_12slasCorrUsed else 0
     r_2sv_29_14spartnCorrUsed: Any = g_2sv_29.spartnCorrUsed
-    if r_2sv_29_14spartnCorrUsed is not True and r_2sv_29_14spartnCorrUsed is not False and r_2sv_29_14spartnCorrUsed != 0 and r_2sv_29_14spartnCorrUsed != 1:
+    if r_2sv_29_14spartnCorrUsed is not True and r_2sv_29_14spartnCorrUsed is not False and (not isinstance(r_2sv_29_14spartnCorrUsed, int) or r_2sv_29_14spartnCorrUsed != 0 and r_2sv_29_14spartnCorrUsed != 1):
         raise _enc('nav_sat', 'sv[29].spartnCorrUsed', r_2sv_29_14spartnCorrUsed, 'type', 'a bool')
     r_2sv_29_14spartnCorrUsed = 1 if r_2sv_29_14spartnCorrUsed else 0
     r_2sv_29_10prCorrUsed: Any = g_2sv_29.prCorrUsed
-    if r_2sv_29_10prCorrUsed is not True and r_2sv_29_10prCorrUsed is not False and r_2sv_29_10prCorrUsed != 0 and r_2sv_29_10prCorrUsed != 1:
+    if r_2sv_29_10prCorrUsed is not True and r_2sv_29_10prCorrUsed is not False and (not isinstance(r_2sv_29_10prCorrUsed, int) or r_2sv_29_10prCorrUsed != 0 and r_2sv_29_10prCorrUsed != 1):
         raise _enc('nav_sat', 'sv[29].prCorrUsed', r_2sv_29_10prCorrUsed, 'type', 'a bool')
     r_2sv_29_10prCorrUsed = 1 if r_2sv_29_10prCorrUsed else 0
     r_2sv_29_10crCorrUsed: Any = g_2sv_29.crCorrUsed
-    if r_2sv_29_10crCorrUsed is not True and r_2sv_29_10crCorrUsed is not False and r_2sv_29_10crCorrUsed != 0 and r_2sv_29_10crCorrUsed != 1:
+    if r_2sv_29_10crCorrUsed is not True and r_2sv_29_10crCorrUsed is not False and (not isinstance(r_2sv_29_10crCorrUsed, int) or r_2sv_29_10crCorrUsed != 0 and r_2sv_29_10crCorrUsed != 1):
         raise _enc('nav_sat', 'sv[29].crCorrUsed', r_2sv_29_10crCorrUsed, 'type', 'a bool')
     r_2sv_29_10crCorrUsed = 1 if r_2sv_29_10crCorrUsed else 0
     r_2sv_29_10doCorrUsed: Any = g_2sv_29.doCorrUsed
-    if r_2sv_29_10doCorrUsed is not True and r_2sv_29_10doCorrUsed is not False and r_2sv_29_10doCorrUsed != 0 and r_2sv_29_10doCorrUsed != 1:
+    if r_2sv_29_10doCorrUsed is not True and r_2sv_29_10doCorrUsed is not False and (not isinstance(r_2sv_29_10doCorrUsed, int) or r_2sv_29_10doCorrUsed != 0 and r_2sv_29_10doCorrUsed != 1):
         raise _enc('nav_sat', 'sv[29].doCorrUsed', r_2sv_29_10doCorrUsed, 'type', 'a bool')
     r_2sv_29_10doCorrUsed = 1 if r_2sv_29_10doCorrUsed else 0
     r_2sv_29_12clasCorrUsed: Any = g_2sv_29.clasCorrUsed
-    if r_2sv_29_12clasCorrUsed is not True and r_2sv_29_12clasCorrUsed is not False and r_2sv_29_12clasCorrUsed != 0 and r_2sv_29_12clasCorrUsed != 1:
+    if r_2sv_29_12clasCorrUsed is not True and r_2sv_29_12clasCorrUsed is not False and (not isinstance(r_2sv_29_12clasCorrUsed, int) or r_2sv_29_12clasCorrUsed != 0 and r_2sv_29_12clasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[29].clasCorrUsed', r_2sv_29_12clasCorrUsed, 'type', 'a bool')
     r_2sv_29_12clasCorrUsed = 1 if r_2sv_29_12clasCorrUsed else 0
     r_2sv_29_11lppCorrUsed: Any = g_2sv_29.lppCorrUsed
-    if r_2sv_29_11lppCorrUsed is not True and r_2sv_29_11lppCorrUsed is not False and r_2sv_29_11lppCorrUsed != 0 and r_2sv_29_11lppCorrUsed != 1:
+    if r_2sv_29_11lppCorrUsed is not True and r_2sv_29_11lppCorrUsed is not False and (not isinstance(r_2sv_29_11lppCorrUsed, int) or r_2sv_29_11lppCorrUsed != 0 and r_2sv_29_11lppCorrUsed != 1):
         raise _enc('nav_sat', 'sv[29].lppCorrUsed', r_2sv_29_11lppCorrUsed, 'type', 'a bool')
     r_2sv_29_11lppCorrUsed = 1 if r_2sv_29_11lppCorrUsed else 0
     r_2sv_29_11hasCorrUsed: Any = g_2sv_29.hasCorrUsed
-    if r_2sv_29_11hasCorrUsed is not True and r_2sv_29_11hasCorrUsed is not False and r_2sv_29_11hasCorrUsed != 0 and r_2sv_29_11hasCorrUsed != 1:
+    if r_2sv_29_11hasCorrUsed is not True and r_2sv_29_11hasCorrUsed is not False and (not isinstance(r_2sv_29_11hasCorrUsed, int) or r_2sv_29_11hasCorrUsed != 0 and r_2sv_29_11hasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[29].hasCorrUsed', r_2sv_29_11hasCorrUsed, 'type', 'a bool')
     r_2sv_29_11hasCorrUsed = 1 if r_2sv_29_11hasCorrUsed else 0
     r_2sv_29_11flags_spare = 0
@@ -5316,6 +5376,8 @@ def _raw_nav_sat_2sv_29(g_2sv_29: Any) -> tuple[Any, ...]:
 
 
 def _raw_nav_sat_2sv_30(g_2sv_30: Any) -> tuple[Any, ...]:
+    if g_2sv_30.__class__ is not NavSatSv and not isinstance(g_2sv_30, NavSatSv):
+        raise _enc('nav_sat', 'sv[30]', g_2sv_30, 'type', 'a NavSatSv')
     r_2sv_30_6gnssId = g_2sv_30.gnssId
     if r_2sv_30_6gnssId.__class__ is not int or not 0 <= r_2sv_30_6gnssId <= 255:
         if not isinstance(r_2sv_30_6gnssId, int) or r_2sv_30_6gnssId.__class__ is bool:
@@ -5360,7 +5422,7 @@ def _raw_nav_sat_2sv_30(g_2sv_30: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_30_10qualityInd <= 7:
             raise _enc('nav_sat', 'sv[30].qualityInd', r_2sv_30_10qualityInd, 'range', '0..7', None)
     r_2sv_30_6svUsed: Any = g_2sv_30.svUsed
-    if r_2sv_30_6svUsed is not True and r_2sv_30_6svUsed is not False and r_2sv_30_6svUsed != 0 and r_2sv_30_6svUsed != 1:
+    if r_2sv_30_6svUsed is not True and r_2sv_30_6svUsed is not False and (not isinstance(r_2sv_30_6svUsed, int) or r_2sv_30_6svUsed != 0 and r_2sv_30_6svUsed != 1):
         raise _enc('nav_sat', 'sv[30].svUsed', r_2sv_30_6svUsed, 'type', 'a bool')
     r_2sv_30_6svUsed = 1 if r_2sv_30_6svUsed else 0
     r_2sv_30_6health = g_2sv_30.health
@@ -5370,11 +5432,11 @@ def _raw_nav_sat_2sv_30(g_2sv_30: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_30_6health <= 3:
             raise _enc('nav_sat', 'sv[30].health', r_2sv_30_6health, 'range', '0..3', None)
     r_2sv_30_8diffCorr: Any = g_2sv_30.diffCorr
-    if r_2sv_30_8diffCorr is not True and r_2sv_30_8diffCorr is not False and r_2sv_30_8diffCorr != 0 and r_2sv_30_8diffCorr != 1:
+    if r_2sv_30_8diffCorr is not True and r_2sv_30_8diffCorr is not False and (not isinstance(r_2sv_30_8diffCorr, int) or r_2sv_30_8diffCorr != 0 and r_2sv_30_8diffCorr != 1):
         raise _enc('nav_sat', 'sv[30].diffCorr', r_2sv_30_8diffCorr, 'type', 'a bool')
     r_2sv_30_8diffCorr = 1 if r_2sv_30_8diffCorr else 0
     r_2sv_30_8smoothed: Any = g_2sv_30.smoothed
-    if r_2sv_30_8smoothed is not True and r_2sv_30_8smoothed is not False and r_2sv_30_8smoothed != 0 and r_2sv_30_8smoothed != 1:
+    if r_2sv_30_8smoothed is not True and r_2sv_30_8smoothed is not False and (not isinstance(r_2sv_30_8smoothed, int) or r_2sv_30_8smoothed != 0 and r_2sv_30_8smoothed != 1):
         raise _enc('nav_sat', 'sv[30].smoothed', r_2sv_30_8smoothed, 'type', 'a bool')
     r_2sv_30_8smoothed = 1 if r_2sv_30_8smoothed else 0
     r_2sv_30_11orbitSource = g_2sv_30.orbitSource
@@ -5384,19 +5446,19 @@ def _raw_nav_sat_2sv_30(g_2sv_30: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_30_11orbitSource <= 7:
             raise _enc('nav_sat', 'sv[30].orbitSource', r_2sv_30_11orbitSource, 'range', '0..7', None)
     r_2sv_30_8ephAvail: Any = g_2sv_30.ephAvail
-    if r_2sv_30_8ephAvail is not True and r_2sv_30_8ephAvail is not False and r_2sv_30_8ephAvail != 0 and r_2sv_30_8ephAvail != 1:
+    if r_2sv_30_8ephAvail is not True and r_2sv_30_8ephAvail is not False and (not isinstance(r_2sv_30_8ephAvail, int) or r_2sv_30_8ephAvail != 0 and r_2sv_30_8ephAvail != 1):
         raise _enc('nav_sat', 'sv[30].ephAvail', r_2sv_30_8ephAvail, 'type', 'a bool')
     r_2sv_30_8ephAvail = 1 if r_2sv_30_8ephAvail else 0
     r_2sv_30_8almAvail: Any = g_2sv_30.almAvail
-    if r_2sv_30_8almAvail is not True and r_2sv_30_8almAvail is not False and r_2sv_30_8almAvail != 0 and r_2sv_30_8almAvail != 1:
+    if r_2sv_30_8almAvail is not True and r_2sv_30_8almAvail is not False and (not isinstance(r_2sv_30_8almAvail, int) or r_2sv_30_8almAvail != 0 and r_2sv_30_8almAvail != 1):
         raise _enc('nav_sat', 'sv[30].almAvail', r_2sv_30_8almAvail, 'type', 'a bool')
     r_2sv_30_8almAvail = 1 if r_2sv_30_8almAvail else 0
     r_2sv_30_8anoAvail: Any = g_2sv_30.anoAvail
-    if r_2sv_30_8anoAvail is not True and r_2sv_30_8anoAvail is not False and r_2sv_30_8anoAvail != 0 and r_2sv_30_8anoAvail != 1:
+    if r_2sv_30_8anoAvail is not True and r_2sv_30_8anoAvail is not False and (not isinstance(r_2sv_30_8anoAvail, int) or r_2sv_30_8anoAvail != 0 and r_2sv_30_8anoAvail != 1):
         raise _enc('nav_sat', 'sv[30].anoAvail', r_2sv_30_8anoAvail, 'type', 'a bool')
     r_2sv_30_8anoAvail = 1 if r_2sv_30_8anoAvail else 0
     r_2sv_30_8aopAvail: Any = g_2sv_30.aopAvail
-    if r_2sv_30_8aopAvail is not True and r_2sv_30_8aopAvail is not False and r_2sv_30_8aopAvail != 0 and r_2sv_30_8aopAvail != 1:
+    if r_2sv_30_8aopAvail is not True and r_2sv_30_8aopAvail is not False and (not isinstance(r_2sv_30_8aopAvail, int) or r_2sv_30_8aopAvail != 0 and r_2sv_30_8aopAvail != 1):
         raise _enc('nav_sat', 'sv[30].aopAvail', r_2sv_30_8aopAvail, 'type', 'a bool')
     r_2sv_30_8aopAvail = 1 if r_2sv_30_8aopAvail else 0
     r_2sv_30_10reserved13 = g_2sv_30.reserved13
@@ -5406,43 +5468,43 @@ def _raw_nav_sat_2sv_30(g_2sv_30: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_30_10reserved13 <= 1:
             raise _enc('nav_sat', 'sv[30].reserved13', r_2sv_30_10reserved13, 'range', '0..1', None)
     r_2sv_30_12sbasCorrUsed: Any = g_2sv_30.sbasCorrUsed
-    if r_2sv_30_12sbasCorrUsed is not True and r_2sv_30_12sbasCorrUsed is not False and r_2sv_30_12sbasCorrUsed != 0 and r_2sv_30_12sbasCorrUsed != 1:
+    if r_2sv_30_12sbasCorrUsed is not True and r_2sv_30_12sbasCorrUsed is not False and (not isinstance(r_2sv_30_12sbasCorrUsed, int) or r_2sv_30_12sbasCorrUsed != 0 and r_2sv_30_12sbasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[30].sbasCorrUsed', r_2sv_30_12sbasCorrUsed, 'type', 'a bool')
     r_2sv_30_12sbasCorrUsed = 1 if r_2sv_30_12sbasCorrUsed else 0
     r_2sv_30_12rtcmCorrUsed: Any = g_2sv_30.rtcmCorrUsed
-    if r_2sv_30_12rtcmCorrUsed is not True and r_2sv_30_12rtcmCorrUsed is not False and r_2sv_30_12rtcmCorrUsed != 0 and r_2sv_30_12rtcmCorrUsed != 1:
+    if r_2sv_30_12rtcmCorrUsed is not True and r_2sv_30_12rtcmCorrUsed is not False and (not isinstance(r_2sv_30_12rtcmCorrUsed, int) or r_2sv_30_12rtcmCorrUsed != 0 and r_2sv_30_12rtcmCorrUsed != 1):
         raise _enc('nav_sat', 'sv[30].rtcmCorrUsed', r_2sv_30_12rtcmCorrUsed, 'type', 'a bool')
     r_2sv_30_12rtcmCorrUsed = 1 if r_2sv_30_12rtcmCorrUsed else 0
     r_2sv_30_12slasCorrUsed: Any = g_2sv_30.slasCorrUsed
-    if r_2sv_30_12slasCorrUsed is not True and r_2sv_30_12slasCorrUsed is not False and r_2sv_30_12slasCorrUsed != 0 and r_2sv_30_12slasCorrUsed != 1:
+    if r_2sv_30_12slasCorrUsed is not True and r_2sv_30_12slasCorrUsed is not False and (not isinstance(r_2sv_30_12slasCorrUsed, int) or r_2sv_30_12slasCorrUsed != 0 and r_2sv_30_12slasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[30].slasCorrUsed', r_2sv_30_12slasCorrUsed, 'type', 'a bool')
     r_2sv_30_12slasCorrUsed = 1 if r_2sv_30_12slasCorrUsed else 0
     r_2sv_30_14spartnCorrUsed: Any = g_2sv_30.spartnCorrUsed
-    if r_2sv_30_14spartnCorrUsed is not True and r_2sv_30_14spartnCorrUsed is not False and r_2sv_30_14spartnCorrUsed != 0 and r_2sv_30_14spartnCorrUsed != 1:
+    if r_2sv_30_14spartnCorrUsed is not True and r_2sv_30_14spartnCorrUsed is not False and (not isinstance(r_2sv_30_14spartnCorrUsed, int) or r_2sv_30_14spartnCorrUsed != 0 and r_2sv_30_14spartnCorrUsed != 1):
         raise _enc('nav_sat', 'sv[30].spartnCorrUsed', r_2sv_30_14spartnCorrUsed, 'type', 'a bool')
     r_2sv_30_14spartnCorrUsed = 1 if r_2sv_30_14spartnCorrUsed else 0
     r_2sv_30_10prCorrUsed: Any = g_2sv_30.prCorrUsed
-    if r_2sv_30_10prCorrUsed is not True and r_2sv_30_10prCorrUsed is not False and r_2sv_30_10prCorrUsed != 0 and r_2sv_30_10prCorrUsed != 1:
+    if r_2sv_30_10prCorrUsed is not True and r_2sv_30_10prCorrUsed is not False and (not isinstance(r_2sv_30_10prCorrUsed, int) or r_2sv_30_10prCorrUsed != 0 and r_2sv_30_10prCorrUsed != 1):
         raise _enc('nav_sat', 'sv[30].prCorrUsed', r_2sv_30_10prCorrUsed, 'type', 'a bool')
     r_2sv_30_10prCorrUsed = 1 if r_2sv_30_10prCorrUsed else 0
     r_2sv_30_10crCorrUsed: Any = g_2sv_30.crCorrUsed
-    if r_2sv_30_10crCorrUsed is not True and r_2sv_30_10crCorrUsed is not False and r_2sv_30_10crCorrUsed != 0 and r_2sv_30_10crCorrUsed != 1:
+    if r_2sv_30_10crCorrUsed is not True and r_2sv_30_10crCorrUsed is not False and (not isinstance(r_2sv_30_10crCorrUsed, int) or r_2sv_30_10crCorrUsed != 0 and r_2sv_30_10crCorrUsed != 1):
         raise _enc('nav_sat', 'sv[30].crCorrUsed', r_2sv_30_10crCorrUsed, 'type', 'a bool')
     r_2sv_30_10crCorrUsed = 1 if r_2sv_30_10crCorrUsed else 0
     r_2sv_30_10doCorrUsed: Any = g_2sv_30.doCorrUsed
-    if r_2sv_30_10doCorrUsed is not True and r_2sv_30_10doCorrUsed is not False and r_2sv_30_10doCorrUsed != 0 and r_2sv_30_10doCorrUsed != 1:
+    if r_2sv_30_10doCorrUsed is not True and r_2sv_30_10doCorrUsed is not False and (not isinstance(r_2sv_30_10doCorrUsed, int) or r_2sv_30_10doCorrUsed != 0 and r_2sv_30_10doCorrUsed != 1):
         raise _enc('nav_sat', 'sv[30].doCorrUsed', r_2sv_30_10doCorrUsed, 'type', 'a bool')
     r_2sv_30_10doCorrUsed = 1 if r_2sv_30_10doCorrUsed else 0
     r_2sv_30_12clasCorrUsed: Any = g_2sv_30.clasCorrUsed
-    if r_2sv_30_12clasCorrUsed is not True and r_2sv_30_12clasCorrUsed is not False and r_2sv_30_12clasCorrUsed != 0 and r_2sv_30_12clasCorrUsed != 1:
+    if r_2sv_30_12clasCorrUsed is not True and r_2sv_30_12clasCorrUsed is not False and (not isinstance(r_2sv_30_12clasCorrUsed, int) or r_2sv_30_12clasCorrUsed != 0 and r_2sv_30_12clasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[30].clasCorrUsed', r_2sv_30_12clasCorrUsed, 'type', 'a bool')
     r_2sv_30_12clasCorrUsed = 1 if r_2sv_30_12clasCorrUsed else 0
     r_2sv_30_11lppCorrUsed: Any = g_2sv_30.lppCorrUsed
-    if r_2sv_30_11lppCorrUsed is not True and r_2sv_30_11lppCorrUsed is not False and r_2sv_30_11lppCorrUsed != 0 and r_2sv_30_11lppCorrUsed != 1:
+    if r_2sv_30_11lppCorrUsed is not True and r_2sv_30_11lppCorrUsed is not False and (not isinstance(r_2sv_30_11lppCorrUsed, int) or r_2sv_30_11lppCorrUsed != 0 and r_2sv_30_11lppCorrUsed != 1):
         raise _enc('nav_sat', 'sv[30].lppCorrUsed', r_2sv_30_11lppCorrUsed, 'type', 'a bool')
     r_2sv_30_11lppCorrUsed = 1 if r_2sv_30_11lppCorrUsed else 0
     r_2sv_30_11hasCorrUsed: Any = g_2sv_30.hasCorrUsed
-    if r_2sv_30_11hasCorrUsed is not True and r_2sv_30_11hasCorrUsed is not False and r_2sv_30_11hasCorrUsed != 0 and r_2sv_30_11hasCorrUsed != 1:
+    if r_2sv_30_11hasCorrUsed is not True and r_2sv_30_11hasCorrUsed is not False and (not isinstance(r_2sv_30_11hasCorrUsed, int) or r_2sv_30_11hasCorrUsed != 0 and r_2sv_30_11hasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[30].hasCorrUsed', r_2sv_30_11hasCorrUsed, 'type', 'a bool')
     r_2sv_30_11hasCorrUsed = 1 if r_2sv_30_11hasCorrUsed else 0
     r_2sv_30_11flags_spare = 0
@@ -5450,6 +5512,8 @@ def _raw_nav_sat_2sv_30(g_2sv_30: Any) -> tuple[Any, ...]:
 
 
 def _raw_nav_sat_2sv_31(g_2sv_31: Any) -> tuple[Any, ...]:
+    if g_2sv_31.__class__ is not NavSatSv and not isinstance(g_2sv_31, NavSatSv):
+        raise _enc('nav_sat', 'sv[31]', g_2sv_31, 'type', 'a NavSatSv')
     r_2sv_31_6gnssId = g_2sv_31.gnssId
     if r_2sv_31_6gnssId.__class__ is not int or not 0 <= r_2sv_31_6gnssId <= 255:
         if not isinstance(r_2sv_31_6gnssId, int) or r_2sv_31_6gnssId.__class__ is bool:
@@ -5494,7 +5558,7 @@ def _raw_nav_sat_2sv_31(g_2sv_31: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_31_10qualityInd <= 7:
             raise _enc('nav_sat', 'sv[31].qualityInd', r_2sv_31_10qualityInd, 'range', '0..7', None)
     r_2sv_31_6svUsed: Any = g_2sv_31.svUsed
-    if r_2sv_31_6svUsed is not True and r_2sv_31_6svUsed is not False and r_2sv_31_6svUsed != 0 and r_2sv_31_6svUsed != 1:
+    if r_2sv_31_6svUsed is not True and r_2sv_31_6svUsed is not False and (not isinstance(r_2sv_31_6svUsed, int) or r_2sv_31_6svUsed != 0 and r_2sv_31_6svUsed != 1):
         raise _enc('nav_sat', 'sv[31].svUsed', r_2sv_31_6svUsed, 'type', 'a bool')
     r_2sv_31_6svUsed = 1 if r_2sv_31_6svUsed else 0
     r_2sv_31_6health = g_2sv_31.health
@@ -5504,11 +5568,11 @@ def _raw_nav_sat_2sv_31(g_2sv_31: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_31_6health <= 3:
             raise _enc('nav_sat', 'sv[31].health', r_2sv_31_6health, 'range', '0..3', None)
     r_2sv_31_8diffCorr: Any = g_2sv_31.diffCorr
-    if r_2sv_31_8diffCorr is not True and r_2sv_31_8diffCorr is not False and r_2sv_31_8diffCorr != 0 and r_2sv_31_8diffCorr != 1:
+    if r_2sv_31_8diffCorr is not True and r_2sv_31_8diffCorr is not False and (not isinstance(r_2sv_31_8diffCorr, int) or r_2sv_31_8diffCorr != 0 and r_2sv_31_8diffCorr != 1):
         raise _enc('nav_sat', 'sv[31].diffCorr', r_2sv_31_8diffCorr, 'type', 'a bool')
     r_2sv_31_8diffCorr = 1 if r_2sv_31_8diffCorr else 0
     r_2sv_31_8smoothed: Any = g_2sv_31.smoothed
-    if r_2sv_31_8smoothed is not True and r_2sv_31_8smoothed is not False and r_2sv_31_8smoothed != 0 and r_2sv_31_8smoothed != 1:
+    if r_2sv_31_8smoothed is not True and r_2sv_31_8smoothed is not False and (not isinstance(r_2sv_31_8smoothed, int) or r_2sv_31_8smoothed != 0 and r_2sv_31_8smoothed != 1):
         raise _enc('nav_sat', 'sv[31].smoothed', r_2sv_31_8smoothed, 'type', 'a bool')
     r_2sv_31_8smoothed = 1 if r_2sv_31_8smoothed else 0
     r_2sv_31_11orbitSource = g_2sv_31.orbitSource
@@ -5518,19 +5582,19 @@ def _raw_nav_sat_2sv_31(g_2sv_31: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_31_11orbitSource <= 7:
             raise _enc('nav_sat', 'sv[31].orbitSource', r_2sv_31_11orbitSource, 'range', '0..7', None)
     r_2sv_31_8ephAvail: Any = g_2sv_31.ephAvail
-    if r_2sv_31_8ephAvail is not True and r_2sv_31_8ephAvail is not False and r_2sv_31_8ephAvail != 0 and r_2sv_31_8ephAvail != 1:
+    if r_2sv_31_8ephAvail is not True and r_2sv_31_8ephAvail is not False and (not isinstance(r_2sv_31_8ephAvail, int) or r_2sv_31_8ephAvail != 0 and r_2sv_31_8ephAvail != 1):
         raise _enc('nav_sat', 'sv[31].ephAvail', r_2sv_31_8ephAvail, 'type', 'a bool')
     r_2sv_31_8ephAvail = 1 if r_2sv_31_8ephAvail else 0
     r_2sv_31_8almAvail: Any = g_2sv_31.almAvail
-    if r_2sv_31_8almAvail is not True and r_2sv_31_8almAvail is not False and r_2sv_31_8almAvail != 0 and r_2sv_31_8almAvail != 1:
+    if r_2sv_31_8almAvail is not True and r_2sv_31_8almAvail is not False and (not isinstance(r_2sv_31_8almAvail, int) or r_2sv_31_8almAvail != 0 and r_2sv_31_8almAvail != 1):
         raise _enc('nav_sat', 'sv[31].almAvail', r_2sv_31_8almAvail, 'type', 'a bool')
     r_2sv_31_8almAvail = 1 if r_2sv_31_8almAvail else 0
     r_2sv_31_8anoAvail: Any = g_2sv_31.anoAvail
-    if r_2sv_31_8anoAvail is not True and r_2sv_31_8anoAvail is not False and r_2sv_31_8anoAvail != 0 and r_2sv_31_8anoAvail != 1:
+    if r_2sv_31_8anoAvail is not True and r_2sv_31_8anoAvail is not False and (not isinstance(r_2sv_31_8anoAvail, int) or r_2sv_31_8anoAvail != 0 and r_2sv_31_8anoAvail != 1):
         raise _enc('nav_sat', 'sv[31].anoAvail', r_2sv_31_8anoAvail, 'type', 'a bool')
     r_2sv_31_8anoAvail = 1 if r_2sv_31_8anoAvail else 0
     r_2sv_31_8aopAvail: Any = g_2sv_31.aopAvail
-    if r_2sv_31_8aopAvail is not True and r_2sv_31_8aopAvail is not False and r_2sv_31_8aopAvail != 0 and r_2sv_31_8aopAvail != 1:
+    if r_2sv_31_8aopAvail is not True and r_2sv_31_8aopAvail is not False and (not isinstance(r_2sv_31_8aopAvail, int) or r_2sv_31_8aopAvail != 0 and r_2sv_31_8aopAvail != 1):
         raise _enc('nav_sat', 'sv[31].aopAvail', r_2sv_31_8aopAvail, 'type', 'a bool')
     r_2sv_31_8aopAvail = 1 if r_2sv_31_8aopAvail else 0
     r_2sv_31_10reserved13 = g_2sv_31.reserved13
@@ -5540,43 +5604,43 @@ def _raw_nav_sat_2sv_31(g_2sv_31: Any) -> tuple[Any, ...]:
         if not 0 <= r_2sv_31_10reserved13 <= 1:
             raise _enc('nav_sat', 'sv[31].reserved13', r_2sv_31_10reserved13, 'range', '0..1', None)
     r_2sv_31_12sbasCorrUsed: Any = g_2sv_31.sbasCorrUsed
-    if r_2sv_31_12sbasCorrUsed is not True and r_2sv_31_12sbasCorrUsed is not False and r_2sv_31_12sbasCorrUsed != 0 and r_2sv_31_12sbasCorrUsed != 1:
+    if r_2sv_31_12sbasCorrUsed is not True and r_2sv_31_12sbasCorrUsed is not False and (not isinstance(r_2sv_31_12sbasCorrUsed, int) or r_2sv_31_12sbasCorrUsed != 0 and r_2sv_31_12sbasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[31].sbasCorrUsed', r_2sv_31_12sbasCorrUsed, 'type', 'a bool')
     r_2sv_31_12sbasCorrUsed = 1 if r_2sv_31_12sbasCorrUsed else 0
     r_2sv_31_12rtcmCorrUsed: Any = g_2sv_31.rtcmCorrUsed
-    if r_2sv_31_12rtcmCorrUsed is not True and r_2sv_31_12rtcmCorrUsed is not False and r_2sv_31_12rtcmCorrUsed != 0 and r_2sv_31_12rtcmCorrUsed != 1:
+    if r_2sv_31_12rtcmCorrUsed is not True and r_2sv_31_12rtcmCorrUsed is not False and (not isinstance(r_2sv_31_12rtcmCorrUsed, int) or r_2sv_31_12rtcmCorrUsed != 0 and r_2sv_31_12rtcmCorrUsed != 1):
         raise _enc('nav_sat', 'sv[31].rtcmCorrUsed', r_2sv_31_12rtcmCorrUsed, 'type', 'a bool')
     r_2sv_31_12rtcmCorrUsed = 1 if r_2sv_31_12rtcmCorrUsed else 0
     r_2sv_31_12slasCorrUsed: Any = g_2sv_31.slasCorrUsed
-    if r_2sv_31_12slasCorrUsed is not True and r_2sv_31_12slasCorrUsed is not False and r_2sv_31_12slasCorrUsed != 0 and r_2sv_31_12slasCorrUsed != 1:
+    if r_2sv_31_12slasCorrUsed is not True and r_2sv_31_12slasCorrUsed is not False and (not isinstance(r_2sv_31_12slasCorrUsed, int) or r_2sv_31_12slasCorrUsed != 0 and r_2sv_31_12slasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[31].slasCorrUsed', r_2sv_31_12slasCorrUsed, 'type', 'a bool')
     r_2sv_31_12slasCorrUsed = 1 if r_2sv_31_12slasCorrUsed else 0
     r_2sv_31_14spartnCorrUsed: Any = g_2sv_31.spartnCorrUsed
-    if r_2sv_31_14spartnCorrUsed is not True and r_2sv_31_14spartnCorrUsed is not False and r_2sv_31_14spartnCorrUsed != 0 and r_2sv_31_14spartnCorrUsed != 1:
+    if r_2sv_31_14spartnCorrUsed is not True and r_2sv_31_14spartnCorrUsed is not False and (not isinstance(r_2sv_31_14spartnCorrUsed, int) or r_2sv_31_14spartnCorrUsed != 0 and r_2sv_31_14spartnCorrUsed != 1):
         raise _enc('nav_sat', 'sv[31].spartnCorrUsed', r_2sv_31_14spartnCorrUsed, 'type', 'a bool')
     r_2sv_31_14spartnCorrUsed = 1 if r_2sv_31_14spartnCorrUsed else 0
     r_2sv_31_10prCorrUsed: Any = g_2sv_31.prCorrUsed
-    if r_2sv_31_10prCorrUsed is not True and r_2sv_31_10prCorrUsed is not False and r_2sv_31_10prCorrUsed != 0 and r_2sv_31_10prCorrUsed != 1:
+    if r_2sv_31_10prCorrUsed is not True and r_2sv_31_10prCorrUsed is not False and (not isinstance(r_2sv_31_10prCorrUsed, int) or r_2sv_31_10prCorrUsed != 0 and r_2sv_31_10prCorrUsed != 1):
         raise _enc('nav_sat', 'sv[31].prCorrUsed', r_2sv_31_10prCorrUsed, 'type', 'a bool')
     r_2sv_31_10prCorrUsed = 1 if r_2sv_31_10prCorrUsed else 0
     r_2sv_31_10crCorrUsed: Any = g_2sv_31.crCorrUsed
-    if r_2sv_31_10crCorrUsed is not True and r_2sv_31_10crCorrUsed is not False and r_2sv_31_10crCorrUsed != 0 and r_2sv_31_10crCorrUsed != 1:
+    if r_2sv_31_10crCorrUsed is not True and r_2sv_31_10crCorrUsed is not False and (not isinstance(r_2sv_31_10crCorrUsed, int) or r_2sv_31_10crCorrUsed != 0 and r_2sv_31_10crCorrUsed != 1):
         raise _enc('nav_sat', 'sv[31].crCorrUsed', r_2sv_31_10crCorrUsed, 'type', 'a bool')
     r_2sv_31_10crCorrUsed = 1 if r_2sv_31_10crCorrUsed else 0
     r_2sv_31_10doCorrUsed: Any = g_2sv_31.doCorrUsed
-    if r_2sv_31_10doCorrUsed is not True and r_2sv_31_10doCorrUsed is not False and r_2sv_31_10doCorrUsed != 0 and r_2sv_31_10doCorrUsed != 1:
+    if r_2sv_31_10doCorrUsed is not True and r_2sv_31_10doCorrUsed is not False and (not isinstance(r_2sv_31_10doCorrUsed, int) or r_2sv_31_10doCorrUsed != 0 and r_2sv_31_10doCorrUsed != 1):
         raise _enc('nav_sat', 'sv[31].doCorrUsed', r_2sv_31_10doCorrUsed, 'type', 'a bool')
     r_2sv_31_10doCorrUsed = 1 if r_2sv_31_10doCorrUsed else 0
     r_2sv_31_12clasCorrUsed: Any = g_2sv_31.clasCorrUsed
-    if r_2sv_31_12clasCorrUsed is not True and r_2sv_31_12clasCorrUsed is not False and r_2sv_31_12clasCorrUsed != 0 and r_2sv_31_12clasCorrUsed != 1:
+    if r_2sv_31_12clasCorrUsed is not True and r_2sv_31_12clasCorrUsed is not False and (not isinstance(r_2sv_31_12clasCorrUsed, int) or r_2sv_31_12clasCorrUsed != 0 and r_2sv_31_12clasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[31].clasCorrUsed', r_2sv_31_12clasCorrUsed, 'type', 'a bool')
     r_2sv_31_12clasCorrUsed = 1 if r_2sv_31_12clasCorrUsed else 0
     r_2sv_31_11lppCorrUsed: Any = g_2sv_31.lppCorrUsed
-    if r_2sv_31_11lppCorrUsed is not True and r_2sv_31_11lppCorrUsed is not False and r_2sv_31_11lppCorrUsed != 0 and r_2sv_31_11lppCorrUsed != 1:
+    if r_2sv_31_11lppCorrUsed is not True and r_2sv_31_11lppCorrUsed is not False and (not isinstance(r_2sv_31_11lppCorrUsed, int) or r_2sv_31_11lppCorrUsed != 0 and r_2sv_31_11lppCorrUsed != 1):
         raise _enc('nav_sat', 'sv[31].lppCorrUsed', r_2sv_31_11lppCorrUsed, 'type', 'a bool')
     r_2sv_31_11lppCorrUsed = 1 if r_2sv_31_11lppCorrUsed else 0
     r_2sv_31_11hasCorrUsed: Any = g_2sv_31.hasCorrUsed
-    if r_2sv_31_11hasCorrUsed is not True and r_2sv_31_11hasCorrUsed is not False and r_2sv_31_11hasCorrUsed != 0 and r_2sv_31_11hasCorrUsed != 1:
+    if r_2sv_31_11hasCorrUsed is not True and r_2sv_31_11hasCorrUsed is not False and (not isinstance(r_2sv_31_11hasCorrUsed, int) or r_2sv_31_11hasCorrUsed != 0 and r_2sv_31_11hasCorrUsed != 1):
         raise _enc('nav_sat', 'sv[31].hasCorrUsed', r_2sv_31_11hasCorrUsed, 'type', 'a bool')
     r_2sv_31_11hasCorrUsed = 1 if r_2sv_31_11hasCorrUsed else 0
     r_2sv_31_11flags_spare = 0
@@ -9529,6 +9593,8 @@ def _decode_nav_sat(d: _Buffer) -> NavSat:
 
 
 def _raw_mon_ver_3ext_0(g_3ext_0: Any) -> tuple[Any, ...]:
+    if g_3ext_0.__class__ is not MonVerExt and not isinstance(g_3ext_0, MonVerExt):
+        raise _enc('mon_ver', 'ext[0]', g_3ext_0, 'type', 'a MonVerExt')
     r_3ext_0_9extension = g_3ext_0.extension
     if r_3ext_0_9extension.__class__ is not bytes or len(r_3ext_0_9extension) != 30:
         if not isinstance(r_3ext_0_9extension, (bytes, bytearray)) or len(r_3ext_0_9extension) != 30:
@@ -9538,6 +9604,8 @@ def _raw_mon_ver_3ext_0(g_3ext_0: Any) -> tuple[Any, ...]:
 
 
 def _raw_mon_ver_3ext_1(g_3ext_1: Any) -> tuple[Any, ...]:
+    if g_3ext_1.__class__ is not MonVerExt and not isinstance(g_3ext_1, MonVerExt):
+        raise _enc('mon_ver', 'ext[1]', g_3ext_1, 'type', 'a MonVerExt')
     r_3ext_1_9extension = g_3ext_1.extension
     if r_3ext_1_9extension.__class__ is not bytes or len(r_3ext_1_9extension) != 30:
         if not isinstance(r_3ext_1_9extension, (bytes, bytearray)) or len(r_3ext_1_9extension) != 30:
@@ -9547,6 +9615,8 @@ def _raw_mon_ver_3ext_1(g_3ext_1: Any) -> tuple[Any, ...]:
 
 
 def _raw_mon_ver_3ext_2(g_3ext_2: Any) -> tuple[Any, ...]:
+    if g_3ext_2.__class__ is not MonVerExt and not isinstance(g_3ext_2, MonVerExt):
+        raise _enc('mon_ver', 'ext[2]', g_3ext_2, 'type', 'a MonVerExt')
     r_3ext_2_9extension = g_3ext_2.extension
     if r_3ext_2_9extension.__class__ is not bytes or len(r_3ext_2_9extension) != 30:
         if not isinstance(r_3ext_2_9extension, (bytes, bytearray)) or len(r_3ext_2_9extension) != 30:
@@ -9556,6 +9626,8 @@ def _raw_mon_ver_3ext_2(g_3ext_2: Any) -> tuple[Any, ...]:
 
 
 def _raw_mon_ver_3ext_3(g_3ext_3: Any) -> tuple[Any, ...]:
+    if g_3ext_3.__class__ is not MonVerExt and not isinstance(g_3ext_3, MonVerExt):
+        raise _enc('mon_ver', 'ext[3]', g_3ext_3, 'type', 'a MonVerExt')
     r_3ext_3_9extension = g_3ext_3.extension
     if r_3ext_3_9extension.__class__ is not bytes or len(r_3ext_3_9extension) != 30:
         if not isinstance(r_3ext_3_9extension, (bytes, bytearray)) or len(r_3ext_3_9extension) != 30:
@@ -9565,6 +9637,8 @@ def _raw_mon_ver_3ext_3(g_3ext_3: Any) -> tuple[Any, ...]:
 
 
 def _raw_mon_ver_3ext_4(g_3ext_4: Any) -> tuple[Any, ...]:
+    if g_3ext_4.__class__ is not MonVerExt and not isinstance(g_3ext_4, MonVerExt):
+        raise _enc('mon_ver', 'ext[4]', g_3ext_4, 'type', 'a MonVerExt')
     r_3ext_4_9extension = g_3ext_4.extension
     if r_3ext_4_9extension.__class__ is not bytes or len(r_3ext_4_9extension) != 30:
         if not isinstance(r_3ext_4_9extension, (bytes, bytearray)) or len(r_3ext_4_9extension) != 30:
@@ -9574,6 +9648,8 @@ def _raw_mon_ver_3ext_4(g_3ext_4: Any) -> tuple[Any, ...]:
 
 
 def _raw_mon_ver_3ext_5(g_3ext_5: Any) -> tuple[Any, ...]:
+    if g_3ext_5.__class__ is not MonVerExt and not isinstance(g_3ext_5, MonVerExt):
+        raise _enc('mon_ver', 'ext[5]', g_3ext_5, 'type', 'a MonVerExt')
     r_3ext_5_9extension = g_3ext_5.extension
     if r_3ext_5_9extension.__class__ is not bytes or len(r_3ext_5_9extension) != 30:
         if not isinstance(r_3ext_5_9extension, (bytes, bytearray)) or len(r_3ext_5_9extension) != 30:
@@ -9583,6 +9659,8 @@ def _raw_mon_ver_3ext_5(g_3ext_5: Any) -> tuple[Any, ...]:
 
 
 def _raw_mon_ver_3ext_6(g_3ext_6: Any) -> tuple[Any, ...]:
+    if g_3ext_6.__class__ is not MonVerExt and not isinstance(g_3ext_6, MonVerExt):
+        raise _enc('mon_ver', 'ext[6]', g_3ext_6, 'type', 'a MonVerExt')
     r_3ext_6_9extension = g_3ext_6.extension
     if r_3ext_6_9extension.__class__ is not bytes or len(r_3ext_6_9extension) != 30:
         if not isinstance(r_3ext_6_9extension, (bytes, bytearray)) or len(r_3ext_6_9extension) != 30:
@@ -9592,6 +9670,8 @@ def _raw_mon_ver_3ext_6(g_3ext_6: Any) -> tuple[Any, ...]:
 
 
 def _raw_mon_ver_3ext_7(g_3ext_7: Any) -> tuple[Any, ...]:
+    if g_3ext_7.__class__ is not MonVerExt and not isinstance(g_3ext_7, MonVerExt):
+        raise _enc('mon_ver', 'ext[7]', g_3ext_7, 'type', 'a MonVerExt')
     r_3ext_7_9extension = g_3ext_7.extension
     if r_3ext_7_9extension.__class__ is not bytes or len(r_3ext_7_9extension) != 30:
         if not isinstance(r_3ext_7_9extension, (bytes, bytearray)) or len(r_3ext_7_9extension) != 30:
@@ -9601,6 +9681,8 @@ def _raw_mon_ver_3ext_7(g_3ext_7: Any) -> tuple[Any, ...]:
 
 
 def _raw_mon_ver_3ext_8(g_3ext_8: Any) -> tuple[Any, ...]:
+    if g_3ext_8.__class__ is not MonVerExt and not isinstance(g_3ext_8, MonVerExt):
+        raise _enc('mon_ver', 'ext[8]', g_3ext_8, 'type', 'a MonVerExt')
     r_3ext_8_9extension = g_3ext_8.extension
     if r_3ext_8_9extension.__class__ is not bytes or len(r_3ext_8_9extension) != 30:
         if not isinstance(r_3ext_8_9extension, (bytes, bytearray)) or len(r_3ext_8_9extension) != 30:
@@ -9610,6 +9692,8 @@ def _raw_mon_ver_3ext_8(g_3ext_8: Any) -> tuple[Any, ...]:
 
 
 def _raw_mon_ver_3ext_9(g_3ext_9: Any) -> tuple[Any, ...]:
+    if g_3ext_9.__class__ is not MonVerExt and not isinstance(g_3ext_9, MonVerExt):
+        raise _enc('mon_ver', 'ext[9]', g_3ext_9, 'type', 'a MonVerExt')
     r_3ext_9_9extension = g_3ext_9.extension
     if r_3ext_9_9extension.__class__ is not bytes or len(r_3ext_9_9extension) != 30:
         if not isinstance(r_3ext_9_9extension, (bytes, bytearray)) or len(r_3ext_9_9extension) != 30:
