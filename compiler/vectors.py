@@ -30,7 +30,7 @@ import tempfile
 from functools import lru_cache, partial
 from typing import Any, Callable, TextIO
 
-from . import binary64, jsontext
+from . import binary32, binary64, jsontext
 
 from .model import Field, Message, Protocol
 from .targets.wire import ENCODINGS, encoding_facts
@@ -240,14 +240,25 @@ class Generator:
             return float(f"{rng.uniform(-1e6, 1e6):.{rng.randint(1, 15)}g}")
         if f.bits == 64:
             return self.binary64(f, edge)
-        if edge == "zero":
-            return 0.0
-        while True:
+        return self.binary32(f, edge)
+
+    def binary32(self, f: Field, edge: str) -> float:
+        """A binary f32 value inside the field's range: its ends as floats, zero, any bit
+        pattern that falls inside, or a float drawn across the range."""
+        rng = self.rng
+        lo, hi = f.range or (-binary32.LARGEST, binary32.LARGEST)
+        lo, hi = binary32.at_least(lo), binary32.at_most(hi)
+        pick = {"min": lo, "max": hi, "zero": max(lo, min(hi, 0.0))}.get(edge)
+        if pick is not None:
+            return pick
+        for _ in range(8):
             x = struct.unpack("<f", struct.pack("<I", rng.getrandbits(32)))[0]
             if rng.random() < 0.5:
-                x = struct.unpack("<f", struct.pack("<f", rng.uniform(-1e4, 1e4)))[0]
-            if x == x and abs(x) != float("inf"):
+                x = struct.unpack("<f", struct.pack("<f", rng.uniform(max(lo, -1e4), min(hi, 1e4))
+                                                     if lo <= 1e4 and hi >= -1e4 else rng.uniform(lo, hi)))[0]
+            if math.isfinite(x) and lo <= x <= hi:
                 return x
+        return rng.choice((lo, hi))  # a narrow range far from the draws: one of its ends
 
     def binary64(self, f: Field, edge: str) -> float:
         """A binary f64 value: the range's ends (or the largest finite doubles), zero, the
@@ -533,8 +544,10 @@ class Generator:
         and damaged frames, with the events the Python StreamDecoder gives when fed
         one byte at a time (in chunks, for long streams: the events are the same)."""
         rng = self.rng
-        out = []
-        largest = max(map(len, frames), default=1)
+        out: list[dict] = []
+        if not frames:  # every valid case has another canonical spelling: no frame to stream
+            return out
+        largest = max(map(len, frames))
         for n in range(max(1, min(8, FRAME_BUDGET // (16 * largest)))):
             parts = []
             for _ in range(rng.randint(3, 8)):

@@ -64,7 +64,10 @@ def wrong_values(codec, obj, path):
         hint = next(a for a in args if a is not type(None))
     out = [] if optional else [None]
     if typing.get_origin(hint) is list:
-        out += NOT_A_LIST + [[object()] * max(len(current), 1), [None] * max(len(current), 1)]
+        (element,) = typing.get_args(hint)
+        nullable = typing.get_origin(element) is typing.Union and type(None) in typing.get_args(element)
+        out += NOT_A_LIST + [[object()] * max(len(current), 1)]
+        out += [] if nullable else [[None] * max(len(current), 1)]  # absent elements of one-hot arrays are None
         if current:  # more elements than any count of these schemas
             out.append(current[:1] * 100_000)
     elif dataclasses.is_dataclass(hint):

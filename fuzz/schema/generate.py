@@ -18,6 +18,18 @@ NAMES = ["alpha", "bravo", "charlie", "delta", "echo", "foxtrot", "golf", "hotel
          "kilo", "lima", "mike", "november", "oscar", "papa", "quebec", "romeo", "sierra", "tango"]
 
 
+def fixed_size(fields: list[dict]) -> bool:
+    """Whether fields take the same bytes in every frame: nothing counted, sized by another
+    field, optional, conditional or filling the rest of the payload, in groups too."""
+    for f in fields:
+        if any(isinstance(f.get(key), dict) for key in ("count", "length")) \
+                or {"present_if", "optional", "to_end", "max_length"} & set(f):
+            return False
+        if not fixed_size(f.get("fields", [])):
+            return False
+    return True
+
+
 class Generator:
     def __init__(self, seed: int, features: frozenset[str] = DEFAULT):
         self.rng = random.Random(seed)
@@ -171,6 +183,8 @@ class Generator:
             return name
         from codeword import crc
         aliases = sorted(k for k, p in crc.catalogue().items() if p.name == name and crc.lookup(k) is not None)
+        if not aliases:
+            return name
         chosen = self.rng.choice(aliases)
         return self.rng.choice([chosen, chosen.lower(), chosen.title()])
 
@@ -182,8 +196,8 @@ class Generator:
                 or not self.has("shared_id", 0.4):
             return
         first, second = bodies[0], bodies[1]
-        if any(isinstance(f.get("count"), dict) or "present_if" in f for f in first["fields"]):
-            return  # a fixed size only
+        if not fixed_size(first["fields"]):
+            return
         second["id"] = first["id"]
         second["fields"] = copy.deepcopy(first["fields"]) + [{"name": self.name(), "type": "u8"}]
 
