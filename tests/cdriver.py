@@ -200,7 +200,8 @@ class Driver:
         wires = list(dict.fromkeys([c["wire"] for mm in messages for c in mm["cases"]]
                                    + [c["canon"] for mm in messages for c in mm["cases"]]
                                    + [c["wire"] for c in invalid] + seq_wires))
-        env = jinja2.Environment(undefined=jinja2.StrictUndefined, trim_blocks=True, lstrip_blocks=True)
+        env = jinja2.Environment(undefined=jinja2.StrictUndefined, trim_blocks=True, lstrip_blocks=True,
+                                 keep_trailing_newline=True)  # clang -Wpedantic: a file ends with a newline
         env.filters["cbytes"] = lambda b: "{" + ", ".join(f"0x{x:02x}" for x in b) + "}" if b else "{0}"
         env.filters["cstr"] = cstr
         wire_max = max([len(c["wire"]) for mm in messages for c in mm["cases"]]
@@ -253,3 +254,28 @@ def int_literal(value: int) -> str:
     """A C literal of `value` for a member of any integer type: INT64_MIN and values
     above INT64_MAX have no plain decimal spelling."""
     return clit(value, True) if value >= 1 << 63 else clit_signed(value) if value >= 0 else clit(value)
+
+
+def firmware_source(p: Protocol, include: bool = True) -> str:
+    """A translation unit as firmware writes it: each message encoded from a struct
+    it is handed into a buffer on the stack, and decoded from a frame into a struct
+    on the stack, both handed on to functions of another unit. With the codec inlined
+    into them, the compiler's flow analysis (-Wmaybe-uninitialized) sees the locals of
+    the encoder and decoder; the conformance driver's buffers are static. Every name
+    starts with the protocol's, so the units of several protocols go in one file."""
+    px, text = p.name, p.framing.kind == "text"
+    unit = "char" if text else "uint8_t"
+    lines = [f'#include "{px}.h"', ""] if include else []
+    lines += [f"int {px}_fw_send(const void *frame, int n);", ""]
+    for m in p.messages:
+        t, fn = f"{px}_{m.name}_t", f"{px}_{m.name}"
+        room = f"{px.upper()}_{m.name.upper()}_MAX_TEXT" if text else f"{2 * (m.size or 1) + 8}u"  # room to stuff
+        lines += [f"int {fn}_fw_use(const {t} *m);",
+                  f"int {fn}_fw_send(const {t} *m);",
+                  f"int {fn}_fw_send(const {t} *m)", "{", f"    {unit} out[{room}];",
+                  f"    return {px}_fw_send(out, {fn}_encode(m, out, sizeof out));", "}", "",
+                  f"int {fn}_fw_receive(const {unit} *frame, size_t n);",
+                  f"int {fn}_fw_receive(const {unit} *frame, size_t n)", "{", f"    {t} m;",
+                  f"    int rc = {fn}_decode(frame, n, &m);",
+                  f"    return rc < 0 ? rc : {fn}_fw_use(&m);", "}", ""]
+    return "\n".join(lines)

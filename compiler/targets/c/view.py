@@ -26,7 +26,7 @@ from . import word as cword
 from . import wordform as cwordform
 from .pack import Span
 from .errors import CTargetError
-from .scalars import bits_fn, clit, clit_signed, final_step, int_ctype, sign_extend, type_limits, unsigned_type
+from .scalars import SET_UNUSED, bits_fn, clit, clit_signed, final_step, int_ctype, sign_extend, type_limits, unsigned_type
 from ..wire import (checksum_name, dispatch_facts, encoding_facts, gap_of, gap_reads, stream_facts, text_form_head,
                     text_line_facts, with_head_checks)
 
@@ -727,7 +727,7 @@ class CView:
         c("{")
         c.indent()
         rt = self.raw_type(m)
-        c(f"{rt} r[{max(1, len(raws))}];")
+        c(f"{rt} r[{max(1, len(raws))}] = {{0}};  /* every value is set by raw; compilers cannot always tell */")
         c(f"int rc = {self.fn(m, 'raw')}(m, r);")
         c("if (rc != CW_OK) {")
         c("    return rc;")
@@ -967,7 +967,7 @@ class CView:
         if not raws:
             c("(void)r;")
         if not m.members:
-            c("(void)m;")
+            c(SET_UNUSED)
         if unfilled is None or not field_sums:
             c("(void)text_form;")
         for leaf in wired:
@@ -1033,7 +1033,7 @@ class CView:
         c(f"static inline int {self.fn(m, 'to_text')}(const {self.tname(m)} *m, char *buf, size_t cap)")
         c("{")
         c.indent()
-        c(f"{self.raw_type(m)} r[{max(1, n)}];")
+        c(f"{self.raw_type(m)} r[{max(1, n)}] = {{0}};  /* every value is set by raw; compilers cannot always tell */")
         c("cw_writer_t w;")
         c("uint8_t i;")
         c(f"int rc = {self.fn(m, 'raw')}(m, r);")
@@ -1267,7 +1267,7 @@ class CView:
         c("{")
         c.indent()
         if total == 0:
-            c("(void)m;")
+            c(SET_UNUSED)
             c("cw_trim(&s, &end);")
             self.fail_if(c, "s != end", "count")
             c("return CW_OK;")
@@ -1275,7 +1275,7 @@ class CView:
             c("}")
             return c.text()
         c(f"const char *ends[{total}];  /* where each value ends: cw_value */")
-        c("cw_span_t v;")
+        c("cw_span_t v = {NULL, NULL};  /* read only where a value was found; compilers cannot always tell */")
         if any(x.field.kind not in ("char", "str") for x in leaves):
             c("int rc;")
         if total == 1 and last_to_end and required == 1:
