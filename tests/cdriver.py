@@ -262,20 +262,21 @@ def firmware_source(p: Protocol, include: bool = True) -> str:
     on the stack, both handed on to functions of another unit. With the codec inlined
     into them, the compiler's flow analysis (-Wmaybe-uninitialized) sees the locals of
     the encoder and decoder; the conformance driver's buffers are static. Every name
-    starts with the protocol's, so the units of several protocols go in one file."""
+    starts with the protocol's or `fw_`, so these units go in one file with several
+    protocols' or with the conformance driver."""
     px, text = p.name, p.framing.kind == "text"
     unit = "char" if text else "uint8_t"
     lines = [f'#include "{px}.h"', ""] if include else []
-    lines += [f"int {px}_fw_send(const void *frame, int n);", ""]
+    lines += [f"int {px}_fw_send(const void *fw_frame, int fw_n);", ""]
     for m in p.messages:
         t, fn = f"{px}_{m.name}_t", f"{px}_{m.name}"
         room = f"{px.upper()}_{m.name.upper()}_MAX_TEXT" if text else f"{2 * (m.size or 1) + 8}u"  # room to stuff
-        lines += [f"int {fn}_fw_use(const {t} *m);",
-                  f"int {fn}_fw_send(const {t} *m);",
-                  f"int {fn}_fw_send(const {t} *m)", "{", f"    {unit} out[{room}];",
-                  f"    return {px}_fw_send(out, {fn}_encode(m, out, sizeof out));", "}", "",
-                  f"int {fn}_fw_receive(const {unit} *frame, size_t n);",
-                  f"int {fn}_fw_receive(const {unit} *frame, size_t n)", "{", f"    {t} m;",
-                  f"    int rc = {fn}_decode(frame, n, &m);",
-                  f"    return rc < 0 ? rc : {fn}_fw_use(&m);", "}", ""]
+        lines += [f"int {fn}_fw_use(const {t} *fw_m);",
+                  f"int {fn}_fw_send(const {t} *fw_m);",
+                  f"int {fn}_fw_send(const {t} *fw_m)", "{", f"    {unit} fw_out[{room}];",
+                  f"    return {px}_fw_send(fw_out, {fn}_encode(fw_m, fw_out, sizeof fw_out));", "}", "",
+                  f"int {fn}_fw_receive(const {unit} *fw_frame, size_t fw_n);",
+                  f"int {fn}_fw_receive(const {unit} *fw_frame, size_t fw_n)", "{", f"    {t} fw_m;",
+                  f"    int fw_rc = {fn}_decode(fw_frame, fw_n, &fw_m);",
+                  f"    return fw_rc < 0 ? fw_rc : {fn}_fw_use(&fw_m);", "}", ""]
     return "\n".join(lines)

@@ -1450,14 +1450,21 @@ class CView:
         if length:  # the frame's size from the length's value: a length that counts more than the frame has less
             over = length["overhead"]
             facts = dict(facts, length=dict(length, overhead_term=f"+ {over}u" if over >= 0 else f"- {-over}u"))
-        return facts
+        return dict(facts, fill_type=fill_type(facts["max"]))
 
     def encoding(self) -> dict:
         """The link's byte stuffing as C constants, or {} without one."""
         facts = encoding_facts(self.p)
         if not facts:
             return facts
-        return dict(facts, constant=f"CW_{facts['kind'].upper()}", delimiter_c=f"0x{facts['delimiter']:02X}u")
+        return dict(facts, constant=f"CW_{facts['kind'].upper()}", delimiter_c=f"0x{facts['delimiter']:02X}u",
+                    fill_type=fill_type(facts["frame_max"]))
+
+
+def fill_type(most: int) -> str:
+    """The type of a count of buffered bytes, 0..most: as narrow as it can be on an
+    8-bit MCU, and wide enough for frames over 64 KiB."""
+    return unsigned_type(most.bit_length())
 
 
 def enum_span(values: list) -> Optional[tuple[int, int]]:
