@@ -214,6 +214,7 @@ class Driver:
             wires=wires, wire_index={w: i for i, w in enumerate(wires)},
             decimals=self.text and any(leaf.field.kind == "float" for m in p.messages for leaf in m.wire.leaves),
             text=self.text, wire_max=wire_max + 1, self_identifying=p.self_identifying,
+            len_t="uint16_t" if wire_max < 1 << 16 else "uint32_t",  # frames over 64 KiB need more
             has_dir=p.framing.kind != "bits",  # decode takes a direction (PX_DIR_ANY: any)
             word=self.v.word_bits() is not None and p.framing.kind == "bits",
             word_type="uint64_t" if (self.v.word_bits() or 0) > 32 else "uint32_t",

@@ -136,3 +136,58 @@ def test_the_large_frame_header_compiles_without_warnings(tmp_path, compiler):
     """-Wtype-limits (in -Wextra) saw the 16-bit count compared with the buffer's size."""
     render(tmp_path, "large", LARGE)
     assert firmware_warnings(tmp_path, "large", compiler, "-O2") == ""
+
+
+# Least significant bit first, 16 channels of 11 bits after 12 KiB of bytes: the
+# channels lie past bit 65,535 of the frame. Each channel at 1024 sets stream bit
+# 11k + 10 (tests/test_lsb_first.py works it out), the same 11 bytes for every 8.
+FAR_BITS = """codeword: 1
+protocol: farbits
+title: Bit fields past bit 65535
+source: hand-written
+framing:
+  kind: bytes
+  bit_order: lsb_first
+  layout:
+    - {name: sync, type: u8, const: 0xA5}
+    - {payload: true}
+messages:
+  m:
+    fields:
+      - {name: a, type: bytes, length: 4096}
+      - {name: b, type: bytes, length: 4096}
+      - {name: c, type: bytes, length: 4096}
+      - {name: ch, type: u11, count: 16}
+      - {name: end, type: u8}
+"""
+FAR_FRAME = b"\xa5" + bytes(3 * 4096) + bytes.fromhex("00 04 20 00 01 08 40 00 02 10 80" * 2) + b"\x7e"
+
+
+def test_bit_fields_past_bit_65535_are_written_and_read_where_they_lie(tmp_path):
+    """The bit helpers take a 16-bit offset; the encoder once passed the field's bit
+    from the frame's start (98,312 here): wrapped, or refused by -Wconversion."""
+    mod = load(render(tmp_path, "farbits", FAR_BITS) / "farbits.py")
+    assert mod.encode(mod.M(a=bytes(4096), b=bytes(4096), c=bytes(4096), ch=[1024] * 16, end=0x7E)) == FAR_FRAME
+    driver = """#include <stdio.h>
+#include <string.h>
+#include "farbits.h"
+static const uint8_t frame[] = {%s};
+static farbits_m_t want, got;
+static uint8_t out[sizeof frame];
+int main(void)
+{
+    unsigned i;
+    int n;
+    for (i = 0; i < 16u; i++) {
+        want.ch[i] = 1024u;
+    }
+    want.end = 0x7Eu;
+    n = farbits_m_encode(&want, out, sizeof out);
+    printf("%%d %%d\\n", n == (int)sizeof frame, n > 0 && memcmp(out, frame, sizeof frame) == 0);
+    n = farbits_m_decode(frame, sizeof frame, &got);
+    printf("%%d %%d\\n", n, memcmp(&got, &want, sizeof got) == 0);
+    return 0;
+}
+""" % c_bytes(FAR_FRAME)
+    assert run_c(tmp_path, driver, ("-Wconversion",)) == ["1 1", "0 1"]
+    assert firmware_warnings(tmp_path, "farbits", "gcc", "-O2") == ""

@@ -756,7 +756,7 @@ class CView:
                 for piece in span.pieces:
                     if piece.var in raws:
                         value = raws[piece.var] if piece.bits > 32 or rt != "uint64_t" else f"(uint32_t){raws[piece.var]}"
-                        c(f"{bits_fn('put', piece.bits, span.order)}(buf, {piece.pos}u, {piece.bits}u, {value});")
+                        c(f"{bits_fn('put', piece.bits, span.order)}({bits_at(piece.pos)}, {piece.bits}u, {value});")
         if truncates and sh.gaps:
             self.leave_out_gaps(c, m, raws)
         elif truncates:
@@ -768,8 +768,7 @@ class CView:
             if span.kind == "int":
                 c(self.int_put(f"({span.start}u - cut)" if moved else span.start, span.size, self.order_of(piece.field), call))
             else:  # sharing its bytes, whose bits for it are still 0
-                pos = f"({piece.pos}u - 8u * cut)" if moved else f"{piece.pos}u"
-                c(f"{bits_fn('put', piece.bits, span.order)}(buf, {pos}, {piece.bits}u, {call});")
+                c(f"{bits_fn('put', piece.bits, span.order)}({bits_at(piece.pos, moved)}, {piece.bits}u, {call});")
         c(f"return (int)({m.size}u - cut);" if truncates else f"return {m.size};")
         c.dedent()
         c("}")
@@ -934,7 +933,7 @@ class CView:
                 c("}")
             else:
                 for piece in pieces:
-                    c(f"{raws[piece.var]} = ({rt}){bits_fn('get', piece.bits, span.order)}(buf, {piece.pos}u, {piece.bits}u);")
+                    c(f"{raws[piece.var]} = ({rt}){bits_fn('get', piece.bits, span.order)}({bits_at(piece.pos)}, {piece.bits}u);")
         if m.shortening and m.shortening.length_field:
             counter = next(x for x in m.wire.leaves if x.field.name == m.shortening.length_field)
             c(f"{raws[counter.var]} = ({rt})({raws[counter.var]} + cut);  /* as if the whole payload were sent */")
@@ -942,7 +941,7 @@ class CView:
             if span.kind == "int":
                 got = self.int_get(span.start, span.size, self.order_of(piece.field))
             else:
-                got = f"{bits_fn('get', piece.bits, span.order)}(buf, {piece.pos}u, {piece.bits}u)"
+                got = f"{bits_fn('get', piece.bits, span.order)}({bits_at(piece.pos)}, {piece.bits}u)"
             self.fail_if(c, f"{got} != {self.byte_checksum_call(piece, m, True, 'sent')}", "checksum")
         c(f"return {self.fn(m, 'check_raw')}(r, buf, m, false);")
         c.dedent()
@@ -1459,6 +1458,15 @@ class CView:
             return facts
         return dict(facts, constant=f"CW_{facts['kind'].upper()}", delimiter_c=f"0x{facts['delimiter']:02X}u",
                     fill_type=fill_type(facts["frame_max"]))
+
+
+def bits_at(pos: int, cut: bool = False) -> str:
+    """The buffer and bit offset arguments of cw_get_bits/cw_put_bits for a field at bit
+    `pos` of the frame: the byte it starts in and the bit within it, so the helpers'
+    16-bit offsets hold in frames of any size; `cut`: the bytes left out come before it."""
+    byte, bit = divmod(pos, 8)
+    base = f"buf + ({byte}u - cut)" if cut else f"buf + {byte}" if byte else "buf"
+    return f"{base}, {bit}u"
 
 
 def fill_type(most: int) -> str:
