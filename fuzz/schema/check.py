@@ -9,7 +9,7 @@ need the optimisers, so the conformance driver, with a firmware-style unit that
 encodes into and decodes from buffers on the stack (tests/cdriver.py
 firmware_source), is also compiled (-c) at the other points of MATRIX: gcc at
 -O1/-O2/-Os, clang at -O0/-O2/-Os. Compiling all six more than doubles the time
-of a schema (about 2.7 s instead of 1.6 s on one core), so `--c-matrix rotate`,
+of a schema (about 4.3 s instead of 1.6 s on one core; rotate: about 2 s), so `--c-matrix rotate`,
 the default, compiles each seed at one of them, MATRIX[seed % 6]: six consecutive
 seeds cover every compiler and level, a long run each of them thousands of times.
 `--c-matrix full` compiles every seed at all six."""
