@@ -200,7 +200,8 @@ class Driver:
         wires = list(dict.fromkeys([c["wire"] for mm in messages for c in mm["cases"]]
                                    + [c["canon"] for mm in messages for c in mm["cases"]]
                                    + [c["wire"] for c in invalid] + seq_wires))
-        env = jinja2.Environment(undefined=jinja2.StrictUndefined, trim_blocks=True, lstrip_blocks=True)
+        env = jinja2.Environment(undefined=jinja2.StrictUndefined, trim_blocks=True, lstrip_blocks=True,
+                                 keep_trailing_newline=True)  # clang -Wpedantic: a file ends with a newline
         env.filters["cbytes"] = lambda b: "{" + ", ".join(f"0x{x:02x}" for x in b) + "}" if b else "{0}"
         env.filters["cstr"] = cstr
         wire_max = max([len(c["wire"]) for mm in messages for c in mm["cases"]]
@@ -214,6 +215,7 @@ class Driver:
             wires=wires, wire_index={w: i for i, w in enumerate(wires)},
             decimals=self.text and any(leaf.field.kind == "float" for m in p.messages for leaf in m.wire.leaves),
             text=self.text, wire_max=wire_max + 1, self_identifying=p.self_identifying,
+            len_t="uint16_t" if wire_max < 1 << 16 else "uint32_t",  # frames over 64 KiB need more
             has_dir=p.framing.kind != "bits",  # decode takes a direction (PX_DIR_ANY: any)
             word=self.v.word_bits() is not None and p.framing.kind == "bits",
             word_type="uint64_t" if (self.v.word_bits() or 0) > 32 else "uint32_t",
@@ -267,3 +269,29 @@ def int_literal(value: int) -> str:
     """A C literal of `value` for a member of any integer type: INT64_MIN and values
     above INT64_MAX have no plain decimal spelling."""
     return clit(value, True) if value >= 1 << 63 else clit_signed(value) if value >= 0 else clit(value)
+
+
+def firmware_source(p: Protocol, include: bool = True) -> str:
+    """A translation unit as firmware writes it: each message encoded from a struct
+    it is handed into a buffer on the stack, and decoded from a frame into a struct
+    on the stack, both handed on to functions of another unit. With the codec inlined
+    into them, the compiler's flow analysis (-Wmaybe-uninitialized) sees the locals of
+    the encoder and decoder; the conformance driver's buffers are static. Every name
+    starts with the protocol's or `fw_`, so these units go in one file with several
+    protocols' or with the conformance driver."""
+    px, text = p.name, p.framing.kind == "text"
+    unit = "char" if text else "uint8_t"
+    lines = [f'#include "{px}.h"', ""] if include else []
+    lines += [f"int {px}_fw_send(const void *fw_frame, int fw_n);", ""]
+    for m in p.messages:
+        t, fn = f"{px}_{m.name}_t", f"{px}_{m.name}"
+        room = f"{px.upper()}_{m.name.upper()}_MAX_TEXT" if text else f"{2 * (m.size or 1) + 8}u"  # room to stuff
+        lines += [f"int {fn}_fw_use(const {t} *fw_m);",
+                  f"int {fn}_fw_send(const {t} *fw_m);",
+                  f"int {fn}_fw_send(const {t} *fw_m)", "{", f"    {unit} fw_out[{room}];",
+                  f"    return {px}_fw_send(fw_out, {fn}_encode(fw_m, fw_out, sizeof fw_out));", "}", "",
+                  f"int {fn}_fw_receive(const {unit} *fw_frame, size_t fw_n);",
+                  f"int {fn}_fw_receive(const {unit} *fw_frame, size_t fw_n)", "{", f"    {t} fw_m;",
+                  f"    int fw_rc = {fn}_decode(fw_frame, fw_n, &fw_m);",
+                  f"    return fw_rc < 0 ? fw_rc : {fn}_fw_use(&fw_m);", "}", ""]
+    return "\n".join(lines)

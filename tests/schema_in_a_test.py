@@ -12,7 +12,7 @@ from pathlib import Path
 
 from codeword.build import build, compile_schema, render_protocol, verify
 
-from cdriver import Driver
+from cdriver import Driver, firmware_source
 
 C_FLAGS = ["-std=c99", "-g", "-O1", "-fsanitize=address,undefined", "-fno-sanitize-recover=all",
            "-Wall", "-Wextra", "-Werror"]
@@ -114,3 +114,20 @@ def passed(output: str, name: str) -> int:
     found = re.search(rf"CONFORMANCE {name} PASS (\d+) checks 0 failures", re.sub(r"\x1b\[[0-9;]*m", "", output))
     assert found, output[-3000:]
     return int(found.group(1))
+
+
+STRICT_WARNINGS = ["-std=c99", "-Wall", "-Wextra", "-Wpedantic", "-Wconversion", "-Wsign-conversion", "-Wshadow",
+                   "-Werror"]
+
+
+def firmware_warnings(where: Path, name: str, compiler: str, level: str) -> str:
+    """Compile (-c) the codec of the header in `where` as firmware uses it
+    (cdriver.firmware_source) with the strict warnings at `level`: the compiler's
+    complaints, empty when there are none."""
+    path = shutil.which(compiler)
+    assert path, f"{compiler} is not installed (.ci/run installs it)"
+    src = where / f"firmware_{compiler}{level}.c"
+    src.write_text(firmware_source(compile_schema(where / f"{name}.yaml")), encoding="utf-8")
+    built = subprocess.run([path, *STRICT_WARNINGS, level, "-I", str(where), "-c", str(src), "-o",
+                            str(src.with_suffix(".o"))], capture_output=True, text=True, timeout=300)
+    return built.stderr if built.returncode != 0 else ""

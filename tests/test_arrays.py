@@ -14,7 +14,7 @@ from codeword.diff import BREAKING, compare
 from codeword.fingerprint import canonical_json, fingerprint
 from codeword.targets.markdown.layout import diagram, slots, type_text
 
-from schema_in_a_test import c_bytes, conformance_on_host_and_avr, load, render, run_c
+from schema_in_a_test import c_bytes, conformance_on_host_and_avr, firmware_warnings, load, render, run_c
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -204,6 +204,48 @@ int main(void) {
 """
     lines = run_c(tmp_path, driver)
     assert lines == ["0 25 1 0 1 1024", "1 25 1 0 1 2047"]
+
+
+# Least significant bit first, elements crossing bytes: wide ones, narrow ones and
+# whole little-endian integers in an array of groups, as the raw array holds them.
+WIDE_LSB = """codeword: 1
+protocol: widelsb
+title: Wide elements packed least significant bit first
+source: hand-written
+framing:
+  kind: bytes
+  bit_order: lsb_first
+  byte_order: little
+  layout:
+    - {name: sync, type: u8, const: 0xA5}
+    - {payload: true}
+    - {name: check, type: u8, checksum: {algorithm: xor, covers: {from: payload, to: payload}}}
+messages:
+  samples:
+    fields:
+      - name: sample
+        type: group
+        count: 4
+        fields:
+          - {name: wide, type: u43}
+          - {name: narrow, type: u5}
+          - {name: whole, type: u64}
+          - {name: half, type: u16}
+      - {name: tail, type: u3}
+      - {name: more, type: u5}
+"""
+
+
+@pytest.mark.parametrize("level", ["-O0", "-O1", "-O2", "-Os", "-O3"])
+@pytest.mark.parametrize("compiler", ["gcc", "clang"])
+@pytest.mark.parametrize("name,schema", [("sbus16", SBUS), ("widelsb", WIDE_LSB)], ids=["sbus16", "widelsb"])
+def test_lsb_first_arrays_compile_without_warnings_where_firmware_inlines_them(tmp_path, name, schema,
+                                                                                compiler, level):
+    """The encoder keeps every raw value in a local array before it packs them; gcc
+    could not tell raw had set them all, and warned (-Wmaybe-uninitialized) at -O1
+    where firmware encodes into a buffer on its stack."""
+    render(tmp_path, name, schema)
+    assert firmware_warnings(tmp_path, name, compiler, level) == ""
 
 
 def test_each_element_is_a_leaf_with_its_index(tmp_path):

@@ -16,10 +16,14 @@ from pathlib import Path
 
 import pytest
 
-from cdriver import Driver, load_vectors
+from codeword.build import compile_schema
+
+from cdriver import Driver, firmware_source, load_vectors
 from conftest import PROTOCOLS, ROOT, load_model
 
 INCLUDE = ROOT / "generated" / "c"
+EXAMPLES = ROOT / "generated" / "examples" / "c"
+LEVELS = ["-O0", "-O2", "-Os"]  # what -O2/-Os inline and analyse warns of more
 WARNINGS = ["-Wall", "-Wextra", "-Wpedantic", "-Wconversion", "-Wsign-conversion", "-Wshadow", "-Werror"]
 MATRIX = [
     ("gcc", ["-std=c99"]), ("gcc", ["-std=c11"]), ("clang", ["-std=c99"]), ("clang", ["-std=c11"]),
@@ -38,19 +42,44 @@ def run(cmd: list[str], timeout: int = 300) -> subprocess.CompletedProcess:
     return subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, errors="replace")
 
 
-def all_headers(tmp_path: Path) -> Path:
+def all_headers(tmp_path: Path, folder: Path = INCLUDE) -> Path:
+    """Every header of `folder` in one translation unit, each protocol's codec used as
+    firmware uses it (cdriver.firmware_source): an unused inline function is never
+    compiled, and -O2/-Os warn of what only their inlining and flow analysis see."""
+    names = sorted(path.stem for path in folder.glob("*.h") if path.stem != "codeword")
     src = tmp_path / "all.c"
-    src.write_text("".join(f'#include "{p}.h"\n' for p in PROTOCOLS) + "int main(void) { return 0; }\n")
+    src.write_text("".join(f'#include "{name}.h"\n' for name in names) + "\n"
+                   + "".join(firmware_source(compile_schema(schema_of(folder, name)), include=False)
+                             for name in names)
+                   + "int main(void) { return 0; }\n")
     return src
 
 
+def schema_of(folder: Path, name: str) -> Path:
+    return (ROOT / "examples" if folder == EXAMPLES else ROOT / "schemas") / f"{name}.yaml"
+
+
+@pytest.mark.parametrize("level", LEVELS)
 @pytest.mark.parametrize("compiler,flags", MATRIX, ids=[f"{c}{' '.join(f[:1])}" for c, f in MATRIX])
 @pytest.mark.parametrize("crc", ["bitwise", "table"])
-def test_headers_compile_together_without_warnings(tmp_path, compiler, flags, crc):
+def test_headers_compile_together_without_warnings(tmp_path, compiler, flags, crc, level):
     """All five headers in one translation unit: no clashing names, no warnings."""
     defines = [f"-D{p.upper()}_CRC_TABLE" for p in PROTOCOLS] if crc == "table" else []
-    result = run([tool(compiler), *flags, *WARNINGS, *defines, "-I", str(INCLUDE), "-c",
+    result = run([tool(compiler), *flags, level, *WARNINGS, *defines, "-I", str(INCLUDE), "-c",
                   str(all_headers(tmp_path)), "-o", str(tmp_path / "all.o")])
+    assert result.returncode == 0, result.stderr
+
+
+@pytest.mark.parametrize("level", LEVELS)
+@pytest.mark.parametrize("compiler", ["gcc", "clang"])
+@pytest.mark.parametrize("crc", ["bitwise", "table"])
+def test_example_headers_compile_together_without_warnings(tmp_path, compiler, crc, level):
+    """The third-party examples (generated/examples/c) as the project's own headers."""
+    names = sorted(path.stem for path in EXAMPLES.glob("*.h") if path.stem != "codeword")
+    assert len(names) >= 5, names
+    defines = [f"-D{name.upper()}_CRC_TABLE" for name in names] if crc == "table" else []
+    result = run([tool(compiler), "-std=c99", level, *WARNINGS, *defines, "-I", str(EXAMPLES), "-c",
+                  str(all_headers(tmp_path, EXAMPLES)), "-o", str(tmp_path / "all.o")])
     assert result.returncode == 0, result.stderr
 
 
@@ -72,6 +101,22 @@ def test_conformance_on_host_with_sanitizers(tmp_path, name, crc):
     exe = tmp_path / name
     build = run([tool("gcc"), "-std=c99", "-g", "-O1", "-fsanitize=address,undefined",
                  "-fno-sanitize-recover=all", "-Wall", "-Wextra", "-Werror", *define, "-I", str(INCLUDE),
+                 str(driver(tmp_path, name)), "-o", str(exe)])
+    assert build.returncode == 0, build.stderr
+    result = run([str(exe)])
+    assert result.returncode == 0 and passed(result.stdout, name), result.stdout + result.stderr
+    assert int(passed(result.stdout, name).group(1)) > 500
+
+
+@pytest.mark.parametrize("name", PROTOCOLS)
+def test_conformance_on_host_through_the_portable_byte_access(tmp_path, name):
+    """codeword.h reads and writes little-endian integers with memcpy where the compiler
+    says the target is little-endian (__BYTE_ORDER__), and byte by byte elsewhere: on
+    big-endian targets and compilers without the macro. Undefined, the host runs the
+    byte-by-byte path, which no other host build compiles."""
+    exe = tmp_path / name
+    build = run([tool("gcc"), "-std=c99", "-g", "-O1", "-U__BYTE_ORDER__", "-fsanitize=address,undefined",
+                 "-fno-sanitize-recover=all", *WARNINGS, "-I", str(INCLUDE),
                  str(driver(tmp_path, name)), "-o", str(exe)])
     assert build.returncode == 0, build.stderr
     result = run([str(exe)])

@@ -10,7 +10,7 @@ from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
 from . import features as feature_table
-from .check import check_seed
+from .check import C_MATRIX, check_seed
 from .generate import generate
 from .mutate import check_mutant
 from .typecheck import mypy_problems
@@ -27,6 +27,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="processes (default: every core)")
     parser.add_argument("--mutants", type=int, default=None,
                         help="mutated schemas to check after them (default: as many as --count)")
+    parser.add_argument("--c-matrix", choices=C_MATRIX, default="rotate",
+                        help="compile each schema's C at one more (compiler, level) chosen by its seed (rotate, "
+                             "the default), or at all six (full); see fuzz/schema/check.py")
     parser.add_argument("--show", action="store_true", help="print the schema of --seed and stop")
     parser.add_argument("--mypy", action="store_true", help="also run mypy --strict on every generated module")
     parser.add_argument("--record", action="store_true", help="write the run's count and result into fuzz/RESULTS.md")
@@ -41,7 +44,8 @@ def main(argv: list[str] | None = None) -> int:
     mutants = range(args.seed, args.seed + (args.count if args.mutants is None else args.mutants))
     problems = []
     with ProcessPoolExecutor(max_workers=args.jobs) as pool:
-        for outcome in pool.map(check_seed, seeds, [chosen] * len(seeds), chunksize=8):
+        for outcome in pool.map(check_seed, seeds, [chosen] * len(seeds), [None] * len(seeds),
+                                [args.c_matrix] * len(seeds), chunksize=8):
             if not outcome.ok:
                 failed.append(outcome)
                 print(outcome.line(), flush=True)
@@ -66,7 +70,8 @@ def main(argv: list[str] | None = None) -> int:
 def record(args, chosen: frozenset[str], summary: str, failed) -> None:
     off = sorted(feature_table.FULL - chosen)
     lines = [MARK, "", f"`python3 -m fuzz.schema --count {args.count} --seed {args.seed}"
-             + (f" --features {args.features}" if args.features else "") + "`", "",
+             + (f" --features {args.features}" if args.features else "")
+             + (f" --c-matrix {args.c_matrix}" if args.c_matrix != "rotate" else "") + "`", "",
              f"- Result: {summary}.", f"- Machine: {platform.machine()}, Python {platform.python_version()}, "
              f"{os.cpu_count()} cores.", f"- Features off: {', '.join(off) or 'none'}."]
     lines += [f"  - `{name}`: {feature_table.KNOWN_OPEN.get(name, 'switched off for this run')}" for name in off]

@@ -175,6 +175,8 @@ class Generator:
                 body["crc_extra"] = rng.randrange(256)
         if self.has("encoding", 0.4):
             self.encode_frames(framing, messages, ids if not two_keys and not single and id_bits == 8 else None)
+        if not any("length_of" in f for f in layout) and "encoding" not in framing and "large_frame" in self.on:
+            self.large_frame(messages)  # a length field or an encoding holds less
         return framing, messages
 
     def crc_name(self, name: str) -> str:
@@ -206,6 +208,16 @@ class Generator:
         tr24's stop byte: no part of the sync, even right after it."""
         if self.has("end_marker", 0.3):
             layout.append({"name": "end_mark", "type": "u8", "const": self.rng.choice([0x03, 0x0A, 0x55, 0xAA, 0x7E])})
+
+    def large_frame(self, messages: dict) -> None:
+        """In one schema of 40, fields of 4 KiB (the most a field holds) first in a message:
+        its frame is over 64 KiB, and the fields after them lie past bit 65,535. Drawn from
+        a generator of its own, so the other schemas of a seed stay as they were."""
+        own = random.Random(f"large_frame {self.seed}")
+        if own.random() >= 0.025:
+            return
+        body = messages[own.choice(sorted(messages))]
+        body["fields"][:0] = [{"name": f"block_{i}", "type": "bytes", "length": 4096} for i in range(17)]
 
     def final_step(self, check: dict, width: int) -> int:
         """A sum's complement (in 8, 16, 32 or 64 bits) and a sum's or xor's xorout; the width."""

@@ -225,7 +225,7 @@ static inline int car_header_decode(const uint8_t *buf, size_t len, car_header_t
 
 static inline int car_header_to_word(const car_header_t *m, uint32_t *word)
 {
-    uint8_t b[4];
+    uint8_t b[4] = {0};  /* encode fills it; compilers cannot always tell */
     int rc = car_header_encode(m, b, sizeof b);
     if (rc < 0) {
         return rc;
@@ -462,7 +462,7 @@ static inline int car_master_control_decode(const uint8_t *buf, size_t len, car_
 
 static inline int car_master_control_to_word(const car_master_control_t *m, uint32_t *word)
 {
-    uint8_t b[4];
+    uint8_t b[4] = {0};  /* encode fills it; compilers cannot always tell */
     int rc = car_master_control_encode(m, b, sizeof b);
     if (rc < 0) {
         return rc;
@@ -675,7 +675,7 @@ static inline int car_slave_control_decode(const uint8_t *buf, size_t len, car_s
 
 static inline int car_slave_control_to_word(const car_slave_control_t *m, uint32_t *word)
 {
-    uint8_t b[4];
+    uint8_t b[4] = {0};  /* encode fills it; compilers cannot always tell */
     int rc = car_slave_control_encode(m, b, sizeof b);
     if (rc < 0) {
         return rc;

@@ -236,7 +236,7 @@ static inline void cw_put_le32(uint8_t *p, uint32_t v)
 }
 
 /* Bit fields: `n` bits (1..32) at bit offset `off`, most significant bit
- * first, counted from the first bit of the frame. */
+ * first, counted from the first bit of p (the generated code passes the byte a field starts in). */
 static inline uint32_t cw_get_bits(const uint8_t *p, uint16_t off, uint8_t n)
 {
     uint32_t v = 0;

@@ -212,7 +212,7 @@ static inline int mtv4_set_wheels_velocities_raw(const mtv4_set_wheels_velocitie
 
 static inline int mtv4_set_wheels_velocities_encode(const mtv4_set_wheels_velocities_t *m, uint8_t *buf, size_t cap)
 {
-    uint16_t r[8];
+    uint16_t r[8] = {0};  /* every value is set by raw; compilers cannot always tell */
     int rc = mtv4_set_wheels_velocities_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -355,7 +355,7 @@ static inline int mtv4_set_led_raw(const mtv4_set_led_t *m, uint16_t *r)
 
 static inline int mtv4_set_led_encode(const mtv4_set_led_t *m, uint8_t *buf, size_t cap)
 {
-    uint16_t r[10];
+    uint16_t r[10] = {0};  /* every value is set by raw; compilers cannot always tell */
     int rc = mtv4_set_led_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -472,7 +472,7 @@ static inline int mtv4_set_wheels_velocities_with_odometry_raw(const mtv4_set_wh
 
 static inline int mtv4_set_wheels_velocities_with_odometry_encode(const mtv4_set_wheels_velocities_with_odometry_t *m, uint8_t *buf, size_t cap)
 {
-    uint32_t r[12];
+    uint32_t r[12] = {0};  /* every value is set by raw; compilers cannot always tell */
     int rc = mtv4_set_wheels_velocities_with_odometry_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -641,7 +641,7 @@ static inline int mtv4_ack_raw(const mtv4_ack_t *m, uint16_t *r)
 
 static inline int mtv4_ack_encode(const mtv4_ack_t *m, uint8_t *buf, size_t cap)
 {
-    uint16_t r[6];
+    uint16_t r[6] = {0};  /* every value is set by raw; compilers cannot always tell */
     int rc = mtv4_ack_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -742,7 +742,7 @@ static inline int mtv4_odometry_reply_raw(const mtv4_odometry_reply_t *m, uint32
 
 static inline int mtv4_odometry_reply_encode(const mtv4_odometry_reply_t *m, uint8_t *buf, size_t cap)
 {
-    uint32_t r[10];
+    uint32_t r[10] = {0};  /* every value is set by raw; compilers cannot always tell */
     int rc = mtv4_odometry_reply_raw(m, r);
     if (rc != CW_OK) {
         return rc;

@@ -121,7 +121,7 @@ static inline int route_start_encode(const route_start_t *m, uint8_t *buf, size_
 static inline int route_start_check_raw(const uint8_t *r, const uint8_t *buf, route_start_t *m, bool text_form)
 {
     (void)buf;
-    (void)m;
+    m->unused = 0u;  /* the placeholder of a message without values */
     if (r[0] != 3u) {
         return CW_ERR_CONST;
     }
@@ -140,7 +140,7 @@ static inline int route_start_decode(const uint8_t *buf, size_t len, route_start
     uint8_t r_kind;
     uint8_t r_cs;
     unsigned word;
-    (void)m;
+    m->unused = 0u;  /* the placeholder of a message without values */
     if (len != 1u) {
         return CW_ERR_LENGTH;
     }
@@ -162,7 +162,7 @@ static inline int route_start_decode(const uint8_t *buf, size_t len, route_start
 
 static inline int route_start_to_word(const route_start_t *m, uint32_t *word)
 {
-    uint8_t b[1];
+    uint8_t b[1] = {0};  /* encode fills it; compilers cannot always tell */
     int rc = route_start_encode(m, b, sizeof b);
     if (rc < 0) {
         return rc;
@@ -187,7 +187,7 @@ static inline int route_start_from_word(uint32_t word, route_start_t *m)
 /* start as a text line: its 3 raw values in decimal, separated by ' '. */
 static inline int route_start_to_text(const route_start_t *m, char *buf, size_t cap)
 {
-    uint8_t r[3];
+    uint8_t r[3] = {0};  /* every value is set by raw; compilers cannot always tell */
     cw_writer_t w;
     uint8_t i;
     int rc = route_start_raw(m, r);
@@ -443,7 +443,7 @@ static inline int route_object_decode(const uint8_t *buf, size_t len, route_obje
 
 static inline int route_object_to_word(const route_object_t *m, uint32_t *word)
 {
-    uint8_t b[4];
+    uint8_t b[4] = {0};  /* encode fills it; compilers cannot always tell */
     int rc = route_object_encode(m, b, sizeof b);
     if (rc < 0) {
         return rc;
@@ -465,7 +465,7 @@ static inline int route_object_from_word(uint32_t word, route_object_t *m)
 /* object as a text line: its 10 raw values in decimal, separated by ' '. */
 static inline int route_object_to_text(const route_object_t *m, char *buf, size_t cap)
 {
-    uint8_t r[10];
+    uint8_t r[10] = {0};  /* every value is set by raw; compilers cannot always tell */
     cw_writer_t w;
     uint8_t i;
     int rc = route_object_raw(m, r);
@@ -660,7 +660,7 @@ static inline int route_scene_decode(const uint8_t *buf, size_t len, route_scene
 
 static inline int route_scene_to_word(const route_scene_t *m, uint32_t *word)
 {
-    uint8_t b[4];
+    uint8_t b[4] = {0};  /* encode fills it; compilers cannot always tell */
     int rc = route_scene_encode(m, b, sizeof b);
     if (rc < 0) {
         return rc;
@@ -682,7 +682,7 @@ static inline int route_scene_from_word(uint32_t word, route_scene_t *m)
 /* scene as a text line: its 6 raw values in decimal, separated by ' '. */
 static inline int route_scene_to_text(const route_scene_t *m, char *buf, size_t cap)
 {
-    uint16_t r[6];
+    uint16_t r[6] = {0};  /* every value is set by raw; compilers cannot always tell */
     cw_writer_t w;
     uint8_t i;
     int rc = route_scene_raw(m, r);
@@ -764,7 +764,7 @@ static inline int route_end_encode(const route_end_t *m, uint8_t *buf, size_t ca
 static inline int route_end_check_raw(const uint8_t *r, const uint8_t *buf, route_end_t *m, bool text_form)
 {
     (void)buf;
-    (void)m;
+    m->unused = 0u;  /* the placeholder of a message without values */
     if (r[0] != 3u) {
         return CW_ERR_CONST;
     }
@@ -783,7 +783,7 @@ static inline int route_end_decode(const uint8_t *buf, size_t len, route_end_t *
     uint8_t r_kind;
     uint8_t r_cs;
     unsigned word;
-    (void)m;
+    m->unused = 0u;  /* the placeholder of a message without values */
     if (len != 1u) {
         return CW_ERR_LENGTH;
     }
@@ -805,7 +805,7 @@ static inline int route_end_decode(const uint8_t *buf, size_t len, route_end_t *
 
 static inline int route_end_to_word(const route_end_t *m, uint32_t *word)
 {
-    uint8_t b[1];
+    uint8_t b[1] = {0};  /* encode fills it; compilers cannot always tell */
     int rc = route_end_encode(m, b, sizeof b);
     if (rc < 0) {
         return rc;
@@ -830,7 +830,7 @@ static inline int route_end_from_word(uint32_t word, route_end_t *m)
 /* end as a text line: its 3 raw values in decimal, separated by ' '. */
 static inline int route_end_to_text(const route_end_t *m, char *buf, size_t cap)
 {
-    uint8_t r[3];
+    uint8_t r[3] = {0};  /* every value is set by raw; compilers cannot always tell */
     cw_writer_t w;
     uint8_t i;
     int rc = route_end_raw(m, r);

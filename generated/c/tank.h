@@ -326,7 +326,7 @@ static inline int tank_telemetry_encode(const tank_telemetry_t *m, char *buf, si
 static inline int tank_telemetry_parse_body(const char *s, const char *end, tank_telemetry_t *m)
 {
     const char *ends[20];  /* where each value ends: cw_value */
-    cw_span_t v;
+    cw_span_t v = {NULL, NULL};  /* read only where a value was found; compilers cannot always tell */
     int rc;
     size_t count = cw_split_values(s, end, ',', ends, 20u, false);
     if (count != 20u) {
@@ -586,7 +586,7 @@ static inline int tank_command_encode(const tank_command_t *m, char *buf, size_t
 static inline int tank_command_parse_body(const char *s, const char *end, tank_command_t *m)
 {
     const char *ends[10];  /* where each value ends: cw_value */
-    cw_span_t v;
+    cw_span_t v = {NULL, NULL};  /* read only where a value was found; compilers cannot always tell */
     int rc;
     size_t count = cw_split_values(s, end, ',', ends, 10u, false);
     if (count < 9u || count > 10u) {
@@ -723,7 +723,7 @@ static inline int tank_payload_command_encode(const tank_payload_command_t *m, c
 static inline int tank_payload_command_parse_body(const char *s, const char *end, tank_payload_command_t *m)
 {
     const char *ends[1];  /* where each value ends: cw_value */
-    cw_span_t v;
+    cw_span_t v = {NULL, NULL};  /* read only where a value was found; compilers cannot always tell */
     ends[0] = end;  /* the one value runs to the end */
     /* command */
     v = cw_value(s, ends, 0u, true);
@@ -772,7 +772,7 @@ static inline int tank_payload_reply_encode(const tank_payload_reply_t *m, char 
 static inline int tank_payload_reply_parse_body(const char *s, const char *end, tank_payload_reply_t *m)
 {
     const char *ends[1];  /* where each value ends: cw_value */
-    cw_span_t v;
+    cw_span_t v = {NULL, NULL};  /* read only where a value was found; compilers cannot always tell */
     ends[0] = end;  /* the one value runs to the end */
     /* command */
     v = cw_value(s, ends, 0u, true);
@@ -828,7 +828,7 @@ static inline int tank_gpio_config_encode(const tank_gpio_config_t *m, char *buf
 static inline int tank_gpio_config_parse_body(const char *s, const char *end, tank_gpio_config_t *m)
 {
     const char *ends[4];  /* where each value ends: cw_value */
-    cw_span_t v;
+    cw_span_t v = {NULL, NULL};  /* read only where a value was found; compilers cannot always tell */
     int rc;
     size_t count = cw_split_values(s, end, ',', ends, 4u, false);
     if (count != 4u) {

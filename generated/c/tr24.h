@@ -87,7 +87,7 @@ static inline int tr24_command_raw(const tr24_command_t *m, uint8_t *r)
 
 static inline int tr24_command_encode(const tr24_command_t *m, uint8_t *buf, size_t cap)
 {
-    uint8_t r[7];
+    uint8_t r[7] = {0};  /* every value is set by raw; compilers cannot always tell */
     int rc = tr24_command_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -164,7 +164,7 @@ static inline int tr24_reply_raw(const tr24_reply_t *m, uint8_t *r)
 
 static inline int tr24_reply_encode(const tr24_reply_t *m, uint8_t *buf, size_t cap)
 {
-    uint8_t r[7];
+    uint8_t r[7] = {0};  /* every value is set by raw; compilers cannot always tell */
     int rc = tr24_reply_raw(m, r);
     if (rc != CW_OK) {
         return rc;

@@ -76,3 +76,8 @@ def final_step(cs, value: str, wide: str) -> str:
     if cs.xorout is not None:
         value = f"({value} ^ {clit(cs.xorout, True)})"
     return value
+
+
+# A message without values has one placeholder member; decoders set it, so a caller's
+# struct handed on after a decode is never read unset (gcc -Wmaybe-uninitialized).
+SET_UNUSED = "m->unused = 0u;  /* the placeholder of a message without values */"

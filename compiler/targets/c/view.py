@@ -27,7 +27,7 @@ from . import word as cword
 from . import wordform as cwordform
 from .pack import Span
 from .errors import CTargetError
-from .scalars import bits_fn, clit, clit_signed, final_step, int_ctype, sign_extend, type_limits, unsigned_type
+from .scalars import SET_UNUSED, bits_fn, clit, clit_signed, final_step, int_ctype, sign_extend, type_limits, unsigned_type
 from ..wire import (checksum_name, dispatch_facts, encoding_facts, gap_of, gap_reads, stream_facts, text_form_head,
                     text_line_facts, with_head_checks)
 
@@ -727,7 +727,7 @@ class CView:
         c("{")
         c.indent()
         rt = self.raw_type(m)
-        c(f"{rt} r[{max(1, len(raws))}];")
+        c(f"{rt} r[{max(1, len(raws))}] = {{0}};  /* every value is set by raw; compilers cannot always tell */")
         c(f"int rc = {self.fn(m, 'raw')}(m, r);")
         c("if (rc != CW_OK) {")
         c("    return rc;")
@@ -756,7 +756,7 @@ class CView:
                 for piece in span.pieces:
                     if piece.var in raws:
                         value = raws[piece.var] if piece.bits > 32 or rt != "uint64_t" else f"(uint32_t){raws[piece.var]}"
-                        c(f"{bits_fn('put', piece.bits, span.order)}(buf, {piece.pos}u, {piece.bits}u, {value});")
+                        c(f"{bits_fn('put', piece.bits, span.order)}({bits_at(piece.pos)}, {piece.bits}u, {value});")
         if truncates and sh.gaps:
             self.leave_out_gaps(c, m, raws)
         elif truncates:
@@ -768,8 +768,7 @@ class CView:
             if span.kind == "int":
                 c(self.int_put(f"({span.start}u - cut)" if moved else span.start, span.size, self.order_of(piece.field), call))
             else:  # sharing its bytes, whose bits for it are still 0
-                pos = f"({piece.pos}u - 8u * cut)" if moved else f"{piece.pos}u"
-                c(f"{bits_fn('put', piece.bits, span.order)}(buf, {pos}, {piece.bits}u, {call});")
+                c(f"{bits_fn('put', piece.bits, span.order)}({bits_at(piece.pos, moved)}, {piece.bits}u, {call});")
         c(f"return (int)({m.size}u - cut);" if truncates else f"return {m.size};")
         c.dedent()
         c("}")
@@ -934,7 +933,7 @@ class CView:
                 c("}")
             else:
                 for piece in pieces:
-                    c(f"{raws[piece.var]} = ({rt}){bits_fn('get', piece.bits, span.order)}(buf, {piece.pos}u, {piece.bits}u);")
+                    c(f"{raws[piece.var]} = ({rt}){bits_fn('get', piece.bits, span.order)}({bits_at(piece.pos)}, {piece.bits}u);")
         if m.shortening and m.shortening.length_field:
             counter = next(x for x in m.wire.leaves if x.field.name == m.shortening.length_field)
             c(f"{raws[counter.var]} = ({rt})({raws[counter.var]} + cut);  /* as if the whole payload were sent */")
@@ -942,7 +941,7 @@ class CView:
             if span.kind == "int":
                 got = self.int_get(span.start, span.size, self.order_of(piece.field))
             else:
-                got = f"{bits_fn('get', piece.bits, span.order)}(buf, {piece.pos}u, {piece.bits}u)"
+                got = f"{bits_fn('get', piece.bits, span.order)}({bits_at(piece.pos)}, {piece.bits}u)"
             self.fail_if(c, f"{got} != {self.byte_checksum_call(piece, m, True, 'sent')}", "checksum")
         c(f"return {self.fn(m, 'check_raw')}(r, buf, m, false);")
         c.dedent()
@@ -967,7 +966,7 @@ class CView:
         if not raws:
             c("(void)r;")
         if not m.members:
-            c("(void)m;")
+            c(SET_UNUSED)
         if unfilled is None or not field_sums:
             c("(void)text_form;")
         for leaf in wired:
@@ -1033,7 +1032,7 @@ class CView:
         c(f"static inline int {self.fn(m, 'to_text')}(const {self.tname(m)} *m, char *buf, size_t cap)")
         c("{")
         c.indent()
-        c(f"{self.raw_type(m)} r[{max(1, n)}];")
+        c(f"{self.raw_type(m)} r[{max(1, n)}] = {{0}};  /* every value is set by raw; compilers cannot always tell */")
         c("cw_writer_t w;")
         c("uint8_t i;")
         c(f"int rc = {self.fn(m, 'raw')}(m, r);")
@@ -1276,7 +1275,7 @@ class CView:
         c("{")
         c.indent()
         if total == 0:
-            c("(void)m;")
+            c(SET_UNUSED)
             c("cw_trim(&s, &end);")
             self.fail_if(c, "s != end", "count")
             c("return CW_OK;")
@@ -1284,7 +1283,7 @@ class CView:
             c("}")
             return c.text()
         c(f"const char *ends[{total}];  /* where each value ends: cw_value */")
-        c("cw_span_t v;")
+        c("cw_span_t v = {NULL, NULL};  /* read only where a value was found; compilers cannot always tell */")
         if all(x.field.const is not None for x in leaves) and not m.rules:
             c("(void)m;  /* no member: every value is a constant */")
         if any(x.field.kind not in ("char", "str") and x.field.const is None for x in leaves):
@@ -1495,14 +1494,30 @@ class CView:
         if length:  # the frame's size from the length's value: a length that counts more than the frame has less
             over = length["overhead"]
             facts = dict(facts, length=dict(length, overhead_term=f"+ {over}u" if over >= 0 else f"- {-over}u"))
-        return facts
+        return dict(facts, fill_type=fill_type(facts["max"]))
 
     def encoding(self) -> dict:
         """The link's byte stuffing as C constants, or {} without one."""
         facts = encoding_facts(self.p)
         if not facts:
             return facts
-        return dict(facts, constant=f"CW_{facts['kind'].upper()}", delimiter_c=f"0x{facts['delimiter']:02X}u")
+        return dict(facts, constant=f"CW_{facts['kind'].upper()}", delimiter_c=f"0x{facts['delimiter']:02X}u",
+                    fill_type=fill_type(facts["frame_max"]))
+
+
+def bits_at(pos: int, cut: bool = False) -> str:
+    """The buffer and bit offset arguments of cw_get_bits/cw_put_bits for a field at bit
+    `pos` of the frame: the byte it starts in and the bit within it, so the helpers'
+    16-bit offsets hold in frames of any size; `cut`: the bytes left out come before it."""
+    byte, bit = divmod(pos, 8)
+    base = f"buf + ({byte}u - cut)" if cut else f"buf + {byte}" if byte else "buf"
+    return f"{base}, {bit}u"
+
+
+def fill_type(most: int) -> str:
+    """The type of a count of buffered bytes, 0..most: as narrow as it can be on an
+    8-bit MCU, and wide enough for frames over 64 KiB."""
+    return unsigned_type(most.bit_length())
 
 
 def enum_span(values: list) -> Optional[tuple[int, int]]:

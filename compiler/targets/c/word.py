@@ -23,7 +23,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Optional
 
-from .scalars import clit, final_step, type_limits
+from .scalars import SET_UNUSED, clit, final_step, type_limits
 from ..code import Code
 from .pack import Span
 from ...model import Leaf, shift_in
@@ -266,7 +266,7 @@ def decode_function(v: "CView", m: "Message", word: Word) -> str:
     for part in parts:
         c(f"{int_type(part.size)} {local[part.start]};")
     if not m.members:
-        c("(void)m;")
+        c(SET_UNUSED)
     c(f"if (len != {m.size}u) {{")
     c("    return CW_ERR_LENGTH;")
     c("}")

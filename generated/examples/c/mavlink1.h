@@ -227,7 +227,7 @@ static inline int mavlink1_heartbeat_raw(const mavlink1_heartbeat_t *m, uint32_t
 
 static inline int mavlink1_heartbeat_encode(const mavlink1_heartbeat_t *m, uint8_t *buf, size_t cap)
 {
-    uint32_t r[12];
+    uint32_t r[12] = {0};  /* every value is set by raw; compilers cannot always tell */
     int rc = mavlink1_heartbeat_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -328,7 +328,7 @@ static inline int mavlink1_sys_status_raw(const mavlink1_sys_status_t *m, uint32
 
 static inline int mavlink1_sys_status_encode(const mavlink1_sys_status_t *m, uint8_t *buf, size_t cap)
 {
-    uint32_t r[19];
+    uint32_t r[19] = {0};  /* every value is set by raw; compilers cannot always tell */
     int rc = mavlink1_sys_status_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -444,7 +444,7 @@ static inline int mavlink1_param_value_raw(const mavlink1_param_value_t *m, uint
 
 static inline int mavlink1_param_value_encode(const mavlink1_param_value_t *m, uint8_t *buf, size_t cap)
 {
-    uint32_t r[10];
+    uint32_t r[10] = {0};  /* every value is set by raw; compilers cannot always tell */
     int rc = mavlink1_param_value_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -540,7 +540,7 @@ static inline int mavlink1_gps_raw_int_raw(const mavlink1_gps_raw_int_t *m, uint
 
 static inline int mavlink1_gps_raw_int_encode(const mavlink1_gps_raw_int_t *m, uint8_t *buf, size_t cap)
 {
-    uint64_t r[16];
+    uint64_t r[16] = {0};  /* every value is set by raw; compilers cannot always tell */
     int rc = mavlink1_gps_raw_int_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -665,7 +665,7 @@ static inline int mavlink1_attitude_raw(const mavlink1_attitude_t *m, uint32_t *
 
 static inline int mavlink1_attitude_encode(const mavlink1_attitude_t *m, uint8_t *buf, size_t cap)
 {
-    uint32_t r[13];
+    uint32_t r[13] = {0};  /* every value is set by raw; compilers cannot always tell */
     int rc = mavlink1_attitude_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -806,7 +806,7 @@ static inline int mavlink1_command_long_raw(const mavlink1_command_long_t *m, ui
 
 static inline int mavlink1_command_long_encode(const mavlink1_command_long_t *m, uint8_t *buf, size_t cap)
 {
-    uint32_t r[17];
+    uint32_t r[17] = {0};  /* every value is set by raw; compilers cannot always tell */
     int rc = mavlink1_command_long_raw(m, r);
     if (rc != CW_OK) {
         return rc;

@@ -239,7 +239,7 @@ static inline int mavlink2_heartbeat_raw(const mavlink2_heartbeat_t *m, uint32_t
 
 static inline int mavlink2_heartbeat_encode(const mavlink2_heartbeat_t *m, uint8_t *buf, size_t cap)
 {
-    uint32_t r[14];
+    uint32_t r[14] = {0};  /* every value is set by raw; compilers cannot always tell */
     int rc = mavlink2_heartbeat_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -369,7 +369,7 @@ static inline int mavlink2_sys_status_raw(const mavlink2_sys_status_t *m, uint32
 
 static inline int mavlink2_sys_status_encode(const mavlink2_sys_status_t *m, uint8_t *buf, size_t cap)
 {
-    uint32_t r[24];
+    uint32_t r[24] = {0};  /* every value is set by raw; compilers cannot always tell */
     int rc = mavlink2_sys_status_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -520,7 +520,7 @@ static inline int mavlink2_param_value_raw(const mavlink2_param_value_t *m, uint
 
 static inline int mavlink2_param_value_encode(const mavlink2_param_value_t *m, uint8_t *buf, size_t cap)
 {
-    uint32_t r[12];
+    uint32_t r[12] = {0};  /* every value is set by raw; compilers cannot always tell */
     int rc = mavlink2_param_value_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -648,7 +648,7 @@ static inline int mavlink2_gps_raw_int_raw(const mavlink2_gps_raw_int_t *m, uint
 
 static inline int mavlink2_gps_raw_int_encode(const mavlink2_gps_raw_int_t *m, uint8_t *buf, size_t cap)
 {
-    uint64_t r[24];
+    uint64_t r[24] = {0};  /* every value is set by raw; compilers cannot always tell */
     int rc = mavlink2_gps_raw_int_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -817,7 +817,7 @@ static inline int mavlink2_attitude_raw(const mavlink2_attitude_t *m, uint32_t *
 
 static inline int mavlink2_attitude_encode(const mavlink2_attitude_t *m, uint8_t *buf, size_t cap)
 {
-    uint32_t r[15];
+    uint32_t r[15] = {0};  /* every value is set by raw; compilers cannot always tell */
     int rc = mavlink2_attitude_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -958,7 +958,7 @@ static inline int mavlink2_command_ack_raw(const mavlink2_command_ack_t *m, uint
 
 static inline int mavlink2_command_ack_encode(const mavlink2_command_ack_t *m, uint8_t *buf, size_t cap)
 {
-    uint32_t r[14];
+    uint32_t r[14] = {0};  /* every value is set by raw; compilers cannot always tell */
     int rc = mavlink2_command_ack_raw(m, r);
     if (rc != CW_OK) {
         return rc;

@@ -180,7 +180,7 @@ static inline int modbus_rtu_read_holding_registers_raw(const modbus_rtu_read_ho
 
 static inline int modbus_rtu_read_holding_registers_encode(const modbus_rtu_read_holding_registers_t *m, uint8_t *buf, size_t cap)
 {
-    uint16_t r[4];
+    uint16_t r[4] = {0};  /* every value is set by raw; compilers cannot always tell */
     int rc = modbus_rtu_read_holding_registers_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -868,7 +868,7 @@ static inline int modbus_rtu_read_holding_registers_response_raw(const modbus_rt
 
 static inline int modbus_rtu_read_holding_registers_response_encode(const modbus_rtu_read_holding_registers_response_t *m, uint8_t *buf, size_t cap)
 {
-    uint16_t r[128];
+    uint16_t r[128] = {0};  /* every value is set by raw; compilers cannot always tell */
     int rc = modbus_rtu_read_holding_registers_response_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -1945,7 +1945,7 @@ static inline int modbus_rtu_write_multiple_registers_raw(const modbus_rtu_write
 
 static inline int modbus_rtu_write_multiple_registers_encode(const modbus_rtu_write_multiple_registers_t *m, uint8_t *buf, size_t cap)
 {
-    uint16_t r[128];
+    uint16_t r[128] = {0};  /* every value is set by raw; compilers cannot always tell */
     int rc = modbus_rtu_write_multiple_registers_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -2403,7 +2403,7 @@ static inline int modbus_rtu_write_multiple_registers_response_raw(const modbus_
 
 static inline int modbus_rtu_write_multiple_registers_response_encode(const modbus_rtu_write_multiple_registers_response_t *m, uint8_t *buf, size_t cap)
 {
-    uint16_t r[4];
+    uint16_t r[4] = {0};  /* every value is set by raw; compilers cannot always tell */
     int rc = modbus_rtu_write_multiple_registers_response_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -2466,7 +2466,7 @@ static inline int modbus_rtu_exception_response_raw(const modbus_rtu_exception_r
 
 static inline int modbus_rtu_exception_response_encode(const modbus_rtu_exception_response_t *m, uint8_t *buf, size_t cap)
 {
-    uint8_t r[3];
+    uint8_t r[3] = {0};  /* every value is set by raw; compilers cannot always tell */
     int rc = modbus_rtu_exception_response_raw(m, r);
     if (rc != CW_OK) {
         return rc;

@@ -337,7 +337,7 @@ static inline int nmea0183_gga_encode(const nmea0183_gga_t *m, char *buf, size_t
 static inline int nmea0183_gga_parse_body(const char *s, const char *end, nmea0183_gga_t *m)
 {
     const char *ends[14];  /* where each value ends: cw_value */
-    cw_span_t v;
+    cw_span_t v = {NULL, NULL};  /* read only where a value was found; compilers cannot always tell */
     int rc;
     size_t count = cw_split_values(s, end, ',', ends, 14u, false);
     if (count != 14u) {
@@ -813,7 +813,7 @@ static inline int nmea0183_rmc_encode(const nmea0183_rmc_t *m, char *buf, size_t
 static inline int nmea0183_rmc_parse_body(const char *s, const char *end, nmea0183_rmc_t *m)
 {
     const char *ends[11];  /* where each value ends: cw_value */
-    cw_span_t v;
+    cw_span_t v = {NULL, NULL};  /* read only where a value was found; compilers cannot always tell */
     int rc;
     size_t count = cw_split_values(s, end, ',', ends, 11u, false);
     if (count != 11u) {
@@ -1173,7 +1173,7 @@ static inline int nmea0183_vtg_encode(const nmea0183_vtg_t *m, char *buf, size_t
 static inline int nmea0183_vtg_parse_body(const char *s, const char *end, nmea0183_vtg_t *m)
 {
     const char *ends[8];  /* where each value ends: cw_value */
-    cw_span_t v;
+    cw_span_t v = {NULL, NULL};  /* read only where a value was found; compilers cannot always tell */
     int rc;
     size_t count = cw_split_values(s, end, ',', ends, 8u, false);
     if (count != 8u) {

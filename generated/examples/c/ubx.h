@@ -233,7 +233,7 @@ static inline int ubx_ack_nak_raw(const ubx_ack_nak_t *m, uint16_t *r)
 
 static inline int ubx_ack_nak_encode(const ubx_ack_nak_t *m, uint8_t *buf, size_t cap)
 {
-    uint16_t r[7];
+    uint16_t r[7] = {0};  /* every value is set by raw; compilers cannot always tell */
     int rc = ubx_ack_nak_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -311,7 +311,7 @@ static inline int ubx_ack_ack_raw(const ubx_ack_ack_t *m, uint16_t *r)
 
 static inline int ubx_ack_ack_encode(const ubx_ack_ack_t *m, uint8_t *buf, size_t cap)
 {
-    uint16_t r[7];
+    uint16_t r[7] = {0};  /* every value is set by raw; compilers cannot always tell */
     int rc = ubx_ack_ack_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -388,7 +388,7 @@ static inline int ubx_cfg_rate_poll_raw(const ubx_cfg_rate_poll_t *m, uint16_t *
 
 static inline int ubx_cfg_rate_poll_encode(const ubx_cfg_rate_poll_t *m, uint8_t *buf, size_t cap)
 {
-    uint16_t r[5];
+    uint16_t r[5] = {0};  /* every value is set by raw; compilers cannot always tell */
     int rc = ubx_cfg_rate_poll_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -408,7 +408,7 @@ static inline int ubx_cfg_rate_poll_encode(const ubx_cfg_rate_poll_t *m, uint8_t
 static inline int ubx_cfg_rate_poll_check_raw(const uint16_t *r, const uint8_t *buf, ubx_cfg_rate_poll_t *m, bool text_form)
 {
     (void)buf;
-    (void)m;
+    m->unused = 0u;  /* the placeholder of a message without values */
     (void)text_form;
     if (r[0] != 181u) {
         return CW_ERR_CONST;
@@ -462,7 +462,7 @@ static inline int ubx_cfg_rate_raw(const ubx_cfg_rate_t *m, uint16_t *r)
 
 static inline int ubx_cfg_rate_encode(const ubx_cfg_rate_t *m, uint8_t *buf, size_t cap)
 {
-    uint16_t r[8];
+    uint16_t r[8] = {0};  /* every value is set by raw; compilers cannot always tell */
     int rc = ubx_cfg_rate_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -548,7 +548,7 @@ static inline int ubx_nav_posllh_raw(const ubx_nav_posllh_t *m, uint32_t *r)
 
 static inline int ubx_nav_posllh_encode(const ubx_nav_posllh_t *m, uint8_t *buf, size_t cap)
 {
-    uint32_t r[12];
+    uint32_t r[12] = {0};  /* every value is set by raw; compilers cannot always tell */
     int rc = ubx_nav_posllh_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -746,7 +746,7 @@ static inline int ubx_nav_pvt_raw(const ubx_nav_pvt_t *m, uint32_t *r)
 
 static inline int ubx_nav_pvt_encode(const ubx_nav_pvt_t *m, uint8_t *buf, size_t cap)
 {
-    uint32_t r[54];
+    uint32_t r[54] = {0};  /* every value is set by raw; compilers cannot always tell */
     int rc = ubx_nav_pvt_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -6018,7 +6018,7 @@ static inline int ubx_nav_sat_raw(const ubx_nav_sat_t *m, uint32_t *r)
 
 static inline int ubx_nav_sat_encode(const ubx_nav_sat_t *m, uint8_t *buf, size_t cap)
 {
-    uint32_t r[905];
+    uint32_t r[905] = {0};  /* every value is set by raw; compilers cannot always tell */
     int rc = ubx_nav_sat_raw(m, r);
     if (rc != CW_OK) {
         return rc;
@@ -8688,7 +8688,7 @@ static inline int ubx_mon_ver_raw(const ubx_mon_ver_t *m, uint16_t *r)
 
 static inline int ubx_mon_ver_encode(const ubx_mon_ver_t *m, uint8_t *buf, size_t cap)
 {
-    uint16_t r[5];
+    uint16_t r[5] = {0};  /* every value is set by raw; compilers cannot always tell */
     int rc = ubx_mon_ver_raw(m, r);
     if (rc != CW_OK) {
         return rc;
