@@ -7,9 +7,16 @@ meets names of every kind; lengths are fixed or a link parameter, with or withou
 sequence bit, with or without a retry limit and a `delivery` section."""
 from __future__ import annotations
 
+import importlib.util
+import random
+import re
 import shutil
 import subprocess
+import sys
+import tempfile
 from pathlib import Path
+
+import yaml
 
 MACHINE_SHARE = 0.15  # of the seeds, when the feature is on
 
@@ -407,3 +414,89 @@ class Exchange:
             lines.append(f"    {px}_{m.name}_reset(&{m.name});")
         lines += ["    return 0;", "}", ""]
         return "\n".join(lines)
+
+
+# -- names that meet the generated machine code -------------------------------------------------
+# names the generated functions, methods and structs use beside the schema's
+ARGUMENT_NAMES = ("m", "now", "out", "self", "state", "values", "packet", "len")
+FIELD_NAMES = ("b", "n", "packet", "len", "values", "state")
+PARAMETER_NAMES = ("m", "b", "n", "now", "out", "execute", "execute_ctx", "packet", "len", "state", "kept")
+VARIABLE_NAMES = ("state", "kept", "kept_len", "deadline", "timer_on", "execute", "execute_ctx")
+EVENT_NAMES = ("tick", "reset", "init", "state", "kept", "deadline")
+
+
+def machine_renames(doc: dict) -> list[tuple[str, str, str]]:
+    """(name, new name, what) for each rename that makes a machine name meet another name
+    the generated code uses; [] for a schema without machines."""
+    machines = doc.get("machines")
+    if not isinstance(machines, dict) or len(machines) != 2:
+        return []
+    sender = next((m for m in machines.values() if any("request" in e for e in m["events"].values())), None)
+    if sender is None:
+        return []
+    request = next(e for e in sender["events"].values() if "request" in e)
+    fields = {f["name"]: f for body in doc["messages"].values() for f in body["fields"]}
+    fields.update({f["name"]: f for f in doc["framing"]["layout"] if "name" in f})
+    members = [n for n, f in fields.items() if not {"const", "reserved", "dispatch"} & set(f)]
+    data = next(a for a in request["args"] if fields[a]["type"] == "bytes")
+    numbers = [a for a in request["args"] if fields[a]["type"] != "bytes"]
+    params = list(doc["parameters"])
+    out = [(a, f"{data}_len", f"argument {a} named like the length of {data}") for a in numbers]
+    out += [(a, x, f"argument {a} named {x}") for a in numbers for x in ARGUMENT_NAMES]
+    out += [(f, x, f"field {f} named {x}") for f in members for x in FIELD_NAMES]
+    out += [(f, p, f"field {f} named like the parameter {p}") for f in members for p in params]
+    out += [(p, x, f"parameter {p} named {x}") for p in params for x in PARAMETER_NAMES]
+    for machine in machines.values():
+        variables = list(machine.get("variables", {}))
+        out += [(v, x, f"variable {v} named {x}") for v in variables for x in VARIABLE_NAMES + tuple(params)]
+        out += [(e, x, f"event {e} named {x}") for e in machine["events"] for x in EVENT_NAMES]
+    out += [(m, x, f"machine {m} named like the message {x}") for m in machines for x in doc["messages"]]
+    return out
+
+
+def rename(text: str, old: str, new: str) -> str:
+    return re.sub(rf"(?<![A-Za-z0-9_]){re.escape(old)}(?![A-Za-z0-9_])", new, text)
+
+
+def check_machine_collision(seed: int, doc: dict, build_text) -> str:
+    """'' when a schema whose machine name meets a generated one is refused on a line with
+    that name (and a hint), or builds to machines that compile and run the exchange."""
+    choices = machine_renames(doc)
+    if not choices:
+        return ""
+    old, new, what = random.Random(f"machine names {seed}").choice(choices)
+    text = rename(yaml.safe_dump(doc, sort_keys=False, allow_unicode=True), old, new)
+    lines = [i for i, line in enumerate(text.splitlines(), 1) if re.search(rf"(?<![A-Za-z0-9_]){new}(?![A-Za-z0-9_])", line)]
+    where = f"machine names {seed} ({what})"
+    with tempfile.TemporaryDirectory(prefix=f"mnames{seed}-") as tmp:
+        folder = Path(tmp)
+        path = folder / f"fz{seed}.yaml"
+        path.write_text(text, encoding="utf-8")
+        result, crashed = build_text(text, seed, where)
+        if crashed:
+            return crashed
+        if result.errors:
+            if not any(d.loc.line in lines and d.hint.strip() for d in result.errors):
+                return f"{where}: refused elsewhere: {str(result.errors[0]).splitlines()[0]}"
+            return ""
+        from codeword.build import build, compile_schema
+        build([path], folder / "out", root=folder)
+        try:
+            module = _import(folder / "out" / "python" / f"fz{seed}.py")
+        except Exception as e:  # noqa: BLE001 - a module that does not import is the finding
+            return f"{where}: built; the Python module does not import: {type(e).__name__}: {e}"
+        from .check import STRICT
+        problem = machine_checks(compile_schema(path), module, folder / "out", folder, STRICT)
+        return f"{where}: built; {problem}" if problem else ""
+
+
+def _import(path: Path):
+    key = f"_fuzz_names_{path.stem}"
+    spec = importlib.util.spec_from_file_location(key, path)
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[key] = module
+    try:
+        spec.loader.exec_module(module)
+    finally:
+        sys.modules.pop(key, None)
+    return module
