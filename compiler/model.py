@@ -380,9 +380,6 @@ MACHINE_MEMBERS = ("state", "kept", "kept_len", "timer_on", "deadline", "execute
 # The functions (C) and methods (Python) every machine has besides one per event; the
 # timer event's is `tick`.
 MACHINE_FUNCTIONS = ("init", "reset", "tick")
-# C names shared by every machine of a protocol (<p>_machine_out_t, <p>_machine_pack_…):
-# a machine so named would meet them.
-MACHINE_SHARED = "machine"
 
 
 def path_name(path: tuple[Union[str, int], ...]) -> str:

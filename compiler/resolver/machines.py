@@ -10,7 +10,7 @@ from __future__ import annotations
 from typing import Any, Optional
 
 from .text import text
-from ..model import (EVENT_LOCALS, EVENT_PARAMETERS, MACHINE_FUNCTIONS, MACHINE_MEMBERS, MACHINE_SHARED,
+from ..model import (EVENT_LOCALS, EVENT_PARAMETERS, MACHINE_FUNCTIONS, MACHINE_MEMBERS,
                      PACKET_PARAMETERS, Action, Condition, Event, Field, Handler, Machine, Message, Source,
                      State, Transition, Variable, length_argument)
 
@@ -439,9 +439,6 @@ class MachineResolver:
     def resolve(self) -> Machine:
         raw = self.raw
         self.r.check_name(self.name, self.path, "machine")
-        if self.name == MACHINE_SHARED:
-            self.error((), f"machine {self.name!r} has the name the C names every machine shares begin with "
-                           f"(<p>_{MACHINE_SHARED}_out_t, <p>_{MACHINE_SHARED}_pack_…)", f"rename the machine {self.name!r}")
         self.resolve_declarations()
         if raw["initial"] not in raw["states"]:
             self.error(("initial",), f"initial state {raw['initial']!r} is not declared",
