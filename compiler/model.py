@@ -367,6 +367,19 @@ def length_argument(name: str) -> str:
 # Parameters every generated machine event function takes before its arguments (C: the
 # machine, the time, the outputs; Python: self and the time): no argument may share them.
 EVENT_PARAMETERS = ("m", "now", "out", "self")
+# The local a Python event method keeps the current state in: an argument so named would be lost.
+EVENT_LOCALS = ("state",)
+# The parameters of the functions that pack and unpack a machine's packets besides the
+# packet's fields and the parameters its length depends on (C: the buffer b, its size n;
+# Python: the buffer b): no such field or parameter may share them.
+PACKET_PARAMETERS = ("b", "n")
+# What every generated machine holds besides its variables and parameters (C struct
+# members, Python slots and class attributes) and what its constructor takes besides its
+# parameters (C: the machine m, the application's execute function and its context).
+MACHINE_MEMBERS = ("state", "kept", "kept_len", "timer_on", "deadline", "execute", "execute_ctx", "m", "STATES")
+# The functions (C) and methods (Python) every machine has besides one per event; the
+# timer event's is `tick`.
+MACHINE_FUNCTIONS = ("init", "reset", "tick")
 
 
 def path_name(path: tuple[Union[str, int], ...]) -> str:

@@ -10,7 +10,8 @@ from __future__ import annotations
 from typing import Any, Optional
 
 from .text import text
-from ..model import (EVENT_PARAMETERS, Action, Condition, Event, Field, Handler, Machine, Message, Source,
+from ..model import (EVENT_LOCALS, EVENT_PARAMETERS, MACHINE_FUNCTIONS, MACHINE_MEMBERS,
+                     PACKET_PARAMETERS, Action, Condition, Event, Field, Handler, Machine, Message, Source,
                      State, Transition, Variable, length_argument)
 
 ACTION_KINDS = ("set", "flip", "increment", "keep", "transmit", "start_timer", "stop_timer",
@@ -54,8 +55,11 @@ class MachineResolver:
     # -- declarations ------------------------------------------------------------------
     def resolve_declarations(self) -> None:
         raw = self.raw
-        for p in raw.get("parameters", []):
-            if p not in self.r.parameters:
+        listed = raw.get("parameters", [])
+        for i, p in enumerate(listed):
+            if p in listed[:i]:
+                self.error(("parameters", i), f"parameter {p!r} is listed twice", "list each parameter once")
+            elif p not in self.r.parameters:
                 self.error(("parameters",), f"unknown parameter {p!r}", "declare it under `parameters`")
         for vn, v in raw.get("variables", {}).items():
             vpath = ("variables", vn)
@@ -71,9 +75,12 @@ class MachineResolver:
                            f"variable {vn!r}: initial value {initial} does not fit {v['type']}",
                            "widen the variable or change the initial value")
             self.variables[vn] = Variable(vn, bits, initial)
+        self.check_member_names()
         timers = []
         for en, e in raw["events"].items():
             epath = ("events", en)
+            self.check_event_name(en, bool(e.get("timer")))
+            self.check_packet_names(e.get("message"))
             if "message" in e and e["message"] not in self.messages:
                 self.error(epath + ("message",), f"event {en!r}: unknown message {e['message']!r}",
                            "name a message under `messages`")
@@ -107,15 +114,72 @@ class MachineResolver:
         argument, that argument's length: an argument named like either would be declared twice."""
         lengths = {length_argument(a): a for a in args
                    if (f := self.field_of(request, a)) is not None and f.kind == "bytes"}
-        for arg in args:
-            if arg in EVENT_PARAMETERS:
-                self.error(path, f"event {event!r}: argument {arg!r} has the name of a parameter every "
-                                 f"event function takes ({', '.join(EVENT_PARAMETERS)})",
+        for i, arg in enumerate(args):
+            if arg in EVENT_PARAMETERS + EVENT_LOCALS:
+                self.error(path + (i,), f"event {event!r}: argument {arg!r} has the name of a parameter or "
+                                        f"local every event function has ({', '.join(EVENT_PARAMETERS + EVENT_LOCALS)})",
                            f"rename the field {arg!r} of {request!r}")
             elif arg in lengths:
-                self.error(path, f"event {event!r}: argument {arg!r} has the name of the length the "
-                                 f"event function takes after the bytes argument {lengths[arg]!r}",
+                self.error(path + (i,), f"event {event!r}: argument {arg!r} has the name of the length the "
+                                        f"event function takes after the bytes argument {lengths[arg]!r}",
                            f"rename the field {arg!r} of {request!r}")
+
+    def check_member_names(self) -> None:
+        """Variables and parameters are members of the generated machine, beside the ones
+        every machine has; the constructor takes the parameters beside its own arguments;
+        the packers take the length parameters beside their buffer."""
+        for i, p in enumerate(self.raw.get("parameters", [])):
+            if p in MACHINE_MEMBERS + PACKET_PARAMETERS:
+                self.error(("parameters", i), f"parameter {p!r} has a name the generated machine uses "
+                                              f"({', '.join(MACHINE_MEMBERS + PACKET_PARAMETERS)})",
+                           f"rename the parameter {p!r}")
+        for vn in self.raw.get("variables", {}):
+            if vn in MACHINE_MEMBERS:
+                self.error(("variables", vn), f"variable {vn!r} has a name the generated machine uses "
+                                              f"({', '.join(MACHINE_MEMBERS)})", f"rename the variable {vn!r}")
+            elif vn in self.raw.get("parameters", []):
+                self.error(("variables", vn), f"variable {vn!r} has the name of a parameter of the machine",
+                           f"rename the variable {vn!r}")
+
+    def check_event_name(self, en: str, timer: bool) -> None:
+        """An event is a function (C) and a method (Python) of the machine, beside its own and
+        its members; the timer event's is always `tick`."""
+        taken = [n for n in MACHINE_FUNCTIONS if not (timer and n == "tick")] + list(MACHINE_MEMBERS)
+        if en in taken:
+            self.error(("events", en), f"event {en!r} has the name of a function or member every "
+                                       f"machine has ({', '.join(taken)})", f"rename the event {en!r}")
+        elif en in self.raw.get("variables", {}) or en in self.raw.get("parameters", []):
+            self.error(("events", en), f"event {en!r} has the name of a variable or parameter of the machine",
+                       f"rename the event {en!r}")
+
+    def check_packet_names(self, message: str) -> None:
+        """The packer and unpacker of a message take its fields beside their buffer and the
+        parameters its length depends on: a field so named would be declared twice."""
+        m = self.messages.get(message)
+        checked = self.r.machine_packets_checked  # once per protocol: every machine shares its packers
+        if m is None or message in checked:
+            return
+        checked.add(message)
+        lengths = {f.length_param for f in m.members if f.kind == "bytes" and f.length_param}
+        for f in m.members:
+            if f.name in PACKET_PARAMETERS or f.name in lengths:
+                what = "a parameter the packet's length depends on" if f.name in lengths else \
+                    f"a parameter of the functions that pack and unpack it ({', '.join(PACKET_PARAMETERS)})"
+                self.r.error(self.field_path(message, f.name), f"field {f.name!r} of {message!r}, which "
+                             f"machine {self.name!r} sends or receives, has the name of {what}",
+                             f"rename the field {f.name!r}")
+
+    def field_path(self, message: str, name: str) -> tuple:
+        """The path of a field's name in the document: in its message or in the envelope."""
+        data = self.r.data
+        for where in (("messages", message, "fields"), ("framing", "layout")):
+            items = data
+            for key in where:
+                items = items.get(key, {}) if isinstance(items, dict) else {}
+            for i, f in enumerate(items if isinstance(items, list) else []):
+                if isinstance(f, dict) and f.get("name") == name:
+                    return where + (i, "name")
+        return ("messages", message)
 
     @staticmethod
     def r_text(value: Any):
@@ -163,6 +227,7 @@ class MachineResolver:
             if kind == "set":
                 value = self.resolve_source(a["value"], path + ("value",))
         elif kind == "keep":
+            self.check_packet_names(target)
             if target not in self.messages:
                 self.error(path + ("keep",), f"action {name!r}: unknown message {target!r}",
                            "name a message under `messages`")

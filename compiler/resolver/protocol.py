@@ -71,6 +71,7 @@ class Resolver(TypesMixin, FieldsMixin, ChecksumsMixin, FramingMixin, MessagesMi
         self.check_messages(messages, d)
         sequences = tuple(self.resolve_sequence(n, s, messages)
                           for n, s in d.get("sequences", {}).items())
+        self.machine_packets_checked: set[str] = set()  # messages whose packer field names are checked
         machines = tuple(self.resolve_machine(n, m, messages)
                          for n, m in d.get("machines", {}).items())
         delivery = self.resolve_delivery(d["delivery"], machines, messages) if "delivery" in d else None

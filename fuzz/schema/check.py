@@ -33,6 +33,7 @@ from codeword.build import build, compile_schema
 from . import accelerated
 from .features import DEFAULT
 from .generate import generate
+from .machines import machine_checks
 
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tests"))  # the conformance driver writer, shared with tests/test_c.py
@@ -107,6 +108,11 @@ def check_text(text: str, name: str, where: Path, outcome: Outcome,
     outcome.stage = "c"
     problem, checks = c_checks(protocol, vectors, out / "c", where, points or [])
     outcome.checks = checks
+    if problem:
+        outcome.detail = problem
+        return
+    outcome.stage = "machines"
+    problem = machine_checks(protocol, module, out, where, STRICT)
     if problem:
         outcome.detail = problem
         return

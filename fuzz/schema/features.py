@@ -37,6 +37,7 @@ FULL = frozenset({
     "empty_values",                         # text: optional values anywhere, absent ones empty
     "fixed_spelling",                       # text: integers with fixed decimals and zero padding
     "text_const",                           # text: char, str and integer constants, some optional (unit letters)
+    "machines",                             # a master and a slave machine over a command and its reply
 })
 
 KNOWN_OPEN = {

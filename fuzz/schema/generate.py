@@ -8,6 +8,7 @@ import string
 import yaml
 
 from .features import DEFAULT
+from .machines import MACHINE_SHARE, machine_schema
 
 CRCS = {8: ["CRC-8/SMBUS", "CRC-8/MAXIM-DOW"], 16: ["CRC-16/XMODEM", "CRC-16/MODBUS", "CRC-16/CMS"],
         32: ["CRC-32/ISO-HDLC"]}
@@ -55,6 +56,8 @@ class Generator:
 
     # -- the document -----------------------------------------------------------------------
     def schema(self) -> dict:
+        if "machines" in self.on and random.Random(f"machines {self.seed}").random() < MACHINE_SHARE:
+            return machine_schema(self)  # its own draw: the other seeds' schemas stay as they were
         kinds = [k for k in ("bytes", "text", "bits") if k in self.on] or ["bytes"]
         kind = self.rng.choice(kinds)
         doc: dict = {"codeword": 1, "protocol": f"fz{self.seed}", "title": f"fuzz schema {self.seed}",

@@ -15,6 +15,7 @@ from codeword.build import build
 
 from .features import DEFAULT
 from .generate import Generator
+from .machines import check_machine_collision
 
 ODD_VALUES = [None, True, -1, 0, 1, 7, 2 ** 64, -2 ** 63 - 1, 1.5, 1e308, "", "x" * 300, "u0", "u65", "i1",
               "nosuch", [], {}, [1, 2], {"a": 1}, "payload", "kind", "\u202e", "0x10"]
@@ -178,11 +179,14 @@ def check_ambiguous_crc(seed: int, features: frozenset[str]) -> str:
 
 def check_mutant(seed: int, features: frozenset[str] = DEFAULT) -> str:
     """'' when the mutant is refused at a location or builds, a CRC named ambiguously is
-    refused at its name and (with `collisions`) a schema with a colliding name is refused
-    at its line; else what went wrong."""
+    refused at its name, (with `collisions`) a schema with a colliding name is refused
+    at its line and (with `machines`) a machine name that meets a generated one is refused
+    at its line or builds to machines that work; else what went wrong."""
     problem = check_ambiguous_crc(seed, features) or _check_mutant(seed, features)
     if not problem and "collisions" in features:
         problem = check_collision(seed, features)
+    if not problem and "machines" in features:
+        problem = check_machine_collision(seed, Generator(seed, features).schema(), _build)
     return problem
 
 

@@ -107,7 +107,10 @@ def pack_view(p: Protocol, layout: PacketLayout, px: str) -> dict:
             lines.append(f"if ({slot.data_field} != NULL) memcpy(b + {at}, {slot.data_field}, {size});")
             lines.append(f"else memset(b + {at}, 0, {size});")
             continue
-        parts = [bp.field if bp.shift == 0 else f"({bp.field} << {bp.shift})" for bp in slot.parts if bp.const is None]
+        # each shifted part cast back to a byte: a uint8_t shifts as an int, which would
+        # meet an unsigned constant in `|` as a signed value
+        parts = [bp.field if bp.shift == 0 else f"(uint8_t)({bp.field} << {bp.shift})"
+                 for bp in slot.parts if bp.const is None]
         if slot.const_value or not parts:
             parts.insert(0, f"{slot.const_value:#04x}u")
         lines.append(f"b[{at}] = (uint8_t)({' | '.join(parts)});")
@@ -162,8 +165,9 @@ def machine_view(p: Protocol, machine: Machine, px: str) -> dict:
             prologue.append("    out->dropped = true;")
             prologue.append("    return 0;")
             prologue.append("}")
-            if low.uses("execute"):
-                prologue.append(f"uint8_t r_data[{px.upper()}_MACHINE_MAX_DATA];")
+            for a in machine.actions:  # what the application returns, for each field it executes
+                if a.kind == "execute":
+                    prologue.append(f"uint8_t {low.result(a.target)}[{px.upper()}_MACHINE_MAX_DATA];")
         cases = []
         for case in code.cases:
             branches = []
@@ -198,6 +202,14 @@ def machine_view(p: Protocol, machine: Machine, px: str) -> dict:
             "timer": any(e.timer for e in machine.events)}
 
 
+def data_size(p: Protocol, slot) -> int:
+    """The most bytes a data field holds: its fixed length, or its parameter's largest value."""
+    if slot.length_param is None:
+        return slot.length
+    param = next(x for x in p.parameters if x.name == slot.length_param)
+    return int(param.range[1] if param.range else param.default)
+
+
 def machines_view(p: Protocol) -> dict:
     if not p.machines:
         return {"machines": []}
@@ -209,9 +221,9 @@ def machines_view(p: Protocol) -> dict:
         received += [n for n in r if n not in received]
     layouts = {n: packet_layout(p, p.message(n)) for n in built + received}
     max_size = max(max_packet(p, layout) for layout in layouts.values())
-    data = [max_packet(p, layout) - layout.size.base for layout in layouts.values()]
+    data = [data_size(p, slot) for layout in layouts.values() for slot in layout.slots if slot.data_field]
     ordered = [m.name for m in p.messages if m.name in layouts]
     return {"machines": [machine_view(p, m, px) for m in p.machines], "PX": px.upper(), "px": px,
-            "max_packet": max_size, "max_data": max(data),
+            "max_packet": max_size, "max_data": max(data, default=1),
             "packets": [dict(pack_view(p, layouts[n], px), build=n in built, read=n in received)
                         for n in ordered]}
