@@ -109,6 +109,14 @@ def cases_per_message(messages: int) -> tuple[int, int]:
             min(MUTATIONS_PER_MESSAGE, max(MUTATED_FLOOR, MUTATED_PER_PROTOCOL // n)))
 
 
+
+def inner_ends(f: Field, edge: str, fmt: Any) -> tuple[float, float, Any]:
+    """The field's range as the values of a float format (binary32 or binary64) nearest
+    inside it, and the value an edge case takes (None for a random one)."""
+    lo, hi = f.range or (-fmt.LARGEST, fmt.LARGEST)
+    lo, hi = fmt.at_least(lo), fmt.at_most(hi)
+    return lo, hi, {"min": lo, "max": hi, "zero": max(lo, min(hi, 0.0))}.get(edge)
+
 class Generator:
     def __init__(self, p: Protocol, module: Any):
         self.p = p
@@ -246,9 +254,7 @@ class Generator:
         """A binary f32 value inside the field's range: its ends as floats, zero, any bit
         pattern that falls inside, or a float drawn across the range."""
         rng = self.rng
-        lo, hi = f.range or (-binary32.LARGEST, binary32.LARGEST)
-        lo, hi = binary32.at_least(lo), binary32.at_most(hi)
-        pick = {"min": lo, "max": hi, "zero": max(lo, min(hi, 0.0))}.get(edge)
+        lo, hi, pick = inner_ends(f, edge, binary32)
         if pick is not None:
             return pick
         for _ in range(8):
@@ -264,9 +270,7 @@ class Generator:
         """A binary f64 value: the range's ends (or the largest finite doubles), zero, the
         doubles at the edges of the format (signed zeros, subnormals), any bit pattern."""
         rng = self.rng
-        lo, hi = f.range or (-binary64.LARGEST, binary64.LARGEST)
-        lo, hi = binary64.at_least(lo), binary64.at_most(hi)
-        pick = {"min": lo, "max": hi, "zero": max(lo, min(hi, 0.0))}.get(edge)
+        lo, hi, pick = inner_ends(f, edge, binary64)
         if pick is not None:
             return pick
         while True:

@@ -106,7 +106,9 @@ class Driver:
             return int_literal(round((Fraction(value) - Fraction(f.offset or 0)) * 10 ** f.decimals))
         if f.scale is not None:
             raw = (Fraction(value) - Fraction(f.offset or 0)) / Fraction(f.scale)
-            assert raw.denominator == 1, (f.name, value)
+            if raw.denominator != 1:  # a decimal scale: the raw value whose product is this double
+                raw = Fraction(round(raw))
+                assert int(raw) * f.scale + (f.offset or 0) == value, (f.name, value)
             return int_literal(int(raw))
         return int_literal(int(value))
 

@@ -226,8 +226,9 @@ class Simulation:
             self.stats.failed += 1
             self.outcomes.append((rid, self.pending[1], "failed", None))
 
-    def run(self, commands: int, time_limit: int | None = None) -> Stats:
-        """Send `commands` commands; stop when all are answered or failed, or at `time_limit`."""
+    def run(self, commands: int, time_limit: int | None = None, event_limit: int | None = None) -> Stats:
+        """Send `commands` commands; stop when all are answered or failed, at `time_limit`,
+        or after `event_limit` events (machines that never finish a command tick forever)."""
         # Untraced runs (the docs' efficiency table) call the machines directly.
         traced = self.trace is not None
         queue, senders, handle, pair = self.queue, self.senders, self.handle, self.pair
@@ -235,9 +236,13 @@ class Simulation:
         take_reply = {rid: getattr(m, pair.sender_receive) for rid, m in senders.items()}
         take_command = {rid: getattr(m, pair.receiver_receive) for rid, m in self.receivers.items()}
         self.next_command(commands)
+        events = 0
         while queue:
             time, _, kind, args = heapq.heappop(queue)
             if time_limit is not None and time > time_limit:
+                break
+            events += 1
+            if event_limit is not None and events > event_limit:
                 break
             self.now = time
             if kind == "tick":
@@ -288,8 +293,22 @@ def efficiency(protocol: Protocol, module: types.ModuleType, p_fwd: float, p_ack
     command and its reply arrive, so their number is geometric with mean
     1/((1-p_fwd)(1-p_ack))."""
     sim = Simulation(protocol, module, seed, Link(p_fwd=p_fwd, p_ack=p_ack, delay=(1, 4)), timeout=10)
-    stats = sim.run(commands)
+    stats = sim.run(commands, event_limit=commands * EVENTS_PER_COMMAND)
+    if stats.delivered + stats.failed < commands or not stats.delivered:
+        raise Undelivered(f"over a simulated link losing {p_fwd:.0%} of commands and {p_ack:.0%} of replies, "
+                          f"the machines deliver {stats.delivered} and fail {stats.failed} of "
+                          f"{stats.commands} commands issued out of {commands} "
+                          f"in {commands * EVENTS_PER_COMMAND:,} events")
     return stats.command_packets / stats.delivered, 1.0 / ((1.0 - p_fwd) * (1.0 - p_ack))
+
+
+# A command takes a few events per attempt (send, receive, reply, receive, tick);
+# at half the packets lost its attempts average 4 and rarely pass 40.
+EVENTS_PER_COMMAND = 500
+
+
+class Undelivered(Exception):
+    """Delivery machines that do not finish their commands over a simulated link."""
 
 
 LOSSLESS_COMMANDS = 200

@@ -7,12 +7,10 @@ meets names of every kind; lengths are fixed or a link parameter, with or withou
 sequence bit, with or without a retry limit and a `delivery` section."""
 from __future__ import annotations
 
-import importlib.util
 import random
 import re
 import shutil
 import subprocess
-import sys
 import tempfile
 from pathlib import Path
 
@@ -491,12 +489,5 @@ def check_machine_collision(seed: int, doc: dict, build_text) -> str:
 
 
 def _import(path: Path):
-    key = f"_fuzz_names_{path.stem}"
-    spec = importlib.util.spec_from_file_location(key, path)
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[key] = module
-    try:
-        spec.loader.exec_module(module)
-    finally:
-        sys.modules.pop(key, None)
-    return module
+    from .check import _load  # check imports this module: its loader is taken when first used
+    return _load(path)

@@ -1423,7 +1423,7 @@ class CView:
             lo, hi = ("0u", "UINT64_MAX") if wide == "u64" else ("INT64_MIN", "INT64_MAX")
             c("{")
             c.indent()
-            c(f"{vtype} value;")
+            c(f"{vtype} value = 0;  /* set by the parser where it succeeds; compilers cannot always tell */")
             c(f"int const_rc = cw_parse_{wide}(v.b, v.e, {lo}, {hi}, &value);")
             c("if (const_rc != CW_OK && const_rc != CW_ERR_RANGE) {")
             c("    return const_rc;")

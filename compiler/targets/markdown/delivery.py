@@ -16,8 +16,9 @@ from pathlib import Path
 from typing import Optional
 
 from ... import cache, sim
+from ...diagnostics import Diagnostic, SchemaError
 from ...model import Protocol
-from ...sim import efficiency_table
+from ...sim import Undelivered, efficiency_table
 from .. import promela
 from .text import DecisionLinker
 
@@ -50,6 +51,17 @@ def measured(p: Protocol, codec: types.ModuleType) -> list[dict]:
                             cache.key("efficiency", p.sha256, codec_hash, simulator, RATES, COMMANDS, SEED), measure)
 
 
+def measured_rows(p: Protocol, codec: types.ModuleType) -> list[dict]:
+    """The efficiency rows; machines that do not deliver are an error of the schema's."""
+    try:
+        return efficiency_rows(p, codec)
+    except Undelivered as exc:
+        sender = p.machine(p.delivery.sender)
+        raise SchemaError([Diagnostic(sender.loc, f"delivery: {exc}",
+                                      f"follow a command through {p.delivery.sender!r} and "
+                                      f"{p.delivery.receiver!r}: every command must end delivered or failed")]) from None
+
+
 def delivery_view(p: Protocol, codec: types.ModuleType, linker: DecisionLinker) -> Optional[dict]:
     d = p.delivery
     if d is None:
@@ -60,5 +72,5 @@ def delivery_view(p: Protocol, codec: types.ModuleType, linker: DecisionLinker) 
             "model": f"generated/promela/{p.name}.pml",
             "restart_macro": promela.restart_macro(p.machine(d.sender)),
             "retry_macro": promela.macro(d.retry_limit),
-            "rows": efficiency_rows(p, codec), "commands": f"{COMMANDS:,}", "seed": SEED,
+            "rows": measured_rows(p, codec), "commands": f"{COMMANDS:,}", "seed": SEED,
             "command": f"python -m codeword.sim --schema {p.name} --efficiency --commands {COMMANDS} --seed {SEED}"}
