@@ -107,3 +107,28 @@ def test_python_machines_of_fixed_length_data(generated):
     assert boss.hear(2, ANSWER).delivered == [b"\x04\x05\x06"]
     assert boss.give(3, to_id=3, body=b"\x0a\x0b\x0c").sent == [SECOND]
     assert boss.tick(13).sent == [SECOND]
+
+
+def test_python_machines_whose_names_are_builtins(tmp_path):
+    """The same link with its address field called `len` and its data `bytes`: names a
+    schema may use (a length byte is often called so) that generated machine code must
+    not lose its builtins to when they become arguments; the bytes are ORDER's and ANSWER's."""
+    text = SCHEMA.read_text(encoding="utf-8")
+    text = text.replace("to_id", "len").replace("body", "bytes")
+    schema = tmp_path / "fixed_link.yaml"
+    schema.write_text(text, encoding="utf-8")
+    result = build([schema], tmp_path / "out", root=tmp_path)
+    assert not result.errors, result.errors
+    spec = importlib.util.spec_from_file_location("_fixed_link_builtins", tmp_path / "out" / "python" / "fixed_link.py")
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = module
+    try:
+        spec.loader.exec_module(module)
+    finally:
+        sys.modules.pop(spec.name, None)
+    boss = module.BossMachine(wait=10, me=1)
+    worker = module.WorkerMachine(me=3, execute=lambda data: bytes((b + 3) & 0xFF for b in data))
+    assert boss.give(0, len=3, bytes=b"\x01\x02\x03").sent == [ORDER]
+    out = worker.hear(1, ORDER)
+    assert (out.executed, out.sent) == ([b"\x01\x02\x03"], [ANSWER])
+    assert boss.hear(2, ANSWER).delivered == [b"\x04\x05\x06"]

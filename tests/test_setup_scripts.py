@@ -13,7 +13,7 @@ INSTALLER = ROOT / "scripts" / "install-toolchains"
 # Every external tool a test runs (test_c, test_machines_c, test_fuzz_static_analysis, test_spin,
 # test_docs_browser, test_typing's pyright, …).
 TOOLS = ["gcc", "g++", "clang", "avr-gcc", "simavr", "arm-none-eabi-gcc", "qemu-system-arm", "cppcheck", "spin",
-         "chromium", "node"]
+         "chromium", "node", "s390x-linux-gnu-gcc", "qemu-s390x"]
 
 
 def test_the_readme_test_command_installs_toolchains_then_runs_the_tests():

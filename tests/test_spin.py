@@ -135,3 +135,24 @@ def test_a_machine_keeping_two_messages_is_reported_not_crashed(tmp_path):
     with pytest.raises(SchemaError) as caught:
         promela.render(compile_schema(schema))
     assert "one kept message" in str(caught.value.diagnostics[0])
+
+
+def test_an_application_event_without_values_is_modelled(tmp_path):
+    """A master event the application raises with no request message (`poke`, ignored
+    in every state) is one the model's application may raise wherever it is taken,
+    not a packet to receive: the model builds and SPIN verifies it with no error."""
+    lines = []
+    master = False
+    for line in (SCHEMAS / "tr24.yaml").read_text(encoding="utf-8").split("\n"):
+        lines.append(line)
+        master = line.startswith("  master:") or (master and not line.startswith("  slave:"))
+        if master and line.strip().startswith("send: {request: command"):
+            lines.append("      poke: {doc: the application asks for nothing}")
+        if master and line.strip() == "on:":
+            lines.append(" " * (len(line) - len(line.lstrip()) + 2) + "poke: ignore")
+    schema = tmp_path / "tr24.yaml"
+    schema.write_text("\n".join(lines), encoding="utf-8")
+    model = promela.render(compile_schema(schema))["promela/tr24.pml"]
+    assert "poke" in model
+    report, _ = verify(model, tmp_path / "spin")
+    assert errors(report) == 0, report

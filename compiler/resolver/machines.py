@@ -108,6 +108,14 @@ class MachineResolver:
                        "keep one event with `timer: true`")
         for an, a in raw.get("actions", {}).items():
             self.actions[an] = self.resolve_action(an, a)
+            if self.actions[an].kind in ("start_timer", "stop_timer") and not timers:
+                self.error(("actions", an), f"action {an!r} uses a timer, but no event is the timer's",
+                           "add an event with `timer: true` and handle it in every state")
+        kept = [an for an, a in self.actions.items() if a.kind == "keep"]
+        for an, a in self.actions.items():
+            if a.kind == "transmit" and not kept:
+                self.error(("actions", an), f"action {an!r} transmits the kept packet, but no action keeps one",
+                           "add an action `keep: <message>` with the packet's fields and run it before")
 
     def check_argument_names(self, event: str, request: Optional[str], args: list, path: tuple) -> None:
         """The generated event function takes its own parameters and, after each bytes

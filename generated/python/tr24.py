@@ -640,6 +640,12 @@ def _unplain(kind: str, cls: Any, optional: bool, value: Any, message: str, wher
 # application requests; every call returns the Outputs of that step.
 
 
+# The builtins machine code calls, by names no schema name can take: the schema names
+# event arguments, parameters and packet fields, and one called `len` or `bytes` would
+# hide the builtin inside the function that takes it.
+_len, _bytes, _bytearray, _isinstance, _int, _bool = len, bytes, bytearray, isinstance, int, bool
+
+
 class MachineError(ValueError):
     """A request the machine refuses in its current state, or a bad argument."""
 
@@ -663,23 +669,23 @@ class Outputs:
 
 
 def _machine_pack_command(seq: int, sender: int, receiver: int, data: bytes) -> bytes:
-    return bytes((2, seq, sender, receiver,)) + data + bytes((3,))
+    return _bytes((2, seq, sender, receiver,)) + data + _bytes((3,))
 
 
 def _machine_pack_reply(seq: int, sender: int, receiver: int, data: bytes) -> bytes:
-    return bytes((2, 2 | seq, sender, receiver,)) + data + bytes((3,))
+    return _bytes((2, 2 | seq, sender, receiver,)) + data + _bytes((3,))
 
 
 def _machine_unpack_command(data_length: int, b: Union[bytes, bytearray]) -> Optional[tuple[int, int, int, bytes]]:
-    if len(b) != data_length + 5 or b[0] != 0x02 or b[1] & 0xfe != 0x00 or b[data_length + 4] != 0x03:
+    if _len(b) != data_length + 5 or b[0] != 0x02 or b[1] & 0xfe != 0x00 or b[data_length + 4] != 0x03:
         return None
-    return (b[1] & 0x1, b[2], b[3], bytes(b[4:data_length + 4]),)
+    return (b[1] & 0x1, b[2], b[3], _bytes(b[4:data_length + 4]),)
 
 
 def _machine_unpack_reply(data_length: int, b: Union[bytes, bytearray]) -> Optional[tuple[int, int, int, bytes]]:
-    if len(b) != data_length + 5 or b[0] != 0x02 or b[1] & 0xfe != 0x02 or b[data_length + 4] != 0x03:
+    if _len(b) != data_length + 5 or b[0] != 0x02 or b[1] & 0xfe != 0x02 or b[data_length + 4] != 0x03:
         return None
-    return (b[1] & 0x1, b[2], b[3], bytes(b[4:data_length + 4]),)
+    return (b[1] & 0x1, b[2], b[3], _bytes(b[4:data_length + 4]),)
 
 
 class MasterMachine:
@@ -690,16 +696,16 @@ class MasterMachine:
     deadline: Optional[int]
 
     def __init__(self, *, own_id: int, data_length: int = 7, timeout: int = 100, retry_limit: int = 0, ) -> None:
-        if not isinstance(own_id, int) or isinstance(own_id, bool) or not 0 <= own_id <= 255:
+        if not _isinstance(own_id, _int) or _isinstance(own_id, _bool) or not 0 <= own_id <= 255:
             raise MachineError(f"own_id must be an integer in 0..255, not {own_id!r}")
         self.own_id = own_id  # this device's unique ID, set per device; packets for other IDs are ignored (TR24-D3)
-        if not isinstance(data_length, int) or isinstance(data_length, bool) or not 1 <= data_length <= 59:
+        if not _isinstance(data_length, _int) or _isinstance(data_length, _bool) or not 1 <= data_length <= 59:
             raise MachineError(f"data_length must be an integer in 1..59, not {data_length!r}")
         self.data_length = data_length  # number of data bytes in every packet of a link, fixed per link (the firmware's template parameter dataLength); at most 59 so that a packet fits the 64-byte FIFO (TR24-D1)
-        if not isinstance(timeout, int) or isinstance(timeout, bool) or timeout < 0:
+        if not _isinstance(timeout, _int) or _isinstance(timeout, _bool) or timeout < 0:
             raise MachineError(f"timeout must be an integer >= 0, not {timeout!r}")
         self.timeout = timeout  # how long the master waits for a reply before sending the command again (TR24-D4)
-        if not isinstance(retry_limit, int) or isinstance(retry_limit, bool) or not 0 <= retry_limit <= 255:
+        if not _isinstance(retry_limit, _int) or _isinstance(retry_limit, _bool) or not 0 <= retry_limit <= 255:
             raise MachineError(f"retry_limit must be an integer in 0..255, not {retry_limit!r}")
         self.retry_limit = retry_limit  # how many times the master resends one command before it reports failure; 0 = unlimited, the original behaviour (TR24-D4)
         self.reset()
@@ -716,11 +722,11 @@ class MasterMachine:
     def send(self, now: int, receiver: int, data: Union[bytes, bytearray]) -> Outputs:
         """the application asks to send a command"""
         out = Outputs()
-        if not isinstance(receiver, int) or isinstance(receiver, bool) or not 0 <= receiver <= 255:
+        if not _isinstance(receiver, _int) or _isinstance(receiver, _bool) or not 0 <= receiver <= 255:
             raise MachineError(f"receiver must be an integer in 0..255, not {receiver!r}")
-        if not isinstance(data, (bytes, bytearray)) or len(data) != self.data_length:
+        if not _isinstance(data, (_bytes, _bytearray)) or _len(data) != self.data_length:
             raise MachineError(f"data must be {self.data_length} bytes, not {data!r}")
-        data = bytes(data)
+        data = _bytes(data)
         state = self.state
         if state == 'idle':
             self.peer = receiver
@@ -735,11 +741,11 @@ class MasterMachine:
     def receive(self, now: int, packet: Union[bytes, bytearray]) -> Outputs:
         """receive"""
         out = Outputs()
-        if not isinstance(packet, (bytes, bytearray)):
+        if not _isinstance(packet, (_bytes, _bytearray)):
             raise MachineError(f"packet must be bytes, not {packet!r}")
         values = _machine_unpack_reply(self.data_length, packet)
         if values is None:
-            out.dropped.append(bytes(packet))
+            out.dropped.append(_bytes(packet))
             return out
         p_seq, p_sender, p_receiver, p_data, = values
         state = self.state
@@ -787,10 +793,10 @@ class SlaveMachine:
     __slots__ = ("state", 'expected', 'own_id', 'data_length', "kept", "_execute")
 
     def __init__(self, *, own_id: int, data_length: int = 7, execute: Optional[Callable[[bytes], bytes]] = None) -> None:
-        if not isinstance(own_id, int) or isinstance(own_id, bool) or not 0 <= own_id <= 255:
+        if not _isinstance(own_id, _int) or _isinstance(own_id, _bool) or not 0 <= own_id <= 255:
             raise MachineError(f"own_id must be an integer in 0..255, not {own_id!r}")
         self.own_id = own_id  # this device's unique ID, set per device; packets for other IDs are ignored (TR24-D3)
-        if not isinstance(data_length, int) or isinstance(data_length, bool) or not 1 <= data_length <= 59:
+        if not _isinstance(data_length, _int) or _isinstance(data_length, _bool) or not 1 <= data_length <= 59:
             raise MachineError(f"data_length must be an integer in 1..59, not {data_length!r}")
         self.data_length = data_length  # number of data bytes in every packet of a link, fixed per link (the firmware's template parameter dataLength); at most 59 so that a packet fits the 64-byte FIFO (TR24-D1)
         self._execute = execute  # the application: command data -> reply data; None answers zeros
@@ -803,19 +809,19 @@ class SlaveMachine:
         self.kept = b""  # the last packet built, for sending again
 
     def _execute_checked(self, data: bytes) -> bytes:
-        result = bytes(self.data_length) if self._execute is None else self._execute(data)
-        if not isinstance(result, (bytes, bytearray)) or len(result) != self.data_length:
+        result = _bytes(self.data_length) if self._execute is None else self._execute(data)
+        if not _isinstance(result, (_bytes, _bytearray)) or _len(result) != self.data_length:
             raise MachineError(f"execute must return {self.data_length} bytes, not {result!r}")
-        return bytes(result)
+        return _bytes(result)
 
     def receive(self, now: int, packet: Union[bytes, bytearray]) -> Outputs:
         """receive"""
         out = Outputs()
-        if not isinstance(packet, (bytes, bytearray)):
+        if not _isinstance(packet, (_bytes, _bytearray)):
             raise MachineError(f"packet must be bytes, not {packet!r}")
         values = _machine_unpack_command(self.data_length, packet)
         if values is None:
-            out.dropped.append(bytes(packet))
+            out.dropped.append(_bytes(packet))
             return out
         p_seq, p_sender, p_receiver, p_data, = values
         state = self.state
@@ -828,7 +834,7 @@ class SlaveMachine:
                 self.expected ^= 1
                 self.state = 'listening'
             elif p_receiver == self.own_id and p_seq != self.expected:
-                self.kept = _machine_pack_reply(p_seq, self.own_id, p_sender, bytes(self.data_length))
+                self.kept = _machine_pack_reply(p_seq, self.own_id, p_sender, _bytes(self.data_length))
                 out.sent.append(self.kept)
             else:
                 pass

@@ -164,19 +164,20 @@ def request_values(p: Protocol, low: PromelaLowering, event: Event, identities) 
 
 def event_view(p: Protocol, low: PromelaLowering, code, identities) -> dict:
     e = code.event
+    asked = e.message is None and not e.timer  # the application's: a request, with or without values
     cases = []
     for case in code.cases:
         if case.kind == "rows":
             cases.append({"state": low.state_value(case.state), "rows": exclusive_rows(case.rows)})
-        elif case.kind == "error" and not e.request:
+        elif case.kind == "error" and not asked:
             # a packet or a timer the machine cannot take is a model error
             refused = f"assert(false) /* {e.name} refused in {case.state} */"
             cases.append({"state": low.state_value(case.state), "rows": [{"guard": "true", "body": [refused]}]})
     view = {"name": e.name, "cases": cases, "enable": "", "prelude": [], "receive": None}
-    if e.request:
+    if asked:
         # the application only asks where the machine accepts the request
         view["enable"] = " || ".join(f"{low.var('state')} == {c['state']}" for c in cases) or "false"
-        view["prelude"] = request_values(p, low, e, identities)
+        view["prelude"] = request_values(p, low, e, identities) if e.request else []
     elif e.timer:
         view["enable"] = f"{low.m.name}_timer"
         view["prelude"] = [f"{low.m.name}_timer = false"]
@@ -189,6 +190,8 @@ def event_view(p: Protocol, low: PromelaLowering, code, identities) -> dict:
 def machine_view(p: Protocol, machine: Machine, identities) -> dict:
     low = PromelaLowering(p, machine)
     kept = low.kept_message()
+    if kept is not None:
+        receiver_of(p, kept)  # a packet sent is a packet some machine of the model receives
     received = [e.message for e in machine.events if e.message]
     request_args = []
     for e in machine.events:

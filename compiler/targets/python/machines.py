@@ -41,13 +41,13 @@ def pack_function(layout: PacketLayout) -> dict:
     for slot in layout.slots:
         if slot.data_field:
             if run:
-                pieces.append("bytes((" + ", ".join(run) + ",))")
+                pieces.append("_bytes((" + ", ".join(run) + ",))")
                 run = []
             pieces.append(slot.data_field)
         else:
             run.append(byte_expr(slot, lambda name: name))
     if run:
-        pieces.append("bytes((" + ", ".join(run) + ",))")
+        pieces.append("_bytes((" + ", ".join(run) + ",))")
     data = {slot.data_field for slot in layout.slots if slot.data_field}
     return {"name": f"_machine_pack_{layout.message}",
             "args": ", ".join(f"{name}: {'bytes' if name in data else 'int'}" for name in layout.members),
@@ -59,12 +59,12 @@ def unpack_function(layout: PacketLayout) -> dict:
     def at(slot) -> str:
         return slot.at.expr(lambda name: name)
 
-    checks = [f"len(b) != {layout.size.expr(lambda name: name)}"]
+    checks = [f"_len(b) != {layout.size.expr(lambda name: name)}"]
     values = {}
     for slot in layout.slots:
         if slot.data_field:
             end = slot.at.plus_length(slot.length_param) if slot.length_param else slot.at.plus(slot.length)
-            values[slot.data_field] = f"bytes(b[{at(slot)}:{end.expr(lambda name: name)}])"
+            values[slot.data_field] = f"_bytes(b[{at(slot)}:{end.expr(lambda name: name)}])"
             continue
         if slot.const_mask == 0xff:
             checks.append(f"b[{at(slot)}] != {slot.const_value:#04x}")
@@ -91,7 +91,7 @@ class PythonLowering(Lowering):
 
     def zero_bytes(self, message, field):
         slot = next(s for s in self.layouts[message].slots if s.data_field == field)
-        return f"bytes({self.param(slot.length_param)})" if slot.length_param else f"bytes({slot.length})"
+        return f"_bytes({self.param(slot.length_param)})" if slot.length_param else f"_bytes({slot.length})"
 
     SPELLING = {
         "set": "{var} = {value}",
