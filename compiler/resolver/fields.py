@@ -100,10 +100,11 @@ class FieldsMixin(ResolverBase):
                            f"give {key} between 1 and {MAX_BYTES_LENGTH}")
                 length = 1
             bits = 8 * length
-        elif kind == "str" and not 0 < (length or f.get("max_length") or 1) <= MAX_BYTES_LENGTH:
-            key = "length" if length else "max_length"
-            self.error(path + (key,), f"field {name!r}: {key} {length or f.get('max_length')} is outside "
-                                      f"1..{MAX_BYTES_LENGTH}")
+        elif kind == "str" and (length is not None or f.get("max_length") is not None) \
+                and not 0 < (length if length is not None else f["max_length"]) <= MAX_BYTES_LENGTH:
+            key = "length" if length is not None else "max_length"  # 0 is a size given, not one left out
+            self.error(path + (key,), f"field {name!r}: {key} {f[key]} is outside 1..{MAX_BYTES_LENGTH}",
+                       f"give {key} between 1 and {MAX_BYTES_LENGTH}")
         elif length is not None and kind != "str" and counted_by is None:
             self.error(path + ("length",), f"field {name!r}: `length` applies to bytes and str fields")
         field = Field(
@@ -451,6 +452,9 @@ class FieldsMixin(ResolverBase):
             self.error(path, f"field {f.name!r}: {what} {value!r} is not one character")
         elif kind == "str" and not isinstance(value, str):
             self.error(path, f"field {f.name!r}: {what} {value!r} is not a string")
+        elif kind == "str" and f.max_length is not None and len(value) > f.max_length:
+            self.error(path, f"field {f.name!r}: {what} {value!r} is longer than max_length {f.max_length}",
+                       "shorten it or raise max_length")
 
     @staticmethod
     def to_raw(f: Field, value: float) -> float:
