@@ -1696,6 +1696,16 @@ def _pair_table_halves(p) -> tuple[list[int], list[int]]:
     return [entry(x << 8) for x in range(256)], [entry(x) for x in range(256)]
 
 
+# The longest fixed span a CRC gets straight-line code for: beyond it the code would grow
+# with the wire (a 64 KiB frame, a line per byte), so the CRC's loop serves it.
+STRAIGHT_LINE_CRC_BYTES = 1024
+
+
+def _straight_line_crc(cs, size: int) -> bool:
+    """Whether a CRC over `size` fixed bytes is computed by code written for that length."""
+    return cs.algorithm == "crc" and not _stdlib_crc(cs.crc) and size <= STRAIGHT_LINE_CRC_BYTES
+
+
 def _fixed_span_crc_code(cs, name: str, lengths: list[int]) -> str:
     return _pairwise_crc_code(cs, name, lengths) if cs.crc.width >= 16 else _positional_crc_code(name, lengths)
 
@@ -1715,8 +1725,8 @@ class ModuleView(PythonView):
                     if _checksum_name(cs) not in seen:  # written once, however many messages use it
                         seen[_checksum_name(cs)] = _checksum_code(cs)
                     truncated = m.shortening and m.shortening.trailing_zeros and m.counts_sent(cs)
-                    if cs.algorithm == "crc" and not _stdlib_crc(cs.crc) and not truncated:
-                        start, end = cs.byte_span
+                    start, end = cs.byte_span
+                    if _straight_line_crc(cs, end - start + bool(cs.extra)) and not truncated:
                         spans.setdefault(_checksum_name(cs), set()).add(end - start + bool(cs.extra))
                         crcs[_checksum_name(cs)] = cs
         out = list(seen.values())
@@ -1736,10 +1746,10 @@ class ModuleView(PythonView):
             return f"_checksum_{name}({buf}[{start}:{end} - cut])"
         if cs.extra:
             data, size = f"bytes({buf}[{start}:{end}]) + {bytes([extra])!r}", end - start + 1
-            if cs.algorithm == "crc" and not _stdlib_crc(cs.crc):
+            if _straight_line_crc(cs, size):
                 return f"_checksum_{name}_{size}({data}, 0)"
             return f"_checksum_{name}({data})"
-        if cs.algorithm == "crc" and not _stdlib_crc(cs.crc):  # straight-line code for this length
+        if _straight_line_crc(cs, end - start):  # straight-line code for this length
             return f"_checksum_{name}_{end - start}({buf}, {start})"
         return f"_checksum_{name}({buf}[{start}:{end}])"
 
