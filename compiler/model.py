@@ -806,6 +806,7 @@ class Delivery:
     request: str  # the sender's one application request event
     address_arg: str  # its argument that addresses the receiver
     data_arg: str  # its argument that carries the data the receiver executes
+    addresses: tuple[int, ...]  # the simulator's device addresses: a sender's, then receivers' (1 to 4)
     notes: DeliveryNotes
     loc: Loc
 

@@ -210,3 +210,52 @@ def test_command_line_simulates_a_named_schema_file(tmp_path):
                          capture_output=True, text=True, timeout=120)
     assert run.returncode == 0, run.stderr
     assert "delivered: 200" in run.stdout and "failed: 0" in run.stdout
+
+
+# -- device addresses, timeout and retry limit inside the schema's ranges -----------
+
+
+def narrowed_schema(folder: Path, own_id: str, timeout: str = "", retry_limit: str = "[0, 255]") -> Path:
+    """tr24.yaml with other ranges for the address, timeout and retry-limit parameters."""
+    text = (ROOT / "schemas" / "tr24.yaml").read_text(encoding="utf-8")
+    for old, new in (("  own_id:\n    range: [0, 255]", f"  own_id:\n    range: {own_id}"),
+                     ("  timeout:\n    default: 100", f"  timeout:\n    default: 100{timeout}"),
+                     ("    default: 0\n    range: [0, 255]", f"    default: 0\n    range: {retry_limit}")):
+        assert text.count(old) == 1, old
+        text = text.replace(old, new)
+    if retry_limit.startswith("[1"):
+        text = text.replace("    default: 0\n    range: [1", "    default: 1\n    range: [1")
+    if timeout:
+        text = text.replace("    default: 100\n", "    default: 2\n")
+    path = folder / "tr24.yaml"
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def test_devices_take_addresses_the_address_range_admits(tmp_path):
+    """An ID range of 7..9 holds none of the default addresses (1, 3..6): the
+    simulator's devices are 7, 8 and 9, and a fourth receiver does not exist."""
+    protocol, codec = load_codec(narrowed_schema(tmp_path, "[7, 9]"))
+    assert protocol.delivery.addresses == (7, 8, 9)
+    sim = Simulation(protocol, codec, 5, Link(p_fwd=0.2, p_ack=0.2), receivers=2)
+    stats = sim.run(300)
+    assert stats.delivered == 300 and sim.receiver_ids == (8, 9)
+    check_exactly_once_in_order(sim)
+    with pytest.raises(ValueError, match=r"receivers must be in 1\.\.2"):
+        Simulation(protocol, codec, 5, Link(), receivers=3)
+
+
+def test_the_default_addresses_stay_where_the_range_admits_them():
+    assert load_model("tr24").delivery.addresses == (1, 3, 4, 5, 6)
+
+
+def test_measurement_takes_timeout_and_retry_limit_from_their_ranges(tmp_path):
+    """A timeout of at most 3 ticks (the measurement would use 10) and a retry limit
+    of at least 1 (it would use 0, no limit): the measurement runs inside both,
+    with packets fast enough that no round trip outlasts the timeout."""
+    protocol, codec = load_codec(narrowed_schema(tmp_path, "[0, 255]", timeout="\n    range: [1, 3]",
+                                                 retry_limit="[1, 5]"))
+    measured, theory = efficiency(protocol, codec, 0.0, 0.0, commands=200)
+    assert (measured, theory) == (1.0, 1.0)  # no loss, no early resend: one transmission each
+    measured, theory = efficiency(protocol, codec, 0.3, 0.3, commands=2000)
+    assert measured > 1.0 and theory == pytest.approx(1 / 0.49)

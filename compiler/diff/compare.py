@@ -402,7 +402,7 @@ def _delivery(old: Protocol, new: Protocol, out: _Collector) -> None:
     if b is None:
         out.add(DOCS, "delivery", "removed: the docs no longer state a delivery guarantee")
         return
-    for name in ("sender", "receiver", "address", "timeout", "retry_limit", "request"):
+    for name in ("sender", "receiver", "address", "timeout", "retry_limit", "request", "addresses"):
         if getattr(a, name) != getattr(b, name):
             out.add(DOCS, "delivery", f"{name} changed from {getattr(a, name)!r} to {getattr(b, name)!r}")
     if a.notes != b.notes:

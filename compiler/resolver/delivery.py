@@ -6,12 +6,17 @@ from __future__ import annotations
 
 from typing import Optional
 
-from ..model import Delivery, DeliveryNotes, Event, Machine, Message
+from ..model import Delivery, DeliveryNotes, Event, Field, Machine, Message, field_at
 from .base import ResolverBase
 
 NOTE_KEYS = ("guarantee", "retry_limit", "restart")
 # parameter key -> the roles whose machine must take it
 PARAMETER_USERS = {"address": ("sender", "receiver"), "timeout": ("sender",), "retry_limit": ("sender",)}
+# the simulator's devices: a sender and up to four receivers, at these addresses
+# where the protocol admits them all, else at the lowest addresses it admits
+PREFERRED_ADDRESSES = (1, 3, 4, 5, 6)
+# how far above the lowest admitted address the search for others goes
+ADDRESS_SEARCH = 1 << 16
 
 
 class DeliveryMixin(ResolverBase):
@@ -48,9 +53,13 @@ class DeliveryMixin(ResolverBase):
         notes = self.delivery_notes(raw["notes"])
         if self.report.diagnostics:  # here or in the machines: nothing to build from
             return None
+        addresses = self.device_addresses(raw["address"], (sender, receiver), request, args[0], by_name)
+        if addresses is None:
+            return None
         return Delivery(sender=sender.name, receiver=receiver.name, address=raw["address"],
                         timeout=raw["timeout"], retry_limit=raw["retry_limit"], request=request.name,
-                        address_arg=args[0], data_arg=args[1], notes=notes, loc=self.loc("delivery"))
+                        address_arg=args[0], data_arg=args[1], addresses=addresses, notes=notes,
+                        loc=self.loc("delivery"))
 
     def delivery_machine(self, name: str, role: str, declared: dict[str, Machine]) -> Optional[Machine]:
         machine = declared.get(name)
@@ -86,6 +95,45 @@ class DeliveryMixin(ResolverBase):
             return None
         return addresses[0], data[0]
 
+    def device_addresses(self, parameter: str, machines: tuple[Machine, Machine], request: Event,
+                         address_arg: str, messages: dict[str, Message]) -> Optional[tuple[int, ...]]:
+        """The addresses the simulator gives its devices: values the address parameter's
+        range admits and that every field an address is written to can carry. At least
+        two, a sender's and a receiver's; else the schema is refused here."""
+        fields = [field_at(messages[request.request].members, address_arg)]
+        for machine in machines:
+            for action in machine.actions:
+                target = messages.get(action.target or "")
+                for name, source in action.fields:
+                    if target is not None and (source.kind, source.name) in (("param", parameter),
+                                                                                ("request", address_arg)):
+                        fields.append(field_at(target.members, name))
+        fields = [f for f in fields if f is not None]
+        span = self.parameters[parameter].range or (0, float("inf"))
+        low = max(0, int(-(-span[0] // 1)))
+        high = min([span[1], low + ADDRESS_SEARCH] + [(1 << f.bits) - 1 for f in fields if f.bits])
+
+        def admitted(value: int) -> bool:
+            return all(carries(f, value) for f in fields)
+
+        if all(low <= a <= high and admitted(a) for a in PREFERRED_ADDRESSES):
+            return PREFERRED_ADDRESSES
+        found: list[int] = []
+        value = low
+        while value <= high and len(found) < len(PREFERRED_ADDRESSES):
+            if admitted(value):
+                found.append(value)
+            value += 1
+        if len(found) < 2:
+            carried = ", ".join(sorted({f.name for f in fields}))
+            self.delivery_error(("address",), f"parameter {parameter!r} admits "
+                                f"{'only the address ' + str(found[0]) if found else 'no address'} that "
+                                f"the fields it is written to ({carried}) can carry; a sender and a receiver "
+                                "need two different addresses",
+                                f"widen the range of {parameter!r} (and of those fields) to hold at least two values")
+            return None
+        return tuple(found)
+
     def one_receive_event(self, role: str, machine: Machine) -> None:
         receives = [e.name for e in machine.events if e.message is not None]
         if len(receives) != 1:
@@ -116,3 +164,17 @@ class DeliveryMixin(ResolverBase):
                 self.delivery_error(("notes", key), f"unknown note {raw[key]!r}",
                                     f"cite the id of a note under `notes` ({', '.join(ids) or 'none declared'})")
         return DeliveryNotes(**{key: raw[key] for key in NOTE_KEYS})
+
+
+def carries(f: Field, value: int) -> bool:
+    """Whether an integer field takes `value` as written: in its width, its range
+    (of a field whose range counts raw values) and its listed values."""
+    if f.kind == "bool":
+        return value in (0, 1)
+    if f.bits and not 0 <= value < 1 << f.bits:
+        return False
+    if f.range is not None and f.scale is None and f.offset is None and not f.range[0] <= value <= f.range[1]:
+        return False
+    if f.values is not None and value not in f.values:
+        return False
+    return f.enum is None or any(m.value == value for m in f.enum.members)

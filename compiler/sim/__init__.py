@@ -3,7 +3,7 @@ machines its schema's `delivery` section names, as the generated Python module
 has them (see pair.py).
 
 One sender device and up to four receiver devices share one channel, a sender
-machine per receiver. Every packet is heard by every other device; for each
+machine per receiver; their addresses are the schema's (`Delivery.addresses`). Every packet is heard by every other device; for each
 listener the channel independently loses it (per direction: commands
 sender→receiver, replies receiver→sender), duplicates it, or flips one bit in
 it, in which case the listener's link layer finds a CRC mismatch and drops it.
@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import binascii
 import heapq
+import math
 import random
 import types
 from dataclasses import dataclass, field
@@ -26,11 +27,6 @@ from typing import Mapping, Optional
 
 from ..model import Protocol
 from .pair import Pair
-
-# Device addresses, each given to its machines' address parameter.
-SENDER_ADDRESS = 1
-RECEIVER_ADDRESSES = (3, 4, 5, 6)
-
 
 @dataclass(frozen=True)
 class Link:
@@ -115,16 +111,19 @@ class Simulation:
                  receivers: int = 1, timeout: int = 20, retry_limit: int = 0,
                  parameters: Optional[Mapping[str, int]] = None, trace: bool = False):
         link.check()
-        if not 1 <= receivers <= len(RECEIVER_ADDRESSES):
-            raise ValueError(f"receivers must be in 1..{len(RECEIVER_ADDRESSES)}")
         self.pair = pair = Pair(protocol, module, parameters)
+        sender_address, *receiver_addresses = protocol.delivery.addresses
+        if not 1 <= receivers <= len(receiver_addresses):
+            raise ValueError(f"receivers must be in 1..{len(receiver_addresses)}: the address parameter "
+                             f"{protocol.delivery.address!r} admits {len(receiver_addresses) + 1} device addresses")
         self.rng = random.Random(seed)
         self.link = link
         self.data_length = pair.data_length
-        self.receiver_ids = RECEIVER_ADDRESSES[:receivers]
-        self.senders = {rid: pair.new_sender(SENDER_ADDRESS, timeout, retry_limit) for rid in self.receiver_ids}
+        self.sender_address = sender_address
+        self.receiver_ids = tuple(receiver_addresses[:receivers])
+        self.senders = {rid: pair.new_sender(sender_address, timeout, retry_limit) for rid in self.receiver_ids}
         self.receivers = {rid: pair.new_receiver(rid, partial(reply_for, address=rid)) for rid in self.receiver_ids}
-        self.devices = (SENDER_ADDRESS,) + self.receiver_ids
+        self.devices = (sender_address,) + self.receiver_ids
         self.listeners = {d: tuple(x for x in self.devices if x != d) for d in self.devices}
         self.queue: list = []
         self.order = 0
@@ -148,7 +147,7 @@ class Simulation:
         # The docs build runs this some 50,000 times: attributes are read once.
         link, rng, stats, last_arrival = self.link, self.rng, self.stats, self.last_arrival
         chance = rng.random
-        if sender == SENDER_ADDRESS:
+        if sender == self.sender_address:
             loss = link.p_fwd
             stats.command_packets += 1
         else:
@@ -216,7 +215,7 @@ class Simulation:
             out = self.pair.send(sender, self.now, rid, data)
         else:
             out = self.call(f"m{rid}", "send", partial(self.pair.send, sender), rid, data)
-        self.handle(SENDER_ADDRESS, out, sender)
+        self.handle(self.sender_address, out, sender)
 
     def finish_command(self, rid: int, out) -> None:
         for reply in out.delivered:
@@ -250,7 +249,7 @@ class Simulation:
                 rid = rid_of[id(machine)]
                 tick = getattr(machine, pair.tick)
                 out = self.call(f"m{rid}", "tick", tick) if traced else tick(time)
-                handle(SENDER_ADDRESS, out, machine)
+                handle(self.sender_address, out, machine)
                 if out.failed:
                     self.finish_command(rid, out)
                     self.next_command(commands)
@@ -259,11 +258,11 @@ class Simulation:
             if binascii.crc_hqx(data, CRC_INIT) != check:
                 self.stats.corrupted += 1  # the listener's CRC check drops it
                 continue
-            if listener == SENDER_ADDRESS:
+            if listener == self.sender_address:
                 for rid, sender in senders.items():
                     receive = take_reply[rid]
                     out = self.call(f"m{rid}", "receive", receive, data) if traced else receive(time, data)
-                    handle(SENDER_ADDRESS, out, sender)
+                    handle(self.sender_address, out, sender)
                     if out.delivered:
                         self.finish_command(rid, out)
                         self.next_command(commands)
@@ -291,8 +290,15 @@ def efficiency(protocol: Protocol, module: types.ModuleType, p_fwd: float, p_ack
     these loss rates, no duplication or corruption, and a timeout longer than any
     round trip; theory: attempts are independent and one succeeds when both the
     command and its reply arrive, so their number is geometric with mean
-    1/((1-p_fwd)(1-p_ack))."""
-    sim = Simulation(protocol, module, seed, Link(p_fwd=p_fwd, p_ack=p_ack, delay=(1, 4)), timeout=10)
+    1/((1-p_fwd)(1-p_ack)). The timeout and the retry limit (0: none) are taken
+    as near those as the schema's parameter ranges allow, and each packet's delay
+    kept short enough that a round trip ends before the timeout."""
+    d = protocol.delivery
+    timeout = within(protocol, d.timeout, EFFICIENCY_TIMEOUT)
+    slowest = min(EFFICIENCY_DELAY, (timeout - 1) // 2) if timeout > 0 else 0
+    link = Link(p_fwd=p_fwd, p_ack=p_ack, delay=(min(1, slowest), slowest))
+    sim = Simulation(protocol, module, seed, link, timeout=timeout,
+                     retry_limit=within(protocol, d.retry_limit, 0))
     stats = sim.run(commands, event_limit=commands * EVENTS_PER_COMMAND)
     if stats.delivered + stats.failed < commands or not stats.delivered:
         raise Undelivered(f"over a simulated link losing {p_fwd:.0%} of commands and {p_ack:.0%} of replies, "
@@ -300,6 +306,21 @@ def efficiency(protocol: Protocol, module: types.ModuleType, p_fwd: float, p_ack
                           f"{stats.commands} commands issued out of {commands} "
                           f"in {commands * EVENTS_PER_COMMAND:,} events")
     return stats.command_packets / stats.delivered, 1.0 / ((1.0 - p_fwd) * (1.0 - p_ack))
+
+
+# The measurement's timeout and longest packet delay, in ticks: a round trip takes
+# at most twice the delay, less than the timeout.
+EFFICIENCY_TIMEOUT = 10
+EFFICIENCY_DELAY = 4
+
+
+def within(protocol: Protocol, parameter: str, wanted: int) -> int:
+    """`wanted`, or the nearest integer the parameter's range admits."""
+    span = next(x for x in protocol.parameters if x.name == parameter).range
+    if span is None:
+        return wanted
+    low, high = math.ceil(span[0]), math.floor(span[1])
+    return min(max(wanted, low), high)
 
 
 # A command takes a few events per attempt (send, receive, reply, receive, tick);

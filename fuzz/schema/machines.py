@@ -36,10 +36,13 @@ def machine_schema(g) -> dict:
     parameters: dict = {}
     if length_param:
         parameters[length_param] = {"default": length, "range": [1, rng.choice([length, 16, 59])]}
-    parameters[timeout] = {"default": rng.choice([5, 10, 100]), "range": [1, 1000]}
-    if retry_limit:
-        parameters[retry_limit] = {"default": rng.randint(0, 3), "range": [0, 255]}
-    parameters[address] = {"range": [0, 255]}  # no default: set per device
+    if "delivery_ranges" in g.on:
+        parameters.update(narrow_ranges(random.Random(f"delivery ranges {g.seed}"), timeout, retry_limit, address))
+    else:
+        parameters[timeout] = {"default": rng.choice([5, 10, 100]), "range": [1, 1000]}
+        if retry_limit:
+            parameters[retry_limit] = {"default": rng.randint(0, 3), "range": [0, 255]}
+        parameters[address] = {"range": [0, 255]}  # no default: set per device
 
     seq, sender, receiver, kind = (name() if seq_bit else None), name(), name(), name()
     layout = envelope(g, seq, sender, receiver, kind)
@@ -83,6 +86,20 @@ def machine_schema(g) -> dict:
                            "retry_limit": retry_limit,
                            "notes": {"guarantee": "FZ-1", "retry_limit": "FZ-2", "restart": "FZ-3"}}
     return doc
+
+
+def narrow_ranges(rng: random.Random, timeout: str, retry_limit: str | None, address: str) -> dict:
+    """Parameter ranges that leave out what the simulator would pick by itself: a
+    timeout that may be shorter than its round trip, a retry limit that may not be
+    0 (no limit), and device addresses from 0, 2 or 3 up; each range still holds
+    ADDRESS and two addresses at least."""
+    high = rng.choice([2, 3, 6, 9, 1000])
+    out = {timeout: {"default": rng.randint(1, min(high, 100)), "range": [1, high]}}
+    if retry_limit:
+        low, high = rng.choice([0, 1, 2]), rng.choice([3, 255])
+        out[retry_limit] = {"default": rng.randint(low, 3), "range": [low, high]}
+    out[address] = {"range": [rng.choice([0, 2, 3]), rng.choice([4, 5, 8, 255])]}
+    return out
 
 
 def envelope(g, seq, sender, receiver, kind) -> list[dict]:
