@@ -12,7 +12,7 @@ import types
 from typing import Any, Optional
 
 from .diagnostics import Diagnostic
-from .model import Example, Field, Message, Protocol, Sequence, SequenceItem
+from .model import Example, Field, Message, Protocol, Sequence, SequenceItem, StreamEvent, StreamExample
 from .names import camel
 
 
@@ -213,6 +213,26 @@ class ExampleChecker:
         if len(decoded) > 1 and decoded[0] != decoded[1]:
             self.fail(ex, "the hex and text forms decode to different sequences")
 
+    # -- streams ---------------------------------------------------------------------------
+    def check_stream(self, s: StreamExample) -> None:
+        """The StreamDecoder, fed the whole stream and then one byte at a time, gives the
+        hand-worked events (without finish(): a stream decoder never knows it has ended)."""
+        for piece in (len(s.data), 1):
+            try:
+                got = stream_events(self.mod, s.data, piece)
+            except Exception as exc:  # a crash is a codec bug, reported as such
+                self.problems.append(Diagnostic(s.loc, f"stream {s.name!r}: the decoder crashed with "
+                                                       f"{_describe(exc)}", "this is a codeword bug; please report it"))
+                return
+            wrong = first_difference(got, s.events)
+            if wrong is not None:
+                fed = "whole" if piece == len(s.data) else "one byte at a time"
+                self.problems.append(Diagnostic(
+                    s.loc, f"stream {s.name!r} (fed {fed}): {wrong}; the decoder gives "
+                           f"{', '.join(map(show_event, got)) or 'nothing'}",
+                    "the events are worked out by hand from the framing rules: check them and the schema"))
+                return
+
     def run(self) -> list[Diagnostic]:
         for m in self.p.messages:
             for ex in m.examples:
@@ -220,7 +240,43 @@ class ExampleChecker:
         for s in self.p.sequences:
             for ex in s.examples:
                 self.check_sequence(s, ex)
+        for stream in self.p.streams:
+            self.check_stream(stream)
         return self.problems
+
+
+def stream_events(mod: types.ModuleType, data: bytes, piece: int) -> list[StreamEvent]:
+    """A StreamDecoder's events on `data` fed in pieces of `piece` bytes: each message
+    with the offset just past its frame, each error with its rule."""
+    decoder = mod.StreamDecoder()
+    out = []
+    for at in range(0, len(data), max(1, piece)):
+        items = decoder.feed(data[at:at + piece])
+        for item, (start, length) in zip(items, decoder.spans):
+            if isinstance(item, mod.DecodeError):
+                out.append(StreamEvent(rule=item.rule))
+            else:
+                out.append(StreamEvent(message=type(item).NAME, end=start + length))
+    return out
+
+
+def first_difference(got: list[StreamEvent], want: tuple[StreamEvent, ...]) -> Optional[str]:
+    """How the decoder's events first differ from the expected ones, or None."""
+    for i, (g, w) in enumerate(zip(got, want), 1):
+        if w.message is None and g.message is None and w.rule in (None, g.rule):
+            continue
+        if w.message is not None and g.message == w.message and w.end in (None, g.end):
+            continue
+        return f"event {i} is {show_event(g)}, expected {show_event(w)}"
+    if len(got) != len(want):
+        return f"{len(got)} events, expected {len(want)}"
+    return None
+
+
+def show_event(e: StreamEvent) -> str:
+    if e.message is not None:
+        return e.message + (f" (its frame ends at offset {e.end})" if e.end is not None else "")
+    return f"error ({e.rule})" if e.rule else "an error"
 
 
 def check_examples(p: Protocol, module: types.ModuleType) -> list[Diagnostic]:

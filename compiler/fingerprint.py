@@ -3,9 +3,9 @@ the wire, and nothing that only documents it.
 
 Two schemas with the same fingerprint produce and accept the same bytes, so a
 host that reads a firmware's fingerprint can tell whether both were built from
-the same protocol. Docs, titles, user-facing messages, examples, notes,
-history, the version string, source locations and the delivery section (which
-machines the simulator drives, which notes the docs cite) are left out; names
+the same protocol. Docs, titles, user-facing messages, examples, hand-worked
+streams, notes, history, the version string, source locations and the delivery
+section (which machines the simulator drives, which notes the docs cite) are left out; names
 stay in, because they are the API of the generated codecs and what `codeword
 diff` matches on.
 """
@@ -23,7 +23,7 @@ from .model import Protocol, Text
 # Model attributes that describe a protocol to people, not to a decoder.
 DOC_ONLY = frozenset({
     "doc", "title", "message", "examples", "notes", "history", "version", "source",
-    "file", "sha256", "loc", "delivery",
+    "file", "sha256", "loc", "delivery", "streams",
 })
 # Model attributes computed from others: hashing them again adds nothing.
 DERIVED = frozenset({"wire"})

@@ -326,6 +326,29 @@ class Example:
 
 
 @dataclass(frozen=True)
+class StreamEvent:
+    """What a stream decoder gives, worked out by hand: a message (and the offset
+    just past its frame, when the example states it) or an error (of a rule, or
+    of any rule where several faults could be reported first)."""
+
+    message: Optional[str] = None
+    end: Optional[int] = None
+    rule: Optional[str] = None  # an error's rule; None with message None: any error
+
+
+@dataclass(frozen=True)
+class StreamExample:
+    """Bytes in, events out: a stream case the build runs through the stream decoder."""
+
+    name: str
+    loc: Loc
+    data: bytes
+    events: tuple[StreamEvent, ...]
+    doc: Optional[Text] = None
+    text: bool = False  # written as text in the schema (a text framing's lines)
+
+
+@dataclass(frozen=True)
 class Leaf:
     """A field with a wire value of its own (groups are flattened into leaves) and
     where it sits."""
@@ -834,6 +857,7 @@ class Protocol:
     machines: tuple[Machine, ...] = ()
     group_types: tuple[tuple[str, Field], ...] = field(default=())
     delivery: Optional[Delivery] = None
+    streams: tuple[StreamExample, ...] = ()  # hand-worked stream cases
 
     def message(self, name: str) -> Message:
         for message in self.messages:

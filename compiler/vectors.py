@@ -548,7 +548,8 @@ class Generator:
         and damaged frames, with the events the Python StreamDecoder gives when fed
         one byte at a time (in chunks, for long streams: the events are the same)."""
         rng = self.rng
-        out: list[dict] = []
+        # the schema's hand-worked streams first: their events are checked by the build
+        out: list[dict] = [self.stream_events(f"worked by hand: {s.name}", s.data) for s in self.p.streams]
         if not frames:  # every valid case has another canonical spelling: no frame to stream
             return out
         largest = max(map(len, frames))

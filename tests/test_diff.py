@@ -368,3 +368,11 @@ def test_a_range_moved_added_or_removed(tmp_path, capsys):
     added = compare(compile_schema(unranged), compile_schema(tank))
     assert ("field speed", "range 0..100 added (narrowed)") in changes(added, BREAKING)
     assert main(["diff", str(unranged), str(tank)]) == 1
+
+
+def test_hand_worked_streams_are_docs_only(tmp_path):
+    """A stream's bytes and events document the framing; the wire is the same."""
+    mtv4 = SCHEMAS / "mtv4.yaml"
+    d = diff_of(tmp_path, mtv4, "      - {message: ack, end: 20}", "      - {message: ack}")
+    assert not d.breaking and d.old_fingerprint == d.new_fingerprint
+    assert changes(d, DOCS) == {("stream 'frames of two sizes'", "changed")}

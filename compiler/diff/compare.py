@@ -410,6 +410,12 @@ def _delivery(old: Protocol, new: Protocol, out: _Collector) -> None:
 
 
 def _docs(old: Protocol, new: Protocol, out: _Collector) -> None:
+    streams_a = {s.name: (s.data, s.events) for s in old.streams}
+    streams_b = {s.name: (s.data, s.events) for s in new.streams}
+    for name in sorted(streams_a.keys() | streams_b.keys()):
+        if streams_a.get(name) != streams_b.get(name):
+            what = "added" if name not in streams_a else "removed" if name not in streams_b else "changed"
+            out.add(DOCS, f"stream {name!r}", what)
     if old.version != new.version:
         out.add(DOCS, "version", f"{old.version} → {new.version}")
     if _text(old.title) != _text(new.title) or _text(old.doc) != _text(new.doc):

@@ -24,11 +24,12 @@ from .messages import MessagesMixin
 from .shortening import ShorteningMixin
 from .rules import RulesMixin
 from .sequences import SequencesMixin
+from .streams import StreamsMixin
 from .delivery import DeliveryMixin
 
 
 class Resolver(TypesMixin, FieldsMixin, ChecksumsMixin, FramingMixin, MessagesMixin, ShorteningMixin, RulesMixin,
-               SequencesMixin, DeliveryMixin):
+               SequencesMixin, DeliveryMixin, StreamsMixin):
     """The whole document: each concern's rules come from its mixin module."""
 
     def resolve(self) -> Protocol:
@@ -75,6 +76,7 @@ class Resolver(TypesMixin, FieldsMixin, ChecksumsMixin, FramingMixin, MessagesMi
         machines = tuple(self.resolve_machine(n, m, messages)
                          for n, m in d.get("machines", {}).items())
         delivery = self.resolve_delivery(d["delivery"], machines, messages) if "delivery" in d else None
+        streams = self.resolve_streams(d.get("streams", []), framing, messages)
         self.report.raise_if_any()
         return Protocol(
             name=d["protocol"], file=self.doc.file,
@@ -91,7 +93,8 @@ class Resolver(TypesMixin, FieldsMixin, ChecksumsMixin, FramingMixin, MessagesMi
                              for t in d.get("transports", [])),
             parameters=tuple(self.parameters.values()), enums=tuple(self.enums.values()),
             flags=tuple(self.flags.values()), framing=framing, messages=messages,
-            sequences=sequences, machines=machines, group_types=group_types, delivery=delivery)
+            sequences=sequences, machines=machines, group_types=group_types, delivery=delivery,
+            streams=streams)
 
     def resolve_machine(self, name: str, m: dict, messages: tuple[Message, ...]) -> Machine:
         return MachineResolver(self, name, m, messages).resolve()

@@ -21,7 +21,8 @@ from .layout import diagram, field_columns, field_rows, payload_note, shown, slo
 from .stuffing import encoding_lines
 from .machines import conditions, machine_view, sequence_view
 from .site import mermaid_script
-from .text import LANGUAGES, DecisionLinker, anchor, cell, code, en, number, originals, with_original
+from .streams import stream_section
+from .text import LANGUAGES, DecisionLinker, anchor, cell, code, en, link_msg, number, originals, with_original
 from ..render import environment, tidy
 from ..wire import stream_facts
 
@@ -56,10 +57,6 @@ def message_size(p: Protocol, m: Message) -> str:
     if m.shortening:
         return f"{m.min_size}–{m.size} bytes"
     return f"{m.size} bytes"
-
-
-def link_msg(name: str) -> str:
-    return f"[{name}](#{anchor('msg', name)})"
 
 
 def message_rules(p: Protocol, m: Message, linker: DecisionLinker) -> list[dict]:
@@ -271,6 +268,7 @@ def protocol_view(p: Protocol, codec: types.ModuleType) -> dict:
                   for fl in p.flags],
         "checksums": checksum_sections(p, codec, linker),
         "framing": framing_view(p, linker),
+        "streams": stream_section(p, linker) if p.streams else None,
         "sequences": [dict(sequence_view(s, linker),
                            examples=[sequence_example(p, codec, s, ex, linker) for ex in s.examples])
                       for s in p.sequences],

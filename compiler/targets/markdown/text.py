@@ -41,6 +41,11 @@ def anchor(kind: str, name: str) -> str:
     return f"{kind}-" + re.sub(r"[^a-z0-9]+", "-", name.lower()).strip("-")
 
 
+def link_msg(name: str) -> str:
+    """A link to a message's section."""
+    return f"[{name}](#{anchor('msg', name)})"
+
+
 class DecisionLinker:
     """Turns the note ids a text cites (such as ABC-D1) into links to the notes."""
 
