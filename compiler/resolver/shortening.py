@@ -194,7 +194,10 @@ class ShorteningMixin(ResolverBase):
         if f is None:
             return own
         index = own.index(f)
-        most = (counted.count or counted.length) * element_bytes(counted) // (counted.count_unit or element_bytes(counted))
+        size = element_bytes(counted)
+        if not size:  # elements narrower than a byte: refused where the field's bytes are found (gap_of)
+            return own
+        most = (counted.count or counted.length) * size // (counted.count_unit or size)
         problem = ("it is not an unsigned integer" if f.kind != "uint" else
                    "the codec sets it" if not f.is_member else
                    "it has checks or a scale of its own" if f.enum or f.flags or f.range or f.values or f.scale
