@@ -135,7 +135,7 @@ class CrcParams:
 
 @dataclass(frozen=True)
 class Checksum:
-    algorithm: str  # parity | sum | xor | fletcher | crc
+    algorithm: str  # parity | sum | xor | fletcher | internet | crc
     over: str  # fields | bytes | bits
     covers: Optional[tuple[str, str]]  # (from, to) field names; None = every other field
     parity: str = "even"
@@ -151,6 +151,8 @@ class Checksum:
     width: Optional[int] = None
     # "message": a CRC that takes one more byte after its coverage, the message's crc_extra.
     extra: Optional[str] = None
+    # internet (RFC 1071): "big" or "little", the byte order its 16-bit words are read in.
+    word_order: Optional[str] = None
 
     def final(self, value: int) -> int:
         """The finished checksum from a sum or xor reduced by the modulo."""

@@ -192,6 +192,8 @@ def checksum_name(cs) -> str:
         return "parity_odd" if cs.parity == "odd" else "parity"
     if cs.algorithm == "fletcher":
         return f"fletcher{cs.width}_{cs.modulo}"
+    if cs.algorithm == "internet":
+        return f"internet_{cs.word_order}"
     final = (f"_{cs.complement}{cs.width}" if cs.complement else "") \
         + (f"_x{cs.xorout:x}" if cs.xorout is not None else "")
     return f"{cs.algorithm}{cs.modulo or ''}{final}"

@@ -140,6 +140,7 @@ class Generator:
                 check = {"algorithm": algorithm, "covers": {"from": first, "to": "payload"}}
                 width = self.final_step(check, width)
             layout.append({"name": "check", "type": f"u{width}", "checksum": check})
+            self.internet_checksum(layout[-1])
             counter = next((f for f in layout if f.get("length_of", {}).get("adjust") is not None), None)
             if counter is not None and rng.random() < 0.5:  # and the checksum after the payload
                 counter["length_of"]["to"] = "check"
@@ -205,6 +206,16 @@ class Generator:
             return
         second["id"] = first["id"]
         second["fields"] = copy.deepcopy(first["fields"]) + [{"name": self.name(), "type": "u8"}]
+
+    def internet_checksum(self, check: dict) -> None:
+        """Sometimes the frame's checksum becomes RFC 1071's, on a u16 in either byte order."""
+        own = random.Random(f"internet {self.seed}")
+        if "internet" not in self.on or "extra" in check["checksum"] or own.random() >= 0.3:
+            return
+        check["type"] = "u16"
+        check["checksum"] = {"algorithm": "internet", "covers": check["checksum"]["covers"]}
+        if "field_order" in self.on and own.random() < 0.4:
+            check["byte_order"] = own.choice(["big", "little"])
 
     def end_marker(self, layout: list[dict]) -> None:
         """A constant byte after the payload (and its checksum) that closes each frame, as
