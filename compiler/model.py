@@ -670,6 +670,9 @@ class Framing:
     text_form: Optional[TextForm] = None
     envelope: tuple[Field, ...] = ()  # bytes framing: layout with a payload item
     encoding: Optional[str] = None  # bytes framing: slip | cobs | hdlc byte stuffing around each frame
+    # hdlc: bit n set escapes control character n (0x00-0x1F) too, and decoders drop it
+    # where it comes unescaped (RFC 1662's async control character map)
+    accm: int = 0
     prefix_separator: str = ":"
     separator: str = ","
     terminator: str = ";"

@@ -226,7 +226,9 @@ def encoding_facts(p: Protocol) -> dict:
     if fr.kind != "bytes" or not fr.encoding:
         return {}
     frame_max = max(m.size for m in p.messages)
-    return dict(ENCODINGS[fr.encoding], kind=fr.encoding, frame_max=frame_max,
+    return dict(ENCODINGS[fr.encoding], kind=fr.encoding, frame_max=frame_max, accm=fr.accm,
+                # the control characters the map escapes, and decoders drop where they come unescaped
+                mapped=tuple(c for c in range(32) if fr.accm >> c & 1),
                 wire_max=encoded_size(fr.encoding, frame_max),
                 # a stretch this long without a delimiter cannot unstuff into a frame
                 unit_max=2 * frame_max + 2,

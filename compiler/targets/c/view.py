@@ -1502,6 +1502,7 @@ class CView:
         if not facts:
             return facts
         return dict(facts, constant=f"CW_{facts['kind'].upper()}", delimiter_c=f"0x{facts['delimiter']:02X}u",
+                    accm_c=f"0x{facts['accm']:08X}UL",
                     fill_type=fill_type(facts["frame_max"]))
 
 

@@ -1807,6 +1807,7 @@ class ModuleView(PythonView):
         return dict(facts, delimiter_literal=repr(delimiter), escape_literal=repr(escape),
                     escaped_delimiter=repr(escaped.get(facts["delimiter"], b"")),
                     escaped_escape=repr(escaped.get(facts["escape"], b"")),
+                    mapped_literal=repr(bytes(facts["mapped"])),
                     escaped_table="{" + ", ".join(f"{code:#x}: {original:#x}" for code, original in facts["escaped"]) + "}")
 
     def stream_view(self) -> dict:
