@@ -255,6 +255,19 @@ class Generator:
             body["fields"].insert(0, {"name": self.name(), "type": "u8", "const": rng.choice(STUFFED)})
             if ids is not None and free and rng.random() < 0.5:
                 body["id"] = free.pop(rng.randrange(len(free)))
+        self.control_map(framing, messages)
+
+    def control_map(self, framing: dict, messages: dict) -> None:
+        """HDLC: often an async control character map (PPP's, XON/XOFF or any), and frames
+        that start with a mapped character."""
+        own = random.Random(f"accm {self.seed}")
+        if framing["encoding"] != "hdlc" or own.random() < 0.4:
+            return
+        framing["accm"] = own.choice([0xFFFFFFFF, 0x000A0000, own.getrandbits(32) | 1])
+        mapped = [c for c in range(32) if framing["accm"] >> c & 1]
+        for body in messages.values():
+            if own.random() < 0.5:
+                body["fields"][0]["const"] = own.choice(mapped)
 
     def binary_fields(self, at_least: int = 0) -> list[dict]:
         return self.sized_fields(at_least)[0]
