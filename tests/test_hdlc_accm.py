@@ -150,3 +150,24 @@ def test_the_accelerator_decodes_as_python(tmp_path):
     problem, compared = difference(fast, pure, vectors, [FLOW_WITH_XON * 3 + FLOW_MIXED + FLOW_WIRE])
     assert not problem, problem
     assert compared > len(vectors["valid"])
+
+
+def test_a_changed_map_breaks_and_changes_the_fingerprint(tmp_path):
+    from codeword.build import compile_schema
+    from codeword.diff import BREAKING, compare
+    from codeword.fingerprint import fingerprint
+    protocols = []
+    for name, schema in [("a", XONXOFF), ("b", PPP.replace("protocol: pppmap", "protocol: xonxoff"))]:
+        (tmp_path / name).mkdir()
+        (tmp_path / name / "xonxoff.yaml").write_text(schema, encoding="utf-8")
+        protocols.append(compile_schema(tmp_path / name / "xonxoff.yaml"))
+    assert fingerprint(protocols[0]) != fingerprint(protocols[1])
+    assert {c.what for c in compare(*protocols).of_kind(BREAKING)} == {"accm changed from 655360 to 4294967295"}
+
+
+@pytest.mark.parametrize("compiler", ["gcc", "clang"])
+@pytest.mark.parametrize("level", ["-O0", "-O2", "-Os"])
+def test_strict_warnings(tmp_path, compiler, level):
+    from schema_in_a_test import firmware_warnings
+    render(tmp_path, "pppmap", PPP)
+    assert firmware_warnings(tmp_path, "pppmap", compiler, level) == ""

@@ -179,3 +179,11 @@ def test_the_accelerator_decodes_as_python(tmp_path):
     problem, compared = difference(fast, pure, vectors, [bytes.fromhex("".join(ORDERS_FRAMES.values()))])
     assert not problem, problem
     assert compared > len(vectors["valid"])
+
+
+@pytest.mark.parametrize("compiler", ["gcc", "clang"])
+@pytest.mark.parametrize("level", ["-O0", "-O2", "-Os"])
+def test_strict_warnings(tmp_path, compiler, level):
+    from schema_in_a_test import firmware_warnings
+    render(tmp_path, "inet", ORDERS)
+    assert firmware_warnings(tmp_path, "inet", compiler, level) == ""
