@@ -135,7 +135,7 @@ class CrcParams:
 
 @dataclass(frozen=True)
 class Checksum:
-    algorithm: str  # parity | sum | xor | fletcher | crc
+    algorithm: str  # parity | sum | xor | fletcher | internet | crc
     over: str  # fields | bytes | bits
     covers: Optional[tuple[str, str]]  # (from, to) field names; None = every other field
     parity: str = "even"
@@ -151,6 +151,8 @@ class Checksum:
     width: Optional[int] = None
     # "message": a CRC that takes one more byte after its coverage, the message's crc_extra.
     extra: Optional[str] = None
+    # internet (RFC 1071): "big" or "little", the byte order its 16-bit words are read in.
+    word_order: Optional[str] = None
 
     def final(self, value: int) -> int:
         """The finished checksum from a sum or xor reduced by the modulo."""
@@ -668,6 +670,9 @@ class Framing:
     text_form: Optional[TextForm] = None
     envelope: tuple[Field, ...] = ()  # bytes framing: layout with a payload item
     encoding: Optional[str] = None  # bytes framing: slip | cobs | hdlc byte stuffing around each frame
+    # hdlc: bit n set escapes control character n (0x00-0x1F) too, and decoders drop it
+    # where it comes unescaped (RFC 1662's async control character map)
+    accm: int = 0
     prefix_separator: str = ":"
     separator: str = ","
     terminator: str = ";"

@@ -119,7 +119,7 @@ def compare(old: Protocol, new: Protocol) -> Diff:
 
 def _framing(old: Protocol, new: Protocol, out: _Collector) -> None:
     a, b = old.framing, new.framing
-    for name in ("kind", "byte_order", "bit_order", "encoding", "truncate", "word_bits", "max_bits", "prefix_separator",
+    for name in ("kind", "byte_order", "bit_order", "encoding", "accm", "truncate", "word_bits", "max_bits", "prefix_separator",
                  "separator", "terminator", "ignore_between", "trim", "float_format", "start", "line_checksum",
                  "keep_empty"):
         if getattr(a, name) != getattr(b, name):

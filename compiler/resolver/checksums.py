@@ -9,7 +9,7 @@ from ..model import Checksum, CrcParams, Field, Framing
 from .base import ResolverBase
 
 CRC_KEYS = ("width", "poly", "init", "refin", "refout", "xorout")
-SIMPLE = ("parity", "sum", "xor", "fletcher")  # algorithms without CRC parameters
+SIMPLE = ("parity", "sum", "xor", "fletcher", "internet")  # algorithms without CRC parameters
 
 
 def coverage(layout: tuple[Field, ...], pair: tuple[str, str]) -> Optional[tuple[int, int]]:
@@ -27,7 +27,9 @@ def coverage(layout: tuple[Field, ...], pair: tuple[str, str]) -> Optional[tuple
 
 
 class ChecksumsMixin(ResolverBase):
-    def resolve_checksum(self, c: dict, path: tuple, bits: Optional[int]) -> Checksum:
+    def resolve_checksum(self, c: dict, path: tuple, bits: Optional[int],
+                         byte_order: Optional[str] = None) -> Checksum:
+        """`byte_order`: the field's own, when it gives one (else the framing's)."""
         algorithm = c["algorithm"]
         covers = c.get("covers", "all")
         covers = None if covers == "all" else (covers["from"], covers["to"])
@@ -47,7 +49,8 @@ class ChecksumsMixin(ResolverBase):
             finals = ("xorout",) if algorithm in ("sum", "xor") else ()
             for key in CRC_KEYS:
                 if key in c and key not in finals:
-                    self.error(path + (key,), f"{key} is a CRC parameter; a {algorithm} checksum has none",
+                    self.error(path + (key,), f"{key} is a CRC parameter; {'an' if algorithm == 'internet' else 'a'} "
+                                             f"{algorithm} checksum has none",
                                f"drop {key}, or use a CRC")
         else:
             params = crc.lookup(algorithm)
@@ -57,10 +60,11 @@ class ChecksumsMixin(ResolverBase):
         if params is not None:
             algorithm = "crc"
             self.check_crc(params, path, bits, over)
-        elif algorithm == "fletcher":
+        elif algorithm in ("fletcher", "internet"):
             if over != "bytes":
-                self.error(path + ("over",), "a Fletcher checksum is computed over bytes",
-                           "drop `over`, or use a sum or xor over fields")
+                what = "a Fletcher checksum" if algorithm == "fletcher" else "the internet checksum"
+                self.error(path + ("over",), f"{what} is computed over bytes",
+                           "drop `over` (bits framing: write over: bytes), or use a sum or xor over fields")
         elif over != "bytes" and covers is not None:
             # the codecs and docs take a checksum over fields from every other field
             self.error(path + ("covers",), "a checksum over fields covers every other field "
@@ -69,8 +73,11 @@ class ChecksumsMixin(ResolverBase):
                        "drop `covers` (or write `covers: all`); to check part of the frame, use "
                        "a CRC over whole bytes, e.g. {algorithm: CRC-8/SMBUS, covers: {from, to}}")
         modulo = c.get("modulo")
+        word_order = None
         if algorithm == "fletcher":
             modulo = self.fletcher_modulo(modulo, path, bits)
+        elif algorithm == "internet":
+            word_order = self.internet_words(c, path, bits, byte_order)
         elif algorithm in ("sum", "xor") and modulo is None and bits:
             modulo = 1 << bits
         if algorithm == "parity" and bits not in (None, 1):
@@ -88,7 +95,8 @@ class ChecksumsMixin(ResolverBase):
                        "drop `extra`, or use a CRC")
         return Checksum(algorithm, over, covers, c.get("parity", "even"), modulo, params,
                         loc=self.loc(*(path + ("covers",))) if "covers" in c else self.loc(*path),
-                        complement=complement, xorout=xorout, width=width, extra=extra)
+                        complement=complement, xorout=xorout, width=width, extra=extra,
+                        word_order=word_order)
 
     def unknown_crc_name(self, algorithm: str, path: tuple) -> None:
         meanings = crc.candidates(algorithm)
@@ -101,8 +109,21 @@ class ChecksumsMixin(ResolverBase):
         near = crc.near_names(algorithm)
         self.error(path, f"unknown checksum algorithm {algorithm!r}",
                    (f"did you mean {' or '.join(near)}? Otherwise use " if near else "use ")
-                   + "parity, sum, xor, fletcher, crc (with parameters) or a RevEng "
+                   + "parity, sum, xor, fletcher, internet, crc (with parameters) or a RevEng "
                    "catalogue name such as CRC-16/CMS")
+
+    def internet_words(self, c: dict, path: tuple, bits: Optional[int],
+                       byte_order: Optional[str]) -> str:
+        """RFC 1071's checksum is a 16-bit one's complement sum of 16-bit words, its own
+        arithmetic: it takes no modulo, and sums in the field's byte order (RFC 1071 2(B):
+        the bytes on the wire are the same in either order)."""
+        if bits != 16:
+            self.error(path, f"the internet checksum is 16 bits wide, not {bits}",
+                       "declare the field as u16")
+        if "modulo" in c:
+            self.error(path + ("modulo",), "the internet checksum sums 16-bit words with "
+                                           "end-around carry; it takes no modulo", "drop modulo")
+        return byte_order or self.data["framing"].get("byte_order", "big")
 
     def check_crc(self, params: CrcParams, path: tuple, bits: Optional[int], over: str) -> None:
         mask = (1 << params.width) - 1

@@ -124,7 +124,7 @@ class FieldsMixin(ResolverBase):
             by_direction=tuple(f.get("by_direction", {}).items()),
             length_of=(f["length_of"]["from"], f["length_of"]["to"]) if "length_of" in f else None,
             length_adjust=f["length_of"].get("adjust", 0) if "length_of" in f else 0,
-            checksum=self.resolve_checksum(f["checksum"], path + ("checksum",), bits)
+            checksum=self.resolve_checksum(f["checksum"], path + ("checksum",), bits, f.get("byte_order"))
             if "checksum" in f else None,
             fields=sub_fields, message=text(f.get("message")), rule=f.get("rule"),
             extension=bool(f.get("extension")), counted_by=counted_by,

@@ -17,7 +17,7 @@ class FramingMixin(ResolverBase):
         kind = fr["kind"]
         path = ("framing",)
         allowed = {"bits": {"kind", "word_bits", "max_bits", "byte_order", "text_form"},
-                   "bytes": {"kind", "layout", "byte_order", "bit_order", "encoding", "truncate"},
+                   "bytes": {"kind", "layout", "byte_order", "bit_order", "encoding", "accm", "truncate"},
                    "text": {"kind", "start", "prefix_separator", "separator", "terminator",
                             "ignore_between", "trim", "float_format", "checksum", "keep_empty"}}[kind]
         for key in fr:
@@ -52,6 +52,10 @@ class FramingMixin(ResolverBase):
         if kind == "text":
             self.check_text_marks(fr, path)
         cs = fr.get("checksum")
+        if "accm" in fr and fr.get("encoding") != "hdlc":
+            self.error(path + ("accm",), "accm is HDLC's map of the control characters it escapes "
+                                         f"(RFC 1662 §7.1), not {fr.get('encoding') or 'unstuffed'} framing's",
+                       "write encoding: hdlc, or drop accm")
         return Framing(
             kind=kind, byte_order=fr.get("byte_order", default_order), bit_order=bit_order,
             word_bits=fr.get("word_bits"),
@@ -59,6 +63,7 @@ class FramingMixin(ResolverBase):
             text_form=TextForm(tf.get("separator", " "), tf.get("comment"), tf.get("checksum_unfilled"))
             if tf else None,
             envelope=envelope, encoding=fr.get("encoding"), truncate=fr.get("truncate"),
+            accm=fr.get("accm", 0) if fr.get("encoding") == "hdlc" else 0,
             prefix_separator=fr.get("prefix_separator", ":"),
             separator=fr.get("separator", ","), terminator=fr.get("terminator", ";"),
             ignore_between=fr.get("ignore_between", ""), trim=bool(fr.get("trim")),

@@ -192,6 +192,8 @@ def checksum_name(cs) -> str:
         return "parity_odd" if cs.parity == "odd" else "parity"
     if cs.algorithm == "fletcher":
         return f"fletcher{cs.width}_{cs.modulo}"
+    if cs.algorithm == "internet":
+        return f"internet_{cs.word_order}"
     final = (f"_{cs.complement}{cs.width}" if cs.complement else "") \
         + (f"_x{cs.xorout:x}" if cs.xorout is not None else "")
     return f"{cs.algorithm}{cs.modulo or ''}{final}"
@@ -224,7 +226,9 @@ def encoding_facts(p: Protocol) -> dict:
     if fr.kind != "bytes" or not fr.encoding:
         return {}
     frame_max = max(m.size for m in p.messages)
-    return dict(ENCODINGS[fr.encoding], kind=fr.encoding, frame_max=frame_max,
+    return dict(ENCODINGS[fr.encoding], kind=fr.encoding, frame_max=frame_max, accm=fr.accm,
+                # the control characters the map escapes, and decoders drop where they come unescaped
+                mapped=tuple(c for c in range(32) if fr.accm >> c & 1),
                 wire_max=encoded_size(fr.encoding, frame_max),
                 # a stretch this long without a delimiter cannot unstuff into a frame
                 unit_max=2 * frame_max + 2,

@@ -140,6 +140,7 @@ class Generator:
                 check = {"algorithm": algorithm, "covers": {"from": first, "to": "payload"}}
                 width = self.final_step(check, width)
             layout.append({"name": "check", "type": f"u{width}", "checksum": check})
+            self.internet_checksum(layout[-1])
             counter = next((f for f in layout if f.get("length_of", {}).get("adjust") is not None), None)
             if counter is not None and rng.random() < 0.5:  # and the checksum after the payload
                 counter["length_of"]["to"] = "check"
@@ -206,6 +207,16 @@ class Generator:
         second["id"] = first["id"]
         second["fields"] = copy.deepcopy(first["fields"]) + [{"name": self.name(), "type": "u8"}]
 
+    def internet_checksum(self, check: dict) -> None:
+        """Sometimes the frame's checksum becomes RFC 1071's, on a u16 in either byte order."""
+        own = random.Random(f"internet {self.seed}")
+        if "internet" not in self.on or "extra" in check["checksum"] or own.random() >= 0.3:
+            return
+        check["type"] = "u16"
+        check["checksum"] = {"algorithm": "internet", "covers": check["checksum"]["covers"]}
+        if "field_order" in self.on and own.random() < 0.4:
+            check["byte_order"] = own.choice(["big", "little"])
+
     def end_marker(self, layout: list[dict]) -> None:
         """A constant byte after the payload (and its checksum) that closes each frame, as
         tr24's stop byte: no part of the sync, even right after it."""
@@ -244,6 +255,19 @@ class Generator:
             body["fields"].insert(0, {"name": self.name(), "type": "u8", "const": rng.choice(STUFFED)})
             if ids is not None and free and rng.random() < 0.5:
                 body["id"] = free.pop(rng.randrange(len(free)))
+        self.control_map(framing, messages)
+
+    def control_map(self, framing: dict, messages: dict) -> None:
+        """HDLC: often an async control character map (PPP's, XON/XOFF or any), and frames
+        that start with a mapped character."""
+        own = random.Random(f"accm {self.seed}")
+        if framing["encoding"] != "hdlc" or own.random() < 0.4:
+            return
+        framing["accm"] = own.choice([0xFFFFFFFF, 0x000A0000, own.getrandbits(32) | 1])
+        mapped = [c for c in range(32) if framing["accm"] >> c & 1]
+        for body in messages.values():
+            if own.random() < 0.5:
+                body["fields"][0]["const"] = own.choice(mapped)
 
     def binary_fields(self, at_least: int = 0) -> list[dict]:
         return self.sized_fields(at_least)[0]

@@ -1502,6 +1502,7 @@ class CView:
         if not facts:
             return facts
         return dict(facts, constant=f"CW_{facts['kind'].upper()}", delimiter_c=f"0x{facts['delimiter']:02X}u",
+                    accm_c=f"0x{facts['accm']:08X}UL",
                     fill_type=fill_type(facts["frame_max"]))
 
 
@@ -1586,12 +1587,43 @@ def fletcher_code(name: str, cs: Checksum) -> str:
     return c.text()
 
 
+def internet_code(name: str, cs: Checksum) -> str:
+    """RFC 1071: each word added and the carry out of 16 bits folded back in (end-around
+    carry), so the sum stays within 17 bits for a frame of any length; then its one's
+    complement."""
+    c = Code()
+    hi, lo = ("data[i]", "data[i + 1u]") if cs.word_order == "big" else ("data[i + 1u]", "data[i]")
+    last = "((uint32_t)data[i] << 8)" if cs.word_order == "big" else "data[i]"
+    c(f"/* The internet checksum (RFC 1071): 16-bit words, {cs.word_order}-endian, an odd byte padded with 0 */")
+    c(f"static inline uint16_t {name}(const uint8_t *data, size_t len)")
+    c("{")
+    c.indent()
+    c("uint32_t sum = 0u;")
+    c("size_t i;")
+    c("for (i = 0; i + 1u < len; i += 2u) {")
+    c(f"    sum += ((uint32_t){hi} << 8) | {lo};")
+    c("    sum = (sum & 0xFFFFu) + (sum >> 16);")
+    c("}")
+    c("if (i < len) {")
+    c(f"    sum += {last};")
+    c("}")
+    c("while (sum >> 16) {")
+    c("    sum = (sum & 0xFFFFu) + (sum >> 16);")
+    c("}")
+    c("return (uint16_t)~sum;")
+    c.dedent()
+    c("}")
+    return c.text()
+
+
 def checksum_code(name: str, cs: Checksum, guard: str) -> str:
     """A C function `name(data, len)` computing a byte checksum; CRCs bitwise by
     default and table-driven (table in flash on AVR) when <guard>_CRC_TABLE is defined."""
     c = Code()
     if cs.algorithm == "fletcher":
         return fletcher_code(name, cs)
+    if cs.algorithm == "internet":
+        return internet_code(name, cs)
     if cs.algorithm != "crc":
         op = "+" if cs.algorithm == "sum" else "^"
         rt = "uint64_t" if (cs.width or 0) > 32 else "uint32_t"  # a complement in 64 bits

@@ -74,7 +74,7 @@ def mask(bits: int) -> str:
 
 def container(v: "CView", m: "Message") -> Optional[Word]:
     """The message as one word, or None when it does not fit one: over 4 bytes,
-    a `bytes` field, a CRC or Fletcher checksum, a checksum over bytes in whole
+    a `bytes` field, a CRC, Fletcher or internet checksum, a checksum over bytes in whole
     bytes of its own (the byte-wise loop is smaller on AVR) or a multi-byte
     integer in the other byte order than the word's, or a frame that may be cut short."""
     if v.text or m.size is None or not 1 <= m.size <= 4 or m.shortening:
@@ -82,7 +82,7 @@ def container(v: "CView", m: "Message") -> Optional[Word]:
     spans = v.spans(m)
     for span in spans:
         leaf = span.pieces[0]
-        if any(v.is_byte_checksum(p) and p.field.checksum.algorithm in ("crc", "fletcher")
+        if any(v.is_byte_checksum(p) and p.field.checksum.algorithm in ("crc", "fletcher", "internet")
                for p in span.pieces):
             return None
         if span.kind == "pack":

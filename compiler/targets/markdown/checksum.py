@@ -109,6 +109,21 @@ def _fletcher_steps(cs: Checksum, data: bytes) -> tuple[list[tuple[str, tuple[st
     return steps, a, b
 
 
+def _internet_steps(cs: Checksum, data: bytes) -> tuple[list[tuple[str, tuple[str, str]]], int, int]:
+    """RFC 1071's words (an odd byte padded with 00) and the sum after each, its carry
+    out of 16 bits added back in; the plain total of the words, and the folded sum."""
+    padded = data + bytes(len(data) % 2)
+    total = folded = 0
+    steps = []
+    for i in range(0, len(padded), 2):
+        word = int.from_bytes(padded[i:i + 2], cs.word_order)
+        total += word
+        folded += word
+        folded = (folded & 0xFFFF) + (folded >> 16)
+        steps.append((padded[i:i + 2].hex(" "), (f"0x{word:04x}", f"0x{folded:04x}")))
+    return steps, total, folded
+
+
 def _sent_bytes_line(p: Protocol, frame: bytes, slot: Slot) -> str:
     field = slot.field
     order = field.byte_order or p.framing.byte_order
@@ -197,6 +212,23 @@ def worked_example(p: Protocol, codec: types.ModuleType, m: Message, cs: Checksu
             f"sent in `{slot.path}` ({position(p, slot)}): {sent}" if cs.width == 8 else
             _sent_bytes_line(p, frame, slot),
         ]
+    elif cs.algorithm == "internet":
+        start, end = cs.byte_span
+        covered = frame[start:end]
+        steps, total, folded = _internet_steps(cs, covered)
+        result = ~folded & 0xFFFF
+        sent = _sent_value(p, frame, slot)
+        view["steps"] = steps
+        view["steps_title"] = "The sum after each word (carry out of 16 bits added back)"
+        view["steps_head"] = ("word", "sum")
+        view["lines"] = [
+            f"covered bytes B{start}–B{end - 1}: `{covered.hex(' ')}`"
+            + (" and a pad byte `00`" if len(covered) % 2 else ""),
+            f"{len(steps)} words, {cs.word_order}-endian, add to `0x{total:x}`; with each carry out "
+            f"of 16 bits added back in (end-around carry), `0x{folded:04x}`",
+            f"one's complement: `0x{result:04x}`",
+            f"sent in `{slot.path}` ({position(p, slot)}): `0x{sent:04x}`",
+        ]
     elif cs.algorithm == "parity":
         word = int.from_bytes(frame, "big")
         others = bin(word).count("1") - sent
@@ -241,10 +273,17 @@ def parameters(cs: Checksum) -> list[tuple[str, str]]:
                 ("value", f"B in the high {'byte' if half == 8 else 'nibble'}, A in the low one")]
     if cs.algorithm == "parity":
         return [("algorithm", "parity"), ("parity", cs.parity)]
+    if cs.algorithm == "internet":
+        return [("algorithm", "internet checksum (RFC 1071)"),
+                ("words", f"16 bits, {cs.word_order}-endian; an odd byte count padded with a zero byte"),
+                ("sum", "one's complement: each carry out of 16 bits added back in"),
+                ("value", "the sum's one's complement (every bit inverted)")]
     return [("algorithm", cs.algorithm)]
 
 
 def _title(cs: Checksum) -> str:
+    if cs.algorithm == "internet":
+        return "internet checksum (RFC 1071)"
     return f"Fletcher-{cs.width}" if cs.algorithm == "fletcher" else cs.algorithm
 
 

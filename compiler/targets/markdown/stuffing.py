@@ -9,7 +9,7 @@ from ..wire import ENCODINGS, encoding_facts
 DEMO = bytes((0x01, 0xC0, 0x7E, 0x00, 0xDB, 0x7D, 0x02))  # every special byte of every encoding
 
 
-def stuff(encoding: str, frame: bytes) -> bytes:
+def stuff(encoding: str, frame: bytes, mapped: tuple[int, ...] = ()) -> bytes:
     """The frame as the encoding sends it, delimiters included."""
     if encoding == "cobs":
         out = bytearray()
@@ -29,13 +29,15 @@ def stuff(encoding: str, frame: bytes) -> bytes:
         return bytes(out) + b"\x00"
     facts = ENCODINGS[encoding]
     codes = {original: code for code, original in facts["escaped"]}
+    codes.update({c: c ^ 0x20 for c in mapped})  # HDLC: the control characters of its map
     body = b"".join(bytes((facts["escape"], codes[b])) if b in codes else bytes((b,)) for b in frame)
     delimiter = bytes((facts["delimiter"],))
     return delimiter + body + delimiter
 
 
-def unstuff(encoding: str, wire: bytes) -> bytes:
-    """The frame a well-formed encoded frame holds."""
+def unstuff(encoding: str, wire: bytes, mapped: tuple[int, ...] = ()) -> bytes:
+    """The frame a well-formed encoded frame holds (HDLC: its mapped control characters
+    that arrive unescaped dropped)."""
     facts = ENCODINGS[encoding]
     body = wire[:-1]
     if encoding == "cobs":
@@ -48,11 +50,12 @@ def unstuff(encoding: str, wire: bytes) -> bytes:
                 out.append(0)
         return bytes(out)
     body = body[1:] if body[:1] == bytes((facts["delimiter"],)) else body
+    body = bytes(b for b in body if b not in mapped)
     originals = dict(facts["escaped"])
     out, pos = bytearray(), 0
     while pos < len(body):
         if body[pos] == facts["escape"]:
-            out.append(originals[body[pos + 1]])
+            out.append(originals.get(body[pos + 1], body[pos + 1] ^ 0x20))
             pos += 2
         else:
             out.append(body[pos])
@@ -71,8 +74,9 @@ def encoding_lines(p: Protocol) -> list[str]:
         return []
     kind = facts["kind"]
     example = next((ex.hex for m in p.messages for ex in m.examples if ex.hex and ex.values is not None), None)
-    frame = unstuff(kind, example) if example else DEMO
-    wire = example or stuff(kind, DEMO)
+    mapped = facts["mapped"]
+    frame = unstuff(kind, example, mapped) if example else DEMO
+    wire = example or stuff(kind, DEMO, mapped)
     lines = [f"**Encoding: {facts['name']}.** The frame above, its lengths and checksums computed over "
              "its own bytes, is stuffed on the link: every encoder and decoder of this protocol reads and "
              "writes the stuffed bytes."]
@@ -88,6 +92,12 @@ def encoding_lines(p: Protocol) -> list[str]:
                      "delimiter" + (", and any byte after the escape `7D` (the byte XOR `20`), so a peer "
                      "may escape control characters too." if kind == "hdlc" else
                      "; `DB` followed by any byte but `DC` or `DD` is an error."))
+    if mapped:
+        lines.append(f"Its async control character map (accm `0x{facts['accm']:08X}`, RFC 1662 §7.1) escapes "
+                     "the control characters " + ", ".join(f"`{c:02X}`" for c in mapped)
+                     + " too: each is sent as `7D` and the character XOR `20`. A decoder drops any of them "
+                     "that arrives unescaped, wherever it comes (even after `7D`): equipment on the way "
+                     "may have added it (RFC 1662 §4.2).")
     lines.append(f"{'An example frame' if example else 'A frame'}: `{spaced(frame)}` is sent as "
                  f"`{spaced(wire)}`. Buffers: a frame takes at most {facts['wire_max']} bytes encoded "
                  f"(the largest frame is {facts['frame_max']} bytes).")

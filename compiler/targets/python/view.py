@@ -1524,6 +1524,8 @@ def _checksum_code(cs) -> str:
         c(f"    return {_final_step(cs, f'x % {cs.modulo}')}")
     elif cs.algorithm == "fletcher":
         _fletcher_code(c, cs, name)
+    elif cs.algorithm == "internet":
+        _internet_code(c, cs, name)
     else:
         c(f"def _checksum_{name}(data: _Buffer) -> int:")
         flip = " ^ 1" if cs.parity == "odd" else ""
@@ -1594,6 +1596,21 @@ def _fletcher_code(c: Code, cs, name: str) -> None:
         c("        a += byte & 0xF")
         c("        b += a")
     c(f"    return (b % {cs.modulo}) << {half} | a % {cs.modulo}")
+
+
+def _internet_code(c: Code, cs, name: str) -> None:
+    """RFC 1071: the words summed in one go, the carries out of 16 bits folded back in
+    (end-around carry), then the sum's one's complement."""
+    big = cs.word_order == "big"
+    c(f"# The internet checksum (RFC 1071): 16-bit words, {cs.word_order}-endian, an odd byte padded with 0")
+    c(f"def _checksum_{name}(data: _Buffer) -> int:")
+    c("    n = len(data)")
+    c(f"    total = sum(struct.unpack_from(f\"{'>' if big else '<'}{{n >> 1}}H\", data))")
+    c("    if n & 1:")
+    c("        total += data[n - 1]" + (" << 8" if big else ""))
+    c("    while total >> 16:")
+    c("        total = (total & 0xFFFF) + (total >> 16)")
+    c("    return ~total & 0xFFFF")
 
 
 def _positional_crc_code(name: str, lengths: list[int]) -> str:
@@ -1790,6 +1807,7 @@ class ModuleView(PythonView):
         return dict(facts, delimiter_literal=repr(delimiter), escape_literal=repr(escape),
                     escaped_delimiter=repr(escaped.get(facts["delimiter"], b"")),
                     escaped_escape=repr(escaped.get(facts["escape"], b"")),
+                    mapped_literal=repr(bytes(facts["mapped"])),
                     escaped_table="{" + ", ".join(f"{code:#x}: {original:#x}" for code, original in facts["escaped"]) + "}")
 
     def stream_view(self) -> dict:

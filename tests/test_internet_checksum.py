@@ -1,0 +1,189 @@
+"""The internet checksum (RFC 1071) over bytes, against the RFC's worked example, a
+published IPv4 header and a reference sum written here, in Python, in C (host with
+sanitizers and strict warnings; the conformance driver on an ATmega32 under simavr)
+and in the compiled accelerator.
+
+Published values:
+- RFC 1071 section 3: the bytes 00 01 f2 03 f4 f5 f6 f7 sum to ddf2 in big-endian
+  words (f2dd in little-endian ones); the checksum is 220d, sent 22 0d either way.
+- An IPv4 header (Wikipedia, "Internet checksum"): 45 00 00 73 00 00 40 00 40 11 b8 61
+  c0 a8 00 01 c0 a8 00 c7, checksum b861 over the header with its checksum as zero.
+  The checksum word sits at an even offset, so leaving it out moves no other word:
+  the checksum of the other 18 bytes is the same b861, which the schema below sends
+  after them.
+"""
+from __future__ import annotations
+
+import io
+import json
+import shutil
+
+import pytest
+
+from codeword import accelerate as accel
+from codeword.build import compile_schema
+from codeword.vectors import write_vectors
+from fuzz.schema.accelerated import difference, load as load_module
+from schema_in_a_test import conformance_on_host_and_avr, load, render
+from test_checksum_families import c_round_trips, flip, rejected
+
+
+def rfc1071(data: bytes) -> int:
+    """RFC 1071 section 4.1's algorithm: 16-bit big-endian words (an odd last byte
+    padded with a zero byte) added with each carry out of 16 bits folded back in, then
+    the one's complement."""
+    total = 0
+    for i in range(0, len(data), 2):
+        high = data[i]
+        low = data[i + 1] if i + 1 < len(data) else 0
+        total += (high << 8) | low
+        total = (total & 0xFFFF) + (total >> 16)
+    return ~total & 0xFFFF
+
+
+RFC_DATA = bytes.fromhex("00 01 f2 03 f4 f5 f6 f7")
+IPV4_HEADER = bytes.fromhex("45 00 00 73 00 00 40 00 40 11 b8 61 c0 a8 00 01 c0 a8 00 c7")
+IPV4_FRAME = IPV4_HEADER[:10] + IPV4_HEADER[12:] + IPV4_HEADER[10:12]
+
+IPV4 = """codeword: 1
+protocol: ipv4h
+title: an IPv4 header with its checksum last
+source: RFC 791; the header from Wikipedia, Internet checksum
+framing:
+  kind: bytes
+  byte_order: big
+  layout:
+    - {name: ver_ihl, type: u8, const: 0x45}
+    - {name: tos, type: u8, dispatch: true}
+    - {name: total_length, type: u16}
+    - {name: ident, type: u16}
+    - {name: flags_frag, type: u16}
+    - {name: ttl, type: u8}
+    - {name: proto, type: u8}
+    - {payload: true}
+    - {name: checksum, type: u16, checksum: {algorithm: internet, covers: {from: ver_ihl, to: payload}}}
+messages:
+  udp:
+    id: 0
+    fields:
+      - {name: src, type: u32}
+      - {name: dst, type: u32}
+    examples:
+      - hex: "45 00 00 73 00 00 40 00 40 11 c0 a8 00 01 c0 a8 00 c7 b8 61"
+        values: {total_length: 0x73, ident: 0, flags_frag: 0x4000, ttl: 64, proto: 17,
+                 src: 0xc0a80001, dst: 0xc0a800c7}
+"""
+
+# One checksum in each byte order, over the same bytes; an odd count pads a zero byte.
+ORDERS = """codeword: 1
+protocol: inet
+title: internet checksums in both byte orders
+source: RFC 1071
+framing:
+  kind: bytes
+  byte_order: big
+  layout:
+    - {name: sync, type: u8, const: 0x55}
+    - {name: kind, type: u8, dispatch: true}
+    - {payload: true}
+    - {name: be, type: u16, checksum: {algorithm: internet, covers: {from: data, to: payload}}}
+    - {name: le, type: u16, byte_order: little, checksum: {algorithm: internet, covers: {from: data, to: payload}}}
+messages:
+  rfc: {id: 1, fields: [{name: data, type: bytes, length: 8}]}
+  odd: {id: 2, fields: [{name: data, type: bytes, length: 5}]}
+  zeros: {id: 3, fields: [{name: data, type: bytes, length: 4}]}
+  ones: {id: 4, fields: [{name: data, type: bytes, length: 2}]}
+"""
+
+ODD = bytes.fromhex("01 02 03 04 05")  # words 0102 0304 0500: 0x0906, checksum f6f9
+
+
+def test_the_reference_gives_the_published_values():
+    assert rfc1071(RFC_DATA) == 0x220D
+    assert rfc1071(IPV4_HEADER[:10] + b"\0\0" + IPV4_HEADER[12:]) == 0xB861
+    assert rfc1071(IPV4_HEADER) == 0  # the receiver's check: the sum with the checksum is all ones
+    assert rfc1071(ODD) == 0xF6F9
+    assert rfc1071(bytes(4)) == 0xFFFF and rfc1071(b"\xff\xff") == 0x0000
+
+
+def orders_frame(kind: int, data: bytes) -> str:
+    value = rfc1071(data)
+    return f"55 {kind:02x} {data.hex(' ')} {value >> 8:02x} {value & 0xFF:02x} {value >> 8:02x} {value & 0xFF:02x}"
+
+
+ORDERS_FRAMES = {"rfc": orders_frame(1, RFC_DATA), "odd": orders_frame(2, ODD),
+                 "zeros": orders_frame(3, bytes(4)), "ones": orders_frame(4, b"\xff\xff")}
+
+
+def test_the_ipv4_header_checksum(tmp_path):
+    render(tmp_path, "ipv4h", IPV4)  # the example above is checked both ways by the build
+    mod = load(tmp_path / "ipv4h.py")
+    header = mod.Udp(total_length=0x73, ident=0, flags_frag=0x4000, ttl=64, proto=17,
+                     src=0xC0A80001, dst=0xC0A800C7)
+    assert mod.encode(header) == IPV4_FRAME
+    assert mod.decode(IPV4_FRAME) == header
+    frame = IPV4_FRAME.hex(" ")
+    rejected(mod, flip(frame, 19), "checksum", 18)
+    rejected(mod, flip(frame, 3), "checksum", 18)
+    c_round_trips(tmp_path, "ipv4h", [frame], [flip(frame, 19), flip(frame, 3)])
+
+
+def test_both_byte_orders_send_the_rfc_bytes(tmp_path):
+    """RFC 1071 2(B): summed in the field's byte order, the checksum's bytes on the wire
+    are the same (the little-endian field holds f2dd's complement, 0d22)."""
+    assert ORDERS_FRAMES["rfc"] == "55 01 00 01 f2 03 f4 f5 f6 f7 22 0d 22 0d"
+    render(tmp_path, "inet", ORDERS)
+    mod = load(tmp_path / "inet.py")
+    for name, frame in ORDERS_FRAMES.items():
+        cls = getattr(mod, name.capitalize())
+        data = bytes.fromhex(frame)[2:-4]
+        assert mod.encode(cls(data=data)) == bytes.fromhex(frame), name
+        assert mod.decode(bytes.fromhex(frame)) == cls(data=data), name
+    rfc = ORDERS_FRAMES["rfc"]
+    rejected(mod, flip(rfc, 10), "be", 10)
+    rejected(mod, flip(rfc, 13), "le", 12)
+    c_round_trips(tmp_path, "inet", list(ORDERS_FRAMES.values()), [flip(rfc, 10), flip(rfc, 13), flip(rfc, 4)])
+
+
+SCHEMAS = {"ipv4h": IPV4, "inet": ORDERS}
+
+
+def vectors_of(tmp_path, name: str):
+    tmp_path.mkdir(exist_ok=True)
+    render(tmp_path, name, SCHEMAS[name])
+    protocol = compile_schema(tmp_path / f"{name}.yaml")
+    out = io.StringIO()
+    write_vectors(protocol, load(tmp_path / f"{name}.py"), out)
+    return protocol, json.loads(out.getvalue())
+
+
+@pytest.mark.parametrize("name", sorted(SCHEMAS))
+def test_conformance_on_host_and_atmega32(tmp_path, name):
+    """Python's vectors through the C driver; on AVR int is 16 bits, and the sum's
+    carries must not depend on it."""
+    _, vectors = vectors_of(tmp_path / "py", name)
+    assert any(case["error"] == "checksum" for case in vectors["invalid"])
+    host, avr = conformance_on_host_and_avr(tmp_path, name, SCHEMAS[name])
+    assert host > len(vectors["valid"]) and avr == host
+
+
+def test_the_accelerator_decodes_as_python(tmp_path):
+    if shutil.which("gcc") is None or accel.python_headers() is None:
+        pytest.fail("gcc and Python's headers are needed (scripts/install-toolchains installs them)")
+    _, vectors = vectors_of(tmp_path, "inet")
+    folder = tmp_path / "accel"
+    assert accel.accelerate([tmp_path / "inet.yaml"], folder).built
+    fast = load_module(tmp_path / "inet.py", "_inet_fast", folder)
+    pure = load_module(tmp_path / "inet.py", "_inet_pure", None)
+    assert fast.ACCELERATOR is not None
+    problem, compared = difference(fast, pure, vectors, [bytes.fromhex("".join(ORDERS_FRAMES.values()))])
+    assert not problem, problem
+    assert compared > len(vectors["valid"])
+
+
+@pytest.mark.parametrize("compiler", ["gcc", "clang"])
+@pytest.mark.parametrize("level", ["-O0", "-O2", "-Os"])
+def test_strict_warnings(tmp_path, compiler, level):
+    from schema_in_a_test import firmware_warnings
+    render(tmp_path, "inet", ORDERS)
+    assert firmware_warnings(tmp_path, "inet", compiler, level) == ""
