@@ -16,7 +16,8 @@ def leaves_of(layout: tuple[Field, ...], prefix: tuple[str, ...] = (), start: Op
     pos = start
     for f in layout:
         if f.is_payload:  # a payload placed by start_bit takes its bytes here
-            pos = None if pos is None or not f.length else pos + 8 * f.length
+            if pos is not None and f.length:
+                pos += 8 * f.length
             continue
         if f.start_bit is not None:  # where its start bit puts it, in its own bit order
             out.append(Leaf(f, prefix + (f.name,), f.bit_offset, f.byte_order))
