@@ -19,7 +19,7 @@ def leaves_of(layout: tuple[Field, ...], prefix: tuple[str, ...] = (), start: Op
             if pos is not None and f.length:
                 pos += 8 * f.length
             continue
-        if f.start_bit is not None:  # where its start bit puts it, in its own bit order
+        if f.start_bit is not None and f.bit_offset is not None:  # where its start bit puts it, in its own order
             out.append(Leaf(f, prefix + (f.name,), f.bit_offset, f.byte_order))
             continue
         if f.count is None:
