@@ -188,7 +188,7 @@ class Field:
     one_hot: bool = False
     exactly_one: bool = False
     byte_order: Optional[str] = None
-    length: Optional[int] = None
+    length: Optional[int] = None  # bytes/str; the payload marker of a message placed by start_bit: its bytes
     length_param: Optional[str] = None
     max_length: Optional[int] = None
     optional: bool = False
@@ -212,6 +212,11 @@ class Field:
     count_unit: Optional[int] = None  # bytes one unit of the count stands for (None: an element)
     counts: Optional[str] = None  # the array this field gives the count of: the encoder sets it
     present_if: Optional["Presence"] = None  # in the frame only when an earlier field says so
+    # Placed as a CAN DBC signal (in a message of `payload_bytes`): bit k is bit k % 8 of payload
+    # byte k // 8, 0 the least significant; the field's least significant bit when `byte_order`
+    # is little (Intel), its most significant when big (Motorola). `bit_offset` is then its first
+    # bit in its own order's numbering (see Leaf.order).
+    start_bit: Optional[int] = None
 
     @property
     def fixed_spelling(self) -> bool:
@@ -358,6 +363,10 @@ class Leaf:
     field: Field
     path: tuple[Union[str, int], ...]  # attribute path from the message object; an int indexes an array
     pos: Optional[int]  # first bit in the frame; None where widths are not fixed (text)
+    # The bit order `pos` counts in and the field's bits run in: "big" most significant first (bit 0
+    # is the top bit of byte 0), "little" least significant first (bit 0 is the low bit of byte 0).
+    # None: the frame's (Framing.wire_order); a field placed by start_bit has its own.
+    order: Optional[str] = None
 
     @property
     def bits(self) -> int:
@@ -450,10 +459,22 @@ class Run:
     size: int  # bytes
     leaves: tuple[Leaf, ...]
     order: str = "big"  # packed: byte order of the run's integer (the frame's bit order)
+    # packed: bits no leaf holds read as anything and are written as 0 (the unused bits of a
+    # payload placed by start_bit); otherwise they are the frame's padding, which must be 0
+    free: bool = False
+
+    def order_of(self, leaf: Leaf) -> str:
+        """The byte order of the integer `leaf` is read from: its own, or the run's."""
+        return leaf.order or self.order
 
     def shift(self, leaf: Leaf) -> int:
-        """Where `leaf` sits in the run's integer, from bit 0."""
-        return shift_in(self.order, self.start, self.size, leaf.pos, leaf.bits)
+        """Where `leaf` sits, from bit 0, in the run's bytes read as one integer in its order."""
+        return shift_in(self.order_of(leaf), self.start, self.size, leaf.pos, leaf.bits)
+
+    @property
+    def mixed(self) -> bool:
+        """Leaves of both bit orders share the run (a run of over one byte then holds two integers)."""
+        return self.size > 1 and len({self.order_of(leaf) for leaf in self.leaves}) > 1
 
 
 @dataclass(frozen=True)
@@ -587,6 +608,7 @@ class Message:
     dispatch_key: tuple[tuple[str, Any], ...]  # (field, value) pairs that identify it
     wire: Wire
     crc_extra: Optional[int] = None  # the byte a checksum with `extra: message` takes last
+    payload_bytes: Optional[int] = None  # fields placed by start_bit in a payload of this many bytes
     layout_type: Optional[str] = None  # the shared group type its fields come from
     shortening: Optional[Shortening] = None  # set when a frame may carry less than the whole payload
 

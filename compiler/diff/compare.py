@@ -15,7 +15,7 @@ KINDS = (BREAKING, COMPATIBLE, DOCS)
 
 # Field attributes whose change alters the bytes or what a decoder accepts;
 # each is described on its own below when it changes.
-_WIRE_ATTRS = ("kind", "const", "scale", "offset", "byte_order", "one_hot", "exactly_one", "reserved",
+_WIRE_ATTRS = ("kind", "const", "scale", "offset", "byte_order", "start_bit", "one_hot", "exactly_one", "reserved",
                "length", "length_param", "max_length", "to_end", "dispatch", "length_of", "length_adjust",
                "decimals", "width")
 

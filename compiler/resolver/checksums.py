@@ -21,7 +21,10 @@ def coverage(layout: tuple[Field, ...], pair: tuple[str, str]) -> Optional[tuple
         return None
     marker = next((f for f in layout if f.is_payload), None)
     own = [f for f in layout if not f.from_envelope and not f.is_payload]
-    payload_start = own[0].bit_offset if own else marker.bit_offset if marker else None
+    if marker is not None and marker.length:  # placed by start_bit: the payload's bytes end at the marker
+        payload_start = marker.bit_offset - 8 * marker.length
+    else:
+        payload_start = own[0].bit_offset if own else marker.bit_offset if marker else None
     start = payload_start if start_f.is_payload else start_f.bit_offset
     return start, end_f.bit_offset + (end_f.bits or 0)
 

@@ -127,7 +127,7 @@ class FieldsMixin(ResolverBase):
             checksum=self.resolve_checksum(f["checksum"], path + ("checksum",), bits, f.get("byte_order"))
             if "checksum" in f else None,
             fields=sub_fields, message=text(f.get("message")), rule=f.get("rule"),
-            extension=bool(f.get("extension")), counted_by=counted_by,
+            extension=bool(f.get("extension")), counted_by=counted_by, start_bit=f.get("start_bit"),
             count_unit=1 if counted_by is not None else None, present_if=self.condition_of(f, path, allow_payload))
         if field.by_direction:
             self.check_by_direction(field, path, allow_payload)
@@ -318,7 +318,9 @@ class FieldsMixin(ResolverBase):
             self.error(path + ("one_hot",), f"field {name!r}: one_hot needs an unsigned type")
         if f.exactly_one and f.flags is None:
             self.error(path + ("exactly_one",), f"field {name!r}: exactly_one applies to flag fields")
-        if f.byte_order and bits is not None and bits % 8 and bits > 8:
+        if f.start_bit is not None:
+            pass  # a field placed by start_bit takes either byte order at any width (placement.py)
+        elif f.byte_order and bits is not None and bits % 8 and bits > 8:
             self.error(path + ("byte_order",), f"field {name!r}: byte_order applies to fields of whole "
                                                f"bytes, not to {bits} bits",
                        "drop it: a field that crosses bytes follows the bit order (little-endian with "

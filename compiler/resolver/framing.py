@@ -35,6 +35,9 @@ class FramingMixin(ResolverBase):
                     self.error(path + ("layout",), f"layout needs exactly one `{{payload: true}}` item, "
                                                    f"found {len(payloads)}")
                 for i, f in enumerate(envelope):
+                    if f.start_bit is not None:
+                        self.error(path + ("layout", i, "start_bit"), f"layout field {f.name!r}: start_bit places "
+                                   "a message's own fields in its payload_bytes", "drop `start_bit`")
                     if f.extension:
                         self.error(path + ("layout", i, "extension"), f"layout field {f.name!r}: only a "
                                    "message's own fields can be extensions", "drop `extension`")
@@ -91,8 +94,13 @@ class FramingMixin(ResolverBase):
                        "leave the terminator's characters out of ignore_between")
 
     def place(self, name: str, own: tuple[Field, ...], ids: tuple, framing: Framing,
-              path: tuple, direction: Optional[str] = None) -> tuple[tuple[Field, ...], tuple]:
-        """The message's whole frame in wire order with bit offsets, and its dispatch key."""
+              path: tuple, direction: Optional[str] = None,
+              payload_bytes: Optional[int] = None) -> tuple[tuple[Field, ...], tuple]:
+        """The message's whole frame in wire order with bit offsets, and its dispatch key.
+        With `payload_bytes`, the own fields sit where their start bits put them."""
+        own = self.place_signals(name, own, payload_bytes, framing, path)
+        if framing.kind != "bytes":
+            payload_bytes = None
         if framing.kind == "text":
             for i, f in enumerate(own):
                 if f.dispatch:
@@ -145,7 +153,7 @@ class FramingMixin(ResolverBase):
             for f in framing.envelope:
                 if f.is_payload:
                     frame.extend(own)
-                    frame.append(replace(f, bits=0))
+                    frame.append(replace(f, bits=0, length=payload_bytes))
                     continue
                 f = replace(f, from_envelope=True)
                 if f.by_direction:
@@ -162,6 +170,16 @@ class FramingMixin(ResolverBase):
         placed = []
         offset = 0
         for f in frame:
+            if f.start_bit is not None and payload_bytes:  # from the payload's start, which is here
+                placed.append(replace(f, bit_offset=offset + f.bit_offset))
+                continue
+            if f.is_payload and payload_bytes:
+                if offset % 8:
+                    self.error(path + ("payload_bytes",), f"message {name!r}: its payload starts at bit {offset} "
+                                                          "of the frame; a payload placed by start_bit starts "
+                                                          "on a byte boundary", "make the layout's fields before "
+                                                                                "the payload whole bytes")
+                offset += 8 * payload_bytes
             placed.append(replace(f, bit_offset=offset))
             offset += f.bits or 0
         self.check_alignment(name, placed, framing, path)
@@ -262,6 +280,8 @@ class FramingMixin(ResolverBase):
             f = leaf.field
             if leaf.pos is None:
                 break
+            if f.start_bit is not None:  # in its own bit order wherever it sits
+                continue
             order = f.byte_order or framing.byte_order
             multibyte = f.bits and f.bits > 8 and f.kind in ("uint", "int") and order != natural
             if (f.kind in ("float", "bytes") or multibyte) and (leaf.pos % 8 or f.bits % 8):

@@ -15,7 +15,12 @@ def leaves_of(layout: tuple[Field, ...], prefix: tuple[str, ...] = (), start: Op
     out: list[Leaf] = []
     pos = start
     for f in layout:
-        if f.is_payload:
+        if f.is_payload:  # a payload placed by start_bit takes its bytes here
+            if pos is not None and f.length:
+                pos += 8 * f.length
+            continue
+        if f.start_bit is not None and f.bit_offset is not None:  # where its start bit puts it, in its own order
+            out.append(Leaf(f, prefix + (f.name,), f.bit_offset, f.byte_order))
             continue
         if f.count is None:
             out.extend(leaves_of_one(f, prefix + (f.name,), pos))
@@ -65,9 +70,22 @@ def runs_of(leaves: list[Leaf], frame_bytes: int, order: str = "big") -> tuple[R
 
 def wire_of(layout: tuple[Field, ...], bits: Optional[int], order: str = "big") -> Wire:
     """The layout of a message; runs only when the frame's size is known (binary).
-    `order`: the frame's bit stream order (Framing.wire_order)."""
+    `order`: the frame's bit stream order (Framing.wire_order). A payload placed by
+    start_bit is one packed run of its bytes, whatever it leaves unused."""
     leaves = leaves_of(layout, start=0 if bits is not None else None)
-    runs = runs_of(leaves, (bits + 7) // 8, order) if bits is not None else ()
+    if bits is None:
+        return Wire(tuple(leaves), (), order)
+    marker = next((f for f in layout if f.is_payload), None)
+    if marker is None or not marker.length:
+        return Wire(tuple(leaves), runs_of(leaves, (bits + 7) // 8, order), order)
+    start = marker.bit_offset // 8 - marker.length
+    placed = [x for x in leaves if x.field.start_bit is not None]
+    before = [x for x in leaves if x.field.start_bit is None and x.pos < 8 * start]
+    after = [x for x in leaves if x.field.start_bit is None and x.pos >= 8 * start]
+    orders = [x.order for x in placed]  # the payload's integer is read in its fields' usual order
+    most = max(("big", "little"), key=lambda o: (orders.count(o), o == order))
+    payload = Run("packed", start, marker.length, tuple(placed), most, free=True)
+    runs = runs_of(before, start, order) + (payload,) + runs_of(after, (bits + 7) // 8, order)
     return Wire(tuple(leaves), runs, order)
 
 

@@ -40,15 +40,18 @@ class MessagesMixin(ResolverBase):
             ids = None
         ids = () if ids is None else tuple(ids) if isinstance(ids, list) else ids if isinstance(ids, dict) else (ids,)
         own = self.bind_controls(name, own, path)
-        layout, dispatch_key = self.place(name, own, ids, framing, path, m.get("direction"))
+        payload_bytes = m.get("payload_bytes")
+        layout, dispatch_key = self.place(name, own, ids, framing, path, m.get("direction"), payload_bytes)
+        if framing.kind != "bytes":
+            payload_bytes = None
         if len(dispatch_key) > 1 and framing.kind == "bytes":  # the key the dispatch fields' values make together
             values = dict((k, v[0]) for k, v in dispatch_key if len(v) == 1 and isinstance(v[0], int))
             read = key_read(leaves_of(framing.envelope), framing.byte_order, framing.wire_order)
             ids = (key_of(read, values),) if read and set(values) == set(read["places"]) else ()
         bits = shortening = None
         if framing.kind != "text":
-            widths = [f.bits for f in layout]
-            bits = sum(widths) if all(w is not None for w in widths) else None
+            widths = [f.bits for f in layout if f.start_bit is None or not payload_bytes]
+            bits = sum(widths) + 8 * (payload_bytes or 0) if all(w is not None for w in widths) else None
             self.check_size(name, m, layout, bits, framing, path)
             layout = self.bind_checksums(name, layout, framing, path)
             self.check_field_checksums(name, layout)
@@ -65,6 +68,7 @@ class MessagesMixin(ResolverBase):
             ids=ids, direction=m.get("direction"), role=m.get("role"),
             answered_by=tuple(m.get("answered_by", [])), fields=own, layout=layout, bits=bits,
             rules=rules, examples=examples, dispatch_key=dispatch_key, crc_extra=crc_extra, wire=wire_of(layout, bits, framing.wire_order),
+            payload_bytes=payload_bytes,
             layout_type=layout_type, shortening=shortening)
 
     def check_generated_members(self, name: str, fields: tuple[Field, ...]) -> None:

@@ -26,10 +26,11 @@ from .rules import RulesMixin
 from .sequences import SequencesMixin
 from .streams import StreamsMixin
 from .delivery import DeliveryMixin
+from .placement import PlacementMixin
 
 
-class Resolver(TypesMixin, FieldsMixin, ChecksumsMixin, FramingMixin, MessagesMixin, ShorteningMixin, RulesMixin,
-               SequencesMixin, DeliveryMixin, StreamsMixin):
+class Resolver(TypesMixin, FieldsMixin, ChecksumsMixin, FramingMixin, PlacementMixin, MessagesMixin,
+               ShorteningMixin, RulesMixin, SequencesMixin, DeliveryMixin, StreamsMixin):
     """The whole document: each concern's rules come from its mixin module."""
 
     def resolve(self) -> Protocol:

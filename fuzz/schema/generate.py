@@ -181,7 +181,27 @@ class Generator:
             self.encode_frames(framing, messages, ids if not two_keys and not single and id_bits == 8 else None)
         if not any("length_of" in f for f in layout) and "encoding" not in framing and "large_frame" in self.on:
             self.large_frame(messages)  # a length field or an encoding holds less
+        if "mixed_bit_order" in self.on and "truncate" not in framing:
+            self.mixed_bit_order(messages)
         return framing, messages
+
+    def mixed_bit_order(self, messages: dict) -> None:
+        """In one schema of three, some messages become CAN-style payloads of 1 to 8 bytes:
+        signals of both byte orders at random DBC start bits, 1 to 64 bits wide, signed or
+        not, some scaled, never overlapping, with unused bits between them. Messages that
+        share an id keep their fields (their sizes tell them apart). Drawn from a generator
+        of its own, so the other schemas of a seed stay as they were."""
+        own = random.Random(f"mixed_bit_order {self.seed}")
+        if own.random() >= 0.35:
+            return
+        ids = [repr(body.get("id")) for body in messages.values()]
+        for body in messages.values():
+            if ids.count(repr(body.get("id"))) > 1 or own.random() < 0.3:
+                continue
+            size = own.randint(1, 8)
+            body["payload_bytes"] = size
+            body["fields"] = placed_signals(own, size)
+
 
     def crc_name(self, name: str) -> str:
         """The catalogue name, or one of its aliases that names nothing else, in any case."""
@@ -666,3 +686,34 @@ class Generator:
 def generate(seed: int, features: frozenset[str] = DEFAULT) -> str:
     """The YAML text of schema number `seed`."""
     return yaml.safe_dump(Generator(seed, features).schema(), sort_keys=False, allow_unicode=True, width=100)
+
+
+def msb_position(start: int) -> int:
+    """A DBC Motorola start bit as its place counted most significant bit first (its own inverse)."""
+    return 8 * (start // 8) + 7 - start % 8
+
+
+def placed_signals(rng: random.Random, size: int) -> list[dict]:
+    """Signals that do not overlap in a payload of `size` bytes, at least one."""
+    taken: set[int] = set()
+    out: list[dict] = []
+    for _ in range(10):
+        length = min(64, rng.choice((rng.randint(1, 8 * size), rng.randint(1, min(12, 8 * size)))))
+        order = rng.choice(("big", "little"))
+        first = rng.randint(0, 8 * size - length)  # in the order's own numbering
+        start = first if order == "little" else msb_position(first)
+        bits = {first + k if order == "little" else msb_position(first + k) for k in range(length)}
+        if taken & bits:
+            continue
+        taken |= bits
+        signed = length > 1 and rng.random() < 0.5
+        field = {"name": f"sig_{len(out)}", "type": f"{'i' if signed else 'u'}{length}", "start_bit": start,
+                 "byte_order": order}
+        if length == 1 and rng.random() < 0.5:
+            field["type"] = "bool"
+        elif length <= 53 and rng.random() < 0.3:
+            field["scale"] = rng.choice((0.5, 0.25, 2, 0.125))
+            if rng.random() < 0.5:
+                field["offset"] = rng.randint(-100, 100)
+        out.append(field)
+    return out

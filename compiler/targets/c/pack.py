@@ -9,8 +9,10 @@ A span is one of
 - "pack": bit fields (and the frame's trailing padding) that together fill
   1 to 4 whole bytes, read and written as one integer in the run's byte order
   (big-endian most significant bit first, little-endian least significant first);
-- "bits": bit fields filling more than 4 bytes together, moved bit by bit
-  (cw_put_bits/cw_get_bits, or their _lsb forms) in bytes zeroed first.
+- "bits": bit fields filling more than 4 bytes together, or fields of both bit
+  orders sharing bytes (a payload placed by start_bit), moved bit by bit
+  (cw_put_bits/cw_get_bits, or their _lsb forms, each in its field's order) in
+  bytes zeroed first.
 """
 from __future__ import annotations
 
@@ -27,14 +29,18 @@ class Span:
     pieces: tuple[Leaf, ...]
     order: str = "big"  # "pack" and "bits": the byte order of the span's integer
 
+    def order_of(self, piece: Leaf) -> str:
+        """The bit order `piece` counts in: its own (placed by start_bit), or the span's."""
+        return piece.order or self.order
+
     def shift(self, piece: Leaf) -> int:
-        """Where `piece` sits in the span's integer, from bit 0."""
-        return shift_in(self.order, self.start, self.size, piece.pos, piece.bits)
+        """Where `piece` sits in the span's integer, from bit 0 (pieces of a "pack" span share its order)."""
+        return shift_in(self.order_of(piece), self.start, self.size, piece.pos, piece.bits)
 
 
 def span_kind(run: Run) -> str:
     if run.kind == "packed":
-        return "pack" if run.size <= 4 else "bits"
+        return "pack" if run.size <= 4 and not run.mixed else "bits"
     return "bytes" if run.kind == "bytes" else "int"
 
 

@@ -756,7 +756,7 @@ class CView:
                 for piece in span.pieces:
                     if piece.var in raws:
                         value = raws[piece.var] if piece.bits > 32 or rt != "uint64_t" else f"(uint32_t){raws[piece.var]}"
-                        c(f"{bits_fn('put', piece.bits, span.order)}({bits_at(piece.pos)}, {piece.bits}u, {value});")
+                        c(f"{bits_fn('put', piece.bits, span.order_of(piece))}({bits_at(piece.pos)}, {piece.bits}u, {value});")
         if truncates and sh.gaps:
             self.leave_out_gaps(c, m, raws)
         elif truncates:
@@ -768,7 +768,7 @@ class CView:
             if span.kind == "int":
                 c(self.int_put(f"({span.start}u - cut)" if moved else span.start, span.size, self.order_of(piece.field), call))
             else:  # sharing its bytes, whose bits for it are still 0
-                c(f"{bits_fn('put', piece.bits, span.order)}({bits_at(piece.pos, moved)}, {piece.bits}u, {call});")
+                c(f"{bits_fn('put', piece.bits, span.order_of(piece))}({bits_at(piece.pos, moved)}, {piece.bits}u, {call});")
         c(f"return (int)({m.size}u - cut);" if truncates else f"return {m.size};")
         c.dedent()
         c("}")
@@ -933,7 +933,7 @@ class CView:
                 c("}")
             else:
                 for piece in pieces:
-                    c(f"{raws[piece.var]} = ({rt}){bits_fn('get', piece.bits, span.order)}({bits_at(piece.pos)}, {piece.bits}u);")
+                    c(f"{raws[piece.var]} = ({rt}){bits_fn('get', piece.bits, span.order_of(piece))}({bits_at(piece.pos)}, {piece.bits}u);")
         if m.shortening and m.shortening.length_field:
             counter = next(x for x in m.wire.leaves if x.field.name == m.shortening.length_field)
             c(f"{raws[counter.var]} = ({rt})({raws[counter.var]} + cut);  /* as if the whole payload were sent */")
@@ -941,7 +941,7 @@ class CView:
             if span.kind == "int":
                 got = self.int_get(span.start, span.size, self.order_of(piece.field))
             else:
-                got = f"{bits_fn('get', piece.bits, span.order)}({bits_at(piece.pos)}, {piece.bits}u)"
+                got = f"{bits_fn('get', piece.bits, span.order_of(piece))}({bits_at(piece.pos)}, {piece.bits}u)"
             self.fail_if(c, f"{got} != {self.byte_checksum_call(piece, m, True, 'sent')}", "checksum")
         c(f"return {self.fn(m, 'check_raw')}(r, buf, m, false);")
         c.dedent()

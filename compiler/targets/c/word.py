@@ -85,6 +85,8 @@ def container(v: "CView", m: "Message") -> Optional[Word]:
         if any(v.is_byte_checksum(p) and p.field.checksum.algorithm in ("crc", "fletcher", "internet")
                for p in span.pieces):
             return None
+        if span.kind == "pack" and span.size > 1 and span.order != m.wire.order:
+            return None  # fields placed in the other bit order than the frame's
         if span.kind == "pack":
             continue
         if span.kind != "int" or v.is_byte_checksum(leaf):

@@ -7,6 +7,7 @@ from dataclasses import dataclass, replace
 from typing import Optional
 
 from ...model import Field, Message, Presence, Protocol, field_at
+from .placement import placed_type
 from .text import DecisionLinker, anchor, cell, code, en, number, originals
 
 
@@ -67,6 +68,13 @@ def bit_span(offset: int, bits: int) -> str:
     return str(offset) if bits == 1 else f"{offset}–{offset + bits - 1}"
 
 
+def offset_text(slot: Slot) -> str:
+    """The diagram's offset of a field: its bits from the first bit sent, or a placed field's start bit."""
+    if slot.field.start_bit is not None:
+        return f"start bit {slot.field.start_bit}"
+    return bit_span(slot.offset, slot.field.bits)
+
+
 def position(p: Protocol, slot: Slot) -> str:
     """Where a reader finds the field: word bits (31 = MSB) or bytes (B0 first sent),
     bits in a byte numbered 7 (MSB) to 0, from the field's first bit to its last."""
@@ -79,9 +87,10 @@ def position(p: Protocol, slot: Slot) -> str:
         low = high - f.bits + 1
         return str(high) if f.bits == 1 else f"{high}–{low}"
     first, last = offset // 8, (offset + f.bits - 1) // 8
-    if offset % 8 == 0 and f.bits % 8 == 0:
+    lsb_first = f.byte_order == "little" if f.start_bit is not None else fr.bit_order == "lsb_first"
+    if offset % 8 == 0 and f.bits % 8 == 0 and (f.start_bit is None or first == last):
         return f"B{first}" if first == last else f"B{first}–B{last}"
-    if fr.bit_order == "lsb_first":  # the field's low bit first, counting up
+    if lsb_first:  # the field's low bit first, counting up
         start, end = offset % 8, (offset + f.bits - 1) % 8
     else:
         start, end = 7 - offset % 8, 7 - (offset + f.bits - 1) % 8
@@ -111,7 +120,9 @@ def type_text(p: Protocol, f: Field) -> str:
         text = "group"
     elif kind in ("uint", "int", "float"):
         text = {"uint": "u", "int": "i", "float": "f"}[kind] + str(f.bits)
-        if p.framing.kind == "bytes" and f.bits and f.bits > 8:
+        if f.start_bit is not None:
+            text += " " + placed_type(f.byte_order)
+        elif p.framing.kind == "bytes" and f.bits and f.bits > 8:
             order = f.byte_order or p.framing.byte_order
             text += " LE" if order == "little" else " BE"
     elif kind == "bool":
@@ -231,7 +242,7 @@ def diagram(p: Protocol, m: Message) -> Optional[dict]:
     top = [s for s in slots(m) if s.depth == 0]
     if p.framing.kind == "text":
         return None
-    cols = [{"name": s.span_name, "bits": s.field.bits, "offset": bit_span(s.offset, s.field.bits),
+    cols = [{"name": s.span_name, "bits": s.field.bits, "offset": offset_text(s),
              "position": position(p, s)} for s in top]
     return {"columns": cols, "word": bool(p.framing.word_bits), "bytes": p.framing.kind == "bytes"}
 
@@ -266,7 +277,8 @@ def field_rows(p: Protocol, m: Message, linker: DecisionLinker) -> list[dict]:
         rows.append({
             "path": s.path, "name": name,
             "bits": "" if f.bits is None or p.framing.kind == "text" else str(f.bits),
-            "offset": str(s.offset) if s.offset is not None else "",
+            "offset": (f"start bit {f.start_bit}" if f.start_bit is not None else str(s.offset))
+            if s.offset is not None else "",
             "index": str(s.index) if s.depth == 0 else "",
             "position": position(p, s),
             "type": cell(type_text(p, f)), "range": range_text(p, f),

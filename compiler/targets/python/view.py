@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from typing import Any, Optional
 
 from ...crc import reflect
@@ -472,6 +472,12 @@ class Chunk:
     order: Optional[str]  # byte order it needs, None when any will do
     lone: bool  # a single field stored as is (float, bytes, whole integer)
     signed: bool = False
+    other: list = field(default_factory=list)  # [(Leaf, shift)] in the bytes read in the other byte order
+    free: bool = False  # bits no leaf holds read as anything (a payload placed by start_bit)
+
+    @property
+    def other_order(self) -> str:
+        return "little" if self.order == "big" else "big"
 
 
 def chunks_of(runs: tuple[Run, ...], default_order: str) -> list[Chunk]:
@@ -480,8 +486,11 @@ def chunks_of(runs: tuple[Run, ...], default_order: str) -> list[Chunk]:
     for run in runs:
         n = run.size
         if run.kind == "packed":
-            out.append(Chunk(run.start, n, [(leaf, run.shift(leaf)) for leaf in run.leaves],
-                             STRUCT_CODES.get(n, "s"), run.order if n > 1 else None, False))
+            pairs = [(leaf, run.shift(leaf)) for leaf in run.leaves]
+            own = [(leaf, at) for leaf, at in pairs if not run.mixed or run.order_of(leaf) == run.order]
+            other = [(leaf, at) for leaf, at in pairs if run.mixed and run.order_of(leaf) != run.order]
+            out.append(Chunk(run.start, n, own, STRUCT_CODES.get(n, "s"), run.order if n > 1 else None, False,
+                             other=other, free=run.free))
             continue
         leaf = run.leaves[0]
         f = leaf.field
@@ -893,6 +902,8 @@ class MessageCode:
             f = leaf.field
             if f.kind in ("float", "bytes") or f.checksum and f.checksum.over == "bytes":
                 return False
+        if any(leaf.order not in (None, self.m.wire.order) for leaf in self.leaves):
+            return False  # a field placed in the other bit order than the frame's
         return not any(ch.lone and ch.nbytes > 1 and ch.order != self.m.wire.order for ch in self.chunks())
 
     def structs(self) -> list[tuple[str, str]]:
@@ -1041,6 +1052,9 @@ class MessageCode:
                 return f"{leaf.var}.to_bytes({chunk.nbytes}, {order!r}, signed={chunk.signed})"
             return leaf.var
         expr = self.packed(chunk.leaves)
+        if chunk.other:  # the fields in the other byte order, as the chunk's integer holds their bytes
+            flipped = f"({self.packed(chunk.other)}).to_bytes({chunk.nbytes}, {chunk.other_order!r})"
+            expr = f"{expr} | int.from_bytes({flipped}, {chunk.order!r})"
         if chunk.code == "s":
             return f"({expr}).to_bytes({chunk.nbytes}, {chunk.order!r})"
         return expr
@@ -1177,10 +1191,14 @@ class MessageCode:
                 continue
             if chunk.code == "s":
                 c(f"{var} = int.from_bytes({var}, {chunk.order!r})")
+            if chunk.other:  # the same bytes read in the other byte order
+                c(f"{var}x = int.from_bytes({var}.to_bytes({chunk.nbytes}, {chunk.order!r}), {chunk.other_order!r})")
+                for leaf, shift in chunk.other:
+                    self.extract(c, leaf, f"{var}x", shift)
             used = 0
             for leaf, shift in chunk.leaves:
                 used |= ((1 << leaf.field.bits) - 1) << shift
-            padding = ((1 << (8 * chunk.nbytes)) - 1) & ~used
+            padding = 0 if chunk.free else ((1 << (8 * chunk.nbytes)) - 1) & ~used
             if padding:  # bits after the record that fill the last byte must be zero
                 c(f"if {var} & {padding:#x}:")
                 c(f"    raise _dec({self.m.name!r}, 'padding', {var} & {padding:#x}, 'reserved', '0', "

@@ -1,0 +1,118 @@
+"""Fields placed by start_bit, as a CAN DBC places its signals: a payload of a fixed
+size, each field at its own start bit in its own byte order, unused bits between
+them, none overlapping. Multiplexed signals (fields that share bits, each present
+for some values of a multiplexer) are refused here as overlaps."""
+from __future__ import annotations
+
+from dataclasses import replace
+from typing import Optional
+
+from ..model import Field, Framing
+from .base import ResolverBase
+
+# What a placed field may not be: each takes bits the payload's fixed layout cannot give.
+NOT_PLACED = (("count", "an array"), ("counted_by", "a counted field"), ("present_if", "a conditional field"),
+              ("checksum", "a checksum"), ("length_of", "a length field"), ("extension", "an extension field"),
+              ("to_end", "a field filling the rest"), ("dispatch", "a dispatch field"))
+
+
+def msb_position(start_bit: int) -> int:
+    """A Motorola start bit (DBC's sawtooth numbering: bit 7 of byte 0 is 7, bit 0 of
+    byte 1 is 8) as its place in the payload counted most significant bit first."""
+    return 8 * (start_bit // 8) + 7 - start_bit % 8
+
+
+def dbc_bits(f: Field) -> list[int]:
+    """The DBC bit numbers (bit k = bit k % 8 of byte k // 8) a placed field covers,
+    least significant first for little-endian, most significant first for big-endian."""
+    if f.byte_order == "little":
+        return list(range(f.start_bit, f.start_bit + f.bits))
+    first = msb_position(f.start_bit)
+    return [msb_position(q) for q in range(first, first + f.bits)]  # the map is its own inverse
+
+
+def relative_offset(f: Field) -> int:
+    """The field's first bit in the payload, counted in its own bit order."""
+    return f.start_bit if f.byte_order == "little" else msb_position(f.start_bit)
+
+
+class PlacementMixin(ResolverBase):
+    def place_signals(self, name: str, own: tuple[Field, ...], payload_bytes: Optional[int],
+                      framing: Framing, path: tuple) -> tuple[Field, ...]:
+        """The message's own fields, those placed by start_bit with their byte order and their
+        first bit counted from the payload's start; every rule of placement checked."""
+        if payload_bytes is None:
+            for f in own:
+                self.refuse_nested(f, name)
+                if f.start_bit is not None:
+                    self.report.error(f.loc, f"message {name!r}: field {f.name!r} has a start_bit, but the "
+                                             "message has no payload_bytes to place it in",
+                                      "give the message `payload_bytes: <size>` and every field a start_bit, "
+                                      "or drop start_bit to place the fields one after another")
+            return own
+        if framing.kind != "bytes":
+            self.error(path + ("payload_bytes",), f"message {name!r}: payload_bytes places fields in a bytes "
+                                                  f"framing's payload, not in {framing.kind} framing",
+                       "drop payload_bytes and the fields' start_bit")
+            return own
+        if framing.truncate:
+            self.error(path + ("payload_bytes",), f"message {name!r}: a payload placed by start_bit has a fixed "
+                                                  "size, and the framing truncates trailing zeros",
+                       "drop the framing's truncate, or place the fields one after another")
+        if not own:
+            self.error(path + ("payload_bytes",), f"message {name!r}: a payload placed by start_bit needs a field",
+                       "give it at least one field with a start_bit")
+        out: list[Field] = []
+        taken: dict[int, str] = {}  # DBC bit -> the field that holds it
+        for f in own:
+            placed = self.placed_field(name, f, payload_bytes, framing, taken)
+            out.append(placed)
+        return tuple(out)
+
+    def placed_field(self, name: str, f: Field, payload_bytes: int, framing: Framing,
+                     taken: dict[int, str]) -> Field:
+        if f.start_bit is None:
+            self.report.error(f.loc, f"message {name!r}: field {f.name!r} has no start_bit; in a message "
+                                     "with payload_bytes every field is placed by its start bit",
+                              "give it `start_bit: <bit>` (DBC numbering) and its `byte_order`")
+            return f
+        for key, what in NOT_PLACED:
+            if getattr(f, key):
+                self.report.error(f.loc, f"message {name!r}: field {f.name!r} is {what}; a field placed by "
+                                         "start_bit is an integer or bool of its own bits",
+                                  f"drop `{key}`, or place the message's fields one after another")
+                return replace(f, bit_offset=0)
+        if f.kind not in ("uint", "int", "bool"):
+            self.report.error(f.loc, f"message {name!r}: field {f.name!r} is {f.kind}; a field placed by "
+                                     "start_bit is an integer or bool (a DBC signal)",
+                              "give it an integer type, or place the message's fields one after another")
+            return replace(f, bit_offset=0)
+        f = replace(f, byte_order=f.byte_order or framing.byte_order)
+        payload_bits = 8 * payload_bytes
+        first = relative_offset(f)
+        if f.start_bit >= payload_bits or first + f.bits > payload_bits:
+            self.report.error(f.loc, f"message {name!r}: field {f.name!r} ({f.bits} bits, {f.byte_order}-endian, "
+                                     f"start bit {f.start_bit}) runs outside the payload of {payload_bytes} bytes "
+                                     f"(bits 0..{payload_bits - 1})",
+                              "move the field, narrow it, or enlarge payload_bytes (a big-endian field runs "
+                              "from its start bit down to bit 0 of its byte, then on from bit 7 of the next)")
+            return replace(f, bit_offset=0)
+        bits = dbc_bits(f)
+        clash = next((b for b in bits if b in taken), None)
+        if clash is not None:
+            self.report.error(f.loc, f"message {name!r}: field {f.name!r} overlaps field {taken[clash]!r} at bit "
+                                     f"{clash} (byte {clash // 8}, bit {clash % 8})",
+                              "fields of a payload may not share bits; move one (multiplexed signals are "
+                              "not part of the language)")
+        for b in bits:
+            taken.setdefault(b, f.name)
+        return replace(f, bit_offset=first)
+
+    def refuse_nested(self, f: Field, name: str) -> None:
+        """start_bit places a message's own field: not a group's member, nor an envelope field."""
+        for sub in f.fields:
+            if sub.start_bit is not None:
+                self.report.error(sub.loc, f"message {name!r}: field {sub.name!r} of group {f.name!r} has a "
+                                           "start_bit; only a message's own fields are placed by start bit",
+                                  "drop its start_bit, or make it a field of the message")
+            self.refuse_nested(sub, name)

@@ -1,0 +1,70 @@
+"""CAN frames for the tests against cantools: which bits a DBC signal takes, noise in
+the bits none takes, and C statements that check a message's encoder and decoder
+against bytes and values cantools gave."""
+from __future__ import annotations
+
+import random
+
+from cdriver import Driver
+from codeword.targets.c.view import CView
+from schema_in_a_test import c_bytes
+
+
+def msb_position(start: int) -> int:
+    """A DBC Motorola start bit as its place counted most significant bit first (its own inverse)."""
+    return 8 * (start // 8) + 7 - start % 8
+
+
+def covered(start: int, length: int, order: str) -> list[int]:
+    """The DBC bit numbers a signal takes (bit k is bit k % 8 of byte k // 8)."""
+    if order == "little_endian":
+        return list(range(start, start + length))
+    first = msb_position(start)
+    return [msb_position(q) for q in range(first, first + length)]
+
+
+def noise(rng: random.Random, data: bytes, signals: list[dict]) -> bytes:
+    """The frame with random values in the bits no signal takes, which decoders ignore."""
+    used = {b for s in signals for b in covered(s["start"], s["length"], s["order"])}
+    free = sum(1 << b for b in range(8 * len(data)) if b not in used)
+    return (int.from_bytes(data, "little") | rng.getrandbits(8 * len(data)) & free).to_bytes(len(data), "little")
+
+
+def c_case(v: CView, driver: Driver, message, values: dict, frame: bytes, sent: bytes, label: str) -> str:
+    """C statements: encoding the values writes `frame` (cantools' bytes); decoding `sent`
+    (those bytes with noise in the unused bits) gives the values."""
+    t, init = v.tname(message), driver.init(message.fields, values)
+    compare = " || ".join(f"got.{f.name} != want.{f.name}" for f in message.fields) or "0"
+    return (f"    {{ static const {t} want = {init};\n"
+            f"      static const uint8_t frame[] = {{{c_bytes(frame)}}};\n"
+            f"      static const uint8_t sent[] = {{{c_bytes(sent)}}};\n"
+            f"      {t} got;\n"
+            f"      int n = {v.fn(message, 'encode')}(&want, buf, sizeof buf);\n"
+            f"      if (n != (int)sizeof frame || memcmp(buf, frame, sizeof frame) != 0) {{ fail(\"encode {label}\"); }}\n"
+            f"      memset(&got, 0, sizeof got);\n"
+            f"      if ({v.fn(message, 'decode')}(sent, sizeof sent, &got) != CW_OK || {compare}) "
+            f"{{ fail(\"decode {label}\"); }}\n    }}")
+
+
+C_DRIVER = """#include <stdio.h>
+#include <string.h>
+#include "{header}.h"
+
+static int failures;
+
+static void fail(const char *what)
+{{
+    printf("FAIL %s\\n", what);
+    failures++;
+}}
+
+int main(void)
+{{
+    uint8_t buf[16];
+{cases}
+    if (!failures) {{
+        printf("OK %d\\n", {n});
+    }}
+    return 0;
+}}
+"""
