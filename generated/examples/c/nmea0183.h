@@ -205,7 +205,7 @@ static inline int nmea0183_gga_encode(const nmea0183_gga_t *m, char *buf, size_t
         return CW_ERR_RANGE;
     }
     if (m->has_lat) {
-        if (m->lat < 0 || m->lat > 0x89543fL) {
+        if (m->lat < 0 || m->lat > 0x895440L) {
             return CW_ERR_RANGE;
         }
     }
@@ -215,7 +215,7 @@ static inline int nmea0183_gga_encode(const nmea0183_gga_t *m, char *buf, size_t
         }
     }
     if (m->has_lon) {
-        if (m->lon < 0 || m->lon > 0x112a87fL) {
+        if (m->lon < 0 || m->lon > 0x112a880L) {
             return CW_ERR_RANGE;
         }
     }
@@ -228,12 +228,12 @@ static inline int nmea0183_gga_encode(const nmea0183_gga_t *m, char *buf, size_t
         return CW_ERR_RANGE;
     }
     if (m->has_horizontal_dil) {
-        if (m->horizontal_dil < 0 || m->horizontal_dil > 0xf4235L) {
+        if (m->horizontal_dil < 0 || m->horizontal_dil > 0xf4236L) {
             return CW_ERR_RANGE;
         }
     }
     if (m->has_altitude) {
-        if (m->altitude < (-99997 - 1) || m->altitude > 0xf423eL) {
+        if (m->altitude < (-99998 - 1) || m->altitude > 0xf423fL) {
             return CW_ERR_RANGE;
         }
     }
@@ -243,7 +243,7 @@ static inline int nmea0183_gga_encode(const nmea0183_gga_t *m, char *buf, size_t
         }
     }
     if (m->has_geo_sep) {
-        if (m->geo_sep < (-99997 - 1) || m->geo_sep > 0x1869eL) {
+        if (m->geo_sep < (-99998 - 1) || m->geo_sep > 0x1869fL) {
             return CW_ERR_RANGE;
         }
     }
@@ -253,7 +253,7 @@ static inline int nmea0183_gga_encode(const nmea0183_gga_t *m, char *buf, size_t
         }
     }
     if (m->has_age_gps_data) {
-        if (m->age_gps_data < 0 || m->age_gps_data > 0xf4235L) {
+        if (m->age_gps_data < 0 || m->age_gps_data > 0xf4236L) {
             return CW_ERR_RANGE;
         }
     }
@@ -347,7 +347,7 @@ static inline int nmea0183_gga_parse_body(const char *s, const char *end, nmea01
     v = cw_value(s, ends, 0u, false);
     {
         int32_t value;
-        rc = cw_parse_fixed(v.b, v.e, 0u, 6u, 0, 0x399b8UL, &value);
+        rc = cw_parse_fixed(v.b, v.e, 0u, 0, 0x399b8UL, &value);
         if (rc != CW_OK) {
             return rc;
         }
@@ -362,7 +362,7 @@ static inline int nmea0183_gga_parse_body(const char *s, const char *end, nmea01
     if (m->has_lat) {
         {
             int32_t value;
-            rc = cw_parse_fixed(v.b, v.e, 3u, 8u, 0, 0x89543fUL, &value);
+            rc = cw_parse_fixed(v.b, v.e, 3u, 0, 0x895440UL, &value);
             if (rc != CW_OK) {
                 return rc;
             }
@@ -393,7 +393,7 @@ static inline int nmea0183_gga_parse_body(const char *s, const char *end, nmea01
     if (m->has_lon) {
         {
             int32_t value;
-            rc = cw_parse_fixed(v.b, v.e, 3u, 9u, 0, 0x112a87fUL, &value);
+            rc = cw_parse_fixed(v.b, v.e, 3u, 0, 0x112a880UL, &value);
             if (rc != CW_OK) {
                 return rc;
             }
@@ -429,7 +429,7 @@ static inline int nmea0183_gga_parse_body(const char *s, const char *end, nmea01
     v = cw_value(s, ends, 6u, false);
     {
         int32_t value;
-        rc = cw_parse_fixed(v.b, v.e, 0u, 2u, INT32_MIN, INT32_MAX, &value);
+        rc = cw_parse_fixed(v.b, v.e, 0u, INT32_MIN, INT32_MAX, &value);
         if (rc != CW_OK) {
             return rc;
         }
@@ -447,7 +447,7 @@ static inline int nmea0183_gga_parse_body(const char *s, const char *end, nmea01
     if (m->has_horizontal_dil) {
         {
             int32_t value;
-            rc = cw_parse_fixed(v.b, v.e, 1u, 0u, 0, 0xf4235UL, &value);
+            rc = cw_parse_fixed(v.b, v.e, 1u, 0, 0xf4236UL, &value);
             if (rc != CW_OK) {
                 return rc;
             }
@@ -463,7 +463,7 @@ static inline int nmea0183_gga_parse_body(const char *s, const char *end, nmea01
     if (m->has_altitude) {
         {
             int32_t value;
-            rc = cw_parse_fixed(v.b, v.e, 1u, 0u, (-99997 - 1), 0xf423eUL, &value);
+            rc = cw_parse_fixed(v.b, v.e, 1u, (-99998 - 1), 0xf423fUL, &value);
             if (rc != CW_OK) {
                 return rc;
             }
@@ -494,7 +494,7 @@ static inline int nmea0183_gga_parse_body(const char *s, const char *end, nmea01
     if (m->has_geo_sep) {
         {
             int32_t value;
-            rc = cw_parse_fixed(v.b, v.e, 1u, 0u, (-99997 - 1), 0x1869eUL, &value);
+            rc = cw_parse_fixed(v.b, v.e, 1u, (-99998 - 1), 0x1869fUL, &value);
             if (rc != CW_OK) {
                 return rc;
             }
@@ -525,7 +525,7 @@ static inline int nmea0183_gga_parse_body(const char *s, const char *end, nmea01
     if (m->has_age_gps_data) {
         {
             int32_t value;
-            rc = cw_parse_fixed(v.b, v.e, 1u, 0u, 0, 0xf4235UL, &value);
+            rc = cw_parse_fixed(v.b, v.e, 1u, 0, 0xf4236UL, &value);
             if (rc != CW_OK) {
                 return rc;
             }
@@ -541,7 +541,7 @@ static inline int nmea0183_gga_parse_body(const char *s, const char *end, nmea01
     if (m->has_ref_station_id) {
         {
             int32_t value;
-            rc = cw_parse_fixed(v.b, v.e, 0u, 4u, 0, 0x3ff, &value);
+            rc = cw_parse_fixed(v.b, v.e, 0u, 0, 0x3ff, &value);
             if (rc != CW_OK) {
                 return rc;
             }
@@ -713,7 +713,7 @@ static inline int nmea0183_rmc_encode(const nmea0183_rmc_t *m, char *buf, size_t
         return CW_ERR_ENUM;
     }
     if (m->has_lat) {
-        if (m->lat < 0 || m->lat > 0x89543fL) {
+        if (m->lat < 0 || m->lat > 0x895440L) {
             return CW_ERR_RANGE;
         }
     }
@@ -723,7 +723,7 @@ static inline int nmea0183_rmc_encode(const nmea0183_rmc_t *m, char *buf, size_t
         }
     }
     if (m->has_lon) {
-        if (m->lon < 0 || m->lon > 0x112a87fL) {
+        if (m->lon < 0 || m->lon > 0x112a880L) {
             return CW_ERR_RANGE;
         }
     }
@@ -733,12 +733,12 @@ static inline int nmea0183_rmc_encode(const nmea0183_rmc_t *m, char *buf, size_t
         }
     }
     if (m->has_spd_over_grnd) {
-        if (m->spd_over_grnd < 0 || m->spd_over_grnd > 0x270e) {
+        if (m->spd_over_grnd < 0 || m->spd_over_grnd > 0x270f) {
             return CW_ERR_RANGE;
         }
     }
     if (m->has_true_course) {
-        if (m->true_course < 0 || m->true_course > 0x270e) {
+        if (m->true_course < 0 || m->true_course > 0x270f) {
             return CW_ERR_RANGE;
         }
     }
@@ -746,7 +746,7 @@ static inline int nmea0183_rmc_encode(const nmea0183_rmc_t *m, char *buf, size_t
         return CW_ERR_RANGE;
     }
     if (m->has_mag_variation) {
-        if (m->mag_variation < 0 || m->mag_variation > 0x270e) {
+        if (m->mag_variation < 0 || m->mag_variation > 0x270f) {
             return CW_ERR_RANGE;
         }
     }
@@ -823,7 +823,7 @@ static inline int nmea0183_rmc_parse_body(const char *s, const char *end, nmea01
     v = cw_value(s, ends, 0u, false);
     {
         int32_t value;
-        rc = cw_parse_fixed(v.b, v.e, 0u, 6u, 0, 0x399b8UL, &value);
+        rc = cw_parse_fixed(v.b, v.e, 0u, 0, 0x399b8UL, &value);
         if (rc != CW_OK) {
             return rc;
         }
@@ -847,7 +847,7 @@ static inline int nmea0183_rmc_parse_body(const char *s, const char *end, nmea01
     if (m->has_lat) {
         {
             int32_t value;
-            rc = cw_parse_fixed(v.b, v.e, 3u, 8u, 0, 0x89543fUL, &value);
+            rc = cw_parse_fixed(v.b, v.e, 3u, 0, 0x895440UL, &value);
             if (rc != CW_OK) {
                 return rc;
             }
@@ -878,7 +878,7 @@ static inline int nmea0183_rmc_parse_body(const char *s, const char *end, nmea01
     if (m->has_lon) {
         {
             int32_t value;
-            rc = cw_parse_fixed(v.b, v.e, 3u, 9u, 0, 0x112a87fUL, &value);
+            rc = cw_parse_fixed(v.b, v.e, 3u, 0, 0x112a880UL, &value);
             if (rc != CW_OK) {
                 return rc;
             }
@@ -909,7 +909,7 @@ static inline int nmea0183_rmc_parse_body(const char *s, const char *end, nmea01
     if (m->has_spd_over_grnd) {
         {
             int32_t value;
-            rc = cw_parse_fixed(v.b, v.e, 1u, 5u, 0, 0x270e, &value);
+            rc = cw_parse_fixed(v.b, v.e, 1u, 0, 0x270f, &value);
             if (rc != CW_OK) {
                 return rc;
             }
@@ -925,7 +925,7 @@ static inline int nmea0183_rmc_parse_body(const char *s, const char *end, nmea01
     if (m->has_true_course) {
         {
             int32_t value;
-            rc = cw_parse_fixed(v.b, v.e, 1u, 5u, 0, 0x270e, &value);
+            rc = cw_parse_fixed(v.b, v.e, 1u, 0, 0x270f, &value);
             if (rc != CW_OK) {
                 return rc;
             }
@@ -936,7 +936,7 @@ static inline int nmea0183_rmc_parse_body(const char *s, const char *end, nmea01
     v = cw_value(s, ends, 8u, false);
     {
         int32_t value;
-        rc = cw_parse_fixed(v.b, v.e, 0u, 6u, 0x2774, 0x4c003UL, &value);
+        rc = cw_parse_fixed(v.b, v.e, 0u, 0x2774, 0x4c003UL, &value);
         if (rc != CW_OK) {
             return rc;
         }
@@ -951,7 +951,7 @@ static inline int nmea0183_rmc_parse_body(const char *s, const char *end, nmea01
     if (m->has_mag_variation) {
         {
             int32_t value;
-            rc = cw_parse_fixed(v.b, v.e, 1u, 5u, 0, 0x270e, &value);
+            rc = cw_parse_fixed(v.b, v.e, 1u, 0, 0x270f, &value);
             if (rc != CW_OK) {
                 return rc;
             }
@@ -1109,7 +1109,7 @@ static inline int nmea0183_vtg_encode(const nmea0183_vtg_t *m, char *buf, size_t
 {
     cw_writer_t w;
     if (m->has_true_track) {
-        if (m->true_track < 0 || m->true_track > 0x270e) {
+        if (m->true_track < 0 || m->true_track > 0x270f) {
             return CW_ERR_RANGE;
         }
     }
@@ -1117,7 +1117,7 @@ static inline int nmea0183_vtg_encode(const nmea0183_vtg_t *m, char *buf, size_t
         return CW_ERR_ENUM;
     }
     if (m->has_mag_track) {
-        if (m->mag_track < 0 || m->mag_track > 0x270e) {
+        if (m->mag_track < 0 || m->mag_track > 0x270f) {
             return CW_ERR_RANGE;
         }
     }
@@ -1125,7 +1125,7 @@ static inline int nmea0183_vtg_encode(const nmea0183_vtg_t *m, char *buf, size_t
         return CW_ERR_ENUM;
     }
     if (m->has_spd_over_grnd_kts) {
-        if (m->spd_over_grnd_kts < 0 || m->spd_over_grnd_kts > 0x270e) {
+        if (m->spd_over_grnd_kts < 0 || m->spd_over_grnd_kts > 0x270f) {
             return CW_ERR_RANGE;
         }
     }
@@ -1133,7 +1133,7 @@ static inline int nmea0183_vtg_encode(const nmea0183_vtg_t *m, char *buf, size_t
         return CW_ERR_ENUM;
     }
     if (m->has_spd_over_grnd_kmph) {
-        if (m->spd_over_grnd_kmph < 0 || m->spd_over_grnd_kmph > 0x270e) {
+        if (m->spd_over_grnd_kmph < 0 || m->spd_over_grnd_kmph > 0x270f) {
             return CW_ERR_RANGE;
         }
     }
@@ -1188,7 +1188,7 @@ static inline int nmea0183_vtg_parse_body(const char *s, const char *end, nmea01
     if (m->has_true_track) {
         {
             int32_t value;
-            rc = cw_parse_fixed(v.b, v.e, 1u, 5u, 0, 0x270e, &value);
+            rc = cw_parse_fixed(v.b, v.e, 1u, 0, 0x270f, &value);
             if (rc != CW_OK) {
                 return rc;
             }
@@ -1213,7 +1213,7 @@ static inline int nmea0183_vtg_parse_body(const char *s, const char *end, nmea01
     if (m->has_mag_track) {
         {
             int32_t value;
-            rc = cw_parse_fixed(v.b, v.e, 1u, 5u, 0, 0x270e, &value);
+            rc = cw_parse_fixed(v.b, v.e, 1u, 0, 0x270f, &value);
             if (rc != CW_OK) {
                 return rc;
             }
@@ -1238,7 +1238,7 @@ static inline int nmea0183_vtg_parse_body(const char *s, const char *end, nmea01
     if (m->has_spd_over_grnd_kts) {
         {
             int32_t value;
-            rc = cw_parse_fixed(v.b, v.e, 1u, 5u, 0, 0x270e, &value);
+            rc = cw_parse_fixed(v.b, v.e, 1u, 0, 0x270f, &value);
             if (rc != CW_OK) {
                 return rc;
             }
@@ -1263,7 +1263,7 @@ static inline int nmea0183_vtg_parse_body(const char *s, const char *end, nmea01
     if (m->has_spd_over_grnd_kmph) {
         {
             int32_t value;
-            rc = cw_parse_fixed(v.b, v.e, 1u, 5u, 0, 0x270e, &value);
+            rc = cw_parse_fixed(v.b, v.e, 1u, 0, 0x270f, &value);
             if (rc != CW_OK) {
                 return rc;
             }

@@ -388,7 +388,7 @@ _FLOAT_RE = r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?"
 # a number short enough to need no checks: at most 15 digits (and a point) and an exponent of at
 # most two digits: 1e-113 or more if not 0, below 1e115, every digit kept by a double
 _FINITE_RE = r"[+-]?(?=[0-9.]{1,15}(?![0-9.]))(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]{1,2})?"
-_FIXED_RE = r"-?[0-9]+(?:\.[0-9]+)?"  # a fixed spelling: checked by _parse_fixed in any case
+_FIXED_RE = r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)"  # a fixed-point number: read by _parse_fixed in any case
 _CHAR_RE = '[!-\\+\\--\\~]'  # printable, no space, separator or terminator
 _TEXT_RE = _CHAR_RE + "*"
 _REST_RE = '[!-\\~]' + "*"  # a last field running to the end may hold separators
@@ -413,17 +413,23 @@ def _fixed(raw: int, decimals: int, width: int) -> str:
     return sign + text.rjust(width - len(sign), "0")
 
 
-_FIXED = re.compile(r"-?[0-9]+(?:\.[0-9]+)?\Z")
+_FIXED = re.compile(r"([+-]?)([0-9]*)(?:\.([0-9]*))?\Z")
 
 
-def _parse_fixed(token: str, decimals: int, width: int, message: str, field: str, offset: int) -> int:
-    """The raw value of a number spelled exactly as _fixed writes it."""
-    if _FIXED.match(token) and token.count(".") == (1 if decimals else 0):
-        raw = int(token.replace(".", ""))
-        if _fixed(raw, decimals, width) == token:
-            return raw
-    shape = f"a number with {decimals} decimals" if decimals else "a whole number"
-    raise _dec(message, field, token, 'syntax', shape + (f", zero-padded to {width} characters" if width else ""), offset)
+def _parse_fixed(token: str, decimals: int, message: str, field: str, offset: int) -> int:
+    """The raw value of a number in any spelling a receiver writes (padded, with any
+    number of decimals, signed or not, no exponent) at `decimals` digits after the
+    point: further digits round it to the nearest step, halves away from zero."""
+    match = _FIXED.match(token)
+    if match is None or not (match[2] or match[3]):
+        raise _dec(message, field, token, 'syntax', 'a decimal number (no exponent)', offset)
+    whole, fraction = match[2].lstrip("0"), match[3] or ""
+    if len(whole) > 12:  # past any 32-bit raw value: left to the range check
+        return -(10 ** 21) if match[1] == "-" else 10 ** 21
+    raw = int(whole + fraction[:decimals].ljust(decimals, "0") or "0")
+    if fraction[decimals:decimals + 1] >= "5":
+        raw += 1
+    return -raw if match[1] == "-" else raw
 
 
 def _token_offsets(tokens: list[str], base: int) -> list[int]:
@@ -588,12 +594,12 @@ def _decode_gga(body: str, base: int) -> Gga:
     if not 14 <= len(t) <= 14:
         raise _dec('gga', None, len(t), 'count', '14 fields', base)
     ok = _SYNTAX_gga.fullmatch(body) is not None  # well-formed: token syntax checks are skipped
-    r_timestamp = _parse_fixed(t[0], 0, 6, 'gga', 'timestamp', _token_offsets(t, base)[0])
+    r_timestamp = _parse_fixed(t[0], 0, 'gga', 'timestamp', _token_offsets(t, base)[0])
     if not 0 <= r_timestamp <= 235960:
         raise _dec('gga', 'timestamp', r_timestamp, 'range', '0..235960', _token_offsets(t, base)[0], 'NMEA-D2')
     if len(t) > 1 and t[1]:
-        r_lat = _parse_fixed(t[1], 3, 8, 'gga', 'lat', _token_offsets(t, base)[1])
-        if not 0 <= r_lat * 0.001 <= 9000:
+        r_lat = _parse_fixed(t[1], 3, 'gga', 'lat', _token_offsets(t, base)[1])
+        if not 0 <= r_lat / 1000 <= 9000:
             raise _dec('gga', 'lat', r_lat, 'range', '0..9000', _token_offsets(t, base)[1], 'NMEA-D2')
     else:
         r_lat = None
@@ -608,8 +614,8 @@ def _decode_gga(body: str, base: int) -> Gga:
         r_lat_dir = None
         e_lat_dir = None
     if len(t) > 3 and t[3]:
-        r_lon = _parse_fixed(t[3], 3, 9, 'gga', 'lon', _token_offsets(t, base)[3])
-        if not 0 <= r_lon * 0.001 <= 18000:
+        r_lon = _parse_fixed(t[3], 3, 'gga', 'lon', _token_offsets(t, base)[3])
+        if not 0 <= r_lon / 1000 <= 18000:
             raise _dec('gga', 'lon', r_lon, 'range', '0..18000', _token_offsets(t, base)[3], 'NMEA-D2')
     else:
         r_lon = None
@@ -626,18 +632,18 @@ def _decode_gga(body: str, base: int) -> Gga:
     r_gps_qual = int(t[5]) if ok else _parse_int(t[5], 'gga', 'gps_qual', _token_offsets(t, base)[5])
     if not 0 <= r_gps_qual <= 8:
         raise _dec('gga', 'gps_qual', r_gps_qual, 'range', '0..8', _token_offsets(t, base)[5], None)
-    r_num_sats = _parse_fixed(t[6], 0, 2, 'gga', 'num_sats', _token_offsets(t, base)[6])
+    r_num_sats = _parse_fixed(t[6], 0, 'gga', 'num_sats', _token_offsets(t, base)[6])
     if not 0 <= r_num_sats <= 255:
         raise _dec('gga', 'num_sats', r_num_sats, 'range', '0..255', _token_offsets(t, base)[6], None)
     if len(t) > 7 and t[7]:
-        r_horizontal_dil = _parse_fixed(t[7], 1, 0, 'gga', 'horizontal_dil', _token_offsets(t, base)[7])
-        if not 0 <= r_horizontal_dil * 0.1 <= 99999:
+        r_horizontal_dil = _parse_fixed(t[7], 1, 'gga', 'horizontal_dil', _token_offsets(t, base)[7])
+        if not 0 <= r_horizontal_dil / 10 <= 99999:
             raise _dec('gga', 'horizontal_dil', r_horizontal_dil, 'range', '0..99999', _token_offsets(t, base)[7], None)
     else:
         r_horizontal_dil = None
     if len(t) > 8 and t[8]:
-        r_altitude = _parse_fixed(t[8], 1, 0, 'gga', 'altitude', _token_offsets(t, base)[8])
-        if not -9999.9 <= r_altitude * 0.1 <= 99999.9:
+        r_altitude = _parse_fixed(t[8], 1, 'gga', 'altitude', _token_offsets(t, base)[8])
+        if not -9999.9 <= r_altitude / 10 <= 99999.9:
             raise _dec('gga', 'altitude', r_altitude, 'range', '-9999.9..99999.9', _token_offsets(t, base)[8], None)
     else:
         r_altitude = None
@@ -652,8 +658,8 @@ def _decode_gga(body: str, base: int) -> Gga:
         r_altitude_units = None
         e_altitude_units = None
     if len(t) > 10 and t[10]:
-        r_geo_sep = _parse_fixed(t[10], 1, 0, 'gga', 'geo_sep', _token_offsets(t, base)[10])
-        if not -9999.9 <= r_geo_sep * 0.1 <= 9999.9:
+        r_geo_sep = _parse_fixed(t[10], 1, 'gga', 'geo_sep', _token_offsets(t, base)[10])
+        if not -9999.9 <= r_geo_sep / 10 <= 9999.9:
             raise _dec('gga', 'geo_sep', r_geo_sep, 'range', '-9999.9..9999.9', _token_offsets(t, base)[10], None)
     else:
         r_geo_sep = None
@@ -668,13 +674,13 @@ def _decode_gga(body: str, base: int) -> Gga:
         r_geo_sep_units = None
         e_geo_sep_units = None
     if len(t) > 12 and t[12]:
-        r_age_gps_data = _parse_fixed(t[12], 1, 0, 'gga', 'age_gps_data', _token_offsets(t, base)[12])
-        if not 0 <= r_age_gps_data * 0.1 <= 99999:
+        r_age_gps_data = _parse_fixed(t[12], 1, 'gga', 'age_gps_data', _token_offsets(t, base)[12])
+        if not 0 <= r_age_gps_data / 10 <= 99999:
             raise _dec('gga', 'age_gps_data', r_age_gps_data, 'range', '0..99999', _token_offsets(t, base)[12], None)
     else:
         r_age_gps_data = None
     if len(t) > 13 and t[13]:
-        r_ref_station_id = _parse_fixed(t[13], 0, 4, 'gga', 'ref_station_id', _token_offsets(t, base)[13])
+        r_ref_station_id = _parse_fixed(t[13], 0, 'gga', 'ref_station_id', _token_offsets(t, base)[13])
         if not 0 <= r_ref_station_id <= 1023:
             raise _dec('gga', 'ref_station_id', r_ref_station_id, 'range', '0..1023', _token_offsets(t, base)[13], None)
     else:
@@ -797,7 +803,7 @@ def _decode_rmc(body: str, base: int) -> Rmc:
     if not 11 <= len(t) <= 11:
         raise _dec('rmc', None, len(t), 'count', '11 fields', base)
     ok = _SYNTAX_rmc.fullmatch(body) is not None  # well-formed: token syntax checks are skipped
-    r_timestamp = _parse_fixed(t[0], 0, 6, 'rmc', 'timestamp', _token_offsets(t, base)[0])
+    r_timestamp = _parse_fixed(t[0], 0, 'rmc', 'timestamp', _token_offsets(t, base)[0])
     if not 0 <= r_timestamp <= 235960:
         raise _dec('rmc', 'timestamp', r_timestamp, 'range', '0..235960', _token_offsets(t, base)[0], 'NMEA-D2')
     r_status = t[1]
@@ -807,8 +813,8 @@ def _decode_rmc(body: str, base: int) -> Rmc:
     if e_status is None:
         raise _dec('rmc', 'status', r_status, 'enum', 'Validity', _token_offsets(t, base)[1], None)
     if len(t) > 2 and t[2]:
-        r_lat = _parse_fixed(t[2], 3, 8, 'rmc', 'lat', _token_offsets(t, base)[2])
-        if not 0 <= r_lat * 0.001 <= 9000:
+        r_lat = _parse_fixed(t[2], 3, 'rmc', 'lat', _token_offsets(t, base)[2])
+        if not 0 <= r_lat / 1000 <= 9000:
             raise _dec('rmc', 'lat', r_lat, 'range', '0..9000', _token_offsets(t, base)[2], 'NMEA-D2')
     else:
         r_lat = None
@@ -823,8 +829,8 @@ def _decode_rmc(body: str, base: int) -> Rmc:
         r_lat_dir = None
         e_lat_dir = None
     if len(t) > 4 and t[4]:
-        r_lon = _parse_fixed(t[4], 3, 9, 'rmc', 'lon', _token_offsets(t, base)[4])
-        if not 0 <= r_lon * 0.001 <= 18000:
+        r_lon = _parse_fixed(t[4], 3, 'rmc', 'lon', _token_offsets(t, base)[4])
+        if not 0 <= r_lon / 1000 <= 18000:
             raise _dec('rmc', 'lon', r_lon, 'range', '0..18000', _token_offsets(t, base)[4], 'NMEA-D2')
     else:
         r_lon = None
@@ -839,23 +845,23 @@ def _decode_rmc(body: str, base: int) -> Rmc:
         r_lon_dir = None
         e_lon_dir = None
     if len(t) > 6 and t[6]:
-        r_spd_over_grnd = _parse_fixed(t[6], 1, 5, 'rmc', 'spd_over_grnd', _token_offsets(t, base)[6])
-        if not 0 <= r_spd_over_grnd * 0.1 <= 999.9:
+        r_spd_over_grnd = _parse_fixed(t[6], 1, 'rmc', 'spd_over_grnd', _token_offsets(t, base)[6])
+        if not 0 <= r_spd_over_grnd / 10 <= 999.9:
             raise _dec('rmc', 'spd_over_grnd', r_spd_over_grnd, 'range', '0..999.9', _token_offsets(t, base)[6], None)
     else:
         r_spd_over_grnd = None
     if len(t) > 7 and t[7]:
-        r_true_course = _parse_fixed(t[7], 1, 5, 'rmc', 'true_course', _token_offsets(t, base)[7])
-        if not 0 <= r_true_course * 0.1 <= 999.9:
+        r_true_course = _parse_fixed(t[7], 1, 'rmc', 'true_course', _token_offsets(t, base)[7])
+        if not 0 <= r_true_course / 10 <= 999.9:
             raise _dec('rmc', 'true_course', r_true_course, 'range', '0..999.9', _token_offsets(t, base)[7], None)
     else:
         r_true_course = None
-    r_datestamp = _parse_fixed(t[8], 0, 6, 'rmc', 'datestamp', _token_offsets(t, base)[8])
+    r_datestamp = _parse_fixed(t[8], 0, 'rmc', 'datestamp', _token_offsets(t, base)[8])
     if not 10100 <= r_datestamp <= 311299:
         raise _dec('rmc', 'datestamp', r_datestamp, 'range', '10100..311299', _token_offsets(t, base)[8], None)
     if len(t) > 9 and t[9]:
-        r_mag_variation = _parse_fixed(t[9], 1, 5, 'rmc', 'mag_variation', _token_offsets(t, base)[9])
-        if not 0 <= r_mag_variation * 0.1 <= 999.9:
+        r_mag_variation = _parse_fixed(t[9], 1, 'rmc', 'mag_variation', _token_offsets(t, base)[9])
+        if not 0 <= r_mag_variation / 10 <= 999.9:
             raise _dec('rmc', 'mag_variation', r_mag_variation, 'range', '0..999.9', _token_offsets(t, base)[9], None)
     else:
         r_mag_variation = None
@@ -950,8 +956,8 @@ def _decode_vtg(body: str, base: int) -> Vtg:
         raise _dec('vtg', None, len(t), 'count', '8 fields', base)
     ok = _SYNTAX_vtg.fullmatch(body) is not None  # well-formed: token syntax checks are skipped
     if len(t) > 0 and t[0]:
-        r_true_track = _parse_fixed(t[0], 1, 5, 'vtg', 'true_track', _token_offsets(t, base)[0])
-        if not 0 <= r_true_track * 0.1 <= 999.9:
+        r_true_track = _parse_fixed(t[0], 1, 'vtg', 'true_track', _token_offsets(t, base)[0])
+        if not 0 <= r_true_track / 10 <= 999.9:
             raise _dec('vtg', 'true_track', r_true_track, 'range', '0..999.9', _token_offsets(t, base)[0], None)
     else:
         r_true_track = None
@@ -962,8 +968,8 @@ def _decode_vtg(body: str, base: int) -> Vtg:
     if e_true_track_sym is None:
         raise _dec('vtg', 'true_track_sym', r_true_track_sym, 'enum', 'TrackTrue', _token_offsets(t, base)[1], None)
     if len(t) > 2 and t[2]:
-        r_mag_track = _parse_fixed(t[2], 1, 5, 'vtg', 'mag_track', _token_offsets(t, base)[2])
-        if not 0 <= r_mag_track * 0.1 <= 999.9:
+        r_mag_track = _parse_fixed(t[2], 1, 'vtg', 'mag_track', _token_offsets(t, base)[2])
+        if not 0 <= r_mag_track / 10 <= 999.9:
             raise _dec('vtg', 'mag_track', r_mag_track, 'range', '0..999.9', _token_offsets(t, base)[2], None)
     else:
         r_mag_track = None
@@ -974,8 +980,8 @@ def _decode_vtg(body: str, base: int) -> Vtg:
     if e_mag_track_sym is None:
         raise _dec('vtg', 'mag_track_sym', r_mag_track_sym, 'enum', 'TrackMagnetic', _token_offsets(t, base)[3], None)
     if len(t) > 4 and t[4]:
-        r_spd_over_grnd_kts = _parse_fixed(t[4], 1, 5, 'vtg', 'spd_over_grnd_kts', _token_offsets(t, base)[4])
-        if not 0 <= r_spd_over_grnd_kts * 0.1 <= 999.9:
+        r_spd_over_grnd_kts = _parse_fixed(t[4], 1, 'vtg', 'spd_over_grnd_kts', _token_offsets(t, base)[4])
+        if not 0 <= r_spd_over_grnd_kts / 10 <= 999.9:
             raise _dec('vtg', 'spd_over_grnd_kts', r_spd_over_grnd_kts, 'range', '0..999.9', _token_offsets(t, base)[4], None)
     else:
         r_spd_over_grnd_kts = None
@@ -986,8 +992,8 @@ def _decode_vtg(body: str, base: int) -> Vtg:
     if e_spd_over_grnd_kts_sym is None:
         raise _dec('vtg', 'spd_over_grnd_kts_sym', r_spd_over_grnd_kts_sym, 'enum', 'SpeedKnots', _token_offsets(t, base)[5], None)
     if len(t) > 6 and t[6]:
-        r_spd_over_grnd_kmph = _parse_fixed(t[6], 1, 5, 'vtg', 'spd_over_grnd_kmph', _token_offsets(t, base)[6])
-        if not 0 <= r_spd_over_grnd_kmph * 0.1 <= 999.9:
+        r_spd_over_grnd_kmph = _parse_fixed(t[6], 1, 'vtg', 'spd_over_grnd_kmph', _token_offsets(t, base)[6])
+        if not 0 <= r_spd_over_grnd_kmph / 10 <= 999.9:
             raise _dec('vtg', 'spd_over_grnd_kmph', r_spd_over_grnd_kmph, 'range', '0..999.9', _token_offsets(t, base)[6], None)
     else:
         r_spd_over_grnd_kmph = None
