@@ -220,8 +220,8 @@ class Field:
 
     @property
     def fixed_spelling(self) -> bool:
-        """A text integer written with fixed decimals or padding (`decimals: 0` included):
-        readers accept only the writer's spelling."""
+        """A text integer written with fixed decimals or padding (`decimals: 0` included);
+        readers take any spelling of it, rounded to its decimals."""
         return self.decimals is not None or self.width is not None
 
     @property

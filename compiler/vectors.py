@@ -33,6 +33,7 @@ from typing import Any, Callable, TextIO
 from . import binary32, binary64, jsontext
 
 from .model import Field, Message, Protocol
+from .respell import respelled
 from .targets.wire import ENCODINGS, encoding_facts
 from .vector_sequences import sequence_vectors
 
@@ -507,6 +508,10 @@ class Generator:
             out.append(("no terminator", data[:-1]))
             out.append(("field dropped", data.replace(self.p.framing.separator, "", 1)))
             out.append(("field added", data[:-1] + self.p.framing.separator + "1" + data[-1]))
+            # a receiver's spelling, drawn apart so that the other draws stay as they were
+            other = respelled(self.p.framing, m, data, random.Random(f"respell {self.p.name} {data}"))
+            if other is not None:
+                out.append(("receiver spelling", other))
             return out
         b = bytearray(data)
         bit = rng.randrange(len(b) * 8)

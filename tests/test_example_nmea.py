@@ -6,6 +6,7 @@ sanitizers and under simavr on an ATmega32 (16-bit int, 32-bit double)."""
 from __future__ import annotations
 
 import json
+from decimal import ROUND_HALF_UP, Decimal
 import os
 import re
 import shutil
@@ -28,6 +29,24 @@ SENTENCES = [  # gpsd's "NMEA 0183 revealed"
     "$GPRMC,123519,A,4807.038,N,01131.000,E,022.4,084.4,230394,003.1,W*6A",
     "$GPVTG,054.7,T,034.4,M,005.5,N,010.2,K*48",
 ]
+
+
+# Receivers' own spellings: more decimals, `8` for `08`, `.00` on the time. Each is read
+# at the schema's decimals (NMEA-D2): pynmea2's number rounded to the field's step.
+RECEIVER_SENTENCES = [
+    # SiRF's GGA example (NMEA Reference Manual), as quoted in "NMEA 0183 standard" pages
+    "$GPGGA,092750.000,5321.6802,N,00630.3372,W,1,8,1.03,61.7,M,55.2,M,,*76",
+    # a Hemisphere VS110 on R/V Sette, NOAA PSL raw GPS log WHOTS 2022 (gps02220604_raw.txt)
+    "$GPGGA,040001.00,2246.08014690,N,15755.97486679,W,2,07,1.1,15.8,M,0.4,M,7.0,0133*50",
+    # Deltares Markermeer survey log 2007 (loc11GPS.txt)
+    "$GPGGA,132421.00,5231.91448,N,00516.97727,E,1,04,4.6,6.6,M,46.6,M,,*62",
+]
+
+
+def at_step(text: str, decimals: int) -> float:
+    """pynmea2's number text rounded to `decimals`, halves away from zero, by decimal arithmetic."""
+    value = Decimal(text).quantize(Decimal(1).scaleb(-decimals), rounding=ROUND_HALF_UP)
+    return float(value)
 
 
 @pytest.fixture(scope="module")
@@ -66,6 +85,40 @@ def test_values_agree_with_pynmea2(built, sentence):
             assert value == as_number(text), (name, value, text)  # 4807.038 == float("4807.038")
         else:
             assert wire(value) == text, (name, value, text)
+
+
+@pytest.mark.parametrize("sentence", RECEIVER_SENTENCES)
+def test_receiver_spellings_read_as_pynmea2_reads_them(built, sentence):
+    mod = load(built / "python" / "nmea0183.py")
+    ours = mod.decode(sentence + "\r\n")
+    theirs = pynmea2.parse(sentence, check=True)
+    message = next(m for m in compile_schema(SCHEMA).messages if m.name == type(ours).NAME)
+    raws = []
+    for leaf, text in zip(message.wire.leaves, theirs.data):
+        f, value = leaf.field, getattr(ours, leaf.field.name)
+        if f.kind in ("int", "uint") and f.enum is None:
+            want = at_step(text, f.decimals or 0) if text else None
+            assert value == want, (f.name, value, text)
+            raws.append(0 if value is None else round(value * 10 ** (f.decimals or 0)))
+        else:
+            assert wire(value) == text, (f.name, value, text)
+    # the C decoder reads the same raw values
+    names = [leaf.field.name for leaf in message.wire.leaves if leaf.field.kind in ("int", "uint")
+             and leaf.field.enum is None]
+    driver = r"""
+#include <stdio.h>
+#include <string.h>
+#include "nmea0183.h"
+int main(void) {
+    static const char line[] = "LINE\r\n";
+    nmea0183_gga_t m;
+    memset(&m, 0, sizeof m);
+    printf("%d\n", nmea0183_gga_decode(line, sizeof line - 1, &m));
+PRINTS
+    return 0;
+}
+""".replace("LINE", sentence).replace("PRINTS", "\n".join(f'    printf("%ld\\n", (long)m.{n});' for n in names))
+    assert run_c(built / "c", driver) == ["0"] + [str(r) for r in raws]
 
 
 @pytest.mark.parametrize("sentence", SENTENCES)

@@ -1,7 +1,10 @@
 """Integers with fixed decimals and zero padding in text lines (NMEA 0183's
 `4807.038`, `01131.000`, `092750.000`, `08`): the raw integer is written with
-`decimals` digits after the point, zero-padded to `width`; readers accept exactly
-that spelling and give the value the text shows. Lines are written by hand."""
+`decimals` digits after the point, zero-padded to `width`; readers take any
+spelling a receiver writes (NMEA 0183: "optional leading and trailing zeros;
+decimal point and associated decimal-fraction are optional", `73.10 = 73.1 =
+073.1 = 73`), rounding decimals beyond the field's to its step, halves away
+from zero. Lines and raw values are worked by hand."""
 from __future__ import annotations
 
 import pytest
@@ -24,8 +27,18 @@ messages:
 """
 
 GOOD = "P,4807.038,092750.000,08,-01.5;"
-BAD = ["P,4807.03,092750.000,08;", "P,04807.038,092750.000,08;", "P,4807.038,92750.000,08;",
-       "P,4807.038,092750.000,8;", "P,4807.038,092750.000,08,-00.0;", "P,+4807.038,092750.000,08;"]
+# receiver spellings -> raw (lat, time, sats, neg or None), worked by hand
+RESPELLED = {
+    "P,4807.03,92750,8,-1.5;": (4807030, 92750000, 8, -15),
+    "P,+4807.0384,092750.0004,008,-1.55;": (4807038, 92750000, 8, -16),  # 4 drops, 5 rounds away from 0
+    "P,4807.0385,.5,8.,-00.0;": (4807039, 500, 8, 0),
+    "P,00000000000000000004807.038,0,08.4,+1;": (4807038, 0, 8, 10),
+    "P,9000.0004,1.9999,8.5,;": (9000000, 2000, 9, None),
+}
+BAD = ["P,4807.0.38,092750.000,08;", "P,48e2,092750.000,08;", "P,.,092750.000,08;", "P,-,092750.000,08;",
+       "P,4807.038 ,092750.000,08;", "P,0x10,092750.000,08;", "P,++1,092750.000,08;", "P,4807.038,+-1,08;"]
+OUT_OF_RANGE = ["P,9000.001,092750.000,08;", "P,9000.0005,092750.000,08;",
+                "P,4807.038,99999999999999999999,08;", "P,4807.038,2147483.648,08;", "P,1,0,256;"]
 
 
 @pytest.fixture(scope="module")
@@ -35,23 +48,33 @@ def built(tmp_path_factory):
     return where
 
 
-def test_python_writes_and_reads_the_exact_spelling(built):
+def test_python_writes_its_spelling_and_reads_any(built):
     mod = load(built / "fixedsp.py")
     m = mod.P(lat=4807.038, time=92750.0, sats=8, neg=-1.5)
     assert mod.encode(m) == GOOD
     assert mod.decode(GOOD) == m  # 4807.038 exactly: raw 4807038 / 1000
     assert mod.encode(mod.P(lat=0.005, time=0.0, sats=12)) == "P,0000.005,000000.000,12;"
+    for line, (lat, time, sats, neg) in RESPELLED.items():
+        got = mod.decode(line)
+        assert (got.lat, got.time, got.sats, got.neg) == (
+            lat / 1000, time / 1000, sats, None if neg is None else neg / 10), line
     for line in BAD:
         with pytest.raises(mod.DecodeError) as bad:
             mod.decode(line)
         assert bad.value.rule == "syntax", line
-    with pytest.raises(mod.DecodeError) as high:
-        mod.decode("P,9000.001,092750.000,08;")
-    assert high.value.rule == "range"
+        assert bad.value.field in ("lat", "time"), line
+    with pytest.raises(mod.DecodeError) as where:
+        mod.decode("P,4807.038,+-1,08;")
+    assert (where.value.field, where.value.offset) == ("time", 11)
+    for line in OUT_OF_RANGE:
+        with pytest.raises(mod.DecodeError) as high:
+            mod.decode(line)
+        assert high.value.rule == "range", line
 
 
 def test_c_agrees(built):
-    calls = "\n".join(f'    dec("{line}");' for line in [GOOD, *BAD, "P,9000.001,092750.000,08;"])
+    lines = [GOOD, *RESPELLED, *BAD, *OUT_OF_RANGE]
+    calls = "\n".join(f'    dec("{line}");' for line in lines)
     driver = r"""
 #include <stdio.h>
 #include <string.h>
@@ -61,7 +84,7 @@ static void dec(const char *s) {
     int rc;
     memset(&m, 0, sizeof m);
     rc = fixedsp_p_decode(s, strlen(s), &m);
-    printf("%d %ld %ld %u %d\n", rc, (long)m.lat, (long)m.time, m.sats, m.neg);
+    printf("%d %ld %ld %u %d %d\n", rc, (long)m.lat, (long)m.time, m.sats, m.has_neg, m.neg);
 }
 int main(void) {
     fixedsp_p_t m;
@@ -76,8 +99,11 @@ CALLS
 }
 """.replace("CALLS", calls)
     out = run_c(built, driver)
-    assert out[:3] == [f"{len(GOOD)} {GOOD}", "25 P,0000.005,000000.000,12;", "0 4807038 92750000 8 -15"]
-    assert [line.split()[0] for line in out[3:]] == ["-13"] * len(BAD) + ["-4"]  # CW_ERR_SYNTAX, CW_ERR_RANGE
+    assert out[:3] == [f"{len(GOOD)} {GOOD}", "25 P,0000.005,000000.000,12;", "0 4807038 92750000 8 1 -15"]
+    respelled = [f"0 {lat} {time} {sats} {int(neg is not None)} {neg or 0}" for lat, time, sats, neg in RESPELLED.values()]
+    assert out[3:3 + len(RESPELLED)] == respelled
+    codes = [line.split()[0] for line in out[3 + len(RESPELLED):]]
+    assert codes == ["-13"] * len(BAD) + ["-4"] * len(OUT_OF_RANGE)  # CW_ERR_SYNTAX, CW_ERR_RANGE
 
 
 DECIMALS_ZERO = """codeword: 1
@@ -94,22 +120,25 @@ messages:
 
 
 def test_decimals_zero_is_a_fixed_spelling_too(tmp_path):
-    """`decimals: 0` writes the integer as it is and reads only that: `07` is not `7`
-    (Python took `decimals: 0` for no option and read `07`; C refused it)."""
+    """`decimals: 0` writes the integer as it is and reads any spelling of it, as
+    Python and C alike: `07` and `7.0` are 7, `7.5` rounds to 8."""
     render(tmp_path, "zerodec", DECIMALS_ZERO)
     mod = load(tmp_path / "zerodec.py")
     assert mod.encode(mod.Q(count=7)) == "Q,7;"
     assert mod.decode("Q,7;") == mod.Q(count=7)
-    with pytest.raises(mod.DecodeError) as err:
-        mod.decode("Q,07;")
-    assert err.value.rule == "syntax"
+    assert mod.decode("Q,07;") == mod.decode("Q,7.0;") == mod.Q(count=7)
+    assert mod.decode("Q,7.5;") == mod.Q(count=8)
+    assert mod.decode("Q,-7.5;") == mod.Q(count=-8)
     driver = r"""
 #include <stdio.h>
 #include "zerodec.h"
 int main(void) {
     zerodec_q_t m;
-    printf("%d %d\n", zerodec_q_decode("Q,7;", 4u, &m), zerodec_q_decode("Q,07;", 5u, &m) == CW_ERR_SYNTAX);
+    int a = zerodec_q_decode("Q,07;", 5u, &m);
+    int b = m.count;
+    int c = zerodec_q_decode("Q,-7.5;", 7u, &m);
+    printf("%d %d %d %d\n", a, b, c, m.count);
     return 0;
 }
 """
-    assert run_c(tmp_path, driver) == ["0 1"]
+    assert run_c(tmp_path, driver) == ["0 7 0 -8"]

@@ -408,7 +408,7 @@ class FieldsMixin(ResolverBase):
 
     def check_fixed_spelling(self, f: Field, path: tuple) -> None:
         """`decimals` and `width` spell a text integer's raw value: 4807038 with decimals 3 is
-        `4807.038`, 8 with width 2 is `08`. Read and written exactly, in 32 bits."""
+        `4807.038`, 8 with width 2 is `08`. Written so, read in any spelling, in 32 bits."""
         key = "decimals" if f.decimals is not None else "width"
         if self.framing_kind != "text" or f.kind not in ("uint", "int") or f.enum or f.flags or f.one_hot:
             self.error(path + (key,), f"field {f.name!r}: {key} applies to integer fields of text framing",

@@ -672,6 +672,8 @@ class Generator:
                 field["decimals"] = rng.randint(0, 4)
             if rng.random() < 0.7 or "decimals" not in field:
                 field["width"] = rng.randint(1, 12)
+            if "receiver_spelling" in self.on:
+                self.decimal_range(field)
             return field
         types = ["u8", "u16", "i8", "i16", "i32"] + (["u32", "i64", "u64"] if "wide" in self.on else [])
         field: dict = {"name": name, "type": rng.choice(types)}
@@ -681,6 +683,19 @@ class Generator:
             lo, hi = (-(1 << (bits - 1)), (1 << (bits - 1)) - 1) if signed else (0, (1 << bits) - 1)
             field["range"] = sorted(rng.randint(lo, hi) for _ in range(2))
         return field
+
+
+    def decimal_range(self, field: dict) -> None:
+        """A fixed-point field's range with ends written in its decimals (NMEA's 999.9), which
+        readers compare exactly: the largest value is read back whatever its spelling."""
+        rng = random.Random(f"receiver_spelling {self.seed} {field['name']}")
+        if rng.random() < 0.5:
+            return
+        decimals = field.get("decimals", 0)
+        bits = int(field["type"][1:])
+        lo = -(1 << (bits - 1)) if field["type"][0] == "i" else 0
+        ends = sorted(rng.randint(lo, lo + (1 << bits) - 1) for _ in range(2))
+        field["range"] = [end / 10 ** decimals if decimals else end for end in ends]
 
 
 def generate(seed: int, features: frozenset[str] = DEFAULT) -> str:

@@ -142,7 +142,9 @@ class CView:
     def raw_bounds(self, f: Field) -> tuple[int, int]:
         """Bounds of the stored integer that the schema's range allows."""
         lo, hi = f.range
-        scale = Fraction(f.scale) if f.scale is not None else Fraction(1)
+        if f.decimals:  # the range as the decimals it is written in: 999.9 at 1 decimal is 9999
+            lo, hi = Fraction(repr(lo)), Fraction(repr(hi))
+        scale = Fraction(1, 10 ** f.decimals) if f.decimals else Fraction(f.scale) if f.scale is not None else Fraction(1)
         off = Fraction(f.offset or 0) if f.scale is not None else Fraction(0)
         return math.ceil((Fraction(lo) - off) / scale), math.floor((Fraction(hi) - off) / scale)
 
@@ -1359,10 +1361,10 @@ class CView:
                 fixed = f.fixed_spelling
                 wide = None if fixed else self.text_int64(f)
                 vtype = {"i64": "int64_t", "u64": "uint64_t", None: "int32_t"}[wide]
-                if fixed:  # read exactly as written (the resolver keeps it within 32 bits)
+                if fixed:  # any spelling, rounded to the field's decimals (the resolver keeps it within 32 bits)
                     c("int32_t value;")
                     lo, hi = self.raw_bounds(f) if f.range is not None else (-(1 << 31), (1 << 31) - 1)
-                    c(f"rc = cw_parse_fixed(v.b, v.e, {f.decimals or 0}u, {f.width or 0}u, "
+                    c(f"rc = cw_parse_fixed(v.b, v.e, {f.decimals or 0}u, "
                       f"{clit(lo) if lo > -(1 << 31) else 'INT32_MIN'}, {clit(hi) if hi < (1 << 31) - 1 else 'INT32_MAX'}, &value);")
                 elif wide:  # parsed straight into the field's own range
                     c(f"{vtype} value;")

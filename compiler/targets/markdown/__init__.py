@@ -210,6 +210,10 @@ def framing_view(p: Protocol, linker: DecisionLinker) -> dict:
         if fr.float_format == "shortest":
             lines.append("Decimal numbers are written in the shortest form that reads back to the same value "
                          "(1.0 is written `1`).")
+        if any(x.field.fixed_spelling for m in p.messages for x in m.wire.leaves):
+            lines.append("A number with `decimals` or `width` is written with exactly those decimals and at least "
+                         "that width; readers take any spelling of it (`8` or `08`, `2.0` or `2`, more decimals "
+                         "or a sign), and round further decimals to the field's step, halves away from zero.")
     lines.extend(claim["text"] for claim in error_claims(p))
     view["lines"] = [linker.link(x) for x in lines]
     return view

@@ -383,8 +383,8 @@ class PythonView:
             if f.offset:
                 expr = f"{expr} + {lit(f.offset)}"
             var_checked = expr
-            if f.decimals:  # the value the text shows, correctly rounded (checked as any scaled value)
-                expr = f"{var} / {10 ** f.decimals}" + (f" + {lit(f.offset)}" if f.offset else "")
+            if f.decimals:  # the value the text shows, correctly rounded, and checked as such
+                expr = var_checked = f"{var} / {10 ** f.decimals}" + (f" + {lit(f.offset)}" if f.offset else "")
         elif f.kind == "float":
             c(f"if {'not ' + finite_if + ' and ' if finite_if else ''}not _isfinite({var}):")
             c(f"    raise _dec({at}, 'finite', 'a finite number', {off}, {f.rule!r})")
@@ -1404,8 +1404,8 @@ class MessageCode:
             slow_tok = f"t[{n}].strip()" if fr.trim else f"t[{n}]"
             if f.kind == "float":
                 c(f"{leaf.var} = float(t[{n}]) if ok else _parse_float({slow_tok}, {at}, {where})")
-            elif f.fixed_spelling:  # exactly as written: checked on every path
-                c(f"{leaf.var} = _parse_fixed({tok}, {f.decimals or 0}, {f.width or 0}, {at}, {where})")
+            elif f.fixed_spelling:  # any spelling, rounded to the field's decimals: on every path
+                c(f"{leaf.var} = _parse_fixed({tok}, {f.decimals or 0}, {at}, {where})")
             elif f.kind in ("uint", "int") or (f.enum is not None and f.enum.kind == "int"):
                 c(f"{leaf.var} = int(t[{n}]) if ok else _parse_int({slow_tok}, {at}, {where})")
             elif f.kind == "char":

@@ -1061,67 +1061,62 @@ static inline void cw_write_fixed(cw_writer_t *w, int32_t v, unsigned decimals, 
 
 /* ---- text reader helpers ----------------------------------------------- */
 
-/* A raw integer spelled exactly as cw_write_fixed writes it, within [lo, hi]:
- * CW_ERR_SYNTAX for any other spelling (other decimals, padding or sign),
- * CW_ERR_RANGE for a value outside. */
-static inline int cw_parse_fixed(const char *s, const char *end, unsigned decimals, unsigned width,
+/* The raw integer of a number in any spelling a receiver writes:
+ * [+-]?([0-9]+(.[0-9]*)?|.[0-9]+), padded or not, with any number of decimals,
+ * at `decimals` digits after the point. Further digits round it to the
+ * nearest step, halves away from zero ("4807.0385" is 4807039 at 3 decimals).
+ * CW_ERR_SYNTAX for other text, CW_ERR_RANGE for a value outside [lo, hi]. */
+static inline int cw_parse_fixed(const char *s, const char *end, unsigned decimals,
                                  int32_t lo, int32_t hi, int32_t *out)
 {
-    const char *p = s;
-    const char *lead;
-    size_t whole, zeros, core;
-    bool neg = p < end && *p == '-';
+    bool neg = false;
+    bool point = false;
+    bool digit = false;
+    bool over = false;  /* past any 32-bit value: no more digits are multiplied in */
+    bool dropped = false;
+    bool round_up = false;
+    unsigned after = 0;  /* digits taken after the point */
     uint64_t mag = 0u;
-    size_t significant = 0;
-    if (neg) {
-        p++;
+    if (s < end && (*s == '+' || *s == '-')) {
+        neg = *s == '-';
+        s++;
     }
-    lead = p;
-    while (p < end && *p >= '0' && *p <= '9') {
-        p++;
-    }
-    whole = (size_t)(p - lead);
-    if (whole == 0u) {
-        return CW_ERR_SYNTAX;
-    }
-    if (decimals != 0u) {
-        const char *frac;
-        if (p == end || *p != '.') {
-            return CW_ERR_SYNTAX;
-        }
-        frac = ++p;
-        while (p < end && *p >= '0' && *p <= '9') {
-            p++;
-        }
-        if ((size_t)(p - frac) != (size_t)decimals) {
-            return CW_ERR_SYNTAX;
-        }
-    }
-    if (p != end) {
-        return CW_ERR_SYNTAX;
-    }
-    zeros = 0;
-    while (zeros + 1u < whole && lead[zeros] == '0') {
-        zeros++;
-    }
-    core = whole - zeros + (decimals != 0u ? (size_t)decimals + 1u : 0u);
-    if ((size_t)(end - s) != ((size_t)width > core + (neg ? 1u : 0u) ? (size_t)width : core + (neg ? 1u : 0u))) {
-        return CW_ERR_SYNTAX;  /* padded other than to the width */
-    }
-    for (p = lead; p < end; p++) {
-        if (*p == '.') {
+    for (; s < end; s++) {
+        if (*s == '.' && !point) {
+            point = true;
             continue;
         }
-        if (significant != 0u || *p != '0') {
-            significant++;
+        if (!cw_is_digit(*s)) {
+            return CW_ERR_SYNTAX;
         }
-        if (significant > 11u) {
-            return CW_ERR_RANGE;  /* past any 32-bit value */
+        digit = true;
+        if (point && after == decimals) {  /* beyond the field's decimals: only the first one rounds */
+            if (!dropped) {
+                round_up = *s >= '5';
+                dropped = true;
+            }
+            continue;
         }
-        mag = mag * 10u + (uint64_t)(*p - '0');
+        after += point ? 1u : 0u;
+        if (mag > 0xFFFFFFFFu) {
+            over = true;
+        } else {
+            mag = mag * 10u + (uint64_t)(*s - '0');
+        }
     }
-    if (neg && mag == 0u) {
-        return CW_ERR_SYNTAX;  /* "-0" is written "0" */
+    if (!digit) {
+        return CW_ERR_SYNTAX;
+    }
+    for (; after < decimals; after++) {
+        if (mag > 0xFFFFFFFFu) {
+            over = true;
+        } else {
+            mag *= 10u;
+        }
+    }
+    mag += round_up ? 1u : 0u;
+    if (over || mag > 0xFFFFFFFFu) {
+        return CW_ERR_RANGE;
     }
     {
         int64_t value = neg ? (int64_t)0 - (int64_t)mag : (int64_t)mag;
