@@ -40,6 +40,7 @@ class MessagesMixin(ResolverBase):
             ids = None
         ids = () if ids is None else tuple(ids) if isinstance(ids, list) else ids if isinstance(ids, dict) else (ids,)
         own = self.bind_controls(name, own, path)
+        own = self.kept_spellings(name, m, own, framing, path)
         layout, dispatch_key = self.place(name, own, ids, framing, path, m.get("direction"))
         if len(dispatch_key) > 1 and framing.kind == "bytes":  # the key the dispatch fields' values make together
             values = dict((k, v[0]) for k, v in dispatch_key if len(v) == 1 and isinstance(v[0], int))
