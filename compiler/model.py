@@ -217,6 +217,7 @@ class Field:
     # is little (Intel), its most significant when big (Motorola). `bit_offset` is then its first
     # bit in its own order's numbering (see Leaf.order).
     start_bit: Optional[int] = None
+    keep_spelling: bool = False  # text number: the decoded message keeps its text, written back unchanged
 
     @property
     def fixed_spelling(self) -> bool:
@@ -251,7 +252,8 @@ class Field:
         if not self.is_member or self.kind == "group":
             return (count_member(self.name),) if self.is_member and self.varies else ()
         flag = (presence_member(self.name),) if self.optional or self.one_hot else ()
-        return flag + ((count_member(self.name),) if self.varies else ())
+        spelling = (spelling_member(self.name),) if self.keep_spelling else ()
+        return flag + ((count_member(self.name),) if self.varies else ()) + spelling
 
     @property
     def signed(self) -> bool:
@@ -386,6 +388,16 @@ class Leaf:
 def presence_member(name: str) -> str:
     """The C member that says whether an optional (or one-hot) field `name` is present."""
     return "has_" + name
+
+
+def spelling_member(name: str) -> str:
+    """The C member that holds the text a kept-spelling number `name` was read from."""
+    return name + "_spelling"
+
+
+# The longest spelling of a number a decoded message keeps: the longest any writer emits
+# (a 64-bit integer, 20 characters; a text float, 22; a `width` of 20), with room to spare.
+SPELLING_MAX = 24
 
 
 def count_member(name: str) -> str:
@@ -702,6 +714,7 @@ class Framing:
     trim: bool = False
     float_format: str = "shortest"
     keep_empty: bool = False  # text: absent values at the end keep their empty places (NMEA)
+    keep_spelling: bool = False  # text: decoded numbers keep the text they were read from (each message may say otherwise)
     start: str = ""  # text: a marker every line starts with, before the prefix (NMEA's `$`)
     line_checksum: Optional[LineChecksum] = None  # text: `<suffix><hh>` before the terminator
     truncate: Optional[str] = None  # bytes: "trailing_zeros", senders drop the payload's trailing zeros

@@ -70,7 +70,7 @@ def _kind(cls: type) -> tuple[str, tuple[str, ...]]:
     """How plain() treats an instance of cls (the checks in its order, made once
     per class: a failed attribute lookup on an enum class is slow)."""
     if hasattr(cls, "__dataclass_fields__"):
-        return "dataclass", tuple(f.name for f in dataclasses.fields(cls))
+        return "dataclass", tuple(f.name for f in dataclasses.fields(cls) if f.compare)  # values, not kept text
     if issubclass(cls, enum.IntFlag):
         return "flags", ()
     if issubclass(cls, enum.Enum):
@@ -87,7 +87,7 @@ def plain(value: Any) -> Any:
         return value
     if isinstance(value, type):  # a class: only a dataclass one is taken apart
         if dataclasses.is_dataclass(value):
-            return {f.name: plain(getattr(value, f.name)) for f in dataclasses.fields(value)}
+            return {f.name: plain(getattr(value, f.name)) for f in dataclasses.fields(value) if f.compare}
         return value
     if cls is list:  # an array
         return [plain(x) for x in value]
@@ -354,13 +354,15 @@ class Generator:
     def wire(self, data) -> dict:
         return {"text": data} if isinstance(data, str) else {"hex": data.hex()}
 
-    def valid_case(self, name: str, m: Message, obj, data, decode_only_input=None) -> dict:
+    def valid_case(self, name: str, m: Message, obj, data, decode_only_input=None, kept=None) -> dict:
         case = {"name": name, "message": m.name}
         if m.direction:
             case["direction"] = m.direction
         case.update(self.wire(decode_only_input if decode_only_input is not None else data))
         if decode_only_input is not None:
             case["canonical"] = self.wire(data)[("text" if self.text else "hex")]
+        if kept is not None:
+            case["kept"] = kept
         case["values"] = plain(obj)
         if self.p.framing.kind == "bits" and m.size <= 8:  # words of up to 64 bits
             encode_word = getattr(self.mod, "encode_word", None)
@@ -368,6 +370,14 @@ class Generator:
         if self.p.framing.text_form:
             case["text_form"] = self.mod.encode_text(obj)
         return case
+
+    def rewritten(self, obj) -> tuple[Any, Any]:
+        """What encoding a decoded message's values writes, and what the message itself
+        writes when it keeps its numbers' received text and that differs (else None)."""
+        if getattr(obj, "_spelling", None) is None:
+            return self.mod.encode(obj), None
+        canonical, kept = self.mod.encode(dataclasses.replace(obj)), self.mod.encode(obj)
+        return canonical, kept if kept != canonical else None
 
     def decode(self, m: Message, data):
         if self.self_identifying:
@@ -430,9 +440,9 @@ class Generator:
                 invalid.append(case)
                 continue
             obj = self.decode(m, data)
-            canonical = self.mod.encode(obj)
+            canonical, kept = self.rewritten(obj)
             valid.append(self.valid_case(ex.name, m, obj, canonical,
-                                         data if canonical != data else None))
+                                         data if canonical != data else None, kept))
         made: list[tuple[str, Any, Any]] = []
         members = [f for f in m.layout if f.is_member]
         size = max(1, m.size or 1)
@@ -471,9 +481,9 @@ class Generator:
                         case["direction"] = m.direction
                     invalid.append(case)
                     continue
-                canonical = self.mod.encode(obj)
+                canonical, kept = self.rewritten(obj)
                 valid.append(self.valid_case(name, self.messages[type(obj).NAME], obj, canonical,
-                                             bad if canonical != bad else None))
+                                             bad if canonical != bad else None, kept))
         return valid, invalid
 
     def f64_outside(self, m: Message, data) -> list[tuple[str, Any]]:

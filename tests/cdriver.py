@@ -153,6 +153,8 @@ class Driver:
 
     # -- vector tables ----------------------------------------------------------------------
     def wire_bytes(self, case: dict, key: str = "") -> bytes:
+        if key == "kept":  # what encoding the decoded message writes, kept spellings and all
+            return self.wire_bytes(case, "canonical") if "kept" not in case else case["kept"].encode("ascii")
         if key == "canonical":
             value = case.get("canonical")
             if value is None:
@@ -179,6 +181,7 @@ class Driver:
                 "kind": self.v.upper("MSG", m.name),
                 "equal": self.equal_lines(m.layout, ""),
                 "cases": [{"wire": self.wire_bytes(c), "canon": self.wire_bytes(c, "canonical"),
+                           "kept": self.wire_bytes(c, "kept"),
                            "expected": self.init(m.layout, c["values"]), "word": c.get("word"),
                            "text_form": c.get("text_form"), "dir": self.direction(c),
                            "name": c["name"]} for c in cases],
@@ -199,8 +202,10 @@ class Driver:
             streams.append({"bytes": bytes.fromhex(s["hex"]), "events": events, "name": s["name"]})
         sequences = self.sequences(mine(vectors.get("sequences", [])))
         seq_wires = [c["wire"] for s in sequences for c in s["cases"]]
+        kept = any(leaf.field.keep_spelling for m in p.messages for leaf in m.wire.leaves)
         wires = list(dict.fromkeys([c["wire"] for mm in messages for c in mm["cases"]]
                                    + [c["canon"] for mm in messages for c in mm["cases"]]
+                                   + [c["kept"] for mm in messages for c in mm["cases"] if kept]
                                    + [c["wire"] for c in invalid] + seq_wires))
         env = jinja2.Environment(undefined=jinja2.StrictUndefined, trim_blocks=True, lstrip_blocks=True,
                                  keep_trailing_newline=True)  # clang -Wpedantic: a file ends with a newline
@@ -208,6 +213,7 @@ class Driver:
         env.filters["cstr"] = cstr
         wire_max = max([len(c["wire"]) for mm in messages for c in mm["cases"]]
                        + [len(c["canon"]) for mm in messages for c in mm["cases"]]
+                       + [len(c["kept"]) for mm in messages for c in mm["cases"]]
                        + [len(c["wire"]) for c in invalid] + [len(w) for w in seq_wires] + [1]
                        # an encoder writes the largest frame before it leaves out what is not sent
                        + [m.size for m in p.messages if m.size is not None and p.framing.kind == "bytes"])
@@ -222,7 +228,7 @@ class Driver:
             word=self.v.word_bits() is not None and p.framing.kind == "bits",
             word_type="uint64_t" if (self.v.word_bits() or 0) > 32 else "uint32_t",
             text_form=p.framing.text_form is not None,
-            error_const=ERR, sequences=sequences,
+            error_const=ERR, sequences=sequences, kept=kept,
             # an encoded stream's scan consumes every byte; any other leaves less than a frame
             scan_window=f"{p.name.upper()}_STREAM_MAX + 8u" if not p.framing.encoding else "16u",
             scan_left=f"{p.name.upper()}_STREAM_MAX" if not p.framing.encoding else "1u",

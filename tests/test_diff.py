@@ -376,3 +376,15 @@ def test_hand_worked_streams_are_docs_only(tmp_path):
     d = diff_of(tmp_path, mtv4, "      - {message: ack, end: 20}", "      - {message: ack}")
     assert not d.breaking and d.old_fingerprint == d.new_fingerprint
     assert changes(d, DOCS) == {("stream 'frames of two sizes'", "changed")}
+
+
+def test_keeping_spellings_is_compatible_and_named_per_field(tmp_path):
+    """keep_spelling reads and writes the same lines; only a decoded line written back
+    differs, and the C struct gains the member that holds the text."""
+    nmea = ROOT / "examples" / "nmea0183.yaml"
+    assert "  keep_spelling: true  # NMEA-D4" in nmea.read_text(encoding="utf-8")
+    d = diff_of(tmp_path, nmea, "  keep_spelling: true  # NMEA-D4", "  keep_spelling: false")
+    assert not d.breaking and {c.kind for c in d.changes} == {COMPATIBLE}
+    assert ("field lat", "no longer keeps the text it was read from (C member lat_spelling removed)") \
+        in changes(d, COMPATIBLE)
+    assert not any(subject == "field lat_dir" for subject, _ in changes(d, COMPATIBLE))  # a char: one spelling

@@ -43,6 +43,23 @@ RECEIVER_SENTENCES = [
 ]
 
 
+# Published sentences of receivers that write numbers their own way (padded heights, 3 to 8
+# decimals, `8` or `08`): kept as received (NMEA-D4), so each is written back byte for byte.
+KEPT_SENTENCES = [
+    # u-blox 8 / M8 Receiver Description, NMEA GGA example
+    "$GPGGA,092725.00,4717.11399,N,00833.91590,E,1,08,1.01,499.6,M,48.0,M,,*5B",
+    # Quectel L80 GPS Protocol Specification 2.3, GPGGA example
+    "$GPGGA,015540.000,3150.68378,N,11711.93139,E,1,17,0.6,0051.6,M,0.0,M,,*58",
+    # Haicom HI-505SD user manual, GGA example
+    "$GPGGA,104549.04,2447.2038,N,12100.4990,E,1,06,01.7,00078.8,M,0016.3,M,,*5C",
+    # a Hemisphere VS100 on R/V Sally Ride, NOAA PSL PISTON 2019 raw GPS log (gps01925920_raw.txt)
+    "$GPGGA,195959.00,1813.38282955,N,12606.12767097,E,2,07,1.4,17.2,M,36.5,M,4.0,0129*78",
+    # the same receiver on R/V Ronald H. Brown, NOAA PSL ATOMIC 2020 (gps02003906_raw.txt): a negative geoid
+    "$GPGGA,060000.00,1353.25162451,N,05445.30213512,W,2,06,1.2,2.9,M,-40.8,M,5.0,0138*76",
+    *RECEIVER_SENTENCES,
+]
+
+
 def at_step(text: str, decimals: int) -> float:
     """pynmea2's number text rounded to `decimals`, halves away from zero, by decimal arithmetic."""
     value = Decimal(text).quantize(Decimal(1).scaleb(-decimals), rounding=ROUND_HALF_UP)
@@ -182,7 +199,7 @@ def test_c_conformance_on_the_host(built, tmp_path):
         run.stdout[-3000:] + run.stderr
 
 
-AVR_PARTS = 8  # the vectors' text lines take about 100 KB: in parts that fit 32 KB of flash
+AVR_PARTS = 24  # the vectors (text lines, and structs with 25-byte kept spellings) in parts that fit 32 KB of flash
 
 
 def test_c_conformance_on_atmega32_under_simavr(built, tmp_path):
@@ -206,3 +223,92 @@ def test_c_conformance_on_atmega32_under_simavr(built, tmp_path):
         for output in pool.map(build_and_run, range(AVR_PARTS)):
             assert re.search(r"CONFORMANCE nmea0183 PASS \d+ checks 0 failures",
                              re.sub(r"\x1b\[[0-9;]*m", "", output)), output[-3000:]
+
+
+@pytest.mark.parametrize("sentence", KEPT_SENTENCES)
+def test_python_writes_receiver_sentences_back_byte_for_byte(built, sentence):
+    """Each number is read as pynmea2 reads it (at the field's step) and written back as the
+    receiver spelt it; the checksum pynmea2 verifies is the one written."""
+    mod = load(built / "python" / "nmea0183.py")
+    theirs = pynmea2.parse(sentence, check=True)
+    ours = mod.decode(sentence + "\r\n")
+    message = next(m for m in compile_schema(SCHEMA).messages if m.name == type(ours).NAME)
+    for leaf, text in zip(message.wire.leaves, theirs.data):
+        f, value = leaf.field, getattr(ours, leaf.field.name)
+        if f.kind in ("int", "uint") and f.enum is None:
+            assert value == (at_step(text, f.decimals or 0) if text else None), (f.name, value, text)
+    assert mod.encode(ours) == sentence + "\r\n"
+    assert ours == mod.Gga.from_dict(ours.to_dict())  # the spellings are not part of the value
+
+
+def test_a_changed_value_is_written_in_the_schemas_spelling(built):
+    """Quectel's padded altitude `0051.6` is kept until the altitude changes; then it is
+    written as NMEA-D2 spells it, and the rest of the line as received. The checksum of the
+    expected line is pynmea2's."""
+    mod = load(built / "python" / "nmea0183.py")
+    ours = mod.decode(KEPT_SENTENCES[1] + "\r\n")
+    ours.altitude = 51.7
+    ours.num_sats = 17  # the same value: its spelling stays
+    body = "GPGGA,015540.000,3150.68378,N,11711.93139,E,1,17,0.6,51.7,M,0.0,M,,"
+    assert mod.encode(ours) == f"${body}*{pynmea2.NMEASentence.checksum(body):02X}\r\n"
+    fresh = mod.Gga.from_dict(mod.decode(KEPT_SENTENCES[1] + "\r\n").to_dict())  # values only
+    body = "GPGGA,015540,3150.68378,N,11711.93139,E,1,17,0.6,51.6,M,0.0,M,,"
+    assert mod.encode(fresh) == f"${body}*{pynmea2.NMEASentence.checksum(body):02X}\r\n"
+
+
+def test_a_spelling_past_its_bound_is_refused_not_cut(built):
+    """A kept number holds at most 24 characters (SPELLING_MAX): a longer one is a `length`
+    error naming the field at its offset, in Python; CW_ERR_LENGTH in C."""
+    mod = load(built / "python" / "nmea0183.py")
+    body = "GPGGA,123519,0000000000000004807.03800,N,01131.000,E,1,08,0.9,545.4,M,46.9,M,,"
+    line = f"${body}*{pynmea2.NMEASentence.checksum(body):02X}\r\n"
+    assert len("0000000000000004807.03800") == 25
+    with pytest.raises(mod.DecodeError) as err:
+        mod.decode(line)
+    assert (err.value.field, err.value.rule, err.value.offset) == ("lat", "length", 14)
+    driver = r"""
+#include <stdio.h>
+#include <string.h>
+#include "nmea0183.h"
+int main(void) {
+    static const char line[] = "LINE";
+    nmea0183_gga_t m;
+    printf("%d\n", nmea0183_gga_decode(line, sizeof line - 1, &m) == CW_ERR_LENGTH);
+    return 0;
+}
+""".replace("LINE", line.replace("\r\n", "\\r\\n"))
+    assert run_c(built / "c", driver) == ["1"]
+
+
+def test_c_writes_receiver_sentences_back_and_a_changed_value_in_its_own_spelling(built):
+    calls = "\n".join(f'    round_trip("{s}\\r\\n");' for s in KEPT_SENTENCES)
+    driver = r"""
+#include <stdio.h>
+#include <string.h>
+#include "nmea0183.h"
+static void round_trip(const char *line) {
+    nmea0183_message_t m;
+    char buf[100];
+    int rc, n;
+    memset(&m, 0, sizeof m);
+    rc = nmea0183_decode(line, strlen(line), NMEA0183_DIR_ANY, &m);
+    n = nmea0183_encode(&m, buf, sizeof buf);
+    printf("%d %d\n", rc, n > 0 && (size_t)n == strlen(line) && memcmp(buf, line, (size_t)n) == 0);
+}
+int main(void) {
+    static const char quectel[] = "QUECTEL\r\n";
+    nmea0183_gga_t m;
+    char buf[100];
+    int n;
+CALLS
+    memset(&m, 0, sizeof m);
+    printf("%d\n", nmea0183_gga_decode(quectel, sizeof quectel - 1, &m));
+    m.altitude = 517;  /* tenths: 51.7 */
+    n = nmea0183_gga_encode(&m, buf, sizeof buf);
+    printf("%.*s\n", n > 2 ? n - 2 : 0, buf);
+    return 0;
+}
+""".replace("CALLS", calls).replace("QUECTEL", KEPT_SENTENCES[1])
+    body = "GPGGA,015540.000,3150.68378,N,11711.93139,E,1,17,0.6,51.7,M,0.0,M,,"
+    assert run_c(built / "c", driver) == ["0 1"] * len(KEPT_SENTENCES) + [
+        "0", f"${body}*{pynmea2.NMEASentence.checksum(body):02X}"]

@@ -13,6 +13,8 @@ from fractions import Fraction
 def member_paths(obj, prefix=()):
     """Every field's path, a group's as well as the fields inside it."""
     for f in dataclasses.fields(obj):
+        if not f.compare:  # the kept text of numbers, not a value
+            continue
         yield prefix + (f.name,)
         value = getattr(obj, f.name)
         if dataclasses.is_dataclass(value):

@@ -63,6 +63,8 @@ def error_row(exc: Exception, offset: Optional[int], raw: bytes) -> Row:
 
 def _flatten(obj, fields: dict[str, Field], prefix: str, out: list) -> None:
     for attr in dataclasses.fields(obj):
+        if not attr.compare:  # not a value: the text numbers were read from
+            continue
         value = getattr(obj, attr.name)
         model = fields.get(attr.name)
         name = prefix + attr.name

@@ -8,6 +8,12 @@ from ..model import Field, Framing, LineChecksum, TextForm
 from .base import ResolverBase
 from .layout import key_read, leaves_of, whole_bytes
 
+def is_number(f: Field) -> bool:
+    """A text value whose number has several spellings (`8`, `08`, `8.0`, `+8`)."""
+    plain = f.kind in ("uint", "int") and f.enum is None and f.flags is None and not f.one_hot
+    return f.const is None and f.count is None and (plain or f.kind == "float")
+
+
 # SLIP and HDLC may double a frame, and add two delimiters: 2 * 16382 + 2 fits 16 bits
 MAX_ENCODED_FRAME = 16382
 
@@ -19,7 +25,8 @@ class FramingMixin(ResolverBase):
         allowed = {"bits": {"kind", "word_bits", "max_bits", "byte_order", "text_form"},
                    "bytes": {"kind", "layout", "byte_order", "bit_order", "encoding", "accm", "truncate"},
                    "text": {"kind", "start", "prefix_separator", "separator", "terminator",
-                            "ignore_between", "trim", "float_format", "checksum", "keep_empty"}}[kind]
+                            "ignore_between", "trim", "float_format", "checksum", "keep_empty",
+                            "keep_spelling"}}[kind]
         for key in fr:
             if key not in allowed:
                 self.error(path + (key,), f"framing: {key!r} does not apply to {kind} framing",
@@ -54,6 +61,10 @@ class FramingMixin(ResolverBase):
         default_order = "little" if bit_order == "lsb_first" else "big"
         if kind == "text":
             self.check_text_marks(fr, path)
+            if fr.get("keep_spelling") and fr.get("trim"):
+                self.error(path + ("keep_spelling",), "framing: keep_spelling with trim: the whitespace "
+                           "around a value is not kept, so a line would not be written back as received",
+                           "drop trim (receivers that keep their spellings write no whitespace), or keep_spelling")
         cs = fr.get("checksum")
         if "accm" in fr and fr.get("encoding") != "hdlc":
             self.error(path + ("accm",), "accm is HDLC's map of the control characters it escapes "
@@ -71,7 +82,7 @@ class FramingMixin(ResolverBase):
             separator=fr.get("separator", ","), terminator=fr.get("terminator", ";"),
             ignore_between=fr.get("ignore_between", ""), trim=bool(fr.get("trim")),
             float_format=fr.get("float_format", "shortest"), start=fr.get("start", ""),
-            keep_empty=bool(fr.get("keep_empty")),
+            keep_empty=bool(fr.get("keep_empty")), keep_spelling=bool(fr.get("keep_spelling")),
             line_checksum=LineChecksum(cs["algorithm"], cs["suffix"], cs.get("digits", "hex2")) if cs else None)
 
     def check_text_marks(self, fr: dict, path: tuple) -> None:
@@ -241,6 +252,26 @@ class FramingMixin(ResolverBase):
                 not whole_bytes(x) and x.pos // 8 != (x.pos + x.bits - 1) // 8 for x in dispatch):
             self.error(path, f"the dispatch fields are read {read['byte_order']}-endian, so a dispatch field "
                              "of part of a byte must not cross a byte boundary", "move it inside one byte")
+
+    def kept_spellings(self, name: str, m: dict, own: tuple[Field, ...], framing: Framing,
+                       path: tuple) -> tuple[Field, ...]:
+        """The message's numbers marked to keep their received text, as the message (or else
+        the framing) says: every integer that is not an enum, flag set or constant, every float."""
+        if "keep_spelling" in m and framing.kind != "text":
+            self.error(path + ("keep_spelling",), f"message {name!r}: keep_spelling is for text framing "
+                       "(a binary value has one spelling)", "drop keep_spelling")
+            return own
+        keep = m.get("keep_spelling", framing.keep_spelling)
+        if framing.kind != "text" or not keep:
+            return own
+        if framing.trim and "keep_spelling" not in m:
+            return own  # refused at the framing's keep_spelling
+        if framing.trim:
+            self.error(path + ("keep_spelling",), f"message {name!r}: keep_spelling with trim: the whitespace "
+                       "around a value is not kept, so a line would not be written back as received",
+                       "drop trim from the framing, or keep_spelling")
+            return own
+        return tuple(replace(f, keep_spelling=True) if is_number(f) else f for f in own)
 
     def check_text_fields(self, name: str, own: tuple[Field, ...], path: tuple, keep_empty: bool) -> None:
         optional_str = None  # an empty value is an empty str, so a str is absent only at the end

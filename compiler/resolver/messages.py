@@ -40,6 +40,7 @@ class MessagesMixin(ResolverBase):
             ids = None
         ids = () if ids is None else tuple(ids) if isinstance(ids, list) else ids if isinstance(ids, dict) else (ids,)
         own = self.bind_controls(name, own, path)
+        own = self.kept_spellings(name, m, own, framing, path)
         payload_bytes = m.get("payload_bytes")
         layout, dispatch_key = self.place(name, own, ids, framing, path, m.get("direction"), payload_bytes)
         if framing.kind != "bytes":

@@ -39,6 +39,7 @@ FULL = frozenset({
     "empty_values",                         # text: optional values anywhere, absent ones empty
     "fixed_spelling",                       # text: integers with fixed decimals and zero padding
     "receiver_spelling",                    # text: fixed-point ranges ending in decimals; vectors respell numbers
+    "keep_spelling",                        # text: decoded numbers keep their received text (framing or message)
     "text_const",                           # text: char, str and integer constants, some optional (unit letters)
     "machines",                             # a master and a slave machine over a command and its reply
     "delivery_ranges",                      # machines: narrow ranges of the address, timeout and retry limit

@@ -631,7 +631,24 @@ class Generator:
             if self.has("text_const", 0.4):
                 self.text_constants(fields, terminator + separator + framing.get("separator", ""))
             messages[self.name()] = {"id": prefix, "fields": fields}
+        if "keep_spelling" in self.on:
+            self.keep_spellings(framing, messages)
         return framing, messages
+
+    def keep_spellings(self, framing: dict, messages: dict) -> None:
+        """Numbers that keep the text they were read from: on the framing (which then does
+        not trim), with some messages opting out, or on some messages alone."""
+        rng = random.Random(f"keep_spelling {self.seed}")
+        if rng.random() < 0.3:
+            return
+        on_framing = rng.random() < 0.6
+        if on_framing or rng.random() < 0.5:
+            framing["trim"] = False  # whitespace around a value is not kept
+        if on_framing:
+            framing["keep_spelling"] = True
+        for message in messages.values():
+            if rng.random() < 0.3 and (on_framing or not framing["trim"]):
+                message["keep_spelling"] = not on_framing if rng.random() < 0.7 else on_framing
 
     def text_constants(self, fields: list[dict], marks: str) -> None:
         """Constants among the values (NMEA's unit letters), some a line may leave empty;

@@ -19,7 +19,7 @@ from typing import Any, Optional
 from ... import binary32, binary64
 from ...crc import reflect
 from ...model import (Checksum, CrcParams, Field, Leaf, Message, Protocol, count_member, dotted, field_at,
-                      presence_member)
+                      presence_member, spelling_member, SPELLING_MAX)
 from ..code import Code, times_over
 from ..escape import c_char as cchar, c_comment as comment, c_string as cstr
 from . import pack as cpack
@@ -167,6 +167,9 @@ class CView:
                     out.append(f"{pad}bool {presence_member(f.name)}{count};  /* {'0 = absent' if f.optional else '0 = no bit set'} */")
                 arr = f"[{r.array}]" if r.array else ""
                 out.append(f"{pad}{r.ctype} {f.name}{count}{arr};" + (f"  /* {note} */" if note else ""))
+                if f.keep_spelling:
+                    out.append(f"{pad}char {spelling_member(f.name)}{count}[{SPELLING_MAX + 1}];  /* the text it was read "
+                               f"from, NUL-terminated (\"\": none); written back while it reads as the value */")
             if f.varies:
                 most, what = (f.length, "bytes") if f.kind == "bytes" else (f.count, "elements")
                 out.append(f"{pad}{unsigned_type(most.bit_length())} {count_member(f.name)};  "
@@ -1107,6 +1110,8 @@ class CView:
                 n += max(12, f.width or 0)
             else:
                 n += 11
+            if f.keep_spelling:  # as received: up to its bound
+                n += max(0, SPELLING_MAX - (26 if f.kind == "float" else max(12, f.width or 0) if f.fixed_spelling else 11))
         return n
 
     def text_encode_function(self, m: Message) -> str:
@@ -1123,6 +1128,8 @@ class CView:
         for leaf in leaves:
             if leaf.field.kind == "str" and leaf.field.const is None:  # a constant is written as spelt
                 c(f"size_t {self.text_len(leaf)} = 0;")
+            if leaf.field.keep_spelling:
+                c(f"size_t {self.spelling_len(leaf)} = 0;")
         if all(leaf.field.const is not None for leaf in leaves) and not m.rules:
             c("(void)m;  /* no member: the line is written from the schema */")
         self.rule_checks(c, m, "m")
@@ -1163,9 +1170,21 @@ class CView:
             if led and (len(mark) > 1 or kind == "fixed"):  # the mark on its own, then the value
                 c(f"cw_write_text(&w, {cstr(mark)}, {len(mark)}u);")
                 led = False
+            if f.keep_spelling:  # as received, while it reads as the member's value
+                if led:
+                    c(f"cw_write_text(&w, {cstr(mark)}, {len(mark)}u);")
+                    led = False
+                kept = self.spelling(leaf)
+                c(f"if ({self.spelled(leaf, kind)}) {{")
+                c(f"    cw_write_text(&w, {kept}, {self.spelling_len(leaf)});")
+                c("} else {")
+                c.indent()
             spelling = (TEXT_WRITE_AFTER if led else TEXT_WRITE_FIRST)[kind]
             c(spelling.format(v=v, n=self.text_len(leaf), lead=cchar(mark) if led else "",
                               decimals=f.decimals or 0, width=f.width or 0))
+            if f.keep_spelling:
+                c.dedent()
+                c("}")
             if f.optional:
                 c.dedent()
                 if slot:
@@ -1200,6 +1219,26 @@ class CView:
         if f.enum is not None:
             value = next(m.value for m in f.enum.members if f.const in (m.name, m.value))
         return str(int(value)) if isinstance(value, (int, float)) and not isinstance(value, bool) else str(value)
+
+    def spelling(self, leaf: Leaf) -> str:
+        """The member holding the text a kept-spelling number was read from."""
+        return "m->" + spelling_member(leaf.dotted)
+
+    @staticmethod
+    def spelling_len(leaf: Leaf) -> str:
+        """The local holding a kept spelling's length, measured once by its check."""
+        return f"{leaf.var}_spelling_len"
+
+    def spelled(self, leaf: Leaf, kind: str) -> str:
+        """The condition that the kept spelling reads as the member's value."""
+        f, v, s, n = leaf.field, self.member(leaf), self.spelling(leaf), self.spelling_len(leaf)
+        if kind == "fixed":
+            return f"cw_spelled_fixed({s}, {n}, {f.decimals or 0}u, (int32_t){v})"
+        if kind == "float":
+            return f"cw_spelled_decimal({s}, {n}, &{v})"
+        if kind in ("i64", "u64"):
+            return f"cw_spelled_{kind}({s}, {n}, {v})"
+        return f"cw_spelled_int({s}, {n}, (int32_t){v})"
 
     @staticmethod
     def text_len(leaf: Leaf) -> str:
@@ -1236,6 +1275,10 @@ class CView:
             self.member_check(c, f, v, "enum")
         else:
             self.member_check(c, f, v, "int")
+        if f.keep_spelling:  # a spelling without its NUL within the bound is no spelling received
+            n = self.spelling_len(leaf)
+            c(f"{n} = cw_text_len({self.spelling(leaf)}, {SPELLING_MAX + 1}u);")
+            self.fail_if(c, f"{n} > {SPELLING_MAX}u", "length")
         if f.optional:
             c.dedent()
             c("}")
@@ -1323,6 +1366,8 @@ class CView:
                     c.dedent()
                     c("}")
                 continue
+            if f.keep_spelling:
+                c(f"{self.spelling(leaf)}[0] = '\\0';")
             if f.optional and f.kind != "str":  # an empty value is an absent one
                 c(f"{self.has(leaf)} = false;")
                 c(f"if (count > {i}u) {{")
@@ -1337,6 +1382,8 @@ class CView:
                 c.indent()
             if not f.optional or f.kind == "str":
                 c(f"v = {self.value_call(i, trim)};")
+            if f.keep_spelling:  # kept whole, never cut short
+                self.fail_if(c, f"(size_t)(v.e - v.b) > {SPELLING_MAX}u", "length")
             if f.kind == "float":
                 c(f"rc = cw_read_decimal(v.b, v.e, &{t});")
                 c("if (rc != CW_OK) {")
@@ -1396,6 +1443,9 @@ class CView:
                 c(f"{t} = ({r.ctype})value;")
                 c.dedent()
                 c("}")
+            if f.keep_spelling:
+                c(f"memcpy({self.spelling(leaf)}, v.b, (size_t)(v.e - v.b));")
+                c(f"{self.spelling(leaf)}[v.e - v.b] = '\\0';")
             if f.optional:
                 c.dedent()
                 c("}")

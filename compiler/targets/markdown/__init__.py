@@ -11,7 +11,7 @@ import types
 from typing import Optional
 
 from ...fingerprint import fingerprint, fingerprint32
-from ...model import Message, Protocol
+from ...model import SPELLING_MAX, Message, Protocol
 from .budget import longest_text_line, transport_views
 from .checksum import checksum_sections
 from .delivery import delivery_view
@@ -214,6 +214,11 @@ def framing_view(p: Protocol, linker: DecisionLinker) -> dict:
             lines.append("A number with `decimals` or `width` is written with exactly those decimals and at least "
                          "that width; readers take any spelling of it (`8` or `08`, `2.0` or `2`, more decimals "
                          "or a sign), and round further decimals to the field's step, halves away from zero.")
+        if any(x.field.keep_spelling for m in p.messages for x in m.wire.leaves):
+            lines.append("A decoded message keeps the text each number was received in (at most "
+                         f"{SPELLING_MAX} characters; a longer one is a `length` error) and writes it back "
+                         "unchanged while the value stays, so a line decoded and encoded again is the same "
+                         "bytes; a changed value is written in its field's spelling.")
     lines.extend(claim["text"] for claim in error_claims(p))
     view["lines"] = [linker.link(x) for x in lines]
     return view

@@ -93,7 +93,7 @@ def shown(value: Any) -> str:
     if isinstance(value, str):
         return '"' + value + '"'
     if dataclasses.is_dataclass(value):
-        inner = ", ".join(f"{f.name} = {shown(getattr(value, f.name))}" for f in dataclasses.fields(value))
+        inner = ", ".join(f"{f.name} = {shown(getattr(value, f.name))}" for f in dataclasses.fields(value) if f.compare)
         return "{" + inner + "}"
     if isinstance(value, list):
         return "[" + ", ".join(shown(v) for v in value) + "]"
@@ -102,4 +102,4 @@ def shown(value: Any) -> str:
 
 def decoded_fields(obj: Any) -> list[tuple[str, str]]:
     """(field, shown value) for a decoded message object, in declaration order."""
-    return [(f.name, shown(getattr(obj, f.name))) for f in dataclasses.fields(obj)]
+    return [(f.name, shown(getattr(obj, f.name))) for f in dataclasses.fields(obj) if f.compare]

@@ -9,7 +9,7 @@ from dataclasses import dataclass, field, replace
 from typing import Any, Optional
 
 from ...crc import reflect
-from ...model import (Field, Gap, Leaf, Message, Protocol, Rule, Run, Sequence, SequenceItem, dotted,
+from ...model import (SPELLING_MAX, Field, Gap, Leaf, Message, Protocol, Rule, Run, Sequence, SequenceItem, dotted,
                       field_at, path_name)
 from ...names import camel
 from ..code import Code, times_over
@@ -129,6 +129,7 @@ class PythonView:
             optional = [f for f in members if id(f) not in needed]
             out.append({
                 "name": name, "doc": doc, "message": message.name if is_message else None,
+                "spelling": is_message and any(f.keep_spelling for f in members),
                 "fields": [{"name": f.name, "annotation": self.annotation(f, message, path + (f.name,)),
                             "default": self.default_expr(f, message, path + (f.name,)),
                             "doc": self.field_comment(f)}
@@ -1255,6 +1256,8 @@ class MessageCode:
         self.view.rule_checks(c, self.m, "m", "_enc")
         outs: list[str] = []  # the text of each field, joined once at the end
         trailing = self.trailing_from()
+        if any(leaf.field.keep_spelling for leaf in self.leaves):
+            c("sp = m._spelling or {}  # the text each number was read from, with the raw value it reads as")
         for n, leaf in enumerate(self.leaves):
             f = leaf.field
             where = f"{self.m.name!r}, {leaf.dotted!r}"
@@ -1289,6 +1292,10 @@ class MessageCode:
                     out = f"_fixed({leaf.var}, {f.decimals or 0}, {f.width or 0})"
                 else:
                     out = f"str({leaf.var})"
+                if f.keep_spelling:  # as received, while the field holds the value it reads as
+                    k = "k_" + leaf.var[2:]
+                    c(f"{k} = sp.get({f.name!r})")
+                    out = f"({k}[1] if {k} is not None and {k}[0] == {leaf.var} else {out})"
             if f.optional and f.const is None:  # absent: an empty value, or none at all at the end of the line
                 c(f"t{n} = {out}")
                 c.dedent()
@@ -1390,6 +1397,9 @@ class MessageCode:
         if total:
             c(f"ok = _SYNTAX_{self.fn}.fullmatch(body) is not None  # well-formed: token syntax checks are skipped")
         values: dict[tuple, str] = {}
+        kept = any(leaf.field.keep_spelling for leaf in self.leaves)
+        if kept:
+            c("sp: dict[str, tuple[Any, str]] = {}  # each number's text, with the raw value it reads as")
         for n, leaf in enumerate(self.leaves):
             f = leaf.field
             at = f"{self.m.name!r}, {leaf.dotted!r}"
@@ -1402,6 +1412,9 @@ class MessageCode:
                 c.indent()
             tok = f"(t[{n}] if ok else t[{n}].strip())" if fr.trim else f"t[{n}]"
             slow_tok = f"t[{n}].strip()" if fr.trim else f"t[{n}]"
+            if f.keep_spelling:  # kept whole, never cut short
+                c(f"if len(t[{n}]) > {SPELLING_MAX}:")
+                c(f"    raise _dec({at}, t[{n}], 'length', 'a number of at most {SPELLING_MAX} characters', {where})")
             if f.kind == "float":
                 c(f"{leaf.var} = float(t[{n}]) if ok else _parse_float({slow_tok}, {at}, {where})")
             elif f.fixed_spelling:  # any spelling, rounded to the field's decimals: on every path
@@ -1424,6 +1437,8 @@ class MessageCode:
                     c(f"if len({leaf.var}) > {f.max_length}:")
                     c(f"    raise _dec({at}, {leaf.var}, 'length', 'at most {f.max_length} characters', {where})")
             expr = self.view.decode_leaf(c, self.m, leaf, where, finite_if="ok")
+            if f.keep_spelling:
+                c(f"sp[{f.name!r}] = ({leaf.var}, t[{n}])")
             if f.optional:
                 c.dedent()
                 c("else:")
@@ -1434,6 +1449,8 @@ class MessageCode:
                     expr = f"(None if {leaf.var} is None else {expr})"
             values[leaf.path] = expr if expr is not None else leaf.var
         self.construct(c, self.m.layout, (), values)
+        if kept:
+            c("o._spelling = sp")
         self.view.rule_checks(c, self.m, "o", "_dec")
         c("return o")
         return c.text()

@@ -1657,6 +1657,51 @@ static inline int cw_read_decimal(const char *s, const char *end, cw_decimal_t *
 #endif
 }
 
+/* ---- kept spellings ------------------------------------------------------ */
+
+/* Whether the n characters at s, a number's text as received, read as the
+ * value a member holds: the encoder writes them back then, and the value in
+ * its field's own spelling otherwise (the member was given a new value). */
+static inline bool cw_spelled_fixed(const char *s, size_t n, unsigned decimals, int32_t value)
+{
+    int32_t read = 0;
+    return n != 0u && cw_parse_fixed(s, s + n, decimals, INT32_MIN, INT32_MAX, &read) == CW_OK && read == value;
+}
+
+static inline bool cw_spelled_int(const char *s, size_t n, int32_t value)
+{
+    int32_t read = 0;
+    return n != 0u && cw_parse_int(s, s + n, INT32_MIN, INT32_MAX, &read) == CW_OK && read == value;
+}
+
+static inline bool cw_spelled_i64(const char *s, size_t n, int64_t value)
+{
+    int64_t read = 0;
+    return n != 0u && cw_parse_i64(s, s + n, INT64_MIN, INT64_MAX, &read) == CW_OK && read == value;
+}
+
+static inline bool cw_spelled_u64(const char *s, size_t n, uint64_t value)
+{
+    uint64_t read = 0u;
+    return n != 0u && cw_parse_u64(s, s + n, 0u, UINT64_MAX, &read) == CW_OK && read == value;
+}
+
+/* Decimals compare as numbers, as doubles do: 1.50 is 1.5, -0 is 0. */
+static inline bool cw_spelled_decimal(const char *s, size_t n, const cw_decimal_t *value)
+{
+    cw_decimal_t read;
+    cw_decimal_t held = *value;
+    if (n == 0u || cw_read_decimal(s, s + n, &read) != CW_OK) {
+        return false;
+    }
+    cw_decimal_normalise(&read);
+    cw_decimal_normalise(&held);
+    if (read.digits == 0u || held.digits == 0u) {
+        return read.digits == held.digits;
+    }
+    return read.digits == held.digits && read.exp10 == held.exp10 && read.negative == held.negative;
+}
+
 #ifdef __cplusplus
 }
 #endif
