@@ -522,10 +522,24 @@ class Generator:
                 b = bytearray(data)
                 b[1] = (b[1] + 1) & 0xFF
                 out.append(("second byte changed", bytes(b)))
+        if not self.p.framing.encoding:  # the frame's own bytes, not stuffed
+            out += self.other_zero(m, data)
         encoding = self.p.framing.encoding
         if encoding:
             out += self.damaged_escapes(encoding, data)
         return [(label, bad) for label, bad in out if bad != data]
+
+    @staticmethod
+    def other_zero(m: Message, data: bytes) -> list[tuple[str, bytes]]:
+        """An internet checksum that covers itself, sent as 0000, written as ffff: one's
+        complement's other zero, which RFC 1071's receiver check accepts too."""
+        out = []
+        for leaf in m.wire.leaves:
+            cs = leaf.field.checksum
+            at = leaf.pos // 8
+            if cs and cs.covers_self and data[at:at + 2] == b"\0\0" and not m.shortening:
+                out.append((f"{leaf.dotted} as ffff", data[:at] + b"\xff\xff" + data[at + 2:]))
+        return out
 
     def damaged_escapes(self, encoding: str, data: bytes) -> list[tuple[str, bytes]]:
         """An encoded frame with a bad escape (or COBS code) and with a delimiter inside it."""

@@ -7,10 +7,11 @@ Published values:
 - RFC 1071 section 3: the bytes 00 01 f2 03 f4 f5 f6 f7 sum to ddf2 in big-endian
   words (f2dd in little-endian ones); the checksum is 220d, sent 22 0d either way.
 - An IPv4 header (Wikipedia, "Internet checksum"): 45 00 00 73 00 00 40 00 40 11 b8 61
-  c0 a8 00 01 c0 a8 00 c7, checksum b861 over the header with its checksum as zero.
-  The checksum word sits at an even offset, so leaving it out moves no other word:
-  the checksum of the other 18 bytes is the same b861, which the schema below sends
-  after them.
+  c0 a8 00 01 c0 a8 00 c7, checksum b861 over the header with its checksum as zero;
+  the schema below carries it in place, a checksum that covers itself.
+- RFC 1071 section 1: a receiver sums the covered bytes with the checksum; all ones
+  (a checksum of the whole of 0) means no error. In one's complement 0000 and ffff
+  are both zero: where the sender's checksum is 0000, ffff passes that check too.
 """
 from __future__ import annotations
 
@@ -24,8 +25,8 @@ from codeword import accelerate as accel
 from codeword.build import compile_schema
 from codeword.vectors import write_vectors
 from fuzz.schema.accelerated import difference, load as load_module
-from schema_in_a_test import conformance_on_host_and_avr, load, render
-from test_checksum_families import c_round_trips, flip, rejected
+from schema_in_a_test import conformance_on_host_and_avr, load, render, run_c
+from test_checksum_families import STRICT, c_round_trips, driver, flip, rejected
 
 
 def rfc1071(data: bytes) -> int:
@@ -43,36 +44,53 @@ def rfc1071(data: bytes) -> int:
 
 RFC_DATA = bytes.fromhex("00 01 f2 03 f4 f5 f6 f7")
 IPV4_HEADER = bytes.fromhex("45 00 00 73 00 00 40 00 40 11 b8 61 c0 a8 00 01 c0 a8 00 c7")
-IPV4_FRAME = IPV4_HEADER[:10] + IPV4_HEADER[12:] + IPV4_HEADER[10:12]
+IPV4_FRAME = IPV4_HEADER
 
 IPV4 = """codeword: 1
 protocol: ipv4h
-title: an IPv4 header with its checksum last
+title: an IPv4 header, its checksum in place
 source: RFC 791; the header from Wikipedia, Internet checksum
 framing:
   kind: bytes
   byte_order: big
   layout:
     - {name: ver_ihl, type: u8, const: 0x45}
-    - {name: tos, type: u8, dispatch: true}
+    - {name: tos, type: u8}
     - {name: total_length, type: u16}
     - {name: ident, type: u16}
     - {name: flags_frag, type: u16}
     - {name: ttl, type: u8}
-    - {name: proto, type: u8}
-    - {payload: true}
+    - {name: proto, type: u8, dispatch: true}
     - {name: checksum, type: u16, checksum: {algorithm: internet, covers: {from: ver_ihl, to: payload}}}
+    - {payload: true}
 messages:
   udp:
+    id: 17
+    fields:
+      - {name: src, type: u32}
+      - {name: dst, type: u32}
+    examples:
+      - hex: "45 00 00 73 00 00 40 00 40 11 b8 61 c0 a8 00 01 c0 a8 00 c7"
+        values: {tos: 0, total_length: 0x73, ident: 0, flags_frag: 0x4000, ttl: 64,
+                 src: 0xc0a80001, dst: 0xc0a800c7}
+  zero:
     id: 0
     fields:
       - {name: src, type: u32}
       - {name: dst, type: u32}
     examples:
-      - hex: "45 00 00 73 00 00 40 00 40 11 c0 a8 00 01 c0 a8 00 c7 b8 61"
-        values: {total_length: 0x73, ident: 0, flags_frag: 0x4000, ttl: 64, proto: 17,
-                 src: 0xc0a80001, dst: 0xc0a800c7}
+      - hex: "45 00 00 00 00 00 00 00 00 00 00 00 ba ff 00 00 00 00 00 00"
+        values: &zero {tos: 0, total_length: 0, ident: 0, flags_frag: 0, ttl: 0, src: 0xbaff0000, dst: 0}
+      - hex: "45 00 00 00 00 00 00 00 00 00 ff ff ba ff 00 00 00 00 00 00"
+        values: *zero
+        decode_only: true
 """
+
+# ver_ihl 45 and tos 00 make the word 4500; with src ba ff 00 00 and every other
+# byte 0, the words sum to 4500 + baff = ffff: the checksum is 0000 (RFC 1071), and
+# ffff, one's complement's other zero, passes the receiver's check too.
+ZERO_FRAME = bytes.fromhex("45 00 00 00 00 00 00 00 00 00 00 00 ba ff 00 00 00 00 00 00")
+ZERO_OTHER = ZERO_FRAME[:10] + b"\xff\xff" + ZERO_FRAME[12:]
 
 # One checksum in each byte order, over the same bytes; an odd count pads a zero byte.
 ORDERS = """codeword: 1
@@ -115,17 +133,42 @@ ORDERS_FRAMES = {"rfc": orders_frame(1, RFC_DATA), "odd": orders_frame(2, ODD),
                  "zeros": orders_frame(3, bytes(4)), "ones": orders_frame(4, b"\xff\xff")}
 
 
-def test_the_ipv4_header_checksum(tmp_path):
+def test_the_ipv4_header_checksum_in_place(tmp_path):
     render(tmp_path, "ipv4h", IPV4)  # the example above is checked both ways by the build
     mod = load(tmp_path / "ipv4h.py")
-    header = mod.Udp(total_length=0x73, ident=0, flags_frag=0x4000, ttl=64, proto=17,
+    header = mod.Udp(tos=0, total_length=0x73, ident=0, flags_frag=0x4000, ttl=64,
                      src=0xC0A80001, dst=0xC0A800C7)
     assert mod.encode(header) == IPV4_FRAME
     assert mod.decode(IPV4_FRAME) == header
     frame = IPV4_FRAME.hex(" ")
-    rejected(mod, flip(frame, 19), "checksum", 18)
-    rejected(mod, flip(frame, 3), "checksum", 18)
-    c_round_trips(tmp_path, "ipv4h", [frame], [flip(frame, 19), flip(frame, 3)])
+    rejected(mod, flip(frame, 19), "checksum", 10)
+    rejected(mod, flip(frame, 3), "checksum", 10)
+    rejected(mod, flip(frame, 10), "checksum", 10)
+    with pytest.raises(mod.DecodeError) as err:  # the value expected is the one an encoder sends
+        mod.decode(bytes.fromhex(flip(frame, 19)))
+    assert "expected 0x{:x}".format(rfc1071(bytes.fromhex(flip(frame, 19))[:10] + bytes(2) + IPV4_HEADER[12:19]
+                                            + bytes.fromhex(flip(frame, 19))[19:])) in str(err.value)
+    c_round_trips(tmp_path, "ipv4h", [frame], [flip(frame, 19), flip(frame, 3), flip(frame, 10)])
+
+
+def test_either_zero_passes_the_receiver_check(tmp_path):
+    """The sender computes 0000 (the sum of the rest is ffff); a receiver that sums the
+    whole finds all ones with 0000 and with ffff. Decoders accept both and read the same
+    values; encoders send 0000, RFC 1071's complement of the sum."""
+    assert rfc1071(ZERO_FRAME[:10] + bytes(2) + ZERO_FRAME[12:]) == 0x0000
+    assert rfc1071(ZERO_FRAME) == 0 and rfc1071(ZERO_OTHER) == 0
+    render(tmp_path, "ipv4h", IPV4)
+    mod = load(tmp_path / "ipv4h.py")
+    zero = mod.Zero(tos=0, total_length=0, ident=0, flags_frag=0, ttl=0, src=0xBAFF0000, dst=0)
+    assert mod.encode(zero) == ZERO_FRAME
+    assert mod.decode(ZERO_FRAME) == zero and mod.decode(ZERO_OTHER) == zero
+    other = ZERO_OTHER.hex(" ")
+    lines = run_c(tmp_path, driver("ipv4h", [ZERO_FRAME.hex(" "), other]), STRICT)
+    assert lines == [f"{ZERO_FRAME.hex(' ')} encoded {ZERO_FRAME.hex(' ')}", f"{other} encoded {ZERO_FRAME.hex(' ')}"]
+    # all covered bytes zero but the checksum: only ffff makes the sum all ones
+    empty = mod.Zero(tos=0, total_length=0, ident=0, flags_frag=0, ttl=0, src=0, dst=0)
+    assert rfc1071(bytes.fromhex("45 00") + bytes(18)) == 0xBAFF
+    assert mod.encode(empty)[10:12] == bytes.fromhex("ba ff")
 
 
 def test_both_byte_orders_send_the_rfc_bytes(tmp_path):
@@ -167,16 +210,23 @@ def test_conformance_on_host_and_atmega32(tmp_path, name):
     assert host > len(vectors["valid"]) and avr == host
 
 
-def test_the_accelerator_decodes_as_python(tmp_path):
+STREAMS = {"inet": bytes.fromhex("".join(ORDERS_FRAMES.values())),
+           "ipv4h": IPV4_FRAME + ZERO_OTHER + ZERO_FRAME + bytes.fromhex(flip(IPV4_FRAME.hex(" "), 10))}
+
+
+@pytest.mark.parametrize("name", sorted(SCHEMAS))
+def test_the_accelerator_decodes_as_python(tmp_path, name):
     if shutil.which("gcc") is None or accel.python_headers() is None:
         pytest.fail("gcc and Python's headers are needed (scripts/install-toolchains installs them)")
-    _, vectors = vectors_of(tmp_path, "inet")
+    _, vectors = vectors_of(tmp_path, name)
+    if name == "ipv4h":  # the other zero among the vectors, decoded by both
+        assert any(bytes.fromhex(case["hex"]) == ZERO_OTHER for case in vectors["valid"] if "hex" in case)
     folder = tmp_path / "accel"
-    assert accel.accelerate([tmp_path / "inet.yaml"], folder).built
-    fast = load_module(tmp_path / "inet.py", "_inet_fast", folder)
-    pure = load_module(tmp_path / "inet.py", "_inet_pure", None)
+    assert accel.accelerate([tmp_path / f"{name}.yaml"], folder).built
+    fast = load_module(tmp_path / f"{name}.py", f"_{name}_fast", folder)
+    pure = load_module(tmp_path / f"{name}.py", f"_{name}_pure", None)
     assert fast.ACCELERATOR is not None
-    problem, compared = difference(fast, pure, vectors, [bytes.fromhex("".join(ORDERS_FRAMES.values()))])
+    problem, compared = difference(fast, pure, vectors, [STREAMS[name]])
     assert not problem, problem
     assert compared > len(vectors["valid"])
 
