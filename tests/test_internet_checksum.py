@@ -124,6 +124,22 @@ def test_the_reference_gives_the_published_values():
     assert rfc1071(bytes(4)) == 0xFFFF and rfc1071(b"\xff\xff") == 0x0000
 
 
+def test_a_checksum_in_place_before_data_of_any_length(tmp_path):
+    icmp = bytes.fromhex("08 00 33 9a 00 01 00 02 61 62 63")
+    assert rfc1071(icmp[:2] + bytes(2) + icmp[4:]) == 0x339A and rfc1071(icmp) == 0
+    frame = (b"\0\x0b" + icmp).hex(" ")
+    render(tmp_path, "echo", ECHO)
+    mod = load(tmp_path / "echo.py")
+    for data in (b"", b"abc", b"abcdef"):
+        request = mod.Request(code=0, identifier=1, sequence=2, data=data)
+        sent = mod.encode(request)
+        assert sent[:2] == (8 + len(data)).to_bytes(2, "big") and rfc1071(sent[2:]) == 0
+        assert sent[4:6] == rfc1071(sent[2:4] + bytes(2) + sent[6:]).to_bytes(2, "big")
+        assert mod.decode(sent) == request
+    rejected(mod, flip(frame, 12), "checksum", 4)
+    c_round_trips(tmp_path, "echo", [frame, "00 08 08 00 f7 fc 00 01 00 02"], [flip(frame, 12)])
+
+
 def orders_frame(kind: int, data: bytes) -> str:
     value = rfc1071(data)
     return f"55 {kind:02x} {data.hex(' ')} {value >> 8:02x} {value & 0xFF:02x} {value >> 8:02x} {value & 0xFF:02x}"
@@ -188,7 +204,36 @@ def test_both_byte_orders_send_the_rfc_bytes(tmp_path):
     c_round_trips(tmp_path, "inet", list(ORDERS_FRAMES.values()), [flip(rfc, 10), flip(rfc, 13), flip(rfc, 4)])
 
 
-SCHEMAS = {"ipv4h": IPV4, "inet": ORDERS}
+# An ICMP echo's shape after a length (IPv4's total length, here its own): the
+# checksum near the start of what it covers, before data of any length; it covers
+# the bytes sent. type 08, code 00, identifier 0001, sequence
+# 0002, data 61 62 63: words 0800 0000 0001 0002 6162 6300 sum to 0xcc65, sent 339a.
+ECHO = """codeword: 1
+protocol: echo
+title: an echo request with data of any length
+source: RFC 792
+framing:
+  kind: bytes
+  byte_order: big
+  layout:
+    - {name: length, type: u16, length_of: {from: type, to: payload}}
+    - {name: type, type: u8, dispatch: true}
+    - {name: code, type: u8}
+    - {name: checksum, type: u16, checksum: {algorithm: internet, covers: {from: type, to: payload}}}
+    - {payload: true}
+messages:
+  request:
+    id: 8
+    fields:
+      - {name: identifier, type: u16}
+      - {name: sequence, type: u16}
+      - {name: data, type: bytes, max_length: 6, to_end: true}
+    examples:
+      - hex: "00 0b 08 00 33 9a 00 01 00 02 61 62 63"
+        values: {code: 0, identifier: 1, sequence: 2, data: "616263"}
+"""
+
+SCHEMAS = {"ipv4h": IPV4, "inet": ORDERS, "echo": ECHO}
 
 
 def vectors_of(tmp_path, name: str):
@@ -214,7 +259,7 @@ STREAMS = {"inet": bytes.fromhex("".join(ORDERS_FRAMES.values())),
            "ipv4h": IPV4_FRAME + ZERO_OTHER + ZERO_FRAME + bytes.fromhex(flip(IPV4_FRAME.hex(" "), 10))}
 
 
-@pytest.mark.parametrize("name", sorted(SCHEMAS))
+@pytest.mark.parametrize("name", sorted(STREAMS))
 def test_the_accelerator_decodes_as_python(tmp_path, name):
     if shutil.which("gcc") is None or accel.python_headers() is None:
         pytest.fail("gcc and Python's headers are needed (scripts/install-toolchains installs them)")

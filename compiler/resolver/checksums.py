@@ -222,7 +222,7 @@ class ChecksumsMixin(ResolverBase):
         offset = (f.bit_offset - start) / 8
         if f.bit_offset % 8 or offset % 2:
             self.report.error(cs.loc, f"message {name!r}: internet checksum {f.name!r} covers itself "
-                                      f"{offset:g} bytes into its coverage, not on a 16-bit word",
+                                      f"{offset:g} byte{'s' if offset != 1 else ''} into its coverage, not on a 16-bit word",
                               "RFC 1071's receiver check needs the checksum to be one word of what it "
                               "covers: start the coverage an even number of bytes before it")
             return False
