@@ -22,7 +22,7 @@ import shutil
 import pytest
 
 from codeword import accelerate as accel
-from codeword.build import compile_schema
+from codeword.build import compile_schema, render_protocol
 from codeword.vectors import write_vectors
 from fuzz.schema.accelerated import difference, load as load_module
 from schema_in_a_test import conformance_on_host_and_avr, load, render, run_c
@@ -282,3 +282,16 @@ def test_strict_warnings(tmp_path, compiler, level):
     from schema_in_a_test import firmware_warnings
     render(tmp_path, "inet", ORDERS)
     assert firmware_warnings(tmp_path, "inet", compiler, level) == ""
+
+
+def test_the_spec_works_the_published_header_in_place(tmp_path):
+    """The Markdown's worked example: the field counted as 00 00, the RFC's words and sum
+    (hand-checked: 4500 + 0073 + 4000 + 4011 + c0a8 + 0001 + c0a8 + 00c7 = 2479c, folded
+    479e, inverted b861), and the receiver's sum of all ones."""
+    (tmp_path / "ipv4h.yaml").write_text(IPV4, encoding="utf-8")
+    files = render_protocol(compile_schema(tmp_path / "ipv4h.yaml"))
+    page = next(text for path, text in files.items() if path.endswith("ipv4h.md"))
+    assert "`45 00 00 73 00 00 40 00 40 11 00 00 c0 a8 00 01 c0 a8 00 c7`, `checksum` itself (B10–B11) " \
+           "counted as `00 00`" in page
+    assert "add to `0x2479c`" in page and "`0x479e`" in page and "one's complement: `0xb861`" in page
+    assert f"`{IPV4_HEADER.hex(' ')}`, to `0xffff` (all ones: no error)" in page

@@ -286,9 +286,9 @@ def parameters(cs: Checksum) -> list[tuple[str, str]]:
                 ("words", f"16 bits, {cs.word_order}-endian; an odd byte count padded with a zero byte"),
                 ("sum", "one's complement: each carry out of 16 bits added back in"),
                 ("value", "the sum's one's complement (every bit inverted)")] + (
-                    [("itself", "inside its coverage, counted as `00 00` while computed; a receiver "
-                                "checks that the covered bytes as sent sum to all ones (`0xffff`), "
-                                "so `0xffff` passes where `0x0000` is sent")] if cs.covers_self else [])
+                    [("itself", "inside its coverage, counted as 00 00 while computed; a receiver "
+                                "checks that the covered bytes as sent sum to all ones (0xffff), "
+                                "so 0xffff passes where 0x0000 is sent")] if cs.covers_self else [])
     return [("algorithm", cs.algorithm)]
 
 
