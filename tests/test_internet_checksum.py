@@ -295,3 +295,23 @@ def test_the_spec_works_the_published_header_in_place(tmp_path):
            "counted as `00 00`" in page
     assert "add to `0x2479c`" in page and "`0x479e`" in page and "one's complement: `0xb861`" in page
     assert f"`{IPV4_HEADER.hex(' ')}`, to `0xffff` (all ones: no error)" in page
+
+
+def test_covering_itself_changes_the_fingerprint_and_breaks(tmp_path):
+    """The same fields and coverage names; only whether the checksum lies inside it."""
+    from codeword.diff import BREAKING, compare
+    from codeword.fingerprint import fingerprint
+    last = IPV4.replace("    - {name: checksum, type: u16, checksum: {algorithm: internet, covers: {from: ver_ihl, to: payload}}}\n"
+                        "    - {payload: true}\n",
+                        "    - {payload: true}\n"
+                        "    - {name: checksum, type: u16, checksum: {algorithm: internet, covers: {from: ver_ihl, to: payload}}}\n")
+    last = last[:last.index("    examples:")]
+    protocols = []
+    for name, schema in (("a", IPV4[:IPV4.index("    examples:")]), ("b", last)):
+        (tmp_path / name).mkdir()
+        (tmp_path / name / "ipv4h.yaml").write_text(schema, encoding="utf-8")
+        protocols.append(compile_schema(tmp_path / name / "ipv4h.yaml"))
+    inside, after = (next(f for f in p.messages[0].layout if f.name == "checksum") for p in protocols)
+    assert inside.checksum.covers_self and not after.checksum.covers_self
+    assert fingerprint(protocols[0]) != fingerprint(protocols[1])
+    assert any("checksum" in c.subject for c in compare(*protocols).of_kind(BREAKING))
