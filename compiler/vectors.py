@@ -585,7 +585,23 @@ class Generator:
             out.append(self.stream_events(f"stream {n}", stream))
         if self.p.framing.encoding and frames:
             out.extend(self.short_garbage(frames))
+            out.extend(self.mapped_noise(frames))
         return out
+
+    def mapped_noise(self, frames: list[bytes]) -> list[dict]:
+        """HDLC with a control character map: frames with mapped characters added inside
+        them, and stretches of mapped characters alone between them (an XOFF while idle),
+        which decoders drop: the frames decode, and nothing else is reported."""
+        mapped = encoding_facts(self.p)["mapped"]
+        if not mapped:
+            return []
+        rng, parts = self.rng, []
+        for frame in frames[:4]:
+            parts.append(bytes(rng.choices(mapped, k=rng.randint(1, 3))) + frame[-1:])
+            for b in frame[:-1]:
+                parts.append(bytes((b,)) + (bytes((rng.choice(mapped),)) if rng.random() < 0.2 else b""))
+            parts.append(frame[-1:])
+        return [self.stream_events("mapped control characters among frames", b"".join(parts))]
 
     def short_garbage(self, frames: list[bytes]) -> list[dict]:
         """A stream of frames with runs of short stretches between delimiters before each,
