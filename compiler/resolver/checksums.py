@@ -41,7 +41,7 @@ class ChecksumsMixin(ResolverBase):
             if missing:
                 self.error(path, f"crc needs Rocksoft parameters: missing {', '.join(missing)}",
                            "or name a RevEng catalogue entry, e.g. algorithm: CRC-16/CMS")
-                return Checksum("crc", over, covers)
+                return Checksum("crc", over, covers, loc=self.loc(*path))
             params = CrcParams("custom", c["width"], c["poly"], c["init"], c["refin"],
                                c["refout"], c["xorout"])
         elif algorithm in SIMPLE:
@@ -56,7 +56,7 @@ class ChecksumsMixin(ResolverBase):
             params = crc.lookup(algorithm)
             if params is None:
                 self.unknown_crc_name(algorithm, path + ("algorithm",))
-                return Checksum("crc", over, covers)
+                return Checksum("crc", over, covers, loc=self.loc(*path))  # refused: later rules still name its line
         if params is not None:
             algorithm = "crc"
             self.check_crc(params, path, bits, over)
