@@ -315,3 +315,32 @@ def test_covering_itself_changes_the_fingerprint_and_breaks(tmp_path):
     assert inside.checksum.covers_self and not after.checksum.covers_self
     assert fingerprint(protocols[0]) != fingerprint(protocols[1])
     assert any("checksum" in c.subject for c in compare(*protocols).of_kind(BREAKING))
+
+
+LSB = """codeword: 1
+protocol: inetlsb
+title: least significant bit first, little-endian by default
+source: RFC 1071
+framing:
+  kind: bytes
+  bit_order: lsb_first
+  layout:
+    - {name: kind, type: u8, dispatch: true}
+    - {name: pad, type: u8}
+    - {name: check, type: u16, checksum: {algorithm: internet, covers: {from: kind, to: payload}}}
+    - {payload: true}
+messages:
+  a: {id: 1, fields: [{name: x, type: u16}]}
+"""
+
+
+def test_words_follow_the_framings_default_byte_order(tmp_path):
+    """lsb_first makes multi-byte fields little-endian unless byte_order says otherwise;
+    the checksum's words follow, so the field in place is one word of what it covers and
+    the wire carries RFC 1071's bytes: 01 00 00 00 02 01 sum to 0301, sent fc fe."""
+    assert rfc1071(bytes.fromhex("01 00 00 00 02 01")) == 0xFCFE
+    render(tmp_path, "inetlsb", LSB)
+    mod = load(tmp_path / "inetlsb.py")
+    assert mod.encode(mod.A(pad=0, x=0x0102)) == bytes.fromhex("01 00 fc fe 02 01")
+    assert mod.decode(bytes.fromhex("01 00 fc fe 02 01")) == mod.A(pad=0, x=0x0102)
+    c_round_trips(tmp_path, "inetlsb", ["01 00 fc fe 02 01"], ["01 00 fe fc 02 01"])

@@ -123,7 +123,9 @@ class ChecksumsMixin(ResolverBase):
         if "modulo" in c:
             self.error(path + ("modulo",), "the internet checksum sums 16-bit words with "
                                            "end-around carry; it takes no modulo", "drop modulo")
-        return byte_order or self.data["framing"].get("byte_order", "big")
+        framing = self.data["framing"]
+        default = "little" if framing.get("bit_order") == "lsb_first" else "big"  # as the framing's
+        return byte_order or framing.get("byte_order", default)
 
     def check_crc(self, params: CrcParams, path: tuple, bits: Optional[int], over: str) -> None:
         mask = (1 << params.width) - 1
