@@ -153,6 +153,10 @@ class Checksum:
     extra: Optional[str] = None
     # internet (RFC 1071): "big" or "little", the byte order its 16-bit words are read in.
     word_order: Optional[str] = None
+    # internet: the field lies inside its coverage (as IPv4's header checksum). Encoders
+    # count its bytes as zero; decoders run RFC 1071's receiver check, the covered bytes
+    # with the field summing to all ones.
+    covers_self: bool = False
 
     def final(self, value: int) -> int:
         """The finished checksum from a sum or xor reduced by the modulo."""

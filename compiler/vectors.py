@@ -537,10 +537,24 @@ class Generator:
                 b = bytearray(data)
                 b[1] = (b[1] + 1) & 0xFF
                 out.append(("second byte changed", bytes(b)))
+        if not self.p.framing.encoding:  # the frame's own bytes, not stuffed
+            out += self.other_zero(m, data)
         encoding = self.p.framing.encoding
         if encoding:
             out += self.damaged_escapes(encoding, data)
         return [(label, bad) for label, bad in out if bad != data]
+
+    @staticmethod
+    def other_zero(m: Message, data: bytes) -> list[tuple[str, bytes]]:
+        """An internet checksum that covers itself, sent as 0000, written as ffff: one's
+        complement's other zero, which RFC 1071's receiver check accepts too."""
+        out = []
+        for leaf in m.wire.leaves:
+            cs = leaf.field.checksum
+            at = leaf.pos // 8
+            if cs and cs.covers_self and data[at:at + 2] == b"\0\0" and not m.shortening:
+                out.append((f"{leaf.dotted} as ffff", data[:at] + b"\xff\xff" + data[at + 2:]))
+        return out
 
     def damaged_escapes(self, encoding: str, data: bytes) -> list[tuple[str, bytes]]:
         """An encoded frame with a bad escape (or COBS code) and with a delimiter inside it."""
@@ -586,7 +600,23 @@ class Generator:
             out.append(self.stream_events(f"stream {n}", stream))
         if self.p.framing.encoding and frames:
             out.extend(self.short_garbage(frames))
+            out.extend(self.mapped_noise(frames))
         return out
+
+    def mapped_noise(self, frames: list[bytes]) -> list[dict]:
+        """HDLC with a control character map: frames with mapped characters added inside
+        them, and stretches of mapped characters alone between them (an XOFF while idle),
+        which decoders drop: the frames decode, and nothing else is reported."""
+        mapped = encoding_facts(self.p)["mapped"]
+        if not mapped:
+            return []
+        rng, parts = self.rng, []
+        for frame in frames[:4]:
+            parts.append(bytes(rng.choices(mapped, k=rng.randint(1, 3))) + frame[-1:])
+            for b in frame[:-1]:
+                parts.append(bytes((b,)) + (bytes((rng.choice(mapped),)) if rng.random() < 0.2 else b""))
+            parts.append(frame[-1:])
+        return [self.stream_events("mapped control characters among frames", b"".join(parts))]
 
     def short_garbage(self, frames: list[bytes]) -> list[dict]:
         """A stream of frames with runs of short stretches between delimiters before each,

@@ -171,3 +171,108 @@ def test_strict_warnings(tmp_path, compiler, level):
     from schema_in_a_test import firmware_warnings
     render(tmp_path, "pppmap", PPP)
     assert firmware_warnings(tmp_path, "pppmap", compiler, level) == ""
+
+
+# An XOFF (13) while idle, between two frames: a stretch of mapped characters alone.
+IDLE_XOFF = FLOW_WIRE + bytes.fromhex("13 13 7e 11 7e") + FLOW_WIRE
+# A stretch that holds no frame, an XON inside it: its two kept bytes are skipped.
+GARBAGE_WITH_XON = bytes.fromhex("7e 41 11 42 7e") + FLOW_WIRE
+# An escape followed only by mapped characters, at stream offset 4.
+LOST_ESCAPE = bytes.fromhex("7e 11 13 a2 7d 11 7e") + FLOW_WIRE
+
+
+def test_mapped_characters_alone_are_an_empty_stretch(tmp_path):
+    """RFC 1662 4.2: receivers drop mapped characters before anything else, so a stretch
+    of them alone holds nothing, as the idle flags between frames: no error, no skipped
+    byte. A stretch that holds no frame skips only the bytes it keeps."""
+    render(tmp_path, "xonxoff", XONXOFF)
+    mod = load(tmp_path / "xonxoff.py")
+    for step in (1, 3, len(IDLE_XOFF)):
+        decoder = mod.StreamDecoder()
+        items = [x for at in range(0, len(IDLE_XOFF), step) for x in decoder.feed(IDLE_XOFF[at:at + step])]
+        assert items == [mod.Flow(x=0x137E)] * 2 and decoder.skipped == 0 and decoder.finish() == []
+    decoder = mod.StreamDecoder()
+    items = decoder.feed(GARBAGE_WITH_XON)
+    assert items[0].rule == "dispatch" and items[1:] == [mod.Flow(x=0x137E)]
+    assert decoder.skipped == 2 and decoder.spans[0] == (1, 3)  # 41 11 42: three bytes on the stream
+    decoder = mod.StreamDecoder()
+    items = decoder.feed(LOST_ESCAPE)
+    assert items[0].rule == "escape" and items[0].offset == 4 * 8 and items[1:] == [mod.Flow(x=0x137E)]
+    assert decoder.skipped == 2  # the bytes kept: a2 7d
+    assert decoder.feed(bytes.fromhex("11 13 11")) == [] and decoder.finish() == []
+
+
+def test_a_flood_of_mapped_characters_keeps_the_buffer_bounded(tmp_path):
+    """A megabyte of XON/XOFF in the middle of a frame: the decoder drops each as it
+    comes, holds no more than one encoded frame, and decodes the frame after it."""
+    render(tmp_path, "xonxoff", XONXOFF)
+    mod = load(tmp_path / "xonxoff.py")
+    decoder = mod.StreamDecoder()
+    assert decoder.feed(FLOW_WIRE[:4]) == []
+    flood = b"\x11\x13" * 2048
+    most = 0
+    for _ in range(256):  # 1 MiB
+        assert decoder.feed(flood) == []
+        most = max(most, len(decoder._buffer))
+    assert most <= mod.WIRE_MAX
+    assert decoder.feed(FLOW_WIRE[4:]) == [mod.Flow(x=0x137E)] and decoder.skipped == 0
+    assert decoder.spans == [(1, len(FLOW_WIRE) - 2 + len(flood) * 256)]  # the frame's extent on the stream
+
+
+STREAM_DRIVER = r"""
+#include <stdio.h>
+#include "xonxoff.h"
+static void scan(const char *name, const uint8_t *data, size_t len, unsigned repeat_flood)
+{
+    xonxoff_scan_state_t s;
+    xonxoff_message_t m;
+    size_t used, at = 0;
+    unsigned k;
+    int rc;
+    xonxoff_scan_start(&s, 0);
+    printf("%s:", name);
+    for (k = 0; k < repeat_flood; k++) {  /* XON/XOFF after the first 4 bytes */
+        static const uint8_t flood[] = {0x11, 0x13};
+        size_t i;
+        for (i = 0; i < 4u && k == 0u; i++) {
+            rc = xonxoff_scan(&s, data + i, 1u, &used, &m);
+            if (rc != 0) { printf(" early %d", rc); }
+        }
+        rc = xonxoff_scan(&s, flood, sizeof flood, &used, &m);
+        if (rc != 0) { printf(" flood %d", rc); }
+        at = 4u;
+    }
+    while (at < len) {
+        rc = xonxoff_scan(&s, data + at, len - at, &used, &m);
+        at += used;
+        if (rc > 0) {
+            printf(" x=%x", (unsigned)m.as.flow.x);
+        } else if (rc < 0) {
+            printf(" %s", rc == CW_ERR_ESCAPE ? "escape" : cw_error_name(rc));
+        }
+    }
+    printf(" skipped %lu\n", (unsigned long)s.skipped);
+}
+int main(void)
+{
+    static const uint8_t idle[] = {IDLE};
+    static const uint8_t garbage[] = {GARBAGE};
+    static const uint8_t lost[] = {LOST};
+    static const uint8_t flow[] = {FLOW};
+    scan("idle", idle, sizeof idle, 0u);
+    scan("garbage", garbage, sizeof garbage, 0u);
+    scan("lost", lost, sizeof lost, 0u);
+    scan("flood", flow, sizeof flow, 524288u);
+    return 0;
+}
+"""
+
+
+def test_c_drops_mapped_characters_as_python_does(tmp_path):
+    from schema_in_a_test import c_bytes
+    render(tmp_path, "xonxoff", XONXOFF)
+    driver = STREAM_DRIVER
+    for key, data in (("IDLE", IDLE_XOFF), ("GARBAGE", GARBAGE_WITH_XON), ("LOST", LOST_ESCAPE), ("FLOW", FLOW_WIRE)):
+        driver = driver.replace("{" + key + "}", "{" + c_bytes(data) + "}")
+    assert run_c(tmp_path, driver) == ["idle: x=137e x=137e skipped 0", "garbage: dispatch x=137e skipped 2",
+                                       "lost: escape x=137e skipped 2", "flood: x=137e skipped 0"]

@@ -5,7 +5,7 @@ from dataclasses import replace
 from typing import Optional
 
 from .. import crc
-from ..model import Checksum, CrcParams, Field, Framing
+from ..model import Checksum, CrcParams, Field, Framing, Shortening
 from .base import ResolverBase
 
 CRC_KEYS = ("width", "poly", "init", "refin", "refout", "xorout")
@@ -44,7 +44,7 @@ class ChecksumsMixin(ResolverBase):
             if missing:
                 self.error(path, f"crc needs Rocksoft parameters: missing {', '.join(missing)}",
                            "or name a RevEng catalogue entry, e.g. algorithm: CRC-16/CMS")
-                return Checksum("crc", over, covers)
+                return Checksum("crc", over, covers, loc=self.loc(*path))
             params = CrcParams("custom", c["width"], c["poly"], c["init"], c["refin"],
                                c["refout"], c["xorout"])
         elif algorithm in SIMPLE:
@@ -59,7 +59,7 @@ class ChecksumsMixin(ResolverBase):
             params = crc.lookup(algorithm)
             if params is None:
                 self.unknown_crc_name(algorithm, path + ("algorithm",))
-                return Checksum("crc", over, covers)
+                return Checksum("crc", over, covers, loc=self.loc(*path))  # refused: later rules still name its line
         if params is not None:
             algorithm = "crc"
             self.check_crc(params, path, bits, over)
@@ -126,7 +126,9 @@ class ChecksumsMixin(ResolverBase):
         if "modulo" in c:
             self.error(path + ("modulo",), "the internet checksum sums 16-bit words with "
                                            "end-around carry; it takes no modulo", "drop modulo")
-        return byte_order or self.data["framing"].get("byte_order", "big")
+        framing = self.data["framing"]
+        default = "little" if framing.get("bit_order") == "lsb_first" else "big"  # as the framing's
+        return byte_order or framing.get("byte_order", default)
 
     def check_crc(self, params: CrcParams, path: tuple, bits: Optional[int], over: str) -> None:
         mask = (1 << params.width) - 1
@@ -178,7 +180,7 @@ class ChecksumsMixin(ResolverBase):
         by_name = {f.name: f for f in layout}
         out = []
         for f in layout:
-            span = None
+            span, inside = None, False
             pair = f.checksum.covers if f.checksum else f.length_of
             if pair is not None:
                 start_f, end_f = by_name.get(pair[0]), by_name.get(pair[1])
@@ -195,8 +197,7 @@ class ChecksumsMixin(ResolverBase):
                     if stop < start or stop == start and f.checksum:  # a length may count nothing
                         self.error(path, f"message {name!r}: coverage of {f.name!r} is empty or reversed")
                     if f.checksum and start <= f.bit_offset < stop:
-                        self.report.error(f.checksum.loc, f"message {name!r}: checksum {f.name!r} covers itself",
-                                          "a checksum cannot be part of what it checks")
+                        inside = self.covers_itself(name, f, start)
                     if f.checksum:
                         self.check_later_checksums(name, f, (start, stop), layout)
                     span = (start // 8, stop // 8)
@@ -204,7 +205,7 @@ class ChecksumsMixin(ResolverBase):
                 if f.checksum.covers is None and f.checksum.over == "bytes" \
                         and framing.kind == "bytes":
                     self.error(path, f"checksum {f.name!r}: give `covers: {{from, to}}` in bytes framing")
-                f = replace(f, checksum=replace(f.checksum, byte_span=span))
+                f = replace(f, checksum=replace(f.checksum, byte_span=span, covers_self=inside))
             elif f.length_of and span:
                 value = span[1] - span[0] + f.length_adjust
                 if value < 0 or not self.int_fits(value, f.kind, f.bits or 0):
@@ -212,6 +213,39 @@ class ChecksumsMixin(ResolverBase):
                 f = replace(f, const=value)
             out.append(f)
         return tuple(out)
+
+    def covers_itself(self, name: str, f: Field, start: int) -> bool:
+        """Whether a checksum inside its own coverage is one the codecs can fill and check:
+        only the internet checksum, its bytes counted as zero (RFC 1071), on a 16-bit word
+        of what it covers, so the receiver's sum over the whole comes out all ones."""
+        cs = f.checksum
+        if cs.algorithm != "internet":
+            self.report.error(cs.loc, f"message {name!r}: checksum {f.name!r} covers itself",
+                              f"only the internet checksum may cover itself (its bytes counted as zero, "
+                              f"RFC 1071); end the coverage before {f.name!r}")
+            return False
+        offset = (f.bit_offset - start) / 8
+        if f.bit_offset % 8 or offset % 2:
+            self.report.error(cs.loc, f"message {name!r}: internet checksum {f.name!r} covers itself "
+                                      f"{offset:g} byte{'s' if offset != 1 else ''} into its coverage, not on a 16-bit word",
+                              "RFC 1071's receiver check needs the checksum to be one word of what it "
+                              "covers: start the coverage an even number of bytes before it")
+            return False
+        return True
+
+    def check_fixed_self_cover(self, name: str, layout: tuple[Field, ...],
+                               shortening: Optional[Shortening]) -> None:
+        """A checksum that covers itself is read and written at one place in the frame:
+        none of the bytes a frame may leave off comes before it."""
+        if shortening is None:
+            return
+        moving = min([g.span[0] for g in shortening.gaps] + [shortening.payload[0] + shortening.least])
+        for f in layout:
+            if f.checksum and f.checksum.covers_self and f.bit_offset // 8 + 2 > moving:
+                self.report.error(f.checksum.loc, f"message {name!r}: internet checksum {f.name!r} covers "
+                                                  "itself after bytes a frame may leave off",
+                                  f"place {f.name!r} before the payload's optional, counted or truncated "
+                                  "bytes, or end its coverage before it")
 
     def check_later_checksums(self, name: str, f: Field, bits: tuple[int, int],
                               layout: tuple[Field, ...]) -> None:

@@ -58,6 +58,7 @@ class MessagesMixin(ResolverBase):
             self.check_field_checksums(name, layout)
             if framing.kind == "bytes" and bits is not None:
                 shortening = self.shortening(name, layout, framing, path)
+                self.check_fixed_self_cover(name, layout, shortening)
         self.check_generated_members(name, layout)
         crc_extra = self.crc_extra(name, m, layout, path)
         rules = tuple(self.resolve_rule(r, path + ("rules", i), layout)

@@ -14,7 +14,7 @@ FULL = frozenset({
     "length_range",                         # a length that counts itself (and the checksum), adjusted
     "sync2", "two_keys", "by_direction",    # a sync of two bytes; two dispatch fields; a direction byte
     "sum", "xor", "crc", "fletcher",        # checksums over bytes
-    "internet",                             # bytes: the frame's checksum RFC 1071's, in either byte order
+    "internet",                             # bytes: the frame's checksum RFC 1071's, in either byte order, at times in place
     "crc_alias",                            # a CRC named by a catalogue alias with one meaning, in any case
     "complement", "crc_extra",              # a sum's complement, xorout; a CRC's per-message extra byte
     "encoding",                             # SLIP, COBS or HDLC byte stuffing around frames

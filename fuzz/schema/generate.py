@@ -144,6 +144,7 @@ class Generator:
             counter = next((f for f in layout if f.get("length_of", {}).get("adjust") is not None), None)
             if counter is not None and rng.random() < 0.5:  # and the checksum after the payload
                 counter["length_of"]["to"] = "check"
+            self.checksum_in_place(layout)
         self.end_marker(layout)
         self.little = self.lsb or self.has("little")
         framing = {"kind": "bytes", "byte_order": "little" if self.little else "big", "layout": layout}
@@ -236,6 +237,22 @@ class Generator:
         check["checksum"] = {"algorithm": "internet", "covers": check["checksum"]["covers"]}
         if "field_order" in self.on and own.random() < 0.4:
             check["byte_order"] = own.choice(["big", "little"])
+
+    def checksum_in_place(self, layout: list[dict]) -> None:
+        """Sometimes an internet checksum moves into its coverage, just before the payload,
+        as IPv4's header checksum: there when it sits a whole 16-bit word from the start."""
+        own = random.Random(f"internet in place {self.seed}")
+        check = layout[-1]
+        if check.get("checksum", {}).get("algorithm") != "internet" or own.random() >= 0.5 \
+                or any(f.get("length_of", {}).get("to") == "check" for f in layout):
+            return
+        names = [f.get("name") for f in layout]
+        first = check["checksum"]["covers"]["from"]
+        if first not in names:
+            return
+        widths = [int(f["type"][1:]) for f in layout[names.index(first):-2]]
+        if sum(widths) % 16 == 0:
+            layout.insert(len(layout) - 2, layout.pop())
 
     def end_marker(self, layout: list[dict]) -> None:
         """A constant byte after the payload (and its checksum) that closes each frame, as

@@ -749,7 +749,8 @@ class CView:
             if span.kind == "bytes":
                 c(f"memcpy(buf + {span.start}, {self.member(leaf)}, {leaf.field.length});")
             elif span.kind == "int" and self.is_byte_checksum(leaf):
-                if truncates and span.start >= sh.payload[1]:  # moved up before it is filled in
+                moved_up = truncates and span.start >= sh.payload[1]  # moved up before it is filled in
+                if moved_up or leaf.field.checksum.covers_self:  # counted as zero while computed
                     c(f"memset(buf + {span.start}, 0, {span.size}u);")
                 continue  # written once the bytes it covers are
             elif span.kind == "int":
@@ -947,6 +948,9 @@ class CView:
                 got = self.int_get(span.start, span.size, self.order_of(piece.field))
             else:
                 got = f"{bits_fn('get', piece.bits, span.order_of(piece))}({bits_at(piece.pos)}, {piece.bits}u)"
+            if piece.field.checksum.covers_self:  # RFC 1071's receiver check: with the field, the sum is all ones
+                self.fail_if(c, f"{self.byte_checksum_call(piece, m, True, 'sent')} != 0u", "checksum")
+                continue
             self.fail_if(c, f"{got} != {self.byte_checksum_call(piece, m, True, 'sent')}", "checksum")
         c(f"return {self.fn(m, 'check_raw')}(r, buf, m, false);")
         c.dedent()

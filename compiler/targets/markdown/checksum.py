@@ -214,7 +214,8 @@ def worked_example(p: Protocol, codec: types.ModuleType, m: Message, cs: Checksu
         ]
     elif cs.algorithm == "internet":
         start, end = cs.byte_span
-        covered = frame[start:end]
+        at = slot.offset // 8
+        covered = frame[start:at] + bytes(2) + frame[at + 2:end] if cs.covers_self else frame[start:end]
         steps, total, folded = _internet_steps(cs, covered)
         result = ~folded & 0xFFFF
         sent = _sent_value(p, frame, slot)
@@ -223,12 +224,19 @@ def worked_example(p: Protocol, codec: types.ModuleType, m: Message, cs: Checksu
         view["steps_head"] = ("word", "sum")
         view["lines"] = [
             f"covered bytes B{start}–B{end - 1}: `{covered.hex(' ')}`"
+            + (f", `{slot.path}` itself (B{at}–B{at + 1}) counted as `00 00`" if cs.covers_self else "")
             + (" and a pad byte `00`" if len(covered) % 2 else ""),
             f"{len(steps)} words, {cs.word_order}-endian, add to `0x{total:x}`; with each carry out "
             f"of 16 bits added back in (end-around carry), `0x{folded:04x}`",
             f"one's complement: `0x{result:04x}`",
             f"sent in `{slot.path}` ({position(p, slot)}): `0x{sent:04x}`",
         ]
+        if cs.covers_self:  # RFC 1071's receiver check, on the bytes as sent
+            check = _internet_steps(cs, frame[start:end])[2]
+            view["lines"].append(f"a receiver sums the covered bytes as sent, `{frame[start:end].hex(' ')}`, "
+                                 f"to `0x{check:04x}` (all ones: no error)")
+            if check != 0xFFFF:
+                raise AssertionError(f"worked internet example: the receiver's sum is {check:#x}, not all ones")
     elif cs.algorithm == "parity":
         word = int.from_bytes(frame, "big")
         others = bin(word).count("1") - sent
@@ -277,7 +285,10 @@ def parameters(cs: Checksum) -> list[tuple[str, str]]:
         return [("algorithm", "internet checksum (RFC 1071)"),
                 ("words", f"16 bits, {cs.word_order}-endian; an odd byte count padded with a zero byte"),
                 ("sum", "one's complement: each carry out of 16 bits added back in"),
-                ("value", "the sum's one's complement (every bit inverted)")]
+                ("value", "the sum's one's complement (every bit inverted)")] + (
+                    [("itself", "inside its coverage, counted as 00 00 while computed; a receiver "
+                                "checks that the covered bytes as sent sum to all ones (0xffff), "
+                                "so 0xffff passes where 0x0000 is sent")] if cs.covers_self else [])
     return [("algorithm", cs.algorithm)]
 
 

@@ -97,7 +97,9 @@ def encoding_lines(p: Protocol) -> list[str]:
                      "the control characters " + ", ".join(f"`{c:02X}`" for c in mapped)
                      + " too: each is sent as `7D` and the character XOR `20`. A decoder drops any of them "
                      "that arrives unescaped, wherever it comes (even after `7D`): equipment on the way "
-                     "may have added it (RFC 1662 §4.2).")
+                     "may have added it (RFC 1662 §4.2). A stream decoder drops them as they arrive: a "
+                     "stretch of them alone between two delimiters is empty, like idle flags, and they "
+                     "count as no skipped byte.")
     lines.append(f"{'An example frame' if example else 'A frame'}: `{spaced(frame)}` is sent as "
                  f"`{spaced(wire)}`. Buffers: a frame takes at most {facts['wire_max']} bytes encoded "
                  f"(the largest frame is {facts['frame_max']} bytes).")

@@ -1092,7 +1092,13 @@ class MessageCode:
             if cs and cs.over == "bytes":
                 start, end = cs.byte_span
                 sent = self.m.counts_sent(cs)  # over the bytes sent
-                c(f"x = {self.view.checksum_call(cs, 's' if sent else 'd', start, end, self.m.crc_extra, sent)}")
+                buf = 's' if sent else 'd'
+                if cs.covers_self:  # RFC 1071's receiver check: with the field, the sum is all ones
+                    c(f"if {self.view.checksum_call(cs, buf, start, end, None, sent)}:")
+                    c(f"    x = {self.view.zeroed_checksum_call(cs, buf, leaf.pos // 8, sent)}")
+                    c(f"    raise _dec({self.m.name!r}, {leaf.dotted!r}, {leaf.var}, 'checksum', hex(x), {self.sent_offset(leaf)}, {leaf.field.rule!r})")
+                    continue
+                c(f"x = {self.view.checksum_call(cs, buf, start, end, self.m.crc_extra, sent)}")
                 c(f"if {leaf.var} != x:")
                 c(f"    raise _dec({self.m.name!r}, {leaf.dotted!r}, {leaf.var}, 'checksum', hex(x), {self.sent_offset(leaf)}, {leaf.field.rule!r})")
         self.build_checks(c, bounded=True, text_form=False, word=self.one_word())
@@ -1785,6 +1791,15 @@ class ModuleView(PythonView):
         for name, lengths in spans.items():
             out.append(_fixed_span_crc_code(crcs[name], name, sorted(lengths)))
         return out
+
+    @staticmethod
+    def zeroed_checksum_call(cs, buf: str, at: int, cut: bool = False) -> str:
+        """The value an encoder sends for a checksum that covers itself, at byte `at`: its
+        coverage computed with the field's two bytes as zeros."""
+        start, end = cs.byte_span
+        less = " - cut" if cut else ""
+        return (f"_checksum_{_checksum_name(cs)}(b''.join(({buf}[{start}:{at}], bytes(2), "
+                f"{buf}[{at + 2}:{end}{less}])))")
 
     @staticmethod
     def checksum_call(cs, buf: str, start: int, end: int, extra: Optional[int] = None, cut: bool = False) -> str:
