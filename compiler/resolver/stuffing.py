@@ -28,11 +28,11 @@ def pattern_problem(pattern: bytes, insert: int) -> Optional[str]:
         if pattern[:k] == pattern[-k:]:
             return (f"the pattern {pattern.hex(' ').upper()} overlaps itself ({pattern[:k].hex(' ').upper()} both "
                     "starts and ends it), so a run of it holds occurrences a receiver may count differently")
-    for j, byte in enumerate(pattern):
-        if byte == insert and pattern[:j] == pattern[len(pattern) - j:]:
-            where = "begins" if j == 0 else f"continues {pattern[:j].hex(' ').upper()}, which ends"
-            return (f"the inserted byte {insert:02X} {where} the pattern {pattern.hex(' ').upper()}, so the bytes "
-                    "sent could hold an occurrence the sender never saw")
+    # an inserted byte inside an occurrence would follow a part of the pattern that also ends
+    # it: a border, refused above; so only one that begins the pattern can be misread
+    if pattern[0] == insert:
+        return (f"the inserted byte {insert:02X} begins the pattern {pattern.hex(' ').upper()}, so the bytes "
+                "sent could hold an occurrence the sender never saw")
     return None
 
 
@@ -197,7 +197,7 @@ class StuffingMixin(ResolverBase):
                 if f.name in lengths and f.from_envelope and isinstance(f.const, int) \
                         and f.const + extra > (1 << (f.bits or 0)) - 1:
                     self.error(path, f"framing.stuffing: length field {f.name!r} ({f.bits} bits) cannot count "
-                                     f"message {m.name!r}'s largest stuffed frame ({f.const + extra})",
+                                     f"the largest stuffed frame of message {m.name!r} ({f.const + extra})",
                                "widen the length field or shorten the message")
                     return False
         return True
