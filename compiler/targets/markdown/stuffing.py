@@ -111,12 +111,11 @@ def pattern_lines(p: Protocol) -> list[str]:
     lines = [f"**Pattern stuffing: {code(facts['name'])}.** In the bytes from `{st.covers[0]}` through "
              f"`{st.covers[1]}` (from byte {st.head} of a frame to {st.tail} bytes before its end) the sender inserts "
              f"`{st.insert:02X}` after every `{spaced(pattern)}`, and the receiver removes the `{st.insert:02X}` that "
-             f"follows each `{spaced(pattern)}` there: a `{spaced(pattern)}` without it is refused with error "
-             "`escape`. The pattern is found in the bytes meant, from the first stuffed byte on, and occurrences "
+             f"follows each `{spaced(pattern)}` there. The pattern is found in the bytes meant, from the first stuffed byte on, and occurrences "
              "never overlap. Length fields that count the stuffed bytes count them as sent, inserted bytes "
              "included, and checksums are computed over the frame as sent: an encoder stuffs the frame, then "
              "sets its lengths and checksums; a decoder checks its checksums over the bytes received, then "
-             "removes the inserted bytes. Every encoder and decoder of this protocol reads and writes the "
+             "removes the inserted bytes, and a pattern there without its inserted byte is the error `escape`. Every encoder and decoder of this protocol reads and writes the "
              "frame as sent; the field offsets of an error past a stuffed byte count the frame without it."]
     for m in p.messages:
         for ex in m.examples:
