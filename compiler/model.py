@@ -693,6 +693,28 @@ class LineChecksum:
 
 
 @dataclass(frozen=True)
+class PatternStuffing:
+    """Bytes framing: after each occurrence of `pattern` in the bytes from field `covers[0]`
+    through field `covers[1]`, the sender inserts the byte `insert` and the receiver removes
+    it (Dynamixel Protocol 2.0: FD after FF FF FD, from the instruction to the last
+    parameter). Length fields and checksums count the frame as sent, stuffed bytes
+    included. The resolver admits only patterns a receiver reads back one way: the pattern
+    does not overlap itself, and the inserted byte never forms part of an occurrence."""
+
+    pattern: bytes
+    insert: int
+    covers: tuple[str, str]  # (from, to) field names; `payload` for the message's own fields
+    head: int  # bytes of the frame before the stuffed ones
+    tail: int  # bytes of the frame after them
+    loc: Optional[Loc] = None
+
+    def most_inserted(self, stuffed: int) -> int:
+        """The most bytes stuffing adds to `stuffed` bytes: the pattern's occurrences cannot
+        overlap, so at most one per pattern length."""
+        return stuffed // len(self.pattern)
+
+
+@dataclass(frozen=True)
 class Framing:
     kind: str  # bits | bytes | text
     byte_order: str = "big"
@@ -711,6 +733,7 @@ class Framing:
     # hdlc: bit n set escapes control character n (0x00-0x1F) too, and decoders drop it
     # where it comes unescaped (RFC 1662's async control character map)
     accm: int = 0
+    stuffing: Optional[PatternStuffing] = None  # bytes framing: a byte inserted after a pattern, in a span
     prefix_separator: str = ":"
     separator: str = ","
     terminator: str = ";"

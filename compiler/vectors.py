@@ -470,6 +470,10 @@ class Generator:
                 valid.append(self.valid_case(f"{m.name} {name}", m, decoded, data))
                 frames.append(data)
                 break
+        if self.p.framing.stuffing and frames:
+            stuffed, damaged = self.stuffed_cases(m, frames[0])
+            valid += stuffed
+            invalid += damaged
         for i, data in enumerate(frames[:min(self.mutated, max(1, FRAME_BUDGET // (8 * size)))]):
             for label, bad in self.mutations(m, data) + (self.f64_outside(m, data) if i == 0 else []):
                 name = f"{m.name} {label} of {i}"
@@ -555,6 +559,49 @@ class Generator:
             if cs and cs.covers_self and data[at:at + 2] == b"\0\0" and not m.shortening:
                 out.append((f"{leaf.dotted} as ffff", data[:at] + b"\xff\xff" + data[at + 2:]))
         return out
+
+    def stuffed_cases(self, m: Message, data: bytes) -> tuple[list[dict], list[dict]]:
+        """Frames of `m` whose stuffed bytes hold the pattern, so a byte is inserted: the
+        pattern written over the first and the last place of a valid frame's stuffed bytes
+        where the message's checks still hold; and the first such frame without its
+        inserted byte, its length and checksums made to agree (an `escape` error), and
+        with them left as they were."""
+        st = self.p.framing.stuffing
+        frame = self.mod.unstuff(data)
+        end = len(frame) - st.tail - len(st.pattern)
+        places = list(range(st.head, end + 1))
+        valid: list[dict] = []
+        found: list[bytes] = []
+        for ends in (places, places[::-1]):
+            for at in ends[:64]:
+                wire = self.mod.stuff(frame[:at] + st.pattern + frame[at + len(st.pattern):])
+                try:
+                    obj = self.decode(m, wire)
+                except self.mod.DecodeError:
+                    continue
+                if type(obj).NAME != m.name or self.mod.encode(obj) != wire:
+                    continue  # the pattern read as another message, or as values written otherwise
+                if wire not in found:
+                    found.append(wire)
+                    valid.append(self.valid_case(f"{m.name} pattern stuffed at byte {at}", m, obj, wire))
+                break
+        invalid: list[dict] = []
+        if found:
+            wire = found[0]
+            cut = wire.index(st.pattern + bytes((st.insert,)), st.head) + len(st.pattern)
+            left = bytearray(wire[:cut] + wire[cut + 1:])
+            recounted = bytearray(left)
+            self.mod._recount(recounted, -1)
+            for label, bad in (("inserted byte left out", bytes(recounted)),
+                               ("inserted byte left out, length and checksums as sent", bytes(left))):
+                try:
+                    self.decode(m, bad)
+                except self.mod.DecodeError as exc:
+                    case = {"name": f"{m.name} {label}", "message": m.name, **self.wire(bad), "error": exc.rule}
+                    if m.direction:
+                        case["direction"] = m.direction
+                    invalid.append(case)
+        return valid, invalid
 
     def damaged_escapes(self, encoding: str, data: bytes) -> list[tuple[str, bytes]]:
         """An encoded frame with a bad escape (or COBS code) and with a delimiter inside it."""

@@ -19,7 +19,7 @@ from cdriver import Driver
 from conftest import PROTOCOLS, ROOT
 from test_c import passed, tool
 
-EXAMPLES = ("mavlink1", "mavlink2", "modbus_rtu", "nmea0183", "ubx")
+EXAMPLES = ("dynamixel2", "mavlink1", "mavlink2", "modbus_rtu", "nmea0183", "ubx")
 
 
 def where(name: str) -> tuple[Path, Path, Path]:

@@ -19,7 +19,7 @@ import pytest
 from conftest import PROTOCOLS, ROOT, load_generated
 from wrong_values import member_paths, with_value, wrong_values
 
-EXAMPLES = ("mavlink1", "mavlink2", "modbus_rtu", "nmea0183", "ubx")
+EXAMPLES = ("dynamixel2", "mavlink1", "mavlink2", "modbus_rtu", "nmea0183", "ubx")
 
 def released_view() -> memoryview:
     view = memoryview(b"\xaa\x08\x03\x01" * 3)

@@ -124,10 +124,19 @@ def _framing(old: Protocol, new: Protocol, out: _Collector) -> None:
                  "keep_empty"):
         if getattr(a, name) != getattr(b, name):
             out.add(BREAKING, "framing", f"{name} changed from {getattr(a, name)!r} to {getattr(b, name)!r}")
+    if _stuffing(a.stuffing) != _stuffing(b.stuffing):
+        out.add(BREAKING, "framing", f"stuffing changed from {_stuffing(a.stuffing)} to {_stuffing(b.stuffing)}")
     if not _same_wire(a.text_form, b.text_form):
         out.add(BREAKING, "framing", "the text form changed")
     if a.envelope or b.envelope:
         _fields(placed_leaves(leaves_of(a.envelope)), placed_leaves(leaves_of(b.envelope)), out, "envelope", text=a.kind == "text")
+
+
+def _stuffing(st) -> str:
+    """Pattern stuffing as the wire sees it (where the schema says it is aside)."""
+    if st is None:
+        return "none"
+    return f"{st.insert:02X} after {st.pattern.hex(' ').upper()} in {st.covers[0]}..{st.covers[1]}"
 
 
 def _messages(old: Protocol, new: Protocol, out: _Collector) -> None:

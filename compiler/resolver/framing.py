@@ -23,7 +23,7 @@ class FramingMixin(ResolverBase):
         kind = fr["kind"]
         path = ("framing",)
         allowed = {"bits": {"kind", "word_bits", "max_bits", "byte_order", "text_form"},
-                   "bytes": {"kind", "layout", "byte_order", "bit_order", "encoding", "accm", "truncate"},
+                   "bytes": {"kind", "layout", "byte_order", "bit_order", "encoding", "accm", "stuffing", "truncate"},
                    "text": {"kind", "start", "prefix_separator", "separator", "terminator",
                             "ignore_between", "trim", "float_format", "checksum", "keep_empty",
                             "keep_spelling"}}[kind]

@@ -25,12 +25,14 @@ from .shortening import ShorteningMixin
 from .rules import RulesMixin
 from .sequences import SequencesMixin
 from .streams import StreamsMixin
+from .stuffing import StuffingMixin
 from .delivery import DeliveryMixin
 from .placement import PlacementMixin
 
 
 class Resolver(TypesMixin, FieldsMixin, ChecksumsMixin, FramingMixin, PlacementMixin, MessagesMixin,
-               ShorteningMixin, RulesMixin, SequencesMixin, DeliveryMixin, StreamsMixin):
+               ShorteningMixin, RulesMixin, SequencesMixin, DeliveryMixin, StreamsMixin,
+               StuffingMixin):
     """The whole document: each concern's rules come from its mixin module."""
 
     def resolve(self) -> Protocol:
@@ -71,6 +73,7 @@ class Resolver(TypesMixin, FieldsMixin, ChecksumsMixin, FramingMixin, PlacementM
         framing = self.resolve_framing(d["framing"])
         messages = tuple(self.resolve_message(n, m, framing) for n, m in d["messages"].items())
         self.check_messages(messages, d)
+        framing = self.resolve_stuffing(d["framing"], framing, messages)
         sequences = tuple(self.resolve_sequence(n, s, messages)
                           for n, s in d.get("sequences", {}).items())
         self.machine_packets_checked: set[str] = set()  # messages whose packer field names are checked

@@ -112,14 +112,18 @@ def stream_facts(p: Protocol) -> dict:
         if counted:  # the count field gives these frames' sizes, looked up by direction and id
             by_key["counted"] = [dict(counted[name], value=value, direction=direction, any=value not in size_of)
                                  for value, _, direction, name in dispatch["frames"] if name in counted]
+    ranges = size_ranges(p)
+    if fr.stuffing is not None:  # a stuffed frame is longer than its message by what was stuffed
+        ranges = stuffed_size_ranges(p)
+        sizes = sorted({n for lo, hi in ranges for n in range(lo, hi + 1)})
     # A sync of several bytes: the decoder finds the first, then checks the rest
     # before it reads a frame there; a mismatch drops the byte as garbage.
     return {"sync": sync, "sync_rest": list(enumerate(pattern))[1:],
             "sync_bytes": pattern, "length": length, "by_key": by_key, "sizes": sizes, "max": max(sizes),
-            "min": min(sizes), "ranges": size_ranges(p),
+            "min": min(sizes), "ranges": ranges,
             # what a stream decoder hands to the decoder: every size within a message's range, so
             # one between the steps of a counted array is a dispatch error in both targets
-            "accepted": sorted({n for lo, hi in size_ranges(p) for n in range(lo, hi + 1)})}
+            "accepted": sorted({n for lo, hi in ranges for n in range(lo, hi + 1)})}
 
 
 def gap_reads(p: Protocol, m: Message) -> list[dict]:
@@ -234,6 +238,69 @@ def encoding_facts(p: Protocol) -> dict:
                 unit_max=2 * frame_max + 2,
                 # stuffing never makes a frame shorter: a shorter stretch holds none
                 unit_min=min(m.min_size for m in p.messages))
+
+
+def stuffing_facts(p: Protocol) -> dict:
+    """Where a pattern-stuffed frame's stuffed bytes, length fields and checksums sit, or {}
+    without pattern stuffing. Fields before the payload are placed by `at`, their offset from
+    the frame's start; fields after it by `back`, their offset from its end (a frame's size
+    varies with what is stuffed). A checksum covers from `start` to `end` (from the start) or
+    to `end_back` bytes before the frame's end; checksums are listed in wire order, the
+    order an encoder fills them in."""
+    fr = p.framing
+    st = fr.stuffing if fr.kind == "bytes" else None
+    if st is None:
+        return {}
+    env = fr.envelope
+    payload = next(i for i, f in enumerate(env) if f.is_payload)
+    begin, pos = {}, 0
+    for i, f in enumerate(env[:payload]):
+        begin[f.name], pos = pos, pos + (f.bits or 0) // 8
+    begin["payload"] = pos
+    back, pos = {}, 0
+    for f in reversed(env[payload + 1:]):
+        pos += (f.bits or 0) // 8
+        back[f.name] = pos
+    ends_back = {f.name: back[f.name] - (f.bits or 0) // 8 for f in env[payload + 1:]}
+    ends_back["payload"] = back[env[payload + 1].name] if payload + 1 < len(env) else 0
+
+    def place(f) -> dict:
+        order = f.byte_order or fr.byte_order
+        where = {"at": begin[f.name]} if f.name in begin else {"back": back[f.name]}
+        return dict(where, name=f.name, bytes=(f.bits or 0) // 8, byte_order=order)
+
+    index = {("payload" if f.is_payload else f.name): i for i, f in enumerate(env)}
+    first, last = index[st.covers[0]], index[st.covers[1]]
+    # the resolver lets a length field count all of the stuffed bytes or none of them
+    lengths = [place(f) for f in env if f.length_of and index[f.length_of[0]] <= first <= index[f.length_of[1]]]
+    resolved = {f.name: f.checksum for f in p.messages[0].layout if f.checksum}  # with its width
+    checksums = []
+    for f in env:
+        cs = resolved.get(f.name)
+        if cs is None:
+            continue
+        first, last = cs.covers
+        end = {"end_back": ends_back[last]} if last in ends_back else \
+            {"end": begin[last] + next(x.bits for x in env if x.name == last) // 8}
+        checksums.append(dict(place(f), cs=cs, start=begin[first], **end))
+    frame_max = max(m.size for m in p.messages)
+    widest = max(m.size + st.most_inserted(m.size - st.head - st.tail) for m in p.messages)
+    return {"pattern": st.pattern, "insert": st.insert, "head": st.head, "tail": st.tail,
+            "lengths": lengths, "checksums": checksums, "frame_max": frame_max, "wire_max": widest,
+            "shortest": min(m.min_size for m in p.messages),
+            "name": f"{st.insert:02X} after {st.pattern.hex(' ').upper()}"}
+
+
+def stuffed_size_ranges(p: Protocol) -> list[tuple[int, int]]:
+    """size_ranges, each message's longest frame grown by the most its stuffing adds."""
+    st = p.framing.stuffing
+    out: list[tuple[int, int]] = []
+    for lo, hi in sorted({(m.min_size, m.size + st.most_inserted(m.size - st.head - st.tail)) for m in p.messages}):
+        if out and lo <= out[-1][1]:
+            out[-1] = (out[-1][0], max(hi, out[-1][1]))
+        else:
+            out.append((lo, hi))
+    return out
 
 
 def text_line_facts(p: Protocol) -> dict:

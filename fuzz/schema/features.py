@@ -18,6 +18,7 @@ FULL = frozenset({
     "crc_alias",                            # a CRC named by a catalogue alias with one meaning, in any case
     "complement", "crc_extra",              # a sum's complement, xorout; a CRC's per-message extra byte
     "encoding",                             # SLIP, COBS or HDLC byte stuffing around frames
+    "pattern_stuffing",                     # bytes: a byte inserted after a pattern in a span (Dynamixel 2.0)
     "end_marker",                           # bytes: a constant byte after the payload closes each frame
     "shared_id",                            # bytes without length: two messages of one id at two sizes
     "extension", "truncate",                # bytes: extension fields at a message's end; trailing zeros not sent

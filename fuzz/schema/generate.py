@@ -180,6 +180,7 @@ class Generator:
                 body["crc_extra"] = rng.randrange(256)
         if self.has("encoding", 0.4):
             self.encode_frames(framing, messages, ids if not two_keys and not single and id_bits == 8 else None)
+        self.pattern_stuffing(framing, messages)
         if not any("length_of" in f for f in layout) and "encoding" not in framing and "large_frame" in self.on:
             self.large_frame(messages)  # a length field or an encoding holds less
         if "mixed_bit_order" in self.on and "truncate" not in framing:
@@ -203,6 +204,36 @@ class Generator:
             body["payload_bytes"] = size
             body["fields"] = placed_signals(own, size)
 
+
+    # (pattern, inserted byte) pairs a receiver reads back one way: Dynamixel's, a sync
+    # byte's, two-byte ones and one that shares a byte with the pattern's end
+    PATTERNS = [("FF FF FD", 0xFD), ("AA", 0x00), ("7E", 0x7D), ("C0 DB", 0xDB), ("55 AA", 0x01), ("00", 0xFF)]
+
+    def pattern_stuffing(self, framing: dict, messages: dict) -> None:
+        """In three schemas of five that have a length field of whole bytes and no other
+        stuffing: a byte inserted after a pattern in the bytes from the first dispatch field
+        (or the payload) through the payload, the length field widened to count it, and a
+        message a few bytes more, so the pattern fits (the vectors hold frames that need
+        stuffing). Drawn from a generator of its own, so the other
+        schemas of a seed stay as they were."""
+        own = random.Random(f"pattern_stuffing {self.seed}")
+        layout = framing["layout"]
+        length = next((f for f in layout if "length_of" in f), None)
+        if "pattern_stuffing" not in self.on or own.random() >= 0.6 or length is None or self.lsb \
+                or "encoding" in framing or "truncate" in framing \
+                or any(f.get("checksum", {}).get("extra") for f in layout):
+            return
+        names = [f.get("name", "payload") if not f.get("payload") else "payload" for f in layout]
+        first = length["length_of"]["from"]
+        start = names.index(first) if first in names else names.index("payload")
+        after_length = names.index(length["name"]) + 1
+        keys = [i for i, f in enumerate(layout) if f.get("dispatch") and i >= max(start, after_length)]
+        begin = names[keys[0]] if keys and layout[keys[0]]["type"] == "u8" and own.random() < 0.7 else "payload"
+        pattern, insert = own.choice(self.PATTERNS)
+        length["type"] = "u16"  # room for the bytes inserted
+        framing["stuffing"] = {"after": pattern, "insert": insert, "covers": {"from": begin, "to": "payload"}}
+        body = messages[own.choice(sorted(messages))]  # a message whose frames the pattern fits
+        body["fields"].insert(0, {"name": "pattern_room", "type": "bytes", "length": own.randint(3, 6)})
 
     def crc_name(self, name: str) -> str:
         """The catalogue name, or one of its aliases that names nothing else, in any case."""

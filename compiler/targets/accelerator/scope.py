@@ -21,8 +21,11 @@ def serves(p: Protocol) -> bool:
 
 def runs_streams(p: Protocol) -> bool:
     """Whether the accelerator also decodes the frames of a byte stream (an unstuffed one,
-    where the C decoder finds frames as the Python StreamDecoder does)."""
-    return serves(p) and p.framing.kind == "bytes" and not p.framing.encoding and bool(stream_facts(p))
+    where the C decoder finds frames as the Python StreamDecoder does). A stuffed frame
+    goes through the Python StreamDecoder, which unstuffs it and hands the frame to the
+    compiled message decoders."""
+    return serves(p) and p.framing.kind == "bytes" and not p.framing.encoding and not p.framing.stuffing \
+        and bool(stream_facts(p))
 
 
 def servable(p: Protocol, m: Message) -> bool:

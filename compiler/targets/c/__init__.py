@@ -5,6 +5,7 @@ from ...fingerprint import fingerprint, fingerprint32
 from ...model import Protocol
 from .machines import machines_view
 from .sequences import sequences_view
+from .stuffing import stuffing_view
 from .view import CView, cchar, clit, comment, cstr
 from .wordform import word_type
 from ..render import environment, tidy
@@ -113,7 +114,8 @@ def render(p: Protocol) -> dict[str, str]:
         p=p, v=v, px=v.px, PX=v.PX, fingerprint=fingerprint(p), fingerprint32=f"{fingerprint32(p):#010x}", constants=constants(v), enums=enums(v), flags=flags(v),
         directions=v.directions(), messages=messages, kinds={m["name"]: m["kind"] for m in messages},
         checksums=v.byte_checksums(), text=v.text, dispatch=dispatch, stream=v.stream() if fr.kind == "bytes" else {},
-        encoding=v.encoding(),
+        encoding=v.encoding(), stuffing=stuffing_view(v.px, p),
+        wrapped=bool(fr.encoding or fr.stuffing),
         word_bits=v.word_bits(), word_type=word_type(v.word_bits() or 32), text_form=text_form,
         word_max=(1 << v.word_bits()) - 1 if v.word_bits() else None,
         word_shift=v.word_bits() - dispatch["head_bits"] if v.word_bits() and dispatch["kind"] == "bits" else None, cstr=cstr, ignore=ignore, ignore_end=ignore_end,

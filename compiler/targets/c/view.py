@@ -83,7 +83,7 @@ class CView:
         return f"{self.px}_{m.name}_t"
 
     def fn(self, m: Message, op: str) -> str:
-        if self.fr.encoding and op in ("encode", "decode"):
+        if (self.fr.encoding or self.fr.stuffing) and op in ("encode", "decode"):
             op += "_frame"  # the frame as the layout describes it; <msg>_encode/_decode stuff it
         return f"{self.px}_{m.name}_{op}"
 

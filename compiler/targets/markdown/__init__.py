@@ -19,7 +19,7 @@ from .errors import error_claims
 from .examples import message_example, sequence_example
 from .placement import payload_grid
 from .layout import diagram, field_columns, field_rows, payload_note, shown, slots, text_line
-from .stuffing import encoding_lines
+from .stuffing import encoding_lines, pattern_lines
 from .machines import conditions, machine_view, sequence_view
 from .site import mermaid_script
 from .streams import stream_section
@@ -182,6 +182,7 @@ def framing_view(p: Protocol, linker: DecisionLinker) -> dict:
         if fr.encoding:
             lines.extend(encoding_lines(p))
         else:
+            lines.extend(pattern_lines(p))
             lines.append("**Stream resynchronisation.** A stream decoder skips bytes up to the next sync byte"
                          + (", checks the length byte against the known frame sizes" if facts.get("length") else "")
                          + ", and decodes a whole frame. After a bad frame (of a size no message has, a wrong "

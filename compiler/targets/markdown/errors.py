@@ -17,7 +17,7 @@ def error_claims(p: Protocol) -> list[dict]:
     fr = p.framing
     facts = dispatch_facts(p)
     claims: list[dict] = []
-    if fr.kind == "bytes" and facts["kind"] == "bytes" and not fr.encoding:
+    if fr.kind == "bytes" and facts["kind"] == "bytes" and not fr.encoding and not fr.stuffing:
         head = facts["last"]
         sizes = sorted({n for m in p.messages
                         for n in range(facts["least"].get(m.name, m.size), m.size + 1, facts["steps"].get(m.name, 1))})

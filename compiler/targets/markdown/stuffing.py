@@ -4,7 +4,9 @@ codecs' agreement with published frames is what the tests check."""
 from __future__ import annotations
 
 from ...model import Protocol
-from ..wire import ENCODINGS, encoding_facts
+from .text import code
+from ..escape import md_text
+from ..wire import ENCODINGS, encoding_facts, stuffing_facts
 
 DEMO = bytes((0x01, 0xC0, 0x7E, 0x00, 0xDB, 0x7D, 0x02))  # every special byte of every encoding
 
@@ -107,4 +109,38 @@ def encoding_lines(p: Protocol) -> list[str]:
                  "unstuffs and decodes the bytes between two delimiters. When they hold no frame (a bad "
                  "escape, more bytes than the largest frame, a bad frame) it reports one error for them and "
                  "goes on after the next delimiter, so a damaged frame never hides the next good one.")
+    return lines
+
+
+def pattern_lines(p: Protocol) -> list[str]:
+    """The framing section's paragraphs on pattern stuffing, with a worked frame: the
+    schema's first example whose stuffed bytes hold the pattern, or none without stuffing."""
+    facts = stuffing_facts(p)
+    if not facts:
+        return []
+    st = p.framing.stuffing
+    pattern, stuffed = st.pattern, st.pattern + bytes((st.insert,))
+    lines = [f"**Pattern stuffing: {code(facts['name'])}.** In the bytes from `{st.covers[0]}` through "
+             f"`{st.covers[1]}` (from byte {st.head} of a frame to {st.tail} bytes before its end) the sender inserts "
+             f"`{st.insert:02X}` after every `{spaced(pattern)}`, and the receiver removes the `{st.insert:02X}` that "
+             f"follows each `{spaced(pattern)}` there. The pattern is found in the bytes meant, from the first stuffed byte on, and occurrences "
+             "never overlap. Length fields that count the stuffed bytes count them as sent, inserted bytes "
+             "included, and checksums are computed over the frame as sent: an encoder stuffs the frame, then "
+             "sets its lengths and checksums; a decoder checks its checksums over the bytes received, then "
+             "removes the inserted bytes, and a pattern there without its inserted byte is the error `escape`. Every encoder and decoder of this protocol reads and writes the "
+             "frame as sent; the field offsets of an error past a stuffed byte count the frame without it."]
+    for m in p.messages:
+        for ex in m.examples:
+            wire = bytes(ex.hex) if ex.hex and ex.values is not None else b""
+            body = wire[st.head:len(wire) - st.tail]
+            if stuffed in body:
+                lines.append(f"A worked frame, {md_text(ex.name or m.name)}: the stuffed bytes "
+                             f"`{spaced(body.replace(stuffed, pattern))}` are sent as `{spaced(body)}`, and the "
+                             f"whole frame as `{spaced(wire)}`.")
+                break
+        else:
+            continue
+        break
+    lines.append(f"Buffers: a frame takes at most {facts['wire_max']} bytes as sent (the largest frame is "
+                 f"{facts['frame_max']} bytes before stuffing).")
     return lines

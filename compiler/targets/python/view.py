@@ -13,6 +13,7 @@ from ...model import (SPELLING_MAX, Field, Gap, Leaf, Message, Protocol, Rule, R
                       field_at, path_name)
 from ...names import camel
 from ..code import Code, times_over
+from .stuffing import stuffing_view
 from ..wire import (checksum_name as _checksum_name, dispatch_facts, encoding_facts, gap_of, gap_reads, stream_facts,
                     text_line_facts)
 
@@ -1488,7 +1489,9 @@ def module_view(p: Protocol) -> dict:
         "has_gaps": any(m.shortening and m.shortening.gaps for m in p.messages),
         "classes": view.dataclasses(), "checksums": view.checksum_functions(),
         "dispatch": view.dispatch_table(), "sequences": [view.sequence_view(s) for s in p.sequences],
-        "stream": view.stream_view(), "encoding": view.encoding_view(),
+        "stream": view.stream_view(), "encoding": view.encoding_view(), "stuffing": stuffing_view(p),
+        # frames sent otherwise than the layout describes them: encoders and decoders wrap the frame's own
+        "wrapped": bool(p.framing.encoding or p.framing.stuffing),
         "decode_overloads": view.decode_signature(),
     }
 
