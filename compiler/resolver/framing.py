@@ -5,19 +5,19 @@ from dataclasses import replace
 from typing import Optional
 
 from ..model import Field, Framing, LineChecksum, TextForm
-from .base import ResolverBase
+from .trailer import TrailerMixin
 from .layout import key_read, leaves_of, whole_bytes
 
 # SLIP and HDLC may double a frame, and add two delimiters: 2 * 16382 + 2 fits 16 bits
 MAX_ENCODED_FRAME = 16382
 
 
-class FramingMixin(ResolverBase):
+class FramingMixin(TrailerMixin):
     def resolve_framing(self, fr: dict) -> Framing:
         kind = fr["kind"]
         path = ("framing",)
         allowed = {"bits": {"kind", "word_bits", "max_bits", "byte_order", "text_form"},
-                   "bytes": {"kind", "layout", "byte_order", "bit_order", "encoding", "truncate"},
+                   "bytes": {"kind", "layout", "byte_order", "bit_order", "encoding", "truncate", "trailer"},
                    "text": {"kind", "start", "prefix_separator", "separator", "terminator",
                             "ignore_between", "trim", "float_format", "checksum", "keep_empty"}}[kind]
         for key in fr:
@@ -52,13 +52,14 @@ class FramingMixin(ResolverBase):
         if kind == "text":
             self.check_text_marks(fr, path)
         cs = fr.get("checksum")
+        trailer = self.resolve_trailer(fr, envelope, path) if kind == "bytes" else None
         return Framing(
             kind=kind, byte_order=fr.get("byte_order", default_order), bit_order=bit_order,
             word_bits=fr.get("word_bits"),
             max_bits=fr.get("max_bits"),
             text_form=TextForm(tf.get("separator", " "), tf.get("comment"), tf.get("checksum_unfilled"))
             if tf else None,
-            envelope=envelope, encoding=fr.get("encoding"), truncate=fr.get("truncate"),
+            envelope=envelope, encoding=fr.get("encoding"), truncate=fr.get("truncate"), trailer=trailer,
             prefix_separator=fr.get("prefix_separator", ":"),
             separator=fr.get("separator", ","), terminator=fr.get("terminator", ";"),
             ignore_between=fr.get("ignore_between", ""), trim=bool(fr.get("trim")),

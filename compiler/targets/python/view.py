@@ -13,6 +13,7 @@ from ...model import (Field, Gap, Leaf, Message, Protocol, Rule, Run, Sequence, 
                       field_at, path_name)
 from ...names import camel
 from ..code import Code, times_over
+from .trailer import trailer_view
 from ..wire import (checksum_name as _checksum_name, dispatch_facts, encoding_facts, gap_of, gap_reads, stream_facts,
                     text_line_facts)
 
@@ -137,8 +138,9 @@ class PythonView:
                                       for f in required + optional) + ")",
             })
 
-        for m in self.p.messages:
-            visit(m, m.layout, (), self.class_name(m), str(m.title or m.doc or m.name), True)
+        trailer = self.p.framing.trailer.fields if self.p.framing.trailer else ()
+        for m in self.p.messages:  # a trailer's fields are every message's, None when it is not sent
+            visit(m, m.layout + trailer, (), self.class_name(m), str(m.title or m.doc or m.name), True)
         return out
 
     def plain_spec(self, f: Field, message: Message, path: tuple[str, ...], required: bool) -> str:
@@ -1448,7 +1450,7 @@ def module_view(p: Protocol) -> dict:
         "classes": view.dataclasses(), "checksums": view.checksum_functions(),
         "dispatch": view.dispatch_table(), "sequences": [view.sequence_view(s) for s in p.sequences],
         "stream": view.stream_view(), "encoding": view.encoding_view(),
-        "decode_overloads": view.decode_signature(),
+        "decode_overloads": view.decode_signature(), "trailer": trailer_view(p),
     }
 
 
@@ -1778,6 +1780,11 @@ class ModuleView(PythonView):
                               "", ""]
         if lines:
             lines += ["@overload", "def decode(data: _Input, direction: Optional[str] = None) -> AnyMessage: ...", "", ""]
+        if self.p.framing.trailer:  # a key verifies the trailer's signature
+            lines = [x.replace("]) ->", "], key: Optional[_Buffer] = None) ->").replace(
+                "= None) ->", "= None, key: Optional[_Buffer] = None) ->") for x in lines]
+            return "\n".join(lines + ["def decode(data: _Input, direction: Optional[str] = None, "
+                                       "key: Optional[_Buffer] = None) -> AnyMessage:"])
         return "\n".join(lines + ["def decode(data: _Input, direction: Optional[str] = None) -> AnyMessage:"])
 
     def encoding_view(self) -> dict:
