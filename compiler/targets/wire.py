@@ -114,8 +114,9 @@ def stream_facts(p: Protocol) -> dict:
                                  for value, _, direction, name in dispatch["frames"] if name in counted]
     # A sync of several bytes: the decoder finds the first, then checks the rest
     # before it reads a frame there; a mismatch drops the byte as garbage.
+    trailer = fr.trailer.size if fr.trailer else 0  # a flag may put it after any frame
     return {"sync": sync, "sync_rest": list(enumerate(pattern))[1:],
-            "sync_bytes": pattern, "length": length, "by_key": by_key, "sizes": sizes, "max": max(sizes),
+            "sync_bytes": pattern, "length": length, "by_key": by_key, "sizes": sizes, "max": max(sizes) + trailer,
             "min": min(sizes), "ranges": size_ranges(p),
             # what a stream decoder hands to the decoder: every size within a message's range, so
             # one between the steps of a counted array is a dispatch error in both targets
