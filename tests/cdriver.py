@@ -171,6 +171,7 @@ class Driver:
         def mine(items: list) -> list:
             return [x for i, x in enumerate(items) if i % parts == part]
 
+        trailer = p.framing.trailer.fields if p.framing.trailer else ()
         messages = []
         for m in p.messages:
             cases = mine([c for c in vectors["valid"] if c["message"] == m.name])
@@ -180,10 +181,13 @@ class Driver:
                 "equal": self.equal_lines(m.layout, ""),
                 "cases": [{"wire": self.wire_bytes(c), "canon": self.wire_bytes(c, "canonical"),
                            "expected": self.init(m.layout, c["values"]), "word": c.get("word"),
+                           "trailer": self.init(trailer, c["values"]), "verify": int(bool(c.get("verify"))),
+                           "trailered": int(any(c["values"].get(f.name) is not None for f in trailer)),
                            "text_form": c.get("text_form"), "dir": self.direction(c),
                            "name": c["name"]} for c in cases],
             })
         invalid = [{"wire": self.wire_bytes(c), "error": c["error"], "dir": self.direction(c),
+                    "verify": int(bool(c.get("verify"))),
                     "kind": self.v.upper("MSG", c["message"]), "name": c["name"],
                     "fn": f"{p.name}_{c['message']}"} for c in mine(vectors["invalid"])]
         streams = []
@@ -195,7 +199,8 @@ class Driver:
                 else:
                     m = p.message(e["message"])
                     events.append({"kind": self.v.upper("MSG", m.name), "name": m.name,
-                                   "expected": self.init(m.layout, e["values"])})
+                                   "expected": self.init(m.layout, e["values"]),
+                                   "trailer": self.init(trailer, e["values"])})
             streams.append({"bytes": bytes.fromhex(s["hex"]), "events": events, "name": s["name"]})
         sequences = self.sequences(mine(vectors.get("sequences", [])))
         seq_wires = [c["wire"] for s in sequences for c in s["cases"]]
@@ -226,7 +231,9 @@ class Driver:
             # an encoded stream's scan consumes every byte; any other leaves less than a frame
             scan_window=f"{p.name.upper()}_STREAM_MAX + 8u" if not p.framing.encoding else "16u",
             scan_left=f"{p.name.upper()}_STREAM_MAX" if not p.framing.encoding else "1u",
-            seq_cap=self.seq_cap(sequences))
+            seq_cap=self.seq_cap(sequences), trailer=bool(trailer),
+            trailer_equal=self.equal_lines(trailer, ""),
+            key=bytes.fromhex(vectors["signing_key"]) if "signing_key" in vectors else b"")
 
     def id_checks(self) -> list[str]:
         """Conditions true when a message's id constant (`<P>_<MSG>_ID`, `_ID<i>` for one
