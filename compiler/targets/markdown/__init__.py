@@ -19,6 +19,7 @@ from .errors import error_claims
 from .examples import message_example, sequence_example
 from .layout import diagram, field_columns, field_rows, payload_note, shown, slots, text_line
 from .stuffing import encoding_lines
+from .trailer import trailer_lines
 from .machines import conditions, machine_view, sequence_view
 from .site import mermaid_script
 from .streams import stream_section
@@ -178,6 +179,7 @@ def framing_view(p: Protocol, linker: DecisionLinker) -> dict:
         last = slots(p.messages[0])[-1].field
         if last.const is not None:
             lines.append(f"A frame ends with `{last.const:#04x}`.")
+        lines.extend(trailer_lines(p))
         if fr.encoding:
             lines.extend(encoding_lines(p))
         else:
