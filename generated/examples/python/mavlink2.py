@@ -1758,10 +1758,13 @@ def _signature_of(key: bytes, frame: _Buffer, body: int) -> bytes:
 
 
 def _signing_key(key: object, error: Callable[..., CodecError]) -> bytes:
-    if not isinstance(key, (bytes, bytearray, memoryview)) or len(key) != 32:
-        raise error(None, 'key', type(key).__name__ if not isinstance(key, (bytes, bytearray, memoryview)) else len(key),
-                    'type', 'a key of 32 bytes')
-    return bytes(key)
+    """The key as bytes; an error (`error`: _dec or _enc) if it is not 32 bytes."""
+    if not isinstance(key, (bytes, bytearray, memoryview)):
+        raise error(None, 'key', type(key).__name__, 'type', 'a key of 32 bytes')
+    data = bytes(cast("_Buffer", key))
+    if len(data) != 32:
+        raise error(None, 'key', len(data), 'type', 'a key of 32 bytes')
+    return data
 
 
 def _read_trailer(o: _M, d: _Buffer, body: int, t: Optional[_Buffer], key: Optional[_Buffer]) -> _M:
