@@ -20,12 +20,12 @@ def trailer_view(p: Protocol) -> dict:
         at, size = f.bit_offset // 8, f.bits // 8
         order = "le" if (f.byte_order or p.framing.byte_order) == "little" else "be"
         wide = "_wide" if size > 4 else ""
-        ctype = _ctype(f.bits)
         one = {"name": f.name, "at": at, "size": size, "doc": c_comment(str(f.doc)) if f.doc else "",
                "bytes": f.kind == "bytes", "signature": f.signature is not None, "most": None}
         if f.kind == "bytes":
             one["member"] = f"uint8_t {f.name}[{size}];"
         else:
+            ctype = _ctype(f.bits)
             one.update(member=f"{ctype} {f.name};",
                        read=f"buf[body + {at}u]" if size == 1 else
                        f"({ctype})cw_get_{order}{wide}(buf + body + {at}u, {size}u)",

@@ -1781,8 +1781,8 @@ class ModuleView(PythonView):
         if lines:
             lines += ["@overload", "def decode(data: _Input, direction: Optional[str] = None) -> AnyMessage: ...", "", ""]
         if self.p.framing.trailer:  # a key verifies the trailer's signature
-            lines = [x.replace("]) ->", "], key: Optional[_Buffer] = None) ->").replace(
-                "= None) ->", "= None, key: Optional[_Buffer] = None) ->") for x in lines]
+            lines = [x.replace(") -> ", ", key: Optional[_Buffer] = None) -> ") if x.startswith("def ") else x
+                     for x in lines]
             return "\n".join(lines + ["def decode(data: _Input, direction: Optional[str] = None, "
                                        "key: Optional[_Buffer] = None) -> AnyMessage:"])
         return "\n".join(lines + ["def decode(data: _Input, direction: Optional[str] = None) -> AnyMessage:"])

@@ -1186,7 +1186,7 @@ static inline void mavlink2_signature(const uint8_t *key, const uint8_t *buf, si
     cw_sha256_t s;
     cw_sha256_init(&s);
     cw_sha256_update(&s, key, MAVLINK2_KEY_SIZE);
-    cw_sha256_update(&s, buf + 0u, body + 7u);
+    cw_sha256_update(&s, buf + 0u, body + 7u - 0u);
     cw_sha256_final(&s, digest);
 }
 
