@@ -222,6 +222,7 @@ class Field:
     # bit in its own order's numbering (see Leaf.order).
     start_bit: Optional[int] = None
     keep_spelling: bool = False  # text number: the decoded message keeps its text, written back unchanged
+    signature: Optional["Signature"] = None  # a trailer field holding a keyed hash of the frame
 
     @property
     def fixed_spelling(self) -> bool:
@@ -715,6 +716,42 @@ class PatternStuffing:
 
 
 @dataclass(frozen=True)
+class Signature:
+    """A field whose bytes are the first bytes of a keyed hash: `algorithm` over a
+    secret key of `key_length` bytes the application gives, then the frame's bytes
+    from the envelope field `covers[0]` through the trailer field `covers[1]`."""
+
+    algorithm: str  # SHA-256
+    key_length: int
+    covers: tuple[str, str]
+    start: int  # the first byte hashed after the key, from the frame's start
+    end: int  # the byte after the last one hashed, from the trailer's start
+
+
+@dataclass(frozen=True)
+class Trailer:
+    """Fields sent after the frame's last byte only when a flag of an envelope field
+    before the payload is set (MAVLink 2's signature). Decoders find the flag at a
+    fixed byte, take the trailer off the end and read the rest as an unflagged frame."""
+
+    presence: Presence  # the envelope flags field and the flag that puts the trailer in
+    flag_byte: int  # the frame byte that holds the flag
+    flag_mask: int  # the flag's bit in that byte
+    fields: tuple[Field, ...]  # whole bytes each, bit_offset from the trailer's first bit
+    doc: Optional[Text] = None
+    loc: Optional[Loc] = None
+
+    @property
+    def size(self) -> int:
+        return sum(f.bits for f in self.fields) // 8
+
+    @property
+    def signature(self) -> Optional[Field]:
+        """The field that carries a keyed hash, if one does."""
+        return next((f for f in self.fields if f.signature), None)
+
+
+@dataclass(frozen=True)
 class Framing:
     kind: str  # bits | bytes | text
     byte_order: str = "big"
@@ -745,6 +782,7 @@ class Framing:
     start: str = ""  # text: a marker every line starts with, before the prefix (NMEA's `$`)
     line_checksum: Optional[LineChecksum] = None  # text: `<suffix><hh>` before the terminator
     truncate: Optional[str] = None  # bytes: "trailing_zeros", senders drop the payload's trailing zeros
+    trailer: Optional[Trailer] = None  # bytes: fields after the frame that a flag puts in
 
 
 @dataclass(frozen=True)

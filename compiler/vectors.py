@@ -135,6 +135,10 @@ class Generator:
         self.shared = len(p.messages) > FULL_MESSAGES  # a case per edge with every field there
         self.plain_classes: dict[str, Any] = {}  # per message: its class, when values need no conversion
         self.bounds: dict[int, tuple] = {}  # per integer field: (the field, its bounds)
+        self.trailer = p.framing.trailer
+        signature = self.trailer.signature if self.trailer else None
+        # the key the vectors' signed frames are signed with, written into the file for every decoder
+        self.key = bytes(range(signature.signature.key_length)) if signature else None
 
     # -- random values from the model ----------------------------------------------------
     def value(self, f: Field, edge: str = "") -> Any:
@@ -295,7 +299,32 @@ class Generator:
         for f, _ in members:
             if f.present_if:
                 self.choose_presence(m, f, out)
+        if self.trailer:
+            self.trailer_values(m, out)
         return out
+
+    def trailer_values(self, m: Message, out: dict) -> None:
+        """The trailer's fields where the drawn flag puts the trailer in (about half the
+        frames: the flag is set or cleared at random), None elsewhere; a signature is
+        left None, for the key to compute."""
+        cond = self.trailer.presence
+        control = next(x for x in m.layout if x.name == cond.field)
+        names = [x for x in out[control.name] if x != cond.has]
+        out[control.name] = sorted(names + [cond.has]) if self.rng.random() < 0.5 else names
+        present = (self.raw_of(control, out[control.name]) & cond.mask) in cond.values
+        for f in self.trailer.fields:
+            if not present or f.signature:
+                out[f.name] = None
+            elif f.kind == "bytes":
+                out[f.name] = bytes(self.rng.getrandbits(8) for _ in range(f.length))
+            else:
+                out[f.name] = self.rng.getrandbits(f.bits)
+
+    def signs(self, values: dict) -> bool:
+        """Whether the key signs a frame of these values: its trailer is in, its signature to compute."""
+        sig = self.trailer.signature if self.trailer else None
+        return sig is not None and values.get(sig.name) is None and any(
+            values.get(f.name) is not None for f in self.trailer.fields)
 
     def drawer(self, f: Field) -> Callable[[str], Any]:
         """How values() draws a field at an edge (or at random for ""): a plain integer
@@ -342,6 +371,8 @@ class Generator:
         if cls is False:
             cls = self.plain_classes[m.name] = self._plain_class(m)
         obj = cls(**values) if cls is not None else self.mod.from_dict(m.name, values)
+        if self.key is not None and self.signs(values):
+            return obj, self.mod.encode(obj, key=self.key)
         return obj, self.mod.encode(obj)
 
     def _plain_class(self, m: Message):
@@ -389,6 +420,8 @@ class Generator:
         streams are cut from (and, for sequences, the valid values) are kept."""
         p = self.p
         head = {"format": FORMAT, "protocol": p.name, "schema_sha256": p.sha256, "framing": p.framing.kind}
+        if self.key is not None:  # cases with "verify" are decoded (and encoded) with it
+            head["signing_key"] = self.key.hex()
         out.write("{\n" + "".join(f" {jsontext.dumps(k)}: {jsontext.dumps(v, 1)},\n" for k, v in head.items()))
         frames: list[bytes] = []
         pool: list[dict] = []
@@ -468,6 +501,10 @@ class Generator:
                     continue
                 decoded = self.decode(m, data)
                 valid.append(self.valid_case(f"{m.name} {name}", m, decoded, data))
+                if self.key is not None and self.signs(values):
+                    valid[-1]["verify"] = True
+                    if not any(c.get("verify") for c in invalid):  # one message's frame tells
+                        invalid += self.unverified(m, data)
                 frames.append(data)
                 break
         if self.p.framing.stuffing and frames:
@@ -489,6 +526,30 @@ class Generator:
                 valid.append(self.valid_case(name, self.messages[type(obj).NAME], obj, canonical,
                                              bad if canonical != bad else None, kept))
         return valid, invalid
+
+    def unverified(self, m: Message, data: bytes) -> list[dict]:
+        """A signed frame with a byte of its trailer changed, and the frame without its trailer
+        (flag cleared, checksum made again): decoded with the key, a signature error and an
+        unsigned one. Each decodes without the key, so only a verifying decoder tells."""
+        cases = []
+        body = len(data) - self.trailer.size
+        tampered = data[:body] + bytes([data[body] ^ 0x01]) + data[body + 1:]
+        obj = self.decode(m, data)
+        control = self.trailer.presence.field
+        setattr(obj, control, getattr(obj, control) & ~self.trailer.presence.mask)
+        for f in self.trailer.fields:
+            setattr(obj, f.name, None)
+        for name, wire in (("trailer changed", tampered), ("unsigned", self.mod.encode(obj))):
+            try:
+                self.mod.decode(wire, key=self.key)
+                raise ValueError(f"{m.name}: a {name} frame verifies")
+            except self.mod.DecodeError as exc:
+                case = {"name": f"{m.name} {name}", "message": m.name, **self.wire(wire), "error": exc.rule,
+                        "verify": True}
+            if m.direction:
+                case["direction"] = m.direction
+            cases.append(case)
+        return cases
 
     def f64_outside(self, m: Message, data) -> list[tuple[str, Any]]:
         """The frame with each binary f64 field set to NaN, to each infinity and to the

@@ -173,6 +173,7 @@ class Driver:
         def mine(items: list) -> list:
             return [x for i, x in enumerate(items) if i % parts == part]
 
+        trailer = p.framing.trailer.fields if p.framing.trailer else ()
         messages = []
         for m in p.messages:
             cases = mine([c for c in vectors["valid"] if c["message"] == m.name])
@@ -183,14 +184,17 @@ class Driver:
                 "cases": [{"wire": self.wire_bytes(c), "canon": self.wire_bytes(c, "canonical"),
                            "kept": self.wire_bytes(c, "kept"),
                            "expected": self.init(m.layout, c["values"]), "word": c.get("word"),
+                           "trailer": self.init(trailer, c["values"]), "verify": int(bool(c.get("verify"))),
+                           "trailered": int(any(c["values"].get(f.name) is not None for f in trailer)),
                            "text_form": c.get("text_form"), "dir": self.direction(c),
                            "name": c["name"]} for c in cases],
             })
         invalid = [{"wire": self.wire_bytes(c), "error": c["error"], "dir": self.direction(c),
+                    "verify": int(bool(c.get("verify"))),
                     "kind": self.v.upper("MSG", c["message"]), "name": c["name"],
                     "fn": f"{p.name}_{c['message']}"} for c in mine(vectors["invalid"])]
         streams = []
-        for s in vectors.get("streams", []) if part == 0 else []:
+        for s in mine(vectors.get("streams", [])):  # spread over the parts, as the frames are
             events = []
             for e in s["events"]:
                 if "error" in e:
@@ -198,7 +202,8 @@ class Driver:
                 else:
                     m = p.message(e["message"])
                     events.append({"kind": self.v.upper("MSG", m.name), "name": m.name,
-                                   "expected": self.init(m.layout, e["values"])})
+                                   "expected": self.init(m.layout, e["values"]),
+                                   "trailer": self.init(trailer, e["values"])})
             streams.append({"bytes": bytes.fromhex(s["hex"]), "events": events, "name": s["name"]})
         sequences = self.sequences(mine(vectors.get("sequences", [])))
         seq_wires = [c["wire"] for s in sequences for c in s["cases"]]
@@ -232,7 +237,9 @@ class Driver:
             # an encoded stream's scan consumes every byte; any other leaves less than a frame
             scan_window=f"{p.name.upper()}_STREAM_MAX + 8u" if not p.framing.encoding else "16u",
             scan_left=f"{p.name.upper()}_STREAM_MAX" if not p.framing.encoding else "1u",
-            seq_cap=self.seq_cap(sequences))
+            seq_cap=self.seq_cap(sequences), trailer=bool(trailer),
+            trailer_equal=self.equal_lines(trailer, ""),
+            key=bytes.fromhex(vectors["signing_key"]) if "signing_key" in vectors else b"")
 
     def id_checks(self) -> list[str]:
         """Conditions true when a message's id constant (`<P>_<MSG>_ID`, `_ID<i>` for one

@@ -130,6 +130,23 @@ def _framing(old: Protocol, new: Protocol, out: _Collector) -> None:
         out.add(BREAKING, "framing", "the text form changed")
     if a.envelope or b.envelope:
         _fields(placed_leaves(leaves_of(a.envelope)), placed_leaves(leaves_of(b.envelope)), out, "envelope", text=a.kind == "text")
+    _trailer(a.trailer, b.trailer, out)
+
+
+def _trailer_wire(t) -> tuple:
+    """What a trailer puts on the wire: its flag's place, each field's bytes, the hash."""
+    return (t.flag_byte, t.flag_mask, tuple((f.name, f.kind, f.bits, f.byte_order, f.signature) for f in t.fields))
+
+
+def _trailer(a, b, out: _Collector) -> None:
+    """A trailer added is compatible (an old frame leaves its flag clear, and the new
+    decoders accept it); one removed or changed on the wire breaks."""
+    if a is None and b is not None:
+        out.add(COMPATIBLE, "framing", f"a trailer added, sent when {b.presence.says}")
+    elif a is not None and b is None:
+        out.add(BREAKING, "framing", f"the trailer sent when {a.presence.says} removed")
+    elif a is not None and b is not None and _trailer_wire(a) != _trailer_wire(b):
+        out.add(BREAKING, "framing", "the trailer's flag, fields or signature changed")
 
 
 def _stuffing(st) -> str:

@@ -5,7 +5,7 @@ from dataclasses import replace
 from typing import Optional
 
 from ..model import Field, Framing, LineChecksum, TextForm
-from .base import ResolverBase
+from .trailer import TrailerMixin
 from .layout import key_read, leaves_of, whole_bytes
 
 def is_number(f: Field) -> bool:
@@ -18,12 +18,12 @@ def is_number(f: Field) -> bool:
 MAX_ENCODED_FRAME = 16382
 
 
-class FramingMixin(ResolverBase):
+class FramingMixin(TrailerMixin):
     def resolve_framing(self, fr: dict) -> Framing:
         kind = fr["kind"]
         path = ("framing",)
         allowed = {"bits": {"kind", "word_bits", "max_bits", "byte_order", "text_form"},
-                   "bytes": {"kind", "layout", "byte_order", "bit_order", "encoding", "accm", "stuffing", "truncate"},
+                   "bytes": {"kind", "layout", "byte_order", "bit_order", "encoding", "accm", "stuffing", "truncate", "trailer"},
                    "text": {"kind", "start", "prefix_separator", "separator", "terminator",
                             "ignore_between", "trim", "float_format", "checksum", "keep_empty",
                             "keep_spelling"}}[kind]
@@ -70,13 +70,14 @@ class FramingMixin(ResolverBase):
             self.error(path + ("accm",), "accm is HDLC's map of the control characters it escapes "
                                          f"(RFC 1662 §7.1), not {fr.get('encoding') or 'unstuffed'} framing's",
                        "write encoding: hdlc, or drop accm")
+        trailer = self.resolve_trailer(fr, envelope, path) if kind == "bytes" else None
         return Framing(
             kind=kind, byte_order=fr.get("byte_order", default_order), bit_order=bit_order,
             word_bits=fr.get("word_bits"),
             max_bits=fr.get("max_bits"),
             text_form=TextForm(tf.get("separator", " "), tf.get("comment"), tf.get("checksum_unfilled"))
             if tf else None,
-            envelope=envelope, encoding=fr.get("encoding"), truncate=fr.get("truncate"),
+            envelope=envelope, encoding=fr.get("encoding"), truncate=fr.get("truncate"), trailer=trailer,
             accm=fr.get("accm", 0) if fr.get("encoding") == "hdlc" else 0,
             prefix_separator=fr.get("prefix_separator", ":"),
             separator=fr.get("separator", ","), terminator=fr.get("terminator", ";"),

@@ -118,8 +118,9 @@ def stream_facts(p: Protocol) -> dict:
         sizes = sorted({n for lo, hi in ranges for n in range(lo, hi + 1)})
     # A sync of several bytes: the decoder finds the first, then checks the rest
     # before it reads a frame there; a mismatch drops the byte as garbage.
+    trailer = fr.trailer.size if fr.trailer else 0  # a flag may put it after any frame
     return {"sync": sync, "sync_rest": list(enumerate(pattern))[1:],
-            "sync_bytes": pattern, "length": length, "by_key": by_key, "sizes": sizes, "max": max(sizes),
+            "sync_bytes": pattern, "length": length, "by_key": by_key, "sizes": sizes, "max": max(sizes) + trailer,
             "min": min(sizes), "ranges": ranges,
             # what a stream decoder hands to the decoder: every size within a message's range, so
             # one between the steps of a counted array is a dispatch error in both targets

@@ -180,9 +180,17 @@ def python_checks(mod, vectors: dict, text: bool, rng: random.Random) -> str:
         if hasattr(mod, "MESSAGES") else []
     if unserved:  # a message without a valid vector is a message nothing below checks
         return f"no valid vector of {', '.join(unserved)}"
+    key = bytes.fromhex(vectors["signing_key"]) if "signing_key" in vectors else None
+    for case in vectors["valid"]:  # a signed frame verifies with the vectors' key
+        if case.get("verify") and mod.encode(mod.decode(_wire(case, text), case.get("direction"), key=key), key=key) \
+                != _wire(case, text):
+            return f"valid {case['name']!r}: not the frame its key signs"
     for case in vectors["invalid"]:
         try:
-            mod.decode(_wire(case, text), case.get("direction"))
+            if case.get("verify"):  # refused only by a decoder given the vectors' key
+                mod.decode(_wire(case, text), case.get("direction"), key=key)
+            else:
+                mod.decode(_wire(case, text), case.get("direction"))
         except mod.DecodeError:
             continue
         return f"invalid {case['name']!r} decoded"

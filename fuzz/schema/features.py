@@ -27,6 +27,7 @@ FULL = frozenset({
     "arrays",                               # fields of a fixed count: scalars, groups (bytes), bit fields
     "counted",                              # bytes: arrays counted by an earlier field, anywhere in the payload
     "conditional",                          # bytes: fields present when an earlier field says so
+    "signed_trailer",                       # bytes: a flag puts a trailer with a SHA-256 signature after the frame
     "lsb_first",                            # bytes framing: bit fields least significant bit first
     "mixed_bit_order",                      # bytes: payloads of 1..8 bytes placed by DBC start bit, both orders
     "large_frame",                          # bytes: a message of over 64 KiB (4 KiB fields first)

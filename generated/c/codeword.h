@@ -61,7 +61,9 @@ enum {
     CW_ERR_CONSECUTIVE = -23, /* sequence rule: values not counting up from the start */
     CW_ERR_EQUAL = -24,       /* sequence rule: a value unlike its group's */
     CW_ERR_MEMBER = -25,      /* sequence rule: a value not among its group's */
-    CW_ERR_UNIQUE = -26       /* sequence rule: a key seen before */
+    CW_ERR_UNIQUE = -26,      /* sequence rule: a key seen before */
+    CW_ERR_SIGNATURE = -29,   /* a trailer's signature that the key does not make */
+    CW_ERR_UNSIGNED = -30     /* no signed trailer where a key requires one */
 };
 
 static inline const char *cw_error_name(int code)
@@ -94,6 +96,8 @@ static inline const char *cw_error_name(int code)
     case CW_ERR_EQUAL: return "equal";
     case CW_ERR_MEMBER: return "member";
     case CW_ERR_UNIQUE: return "unique";
+    case CW_ERR_SIGNATURE: return "signature";
+    case CW_ERR_UNSIGNED: return "unsigned";
     default: return "unknown";
     }
 }
@@ -1700,6 +1704,125 @@ static inline bool cw_spelled_decimal(const char *s, size_t n, const cw_decimal_
         return read.digits == held.digits;
     }
     return read.digits == held.digits && read.exp10 == held.exp10 && read.negative == held.negative;
+
+/* ---- SHA-256 (FIPS 180-4), for signatures in a frame's trailer ------------
+ * cw_sha256_init, then cw_sha256_update on each piece, then cw_sha256_final:
+ * the state is the caller's (108 bytes), nothing is allocated. */
+typedef struct {
+    uint32_t h[8];
+    uint32_t count_low;   /* bytes hashed so far, low and high 32 bits */
+    uint32_t count_high;
+    uint8_t block[64];    /* the bytes of a block not yet compressed */
+} cw_sha256_t;
+
+static const uint32_t cw_sha256_k[64] CW_FLASH = {
+    0x428a2f98u, 0x71374491u, 0xb5c0fbcfu, 0xe9b5dba5u, 0x3956c25bu, 0x59f111f1u, 0x923f82a4u, 0xab1c5ed5u,
+    0xd807aa98u, 0x12835b01u, 0x243185beu, 0x550c7dc3u, 0x72be5d74u, 0x80deb1feu, 0x9bdc06a7u, 0xc19bf174u,
+    0xe49b69c1u, 0xefbe4786u, 0x0fc19dc6u, 0x240ca1ccu, 0x2de92c6fu, 0x4a7484aau, 0x5cb0a9dcu, 0x76f988dau,
+    0x983e5152u, 0xa831c66du, 0xb00327c8u, 0xbf597fc7u, 0xc6e00bf3u, 0xd5a79147u, 0x06ca6351u, 0x14292967u,
+    0x27b70a85u, 0x2e1b2138u, 0x4d2c6dfcu, 0x53380d13u, 0x650a7354u, 0x766a0abbu, 0x81c2c92eu, 0x92722c85u,
+    0xa2bfe8a1u, 0xa81a664bu, 0xc24b8b70u, 0xc76c51a3u, 0xd192e819u, 0xd6990624u, 0xf40e3585u, 0x106aa070u,
+    0x19a4c116u, 0x1e376c08u, 0x2748774cu, 0x34b0bcb5u, 0x391c0cb3u, 0x4ed8aa4au, 0x5b9cca4fu, 0x682e6ff3u,
+    0x748f82eeu, 0x78a5636fu, 0x84c87814u, 0x8cc70208u, 0x90befffau, 0xa4506cebu, 0xbef9a3f7u, 0xc67178f2u
+};
+
+static inline uint32_t cw_rotr32(uint32_t x, unsigned n)
+{
+    return (x >> n) | (x << (32u - n));  /* n is 2..25: both shifts are in range */
+}
+
+static inline void cw_sha256_compress(uint32_t h[8], const uint8_t block[64])
+{
+    uint32_t w[16];  /* the message schedule, kept as a ring of 16 words */
+    uint32_t v[8];
+    uint8_t i;
+    for (i = 0; i < 16u; i++) {
+        w[i] = cw_get_be(block + 4u * i, 4u);
+    }
+    for (i = 0; i < 8u; i++) {
+        v[i] = h[i];
+    }
+    for (i = 0; i < 64u; i++) {
+        uint32_t t1, t2;
+        if (i >= 16u) {
+            uint32_t w15 = w[(uint8_t)(i + 1u) & 15u], w2 = w[(uint8_t)(i + 14u) & 15u];
+            uint32_t s0 = cw_rotr32(w15, 7u) ^ cw_rotr32(w15, 18u) ^ (w15 >> 3);
+            uint32_t s1 = cw_rotr32(w2, 17u) ^ cw_rotr32(w2, 19u) ^ (w2 >> 10);
+            w[i & 15u] = w[i & 15u] + s0 + w[(uint8_t)(i + 9u) & 15u] + s1;
+        }
+        t1 = v[7] + (cw_rotr32(v[4], 6u) ^ cw_rotr32(v[4], 11u) ^ cw_rotr32(v[4], 25u))
+             + ((v[4] & v[5]) ^ (~v[4] & v[6])) + CW_READ_U32(&cw_sha256_k[i]) + w[i & 15u];
+        t2 = (cw_rotr32(v[0], 2u) ^ cw_rotr32(v[0], 13u) ^ cw_rotr32(v[0], 22u))
+             + ((v[0] & v[1]) ^ (v[0] & v[2]) ^ (v[1] & v[2]));
+        v[7] = v[6];
+        v[6] = v[5];
+        v[5] = v[4];
+        v[4] = v[3] + t1;
+        v[3] = v[2];
+        v[2] = v[1];
+        v[1] = v[0];
+        v[0] = t1 + t2;
+    }
+    for (i = 0; i < 8u; i++) {
+        h[i] += v[i];
+    }
+}
+
+static inline void cw_sha256_init(cw_sha256_t *s)
+{
+    s->h[0] = 0x6a09e667u;
+    s->h[1] = 0xbb67ae85u;
+    s->h[2] = 0x3c6ef372u;
+    s->h[3] = 0xa54ff53au;
+    s->h[4] = 0x510e527fu;
+    s->h[5] = 0x9b05688cu;
+    s->h[6] = 0x1f83d9abu;
+    s->h[7] = 0x5be0cd19u;
+    s->count_low = 0;
+    s->count_high = 0;
+}
+
+static inline void cw_sha256_update(cw_sha256_t *s, const uint8_t *data, size_t len)
+{
+    while (len) {
+        uint8_t used = (uint8_t)(s->count_low & 63u);
+        uint8_t take = (uint8_t)(64u - used);
+        if ((size_t)take > len) {
+            take = (uint8_t)len;
+        }
+        memcpy(s->block + used, data, take);
+        data += take;
+        len -= take;
+        s->count_low += take;
+        if (s->count_low < take) {  /* wrapped past 2^32 bytes */
+            s->count_high++;
+        }
+        if (((uint32_t)used + take) == 64u) {
+            cw_sha256_compress(s->h, s->block);
+        }
+    }
+}
+
+/* The digest into out[0..32). */
+static inline void cw_sha256_final(cw_sha256_t *s, uint8_t out[32])
+{
+    uint32_t high = (s->count_high << 3) | (s->count_low >> 29);  /* the length in bits */
+    uint32_t low = s->count_low << 3;
+    uint8_t used = (uint8_t)(s->count_low & 63u);
+    uint8_t i;
+    s->block[used++] = 0x80u;
+    if (used > 56u) {
+        memset(s->block + used, 0, (size_t)(64u - used));
+        cw_sha256_compress(s->h, s->block);
+        used = 0;
+    }
+    memset(s->block + used, 0, (size_t)(56u - used));
+    cw_put_be(s->block + 56, 4u, high);
+    cw_put_be(s->block + 60, 4u, low);
+    cw_sha256_compress(s->h, s->block);
+    for (i = 0; i < 8u; i++) {
+        cw_put_be(out + 4u * i, 4u, s->h[i]);
+    }
 }
 
 #ifdef __cplusplus

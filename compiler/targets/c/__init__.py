@@ -6,6 +6,7 @@ from ...model import Protocol
 from .machines import machines_view
 from .sequences import sequences_view
 from .stuffing import stuffing_view
+from .trailer import trailer_view
 from .view import CView, cchar, clit, comment, cstr
 from .wordform import word_type
 from ..render import environment, tidy
@@ -33,7 +34,9 @@ def constants(v: CView) -> list[tuple[str, str, str]]:
                         f"the key {made_of} make together" if made_of else "the prefix" if v.text else ""))
     sizes = [m.size for m in p.messages if m.size is not None]
     if sizes:
-        out.append((v.upper("MAX_FRAME"), f"{max(sizes)}u", "bytes: largest frame"))
+        trailer = p.framing.trailer.size if p.framing.trailer else 0
+        out.append((v.upper("MAX_FRAME"), f"{max(sizes) + trailer}u",
+                    "bytes: largest frame" + (", its trailer included" if trailer else "")))
     if v.text:
         out.append((v.upper("MAX_TEXT"), f"{max(v.max_text(m) for m in p.messages) + 1}u",
                     "chars, with the NUL: largest encoded message"))
@@ -114,7 +117,7 @@ def render(p: Protocol) -> dict[str, str]:
         p=p, v=v, px=v.px, PX=v.PX, fingerprint=fingerprint(p), fingerprint32=f"{fingerprint32(p):#010x}", constants=constants(v), enums=enums(v), flags=flags(v),
         directions=v.directions(), messages=messages, kinds={m["name"]: m["kind"] for m in messages},
         checksums=v.byte_checksums(), text=v.text, dispatch=dispatch, stream=v.stream() if fr.kind == "bytes" else {},
-        encoding=v.encoding(), stuffing=stuffing_view(v.px, p),
+        encoding=v.encoding(), stuffing=stuffing_view(v.px, p), trailer=trailer_view(p),
         wrapped=bool(fr.encoding or fr.stuffing),
         word_bits=v.word_bits(), word_type=word_type(v.word_bits() or 32), text_form=text_form,
         word_max=(1 << v.word_bits()) - 1 if v.word_bits() else None,

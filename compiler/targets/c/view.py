@@ -41,6 +41,7 @@ ERR = {
     "rule": "CW_ERR_RULE", "precision": "CW_ERR_PRECISION", "grammar": "CW_ERR_GRAMMAR",
     "consecutive": "CW_ERR_CONSECUTIVE", "equal": "CW_ERR_EQUAL", "member": "CW_ERR_MEMBER",
     "unique": "CW_ERR_UNIQUE", "escape": "CW_ERR_ESCAPE", "delimiter": "CW_ERR_DELIMITER",
+    "signature": "CW_ERR_SIGNATURE", "unsigned": "CW_ERR_UNSIGNED",
 }
 
 # How the text encoder writes a value of each kind ({v}: the member, {n}: a str's length,

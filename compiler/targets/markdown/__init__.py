@@ -20,6 +20,7 @@ from .examples import message_example, sequence_example
 from .placement import payload_grid
 from .layout import diagram, field_columns, field_rows, payload_note, shown, slots, text_line
 from .stuffing import encoding_lines, pattern_lines
+from .trailer import trailer_lines
 from .machines import conditions, machine_view, sequence_view
 from .site import mermaid_script
 from .streams import stream_section
@@ -179,6 +180,7 @@ def framing_view(p: Protocol, linker: DecisionLinker) -> dict:
         last = slots(p.messages[0])[-1].field
         if last.const is not None:
             lines.append(f"A frame ends with `{last.const:#04x}`.")
+        lines.extend(trailer_lines(p))
         if fr.encoding:
             lines.extend(encoding_lines(p))
         else:

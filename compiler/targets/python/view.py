@@ -14,6 +14,7 @@ from ...model import (SPELLING_MAX, Field, Gap, Leaf, Message, Protocol, Rule, R
 from ...names import camel
 from ..code import Code, times_over
 from .stuffing import stuffing_view
+from .trailer import trailer_view
 from ..wire import (checksum_name as _checksum_name, dispatch_facts, encoding_facts, gap_of, gap_reads, stream_facts,
                     text_line_facts)
 
@@ -139,8 +140,9 @@ class PythonView:
                                       for f in required + optional) + ")",
             })
 
-        for m in self.p.messages:
-            visit(m, m.layout, (), self.class_name(m), str(m.title or m.doc or m.name), True)
+        trailer = self.p.framing.trailer.fields if self.p.framing.trailer else ()
+        for m in self.p.messages:  # a trailer's fields are every message's, None when it is not sent
+            visit(m, m.layout + trailer, (), self.class_name(m), str(m.title or m.doc or m.name), True)
         return out
 
     def plain_spec(self, f: Field, message: Message, path: tuple[str, ...], required: bool) -> str:
@@ -1492,7 +1494,7 @@ def module_view(p: Protocol) -> dict:
         "stream": view.stream_view(), "encoding": view.encoding_view(), "stuffing": stuffing_view(p),
         # frames sent otherwise than the layout describes them: encoders and decoders wrap the frame's own
         "wrapped": bool(p.framing.encoding or p.framing.stuffing),
-        "decode_overloads": view.decode_signature(),
+        "decode_overloads": view.decode_signature(), "trailer": trailer_view(p),
     }
 
 
@@ -1848,6 +1850,11 @@ class ModuleView(PythonView):
                               "", ""]
         if lines:
             lines += ["@overload", "def decode(data: _Input, direction: Optional[str] = None) -> AnyMessage: ...", "", ""]
+        if self.p.framing.trailer:  # a key verifies the trailer's signature
+            lines = [x.replace(") -> ", ", key: Optional[_Buffer] = None) -> ") if x.startswith("def ") else x
+                     for x in lines]
+            return "\n".join(lines + ["def decode(data: _Input, direction: Optional[str] = None, "
+                                       "key: Optional[_Buffer] = None) -> AnyMessage:"])
         return "\n".join(lines + ["def decode(data: _Input, direction: Optional[str] = None) -> AnyMessage:"])
 
     def encoding_view(self) -> dict:
