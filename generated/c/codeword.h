@@ -1704,6 +1704,7 @@ static inline bool cw_spelled_decimal(const char *s, size_t n, const cw_decimal_
         return read.digits == held.digits;
     }
     return read.digits == held.digits && read.exp10 == held.exp10 && read.negative == held.negative;
+}
 
 /* ---- SHA-256 (FIPS 180-4), for signatures in a frame's trailer ------------
  * cw_sha256_init, then cw_sha256_update on each piece, then cw_sha256_final:
