@@ -31,7 +31,10 @@ def dispatch_facts(p: Protocol) -> dict:
     if not p.self_identifying:
         return {"kind": "none"}
     if fr.kind == "text":
-        return {"kind": "text", "prefixes": [(m.ids[0], m.name, m.direction) for m in p.messages]}
+        # a message with a prefix field (NMEA's talker) is found by the id at the end of
+        # the prefix, after the exact prefixes, in the schema's order
+        return {"kind": "text", "prefixes": [(m.ids[0], m.name, m.direction) for m in p.messages if not m.prefix_field],
+                "talked": [(m.prefix_field.length, m.ids[0], m.name, m.direction) for m in p.messages if m.prefix_field]}
     if fr.kind == "bits":
         entries = []
         for m in p.messages:
