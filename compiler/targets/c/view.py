@@ -1564,7 +1564,8 @@ class CView:
         c("const char *pb, *pe, *body, *end;")
         c(f"int rc = {self.px}_split(text, len, &pb, &pe, &body, &end);")
         n = m.prefix_field.length if m.prefix_field is not None else 0
-        c(f"if (rc == CW_OK && ((size_t)(pe - pb) != {n + len(prefix)}u || memcmp(pb + {n}, {self.id_const(m)}, {len(prefix)}u) != 0)) {{")
+        at = f"pb + {n}" if n else "pb"  # the id follows the prefix field's value
+        c(f"if (rc == CW_OK && ((size_t)(pe - pb) != {n + len(prefix)}u || memcmp({at}, {self.id_const(m)}, {len(prefix)}u) != 0)) {{")
         c("    rc = CW_ERR_DISPATCH;")
         c("} else if (rc == CW_OK) {")
         c(f"    rc = {self.parse_call(m)};")
