@@ -17,6 +17,8 @@ def candidate_pairs(keyed: Sequence[Message], framing: str) -> Iterator[tuple[in
     try:
         if framing == "bits":
             later = _bits_candidates(keyed)
+        elif framing == "text":
+            later = _text_candidates(keyed)
         else:
             later = _id_candidates(keyed)
     except TypeError:  # an unhashable key value: fall back to every pair
@@ -39,6 +41,22 @@ def _id_candidates(keyed: Sequence[Message]) -> list[list[int]]:
         name, values = m.dispatch_key[0]
         out.append(sorted({j for v in set(values) for j in index.get((name, v), ()) if j > i}))
     return out
+
+
+def _text_candidates(keyed: Sequence[Message]) -> list[list[int]]:
+    """Text: a prefix field's value comes before the id, so two messages overlap only if
+    one's id ends with the other's (equal ids included)."""
+    index: dict[str, list[int]] = defaultdict(list)
+    for j, m in enumerate(keyed):
+        index[m.ids[0]].append(j)
+    pairs: dict[int, set[int]] = defaultdict(set)
+    for i, m in enumerate(keyed):
+        ident = m.ids[0]
+        for k in range(len(ident)):
+            for j in index.get(ident[k:], ()):
+                if j != i:
+                    pairs[min(i, j)].add(max(i, j))
+    return [sorted(pairs[i]) for i in range(len(keyed))]
 
 
 def _bits_candidates(keyed: Sequence[Message]) -> list[list[int]]:

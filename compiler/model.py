@@ -223,6 +223,7 @@ class Field:
     start_bit: Optional[int] = None
     keep_spelling: bool = False  # text number: the decoded message keeps its text, written back unchanged
     signature: Optional["Signature"] = None  # a trailer field holding a keyed hash of the frame
+    prefix: bool = False  # text: written in the line's prefix, before the message's id (NMEA's talker)
 
     @property
     def fixed_spelling(self) -> bool:
@@ -654,6 +655,11 @@ class Message:
         """Whether checksum `cs` ends with a payload that may be cut short, and so covers
         the bytes sent rather than the whole frame."""
         return self.shortening is not None and cs.byte_span[1] == self.shortening.payload[1]
+
+    @property
+    def prefix_field(self) -> Optional[Field]:
+        """Text framing: the field written before the id in the line's prefix (NMEA's talker)."""
+        return next((f for f in self.layout if f.prefix), None)
 
     @property
     def id_fields(self) -> tuple[tuple[str, int], ...]:

@@ -182,6 +182,8 @@ class Generator:
             return self.real(f, edge)
         if f.kind == "char":
             return rng.choice(self.alphabet(f))
+        if f.prefix:  # uppercase letters of its length (NMEA's talker), or one it lists
+            return rng.choice(f.values) if f.values else "".join(rng.choice(string.ascii_uppercase) for _ in range(f.length))
         if f.kind == "str":
             n = {"min": 0, "max": f.max_length}.get(edge, rng.randint(0, f.max_length or 16))
             chars = self.alphabet(f)

@@ -388,3 +388,14 @@ def test_keeping_spellings_is_compatible_and_named_per_field(tmp_path):
     assert ("field lat", "no longer keeps the text it was read from (C member lat_spelling removed)") \
         in changes(d, COMPATIBLE)
     assert not any(subject == "field lat_dir" for subject, _ in changes(d, COMPATIBLE))  # a char: one spelling
+
+
+def test_listing_talkers_narrows_and_a_field_leaving_the_prefix_breaks(tmp_path):
+    """A talker field limited to a listed set refuses lines it read before (breaking); a
+    field moved out of the prefix into the body moves every value of the line."""
+    nmea = ROOT / "examples" / "nmea0183.yaml"
+    assert "    prefix: true\n" in nmea.read_text(encoding="utf-8")
+    d = diff_of(tmp_path, nmea, "    prefix: true\n", "    prefix: true\n    values: [GP, GN]\n")
+    assert changes(d, BREAKING) == {("field talker", "allowed values narrowed: now restricted")}
+    d = diff_of(tmp_path, nmea, "    length: 2\n    prefix: true\n", "    max_length: 2\n")
+    assert ("field talker", "no longer written in the prefix before the id") in changes(d, BREAKING)

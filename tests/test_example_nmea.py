@@ -84,6 +84,11 @@ def wire(value) -> str:
     return repr(float(value)) if isinstance(value, float) else str(value)
 
 
+def body_leaves(message):
+    """The values after the sentence id, in line order (pynmea2's `data`): all but the talker."""
+    return [leaf for leaf in message.wire.leaves if not leaf.field.prefix]
+
+
 def as_number(text: str):
     return float(text) if text else None
 
@@ -94,7 +99,7 @@ def test_values_agree_with_pynmea2(built, sentence):
     ours = mod.decode(sentence + "\r\n")
     theirs = pynmea2.parse(sentence)
     message = next(m for m in compile_schema(SCHEMA).messages if m.name == type(ours).NAME)
-    names = [leaf.field.name for leaf in message.wire.leaves]  # in line order
+    names = [leaf.field.name for leaf in body_leaves(message)]  # in line order
     assert len(names) <= len(theirs.data)
     for name, text in zip(names, theirs.data):
         value = getattr(ours, name)
@@ -111,7 +116,7 @@ def test_receiver_spellings_read_as_pynmea2_reads_them(built, sentence):
     theirs = pynmea2.parse(sentence, check=True)
     message = next(m for m in compile_schema(SCHEMA).messages if m.name == type(ours).NAME)
     raws = []
-    for leaf, text in zip(message.wire.leaves, theirs.data):
+    for leaf, text in zip(body_leaves(message), theirs.data):
         f, value = leaf.field, getattr(ours, leaf.field.name)
         if f.kind in ("int", "uint") and f.enum is None:
             want = at_step(text, f.decimals or 0) if text else None
@@ -120,7 +125,7 @@ def test_receiver_spellings_read_as_pynmea2_reads_them(built, sentence):
         else:
             assert wire(value) == text, (f.name, value, text)
     # the C decoder reads the same raw values
-    names = [leaf.field.name for leaf in message.wire.leaves if leaf.field.kind in ("int", "uint")
+    names = [leaf.field.name for leaf in body_leaves(message) if leaf.field.kind in ("int", "uint")
              and leaf.field.enum is None]
     driver = r"""
 #include <stdio.h>
@@ -233,7 +238,7 @@ def test_python_writes_receiver_sentences_back_byte_for_byte(built, sentence):
     theirs = pynmea2.parse(sentence, check=True)
     ours = mod.decode(sentence + "\r\n")
     message = next(m for m in compile_schema(SCHEMA).messages if m.name == type(ours).NAME)
-    for leaf, text in zip(message.wire.leaves, theirs.data):
+    for leaf, text in zip(body_leaves(message), theirs.data):
         f, value = leaf.field, getattr(ours, leaf.field.name)
         if f.kind in ("int", "uint") and f.enum is None:
             assert value == (at_step(text, f.decimals or 0) if text else None), (f.name, value, text)
@@ -312,3 +317,91 @@ CALLS
     body = "GPGGA,015540.000,3150.68378,N,11711.93139,E,1,17,0.6,51.7,M,0.0,M,,"
     assert run_c(built / "c", driver) == ["0 1"] * len(KEPT_SENTENCES) + [
         "0", f"${body}*{pynmea2.NMEASentence.checksum(body):02X}"]
+
+
+# Sentences from talkers other than GP (NMEA-D1): one message each, the talker a field.
+TALKER_SENTENCES = [
+    # C-Nav3050 on R/V Kilo Moana, Rolling Deck to Repository format notes (C-Nav3050.txt)
+    "$GNGGA,000001.00,2304.167961,N,16553.836924,W,2,11,1.0,44.542,M,0.000,M,2.0,0103*43",
+    # the published GGA (gpsd) from GLONASS, Galileo and BeiDou receivers; checksums by pynmea2
+    "$GLGGA,123519,4807.038,N,01131.000,E,1,08,0.9,545.4,M,46.9,M,,*5B",
+    "$GAGGA,123519,4807.038,N,01131.000,E,1,08,0.9,545.4,M,46.9,M,,*56",
+    "$BDGGA,123519,4807.038,N,01131.000,E,1,08,0.9,545.4,M,46.9,M,,*56",
+]
+
+
+@pytest.mark.parametrize("sentence", TALKER_SENTENCES)
+def test_any_talker_reads_as_pynmea2_reads_it_and_is_written_back(built, sentence):
+    """The talker is the message's `talker` (pynmea2's `talker`); the values are pynmea2's at
+    the field's step; the sentence is written back byte for byte, its checksum pynmea2's."""
+    mod = load(built / "python" / "nmea0183.py")
+    theirs = pynmea2.parse(sentence, check=True)
+    ours = mod.decode(sentence + "\r\n")
+    assert type(ours) is mod.Gga and ours.talker == theirs.talker
+    message = next(m for m in compile_schema(SCHEMA).messages if m.name == "gga")
+    for leaf, text in zip(body_leaves(message), theirs.data):
+        f, value = leaf.field, getattr(ours, leaf.field.name)
+        if f.kind in ("int", "uint") and f.enum is None:
+            assert value == (at_step(text, f.decimals or 0) if text else None), (f.name, value, text)
+        else:
+            assert wire(value) == text, (f.name, value, text)
+    assert mod.encode(ours) == sentence + "\r\n"
+
+
+def test_the_talker_given_is_the_talker_written(built):
+    """A message encoded with another talker: the line pynmea2 reads with that talker."""
+    mod = load(built / "python" / "nmea0183.py")
+    ours = mod.Gga.from_dict(mod.decode(SENTENCES[0] + "\r\n").to_dict())
+    ours.talker = "GN"
+    line = mod.encode(ours)
+    theirs = pynmea2.parse(line.strip(), check=True)
+    assert line.startswith("$GNGGA,") and theirs.talker == "GN" and theirs.sentence_type == "GGA"
+    for bad, rule in (("gn", "text"), ("G", "length"), ("GNS", "length"), ("G1", "text")):
+        ours.talker = bad
+        with pytest.raises(mod.EncodeError) as err:
+            mod.encode(ours)
+        assert (err.value.field, err.value.rule) == ("talker", rule)
+
+
+def test_c_reads_and_writes_the_talker(built):
+    """C: each talker's sentence decodes to GGA with its talker and is written back byte for
+    byte; a lowercase talker is CW_ERR_TEXT, an unknown sentence CW_ERR_DISPATCH, and
+    encoding with talker GL writes the line pynmea2 checks."""
+    calls = "\n".join(f'    round_trip("{s}\\r\\n");' for s in TALKER_SENTENCES)
+    driver = r"""
+#include <stdio.h>
+#include <string.h>
+#include "nmea0183.h"
+static void round_trip(const char *line) {
+    nmea0183_message_t m;
+    char buf[100];
+    int rc, n;
+    memset(&m, 0, sizeof m);
+    rc = nmea0183_decode(line, strlen(line), NMEA0183_DIR_ANY, &m);
+    n = nmea0183_encode(&m, buf, sizeof buf);
+    printf("%d %d %s %d\n", rc, m.kind == NMEA0183_MSG_GGA, m.as.gga.talker,
+           n > 0 && (size_t)n == strlen(line) && memcmp(buf, line, (size_t)n) == 0);
+}
+int main(void) {
+    static const char lower[] = "$gpGGA,123519,4807.03800,N,01131.00000,E,1,08,0.9,545.4,M,46.9,M,,*47\r\n";
+    static const char other[] = "$GPGGB,1*48\r\n";
+    nmea0183_message_t m;
+    char buf[100];
+    int n;
+CALLS
+    printf("%d\n", nmea0183_decode(lower, sizeof lower - 1, NMEA0183_DIR_ANY, &m) == CW_ERR_TEXT);
+    printf("%d\n", nmea0183_decode(other, sizeof other - 1, NMEA0183_DIR_ANY, &m) == CW_ERR_DISPATCH);
+    memset(&m, 0, sizeof m);
+    static const char gp[] = "$GPGGA,123519,4807.038,N,01131.000,E,1,08,0.9,545.4,M,46.9,M,,*47\r\n";
+    nmea0183_decode(gp, sizeof gp - 1, NMEA0183_DIR_ANY, &m);
+    memcpy(m.as.gga.talker, "GL", 3u);
+    n = nmea0183_encode(&m, buf, sizeof buf);
+    printf("%.*s\n", n > 2 ? n - 2 : 0, buf);
+    memcpy(m.as.gga.talker, "gl", 3u);
+    printf("%d\n", nmea0183_encode(&m, buf, sizeof buf) == CW_ERR_TEXT);
+    return 0;
+}
+""".replace("CALLS", calls)
+    talkers = [pynmea2.parse(s).talker for s in TALKER_SENTENCES]
+    assert run_c(built / "c", driver) == [f"0 1 {t} 1" for t in talkers] + [
+        "1", "1", TALKER_SENTENCES[1], "1"]  # pynmea2's checksum for GL

@@ -300,6 +300,9 @@ def _field(a: Placed, b: Placed, out: _Collector, message: str, growth: Optional
     if fa.optional != fb.optional:
         add(COMPATIBLE if fb.optional else BREAKING,
             "now optional" if fb.optional else "now required")
+    if fa.prefix != fb.prefix:  # read from the line's prefix before the id, or from its body
+        add(BREAKING, "now written in the prefix before the id" if fb.prefix
+            else "no longer written in the prefix before the id")
     if fa.keep_spelling != fb.keep_spelling:  # the same lines read and written; a decoded one writes back otherwise
         add(COMPATIBLE, f"now keeps the text it was read from (C member {fb.name}_spelling)" if fb.keep_spelling
             else f"no longer keeps the text it was read from (C member {fa.name}_spelling removed)")

@@ -6,8 +6,11 @@ from dataclasses import replace
 from typing import Any, Optional
 
 from ..model import Field, Presence
+from ..text_prefix import is_prefix_value
 from .text import text
 from .base import MAX_ARRAY_COUNT, MAX_BYTES_LENGTH, MAX_SCALED_BITS, ResolverBase
+
+MAX_PREFIX_LENGTH = 8  # a prefix field (NMEA's talker is 2)
 
 
 def leaf_count(f: Field) -> int:
@@ -128,10 +131,13 @@ class FieldsMixin(ResolverBase):
             if "checksum" in f else None,
             fields=sub_fields, message=text(f.get("message")), rule=f.get("rule"),
             extension=bool(f.get("extension")), counted_by=counted_by, start_bit=f.get("start_bit"),
+            prefix=bool(f.get("prefix")),
             count_unit=1 if counted_by is not None else None, present_if=self.condition_of(f, path, allow_payload))
         if field.by_direction:
             self.check_by_direction(field, path, allow_payload)
         self.check_field(field, path)
+        if field.prefix and field.kind == "str" and field.length:
+            field = replace(field, max_length=field.length)  # read and written whole
         if isinstance(f.get("count"), dict):
             field = self.counted_array(field, f, path, allow_payload)
         elif "count" in f:
@@ -337,6 +343,8 @@ class FieldsMixin(ResolverBase):
             self.check_fixed_spelling(f, path)
         if f.extension:
             self.check_extension(f, path)
+        if f.prefix:
+            self.check_prefix_field(f, path)
         if f.to_end and kind != "str" and self.framing_kind == "text":
             self.error(path + ("to_end",), f"field {name!r}: to_end applies to str fields")
         elif f.to_end and kind == "str" and self.framing_kind != "text":
@@ -391,6 +399,25 @@ class FieldsMixin(ResolverBase):
         if f.values:
             for i, v in enumerate(f.values):
                 self.check_value(f, v, path + ("values", i), "allowed value")
+
+    def check_prefix_field(self, f: Field, path: tuple) -> None:
+        """A value written in the line's prefix before the message's id (NMEA's talker): a
+        str of a fixed length of uppercase letters, so a reader finds where the id starts."""
+        if self.framing_kind != "text":
+            self.error(path + ("prefix",), f"field {f.name!r}: prefix fields are for text framing",
+                       "drop `prefix`")
+        elif f.kind != "str" or f.length is None or not 1 <= f.length <= MAX_PREFIX_LENGTH:
+            self.error(path + ("prefix",), f"field {f.name!r}: a prefix field is a str of a fixed `length` "
+                       f"(1..{MAX_PREFIX_LENGTH}) of uppercase letters", "write type: str, length: 2")
+        elif f.optional or f.const is not None or f.to_end or f.has_default or f.count is not None:
+            self.error(path + ("prefix",), f"field {f.name!r}: a prefix field is always there and is given "
+                       "(no optional, const, default, to_end or count)",
+                       "a fixed prefix is part of the message's id")
+        else:
+            for i, v in enumerate(f.values or ()):
+                if not isinstance(v, str) or not is_prefix_value(v, f.length):
+                    self.error(path + ("values", i), f"field {f.name!r}: prefix value {v!r} is not "
+                               f"{f.length} uppercase letters A-Z", "list values such as GP, GN")
 
     def check_extension(self, f: Field, path: tuple) -> None:
         """An extension field may be missing from a frame, and then reads as 0: it is a

@@ -126,6 +126,7 @@ class FramingMixin(TrailerMixin):
                 self.error(path + ("id",), f"message {name!r}: id {ids[0]!r} holds the prefix separator "
                                            "or a character of the terminator, so it would not be read back",
                            "choose an id without them")
+            self.check_prefix_fields(name, own, path)
             self.check_text_fields(name, own, path, framing.keep_empty)
             return own, (("prefix", ids),) if ids else ()
         if framing.kind == "bits":
@@ -274,9 +275,20 @@ class FramingMixin(TrailerMixin):
             return own
         return tuple(replace(f, keep_spelling=True) if is_number(f) else f for f in own)
 
+    def check_prefix_fields(self, name: str, own: tuple[Field, ...], path: tuple) -> None:
+        """A prefix field is read from the start of the prefix, before the id: one, first."""
+        for i, f in enumerate(own):
+            if f.prefix and i:
+                self.error(path + ("fields", i, "prefix"), f"message {name!r}: prefix field {f.name!r} is not "
+                           "the message's first field" + (", and a message has one prefix field"
+                                                          if own[0].prefix else ""),
+                           "make it the first field: it is written before the id, as NMEA's talker")
+
     def check_text_fields(self, name: str, own: tuple[Field, ...], path: tuple, keep_empty: bool) -> None:
         optional_str = None  # an empty value is an empty str, so a str is absent only at the end
         for i, f in enumerate(own):
+            if f.prefix:  # not in the body
+                continue
             if f.const is not None:  # written always; read as absent when empty, whatever its kind
                 if optional_str is not None:
                     self.error(path + ("fields", i), f"message {name!r}: constant {f.name!r}, which "

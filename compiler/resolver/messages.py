@@ -4,6 +4,7 @@ from __future__ import annotations
 from typing import Optional
 
 from ..dispatch_pairs import candidate_pairs
+from ..text_prefix import common_prefix, pattern_of
 from ..model import Example, ExpectedError, Field, Framing, Message
 from .text import text
 from .base import ResolverBase
@@ -191,7 +192,14 @@ class MessagesMixin(ResolverBase):
             a, b = keyed[i], keyed[j]
             if a.direction and b.direction and a.direction != b.direction:
                 continue
-            if self.ambiguous(a, b, framing):
+            if framing == "text" and self.ambiguous(a, b, framing):
+                shared = common_prefix(pattern_of(a.ids[0], a.prefix_field), pattern_of(b.ids[0], b.prefix_field))
+                self.error(("messages", b.name, "id"),
+                           f"ambiguous dispatch: messages {a.name!r} and {b.name!r} both read a line whose "
+                           f"prefix is {shared!r} ({self.describe_prefix(a)} / {self.describe_prefix(b)})",
+                           "give them ids that no prefix value turns into one another, or list the prefix "
+                           "field's `values`")
+            elif self.ambiguous(a, b, framing):
                 self.error(("messages", b.name),
                            f"ambiguous dispatch: messages {a.name!r} and {b.name!r} cannot be "
                            f"told apart ({self.describe_key(a)} / {self.describe_key(b)})",
@@ -252,6 +260,14 @@ class MessagesMixin(ResolverBase):
                     return
 
     @staticmethod
+    def describe_prefix(m: Message) -> str:
+        f = m.prefix_field
+        if f is None:
+            return f"id {m.ids[0]!r}"
+        held = "/".join(f.values) if f.values else f"any {f.length} uppercase letters"
+        return f"{f.name} ({held}) then id {m.ids[0]!r}"
+
+    @staticmethod
     def describe_key(m: Message) -> str:
         sizes = f"{m.min_size}..{m.size}" if m.shortening else m.size
         return ", ".join(f"{k}={v}" for k, v in m.dispatch_key) + (f", {sizes} bytes" if m.size else "")
@@ -262,5 +278,7 @@ class MessagesMixin(ResolverBase):
         if framing == "bits":
             common = set(ka) & set(kb)
             return all(ka[k] == kb[k] for k in common)
+        if framing == "text":  # a prefix field's values before the id: one prefix both read
+            return common_prefix(pattern_of(a.ids[0], a.prefix_field), pattern_of(b.ids[0], b.prefix_field)) is not None
         overlap = all(set(ka[k]) & set(kb.get(k, ())) for k in ka)
-        return overlap and (framing == "text" or a.min_size <= b.size and b.min_size <= a.size)
+        return overlap and a.min_size <= b.size and b.min_size <= a.size

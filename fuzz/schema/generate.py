@@ -7,6 +7,8 @@ import string
 
 import yaml
 
+from codeword.text_prefix import Pattern, common_prefix
+
 from .features import DEFAULT
 from .machines import MACHINE_SHARE, machine_schema
 
@@ -718,7 +720,36 @@ class Generator:
             messages[self.name()] = {"id": prefix, "fields": fields}
         if "keep_spelling" in self.on:
             self.keep_spellings(framing, messages)
+        if "talker" in self.on:
+            self.talkers(messages)
         return framing, messages
+
+    def talkers(self, messages: dict) -> None:
+        """Prefix fields before some messages' ids (NMEA's talker): any uppercase letters of
+        their length, or a listed set; a message whose prefix another one could read keeps
+        its fixed id."""
+        rng = random.Random(f"talker {self.seed}")
+        if rng.random() < 0.3:
+            return
+        patterns = {name: Pattern(m["id"]) for name, m in messages.items()}
+        for name, message in messages.items():
+            if rng.random() < 0.4:
+                continue
+            length = rng.choice([1, 2, 2, 3])
+            values = None
+            if rng.random() < 0.4:
+                values = sorted({"".join(rng.choice(string.ascii_uppercase) for _ in range(length))
+                                 for _ in range(rng.randint(1, 3))})
+            mine = Pattern(message["id"], length, tuple(values) if values else None)
+            if any(common_prefix(mine, other) for n, other in patterns.items() if n != name):
+                continue
+            patterns[name] = mine
+            taken = {f["name"] for f in message["fields"]}
+            field = {"name": next(x for x in ("talker", "talker_id", "source") if x not in taken),
+                     "type": "str", "length": length, "prefix": True}
+            if values:
+                field["values"] = values
+            message["fields"].insert(0, field)
 
     def keep_spellings(self, framing: dict, messages: dict) -> None:
         """Numbers that keep the text they were read from: on the framing (which then does

@@ -1226,6 +1226,18 @@ static inline size_t cw_text_len(const char *s, size_t cap)
     return n;
 }
 
+/* Whether the n characters are uppercase letters A-Z: a prefix field's value (NMEA's talker). */
+static inline bool cw_upper_letters(const char *s, size_t n)
+{
+    size_t i;
+    for (i = 0; i < n; i++) {
+        if (s[i] < 'A' || s[i] > 'Z') {
+            return false;
+        }
+    }
+    return true;
+}
+
 /* What a writer may put in a value (and so a reader accepts): printable
  * ASCII, no separator or terminator, and, when readers trim, no whitespace at
  * either end. */

@@ -762,7 +762,8 @@ def _encode_telemetry(m: Telemetry) -> str:
     return '$:' + ','.join((_ENUM_move[r_move]._value_, str(r_speed), r_value, s_lcurr, s_rcurr, s_accx, s_accy, s_accz, s_gyrox, s_gyroy, s_gyroz, s_magx, s_magy, s_magz, r_lan, r_lon, s_vbat, str(r_systemstatus), str(r_extid), str(r_extstatus), )) + ';'
 
 
-def _decode_telemetry(body: str, base: int) -> Telemetry:
+def _decode_telemetry(head: str, body: str, base: int) -> Telemetry:
+    del head  # the prefix is the id alone
     t = body.split(',')
     if not 20 <= len(t) <= 20:
         raise _dec('telemetry', None, len(t), 'count', '20 fields', base)
@@ -960,7 +961,8 @@ def _encode_command(m: Command) -> str:
     return '%:' + ','.join(p) + ';'
 
 
-def _decode_command(body: str, base: int) -> Command:
+def _decode_command(head: str, body: str, base: int) -> Command:
+    del head  # the prefix is the id alone
     t = body.split(',')
     if not 9 <= len(t) <= 10:
         raise _dec('command', None, len(t), 'count', '9..10 fields', base)
@@ -1039,7 +1041,8 @@ def _encode_payload_command(m: PayloadCommand) -> str:
     return '*:' + ','.join((r_command, )) + ';'
 
 
-def _decode_payload_command(body: str, base: int) -> PayloadCommand:
+def _decode_payload_command(head: str, body: str, base: int) -> PayloadCommand:
+    del head  # the prefix is the id alone
     t = body.split(',', 0)
     if not 1 <= len(t) <= 1:
         raise _dec('payload_command', None, len(t), 'count', '1 fields', base)
@@ -1069,7 +1072,8 @@ def _encode_payload_reply(m: PayloadReply) -> str:
     return '^:' + ','.join((r_command, )) + ';'
 
 
-def _decode_payload_reply(body: str, base: int) -> PayloadReply:
+def _decode_payload_reply(head: str, body: str, base: int) -> PayloadReply:
+    del head  # the prefix is the id alone
     t = body.split(',', 0)
     if not 1 <= len(t) <= 1:
         raise _dec('payload_reply', None, len(t), 'count', '1 fields', base)
@@ -1106,7 +1110,8 @@ def _encode_gpio_config(m: GpioConfig) -> str:
     return '-:' + ','.join((str(r_gpio1), str(r_gpio2), str(r_gpio3), str(r_gpio4), )) + ';'
 
 
-def _decode_gpio_config(body: str, base: int) -> GpioConfig:
+def _decode_gpio_config(head: str, body: str, base: int) -> GpioConfig:
+    del head  # the prefix is the id alone
     t = body.split(',')
     if not 4 <= len(t) <= 4:
         raise _dec('gpio_config', None, len(t), 'count', '4 fields', base)
@@ -1146,19 +1151,20 @@ def _split(text: str) -> tuple[str, str, int]:
     return head, text[len(head) + 1:-1], len(head) + 1
 
 
-_PREFIXES: dict[str, tuple[Optional[str], Callable[[str, int], AnyMessage]]] = {'$': ('platform_to_computer', _decode_telemetry), '%': ('computer_to_platform', _decode_command), '*': ('computer_to_payload', _decode_payload_command), '^': ('payload_to_computer', _decode_payload_reply), '-': ('computer_to_platform', _decode_gpio_config), }
+_PREFIXES: dict[str, tuple[Optional[str], Callable[[str, str, int], AnyMessage]]] = {'$': ('platform_to_computer', _decode_telemetry), '%': ('computer_to_platform', _decode_command), '*': ('computer_to_payload', _decode_payload_command), '^': ('payload_to_computer', _decode_payload_reply), '-': ('computer_to_platform', _decode_gpio_config), }
 
 
-_PREFIX_OF = {'telemetry': '$', 'command': '%', 'payload_command': '*', 'payload_reply': '^', 'gpio_config': '-', }
+_PREFIX_OF = {'telemetry': (0, '$'), 'command': (0, '%'), 'payload_command': (0, '*'), 'payload_reply': (0, '^'), 'gpio_config': (0, '-'), }
 
 
-def _decode_as(name: str, data: _Input, fn: Callable[[str, int], _T]) -> _T:
+def _decode_as(name: str, data: _Input, fn: Callable[[str, str, int], _T]) -> _T:
     """Decode text that must hold the message `name` (whose body decoder is `fn`)."""
     prefix, body, base = _split(_as_input(data))
-    expected = _PREFIX_OF[name]
-    if (prefix.strip() if True else prefix) != expected:
-        raise _dec(name, 'prefix', prefix, 'dispatch', expected, 0)
-    return fn(body, base)
+    held = prefix.strip() if True else prefix
+    n, expected = _PREFIX_OF[name]
+    if len(held) != n + len(expected) or not held.endswith(expected):
+        raise _dec(name, 'prefix', prefix, 'dispatch', ('?' * n) + expected, 0)
+    return fn(held, body, base)
 
 
 @overload
@@ -1185,10 +1191,11 @@ def decode(data: _Input, direction: Optional[str] = None) -> AnyMessage:
     """Decode one message `<prefix>:<fields>;`."""
     text = _as_input(data)
     prefix, body, base = _split(text)
-    entry = _PREFIXES.get(prefix.strip() if True else prefix)
+    held = prefix.strip() if True else prefix
+    entry = _PREFIXES.get(held)
     if entry is None or direction is not None and entry[0] != direction:
-        raise _dec(None, 'prefix', prefix, 'dispatch', ' '.join(_PREFIXES), 0)
-    return entry[1](body, base)
+        raise _dec(None, 'prefix', prefix, 'dispatch', ' '.join([*_PREFIXES]), 0)
+    return entry[1](held, body, base)
 
 
 class StreamDecoder:

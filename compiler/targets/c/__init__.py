@@ -70,6 +70,8 @@ def message_views(v: CView) -> list[dict]:
     for m in v.p.messages:
         if v.text:
             functions = [v.text_encode_function(m), v.text_body_function(m), v.text_decode_function(m)]
+            if m.prefix_field is not None:
+                functions.insert(2, v.text_prefix_function(m))
         else:
             functions = [v.raw_function(m), v.encode_function(m), v.check_raw_function(m),
                          v.decode_function(m)]

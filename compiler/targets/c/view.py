@@ -1101,7 +1101,9 @@ class CView:
         n = len(fr.start) + len(m.ids[0]) + len(fr.prefix_separator) + len(fr.terminator)
         if fr.line_checksum:
             n += len(fr.line_checksum.suffix) + 2
-        leaves = m.wire.leaves
+        if m.prefix_field is not None:
+            n += m.prefix_field.length
+        leaves = self.body_leaves(m)
         n += max(0, len(leaves) - 1) * len(fr.separator)
         for leaf in leaves:
             f = leaf.field
@@ -1129,7 +1131,8 @@ class CView:
         c("{")
         c.indent()
         c("cw_writer_t w;")
-        leaves = m.wire.leaves
+        leaves = self.body_leaves(m)
+        pf = m.prefix_field
         for leaf in leaves:
             if leaf.field.kind == "str" and leaf.field.const is None:  # a constant is written as spelt
                 c(f"size_t {self.text_len(leaf)} = 0;")
@@ -1138,6 +1141,9 @@ class CView:
         if all(leaf.field.const is not None for leaf in leaves) and not m.rules:
             c("(void)m;  /* no member: the line is written from the schema */")
         self.rule_checks(c, m, "m")
+        if pf is not None:  # written before the id
+            self.fail_if(c, f"cw_text_len(m->{pf.name}, {pf.length + 1}u) != {pf.length}u", "length")
+            self.prefix_check(c, pf, f"m->{pf.name}")
         for leaf in leaves:
             self.text_check(c, leaf)
         trailing = self.trailing_from(leaves)
@@ -1150,6 +1156,11 @@ class CView:
         if lead_first:
             head = head[:-len(fr.prefix_separator)]
         c("cw_writer_init(&w, buf, cap);")
+        if pf is not None:
+            if fr.start:
+                c(f"cw_write_text(&w, {cstr(fr.start)}, {len(fr.start)}u);")
+            c(f"cw_write_text(&w, m->{pf.name}, {pf.length}u);")
+            head = head[len(fr.start):]
         if head:
             c(f"cw_write_text(&w, {cstr(head)}, {len(head)}u);")
         for i, leaf in enumerate(leaves):
@@ -1316,7 +1327,7 @@ class CView:
         and read once. Bytes above 0x7F are left to the caller (see text_ascii)."""
         fr = self.fr
         c = Code()
-        leaves = m.wire.leaves
+        leaves = self.body_leaves(m)
         total = len(leaves)
         required = self.trailing_from(leaves)  # values up to the last required one
         last_to_end = bool(leaves) and leaves[-1].field.to_end
@@ -1460,6 +1471,41 @@ class CView:
         c("}")
         return c.text()
 
+    @staticmethod
+    def body_leaves(m: Message) -> tuple[Leaf, ...]:
+        """The values of a line's body: all but the prefix field."""
+        return tuple(leaf for leaf in m.wire.leaves if not leaf.field.prefix)
+
+    def prefix_check(self, c: Code, pf: Field, s: str) -> None:
+        """A prefix field's value: uppercase letters, one of its values if listed."""
+        self.fail_if(c, f"!cw_upper_letters({s}, {pf.length}u)", "text")
+        if pf.values:
+            self.fail_if(c, " && ".join(f"memcmp({s}, {cstr(v)}, {pf.length}u) != 0" for v in pf.values), "values")
+
+    def parse_call(self, m: Message, obj: str = "m") -> str:
+        """The call that reads a line's values once dispatch found the message: the prefix
+        field's value (before the id) first, then the body."""
+        if m.prefix_field is None:
+            return f"{self.fn(m, 'parse_body')}(body, end, {obj})"
+        return f"{self.fn(m, 'parse_prefixed')}(pb, body, end, {obj})"
+
+    def text_prefix_function(self, m: Message) -> str:
+        """<msg>_parse_prefixed: the prefix field's value, the characters before the id
+        (dispatch found the id after them), then the body."""
+        pf = m.prefix_field
+        c = Code()
+        c(f"static inline int {self.fn(m, 'parse_prefixed')}(const char *pb, const char *body, const char *end, "
+          f"{self.tname(m)} *m)")
+        c("{")
+        c.indent()
+        self.prefix_check(c, pf, "pb")
+        c(f"memcpy(m->{pf.name}, pb, {pf.length}u);")
+        c(f"m->{pf.name}[{pf.length}] = '\\0';")
+        c(f"return {self.fn(m, 'parse_body')}(body, end, m);")
+        c.dedent()
+        c("}")
+        return c.text()
+
     def text_const_check(self, c: Code, f: Field) -> None:
         """The value `v` must be the constant: read as its kind is read, with that kind's
         errors first (as Python's), then compared."""
@@ -1522,10 +1568,12 @@ class CView:
         c.indent()
         c("const char *pb, *pe, *body, *end;")
         c(f"int rc = {self.px}_split(text, len, &pb, &pe, &body, &end);")
-        c(f"if (rc == CW_OK && ((size_t)(pe - pb) != {len(prefix)}u || memcmp(pb, {self.id_const(m)}, {len(prefix)}u) != 0)) {{")
+        n = m.prefix_field.length if m.prefix_field is not None else 0
+        at = f"pb + {n}" if n else "pb"  # the id follows the prefix field's value
+        c(f"if (rc == CW_OK && ((size_t)(pe - pb) != {n + len(prefix)}u || memcmp({at}, {self.id_const(m)}, {len(prefix)}u) != 0)) {{")
         c("    rc = CW_ERR_DISPATCH;")
         c("} else if (rc == CW_OK) {")
-        c(f"    rc = {self.fn(m, 'parse_body')}(body, end, m);")
+        c(f"    rc = {self.parse_call(m)};")
         c("}")
         c("return cw_text_verdict(text, len, rc);")
         c.dedent()

@@ -195,7 +195,9 @@ def framing_view(p: Protocol, linker: DecisionLinker) -> dict:
         cs = fr.line_checksum
         lines.append(f"Every message is one ASCII line `{shown(fr.start)}<prefix>{shown(fr.prefix_separator)}<field>"
                      f"{shown(fr.separator)}<field>…{shown(cs.suffix) + 'hh' if cs else ''}{shown(fr.terminator)}`: "
-                     "the prefix names the message, fields follow in table order.")
+                     "the prefix names the message, fields follow in table order."
+                     + (" A field whose place is *prefix* is written in the prefix before the message's id "
+                        "(NMEA's talker: `GN` in `GNGGA`)." if any(m.prefix_field for m in p.messages) else ""))
         if fr.start:
             lines.append(f"A line starts with {code(shown(fr.start))}.")
         if cs:

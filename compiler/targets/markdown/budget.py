@@ -44,8 +44,9 @@ def longest_text_line(p: Protocol, m: Message) -> Optional[int]:
     if fr.text_form is not None:  # bits protocol written as decimal wire values, each array element one
         values = m.wire.leaves
         return sum(_wire_digits(x.bits) for x in values) + len(values) - 1 + 1
-    leaves = [s for s in slots(m) if s.field.kind != "group"]
+    leaves = [s for s in slots(m) if s.field.kind != "group" and not s.field.prefix]
     total = len(fr.start) + len(str(m.ids[0])) + len(fr.prefix_separator) + len(fr.terminator)
+    total += sum(s.field.length or 0 for s in slots(m) if s.field.prefix)  # before the id
     if fr.line_checksum:
         total += len(fr.line_checksum.suffix) + 2
     for i, s in enumerate(leaves):

@@ -54,7 +54,8 @@ def slots(m: Message) -> list[Slot]:
             path = prefix + (f.name,)
             name = f"{shown}.{f.name}" if shown else f.name
             offset = f.bit_offset if f.bit_offset is not None or m.bits is None else first_bit.get(path)
-            index = len([s for s in out if s.depth == 0]) + 1 if depth == 0 else 0
+            # a text line's prefix field sits before the id, at no place of the body
+            index = len([s for s in out if s.depth == 0 and not s.field.prefix]) + 1 if depth == 0 else 0
             out.append(Slot(name + array_suffix(f), f, offset, index, depth))
             if f.kind == "group":  # an array's members shown once, at its first element
                 walk(f.fields, path + ((0,) if f.count is not None else ()),
@@ -129,6 +130,8 @@ def type_text(p: Protocol, f: Field) -> str:
         text = "bool"
     elif kind == "char":
         text = "char"
+    elif kind == "str" and f.prefix:
+        text = f"{f.length} uppercase letters A–Z, before the id"
     elif kind == "str":
         text = "string"
         if f.max_length is not None:
@@ -250,7 +253,8 @@ def diagram(p: Protocol, m: Message) -> Optional[dict]:
 def text_line(p: Protocol, m: Message) -> str:
     """The shape of a text message: `%:move,speed,…[,data];`."""
     fr = p.framing
-    top = [s for s in slots(m) if not s.depth]
+    top = [s for s in slots(m) if not s.depth and not s.field.prefix]
+    head = "".join(f"<{s.path}>" for s in slots(m) if s.field.prefix)  # NMEA's `<talker>GGA`
     trailing = len(top)
     while trailing and top[trailing - 1].field.optional and not fr.keep_empty:  # left out at the end of a line
         trailing -= 1
@@ -261,7 +265,7 @@ def text_line(p: Protocol, m: Message) -> str:
         else:  # `[name]`: may be empty
             body += (fr.separator if i else "") + (f"[{s.path}]" if s.field.optional else s.path)
     checksum = fr.line_checksum.suffix + "hh" if fr.line_checksum else ""
-    return shown(f"{fr.start}{m.ids[0]}{fr.prefix_separator}{body}{checksum}{fr.terminator}")
+    return shown(f"{fr.start}{head}{m.ids[0]}{fr.prefix_separator}{body}{checksum}{fr.terminator}")
 
 
 def shown(text: str) -> str:
@@ -279,7 +283,7 @@ def field_rows(p: Protocol, m: Message, linker: DecisionLinker) -> list[dict]:
             "bits": "" if f.bits is None or p.framing.kind == "text" else str(f.bits),
             "offset": (f"start bit {f.start_bit}" if f.start_bit is not None else str(s.offset))
             if s.offset is not None else "",
-            "index": str(s.index) if s.depth == 0 else "",
+            "index": "prefix" if f.prefix else str(s.index) if s.depth == 0 else "",
             "position": position(p, s),
             "type": cell(type_text(p, f)), "range": range_text(p, f),
             "unit": cell(f.unit or ""), "kinds": values_text(f), "default": cell(default_text(f)),

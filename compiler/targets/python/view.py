@@ -1257,17 +1257,42 @@ class MessageCode:
         return c.text()
 
     # -- text framing ----------------------------------------------------------------------
+    @property
+    def text_leaves(self) -> tuple[Leaf, ...]:
+        """The values of the line's body: all but the prefix field."""
+        return tuple(leaf for leaf in self.leaves if not leaf.field.prefix)
+
+    def prefix_check(self, c: Code, var: str, coder: str, at: str) -> None:
+        """The prefix field's value: its length of uppercase letters, one of its values if listed."""
+        f = self.m.prefix_field
+        where = f"{self.m.name!r}, {f.name!r}"
+        if coder == "_enc":
+            c(f"if not isinstance({var}, str):")
+            c(f"    raise _enc({where}, {var}, 'type', 'a string')")
+            c(f"if len({var}) != {f.length}:")
+            c(f"    raise _enc({where}, {var}, 'length', '{f.length} characters')")
+        c(f"if _PREFIX_VALUE_RE.fullmatch({var}) is None:")
+        c(f"    raise {coder}({where}, {var}, 'text', 'uppercase letters A-Z'{at})")
+        if f.values:
+            c(f"if {var} not in {tuple(f.values)!r}:")
+            c(f"    raise {coder}({where}, {var}, 'values', {' '.join(f.values)!r}{at})")
+
     def text_encode_function(self) -> str:
         fr = self.view.p.framing
         c = Code()
         c(f"def _encode_{self.fn}(m: {self.cls}) -> {self.output}:")
         c.indent()
         self.view.rule_checks(c, self.m, "m", "_enc")
+        head = ""
+        if self.m.prefix_field is not None:  # written before the id
+            c(f"h = m.{self.m.prefix_field.name}")
+            self.prefix_check(c, "h", "_enc", "")
+            head = "h + "
         outs: list[str] = []  # the text of each field, joined once at the end
         trailing = self.trailing_from()
-        if any(leaf.field.keep_spelling for leaf in self.leaves):
+        if any(leaf.field.keep_spelling for leaf in self.text_leaves):
             c("sp = m._spelling or {}  # the text each number was read from, with the raw value it reads as")
-        for n, leaf in enumerate(self.leaves):
+        for n, leaf in enumerate(self.text_leaves):
             f = leaf.field
             where = f"{self.m.name!r}, {leaf.dotted!r}"
             if f.optional and f.const is not None:
@@ -1312,21 +1337,23 @@ class MessageCode:
                 c(f"    t{n} = {'None' if n >= trailing else repr('')}")
                 out = f"t{n}"
             outs.append(out)
-        if trailing < len(self.leaves):
+        if trailing < len(self.text_leaves):
             c(f"p: list[Any] = [{', '.join(outs)}]")
             c("while p and p[-1] is None:  # absent values at the end are left out, separators and all")
             c("    p.pop()")
-            for n in range(trailing, len(self.leaves) - 1):  # the last one, if kept, is present
-                leaf = self.leaves[n]
+            for n in range(trailing, len(self.text_leaves) - 1):  # the last one, if kept, is present
+                leaf = self.text_leaves[n]
                 c(f"if len(p) > {n} and p[{n}] is None:")
                 if leaf.field.kind == "str":  # an empty value would read as an empty str
                     c(f"    raise _enc({self.m.name!r}, {leaf.dotted!r}, None, 'count', 'present, as a later value is')")
                 else:
                     c(f"    p[{n}] = ''")
         sep = repr(fr.separator)
-        values = f"{sep}.join(p)" if trailing < len(self.leaves) else f"{sep}.join(({''.join(x + ', ' for x in outs)}))"
+        values = f"{sep}.join(p)" if trailing < len(self.text_leaves) else f"{sep}.join(({''.join(x + ', ' for x in outs)}))"
         if fr.line_checksum:  # _line adds the start marker, the checksum and the terminator
-            c(f"return _line({self.m.ids[0] + fr.prefix_separator!r} + {values})")
+            c(f"return _line({head}{self.m.ids[0] + fr.prefix_separator!r} + {values})")
+        elif head:
+            c(f"return {fr.start!r} + {head}{self.m.ids[0] + fr.prefix_separator!r} + {values} + {fr.terminator!r}")
         else:
             c(f"return {fr.start + self.m.ids[0] + fr.prefix_separator!r} + {values} + {fr.terminator!r}")
         return c.text()
@@ -1334,10 +1361,14 @@ class MessageCode:
     def trailing_from(self) -> int:
         """Where the run of optional values at the end of the line starts: those may be
         left out, separators and all, when absent."""
-        n = len(self.leaves)
-        while n and self.leaves[n - 1].field.optional and not self.view.p.framing.keep_empty:
+        n = len(self.text_leaves)
+        while n and self.text_leaves[n - 1].field.optional and not self.view.p.framing.keep_empty:
             n -= 1
         return n
+
+    @property
+    def prefix_var(self) -> str:
+        return next(leaf.var for leaf in self.leaves if leaf.field.prefix)
 
     def text_syntax(self) -> str:
         """An expression for the regular expression a well-formed body matches: every number
@@ -1347,7 +1378,7 @@ class MessageCode:
         sep = repr(re.escape(self.view.p.framing.separator))
         out, closing = [], ""
         trailing = self.trailing_from()
-        for n, leaf in enumerate(self.leaves):
+        for n, leaf in enumerate(self.text_leaves):
             f = leaf.field
             if f.kind == "float":
                 tok = "_FINITE_RE"
@@ -1387,11 +1418,19 @@ class MessageCode:
     def text_decode_function(self) -> str:
         fr = self.view.p.framing
         c = Code()
-        c(f"def _decode_{self.fn}(body: str, base: int) -> {self.cls}:")
+        c(f"def _decode_{self.fn}(head: str, body: str, base: int) -> {self.cls}:")
         c.indent()
-        total = len(self.leaves)
+        values: dict[tuple, str] = {}
+        pf = self.m.prefix_field
+        if pf is None:
+            c("del head  # the prefix is the id alone")
+        else:  # the prefix's value before the id, which dispatch found
+            c(f"{self.prefix_var} = head[:{pf.length}]")
+            self.prefix_check(c, self.prefix_var, "_dec", f", {len(fr.start)}")
+            values[(pf.name,)] = self.prefix_var
+        total = len(self.text_leaves)
         required = self.trailing_from()  # values up to the last required one
-        last_to_end = bool(self.leaves) and self.leaves[-1].field.to_end
+        last_to_end = bool(self.text_leaves) and self.text_leaves[-1].field.to_end
         if total == 0:
             c("t = []")
             c("if body.strip():")
@@ -1405,11 +1444,10 @@ class MessageCode:
         c(f"    raise _dec({self.m.name!r}, None, len(t), 'count', {f'{required}..{total} fields' if required != total else f'{total} fields'!r}, base)")
         if total:
             c(f"ok = _SYNTAX_{self.fn}.fullmatch(body) is not None  # well-formed: token syntax checks are skipped")
-        values: dict[tuple, str] = {}
-        kept = any(leaf.field.keep_spelling for leaf in self.leaves)
+        kept = any(leaf.field.keep_spelling for leaf in self.text_leaves)
         if kept:
             c("sp: dict[str, tuple[Any, str]] = {}  # each number's text, with the raw value it reads as")
-        for n, leaf in enumerate(self.leaves):
+        for n, leaf in enumerate(self.text_leaves):
             f = leaf.field
             at = f"{self.m.name!r}, {leaf.dotted!r}"
             where = f"_token_offsets(t, base)[{n}]"  # computed only for an error
@@ -1476,7 +1514,7 @@ def module_view(p: Protocol) -> dict:
     for mc in codes:
         if fr.kind == "text":
             functions += [mc.text_encode_function(), mc.text_decode_function()]
-            if mc.leaves:
+            if mc.text_leaves:
                 syntaxes.append((mc.fn, mc.text_syntax()))
             continue
         functions += [mc.encode_bytes_function(), mc.decode_bytes_function()]
