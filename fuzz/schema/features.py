@@ -28,6 +28,7 @@ FULL = frozenset({
     "conditional",                          # bytes: fields present when an earlier field says so
     "lsb_first",                            # bytes framing: bit fields least significant bit first
     "mixed_bit_order",                      # bytes: payloads of 1..8 bytes placed by DBC start bit, both orders
+    "multiplexed",                          # bytes: placed payloads whose multiplexors select signals sharing bits
     "large_frame",                          # bytes: a message of over 64 KiB (4 KiB fields first)
     "signed", "scale", "offset", "range",   # integer options
     "enum", "flags", "bool", "bytes_field", "f32", "f64",
