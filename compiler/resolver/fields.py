@@ -176,7 +176,7 @@ class FieldsMixin(ResolverBase):
             if lo > hi:
                 self.error(where + ("values", i), f"field {f['name']!r}: the range {v!r} ends before it starts",
                            f"write it {hi}..{lo}")
-                return None
+                continue  # the other values still keep it apart from the fields it shares bits with
             ranges.append((lo, hi))
         merged: list[tuple[int, int]] = []
         for lo, hi in sorted(ranges):

@@ -94,13 +94,13 @@ class PlacementMixin(ResolverBase):
         if problem:
             self.report.error(f.loc, f"message {name!r}: field {f.name!r} is multiplexed by {mux.field!r}, {problem}",
                               "name a placed unsigned field (no scale, offset, enum or flags) listed before it")
-            return replace(f, multiplexed_by=None)
-        top = max(hi for _, hi in mux.ranges)
+            return f  # refused: kept as written, so that no overlap is reported besides
+        top = max((hi for _, hi in mux.ranges), default=0)
         if top >= 1 << x.bits:
             self.report.error(f.loc, f"message {name!r}: field {f.name!r} is present when {x.name!r} is {top}, "
                                      f"which its {x.bits} bits cannot hold",
                               f"give values in 0..{(1 << x.bits) - 1}")
-            return replace(f, multiplexed_by=None)
+            return f
         return replace(f, multiplexed_by=replace(mux, outer=x.multiplexed_by, most=(1 << x.bits) - 1))
 
     def placed_field(self, name: str, f: Field, payload_bytes: int, framing: Framing,
