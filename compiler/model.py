@@ -221,6 +221,7 @@ class Field:
     # is little (Intel), its most significant when big (Motorola). `bit_offset` is then its first
     # bit in its own order's numbering (see Leaf.order).
     start_bit: Optional[int] = None
+    multiplexed_by: Optional["Multiplex"] = None  # placed: in the frame only for some multiplexor values
     keep_spelling: bool = False  # text number: the decoded message keeps its text, written back unchanged
     signature: Optional["Signature"] = None  # a trailer field holding a keyed hash of the frame
     prefix: bool = False  # text: written in the line's prefix, before the message's id (NMEA's talker)
@@ -554,6 +555,45 @@ class Presence:
         if self.has is not None:
             return f"{self.field} has {self.has}"
         return f"{self.field} is {' or '.join(str(v) for v in self.equals)}"
+
+
+@dataclass(frozen=True)
+class Multiplex:
+    """When a field placed by start_bit is in the frame (CAN DBC multiplexing): the raw
+    value of the earlier placed field `field`, its multiplexor, lies in one of `ranges`,
+    and the multiplexor is itself in the frame (`outer`: its own condition, for extended
+    multiplexing). Fields present for disjoint values share bits; the decoded message
+    holds only those present."""
+
+    field: str  # the multiplexor
+    ranges: tuple[tuple[int, int], ...]  # [lo, hi] raw values, sorted, disjoint and not touching
+    outer: Optional["Multiplex"] = None  # the multiplexor's own condition, if it is multiplexed
+    most: int = 0  # the multiplexor's largest raw value
+
+    @property
+    def bounds(self) -> tuple[tuple[Optional[int], Optional[int]], ...]:
+        """`ranges` as the comparisons a test needs: None where the multiplexor's width
+        already bounds it (a test that always holds is one no compiler warns about)."""
+        return tuple((lo, hi) if lo == hi else (lo or None, None if hi >= self.most else hi) for lo, hi in self.ranges)
+
+    @property
+    def chain(self) -> tuple["Multiplex", ...]:
+        """Every condition that must hold, the outermost multiplexor's first."""
+        return (self.outer.chain if self.outer else ()) + (self,)
+
+    def holds(self, raw: int) -> bool:
+        """Whether the multiplexor's raw value `raw` selects the field (`outer` aside)."""
+        return any(lo <= raw <= hi for lo, hi in self.ranges)
+
+    @property
+    def values_text(self) -> str:
+        """The values as the schema writes them: "0, 2..5"."""
+        return ", ".join(str(lo) if lo == hi else f"{lo}..{hi}" for lo, hi in self.ranges)
+
+    @property
+    def says(self) -> str:
+        """The whole condition in words: "mode is 1 and page is 0, 2..5"."""
+        return " and ".join(f"{x.field} is {x.values_text}" for x in self.chain)
 
 
 @dataclass(frozen=True)

@@ -28,11 +28,12 @@ import string
 import struct
 import tempfile
 from functools import lru_cache, partial
-from typing import Any, Callable, TextIO
+from typing import Any, Callable, Optional, TextIO
 
 from . import binary32, binary64, jsontext
 
 from .model import Field, Message, Protocol
+from . import vector_multiplex
 from .respell import respelled
 from .targets.wire import ENCODINGS, encoding_facts
 from .vector_sequences import sequence_vectors
@@ -291,7 +292,7 @@ class Generator:
             if math.isfinite(x) and lo <= x <= hi:
                 return x
 
-    def values(self, m: Message, edge: str = "", focus: str = "") -> dict:
+    def values(self, m: Message, edge: str = "", focus: str = "", forced: Optional[dict] = None) -> dict:
         members = self.members.get(m.name)
         if members is None:
             members = self.members[m.name] = [(f, self.drawer(f)) for f in m.layout if f.is_member]
@@ -303,6 +304,9 @@ class Generator:
                 self.choose_presence(m, f, out)
         if self.trailer:
             self.trailer_values(m, out)
+        if m.payload_bytes and any(f.multiplexed_by for f, _ in members):
+            kept = {f.name for f, _ in members if edge and (not focus or focus == f.name)}
+            vector_multiplex.settle(m, out, self.rng, forced or {}, kept)
         return out
 
     def trailer_values(self, m: Message, out: dict) -> None:
@@ -489,6 +493,8 @@ class Generator:
                 made.append((f"{f.name} {edge}", "edge", (edge, f.name)))
         for i in range(min(self.randoms, max(1, FRAME_BUDGET // size))):
             made.append((f"random {i}", "random", None))
+        for choice in vector_multiplex.choices(m):  # every multiplexor value the schema names
+            made.append((vector_multiplex.choice_name(choice), "multiplexed", ("", "", choice)))
         if any(f.extension for f in members):  # as an older sender writes it (truncated, if the framing is)
             made.append(("without its extension fields", "older", None))
         frames = []

@@ -30,6 +30,31 @@ def noise(rng: random.Random, data: bytes, signals: list[dict]) -> bytes:
     return (int.from_bytes(data, "little") | rng.getrandbits(8 * len(data)) & free).to_bytes(len(data), "little")
 
 
+def raw_values(rng: random.Random, message) -> dict:
+    """Raw values over each signal's whole range, its ends often, scaled as cantools scales
+    them: of the signals a frame carries, each multiplexor holding a value some signal it
+    multiplexes is carried for (cantools encodes no other)."""
+    signals = {s.name: s for s in message.signals}
+    out: dict = {}
+
+    def carried(s) -> bool:
+        mux = signals.get(s.multiplexer_signal)
+        return mux is None or carried(mux) and value(mux) in s.multiplexer_ids
+
+    def value(s):
+        if s.name not in out:
+            selects = sorted({v for x in message.signals if x.multiplexer_signal == s.name for v in x.multiplexer_ids})
+            if selects:
+                raw = rng.choice(selects)
+            else:
+                lo, hi = (-(1 << (s.length - 1)), (1 << (s.length - 1)) - 1) if s.is_signed else (0, (1 << s.length) - 1)
+                raw = rng.choice((lo, hi, 0, rng.randint(lo, hi), rng.randint(lo, hi)))
+            out[s.name] = s.conversion.raw_to_scaled(raw, decode_choices=False)
+        return out[s.name]
+
+    return {s.name: value(s) for s in message.signals if carried(s)}
+
+
 def c_case(v: CView, driver: Driver, message, values: dict, frame: bytes, sent: bytes, label: str) -> str:
     """C statements: encoding the values writes `frame` (cantools' bytes); decoding `sent`
     (those bytes with noise in the unused bits) gives the values."""

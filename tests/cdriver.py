@@ -41,7 +41,7 @@ class Driver:
             if not f.is_member:
                 continue
             value = values.get(f.name)
-            if f.present_if and value is None:  # absent: zeros, as the decoder leaves it
+            if (f.present_if or f.multiplexed_by) and value is None:  # absent: zeros, as the decoder leaves it
                 continue
             if f.count is not None:  # an array: one initialiser per element
                 element = f.element

@@ -1,6 +1,7 @@
-"""Fields placed by start_bit beyond the codecs: `codeword diff` calls a moved start bit
-or a flipped byte order breaking, the fingerprint follows them, and the docs draw the
-payload bit by bit as a DBC numbers it (hand-worked grid)."""
+"""Fields placed by start_bit beyond the codecs: `codeword diff` calls a moved start bit,
+a flipped byte order or a change of the multiplexor values that carry a field breaking,
+the fingerprint follows them, and the docs draw the payload bit by bit as a DBC numbers
+it, a grid for each set of multiplexor values (hand-worked grids)."""
 from __future__ import annotations
 
 from codeword.build import compile_schema, render_protocol
@@ -48,3 +49,53 @@ def test_the_docs_draw_the_payload_as_a_dbc_numbers_it(tmp_path):
     assert "| **B0** | · | · | · | · | · | `gear` msb | `gear` | `gear` lsb |" in page
     assert "| **B1** | `mode` msb | `mode` | `mode` | `mode` lsb | · | · | · | · |" in page
     assert "| `mode` | 4 | start bit 15 | B1 bits 7–4 | u4 BE (Motorola) |" in page
+
+
+MUX = """codeword: 1
+protocol: muxed
+title: t
+source: s
+framing:
+  kind: bytes
+  layout:
+    - {payload: true}
+messages:
+  m:
+    payload_bytes: 2
+    fields:
+      - {name: page, type: u2, start_bit: 0, byte_order: little}
+      - {name: a, type: u8, start_bit: 8, byte_order: little, multiplexed_by: {field: page, values: [0]}}
+      - {name: b, type: u4, start_bit: 15, byte_order: big, multiplexed_by: {field: page, values: [1..2]}}
+"""
+
+
+def test_changing_which_values_carry_a_field_breaks_the_wire(tmp_path):
+    old = protocol(tmp_path, MUX, "old.yaml")
+    new = protocol(tmp_path, MUX.replace("values: [1..2]", "values: [1, 3]"), "new.yaml")
+    plain = protocol(tmp_path, MUX.replace("start_bit: 15, byte_order: big, multiplexed_by: {field: page, values: [1..2]}",
+                                           "start_bit: 2, byte_order: little"), "plain.yaml")
+    for changed, said in ((new, "carried when page is 1..2, now page is 1, 3"), (plain, "now always")):
+        diff = compare(old, changed)
+        assert diff.breaking
+        assert any(said in change.what for change in diff.changes), [c.what for c in diff.changes]
+        assert fingerprint(old) != fingerprint(changed)
+
+
+def test_the_docs_give_each_multiplexor_value_its_fields_and_bits(tmp_path):
+    page = render_protocol(protocol(tmp_path, MUX))["docs/muxed.md"]
+    assert "| `page` is 0 | `a` | `page`, `a` |" in page
+    assert "| `page` is 1..2 | `b` | `page`, `b` |" in page
+    # page 0: a (Intel, start 8) fills byte 1; pages 1..2: b (Motorola, start 15) takes byte 1 bits 7..4
+    zero = page.split("Payload bits when `page` is 0:")[1]
+    assert "| **B1** | `a` msb | `a` | `a` | `a` | `a` | `a` | `a` | `a` lsb |" in zero.split("Payload bits when")[0]
+    ones = page.split("Payload bits when `page` is 1..2:")[1]
+    assert "| **B1** | `b` msb | `b` | `b` | `b` lsb | · | · | · | · |" in ones
+    assert "| `b` | 4 | start bit 15 | B1 bits 7–4 | u4 BE (Motorola), if `page` is 1..2 |" in page
+
+
+def test_the_accelerator_leaves_multiplexed_messages_to_python(tmp_path):
+    """Its C builds every member of a message; Python gives None to the fields not carried."""
+    from codeword.targets.accelerator.scope import servable
+    muxed, placed = protocol(tmp_path, MUX, "muxed.yaml"), protocol(tmp_path, SCHEMA)
+    assert not servable(muxed, muxed.message("m"))
+    assert servable(placed, placed.message("m"))

@@ -293,6 +293,9 @@ def _field(a: Placed, b: Placed, out: _Collector, message: str, growth: Optional
     if fa.present_if != fb.present_if:  # when a frame carries it, so where what follows sits
         old, new = (f.present_if.says if f.present_if else "always" for f in (fa, fb))
         add(BREAKING, f"sent when {old}, now {new}")
+    old, new = (f.multiplexed_by.says if f.multiplexed_by else "always" for f in (fa, fb))
+    if old != new:  # which multiplexor values carry it: frames of the others read it no more, or read other bits
+        add(BREAKING, f"carried when {old}, now {new}")
     if fa.to_end != fb.to_end:
         add(BREAKING, "now fills the rest of the payload" if fb.to_end else "no longer fills the rest of the payload")
     if fa.extension != fb.extension:

@@ -5,7 +5,7 @@ import math
 from dataclasses import replace
 from typing import Any, Optional
 
-from ..model import Field, Presence
+from ..model import Field, Multiplex, Presence
 from ..text_prefix import is_prefix_value
 from .text import text
 from .base import MAX_ARRAY_COUNT, MAX_BYTES_LENGTH, MAX_SCALED_BITS, ResolverBase
@@ -132,6 +132,7 @@ class FieldsMixin(ResolverBase):
             fields=sub_fields, message=text(f.get("message")), rule=f.get("rule"),
             extension=bool(f.get("extension")), counted_by=counted_by, start_bit=f.get("start_bit"),
             prefix=bool(f.get("prefix")),
+            multiplexed_by=self.multiplex_of(f, path),
             count_unit=1 if counted_by is not None else None, present_if=self.condition_of(f, path, allow_payload))
         if field.by_direction:
             self.check_by_direction(field, path, allow_payload)
@@ -163,6 +164,33 @@ class FieldsMixin(ResolverBase):
         equals = spec.get("equals", ())
         return Presence(spec["field"], has=spec.get("has"),
                          equals=tuple(equals) if isinstance(equals, list) else (equals,) if "equals" in spec else ())
+
+    def multiplex_of(self, f: dict, path: tuple) -> Optional[Multiplex]:
+        """`multiplexed_by: {field, values}`: the values as sorted, merged ranges (bound to the
+        multiplexor, and checked, where the message places its fields)."""
+        spec = f.get("multiplexed_by")
+        if spec is None:
+            return None
+        where = path + ("multiplexed_by",)
+        if f.get("start_bit") is None:
+            self.error(where, f"field {f['name']!r}: multiplexed_by applies to a field placed by start_bit",
+                       "give the message payload_bytes and its fields start_bit, or use present_if")
+            return None
+        ranges = []
+        for i, v in enumerate(spec["values"]):
+            lo, hi = (v, v) if isinstance(v, int) else (int(x) for x in v.split(".."))
+            if lo > hi:
+                self.error(where + ("values", i), f"field {f['name']!r}: the range {v!r} ends before it starts",
+                           f"write it {hi}..{lo}")
+                continue  # the other values still keep it apart from the fields it shares bits with
+            ranges.append((lo, hi))
+        merged: list[tuple[int, int]] = []
+        for lo, hi in sorted(ranges):
+            if merged and lo <= merged[-1][1] + 1:
+                merged[-1] = (merged[-1][0], max(hi, merged[-1][1]))
+            else:
+                merged.append((lo, hi))
+        return Multiplex(spec["field"], tuple(merged))
 
     def counted_length(self, name: str, kind: str, f: dict, path: tuple, in_envelope: bool) -> tuple:
         """`length: {from: n}` with `max_length` on a bytes field: 0..max_length bytes whose

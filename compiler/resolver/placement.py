@@ -1,13 +1,13 @@
 """Fields placed by start_bit, as a CAN DBC places its signals: a payload of a fixed
 size, each field at its own start bit in its own byte order, unused bits between
-them, none overlapping. Multiplexed signals (fields that share bits, each present
-for some values of a multiplexer) are refused here as overlaps."""
+them. Fields share bits only when no frame carries both: each is multiplexed
+(`multiplexed_by`) and, at some multiplexor both depend on, for values the other is not."""
 from __future__ import annotations
 
 from dataclasses import replace
 from typing import Optional
 
-from ..model import Field, Framing
+from ..model import Field, Framing, Multiplex
 from .base import ResolverBase
 
 # What a placed field may not be: each takes bits the payload's fixed layout cannot give.
@@ -29,6 +29,16 @@ def dbc_bits(f: Field) -> list[int]:
         return list(range(f.start_bit, f.start_bit + f.bits))
     first = msb_position(f.start_bit)
     return [msb_position(q) for q in range(first, first + f.bits)]  # the map is its own inverse
+
+
+def exclusive(a: Optional[Multiplex], b: Optional[Multiplex]) -> bool:
+    """Whether no frame carries both of two fields so conditioned: some multiplexor both
+    depend on selects them for disjoint values."""
+    if a is None or b is None:
+        return False
+    theirs = {x.field: x.ranges for x in b.chain}
+    return any(x.field in theirs and not any(lo <= h2 and l2 <= hi for lo, hi in x.ranges for l2, h2 in theirs[x.field])
+               for x in a.chain)
 
 
 def relative_offset(f: Field) -> int:
@@ -63,11 +73,35 @@ class PlacementMixin(ResolverBase):
             self.error(path + ("payload_bytes",), f"message {name!r}: a payload placed by start_bit needs a field",
                        "give it at least one field with a start_bit")
         out: list[Field] = []
-        taken: dict[int, str] = {}  # DBC bit -> the field that holds it
+        taken: dict[int, list[Field]] = {}  # DBC bit -> the fields that hold it
         for f in own:
+            f = self.bind_multiplexor(name, f, out)
             placed = self.placed_field(name, f, payload_bytes, framing, taken)
             out.append(placed)
         return tuple(out)
+
+    def bind_multiplexor(self, name: str, f: Field, earlier: list[Field]) -> Field:
+        """A multiplexed field's condition, with its multiplexor's own (extended multiplexing);
+        the multiplexor is an earlier plain unsigned field whose bits hold every value named."""
+        mux = f.multiplexed_by
+        if mux is None:
+            return f
+        x = next((e for e in earlier if e.name == mux.field), None)
+        problem = ("which is not an earlier field of the message" if x is None else
+                   "which is not a plain unsigned integer" if x.kind != "uint" or x.scale is not None
+                   or x.offset is not None or x.flags or x.enum or x.const is not None or x.reserved or not x.bits
+                   else None)
+        if problem:
+            self.report.error(f.loc, f"message {name!r}: field {f.name!r} is multiplexed by {mux.field!r}, {problem}",
+                              "name a placed unsigned field (no scale, offset, enum or flags) listed before it")
+            return f  # refused: kept as written, so that no overlap is reported besides
+        top = max((hi for _, hi in mux.ranges), default=0)
+        if top >= 1 << x.bits:
+            self.report.error(f.loc, f"message {name!r}: field {f.name!r} is present when {x.name!r} is {top}, "
+                                     f"which its {x.bits} bits cannot hold",
+                              f"give values in 0..{(1 << x.bits) - 1}")
+            return f
+        return replace(f, multiplexed_by=replace(mux, outer=x.multiplexed_by, most=(1 << x.bits) - 1))
 
     def placed_field(self, name: str, f: Field, payload_bytes: int, framing: Framing,
                      taken: dict[int, str]) -> Field:
@@ -98,14 +132,17 @@ class PlacementMixin(ResolverBase):
                               "from its start bit down to bit 0 of its byte, then on from bit 7 of the next)")
             return replace(f, bit_offset=0)
         bits = dbc_bits(f)
-        clash = next((b for b in bits if b in taken), None)
+        clash = next(((b, g) for b in bits for g in taken.get(b, ()) if not exclusive(f.multiplexed_by, g.multiplexed_by)),
+                     None)
         if clash is not None:
-            self.report.error(f.loc, f"message {name!r}: field {f.name!r} overlaps field {taken[clash]!r} at bit "
-                                     f"{clash} (byte {clash // 8}, bit {clash % 8})",
-                              "fields of a payload may not share bits; move one (multiplexed signals are "
-                              "not part of the language)")
+            b, g = clash
+            both = " and a frame may carry both" if f.multiplexed_by or g.multiplexed_by else ""
+            self.report.error(f.loc, f"message {name!r}: field {f.name!r} overlaps field {g.name!r} at bit "
+                                     f"{b} (byte {b // 8}, bit {b % 8}){both}",
+                              "move one, or multiplex both by one multiplexor for different values "
+                              "(multiplexed_by: {field: <multiplexor>, values: [...]})")
         for b in bits:
-            taken.setdefault(b, f.name)
+            taken.setdefault(b, []).append(f)
         return replace(f, bit_offset=first)
 
     def refuse_nested(self, f: Field, name: str) -> None:

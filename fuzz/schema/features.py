@@ -30,6 +30,7 @@ FULL = frozenset({
     "signed_trailer",                       # bytes: a flag puts a trailer with a SHA-256 signature after the frame
     "lsb_first",                            # bytes framing: bit fields least significant bit first
     "mixed_bit_order",                      # bytes: payloads of 1..8 bytes placed by DBC start bit, both orders
+    "multiplexed",                          # bytes: placed payloads whose multiplexors select signals sharing bits
     "large_frame",                          # bytes: a message of over 64 KiB (4 KiB fields first)
     "signed", "scale", "offset", "range",   # integer options
     "enum", "flags", "bool", "bytes_field", "f32", "f64",

@@ -4,6 +4,7 @@ from __future__ import annotations
 import copy
 import random
 import string
+from typing import Optional
 
 import yaml
 
@@ -187,6 +188,8 @@ class Generator:
             self.large_frame(messages)  # a length field or an encoding holds less
         if "mixed_bit_order" in self.on and "truncate" not in framing:
             self.mixed_bit_order(messages)
+        if "multiplexed" in self.on and "truncate" not in framing:
+            self.multiplexed(messages)
         self.signed_trailer(framing)
         return framing, messages
 
@@ -206,6 +209,22 @@ class Generator:
             size = own.randint(1, 8)
             body["payload_bytes"] = size
             body["fields"] = placed_signals(own, size)
+
+    def multiplexed(self, messages: dict) -> None:
+        """In one schema of three, some messages become multiplexed CAN payloads: a
+        multiplexor whose values select groups of signals sharing bits, signals carried for
+        several values or a range, multiplexed multiplexors, plain signals beside them.
+        Drawn from a generator of its own, so the other schemas of a seed stay as they were."""
+        own = random.Random(f"multiplexed {self.seed}")
+        if own.random() >= 0.35:
+            return
+        ids = [repr(body.get("id")) for body in messages.values()]
+        for body in messages.values():
+            if ids.count(repr(body.get("id"))) > 1 or own.random() < 0.4:
+                continue
+            size = own.randint(1, 8)
+            body["payload_bytes"] = size
+            body["fields"] = multiplexed_signals(own, size)
 
 
     # (pattern, inserted byte) pairs a receiver reads back one way: Dynamixel's, a sync
@@ -307,12 +326,12 @@ class Generator:
     def signed_trailer(self, framing: dict) -> None:
         """A flags byte before the payload whose flag puts a trailer after the frame: numbers
         and a truncated SHA-256 over a key and the frame's bytes (MAVLink 2's signing), in
-        three schemas of five that have a length field and no byte stuffing. Drawn from a
+        three schemas of five that have a length field and no byte or pattern stuffing. Drawn from a
         generator of its own, so the other schemas of a seed stay as they were."""
         own = random.Random(f"signed_trailer {self.seed}")
         layout = framing["layout"]
         if "signed_trailer" not in self.on or own.random() >= 0.6 or self.lsb or "encoding" in framing \
-                or not any("length_of" in f for f in layout):
+                or "stuffing" in framing or not any("length_of" in f for f in layout):
             return
         layout.insert(next(i for i, f in enumerate(layout) if f.get("payload")),
                       {"name": "trailer_flags", "type": "u8", "flags": "trailer_set"})
@@ -839,6 +858,88 @@ def generate(seed: int, features: frozenset[str] = DEFAULT) -> str:
 def msb_position(start: int) -> int:
     """A DBC Motorola start bit as its place counted most significant bit first (its own inverse)."""
     return 8 * (start // 8) + 7 - start % 8
+
+
+def placed_bits(rng: random.Random, size: int, taken: set[int], widest: int) -> Optional[dict]:
+    """A signal of at most `widest` bits in bits of the payload not in `taken` (None if
+    none fits after a few draws); its field's `_bits` are the DBC bits it takes."""
+    for _ in range(20):
+        length = rng.randint(1, min(widest, 8 * size))
+        order = rng.choice(("big", "little"))
+        first = rng.randint(0, 8 * size - length)
+        bits = {first + k if order == "little" else msb_position(first + k) for k in range(length)}
+        if not taken & bits:
+            start = first if order == "little" else msb_position(first)
+            return {"type": f"u{length}", "start_bit": start, "byte_order": order, "_bits": bits}
+    return None
+
+
+def multiplexed_signals(rng: random.Random, size: int) -> list[dict]:
+    """A multiplexed payload of `size` bytes (or two multiplexors side by side): each
+    multiplexor of 1 to 3 bits; a group of signals per value (some a range of values),
+    each group apart from what may be carried with it, not from the other groups."""
+    out: list[dict] = []
+
+    def add(taken: set[int], widest: int, mux: Optional[dict], values: Optional[list]) -> Optional[dict]:
+        field = placed_bits(rng, size, taken, widest)
+        if field is None:
+            return None
+        field["name"] = f"sig_{len(out)}"
+        length = int(field["type"][1:])
+        if mux is None and values is None or widest == 3:
+            pass  # a multiplexor: plain unsigned
+        elif length == 1 and rng.random() < 0.4:
+            field["type"] = "bool"
+        elif length > 1 and rng.random() < 0.4:
+            field["type"] = f"i{length}"
+        if widest > 3 and field["type"] != "bool" and rng.random() < 0.2:
+            field["scale"] = rng.choice((0.5, 0.25, 2))
+        if mux is not None:
+            field["multiplexed_by"] = {"field": mux["name"], "values": values}
+        out.append(field)
+        return field
+
+    def fill(taken: set[int], mux: dict, depth: int) -> set[int]:
+        most = (1 << int(mux["type"][1:])) - 1
+        values = sorted(rng.sample(range(most + 1), min(most + 1, rng.randint(1, 3))))
+        per = {v: set(taken) for v in values}
+        for v in values:
+            ends = v if v == most or rng.random() < 0.7 else f"{v}..{rng.randint(v + 1, most)}"
+            for _ in range(rng.randint(1, 3)):
+                nested = depth < 1 and rng.random() < 0.25
+                field = add(per[v], 3 if nested else 16, mux, [ends])
+                if field is None:
+                    break
+                per[v] |= field["_bits"]
+                if nested:
+                    per[v] = fill(per[v], field, depth + 1)
+            if isinstance(ends, str):  # the range reaches other groups' values: keep their bits apart
+                for w in values:
+                    if w != v and v <= w <= int(ends.split("..")[1]):
+                        per[w] |= per[v]
+                        per[v] |= per[w]
+        if len(values) > 1 and rng.random() < 0.5:  # one signal for two of the values
+            both = rng.sample(values, 2)
+            field = add(per[both[0]] | per[both[1]], 16, mux, sorted(both))
+            if field is not None:
+                for v in both:
+                    per[v] |= field["_bits"]
+        return set().union(*per.values())
+
+    taken: set[int] = set()
+    for _ in range(rng.randint(1, 2)):
+        mux = add(taken, 3, None, None)
+        if mux is None:
+            break
+        taken |= mux["_bits"]
+        if rng.random() < 0.5:
+            plain = add(taken, 16, None, [])
+            if plain is not None:
+                taken |= plain["_bits"]
+        taken = fill(taken, mux, 0)
+    for field in out:
+        del field["_bits"]
+    return out
 
 
 def placed_signals(rng: random.Random, size: int) -> list[dict]:

@@ -38,7 +38,9 @@ def servable(p: Protocol, m: Message) -> bool:
 
 
 def _field_servable(f: Field) -> bool:
-    if f.optional or f.present_if or f.varies:
+    # values that may be absent (None): the accelerator builds every member of a message;
+    # a multiplexed message is left to Python, which gives None to the fields not selected
+    if f.optional or f.present_if or f.multiplexed_by or f.varies:
         return False
     if f.kind == "group":
         return all(_field_servable(x) for x in f.fields if x.is_member)

@@ -18,7 +18,7 @@ from typing import Any, Optional
 
 from ... import binary32, binary64
 from ...crc import reflect
-from ...model import (Checksum, CrcParams, Field, Leaf, Message, Protocol, count_member, dotted, field_at,
+from ...model import (Checksum, CrcParams, Field, Leaf, Message, Multiplex, Protocol, count_member, dotted, field_at,
                       presence_member, spelling_member, SPELLING_MAX)
 from ..code import Code, times_over
 from ..escape import c_char as cchar, c_comment as comment, c_string as cstr
@@ -179,8 +179,8 @@ class CView:
 
     def field_note(self, f: Field) -> str:
         parts = [comment(f.doc or f.title)] if (f.doc or f.title) else []
-        if f.present_if:
-            parts.append(comment(f"sent when {f.present_if.says}"))
+        if f.present_if or f.multiplexed_by:
+            parts.append(comment(f"sent when {(f.present_if or f.multiplexed_by).says}"))
         if f.scale is not None:
             parts.append(f"raw: value = raw * {f.scale:g}" + (f" + {f.offset:g}" if f.offset else "")
                          + (f" {f.unit}" if f.unit else ""))
@@ -693,9 +693,25 @@ class CView:
         tested = value if full else f"({value} & {clit(cond.mask, True)})"
         return " || ".join(f"{tested} == {clit(v, True)}" for v in cond.values)
 
+    @staticmethod
+    def multiplex_test(m: Message, mux: Multiplex, raws: dict[str, str]) -> str:
+        """Whether a multiplexed field is in the frame, from its multiplexors' raw values."""
+        tests = []
+        for x in mux.chain:
+            r = raws[next(leaf.var for leaf in m.wire.leaves if leaf.path == (x.field,))]
+            one = [f"{r} == {clit(lo, True)}" if lo == hi and lo is not None else
+                   f"({r} >= {clit(lo, True)} && {r} <= {clit(hi, True)})" if lo is not None and hi is not None else
+                   f"{r} >= {clit(lo, True)}" if lo is not None else f"{r} <= {clit(hi, True)}" if hi is not None
+                   else "" for lo, hi in x.bounds]
+            if "" not in one:  # a range of every value the multiplexor holds tests nothing
+                tests.append(one[0] if len(one) == 1 else f"({' || '.join(one)})")
+        return " && ".join(tests) or "1"
+
     def sent_guard(self, m: Message, leaf: Leaf, raws: dict[str, str]) -> Optional[str]:
-        """The condition under which a leaf in a gap is in the frame (None: always, or all of a
-        counted bytes field)."""
+        """The condition under which a leaf in a gap, or a multiplexed one, is in the frame
+        (None: always, or all of a counted bytes field)."""
+        if leaf.field.multiplexed_by:
+            return self.multiplex_test(m, leaf.field.multiplexed_by, raws)
         gap = gap_of(m, leaf)
         if gap is None:
             return None
@@ -987,7 +1003,9 @@ class CView:
                 body = Code()
                 body.depth = c.depth + 1
                 self.decode_leaf(body, leaf, raws[leaf.var], m, rt)
-                if not any("return" in line for line in body.lines) and not leaf.field.offset:  # 0 stays 0
+                # a gap's bytes read as 0, which stays 0; a multiplexed field's bits may hold another's
+                if not any("return" in line for line in body.lines) and not leaf.field.offset \
+                        and not leaf.field.multiplexed_by:
                     self.decode_leaf(c, leaf, raws[leaf.var], m, rt)
                     continue
                 c(f"if ({guard}) {{")

@@ -76,8 +76,11 @@ def container(v: "CView", m: "Message") -> Optional[Word]:
     """The message as one word, or None when it does not fit one: over 4 bytes,
     a `bytes` field, a CRC, Fletcher or internet checksum, a checksum over bytes in whole
     bytes of its own (the byte-wise loop is smaller on AVR) or a multi-byte
-    integer in the other byte order than the word's, or a frame that may be cut short."""
+    integer in the other byte order than the word's, a frame that may be cut short, or
+    one whose fields are read and written only when their multiplexors select them."""
     if v.text or m.size is None or not 1 <= m.size <= 4 or m.shortening:
+        return None
+    if any(leaf.field.multiplexed_by for leaf in m.wire.leaves):
         return None
     spans = v.spans(m)
     for span in spans:

@@ -17,6 +17,7 @@ from .checksum import checksum_sections
 from .delivery import delivery_view
 from .errors import error_claims
 from .examples import message_example, sequence_example
+from .multiplex import multiplexed_views
 from .placement import payload_grid
 from .layout import diagram, field_columns, field_rows, payload_note, shown, slots, text_line
 from .stuffing import encoding_lines, pattern_lines
@@ -117,7 +118,8 @@ def message_view(p: Protocol, codec: types.ModuleType, m: Message, linker: Decis
         "doc": linker.link(cell(en(m.doc))), "originals": [(l, cell(t)) for l, t in originals(m.doc)],
         "id": message_id(p, m), "direction": direction_text(p, m.direction), "role": m.role,
         "size": message_size(p, m), "answered_by": [link_msg(a) for a in m.answered_by],
-        "diagram": diagram(p, m), "grid": payload_grid(m), "line": text_line(p, m) if p.framing.kind == "text" else None,
+        "diagram": diagram(p, m), "grid": payload_grid(m, {f.name for f in m.layout if not f.multiplexed_by}),
+        "multiplexed": multiplexed_views(m), "line": text_line(p, m) if p.framing.kind == "text" else None,
         "fields": rows, "columns": field_columns(p, rows), "payload_note": payload_note(p, m),
         "rules": message_rules(p, m, linker),
         "examples": [message_example(p, codec, m, ex, linker) for ex in m.examples],

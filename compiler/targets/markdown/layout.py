@@ -108,6 +108,9 @@ def presence_text(cond: Presence) -> str:
 
 
 def type_text(p: Protocol, f: Field) -> str:
+    if f.multiplexed_by:
+        said = " and ".join(f"`{x.field}` is {x.values_text}" for x in f.multiplexed_by.chain)
+        return f"{type_text(p, replace(f, multiplexed_by=None))}, if {said}"
     if f.present_if:
         return f"{type_text(p, replace(f, present_if=None))}, if {presence_text(f.present_if)}"
     if f.varies and f.kind == "bytes":

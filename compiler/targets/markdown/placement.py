@@ -15,13 +15,16 @@ def dbc_bit(order: str, pos: int) -> int:
     return pos if order == "little" else 8 * (pos // 8) + 7 - pos % 8
 
 
-def payload_grid(m: Message) -> Optional[dict]:
-    """Rows of the grid (byte label, then 8 cells for bits 7..0), or None without placed fields."""
+def payload_grid(m: Message, only: Optional[set[str]] = None) -> Optional[dict]:
+    """Rows of the grid (byte label, then 8 cells for bits 7..0), or None without placed fields.
+    `only`: the fields drawn (multiplexed ones share bits: each value set has its grid)."""
     if not m.payload_bytes:
         return None
     run = next(r for r in m.wire.runs if r.free)
     owner: dict[int, str] = {}
     for leaf in run.leaves:
+        if only is not None and leaf.field.name not in only:
+            continue
         order = run.order_of(leaf)
         bits = [dbc_bit(order, leaf.pos + k) - 8 * run.start for k in range(leaf.bits)]  # MSB first when big
         msb, lsb = (bits[0], bits[-1]) if order == "big" else (bits[-1], bits[0])

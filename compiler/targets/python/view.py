@@ -9,7 +9,7 @@ from dataclasses import dataclass, field, replace
 from typing import Any, Optional
 
 from ...crc import reflect
-from ...model import (SPELLING_MAX, Field, Gap, Leaf, Message, Protocol, Rule, Run, Sequence, SequenceItem, dotted,
+from ...model import (SPELLING_MAX, Field, Gap, Leaf, Message, Multiplex, Protocol, Rule, Run, Sequence, SequenceItem, dotted,
                       field_at, path_name)
 from ...names import camel
 from ..code import Code, times_over
@@ -54,8 +54,8 @@ class PythonView:
 
     # -- declarations ----------------------------------------------------------------------
     def annotation(self, f: Field, message: Message, path: tuple[str, ...]) -> str:
-        if f.present_if:  # None when its condition leaves it out
-            return f"Optional[{self.annotation(replace(f, present_if=None), message, path)}]"
+        if f.present_if or f.multiplexed_by:  # None when its condition leaves it out
+            return f"Optional[{self.annotation(replace(f, present_if=None, multiplexed_by=None), message, path)}]"
         if f.count is not None:
             return f"list[{self.annotation(f.element, message, path)}]"
         if f.kind == "group":
@@ -76,7 +76,7 @@ class PythonView:
         return base
 
     def default_expr(self, f: Field, message: Message, path: tuple[str, ...]) -> Optional[str]:
-        if f.present_if:
+        if f.present_if or f.multiplexed_by:
             return "None"
         if f.count is not None:  # a list of the element's default, each element its own object
             each = self.default_expr(f.element, message, path)
@@ -157,7 +157,7 @@ class PythonView:
         else:
             kind, cls = self.annotation(one, message, path).removeprefix("Optional[").rstrip("]"), "None"
             kind = "number" if kind == "float" else kind
-        optional = bool(one.one_hot or one.optional or f.present_if)
+        optional = bool(one.one_hot or one.optional or f.present_if or f.multiplexed_by)
         return f"({f.name!r}, {kind!r}, {cls}, {optional}, {f.count is not None}, {required})"
 
     def field_comment(self, f: Field) -> str:
@@ -168,8 +168,8 @@ class PythonView:
             parts.append(f"range {lit(f.range[0])}..{lit(f.range[1])}")
         if f.rule:
             parts.append(f"({f.rule})")
-        if f.present_if:
-            parts.append(f"(sent when {f.present_if.says})")
+        if f.present_if or f.multiplexed_by:
+            parts.append(f"(sent when {(f.present_if or f.multiplexed_by).says})")
         return " ".join(parts).replace("\n", " ")
 
     # -- encode: logical value → raw wire integer (or bytes/float) -------------------------
@@ -660,10 +660,12 @@ class MessageCode:
             if element is not None and element.path != of:
                 element.call(c)
                 element = None
-            if guard != run.guard:
+            if guard != run.guard or leaf.field.multiplexed_by:
                 run.close()
             if held and held.presence and leaf is self.first_leaf(held.field):
                 self.check_presence(c, held)
+            if leaf.field.multiplexed_by:
+                self.check_multiplexed(c, leaf.field)
             for depth in range(1, len(leaf.path)):  # each group object and array is read once
                 prefix = leaf.path[:depth]
                 if depth == 2 and of is not None and element is None:  # its function reads the rest
@@ -735,9 +737,30 @@ class MessageCode:
             return f"{value} == {cond.values[0]}" if full else f"({value}) == {cond.values[0]:#x}"
         return f"{value} in {cond.values!r}" if full else f"({value}) in {cond.values!r}"
 
+    def multiplex_test(self, mux: Multiplex) -> str:
+        """Whether a multiplexed field is in the frame, from its multiplexors' raw values."""
+        tests = []
+        for x in mux.chain:
+            var = self.first_leaf(x.field).var
+            one = [f"{var} == {lo}" if lo == hi and lo is not None else
+                   f"{lo} <= {var} <= {hi}" if lo is not None and hi is not None else
+                   f"{var} >= {lo}" if lo is not None else f"{var} <= {hi}" if hi is not None else ""
+                   for lo, hi in x.bounds]
+            if "" not in one:  # a range of every value the multiplexor holds tests nothing
+                tests.append(one[0] if len(one) == 1 else f"({' or '.join(one)})")
+        return " and ".join(tests) or "True"
+
+    def check_multiplexed(self, c: Code, f: Field) -> None:
+        """A multiplexed field holds a value exactly when its multiplexors select it."""
+        c(f"if ({self.multiplex_test(f.multiplexed_by)}) != (m.{f.name} is not None):")
+        c(f"    raise _enc({self.m.name!r}, {f.name!r}, m.{f.name}, 'present', "
+          f"{('a value when ' + f.multiplexed_by.says + ', else None')!r})")
+
     def sent_guard(self, leaf: Leaf, gap: Optional[Gap], encoding: bool) -> Optional[str]:
         """The condition under which a leaf in `gap` is sent (None: always, or all of a counted
         bytes field, which is padded to its most)."""
+        if leaf.field.multiplexed_by:
+            return self.multiplex_test(leaf.field.multiplexed_by)
         if gap is None:
             return None
         if gap.presence:
@@ -884,6 +907,8 @@ class MessageCode:
             value = each[0] + sent if f.count is None else '[' + ', '.join(each) + ']' + sent
             if f.present_if and not path:
                 value = f"{value} if p_{f.name} else None"
+            elif f.multiplexed_by:
+                value = f"{value} if {self.multiplex_test(f.multiplexed_by)} else None"
             c(f"{var}.{f.name} = {value}")
 
     @staticmethod
@@ -1526,7 +1551,8 @@ def module_view(p: Protocol) -> dict:
         "syntaxes": syntaxes, "text_classes": MessageCode.text_classes(fr) if fr.kind == "text" else {},
         "text_float": TEXT_FLOAT, "line": text_line_facts(p),
         "fixed": any(x.field.fixed_spelling for m in p.messages for x in m.wire.leaves),
-        "has_gaps": any(m.shortening and m.shortening.gaps for m in p.messages),
+        "has_gaps": any(m.shortening and m.shortening.gaps or any(f.multiplexed_by for f in m.layout)
+                        for m in p.messages),
         "classes": view.dataclasses(), "checksums": view.checksum_functions(),
         "dispatch": view.dispatch_table(), "sequences": [view.sequence_view(s) for s in p.sequences],
         "stream": view.stream_view(), "encoding": view.encoding_view(), "stuffing": stuffing_view(p),
