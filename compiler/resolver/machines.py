@@ -81,6 +81,8 @@ class MachineResolver:
             epath = ("events", en)
             self.check_event_name(en, bool(e.get("timer")))
             self.check_packet_names(e.get("message"))
+            for key in ("message", "request"):
+                self.check_length_parameters(e.get(key), epath + (key,))
             if "message" in e and e["message"] not in self.messages:
                 self.error(epath + ("message",), f"event {en!r}: unknown message {e['message']!r}",
                            "name a message under `messages`")
@@ -177,6 +179,20 @@ class MachineResolver:
                              f"machine {self.name!r} sends or receives, has the name of {what}",
                              f"rename the field {f.name!r}")
 
+    def check_length_parameters(self, message: Optional[str], path: tuple) -> None:
+        """A machine that packs or unpacks a message whose bytes a link parameter sizes
+        takes that parameter: its code reads the length from it."""
+        m = self.messages.get(message or "")
+        if m is None:
+            return
+        taken = self.raw.get("parameters", [])
+        for f in m.members:
+            if f.kind == "bytes" and f.length_param and f.length_param not in taken:
+                self.error(path, f"message {message!r} has {f.name!r} sized by parameter {f.length_param!r}, "
+                                 f"which machine {self.name!r} does not take",
+                           f"add {f.length_param!r} to the machine's `parameters`")
+                return
+
     def field_path(self, message: str, name: str) -> tuple:
         """The path of a field's name in the document: in its message or in the envelope."""
         data = self.r.data
@@ -236,6 +252,7 @@ class MachineResolver:
                 value = self.resolve_source(a["value"], path + ("value",))
         elif kind == "keep":
             self.check_packet_names(target)
+            self.check_length_parameters(target, path + ("keep",))
             if target not in self.messages:
                 self.error(path + ("keep",), f"action {name!r}: unknown message {target!r}",
                            "name a message under `messages`")
