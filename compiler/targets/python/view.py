@@ -1559,6 +1559,7 @@ def module_view(p: Protocol) -> dict:
         # frames sent otherwise than the layout describes them: encoders and decoders wrap the frame's own
         "wrapped": bool(p.framing.encoding or p.framing.stuffing),
         "decode_overloads": view.decode_signature(), "trailer": trailer_view(p),
+        "kept_spellings": any(f.keep_spelling for m in p.messages for f in m.layout),
     }
 
 
@@ -1715,7 +1716,7 @@ def _internet_code(c: Code, cs, name: str) -> None:
     c(f"# The internet checksum (RFC 1071): 16-bit words, {cs.word_order}-endian, an odd byte padded with 0")
     c(f"def _checksum_{name}(data: _Buffer) -> int:")
     c("    n = len(data)")
-    c(f"    total = sum(struct.unpack_from(f\"{'>' if big else '<'}{{n >> 1}}H\", data))")
+    c(f"    total: int = sum(struct.unpack_from(f\"{'>' if big else '<'}{{n >> 1}}H\", data))")
     c("    if n & 1:")
     c("        total += data[n - 1]" + (" << 8" if big else ""))
     c("    while total >> 16:")

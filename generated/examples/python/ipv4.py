@@ -243,7 +243,7 @@ _S_udp_0 = struct.Struct('>BBHHHBBHIIHHHH128s')
 # The internet checksum (RFC 1071): 16-bit words, big-endian, an odd byte padded with 0
 def _checksum_internet_big(data: _Buffer) -> int:
     n = len(data)
-    total = sum(struct.unpack_from(f">{n >> 1}H", data))
+    total: int = sum(struct.unpack_from(f">{n >> 1}H", data))
     if n & 1:
         total += data[n - 1] << 8
     while total >> 16:

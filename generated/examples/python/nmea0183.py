@@ -2,8 +2,9 @@
 # Do not edit: change the schema and run `codeword build`.
 # Typed for mypy --strict and pyright's strict mode. The encoders check each value's type at run
 # time as well, for callers without a type checker, and decoders unpack fields they then only
-# check: pyright is told these checks and names are meant.
-# pyright: reportUnnecessaryIsInstance=false, reportUnnecessaryComparison=false, reportUnusedVariable=false
+# check: pyright is told these checks and names are meant, and that the module's own
+# functions read and write the spellings its messages keep.
+# pyright: reportUnnecessaryIsInstance=false, reportUnnecessaryComparison=false, reportUnusedVariable=false, reportPrivateUsage=false
 """NMEA 0183 GNSS sentences (GGA, RMC, VTG) from any talker: codec generated from the nmea0183 schema."""
 from __future__ import annotations
 
