@@ -57,7 +57,9 @@ def test_dispatch_candidates_hold_every_ambiguous_pair_in_loop_order():
             else:
                 key = (("prefix", (rng.choice("XYZ"),)),)
             size = rng.randint(1, 3)  # some frames may be cut short: sizes min_size..size
-            messages.append(SimpleNamespace(dispatch_key=key, size=size, min_size=rng.randint(1, size)))
+            ids = key[0][1] if framing == "text" else ()  # a text message's id is its prefix, no talker field
+            messages.append(SimpleNamespace(dispatch_key=key, size=size, min_size=rng.randint(1, size),
+                                            ids=ids, prefix_field=None))
         every_pair = [(i, j) for i in range(len(messages)) for j in range(i + 1, len(messages))
                       if Resolver.ambiguous(messages[i], messages[j], framing)]
         found = [(i, j) for i, j in candidate_pairs(messages, framing)
