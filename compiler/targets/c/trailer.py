@@ -34,7 +34,7 @@ def trailer_view(p: Protocol) -> dict:
                        most=f"{(1 << f.bits) - 1:#x}u" if f.bits not in (8, 16, 32, 64) else None)
         fields.append(one)
     sig = t.signature
-    return {"size": t.size, "flag_byte": t.flag_byte, "mask": f"{t.flag_mask:#04x}u",
+    return {"size": t.size, "flag_byte": t.flag_byte, "flag_end": t.flag_byte + 1, "mask": f"{t.flag_mask:#04x}u",
             "says": c_comment(t.presence.says), "fields": fields,
             "signature": None if sig is None else {
                 "name": sig.name, "at": sig.bit_offset // 8, "length": sig.length,

@@ -18,7 +18,7 @@ def trailer_view(p: Protocol) -> dict:
                        "size": size, "order": f.byte_order or p.framing.byte_order,
                        "most": (1 << f.bits) - 1, "signature": f.signature is not None})
     sig = t.signature
-    return {"size": t.size, "flag_byte": t.flag_byte, "mask": t.flag_mask, "flag_field": control.name,
+    return {"size": t.size, "flag_byte": t.flag_byte, "flag_end": t.flag_byte + 1, "mask": t.flag_mask, "flag_field": control.name,
             "flag_bit": 8 * t.flag_byte, "says": t.presence.says, "fields": fields,
             "signature": None if sig is None else {
                 "name": sig.name, "start": sig.signature.start, "end": sig.signature.end,
