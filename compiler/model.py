@@ -72,6 +72,11 @@ class Parameter:
     unit: Optional[str]
     doc: Optional[Text]
 
+    @property
+    def integers(self) -> Optional[tuple[int, int]]:
+        """The lowest and highest integer the range admits; None without a range."""
+        return (math.ceil(self.range[0]), math.floor(self.range[1])) if self.range else None
+
 
 @dataclass(frozen=True)
 class EnumMember:

@@ -109,9 +109,9 @@ class DeliveryMixin(ResolverBase):
                                                                                 ("request", address_arg)):
                         fields.append(field_at(target.members, name))
         fields = [f for f in fields if f is not None]
-        span = self.parameters[parameter].range or (0, float("inf"))
-        low = max(0, int(-(-span[0] // 1)))
-        high = min([span[1], low + ADDRESS_SEARCH] + [(1 << f.bits) - 1 for f in fields if f.bits])
+        low, high = self.parameters[parameter].integers or (0, ADDRESS_SEARCH)
+        low = max(0, low)
+        high = min([high, low + ADDRESS_SEARCH] + [(1 << f.bits) - 1 for f in fields if f.bits])
 
         def admitted(value: int) -> bool:
             return all(carries(f, value) for f in fields)

@@ -137,8 +137,8 @@ class FieldsMixin(ResolverBase):
         if field.by_direction:
             self.check_by_direction(field, path, allow_payload)
         self.check_field(field, path)
-        if field.prefix and field.kind == "str" and field.length:
-            field = replace(field, max_length=field.length)  # read and written whole
+        if field.kind == "str" and field.length and field.max_length is None:
+            field = replace(field, max_length=field.length)  # a fixed length is also the most it holds
         if isinstance(f.get("count"), dict):
             field = self.counted_array(field, f, path, allow_payload)
         elif "count" in f:

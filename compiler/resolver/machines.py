@@ -211,6 +211,10 @@ class MachineResolver:
 
     # -- actions -----------------------------------------------------------------------
     def resolve_source(self, raw: Any, path: tuple) -> Source:
+        if isinstance(raw, float):  # 3.0 passes the JSON Schema's `integer`
+            self.error(path, f"{raw!r} is not an integer", f"write {int(raw)}" if raw.is_integer() else
+                       "machine values are integers")
+            return Source("const", None, int(raw) if raw.is_integer() else 0)
         if isinstance(raw, int):
             return Source("const", None, raw)
         kind, value = next(iter(raw.items()))

@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import binascii
 import heapq
-import math
 import random
 import types
 from dataclasses import dataclass, field
@@ -316,11 +315,8 @@ EFFICIENCY_DELAY = 4
 
 def within(protocol: Protocol, parameter: str, wanted: int) -> int:
     """`wanted`, or the nearest integer the parameter's range admits."""
-    span = next(x for x in protocol.parameters if x.name == parameter).range
-    if span is None:
-        return wanted
-    low, high = math.ceil(span[0]), math.floor(span[1])
-    return min(max(wanted, low), high)
+    span = next(x for x in protocol.parameters if x.name == parameter).integers
+    return wanted if span is None else min(max(wanted, span[0]), span[1])
 
 
 # A command takes a few events per attempt (send, receive, reply, receive, tick);

@@ -38,6 +38,7 @@ FULL = frozenset({
     "collisions",                           # mutants: protocol named like a system header, has_/_count fields
     "wide",                                 # integers of 33..64 bits
     "optional", "str", "char", "text_float", "newline",  # text options
+    "str_length",                           # text: str fields of a fixed length
     "long_marks", "line_checksum",          # text: marks of several characters, a start marker; `*hh`
     "empty_values",                         # text: optional values anywhere, absent ones empty
     "fixed_spelling",                       # text: integers with fixed decimals and zero padding

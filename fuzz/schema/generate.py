@@ -813,7 +813,10 @@ class Generator:
             enum = self.enum(8, text=True)
             return {"name": name, "type": self.enums[enum]["type"], "enum": enum}
         if choice < 0.3 and "str" in self.on:
-            return {"name": name, "type": "str", "max_length": rng.randint(1, 20)}
+            size = rng.randint(1, 20)
+            if "str_length" in self.on and random.Random(f"str_length {self.seed} {name}").random() < 0.3:
+                return {"name": name, "type": "str", "length": size}  # a fixed length: the most it holds
+            return {"name": name, "type": "str", "max_length": size}
         if choice < 0.4 and "char" in self.on:
             return {"name": name, "type": "char"}
         if choice < 0.55 and "text_float" in self.on:
