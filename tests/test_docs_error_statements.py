@@ -41,7 +41,11 @@ def concerned(claim: dict, vector: dict) -> bool:
     if claim["when"] == "shorter_than":
         return len(bytes.fromhex(vector["hex"])) < args["bytes"]
     if claim["when"] == "size_not_in":
-        size = len(bytes.fromhex(vector["hex"]))
+        frame = bytes.fromhex(vector["hex"])
+        size = len(frame)
+        trailer = args.get("trailer")
+        if trailer and size > trailer["byte"] and frame[trailer["byte"]] & trailer["mask"]:
+            size -= trailer["size"]  # the flag puts the trailer in: the size is the rest's
         return size >= args["least"] and size not in args["sizes"]
     if claim["when"] == "no_terminator":
         return not vector["text"].endswith(args["terminator"])

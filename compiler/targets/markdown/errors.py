@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from ...model import Protocol
 from ..wire import dispatch_facts
-from .layout import shown
+from .layout import presence_text, shown
 from .text import code
 
 
@@ -24,10 +24,16 @@ def error_claims(p: Protocol) -> list[dict]:
         claims.append({"kind": "length", "when": "shorter_than", "args": {"bytes": head},
                        "text": f"A frame of fewer than {head} bytes (too short to hold the id) is refused "
                                "with error `length`."})
-        claims.append({"kind": "dispatch", "when": "size_not_in", "args": {"sizes": sizes, "least": head},
-                       "text": f"A frame of {head} bytes or more of a size that no message with its id has (see each "
-                               "message's size; a frame cut short, or with bytes added) is refused with error "
-                               "`dispatch`; its checksum and fields are not read."})
+        args: dict = {"sizes": sizes, "least": head}
+        without = ""
+        if fr.trailer:  # decoders take the trailer off before they look at the size
+            t = fr.trailer
+            args["trailer"] = {"byte": t.flag_byte, "mask": t.flag_mask, "size": t.size}
+            without = f" (without its trailer of {t.size} bytes when {presence_text(t.presence)})"
+        claims.append({"kind": "dispatch", "when": "size_not_in", "args": args,
+                       "text": f"A frame{without} of {head} bytes or more of a size that no message with its id has "
+                               "(see each message's size; a frame cut short, or with bytes added) is refused with "
+                               "error `dispatch`; its checksum and fields are not read."})
     if fr.kind == "text":
         claims.append({"kind": "terminator", "when": "no_terminator", "args": {"terminator": fr.terminator},
                        "text": "A line that does not end with the terminator is refused with error `terminator`."})
