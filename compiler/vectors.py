@@ -515,6 +515,8 @@ class Generator:
                         invalid += self.unverified(m, data)
                 frames.append(data)
                 break
+        if m.direction and frames:
+            invalid += self.undirected(m, frames[0])
         if self.p.framing.stuffing and frames:
             stuffed, damaged = self.stuffed_cases(m, frames[0])
             valid += stuffed
@@ -534,6 +536,20 @@ class Generator:
                 valid.append(self.valid_case(name, self.messages[type(obj).NAME], obj, canonical,
                                              bad if canonical != bad else None, kept))
         return valid, invalid
+
+    def undirected(self, m: Message, data) -> list[dict]:
+        """The frame decoded without its direction, when another direction's message has its
+        id (or prefix) and size: refused, as the decoder cannot tell which one it holds."""
+        if not any(o.direction not in (None, m.direction) and any(i in o.ids for i in m.ids) for o in self.p.messages):
+            return []
+        try:
+            obj = self.mod.decode(data)
+        except self.mod.DecodeError as exc:
+            return [{"name": f"{m.name} without its direction", "message": m.name, **self.wire(data),
+                     "error": exc.rule}]
+        if type(obj).NAME != m.name:
+            raise ValueError(f"{m.name}: a frame decoded without its direction gives {type(obj).NAME}")
+        return []
 
     def unverified(self, m: Message, data: bytes) -> list[dict]:
         """A signed frame with a byte of its trailer changed, and the frame without its trailer

@@ -279,6 +279,8 @@ class MessagesMixin(ResolverBase):
             common = set(ka) & set(kb)
             return all(ka[k] == kb[k] for k in common)
         if framing == "text":  # a prefix field's values before the id: one prefix both read
+            if not (isinstance(a.ids[0], str) and isinstance(b.ids[0], str)):
+                return False  # an id that is not a string is refused at its line
             return common_prefix(pattern_of(a.ids[0], a.prefix_field), pattern_of(b.ids[0], b.prefix_field)) is not None
         overlap = all(set(ka[k]) & set(kb.get(k, ())) for k in ka)
         return overlap and a.min_size <= b.size and b.min_size <= a.size

@@ -36,7 +36,16 @@ def dispatch_facts(p: Protocol) -> dict:
         talked = [{"held": m.prefix_field.length, "id": m.ids[0], "name": m.name, "direction": m.direction,
                    "length": m.prefix_field.length + len(m.ids[0]), "shown": "?" * m.prefix_field.length + m.ids[0]}
                   for m in p.messages if m.prefix_field]
-        return {"kind": "text", "prefixes": [(m.ids[0], m.name, m.direction) for m in p.messages if not m.prefix_field],
+        prefixes = [(m.ids[0], m.name, m.direction) for m in p.messages if not m.prefix_field]
+        by_prefix: dict[str, list[tuple[Optional[str], str]]] = {}
+        for prefix, name, direction in prefixes:  # a prefix may be used once in each direction
+            by_prefix.setdefault(prefix, []).append((direction, name))
+        by_talk: dict[tuple[int, str], list[dict]] = {}
+        for t in talked:
+            by_talk.setdefault((t["held"], t["id"]), []).append(t)
+        return {"kind": "text", "prefixes": prefixes, "by_prefix": list(by_prefix.items()),
+                "shared": [(prefix, entries[0][1]) for prefix, entries in by_prefix.items() if len(entries) > 1],
+                "shared_talked": [ts[0] for ts in by_talk.values() if len(ts) > 1],
                 "talked": talked, "directed": any(m.direction for m in p.messages)}
     if fr.kind == "bits":
         entries = []

@@ -459,7 +459,7 @@ static inline int nmea0183_gga_encode(const nmea0183_gga_t *m, char *buf, size_t
 
 static inline int nmea0183_gga_parse_body(const char *s, const char *end, nmea0183_gga_t *m)
 {
-    const char *ends[14];  /* where each value ends: cw_value */
+    const char *ends[14] = {NULL};  /* where each value ends: cw_value (set for old compilers that cannot tell) */
     cw_span_t v = {NULL, NULL};  /* read only where a value was found; compilers cannot always tell */
     int rc;
     size_t count = cw_split_values(s, end, ',', ends, 14u, false);
@@ -473,7 +473,7 @@ static inline int nmea0183_gga_parse_body(const char *s, const char *end, nmea01
         return CW_ERR_LENGTH;
     }
     {
-        int32_t value;
+        int32_t value = 0;
         rc = cw_parse_fixed(v.b, v.e, 0u, 0, 0x399b8UL, &value);
         if (rc != CW_OK) {
             return rc;
@@ -494,7 +494,7 @@ static inline int nmea0183_gga_parse_body(const char *s, const char *end, nmea01
             return CW_ERR_LENGTH;
         }
         {
-            int32_t value;
+            int32_t value = 0;
             rc = cw_parse_fixed(v.b, v.e, 5u, 0, 0x35a4e900UL, &value);
             if (rc != CW_OK) {
                 return rc;
@@ -531,7 +531,7 @@ static inline int nmea0183_gga_parse_body(const char *s, const char *end, nmea01
             return CW_ERR_LENGTH;
         }
         {
-            int32_t value;
+            int32_t value = 0;
             rc = cw_parse_fixed(v.b, v.e, 5u, 0, 0x6b49d200UL, &value);
             if (rc != CW_OK) {
                 return rc;
@@ -563,7 +563,7 @@ static inline int nmea0183_gga_parse_body(const char *s, const char *end, nmea01
         return CW_ERR_LENGTH;
     }
     {
-        int32_t value;
+        int32_t value = 0;
         rc = cw_parse_int(v.b, v.e, 0, 8, &value);
         if (rc != CW_OK) {
             return rc;
@@ -579,7 +579,7 @@ static inline int nmea0183_gga_parse_body(const char *s, const char *end, nmea01
         return CW_ERR_LENGTH;
     }
     {
-        int32_t value;
+        int32_t value = 0;
         rc = cw_parse_fixed(v.b, v.e, 0u, INT32_MIN, INT32_MAX, &value);
         if (rc != CW_OK) {
             return rc;
@@ -603,7 +603,7 @@ static inline int nmea0183_gga_parse_body(const char *s, const char *end, nmea01
             return CW_ERR_LENGTH;
         }
         {
-            int32_t value;
+            int32_t value = 0;
             rc = cw_parse_fixed(v.b, v.e, 1u, 0, 0xf4236UL, &value);
             if (rc != CW_OK) {
                 return rc;
@@ -625,7 +625,7 @@ static inline int nmea0183_gga_parse_body(const char *s, const char *end, nmea01
             return CW_ERR_LENGTH;
         }
         {
-            int32_t value;
+            int32_t value = 0;
             rc = cw_parse_fixed(v.b, v.e, 1u, (-99998 - 1), 0xf423fUL, &value);
             if (rc != CW_OK) {
                 return rc;
@@ -662,7 +662,7 @@ static inline int nmea0183_gga_parse_body(const char *s, const char *end, nmea01
             return CW_ERR_LENGTH;
         }
         {
-            int32_t value;
+            int32_t value = 0;
             rc = cw_parse_fixed(v.b, v.e, 1u, (-99998 - 1), 0x1869fUL, &value);
             if (rc != CW_OK) {
                 return rc;
@@ -699,7 +699,7 @@ static inline int nmea0183_gga_parse_body(const char *s, const char *end, nmea01
             return CW_ERR_LENGTH;
         }
         {
-            int32_t value;
+            int32_t value = 0;
             rc = cw_parse_fixed(v.b, v.e, 1u, 0, 0xf4236UL, &value);
             if (rc != CW_OK) {
                 return rc;
@@ -721,7 +721,7 @@ static inline int nmea0183_gga_parse_body(const char *s, const char *end, nmea01
             return CW_ERR_LENGTH;
         }
         {
-            int32_t value;
+            int32_t value = 0;
             rc = cw_parse_fixed(v.b, v.e, 0u, 0, 0x3ff, &value);
             if (rc != CW_OK) {
                 return rc;
@@ -1076,7 +1076,7 @@ static inline int nmea0183_rmc_encode(const nmea0183_rmc_t *m, char *buf, size_t
 
 static inline int nmea0183_rmc_parse_body(const char *s, const char *end, nmea0183_rmc_t *m)
 {
-    const char *ends[11];  /* where each value ends: cw_value */
+    const char *ends[11] = {NULL};  /* where each value ends: cw_value (set for old compilers that cannot tell) */
     cw_span_t v = {NULL, NULL};  /* read only where a value was found; compilers cannot always tell */
     int rc;
     size_t count = cw_split_values(s, end, ',', ends, 11u, false);
@@ -1090,7 +1090,7 @@ static inline int nmea0183_rmc_parse_body(const char *s, const char *end, nmea01
         return CW_ERR_LENGTH;
     }
     {
-        int32_t value;
+        int32_t value = 0;
         rc = cw_parse_fixed(v.b, v.e, 0u, 0, 0x399b8UL, &value);
         if (rc != CW_OK) {
             return rc;
@@ -1120,7 +1120,7 @@ static inline int nmea0183_rmc_parse_body(const char *s, const char *end, nmea01
             return CW_ERR_LENGTH;
         }
         {
-            int32_t value;
+            int32_t value = 0;
             rc = cw_parse_fixed(v.b, v.e, 5u, 0, 0x35a4e900UL, &value);
             if (rc != CW_OK) {
                 return rc;
@@ -1157,7 +1157,7 @@ static inline int nmea0183_rmc_parse_body(const char *s, const char *end, nmea01
             return CW_ERR_LENGTH;
         }
         {
-            int32_t value;
+            int32_t value = 0;
             rc = cw_parse_fixed(v.b, v.e, 5u, 0, 0x6b49d200UL, &value);
             if (rc != CW_OK) {
                 return rc;
@@ -1194,7 +1194,7 @@ static inline int nmea0183_rmc_parse_body(const char *s, const char *end, nmea01
             return CW_ERR_LENGTH;
         }
         {
-            int32_t value;
+            int32_t value = 0;
             rc = cw_parse_fixed(v.b, v.e, 1u, 0, 0x270f, &value);
             if (rc != CW_OK) {
                 return rc;
@@ -1216,7 +1216,7 @@ static inline int nmea0183_rmc_parse_body(const char *s, const char *end, nmea01
             return CW_ERR_LENGTH;
         }
         {
-            int32_t value;
+            int32_t value = 0;
             rc = cw_parse_fixed(v.b, v.e, 1u, 0, 0x270f, &value);
             if (rc != CW_OK) {
                 return rc;
@@ -1233,7 +1233,7 @@ static inline int nmea0183_rmc_parse_body(const char *s, const char *end, nmea01
         return CW_ERR_LENGTH;
     }
     {
-        int32_t value;
+        int32_t value = 0;
         rc = cw_parse_fixed(v.b, v.e, 0u, 0x2774, 0x4c003UL, &value);
         if (rc != CW_OK) {
             return rc;
@@ -1254,7 +1254,7 @@ static inline int nmea0183_rmc_parse_body(const char *s, const char *end, nmea01
             return CW_ERR_LENGTH;
         }
         {
-            int32_t value;
+            int32_t value = 0;
             rc = cw_parse_fixed(v.b, v.e, 1u, 0, 0x270f, &value);
             if (rc != CW_OK) {
                 return rc;
@@ -1532,7 +1532,7 @@ static inline int nmea0183_vtg_encode(const nmea0183_vtg_t *m, char *buf, size_t
 
 static inline int nmea0183_vtg_parse_body(const char *s, const char *end, nmea0183_vtg_t *m)
 {
-    const char *ends[8];  /* where each value ends: cw_value */
+    const char *ends[8] = {NULL};  /* where each value ends: cw_value (set for old compilers that cannot tell) */
     cw_span_t v = {NULL, NULL};  /* read only where a value was found; compilers cannot always tell */
     int rc;
     size_t count = cw_split_values(s, end, ',', ends, 8u, false);
@@ -1551,7 +1551,7 @@ static inline int nmea0183_vtg_parse_body(const char *s, const char *end, nmea01
             return CW_ERR_LENGTH;
         }
         {
-            int32_t value;
+            int32_t value = 0;
             rc = cw_parse_fixed(v.b, v.e, 1u, 0, 0x270f, &value);
             if (rc != CW_OK) {
                 return rc;
@@ -1582,7 +1582,7 @@ static inline int nmea0183_vtg_parse_body(const char *s, const char *end, nmea01
             return CW_ERR_LENGTH;
         }
         {
-            int32_t value;
+            int32_t value = 0;
             rc = cw_parse_fixed(v.b, v.e, 1u, 0, 0x270f, &value);
             if (rc != CW_OK) {
                 return rc;
@@ -1613,7 +1613,7 @@ static inline int nmea0183_vtg_parse_body(const char *s, const char *end, nmea01
             return CW_ERR_LENGTH;
         }
         {
-            int32_t value;
+            int32_t value = 0;
             rc = cw_parse_fixed(v.b, v.e, 1u, 0, 0x270f, &value);
             if (rc != CW_OK) {
                 return rc;
@@ -1644,7 +1644,7 @@ static inline int nmea0183_vtg_parse_body(const char *s, const char *end, nmea01
             return CW_ERR_LENGTH;
         }
         {
-            int32_t value;
+            int32_t value = 0;
             rc = cw_parse_fixed(v.b, v.e, 1u, 0, 0x270f, &value);
             if (rc != CW_OK) {
                 return rc;

@@ -1207,19 +1207,26 @@ def _line(body: str) -> str:
     return '$' + body + '*' + format(_line_checksum(body), "02X") + '\r\n'
 
 
-_PREFIXES: dict[str, tuple[Optional[str], Callable[[str, str, int], AnyMessage]]] = {}
+_Decoder = Callable[[str, str, int], AnyMessage]
+# each prefix's (direction, decoder) pairs: a prefix may be used once in each direction
+_PREFIXES: dict[str, tuple[tuple[Optional[str], _Decoder], ...]] = {}
+
+
+def _pick(prefix: str, entries: tuple[tuple[Optional[str], _Decoder], ...], direction: Optional[str]) -> Optional[_Decoder]:
+    """The decoder of the one entry of `direction` (of any, without one); None if there is none."""
+    fns = [fn for held, fn in entries if direction is None or held == direction]
+    if len(fns) > 1:
+        raise _dec(None, 'prefix', prefix, 'dispatch', 'a direction: this prefix is used in several', 0)
+    return fns[0] if fns else None
 
 
 # messages whose prefix starts with a prefix field's value: (its length, the id after it, direction, decoder)
-_TALKED: tuple[tuple[int, str, Optional[str], Callable[[str, str, int], AnyMessage]], ...] = ((2, 'GGA', 'receiver_to_host', _decode_gga), (2, 'RMC', 'receiver_to_host', _decode_rmc), (2, 'VTG', 'receiver_to_host', _decode_vtg), )
+_TALKED: tuple[tuple[int, str, Optional[str], _Decoder], ...] = ((2, 'GGA', 'receiver_to_host', _decode_gga), (2, 'RMC', 'receiver_to_host', _decode_rmc), (2, 'VTG', 'receiver_to_host', _decode_vtg), )
 
 
-def _talked(prefix: str, direction: Optional[str]) -> Optional[Callable[[str, str, int], AnyMessage]]:
-    """The decoder of the first message whose id ends the prefix after a value of its prefix field."""
-    for n, ident, held, fn in _TALKED:
-        if len(prefix) == n + len(ident) and prefix.endswith(ident) and (direction is None or held == direction):
-            return fn
-    return None
+def _talked(prefix: str) -> tuple[tuple[Optional[str], _Decoder], ...]:
+    """The (direction, decoder) of each message whose id ends the prefix after a value of its prefix field."""
+    return tuple((held, fn) for n, ident, held, fn in _TALKED if len(prefix) == n + len(ident) and prefix.endswith(ident))
 
 
 _PREFIX_OF = {'gga': (2, 'GGA'), 'rmc': (2, 'RMC'), 'vtg': (2, 'VTG'), }
@@ -1228,7 +1235,7 @@ _PREFIX_OF = {'gga': (2, 'GGA'), 'rmc': (2, 'RMC'), 'vtg': (2, 'VTG'), }
 def _decode_as(name: str, data: _Input, fn: Callable[[str, str, int], _T]) -> _T:
     """Decode text that must hold the message `name` (whose body decoder is `fn`)."""
     prefix, body, base = _split(_as_input(data))
-    held = prefix.strip() if False else prefix
+    held = prefix
     n, expected = _PREFIX_OF[name]
     if len(held) != n + len(expected) or not held.endswith(expected):
         raise _dec(name, 'prefix', prefix, 'dispatch', ('?' * n) + expected, 0)
@@ -1244,17 +1251,14 @@ def decode(data: _Input, direction: Optional[str] = None) -> AnyMessage: ...
 
 
 def decode(data: _Input, direction: Optional[str] = None) -> AnyMessage:
-    """Decode one message `<prefix>:<fields>;`."""
+    """Decode one message, found by its prefix; `direction` is needed only when a prefix is used in several."""
     text = _as_input(data)
     prefix, body, base = _split(text)
-    held = prefix.strip() if False else prefix
-    entry = _PREFIXES.get(held)
-    if entry is None or direction is not None and entry[0] != direction:
-        fn = _talked(held, direction)
-        if fn is not None:
-            return fn(held, body, base)
+    held = prefix
+    fn = _pick(prefix, _PREFIXES.get(held, ()), direction) or _pick(prefix, _talked(held), direction)
+    if fn is None:
         raise _dec(None, 'prefix', prefix, 'dispatch', ' '.join([*_PREFIXES, '??GGA', '??RMC', '??VTG']), 0)
-    return entry[1](held, body, base)
+    return fn(held, body, base)
 
 
 class StreamDecoder:
