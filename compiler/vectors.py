@@ -459,6 +459,8 @@ class Generator:
                 valid.append(self.valid_case(f"{m.name} {name}", m, decoded, data))
                 frames.append(data)
                 break
+        if m.direction and frames:
+            invalid += self.undirected(m, frames[0])
         for i, data in enumerate(frames[:min(self.mutated, max(1, FRAME_BUDGET // (8 * size)))]):
             for label, bad in self.mutations(m, data) + (self.f64_outside(m, data) if i == 0 else []):
                 name = f"{m.name} {label} of {i}"
@@ -474,6 +476,20 @@ class Generator:
                 valid.append(self.valid_case(name, self.messages[type(obj).NAME], obj, canonical,
                                              bad if canonical != bad else None))
         return valid, invalid
+
+    def undirected(self, m: Message, data) -> list[dict]:
+        """The frame decoded without its direction, when another direction's message has its
+        id (or prefix) and size: refused, as the decoder cannot tell which one it holds."""
+        if not any(o.direction not in (None, m.direction) and any(i in o.ids for i in m.ids) for o in self.p.messages):
+            return []
+        try:
+            obj = self.mod.decode(data)
+        except self.mod.DecodeError as exc:
+            return [{"name": f"{m.name} without its direction", "message": m.name, **self.wire(data),
+                     "error": exc.rule}]
+        if type(obj).NAME != m.name:
+            raise ValueError(f"{m.name}: a frame decoded without its direction gives {type(obj).NAME}")
+        return []
 
     def f64_outside(self, m: Message, data) -> list[tuple[str, Any]]:
         """The frame with each binary f64 field set to NaN, to each infinity and to the

@@ -31,7 +31,12 @@ def dispatch_facts(p: Protocol) -> dict:
     if not p.self_identifying:
         return {"kind": "none"}
     if fr.kind == "text":
-        return {"kind": "text", "prefixes": [(m.ids[0], m.name, m.direction) for m in p.messages]}
+        prefixes = [(m.ids[0], m.name, m.direction) for m in p.messages]
+        by_prefix: dict[str, list[tuple[Optional[str], str]]] = {}
+        for prefix, name, direction in prefixes:  # a prefix may be used once in each direction
+            by_prefix.setdefault(prefix, []).append((direction, name))
+        return {"kind": "text", "prefixes": prefixes, "by_prefix": list(by_prefix.items()),
+                "shared": [(prefix, entries[0][1]) for prefix, entries in by_prefix.items() if len(entries) > 1]}
     if fr.kind == "bits":
         entries = []
         for m in p.messages:

@@ -29,7 +29,7 @@ def main(argv: list[str] | None = None) -> int:
                         help="mutated schemas to check after them (default: as many as --count)")
     parser.add_argument("--c-matrix", choices=C_MATRIX, default="rotate",
                         help="compile each schema's C at one more (compiler, level) chosen by its seed (rotate, "
-                             "the default), or at all six (full); see fuzz/schema/check.py")
+                             "the default), or at all seven (full); see fuzz/schema/check.py")
     parser.add_argument("--show", action="store_true", help="print the schema of --seed and stop")
     parser.add_argument("--mypy", action="store_true", help="also run mypy --strict on every generated module")
     parser.add_argument("--record", action="store_true", help="write the run's count and result into fuzz/RESULTS.md")

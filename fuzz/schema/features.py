@@ -19,6 +19,7 @@ FULL = frozenset({
     "encoding",                             # SLIP, COBS or HDLC byte stuffing around frames
     "end_marker",                           # bytes: a constant byte after the payload closes each frame
     "shared_id",                            # bytes without length: two messages of one id at two sizes
+    "direction_ids",                        # one id (bytes) or prefix (text) used by a message of each direction
     "extension", "truncate",                # bytes: extension fields at a message's end; trailing zeros not sent
     "little", "field_order",                # byte orders: the framing's, and per field
     "bitfields",                            # fields narrower than a byte, packed

@@ -173,6 +173,7 @@ class Generator:
                 body["fields"] += self.counted_fields()
             messages[self.name()] = body
         self.share_an_id(messages, layout)
+        self.ids_across_directions(messages)
         if any(f.get("checksum", {}).get("extra") for f in layout):
             for body in messages.values():
                 body["crc_extra"] = rng.randrange(256)
@@ -205,6 +206,29 @@ class Generator:
             return
         second["id"] = first["id"]
         second["fields"] = copy.deepcopy(first["fields"]) + [{"name": self.name(), "type": "u8"}]
+
+    def ids_across_directions(self, messages: dict) -> None:
+        """Sometimes a message takes another's id (or prefix) in the other direction, as a
+        reply shares its request's command number: decoders need the direction to tell."""
+        rng = random.Random(f"direction_ids {self.seed}")
+        bodies = list(messages.values())
+        if "direction_ids" not in self.on or not self.directions or len(bodies) < 2 or rng.random() < 0.5:
+            return
+        if len({repr(b.get("id")) for b in bodies}) < len(bodies):  # one id at two sizes already
+            return
+        first, second = rng.sample(bodies, 2)
+        second["id"] = copy.deepcopy(first["id"])
+        second["direction"] = "up" if first["direction"] == "down" else "down"
+
+    def text_directions(self, messages: dict) -> None:
+        """Sometimes text messages get directions, and one prefix is used in both."""
+        rng = random.Random(f"text directions {self.seed}")
+        if "direction_ids" not in self.on or rng.random() < 0.6:
+            return
+        self.directions = True
+        for body in messages.values():
+            body["direction"] = rng.choice(["up", "down"])
+        self.ids_across_directions(messages)
 
     def end_marker(self, layout: list[dict]) -> None:
         """A constant byte after the payload (and its checksum) that closes each frame, as
@@ -587,6 +611,7 @@ class Generator:
             if self.has("text_const", 0.4):
                 self.text_constants(fields, terminator + separator + framing.get("separator", ""))
             messages[self.name()] = {"id": prefix, "fields": fields}
+        self.text_directions(messages)
         return framing, messages
 
     def text_constants(self, fields: list[dict], marks: str) -> None:

@@ -325,7 +325,7 @@ static inline int tank_telemetry_encode(const tank_telemetry_t *m, char *buf, si
 
 static inline int tank_telemetry_parse_body(const char *s, const char *end, tank_telemetry_t *m)
 {
-    const char *ends[20];  /* where each value ends: cw_value */
+    const char *ends[20] = {NULL};  /* where each value ends: cw_value (set for old compilers that cannot tell) */
     cw_span_t v = {NULL, NULL};  /* read only where a value was found; compilers cannot always tell */
     int rc;
     size_t count = cw_split_values(s, end, ',', ends, 20u, false);
@@ -344,7 +344,7 @@ static inline int tank_telemetry_parse_body(const char *s, const char *end, tank
     /* speed */
     v = cw_value(s, ends, 1u, true);
     {
-        int32_t value;
+        int32_t value = 0;
         rc = cw_parse_int(v.b, v.e, 0, 100, &value);
         if (rc != CW_OK) {
             return rc;
@@ -455,7 +455,7 @@ static inline int tank_telemetry_parse_body(const char *s, const char *end, tank
     /* systemstatus */
     v = cw_value(s, ends, 17u, true);
     {
-        int32_t value;
+        int32_t value = 0;
         rc = cw_parse_int(v.b, v.e, INT32_MIN, INT32_MAX, &value);
         if (rc == CW_ERR_RANGE) {
             return CW_ERR_ENUM;
@@ -471,7 +471,7 @@ static inline int tank_telemetry_parse_body(const char *s, const char *end, tank
     /* extid */
     v = cw_value(s, ends, 18u, true);
     {
-        int32_t value;
+        int32_t value = 0;
         rc = cw_parse_int(v.b, v.e, 0, 255, &value);
         if (rc != CW_OK) {
             return rc;
@@ -481,7 +481,7 @@ static inline int tank_telemetry_parse_body(const char *s, const char *end, tank
     /* extstatus */
     v = cw_value(s, ends, 19u, true);
     {
-        int32_t value;
+        int32_t value = 0;
         rc = cw_parse_int(v.b, v.e, INT32_MIN, INT32_MAX, &value);
         if (rc == CW_ERR_RANGE) {
             return CW_ERR_ENUM;
@@ -585,7 +585,7 @@ static inline int tank_command_encode(const tank_command_t *m, char *buf, size_t
 
 static inline int tank_command_parse_body(const char *s, const char *end, tank_command_t *m)
 {
-    const char *ends[10];  /* where each value ends: cw_value */
+    const char *ends[10] = {NULL};  /* where each value ends: cw_value (set for old compilers that cannot tell) */
     cw_span_t v = {NULL, NULL};  /* read only where a value was found; compilers cannot always tell */
     int rc;
     size_t count = cw_split_values(s, end, ',', ends, 10u, false);
@@ -604,7 +604,7 @@ static inline int tank_command_parse_body(const char *s, const char *end, tank_c
     /* speed */
     v = cw_value(s, ends, 1u, true);
     {
-        int32_t value;
+        int32_t value = 0;
         rc = cw_parse_int(v.b, v.e, 0, 100, &value);
         if (rc != CW_OK) {
             return rc;
@@ -623,7 +623,7 @@ static inline int tank_command_parse_body(const char *s, const char *end, tank_c
     /* azimutloc */
     v = cw_value(s, ends, 3u, true);
     {
-        int32_t value;
+        int32_t value = 0;
         rc = cw_parse_int(v.b, v.e, (-32767 - 1), 0x7fff, &value);
         if (rc != CW_OK) {
             return rc;
@@ -657,7 +657,7 @@ static inline int tank_command_parse_body(const char *s, const char *end, tank_c
     /* systemstatus */
     v = cw_value(s, ends, 8u, true);
     {
-        int32_t value;
+        int32_t value = 0;
         rc = cw_parse_int(v.b, v.e, INT32_MIN, INT32_MAX, &value);
         if (rc == CW_ERR_RANGE) {
             return CW_ERR_ENUM;
@@ -722,7 +722,7 @@ static inline int tank_payload_command_encode(const tank_payload_command_t *m, c
 
 static inline int tank_payload_command_parse_body(const char *s, const char *end, tank_payload_command_t *m)
 {
-    const char *ends[1];  /* where each value ends: cw_value */
+    const char *ends[1] = {NULL};  /* where each value ends: cw_value (set for old compilers that cannot tell) */
     cw_span_t v = {NULL, NULL};  /* read only where a value was found; compilers cannot always tell */
     ends[0] = end;  /* the one value runs to the end */
     /* command */
@@ -771,7 +771,7 @@ static inline int tank_payload_reply_encode(const tank_payload_reply_t *m, char 
 
 static inline int tank_payload_reply_parse_body(const char *s, const char *end, tank_payload_reply_t *m)
 {
-    const char *ends[1];  /* where each value ends: cw_value */
+    const char *ends[1] = {NULL};  /* where each value ends: cw_value (set for old compilers that cannot tell) */
     cw_span_t v = {NULL, NULL};  /* read only where a value was found; compilers cannot always tell */
     ends[0] = end;  /* the one value runs to the end */
     /* command */
@@ -827,7 +827,7 @@ static inline int tank_gpio_config_encode(const tank_gpio_config_t *m, char *buf
 
 static inline int tank_gpio_config_parse_body(const char *s, const char *end, tank_gpio_config_t *m)
 {
-    const char *ends[4];  /* where each value ends: cw_value */
+    const char *ends[4] = {NULL};  /* where each value ends: cw_value (set for old compilers that cannot tell) */
     cw_span_t v = {NULL, NULL};  /* read only where a value was found; compilers cannot always tell */
     int rc;
     size_t count = cw_split_values(s, end, ',', ends, 4u, false);
@@ -837,7 +837,7 @@ static inline int tank_gpio_config_parse_body(const char *s, const char *end, ta
     /* gpio1 */
     v = cw_value(s, ends, 0u, true);
     {
-        int32_t value;
+        int32_t value = 0;
         rc = cw_parse_int(v.b, v.e, INT32_MIN, INT32_MAX, &value);
         if (rc == CW_ERR_RANGE) {
             return CW_ERR_ENUM;
@@ -853,7 +853,7 @@ static inline int tank_gpio_config_parse_body(const char *s, const char *end, ta
     /* gpio2 */
     v = cw_value(s, ends, 1u, true);
     {
-        int32_t value;
+        int32_t value = 0;
         rc = cw_parse_int(v.b, v.e, INT32_MIN, INT32_MAX, &value);
         if (rc == CW_ERR_RANGE) {
             return CW_ERR_ENUM;
@@ -869,7 +869,7 @@ static inline int tank_gpio_config_parse_body(const char *s, const char *end, ta
     /* gpio3 */
     v = cw_value(s, ends, 2u, true);
     {
-        int32_t value;
+        int32_t value = 0;
         rc = cw_parse_int(v.b, v.e, INT32_MIN, INT32_MAX, &value);
         if (rc == CW_ERR_RANGE) {
             return CW_ERR_ENUM;
@@ -885,7 +885,7 @@ static inline int tank_gpio_config_parse_body(const char *s, const char *end, ta
     /* gpio4 */
     v = cw_value(s, ends, 3u, true);
     {
-        int32_t value;
+        int32_t value = 0;
         rc = cw_parse_int(v.b, v.e, INT32_MIN, INT32_MAX, &value);
         if (rc == CW_ERR_RANGE) {
             return CW_ERR_ENUM;

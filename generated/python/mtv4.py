@@ -1148,13 +1148,13 @@ setattr(OdometryReply, "decode", staticmethod(_decode_odometry_reply))
 
 
 _Decoder = Callable[[_Buffer], AnyMessage]
-_KEYS: dict[tuple[int, int], tuple[Optional[str], _Decoder]] = {(1, 12): ('host_to_robot', _decode_set_wheels_velocities), (2, 12): ('host_to_robot', _decode_set_led), (3, 26): ('host_to_robot', _decode_set_wheels_velocities_with_odometry), (1, 8): ('robot_to_host', _decode_ack), (2, 8): ('robot_to_host', _decode_ack), (3, 22): ('robot_to_host', _decode_odometry_reply), }
+# (id, frame size, direction, decoder): an id and size may be used once in each direction
+_KEYS: tuple[tuple[int, int, Optional[str], _Decoder], ...] = ((1, 12, 'host_to_robot', _decode_set_wheels_velocities), (2, 12, 'host_to_robot', _decode_set_led), (3, 26, 'host_to_robot', _decode_set_wheels_velocities_with_odometry), (1, 8, 'robot_to_host', _decode_ack), (2, 8, 'robot_to_host', _decode_ack), (3, 22, 'robot_to_host', _decode_odometry_reply), )
 _KEYS_BY_DIRECTION: dict[Optional[str], dict[tuple[int, int], _Decoder]] = {}
-for _key, (_direction, _fn) in _KEYS.items():
-    _KEYS_BY_DIRECTION.setdefault(_direction, {})[_key] = _fn
 _ALL: dict[tuple[int, int], list[_Decoder]] = {}
-for _key, (_direction, _fn) in _KEYS.items():
-    _ALL.setdefault(_key, []).append(_fn)
+for _value, _size, _direction, _fn in _KEYS:
+    _KEYS_BY_DIRECTION.setdefault(_direction, {})[(_value, _size)] = _fn
+    _ALL.setdefault((_value, _size), []).append(_fn)
 
 
 _UNIQUE = {key: fns[0] for key, fns in _ALL.items() if len(fns) == 1}

@@ -1146,7 +1146,17 @@ def _split(text: str) -> tuple[str, str, int]:
     return head, text[len(head) + 1:-1], len(head) + 1
 
 
-_PREFIXES: dict[str, tuple[Optional[str], Callable[[str, int], AnyMessage]]] = {'$': ('platform_to_computer', _decode_telemetry), '%': ('computer_to_platform', _decode_command), '*': ('computer_to_payload', _decode_payload_command), '^': ('payload_to_computer', _decode_payload_reply), '-': ('computer_to_platform', _decode_gpio_config), }
+_Decoder = Callable[[str, int], AnyMessage]
+# each prefix's (direction, decoder) pairs: a prefix may be used once in each direction
+_PREFIXES: dict[str, tuple[tuple[Optional[str], _Decoder], ...]] = {'$': (('platform_to_computer', _decode_telemetry), ), '%': (('computer_to_platform', _decode_command), ), '*': (('computer_to_payload', _decode_payload_command), ), '^': (('payload_to_computer', _decode_payload_reply), ), '-': (('computer_to_platform', _decode_gpio_config), ), }
+
+
+def _pick(prefix: str, entries: tuple[tuple[Optional[str], _Decoder], ...], direction: Optional[str]) -> Optional[_Decoder]:
+    """The decoder of the one entry of `direction` (of any, without one); None if there is none."""
+    fns = [fn for held, fn in entries if direction is None or held == direction]
+    if len(fns) > 1:
+        raise _dec(None, 'prefix', prefix, 'dispatch', 'a direction: this prefix is used in several', 0)
+    return fns[0] if fns else None
 
 
 _PREFIX_OF = {'telemetry': '$', 'command': '%', 'payload_command': '*', 'payload_reply': '^', 'gpio_config': '-', }
@@ -1155,8 +1165,9 @@ _PREFIX_OF = {'telemetry': '$', 'command': '%', 'payload_command': '*', 'payload
 def _decode_as(name: str, data: _Input, fn: Callable[[str, int], _T]) -> _T:
     """Decode text that must hold the message `name` (whose body decoder is `fn`)."""
     prefix, body, base = _split(_as_input(data))
+    held = prefix.strip()
     expected = _PREFIX_OF[name]
-    if (prefix.strip() if True else prefix) != expected:
+    if held != expected:
         raise _dec(name, 'prefix', prefix, 'dispatch', expected, 0)
     return fn(body, base)
 
@@ -1182,13 +1193,14 @@ def decode(data: _Input, direction: Optional[str] = None) -> AnyMessage: ...
 
 
 def decode(data: _Input, direction: Optional[str] = None) -> AnyMessage:
-    """Decode one message `<prefix>:<fields>;`."""
+    """Decode one message, found by its prefix; `direction` is needed only when a prefix is used in several."""
     text = _as_input(data)
     prefix, body, base = _split(text)
-    entry = _PREFIXES.get(prefix.strip() if True else prefix)
-    if entry is None or direction is not None and entry[0] != direction:
+    held = prefix.strip()
+    fn = _pick(prefix, _PREFIXES.get(held, ()), direction)
+    if fn is None:
         raise _dec(None, 'prefix', prefix, 'dispatch', ' '.join(_PREFIXES), 0)
-    return entry[1](body, base)
+    return fn(body, base)
 
 
 class StreamDecoder:

@@ -41,6 +41,17 @@ def constants(v: CView) -> list[tuple[str, str, str]]:
     return out
 
 
+def largest_on_wire(v: CView, encoding: dict) -> int:
+    """The most bytes (chars, for text) a frame of the protocol takes, stuffed: every size
+    the header handles is a size_t, so a target must hold it."""
+    sizes = [m.size for m in v.p.messages if m.size is not None]
+    if v.text:
+        sizes += [v.max_text(m) + 1 for m in v.p.messages]
+    if encoding:
+        sizes.append(encoding["wire_max"])
+    return max(sizes, default=0)
+
+
 def enums(v: CView) -> list[dict]:
     out = []
     for e in v.p.enums:
@@ -108,12 +119,13 @@ def render(p: Protocol) -> dict[str, str]:
                      "unfilled": fr.text_form.checksum_unfilled}
     ignore = " || ".join(f"*s == {cchar(ch)}" for ch in fr.ignore_between) or "false"
     ignore_end = " || ".join(f"e[-1] == {cchar(ch)}" for ch in fr.ignore_between) or "false"
+    encoding = v.encoding()
     env = environment()
     header = env.get_template("c/protocol.h.j2").render(
         p=p, v=v, px=v.px, PX=v.PX, fingerprint=fingerprint(p), fingerprint32=f"{fingerprint32(p):#010x}", constants=constants(v), enums=enums(v), flags=flags(v),
         directions=v.directions(), messages=messages, kinds={m["name"]: m["kind"] for m in messages},
         checksums=v.byte_checksums(), text=v.text, dispatch=dispatch, stream=v.stream() if fr.kind == "bytes" else {},
-        encoding=v.encoding(),
+        encoding=encoding, largest=largest_on_wire(v, encoding),
         word_bits=v.word_bits(), word_type=word_type(v.word_bits() or 32), text_form=text_form,
         word_max=(1 << v.word_bits()) - 1 if v.word_bits() else None,
         word_shift=v.word_bits() - dispatch["head_bits"] if v.word_bits() and dispatch["kind"] == "bits" else None, cstr=cstr, ignore=ignore, ignore_end=ignore_end,

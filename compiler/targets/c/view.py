@@ -1282,7 +1282,7 @@ class CView:
             c.dedent()
             c("}")
             return c.text()
-        c(f"const char *ends[{total}];  /* where each value ends: cw_value */")
+        c(f"const char *ends[{total}] = {{NULL}};  /* where each value ends: cw_value (set for old compilers that cannot tell) */")
         c("cw_span_t v = {NULL, NULL};  /* read only where a value was found; compilers cannot always tell */")
         if all(x.field.const is not None for x in leaves) and not m.rules:
             c("(void)m;  /* no member: every value is a constant */")
@@ -1359,17 +1359,18 @@ class CView:
                 fixed = f.fixed_spelling
                 wide = None if fixed else self.text_int64(f)
                 vtype = {"i64": "int64_t", "u64": "uint64_t", None: "int32_t"}[wide]
+                # each value is set where the parser succeeds: older compilers cannot always tell
                 if fixed:  # read exactly as written (the resolver keeps it within 32 bits)
-                    c("int32_t value;")
+                    c("int32_t value = 0;")
                     lo, hi = self.raw_bounds(f) if f.range is not None else (-(1 << 31), (1 << 31) - 1)
                     c(f"rc = cw_parse_fixed(v.b, v.e, {f.decimals or 0}u, {f.width or 0}u, "
                       f"{clit(lo) if lo > -(1 << 31) else 'INT32_MIN'}, {clit(hi) if hi < (1 << 31) - 1 else 'INT32_MAX'}, &value);")
                 elif wide:  # parsed straight into the field's own range
-                    c(f"{vtype} value;")
+                    c(f"{vtype} value = 0;")
                     lo, hi = self.raw_bounds(f) if f.range is not None else self.stored_range(f)
                     c(f"rc = cw_parse_{wide}(v.b, v.e, {self.literal_of(lo, vtype)}, {self.literal_of(hi, vtype)}, &value);")
                 else:
-                    c("int32_t value;")
+                    c("int32_t value = 0;")
                     if f.enum is not None or f.range is None:
                         lo, hi = (-(1 << 31), (1 << 31) - 1)
                     else:

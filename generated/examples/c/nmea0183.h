@@ -336,7 +336,7 @@ static inline int nmea0183_gga_encode(const nmea0183_gga_t *m, char *buf, size_t
 
 static inline int nmea0183_gga_parse_body(const char *s, const char *end, nmea0183_gga_t *m)
 {
-    const char *ends[14];  /* where each value ends: cw_value */
+    const char *ends[14] = {NULL};  /* where each value ends: cw_value (set for old compilers that cannot tell) */
     cw_span_t v = {NULL, NULL};  /* read only where a value was found; compilers cannot always tell */
     int rc;
     size_t count = cw_split_values(s, end, ',', ends, 14u, false);
@@ -346,7 +346,7 @@ static inline int nmea0183_gga_parse_body(const char *s, const char *end, nmea01
     /* timestamp */
     v = cw_value(s, ends, 0u, false);
     {
-        int32_t value;
+        int32_t value = 0;
         rc = cw_parse_fixed(v.b, v.e, 0u, 6u, 0, 0x399b8UL, &value);
         if (rc != CW_OK) {
             return rc;
@@ -361,7 +361,7 @@ static inline int nmea0183_gga_parse_body(const char *s, const char *end, nmea01
     }
     if (m->has_lat) {
         {
-            int32_t value;
+            int32_t value = 0;
             rc = cw_parse_fixed(v.b, v.e, 3u, 8u, 0, 0x89543fUL, &value);
             if (rc != CW_OK) {
                 return rc;
@@ -392,7 +392,7 @@ static inline int nmea0183_gga_parse_body(const char *s, const char *end, nmea01
     }
     if (m->has_lon) {
         {
-            int32_t value;
+            int32_t value = 0;
             rc = cw_parse_fixed(v.b, v.e, 3u, 9u, 0, 0x112a87fUL, &value);
             if (rc != CW_OK) {
                 return rc;
@@ -418,7 +418,7 @@ static inline int nmea0183_gga_parse_body(const char *s, const char *end, nmea01
     /* gps_qual */
     v = cw_value(s, ends, 5u, false);
     {
-        int32_t value;
+        int32_t value = 0;
         rc = cw_parse_int(v.b, v.e, 0, 8, &value);
         if (rc != CW_OK) {
             return rc;
@@ -428,7 +428,7 @@ static inline int nmea0183_gga_parse_body(const char *s, const char *end, nmea01
     /* num_sats */
     v = cw_value(s, ends, 6u, false);
     {
-        int32_t value;
+        int32_t value = 0;
         rc = cw_parse_fixed(v.b, v.e, 0u, 2u, INT32_MIN, INT32_MAX, &value);
         if (rc != CW_OK) {
             return rc;
@@ -446,7 +446,7 @@ static inline int nmea0183_gga_parse_body(const char *s, const char *end, nmea01
     }
     if (m->has_horizontal_dil) {
         {
-            int32_t value;
+            int32_t value = 0;
             rc = cw_parse_fixed(v.b, v.e, 1u, 0u, 0, 0xf4235UL, &value);
             if (rc != CW_OK) {
                 return rc;
@@ -462,7 +462,7 @@ static inline int nmea0183_gga_parse_body(const char *s, const char *end, nmea01
     }
     if (m->has_altitude) {
         {
-            int32_t value;
+            int32_t value = 0;
             rc = cw_parse_fixed(v.b, v.e, 1u, 0u, (-99997 - 1), 0xf423eUL, &value);
             if (rc != CW_OK) {
                 return rc;
@@ -493,7 +493,7 @@ static inline int nmea0183_gga_parse_body(const char *s, const char *end, nmea01
     }
     if (m->has_geo_sep) {
         {
-            int32_t value;
+            int32_t value = 0;
             rc = cw_parse_fixed(v.b, v.e, 1u, 0u, (-99997 - 1), 0x1869eUL, &value);
             if (rc != CW_OK) {
                 return rc;
@@ -524,7 +524,7 @@ static inline int nmea0183_gga_parse_body(const char *s, const char *end, nmea01
     }
     if (m->has_age_gps_data) {
         {
-            int32_t value;
+            int32_t value = 0;
             rc = cw_parse_fixed(v.b, v.e, 1u, 0u, 0, 0xf4235UL, &value);
             if (rc != CW_OK) {
                 return rc;
@@ -540,7 +540,7 @@ static inline int nmea0183_gga_parse_body(const char *s, const char *end, nmea01
     }
     if (m->has_ref_station_id) {
         {
-            int32_t value;
+            int32_t value = 0;
             rc = cw_parse_fixed(v.b, v.e, 0u, 4u, 0, 0x3ff, &value);
             if (rc != CW_OK) {
                 return rc;
@@ -812,7 +812,7 @@ static inline int nmea0183_rmc_encode(const nmea0183_rmc_t *m, char *buf, size_t
 
 static inline int nmea0183_rmc_parse_body(const char *s, const char *end, nmea0183_rmc_t *m)
 {
-    const char *ends[11];  /* where each value ends: cw_value */
+    const char *ends[11] = {NULL};  /* where each value ends: cw_value (set for old compilers that cannot tell) */
     cw_span_t v = {NULL, NULL};  /* read only where a value was found; compilers cannot always tell */
     int rc;
     size_t count = cw_split_values(s, end, ',', ends, 11u, false);
@@ -822,7 +822,7 @@ static inline int nmea0183_rmc_parse_body(const char *s, const char *end, nmea01
     /* timestamp */
     v = cw_value(s, ends, 0u, false);
     {
-        int32_t value;
+        int32_t value = 0;
         rc = cw_parse_fixed(v.b, v.e, 0u, 6u, 0, 0x399b8UL, &value);
         if (rc != CW_OK) {
             return rc;
@@ -846,7 +846,7 @@ static inline int nmea0183_rmc_parse_body(const char *s, const char *end, nmea01
     }
     if (m->has_lat) {
         {
-            int32_t value;
+            int32_t value = 0;
             rc = cw_parse_fixed(v.b, v.e, 3u, 8u, 0, 0x89543fUL, &value);
             if (rc != CW_OK) {
                 return rc;
@@ -877,7 +877,7 @@ static inline int nmea0183_rmc_parse_body(const char *s, const char *end, nmea01
     }
     if (m->has_lon) {
         {
-            int32_t value;
+            int32_t value = 0;
             rc = cw_parse_fixed(v.b, v.e, 3u, 9u, 0, 0x112a87fUL, &value);
             if (rc != CW_OK) {
                 return rc;
@@ -908,7 +908,7 @@ static inline int nmea0183_rmc_parse_body(const char *s, const char *end, nmea01
     }
     if (m->has_spd_over_grnd) {
         {
-            int32_t value;
+            int32_t value = 0;
             rc = cw_parse_fixed(v.b, v.e, 1u, 5u, 0, 0x270e, &value);
             if (rc != CW_OK) {
                 return rc;
@@ -924,7 +924,7 @@ static inline int nmea0183_rmc_parse_body(const char *s, const char *end, nmea01
     }
     if (m->has_true_course) {
         {
-            int32_t value;
+            int32_t value = 0;
             rc = cw_parse_fixed(v.b, v.e, 1u, 5u, 0, 0x270e, &value);
             if (rc != CW_OK) {
                 return rc;
@@ -935,7 +935,7 @@ static inline int nmea0183_rmc_parse_body(const char *s, const char *end, nmea01
     /* datestamp */
     v = cw_value(s, ends, 8u, false);
     {
-        int32_t value;
+        int32_t value = 0;
         rc = cw_parse_fixed(v.b, v.e, 0u, 6u, 0x2774, 0x4c003UL, &value);
         if (rc != CW_OK) {
             return rc;
@@ -950,7 +950,7 @@ static inline int nmea0183_rmc_parse_body(const char *s, const char *end, nmea01
     }
     if (m->has_mag_variation) {
         {
-            int32_t value;
+            int32_t value = 0;
             rc = cw_parse_fixed(v.b, v.e, 1u, 5u, 0, 0x270e, &value);
             if (rc != CW_OK) {
                 return rc;
@@ -1172,7 +1172,7 @@ static inline int nmea0183_vtg_encode(const nmea0183_vtg_t *m, char *buf, size_t
 
 static inline int nmea0183_vtg_parse_body(const char *s, const char *end, nmea0183_vtg_t *m)
 {
-    const char *ends[8];  /* where each value ends: cw_value */
+    const char *ends[8] = {NULL};  /* where each value ends: cw_value (set for old compilers that cannot tell) */
     cw_span_t v = {NULL, NULL};  /* read only where a value was found; compilers cannot always tell */
     int rc;
     size_t count = cw_split_values(s, end, ',', ends, 8u, false);
@@ -1187,7 +1187,7 @@ static inline int nmea0183_vtg_parse_body(const char *s, const char *end, nmea01
     }
     if (m->has_true_track) {
         {
-            int32_t value;
+            int32_t value = 0;
             rc = cw_parse_fixed(v.b, v.e, 1u, 5u, 0, 0x270e, &value);
             if (rc != CW_OK) {
                 return rc;
@@ -1212,7 +1212,7 @@ static inline int nmea0183_vtg_parse_body(const char *s, const char *end, nmea01
     }
     if (m->has_mag_track) {
         {
-            int32_t value;
+            int32_t value = 0;
             rc = cw_parse_fixed(v.b, v.e, 1u, 5u, 0, 0x270e, &value);
             if (rc != CW_OK) {
                 return rc;
@@ -1237,7 +1237,7 @@ static inline int nmea0183_vtg_parse_body(const char *s, const char *end, nmea01
     }
     if (m->has_spd_over_grnd_kts) {
         {
-            int32_t value;
+            int32_t value = 0;
             rc = cw_parse_fixed(v.b, v.e, 1u, 5u, 0, 0x270e, &value);
             if (rc != CW_OK) {
                 return rc;
@@ -1262,7 +1262,7 @@ static inline int nmea0183_vtg_parse_body(const char *s, const char *end, nmea01
     }
     if (m->has_spd_over_grnd_kmph) {
         {
-            int32_t value;
+            int32_t value = 0;
             rc = cw_parse_fixed(v.b, v.e, 1u, 5u, 0, 0x270e, &value);
             if (rc != CW_OK) {
                 return rc;

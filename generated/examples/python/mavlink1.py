@@ -1567,13 +1567,13 @@ setattr(CommandLong, "decode", staticmethod(_decode_command_long))
 
 
 _Decoder = Callable[[_Buffer], AnyMessage]
-_KEYS: dict[tuple[int, int], tuple[Optional[str], _Decoder]] = {(0, 17): (None, _decode_heartbeat), (1, 39): (None, _decode_sys_status), (22, 33): (None, _decode_param_value), (24, 38): (None, _decode_gps_raw_int), (30, 36): (None, _decode_attitude), (76, 41): (None, _decode_command_long), }
+# (id, frame size, direction, decoder): an id and size may be used once in each direction
+_KEYS: tuple[tuple[int, int, Optional[str], _Decoder], ...] = ((0, 17, None, _decode_heartbeat), (1, 39, None, _decode_sys_status), (22, 33, None, _decode_param_value), (24, 38, None, _decode_gps_raw_int), (30, 36, None, _decode_attitude), (76, 41, None, _decode_command_long), )
 _KEYS_BY_DIRECTION: dict[Optional[str], dict[tuple[int, int], _Decoder]] = {}
-for _key, (_direction, _fn) in _KEYS.items():
-    _KEYS_BY_DIRECTION.setdefault(_direction, {})[_key] = _fn
 _ALL: dict[tuple[int, int], list[_Decoder]] = {}
-for _key, (_direction, _fn) in _KEYS.items():
-    _ALL.setdefault(_key, []).append(_fn)
+for _value, _size, _direction, _fn in _KEYS:
+    _KEYS_BY_DIRECTION.setdefault(_direction, {})[(_value, _size)] = _fn
+    _ALL.setdefault((_value, _size), []).append(_fn)
 
 
 _UNIQUE = {key: fns[0] for key, fns in _ALL.items() if len(fns) == 1}

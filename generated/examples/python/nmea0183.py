@@ -1049,7 +1049,17 @@ def _line(body: str) -> str:
     return '$' + body + '*' + format(_line_checksum(body), "02X") + '\r\n'
 
 
-_PREFIXES: dict[str, tuple[Optional[str], Callable[[str, int], AnyMessage]]] = {'GPGGA': ('receiver_to_host', _decode_gga), 'GPRMC': ('receiver_to_host', _decode_rmc), 'GPVTG': ('receiver_to_host', _decode_vtg), }
+_Decoder = Callable[[str, int], AnyMessage]
+# each prefix's (direction, decoder) pairs: a prefix may be used once in each direction
+_PREFIXES: dict[str, tuple[tuple[Optional[str], _Decoder], ...]] = {'GPGGA': (('receiver_to_host', _decode_gga), ), 'GPRMC': (('receiver_to_host', _decode_rmc), ), 'GPVTG': (('receiver_to_host', _decode_vtg), ), }
+
+
+def _pick(prefix: str, entries: tuple[tuple[Optional[str], _Decoder], ...], direction: Optional[str]) -> Optional[_Decoder]:
+    """The decoder of the one entry of `direction` (of any, without one); None if there is none."""
+    fns = [fn for held, fn in entries if direction is None or held == direction]
+    if len(fns) > 1:
+        raise _dec(None, 'prefix', prefix, 'dispatch', 'a direction: this prefix is used in several', 0)
+    return fns[0] if fns else None
 
 
 _PREFIX_OF = {'gga': 'GPGGA', 'rmc': 'GPRMC', 'vtg': 'GPVTG', }
@@ -1058,8 +1068,9 @@ _PREFIX_OF = {'gga': 'GPGGA', 'rmc': 'GPRMC', 'vtg': 'GPVTG', }
 def _decode_as(name: str, data: _Input, fn: Callable[[str, int], _T]) -> _T:
     """Decode text that must hold the message `name` (whose body decoder is `fn`)."""
     prefix, body, base = _split(_as_input(data))
+    held = prefix
     expected = _PREFIX_OF[name]
-    if (prefix.strip() if False else prefix) != expected:
+    if held != expected:
         raise _dec(name, 'prefix', prefix, 'dispatch', expected, 0)
     return fn(body, base)
 
@@ -1073,13 +1084,14 @@ def decode(data: _Input, direction: Optional[str] = None) -> AnyMessage: ...
 
 
 def decode(data: _Input, direction: Optional[str] = None) -> AnyMessage:
-    """Decode one message `<prefix>:<fields>;`."""
+    """Decode one message, found by its prefix; `direction` is needed only when a prefix is used in several."""
     text = _as_input(data)
     prefix, body, base = _split(text)
-    entry = _PREFIXES.get(prefix.strip() if False else prefix)
-    if entry is None or direction is not None and entry[0] != direction:
+    held = prefix
+    fn = _pick(prefix, _PREFIXES.get(held, ()), direction)
+    if fn is None:
         raise _dec(None, 'prefix', prefix, 'dispatch', ' '.join(_PREFIXES), 0)
-    return entry[1](body, base)
+    return fn(body, base)
 
 
 class StreamDecoder:
