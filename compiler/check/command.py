@@ -5,6 +5,7 @@ import argparse
 import sys
 from pathlib import Path
 
+from .. import signing_key
 from ..diagnostics import SchemaError
 from .report import JsonReport, TextReport
 from .run import INPUT_FORMATS, Options, UsageError, check, load_codec
@@ -21,6 +22,7 @@ def add_arguments(parser: argparse.ArgumentParser, func) -> None:
                         help="raw bytes, hex (one frame per line, or hex words), text; default: guess")
     parser.add_argument("--direction", help="decode frames as sent in this direction of the schema")
     parser.add_argument("--sequence", help="the sequence a bit-packed input holds (default: the schema's first)")
+    signing_key.add_arguments(parser, "verify each frame's signature")
     bar = parser.add_mutually_exclusive_group()
     bar.add_argument("--progress", dest="progress", action="store_true", default=None,
                      help="show a progress bar for large inputs even when stderr is not a terminal")
@@ -48,8 +50,9 @@ def run_check(args: argparse.Namespace) -> int:
         print(f"codeword check: {path}: the schema has errors; nothing checked", file=sys.stderr)
         return 2
     report = JsonReport(sys.stdout) if args.format == "json" else TextReport(sys.stdout)
-    options = Options(args.input_format, args.direction, args.sequence, args.progress)
     try:
+        options = Options(args.input_format, args.direction, args.sequence, args.progress,
+                          key=signing_key.signing_key(args, protocol))
         findings = check(protocol, codec, args.inputs, report, options)
     except UsageError as exc:
         sys.stdout.flush()

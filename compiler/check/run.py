@@ -6,7 +6,7 @@ import os
 import re
 import sys
 from contextlib import contextmanager
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import partial
 from pathlib import Path
 from typing import BinaryIO, Callable, Iterator, Optional
@@ -30,6 +30,7 @@ class Options:
     direction: Optional[str] = None
     sequence: Optional[str] = None
     progress: Optional[bool] = None  # None: only on a terminal, for large inputs
+    key: Optional[bytes] = field(default=None, repr=False)  # verify signatures with it; never shown
 
 
 def load_codec(schema: Path, display: str | None = None):
@@ -61,8 +62,10 @@ def plan(p: Protocol, codec, options: Options, sample: bytes) -> Plan:
         if fmt == "text":
             raise UsageError(f"{p.name} is a byte protocol: give a raw capture or a hex dump")
         if fmt == "hex" or fmt == "auto" and looks_hex:
-            return Plan(partial(sources.hex_frames, codec, direction=options.direction), "hex", "frame")
-        return Plan(partial(sources.binary_stream, codec, direction=options.direction), "raw", "frame")
+            return Plan(partial(sources.hex_frames, codec, direction=options.direction, key=options.key),
+                        "hex", "frame")
+        return Plan(partial(sources.binary_stream, codec, direction=options.direction, key=options.key),
+                    "raw", "frame")
     sequence = _sequence(p, options.sequence)
     if options.direction:
         raise UsageError(f"{p.name}: --direction applies to framed streams, not to a {sequence}")

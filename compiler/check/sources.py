@@ -13,6 +13,7 @@ from bisect import bisect_right
 from dataclasses import dataclass
 from typing import BinaryIO, Callable, Iterator
 
+from .. import verified_frames
 from .finding import Finding, from_error
 
 CHUNK = 64 * 1024
@@ -79,9 +80,11 @@ def _is_blank_or_comment(text: str) -> bool:
 # ---------------------------------------------------------------- byte frames
 
 def binary_stream(codec, fh: BinaryIO, file: str, tally: Tally, progress: Progress,
-                  direction: str | None = None) -> Iterator[Finding]:
-    """A raw capture of a byte-framed protocol, through the codec's StreamDecoder."""
-    decoder = codec.StreamDecoder(direction)
+                  direction: str | None = None, key: bytes | None = None) -> Iterator[Finding]:
+    """A raw capture of a byte-framed protocol, through the codec's StreamDecoder
+    (each frame verified with `key` when one is given)."""
+    decoder = verified_frames.VerifyingDecoder(codec, direction, key) if key is not None \
+        else codec.StreamDecoder(direction)
     for chunk in _chunks(fh, CHUNK, progress):
         yield from _frames(decoder.feed(chunk), codec, file, tally)
     yield from _frames(decoder.finish(), codec, file, tally)
@@ -103,8 +106,9 @@ def _frames(items, codec, file: str, tally: Tally) -> Iterator[Finding]:
 
 
 def hex_frames(codec, fh: BinaryIO, file: str, tally: Tally, progress: Progress,
-               direction: str | None = None) -> Iterator[Finding]:
-    """A hex dump with one frame per line ('#' comments and blank lines skipped)."""
+               direction: str | None = None, key: bytes | None = None) -> Iterator[Finding]:
+    """A hex dump with one frame per line ('#' comments and blank lines skipped), each
+    frame verified with `key` when one is given."""
     for number, raw, too_long in _bounded_lines(fh, progress):
         text = raw.decode("latin-1").split("#", 1)[0].strip()
         if not text and not too_long:
@@ -117,7 +121,10 @@ def hex_frames(codec, fh: BinaryIO, file: str, tally: Tally, progress: Progress,
                            unit=tally.read, line=number, actual=text[:40], allowed="hex bytes")
             continue
         try:
-            codec.decode(frame, direction)
+            if key is not None:
+                verified_frames.decode(codec, frame, direction, key)
+            else:
+                codec.decode(frame, direction)
         except codec.DecodeError as exc:
             tally.invalid += 1
             yield from_error(exc, file, tally.read, line=number)

@@ -5,6 +5,7 @@ import argparse
 import os
 import sys
 
+from .. import signing_key
 from ..usage import UsageError
 from . import output
 from .stream import Stream, hex_bytes, open_codec
@@ -20,13 +21,15 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--direction", help="decode frames as sent in this direction of the schema")
     parser.add_argument("--sequence", help="the sequence a bit-packed input holds, when its words do not "
                                            "identify themselves (default: the schema's first)")
+    signing_key.add_arguments(parser, "verify each frame's signature")
 
 
 def run(args: argparse.Namespace) -> int:
     protocol, codec = open_codec(args.schema)
+    key = signing_key.signing_key(args, protocol)
     rows, text = [], protocol.framing.kind == "text"
     for source in args.inputs or ["-"]:
-        stream = Stream(protocol, codec, args.direction, args.sequence)
+        stream = Stream(protocol, codec, args.direction, args.sequence, key)
         data = _input(source, text, protocol.framing.terminator if text else None)
         rows += stream.feed(data) + stream.finish()
     output.write(rows, args.format, sys.stdout)

@@ -6,7 +6,8 @@ import json
 import sys
 from typing import Any
 
-from ..model import Field, Message
+from .. import signing_key
+from ..model import Field, Message, Protocol
 from ..usage import UsageError
 from .stream import open_codec
 
@@ -19,10 +20,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "a|b, bytes in hex, group members as group.field=VALUE")
     parser.add_argument("--json", metavar="FILE", help="take the values from a JSON object in FILE ('-': stdin)")
     parser.add_argument("--raw", action="store_true", help="write the frame's bytes, not hex")
+    signing_key.add_arguments(parser, "sign the frame")
 
 
 def run(args: argparse.Namespace) -> int:
     protocol, codec = open_codec(args.schema)
+    key = signing_key.signing_key(args, protocol)
     message = next((m for m in protocol.messages if m.name == args.message), None)
     if message is None:
         raise UsageError(f"{protocol.name} has no message {args.message!r} "
@@ -33,10 +36,14 @@ def run(args: argparse.Namespace) -> int:
         if not sep:
             raise UsageError(f"{item!r}: write a value as FIELD=VALUE")
         _put(values, name.split("."), _literal(text))
-    _check_names(message, values)
-    values = _members(message.members, values)
+    fields = _fields(protocol, message)
+    _check_names(message, values, fields)
+    if key is not None:
+        _no_signature_given(protocol, values)
+    values = _members(fields, values)
     try:
-        wire = codec.encode(codec.from_dict(message.name, values))
+        obj = codec.from_dict(message.name, values)
+        wire = codec.encode(obj, key=key) if key is not None else codec.encode(obj)
     except codec.CodecError as exc:
         print(f"codeword encode: {exc}", file=sys.stderr)
         return 1
@@ -48,6 +55,19 @@ def run(args: argparse.Namespace) -> int:
     else:
         print(wire.rstrip("\r\n") if isinstance(wire, str) else wire.hex(" "))
     return 0
+
+
+def _fields(protocol: Protocol, message: Message) -> tuple[Field, ...]:
+    """The values a message takes: its members, then the trailer's fields (sent when its flag is set)."""
+    trailer = protocol.framing.trailer
+    return message.members + (trailer.fields if trailer is not None else ())
+
+
+def _no_signature_given(protocol: Protocol, values: dict) -> None:
+    """With a key the signature is computed: a value given for it would not be sent."""
+    name = protocol.framing.trailer.signature.name
+    if name in values:
+        raise UsageError(f"{name}: the key computes it; leave the value out, or the key")
 
 
 def _from_json(path: str) -> dict:

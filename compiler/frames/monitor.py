@@ -8,6 +8,7 @@ import time
 from datetime import datetime
 from typing import BinaryIO, Optional
 
+from .. import signing_key
 from ..usage import UsageError
 from .rows import Row
 from .stream import Stream, open_codec
@@ -26,6 +27,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--json", action="store_true", help="print JSON lines instead of text")
     parser.add_argument("--count", type=int, metavar="N", help="stop after N lines (messages, bad frames, skipped stretches)")
     parser.add_argument("--duration", type=float, metavar="S", help="stop after S seconds")
+    signing_key.add_arguments(parser, "verify each frame's signature")
 
 
 class Counts:
@@ -48,7 +50,7 @@ class Counts:
 
 def run(args: argparse.Namespace) -> int:
     protocol, codec = open_codec(args.schema)
-    stream = Stream(protocol, codec, args.direction)
+    stream = Stream(protocol, codec, args.direction, key=signing_key.signing_key(args, protocol))
     counts = Counts()
     log = _open_log(args.log)
     port = _open_source(args)

@@ -6,6 +6,7 @@ from pathlib import Path
 from typing import Optional
 
 from ..check.run import load_codec
+from ..verified_frames import VerifyingDecoder
 from ..diagnostics import SchemaError
 from ..model import Protocol
 from ..project import load_project
@@ -45,7 +46,7 @@ class Stream:
     words of a bit-packed one, each with its offset in the stream."""
 
     def __init__(self, protocol: Protocol, codec, direction: Optional[str] = None,
-                 sequence: Optional[str] = None):
+                 sequence: Optional[str] = None, key: Optional[bytes] = None):
         if direction is not None and direction not in {d.name for d in protocol.directions}:
             raise UsageError(f"{protocol.name} has no direction {direction!r} "
                              f"(directions: {', '.join(d.name for d in protocol.directions) or 'none'})")
@@ -65,6 +66,8 @@ class Stream:
             self.word = bits // 8
             self.decoder = None
             self.sequence = _sequence(protocol, sequence)
+        elif key is not None:  # a schema with a signature: frames verified with the key
+            self.decoder = VerifyingDecoder(codec, direction, key)
         else:
             self.decoder = codec.StreamDecoder(direction)
 
