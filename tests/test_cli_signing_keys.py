@@ -341,3 +341,14 @@ def test_the_key_never_appears_in_any_output(tmp_path, capsys):
         assert "Traceback" not in err
         for shown in _shown_forms(KEY):
             assert shown not in out and shown not in err, (argv, shown)
+
+
+def test_encode_without_a_key_writes_the_trailer_it_is_given(capsys):
+    """A frame pymavlink signed, its values given back: the same bytes, signature and all."""
+    frame = signed()[1]  # pymavlink's pack leaves seq at 0 (send counts it)
+    values = ["incompat_flags=signing", "compat_flags=0", "seq=0", "sysid=42", "compid=190", "command=400",
+              "result=5", "progress=100", "result_param2=0", "target_system=255", "target_component=190",
+              f"link_id={LINK}", f"timestamp={START + 1}", f"signature={frame[-6:].hex()}"]
+    status, out, err = run(capsys, "encode", SCHEMA, "command_ack", *values)
+    assert status == 0, err
+    assert bytes.fromhex(out) == frame
