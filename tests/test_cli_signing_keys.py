@@ -281,7 +281,7 @@ def test_a_bad_key_file_is_a_usage_error_naming_the_file(tmp_path, capsys, case,
 def test_bad_keys_on_the_command_line_and_missing_files(tmp_path, capsys):
     for text, holds in ((KEY.hex()[:-2], "holds 62 hex digit(s)"), ("zz" * 32, "not hex digits"), ("", "empty")):
         status, out, err = run(capsys, "decode", SCHEMA, signed()[0].hex(), "--key", text)
-        assert status == 2 and f"codeword decode: --key: " in err and holds in err and "64 hex digits" in err
+        assert status == 2 and "codeword decode: --key: " in err and holds in err and "64 hex digits" in err
     status, _, err = run(capsys, "check", SCHEMA, "-", "--key-file", tmp_path / "none.key")
     assert status == 2 and f"--key-file {tmp_path / 'none.key'}: cannot read" in err
     status, _, err = run(capsys, "check", SCHEMA, "-", "--key-file", tmp_path)
