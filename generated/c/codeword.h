@@ -1838,6 +1838,19 @@ static inline void cw_sha256_final(cw_sha256_t *s, uint8_t out[32])
     }
 }
 
+/* Whether n bytes are equal, in a time that does not depend on where they differ:
+ * a signature compared byte by byte up to the first difference tells an attacker,
+ * by its timing, how many leading bytes of a forgery are right. */
+static inline bool cw_same_secret(const uint8_t *a, const uint8_t *b, size_t n)
+{
+    uint8_t differ = 0;
+    size_t i;
+    for (i = 0; i < n; i++) {
+        differ = (uint8_t)(differ | (a[i] ^ b[i]));
+    }
+    return differ == 0u;
+}
+
 #ifdef __cplusplus
 }
 #endif

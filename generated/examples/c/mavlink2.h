@@ -1219,7 +1219,7 @@ static inline int mavlink2_decode_signed(const uint8_t *buf, size_t len, int dir
     memcpy(out->trailer.signature, buf + body + 7u, 6u);
     if (key != NULL) {
         mavlink2_signature(key, buf, body, digest);
-        if (memcmp(digest, buf + body + 7u, 6u) != 0) {
+        if (!cw_same_secret(digest, buf + body + 7u, 6u)) {
             return CW_ERR_SIGNATURE;
         }
     }

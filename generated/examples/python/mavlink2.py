@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import enum
 import hashlib
+import hmac
 import importlib.machinery
 import importlib.util
 import math
@@ -1783,9 +1784,10 @@ def _read_trailer(o: _M, d: _Buffer, body: int, t: Optional[_Buffer], key: Optio
     o.signature = bytes(t[7:13])
     if key is not None:
         expected = _signature_of(_signing_key(key, _dec), d, body)
-        if o.signature != expected:
-            raise _dec(o.NAME, 'signature', o.signature, 'signature', expected.hex(),
-                       (body + 7) * 8)
+        # compared in constant time, and never shown: a forger learns nothing of the right one
+        if not hmac.compare_digest(o.signature, expected):
+            raise _dec(o.NAME, 'signature', o.signature, 'signature',
+                       'the signature the key makes', (body + 7) * 8)
     return o
 
 
