@@ -578,9 +578,7 @@ static inline int tank_command_encode(const tank_command_t *m, char *buf, size_t
     cw_write_decimal_field(&w, ',', &m->gpio4);
     cw_write_int_field(&w, ',', (int32_t)m->systemstatus);
     if (m->has_data) {
-        if (m->has_data) {
-            cw_write_text_field(&w, ',', m->data, r_data_len);
-        }
+        cw_write_text_field(&w, ',', m->data, r_data_len);
     }
     return cw_writer_end(&w, ';');
 }

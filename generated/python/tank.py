@@ -959,10 +959,6 @@ def _encode_command(m: Command) -> str:
     k = 9  # the values always written
     while len(p) > k and p[-1] is None:  # absent values at the end are left out, separators and all
         p.pop()
-    if len(p) > 9 and p[9] is None:
-        if any(x is not None for x in p[10:]):
-            raise _enc('command', 'data', None, 'count', 'present, as a later value is')
-        del p[9:]
     return '%:' + ','.join(p) + ';'
 
 

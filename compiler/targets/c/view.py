@@ -1218,7 +1218,7 @@ class CView:
                 place = self.any_written(leaves[i:])
             else:
                 place = "true"
-            ends_run = place != "true"
+            ends_run = place not in ("true", self.has(leaf))  # the last value: written when present
             if ends_run:  # at the end, only while a later value is present (or the kept line had it)
                 c(f"if ({place}) {{")
                 c.indent()

@@ -1372,15 +1372,19 @@ class MessageCode:
                 c(f"k = {places.written}  # the values always written")
             c("while len(p) > k and p[-1] is None:  # absent values at the end are left out, separators and all")
             c("    p.pop()")
+            last = places.total - 1
             for n in range(least, places.total):
                 leaf = self.text_leaves[n]
+                if n == last and n >= places.written and not self.m.keeps_places:
+                    break  # the last value is in the line only when present
                 c(f"if len(p) > {n} and p[{n}] is None:")
-                if leaf.field.kind == "str":  # an empty value would read as an empty str: the line ends before it
+                if leaf.field.kind != "str":
+                    c(f"    p[{n}] = ''")
+                    continue
+                if n < last:  # an empty value would read as an empty str: the line ends before it
                     c(f"    if any(x is not None for x in p[{n + 1}:]):")
                     c(f"        raise _enc({self.m.name!r}, {leaf.dotted!r}, None, 'count', 'present, as a later value is')")
-                    c(f"    del p[{n}:]")
-                else:
-                    c(f"    p[{n}] = ''")
+                c(f"    del p[{n}:]")
         sep = repr(fr.separator)
         values = f"{sep}.join(p)" if places.varies else f"{sep}.join(({''.join(x + ', ' for x in outs)}))"
         if fr.line_checksum:  # _line adds the start marker, the checksum and the terminator
