@@ -784,8 +784,9 @@ class Generator:
             fields = message["fields"]
             if rng.random() < 0.3 or any(f.get("to_end") for f in fields):
                 continue
-            added = [dict(rng.choice([{"type": "u8"}, {"type": "i16"}, {"type": "char"}, {"type": "str", "max_length": 4}]),
-                          name=f"{name}_later_{i}", optional=True, extension=True) for i in range(rng.randint(0, 2))]
+            added = [{"name": f"{name}_later_{i}", **rng.choice([{"type": "u8"}, {"type": "i16"}, {"type": "char"},
+                                                                  {"type": "str", "max_length": 4}]),
+                      "optional": True, "extension": True} for i in range(rng.randint(0, 2))]
             fields += added
             with_str = any(f["type"] == "str" and f.get("optional") and "const" not in f for f in fields[:len(fields) - len(added)])
             placed_later = False  # a later field always has its place
