@@ -666,7 +666,7 @@ class TextPlaces:
     `least` on may be missing from a line altogether, and then read as absent."""
 
     least: int  # the fewest values a reader takes: the line may end before any later one
-    written: int  # the values a writer always writes, absent ones as empty places
+    written: int  # the values a writer always writes, absent ones as empty places (at least `least`)
     total: int  # the values of a whole line
 
     @property

@@ -356,13 +356,17 @@ class FramingMixin(TrailerMixin):
     def text_places(self, name: str, own: tuple[Field, ...], keep_empty: bool, path: tuple) -> TextPlaces:
         """How many values a line of the message carries: writers write every value up to the
         last one that always has its place (required, constant, or keeping its empty place),
-        and later ones up to the last present; readers take a line that ends before any
-        value from there, or before its first extension field (an older writer's line)."""
+        and later ones up to the last present; readers take a line that ends after the last
+        value they need (those, but an optional constant), or before its first extension
+        field (an older writer's line)."""
         self.check_extensions_last(name, own, path)
         body = [f for f in own if not f.prefix]
         written = 1 + max((i for i, f in enumerate(body) if always_placed(f, keep_empty)), default=-1)
+        # an optional constant is always written, but read empty or missing as well
+        needed = 1 + max((i for i, f in enumerate(body) if always_placed(f, keep_empty)
+                          and not (f.optional and f.const is not None)), default=-1)
         first_extension = next((i for i, f in enumerate(body) if f.extension), len(body))
-        return TextPlaces(least=min(written, first_extension), written=written, total=len(body))
+        return TextPlaces(least=min(needed, first_extension), written=written, total=len(body))
 
     def check_alignment(self, name: str, placed: list[Field], framing: Framing, path: tuple) -> None:
         """Bits inside a byte are counted in the frame's bit order, so a field crossing
