@@ -54,8 +54,11 @@ class MessagesMixin(ResolverBase):
         keeps_places = False
         if framing.kind == "text":
             places = self.text_places(name, own, framing.keep_empty, path)
-            # a decoded line keeps its number of values as it keeps its numbers' text
-            keeps_places = places.varies and bool(m.get("keep_spelling", framing.keep_spelling)) and not framing.trim
+            body = [f for f in own if not f.prefix]
+            # a decoded line keeps its number of values as it keeps its numbers' text (constants,
+            # always written, need no keeping)
+            keeps_places = any(f.const is None for f in body[places.least:]) \
+                and bool(m.get("keep_spelling", framing.keep_spelling)) and not framing.trim
             clash = next((f for f in own if f.name == places_member()), None) if keeps_places else None
             if clash is not None:
                 self.report.error(clash.loc, f"message {name!r}: field {clash.name!r} has the name of the C member "

@@ -1186,7 +1186,7 @@ class CView:
             c(f"    places = (size_t){self.places(m)};")
             c("}")
             for n in range(places.least, len(leaves)):  # the line ends before an absent str
-                if leaves[n].field.kind == "str":
+                if leaves[n].field.kind == "str" and leaves[n].field.const is None:
                     c(f"if (!{self.has(leaves[n])} && places > {n}u) {{")
                     c(f"    places = {n}u;")
                     c("}")
