@@ -215,7 +215,7 @@ class Field:
     is_payload: bool = False
     bit_offset: Optional[int] = None  # from the start of the frame/record
     from_envelope: bool = False
-    extension: bool = False  # added in a later version: a frame may end before it (it then reads as 0)
+    extension: bool = False  # added in a later version: a frame may end before it (bytes: reads as 0; text: absent)
     count: Optional[int] = None  # an array of this many elements; `bits` is then the whole array's
     counted_by: Optional[str] = None  # an earlier field gives how many elements (count is then the most)
     count_unit: Optional[int] = None  # bytes one unit of the count stands for (None: an element)
@@ -230,6 +230,7 @@ class Field:
     keep_spelling: bool = False  # text number: the decoded message keeps its text, written back unchanged
     signature: Optional["Signature"] = None  # a trailer field holding a keyed hash of the frame
     prefix: bool = False  # text: written in the line's prefix, before the message's id (NMEA's talker)
+    keep_empty: Optional[bool] = None  # text, optional: its absent value keeps an empty place (None: the framing's)
 
     @property
     def fixed_spelling(self) -> bool:
@@ -410,6 +411,11 @@ def spelling_member(name: str) -> str:
 # The longest spelling of a number a decoded message keeps: the longest any writer emits
 # (a 64-bit integer, 20 characters; a text float, 22; a `width` of 20), with room to spare.
 SPELLING_MAX = 24
+
+
+def places_member() -> str:
+    """The C member of a message that keeps how many values its decoded line had."""
+    return "line_values"
 
 
 def count_member(name: str) -> str:
@@ -654,6 +660,22 @@ class Shortening:
 
 
 @dataclass(frozen=True)
+class TextPlaces:
+    """How many values a text line of a message carries (its body, the prefix field aside).
+    Values from `written` on are written only up to the last one present; values from
+    `least` on may be missing from a line altogether, and then read as absent."""
+
+    least: int  # the fewest values a reader takes: the line may end before any later one
+    written: int  # the values a writer always writes, absent ones as empty places (at least `least`)
+    total: int  # the values of a whole line
+
+    @property
+    def varies(self) -> bool:
+        """Whether lines of this message may carry different numbers of values."""
+        return self.least < self.total
+
+
+@dataclass(frozen=True)
 class Message:
     name: str
     loc: Loc
@@ -674,6 +696,8 @@ class Message:
     payload_bytes: Optional[int] = None  # fields placed by start_bit in a payload of this many bytes
     layout_type: Optional[str] = None  # the shared group type its fields come from
     shortening: Optional[Shortening] = None  # set when a frame may carry less than the whole payload
+    text_places: Optional[TextPlaces] = None  # text framing: how many values a line carries
+    keeps_places: bool = False  # text: a decoded message keeps how many values its line had, written back so
 
     @property
     def size(self) -> Optional[int]:

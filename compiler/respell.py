@@ -1,6 +1,7 @@
-"""A text line with its numbers spelled as receivers spell them: leading zeros,
-more or fewer decimals, a `+`; the line checksum made again. Readers take every
-such spelling (decode-only inputs of the conformance vectors)."""
+"""A text line as other receivers write it: its numbers spelled with leading zeros,
+more or fewer decimals, a `+`; or its later values left off, as an older writer
+does; the line checksum made again. Readers take every such line (decode-only
+inputs of the conformance vectors)."""
 from __future__ import annotations
 
 import random
@@ -32,6 +33,20 @@ def respelled(fr: Framing, m: Message, line: str, rng: random.Random) -> Optiona
     if fr.line_checksum:
         body += fr.line_checksum.suffix + format(line_sum(fr.line_checksum.algorithm, body), "02X")
     return fr.start + body + fr.terminator
+
+
+def with_values(fr: Framing, m: Message, line: str, n: int) -> str:
+    """`line` (as the encoder wrote it) ended after its first `n` values, as a writer that
+    leaves off the values after them writes it; the line checksum made again."""
+    tail = len(fr.terminator) + (len(fr.line_checksum.suffix) + 2 if fr.line_checksum else 0)
+    content = line[len(fr.start):len(line) - tail]
+    pf = m.prefix_field
+    head = (pf.length if pf is not None else 0) + len(m.ids[0]) + len(fr.prefix_separator)
+    values = content[head:].split(fr.separator, max(0, m.text_places.total - 1)) if content[head:] else []
+    content = content[:head] + fr.separator.join(values[:n])
+    if fr.line_checksum:
+        content += fr.line_checksum.suffix + format(line_sum(fr.line_checksum.algorithm, content), "02X")
+    return fr.start + content + fr.terminator
 
 
 def line_sum(algorithm: str, text: str) -> int:

@@ -207,7 +207,8 @@ class Driver:
             streams.append({"bytes": bytes.fromhex(s["hex"]), "events": events, "name": s["name"]})
         sequences = self.sequences(mine(vectors.get("sequences", [])))
         seq_wires = [c["wire"] for s in sequences for c in s["cases"]]
-        kept = any(leaf.field.keep_spelling for m in p.messages for leaf in m.wire.leaves)
+        kept = any(leaf.field.keep_spelling for m in p.messages for leaf in m.wire.leaves) \
+            or any(m.keeps_places for m in p.messages)
         wires = list(dict.fromkeys([c["wire"] for mm in messages for c in mm["cases"]]
                                    + [c["canon"] for mm in messages for c in mm["cases"]]
                                    + [c["kept"] for mm in messages for c in mm["cases"] if kept]

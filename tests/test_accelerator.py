@@ -266,3 +266,20 @@ def test_an_accelerator_elsewhere_on_sys_path_is_not_loaded(tmp_path):
     run = subprocess.run([sys.executable, "-c", script], cwd=tmp_path, env=env, capture_output=True, text=True)
     assert run.returncode == 0, run.stderr
     assert run.stdout.split()[:2] == ["None", "False"], run.stdout
+
+
+def test_text_lines_that_may_end_early_are_left_to_python(built):
+    """The accelerator serves no text framing: NMEA's RMC and VTG, whose lines end before their
+    extension fields or after them, are decoded by the Python module, with or without an
+    accelerator folder on its path, and read the 2.0 and the 2.3 sentence alike."""
+    folder, _ = built
+    schema = ROOT / "examples" / "nmea0183.yaml"
+    p = compile_schema(schema)
+    assert p.message("rmc").text_places.varies and not any(servable(p, m) for m in p.messages)
+    module_path = ROOT / "generated" / "examples" / "python" / "nmea0183.py"
+    fast = load(module_path, f"_accel_text_{folder.name}", folder)
+    pure = load(module_path, f"_accel_text_pure_{folder.name}", None)
+    assert not hasattr(fast, "ACCELERATOR")
+    for line in ("$GPRMC,123519,A,4807.038,N,01131.000,E,022.4,084.4,230394,003.1,W*6A\r\n",
+                 "$GPRMC,083559.00,A,4717.11437,N,00833.91522,E,0.004,77.52,091202,,,A*57\r\n"):
+        assert fast.decode(line).to_dict() == pure.decode(line).to_dict() and fast.encode(fast.decode(line)) == line

@@ -291,3 +291,17 @@ sequences:
     status, doc = run_json(capsys, schema, write(tmp_path, "bad.hex", b"4001 80020000\n"))
     assert status == 1 and doc["findings"][0]["rule"] == "syntax"
     assert doc["findings"][0]["allowed"] == "4 hex digits"
+
+
+def test_nmea_sentences_of_each_version_and_one_field_short(tmp_path, capsys):
+    """RMC of NMEA 0183 2.0 (gpsd's published sentence, 11 fields) and 2.3 (u-blox M8's, 12)
+    are valid; the 2.0 one without its last field (checksum by hand: XOR 0x11) is a count
+    finding naming how many fields a line may have."""
+    lines = ["$GPRMC,123519,A,4807.038,N,01131.000,E,022.4,084.4,230394,003.1,W*6A",
+             "$GPRMC,083559.00,A,4717.11437,N,00833.91522,E,0.004,77.52,091202,,,A*57",
+             "$GPRMC,123519,A,4807.038,N,01131.000,E,022.4,084.4,230394,003.1*11"]
+    log = write(tmp_path, "nmea.log", "".join(line + "\r\n" for line in lines))
+    status, doc = run_json(capsys, ROOT / "examples" / "nmea0183.yaml", log)
+    assert status == 1 and doc["summary"]["valid"] == 2
+    assert [(f["line"], f["rule"], f["actual"]) for f in doc["findings"]] == [(3, "count", 10)]
+    assert "11..13 fields" in run(capsys, ROOT / "examples" / "nmea0183.yaml", log)[1]

@@ -7,6 +7,7 @@ from the first bit of the word: c1 = 0, c2 = 1, c3 from 2.
 """
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 from codeword.build import compile_schema
@@ -399,3 +400,43 @@ def test_listing_talkers_narrows_and_a_field_leaving_the_prefix_breaks(tmp_path)
     assert changes(d, BREAKING) == {("field talker", "allowed values narrowed: now restricted")}
     d = diff_of(tmp_path, nmea, "    length: 2\n    prefix: true\n", "    max_length: 2\n")
     assert ("field talker", "no longer written in the prefix before the id") in changes(d, BREAKING)
+
+
+def test_text_extension_fields_and_keep_empty(tmp_path):
+    """NMEA's RMC mode: added as an extension field, or made one, it is compatible (lines of
+    the old schema still read); no longer one, lines without it are refused (breaking); a
+    keep_empty: false that lets writers end a line before what old readers need breaks."""
+    nmea = ROOT / "examples" / "nmea0183.yaml"
+    mode = "      - {name: mode, type: char, enum: faa_mode, optional: true, extension: true, rule: NMEA-D3}\n"
+    status = ("      - {name: nav_status, type: char, enum: nav_status, optional: true, extension: true, keep_empty: false,\n"
+              "         rule: NMEA-D3}\n")
+    text = nmea.read_text(encoding="utf-8")
+    assert mode in text and status in text
+    before = tmp_path / "before.yaml"
+    before.write_text(text.replace(mode + status, "").replace("mode: null, nav_status: null}", "}")
+                      .replace("mode: autonomous, nav_status: null}", "}"), encoding="utf-8")
+    without = tmp_path / "without.yaml"
+    examples = re.compile(r"(\n  rmc:\n.*?\n    examples:\n).*?\n(\n  vtg:)", re.S)
+    without.write_text(examples.sub(r"\1      []\n\2", before.read_text(encoding="utf-8")), encoding="utf-8")
+    d = compare(compile_schema(without), compile_schema(nmea))
+    assert ("field mode", "added as an extension field: a line may end before it, so the lines of the old "
+                          "schema still read") in changes(d, COMPATIBLE)
+    assert not any(s.startswith("field mode") or s.startswith("field nav_status") for s, _ in changes(d, BREAKING))
+    d = diff_of(tmp_path, nmea, mode, mode.replace(" extension: true,", ""))
+    assert ("field mode", "no longer an extension field") in changes(d, BREAKING)
+    assert ("message rmc", "readers now need at least 12 values in a line (took 11)") in changes(d, BREAKING)
+    d = diff_of(tmp_path, nmea, "extension: true, keep_empty: false,\n", "extension: true,\n")
+    assert ("message rmc", "writers now always write 13 values (wrote 12)") in changes(d, COMPATIBLE)
+    assert not d.breaking
+    d = diff_of(tmp_path, nmea, mode, mode.replace("extension: true", "extension: true, keep_empty: false"))
+    assert not d.breaking  # old readers take a line without the mode
+    assert ("message rmc", "writers now always write 11 values (wrote 12)") in changes(d, COMPATIBLE)
+    vtg = "      - {name: spd_over_grnd_kmph, type: tenths_padded, optional: true, unit: km/h}\n"
+    d = diff_of(tmp_path, nmea, vtg + "      - {name: spd_over_grnd_kmph_sym, type: char, enum: speed_kmh}\n"
+                "      - {name: faa_mode, type: char, enum: faa_mode, optional: true, extension: true, rule: NMEA-D3}\n",
+                vtg.replace("optional: true,", "optional: true, keep_empty: false,")
+                + "      - {name: spd_over_grnd_kmph_sym, type: char, enum: speed_kmh, optional: true, keep_empty: false}\n"
+                "      - {name: faa_mode, type: char, enum: faa_mode, optional: true, extension: true, keep_empty: false,"
+                " rule: NMEA-D3}\n")
+    assert ("message vtg", "writers now end a line after 6 values when the later ones are absent, and readers of "
+                           "the old schema need 8") in changes(d, BREAKING)

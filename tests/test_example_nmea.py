@@ -100,7 +100,8 @@ def test_values_agree_with_pynmea2(built, sentence):
     theirs = pynmea2.parse(sentence)
     message = next(m for m in compile_schema(SCHEMA).messages if m.name == type(ours).NAME)
     names = [leaf.field.name for leaf in body_leaves(message)]  # in line order
-    assert len(names) <= len(theirs.data)
+    assert message.text_places.least <= len(theirs.data) <= len(names)
+    assert all(getattr(ours, name) is None for name in names[len(theirs.data):])  # fields the sentence predates
     for name, text in zip(names, theirs.data):
         value = getattr(ours, name)
         if value is None or isinstance(value, (int, float)) and not hasattr(value, "_value_"):
@@ -405,3 +406,148 @@ CALLS
     talkers = [pynmea2.parse(s).talker for s in TALKER_SENTENCES]
     assert run_c(built / "c", driver) == [f"0 1 {t} 1" for t in talkers] + [
         "1", "1", TALKER_SENTENCES[1], "1"]  # pynmea2's checksum for GL
+
+
+def xor_line(body: str) -> str:
+    """The sentence of `body` with its checksum worked out here, character by character."""
+    acc = 0
+    for ch in body:
+        acc ^= ord(ch)
+    return f"${body}*{acc:02X}\r\n"
+
+
+# RMC and VTG as receivers of each NMEA 0183 version send them (NMEA-D3): 11 RMC fields before
+# 2.3, 12 from 2.3 (the mode), 13 from 4.1 (the navigational status); VTG 8, then 9.
+VERSIONED_SENTENCES = [
+    # gpsd's "NMEA 0183 revealed": 2.0
+    "$GPRMC,123519,A,4807.038,N,01131.000,E,022.4,084.4,230394,003.1,W*6A",
+    "$GPVTG,054.7,T,034.4,M,005.5,N,010.2,K*48",
+    # u-blox 8 / M8 Receiver Description, NMEA RMC and VTG examples: 2.3, mode A
+    "$GPRMC,083559.00,A,4717.11437,N,00833.91522,E,0.004,77.52,091202,,,A*57",
+    "$GPVTG,77.52,T,,M,0.004,N,0.008,K,A*06",
+    # the published RMC as a 2.3 receiver without a mode writes it, and as a 4.1 one
+    xor_line("GPRMC,123519,A,4807.038,N,01131.000,E,022.4,084.4,230394,003.1,W,").strip(),
+    xor_line("GNRMC,123519,A,4807.038,N,01131.000,E,022.4,084.4,230394,003.1,W,D,S").strip(),
+    xor_line("GPVTG,054.7,T,034.4,M,005.5,N,010.2,K,").strip(),
+]
+PYNMEA2_NAMES = {"mode_indicator": "mode", "faa_mode": "faa_mode", "nav_status": "nav_status"}
+
+
+@pytest.mark.parametrize("sentence", VERSIONED_SENTENCES)
+def test_each_versions_sentence_reads_as_pynmea2_reads_it_and_is_written_back(built, sentence):
+    """The fields a sentence has are pynmea2's (the mode and status by pynmea2's names); the
+    ones it predates are absent; the sentence is written back with as many fields, byte for
+    byte, its checksum the one pynmea2 verifies."""
+    mod = load(built / "python" / "nmea0183.py")
+    theirs = pynmea2.parse(sentence, check=True)
+    ours = mod.decode(sentence + "\r\n")
+    message = next(m for m in compile_schema(SCHEMA).messages if m.name == type(ours).NAME)
+    leaves = body_leaves(message)
+    for leaf, text in zip(leaves, theirs.data):
+        f, value = leaf.field, getattr(ours, leaf.field.name)
+        if f.kind in ("int", "uint") and f.enum is None:
+            assert value == (at_step(text, f.decimals or 0) if text else None), (f.name, value, text)
+        else:
+            assert wire(value) == text, (f.name, value, text)
+    for name, ours_name in PYNMEA2_NAMES.items():  # by name too: pynmea2 knows these fields
+        if hasattr(theirs, name) and ours_name in {leaf.field.name for leaf in leaves}:
+            assert wire(getattr(ours, ours_name)) == (getattr(theirs, name) or "")
+    assert all(getattr(ours, leaf.field.name) is None for leaf in leaves[len(theirs.data):])
+    assert mod.encode(ours) == sentence + "\r\n"
+
+
+def test_new_values_are_written_as_a_2_3_receiver_writes_them(built):
+    """Values given afresh: the mode keeps its empty place (a 2.3 receiver always writes it);
+    the navigational status is written only when there is one (keep_empty: false)."""
+    mod = load(built / "python" / "nmea0183.py")
+    old = mod.decode(VERSIONED_SENTENCES[0] + "\r\n")
+    fresh = mod.Rmc.from_dict(old.to_dict())  # values only: no kept spellings, no kept field count
+    body = "GPRMC,123519,A,4807.03800,N,01131.00000,E,022.4,084.4,230394,003.1,W,"
+    assert mod.encode(fresh) == xor_line(body)
+    fresh.mode = mod.FaaMode.differential
+    assert mod.encode(fresh) == xor_line(body + "D")
+    fresh.nav_status = mod.NavStatus.safe
+    assert mod.encode(fresh) == xor_line(body + "D,S")
+    fresh.mode = None  # the status is present, so the mode's place is written, empty
+    assert mod.encode(fresh) == xor_line(body + ",S")
+    assert pynmea2.parse(mod.encode(fresh).strip(), check=True).nav_status == "S"
+
+
+def test_a_decoded_sentence_keeps_its_field_count_while_its_values_fit(built):
+    """11 fields decoded, 11 written back; a mode given afterwards needs the 12th place."""
+    mod = load(built / "python" / "nmea0183.py")
+    ours = mod.decode(VERSIONED_SENTENCES[0] + "\r\n")
+    assert mod.encode(ours) == VERSIONED_SENTENCES[0] + "\r\n"
+    ours.mode = mod.FaaMode.autonomous
+    assert mod.encode(ours) == xor_line("GPRMC,123519,A,4807.038,N,01131.000,E,022.4,084.4,230394,003.1,W,A")
+    thirteen = mod.decode(VERSIONED_SENTENCES[5] + "\r\n")
+    thirteen.nav_status = None  # the kept 13th place is written empty
+    assert mod.encode(thirteen) == xor_line("GNRMC,123519,A,4807.038,N,01131.000,E,022.4,084.4,230394,003.1,W,D,")
+
+
+def test_lines_of_other_lengths_are_refused(built):
+    """Fewer fields than a 2.0 RMC, or more than a 4.1 one: a count error in Python and C."""
+    mod = load(built / "python" / "nmea0183.py")
+    short = xor_line("GPRMC,123519,A,4807.038,N,01131.000,E,022.4,084.4,230394,003.1")
+    long = xor_line("GPRMC,123519,A,4807.038,N,01131.000,E,022.4,084.4,230394,003.1,W,A,S,X")
+    for line in (short, long):
+        with pytest.raises(mod.DecodeError) as err:
+            mod.decode(line)
+        assert err.value.rule == "count"
+    driver = r"""
+#include <stdio.h>
+#include <string.h>
+#include "nmea0183.h"
+int main(void) {
+    static const char s[] = "SHORT", l[] = "LONG";
+    nmea0183_message_t m;
+    printf("%d %d\n", nmea0183_decode(s, sizeof s - 1, NMEA0183_DIR_ANY, &m) == CW_ERR_COUNT,
+           nmea0183_decode(l, sizeof l - 1, NMEA0183_DIR_ANY, &m) == CW_ERR_COUNT);
+    return 0;
+}
+""".replace("SHORT", short.replace("\r\n", "\\r\\n")).replace("LONG", long.replace("\r\n", "\\r\\n"))
+    assert run_c(built / "c", driver) == ["1 1"]
+
+
+def test_c_writes_each_versions_sentence_back_and_new_values_as_2_3(built):
+    """C: each sentence decoded and written back with as many fields; a struct filled afresh
+    (line_values 0) writes the mode's empty place and no status."""
+    calls = "\n".join(f'    round_trip("{s}\\r\\n");' for s in VERSIONED_SENTENCES)
+    driver = r"""
+#include <stdio.h>
+#include <string.h>
+#include "nmea0183.h"
+static void round_trip(const char *line) {
+    nmea0183_message_t m;
+    char buf[120];
+    int rc, n;
+    memset(&m, 0, sizeof m);
+    rc = nmea0183_decode(line, strlen(line), NMEA0183_DIR_ANY, &m);
+    n = nmea0183_encode(&m, buf, sizeof buf);
+    printf("%d %d\n", rc, n > 0 && (size_t)n == strlen(line) && memcmp(buf, line, (size_t)n) == 0);
+}
+int main(void) {
+    static const char old[] = "OLD\r\n";
+    nmea0183_rmc_t m;
+    char buf[120];
+    int n;
+CALLS
+    memset(&m, 0, sizeof m);
+    nmea0183_rmc_decode(old, sizeof old - 1, &m);
+    printf("%u\n", (unsigned)m.line_values);
+    m.has_mode = true;
+    m.mode = NMEA0183_FAA_MODE_AUTONOMOUS;
+    n = nmea0183_rmc_encode(&m, buf, sizeof buf);
+    printf("%.*s\n", n > 2 ? n - 2 : 0, buf);
+    m.has_mode = false;
+    m.line_values = 0u;  /* as a struct filled afresh */
+    memset(m.lat_spelling, 0, sizeof m.lat_spelling);
+    n = nmea0183_rmc_encode(&m, buf, sizeof buf);
+    printf("%.*s\n", n > 2 ? n - 2 : 0, buf);
+    return 0;
+}
+""".replace("CALLS", calls).replace("OLD", VERSIONED_SENTENCES[0])
+    assert run_c(built / "c", driver) == ["0 1"] * len(VERSIONED_SENTENCES) + [
+        "11",
+        xor_line("GPRMC,123519,A,4807.038,N,01131.000,E,022.4,084.4,230394,003.1,W,A").strip(),
+        xor_line("GPRMC,123519,A,4807.03800,N,01131.000,E,022.4,084.4,230394,003.1,W,").strip()]

@@ -195,12 +195,41 @@ def _message(a: Message, b: Message, out: _Collector, text: bool) -> None:
     recounted = _counts(a.layout, b.layout, out, a.name)
     _fields(_outside(placed_leaves(a.wire.leaves), recounted), _outside(placed_leaves(b.wire.leaves), recounted),
             out, a.name, text=text, growth=growth)
+    if text:
+        _places(a, b, out)
     _rules(a, b, out)
     if _text(a.title) != _text(b.title) or _text(a.doc) != _text(b.doc):
         out.add(DOCS, subject, "title or description changed")
     if [e.name for e in a.examples] != [e.name for e in b.examples] or \
             [(e.hex, e.text, e.values) for e in a.examples] != [(e.hex, e.text, e.values) for e in b.examples]:
         out.add(DOCS, subject, "examples changed")
+
+
+def _keep(value: Optional[bool]) -> str:
+    return "the framing's" if value is None else repr(value).lower()
+
+
+def _places(a: Message, b: Message, out: _Collector) -> None:
+    """How many values a text line carries: the fewest readers take, the most writers always
+    write. Readers that take fewer, or writers that write more, are compatible; lines the
+    other schema's readers refuse are not."""
+    pa, pb = a.text_places, b.text_places
+    subject = f"message {a.name}"
+    if pa is None or pb is None or pa.total != pb.total:  # fields added or removed: told field by field
+        return
+    if pb.least > pa.least:
+        out.add(BREAKING, subject, f"readers now need at least {pb.least} values in a line (took {pa.least})")
+    elif pb.least < pa.least:
+        out.add(COMPATIBLE, subject, f"readers now take a line of {pb.least} values or more (took {pa.least})")
+    if pb.written < pa.least:
+        out.add(BREAKING, subject, f"writers now end a line after {pb.written} values when the later ones are "
+                                   f"absent, and readers of the old schema need {pa.least}")
+    elif pb.written != pa.written:
+        out.add(COMPATIBLE, subject, f"writers now always write {pb.written} values (wrote {pa.written})")
+    if a.keeps_places != b.keeps_places:  # the same lines read and written; a decoded one writes back otherwise
+        out.add(COMPATIBLE, subject, "a decoded line is now written back with as many values as it had (C member "
+                                     "line_values)" if b.keeps_places else
+                "a decoded line is no longer written back with as many values as it had")
 
 
 def extension_growth(a: Message, b: Message) -> Optional[int]:
@@ -255,7 +284,10 @@ def _fields(before: dict[str, Placed], after: dict[str, Placed], out: _Collector
     last = max((p.index for p in after.values()), default=-1)
     for path, new in after.items():
         if path in before:
-            _field(before[path], new, out, message, growth)
+            _field(before[path], new, out, message, growth, text)
+        elif text and new.field.extension:
+            out.add(COMPATIBLE, f"field {path}", "added as an extension field: a line may end before it, "
+                                                 "so the lines of the old schema still read", message)
         elif text and new.field.optional and new.index == last:
             out.add(COMPATIBLE, f"field {path}", "added as an optional last field", message)
         elif growth is not None and new.field.extension:
@@ -268,7 +300,8 @@ def _width(f: Field) -> str:
     return f"{f.bits} bit{'s' if f.bits != 1 else ''}" if f.bits is not None else f.kind
 
 
-def _field(a: Placed, b: Placed, out: _Collector, message: str, growth: Optional[int] = None) -> None:
+def _field(a: Placed, b: Placed, out: _Collector, message: str, growth: Optional[int] = None,
+           text: bool = False) -> None:
     subject = f"field {b.path}"
     fa, fb = a.field, b.field
     if growth is not None:  # extensions added: what follows the payload moves, the length counts them
@@ -298,8 +331,12 @@ def _field(a: Placed, b: Placed, out: _Collector, message: str, growth: Optional
         add(BREAKING, f"carried when {old}, now {new}")
     if fa.to_end != fb.to_end:
         add(BREAKING, "now fills the rest of the payload" if fb.to_end else "no longer fills the rest of the payload")
-    if fa.extension != fb.extension:
-        add(BREAKING, "now an extension field" if fb.extension else "no longer an extension field")
+    if fa.extension != fb.extension:  # a text line may end before it: readers take more lines than before
+        add(COMPATIBLE if text and fb.extension else BREAKING,
+            "now an extension field" + (": a line may end before it" if text else "") if fb.extension
+            else "no longer an extension field")
+    if text and fa.keep_empty != fb.keep_empty:  # what it does to the line is told for the message
+        add(COMPATIBLE, f"keep_empty changed from {_keep(fa.keep_empty)} to {_keep(fb.keep_empty)}")
     if fa.optional != fb.optional:
         add(COMPATIBLE if fb.optional else BREAKING,
             "now optional" if fb.optional else "now required")

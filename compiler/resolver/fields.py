@@ -131,7 +131,7 @@ class FieldsMixin(ResolverBase):
             if "checksum" in f else None,
             fields=sub_fields, message=text(f.get("message")), rule=f.get("rule"),
             extension=bool(f.get("extension")), counted_by=counted_by, start_bit=f.get("start_bit"),
-            prefix=bool(f.get("prefix")),
+            prefix=bool(f.get("prefix")), keep_empty=f.get("keep_empty"),
             multiplexed_by=self.multiplex_of(f, path),
             count_unit=1 if counted_by is not None else None, present_if=self.condition_of(f, path, allow_payload))
         if field.by_direction:
@@ -371,6 +371,8 @@ class FieldsMixin(ResolverBase):
             self.check_fixed_spelling(f, path)
         if f.extension:
             self.check_extension(f, path)
+        if f.keep_empty is not None:
+            self.check_keep_empty(f, path)
         if f.prefix:
             self.check_prefix_field(f, path)
         if f.to_end and kind != "str" and self.framing_kind == "text":
@@ -448,18 +450,35 @@ class FieldsMixin(ResolverBase):
                                f"{f.length} uppercase letters A-Z", "list values such as GP, GN")
 
     def check_extension(self, f: Field, path: tuple) -> None:
-        """An extension field may be missing from a frame, and then reads as 0: it is a
-        plain value of a bytes frame's message."""
-        if self.framing_kind != "bytes":
-            self.error(path + ("extension",), f"field {f.name!r}: extension fields are for bytes framing",
+        """An extension field may be missing from a frame: in bytes framing it then reads as
+        0 and is a plain value; in text framing (a line that ends before it) it is absent,
+        so it must be optional."""
+        if self.framing_kind == "bits":
+            self.error(path + ("extension",), f"field {f.name!r}: extension fields are for bytes and text framing",
                        "drop `extension`")
         elif f.checksum or f.length_of or f.const is not None or f.reserved:
             self.error(path + ("extension",), f"field {f.name!r}: a checksum, length, const or reserved "
                                               "field cannot be an extension", "drop `extension`")
-        elif f.has_default and f.default not in (0, 0.0, False) and not isinstance(f.default, str):
+        elif self.framing_kind == "text" and not f.optional:
+            self.error(path + ("extension",), f"field {f.name!r}: an extension field of a text line must be "
+                                              "optional: a line that ends before it gives no value for it",
+                       "add `optional: true`")
+        elif self.framing_kind == "bytes" and f.has_default and f.default not in (0, 0.0, False) \
+                and not isinstance(f.default, str):
             self.error(path + ("default",), f"field {f.name!r}: an extension field missing from a frame "
                                             f"reads as 0, so its default must be 0, not {f.default!r}",
                        "drop the default, or make it 0")
+
+    def check_keep_empty(self, f: Field, path: tuple) -> None:
+        """A field's own keep_empty says what a writer does with its absent value at the end
+        of a line: only an optional value of a text line is ever absent."""
+        if self.framing_kind != "text":
+            self.error(path + ("keep_empty",), f"field {f.name!r}: keep_empty is for text framing "
+                                               "(a binary value always has its bits)", "drop `keep_empty`")
+        elif not f.optional or f.const is not None or f.prefix:
+            what = "constant" if f.const is not None else "prefix field" if f.prefix else "required value"
+            self.error(path + ("keep_empty",), f"field {f.name!r}: keep_empty on a {what}, which is always "
+                                               "written and so always has its place", "drop `keep_empty`")
 
     def check_fixed_spelling(self, f: Field, path: tuple) -> None:
         """`decimals` and `width` spell a text integer's raw value: 4807038 with decimals 3 is

@@ -4,9 +4,25 @@ from __future__ import annotations
 from dataclasses import replace
 from typing import Optional
 
-from ..model import Field, Framing, LineChecksum, TextForm
+from ..model import Field, Framing, LineChecksum, TextForm, TextPlaces
 from .trailer import TrailerMixin
 from .layout import key_read, leaves_of, whole_bytes
+
+def always_placed(f: Field, keep_empty: bool) -> bool:
+    """Whether a text value's place is written whatever it holds: a required value, a
+    constant, or an optional one that keeps its empty place (its own keep_empty, or the
+    framing's)."""
+    return not f.optional or f.const is not None or (keep_empty if f.keep_empty is None else f.keep_empty)
+
+
+def placed_why(f: Field, keep_empty: bool) -> str:
+    """Why `always_placed` holds for a field, in words."""
+    if f.const is not None:
+        return "is a constant, always written"
+    if not f.optional:
+        return "is required"
+    return "keeps its empty place (" + ("keep_empty: true" if f.keep_empty else "the framing's keep_empty") + ")"
+
 
 def is_number(f: Field) -> bool:
     """A text value whose number has several spellings (`8`, `08`, `8.0`, `+8`)."""
@@ -286,9 +302,18 @@ class FramingMixin(TrailerMixin):
 
     def check_text_fields(self, name: str, own: tuple[Field, ...], path: tuple, keep_empty: bool) -> None:
         optional_str = None  # an empty value is an empty str, so a str is absent only at the end
-        for i, f in enumerate(own):
-            if f.prefix:  # not in the body
-                continue
+        body = [f for f in own if not f.prefix]
+        last_placed = max((i for i, f in enumerate(body) if always_placed(f, keep_empty)), default=-1)
+        for n, f in enumerate(body):
+            i = own.index(f)
+            if f.keep_empty is False and n < last_placed:  # it could never be left out
+                later = body[last_placed]
+                self.error(path + ("fields", i, "keep_empty"),
+                           f"message {name!r}: field {f.name!r} leaves out its empty place (keep_empty: false), "
+                           f"but {later.name!r} after it {placed_why(later, keep_empty)}, so its place is "
+                           "always written", "drop keep_empty, or move the field after "
+                                             f"{later.name!r}" + (" and give that one keep_empty: false"
+                                                                  if later.optional and later.const is None else ""))
             if f.const is not None:  # written always; read as absent when empty, whatever its kind
                 if optional_str is not None:
                     self.error(path + ("fields", i), f"message {name!r}: constant {f.name!r}, which "
@@ -297,10 +322,18 @@ class FramingMixin(TrailerMixin):
                                "an empty value reads as an empty str, so only trailing str fields may be "
                                "optional; make the str required, or move the constant before it")
                 continue
-            if f.optional and f.kind == "str" and keep_empty:
-                self.error(path + ("fields", i, "optional"), f"message {name!r}: optional str {f.name!r} in a "
-                           "line that keeps empty values (keep_empty): an empty value reads as an empty str",
-                           "make it a required str (empty when there is nothing to say)")
+            keeps = keep_empty if f.keep_empty is None else f.keep_empty
+            if f.optional and f.kind == "str" and keeps:
+                if f.keep_empty:
+                    self.error(path + ("fields", i, "keep_empty"), f"message {name!r}: optional str {f.name!r} "
+                               "with keep_empty: true: an empty value reads as an empty str",
+                               "drop keep_empty (its place is then left out when it is absent), or make it "
+                               "a required str")
+                else:
+                    self.error(path + ("fields", i, "optional"), f"message {name!r}: optional str {f.name!r} in a "
+                               "line that keeps empty values (keep_empty): an empty value reads as an empty str",
+                               "make it a required str (empty when there is nothing to say), or give it "
+                               "keep_empty: false (its place is then left out when it is absent)")
             if f.optional and f.kind == "str":
                 optional_str = optional_str or f
             elif optional_str is not None and not f.optional:
@@ -308,11 +341,32 @@ class FramingMixin(TrailerMixin):
                                                  f"the optional str {optional_str.name!r}",
                            "an empty value reads as an empty str, so only trailing str fields may be "
                            "optional; make it a required str, or move it to the end")
+            elif optional_str is not None and keeps:
+                self.error(path + ("fields", i), f"message {name!r}: field {f.name!r}, which keeps its empty "
+                                                 f"place (keep_empty), follows the optional str "
+                                                 f"{optional_str.name!r}",
+                           "an empty value reads as an empty str, so the str's place must be one a line may "
+                           f"leave out; give {f.name!r} keep_empty: false, or move it before the str")
             if f.to_end and i != len(own) - 1:
                 self.error(path + ("fields", i), f"message {name!r}: to_end field {f.name!r} must be last")
             if f.kind in ("bytes", "group") or f.checksum or f.length_of:
                 self.error(path + ("fields", i), f"field {f.name!r}: {f.kind if f.kind in ('bytes', 'group') else 'checksum/length'} "
                                                  "is not supported in text framing")
+
+    def text_places(self, name: str, own: tuple[Field, ...], keep_empty: bool, path: tuple) -> TextPlaces:
+        """How many values a line of the message carries: writers write every value up to the
+        last one that always has its place (required, constant, or keeping its empty place),
+        and later ones up to the last present; readers take a line that ends after the last
+        value they need (those, but an optional constant), or before its first extension
+        field (an older writer's line)."""
+        self.check_extensions_last(name, own, path)
+        body = [f for f in own if not f.prefix]
+        written = 1 + max((i for i, f in enumerate(body) if always_placed(f, keep_empty)), default=-1)
+        # an optional constant is always written, but read empty or missing as well
+        needed = 1 + max((i for i, f in enumerate(body) if always_placed(f, keep_empty)
+                          and not (f.optional and f.const is not None)), default=-1)
+        first_extension = next((i for i, f in enumerate(body) if f.extension), len(body))
+        return TextPlaces(least=min(needed, first_extension), written=written, total=len(body))
 
     def check_alignment(self, name: str, placed: list[Field], framing: Framing, path: tuple) -> None:
         """Bits inside a byte are counted in the frame's bit order, so a field crossing

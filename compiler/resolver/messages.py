@@ -5,7 +5,7 @@ from typing import Optional
 
 from ..dispatch_pairs import candidate_pairs
 from ..text_prefix import common_prefix, pattern_of
-from ..model import Example, ExpectedError, Field, Framing, Message
+from ..model import Example, ExpectedError, Field, Framing, Message, places_member
 from .text import text
 from .base import ResolverBase
 from .layout import key_of, key_read, leaves_of, wire_of
@@ -50,8 +50,21 @@ class MessagesMixin(ResolverBase):
             values = dict((k, v[0]) for k, v in dispatch_key if len(v) == 1 and isinstance(v[0], int))
             read = key_read(leaves_of(framing.envelope), framing.byte_order, framing.wire_order)
             ids = (key_of(read, values),) if read and set(values) == set(read["places"]) else ()
-        bits = shortening = None
-        if framing.kind != "text":
+        bits = shortening = places = None
+        keeps_places = False
+        if framing.kind == "text":
+            places = self.text_places(name, own, framing.keep_empty, path)
+            body = [f for f in own if not f.prefix]
+            # a decoded line keeps its number of values as it keeps its numbers' text (constants,
+            # always written, need no keeping)
+            keeps_places = any(f.const is None for f in body[places.least:]) \
+                and bool(m.get("keep_spelling", framing.keep_spelling)) and not framing.trim
+            clash = next((f for f in own if f.name == places_member()), None) if keeps_places else None
+            if clash is not None:
+                self.report.error(clash.loc, f"message {name!r}: field {clash.name!r} has the name of the C member "
+                                             "that keeps how many values a decoded line had (keep_spelling)",
+                                  f"rename {clash.name!r}")
+        else:
             widths = [f.bits for f in layout if f.start_bit is None or not payload_bytes]
             bits = sum(widths) + 8 * (payload_bytes or 0) if all(w is not None for w in widths) else None
             self.check_size(name, m, layout, bits, framing, path)
@@ -72,7 +85,7 @@ class MessagesMixin(ResolverBase):
             answered_by=tuple(m.get("answered_by", [])), fields=own, layout=layout, bits=bits,
             rules=rules, examples=examples, dispatch_key=dispatch_key, crc_extra=crc_extra, wire=wire_of(layout, bits, framing.wire_order),
             payload_bytes=payload_bytes,
-            layout_type=layout_type, shortening=shortening)
+            layout_type=layout_type, shortening=shortening, text_places=places, keeps_places=keeps_places)
 
     def check_generated_members(self, name: str, fields: tuple[Field, ...]) -> None:
         """The C struct adds `has_<f>` beside an optional or one-hot field and `<f>_count`

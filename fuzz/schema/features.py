@@ -45,6 +45,7 @@ FULL = frozenset({
     "fixed_spelling",                       # text: integers with fixed decimals and zero padding
     "receiver_spelling",                    # text: fixed-point ranges ending in decimals; vectors respell numbers
     "keep_spelling",                        # text: decoded numbers keep their received text (framing or message)
+    "text_places",                          # text: extension fields a line may end before; a field's own keep_empty
     "talker",                               # text: a prefix field before some messages' ids (NMEA's talker)
     "text_const",                           # text: char, str and integer constants, some optional (unit letters)
     "machines",                             # a master and a slave machine over a command and its reply

@@ -764,6 +764,8 @@ class Generator:
         self.text_directions(messages)
         if "keep_spelling" in self.on:
             self.keep_spellings(framing, messages)
+        if "text_places" in self.on:
+            self.text_places(framing, messages)
         if "talker" in self.on:
             self.talkers(messages)
         return framing, messages
@@ -794,6 +796,40 @@ class Generator:
             if values:
                 field["values"] = values
             message["fields"].insert(0, field)
+
+    def text_places(self, framing: dict, messages: dict) -> None:
+        """Extension fields a line may end before (a later version's, as NMEA's RMC mode) and
+        optional fields with their own keep_empty, drawn from the end of the line back, so
+        that no place left out comes before one always written, nor an optional str before it."""
+        rng = random.Random(f"text_places {self.seed}")
+        if rng.random() < 0.3:
+            return
+        framing_keeps = bool(framing.get("keep_empty"))
+        for name, message in messages.items():
+            fields = message["fields"]
+            if rng.random() < 0.3 or any(f.get("to_end") for f in fields):
+                continue
+            added = [{"name": f"{name}_later_{i}", **rng.choice([{"type": "u8"}, {"type": "i16"}, {"type": "char"},
+                                                                  {"type": "str", "max_length": 4}]),
+                      "optional": True, "extension": True} for i in range(rng.randint(0, 2))]
+            fields += added
+            with_str = any(f["type"] == "str" and f.get("optional") and "const" not in f for f in fields[:len(fields) - len(added)])
+            placed_later = False  # a later field always has its place
+            for f in reversed(fields):
+                if not f.get("optional") or "const" in f:
+                    break
+                is_str = f["type"] == "str"
+                if is_str and placed_later and f in added:
+                    f.pop("max_length")
+                    f["type"] = "u8"
+                    is_str = False
+                choices = [None, False, True] if not placed_later else [None, True]
+                if is_str or with_str:  # an empty str reads as "": its place, and those after it, may be left out
+                    choices = [False] if framing_keeps else [None, False]
+                keep = rng.choice(choices)
+                if keep is not None:
+                    f["keep_empty"] = keep
+                placed_later = placed_later or (framing_keeps if keep is None else keep)
 
     def keep_spellings(self, framing: dict, messages: dict) -> None:
         """Numbers that keep the text they were read from: on the framing (which then does

@@ -956,7 +956,8 @@ def _encode_command(m: Command) -> str:
     else:
         t9 = None
     p: list[Any] = [_ENUM_move[r_move]._value_, str(r_speed), r_value, str(r_azimutloc), s_gpio1, s_gpio2, s_gpio3, s_gpio4, str(r_systemstatus), t9]
-    while p and p[-1] is None:  # absent values at the end are left out, separators and all
+    k = 9  # the values always written
+    while len(p) > k and p[-1] is None:  # absent values at the end are left out, separators and all
         p.pop()
     return '%:' + ','.join(p) + ';'
 

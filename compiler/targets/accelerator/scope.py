@@ -30,7 +30,7 @@ def runs_streams(p: Protocol) -> bool:
 
 def servable(p: Protocol, m: Message) -> bool:
     """Whether every value of the message is built in C exactly as Python builds it."""
-    if p.framing.kind == "text" or m.size is None:
+    if p.framing.kind == "text" or m.size is None:  # text lines (of any number of values) are Python's to split
         return False
     if m.shortening and m.shortening.gaps:  # values that may be absent
         return False

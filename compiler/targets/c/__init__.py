@@ -93,7 +93,7 @@ def message_views(v: CView) -> list[dict]:
                 functions.append(v.text_form_functions(m))
         out.append({"name": m.name, "tname": v.tname(m), "fn": f"{v.px}_{m.name}",
                     "kind": v.upper("MSG", m.name), "doc": comment(m.title or m.doc or m.name),
-                    "struct": v.struct_lines(m.layout), "functions": [f for f in functions if f],
+                    "struct": v.struct_lines(m.layout) + v.places_lines(m), "functions": [f for f in functions if f],
                     "units": v.unit_helpers(m)})
     return out
 

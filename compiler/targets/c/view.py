@@ -19,7 +19,7 @@ from typing import Any, Optional
 from ... import binary32, binary64
 from ...crc import reflect
 from ...model import (Checksum, CrcParams, Field, Leaf, Message, Multiplex, Protocol, count_member, dotted, field_at,
-                      presence_member, spelling_member, SPELLING_MAX)
+                      presence_member, spelling_member, places_member, SPELLING_MAX)
 from ..code import Code, times_over
 from ..escape import c_char as cchar, c_comment as comment, c_string as cstr
 from . import pack as cpack
@@ -176,6 +176,15 @@ class CView:
                 out.append(f"{pad}{unsigned_type(most.bit_length())} {count_member(f.name)};  "
                            f"/* {what} in use, 0..{most} */")
         return out
+
+    @staticmethod
+    def places_lines(m: Message) -> list[str]:
+        """The member that keeps how many values a decoded line had, when it may vary."""
+        if not m.keeps_places:
+            return []
+        tp = m.text_places
+        return [f"    uint16_t {places_member()};  /* values of the line it was decoded from ({tp.least}..{tp.total}; "
+                "0: none): written back with as many */"]
 
     def field_note(self, f: Field) -> str:
         parts = [comment(f.doc or f.title)] if (f.doc or f.title) else []
@@ -1162,13 +1171,25 @@ class CView:
         if pf is not None:  # written before the id
             self.fail_if(c, f"cw_text_len(m->{pf.name}, {pf.length + 1}u) != {pf.length}u", "length")
             self.prefix_check(c, pf, f"m->{pf.name}")
+        places = m.text_places
+        if m.keeps_places:
+            c(f"size_t places = {places.written}u;  /* the values written whatever they hold */")
         for leaf in leaves:
             self.text_check(c, leaf)
-        trailing = self.trailing_from(leaves)
-        for n in range(trailing, len(leaves) - 1):  # an absent str is left out, never written empty
+        for n in range(places.least, len(leaves) - 1):  # an absent str is left out, never written empty
             if leaves[n].field.kind == "str" and leaves[n].field.const is None:
                 later = self.any_written(leaves[n + 1:])
                 self.fail_if(c, f"!{self.has(leaves[n])} && ({later})", "count")
+        if m.keeps_places:  # as many values as the line it was decoded from, if it was
+            c(f"if ({'(size_t)' + self.places(m) + f' >= {places.least}u && ' if places.least else ''}"
+              f"(size_t){self.places(m)} <= {places.total}u) {{")
+            c(f"    places = (size_t){self.places(m)};")
+            c("}")
+            for n in range(places.least, len(leaves)):  # the line ends before an absent str
+                if leaves[n].field.kind == "str" and leaves[n].field.const is None:
+                    c(f"if (!{self.has(leaves[n])} && places > {n}u) {{")
+                    c(f"    places = {n}u;")
+                    c("}")
         head = fr.start + m.ids[0] + fr.prefix_separator
         lead_first = bool(leaves) and not leaves[0].field.optional and len(fr.prefix_separator) == 1
         if lead_first:
@@ -1190,10 +1211,16 @@ class CView:
                 text = (mark if led else "") + self.text_const(f)
                 c(f"cw_write_text(&w, {cstr(text)}, {len(text)}u);  /* const */")
                 continue
-            slot = (i < trailing or i < len(leaves) - 1) and f.optional and led  # absent: its separator alone
-            ends_run = f.optional and i >= trailing and slot and self.any_written(leaves[i:]) != "true"
-            if ends_run:  # at the end, only while a later value is present
-                c(f"if ({self.any_written(leaves[i:])}) {{")
+            slot = f.optional and led  # absent: its separator alone
+            if m.keeps_places and i >= places.least:
+                place = f"places > {i}u || {self.any_written(leaves[i:])}"
+            elif i >= places.written:
+                place = self.any_written(leaves[i:])
+            else:
+                place = "true"
+            ends_run = place not in ("true", self.has(leaf))  # the last value: written when present
+            if ends_run:  # at the end, only while a later value is present (or the kept line had it)
+                c(f"if ({place}) {{")
                 c.indent()
             if f.optional:
                 c(f"if ({self.has(leaf)}) {{")
@@ -1221,7 +1248,7 @@ class CView:
                 c("}")
             if f.optional:
                 c.dedent()
-                if slot:
+                if slot and place != self.has(leaf):  # else never absent here
                     c("} else {")
                     c(f"    cw_write_text(&w, {cstr(mark)}, {len(mark)}u);")
                 c("}")
@@ -1253,6 +1280,11 @@ class CView:
         if f.enum is not None:
             value = next(m.value for m in f.enum.members if f.const in (m.name, m.value))
         return str(int(value)) if isinstance(value, (int, float)) and not isinstance(value, bool) else str(value)
+
+    @staticmethod
+    def places(m: Message, obj: str = "m") -> str:
+        """The member keeping how many values a decoded line had."""
+        return f"{obj}->{places_member()}"
 
     def spelling(self, leaf: Leaf) -> str:
         """The member holding the text a kept-spelling number was read from."""
@@ -1347,7 +1379,7 @@ class CView:
         c = Code()
         leaves = self.body_leaves(m)
         total = len(leaves)
-        required = self.trailing_from(leaves)  # values up to the last required one
+        required = m.text_places.least  # a line may end after this many values
         last_to_end = bool(leaves) and leaves[-1].field.to_end
         trim = str(fr.trim).lower()
         c(f"static inline int {self.fn(m, 'parse_body')}(const char *s, const char *end, {self.tname(m)} *m)")
@@ -1384,6 +1416,8 @@ class CView:
                 conds = ([f"count < {required}u"] if required > 1 else []) + ([] if last_to_end else [f"count > {total}u"])
                 if conds:
                     self.fail_if(c, " || ".join(conds), "count")
+            if m.keeps_places:  # written back with as many
+                c(f"{self.places(m)} = (uint16_t)count;")
         for i, leaf in enumerate(leaves):
             f = leaf.field
             t = self.member(leaf)
@@ -1553,13 +1587,6 @@ class CView:
             self.fail_if(c, f"const_rc == CW_ERR_RANGE || value != {self.literal_of(value, vtype)}", "const")
             c.dedent()
             c("}")
-
-    def trailing_from(self, leaves) -> int:
-        """Where the run of optional values at the end of a line starts (as Python's)."""
-        n = len(leaves)
-        while n and leaves[n - 1].field.optional and not self.fr.keep_empty:
-            n -= 1
-        return n
 
     def value_call(self, i: int, trim: str) -> str:
         if len(self.fr.separator) == 1:

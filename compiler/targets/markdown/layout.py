@@ -235,7 +235,7 @@ def meaning(f: Field, linker: DecisionLinker) -> str:
         by_lang.setdefault(lang, []).append(cell(text))
     for lang, texts in by_lang.items():
         parts.append(f"*{lang}:* " + " — ".join(texts))
-    if f.extension:
+    if f.extension and not f.optional:  # text extensions are told in the values column
         parts.append("*extension:* a frame may end before it; it then reads as 0")
     text = linker.link(" <br>".join(parts))
     if f.rule and f.rule not in linker.cited(text):
@@ -258,12 +258,9 @@ def text_line(p: Protocol, m: Message) -> str:
     fr = p.framing
     top = [s for s in slots(m) if not s.depth and not s.field.prefix]
     head = "".join(f"<{s.path}>" for s in slots(m) if s.field.prefix)  # NMEA's `<talker>GGA`
-    trailing = len(top)
-    while trailing and top[trailing - 1].field.optional and not fr.keep_empty:  # left out at the end of a line
-        trailing -= 1
     body = ""
     for i, s in enumerate(top):
-        if i >= trailing:
+        if i >= m.text_places.least:  # a line may end before it
             body += f"[{fr.separator}{s.path}]" if i else f"[{s.path}]"
         else:  # `[name]`: may be empty
             body += (fr.separator if i else "") + (f"[{s.path}]" if s.field.optional else s.path)
@@ -289,10 +286,25 @@ def field_rows(p: Protocol, m: Message, linker: DecisionLinker) -> list[dict]:
             "index": "prefix" if f.prefix else str(s.index) if s.depth == 0 else "",
             "position": position(p, s),
             "type": cell(type_text(p, f)), "range": range_text(p, f),
-            "unit": cell(f.unit or ""), "kinds": values_text(f), "default": cell(default_text(f)),
+            "unit": cell(f.unit or ""), "kinds": "; ".join(x for x in (values_text(f), place_text(p, m, s)) if x),
+            "default": cell(default_text(f)),
             "meaning": meaning(f, linker),
         })
     return rows
+
+
+def place_text(p: Protocol, m: Message, s: Slot) -> str:
+    """Text framing: for an extension field, or one with its own keep_empty, whether a line
+    may end before it and what a writer does with its absent value (the line's shape shows
+    the rest)."""
+    f, tp = s.field, m.text_places
+    if tp is None or s.depth or not (f.extension or f.keep_empty is not None):
+        return ""
+    n = s.index - 1  # its place in the body
+    said = ["may be missing: a line may end before it" + (" (an older writer's line)" if f.extension else "")
+            if n >= tp.least else ""]
+    said.append("absent: an empty place" if n < tp.written else "absent: left out at the end of a line")
+    return ", ".join(x for x in said if x)
 
 
 def payload_note(p: Protocol, m: Message) -> str:

@@ -132,6 +132,7 @@ class PythonView:
             out.append({
                 "name": name, "doc": doc, "message": message.name if is_message else None,
                 "spelling": is_message and any(f.keep_spelling for f in members),
+                "places": is_message and message.keeps_places,
                 "fields": [{"name": f.name, "annotation": self.annotation(f, message, path + (f.name,)),
                             "default": self.default_expr(f, message, path + (f.name,)),
                             "doc": self.field_comment(f)}
@@ -1314,7 +1315,8 @@ class MessageCode:
             self.prefix_check(c, "h", "_enc", "")
             head = "h + "
         outs: list[str] = []  # the text of each field, joined once at the end
-        trailing = self.trailing_from()
+        places = self.m.text_places
+        least = places.least
         if any(leaf.field.keep_spelling for leaf in self.text_leaves):
             c("sp = m._spelling or {}  # the text each number was read from, with the raw value it reads as")
         for n, leaf in enumerate(self.text_leaves):
@@ -1359,22 +1361,32 @@ class MessageCode:
                 c(f"t{n} = {out}")
                 c.dedent()
                 c("else:")
-                c(f"    t{n} = {'None' if n >= trailing else repr('')}")
+                c(f"    t{n} = {'None' if n >= least else repr('')}")
                 out = f"t{n}"
             outs.append(out)
-        if trailing < len(self.text_leaves):
+        if places.varies:
             c(f"p: list[Any] = [{', '.join(outs)}]")
-            c("while p and p[-1] is None:  # absent values at the end are left out, separators and all")
+            if self.m.keeps_places:  # as many values as the line it was decoded from, if it was
+                c(f"k = m._places if m._places is not None and {least} <= m._places <= {places.total} else {places.written}")
+            else:
+                c(f"k = {places.written}  # the values always written")
+            c("while len(p) > k and p[-1] is None:  # absent values at the end are left out, separators and all")
             c("    p.pop()")
-            for n in range(trailing, len(self.text_leaves) - 1):  # the last one, if kept, is present
+            last = places.total - 1
+            for n in range(least, places.total):
                 leaf = self.text_leaves[n]
+                if n == last and n >= places.written and not self.m.keeps_places:
+                    break  # the last value is in the line only when present
                 c(f"if len(p) > {n} and p[{n}] is None:")
-                if leaf.field.kind == "str":  # an empty value would read as an empty str
-                    c(f"    raise _enc({self.m.name!r}, {leaf.dotted!r}, None, 'count', 'present, as a later value is')")
-                else:
+                if leaf.field.kind != "str":
                     c(f"    p[{n}] = ''")
+                    continue
+                if n < last:  # an empty value would read as an empty str: the line ends before it
+                    c(f"    if any(x is not None for x in p[{n + 1}:]):")
+                    c(f"        raise _enc({self.m.name!r}, {leaf.dotted!r}, None, 'count', 'present, as a later value is')")
+                c(f"    del p[{n}:]")
         sep = repr(fr.separator)
-        values = f"{sep}.join(p)" if trailing < len(self.text_leaves) else f"{sep}.join(({''.join(x + ', ' for x in outs)}))"
+        values = f"{sep}.join(p)" if places.varies else f"{sep}.join(({''.join(x + ', ' for x in outs)}))"
         if fr.line_checksum:  # _line adds the start marker, the checksum and the terminator
             c(f"return _line({head}{self.m.ids[0] + fr.prefix_separator!r} + {values})")
         elif head:
@@ -1382,14 +1394,6 @@ class MessageCode:
         else:
             c(f"return {fr.start + self.m.ids[0] + fr.prefix_separator!r} + {values} + {fr.terminator!r}")
         return c.text()
-
-    def trailing_from(self) -> int:
-        """Where the run of optional values at the end of the line starts: those may be
-        left out, separators and all, when absent."""
-        n = len(self.text_leaves)
-        while n and self.text_leaves[n - 1].field.optional and not self.view.p.framing.keep_empty:
-            n -= 1
-        return n
 
     @property
     def prefix_var(self) -> str:
@@ -1402,7 +1406,7 @@ class MessageCode:
         which names the first bad token. Stricter than the checks it stands for, never looser."""
         sep = repr(re.escape(self.view.p.framing.separator))
         out, closing = [], ""
-        trailing = self.trailing_from()
+        least = self.m.text_places.least
         for n, leaf in enumerate(self.text_leaves):
             f = leaf.field
             if f.kind == "float":
@@ -1415,7 +1419,7 @@ class MessageCode:
                 tok = "_CHAR_RE"
             else:
                 tok = "_REST_RE" if f.to_end else "_TEXT_RE"
-            if f.optional and n >= trailing:
+            if n >= least:  # the line may end before it
                 out.append("'(?:'")
                 closing += ")?"
             if n:
@@ -1454,7 +1458,7 @@ class MessageCode:
             self.prefix_check(c, self.prefix_var, "_dec", f", {len(fr.start)}")
             values[(pf.name,)] = self.prefix_var
         total = len(self.text_leaves)
-        required = self.trailing_from()  # values up to the last required one
+        required = self.m.text_places.least  # a line may end after this many values
         last_to_end = bool(self.text_leaves) and self.text_leaves[-1].field.to_end
         if total == 0:
             c("t = []")
@@ -1523,6 +1527,8 @@ class MessageCode:
         self.construct(c, self.m.layout, (), values)
         if kept:
             c("o._spelling = sp")
+        if self.m.keeps_places:
+            c("o._places = len(t)  # written back with as many values")
         self.view.rule_checks(c, self.m, "o", "_dec")
         c("return o")
         return c.text()
@@ -1559,7 +1565,7 @@ def module_view(p: Protocol) -> dict:
         # frames sent otherwise than the layout describes them: encoders and decoders wrap the frame's own
         "wrapped": bool(p.framing.encoding or p.framing.stuffing),
         "decode_overloads": view.decode_signature(), "trailer": trailer_view(p),
-        "kept_spellings": any(f.keep_spelling for m in p.messages for f in m.layout),
+        "kept_spellings": any(f.keep_spelling for m in p.messages for f in m.layout) or any(m.keeps_places for m in p.messages),
     }
 
 
