@@ -6,11 +6,13 @@ rules (where each line starts, how long it is), and for NMEA which lines are
 sentences comes from pynmea2."""
 from __future__ import annotations
 
+import json
+
 import pynmea2  # the test extra (scripts/setup installs it)
 import pytest
 
 from conftest import ROOT
-from schema_in_a_test import load, render
+from schema_in_a_test import conformance_on_host_and_avr, load, render
 from stream_events import c_text_events, python_text_events
 
 TANK = (ROOT / "schemas" / "tank.yaml").read_text(encoding="utf-8")
@@ -123,3 +125,42 @@ def test_a_terminator_across_the_bound_ends_the_line_too_long(nmea):
     expected = [("error", "length", 0, bound), ("message", "vtg", bound + 1, len(SENTENCES[2]) + 2)]
     for events in every_reader(where, "nmea0183", mod, data):
         assert events == expected
+
+
+TWO_CHARACTER_TERMINATOR = """codeword: 1
+protocol: marks
+title: lines ended by two characters
+source: written for this test
+framing:
+  kind: text
+  prefix_separator: "="
+  separator: ","
+  terminator: "#!"
+  ignore_between: "\\r\\n"
+messages:
+  set:
+    id: "S"
+    fields:
+      - {name: a, type: u8}
+      - {name: b, type: i16}
+streams:
+  - name: lines with line breaks and a garbage line between
+    text: "\\r\\nS=1,-2#!\\r\\nQQ#!S=3,4#!"
+    events:
+      - {message: set, end: 10}   # S=1,-2#! from 2
+      - {error: prefix}           # QQ#! from 12: no `=`
+      - {message: set, end: 23}   # S=3,4#! from 16
+"""
+
+
+def test_the_schemas_streams_and_the_vectors_streams_run_in_c_on_the_host_and_on_avr(tmp_path):
+    """The hand-worked stream (checked by the build in Python) and the random ones of the
+    vectors, through the conformance driver's byte parser and scan, finish included."""
+    host, avr = conformance_on_host_and_avr(tmp_path, "marks", TWO_CHARACTER_TERMINATOR)
+    assert host > 0 and avr == host
+    vectors = json.loads((tmp_path / "out" / "vectors" / "marks.json").read_text(encoding="utf-8"))
+    worked = vectors["streams"][0]
+    assert [(e.get("message") or e["error"], e["at"], e["length"]) for e in worked["events"]] == \
+        [("set", 2, 8), ("prefix", 12, 4), ("set", 16, 7)]
+    assert any(e.get("error") == "length" for s in vectors["streams"] for e in s["events"])
+    assert any(e.get("error") == "syntax" for s in vectors["streams"] for e in s["events"])

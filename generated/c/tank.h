@@ -325,7 +325,7 @@ static inline int tank_telemetry_encode(const tank_telemetry_t *m, char *buf, si
 
 static inline int tank_telemetry_parse_body(const char *s, const char *end, tank_telemetry_t *m)
 {
-    const char *ends[20];  /* where each value ends: cw_value */
+    const char *ends[20] = {NULL};  /* where each value ends: cw_value (set: avr-gcc cannot tell cw_split_values sets them) */
     cw_span_t v = {NULL, NULL};  /* read only where a value was found; compilers cannot always tell */
     int rc;
     size_t count = cw_split_values(s, end, ',', ends, 20u, false);
@@ -585,7 +585,7 @@ static inline int tank_command_encode(const tank_command_t *m, char *buf, size_t
 
 static inline int tank_command_parse_body(const char *s, const char *end, tank_command_t *m)
 {
-    const char *ends[10];  /* where each value ends: cw_value */
+    const char *ends[10] = {NULL};  /* where each value ends: cw_value (set: avr-gcc cannot tell cw_split_values sets them) */
     cw_span_t v = {NULL, NULL};  /* read only where a value was found; compilers cannot always tell */
     int rc;
     size_t count = cw_split_values(s, end, ',', ends, 10u, false);
@@ -722,7 +722,7 @@ static inline int tank_payload_command_encode(const tank_payload_command_t *m, c
 
 static inline int tank_payload_command_parse_body(const char *s, const char *end, tank_payload_command_t *m)
 {
-    const char *ends[1];  /* where each value ends: cw_value */
+    const char *ends[1] = {NULL};  /* where each value ends: cw_value (set: avr-gcc cannot tell cw_split_values sets them) */
     cw_span_t v = {NULL, NULL};  /* read only where a value was found; compilers cannot always tell */
     ends[0] = end;  /* the one value runs to the end */
     /* command */
@@ -771,7 +771,7 @@ static inline int tank_payload_reply_encode(const tank_payload_reply_t *m, char 
 
 static inline int tank_payload_reply_parse_body(const char *s, const char *end, tank_payload_reply_t *m)
 {
-    const char *ends[1];  /* where each value ends: cw_value */
+    const char *ends[1] = {NULL};  /* where each value ends: cw_value (set: avr-gcc cannot tell cw_split_values sets them) */
     cw_span_t v = {NULL, NULL};  /* read only where a value was found; compilers cannot always tell */
     ends[0] = end;  /* the one value runs to the end */
     /* command */
@@ -827,7 +827,7 @@ static inline int tank_gpio_config_encode(const tank_gpio_config_t *m, char *buf
 
 static inline int tank_gpio_config_parse_body(const char *s, const char *end, tank_gpio_config_t *m)
 {
-    const char *ends[4];  /* where each value ends: cw_value */
+    const char *ends[4] = {NULL};  /* where each value ends: cw_value (set: avr-gcc cannot tell cw_split_values sets them) */
     cw_span_t v = {NULL, NULL};  /* read only where a value was found; compilers cannot always tell */
     int rc;
     size_t count = cw_split_values(s, end, ',', ends, 4u, false);

@@ -1361,7 +1361,7 @@ class CView:
             c.dedent()
             c("}")
             return c.text()
-        c(f"const char *ends[{total}];  /* where each value ends: cw_value */")
+        c(f"const char *ends[{total}] = {{NULL}};  /* where each value ends: cw_value (set: avr-gcc cannot tell cw_split_values sets them) */")
         c("cw_span_t v = {NULL, NULL};  /* read only where a value was found; compilers cannot always tell */")
         if all(x.field.const is not None for x in leaves) and not m.rules:
             c("(void)m;  /* no member: every value is a constant */")

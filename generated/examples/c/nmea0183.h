@@ -459,7 +459,7 @@ static inline int nmea0183_gga_encode(const nmea0183_gga_t *m, char *buf, size_t
 
 static inline int nmea0183_gga_parse_body(const char *s, const char *end, nmea0183_gga_t *m)
 {
-    const char *ends[14];  /* where each value ends: cw_value */
+    const char *ends[14] = {NULL};  /* where each value ends: cw_value (set: avr-gcc cannot tell cw_split_values sets them) */
     cw_span_t v = {NULL, NULL};  /* read only where a value was found; compilers cannot always tell */
     int rc;
     size_t count = cw_split_values(s, end, ',', ends, 14u, false);
@@ -1076,7 +1076,7 @@ static inline int nmea0183_rmc_encode(const nmea0183_rmc_t *m, char *buf, size_t
 
 static inline int nmea0183_rmc_parse_body(const char *s, const char *end, nmea0183_rmc_t *m)
 {
-    const char *ends[11];  /* where each value ends: cw_value */
+    const char *ends[11] = {NULL};  /* where each value ends: cw_value (set: avr-gcc cannot tell cw_split_values sets them) */
     cw_span_t v = {NULL, NULL};  /* read only where a value was found; compilers cannot always tell */
     int rc;
     size_t count = cw_split_values(s, end, ',', ends, 11u, false);
@@ -1532,7 +1532,7 @@ static inline int nmea0183_vtg_encode(const nmea0183_vtg_t *m, char *buf, size_t
 
 static inline int nmea0183_vtg_parse_body(const char *s, const char *end, nmea0183_vtg_t *m)
 {
-    const char *ends[8];  /* where each value ends: cw_value */
+    const char *ends[8] = {NULL};  /* where each value ends: cw_value (set: avr-gcc cannot tell cw_split_values sets them) */
     cw_span_t v = {NULL, NULL};  /* read only where a value was found; compilers cannot always tell */
     int rc;
     size_t count = cw_split_values(s, end, ',', ends, 8u, false);
