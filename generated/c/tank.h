@@ -967,8 +967,8 @@ static inline int tank_decode(const char *text, size_t len, int direction, tank_
  * buffer (a DMA block, a file read into memory): nothing is copied.
  * tank_parser_feed/tank_parser_next take one character at a time (from
  * an ISR queue) into a buffer of one longest line and run the same scan over it.
- * Exactly as the Python StreamDecoder: '\r', '\n' between lines
- * are skipped; a line runs to its terminator and is decoded whole (a bad
+ * Exactly as the Python StreamDecoder: '\r', '\n' between lines are skipped;
+ * a line runs to its terminator and is decoded whole (a bad
  * one is an error, and the next line is read after it); a line that reaches
  * TANK_STREAM_MAX characters without its terminator is a CW_ERR_LENGTH
  * error and the rest of it is dropped, through its terminator; at the end of

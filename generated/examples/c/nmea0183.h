@@ -1824,8 +1824,8 @@ static inline int nmea0183_decode(const char *text, size_t len, int direction, n
  * buffer (a DMA block, a file read into memory): nothing is copied.
  * nmea0183_parser_feed/nmea0183_parser_next take one character at a time (from
  * an ISR queue) into a buffer of one longest line and run the same scan over it.
- * Exactly as the Python StreamDecoder: nothing between lines
- * is skipped; a line runs to its terminator and is decoded whole (a bad
+ * Exactly as the Python StreamDecoder: nothing between lines is skipped;
+ * a line runs to its terminator and is decoded whole (a bad
  * one is an error, and the next line is read after it); a line that reaches
  * NMEA0183_STREAM_MAX characters without its terminator is a CW_ERR_LENGTH
  * error and the rest of it is dropped, through its terminator; at the end of
