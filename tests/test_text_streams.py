@@ -164,3 +164,16 @@ def test_the_schemas_streams_and_the_vectors_streams_run_in_c_on_the_host_and_on
         [("set", 2, 8), ("prefix", 12, 4), ("set", 16, 7)]
     assert any(e.get("error") == "length" for s in vectors["streams"] for e in s["events"])
     assert any(e.get("error") == "syntax" for s in vectors["streams"] for e in s["events"])
+
+
+@pytest.mark.parametrize("schema", ["schemas/tank.yaml", "examples/nmea0183.yaml"])
+def test_the_bound_holds_every_line_an_encoder_writes(schema):
+    """The readers' bound is at least the C encoder's longest line (its MAX_TEXT less the NUL),
+    and Python's StreamDecoder and the C header state the same number."""
+    from codeword.build import compile_schema, render_protocol
+    from codeword.targets.c.view import CView
+    p = compile_schema(ROOT / schema)
+    files = render_protocol(p)
+    assert max(CView(p).max_text(m) for m in p.messages) <= p.framing.line_max
+    assert f"MAX_MESSAGE = {p.framing.line_max}  #" in files[f"python/{p.name}.py"]
+    assert f"#define {p.name.upper()}_STREAM_MAX {p.framing.line_max}u" in files[f"c/{p.name}.h"]
