@@ -177,3 +177,18 @@ def test_the_bound_holds_every_line_an_encoder_writes(schema):
     assert max(CView(p).max_text(m) for m in p.messages) <= p.framing.line_max
     assert f"MAX_MESSAGE = {p.framing.line_max}  #" in files[f"python/{p.name}.py"]
     assert f"#define {p.name.upper()}_STREAM_MAX {p.framing.line_max}u" in files[f"c/{p.name}.h"]
+
+
+def test_a_line_whose_value_is_too_long_is_a_line_read_whole(nmea):
+    """A `length` error of the decoder (a latitude spelt in 30 characters, at most 24 kept)
+    is no line too long for the stream: the line is consumed whole, through its CR LF."""
+    where, mod = nmea
+    body = "GPGGA,123519,4807.0380000000000000000000000,N,01131.000,E,1,08,0.9,545.4,M,46.9,M,,"
+    checksum = 0
+    for ch in body:
+        checksum ^= ord(ch)
+    line = f"${body}*{checksum:02X}\r\n"
+    data = (line + SENTENCES[2] + "\r\n").encode()
+    expected = [("error", "length", 0, len(line)), ("message", "vtg", len(line), len(SENTENCES[2]) + 2)]
+    for events in every_reader(where, "nmea0183", mod, data):
+        assert events == expected

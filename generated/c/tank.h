@@ -1058,7 +1058,7 @@ static inline int tank_scan(tank_scan_state_t *s, const char *buf, size_t len, s
         s->at = s->consumed + (uint32_t)pos;
         s->length = (uint32_t)end;
         /* a line too long keeps what may begin its terminator */
-        pos += rc == CW_ERR_LENGTH ? end - 0u : end;
+        pos += s->dropping ? end - 0u : end;
     }
     *used = pos;
     s->consumed += (uint32_t)pos;

@@ -1916,7 +1916,7 @@ static inline int nmea0183_scan(nmea0183_scan_state_t *s, const char *buf, size_
         s->at = s->consumed + (uint32_t)pos;
         s->length = (uint32_t)end;
         /* a line too long keeps what may begin its terminator */
-        pos += rc == CW_ERR_LENGTH ? end - 1u : end;
+        pos += s->dropping ? end - 1u : end;
     }
     *used = pos;
     s->consumed += (uint32_t)pos;
