@@ -26,7 +26,7 @@ DOC_ONLY = frozenset({
     "file", "sha256", "loc", "delivery", "streams",
 })
 # Model attributes computed from others: hashing them again adds nothing.
-DERIVED = frozenset({"wire", "text_places"})
+DERIVED = frozenset({"wire", "text_places", "line_max"})
 
 
 @lru_cache(maxsize=None)

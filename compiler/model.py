@@ -856,6 +856,7 @@ class Framing:
     keep_spelling: bool = False  # text: decoded numbers keep the text they were read from (each message may say otherwise)
     start: str = ""  # text: a marker every line starts with, before the prefix (NMEA's `$`)
     line_checksum: Optional[LineChecksum] = None  # text: `<suffix><hh>` before the terminator
+    line_max: int = 0  # text: the longest line a stream reader holds (resolver/line_bound.py)
     truncate: Optional[str] = None  # bytes: "trailing_zeros", senders drop the payload's trailing zeros
     trailer: Optional[Trailer] = None  # bytes: fields after the frame that a flag puts in
 

@@ -74,6 +74,7 @@ C_SUFFIXES = {
 C_PROTOCOL = ("encode", "decode", "decode_kind", "decode_text", "decode_word", "find", "split",
               "message_t", "parser_t", "parser_init", "parser_feed", "parser_drop", "parser_next",
               "scan", "scan_state_t", "scan_start", "scan_byte", "scan_restart", "scan_fail", "frame_at",
+              "scan_finish", "parser_finish", "ignored", "line_end",
               "machine_out_t", "machine_out_clear")
 
 

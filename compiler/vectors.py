@@ -37,6 +37,7 @@ from . import vector_multiplex
 from .respell import respelled, with_values
 from .targets.wire import ENCODINGS, encoding_facts
 from .vector_sequences import sequence_vectors
+from .vector_text_streams import text_stream_vectors
 
 FORMAT = "codeword-vectors/1"
 RANDOM_PER_MESSAGE = 200
@@ -436,6 +437,7 @@ class Generator:
             head["signing_key"] = self.key.hex()
         out.write("{\n" + "".join(f" {jsontext.dumps(k)}: {jsontext.dumps(v, 1)},\n" for k, v in head.items()))
         frames: list[bytes] = []
+        lines: list[str] = []
         pool: list[dict] = []
         # every valid case comes before the first invalid one: those wait in `later`
         with tempfile.SpooledTemporaryFile(SPOOL_BYTES, "w+", encoding="utf-8", newline="") as later:
@@ -448,6 +450,8 @@ class Generator:
                     if "canonical" not in case:
                         if "hex" in case and p.framing.kind == "bytes":
                             frames.append(bytes.fromhex(case["hex"]))
+                        if "text" in case and p.framing.kind == "text":
+                            lines.append(case["text"])
                         if p.sequences:
                             pool.append({"message": case["message"], "values": case["values"]})
                 for case in invalid:
@@ -459,6 +463,9 @@ class Generator:
             shutil.copyfileobj(later, out)
         if p.framing.kind == "bytes":
             out.write(',\n "streams": ' + jsontext.dumps(self.streams(frames), 1))
+        if p.framing.kind == "text":
+            streams = text_stream_vectors(p, self.mod, random.Random(f"text streams {p.name}"), lines, plain)
+            out.write(',\n "streams": ' + jsontext.dumps(streams, 1))
         if p.sequences:
             sequences = sequence_vectors(p, self.mod, self.rng, pool, plain)
             out.write(',\n "sequences": ' + jsontext.dumps(sequences, 1))

@@ -197,14 +197,16 @@ class Driver:
         for s in mine(vectors.get("streams", [])):  # spread over the parts, as the frames are
             events = []
             for e in s["events"]:
+                span = {"at": e.get("at", 0), "length": e.get("length", 0)}  # text: where its line lies
                 if "error" in e:
-                    events.append({"error": e["error"]})
+                    events.append({"error": e["error"], **span})
                 else:
                     m = p.message(e["message"])
                     events.append({"kind": self.v.upper("MSG", m.name), "name": m.name,
                                    "expected": self.init(m.layout, e["values"]),
-                                   "trailer": self.init(trailer, e["values"])})
-            streams.append({"bytes": bytes.fromhex(s["hex"]), "events": events, "name": s["name"]})
+                                   "trailer": self.init(trailer, e["values"]), **span})
+            data = s["text"].encode("latin-1") if "text" in s else bytes.fromhex(s["hex"])
+            streams.append({"bytes": data, "events": events, "name": s["name"]})
         sequences = self.sequences(mine(vectors.get("sequences", [])))
         seq_wires = [c["wire"] for s in sequences for c in s["cases"]]
         kept = any(leaf.field.keep_spelling for m in p.messages for leaf in m.wire.leaves) \

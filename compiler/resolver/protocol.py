@@ -7,6 +7,7 @@ collected with its file:line:col and a hint.
 from __future__ import annotations
 
 import hashlib
+from dataclasses import replace
 
 from ..diagnostics import SchemaError
 from ..loader import Document
@@ -14,6 +15,7 @@ from ..model import Direction, HistoryEntry, Machine, Message, Note, Parameter, 
 from ..name_clashes import generated_name_clashes
 from ..names import protocol_name_problem
 from .machines import MachineResolver
+from .line_bound import line_max
 from .text import text
 from ..validate import structure_errors
 from .types import TypesMixin
@@ -74,6 +76,8 @@ class Resolver(TypesMixin, FieldsMixin, ChecksumsMixin, FramingMixin, PlacementM
         messages = tuple(self.resolve_message(n, m, framing) for n, m in d["messages"].items())
         self.check_messages(messages, d)
         framing = self.resolve_stuffing(d["framing"], framing, messages)
+        if framing.kind == "text":
+            framing = replace(framing, line_max=line_max(framing, messages))
         sequences = tuple(self.resolve_sequence(n, s, messages)
                           for n, s in d.get("sequences", {}).items())
         self.machine_packets_checked: set[str] = set()  # messages whose packer field names are checked

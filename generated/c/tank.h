@@ -963,6 +963,175 @@ static inline int tank_decode(const char *text, size_t len, int direction, tank_
     return cw_text_verdict(text, len, rc);
 }
 
+/* Streams. tank_scan decodes lines in place, straight from the caller's
+ * buffer (a DMA block, a file read into memory): nothing is copied.
+ * tank_parser_feed/tank_parser_next take one character at a time (from
+ * an ISR queue) into a buffer of one longest line and run the same scan over it.
+ * Exactly as the Python StreamDecoder: '\r', '\n' between lines are skipped;
+ * a line runs to its terminator and is decoded whole (a bad
+ * one is an error, and the next line is read after it); a line that reaches
+ * TANK_STREAM_MAX characters without its terminator is a CW_ERR_LENGTH
+ * error and the rest of it is dropped, through its terminator; at the end of
+ * the stream, tank_scan_finish/tank_parser_finish report an unterminated
+ * line left over (CW_ERR_SYNTAX). After each message or error, the state's `at`
+ * and `length` say where its line lies in the stream. */
+#define TANK_STREAM_MAX 496u  /* the longest line a message can have, its terminator included */
+
+/* A character skipped between lines. */
+static inline bool tank_ignored(char c)
+{
+    return c == '\x0d' || c == '\x0a';
+}
+
+/* Just past the first terminator wholly in buf[0..len) that starts at `from`
+ * or after, or 0: none. */
+static inline size_t tank_line_end(const char *buf, size_t len, size_t from)
+{
+    size_t i;
+    for (i = from; i + 1u <= len; i++) {
+        if (memcmp(buf + i, ";", 1u) == 0) {
+            return i + 1u;
+        }
+    }
+    return 0;
+}
+
+typedef struct {
+    int direction;
+    uint32_t consumed;  /* characters consumed so far (modulo 2^32): where the next scan's buf[0] lies */
+    uint32_t at;        /* where the line of the last message or error starts in the stream */
+    uint32_t length;    /* its characters */
+    size_t searched;    /* characters of the line at buf[0] searched for its terminator by the last scan */
+    bool dropping;      /* in a line too long: dropping it through its terminator */
+} tank_scan_state_t;
+
+static inline void tank_scan_start(tank_scan_state_t *s, int direction)
+{
+    s->direction = direction;
+    s->consumed = 0;
+    s->at = 0;
+    s->length = 0;
+    s->searched = 0;
+    s->dropping = false;
+}
+
+/* Decodes the next line in buf[0..len) where it lies. 1: a message in *out;
+ * 0: no whole line, and buf[*used..len) may begin one: pass those characters
+ * again with more after them (fewer than TANK_STREAM_MAX are left);
+ * negative: a bad line, or one too long, was dropped (the error says why). In
+ * every case *used characters are consumed: call again from buf + *used. */
+static inline int tank_scan(tank_scan_state_t *s, const char *buf, size_t len, size_t *used,
+                                tank_message_t *out)
+{
+    size_t pos = 0;
+    size_t end;
+    int rc = 0;
+    if (s->dropping) {
+        end = tank_line_end(buf, len, 0u);
+        if (end == 0u) {  /* the terminator's first characters may end buf: they are kept */
+            pos = len > 0u ? len - 0u : 0u;
+            *used = pos;
+            s->consumed += (uint32_t)pos;
+            return 0;
+        }
+        pos = end;
+        s->dropping = false;
+    }
+    while (pos < len && tank_ignored(buf[pos])) {
+        pos++;
+    }
+    /* a line passed again: its terminator can only end among the characters after it */
+    end = tank_line_end(buf + pos, len - pos < TANK_STREAM_MAX ? len - pos : TANK_STREAM_MAX,
+                            pos == 0u && s->searched > 0u ? s->searched - 0u : 0u);
+    s->searched = 0;
+    if (end != 0u) {
+        rc = tank_decode(buf + pos, end, s->direction, out);
+        rc = rc < 0 ? rc : 1;
+    } else if (len - pos >= TANK_STREAM_MAX) {  /* no room left for its terminator */
+        end = TANK_STREAM_MAX;
+        rc = CW_ERR_LENGTH;
+        s->dropping = true;
+    }
+    if (rc == 0) {
+        s->searched = len - pos;
+    } else {
+        s->at = s->consumed + (uint32_t)pos;
+        s->length = (uint32_t)end;
+        /* a line too long keeps what may begin its terminator */
+        pos += s->dropping ? end - 0u : end;
+    }
+    *used = pos;
+    s->consumed += (uint32_t)pos;
+    return rc;
+}
+
+/* The end of the stream: buf[0..len) is what tank_scan left. CW_ERR_SYNTAX
+ * when it holds an unterminated line (its place in s->at and s->length), 0
+ * when it holds nothing but '\r', '\n', ' ', '\t', or the rest of a line too long. */
+static inline int tank_scan_finish(tank_scan_state_t *s, const char *buf, size_t len)
+{
+    size_t lead = 0;
+    bool dropping = s->dropping;
+    while (lead < len && (tank_ignored(buf[lead]) || buf[lead] == ' ' || buf[lead] == '\t')) {
+        lead++;
+    }
+    s->dropping = false;
+    s->searched = 0;
+    s->consumed += (uint32_t)len;
+    if (lead == len || dropping) {
+        return 0;
+    }
+    s->at = s->consumed - (uint32_t)(len - lead);
+    s->length = (uint32_t)(len - lead);
+    return CW_ERR_SYNTAX;
+}
+
+/* Character-at-a-time: feed one, then call tank_parser_next until it
+ * returns 0; tank_parser_finish at the end of the stream. Memory: one
+ * longest line (496 characters). */
+typedef struct {
+    char buf[496];
+    uint16_t len;
+    tank_scan_state_t scan;  /* scan.at, scan.length: where the last item's line lies */
+} tank_parser_t;
+
+static inline void tank_parser_init(tank_parser_t *p, int direction)
+{
+    p->len = 0;
+    tank_scan_start(&p->scan, direction);
+}
+
+/* CW_ERR_CAPACITY if tank_parser_next was not drained before. */
+static inline int tank_parser_feed(tank_parser_t *p, char c)
+{
+    if (p->len >= sizeof p->buf) {
+        return CW_ERR_CAPACITY;
+    }
+    p->buf[p->len++] = c;
+    return CW_OK;
+}
+
+/* 1: a message in *out; 0: more characters needed; negative: a bad line or one
+ * too long was dropped (the error says why); call again. */
+static inline int tank_parser_next(tank_parser_t *p, tank_message_t *out)
+{
+    size_t used;
+    int rc = tank_scan(&p->scan, p->buf, p->len, &used, out);
+    if (used != 0u && used < p->len) {  /* 0: nothing to drop, p->len: nothing left to move */
+        memmove(p->buf, p->buf + used, (size_t)p->len - used);
+    }
+    p->len = (uint16_t)(p->len - used);
+    return rc;
+}
+
+/* The end of the stream: CW_ERR_SYNTAX for an unterminated line left over, else 0. */
+static inline int tank_parser_finish(tank_parser_t *p)
+{
+    int rc = tank_scan_finish(&p->scan, p->buf, p->len);
+    p->len = 0;
+    return rc;
+}
+
 #ifdef __cplusplus
 }
 #endif

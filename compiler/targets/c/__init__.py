@@ -6,6 +6,7 @@ from ...model import Protocol
 from .machines import machines_view
 from .sequences import sequences_view
 from .stuffing import stuffing_view
+from .text_stream import text_stream_view
 from .trailer import trailer_view
 from .view import CView, cchar, clit, comment, cstr
 from .wordform import word_type
@@ -141,6 +142,6 @@ def render(p: Protocol) -> dict[str, str]:
         terminator=cchar(fr.terminator) if v.text and v.line["simple"] else "",
         prefix_separator=cchar(fr.prefix_separator) if v.text and v.line["simple"] else "",
         text_ascii=v.text and v.text_ascii(), line=line_view(v),
-        machines=machines_view(p), sequences=sequences_view(v))
+        machines=machines_view(p), sequences=sequences_view(v), text_stream=text_stream_view(p))
     runtime = env.get_template("c/codeword.h.j2").render()
     return {f"c/{p.name}.h": tidy(header, max_blank=1), "c/codeword.h": runtime}

@@ -214,6 +214,14 @@ def framing_view(p: Protocol, linker: DecisionLinker) -> dict:
             lines.append("A message ends at " + code(shown(fr.terminator)) + "; "
                          + "/".join(names.get(ch, ch) for ch in fr.ignore_between)
                          + " between messages is ignored, so a stream resynchronises at the next terminator.")
+        lines.append("**Stream resynchronisation.** A stream decoder (Python's `StreamDecoder`, C's "
+                     f"`{p.name}_scan` and `{p.name}_parser_feed`/`{p.name}_parser_next`) reads a line up to "
+                     f"{code(shown(fr.terminator))} and decodes it whole; after a bad line it reports the error "
+                     f"and reads the next. A line that reaches {fr.line_max} characters (the longest a message "
+                     f"can have, each number in at most {SPELLING_MAX} characters) without its terminator is a "
+                     "`length` error, and the rest of it is dropped through its terminator; at the end of the "
+                     f"stream (`finish()`, `{p.name}_scan_finish`, `{p.name}_parser_finish`) an unterminated "
+                     f"line is a `syntax` error. It holds at most one longest line ({fr.line_max} characters).")
         if fr.float_format == "shortest":
             lines.append("Decimal numbers are written in the shortest form that reads back to the same value "
                          "(1.0 is written `1`).")

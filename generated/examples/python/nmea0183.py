@@ -1396,13 +1396,16 @@ def decode(data: _Input, direction: Optional[str] = None) -> AnyMessage:
 class StreamDecoder:
     """Text stream → messages; `feed` returns messages and DecodeErrors in order.
     Characters in '' between messages are skipped;
-    a message runs to '\r\n'."""
+    a message runs to '\r\n'. A line that reaches MAX_MESSAGE
+    characters without its terminator is a `length` error, and the rest of it, through
+    its terminator, is dropped: what the C readers do with their bounded buffer."""
 
-    MAX_MESSAGE = 4096
+    MAX_MESSAGE = 269  # the longest line a message can have
 
     def __init__(self, direction: Optional[str] = None) -> None:
         self.direction = direction
-        self._buffer = ""
+        self._buffer = ""  # the characters from self.offset on, not yet read
+        self._dropping = False  # in a line too long: dropping it through its terminator
         self.offset = 0  # characters consumed so far
         self.spans: list[tuple[int, int]] = []  # (offset, length) of each item the last feed or finish returned
 
@@ -1419,34 +1422,50 @@ class StreamDecoder:
         out: list[Union[AnyMessage, DecodeError]] = []
         spans: list[tuple[int, int]] = []
         self.spans = spans
+        terminator = '\r\n'
         while True:
-            end = self._buffer.find('\r\n')
+            if self._dropping:
+                end = self._buffer.find(terminator)
+                # without the terminator, its first characters may end the buffer: they are kept
+                self._consume(len(self._buffer) - len(terminator) + 1 if end < 0 else end + len(terminator))
+                if end < 0:
+                    return out
+                self._dropping = False
+            self._consume(len(self._buffer) - len(self._buffer.lstrip('')))
+            end = self._buffer.find(terminator, 0, self.MAX_MESSAGE)
             if end < 0:
-                if len(self._buffer) > self.MAX_MESSAGE:
-                    out.append(_dec(None, None, self._buffer[:20], 'length',
-                                    f'a message within {self.MAX_MESSAGE} characters', self.offset))
-                    spans.append((self.offset, len(self._buffer)))
-                    self.offset += len(self._buffer)
-                    self._buffer = ""
-                return out
-            chunk = self._buffer[:end + 2]
-            self._buffer = self._buffer[end + 2:]
-            start = self.offset + len(chunk) - len(chunk.lstrip(''))
-            spans.append((start, self.offset + len(chunk) - start))
+                if len(self._buffer) < self.MAX_MESSAGE:
+                    return out
+                out.append(_dec(None, None, self._buffer[:20], 'length',
+                                f'a message within {self.MAX_MESSAGE} characters', self.offset))
+                spans.append((self.offset, self.MAX_MESSAGE))
+                self._consume(self.MAX_MESSAGE - len(terminator) + 1)
+                self._dropping = True
+                continue
+            line = self._buffer[:end + len(terminator)]
+            spans.append((self.offset, len(line)))
             try:
-                out.append(decode(chunk, self.direction))
+                out.append(decode(line, self.direction))
             except DecodeError as exc:
-                exc.offset = start + (exc.offset or 0)
+                exc.offset = self.offset + (exc.offset or 0)
                 out.append(exc)
-            self.offset += len(chunk)
+            self._consume(len(line))
+
+    def _consume(self, n: int) -> None:
+        """Drop the buffer's first `n` characters (none when n is not positive)."""
+        if n > 0:
+            self._buffer = self._buffer[n:]
+            self.offset += n
 
     def finish(self) -> list[Union[AnyMessage, DecodeError]]:
-        """End of stream: a DecodeError for an unterminated message left over, if any."""
+        """End of stream: a DecodeError for an unterminated message left over, if any
+        (none for the rest of a line too long: its error came when it outgrew the bound)."""
         rest, self._buffer = self._buffer, ""
         lead = len(rest) - len(rest.lstrip('' + " \t"))
         start, self.offset = self.offset + lead, self.offset + len(rest)
-        self.spans = [(start, len(rest) - lead)] if rest[lead:] else []
-        if not rest[lead:]:
+        dropping, self._dropping = self._dropping, False
+        self.spans = [(start, len(rest) - lead)] if rest[lead:] and not dropping else []
+        if not self.spans:
             return []
         return [_dec(None, None, rest[lead:lead + 20], 'syntax',
                      'a message ending in \r\n before the end', start)]
