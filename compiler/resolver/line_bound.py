@@ -22,7 +22,8 @@ def value_room(field) -> int:
 def message_line_max(framing: Framing, m: Message) -> int:
     """The longest line of message `m`, its start, prefix, separators, checksum and terminator included."""
     values = [leaf.field for leaf in m.wire.leaves if not leaf.field.prefix]
-    n = len(framing.start) + len(m.ids[0] if m.ids else "") + len(framing.prefix_separator) + len(framing.terminator)
+    ident = m.ids[0] if m.ids and isinstance(m.ids[0], str) else ""  # another id is refused at its line
+    n = len(framing.start) + len(ident) + len(framing.prefix_separator) + len(framing.terminator)
     if framing.line_checksum:
         n += len(framing.line_checksum.suffix) + 2
     if m.prefix_field is not None:
