@@ -17,6 +17,7 @@ CRCS = {8: ["CRC-8/SMBUS", "CRC-8/MAXIM-DOW"], 16: ["CRC-16/XMODEM", "CRC-16/MOD
         32: ["CRC-32/ISO-HDLC"]}
 # the bytes SLIP, COBS and HDLC escape or stand for (delimiters, escapes, escaped codes)
 STUFFED = [0x00, 0xC0, 0xDB, 0xDC, 0xDD, 0x7E, 0x7D, 0x5E, 0x5D]
+MAX_ARRAY_BYTES = 4096  # the most bytes an array may hold (compiler/resolver/base.py)
 SCALES = [0.5, 0.25, 0.125, 2, 4]  # powers of two: logical values are exact doubles
 NAMES = ["alpha", "bravo", "charlie", "delta", "echo", "foxtrot", "golf", "hotel", "india", "juliet",
          "kilo", "lima", "mike", "november", "oscar", "papa", "quebec", "romeo", "sierra", "tango"]
@@ -486,11 +487,14 @@ class Generator:
         """A count (in elements or bytes) and an array of numbers or of a group that it counts."""
         rng = self.rng
         count, max_count = self.name(), rng.randint(1, 6)
+        element, size = None, 0
         if rng.random() < 0.4:  # a group of whole bytes, checked members included
             fields, bits = self.sized_fields(at_least=1)
-            element, size = {"name": self.name(), "type": "group", "fields": fields}, bits // 8
-            unit = "elements"
-        else:
+            size = bits // 8
+            if size <= MAX_ARRAY_BYTES:
+                element, unit = {"name": self.name(), "type": "group", "fields": fields}, "elements"
+                max_count = min(max_count, MAX_ARRAY_BYTES // size)  # the whole array within its most
+        if element is None:
             element, _ = self.number_field()
             size, unit = int(element["type"][1:]) // 8, rng.choice(["elements", "bytes", 2])
             if unit == 2 and size == 1:  # whole 2-byte units of single bytes

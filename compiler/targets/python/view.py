@@ -248,7 +248,7 @@ class PythonView:
             c(f"        raise _enc({where}, {v}, 'range', '{lo}..{hi} or None', {f.rule!r}{self.user(f, False)})")
             c(f"    {var} = 1 << {v}")
         elif f.kind in ("uint", "int"):
-            lo, hi = f.range if f.range else self.logical_limits(f)
+            lo, hi = f.range if f.range else self.encodable_limits(f)
             numeric = "(int, float)" if f.scale is not None else "int"
             # one test passes the usual value (of the usual class, in range); the others say what is wrong
             c(f"if {v}.__class__ is not {'int' if numeric == 'int' else 'float'} or not {lit(lo)} <= {v} <= {lit(hi)}:")
@@ -317,6 +317,30 @@ class PythonView:
         if f.message:
             extra += f", {self.user_text(f.message)!r}"
         return extra
+
+    @classmethod
+    def encodable_limits(cls, f: Field) -> tuple:
+        """The logical limits as values the encoder turns into raw values its width holds:
+        a limit that is no double (`u53` scaled by 0.125 tops out at ...623.875, which
+        rounds to ...624.0, one raw step past the width) is moved inward to the nearest
+        double whose raw value, computed as the encoder does, fits."""
+        lo, hi = cls.logical_limits(f)
+        if f.scale is None:
+            return lo, hi
+        raw_lo, raw_hi = f.raw_range
+        lo, hi = float(lo), float(hi)
+        while cls.raw_as_encoded(f, lo) < raw_lo:
+            lo = math.nextafter(lo, math.inf)
+        while cls.raw_as_encoded(f, hi) > raw_hi:
+            hi = math.nextafter(hi, -math.inf)
+        return lo, hi
+
+    @staticmethod
+    def raw_as_encoded(f: Field, value: float) -> int:
+        """The raw value the generated encoder computes for a scaled field's value (as `encode_leaf` writes it)."""
+        x = (value - float(f.offset) if f.offset else value) / float(f.scale)
+        n = math.floor(x) if f.bits >= 53 else math.floor(x + 0.5)
+        return n + 1 if f.bits >= 53 and x - n >= 0.5 else n
 
     @staticmethod
     def logical_limits(f: Field) -> tuple:
