@@ -296,4 +296,6 @@ class MessagesMixin(ResolverBase):
                 return False  # an id that is not a string is refused at its line
             return common_prefix(pattern_of(a.ids[0], a.prefix_field), pattern_of(b.ids[0], b.prefix_field)) is not None
         overlap = all(set(ka[k]) & set(kb.get(k, ())) for k in ka)
+        if None in (a.min_size, a.size, b.min_size, b.size):
+            return False  # a size the layout could not give: its error is reported at the field
         return overlap and a.min_size <= b.size and b.min_size <= a.size

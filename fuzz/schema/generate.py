@@ -185,13 +185,13 @@ class Generator:
                 body["crc_extra"] = rng.randrange(256)
         if self.has("encoding", 0.4):
             self.encode_frames(framing, messages, ids if not two_keys and not single and id_bits == 8 else None)
-        self.pattern_stuffing(framing, messages)
         if not any("length_of" in f for f in layout) and "encoding" not in framing and "large_frame" in self.on:
             self.large_frame(messages)  # a length field or an encoding holds less
         if "mixed_bit_order" in self.on and "truncate" not in framing:
             self.mixed_bit_order(messages)
         if "multiplexed" in self.on and "truncate" not in framing:
             self.multiplexed(messages)
+        self.pattern_stuffing(framing, messages)  # after them: it widens a message they leave as it is
         self.signed_trailer(framing)
         return framing, messages
 
@@ -243,8 +243,9 @@ class Generator:
         own = random.Random(f"pattern_stuffing {self.seed}")
         layout = framing["layout"]
         length = next((f for f in layout if "length_of" in f), None)
+        plain = sorted(n for n, m in messages.items() if "payload_bytes" not in m)  # not placed by start bit
         if "pattern_stuffing" not in self.on or own.random() >= 0.6 or length is None or self.lsb \
-                or "encoding" in framing or "truncate" in framing \
+                or "encoding" in framing or "truncate" in framing or not plain \
                 or any(f.get("checksum", {}).get("extra") for f in layout):
             return
         names = [f.get("name", "payload") if not f.get("payload") else "payload" for f in layout]
@@ -256,7 +257,7 @@ class Generator:
         pattern, insert = own.choice(self.PATTERNS)
         length["type"] = "u16"  # room for the bytes inserted
         framing["stuffing"] = {"after": pattern, "insert": insert, "covers": {"from": begin, "to": "payload"}}
-        body = messages[own.choice(sorted(messages))]  # a message whose frames the pattern fits
+        body = messages[own.choice(plain)]  # a message whose frames the pattern fits
         body["fields"].insert(0, {"name": "pattern_room", "type": "bytes", "length": own.randint(3, 6)})
 
     def crc_name(self, name: str) -> str:
