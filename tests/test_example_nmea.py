@@ -162,21 +162,26 @@ def test_a_corrupted_checksum_is_refused(built):
             pynmea2.parse(bad.strip(), check=True)
 
 
-def test_c_writes_each_sentence_back_and_refuses_a_bad_checksum(built):
-    calls = "\n".join(f'    round_trip("{s}\\r\\n");' for s in SENTENCES)
-    driver = r"""
+# a C driver's round_trip(line): decode, encode, print the decode's code and whether the bytes came back
+ROUND_TRIP_C = r"""
 #include <stdio.h>
 #include <string.h>
 #include "nmea0183.h"
 static void round_trip(const char *line) {
     nmea0183_message_t m;
-    char buf[100];
+    char buf[120];
     int rc, n;
     memset(&m, 0, sizeof m);
     rc = nmea0183_decode(line, strlen(line), NMEA0183_DIR_ANY, &m);
     n = nmea0183_encode(&m, buf, sizeof buf);
     printf("%d %d\n", rc, n > 0 && (size_t)n == strlen(line) && memcmp(buf, line, (size_t)n) == 0);
 }
+"""
+
+
+def test_c_writes_each_sentence_back_and_refuses_a_bad_checksum(built):
+    calls = "\n".join(f'    round_trip("{s}\\r\\n");' for s in SENTENCES)
+    driver = ROUND_TRIP_C + r"""
 int main(void) {
     nmea0183_message_t m;
     static const char bad[] = "$GPVTG,054.7,T,034.4,M,005.5,N,010.2,K*49\r\n";
@@ -288,19 +293,7 @@ int main(void) {
 
 def test_c_writes_receiver_sentences_back_and_a_changed_value_in_its_own_spelling(built):
     calls = "\n".join(f'    round_trip("{s}\\r\\n");' for s in KEPT_SENTENCES)
-    driver = r"""
-#include <stdio.h>
-#include <string.h>
-#include "nmea0183.h"
-static void round_trip(const char *line) {
-    nmea0183_message_t m;
-    char buf[100];
-    int rc, n;
-    memset(&m, 0, sizeof m);
-    rc = nmea0183_decode(line, strlen(line), NMEA0183_DIR_ANY, &m);
-    n = nmea0183_encode(&m, buf, sizeof buf);
-    printf("%d %d\n", rc, n > 0 && (size_t)n == strlen(line) && memcmp(buf, line, (size_t)n) == 0);
-}
+    driver = ROUND_TRIP_C + r"""
 int main(void) {
     static const char quectel[] = "QUECTEL\r\n";
     nmea0183_gga_t m;
@@ -513,19 +506,7 @@ def test_c_writes_each_versions_sentence_back_and_new_values_as_2_3(built):
     """C: each sentence decoded and written back with as many fields; a struct filled afresh
     (line_values 0) writes the mode's empty place and no status."""
     calls = "\n".join(f'    round_trip("{s}\\r\\n");' for s in VERSIONED_SENTENCES)
-    driver = r"""
-#include <stdio.h>
-#include <string.h>
-#include "nmea0183.h"
-static void round_trip(const char *line) {
-    nmea0183_message_t m;
-    char buf[120];
-    int rc, n;
-    memset(&m, 0, sizeof m);
-    rc = nmea0183_decode(line, strlen(line), NMEA0183_DIR_ANY, &m);
-    n = nmea0183_encode(&m, buf, sizeof buf);
-    printf("%d %d\n", rc, n > 0 && (size_t)n == strlen(line) && memcmp(buf, line, (size_t)n) == 0);
-}
+    driver = ROUND_TRIP_C + r"""
 int main(void) {
     static const char old[] = "OLD\r\n";
     nmea0183_rmc_t m;
