@@ -586,7 +586,7 @@ class Generator:
         for name, wire in (("trailer changed", tampered), ("unsigned", self.mod.encode(obj))):
             try:
                 self.mod.decode(wire, key=self.key)
-                raise ValueError(f"{m.name}: a {name} frame verifies")
+                raise ValueError(f"{m.name}: the {name} frame verifies")
             except self.mod.DecodeError as exc:
                 case = {"name": f"{m.name} {name}", "message": m.name, **self.wire(wire), "error": exc.rule,
                         "verify": True}

@@ -13,6 +13,7 @@ FULL = frozenset({
     "sync", "length", "no_dispatch",        # envelope parts (bytes)
     "length_range",                         # a length that counts itself (and the checksum), adjusted
     "sync2", "two_keys", "by_direction",    # a sync of two bytes; two dispatch fields; a direction byte
+    "single_length",                        # bytes: a length field in a protocol of one message without an id
     "sum", "xor", "crc", "fletcher",        # checksums over bytes
     "internet",                             # bytes: the frame's checksum RFC 1071's, in either byte order, at times in place
     "crc_alias",                            # a CRC named by a catalogue alias with one meaning, in any case

@@ -124,6 +124,8 @@ class Generator:
                 first = next(i for i, f in enumerate(layout) if f.get("dispatch"))
                 layout.insert(rng.choice([first, len(layout)]) if not sync else len(layout),
                               {"name": "mark", "type": "u8", "by_direction": {"up": 0x3E, "down": 0x3C}})
+        elif "single_length" in self.on:
+            shortens = self.single_length(layout)
         layout.append({"payload": True})
         algorithms = [a for a in ("sum", "xor", "crc", "fletcher") if a in self.on]
         if algorithms and (sync or not single) and rng.random() < 0.7:  # `from: payload` is its end
@@ -194,6 +196,18 @@ class Generator:
         self.pattern_stuffing(framing, messages)  # after them: it widens a message they leave as it is
         self.signed_trailer(framing)
         return framing, messages
+
+    def single_length(self, layout: list[dict]) -> bool:
+        """In two schemas of five of one message, a length field before the payload (a lone
+        sensor's reports): stream decoders size its frames by it, and it may let them be cut
+        short (the result says whether). Drawn from a generator of its own, so the other
+        schemas of a seed stay as they were."""
+        own = random.Random(f"single_length {self.seed}")
+        if own.random() >= 0.4 or self.lsb:
+            return False
+        layout.append({"name": "len", "type": own.choice(["u8", "u16"]),
+                       "length_of": {"from": "payload", "to": "payload"}})
+        return bool({"extension", "truncate", "conditional"} & self.on) and own.random() < 0.6
 
     def mixed_bit_order(self, messages: dict) -> None:
         """In one schema of three, some messages become CAN-style payloads of 1 to 8 bytes:

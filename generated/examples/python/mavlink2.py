@@ -1689,9 +1689,6 @@ class StreamDecoder:
             if end - pos < 2:
                 break
             size = buf[pos + 1] + 12
-            if end - pos <= 2:
-                break
-            trailed = buf[pos + 2] & 1  # the trailer follows the frame
             if size not in self._SIZES:
                 if not resyncing:
                     out.append(_dec(None, 'length', size, 'length', 'a known frame size', (base + pos) * 8))
@@ -1700,7 +1697,9 @@ class StreamDecoder:
                 skipped += 1
                 pos += 1
                 continue
-            if trailed:
+            if end - pos <= 2:  # a size refused above needs no flag byte
+                break
+            if buf[pos + 2] & 1:  # the trailer follows the frame
                 size += 13
             if end - pos < size:
                 break
