@@ -507,6 +507,55 @@ class Run:
         return self.size > 1 and len({self.order_of(leaf) for leaf in self.leaves}) > 1
 
 
+class Each(int):
+    """The index in a Leaf's path that stands for every element of a Repeat's array: generated
+    code spells it `i`, the variable of the loop over the elements."""
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, Each)
+
+    def __hash__(self) -> int:
+        return hash("Each")
+
+    def __str__(self) -> str:
+        return "i"
+
+    def __format__(self, spec: str) -> str:
+        return "i"
+
+    def __repr__(self) -> str:
+        return "EACH"
+
+
+EACH = Each(0)
+
+
+@dataclass(frozen=True)
+class Repeat:
+    """An array whose elements generated code reads and writes in a loop rather than one by
+    one, so that the code grows with the schema and not with the count: each element is whole
+    bytes from a byte boundary, and nothing outside the array reads its elements' values.
+    `leaves` and `runs` are one element's, its index EACH in their paths, their bits and bytes
+    counted from the element's first byte; element k starts at byte `start + k * stride`.
+    The message's own leaves and runs still hold every element, for targets that list them."""
+
+    field: Field  # the array, a field of the message itself
+    start: int  # first byte of element 0
+    stride: int  # bytes of one element
+    count: int  # elements in the whole frame (a counted array's most)
+    leaves: tuple[Leaf, ...]
+    runs: tuple[Run, ...]
+
+    def holds(self, leaf: Leaf) -> bool:
+        """Whether `leaf` is part of one of the array's elements."""
+        return len(leaf.path) > 1 and leaf.path[0] == self.field.name
+
+    @property
+    def end(self) -> int:
+        """The byte after the last element."""
+        return self.start + self.count * self.stride
+
+
 @dataclass(frozen=True)
 class Wire:
     """A message's wire layout, computed once for every target."""
@@ -514,6 +563,15 @@ class Wire:
     leaves: tuple[Leaf, ...]
     runs: tuple[Run, ...]  # binary framings; empty in text framing
     order: str = "big"  # byte order of the frame read as one integer: its bit order
+    repeats: tuple[Repeat, ...] = ()  # binary framings: the arrays generated code loops over
+
+    def repeat_of(self, leaf: Leaf) -> Optional[Repeat]:
+        """The Repeat whose elements hold `leaf`, if any."""
+        return next((r for r in self.repeats if r.holds(leaf)), None)
+
+    def unrepeated_runs(self) -> tuple[Run, ...]:
+        """The runs outside every Repeat: what code that loops over the repeats writes one by one."""
+        return tuple(run for run in self.runs if not any(r.holds(run.leaves[0]) for r in self.repeats))
 
 
 @dataclass(frozen=True)

@@ -7,6 +7,7 @@ from __future__ import annotations
 from typing import Optional
 
 from ..model import Field, Leaf, Run, Wire, shift_in
+from .repeats import repeats_of
 
 
 def leaves_of(layout: tuple[Field, ...], prefix: tuple[str, ...] = (), start: Optional[int] = 0) -> list[Leaf]:
@@ -68,16 +69,19 @@ def runs_of(leaves: list[Leaf], frame_bytes: int, order: str = "big") -> tuple[R
     return tuple(out)
 
 
-def wire_of(layout: tuple[Field, ...], bits: Optional[int], order: str = "big") -> Wire:
+def wire_of(layout: tuple[Field, ...], bits: Optional[int], order: str = "big",
+            looped: frozenset[str] = frozenset()) -> Wire:
     """The layout of a message; runs only when the frame's size is known (binary).
     `order`: the frame's bit stream order (Framing.wire_order). A payload placed by
-    start_bit is one packed run of its bytes, whatever it leaves unused."""
+    start_bit is one packed run of its bytes, whatever it leaves unused. `looped`: the
+    arrays that may become Repeats."""
     leaves = leaves_of(layout, start=0 if bits is not None else None)
     if bits is None:
         return Wire(tuple(leaves), (), order)
     marker = next((f for f in layout if f.is_payload), None)
     if marker is None or not marker.length:
-        return Wire(tuple(leaves), runs_of(leaves, (bits + 7) // 8, order), order)
+        runs = runs_of(leaves, (bits + 7) // 8, order)
+        return Wire(tuple(leaves), runs, order, repeats_of(layout, leaves, runs, looped))
     start = marker.bit_offset // 8 - marker.length
     placed = [x for x in leaves if x.field.start_bit is not None]
     before = [x for x in leaves if x.field.start_bit is None and x.pos < 8 * start]

@@ -9,6 +9,7 @@ from ..model import Example, ExpectedError, Field, Framing, Message, places_memb
 from .text import text
 from .base import ResolverBase
 from .layout import key_of, key_read, leaves_of, wire_of
+from .repeats import looped_arrays
 
 
 class MessagesMixin(ResolverBase):
@@ -83,7 +84,8 @@ class MessagesMixin(ResolverBase):
             name=name, loc=self.loc(*path), title=text(m.get("title")), doc=text(m.get("doc")),
             ids=ids, direction=m.get("direction"), role=m.get("role"),
             answered_by=tuple(m.get("answered_by", [])), fields=own, layout=layout, bits=bits,
-            rules=rules, examples=examples, dispatch_key=dispatch_key, crc_extra=crc_extra, wire=wire_of(layout, bits, framing.wire_order),
+            rules=rules, examples=examples, dispatch_key=dispatch_key, crc_extra=crc_extra,
+            wire=wire_of(layout, bits, framing.wire_order, looped_arrays(layout, rules) if framing.kind == "bytes" else frozenset()),
             payload_bytes=payload_bytes,
             layout_type=layout_type, shortening=shortening, text_places=places, keeps_places=keeps_places)
 

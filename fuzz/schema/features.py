@@ -27,6 +27,7 @@ FULL = frozenset({
     "little", "field_order",                # byte orders: the framing's, and per field
     "bitfields",                            # fields narrower than a byte, packed
     "arrays",                               # fields of a fixed count: scalars, groups (bytes), bit fields
+    "long_arrays",                          # bytes: arrays long enough that generated code loops over them, fixed, counted or conditional
     "counted",                              # bytes: arrays counted by an earlier field, anywhere in the payload
     "conditional",                          # bytes: fields present when an earlier field says so
     "signed_trailer",                       # bytes: a flag puts a trailer with a SHA-256 signature after the frame

@@ -47,6 +47,8 @@ class Generator:
         self.directions = False  # messages have directions (an envelope byte depends on them)
         self.used: set[str] = set()
         self.depth = 0  # arrays of groups being generated, one inside another
+        # one schema in three: arrays long enough for generated code to loop over their elements
+        self.long = "long_arrays" in features and random.Random(f"long_arrays {seed}").random() < 0.3
 
     def has(self, feature: str, chance: float = 0.5) -> bool:
         return feature in self.on and self.rng.random() < chance
@@ -205,7 +207,8 @@ class Generator:
         own = random.Random(f"single_length {self.seed}")
         if own.random() >= 0.4 or self.lsb:
             return False
-        layout.append({"name": "len", "type": own.choice(["u8", "u16"]),
+        wide = bool({"arrays", "counted", "conditional"} & self.on)  # payloads of more than 255 bytes
+        layout.append({"name": "len", "type": "u16" if wide else own.choice(["u8", "u16"]),
                        "length_of": {"from": "payload", "to": "payload"}})
         return bool({"extension", "truncate", "conditional"} & self.on) and own.random() < 0.6
 
@@ -501,7 +504,7 @@ class Generator:
     def counted_gap(self) -> tuple[list[dict], dict]:
         """A count (in elements or bytes) and an array of numbers or of a group that it counts."""
         rng = self.rng
-        count, max_count = self.name(), rng.randint(1, 6)
+        count, max_count = self.name(), rng.randint(4, 40) if self.long else rng.randint(1, 6)
         element, size = None, 0
         if rng.random() < 0.4:  # a group of whole bytes, checked members included
             fields, bits = self.sized_fields(at_least=1)
@@ -524,10 +527,12 @@ class Generator:
         rng = self.rng
         name = self.name()
         if rng.random() < 0.5:
-            fields, _ = self.sized_fields(at_least=1)
+            fields, bits = self.sized_fields(at_least=1)
             gap = {"name": self.name(), "type": "group", "fields": fields}
         else:
-            gap, _ = self.number_field()
+            gap, bits = self.number_field()
+        if self.long and rng.random() < 0.5:  # an array sent whole or not at all
+            gap["count"] = min(rng.randint(2, 24), max(1, MAX_ARRAY_BYTES * 8 // bits))
         if "flags" in self.on and rng.random() < 0.5:
             flag_set = self.flag_set(8)
             control = {"name": name, "type": "u8", "flags": flag_set}
@@ -559,12 +564,13 @@ class Generator:
     def array(self, element: dict, width: int, room: int = 8 * 4096) -> tuple[dict, int]:
         """The field as an array of a few elements (as many as fit `room` bits), each
         where the one before it ends; an array holds at most 4096 bytes."""
-        count = min(self.rng.choice([1, 2, 3, 4, 16]), max(1, room // width))
+        counts = [1, 2, 3, 4, 16] + ([8, 12, 40] if self.long else [])
+        count = min(self.rng.choice(counts), max(1, room // width))
         return {**element, "count": count}, count * width
 
     def binary_field(self) -> tuple[dict, int]:
         rng = self.rng
-        if self.depth < 2 and self.has("arrays", 0.1):  # an array of a scalar or of a group of whole bytes
+        if self.depth < 2 and self.has("arrays", 0.3 if self.long else 0.1):  # an array of a scalar or of a group of whole bytes
             self.depth += 1
             if rng.random() < 0.3:
                 fields, width = self.sized_fields(at_least=1)

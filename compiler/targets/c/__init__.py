@@ -3,6 +3,7 @@ from __future__ import annotations
 
 from ...fingerprint import fingerprint, fingerprint32
 from ...model import Protocol
+from . import repeats as crepeats
 from .machines import machines_view
 from .sequences import sequences_view
 from .stuffing import stuffing_view
@@ -86,8 +87,8 @@ def message_views(v: CView) -> list[dict]:
             if m.prefix_field is not None:
                 functions.insert(2, v.text_prefix_function(m))
         else:
-            functions = [v.raw_function(m), v.encode_function(m), v.check_raw_function(m),
-                         v.decode_function(m)]
+            functions = crepeats.functions(v, m) + [v.raw_function(m), v.encode_function(m),
+                                                     v.check_raw_function(m), v.decode_function(m)]
             if v.word_bits():
                 functions.append(v.word_functions(m))
             if v.fr.text_form:

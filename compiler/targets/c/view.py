@@ -23,6 +23,7 @@ from ...model import (Checksum, CrcParams, Field, Leaf, Message, Multiplex, Prot
 from ..code import Code, times_over
 from ..escape import c_char as cchar, c_comment as comment, c_string as cstr
 from . import pack as cpack
+from . import repeats as crepeats
 from . import word as cword
 from . import wordform as cwordform
 from .pack import Span
@@ -585,7 +586,8 @@ class CView:
 
     @staticmethod
     def spans(m: Message) -> list[Span]:
-        return cpack.spans(m.wire.runs)
+        """The spans written one by one: the elements of a Repeat are written in its loop."""
+        return cpack.spans(m.wire.unrepeated_runs())
 
     # -- checksums ----------------------------------------------------------------------------
     def checksum_fn(self, cs: Checksum) -> str:
@@ -631,9 +633,9 @@ class CView:
         return bool(cs) and cs.over == "bytes"
 
     def wired(self, m: Message) -> tuple[list[Leaf], dict[str, str]]:
-        """Leaves with wire bits, and the r[] slot of each
-        integer leaf (byte checksums have none: they are computed on the bytes)."""
-        wired = [leaf for leaf in m.wire.leaves if leaf.bits]
+        """Leaves with wire bits outside the Repeats (whose elements have functions of their own),
+        and the r[] slot of each integer leaf (byte checksums have none: they are computed on the bytes)."""
+        wired = [leaf for leaf in m.wire.leaves if leaf.bits and m.wire.repeat_of(leaf) is None]
         slots = [leaf for leaf in wired if leaf.field.kind != "bytes" and not self.is_byte_checksum(leaf)]
         return wired, {leaf.var: f"r[{i}]" for i, leaf in enumerate(slots)}
 
@@ -772,23 +774,13 @@ class CView:
         c("}")
         for span in layout:
             leaf = span.pieces[0]
-            if span.kind == "bytes":
-                c(f"memcpy(buf + {span.start}, {self.member(leaf)}, {leaf.field.length});")
-            elif span.kind == "int" and self.is_byte_checksum(leaf):
+            if span.kind == "int" and self.is_byte_checksum(leaf):
                 moved_up = truncates and span.start >= sh.payload[1]  # moved up before it is filled in
                 if moved_up or leaf.field.checksum.covers_self:  # counted as zero while computed
                     c(f"memset(buf + {span.start}, 0, {span.size}u);")
                 continue  # written once the bytes it covers are
-            elif span.kind == "int":
-                c(self.int_put(span.start, span.size, self.order_of(leaf.field), raws[leaf.var]))
-            elif span.kind == "pack":
-                c(self.int_put(span.start, span.size, span.order, self.pack_value(span, raws)))
-            else:
-                c(f"memset(buf + {span.start}, 0, {span.size}u);")
-                for piece in span.pieces:
-                    if piece.var in raws:
-                        value = raws[piece.var] if piece.bits > 32 or rt != "uint64_t" else f"(uint32_t){raws[piece.var]}"
-                        c(f"{bits_fn('put', piece.bits, span.order_of(piece))}({bits_at(piece.pos)}, {piece.bits}u, {value});")
+            self.put_span(c, span, raws, rt)
+        crepeats.encode_loops(self, c, m)
         if truncates and sh.gaps:
             self.leave_out_gaps(c, m, raws)
         elif truncates:
@@ -805,6 +797,43 @@ class CView:
         c.dedent()
         c("}")
         return c.text()
+
+    def put_span(self, c: Code, span: Span, raws: dict[str, str], rt: str) -> None:
+        """Write a span of values (no checksum over bytes) from their raw values."""
+        leaf = span.pieces[0]
+        if span.kind == "bytes":
+            c(f"memcpy(buf + {span.start}, {self.member(leaf)}, {leaf.field.length});")
+        elif span.kind == "int":
+            c(self.int_put(span.start, span.size, self.order_of(leaf.field), raws[leaf.var]))
+        elif span.kind == "pack":
+            c(self.int_put(span.start, span.size, span.order, self.pack_value(span, raws)))
+        else:
+            c(f"memset(buf + {span.start}, 0, {span.size}u);")
+            for piece in span.pieces:
+                if piece.var in raws:
+                    value = raws[piece.var] if piece.bits > 32 or rt != "uint64_t" else f"(uint32_t){raws[piece.var]}"
+                    c(f"{bits_fn('put', piece.bits, span.order_of(piece))}({bits_at(piece.pos)}, {piece.bits}u, {value});")
+
+    def get_span(self, c: Code, span: Span, raws: dict[str, str], rt: str) -> None:
+        """Read the raw values of a span (bytes fields are copied by the checks)."""
+        leaf = span.pieces[0]
+        pieces = [piece for piece in span.pieces if piece.var in raws]
+        if span.kind == "bytes" or not pieces:
+            return
+        if span.kind == "int":
+            c(f"{raws[leaf.var]} = ({rt}){self.int_get(span.start, span.size, self.order_of(leaf.field))};")
+        elif span.kind == "pack":
+            wide = "unsigned" if span.size <= 2 else "uint32_t"
+            c("{")
+            c(f"    {wide} word = {self.int_get(span.start, span.size, span.order)};")
+            for piece in pieces:
+                shift = span.shift(piece)
+                value = f"(word >> {shift})" if shift else "word"
+                c(f"    {raws[piece.var]} = ({rt})({value} & {clit((1 << piece.bits) - 1, True)});")
+            c("}")
+        else:
+            for piece in pieces:
+                c(f"{raws[piece.var]} = ({rt}){bits_fn('get', piece.bits, span.order_of(piece))}({bits_at(piece.pos)}, {piece.bits}u);")
 
     def leave_out_gaps(self, c: Code, m: Message, raws: dict[str, str]) -> None:
         """Drop the bytes of each gap that the frame does not send, the last gap first so the
@@ -947,25 +976,8 @@ class CView:
         shift, pad = m.padding()  # always under 8 bits: the padding fills the last byte
         if pad:
             self.fail_if(c, f"(buf[{m.size - 1}] & {clit(((1 << pad) - 1) << shift, True)}) != 0u", "reserved")
-        for span in layout:
-            leaf = span.pieces[0]
-            pieces = [piece for piece in span.pieces if piece.var in raws]
-            if span.kind == "bytes" or not pieces:
-                continue  # check_raw copies bytes; checksums over bytes are checked below
-            if span.kind == "int":
-                c(f"{raws[leaf.var]} = ({rt}){self.int_get(span.start, span.size, self.order_of(leaf.field))};")
-            elif span.kind == "pack":
-                wide = "unsigned" if span.size <= 2 else "uint32_t"
-                c("{")
-                c(f"    {wide} word = {self.int_get(span.start, span.size, span.order)};")
-                for piece in pieces:
-                    shift = span.shift(piece)
-                    value = f"(word >> {shift})" if shift else "word"
-                    c(f"    {raws[piece.var]} = ({rt})({value} & {clit((1 << piece.bits) - 1, True)});")
-                c("}")
-            else:
-                for piece in pieces:
-                    c(f"{raws[piece.var]} = ({rt}){bits_fn('get', piece.bits, span.order_of(piece))}({bits_at(piece.pos)}, {piece.bits}u);")
+        for span in layout:  # check_raw copies bytes; checksums over bytes are checked below
+            self.get_span(c, span, raws, rt)
         if m.shortening and m.shortening.length_field:
             counter = next(x for x in m.wire.leaves if x.field.name == m.shortening.length_field)
             c(f"{raws[counter.var]} = ({rt})({raws[counter.var]} + cut);  /* as if the whole payload were sent */")
@@ -993,7 +1005,7 @@ class CView:
           f"{self.tname(m)} *m, bool text_form)")
         c("{")
         c.indent()
-        uses_buf = any(leaf.field.kind == "bytes" for leaf in wired)
+        uses_buf = any(leaf.field.kind == "bytes" for leaf in wired) or bool(m.wire.repeats)
         unfilled = self.fr.text_form.checksum_unfilled if self.fr.text_form else None
         field_sums = [leaf for leaf in wired if leaf.field.checksum and leaf.field.checksum.over != "bytes"]
         if not uses_buf:
@@ -1004,7 +1016,13 @@ class CView:
             c(SET_UNUSED)
         if unfilled is None or not field_sums:
             c("(void)text_form;")
-        for leaf in wired:
+        looped = {r.field.name: r for r in m.wire.repeats}
+        own = {id(leaf) for leaf in wired}
+        for leaf in m.wire.leaves:
+            if leaf.path[0] in looped and len(leaf.path) > 1:  # checked in the order of the fields
+                crepeats.decode_loop(self, c, m, looped.pop(leaf.path[0]))
+            if id(leaf) not in own:
+                continue
             guard = self.sent_guard(m, leaf, raws)
             if leaf.field.kind == "bytes":
                 c(f"memcpy({self.member(leaf)}, buf + {leaf.pos // 8}, {leaf.field.length});")
