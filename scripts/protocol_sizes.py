@@ -124,11 +124,12 @@ def measure() -> dict:
                        for t in TARGETS}))
         cantools_dir = generate_cantools(work / "cantools")
         theirs = cantools_functions(cantools_dir / "route_car.c")
-        ours = {t[0]: by_name["route"][t[0]] + by_name["car"][t[0]] for t in TARGETS}
-        peers.append(("cantools C (`generate_c_source`) of bench/route_car.dbc: `<m>_pack` and `_unpack` of every "
-                      "message; codeword: route and car together", "route + car",
-                      {t[0]: (flash(t, work, "cantools", ["route_car.c"], theirs,
-                                    ["-I", str(cantools_dir), "-x", "c"]), ours[t[0]]) for t in TARGETS}))
+        ours = [f"{m}_{op}" for m in ("route_object", "car_master_control") for op in ("encode", "decode")]
+        peers.append(("cantools C (`generate_c_source`) of bench/route_car.dbc: `<m>_pack` and `_unpack` of its "
+                      "two messages (RouteObject, CarMasterControl)", "route's object and car's master_control",
+                      {t[0]: (flash(t, work, "cantools", ["route_car.c"], theirs, ["-I", str(cantools_dir), "-x", "c"]),
+                              flash(t, work, "route_car_ours", ["route.h", "car.h"], ours, ["-I", str(HEADERS[0])]))
+                       for t in TARGETS}))
     return {"protocols": rows, "peers": peers}
 
 
