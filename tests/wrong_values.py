@@ -68,8 +68,9 @@ def wrong_values(codec, obj, path):
     if typing.get_origin(hint) is list:
         (element,) = typing.get_args(hint)
         nullable = typing.get_origin(element) is typing.Union and type(None) in typing.get_args(element)
-        out += NOT_A_LIST + [[object()] * max(len(current), 1)]
-        out += [] if nullable else [[None] * max(len(current), 1)]  # absent elements of one-hot arrays are None
+        size = max(len(current or ()), 1)  # an absent conditional array is None
+        out += NOT_A_LIST + [[object()] * size]
+        out += [] if nullable else [[None] * size]  # absent elements of one-hot arrays are None
         if current:  # more elements than any count of these schemas
             out.append(current[:1] * 100_000)
     elif dataclasses.is_dataclass(hint):

@@ -483,284 +483,17 @@ _S_gps_raw_int_0 = struct.Struct('<BBBBBBQiiiHHHHBBH')
 _S_attitude_0 = struct.Struct('<BBBBBBIffffffH')
 _S_command_long_0 = struct.Struct('<BBBBBBfffffffHBBBH')
 
-# CRC-16/MCRF4XX: width=16 poly=0x1021 init=0xffff refin=True refout=True xorout=0x0
-_TABLE_crc16_1021_ffff_rr_0_extra: tuple[int, ...] = (
-    0x0000, 0x1189, 0x2312, 0x329b, 0x4624, 0x57ad, 0x6536, 0x74bf,
-    0x8c48, 0x9dc1, 0xaf5a, 0xbed3, 0xca6c, 0xdbe5, 0xe97e, 0xf8f7,
-    0x1081, 0x0108, 0x3393, 0x221a, 0x56a5, 0x472c, 0x75b7, 0x643e,
-    0x9cc9, 0x8d40, 0xbfdb, 0xae52, 0xdaed, 0xcb64, 0xf9ff, 0xe876,
-    0x2102, 0x308b, 0x0210, 0x1399, 0x6726, 0x76af, 0x4434, 0x55bd,
-    0xad4a, 0xbcc3, 0x8e58, 0x9fd1, 0xeb6e, 0xfae7, 0xc87c, 0xd9f5,
-    0x3183, 0x200a, 0x1291, 0x0318, 0x77a7, 0x662e, 0x54b5, 0x453c,
-    0xbdcb, 0xac42, 0x9ed9, 0x8f50, 0xfbef, 0xea66, 0xd8fd, 0xc974,
-    0x4204, 0x538d, 0x6116, 0x709f, 0x0420, 0x15a9, 0x2732, 0x36bb,
-    0xce4c, 0xdfc5, 0xed5e, 0xfcd7, 0x8868, 0x99e1, 0xab7a, 0xbaf3,
-    0x5285, 0x430c, 0x7197, 0x601e, 0x14a1, 0x0528, 0x37b3, 0x263a,
-    0xdecd, 0xcf44, 0xfddf, 0xec56, 0x98e9, 0x8960, 0xbbfb, 0xaa72,
-    0x6306, 0x728f, 0x4014, 0x519d, 0x2522, 0x34ab, 0x0630, 0x17b9,
-    0xef4e, 0xfec7, 0xcc5c, 0xddd5, 0xa96a, 0xb8e3, 0x8a78, 0x9bf1,
-    0x7387, 0x620e, 0x5095, 0x411c, 0x35a3, 0x242a, 0x16b1, 0x0738,
-    0xffcf, 0xee46, 0xdcdd, 0xcd54, 0xb9eb, 0xa862, 0x9af9, 0x8b70,
-    0x8408, 0x9581, 0xa71a, 0xb693, 0xc22c, 0xd3a5, 0xe13e, 0xf0b7,
-    0x0840, 0x19c9, 0x2b52, 0x3adb, 0x4e64, 0x5fed, 0x6d76, 0x7cff,
-    0x9489, 0x8500, 0xb79b, 0xa612, 0xd2ad, 0xc324, 0xf1bf, 0xe036,
-    0x18c1, 0x0948, 0x3bd3, 0x2a5a, 0x5ee5, 0x4f6c, 0x7df7, 0x6c7e,
-    0xa50a, 0xb483, 0x8618, 0x9791, 0xe32e, 0xf2a7, 0xc03c, 0xd1b5,
-    0x2942, 0x38cb, 0x0a50, 0x1bd9, 0x6f66, 0x7eef, 0x4c74, 0x5dfd,
-    0xb58b, 0xa402, 0x9699, 0x8710, 0xf3af, 0xe226, 0xd0bd, 0xc134,
-    0x39c3, 0x284a, 0x1ad1, 0x0b58, 0x7fe7, 0x6e6e, 0x5cf5, 0x4d7c,
-    0xc60c, 0xd785, 0xe51e, 0xf497, 0x8028, 0x91a1, 0xa33a, 0xb2b3,
-    0x4a44, 0x5bcd, 0x6956, 0x78df, 0x0c60, 0x1de9, 0x2f72, 0x3efb,
-    0xd68d, 0xc704, 0xf59f, 0xe416, 0x90a9, 0x8120, 0xb3bb, 0xa232,
-    0x5ac5, 0x4b4c, 0x79d7, 0x685e, 0x1ce1, 0x0d68, 0x3ff3, 0x2e7a,
-    0xe70e, 0xf687, 0xc41c, 0xd595, 0xa12a, 0xb0a3, 0x8238, 0x93b1,
-    0x6b46, 0x7acf, 0x4854, 0x59dd, 0x2d62, 0x3ceb, 0x0e70, 0x1ff9,
-    0xf78f, 0xe606, 0xd49d, 0xc514, 0xb1ab, 0xa022, 0x92b9, 0x8330,
-    0x7bc7, 0x6a4e, 0x58d5, 0x495c, 0x3de3, 0x2c6a, 0x1ef1, 0x0f78,
-)
+# CRC-16/MCRF4XX: width=16 poly=0x1021 init=0xffff refin=True refout=True xorout=0x0, computed by the standard library in C
+from binascii import crc_hqx as _crc_hqx
+_BITS_REVERSED_crc16_1021_ffff_rr_0_extra = bytes(int(f'{b:08b}'[::-1], 2) for b in range(256))
 
 
-_HIGH16_crc16_1021_ffff_rr_0_extra: tuple[int, ...] = (
-    0x0000, 0x1189, 0x2312, 0x329b, 0x4624, 0x57ad, 0x6536, 0x74bf,
-    0x8c48, 0x9dc1, 0xaf5a, 0xbed3, 0xca6c, 0xdbe5, 0xe97e, 0xf8f7,
-    0x1081, 0x0108, 0x3393, 0x221a, 0x56a5, 0x472c, 0x75b7, 0x643e,
-    0x9cc9, 0x8d40, 0xbfdb, 0xae52, 0xdaed, 0xcb64, 0xf9ff, 0xe876,
-    0x2102, 0x308b, 0x0210, 0x1399, 0x6726, 0x76af, 0x4434, 0x55bd,
-    0xad4a, 0xbcc3, 0x8e58, 0x9fd1, 0xeb6e, 0xfae7, 0xc87c, 0xd9f5,
-    0x3183, 0x200a, 0x1291, 0x0318, 0x77a7, 0x662e, 0x54b5, 0x453c,
-    0xbdcb, 0xac42, 0x9ed9, 0x8f50, 0xfbef, 0xea66, 0xd8fd, 0xc974,
-    0x4204, 0x538d, 0x6116, 0x709f, 0x0420, 0x15a9, 0x2732, 0x36bb,
-    0xce4c, 0xdfc5, 0xed5e, 0xfcd7, 0x8868, 0x99e1, 0xab7a, 0xbaf3,
-    0x5285, 0x430c, 0x7197, 0x601e, 0x14a1, 0x0528, 0x37b3, 0x263a,
-    0xdecd, 0xcf44, 0xfddf, 0xec56, 0x98e9, 0x8960, 0xbbfb, 0xaa72,
-    0x6306, 0x728f, 0x4014, 0x519d, 0x2522, 0x34ab, 0x0630, 0x17b9,
-    0xef4e, 0xfec7, 0xcc5c, 0xddd5, 0xa96a, 0xb8e3, 0x8a78, 0x9bf1,
-    0x7387, 0x620e, 0x5095, 0x411c, 0x35a3, 0x242a, 0x16b1, 0x0738,
-    0xffcf, 0xee46, 0xdcdd, 0xcd54, 0xb9eb, 0xa862, 0x9af9, 0x8b70,
-    0x8408, 0x9581, 0xa71a, 0xb693, 0xc22c, 0xd3a5, 0xe13e, 0xf0b7,
-    0x0840, 0x19c9, 0x2b52, 0x3adb, 0x4e64, 0x5fed, 0x6d76, 0x7cff,
-    0x9489, 0x8500, 0xb79b, 0xa612, 0xd2ad, 0xc324, 0xf1bf, 0xe036,
-    0x18c1, 0x0948, 0x3bd3, 0x2a5a, 0x5ee5, 0x4f6c, 0x7df7, 0x6c7e,
-    0xa50a, 0xb483, 0x8618, 0x9791, 0xe32e, 0xf2a7, 0xc03c, 0xd1b5,
-    0x2942, 0x38cb, 0x0a50, 0x1bd9, 0x6f66, 0x7eef, 0x4c74, 0x5dfd,
-    0xb58b, 0xa402, 0x9699, 0x8710, 0xf3af, 0xe226, 0xd0bd, 0xc134,
-    0x39c3, 0x284a, 0x1ad1, 0x0b58, 0x7fe7, 0x6e6e, 0x5cf5, 0x4d7c,
-    0xc60c, 0xd785, 0xe51e, 0xf497, 0x8028, 0x91a1, 0xa33a, 0xb2b3,
-    0x4a44, 0x5bcd, 0x6956, 0x78df, 0x0c60, 0x1de9, 0x2f72, 0x3efb,
-    0xd68d, 0xc704, 0xf59f, 0xe416, 0x90a9, 0x8120, 0xb3bb, 0xa232,
-    0x5ac5, 0x4b4c, 0x79d7, 0x685e, 0x1ce1, 0x0d68, 0x3ff3, 0x2e7a,
-    0xe70e, 0xf687, 0xc41c, 0xd595, 0xa12a, 0xb0a3, 0x8238, 0x93b1,
-    0x6b46, 0x7acf, 0x4854, 0x59dd, 0x2d62, 0x3ceb, 0x0e70, 0x1ff9,
-    0xf78f, 0xe606, 0xd49d, 0xc514, 0xb1ab, 0xa022, 0x92b9, 0x8330,
-    0x7bc7, 0x6a4e, 0x58d5, 0x495c, 0x3de3, 0x2c6a, 0x1ef1, 0x0f78,
-)
-_LOW16_crc16_1021_ffff_rr_0_extra: tuple[int, ...] = (
-    0x0000, 0x19d8, 0x33b0, 0x2a68, 0x6760, 0x7eb8, 0x54d0, 0x4d08,
-    0xcec0, 0xd718, 0xfd70, 0xe4a8, 0xa9a0, 0xb078, 0x9a10, 0x83c8,
-    0x9591, 0x8c49, 0xa621, 0xbff9, 0xf2f1, 0xeb29, 0xc141, 0xd899,
-    0x5b51, 0x4289, 0x68e1, 0x7139, 0x3c31, 0x25e9, 0x0f81, 0x1659,
-    0x2333, 0x3aeb, 0x1083, 0x095b, 0x4453, 0x5d8b, 0x77e3, 0x6e3b,
-    0xedf3, 0xf42b, 0xde43, 0xc79b, 0x8a93, 0x934b, 0xb923, 0xa0fb,
-    0xb6a2, 0xaf7a, 0x8512, 0x9cca, 0xd1c2, 0xc81a, 0xe272, 0xfbaa,
-    0x7862, 0x61ba, 0x4bd2, 0x520a, 0x1f02, 0x06da, 0x2cb2, 0x356a,
-    0x4666, 0x5fbe, 0x75d6, 0x6c0e, 0x2106, 0x38de, 0x12b6, 0x0b6e,
-    0x88a6, 0x917e, 0xbb16, 0xa2ce, 0xefc6, 0xf61e, 0xdc76, 0xc5ae,
-    0xd3f7, 0xca2f, 0xe047, 0xf99f, 0xb497, 0xad4f, 0x8727, 0x9eff,
-    0x1d37, 0x04ef, 0x2e87, 0x375f, 0x7a57, 0x638f, 0x49e7, 0x503f,
-    0x6555, 0x7c8d, 0x56e5, 0x4f3d, 0x0235, 0x1bed, 0x3185, 0x285d,
-    0xab95, 0xb24d, 0x9825, 0x81fd, 0xccf5, 0xd52d, 0xff45, 0xe69d,
-    0xf0c4, 0xe91c, 0xc374, 0xdaac, 0x97a4, 0x8e7c, 0xa414, 0xbdcc,
-    0x3e04, 0x27dc, 0x0db4, 0x146c, 0x5964, 0x40bc, 0x6ad4, 0x730c,
-    0x8ccc, 0x9514, 0xbf7c, 0xa6a4, 0xebac, 0xf274, 0xd81c, 0xc1c4,
-    0x420c, 0x5bd4, 0x71bc, 0x6864, 0x256c, 0x3cb4, 0x16dc, 0x0f04,
-    0x195d, 0x0085, 0x2aed, 0x3335, 0x7e3d, 0x67e5, 0x4d8d, 0x5455,
-    0xd79d, 0xce45, 0xe42d, 0xfdf5, 0xb0fd, 0xa925, 0x834d, 0x9a95,
-    0xafff, 0xb627, 0x9c4f, 0x8597, 0xc89f, 0xd147, 0xfb2f, 0xe2f7,
-    0x613f, 0x78e7, 0x528f, 0x4b57, 0x065f, 0x1f87, 0x35ef, 0x2c37,
-    0x3a6e, 0x23b6, 0x09de, 0x1006, 0x5d0e, 0x44d6, 0x6ebe, 0x7766,
-    0xf4ae, 0xed76, 0xc71e, 0xdec6, 0x93ce, 0x8a16, 0xa07e, 0xb9a6,
-    0xcaaa, 0xd372, 0xf91a, 0xe0c2, 0xadca, 0xb412, 0x9e7a, 0x87a2,
-    0x046a, 0x1db2, 0x37da, 0x2e02, 0x630a, 0x7ad2, 0x50ba, 0x4962,
-    0x5f3b, 0x46e3, 0x6c8b, 0x7553, 0x385b, 0x2183, 0x0beb, 0x1233,
-    0x91fb, 0x8823, 0xa24b, 0xbb93, 0xf69b, 0xef43, 0xc52b, 0xdcf3,
-    0xe999, 0xf041, 0xda29, 0xc3f1, 0x8ef9, 0x9721, 0xbd49, 0xa491,
-    0x2759, 0x3e81, 0x14e9, 0x0d31, 0x4039, 0x59e1, 0x7389, 0x6a51,
-    0x7c08, 0x65d0, 0x4fb8, 0x5660, 0x1b68, 0x02b0, 0x28d8, 0x3100,
-    0xb2c8, 0xab10, 0x8178, 0x98a0, 0xd5a8, 0xcc70, 0xe618, 0xffc0,
-)
-_TABLE16_crc16_1021_ffff_rr_0_extra: tuple[int, ...] = ()  # built by the first checksum, not at import
+def _reflected_crc16_1021_ffff_rr_0_extra(x: int) -> int:
+    return _BITS_REVERSED_crc16_1021_ffff_rr_0_extra[x & 0xFF] << 8 | _BITS_REVERSED_crc16_1021_ffff_rr_0_extra[x >> 8]
 
 
-def _table16_crc16_1021_ffff_rr_0_extra() -> tuple[int, ...]:
-    """The register after two bytes is linear in them: the entry of (high, low) is the
-    entry of (high, 0) xor that of (0, low), so 65,536 entries come from 512 constants."""
-    global _TABLE16_crc16_1021_ffff_rr_0_extra
-    _TABLE16_crc16_1021_ffff_rr_0_extra = tuple([h ^ low for h in _HIGH16_crc16_1021_ffff_rr_0_extra for low in _LOW16_crc16_1021_ffff_rr_0_extra])
-    return _TABLE16_crc16_1021_ffff_rr_0_extra
-
-
-_WORDS_crc16_1021_ffff_rr_0_extra_15 = struct.Struct('<7HB')
-
-
-def _checksum_crc16_1021_ffff_rr_0_extra_15(data: _Buffer, start: int) -> int:
-    words: tuple[int, ...] = _WORDS_crc16_1021_ffff_rr_0_extra_15.unpack_from(data, start)
-    w0, w1, w2, w3, w4, w5, w6, b, = words
-    t = _TABLE16_crc16_1021_ffff_rr_0_extra or _table16_crc16_1021_ffff_rr_0_extra()
-    r: int = 0xffff
-    r = t[r ^ w0]
-    r = t[r ^ w1]
-    r = t[r ^ w2]
-    r = t[r ^ w3]
-    r = t[r ^ w4]
-    r = t[r ^ w5]
-    r = t[r ^ w6]
-    r = _TABLE_crc16_1021_ffff_rr_0_extra[(r ^ b) & 0xFF] ^ (r >> 8)
-    return r
-
-
-_WORDS_crc16_1021_ffff_rr_0_extra_31 = struct.Struct('<15HB')
-
-
-def _checksum_crc16_1021_ffff_rr_0_extra_31(data: _Buffer, start: int) -> int:
-    words: tuple[int, ...] = _WORDS_crc16_1021_ffff_rr_0_extra_31.unpack_from(data, start)
-    w0, w1, w2, w3, w4, w5, w6, w7, w8, w9, w10, w11, w12, w13, w14, b, = words
-    t = _TABLE16_crc16_1021_ffff_rr_0_extra or _table16_crc16_1021_ffff_rr_0_extra()
-    r: int = 0xffff
-    r = t[r ^ w0]
-    r = t[r ^ w1]
-    r = t[r ^ w2]
-    r = t[r ^ w3]
-    r = t[r ^ w4]
-    r = t[r ^ w5]
-    r = t[r ^ w6]
-    r = t[r ^ w7]
-    r = t[r ^ w8]
-    r = t[r ^ w9]
-    r = t[r ^ w10]
-    r = t[r ^ w11]
-    r = t[r ^ w12]
-    r = t[r ^ w13]
-    r = t[r ^ w14]
-    r = _TABLE_crc16_1021_ffff_rr_0_extra[(r ^ b) & 0xFF] ^ (r >> 8)
-    return r
-
-
-_WORDS_crc16_1021_ffff_rr_0_extra_34 = struct.Struct('<17H')
-
-
-def _checksum_crc16_1021_ffff_rr_0_extra_34(data: _Buffer, start: int) -> int:
-    words: tuple[int, ...] = _WORDS_crc16_1021_ffff_rr_0_extra_34.unpack_from(data, start)
-    w0, w1, w2, w3, w4, w5, w6, w7, w8, w9, w10, w11, w12, w13, w14, w15, w16, = words
-    t = _TABLE16_crc16_1021_ffff_rr_0_extra or _table16_crc16_1021_ffff_rr_0_extra()
-    r: int = 0xffff
-    r = t[r ^ w0]
-    r = t[r ^ w1]
-    r = t[r ^ w2]
-    r = t[r ^ w3]
-    r = t[r ^ w4]
-    r = t[r ^ w5]
-    r = t[r ^ w6]
-    r = t[r ^ w7]
-    r = t[r ^ w8]
-    r = t[r ^ w9]
-    r = t[r ^ w10]
-    r = t[r ^ w11]
-    r = t[r ^ w12]
-    r = t[r ^ w13]
-    r = t[r ^ w14]
-    r = t[r ^ w15]
-    r = t[r ^ w16]
-    return r
-
-
-_WORDS_crc16_1021_ffff_rr_0_extra_36 = struct.Struct('<18H')
-
-
-def _checksum_crc16_1021_ffff_rr_0_extra_36(data: _Buffer, start: int) -> int:
-    words: tuple[int, ...] = _WORDS_crc16_1021_ffff_rr_0_extra_36.unpack_from(data, start)
-    w0, w1, w2, w3, w4, w5, w6, w7, w8, w9, w10, w11, w12, w13, w14, w15, w16, w17, = words
-    t = _TABLE16_crc16_1021_ffff_rr_0_extra or _table16_crc16_1021_ffff_rr_0_extra()
-    r: int = 0xffff
-    r = t[r ^ w0]
-    r = t[r ^ w1]
-    r = t[r ^ w2]
-    r = t[r ^ w3]
-    r = t[r ^ w4]
-    r = t[r ^ w5]
-    r = t[r ^ w6]
-    r = t[r ^ w7]
-    r = t[r ^ w8]
-    r = t[r ^ w9]
-    r = t[r ^ w10]
-    r = t[r ^ w11]
-    r = t[r ^ w12]
-    r = t[r ^ w13]
-    r = t[r ^ w14]
-    r = t[r ^ w15]
-    r = t[r ^ w16]
-    r = t[r ^ w17]
-    return r
-
-
-_WORDS_crc16_1021_ffff_rr_0_extra_37 = struct.Struct('<18HB')
-
-
-def _checksum_crc16_1021_ffff_rr_0_extra_37(data: _Buffer, start: int) -> int:
-    words: tuple[int, ...] = _WORDS_crc16_1021_ffff_rr_0_extra_37.unpack_from(data, start)
-    w0, w1, w2, w3, w4, w5, w6, w7, w8, w9, w10, w11, w12, w13, w14, w15, w16, w17, b, = words
-    t = _TABLE16_crc16_1021_ffff_rr_0_extra or _table16_crc16_1021_ffff_rr_0_extra()
-    r: int = 0xffff
-    r = t[r ^ w0]
-    r = t[r ^ w1]
-    r = t[r ^ w2]
-    r = t[r ^ w3]
-    r = t[r ^ w4]
-    r = t[r ^ w5]
-    r = t[r ^ w6]
-    r = t[r ^ w7]
-    r = t[r ^ w8]
-    r = t[r ^ w9]
-    r = t[r ^ w10]
-    r = t[r ^ w11]
-    r = t[r ^ w12]
-    r = t[r ^ w13]
-    r = t[r ^ w14]
-    r = t[r ^ w15]
-    r = t[r ^ w16]
-    r = t[r ^ w17]
-    r = _TABLE_crc16_1021_ffff_rr_0_extra[(r ^ b) & 0xFF] ^ (r >> 8)
-    return r
-
-
-_WORDS_crc16_1021_ffff_rr_0_extra_39 = struct.Struct('<19HB')
-
-
-def _checksum_crc16_1021_ffff_rr_0_extra_39(data: _Buffer, start: int) -> int:
-    words: tuple[int, ...] = _WORDS_crc16_1021_ffff_rr_0_extra_39.unpack_from(data, start)
-    w0, w1, w2, w3, w4, w5, w6, w7, w8, w9, w10, w11, w12, w13, w14, w15, w16, w17, w18, b, = words
-    t = _TABLE16_crc16_1021_ffff_rr_0_extra or _table16_crc16_1021_ffff_rr_0_extra()
-    r: int = 0xffff
-    r = t[r ^ w0]
-    r = t[r ^ w1]
-    r = t[r ^ w2]
-    r = t[r ^ w3]
-    r = t[r ^ w4]
-    r = t[r ^ w5]
-    r = t[r ^ w6]
-    r = t[r ^ w7]
-    r = t[r ^ w8]
-    r = t[r ^ w9]
-    r = t[r ^ w10]
-    r = t[r ^ w11]
-    r = t[r ^ w12]
-    r = t[r ^ w13]
-    r = t[r ^ w14]
-    r = t[r ^ w15]
-    r = t[r ^ w16]
-    r = t[r ^ w17]
-    r = t[r ^ w18]
-    r = _TABLE_crc16_1021_ffff_rr_0_extra[(r ^ b) & 0xFF] ^ (r >> 8)
-    return r
+def _checksum_crc16_1021_ffff_rr_0_extra(data: _Buffer) -> int:
+    return _reflected_crc16_1021_ffff_rr_0_extra(_crc_hqx(bytes(data).translate(_BITS_REVERSED_crc16_1021_ffff_rr_0_extra), 0xffff)) ^ 0x0
 
 
 def _as_input(data: object) -> _Buffer:
@@ -834,7 +567,7 @@ def _encode_heartbeat(m: Heartbeat) -> bytes:
     r_checksum = 0
     b = bytearray(17)
     _S_heartbeat_0.pack_into(b, 0, 254, 9, r_seq, r_sysid, r_compid, 0, r_custom_mode, r_type, r_autopilot, r_base_mode, r_system_status, r_mavlink_version, r_checksum)
-    b[15:17] = _checksum_crc16_1021_ffff_rr_0_extra_15(bytes(b[1:15]) + b'2', 0).to_bytes(2, 'little')
+    b[15:17] = _checksum_crc16_1021_ffff_rr_0_extra(bytes(b[1:15]) + b'2').to_bytes(2, 'little')
     return bytes(b)
 
 
@@ -845,7 +578,7 @@ def _decode_heartbeat(d: _Buffer) -> Heartbeat:
     if len(d) != 17:
         raise _dec('heartbeat', None, len(d), 'length', '17 bytes', 0)
     r_stx, r_len, r_seq, r_sysid, r_compid, r_msgid, r_custom_mode, r_type, r_autopilot, r_base_mode, r_system_status, r_mavlink_version, r_checksum, = _S_heartbeat_0.unpack_from(d, 0)
-    x = _checksum_crc16_1021_ffff_rr_0_extra_15(bytes(d[1:15]) + b'2', 0)
+    x = _checksum_crc16_1021_ffff_rr_0_extra(bytes(d[1:15]) + b'2')
     if r_checksum != x:
         raise _dec('heartbeat', 'checksum', r_checksum, 'checksum', hex(x), 120, None)
     if r_stx != 254:
@@ -968,7 +701,7 @@ def _encode_sys_status(m: SysStatus) -> bytes:
     r_checksum = 0
     b = bytearray(39)
     _S_sys_status_0.pack_into(b, 0, 254, 31, r_seq, r_sysid, r_compid, 1, r_onboard_control_sensors_present, r_onboard_control_sensors_enabled, r_onboard_control_sensors_health, r_load, r_voltage_battery, r_current_battery, r_drop_rate_comm, r_errors_comm, r_errors_count1, r_errors_count2, r_errors_count3, r_errors_count4, r_battery_remaining, r_checksum)
-    b[37:39] = _checksum_crc16_1021_ffff_rr_0_extra_37(bytes(b[1:37]) + b'|', 0).to_bytes(2, 'little')
+    b[37:39] = _checksum_crc16_1021_ffff_rr_0_extra(bytes(b[1:37]) + b'|').to_bytes(2, 'little')
     return bytes(b)
 
 
@@ -979,7 +712,7 @@ def _decode_sys_status(d: _Buffer) -> SysStatus:
     if len(d) != 39:
         raise _dec('sys_status', None, len(d), 'length', '39 bytes', 0)
     r_stx, r_len, r_seq, r_sysid, r_compid, r_msgid, r_onboard_control_sensors_present, r_onboard_control_sensors_enabled, r_onboard_control_sensors_health, r_load, r_voltage_battery, r_current_battery, r_drop_rate_comm, r_errors_comm, r_errors_count1, r_errors_count2, r_errors_count3, r_errors_count4, r_battery_remaining, r_checksum, = _S_sys_status_0.unpack_from(d, 0)
-    x = _checksum_crc16_1021_ffff_rr_0_extra_37(bytes(d[1:37]) + b'|', 0)
+    x = _checksum_crc16_1021_ffff_rr_0_extra(bytes(d[1:37]) + b'|')
     if r_checksum != x:
         raise _dec('sys_status', 'checksum', r_checksum, 'checksum', hex(x), 296, None)
     if r_stx != 254:
@@ -1065,7 +798,7 @@ def _encode_param_value(m: ParamValue) -> bytes:
     r_checksum = 0
     b = bytearray(33)
     _S_param_value_0.pack_into(b, 0, 254, 25, r_seq, r_sysid, r_compid, 22, r_param_value, r_param_count, r_param_index, r_param_id, r_param_type, r_checksum)
-    b[31:33] = _checksum_crc16_1021_ffff_rr_0_extra_31(bytes(b[1:31]) + b'\xdc', 0).to_bytes(2, 'little')
+    b[31:33] = _checksum_crc16_1021_ffff_rr_0_extra(bytes(b[1:31]) + b'\xdc').to_bytes(2, 'little')
     return bytes(b)
 
 
@@ -1076,7 +809,7 @@ def _decode_param_value(d: _Buffer) -> ParamValue:
     if len(d) != 33:
         raise _dec('param_value', None, len(d), 'length', '33 bytes', 0)
     r_stx, r_len, r_seq, r_sysid, r_compid, r_msgid, r_param_value, r_param_count, r_param_index, r_param_id, r_param_type, r_checksum, = _S_param_value_0.unpack_from(d, 0)
-    x = _checksum_crc16_1021_ffff_rr_0_extra_31(bytes(d[1:31]) + b'\xdc', 0)
+    x = _checksum_crc16_1021_ffff_rr_0_extra(bytes(d[1:31]) + b'\xdc')
     if r_checksum != x:
         raise _dec('param_value', 'checksum', r_checksum, 'checksum', hex(x), 248, None)
     if r_stx != 254:
@@ -1182,7 +915,7 @@ def _encode_gps_raw_int(m: GpsRawInt) -> bytes:
     r_checksum = 0
     b = bytearray(38)
     _S_gps_raw_int_0.pack_into(b, 0, 254, 30, r_seq, r_sysid, r_compid, 24, r_time_usec, r_lat, r_lon, r_alt, r_eph, r_epv, r_vel, r_cog, r_fix_type, r_satellites_visible, r_checksum)
-    b[36:38] = _checksum_crc16_1021_ffff_rr_0_extra_36(bytes(b[1:36]) + b'\x18', 0).to_bytes(2, 'little')
+    b[36:38] = _checksum_crc16_1021_ffff_rr_0_extra(bytes(b[1:36]) + b'\x18').to_bytes(2, 'little')
     return bytes(b)
 
 
@@ -1193,7 +926,7 @@ def _decode_gps_raw_int(d: _Buffer) -> GpsRawInt:
     if len(d) != 38:
         raise _dec('gps_raw_int', None, len(d), 'length', '38 bytes', 0)
     r_stx, r_len, r_seq, r_sysid, r_compid, r_msgid, r_time_usec, r_lat, r_lon, r_alt, r_eph, r_epv, r_vel, r_cog, r_fix_type, r_satellites_visible, r_checksum, = _S_gps_raw_int_0.unpack_from(d, 0)
-    x = _checksum_crc16_1021_ffff_rr_0_extra_36(bytes(d[1:36]) + b'\x18', 0)
+    x = _checksum_crc16_1021_ffff_rr_0_extra(bytes(d[1:36]) + b'\x18')
     if r_checksum != x:
         raise _dec('gps_raw_int', 'checksum', r_checksum, 'checksum', hex(x), 288, None)
     if r_stx != 254:
@@ -1308,7 +1041,7 @@ def _encode_attitude(m: Attitude) -> bytes:
     r_checksum = 0
     b = bytearray(36)
     _S_attitude_0.pack_into(b, 0, 254, 28, r_seq, r_sysid, r_compid, 30, r_time_boot_ms, r_roll, r_pitch, r_yaw, r_rollspeed, r_pitchspeed, r_yawspeed, r_checksum)
-    b[34:36] = _checksum_crc16_1021_ffff_rr_0_extra_34(bytes(b[1:34]) + b"'", 0).to_bytes(2, 'little')
+    b[34:36] = _checksum_crc16_1021_ffff_rr_0_extra(bytes(b[1:34]) + b"'").to_bytes(2, 'little')
     return bytes(b)
 
 
@@ -1319,7 +1052,7 @@ def _decode_attitude(d: _Buffer) -> Attitude:
     if len(d) != 36:
         raise _dec('attitude', None, len(d), 'length', '36 bytes', 0)
     r_stx, r_len, r_seq, r_sysid, r_compid, r_msgid, r_time_boot_ms, r_roll, r_pitch, r_yaw, r_rollspeed, r_pitchspeed, r_yawspeed, r_checksum, = _S_attitude_0.unpack_from(d, 0)
-    x = _checksum_crc16_1021_ffff_rr_0_extra_34(bytes(d[1:34]) + b"'", 0)
+    x = _checksum_crc16_1021_ffff_rr_0_extra(bytes(d[1:34]) + b"'")
     if r_checksum != x:
         raise _dec('attitude', 'checksum', r_checksum, 'checksum', hex(x), 272, None)
     if r_stx != 254:
@@ -1472,7 +1205,7 @@ def _encode_command_long(m: CommandLong) -> bytes:
     r_checksum = 0
     b = bytearray(41)
     _S_command_long_0.pack_into(b, 0, 254, 33, r_seq, r_sysid, r_compid, 76, r_param1, r_param2, r_param3, r_param4, r_param5, r_param6, r_param7, r_command, r_target_system, r_target_component, r_confirmation, r_checksum)
-    b[39:41] = _checksum_crc16_1021_ffff_rr_0_extra_39(bytes(b[1:39]) + b'\x98', 0).to_bytes(2, 'little')
+    b[39:41] = _checksum_crc16_1021_ffff_rr_0_extra(bytes(b[1:39]) + b'\x98').to_bytes(2, 'little')
     return bytes(b)
 
 
@@ -1483,7 +1216,7 @@ def _decode_command_long(d: _Buffer) -> CommandLong:
     if len(d) != 41:
         raise _dec('command_long', None, len(d), 'length', '41 bytes', 0)
     r_stx, r_len, r_seq, r_sysid, r_compid, r_msgid, r_param1, r_param2, r_param3, r_param4, r_param5, r_param6, r_param7, r_command, r_target_system, r_target_component, r_confirmation, r_checksum, = _S_command_long_0.unpack_from(d, 0)
-    x = _checksum_crc16_1021_ffff_rr_0_extra_39(bytes(d[1:39]) + b'\x98', 0)
+    x = _checksum_crc16_1021_ffff_rr_0_extra(bytes(d[1:39]) + b'\x98')
     if r_checksum != x:
         raise _dec('command_long', 'checksum', r_checksum, 'checksum', hex(x), 312, None)
     if r_stx != 254:
