@@ -181,7 +181,7 @@ def compiler_version():
                           check=True).stdout.splitlines()[0]
 
 
-# The default CRC, bitwise or table-driven: flash and cycles on the ATmega32 of
+# The default CRC, bitwise, nibble-wise or table-driven: flash and cycles on the ATmega32 of
 # docs/c-size.md, under simavr (cycle-accurate), Timer1 counting CPU cycles.
 CRC_MCU = "atmega32"
 CRC_FRAMES = 8
@@ -258,7 +258,7 @@ def crc_choice(tmp: Path):
     src = tmp / "crc_choice.c"
     src.write_text(CRC_PROGRAM.format(frames=CRC_FRAMES))
     out = {}
-    for variant, defines in (("bitwise", []), ("table", ["-DMTV4_CRC_TABLE"])):
+    for variant, defines in (("bitwise", []), ("nibble", ["-DMTV4_CRC_NIBBLE"]), ("table", ["-DMTV4_CRC_TABLE"])):
         elf = tmp / f"crc_{variant}.elf"
         subprocess.run(["avr-gcc", "-std=gnu99", "-Os", f"-mmcu={CRC_MCU}", "-ffunction-sections", "-fdata-sections",
                         "-Wl,--gc-sections", "-Wall", "-Wextra", "-Werror", *defines,

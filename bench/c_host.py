@@ -12,7 +12,8 @@ CFLAGS = ["-O2", "-std=gnu99", "-DMTV4_CRC_TABLE"]
 SOURCE = ROOT / "bench" / "c" / "host_bench.c"
 STREAMS = ROOT / "bench" / "c" / "mtv4_stream.c"  # built once with each CRC variant
 PARSERS = ("mtv4_parser_feed/next, CRC table", "mtv4_parser_feed/next, CRC bitwise",
-           "mtv4_scan, CRC table", "mtv4_scan, CRC bitwise")
+           "mtv4_parser_feed/next, CRC nibble", "mtv4_scan, CRC table", "mtv4_scan, CRC bitwise",
+           "mtv4_scan, CRC nibble")
 
 
 def compiler_version():
@@ -24,7 +25,8 @@ def run(tmp: Path, mavlink_dir: Path, rounds: int, capture_bytes: int):
     exe = tmp / "host_bench"
     include = ["-I", str(ROOT / "generated" / "c")]
     objects = []
-    for variant, flags in (("table", CFLAGS), ("bitwise", [f for f in CFLAGS if f != "-DMTV4_CRC_TABLE"])):
+    plain = [f for f in CFLAGS if f != "-DMTV4_CRC_TABLE"]
+    for variant, flags in (("table", CFLAGS), ("bitwise", plain), ("nibble", plain + ["-DMTV4_CRC_NIBBLE"])):
         obj = tmp / f"mtv4_stream_{variant}.o"
         subprocess.run(["gcc", *flags, "-Wall", "-Wextra", "-Werror", *include, "-c", str(STREAMS), "-o", str(obj)],
                        check=True)

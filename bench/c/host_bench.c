@@ -181,13 +181,17 @@ long mtv4_feed_table(const unsigned char *buf, size_t len);
 long mtv4_scan_table(const unsigned char *buf, size_t len);
 long mtv4_feed_bitwise(const unsigned char *buf, size_t len);
 long mtv4_scan_bitwise(const unsigned char *buf, size_t len);
+long mtv4_feed_nibble(const unsigned char *buf, size_t len);
+long mtv4_scan_nibble(const unsigned char *buf, size_t len);
 
 typedef long (*stream_fn)(const unsigned char *, size_t);
 static const struct { const char *key; stream_fn fn; } PARSERS[] = {
     {"mtv4_parser_feed/next, CRC table", mtv4_feed_table},
     {"mtv4_parser_feed/next, CRC bitwise", mtv4_feed_bitwise},
+    {"mtv4_parser_feed/next, CRC nibble", mtv4_feed_nibble},
     {"mtv4_scan, CRC table", mtv4_scan_table},
     {"mtv4_scan, CRC bitwise", mtv4_scan_bitwise},
+    {"mtv4_scan, CRC nibble", mtv4_scan_nibble},
 };
 #define N_PARSERS (sizeof PARSERS / sizeof PARSERS[0])
 static long parser_good[N_PARSERS];

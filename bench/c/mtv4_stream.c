@@ -1,12 +1,14 @@
-/* mtv4 stream parsing for host_bench, built twice by bench/c_host.py: with
- * -DMTV4_CRC_TABLE (functions named *_table) and without (*_bitwise), so both
- * checksum variants run side by side in one process. Each returns the good
- * frames it found in the capture. */
+/* mtv4 stream parsing for host_bench, built three times by bench/c_host.py: with
+ * -DMTV4_CRC_TABLE (functions named *_table), with -DMTV4_CRC_NIBBLE (*_nibble) and
+ * with neither (*_bitwise), so the checksum variants run side by side in one process.
+ * Each returns the good frames it found in the capture. */
 #include <stddef.h>
 #include "mtv4.h"
 
-#ifdef MTV4_CRC_TABLE
+#if defined(MTV4_CRC_TABLE)
 #define VARIANT(name) name##_table
+#elif defined(MTV4_CRC_NIBBLE)
+#define VARIANT(name) name##_nibble
 #else
 #define VARIANT(name) name##_bitwise
 #endif

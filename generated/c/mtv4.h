@@ -7,7 +7,8 @@
  * and a negative CW_ERR_* code on failure; after a failed decode the output
  * struct holds unspecified values.
  * Define MTV4_CRC_TABLE before including this header for table-driven
- * checksums (the table is const, in flash on AVR).
+ * checksums, a byte at a time from 256 entries, or MTV4_CRC_NIBBLE for a nibble
+ * at a time from 16 entries (the tables are const, in flash on AVR).
  */
 #ifndef MTV4_H
 #define MTV4_H
@@ -140,7 +141,7 @@ typedef struct {
 } mtv4_message_t;
 
 /* CRC-16/CMS: width 16, poly 0x8005, init 0xffff, refin false, refout false, xorout 0x0 */
-#ifdef MTV4_CRC_TABLE
+#if defined(MTV4_CRC_TABLE)
 static const uint16_t mtv4_crc16_8005_ffff_nn_0_table[256] CW_FLASH = {
     0x0000u, 0x8005u, 0x800Fu, 0x000Au, 0x801Bu, 0x001Eu, 0x0014u, 0x8011u, 0x8033u, 0x0036u, 0x003Cu, 0x8039u,
     0x0028u, 0x802Du, 0x8027u, 0x0022u, 0x8063u, 0x0066u, 0x006Cu, 0x8069u, 0x0078u, 0x807Du, 0x8077u, 0x0072u,
@@ -165,14 +166,25 @@ static const uint16_t mtv4_crc16_8005_ffff_nn_0_table[256] CW_FLASH = {
     0x0220u, 0x8225u, 0x822Fu, 0x022Au, 0x823Bu, 0x023Eu, 0x0234u, 0x8231u, 0x8213u, 0x0216u, 0x021Cu, 0x8219u,
     0x0208u, 0x820Du, 0x8207u, 0x0202u,
 };
+#elif defined(MTV4_CRC_NIBBLE)
+static const uint16_t mtv4_crc16_8005_ffff_nn_0_nibbles[16] CW_FLASH = {
+    0x0000u, 0x8005u, 0x800Fu, 0x000Au, 0x801Bu, 0x001Eu, 0x0014u, 0x8011u,
+    0x8033u, 0x0036u, 0x003Cu, 0x8039u, 0x0028u, 0x802Du, 0x8027u, 0x0022u,
+};
 #endif
 static inline uint16_t mtv4_crc16_8005_ffff_nn_0(const uint8_t *data, size_t len)
 {
     uint16_t reg = 0xFFFFu;
     size_t i;
-    #ifdef MTV4_CRC_TABLE
+    #if defined(MTV4_CRC_TABLE)
     for (i = 0; i < len; i++) {
         reg = (uint16_t)((((unsigned)reg << 8) ^ CW_READ_U16(&mtv4_crc16_8005_ffff_nn_0_table[(((unsigned)reg >> 8) ^ data[i]) & 0xFFu])));
+    }
+    #elif defined(MTV4_CRC_NIBBLE)
+    for (i = 0; i < len; i++) {
+        reg = (uint16_t)(reg ^ ((unsigned)data[i] << 8));
+        reg = (uint16_t)((((unsigned)reg << 4) ^ CW_READ_U16(&mtv4_crc16_8005_ffff_nn_0_nibbles[((unsigned)reg >> 12) & 0xFu])));
+        reg = (uint16_t)((((unsigned)reg << 4) ^ CW_READ_U16(&mtv4_crc16_8005_ffff_nn_0_nibbles[((unsigned)reg >> 12) & 0xFu])));
     }
     #else
     for (i = 0; i < len; i++) {

@@ -1698,28 +1698,29 @@ def enum_span(values: list) -> Optional[tuple[int, int]]:
     return (lo, hi) if hi - lo + 1 == len(set(values)) else None
 
 
-def crc_table(p: CrcParams) -> list[int]:
-    """The 256-entry lookup table of the byte-wise algorithm the C code runs."""
+def crc_table(p: CrcParams, bits: int = 8) -> list[int]:
+    """The lookup table of the algorithm the C code runs `bits` bits at a time (8: 256
+    entries; 4: 16 entries, for the nibble-wise one)."""
     table = []
     if p.refin:
         rpoly = reflect(p.poly, p.width)
-        for byte in range(256):
-            reg = byte
-            for _ in range(8):
+        for value in range(1 << bits):
+            reg = value
+            for _ in range(bits):
                 reg = (reg >> 1) ^ rpoly if reg & 1 else reg >> 1
             table.append(reg)
     elif p.width >= 8:
         mask, top = (1 << p.width) - 1, 1 << (p.width - 1)
-        for byte in range(256):
-            reg = byte << (p.width - 8)
-            for _ in range(8):
+        for value in range(1 << bits):
+            reg = value << (p.width - bits)
+            for _ in range(bits):
                 reg = ((reg << 1) ^ p.poly) & mask if reg & top else (reg << 1) & mask
             table.append(reg)
     else:  # widths under 8 run on a register left-aligned in a byte
         poly = p.poly << (8 - p.width)
-        for byte in range(256):
-            reg = byte
-            for _ in range(8):
+        for value in range(1 << bits):
+            reg = value << (8 - bits)
+            for _ in range(bits):
                 reg = ((reg << 1) ^ poly) & 0xFF if reg & 0x80 else (reg << 1) & 0xFF
             table.append(reg)
     return table
@@ -1787,7 +1788,8 @@ def internet_code(name: str, cs: Checksum) -> str:
 
 def checksum_code(name: str, cs: Checksum, guard: str) -> str:
     """A C function `name(data, len)` computing a byte checksum; CRCs bitwise by
-    default and table-driven (table in flash on AVR) when <guard>_CRC_TABLE is defined."""
+    default, a byte at a time from a 256-entry table when <guard>_CRC_TABLE is defined and
+    a nibble at a time from a 16-entry table when <guard>_CRC_NIBBLE is (tables in flash on AVR)."""
     c = Code()
     if cs.algorithm == "fletcher":
         return fletcher_code(name, cs)
@@ -1825,12 +1827,18 @@ def checksum_code(name: str, cs: Checksum, guard: str) -> str:
     c(f"/* {p.name}: width {p.width}, poly {p.poly:#x}, init {p.init:#x}, refin {str(p.refin).lower()}, "
       f"refout {str(p.refout).lower()}, xorout {p.xorout:#x} */")
     if read:
-        c(f"#ifdef {guard}_CRC_TABLE")
-        c(f"static const {t} {name}_table[256] CW_FLASH = {{")
         per = 8 if p.width > 16 else 12
         digits = (p.width + 3) // 4 if not left else 2
+        c(f"#if defined({guard}_CRC_TABLE)")
+        c(f"static const {t} {name}_table[256] CW_FLASH = {{")
         for i in range(0, 256, per):
             c("    " + ", ".join(f"{clit_hex(v, digits, t)}" for v in table[i:i + per]) + ",")
+        c("};")
+        c(f"#elif defined({guard}_CRC_NIBBLE)")
+        nibbles = crc_table(p, 4)
+        c(f"static const {t} {name}_nibbles[16] CW_FLASH = {{")
+        for i in range(0, 16, 8):
+            c("    " + ", ".join(f"{clit_hex(v, digits, t)}" for v in nibbles[i:i + 8]) + ",")
         c("};")
         c("#endif")
     extra = ", uint8_t extra" if cs.extra else ""
@@ -1841,7 +1849,7 @@ def checksum_code(name: str, cs: Checksum, guard: str) -> str:
     c("size_t i;")
     byte = "byte" if cs.extra else "data[i]"
     if read:
-        c(f"#ifdef {guard}_CRC_TABLE")
+        c(f"#if defined({guard}_CRC_TABLE)")
         byte_loop(c, cs.extra)
         if p.refin:
             shift = f"({t})({widen}reg >> 8)" if p.width > 8 else "0u"
@@ -1851,6 +1859,24 @@ def checksum_code(name: str, cs: Checksum, guard: str) -> str:
         else:
             keep = "" if full else f" & {clit_hex(mask, 1, t)}"
             c(f"    reg = ({t})((({widen}reg << 8) ^ {read}(&{name}_table[(({widen}reg >> {p.width - 8}) ^ {byte}) & 0xFFu])){keep});")
+        c("}")
+        c(f"#elif defined({guard}_CRC_NIBBLE)")
+        byte_loop(c, cs.extra)
+        nibble = f"{read}(&{name}_nibbles"
+        if p.refin:
+            c(f"    reg = ({t})(reg ^ {byte});")
+            for _ in range(2):
+                c(f"    reg = ({t})(({widen}reg >> 4) ^ {nibble}[{widen}reg & 0xFu]));")
+        elif left or p.width == 8:
+            c(f"    reg = (uint8_t)(reg ^ {byte});")
+            for _ in range(2):
+                c(f"    reg = (uint8_t)((({widen}reg << 4) & 0xFFu) ^ {nibble}[{widen}reg >> 4]));")
+        else:
+            keep = "" if full else f" & {clit_hex(mask, 1, t)}"
+            data = f"({widen}{byte} << {p.width - 8})" if small else f"(({t}){byte} << {p.width - 8})"
+            c(f"    reg = ({t})(reg ^ {data});")
+            for _ in range(2):
+                c(f"    reg = ({t})((({widen}reg << 4) ^ {nibble}[({widen}reg >> {p.width - 4}) & 0xFu])){keep});")
         c("}")
         c("#else")
     byte_loop(c, cs.extra)

@@ -7,7 +7,8 @@
  * and a negative CW_ERR_* code on failure; after a failed decode the output
  * struct holds unspecified values.
  * Define MAVLINK2_CRC_TABLE before including this header for table-driven
- * checksums (the table is const, in flash on AVR).
+ * checksums, a byte at a time from 256 entries, or MAVLINK2_CRC_NIBBLE for a nibble
+ * at a time from 16 entries (the tables are const, in flash on AVR).
  */
 #ifndef MAVLINK2_H
 #define MAVLINK2_H
@@ -186,7 +187,7 @@ typedef struct {
 } mavlink2_message_t;
 
 /* CRC-16/MCRF4XX: width 16, poly 0x1021, init 0xffff, refin true, refout true, xorout 0x0 */
-#ifdef MAVLINK2_CRC_TABLE
+#if defined(MAVLINK2_CRC_TABLE)
 static const uint16_t mavlink2_crc16_1021_ffff_rr_0_extra_table[256] CW_FLASH = {
     0x0000u, 0x1189u, 0x2312u, 0x329Bu, 0x4624u, 0x57ADu, 0x6536u, 0x74BFu, 0x8C48u, 0x9DC1u, 0xAF5Au, 0xBED3u,
     0xCA6Cu, 0xDBE5u, 0xE97Eu, 0xF8F7u, 0x1081u, 0x0108u, 0x3393u, 0x221Au, 0x56A5u, 0x472Cu, 0x75B7u, 0x643Eu,
@@ -211,15 +212,27 @@ static const uint16_t mavlink2_crc16_1021_ffff_rr_0_extra_table[256] CW_FLASH = 
     0xF78Fu, 0xE606u, 0xD49Du, 0xC514u, 0xB1ABu, 0xA022u, 0x92B9u, 0x8330u, 0x7BC7u, 0x6A4Eu, 0x58D5u, 0x495Cu,
     0x3DE3u, 0x2C6Au, 0x1EF1u, 0x0F78u,
 };
+#elif defined(MAVLINK2_CRC_NIBBLE)
+static const uint16_t mavlink2_crc16_1021_ffff_rr_0_extra_nibbles[16] CW_FLASH = {
+    0x0000u, 0x1081u, 0x2102u, 0x3183u, 0x4204u, 0x5285u, 0x6306u, 0x7387u,
+    0x8408u, 0x9489u, 0xA50Au, 0xB58Bu, 0xC60Cu, 0xD68Du, 0xE70Eu, 0xF78Fu,
+};
 #endif
 static inline uint16_t mavlink2_crc16_1021_ffff_rr_0_extra(const uint8_t *data, size_t len, uint8_t extra)
 {
     uint16_t reg = 0xFFFFu;
     size_t i;
-    #ifdef MAVLINK2_CRC_TABLE
+    #if defined(MAVLINK2_CRC_TABLE)
     for (i = 0; i <= len; i++) {  /* the data, then the message's extra byte */
         const uint8_t byte = i < len ? data[i] : extra;
         reg = (uint16_t)(CW_READ_U16(&mavlink2_crc16_1021_ffff_rr_0_extra_table[((unsigned)reg ^ byte) & 0xFFu]) ^ (uint16_t)((unsigned)reg >> 8));
+    }
+    #elif defined(MAVLINK2_CRC_NIBBLE)
+    for (i = 0; i <= len; i++) {  /* the data, then the message's extra byte */
+        const uint8_t byte = i < len ? data[i] : extra;
+        reg = (uint16_t)(reg ^ byte);
+        reg = (uint16_t)(((unsigned)reg >> 4) ^ CW_READ_U16(&mavlink2_crc16_1021_ffff_rr_0_extra_nibbles[(unsigned)reg & 0xFu]));
+        reg = (uint16_t)(((unsigned)reg >> 4) ^ CW_READ_U16(&mavlink2_crc16_1021_ffff_rr_0_extra_nibbles[(unsigned)reg & 0xFu]));
     }
     #else
     for (i = 0; i <= len; i++) {  /* the data, then the message's extra byte */

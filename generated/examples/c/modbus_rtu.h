@@ -7,7 +7,8 @@
  * and a negative CW_ERR_* code on failure; after a failed decode the output
  * struct holds unspecified values.
  * Define MODBUS_RTU_CRC_TABLE before including this header for table-driven
- * checksums (the table is const, in flash on AVR).
+ * checksums, a byte at a time from 256 entries, or MODBUS_RTU_CRC_NIBBLE for a nibble
+ * at a time from 16 entries (the tables are const, in flash on AVR).
  */
 #ifndef MODBUS_RTU_H
 #define MODBUS_RTU_H
@@ -118,7 +119,7 @@ typedef struct {
 } modbus_rtu_message_t;
 
 /* CRC-16/MODBUS: width 16, poly 0x8005, init 0xffff, refin true, refout true, xorout 0x0 */
-#ifdef MODBUS_RTU_CRC_TABLE
+#if defined(MODBUS_RTU_CRC_TABLE)
 static const uint16_t modbus_rtu_crc16_8005_ffff_rr_0_table[256] CW_FLASH = {
     0x0000u, 0xC0C1u, 0xC181u, 0x0140u, 0xC301u, 0x03C0u, 0x0280u, 0xC241u, 0xC601u, 0x06C0u, 0x0780u, 0xC741u,
     0x0500u, 0xC5C1u, 0xC481u, 0x0440u, 0xCC01u, 0x0CC0u, 0x0D80u, 0xCD41u, 0x0F00u, 0xCFC1u, 0xCE81u, 0x0E40u,
@@ -143,14 +144,25 @@ static const uint16_t modbus_rtu_crc16_8005_ffff_rr_0_table[256] CW_FLASH = {
     0x4400u, 0x84C1u, 0x8581u, 0x4540u, 0x8701u, 0x47C0u, 0x4680u, 0x8641u, 0x8201u, 0x42C0u, 0x4380u, 0x8341u,
     0x4100u, 0x81C1u, 0x8081u, 0x4040u,
 };
+#elif defined(MODBUS_RTU_CRC_NIBBLE)
+static const uint16_t modbus_rtu_crc16_8005_ffff_rr_0_nibbles[16] CW_FLASH = {
+    0x0000u, 0xCC01u, 0xD801u, 0x1400u, 0xF001u, 0x3C00u, 0x2800u, 0xE401u,
+    0xA001u, 0x6C00u, 0x7800u, 0xB401u, 0x5000u, 0x9C01u, 0x8801u, 0x4400u,
+};
 #endif
 static inline uint16_t modbus_rtu_crc16_8005_ffff_rr_0(const uint8_t *data, size_t len)
 {
     uint16_t reg = 0xFFFFu;
     size_t i;
-    #ifdef MODBUS_RTU_CRC_TABLE
+    #if defined(MODBUS_RTU_CRC_TABLE)
     for (i = 0; i < len; i++) {
         reg = (uint16_t)(CW_READ_U16(&modbus_rtu_crc16_8005_ffff_rr_0_table[((unsigned)reg ^ data[i]) & 0xFFu]) ^ (uint16_t)((unsigned)reg >> 8));
+    }
+    #elif defined(MODBUS_RTU_CRC_NIBBLE)
+    for (i = 0; i < len; i++) {
+        reg = (uint16_t)(reg ^ data[i]);
+        reg = (uint16_t)(((unsigned)reg >> 4) ^ CW_READ_U16(&modbus_rtu_crc16_8005_ffff_rr_0_nibbles[(unsigned)reg & 0xFu]));
+        reg = (uint16_t)(((unsigned)reg >> 4) ^ CW_READ_U16(&modbus_rtu_crc16_8005_ffff_rr_0_nibbles[(unsigned)reg & 0xFu]));
     }
     #else
     for (i = 0; i < len; i++) {
