@@ -61,10 +61,10 @@ def schema_of(folder: Path, name: str) -> Path:
 
 @pytest.mark.parametrize("level", LEVELS)
 @pytest.mark.parametrize("compiler,flags", MATRIX, ids=[f"{c}{' '.join(f[:1])}" for c, f in MATRIX])
-@pytest.mark.parametrize("crc", ["bitwise", "table"])
+@pytest.mark.parametrize("crc", ["bitwise", "table", "nibble"])
 def test_headers_compile_together_without_warnings(tmp_path, compiler, flags, crc, level):
     """All five headers in one translation unit: no clashing names, no warnings."""
-    defines = [f"-D{p.upper()}_CRC_TABLE" for p in PROTOCOLS] if crc == "table" else []
+    defines = [f"-D{p.upper()}_CRC_{crc.upper()}" for p in PROTOCOLS] if crc != "bitwise" else []
     result = run([tool(compiler), *flags, level, *WARNINGS, *defines, "-I", str(INCLUDE), "-c",
                   str(all_headers(tmp_path)), "-o", str(tmp_path / "all.o")])
     assert result.returncode == 0, result.stderr
@@ -72,12 +72,12 @@ def test_headers_compile_together_without_warnings(tmp_path, compiler, flags, cr
 
 @pytest.mark.parametrize("level", LEVELS)
 @pytest.mark.parametrize("compiler", ["gcc", "clang"])
-@pytest.mark.parametrize("crc", ["bitwise", "table"])
+@pytest.mark.parametrize("crc", ["bitwise", "table", "nibble"])
 def test_example_headers_compile_together_without_warnings(tmp_path, compiler, crc, level):
     """The third-party examples (generated/examples/c) as the project's own headers."""
     names = sorted(path.stem for path in EXAMPLES.glob("*.h") if path.stem != "codeword")
     assert len(names) >= 5, names
-    defines = [f"-D{name.upper()}_CRC_TABLE" for name in names] if crc == "table" else []
+    defines = [f"-D{name.upper()}_CRC_{crc.upper()}" for name in names] if crc != "bitwise" else []
     result = run([tool(compiler), "-std=c99", level, *WARNINGS, *defines, "-I", str(EXAMPLES), "-c",
                   str(all_headers(tmp_path, EXAMPLES)), "-o", str(tmp_path / "all.o")])
     assert result.returncode == 0, result.stderr
@@ -95,9 +95,9 @@ def passed(output: str, name: str) -> re.Match:
 
 
 @pytest.mark.parametrize("name", PROTOCOLS)
-@pytest.mark.parametrize("crc", ["bitwise", "table"])
+@pytest.mark.parametrize("crc", ["bitwise", "table", "nibble"])
 def test_conformance_on_host_with_sanitizers(tmp_path, name, crc):
-    define = [f"-D{name.upper()}_CRC_TABLE"] if crc == "table" else []
+    define = [f"-D{name.upper()}_CRC_{crc.upper()}"] if crc != "bitwise" else []
     exe = tmp_path / name
     build = run([tool("gcc"), "-std=c99", "-g", "-O1", "-fsanitize=address,undefined",
                  "-fno-sanitize-recover=all", "-Wall", "-Wextra", "-Werror", *define, "-I", str(INCLUDE),
