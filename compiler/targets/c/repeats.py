@@ -96,33 +96,23 @@ def encode_loops(v: "CView", c: Code, m: Message) -> None:
     """Write each Repeat's elements (in a frame that holds the whole array: elements past a
     count, or an absent array, are zeros, which the encoder then leaves out)."""
     for r in m.wire.repeats:
-        gap = gap_of_repeat(m, r)
-        count = f"{r.count}u"
-        if gap is not None and gap.presence:
-            c(f"if ({v.presence_test(m, gap)}) {{")
-            c.indent()
-        elif gap is not None and gap.counter:
-            count = f"(size_t)m->{count_member(r.field.name)}"
-        c(f"for (size_t i = 0u; i < {count}; i++) {{")
-        c(f"    rc = {put_name(v, m, r)}(m, i, buf + {r.start}u + i * {r.stride}u);")
-        c("    if (rc != CW_OK) {")
-        c("        return rc;")
-        c("    }")
-        c("}")
-        if gap is not None and gap.presence:
-            c.dedent()
-            c("} else {")
-            c(f"    memset(buf + {r.start}, 0, {r.end - r.start}u);")
-            c("}")
-        elif gap is not None and gap.counter:
-            c(f"memset(buf + {r.start}u + {count} * {r.stride}u, 0, ({r.count}u - {count}) * {r.stride}u);")
+        element_loop(v, c, m, r, f"rc = {put_name(v, m, r)}(m, i, buf + {r.start}u + i * {r.stride}u);",
+                     lambda first: f"memset(buf + {r.start}u + {first} * {r.stride}u, 0, "
+                                   f"({r.count}u - {first}) * {r.stride}u);")
 
 
 def decode_loop(v: "CView", c: Code, m: Message, r: Repeat) -> None:
     """Read, check and store each element of Repeat `r` the frame holds, in the field's place
     among the checks; elements past a count, or an absent array, are zeros."""
-    gap = gap_of_repeat(m, r)
     member = f"m->{r.field.name}"
+    element_loop(v, c, m, r, f"int rc = {get_name(v, m, r)}(buf + {r.start}u + i * {r.stride}u, i, m);",
+                 lambda first: f"memset(&{member}[{first}], 0, ({r.count}u - {first}) * sizeof {member}[0]);")
+
+
+def element_loop(v: "CView", c: Code, m: Message, r: Repeat, call: str, zeros) -> None:
+    """`call` (which sets rc) for each element the frame holds, returning its error; `zeros(first)`
+    clears the elements from `first` on: past a count, or all of an absent array."""
+    gap = gap_of_repeat(m, r)
     count = f"{r.count}u"
     if gap is not None and gap.presence:
         c(f"if ({v.presence_test(m, gap)}) {{")
@@ -130,7 +120,7 @@ def decode_loop(v: "CView", c: Code, m: Message, r: Repeat) -> None:
     elif gap is not None and gap.counter:
         count = f"(size_t)m->{count_member(r.field.name)}"
     c(f"for (size_t i = 0u; i < {count}; i++) {{")
-    c(f"    int rc = {get_name(v, m, r)}(buf + {r.start}u + i * {r.stride}u, i, m);")
+    c(f"    {call}")
     c("    if (rc != CW_OK) {")
     c("        return rc;")
     c("    }")
@@ -138,7 +128,7 @@ def decode_loop(v: "CView", c: Code, m: Message, r: Repeat) -> None:
     if gap is not None and gap.presence:
         c.dedent()
         c("} else {")
-        c(f"    memset({member}, 0, sizeof {member});")
+        c(f"    {zeros('0u')}")
         c("}")
     elif gap is not None and gap.counter:
-        c(f"memset(&{member}[{count}], 0, ({r.count}u - {count}) * sizeof {member}[0]);")
+        c(zeros(count))
