@@ -188,7 +188,7 @@ class RepeatCode:
             target = f"({', '.join(v for v, _ in self.unpacked_names())},)"
         else:
             items, target, checked = f"range({count or r.count})", "i", False
-        c(f"{out} = []")
+        c(f"{out} = []" if present else f"{out}: list[Any] = []")
         c(f"for i, {target} in enumerate({items}):" if checked else f"for {target} in {items}:")
         c.indent()
         if scalar is None and not self.iterated():

@@ -1498,7 +1498,7 @@ def _decode_nav_sat(d: _Buffer) -> NavSat:
         raise _dec('nav_sat', 'msg_id', r_msg_id, 'const', '53', 24, None)
     if r_length != 392 - cut:
         raise _dec('nav_sat', 'length', r_length, 'length', f'{392 - cut} for nav_sat', 32, None)
-    l_sv = []
+    l_sv: list[Any] = []
     for i, (r_2sv_i_6gnssId, r_2sv_i_4svId, r_2sv_i_3cno, r_2sv_i_4elev, r_2sv_i_4azim, r_2sv_i_5prRes, e0_6, e0_7, e0_8, e0_9,) in enumerate(_E_nav_sat_2sv_0.iter_unpack(a_sv[:12 * n_sv])):
         r_2sv_i_10qualityInd = e0_6 & 0x7
         r_2sv_i_6svUsed = (e0_6 >> 3) & 0x1
@@ -1632,7 +1632,7 @@ def _decode_mon_ver(d: _Buffer) -> MonVer:
         raise _dec('mon_ver', 'msg_id', r_msg_id, 'const', '4', 24, None)
     if r_length != 340 - cut:
         raise _dec('mon_ver', 'length', r_length, 'length', f'{340 - cut} for mon_ver', 32, None)
-    l_ext = []
+    l_ext: list[Any] = []
     for (r_3ext_i_9extension,) in _E_mon_ver_3ext_0.iter_unpack(a_ext[:30 * n_ext]):
         g_3ext_i = _object_new(MonVerExt)
         g_3ext_i.extension = r_3ext_i_9extension
