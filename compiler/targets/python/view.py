@@ -1605,6 +1605,24 @@ class MessageCode:
         return c.text()
 
 
+def sizes_range(least: int, most: int, step: int) -> str:
+    """Python for the frame sizes least..most in steps of `step`."""
+    return f"range({least}, {most + 1}{f', {step}' if step != 1 else ''})"
+
+
+def sizes_literal(sizes: list[int]) -> str:
+    """Python for a list of sorted sizes: a run of three or more consecutive ones is a range,
+    so that a counted array's many sizes cost no more text than its few."""
+    runs: list[list[int]] = []
+    for n in sizes:
+        if runs and runs[-1][-1] + 1 == n:
+            runs[-1].append(n)
+        else:
+            runs.append([n])
+    items = [f"*range({run[0]}, {run[-1] + 1})" if len(run) > 2 else ", ".join(map(str, run)) for run in runs]
+    return f"[{', '.join(items)}]"
+
+
 def module_view(p: Protocol) -> dict:
     """Everything the module template needs, computed."""
     view = ModuleView(p)
@@ -1971,8 +1989,9 @@ class ModuleView(PythonView):
     def dispatch_table(self) -> dict:
         facts = dispatch_facts(self.p)
         if facts["kind"] == "bytes":
-            keys = [(value, n, direction, name) for value, size, direction, name in facts["frames"]
-                    for n in range(facts["least"].get(name, size), size + 1, facts["steps"].get(name, 1))]
+            # each message's frame sizes as a range: a counted array's are as many as its elements
+            keys = [(value, sizes_range(facts["least"].get(name, size), size, facts["steps"].get(name, 1)), direction, name)
+                    for value, size, direction, name in facts["frames"]]
             facts = dict(facts, value_expr=self.read_expr("d", "", facts), sized_frames=keys)
         if facts["kind"] == "bits" and self.p.framing.max_bits:  # the word form: a left-aligned int
             facts = dict(facts, word_limit=1 << self.p.framing.max_bits,
@@ -2015,7 +2034,7 @@ class ModuleView(PythonView):
     def stream_view(self) -> dict:
         facts = stream_facts(self.p)
         if facts:
-            facts = dict(facts, sync_literal=repr(facts["sync_bytes"]))
+            facts = dict(facts, sync_literal=repr(facts["sync_bytes"]), accepted_literal=sizes_literal(facts["accepted"]))
         if facts.get("length"):
             length = facts["length"]
             facts = dict(facts, length=dict(length, value_expr=self.read_expr("buf", "pos + ", dict(length, first=length["at"]))))

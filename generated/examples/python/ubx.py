@@ -1690,12 +1690,13 @@ setattr(MonVer, "decode", staticmethod(_decode_mon_ver))
 
 _Decoder = Callable[[_Buffer], AnyMessage]
 # (id, frame size, direction, decoder): an id and size may be used once in each direction
-_KEYS: tuple[tuple[int, int, Optional[str], _Decoder], ...] = ((5, 10, None, _decode_ack_nak), (261, 10, None, _decode_ack_ack), (2054, 8, None, _decode_cfg_rate_poll), (2054, 14, None, _decode_cfg_rate), (513, 36, None, _decode_nav_posllh), (1793, 100, None, _decode_nav_pvt), (13569, 16, None, _decode_nav_sat), (13569, 28, None, _decode_nav_sat), (13569, 40, None, _decode_nav_sat), (13569, 52, None, _decode_nav_sat), (13569, 64, None, _decode_nav_sat), (13569, 76, None, _decode_nav_sat), (13569, 88, None, _decode_nav_sat), (13569, 100, None, _decode_nav_sat), (13569, 112, None, _decode_nav_sat), (13569, 124, None, _decode_nav_sat), (13569, 136, None, _decode_nav_sat), (13569, 148, None, _decode_nav_sat), (13569, 160, None, _decode_nav_sat), (13569, 172, None, _decode_nav_sat), (13569, 184, None, _decode_nav_sat), (13569, 196, None, _decode_nav_sat), (13569, 208, None, _decode_nav_sat), (13569, 220, None, _decode_nav_sat), (13569, 232, None, _decode_nav_sat), (13569, 244, None, _decode_nav_sat), (13569, 256, None, _decode_nav_sat), (13569, 268, None, _decode_nav_sat), (13569, 280, None, _decode_nav_sat), (13569, 292, None, _decode_nav_sat), (13569, 304, None, _decode_nav_sat), (13569, 316, None, _decode_nav_sat), (13569, 328, None, _decode_nav_sat), (13569, 340, None, _decode_nav_sat), (13569, 352, None, _decode_nav_sat), (13569, 364, None, _decode_nav_sat), (13569, 376, None, _decode_nav_sat), (13569, 388, None, _decode_nav_sat), (13569, 400, None, _decode_nav_sat), (1034, 48, None, _decode_mon_ver), (1034, 78, None, _decode_mon_ver), (1034, 108, None, _decode_mon_ver), (1034, 138, None, _decode_mon_ver), (1034, 168, None, _decode_mon_ver), (1034, 198, None, _decode_mon_ver), (1034, 228, None, _decode_mon_ver), (1034, 258, None, _decode_mon_ver), (1034, 288, None, _decode_mon_ver), (1034, 318, None, _decode_mon_ver), (1034, 348, None, _decode_mon_ver), )
+_KEYS: tuple[tuple[int, range, Optional[str], _Decoder], ...] = ((5, range(10, 11), None, _decode_ack_nak), (261, range(10, 11), None, _decode_ack_ack), (2054, range(8, 9), None, _decode_cfg_rate_poll), (2054, range(14, 15), None, _decode_cfg_rate), (513, range(36, 37), None, _decode_nav_posllh), (1793, range(100, 101), None, _decode_nav_pvt), (13569, range(16, 401, 12), None, _decode_nav_sat), (1034, range(48, 349, 30), None, _decode_mon_ver), )
 _KEYS_BY_DIRECTION: dict[Optional[str], dict[tuple[int, int], _Decoder]] = {}
 _ALL: dict[tuple[int, int], list[_Decoder]] = {}
-for _value, _size, _direction, _fn in _KEYS:
-    _KEYS_BY_DIRECTION.setdefault(_direction, {})[(_value, _size)] = _fn
-    _ALL.setdefault((_value, _size), []).append(_fn)
+for _value, _sizes, _direction, _fn in _KEYS:
+    for _size in _sizes:
+        _KEYS_BY_DIRECTION.setdefault(_direction, {})[(_value, _size)] = _fn
+        _ALL.setdefault((_value, _size), []).append(_fn)
 
 
 _UNIQUE = {key: fns[0] for key, fns in _ALL.items() if len(fns) == 1}
@@ -1732,7 +1733,7 @@ class StreamDecoder:
     frames (the stretch's first), however long the stretch. Memory is bounded by
     one maximum frame."""
 
-    _SIZES = frozenset([8, 10, 14, 16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31, 32, 33, 34, 35, 36, 37, 38, 39, 40, 41, 42, 43, 44, 45, 46, 47, 48, 49, 50, 51, 52, 53, 54, 55, 56, 57, 58, 59, 60, 61, 62, 63, 64, 65, 66, 67, 68, 69, 70, 71, 72, 73, 74, 75, 76, 77, 78, 79, 80, 81, 82, 83, 84, 85, 86, 87, 88, 89, 90, 91, 92, 93, 94, 95, 96, 97, 98, 99, 100, 101, 102, 103, 104, 105, 106, 107, 108, 109, 110, 111, 112, 113, 114, 115, 116, 117, 118, 119, 120, 121, 122, 123, 124, 125, 126, 127, 128, 129, 130, 131, 132, 133, 134, 135, 136, 137, 138, 139, 140, 141, 142, 143, 144, 145, 146, 147, 148, 149, 150, 151, 152, 153, 154, 155, 156, 157, 158, 159, 160, 161, 162, 163, 164, 165, 166, 167, 168, 169, 170, 171, 172, 173, 174, 175, 176, 177, 178, 179, 180, 181, 182, 183, 184, 185, 186, 187, 188, 189, 190, 191, 192, 193, 194, 195, 196, 197, 198, 199, 200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 210, 211, 212, 213, 214, 215, 216, 217, 218, 219, 220, 221, 222, 223, 224, 225, 226, 227, 228, 229, 230, 231, 232, 233, 234, 235, 236, 237, 238, 239, 240, 241, 242, 243, 244, 245, 246, 247, 248, 249, 250, 251, 252, 253, 254, 255, 256, 257, 258, 259, 260, 261, 262, 263, 264, 265, 266, 267, 268, 269, 270, 271, 272, 273, 274, 275, 276, 277, 278, 279, 280, 281, 282, 283, 284, 285, 286, 287, 288, 289, 290, 291, 292, 293, 294, 295, 296, 297, 298, 299, 300, 301, 302, 303, 304, 305, 306, 307, 308, 309, 310, 311, 312, 313, 314, 315, 316, 317, 318, 319, 320, 321, 322, 323, 324, 325, 326, 327, 328, 329, 330, 331, 332, 333, 334, 335, 336, 337, 338, 339, 340, 341, 342, 343, 344, 345, 346, 347, 348, 349, 350, 351, 352, 353, 354, 355, 356, 357, 358, 359, 360, 361, 362, 363, 364, 365, 366, 367, 368, 369, 370, 371, 372, 373, 374, 375, 376, 377, 378, 379, 380, 381, 382, 383, 384, 385, 386, 387, 388, 389, 390, 391, 392, 393, 394, 395, 396, 397, 398, 399, 400])
+    _SIZES = frozenset([8, 10, 14, *range(16, 401)])
 
     def __init__(self, direction: Optional[str] = None) -> None:
         self.direction = direction
