@@ -68,8 +68,9 @@ def wrong_values(codec, obj, path):
     if typing.get_origin(hint) is list:
         (element,) = typing.get_args(hint)
         nullable = typing.get_origin(element) is typing.Union and type(None) in typing.get_args(element)
-        out += NOT_A_LIST + [[object()] * max(len(current), 1)]
-        out += [] if nullable else [[None] * max(len(current), 1)]  # absent elements of one-hot arrays are None
+        n = max(len(current or ()), 1)  # an array a frame may leave out is None where it does
+        out += NOT_A_LIST + [[object()] * n]
+        out += [] if nullable else [[None] * n]  # absent elements of one-hot arrays are None
         if current:  # more elements than any count of these schemas
             out.append(current[:1] * 100_000)
     elif dataclasses.is_dataclass(hint):

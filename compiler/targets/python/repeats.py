@@ -13,9 +13,14 @@ from typing import TYPE_CHECKING, Optional
 
 from ...model import Each, Leaf, Repeat, dotted, path_name
 from ..code import Code
+from .chunks import Chunk, access, chunks_of, segments_of
 
 if TYPE_CHECKING:
-    from .view import Chunk, MessageCode
+    from .view import MessageCode
+
+
+# the struct codes of a number that one item holds: an array of them is one struct of `count` items
+NUMBER_CODES = frozenset("BHIQbhiqfd")
 
 
 def named(path: tuple) -> str:
@@ -52,7 +57,6 @@ class RepeatCode:
     """The generated code of one Repeat of a message."""
 
     def __init__(self, mc: "MessageCode", r: Repeat):
-        from .view import chunks_of, segments_of
         self.mc, self.r = mc, r
         self.chunks = chunks_of(r.runs, mc.view.p.framing.byte_order)
         self.segments = segments_of(self.chunks)
@@ -60,10 +64,9 @@ class RepeatCode:
         self.array = mc.group_var((r.field.name,))
 
     # -- what the message's code sees -----------------------------------------------------
-    def chunk(self) -> "Chunk":
+    def chunk(self) -> Chunk:
         """The array's bytes as one item of the message's struct: the blob the encoder packs
         (padded with zeros past the elements given), the bytes the decoder's loop reads."""
-        from .view import Chunk
         size = self.r.end - self.r.start
         return Chunk(self.r.start, size, [], f"{size}s", None, True, repeat=self.r)
 
@@ -83,7 +86,7 @@ class RepeatCode:
         if len(self.r.leaves) != 1 or len(leaf.path) != 2 or len(self.chunks) != 1:
             return None
         chunk = self.chunks[0]
-        return leaf if chunk.lone and chunk.code in "BHIQbhiqfd" else None
+        return leaf if chunk.lone and chunk.code in NUMBER_CODES else None
 
     def vector(self) -> bool:
         """The array's numbers are one struct's items: packed and unpacked in one call."""
@@ -210,7 +213,7 @@ class RepeatCode:
         if present:
             c.dedent()
 
-    def unpacked_names(self) -> list[tuple[str, "Chunk"]]:
+    def unpacked_names(self) -> list[tuple[str, Chunk]]:
         """The local each chunk of an element is unpacked into: a value that fills its own
         item goes straight into its leaf's local."""
         out = []
@@ -242,8 +245,3 @@ class RepeatCode:
         var = mc.group_var(path)
         mc.construct(c, r.field.fields, path, values, var)
         return var
-
-
-def access(obj: str, step) -> str:
-    from .view import access as step_into
-    return step_into(obj, step)

@@ -5,14 +5,15 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass, field, replace
+from dataclasses import replace
 from typing import Any, Optional
 
 from ...crc import reflect
-from ...model import (SPELLING_MAX, Field, Gap, Leaf, Message, Multiplex, Protocol, Repeat, Rule, Run, Sequence,
-                      SequenceItem, field_at, path_name)
+from ...model import (SPELLING_MAX, Field, Gap, Leaf, Message, Multiplex, Protocol, Rule, Sequence, SequenceItem,
+                      field_at, path_name)
 from ...names import camel
 from ..code import Code, times_over
+from .chunks import Chunk, Segment, access, chunks_of, segments_of
 from .repeats import RepeatCode, blob, elements, named, region
 from .stuffing import stuffing_view
 from .trailer import trailer_view
@@ -30,11 +31,6 @@ def lit(value: Any) -> str:
 
 # what a text float may be, on both sides of a link (cw_decimal_t in C)
 TEXT_FLOAT = "at most 15 significant digits, and zero or a magnitude of at least 1e-307"
-
-def access(obj: str, step) -> str:
-    """Python for one step down a path: an attribute, or an array's element."""
-    return f"{obj}[{step}]" if isinstance(step, int) else f"{obj}.{step}"
-
 
 class PythonView:
     def __init__(self, protocol: Protocol):
@@ -489,80 +485,6 @@ class PythonView:
     def user_text(message) -> str:
         """A schema message in English, then its translations."""
         return " / ".join([message.en] + [t for _, t in message.translations])
-
-
-@dataclass
-class Chunk:
-    """Bytes of the frame packed by one struct code: a lone byte-aligned field or a run of bit fields."""
-
-    start: int  # byte offset
-    nbytes: int
-    leaves: list  # [(Leaf, shift)]
-    code: str  # struct code, or "s" for an odd-sized run converted with int.to_bytes
-    order: Optional[str]  # byte order it needs, None when any will do
-    lone: bool  # a single field stored as is (float, bytes, whole integer)
-    signed: bool = False
-    other: list = field(default_factory=list)  # [(Leaf, shift)] in the bytes read in the other byte order
-    free: bool = False  # bits no leaf holds read as anything (a payload placed by start_bit)
-    repeat: Optional[Repeat] = None  # the bytes of an array read and written in a loop
-
-    @property
-    def other_order(self) -> str:
-        return "little" if self.order == "big" else "big"
-
-
-def chunks_of(runs: tuple[Run, ...], default_order: str) -> list[Chunk]:
-    """The struct code of each run of the wire layout."""
-    out: list[Chunk] = []
-    for run in runs:
-        n = run.size
-        if run.kind == "packed":
-            pairs = [(leaf, run.shift(leaf)) for leaf in run.leaves]
-            own = [(leaf, at) for leaf, at in pairs if not run.mixed or run.order_of(leaf) == run.order]
-            other = [(leaf, at) for leaf, at in pairs if run.mixed and run.order_of(leaf) != run.order]
-            out.append(Chunk(run.start, n, own, STRUCT_CODES.get(n, "s"), run.order if n > 1 else None, False,
-                             other=other, free=run.free))
-            continue
-        leaf = run.leaves[0]
-        f = leaf.field
-        if f.kind == "float":
-            code = "f" if n == 4 else "d"
-        elif f.kind == "bytes":
-            code = f"{n}s"
-        else:
-            code = STRUCT_CODES.get(n, "s")
-            code = code.lower() if f.kind == "int" else code
-        order = f.byte_order or default_order
-        out.append(Chunk(run.start, n, [(leaf, 0)], code, order if n > 1 else None, True, f.kind == "int"))
-    return out
-
-
-STRUCT_CODES = {1: "B", 2: "H", 4: "I", 8: "Q"}
-
-
-@dataclass
-class Segment:
-    start: int
-    chunks: list
-
-    @property
-    def fmt(self) -> str:
-        order = next((c.order for c in self.chunks if c.order), "big")
-        codes = "".join(f"{c.nbytes}s" if c.code == "s" else c.code for c in self.chunks)
-        return ("<" if order == "little" else ">") + codes
-
-
-def segments_of(chunks: list[Chunk]) -> list[Segment]:
-    out: list[Segment] = []
-    for chunk in chunks:
-        if out:
-            current = out[-1]
-            order = next((c.order for c in current.chunks if c.order), None)
-            if chunk.order is None or order is None or chunk.order == order:
-                current.chunks.append(chunk)
-                continue
-        out.append(Segment(chunk.start, [chunk]))
-    return out
 
 
 _CONSTANT = re.compile(r"^ +(r_\w+) = -?\d+\n", re.M)
