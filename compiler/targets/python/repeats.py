@@ -71,8 +71,9 @@ class RepeatCode:
         return Chunk(self.r.start, size, [], f"{size}s", None, True, repeat=self.r)
 
     def structs(self) -> list[tuple[str, str]]:
-        """One element's structs, and the whole array's where its elements are one number each."""
-        out = [(self.struct(n), seg.fmt) for n, seg in enumerate(self.segments)]
+        """One element's structs (unless the array's are packed at once and read at once),
+        and the whole array's where its elements are one number each."""
+        out = [] if self.raw_is_value() else [(self.struct(n), seg.fmt) for n, seg in enumerate(self.segments)]
         if self.vector():
             out.append((f"_A_{self.fn}", self.segments[0].fmt[0] + f"{self.r.count}{self.chunks[0].code}"))
         return out
