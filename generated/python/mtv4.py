@@ -1149,12 +1149,13 @@ setattr(OdometryReply, "decode", staticmethod(_decode_odometry_reply))
 
 _Decoder = Callable[[_Buffer], AnyMessage]
 # (id, frame size, direction, decoder): an id and size may be used once in each direction
-_KEYS: tuple[tuple[int, int, Optional[str], _Decoder], ...] = ((1, 12, 'host_to_robot', _decode_set_wheels_velocities), (2, 12, 'host_to_robot', _decode_set_led), (3, 26, 'host_to_robot', _decode_set_wheels_velocities_with_odometry), (1, 8, 'robot_to_host', _decode_ack), (2, 8, 'robot_to_host', _decode_ack), (3, 22, 'robot_to_host', _decode_odometry_reply), )
+_KEYS: tuple[tuple[int, range, Optional[str], _Decoder], ...] = ((1, range(12, 13), 'host_to_robot', _decode_set_wheels_velocities), (2, range(12, 13), 'host_to_robot', _decode_set_led), (3, range(26, 27), 'host_to_robot', _decode_set_wheels_velocities_with_odometry), (1, range(8, 9), 'robot_to_host', _decode_ack), (2, range(8, 9), 'robot_to_host', _decode_ack), (3, range(22, 23), 'robot_to_host', _decode_odometry_reply), )
 _KEYS_BY_DIRECTION: dict[Optional[str], dict[tuple[int, int], _Decoder]] = {}
 _ALL: dict[tuple[int, int], list[_Decoder]] = {}
-for _value, _size, _direction, _fn in _KEYS:
-    _KEYS_BY_DIRECTION.setdefault(_direction, {})[(_value, _size)] = _fn
-    _ALL.setdefault((_value, _size), []).append(_fn)
+for _value, _sizes, _direction, _fn in _KEYS:
+    for _size in _sizes:
+        _KEYS_BY_DIRECTION.setdefault(_direction, {})[(_value, _size)] = _fn
+        _ALL.setdefault((_value, _size), []).append(_fn)
 
 
 _UNIQUE = {key: fns[0] for key, fns in _ALL.items() if len(fns) == 1}

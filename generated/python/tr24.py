@@ -379,12 +379,13 @@ setattr(Reply, "decode", staticmethod(_decode_reply))
 
 _Decoder = Callable[[_Buffer], AnyMessage]
 # (id, frame size, direction, decoder): an id and size may be used once in each direction
-_KEYS: tuple[tuple[int, int, Optional[str], _Decoder], ...] = ((0, 12, 'master_to_slave', _decode_command), (1, 12, 'slave_to_master', _decode_reply), )
+_KEYS: tuple[tuple[int, range, Optional[str], _Decoder], ...] = ((0, range(12, 13), 'master_to_slave', _decode_command), (1, range(12, 13), 'slave_to_master', _decode_reply), )
 _KEYS_BY_DIRECTION: dict[Optional[str], dict[tuple[int, int], _Decoder]] = {}
 _ALL: dict[tuple[int, int], list[_Decoder]] = {}
-for _value, _size, _direction, _fn in _KEYS:
-    _KEYS_BY_DIRECTION.setdefault(_direction, {})[(_value, _size)] = _fn
-    _ALL.setdefault((_value, _size), []).append(_fn)
+for _value, _sizes, _direction, _fn in _KEYS:
+    for _size in _sizes:
+        _KEYS_BY_DIRECTION.setdefault(_direction, {})[(_value, _size)] = _fn
+        _ALL.setdefault((_value, _size), []).append(_fn)
 
 
 _UNIQUE = {key: fns[0] for key, fns in _ALL.items() if len(fns) == 1}

@@ -5,14 +5,16 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass, field, replace
+from dataclasses import replace
 from typing import Any, Optional
 
 from ...crc import reflect
-from ...model import (SPELLING_MAX, Field, Gap, Leaf, Message, Multiplex, Protocol, Rule, Run, Sequence, SequenceItem, dotted,
+from ...model import (SPELLING_MAX, Field, Gap, Leaf, Message, Multiplex, Protocol, Rule, Sequence, SequenceItem,
                       field_at, path_name)
 from ...names import camel
 from ..code import Code, times_over
+from .chunks import Chunk, Segment, access, chunks_of, segments_of
+from .repeats import RepeatCode, blob, elements, named, region
 from .stuffing import stuffing_view
 from .trailer import trailer_view
 from ..wire import (checksum_name as _checksum_name, dispatch_facts, encoding_facts, gap_of, gap_reads, stream_facts,
@@ -29,11 +31,6 @@ def lit(value: Any) -> str:
 
 # what a text float may be, on both sides of a link (cw_decimal_t in C)
 TEXT_FLOAT = "at most 15 significant digits, and zero or a magnitude of at least 1e-307"
-
-def access(obj: str, step) -> str:
-    """Python for one step down a path: an attribute, or an array's element."""
-    return f"{obj}[{step}]" if isinstance(step, int) else f"{obj}.{step}"
-
 
 class PythonView:
     def __init__(self, protocol: Protocol):
@@ -194,7 +191,7 @@ class PythonView:
         (binary packing shifts and sums bools as 1 and 0; text would write "True")."""
         f, var = leaf.field, leaf.var
         v = var  # the value is read into the variable that then holds its raw form
-        where = f"{message.name!r}, {leaf.dotted!r}"
+        where = f"{message.name!r}, {named(leaf.path)}"
         if f.checksum or self.fixed_raw(f) is not None:
             c(f"{var} = {lit(self.fixed_raw(f) or 0)}")
             return
@@ -356,7 +353,7 @@ class PythonView:
         bounded: the raw value was read from its bits, so a range its width implies is not checked;
         finite_if: a condition under which a float is known to be finite (its text was short)."""
         f, var = leaf.field, leaf.var
-        at = f"{message.name!r}, {leaf.dotted!r}, {var}"
+        at = f"{message.name!r}, {named(leaf.path)}, {var}"
         off = offset_expr
         if f.reserved:
             c(f"if {var}:")
@@ -490,79 +487,6 @@ class PythonView:
         return " / ".join([message.en] + [t for _, t in message.translations])
 
 
-@dataclass
-class Chunk:
-    """Bytes of the frame packed by one struct code: a lone byte-aligned field or a run of bit fields."""
-
-    start: int  # byte offset
-    nbytes: int
-    leaves: list  # [(Leaf, shift)]
-    code: str  # struct code, or "s" for an odd-sized run converted with int.to_bytes
-    order: Optional[str]  # byte order it needs, None when any will do
-    lone: bool  # a single field stored as is (float, bytes, whole integer)
-    signed: bool = False
-    other: list = field(default_factory=list)  # [(Leaf, shift)] in the bytes read in the other byte order
-    free: bool = False  # bits no leaf holds read as anything (a payload placed by start_bit)
-
-    @property
-    def other_order(self) -> str:
-        return "little" if self.order == "big" else "big"
-
-
-def chunks_of(runs: tuple[Run, ...], default_order: str) -> list[Chunk]:
-    """The struct code of each run of the wire layout."""
-    out: list[Chunk] = []
-    for run in runs:
-        n = run.size
-        if run.kind == "packed":
-            pairs = [(leaf, run.shift(leaf)) for leaf in run.leaves]
-            own = [(leaf, at) for leaf, at in pairs if not run.mixed or run.order_of(leaf) == run.order]
-            other = [(leaf, at) for leaf, at in pairs if run.mixed and run.order_of(leaf) != run.order]
-            out.append(Chunk(run.start, n, own, STRUCT_CODES.get(n, "s"), run.order if n > 1 else None, False,
-                             other=other, free=run.free))
-            continue
-        leaf = run.leaves[0]
-        f = leaf.field
-        if f.kind == "float":
-            code = "f" if n == 4 else "d"
-        elif f.kind == "bytes":
-            code = f"{n}s"
-        else:
-            code = STRUCT_CODES.get(n, "s")
-            code = code.lower() if f.kind == "int" else code
-        order = f.byte_order or default_order
-        out.append(Chunk(run.start, n, [(leaf, 0)], code, order if n > 1 else None, True, f.kind == "int"))
-    return out
-
-
-STRUCT_CODES = {1: "B", 2: "H", 4: "I", 8: "Q"}
-
-
-@dataclass
-class Segment:
-    start: int
-    chunks: list
-
-    @property
-    def fmt(self) -> str:
-        order = next((c.order for c in self.chunks if c.order), "big")
-        codes = "".join(f"{c.nbytes}s" if c.code == "s" else c.code for c in self.chunks)
-        return ("<" if order == "little" else ">") + codes
-
-
-def segments_of(chunks: list[Chunk]) -> list[Segment]:
-    out: list[Segment] = []
-    for chunk in chunks:
-        if out:
-            current = out[-1]
-            order = next((c.order for c in current.chunks if c.order), None)
-            if chunk.order is None or order is None or chunk.order == order:
-                current.chunks.append(chunk)
-                continue
-        out.append(Segment(chunk.start, [chunk]))
-    return out
-
-
 _CONSTANT = re.compile(r"^ +(r_\w+) = -?\d+\n", re.M)
 # an integer field's read and checks, as encode_leaf writes them: the value of the usual
 # class and in range passes the first `if`; inside, the checks that say what is wrong
@@ -669,6 +593,11 @@ class MessageCode:
         self.fn = message.name
         self.output = "str" if view.p.framing.kind == "text" else "bytes"
         self.helpers: list[str] = []  # functions the encoder calls, written before it
+        self.repeats = {r.field.name: RepeatCode(self, r) for r in message.wire.repeats}
+
+    def looped(self, leaf: Leaf) -> Optional[RepeatCode]:
+        """The code of the Repeat whose elements hold `leaf`, if any."""
+        return self.repeats.get(leaf.path[0]) if len(leaf.path) > 1 else None
 
     # -- raw values (binary framings and the text form) ----------------------------------
     def raw_checks(self, c: Code, word: bool = False) -> None:
@@ -678,7 +607,11 @@ class MessageCode:
         groups: set[tuple] = set()
         run = GuardedRun(c)  # the leaves of one element (or conditional field) share one `if`
         element: Optional[ElementHelper] = None  # an element of a counted array of groups, checked apart
+        packed: set[str] = set()  # the arrays looped over, packed by their functions
         for leaf in self.leaves:
+            repeat = self.looped(leaf)
+            if repeat is not None and repeat.r.field.name in packed:
+                continue
             held = gap_of(self.m, leaf)
             guard = None if leaf.field.counts else self.sent_guard(leaf, held, encoding=True)
             of = leaf.path[:2] if held and held.counter and len(leaf.path) > 2 else None
@@ -691,7 +624,7 @@ class MessageCode:
                 self.check_presence(c, held)
             if leaf.field.multiplexed_by:
                 self.check_multiplexed(c, leaf.field)
-            for depth in range(1, len(leaf.path)):  # each group object and array is read once
+            for depth in range(1, 2 if repeat is not None else len(leaf.path)):  # each group object and array is read once
                 prefix = leaf.path[:depth]
                 if depth == 2 and of is not None and element is None:  # its function reads the rest
                     run.open(guard)
@@ -716,6 +649,12 @@ class MessageCode:
                         self.check_group(out, prefix, absent_ok)
             if leaf.field.counts:
                 continue  # set from the list's length below
+            if repeat is not None:
+                run.close()
+                packed.add(repeat.r.field.name)
+                c(repeat.put_call(self.presence_test(held) if held is not None and held.presence else None))
+                self.helpers.append(repeat.put_function())
+                continue
             run.open(guard)
             out = element.code if element is not None else c
             self.view.encode_leaf(out, self.m, leaf, self.group_var(leaf.path[:-1]), keep_bool=word,
@@ -818,7 +757,7 @@ class MessageCode:
         cls, v = self.view.group_class(self.m, path), self.group_var(path)
         absent = f"{v} is not None and " if absent_ok else ""
         c(f"if {absent}{v}.__class__ is not {cls} and not isinstance({v}, {cls}):")
-        c(f"    raise _enc({self.m.name!r}, {dotted(path)!r}, {v}, 'type', 'a {cls}')")
+        c(f"    raise _enc({self.m.name!r}, {named(path)}, {v}, 'type', 'a {cls}')")
 
     def check_list(self, c: Code, path: tuple, held: str = "typed") -> None:
         """An array member must be a list (or tuple) of exactly its count of elements. `held`:
@@ -829,12 +768,12 @@ class MessageCode:
         v = self.group_var(path)
         if array.varies:
             c(f"if not isinstance({v}, (list, tuple)) or len({v}) > {count}:")
-            c(f"    raise _enc({self.m.name!r}, {dotted(path)!r}, {v}, 'count', 'a list of at most {count} values')")
+            c(f"    raise _enc({self.m.name!r}, {named(path)}, {v}, 'count', 'a list of at most {count} values')")
             return
         c(f"if not _absent_or_list_of({v}, {count}):" if held == "absent_ok" else
           f"if not _is_list_of({v}, {count}):" if held == "any" else
           f"if not isinstance({v}, (list, tuple)) or len({v}) != {count}:")
-        c(f"    raise _enc({self.m.name!r}, {dotted(path)!r}, {v}, 'count', 'a list of {count} values')")
+        c(f"    raise _enc({self.m.name!r}, {named(path)}, {v}, 'count', 'a list of {count} values')")
 
     def raw_function(self) -> str:
         """_raw_<msg>(m): the raw values in wire order; the text form's writer."""
@@ -869,7 +808,15 @@ class MessageCode:
         word: they were read from the integer `w` (parity is then one bit count)."""
         values: dict[tuple, str] = {}
         run = GuardedRun(c)  # a value the frame left out is neither checked nor kept
+        read: set[str] = set()  # the arrays looped over, read in their places
         for leaf in self.leaves:
+            repeat = self.looped(leaf)
+            if repeat is not None:
+                if repeat.r.field.name not in read:
+                    run.close()
+                    read.add(repeat.r.field.name)
+                    self.read_repeat(c, repeat)
+                continue
             guard = self.sent_guard(leaf, gap_of(self.m, leaf), encoding=False)
             checks = Code()
             expr = self.view.decode_leaf(checks, self.m, leaf, self.sent_offset(leaf), bounded)
@@ -906,6 +853,12 @@ class MessageCode:
         self.construct(c, self.m.layout, (), values)
         self.view.rule_checks(c, self.m, "o", "_dec")
 
+    def read_repeat(self, c: Code, repeat: RepeatCode) -> None:
+        """The loop reading an array's elements: to its count, or when the frame holds it."""
+        gap = gap_of(self.m, repeat.r.leaves[0])
+        count = f"n_{gap.field}" if gap is not None and gap.counter else None
+        repeat.read_loop(c, count, f"p_{gap.field}" if gap is not None and gap.presence else None)
+
     def build_function(self) -> str:
         """_build_<msg>(raw values…): checks parsed raw values, returns the object (text form)."""
         c = Code()
@@ -921,12 +874,17 @@ class MessageCode:
         __init__ costs several times more. Groups are built first, into g_<path>."""
         members = [f for f in fields if f.is_member]
         for f in members:
+            if not path and f.name in self.repeats:
+                continue
             for at in self.places(f, path):
                 if f.kind == "group":
                     self.construct(c, f.fields, at, values, self.group_var(at))
         name = self.view.group_class(self.m, path) if path else self.cls
         c(f"{var} = _object_new({name})")
         for f in members:
+            if not path and f.name in self.repeats:  # read in a loop, or None where the frame leaves it out
+                c(f"{var}.{f.name} = {elements(self.repeats[f.name].r)}")
+                continue
             each = [self.group_var(at) if f.kind == "group" else values[at] for at in self.places(f, path)]
             sent = f"[:n_{f.name}]" if f.varies else ""
             value = each[0] + sent if f.count is None else '[' + ', '.join(each) + ']' + sent
@@ -945,12 +903,14 @@ class MessageCode:
 
     # -- bytes -----------------------------------------------------------------------------
     def chunks(self) -> list[Chunk]:
-        return chunks_of(self.m.wire.runs, self.view.p.framing.byte_order)
+        """The struct items of the frame: an array looped over is one item of its bytes."""
+        own = chunks_of(self.m.wire.unrepeated_runs(), self.view.p.framing.byte_order)
+        return sorted(own + [rc.chunk() for rc in self.repeats.values()], key=lambda ch: ch.start)
 
     def one_word(self) -> bool:
         """The frame is short and all integers in the frame's bit order (big-endian most
         significant bit first): it is read and written as one int."""
-        if self.m.size > 8 or self.m.shortening:
+        if self.m.size > 8 or self.m.shortening or self.repeats:
             return False
         for leaf in self.leaves:  # a checksum over bytes needs the bytes first
             f = leaf.field
@@ -963,7 +923,8 @@ class MessageCode:
     def structs(self) -> list[tuple[str, str]]:
         if self.one_word():
             return []
-        return [(f"_S_{self.fn}_{n}", s.fmt) for n, s in enumerate(segments_of(self.chunks()))]
+        own = [(f"_S_{self.fn}_{n}", s.fmt) for n, s in enumerate(segments_of(self.chunks()))]
+        return own + [x for rc in self.repeats.values() for x in rc.structs()]
 
     def word_shifts(self) -> list[tuple[Leaf, int]]:
         """(leaf, shift) of every leaf in the frame read as one integer."""
@@ -1043,7 +1004,7 @@ class MessageCode:
         if len(crcs) != 1 or len(segments) != 2 or len(segments[1].chunks) != 1:
             return False
         chunk, (leaf, cs) = segments[1].chunks[0], crcs[0]
-        return (chunk.lone and chunk.leaves[0][0] is leaf and chunk.start + chunk.nbytes == self.m.size
+        return (chunk.lone and chunk.repeat is None and chunk.leaves[0][0] is leaf and chunk.start + chunk.nbytes == self.m.size
                 and cs.byte_span[1] <= chunk.start and segments[0].start == 0)
 
     def leave_out_gaps(self, c: Code) -> None:
@@ -1096,6 +1057,8 @@ class MessageCode:
         return " | ".join(parts)
 
     def chunk_value(self, chunk: Chunk) -> str:
+        if chunk.repeat is not None:
+            return blob(chunk.repeat)
         if chunk.lone:
             leaf = chunk.leaves[0][0]
             fixed = self.view.fixed_raw(leaf.field)
@@ -1238,11 +1201,17 @@ class MessageCode:
         names = []
         for n, seg in enumerate(segments):
             # a field that fills its own struct item is unpacked straight into its variable
-            vars_ = [ch.leaves[0][0].var if ch.lone and ch.code != "s" else f"c{seg.start}_{k}"
-                     for k, ch in enumerate(seg.chunks)]
+            vars_ = [region(ch.repeat) if ch.repeat is not None else ch.leaves[0][0].var if ch.lone and ch.code != "s"
+                     else f"c{seg.start}_{k}" for k, ch in enumerate(seg.chunks)]
             names.extend(zip(vars_, seg.chunks))
             c(f"{', '.join(vars_)}, = _S_{self.fn}_{n}.unpack_from(d, {seg.start})")
+        self.unpack_chunks(c, names)
+
+    def unpack_chunks(self, c: Code, names: list[tuple[str, Chunk]]) -> None:
+        """Set each leaf's raw value from the struct items unpacked into `names`."""
         for var, chunk in names:
+            if chunk.repeat is not None:
+                continue  # read by the array's loop
             if chunk.lone:
                 leaf = chunk.leaves[0][0]
                 if chunk.code == "s":
@@ -1556,6 +1525,24 @@ class MessageCode:
         self.view.rule_checks(c, self.m, "o", "_dec")
         c("return o")
         return c.text()
+
+
+def sizes_range(least: int, most: int, step: int) -> str:
+    """Python for the frame sizes least..most in steps of `step`."""
+    return f"range({least}, {most + 1}{f', {step}' if step != 1 else ''})"
+
+
+def sizes_literal(sizes: list[int]) -> str:
+    """Python for a list of sorted sizes: a run of three or more consecutive ones is a range,
+    so that a counted array's many sizes cost no more text than its few."""
+    runs: list[list[int]] = []
+    for n in sizes:
+        if runs and runs[-1][-1] + 1 == n:
+            runs[-1].append(n)
+        else:
+            runs.append([n])
+    items = [f"*range({run[0]}, {run[-1] + 1})" if len(run) > 2 else ", ".join(map(str, run)) for run in runs]
+    return f"[{', '.join(items)}]"
 
 
 def module_view(p: Protocol) -> dict:
@@ -1939,8 +1926,9 @@ class ModuleView(PythonView):
     def dispatch_table(self) -> dict:
         facts = dispatch_facts(self.p)
         if facts["kind"] == "bytes":
-            keys = [(value, n, direction, name) for value, size, direction, name in facts["frames"]
-                    for n in range(facts["least"].get(name, size), size + 1, facts["steps"].get(name, 1))]
+            # each message's frame sizes as a range: a counted array's are as many as its elements
+            keys = [(value, sizes_range(facts["least"].get(name, size), size, facts["steps"].get(name, 1)), direction, name)
+                    for value, size, direction, name in facts["frames"]]
             facts = dict(facts, value_expr=self.read_expr("d", "", facts), sized_frames=keys)
         if facts["kind"] == "bits" and self.p.framing.max_bits:  # the word form: a left-aligned int
             facts = dict(facts, word_limit=1 << self.p.framing.max_bits,
@@ -1983,7 +1971,7 @@ class ModuleView(PythonView):
     def stream_view(self) -> dict:
         facts = stream_facts(self.p)
         if facts:
-            facts = dict(facts, sync_literal=repr(facts["sync_bytes"]))
+            facts = dict(facts, sync_literal=repr(facts["sync_bytes"]), accepted_literal=sizes_literal(facts["accepted"]))
         if facts.get("length"):
             length = facts["length"]
             facts = dict(facts, length=dict(length, value_expr=self.read_expr("buf", "pos + ", dict(length, first=length["at"]))))

@@ -1091,12 +1091,13 @@ setattr(Shared, "decode", staticmethod(_decode_shared))
 
 _Decoder = Callable[[_Buffer], AnyMessage]
 # (id, frame size, direction, decoder): an id and size may be used once in each direction
-_KEYS: tuple[tuple[int, int, Optional[str], _Decoder], ...] = ((496, 11, None, _decode_example_message), (512, 11, None, _decode_wheel_speeds), (769, 11, None, _decode_steering), (928, 5, None, _decode_gear), (1110, 11, None, _decode_multiplexed), (1111, 11, None, _decode_extended), (1112, 11, None, _decode_shared), )
+_KEYS: tuple[tuple[int, range, Optional[str], _Decoder], ...] = ((496, range(11, 12), None, _decode_example_message), (512, range(11, 12), None, _decode_wheel_speeds), (769, range(11, 12), None, _decode_steering), (928, range(5, 6), None, _decode_gear), (1110, range(11, 12), None, _decode_multiplexed), (1111, range(11, 12), None, _decode_extended), (1112, range(11, 12), None, _decode_shared), )
 _KEYS_BY_DIRECTION: dict[Optional[str], dict[tuple[int, int], _Decoder]] = {}
 _ALL: dict[tuple[int, int], list[_Decoder]] = {}
-for _value, _size, _direction, _fn in _KEYS:
-    _KEYS_BY_DIRECTION.setdefault(_direction, {})[(_value, _size)] = _fn
-    _ALL.setdefault((_value, _size), []).append(_fn)
+for _value, _sizes, _direction, _fn in _KEYS:
+    for _size in _sizes:
+        _KEYS_BY_DIRECTION.setdefault(_direction, {})[(_value, _size)] = _fn
+        _ALL.setdefault((_value, _size), []).append(_fn)
 
 
 _UNIQUE = {key: fns[0] for key, fns in _ALL.items() if len(fns) == 1}

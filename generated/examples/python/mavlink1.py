@@ -1301,12 +1301,13 @@ setattr(CommandLong, "decode", staticmethod(_decode_command_long))
 
 _Decoder = Callable[[_Buffer], AnyMessage]
 # (id, frame size, direction, decoder): an id and size may be used once in each direction
-_KEYS: tuple[tuple[int, int, Optional[str], _Decoder], ...] = ((0, 17, None, _decode_heartbeat), (1, 39, None, _decode_sys_status), (22, 33, None, _decode_param_value), (24, 38, None, _decode_gps_raw_int), (30, 36, None, _decode_attitude), (76, 41, None, _decode_command_long), )
+_KEYS: tuple[tuple[int, range, Optional[str], _Decoder], ...] = ((0, range(17, 18), None, _decode_heartbeat), (1, range(39, 40), None, _decode_sys_status), (22, range(33, 34), None, _decode_param_value), (24, range(38, 39), None, _decode_gps_raw_int), (30, range(36, 37), None, _decode_attitude), (76, range(41, 42), None, _decode_command_long), )
 _KEYS_BY_DIRECTION: dict[Optional[str], dict[tuple[int, int], _Decoder]] = {}
 _ALL: dict[tuple[int, int], list[_Decoder]] = {}
-for _value, _size, _direction, _fn in _KEYS:
-    _KEYS_BY_DIRECTION.setdefault(_direction, {})[(_value, _size)] = _fn
-    _ALL.setdefault((_value, _size), []).append(_fn)
+for _value, _sizes, _direction, _fn in _KEYS:
+    for _size in _sizes:
+        _KEYS_BY_DIRECTION.setdefault(_direction, {})[(_value, _size)] = _fn
+        _ALL.setdefault((_value, _size), []).append(_fn)
 
 
 _UNIQUE = {key: fns[0] for key, fns in _ALL.items() if len(fns) == 1}
