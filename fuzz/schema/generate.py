@@ -205,7 +205,8 @@ class Generator:
         own = random.Random(f"single_length {self.seed}")
         if own.random() >= 0.4 or self.lsb:
             return False
-        layout.append({"name": "len", "type": own.choice(["u8", "u16"]),
+        wide = bool({"arrays", "counted", "conditional"} & self.on)  # payloads of more than 255 bytes
+        layout.append({"name": "len", "type": "u16" if wide else own.choice(["u8", "u16"]),
                        "length_of": {"from": "payload", "to": "payload"}})
         return bool({"extension", "truncate", "conditional"} & self.on) and own.random() < 0.6
 
