@@ -269,6 +269,8 @@ class Generator:
         after_length = names.index(length["name"]) + 1
         keys = [i for i, f in enumerate(layout) if f.get("dispatch") and i >= max(start, after_length)]
         begin = names[keys[0]] if keys and layout[keys[0]]["type"] == "u8" and own.random() < 0.7 else "payload"
+        if any("checksum" in f for f in layout[names.index(begin):names.index("payload")]):
+            begin = "payload"  # a checksum moved before the payload stays outside the stuffed bytes
         pattern, insert = own.choice(self.PATTERNS)
         length["type"] = "u16"  # room for the bytes inserted
         framing["stuffing"] = {"after": pattern, "insert": insert, "covers": {"from": begin, "to": "payload"}}
