@@ -161,6 +161,8 @@ class StuffingMixin(ResolverBase):
                 self.error(path + ("covers",), f"framing.stuffing: checksum {f.name!r} must be over bytes, in whole "
                                                "bytes, without `extra`, to be computed over the frame as sent")
                 return False
+            if cs.covers[0] not in index or cs.covers[1] not in index:
+                return False  # a coverage naming no field of the layout: reported where the checksum is resolved
             lo, hi = index[cs.covers[0]], index[cs.covers[1]]
             if hi < first:
                 continue  # before the stuffed bytes: computed again only if it covers a length

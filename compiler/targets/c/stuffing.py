@@ -39,10 +39,14 @@ def stuffing_view(px: str, p) -> dict:
     sums = []
     for cs in facts["checksums"]:
         get, put, t = _accessors(cs)
+        if cs["cs"].covers_self:  # counted as zero while computed; RFC 1071's receiver check: the sum is all ones
+            sums.append(f"memset({_at(cs, 'b')}, 0, {cs['bytes']}u);")
+            verify += [f"if ({_covered(px, cs, 'wire')} != 0u) {{", "    return CW_ERR_CHECKSUM;", "}"]
+        else:
+            verify += [f"if ({get}({_at(cs, 'wire')}, {cs['bytes']}u) != ({t}){_covered(px, cs, 'wire')}) {{",
+                       "    return CW_ERR_CHECKSUM;",
+                       "}"]
         sums.append(f"{put}({_at(cs, 'b')}, {cs['bytes']}u, ({t}){_covered(px, cs, 'b')});")
-        verify += [f"if ({get}({_at(cs, 'wire')}, {cs['bytes']}u) != ({t}){_covered(px, cs, 'wire')}) {{",
-                   "    return CW_ERR_CHECKSUM;",
-                   "}"]
     pattern = facts["pattern"]
     return dict(facts, pattern_c=", ".join(f"0x{b:02X}u" for b in pattern), pattern_len=len(pattern),
                 insert_c=f"0x{facts['insert']:02X}u", pattern_hex=pattern.hex(" ").upper(),

@@ -35,9 +35,18 @@ def stuffing_view(p) -> dict:
                     f"b[{at}] = v.to_bytes({f['bytes']}, {f['byte_order']!r})"]
     for cs in facts["checksums"]:
         at = _slice(cs)
+        if cs["cs"].covers_self:  # counted as zero while computed
+            recount.append(f"b[{at}] = bytes({cs['bytes']})")
         recount.append(f"b[{at}] = {_covered(cs, 'b')}.to_bytes({cs['bytes']}, {cs['byte_order']!r})")
+        verify.append(f"got = int.from_bytes(d[{at}], {cs['byte_order']!r})")
+        if cs["cs"].covers_self:  # RFC 1071's receiver check: with the field, the sum is all ones
+            verify += [f"if {_covered(cs, 'd')}:",
+                       "    z = bytearray(d)",
+                       f"    z[{at}] = bytes({cs['bytes']})",
+                       f"    raise _dec(None, {cs['name']!r}, got, 'checksum', hex({_covered(cs, 'z')}), "
+                       f"({at.split(':')[0]}) * 8)"]
+            continue
         verify += [f"x = {_covered(cs, 'd')}",
-                   f"got = int.from_bytes(d[{at}], {cs['byte_order']!r})",
                    "if got != x:",
                    f"    raise _dec(None, {cs['name']!r}, got, 'checksum', hex(x), ({at.split(':')[0]}) * 8)"]
     # a length field sits before the stuffed bytes (the resolver's rule): placed from the start

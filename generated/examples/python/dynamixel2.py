@@ -504,8 +504,8 @@ def unstuff(data: _Buffer) -> bytes:
         if n > FRAME_MAX:
             raise _dec(None, None, n, 'length', f'a frame of at most {FRAME_MAX} bytes, nothing stuffed', 0)
         return d  # nothing stuffed: the frame is as the layout describes it
-    x = _checksum_crc16_8005_0_nn_0(d[0:n - 2])
     got = int.from_bytes(d[n - 2:n], 'little')
+    x = _checksum_crc16_8005_0_nn_0(d[0:n - 2])
     if got != x:
         raise _dec(None, 'crc', got, 'checksum', hex(x), (n - 2) * 8)
     if body.count(_PATTERN) != body.count(_STUFFED):
