@@ -33,8 +33,10 @@ def dispatch_facts(p: Protocol) -> dict:
     if fr.kind == "text":
         # a message with a prefix field (NMEA's talker) is found by the id at the end of
         # the prefix, after the exact prefixes, in the schema's order
+        # a prefix field's values (when it has them) tell apart messages whose prefixes have one shape
         talked = [{"held": m.prefix_field.length, "id": m.ids[0], "name": m.name, "direction": m.direction,
-                   "length": m.prefix_field.length + len(m.ids[0]), "shown": "?" * m.prefix_field.length + m.ids[0]}
+                   "length": m.prefix_field.length + len(m.ids[0]), "shown": "?" * m.prefix_field.length + m.ids[0],
+                   "values": tuple(m.prefix_field.values or ())}
                   for m in p.messages if m.prefix_field]
         prefixes = [(m.ids[0], m.name, m.direction) for m in p.messages if not m.prefix_field]
         by_prefix: dict[str, list[tuple[Optional[str], str]]] = {}

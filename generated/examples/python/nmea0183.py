@@ -1352,13 +1352,15 @@ def _pick(prefix: str, entries: tuple[tuple[Optional[str], _Decoder], ...], dire
     return fns[0] if fns else None
 
 
-# messages whose prefix starts with a prefix field's value: (its length, the id after it, direction, decoder)
-_TALKED: tuple[tuple[int, str, Optional[str], _Decoder], ...] = ((2, 'GGA', 'receiver_to_host', _decode_gga), (2, 'RMC', 'receiver_to_host', _decode_rmc), (2, 'VTG', 'receiver_to_host', _decode_vtg), )
+# messages whose prefix starts with a prefix field's value: (its length, the id after it, direction, decoder,
+# the values it may hold: none, any)
+_TALKED: tuple[tuple[int, str, Optional[str], _Decoder, tuple[str, ...]], ...] = ((2, 'GGA', 'receiver_to_host', _decode_gga, ()), (2, 'RMC', 'receiver_to_host', _decode_rmc, ()), (2, 'VTG', 'receiver_to_host', _decode_vtg, ()), )
 
 
 def _talked(prefix: str) -> tuple[tuple[Optional[str], _Decoder], ...]:
     """The (direction, decoder) of each message whose id ends the prefix after a value of its prefix field."""
-    return tuple((held, fn) for n, ident, held, fn in _TALKED if len(prefix) == n + len(ident) and prefix.endswith(ident))
+    return tuple((held, fn) for n, ident, held, fn, values in _TALKED
+                 if len(prefix) == n + len(ident) and prefix.endswith(ident) and (not values or prefix[:n] in values))
 
 
 _PREFIX_OF = {'gga': (2, 'GGA'), 'rmc': (2, 'RMC'), 'vtg': (2, 'VTG'), }
