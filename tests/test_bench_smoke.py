@@ -59,10 +59,14 @@ def test_the_crc_choice_is_measured_under_simavr_and_reported():
     with tempfile.TemporaryDirectory() as tmp:
         figures = avr.crc_choice(Path(tmp))
     (bit_flash, bit_scan, bit_crc), (table_flash, table_scan, table_crc) = figures["bitwise"], figures["table"]
+    nibble_flash, nibble_scan, nibble_crc = figures["nibble"]
     assert table_flash - bit_flash >= 400  # its 512-byte table, less the bitwise loop
     assert table_scan < bit_scan and table_crc < bit_crc
-    host = {f"parser mtv4_scan, CRC {v} MB/s": 100.0 for v in ("table", "bitwise")}
-    assert any("| bitwise (default) |" in line for line in runner.crc_choice(figures, host))
+    assert bit_flash < nibble_flash < table_flash and table_crc < nibble_crc < bit_crc  # its 16 entries, between
+    host = {f"parser mtv4_scan, CRC {v} MB/s": 100.0 for v in ("table", "bitwise", "nibble")}
+    report = runner.crc_choice(figures, host)
+    assert any("| bitwise (default) |" in line for line in report)
+    assert any("| nibble (`MTV4_CRC_NIBBLE`" in line for line in report)
 
 
 def test_exponent_of_a_linear_and_a_quadratic_series():
