@@ -39,11 +39,11 @@ def functions(v: "CView", m: Message) -> list[str]:
     return [f(v, m, r) for r in m.wire.repeats for f in (put_function, get_function)]
 
 
-def put_function(v: "CView", m: Message, r: Repeat) -> str:
-    raws, rt = element_raws(r)
+def opened(r: Repeat, raws: dict[str, str], rt: str, comment: str, signature: str) -> Code:
+    """An element function's code up to its body: its comment, signature and raw values."""
     c = Code()
-    c(f"/* Element i of {m.name}.{r.field.name}: checked, and written to its {r.stride} bytes at buf. */")
-    c(f"static inline int {put_name(v, m, r)}(const {v.tname(m)} *m, size_t i, uint8_t *buf)")
+    c(comment)
+    c(signature)
     c("{")
     c.indent()
     if not uses_message(r):
@@ -51,6 +51,13 @@ def put_function(v: "CView", m: Message, r: Repeat) -> str:
         c("(void)i;")
     if raws:
         c(f"{rt} r[{len(raws)}];")
+    return c
+
+
+def put_function(v: "CView", m: Message, r: Repeat) -> str:
+    raws, rt = element_raws(r)
+    c = opened(r, raws, rt, f"/* Element i of {m.name}.{r.field.name}: checked, and written to its {r.stride} bytes at buf. */",
+               f"static inline int {put_name(v, m, r)}(const {v.tname(m)} *m, size_t i, uint8_t *buf)")
     for leaf in r.leaves:
         if leaf.var in raws:
             v.encode_leaf(c, leaf, raws[leaf.var], rt)
@@ -64,16 +71,8 @@ def put_function(v: "CView", m: Message, r: Repeat) -> str:
 
 def get_function(v: "CView", m: Message, r: Repeat) -> str:
     raws, rt = element_raws(r)
-    c = Code()
-    c(f"/* Element i of {m.name}.{r.field.name}: read from its {r.stride} bytes at buf, checked and stored. */")
-    c(f"static inline int {get_name(v, m, r)}(const uint8_t *buf, size_t i, {v.tname(m)} *m)")
-    c("{")
-    c.indent()
-    if not uses_message(r):
-        c("(void)m;")
-        c("(void)i;")
-    if raws:
-        c(f"{rt} r[{len(raws)}];")
+    c = opened(r, raws, rt, f"/* Element i of {m.name}.{r.field.name}: read from its {r.stride} bytes at buf, checked and stored. */",
+               f"static inline int {get_name(v, m, r)}(const uint8_t *buf, size_t i, {v.tname(m)} *m)")
     for span in spans(r.runs):
         v.get_span(c, span, raws, rt)
     for leaf in r.leaves:
