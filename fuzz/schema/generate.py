@@ -87,6 +87,8 @@ class Generator:
         single = self.has("no_dispatch", 0.2)
         sync = self.has("sync", 0.8)
         self.lsb = self.has("lsb_first", 0.25)
+        if self.lsb:  # its 11-bit length holds at most 2,047 bytes: no arrays long enough to loop over
+            self.long = False
         if sync:
             layout.append({"name": "sync", "type": "u8", "const": rng.choice([0xA5, 0x55, 0x7E, 0xAA])})
             if self.has("sync2", 0.3):  # a sync of two bytes, such as UBX's B5 62
