@@ -1580,7 +1580,12 @@ def module_view(p: Protocol) -> dict:
     }
 
 
-def _stdlib_crc(p) -> Optional[tuple[str, str]]:
+def _bit_reversed_hqx(p) -> bool:
+    """A reflected CRC-16 of poly 0x1021, which crc_hqx computes over bit-reversed bytes."""
+    return p.width == 16 and p.poly == 0x1021 and p.refin and p.refout
+
+
+def _stdlib_crc(p, name: str = "") -> Optional[tuple[str, str]]:
     """(import, call expression on `data`) for a CRC the standard library computes in C:
     binascii.crc_hqx is poly 0x1021 unreflected from any start value, zlib.crc32 is poly
     0x04C11DB7 reflected and inverted on the way in and out. Poly 0x1021 reflected (X.25,
@@ -1589,9 +1594,9 @@ def _stdlib_crc(p) -> Optional[tuple[str, str]]:
     any other CRC."""
     if p.width == 16 and p.poly == 0x1021 and not p.refin and not p.refout:
         return "from binascii import crc_hqx as _crc_hqx", f"_crc_hqx(data, {p.init:#x}) ^ {p.xorout:#x}"
-    if p.width == 16 and p.poly == 0x1021 and p.refin and p.refout:
+    if _bit_reversed_hqx(p):
         return ("from binascii import crc_hqx as _crc_hqx",
-                f"_reflected(_crc_hqx(bytes(data).translate(_BITS_REVERSED), {p.init:#x})) ^ {p.xorout:#x}")
+                f"_reflected_{name}(_crc_hqx(bytes(data).translate(_BITS_REVERSED_{name}), {p.init:#x})) ^ {p.xorout:#x}")
     if p.width == 32 and p.poly == 0x04C11DB7 and p.refin and p.refout:
         start = reflect(p.init, 32) ^ 0xFFFFFFFF
         return ("from zlib import crc32 as _crc32",
@@ -1602,25 +1607,23 @@ def _stdlib_crc(p) -> Optional[tuple[str, str]]:
 def _checksum_code(cs) -> str:
     name = _checksum_name(cs)
     c = Code()
-    fast = _stdlib_crc(cs.crc) if cs.algorithm == "crc" else None
+    fast = _stdlib_crc(cs.crc, name) if cs.algorithm == "crc" else None
     if fast:
         p = cs.crc
         c(f"# {p.name if p.name != 'custom' else 'CRC'}: width={p.width} poly={p.poly:#x} init={p.init:#x} "
           f"refin={p.refin} refout={p.refout} xorout={p.xorout:#x}, computed by the standard library in C")
         c(fast[0])
-        call = fast[1]
-        if "_reflected(" in call:  # a table of each byte bit-reversed, its own so that CRCs never share names
+        if _bit_reversed_hqx(cs.crc):  # a table of each byte bit-reversed, its own so that CRCs never share names
             table = f"_BITS_REVERSED_{name}"
             c(f"{table} = bytes(int(f'{{b:08b}}'[::-1], 2) for b in range(256))")
             c("")
             c("")
             c(f"def _reflected_{name}(x: int) -> int:")
             c(f"    return {table}[x & 0xFF] << 8 | {table}[x >> 8]")
-            call = call.replace("_BITS_REVERSED", table).replace("_reflected(", f"_reflected_{name}(")
         c("")
         c("")
         c(f"def _checksum_{name}(data: _Buffer) -> int:")
-        c(f"    return {call}")
+        c(f"    return {fast[1]}")
     elif cs.algorithm == "crc":
         p = cs.crc
         mask = (1 << p.width) - 1
