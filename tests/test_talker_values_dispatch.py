@@ -69,3 +69,75 @@ int main(void) {{
 }}
 """
     assert run_c(built[0], driver) == ["delta O 7", "romeo HLJ 5", "romeo NWA 6", "dispatch"]
+
+
+# The same id after a two-letter talker in both directions: the talker's values tell the
+# messages apart, except KA, which both take. A decode without a direction finds GP..FIX and
+# BD..FIX, and must be told the direction for KA..FIX.
+DIRECTED = """codeword: 1
+protocol: talkdir
+title: talkers across directions
+source: hand-written
+roles:
+  host: {doc: host}
+  device: {doc: device}
+directions:
+  up: {from: device, to: host}
+  down: {from: host, to: device}
+framing:
+  kind: text
+  prefix_separator: ':'
+  separator: ','
+  terminator: ';'
+messages:
+  report:
+    id: FIX
+    direction: up
+    fields:
+      - {name: talker, type: str, length: 2, prefix: true, values: [GP, KA]}
+      - {name: a, type: u8}
+  order:
+    id: FIX
+    direction: down
+    fields:
+      - {name: talker, type: str, length: 2, prefix: true, values: [BD, KA]}
+      - {name: b, type: u8}
+"""
+
+
+@pytest.fixture(scope="module")
+def directed(tmp_path_factory):
+    where = tmp_path_factory.mktemp("talkdir")
+    render(where, "talkdir", DIRECTED)
+    return where, load(where / "talkdir.py")
+
+
+def test_python_needs_a_direction_only_for_a_talker_both_take(directed):
+    mod = directed[1]
+    assert (type(mod.decode("GPFIX:1;")).NAME, type(mod.decode("BDFIX:2;")).NAME) == ("report", "order")
+    with pytest.raises(mod.DecodeError) as e:
+        mod.decode("KAFIX:3;")
+    assert e.value.rule == "dispatch"
+    assert type(mod.decode("KAFIX:3;", "down")).NAME == "order"
+
+
+def test_c_needs_a_direction_only_for_a_talker_both_take(directed):
+    driver = r"""#include <stdio.h>
+#include <string.h>
+#include "talkdir.h"
+static void show(const char *line, int direction) {
+    talkdir_message_t m;
+    int rc = talkdir_decode(line, strlen(line), direction, &m);
+    if (rc < 0) printf("%s\n", cw_error_name(rc));
+    else if (m.kind == TALKDIR_MSG_REPORT) printf("report %s %u\n", m.as.report.talker, (unsigned)m.as.report.a);
+    else printf("order %s %u\n", m.as.order.talker, (unsigned)m.as.order.b);
+}
+int main(void) {
+    show("GPFIX:1;", TALKDIR_DIR_ANY);
+    show("BDFIX:2;", TALKDIR_DIR_ANY);
+    show("KAFIX:3;", TALKDIR_DIR_ANY);
+    show("KAFIX:3;", TALKDIR_DIR_DOWN);
+    return 0;
+}
+"""
+    assert run_c(directed[0], driver) == ["report GP 1", "order BD 2", "dispatch", "order KA 3"]

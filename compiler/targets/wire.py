@@ -23,6 +23,20 @@ def text_form_head(p: Protocol) -> list[tuple[int, int]]:
     return out
 
 
+def talker_clash(shared: list[dict]) -> Optional[tuple[str, ...]]:
+    """Of messages in several directions whose prefixes have one shape, the talker values more
+    than one of them takes (a message without listed values takes any): None if any value is
+    taken by two, else those values (none: the values alone tell the messages apart)."""
+    open_ended = sum(1 for t in shared if not t["values"])
+    if open_ended > 1:
+        return None
+    taken: dict[str, int] = {}
+    for t in shared:
+        for v in t["values"]:
+            taken[v] = taken.get(v, 0) + 1
+    return tuple(v for v, n in taken.items() if n + open_ended > 1)
+
+
 def dispatch_facts(p: Protocol) -> dict:
     """How module-level decode finds the message a frame holds."""
     fr = p.framing
@@ -47,7 +61,8 @@ def dispatch_facts(p: Protocol) -> dict:
             by_talk.setdefault((t["held"], t["id"]), []).append(t)
         return {"kind": "text", "prefixes": prefixes, "by_prefix": list(by_prefix.items()),
                 "shared": [(prefix, entries[0][1]) for prefix, entries in by_prefix.items() if len(entries) > 1],
-                "shared_talked": [ts[0] for ts in by_talk.values() if len(ts) > 1],
+                "shared_talked": [dict(ts[0], clash=clash) for ts in by_talk.values()
+                                  if len(ts) > 1 and (clash := talker_clash(ts)) != ()],
                 "talked": talked, "directed": any(m.direction for m in p.messages)}
     if fr.kind == "bits":
         entries = []
