@@ -78,3 +78,30 @@ int main(void) {{
 def test_c_agrees_with_python_on_host_and_avr(tmp_path):
     host, avr = conformance_on_host_and_avr(tmp_path, "sealed", SCHEMA)
     assert host > 0 and avr == host
+
+
+# Two four-bit fields share the byte before the length: every field after them sits one
+# byte further on than a count of whole-byte fields makes it. Covered from the sync, the
+# bytes A5 12 0005 0000 7E7D 0102 03(00) sum to 2797 (folded), whose complement is D868.
+NIBBLES = SCHEMA.replace("protocol: sealed", "protocol: nibbled").replace(
+    "    - {name: len, type: u16, length_of: {from: payload, to: payload}}\n"
+    "    - {name: check, type: u16, checksum: {algorithm: internet, covers: {from: len, to: payload}}}",
+    "    - {name: version, type: u4, const: 1}\n"
+    "    - {name: kind, type: u4, const: 2}\n"
+    "    - {name: len, type: u16, length_of: {from: payload, to: payload}}\n"
+    "    - {name: check, type: u16, checksum: {algorithm: internet, covers: {from: sync, to: payload}}}")
+NIBBLED = bytes.fromhex("a5 12 00 05 d8 68 7e 7d 01 02 03")
+
+
+def test_the_hand_worked_checksum_after_two_nibbles_is_rfc_1071s():
+    assert "version" in NIBBLES and rfc1071(NIBBLED[:4] + b"\x00\x00" + NIBBLED[6:]) == 0xD868
+
+
+def test_fields_after_a_shared_byte_are_placed_in_the_next_byte(tmp_path):
+    render(tmp_path, "nibbled", NIBBLES)
+    mod = load(tmp_path / "nibbled.py")
+    assert mod.encode(mod.Blob(data=DATA)) == NIBBLED
+    assert mod.decode(NIBBLED).data == DATA
+    (tmp_path / "c").mkdir()
+    host, avr = conformance_on_host_and_avr(tmp_path / "c", "nibbled", NIBBLES)
+    assert host > 0 and avr == host

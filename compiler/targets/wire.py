@@ -286,14 +286,15 @@ def stuffing_facts(p: Protocol) -> dict:
         return {}
     env = fr.envelope
     payload = next(i for i, f in enumerate(env) if f.is_payload)
-    begin, pos = {}, 0
-    for i, f in enumerate(env[:payload]):
-        begin[f.name], pos = pos, pos + (f.bits or 0) // 8
-    begin["payload"] = pos
-    back, pos = {}, 0
+    # counted in bits: fields of a few bits share a byte (the fields placed here are whole bytes)
+    begin, bit = {}, 0
+    for f in env[:payload]:
+        begin[f.name], bit = bit // 8, bit + (f.bits or 0)
+    begin["payload"] = bit // 8
+    back, bit = {}, 0
     for f in reversed(env[payload + 1:]):
-        pos += (f.bits or 0) // 8
-        back[f.name] = pos
+        bit += f.bits or 0
+        back[f.name] = -(-bit // 8)
     ends_back = {f.name: back[f.name] - (f.bits or 0) // 8 for f in env[payload + 1:]}
     ends_back["payload"] = back[env[payload + 1].name] if payload + 1 < len(env) else 0
 
