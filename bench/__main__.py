@@ -5,6 +5,7 @@
     python3 -m bench --no-install     # skip `pip install -e .[bench]`
     python3 -m bench --profile        # cProfile of codeword's encode and decode calls, printed
     python3 -m bench --only compiler  # section 5 alone, spliced into the existing RESULTS.md
+    python3 -m bench --only imports   # section 7 alone: importing a module of MAVLink's size
 """
 
 import argparse
@@ -26,7 +27,7 @@ def main(argv=None):
     parser.add_argument("--smoke", action="store_true", help="one repetition, small inputs, print only")
     parser.add_argument("--no-install", action="store_true", help="do not pip install the bench extra")
     parser.add_argument("--profile", action="store_true", help="profile codeword's per-message calls, print")
-    parser.add_argument("--only", choices=["compiler", "accelerator"], help="measure one section again, keep the others")
+    parser.add_argument("--only", choices=["compiler", "accelerator", "imports"], help="measure one section again, keep the others")
     parser.add_argument("--out", default=str(ROOT / "bench" / "RESULTS.md"))
     parser.add_argument("--stream-mb", type=float, default=50.0, help="size of the mtv4 capture")
     # every size the scaling target names; 5,000 messages take about 2 CPU minutes and under 0.5 GB
@@ -38,12 +39,16 @@ def main(argv=None):
         from bench import profile
         print(profile.profile())
         return 0
-    from bench import runner, timing  # runner imports the peers, so only after installing them
+    from bench import imports, runner, timing  # runner imports the peers, so only after installing them
     sizes = tuple(int(x) for x in args.scaling_sizes.split(","))
     if args.only == "compiler":
         with tempfile.TemporaryDirectory(prefix="codeword-bench-") as tmp:
             results = runner.run_compiler(Path(tmp), (10,) if args.smoke else sizes, 1 if args.smoke else 3)
         return _splice(args, 5, runner.compiler_section(results, []))
+    if args.only == "imports":
+        with tempfile.TemporaryDirectory(prefix="codeword-bench-") as tmp:
+            results = runner.run_imports(Path(tmp), 1 if args.smoke else 7, 20 if args.smoke else imports.MESSAGES)
+        return _splice(args, 7, imports.section(results, [], runner._met))
     if args.only == "accelerator":
         results = runner.run_accelerator(1 if args.smoke else 7, 200_000 if args.smoke else int(args.stream_mb * 1e6),
                                          0.002 if args.smoke else timing.TARGET_SECONDS, 1 if args.smoke else 3)
@@ -51,7 +56,7 @@ def main(argv=None):
     with tempfile.TemporaryDirectory(prefix="codeword-bench-") as tmp:
         if args.smoke:
             results = runner.run(Path(tmp), repeats=1, stream_bytes=200_000, c_rounds=1,
-                                 scaling_sizes=(10,), timing_target=0.002)
+                                 scaling_sizes=(10,), timing_target=0.002, import_messages=20)
         else:
             results = runner.run(Path(tmp), repeats=7, stream_bytes=int(args.stream_mb * 1e6),
                                  c_rounds=7, scaling_sizes=sizes, stream_repeats=3,

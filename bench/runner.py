@@ -7,7 +7,7 @@ import sys
 import time
 from pathlib import Path
 
-from bench import accelerated, avr, c_host, messages, peers_c, scaling, streams, timing
+from bench import accelerated, avr, c_host, imports, messages, peers_c, scaling, streams, timing
 
 # The issue's targets.
 FLOOR_MAX = 1.2  # codeword / hand-written, Python, encode and decode
@@ -27,7 +27,7 @@ def _progress(what, start):
 
 
 def run(tmp: Path, repeats, stream_bytes, c_rounds, scaling_sizes, timing_target=timing.TARGET_SECONDS,
-        stream_repeats=1, scaling_repeats=1):
+        stream_repeats=1, scaling_repeats=1, import_messages=imports.MESSAGES):
     results = {"repeats": repeats, "stream_repeats": stream_repeats, "c_rounds": c_rounds,
                "scaling_repeats": scaling_repeats}
     start = time.perf_counter()
@@ -62,6 +62,8 @@ def run(tmp: Path, repeats, stream_bytes, c_rounds, scaling_sizes, timing_target
     results["scaling"] = scaling.scaling(tmp / "scaling", scaling_repeats, scaling_sizes)
     results["seeds"] = scaling.seed_build(tmp, 3 if scaling_repeats > 1 else 1)
     results["mavgen"] = scaling.versus_mavgen(tmp / "versus-mavgen", max(1, scaling_repeats), peers_c.COMMON_XML)
+    _progress("importing a large module", start)
+    results["imports"] = run_imports(tmp / "imports", repeats, import_messages)
     results["versions"] = versions()
     _progress("done", start)
     return results
@@ -295,6 +297,7 @@ def report(r):
     # 5, 6
     lines += [""] + compiler_section(r, verdicts)
     lines += accelerator_section(r["accelerator"], verdicts)
+    lines += [""] + imports.section(r["imports"], verdicts, _met)
     lines += ["", "## Summary", "", f"{sum(verdicts)} of {len(verdicts)} targets met; the misses are marked "
               "**NOT met** above.", ""]
     return "\n".join(lines)
@@ -317,6 +320,11 @@ def run_accelerator(repeats, stream_bytes, timing_target=timing.TARGET_SECONDS, 
         return accelerated.measure(messages.cases(), repeats, timing_target, stream_bytes, stream_repeats)
     except accelerated.NotBuilt as exc:
         return str(exc)
+
+
+def run_imports(tmp: Path, repeats, messages=imports.MESSAGES):
+    """Section 7 alone (`python3 -m bench --only imports`)."""
+    return imports.measure(tmp, max(3, repeats), messages)
 
 
 def accelerator_section(r, verdicts) -> list[str]:

@@ -9,7 +9,7 @@ The expected frames are the schemas' hand-calculated examples (see bench/message
 import tempfile
 from pathlib import Path
 
-from bench import c_host, messages, peers_c, runner, streams, timing
+from bench import c_host, imports, messages, peers_c, runner, streams, timing
 from bench import handwritten as hw
 from bench.protocols import car, mtv4, route, tank, tr24
 
@@ -134,3 +134,11 @@ def test_the_floor_refuses_what_codeword_refuses_and_reads_the_same_values():
             assert (a is None) == (b is None), (case.key, data)
             if a is not None:
                 assert messages.differences(b, a) == [], (case.key, data)
+
+
+def test_the_import_benchmark_times_both_modules_from_bytecode_and_from_source(tmp_path):
+    r = imports.measure(tmp_path, repeats=1, messages=10)
+    assert all(r[(name, cached)][0] > 0 for name in ("codeword", "pymavlink common") for cached in (True, False))
+    verdicts = []
+    text = "\n".join(imports.section(r, verdicts, runner._met))
+    assert "pymavlink common" in text and len(verdicts) == 2

@@ -14,7 +14,6 @@ import math
 import os
 
 
-from dataclasses import dataclass, field
 from typing import Any, Callable, ClassVar, Optional, TypeVar, Union, cast
 
 _Buffer = Union[bytes, bytearray, "memoryview[int]"]  # what a binary decoder reads
@@ -30,6 +29,63 @@ FINGERPRINT32 = 0x89bb3eb2  # its first 32 bits
 _floor = math.floor
 _isfinite = math.isfinite
 _object_new = object.__new__
+_FRESH: Any = object()  # an argument left out whose default (a list, a group) is built for each object
+
+
+class _DataclassFields:
+    """A class's table of dataclass fields, made the first time it is read and then kept on the
+    class, for dataclasses.fields, replace, asdict and is_dataclass."""
+
+    def __get__(self, obj: object, owner: type[_Record]) -> dict[str, Any]:
+        from dataclasses import field, make_dataclass
+        init: Any = owner.__init__
+        defaults: dict[str, Any] = init.__kwdefaults__ or {}
+        annotations: dict[str, Any] = owner.__annotations__
+        names = owner._NAMES  # pyright: ignore[reportPrivateUsage]
+        fields: list[tuple[str, Any, Any]] = [
+            (n, annotations[n], field(default=defaults[n]) if defaults.get(n, _FRESH) is not _FRESH else field())
+            for n in names]
+        slots: tuple[str, ...] = owner.__slots__
+        fields += [(n, annotations[n], field(default=None, init=False, repr=False, compare=False))
+                   for n in slots if n not in names]
+        made: Any = make_dataclass(owner.__name__, fields, kw_only=True)
+        table: dict[str, Any] = made.__dataclass_fields__
+        setattr(owner, "__dataclass_fields__", table)
+        return table
+
+
+_R = TypeVar("_R", bound="_Record")
+
+
+class _Record:
+    """What every message, group and sequence class is: its fields in slots, set by a keyword
+    constructor; compared and shown field by field, in order, as a dataclass is; and a
+    dataclass to the dataclasses module. Its table of fields is made when first asked for: a
+    @dataclass decorator writes and compiles each class's methods while the module is
+    imported, which in a protocol of hundreds of messages costs more than all the rest."""
+
+    __slots__ = ()
+    _NAMES: ClassVar[tuple[str, ...]] = ()
+    __dataclass_fields__: ClassVar[dict[str, Any]] = _DataclassFields()  # type: ignore[assignment]
+
+    def __eq__(self, other: object) -> bool:
+        if other.__class__ is not self.__class__:
+            return NotImplemented
+        return [getattr(self, n) for n in self._NAMES] == [getattr(other, n) for n in self._NAMES]
+
+    def __repr__(self) -> str:
+        return f"{self.__class__.__qualname__}({', '.join(f'{n}={getattr(self, n)!r}' for n in self._NAMES)})"
+
+    def to_dict(self) -> dict[str, Any]:
+        """The object as JSON-ready data: enum members and flags by name, bytes as hex, numbers
+        in logical units; from_dict reads it back."""
+        return _to_dict(self)
+
+    @classmethod
+    def from_dict(cls: type[_R], values: dict[str, Any]) -> _R:
+        """An object from the data to_dict gives; an unknown key or a value of the wrong type is
+        a DecodeError."""
+        return _from_dict(cls, values, getattr(cls, "NAME", cls.__name__), "")
 
 
 class CodecError(ValueError):
@@ -117,6 +173,40 @@ def _enc(message: Optional[str], field: Optional[str], value: object, rule: str,
     return EncodeError(message, field, value, rule, allowed, None, decision, user_message)
 
 
+def _int_fault(message: str, field: Optional[str], value: Any, lo: Any, hi: Any, number: bool,
+               decision: Optional[str], user_message: Optional[str] = None) -> None:
+    """Raise the EncodeError of an integer field's value that its usual test did not pass: not
+    an int (a number, if the field is scaled), or out of its range."""
+    if not isinstance(value, (int, float) if number else int) or value.__class__ is bool:
+        raise _enc(message, field, value, 'type', 'a number' if number else 'an int')
+    if not lo <= value <= hi:
+        raise _enc(message, field, value, 'range', f'{lo!r}..{hi!r}', decision, user_message)
+
+
+def _faults(message: str, values: tuple[Any, ...], specs: tuple[tuple[Any, ...], ...]) -> None:
+    """Raise the EncodeError of the first of several numbers that fails its usual test; each
+    spec is ("int", field, lo, hi, scaled, decision[, message]) or ("float", field, binary32)."""
+    for value, (kind, name, *limits) in zip(values, specs):
+        if kind == "int":
+            _int_fault(message, name, value, *limits)
+        else:
+            _float_fault(message, name, value, *limits)
+
+
+def _float_fault(message: str, field: Optional[str], value: Any, binary32: bool) -> None:
+    """Raise the EncodeError of a float field's value that its usual test did not pass: not a
+    number, not finite, or (binary32) beyond a binary32's range."""
+    if value.__class__ is not float:
+        if not isinstance(value, (int, float)) or value.__class__ is bool:
+            raise _enc(message, field, value, 'type', 'a number')
+        if not -1.7976931348623157e308 <= value <= 1.7976931348623157e308:  # exact for any int
+            raise _enc(message, field, value, 'finite', 'a finite number')
+    if not _isfinite(value):
+        raise _enc(message, field, value, 'finite', 'a finite number')
+    if binary32 and (value > 3.4028234663852886e38 or value < -3.4028234663852886e38):
+        raise _enc(message, field, value, 'range', 'a binary32 value')
+
+
 def _dec(message: Optional[str], field: Optional[str], value: object, rule: str, allowed: str = "",
          offset: Optional[int] = None, decision: Optional[str] = None,
          user_message: Optional[str] = None) -> DecodeError:
@@ -148,219 +238,191 @@ _RAW_motor_direction: dict[int, int] = {v: v for v in _VALUES_motor_direction}  
 # kind: int, number, bool, str, bytes (hex text), enum (a member's name), flags (a list of
 # names) or group (a nested mapping).
 _Spec = tuple[str, str, Any, bool, bool, bool]
+_Msg = TypeVar("_Msg", bound="_Message")
 
 
-@dataclass(slots=True, kw_only=True)
-class Header:
+class _Message(_Record):
+    """What every message class does: encode itself, decode its own wire form. Each message's
+    encoder and decoder is set on its class as the method itself (one call, not two)."""
+
+    __slots__ = ()
+    NAME: ClassVar[str]
+
+    def encode(self) -> bytes:
+        """The message in its wire form; an EncodeError if a value breaks the schema."""
+        return _ENCODERS[self.__class__](self)
+
+    @classmethod
+    def decode(cls: type[_Msg], data: _Input) -> _Msg:
+        """The message from its wire form; a DecodeError if it is not one."""
+        return cast(_Msg, _DECODERS[cls](data if data.__class__ is bytes else _as_input(data)))
+
+
+class Header(_Message):
     """Header"""
 
+    __slots__ = ('h1', 'h2_count', 'h2_time')
     NAME: ClassVar[str] = 'header'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('h1', 'int', None, False, False, True), ('h2_count', 'int', None, False, False, False), ('h2_time', 'int', None, True, False, False), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('h1', 'h2_count', 'h2_time')
 
     h1: int
     """The number of states (control words) the master will receive; it then cycles through them. The tool counts the user's serial modules (e.g. forward 3 s then left 1 s = two serial modules; forward while blinking an LED = parallel). Allowed 0-255; more is refused with the message below (which says \"parallel\" although the count is of serial modules, as in the seed). range 0..255"""
 
-    h2_count: int = 0
+    h2_count: int
     """High 8 bits of h2: the number of control words the master sends to the slaves in a loop. 0 when the user wrote no slave program."""
 
-    h2_time: Optional[int] = None
+    h2_time: Optional[int]
     """Low 8 bits of h2: how long each slave word is sent, 8 levels, one-hot: level k (0-7) is sent as 1<<k. Absent (wire 0) exactly when h2_count is 0 (CAR-D3). The seed gives no times per level. range 0..7 (CAR-D3)"""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The Header as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> Header:
-        """A Header from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(Header, values, 'header', "")
-
-    def encode(self) -> bytes:
-        """The header message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_header(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> Header:
-        """A header message from its wire form; a DecodeError if it is not one."""
-        return _decode_header(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, h1: int, h2_count: int = 0, h2_time: Optional[int] = None) -> None:
+        self.h1 = h1
+        self.h2_count = h2_count
+        self.h2_time = h2_time
 
 
-@dataclass(slots=True, kw_only=True)
-class ControlWordMotor:
+class ControlWordMotor(_Record):
     """How the receiving car drives its motors: enable, direction, speed, duration. 7 bits (the summary table's 6 is wrong, CAR-D1). All zero when the user does not drive the motor."""
-    _FIELDS: ClassVar[tuple[_Spec, ...]] = (('enable', 'bool', None, False, False, False), ('direction', 'enum', MotorDirection, False, False, False), ('speed', 'int', None, False, False, False), ('duration', 'int', None, False, False, False), )
 
-    enable: bool = False
+    __slots__ = ('enable', 'direction', 'speed', 'duration')
+    _FIELDS: ClassVar[tuple[_Spec, ...]] = (('enable', 'bool', None, False, False, False), ('direction', 'enum', MotorDirection, False, False, False), ('speed', 'int', None, False, False, False), ('duration', 'int', None, False, False, False), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('enable', 'direction', 'speed', 'duration')
+
+    enable: bool
     """Highest bit: 1 if the car drives its motor (added in v0.3)."""
 
-    direction: MotorDirection = MotorDirection.forward
+    direction: MotorDirection
     """Direction of travel: forward, left, right, random."""
 
-    speed: int = 0
+    speed: int
     """Speed, 4 levels: 0 slowest (standstill) ... 3 fastest."""
 
-    duration: int = 0
+    duration: int
     """Duration, 4 levels: 0 shortest (0 s) ... 3 longest; the seed gives no times."""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The ControlWordMotor as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> ControlWordMotor:
-        """A ControlWordMotor from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(ControlWordMotor, values, 'ControlWordMotor', "")
+    def __init__(self, *, enable: bool = False, direction: MotorDirection = MotorDirection.forward, speed: int = 0, duration: int = 0) -> None:
+        self.enable = enable
+        self.direction = direction
+        self.speed = speed
+        self.duration = duration
 
 
-@dataclass(slots=True, kw_only=True)
-class ControlWordLed:
+class ControlWordLed(_Record):
     """Which LED the car lights and for how long. 4 bits (the section's \"these 6 bits\" is a copy slip, CAR-D1). All zero when unused."""
-    _FIELDS: ClassVar[tuple[_Spec, ...]] = (('led', 'int', None, False, False, False), ('duration', 'int', None, False, False, False), )
 
-    led: int = 0
+    __slots__ = ('led', 'duration')
+    _FIELDS: ClassVar[tuple[_Spec, ...]] = (('led', 'int', None, False, False, False), ('duration', 'int', None, False, False, False), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('led', 'duration')
+
+    led: int
     """High 2 bits: which LED (00-11, four LEDs)."""
 
-    duration: int = 0
+    duration: int
     """Low 2 bits: how long, 4 levels: 0 shortest (0 s) ... 3 longest."""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The ControlWordLed as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> ControlWordLed:
-        """A ControlWordLed from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(ControlWordLed, values, 'ControlWordLed', "")
+    def __init__(self, *, led: int = 0, duration: int = 0) -> None:
+        self.led = led
+        self.duration = duration
 
 
-@dataclass(slots=True, kw_only=True)
-class ControlWordUltrasonic:
+class ControlWordUltrasonic(_Record):
     """Whether the car avoids obstacles with its ultrasonic sensor, with which radius and for how long (duration added in v0.3)."""
-    _FIELDS: ClassVar[tuple[_Spec, ...]] = (('enable', 'bool', None, False, False, False), ('radius', 'int', None, False, False, False), ('duration', 'int', None, False, False, False), )
 
-    enable: bool = False
+    __slots__ = ('enable', 'radius', 'duration')
+    _FIELDS: ClassVar[tuple[_Spec, ...]] = (('enable', 'bool', None, False, False, False), ('radius', 'int', None, False, False, False), ('duration', 'int', None, False, False, False), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('enable', 'radius', 'duration')
+
+    enable: bool
     """High bit: 1 if the car does ultrasonic obstacle avoidance."""
 
-    radius: int = 0
+    radius: int
     """Middle 2 bits: avoidance radius, 4 levels (0-3); the seed gives no distances."""
 
-    duration: int = 0
+    duration: int
     """Low 2 bits: duration, 4 levels: 0 shortest (0 s) ... 3 longest."""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The ControlWordUltrasonic as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> ControlWordUltrasonic:
-        """A ControlWordUltrasonic from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(ControlWordUltrasonic, values, 'ControlWordUltrasonic', "")
+    def __init__(self, *, enable: bool = False, radius: int = 0, duration: int = 0) -> None:
+        self.enable = enable
+        self.radius = radius
+        self.duration = duration
 
 
-@dataclass(slots=True, kw_only=True)
-class MasterControl:
+class MasterControl(_Message):
     """Master control word"""
 
+    __slots__ = ('accept_ir', 'forward_words', 'motor', 'led', 'ultrasonic', 'voice', 'body_sensor')
     NAME: ClassVar[str] = 'master_control'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('accept_ir', 'bool', None, False, False, False), ('forward_words', 'bool', None, False, False, False), ('motor', 'group', ControlWordMotor, False, False, False), ('led', 'group', ControlWordLed, False, False, False), ('ultrasonic', 'group', ControlWordUltrasonic, False, False, False), ('voice', 'bool', None, False, False, False), ('body_sensor', 'bool', None, False, False, False), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('accept_ir', 'forward_words', 'motor', 'led', 'ultrasonic', 'voice', 'body_sensor')
 
-    accept_ir: bool = True
+    accept_ir: bool
     """Whether the car accepts infrared. It only has an effect on slaves: 0 if the user blocks infrared, 1 if the user accepts it or does not set it (default 1). A master never accepts infrared: in a master word it must be 0 (rule CAR-R1). The shared layout allows only one default, so the slave's default is given here."""
 
-    forward_words: bool = True
+    forward_words: bool
     """Whether the car forwards control words. Master: always 1 (it sends the slave words to the slaves), set by the tool and hidden from the user (rule CAR-R2). Slave: the user's choice; 1 = the slave keeps sending its own state to other slaves, 0 = it sends nothing."""
 
-    motor: ControlWordMotor = field(default_factory=ControlWordMotor)
+    motor: ControlWordMotor
     """How the receiving car drives its motors: enable, direction, speed, duration. 7 bits (the summary table's 6 is wrong, CAR-D1). All zero when the user does not drive the motor. (CAR-D1)"""
 
-    led: ControlWordLed = field(default_factory=ControlWordLed)
+    led: ControlWordLed
     """Which LED the car lights and for how long. 4 bits (the section's \"these 6 bits\" is a copy slip, CAR-D1). All zero when unused. (CAR-D1)"""
 
-    ultrasonic: ControlWordUltrasonic = field(default_factory=ControlWordUltrasonic)
+    ultrasonic: ControlWordUltrasonic
     """Whether the car avoids obstacles with its ultrasonic sensor, with which radius and for how long (duration added in v0.3). (CAR-D1)"""
 
-    voice: bool = False
+    voice: bool
     """1 if the car runs voice recognition."""
 
-    body_sensor: bool = False
+    body_sensor: bool
     """1 if the car uses its infrared human-body (PIR) sensor."""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The MasterControl as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> MasterControl:
-        """A MasterControl from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(MasterControl, values, 'master_control', "")
-
-    def encode(self) -> bytes:
-        """The master_control message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_master_control(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> MasterControl:
-        """A master_control message from its wire form; a DecodeError if it is not one."""
-        return _decode_master_control(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, accept_ir: bool = True, forward_words: bool = True, motor: ControlWordMotor = _FRESH, led: ControlWordLed = _FRESH, ultrasonic: ControlWordUltrasonic = _FRESH, voice: bool = False, body_sensor: bool = False) -> None:
+        self.accept_ir = accept_ir
+        self.forward_words = forward_words
+        self.motor = ControlWordMotor() if motor is _FRESH else motor
+        self.led = ControlWordLed() if led is _FRESH else led
+        self.ultrasonic = ControlWordUltrasonic() if ultrasonic is _FRESH else ultrasonic
+        self.voice = voice
+        self.body_sensor = body_sensor
 
 
-@dataclass(slots=True, kw_only=True)
-class SlaveControl:
+class SlaveControl(_Message):
     """Slave control word"""
 
+    __slots__ = ('accept_ir', 'forward_words', 'motor', 'led', 'ultrasonic', 'voice', 'body_sensor')
     NAME: ClassVar[str] = 'slave_control'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('accept_ir', 'bool', None, False, False, False), ('forward_words', 'bool', None, False, False, False), ('motor', 'group', ControlWordMotor, False, False, False), ('led', 'group', ControlWordLed, False, False, False), ('ultrasonic', 'group', ControlWordUltrasonic, False, False, False), ('voice', 'bool', None, False, False, False), ('body_sensor', 'bool', None, False, False, False), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('accept_ir', 'forward_words', 'motor', 'led', 'ultrasonic', 'voice', 'body_sensor')
 
-    accept_ir: bool = True
+    accept_ir: bool
     """Whether the car accepts infrared. It only has an effect on slaves: 0 if the user blocks infrared, 1 if the user accepts it or does not set it (default 1). A master never accepts infrared: in a master word it must be 0 (rule CAR-R1). The shared layout allows only one default, so the slave's default is given here."""
 
-    forward_words: bool = True
+    forward_words: bool
     """Whether the car forwards control words. Master: always 1 (it sends the slave words to the slaves), set by the tool and hidden from the user (rule CAR-R2). Slave: the user's choice; 1 = the slave keeps sending its own state to other slaves, 0 = it sends nothing."""
 
-    motor: ControlWordMotor = field(default_factory=ControlWordMotor)
+    motor: ControlWordMotor
     """How the receiving car drives its motors: enable, direction, speed, duration. 7 bits (the summary table's 6 is wrong, CAR-D1). All zero when the user does not drive the motor. (CAR-D1)"""
 
-    led: ControlWordLed = field(default_factory=ControlWordLed)
+    led: ControlWordLed
     """Which LED the car lights and for how long. 4 bits (the section's \"these 6 bits\" is a copy slip, CAR-D1). All zero when unused. (CAR-D1)"""
 
-    ultrasonic: ControlWordUltrasonic = field(default_factory=ControlWordUltrasonic)
+    ultrasonic: ControlWordUltrasonic
     """Whether the car avoids obstacles with its ultrasonic sensor, with which radius and for how long (duration added in v0.3). (CAR-D1)"""
 
-    voice: bool = False
+    voice: bool
     """1 if the car runs voice recognition."""
 
-    body_sensor: bool = False
+    body_sensor: bool
     """1 if the car uses its infrared human-body (PIR) sensor."""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The SlaveControl as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> SlaveControl:
-        """A SlaveControl from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(SlaveControl, values, 'slave_control', "")
-
-    def encode(self) -> bytes:
-        """The slave_control message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_slave_control(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> SlaveControl:
-        """A slave_control message from its wire form; a DecodeError if it is not one."""
-        return _decode_slave_control(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, accept_ir: bool = True, forward_words: bool = True, motor: ControlWordMotor = _FRESH, led: ControlWordLed = _FRESH, ultrasonic: ControlWordUltrasonic = _FRESH, voice: bool = False, body_sensor: bool = False) -> None:
+        self.accept_ir = accept_ir
+        self.forward_words = forward_words
+        self.motor = ControlWordMotor() if motor is _FRESH else motor
+        self.led = ControlWordLed() if led is _FRESH else led
+        self.ultrasonic = ControlWordUltrasonic() if ultrasonic is _FRESH else ultrasonic
+        self.voice = voice
+        self.body_sensor = body_sensor
 
 
 AnyMessage = Union[Header, MasterControl, SlaveControl, ]
@@ -387,16 +449,7 @@ def _encode_header(m: Header) -> bytes:
     r_h1 = m.h1
     r_h2_count = m.h2_count
     if (r_h1.__class__ is not int or not 0 <= r_h1 <= 255) or (r_h2_count.__class__ is not int or not 0 <= r_h2_count <= 255):
-        if r_h1.__class__ is not int or not 0 <= r_h1 <= 255:
-            if not isinstance(r_h1, int) or r_h1.__class__ is bool:
-                raise _enc('header', 'h1', r_h1, 'type', 'an int')
-            if not 0 <= r_h1 <= 255:
-                raise _enc('header', 'h1', r_h1, 'range', '0..255', None, 'The number of parallel modules used already exceeds 255 / 所用的并行模块数目已经大于255')
-        if r_h2_count.__class__ is not int or not 0 <= r_h2_count <= 255:
-            if not isinstance(r_h2_count, int) or r_h2_count.__class__ is bool:
-                raise _enc('header', 'h2_count', r_h2_count, 'type', 'an int')
-            if not 0 <= r_h2_count <= 255:
-                raise _enc('header', 'h2_count', r_h2_count, 'range', '0..255', None)
+        _faults('header', (r_h1, r_h2_count, ), (('int', 'h1', 0, 255, False, None, 'The number of parallel modules used already exceeds 255 / 所用的并行模块数目已经大于255'), ('int', 'h2_count', 0, 255, False, None)))
     r_h2_time = m.h2_time
     if r_h2_time is None:
         r_h2_time = 0
@@ -462,34 +515,20 @@ def _encode_master_control(m: MasterControl) -> bytes:
         raise _enc('master_control', 'motor.direction', r_5motor_9direction, 'enum', 'MotorDirection', None)
     r_5motor_9direction = _RAW_motor_direction[r_5motor_9direction]
     r_5motor_5speed = g_motor.speed
+    if r_5motor_5speed.__class__ is not int or not 0 <= r_5motor_5speed <= 3:
+        _int_fault('master_control', 'motor.speed', r_5motor_5speed, 0, 3, False, None)
     r_5motor_8duration = g_motor.duration
-    if (r_5motor_5speed.__class__ is not int or not 0 <= r_5motor_5speed <= 3) or (r_5motor_8duration.__class__ is not int or not 0 <= r_5motor_8duration <= 3):
-        if r_5motor_5speed.__class__ is not int or not 0 <= r_5motor_5speed <= 3:
-            if not isinstance(r_5motor_5speed, int) or r_5motor_5speed.__class__ is bool:
-                raise _enc('master_control', 'motor.speed', r_5motor_5speed, 'type', 'an int')
-            if not 0 <= r_5motor_5speed <= 3:
-                raise _enc('master_control', 'motor.speed', r_5motor_5speed, 'range', '0..3', None)
-        if r_5motor_8duration.__class__ is not int or not 0 <= r_5motor_8duration <= 3:
-            if not isinstance(r_5motor_8duration, int) or r_5motor_8duration.__class__ is bool:
-                raise _enc('master_control', 'motor.duration', r_5motor_8duration, 'type', 'an int')
-            if not 0 <= r_5motor_8duration <= 3:
-                raise _enc('master_control', 'motor.duration', r_5motor_8duration, 'range', '0..3', None)
+    if r_5motor_8duration.__class__ is not int or not 0 <= r_5motor_8duration <= 3:
+        _int_fault('master_control', 'motor.duration', r_5motor_8duration, 0, 3, False, None)
     g_led = m.led
     if g_led.__class__ is not ControlWordLed and not isinstance(g_led, ControlWordLed):
         raise _enc('master_control', 'led', g_led, 'type', 'a ControlWordLed')
     r_3led_3led = g_led.led
+    if r_3led_3led.__class__ is not int or not 0 <= r_3led_3led <= 3:
+        _int_fault('master_control', 'led.led', r_3led_3led, 0, 3, False, None)
     r_3led_8duration = g_led.duration
-    if (r_3led_3led.__class__ is not int or not 0 <= r_3led_3led <= 3) or (r_3led_8duration.__class__ is not int or not 0 <= r_3led_8duration <= 3):
-        if r_3led_3led.__class__ is not int or not 0 <= r_3led_3led <= 3:
-            if not isinstance(r_3led_3led, int) or r_3led_3led.__class__ is bool:
-                raise _enc('master_control', 'led.led', r_3led_3led, 'type', 'an int')
-            if not 0 <= r_3led_3led <= 3:
-                raise _enc('master_control', 'led.led', r_3led_3led, 'range', '0..3', None)
-        if r_3led_8duration.__class__ is not int or not 0 <= r_3led_8duration <= 3:
-            if not isinstance(r_3led_8duration, int) or r_3led_8duration.__class__ is bool:
-                raise _enc('master_control', 'led.duration', r_3led_8duration, 'type', 'an int')
-            if not 0 <= r_3led_8duration <= 3:
-                raise _enc('master_control', 'led.duration', r_3led_8duration, 'range', '0..3', None)
+    if r_3led_8duration.__class__ is not int or not 0 <= r_3led_8duration <= 3:
+        _int_fault('master_control', 'led.duration', r_3led_8duration, 0, 3, False, None)
     g_ultrasonic = m.ultrasonic
     if g_ultrasonic.__class__ is not ControlWordUltrasonic and not isinstance(g_ultrasonic, ControlWordUltrasonic):
         raise _enc('master_control', 'ultrasonic', g_ultrasonic, 'type', 'a ControlWordUltrasonic')
@@ -499,18 +538,11 @@ def _encode_master_control(m: MasterControl) -> bytes:
             raise _enc('master_control', 'ultrasonic.enable', r_10ultrasonic_6enable, 'type', 'a bool')
         r_10ultrasonic_6enable = 1 if r_10ultrasonic_6enable else 0
     r_10ultrasonic_6radius = g_ultrasonic.radius
+    if r_10ultrasonic_6radius.__class__ is not int or not 0 <= r_10ultrasonic_6radius <= 3:
+        _int_fault('master_control', 'ultrasonic.radius', r_10ultrasonic_6radius, 0, 3, False, None)
     r_10ultrasonic_8duration = g_ultrasonic.duration
-    if (r_10ultrasonic_6radius.__class__ is not int or not 0 <= r_10ultrasonic_6radius <= 3) or (r_10ultrasonic_8duration.__class__ is not int or not 0 <= r_10ultrasonic_8duration <= 3):
-        if r_10ultrasonic_6radius.__class__ is not int or not 0 <= r_10ultrasonic_6radius <= 3:
-            if not isinstance(r_10ultrasonic_6radius, int) or r_10ultrasonic_6radius.__class__ is bool:
-                raise _enc('master_control', 'ultrasonic.radius', r_10ultrasonic_6radius, 'type', 'an int')
-            if not 0 <= r_10ultrasonic_6radius <= 3:
-                raise _enc('master_control', 'ultrasonic.radius', r_10ultrasonic_6radius, 'range', '0..3', None)
-        if r_10ultrasonic_8duration.__class__ is not int or not 0 <= r_10ultrasonic_8duration <= 3:
-            if not isinstance(r_10ultrasonic_8duration, int) or r_10ultrasonic_8duration.__class__ is bool:
-                raise _enc('master_control', 'ultrasonic.duration', r_10ultrasonic_8duration, 'type', 'an int')
-            if not 0 <= r_10ultrasonic_8duration <= 3:
-                raise _enc('master_control', 'ultrasonic.duration', r_10ultrasonic_8duration, 'range', '0..3', None)
+    if r_10ultrasonic_8duration.__class__ is not int or not 0 <= r_10ultrasonic_8duration <= 3:
+        _int_fault('master_control', 'ultrasonic.duration', r_10ultrasonic_8duration, 0, 3, False, None)
     r_voice: Any = m.voice
     if r_voice is not True and r_voice is not False:
         if not isinstance(r_voice, int) or r_voice != 0 and r_voice != 1:
@@ -607,34 +639,20 @@ def _encode_slave_control(m: SlaveControl) -> bytes:
         raise _enc('slave_control', 'motor.direction', r_5motor_9direction, 'enum', 'MotorDirection', None)
     r_5motor_9direction = _RAW_motor_direction[r_5motor_9direction]
     r_5motor_5speed = g_motor.speed
+    if r_5motor_5speed.__class__ is not int or not 0 <= r_5motor_5speed <= 3:
+        _int_fault('slave_control', 'motor.speed', r_5motor_5speed, 0, 3, False, None)
     r_5motor_8duration = g_motor.duration
-    if (r_5motor_5speed.__class__ is not int or not 0 <= r_5motor_5speed <= 3) or (r_5motor_8duration.__class__ is not int or not 0 <= r_5motor_8duration <= 3):
-        if r_5motor_5speed.__class__ is not int or not 0 <= r_5motor_5speed <= 3:
-            if not isinstance(r_5motor_5speed, int) or r_5motor_5speed.__class__ is bool:
-                raise _enc('slave_control', 'motor.speed', r_5motor_5speed, 'type', 'an int')
-            if not 0 <= r_5motor_5speed <= 3:
-                raise _enc('slave_control', 'motor.speed', r_5motor_5speed, 'range', '0..3', None)
-        if r_5motor_8duration.__class__ is not int or not 0 <= r_5motor_8duration <= 3:
-            if not isinstance(r_5motor_8duration, int) or r_5motor_8duration.__class__ is bool:
-                raise _enc('slave_control', 'motor.duration', r_5motor_8duration, 'type', 'an int')
-            if not 0 <= r_5motor_8duration <= 3:
-                raise _enc('slave_control', 'motor.duration', r_5motor_8duration, 'range', '0..3', None)
+    if r_5motor_8duration.__class__ is not int or not 0 <= r_5motor_8duration <= 3:
+        _int_fault('slave_control', 'motor.duration', r_5motor_8duration, 0, 3, False, None)
     g_led = m.led
     if g_led.__class__ is not ControlWordLed and not isinstance(g_led, ControlWordLed):
         raise _enc('slave_control', 'led', g_led, 'type', 'a ControlWordLed')
     r_3led_3led = g_led.led
+    if r_3led_3led.__class__ is not int or not 0 <= r_3led_3led <= 3:
+        _int_fault('slave_control', 'led.led', r_3led_3led, 0, 3, False, None)
     r_3led_8duration = g_led.duration
-    if (r_3led_3led.__class__ is not int or not 0 <= r_3led_3led <= 3) or (r_3led_8duration.__class__ is not int or not 0 <= r_3led_8duration <= 3):
-        if r_3led_3led.__class__ is not int or not 0 <= r_3led_3led <= 3:
-            if not isinstance(r_3led_3led, int) or r_3led_3led.__class__ is bool:
-                raise _enc('slave_control', 'led.led', r_3led_3led, 'type', 'an int')
-            if not 0 <= r_3led_3led <= 3:
-                raise _enc('slave_control', 'led.led', r_3led_3led, 'range', '0..3', None)
-        if r_3led_8duration.__class__ is not int or not 0 <= r_3led_8duration <= 3:
-            if not isinstance(r_3led_8duration, int) or r_3led_8duration.__class__ is bool:
-                raise _enc('slave_control', 'led.duration', r_3led_8duration, 'type', 'an int')
-            if not 0 <= r_3led_8duration <= 3:
-                raise _enc('slave_control', 'led.duration', r_3led_8duration, 'range', '0..3', None)
+    if r_3led_8duration.__class__ is not int or not 0 <= r_3led_8duration <= 3:
+        _int_fault('slave_control', 'led.duration', r_3led_8duration, 0, 3, False, None)
     g_ultrasonic = m.ultrasonic
     if g_ultrasonic.__class__ is not ControlWordUltrasonic and not isinstance(g_ultrasonic, ControlWordUltrasonic):
         raise _enc('slave_control', 'ultrasonic', g_ultrasonic, 'type', 'a ControlWordUltrasonic')
@@ -644,18 +662,11 @@ def _encode_slave_control(m: SlaveControl) -> bytes:
             raise _enc('slave_control', 'ultrasonic.enable', r_10ultrasonic_6enable, 'type', 'a bool')
         r_10ultrasonic_6enable = 1 if r_10ultrasonic_6enable else 0
     r_10ultrasonic_6radius = g_ultrasonic.radius
+    if r_10ultrasonic_6radius.__class__ is not int or not 0 <= r_10ultrasonic_6radius <= 3:
+        _int_fault('slave_control', 'ultrasonic.radius', r_10ultrasonic_6radius, 0, 3, False, None)
     r_10ultrasonic_8duration = g_ultrasonic.duration
-    if (r_10ultrasonic_6radius.__class__ is not int or not 0 <= r_10ultrasonic_6radius <= 3) or (r_10ultrasonic_8duration.__class__ is not int or not 0 <= r_10ultrasonic_8duration <= 3):
-        if r_10ultrasonic_6radius.__class__ is not int or not 0 <= r_10ultrasonic_6radius <= 3:
-            if not isinstance(r_10ultrasonic_6radius, int) or r_10ultrasonic_6radius.__class__ is bool:
-                raise _enc('slave_control', 'ultrasonic.radius', r_10ultrasonic_6radius, 'type', 'an int')
-            if not 0 <= r_10ultrasonic_6radius <= 3:
-                raise _enc('slave_control', 'ultrasonic.radius', r_10ultrasonic_6radius, 'range', '0..3', None)
-        if r_10ultrasonic_8duration.__class__ is not int or not 0 <= r_10ultrasonic_8duration <= 3:
-            if not isinstance(r_10ultrasonic_8duration, int) or r_10ultrasonic_8duration.__class__ is bool:
-                raise _enc('slave_control', 'ultrasonic.duration', r_10ultrasonic_8duration, 'type', 'an int')
-            if not 0 <= r_10ultrasonic_8duration <= 3:
-                raise _enc('slave_control', 'ultrasonic.duration', r_10ultrasonic_8duration, 'range', '0..3', None)
+    if r_10ultrasonic_8duration.__class__ is not int or not 0 <= r_10ultrasonic_8duration <= 3:
+        _int_fault('slave_control', 'ultrasonic.duration', r_10ultrasonic_8duration, 0, 3, False, None)
     r_voice: Any = m.voice
     if r_voice is not True and r_voice is not False:
         if not isinstance(r_voice, int) or r_voice != 0 and r_voice != 1:
@@ -764,8 +775,9 @@ setattr(SlaveControl, "decode", staticmethod(_decode_slave_control))
 
 
 _ENCODERS: dict[type[Any], Callable[[Any], bytes]] = {Header: _encode_header, MasterControl: _encode_master_control, SlaveControl: _encode_slave_control, }
+_DECODERS: dict[type[Any], Callable[..., Any]] = {Header: _decode_header, MasterControl: _decode_master_control, SlaveControl: _decode_slave_control, }
 for _cls, _encoder in _ENCODERS.items():  # each encoder is its class's encode method: one call, not two
-    _encoder.__doc__ = _cls.encode.__doc__
+    _encoder.__doc__ = _Message.encode.__doc__
     setattr(_cls, "encode", _encoder)
 MESSAGES: dict[str, type[AnyMessage]] = {'header': Header, 'master_control': MasterControl, 'slave_control': SlaveControl, }
 
@@ -899,13 +911,19 @@ _SeqRule = tuple[str, tuple[str, ...], Any, Optional[str]]
 _RawUnit = tuple[Any, int, Optional[int]]
 
 
-@dataclass(slots=True, kw_only=True)
-class Program:
+class Program(_Record):
     """A whole program as sent to the master: the header, then h1 master control words, then h2_count slave control words."""
 
+    __slots__ = ('header', 'master', 'slaves')
+    _NAMES: ClassVar[tuple[str, ...]] = ('header', 'master', 'slaves')
     header: Header
     master: list[MasterControl]
     slaves: list[SlaveControl]
+
+    def __init__(self, *, header: Header, master: list[MasterControl], slaves: list[SlaveControl]) -> None:
+        self.header = header
+        self.master = master
+        self.slaves = slaves
 
 
 _SEQ_program: tuple[_Item, ...] = (('header', 'one', 'header', None, None), ('master', 'count', 'master_control', 'header.h1', None), ('slaves', 'count', 'slave_control', 'header.h2_count', None),)

@@ -14,7 +14,6 @@ import math
 import os
 
 import struct
-from dataclasses import dataclass
 from typing import Any, Callable, ClassVar, Literal, Optional, TypeVar, Union, cast, overload
 
 _Buffer = Union[bytes, bytearray, "memoryview[int]"]  # what a binary decoder reads
@@ -30,6 +29,63 @@ FINGERPRINT32 = 0x72643e38  # its first 32 bits
 _floor = math.floor
 _isfinite = math.isfinite
 _object_new = object.__new__
+_FRESH: Any = object()  # an argument left out whose default (a list, a group) is built for each object
+
+
+class _DataclassFields:
+    """A class's table of dataclass fields, made the first time it is read and then kept on the
+    class, for dataclasses.fields, replace, asdict and is_dataclass."""
+
+    def __get__(self, obj: object, owner: type[_Record]) -> dict[str, Any]:
+        from dataclasses import field, make_dataclass
+        init: Any = owner.__init__
+        defaults: dict[str, Any] = init.__kwdefaults__ or {}
+        annotations: dict[str, Any] = owner.__annotations__
+        names = owner._NAMES  # pyright: ignore[reportPrivateUsage]
+        fields: list[tuple[str, Any, Any]] = [
+            (n, annotations[n], field(default=defaults[n]) if defaults.get(n, _FRESH) is not _FRESH else field())
+            for n in names]
+        slots: tuple[str, ...] = owner.__slots__
+        fields += [(n, annotations[n], field(default=None, init=False, repr=False, compare=False))
+                   for n in slots if n not in names]
+        made: Any = make_dataclass(owner.__name__, fields, kw_only=True)
+        table: dict[str, Any] = made.__dataclass_fields__
+        setattr(owner, "__dataclass_fields__", table)
+        return table
+
+
+_R = TypeVar("_R", bound="_Record")
+
+
+class _Record:
+    """What every message, group and sequence class is: its fields in slots, set by a keyword
+    constructor; compared and shown field by field, in order, as a dataclass is; and a
+    dataclass to the dataclasses module. Its table of fields is made when first asked for: a
+    @dataclass decorator writes and compiles each class's methods while the module is
+    imported, which in a protocol of hundreds of messages costs more than all the rest."""
+
+    __slots__ = ()
+    _NAMES: ClassVar[tuple[str, ...]] = ()
+    __dataclass_fields__: ClassVar[dict[str, Any]] = _DataclassFields()  # type: ignore[assignment]
+
+    def __eq__(self, other: object) -> bool:
+        if other.__class__ is not self.__class__:
+            return NotImplemented
+        return [getattr(self, n) for n in self._NAMES] == [getattr(other, n) for n in self._NAMES]
+
+    def __repr__(self) -> str:
+        return f"{self.__class__.__qualname__}({', '.join(f'{n}={getattr(self, n)!r}' for n in self._NAMES)})"
+
+    def to_dict(self) -> dict[str, Any]:
+        """The object as JSON-ready data: enum members and flags by name, bytes as hex, numbers
+        in logical units; from_dict reads it back."""
+        return _to_dict(self)
+
+    @classmethod
+    def from_dict(cls: type[_R], values: dict[str, Any]) -> _R:
+        """An object from the data to_dict gives; an unknown key or a value of the wrong type is
+        a DecodeError."""
+        return _from_dict(cls, values, getattr(cls, "NAME", cls.__name__), "")
 
 
 class CodecError(ValueError):
@@ -115,6 +171,40 @@ def _located(e: CodecError) -> str:
 def _enc(message: Optional[str], field: Optional[str], value: object, rule: str, allowed: str = "",
          decision: Optional[str] = None, user_message: Optional[str] = None) -> EncodeError:
     return EncodeError(message, field, value, rule, allowed, None, decision, user_message)
+
+
+def _int_fault(message: str, field: Optional[str], value: Any, lo: Any, hi: Any, number: bool,
+               decision: Optional[str], user_message: Optional[str] = None) -> None:
+    """Raise the EncodeError of an integer field's value that its usual test did not pass: not
+    an int (a number, if the field is scaled), or out of its range."""
+    if not isinstance(value, (int, float) if number else int) or value.__class__ is bool:
+        raise _enc(message, field, value, 'type', 'a number' if number else 'an int')
+    if not lo <= value <= hi:
+        raise _enc(message, field, value, 'range', f'{lo!r}..{hi!r}', decision, user_message)
+
+
+def _faults(message: str, values: tuple[Any, ...], specs: tuple[tuple[Any, ...], ...]) -> None:
+    """Raise the EncodeError of the first of several numbers that fails its usual test; each
+    spec is ("int", field, lo, hi, scaled, decision[, message]) or ("float", field, binary32)."""
+    for value, (kind, name, *limits) in zip(values, specs):
+        if kind == "int":
+            _int_fault(message, name, value, *limits)
+        else:
+            _float_fault(message, name, value, *limits)
+
+
+def _float_fault(message: str, field: Optional[str], value: Any, binary32: bool) -> None:
+    """Raise the EncodeError of a float field's value that its usual test did not pass: not a
+    number, not finite, or (binary32) beyond a binary32's range."""
+    if value.__class__ is not float:
+        if not isinstance(value, (int, float)) or value.__class__ is bool:
+            raise _enc(message, field, value, 'type', 'a number')
+        if not -1.7976931348623157e308 <= value <= 1.7976931348623157e308:  # exact for any int
+            raise _enc(message, field, value, 'finite', 'a finite number')
+    if not _isfinite(value):
+        raise _enc(message, field, value, 'finite', 'a finite number')
+    if binary32 and (value > 3.4028234663852886e38 or value < -3.4028234663852886e38):
+        raise _enc(message, field, value, 'range', 'a binary32 value')
 
 
 def _dec(message: Optional[str], field: Optional[str], value: object, rule: str, allowed: str = "",
@@ -209,14 +299,33 @@ _FLAGS_status = _flag_table(Status, (0x1, 0x2, 0x4, ), True)
 # kind: int, number, bool, str, bytes (hex text), enum (a member's name), flags (a list of
 # names) or group (a nested mapping).
 _Spec = tuple[str, str, Any, bool, bool, bool]
+_Msg = TypeVar("_Msg", bound="_Message")
 
 
-@dataclass(slots=True, kw_only=True)
-class SetWheelsVelocities:
+class _Message(_Record):
+    """What every message class does: encode itself, decode its own wire form. Each message's
+    encoder and decoder is set on its class as the method itself (one call, not two)."""
+
+    __slots__ = ()
+    NAME: ClassVar[str]
+
+    def encode(self) -> bytes:
+        """The message in its wire form; an EncodeError if a value breaks the schema."""
+        return _ENCODERS[self.__class__](self)
+
+    @classmethod
+    def decode(cls: type[_Msg], data: _Input) -> _Msg:
+        """The message from its wire form; a DecodeError if it is not one."""
+        return cast(_Msg, _DECODERS[cls](data if data.__class__ is bytes else _as_input(data)))
+
+
+class SetWheelsVelocities(_Message):
     """set wheel velocities"""
 
+    __slots__ = ('group', 'robots', 'vl', 'vr', 'radio_crc_flag')
     NAME: ClassVar[str] = 'set_wheels_velocities'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('group', 'int', None, False, False, True), ('robots', 'flags', Robots, False, False, True), ('vl', 'number', None, False, False, True), ('vr', 'number', None, False, False, True), ('radio_crc_flag', 'int', None, False, False, False), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('group', 'robots', 'vl', 'vr', 'radio_crc_flag')
 
     group: int
     """robot group number 0-15; also selects the radio channel range 0..15"""
@@ -230,36 +339,24 @@ class SetWheelsVelocities:
     vr: float
     """right wheel velocity [mm/s] range -4096..4095.875 (MTV4-D5)"""
 
-    radio_crc_flag: int = 0
+    radio_crc_flag: int
     """bit 7 of the command byte, reserved for the CC2500's CRC correction; senders send 0, decoders report it (MTV4-D4)"""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The SetWheelsVelocities as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> SetWheelsVelocities:
-        """A SetWheelsVelocities from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(SetWheelsVelocities, values, 'set_wheels_velocities', "")
-
-    def encode(self) -> bytes:
-        """The set_wheels_velocities message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_set_wheels_velocities(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> SetWheelsVelocities:
-        """A set_wheels_velocities message from its wire form; a DecodeError if it is not one."""
-        return _decode_set_wheels_velocities(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, group: int, robots: Robots, vl: float, vr: float, radio_crc_flag: int = 0) -> None:
+        self.group = group
+        self.robots = robots
+        self.vl = vl
+        self.vr = vr
+        self.radio_crc_flag = radio_crc_flag
 
 
-@dataclass(slots=True, kw_only=True)
-class SetLed:
+class SetLed(_Message):
     """set LEDs"""
 
+    __slots__ = ('group', 'robots', 'd1', 'd2', 'd3', 'd4', 'radio_crc_flag')
     NAME: ClassVar[str] = 'set_led'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('group', 'int', None, False, False, True), ('robots', 'flags', Robots, False, False, True), ('d1', 'int', None, False, False, True), ('d2', 'int', None, False, False, True), ('d3', 'int', None, False, False, True), ('d4', 'int', None, False, False, True), ('radio_crc_flag', 'int', None, False, False, False), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('group', 'robots', 'd1', 'd2', 'd3', 'd4', 'radio_crc_flag')
 
     group: int
     """robot group number 0-15; also selects the radio channel range 0..15"""
@@ -279,36 +376,26 @@ class SetLed:
     d4: int
     """LED byte 4"""
 
-    radio_crc_flag: int = 0
+    radio_crc_flag: int
     """bit 7 of the command byte, reserved for the CC2500's CRC correction; senders send 0, decoders report it (MTV4-D4)"""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The SetLed as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> SetLed:
-        """A SetLed from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(SetLed, values, 'set_led', "")
-
-    def encode(self) -> bytes:
-        """The set_led message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_set_led(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> SetLed:
-        """A set_led message from its wire form; a DecodeError if it is not one."""
-        return _decode_set_led(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, group: int, robots: Robots, d1: int, d2: int, d3: int, d4: int, radio_crc_flag: int = 0) -> None:
+        self.group = group
+        self.robots = robots
+        self.d1 = d1
+        self.d2 = d2
+        self.d3 = d3
+        self.d4 = d4
+        self.radio_crc_flag = radio_crc_flag
 
 
-@dataclass(slots=True, kw_only=True)
-class SetWheelsVelocitiesWithOdometry:
+class SetWheelsVelocitiesWithOdometry(_Message):
     """set wheel velocities with odometry"""
 
+    __slots__ = ('group', 'robots', 'status', 'vl', 'vr', 'x', 'y', 'th', 'radio_crc_flag')
     NAME: ClassVar[str] = 'set_wheels_velocities_with_odometry'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('group', 'int', None, False, False, True), ('robots', 'flags', Robots, False, False, True), ('status', 'flags', Status, False, False, True), ('vl', 'number', None, False, False, True), ('vr', 'number', None, False, False, True), ('x', 'number', None, False, False, True), ('y', 'number', None, False, False, True), ('th', 'number', None, False, False, True), ('radio_crc_flag', 'int', None, False, False, False), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('group', 'robots', 'status', 'vl', 'vr', 'x', 'y', 'th', 'radio_crc_flag')
 
     group: int
     """robot group number 0-15; also selects the radio channel range 0..15"""
@@ -334,36 +421,28 @@ class SetWheelsVelocitiesWithOdometry:
     th: float
     """heading, used when overwrite_odometry is set [rad] (MTV4-D5)"""
 
-    radio_crc_flag: int = 0
+    radio_crc_flag: int
     """bit 7 of the command byte, reserved for the CC2500's CRC correction; senders send 0, decoders report it (MTV4-D4)"""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The SetWheelsVelocitiesWithOdometry as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> SetWheelsVelocitiesWithOdometry:
-        """A SetWheelsVelocitiesWithOdometry from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(SetWheelsVelocitiesWithOdometry, values, 'set_wheels_velocities_with_odometry', "")
-
-    def encode(self) -> bytes:
-        """The set_wheels_velocities_with_odometry message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_set_wheels_velocities_with_odometry(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> SetWheelsVelocitiesWithOdometry:
-        """A set_wheels_velocities_with_odometry message from its wire form; a DecodeError if it is not one."""
-        return _decode_set_wheels_velocities_with_odometry(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, group: int, robots: Robots, status: Status, vl: float, vr: float, x: float, y: float, th: float, radio_crc_flag: int = 0) -> None:
+        self.group = group
+        self.robots = robots
+        self.status = status
+        self.vl = vl
+        self.vr = vr
+        self.x = x
+        self.y = y
+        self.th = th
+        self.radio_crc_flag = radio_crc_flag
 
 
-@dataclass(slots=True, kw_only=True)
-class Ack:
+class Ack(_Message):
     """standard acknowledgement"""
 
+    __slots__ = ('group', 'command', 'robots', 'radio_crc_flag')
     NAME: ClassVar[str] = 'ack'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('group', 'int', None, False, False, True), ('command', 'int', None, False, False, True), ('robots', 'flags', Robots, False, False, True), ('radio_crc_flag', 'int', None, False, False, False), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('group', 'command', 'robots', 'radio_crc_flag')
 
     group: int
     """robot group number 0-15; also selects the radio channel range 0..15"""
@@ -374,36 +453,23 @@ class Ack:
     robots: Robots
     """robot bitmask, little endian (B4 = robots 0-7, B5 = robots 8-15); exactly one bit set (MTV4-D3)"""
 
-    radio_crc_flag: int = 0
+    radio_crc_flag: int
     """bit 7 of the command byte, reserved for the CC2500's CRC correction; senders send 0, decoders report it (MTV4-D4)"""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The Ack as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> Ack:
-        """A Ack from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(Ack, values, 'ack', "")
-
-    def encode(self) -> bytes:
-        """The ack message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_ack(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> Ack:
-        """A ack message from its wire form; a DecodeError if it is not one."""
-        return _decode_ack(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, group: int, command: int, robots: Robots, radio_crc_flag: int = 0) -> None:
+        self.group = group
+        self.command = command
+        self.robots = robots
+        self.radio_crc_flag = radio_crc_flag
 
 
-@dataclass(slots=True, kw_only=True)
-class OdometryReply:
+class OdometryReply(_Message):
     """odometry reply"""
 
+    __slots__ = ('group', 'robots', 'status', 'x', 'y', 'th', 'radio_crc_flag')
     NAME: ClassVar[str] = 'odometry_reply'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('group', 'int', None, False, False, True), ('robots', 'flags', Robots, False, False, True), ('status', 'int', None, False, False, True), ('x', 'number', None, False, False, True), ('y', 'number', None, False, False, True), ('th', 'number', None, False, False, True), ('radio_crc_flag', 'int', None, False, False, False), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('group', 'robots', 'status', 'x', 'y', 'th', 'radio_crc_flag')
 
     group: int
     """robot group number 0-15; also selects the radio channel range 0..15"""
@@ -423,28 +489,17 @@ class OdometryReply:
     th: float
     """heading [rad] (MTV4-D5)"""
 
-    radio_crc_flag: int = 0
+    radio_crc_flag: int
     """bit 7 of the command byte, reserved for the CC2500's CRC correction; senders send 0, decoders report it (MTV4-D4)"""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The OdometryReply as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> OdometryReply:
-        """A OdometryReply from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(OdometryReply, values, 'odometry_reply', "")
-
-    def encode(self) -> bytes:
-        """The odometry_reply message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_odometry_reply(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> OdometryReply:
-        """A odometry_reply message from its wire form; a DecodeError if it is not one."""
-        return _decode_odometry_reply(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, group: int, robots: Robots, status: int, x: float, y: float, th: float, radio_crc_flag: int = 0) -> None:
+        self.group = group
+        self.robots = robots
+        self.status = status
+        self.x = x
+        self.y = y
+        self.th = th
+        self.radio_crc_flag = radio_crc_flag
 
 
 AnyMessage = Union[SetWheelsVelocities, SetLed, SetWheelsVelocitiesWithOdometry, Ack, OdometryReply, ]
@@ -666,16 +721,7 @@ def _encode_set_wheels_velocities(m: SetWheelsVelocities) -> bytes:
     r_group = m.group
     r_radio_crc_flag = m.radio_crc_flag
     if (r_group.__class__ is not int or not 0 <= r_group <= 15) or (r_radio_crc_flag.__class__ is not int or not 0 <= r_radio_crc_flag <= 1):
-        if r_group.__class__ is not int or not 0 <= r_group <= 15:
-            if not isinstance(r_group, int) or r_group.__class__ is bool:
-                raise _enc('set_wheels_velocities', 'group', r_group, 'type', 'an int')
-            if not 0 <= r_group <= 15:
-                raise _enc('set_wheels_velocities', 'group', r_group, 'range', '0..15', None)
-        if r_radio_crc_flag.__class__ is not int or not 0 <= r_radio_crc_flag <= 1:
-            if not isinstance(r_radio_crc_flag, int) or r_radio_crc_flag.__class__ is bool:
-                raise _enc('set_wheels_velocities', 'radio_crc_flag', r_radio_crc_flag, 'type', 'an int')
-            if not 0 <= r_radio_crc_flag <= 1:
-                raise _enc('set_wheels_velocities', 'radio_crc_flag', r_radio_crc_flag, 'range', '0..1', 'MTV4-D4')
+        _faults('set_wheels_velocities', (r_group, r_radio_crc_flag, ), (('int', 'group', 0, 15, False, None), ('int', 'radio_crc_flag', 0, 1, False, 'MTV4-D4')))
     r_robots: Any = m.robots
     if r_robots.__class__ is not int and r_robots.__class__ is not Robots and (not isinstance(r_robots, int) or r_robots.__class__ is bool or isinstance(r_robots, enum.Enum)):
         raise _enc('set_wheels_velocities', 'robots', r_robots, 'type', 'an int or Robots')
@@ -685,18 +731,10 @@ def _encode_set_wheels_velocities(m: SetWheelsVelocities) -> bytes:
     if r_robots == 0 or r_robots & (r_robots - 1):
         raise _enc('set_wheels_velocities', 'robots', r_robots, 'exactly_one', 'exactly one bit set', 'MTV4-D3', 'an individual command or reply addresses exactly one robot')
     r_vl = m.vl
-    if r_vl.__class__ is not float or not -4096 <= r_vl <= 4095.875:
-        if not isinstance(r_vl, (int, float)) or r_vl.__class__ is bool:
-            raise _enc('set_wheels_velocities', 'vl', r_vl, 'type', 'a number')
-        if not -4096 <= r_vl <= 4095.875:
-            raise _enc('set_wheels_velocities', 'vl', r_vl, 'range', '-4096..4095.875', 'MTV4-D5')
-    r_vl = _floor(r_vl / 0.125 + 0.5)
     r_vr = m.vr
-    if r_vr.__class__ is not float or not -4096 <= r_vr <= 4095.875:
-        if not isinstance(r_vr, (int, float)) or r_vr.__class__ is bool:
-            raise _enc('set_wheels_velocities', 'vr', r_vr, 'type', 'a number')
-        if not -4096 <= r_vr <= 4095.875:
-            raise _enc('set_wheels_velocities', 'vr', r_vr, 'range', '-4096..4095.875', 'MTV4-D5')
+    if (r_vl.__class__ is not float or not -4096 <= r_vl <= 4095.875) or (r_vr.__class__ is not float or not -4096 <= r_vr <= 4095.875):
+        _faults('set_wheels_velocities', (r_vl, r_vr, ), (('int', 'vl', -4096, 4095.875, True, 'MTV4-D5'), ('int', 'vr', -4096, 4095.875, True, 'MTV4-D5')))
+    r_vl = _floor(r_vl / 0.125 + 0.5)
     r_vr = _floor(r_vr / 0.125 + 0.5)
     h = _S_set_wheels_velocities_0.pack(170, 8, r_group, r_radio_crc_flag << 7 | 0x1, r_robots, r_vl, r_vr)
     return h + _checksum_crc16_8005_ffff_nn_0_9(h, 1).to_bytes(2, 'big')
@@ -738,16 +776,7 @@ def _encode_set_led(m: SetLed) -> bytes:
     r_group = m.group
     r_radio_crc_flag = m.radio_crc_flag
     if (r_group.__class__ is not int or not 0 <= r_group <= 15) or (r_radio_crc_flag.__class__ is not int or not 0 <= r_radio_crc_flag <= 1):
-        if r_group.__class__ is not int or not 0 <= r_group <= 15:
-            if not isinstance(r_group, int) or r_group.__class__ is bool:
-                raise _enc('set_led', 'group', r_group, 'type', 'an int')
-            if not 0 <= r_group <= 15:
-                raise _enc('set_led', 'group', r_group, 'range', '0..15', None)
-        if r_radio_crc_flag.__class__ is not int or not 0 <= r_radio_crc_flag <= 1:
-            if not isinstance(r_radio_crc_flag, int) or r_radio_crc_flag.__class__ is bool:
-                raise _enc('set_led', 'radio_crc_flag', r_radio_crc_flag, 'type', 'an int')
-            if not 0 <= r_radio_crc_flag <= 1:
-                raise _enc('set_led', 'radio_crc_flag', r_radio_crc_flag, 'range', '0..1', 'MTV4-D4')
+        _faults('set_led', (r_group, r_radio_crc_flag, ), (('int', 'group', 0, 15, False, None), ('int', 'radio_crc_flag', 0, 1, False, 'MTV4-D4')))
     r_robots: Any = m.robots
     if r_robots.__class__ is not int and r_robots.__class__ is not Robots and (not isinstance(r_robots, int) or r_robots.__class__ is bool or isinstance(r_robots, enum.Enum)):
         raise _enc('set_led', 'robots', r_robots, 'type', 'an int or Robots')
@@ -761,26 +790,7 @@ def _encode_set_led(m: SetLed) -> bytes:
     r_d3 = m.d3
     r_d4 = m.d4
     if (r_d1.__class__ is not int or not 0 <= r_d1 <= 255) or (r_d2.__class__ is not int or not 0 <= r_d2 <= 255) or (r_d3.__class__ is not int or not 0 <= r_d3 <= 255) or (r_d4.__class__ is not int or not 0 <= r_d4 <= 255):
-        if r_d1.__class__ is not int or not 0 <= r_d1 <= 255:
-            if not isinstance(r_d1, int) or r_d1.__class__ is bool:
-                raise _enc('set_led', 'd1', r_d1, 'type', 'an int')
-            if not 0 <= r_d1 <= 255:
-                raise _enc('set_led', 'd1', r_d1, 'range', '0..255', None)
-        if r_d2.__class__ is not int or not 0 <= r_d2 <= 255:
-            if not isinstance(r_d2, int) or r_d2.__class__ is bool:
-                raise _enc('set_led', 'd2', r_d2, 'type', 'an int')
-            if not 0 <= r_d2 <= 255:
-                raise _enc('set_led', 'd2', r_d2, 'range', '0..255', None)
-        if r_d3.__class__ is not int or not 0 <= r_d3 <= 255:
-            if not isinstance(r_d3, int) or r_d3.__class__ is bool:
-                raise _enc('set_led', 'd3', r_d3, 'type', 'an int')
-            if not 0 <= r_d3 <= 255:
-                raise _enc('set_led', 'd3', r_d3, 'range', '0..255', None)
-        if r_d4.__class__ is not int or not 0 <= r_d4 <= 255:
-            if not isinstance(r_d4, int) or r_d4.__class__ is bool:
-                raise _enc('set_led', 'd4', r_d4, 'type', 'an int')
-            if not 0 <= r_d4 <= 255:
-                raise _enc('set_led', 'd4', r_d4, 'range', '0..255', None)
+        _faults('set_led', (r_d1, r_d2, r_d3, r_d4, ), (('int', 'd1', 0, 255, False, None), ('int', 'd2', 0, 255, False, None), ('int', 'd3', 0, 255, False, None), ('int', 'd4', 0, 255, False, None)))
     h = _S_set_led_0.pack(170, 8, r_group, r_radio_crc_flag << 7 | 0x2, r_robots, r_d1, r_d2, r_d3, r_d4)
     return h + _checksum_crc16_8005_ffff_nn_0_9(h, 1).to_bytes(2, 'big')
 
@@ -823,16 +833,7 @@ def _encode_set_wheels_velocities_with_odometry(m: SetWheelsVelocitiesWithOdomet
     r_group = m.group
     r_radio_crc_flag = m.radio_crc_flag
     if (r_group.__class__ is not int or not 0 <= r_group <= 15) or (r_radio_crc_flag.__class__ is not int or not 0 <= r_radio_crc_flag <= 1):
-        if r_group.__class__ is not int or not 0 <= r_group <= 15:
-            if not isinstance(r_group, int) or r_group.__class__ is bool:
-                raise _enc('set_wheels_velocities_with_odometry', 'group', r_group, 'type', 'an int')
-            if not 0 <= r_group <= 15:
-                raise _enc('set_wheels_velocities_with_odometry', 'group', r_group, 'range', '0..15', None)
-        if r_radio_crc_flag.__class__ is not int or not 0 <= r_radio_crc_flag <= 1:
-            if not isinstance(r_radio_crc_flag, int) or r_radio_crc_flag.__class__ is bool:
-                raise _enc('set_wheels_velocities_with_odometry', 'radio_crc_flag', r_radio_crc_flag, 'type', 'an int')
-            if not 0 <= r_radio_crc_flag <= 1:
-                raise _enc('set_wheels_velocities_with_odometry', 'radio_crc_flag', r_radio_crc_flag, 'range', '0..1', 'MTV4-D4')
+        _faults('set_wheels_velocities_with_odometry', (r_group, r_radio_crc_flag, ), (('int', 'group', 0, 15, False, None), ('int', 'radio_crc_flag', 0, 1, False, 'MTV4-D4')))
     r_robots: Any = m.robots
     if r_robots.__class__ is not int and r_robots.__class__ is not Robots and (not isinstance(r_robots, int) or r_robots.__class__ is bool or isinstance(r_robots, enum.Enum)):
         raise _enc('set_wheels_velocities_with_odometry', 'robots', r_robots, 'type', 'an int or Robots')
@@ -848,49 +849,14 @@ def _encode_set_wheels_velocities_with_odometry(m: SetWheelsVelocitiesWithOdomet
     if r_status < 0 or r_status & 0xfff8 or r_status > 0xffff:
         raise _enc('set_wheels_velocities_with_odometry', 'status', r_status, 'flags', 'only the bits of status', None)
     r_vl = m.vl
-    if r_vl.__class__ is not float or not -4096 <= r_vl <= 4095.875:
-        if not isinstance(r_vl, (int, float)) or r_vl.__class__ is bool:
-            raise _enc('set_wheels_velocities_with_odometry', 'vl', r_vl, 'type', 'a number')
-        if not -4096 <= r_vl <= 4095.875:
-            raise _enc('set_wheels_velocities_with_odometry', 'vl', r_vl, 'range', '-4096..4095.875', 'MTV4-D5')
-    r_vl = _floor(r_vl / 0.125 + 0.5)
     r_vr = m.vr
-    if r_vr.__class__ is not float or not -4096 <= r_vr <= 4095.875:
-        if not isinstance(r_vr, (int, float)) or r_vr.__class__ is bool:
-            raise _enc('set_wheels_velocities_with_odometry', 'vr', r_vr, 'type', 'a number')
-        if not -4096 <= r_vr <= 4095.875:
-            raise _enc('set_wheels_velocities_with_odometry', 'vr', r_vr, 'range', '-4096..4095.875', 'MTV4-D5')
-    r_vr = _floor(r_vr / 0.125 + 0.5)
     r_x = m.x
-    if r_x.__class__ is not float:
-        if not isinstance(r_x, (int, float)) or r_x.__class__ is bool:
-            raise _enc('set_wheels_velocities_with_odometry', 'x', r_x, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_x <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('set_wheels_velocities_with_odometry', 'x', r_x, 'finite', 'a finite number')
-    if not _isfinite(r_x):
-        raise _enc('set_wheels_velocities_with_odometry', 'x', r_x, 'finite', 'a finite number')
-    if r_x > 3.4028234663852886e38 or r_x < -3.4028234663852886e38:
-        raise _enc('set_wheels_velocities_with_odometry', 'x', r_x, 'range', 'a binary32 value')
     r_y = m.y
-    if r_y.__class__ is not float:
-        if not isinstance(r_y, (int, float)) or r_y.__class__ is bool:
-            raise _enc('set_wheels_velocities_with_odometry', 'y', r_y, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_y <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('set_wheels_velocities_with_odometry', 'y', r_y, 'finite', 'a finite number')
-    if not _isfinite(r_y):
-        raise _enc('set_wheels_velocities_with_odometry', 'y', r_y, 'finite', 'a finite number')
-    if r_y > 3.4028234663852886e38 or r_y < -3.4028234663852886e38:
-        raise _enc('set_wheels_velocities_with_odometry', 'y', r_y, 'range', 'a binary32 value')
     r_th = m.th
-    if r_th.__class__ is not float:
-        if not isinstance(r_th, (int, float)) or r_th.__class__ is bool:
-            raise _enc('set_wheels_velocities_with_odometry', 'th', r_th, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_th <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('set_wheels_velocities_with_odometry', 'th', r_th, 'finite', 'a finite number')
-    if not _isfinite(r_th):
-        raise _enc('set_wheels_velocities_with_odometry', 'th', r_th, 'finite', 'a finite number')
-    if r_th > 3.4028234663852886e38 or r_th < -3.4028234663852886e38:
-        raise _enc('set_wheels_velocities_with_odometry', 'th', r_th, 'range', 'a binary32 value')
+    if (r_vl.__class__ is not float or not -4096 <= r_vl <= 4095.875) or (r_vr.__class__ is not float or not -4096 <= r_vr <= 4095.875) or (r_x.__class__ is not float or not -3.4028234663852886e38 <= r_x <= 3.4028234663852886e38) or (r_y.__class__ is not float or not -3.4028234663852886e38 <= r_y <= 3.4028234663852886e38) or (r_th.__class__ is not float or not -3.4028234663852886e38 <= r_th <= 3.4028234663852886e38):
+        _faults('set_wheels_velocities_with_odometry', (r_vl, r_vr, r_x, r_y, r_th, ), (('int', 'vl', -4096, 4095.875, True, 'MTV4-D5'), ('int', 'vr', -4096, 4095.875, True, 'MTV4-D5'), ('float', 'x', True), ('float', 'y', True), ('float', 'th', True)))
+    r_vl = _floor(r_vl / 0.125 + 0.5)
+    r_vr = _floor(r_vr / 0.125 + 0.5)
     h = _S_set_wheels_velocities_with_odometry_0.pack(170, 22, r_group, r_radio_crc_flag << 7 | 0x3, r_robots, r_status, r_vl, r_vr, r_x, r_y, r_th)
     return h + _checksum_crc16_8005_ffff_nn_0_23(h, 1).to_bytes(2, 'big')
 
@@ -942,23 +908,11 @@ def _decode_set_wheels_velocities_with_odometry(d: _Buffer) -> SetWheelsVelociti
 def _encode_ack(m: Ack) -> bytes:
     r_group = m.group
     r_radio_crc_flag = m.radio_crc_flag
+    if (r_group.__class__ is not int or not 0 <= r_group <= 15) or (r_radio_crc_flag.__class__ is not int or not 0 <= r_radio_crc_flag <= 1):
+        _faults('ack', (r_group, r_radio_crc_flag, ), (('int', 'group', 0, 15, False, None), ('int', 'radio_crc_flag', 0, 1, False, 'MTV4-D4')))
     r_command = m.command
-    if (r_group.__class__ is not int or not 0 <= r_group <= 15) or (r_radio_crc_flag.__class__ is not int or not 0 <= r_radio_crc_flag <= 1) or (r_command.__class__ is not int or not 0 <= r_command <= 127):
-        if r_group.__class__ is not int or not 0 <= r_group <= 15:
-            if not isinstance(r_group, int) or r_group.__class__ is bool:
-                raise _enc('ack', 'group', r_group, 'type', 'an int')
-            if not 0 <= r_group <= 15:
-                raise _enc('ack', 'group', r_group, 'range', '0..15', None)
-        if r_radio_crc_flag.__class__ is not int or not 0 <= r_radio_crc_flag <= 1:
-            if not isinstance(r_radio_crc_flag, int) or r_radio_crc_flag.__class__ is bool:
-                raise _enc('ack', 'radio_crc_flag', r_radio_crc_flag, 'type', 'an int')
-            if not 0 <= r_radio_crc_flag <= 1:
-                raise _enc('ack', 'radio_crc_flag', r_radio_crc_flag, 'range', '0..1', 'MTV4-D4')
-        if r_command.__class__ is not int or not 0 <= r_command <= 127:
-            if not isinstance(r_command, int) or r_command.__class__ is bool:
-                raise _enc('ack', 'command', r_command, 'type', 'an int')
-            if not 0 <= r_command <= 127:
-                raise _enc('ack', 'command', r_command, 'range', '0..127', 'MTV4-D4')
+    if r_command.__class__ is not int or not 0 <= r_command <= 127:
+        _int_fault('ack', 'command', r_command, 0, 127, False, 'MTV4-D4')
     if r_command not in (1, 2):
         raise _enc('ack', 'command', r_command, 'values', '1, 2', 'MTV4-D4')
     r_robots: Any = m.robots
@@ -1008,16 +962,7 @@ def _encode_odometry_reply(m: OdometryReply) -> bytes:
     r_group = m.group
     r_radio_crc_flag = m.radio_crc_flag
     if (r_group.__class__ is not int or not 0 <= r_group <= 15) or (r_radio_crc_flag.__class__ is not int or not 0 <= r_radio_crc_flag <= 1):
-        if r_group.__class__ is not int or not 0 <= r_group <= 15:
-            if not isinstance(r_group, int) or r_group.__class__ is bool:
-                raise _enc('odometry_reply', 'group', r_group, 'type', 'an int')
-            if not 0 <= r_group <= 15:
-                raise _enc('odometry_reply', 'group', r_group, 'range', '0..15', None)
-        if r_radio_crc_flag.__class__ is not int or not 0 <= r_radio_crc_flag <= 1:
-            if not isinstance(r_radio_crc_flag, int) or r_radio_crc_flag.__class__ is bool:
-                raise _enc('odometry_reply', 'radio_crc_flag', r_radio_crc_flag, 'type', 'an int')
-            if not 0 <= r_radio_crc_flag <= 1:
-                raise _enc('odometry_reply', 'radio_crc_flag', r_radio_crc_flag, 'range', '0..1', 'MTV4-D4')
+        _faults('odometry_reply', (r_group, r_radio_crc_flag, ), (('int', 'group', 0, 15, False, None), ('int', 'radio_crc_flag', 0, 1, False, 'MTV4-D4')))
     r_robots: Any = m.robots
     if r_robots.__class__ is not int and r_robots.__class__ is not Robots and (not isinstance(r_robots, int) or r_robots.__class__ is bool or isinstance(r_robots, enum.Enum)):
         raise _enc('odometry_reply', 'robots', r_robots, 'type', 'an int or Robots')
@@ -1027,41 +972,11 @@ def _encode_odometry_reply(m: OdometryReply) -> bytes:
     if r_robots == 0 or r_robots & (r_robots - 1):
         raise _enc('odometry_reply', 'robots', r_robots, 'exactly_one', 'exactly one bit set', 'MTV4-D3', 'an individual command or reply addresses exactly one robot')
     r_status = m.status
-    if r_status.__class__ is not int or not 0 <= r_status <= 65535:
-        if not isinstance(r_status, int) or r_status.__class__ is bool:
-            raise _enc('odometry_reply', 'status', r_status, 'type', 'an int')
-        if not 0 <= r_status <= 65535:
-            raise _enc('odometry_reply', 'status', r_status, 'range', '0..65535', None)
     r_x = m.x
-    if r_x.__class__ is not float:
-        if not isinstance(r_x, (int, float)) or r_x.__class__ is bool:
-            raise _enc('odometry_reply', 'x', r_x, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_x <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('odometry_reply', 'x', r_x, 'finite', 'a finite number')
-    if not _isfinite(r_x):
-        raise _enc('odometry_reply', 'x', r_x, 'finite', 'a finite number')
-    if r_x > 3.4028234663852886e38 or r_x < -3.4028234663852886e38:
-        raise _enc('odometry_reply', 'x', r_x, 'range', 'a binary32 value')
     r_y = m.y
-    if r_y.__class__ is not float:
-        if not isinstance(r_y, (int, float)) or r_y.__class__ is bool:
-            raise _enc('odometry_reply', 'y', r_y, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_y <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('odometry_reply', 'y', r_y, 'finite', 'a finite number')
-    if not _isfinite(r_y):
-        raise _enc('odometry_reply', 'y', r_y, 'finite', 'a finite number')
-    if r_y > 3.4028234663852886e38 or r_y < -3.4028234663852886e38:
-        raise _enc('odometry_reply', 'y', r_y, 'range', 'a binary32 value')
     r_th = m.th
-    if r_th.__class__ is not float:
-        if not isinstance(r_th, (int, float)) or r_th.__class__ is bool:
-            raise _enc('odometry_reply', 'th', r_th, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_th <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('odometry_reply', 'th', r_th, 'finite', 'a finite number')
-    if not _isfinite(r_th):
-        raise _enc('odometry_reply', 'th', r_th, 'finite', 'a finite number')
-    if r_th > 3.4028234663852886e38 or r_th < -3.4028234663852886e38:
-        raise _enc('odometry_reply', 'th', r_th, 'range', 'a binary32 value')
+    if (r_status.__class__ is not int or not 0 <= r_status <= 65535) or (r_x.__class__ is not float or not -3.4028234663852886e38 <= r_x <= 3.4028234663852886e38) or (r_y.__class__ is not float or not -3.4028234663852886e38 <= r_y <= 3.4028234663852886e38) or (r_th.__class__ is not float or not -3.4028234663852886e38 <= r_th <= 3.4028234663852886e38):
+        _faults('odometry_reply', (r_status, r_x, r_y, r_th, ), (('int', 'status', 0, 65535, False, None), ('float', 'x', True), ('float', 'y', True), ('float', 'th', True)))
     h = _S_odometry_reply_0.pack(170, 18, r_group, r_radio_crc_flag << 7 | 0x3, r_robots, r_status, r_x, r_y, r_th)
     return h + _checksum_crc16_8005_ffff_nn_0_19(h, 1).to_bytes(2, 'big')
 
@@ -1286,8 +1201,9 @@ class StreamDecoder:
 
 
 _ENCODERS: dict[type[Any], Callable[[Any], bytes]] = {SetWheelsVelocities: _encode_set_wheels_velocities, SetLed: _encode_set_led, SetWheelsVelocitiesWithOdometry: _encode_set_wheels_velocities_with_odometry, Ack: _encode_ack, OdometryReply: _encode_odometry_reply, }
+_DECODERS: dict[type[Any], Callable[..., Any]] = {SetWheelsVelocities: _decode_set_wheels_velocities, SetLed: _decode_set_led, SetWheelsVelocitiesWithOdometry: _decode_set_wheels_velocities_with_odometry, Ack: _decode_ack, OdometryReply: _decode_odometry_reply, }
 for _cls, _encoder in _ENCODERS.items():  # each encoder is its class's encode method: one call, not two
-    _encoder.__doc__ = _cls.encode.__doc__
+    _encoder.__doc__ = _Message.encode.__doc__
     setattr(_cls, "encode", _encoder)
 MESSAGES: dict[str, type[AnyMessage]] = {'set_wheels_velocities': SetWheelsVelocities, 'set_led': SetLed, 'set_wheels_velocities_with_odometry': SetWheelsVelocitiesWithOdometry, 'ack': Ack, 'odometry_reply': OdometryReply, }
 

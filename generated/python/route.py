@@ -14,7 +14,6 @@ import math
 import os
 import re
 
-from dataclasses import dataclass
 from typing import Any, Callable, ClassVar, Iterator, Optional, TypeVar, Union, cast
 
 _Buffer = Union[bytes, bytearray, "memoryview[int]"]  # what a binary decoder reads
@@ -30,6 +29,63 @@ FINGERPRINT32 = 0x363bd352  # its first 32 bits
 _floor = math.floor
 _isfinite = math.isfinite
 _object_new = object.__new__
+_FRESH: Any = object()  # an argument left out whose default (a list, a group) is built for each object
+
+
+class _DataclassFields:
+    """A class's table of dataclass fields, made the first time it is read and then kept on the
+    class, for dataclasses.fields, replace, asdict and is_dataclass."""
+
+    def __get__(self, obj: object, owner: type[_Record]) -> dict[str, Any]:
+        from dataclasses import field, make_dataclass
+        init: Any = owner.__init__
+        defaults: dict[str, Any] = init.__kwdefaults__ or {}
+        annotations: dict[str, Any] = owner.__annotations__
+        names = owner._NAMES  # pyright: ignore[reportPrivateUsage]
+        fields: list[tuple[str, Any, Any]] = [
+            (n, annotations[n], field(default=defaults[n]) if defaults.get(n, _FRESH) is not _FRESH else field())
+            for n in names]
+        slots: tuple[str, ...] = owner.__slots__
+        fields += [(n, annotations[n], field(default=None, init=False, repr=False, compare=False))
+                   for n in slots if n not in names]
+        made: Any = make_dataclass(owner.__name__, fields, kw_only=True)
+        table: dict[str, Any] = made.__dataclass_fields__
+        setattr(owner, "__dataclass_fields__", table)
+        return table
+
+
+_R = TypeVar("_R", bound="_Record")
+
+
+class _Record:
+    """What every message, group and sequence class is: its fields in slots, set by a keyword
+    constructor; compared and shown field by field, in order, as a dataclass is; and a
+    dataclass to the dataclasses module. Its table of fields is made when first asked for: a
+    @dataclass decorator writes and compiles each class's methods while the module is
+    imported, which in a protocol of hundreds of messages costs more than all the rest."""
+
+    __slots__ = ()
+    _NAMES: ClassVar[tuple[str, ...]] = ()
+    __dataclass_fields__: ClassVar[dict[str, Any]] = _DataclassFields()  # type: ignore[assignment]
+
+    def __eq__(self, other: object) -> bool:
+        if other.__class__ is not self.__class__:
+            return NotImplemented
+        return [getattr(self, n) for n in self._NAMES] == [getattr(other, n) for n in self._NAMES]
+
+    def __repr__(self) -> str:
+        return f"{self.__class__.__qualname__}({', '.join(f'{n}={getattr(self, n)!r}' for n in self._NAMES)})"
+
+    def to_dict(self) -> dict[str, Any]:
+        """The object as JSON-ready data: enum members and flags by name, bytes as hex, numbers
+        in logical units; from_dict reads it back."""
+        return _to_dict(self)
+
+    @classmethod
+    def from_dict(cls: type[_R], values: dict[str, Any]) -> _R:
+        """An object from the data to_dict gives; an unknown key or a value of the wrong type is
+        a DecodeError."""
+        return _from_dict(cls, values, getattr(cls, "NAME", cls.__name__), "")
 
 
 def _int_of(token: str) -> int:
@@ -126,6 +182,40 @@ def _enc(message: Optional[str], field: Optional[str], value: object, rule: str,
     return EncodeError(message, field, value, rule, allowed, None, decision, user_message)
 
 
+def _int_fault(message: str, field: Optional[str], value: Any, lo: Any, hi: Any, number: bool,
+               decision: Optional[str], user_message: Optional[str] = None) -> None:
+    """Raise the EncodeError of an integer field's value that its usual test did not pass: not
+    an int (a number, if the field is scaled), or out of its range."""
+    if not isinstance(value, (int, float) if number else int) or value.__class__ is bool:
+        raise _enc(message, field, value, 'type', 'a number' if number else 'an int')
+    if not lo <= value <= hi:
+        raise _enc(message, field, value, 'range', f'{lo!r}..{hi!r}', decision, user_message)
+
+
+def _faults(message: str, values: tuple[Any, ...], specs: tuple[tuple[Any, ...], ...]) -> None:
+    """Raise the EncodeError of the first of several numbers that fails its usual test; each
+    spec is ("int", field, lo, hi, scaled, decision[, message]) or ("float", field, binary32)."""
+    for value, (kind, name, *limits) in zip(values, specs):
+        if kind == "int":
+            _int_fault(message, name, value, *limits)
+        else:
+            _float_fault(message, name, value, *limits)
+
+
+def _float_fault(message: str, field: Optional[str], value: Any, binary32: bool) -> None:
+    """Raise the EncodeError of a float field's value that its usual test did not pass: not a
+    number, not finite, or (binary32) beyond a binary32's range."""
+    if value.__class__ is not float:
+        if not isinstance(value, (int, float)) or value.__class__ is bool:
+            raise _enc(message, field, value, 'type', 'a number')
+        if not -1.7976931348623157e308 <= value <= 1.7976931348623157e308:  # exact for any int
+            raise _enc(message, field, value, 'finite', 'a finite number')
+    if not _isfinite(value):
+        raise _enc(message, field, value, 'finite', 'a finite number')
+    if binary32 and (value > 3.4028234663852886e38 or value < -3.4028234663852886e38):
+        raise _enc(message, field, value, 'range', 'a binary32 value')
+
+
 def _dec(message: Optional[str], field: Optional[str], value: object, rule: str, allowed: str = "",
          offset: Optional[int] = None, decision: Optional[str] = None,
          user_message: Optional[str] = None) -> DecodeError:
@@ -154,42 +244,45 @@ _RAW_pass_side: dict[int, int] = {v: v for v in _VALUES_pass_side}  # a member o
 # kind: int, number, bool, str, bytes (hex text), enum (a member's name), flags (a list of
 # names) or group (a nested mapping).
 _Spec = tuple[str, str, Any, bool, bool, bool]
+_Msg = TypeVar("_Msg", bound="_Message")
 
 
-@dataclass(slots=True, kw_only=True)
-class Start:
-    """start of packet"""
+class _Message(_Record):
+    """What every message class does: encode itself, decode its own wire form. Each message's
+    encoder and decoder is set on its class as the method itself (one call, not two)."""
 
-    NAME: ClassVar[str] = 'start'
-    _FIELDS: ClassVar[tuple[_Spec, ...]] = ()
-
-    def to_dict(self) -> dict[str, Any]:
-        """The Start as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> Start:
-        """A Start from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(Start, values, 'start', "")
+    __slots__ = ()
+    NAME: ClassVar[str]
 
     def encode(self) -> bytes:
-        """The start message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_start(self)
+        """The message in its wire form; an EncodeError if a value breaks the schema."""
+        return _ENCODERS[self.__class__](self)
 
     @classmethod
-    def decode(cls, data: _Input) -> Start:
-        """A start message from its wire form; a DecodeError if it is not one."""
-        return _decode_start(data if data.__class__ is bytes else _as_input(data))
+    def decode(cls: type[_Msg], data: _Input) -> _Msg:
+        """The message from its wire form; a DecodeError if it is not one."""
+        return cast(_Msg, _DECODERS[cls](data if data.__class__ is bytes else _as_input(data)))
 
 
-@dataclass(slots=True, kw_only=True)
-class Object:
+class Start(_Message):
+    """start of packet"""
+
+    __slots__ = ()
+    NAME: ClassVar[str] = 'start'
+    _FIELDS: ClassVar[tuple[_Spec, ...]] = ()
+    _NAMES: ClassVar[tuple[str, ...]] = ()
+
+    def __init__(self) -> None:
+        pass
+
+
+class Object(_Message):
     """object description"""
 
+    __slots__ = ('ns', 'nl', 'no', 'na', 'dl', 'rc', 'dr', 'cm')
     NAME: ClassVar[str] = 'object'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('ns', 'int', None, False, False, True), ('nl', 'int', None, False, False, True), ('no', 'int', None, False, False, True), ('na', 'int', None, False, False, True), ('dl', 'int', None, False, False, True), ('rc', 'int', None, False, False, True), ('dr', 'int', None, False, False, True), ('cm', 'int', None, False, False, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('ns', 'nl', 'no', 'na', 'dl', 'rc', 'dr', 'cm')
 
     ns: int
     """scene number range 0..7"""
@@ -215,33 +308,24 @@ class Object:
     cm: int
     """compass direction range 1..15"""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The Object as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> Object:
-        """A Object from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(Object, values, 'object', "")
-
-    def encode(self) -> bytes:
-        """The object message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_object(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> Object:
-        """A object message from its wire form; a DecodeError if it is not one."""
-        return _decode_object(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, ns: int, nl: int, no: int, na: int, dl: int, rc: int, dr: int, cm: int) -> None:
+        self.ns = ns
+        self.nl = nl
+        self.no = no
+        self.na = na
+        self.dl = dl
+        self.rc = rc
+        self.dr = dr
+        self.cm = cm
 
 
-@dataclass(slots=True, kw_only=True)
-class Scene:
+class Scene(_Message):
     """scene description"""
 
+    __slots__ = ('ns', 'nl', 'db', 'nt')
     NAME: ClassVar[str] = 'scene'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('ns', 'int', None, False, False, True), ('nl', 'int', None, False, False, True), ('db', 'enum', PassSide, False, False, True), ('nt', 'int', None, False, False, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('ns', 'nl', 'db', 'nt')
 
     ns: int
     """scene number range 0..7"""
@@ -254,53 +338,23 @@ class Scene:
     nt: int
     """clock ticks the robot spent on this leg [ticks]"""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The Scene as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> Scene:
-        """A Scene from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(Scene, values, 'scene', "")
-
-    def encode(self) -> bytes:
-        """The scene message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_scene(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> Scene:
-        """A scene message from its wire form; a DecodeError if it is not one."""
-        return _decode_scene(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, ns: int, nl: int, db: PassSide, nt: int) -> None:
+        self.ns = ns
+        self.nl = nl
+        self.db = db
+        self.nt = nt
 
 
-@dataclass(slots=True, kw_only=True)
-class End:
+class End(_Message):
     """end of packet"""
 
+    __slots__ = ()
     NAME: ClassVar[str] = 'end'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = ()
+    _NAMES: ClassVar[tuple[str, ...]] = ()
 
-    def to_dict(self) -> dict[str, Any]:
-        """The End as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> End:
-        """A End from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(End, values, 'end', "")
-
-    def encode(self) -> bytes:
-        """The end message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_end(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> End:
-        """A end message from its wire form; a DecodeError if it is not one."""
-        return _decode_end(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self) -> None:
+        pass
 
 
 AnyMessage = Union[Start, Object, Scene, End, ]
@@ -389,58 +443,18 @@ def _decode_text_start(tokens: list[int]) -> Start:
 
 def _encode_object(m: Object) -> bytes:
     r_hdr = 1
+    r_cs = 0
     r_ns = m.ns
     r_nl = m.nl
     r_no = m.no
     r_na = m.na
-    if (r_ns.__class__ is not int or not 0 <= r_ns <= 7) or (r_nl.__class__ is not int or not 0 <= r_nl <= 7) or (r_no.__class__ is not int or not 0 <= r_no <= 7) or (r_na.__class__ is not int or not 10 <= r_na <= 17):
-        if r_ns.__class__ is not int or not 0 <= r_ns <= 7:
-            if not isinstance(r_ns, int) or r_ns.__class__ is bool:
-                raise _enc('object', 'ns', r_ns, 'type', 'an int')
-            if not 0 <= r_ns <= 7:
-                raise _enc('object', 'ns', r_ns, 'range', '0..7', None)
-        if r_nl.__class__ is not int or not 0 <= r_nl <= 7:
-            if not isinstance(r_nl, int) or r_nl.__class__ is bool:
-                raise _enc('object', 'nl', r_nl, 'type', 'an int')
-            if not 0 <= r_nl <= 7:
-                raise _enc('object', 'nl', r_nl, 'range', '0..7', None)
-        if r_no.__class__ is not int or not 0 <= r_no <= 7:
-            if not isinstance(r_no, int) or r_no.__class__ is bool:
-                raise _enc('object', 'no', r_no, 'type', 'an int')
-            if not 0 <= r_no <= 7:
-                raise _enc('object', 'no', r_no, 'range', '0..7', None)
-        if r_na.__class__ is not int or not 10 <= r_na <= 17:
-            if not isinstance(r_na, int) or r_na.__class__ is bool:
-                raise _enc('object', 'na', r_na, 'type', 'an int')
-            if not 10 <= r_na <= 17:
-                raise _enc('object', 'na', r_na, 'range', '10..17', 'ROUTE-D6')
-    r_na = (r_na - 10)
     r_dl = m.dl
     r_rc = m.rc
     r_dr = m.dr
     r_cm = m.cm
-    if (r_dl.__class__ is not int or not 1 <= r_dl <= 5) or (r_rc.__class__ is not int or not 0 <= r_rc <= 3) or (r_dr.__class__ is not int or not 1 <= r_dr <= 5) or (r_cm.__class__ is not int or not 1 <= r_cm <= 15):
-        if r_dl.__class__ is not int or not 1 <= r_dl <= 5:
-            if not isinstance(r_dl, int) or r_dl.__class__ is bool:
-                raise _enc('object', 'dl', r_dl, 'type', 'an int')
-            if not 1 <= r_dl <= 5:
-                raise _enc('object', 'dl', r_dl, 'range', '1..5', None)
-        if r_rc.__class__ is not int or not 0 <= r_rc <= 3:
-            if not isinstance(r_rc, int) or r_rc.__class__ is bool:
-                raise _enc('object', 'rc', r_rc, 'type', 'an int')
-            if not 0 <= r_rc <= 3:
-                raise _enc('object', 'rc', r_rc, 'range', '0..3', 'ROUTE-D3')
-        if r_dr.__class__ is not int or not 1 <= r_dr <= 5:
-            if not isinstance(r_dr, int) or r_dr.__class__ is bool:
-                raise _enc('object', 'dr', r_dr, 'type', 'an int')
-            if not 1 <= r_dr <= 5:
-                raise _enc('object', 'dr', r_dr, 'range', '1..5', None)
-        if r_cm.__class__ is not int or not 1 <= r_cm <= 15:
-            if not isinstance(r_cm, int) or r_cm.__class__ is bool:
-                raise _enc('object', 'cm', r_cm, 'type', 'an int')
-            if not 1 <= r_cm <= 15:
-                raise _enc('object', 'cm', r_cm, 'range', '1..15', None)
-    r_cs = 0
+    if (r_ns.__class__ is not int or not 0 <= r_ns <= 7) or (r_nl.__class__ is not int or not 0 <= r_nl <= 7) or (r_no.__class__ is not int or not 0 <= r_no <= 7) or (r_na.__class__ is not int or not 10 <= r_na <= 17) or (r_dl.__class__ is not int or not 1 <= r_dl <= 5) or (r_rc.__class__ is not int or not 0 <= r_rc <= 3) or (r_dr.__class__ is not int or not 1 <= r_dr <= 5) or (r_cm.__class__ is not int or not 1 <= r_cm <= 15):
+        _faults('object', (r_ns, r_nl, r_no, r_na, r_dl, r_rc, r_dr, r_cm, ), (('int', 'ns', 0, 7, False, None), ('int', 'nl', 0, 7, False, None), ('int', 'no', 0, 7, False, None), ('int', 'na', 10, 17, False, 'ROUTE-D6'), ('int', 'dl', 1, 5, False, None), ('int', 'rc', 0, 3, False, 'ROUTE-D3'), ('int', 'dr', 1, 5, False, None), ('int', 'cm', 1, 15, False, None)))
+    r_na = (r_na - 10)
     r_cs = (r_hdr + r_ns + r_nl + r_no + r_na + r_dl + r_rc + r_dr + r_cm) % 8
     w: int = r_ns << 27 | r_nl << 24 | r_no << 21 | r_na << 18 | r_dl << 15 | r_rc << 13 | r_dr << 10 | r_cm << 6 | r_cs << 3 | 0x40000000
     return w.to_bytes(4, 'big')
@@ -491,56 +505,18 @@ def _decode_object(d: _Buffer) -> Object:
 def _raw_object(m: Object) -> tuple[int, ...]:
     """Check a object and return its raw wire values, in wire order."""
     r_hdr = 1
-    r_ns = m.ns
-    if r_ns.__class__ is not int or not 0 <= r_ns <= 7:
-        if not isinstance(r_ns, int) or r_ns.__class__ is bool:
-            raise _enc('object', 'ns', r_ns, 'type', 'an int')
-        if not 0 <= r_ns <= 7:
-            raise _enc('object', 'ns', r_ns, 'range', '0..7', None)
-    r_nl = m.nl
-    if r_nl.__class__ is not int or not 0 <= r_nl <= 7:
-        if not isinstance(r_nl, int) or r_nl.__class__ is bool:
-            raise _enc('object', 'nl', r_nl, 'type', 'an int')
-        if not 0 <= r_nl <= 7:
-            raise _enc('object', 'nl', r_nl, 'range', '0..7', None)
-    r_no = m.no
-    if r_no.__class__ is not int or not 0 <= r_no <= 7:
-        if not isinstance(r_no, int) or r_no.__class__ is bool:
-            raise _enc('object', 'no', r_no, 'type', 'an int')
-        if not 0 <= r_no <= 7:
-            raise _enc('object', 'no', r_no, 'range', '0..7', None)
-    r_na = m.na
-    if r_na.__class__ is not int or not 10 <= r_na <= 17:
-        if not isinstance(r_na, int) or r_na.__class__ is bool:
-            raise _enc('object', 'na', r_na, 'type', 'an int')
-        if not 10 <= r_na <= 17:
-            raise _enc('object', 'na', r_na, 'range', '10..17', 'ROUTE-D6')
-    r_na = (r_na - 10)
-    r_dl = m.dl
-    if r_dl.__class__ is not int or not 1 <= r_dl <= 5:
-        if not isinstance(r_dl, int) or r_dl.__class__ is bool:
-            raise _enc('object', 'dl', r_dl, 'type', 'an int')
-        if not 1 <= r_dl <= 5:
-            raise _enc('object', 'dl', r_dl, 'range', '1..5', None)
-    r_rc = m.rc
-    if r_rc.__class__ is not int or not 0 <= r_rc <= 3:
-        if not isinstance(r_rc, int) or r_rc.__class__ is bool:
-            raise _enc('object', 'rc', r_rc, 'type', 'an int')
-        if not 0 <= r_rc <= 3:
-            raise _enc('object', 'rc', r_rc, 'range', '0..3', 'ROUTE-D3')
-    r_dr = m.dr
-    if r_dr.__class__ is not int or not 1 <= r_dr <= 5:
-        if not isinstance(r_dr, int) or r_dr.__class__ is bool:
-            raise _enc('object', 'dr', r_dr, 'type', 'an int')
-        if not 1 <= r_dr <= 5:
-            raise _enc('object', 'dr', r_dr, 'range', '1..5', None)
-    r_cm = m.cm
-    if r_cm.__class__ is not int or not 1 <= r_cm <= 15:
-        if not isinstance(r_cm, int) or r_cm.__class__ is bool:
-            raise _enc('object', 'cm', r_cm, 'type', 'an int')
-        if not 1 <= r_cm <= 15:
-            raise _enc('object', 'cm', r_cm, 'range', '1..15', None)
     r_cs = 0
+    r_ns = m.ns
+    r_nl = m.nl
+    r_no = m.no
+    r_na = m.na
+    r_dl = m.dl
+    r_rc = m.rc
+    r_dr = m.dr
+    r_cm = m.cm
+    if (r_ns.__class__ is not int or not 0 <= r_ns <= 7) or (r_nl.__class__ is not int or not 0 <= r_nl <= 7) or (r_no.__class__ is not int or not 0 <= r_no <= 7) or (r_na.__class__ is not int or not 10 <= r_na <= 17) or (r_dl.__class__ is not int or not 1 <= r_dl <= 5) or (r_rc.__class__ is not int or not 0 <= r_rc <= 3) or (r_dr.__class__ is not int or not 1 <= r_dr <= 5) or (r_cm.__class__ is not int or not 1 <= r_cm <= 15):
+        _faults('object', (r_ns, r_nl, r_no, r_na, r_dl, r_rc, r_dr, r_cm, ), (('int', 'ns', 0, 7, False, None), ('int', 'nl', 0, 7, False, None), ('int', 'no', 0, 7, False, None), ('int', 'na', 10, 17, False, 'ROUTE-D6'), ('int', 'dl', 1, 5, False, None), ('int', 'rc', 0, 3, False, 'ROUTE-D3'), ('int', 'dr', 1, 5, False, None), ('int', 'cm', 1, 15, False, None)))
+    r_na = (r_na - 10)
     r_cs = (r_hdr + r_ns + r_nl + r_no + r_na + r_dl + r_rc + r_dr + r_cm) % 8
     return (r_hdr, r_ns, r_nl, r_no, r_na, r_dl, r_rc, r_dr, r_cm, r_cs, )
 
@@ -599,27 +575,15 @@ def _encode_scene(m: Scene) -> bytes:
     r_ns = m.ns
     r_nl = m.nl
     if (r_ns.__class__ is not int or not 0 <= r_ns <= 7) or (r_nl.__class__ is not int or not 0 <= r_nl <= 7):
-        if r_ns.__class__ is not int or not 0 <= r_ns <= 7:
-            if not isinstance(r_ns, int) or r_ns.__class__ is bool:
-                raise _enc('scene', 'ns', r_ns, 'type', 'an int')
-            if not 0 <= r_ns <= 7:
-                raise _enc('scene', 'ns', r_ns, 'range', '0..7', None)
-        if r_nl.__class__ is not int or not 0 <= r_nl <= 7:
-            if not isinstance(r_nl, int) or r_nl.__class__ is bool:
-                raise _enc('scene', 'nl', r_nl, 'type', 'an int')
-            if not 0 <= r_nl <= 7:
-                raise _enc('scene', 'nl', r_nl, 'range', '0..7', None)
+        _faults('scene', (r_ns, r_nl, ), (('int', 'ns', 0, 7, False, None), ('int', 'nl', 0, 7, False, None)))
     r_db: Any = m.db
     if r_db.__class__ is not PassSide and (not isinstance(r_db, int) or r_db.__class__ is bool or isinstance(r_db, enum.Enum) or r_db not in _VALUES_pass_side):
         raise _enc('scene', 'db', r_db, 'enum', 'PassSide', None)
     r_db = _RAW_pass_side[r_db]
+    r_cs = 0
     r_nt = m.nt
     if r_nt.__class__ is not int or not 0 <= r_nt <= 32767:
-        if not isinstance(r_nt, int) or r_nt.__class__ is bool:
-            raise _enc('scene', 'nt', r_nt, 'type', 'an int')
-        if not 0 <= r_nt <= 32767:
-            raise _enc('scene', 'nt', r_nt, 'range', '0..32767', None)
-    r_cs = 0
+        _int_fault('scene', 'nt', r_nt, 0, 32767, False, None)
     r_cs = (r_hdr + r_ns + r_nl + r_db + r_nt) % 8
     w: int = r_ns << 27 | r_nl << 24 | r_db << 21 | r_nt << 6 | r_cs << 3 | 0x80000000
     return w.to_bytes(4, 'big')
@@ -660,28 +624,17 @@ def _raw_scene(m: Scene) -> tuple[int, ...]:
     """Check a scene and return its raw wire values, in wire order."""
     r_hdr = 2
     r_ns = m.ns
-    if r_ns.__class__ is not int or not 0 <= r_ns <= 7:
-        if not isinstance(r_ns, int) or r_ns.__class__ is bool:
-            raise _enc('scene', 'ns', r_ns, 'type', 'an int')
-        if not 0 <= r_ns <= 7:
-            raise _enc('scene', 'ns', r_ns, 'range', '0..7', None)
     r_nl = m.nl
-    if r_nl.__class__ is not int or not 0 <= r_nl <= 7:
-        if not isinstance(r_nl, int) or r_nl.__class__ is bool:
-            raise _enc('scene', 'nl', r_nl, 'type', 'an int')
-        if not 0 <= r_nl <= 7:
-            raise _enc('scene', 'nl', r_nl, 'range', '0..7', None)
+    if (r_ns.__class__ is not int or not 0 <= r_ns <= 7) or (r_nl.__class__ is not int or not 0 <= r_nl <= 7):
+        _faults('scene', (r_ns, r_nl, ), (('int', 'ns', 0, 7, False, None), ('int', 'nl', 0, 7, False, None)))
     r_db: Any = m.db
     if r_db.__class__ is not PassSide and (not isinstance(r_db, int) or r_db.__class__ is bool or isinstance(r_db, enum.Enum) or r_db not in _VALUES_pass_side):
         raise _enc('scene', 'db', r_db, 'enum', 'PassSide', None)
     r_db = _RAW_pass_side[r_db]
+    r_cs = 0
     r_nt = m.nt
     if r_nt.__class__ is not int or not 0 <= r_nt <= 32767:
-        if not isinstance(r_nt, int) or r_nt.__class__ is bool:
-            raise _enc('scene', 'nt', r_nt, 'type', 'an int')
-        if not 0 <= r_nt <= 32767:
-            raise _enc('scene', 'nt', r_nt, 'range', '0..32767', None)
-    r_cs = 0
+        _int_fault('scene', 'nt', r_nt, 0, 32767, False, None)
     r_cs = (r_hdr + r_ns + r_nl + r_db + r_nt) % 8
     return (r_hdr, r_ns, r_nl, r_db, r_nt, r_cs, )
 
@@ -995,8 +948,9 @@ def _as_text_block(text: object) -> str:
 
 
 _ENCODERS: dict[type[Any], Callable[[Any], bytes]] = {Start: _encode_start, Object: _encode_object, Scene: _encode_scene, End: _encode_end, }
+_DECODERS: dict[type[Any], Callable[..., Any]] = {Start: _decode_start, Object: _decode_object, Scene: _decode_scene, End: _decode_end, }
 for _cls, _encoder in _ENCODERS.items():  # each encoder is its class's encode method: one call, not two
-    _encoder.__doc__ = _cls.encode.__doc__
+    _encoder.__doc__ = _Message.encode.__doc__
     setattr(_cls, "encode", _encoder)
 _TEXT_ENCODERS: dict[type[Any], Callable[[Any], str]] = {Start: _encode_text_start, Object: _encode_text_object, Scene: _encode_text_scene, End: _encode_text_end, }
 _TEXT_INDEX: dict[_TextDecoder, dict[str, int]] = {_decode_text_start: {'hdr': 0, 'kind': 1, 'cs': 2, }, _decode_text_object: {'hdr': 0, 'ns': 1, 'nl': 2, 'no': 3, 'na': 4, 'dl': 5, 'rc': 6, 'dr': 7, 'cm': 8, 'cs': 9, }, _decode_text_scene: {'hdr': 0, 'ns': 1, 'nl': 2, 'db': 3, 'nt': 4, 'cs': 5, }, _decode_text_end: {'hdr': 0, 'kind': 1, 'cs': 2, }, }
@@ -1127,21 +1081,32 @@ _SeqRule = tuple[str, tuple[str, ...], Any, Optional[str]]
 _RawUnit = tuple[Any, int, Optional[int]]
 
 
-@dataclass(slots=True, kw_only=True)
-class RouteScenes:
+class RouteScenes(_Record):
     """The scenes of a route."""
 
+    __slots__ = ('objects', 'scene')
+    _NAMES: ClassVar[tuple[str, ...]] = ('objects', 'scene')
     objects: list[Object]
     scene: Scene
 
+    def __init__(self, *, objects: list[Object], scene: Scene) -> None:
+        self.objects = objects
+        self.scene = scene
 
-@dataclass(slots=True, kw_only=True)
-class Route:
+
+class Route(_Record):
     """a whole route, the unit sent over either transport"""
 
+    __slots__ = ('start', 'scenes', 'end')
+    _NAMES: ClassVar[tuple[str, ...]] = ('start', 'scenes', 'end')
     start: Start
     scenes: list[RouteScenes]
     end: End
+
+    def __init__(self, *, start: Start, scenes: list[RouteScenes], end: End) -> None:
+        self.start = start
+        self.scenes = scenes
+        self.end = end
 
 
 _SEQ_route: tuple[_Item, ...] = (('start', 'one', 'start', None, None), ('scenes', 'repeat', RouteScenes, None, (('objects', 'repeat', 'object', None, None), ('scene', 'one', 'scene', None, None),)), ('end', 'one', 'end', None, None),)

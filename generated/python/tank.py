@@ -11,8 +11,7 @@ import enum
 import math
 import re
 
-from dataclasses import dataclass
-from typing import Any, Callable, ClassVar, Literal, Optional, TypeVar, Union, overload
+from typing import Any, Callable, ClassVar, Literal, Optional, TypeVar, Union, cast, overload
 
 _Buffer = Union[bytes, bytearray, "memoryview[int]"]  # what a binary decoder reads
 _Input = Union[str, bytes, bytearray]  # what a decoder reads: text, or its ASCII bytes
@@ -27,6 +26,63 @@ FINGERPRINT32 = 0x9d70d29e  # its first 32 bits
 _floor = math.floor
 _isfinite = math.isfinite
 _object_new = object.__new__
+_FRESH: Any = object()  # an argument left out whose default (a list, a group) is built for each object
+
+
+class _DataclassFields:
+    """A class's table of dataclass fields, made the first time it is read and then kept on the
+    class, for dataclasses.fields, replace, asdict and is_dataclass."""
+
+    def __get__(self, obj: object, owner: type[_Record]) -> dict[str, Any]:
+        from dataclasses import field, make_dataclass
+        init: Any = owner.__init__
+        defaults: dict[str, Any] = init.__kwdefaults__ or {}
+        annotations: dict[str, Any] = owner.__annotations__
+        names = owner._NAMES  # pyright: ignore[reportPrivateUsage]
+        fields: list[tuple[str, Any, Any]] = [
+            (n, annotations[n], field(default=defaults[n]) if defaults.get(n, _FRESH) is not _FRESH else field())
+            for n in names]
+        slots: tuple[str, ...] = owner.__slots__
+        fields += [(n, annotations[n], field(default=None, init=False, repr=False, compare=False))
+                   for n in slots if n not in names]
+        made: Any = make_dataclass(owner.__name__, fields, kw_only=True)
+        table: dict[str, Any] = made.__dataclass_fields__
+        setattr(owner, "__dataclass_fields__", table)
+        return table
+
+
+_R = TypeVar("_R", bound="_Record")
+
+
+class _Record:
+    """What every message, group and sequence class is: its fields in slots, set by a keyword
+    constructor; compared and shown field by field, in order, as a dataclass is; and a
+    dataclass to the dataclasses module. Its table of fields is made when first asked for: a
+    @dataclass decorator writes and compiles each class's methods while the module is
+    imported, which in a protocol of hundreds of messages costs more than all the rest."""
+
+    __slots__ = ()
+    _NAMES: ClassVar[tuple[str, ...]] = ()
+    __dataclass_fields__: ClassVar[dict[str, Any]] = _DataclassFields()  # type: ignore[assignment]
+
+    def __eq__(self, other: object) -> bool:
+        if other.__class__ is not self.__class__:
+            return NotImplemented
+        return [getattr(self, n) for n in self._NAMES] == [getattr(other, n) for n in self._NAMES]
+
+    def __repr__(self) -> str:
+        return f"{self.__class__.__qualname__}({', '.join(f'{n}={getattr(self, n)!r}' for n in self._NAMES)})"
+
+    def to_dict(self) -> dict[str, Any]:
+        """The object as JSON-ready data: enum members and flags by name, bytes as hex, numbers
+        in logical units; from_dict reads it back."""
+        return _to_dict(self)
+
+    @classmethod
+    def from_dict(cls: type[_R], values: dict[str, Any]) -> _R:
+        """An object from the data to_dict gives; an unknown key or a value of the wrong type is
+        a DecodeError."""
+        return _from_dict(cls, values, getattr(cls, "NAME", cls.__name__), "")
 
 
 def _int_of(token: str) -> int:
@@ -114,6 +170,30 @@ def _located(e: CodecError) -> str:
 def _enc(message: Optional[str], field: Optional[str], value: object, rule: str, allowed: str = "",
          decision: Optional[str] = None, user_message: Optional[str] = None) -> EncodeError:
     return EncodeError(message, field, value, rule, allowed, None, decision, user_message)
+
+
+def _int_fault(message: str, field: Optional[str], value: Any, lo: Any, hi: Any, number: bool,
+               decision: Optional[str], user_message: Optional[str] = None) -> None:
+    """Raise the EncodeError of an integer field's value that its usual test did not pass: not
+    an int (a number, if the field is scaled), or out of its range."""
+    if not isinstance(value, (int, float) if number else int) or value.__class__ is bool:
+        raise _enc(message, field, value, 'type', 'a number' if number else 'an int')
+    if not lo <= value <= hi:
+        raise _enc(message, field, value, 'range', f'{lo!r}..{hi!r}', decision, user_message)
+
+
+def _float_fault(message: str, field: Optional[str], value: Any, binary32: bool) -> None:
+    """Raise the EncodeError of a float field's value that its usual test did not pass: not a
+    number, not finite, or (binary32) beyond a binary32's range."""
+    if value.__class__ is not float:
+        if not isinstance(value, (int, float)) or value.__class__ is bool:
+            raise _enc(message, field, value, 'type', 'a number')
+        if not -1.7976931348623157e308 <= value <= 1.7976931348623157e308:  # exact for any int
+            raise _enc(message, field, value, 'finite', 'a finite number')
+    if not _isfinite(value):
+        raise _enc(message, field, value, 'finite', 'a finite number')
+    if binary32 and (value > 3.4028234663852886e38 or value < -3.4028234663852886e38):
+        raise _enc(message, field, value, 'range', 'a binary32 value')
 
 
 def _dec(message: Optional[str], field: Optional[str], value: object, rule: str, allowed: str = "",
@@ -233,14 +313,33 @@ _RAW_gpio_mode: dict[int, int] = {v: v for v in _VALUES_gpio_mode}  # a member o
 # kind: int, number, bool, str, bytes (hex text), enum (a member's name), flags (a list of
 # names) or group (a nested mapping).
 _Spec = tuple[str, str, Any, bool, bool, bool]
+_Msg = TypeVar("_Msg", bound="_Message")
 
 
-@dataclass(slots=True, kw_only=True)
-class Telemetry:
+class _Message(_Record):
+    """What every message class does: encode itself, decode its own wire form. Each message's
+    encoder is set on its class as the method itself (one call, not two)."""
+
+    __slots__ = ()
+    NAME: ClassVar[str]
+
+    def encode(self) -> str:
+        """The message in its wire form; an EncodeError if a value breaks the schema."""
+        return cast(str, _ENCODERS[self.__class__](self))
+
+    @classmethod
+    def decode(cls: type[_Msg], data: _Input) -> _Msg:
+        """The message from its wire form; a DecodeError if it is not one."""
+        return cast(_Msg, _decode_as(cls.NAME, data, _DECODERS[cls]))
+
+
+class Telemetry(_Message):
     """Telemetry"""
 
+    __slots__ = ('move', 'speed', 'value', 'lcurr', 'rcurr', 'accx', 'accy', 'accz', 'gyrox', 'gyroy', 'gyroz', 'magx', 'magy', 'magz', 'lan', 'lon', 'vbat', 'systemstatus', 'extid', 'extstatus')
     NAME: ClassVar[str] = 'telemetry'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('move', 'enum', Move, False, False, True), ('speed', 'int', None, False, False, True), ('value', 'str', None, False, False, True), ('lcurr', 'number', None, False, False, True), ('rcurr', 'number', None, False, False, True), ('accx', 'number', None, False, False, True), ('accy', 'number', None, False, False, True), ('accz', 'number', None, False, False, True), ('gyrox', 'number', None, False, False, True), ('gyroy', 'number', None, False, False, True), ('gyroz', 'number', None, False, False, True), ('magx', 'number', None, False, False, True), ('magy', 'number', None, False, False, True), ('magz', 'number', None, False, False, True), ('lan', 'str', None, False, False, True), ('lon', 'str', None, False, False, True), ('vbat', 'number', None, False, False, True), ('systemstatus', 'enum', SystemStatus, False, False, True), ('extid', 'int', None, False, False, True), ('extstatus', 'enum', ExtStatus, False, False, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('move', 'speed', 'value', 'lcurr', 'rcurr', 'accx', 'accy', 'accz', 'gyrox', 'gyroy', 'gyroz', 'magx', 'magy', 'magz', 'lan', 'lon', 'vbat', 'systemstatus', 'extid', 'extstatus')
 
     move: Move
     """current direction of motion"""
@@ -302,33 +401,36 @@ class Telemetry:
     extstatus: ExtStatus
     """external device status"""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The Telemetry as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
+    def __init__(self, *, move: Move, speed: int, value: str, lcurr: float, rcurr: float, accx: float, accy: float, accz: float, gyrox: float, gyroy: float, gyroz: float, magx: float, magy: float, magz: float, lan: str, lon: str, vbat: float, systemstatus: SystemStatus, extid: int, extstatus: ExtStatus) -> None:
+        self.move = move
+        self.speed = speed
+        self.value = value
+        self.lcurr = lcurr
+        self.rcurr = rcurr
+        self.accx = accx
+        self.accy = accy
+        self.accz = accz
+        self.gyrox = gyrox
+        self.gyroy = gyroy
+        self.gyroz = gyroz
+        self.magx = magx
+        self.magy = magy
+        self.magz = magz
+        self.lan = lan
+        self.lon = lon
+        self.vbat = vbat
+        self.systemstatus = systemstatus
+        self.extid = extid
+        self.extstatus = extstatus
 
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> Telemetry:
-        """A Telemetry from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(Telemetry, values, 'telemetry', "")
 
-    def encode(self) -> str:
-        """The telemetry message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_telemetry(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> Telemetry:
-        """A telemetry message from its wire form; a DecodeError if it is not one."""
-        return _decode_as('telemetry', data, _decode_telemetry)
-
-
-@dataclass(slots=True, kw_only=True)
-class Command:
+class Command(_Message):
     """Command"""
 
+    __slots__ = ('move', 'speed', 'value', 'azimutloc', 'gpio1', 'gpio2', 'gpio3', 'gpio4', 'systemstatus', 'data')
     NAME: ClassVar[str] = 'command'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('move', 'enum', Move, False, False, True), ('speed', 'int', None, False, False, True), ('value', 'str', None, False, False, True), ('azimutloc', 'int', None, False, False, True), ('gpio1', 'number', None, False, False, True), ('gpio2', 'number', None, False, False, True), ('gpio3', 'number', None, False, False, True), ('gpio4', 'number', None, False, False, True), ('systemstatus', 'enum', SystemStatus, False, False, True), ('data', 'str', None, True, False, False), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('move', 'speed', 'value', 'azimutloc', 'gpio1', 'gpio2', 'gpio3', 'gpio4', 'systemstatus', 'data')
 
     move: Move
     """direction of motion"""
@@ -357,98 +459,59 @@ class Command:
     systemstatus: SystemStatus
     """the system status the computer asks for; 0-4 only (TANK-D2) (TANK-D2)"""
 
-    data: Optional[str] = None
+    data: Optional[str]
     """Extra data; may be absent, as in the seed's test line (TANK-D1). No ',' or ';' (TANK-D5). (TANK-D1)"""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The Command as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> Command:
-        """A Command from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(Command, values, 'command', "")
-
-    def encode(self) -> str:
-        """The command message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_command(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> Command:
-        """A command message from its wire form; a DecodeError if it is not one."""
-        return _decode_as('command', data, _decode_command)
+    def __init__(self, *, move: Move, speed: int, value: str, azimutloc: int, gpio1: float, gpio2: float, gpio3: float, gpio4: float, systemstatus: SystemStatus, data: Optional[str] = None) -> None:
+        self.move = move
+        self.speed = speed
+        self.value = value
+        self.azimutloc = azimutloc
+        self.gpio1 = gpio1
+        self.gpio2 = gpio2
+        self.gpio3 = gpio3
+        self.gpio4 = gpio4
+        self.systemstatus = systemstatus
+        self.data = data
 
 
-@dataclass(slots=True, kw_only=True)
-class PayloadCommand:
+class PayloadCommand(_Message):
     """Payload command"""
 
+    __slots__ = ('command',)
     NAME: ClassVar[str] = 'payload_command'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('command', 'str', None, False, False, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('command',)
 
     command: str
     """The command text, from after ':' to the terminating ';'; may contain ',' but not ';' (TANK-D7). (TANK-D7)"""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The PayloadCommand as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> PayloadCommand:
-        """A PayloadCommand from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(PayloadCommand, values, 'payload_command', "")
-
-    def encode(self) -> str:
-        """The payload_command message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_payload_command(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> PayloadCommand:
-        """A payload_command message from its wire form; a DecodeError if it is not one."""
-        return _decode_as('payload_command', data, _decode_payload_command)
+    def __init__(self, *, command: str) -> None:
+        self.command = command
 
 
-@dataclass(slots=True, kw_only=True)
-class PayloadReply:
+class PayloadReply(_Message):
     """Payload message"""
 
+    __slots__ = ('command',)
     NAME: ClassVar[str] = 'payload_reply'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('command', 'str', None, False, False, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('command',)
 
     command: str
     """The command text, from after ':' to the terminating ';'; may contain ',' but not ';' (TANK-D7). (TANK-D7)"""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The PayloadReply as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> PayloadReply:
-        """A PayloadReply from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(PayloadReply, values, 'payload_reply', "")
-
-    def encode(self) -> str:
-        """The payload_reply message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_payload_reply(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> PayloadReply:
-        """A payload_reply message from its wire form; a DecodeError if it is not one."""
-        return _decode_as('payload_reply', data, _decode_payload_reply)
+    def __init__(self, *, command: str) -> None:
+        self.command = command
 
 
-@dataclass(slots=True, kw_only=True)
-class GpioConfig:
+class GpioConfig(_Message):
     """GPIO configuration"""
 
+    __slots__ = ('gpio1', 'gpio2', 'gpio3', 'gpio4')
     NAME: ClassVar[str] = 'gpio_config'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('gpio1', 'enum', GpioMode, False, False, True), ('gpio2', 'enum', GpioMode, False, False, True), ('gpio3', 'enum', GpioMode, False, False, True), ('gpio4', 'enum', GpioMode, False, False, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('gpio1', 'gpio2', 'gpio3', 'gpio4')
 
     gpio1: GpioMode
     """mode of GPIO1 (MasterLink pin 8, SCL)"""
@@ -462,25 +525,11 @@ class GpioConfig:
     gpio4: GpioMode
     """mode of GPIO4 (MasterLink pin 14, CS / Analog4)"""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The GpioConfig as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> GpioConfig:
-        """A GpioConfig from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(GpioConfig, values, 'gpio_config', "")
-
-    def encode(self) -> str:
-        """The gpio_config message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_gpio_config(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> GpioConfig:
-        """A gpio_config message from its wire form; a DecodeError if it is not one."""
-        return _decode_as('gpio_config', data, _decode_gpio_config)
+    def __init__(self, *, gpio1: GpioMode, gpio2: GpioMode, gpio3: GpioMode, gpio4: GpioMode) -> None:
+        self.gpio1 = gpio1
+        self.gpio2 = gpio2
+        self.gpio3 = gpio3
+        self.gpio4 = gpio4
 
 
 AnyMessage = Union[Telemetry, Command, PayloadCommand, PayloadReply, GpioConfig, ]
@@ -584,10 +633,7 @@ def _encode_telemetry(m: Telemetry) -> str:
         raise _enc('telemetry', 'move', r_move, 'enum', 'Move', None)
     r_speed = m.speed
     if r_speed.__class__ is not int or not 0 <= r_speed <= 100:
-        if not isinstance(r_speed, int) or r_speed.__class__ is bool:
-            raise _enc('telemetry', 'speed', r_speed, 'type', 'an int')
-        if not 0 <= r_speed <= 100:
-            raise _enc('telemetry', 'speed', r_speed, 'range', '0..100', 'TANK-D3')
+        _int_fault('telemetry', 'speed', r_speed, 0, 100, False, 'TANK-D3')
     r_value = m.value
     if not isinstance(r_value, str) or len(r_value) != 1:
         raise _enc('telemetry', 'value', r_value, 'type', 'one character')
@@ -596,123 +642,68 @@ def _encode_telemetry(m: Telemetry) -> str:
         if bad:
             raise _enc('telemetry', 'value', r_value, 'text', bad, 'TANK-D3')
     r_lcurr = m.lcurr
-    if r_lcurr.__class__ is not float:
-        if not isinstance(r_lcurr, (int, float)) or r_lcurr.__class__ is bool:
-            raise _enc('telemetry', 'lcurr', r_lcurr, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_lcurr <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('telemetry', 'lcurr', r_lcurr, 'finite', 'a finite number')
-    if not _isfinite(r_lcurr):
-        raise _enc('telemetry', 'lcurr', r_lcurr, 'finite', 'a finite number')
+    if r_lcurr.__class__ is not float or not -1.7976931348623157e308 <= r_lcurr <= 1.7976931348623157e308:
+        _float_fault('telemetry', 'lcurr', r_lcurr, False)
     s_lcurr = _format_float(r_lcurr)  # written as it is checked
     if len(s_lcurr) > 15 and _significant(s_lcurr) > 15 or r_lcurr and -1e-307 < r_lcurr < 1e-307:
         raise _enc('telemetry', 'lcurr', r_lcurr, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_rcurr = m.rcurr
-    if r_rcurr.__class__ is not float:
-        if not isinstance(r_rcurr, (int, float)) or r_rcurr.__class__ is bool:
-            raise _enc('telemetry', 'rcurr', r_rcurr, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_rcurr <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('telemetry', 'rcurr', r_rcurr, 'finite', 'a finite number')
-    if not _isfinite(r_rcurr):
-        raise _enc('telemetry', 'rcurr', r_rcurr, 'finite', 'a finite number')
+    if r_rcurr.__class__ is not float or not -1.7976931348623157e308 <= r_rcurr <= 1.7976931348623157e308:
+        _float_fault('telemetry', 'rcurr', r_rcurr, False)
     s_rcurr = _format_float(r_rcurr)  # written as it is checked
     if len(s_rcurr) > 15 and _significant(s_rcurr) > 15 or r_rcurr and -1e-307 < r_rcurr < 1e-307:
         raise _enc('telemetry', 'rcurr', r_rcurr, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_accx = m.accx
-    if r_accx.__class__ is not float:
-        if not isinstance(r_accx, (int, float)) or r_accx.__class__ is bool:
-            raise _enc('telemetry', 'accx', r_accx, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_accx <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('telemetry', 'accx', r_accx, 'finite', 'a finite number')
-    if not _isfinite(r_accx):
-        raise _enc('telemetry', 'accx', r_accx, 'finite', 'a finite number')
+    if r_accx.__class__ is not float or not -1.7976931348623157e308 <= r_accx <= 1.7976931348623157e308:
+        _float_fault('telemetry', 'accx', r_accx, False)
     s_accx = _format_float(r_accx)  # written as it is checked
     if len(s_accx) > 15 and _significant(s_accx) > 15 or r_accx and -1e-307 < r_accx < 1e-307:
         raise _enc('telemetry', 'accx', r_accx, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_accy = m.accy
-    if r_accy.__class__ is not float:
-        if not isinstance(r_accy, (int, float)) or r_accy.__class__ is bool:
-            raise _enc('telemetry', 'accy', r_accy, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_accy <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('telemetry', 'accy', r_accy, 'finite', 'a finite number')
-    if not _isfinite(r_accy):
-        raise _enc('telemetry', 'accy', r_accy, 'finite', 'a finite number')
+    if r_accy.__class__ is not float or not -1.7976931348623157e308 <= r_accy <= 1.7976931348623157e308:
+        _float_fault('telemetry', 'accy', r_accy, False)
     s_accy = _format_float(r_accy)  # written as it is checked
     if len(s_accy) > 15 and _significant(s_accy) > 15 or r_accy and -1e-307 < r_accy < 1e-307:
         raise _enc('telemetry', 'accy', r_accy, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_accz = m.accz
-    if r_accz.__class__ is not float:
-        if not isinstance(r_accz, (int, float)) or r_accz.__class__ is bool:
-            raise _enc('telemetry', 'accz', r_accz, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_accz <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('telemetry', 'accz', r_accz, 'finite', 'a finite number')
-    if not _isfinite(r_accz):
-        raise _enc('telemetry', 'accz', r_accz, 'finite', 'a finite number')
+    if r_accz.__class__ is not float or not -1.7976931348623157e308 <= r_accz <= 1.7976931348623157e308:
+        _float_fault('telemetry', 'accz', r_accz, False)
     s_accz = _format_float(r_accz)  # written as it is checked
     if len(s_accz) > 15 and _significant(s_accz) > 15 or r_accz and -1e-307 < r_accz < 1e-307:
         raise _enc('telemetry', 'accz', r_accz, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_gyrox = m.gyrox
-    if r_gyrox.__class__ is not float:
-        if not isinstance(r_gyrox, (int, float)) or r_gyrox.__class__ is bool:
-            raise _enc('telemetry', 'gyrox', r_gyrox, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_gyrox <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('telemetry', 'gyrox', r_gyrox, 'finite', 'a finite number')
-    if not _isfinite(r_gyrox):
-        raise _enc('telemetry', 'gyrox', r_gyrox, 'finite', 'a finite number')
+    if r_gyrox.__class__ is not float or not -1.7976931348623157e308 <= r_gyrox <= 1.7976931348623157e308:
+        _float_fault('telemetry', 'gyrox', r_gyrox, False)
     s_gyrox = _format_float(r_gyrox)  # written as it is checked
     if len(s_gyrox) > 15 and _significant(s_gyrox) > 15 or r_gyrox and -1e-307 < r_gyrox < 1e-307:
         raise _enc('telemetry', 'gyrox', r_gyrox, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_gyroy = m.gyroy
-    if r_gyroy.__class__ is not float:
-        if not isinstance(r_gyroy, (int, float)) or r_gyroy.__class__ is bool:
-            raise _enc('telemetry', 'gyroy', r_gyroy, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_gyroy <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('telemetry', 'gyroy', r_gyroy, 'finite', 'a finite number')
-    if not _isfinite(r_gyroy):
-        raise _enc('telemetry', 'gyroy', r_gyroy, 'finite', 'a finite number')
+    if r_gyroy.__class__ is not float or not -1.7976931348623157e308 <= r_gyroy <= 1.7976931348623157e308:
+        _float_fault('telemetry', 'gyroy', r_gyroy, False)
     s_gyroy = _format_float(r_gyroy)  # written as it is checked
     if len(s_gyroy) > 15 and _significant(s_gyroy) > 15 or r_gyroy and -1e-307 < r_gyroy < 1e-307:
         raise _enc('telemetry', 'gyroy', r_gyroy, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_gyroz = m.gyroz
-    if r_gyroz.__class__ is not float:
-        if not isinstance(r_gyroz, (int, float)) or r_gyroz.__class__ is bool:
-            raise _enc('telemetry', 'gyroz', r_gyroz, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_gyroz <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('telemetry', 'gyroz', r_gyroz, 'finite', 'a finite number')
-    if not _isfinite(r_gyroz):
-        raise _enc('telemetry', 'gyroz', r_gyroz, 'finite', 'a finite number')
+    if r_gyroz.__class__ is not float or not -1.7976931348623157e308 <= r_gyroz <= 1.7976931348623157e308:
+        _float_fault('telemetry', 'gyroz', r_gyroz, False)
     s_gyroz = _format_float(r_gyroz)  # written as it is checked
     if len(s_gyroz) > 15 and _significant(s_gyroz) > 15 or r_gyroz and -1e-307 < r_gyroz < 1e-307:
         raise _enc('telemetry', 'gyroz', r_gyroz, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_magx = m.magx
-    if r_magx.__class__ is not float:
-        if not isinstance(r_magx, (int, float)) or r_magx.__class__ is bool:
-            raise _enc('telemetry', 'magx', r_magx, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_magx <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('telemetry', 'magx', r_magx, 'finite', 'a finite number')
-    if not _isfinite(r_magx):
-        raise _enc('telemetry', 'magx', r_magx, 'finite', 'a finite number')
+    if r_magx.__class__ is not float or not -1.7976931348623157e308 <= r_magx <= 1.7976931348623157e308:
+        _float_fault('telemetry', 'magx', r_magx, False)
     s_magx = _format_float(r_magx)  # written as it is checked
     if len(s_magx) > 15 and _significant(s_magx) > 15 or r_magx and -1e-307 < r_magx < 1e-307:
         raise _enc('telemetry', 'magx', r_magx, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_magy = m.magy
-    if r_magy.__class__ is not float:
-        if not isinstance(r_magy, (int, float)) or r_magy.__class__ is bool:
-            raise _enc('telemetry', 'magy', r_magy, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_magy <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('telemetry', 'magy', r_magy, 'finite', 'a finite number')
-    if not _isfinite(r_magy):
-        raise _enc('telemetry', 'magy', r_magy, 'finite', 'a finite number')
+    if r_magy.__class__ is not float or not -1.7976931348623157e308 <= r_magy <= 1.7976931348623157e308:
+        _float_fault('telemetry', 'magy', r_magy, False)
     s_magy = _format_float(r_magy)  # written as it is checked
     if len(s_magy) > 15 and _significant(s_magy) > 15 or r_magy and -1e-307 < r_magy < 1e-307:
         raise _enc('telemetry', 'magy', r_magy, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_magz = m.magz
-    if r_magz.__class__ is not float:
-        if not isinstance(r_magz, (int, float)) or r_magz.__class__ is bool:
-            raise _enc('telemetry', 'magz', r_magz, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_magz <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('telemetry', 'magz', r_magz, 'finite', 'a finite number')
-    if not _isfinite(r_magz):
-        raise _enc('telemetry', 'magz', r_magz, 'finite', 'a finite number')
+    if r_magz.__class__ is not float or not -1.7976931348623157e308 <= r_magz <= 1.7976931348623157e308:
+        _float_fault('telemetry', 'magz', r_magz, False)
     s_magz = _format_float(r_magz)  # written as it is checked
     if len(s_magz) > 15 and _significant(s_magz) > 15 or r_magz and -1e-307 < r_magz < 1e-307:
         raise _enc('telemetry', 'magz', r_magz, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
@@ -735,13 +726,8 @@ def _encode_telemetry(m: Telemetry) -> str:
     if len(r_lon) > 32:
         raise _enc('telemetry', 'lon', r_lon, 'length', 'at most 32 characters')
     r_vbat = m.vbat
-    if r_vbat.__class__ is not float:
-        if not isinstance(r_vbat, (int, float)) or r_vbat.__class__ is bool:
-            raise _enc('telemetry', 'vbat', r_vbat, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_vbat <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('telemetry', 'vbat', r_vbat, 'finite', 'a finite number')
-    if not _isfinite(r_vbat):
-        raise _enc('telemetry', 'vbat', r_vbat, 'finite', 'a finite number')
+    if r_vbat.__class__ is not float or not -1.7976931348623157e308 <= r_vbat <= 1.7976931348623157e308:
+        _float_fault('telemetry', 'vbat', r_vbat, False)
     s_vbat = _format_float(r_vbat)  # written as it is checked
     if len(s_vbat) > 15 and _significant(s_vbat) > 15 or r_vbat and -1e-307 < r_vbat < 1e-307:
         raise _enc('telemetry', 'vbat', r_vbat, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
@@ -751,10 +737,7 @@ def _encode_telemetry(m: Telemetry) -> str:
     r_systemstatus = _RAW_system_status[r_systemstatus]
     r_extid = m.extid
     if r_extid.__class__ is not int or not 0 <= r_extid <= 255:
-        if not isinstance(r_extid, int) or r_extid.__class__ is bool:
-            raise _enc('telemetry', 'extid', r_extid, 'type', 'an int')
-        if not 0 <= r_extid <= 255:
-            raise _enc('telemetry', 'extid', r_extid, 'range', '0..255', None)
+        _int_fault('telemetry', 'extid', r_extid, 0, 255, False, None)
     r_extstatus: Any = m.extstatus
     if r_extstatus.__class__ is not ExtStatus and (not isinstance(r_extstatus, int) or r_extstatus.__class__ is bool or isinstance(r_extstatus, enum.Enum) or r_extstatus not in _VALUES_ext_status):
         raise _enc('telemetry', 'extstatus', r_extstatus, 'enum', 'ExtStatus', None)
@@ -875,10 +858,7 @@ def _encode_command(m: Command) -> str:
         raise _enc('command', 'move', r_move, 'enum', 'Move', None)
     r_speed = m.speed
     if r_speed.__class__ is not int or not 0 <= r_speed <= 100:
-        if not isinstance(r_speed, int) or r_speed.__class__ is bool:
-            raise _enc('command', 'speed', r_speed, 'type', 'an int')
-        if not 0 <= r_speed <= 100:
-            raise _enc('command', 'speed', r_speed, 'range', '0..100', 'TANK-D3')
+        _int_fault('command', 'speed', r_speed, 0, 100, False, 'TANK-D3')
     r_value = m.value
     if not isinstance(r_value, str) or len(r_value) != 1:
         raise _enc('command', 'value', r_value, 'type', 'one character')
@@ -888,51 +868,28 @@ def _encode_command(m: Command) -> str:
             raise _enc('command', 'value', r_value, 'text', bad, 'TANK-D3')
     r_azimutloc = m.azimutloc
     if r_azimutloc.__class__ is not int or not -32768 <= r_azimutloc <= 32767:
-        if not isinstance(r_azimutloc, int) or r_azimutloc.__class__ is bool:
-            raise _enc('command', 'azimutloc', r_azimutloc, 'type', 'an int')
-        if not -32768 <= r_azimutloc <= 32767:
-            raise _enc('command', 'azimutloc', r_azimutloc, 'range', '-32768..32767', None)
+        _int_fault('command', 'azimutloc', r_azimutloc, -32768, 32767, False, None)
     r_gpio1 = m.gpio1
-    if r_gpio1.__class__ is not float:
-        if not isinstance(r_gpio1, (int, float)) or r_gpio1.__class__ is bool:
-            raise _enc('command', 'gpio1', r_gpio1, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_gpio1 <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('command', 'gpio1', r_gpio1, 'finite', 'a finite number')
-    if not _isfinite(r_gpio1):
-        raise _enc('command', 'gpio1', r_gpio1, 'finite', 'a finite number')
+    if r_gpio1.__class__ is not float or not -1.7976931348623157e308 <= r_gpio1 <= 1.7976931348623157e308:
+        _float_fault('command', 'gpio1', r_gpio1, False)
     s_gpio1 = _format_float(r_gpio1)  # written as it is checked
     if len(s_gpio1) > 15 and _significant(s_gpio1) > 15 or r_gpio1 and -1e-307 < r_gpio1 < 1e-307:
         raise _enc('command', 'gpio1', r_gpio1, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_gpio2 = m.gpio2
-    if r_gpio2.__class__ is not float:
-        if not isinstance(r_gpio2, (int, float)) or r_gpio2.__class__ is bool:
-            raise _enc('command', 'gpio2', r_gpio2, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_gpio2 <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('command', 'gpio2', r_gpio2, 'finite', 'a finite number')
-    if not _isfinite(r_gpio2):
-        raise _enc('command', 'gpio2', r_gpio2, 'finite', 'a finite number')
+    if r_gpio2.__class__ is not float or not -1.7976931348623157e308 <= r_gpio2 <= 1.7976931348623157e308:
+        _float_fault('command', 'gpio2', r_gpio2, False)
     s_gpio2 = _format_float(r_gpio2)  # written as it is checked
     if len(s_gpio2) > 15 and _significant(s_gpio2) > 15 or r_gpio2 and -1e-307 < r_gpio2 < 1e-307:
         raise _enc('command', 'gpio2', r_gpio2, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_gpio3 = m.gpio3
-    if r_gpio3.__class__ is not float:
-        if not isinstance(r_gpio3, (int, float)) or r_gpio3.__class__ is bool:
-            raise _enc('command', 'gpio3', r_gpio3, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_gpio3 <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('command', 'gpio3', r_gpio3, 'finite', 'a finite number')
-    if not _isfinite(r_gpio3):
-        raise _enc('command', 'gpio3', r_gpio3, 'finite', 'a finite number')
+    if r_gpio3.__class__ is not float or not -1.7976931348623157e308 <= r_gpio3 <= 1.7976931348623157e308:
+        _float_fault('command', 'gpio3', r_gpio3, False)
     s_gpio3 = _format_float(r_gpio3)  # written as it is checked
     if len(s_gpio3) > 15 and _significant(s_gpio3) > 15 or r_gpio3 and -1e-307 < r_gpio3 < 1e-307:
         raise _enc('command', 'gpio3', r_gpio3, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
     r_gpio4 = m.gpio4
-    if r_gpio4.__class__ is not float:
-        if not isinstance(r_gpio4, (int, float)) or r_gpio4.__class__ is bool:
-            raise _enc('command', 'gpio4', r_gpio4, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_gpio4 <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('command', 'gpio4', r_gpio4, 'finite', 'a finite number')
-    if not _isfinite(r_gpio4):
-        raise _enc('command', 'gpio4', r_gpio4, 'finite', 'a finite number')
+    if r_gpio4.__class__ is not float or not -1.7976931348623157e308 <= r_gpio4 <= 1.7976931348623157e308:
+        _float_fault('command', 'gpio4', r_gpio4, False)
     s_gpio4 = _format_float(r_gpio4)  # written as it is checked
     if len(s_gpio4) > 15 and _significant(s_gpio4) > 15 or r_gpio4 and -1e-307 < r_gpio4 < 1e-307:
         raise _enc('command', 'gpio4', r_gpio4, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307')
@@ -1288,8 +1245,9 @@ class StreamDecoder:
 
 
 _ENCODERS: dict[type[Any], Callable[[Any], bytes | str]] = {Telemetry: _encode_telemetry, Command: _encode_command, PayloadCommand: _encode_payload_command, PayloadReply: _encode_payload_reply, GpioConfig: _encode_gpio_config, }
+_DECODERS: dict[type[Any], Callable[..., Any]] = {Telemetry: _decode_telemetry, Command: _decode_command, PayloadCommand: _decode_payload_command, PayloadReply: _decode_payload_reply, GpioConfig: _decode_gpio_config, }
 for _cls, _encoder in _ENCODERS.items():  # each encoder is its class's encode method: one call, not two
-    _encoder.__doc__ = _cls.encode.__doc__
+    _encoder.__doc__ = _Message.encode.__doc__
     setattr(_cls, "encode", _encoder)
 MESSAGES: dict[str, type[AnyMessage]] = {'telemetry': Telemetry, 'command': Command, 'payload_command': PayloadCommand, 'payload_reply': PayloadReply, 'gpio_config': GpioConfig, }
 

@@ -14,7 +14,6 @@ import math
 import os
 
 import struct
-from dataclasses import dataclass
 from typing import Any, Callable, ClassVar, Literal, Optional, TypeVar, Union, cast, overload
 
 _Buffer = Union[bytes, bytearray, "memoryview[int]"]  # what a binary decoder reads
@@ -34,6 +33,63 @@ OWN_ID = None  # this device's unique ID, set per device; packets for other IDs 
 _floor = math.floor
 _isfinite = math.isfinite
 _object_new = object.__new__
+_FRESH: Any = object()  # an argument left out whose default (a list, a group) is built for each object
+
+
+class _DataclassFields:
+    """A class's table of dataclass fields, made the first time it is read and then kept on the
+    class, for dataclasses.fields, replace, asdict and is_dataclass."""
+
+    def __get__(self, obj: object, owner: type[_Record]) -> dict[str, Any]:
+        from dataclasses import field, make_dataclass
+        init: Any = owner.__init__
+        defaults: dict[str, Any] = init.__kwdefaults__ or {}
+        annotations: dict[str, Any] = owner.__annotations__
+        names = owner._NAMES  # pyright: ignore[reportPrivateUsage]
+        fields: list[tuple[str, Any, Any]] = [
+            (n, annotations[n], field(default=defaults[n]) if defaults.get(n, _FRESH) is not _FRESH else field())
+            for n in names]
+        slots: tuple[str, ...] = owner.__slots__
+        fields += [(n, annotations[n], field(default=None, init=False, repr=False, compare=False))
+                   for n in slots if n not in names]
+        made: Any = make_dataclass(owner.__name__, fields, kw_only=True)
+        table: dict[str, Any] = made.__dataclass_fields__
+        setattr(owner, "__dataclass_fields__", table)
+        return table
+
+
+_R = TypeVar("_R", bound="_Record")
+
+
+class _Record:
+    """What every message, group and sequence class is: its fields in slots, set by a keyword
+    constructor; compared and shown field by field, in order, as a dataclass is; and a
+    dataclass to the dataclasses module. Its table of fields is made when first asked for: a
+    @dataclass decorator writes and compiles each class's methods while the module is
+    imported, which in a protocol of hundreds of messages costs more than all the rest."""
+
+    __slots__ = ()
+    _NAMES: ClassVar[tuple[str, ...]] = ()
+    __dataclass_fields__: ClassVar[dict[str, Any]] = _DataclassFields()  # type: ignore[assignment]
+
+    def __eq__(self, other: object) -> bool:
+        if other.__class__ is not self.__class__:
+            return NotImplemented
+        return [getattr(self, n) for n in self._NAMES] == [getattr(other, n) for n in self._NAMES]
+
+    def __repr__(self) -> str:
+        return f"{self.__class__.__qualname__}({', '.join(f'{n}={getattr(self, n)!r}' for n in self._NAMES)})"
+
+    def to_dict(self) -> dict[str, Any]:
+        """The object as JSON-ready data: enum members and flags by name, bytes as hex, numbers
+        in logical units; from_dict reads it back."""
+        return _to_dict(self)
+
+    @classmethod
+    def from_dict(cls: type[_R], values: dict[str, Any]) -> _R:
+        """An object from the data to_dict gives; an unknown key or a value of the wrong type is
+        a DecodeError."""
+        return _from_dict(cls, values, getattr(cls, "NAME", cls.__name__), "")
 
 
 class CodecError(ValueError):
@@ -121,6 +177,40 @@ def _enc(message: Optional[str], field: Optional[str], value: object, rule: str,
     return EncodeError(message, field, value, rule, allowed, None, decision, user_message)
 
 
+def _int_fault(message: str, field: Optional[str], value: Any, lo: Any, hi: Any, number: bool,
+               decision: Optional[str], user_message: Optional[str] = None) -> None:
+    """Raise the EncodeError of an integer field's value that its usual test did not pass: not
+    an int (a number, if the field is scaled), or out of its range."""
+    if not isinstance(value, (int, float) if number else int) or value.__class__ is bool:
+        raise _enc(message, field, value, 'type', 'a number' if number else 'an int')
+    if not lo <= value <= hi:
+        raise _enc(message, field, value, 'range', f'{lo!r}..{hi!r}', decision, user_message)
+
+
+def _faults(message: str, values: tuple[Any, ...], specs: tuple[tuple[Any, ...], ...]) -> None:
+    """Raise the EncodeError of the first of several numbers that fails its usual test; each
+    spec is ("int", field, lo, hi, scaled, decision[, message]) or ("float", field, binary32)."""
+    for value, (kind, name, *limits) in zip(values, specs):
+        if kind == "int":
+            _int_fault(message, name, value, *limits)
+        else:
+            _float_fault(message, name, value, *limits)
+
+
+def _float_fault(message: str, field: Optional[str], value: Any, binary32: bool) -> None:
+    """Raise the EncodeError of a float field's value that its usual test did not pass: not a
+    number, not finite, or (binary32) beyond a binary32's range."""
+    if value.__class__ is not float:
+        if not isinstance(value, (int, float)) or value.__class__ is bool:
+            raise _enc(message, field, value, 'type', 'a number')
+        if not -1.7976931348623157e308 <= value <= 1.7976931348623157e308:  # exact for any int
+            raise _enc(message, field, value, 'finite', 'a finite number')
+    if not _isfinite(value):
+        raise _enc(message, field, value, 'finite', 'a finite number')
+    if binary32 and (value > 3.4028234663852886e38 or value < -3.4028234663852886e38):
+        raise _enc(message, field, value, 'range', 'a binary32 value')
+
+
 def _dec(message: Optional[str], field: Optional[str], value: object, rule: str, allowed: str = "",
          offset: Optional[int] = None, decision: Optional[str] = None,
          user_message: Optional[str] = None) -> DecodeError:
@@ -131,14 +221,33 @@ def _dec(message: Optional[str], field: Optional[str], value: object, rule: str,
 # kind: int, number, bool, str, bytes (hex text), enum (a member's name), flags (a list of
 # names) or group (a nested mapping).
 _Spec = tuple[str, str, Any, bool, bool, bool]
+_Msg = TypeVar("_Msg", bound="_Message")
 
 
-@dataclass(slots=True, kw_only=True)
-class Command:
+class _Message(_Record):
+    """What every message class does: encode itself, decode its own wire form. Each message's
+    encoder and decoder is set on its class as the method itself (one call, not two)."""
+
+    __slots__ = ()
+    NAME: ClassVar[str]
+
+    def encode(self) -> bytes:
+        """The message in its wire form; an EncodeError if a value breaks the schema."""
+        return _ENCODERS[self.__class__](self)
+
+    @classmethod
+    def decode(cls: type[_Msg], data: _Input) -> _Msg:
+        """The message from its wire form; a DecodeError if it is not one."""
+        return cast(_Msg, _DECODERS[cls](data if data.__class__ is bytes else _as_input(data)))
+
+
+class Command(_Message):
     """command"""
 
+    __slots__ = ('seq', 'sender', 'receiver', 'data')
     NAME: ClassVar[str] = 'command'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('seq', 'int', None, False, False, True), ('sender', 'int', None, False, False, True), ('receiver', 'int', None, False, False, True), ('data', 'bytes', None, False, False, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('seq', 'sender', 'receiver', 'data')
 
     seq: int
     """bit 0 of the service byte: the packet's sequence number (0 or 1); a reply carries the number of the command it answers (TR24-D1)"""
@@ -152,33 +261,20 @@ class Command:
     data: bytes
     """the command's data, interpreted by the application (the firmware's ProcessPacket functor)"""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The Command as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> Command:
-        """A Command from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(Command, values, 'command', "")
-
-    def encode(self) -> bytes:
-        """The command message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_command(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> Command:
-        """A command message from its wire form; a DecodeError if it is not one."""
-        return _decode_command(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, seq: int, sender: int, receiver: int, data: bytes) -> None:
+        self.seq = seq
+        self.sender = sender
+        self.receiver = receiver
+        self.data = data
 
 
-@dataclass(slots=True, kw_only=True)
-class Reply:
+class Reply(_Message):
     """reply"""
 
+    __slots__ = ('seq', 'sender', 'receiver', 'data')
     NAME: ClassVar[str] = 'reply'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('seq', 'int', None, False, False, True), ('sender', 'int', None, False, False, True), ('receiver', 'int', None, False, False, True), ('data', 'bytes', None, False, False, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('seq', 'sender', 'receiver', 'data')
 
     seq: int
     """bit 0 of the service byte: the packet's sequence number (0 or 1); a reply carries the number of the command it answers (TR24-D1)"""
@@ -192,25 +288,11 @@ class Reply:
     data: bytes
     """the reply's data, filled in by the application (the firmware's ackPacket)"""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The Reply as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> Reply:
-        """A Reply from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(Reply, values, 'reply', "")
-
-    def encode(self) -> bytes:
-        """The reply message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_reply(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> Reply:
-        """A reply message from its wire form; a DecodeError if it is not one."""
-        return _decode_reply(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, seq: int, sender: int, receiver: int, data: bytes) -> None:
+        self.seq = seq
+        self.sender = sender
+        self.receiver = receiver
+        self.data = data
 
 
 AnyMessage = Union[Command, Reply, ]
@@ -236,21 +318,7 @@ def _encode_command(m: Command) -> bytes:
     r_sender = m.sender
     r_receiver = m.receiver
     if (r_seq.__class__ is not int or not 0 <= r_seq <= 1) or (r_sender.__class__ is not int or not 0 <= r_sender <= 255) or (r_receiver.__class__ is not int or not 0 <= r_receiver <= 255):
-        if r_seq.__class__ is not int or not 0 <= r_seq <= 1:
-            if not isinstance(r_seq, int) or r_seq.__class__ is bool:
-                raise _enc('command', 'seq', r_seq, 'type', 'an int')
-            if not 0 <= r_seq <= 1:
-                raise _enc('command', 'seq', r_seq, 'range', '0..1', 'TR24-D1')
-        if r_sender.__class__ is not int or not 0 <= r_sender <= 255:
-            if not isinstance(r_sender, int) or r_sender.__class__ is bool:
-                raise _enc('command', 'sender', r_sender, 'type', 'an int')
-            if not 0 <= r_sender <= 255:
-                raise _enc('command', 'sender', r_sender, 'range', '0..255', 'TR24-D3')
-        if r_receiver.__class__ is not int or not 0 <= r_receiver <= 255:
-            if not isinstance(r_receiver, int) or r_receiver.__class__ is bool:
-                raise _enc('command', 'receiver', r_receiver, 'type', 'an int')
-            if not 0 <= r_receiver <= 255:
-                raise _enc('command', 'receiver', r_receiver, 'range', '0..255', 'TR24-D3')
+        _faults('command', (r_seq, r_sender, r_receiver, ), (('int', 'seq', 0, 1, False, 'TR24-D1'), ('int', 'sender', 0, 255, False, 'TR24-D3'), ('int', 'receiver', 0, 255, False, 'TR24-D3')))
     r_data = m.data
     if r_data.__class__ is not bytes or len(r_data) != 7:
         if not isinstance(r_data, (bytes, bytearray)) or len(r_data) != 7:
@@ -290,21 +358,7 @@ def _encode_reply(m: Reply) -> bytes:
     r_sender = m.sender
     r_receiver = m.receiver
     if (r_seq.__class__ is not int or not 0 <= r_seq <= 1) or (r_sender.__class__ is not int or not 0 <= r_sender <= 255) or (r_receiver.__class__ is not int or not 0 <= r_receiver <= 255):
-        if r_seq.__class__ is not int or not 0 <= r_seq <= 1:
-            if not isinstance(r_seq, int) or r_seq.__class__ is bool:
-                raise _enc('reply', 'seq', r_seq, 'type', 'an int')
-            if not 0 <= r_seq <= 1:
-                raise _enc('reply', 'seq', r_seq, 'range', '0..1', 'TR24-D1')
-        if r_sender.__class__ is not int or not 0 <= r_sender <= 255:
-            if not isinstance(r_sender, int) or r_sender.__class__ is bool:
-                raise _enc('reply', 'sender', r_sender, 'type', 'an int')
-            if not 0 <= r_sender <= 255:
-                raise _enc('reply', 'sender', r_sender, 'range', '0..255', 'TR24-D3')
-        if r_receiver.__class__ is not int or not 0 <= r_receiver <= 255:
-            if not isinstance(r_receiver, int) or r_receiver.__class__ is bool:
-                raise _enc('reply', 'receiver', r_receiver, 'type', 'an int')
-            if not 0 <= r_receiver <= 255:
-                raise _enc('reply', 'receiver', r_receiver, 'range', '0..255', 'TR24-D3')
+        _faults('reply', (r_seq, r_sender, r_receiver, ), (('int', 'seq', 0, 1, False, 'TR24-D1'), ('int', 'sender', 0, 255, False, 'TR24-D3'), ('int', 'receiver', 0, 255, False, 'TR24-D3')))
     r_data = m.data
     if r_data.__class__ is not bytes or len(r_data) != 7:
         if not isinstance(r_data, (bytes, bytearray)) or len(r_data) != 7:
@@ -514,8 +568,9 @@ class StreamDecoder:
 
 
 _ENCODERS: dict[type[Any], Callable[[Any], bytes]] = {Command: _encode_command, Reply: _encode_reply, }
+_DECODERS: dict[type[Any], Callable[..., Any]] = {Command: _decode_command, Reply: _decode_reply, }
 for _cls, _encoder in _ENCODERS.items():  # each encoder is its class's encode method: one call, not two
-    _encoder.__doc__ = _cls.encode.__doc__
+    _encoder.__doc__ = _Message.encode.__doc__
     setattr(_cls, "encode", _encoder)
 MESSAGES: dict[str, type[AnyMessage]] = {'command': Command, 'reply': Reply, }
 

@@ -81,9 +81,9 @@ class PythonView:
                 return None
             if f.kind == "group":
                 each = f"{self.group_class(message, path)}()"
-            return f"field(default_factory=lambda: [{each} for _ in range({f.count})])"
+            return f"[{each} for _ in range({f.count})]"
         if f.kind == "group":
-            return f"field(default_factory={self.group_class(message, path)})" \
+            return f"{self.group_class(message, path)}()" \
                 if all(self.default_expr(s, message, path + (s.name,)) is not None
                        for s in f.fields if s.is_member) else None
         if f.has_default:
@@ -132,10 +132,17 @@ class PythonView:
                 "places": is_message and message.keeps_places,
                 "fields": [{"name": f.name, "annotation": self.annotation(f, message, path + (f.name,)),
                             "default": self.default_expr(f, message, path + (f.name,)),
+                            # a list or a group is built for each object, as a default_factory is
+                            "fresh": (f.count is not None or f.kind == "group")
+                            and self.default_expr(f, message, path + (f.name,)) not in (None, "None"),
                             "doc": self.field_comment(f)}
                            for f in required + optional],
                 "spec": "(" + "".join(self.plain_spec(f, message, path + (f.name,), id(f) in needed) + ", "
                                       for f in required + optional) + ")",
+                "names": lit(tuple(f.name for f in required + optional)),
+                "slots": lit(tuple(f.name for f in required + optional)
+                             + (("_spelling",) if is_message and any(f.keep_spelling for f in members) else ())
+                             + (("_places",) if is_message and message.keeps_places else ())),
             })
 
         trailer = self.p.framing.trailer.fields if self.p.framing.trailer else ()
@@ -244,38 +251,21 @@ class PythonView:
               f"or not {lo} <= {v} <= {hi}:")
             c(f"        raise _enc({where}, {v}, 'range', '{lo}..{hi} or None', {f.rule!r}{self.user(f, False)})")
             c(f"    {var} = 1 << {v}")
-        elif f.kind in ("uint", "int"):
-            lo, hi = f.range if f.range else self.encodable_limits(f)
-            numeric = "(int, float)" if f.scale is not None else "int"
-            # one test passes the usual value (of the usual class, in range); the others say what is wrong
-            c(f"if {v}.__class__ is not {'int' if numeric == 'int' else 'float'} or not {lit(lo)} <= {v} <= {lit(hi)}:")
-            c(f"    if not isinstance({v}, {numeric}) or {v}.__class__ is bool:")
-            c(f"        raise _enc({where}, {v}, 'type', {'a number' if numeric != 'int' else 'an int'!r})")
-            c(f"    if not {lit(lo)} <= {v} <= {lit(hi)}:")
-            c(f"        raise _enc({where}, {v}, 'range', '{lit(lo)}..{lit(hi)}', {f.rule!r}{self.user(f, False)})")
+        elif f.kind in ("uint", "int") or f.kind == "float" and self.usual_spec(leaf) is not None:
+            test, fault = self.number_check(message, leaf)
+            c(f"if {test}:")
+            c(f"    {fault}")
             if f.values:
                 c(f"if {v} not in {lit(tuple(f.values))}:")
                 c(f"    raise _enc({where}, {v}, 'values', {', '.join(map(str, f.values))!r}, {f.rule!r}{self.user(f, False)})")
-            expr = v
-            if f.offset:
-                expr = f"({v} - {lit(f.offset)})"
-            if f.scale is not None and f.bits >= 53:
-                expr = f"_half_up({expr} / {lit(f.scale)})"
-            elif f.scale is not None:
-                expr = f"_floor({expr} / {lit(f.scale)} + 0.5)"
-            elif f.offset and not float(f.offset).is_integer():
-                expr = f"_floor({expr} + 0.5)"
+            expr = self.int_raw(f, v) if f.kind != "float" else v
             if expr != var:
                 c(f"{var} = {expr}")
-        elif f.kind == "float":
-            c(f"if {v}.__class__ is not float:")
-            c(f"    if not isinstance({v}, (int, float)) or {v}.__class__ is bool:")
-            c(f"        raise _enc({where}, {v}, 'type', 'a number')")
-            c(f"    if not -1.7976931348623157e308 <= {v} <= 1.7976931348623157e308:  # exact for any int")
-            c(f"        raise _enc({where}, {v}, 'finite', 'a finite number')")
-            c(f"if not _isfinite({v}):")
-            c(f"    raise _enc({where}, {v}, 'finite', 'a finite number')")
-            if self.p.framing.kind == "text":  # the decimals a C peer's cw_decimal_t holds too
+        elif f.kind == "float":  # a text's precision or a range is checked before a binary32's limits
+            text = self.p.framing.kind == "text"
+            c(f"if {v}.__class__ is not float or not -1.7976931348623157e308 <= {v} <= 1.7976931348623157e308:")
+            c(f"    _float_fault({where}, {v}, False)")
+            if text:  # the decimals a C peer's cw_decimal_t holds too
                 c(f"{self.float_text(leaf)} = _format_float({v})  # written as it is checked")
                 # a text of 15 characters or fewer cannot hold 16 digits: most are not counted
                 c(f"if len({self.float_text(leaf)}) > 15 and _significant({self.float_text(leaf)}) > 15 "
@@ -297,6 +287,54 @@ class PythonView:
             c(f"        raise _enc({where}, {v}, 'length', 'bytes of length {f.length}')")
             c(f"    {var} = bytes({v})")
         # text kinds are checked and written by the text writer
+
+    def usual_check(self, message: Message, leaf: Leaf) -> Optional[tuple[str, str]]:
+        """number_check of a number checked by that test alone (then converted): consecutive
+        such fields share one test (MessageCode.encode_usual); None for any other field."""
+        f = leaf.field
+        if f.enum or f.flags or f.one_hot or f.values or f.checksum or self.fixed_raw(f) is not None:
+            return None
+        return self.number_check(message, leaf) if self.usual_spec(leaf) is not None else None
+
+    def number_check(self, message: Message, leaf: Leaf) -> tuple[str, str]:
+        """The test that a number's usual values pass (an integer of its class and in range, a
+        float of its class within its width's limits; NaN fails it too) and the call that raises
+        the error saying what is wrong with any other value."""
+        v, where, spec = leaf.var, f"{message.name!r}, {named(leaf.path)}", self.usual_spec(leaf)
+        if spec[0] == "int":
+            _, _, lo, hi, number, *_ = spec
+            return (f"{v}.__class__ is not {'float' if number else 'int'} or not {lit(lo)} <= {v} <= {lit(hi)}",
+                    f"_int_fault({where}, {v}, {', '.join(map(lit, spec[2:]))})")
+        limit = "3.4028234663852886e38" if spec[2] else "1.7976931348623157e308"
+        return (f"{v}.__class__ is not float or not -{limit} <= {v} <= {limit}",
+                f"_float_fault({where}, {v}, {spec[2]})")
+
+    def usual_spec(self, leaf: Leaf) -> Optional[tuple]:
+        """What _faults needs to say what is wrong with a number that failed its usual test:
+        ("int", name, lo, hi, scaled, decision[, the field's own message]) or ("float", name,
+        binary32); None for a float whose text or range is checked before its width's limits."""
+        f = leaf.field
+        if f.kind in ("uint", "int"):
+            lo, hi = f.range if f.range else self.encodable_limits(f)
+            return ("int", leaf.path[-1], lo, hi, f.scale is not None, f.rule) + \
+                ((self.user_text(f.message),) if f.message else ())
+        if f.kind == "float" and self.p.framing.kind != "text" and not f.range:
+            return ("float", leaf.path[-1], f.bits == 32)
+        return None
+
+    @staticmethod
+    def int_raw(f: Field, v: str) -> str:
+        """The raw wire integer of the checked logical value in `v`."""
+        expr = v
+        if f.offset:
+            expr = f"({v} - {lit(f.offset)})"
+        if f.scale is not None and f.bits >= 53:
+            expr = f"_half_up({expr} / {lit(f.scale)})"
+        elif f.scale is not None:
+            expr = f"_floor({expr} / {lit(f.scale)} + 0.5)"
+        elif f.offset and not float(f.offset).is_integer():
+            expr = f"_floor({expr} + 0.5)"
+        return expr
 
     @staticmethod
     def float_text(leaf: Leaf) -> str:
@@ -488,40 +526,6 @@ class PythonView:
 
 
 _CONSTANT = re.compile(r"^ +(r_\w+) = -?\d+\n", re.M)
-# an integer field's read and checks, as encode_leaf writes them: the value of the usual
-# class and in range passes the first `if`; inside, the checks that say what is wrong
-_INT_CHECK = re.compile(r"( *)(r_\w+) = (\S+)\n\1if (\2\.__class__ is not int or not [^\n]*):\n"
-                        r"(\1    if not isinstance\(\2, int\)[^\n]*\n\1        raise [^\n]*\n"
-                        r"\1    if not [^\n]*\n\1        raise [^\n]*\n)")
-
-
-def int_checks_merged(function: str) -> str:
-    """A function whose consecutive integer fields are read first and tested by one `if`
-    (the usual values pass it at once), inside which each field's checks run in order,
-    so the first value that is wrong is still the one reported."""
-    out, at = [], 0
-    for run in _int_check_runs(function):
-        indent = run[0].group(1)
-        out.append(function[at:run[0].start()])
-        out.extend(f"{indent}{m.group(2)} = {m.group(3)}\n" for m in run)
-        out.append(f"{indent}if {' or '.join(f'({m.group(4)})' for m in run)}:\n")
-        out.extend("".join("    " + line + "\n" for line in (
-            f"{indent}if {m.group(4)}:\n" + m.group(5)).splitlines()) for m in run)
-        at = run[-1].end()
-    return "".join(out) + function[at:]
-
-
-def _int_check_runs(function: str) -> list[list[re.Match[str]]]:
-    """Runs of two or more integer checks, one right after another at one indentation."""
-    runs: list[list[re.Match[str]]] = []
-    for m in _INT_CHECK.finditer(function):
-        if runs and runs[-1][-1].end() == m.start() and runs[-1][-1].group(1) == m.group(1):
-            runs[-1].append(m)
-        else:
-            runs.append([m])
-    return [run for run in runs if len(run) > 1]
-
-
 def unread_constants_dropped(function: str) -> str:
     """A function without the constants it assigns and never reads (a field's fixed
     value that was written into the packing as a literal)."""
@@ -608,6 +612,7 @@ class MessageCode:
         run = GuardedRun(c)  # the leaves of one element (or conditional field) share one `if`
         element: Optional[ElementHelper] = None  # an element of a counted array of groups, checked apart
         packed: set[str] = set()  # the arrays looped over, packed by their functions
+        ints: list[Leaf] = []  # plain numbers read one after another, checked together
         for leaf in self.leaves:
             repeat = self.looped(leaf)
             if repeat is not None and repeat.r.field.name in packed:
@@ -615,6 +620,17 @@ class MessageCode:
             held = gap_of(self.m, leaf)
             guard = None if leaf.field.counts else self.sent_guard(leaf, held, encoding=True)
             of = leaf.path[:2] if held and held.counter and len(leaf.path) > 2 else None
+            if (guard is None and element is None and repeat is None and len(leaf.path) == 1
+                    and not leaf.field.counts and not leaf.field.multiplexed_by):
+                if self.view.usual_check(self.m, leaf) is not None:
+                    run.close()
+                    ints.append(leaf)
+                    continue
+                if leaf.field.checksum or self.view.fixed_raw(leaf.field) is not None:
+                    run.close()  # a fixed value has nothing to check: the numbers around it stay one run
+                    self.view.encode_leaf(c, self.m, leaf)
+                    continue
+            self.encode_usual(c, ints)
             if element is not None and element.path != of:
                 element.call(c)
                 element = None
@@ -663,6 +679,7 @@ class MessageCode:
                 element.returns.append(leaf.var)
             if guard is not None:
                 run.unsent(leaf.var, f"bytes({leaf.field.length})" if leaf.field.kind == "bytes" else "0")
+        self.encode_usual(c, ints)
         if element is not None:
             element.call(c)
         run.close()
@@ -680,6 +697,28 @@ class MessageCode:
             cs = leaf.field.checksum
             if cs and cs.over != "bytes" and not (word and cs.algorithm == "parity"):
                 c(f"{leaf.var} = {self.field_checksum(leaf)}")
+
+    def encode_usual(self, c: Code, ints: list[Leaf]) -> None:
+        """Read, check and convert numbers that follow one another (and empty the list): one
+        test passes them all when each is of its class and in range; only otherwise is each
+        looked at in turn, so the first value that is wrong is the one reported."""
+        if not ints:
+            return
+        view = self.view
+        if len(ints) == 1:
+            view.encode_leaf(c, self.m, ints[0])
+        else:
+            checks = [view.usual_check(self.m, leaf) for leaf in ints]
+            for leaf in ints:
+                c(f"{leaf.var} = m.{leaf.dotted}")
+            c("if " + " or ".join(f"({test})" for test, _ in checks) + ":")
+            c(f"    _faults({self.m.name!r}, ({''.join(leaf.var + ', ' for leaf in ints)}), "
+              f"{lit(tuple(view.usual_spec(leaf) for leaf in ints))})")
+            for leaf in ints:
+                expr = leaf.var if leaf.field.kind == "float" else view.int_raw(leaf.field, leaf.var)
+                if expr != leaf.var:
+                    c(f"{leaf.var} = {expr}")
+        ints.clear()
 
     @staticmethod
     def group_var(path: tuple) -> str:
@@ -937,7 +976,7 @@ class MessageCode:
         return "\n\n\n".join(self.helpers + [code])
 
     def encode_bytes_body(self) -> str:
-        return int_checks_merged(unread_constants_dropped(self.encode_bytes_code()))
+        return unread_constants_dropped(self.encode_bytes_code())
 
     def encode_bytes_code(self) -> str:
         c = Code()
@@ -2009,6 +2048,7 @@ class ModuleView(PythonView):
             cls = owner + camel(item.name)
             children = ", ".join(item_spec(c, cls) for c in item.items)
             classes.append({"name": cls, "fields": [(c.name, annotation(c, cls)) for c in item.items],
+                            "names": lit(tuple(c.name for c in item.items)),
                             "doc": str(item.doc or f"The {item.name} of a {s.name}.")})
             mode = "repeat" if item.repeat else "one"
             return f"({item.name!r}, {mode!r}, {cls}, {item.count!r}, ({children},))"
@@ -2020,6 +2060,7 @@ class ModuleView(PythonView):
         cls = camel(s.name)
         spec = ", ".join(item_spec(i, cls) for i in s.items)
         classes.append({"name": cls, "fields": [(i.name, annotation(i, cls)) for i in s.items],
+                        "names": lit(tuple(i.name for i in s.items)),
                         "doc": str(s.doc or f"A {s.name} sequence.")})
         rules = []
         for r in s.rules:

@@ -14,7 +14,6 @@ import math
 import os
 
 import struct
-from dataclasses import dataclass
 from typing import Any, Callable, ClassVar, Optional, TypeVar, Union, cast
 
 _Buffer = Union[bytes, bytearray, "memoryview[int]"]  # what a binary decoder reads
@@ -30,6 +29,63 @@ FINGERPRINT32 = 0xeb763e94  # its first 32 bits
 _floor = math.floor
 _isfinite = math.isfinite
 _object_new = object.__new__
+_FRESH: Any = object()  # an argument left out whose default (a list, a group) is built for each object
+
+
+class _DataclassFields:
+    """A class's table of dataclass fields, made the first time it is read and then kept on the
+    class, for dataclasses.fields, replace, asdict and is_dataclass."""
+
+    def __get__(self, obj: object, owner: type[_Record]) -> dict[str, Any]:
+        from dataclasses import field, make_dataclass
+        init: Any = owner.__init__
+        defaults: dict[str, Any] = init.__kwdefaults__ or {}
+        annotations: dict[str, Any] = owner.__annotations__
+        names = owner._NAMES  # pyright: ignore[reportPrivateUsage]
+        fields: list[tuple[str, Any, Any]] = [
+            (n, annotations[n], field(default=defaults[n]) if defaults.get(n, _FRESH) is not _FRESH else field())
+            for n in names]
+        slots: tuple[str, ...] = owner.__slots__
+        fields += [(n, annotations[n], field(default=None, init=False, repr=False, compare=False))
+                   for n in slots if n not in names]
+        made: Any = make_dataclass(owner.__name__, fields, kw_only=True)
+        table: dict[str, Any] = made.__dataclass_fields__
+        setattr(owner, "__dataclass_fields__", table)
+        return table
+
+
+_R = TypeVar("_R", bound="_Record")
+
+
+class _Record:
+    """What every message, group and sequence class is: its fields in slots, set by a keyword
+    constructor; compared and shown field by field, in order, as a dataclass is; and a
+    dataclass to the dataclasses module. Its table of fields is made when first asked for: a
+    @dataclass decorator writes and compiles each class's methods while the module is
+    imported, which in a protocol of hundreds of messages costs more than all the rest."""
+
+    __slots__ = ()
+    _NAMES: ClassVar[tuple[str, ...]] = ()
+    __dataclass_fields__: ClassVar[dict[str, Any]] = _DataclassFields()  # type: ignore[assignment]
+
+    def __eq__(self, other: object) -> bool:
+        if other.__class__ is not self.__class__:
+            return NotImplemented
+        return [getattr(self, n) for n in self._NAMES] == [getattr(other, n) for n in self._NAMES]
+
+    def __repr__(self) -> str:
+        return f"{self.__class__.__qualname__}({', '.join(f'{n}={getattr(self, n)!r}' for n in self._NAMES)})"
+
+    def to_dict(self) -> dict[str, Any]:
+        """The object as JSON-ready data: enum members and flags by name, bytes as hex, numbers
+        in logical units; from_dict reads it back."""
+        return _to_dict(self)
+
+    @classmethod
+    def from_dict(cls: type[_R], values: dict[str, Any]) -> _R:
+        """An object from the data to_dict gives; an unknown key or a value of the wrong type is
+        a DecodeError."""
+        return _from_dict(cls, values, getattr(cls, "NAME", cls.__name__), "")
 _ABSENT: Any = None  # a value a frame left out: its list slot is cut, or its field is None
 
 
@@ -118,6 +174,40 @@ def _enc(message: Optional[str], field: Optional[str], value: object, rule: str,
     return EncodeError(message, field, value, rule, allowed, None, decision, user_message)
 
 
+def _int_fault(message: str, field: Optional[str], value: Any, lo: Any, hi: Any, number: bool,
+               decision: Optional[str], user_message: Optional[str] = None) -> None:
+    """Raise the EncodeError of an integer field's value that its usual test did not pass: not
+    an int (a number, if the field is scaled), or out of its range."""
+    if not isinstance(value, (int, float) if number else int) or value.__class__ is bool:
+        raise _enc(message, field, value, 'type', 'a number' if number else 'an int')
+    if not lo <= value <= hi:
+        raise _enc(message, field, value, 'range', f'{lo!r}..{hi!r}', decision, user_message)
+
+
+def _faults(message: str, values: tuple[Any, ...], specs: tuple[tuple[Any, ...], ...]) -> None:
+    """Raise the EncodeError of the first of several numbers that fails its usual test; each
+    spec is ("int", field, lo, hi, scaled, decision[, message]) or ("float", field, binary32)."""
+    for value, (kind, name, *limits) in zip(values, specs):
+        if kind == "int":
+            _int_fault(message, name, value, *limits)
+        else:
+            _float_fault(message, name, value, *limits)
+
+
+def _float_fault(message: str, field: Optional[str], value: Any, binary32: bool) -> None:
+    """Raise the EncodeError of a float field's value that its usual test did not pass: not a
+    number, not finite, or (binary32) beyond a binary32's range."""
+    if value.__class__ is not float:
+        if not isinstance(value, (int, float)) or value.__class__ is bool:
+            raise _enc(message, field, value, 'type', 'a number')
+        if not -1.7976931348623157e308 <= value <= 1.7976931348623157e308:  # exact for any int
+            raise _enc(message, field, value, 'finite', 'a finite number')
+    if not _isfinite(value):
+        raise _enc(message, field, value, 'finite', 'a finite number')
+    if binary32 and (value > 3.4028234663852886e38 or value < -3.4028234663852886e38):
+        raise _enc(message, field, value, 'range', 'a binary32 value')
+
+
 def _dec(message: Optional[str], field: Optional[str], value: object, rule: str, allowed: str = "",
          offset: Optional[int] = None, decision: Optional[str] = None,
          user_message: Optional[str] = None) -> DecodeError:
@@ -128,14 +218,33 @@ def _dec(message: Optional[str], field: Optional[str], value: object, rule: str,
 # kind: int, number, bool, str, bytes (hex text), enum (a member's name), flags (a list of
 # names) or group (a nested mapping).
 _Spec = tuple[str, str, Any, bool, bool, bool]
+_Msg = TypeVar("_Msg", bound="_Message")
 
 
-@dataclass(slots=True, kw_only=True)
-class ExampleMessage:
+class _Message(_Record):
+    """What every message class does: encode itself, decode its own wire form. Each message's
+    encoder and decoder is set on its class as the method itself (one call, not two)."""
+
+    __slots__ = ()
+    NAME: ClassVar[str]
+
+    def encode(self) -> bytes:
+        """The message in its wire form; an EncodeError if a value breaks the schema."""
+        return _ENCODERS[self.__class__](self)
+
+    @classmethod
+    def decode(cls: type[_Msg], data: _Input) -> _Msg:
+        """The message from its wire form; a DecodeError if it is not one."""
+        return cast(_Msg, _DECODERS[cls](data if data.__class__ is bytes else _as_input(data)))
+
+
+class ExampleMessage(_Message):
     """MotoHawk's example message, all Motorola"""
 
+    __slots__ = ('temperature', 'average_radius', 'enable')
     NAME: ClassVar[str] = 'example_message'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('temperature', 'number', None, False, False, True), ('average_radius', 'number', None, False, False, True), ('enable', 'bool', None, False, False, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('temperature', 'average_radius', 'enable')
 
     temperature: float
     """[degK]"""
@@ -145,33 +254,19 @@ class ExampleMessage:
 
     enable: bool
 
-    def to_dict(self) -> dict[str, Any]:
-        """The ExampleMessage as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> ExampleMessage:
-        """A ExampleMessage from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(ExampleMessage, values, 'example_message', "")
-
-    def encode(self) -> bytes:
-        """The example_message message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_example_message(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> ExampleMessage:
-        """A example_message message from its wire form; a DecodeError if it is not one."""
-        return _decode_example_message(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, temperature: float, average_radius: float, enable: bool) -> None:
+        self.temperature = temperature
+        self.average_radius = average_radius
+        self.enable = enable
 
 
-@dataclass(slots=True, kw_only=True)
-class WheelSpeeds:
+class WheelSpeeds(_Message):
     """Four wheel speeds, all Intel, crossing bytes"""
 
+    __slots__ = ('front_left', 'front_right', 'rear_left', 'rear_right')
     NAME: ClassVar[str] = 'wheel_speeds'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('front_left', 'number', None, False, False, True), ('front_right', 'number', None, False, False, True), ('rear_left', 'number', None, False, False, True), ('rear_right', 'number', None, False, False, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('front_left', 'front_right', 'rear_left', 'rear_right')
 
     front_left: float
     """[km/h]"""
@@ -185,33 +280,20 @@ class WheelSpeeds:
     rear_right: float
     """[km/h]"""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The WheelSpeeds as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> WheelSpeeds:
-        """A WheelSpeeds from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(WheelSpeeds, values, 'wheel_speeds', "")
-
-    def encode(self) -> bytes:
-        """The wheel_speeds message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_wheel_speeds(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> WheelSpeeds:
-        """A wheel_speeds message from its wire form; a DecodeError if it is not one."""
-        return _decode_wheel_speeds(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, front_left: float, front_right: float, rear_left: float, rear_right: float) -> None:
+        self.front_left = front_left
+        self.front_right = front_right
+        self.rear_left = rear_left
+        self.rear_right = rear_right
 
 
-@dataclass(slots=True, kw_only=True)
-class Steering:
+class Steering(_Message):
     """Both orders in one message, with unused bits"""
 
+    __slots__ = ('rate', 'torque', 'angle', 'counter', 'valid')
     NAME: ClassVar[str] = 'steering'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('rate', 'int', None, False, False, True), ('torque', 'number', None, False, False, True), ('angle', 'number', None, False, False, True), ('counter', 'int', None, False, False, True), ('valid', 'bool', None, False, False, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('rate', 'torque', 'angle', 'counter', 'valid')
 
     rate: int
     """[deg/s]"""
@@ -226,210 +308,155 @@ class Steering:
 
     valid: bool
 
-    def to_dict(self) -> dict[str, Any]:
-        """The Steering as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> Steering:
-        """A Steering from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(Steering, values, 'steering', "")
-
-    def encode(self) -> bytes:
-        """The steering message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_steering(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> Steering:
-        """A steering message from its wire form; a DecodeError if it is not one."""
-        return _decode_steering(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, rate: int, torque: float, angle: float, counter: int, valid: bool) -> None:
+        self.rate = rate
+        self.torque = torque
+        self.angle = angle
+        self.counter = counter
+        self.valid = valid
 
 
-@dataclass(slots=True, kw_only=True)
-class Gear:
+class Gear(_Message):
     """A short message"""
 
+    __slots__ = ('gear', 'mode')
     NAME: ClassVar[str] = 'gear'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('gear', 'int', None, False, False, True), ('mode', 'int', None, False, False, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('gear', 'mode')
 
     gear: int
 
     mode: int
 
-    def to_dict(self) -> dict[str, Any]:
-        """The Gear as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> Gear:
-        """A Gear from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(Gear, values, 'gear', "")
-
-    def encode(self) -> bytes:
-        """The gear message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_gear(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> Gear:
-        """A gear message from its wire form; a DecodeError if it is not one."""
-        return _decode_gear(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, gear: int, mode: int) -> None:
+        self.gear = gear
+        self.mode = mode
 
 
-@dataclass(slots=True, kw_only=True)
-class Multiplexed:
+class Multiplexed(_Message):
     """Simple multiplexing, as Message1 of cantools' tests/files/dbc/multiplex.dbc"""
 
+    __slots__ = ('multiplexor', 'bit_j', 'bit_c', 'bit_g', 'bit_l', 'bit_a', 'bit_k', 'bit_e', 'bit_d', 'bit_b', 'bit_h', 'bit_f')
     NAME: ClassVar[str] = 'multiplexed'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('multiplexor', 'int', None, False, False, True), ('bit_j', 'int', None, True, False, False), ('bit_c', 'int', None, True, False, False), ('bit_g', 'int', None, True, False, False), ('bit_l', 'int', None, True, False, False), ('bit_a', 'int', None, True, False, False), ('bit_k', 'int', None, True, False, False), ('bit_e', 'int', None, True, False, False), ('bit_d', 'int', None, True, False, False), ('bit_b', 'int', None, True, False, False), ('bit_h', 'int', None, True, False, False), ('bit_f', 'int', None, True, False, False), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('multiplexor', 'bit_j', 'bit_c', 'bit_g', 'bit_l', 'bit_a', 'bit_k', 'bit_e', 'bit_d', 'bit_b', 'bit_h', 'bit_f')
 
     multiplexor: int
     """defines data content for response messages"""
 
-    bit_j: Optional[int] = None
+    bit_j: Optional[int]
     """(sent when multiplexor is 8, 16, 24)"""
 
-    bit_c: Optional[int] = None
+    bit_c: Optional[int]
     """(sent when multiplexor is 8, 16, 24)"""
 
-    bit_g: Optional[int] = None
+    bit_g: Optional[int]
     """(sent when multiplexor is 8, 16, 24)"""
 
-    bit_l: Optional[int] = None
+    bit_l: Optional[int]
     """(sent when multiplexor is 8, 16, 24)"""
 
-    bit_a: Optional[int] = None
+    bit_a: Optional[int]
     """(sent when multiplexor is 24)"""
 
-    bit_k: Optional[int] = None
+    bit_k: Optional[int]
     """(sent when multiplexor is 24)"""
 
-    bit_e: Optional[int] = None
+    bit_e: Optional[int]
     """(sent when multiplexor is 24)"""
 
-    bit_d: Optional[int] = None
+    bit_d: Optional[int]
     """(sent when multiplexor is 24)"""
 
-    bit_b: Optional[int] = None
+    bit_b: Optional[int]
     """(sent when multiplexor is 24)"""
 
-    bit_h: Optional[int] = None
+    bit_h: Optional[int]
     """(sent when multiplexor is 24)"""
 
-    bit_f: Optional[int] = None
+    bit_f: Optional[int]
     """(sent when multiplexor is 24)"""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The Multiplexed as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> Multiplexed:
-        """A Multiplexed from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(Multiplexed, values, 'multiplexed', "")
-
-    def encode(self) -> bytes:
-        """The multiplexed message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_multiplexed(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> Multiplexed:
-        """A multiplexed message from its wire form; a DecodeError if it is not one."""
-        return _decode_multiplexed(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, multiplexor: int, bit_j: Optional[int] = None, bit_c: Optional[int] = None, bit_g: Optional[int] = None, bit_l: Optional[int] = None, bit_a: Optional[int] = None, bit_k: Optional[int] = None, bit_e: Optional[int] = None, bit_d: Optional[int] = None, bit_b: Optional[int] = None, bit_h: Optional[int] = None, bit_f: Optional[int] = None) -> None:
+        self.multiplexor = multiplexor
+        self.bit_j = bit_j
+        self.bit_c = bit_c
+        self.bit_g = bit_g
+        self.bit_l = bit_l
+        self.bit_a = bit_a
+        self.bit_k = bit_k
+        self.bit_e = bit_e
+        self.bit_d = bit_d
+        self.bit_b = bit_b
+        self.bit_h = bit_h
+        self.bit_f = bit_f
 
 
-@dataclass(slots=True, kw_only=True)
-class Extended:
+class Extended(_Message):
     """Extended multiplexing, as message Extended of cantools' tests/files/dbc/multiplex_2.dbc"""
 
+    __slots__ = ('s0', 's6', 's1', 's2', 's3', 's4', 's5', 's7', 's8')
     NAME: ClassVar[str] = 'extended'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('s0', 'int', None, False, False, True), ('s6', 'int', None, False, False, True), ('s1', 'int', None, True, False, False), ('s2', 'int', None, True, False, False), ('s3', 'int', None, True, False, False), ('s4', 'int', None, True, False, False), ('s5', 'int', None, True, False, False), ('s7', 'int', None, True, False, False), ('s8', 'int', None, True, False, False), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('s0', 's6', 's1', 's2', 's3', 's4', 's5', 's7', 's8')
 
     s0: int
 
     s6: int
 
-    s1: Optional[int] = None
+    s1: Optional[int]
     """(sent when s0 is 0)"""
 
-    s2: Optional[int] = None
+    s2: Optional[int]
     """(sent when s0 is 0 and s1 is 0)"""
 
-    s3: Optional[int] = None
+    s3: Optional[int]
     """(sent when s0 is 0 and s1 is 0)"""
 
-    s4: Optional[int] = None
+    s4: Optional[int]
     """(sent when s0 is 0 and s1 is 2)"""
 
-    s5: Optional[int] = None
+    s5: Optional[int]
     """(sent when s0 is 1)"""
 
-    s7: Optional[int] = None
+    s7: Optional[int]
     """(sent when s6 is 1)"""
 
-    s8: Optional[int] = None
+    s8: Optional[int]
     """(sent when s6 is 2)"""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The Extended as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> Extended:
-        """A Extended from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(Extended, values, 'extended', "")
-
-    def encode(self) -> bytes:
-        """The extended message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_extended(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> Extended:
-        """A extended message from its wire form; a DecodeError if it is not one."""
-        return _decode_extended(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, s0: int, s6: int, s1: Optional[int] = None, s2: Optional[int] = None, s3: Optional[int] = None, s4: Optional[int] = None, s5: Optional[int] = None, s7: Optional[int] = None, s8: Optional[int] = None) -> None:
+        self.s0 = s0
+        self.s6 = s6
+        self.s1 = s1
+        self.s2 = s2
+        self.s3 = s3
+        self.s4 = s4
+        self.s5 = s5
+        self.s7 = s7
+        self.s8 = s8
 
 
-@dataclass(slots=True, kw_only=True)
-class Shared:
+class Shared(_Message):
     """Ranges of multiplexor values, as message Shared of cantools' tests/files/dbc/multiplex_2.dbc"""
 
+    __slots__ = ('s0', 's1', 's2')
     NAME: ClassVar[str] = 'shared'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('s0', 'int', None, False, False, True), ('s1', 'int', None, True, False, False), ('s2', 'int', None, True, False, False), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('s0', 's1', 's2')
 
     s0: int
 
-    s1: Optional[int] = None
+    s1: Optional[int]
     """(sent when s0 is 1, 3)"""
 
-    s2: Optional[int] = None
+    s2: Optional[int]
     """(sent when s0 is 2..5)"""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The Shared as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> Shared:
-        """A Shared from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(Shared, values, 'shared', "")
-
-    def encode(self) -> bytes:
-        """The shared message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_shared(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> Shared:
-        """A shared message from its wire form; a DecodeError if it is not one."""
-        return _decode_shared(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, s0: int, s1: Optional[int] = None, s2: Optional[int] = None) -> None:
+        self.s0 = s0
+        self.s1 = s1
+        self.s2 = s2
 
 
 AnyMessage = Union[ExampleMessage, WheelSpeeds, Steering, Gear, Multiplexed, Extended, Shared, ]
@@ -462,18 +489,10 @@ def _as_input(data: object) -> _Buffer:
 
 def _encode_example_message(m: ExampleMessage) -> bytes:
     r_temperature = m.temperature
-    if r_temperature.__class__ is not float or not 229.52 <= r_temperature <= 270.47:
-        if not isinstance(r_temperature, (int, float)) or r_temperature.__class__ is bool:
-            raise _enc('example_message', 'temperature', r_temperature, 'type', 'a number')
-        if not 229.52 <= r_temperature <= 270.47:
-            raise _enc('example_message', 'temperature', r_temperature, 'range', '229.52..270.47', None)
-    r_temperature = _floor((r_temperature - 250) / 0.01 + 0.5)
     r_average_radius = m.average_radius
-    if r_average_radius.__class__ is not float or not 0.0 <= r_average_radius <= 6.300000000000001:
-        if not isinstance(r_average_radius, (int, float)) or r_average_radius.__class__ is bool:
-            raise _enc('example_message', 'average_radius', r_average_radius, 'type', 'a number')
-        if not 0.0 <= r_average_radius <= 6.300000000000001:
-            raise _enc('example_message', 'average_radius', r_average_radius, 'range', '0.0..6.300000000000001', None)
+    if (r_temperature.__class__ is not float or not 229.52 <= r_temperature <= 270.47) or (r_average_radius.__class__ is not float or not 0.0 <= r_average_radius <= 6.300000000000001):
+        _faults('example_message', (r_temperature, r_average_radius, ), (('int', 'temperature', 229.52, 270.47, True, None), ('int', 'average_radius', 0.0, 6.300000000000001, True, None)))
+    r_temperature = _floor((r_temperature - 250) / 0.01 + 0.5)
     r_average_radius = _floor(r_average_radius / 0.1 + 0.5)
     r_enable: Any = m.enable
     if r_enable is not True and r_enable is not False and (not isinstance(r_enable, int) or r_enable != 0 and r_enable != 1):
@@ -507,32 +526,14 @@ def _decode_example_message(d: _Buffer) -> ExampleMessage:
 
 def _encode_wheel_speeds(m: WheelSpeeds) -> bytes:
     r_front_left = m.front_left
-    if r_front_left.__class__ is not float or not 0.0 <= r_front_left <= 819.1500000000001:
-        if not isinstance(r_front_left, (int, float)) or r_front_left.__class__ is bool:
-            raise _enc('wheel_speeds', 'front_left', r_front_left, 'type', 'a number')
-        if not 0.0 <= r_front_left <= 819.1500000000001:
-            raise _enc('wheel_speeds', 'front_left', r_front_left, 'range', '0.0..819.1500000000001', None)
-    r_front_left = _floor(r_front_left / 0.05 + 0.5)
     r_front_right = m.front_right
-    if r_front_right.__class__ is not float or not 0.0 <= r_front_right <= 819.1500000000001:
-        if not isinstance(r_front_right, (int, float)) or r_front_right.__class__ is bool:
-            raise _enc('wheel_speeds', 'front_right', r_front_right, 'type', 'a number')
-        if not 0.0 <= r_front_right <= 819.1500000000001:
-            raise _enc('wheel_speeds', 'front_right', r_front_right, 'range', '0.0..819.1500000000001', None)
-    r_front_right = _floor(r_front_right / 0.05 + 0.5)
     r_rear_left = m.rear_left
-    if r_rear_left.__class__ is not float or not 0.0 <= r_rear_left <= 819.1500000000001:
-        if not isinstance(r_rear_left, (int, float)) or r_rear_left.__class__ is bool:
-            raise _enc('wheel_speeds', 'rear_left', r_rear_left, 'type', 'a number')
-        if not 0.0 <= r_rear_left <= 819.1500000000001:
-            raise _enc('wheel_speeds', 'rear_left', r_rear_left, 'range', '0.0..819.1500000000001', None)
-    r_rear_left = _floor(r_rear_left / 0.05 + 0.5)
     r_rear_right = m.rear_right
-    if r_rear_right.__class__ is not float or not 0.0 <= r_rear_right <= 819.1500000000001:
-        if not isinstance(r_rear_right, (int, float)) or r_rear_right.__class__ is bool:
-            raise _enc('wheel_speeds', 'rear_right', r_rear_right, 'type', 'a number')
-        if not 0.0 <= r_rear_right <= 819.1500000000001:
-            raise _enc('wheel_speeds', 'rear_right', r_rear_right, 'range', '0.0..819.1500000000001', None)
+    if (r_front_left.__class__ is not float or not 0.0 <= r_front_left <= 819.1500000000001) or (r_front_right.__class__ is not float or not 0.0 <= r_front_right <= 819.1500000000001) or (r_rear_left.__class__ is not float or not 0.0 <= r_rear_left <= 819.1500000000001) or (r_rear_right.__class__ is not float or not 0.0 <= r_rear_right <= 819.1500000000001):
+        _faults('wheel_speeds', (r_front_left, r_front_right, r_rear_left, r_rear_right, ), (('int', 'front_left', 0.0, 819.1500000000001, True, None), ('int', 'front_right', 0.0, 819.1500000000001, True, None), ('int', 'rear_left', 0.0, 819.1500000000001, True, None), ('int', 'rear_right', 0.0, 819.1500000000001, True, None)))
+    r_front_left = _floor(r_front_left / 0.05 + 0.5)
+    r_front_right = _floor(r_front_right / 0.05 + 0.5)
+    r_rear_left = _floor(r_rear_left / 0.05 + 0.5)
     r_rear_right = _floor(r_rear_right / 0.05 + 0.5)
     b = bytearray(11)
     _S_wheel_speeds_0.pack_into(b, 0, 512, 8)
@@ -566,31 +567,13 @@ def _decode_wheel_speeds(d: _Buffer) -> WheelSpeeds:
 
 def _encode_steering(m: Steering) -> bytes:
     r_rate = m.rate
-    if r_rate.__class__ is not int or not 0 <= r_rate <= 4095:
-        if not isinstance(r_rate, int) or r_rate.__class__ is bool:
-            raise _enc('steering', 'rate', r_rate, 'type', 'an int')
-        if not 0 <= r_rate <= 4095:
-            raise _enc('steering', 'rate', r_rate, 'range', '0..4095', None)
     r_torque = m.torque
-    if r_torque.__class__ is not float or not -327.68 <= r_torque <= 327.67:
-        if not isinstance(r_torque, (int, float)) or r_torque.__class__ is bool:
-            raise _enc('steering', 'torque', r_torque, 'type', 'a number')
-        if not -327.68 <= r_torque <= 327.67:
-            raise _enc('steering', 'torque', r_torque, 'range', '-327.68..327.67', None)
-    r_torque = _floor(r_torque / 0.01 + 0.5)
     r_angle = m.angle
-    if r_angle.__class__ is not float or not -256.0 <= r_angle <= 255.5:
-        if not isinstance(r_angle, (int, float)) or r_angle.__class__ is bool:
-            raise _enc('steering', 'angle', r_angle, 'type', 'a number')
-        if not -256.0 <= r_angle <= 255.5:
-            raise _enc('steering', 'angle', r_angle, 'range', '-256.0..255.5', None)
-    r_angle = _floor(r_angle / 0.5 + 0.5)
     r_counter = m.counter
-    if r_counter.__class__ is not int or not 0 <= r_counter <= 15:
-        if not isinstance(r_counter, int) or r_counter.__class__ is bool:
-            raise _enc('steering', 'counter', r_counter, 'type', 'an int')
-        if not 0 <= r_counter <= 15:
-            raise _enc('steering', 'counter', r_counter, 'range', '0..15', None)
+    if (r_rate.__class__ is not int or not 0 <= r_rate <= 4095) or (r_torque.__class__ is not float or not -327.68 <= r_torque <= 327.67) or (r_angle.__class__ is not float or not -256.0 <= r_angle <= 255.5) or (r_counter.__class__ is not int or not 0 <= r_counter <= 15):
+        _faults('steering', (r_rate, r_torque, r_angle, r_counter, ), (('int', 'rate', 0, 4095, False, None), ('int', 'torque', -327.68, 327.67, True, None), ('int', 'angle', -256.0, 255.5, True, None), ('int', 'counter', 0, 15, False, None)))
+    r_torque = _floor(r_torque / 0.01 + 0.5)
+    r_angle = _floor(r_angle / 0.5 + 0.5)
     r_valid: Any = m.valid
     if r_valid is not True and r_valid is not False and (not isinstance(r_valid, int) or r_valid != 0 and r_valid != 1):
         raise _enc('steering', 'valid', r_valid, 'type', 'a bool')
@@ -636,16 +619,7 @@ def _encode_gear(m: Gear) -> bytes:
     r_gear = m.gear
     r_mode = m.mode
     if (r_gear.__class__ is not int or not 0 <= r_gear <= 7) or (r_mode.__class__ is not int or not 0 <= r_mode <= 15):
-        if r_gear.__class__ is not int or not 0 <= r_gear <= 7:
-            if not isinstance(r_gear, int) or r_gear.__class__ is bool:
-                raise _enc('gear', 'gear', r_gear, 'type', 'an int')
-            if not 0 <= r_gear <= 7:
-                raise _enc('gear', 'gear', r_gear, 'range', '0..7', None)
-        if r_mode.__class__ is not int or not 0 <= r_mode <= 15:
-            if not isinstance(r_mode, int) or r_mode.__class__ is bool:
-                raise _enc('gear', 'mode', r_mode, 'type', 'an int')
-            if not 0 <= r_mode <= 15:
-                raise _enc('gear', 'mode', r_mode, 'range', '0..15', None)
+        _faults('gear', (r_gear, r_mode, ), (('int', 'gear', 0, 7, False, None), ('int', 'mode', 0, 15, False, None)))
     return _S_gear_0.pack(928, 2, r_mode << 4 | int.from_bytes((r_gear).to_bytes(2, 'little'), 'big'))
 
 
@@ -672,19 +646,13 @@ def _decode_gear(d: _Buffer) -> Gear:
 def _encode_multiplexed(m: Multiplexed) -> bytes:
     r_multiplexor = m.multiplexor
     if r_multiplexor.__class__ is not int or not 0 <= r_multiplexor <= 63:
-        if not isinstance(r_multiplexor, int) or r_multiplexor.__class__ is bool:
-            raise _enc('multiplexed', 'multiplexor', r_multiplexor, 'type', 'an int')
-        if not 0 <= r_multiplexor <= 63:
-            raise _enc('multiplexed', 'multiplexor', r_multiplexor, 'range', '0..63', None)
+        _int_fault('multiplexed', 'multiplexor', r_multiplexor, 0, 63, False, None)
     if ((r_multiplexor == 8 or r_multiplexor == 16 or r_multiplexor == 24)) != (m.bit_j is not None):
         raise _enc('multiplexed', 'bit_j', m.bit_j, 'present', 'a value when multiplexor is 8, 16, 24, else None')
     if (r_multiplexor == 8 or r_multiplexor == 16 or r_multiplexor == 24):
         r_bit_j: Any = cast(Any, m.bit_j)
         if r_bit_j.__class__ is not int or not 0 <= r_bit_j <= 1:
-            if not isinstance(r_bit_j, int) or r_bit_j.__class__ is bool:
-                raise _enc('multiplexed', 'bit_j', r_bit_j, 'type', 'an int')
-            if not 0 <= r_bit_j <= 1:
-                raise _enc('multiplexed', 'bit_j', r_bit_j, 'range', '0..1', None)
+            _int_fault('multiplexed', 'bit_j', r_bit_j, 0, 1, False, None)
     else:
         r_bit_j = 0
     if ((r_multiplexor == 8 or r_multiplexor == 16 or r_multiplexor == 24)) != (m.bit_c is not None):
@@ -692,10 +660,7 @@ def _encode_multiplexed(m: Multiplexed) -> bytes:
     if (r_multiplexor == 8 or r_multiplexor == 16 or r_multiplexor == 24):
         r_bit_c: Any = cast(Any, m.bit_c)
         if r_bit_c.__class__ is not int or not 0 <= r_bit_c <= 1:
-            if not isinstance(r_bit_c, int) or r_bit_c.__class__ is bool:
-                raise _enc('multiplexed', 'bit_c', r_bit_c, 'type', 'an int')
-            if not 0 <= r_bit_c <= 1:
-                raise _enc('multiplexed', 'bit_c', r_bit_c, 'range', '0..1', None)
+            _int_fault('multiplexed', 'bit_c', r_bit_c, 0, 1, False, None)
     else:
         r_bit_c = 0
     if ((r_multiplexor == 8 or r_multiplexor == 16 or r_multiplexor == 24)) != (m.bit_g is not None):
@@ -703,10 +668,7 @@ def _encode_multiplexed(m: Multiplexed) -> bytes:
     if (r_multiplexor == 8 or r_multiplexor == 16 or r_multiplexor == 24):
         r_bit_g: Any = cast(Any, m.bit_g)
         if r_bit_g.__class__ is not int or not 0 <= r_bit_g <= 1:
-            if not isinstance(r_bit_g, int) or r_bit_g.__class__ is bool:
-                raise _enc('multiplexed', 'bit_g', r_bit_g, 'type', 'an int')
-            if not 0 <= r_bit_g <= 1:
-                raise _enc('multiplexed', 'bit_g', r_bit_g, 'range', '0..1', None)
+            _int_fault('multiplexed', 'bit_g', r_bit_g, 0, 1, False, None)
     else:
         r_bit_g = 0
     if ((r_multiplexor == 8 or r_multiplexor == 16 or r_multiplexor == 24)) != (m.bit_l is not None):
@@ -714,10 +676,7 @@ def _encode_multiplexed(m: Multiplexed) -> bytes:
     if (r_multiplexor == 8 or r_multiplexor == 16 or r_multiplexor == 24):
         r_bit_l: Any = cast(Any, m.bit_l)
         if r_bit_l.__class__ is not int or not 0 <= r_bit_l <= 1:
-            if not isinstance(r_bit_l, int) or r_bit_l.__class__ is bool:
-                raise _enc('multiplexed', 'bit_l', r_bit_l, 'type', 'an int')
-            if not 0 <= r_bit_l <= 1:
-                raise _enc('multiplexed', 'bit_l', r_bit_l, 'range', '0..1', None)
+            _int_fault('multiplexed', 'bit_l', r_bit_l, 0, 1, False, None)
     else:
         r_bit_l = 0
     if (r_multiplexor == 24) != (m.bit_a is not None):
@@ -725,10 +684,7 @@ def _encode_multiplexed(m: Multiplexed) -> bytes:
     if r_multiplexor == 24:
         r_bit_a: Any = cast(Any, m.bit_a)
         if r_bit_a.__class__ is not int or not 0 <= r_bit_a <= 1:
-            if not isinstance(r_bit_a, int) or r_bit_a.__class__ is bool:
-                raise _enc('multiplexed', 'bit_a', r_bit_a, 'type', 'an int')
-            if not 0 <= r_bit_a <= 1:
-                raise _enc('multiplexed', 'bit_a', r_bit_a, 'range', '0..1', None)
+            _int_fault('multiplexed', 'bit_a', r_bit_a, 0, 1, False, None)
     else:
         r_bit_a = 0
     if (r_multiplexor == 24) != (m.bit_k is not None):
@@ -736,10 +692,7 @@ def _encode_multiplexed(m: Multiplexed) -> bytes:
     if r_multiplexor == 24:
         r_bit_k: Any = cast(Any, m.bit_k)
         if r_bit_k.__class__ is not int or not 0 <= r_bit_k <= 1:
-            if not isinstance(r_bit_k, int) or r_bit_k.__class__ is bool:
-                raise _enc('multiplexed', 'bit_k', r_bit_k, 'type', 'an int')
-            if not 0 <= r_bit_k <= 1:
-                raise _enc('multiplexed', 'bit_k', r_bit_k, 'range', '0..1', None)
+            _int_fault('multiplexed', 'bit_k', r_bit_k, 0, 1, False, None)
     else:
         r_bit_k = 0
     if (r_multiplexor == 24) != (m.bit_e is not None):
@@ -747,10 +700,7 @@ def _encode_multiplexed(m: Multiplexed) -> bytes:
     if r_multiplexor == 24:
         r_bit_e: Any = cast(Any, m.bit_e)
         if r_bit_e.__class__ is not int or not 0 <= r_bit_e <= 1:
-            if not isinstance(r_bit_e, int) or r_bit_e.__class__ is bool:
-                raise _enc('multiplexed', 'bit_e', r_bit_e, 'type', 'an int')
-            if not 0 <= r_bit_e <= 1:
-                raise _enc('multiplexed', 'bit_e', r_bit_e, 'range', '0..1', None)
+            _int_fault('multiplexed', 'bit_e', r_bit_e, 0, 1, False, None)
     else:
         r_bit_e = 0
     if (r_multiplexor == 24) != (m.bit_d is not None):
@@ -758,10 +708,7 @@ def _encode_multiplexed(m: Multiplexed) -> bytes:
     if r_multiplexor == 24:
         r_bit_d: Any = cast(Any, m.bit_d)
         if r_bit_d.__class__ is not int or not 0 <= r_bit_d <= 1:
-            if not isinstance(r_bit_d, int) or r_bit_d.__class__ is bool:
-                raise _enc('multiplexed', 'bit_d', r_bit_d, 'type', 'an int')
-            if not 0 <= r_bit_d <= 1:
-                raise _enc('multiplexed', 'bit_d', r_bit_d, 'range', '0..1', None)
+            _int_fault('multiplexed', 'bit_d', r_bit_d, 0, 1, False, None)
     else:
         r_bit_d = 0
     if (r_multiplexor == 24) != (m.bit_b is not None):
@@ -769,10 +716,7 @@ def _encode_multiplexed(m: Multiplexed) -> bytes:
     if r_multiplexor == 24:
         r_bit_b: Any = cast(Any, m.bit_b)
         if r_bit_b.__class__ is not int or not 0 <= r_bit_b <= 1:
-            if not isinstance(r_bit_b, int) or r_bit_b.__class__ is bool:
-                raise _enc('multiplexed', 'bit_b', r_bit_b, 'type', 'an int')
-            if not 0 <= r_bit_b <= 1:
-                raise _enc('multiplexed', 'bit_b', r_bit_b, 'range', '0..1', None)
+            _int_fault('multiplexed', 'bit_b', r_bit_b, 0, 1, False, None)
     else:
         r_bit_b = 0
     if (r_multiplexor == 24) != (m.bit_h is not None):
@@ -780,10 +724,7 @@ def _encode_multiplexed(m: Multiplexed) -> bytes:
     if r_multiplexor == 24:
         r_bit_h: Any = cast(Any, m.bit_h)
         if r_bit_h.__class__ is not int or not 0 <= r_bit_h <= 1:
-            if not isinstance(r_bit_h, int) or r_bit_h.__class__ is bool:
-                raise _enc('multiplexed', 'bit_h', r_bit_h, 'type', 'an int')
-            if not 0 <= r_bit_h <= 1:
-                raise _enc('multiplexed', 'bit_h', r_bit_h, 'range', '0..1', None)
+            _int_fault('multiplexed', 'bit_h', r_bit_h, 0, 1, False, None)
     else:
         r_bit_h = 0
     if (r_multiplexor == 24) != (m.bit_f is not None):
@@ -791,10 +732,7 @@ def _encode_multiplexed(m: Multiplexed) -> bytes:
     if r_multiplexor == 24:
         r_bit_f: Any = cast(Any, m.bit_f)
         if r_bit_f.__class__ is not int or not 0 <= r_bit_f <= 1:
-            if not isinstance(r_bit_f, int) or r_bit_f.__class__ is bool:
-                raise _enc('multiplexed', 'bit_f', r_bit_f, 'type', 'an int')
-            if not 0 <= r_bit_f <= 1:
-                raise _enc('multiplexed', 'bit_f', r_bit_f, 'range', '0..1', None)
+            _int_fault('multiplexed', 'bit_f', r_bit_f, 0, 1, False, None)
     else:
         r_bit_f = 0
     b = bytearray(11)
@@ -846,19 +784,13 @@ def _decode_multiplexed(d: _Buffer) -> Multiplexed:
 def _encode_extended(m: Extended) -> bytes:
     r_s0 = m.s0
     if r_s0.__class__ is not int or not 0 <= r_s0 <= 15:
-        if not isinstance(r_s0, int) or r_s0.__class__ is bool:
-            raise _enc('extended', 's0', r_s0, 'type', 'an int')
-        if not 0 <= r_s0 <= 15:
-            raise _enc('extended', 's0', r_s0, 'range', '0..15', None)
+        _int_fault('extended', 's0', r_s0, 0, 15, False, None)
     if (r_s0 == 0) != (m.s1 is not None):
         raise _enc('extended', 's1', m.s1, 'present', 'a value when s0 is 0, else None')
     if r_s0 == 0:
         r_s1: Any = cast(Any, m.s1)
         if r_s1.__class__ is not int or not 0 <= r_s1 <= 15:
-            if not isinstance(r_s1, int) or r_s1.__class__ is bool:
-                raise _enc('extended', 's1', r_s1, 'type', 'an int')
-            if not 0 <= r_s1 <= 15:
-                raise _enc('extended', 's1', r_s1, 'range', '0..15', None)
+            _int_fault('extended', 's1', r_s1, 0, 15, False, None)
     else:
         r_s1 = 0
     if (r_s0 == 0 and r_s1 == 0) != (m.s2 is not None):
@@ -866,10 +798,7 @@ def _encode_extended(m: Extended) -> bytes:
     if r_s0 == 0 and r_s1 == 0:
         r_s2: Any = cast(Any, m.s2)
         if r_s2.__class__ is not int or not -128 <= r_s2 <= 127:
-            if not isinstance(r_s2, int) or r_s2.__class__ is bool:
-                raise _enc('extended', 's2', r_s2, 'type', 'an int')
-            if not -128 <= r_s2 <= 127:
-                raise _enc('extended', 's2', r_s2, 'range', '-128..127', None)
+            _int_fault('extended', 's2', r_s2, -128, 127, False, None)
     else:
         r_s2 = 0
     if (r_s0 == 0 and r_s1 == 0) != (m.s3 is not None):
@@ -877,10 +806,7 @@ def _encode_extended(m: Extended) -> bytes:
     if r_s0 == 0 and r_s1 == 0:
         r_s3: Any = cast(Any, m.s3)
         if r_s3.__class__ is not int or not -32768 <= r_s3 <= 32767:
-            if not isinstance(r_s3, int) or r_s3.__class__ is bool:
-                raise _enc('extended', 's3', r_s3, 'type', 'an int')
-            if not -32768 <= r_s3 <= 32767:
-                raise _enc('extended', 's3', r_s3, 'range', '-32768..32767', None)
+            _int_fault('extended', 's3', r_s3, -32768, 32767, False, None)
     else:
         r_s3 = 0
     if (r_s0 == 0 and r_s1 == 2) != (m.s4 is not None):
@@ -888,10 +814,7 @@ def _encode_extended(m: Extended) -> bytes:
     if r_s0 == 0 and r_s1 == 2:
         r_s4: Any = cast(Any, m.s4)
         if r_s4.__class__ is not int or not -8388608 <= r_s4 <= 8388607:
-            if not isinstance(r_s4, int) or r_s4.__class__ is bool:
-                raise _enc('extended', 's4', r_s4, 'type', 'an int')
-            if not -8388608 <= r_s4 <= 8388607:
-                raise _enc('extended', 's4', r_s4, 'range', '-8388608..8388607', None)
+            _int_fault('extended', 's4', r_s4, -8388608, 8388607, False, None)
     else:
         r_s4 = 0
     if (r_s0 == 1) != (m.s5 is not None):
@@ -899,27 +822,18 @@ def _encode_extended(m: Extended) -> bytes:
     if r_s0 == 1:
         r_s5: Any = cast(Any, m.s5)
         if r_s5.__class__ is not int or not -134217728 <= r_s5 <= 134217727:
-            if not isinstance(r_s5, int) or r_s5.__class__ is bool:
-                raise _enc('extended', 's5', r_s5, 'type', 'an int')
-            if not -134217728 <= r_s5 <= 134217727:
-                raise _enc('extended', 's5', r_s5, 'range', '-134217728..134217727', None)
+            _int_fault('extended', 's5', r_s5, -134217728, 134217727, False, None)
     else:
         r_s5 = 0
     r_s6 = m.s6
     if r_s6.__class__ is not int or not 0 <= r_s6 <= 255:
-        if not isinstance(r_s6, int) or r_s6.__class__ is bool:
-            raise _enc('extended', 's6', r_s6, 'type', 'an int')
-        if not 0 <= r_s6 <= 255:
-            raise _enc('extended', 's6', r_s6, 'range', '0..255', None)
+        _int_fault('extended', 's6', r_s6, 0, 255, False, None)
     if (r_s6 == 1) != (m.s7 is not None):
         raise _enc('extended', 's7', m.s7, 'present', 'a value when s6 is 1, else None')
     if r_s6 == 1:
         r_s7: Any = cast(Any, m.s7)
         if r_s7.__class__ is not int or not -8388608 <= r_s7 <= 8388607:
-            if not isinstance(r_s7, int) or r_s7.__class__ is bool:
-                raise _enc('extended', 's7', r_s7, 'type', 'an int')
-            if not -8388608 <= r_s7 <= 8388607:
-                raise _enc('extended', 's7', r_s7, 'range', '-8388608..8388607', None)
+            _int_fault('extended', 's7', r_s7, -8388608, 8388607, False, None)
     else:
         r_s7 = 0
     if (r_s6 == 2) != (m.s8 is not None):
@@ -927,10 +841,7 @@ def _encode_extended(m: Extended) -> bytes:
     if r_s6 == 2:
         r_s8: Any = cast(Any, m.s8)
         if r_s8.__class__ is not int or not -128 <= r_s8 <= 127:
-            if not isinstance(r_s8, int) or r_s8.__class__ is bool:
-                raise _enc('extended', 's8', r_s8, 'type', 'an int')
-            if not -128 <= r_s8 <= 127:
-                raise _enc('extended', 's8', r_s8, 'range', '-128..127', None)
+            _int_fault('extended', 's8', r_s8, -128, 127, False, None)
     else:
         r_s8 = 0
     b = bytearray(11)
@@ -988,19 +899,13 @@ def _decode_extended(d: _Buffer) -> Extended:
 def _encode_shared(m: Shared) -> bytes:
     r_s0 = m.s0
     if r_s0.__class__ is not int or not 0 <= r_s0 <= 15:
-        if not isinstance(r_s0, int) or r_s0.__class__ is bool:
-            raise _enc('shared', 's0', r_s0, 'type', 'an int')
-        if not 0 <= r_s0 <= 15:
-            raise _enc('shared', 's0', r_s0, 'range', '0..15', None)
+        _int_fault('shared', 's0', r_s0, 0, 15, False, None)
     if ((r_s0 == 1 or r_s0 == 3)) != (m.s1 is not None):
         raise _enc('shared', 's1', m.s1, 'present', 'a value when s0 is 1, 3, else None')
     if (r_s0 == 1 or r_s0 == 3):
         r_s1: Any = cast(Any, m.s1)
         if r_s1.__class__ is not int or not -8 <= r_s1 <= 7:
-            if not isinstance(r_s1, int) or r_s1.__class__ is bool:
-                raise _enc('shared', 's1', r_s1, 'type', 'an int')
-            if not -8 <= r_s1 <= 7:
-                raise _enc('shared', 's1', r_s1, 'range', '-8..7', None)
+            _int_fault('shared', 's1', r_s1, -8, 7, False, None)
     else:
         r_s1 = 0
     if (2 <= r_s0 <= 5) != (m.s2 is not None):
@@ -1008,10 +913,7 @@ def _encode_shared(m: Shared) -> bytes:
     if 2 <= r_s0 <= 5:
         r_s2: Any = cast(Any, m.s2)
         if r_s2.__class__ is not int or not -128 <= r_s2 <= 127:
-            if not isinstance(r_s2, int) or r_s2.__class__ is bool:
-                raise _enc('shared', 's2', r_s2, 'type', 'an int')
-            if not -128 <= r_s2 <= 127:
-                raise _enc('shared', 's2', r_s2, 'range', '-128..127', None)
+            _int_fault('shared', 's2', r_s2, -128, 127, False, None)
     else:
         r_s2 = 0
     b = bytearray(11)
@@ -1208,8 +1110,9 @@ class StreamDecoder:
 
 
 _ENCODERS: dict[type[Any], Callable[[Any], bytes]] = {ExampleMessage: _encode_example_message, WheelSpeeds: _encode_wheel_speeds, Steering: _encode_steering, Gear: _encode_gear, Multiplexed: _encode_multiplexed, Extended: _encode_extended, Shared: _encode_shared, }
+_DECODERS: dict[type[Any], Callable[..., Any]] = {ExampleMessage: _decode_example_message, WheelSpeeds: _decode_wheel_speeds, Steering: _decode_steering, Gear: _decode_gear, Multiplexed: _decode_multiplexed, Extended: _decode_extended, Shared: _decode_shared, }
 for _cls, _encoder in _ENCODERS.items():  # each encoder is its class's encode method: one call, not two
-    _encoder.__doc__ = _cls.encode.__doc__
+    _encoder.__doc__ = _Message.encode.__doc__
     setattr(_cls, "encode", _encoder)
 MESSAGES: dict[str, type[AnyMessage]] = {'example_message': ExampleMessage, 'wheel_speeds': WheelSpeeds, 'steering': Steering, 'gear': Gear, 'multiplexed': Multiplexed, 'extended': Extended, 'shared': Shared, }
 

@@ -14,7 +14,6 @@ import math
 import os
 
 import struct
-from dataclasses import dataclass
 from typing import Any, Callable, ClassVar, Optional, TypeVar, Union, cast
 
 _Buffer = Union[bytes, bytearray, "memoryview[int]"]  # what a binary decoder reads
@@ -30,6 +29,63 @@ FINGERPRINT32 = 0x8347c8b6  # its first 32 bits
 _floor = math.floor
 _isfinite = math.isfinite
 _object_new = object.__new__
+_FRESH: Any = object()  # an argument left out whose default (a list, a group) is built for each object
+
+
+class _DataclassFields:
+    """A class's table of dataclass fields, made the first time it is read and then kept on the
+    class, for dataclasses.fields, replace, asdict and is_dataclass."""
+
+    def __get__(self, obj: object, owner: type[_Record]) -> dict[str, Any]:
+        from dataclasses import field, make_dataclass
+        init: Any = owner.__init__
+        defaults: dict[str, Any] = init.__kwdefaults__ or {}
+        annotations: dict[str, Any] = owner.__annotations__
+        names = owner._NAMES  # pyright: ignore[reportPrivateUsage]
+        fields: list[tuple[str, Any, Any]] = [
+            (n, annotations[n], field(default=defaults[n]) if defaults.get(n, _FRESH) is not _FRESH else field())
+            for n in names]
+        slots: tuple[str, ...] = owner.__slots__
+        fields += [(n, annotations[n], field(default=None, init=False, repr=False, compare=False))
+                   for n in slots if n not in names]
+        made: Any = make_dataclass(owner.__name__, fields, kw_only=True)
+        table: dict[str, Any] = made.__dataclass_fields__
+        setattr(owner, "__dataclass_fields__", table)
+        return table
+
+
+_R = TypeVar("_R", bound="_Record")
+
+
+class _Record:
+    """What every message, group and sequence class is: its fields in slots, set by a keyword
+    constructor; compared and shown field by field, in order, as a dataclass is; and a
+    dataclass to the dataclasses module. Its table of fields is made when first asked for: a
+    @dataclass decorator writes and compiles each class's methods while the module is
+    imported, which in a protocol of hundreds of messages costs more than all the rest."""
+
+    __slots__ = ()
+    _NAMES: ClassVar[tuple[str, ...]] = ()
+    __dataclass_fields__: ClassVar[dict[str, Any]] = _DataclassFields()  # type: ignore[assignment]
+
+    def __eq__(self, other: object) -> bool:
+        if other.__class__ is not self.__class__:
+            return NotImplemented
+        return [getattr(self, n) for n in self._NAMES] == [getattr(other, n) for n in self._NAMES]
+
+    def __repr__(self) -> str:
+        return f"{self.__class__.__qualname__}({', '.join(f'{n}={getattr(self, n)!r}' for n in self._NAMES)})"
+
+    def to_dict(self) -> dict[str, Any]:
+        """The object as JSON-ready data: enum members and flags by name, bytes as hex, numbers
+        in logical units; from_dict reads it back."""
+        return _to_dict(self)
+
+    @classmethod
+    def from_dict(cls: type[_R], values: dict[str, Any]) -> _R:
+        """An object from the data to_dict gives; an unknown key or a value of the wrong type is
+        a DecodeError."""
+        return _from_dict(cls, values, getattr(cls, "NAME", cls.__name__), "")
 _ABSENT: Any = None  # a value a frame left out: its list slot is cut, or its field is None
 
 
@@ -118,6 +174,40 @@ def _enc(message: Optional[str], field: Optional[str], value: object, rule: str,
     return EncodeError(message, field, value, rule, allowed, None, decision, user_message)
 
 
+def _int_fault(message: str, field: Optional[str], value: Any, lo: Any, hi: Any, number: bool,
+               decision: Optional[str], user_message: Optional[str] = None) -> None:
+    """Raise the EncodeError of an integer field's value that its usual test did not pass: not
+    an int (a number, if the field is scaled), or out of its range."""
+    if not isinstance(value, (int, float) if number else int) or value.__class__ is bool:
+        raise _enc(message, field, value, 'type', 'a number' if number else 'an int')
+    if not lo <= value <= hi:
+        raise _enc(message, field, value, 'range', f'{lo!r}..{hi!r}', decision, user_message)
+
+
+def _faults(message: str, values: tuple[Any, ...], specs: tuple[tuple[Any, ...], ...]) -> None:
+    """Raise the EncodeError of the first of several numbers that fails its usual test; each
+    spec is ("int", field, lo, hi, scaled, decision[, message]) or ("float", field, binary32)."""
+    for value, (kind, name, *limits) in zip(values, specs):
+        if kind == "int":
+            _int_fault(message, name, value, *limits)
+        else:
+            _float_fault(message, name, value, *limits)
+
+
+def _float_fault(message: str, field: Optional[str], value: Any, binary32: bool) -> None:
+    """Raise the EncodeError of a float field's value that its usual test did not pass: not a
+    number, not finite, or (binary32) beyond a binary32's range."""
+    if value.__class__ is not float:
+        if not isinstance(value, (int, float)) or value.__class__ is bool:
+            raise _enc(message, field, value, 'type', 'a number')
+        if not -1.7976931348623157e308 <= value <= 1.7976931348623157e308:  # exact for any int
+            raise _enc(message, field, value, 'finite', 'a finite number')
+    if not _isfinite(value):
+        raise _enc(message, field, value, 'finite', 'a finite number')
+    if binary32 and (value > 3.4028234663852886e38 or value < -3.4028234663852886e38):
+        raise _enc(message, field, value, 'range', 'a binary32 value')
+
+
 def _dec(message: Optional[str], field: Optional[str], value: object, rule: str, allowed: str = "",
          offset: Optional[int] = None, decision: Optional[str] = None,
          user_message: Optional[str] = None) -> DecodeError:
@@ -128,45 +218,48 @@ def _dec(message: Optional[str], field: Optional[str], value: object, rule: str,
 # kind: int, number, bool, str, bytes (hex text), enum (a member's name), flags (a list of
 # names) or group (a nested mapping).
 _Spec = tuple[str, str, Any, bool, bool, bool]
+_Msg = TypeVar("_Msg", bound="_Message")
 
 
-@dataclass(slots=True, kw_only=True)
-class Ping:
+class _Message(_Record):
+    """What every message class does: encode itself, decode its own wire form. Each message's
+    encoder is set on its class as the method itself (one call, not two)."""
+
+    __slots__ = ()
+    NAME: ClassVar[str]
+
+    def encode(self) -> bytes:
+        """The message in its wire form; an EncodeError if a value breaks the schema."""
+        return _stuff(_ENCODERS[self.__class__](self))
+
+    @classmethod
+    def decode(cls: type[_Msg], data: _Input) -> _Msg:
+        """The message from its wire form; a DecodeError if it is not one."""
+        return cast(_Msg, _DECODERS[cls](unstuff(data)))
+
+
+class Ping(_Message):
     """Ping"""
 
+    __slots__ = ('id',)
     NAME: ClassVar[str] = 'ping'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('id', 'int', None, False, False, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('id',)
 
     id: int
     """device id: 0..252, 0xFE broadcasts"""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The Ping as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> Ping:
-        """A Ping from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(Ping, values, 'ping', "")
-
-    def encode(self) -> bytes:
-        """The ping message in its wire form; an EncodeError if a value breaks the schema."""
-        return _stuff(_encode_ping(self))
-
-    @classmethod
-    def decode(cls, data: _Input) -> Ping:
-        """A ping message from its wire form; a DecodeError if it is not one."""
-        return _decode_ping(unstuff(data))
+    def __init__(self, *, id: int) -> None:
+        self.id = id
 
 
-@dataclass(slots=True, kw_only=True)
-class Read:
+class Read(_Message):
     """Read"""
 
+    __slots__ = ('id', 'address', 'data_length')
     NAME: ClassVar[str] = 'read'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('id', 'int', None, False, False, True), ('address', 'int', None, False, False, True), ('data_length', 'int', None, False, False, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('id', 'address', 'data_length')
 
     id: int
     """device id: 0..252, 0xFE broadcasts"""
@@ -175,33 +268,19 @@ class Read:
 
     data_length: int
 
-    def to_dict(self) -> dict[str, Any]:
-        """The Read as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> Read:
-        """A Read from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(Read, values, 'read', "")
-
-    def encode(self) -> bytes:
-        """The read message in its wire form; an EncodeError if a value breaks the schema."""
-        return _stuff(_encode_read(self))
-
-    @classmethod
-    def decode(cls, data: _Input) -> Read:
-        """A read message from its wire form; a DecodeError if it is not one."""
-        return _decode_read(unstuff(data))
+    def __init__(self, *, id: int, address: int, data_length: int) -> None:
+        self.id = id
+        self.address = address
+        self.data_length = data_length
 
 
-@dataclass(slots=True, kw_only=True)
-class Write:
+class Write(_Message):
     """Write"""
 
+    __slots__ = ('id', 'address', 'data')
     NAME: ClassVar[str] = 'write'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('id', 'int', None, False, False, True), ('address', 'int', None, False, False, True), ('data', 'bytes', None, False, False, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('id', 'address', 'data')
 
     id: int
     """device id: 0..252, 0xFE broadcasts"""
@@ -210,33 +289,19 @@ class Write:
 
     data: bytes
 
-    def to_dict(self) -> dict[str, Any]:
-        """The Write as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> Write:
-        """A Write from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(Write, values, 'write', "")
-
-    def encode(self) -> bytes:
-        """The write message in its wire form; an EncodeError if a value breaks the schema."""
-        return _stuff(_encode_write(self))
-
-    @classmethod
-    def decode(cls, data: _Input) -> Write:
-        """A write message from its wire form; a DecodeError if it is not one."""
-        return _decode_write(unstuff(data))
+    def __init__(self, *, id: int, address: int, data: bytes) -> None:
+        self.id = id
+        self.address = address
+        self.data = data
 
 
-@dataclass(slots=True, kw_only=True)
-class Status:
+class Status(_Message):
     """Status"""
 
+    __slots__ = ('id', 'error', 'params')
     NAME: ClassVar[str] = 'status'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('id', 'int', None, False, False, True), ('error', 'int', None, False, False, True), ('params', 'bytes', None, False, False, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('id', 'error', 'params')
 
     id: int
     """device id: 0..252, 0xFE broadcasts"""
@@ -246,25 +311,10 @@ class Status:
 
     params: bytes
 
-    def to_dict(self) -> dict[str, Any]:
-        """The Status as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> Status:
-        """A Status from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(Status, values, 'status', "")
-
-    def encode(self) -> bytes:
-        """The status message in its wire form; an EncodeError if a value breaks the schema."""
-        return _stuff(_encode_status(self))
-
-    @classmethod
-    def decode(cls, data: _Input) -> Status:
-        """A status message from its wire form; a DecodeError if it is not one."""
-        return _decode_status(unstuff(data))
+    def __init__(self, *, id: int, error: int, params: bytes) -> None:
+        self.id = id
+        self.error = error
+        self.params = params
 
 
 AnyMessage = Union[Ping, Read, Write, Status, ]
@@ -523,13 +573,10 @@ def unstuff(data: _Buffer) -> bytes:
 
 
 def _encode_ping(m: Ping) -> bytes:
+    r_crc = 0
     r_id = m.id
     if r_id.__class__ is not int or not 0 <= r_id <= 255:
-        if not isinstance(r_id, int) or r_id.__class__ is bool:
-            raise _enc('ping', 'id', r_id, 'type', 'an int')
-        if not 0 <= r_id <= 255:
-            raise _enc('ping', 'id', r_id, 'range', '0..255', None)
-    r_crc = 0
+        _int_fault('ping', 'id', r_id, 0, 255, False, None)
     b = bytearray(10)
     _S_ping_0.pack_into(b, 0, 255, 255, 253, 0, r_id, 3, 1, r_crc)
     b[8:10] = _checksum_crc16_8005_0_nn_0_8(b, 0).to_bytes(2, 'little')
@@ -564,26 +611,12 @@ def _decode_ping(d: _Buffer) -> Ping:
 
 
 def _encode_read(m: Read) -> bytes:
+    r_crc = 0
     r_id = m.id
     r_address = m.address
     r_data_length = m.data_length
     if (r_id.__class__ is not int or not 0 <= r_id <= 255) or (r_address.__class__ is not int or not 0 <= r_address <= 65535) or (r_data_length.__class__ is not int or not 0 <= r_data_length <= 65535):
-        if r_id.__class__ is not int or not 0 <= r_id <= 255:
-            if not isinstance(r_id, int) or r_id.__class__ is bool:
-                raise _enc('read', 'id', r_id, 'type', 'an int')
-            if not 0 <= r_id <= 255:
-                raise _enc('read', 'id', r_id, 'range', '0..255', None)
-        if r_address.__class__ is not int or not 0 <= r_address <= 65535:
-            if not isinstance(r_address, int) or r_address.__class__ is bool:
-                raise _enc('read', 'address', r_address, 'type', 'an int')
-            if not 0 <= r_address <= 65535:
-                raise _enc('read', 'address', r_address, 'range', '0..65535', None)
-        if r_data_length.__class__ is not int or not 0 <= r_data_length <= 65535:
-            if not isinstance(r_data_length, int) or r_data_length.__class__ is bool:
-                raise _enc('read', 'data_length', r_data_length, 'type', 'an int')
-            if not 0 <= r_data_length <= 65535:
-                raise _enc('read', 'data_length', r_data_length, 'range', '0..65535', None)
-    r_crc = 0
+        _faults('read', (r_id, r_address, r_data_length, ), (('int', 'id', 0, 255, False, None), ('int', 'address', 0, 65535, False, None), ('int', 'data_length', 0, 65535, False, None)))
     b = bytearray(14)
     _S_read_0.pack_into(b, 0, 255, 255, 253, 0, r_id, 7, 2, r_address, r_data_length, r_crc)
     b[12:14] = _checksum_crc16_8005_0_nn_0_12(b, 0).to_bytes(2, 'little')
@@ -623,16 +656,7 @@ def _encode_write(m: Write) -> bytes:
     r_id = m.id
     r_address = m.address
     if (r_id.__class__ is not int or not 0 <= r_id <= 255) or (r_address.__class__ is not int or not 0 <= r_address <= 65535):
-        if r_id.__class__ is not int or not 0 <= r_id <= 255:
-            if not isinstance(r_id, int) or r_id.__class__ is bool:
-                raise _enc('write', 'id', r_id, 'type', 'an int')
-            if not 0 <= r_id <= 255:
-                raise _enc('write', 'id', r_id, 'range', '0..255', None)
-        if r_address.__class__ is not int or not 0 <= r_address <= 65535:
-            if not isinstance(r_address, int) or r_address.__class__ is bool:
-                raise _enc('write', 'address', r_address, 'type', 'an int')
-            if not 0 <= r_address <= 65535:
-                raise _enc('write', 'address', r_address, 'range', '0..65535', None)
+        _faults('write', (r_id, r_address, ), (('int', 'id', 0, 255, False, None), ('int', 'address', 0, 65535, False, None)))
     r_data = m.data
     if not isinstance(r_data, (bytes, bytearray)) or len(r_data) > 64:
         raise _enc('write', 'data', r_data, 'length', 'bytes of length 0..64')
@@ -690,16 +714,7 @@ def _encode_status(m: Status) -> bytes:
     r_id = m.id
     r_error = m.error
     if (r_id.__class__ is not int or not 0 <= r_id <= 255) or (r_error.__class__ is not int or not 0 <= r_error <= 255):
-        if r_id.__class__ is not int or not 0 <= r_id <= 255:
-            if not isinstance(r_id, int) or r_id.__class__ is bool:
-                raise _enc('status', 'id', r_id, 'type', 'an int')
-            if not 0 <= r_id <= 255:
-                raise _enc('status', 'id', r_id, 'range', '0..255', None)
-        if r_error.__class__ is not int or not 0 <= r_error <= 255:
-            if not isinstance(r_error, int) or r_error.__class__ is bool:
-                raise _enc('status', 'error', r_error, 'type', 'an int')
-            if not 0 <= r_error <= 255:
-                raise _enc('status', 'error', r_error, 'range', '0..255', None)
+        _faults('status', (r_id, r_error, ), (('int', 'id', 0, 255, False, None), ('int', 'error', 0, 255, False, None)))
     r_params = m.params
     if not isinstance(r_params, (bytes, bytearray)) or len(r_params) > 64:
         raise _enc('status', 'params', r_params, 'length', 'bytes of length 0..64')
@@ -923,6 +938,7 @@ class StreamDecoder:
 
 
 _ENCODERS: dict[type[Any], Callable[[Any], bytes]] = {Ping: _encode_ping, Read: _encode_read, Write: _encode_write, Status: _encode_status, }
+_DECODERS: dict[type[Any], Callable[..., Any]] = {Ping: _decode_ping, Read: _decode_read, Write: _decode_write, Status: _decode_status, }
 MESSAGES: dict[str, type[AnyMessage]] = {'ping': Ping, 'read': Read, 'write': Write, 'status': Status, }
 
 

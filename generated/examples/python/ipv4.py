@@ -11,7 +11,6 @@ from __future__ import annotations
 import math
 
 import struct
-from dataclasses import dataclass
 from typing import Any, Callable, ClassVar, Optional, TypeVar, Union, cast
 
 _Buffer = Union[bytes, bytearray, "memoryview[int]"]  # what a binary decoder reads
@@ -27,6 +26,63 @@ FINGERPRINT32 = 0x656daaae  # its first 32 bits
 _floor = math.floor
 _isfinite = math.isfinite
 _object_new = object.__new__
+_FRESH: Any = object()  # an argument left out whose default (a list, a group) is built for each object
+
+
+class _DataclassFields:
+    """A class's table of dataclass fields, made the first time it is read and then kept on the
+    class, for dataclasses.fields, replace, asdict and is_dataclass."""
+
+    def __get__(self, obj: object, owner: type[_Record]) -> dict[str, Any]:
+        from dataclasses import field, make_dataclass
+        init: Any = owner.__init__
+        defaults: dict[str, Any] = init.__kwdefaults__ or {}
+        annotations: dict[str, Any] = owner.__annotations__
+        names = owner._NAMES  # pyright: ignore[reportPrivateUsage]
+        fields: list[tuple[str, Any, Any]] = [
+            (n, annotations[n], field(default=defaults[n]) if defaults.get(n, _FRESH) is not _FRESH else field())
+            for n in names]
+        slots: tuple[str, ...] = owner.__slots__
+        fields += [(n, annotations[n], field(default=None, init=False, repr=False, compare=False))
+                   for n in slots if n not in names]
+        made: Any = make_dataclass(owner.__name__, fields, kw_only=True)
+        table: dict[str, Any] = made.__dataclass_fields__
+        setattr(owner, "__dataclass_fields__", table)
+        return table
+
+
+_R = TypeVar("_R", bound="_Record")
+
+
+class _Record:
+    """What every message, group and sequence class is: its fields in slots, set by a keyword
+    constructor; compared and shown field by field, in order, as a dataclass is; and a
+    dataclass to the dataclasses module. Its table of fields is made when first asked for: a
+    @dataclass decorator writes and compiles each class's methods while the module is
+    imported, which in a protocol of hundreds of messages costs more than all the rest."""
+
+    __slots__ = ()
+    _NAMES: ClassVar[tuple[str, ...]] = ()
+    __dataclass_fields__: ClassVar[dict[str, Any]] = _DataclassFields()  # type: ignore[assignment]
+
+    def __eq__(self, other: object) -> bool:
+        if other.__class__ is not self.__class__:
+            return NotImplemented
+        return [getattr(self, n) for n in self._NAMES] == [getattr(other, n) for n in self._NAMES]
+
+    def __repr__(self) -> str:
+        return f"{self.__class__.__qualname__}({', '.join(f'{n}={getattr(self, n)!r}' for n in self._NAMES)})"
+
+    def to_dict(self) -> dict[str, Any]:
+        """The object as JSON-ready data: enum members and flags by name, bytes as hex, numbers
+        in logical units; from_dict reads it back."""
+        return _to_dict(self)
+
+    @classmethod
+    def from_dict(cls: type[_R], values: dict[str, Any]) -> _R:
+        """An object from the data to_dict gives; an unknown key or a value of the wrong type is
+        a DecodeError."""
+        return _from_dict(cls, values, getattr(cls, "NAME", cls.__name__), "")
 _ABSENT: Any = None  # a value a frame left out: its list slot is cut, or its field is None
 
 
@@ -115,6 +171,40 @@ def _enc(message: Optional[str], field: Optional[str], value: object, rule: str,
     return EncodeError(message, field, value, rule, allowed, None, decision, user_message)
 
 
+def _int_fault(message: str, field: Optional[str], value: Any, lo: Any, hi: Any, number: bool,
+               decision: Optional[str], user_message: Optional[str] = None) -> None:
+    """Raise the EncodeError of an integer field's value that its usual test did not pass: not
+    an int (a number, if the field is scaled), or out of its range."""
+    if not isinstance(value, (int, float) if number else int) or value.__class__ is bool:
+        raise _enc(message, field, value, 'type', 'a number' if number else 'an int')
+    if not lo <= value <= hi:
+        raise _enc(message, field, value, 'range', f'{lo!r}..{hi!r}', decision, user_message)
+
+
+def _faults(message: str, values: tuple[Any, ...], specs: tuple[tuple[Any, ...], ...]) -> None:
+    """Raise the EncodeError of the first of several numbers that fails its usual test; each
+    spec is ("int", field, lo, hi, scaled, decision[, message]) or ("float", field, binary32)."""
+    for value, (kind, name, *limits) in zip(values, specs):
+        if kind == "int":
+            _int_fault(message, name, value, *limits)
+        else:
+            _float_fault(message, name, value, *limits)
+
+
+def _float_fault(message: str, field: Optional[str], value: Any, binary32: bool) -> None:
+    """Raise the EncodeError of a float field's value that its usual test did not pass: not a
+    number, not finite, or (binary32) beyond a binary32's range."""
+    if value.__class__ is not float:
+        if not isinstance(value, (int, float)) or value.__class__ is bool:
+            raise _enc(message, field, value, 'type', 'a number')
+        if not -1.7976931348623157e308 <= value <= 1.7976931348623157e308:  # exact for any int
+            raise _enc(message, field, value, 'finite', 'a finite number')
+    if not _isfinite(value):
+        raise _enc(message, field, value, 'finite', 'a finite number')
+    if binary32 and (value > 3.4028234663852886e38 or value < -3.4028234663852886e38):
+        raise _enc(message, field, value, 'range', 'a binary32 value')
+
+
 def _dec(message: Optional[str], field: Optional[str], value: object, rule: str, allowed: str = "",
          offset: Optional[int] = None, decision: Optional[str] = None,
          user_message: Optional[str] = None) -> DecodeError:
@@ -125,14 +215,33 @@ def _dec(message: Optional[str], field: Optional[str], value: object, rule: str,
 # kind: int, number, bool, str, bytes (hex text), enum (a member's name), flags (a list of
 # names) or group (a nested mapping).
 _Spec = tuple[str, str, Any, bool, bool, bool]
+_Msg = TypeVar("_Msg", bound="_Message")
 
 
-@dataclass(slots=True, kw_only=True)
-class IcmpEchoRequest:
+class _Message(_Record):
+    """What every message class does: encode itself, decode its own wire form. Each message's
+    encoder and decoder is set on its class as the method itself (one call, not two)."""
+
+    __slots__ = ()
+    NAME: ClassVar[str]
+
+    def encode(self) -> bytes:
+        """The message in its wire form; an EncodeError if a value breaks the schema."""
+        return _ENCODERS[self.__class__](self)
+
+    @classmethod
+    def decode(cls: type[_Msg], data: _Input) -> _Msg:
+        """The message from its wire form; a DecodeError if it is not one."""
+        return cast(_Msg, _DECODERS[cls](data if data.__class__ is bytes else _as_input(data)))
+
+
+class IcmpEchoRequest(_Message):
     """ICMP echo request (ping)"""
 
+    __slots__ = ('dscp', 'ecn', 'identification', 'flags', 'fragment_offset', 'ttl', 'src', 'dst', 'identifier', 'sequence', 'data')
     NAME: ClassVar[str] = 'icmp_echo_request'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('dscp', 'int', None, False, False, True), ('ecn', 'int', None, False, False, True), ('identification', 'int', None, False, False, True), ('flags', 'int', None, False, False, True), ('fragment_offset', 'int', None, False, False, True), ('ttl', 'int', None, False, False, True), ('src', 'int', None, False, False, True), ('dst', 'int', None, False, False, True), ('identifier', 'int', None, False, False, True), ('sequence', 'int', None, False, False, True), ('data', 'bytes', None, False, False, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('dscp', 'ecn', 'identification', 'flags', 'fragment_offset', 'ttl', 'src', 'dst', 'identifier', 'sequence', 'data')
 
     dscp: int
 
@@ -157,33 +266,27 @@ class IcmpEchoRequest:
 
     data: bytes
 
-    def to_dict(self) -> dict[str, Any]:
-        """The IcmpEchoRequest as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> IcmpEchoRequest:
-        """A IcmpEchoRequest from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(IcmpEchoRequest, values, 'icmp_echo_request', "")
-
-    def encode(self) -> bytes:
-        """The icmp_echo_request message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_icmp_echo_request(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> IcmpEchoRequest:
-        """A icmp_echo_request message from its wire form; a DecodeError if it is not one."""
-        return _decode_icmp_echo_request(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, dscp: int, ecn: int, identification: int, flags: int, fragment_offset: int, ttl: int, src: int, dst: int, identifier: int, sequence: int, data: bytes) -> None:
+        self.dscp = dscp
+        self.ecn = ecn
+        self.identification = identification
+        self.flags = flags
+        self.fragment_offset = fragment_offset
+        self.ttl = ttl
+        self.src = src
+        self.dst = dst
+        self.identifier = identifier
+        self.sequence = sequence
+        self.data = data
 
 
-@dataclass(slots=True, kw_only=True)
-class Udp:
+class Udp(_Message):
     """UDP datagram"""
 
+    __slots__ = ('dscp', 'ecn', 'identification', 'flags', 'fragment_offset', 'ttl', 'src', 'dst', 'src_port', 'dst_port', 'length', 'udp_checksum', 'data')
     NAME: ClassVar[str] = 'udp'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('dscp', 'int', None, False, False, True), ('ecn', 'int', None, False, False, True), ('identification', 'int', None, False, False, True), ('flags', 'int', None, False, False, True), ('fragment_offset', 'int', None, False, False, True), ('ttl', 'int', None, False, False, True), ('src', 'int', None, False, False, True), ('dst', 'int', None, False, False, True), ('src_port', 'int', None, False, False, True), ('dst_port', 'int', None, False, False, True), ('length', 'int', None, False, False, True), ('udp_checksum', 'int', None, False, False, True), ('data', 'bytes', None, False, False, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('dscp', 'ecn', 'identification', 'flags', 'fragment_offset', 'ttl', 'src', 'dst', 'src_port', 'dst_port', 'length', 'udp_checksum', 'data')
 
     dscp: int
 
@@ -214,25 +317,20 @@ class Udp:
 
     data: bytes
 
-    def to_dict(self) -> dict[str, Any]:
-        """The Udp as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> Udp:
-        """A Udp from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(Udp, values, 'udp', "")
-
-    def encode(self) -> bytes:
-        """The udp message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_udp(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> Udp:
-        """A udp message from its wire form; a DecodeError if it is not one."""
-        return _decode_udp(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, dscp: int, ecn: int, identification: int, flags: int, fragment_offset: int, ttl: int, src: int, dst: int, src_port: int, dst_port: int, length: int, udp_checksum: int, data: bytes) -> None:
+        self.dscp = dscp
+        self.ecn = ecn
+        self.identification = identification
+        self.flags = flags
+        self.fragment_offset = fragment_offset
+        self.ttl = ttl
+        self.src = src
+        self.dst = dst
+        self.src_port = src_port
+        self.dst_port = dst_port
+        self.length = length
+        self.udp_checksum = udp_checksum
+        self.data = data
 
 
 AnyMessage = Union[IcmpEchoRequest, Udp, ]
@@ -264,71 +362,20 @@ def _as_input(data: object) -> _Buffer:
 
 
 def _encode_icmp_echo_request(m: IcmpEchoRequest) -> bytes:
+    r_header_checksum = 0
+    r_icmp_checksum = 0
     r_dscp = m.dscp
     r_ecn = m.ecn
     r_identification = m.identification
     r_flags = m.flags
     r_fragment_offset = m.fragment_offset
     r_ttl = m.ttl
-    if (r_dscp.__class__ is not int or not 0 <= r_dscp <= 63) or (r_ecn.__class__ is not int or not 0 <= r_ecn <= 3) or (r_identification.__class__ is not int or not 0 <= r_identification <= 65535) or (r_flags.__class__ is not int or not 0 <= r_flags <= 7) or (r_fragment_offset.__class__ is not int or not 0 <= r_fragment_offset <= 8191) or (r_ttl.__class__ is not int or not 0 <= r_ttl <= 255):
-        if r_dscp.__class__ is not int or not 0 <= r_dscp <= 63:
-            if not isinstance(r_dscp, int) or r_dscp.__class__ is bool:
-                raise _enc('icmp_echo_request', 'dscp', r_dscp, 'type', 'an int')
-            if not 0 <= r_dscp <= 63:
-                raise _enc('icmp_echo_request', 'dscp', r_dscp, 'range', '0..63', None)
-        if r_ecn.__class__ is not int or not 0 <= r_ecn <= 3:
-            if not isinstance(r_ecn, int) or r_ecn.__class__ is bool:
-                raise _enc('icmp_echo_request', 'ecn', r_ecn, 'type', 'an int')
-            if not 0 <= r_ecn <= 3:
-                raise _enc('icmp_echo_request', 'ecn', r_ecn, 'range', '0..3', None)
-        if r_identification.__class__ is not int or not 0 <= r_identification <= 65535:
-            if not isinstance(r_identification, int) or r_identification.__class__ is bool:
-                raise _enc('icmp_echo_request', 'identification', r_identification, 'type', 'an int')
-            if not 0 <= r_identification <= 65535:
-                raise _enc('icmp_echo_request', 'identification', r_identification, 'range', '0..65535', None)
-        if r_flags.__class__ is not int or not 0 <= r_flags <= 7:
-            if not isinstance(r_flags, int) or r_flags.__class__ is bool:
-                raise _enc('icmp_echo_request', 'flags', r_flags, 'type', 'an int')
-            if not 0 <= r_flags <= 7:
-                raise _enc('icmp_echo_request', 'flags', r_flags, 'range', '0..7', None)
-        if r_fragment_offset.__class__ is not int or not 0 <= r_fragment_offset <= 8191:
-            if not isinstance(r_fragment_offset, int) or r_fragment_offset.__class__ is bool:
-                raise _enc('icmp_echo_request', 'fragment_offset', r_fragment_offset, 'type', 'an int')
-            if not 0 <= r_fragment_offset <= 8191:
-                raise _enc('icmp_echo_request', 'fragment_offset', r_fragment_offset, 'range', '0..8191', None)
-        if r_ttl.__class__ is not int or not 0 <= r_ttl <= 255:
-            if not isinstance(r_ttl, int) or r_ttl.__class__ is bool:
-                raise _enc('icmp_echo_request', 'ttl', r_ttl, 'type', 'an int')
-            if not 0 <= r_ttl <= 255:
-                raise _enc('icmp_echo_request', 'ttl', r_ttl, 'range', '0..255', None)
-    r_header_checksum = 0
     r_src = m.src
     r_dst = m.dst
-    if (r_src.__class__ is not int or not 0 <= r_src <= 4294967295) or (r_dst.__class__ is not int or not 0 <= r_dst <= 4294967295):
-        if r_src.__class__ is not int or not 0 <= r_src <= 4294967295:
-            if not isinstance(r_src, int) or r_src.__class__ is bool:
-                raise _enc('icmp_echo_request', 'src', r_src, 'type', 'an int')
-            if not 0 <= r_src <= 4294967295:
-                raise _enc('icmp_echo_request', 'src', r_src, 'range', '0..4294967295', None)
-        if r_dst.__class__ is not int or not 0 <= r_dst <= 4294967295:
-            if not isinstance(r_dst, int) or r_dst.__class__ is bool:
-                raise _enc('icmp_echo_request', 'dst', r_dst, 'type', 'an int')
-            if not 0 <= r_dst <= 4294967295:
-                raise _enc('icmp_echo_request', 'dst', r_dst, 'range', '0..4294967295', None)
-    r_icmp_checksum = 0
     r_identifier = m.identifier
     r_sequence = m.sequence
-    if (r_identifier.__class__ is not int or not 0 <= r_identifier <= 65535) or (r_sequence.__class__ is not int or not 0 <= r_sequence <= 65535):
-        if r_identifier.__class__ is not int or not 0 <= r_identifier <= 65535:
-            if not isinstance(r_identifier, int) or r_identifier.__class__ is bool:
-                raise _enc('icmp_echo_request', 'identifier', r_identifier, 'type', 'an int')
-            if not 0 <= r_identifier <= 65535:
-                raise _enc('icmp_echo_request', 'identifier', r_identifier, 'range', '0..65535', None)
-        if r_sequence.__class__ is not int or not 0 <= r_sequence <= 65535:
-            if not isinstance(r_sequence, int) or r_sequence.__class__ is bool:
-                raise _enc('icmp_echo_request', 'sequence', r_sequence, 'type', 'an int')
-            if not 0 <= r_sequence <= 65535:
-                raise _enc('icmp_echo_request', 'sequence', r_sequence, 'range', '0..65535', None)
+    if (r_dscp.__class__ is not int or not 0 <= r_dscp <= 63) or (r_ecn.__class__ is not int or not 0 <= r_ecn <= 3) or (r_identification.__class__ is not int or not 0 <= r_identification <= 65535) or (r_flags.__class__ is not int or not 0 <= r_flags <= 7) or (r_fragment_offset.__class__ is not int or not 0 <= r_fragment_offset <= 8191) or (r_ttl.__class__ is not int or not 0 <= r_ttl <= 255) or (r_src.__class__ is not int or not 0 <= r_src <= 4294967295) or (r_dst.__class__ is not int or not 0 <= r_dst <= 4294967295) or (r_identifier.__class__ is not int or not 0 <= r_identifier <= 65535) or (r_sequence.__class__ is not int or not 0 <= r_sequence <= 65535):
+        _faults('icmp_echo_request', (r_dscp, r_ecn, r_identification, r_flags, r_fragment_offset, r_ttl, r_src, r_dst, r_identifier, r_sequence, ), (('int', 'dscp', 0, 63, False, None), ('int', 'ecn', 0, 3, False, None), ('int', 'identification', 0, 65535, False, None), ('int', 'flags', 0, 7, False, None), ('int', 'fragment_offset', 0, 8191, False, None), ('int', 'ttl', 0, 255, False, None), ('int', 'src', 0, 4294967295, False, None), ('int', 'dst', 0, 4294967295, False, None), ('int', 'identifier', 0, 65535, False, None), ('int', 'sequence', 0, 65535, False, None)))
     r_data = m.data
     if not isinstance(r_data, (bytes, bytearray)) or len(r_data) > 64:
         raise _enc('icmp_echo_request', 'data', r_data, 'length', 'bytes of length 0..64')
@@ -400,81 +447,21 @@ def _decode_icmp_echo_request(d: _Buffer) -> IcmpEchoRequest:
 
 
 def _encode_udp(m: Udp) -> bytes:
+    r_header_checksum = 0
     r_dscp = m.dscp
     r_ecn = m.ecn
     r_identification = m.identification
     r_flags = m.flags
     r_fragment_offset = m.fragment_offset
     r_ttl = m.ttl
-    if (r_dscp.__class__ is not int or not 0 <= r_dscp <= 63) or (r_ecn.__class__ is not int or not 0 <= r_ecn <= 3) or (r_identification.__class__ is not int or not 0 <= r_identification <= 65535) or (r_flags.__class__ is not int or not 0 <= r_flags <= 7) or (r_fragment_offset.__class__ is not int or not 0 <= r_fragment_offset <= 8191) or (r_ttl.__class__ is not int or not 0 <= r_ttl <= 255):
-        if r_dscp.__class__ is not int or not 0 <= r_dscp <= 63:
-            if not isinstance(r_dscp, int) or r_dscp.__class__ is bool:
-                raise _enc('udp', 'dscp', r_dscp, 'type', 'an int')
-            if not 0 <= r_dscp <= 63:
-                raise _enc('udp', 'dscp', r_dscp, 'range', '0..63', None)
-        if r_ecn.__class__ is not int or not 0 <= r_ecn <= 3:
-            if not isinstance(r_ecn, int) or r_ecn.__class__ is bool:
-                raise _enc('udp', 'ecn', r_ecn, 'type', 'an int')
-            if not 0 <= r_ecn <= 3:
-                raise _enc('udp', 'ecn', r_ecn, 'range', '0..3', None)
-        if r_identification.__class__ is not int or not 0 <= r_identification <= 65535:
-            if not isinstance(r_identification, int) or r_identification.__class__ is bool:
-                raise _enc('udp', 'identification', r_identification, 'type', 'an int')
-            if not 0 <= r_identification <= 65535:
-                raise _enc('udp', 'identification', r_identification, 'range', '0..65535', None)
-        if r_flags.__class__ is not int or not 0 <= r_flags <= 7:
-            if not isinstance(r_flags, int) or r_flags.__class__ is bool:
-                raise _enc('udp', 'flags', r_flags, 'type', 'an int')
-            if not 0 <= r_flags <= 7:
-                raise _enc('udp', 'flags', r_flags, 'range', '0..7', None)
-        if r_fragment_offset.__class__ is not int or not 0 <= r_fragment_offset <= 8191:
-            if not isinstance(r_fragment_offset, int) or r_fragment_offset.__class__ is bool:
-                raise _enc('udp', 'fragment_offset', r_fragment_offset, 'type', 'an int')
-            if not 0 <= r_fragment_offset <= 8191:
-                raise _enc('udp', 'fragment_offset', r_fragment_offset, 'range', '0..8191', None)
-        if r_ttl.__class__ is not int or not 0 <= r_ttl <= 255:
-            if not isinstance(r_ttl, int) or r_ttl.__class__ is bool:
-                raise _enc('udp', 'ttl', r_ttl, 'type', 'an int')
-            if not 0 <= r_ttl <= 255:
-                raise _enc('udp', 'ttl', r_ttl, 'range', '0..255', None)
-    r_header_checksum = 0
     r_src = m.src
     r_dst = m.dst
     r_src_port = m.src_port
     r_dst_port = m.dst_port
     r_length = m.length
     r_udp_checksum = m.udp_checksum
-    if (r_src.__class__ is not int or not 0 <= r_src <= 4294967295) or (r_dst.__class__ is not int or not 0 <= r_dst <= 4294967295) or (r_src_port.__class__ is not int or not 0 <= r_src_port <= 65535) or (r_dst_port.__class__ is not int or not 0 <= r_dst_port <= 65535) or (r_length.__class__ is not int or not 0 <= r_length <= 65535) or (r_udp_checksum.__class__ is not int or not 0 <= r_udp_checksum <= 65535):
-        if r_src.__class__ is not int or not 0 <= r_src <= 4294967295:
-            if not isinstance(r_src, int) or r_src.__class__ is bool:
-                raise _enc('udp', 'src', r_src, 'type', 'an int')
-            if not 0 <= r_src <= 4294967295:
-                raise _enc('udp', 'src', r_src, 'range', '0..4294967295', None)
-        if r_dst.__class__ is not int or not 0 <= r_dst <= 4294967295:
-            if not isinstance(r_dst, int) or r_dst.__class__ is bool:
-                raise _enc('udp', 'dst', r_dst, 'type', 'an int')
-            if not 0 <= r_dst <= 4294967295:
-                raise _enc('udp', 'dst', r_dst, 'range', '0..4294967295', None)
-        if r_src_port.__class__ is not int or not 0 <= r_src_port <= 65535:
-            if not isinstance(r_src_port, int) or r_src_port.__class__ is bool:
-                raise _enc('udp', 'src_port', r_src_port, 'type', 'an int')
-            if not 0 <= r_src_port <= 65535:
-                raise _enc('udp', 'src_port', r_src_port, 'range', '0..65535', None)
-        if r_dst_port.__class__ is not int or not 0 <= r_dst_port <= 65535:
-            if not isinstance(r_dst_port, int) or r_dst_port.__class__ is bool:
-                raise _enc('udp', 'dst_port', r_dst_port, 'type', 'an int')
-            if not 0 <= r_dst_port <= 65535:
-                raise _enc('udp', 'dst_port', r_dst_port, 'range', '0..65535', None)
-        if r_length.__class__ is not int or not 0 <= r_length <= 65535:
-            if not isinstance(r_length, int) or r_length.__class__ is bool:
-                raise _enc('udp', 'length', r_length, 'type', 'an int')
-            if not 0 <= r_length <= 65535:
-                raise _enc('udp', 'length', r_length, 'range', '0..65535', None)
-        if r_udp_checksum.__class__ is not int or not 0 <= r_udp_checksum <= 65535:
-            if not isinstance(r_udp_checksum, int) or r_udp_checksum.__class__ is bool:
-                raise _enc('udp', 'udp_checksum', r_udp_checksum, 'type', 'an int')
-            if not 0 <= r_udp_checksum <= 65535:
-                raise _enc('udp', 'udp_checksum', r_udp_checksum, 'range', '0..65535', None)
+    if (r_dscp.__class__ is not int or not 0 <= r_dscp <= 63) or (r_ecn.__class__ is not int or not 0 <= r_ecn <= 3) or (r_identification.__class__ is not int or not 0 <= r_identification <= 65535) or (r_flags.__class__ is not int or not 0 <= r_flags <= 7) or (r_fragment_offset.__class__ is not int or not 0 <= r_fragment_offset <= 8191) or (r_ttl.__class__ is not int or not 0 <= r_ttl <= 255) or (r_src.__class__ is not int or not 0 <= r_src <= 4294967295) or (r_dst.__class__ is not int or not 0 <= r_dst <= 4294967295) or (r_src_port.__class__ is not int or not 0 <= r_src_port <= 65535) or (r_dst_port.__class__ is not int or not 0 <= r_dst_port <= 65535) or (r_length.__class__ is not int or not 0 <= r_length <= 65535) or (r_udp_checksum.__class__ is not int or not 0 <= r_udp_checksum <= 65535):
+        _faults('udp', (r_dscp, r_ecn, r_identification, r_flags, r_fragment_offset, r_ttl, r_src, r_dst, r_src_port, r_dst_port, r_length, r_udp_checksum, ), (('int', 'dscp', 0, 63, False, None), ('int', 'ecn', 0, 3, False, None), ('int', 'identification', 0, 65535, False, None), ('int', 'flags', 0, 7, False, None), ('int', 'fragment_offset', 0, 8191, False, None), ('int', 'ttl', 0, 255, False, None), ('int', 'src', 0, 4294967295, False, None), ('int', 'dst', 0, 4294967295, False, None), ('int', 'src_port', 0, 65535, False, None), ('int', 'dst_port', 0, 65535, False, None), ('int', 'length', 0, 65535, False, None), ('int', 'udp_checksum', 0, 65535, False, None)))
     r_data = m.data
     if not isinstance(r_data, (bytes, bytearray)) or len(r_data) > 128:
         raise _enc('udp', 'data', r_data, 'length', 'bytes of length 0..128')
@@ -659,8 +646,9 @@ class StreamDecoder:
 
 
 _ENCODERS: dict[type[Any], Callable[[Any], bytes]] = {IcmpEchoRequest: _encode_icmp_echo_request, Udp: _encode_udp, }
+_DECODERS: dict[type[Any], Callable[..., Any]] = {IcmpEchoRequest: _decode_icmp_echo_request, Udp: _decode_udp, }
 for _cls, _encoder in _ENCODERS.items():  # each encoder is its class's encode method: one call, not two
-    _encoder.__doc__ = _cls.encode.__doc__
+    _encoder.__doc__ = _Message.encode.__doc__
     setattr(_cls, "encode", _encoder)
 MESSAGES: dict[str, type[AnyMessage]] = {'icmp_echo_request': IcmpEchoRequest, 'udp': Udp, }
 

@@ -14,7 +14,6 @@ import math
 import os
 
 import struct
-from dataclasses import dataclass
 from typing import Any, Callable, ClassVar, Optional, TypeVar, Union, cast
 
 _Buffer = Union[bytes, bytearray, "memoryview[int]"]  # what a binary decoder reads
@@ -30,6 +29,63 @@ FINGERPRINT32 = 0x108be0a0  # its first 32 bits
 _floor = math.floor
 _isfinite = math.isfinite
 _object_new = object.__new__
+_FRESH: Any = object()  # an argument left out whose default (a list, a group) is built for each object
+
+
+class _DataclassFields:
+    """A class's table of dataclass fields, made the first time it is read and then kept on the
+    class, for dataclasses.fields, replace, asdict and is_dataclass."""
+
+    def __get__(self, obj: object, owner: type[_Record]) -> dict[str, Any]:
+        from dataclasses import field, make_dataclass
+        init: Any = owner.__init__
+        defaults: dict[str, Any] = init.__kwdefaults__ or {}
+        annotations: dict[str, Any] = owner.__annotations__
+        names = owner._NAMES  # pyright: ignore[reportPrivateUsage]
+        fields: list[tuple[str, Any, Any]] = [
+            (n, annotations[n], field(default=defaults[n]) if defaults.get(n, _FRESH) is not _FRESH else field())
+            for n in names]
+        slots: tuple[str, ...] = owner.__slots__
+        fields += [(n, annotations[n], field(default=None, init=False, repr=False, compare=False))
+                   for n in slots if n not in names]
+        made: Any = make_dataclass(owner.__name__, fields, kw_only=True)
+        table: dict[str, Any] = made.__dataclass_fields__
+        setattr(owner, "__dataclass_fields__", table)
+        return table
+
+
+_R = TypeVar("_R", bound="_Record")
+
+
+class _Record:
+    """What every message, group and sequence class is: its fields in slots, set by a keyword
+    constructor; compared and shown field by field, in order, as a dataclass is; and a
+    dataclass to the dataclasses module. Its table of fields is made when first asked for: a
+    @dataclass decorator writes and compiles each class's methods while the module is
+    imported, which in a protocol of hundreds of messages costs more than all the rest."""
+
+    __slots__ = ()
+    _NAMES: ClassVar[tuple[str, ...]] = ()
+    __dataclass_fields__: ClassVar[dict[str, Any]] = _DataclassFields()  # type: ignore[assignment]
+
+    def __eq__(self, other: object) -> bool:
+        if other.__class__ is not self.__class__:
+            return NotImplemented
+        return [getattr(self, n) for n in self._NAMES] == [getattr(other, n) for n in self._NAMES]
+
+    def __repr__(self) -> str:
+        return f"{self.__class__.__qualname__}({', '.join(f'{n}={getattr(self, n)!r}' for n in self._NAMES)})"
+
+    def to_dict(self) -> dict[str, Any]:
+        """The object as JSON-ready data: enum members and flags by name, bytes as hex, numbers
+        in logical units; from_dict reads it back."""
+        return _to_dict(self)
+
+    @classmethod
+    def from_dict(cls: type[_R], values: dict[str, Any]) -> _R:
+        """An object from the data to_dict gives; an unknown key or a value of the wrong type is
+        a DecodeError."""
+        return _from_dict(cls, values, getattr(cls, "NAME", cls.__name__), "")
 
 
 class CodecError(ValueError):
@@ -117,6 +173,40 @@ def _enc(message: Optional[str], field: Optional[str], value: object, rule: str,
     return EncodeError(message, field, value, rule, allowed, None, decision, user_message)
 
 
+def _int_fault(message: str, field: Optional[str], value: Any, lo: Any, hi: Any, number: bool,
+               decision: Optional[str], user_message: Optional[str] = None) -> None:
+    """Raise the EncodeError of an integer field's value that its usual test did not pass: not
+    an int (a number, if the field is scaled), or out of its range."""
+    if not isinstance(value, (int, float) if number else int) or value.__class__ is bool:
+        raise _enc(message, field, value, 'type', 'a number' if number else 'an int')
+    if not lo <= value <= hi:
+        raise _enc(message, field, value, 'range', f'{lo!r}..{hi!r}', decision, user_message)
+
+
+def _faults(message: str, values: tuple[Any, ...], specs: tuple[tuple[Any, ...], ...]) -> None:
+    """Raise the EncodeError of the first of several numbers that fails its usual test; each
+    spec is ("int", field, lo, hi, scaled, decision[, message]) or ("float", field, binary32)."""
+    for value, (kind, name, *limits) in zip(values, specs):
+        if kind == "int":
+            _int_fault(message, name, value, *limits)
+        else:
+            _float_fault(message, name, value, *limits)
+
+
+def _float_fault(message: str, field: Optional[str], value: Any, binary32: bool) -> None:
+    """Raise the EncodeError of a float field's value that its usual test did not pass: not a
+    number, not finite, or (binary32) beyond a binary32's range."""
+    if value.__class__ is not float:
+        if not isinstance(value, (int, float)) or value.__class__ is bool:
+            raise _enc(message, field, value, 'type', 'a number')
+        if not -1.7976931348623157e308 <= value <= 1.7976931348623157e308:  # exact for any int
+            raise _enc(message, field, value, 'finite', 'a finite number')
+    if not _isfinite(value):
+        raise _enc(message, field, value, 'finite', 'a finite number')
+    if binary32 and (value > 3.4028234663852886e38 or value < -3.4028234663852886e38):
+        raise _enc(message, field, value, 'range', 'a binary32 value')
+
+
 def _dec(message: Optional[str], field: Optional[str], value: object, rule: str, allowed: str = "",
          offset: Optional[int] = None, decision: Optional[str] = None,
          user_message: Optional[str] = None) -> DecodeError:
@@ -127,14 +217,33 @@ def _dec(message: Optional[str], field: Optional[str], value: object, rule: str,
 # kind: int, number, bool, str, bytes (hex text), enum (a member's name), flags (a list of
 # names) or group (a nested mapping).
 _Spec = tuple[str, str, Any, bool, bool, bool]
+_Msg = TypeVar("_Msg", bound="_Message")
 
 
-@dataclass(slots=True, kw_only=True)
-class Heartbeat:
+class _Message(_Record):
+    """What every message class does: encode itself, decode its own wire form. Each message's
+    encoder and decoder is set on its class as the method itself (one call, not two)."""
+
+    __slots__ = ()
+    NAME: ClassVar[str]
+
+    def encode(self) -> bytes:
+        """The message in its wire form; an EncodeError if a value breaks the schema."""
+        return _ENCODERS[self.__class__](self)
+
+    @classmethod
+    def decode(cls: type[_Msg], data: _Input) -> _Msg:
+        """The message from its wire form; a DecodeError if it is not one."""
+        return cast(_Msg, _DECODERS[cls](data if data.__class__ is bytes else _as_input(data)))
+
+
+class Heartbeat(_Message):
     """the system is present and in this state"""
 
+    __slots__ = ('seq', 'sysid', 'compid', 'custom_mode', 'type', 'autopilot', 'base_mode', 'system_status', 'mavlink_version')
     NAME: ClassVar[str] = 'heartbeat'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('seq', 'int', None, False, False, True), ('sysid', 'int', None, False, False, True), ('compid', 'int', None, False, False, True), ('custom_mode', 'int', None, False, False, True), ('type', 'int', None, False, False, True), ('autopilot', 'int', None, False, False, True), ('base_mode', 'int', None, False, False, True), ('system_status', 'int', None, False, False, True), ('mavlink_version', 'int', None, False, False, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('seq', 'sysid', 'compid', 'custom_mode', 'type', 'autopilot', 'base_mode', 'system_status', 'mavlink_version')
 
     seq: int
     """packet sequence number, wraps at 255"""
@@ -157,33 +266,25 @@ class Heartbeat:
 
     mavlink_version: int
 
-    def to_dict(self) -> dict[str, Any]:
-        """The Heartbeat as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> Heartbeat:
-        """A Heartbeat from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(Heartbeat, values, 'heartbeat', "")
-
-    def encode(self) -> bytes:
-        """The heartbeat message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_heartbeat(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> Heartbeat:
-        """A heartbeat message from its wire form; a DecodeError if it is not one."""
-        return _decode_heartbeat(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, seq: int, sysid: int, compid: int, custom_mode: int, type: int, autopilot: int, base_mode: int, system_status: int, mavlink_version: int) -> None:
+        self.seq = seq
+        self.sysid = sysid
+        self.compid = compid
+        self.custom_mode = custom_mode
+        self.type = type
+        self.autopilot = autopilot
+        self.base_mode = base_mode
+        self.system_status = system_status
+        self.mavlink_version = mavlink_version
 
 
-@dataclass(slots=True, kw_only=True)
-class SysStatus:
+class SysStatus(_Message):
     """general system state"""
 
+    __slots__ = ('seq', 'sysid', 'compid', 'onboard_control_sensors_present', 'onboard_control_sensors_enabled', 'onboard_control_sensors_health', 'load', 'voltage_battery', 'current_battery', 'drop_rate_comm', 'errors_comm', 'errors_count1', 'errors_count2', 'errors_count3', 'errors_count4', 'battery_remaining')
     NAME: ClassVar[str] = 'sys_status'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('seq', 'int', None, False, False, True), ('sysid', 'int', None, False, False, True), ('compid', 'int', None, False, False, True), ('onboard_control_sensors_present', 'int', None, False, False, True), ('onboard_control_sensors_enabled', 'int', None, False, False, True), ('onboard_control_sensors_health', 'int', None, False, False, True), ('load', 'int', None, False, False, True), ('voltage_battery', 'int', None, False, False, True), ('current_battery', 'int', None, False, False, True), ('drop_rate_comm', 'int', None, False, False, True), ('errors_comm', 'int', None, False, False, True), ('errors_count1', 'int', None, False, False, True), ('errors_count2', 'int', None, False, False, True), ('errors_count3', 'int', None, False, False, True), ('errors_count4', 'int', None, False, False, True), ('battery_remaining', 'int', None, False, False, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('seq', 'sysid', 'compid', 'onboard_control_sensors_present', 'onboard_control_sensors_enabled', 'onboard_control_sensors_health', 'load', 'voltage_battery', 'current_battery', 'drop_rate_comm', 'errors_comm', 'errors_count1', 'errors_count2', 'errors_count3', 'errors_count4', 'battery_remaining')
 
     seq: int
     """packet sequence number, wraps at 255"""
@@ -225,33 +326,32 @@ class SysStatus:
     battery_remaining: int
     """[%]"""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The SysStatus as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> SysStatus:
-        """A SysStatus from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(SysStatus, values, 'sys_status', "")
-
-    def encode(self) -> bytes:
-        """The sys_status message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_sys_status(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> SysStatus:
-        """A sys_status message from its wire form; a DecodeError if it is not one."""
-        return _decode_sys_status(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, seq: int, sysid: int, compid: int, onboard_control_sensors_present: int, onboard_control_sensors_enabled: int, onboard_control_sensors_health: int, load: int, voltage_battery: int, current_battery: int, drop_rate_comm: int, errors_comm: int, errors_count1: int, errors_count2: int, errors_count3: int, errors_count4: int, battery_remaining: int) -> None:
+        self.seq = seq
+        self.sysid = sysid
+        self.compid = compid
+        self.onboard_control_sensors_present = onboard_control_sensors_present
+        self.onboard_control_sensors_enabled = onboard_control_sensors_enabled
+        self.onboard_control_sensors_health = onboard_control_sensors_health
+        self.load = load
+        self.voltage_battery = voltage_battery
+        self.current_battery = current_battery
+        self.drop_rate_comm = drop_rate_comm
+        self.errors_comm = errors_comm
+        self.errors_count1 = errors_count1
+        self.errors_count2 = errors_count2
+        self.errors_count3 = errors_count3
+        self.errors_count4 = errors_count4
+        self.battery_remaining = battery_remaining
 
 
-@dataclass(slots=True, kw_only=True)
-class ParamValue:
+class ParamValue(_Message):
     """the value of an onboard parameter"""
 
+    __slots__ = ('seq', 'sysid', 'compid', 'param_value', 'param_count', 'param_index', 'param_id', 'param_type')
     NAME: ClassVar[str] = 'param_value'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('seq', 'int', None, False, False, True), ('sysid', 'int', None, False, False, True), ('compid', 'int', None, False, False, True), ('param_value', 'number', None, False, False, True), ('param_count', 'int', None, False, False, True), ('param_index', 'int', None, False, False, True), ('param_id', 'bytes', None, False, False, True), ('param_type', 'int', None, False, False, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('seq', 'sysid', 'compid', 'param_value', 'param_count', 'param_index', 'param_id', 'param_type')
 
     seq: int
     """packet sequence number, wraps at 255"""
@@ -273,33 +373,24 @@ class ParamValue:
 
     param_type: int
 
-    def to_dict(self) -> dict[str, Any]:
-        """The ParamValue as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> ParamValue:
-        """A ParamValue from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(ParamValue, values, 'param_value', "")
-
-    def encode(self) -> bytes:
-        """The param_value message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_param_value(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> ParamValue:
-        """A param_value message from its wire form; a DecodeError if it is not one."""
-        return _decode_param_value(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, seq: int, sysid: int, compid: int, param_value: float, param_count: int, param_index: int, param_id: bytes, param_type: int) -> None:
+        self.seq = seq
+        self.sysid = sysid
+        self.compid = compid
+        self.param_value = param_value
+        self.param_count = param_count
+        self.param_index = param_index
+        self.param_id = param_id
+        self.param_type = param_type
 
 
-@dataclass(slots=True, kw_only=True)
-class GpsRawInt:
+class GpsRawInt(_Message):
     """the GPS fix as the receiver reports it"""
 
+    __slots__ = ('seq', 'sysid', 'compid', 'time_usec', 'lat', 'lon', 'alt', 'eph', 'epv', 'vel', 'cog', 'fix_type', 'satellites_visible')
     NAME: ClassVar[str] = 'gps_raw_int'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('seq', 'int', None, False, False, True), ('sysid', 'int', None, False, False, True), ('compid', 'int', None, False, False, True), ('time_usec', 'int', None, False, False, True), ('lat', 'int', None, False, False, True), ('lon', 'int', None, False, False, True), ('alt', 'int', None, False, False, True), ('eph', 'int', None, False, False, True), ('epv', 'int', None, False, False, True), ('vel', 'int', None, False, False, True), ('cog', 'int', None, False, False, True), ('fix_type', 'int', None, False, False, True), ('satellites_visible', 'int', None, False, False, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('seq', 'sysid', 'compid', 'time_usec', 'lat', 'lon', 'alt', 'eph', 'epv', 'vel', 'cog', 'fix_type', 'satellites_visible')
 
     seq: int
     """packet sequence number, wraps at 255"""
@@ -336,33 +427,29 @@ class GpsRawInt:
 
     satellites_visible: int
 
-    def to_dict(self) -> dict[str, Any]:
-        """The GpsRawInt as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> GpsRawInt:
-        """A GpsRawInt from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(GpsRawInt, values, 'gps_raw_int', "")
-
-    def encode(self) -> bytes:
-        """The gps_raw_int message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_gps_raw_int(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> GpsRawInt:
-        """A gps_raw_int message from its wire form; a DecodeError if it is not one."""
-        return _decode_gps_raw_int(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, seq: int, sysid: int, compid: int, time_usec: int, lat: int, lon: int, alt: int, eph: int, epv: int, vel: int, cog: int, fix_type: int, satellites_visible: int) -> None:
+        self.seq = seq
+        self.sysid = sysid
+        self.compid = compid
+        self.time_usec = time_usec
+        self.lat = lat
+        self.lon = lon
+        self.alt = alt
+        self.eph = eph
+        self.epv = epv
+        self.vel = vel
+        self.cog = cog
+        self.fix_type = fix_type
+        self.satellites_visible = satellites_visible
 
 
-@dataclass(slots=True, kw_only=True)
-class Attitude:
+class Attitude(_Message):
     """the attitude in the aeronautical frame"""
 
+    __slots__ = ('seq', 'sysid', 'compid', 'time_boot_ms', 'roll', 'pitch', 'yaw', 'rollspeed', 'pitchspeed', 'yawspeed')
     NAME: ClassVar[str] = 'attitude'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('seq', 'int', None, False, False, True), ('sysid', 'int', None, False, False, True), ('compid', 'int', None, False, False, True), ('time_boot_ms', 'int', None, False, False, True), ('roll', 'number', None, False, False, True), ('pitch', 'number', None, False, False, True), ('yaw', 'number', None, False, False, True), ('rollspeed', 'number', None, False, False, True), ('pitchspeed', 'number', None, False, False, True), ('yawspeed', 'number', None, False, False, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('seq', 'sysid', 'compid', 'time_boot_ms', 'roll', 'pitch', 'yaw', 'rollspeed', 'pitchspeed', 'yawspeed')
 
     seq: int
     """packet sequence number, wraps at 255"""
@@ -394,33 +481,26 @@ class Attitude:
     yawspeed: float
     """[rad/s]"""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The Attitude as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> Attitude:
-        """A Attitude from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(Attitude, values, 'attitude', "")
-
-    def encode(self) -> bytes:
-        """The attitude message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_attitude(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> Attitude:
-        """A attitude message from its wire form; a DecodeError if it is not one."""
-        return _decode_attitude(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, seq: int, sysid: int, compid: int, time_boot_ms: int, roll: float, pitch: float, yaw: float, rollspeed: float, pitchspeed: float, yawspeed: float) -> None:
+        self.seq = seq
+        self.sysid = sysid
+        self.compid = compid
+        self.time_boot_ms = time_boot_ms
+        self.roll = roll
+        self.pitch = pitch
+        self.yaw = yaw
+        self.rollspeed = rollspeed
+        self.pitchspeed = pitchspeed
+        self.yawspeed = yawspeed
 
 
-@dataclass(slots=True, kw_only=True)
-class CommandLong:
+class CommandLong(_Message):
     """a command with up to seven parameters"""
 
+    __slots__ = ('seq', 'sysid', 'compid', 'param1', 'param2', 'param3', 'param4', 'param5', 'param6', 'param7', 'command', 'target_system', 'target_component', 'confirmation')
     NAME: ClassVar[str] = 'command_long'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('seq', 'int', None, False, False, True), ('sysid', 'int', None, False, False, True), ('compid', 'int', None, False, False, True), ('param1', 'number', None, False, False, True), ('param2', 'number', None, False, False, True), ('param3', 'number', None, False, False, True), ('param4', 'number', None, False, False, True), ('param5', 'number', None, False, False, True), ('param6', 'number', None, False, False, True), ('param7', 'number', None, False, False, True), ('command', 'int', None, False, False, True), ('target_system', 'int', None, False, False, True), ('target_component', 'int', None, False, False, True), ('confirmation', 'int', None, False, False, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('seq', 'sysid', 'compid', 'param1', 'param2', 'param3', 'param4', 'param5', 'param6', 'param7', 'command', 'target_system', 'target_component', 'confirmation')
 
     seq: int
     """packet sequence number, wraps at 255"""
@@ -453,25 +533,21 @@ class CommandLong:
 
     confirmation: int
 
-    def to_dict(self) -> dict[str, Any]:
-        """The CommandLong as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> CommandLong:
-        """A CommandLong from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(CommandLong, values, 'command_long', "")
-
-    def encode(self) -> bytes:
-        """The command_long message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_command_long(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> CommandLong:
-        """A command_long message from its wire form; a DecodeError if it is not one."""
-        return _decode_command_long(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, seq: int, sysid: int, compid: int, param1: float, param2: float, param3: float, param4: float, param5: float, param6: float, param7: float, command: int, target_system: int, target_component: int, confirmation: int) -> None:
+        self.seq = seq
+        self.sysid = sysid
+        self.compid = compid
+        self.param1 = param1
+        self.param2 = param2
+        self.param3 = param3
+        self.param4 = param4
+        self.param5 = param5
+        self.param6 = param6
+        self.param7 = param7
+        self.command = command
+        self.target_system = target_system
+        self.target_component = target_component
+        self.confirmation = confirmation
 
 
 AnyMessage = Union[Heartbeat, SysStatus, ParamValue, GpsRawInt, Attitude, CommandLong, ]
@@ -509,6 +585,7 @@ def _as_input(data: object) -> _Buffer:
 
 
 def _encode_heartbeat(m: Heartbeat) -> bytes:
+    r_checksum = 0
     r_seq = m.seq
     r_sysid = m.sysid
     r_compid = m.compid
@@ -519,52 +596,7 @@ def _encode_heartbeat(m: Heartbeat) -> bytes:
     r_system_status = m.system_status
     r_mavlink_version = m.mavlink_version
     if (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255) or (r_custom_mode.__class__ is not int or not 0 <= r_custom_mode <= 4294967295) or (r_type.__class__ is not int or not 0 <= r_type <= 255) or (r_autopilot.__class__ is not int or not 0 <= r_autopilot <= 255) or (r_base_mode.__class__ is not int or not 0 <= r_base_mode <= 255) or (r_system_status.__class__ is not int or not 0 <= r_system_status <= 255) or (r_mavlink_version.__class__ is not int or not 0 <= r_mavlink_version <= 255):
-        if r_seq.__class__ is not int or not 0 <= r_seq <= 255:
-            if not isinstance(r_seq, int) or r_seq.__class__ is bool:
-                raise _enc('heartbeat', 'seq', r_seq, 'type', 'an int')
-            if not 0 <= r_seq <= 255:
-                raise _enc('heartbeat', 'seq', r_seq, 'range', '0..255', None)
-        if r_sysid.__class__ is not int or not 0 <= r_sysid <= 255:
-            if not isinstance(r_sysid, int) or r_sysid.__class__ is bool:
-                raise _enc('heartbeat', 'sysid', r_sysid, 'type', 'an int')
-            if not 0 <= r_sysid <= 255:
-                raise _enc('heartbeat', 'sysid', r_sysid, 'range', '0..255', None)
-        if r_compid.__class__ is not int or not 0 <= r_compid <= 255:
-            if not isinstance(r_compid, int) or r_compid.__class__ is bool:
-                raise _enc('heartbeat', 'compid', r_compid, 'type', 'an int')
-            if not 0 <= r_compid <= 255:
-                raise _enc('heartbeat', 'compid', r_compid, 'range', '0..255', None)
-        if r_custom_mode.__class__ is not int or not 0 <= r_custom_mode <= 4294967295:
-            if not isinstance(r_custom_mode, int) or r_custom_mode.__class__ is bool:
-                raise _enc('heartbeat', 'custom_mode', r_custom_mode, 'type', 'an int')
-            if not 0 <= r_custom_mode <= 4294967295:
-                raise _enc('heartbeat', 'custom_mode', r_custom_mode, 'range', '0..4294967295', None)
-        if r_type.__class__ is not int or not 0 <= r_type <= 255:
-            if not isinstance(r_type, int) or r_type.__class__ is bool:
-                raise _enc('heartbeat', 'type', r_type, 'type', 'an int')
-            if not 0 <= r_type <= 255:
-                raise _enc('heartbeat', 'type', r_type, 'range', '0..255', None)
-        if r_autopilot.__class__ is not int or not 0 <= r_autopilot <= 255:
-            if not isinstance(r_autopilot, int) or r_autopilot.__class__ is bool:
-                raise _enc('heartbeat', 'autopilot', r_autopilot, 'type', 'an int')
-            if not 0 <= r_autopilot <= 255:
-                raise _enc('heartbeat', 'autopilot', r_autopilot, 'range', '0..255', None)
-        if r_base_mode.__class__ is not int or not 0 <= r_base_mode <= 255:
-            if not isinstance(r_base_mode, int) or r_base_mode.__class__ is bool:
-                raise _enc('heartbeat', 'base_mode', r_base_mode, 'type', 'an int')
-            if not 0 <= r_base_mode <= 255:
-                raise _enc('heartbeat', 'base_mode', r_base_mode, 'range', '0..255', None)
-        if r_system_status.__class__ is not int or not 0 <= r_system_status <= 255:
-            if not isinstance(r_system_status, int) or r_system_status.__class__ is bool:
-                raise _enc('heartbeat', 'system_status', r_system_status, 'type', 'an int')
-            if not 0 <= r_system_status <= 255:
-                raise _enc('heartbeat', 'system_status', r_system_status, 'range', '0..255', None)
-        if r_mavlink_version.__class__ is not int or not 0 <= r_mavlink_version <= 255:
-            if not isinstance(r_mavlink_version, int) or r_mavlink_version.__class__ is bool:
-                raise _enc('heartbeat', 'mavlink_version', r_mavlink_version, 'type', 'an int')
-            if not 0 <= r_mavlink_version <= 255:
-                raise _enc('heartbeat', 'mavlink_version', r_mavlink_version, 'range', '0..255', None)
-    r_checksum = 0
+        _faults('heartbeat', (r_seq, r_sysid, r_compid, r_custom_mode, r_type, r_autopilot, r_base_mode, r_system_status, r_mavlink_version, ), (('int', 'seq', 0, 255, False, None), ('int', 'sysid', 0, 255, False, None), ('int', 'compid', 0, 255, False, None), ('int', 'custom_mode', 0, 4294967295, False, None), ('int', 'type', 0, 255, False, None), ('int', 'autopilot', 0, 255, False, None), ('int', 'base_mode', 0, 255, False, None), ('int', 'system_status', 0, 255, False, None), ('int', 'mavlink_version', 0, 255, False, None)))
     b = bytearray(17)
     _S_heartbeat_0.pack_into(b, 0, 254, 9, r_seq, r_sysid, r_compid, 0, r_custom_mode, r_type, r_autopilot, r_base_mode, r_system_status, r_mavlink_version, r_checksum)
     b[15:17] = _checksum_crc16_1021_ffff_rr_0_extra(bytes(b[1:15]) + b'2').to_bytes(2, 'little')
@@ -601,6 +633,7 @@ def _decode_heartbeat(d: _Buffer) -> Heartbeat:
 
 
 def _encode_sys_status(m: SysStatus) -> bytes:
+    r_checksum = 0
     r_seq = m.seq
     r_sysid = m.sysid
     r_compid = m.compid
@@ -618,87 +651,7 @@ def _encode_sys_status(m: SysStatus) -> bytes:
     r_errors_count4 = m.errors_count4
     r_battery_remaining = m.battery_remaining
     if (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255) or (r_onboard_control_sensors_present.__class__ is not int or not 0 <= r_onboard_control_sensors_present <= 4294967295) or (r_onboard_control_sensors_enabled.__class__ is not int or not 0 <= r_onboard_control_sensors_enabled <= 4294967295) or (r_onboard_control_sensors_health.__class__ is not int or not 0 <= r_onboard_control_sensors_health <= 4294967295) or (r_load.__class__ is not int or not 0 <= r_load <= 65535) or (r_voltage_battery.__class__ is not int or not 0 <= r_voltage_battery <= 65535) or (r_current_battery.__class__ is not int or not -32768 <= r_current_battery <= 32767) or (r_drop_rate_comm.__class__ is not int or not 0 <= r_drop_rate_comm <= 65535) or (r_errors_comm.__class__ is not int or not 0 <= r_errors_comm <= 65535) or (r_errors_count1.__class__ is not int or not 0 <= r_errors_count1 <= 65535) or (r_errors_count2.__class__ is not int or not 0 <= r_errors_count2 <= 65535) or (r_errors_count3.__class__ is not int or not 0 <= r_errors_count3 <= 65535) or (r_errors_count4.__class__ is not int or not 0 <= r_errors_count4 <= 65535) or (r_battery_remaining.__class__ is not int or not -128 <= r_battery_remaining <= 127):
-        if r_seq.__class__ is not int or not 0 <= r_seq <= 255:
-            if not isinstance(r_seq, int) or r_seq.__class__ is bool:
-                raise _enc('sys_status', 'seq', r_seq, 'type', 'an int')
-            if not 0 <= r_seq <= 255:
-                raise _enc('sys_status', 'seq', r_seq, 'range', '0..255', None)
-        if r_sysid.__class__ is not int or not 0 <= r_sysid <= 255:
-            if not isinstance(r_sysid, int) or r_sysid.__class__ is bool:
-                raise _enc('sys_status', 'sysid', r_sysid, 'type', 'an int')
-            if not 0 <= r_sysid <= 255:
-                raise _enc('sys_status', 'sysid', r_sysid, 'range', '0..255', None)
-        if r_compid.__class__ is not int or not 0 <= r_compid <= 255:
-            if not isinstance(r_compid, int) or r_compid.__class__ is bool:
-                raise _enc('sys_status', 'compid', r_compid, 'type', 'an int')
-            if not 0 <= r_compid <= 255:
-                raise _enc('sys_status', 'compid', r_compid, 'range', '0..255', None)
-        if r_onboard_control_sensors_present.__class__ is not int or not 0 <= r_onboard_control_sensors_present <= 4294967295:
-            if not isinstance(r_onboard_control_sensors_present, int) or r_onboard_control_sensors_present.__class__ is bool:
-                raise _enc('sys_status', 'onboard_control_sensors_present', r_onboard_control_sensors_present, 'type', 'an int')
-            if not 0 <= r_onboard_control_sensors_present <= 4294967295:
-                raise _enc('sys_status', 'onboard_control_sensors_present', r_onboard_control_sensors_present, 'range', '0..4294967295', None)
-        if r_onboard_control_sensors_enabled.__class__ is not int or not 0 <= r_onboard_control_sensors_enabled <= 4294967295:
-            if not isinstance(r_onboard_control_sensors_enabled, int) or r_onboard_control_sensors_enabled.__class__ is bool:
-                raise _enc('sys_status', 'onboard_control_sensors_enabled', r_onboard_control_sensors_enabled, 'type', 'an int')
-            if not 0 <= r_onboard_control_sensors_enabled <= 4294967295:
-                raise _enc('sys_status', 'onboard_control_sensors_enabled', r_onboard_control_sensors_enabled, 'range', '0..4294967295', None)
-        if r_onboard_control_sensors_health.__class__ is not int or not 0 <= r_onboard_control_sensors_health <= 4294967295:
-            if not isinstance(r_onboard_control_sensors_health, int) or r_onboard_control_sensors_health.__class__ is bool:
-                raise _enc('sys_status', 'onboard_control_sensors_health', r_onboard_control_sensors_health, 'type', 'an int')
-            if not 0 <= r_onboard_control_sensors_health <= 4294967295:
-                raise _enc('sys_status', 'onboard_control_sensors_health', r_onboard_control_sensors_health, 'range', '0..4294967295', None)
-        if r_load.__class__ is not int or not 0 <= r_load <= 65535:
-            if not isinstance(r_load, int) or r_load.__class__ is bool:
-                raise _enc('sys_status', 'load', r_load, 'type', 'an int')
-            if not 0 <= r_load <= 65535:
-                raise _enc('sys_status', 'load', r_load, 'range', '0..65535', None)
-        if r_voltage_battery.__class__ is not int or not 0 <= r_voltage_battery <= 65535:
-            if not isinstance(r_voltage_battery, int) or r_voltage_battery.__class__ is bool:
-                raise _enc('sys_status', 'voltage_battery', r_voltage_battery, 'type', 'an int')
-            if not 0 <= r_voltage_battery <= 65535:
-                raise _enc('sys_status', 'voltage_battery', r_voltage_battery, 'range', '0..65535', None)
-        if r_current_battery.__class__ is not int or not -32768 <= r_current_battery <= 32767:
-            if not isinstance(r_current_battery, int) or r_current_battery.__class__ is bool:
-                raise _enc('sys_status', 'current_battery', r_current_battery, 'type', 'an int')
-            if not -32768 <= r_current_battery <= 32767:
-                raise _enc('sys_status', 'current_battery', r_current_battery, 'range', '-32768..32767', None)
-        if r_drop_rate_comm.__class__ is not int or not 0 <= r_drop_rate_comm <= 65535:
-            if not isinstance(r_drop_rate_comm, int) or r_drop_rate_comm.__class__ is bool:
-                raise _enc('sys_status', 'drop_rate_comm', r_drop_rate_comm, 'type', 'an int')
-            if not 0 <= r_drop_rate_comm <= 65535:
-                raise _enc('sys_status', 'drop_rate_comm', r_drop_rate_comm, 'range', '0..65535', None)
-        if r_errors_comm.__class__ is not int or not 0 <= r_errors_comm <= 65535:
-            if not isinstance(r_errors_comm, int) or r_errors_comm.__class__ is bool:
-                raise _enc('sys_status', 'errors_comm', r_errors_comm, 'type', 'an int')
-            if not 0 <= r_errors_comm <= 65535:
-                raise _enc('sys_status', 'errors_comm', r_errors_comm, 'range', '0..65535', None)
-        if r_errors_count1.__class__ is not int or not 0 <= r_errors_count1 <= 65535:
-            if not isinstance(r_errors_count1, int) or r_errors_count1.__class__ is bool:
-                raise _enc('sys_status', 'errors_count1', r_errors_count1, 'type', 'an int')
-            if not 0 <= r_errors_count1 <= 65535:
-                raise _enc('sys_status', 'errors_count1', r_errors_count1, 'range', '0..65535', None)
-        if r_errors_count2.__class__ is not int or not 0 <= r_errors_count2 <= 65535:
-            if not isinstance(r_errors_count2, int) or r_errors_count2.__class__ is bool:
-                raise _enc('sys_status', 'errors_count2', r_errors_count2, 'type', 'an int')
-            if not 0 <= r_errors_count2 <= 65535:
-                raise _enc('sys_status', 'errors_count2', r_errors_count2, 'range', '0..65535', None)
-        if r_errors_count3.__class__ is not int or not 0 <= r_errors_count3 <= 65535:
-            if not isinstance(r_errors_count3, int) or r_errors_count3.__class__ is bool:
-                raise _enc('sys_status', 'errors_count3', r_errors_count3, 'type', 'an int')
-            if not 0 <= r_errors_count3 <= 65535:
-                raise _enc('sys_status', 'errors_count3', r_errors_count3, 'range', '0..65535', None)
-        if r_errors_count4.__class__ is not int or not 0 <= r_errors_count4 <= 65535:
-            if not isinstance(r_errors_count4, int) or r_errors_count4.__class__ is bool:
-                raise _enc('sys_status', 'errors_count4', r_errors_count4, 'type', 'an int')
-            if not 0 <= r_errors_count4 <= 65535:
-                raise _enc('sys_status', 'errors_count4', r_errors_count4, 'range', '0..65535', None)
-        if r_battery_remaining.__class__ is not int or not -128 <= r_battery_remaining <= 127:
-            if not isinstance(r_battery_remaining, int) or r_battery_remaining.__class__ is bool:
-                raise _enc('sys_status', 'battery_remaining', r_battery_remaining, 'type', 'an int')
-            if not -128 <= r_battery_remaining <= 127:
-                raise _enc('sys_status', 'battery_remaining', r_battery_remaining, 'range', '-128..127', None)
-    r_checksum = 0
+        _faults('sys_status', (r_seq, r_sysid, r_compid, r_onboard_control_sensors_present, r_onboard_control_sensors_enabled, r_onboard_control_sensors_health, r_load, r_voltage_battery, r_current_battery, r_drop_rate_comm, r_errors_comm, r_errors_count1, r_errors_count2, r_errors_count3, r_errors_count4, r_battery_remaining, ), (('int', 'seq', 0, 255, False, None), ('int', 'sysid', 0, 255, False, None), ('int', 'compid', 0, 255, False, None), ('int', 'onboard_control_sensors_present', 0, 4294967295, False, None), ('int', 'onboard_control_sensors_enabled', 0, 4294967295, False, None), ('int', 'onboard_control_sensors_health', 0, 4294967295, False, None), ('int', 'load', 0, 65535, False, None), ('int', 'voltage_battery', 0, 65535, False, None), ('int', 'current_battery', -32768, 32767, False, None), ('int', 'drop_rate_comm', 0, 65535, False, None), ('int', 'errors_comm', 0, 65535, False, None), ('int', 'errors_count1', 0, 65535, False, None), ('int', 'errors_count2', 0, 65535, False, None), ('int', 'errors_count3', 0, 65535, False, None), ('int', 'errors_count4', 0, 65535, False, None), ('int', 'battery_remaining', -128, 127, False, None)))
     b = bytearray(39)
     _S_sys_status_0.pack_into(b, 0, 254, 31, r_seq, r_sysid, r_compid, 1, r_onboard_control_sensors_present, r_onboard_control_sensors_enabled, r_onboard_control_sensors_health, r_load, r_voltage_battery, r_current_battery, r_drop_rate_comm, r_errors_comm, r_errors_count1, r_errors_count2, r_errors_count3, r_errors_count4, r_battery_remaining, r_checksum)
     b[37:39] = _checksum_crc16_1021_ffff_rr_0_extra(bytes(b[1:37]) + b'|').to_bytes(2, 'little')
@@ -745,57 +698,20 @@ def _encode_param_value(m: ParamValue) -> bytes:
     r_seq = m.seq
     r_sysid = m.sysid
     r_compid = m.compid
-    if (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255):
-        if r_seq.__class__ is not int or not 0 <= r_seq <= 255:
-            if not isinstance(r_seq, int) or r_seq.__class__ is bool:
-                raise _enc('param_value', 'seq', r_seq, 'type', 'an int')
-            if not 0 <= r_seq <= 255:
-                raise _enc('param_value', 'seq', r_seq, 'range', '0..255', None)
-        if r_sysid.__class__ is not int or not 0 <= r_sysid <= 255:
-            if not isinstance(r_sysid, int) or r_sysid.__class__ is bool:
-                raise _enc('param_value', 'sysid', r_sysid, 'type', 'an int')
-            if not 0 <= r_sysid <= 255:
-                raise _enc('param_value', 'sysid', r_sysid, 'range', '0..255', None)
-        if r_compid.__class__ is not int or not 0 <= r_compid <= 255:
-            if not isinstance(r_compid, int) or r_compid.__class__ is bool:
-                raise _enc('param_value', 'compid', r_compid, 'type', 'an int')
-            if not 0 <= r_compid <= 255:
-                raise _enc('param_value', 'compid', r_compid, 'range', '0..255', None)
     r_param_value = m.param_value
-    if r_param_value.__class__ is not float:
-        if not isinstance(r_param_value, (int, float)) or r_param_value.__class__ is bool:
-            raise _enc('param_value', 'param_value', r_param_value, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_param_value <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('param_value', 'param_value', r_param_value, 'finite', 'a finite number')
-    if not _isfinite(r_param_value):
-        raise _enc('param_value', 'param_value', r_param_value, 'finite', 'a finite number')
-    if r_param_value > 3.4028234663852886e38 or r_param_value < -3.4028234663852886e38:
-        raise _enc('param_value', 'param_value', r_param_value, 'range', 'a binary32 value')
     r_param_count = m.param_count
     r_param_index = m.param_index
-    if (r_param_count.__class__ is not int or not 0 <= r_param_count <= 65535) or (r_param_index.__class__ is not int or not 0 <= r_param_index <= 65535):
-        if r_param_count.__class__ is not int or not 0 <= r_param_count <= 65535:
-            if not isinstance(r_param_count, int) or r_param_count.__class__ is bool:
-                raise _enc('param_value', 'param_count', r_param_count, 'type', 'an int')
-            if not 0 <= r_param_count <= 65535:
-                raise _enc('param_value', 'param_count', r_param_count, 'range', '0..65535', None)
-        if r_param_index.__class__ is not int or not 0 <= r_param_index <= 65535:
-            if not isinstance(r_param_index, int) or r_param_index.__class__ is bool:
-                raise _enc('param_value', 'param_index', r_param_index, 'type', 'an int')
-            if not 0 <= r_param_index <= 65535:
-                raise _enc('param_value', 'param_index', r_param_index, 'range', '0..65535', None)
+    if (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255) or (r_param_value.__class__ is not float or not -3.4028234663852886e38 <= r_param_value <= 3.4028234663852886e38) or (r_param_count.__class__ is not int or not 0 <= r_param_count <= 65535) or (r_param_index.__class__ is not int or not 0 <= r_param_index <= 65535):
+        _faults('param_value', (r_seq, r_sysid, r_compid, r_param_value, r_param_count, r_param_index, ), (('int', 'seq', 0, 255, False, None), ('int', 'sysid', 0, 255, False, None), ('int', 'compid', 0, 255, False, None), ('float', 'param_value', True), ('int', 'param_count', 0, 65535, False, None), ('int', 'param_index', 0, 65535, False, None)))
     r_param_id = m.param_id
     if r_param_id.__class__ is not bytes or len(r_param_id) != 16:
         if not isinstance(r_param_id, (bytes, bytearray)) or len(r_param_id) != 16:
             raise _enc('param_value', 'param_id', r_param_id, 'length', 'bytes of length 16')
         r_param_id = bytes(r_param_id)
+    r_checksum = 0
     r_param_type = m.param_type
     if r_param_type.__class__ is not int or not 0 <= r_param_type <= 255:
-        if not isinstance(r_param_type, int) or r_param_type.__class__ is bool:
-            raise _enc('param_value', 'param_type', r_param_type, 'type', 'an int')
-        if not 0 <= r_param_type <= 255:
-            raise _enc('param_value', 'param_type', r_param_type, 'range', '0..255', None)
-    r_checksum = 0
+        _int_fault('param_value', 'param_type', r_param_type, 0, 255, False, None)
     b = bytearray(33)
     _S_param_value_0.pack_into(b, 0, 254, 25, r_seq, r_sysid, r_compid, 22, r_param_value, r_param_count, r_param_index, r_param_id, r_param_type, r_checksum)
     b[31:33] = _checksum_crc16_1021_ffff_rr_0_extra(bytes(b[1:31]) + b'\xdc').to_bytes(2, 'little')
@@ -833,6 +749,7 @@ def _decode_param_value(d: _Buffer) -> ParamValue:
 
 
 def _encode_gps_raw_int(m: GpsRawInt) -> bytes:
+    r_checksum = 0
     r_seq = m.seq
     r_sysid = m.sysid
     r_compid = m.compid
@@ -847,72 +764,7 @@ def _encode_gps_raw_int(m: GpsRawInt) -> bytes:
     r_fix_type = m.fix_type
     r_satellites_visible = m.satellites_visible
     if (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255) or (r_time_usec.__class__ is not int or not 0 <= r_time_usec <= 18446744073709551615) or (r_lat.__class__ is not int or not -2147483648 <= r_lat <= 2147483647) or (r_lon.__class__ is not int or not -2147483648 <= r_lon <= 2147483647) or (r_alt.__class__ is not int or not -2147483648 <= r_alt <= 2147483647) or (r_eph.__class__ is not int or not 0 <= r_eph <= 65535) or (r_epv.__class__ is not int or not 0 <= r_epv <= 65535) or (r_vel.__class__ is not int or not 0 <= r_vel <= 65535) or (r_cog.__class__ is not int or not 0 <= r_cog <= 65535) or (r_fix_type.__class__ is not int or not 0 <= r_fix_type <= 255) or (r_satellites_visible.__class__ is not int or not 0 <= r_satellites_visible <= 255):
-        if r_seq.__class__ is not int or not 0 <= r_seq <= 255:
-            if not isinstance(r_seq, int) or r_seq.__class__ is bool:
-                raise _enc('gps_raw_int', 'seq', r_seq, 'type', 'an int')
-            if not 0 <= r_seq <= 255:
-                raise _enc('gps_raw_int', 'seq', r_seq, 'range', '0..255', None)
-        if r_sysid.__class__ is not int or not 0 <= r_sysid <= 255:
-            if not isinstance(r_sysid, int) or r_sysid.__class__ is bool:
-                raise _enc('gps_raw_int', 'sysid', r_sysid, 'type', 'an int')
-            if not 0 <= r_sysid <= 255:
-                raise _enc('gps_raw_int', 'sysid', r_sysid, 'range', '0..255', None)
-        if r_compid.__class__ is not int or not 0 <= r_compid <= 255:
-            if not isinstance(r_compid, int) or r_compid.__class__ is bool:
-                raise _enc('gps_raw_int', 'compid', r_compid, 'type', 'an int')
-            if not 0 <= r_compid <= 255:
-                raise _enc('gps_raw_int', 'compid', r_compid, 'range', '0..255', None)
-        if r_time_usec.__class__ is not int or not 0 <= r_time_usec <= 18446744073709551615:
-            if not isinstance(r_time_usec, int) or r_time_usec.__class__ is bool:
-                raise _enc('gps_raw_int', 'time_usec', r_time_usec, 'type', 'an int')
-            if not 0 <= r_time_usec <= 18446744073709551615:
-                raise _enc('gps_raw_int', 'time_usec', r_time_usec, 'range', '0..18446744073709551615', None)
-        if r_lat.__class__ is not int or not -2147483648 <= r_lat <= 2147483647:
-            if not isinstance(r_lat, int) or r_lat.__class__ is bool:
-                raise _enc('gps_raw_int', 'lat', r_lat, 'type', 'an int')
-            if not -2147483648 <= r_lat <= 2147483647:
-                raise _enc('gps_raw_int', 'lat', r_lat, 'range', '-2147483648..2147483647', None)
-        if r_lon.__class__ is not int or not -2147483648 <= r_lon <= 2147483647:
-            if not isinstance(r_lon, int) or r_lon.__class__ is bool:
-                raise _enc('gps_raw_int', 'lon', r_lon, 'type', 'an int')
-            if not -2147483648 <= r_lon <= 2147483647:
-                raise _enc('gps_raw_int', 'lon', r_lon, 'range', '-2147483648..2147483647', None)
-        if r_alt.__class__ is not int or not -2147483648 <= r_alt <= 2147483647:
-            if not isinstance(r_alt, int) or r_alt.__class__ is bool:
-                raise _enc('gps_raw_int', 'alt', r_alt, 'type', 'an int')
-            if not -2147483648 <= r_alt <= 2147483647:
-                raise _enc('gps_raw_int', 'alt', r_alt, 'range', '-2147483648..2147483647', None)
-        if r_eph.__class__ is not int or not 0 <= r_eph <= 65535:
-            if not isinstance(r_eph, int) or r_eph.__class__ is bool:
-                raise _enc('gps_raw_int', 'eph', r_eph, 'type', 'an int')
-            if not 0 <= r_eph <= 65535:
-                raise _enc('gps_raw_int', 'eph', r_eph, 'range', '0..65535', None)
-        if r_epv.__class__ is not int or not 0 <= r_epv <= 65535:
-            if not isinstance(r_epv, int) or r_epv.__class__ is bool:
-                raise _enc('gps_raw_int', 'epv', r_epv, 'type', 'an int')
-            if not 0 <= r_epv <= 65535:
-                raise _enc('gps_raw_int', 'epv', r_epv, 'range', '0..65535', None)
-        if r_vel.__class__ is not int or not 0 <= r_vel <= 65535:
-            if not isinstance(r_vel, int) or r_vel.__class__ is bool:
-                raise _enc('gps_raw_int', 'vel', r_vel, 'type', 'an int')
-            if not 0 <= r_vel <= 65535:
-                raise _enc('gps_raw_int', 'vel', r_vel, 'range', '0..65535', None)
-        if r_cog.__class__ is not int or not 0 <= r_cog <= 65535:
-            if not isinstance(r_cog, int) or r_cog.__class__ is bool:
-                raise _enc('gps_raw_int', 'cog', r_cog, 'type', 'an int')
-            if not 0 <= r_cog <= 65535:
-                raise _enc('gps_raw_int', 'cog', r_cog, 'range', '0..65535', None)
-        if r_fix_type.__class__ is not int or not 0 <= r_fix_type <= 255:
-            if not isinstance(r_fix_type, int) or r_fix_type.__class__ is bool:
-                raise _enc('gps_raw_int', 'fix_type', r_fix_type, 'type', 'an int')
-            if not 0 <= r_fix_type <= 255:
-                raise _enc('gps_raw_int', 'fix_type', r_fix_type, 'range', '0..255', None)
-        if r_satellites_visible.__class__ is not int or not 0 <= r_satellites_visible <= 255:
-            if not isinstance(r_satellites_visible, int) or r_satellites_visible.__class__ is bool:
-                raise _enc('gps_raw_int', 'satellites_visible', r_satellites_visible, 'type', 'an int')
-            if not 0 <= r_satellites_visible <= 255:
-                raise _enc('gps_raw_int', 'satellites_visible', r_satellites_visible, 'range', '0..255', None)
-    r_checksum = 0
+        _faults('gps_raw_int', (r_seq, r_sysid, r_compid, r_time_usec, r_lat, r_lon, r_alt, r_eph, r_epv, r_vel, r_cog, r_fix_type, r_satellites_visible, ), (('int', 'seq', 0, 255, False, None), ('int', 'sysid', 0, 255, False, None), ('int', 'compid', 0, 255, False, None), ('int', 'time_usec', 0, 18446744073709551615, False, None), ('int', 'lat', -2147483648, 2147483647, False, None), ('int', 'lon', -2147483648, 2147483647, False, None), ('int', 'alt', -2147483648, 2147483647, False, None), ('int', 'eph', 0, 65535, False, None), ('int', 'epv', 0, 65535, False, None), ('int', 'vel', 0, 65535, False, None), ('int', 'cog', 0, 65535, False, None), ('int', 'fix_type', 0, 255, False, None), ('int', 'satellites_visible', 0, 255, False, None)))
     b = bytearray(38)
     _S_gps_raw_int_0.pack_into(b, 0, 254, 30, r_seq, r_sysid, r_compid, 24, r_time_usec, r_lat, r_lon, r_alt, r_eph, r_epv, r_vel, r_cog, r_fix_type, r_satellites_visible, r_checksum)
     b[36:38] = _checksum_crc16_1021_ffff_rr_0_extra(bytes(b[1:36]) + b'\x18').to_bytes(2, 'little')
@@ -953,92 +805,19 @@ def _decode_gps_raw_int(d: _Buffer) -> GpsRawInt:
 
 
 def _encode_attitude(m: Attitude) -> bytes:
+    r_checksum = 0
     r_seq = m.seq
     r_sysid = m.sysid
     r_compid = m.compid
     r_time_boot_ms = m.time_boot_ms
-    if (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255) or (r_time_boot_ms.__class__ is not int or not 0 <= r_time_boot_ms <= 4294967295):
-        if r_seq.__class__ is not int or not 0 <= r_seq <= 255:
-            if not isinstance(r_seq, int) or r_seq.__class__ is bool:
-                raise _enc('attitude', 'seq', r_seq, 'type', 'an int')
-            if not 0 <= r_seq <= 255:
-                raise _enc('attitude', 'seq', r_seq, 'range', '0..255', None)
-        if r_sysid.__class__ is not int or not 0 <= r_sysid <= 255:
-            if not isinstance(r_sysid, int) or r_sysid.__class__ is bool:
-                raise _enc('attitude', 'sysid', r_sysid, 'type', 'an int')
-            if not 0 <= r_sysid <= 255:
-                raise _enc('attitude', 'sysid', r_sysid, 'range', '0..255', None)
-        if r_compid.__class__ is not int or not 0 <= r_compid <= 255:
-            if not isinstance(r_compid, int) or r_compid.__class__ is bool:
-                raise _enc('attitude', 'compid', r_compid, 'type', 'an int')
-            if not 0 <= r_compid <= 255:
-                raise _enc('attitude', 'compid', r_compid, 'range', '0..255', None)
-        if r_time_boot_ms.__class__ is not int or not 0 <= r_time_boot_ms <= 4294967295:
-            if not isinstance(r_time_boot_ms, int) or r_time_boot_ms.__class__ is bool:
-                raise _enc('attitude', 'time_boot_ms', r_time_boot_ms, 'type', 'an int')
-            if not 0 <= r_time_boot_ms <= 4294967295:
-                raise _enc('attitude', 'time_boot_ms', r_time_boot_ms, 'range', '0..4294967295', None)
     r_roll = m.roll
-    if r_roll.__class__ is not float:
-        if not isinstance(r_roll, (int, float)) or r_roll.__class__ is bool:
-            raise _enc('attitude', 'roll', r_roll, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_roll <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('attitude', 'roll', r_roll, 'finite', 'a finite number')
-    if not _isfinite(r_roll):
-        raise _enc('attitude', 'roll', r_roll, 'finite', 'a finite number')
-    if r_roll > 3.4028234663852886e38 or r_roll < -3.4028234663852886e38:
-        raise _enc('attitude', 'roll', r_roll, 'range', 'a binary32 value')
     r_pitch = m.pitch
-    if r_pitch.__class__ is not float:
-        if not isinstance(r_pitch, (int, float)) or r_pitch.__class__ is bool:
-            raise _enc('attitude', 'pitch', r_pitch, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_pitch <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('attitude', 'pitch', r_pitch, 'finite', 'a finite number')
-    if not _isfinite(r_pitch):
-        raise _enc('attitude', 'pitch', r_pitch, 'finite', 'a finite number')
-    if r_pitch > 3.4028234663852886e38 or r_pitch < -3.4028234663852886e38:
-        raise _enc('attitude', 'pitch', r_pitch, 'range', 'a binary32 value')
     r_yaw = m.yaw
-    if r_yaw.__class__ is not float:
-        if not isinstance(r_yaw, (int, float)) or r_yaw.__class__ is bool:
-            raise _enc('attitude', 'yaw', r_yaw, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_yaw <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('attitude', 'yaw', r_yaw, 'finite', 'a finite number')
-    if not _isfinite(r_yaw):
-        raise _enc('attitude', 'yaw', r_yaw, 'finite', 'a finite number')
-    if r_yaw > 3.4028234663852886e38 or r_yaw < -3.4028234663852886e38:
-        raise _enc('attitude', 'yaw', r_yaw, 'range', 'a binary32 value')
     r_rollspeed = m.rollspeed
-    if r_rollspeed.__class__ is not float:
-        if not isinstance(r_rollspeed, (int, float)) or r_rollspeed.__class__ is bool:
-            raise _enc('attitude', 'rollspeed', r_rollspeed, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_rollspeed <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('attitude', 'rollspeed', r_rollspeed, 'finite', 'a finite number')
-    if not _isfinite(r_rollspeed):
-        raise _enc('attitude', 'rollspeed', r_rollspeed, 'finite', 'a finite number')
-    if r_rollspeed > 3.4028234663852886e38 or r_rollspeed < -3.4028234663852886e38:
-        raise _enc('attitude', 'rollspeed', r_rollspeed, 'range', 'a binary32 value')
     r_pitchspeed = m.pitchspeed
-    if r_pitchspeed.__class__ is not float:
-        if not isinstance(r_pitchspeed, (int, float)) or r_pitchspeed.__class__ is bool:
-            raise _enc('attitude', 'pitchspeed', r_pitchspeed, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_pitchspeed <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('attitude', 'pitchspeed', r_pitchspeed, 'finite', 'a finite number')
-    if not _isfinite(r_pitchspeed):
-        raise _enc('attitude', 'pitchspeed', r_pitchspeed, 'finite', 'a finite number')
-    if r_pitchspeed > 3.4028234663852886e38 or r_pitchspeed < -3.4028234663852886e38:
-        raise _enc('attitude', 'pitchspeed', r_pitchspeed, 'range', 'a binary32 value')
     r_yawspeed = m.yawspeed
-    if r_yawspeed.__class__ is not float:
-        if not isinstance(r_yawspeed, (int, float)) or r_yawspeed.__class__ is bool:
-            raise _enc('attitude', 'yawspeed', r_yawspeed, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_yawspeed <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('attitude', 'yawspeed', r_yawspeed, 'finite', 'a finite number')
-    if not _isfinite(r_yawspeed):
-        raise _enc('attitude', 'yawspeed', r_yawspeed, 'finite', 'a finite number')
-    if r_yawspeed > 3.4028234663852886e38 or r_yawspeed < -3.4028234663852886e38:
-        raise _enc('attitude', 'yawspeed', r_yawspeed, 'range', 'a binary32 value')
-    r_checksum = 0
+    if (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255) or (r_time_boot_ms.__class__ is not int or not 0 <= r_time_boot_ms <= 4294967295) or (r_roll.__class__ is not float or not -3.4028234663852886e38 <= r_roll <= 3.4028234663852886e38) or (r_pitch.__class__ is not float or not -3.4028234663852886e38 <= r_pitch <= 3.4028234663852886e38) or (r_yaw.__class__ is not float or not -3.4028234663852886e38 <= r_yaw <= 3.4028234663852886e38) or (r_rollspeed.__class__ is not float or not -3.4028234663852886e38 <= r_rollspeed <= 3.4028234663852886e38) or (r_pitchspeed.__class__ is not float or not -3.4028234663852886e38 <= r_pitchspeed <= 3.4028234663852886e38) or (r_yawspeed.__class__ is not float or not -3.4028234663852886e38 <= r_yawspeed <= 3.4028234663852886e38):
+        _faults('attitude', (r_seq, r_sysid, r_compid, r_time_boot_ms, r_roll, r_pitch, r_yaw, r_rollspeed, r_pitchspeed, r_yawspeed, ), (('int', 'seq', 0, 255, False, None), ('int', 'sysid', 0, 255, False, None), ('int', 'compid', 0, 255, False, None), ('int', 'time_boot_ms', 0, 4294967295, False, None), ('float', 'roll', True), ('float', 'pitch', True), ('float', 'yaw', True), ('float', 'rollspeed', True), ('float', 'pitchspeed', True), ('float', 'yawspeed', True)))
     b = bytearray(36)
     _S_attitude_0.pack_into(b, 0, 254, 28, r_seq, r_sysid, r_compid, 30, r_time_boot_ms, r_roll, r_pitch, r_yaw, r_rollspeed, r_pitchspeed, r_yawspeed, r_checksum)
     b[34:36] = _checksum_crc16_1021_ffff_rr_0_extra(bytes(b[1:34]) + b"'").to_bytes(2, 'little')
@@ -1088,121 +867,23 @@ def _decode_attitude(d: _Buffer) -> Attitude:
 
 
 def _encode_command_long(m: CommandLong) -> bytes:
+    r_checksum = 0
     r_seq = m.seq
     r_sysid = m.sysid
     r_compid = m.compid
-    if (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255):
-        if r_seq.__class__ is not int or not 0 <= r_seq <= 255:
-            if not isinstance(r_seq, int) or r_seq.__class__ is bool:
-                raise _enc('command_long', 'seq', r_seq, 'type', 'an int')
-            if not 0 <= r_seq <= 255:
-                raise _enc('command_long', 'seq', r_seq, 'range', '0..255', None)
-        if r_sysid.__class__ is not int or not 0 <= r_sysid <= 255:
-            if not isinstance(r_sysid, int) or r_sysid.__class__ is bool:
-                raise _enc('command_long', 'sysid', r_sysid, 'type', 'an int')
-            if not 0 <= r_sysid <= 255:
-                raise _enc('command_long', 'sysid', r_sysid, 'range', '0..255', None)
-        if r_compid.__class__ is not int or not 0 <= r_compid <= 255:
-            if not isinstance(r_compid, int) or r_compid.__class__ is bool:
-                raise _enc('command_long', 'compid', r_compid, 'type', 'an int')
-            if not 0 <= r_compid <= 255:
-                raise _enc('command_long', 'compid', r_compid, 'range', '0..255', None)
     r_param1 = m.param1
-    if r_param1.__class__ is not float:
-        if not isinstance(r_param1, (int, float)) or r_param1.__class__ is bool:
-            raise _enc('command_long', 'param1', r_param1, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_param1 <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('command_long', 'param1', r_param1, 'finite', 'a finite number')
-    if not _isfinite(r_param1):
-        raise _enc('command_long', 'param1', r_param1, 'finite', 'a finite number')
-    if r_param1 > 3.4028234663852886e38 or r_param1 < -3.4028234663852886e38:
-        raise _enc('command_long', 'param1', r_param1, 'range', 'a binary32 value')
     r_param2 = m.param2
-    if r_param2.__class__ is not float:
-        if not isinstance(r_param2, (int, float)) or r_param2.__class__ is bool:
-            raise _enc('command_long', 'param2', r_param2, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_param2 <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('command_long', 'param2', r_param2, 'finite', 'a finite number')
-    if not _isfinite(r_param2):
-        raise _enc('command_long', 'param2', r_param2, 'finite', 'a finite number')
-    if r_param2 > 3.4028234663852886e38 or r_param2 < -3.4028234663852886e38:
-        raise _enc('command_long', 'param2', r_param2, 'range', 'a binary32 value')
     r_param3 = m.param3
-    if r_param3.__class__ is not float:
-        if not isinstance(r_param3, (int, float)) or r_param3.__class__ is bool:
-            raise _enc('command_long', 'param3', r_param3, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_param3 <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('command_long', 'param3', r_param3, 'finite', 'a finite number')
-    if not _isfinite(r_param3):
-        raise _enc('command_long', 'param3', r_param3, 'finite', 'a finite number')
-    if r_param3 > 3.4028234663852886e38 or r_param3 < -3.4028234663852886e38:
-        raise _enc('command_long', 'param3', r_param3, 'range', 'a binary32 value')
     r_param4 = m.param4
-    if r_param4.__class__ is not float:
-        if not isinstance(r_param4, (int, float)) or r_param4.__class__ is bool:
-            raise _enc('command_long', 'param4', r_param4, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_param4 <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('command_long', 'param4', r_param4, 'finite', 'a finite number')
-    if not _isfinite(r_param4):
-        raise _enc('command_long', 'param4', r_param4, 'finite', 'a finite number')
-    if r_param4 > 3.4028234663852886e38 or r_param4 < -3.4028234663852886e38:
-        raise _enc('command_long', 'param4', r_param4, 'range', 'a binary32 value')
     r_param5 = m.param5
-    if r_param5.__class__ is not float:
-        if not isinstance(r_param5, (int, float)) or r_param5.__class__ is bool:
-            raise _enc('command_long', 'param5', r_param5, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_param5 <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('command_long', 'param5', r_param5, 'finite', 'a finite number')
-    if not _isfinite(r_param5):
-        raise _enc('command_long', 'param5', r_param5, 'finite', 'a finite number')
-    if r_param5 > 3.4028234663852886e38 or r_param5 < -3.4028234663852886e38:
-        raise _enc('command_long', 'param5', r_param5, 'range', 'a binary32 value')
     r_param6 = m.param6
-    if r_param6.__class__ is not float:
-        if not isinstance(r_param6, (int, float)) or r_param6.__class__ is bool:
-            raise _enc('command_long', 'param6', r_param6, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_param6 <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('command_long', 'param6', r_param6, 'finite', 'a finite number')
-    if not _isfinite(r_param6):
-        raise _enc('command_long', 'param6', r_param6, 'finite', 'a finite number')
-    if r_param6 > 3.4028234663852886e38 or r_param6 < -3.4028234663852886e38:
-        raise _enc('command_long', 'param6', r_param6, 'range', 'a binary32 value')
     r_param7 = m.param7
-    if r_param7.__class__ is not float:
-        if not isinstance(r_param7, (int, float)) or r_param7.__class__ is bool:
-            raise _enc('command_long', 'param7', r_param7, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_param7 <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('command_long', 'param7', r_param7, 'finite', 'a finite number')
-    if not _isfinite(r_param7):
-        raise _enc('command_long', 'param7', r_param7, 'finite', 'a finite number')
-    if r_param7 > 3.4028234663852886e38 or r_param7 < -3.4028234663852886e38:
-        raise _enc('command_long', 'param7', r_param7, 'range', 'a binary32 value')
     r_command = m.command
     r_target_system = m.target_system
     r_target_component = m.target_component
     r_confirmation = m.confirmation
-    if (r_command.__class__ is not int or not 0 <= r_command <= 65535) or (r_target_system.__class__ is not int or not 0 <= r_target_system <= 255) or (r_target_component.__class__ is not int or not 0 <= r_target_component <= 255) or (r_confirmation.__class__ is not int or not 0 <= r_confirmation <= 255):
-        if r_command.__class__ is not int or not 0 <= r_command <= 65535:
-            if not isinstance(r_command, int) or r_command.__class__ is bool:
-                raise _enc('command_long', 'command', r_command, 'type', 'an int')
-            if not 0 <= r_command <= 65535:
-                raise _enc('command_long', 'command', r_command, 'range', '0..65535', None)
-        if r_target_system.__class__ is not int or not 0 <= r_target_system <= 255:
-            if not isinstance(r_target_system, int) or r_target_system.__class__ is bool:
-                raise _enc('command_long', 'target_system', r_target_system, 'type', 'an int')
-            if not 0 <= r_target_system <= 255:
-                raise _enc('command_long', 'target_system', r_target_system, 'range', '0..255', None)
-        if r_target_component.__class__ is not int or not 0 <= r_target_component <= 255:
-            if not isinstance(r_target_component, int) or r_target_component.__class__ is bool:
-                raise _enc('command_long', 'target_component', r_target_component, 'type', 'an int')
-            if not 0 <= r_target_component <= 255:
-                raise _enc('command_long', 'target_component', r_target_component, 'range', '0..255', None)
-        if r_confirmation.__class__ is not int or not 0 <= r_confirmation <= 255:
-            if not isinstance(r_confirmation, int) or r_confirmation.__class__ is bool:
-                raise _enc('command_long', 'confirmation', r_confirmation, 'type', 'an int')
-            if not 0 <= r_confirmation <= 255:
-                raise _enc('command_long', 'confirmation', r_confirmation, 'range', '0..255', None)
-    r_checksum = 0
+    if (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255) or (r_param1.__class__ is not float or not -3.4028234663852886e38 <= r_param1 <= 3.4028234663852886e38) or (r_param2.__class__ is not float or not -3.4028234663852886e38 <= r_param2 <= 3.4028234663852886e38) or (r_param3.__class__ is not float or not -3.4028234663852886e38 <= r_param3 <= 3.4028234663852886e38) or (r_param4.__class__ is not float or not -3.4028234663852886e38 <= r_param4 <= 3.4028234663852886e38) or (r_param5.__class__ is not float or not -3.4028234663852886e38 <= r_param5 <= 3.4028234663852886e38) or (r_param6.__class__ is not float or not -3.4028234663852886e38 <= r_param6 <= 3.4028234663852886e38) or (r_param7.__class__ is not float or not -3.4028234663852886e38 <= r_param7 <= 3.4028234663852886e38) or (r_command.__class__ is not int or not 0 <= r_command <= 65535) or (r_target_system.__class__ is not int or not 0 <= r_target_system <= 255) or (r_target_component.__class__ is not int or not 0 <= r_target_component <= 255) or (r_confirmation.__class__ is not int or not 0 <= r_confirmation <= 255):
+        _faults('command_long', (r_seq, r_sysid, r_compid, r_param1, r_param2, r_param3, r_param4, r_param5, r_param6, r_param7, r_command, r_target_system, r_target_component, r_confirmation, ), (('int', 'seq', 0, 255, False, None), ('int', 'sysid', 0, 255, False, None), ('int', 'compid', 0, 255, False, None), ('float', 'param1', True), ('float', 'param2', True), ('float', 'param3', True), ('float', 'param4', True), ('float', 'param5', True), ('float', 'param6', True), ('float', 'param7', True), ('int', 'command', 0, 65535, False, None), ('int', 'target_system', 0, 255, False, None), ('int', 'target_component', 0, 255, False, None), ('int', 'confirmation', 0, 255, False, None)))
     b = bytearray(41)
     _S_command_long_0.pack_into(b, 0, 254, 33, r_seq, r_sysid, r_compid, 76, r_param1, r_param2, r_param3, r_param4, r_param5, r_param6, r_param7, r_command, r_target_system, r_target_component, r_confirmation, r_checksum)
     b[39:41] = _checksum_crc16_1021_ffff_rr_0_extra(bytes(b[1:39]) + b'\x98').to_bytes(2, 'little')
@@ -1426,8 +1107,9 @@ class StreamDecoder:
 
 
 _ENCODERS: dict[type[Any], Callable[[Any], bytes]] = {Heartbeat: _encode_heartbeat, SysStatus: _encode_sys_status, ParamValue: _encode_param_value, GpsRawInt: _encode_gps_raw_int, Attitude: _encode_attitude, CommandLong: _encode_command_long, }
+_DECODERS: dict[type[Any], Callable[..., Any]] = {Heartbeat: _decode_heartbeat, SysStatus: _decode_sys_status, ParamValue: _decode_param_value, GpsRawInt: _decode_gps_raw_int, Attitude: _decode_attitude, CommandLong: _decode_command_long, }
 for _cls, _encoder in _ENCODERS.items():  # each encoder is its class's encode method: one call, not two
-    _encoder.__doc__ = _cls.encode.__doc__
+    _encoder.__doc__ = _Message.encode.__doc__
     setattr(_cls, "encode", _encoder)
 MESSAGES: dict[str, type[AnyMessage]] = {'heartbeat': Heartbeat, 'sys_status': SysStatus, 'param_value': ParamValue, 'gps_raw_int': GpsRawInt, 'attitude': Attitude, 'command_long': CommandLong, }
 

@@ -16,7 +16,6 @@ import math
 import os
 
 import struct
-from dataclasses import dataclass
 from typing import Any, Callable, ClassVar, Optional, TypeVar, Union, cast
 
 _Buffer = Union[bytes, bytearray, "memoryview[int]"]  # what a binary decoder reads
@@ -32,6 +31,63 @@ FINGERPRINT32 = 0x64b2973b  # its first 32 bits
 _floor = math.floor
 _isfinite = math.isfinite
 _object_new = object.__new__
+_FRESH: Any = object()  # an argument left out whose default (a list, a group) is built for each object
+
+
+class _DataclassFields:
+    """A class's table of dataclass fields, made the first time it is read and then kept on the
+    class, for dataclasses.fields, replace, asdict and is_dataclass."""
+
+    def __get__(self, obj: object, owner: type[_Record]) -> dict[str, Any]:
+        from dataclasses import field, make_dataclass
+        init: Any = owner.__init__
+        defaults: dict[str, Any] = init.__kwdefaults__ or {}
+        annotations: dict[str, Any] = owner.__annotations__
+        names = owner._NAMES  # pyright: ignore[reportPrivateUsage]
+        fields: list[tuple[str, Any, Any]] = [
+            (n, annotations[n], field(default=defaults[n]) if defaults.get(n, _FRESH) is not _FRESH else field())
+            for n in names]
+        slots: tuple[str, ...] = owner.__slots__
+        fields += [(n, annotations[n], field(default=None, init=False, repr=False, compare=False))
+                   for n in slots if n not in names]
+        made: Any = make_dataclass(owner.__name__, fields, kw_only=True)
+        table: dict[str, Any] = made.__dataclass_fields__
+        setattr(owner, "__dataclass_fields__", table)
+        return table
+
+
+_R = TypeVar("_R", bound="_Record")
+
+
+class _Record:
+    """What every message, group and sequence class is: its fields in slots, set by a keyword
+    constructor; compared and shown field by field, in order, as a dataclass is; and a
+    dataclass to the dataclasses module. Its table of fields is made when first asked for: a
+    @dataclass decorator writes and compiles each class's methods while the module is
+    imported, which in a protocol of hundreds of messages costs more than all the rest."""
+
+    __slots__ = ()
+    _NAMES: ClassVar[tuple[str, ...]] = ()
+    __dataclass_fields__: ClassVar[dict[str, Any]] = _DataclassFields()  # type: ignore[assignment]
+
+    def __eq__(self, other: object) -> bool:
+        if other.__class__ is not self.__class__:
+            return NotImplemented
+        return [getattr(self, n) for n in self._NAMES] == [getattr(other, n) for n in self._NAMES]
+
+    def __repr__(self) -> str:
+        return f"{self.__class__.__qualname__}({', '.join(f'{n}={getattr(self, n)!r}' for n in self._NAMES)})"
+
+    def to_dict(self) -> dict[str, Any]:
+        """The object as JSON-ready data: enum members and flags by name, bytes as hex, numbers
+        in logical units; from_dict reads it back."""
+        return _to_dict(self)
+
+    @classmethod
+    def from_dict(cls: type[_R], values: dict[str, Any]) -> _R:
+        """An object from the data to_dict gives; an unknown key or a value of the wrong type is
+        a DecodeError."""
+        return _from_dict(cls, values, getattr(cls, "NAME", cls.__name__), "")
 
 
 class CodecError(ValueError):
@@ -119,6 +175,40 @@ def _enc(message: Optional[str], field: Optional[str], value: object, rule: str,
     return EncodeError(message, field, value, rule, allowed, None, decision, user_message)
 
 
+def _int_fault(message: str, field: Optional[str], value: Any, lo: Any, hi: Any, number: bool,
+               decision: Optional[str], user_message: Optional[str] = None) -> None:
+    """Raise the EncodeError of an integer field's value that its usual test did not pass: not
+    an int (a number, if the field is scaled), or out of its range."""
+    if not isinstance(value, (int, float) if number else int) or value.__class__ is bool:
+        raise _enc(message, field, value, 'type', 'a number' if number else 'an int')
+    if not lo <= value <= hi:
+        raise _enc(message, field, value, 'range', f'{lo!r}..{hi!r}', decision, user_message)
+
+
+def _faults(message: str, values: tuple[Any, ...], specs: tuple[tuple[Any, ...], ...]) -> None:
+    """Raise the EncodeError of the first of several numbers that fails its usual test; each
+    spec is ("int", field, lo, hi, scaled, decision[, message]) or ("float", field, binary32)."""
+    for value, (kind, name, *limits) in zip(values, specs):
+        if kind == "int":
+            _int_fault(message, name, value, *limits)
+        else:
+            _float_fault(message, name, value, *limits)
+
+
+def _float_fault(message: str, field: Optional[str], value: Any, binary32: bool) -> None:
+    """Raise the EncodeError of a float field's value that its usual test did not pass: not a
+    number, not finite, or (binary32) beyond a binary32's range."""
+    if value.__class__ is not float:
+        if not isinstance(value, (int, float)) or value.__class__ is bool:
+            raise _enc(message, field, value, 'type', 'a number')
+        if not -1.7976931348623157e308 <= value <= 1.7976931348623157e308:  # exact for any int
+            raise _enc(message, field, value, 'finite', 'a finite number')
+    if not _isfinite(value):
+        raise _enc(message, field, value, 'finite', 'a finite number')
+    if binary32 and (value > 3.4028234663852886e38 or value < -3.4028234663852886e38):
+        raise _enc(message, field, value, 'range', 'a binary32 value')
+
+
 def _dec(message: Optional[str], field: Optional[str], value: object, rule: str, allowed: str = "",
          offset: Optional[int] = None, decision: Optional[str] = None,
          user_message: Optional[str] = None) -> DecodeError:
@@ -151,14 +241,37 @@ _FLAGS_incompat_flags = _flag_table(IncompatFlags, (0x1, ), True)
 # kind: int, number, bool, str, bytes (hex text), enum (a member's name), flags (a list of
 # names) or group (a nested mapping).
 _Spec = tuple[str, str, Any, bool, bool, bool]
+_Msg = TypeVar("_Msg", bound="_Message")
 
 
-@dataclass(slots=True, kw_only=True)
-class Heartbeat:
+class _Message(_Record):
+    """What every message class does: encode itself, decode its own wire form. Each message's
+    encoder is set on its class as the method itself (one call, not two)."""
+
+    __slots__ = ()
+    NAME: ClassVar[str]
+
+    def encode(self, key: Optional[_Buffer] = None) -> bytes:
+        """The message in its wire form; an EncodeError if a value breaks the schema. With `key`,
+        the trailer's signature is computed with it."""
+        return _write_trailer(cast(AnyMessage, self), _ENCODERS[self.__class__](self), key)
+
+    @classmethod
+    def decode(cls: type[_Msg], data: _Input, key: Optional[_Buffer] = None) -> _Msg:
+        """The message from its wire form; a DecodeError if it is not one. With `key`, the frame
+        must be signed with it."""
+        d = data if data.__class__ is bytes else _as_input(data)
+        body, t = _split_trailer(d)
+        return cast(_Msg, _read_trailer(_DECODERS[cls](body), d, len(body), t, key))
+
+
+class Heartbeat(_Message):
     """the system is present and in this state"""
 
+    __slots__ = ('incompat_flags', 'compat_flags', 'seq', 'sysid', 'compid', 'custom_mode', 'type', 'autopilot', 'base_mode', 'system_status', 'mavlink_version', 'link_id', 'timestamp', 'signature')
     NAME: ClassVar[str] = 'heartbeat'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('incompat_flags', 'flags', IncompatFlags, False, False, True), ('compat_flags', 'int', None, False, False, True), ('seq', 'int', None, False, False, True), ('sysid', 'int', None, False, False, True), ('compid', 'int', None, False, False, True), ('custom_mode', 'int', None, False, False, True), ('type', 'int', None, False, False, True), ('autopilot', 'int', None, False, False, True), ('base_mode', 'int', None, False, False, True), ('system_status', 'int', None, False, False, True), ('mavlink_version', 'int', None, False, False, True), ('link_id', 'int', None, True, False, False), ('timestamp', 'int', None, True, False, False), ('signature', 'bytes', None, True, False, False), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('incompat_flags', 'compat_flags', 'seq', 'sysid', 'compid', 'custom_mode', 'type', 'autopilot', 'base_mode', 'system_status', 'mavlink_version', 'link_id', 'timestamp', 'signature')
 
     incompat_flags: IncompatFlags
     """flags a receiver must understand; a packet with a flag it does not know is refused"""
@@ -187,46 +300,39 @@ class Heartbeat:
 
     mavlink_version: int
 
-    link_id: Optional[int] = None
+    link_id: Optional[int]
     """the sender's link (channel) (sent when incompat_flags has signing)"""
 
-    timestamp: Optional[int] = None
+    timestamp: Optional[int]
     """10 microsecond units since 1 January 2015 GMT [10us] (sent when incompat_flags has signing)"""
 
-    signature: Optional[bytes] = None
+    signature: Optional[bytes]
     """first 6 bytes of SHA-256(secret key + the packet from stx through timestamp) (sent when incompat_flags has signing)"""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The Heartbeat as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> Heartbeat:
-        """A Heartbeat from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(Heartbeat, values, 'heartbeat', "")
-
-    def encode(self, key: Optional[_Buffer] = None) -> bytes:
-        """The heartbeat message in its wire form; an EncodeError if a value breaks the schema.
-        With `key`, the trailer's signature is computed with it."""
-        return _write_trailer(self, _encode_heartbeat(self), key)
-
-    @classmethod
-    def decode(cls, data: _Input, key: Optional[_Buffer] = None) -> Heartbeat:
-        """A heartbeat message from its wire form; a DecodeError if it is not one.
-        With `key`, the frame must be signed with it."""
-        d = data if data.__class__ is bytes else _as_input(data)
-        body, t = _split_trailer(d)
-        return _read_trailer(_decode_heartbeat(body), d, len(body), t, key)
+    def __init__(self, *, incompat_flags: IncompatFlags, compat_flags: int, seq: int, sysid: int, compid: int, custom_mode: int, type: int, autopilot: int, base_mode: int, system_status: int, mavlink_version: int, link_id: Optional[int] = None, timestamp: Optional[int] = None, signature: Optional[bytes] = None) -> None:
+        self.incompat_flags = incompat_flags
+        self.compat_flags = compat_flags
+        self.seq = seq
+        self.sysid = sysid
+        self.compid = compid
+        self.custom_mode = custom_mode
+        self.type = type
+        self.autopilot = autopilot
+        self.base_mode = base_mode
+        self.system_status = system_status
+        self.mavlink_version = mavlink_version
+        self.link_id = link_id
+        self.timestamp = timestamp
+        self.signature = signature
 
 
-@dataclass(slots=True, kw_only=True)
-class SysStatus:
+class SysStatus(_Message):
     """general system state"""
 
+    __slots__ = ('incompat_flags', 'compat_flags', 'seq', 'sysid', 'compid', 'onboard_control_sensors_present', 'onboard_control_sensors_enabled', 'onboard_control_sensors_health', 'load', 'voltage_battery', 'current_battery', 'drop_rate_comm', 'errors_comm', 'errors_count1', 'errors_count2', 'errors_count3', 'errors_count4', 'battery_remaining', 'onboard_control_sensors_present_extended', 'onboard_control_sensors_enabled_extended', 'onboard_control_sensors_health_extended', 'link_id', 'timestamp', 'signature')
     NAME: ClassVar[str] = 'sys_status'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('incompat_flags', 'flags', IncompatFlags, False, False, True), ('compat_flags', 'int', None, False, False, True), ('seq', 'int', None, False, False, True), ('sysid', 'int', None, False, False, True), ('compid', 'int', None, False, False, True), ('onboard_control_sensors_present', 'int', None, False, False, True), ('onboard_control_sensors_enabled', 'int', None, False, False, True), ('onboard_control_sensors_health', 'int', None, False, False, True), ('load', 'int', None, False, False, True), ('voltage_battery', 'int', None, False, False, True), ('current_battery', 'int', None, False, False, True), ('drop_rate_comm', 'int', None, False, False, True), ('errors_comm', 'int', None, False, False, True), ('errors_count1', 'int', None, False, False, True), ('errors_count2', 'int', None, False, False, True), ('errors_count3', 'int', None, False, False, True), ('errors_count4', 'int', None, False, False, True), ('battery_remaining', 'int', None, False, False, True), ('onboard_control_sensors_present_extended', 'int', None, False, False, True), ('onboard_control_sensors_enabled_extended', 'int', None, False, False, True), ('onboard_control_sensors_health_extended', 'int', None, False, False, True), ('link_id', 'int', None, True, False, False), ('timestamp', 'int', None, True, False, False), ('signature', 'bytes', None, True, False, False), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('incompat_flags', 'compat_flags', 'seq', 'sysid', 'compid', 'onboard_control_sensors_present', 'onboard_control_sensors_enabled', 'onboard_control_sensors_health', 'load', 'voltage_battery', 'current_battery', 'drop_rate_comm', 'errors_comm', 'errors_count1', 'errors_count2', 'errors_count3', 'errors_count4', 'battery_remaining', 'onboard_control_sensors_present_extended', 'onboard_control_sensors_enabled_extended', 'onboard_control_sensors_health_extended', 'link_id', 'timestamp', 'signature')
 
     incompat_flags: IncompatFlags
     """flags a receiver must understand; a packet with a flag it does not know is refused"""
@@ -280,46 +386,49 @@ class SysStatus:
 
     onboard_control_sensors_health_extended: int
 
-    link_id: Optional[int] = None
+    link_id: Optional[int]
     """the sender's link (channel) (sent when incompat_flags has signing)"""
 
-    timestamp: Optional[int] = None
+    timestamp: Optional[int]
     """10 microsecond units since 1 January 2015 GMT [10us] (sent when incompat_flags has signing)"""
 
-    signature: Optional[bytes] = None
+    signature: Optional[bytes]
     """first 6 bytes of SHA-256(secret key + the packet from stx through timestamp) (sent when incompat_flags has signing)"""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The SysStatus as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
+    def __init__(self, *, incompat_flags: IncompatFlags, compat_flags: int, seq: int, sysid: int, compid: int, onboard_control_sensors_present: int, onboard_control_sensors_enabled: int, onboard_control_sensors_health: int, load: int, voltage_battery: int, current_battery: int, drop_rate_comm: int, errors_comm: int, errors_count1: int, errors_count2: int, errors_count3: int, errors_count4: int, battery_remaining: int, onboard_control_sensors_present_extended: int, onboard_control_sensors_enabled_extended: int, onboard_control_sensors_health_extended: int, link_id: Optional[int] = None, timestamp: Optional[int] = None, signature: Optional[bytes] = None) -> None:
+        self.incompat_flags = incompat_flags
+        self.compat_flags = compat_flags
+        self.seq = seq
+        self.sysid = sysid
+        self.compid = compid
+        self.onboard_control_sensors_present = onboard_control_sensors_present
+        self.onboard_control_sensors_enabled = onboard_control_sensors_enabled
+        self.onboard_control_sensors_health = onboard_control_sensors_health
+        self.load = load
+        self.voltage_battery = voltage_battery
+        self.current_battery = current_battery
+        self.drop_rate_comm = drop_rate_comm
+        self.errors_comm = errors_comm
+        self.errors_count1 = errors_count1
+        self.errors_count2 = errors_count2
+        self.errors_count3 = errors_count3
+        self.errors_count4 = errors_count4
+        self.battery_remaining = battery_remaining
+        self.onboard_control_sensors_present_extended = onboard_control_sensors_present_extended
+        self.onboard_control_sensors_enabled_extended = onboard_control_sensors_enabled_extended
+        self.onboard_control_sensors_health_extended = onboard_control_sensors_health_extended
+        self.link_id = link_id
+        self.timestamp = timestamp
+        self.signature = signature
 
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> SysStatus:
-        """A SysStatus from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(SysStatus, values, 'sys_status', "")
 
-    def encode(self, key: Optional[_Buffer] = None) -> bytes:
-        """The sys_status message in its wire form; an EncodeError if a value breaks the schema.
-        With `key`, the trailer's signature is computed with it."""
-        return _write_trailer(self, _encode_sys_status(self), key)
-
-    @classmethod
-    def decode(cls, data: _Input, key: Optional[_Buffer] = None) -> SysStatus:
-        """A sys_status message from its wire form; a DecodeError if it is not one.
-        With `key`, the frame must be signed with it."""
-        d = data if data.__class__ is bytes else _as_input(data)
-        body, t = _split_trailer(d)
-        return _read_trailer(_decode_sys_status(body), d, len(body), t, key)
-
-
-@dataclass(slots=True, kw_only=True)
-class ParamValue:
+class ParamValue(_Message):
     """the value of an onboard parameter"""
 
+    __slots__ = ('incompat_flags', 'compat_flags', 'seq', 'sysid', 'compid', 'param_value', 'param_count', 'param_index', 'param_id', 'param_type', 'link_id', 'timestamp', 'signature')
     NAME: ClassVar[str] = 'param_value'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('incompat_flags', 'flags', IncompatFlags, False, False, True), ('compat_flags', 'int', None, False, False, True), ('seq', 'int', None, False, False, True), ('sysid', 'int', None, False, False, True), ('compid', 'int', None, False, False, True), ('param_value', 'number', None, False, False, True), ('param_count', 'int', None, False, False, True), ('param_index', 'int', None, False, False, True), ('param_id', 'bytes', None, False, False, True), ('param_type', 'int', None, False, False, True), ('link_id', 'int', None, True, False, False), ('timestamp', 'int', None, True, False, False), ('signature', 'bytes', None, True, False, False), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('incompat_flags', 'compat_flags', 'seq', 'sysid', 'compid', 'param_value', 'param_count', 'param_index', 'param_id', 'param_type', 'link_id', 'timestamp', 'signature')
 
     incompat_flags: IncompatFlags
     """flags a receiver must understand; a packet with a flag it does not know is refused"""
@@ -347,46 +456,38 @@ class ParamValue:
 
     param_type: int
 
-    link_id: Optional[int] = None
+    link_id: Optional[int]
     """the sender's link (channel) (sent when incompat_flags has signing)"""
 
-    timestamp: Optional[int] = None
+    timestamp: Optional[int]
     """10 microsecond units since 1 January 2015 GMT [10us] (sent when incompat_flags has signing)"""
 
-    signature: Optional[bytes] = None
+    signature: Optional[bytes]
     """first 6 bytes of SHA-256(secret key + the packet from stx through timestamp) (sent when incompat_flags has signing)"""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The ParamValue as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> ParamValue:
-        """A ParamValue from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(ParamValue, values, 'param_value', "")
-
-    def encode(self, key: Optional[_Buffer] = None) -> bytes:
-        """The param_value message in its wire form; an EncodeError if a value breaks the schema.
-        With `key`, the trailer's signature is computed with it."""
-        return _write_trailer(self, _encode_param_value(self), key)
-
-    @classmethod
-    def decode(cls, data: _Input, key: Optional[_Buffer] = None) -> ParamValue:
-        """A param_value message from its wire form; a DecodeError if it is not one.
-        With `key`, the frame must be signed with it."""
-        d = data if data.__class__ is bytes else _as_input(data)
-        body, t = _split_trailer(d)
-        return _read_trailer(_decode_param_value(body), d, len(body), t, key)
+    def __init__(self, *, incompat_flags: IncompatFlags, compat_flags: int, seq: int, sysid: int, compid: int, param_value: float, param_count: int, param_index: int, param_id: bytes, param_type: int, link_id: Optional[int] = None, timestamp: Optional[int] = None, signature: Optional[bytes] = None) -> None:
+        self.incompat_flags = incompat_flags
+        self.compat_flags = compat_flags
+        self.seq = seq
+        self.sysid = sysid
+        self.compid = compid
+        self.param_value = param_value
+        self.param_count = param_count
+        self.param_index = param_index
+        self.param_id = param_id
+        self.param_type = param_type
+        self.link_id = link_id
+        self.timestamp = timestamp
+        self.signature = signature
 
 
-@dataclass(slots=True, kw_only=True)
-class GpsRawInt:
+class GpsRawInt(_Message):
     """the GPS fix as the receiver reports it"""
 
+    __slots__ = ('incompat_flags', 'compat_flags', 'seq', 'sysid', 'compid', 'time_usec', 'lat', 'lon', 'alt', 'eph', 'epv', 'vel', 'cog', 'fix_type', 'satellites_visible', 'alt_ellipsoid', 'h_acc', 'v_acc', 'vel_acc', 'hdg_acc', 'yaw', 'link_id', 'timestamp', 'signature')
     NAME: ClassVar[str] = 'gps_raw_int'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('incompat_flags', 'flags', IncompatFlags, False, False, True), ('compat_flags', 'int', None, False, False, True), ('seq', 'int', None, False, False, True), ('sysid', 'int', None, False, False, True), ('compid', 'int', None, False, False, True), ('time_usec', 'int', None, False, False, True), ('lat', 'int', None, False, False, True), ('lon', 'int', None, False, False, True), ('alt', 'int', None, False, False, True), ('eph', 'int', None, False, False, True), ('epv', 'int', None, False, False, True), ('vel', 'int', None, False, False, True), ('cog', 'int', None, False, False, True), ('fix_type', 'int', None, False, False, True), ('satellites_visible', 'int', None, False, False, True), ('alt_ellipsoid', 'int', None, False, False, True), ('h_acc', 'int', None, False, False, True), ('v_acc', 'int', None, False, False, True), ('vel_acc', 'int', None, False, False, True), ('hdg_acc', 'int', None, False, False, True), ('yaw', 'int', None, False, False, True), ('link_id', 'int', None, True, False, False), ('timestamp', 'int', None, True, False, False), ('signature', 'bytes', None, True, False, False), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('incompat_flags', 'compat_flags', 'seq', 'sysid', 'compid', 'time_usec', 'lat', 'lon', 'alt', 'eph', 'epv', 'vel', 'cog', 'fix_type', 'satellites_visible', 'alt_ellipsoid', 'h_acc', 'v_acc', 'vel_acc', 'hdg_acc', 'yaw', 'link_id', 'timestamp', 'signature')
 
     incompat_flags: IncompatFlags
     """flags a receiver must understand; a packet with a flag it does not know is refused"""
@@ -447,46 +548,49 @@ class GpsRawInt:
     yaw: int
     """[cdeg]"""
 
-    link_id: Optional[int] = None
+    link_id: Optional[int]
     """the sender's link (channel) (sent when incompat_flags has signing)"""
 
-    timestamp: Optional[int] = None
+    timestamp: Optional[int]
     """10 microsecond units since 1 January 2015 GMT [10us] (sent when incompat_flags has signing)"""
 
-    signature: Optional[bytes] = None
+    signature: Optional[bytes]
     """first 6 bytes of SHA-256(secret key + the packet from stx through timestamp) (sent when incompat_flags has signing)"""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The GpsRawInt as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
+    def __init__(self, *, incompat_flags: IncompatFlags, compat_flags: int, seq: int, sysid: int, compid: int, time_usec: int, lat: int, lon: int, alt: int, eph: int, epv: int, vel: int, cog: int, fix_type: int, satellites_visible: int, alt_ellipsoid: int, h_acc: int, v_acc: int, vel_acc: int, hdg_acc: int, yaw: int, link_id: Optional[int] = None, timestamp: Optional[int] = None, signature: Optional[bytes] = None) -> None:
+        self.incompat_flags = incompat_flags
+        self.compat_flags = compat_flags
+        self.seq = seq
+        self.sysid = sysid
+        self.compid = compid
+        self.time_usec = time_usec
+        self.lat = lat
+        self.lon = lon
+        self.alt = alt
+        self.eph = eph
+        self.epv = epv
+        self.vel = vel
+        self.cog = cog
+        self.fix_type = fix_type
+        self.satellites_visible = satellites_visible
+        self.alt_ellipsoid = alt_ellipsoid
+        self.h_acc = h_acc
+        self.v_acc = v_acc
+        self.vel_acc = vel_acc
+        self.hdg_acc = hdg_acc
+        self.yaw = yaw
+        self.link_id = link_id
+        self.timestamp = timestamp
+        self.signature = signature
 
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> GpsRawInt:
-        """A GpsRawInt from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(GpsRawInt, values, 'gps_raw_int', "")
 
-    def encode(self, key: Optional[_Buffer] = None) -> bytes:
-        """The gps_raw_int message in its wire form; an EncodeError if a value breaks the schema.
-        With `key`, the trailer's signature is computed with it."""
-        return _write_trailer(self, _encode_gps_raw_int(self), key)
-
-    @classmethod
-    def decode(cls, data: _Input, key: Optional[_Buffer] = None) -> GpsRawInt:
-        """A gps_raw_int message from its wire form; a DecodeError if it is not one.
-        With `key`, the frame must be signed with it."""
-        d = data if data.__class__ is bytes else _as_input(data)
-        body, t = _split_trailer(d)
-        return _read_trailer(_decode_gps_raw_int(body), d, len(body), t, key)
-
-
-@dataclass(slots=True, kw_only=True)
-class Attitude:
+class Attitude(_Message):
     """the attitude in the aeronautical frame"""
 
+    __slots__ = ('incompat_flags', 'compat_flags', 'seq', 'sysid', 'compid', 'time_boot_ms', 'roll', 'pitch', 'yaw', 'rollspeed', 'pitchspeed', 'yawspeed', 'link_id', 'timestamp', 'signature')
     NAME: ClassVar[str] = 'attitude'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('incompat_flags', 'flags', IncompatFlags, False, False, True), ('compat_flags', 'int', None, False, False, True), ('seq', 'int', None, False, False, True), ('sysid', 'int', None, False, False, True), ('compid', 'int', None, False, False, True), ('time_boot_ms', 'int', None, False, False, True), ('roll', 'number', None, False, False, True), ('pitch', 'number', None, False, False, True), ('yaw', 'number', None, False, False, True), ('rollspeed', 'number', None, False, False, True), ('pitchspeed', 'number', None, False, False, True), ('yawspeed', 'number', None, False, False, True), ('link_id', 'int', None, True, False, False), ('timestamp', 'int', None, True, False, False), ('signature', 'bytes', None, True, False, False), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('incompat_flags', 'compat_flags', 'seq', 'sysid', 'compid', 'time_boot_ms', 'roll', 'pitch', 'yaw', 'rollspeed', 'pitchspeed', 'yawspeed', 'link_id', 'timestamp', 'signature')
 
     incompat_flags: IncompatFlags
     """flags a receiver must understand; a packet with a flag it does not know is refused"""
@@ -524,46 +628,40 @@ class Attitude:
     yawspeed: float
     """[rad/s]"""
 
-    link_id: Optional[int] = None
+    link_id: Optional[int]
     """the sender's link (channel) (sent when incompat_flags has signing)"""
 
-    timestamp: Optional[int] = None
+    timestamp: Optional[int]
     """10 microsecond units since 1 January 2015 GMT [10us] (sent when incompat_flags has signing)"""
 
-    signature: Optional[bytes] = None
+    signature: Optional[bytes]
     """first 6 bytes of SHA-256(secret key + the packet from stx through timestamp) (sent when incompat_flags has signing)"""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The Attitude as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> Attitude:
-        """A Attitude from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(Attitude, values, 'attitude', "")
-
-    def encode(self, key: Optional[_Buffer] = None) -> bytes:
-        """The attitude message in its wire form; an EncodeError if a value breaks the schema.
-        With `key`, the trailer's signature is computed with it."""
-        return _write_trailer(self, _encode_attitude(self), key)
-
-    @classmethod
-    def decode(cls, data: _Input, key: Optional[_Buffer] = None) -> Attitude:
-        """A attitude message from its wire form; a DecodeError if it is not one.
-        With `key`, the frame must be signed with it."""
-        d = data if data.__class__ is bytes else _as_input(data)
-        body, t = _split_trailer(d)
-        return _read_trailer(_decode_attitude(body), d, len(body), t, key)
+    def __init__(self, *, incompat_flags: IncompatFlags, compat_flags: int, seq: int, sysid: int, compid: int, time_boot_ms: int, roll: float, pitch: float, yaw: float, rollspeed: float, pitchspeed: float, yawspeed: float, link_id: Optional[int] = None, timestamp: Optional[int] = None, signature: Optional[bytes] = None) -> None:
+        self.incompat_flags = incompat_flags
+        self.compat_flags = compat_flags
+        self.seq = seq
+        self.sysid = sysid
+        self.compid = compid
+        self.time_boot_ms = time_boot_ms
+        self.roll = roll
+        self.pitch = pitch
+        self.yaw = yaw
+        self.rollspeed = rollspeed
+        self.pitchspeed = pitchspeed
+        self.yawspeed = yawspeed
+        self.link_id = link_id
+        self.timestamp = timestamp
+        self.signature = signature
 
 
-@dataclass(slots=True, kw_only=True)
-class CommandAck:
+class CommandAck(_Message):
     """the answer to a command"""
 
+    __slots__ = ('incompat_flags', 'compat_flags', 'seq', 'sysid', 'compid', 'command', 'result', 'progress', 'result_param2', 'target_system', 'target_component', 'link_id', 'timestamp', 'signature')
     NAME: ClassVar[str] = 'command_ack'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('incompat_flags', 'flags', IncompatFlags, False, False, True), ('compat_flags', 'int', None, False, False, True), ('seq', 'int', None, False, False, True), ('sysid', 'int', None, False, False, True), ('compid', 'int', None, False, False, True), ('command', 'int', None, False, False, True), ('result', 'int', None, False, False, True), ('progress', 'int', None, False, False, True), ('result_param2', 'int', None, False, False, True), ('target_system', 'int', None, False, False, True), ('target_component', 'int', None, False, False, True), ('link_id', 'int', None, True, False, False), ('timestamp', 'int', None, True, False, False), ('signature', 'bytes', None, True, False, False), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('incompat_flags', 'compat_flags', 'seq', 'sysid', 'compid', 'command', 'result', 'progress', 'result_param2', 'target_system', 'target_component', 'link_id', 'timestamp', 'signature')
 
     incompat_flags: IncompatFlags
     """flags a receiver must understand; a packet with a flag it does not know is refused"""
@@ -593,38 +691,30 @@ class CommandAck:
 
     target_component: int
 
-    link_id: Optional[int] = None
+    link_id: Optional[int]
     """the sender's link (channel) (sent when incompat_flags has signing)"""
 
-    timestamp: Optional[int] = None
+    timestamp: Optional[int]
     """10 microsecond units since 1 January 2015 GMT [10us] (sent when incompat_flags has signing)"""
 
-    signature: Optional[bytes] = None
+    signature: Optional[bytes]
     """first 6 bytes of SHA-256(secret key + the packet from stx through timestamp) (sent when incompat_flags has signing)"""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The CommandAck as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> CommandAck:
-        """A CommandAck from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(CommandAck, values, 'command_ack', "")
-
-    def encode(self, key: Optional[_Buffer] = None) -> bytes:
-        """The command_ack message in its wire form; an EncodeError if a value breaks the schema.
-        With `key`, the trailer's signature is computed with it."""
-        return _write_trailer(self, _encode_command_ack(self), key)
-
-    @classmethod
-    def decode(cls, data: _Input, key: Optional[_Buffer] = None) -> CommandAck:
-        """A command_ack message from its wire form; a DecodeError if it is not one.
-        With `key`, the frame must be signed with it."""
-        d = data if data.__class__ is bytes else _as_input(data)
-        body, t = _split_trailer(d)
-        return _read_trailer(_decode_command_ack(body), d, len(body), t, key)
+    def __init__(self, *, incompat_flags: IncompatFlags, compat_flags: int, seq: int, sysid: int, compid: int, command: int, result: int, progress: int, result_param2: int, target_system: int, target_component: int, link_id: Optional[int] = None, timestamp: Optional[int] = None, signature: Optional[bytes] = None) -> None:
+        self.incompat_flags = incompat_flags
+        self.compat_flags = compat_flags
+        self.seq = seq
+        self.sysid = sysid
+        self.compid = compid
+        self.command = command
+        self.result = result
+        self.progress = progress
+        self.result_param2 = result_param2
+        self.target_system = target_system
+        self.target_component = target_component
+        self.link_id = link_id
+        self.timestamp = timestamp
+        self.signature = signature
 
 
 AnyMessage = Union[Heartbeat, SysStatus, ParamValue, GpsRawInt, Attitude, CommandAck, ]
@@ -668,70 +758,20 @@ def _encode_heartbeat(m: Heartbeat) -> bytes:
     r_incompat_flags = int(r_incompat_flags)
     if r_incompat_flags < 0 or r_incompat_flags & 0xfe or r_incompat_flags > 0xff:
         raise _enc('heartbeat', 'incompat_flags', r_incompat_flags, 'flags', 'only the bits of incompat_flags', None)
+    r_msgid = 0
+    r_checksum = 0
     r_compat_flags = m.compat_flags
     r_seq = m.seq
     r_sysid = m.sysid
     r_compid = m.compid
-    if (r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255) or (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255):
-        if r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255:
-            if not isinstance(r_compat_flags, int) or r_compat_flags.__class__ is bool:
-                raise _enc('heartbeat', 'compat_flags', r_compat_flags, 'type', 'an int')
-            if not 0 <= r_compat_flags <= 255:
-                raise _enc('heartbeat', 'compat_flags', r_compat_flags, 'range', '0..255', None)
-        if r_seq.__class__ is not int or not 0 <= r_seq <= 255:
-            if not isinstance(r_seq, int) or r_seq.__class__ is bool:
-                raise _enc('heartbeat', 'seq', r_seq, 'type', 'an int')
-            if not 0 <= r_seq <= 255:
-                raise _enc('heartbeat', 'seq', r_seq, 'range', '0..255', None)
-        if r_sysid.__class__ is not int or not 0 <= r_sysid <= 255:
-            if not isinstance(r_sysid, int) or r_sysid.__class__ is bool:
-                raise _enc('heartbeat', 'sysid', r_sysid, 'type', 'an int')
-            if not 0 <= r_sysid <= 255:
-                raise _enc('heartbeat', 'sysid', r_sysid, 'range', '0..255', None)
-        if r_compid.__class__ is not int or not 0 <= r_compid <= 255:
-            if not isinstance(r_compid, int) or r_compid.__class__ is bool:
-                raise _enc('heartbeat', 'compid', r_compid, 'type', 'an int')
-            if not 0 <= r_compid <= 255:
-                raise _enc('heartbeat', 'compid', r_compid, 'range', '0..255', None)
-    r_msgid = 0
     r_custom_mode = m.custom_mode
     r_type = m.type
     r_autopilot = m.autopilot
     r_base_mode = m.base_mode
     r_system_status = m.system_status
     r_mavlink_version = m.mavlink_version
-    if (r_custom_mode.__class__ is not int or not 0 <= r_custom_mode <= 4294967295) or (r_type.__class__ is not int or not 0 <= r_type <= 255) or (r_autopilot.__class__ is not int or not 0 <= r_autopilot <= 255) or (r_base_mode.__class__ is not int or not 0 <= r_base_mode <= 255) or (r_system_status.__class__ is not int or not 0 <= r_system_status <= 255) or (r_mavlink_version.__class__ is not int or not 0 <= r_mavlink_version <= 255):
-        if r_custom_mode.__class__ is not int or not 0 <= r_custom_mode <= 4294967295:
-            if not isinstance(r_custom_mode, int) or r_custom_mode.__class__ is bool:
-                raise _enc('heartbeat', 'custom_mode', r_custom_mode, 'type', 'an int')
-            if not 0 <= r_custom_mode <= 4294967295:
-                raise _enc('heartbeat', 'custom_mode', r_custom_mode, 'range', '0..4294967295', None)
-        if r_type.__class__ is not int or not 0 <= r_type <= 255:
-            if not isinstance(r_type, int) or r_type.__class__ is bool:
-                raise _enc('heartbeat', 'type', r_type, 'type', 'an int')
-            if not 0 <= r_type <= 255:
-                raise _enc('heartbeat', 'type', r_type, 'range', '0..255', None)
-        if r_autopilot.__class__ is not int or not 0 <= r_autopilot <= 255:
-            if not isinstance(r_autopilot, int) or r_autopilot.__class__ is bool:
-                raise _enc('heartbeat', 'autopilot', r_autopilot, 'type', 'an int')
-            if not 0 <= r_autopilot <= 255:
-                raise _enc('heartbeat', 'autopilot', r_autopilot, 'range', '0..255', None)
-        if r_base_mode.__class__ is not int or not 0 <= r_base_mode <= 255:
-            if not isinstance(r_base_mode, int) or r_base_mode.__class__ is bool:
-                raise _enc('heartbeat', 'base_mode', r_base_mode, 'type', 'an int')
-            if not 0 <= r_base_mode <= 255:
-                raise _enc('heartbeat', 'base_mode', r_base_mode, 'range', '0..255', None)
-        if r_system_status.__class__ is not int or not 0 <= r_system_status <= 255:
-            if not isinstance(r_system_status, int) or r_system_status.__class__ is bool:
-                raise _enc('heartbeat', 'system_status', r_system_status, 'type', 'an int')
-            if not 0 <= r_system_status <= 255:
-                raise _enc('heartbeat', 'system_status', r_system_status, 'range', '0..255', None)
-        if r_mavlink_version.__class__ is not int or not 0 <= r_mavlink_version <= 255:
-            if not isinstance(r_mavlink_version, int) or r_mavlink_version.__class__ is bool:
-                raise _enc('heartbeat', 'mavlink_version', r_mavlink_version, 'type', 'an int')
-            if not 0 <= r_mavlink_version <= 255:
-                raise _enc('heartbeat', 'mavlink_version', r_mavlink_version, 'range', '0..255', None)
-    r_checksum = 0
+    if (r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255) or (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255) or (r_custom_mode.__class__ is not int or not 0 <= r_custom_mode <= 4294967295) or (r_type.__class__ is not int or not 0 <= r_type <= 255) or (r_autopilot.__class__ is not int or not 0 <= r_autopilot <= 255) or (r_base_mode.__class__ is not int or not 0 <= r_base_mode <= 255) or (r_system_status.__class__ is not int or not 0 <= r_system_status <= 255) or (r_mavlink_version.__class__ is not int or not 0 <= r_mavlink_version <= 255):
+        _faults('heartbeat', (r_compat_flags, r_seq, r_sysid, r_compid, r_custom_mode, r_type, r_autopilot, r_base_mode, r_system_status, r_mavlink_version, ), (('int', 'compat_flags', 0, 255, False, None), ('int', 'seq', 0, 255, False, None), ('int', 'sysid', 0, 255, False, None), ('int', 'compid', 0, 255, False, None), ('int', 'custom_mode', 0, 4294967295, False, None), ('int', 'type', 0, 255, False, None), ('int', 'autopilot', 0, 255, False, None), ('int', 'base_mode', 0, 255, False, None), ('int', 'system_status', 0, 255, False, None), ('int', 'mavlink_version', 0, 255, False, None)))
     b = bytearray(21)
     _S_heartbeat_0.pack_into(b, 0, 253, 9, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, r_msgid.to_bytes(3, 'little', signed=False), r_custom_mode, r_type, r_autopilot, r_base_mode, r_system_status, r_mavlink_version, r_checksum)
     cut = 8 - len(b[11:19].rstrip(b'\0'))  # trailing zeros are not sent
@@ -785,32 +825,12 @@ def _encode_sys_status(m: SysStatus) -> bytes:
     r_incompat_flags = int(r_incompat_flags)
     if r_incompat_flags < 0 or r_incompat_flags & 0xfe or r_incompat_flags > 0xff:
         raise _enc('sys_status', 'incompat_flags', r_incompat_flags, 'flags', 'only the bits of incompat_flags', None)
+    r_msgid = 1
+    r_checksum = 0
     r_compat_flags = m.compat_flags
     r_seq = m.seq
     r_sysid = m.sysid
     r_compid = m.compid
-    if (r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255) or (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255):
-        if r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255:
-            if not isinstance(r_compat_flags, int) or r_compat_flags.__class__ is bool:
-                raise _enc('sys_status', 'compat_flags', r_compat_flags, 'type', 'an int')
-            if not 0 <= r_compat_flags <= 255:
-                raise _enc('sys_status', 'compat_flags', r_compat_flags, 'range', '0..255', None)
-        if r_seq.__class__ is not int or not 0 <= r_seq <= 255:
-            if not isinstance(r_seq, int) or r_seq.__class__ is bool:
-                raise _enc('sys_status', 'seq', r_seq, 'type', 'an int')
-            if not 0 <= r_seq <= 255:
-                raise _enc('sys_status', 'seq', r_seq, 'range', '0..255', None)
-        if r_sysid.__class__ is not int or not 0 <= r_sysid <= 255:
-            if not isinstance(r_sysid, int) or r_sysid.__class__ is bool:
-                raise _enc('sys_status', 'sysid', r_sysid, 'type', 'an int')
-            if not 0 <= r_sysid <= 255:
-                raise _enc('sys_status', 'sysid', r_sysid, 'range', '0..255', None)
-        if r_compid.__class__ is not int or not 0 <= r_compid <= 255:
-            if not isinstance(r_compid, int) or r_compid.__class__ is bool:
-                raise _enc('sys_status', 'compid', r_compid, 'type', 'an int')
-            if not 0 <= r_compid <= 255:
-                raise _enc('sys_status', 'compid', r_compid, 'range', '0..255', None)
-    r_msgid = 1
     r_onboard_control_sensors_present = m.onboard_control_sensors_present
     r_onboard_control_sensors_enabled = m.onboard_control_sensors_enabled
     r_onboard_control_sensors_health = m.onboard_control_sensors_health
@@ -827,88 +847,8 @@ def _encode_sys_status(m: SysStatus) -> bytes:
     r_onboard_control_sensors_present_extended = m.onboard_control_sensors_present_extended
     r_onboard_control_sensors_enabled_extended = m.onboard_control_sensors_enabled_extended
     r_onboard_control_sensors_health_extended = m.onboard_control_sensors_health_extended
-    if (r_onboard_control_sensors_present.__class__ is not int or not 0 <= r_onboard_control_sensors_present <= 4294967295) or (r_onboard_control_sensors_enabled.__class__ is not int or not 0 <= r_onboard_control_sensors_enabled <= 4294967295) or (r_onboard_control_sensors_health.__class__ is not int or not 0 <= r_onboard_control_sensors_health <= 4294967295) or (r_load.__class__ is not int or not 0 <= r_load <= 65535) or (r_voltage_battery.__class__ is not int or not 0 <= r_voltage_battery <= 65535) or (r_current_battery.__class__ is not int or not -32768 <= r_current_battery <= 32767) or (r_drop_rate_comm.__class__ is not int or not 0 <= r_drop_rate_comm <= 65535) or (r_errors_comm.__class__ is not int or not 0 <= r_errors_comm <= 65535) or (r_errors_count1.__class__ is not int or not 0 <= r_errors_count1 <= 65535) or (r_errors_count2.__class__ is not int or not 0 <= r_errors_count2 <= 65535) or (r_errors_count3.__class__ is not int or not 0 <= r_errors_count3 <= 65535) or (r_errors_count4.__class__ is not int or not 0 <= r_errors_count4 <= 65535) or (r_battery_remaining.__class__ is not int or not -128 <= r_battery_remaining <= 127) or (r_onboard_control_sensors_present_extended.__class__ is not int or not 0 <= r_onboard_control_sensors_present_extended <= 4294967295) or (r_onboard_control_sensors_enabled_extended.__class__ is not int or not 0 <= r_onboard_control_sensors_enabled_extended <= 4294967295) or (r_onboard_control_sensors_health_extended.__class__ is not int or not 0 <= r_onboard_control_sensors_health_extended <= 4294967295):
-        if r_onboard_control_sensors_present.__class__ is not int or not 0 <= r_onboard_control_sensors_present <= 4294967295:
-            if not isinstance(r_onboard_control_sensors_present, int) or r_onboard_control_sensors_present.__class__ is bool:
-                raise _enc('sys_status', 'onboard_control_sensors_present', r_onboard_control_sensors_present, 'type', 'an int')
-            if not 0 <= r_onboard_control_sensors_present <= 4294967295:
-                raise _enc('sys_status', 'onboard_control_sensors_present', r_onboard_control_sensors_present, 'range', '0..4294967295', None)
-        if r_onboard_control_sensors_enabled.__class__ is not int or not 0 <= r_onboard_control_sensors_enabled <= 4294967295:
-            if not isinstance(r_onboard_control_sensors_enabled, int) or r_onboard_control_sensors_enabled.__class__ is bool:
-                raise _enc('sys_status', 'onboard_control_sensors_enabled', r_onboard_control_sensors_enabled, 'type', 'an int')
-            if not 0 <= r_onboard_control_sensors_enabled <= 4294967295:
-                raise _enc('sys_status', 'onboard_control_sensors_enabled', r_onboard_control_sensors_enabled, 'range', '0..4294967295', None)
-        if r_onboard_control_sensors_health.__class__ is not int or not 0 <= r_onboard_control_sensors_health <= 4294967295:
-            if not isinstance(r_onboard_control_sensors_health, int) or r_onboard_control_sensors_health.__class__ is bool:
-                raise _enc('sys_status', 'onboard_control_sensors_health', r_onboard_control_sensors_health, 'type', 'an int')
-            if not 0 <= r_onboard_control_sensors_health <= 4294967295:
-                raise _enc('sys_status', 'onboard_control_sensors_health', r_onboard_control_sensors_health, 'range', '0..4294967295', None)
-        if r_load.__class__ is not int or not 0 <= r_load <= 65535:
-            if not isinstance(r_load, int) or r_load.__class__ is bool:
-                raise _enc('sys_status', 'load', r_load, 'type', 'an int')
-            if not 0 <= r_load <= 65535:
-                raise _enc('sys_status', 'load', r_load, 'range', '0..65535', None)
-        if r_voltage_battery.__class__ is not int or not 0 <= r_voltage_battery <= 65535:
-            if not isinstance(r_voltage_battery, int) or r_voltage_battery.__class__ is bool:
-                raise _enc('sys_status', 'voltage_battery', r_voltage_battery, 'type', 'an int')
-            if not 0 <= r_voltage_battery <= 65535:
-                raise _enc('sys_status', 'voltage_battery', r_voltage_battery, 'range', '0..65535', None)
-        if r_current_battery.__class__ is not int or not -32768 <= r_current_battery <= 32767:
-            if not isinstance(r_current_battery, int) or r_current_battery.__class__ is bool:
-                raise _enc('sys_status', 'current_battery', r_current_battery, 'type', 'an int')
-            if not -32768 <= r_current_battery <= 32767:
-                raise _enc('sys_status', 'current_battery', r_current_battery, 'range', '-32768..32767', None)
-        if r_drop_rate_comm.__class__ is not int or not 0 <= r_drop_rate_comm <= 65535:
-            if not isinstance(r_drop_rate_comm, int) or r_drop_rate_comm.__class__ is bool:
-                raise _enc('sys_status', 'drop_rate_comm', r_drop_rate_comm, 'type', 'an int')
-            if not 0 <= r_drop_rate_comm <= 65535:
-                raise _enc('sys_status', 'drop_rate_comm', r_drop_rate_comm, 'range', '0..65535', None)
-        if r_errors_comm.__class__ is not int or not 0 <= r_errors_comm <= 65535:
-            if not isinstance(r_errors_comm, int) or r_errors_comm.__class__ is bool:
-                raise _enc('sys_status', 'errors_comm', r_errors_comm, 'type', 'an int')
-            if not 0 <= r_errors_comm <= 65535:
-                raise _enc('sys_status', 'errors_comm', r_errors_comm, 'range', '0..65535', None)
-        if r_errors_count1.__class__ is not int or not 0 <= r_errors_count1 <= 65535:
-            if not isinstance(r_errors_count1, int) or r_errors_count1.__class__ is bool:
-                raise _enc('sys_status', 'errors_count1', r_errors_count1, 'type', 'an int')
-            if not 0 <= r_errors_count1 <= 65535:
-                raise _enc('sys_status', 'errors_count1', r_errors_count1, 'range', '0..65535', None)
-        if r_errors_count2.__class__ is not int or not 0 <= r_errors_count2 <= 65535:
-            if not isinstance(r_errors_count2, int) or r_errors_count2.__class__ is bool:
-                raise _enc('sys_status', 'errors_count2', r_errors_count2, 'type', 'an int')
-            if not 0 <= r_errors_count2 <= 65535:
-                raise _enc('sys_status', 'errors_count2', r_errors_count2, 'range', '0..65535', None)
-        if r_errors_count3.__class__ is not int or not 0 <= r_errors_count3 <= 65535:
-            if not isinstance(r_errors_count3, int) or r_errors_count3.__class__ is bool:
-                raise _enc('sys_status', 'errors_count3', r_errors_count3, 'type', 'an int')
-            if not 0 <= r_errors_count3 <= 65535:
-                raise _enc('sys_status', 'errors_count3', r_errors_count3, 'range', '0..65535', None)
-        if r_errors_count4.__class__ is not int or not 0 <= r_errors_count4 <= 65535:
-            if not isinstance(r_errors_count4, int) or r_errors_count4.__class__ is bool:
-                raise _enc('sys_status', 'errors_count4', r_errors_count4, 'type', 'an int')
-            if not 0 <= r_errors_count4 <= 65535:
-                raise _enc('sys_status', 'errors_count4', r_errors_count4, 'range', '0..65535', None)
-        if r_battery_remaining.__class__ is not int or not -128 <= r_battery_remaining <= 127:
-            if not isinstance(r_battery_remaining, int) or r_battery_remaining.__class__ is bool:
-                raise _enc('sys_status', 'battery_remaining', r_battery_remaining, 'type', 'an int')
-            if not -128 <= r_battery_remaining <= 127:
-                raise _enc('sys_status', 'battery_remaining', r_battery_remaining, 'range', '-128..127', None)
-        if r_onboard_control_sensors_present_extended.__class__ is not int or not 0 <= r_onboard_control_sensors_present_extended <= 4294967295:
-            if not isinstance(r_onboard_control_sensors_present_extended, int) or r_onboard_control_sensors_present_extended.__class__ is bool:
-                raise _enc('sys_status', 'onboard_control_sensors_present_extended', r_onboard_control_sensors_present_extended, 'type', 'an int')
-            if not 0 <= r_onboard_control_sensors_present_extended <= 4294967295:
-                raise _enc('sys_status', 'onboard_control_sensors_present_extended', r_onboard_control_sensors_present_extended, 'range', '0..4294967295', None)
-        if r_onboard_control_sensors_enabled_extended.__class__ is not int or not 0 <= r_onboard_control_sensors_enabled_extended <= 4294967295:
-            if not isinstance(r_onboard_control_sensors_enabled_extended, int) or r_onboard_control_sensors_enabled_extended.__class__ is bool:
-                raise _enc('sys_status', 'onboard_control_sensors_enabled_extended', r_onboard_control_sensors_enabled_extended, 'type', 'an int')
-            if not 0 <= r_onboard_control_sensors_enabled_extended <= 4294967295:
-                raise _enc('sys_status', 'onboard_control_sensors_enabled_extended', r_onboard_control_sensors_enabled_extended, 'range', '0..4294967295', None)
-        if r_onboard_control_sensors_health_extended.__class__ is not int or not 0 <= r_onboard_control_sensors_health_extended <= 4294967295:
-            if not isinstance(r_onboard_control_sensors_health_extended, int) or r_onboard_control_sensors_health_extended.__class__ is bool:
-                raise _enc('sys_status', 'onboard_control_sensors_health_extended', r_onboard_control_sensors_health_extended, 'type', 'an int')
-            if not 0 <= r_onboard_control_sensors_health_extended <= 4294967295:
-                raise _enc('sys_status', 'onboard_control_sensors_health_extended', r_onboard_control_sensors_health_extended, 'range', '0..4294967295', None)
-    r_checksum = 0
+    if (r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255) or (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255) or (r_onboard_control_sensors_present.__class__ is not int or not 0 <= r_onboard_control_sensors_present <= 4294967295) or (r_onboard_control_sensors_enabled.__class__ is not int or not 0 <= r_onboard_control_sensors_enabled <= 4294967295) or (r_onboard_control_sensors_health.__class__ is not int or not 0 <= r_onboard_control_sensors_health <= 4294967295) or (r_load.__class__ is not int or not 0 <= r_load <= 65535) or (r_voltage_battery.__class__ is not int or not 0 <= r_voltage_battery <= 65535) or (r_current_battery.__class__ is not int or not -32768 <= r_current_battery <= 32767) or (r_drop_rate_comm.__class__ is not int or not 0 <= r_drop_rate_comm <= 65535) or (r_errors_comm.__class__ is not int or not 0 <= r_errors_comm <= 65535) or (r_errors_count1.__class__ is not int or not 0 <= r_errors_count1 <= 65535) or (r_errors_count2.__class__ is not int or not 0 <= r_errors_count2 <= 65535) or (r_errors_count3.__class__ is not int or not 0 <= r_errors_count3 <= 65535) or (r_errors_count4.__class__ is not int or not 0 <= r_errors_count4 <= 65535) or (r_battery_remaining.__class__ is not int or not -128 <= r_battery_remaining <= 127) or (r_onboard_control_sensors_present_extended.__class__ is not int or not 0 <= r_onboard_control_sensors_present_extended <= 4294967295) or (r_onboard_control_sensors_enabled_extended.__class__ is not int or not 0 <= r_onboard_control_sensors_enabled_extended <= 4294967295) or (r_onboard_control_sensors_health_extended.__class__ is not int or not 0 <= r_onboard_control_sensors_health_extended <= 4294967295):
+        _faults('sys_status', (r_compat_flags, r_seq, r_sysid, r_compid, r_onboard_control_sensors_present, r_onboard_control_sensors_enabled, r_onboard_control_sensors_health, r_load, r_voltage_battery, r_current_battery, r_drop_rate_comm, r_errors_comm, r_errors_count1, r_errors_count2, r_errors_count3, r_errors_count4, r_battery_remaining, r_onboard_control_sensors_present_extended, r_onboard_control_sensors_enabled_extended, r_onboard_control_sensors_health_extended, ), (('int', 'compat_flags', 0, 255, False, None), ('int', 'seq', 0, 255, False, None), ('int', 'sysid', 0, 255, False, None), ('int', 'compid', 0, 255, False, None), ('int', 'onboard_control_sensors_present', 0, 4294967295, False, None), ('int', 'onboard_control_sensors_enabled', 0, 4294967295, False, None), ('int', 'onboard_control_sensors_health', 0, 4294967295, False, None), ('int', 'load', 0, 65535, False, None), ('int', 'voltage_battery', 0, 65535, False, None), ('int', 'current_battery', -32768, 32767, False, None), ('int', 'drop_rate_comm', 0, 65535, False, None), ('int', 'errors_comm', 0, 65535, False, None), ('int', 'errors_count1', 0, 65535, False, None), ('int', 'errors_count2', 0, 65535, False, None), ('int', 'errors_count3', 0, 65535, False, None), ('int', 'errors_count4', 0, 65535, False, None), ('int', 'battery_remaining', -128, 127, False, None), ('int', 'onboard_control_sensors_present_extended', 0, 4294967295, False, None), ('int', 'onboard_control_sensors_enabled_extended', 0, 4294967295, False, None), ('int', 'onboard_control_sensors_health_extended', 0, 4294967295, False, None)))
     b = bytearray(55)
     _S_sys_status_0.pack_into(b, 0, 253, 43, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, r_msgid.to_bytes(3, 'little', signed=False), r_onboard_control_sensors_present, r_onboard_control_sensors_enabled, r_onboard_control_sensors_health, r_load, r_voltage_battery, r_current_battery, r_drop_rate_comm, r_errors_comm, r_errors_count1, r_errors_count2, r_errors_count3, r_errors_count4, r_battery_remaining, r_onboard_control_sensors_present_extended, r_onboard_control_sensors_enabled_extended, r_onboard_control_sensors_health_extended, r_checksum)
     cut = 42 - len(b[11:53].rstrip(b'\0'))  # trailing zeros are not sent
@@ -972,67 +912,25 @@ def _encode_param_value(m: ParamValue) -> bytes:
     r_incompat_flags = int(r_incompat_flags)
     if r_incompat_flags < 0 or r_incompat_flags & 0xfe or r_incompat_flags > 0xff:
         raise _enc('param_value', 'incompat_flags', r_incompat_flags, 'flags', 'only the bits of incompat_flags', None)
+    r_msgid = 22
     r_compat_flags = m.compat_flags
     r_seq = m.seq
     r_sysid = m.sysid
     r_compid = m.compid
-    if (r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255) or (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255):
-        if r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255:
-            if not isinstance(r_compat_flags, int) or r_compat_flags.__class__ is bool:
-                raise _enc('param_value', 'compat_flags', r_compat_flags, 'type', 'an int')
-            if not 0 <= r_compat_flags <= 255:
-                raise _enc('param_value', 'compat_flags', r_compat_flags, 'range', '0..255', None)
-        if r_seq.__class__ is not int or not 0 <= r_seq <= 255:
-            if not isinstance(r_seq, int) or r_seq.__class__ is bool:
-                raise _enc('param_value', 'seq', r_seq, 'type', 'an int')
-            if not 0 <= r_seq <= 255:
-                raise _enc('param_value', 'seq', r_seq, 'range', '0..255', None)
-        if r_sysid.__class__ is not int or not 0 <= r_sysid <= 255:
-            if not isinstance(r_sysid, int) or r_sysid.__class__ is bool:
-                raise _enc('param_value', 'sysid', r_sysid, 'type', 'an int')
-            if not 0 <= r_sysid <= 255:
-                raise _enc('param_value', 'sysid', r_sysid, 'range', '0..255', None)
-        if r_compid.__class__ is not int or not 0 <= r_compid <= 255:
-            if not isinstance(r_compid, int) or r_compid.__class__ is bool:
-                raise _enc('param_value', 'compid', r_compid, 'type', 'an int')
-            if not 0 <= r_compid <= 255:
-                raise _enc('param_value', 'compid', r_compid, 'range', '0..255', None)
-    r_msgid = 22
     r_param_value = m.param_value
-    if r_param_value.__class__ is not float:
-        if not isinstance(r_param_value, (int, float)) or r_param_value.__class__ is bool:
-            raise _enc('param_value', 'param_value', r_param_value, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_param_value <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('param_value', 'param_value', r_param_value, 'finite', 'a finite number')
-    if not _isfinite(r_param_value):
-        raise _enc('param_value', 'param_value', r_param_value, 'finite', 'a finite number')
-    if r_param_value > 3.4028234663852886e38 or r_param_value < -3.4028234663852886e38:
-        raise _enc('param_value', 'param_value', r_param_value, 'range', 'a binary32 value')
     r_param_count = m.param_count
     r_param_index = m.param_index
-    if (r_param_count.__class__ is not int or not 0 <= r_param_count <= 65535) or (r_param_index.__class__ is not int or not 0 <= r_param_index <= 65535):
-        if r_param_count.__class__ is not int or not 0 <= r_param_count <= 65535:
-            if not isinstance(r_param_count, int) or r_param_count.__class__ is bool:
-                raise _enc('param_value', 'param_count', r_param_count, 'type', 'an int')
-            if not 0 <= r_param_count <= 65535:
-                raise _enc('param_value', 'param_count', r_param_count, 'range', '0..65535', None)
-        if r_param_index.__class__ is not int or not 0 <= r_param_index <= 65535:
-            if not isinstance(r_param_index, int) or r_param_index.__class__ is bool:
-                raise _enc('param_value', 'param_index', r_param_index, 'type', 'an int')
-            if not 0 <= r_param_index <= 65535:
-                raise _enc('param_value', 'param_index', r_param_index, 'range', '0..65535', None)
+    if (r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255) or (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255) or (r_param_value.__class__ is not float or not -3.4028234663852886e38 <= r_param_value <= 3.4028234663852886e38) or (r_param_count.__class__ is not int or not 0 <= r_param_count <= 65535) or (r_param_index.__class__ is not int or not 0 <= r_param_index <= 65535):
+        _faults('param_value', (r_compat_flags, r_seq, r_sysid, r_compid, r_param_value, r_param_count, r_param_index, ), (('int', 'compat_flags', 0, 255, False, None), ('int', 'seq', 0, 255, False, None), ('int', 'sysid', 0, 255, False, None), ('int', 'compid', 0, 255, False, None), ('float', 'param_value', True), ('int', 'param_count', 0, 65535, False, None), ('int', 'param_index', 0, 65535, False, None)))
     r_param_id = m.param_id
     if r_param_id.__class__ is not bytes or len(r_param_id) != 16:
         if not isinstance(r_param_id, (bytes, bytearray)) or len(r_param_id) != 16:
             raise _enc('param_value', 'param_id', r_param_id, 'length', 'bytes of length 16')
         r_param_id = bytes(r_param_id)
+    r_checksum = 0
     r_param_type = m.param_type
     if r_param_type.__class__ is not int or not 0 <= r_param_type <= 255:
-        if not isinstance(r_param_type, int) or r_param_type.__class__ is bool:
-            raise _enc('param_value', 'param_type', r_param_type, 'type', 'an int')
-        if not 0 <= r_param_type <= 255:
-            raise _enc('param_value', 'param_type', r_param_type, 'range', '0..255', None)
-    r_checksum = 0
+        _int_fault('param_value', 'param_type', r_param_type, 0, 255, False, None)
     b = bytearray(37)
     _S_param_value_0.pack_into(b, 0, 253, 25, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, r_msgid.to_bytes(3, 'little', signed=False), r_param_value, r_param_count, r_param_index, r_param_id, r_param_type, r_checksum)
     cut = 24 - len(b[11:35].rstrip(b'\0'))  # trailing zeros are not sent
@@ -1087,32 +985,12 @@ def _encode_gps_raw_int(m: GpsRawInt) -> bytes:
     r_incompat_flags = int(r_incompat_flags)
     if r_incompat_flags < 0 or r_incompat_flags & 0xfe or r_incompat_flags > 0xff:
         raise _enc('gps_raw_int', 'incompat_flags', r_incompat_flags, 'flags', 'only the bits of incompat_flags', None)
+    r_msgid = 24
+    r_checksum = 0
     r_compat_flags = m.compat_flags
     r_seq = m.seq
     r_sysid = m.sysid
     r_compid = m.compid
-    if (r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255) or (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255):
-        if r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255:
-            if not isinstance(r_compat_flags, int) or r_compat_flags.__class__ is bool:
-                raise _enc('gps_raw_int', 'compat_flags', r_compat_flags, 'type', 'an int')
-            if not 0 <= r_compat_flags <= 255:
-                raise _enc('gps_raw_int', 'compat_flags', r_compat_flags, 'range', '0..255', None)
-        if r_seq.__class__ is not int or not 0 <= r_seq <= 255:
-            if not isinstance(r_seq, int) or r_seq.__class__ is bool:
-                raise _enc('gps_raw_int', 'seq', r_seq, 'type', 'an int')
-            if not 0 <= r_seq <= 255:
-                raise _enc('gps_raw_int', 'seq', r_seq, 'range', '0..255', None)
-        if r_sysid.__class__ is not int or not 0 <= r_sysid <= 255:
-            if not isinstance(r_sysid, int) or r_sysid.__class__ is bool:
-                raise _enc('gps_raw_int', 'sysid', r_sysid, 'type', 'an int')
-            if not 0 <= r_sysid <= 255:
-                raise _enc('gps_raw_int', 'sysid', r_sysid, 'range', '0..255', None)
-        if r_compid.__class__ is not int or not 0 <= r_compid <= 255:
-            if not isinstance(r_compid, int) or r_compid.__class__ is bool:
-                raise _enc('gps_raw_int', 'compid', r_compid, 'type', 'an int')
-            if not 0 <= r_compid <= 255:
-                raise _enc('gps_raw_int', 'compid', r_compid, 'range', '0..255', None)
-    r_msgid = 24
     r_time_usec = m.time_usec
     r_lat = m.lat
     r_lon = m.lon
@@ -1129,88 +1007,8 @@ def _encode_gps_raw_int(m: GpsRawInt) -> bytes:
     r_vel_acc = m.vel_acc
     r_hdg_acc = m.hdg_acc
     r_yaw = m.yaw
-    if (r_time_usec.__class__ is not int or not 0 <= r_time_usec <= 18446744073709551615) or (r_lat.__class__ is not int or not -2147483648 <= r_lat <= 2147483647) or (r_lon.__class__ is not int or not -2147483648 <= r_lon <= 2147483647) or (r_alt.__class__ is not int or not -2147483648 <= r_alt <= 2147483647) or (r_eph.__class__ is not int or not 0 <= r_eph <= 65535) or (r_epv.__class__ is not int or not 0 <= r_epv <= 65535) or (r_vel.__class__ is not int or not 0 <= r_vel <= 65535) or (r_cog.__class__ is not int or not 0 <= r_cog <= 65535) or (r_fix_type.__class__ is not int or not 0 <= r_fix_type <= 255) or (r_satellites_visible.__class__ is not int or not 0 <= r_satellites_visible <= 255) or (r_alt_ellipsoid.__class__ is not int or not -2147483648 <= r_alt_ellipsoid <= 2147483647) or (r_h_acc.__class__ is not int or not 0 <= r_h_acc <= 4294967295) or (r_v_acc.__class__ is not int or not 0 <= r_v_acc <= 4294967295) or (r_vel_acc.__class__ is not int or not 0 <= r_vel_acc <= 4294967295) or (r_hdg_acc.__class__ is not int or not 0 <= r_hdg_acc <= 4294967295) or (r_yaw.__class__ is not int or not 0 <= r_yaw <= 65535):
-        if r_time_usec.__class__ is not int or not 0 <= r_time_usec <= 18446744073709551615:
-            if not isinstance(r_time_usec, int) or r_time_usec.__class__ is bool:
-                raise _enc('gps_raw_int', 'time_usec', r_time_usec, 'type', 'an int')
-            if not 0 <= r_time_usec <= 18446744073709551615:
-                raise _enc('gps_raw_int', 'time_usec', r_time_usec, 'range', '0..18446744073709551615', None)
-        if r_lat.__class__ is not int or not -2147483648 <= r_lat <= 2147483647:
-            if not isinstance(r_lat, int) or r_lat.__class__ is bool:
-                raise _enc('gps_raw_int', 'lat', r_lat, 'type', 'an int')
-            if not -2147483648 <= r_lat <= 2147483647:
-                raise _enc('gps_raw_int', 'lat', r_lat, 'range', '-2147483648..2147483647', None)
-        if r_lon.__class__ is not int or not -2147483648 <= r_lon <= 2147483647:
-            if not isinstance(r_lon, int) or r_lon.__class__ is bool:
-                raise _enc('gps_raw_int', 'lon', r_lon, 'type', 'an int')
-            if not -2147483648 <= r_lon <= 2147483647:
-                raise _enc('gps_raw_int', 'lon', r_lon, 'range', '-2147483648..2147483647', None)
-        if r_alt.__class__ is not int or not -2147483648 <= r_alt <= 2147483647:
-            if not isinstance(r_alt, int) or r_alt.__class__ is bool:
-                raise _enc('gps_raw_int', 'alt', r_alt, 'type', 'an int')
-            if not -2147483648 <= r_alt <= 2147483647:
-                raise _enc('gps_raw_int', 'alt', r_alt, 'range', '-2147483648..2147483647', None)
-        if r_eph.__class__ is not int or not 0 <= r_eph <= 65535:
-            if not isinstance(r_eph, int) or r_eph.__class__ is bool:
-                raise _enc('gps_raw_int', 'eph', r_eph, 'type', 'an int')
-            if not 0 <= r_eph <= 65535:
-                raise _enc('gps_raw_int', 'eph', r_eph, 'range', '0..65535', None)
-        if r_epv.__class__ is not int or not 0 <= r_epv <= 65535:
-            if not isinstance(r_epv, int) or r_epv.__class__ is bool:
-                raise _enc('gps_raw_int', 'epv', r_epv, 'type', 'an int')
-            if not 0 <= r_epv <= 65535:
-                raise _enc('gps_raw_int', 'epv', r_epv, 'range', '0..65535', None)
-        if r_vel.__class__ is not int or not 0 <= r_vel <= 65535:
-            if not isinstance(r_vel, int) or r_vel.__class__ is bool:
-                raise _enc('gps_raw_int', 'vel', r_vel, 'type', 'an int')
-            if not 0 <= r_vel <= 65535:
-                raise _enc('gps_raw_int', 'vel', r_vel, 'range', '0..65535', None)
-        if r_cog.__class__ is not int or not 0 <= r_cog <= 65535:
-            if not isinstance(r_cog, int) or r_cog.__class__ is bool:
-                raise _enc('gps_raw_int', 'cog', r_cog, 'type', 'an int')
-            if not 0 <= r_cog <= 65535:
-                raise _enc('gps_raw_int', 'cog', r_cog, 'range', '0..65535', None)
-        if r_fix_type.__class__ is not int or not 0 <= r_fix_type <= 255:
-            if not isinstance(r_fix_type, int) or r_fix_type.__class__ is bool:
-                raise _enc('gps_raw_int', 'fix_type', r_fix_type, 'type', 'an int')
-            if not 0 <= r_fix_type <= 255:
-                raise _enc('gps_raw_int', 'fix_type', r_fix_type, 'range', '0..255', None)
-        if r_satellites_visible.__class__ is not int or not 0 <= r_satellites_visible <= 255:
-            if not isinstance(r_satellites_visible, int) or r_satellites_visible.__class__ is bool:
-                raise _enc('gps_raw_int', 'satellites_visible', r_satellites_visible, 'type', 'an int')
-            if not 0 <= r_satellites_visible <= 255:
-                raise _enc('gps_raw_int', 'satellites_visible', r_satellites_visible, 'range', '0..255', None)
-        if r_alt_ellipsoid.__class__ is not int or not -2147483648 <= r_alt_ellipsoid <= 2147483647:
-            if not isinstance(r_alt_ellipsoid, int) or r_alt_ellipsoid.__class__ is bool:
-                raise _enc('gps_raw_int', 'alt_ellipsoid', r_alt_ellipsoid, 'type', 'an int')
-            if not -2147483648 <= r_alt_ellipsoid <= 2147483647:
-                raise _enc('gps_raw_int', 'alt_ellipsoid', r_alt_ellipsoid, 'range', '-2147483648..2147483647', None)
-        if r_h_acc.__class__ is not int or not 0 <= r_h_acc <= 4294967295:
-            if not isinstance(r_h_acc, int) or r_h_acc.__class__ is bool:
-                raise _enc('gps_raw_int', 'h_acc', r_h_acc, 'type', 'an int')
-            if not 0 <= r_h_acc <= 4294967295:
-                raise _enc('gps_raw_int', 'h_acc', r_h_acc, 'range', '0..4294967295', None)
-        if r_v_acc.__class__ is not int or not 0 <= r_v_acc <= 4294967295:
-            if not isinstance(r_v_acc, int) or r_v_acc.__class__ is bool:
-                raise _enc('gps_raw_int', 'v_acc', r_v_acc, 'type', 'an int')
-            if not 0 <= r_v_acc <= 4294967295:
-                raise _enc('gps_raw_int', 'v_acc', r_v_acc, 'range', '0..4294967295', None)
-        if r_vel_acc.__class__ is not int or not 0 <= r_vel_acc <= 4294967295:
-            if not isinstance(r_vel_acc, int) or r_vel_acc.__class__ is bool:
-                raise _enc('gps_raw_int', 'vel_acc', r_vel_acc, 'type', 'an int')
-            if not 0 <= r_vel_acc <= 4294967295:
-                raise _enc('gps_raw_int', 'vel_acc', r_vel_acc, 'range', '0..4294967295', None)
-        if r_hdg_acc.__class__ is not int or not 0 <= r_hdg_acc <= 4294967295:
-            if not isinstance(r_hdg_acc, int) or r_hdg_acc.__class__ is bool:
-                raise _enc('gps_raw_int', 'hdg_acc', r_hdg_acc, 'type', 'an int')
-            if not 0 <= r_hdg_acc <= 4294967295:
-                raise _enc('gps_raw_int', 'hdg_acc', r_hdg_acc, 'range', '0..4294967295', None)
-        if r_yaw.__class__ is not int or not 0 <= r_yaw <= 65535:
-            if not isinstance(r_yaw, int) or r_yaw.__class__ is bool:
-                raise _enc('gps_raw_int', 'yaw', r_yaw, 'type', 'an int')
-            if not 0 <= r_yaw <= 65535:
-                raise _enc('gps_raw_int', 'yaw', r_yaw, 'range', '0..65535', None)
-    r_checksum = 0
+    if (r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255) or (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255) or (r_time_usec.__class__ is not int or not 0 <= r_time_usec <= 18446744073709551615) or (r_lat.__class__ is not int or not -2147483648 <= r_lat <= 2147483647) or (r_lon.__class__ is not int or not -2147483648 <= r_lon <= 2147483647) or (r_alt.__class__ is not int or not -2147483648 <= r_alt <= 2147483647) or (r_eph.__class__ is not int or not 0 <= r_eph <= 65535) or (r_epv.__class__ is not int or not 0 <= r_epv <= 65535) or (r_vel.__class__ is not int or not 0 <= r_vel <= 65535) or (r_cog.__class__ is not int or not 0 <= r_cog <= 65535) or (r_fix_type.__class__ is not int or not 0 <= r_fix_type <= 255) or (r_satellites_visible.__class__ is not int or not 0 <= r_satellites_visible <= 255) or (r_alt_ellipsoid.__class__ is not int or not -2147483648 <= r_alt_ellipsoid <= 2147483647) or (r_h_acc.__class__ is not int or not 0 <= r_h_acc <= 4294967295) or (r_v_acc.__class__ is not int or not 0 <= r_v_acc <= 4294967295) or (r_vel_acc.__class__ is not int or not 0 <= r_vel_acc <= 4294967295) or (r_hdg_acc.__class__ is not int or not 0 <= r_hdg_acc <= 4294967295) or (r_yaw.__class__ is not int or not 0 <= r_yaw <= 65535):
+        _faults('gps_raw_int', (r_compat_flags, r_seq, r_sysid, r_compid, r_time_usec, r_lat, r_lon, r_alt, r_eph, r_epv, r_vel, r_cog, r_fix_type, r_satellites_visible, r_alt_ellipsoid, r_h_acc, r_v_acc, r_vel_acc, r_hdg_acc, r_yaw, ), (('int', 'compat_flags', 0, 255, False, None), ('int', 'seq', 0, 255, False, None), ('int', 'sysid', 0, 255, False, None), ('int', 'compid', 0, 255, False, None), ('int', 'time_usec', 0, 18446744073709551615, False, None), ('int', 'lat', -2147483648, 2147483647, False, None), ('int', 'lon', -2147483648, 2147483647, False, None), ('int', 'alt', -2147483648, 2147483647, False, None), ('int', 'eph', 0, 65535, False, None), ('int', 'epv', 0, 65535, False, None), ('int', 'vel', 0, 65535, False, None), ('int', 'cog', 0, 65535, False, None), ('int', 'fix_type', 0, 255, False, None), ('int', 'satellites_visible', 0, 255, False, None), ('int', 'alt_ellipsoid', -2147483648, 2147483647, False, None), ('int', 'h_acc', 0, 4294967295, False, None), ('int', 'v_acc', 0, 4294967295, False, None), ('int', 'vel_acc', 0, 4294967295, False, None), ('int', 'hdg_acc', 0, 4294967295, False, None), ('int', 'yaw', 0, 65535, False, None)))
     b = bytearray(64)
     _S_gps_raw_int_0.pack_into(b, 0, 253, 52, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, r_msgid.to_bytes(3, 'little', signed=False), r_time_usec, r_lat, r_lon, r_alt, r_eph, r_epv, r_vel, r_cog, r_fix_type, r_satellites_visible, r_alt_ellipsoid, r_h_acc, r_v_acc, r_vel_acc, r_hdg_acc, r_yaw, r_checksum)
     cut = 51 - len(b[11:62].rstrip(b'\0'))  # trailing zeros are not sent
@@ -1274,99 +1072,21 @@ def _encode_attitude(m: Attitude) -> bytes:
     r_incompat_flags = int(r_incompat_flags)
     if r_incompat_flags < 0 or r_incompat_flags & 0xfe or r_incompat_flags > 0xff:
         raise _enc('attitude', 'incompat_flags', r_incompat_flags, 'flags', 'only the bits of incompat_flags', None)
+    r_msgid = 30
+    r_checksum = 0
     r_compat_flags = m.compat_flags
     r_seq = m.seq
     r_sysid = m.sysid
     r_compid = m.compid
-    if (r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255) or (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255):
-        if r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255:
-            if not isinstance(r_compat_flags, int) or r_compat_flags.__class__ is bool:
-                raise _enc('attitude', 'compat_flags', r_compat_flags, 'type', 'an int')
-            if not 0 <= r_compat_flags <= 255:
-                raise _enc('attitude', 'compat_flags', r_compat_flags, 'range', '0..255', None)
-        if r_seq.__class__ is not int or not 0 <= r_seq <= 255:
-            if not isinstance(r_seq, int) or r_seq.__class__ is bool:
-                raise _enc('attitude', 'seq', r_seq, 'type', 'an int')
-            if not 0 <= r_seq <= 255:
-                raise _enc('attitude', 'seq', r_seq, 'range', '0..255', None)
-        if r_sysid.__class__ is not int or not 0 <= r_sysid <= 255:
-            if not isinstance(r_sysid, int) or r_sysid.__class__ is bool:
-                raise _enc('attitude', 'sysid', r_sysid, 'type', 'an int')
-            if not 0 <= r_sysid <= 255:
-                raise _enc('attitude', 'sysid', r_sysid, 'range', '0..255', None)
-        if r_compid.__class__ is not int or not 0 <= r_compid <= 255:
-            if not isinstance(r_compid, int) or r_compid.__class__ is bool:
-                raise _enc('attitude', 'compid', r_compid, 'type', 'an int')
-            if not 0 <= r_compid <= 255:
-                raise _enc('attitude', 'compid', r_compid, 'range', '0..255', None)
-    r_msgid = 30
     r_time_boot_ms = m.time_boot_ms
-    if r_time_boot_ms.__class__ is not int or not 0 <= r_time_boot_ms <= 4294967295:
-        if not isinstance(r_time_boot_ms, int) or r_time_boot_ms.__class__ is bool:
-            raise _enc('attitude', 'time_boot_ms', r_time_boot_ms, 'type', 'an int')
-        if not 0 <= r_time_boot_ms <= 4294967295:
-            raise _enc('attitude', 'time_boot_ms', r_time_boot_ms, 'range', '0..4294967295', None)
     r_roll = m.roll
-    if r_roll.__class__ is not float:
-        if not isinstance(r_roll, (int, float)) or r_roll.__class__ is bool:
-            raise _enc('attitude', 'roll', r_roll, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_roll <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('attitude', 'roll', r_roll, 'finite', 'a finite number')
-    if not _isfinite(r_roll):
-        raise _enc('attitude', 'roll', r_roll, 'finite', 'a finite number')
-    if r_roll > 3.4028234663852886e38 or r_roll < -3.4028234663852886e38:
-        raise _enc('attitude', 'roll', r_roll, 'range', 'a binary32 value')
     r_pitch = m.pitch
-    if r_pitch.__class__ is not float:
-        if not isinstance(r_pitch, (int, float)) or r_pitch.__class__ is bool:
-            raise _enc('attitude', 'pitch', r_pitch, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_pitch <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('attitude', 'pitch', r_pitch, 'finite', 'a finite number')
-    if not _isfinite(r_pitch):
-        raise _enc('attitude', 'pitch', r_pitch, 'finite', 'a finite number')
-    if r_pitch > 3.4028234663852886e38 or r_pitch < -3.4028234663852886e38:
-        raise _enc('attitude', 'pitch', r_pitch, 'range', 'a binary32 value')
     r_yaw = m.yaw
-    if r_yaw.__class__ is not float:
-        if not isinstance(r_yaw, (int, float)) or r_yaw.__class__ is bool:
-            raise _enc('attitude', 'yaw', r_yaw, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_yaw <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('attitude', 'yaw', r_yaw, 'finite', 'a finite number')
-    if not _isfinite(r_yaw):
-        raise _enc('attitude', 'yaw', r_yaw, 'finite', 'a finite number')
-    if r_yaw > 3.4028234663852886e38 or r_yaw < -3.4028234663852886e38:
-        raise _enc('attitude', 'yaw', r_yaw, 'range', 'a binary32 value')
     r_rollspeed = m.rollspeed
-    if r_rollspeed.__class__ is not float:
-        if not isinstance(r_rollspeed, (int, float)) or r_rollspeed.__class__ is bool:
-            raise _enc('attitude', 'rollspeed', r_rollspeed, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_rollspeed <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('attitude', 'rollspeed', r_rollspeed, 'finite', 'a finite number')
-    if not _isfinite(r_rollspeed):
-        raise _enc('attitude', 'rollspeed', r_rollspeed, 'finite', 'a finite number')
-    if r_rollspeed > 3.4028234663852886e38 or r_rollspeed < -3.4028234663852886e38:
-        raise _enc('attitude', 'rollspeed', r_rollspeed, 'range', 'a binary32 value')
     r_pitchspeed = m.pitchspeed
-    if r_pitchspeed.__class__ is not float:
-        if not isinstance(r_pitchspeed, (int, float)) or r_pitchspeed.__class__ is bool:
-            raise _enc('attitude', 'pitchspeed', r_pitchspeed, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_pitchspeed <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('attitude', 'pitchspeed', r_pitchspeed, 'finite', 'a finite number')
-    if not _isfinite(r_pitchspeed):
-        raise _enc('attitude', 'pitchspeed', r_pitchspeed, 'finite', 'a finite number')
-    if r_pitchspeed > 3.4028234663852886e38 or r_pitchspeed < -3.4028234663852886e38:
-        raise _enc('attitude', 'pitchspeed', r_pitchspeed, 'range', 'a binary32 value')
     r_yawspeed = m.yawspeed
-    if r_yawspeed.__class__ is not float:
-        if not isinstance(r_yawspeed, (int, float)) or r_yawspeed.__class__ is bool:
-            raise _enc('attitude', 'yawspeed', r_yawspeed, 'type', 'a number')
-        if not -1.7976931348623157e308 <= r_yawspeed <= 1.7976931348623157e308:  # exact for any int
-            raise _enc('attitude', 'yawspeed', r_yawspeed, 'finite', 'a finite number')
-    if not _isfinite(r_yawspeed):
-        raise _enc('attitude', 'yawspeed', r_yawspeed, 'finite', 'a finite number')
-    if r_yawspeed > 3.4028234663852886e38 or r_yawspeed < -3.4028234663852886e38:
-        raise _enc('attitude', 'yawspeed', r_yawspeed, 'range', 'a binary32 value')
-    r_checksum = 0
+    if (r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255) or (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255) or (r_time_boot_ms.__class__ is not int or not 0 <= r_time_boot_ms <= 4294967295) or (r_roll.__class__ is not float or not -3.4028234663852886e38 <= r_roll <= 3.4028234663852886e38) or (r_pitch.__class__ is not float or not -3.4028234663852886e38 <= r_pitch <= 3.4028234663852886e38) or (r_yaw.__class__ is not float or not -3.4028234663852886e38 <= r_yaw <= 3.4028234663852886e38) or (r_rollspeed.__class__ is not float or not -3.4028234663852886e38 <= r_rollspeed <= 3.4028234663852886e38) or (r_pitchspeed.__class__ is not float or not -3.4028234663852886e38 <= r_pitchspeed <= 3.4028234663852886e38) or (r_yawspeed.__class__ is not float or not -3.4028234663852886e38 <= r_yawspeed <= 3.4028234663852886e38):
+        _faults('attitude', (r_compat_flags, r_seq, r_sysid, r_compid, r_time_boot_ms, r_roll, r_pitch, r_yaw, r_rollspeed, r_pitchspeed, r_yawspeed, ), (('int', 'compat_flags', 0, 255, False, None), ('int', 'seq', 0, 255, False, None), ('int', 'sysid', 0, 255, False, None), ('int', 'compid', 0, 255, False, None), ('int', 'time_boot_ms', 0, 4294967295, False, None), ('float', 'roll', True), ('float', 'pitch', True), ('float', 'yaw', True), ('float', 'rollspeed', True), ('float', 'pitchspeed', True), ('float', 'yawspeed', True)))
     b = bytearray(40)
     _S_attitude_0.pack_into(b, 0, 253, 28, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, r_msgid.to_bytes(3, 'little', signed=False), r_time_boot_ms, r_roll, r_pitch, r_yaw, r_rollspeed, r_pitchspeed, r_yawspeed, r_checksum)
     cut = 27 - len(b[11:38].rstrip(b'\0'))  # trailing zeros are not sent
@@ -1433,70 +1153,20 @@ def _encode_command_ack(m: CommandAck) -> bytes:
     r_incompat_flags = int(r_incompat_flags)
     if r_incompat_flags < 0 or r_incompat_flags & 0xfe or r_incompat_flags > 0xff:
         raise _enc('command_ack', 'incompat_flags', r_incompat_flags, 'flags', 'only the bits of incompat_flags', None)
+    r_msgid = 77
+    r_checksum = 0
     r_compat_flags = m.compat_flags
     r_seq = m.seq
     r_sysid = m.sysid
     r_compid = m.compid
-    if (r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255) or (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255):
-        if r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255:
-            if not isinstance(r_compat_flags, int) or r_compat_flags.__class__ is bool:
-                raise _enc('command_ack', 'compat_flags', r_compat_flags, 'type', 'an int')
-            if not 0 <= r_compat_flags <= 255:
-                raise _enc('command_ack', 'compat_flags', r_compat_flags, 'range', '0..255', None)
-        if r_seq.__class__ is not int or not 0 <= r_seq <= 255:
-            if not isinstance(r_seq, int) or r_seq.__class__ is bool:
-                raise _enc('command_ack', 'seq', r_seq, 'type', 'an int')
-            if not 0 <= r_seq <= 255:
-                raise _enc('command_ack', 'seq', r_seq, 'range', '0..255', None)
-        if r_sysid.__class__ is not int or not 0 <= r_sysid <= 255:
-            if not isinstance(r_sysid, int) or r_sysid.__class__ is bool:
-                raise _enc('command_ack', 'sysid', r_sysid, 'type', 'an int')
-            if not 0 <= r_sysid <= 255:
-                raise _enc('command_ack', 'sysid', r_sysid, 'range', '0..255', None)
-        if r_compid.__class__ is not int or not 0 <= r_compid <= 255:
-            if not isinstance(r_compid, int) or r_compid.__class__ is bool:
-                raise _enc('command_ack', 'compid', r_compid, 'type', 'an int')
-            if not 0 <= r_compid <= 255:
-                raise _enc('command_ack', 'compid', r_compid, 'range', '0..255', None)
-    r_msgid = 77
     r_command = m.command
     r_result = m.result
     r_progress = m.progress
     r_result_param2 = m.result_param2
     r_target_system = m.target_system
     r_target_component = m.target_component
-    if (r_command.__class__ is not int or not 0 <= r_command <= 65535) or (r_result.__class__ is not int or not 0 <= r_result <= 255) or (r_progress.__class__ is not int or not 0 <= r_progress <= 255) or (r_result_param2.__class__ is not int or not -2147483648 <= r_result_param2 <= 2147483647) or (r_target_system.__class__ is not int or not 0 <= r_target_system <= 255) or (r_target_component.__class__ is not int or not 0 <= r_target_component <= 255):
-        if r_command.__class__ is not int or not 0 <= r_command <= 65535:
-            if not isinstance(r_command, int) or r_command.__class__ is bool:
-                raise _enc('command_ack', 'command', r_command, 'type', 'an int')
-            if not 0 <= r_command <= 65535:
-                raise _enc('command_ack', 'command', r_command, 'range', '0..65535', None)
-        if r_result.__class__ is not int or not 0 <= r_result <= 255:
-            if not isinstance(r_result, int) or r_result.__class__ is bool:
-                raise _enc('command_ack', 'result', r_result, 'type', 'an int')
-            if not 0 <= r_result <= 255:
-                raise _enc('command_ack', 'result', r_result, 'range', '0..255', None)
-        if r_progress.__class__ is not int or not 0 <= r_progress <= 255:
-            if not isinstance(r_progress, int) or r_progress.__class__ is bool:
-                raise _enc('command_ack', 'progress', r_progress, 'type', 'an int')
-            if not 0 <= r_progress <= 255:
-                raise _enc('command_ack', 'progress', r_progress, 'range', '0..255', None)
-        if r_result_param2.__class__ is not int or not -2147483648 <= r_result_param2 <= 2147483647:
-            if not isinstance(r_result_param2, int) or r_result_param2.__class__ is bool:
-                raise _enc('command_ack', 'result_param2', r_result_param2, 'type', 'an int')
-            if not -2147483648 <= r_result_param2 <= 2147483647:
-                raise _enc('command_ack', 'result_param2', r_result_param2, 'range', '-2147483648..2147483647', None)
-        if r_target_system.__class__ is not int or not 0 <= r_target_system <= 255:
-            if not isinstance(r_target_system, int) or r_target_system.__class__ is bool:
-                raise _enc('command_ack', 'target_system', r_target_system, 'type', 'an int')
-            if not 0 <= r_target_system <= 255:
-                raise _enc('command_ack', 'target_system', r_target_system, 'range', '0..255', None)
-        if r_target_component.__class__ is not int or not 0 <= r_target_component <= 255:
-            if not isinstance(r_target_component, int) or r_target_component.__class__ is bool:
-                raise _enc('command_ack', 'target_component', r_target_component, 'type', 'an int')
-            if not 0 <= r_target_component <= 255:
-                raise _enc('command_ack', 'target_component', r_target_component, 'range', '0..255', None)
-    r_checksum = 0
+    if (r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255) or (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255) or (r_command.__class__ is not int or not 0 <= r_command <= 65535) or (r_result.__class__ is not int or not 0 <= r_result <= 255) or (r_progress.__class__ is not int or not 0 <= r_progress <= 255) or (r_result_param2.__class__ is not int or not -2147483648 <= r_result_param2 <= 2147483647) or (r_target_system.__class__ is not int or not 0 <= r_target_system <= 255) or (r_target_component.__class__ is not int or not 0 <= r_target_component <= 255):
+        _faults('command_ack', (r_compat_flags, r_seq, r_sysid, r_compid, r_command, r_result, r_progress, r_result_param2, r_target_system, r_target_component, ), (('int', 'compat_flags', 0, 255, False, None), ('int', 'seq', 0, 255, False, None), ('int', 'sysid', 0, 255, False, None), ('int', 'compid', 0, 255, False, None), ('int', 'command', 0, 65535, False, None), ('int', 'result', 0, 255, False, None), ('int', 'progress', 0, 255, False, None), ('int', 'result_param2', -2147483648, 2147483647, False, None), ('int', 'target_system', 0, 255, False, None), ('int', 'target_component', 0, 255, False, None)))
     b = bytearray(22)
     _S_command_ack_0.pack_into(b, 0, 253, 10, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, r_msgid.to_bytes(3, 'little', signed=False), r_command, r_result, r_progress, r_result_param2, r_target_system, r_target_component, r_checksum)
     cut = 9 - len(b[11:20].rstrip(b'\0'))  # trailing zeros are not sent
@@ -1803,6 +1473,7 @@ def _write_trailer(m: AnyMessage, frame: bytes, key: Optional[_Buffer]) -> bytes
 
 
 _ENCODERS: dict[type[Any], Callable[[Any], bytes]] = {Heartbeat: _encode_heartbeat, SysStatus: _encode_sys_status, ParamValue: _encode_param_value, GpsRawInt: _encode_gps_raw_int, Attitude: _encode_attitude, CommandAck: _encode_command_ack, }
+_DECODERS: dict[type[Any], Callable[..., Any]] = {Heartbeat: _decode_heartbeat, SysStatus: _decode_sys_status, ParamValue: _decode_param_value, GpsRawInt: _decode_gps_raw_int, Attitude: _decode_attitude, CommandAck: _decode_command_ack, }
 MESSAGES: dict[str, type[AnyMessage]] = {'heartbeat': Heartbeat, 'sys_status': SysStatus, 'param_value': ParamValue, 'gps_raw_int': GpsRawInt, 'attitude': Attitude, 'command_ack': CommandAck, }
 
 

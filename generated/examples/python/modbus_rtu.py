@@ -14,7 +14,6 @@ import math
 import os
 
 import struct
-from dataclasses import dataclass
 from typing import Any, Callable, ClassVar, Literal, Optional, TypeVar, Union, cast, overload
 
 _Buffer = Union[bytes, bytearray, "memoryview[int]"]  # what a binary decoder reads
@@ -30,6 +29,63 @@ FINGERPRINT32 = 0x22247971  # its first 32 bits
 _floor = math.floor
 _isfinite = math.isfinite
 _object_new = object.__new__
+_FRESH: Any = object()  # an argument left out whose default (a list, a group) is built for each object
+
+
+class _DataclassFields:
+    """A class's table of dataclass fields, made the first time it is read and then kept on the
+    class, for dataclasses.fields, replace, asdict and is_dataclass."""
+
+    def __get__(self, obj: object, owner: type[_Record]) -> dict[str, Any]:
+        from dataclasses import field, make_dataclass
+        init: Any = owner.__init__
+        defaults: dict[str, Any] = init.__kwdefaults__ or {}
+        annotations: dict[str, Any] = owner.__annotations__
+        names = owner._NAMES  # pyright: ignore[reportPrivateUsage]
+        fields: list[tuple[str, Any, Any]] = [
+            (n, annotations[n], field(default=defaults[n]) if defaults.get(n, _FRESH) is not _FRESH else field())
+            for n in names]
+        slots: tuple[str, ...] = owner.__slots__
+        fields += [(n, annotations[n], field(default=None, init=False, repr=False, compare=False))
+                   for n in slots if n not in names]
+        made: Any = make_dataclass(owner.__name__, fields, kw_only=True)
+        table: dict[str, Any] = made.__dataclass_fields__
+        setattr(owner, "__dataclass_fields__", table)
+        return table
+
+
+_R = TypeVar("_R", bound="_Record")
+
+
+class _Record:
+    """What every message, group and sequence class is: its fields in slots, set by a keyword
+    constructor; compared and shown field by field, in order, as a dataclass is; and a
+    dataclass to the dataclasses module. Its table of fields is made when first asked for: a
+    @dataclass decorator writes and compiles each class's methods while the module is
+    imported, which in a protocol of hundreds of messages costs more than all the rest."""
+
+    __slots__ = ()
+    _NAMES: ClassVar[tuple[str, ...]] = ()
+    __dataclass_fields__: ClassVar[dict[str, Any]] = _DataclassFields()  # type: ignore[assignment]
+
+    def __eq__(self, other: object) -> bool:
+        if other.__class__ is not self.__class__:
+            return NotImplemented
+        return [getattr(self, n) for n in self._NAMES] == [getattr(other, n) for n in self._NAMES]
+
+    def __repr__(self) -> str:
+        return f"{self.__class__.__qualname__}({', '.join(f'{n}={getattr(self, n)!r}' for n in self._NAMES)})"
+
+    def to_dict(self) -> dict[str, Any]:
+        """The object as JSON-ready data: enum members and flags by name, bytes as hex, numbers
+        in logical units; from_dict reads it back."""
+        return _to_dict(self)
+
+    @classmethod
+    def from_dict(cls: type[_R], values: dict[str, Any]) -> _R:
+        """An object from the data to_dict gives; an unknown key or a value of the wrong type is
+        a DecodeError."""
+        return _from_dict(cls, values, getattr(cls, "NAME", cls.__name__), "")
 _ABSENT: Any = None  # a value a frame left out: its list slot is cut, or its field is None
 
 
@@ -118,6 +174,40 @@ def _enc(message: Optional[str], field: Optional[str], value: object, rule: str,
     return EncodeError(message, field, value, rule, allowed, None, decision, user_message)
 
 
+def _int_fault(message: str, field: Optional[str], value: Any, lo: Any, hi: Any, number: bool,
+               decision: Optional[str], user_message: Optional[str] = None) -> None:
+    """Raise the EncodeError of an integer field's value that its usual test did not pass: not
+    an int (a number, if the field is scaled), or out of its range."""
+    if not isinstance(value, (int, float) if number else int) or value.__class__ is bool:
+        raise _enc(message, field, value, 'type', 'a number' if number else 'an int')
+    if not lo <= value <= hi:
+        raise _enc(message, field, value, 'range', f'{lo!r}..{hi!r}', decision, user_message)
+
+
+def _faults(message: str, values: tuple[Any, ...], specs: tuple[tuple[Any, ...], ...]) -> None:
+    """Raise the EncodeError of the first of several numbers that fails its usual test; each
+    spec is ("int", field, lo, hi, scaled, decision[, message]) or ("float", field, binary32)."""
+    for value, (kind, name, *limits) in zip(values, specs):
+        if kind == "int":
+            _int_fault(message, name, value, *limits)
+        else:
+            _float_fault(message, name, value, *limits)
+
+
+def _float_fault(message: str, field: Optional[str], value: Any, binary32: bool) -> None:
+    """Raise the EncodeError of a float field's value that its usual test did not pass: not a
+    number, not finite, or (binary32) beyond a binary32's range."""
+    if value.__class__ is not float:
+        if not isinstance(value, (int, float)) or value.__class__ is bool:
+            raise _enc(message, field, value, 'type', 'a number')
+        if not -1.7976931348623157e308 <= value <= 1.7976931348623157e308:  # exact for any int
+            raise _enc(message, field, value, 'finite', 'a finite number')
+    if not _isfinite(value):
+        raise _enc(message, field, value, 'finite', 'a finite number')
+    if binary32 and (value > 3.4028234663852886e38 or value < -3.4028234663852886e38):
+        raise _enc(message, field, value, 'range', 'a binary32 value')
+
+
 def _dec(message: Optional[str], field: Optional[str], value: object, rule: str, allowed: str = "",
          offset: Optional[int] = None, decision: Optional[str] = None,
          user_message: Optional[str] = None) -> DecodeError:
@@ -155,14 +245,33 @@ _RAW_exception_code: dict[int, int] = {v: v for v in _VALUES_exception_code}  # 
 # kind: int, number, bool, str, bytes (hex text), enum (a member's name), flags (a list of
 # names) or group (a nested mapping).
 _Spec = tuple[str, str, Any, bool, bool, bool]
+_Msg = TypeVar("_Msg", bound="_Message")
 
 
-@dataclass(slots=True, kw_only=True)
-class ReadHoldingRegisters:
+class _Message(_Record):
+    """What every message class does: encode itself, decode its own wire form. Each message's
+    encoder and decoder is set on its class as the method itself (one call, not two)."""
+
+    __slots__ = ()
+    NAME: ClassVar[str]
+
+    def encode(self) -> bytes:
+        """The message in its wire form; an EncodeError if a value breaks the schema."""
+        return _ENCODERS[self.__class__](self)
+
+    @classmethod
+    def decode(cls: type[_Msg], data: _Input) -> _Msg:
+        """The message from its wire form; a DecodeError if it is not one."""
+        return cast(_Msg, _DECODERS[cls](data if data.__class__ is bytes else _as_input(data)))
+
+
+class ReadHoldingRegisters(_Message):
     """Read a block of holding registers."""
 
+    __slots__ = ('address', 'start', 'quantity')
     NAME: ClassVar[str] = 'read_holding_registers'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('address', 'int', None, False, False, True), ('start', 'int', None, False, False, True), ('quantity', 'int', None, False, False, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('address', 'start', 'quantity')
 
     address: int
     """server address (1..247; 0 broadcasts a write)"""
@@ -173,66 +282,37 @@ class ReadHoldingRegisters:
     quantity: int
     """registers to read range 1..125"""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The ReadHoldingRegisters as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> ReadHoldingRegisters:
-        """A ReadHoldingRegisters from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(ReadHoldingRegisters, values, 'read_holding_registers', "")
-
-    def encode(self) -> bytes:
-        """The read_holding_registers message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_read_holding_registers(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> ReadHoldingRegisters:
-        """A read_holding_registers message from its wire form; a DecodeError if it is not one."""
-        return _decode_read_holding_registers(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, address: int, start: int, quantity: int) -> None:
+        self.address = address
+        self.start = start
+        self.quantity = quantity
 
 
-@dataclass(slots=True, kw_only=True)
-class ReadHoldingRegistersResponse:
+class ReadHoldingRegistersResponse(_Message):
     """The registers read, two bytes each."""
 
+    __slots__ = ('address', 'registers')
     NAME: ClassVar[str] = 'read_holding_registers_response'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('address', 'int', None, False, False, True), ('registers', 'int', None, False, True, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('address', 'registers')
 
     address: int
     """server address (1..247; 0 broadcasts a write)"""
 
     registers: list[int]
 
-    def to_dict(self) -> dict[str, Any]:
-        """The ReadHoldingRegistersResponse as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> ReadHoldingRegistersResponse:
-        """A ReadHoldingRegistersResponse from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(ReadHoldingRegistersResponse, values, 'read_holding_registers_response', "")
-
-    def encode(self) -> bytes:
-        """The read_holding_registers_response message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_read_holding_registers_response(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> ReadHoldingRegistersResponse:
-        """A read_holding_registers_response message from its wire form; a DecodeError if it is not one."""
-        return _decode_read_holding_registers_response(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, address: int, registers: list[int]) -> None:
+        self.address = address
+        self.registers = registers
 
 
-@dataclass(slots=True, kw_only=True)
-class WriteMultipleRegisters:
+class WriteMultipleRegisters(_Message):
     """Write a block of holding registers."""
 
+    __slots__ = ('address', 'start', 'quantity', 'values')
     NAME: ClassVar[str] = 'write_multiple_registers'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('address', 'int', None, False, False, True), ('start', 'int', None, False, False, True), ('quantity', 'int', None, False, False, True), ('values', 'int', None, False, True, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('address', 'start', 'quantity', 'values')
 
     address: int
     """server address (1..247; 0 broadcasts a write)"""
@@ -245,33 +325,20 @@ class WriteMultipleRegisters:
 
     values: list[int]
 
-    def to_dict(self) -> dict[str, Any]:
-        """The WriteMultipleRegisters as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> WriteMultipleRegisters:
-        """A WriteMultipleRegisters from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(WriteMultipleRegisters, values, 'write_multiple_registers', "")
-
-    def encode(self) -> bytes:
-        """The write_multiple_registers message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_write_multiple_registers(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> WriteMultipleRegisters:
-        """A write_multiple_registers message from its wire form; a DecodeError if it is not one."""
-        return _decode_write_multiple_registers(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, address: int, start: int, quantity: int, values: list[int]) -> None:
+        self.address = address
+        self.start = start
+        self.quantity = quantity
+        self.values = values
 
 
-@dataclass(slots=True, kw_only=True)
-class WriteMultipleRegistersResponse:
+class WriteMultipleRegistersResponse(_Message):
     """The block written."""
 
+    __slots__ = ('address', 'start', 'quantity')
     NAME: ClassVar[str] = 'write_multiple_registers_response'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('address', 'int', None, False, False, True), ('start', 'int', None, False, False, True), ('quantity', 'int', None, False, False, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('address', 'start', 'quantity')
 
     address: int
     """server address (1..247; 0 broadcasts a write)"""
@@ -280,33 +347,19 @@ class WriteMultipleRegistersResponse:
 
     quantity: int
 
-    def to_dict(self) -> dict[str, Any]:
-        """The WriteMultipleRegistersResponse as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> WriteMultipleRegistersResponse:
-        """A WriteMultipleRegistersResponse from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(WriteMultipleRegistersResponse, values, 'write_multiple_registers_response', "")
-
-    def encode(self) -> bytes:
-        """The write_multiple_registers_response message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_write_multiple_registers_response(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> WriteMultipleRegistersResponse:
-        """A write_multiple_registers_response message from its wire form; a DecodeError if it is not one."""
-        return _decode_write_multiple_registers_response(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, address: int, start: int, quantity: int) -> None:
+        self.address = address
+        self.start = start
+        self.quantity = quantity
 
 
-@dataclass(slots=True, kw_only=True)
-class ExceptionResponse:
+class ExceptionResponse(_Message):
     """A request the server refused; the function code is the request's with its top bit set."""
 
+    __slots__ = ('address', 'function', 'exception_code')
     NAME: ClassVar[str] = 'exception_response'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('address', 'int', None, False, False, True), ('function', 'int', None, False, False, True), ('exception_code', 'enum', ExceptionCode, False, False, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('address', 'function', 'exception_code')
 
     address: int
     """server address (1..247; 0 broadcasts a write)"""
@@ -316,25 +369,10 @@ class ExceptionResponse:
 
     exception_code: ExceptionCode
 
-    def to_dict(self) -> dict[str, Any]:
-        """The ExceptionResponse as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> ExceptionResponse:
-        """A ExceptionResponse from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(ExceptionResponse, values, 'exception_response', "")
-
-    def encode(self) -> bytes:
-        """The exception_response message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_exception_response(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> ExceptionResponse:
-        """A exception_response message from its wire form; a DecodeError if it is not one."""
-        return _decode_exception_response(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, address: int, function: int, exception_code: ExceptionCode) -> None:
+        self.address = address
+        self.function = function
+        self.exception_code = exception_code
 
 
 AnyMessage = Union[ReadHoldingRegisters, ReadHoldingRegistersResponse, WriteMultipleRegisters, WriteMultipleRegistersResponse, ExceptionResponse, ]
@@ -520,21 +558,7 @@ def _encode_read_holding_registers(m: ReadHoldingRegisters) -> bytes:
     r_start = m.start
     r_quantity = m.quantity
     if (r_address.__class__ is not int or not 0 <= r_address <= 255) or (r_start.__class__ is not int or not 0 <= r_start <= 65535) or (r_quantity.__class__ is not int or not 1 <= r_quantity <= 125):
-        if r_address.__class__ is not int or not 0 <= r_address <= 255:
-            if not isinstance(r_address, int) or r_address.__class__ is bool:
-                raise _enc('read_holding_registers', 'address', r_address, 'type', 'an int')
-            if not 0 <= r_address <= 255:
-                raise _enc('read_holding_registers', 'address', r_address, 'range', '0..255', None)
-        if r_start.__class__ is not int or not 0 <= r_start <= 65535:
-            if not isinstance(r_start, int) or r_start.__class__ is bool:
-                raise _enc('read_holding_registers', 'start', r_start, 'type', 'an int')
-            if not 0 <= r_start <= 65535:
-                raise _enc('read_holding_registers', 'start', r_start, 'range', '0..65535', None)
-        if r_quantity.__class__ is not int or not 1 <= r_quantity <= 125:
-            if not isinstance(r_quantity, int) or r_quantity.__class__ is bool:
-                raise _enc('read_holding_registers', 'quantity', r_quantity, 'type', 'an int')
-            if not 1 <= r_quantity <= 125:
-                raise _enc('read_holding_registers', 'quantity', r_quantity, 'range', '1..125', None)
+        _faults('read_holding_registers', (r_address, r_start, r_quantity, ), (('int', 'address', 0, 255, False, None), ('int', 'start', 0, 65535, False, None), ('int', 'quantity', 1, 125, False, None)))
     h = _S_read_holding_registers_0.pack(r_address, 3, r_start, r_quantity)
     return h + _checksum_crc16_8005_ffff_rr_0_6(h, 0).to_bytes(2, 'little')
 
@@ -566,20 +590,14 @@ def _put_read_holding_registers_response_9registers(g_registers: Any) -> bytes:
     for i in range(len(g_registers)):
         r_9registers_i = g_registers[i]
         if r_9registers_i.__class__ is not int or not 0 <= r_9registers_i <= 65535:
-            if not isinstance(r_9registers_i, int) or r_9registers_i.__class__ is bool:
-                raise _enc('read_holding_registers_response', f'registers[{i}]', r_9registers_i, 'type', 'an int')
-            if not 0 <= r_9registers_i <= 65535:
-                raise _enc('read_holding_registers_response', f'registers[{i}]', r_9registers_i, 'range', '0..65535', None)
+            _int_fault('read_holding_registers_response', f'registers[{i}]', r_9registers_i, 0, 65535, False, None)
     return struct.pack(f'>{len(g_registers)}H', *g_registers)
 
 
 def _encode_read_holding_registers_response(m: ReadHoldingRegistersResponse) -> bytes:
     r_address = m.address
     if r_address.__class__ is not int or not 0 <= r_address <= 255:
-        if not isinstance(r_address, int) or r_address.__class__ is bool:
-            raise _enc('read_holding_registers_response', 'address', r_address, 'type', 'an int')
-        if not 0 <= r_address <= 255:
-            raise _enc('read_holding_registers_response', 'address', r_address, 'range', '0..255', None)
+        _int_fault('read_holding_registers_response', 'address', r_address, 0, 255, False, None)
     g_registers = m.registers
     if not isinstance(g_registers, (list, tuple)) or len(g_registers) > 125:
         raise _enc('read_holding_registers_response', 'registers', g_registers, 'count', 'a list of at most 125 values')
@@ -631,10 +649,7 @@ def _put_write_multiple_registers_6values(g_values: Any) -> bytes:
     for i in range(len(g_values)):
         r_6values_i = g_values[i]
         if r_6values_i.__class__ is not int or not 0 <= r_6values_i <= 65535:
-            if not isinstance(r_6values_i, int) or r_6values_i.__class__ is bool:
-                raise _enc('write_multiple_registers', f'values[{i}]', r_6values_i, 'type', 'an int')
-            if not 0 <= r_6values_i <= 65535:
-                raise _enc('write_multiple_registers', f'values[{i}]', r_6values_i, 'range', '0..65535', None)
+            _int_fault('write_multiple_registers', f'values[{i}]', r_6values_i, 0, 65535, False, None)
     return struct.pack(f'>{len(g_values)}H', *g_values)
 
 
@@ -643,21 +658,7 @@ def _encode_write_multiple_registers(m: WriteMultipleRegisters) -> bytes:
     r_start = m.start
     r_quantity = m.quantity
     if (r_address.__class__ is not int or not 0 <= r_address <= 255) or (r_start.__class__ is not int or not 0 <= r_start <= 65535) or (r_quantity.__class__ is not int or not 1 <= r_quantity <= 123):
-        if r_address.__class__ is not int or not 0 <= r_address <= 255:
-            if not isinstance(r_address, int) or r_address.__class__ is bool:
-                raise _enc('write_multiple_registers', 'address', r_address, 'type', 'an int')
-            if not 0 <= r_address <= 255:
-                raise _enc('write_multiple_registers', 'address', r_address, 'range', '0..255', None)
-        if r_start.__class__ is not int or not 0 <= r_start <= 65535:
-            if not isinstance(r_start, int) or r_start.__class__ is bool:
-                raise _enc('write_multiple_registers', 'start', r_start, 'type', 'an int')
-            if not 0 <= r_start <= 65535:
-                raise _enc('write_multiple_registers', 'start', r_start, 'range', '0..65535', None)
-        if r_quantity.__class__ is not int or not 1 <= r_quantity <= 123:
-            if not isinstance(r_quantity, int) or r_quantity.__class__ is bool:
-                raise _enc('write_multiple_registers', 'quantity', r_quantity, 'type', 'an int')
-            if not 1 <= r_quantity <= 123:
-                raise _enc('write_multiple_registers', 'quantity', r_quantity, 'range', '1..123', None)
+        _faults('write_multiple_registers', (r_address, r_start, r_quantity, ), (('int', 'address', 0, 255, False, None), ('int', 'start', 0, 65535, False, None), ('int', 'quantity', 1, 123, False, None)))
     g_values = m.values
     if not isinstance(g_values, (list, tuple)) or len(g_values) > 123:
         raise _enc('write_multiple_registers', 'values', g_values, 'count', 'a list of at most 123 values')
@@ -715,21 +716,7 @@ def _encode_write_multiple_registers_response(m: WriteMultipleRegistersResponse)
     r_start = m.start
     r_quantity = m.quantity
     if (r_address.__class__ is not int or not 0 <= r_address <= 255) or (r_start.__class__ is not int or not 0 <= r_start <= 65535) or (r_quantity.__class__ is not int or not 0 <= r_quantity <= 65535):
-        if r_address.__class__ is not int or not 0 <= r_address <= 255:
-            if not isinstance(r_address, int) or r_address.__class__ is bool:
-                raise _enc('write_multiple_registers_response', 'address', r_address, 'type', 'an int')
-            if not 0 <= r_address <= 255:
-                raise _enc('write_multiple_registers_response', 'address', r_address, 'range', '0..255', None)
-        if r_start.__class__ is not int or not 0 <= r_start <= 65535:
-            if not isinstance(r_start, int) or r_start.__class__ is bool:
-                raise _enc('write_multiple_registers_response', 'start', r_start, 'type', 'an int')
-            if not 0 <= r_start <= 65535:
-                raise _enc('write_multiple_registers_response', 'start', r_start, 'range', '0..65535', None)
-        if r_quantity.__class__ is not int or not 0 <= r_quantity <= 65535:
-            if not isinstance(r_quantity, int) or r_quantity.__class__ is bool:
-                raise _enc('write_multiple_registers_response', 'quantity', r_quantity, 'type', 'an int')
-            if not 0 <= r_quantity <= 65535:
-                raise _enc('write_multiple_registers_response', 'quantity', r_quantity, 'range', '0..65535', None)
+        _faults('write_multiple_registers_response', (r_address, r_start, r_quantity, ), (('int', 'address', 0, 255, False, None), ('int', 'start', 0, 65535, False, None), ('int', 'quantity', 0, 65535, False, None)))
     h = _S_write_multiple_registers_response_0.pack(r_address, 16, r_start, r_quantity)
     return h + _checksum_crc16_8005_ffff_rr_0_6(h, 0).to_bytes(2, 'little')
 
@@ -756,18 +743,11 @@ def _decode_write_multiple_registers_response(d: _Buffer) -> WriteMultipleRegist
 
 def _encode_exception_response(m: ExceptionResponse) -> bytes:
     r_address = m.address
+    if r_address.__class__ is not int or not 0 <= r_address <= 255:
+        _int_fault('exception_response', 'address', r_address, 0, 255, False, None)
     r_function = m.function
-    if (r_address.__class__ is not int or not 0 <= r_address <= 255) or (r_function.__class__ is not int or not 0 <= r_function <= 255):
-        if r_address.__class__ is not int or not 0 <= r_address <= 255:
-            if not isinstance(r_address, int) or r_address.__class__ is bool:
-                raise _enc('exception_response', 'address', r_address, 'type', 'an int')
-            if not 0 <= r_address <= 255:
-                raise _enc('exception_response', 'address', r_address, 'range', '0..255', None)
-        if r_function.__class__ is not int or not 0 <= r_function <= 255:
-            if not isinstance(r_function, int) or r_function.__class__ is bool:
-                raise _enc('exception_response', 'function', r_function, 'type', 'an int')
-            if not 0 <= r_function <= 255:
-                raise _enc('exception_response', 'function', r_function, 'range', '0..255', None)
+    if r_function.__class__ is not int or not 0 <= r_function <= 255:
+        _int_fault('exception_response', 'function', r_function, 0, 255, False, None)
     if r_function not in (129, 130, 131, 132, 133, 134, 143, 144):
         raise _enc('exception_response', 'function', r_function, 'values', '129, 130, 131, 132, 133, 134, 143, 144', None)
     r_exception_code: Any = m.exception_code
@@ -996,8 +976,9 @@ class StreamDecoder:
 
 
 _ENCODERS: dict[type[Any], Callable[[Any], bytes]] = {ReadHoldingRegisters: _encode_read_holding_registers, ReadHoldingRegistersResponse: _encode_read_holding_registers_response, WriteMultipleRegisters: _encode_write_multiple_registers, WriteMultipleRegistersResponse: _encode_write_multiple_registers_response, ExceptionResponse: _encode_exception_response, }
+_DECODERS: dict[type[Any], Callable[..., Any]] = {ReadHoldingRegisters: _decode_read_holding_registers, ReadHoldingRegistersResponse: _decode_read_holding_registers_response, WriteMultipleRegisters: _decode_write_multiple_registers, WriteMultipleRegistersResponse: _decode_write_multiple_registers_response, ExceptionResponse: _decode_exception_response, }
 for _cls, _encoder in _ENCODERS.items():  # each encoder is its class's encode method: one call, not two
-    _encoder.__doc__ = _cls.encode.__doc__
+    _encoder.__doc__ = _Message.encode.__doc__
     setattr(_cls, "encode", _encoder)
 MESSAGES: dict[str, type[AnyMessage]] = {'read_holding_registers': ReadHoldingRegisters, 'read_holding_registers_response': ReadHoldingRegistersResponse, 'write_multiple_registers': WriteMultipleRegisters, 'write_multiple_registers_response': WriteMultipleRegistersResponse, 'exception_response': ExceptionResponse, }
 

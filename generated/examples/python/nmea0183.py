@@ -12,8 +12,7 @@ import enum
 import math
 import re
 
-from dataclasses import dataclass, field
-from typing import Any, Callable, ClassVar, Literal, Optional, TypeVar, Union, overload
+from typing import Any, Callable, ClassVar, Literal, Optional, TypeVar, Union, cast, overload
 
 _Buffer = Union[bytes, bytearray, "memoryview[int]"]  # what a binary decoder reads
 _Input = Union[str, bytes, bytearray]  # what a decoder reads: text, or its ASCII bytes
@@ -28,6 +27,63 @@ FINGERPRINT32 = 0x394cc664  # its first 32 bits
 _floor = math.floor
 _isfinite = math.isfinite
 _object_new = object.__new__
+_FRESH: Any = object()  # an argument left out whose default (a list, a group) is built for each object
+
+
+class _DataclassFields:
+    """A class's table of dataclass fields, made the first time it is read and then kept on the
+    class, for dataclasses.fields, replace, asdict and is_dataclass."""
+
+    def __get__(self, obj: object, owner: type[_Record]) -> dict[str, Any]:
+        from dataclasses import field, make_dataclass
+        init: Any = owner.__init__
+        defaults: dict[str, Any] = init.__kwdefaults__ or {}
+        annotations: dict[str, Any] = owner.__annotations__
+        names = owner._NAMES  # pyright: ignore[reportPrivateUsage]
+        fields: list[tuple[str, Any, Any]] = [
+            (n, annotations[n], field(default=defaults[n]) if defaults.get(n, _FRESH) is not _FRESH else field())
+            for n in names]
+        slots: tuple[str, ...] = owner.__slots__
+        fields += [(n, annotations[n], field(default=None, init=False, repr=False, compare=False))
+                   for n in slots if n not in names]
+        made: Any = make_dataclass(owner.__name__, fields, kw_only=True)
+        table: dict[str, Any] = made.__dataclass_fields__
+        setattr(owner, "__dataclass_fields__", table)
+        return table
+
+
+_R = TypeVar("_R", bound="_Record")
+
+
+class _Record:
+    """What every message, group and sequence class is: its fields in slots, set by a keyword
+    constructor; compared and shown field by field, in order, as a dataclass is; and a
+    dataclass to the dataclasses module. Its table of fields is made when first asked for: a
+    @dataclass decorator writes and compiles each class's methods while the module is
+    imported, which in a protocol of hundreds of messages costs more than all the rest."""
+
+    __slots__ = ()
+    _NAMES: ClassVar[tuple[str, ...]] = ()
+    __dataclass_fields__: ClassVar[dict[str, Any]] = _DataclassFields()  # type: ignore[assignment]
+
+    def __eq__(self, other: object) -> bool:
+        if other.__class__ is not self.__class__:
+            return NotImplemented
+        return [getattr(self, n) for n in self._NAMES] == [getattr(other, n) for n in self._NAMES]
+
+    def __repr__(self) -> str:
+        return f"{self.__class__.__qualname__}({', '.join(f'{n}={getattr(self, n)!r}' for n in self._NAMES)})"
+
+    def to_dict(self) -> dict[str, Any]:
+        """The object as JSON-ready data: enum members and flags by name, bytes as hex, numbers
+        in logical units; from_dict reads it back."""
+        return _to_dict(self)
+
+    @classmethod
+    def from_dict(cls: type[_R], values: dict[str, Any]) -> _R:
+        """An object from the data to_dict gives; an unknown key or a value of the wrong type is
+        a DecodeError."""
+        return _from_dict(cls, values, getattr(cls, "NAME", cls.__name__), "")
 
 
 def _int_of(token: str) -> int:
@@ -115,6 +171,16 @@ def _located(e: CodecError) -> str:
 def _enc(message: Optional[str], field: Optional[str], value: object, rule: str, allowed: str = "",
          decision: Optional[str] = None, user_message: Optional[str] = None) -> EncodeError:
     return EncodeError(message, field, value, rule, allowed, None, decision, user_message)
+
+
+def _int_fault(message: str, field: Optional[str], value: Any, lo: Any, hi: Any, number: bool,
+               decision: Optional[str], user_message: Optional[str] = None) -> None:
+    """Raise the EncodeError of an integer field's value that its usual test did not pass: not
+    an int (a number, if the field is scaled), or out of its range."""
+    if not isinstance(value, (int, float) if number else int) or value.__class__ is bool:
+        raise _enc(message, field, value, 'type', 'a number' if number else 'an int')
+    if not lo <= value <= hi:
+        raise _enc(message, field, value, 'range', f'{lo!r}..{hi!r}', decision, user_message)
 
 
 def _dec(message: Optional[str], field: Optional[str], value: object, rule: str, allowed: str = "",
@@ -251,14 +317,33 @@ _VALUES_nav_status = frozenset(_ENUM_nav_status)
 # kind: int, number, bool, str, bytes (hex text), enum (a member's name), flags (a list of
 # names) or group (a nested mapping).
 _Spec = tuple[str, str, Any, bool, bool, bool]
+_Msg = TypeVar("_Msg", bound="_Message")
 
 
-@dataclass(slots=True, kw_only=True)
-class Gga:
+class _Message(_Record):
+    """What every message class does: encode itself, decode its own wire form. Each message's
+    encoder is set on its class as the method itself (one call, not two)."""
+
+    __slots__ = ()
+    NAME: ClassVar[str]
+
+    def encode(self) -> str:
+        """The message in its wire form; an EncodeError if a value breaks the schema."""
+        return cast(str, _ENCODERS[self.__class__](self))
+
+    @classmethod
+    def decode(cls: type[_Msg], data: _Input) -> _Msg:
+        """The message from its wire form; a DecodeError if it is not one."""
+        return cast(_Msg, _decode_as(cls.NAME, data, _DECODERS[cls]))
+
+
+class Gga(_Message):
     """Global positioning system fix data"""
 
+    __slots__ = ('talker', 'timestamp', 'gps_qual', 'num_sats', 'lat', 'lat_dir', 'lon', 'lon_dir', 'horizontal_dil', 'altitude', 'altitude_units', 'geo_sep', 'geo_sep_units', 'age_gps_data', 'ref_station_id', '_spelling')
     NAME: ClassVar[str] = 'gga'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('talker', 'str', None, False, False, True), ('timestamp', 'int', None, False, False, True), ('gps_qual', 'int', None, False, False, True), ('num_sats', 'int', None, False, False, True), ('lat', 'number', None, True, False, False), ('lat_dir', 'enum', NorthSouth, True, False, False), ('lon', 'number', None, True, False, False), ('lon_dir', 'enum', EastWest, True, False, False), ('horizontal_dil', 'number', None, True, False, False), ('altitude', 'number', None, True, False, False), ('altitude_units', 'enum', Metres, True, False, False), ('geo_sep', 'number', None, True, False, False), ('geo_sep_units', 'enum', Metres, True, False, False), ('age_gps_data', 'number', None, True, False, False), ('ref_station_id', 'int', None, True, False, False), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('talker', 'timestamp', 'gps_qual', 'num_sats', 'lat', 'lat_dir', 'lon', 'lon_dir', 'horizontal_dil', 'altitude', 'altitude_units', 'geo_sep', 'geo_sep_units', 'age_gps_data', 'ref_station_id')
 
     talker: str
     """the talker: GP GPS, GL GLONASS, GA Galileo, GB/BD BeiDou, GN several systems (NMEA-D1)"""
@@ -272,67 +357,66 @@ class Gga:
     num_sats: int
     """satellites in use"""
 
-    lat: Optional[float] = None
+    lat: Optional[float]
     """latitude as ddmm.mmmmm (4807.03800 is 48 degrees 7.038 minutes) range 0..9000 (NMEA-D2)"""
 
-    lat_dir: Optional[NorthSouth] = None
+    lat_dir: Optional[NorthSouth]
 
-    lon: Optional[float] = None
+    lon: Optional[float]
     """longitude as dddmm.mmmmm (01131.00000 is 11 degrees 31 minutes) range 0..18000 (NMEA-D2)"""
 
-    lon_dir: Optional[EastWest] = None
+    lon_dir: Optional[EastWest]
 
-    horizontal_dil: Optional[float] = None
+    horizontal_dil: Optional[float]
     """horizontal dilution of precision range 0..99999"""
 
-    altitude: Optional[float] = None
+    altitude: Optional[float]
     """antenna altitude above mean sea level [m] range -9999.9..99999.9"""
 
-    altitude_units: Optional[Metres] = None
+    altitude_units: Optional[Metres]
 
-    geo_sep: Optional[float] = None
+    geo_sep: Optional[float]
     """height of the geoid above the WGS84 ellipsoid [m] range -9999.9..9999.9"""
 
-    geo_sep_units: Optional[Metres] = None
+    geo_sep_units: Optional[Metres]
 
-    age_gps_data: Optional[float] = None
+    age_gps_data: Optional[float]
     """age of the differential GPS data [s] range 0..99999"""
 
-    ref_station_id: Optional[int] = None
+    ref_station_id: Optional[int]
     """differential reference station range 0..1023"""
 
-    _spelling: Optional[dict[str, tuple[Any, str]]] = field(default=None, init=False, repr=False, compare=False)
+    _spelling: Optional[dict[str, tuple[Any, str]]]
     """The text each number was read from, by field name, with the raw value it reads as:
     encode writes that text while the field holds that value (a new value is written in the
     field's own spelling). Not part of equality, to_dict or the constructor."""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The Gga as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> Gga:
-        """A Gga from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(Gga, values, 'gga', "")
-
-    def encode(self) -> str:
-        """The gga message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_gga(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> Gga:
-        """A gga message from its wire form; a DecodeError if it is not one."""
-        return _decode_as('gga', data, _decode_gga)
+    def __init__(self, *, talker: str, timestamp: int, gps_qual: int, num_sats: int, lat: Optional[float] = None, lat_dir: Optional[NorthSouth] = None, lon: Optional[float] = None, lon_dir: Optional[EastWest] = None, horizontal_dil: Optional[float] = None, altitude: Optional[float] = None, altitude_units: Optional[Metres] = None, geo_sep: Optional[float] = None, geo_sep_units: Optional[Metres] = None, age_gps_data: Optional[float] = None, ref_station_id: Optional[int] = None) -> None:
+        self.talker = talker
+        self.timestamp = timestamp
+        self.gps_qual = gps_qual
+        self.num_sats = num_sats
+        self.lat = lat
+        self.lat_dir = lat_dir
+        self.lon = lon
+        self.lon_dir = lon_dir
+        self.horizontal_dil = horizontal_dil
+        self.altitude = altitude
+        self.altitude_units = altitude_units
+        self.geo_sep = geo_sep
+        self.geo_sep_units = geo_sep_units
+        self.age_gps_data = age_gps_data
+        self.ref_station_id = ref_station_id
+        self._spelling = None
 
 
-@dataclass(slots=True, kw_only=True)
-class Rmc:
+class Rmc(_Message):
     """Recommended minimum specific GPS data"""
 
+    __slots__ = ('talker', 'timestamp', 'status', 'datestamp', 'lat', 'lat_dir', 'lon', 'lon_dir', 'spd_over_grnd', 'true_course', 'mag_variation', 'mag_var_dir', 'mode', 'nav_status', '_spelling', '_places')
     NAME: ClassVar[str] = 'rmc'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('talker', 'str', None, False, False, True), ('timestamp', 'int', None, False, False, True), ('status', 'enum', Validity, False, False, True), ('datestamp', 'int', None, False, False, True), ('lat', 'number', None, True, False, False), ('lat_dir', 'enum', NorthSouth, True, False, False), ('lon', 'number', None, True, False, False), ('lon_dir', 'enum', EastWest, True, False, False), ('spd_over_grnd', 'number', None, True, False, False), ('true_course', 'number', None, True, False, False), ('mag_variation', 'number', None, True, False, False), ('mag_var_dir', 'enum', EastWest, True, False, False), ('mode', 'enum', FaaMode, True, False, False), ('nav_status', 'enum', NavStatus, True, False, False), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('talker', 'timestamp', 'status', 'datestamp', 'lat', 'lat_dir', 'lon', 'lon_dir', 'spd_over_grnd', 'true_course', 'mag_variation', 'mag_var_dir', 'mode', 'nav_status')
 
     talker: str
     """the talker: GP GPS, GL GLONASS, GA Galileo, GB/BD BeiDou, GN several systems (NMEA-D1)"""
@@ -345,70 +429,69 @@ class Rmc:
     datestamp: int
     """date as ddmmyy (230394 is 23 March 1994) range 10100..311299"""
 
-    lat: Optional[float] = None
+    lat: Optional[float]
     """latitude as ddmm.mmmmm (4807.03800 is 48 degrees 7.038 minutes) range 0..9000 (NMEA-D2)"""
 
-    lat_dir: Optional[NorthSouth] = None
+    lat_dir: Optional[NorthSouth]
 
-    lon: Optional[float] = None
+    lon: Optional[float]
     """longitude as dddmm.mmmmm (01131.00000 is 11 degrees 31 minutes) range 0..18000 (NMEA-D2)"""
 
-    lon_dir: Optional[EastWest] = None
+    lon_dir: Optional[EastWest]
 
-    spd_over_grnd: Optional[float] = None
+    spd_over_grnd: Optional[float]
     """speed over ground [kn] range 0..999.9"""
 
-    true_course: Optional[float] = None
+    true_course: Optional[float]
     """track made good, true [deg] range 0..999.9"""
 
-    mag_variation: Optional[float] = None
+    mag_variation: Optional[float]
     """magnetic variation [deg] range 0..999.9"""
 
-    mag_var_dir: Optional[EastWest] = None
+    mag_var_dir: Optional[EastWest]
 
-    mode: Optional[FaaMode] = None
+    mode: Optional[FaaMode]
     """(NMEA-D3)"""
 
-    nav_status: Optional[NavStatus] = None
+    nav_status: Optional[NavStatus]
     """(NMEA-D3)"""
 
-    _spelling: Optional[dict[str, tuple[Any, str]]] = field(default=None, init=False, repr=False, compare=False)
+    _spelling: Optional[dict[str, tuple[Any, str]]]
     """The text each number was read from, by field name, with the raw value it reads as:
     encode writes that text while the field holds that value (a new value is written in the
     field's own spelling). Not part of equality, to_dict or the constructor."""
 
-    _places: Optional[int] = field(default=None, init=False, repr=False, compare=False)
+    _places: Optional[int]
     """How many values the line it was decoded from had: encode writes as many (absent ones
     as empty places) when the values present fit in them. Not part of equality, to_dict or
     the constructor."""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The Rmc as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> Rmc:
-        """A Rmc from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(Rmc, values, 'rmc', "")
-
-    def encode(self) -> str:
-        """The rmc message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_rmc(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> Rmc:
-        """A rmc message from its wire form; a DecodeError if it is not one."""
-        return _decode_as('rmc', data, _decode_rmc)
+    def __init__(self, *, talker: str, timestamp: int, status: Validity, datestamp: int, lat: Optional[float] = None, lat_dir: Optional[NorthSouth] = None, lon: Optional[float] = None, lon_dir: Optional[EastWest] = None, spd_over_grnd: Optional[float] = None, true_course: Optional[float] = None, mag_variation: Optional[float] = None, mag_var_dir: Optional[EastWest] = None, mode: Optional[FaaMode] = None, nav_status: Optional[NavStatus] = None) -> None:
+        self.talker = talker
+        self.timestamp = timestamp
+        self.status = status
+        self.datestamp = datestamp
+        self.lat = lat
+        self.lat_dir = lat_dir
+        self.lon = lon
+        self.lon_dir = lon_dir
+        self.spd_over_grnd = spd_over_grnd
+        self.true_course = true_course
+        self.mag_variation = mag_variation
+        self.mag_var_dir = mag_var_dir
+        self.mode = mode
+        self.nav_status = nav_status
+        self._spelling = None
+        self._places = None
 
 
-@dataclass(slots=True, kw_only=True)
-class Vtg:
+class Vtg(_Message):
     """Track made good and ground speed"""
 
+    __slots__ = ('talker', 'true_track_sym', 'mag_track_sym', 'spd_over_grnd_kts_sym', 'spd_over_grnd_kmph_sym', 'true_track', 'mag_track', 'spd_over_grnd_kts', 'spd_over_grnd_kmph', 'faa_mode', '_spelling', '_places')
     NAME: ClassVar[str] = 'vtg'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('talker', 'str', None, False, False, True), ('true_track_sym', 'enum', TrackTrue, False, False, True), ('mag_track_sym', 'enum', TrackMagnetic, False, False, True), ('spd_over_grnd_kts_sym', 'enum', SpeedKnots, False, False, True), ('spd_over_grnd_kmph_sym', 'enum', SpeedKmh, False, False, True), ('true_track', 'number', None, True, False, False), ('mag_track', 'number', None, True, False, False), ('spd_over_grnd_kts', 'number', None, True, False, False), ('spd_over_grnd_kmph', 'number', None, True, False, False), ('faa_mode', 'enum', FaaMode, True, False, False), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('talker', 'true_track_sym', 'mag_track_sym', 'spd_over_grnd_kts_sym', 'spd_over_grnd_kmph_sym', 'true_track', 'mag_track', 'spd_over_grnd_kts', 'spd_over_grnd_kmph', 'faa_mode')
 
     talker: str
     """the talker: GP GPS, GL GLONASS, GA Galileo, GB/BD BeiDou, GN several systems (NMEA-D1)"""
@@ -421,50 +504,44 @@ class Vtg:
 
     spd_over_grnd_kmph_sym: SpeedKmh
 
-    true_track: Optional[float] = None
+    true_track: Optional[float]
     """a number with one decimal, zero-padded to 5 characters (022.4) [deg] range 0..999.9"""
 
-    mag_track: Optional[float] = None
+    mag_track: Optional[float]
     """a number with one decimal, zero-padded to 5 characters (022.4) [deg] range 0..999.9"""
 
-    spd_over_grnd_kts: Optional[float] = None
+    spd_over_grnd_kts: Optional[float]
     """a number with one decimal, zero-padded to 5 characters (022.4) [kn] range 0..999.9"""
 
-    spd_over_grnd_kmph: Optional[float] = None
+    spd_over_grnd_kmph: Optional[float]
     """a number with one decimal, zero-padded to 5 characters (022.4) [km/h] range 0..999.9"""
 
-    faa_mode: Optional[FaaMode] = None
+    faa_mode: Optional[FaaMode]
     """(NMEA-D3)"""
 
-    _spelling: Optional[dict[str, tuple[Any, str]]] = field(default=None, init=False, repr=False, compare=False)
+    _spelling: Optional[dict[str, tuple[Any, str]]]
     """The text each number was read from, by field name, with the raw value it reads as:
     encode writes that text while the field holds that value (a new value is written in the
     field's own spelling). Not part of equality, to_dict or the constructor."""
 
-    _places: Optional[int] = field(default=None, init=False, repr=False, compare=False)
+    _places: Optional[int]
     """How many values the line it was decoded from had: encode writes as many (absent ones
     as empty places) when the values present fit in them. Not part of equality, to_dict or
     the constructor."""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The Vtg as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> Vtg:
-        """A Vtg from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(Vtg, values, 'vtg', "")
-
-    def encode(self) -> str:
-        """The vtg message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_vtg(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> Vtg:
-        """A vtg message from its wire form; a DecodeError if it is not one."""
-        return _decode_as('vtg', data, _decode_vtg)
+    def __init__(self, *, talker: str, true_track_sym: TrackTrue, mag_track_sym: TrackMagnetic, spd_over_grnd_kts_sym: SpeedKnots, spd_over_grnd_kmph_sym: SpeedKmh, true_track: Optional[float] = None, mag_track: Optional[float] = None, spd_over_grnd_kts: Optional[float] = None, spd_over_grnd_kmph: Optional[float] = None, faa_mode: Optional[FaaMode] = None) -> None:
+        self.talker = talker
+        self.true_track_sym = true_track_sym
+        self.mag_track_sym = mag_track_sym
+        self.spd_over_grnd_kts_sym = spd_over_grnd_kts_sym
+        self.spd_over_grnd_kmph_sym = spd_over_grnd_kmph_sym
+        self.true_track = true_track
+        self.mag_track = mag_track
+        self.spd_over_grnd_kts = spd_over_grnd_kts
+        self.spd_over_grnd_kmph = spd_over_grnd_kmph
+        self.faa_mode = faa_mode
+        self._spelling = None
+        self._places = None
 
 
 AnyMessage = Union[Gga, Rmc, Vtg, ]
@@ -562,18 +639,12 @@ def _encode_gga(m: Gga) -> str:
     sp = m._spelling or {}  # the text each number was read from, with the raw value it reads as
     r_timestamp = m.timestamp
     if r_timestamp.__class__ is not int or not 0 <= r_timestamp <= 235960:
-        if not isinstance(r_timestamp, int) or r_timestamp.__class__ is bool:
-            raise _enc('gga', 'timestamp', r_timestamp, 'type', 'an int')
-        if not 0 <= r_timestamp <= 235960:
-            raise _enc('gga', 'timestamp', r_timestamp, 'range', '0..235960', 'NMEA-D2')
+        _int_fault('gga', 'timestamp', r_timestamp, 0, 235960, False, 'NMEA-D2')
     k_timestamp = sp.get('timestamp')
     if m.lat is not None:
         r_lat = m.lat
         if r_lat.__class__ is not float or not 0 <= r_lat <= 9000:
-            if not isinstance(r_lat, (int, float)) or r_lat.__class__ is bool:
-                raise _enc('gga', 'lat', r_lat, 'type', 'a number')
-            if not 0 <= r_lat <= 9000:
-                raise _enc('gga', 'lat', r_lat, 'range', '0..9000', 'NMEA-D2')
+            _int_fault('gga', 'lat', r_lat, 0, 9000, True, 'NMEA-D2')
         r_lat = _floor(r_lat / 1e-05 + 0.5)
         k_lat = sp.get('lat')
         t1 = (k_lat[1] if k_lat is not None and k_lat[0] == r_lat else _fixed(r_lat, 5, 10))
@@ -589,10 +660,7 @@ def _encode_gga(m: Gga) -> str:
     if m.lon is not None:
         r_lon = m.lon
         if r_lon.__class__ is not float or not 0 <= r_lon <= 18000:
-            if not isinstance(r_lon, (int, float)) or r_lon.__class__ is bool:
-                raise _enc('gga', 'lon', r_lon, 'type', 'a number')
-            if not 0 <= r_lon <= 18000:
-                raise _enc('gga', 'lon', r_lon, 'range', '0..18000', 'NMEA-D2')
+            _int_fault('gga', 'lon', r_lon, 0, 18000, True, 'NMEA-D2')
         r_lon = _floor(r_lon / 1e-05 + 0.5)
         k_lon = sp.get('lon')
         t3 = (k_lon[1] if k_lon is not None and k_lon[0] == r_lon else _fixed(r_lon, 5, 11))
@@ -607,25 +675,16 @@ def _encode_gga(m: Gga) -> str:
         t4 = ''
     r_gps_qual = m.gps_qual
     if r_gps_qual.__class__ is not int or not 0 <= r_gps_qual <= 8:
-        if not isinstance(r_gps_qual, int) or r_gps_qual.__class__ is bool:
-            raise _enc('gga', 'gps_qual', r_gps_qual, 'type', 'an int')
-        if not 0 <= r_gps_qual <= 8:
-            raise _enc('gga', 'gps_qual', r_gps_qual, 'range', '0..8', None)
+        _int_fault('gga', 'gps_qual', r_gps_qual, 0, 8, False, None)
     k_gps_qual = sp.get('gps_qual')
     r_num_sats = m.num_sats
     if r_num_sats.__class__ is not int or not 0 <= r_num_sats <= 255:
-        if not isinstance(r_num_sats, int) or r_num_sats.__class__ is bool:
-            raise _enc('gga', 'num_sats', r_num_sats, 'type', 'an int')
-        if not 0 <= r_num_sats <= 255:
-            raise _enc('gga', 'num_sats', r_num_sats, 'range', '0..255', None)
+        _int_fault('gga', 'num_sats', r_num_sats, 0, 255, False, None)
     k_num_sats = sp.get('num_sats')
     if m.horizontal_dil is not None:
         r_horizontal_dil = m.horizontal_dil
         if r_horizontal_dil.__class__ is not float or not 0 <= r_horizontal_dil <= 99999:
-            if not isinstance(r_horizontal_dil, (int, float)) or r_horizontal_dil.__class__ is bool:
-                raise _enc('gga', 'horizontal_dil', r_horizontal_dil, 'type', 'a number')
-            if not 0 <= r_horizontal_dil <= 99999:
-                raise _enc('gga', 'horizontal_dil', r_horizontal_dil, 'range', '0..99999', None)
+            _int_fault('gga', 'horizontal_dil', r_horizontal_dil, 0, 99999, True, None)
         r_horizontal_dil = _floor(r_horizontal_dil / 0.1 + 0.5)
         k_horizontal_dil = sp.get('horizontal_dil')
         t7 = (k_horizontal_dil[1] if k_horizontal_dil is not None and k_horizontal_dil[0] == r_horizontal_dil else _fixed(r_horizontal_dil, 1, 0))
@@ -634,10 +693,7 @@ def _encode_gga(m: Gga) -> str:
     if m.altitude is not None:
         r_altitude = m.altitude
         if r_altitude.__class__ is not float or not -9999.9 <= r_altitude <= 99999.9:
-            if not isinstance(r_altitude, (int, float)) or r_altitude.__class__ is bool:
-                raise _enc('gga', 'altitude', r_altitude, 'type', 'a number')
-            if not -9999.9 <= r_altitude <= 99999.9:
-                raise _enc('gga', 'altitude', r_altitude, 'range', '-9999.9..99999.9', None)
+            _int_fault('gga', 'altitude', r_altitude, -9999.9, 99999.9, True, None)
         r_altitude = _floor(r_altitude / 0.1 + 0.5)
         k_altitude = sp.get('altitude')
         t8 = (k_altitude[1] if k_altitude is not None and k_altitude[0] == r_altitude else _fixed(r_altitude, 1, 0))
@@ -653,10 +709,7 @@ def _encode_gga(m: Gga) -> str:
     if m.geo_sep is not None:
         r_geo_sep = m.geo_sep
         if r_geo_sep.__class__ is not float or not -9999.9 <= r_geo_sep <= 9999.9:
-            if not isinstance(r_geo_sep, (int, float)) or r_geo_sep.__class__ is bool:
-                raise _enc('gga', 'geo_sep', r_geo_sep, 'type', 'a number')
-            if not -9999.9 <= r_geo_sep <= 9999.9:
-                raise _enc('gga', 'geo_sep', r_geo_sep, 'range', '-9999.9..9999.9', None)
+            _int_fault('gga', 'geo_sep', r_geo_sep, -9999.9, 9999.9, True, None)
         r_geo_sep = _floor(r_geo_sep / 0.1 + 0.5)
         k_geo_sep = sp.get('geo_sep')
         t10 = (k_geo_sep[1] if k_geo_sep is not None and k_geo_sep[0] == r_geo_sep else _fixed(r_geo_sep, 1, 0))
@@ -672,10 +725,7 @@ def _encode_gga(m: Gga) -> str:
     if m.age_gps_data is not None:
         r_age_gps_data = m.age_gps_data
         if r_age_gps_data.__class__ is not float or not 0 <= r_age_gps_data <= 99999:
-            if not isinstance(r_age_gps_data, (int, float)) or r_age_gps_data.__class__ is bool:
-                raise _enc('gga', 'age_gps_data', r_age_gps_data, 'type', 'a number')
-            if not 0 <= r_age_gps_data <= 99999:
-                raise _enc('gga', 'age_gps_data', r_age_gps_data, 'range', '0..99999', None)
+            _int_fault('gga', 'age_gps_data', r_age_gps_data, 0, 99999, True, None)
         r_age_gps_data = _floor(r_age_gps_data / 0.1 + 0.5)
         k_age_gps_data = sp.get('age_gps_data')
         t12 = (k_age_gps_data[1] if k_age_gps_data is not None and k_age_gps_data[0] == r_age_gps_data else _fixed(r_age_gps_data, 1, 0))
@@ -684,10 +734,7 @@ def _encode_gga(m: Gga) -> str:
     if m.ref_station_id is not None:
         r_ref_station_id = m.ref_station_id
         if r_ref_station_id.__class__ is not int or not 0 <= r_ref_station_id <= 1023:
-            if not isinstance(r_ref_station_id, int) or r_ref_station_id.__class__ is bool:
-                raise _enc('gga', 'ref_station_id', r_ref_station_id, 'type', 'an int')
-            if not 0 <= r_ref_station_id <= 1023:
-                raise _enc('gga', 'ref_station_id', r_ref_station_id, 'range', '0..1023', None)
+            _int_fault('gga', 'ref_station_id', r_ref_station_id, 0, 1023, False, None)
         k_ref_station_id = sp.get('ref_station_id')
         t13 = (k_ref_station_id[1] if k_ref_station_id is not None and k_ref_station_id[0] == r_ref_station_id else _fixed(r_ref_station_id, 0, 4))
     else:
@@ -856,10 +903,7 @@ def _encode_rmc(m: Rmc) -> str:
     sp = m._spelling or {}  # the text each number was read from, with the raw value it reads as
     r_timestamp = m.timestamp
     if r_timestamp.__class__ is not int or not 0 <= r_timestamp <= 235960:
-        if not isinstance(r_timestamp, int) or r_timestamp.__class__ is bool:
-            raise _enc('rmc', 'timestamp', r_timestamp, 'type', 'an int')
-        if not 0 <= r_timestamp <= 235960:
-            raise _enc('rmc', 'timestamp', r_timestamp, 'range', '0..235960', 'NMEA-D2')
+        _int_fault('rmc', 'timestamp', r_timestamp, 0, 235960, False, 'NMEA-D2')
     k_timestamp = sp.get('timestamp')
     r_status: Any = m.status
     if r_status.__class__ is not Validity and (not isinstance(r_status, str) or isinstance(r_status, enum.Enum) or r_status not in _VALUES_validity):
@@ -867,10 +911,7 @@ def _encode_rmc(m: Rmc) -> str:
     if m.lat is not None:
         r_lat = m.lat
         if r_lat.__class__ is not float or not 0 <= r_lat <= 9000:
-            if not isinstance(r_lat, (int, float)) or r_lat.__class__ is bool:
-                raise _enc('rmc', 'lat', r_lat, 'type', 'a number')
-            if not 0 <= r_lat <= 9000:
-                raise _enc('rmc', 'lat', r_lat, 'range', '0..9000', 'NMEA-D2')
+            _int_fault('rmc', 'lat', r_lat, 0, 9000, True, 'NMEA-D2')
         r_lat = _floor(r_lat / 1e-05 + 0.5)
         k_lat = sp.get('lat')
         t2 = (k_lat[1] if k_lat is not None and k_lat[0] == r_lat else _fixed(r_lat, 5, 10))
@@ -886,10 +927,7 @@ def _encode_rmc(m: Rmc) -> str:
     if m.lon is not None:
         r_lon = m.lon
         if r_lon.__class__ is not float or not 0 <= r_lon <= 18000:
-            if not isinstance(r_lon, (int, float)) or r_lon.__class__ is bool:
-                raise _enc('rmc', 'lon', r_lon, 'type', 'a number')
-            if not 0 <= r_lon <= 18000:
-                raise _enc('rmc', 'lon', r_lon, 'range', '0..18000', 'NMEA-D2')
+            _int_fault('rmc', 'lon', r_lon, 0, 18000, True, 'NMEA-D2')
         r_lon = _floor(r_lon / 1e-05 + 0.5)
         k_lon = sp.get('lon')
         t4 = (k_lon[1] if k_lon is not None and k_lon[0] == r_lon else _fixed(r_lon, 5, 11))
@@ -905,10 +943,7 @@ def _encode_rmc(m: Rmc) -> str:
     if m.spd_over_grnd is not None:
         r_spd_over_grnd = m.spd_over_grnd
         if r_spd_over_grnd.__class__ is not float or not 0 <= r_spd_over_grnd <= 999.9:
-            if not isinstance(r_spd_over_grnd, (int, float)) or r_spd_over_grnd.__class__ is bool:
-                raise _enc('rmc', 'spd_over_grnd', r_spd_over_grnd, 'type', 'a number')
-            if not 0 <= r_spd_over_grnd <= 999.9:
-                raise _enc('rmc', 'spd_over_grnd', r_spd_over_grnd, 'range', '0..999.9', None)
+            _int_fault('rmc', 'spd_over_grnd', r_spd_over_grnd, 0, 999.9, True, None)
         r_spd_over_grnd = _floor(r_spd_over_grnd / 0.1 + 0.5)
         k_spd_over_grnd = sp.get('spd_over_grnd')
         t6 = (k_spd_over_grnd[1] if k_spd_over_grnd is not None and k_spd_over_grnd[0] == r_spd_over_grnd else _fixed(r_spd_over_grnd, 1, 5))
@@ -917,10 +952,7 @@ def _encode_rmc(m: Rmc) -> str:
     if m.true_course is not None:
         r_true_course = m.true_course
         if r_true_course.__class__ is not float or not 0 <= r_true_course <= 999.9:
-            if not isinstance(r_true_course, (int, float)) or r_true_course.__class__ is bool:
-                raise _enc('rmc', 'true_course', r_true_course, 'type', 'a number')
-            if not 0 <= r_true_course <= 999.9:
-                raise _enc('rmc', 'true_course', r_true_course, 'range', '0..999.9', None)
+            _int_fault('rmc', 'true_course', r_true_course, 0, 999.9, True, None)
         r_true_course = _floor(r_true_course / 0.1 + 0.5)
         k_true_course = sp.get('true_course')
         t7 = (k_true_course[1] if k_true_course is not None and k_true_course[0] == r_true_course else _fixed(r_true_course, 1, 5))
@@ -928,18 +960,12 @@ def _encode_rmc(m: Rmc) -> str:
         t7 = ''
     r_datestamp = m.datestamp
     if r_datestamp.__class__ is not int or not 10100 <= r_datestamp <= 311299:
-        if not isinstance(r_datestamp, int) or r_datestamp.__class__ is bool:
-            raise _enc('rmc', 'datestamp', r_datestamp, 'type', 'an int')
-        if not 10100 <= r_datestamp <= 311299:
-            raise _enc('rmc', 'datestamp', r_datestamp, 'range', '10100..311299', None)
+        _int_fault('rmc', 'datestamp', r_datestamp, 10100, 311299, False, None)
     k_datestamp = sp.get('datestamp')
     if m.mag_variation is not None:
         r_mag_variation = m.mag_variation
         if r_mag_variation.__class__ is not float or not 0 <= r_mag_variation <= 999.9:
-            if not isinstance(r_mag_variation, (int, float)) or r_mag_variation.__class__ is bool:
-                raise _enc('rmc', 'mag_variation', r_mag_variation, 'type', 'a number')
-            if not 0 <= r_mag_variation <= 999.9:
-                raise _enc('rmc', 'mag_variation', r_mag_variation, 'range', '0..999.9', None)
+            _int_fault('rmc', 'mag_variation', r_mag_variation, 0, 999.9, True, None)
         r_mag_variation = _floor(r_mag_variation / 0.1 + 0.5)
         k_mag_variation = sp.get('mag_variation')
         t9 = (k_mag_variation[1] if k_mag_variation is not None and k_mag_variation[0] == r_mag_variation else _fixed(r_mag_variation, 1, 5))
@@ -1131,10 +1157,7 @@ def _encode_vtg(m: Vtg) -> str:
     if m.true_track is not None:
         r_true_track = m.true_track
         if r_true_track.__class__ is not float or not 0 <= r_true_track <= 999.9:
-            if not isinstance(r_true_track, (int, float)) or r_true_track.__class__ is bool:
-                raise _enc('vtg', 'true_track', r_true_track, 'type', 'a number')
-            if not 0 <= r_true_track <= 999.9:
-                raise _enc('vtg', 'true_track', r_true_track, 'range', '0..999.9', None)
+            _int_fault('vtg', 'true_track', r_true_track, 0, 999.9, True, None)
         r_true_track = _floor(r_true_track / 0.1 + 0.5)
         k_true_track = sp.get('true_track')
         t0 = (k_true_track[1] if k_true_track is not None and k_true_track[0] == r_true_track else _fixed(r_true_track, 1, 5))
@@ -1146,10 +1169,7 @@ def _encode_vtg(m: Vtg) -> str:
     if m.mag_track is not None:
         r_mag_track = m.mag_track
         if r_mag_track.__class__ is not float or not 0 <= r_mag_track <= 999.9:
-            if not isinstance(r_mag_track, (int, float)) or r_mag_track.__class__ is bool:
-                raise _enc('vtg', 'mag_track', r_mag_track, 'type', 'a number')
-            if not 0 <= r_mag_track <= 999.9:
-                raise _enc('vtg', 'mag_track', r_mag_track, 'range', '0..999.9', None)
+            _int_fault('vtg', 'mag_track', r_mag_track, 0, 999.9, True, None)
         r_mag_track = _floor(r_mag_track / 0.1 + 0.5)
         k_mag_track = sp.get('mag_track')
         t2 = (k_mag_track[1] if k_mag_track is not None and k_mag_track[0] == r_mag_track else _fixed(r_mag_track, 1, 5))
@@ -1161,10 +1181,7 @@ def _encode_vtg(m: Vtg) -> str:
     if m.spd_over_grnd_kts is not None:
         r_spd_over_grnd_kts = m.spd_over_grnd_kts
         if r_spd_over_grnd_kts.__class__ is not float or not 0 <= r_spd_over_grnd_kts <= 999.9:
-            if not isinstance(r_spd_over_grnd_kts, (int, float)) or r_spd_over_grnd_kts.__class__ is bool:
-                raise _enc('vtg', 'spd_over_grnd_kts', r_spd_over_grnd_kts, 'type', 'a number')
-            if not 0 <= r_spd_over_grnd_kts <= 999.9:
-                raise _enc('vtg', 'spd_over_grnd_kts', r_spd_over_grnd_kts, 'range', '0..999.9', None)
+            _int_fault('vtg', 'spd_over_grnd_kts', r_spd_over_grnd_kts, 0, 999.9, True, None)
         r_spd_over_grnd_kts = _floor(r_spd_over_grnd_kts / 0.1 + 0.5)
         k_spd_over_grnd_kts = sp.get('spd_over_grnd_kts')
         t4 = (k_spd_over_grnd_kts[1] if k_spd_over_grnd_kts is not None and k_spd_over_grnd_kts[0] == r_spd_over_grnd_kts else _fixed(r_spd_over_grnd_kts, 1, 5))
@@ -1176,10 +1193,7 @@ def _encode_vtg(m: Vtg) -> str:
     if m.spd_over_grnd_kmph is not None:
         r_spd_over_grnd_kmph = m.spd_over_grnd_kmph
         if r_spd_over_grnd_kmph.__class__ is not float or not 0 <= r_spd_over_grnd_kmph <= 999.9:
-            if not isinstance(r_spd_over_grnd_kmph, (int, float)) or r_spd_over_grnd_kmph.__class__ is bool:
-                raise _enc('vtg', 'spd_over_grnd_kmph', r_spd_over_grnd_kmph, 'type', 'a number')
-            if not 0 <= r_spd_over_grnd_kmph <= 999.9:
-                raise _enc('vtg', 'spd_over_grnd_kmph', r_spd_over_grnd_kmph, 'range', '0..999.9', None)
+            _int_fault('vtg', 'spd_over_grnd_kmph', r_spd_over_grnd_kmph, 0, 999.9, True, None)
         r_spd_over_grnd_kmph = _floor(r_spd_over_grnd_kmph / 0.1 + 0.5)
         k_spd_over_grnd_kmph = sp.get('spd_over_grnd_kmph')
         t6 = (k_spd_over_grnd_kmph[1] if k_spd_over_grnd_kmph is not None and k_spd_over_grnd_kmph[0] == r_spd_over_grnd_kmph else _fixed(r_spd_over_grnd_kmph, 1, 5))
@@ -1474,8 +1488,9 @@ class StreamDecoder:
 
 
 _ENCODERS: dict[type[Any], Callable[[Any], bytes | str]] = {Gga: _encode_gga, Rmc: _encode_rmc, Vtg: _encode_vtg, }
+_DECODERS: dict[type[Any], Callable[..., Any]] = {Gga: _decode_gga, Rmc: _decode_rmc, Vtg: _decode_vtg, }
 for _cls, _encoder in _ENCODERS.items():  # each encoder is its class's encode method: one call, not two
-    _encoder.__doc__ = _cls.encode.__doc__
+    _encoder.__doc__ = _Message.encode.__doc__
     setattr(_cls, "encode", _encoder)
 MESSAGES: dict[str, type[AnyMessage]] = {'gga': Gga, 'rmc': Rmc, 'vtg': Vtg, }
 

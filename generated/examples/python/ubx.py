@@ -14,7 +14,6 @@ import math
 import os
 
 import struct
-from dataclasses import dataclass
 from typing import Any, Callable, ClassVar, Optional, TypeVar, Union, cast
 
 _Buffer = Union[bytes, bytearray, "memoryview[int]"]  # what a binary decoder reads
@@ -30,6 +29,63 @@ FINGERPRINT32 = 0x35b7e07b  # its first 32 bits
 _floor = math.floor
 _isfinite = math.isfinite
 _object_new = object.__new__
+_FRESH: Any = object()  # an argument left out whose default (a list, a group) is built for each object
+
+
+class _DataclassFields:
+    """A class's table of dataclass fields, made the first time it is read and then kept on the
+    class, for dataclasses.fields, replace, asdict and is_dataclass."""
+
+    def __get__(self, obj: object, owner: type[_Record]) -> dict[str, Any]:
+        from dataclasses import field, make_dataclass
+        init: Any = owner.__init__
+        defaults: dict[str, Any] = init.__kwdefaults__ or {}
+        annotations: dict[str, Any] = owner.__annotations__
+        names = owner._NAMES  # pyright: ignore[reportPrivateUsage]
+        fields: list[tuple[str, Any, Any]] = [
+            (n, annotations[n], field(default=defaults[n]) if defaults.get(n, _FRESH) is not _FRESH else field())
+            for n in names]
+        slots: tuple[str, ...] = owner.__slots__
+        fields += [(n, annotations[n], field(default=None, init=False, repr=False, compare=False))
+                   for n in slots if n not in names]
+        made: Any = make_dataclass(owner.__name__, fields, kw_only=True)
+        table: dict[str, Any] = made.__dataclass_fields__
+        setattr(owner, "__dataclass_fields__", table)
+        return table
+
+
+_R = TypeVar("_R", bound="_Record")
+
+
+class _Record:
+    """What every message, group and sequence class is: its fields in slots, set by a keyword
+    constructor; compared and shown field by field, in order, as a dataclass is; and a
+    dataclass to the dataclasses module. Its table of fields is made when first asked for: a
+    @dataclass decorator writes and compiles each class's methods while the module is
+    imported, which in a protocol of hundreds of messages costs more than all the rest."""
+
+    __slots__ = ()
+    _NAMES: ClassVar[tuple[str, ...]] = ()
+    __dataclass_fields__: ClassVar[dict[str, Any]] = _DataclassFields()  # type: ignore[assignment]
+
+    def __eq__(self, other: object) -> bool:
+        if other.__class__ is not self.__class__:
+            return NotImplemented
+        return [getattr(self, n) for n in self._NAMES] == [getattr(other, n) for n in self._NAMES]
+
+    def __repr__(self) -> str:
+        return f"{self.__class__.__qualname__}({', '.join(f'{n}={getattr(self, n)!r}' for n in self._NAMES)})"
+
+    def to_dict(self) -> dict[str, Any]:
+        """The object as JSON-ready data: enum members and flags by name, bytes as hex, numbers
+        in logical units; from_dict reads it back."""
+        return _to_dict(self)
+
+    @classmethod
+    def from_dict(cls: type[_R], values: dict[str, Any]) -> _R:
+        """An object from the data to_dict gives; an unknown key or a value of the wrong type is
+        a DecodeError."""
+        return _from_dict(cls, values, getattr(cls, "NAME", cls.__name__), "")
 _ABSENT: Any = None  # a value a frame left out: its list slot is cut, or its field is None
 
 
@@ -118,6 +174,40 @@ def _enc(message: Optional[str], field: Optional[str], value: object, rule: str,
     return EncodeError(message, field, value, rule, allowed, None, decision, user_message)
 
 
+def _int_fault(message: str, field: Optional[str], value: Any, lo: Any, hi: Any, number: bool,
+               decision: Optional[str], user_message: Optional[str] = None) -> None:
+    """Raise the EncodeError of an integer field's value that its usual test did not pass: not
+    an int (a number, if the field is scaled), or out of its range."""
+    if not isinstance(value, (int, float) if number else int) or value.__class__ is bool:
+        raise _enc(message, field, value, 'type', 'a number' if number else 'an int')
+    if not lo <= value <= hi:
+        raise _enc(message, field, value, 'range', f'{lo!r}..{hi!r}', decision, user_message)
+
+
+def _faults(message: str, values: tuple[Any, ...], specs: tuple[tuple[Any, ...], ...]) -> None:
+    """Raise the EncodeError of the first of several numbers that fails its usual test; each
+    spec is ("int", field, lo, hi, scaled, decision[, message]) or ("float", field, binary32)."""
+    for value, (kind, name, *limits) in zip(values, specs):
+        if kind == "int":
+            _int_fault(message, name, value, *limits)
+        else:
+            _float_fault(message, name, value, *limits)
+
+
+def _float_fault(message: str, field: Optional[str], value: Any, binary32: bool) -> None:
+    """Raise the EncodeError of a float field's value that its usual test did not pass: not a
+    number, not finite, or (binary32) beyond a binary32's range."""
+    if value.__class__ is not float:
+        if not isinstance(value, (int, float)) or value.__class__ is bool:
+            raise _enc(message, field, value, 'type', 'a number')
+        if not -1.7976931348623157e308 <= value <= 1.7976931348623157e308:  # exact for any int
+            raise _enc(message, field, value, 'finite', 'a finite number')
+    if not _isfinite(value):
+        raise _enc(message, field, value, 'finite', 'a finite number')
+    if binary32 and (value > 3.4028234663852886e38 or value < -3.4028234663852886e38):
+        raise _enc(message, field, value, 'range', 'a binary32 value')
+
+
 def _dec(message: Optional[str], field: Optional[str], value: object, rule: str, allowed: str = "",
          offset: Optional[int] = None, decision: Optional[str] = None,
          user_message: Optional[str] = None) -> DecodeError:
@@ -128,106 +218,79 @@ def _dec(message: Optional[str], field: Optional[str], value: object, rule: str,
 # kind: int, number, bool, str, bytes (hex text), enum (a member's name), flags (a list of
 # names) or group (a nested mapping).
 _Spec = tuple[str, str, Any, bool, bool, bool]
+_Msg = TypeVar("_Msg", bound="_Message")
 
 
-@dataclass(slots=True, kw_only=True)
-class AckNak:
+class _Message(_Record):
+    """What every message class does: encode itself, decode its own wire form. Each message's
+    encoder and decoder is set on its class as the method itself (one call, not two)."""
+
+    __slots__ = ()
+    NAME: ClassVar[str]
+
+    def encode(self) -> bytes:
+        """The message in its wire form; an EncodeError if a value breaks the schema."""
+        return _ENCODERS[self.__class__](self)
+
+    @classmethod
+    def decode(cls: type[_Msg], data: _Input) -> _Msg:
+        """The message from its wire form; a DecodeError if it is not one."""
+        return cast(_Msg, _DECODERS[cls](data if data.__class__ is bytes else _as_input(data)))
+
+
+class AckNak(_Message):
     """the message named was not acknowledged"""
 
+    __slots__ = ('clsID', 'msgID')
     NAME: ClassVar[str] = 'ack_nak'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('clsID', 'int', None, False, False, True), ('msgID', 'int', None, False, False, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('clsID', 'msgID')
 
     clsID: int
 
     msgID: int
 
-    def to_dict(self) -> dict[str, Any]:
-        """The AckNak as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> AckNak:
-        """A AckNak from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(AckNak, values, 'ack_nak', "")
-
-    def encode(self) -> bytes:
-        """The ack_nak message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_ack_nak(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> AckNak:
-        """A ack_nak message from its wire form; a DecodeError if it is not one."""
-        return _decode_ack_nak(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, clsID: int, msgID: int) -> None:
+        self.clsID = clsID
+        self.msgID = msgID
 
 
-@dataclass(slots=True, kw_only=True)
-class AckAck:
+class AckAck(_Message):
     """the message named was acknowledged"""
 
+    __slots__ = ('clsID', 'msgID')
     NAME: ClassVar[str] = 'ack_ack'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('clsID', 'int', None, False, False, True), ('msgID', 'int', None, False, False, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('clsID', 'msgID')
 
     clsID: int
 
     msgID: int
 
-    def to_dict(self) -> dict[str, Any]:
-        """The AckAck as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> AckAck:
-        """A AckAck from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(AckAck, values, 'ack_ack', "")
-
-    def encode(self) -> bytes:
-        """The ack_ack message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_ack_ack(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> AckAck:
-        """A ack_ack message from its wire form; a DecodeError if it is not one."""
-        return _decode_ack_ack(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, clsID: int, msgID: int) -> None:
+        self.clsID = clsID
+        self.msgID = msgID
 
 
-@dataclass(slots=True, kw_only=True)
-class CfgRatePoll:
+class CfgRatePoll(_Message):
     """asks for the navigation rate"""
 
+    __slots__ = ()
     NAME: ClassVar[str] = 'cfg_rate_poll'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = ()
+    _NAMES: ClassVar[tuple[str, ...]] = ()
 
-    def to_dict(self) -> dict[str, Any]:
-        """The CfgRatePoll as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> CfgRatePoll:
-        """A CfgRatePoll from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(CfgRatePoll, values, 'cfg_rate_poll', "")
-
-    def encode(self) -> bytes:
-        """The cfg_rate_poll message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_cfg_rate_poll(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> CfgRatePoll:
-        """A cfg_rate_poll message from its wire form; a DecodeError if it is not one."""
-        return _decode_cfg_rate_poll(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self) -> None:
+        pass
 
 
-@dataclass(slots=True, kw_only=True)
-class CfgRate:
+class CfgRate(_Message):
     """navigation and measurement rate"""
 
+    __slots__ = ('measRate', 'navRate', 'timeRef')
     NAME: ClassVar[str] = 'cfg_rate'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('measRate', 'int', None, False, False, True), ('navRate', 'int', None, False, False, True), ('timeRef', 'int', None, False, False, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('measRate', 'navRate', 'timeRef')
 
     measRate: int
     """[ms]"""
@@ -238,33 +301,19 @@ class CfgRate:
     timeRef: int
     """0 UTC, 1 GPS, 2 GLONASS, 3 BeiDou, 4 Galileo"""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The CfgRate as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> CfgRate:
-        """A CfgRate from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(CfgRate, values, 'cfg_rate', "")
-
-    def encode(self) -> bytes:
-        """The cfg_rate message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_cfg_rate(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> CfgRate:
-        """A cfg_rate message from its wire form; a DecodeError if it is not one."""
-        return _decode_cfg_rate(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, measRate: int, navRate: int, timeRef: int) -> None:
+        self.measRate = measRate
+        self.navRate = navRate
+        self.timeRef = timeRef
 
 
-@dataclass(slots=True, kw_only=True)
-class NavPosllh:
+class NavPosllh(_Message):
     """geodetic position"""
 
+    __slots__ = ('iTOW', 'lon', 'lat', 'height', 'hMSL', 'hAcc', 'vAcc')
     NAME: ClassVar[str] = 'nav_posllh'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('iTOW', 'int', None, False, False, True), ('lon', 'number', None, False, False, True), ('lat', 'number', None, False, False, True), ('height', 'int', None, False, False, True), ('hMSL', 'int', None, False, False, True), ('hAcc', 'int', None, False, False, True), ('vAcc', 'int', None, False, False, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('iTOW', 'lon', 'lat', 'height', 'hMSL', 'hAcc', 'vAcc')
 
     iTOW: int
     """[ms]"""
@@ -287,33 +336,23 @@ class NavPosllh:
     vAcc: int
     """[mm]"""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The NavPosllh as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> NavPosllh:
-        """A NavPosllh from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(NavPosllh, values, 'nav_posllh', "")
-
-    def encode(self) -> bytes:
-        """The nav_posllh message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_nav_posllh(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> NavPosllh:
-        """A nav_posllh message from its wire form; a DecodeError if it is not one."""
-        return _decode_nav_posllh(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, iTOW: int, lon: float, lat: float, height: int, hMSL: int, hAcc: int, vAcc: int) -> None:
+        self.iTOW = iTOW
+        self.lon = lon
+        self.lat = lat
+        self.height = height
+        self.hMSL = hMSL
+        self.hAcc = hAcc
+        self.vAcc = vAcc
 
 
-@dataclass(slots=True, kw_only=True)
-class NavPvt:
+class NavPvt(_Message):
     """navigation position velocity time solution"""
 
+    __slots__ = ('iTOW', 'year', 'month', 'day', 'hour', 'min', 'second', 'validDate', 'validTime', 'fullyResolved', 'validMag', 'tAcc', 'nano', 'fixType', 'gnssFixOk', 'diffSoln', 'psmState', 'headVehValid', 'carrSoln', 'reserved', 'confirmedAvai', 'confirmedDate', 'confirmedTime', 'numSV', 'lon', 'lat', 'height', 'hMSL', 'hAcc', 'vAcc', 'velN', 'velE', 'velD', 'gSpeed', 'headMot', 'sAcc', 'headAcc', 'pDOP', 'invalidLlh', 'lastCorrectionAge', 'reserved1', 'authTime', 'nmaFixStatus', 'reserved0', 'headVeh', 'magDec', 'magAcc')
     NAME: ClassVar[str] = 'nav_pvt'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('iTOW', 'int', None, False, False, True), ('year', 'int', None, False, False, True), ('month', 'int', None, False, False, True), ('day', 'int', None, False, False, True), ('hour', 'int', None, False, False, True), ('min', 'int', None, False, False, True), ('second', 'int', None, False, False, True), ('validDate', 'bool', None, False, False, True), ('validTime', 'bool', None, False, False, True), ('fullyResolved', 'bool', None, False, False, True), ('validMag', 'bool', None, False, False, True), ('tAcc', 'int', None, False, False, True), ('nano', 'int', None, False, False, True), ('fixType', 'int', None, False, False, True), ('gnssFixOk', 'bool', None, False, False, True), ('diffSoln', 'bool', None, False, False, True), ('psmState', 'int', None, False, False, True), ('headVehValid', 'bool', None, False, False, True), ('carrSoln', 'int', None, False, False, True), ('reserved', 'int', None, False, False, True), ('confirmedAvai', 'bool', None, False, False, True), ('confirmedDate', 'bool', None, False, False, True), ('confirmedTime', 'bool', None, False, False, True), ('numSV', 'int', None, False, False, True), ('lon', 'number', None, False, False, True), ('lat', 'number', None, False, False, True), ('height', 'int', None, False, False, True), ('hMSL', 'int', None, False, False, True), ('hAcc', 'int', None, False, False, True), ('vAcc', 'int', None, False, False, True), ('velN', 'int', None, False, False, True), ('velE', 'int', None, False, False, True), ('velD', 'int', None, False, False, True), ('gSpeed', 'int', None, False, False, True), ('headMot', 'number', None, False, False, True), ('sAcc', 'int', None, False, False, True), ('headAcc', 'number', None, False, False, True), ('pDOP', 'number', None, False, False, True), ('invalidLlh', 'bool', None, False, False, True), ('lastCorrectionAge', 'int', None, False, False, True), ('reserved1', 'int', None, False, False, True), ('authTime', 'bool', None, False, False, True), ('nmaFixStatus', 'bool', None, False, False, True), ('reserved0', 'int', None, False, False, True), ('headVeh', 'number', None, False, False, True), ('magDec', 'number', None, False, False, True), ('magAcc', 'number', None, False, False, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('iTOW', 'year', 'month', 'day', 'hour', 'min', 'second', 'validDate', 'validTime', 'fullyResolved', 'validMag', 'tAcc', 'nano', 'fixType', 'gnssFixOk', 'diffSoln', 'psmState', 'headVehValid', 'carrSoln', 'reserved', 'confirmedAvai', 'confirmedDate', 'confirmedTime', 'numSV', 'lon', 'lat', 'height', 'hMSL', 'hAcc', 'vAcc', 'velN', 'velE', 'velD', 'gSpeed', 'headMot', 'sAcc', 'headAcc', 'pDOP', 'invalidLlh', 'lastCorrectionAge', 'reserved1', 'authTime', 'nmaFixStatus', 'reserved0', 'headVeh', 'magDec', 'magAcc')
 
     iTOW: int
     """[ms]"""
@@ -428,31 +467,62 @@ class NavPvt:
     magAcc: float
     """[deg]"""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The NavPvt as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
+    def __init__(self, *, iTOW: int, year: int, month: int, day: int, hour: int, min: int, second: int, validDate: bool, validTime: bool, fullyResolved: bool, validMag: bool, tAcc: int, nano: int, fixType: int, gnssFixOk: bool, diffSoln: bool, psmState: int, headVehValid: bool, carrSoln: int, reserved: int, confirmedAvai: bool, confirmedDate: bool, confirmedTime: bool, numSV: int, lon: float, lat: float, height: int, hMSL: int, hAcc: int, vAcc: int, velN: int, velE: int, velD: int, gSpeed: int, headMot: float, sAcc: int, headAcc: float, pDOP: float, invalidLlh: bool, lastCorrectionAge: int, reserved1: int, authTime: bool, nmaFixStatus: bool, reserved0: int, headVeh: float, magDec: float, magAcc: float) -> None:
+        self.iTOW = iTOW
+        self.year = year
+        self.month = month
+        self.day = day
+        self.hour = hour
+        self.min = min
+        self.second = second
+        self.validDate = validDate
+        self.validTime = validTime
+        self.fullyResolved = fullyResolved
+        self.validMag = validMag
+        self.tAcc = tAcc
+        self.nano = nano
+        self.fixType = fixType
+        self.gnssFixOk = gnssFixOk
+        self.diffSoln = diffSoln
+        self.psmState = psmState
+        self.headVehValid = headVehValid
+        self.carrSoln = carrSoln
+        self.reserved = reserved
+        self.confirmedAvai = confirmedAvai
+        self.confirmedDate = confirmedDate
+        self.confirmedTime = confirmedTime
+        self.numSV = numSV
+        self.lon = lon
+        self.lat = lat
+        self.height = height
+        self.hMSL = hMSL
+        self.hAcc = hAcc
+        self.vAcc = vAcc
+        self.velN = velN
+        self.velE = velE
+        self.velD = velD
+        self.gSpeed = gSpeed
+        self.headMot = headMot
+        self.sAcc = sAcc
+        self.headAcc = headAcc
+        self.pDOP = pDOP
+        self.invalidLlh = invalidLlh
+        self.lastCorrectionAge = lastCorrectionAge
+        self.reserved1 = reserved1
+        self.authTime = authTime
+        self.nmaFixStatus = nmaFixStatus
+        self.reserved0 = reserved0
+        self.headVeh = headVeh
+        self.magDec = magDec
+        self.magAcc = magAcc
 
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> NavPvt:
-        """A NavPvt from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(NavPvt, values, 'nav_pvt', "")
 
-    def encode(self) -> bytes:
-        """The nav_pvt message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_nav_pvt(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> NavPvt:
-        """A nav_pvt message from its wire form; a DecodeError if it is not one."""
-        return _decode_nav_pvt(data if data.__class__ is bytes else _as_input(data))
-
-
-@dataclass(slots=True, kw_only=True)
-class NavSatSv:
+class NavSatSv(_Record):
     """one satellite of UBX-NAV-SAT, 12 bytes"""
+
+    __slots__ = ('gnssId', 'svId', 'cno', 'elev', 'azim', 'prRes', 'qualityInd', 'svUsed', 'health', 'diffCorr', 'smoothed', 'orbitSource', 'ephAvail', 'almAvail', 'anoAvail', 'aopAvail', 'reserved13', 'sbasCorrUsed', 'rtcmCorrUsed', 'slasCorrUsed', 'spartnCorrUsed', 'prCorrUsed', 'crCorrUsed', 'doCorrUsed', 'clasCorrUsed', 'lppCorrUsed', 'hasCorrUsed')
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('gnssId', 'int', None, False, False, True), ('svId', 'int', None, False, False, True), ('cno', 'int', None, False, False, True), ('elev', 'int', None, False, False, True), ('azim', 'int', None, False, False, True), ('prRes', 'number', None, False, False, True), ('qualityInd', 'int', None, False, False, True), ('svUsed', 'bool', None, False, False, True), ('health', 'int', None, False, False, True), ('diffCorr', 'bool', None, False, False, True), ('smoothed', 'bool', None, False, False, True), ('orbitSource', 'int', None, False, False, True), ('ephAvail', 'bool', None, False, False, True), ('almAvail', 'bool', None, False, False, True), ('anoAvail', 'bool', None, False, False, True), ('aopAvail', 'bool', None, False, False, True), ('reserved13', 'int', None, False, False, True), ('sbasCorrUsed', 'bool', None, False, False, True), ('rtcmCorrUsed', 'bool', None, False, False, True), ('slasCorrUsed', 'bool', None, False, False, True), ('spartnCorrUsed', 'bool', None, False, False, True), ('prCorrUsed', 'bool', None, False, False, True), ('crCorrUsed', 'bool', None, False, False, True), ('doCorrUsed', 'bool', None, False, False, True), ('clasCorrUsed', 'bool', None, False, False, True), ('lppCorrUsed', 'bool', None, False, False, True), ('hasCorrUsed', 'bool', None, False, False, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('gnssId', 'svId', 'cno', 'elev', 'azim', 'prRes', 'qualityInd', 'svUsed', 'health', 'diffCorr', 'smoothed', 'orbitSource', 'ephAvail', 'almAvail', 'anoAvail', 'aopAvail', 'reserved13', 'sbasCorrUsed', 'rtcmCorrUsed', 'slasCorrUsed', 'spartnCorrUsed', 'prCorrUsed', 'crCorrUsed', 'doCorrUsed', 'clasCorrUsed', 'lppCorrUsed', 'hasCorrUsed')
 
     gnssId: int
     """0 GPS, 1 SBAS, 2 Galileo, 3 BeiDou, 5 QZSS, 6 GLONASS, 7 NavIC"""
@@ -515,24 +585,43 @@ class NavSatSv:
 
     hasCorrUsed: bool
 
-    def to_dict(self) -> dict[str, Any]:
-        """The NavSatSv as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
+    def __init__(self, *, gnssId: int, svId: int, cno: int, elev: int, azim: int, prRes: float, qualityInd: int, svUsed: bool, health: int, diffCorr: bool, smoothed: bool, orbitSource: int, ephAvail: bool, almAvail: bool, anoAvail: bool, aopAvail: bool, reserved13: int, sbasCorrUsed: bool, rtcmCorrUsed: bool, slasCorrUsed: bool, spartnCorrUsed: bool, prCorrUsed: bool, crCorrUsed: bool, doCorrUsed: bool, clasCorrUsed: bool, lppCorrUsed: bool, hasCorrUsed: bool) -> None:
+        self.gnssId = gnssId
+        self.svId = svId
+        self.cno = cno
+        self.elev = elev
+        self.azim = azim
+        self.prRes = prRes
+        self.qualityInd = qualityInd
+        self.svUsed = svUsed
+        self.health = health
+        self.diffCorr = diffCorr
+        self.smoothed = smoothed
+        self.orbitSource = orbitSource
+        self.ephAvail = ephAvail
+        self.almAvail = almAvail
+        self.anoAvail = anoAvail
+        self.aopAvail = aopAvail
+        self.reserved13 = reserved13
+        self.sbasCorrUsed = sbasCorrUsed
+        self.rtcmCorrUsed = rtcmCorrUsed
+        self.slasCorrUsed = slasCorrUsed
+        self.spartnCorrUsed = spartnCorrUsed
+        self.prCorrUsed = prCorrUsed
+        self.crCorrUsed = crCorrUsed
+        self.doCorrUsed = doCorrUsed
+        self.clasCorrUsed = clasCorrUsed
+        self.lppCorrUsed = lppCorrUsed
+        self.hasCorrUsed = hasCorrUsed
 
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> NavSatSv:
-        """A NavSatSv from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(NavSatSv, values, 'NavSatSv', "")
 
-
-@dataclass(slots=True, kw_only=True)
-class NavSat:
+class NavSat(_Message):
     """satellite information, one 12-byte block per satellite. A receiver may report up to 255 satellites; this schema holds at most 32, so that a C message stays 32 blocks. A longer frame (more than 400 bytes) matches no message and is refused (dispatch; the message's own decoder says length), and a numSvs above 32 in a shorter frame is a range error on numSvs."""
 
+    __slots__ = ('iTOW', 'version', 'reserved0', 'sv')
     NAME: ClassVar[str] = 'nav_sat'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('iTOW', 'int', None, False, False, True), ('version', 'int', None, False, False, True), ('reserved0', 'int', None, False, False, True), ('sv', 'group', NavSatSv, False, True, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('iTOW', 'version', 'reserved0', 'sv')
 
     iTOW: int
     """[ms]"""
@@ -544,53 +633,34 @@ class NavSat:
     sv: list[NavSatSv]
     """one satellite of UBX-NAV-SAT, 12 bytes"""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The NavSat as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> NavSat:
-        """A NavSat from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(NavSat, values, 'nav_sat', "")
-
-    def encode(self) -> bytes:
-        """The nav_sat message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_nav_sat(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> NavSat:
-        """A nav_sat message from its wire form; a DecodeError if it is not one."""
-        return _decode_nav_sat(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, iTOW: int, version: int, reserved0: int, sv: list[NavSatSv]) -> None:
+        self.iTOW = iTOW
+        self.version = version
+        self.reserved0 = reserved0
+        self.sv = sv
 
 
-@dataclass(slots=True, kw_only=True)
-class MonVerExt:
+class MonVerExt(_Record):
     """one extension string of UBX-MON-VER"""
+
+    __slots__ = ('extension',)
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('extension', 'bytes', None, False, False, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('extension',)
 
     extension: bytes
     """zero-terminated text, such as FWVER=SPG 3.01"""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The MonVerExt as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> MonVerExt:
-        """A MonVerExt from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(MonVerExt, values, 'MonVerExt', "")
+    def __init__(self, *, extension: bytes) -> None:
+        self.extension = extension
 
 
-@dataclass(slots=True, kw_only=True)
-class MonVer:
+class MonVer(_Message):
     """receiver and software version, then extension strings (FWVER, PROTVER, MOD, the GNSS supported) to the end of the payload; this schema holds at most 10, and a longer frame is refused as a NAV-SAT of more than 32 is."""
 
+    __slots__ = ('swVersion', 'hwVersion', 'ext')
     NAME: ClassVar[str] = 'mon_ver'
     _FIELDS: ClassVar[tuple[_Spec, ...]] = (('swVersion', 'bytes', None, False, False, True), ('hwVersion', 'bytes', None, False, False, True), ('ext', 'group', MonVerExt, False, True, True), )
+    _NAMES: ClassVar[tuple[str, ...]] = ('swVersion', 'hwVersion', 'ext')
 
     swVersion: bytes
     """zero-terminated text"""
@@ -601,25 +671,10 @@ class MonVer:
     ext: list[MonVerExt]
     """one extension string of UBX-MON-VER"""
 
-    def to_dict(self) -> dict[str, Any]:
-        """The MonVer as JSON-ready data: enum members and flags by name, bytes as hex,
-        numbers in logical units; from_dict reads it back."""
-        return _to_dict(self)
-
-    @classmethod
-    def from_dict(cls, values: dict[str, Any]) -> MonVer:
-        """A MonVer from the data to_dict gives; an unknown key or a value of the wrong
-        type is a DecodeError."""
-        return _from_dict(MonVer, values, 'mon_ver', "")
-
-    def encode(self) -> bytes:
-        """The mon_ver message in its wire form; an EncodeError if a value breaks the schema."""
-        return _encode_mon_ver(self)
-
-    @classmethod
-    def decode(cls, data: _Input) -> MonVer:
-        """A mon_ver message from its wire form; a DecodeError if it is not one."""
-        return _decode_mon_ver(data if data.__class__ is bytes else _as_input(data))
+    def __init__(self, *, swVersion: bytes, hwVersion: bytes, ext: list[MonVerExt]) -> None:
+        self.swVersion = swVersion
+        self.hwVersion = hwVersion
+        self.ext = ext
 
 
 AnyMessage = Union[AckNak, AckAck, CfgRatePoll, CfgRate, NavPosllh, NavPvt, NavSat, MonVer, ]
@@ -657,20 +712,11 @@ def _as_input(data: object) -> _Buffer:
 
 
 def _encode_ack_nak(m: AckNak) -> bytes:
+    r_checksum = 0
     r_clsID = m.clsID
     r_msgID = m.msgID
     if (r_clsID.__class__ is not int or not 0 <= r_clsID <= 255) or (r_msgID.__class__ is not int or not 0 <= r_msgID <= 255):
-        if r_clsID.__class__ is not int or not 0 <= r_clsID <= 255:
-            if not isinstance(r_clsID, int) or r_clsID.__class__ is bool:
-                raise _enc('ack_nak', 'clsID', r_clsID, 'type', 'an int')
-            if not 0 <= r_clsID <= 255:
-                raise _enc('ack_nak', 'clsID', r_clsID, 'range', '0..255', None)
-        if r_msgID.__class__ is not int or not 0 <= r_msgID <= 255:
-            if not isinstance(r_msgID, int) or r_msgID.__class__ is bool:
-                raise _enc('ack_nak', 'msgID', r_msgID, 'type', 'an int')
-            if not 0 <= r_msgID <= 255:
-                raise _enc('ack_nak', 'msgID', r_msgID, 'range', '0..255', None)
-    r_checksum = 0
+        _faults('ack_nak', (r_clsID, r_msgID, ), (('int', 'clsID', 0, 255, False, None), ('int', 'msgID', 0, 255, False, None)))
     b = bytearray(10)
     _S_ack_nak_0.pack_into(b, 0, 181, 98, 5, 0, 2, r_clsID, r_msgID, r_checksum)
     b[8:10] = _checksum_fletcher16_256(b[2:8]).to_bytes(2, 'little')
@@ -704,20 +750,11 @@ def _decode_ack_nak(d: _Buffer) -> AckNak:
 
 
 def _encode_ack_ack(m: AckAck) -> bytes:
+    r_checksum = 0
     r_clsID = m.clsID
     r_msgID = m.msgID
     if (r_clsID.__class__ is not int or not 0 <= r_clsID <= 255) or (r_msgID.__class__ is not int or not 0 <= r_msgID <= 255):
-        if r_clsID.__class__ is not int or not 0 <= r_clsID <= 255:
-            if not isinstance(r_clsID, int) or r_clsID.__class__ is bool:
-                raise _enc('ack_ack', 'clsID', r_clsID, 'type', 'an int')
-            if not 0 <= r_clsID <= 255:
-                raise _enc('ack_ack', 'clsID', r_clsID, 'range', '0..255', None)
-        if r_msgID.__class__ is not int or not 0 <= r_msgID <= 255:
-            if not isinstance(r_msgID, int) or r_msgID.__class__ is bool:
-                raise _enc('ack_ack', 'msgID', r_msgID, 'type', 'an int')
-            if not 0 <= r_msgID <= 255:
-                raise _enc('ack_ack', 'msgID', r_msgID, 'range', '0..255', None)
-    r_checksum = 0
+        _faults('ack_ack', (r_clsID, r_msgID, ), (('int', 'clsID', 0, 255, False, None), ('int', 'msgID', 0, 255, False, None)))
     b = bytearray(10)
     _S_ack_ack_0.pack_into(b, 0, 181, 98, 5, 1, 2, r_clsID, r_msgID, r_checksum)
     b[8:10] = _checksum_fletcher16_256(b[2:8]).to_bytes(2, 'little')
@@ -783,26 +820,12 @@ def _decode_cfg_rate_poll(d: _Buffer) -> CfgRatePoll:
 
 
 def _encode_cfg_rate(m: CfgRate) -> bytes:
+    r_checksum = 0
     r_measRate = m.measRate
     r_navRate = m.navRate
     r_timeRef = m.timeRef
     if (r_measRate.__class__ is not int or not 0 <= r_measRate <= 65535) or (r_navRate.__class__ is not int or not 0 <= r_navRate <= 65535) or (r_timeRef.__class__ is not int or not 0 <= r_timeRef <= 65535):
-        if r_measRate.__class__ is not int or not 0 <= r_measRate <= 65535:
-            if not isinstance(r_measRate, int) or r_measRate.__class__ is bool:
-                raise _enc('cfg_rate', 'measRate', r_measRate, 'type', 'an int')
-            if not 0 <= r_measRate <= 65535:
-                raise _enc('cfg_rate', 'measRate', r_measRate, 'range', '0..65535', None)
-        if r_navRate.__class__ is not int or not 0 <= r_navRate <= 65535:
-            if not isinstance(r_navRate, int) or r_navRate.__class__ is bool:
-                raise _enc('cfg_rate', 'navRate', r_navRate, 'type', 'an int')
-            if not 0 <= r_navRate <= 65535:
-                raise _enc('cfg_rate', 'navRate', r_navRate, 'range', '0..65535', None)
-        if r_timeRef.__class__ is not int or not 0 <= r_timeRef <= 65535:
-            if not isinstance(r_timeRef, int) or r_timeRef.__class__ is bool:
-                raise _enc('cfg_rate', 'timeRef', r_timeRef, 'type', 'an int')
-            if not 0 <= r_timeRef <= 65535:
-                raise _enc('cfg_rate', 'timeRef', r_timeRef, 'range', '0..65535', None)
-    r_checksum = 0
+        _faults('cfg_rate', (r_measRate, r_navRate, r_timeRef, ), (('int', 'measRate', 0, 65535, False, None), ('int', 'navRate', 0, 65535, False, None), ('int', 'timeRef', 0, 65535, False, None)))
     b = bytearray(14)
     _S_cfg_rate_0.pack_into(b, 0, 181, 98, 6, 8, 6, r_measRate, r_navRate, r_timeRef, r_checksum)
     b[12:14] = _checksum_fletcher16_256(b[2:12]).to_bytes(2, 'little')
@@ -837,52 +860,18 @@ def _decode_cfg_rate(d: _Buffer) -> CfgRate:
 
 
 def _encode_nav_posllh(m: NavPosllh) -> bytes:
+    r_checksum = 0
     r_iTOW = m.iTOW
-    if r_iTOW.__class__ is not int or not 0 <= r_iTOW <= 4294967295:
-        if not isinstance(r_iTOW, int) or r_iTOW.__class__ is bool:
-            raise _enc('nav_posllh', 'iTOW', r_iTOW, 'type', 'an int')
-        if not 0 <= r_iTOW <= 4294967295:
-            raise _enc('nav_posllh', 'iTOW', r_iTOW, 'range', '0..4294967295', None)
     r_lon = m.lon
-    if r_lon.__class__ is not float or not -214.7483648 <= r_lon <= 214.7483647:
-        if not isinstance(r_lon, (int, float)) or r_lon.__class__ is bool:
-            raise _enc('nav_posllh', 'lon', r_lon, 'type', 'a number')
-        if not -214.7483648 <= r_lon <= 214.7483647:
-            raise _enc('nav_posllh', 'lon', r_lon, 'range', '-214.7483648..214.7483647', None)
-    r_lon = _floor(r_lon / 1e-07 + 0.5)
     r_lat = m.lat
-    if r_lat.__class__ is not float or not -214.7483648 <= r_lat <= 214.7483647:
-        if not isinstance(r_lat, (int, float)) or r_lat.__class__ is bool:
-            raise _enc('nav_posllh', 'lat', r_lat, 'type', 'a number')
-        if not -214.7483648 <= r_lat <= 214.7483647:
-            raise _enc('nav_posllh', 'lat', r_lat, 'range', '-214.7483648..214.7483647', None)
-    r_lat = _floor(r_lat / 1e-07 + 0.5)
     r_height = m.height
     r_hMSL = m.hMSL
     r_hAcc = m.hAcc
     r_vAcc = m.vAcc
-    if (r_height.__class__ is not int or not -2147483648 <= r_height <= 2147483647) or (r_hMSL.__class__ is not int or not -2147483648 <= r_hMSL <= 2147483647) or (r_hAcc.__class__ is not int or not 0 <= r_hAcc <= 4294967295) or (r_vAcc.__class__ is not int or not 0 <= r_vAcc <= 4294967295):
-        if r_height.__class__ is not int or not -2147483648 <= r_height <= 2147483647:
-            if not isinstance(r_height, int) or r_height.__class__ is bool:
-                raise _enc('nav_posllh', 'height', r_height, 'type', 'an int')
-            if not -2147483648 <= r_height <= 2147483647:
-                raise _enc('nav_posllh', 'height', r_height, 'range', '-2147483648..2147483647', None)
-        if r_hMSL.__class__ is not int or not -2147483648 <= r_hMSL <= 2147483647:
-            if not isinstance(r_hMSL, int) or r_hMSL.__class__ is bool:
-                raise _enc('nav_posllh', 'hMSL', r_hMSL, 'type', 'an int')
-            if not -2147483648 <= r_hMSL <= 2147483647:
-                raise _enc('nav_posllh', 'hMSL', r_hMSL, 'range', '-2147483648..2147483647', None)
-        if r_hAcc.__class__ is not int or not 0 <= r_hAcc <= 4294967295:
-            if not isinstance(r_hAcc, int) or r_hAcc.__class__ is bool:
-                raise _enc('nav_posllh', 'hAcc', r_hAcc, 'type', 'an int')
-            if not 0 <= r_hAcc <= 4294967295:
-                raise _enc('nav_posllh', 'hAcc', r_hAcc, 'range', '0..4294967295', None)
-        if r_vAcc.__class__ is not int or not 0 <= r_vAcc <= 4294967295:
-            if not isinstance(r_vAcc, int) or r_vAcc.__class__ is bool:
-                raise _enc('nav_posllh', 'vAcc', r_vAcc, 'type', 'an int')
-            if not 0 <= r_vAcc <= 4294967295:
-                raise _enc('nav_posllh', 'vAcc', r_vAcc, 'range', '0..4294967295', None)
-    r_checksum = 0
+    if (r_iTOW.__class__ is not int or not 0 <= r_iTOW <= 4294967295) or (r_lon.__class__ is not float or not -214.7483648 <= r_lon <= 214.7483647) or (r_lat.__class__ is not float or not -214.7483648 <= r_lat <= 214.7483647) or (r_height.__class__ is not int or not -2147483648 <= r_height <= 2147483647) or (r_hMSL.__class__ is not int or not -2147483648 <= r_hMSL <= 2147483647) or (r_hAcc.__class__ is not int or not 0 <= r_hAcc <= 4294967295) or (r_vAcc.__class__ is not int or not 0 <= r_vAcc <= 4294967295):
+        _faults('nav_posllh', (r_iTOW, r_lon, r_lat, r_height, r_hMSL, r_hAcc, r_vAcc, ), (('int', 'iTOW', 0, 4294967295, False, None), ('int', 'lon', -214.7483648, 214.7483647, True, None), ('int', 'lat', -214.7483648, 214.7483647, True, None), ('int', 'height', -2147483648, 2147483647, False, None), ('int', 'hMSL', -2147483648, 2147483647, False, None), ('int', 'hAcc', 0, 4294967295, False, None), ('int', 'vAcc', 0, 4294967295, False, None)))
+    r_lon = _floor(r_lon / 1e-07 + 0.5)
+    r_lat = _floor(r_lat / 1e-07 + 0.5)
     b = bytearray(36)
     _S_nav_posllh_0.pack_into(b, 0, 181, 98, 1, 2, 28, r_iTOW, r_lon, r_lat, r_height, r_hMSL, r_hAcc, r_vAcc, r_checksum)
     b[34:36] = _checksum_fletcher16_256(b[2:34]).to_bytes(2, 'little')
@@ -929,41 +918,7 @@ def _encode_nav_pvt(m: NavPvt) -> bytes:
     r_min = m.min
     r_second = m.second
     if (r_iTOW.__class__ is not int or not 0 <= r_iTOW <= 4294967295) or (r_year.__class__ is not int or not 0 <= r_year <= 65535) or (r_month.__class__ is not int or not 0 <= r_month <= 255) or (r_day.__class__ is not int or not 0 <= r_day <= 255) or (r_hour.__class__ is not int or not 0 <= r_hour <= 255) or (r_min.__class__ is not int or not 0 <= r_min <= 255) or (r_second.__class__ is not int or not 0 <= r_second <= 255):
-        if r_iTOW.__class__ is not int or not 0 <= r_iTOW <= 4294967295:
-            if not isinstance(r_iTOW, int) or r_iTOW.__class__ is bool:
-                raise _enc('nav_pvt', 'iTOW', r_iTOW, 'type', 'an int')
-            if not 0 <= r_iTOW <= 4294967295:
-                raise _enc('nav_pvt', 'iTOW', r_iTOW, 'range', '0..4294967295', None)
-        if r_year.__class__ is not int or not 0 <= r_year <= 65535:
-            if not isinstance(r_year, int) or r_year.__class__ is bool:
-                raise _enc('nav_pvt', 'year', r_year, 'type', 'an int')
-            if not 0 <= r_year <= 65535:
-                raise _enc('nav_pvt', 'year', r_year, 'range', '0..65535', None)
-        if r_month.__class__ is not int or not 0 <= r_month <= 255:
-            if not isinstance(r_month, int) or r_month.__class__ is bool:
-                raise _enc('nav_pvt', 'month', r_month, 'type', 'an int')
-            if not 0 <= r_month <= 255:
-                raise _enc('nav_pvt', 'month', r_month, 'range', '0..255', None)
-        if r_day.__class__ is not int or not 0 <= r_day <= 255:
-            if not isinstance(r_day, int) or r_day.__class__ is bool:
-                raise _enc('nav_pvt', 'day', r_day, 'type', 'an int')
-            if not 0 <= r_day <= 255:
-                raise _enc('nav_pvt', 'day', r_day, 'range', '0..255', None)
-        if r_hour.__class__ is not int or not 0 <= r_hour <= 255:
-            if not isinstance(r_hour, int) or r_hour.__class__ is bool:
-                raise _enc('nav_pvt', 'hour', r_hour, 'type', 'an int')
-            if not 0 <= r_hour <= 255:
-                raise _enc('nav_pvt', 'hour', r_hour, 'range', '0..255', None)
-        if r_min.__class__ is not int or not 0 <= r_min <= 255:
-            if not isinstance(r_min, int) or r_min.__class__ is bool:
-                raise _enc('nav_pvt', 'min', r_min, 'type', 'an int')
-            if not 0 <= r_min <= 255:
-                raise _enc('nav_pvt', 'min', r_min, 'range', '0..255', None)
-        if r_second.__class__ is not int or not 0 <= r_second <= 255:
-            if not isinstance(r_second, int) or r_second.__class__ is bool:
-                raise _enc('nav_pvt', 'second', r_second, 'type', 'an int')
-            if not 0 <= r_second <= 255:
-                raise _enc('nav_pvt', 'second', r_second, 'range', '0..255', None)
+        _faults('nav_pvt', (r_iTOW, r_year, r_month, r_day, r_hour, r_min, r_second, ), (('int', 'iTOW', 0, 4294967295, False, None), ('int', 'year', 0, 65535, False, None), ('int', 'month', 0, 255, False, None), ('int', 'day', 0, 255, False, None), ('int', 'hour', 0, 255, False, None), ('int', 'min', 0, 255, False, None), ('int', 'second', 0, 255, False, None)))
     r_validDate: Any = m.validDate
     if r_validDate is not True and r_validDate is not False and (not isinstance(r_validDate, int) or r_validDate != 0 and r_validDate != 1):
         raise _enc('nav_pvt', 'validDate', r_validDate, 'type', 'a bool')
@@ -984,21 +939,7 @@ def _encode_nav_pvt(m: NavPvt) -> bytes:
     r_nano = m.nano
     r_fixType = m.fixType
     if (r_tAcc.__class__ is not int or not 0 <= r_tAcc <= 4294967295) or (r_nano.__class__ is not int or not -2147483648 <= r_nano <= 2147483647) or (r_fixType.__class__ is not int or not 0 <= r_fixType <= 255):
-        if r_tAcc.__class__ is not int or not 0 <= r_tAcc <= 4294967295:
-            if not isinstance(r_tAcc, int) or r_tAcc.__class__ is bool:
-                raise _enc('nav_pvt', 'tAcc', r_tAcc, 'type', 'an int')
-            if not 0 <= r_tAcc <= 4294967295:
-                raise _enc('nav_pvt', 'tAcc', r_tAcc, 'range', '0..4294967295', None)
-        if r_nano.__class__ is not int or not -2147483648 <= r_nano <= 2147483647:
-            if not isinstance(r_nano, int) or r_nano.__class__ is bool:
-                raise _enc('nav_pvt', 'nano', r_nano, 'type', 'an int')
-            if not -2147483648 <= r_nano <= 2147483647:
-                raise _enc('nav_pvt', 'nano', r_nano, 'range', '-2147483648..2147483647', None)
-        if r_fixType.__class__ is not int or not 0 <= r_fixType <= 255:
-            if not isinstance(r_fixType, int) or r_fixType.__class__ is bool:
-                raise _enc('nav_pvt', 'fixType', r_fixType, 'type', 'an int')
-            if not 0 <= r_fixType <= 255:
-                raise _enc('nav_pvt', 'fixType', r_fixType, 'range', '0..255', None)
+        _faults('nav_pvt', (r_tAcc, r_nano, r_fixType, ), (('int', 'tAcc', 0, 4294967295, False, None), ('int', 'nano', -2147483648, 2147483647, False, None), ('int', 'fixType', 0, 255, False, None)))
     r_gnssFixOk: Any = m.gnssFixOk
     if r_gnssFixOk is not True and r_gnssFixOk is not False and (not isinstance(r_gnssFixOk, int) or r_gnssFixOk != 0 and r_gnssFixOk != 1):
         raise _enc('nav_pvt', 'gnssFixOk', r_gnssFixOk, 'type', 'a bool')
@@ -1009,10 +950,7 @@ def _encode_nav_pvt(m: NavPvt) -> bytes:
     r_diffSoln = 1 if r_diffSoln else 0
     r_psmState = m.psmState
     if r_psmState.__class__ is not int or not 0 <= r_psmState <= 7:
-        if not isinstance(r_psmState, int) or r_psmState.__class__ is bool:
-            raise _enc('nav_pvt', 'psmState', r_psmState, 'type', 'an int')
-        if not 0 <= r_psmState <= 7:
-            raise _enc('nav_pvt', 'psmState', r_psmState, 'range', '0..7', None)
+        _int_fault('nav_pvt', 'psmState', r_psmState, 0, 7, False, None)
     r_headVehValid: Any = m.headVehValid
     if r_headVehValid is not True and r_headVehValid is not False and (not isinstance(r_headVehValid, int) or r_headVehValid != 0 and r_headVehValid != 1):
         raise _enc('nav_pvt', 'headVehValid', r_headVehValid, 'type', 'a bool')
@@ -1020,16 +958,7 @@ def _encode_nav_pvt(m: NavPvt) -> bytes:
     r_carrSoln = m.carrSoln
     r_reserved = m.reserved
     if (r_carrSoln.__class__ is not int or not 0 <= r_carrSoln <= 3) or (r_reserved.__class__ is not int or not 0 <= r_reserved <= 31):
-        if r_carrSoln.__class__ is not int or not 0 <= r_carrSoln <= 3:
-            if not isinstance(r_carrSoln, int) or r_carrSoln.__class__ is bool:
-                raise _enc('nav_pvt', 'carrSoln', r_carrSoln, 'type', 'an int')
-            if not 0 <= r_carrSoln <= 3:
-                raise _enc('nav_pvt', 'carrSoln', r_carrSoln, 'range', '0..3', None)
-        if r_reserved.__class__ is not int or not 0 <= r_reserved <= 31:
-            if not isinstance(r_reserved, int) or r_reserved.__class__ is bool:
-                raise _enc('nav_pvt', 'reserved', r_reserved, 'type', 'an int')
-            if not 0 <= r_reserved <= 31:
-                raise _enc('nav_pvt', 'reserved', r_reserved, 'range', '0..31', None)
+        _faults('nav_pvt', (r_carrSoln, r_reserved, ), (('int', 'carrSoln', 0, 3, False, None), ('int', 'reserved', 0, 31, False, None)))
     r_confirmedAvai: Any = m.confirmedAvai
     if r_confirmedAvai is not True and r_confirmedAvai is not False and (not isinstance(r_confirmedAvai, int) or r_confirmedAvai != 0 and r_confirmedAvai != 1):
         raise _enc('nav_pvt', 'confirmedAvai', r_confirmedAvai, 'type', 'a bool')
@@ -1043,25 +972,8 @@ def _encode_nav_pvt(m: NavPvt) -> bytes:
         raise _enc('nav_pvt', 'confirmedTime', r_confirmedTime, 'type', 'a bool')
     r_confirmedTime = 1 if r_confirmedTime else 0
     r_numSV = m.numSV
-    if r_numSV.__class__ is not int or not 0 <= r_numSV <= 255:
-        if not isinstance(r_numSV, int) or r_numSV.__class__ is bool:
-            raise _enc('nav_pvt', 'numSV', r_numSV, 'type', 'an int')
-        if not 0 <= r_numSV <= 255:
-            raise _enc('nav_pvt', 'numSV', r_numSV, 'range', '0..255', None)
     r_lon = m.lon
-    if r_lon.__class__ is not float or not -214.7483648 <= r_lon <= 214.7483647:
-        if not isinstance(r_lon, (int, float)) or r_lon.__class__ is bool:
-            raise _enc('nav_pvt', 'lon', r_lon, 'type', 'a number')
-        if not -214.7483648 <= r_lon <= 214.7483647:
-            raise _enc('nav_pvt', 'lon', r_lon, 'range', '-214.7483648..214.7483647', None)
-    r_lon = _floor(r_lon / 1e-07 + 0.5)
     r_lat = m.lat
-    if r_lat.__class__ is not float or not -214.7483648 <= r_lat <= 214.7483647:
-        if not isinstance(r_lat, (int, float)) or r_lat.__class__ is bool:
-            raise _enc('nav_pvt', 'lat', r_lat, 'type', 'a number')
-        if not -214.7483648 <= r_lat <= 214.7483647:
-            raise _enc('nav_pvt', 'lat', r_lat, 'range', '-214.7483648..214.7483647', None)
-    r_lat = _floor(r_lat / 1e-07 + 0.5)
     r_height = m.height
     r_hMSL = m.hMSL
     r_hAcc = m.hAcc
@@ -1070,73 +982,16 @@ def _encode_nav_pvt(m: NavPvt) -> bytes:
     r_velE = m.velE
     r_velD = m.velD
     r_gSpeed = m.gSpeed
-    if (r_height.__class__ is not int or not -2147483648 <= r_height <= 2147483647) or (r_hMSL.__class__ is not int or not -2147483648 <= r_hMSL <= 2147483647) or (r_hAcc.__class__ is not int or not 0 <= r_hAcc <= 4294967295) or (r_vAcc.__class__ is not int or not 0 <= r_vAcc <= 4294967295) or (r_velN.__class__ is not int or not -2147483648 <= r_velN <= 2147483647) or (r_velE.__class__ is not int or not -2147483648 <= r_velE <= 2147483647) or (r_velD.__class__ is not int or not -2147483648 <= r_velD <= 2147483647) or (r_gSpeed.__class__ is not int or not -2147483648 <= r_gSpeed <= 2147483647):
-        if r_height.__class__ is not int or not -2147483648 <= r_height <= 2147483647:
-            if not isinstance(r_height, int) or r_height.__class__ is bool:
-                raise _enc('nav_pvt', 'height', r_height, 'type', 'an int')
-            if not -2147483648 <= r_height <= 2147483647:
-                raise _enc('nav_pvt', 'height', r_height, 'range', '-2147483648..2147483647', None)
-        if r_hMSL.__class__ is not int or not -2147483648 <= r_hMSL <= 2147483647:
-            if not isinstance(r_hMSL, int) or r_hMSL.__class__ is bool:
-                raise _enc('nav_pvt', 'hMSL', r_hMSL, 'type', 'an int')
-            if not -2147483648 <= r_hMSL <= 2147483647:
-                raise _enc('nav_pvt', 'hMSL', r_hMSL, 'range', '-2147483648..2147483647', None)
-        if r_hAcc.__class__ is not int or not 0 <= r_hAcc <= 4294967295:
-            if not isinstance(r_hAcc, int) or r_hAcc.__class__ is bool:
-                raise _enc('nav_pvt', 'hAcc', r_hAcc, 'type', 'an int')
-            if not 0 <= r_hAcc <= 4294967295:
-                raise _enc('nav_pvt', 'hAcc', r_hAcc, 'range', '0..4294967295', None)
-        if r_vAcc.__class__ is not int or not 0 <= r_vAcc <= 4294967295:
-            if not isinstance(r_vAcc, int) or r_vAcc.__class__ is bool:
-                raise _enc('nav_pvt', 'vAcc', r_vAcc, 'type', 'an int')
-            if not 0 <= r_vAcc <= 4294967295:
-                raise _enc('nav_pvt', 'vAcc', r_vAcc, 'range', '0..4294967295', None)
-        if r_velN.__class__ is not int or not -2147483648 <= r_velN <= 2147483647:
-            if not isinstance(r_velN, int) or r_velN.__class__ is bool:
-                raise _enc('nav_pvt', 'velN', r_velN, 'type', 'an int')
-            if not -2147483648 <= r_velN <= 2147483647:
-                raise _enc('nav_pvt', 'velN', r_velN, 'range', '-2147483648..2147483647', None)
-        if r_velE.__class__ is not int or not -2147483648 <= r_velE <= 2147483647:
-            if not isinstance(r_velE, int) or r_velE.__class__ is bool:
-                raise _enc('nav_pvt', 'velE', r_velE, 'type', 'an int')
-            if not -2147483648 <= r_velE <= 2147483647:
-                raise _enc('nav_pvt', 'velE', r_velE, 'range', '-2147483648..2147483647', None)
-        if r_velD.__class__ is not int or not -2147483648 <= r_velD <= 2147483647:
-            if not isinstance(r_velD, int) or r_velD.__class__ is bool:
-                raise _enc('nav_pvt', 'velD', r_velD, 'type', 'an int')
-            if not -2147483648 <= r_velD <= 2147483647:
-                raise _enc('nav_pvt', 'velD', r_velD, 'range', '-2147483648..2147483647', None)
-        if r_gSpeed.__class__ is not int or not -2147483648 <= r_gSpeed <= 2147483647:
-            if not isinstance(r_gSpeed, int) or r_gSpeed.__class__ is bool:
-                raise _enc('nav_pvt', 'gSpeed', r_gSpeed, 'type', 'an int')
-            if not -2147483648 <= r_gSpeed <= 2147483647:
-                raise _enc('nav_pvt', 'gSpeed', r_gSpeed, 'range', '-2147483648..2147483647', None)
     r_headMot = m.headMot
-    if r_headMot.__class__ is not float or not -21474.83648 <= r_headMot <= 21474.836470000002:
-        if not isinstance(r_headMot, (int, float)) or r_headMot.__class__ is bool:
-            raise _enc('nav_pvt', 'headMot', r_headMot, 'type', 'a number')
-        if not -21474.83648 <= r_headMot <= 21474.836470000002:
-            raise _enc('nav_pvt', 'headMot', r_headMot, 'range', '-21474.83648..21474.836470000002', None)
-    r_headMot = _floor(r_headMot / 1e-05 + 0.5)
     r_sAcc = m.sAcc
-    if r_sAcc.__class__ is not int or not 0 <= r_sAcc <= 4294967295:
-        if not isinstance(r_sAcc, int) or r_sAcc.__class__ is bool:
-            raise _enc('nav_pvt', 'sAcc', r_sAcc, 'type', 'an int')
-        if not 0 <= r_sAcc <= 4294967295:
-            raise _enc('nav_pvt', 'sAcc', r_sAcc, 'range', '0..4294967295', None)
     r_headAcc = m.headAcc
-    if r_headAcc.__class__ is not float or not 0.0 <= r_headAcc <= 42949.67295:
-        if not isinstance(r_headAcc, (int, float)) or r_headAcc.__class__ is bool:
-            raise _enc('nav_pvt', 'headAcc', r_headAcc, 'type', 'a number')
-        if not 0.0 <= r_headAcc <= 42949.67295:
-            raise _enc('nav_pvt', 'headAcc', r_headAcc, 'range', '0.0..42949.67295', None)
-    r_headAcc = _floor(r_headAcc / 1e-05 + 0.5)
     r_pDOP = m.pDOP
-    if r_pDOP.__class__ is not float or not 0.0 <= r_pDOP <= 655.35:
-        if not isinstance(r_pDOP, (int, float)) or r_pDOP.__class__ is bool:
-            raise _enc('nav_pvt', 'pDOP', r_pDOP, 'type', 'a number')
-        if not 0.0 <= r_pDOP <= 655.35:
-            raise _enc('nav_pvt', 'pDOP', r_pDOP, 'range', '0.0..655.35', None)
+    if (r_numSV.__class__ is not int or not 0 <= r_numSV <= 255) or (r_lon.__class__ is not float or not -214.7483648 <= r_lon <= 214.7483647) or (r_lat.__class__ is not float or not -214.7483648 <= r_lat <= 214.7483647) or (r_height.__class__ is not int or not -2147483648 <= r_height <= 2147483647) or (r_hMSL.__class__ is not int or not -2147483648 <= r_hMSL <= 2147483647) or (r_hAcc.__class__ is not int or not 0 <= r_hAcc <= 4294967295) or (r_vAcc.__class__ is not int or not 0 <= r_vAcc <= 4294967295) or (r_velN.__class__ is not int or not -2147483648 <= r_velN <= 2147483647) or (r_velE.__class__ is not int or not -2147483648 <= r_velE <= 2147483647) or (r_velD.__class__ is not int or not -2147483648 <= r_velD <= 2147483647) or (r_gSpeed.__class__ is not int or not -2147483648 <= r_gSpeed <= 2147483647) or (r_headMot.__class__ is not float or not -21474.83648 <= r_headMot <= 21474.836470000002) or (r_sAcc.__class__ is not int or not 0 <= r_sAcc <= 4294967295) or (r_headAcc.__class__ is not float or not 0.0 <= r_headAcc <= 42949.67295) or (r_pDOP.__class__ is not float or not 0.0 <= r_pDOP <= 655.35):
+        _faults('nav_pvt', (r_numSV, r_lon, r_lat, r_height, r_hMSL, r_hAcc, r_vAcc, r_velN, r_velE, r_velD, r_gSpeed, r_headMot, r_sAcc, r_headAcc, r_pDOP, ), (('int', 'numSV', 0, 255, False, None), ('int', 'lon', -214.7483648, 214.7483647, True, None), ('int', 'lat', -214.7483648, 214.7483647, True, None), ('int', 'height', -2147483648, 2147483647, False, None), ('int', 'hMSL', -2147483648, 2147483647, False, None), ('int', 'hAcc', 0, 4294967295, False, None), ('int', 'vAcc', 0, 4294967295, False, None), ('int', 'velN', -2147483648, 2147483647, False, None), ('int', 'velE', -2147483648, 2147483647, False, None), ('int', 'velD', -2147483648, 2147483647, False, None), ('int', 'gSpeed', -2147483648, 2147483647, False, None), ('int', 'headMot', -21474.83648, 21474.836470000002, True, None), ('int', 'sAcc', 0, 4294967295, False, None), ('int', 'headAcc', 0.0, 42949.67295, True, None), ('int', 'pDOP', 0.0, 655.35, True, None)))
+    r_lon = _floor(r_lon / 1e-07 + 0.5)
+    r_lat = _floor(r_lat / 1e-07 + 0.5)
+    r_headMot = _floor(r_headMot / 1e-05 + 0.5)
+    r_headAcc = _floor(r_headAcc / 1e-05 + 0.5)
     r_pDOP = _floor(r_pDOP / 0.01 + 0.5)
     r_invalidLlh: Any = m.invalidLlh
     if r_invalidLlh is not True and r_invalidLlh is not False and (not isinstance(r_invalidLlh, int) or r_invalidLlh != 0 and r_invalidLlh != 1):
@@ -1145,16 +1000,7 @@ def _encode_nav_pvt(m: NavPvt) -> bytes:
     r_lastCorrectionAge = m.lastCorrectionAge
     r_reserved1 = m.reserved1
     if (r_lastCorrectionAge.__class__ is not int or not 0 <= r_lastCorrectionAge <= 15) or (r_reserved1.__class__ is not int or not 0 <= r_reserved1 <= 255):
-        if r_lastCorrectionAge.__class__ is not int or not 0 <= r_lastCorrectionAge <= 15:
-            if not isinstance(r_lastCorrectionAge, int) or r_lastCorrectionAge.__class__ is bool:
-                raise _enc('nav_pvt', 'lastCorrectionAge', r_lastCorrectionAge, 'type', 'an int')
-            if not 0 <= r_lastCorrectionAge <= 15:
-                raise _enc('nav_pvt', 'lastCorrectionAge', r_lastCorrectionAge, 'range', '0..15', None)
-        if r_reserved1.__class__ is not int or not 0 <= r_reserved1 <= 255:
-            if not isinstance(r_reserved1, int) or r_reserved1.__class__ is bool:
-                raise _enc('nav_pvt', 'reserved1', r_reserved1, 'type', 'an int')
-            if not 0 <= r_reserved1 <= 255:
-                raise _enc('nav_pvt', 'reserved1', r_reserved1, 'range', '0..255', None)
+        _faults('nav_pvt', (r_lastCorrectionAge, r_reserved1, ), (('int', 'lastCorrectionAge', 0, 15, False, None), ('int', 'reserved1', 0, 255, False, None)))
     r_authTime: Any = m.authTime
     if r_authTime is not True and r_authTime is not False and (not isinstance(r_authTime, int) or r_authTime != 0 and r_authTime != 1):
         raise _enc('nav_pvt', 'authTime', r_authTime, 'type', 'a bool')
@@ -1163,34 +1009,16 @@ def _encode_nav_pvt(m: NavPvt) -> bytes:
     if r_nmaFixStatus is not True and r_nmaFixStatus is not False and (not isinstance(r_nmaFixStatus, int) or r_nmaFixStatus != 0 and r_nmaFixStatus != 1):
         raise _enc('nav_pvt', 'nmaFixStatus', r_nmaFixStatus, 'type', 'a bool')
     r_nmaFixStatus = 1 if r_nmaFixStatus else 0
-    r_reserved0 = m.reserved0
-    if r_reserved0.__class__ is not int or not 0 <= r_reserved0 <= 4294967295:
-        if not isinstance(r_reserved0, int) or r_reserved0.__class__ is bool:
-            raise _enc('nav_pvt', 'reserved0', r_reserved0, 'type', 'an int')
-        if not 0 <= r_reserved0 <= 4294967295:
-            raise _enc('nav_pvt', 'reserved0', r_reserved0, 'range', '0..4294967295', None)
-    r_headVeh = m.headVeh
-    if r_headVeh.__class__ is not float or not -21474.83648 <= r_headVeh <= 21474.836470000002:
-        if not isinstance(r_headVeh, (int, float)) or r_headVeh.__class__ is bool:
-            raise _enc('nav_pvt', 'headVeh', r_headVeh, 'type', 'a number')
-        if not -21474.83648 <= r_headVeh <= 21474.836470000002:
-            raise _enc('nav_pvt', 'headVeh', r_headVeh, 'range', '-21474.83648..21474.836470000002', None)
-    r_headVeh = _floor(r_headVeh / 1e-05 + 0.5)
-    r_magDec = m.magDec
-    if r_magDec.__class__ is not float or not -327.68 <= r_magDec <= 327.67:
-        if not isinstance(r_magDec, (int, float)) or r_magDec.__class__ is bool:
-            raise _enc('nav_pvt', 'magDec', r_magDec, 'type', 'a number')
-        if not -327.68 <= r_magDec <= 327.67:
-            raise _enc('nav_pvt', 'magDec', r_magDec, 'range', '-327.68..327.67', None)
-    r_magDec = _floor(r_magDec / 0.01 + 0.5)
-    r_magAcc = m.magAcc
-    if r_magAcc.__class__ is not float or not 0.0 <= r_magAcc <= 655.35:
-        if not isinstance(r_magAcc, (int, float)) or r_magAcc.__class__ is bool:
-            raise _enc('nav_pvt', 'magAcc', r_magAcc, 'type', 'a number')
-        if not 0.0 <= r_magAcc <= 655.35:
-            raise _enc('nav_pvt', 'magAcc', r_magAcc, 'range', '0.0..655.35', None)
-    r_magAcc = _floor(r_magAcc / 0.01 + 0.5)
     r_checksum = 0
+    r_reserved0 = m.reserved0
+    r_headVeh = m.headVeh
+    r_magDec = m.magDec
+    r_magAcc = m.magAcc
+    if (r_reserved0.__class__ is not int or not 0 <= r_reserved0 <= 4294967295) or (r_headVeh.__class__ is not float or not -21474.83648 <= r_headVeh <= 21474.836470000002) or (r_magDec.__class__ is not float or not -327.68 <= r_magDec <= 327.67) or (r_magAcc.__class__ is not float or not 0.0 <= r_magAcc <= 655.35):
+        _faults('nav_pvt', (r_reserved0, r_headVeh, r_magDec, r_magAcc, ), (('int', 'reserved0', 0, 4294967295, False, None), ('int', 'headVeh', -21474.83648, 21474.836470000002, True, None), ('int', 'magDec', -327.68, 327.67, True, None), ('int', 'magAcc', 0.0, 655.35, True, None)))
+    r_headVeh = _floor(r_headVeh / 1e-05 + 0.5)
+    r_magDec = _floor(r_magDec / 0.01 + 0.5)
+    r_magAcc = _floor(r_magAcc / 0.01 + 0.5)
     b = bytearray(100)
     _S_nav_pvt_0.pack_into(b, 0, 181, 98, 1, 7, 92, r_iTOW, r_year, r_month, r_day, r_hour, r_min, r_second, r_validDate | r_validTime << 1 | r_fullyResolved << 2 | r_validMag << 3, r_tAcc, r_nano, r_fixType, r_gnssFixOk | r_diffSoln << 1 | r_psmState << 2 | r_headVehValid << 5 | r_carrSoln << 6, r_reserved | r_confirmedAvai << 5 | r_confirmedDate << 6 | r_confirmedTime << 7, r_numSV, r_lon, r_lat, r_height, r_hMSL, r_hAcc, r_vAcc, r_velN, r_velE, r_velD, r_gSpeed, r_headMot, r_sAcc, r_headAcc, r_pDOP, r_invalidLlh | r_lastCorrectionAge << 1 | r_reserved1 << 5 | r_authTime << 13 | r_nmaFixStatus << 14, r_reserved0, r_headVeh, r_magDec, r_magAcc, r_checksum)
     b[98:100] = _checksum_fletcher16_256(b[2:98]).to_bytes(2, 'little')
@@ -1301,57 +1129,33 @@ def _put_nav_sat_2sv(g_sv: Any) -> bytearray:
             raise _enc('nav_sat', f'sv[{i}]', g_2sv_i, 'type', 'a NavSatSv')
         r_2sv_i_6gnssId = g_2sv_i.gnssId
         if r_2sv_i_6gnssId.__class__ is not int or not 0 <= r_2sv_i_6gnssId <= 255:
-            if not isinstance(r_2sv_i_6gnssId, int) or r_2sv_i_6gnssId.__class__ is bool:
-                raise _enc('nav_sat', f'sv[{i}].gnssId', r_2sv_i_6gnssId, 'type', 'an int')
-            if not 0 <= r_2sv_i_6gnssId <= 255:
-                raise _enc('nav_sat', f'sv[{i}].gnssId', r_2sv_i_6gnssId, 'range', '0..255', None)
+            _int_fault('nav_sat', f'sv[{i}].gnssId', r_2sv_i_6gnssId, 0, 255, False, None)
         r_2sv_i_4svId = g_2sv_i.svId
         if r_2sv_i_4svId.__class__ is not int or not 0 <= r_2sv_i_4svId <= 255:
-            if not isinstance(r_2sv_i_4svId, int) or r_2sv_i_4svId.__class__ is bool:
-                raise _enc('nav_sat', f'sv[{i}].svId', r_2sv_i_4svId, 'type', 'an int')
-            if not 0 <= r_2sv_i_4svId <= 255:
-                raise _enc('nav_sat', f'sv[{i}].svId', r_2sv_i_4svId, 'range', '0..255', None)
+            _int_fault('nav_sat', f'sv[{i}].svId', r_2sv_i_4svId, 0, 255, False, None)
         r_2sv_i_3cno = g_2sv_i.cno
         if r_2sv_i_3cno.__class__ is not int or not 0 <= r_2sv_i_3cno <= 255:
-            if not isinstance(r_2sv_i_3cno, int) or r_2sv_i_3cno.__class__ is bool:
-                raise _enc('nav_sat', f'sv[{i}].cno', r_2sv_i_3cno, 'type', 'an int')
-            if not 0 <= r_2sv_i_3cno <= 255:
-                raise _enc('nav_sat', f'sv[{i}].cno', r_2sv_i_3cno, 'range', '0..255', None)
+            _int_fault('nav_sat', f'sv[{i}].cno', r_2sv_i_3cno, 0, 255, False, None)
         r_2sv_i_4elev = g_2sv_i.elev
         if r_2sv_i_4elev.__class__ is not int or not -128 <= r_2sv_i_4elev <= 127:
-            if not isinstance(r_2sv_i_4elev, int) or r_2sv_i_4elev.__class__ is bool:
-                raise _enc('nav_sat', f'sv[{i}].elev', r_2sv_i_4elev, 'type', 'an int')
-            if not -128 <= r_2sv_i_4elev <= 127:
-                raise _enc('nav_sat', f'sv[{i}].elev', r_2sv_i_4elev, 'range', '-128..127', None)
+            _int_fault('nav_sat', f'sv[{i}].elev', r_2sv_i_4elev, -128, 127, False, None)
         r_2sv_i_4azim = g_2sv_i.azim
         if r_2sv_i_4azim.__class__ is not int or not -32768 <= r_2sv_i_4azim <= 32767:
-            if not isinstance(r_2sv_i_4azim, int) or r_2sv_i_4azim.__class__ is bool:
-                raise _enc('nav_sat', f'sv[{i}].azim', r_2sv_i_4azim, 'type', 'an int')
-            if not -32768 <= r_2sv_i_4azim <= 32767:
-                raise _enc('nav_sat', f'sv[{i}].azim', r_2sv_i_4azim, 'range', '-32768..32767', None)
+            _int_fault('nav_sat', f'sv[{i}].azim', r_2sv_i_4azim, -32768, 32767, False, None)
         r_2sv_i_5prRes = g_2sv_i.prRes
         if r_2sv_i_5prRes.__class__ is not float or not -3276.8 <= r_2sv_i_5prRes <= 3276.7000000000003:
-            if not isinstance(r_2sv_i_5prRes, (int, float)) or r_2sv_i_5prRes.__class__ is bool:
-                raise _enc('nav_sat', f'sv[{i}].prRes', r_2sv_i_5prRes, 'type', 'a number')
-            if not -3276.8 <= r_2sv_i_5prRes <= 3276.7000000000003:
-                raise _enc('nav_sat', f'sv[{i}].prRes', r_2sv_i_5prRes, 'range', '-3276.8..3276.7000000000003', None)
+            _int_fault('nav_sat', f'sv[{i}].prRes', r_2sv_i_5prRes, -3276.8, 3276.7000000000003, True, None)
         r_2sv_i_5prRes = _floor(r_2sv_i_5prRes / 0.1 + 0.5)
         r_2sv_i_10qualityInd = g_2sv_i.qualityInd
         if r_2sv_i_10qualityInd.__class__ is not int or not 0 <= r_2sv_i_10qualityInd <= 7:
-            if not isinstance(r_2sv_i_10qualityInd, int) or r_2sv_i_10qualityInd.__class__ is bool:
-                raise _enc('nav_sat', f'sv[{i}].qualityInd', r_2sv_i_10qualityInd, 'type', 'an int')
-            if not 0 <= r_2sv_i_10qualityInd <= 7:
-                raise _enc('nav_sat', f'sv[{i}].qualityInd', r_2sv_i_10qualityInd, 'range', '0..7', None)
+            _int_fault('nav_sat', f'sv[{i}].qualityInd', r_2sv_i_10qualityInd, 0, 7, False, None)
         r_2sv_i_6svUsed: Any = g_2sv_i.svUsed
         if r_2sv_i_6svUsed is not True and r_2sv_i_6svUsed is not False and (not isinstance(r_2sv_i_6svUsed, int) or r_2sv_i_6svUsed != 0 and r_2sv_i_6svUsed != 1):
             raise _enc('nav_sat', f'sv[{i}].svUsed', r_2sv_i_6svUsed, 'type', 'a bool')
         r_2sv_i_6svUsed = 1 if r_2sv_i_6svUsed else 0
         r_2sv_i_6health = g_2sv_i.health
         if r_2sv_i_6health.__class__ is not int or not 0 <= r_2sv_i_6health <= 3:
-            if not isinstance(r_2sv_i_6health, int) or r_2sv_i_6health.__class__ is bool:
-                raise _enc('nav_sat', f'sv[{i}].health', r_2sv_i_6health, 'type', 'an int')
-            if not 0 <= r_2sv_i_6health <= 3:
-                raise _enc('nav_sat', f'sv[{i}].health', r_2sv_i_6health, 'range', '0..3', None)
+            _int_fault('nav_sat', f'sv[{i}].health', r_2sv_i_6health, 0, 3, False, None)
         r_2sv_i_8diffCorr: Any = g_2sv_i.diffCorr
         if r_2sv_i_8diffCorr is not True and r_2sv_i_8diffCorr is not False and (not isinstance(r_2sv_i_8diffCorr, int) or r_2sv_i_8diffCorr != 0 and r_2sv_i_8diffCorr != 1):
             raise _enc('nav_sat', f'sv[{i}].diffCorr', r_2sv_i_8diffCorr, 'type', 'a bool')
@@ -1362,10 +1166,7 @@ def _put_nav_sat_2sv(g_sv: Any) -> bytearray:
         r_2sv_i_8smoothed = 1 if r_2sv_i_8smoothed else 0
         r_2sv_i_11orbitSource = g_2sv_i.orbitSource
         if r_2sv_i_11orbitSource.__class__ is not int or not 0 <= r_2sv_i_11orbitSource <= 7:
-            if not isinstance(r_2sv_i_11orbitSource, int) or r_2sv_i_11orbitSource.__class__ is bool:
-                raise _enc('nav_sat', f'sv[{i}].orbitSource', r_2sv_i_11orbitSource, 'type', 'an int')
-            if not 0 <= r_2sv_i_11orbitSource <= 7:
-                raise _enc('nav_sat', f'sv[{i}].orbitSource', r_2sv_i_11orbitSource, 'range', '0..7', None)
+            _int_fault('nav_sat', f'sv[{i}].orbitSource', r_2sv_i_11orbitSource, 0, 7, False, None)
         r_2sv_i_8ephAvail: Any = g_2sv_i.ephAvail
         if r_2sv_i_8ephAvail is not True and r_2sv_i_8ephAvail is not False and (not isinstance(r_2sv_i_8ephAvail, int) or r_2sv_i_8ephAvail != 0 and r_2sv_i_8ephAvail != 1):
             raise _enc('nav_sat', f'sv[{i}].ephAvail', r_2sv_i_8ephAvail, 'type', 'a bool')
@@ -1384,10 +1185,7 @@ def _put_nav_sat_2sv(g_sv: Any) -> bytearray:
         r_2sv_i_8aopAvail = 1 if r_2sv_i_8aopAvail else 0
         r_2sv_i_10reserved13 = g_2sv_i.reserved13
         if r_2sv_i_10reserved13.__class__ is not int or not 0 <= r_2sv_i_10reserved13 <= 1:
-            if not isinstance(r_2sv_i_10reserved13, int) or r_2sv_i_10reserved13.__class__ is bool:
-                raise _enc('nav_sat', f'sv[{i}].reserved13', r_2sv_i_10reserved13, 'type', 'an int')
-            if not 0 <= r_2sv_i_10reserved13 <= 1:
-                raise _enc('nav_sat', f'sv[{i}].reserved13', r_2sv_i_10reserved13, 'range', '0..1', None)
+            _int_fault('nav_sat', f'sv[{i}].reserved13', r_2sv_i_10reserved13, 0, 1, False, None)
         r_2sv_i_12sbasCorrUsed: Any = g_2sv_i.sbasCorrUsed
         if r_2sv_i_12sbasCorrUsed is not True and r_2sv_i_12sbasCorrUsed is not False and (not isinstance(r_2sv_i_12sbasCorrUsed, int) or r_2sv_i_12sbasCorrUsed != 0 and r_2sv_i_12sbasCorrUsed != 1):
             raise _enc('nav_sat', f'sv[{i}].sbasCorrUsed', r_2sv_i_12sbasCorrUsed, 'type', 'a bool')
@@ -1435,23 +1233,11 @@ def _put_nav_sat_2sv(g_sv: Any) -> bytearray:
 def _encode_nav_sat(m: NavSat) -> bytes:
     r_iTOW = m.iTOW
     r_version = m.version
+    if (r_iTOW.__class__ is not int or not 0 <= r_iTOW <= 4294967295) or (r_version.__class__ is not int or not 0 <= r_version <= 255):
+        _faults('nav_sat', (r_iTOW, r_version, ), (('int', 'iTOW', 0, 4294967295, False, None), ('int', 'version', 0, 255, False, None)))
     r_reserved0 = m.reserved0
-    if (r_iTOW.__class__ is not int or not 0 <= r_iTOW <= 4294967295) or (r_version.__class__ is not int or not 0 <= r_version <= 255) or (r_reserved0.__class__ is not int or not 0 <= r_reserved0 <= 65535):
-        if r_iTOW.__class__ is not int or not 0 <= r_iTOW <= 4294967295:
-            if not isinstance(r_iTOW, int) or r_iTOW.__class__ is bool:
-                raise _enc('nav_sat', 'iTOW', r_iTOW, 'type', 'an int')
-            if not 0 <= r_iTOW <= 4294967295:
-                raise _enc('nav_sat', 'iTOW', r_iTOW, 'range', '0..4294967295', None)
-        if r_version.__class__ is not int or not 0 <= r_version <= 255:
-            if not isinstance(r_version, int) or r_version.__class__ is bool:
-                raise _enc('nav_sat', 'version', r_version, 'type', 'an int')
-            if not 0 <= r_version <= 255:
-                raise _enc('nav_sat', 'version', r_version, 'range', '0..255', None)
-        if r_reserved0.__class__ is not int or not 0 <= r_reserved0 <= 65535:
-            if not isinstance(r_reserved0, int) or r_reserved0.__class__ is bool:
-                raise _enc('nav_sat', 'reserved0', r_reserved0, 'type', 'an int')
-            if not 0 <= r_reserved0 <= 65535:
-                raise _enc('nav_sat', 'reserved0', r_reserved0, 'range', '0..65535', None)
+    if r_reserved0.__class__ is not int or not 0 <= r_reserved0 <= 65535:
+        _int_fault('nav_sat', 'reserved0', r_reserved0, 0, 65535, False, None)
     g_sv = m.sv
     if not isinstance(g_sv, (list, tuple)) or len(g_sv) > 32:
         raise _enc('nav_sat', 'sv', g_sv, 'count', 'a list of at most 32 values')
@@ -1821,8 +1607,9 @@ class StreamDecoder:
 
 
 _ENCODERS: dict[type[Any], Callable[[Any], bytes]] = {AckNak: _encode_ack_nak, AckAck: _encode_ack_ack, CfgRatePoll: _encode_cfg_rate_poll, CfgRate: _encode_cfg_rate, NavPosllh: _encode_nav_posllh, NavPvt: _encode_nav_pvt, NavSat: _encode_nav_sat, MonVer: _encode_mon_ver, }
+_DECODERS: dict[type[Any], Callable[..., Any]] = {AckNak: _decode_ack_nak, AckAck: _decode_ack_ack, CfgRatePoll: _decode_cfg_rate_poll, CfgRate: _decode_cfg_rate, NavPosllh: _decode_nav_posllh, NavPvt: _decode_nav_pvt, NavSat: _decode_nav_sat, MonVer: _decode_mon_ver, }
 for _cls, _encoder in _ENCODERS.items():  # each encoder is its class's encode method: one call, not two
-    _encoder.__doc__ = _cls.encode.__doc__
+    _encoder.__doc__ = _Message.encode.__doc__
     setattr(_cls, "encode", _encoder)
 MESSAGES: dict[str, type[AnyMessage]] = {'ack_nak': AckNak, 'ack_ack': AckAck, 'cfg_rate_poll': CfgRatePoll, 'cfg_rate': CfgRate, 'nav_posllh': NavPosllh, 'nav_pvt': NavPvt, 'nav_sat': NavSat, 'mon_ver': MonVer, }
 
