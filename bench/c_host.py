@@ -7,12 +7,13 @@ from pathlib import Path
 
 from bench import streams
 from bench.protocols import ROOT
-from codeword.targets.c.crc import METHODS
+from codeword.targets.c.crc import DEFAULT as DEFAULT_METHOD, METHODS
 
 CFLAGS = ["-O2", "-std=gnu99", "-DMTV4_CRC_TABLE"]
 SOURCE = ROOT / "bench" / "c" / "host_bench.c"
 STREAMS = ROOT / "bench" / "c" / "mtv4_stream.c"  # built once with each CRC method
 CRC_METHODS = [m.guard.lower() for m in METHODS]
+DEFAULT = DEFAULT_METHOD.lower()
 PARSERS = tuple(f"{api}, CRC {m}" for api in ("mtv4_parser_feed/next", "mtv4_scan") for m in CRC_METHODS)
 
 

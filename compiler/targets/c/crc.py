@@ -30,6 +30,7 @@ METHODS = (
 # The smallest method that makes the in-place scan at least twice as fast as MAVLink's
 # parser on a host, for a few dozen bytes of flash (docs/c-size.md, "CRC methods").
 DEFAULT = "SPLIT"
+DEFAULT_METHOD = next(m for m in METHODS if m.guard == DEFAULT)
 SLICES = {"SLICE4": 4, "SLICE8": 8}
 READS = {"uint8_t": "CW_READ_U8", "uint16_t": "CW_READ_U16", "uint32_t": "CW_READ_U32"}
 

@@ -608,6 +608,11 @@ class CView:
         parity = "cw_parity64" if rt == "uint64_t" else "cw_parity32"
         return f"({rt})({parity}({' ^ '.join(wide)}){flip})"
 
+    def has_crc(self) -> bool:
+        """Whether the header computes a CRC, so that its CRC method macros mean something."""
+        return any(leaf.field.checksum and leaf.field.checksum.algorithm == "crc"
+                   for m in self.p.messages for leaf in m.wire.leaves)
+
     def byte_checksums(self) -> list[str]:
         seen: dict[str, str] = {}
         crcs = False  # a header with CRCs refuses two methods at once

@@ -6,9 +6,13 @@
  * endian-explicit access. Functions return a byte count or CW_OK on success
  * and a negative CW_ERR_* code on failure; after a failed decode the output
  * struct holds unspecified values.
- * Define DYNAMIXEL2_CRC_TABLE before including this header for table-driven
- * checksums, a byte at a time from 256 entries, or DYNAMIXEL2_CRC_NIBBLE for a nibble
- * at a time from 16 entries (the tables are const, in flash on AVR).
+ * CRCs run a byte at a time from two 16-entry tables, one for each nibble (DYNAMIXEL2_CRC_SPLIT) unless
+ * one of these is defined before including this header (tables const, in flash on AVR):
+ *   DYNAMIXEL2_CRC_BITWISE: bit by bit, no table
+ *   DYNAMIXEL2_CRC_NIBBLE: a nibble at a time from 16 entries
+ *   DYNAMIXEL2_CRC_TABLE: a byte at a time from 256 entries
+ *   DYNAMIXEL2_CRC_SLICE4: four bytes at a time from four 256-entry tables
+ *   DYNAMIXEL2_CRC_SLICE8: eight bytes at a time from eight 256-entry tables
  */
 #ifndef DYNAMIXEL2_H
 #define DYNAMIXEL2_H

@@ -6,9 +6,13 @@
  * endian-explicit access. Functions return a byte count or CW_OK on success
  * and a negative CW_ERR_* code on failure; after a failed decode the output
  * struct holds unspecified values.
- * Define MODBUS_RTU_CRC_TABLE before including this header for table-driven
- * checksums, a byte at a time from 256 entries, or MODBUS_RTU_CRC_NIBBLE for a nibble
- * at a time from 16 entries (the tables are const, in flash on AVR).
+ * CRCs run a byte at a time from two 16-entry tables, one for each nibble (MODBUS_RTU_CRC_SPLIT) unless
+ * one of these is defined before including this header (tables const, in flash on AVR):
+ *   MODBUS_RTU_CRC_BITWISE: bit by bit, no table
+ *   MODBUS_RTU_CRC_NIBBLE: a nibble at a time from 16 entries
+ *   MODBUS_RTU_CRC_TABLE: a byte at a time from 256 entries
+ *   MODBUS_RTU_CRC_SLICE4: four bytes at a time from four 256-entry tables
+ *   MODBUS_RTU_CRC_SLICE8: eight bytes at a time from eight 256-entry tables
  */
 #ifndef MODBUS_RTU_H
 #define MODBUS_RTU_H
