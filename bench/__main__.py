@@ -6,6 +6,7 @@
     python3 -m bench --profile        # cProfile of codeword's encode and decode calls, printed
     python3 -m bench --only compiler  # section 5 alone, spliced into the existing RESULTS.md
     python3 -m bench --only imports   # section 7 alone: importing a module of MAVLink's size
+    python3 -m bench --only c         # sections 3 and 4 (C on the host and on AVR) alone, likewise
 """
 
 import argparse
@@ -27,7 +28,7 @@ def main(argv=None):
     parser.add_argument("--smoke", action="store_true", help="one repetition, small inputs, print only")
     parser.add_argument("--no-install", action="store_true", help="do not pip install the bench extra")
     parser.add_argument("--profile", action="store_true", help="profile codeword's per-message calls, print")
-    parser.add_argument("--only", choices=["compiler", "accelerator", "imports"], help="measure one section again, keep the others")
+    parser.add_argument("--only", choices=["compiler", "accelerator", "c", "imports"], help="measure one section again, keep the others")
     parser.add_argument("--out", default=str(ROOT / "bench" / "RESULTS.md"))
     parser.add_argument("--stream-mb", type=float, default=50.0, help="size of the mtv4 capture")
     # every size the scaling target names; 5,000 messages take about 2 CPU minutes and under 0.5 GB
@@ -49,6 +50,10 @@ def main(argv=None):
         with tempfile.TemporaryDirectory(prefix="codeword-bench-") as tmp:
             results = runner.run_imports(Path(tmp), 1 if args.smoke else 7, 20 if args.smoke else imports.MESSAGES)
         return _splice(args, 7, imports.section(results, [], runner._met))
+    if args.only == "c":
+        with tempfile.TemporaryDirectory(prefix="codeword-bench-") as tmp:
+            results = runner.run_c(Path(tmp), 1 if args.smoke else 7, 200_000 if args.smoke else int(args.stream_mb * 1e6))
+        return _splice(args, (3, 4), runner.c_sections(results, []))
     if args.only == "accelerator":
         results = runner.run_accelerator(1 if args.smoke else 7, 200_000 if args.smoke else int(args.stream_mb * 1e6),
                                          0.002 if args.smoke else timing.TARGET_SECONDS, 1 if args.smoke else 3)
@@ -70,8 +75,9 @@ def main(argv=None):
     return 0
 
 
-def _splice(args, number: int, lines: list[str]) -> int:
-    """RESULTS.md with section `number` measured again (printed only, for --smoke)."""
+def _splice(args, number, lines: list[str]) -> int:
+    """RESULTS.md with section `number` (or a tuple of adjacent ones) measured again (printed only,
+    for --smoke)."""
     from bench import runner
     out = Path(args.out)
     text = runner.splice(out.read_text(encoding="utf-8"), number, lines, f"python3 -m bench --only {args.only}")

@@ -16,6 +16,7 @@ import subprocess
 from pathlib import Path
 
 from bench.protocols import ROOT
+from codeword.targets.c.crc import METHODS
 
 MCU = "atmega1284p"
 CFLAGS = ["-std=gnu99", "-Os", f"-mmcu={MCU}", "-ffunction-sections", "-fdata-sections",
@@ -181,7 +182,7 @@ def compiler_version():
                           check=True).stdout.splitlines()[0]
 
 
-# The default CRC, bitwise, nibble-wise or table-driven: flash and cycles on the ATmega32 of
+# The CRC methods (codeword.targets.c.crc.METHODS): flash and cycles on the ATmega32 of
 # docs/c-size.md, under simavr (cycle-accurate), Timer1 counting CPU cycles.
 CRC_MCU = "atmega32"
 CRC_FRAMES = 8
@@ -252,13 +253,14 @@ int main(void)
 
 
 def crc_choice(tmp: Path):
-    """{variant: (flash, scan cycles per frame, CRC cycles per frame)} for mtv4's 26-byte
+    """{method: (flash, scan cycles per frame, CRC cycles per frame)} for mtv4's 26-byte
     frame: mtv4_scan (sync, length, CRC, decode) and the CRC alone over its 23 bytes."""
     tmp.mkdir(parents=True, exist_ok=True)
     src = tmp / "crc_choice.c"
     src.write_text(CRC_PROGRAM.format(frames=CRC_FRAMES))
     out = {}
-    for variant, defines in (("bitwise", []), ("nibble", ["-DMTV4_CRC_NIBBLE"]), ("table", ["-DMTV4_CRC_TABLE"])):
+    for method in METHODS:
+        variant, defines = method.guard.lower(), [f"-DMTV4_CRC_{method.guard}"]
         elf = tmp / f"crc_{variant}.elf"
         subprocess.run(["avr-gcc", "-std=gnu99", "-Os", f"-mmcu={CRC_MCU}", "-ffunction-sections", "-fdata-sections",
                         "-Wl,--gc-sections", "-Wall", "-Wextra", "-Werror", *defines,

@@ -1,19 +1,20 @@
 """C on the host (gcc -O2): builds bench/c/host_bench.c against the generated
 headers, hand-written C and MAVLink's generated C, with bench/c/mtv4_stream.c
-once per CRC variant, and runs it."""
+once per CRC method, and runs it."""
 
 import subprocess
 from pathlib import Path
 
 from bench import streams
 from bench.protocols import ROOT
+from codeword.targets.c.crc import DEFAULT as DEFAULT_METHOD, METHODS
 
 CFLAGS = ["-O2", "-std=gnu99", "-DMTV4_CRC_TABLE"]
 SOURCE = ROOT / "bench" / "c" / "host_bench.c"
-STREAMS = ROOT / "bench" / "c" / "mtv4_stream.c"  # built once with each CRC variant
-PARSERS = ("mtv4_parser_feed/next, CRC table", "mtv4_parser_feed/next, CRC bitwise",
-           "mtv4_parser_feed/next, CRC nibble", "mtv4_scan, CRC table", "mtv4_scan, CRC bitwise",
-           "mtv4_scan, CRC nibble")
+STREAMS = ROOT / "bench" / "c" / "mtv4_stream.c"  # built once with each CRC method
+CRC_METHODS = [m.guard.lower() for m in METHODS]
+DEFAULT = DEFAULT_METHOD.lower()
+PARSERS = tuple(f"{api}, CRC {m}" for api in ("mtv4_parser_feed/next", "mtv4_scan") for m in CRC_METHODS)
 
 
 def compiler_version():
@@ -26,13 +27,14 @@ def run(tmp: Path, mavlink_dir: Path, rounds: int, capture_bytes: int):
     include = ["-I", str(ROOT / "generated" / "c")]
     objects = []
     plain = [f for f in CFLAGS if f != "-DMTV4_CRC_TABLE"]
-    for variant, flags in (("table", CFLAGS), ("bitwise", plain), ("nibble", plain + ["-DMTV4_CRC_NIBBLE"])):
-        obj = tmp / f"mtv4_stream_{variant}.o"
-        subprocess.run(["gcc", *flags, "-Wall", "-Wextra", "-Werror", *include, "-c", str(STREAMS), "-o", str(obj)],
-                       check=True)
+    for method in CRC_METHODS:
+        obj = tmp / f"mtv4_stream_{method}.o"
+        subprocess.run(["gcc", *plain, f"-DMTV4_CRC_{method.upper()}", f"-DMETHOD={method}", "-Wall", "-Wextra",
+                        "-Werror", *include, "-c", str(STREAMS), "-o", str(obj)], check=True)
         objects.append(str(obj))
+    listed = " ".join(f"X({m})" for m in CRC_METHODS)
     # -w: MAVLink's headers warn about packed-member addresses; not ours to fix
-    subprocess.run(["gcc", *CFLAGS, "-w", *include, "-I", str(mavlink_dir),
+    subprocess.run(["gcc", *CFLAGS, "-w", f"-DCRC_METHODS={listed}", *include, "-I", str(mavlink_dir),
                     "-I", str(SOURCE.parent), str(SOURCE), *objects, "-o", str(exe), "-lm"], check=True)
     cap, good = streams.mtv4_capture(capture_bytes)
     mcap, _ = streams.mavlink_capture(capture_bytes)

@@ -17,6 +17,7 @@ from pathlib import Path
 import pytest
 
 from codeword.build import compile_schema
+from codeword.targets.c.crc import DEFAULT, METHODS
 
 from cdriver import Driver, firmware_source, load_vectors
 from conftest import PROTOCOLS, ROOT, load_model
@@ -36,6 +37,10 @@ def tool(name: str) -> str:
     path = shutil.which(name)
     assert path, f"{name} is not installed (.ci/run installs it)"
     return path
+
+
+# The default CRC method (no macro), then each other one by its macro.
+CRC_METHODS = ["default"] + [m.guard for m in METHODS if m.guard != DEFAULT]
 
 
 def run(cmd: list[str], timeout: int = 300) -> subprocess.CompletedProcess:
@@ -61,10 +66,10 @@ def schema_of(folder: Path, name: str) -> Path:
 
 @pytest.mark.parametrize("level", LEVELS)
 @pytest.mark.parametrize("compiler,flags", MATRIX, ids=[f"{c}{' '.join(f[:1])}" for c, f in MATRIX])
-@pytest.mark.parametrize("crc", ["bitwise", "table", "nibble"])
+@pytest.mark.parametrize("crc", CRC_METHODS)
 def test_headers_compile_together_without_warnings(tmp_path, compiler, flags, crc, level):
     """All five headers in one translation unit: no clashing names, no warnings."""
-    defines = [f"-D{p.upper()}_CRC_{crc.upper()}" for p in PROTOCOLS] if crc != "bitwise" else []
+    defines = [f"-D{p.upper()}_CRC_{crc}" for p in PROTOCOLS] if crc != "default" else []
     result = run([tool(compiler), *flags, level, *WARNINGS, *defines, "-I", str(INCLUDE), "-c",
                   str(all_headers(tmp_path)), "-o", str(tmp_path / "all.o")])
     assert result.returncode == 0, result.stderr
@@ -72,12 +77,12 @@ def test_headers_compile_together_without_warnings(tmp_path, compiler, flags, cr
 
 @pytest.mark.parametrize("level", LEVELS)
 @pytest.mark.parametrize("compiler", ["gcc", "clang"])
-@pytest.mark.parametrize("crc", ["bitwise", "table", "nibble"])
+@pytest.mark.parametrize("crc", CRC_METHODS)
 def test_example_headers_compile_together_without_warnings(tmp_path, compiler, crc, level):
     """The third-party examples (generated/examples/c) as the project's own headers."""
     names = sorted(path.stem for path in EXAMPLES.glob("*.h") if path.stem != "codeword")
     assert len(names) >= 5, names
-    defines = [f"-D{name.upper()}_CRC_{crc.upper()}" for name in names] if crc != "bitwise" else []
+    defines = [f"-D{name.upper()}_CRC_{crc}" for name in names] if crc != "default" else []
     result = run([tool(compiler), "-std=c99", level, *WARNINGS, *defines, "-I", str(EXAMPLES), "-c",
                   str(all_headers(tmp_path, EXAMPLES)), "-o", str(tmp_path / "all.o")])
     assert result.returncode == 0, result.stderr
@@ -95,9 +100,9 @@ def passed(output: str, name: str) -> re.Match:
 
 
 @pytest.mark.parametrize("name", PROTOCOLS)
-@pytest.mark.parametrize("crc", ["bitwise", "table", "nibble"])
+@pytest.mark.parametrize("crc", CRC_METHODS)
 def test_conformance_on_host_with_sanitizers(tmp_path, name, crc):
-    define = [f"-D{name.upper()}_CRC_{crc.upper()}"] if crc != "bitwise" else []
+    define = [f"-D{name.upper()}_CRC_{crc}"] if crc != "default" else []
     exe = tmp_path / name
     build = run([tool("gcc"), "-std=c99", "-g", "-O1", "-fsanitize=address,undefined",
                  "-fno-sanitize-recover=all", "-Wall", "-Wextra", "-Werror", *define, "-I", str(INCLUDE),
@@ -191,3 +196,12 @@ def test_conformance_on_cortex_m3_under_qemu(tmp_path, name):
         assert result.returncode == 0 and found, (result.stdout + result.stderr)[-3000:]
         total += int(found.group(1))
     assert total > 500
+
+
+def test_a_header_refuses_two_crc_methods(tmp_path):
+    """One method for all of a header's CRCs: two macros at once are an error, not a silent choice."""
+    src = tmp_path / "two.c"
+    src.write_text('#include "mtv4.h"\nint main(void) { return 0; }\n')
+    result = run([tool("gcc"), "-std=c99", "-DMTV4_CRC_TABLE", "-DMTV4_CRC_SLICE4", "-I", str(INCLUDE), "-c",
+                  str(src), "-o", str(tmp_path / "two.o")])
+    assert result.returncode != 0 and "define at most one of MTV4_CRC_BITWISE" in result.stderr, result.stderr

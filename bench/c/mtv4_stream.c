@@ -1,17 +1,13 @@
-/* mtv4 stream parsing for host_bench, built three times by bench/c_host.py: with
- * -DMTV4_CRC_TABLE (functions named *_table), with -DMTV4_CRC_NIBBLE (*_nibble) and
- * with neither (*_bitwise), so the checksum variants run side by side in one process.
- * Each returns the good frames it found in the capture. */
+/* mtv4 stream parsing for host_bench, built by bench/c_host.py once for each CRC method
+ * with -DMTV4_CRC_<METHOD> -DMETHOD=<method>, its functions named *_<method>, so the
+ * methods run side by side in one process. Each returns the good frames it found in
+ * the capture. */
 #include <stddef.h>
 #include "mtv4.h"
 
-#if defined(MTV4_CRC_TABLE)
-#define VARIANT(name) name##_table
-#elif defined(MTV4_CRC_NIBBLE)
-#define VARIANT(name) name##_nibble
-#else
-#define VARIANT(name) name##_bitwise
-#endif
+#define JOIN(name, method) name##_##method
+#define NAMED(name, method) JOIN(name, method)
+#define VARIANT(name) NAMED(name, METHOD)
 
 long VARIANT(mtv4_feed)(const unsigned char *buf, size_t len);
 long VARIANT(mtv4_scan)(const unsigned char *buf, size_t len);

@@ -68,7 +68,7 @@ MUTANTS = (
     Mutant(
         "c-crc-no-xorout",
         "C CRC: the final XOR (xorout) is left out (every seed CRC has xorout 0)",
-        (("compiler/targets/c/view.py", 'c(f"return ({t})(reg ^ {clit_hex(p.xorout, 1, t)});")',
+        (("compiler/targets/c/crc.py", 'c(f"return ({t})(reg ^ {clit_hex(p.xorout, 1, t)});")',
           'c(f"return ({t})(reg);")'),),
         ("tests/test_crc_catalogue.py", "tests/test_c.py", "-k", "crc or host")),
     Mutant(

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 from ...fingerprint import fingerprint, fingerprint32
 from ...model import Protocol
+from . import crc
 from . import repeats as crepeats
 from .machines import machines_view
 from .sequences import sequences_view
@@ -133,7 +134,7 @@ def render(p: Protocol) -> dict[str, str]:
     header = env.get_template("c/protocol.h.j2").render(
         p=p, v=v, px=v.px, PX=v.PX, fingerprint=fingerprint(p), fingerprint32=f"{fingerprint32(p):#010x}", constants=constants(v), enums=enums(v), flags=flags(v),
         directions=v.directions(), messages=messages, kinds={m["name"]: m["kind"] for m in messages},
-        checksums=v.byte_checksums(), text=v.text, dispatch=dispatch, stream=v.stream() if fr.kind == "bytes" else {},
+        checksums=v.byte_checksums(), crc_methods=crc.METHODS if v.has_crc() else (), crc_default=crc.DEFAULT_METHOD, text=v.text, dispatch=dispatch, stream=v.stream() if fr.kind == "bytes" else {},
         encoding=encoding, stuffing=stuffing, trailer=trailer_view(p),
         largest=largest_on_wire(v, encoding, stuffing),
         wrapped=bool(fr.encoding or fr.stuffing),

@@ -17,12 +17,12 @@ from fractions import Fraction
 from typing import Any, Optional
 
 from ... import binary32, binary64
-from ...crc import reflect
-from ...model import (Checksum, CrcParams, Field, Leaf, Message, Multiplex, Protocol, count_member, dotted, field_at,
+from ...model import (Checksum, Field, Leaf, Message, Multiplex, Protocol, count_member, dotted, field_at,
                       presence_member, spelling_member, places_member, SPELLING_MAX)
 from ..code import Code, times_over
 from ..escape import c_char as cchar, c_comment as comment, c_string as cstr
 from . import pack as cpack
+from .crc import crc_code, methods_check
 from . import repeats as crepeats
 from . import word as cword
 from . import wordform as cwordform
@@ -608,14 +608,21 @@ class CView:
         parity = "cw_parity64" if rt == "uint64_t" else "cw_parity32"
         return f"({rt})({parity}({' ^ '.join(wide)}){flip})"
 
+    def has_crc(self) -> bool:
+        """Whether the header computes a CRC, so that its CRC method macros mean something."""
+        return any(leaf.field.checksum and leaf.field.checksum.algorithm == "crc"
+                   for m in self.p.messages for leaf in m.wire.leaves)
+
     def byte_checksums(self) -> list[str]:
         seen: dict[str, str] = {}
+        crcs = False  # a header with CRCs refuses two methods at once
         for m in self.p.messages:
             for leaf in m.wire.leaves:
                 cs = leaf.field.checksum
                 if cs and cs.over == "bytes" and checksum_name(cs) not in seen:  # one function each
                     seen[checksum_name(cs)] = checksum_code(self.checksum_fn(cs), cs, self.PX)
-        return list(seen.values())
+                    crcs = crcs or cs.algorithm == "crc"
+        return ([methods_check(self.PX)] if crcs else []) + list(seen.values())
 
     def byte_checksum_call(self, leaf: Leaf, m: Message, cut: bool = False, sent: str = "buf") -> str:
         """The checksum of its coverage; `cut`: the coverage ends with the payload, `cut` bytes
@@ -1698,36 +1705,6 @@ def enum_span(values: list) -> Optional[tuple[int, int]]:
     return (lo, hi) if hi - lo + 1 == len(set(values)) else None
 
 
-def crc_table(p: CrcParams, bits: int = 8) -> list[int]:
-    """The lookup table of the algorithm the C code runs `bits` bits at a time (8: 256
-    entries; 4: 16 entries, for the nibble-wise one)."""
-    table = []
-    if p.refin:
-        rpoly = reflect(p.poly, p.width)
-        for value in range(1 << bits):
-            reg = value
-            for _ in range(bits):
-                reg = (reg >> 1) ^ rpoly if reg & 1 else reg >> 1
-            table.append(reg)
-    elif p.width >= 8:
-        mask, top = (1 << p.width) - 1, 1 << (p.width - 1)
-        for value in range(1 << bits):
-            reg = value << (p.width - bits)
-            for _ in range(bits):
-                reg = ((reg << 1) ^ p.poly) & mask if reg & top else (reg << 1) & mask
-            table.append(reg)
-    else:  # widths under 8 run on a register left-aligned in a byte
-        poly = p.poly << (8 - p.width)
-        for value in range(1 << bits):
-            reg = value << (8 - bits)
-            for _ in range(bits):
-                reg = ((reg << 1) ^ poly) & 0xFF if reg & 0x80 else (reg << 1) & 0xFF
-            table.append(reg)
-    return table
-
-
-
-
 def fletcher_code(name: str, cs: Checksum) -> str:
     """Fletcher-16 (two sums of bytes) or Fletcher-8 (two sums of nibbles, high nibble
     first), each sum reduced at every step so it stays within `unsigned` on 8-bit targets."""
@@ -1787,9 +1764,8 @@ def internet_code(name: str, cs: Checksum) -> str:
 
 
 def checksum_code(name: str, cs: Checksum, guard: str) -> str:
-    """A C function `name(data, len)` computing a byte checksum; CRCs bitwise by
-    default, a byte at a time from a 256-entry table when <guard>_CRC_TABLE is defined and
-    a nibble at a time from a 16-entry table when <guard>_CRC_NIBBLE is (tables in flash on AVR)."""
+    """A C function `name(data, len)` computing a byte checksum; a CRC's method is the
+    one <guard>_CRC_<METHOD> selects when the header is compiled (crc.py)."""
     c = Code()
     if cs.algorithm == "fletcher":
         return fletcher_code(name, cs)
@@ -1814,125 +1790,4 @@ def checksum_code(name: str, cs: Checksum, guard: str) -> str:
             c(f"    return {value};" if finished == value else f"    return ({rt}){finished};")
         c("}")
         return c.text()
-    p = cs.crc
-    t = unsigned_type(p.width)
-    small = p.width <= 16  # promote through `unsigned` so shifts never hit a signed int
-    widen = "(unsigned)" if small else ""
-    mask = (1 << p.width) - 1
-    full = p.width in (8, 16, 32, 64)
-    left = not p.refin and p.width < 8
-    reg_init = (p.init << (8 - p.width)) if left else (reflect(p.init, p.width) if p.refin else p.init)
-    table = crc_table(p)
-    read = {"uint8_t": "CW_READ_U8", "uint16_t": "CW_READ_U16", "uint32_t": "CW_READ_U32"}.get(t)
-    c(f"/* {p.name}: width {p.width}, poly {p.poly:#x}, init {p.init:#x}, refin {str(p.refin).lower()}, "
-      f"refout {str(p.refout).lower()}, xorout {p.xorout:#x} */")
-    if read:
-        per = 8 if p.width > 16 else 12
-        digits = (p.width + 3) // 4 if not left else 2
-        c(f"#if defined({guard}_CRC_TABLE)")
-        c(f"static const {t} {name}_table[256] CW_FLASH = {{")
-        for i in range(0, 256, per):
-            c("    " + ", ".join(f"{clit_hex(v, digits, t)}" for v in table[i:i + per]) + ",")
-        c("};")
-        c(f"#elif defined({guard}_CRC_NIBBLE)")
-        nibbles = crc_table(p, 4)
-        c(f"static const {t} {name}_nibbles[16] CW_FLASH = {{")
-        for i in range(0, 16, 8):
-            c("    " + ", ".join(f"{clit_hex(v, digits, t)}" for v in nibbles[i:i + 8]) + ",")
-        c("};")
-        c("#endif")
-    extra = ", uint8_t extra" if cs.extra else ""
-    c(f"static inline {t} {name}(const uint8_t *data, size_t len{extra})")
-    c("{")
-    c.indent()
-    c(f"{t} reg = {clit_hex(reg_init, 1, t)};")
-    c("size_t i;")
-    byte = "byte" if cs.extra else "data[i]"
-    if read:
-        c(f"#if defined({guard}_CRC_TABLE)")
-        byte_loop(c, cs.extra)
-        if p.refin:
-            shift = f"({t})({widen}reg >> 8)" if p.width > 8 else "0u"
-            c(f"    reg = ({t})({read}(&{name}_table[({widen}reg ^ {byte}) & 0xFFu]) ^ {shift});")
-        elif left or p.width == 8:
-            c(f"    reg = {read}(&{name}_table[({widen}reg ^ {byte}) & 0xFFu]);")
-        else:
-            keep = "" if full else f" & {clit_hex(mask, 1, t)}"
-            c(f"    reg = ({t})((({widen}reg << 8) ^ {read}(&{name}_table[(({widen}reg >> {p.width - 8}) ^ {byte}) & 0xFFu])){keep});")
-        c("}")
-        c(f"#elif defined({guard}_CRC_NIBBLE)")
-        byte_loop(c, cs.extra)
-        nibble = f"{read}(&{name}_nibbles"
-        if p.refin:
-            c(f"    reg = ({t})(reg ^ {byte});")
-            for _ in range(2):
-                c(f"    reg = ({t})(({widen}reg >> 4) ^ {nibble}[{widen}reg & 0xFu]));")
-        elif left or p.width == 8:
-            c(f"    reg = (uint8_t)(reg ^ {byte});")
-            for _ in range(2):
-                c(f"    reg = (uint8_t)((({widen}reg << 4) & 0xFFu) ^ {nibble}[{widen}reg >> 4]));")
-        else:
-            keep = "" if full else f" & {clit_hex(mask, 1, t)}"
-            data = f"({widen}{byte} << {p.width - 8})" if small else f"(({t}){byte} << {p.width - 8})"
-            c(f"    reg = ({t})(reg ^ {data});")
-            for _ in range(2):
-                c(f"    reg = ({t})((({widen}reg << 4) ^ {nibble}[({widen}reg >> {p.width - 4}) & 0xFu])){keep});")
-        c("}")
-        c("#else")
-    byte_loop(c, cs.extra)
-    c.indent()
-    c("uint8_t bit;")
-    if p.refin:
-        rpoly = reflect(p.poly, p.width)
-        c(f"reg = ({t})(reg ^ {byte});")
-        c("for (bit = 0; bit < 8u; bit++) {")
-        c(f"    reg = (reg & 1u) ? ({t})(({widen}reg >> 1) ^ {clit_hex(rpoly, 1, t)}) : ({t})({widen}reg >> 1);")
-        c("}")
-    elif left:
-        poly = (p.poly << (8 - p.width)) & 0xFF
-        c(f"reg = (uint8_t)(reg ^ {byte});")
-        c("for (bit = 0; bit < 8u; bit++) {")
-        c(f"    reg = (reg & 0x80u) ? (uint8_t)(({widen}reg << 1) ^ {poly:#x}u) : (uint8_t)({widen}reg << 1);")
-        c("}")
-    else:
-        top = 1 << (p.width - 1)
-        keep = "" if full else f" & {clit_hex(mask, 1, t)}"
-        data = f"({widen}{byte} << {p.width - 8})" if small else f"(({t}){byte} << {p.width - 8})"
-        c(f"reg = ({t})(reg ^ {data});" if p.width > 8 else f"reg = ({t})(reg ^ {byte});")
-        c("for (bit = 0; bit < 8u; bit++) {")
-        c(f"    reg = (reg & {clit_hex(top, 1, t)}) ? ({t})((({widen}reg << 1) ^ {clit_hex(p.poly, 1, t)}){keep}) : ({t})(({widen}reg << 1){keep});")
-        c("}")
-    c.dedent()
-    c("}")
-    if read:
-        c("#endif")
-    if left:
-        c(f"reg = (uint8_t)({widen}reg >> {8 - p.width});")
-    if p.refin != p.refout:
-        c("{")
-        c(f"    {t} out = 0;")
-        c("    uint8_t n;")
-        c(f"    for (n = 0; n < {p.width}u; n++) {{")
-        c(f"        out = ({t})(({widen}out << 1) | ({widen}reg & 1u));")
-        c(f"        reg = ({t})({widen}reg >> 1);")
-        c("    }")
-        c("    reg = out;")
-        c("}")
-    c(f"return ({t})(reg ^ {clit_hex(p.xorout, 1, t)});")
-    c.dedent()
-    c("}")
-    return c.text()
-
-
-def byte_loop(c: Code, extra: Optional[str]) -> None:
-    """Opens the loop over the data; with an extra byte, one more turn reads it as `byte`."""
-    if not extra:
-        c("for (i = 0; i < len; i++) {")
-        return
-    c("for (i = 0; i <= len; i++) {  /* the data, then the message's extra byte */")
-    c("    const uint8_t byte = i < len ? data[i] : extra;")
-
-
-def clit_hex(value: int, digits: int, ctype: str) -> str:
-    suffix = {"uint8_t": "u", "uint16_t": "u", "uint32_t": "UL", "uint64_t": "ULL"}[ctype]
-    return f"0x{value:0{digits}X}{suffix}"
+    return crc_code(name, cs, guard)

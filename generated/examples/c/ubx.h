@@ -6,9 +6,6 @@
  * endian-explicit access. Functions return a byte count or CW_OK on success
  * and a negative CW_ERR_* code on failure; after a failed decode the output
  * struct holds unspecified values.
- * Define UBX_CRC_TABLE before including this header for table-driven
- * checksums, a byte at a time from 256 entries, or UBX_CRC_NIBBLE for a nibble
- * at a time from 16 entries (the tables are const, in flash on AVR).
  */
 #ifndef UBX_H
 #define UBX_H
