@@ -24,6 +24,7 @@ FULL = frozenset({
     "shared_id",                            # bytes without length: two messages of one id at two sizes
     "direction_ids",                        # one id (bytes) or prefix (text) used by a message of each direction
     "extension", "truncate",                # bytes: extension fields at a message's end; trailing zeros not sent
+    "extension_arrays",                     # bytes: arrays and bytes among the extension fields
     "little", "field_order",                # byte orders: the framing's, and per field
     "bitfields",                            # fields narrower than a byte, packed
     "arrays",                               # fields of a fixed count: scalars, groups (bytes), bit fields

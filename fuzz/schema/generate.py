@@ -559,8 +559,20 @@ class Generator:
 
     def extension_fields(self) -> list[dict]:
         """Fields a later version of the message added at its end, of whole bytes."""
-        return [{"name": self.name(), "type": self.rng.choice(["u8", "u16", "i16", "u32", "i32"]), "extension": True}
-                for _ in range(self.rng.randint(1, 3))]
+        fields = [{"name": self.name(), "type": self.rng.choice(["u8", "u16", "i16", "u32", "i32"]), "extension": True}
+                  for _ in range(self.rng.randint(1, 3))]
+        return fields + self.extension_arrays()
+
+    def extension_arrays(self) -> list[dict]:
+        """An array or bytes added as an extension (MAVLink's AUTOPILOT_VERSION.uid2): a frame
+        that ends before it reads it as zeros."""
+        own = random.Random(f"extension_arrays {self.seed} {len(self.used)}")
+        if "extension_arrays" not in self.on or own.random() < 0.6:
+            return []
+        n = own.randint(1, 6)
+        if own.random() < 0.3:
+            return [{"name": self.name(), "type": "bytes", "length": n, "extension": True}]
+        return [{"name": self.name(), "type": own.choice(["u8", "u16", "i32", "f32"]), "count": n, "extension": True}]
 
     def padding(self, width: int) -> dict:
         return {"name": self.name(), "type": f"u{width}", "reserved": True}
