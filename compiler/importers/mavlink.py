@@ -12,7 +12,7 @@ from pathlib import Path
 from .mavlink_crc import crc_extra
 from .mavlink_framing import DOC, FRAME_FLAG_SETS, FRAME_FLAGS, FRAME_MEMBERS, FRAMING
 from .mavlink_names import member_name, protocol_name, usable
-from .mavlink_xml import Dialect, XmlEnum, XmlField, XmlMessage, read_dialect
+from .mavlink_xml import Dialect, MavlinkXmlError, XmlEnum, XmlField, XmlMessage, read_dialect
 from .yaml_writer import Writer
 
 TYPES = {"uint8_t": "u8", "int8_t": "i8", "uint16_t": "u16", "int16_t": "i16", "uint32_t": "u32",
@@ -126,17 +126,17 @@ def _enums_and_flags(w: Writer, imported: Imported) -> dict[str, str]:
         names[enum.name] = usable(enum.name.lower(), taken)
         taken.add(names[enum.name])
     flag_sets = [e for e in imported.dialect.enums if e.bitmask and _flag_bits(e)]
-    w.blank()
-    w.key("flags", 0)
-    w.raw(FRAME_FLAG_SETS[v])
+    if flag_sets or FRAME_FLAG_SETS[v]:
+        w.blank()
+        w.key("flags", 0)
+        w.raw(FRAME_FLAG_SETS[v])
     for enum in flag_sets:
         _flag_set(w, enum, names[enum.name])
         imported.flag_count += 1
-    if not flag_sets and not FRAME_FLAG_SETS[v]:
-        w.lines.pop()  # no `flags:` at all
     enums = [e for e in imported.dialect.enums if e not in flag_sets]
-    w.blank()
-    w.key("enums", 0)
+    if any(e.entries for e in enums):
+        w.blank()
+        w.key("enums", 0)
     for enum in enums:
         if not enum.entries:
             w.comment(f"enum {enum.name} has no entries in this dialect (a codeword enum needs one): "
@@ -216,6 +216,11 @@ def _member(w: Writer, entry, member: str, where: dict) -> None:
 
 def _messages(w: Writer, imported: Imported, enum_names: dict[str, str]) -> None:
     v = imported.version
+    if v == 1 and not any(m.id <= V1_LARGEST_ID for m in imported.dialect.messages):
+        raise MavlinkXmlError(f"{imported.dialect.path.name}: no message has an id up to {V1_LARGEST_ID}, "
+                              "so MAVLink 1 carries none of them: import it for MAVLink 2")
+    if not imported.dialect.messages:
+        raise MavlinkXmlError(f"{imported.dialect.path.name}: no messages (a schema needs one)")
     w.blank()
     w.key("messages", 0)
     taken: set = set()
