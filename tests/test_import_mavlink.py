@@ -79,7 +79,7 @@ def samples(imported, module, rounds: int, seed: int):
     for round_ in range(rounds):
         for m in imported.messages:
             values = {}
-            for f in m.xml.fields:
+            for f in (imported_field.xml for imported_field in m.fields):  # MAVLink 1: no extensions
                 shape = rng.choice(["full", "part", "zero", "full"])
                 if f.extension and round_ % 3 == 0:
                     shape = "zero"
