@@ -134,10 +134,11 @@ def test_the_schema_says_each_crc_extra_and_the_wire_order(v2):
     protocol = compile_schema(v2 / "common.yaml")
     by_id = {m.ids[0]: m for m in protocol.messages}
     assert len(by_id) == len(mavlink2.mavlink_map)
+    imported = {m.xml.id: m for m in import_dialect(COMMON).messages}
     for msgid, theirs in mavlink2.mavlink_map.items():
         assert by_id[msgid].crc_extra == theirs.crc_extra, theirs.msgname
         assert [f.name for f in by_id[msgid].layout if f.is_member][5:5 + len(theirs.ordered_fieldnames)] == \
-            [f.name for f in next(m for m in import_dialect(COMMON).messages if m.xml.id == msgid).fields]
+            [f.name for f in imported[msgid].fields]
 
 
 def test_importing_twice_gives_the_same_schema(v2, tmp_path):
