@@ -180,6 +180,22 @@ def cmd_diff(args: argparse.Namespace) -> int:
     return run_diff(args)
 
 
+def cmd_import(args: argparse.Namespace) -> int:
+    from .importers.mavlink import import_dialect, write_schema
+    from .importers.mavlink_xml import MavlinkXmlError
+    try:
+        imported = import_dialect(Path(args.file), version=args.mavlink_version)
+    except MavlinkXmlError as exc:
+        raise UsageError(str(exc)) from None
+    try:
+        path = write_schema(imported, Path(args.out))
+    except OSError as exc:
+        raise UsageError(f"{args.out}: cannot write: {exc.strerror}") from None
+    print(f"wrote {path} ({len(imported.messages)} messages, {imported.enum_count} enums, "
+          f"{imported.flag_count} flag sets)")
+    return OK
+
+
 def _globals(parser: argparse.ArgumentParser, suppress: bool) -> None:
     """Options every command takes, before or after its name."""
     default = argparse.SUPPRESS if suppress else False
@@ -232,6 +248,12 @@ def parser() -> argparse.ArgumentParser:
     s = command("schema", cmd_schema, "print the JSON Schema of the language, for editors")
     s.add_argument("--write", nargs="?", const="codeword.schema.json", metavar="FILE",
                    help="write it to FILE (default: codeword.schema.json) instead of printing it")
+    imp = command("import", cmd_import, "write a codeword schema from a specification in another format")
+    imp.add_argument("format", choices=["mavlink"], help="the format: mavlink (a MAVLink XML dialect)")
+    imp.add_argument("file", metavar="FILE", help="the dialect's XML file; its <include>s are read beside it")
+    imp.add_argument("--out", required=True, metavar="DIR", help="write DIR/<dialect>.yaml")
+    imp.add_argument("--version", dest="mavlink_version", type=int, choices=[1, 2], default=2,
+                     help="MAVLink 1 or 2 framing (default: 2)")
     from .check.command import add_arguments as check_arguments
     check_arguments(command("check", cmd_check, "check data (files, captures, logs) against a schema"), cmd_check)
     from .diff.command import add_arguments as diff_arguments

@@ -105,6 +105,13 @@ def plain(value: Any) -> Any:
     return value
 
 
+def read_as_absent(f) -> Any:
+    """The value a bytes frame's extension field reads as when the frame ends before it:
+    zero, zero bytes, or an array of them."""
+    one = "00" * (f.length or 0) if f.kind == "bytes" else 0.0 if f.kind == "float" else 0
+    return [one] * f.count if f.count is not None else one
+
+
 def older_values(m: Message) -> int:
     """The values of a text line that an older writer, which knows no extension field, writes."""
     body = [f for f in m.layout if not f.prefix]
@@ -515,7 +522,7 @@ class Generator:
             for _attempt in range(50):
                 values = self.values(m, *arg) if arg else self.values(m)
                 if kind == "older":  # text: absent; bytes: read as 0
-                    values.update((f.name, None if self.text else 0) for f in members if f.extension)
+                    values.update((f.name, None if self.text else read_as_absent(f)) for f in members if f.extension)
                 try:
                     obj, data = self.encode(m, values)
                 except self.mod.EncodeError:

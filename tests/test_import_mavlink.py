@@ -1,0 +1,238 @@
+"""`codeword import mavlink` against pymavlink, the reference MAVLink implementation:
+common.xml imported and built; for every one of its messages, random values (edge
+values, arrays full and partly zero, extension fields sent and left off) packed by
+pymavlink decode with codeword's Python to pymavlink's values and encode back to
+pymavlink's bytes, and frames codeword's Python builds from the values parse in
+pymavlink to them; every message's crc_extra is pymavlink's (mavgen's). The whole
+dialect's C passes its conformance vectors under the strict warning flags. Every
+dialect pymavlink ships imports and resolves, in MAVLink 1 and 2."""
+from __future__ import annotations
+
+import math
+import os
+import random
+import struct
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+os.environ["MAVLINK20"] = "1"  # before pymavlink is imported: its v2 framing
+import pymavlink  # noqa: E402  (a test extra: pip install -e ".[peers]")
+from pymavlink.dialects.v10 import common as mavlink1  # noqa: E402
+from pymavlink.dialects.v20 import common as mavlink2  # noqa: E402
+
+from codeword.build import compile_schema  # noqa: E402
+from codeword.importers.mavlink import import_dialect  # noqa: E402
+from codeword.importers.mavlink_xml import MavlinkXmlError  # noqa: E402
+from schema_in_a_test import load  # noqa: E402
+
+DIALECTS = Path(pymavlink.__file__).parent / "dialects" / "v20"
+COMMON = DIALECTS / "common.xml"
+# dialects whose every message id is above 255: nothing of them for MAVLink 1
+V2_ONLY = {"csAirLink.xml", "icarous.xml", "test.xml"}
+ROOT = Path(__file__).resolve().parent.parent
+
+INT_RANGES = {"int8_t": (-128, 127), "uint8_t": (0, 255), "int16_t": (-1 << 15, (1 << 15) - 1),
+              "uint16_t": (0, 0xFFFF), "int32_t": (-1 << 31, (1 << 31) - 1), "uint32_t": (0, 0xFFFFFFFF),
+              "int64_t": (-1 << 63, (1 << 63) - 1), "uint64_t": (0, (1 << 64) - 1)}
+F32_MAX = struct.unpack("<f", b"\xff\xff\x7f\x7f")[0]
+F32_TINY = struct.unpack("<f", b"\x01\x00\x00\x00")[0]  # the smallest subnormal
+F64_MAX = struct.unpack("<d", b"\xff\xff\xff\xff\xff\xff\xef\x7f")[0]
+
+
+def f32(x: float) -> float:
+    return struct.unpack("<f", struct.pack("<f", x))[0]
+
+
+def scalar(rng: random.Random, ctype: str):
+    """A value of a MAVLink element type: an edge of its range a third of the time."""
+    if ctype in INT_RANGES:
+        lo, hi = INT_RANGES[ctype]
+        return rng.choice([lo, hi, 0, rng.randint(lo, hi)]) if rng.random() < 0.3 else rng.randint(lo, hi)
+    if ctype == "float":
+        edges = [0.0, -0.0, F32_MAX, -F32_MAX, F32_TINY, -F32_TINY, 1.0]
+        return rng.choice(edges) if rng.random() < 0.3 else f32(rng.uniform(-1e6, 1e6))
+    edges = [0.0, -0.0, F64_MAX, -F64_MAX, 5e-324, 1.0]
+    return rng.choice(edges) if rng.random() < 0.3 else rng.uniform(-1e12, 1e12)
+
+
+def value(rng: random.Random, field, shape: str):
+    """A field's value as pymavlink takes it; `shape` says how much of an array or text is filled."""
+    n = field.array_length
+    if field.type == "char":
+        size = {"full": n, "zero": 0}.get(shape, rng.randint(0, max(n - 1, 0))) if n else rng.randint(0, 1)
+        return bytes(rng.randint(0x20, 0x7E) for _ in range(size))
+    if not n:
+        return 0 if shape == "zero" else scalar(rng, field.type)
+    filled = {"full": n, "zero": 0}.get(shape, rng.randint(1, n))
+    return [scalar(rng, field.type) for _ in range(filled)] + [0] * (n - filled)
+
+
+def samples(imported, module, rounds: int, seed: int):
+    """pymavlink messages of every message of the dialect with random values; in a third
+    of the rounds as an older sender, its extension fields zero (pymavlink then leaves
+    them off the wire)."""
+    rng = random.Random(seed)
+    out = []
+    for round_ in range(rounds):
+        for m in imported.messages:
+            values = {}
+            for f in (imported_field.xml for imported_field in m.fields):  # MAVLink 1: no extensions
+                shape = rng.choice(["full", "part", "zero", "full"])
+                if f.extension and round_ % 3 == 0:
+                    shape = "zero"
+                values[f.name] = value(rng, f, shape)
+            out.append((m, module.mavlink_map[m.xml.id](**values)))
+    return out
+
+
+def same(mine, theirs, ctype: str) -> bool:
+    if isinstance(mine, bytes):  # pymavlink gives a char array as text up to its first NUL
+        theirs = theirs.encode() if isinstance(theirs, str) else theirs
+        return mine.split(b"\0")[0] == theirs.split(b"\0")[0]
+    if isinstance(mine, list):
+        return len(mine) == len(theirs) and all(same(a, b, ctype) for a, b in zip(mine, theirs))
+    if isinstance(mine, float):
+        return mine == theirs and math.copysign(1, mine) == math.copysign(1, theirs)
+    return mine == theirs
+
+
+def import_and_build(tmp: Path, version: int, targets: str) -> Path:
+    """`codeword import mavlink common.xml` and `codeword build`, as a user runs them."""
+    run = subprocess.run([sys.executable, "-m", "codeword", "import", "mavlink", str(COMMON), "--out", str(tmp),
+                          "--version", str(version)], capture_output=True, text=True, timeout=300, cwd=ROOT)
+    assert run.returncode == 0 and "210 messages" in run.stdout if version == 2 else run.returncode == 0, \
+        run.stdout + run.stderr
+    run = subprocess.run([sys.executable, "-m", "codeword", "build", str(tmp / "common.yaml"), "--out",
+                          str(tmp / "built"), "--targets", targets], capture_output=True, text=True, timeout=600,
+                         cwd=ROOT)
+    assert run.returncode == 0, run.stdout + run.stderr
+    return tmp
+
+
+@pytest.fixture(scope="module")
+def v2(tmp_path_factory):
+    return import_and_build(tmp_path_factory.mktemp("mavimport2"), 2, "python,c,docs,vectors")
+
+
+@pytest.fixture(scope="module")
+def v1(tmp_path_factory):
+    return import_and_build(tmp_path_factory.mktemp("mavimport1"), 1, "python")
+
+
+def test_crc_extra_is_mavgens_for_every_message_of_common():
+    imported = import_dialect(COMMON)
+    assert len(imported.messages) == len(mavlink2.mavlink_map) == 210
+    for m in imported.messages:
+        assert m.crc_extra == mavlink2.mavlink_map[m.xml.id].crc_extra, m.xml.name
+        assert [f.xml.name for f in m.fields] == list(mavlink2.mavlink_map[m.xml.id].ordered_fieldnames), m.xml.name
+
+
+def test_the_schema_says_each_crc_extra_and_the_wire_order(v2):
+    protocol = compile_schema(v2 / "common.yaml")
+    by_id = {m.ids[0]: m for m in protocol.messages}
+    assert len(by_id) == len(mavlink2.mavlink_map)
+    imported = {m.xml.id: m for m in import_dialect(COMMON).messages}
+    for msgid, theirs in mavlink2.mavlink_map.items():
+        assert by_id[msgid].crc_extra == theirs.crc_extra, theirs.msgname
+        assert [f.name for f in by_id[msgid].layout if f.is_member][5:5 + len(theirs.ordered_fieldnames)] == \
+            [f.name for f in imported[msgid].fields]
+
+
+def test_importing_twice_gives_the_same_schema(v2, tmp_path):
+    again = import_dialect(COMMON).text
+    assert again == (v2 / "common.yaml").read_text(encoding="utf-8")
+    assert import_dialect(COMMON).text == again
+
+
+def check_round_trip(mod, imported, module, seed: int) -> int:
+    mav = module.MAVLink(None, srcSystem=42, srcComponent=190)
+    parser = module.MAVLink(None)
+    checked = 0
+    for n, (m, message) in enumerate(samples(imported, module, rounds=3, seed=seed)):
+        mav.seq = n & 0xFF
+        frame = bytes(message.pack(mav))
+        ours = mod.decode(frame)
+        assert type(ours).NAME == m.name
+        for f in m.fields:
+            assert same(getattr(ours, f.name), getattr(message, f.xml.name), f.xml.type), (m.name, f.name)
+        assert mod.encode(ours) == frame, m.name
+        # a frame codeword builds from the values alone parses in pymavlink to them
+        values = {f.name: getattr(ours, f.name) for f in m.fields}
+        mine = type(ours)(**{k: getattr(ours, k) for k in ("seq", "sysid", "compid")}, **values,
+                          **({"incompat_flags": mod.IncompatFlags(0), "compat_flags": 0}
+                             if hasattr(ours, "compat_flags") else {}))
+        parsed = parser.decode(bytearray(mod.encode(mine)))
+        assert parsed.get_type() == m.xml.name
+        for f in m.fields:
+            assert same(values[f.name], getattr(parsed, f.xml.name), f.xml.type), (m.name, f.name)
+        checked += 1
+    return checked
+
+
+def test_every_message_of_common_round_trips_with_pymavlink_in_mavlink2(v2):
+    mod = load(v2 / "built" / "python" / "common.py")
+    imported = import_dialect(COMMON)
+    assert check_round_trip(mod, imported, mavlink2, seed=31) == 3 * 210
+
+
+def test_every_message_of_common_round_trips_with_pymavlink_in_mavlink1(v1):
+    mod = load(v1 / "built" / "python" / "common.py")
+    imported = import_dialect(COMMON, version=1)
+    assert len(imported.messages) == len(mavlink1.mavlink_map)
+    assert check_round_trip(mod, imported, mavlink1, seed=32) == 3 * len(mavlink1.mavlink_map)
+
+
+def test_the_samples_truncate_and_leave_extensions_off():
+    imported = import_dialect(COMMON)
+    mav = mavlink2.MAVLink(None)
+    frames = [(m, bytes(message.pack(mav))) for m, message in samples(imported, mavlink2, rounds=3, seed=31)]
+    full = {m.name: sum(f.xml.size * max(f.xml.array_length, 1) for f in m.fields) for m in imported.messages}
+    assert sum(f[1] < full[m.name] for m, f in frames) > 200  # truncated payloads
+    with_ext = [m for m in imported.messages if any(f.xml.extension for f in m.fields)]
+    assert len(with_ext) > 50
+    base = {m.name: sum(f.xml.size * max(f.xml.array_length, 1) for f in m.fields if not f.xml.extension)
+            for m in with_ext}
+    assert sum(m.name in base and f[1] <= base[m.name] for m, f in frames) > 50  # no extension byte sent
+
+
+def test_the_whole_dialect_passes_its_vectors_in_strict_c(v2, tmp_path):
+    """Compiles the conformance driver of all 210 messages with gcc under the strict flags
+    (about a minute on a loaded machine) and runs it."""
+    import json
+
+    from cdriver import Driver
+    vectors = json.loads((v2 / "built" / "vectors" / "common.json").read_text())
+    src, exe = tmp_path / "conf.c", tmp_path / "conf"
+    src.write_text(Driver(compile_schema(v2 / "common.yaml")).source(vectors))
+    build = subprocess.run(["gcc", "-std=c99", "-O1", "-Wall", "-Wextra", "-Wpedantic", "-Wconversion",
+                            "-Wsign-conversion", "-Wshadow", "-Werror", "-I", str(v2 / "built" / "c"), str(src),
+                            "-o", str(exe)], capture_output=True, text=True, timeout=900)
+    assert build.returncode == 0, build.stderr[-3000:]
+    run = subprocess.run([str(exe)], capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0 and "CONFORMANCE common PASS" in run.stdout and " 0 failures" in run.stdout, \
+        run.stdout[-3000:]
+
+
+def test_the_schema_keeps_what_it_cannot_say_in_comments():
+    text = import_dialect(COMMON).text
+    assert "# values: MAVLink enum MAV_TYPE (codeword mav_type)" in text
+    assert "deprecated since" in text and "work in progress" in text
+    assert "codeword's floats refuse NaN" in text
+    assert "param 1" in text  # MAV_CMD's parameters in its entries' docs
+
+
+@pytest.mark.parametrize("dialect", sorted(p.name for p in DIALECTS.glob("*.xml")))
+def test_every_dialect_pymavlink_ships_imports_and_resolves(dialect, tmp_path):
+    for version in (2, 1):
+        if version == 1 and dialect in V2_ONLY:
+            with pytest.raises(MavlinkXmlError, match="MAVLink 1 carries none of them"):
+                import_dialect(DIALECTS / dialect, version=version)
+            continue
+        imported = import_dialect(DIALECTS / dialect, version=version)
+        path = tmp_path / f"{imported.protocol}{version}.yaml"
+        path.write_text(imported.text, encoding="utf-8")
+        protocol = compile_schema(path)
+        assert len(protocol.messages) == len(imported.messages)
