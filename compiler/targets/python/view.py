@@ -1472,12 +1472,14 @@ class MessageCode:
         for n, leaf in enumerate(self.text_leaves):
             f = leaf.field
             at = f"{self.m.name!r}, {leaf.dotted!r}"
-            where = f"_token_offsets(t, base)[{n}]"  # computed only for an error
+            where = f"_token_offset(t, base, {n})"  # computed only for an error
+            lazy = f"t, base, {n}"  # what a parser computes it from, for an error
+            held = f"t[{n}].strip()" if fr.trim else f"t[{n}]"
             if f.optional and f.kind == "str" and f.const is None:  # an empty value is an empty str
                 c(f"if len(t) > {n}:")
                 c.indent()
-            elif f.optional:  # an empty value is an absent one
-                c(f"if len(t) > {n} and {f't[{n}].strip()' if fr.trim else f't[{n}]'}:")
+            elif f.optional:  # an empty value is an absent one; every line holds the first `required`
+                c(f"if len(t) > {n} and {held}:" if n >= required else f"if {held}:")
                 c.indent()
             tok = f"(t[{n}] if ok else t[{n}].strip())" if fr.trim else f"t[{n}]"
             slow_tok = f"t[{n}].strip()" if fr.trim else f"t[{n}]"
@@ -1485,11 +1487,12 @@ class MessageCode:
                 c(f"if len(t[{n}]) > {SPELLING_MAX}:")
                 c(f"    raise _dec({at}, t[{n}], 'length', 'a number of at most {SPELLING_MAX} characters', {where})")
             if f.kind == "float":
-                c(f"{leaf.var} = float(t[{n}]) if ok else _parse_float({slow_tok}, {at}, {where})")
-            elif f.fixed_spelling:  # any spelling, rounded to the field's decimals: on every path
-                c(f"{leaf.var} = _parse_fixed({tok}, {f.decimals or 0}, {at}, {where})")
+                c(f"{leaf.var} = float(t[{n}]) if ok else _parse_float({slow_tok}, {at}, {lazy})")
+            elif f.fixed_spelling:  # any spelling, rounded to the field's decimals
+                c(f"{leaf.var} = _fixed_of(t[{n}], {f.decimals or 0}) if ok else "
+                  f"_parse_fixed({slow_tok}, {f.decimals or 0}, {at}, {lazy})")
             elif f.kind in ("uint", "int") or (f.enum is not None and f.enum.kind == "int"):
-                c(f"{leaf.var} = int(t[{n}]) if ok else _parse_int({slow_tok}, {at}, {where})")
+                c(f"{leaf.var} = int(t[{n}]) if ok else _parse_int({slow_tok}, {at}, {lazy})")
             elif f.kind == "char":
                 c(f"{leaf.var} = {tok}")
                 c(f"if len({leaf.var}) != 1:")
