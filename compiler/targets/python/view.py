@@ -594,6 +594,25 @@ class MessageCode:
         self.output = "str" if view.p.framing.kind == "text" else "bytes"
         self.helpers: list[str] = []  # functions the encoder calls, written before it
         self.repeats = {r.field.name: RepeatCode(self, r) for r in message.wire.repeats}
+        # leaf var → (struct item, its expected bytes, the int.from_bytes call): a constant unpacked
+        # as bytes is compared as bytes, and read as a number only for its error
+        self.const_items: dict[str, tuple[str, bytes, str]] = {}
+
+    def only_checked(self, leaf: Leaf) -> bool:
+        """Whether the decoder uses a leaf's raw value for its constant check alone: no other
+        field, condition or field checksum reads it."""
+        f = leaf.field
+        if f.const is None or f.values or f.reserved or f.counts or f.length_of or f.checksum:
+            return False
+        if self.looped(leaf) is not None:  # an array's elements are checked by its loop
+            return False
+        if any(x.field.checksum and x.field.checksum.over != "bytes" for x in self.leaves):
+            return False
+        gaps = self.m.shortening.gaps if self.m.shortening else ()
+        if any(g.control == f.name for g in gaps):
+            return False
+        return not any(x.field.multiplexed_by and any(m.field == f.name for m in x.field.multiplexed_by.chain)
+                       for x in self.leaves)
 
     def looped(self, leaf: Leaf) -> Optional[RepeatCode]:
         """The code of the Repeat whose elements hold `leaf`, if any."""
@@ -820,6 +839,10 @@ class MessageCode:
             guard = self.sent_guard(leaf, gap_of(self.m, leaf), encoding=False)
             checks = Code()
             expr = self.view.decode_leaf(checks, self.m, leaf, self.sent_offset(leaf), bounded)
+            if leaf.var in self.const_items:  # its bytes compared, its number read for the error only
+                item, want, read = self.const_items[leaf.var]
+                checks.lines = [f"if {item} != {want!r}:", f"    {leaf.var} = {read}",
+                                *("    " + line for line in checks.lines)]
             kept = expr is not None and guard is not None and expr != leaf.var  # read under the guard
             if guard != run.guard and (checks.lines or kept or guard is None):
                 run.close()
@@ -1216,7 +1239,12 @@ class MessageCode:
                 leaf = chunk.leaves[0][0]
                 if chunk.code == "s":
                     order = leaf.field.byte_order or self.view.p.framing.byte_order
-                    c(f"{leaf.var} = int.from_bytes({var}, {order!r}, signed={chunk.signed})")
+                    read = f"int.from_bytes({var}, {order!r}{', signed=True' if chunk.signed else ''})"
+                    if self.only_checked(leaf):
+                        raw = self.view.fixed_raw(leaf.field) % (1 << (8 * chunk.nbytes))
+                        self.const_items[leaf.var] = (var, raw.to_bytes(chunk.nbytes, order), read)
+                    else:
+                        c(f"{leaf.var} = {read}")
                 continue
             if chunk.code == "s":
                 c(f"{var} = int.from_bytes({var}, {chunk.order!r})")
@@ -1588,22 +1616,27 @@ def _bit_reversed_hqx(p) -> bool:
     return p.width == 16 and p.poly == 0x1021 and p.refin and p.refout
 
 
-def _stdlib_crc(p, name: str = "") -> Optional[tuple[str, str]]:
-    """(import, call expression on `data`) for a CRC the standard library computes in C:
-    binascii.crc_hqx is poly 0x1021 unreflected from any start value, zlib.crc32 is poly
-    0x04C11DB7 reflected and inverted on the way in and out. Poly 0x1021 reflected (X.25,
-    MAVLink's MCRF4XX, KERMIT) is crc_hqx of the bytes bit-reversed, its result bit-reversed:
-    reflecting every byte in and the register out is the whole of a reflected CRC. None for
-    any other CRC."""
+def _stdlib_crc(p, name: str = "") -> Optional[tuple[str, list[str]]]:
+    """(import, body lines computing the CRC of `data`) for a CRC the standard library
+    computes in C: binascii.crc_hqx is poly 0x1021 unreflected from any start value,
+    zlib.crc32 is poly 0x04C11DB7 reflected and inverted on the way in and out. Poly 0x1021
+    reflected (X.25, MAVLink's MCRF4XX, KERMIT) is crc_hqx of the bytes bit-reversed, its
+    result bit-reversed: reflecting every byte in and the register out is the whole of a
+    reflected CRC. None for any other CRC."""
+    def out(value: str, xorout: int) -> str:
+        return f"{value} ^ {xorout:#x}" if xorout else value
     if p.width == 16 and p.poly == 0x1021 and not p.refin and not p.refout:
-        return "from binascii import crc_hqx as _crc_hqx", f"_crc_hqx(data, {p.init:#x}) ^ {p.xorout:#x}"
+        return "from binascii import crc_hqx as _crc_hqx", [f"return {out(f'_crc_hqx(data, {p.init:#x})', p.xorout)}"]
     if _bit_reversed_hqx(p):
+        table = f"_BITS_REVERSED_{name}"
+        # bytes and bytearray translate themselves; anything else is copied to bytes first
         return ("from binascii import crc_hqx as _crc_hqx",
-                f"_reflected_{name}(_crc_hqx(bytes(data).translate(_BITS_REVERSED_{name}), {p.init:#x})) ^ {p.xorout:#x}")
+                [f"x = _crc_hqx((data if isinstance(data, (bytes, bytearray)) else bytes(data)).translate({table}), {p.init:#x})",
+                 f"return {out(f'({table}[x & 0xFF] << 8 | {table}[x >> 8])', p.xorout)}  # x bit-reversed"])
     if p.width == 32 and p.poly == 0x04C11DB7 and p.refin and p.refout:
         start = reflect(p.init, 32) ^ 0xFFFFFFFF
         return ("from zlib import crc32 as _crc32",
-                f"_crc32(data, {start:#x}) ^ {0xFFFFFFFF ^ p.xorout:#x}")
+                [f"return {out(f'_crc32(data, {start:#x})', 0xFFFFFFFF ^ p.xorout)}"])
     return None
 
 
@@ -1617,16 +1650,12 @@ def _checksum_code(cs) -> str:
           f"refin={p.refin} refout={p.refout} xorout={p.xorout:#x}, computed by the standard library in C")
         c(fast[0])
         if _bit_reversed_hqx(cs.crc):  # a table of each byte bit-reversed, its own so that CRCs never share names
-            table = f"_BITS_REVERSED_{name}"
-            c(f"{table} = bytes(int(f'{{b:08b}}'[::-1], 2) for b in range(256))")
-            c("")
-            c("")
-            c(f"def _reflected_{name}(x: int) -> int:")
-            c(f"    return {table}[x & 0xFF] << 8 | {table}[x >> 8]")
+            c(f"_BITS_REVERSED_{name} = bytes(int(f'{{b:08b}}'[::-1], 2) for b in range(256))")
         c("")
         c("")
         c(f"def _checksum_{name}(data: _Buffer) -> int:")
-        c(f"    return {fast[1]}")
+        for line in fast[1]:
+            c(f"    {line}")
     elif cs.algorithm == "crc":
         p = cs.crc
         mask = (1 << p.width) - 1
@@ -1915,12 +1944,13 @@ class ModuleView(PythonView):
         message's extra byte when the checksum takes one. `cut`: the coverage ends
         `cut` bytes early, with a payload cut short."""
         name = _checksum_name(cs)
+        # a join takes any bytes-like part, and copies once
         if cut:
             if cs.extra:
-                return f"_checksum_{name}(bytes({buf}[{start}:{end} - cut]) + {bytes([extra])!r})"
+                return f"_checksum_{name}(b''.join(({buf}[{start}:{end} - cut], {bytes([extra])!r})))"
             return f"_checksum_{name}({buf}[{start}:{end} - cut])"
         if cs.extra:
-            data, size = f"bytes({buf}[{start}:{end}]) + {bytes([extra])!r}", end - start + 1
+            data, size = f"b''.join(({buf}[{start}:{end}], {bytes([extra])!r}))", end - start + 1
             if _straight_line_crc(cs, size):
                 return f"_checksum_{name}_{size}({data}, 0)"
             return f"_checksum_{name}({data})"
@@ -1935,7 +1965,11 @@ class ModuleView(PythonView):
             # each message's frame sizes as a range: a counted array's are as many as its elements
             keys = [(value, sizes_range(facts["least"].get(name, size), size, facts["steps"].get(name, 1)), direction, name)
                     for value, size, direction, name in facts["frames"]]
-            facts = dict(facts, value_expr=self.read_expr("d", "", facts), sized_frames=keys)
+            facts = dict(facts, value_expr=self.read_expr("d", "", facts), sized_frames=keys, raw_key=None)
+            if facts["bytes"] > 1 and not facts["shift"] and facts["mask"] == (1 << (8 * facts["bytes"])) - 1:
+                # a key of whole bytes is looked up by the bytes themselves, no number read
+                facts["raw_key"] = {"slice": f"d[{facts['first']}:{facts['last']}]", "bytes": facts["bytes"],
+                                    "order": facts["byte_order"]}
         if facts["kind"] == "bits" and self.p.framing.max_bits:  # the word form: a left-aligned int
             facts = dict(facts, word_limit=1 << self.p.framing.max_bits,
                          word_shift=self.p.framing.max_bits - facts["head_bits"])

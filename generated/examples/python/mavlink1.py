@@ -488,12 +488,9 @@ from binascii import crc_hqx as _crc_hqx
 _BITS_REVERSED_crc16_1021_ffff_rr_0_extra = bytes(int(f'{b:08b}'[::-1], 2) for b in range(256))
 
 
-def _reflected_crc16_1021_ffff_rr_0_extra(x: int) -> int:
-    return _BITS_REVERSED_crc16_1021_ffff_rr_0_extra[x & 0xFF] << 8 | _BITS_REVERSED_crc16_1021_ffff_rr_0_extra[x >> 8]
-
-
 def _checksum_crc16_1021_ffff_rr_0_extra(data: _Buffer) -> int:
-    return _reflected_crc16_1021_ffff_rr_0_extra(_crc_hqx(bytes(data).translate(_BITS_REVERSED_crc16_1021_ffff_rr_0_extra), 0xffff)) ^ 0x0
+    x = _crc_hqx((data if isinstance(data, (bytes, bytearray)) else bytes(data)).translate(_BITS_REVERSED_crc16_1021_ffff_rr_0_extra), 0xffff)
+    return (_BITS_REVERSED_crc16_1021_ffff_rr_0_extra[x & 0xFF] << 8 | _BITS_REVERSED_crc16_1021_ffff_rr_0_extra[x >> 8])  # x bit-reversed
 
 
 def _as_input(data: object) -> _Buffer:
@@ -567,7 +564,7 @@ def _encode_heartbeat(m: Heartbeat) -> bytes:
     r_checksum = 0
     b = bytearray(17)
     _S_heartbeat_0.pack_into(b, 0, 254, 9, r_seq, r_sysid, r_compid, 0, r_custom_mode, r_type, r_autopilot, r_base_mode, r_system_status, r_mavlink_version, r_checksum)
-    b[15:17] = _checksum_crc16_1021_ffff_rr_0_extra(bytes(b[1:15]) + b'2').to_bytes(2, 'little')
+    b[15:17] = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((b[1:15], b'2'))).to_bytes(2, 'little')
     return bytes(b)
 
 
@@ -578,7 +575,7 @@ def _decode_heartbeat(d: _Buffer) -> Heartbeat:
     if len(d) != 17:
         raise _dec('heartbeat', None, len(d), 'length', '17 bytes', 0)
     r_stx, r_len, r_seq, r_sysid, r_compid, r_msgid, r_custom_mode, r_type, r_autopilot, r_base_mode, r_system_status, r_mavlink_version, r_checksum, = _S_heartbeat_0.unpack_from(d, 0)
-    x = _checksum_crc16_1021_ffff_rr_0_extra(bytes(d[1:15]) + b'2')
+    x = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((d[1:15], b'2')))
     if r_checksum != x:
         raise _dec('heartbeat', 'checksum', r_checksum, 'checksum', hex(x), 120, None)
     if r_stx != 254:
@@ -701,7 +698,7 @@ def _encode_sys_status(m: SysStatus) -> bytes:
     r_checksum = 0
     b = bytearray(39)
     _S_sys_status_0.pack_into(b, 0, 254, 31, r_seq, r_sysid, r_compid, 1, r_onboard_control_sensors_present, r_onboard_control_sensors_enabled, r_onboard_control_sensors_health, r_load, r_voltage_battery, r_current_battery, r_drop_rate_comm, r_errors_comm, r_errors_count1, r_errors_count2, r_errors_count3, r_errors_count4, r_battery_remaining, r_checksum)
-    b[37:39] = _checksum_crc16_1021_ffff_rr_0_extra(bytes(b[1:37]) + b'|').to_bytes(2, 'little')
+    b[37:39] = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((b[1:37], b'|'))).to_bytes(2, 'little')
     return bytes(b)
 
 
@@ -712,7 +709,7 @@ def _decode_sys_status(d: _Buffer) -> SysStatus:
     if len(d) != 39:
         raise _dec('sys_status', None, len(d), 'length', '39 bytes', 0)
     r_stx, r_len, r_seq, r_sysid, r_compid, r_msgid, r_onboard_control_sensors_present, r_onboard_control_sensors_enabled, r_onboard_control_sensors_health, r_load, r_voltage_battery, r_current_battery, r_drop_rate_comm, r_errors_comm, r_errors_count1, r_errors_count2, r_errors_count3, r_errors_count4, r_battery_remaining, r_checksum, = _S_sys_status_0.unpack_from(d, 0)
-    x = _checksum_crc16_1021_ffff_rr_0_extra(bytes(d[1:37]) + b'|')
+    x = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((d[1:37], b'|')))
     if r_checksum != x:
         raise _dec('sys_status', 'checksum', r_checksum, 'checksum', hex(x), 296, None)
     if r_stx != 254:
@@ -798,7 +795,7 @@ def _encode_param_value(m: ParamValue) -> bytes:
     r_checksum = 0
     b = bytearray(33)
     _S_param_value_0.pack_into(b, 0, 254, 25, r_seq, r_sysid, r_compid, 22, r_param_value, r_param_count, r_param_index, r_param_id, r_param_type, r_checksum)
-    b[31:33] = _checksum_crc16_1021_ffff_rr_0_extra(bytes(b[1:31]) + b'\xdc').to_bytes(2, 'little')
+    b[31:33] = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((b[1:31], b'\xdc'))).to_bytes(2, 'little')
     return bytes(b)
 
 
@@ -809,7 +806,7 @@ def _decode_param_value(d: _Buffer) -> ParamValue:
     if len(d) != 33:
         raise _dec('param_value', None, len(d), 'length', '33 bytes', 0)
     r_stx, r_len, r_seq, r_sysid, r_compid, r_msgid, r_param_value, r_param_count, r_param_index, r_param_id, r_param_type, r_checksum, = _S_param_value_0.unpack_from(d, 0)
-    x = _checksum_crc16_1021_ffff_rr_0_extra(bytes(d[1:31]) + b'\xdc')
+    x = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((d[1:31], b'\xdc')))
     if r_checksum != x:
         raise _dec('param_value', 'checksum', r_checksum, 'checksum', hex(x), 248, None)
     if r_stx != 254:
@@ -915,7 +912,7 @@ def _encode_gps_raw_int(m: GpsRawInt) -> bytes:
     r_checksum = 0
     b = bytearray(38)
     _S_gps_raw_int_0.pack_into(b, 0, 254, 30, r_seq, r_sysid, r_compid, 24, r_time_usec, r_lat, r_lon, r_alt, r_eph, r_epv, r_vel, r_cog, r_fix_type, r_satellites_visible, r_checksum)
-    b[36:38] = _checksum_crc16_1021_ffff_rr_0_extra(bytes(b[1:36]) + b'\x18').to_bytes(2, 'little')
+    b[36:38] = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((b[1:36], b'\x18'))).to_bytes(2, 'little')
     return bytes(b)
 
 
@@ -926,7 +923,7 @@ def _decode_gps_raw_int(d: _Buffer) -> GpsRawInt:
     if len(d) != 38:
         raise _dec('gps_raw_int', None, len(d), 'length', '38 bytes', 0)
     r_stx, r_len, r_seq, r_sysid, r_compid, r_msgid, r_time_usec, r_lat, r_lon, r_alt, r_eph, r_epv, r_vel, r_cog, r_fix_type, r_satellites_visible, r_checksum, = _S_gps_raw_int_0.unpack_from(d, 0)
-    x = _checksum_crc16_1021_ffff_rr_0_extra(bytes(d[1:36]) + b'\x18')
+    x = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((d[1:36], b'\x18')))
     if r_checksum != x:
         raise _dec('gps_raw_int', 'checksum', r_checksum, 'checksum', hex(x), 288, None)
     if r_stx != 254:
@@ -1041,7 +1038,7 @@ def _encode_attitude(m: Attitude) -> bytes:
     r_checksum = 0
     b = bytearray(36)
     _S_attitude_0.pack_into(b, 0, 254, 28, r_seq, r_sysid, r_compid, 30, r_time_boot_ms, r_roll, r_pitch, r_yaw, r_rollspeed, r_pitchspeed, r_yawspeed, r_checksum)
-    b[34:36] = _checksum_crc16_1021_ffff_rr_0_extra(bytes(b[1:34]) + b"'").to_bytes(2, 'little')
+    b[34:36] = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((b[1:34], b"'"))).to_bytes(2, 'little')
     return bytes(b)
 
 
@@ -1052,7 +1049,7 @@ def _decode_attitude(d: _Buffer) -> Attitude:
     if len(d) != 36:
         raise _dec('attitude', None, len(d), 'length', '36 bytes', 0)
     r_stx, r_len, r_seq, r_sysid, r_compid, r_msgid, r_time_boot_ms, r_roll, r_pitch, r_yaw, r_rollspeed, r_pitchspeed, r_yawspeed, r_checksum, = _S_attitude_0.unpack_from(d, 0)
-    x = _checksum_crc16_1021_ffff_rr_0_extra(bytes(d[1:34]) + b"'")
+    x = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((d[1:34], b"'")))
     if r_checksum != x:
         raise _dec('attitude', 'checksum', r_checksum, 'checksum', hex(x), 272, None)
     if r_stx != 254:
@@ -1205,7 +1202,7 @@ def _encode_command_long(m: CommandLong) -> bytes:
     r_checksum = 0
     b = bytearray(41)
     _S_command_long_0.pack_into(b, 0, 254, 33, r_seq, r_sysid, r_compid, 76, r_param1, r_param2, r_param3, r_param4, r_param5, r_param6, r_param7, r_command, r_target_system, r_target_component, r_confirmation, r_checksum)
-    b[39:41] = _checksum_crc16_1021_ffff_rr_0_extra(bytes(b[1:39]) + b'\x98').to_bytes(2, 'little')
+    b[39:41] = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((b[1:39], b'\x98'))).to_bytes(2, 'little')
     return bytes(b)
 
 
@@ -1216,7 +1213,7 @@ def _decode_command_long(d: _Buffer) -> CommandLong:
     if len(d) != 41:
         raise _dec('command_long', None, len(d), 'length', '41 bytes', 0)
     r_stx, r_len, r_seq, r_sysid, r_compid, r_msgid, r_param1, r_param2, r_param3, r_param4, r_param5, r_param6, r_param7, r_command, r_target_system, r_target_component, r_confirmation, r_checksum, = _S_command_long_0.unpack_from(d, 0)
-    x = _checksum_crc16_1021_ffff_rr_0_extra(bytes(d[1:39]) + b'\x98')
+    x = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((d[1:39], b'\x98')))
     if r_checksum != x:
         raise _dec('command_long', 'checksum', r_checksum, 'checksum', hex(x), 312, None)
     if r_stx != 254:

@@ -217,6 +217,8 @@ class Heartbeat:
         """A heartbeat message from its wire form; a DecodeError if it is not one.
         With `key`, the frame must be signed with it."""
         d = data if data.__class__ is bytes else _as_input(data)
+        if key is None and len(d) > 2 and not d[2] & 1:  # no trailer
+            return _untrailed(_decode_heartbeat(d))
         body, t = _split_trailer(d)
         return _read_trailer(_decode_heartbeat(body), d, len(body), t, key)
 
@@ -310,6 +312,8 @@ class SysStatus:
         """A sys_status message from its wire form; a DecodeError if it is not one.
         With `key`, the frame must be signed with it."""
         d = data if data.__class__ is bytes else _as_input(data)
+        if key is None and len(d) > 2 and not d[2] & 1:  # no trailer
+            return _untrailed(_decode_sys_status(d))
         body, t = _split_trailer(d)
         return _read_trailer(_decode_sys_status(body), d, len(body), t, key)
 
@@ -377,6 +381,8 @@ class ParamValue:
         """A param_value message from its wire form; a DecodeError if it is not one.
         With `key`, the frame must be signed with it."""
         d = data if data.__class__ is bytes else _as_input(data)
+        if key is None and len(d) > 2 and not d[2] & 1:  # no trailer
+            return _untrailed(_decode_param_value(d))
         body, t = _split_trailer(d)
         return _read_trailer(_decode_param_value(body), d, len(body), t, key)
 
@@ -477,6 +483,8 @@ class GpsRawInt:
         """A gps_raw_int message from its wire form; a DecodeError if it is not one.
         With `key`, the frame must be signed with it."""
         d = data if data.__class__ is bytes else _as_input(data)
+        if key is None and len(d) > 2 and not d[2] & 1:  # no trailer
+            return _untrailed(_decode_gps_raw_int(d))
         body, t = _split_trailer(d)
         return _read_trailer(_decode_gps_raw_int(body), d, len(body), t, key)
 
@@ -554,6 +562,8 @@ class Attitude:
         """A attitude message from its wire form; a DecodeError if it is not one.
         With `key`, the frame must be signed with it."""
         d = data if data.__class__ is bytes else _as_input(data)
+        if key is None and len(d) > 2 and not d[2] & 1:  # no trailer
+            return _untrailed(_decode_attitude(d))
         body, t = _split_trailer(d)
         return _read_trailer(_decode_attitude(body), d, len(body), t, key)
 
@@ -623,6 +633,8 @@ class CommandAck:
         """A command_ack message from its wire form; a DecodeError if it is not one.
         With `key`, the frame must be signed with it."""
         d = data if data.__class__ is bytes else _as_input(data)
+        if key is None and len(d) > 2 and not d[2] & 1:  # no trailer
+            return _untrailed(_decode_command_ack(d))
         body, t = _split_trailer(d)
         return _read_trailer(_decode_command_ack(body), d, len(body), t, key)
 
@@ -641,12 +653,9 @@ from binascii import crc_hqx as _crc_hqx
 _BITS_REVERSED_crc16_1021_ffff_rr_0_extra = bytes(int(f'{b:08b}'[::-1], 2) for b in range(256))
 
 
-def _reflected_crc16_1021_ffff_rr_0_extra(x: int) -> int:
-    return _BITS_REVERSED_crc16_1021_ffff_rr_0_extra[x & 0xFF] << 8 | _BITS_REVERSED_crc16_1021_ffff_rr_0_extra[x >> 8]
-
-
 def _checksum_crc16_1021_ffff_rr_0_extra(data: _Buffer) -> int:
-    return _reflected_crc16_1021_ffff_rr_0_extra(_crc_hqx(bytes(data).translate(_BITS_REVERSED_crc16_1021_ffff_rr_0_extra), 0xffff)) ^ 0x0
+    x = _crc_hqx((data if isinstance(data, (bytes, bytearray)) else bytes(data)).translate(_BITS_REVERSED_crc16_1021_ffff_rr_0_extra), 0xffff)
+    return (_BITS_REVERSED_crc16_1021_ffff_rr_0_extra[x & 0xFF] << 8 | _BITS_REVERSED_crc16_1021_ffff_rr_0_extra[x >> 8])  # x bit-reversed
 
 
 def _as_input(data: object) -> _Buffer:
@@ -737,7 +746,7 @@ def _encode_heartbeat(m: Heartbeat) -> bytes:
     cut = 8 - len(b[11:19].rstrip(b'\0'))  # trailing zeros are not sent
     del b[19 - cut:19]
     b[1:2] = (9 - cut).to_bytes(1, 'little')
-    b[19 - cut:21 - cut] = _checksum_crc16_1021_ffff_rr_0_extra(bytes(b[1:19 - cut]) + b'2').to_bytes(2, 'little')
+    b[19 - cut:21 - cut] = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((b[1:19 - cut], b'2'))).to_bytes(2, 'little')
     return bytes(b)
 
 
@@ -751,8 +760,7 @@ def _decode_heartbeat(d: _Buffer) -> Heartbeat:
     if cut:  # the payload bytes left off read as zeros
         d = b''.join((d[:19 - cut], bytes(cut), d[19 - cut:]))
     r_stx, r_len, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, c0_7, r_custom_mode, r_type, r_autopilot, r_base_mode, r_system_status, r_mavlink_version, r_checksum, = _S_heartbeat_0.unpack_from(d, 0)
-    r_msgid = int.from_bytes(c0_7, 'little', signed=False)
-    x = _checksum_crc16_1021_ffff_rr_0_extra(bytes(s[1:19 - cut]) + b'2')
+    x = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((s[1:19 - cut], b'2')))
     if r_checksum != x:
         raise _dec('heartbeat', 'checksum', r_checksum, 'checksum', hex(x), 152 - 8 * cut, None)
     if r_stx != 253:
@@ -761,8 +769,10 @@ def _decode_heartbeat(d: _Buffer) -> Heartbeat:
         raise _dec('heartbeat', 'len', r_len, 'length', f'{9 - cut} for heartbeat', 8, None)
     if r_incompat_flags & 0xfe:
         raise _dec('heartbeat', 'incompat_flags', r_incompat_flags, 'flags', 'only the bits of incompat_flags', 16, None)
-    if r_msgid != 0:
-        raise _dec('heartbeat', 'msgid', r_msgid, 'const', '0', 56, None)
+    if c0_7 != b'\x00\x00\x00':
+        r_msgid = int.from_bytes(c0_7, 'little')
+        if r_msgid != 0:
+            raise _dec('heartbeat', 'msgid', r_msgid, 'const', '0', 56, None)
     o = _object_new(Heartbeat)
     o.incompat_flags = _FLAGS_incompat_flags[r_incompat_flags]
     o.compat_flags = r_compat_flags
@@ -914,7 +924,7 @@ def _encode_sys_status(m: SysStatus) -> bytes:
     cut = 42 - len(b[11:53].rstrip(b'\0'))  # trailing zeros are not sent
     del b[53 - cut:53]
     b[1:2] = (43 - cut).to_bytes(1, 'little')
-    b[53 - cut:55 - cut] = _checksum_crc16_1021_ffff_rr_0_extra(bytes(b[1:53 - cut]) + b'|').to_bytes(2, 'little')
+    b[53 - cut:55 - cut] = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((b[1:53 - cut], b'|'))).to_bytes(2, 'little')
     return bytes(b)
 
 
@@ -928,8 +938,7 @@ def _decode_sys_status(d: _Buffer) -> SysStatus:
     if cut:  # the payload bytes left off read as zeros
         d = b''.join((d[:53 - cut], bytes(cut), d[53 - cut:]))
     r_stx, r_len, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, c0_7, r_onboard_control_sensors_present, r_onboard_control_sensors_enabled, r_onboard_control_sensors_health, r_load, r_voltage_battery, r_current_battery, r_drop_rate_comm, r_errors_comm, r_errors_count1, r_errors_count2, r_errors_count3, r_errors_count4, r_battery_remaining, r_onboard_control_sensors_present_extended, r_onboard_control_sensors_enabled_extended, r_onboard_control_sensors_health_extended, r_checksum, = _S_sys_status_0.unpack_from(d, 0)
-    r_msgid = int.from_bytes(c0_7, 'little', signed=False)
-    x = _checksum_crc16_1021_ffff_rr_0_extra(bytes(s[1:53 - cut]) + b'|')
+    x = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((s[1:53 - cut], b'|')))
     if r_checksum != x:
         raise _dec('sys_status', 'checksum', r_checksum, 'checksum', hex(x), 424 - 8 * cut, None)
     if r_stx != 253:
@@ -938,8 +947,10 @@ def _decode_sys_status(d: _Buffer) -> SysStatus:
         raise _dec('sys_status', 'len', r_len, 'length', f'{43 - cut} for sys_status', 8, None)
     if r_incompat_flags & 0xfe:
         raise _dec('sys_status', 'incompat_flags', r_incompat_flags, 'flags', 'only the bits of incompat_flags', 16, None)
-    if r_msgid != 1:
-        raise _dec('sys_status', 'msgid', r_msgid, 'const', '1', 56, None)
+    if c0_7 != b'\x01\x00\x00':
+        r_msgid = int.from_bytes(c0_7, 'little')
+        if r_msgid != 1:
+            raise _dec('sys_status', 'msgid', r_msgid, 'const', '1', 56, None)
     o = _object_new(SysStatus)
     o.incompat_flags = _FLAGS_incompat_flags[r_incompat_flags]
     o.compat_flags = r_compat_flags
@@ -1038,7 +1049,7 @@ def _encode_param_value(m: ParamValue) -> bytes:
     cut = 24 - len(b[11:35].rstrip(b'\0'))  # trailing zeros are not sent
     del b[35 - cut:35]
     b[1:2] = (25 - cut).to_bytes(1, 'little')
-    b[35 - cut:37 - cut] = _checksum_crc16_1021_ffff_rr_0_extra(bytes(b[1:35 - cut]) + b'\xdc').to_bytes(2, 'little')
+    b[35 - cut:37 - cut] = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((b[1:35 - cut], b'\xdc'))).to_bytes(2, 'little')
     return bytes(b)
 
 
@@ -1052,8 +1063,7 @@ def _decode_param_value(d: _Buffer) -> ParamValue:
     if cut:  # the payload bytes left off read as zeros
         d = b''.join((d[:35 - cut], bytes(cut), d[35 - cut:]))
     r_stx, r_len, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, c0_7, r_param_value, r_param_count, r_param_index, r_param_id, r_param_type, r_checksum, = _S_param_value_0.unpack_from(d, 0)
-    r_msgid = int.from_bytes(c0_7, 'little', signed=False)
-    x = _checksum_crc16_1021_ffff_rr_0_extra(bytes(s[1:35 - cut]) + b'\xdc')
+    x = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((s[1:35 - cut], b'\xdc')))
     if r_checksum != x:
         raise _dec('param_value', 'checksum', r_checksum, 'checksum', hex(x), 280 - 8 * cut, None)
     if r_stx != 253:
@@ -1062,8 +1072,10 @@ def _decode_param_value(d: _Buffer) -> ParamValue:
         raise _dec('param_value', 'len', r_len, 'length', f'{25 - cut} for param_value', 8, None)
     if r_incompat_flags & 0xfe:
         raise _dec('param_value', 'incompat_flags', r_incompat_flags, 'flags', 'only the bits of incompat_flags', 16, None)
-    if r_msgid != 22:
-        raise _dec('param_value', 'msgid', r_msgid, 'const', '22', 56, None)
+    if c0_7 != b'\x16\x00\x00':
+        r_msgid = int.from_bytes(c0_7, 'little')
+        if r_msgid != 22:
+            raise _dec('param_value', 'msgid', r_msgid, 'const', '22', 56, None)
     if not _isfinite(r_param_value):
         raise _dec('param_value', 'param_value', r_param_value, 'finite', 'a finite number', 80, None)
     o = _object_new(ParamValue)
@@ -1216,7 +1228,7 @@ def _encode_gps_raw_int(m: GpsRawInt) -> bytes:
     cut = 51 - len(b[11:62].rstrip(b'\0'))  # trailing zeros are not sent
     del b[62 - cut:62]
     b[1:2] = (52 - cut).to_bytes(1, 'little')
-    b[62 - cut:64 - cut] = _checksum_crc16_1021_ffff_rr_0_extra(bytes(b[1:62 - cut]) + b'\x18').to_bytes(2, 'little')
+    b[62 - cut:64 - cut] = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((b[1:62 - cut], b'\x18'))).to_bytes(2, 'little')
     return bytes(b)
 
 
@@ -1230,8 +1242,7 @@ def _decode_gps_raw_int(d: _Buffer) -> GpsRawInt:
     if cut:  # the payload bytes left off read as zeros
         d = b''.join((d[:62 - cut], bytes(cut), d[62 - cut:]))
     r_stx, r_len, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, c0_7, r_time_usec, r_lat, r_lon, r_alt, r_eph, r_epv, r_vel, r_cog, r_fix_type, r_satellites_visible, r_alt_ellipsoid, r_h_acc, r_v_acc, r_vel_acc, r_hdg_acc, r_yaw, r_checksum, = _S_gps_raw_int_0.unpack_from(d, 0)
-    r_msgid = int.from_bytes(c0_7, 'little', signed=False)
-    x = _checksum_crc16_1021_ffff_rr_0_extra(bytes(s[1:62 - cut]) + b'\x18')
+    x = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((s[1:62 - cut], b'\x18')))
     if r_checksum != x:
         raise _dec('gps_raw_int', 'checksum', r_checksum, 'checksum', hex(x), 496 - 8 * cut, None)
     if r_stx != 253:
@@ -1240,8 +1251,10 @@ def _decode_gps_raw_int(d: _Buffer) -> GpsRawInt:
         raise _dec('gps_raw_int', 'len', r_len, 'length', f'{52 - cut} for gps_raw_int', 8, None)
     if r_incompat_flags & 0xfe:
         raise _dec('gps_raw_int', 'incompat_flags', r_incompat_flags, 'flags', 'only the bits of incompat_flags', 16, None)
-    if r_msgid != 24:
-        raise _dec('gps_raw_int', 'msgid', r_msgid, 'const', '24', 56, None)
+    if c0_7 != b'\x18\x00\x00':
+        r_msgid = int.from_bytes(c0_7, 'little')
+        if r_msgid != 24:
+            raise _dec('gps_raw_int', 'msgid', r_msgid, 'const', '24', 56, None)
     o = _object_new(GpsRawInt)
     o.incompat_flags = _FLAGS_incompat_flags[r_incompat_flags]
     o.compat_flags = r_compat_flags
@@ -1372,7 +1385,7 @@ def _encode_attitude(m: Attitude) -> bytes:
     cut = 27 - len(b[11:38].rstrip(b'\0'))  # trailing zeros are not sent
     del b[38 - cut:38]
     b[1:2] = (28 - cut).to_bytes(1, 'little')
-    b[38 - cut:40 - cut] = _checksum_crc16_1021_ffff_rr_0_extra(bytes(b[1:38 - cut]) + b"'").to_bytes(2, 'little')
+    b[38 - cut:40 - cut] = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((b[1:38 - cut], b"'"))).to_bytes(2, 'little')
     return bytes(b)
 
 
@@ -1386,8 +1399,7 @@ def _decode_attitude(d: _Buffer) -> Attitude:
     if cut:  # the payload bytes left off read as zeros
         d = b''.join((d[:38 - cut], bytes(cut), d[38 - cut:]))
     r_stx, r_len, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, c0_7, r_time_boot_ms, r_roll, r_pitch, r_yaw, r_rollspeed, r_pitchspeed, r_yawspeed, r_checksum, = _S_attitude_0.unpack_from(d, 0)
-    r_msgid = int.from_bytes(c0_7, 'little', signed=False)
-    x = _checksum_crc16_1021_ffff_rr_0_extra(bytes(s[1:38 - cut]) + b"'")
+    x = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((s[1:38 - cut], b"'")))
     if r_checksum != x:
         raise _dec('attitude', 'checksum', r_checksum, 'checksum', hex(x), 304 - 8 * cut, None)
     if r_stx != 253:
@@ -1396,8 +1408,10 @@ def _decode_attitude(d: _Buffer) -> Attitude:
         raise _dec('attitude', 'len', r_len, 'length', f'{28 - cut} for attitude', 8, None)
     if r_incompat_flags & 0xfe:
         raise _dec('attitude', 'incompat_flags', r_incompat_flags, 'flags', 'only the bits of incompat_flags', 16, None)
-    if r_msgid != 30:
-        raise _dec('attitude', 'msgid', r_msgid, 'const', '30', 56, None)
+    if c0_7 != b'\x1e\x00\x00':
+        r_msgid = int.from_bytes(c0_7, 'little')
+        if r_msgid != 30:
+            raise _dec('attitude', 'msgid', r_msgid, 'const', '30', 56, None)
     if not _isfinite(r_roll):
         raise _dec('attitude', 'roll', r_roll, 'finite', 'a finite number', 112, None)
     if not _isfinite(r_pitch):
@@ -1502,7 +1516,7 @@ def _encode_command_ack(m: CommandAck) -> bytes:
     cut = 9 - len(b[11:20].rstrip(b'\0'))  # trailing zeros are not sent
     del b[20 - cut:20]
     b[1:2] = (10 - cut).to_bytes(1, 'little')
-    b[20 - cut:22 - cut] = _checksum_crc16_1021_ffff_rr_0_extra(bytes(b[1:20 - cut]) + b'\x8f').to_bytes(2, 'little')
+    b[20 - cut:22 - cut] = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((b[1:20 - cut], b'\x8f'))).to_bytes(2, 'little')
     return bytes(b)
 
 
@@ -1516,8 +1530,7 @@ def _decode_command_ack(d: _Buffer) -> CommandAck:
     if cut:  # the payload bytes left off read as zeros
         d = b''.join((d[:20 - cut], bytes(cut), d[20 - cut:]))
     r_stx, r_len, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, c0_7, r_command, r_result, r_progress, r_result_param2, r_target_system, r_target_component, r_checksum, = _S_command_ack_0.unpack_from(d, 0)
-    r_msgid = int.from_bytes(c0_7, 'little', signed=False)
-    x = _checksum_crc16_1021_ffff_rr_0_extra(bytes(s[1:20 - cut]) + b'\x8f')
+    x = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((s[1:20 - cut], b'\x8f')))
     if r_checksum != x:
         raise _dec('command_ack', 'checksum', r_checksum, 'checksum', hex(x), 160 - 8 * cut, None)
     if r_stx != 253:
@@ -1526,8 +1539,10 @@ def _decode_command_ack(d: _Buffer) -> CommandAck:
         raise _dec('command_ack', 'len', r_len, 'length', f'{10 - cut} for command_ack', 8, None)
     if r_incompat_flags & 0xfe:
         raise _dec('command_ack', 'incompat_flags', r_incompat_flags, 'flags', 'only the bits of incompat_flags', 16, None)
-    if r_msgid != 77:
-        raise _dec('command_ack', 'msgid', r_msgid, 'const', '77', 56, None)
+    if c0_7 != b'M\x00\x00':
+        r_msgid = int.from_bytes(c0_7, 'little')
+        if r_msgid != 77:
+            raise _dec('command_ack', 'msgid', r_msgid, 'const', '77', 56, None)
     o = _object_new(CommandAck)
     o.incompat_flags = _FLAGS_incompat_flags[r_incompat_flags]
     o.compat_flags = r_compat_flags
@@ -1588,20 +1603,31 @@ for _value, _sizes, _direction, _fn in _KEYS:
 
 
 _UNIQUE = {key: fns[0] for key, fns in _ALL.items() if len(fns) == 1}
+# the same keyed by the id's bytes as a frame holds them: found without reading a number
+_UNIQUE_RAW = {(value.to_bytes(3, 'little'), size): fn
+               for (value, size), fn in _UNIQUE.items() if value >= 0}
 
 
 def decode(data: _Input, direction: Optional[str] = None, key: Optional[_Buffer] = None) -> AnyMessage:
     """Decode one frame; `direction` is needed only when ids are reused across directions.
     With `key`, the frame must carry a trailer whose signature that key makes."""
     d = data if data.__class__ is bytes else _as_input(data)
+    if key is None and len(d) > 2 and not d[2] & 1:
+        # no trailer and no key, the common frame: its message found in one lookup, the trailer's fields None
+        fn = _UNIQUE_RAW.get((d[7:10], len(d))) if direction is None else None
+        o = fn(d) if fn is not None else _decode_frame(d, direction)
+        o.link_id = None
+        o.timestamp = None
+        o.signature = None
+        return o
     body, t = _split_trailer(d)
     return _read_trailer(_decode_frame(body, direction), d, len(body), t, key)
 
 
 def _decode_frame(d: _Buffer, direction: Optional[str] = None) -> AnyMessage:
     """Decode one frame without its trailer."""
-    if direction is None and len(d) >= 10:
-        fn = _UNIQUE.get((int.from_bytes(d[7:10], 'little'), len(d)))
+    if direction is None:
+        fn = _UNIQUE_RAW.get((d[7:10], len(d)))
         if fn is not None:
             return fn(d)
     if len(d) < 10:
@@ -1734,6 +1760,14 @@ def _signing_key(key: object, error: Callable[..., CodecError]) -> bytes:
     if len(data) != 32:
         raise error(None, 'key', len(data), 'type', 'a key of 32 bytes')
     return data
+
+
+def _untrailed(o: _M) -> _M:
+    """`o` of a frame without the trailer: the trailer's fields None."""
+    o.link_id = None
+    o.timestamp = None
+    o.signature = None
+    return o
 
 
 def _read_trailer(o: _M, d: _Buffer, body: int, t: Optional[_Buffer], key: Optional[_Buffer]) -> _M:
