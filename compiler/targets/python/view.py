@@ -946,8 +946,22 @@ class MessageCode:
     def structs(self) -> list[tuple[str, str]]:
         if self.one_word():
             return []
-        own = [(f"_S_{self.fn}_{n}", s.fmt) for n, s in enumerate(segments_of(self.chunks()))]
+        segments = segments_of(self.chunks())
+        own = [(f"_S_{self.fn}_{n}", s.fmt) for n, s in enumerate(segments)]
+        if len(segments) == 1 and self.appended_checksum_head(segments, self.byte_checksums(), self.truncates()):
+            # the encoder's: the same bytes up to the checksum it appends
+            head = Segment(0, segments[0].chunks[:-1])
+            own.append((f"_S_{self.fn}_h", head.fmt))
         return own + [x for rc in self.repeats.values() for x in rc.structs()]
+
+    def byte_checksums(self) -> list:
+        """(leaf, checksum) of each checksum over the frame's bytes."""
+        return [(leaf, leaf.field.checksum) for leaf in self.leaves
+                if leaf.field.checksum and leaf.field.checksum.over == "bytes"]
+
+    def truncates(self) -> bool:
+        """Whether the encoder leaves bytes out: a payload's trailing zeros, or gaps."""
+        return bool(self.m.shortening and (self.m.shortening.trailing_zeros or self.m.shortening.gaps))
 
     def word_shifts(self) -> list[tuple[Leaf, int]]:
         """(leaf, shift) of every leaf in the frame read as one integer."""
@@ -980,17 +994,20 @@ class MessageCode:
             c(f"return w.to_bytes({size}, {self.m.wire.order!r})")
             return c.text()
         segments = segments_of(self.chunks())
-        crcs = [(leaf, leaf.field.checksum) for leaf in self.leaves
-                if leaf.field.checksum and leaf.field.checksum.over == "bytes"]
-        truncates = bool(self.m.shortening and (self.m.shortening.trailing_zeros or self.m.shortening.gaps))
+        crcs = self.byte_checksums()
+        truncates = self.truncates()
         single = len(segments) == 1 and not crcs and not truncates
-        if not truncates and self.checksum_last(segments, crcs):
+        head = self.appended_checksum_head(segments, crcs, truncates)
+        if head is not None:  # packed to bytes, cut short, and the checksum appended: no buffer patched
             leaf, cs = crcs[0]
-            values = ", ".join(self.chunk_value(ch) for ch in segments[0].chunks)
-            c(f"h = _S_{self.fn}_0.pack({values})")
+            chunk = segments[-1].chunks[-1]
+            values = ", ".join(self.chunk_value(ch) for seg in segments for ch in seg.chunks if ch is not chunk)
+            c(f"h = {head}.pack({values})")
+            if truncates:
+                self.truncate_head(c)
             order = leaf.field.byte_order or self.view.p.framing.byte_order
-            value = self.view.checksum_call(cs, "h", cs.byte_span[0], cs.byte_span[1], self.m.crc_extra, False)
-            c(f"return h + {value}.to_bytes({segments[1].chunks[0].nbytes}, {order!r})")
+            value = self.view.checksum_call(cs, "h", cs.byte_span[0], cs.byte_span[1], self.m.crc_extra, truncates)
+            c(f"return h + {value}.to_bytes({chunk.nbytes}, {order!r})")
             return c.text()
         if not single:
             c(f"b = bytearray({size})")
@@ -1021,14 +1038,47 @@ class MessageCode:
             c("return bytes(b)")
         return c.text()
 
-    def checksum_last(self, segments: list[Segment], crcs: list) -> bool:
-        """The frame is one struct's bytes and then its one checksum, alone and last, over
-        bytes before it: the checksum is appended to the packed bytes, not patched in."""
-        if len(crcs) != 1 or len(segments) != 2 or len(segments[1].chunks) != 1:
-            return False
-        chunk, (leaf, cs) = segments[1].chunks[0], crcs[0]
-        return (chunk.lone and chunk.repeat is None and chunk.leaves[0][0] is leaf and chunk.start + chunk.nbytes == self.m.size
-                and cs.byte_span[1] <= chunk.start and segments[0].start == 0)
+    def appended_checksum_head(self, segments: list[Segment], crcs: list, truncates: bool) -> Optional[str]:
+        """The struct that packs the frame up to its one checksum, when that checksum is alone
+        and last, over bytes before it (after a payload cut short at its trailing zeros, the
+        payload's end): the checksum is then appended to the packed bytes, not patched in.
+        None otherwise."""
+        if len(crcs) != 1 or not 1 <= len(segments) <= 2 or segments[0].start != 0:
+            return None
+        chunk, (leaf, cs) = segments[-1].chunks[-1], crcs[0]
+        if not (chunk.lone and chunk.repeat is None and chunk.leaves[0][0] is leaf
+                and chunk.start + chunk.nbytes == self.m.size and cs.byte_span[1] <= chunk.start):
+            return None
+        if len(segments) == 2 and len(segments[1].chunks) != 1:
+            return None
+        if truncates:
+            sh = self.m.shortening
+            if sh.gaps or sh.payload[1] != chunk.start or cs.byte_span[1] != chunk.start or not self.m.counts_sent(cs):
+                return None
+            length = self.length_leaf()
+            if length is not None and (length.pos + length.bits) // 8 > sh.payload[0] + sh.least:
+                return None
+        return f"_S_{self.fn}_0" if len(segments) == 2 else f"_S_{self.fn}_h"
+
+    def length_leaf(self) -> Optional[Leaf]:
+        """The leaf of the field counting the payload bytes sent, if the frame has one."""
+        name = self.m.shortening.length_field if self.m.shortening else None
+        return next((x for x in self.leaves if x.field.name == name), None) if name else None
+
+    def truncate_head(self, c: Code) -> None:
+        """The packed bytes `h` without the payload's trailing zeros (keeping the fewest it
+        must carry), the length field counting the bytes sent."""
+        sh = self.m.shortening
+        lo, hi = sh.payload[0] + sh.least, sh.payload[1]
+        c(f"cut = {hi - lo} - len(h[{lo}:{hi}].rstrip(b'\\0'))  # trailing zeros are not sent")
+        c("if cut:")
+        leaf = self.length_leaf()
+        if leaf is None:
+            c(f"    h = h[:{hi} - cut]")
+            return
+        at, n = leaf.pos // 8, leaf.bits // 8
+        order = leaf.field.byte_order or self.view.p.framing.byte_order
+        c(f"    h = b''.join((h[:{at}], ({leaf.field.const} - cut).to_bytes({n}, {order!r}), h[{at + n}:{hi} - cut]))")
 
     def leave_out_gaps(self, c: Code) -> None:
         """Drop the bytes of each gap that the frame does not send, the last gap first so
@@ -1089,7 +1139,9 @@ class MessageCode:
                 return lit(fixed)
             if chunk.code == "s":
                 order = leaf.field.byte_order or self.view.p.framing.byte_order
-                return f"{leaf.var}.to_bytes({chunk.nbytes}, {order!r}, signed={chunk.signed})"
+                if fixed is not None:  # its bytes, written out
+                    return repr((fixed % (1 << (8 * chunk.nbytes))).to_bytes(chunk.nbytes, order))
+                return f"{leaf.var}.to_bytes({chunk.nbytes}, {order!r}{', signed=True' if chunk.signed else ''})"
             return leaf.var
         expr = self.packed(chunk.leaves)
         if chunk.other:  # the fields in the other byte order, as the chunk's integer holds their bytes

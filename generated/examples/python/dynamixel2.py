@@ -270,7 +270,9 @@ class Status:
 AnyMessage = Union[Ping, Read, Write, Status, ]
 """A message of dynamixel2: what encode takes and decode returns."""
 _S_ping_0 = struct.Struct('<BBBBBHBH')
+_S_ping_h = struct.Struct('<BBBBBHB')
 _S_read_0 = struct.Struct('<BBBBBHBHHH')
+_S_read_h = struct.Struct('<BBBBBHBHH')
 _S_write_0 = struct.Struct('<BBBBBHBH64sH')
 _S_status_0 = struct.Struct('<BBBBBHBB64sH')
 
@@ -529,11 +531,8 @@ def _encode_ping(m: Ping) -> bytes:
             raise _enc('ping', 'id', r_id, 'type', 'an int')
         if not 0 <= r_id <= 255:
             raise _enc('ping', 'id', r_id, 'range', '0..255', None)
-    r_crc = 0
-    b = bytearray(10)
-    _S_ping_0.pack_into(b, 0, 255, 255, 253, 0, r_id, 3, 1, r_crc)
-    b[8:10] = _checksum_crc16_8005_0_nn_0_8(b, 0).to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_ping_h.pack(255, 255, 253, 0, r_id, 3, 1)
+    return h + _checksum_crc16_8005_0_nn_0_8(h, 0).to_bytes(2, 'little')
 
 
 def _decode_ping(d: _Buffer) -> Ping:
@@ -583,11 +582,8 @@ def _encode_read(m: Read) -> bytes:
                 raise _enc('read', 'data_length', r_data_length, 'type', 'an int')
             if not 0 <= r_data_length <= 65535:
                 raise _enc('read', 'data_length', r_data_length, 'range', '0..65535', None)
-    r_crc = 0
-    b = bytearray(14)
-    _S_read_0.pack_into(b, 0, 255, 255, 253, 0, r_id, 7, 2, r_address, r_data_length, r_crc)
-    b[12:14] = _checksum_crc16_8005_0_nn_0_12(b, 0).to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_read_h.pack(255, 255, 253, 0, r_id, 7, 2, r_address, r_data_length)
+    return h + _checksum_crc16_8005_0_nn_0_12(h, 0).to_bytes(2, 'little')
 
 
 def _decode_read(d: _Buffer) -> Read:

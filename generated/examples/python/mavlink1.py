@@ -477,11 +477,17 @@ class CommandLong:
 AnyMessage = Union[Heartbeat, SysStatus, ParamValue, GpsRawInt, Attitude, CommandLong, ]
 """A message of mavlink1: what encode takes and decode returns."""
 _S_heartbeat_0 = struct.Struct('<BBBBBBIBBBBBH')
+_S_heartbeat_h = struct.Struct('<BBBBBBIBBBBB')
 _S_sys_status_0 = struct.Struct('<BBBBBBIIIHHhHHHHHHbH')
+_S_sys_status_h = struct.Struct('<BBBBBBIIIHHhHHHHHHb')
 _S_param_value_0 = struct.Struct('<BBBBBBfHH16sBH')
+_S_param_value_h = struct.Struct('<BBBBBBfHH16sB')
 _S_gps_raw_int_0 = struct.Struct('<BBBBBBQiiiHHHHBBH')
+_S_gps_raw_int_h = struct.Struct('<BBBBBBQiiiHHHHBB')
 _S_attitude_0 = struct.Struct('<BBBBBBIffffffH')
+_S_attitude_h = struct.Struct('<BBBBBBIffffff')
 _S_command_long_0 = struct.Struct('<BBBBBBfffffffHBBBH')
+_S_command_long_h = struct.Struct('<BBBBBBfffffffHBBB')
 
 # CRC-16/MCRF4XX: width=16 poly=0x1021 init=0xffff refin=True refout=True xorout=0x0, computed by the standard library in C
 from binascii import crc_hqx as _crc_hqx
@@ -561,11 +567,8 @@ def _encode_heartbeat(m: Heartbeat) -> bytes:
                 raise _enc('heartbeat', 'mavlink_version', r_mavlink_version, 'type', 'an int')
             if not 0 <= r_mavlink_version <= 255:
                 raise _enc('heartbeat', 'mavlink_version', r_mavlink_version, 'range', '0..255', None)
-    r_checksum = 0
-    b = bytearray(17)
-    _S_heartbeat_0.pack_into(b, 0, 254, 9, r_seq, r_sysid, r_compid, 0, r_custom_mode, r_type, r_autopilot, r_base_mode, r_system_status, r_mavlink_version, r_checksum)
-    b[15:17] = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((b[1:15], b'2'))).to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_heartbeat_h.pack(254, 9, r_seq, r_sysid, r_compid, 0, r_custom_mode, r_type, r_autopilot, r_base_mode, r_system_status, r_mavlink_version)
+    return h + _checksum_crc16_1021_ffff_rr_0_extra(b''.join((h[1:15], b'2'))).to_bytes(2, 'little')
 
 
 def _decode_heartbeat(d: _Buffer) -> Heartbeat:
@@ -695,11 +698,8 @@ def _encode_sys_status(m: SysStatus) -> bytes:
                 raise _enc('sys_status', 'battery_remaining', r_battery_remaining, 'type', 'an int')
             if not -128 <= r_battery_remaining <= 127:
                 raise _enc('sys_status', 'battery_remaining', r_battery_remaining, 'range', '-128..127', None)
-    r_checksum = 0
-    b = bytearray(39)
-    _S_sys_status_0.pack_into(b, 0, 254, 31, r_seq, r_sysid, r_compid, 1, r_onboard_control_sensors_present, r_onboard_control_sensors_enabled, r_onboard_control_sensors_health, r_load, r_voltage_battery, r_current_battery, r_drop_rate_comm, r_errors_comm, r_errors_count1, r_errors_count2, r_errors_count3, r_errors_count4, r_battery_remaining, r_checksum)
-    b[37:39] = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((b[1:37], b'|'))).to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_sys_status_h.pack(254, 31, r_seq, r_sysid, r_compid, 1, r_onboard_control_sensors_present, r_onboard_control_sensors_enabled, r_onboard_control_sensors_health, r_load, r_voltage_battery, r_current_battery, r_drop_rate_comm, r_errors_comm, r_errors_count1, r_errors_count2, r_errors_count3, r_errors_count4, r_battery_remaining)
+    return h + _checksum_crc16_1021_ffff_rr_0_extra(b''.join((h[1:37], b'|'))).to_bytes(2, 'little')
 
 
 def _decode_sys_status(d: _Buffer) -> SysStatus:
@@ -792,11 +792,8 @@ def _encode_param_value(m: ParamValue) -> bytes:
             raise _enc('param_value', 'param_type', r_param_type, 'type', 'an int')
         if not 0 <= r_param_type <= 255:
             raise _enc('param_value', 'param_type', r_param_type, 'range', '0..255', None)
-    r_checksum = 0
-    b = bytearray(33)
-    _S_param_value_0.pack_into(b, 0, 254, 25, r_seq, r_sysid, r_compid, 22, r_param_value, r_param_count, r_param_index, r_param_id, r_param_type, r_checksum)
-    b[31:33] = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((b[1:31], b'\xdc'))).to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_param_value_h.pack(254, 25, r_seq, r_sysid, r_compid, 22, r_param_value, r_param_count, r_param_index, r_param_id, r_param_type)
+    return h + _checksum_crc16_1021_ffff_rr_0_extra(b''.join((h[1:31], b'\xdc'))).to_bytes(2, 'little')
 
 
 def _decode_param_value(d: _Buffer) -> ParamValue:
@@ -909,11 +906,8 @@ def _encode_gps_raw_int(m: GpsRawInt) -> bytes:
                 raise _enc('gps_raw_int', 'satellites_visible', r_satellites_visible, 'type', 'an int')
             if not 0 <= r_satellites_visible <= 255:
                 raise _enc('gps_raw_int', 'satellites_visible', r_satellites_visible, 'range', '0..255', None)
-    r_checksum = 0
-    b = bytearray(38)
-    _S_gps_raw_int_0.pack_into(b, 0, 254, 30, r_seq, r_sysid, r_compid, 24, r_time_usec, r_lat, r_lon, r_alt, r_eph, r_epv, r_vel, r_cog, r_fix_type, r_satellites_visible, r_checksum)
-    b[36:38] = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((b[1:36], b'\x18'))).to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_gps_raw_int_h.pack(254, 30, r_seq, r_sysid, r_compid, 24, r_time_usec, r_lat, r_lon, r_alt, r_eph, r_epv, r_vel, r_cog, r_fix_type, r_satellites_visible)
+    return h + _checksum_crc16_1021_ffff_rr_0_extra(b''.join((h[1:36], b'\x18'))).to_bytes(2, 'little')
 
 
 def _decode_gps_raw_int(d: _Buffer) -> GpsRawInt:
@@ -1035,11 +1029,8 @@ def _encode_attitude(m: Attitude) -> bytes:
         raise _enc('attitude', 'yawspeed', r_yawspeed, 'finite', 'a finite number')
     if r_yawspeed > 3.4028234663852886e38 or r_yawspeed < -3.4028234663852886e38:
         raise _enc('attitude', 'yawspeed', r_yawspeed, 'range', 'a binary32 value')
-    r_checksum = 0
-    b = bytearray(36)
-    _S_attitude_0.pack_into(b, 0, 254, 28, r_seq, r_sysid, r_compid, 30, r_time_boot_ms, r_roll, r_pitch, r_yaw, r_rollspeed, r_pitchspeed, r_yawspeed, r_checksum)
-    b[34:36] = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((b[1:34], b"'"))).to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_attitude_h.pack(254, 28, r_seq, r_sysid, r_compid, 30, r_time_boot_ms, r_roll, r_pitch, r_yaw, r_rollspeed, r_pitchspeed, r_yawspeed)
+    return h + _checksum_crc16_1021_ffff_rr_0_extra(b''.join((h[1:34], b"'"))).to_bytes(2, 'little')
 
 
 def _decode_attitude(d: _Buffer) -> Attitude:
@@ -1199,11 +1190,8 @@ def _encode_command_long(m: CommandLong) -> bytes:
                 raise _enc('command_long', 'confirmation', r_confirmation, 'type', 'an int')
             if not 0 <= r_confirmation <= 255:
                 raise _enc('command_long', 'confirmation', r_confirmation, 'range', '0..255', None)
-    r_checksum = 0
-    b = bytearray(41)
-    _S_command_long_0.pack_into(b, 0, 254, 33, r_seq, r_sysid, r_compid, 76, r_param1, r_param2, r_param3, r_param4, r_param5, r_param6, r_param7, r_command, r_target_system, r_target_component, r_confirmation, r_checksum)
-    b[39:41] = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((b[1:39], b'\x98'))).to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_command_long_h.pack(254, 33, r_seq, r_sysid, r_compid, 76, r_param1, r_param2, r_param3, r_param4, r_param5, r_param6, r_param7, r_command, r_target_system, r_target_component, r_confirmation)
+    return h + _checksum_crc16_1021_ffff_rr_0_extra(b''.join((h[1:39], b'\x98'))).to_bytes(2, 'little')
 
 
 def _decode_command_long(d: _Buffer) -> CommandLong:
@@ -1434,7 +1422,7 @@ def encode(m: AnyMessage) -> bytes:
     fn = _ENCODERS.get(type(m))
     if fn is None:
         raise _enc(None, None, type(m).__name__, 'type', 'a message of mavlink1')
-    return bytes(fn(m))
+    return fn(m)  # each encoder returns bytes
 
 
 def validate(m: AnyMessage) -> None:

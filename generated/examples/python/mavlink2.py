@@ -642,11 +642,17 @@ class CommandAck:
 AnyMessage = Union[Heartbeat, SysStatus, ParamValue, GpsRawInt, Attitude, CommandAck, ]
 """A message of mavlink2: what encode takes and decode returns."""
 _S_heartbeat_0 = struct.Struct('<BBBBBBB3sIBBBBBH')
+_S_heartbeat_h = struct.Struct('<BBBBBBB3sIBBBBB')
 _S_sys_status_0 = struct.Struct('<BBBBBBB3sIIIHHhHHHHHHbIIIH')
+_S_sys_status_h = struct.Struct('<BBBBBBB3sIIIHHhHHHHHHbIII')
 _S_param_value_0 = struct.Struct('<BBBBBBB3sfHH16sBH')
+_S_param_value_h = struct.Struct('<BBBBBBB3sfHH16sB')
 _S_gps_raw_int_0 = struct.Struct('<BBBBBBB3sQiiiHHHHBBiIIIIHH')
+_S_gps_raw_int_h = struct.Struct('<BBBBBBB3sQiiiHHHHBBiIIIIH')
 _S_attitude_0 = struct.Struct('<BBBBBBB3sIffffffH')
+_S_attitude_h = struct.Struct('<BBBBBBB3sIffffff')
 _S_command_ack_0 = struct.Struct('<BBBBBBB3sHBBiBBH')
+_S_command_ack_h = struct.Struct('<BBBBBBB3sHBBiBB')
 
 # CRC-16/MCRF4XX: width=16 poly=0x1021 init=0xffff refin=True refout=True xorout=0x0, computed by the standard library in C
 from binascii import crc_hqx as _crc_hqx
@@ -681,7 +687,13 @@ def _encode_heartbeat(m: Heartbeat) -> bytes:
     r_seq = m.seq
     r_sysid = m.sysid
     r_compid = m.compid
-    if (r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255) or (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255):
+    r_custom_mode = m.custom_mode
+    r_type = m.type
+    r_autopilot = m.autopilot
+    r_base_mode = m.base_mode
+    r_system_status = m.system_status
+    r_mavlink_version = m.mavlink_version
+    if (r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255) or (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255) or (r_custom_mode.__class__ is not int or not 0 <= r_custom_mode <= 4294967295) or (r_type.__class__ is not int or not 0 <= r_type <= 255) or (r_autopilot.__class__ is not int or not 0 <= r_autopilot <= 255) or (r_base_mode.__class__ is not int or not 0 <= r_base_mode <= 255) or (r_system_status.__class__ is not int or not 0 <= r_system_status <= 255) or (r_mavlink_version.__class__ is not int or not 0 <= r_mavlink_version <= 255):
         if r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255:
             if not isinstance(r_compat_flags, int) or r_compat_flags.__class__ is bool:
                 raise _enc('heartbeat', 'compat_flags', r_compat_flags, 'type', 'an int')
@@ -702,14 +714,6 @@ def _encode_heartbeat(m: Heartbeat) -> bytes:
                 raise _enc('heartbeat', 'compid', r_compid, 'type', 'an int')
             if not 0 <= r_compid <= 255:
                 raise _enc('heartbeat', 'compid', r_compid, 'range', '0..255', None)
-    r_msgid = 0
-    r_custom_mode = m.custom_mode
-    r_type = m.type
-    r_autopilot = m.autopilot
-    r_base_mode = m.base_mode
-    r_system_status = m.system_status
-    r_mavlink_version = m.mavlink_version
-    if (r_custom_mode.__class__ is not int or not 0 <= r_custom_mode <= 4294967295) or (r_type.__class__ is not int or not 0 <= r_type <= 255) or (r_autopilot.__class__ is not int or not 0 <= r_autopilot <= 255) or (r_base_mode.__class__ is not int or not 0 <= r_base_mode <= 255) or (r_system_status.__class__ is not int or not 0 <= r_system_status <= 255) or (r_mavlink_version.__class__ is not int or not 0 <= r_mavlink_version <= 255):
         if r_custom_mode.__class__ is not int or not 0 <= r_custom_mode <= 4294967295:
             if not isinstance(r_custom_mode, int) or r_custom_mode.__class__ is bool:
                 raise _enc('heartbeat', 'custom_mode', r_custom_mode, 'type', 'an int')
@@ -740,14 +744,11 @@ def _encode_heartbeat(m: Heartbeat) -> bytes:
                 raise _enc('heartbeat', 'mavlink_version', r_mavlink_version, 'type', 'an int')
             if not 0 <= r_mavlink_version <= 255:
                 raise _enc('heartbeat', 'mavlink_version', r_mavlink_version, 'range', '0..255', None)
-    r_checksum = 0
-    b = bytearray(21)
-    _S_heartbeat_0.pack_into(b, 0, 253, 9, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, r_msgid.to_bytes(3, 'little', signed=False), r_custom_mode, r_type, r_autopilot, r_base_mode, r_system_status, r_mavlink_version, r_checksum)
-    cut = 8 - len(b[11:19].rstrip(b'\0'))  # trailing zeros are not sent
-    del b[19 - cut:19]
-    b[1:2] = (9 - cut).to_bytes(1, 'little')
-    b[19 - cut:21 - cut] = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((b[1:19 - cut], b'2'))).to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_heartbeat_h.pack(253, 9, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, b'\x00\x00\x00', r_custom_mode, r_type, r_autopilot, r_base_mode, r_system_status, r_mavlink_version)
+    cut = 8 - len(h[11:19].rstrip(b'\0'))  # trailing zeros are not sent
+    if cut:
+        h = b''.join((h[:1], (9 - cut).to_bytes(1, 'little'), h[2:19 - cut]))
+    return h + _checksum_crc16_1021_ffff_rr_0_extra(b''.join((h[1:19 - cut], b'2'))).to_bytes(2, 'little')
 
 
 def _decode_heartbeat(d: _Buffer) -> Heartbeat:
@@ -799,7 +800,23 @@ def _encode_sys_status(m: SysStatus) -> bytes:
     r_seq = m.seq
     r_sysid = m.sysid
     r_compid = m.compid
-    if (r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255) or (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255):
+    r_onboard_control_sensors_present = m.onboard_control_sensors_present
+    r_onboard_control_sensors_enabled = m.onboard_control_sensors_enabled
+    r_onboard_control_sensors_health = m.onboard_control_sensors_health
+    r_load = m.load
+    r_voltage_battery = m.voltage_battery
+    r_current_battery = m.current_battery
+    r_drop_rate_comm = m.drop_rate_comm
+    r_errors_comm = m.errors_comm
+    r_errors_count1 = m.errors_count1
+    r_errors_count2 = m.errors_count2
+    r_errors_count3 = m.errors_count3
+    r_errors_count4 = m.errors_count4
+    r_battery_remaining = m.battery_remaining
+    r_onboard_control_sensors_present_extended = m.onboard_control_sensors_present_extended
+    r_onboard_control_sensors_enabled_extended = m.onboard_control_sensors_enabled_extended
+    r_onboard_control_sensors_health_extended = m.onboard_control_sensors_health_extended
+    if (r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255) or (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255) or (r_onboard_control_sensors_present.__class__ is not int or not 0 <= r_onboard_control_sensors_present <= 4294967295) or (r_onboard_control_sensors_enabled.__class__ is not int or not 0 <= r_onboard_control_sensors_enabled <= 4294967295) or (r_onboard_control_sensors_health.__class__ is not int or not 0 <= r_onboard_control_sensors_health <= 4294967295) or (r_load.__class__ is not int or not 0 <= r_load <= 65535) or (r_voltage_battery.__class__ is not int or not 0 <= r_voltage_battery <= 65535) or (r_current_battery.__class__ is not int or not -32768 <= r_current_battery <= 32767) or (r_drop_rate_comm.__class__ is not int or not 0 <= r_drop_rate_comm <= 65535) or (r_errors_comm.__class__ is not int or not 0 <= r_errors_comm <= 65535) or (r_errors_count1.__class__ is not int or not 0 <= r_errors_count1 <= 65535) or (r_errors_count2.__class__ is not int or not 0 <= r_errors_count2 <= 65535) or (r_errors_count3.__class__ is not int or not 0 <= r_errors_count3 <= 65535) or (r_errors_count4.__class__ is not int or not 0 <= r_errors_count4 <= 65535) or (r_battery_remaining.__class__ is not int or not -128 <= r_battery_remaining <= 127) or (r_onboard_control_sensors_present_extended.__class__ is not int or not 0 <= r_onboard_control_sensors_present_extended <= 4294967295) or (r_onboard_control_sensors_enabled_extended.__class__ is not int or not 0 <= r_onboard_control_sensors_enabled_extended <= 4294967295) or (r_onboard_control_sensors_health_extended.__class__ is not int or not 0 <= r_onboard_control_sensors_health_extended <= 4294967295):
         if r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255:
             if not isinstance(r_compat_flags, int) or r_compat_flags.__class__ is bool:
                 raise _enc('sys_status', 'compat_flags', r_compat_flags, 'type', 'an int')
@@ -820,24 +837,6 @@ def _encode_sys_status(m: SysStatus) -> bytes:
                 raise _enc('sys_status', 'compid', r_compid, 'type', 'an int')
             if not 0 <= r_compid <= 255:
                 raise _enc('sys_status', 'compid', r_compid, 'range', '0..255', None)
-    r_msgid = 1
-    r_onboard_control_sensors_present = m.onboard_control_sensors_present
-    r_onboard_control_sensors_enabled = m.onboard_control_sensors_enabled
-    r_onboard_control_sensors_health = m.onboard_control_sensors_health
-    r_load = m.load
-    r_voltage_battery = m.voltage_battery
-    r_current_battery = m.current_battery
-    r_drop_rate_comm = m.drop_rate_comm
-    r_errors_comm = m.errors_comm
-    r_errors_count1 = m.errors_count1
-    r_errors_count2 = m.errors_count2
-    r_errors_count3 = m.errors_count3
-    r_errors_count4 = m.errors_count4
-    r_battery_remaining = m.battery_remaining
-    r_onboard_control_sensors_present_extended = m.onboard_control_sensors_present_extended
-    r_onboard_control_sensors_enabled_extended = m.onboard_control_sensors_enabled_extended
-    r_onboard_control_sensors_health_extended = m.onboard_control_sensors_health_extended
-    if (r_onboard_control_sensors_present.__class__ is not int or not 0 <= r_onboard_control_sensors_present <= 4294967295) or (r_onboard_control_sensors_enabled.__class__ is not int or not 0 <= r_onboard_control_sensors_enabled <= 4294967295) or (r_onboard_control_sensors_health.__class__ is not int or not 0 <= r_onboard_control_sensors_health <= 4294967295) or (r_load.__class__ is not int or not 0 <= r_load <= 65535) or (r_voltage_battery.__class__ is not int or not 0 <= r_voltage_battery <= 65535) or (r_current_battery.__class__ is not int or not -32768 <= r_current_battery <= 32767) or (r_drop_rate_comm.__class__ is not int or not 0 <= r_drop_rate_comm <= 65535) or (r_errors_comm.__class__ is not int or not 0 <= r_errors_comm <= 65535) or (r_errors_count1.__class__ is not int or not 0 <= r_errors_count1 <= 65535) or (r_errors_count2.__class__ is not int or not 0 <= r_errors_count2 <= 65535) or (r_errors_count3.__class__ is not int or not 0 <= r_errors_count3 <= 65535) or (r_errors_count4.__class__ is not int or not 0 <= r_errors_count4 <= 65535) or (r_battery_remaining.__class__ is not int or not -128 <= r_battery_remaining <= 127) or (r_onboard_control_sensors_present_extended.__class__ is not int or not 0 <= r_onboard_control_sensors_present_extended <= 4294967295) or (r_onboard_control_sensors_enabled_extended.__class__ is not int or not 0 <= r_onboard_control_sensors_enabled_extended <= 4294967295) or (r_onboard_control_sensors_health_extended.__class__ is not int or not 0 <= r_onboard_control_sensors_health_extended <= 4294967295):
         if r_onboard_control_sensors_present.__class__ is not int or not 0 <= r_onboard_control_sensors_present <= 4294967295:
             if not isinstance(r_onboard_control_sensors_present, int) or r_onboard_control_sensors_present.__class__ is bool:
                 raise _enc('sys_status', 'onboard_control_sensors_present', r_onboard_control_sensors_present, 'type', 'an int')
@@ -918,14 +917,11 @@ def _encode_sys_status(m: SysStatus) -> bytes:
                 raise _enc('sys_status', 'onboard_control_sensors_health_extended', r_onboard_control_sensors_health_extended, 'type', 'an int')
             if not 0 <= r_onboard_control_sensors_health_extended <= 4294967295:
                 raise _enc('sys_status', 'onboard_control_sensors_health_extended', r_onboard_control_sensors_health_extended, 'range', '0..4294967295', None)
-    r_checksum = 0
-    b = bytearray(55)
-    _S_sys_status_0.pack_into(b, 0, 253, 43, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, r_msgid.to_bytes(3, 'little', signed=False), r_onboard_control_sensors_present, r_onboard_control_sensors_enabled, r_onboard_control_sensors_health, r_load, r_voltage_battery, r_current_battery, r_drop_rate_comm, r_errors_comm, r_errors_count1, r_errors_count2, r_errors_count3, r_errors_count4, r_battery_remaining, r_onboard_control_sensors_present_extended, r_onboard_control_sensors_enabled_extended, r_onboard_control_sensors_health_extended, r_checksum)
-    cut = 42 - len(b[11:53].rstrip(b'\0'))  # trailing zeros are not sent
-    del b[53 - cut:53]
-    b[1:2] = (43 - cut).to_bytes(1, 'little')
-    b[53 - cut:55 - cut] = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((b[1:53 - cut], b'|'))).to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_sys_status_h.pack(253, 43, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, b'\x01\x00\x00', r_onboard_control_sensors_present, r_onboard_control_sensors_enabled, r_onboard_control_sensors_health, r_load, r_voltage_battery, r_current_battery, r_drop_rate_comm, r_errors_comm, r_errors_count1, r_errors_count2, r_errors_count3, r_errors_count4, r_battery_remaining, r_onboard_control_sensors_present_extended, r_onboard_control_sensors_enabled_extended, r_onboard_control_sensors_health_extended)
+    cut = 42 - len(h[11:53].rstrip(b'\0'))  # trailing zeros are not sent
+    if cut:
+        h = b''.join((h[:1], (43 - cut).to_bytes(1, 'little'), h[2:53 - cut]))
+    return h + _checksum_crc16_1021_ffff_rr_0_extra(b''.join((h[1:53 - cut], b'|'))).to_bytes(2, 'little')
 
 
 def _decode_sys_status(d: _Buffer) -> SysStatus:
@@ -1008,7 +1004,6 @@ def _encode_param_value(m: ParamValue) -> bytes:
                 raise _enc('param_value', 'compid', r_compid, 'type', 'an int')
             if not 0 <= r_compid <= 255:
                 raise _enc('param_value', 'compid', r_compid, 'range', '0..255', None)
-    r_msgid = 22
     r_param_value = m.param_value
     if r_param_value.__class__ is not float:
         if not isinstance(r_param_value, (int, float)) or r_param_value.__class__ is bool:
@@ -1043,14 +1038,11 @@ def _encode_param_value(m: ParamValue) -> bytes:
             raise _enc('param_value', 'param_type', r_param_type, 'type', 'an int')
         if not 0 <= r_param_type <= 255:
             raise _enc('param_value', 'param_type', r_param_type, 'range', '0..255', None)
-    r_checksum = 0
-    b = bytearray(37)
-    _S_param_value_0.pack_into(b, 0, 253, 25, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, r_msgid.to_bytes(3, 'little', signed=False), r_param_value, r_param_count, r_param_index, r_param_id, r_param_type, r_checksum)
-    cut = 24 - len(b[11:35].rstrip(b'\0'))  # trailing zeros are not sent
-    del b[35 - cut:35]
-    b[1:2] = (25 - cut).to_bytes(1, 'little')
-    b[35 - cut:37 - cut] = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((b[1:35 - cut], b'\xdc'))).to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_param_value_h.pack(253, 25, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, b'\x16\x00\x00', r_param_value, r_param_count, r_param_index, r_param_id, r_param_type)
+    cut = 24 - len(h[11:35].rstrip(b'\0'))  # trailing zeros are not sent
+    if cut:
+        h = b''.join((h[:1], (25 - cut).to_bytes(1, 'little'), h[2:35 - cut]))
+    return h + _checksum_crc16_1021_ffff_rr_0_extra(b''.join((h[1:35 - cut], b'\xdc'))).to_bytes(2, 'little')
 
 
 def _decode_param_value(d: _Buffer) -> ParamValue:
@@ -1103,7 +1095,23 @@ def _encode_gps_raw_int(m: GpsRawInt) -> bytes:
     r_seq = m.seq
     r_sysid = m.sysid
     r_compid = m.compid
-    if (r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255) or (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255):
+    r_time_usec = m.time_usec
+    r_lat = m.lat
+    r_lon = m.lon
+    r_alt = m.alt
+    r_eph = m.eph
+    r_epv = m.epv
+    r_vel = m.vel
+    r_cog = m.cog
+    r_fix_type = m.fix_type
+    r_satellites_visible = m.satellites_visible
+    r_alt_ellipsoid = m.alt_ellipsoid
+    r_h_acc = m.h_acc
+    r_v_acc = m.v_acc
+    r_vel_acc = m.vel_acc
+    r_hdg_acc = m.hdg_acc
+    r_yaw = m.yaw
+    if (r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255) or (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255) or (r_time_usec.__class__ is not int or not 0 <= r_time_usec <= 18446744073709551615) or (r_lat.__class__ is not int or not -2147483648 <= r_lat <= 2147483647) or (r_lon.__class__ is not int or not -2147483648 <= r_lon <= 2147483647) or (r_alt.__class__ is not int or not -2147483648 <= r_alt <= 2147483647) or (r_eph.__class__ is not int or not 0 <= r_eph <= 65535) or (r_epv.__class__ is not int or not 0 <= r_epv <= 65535) or (r_vel.__class__ is not int or not 0 <= r_vel <= 65535) or (r_cog.__class__ is not int or not 0 <= r_cog <= 65535) or (r_fix_type.__class__ is not int or not 0 <= r_fix_type <= 255) or (r_satellites_visible.__class__ is not int or not 0 <= r_satellites_visible <= 255) or (r_alt_ellipsoid.__class__ is not int or not -2147483648 <= r_alt_ellipsoid <= 2147483647) or (r_h_acc.__class__ is not int or not 0 <= r_h_acc <= 4294967295) or (r_v_acc.__class__ is not int or not 0 <= r_v_acc <= 4294967295) or (r_vel_acc.__class__ is not int or not 0 <= r_vel_acc <= 4294967295) or (r_hdg_acc.__class__ is not int or not 0 <= r_hdg_acc <= 4294967295) or (r_yaw.__class__ is not int or not 0 <= r_yaw <= 65535):
         if r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255:
             if not isinstance(r_compat_flags, int) or r_compat_flags.__class__ is bool:
                 raise _enc('gps_raw_int', 'compat_flags', r_compat_flags, 'type', 'an int')
@@ -1124,24 +1132,6 @@ def _encode_gps_raw_int(m: GpsRawInt) -> bytes:
                 raise _enc('gps_raw_int', 'compid', r_compid, 'type', 'an int')
             if not 0 <= r_compid <= 255:
                 raise _enc('gps_raw_int', 'compid', r_compid, 'range', '0..255', None)
-    r_msgid = 24
-    r_time_usec = m.time_usec
-    r_lat = m.lat
-    r_lon = m.lon
-    r_alt = m.alt
-    r_eph = m.eph
-    r_epv = m.epv
-    r_vel = m.vel
-    r_cog = m.cog
-    r_fix_type = m.fix_type
-    r_satellites_visible = m.satellites_visible
-    r_alt_ellipsoid = m.alt_ellipsoid
-    r_h_acc = m.h_acc
-    r_v_acc = m.v_acc
-    r_vel_acc = m.vel_acc
-    r_hdg_acc = m.hdg_acc
-    r_yaw = m.yaw
-    if (r_time_usec.__class__ is not int or not 0 <= r_time_usec <= 18446744073709551615) or (r_lat.__class__ is not int or not -2147483648 <= r_lat <= 2147483647) or (r_lon.__class__ is not int or not -2147483648 <= r_lon <= 2147483647) or (r_alt.__class__ is not int or not -2147483648 <= r_alt <= 2147483647) or (r_eph.__class__ is not int or not 0 <= r_eph <= 65535) or (r_epv.__class__ is not int or not 0 <= r_epv <= 65535) or (r_vel.__class__ is not int or not 0 <= r_vel <= 65535) or (r_cog.__class__ is not int or not 0 <= r_cog <= 65535) or (r_fix_type.__class__ is not int or not 0 <= r_fix_type <= 255) or (r_satellites_visible.__class__ is not int or not 0 <= r_satellites_visible <= 255) or (r_alt_ellipsoid.__class__ is not int or not -2147483648 <= r_alt_ellipsoid <= 2147483647) or (r_h_acc.__class__ is not int or not 0 <= r_h_acc <= 4294967295) or (r_v_acc.__class__ is not int or not 0 <= r_v_acc <= 4294967295) or (r_vel_acc.__class__ is not int or not 0 <= r_vel_acc <= 4294967295) or (r_hdg_acc.__class__ is not int or not 0 <= r_hdg_acc <= 4294967295) or (r_yaw.__class__ is not int or not 0 <= r_yaw <= 65535):
         if r_time_usec.__class__ is not int or not 0 <= r_time_usec <= 18446744073709551615:
             if not isinstance(r_time_usec, int) or r_time_usec.__class__ is bool:
                 raise _enc('gps_raw_int', 'time_usec', r_time_usec, 'type', 'an int')
@@ -1222,14 +1212,11 @@ def _encode_gps_raw_int(m: GpsRawInt) -> bytes:
                 raise _enc('gps_raw_int', 'yaw', r_yaw, 'type', 'an int')
             if not 0 <= r_yaw <= 65535:
                 raise _enc('gps_raw_int', 'yaw', r_yaw, 'range', '0..65535', None)
-    r_checksum = 0
-    b = bytearray(64)
-    _S_gps_raw_int_0.pack_into(b, 0, 253, 52, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, r_msgid.to_bytes(3, 'little', signed=False), r_time_usec, r_lat, r_lon, r_alt, r_eph, r_epv, r_vel, r_cog, r_fix_type, r_satellites_visible, r_alt_ellipsoid, r_h_acc, r_v_acc, r_vel_acc, r_hdg_acc, r_yaw, r_checksum)
-    cut = 51 - len(b[11:62].rstrip(b'\0'))  # trailing zeros are not sent
-    del b[62 - cut:62]
-    b[1:2] = (52 - cut).to_bytes(1, 'little')
-    b[62 - cut:64 - cut] = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((b[1:62 - cut], b'\x18'))).to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_gps_raw_int_h.pack(253, 52, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, b'\x18\x00\x00', r_time_usec, r_lat, r_lon, r_alt, r_eph, r_epv, r_vel, r_cog, r_fix_type, r_satellites_visible, r_alt_ellipsoid, r_h_acc, r_v_acc, r_vel_acc, r_hdg_acc, r_yaw)
+    cut = 51 - len(h[11:62].rstrip(b'\0'))  # trailing zeros are not sent
+    if cut:
+        h = b''.join((h[:1], (52 - cut).to_bytes(1, 'little'), h[2:62 - cut]))
+    return h + _checksum_crc16_1021_ffff_rr_0_extra(b''.join((h[1:62 - cut], b'\x18'))).to_bytes(2, 'little')
 
 
 def _decode_gps_raw_int(d: _Buffer) -> GpsRawInt:
@@ -1291,7 +1278,8 @@ def _encode_attitude(m: Attitude) -> bytes:
     r_seq = m.seq
     r_sysid = m.sysid
     r_compid = m.compid
-    if (r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255) or (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255):
+    r_time_boot_ms = m.time_boot_ms
+    if (r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255) or (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255) or (r_time_boot_ms.__class__ is not int or not 0 <= r_time_boot_ms <= 4294967295):
         if r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255:
             if not isinstance(r_compat_flags, int) or r_compat_flags.__class__ is bool:
                 raise _enc('attitude', 'compat_flags', r_compat_flags, 'type', 'an int')
@@ -1312,13 +1300,11 @@ def _encode_attitude(m: Attitude) -> bytes:
                 raise _enc('attitude', 'compid', r_compid, 'type', 'an int')
             if not 0 <= r_compid <= 255:
                 raise _enc('attitude', 'compid', r_compid, 'range', '0..255', None)
-    r_msgid = 30
-    r_time_boot_ms = m.time_boot_ms
-    if r_time_boot_ms.__class__ is not int or not 0 <= r_time_boot_ms <= 4294967295:
-        if not isinstance(r_time_boot_ms, int) or r_time_boot_ms.__class__ is bool:
-            raise _enc('attitude', 'time_boot_ms', r_time_boot_ms, 'type', 'an int')
-        if not 0 <= r_time_boot_ms <= 4294967295:
-            raise _enc('attitude', 'time_boot_ms', r_time_boot_ms, 'range', '0..4294967295', None)
+        if r_time_boot_ms.__class__ is not int or not 0 <= r_time_boot_ms <= 4294967295:
+            if not isinstance(r_time_boot_ms, int) or r_time_boot_ms.__class__ is bool:
+                raise _enc('attitude', 'time_boot_ms', r_time_boot_ms, 'type', 'an int')
+            if not 0 <= r_time_boot_ms <= 4294967295:
+                raise _enc('attitude', 'time_boot_ms', r_time_boot_ms, 'range', '0..4294967295', None)
     r_roll = m.roll
     if r_roll.__class__ is not float:
         if not isinstance(r_roll, (int, float)) or r_roll.__class__ is bool:
@@ -1379,14 +1365,11 @@ def _encode_attitude(m: Attitude) -> bytes:
         raise _enc('attitude', 'yawspeed', r_yawspeed, 'finite', 'a finite number')
     if r_yawspeed > 3.4028234663852886e38 or r_yawspeed < -3.4028234663852886e38:
         raise _enc('attitude', 'yawspeed', r_yawspeed, 'range', 'a binary32 value')
-    r_checksum = 0
-    b = bytearray(40)
-    _S_attitude_0.pack_into(b, 0, 253, 28, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, r_msgid.to_bytes(3, 'little', signed=False), r_time_boot_ms, r_roll, r_pitch, r_yaw, r_rollspeed, r_pitchspeed, r_yawspeed, r_checksum)
-    cut = 27 - len(b[11:38].rstrip(b'\0'))  # trailing zeros are not sent
-    del b[38 - cut:38]
-    b[1:2] = (28 - cut).to_bytes(1, 'little')
-    b[38 - cut:40 - cut] = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((b[1:38 - cut], b"'"))).to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_attitude_h.pack(253, 28, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, b'\x1e\x00\x00', r_time_boot_ms, r_roll, r_pitch, r_yaw, r_rollspeed, r_pitchspeed, r_yawspeed)
+    cut = 27 - len(h[11:38].rstrip(b'\0'))  # trailing zeros are not sent
+    if cut:
+        h = b''.join((h[:1], (28 - cut).to_bytes(1, 'little'), h[2:38 - cut]))
+    return h + _checksum_crc16_1021_ffff_rr_0_extra(b''.join((h[1:38 - cut], b"'"))).to_bytes(2, 'little')
 
 
 def _decode_attitude(d: _Buffer) -> Attitude:
@@ -1451,7 +1434,13 @@ def _encode_command_ack(m: CommandAck) -> bytes:
     r_seq = m.seq
     r_sysid = m.sysid
     r_compid = m.compid
-    if (r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255) or (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255):
+    r_command = m.command
+    r_result = m.result
+    r_progress = m.progress
+    r_result_param2 = m.result_param2
+    r_target_system = m.target_system
+    r_target_component = m.target_component
+    if (r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255) or (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255) or (r_command.__class__ is not int or not 0 <= r_command <= 65535) or (r_result.__class__ is not int or not 0 <= r_result <= 255) or (r_progress.__class__ is not int or not 0 <= r_progress <= 255) or (r_result_param2.__class__ is not int or not -2147483648 <= r_result_param2 <= 2147483647) or (r_target_system.__class__ is not int or not 0 <= r_target_system <= 255) or (r_target_component.__class__ is not int or not 0 <= r_target_component <= 255):
         if r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255:
             if not isinstance(r_compat_flags, int) or r_compat_flags.__class__ is bool:
                 raise _enc('command_ack', 'compat_flags', r_compat_flags, 'type', 'an int')
@@ -1472,14 +1461,6 @@ def _encode_command_ack(m: CommandAck) -> bytes:
                 raise _enc('command_ack', 'compid', r_compid, 'type', 'an int')
             if not 0 <= r_compid <= 255:
                 raise _enc('command_ack', 'compid', r_compid, 'range', '0..255', None)
-    r_msgid = 77
-    r_command = m.command
-    r_result = m.result
-    r_progress = m.progress
-    r_result_param2 = m.result_param2
-    r_target_system = m.target_system
-    r_target_component = m.target_component
-    if (r_command.__class__ is not int or not 0 <= r_command <= 65535) or (r_result.__class__ is not int or not 0 <= r_result <= 255) or (r_progress.__class__ is not int or not 0 <= r_progress <= 255) or (r_result_param2.__class__ is not int or not -2147483648 <= r_result_param2 <= 2147483647) or (r_target_system.__class__ is not int or not 0 <= r_target_system <= 255) or (r_target_component.__class__ is not int or not 0 <= r_target_component <= 255):
         if r_command.__class__ is not int or not 0 <= r_command <= 65535:
             if not isinstance(r_command, int) or r_command.__class__ is bool:
                 raise _enc('command_ack', 'command', r_command, 'type', 'an int')
@@ -1510,14 +1491,11 @@ def _encode_command_ack(m: CommandAck) -> bytes:
                 raise _enc('command_ack', 'target_component', r_target_component, 'type', 'an int')
             if not 0 <= r_target_component <= 255:
                 raise _enc('command_ack', 'target_component', r_target_component, 'range', '0..255', None)
-    r_checksum = 0
-    b = bytearray(22)
-    _S_command_ack_0.pack_into(b, 0, 253, 10, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, r_msgid.to_bytes(3, 'little', signed=False), r_command, r_result, r_progress, r_result_param2, r_target_system, r_target_component, r_checksum)
-    cut = 9 - len(b[11:20].rstrip(b'\0'))  # trailing zeros are not sent
-    del b[20 - cut:20]
-    b[1:2] = (10 - cut).to_bytes(1, 'little')
-    b[20 - cut:22 - cut] = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((b[1:20 - cut], b'\x8f'))).to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_command_ack_h.pack(253, 10, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, b'M\x00\x00', r_command, r_result, r_progress, r_result_param2, r_target_system, r_target_component)
+    cut = 9 - len(h[11:20].rstrip(b'\0'))  # trailing zeros are not sent
+    if cut:
+        h = b''.join((h[:1], (10 - cut).to_bytes(1, 'little'), h[2:20 - cut]))
+    return h + _checksum_crc16_1021_ffff_rr_0_extra(b''.join((h[1:20 - cut], b'\x8f'))).to_bytes(2, 'little')
 
 
 def _decode_command_ack(d: _Buffer) -> CommandAck:
@@ -1846,7 +1824,7 @@ def encode(m: AnyMessage, key: Optional[_Buffer] = None) -> bytes:
     fn = _ENCODERS.get(type(m))
     if fn is None:
         raise _enc(None, None, type(m).__name__, 'type', 'a message of mavlink2')
-    return _write_trailer(m, bytes(fn(m)), key)
+    return _write_trailer(m, fn(m), key)
 
 
 def validate(m: AnyMessage) -> None:

@@ -625,11 +625,17 @@ class MonVer:
 AnyMessage = Union[AckNak, AckAck, CfgRatePoll, CfgRate, NavPosllh, NavPvt, NavSat, MonVer, ]
 """A message of ubx: what encode takes and decode returns."""
 _S_ack_nak_0 = struct.Struct('<BBBBHBBH')
+_S_ack_nak_h = struct.Struct('<BBBBHBB')
 _S_ack_ack_0 = struct.Struct('<BBBBHBBH')
+_S_ack_ack_h = struct.Struct('<BBBBHBB')
 _S_cfg_rate_poll_0 = struct.Struct('<BBBBHH')
+_S_cfg_rate_poll_h = struct.Struct('<BBBBH')
 _S_cfg_rate_0 = struct.Struct('<BBBBHHHHH')
+_S_cfg_rate_h = struct.Struct('<BBBBHHHH')
 _S_nav_posllh_0 = struct.Struct('<BBBBHIiiiiIIH')
+_S_nav_posllh_h = struct.Struct('<BBBBHIiiiiII')
 _S_nav_pvt_0 = struct.Struct('<BBBBHIHBBBBBBIiBBBBiiiiIIiiiiiIIHHIihHH')
+_S_nav_pvt_h = struct.Struct('<BBBBHIHBBBBBBIiBBBBiiiiIIiiiiiIIHHIihH')
 _S_nav_sat_0 = struct.Struct('<BBBBHIBBH384sH')
 _E_nav_sat_2sv_0 = struct.Struct('<BBBbhhBBBB')
 _S_mon_ver_0 = struct.Struct('<BBBBH30s10s300sH')
@@ -670,11 +676,8 @@ def _encode_ack_nak(m: AckNak) -> bytes:
                 raise _enc('ack_nak', 'msgID', r_msgID, 'type', 'an int')
             if not 0 <= r_msgID <= 255:
                 raise _enc('ack_nak', 'msgID', r_msgID, 'range', '0..255', None)
-    r_checksum = 0
-    b = bytearray(10)
-    _S_ack_nak_0.pack_into(b, 0, 181, 98, 5, 0, 2, r_clsID, r_msgID, r_checksum)
-    b[8:10] = _checksum_fletcher16_256(b[2:8]).to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_ack_nak_h.pack(181, 98, 5, 0, 2, r_clsID, r_msgID)
+    return h + _checksum_fletcher16_256(h[2:8]).to_bytes(2, 'little')
 
 
 def _decode_ack_nak(d: _Buffer) -> AckNak:
@@ -717,11 +720,8 @@ def _encode_ack_ack(m: AckAck) -> bytes:
                 raise _enc('ack_ack', 'msgID', r_msgID, 'type', 'an int')
             if not 0 <= r_msgID <= 255:
                 raise _enc('ack_ack', 'msgID', r_msgID, 'range', '0..255', None)
-    r_checksum = 0
-    b = bytearray(10)
-    _S_ack_ack_0.pack_into(b, 0, 181, 98, 5, 1, 2, r_clsID, r_msgID, r_checksum)
-    b[8:10] = _checksum_fletcher16_256(b[2:8]).to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_ack_ack_h.pack(181, 98, 5, 1, 2, r_clsID, r_msgID)
+    return h + _checksum_fletcher16_256(h[2:8]).to_bytes(2, 'little')
 
 
 def _decode_ack_ack(d: _Buffer) -> AckAck:
@@ -751,11 +751,8 @@ def _decode_ack_ack(d: _Buffer) -> AckAck:
 
 
 def _encode_cfg_rate_poll(m: CfgRatePoll) -> bytes:
-    r_checksum = 0
-    b = bytearray(8)
-    _S_cfg_rate_poll_0.pack_into(b, 0, 181, 98, 6, 8, 0, r_checksum)
-    b[6:8] = _checksum_fletcher16_256(b[2:6]).to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_cfg_rate_poll_h.pack(181, 98, 6, 8, 0)
+    return h + _checksum_fletcher16_256(h[2:6]).to_bytes(2, 'little')
 
 
 def _decode_cfg_rate_poll(d: _Buffer) -> CfgRatePoll:
@@ -802,11 +799,8 @@ def _encode_cfg_rate(m: CfgRate) -> bytes:
                 raise _enc('cfg_rate', 'timeRef', r_timeRef, 'type', 'an int')
             if not 0 <= r_timeRef <= 65535:
                 raise _enc('cfg_rate', 'timeRef', r_timeRef, 'range', '0..65535', None)
-    r_checksum = 0
-    b = bytearray(14)
-    _S_cfg_rate_0.pack_into(b, 0, 181, 98, 6, 8, 6, r_measRate, r_navRate, r_timeRef, r_checksum)
-    b[12:14] = _checksum_fletcher16_256(b[2:12]).to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_cfg_rate_h.pack(181, 98, 6, 8, 6, r_measRate, r_navRate, r_timeRef)
+    return h + _checksum_fletcher16_256(h[2:12]).to_bytes(2, 'little')
 
 
 def _decode_cfg_rate(d: _Buffer) -> CfgRate:
@@ -882,11 +876,8 @@ def _encode_nav_posllh(m: NavPosllh) -> bytes:
                 raise _enc('nav_posllh', 'vAcc', r_vAcc, 'type', 'an int')
             if not 0 <= r_vAcc <= 4294967295:
                 raise _enc('nav_posllh', 'vAcc', r_vAcc, 'range', '0..4294967295', None)
-    r_checksum = 0
-    b = bytearray(36)
-    _S_nav_posllh_0.pack_into(b, 0, 181, 98, 1, 2, 28, r_iTOW, r_lon, r_lat, r_height, r_hMSL, r_hAcc, r_vAcc, r_checksum)
-    b[34:36] = _checksum_fletcher16_256(b[2:34]).to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_nav_posllh_h.pack(181, 98, 1, 2, 28, r_iTOW, r_lon, r_lat, r_height, r_hMSL, r_hAcc, r_vAcc)
+    return h + _checksum_fletcher16_256(h[2:34]).to_bytes(2, 'little')
 
 
 def _decode_nav_posllh(d: _Buffer) -> NavPosllh:
@@ -1190,11 +1181,8 @@ def _encode_nav_pvt(m: NavPvt) -> bytes:
         if not 0.0 <= r_magAcc <= 655.35:
             raise _enc('nav_pvt', 'magAcc', r_magAcc, 'range', '0.0..655.35', None)
     r_magAcc = _floor(r_magAcc / 0.01 + 0.5)
-    r_checksum = 0
-    b = bytearray(100)
-    _S_nav_pvt_0.pack_into(b, 0, 181, 98, 1, 7, 92, r_iTOW, r_year, r_month, r_day, r_hour, r_min, r_second, r_validDate | r_validTime << 1 | r_fullyResolved << 2 | r_validMag << 3, r_tAcc, r_nano, r_fixType, r_gnssFixOk | r_diffSoln << 1 | r_psmState << 2 | r_headVehValid << 5 | r_carrSoln << 6, r_reserved | r_confirmedAvai << 5 | r_confirmedDate << 6 | r_confirmedTime << 7, r_numSV, r_lon, r_lat, r_height, r_hMSL, r_hAcc, r_vAcc, r_velN, r_velE, r_velD, r_gSpeed, r_headMot, r_sAcc, r_headAcc, r_pDOP, r_invalidLlh | r_lastCorrectionAge << 1 | r_reserved1 << 5 | r_authTime << 13 | r_nmaFixStatus << 14, r_reserved0, r_headVeh, r_magDec, r_magAcc, r_checksum)
-    b[98:100] = _checksum_fletcher16_256(b[2:98]).to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_nav_pvt_h.pack(181, 98, 1, 7, 92, r_iTOW, r_year, r_month, r_day, r_hour, r_min, r_second, r_validDate | r_validTime << 1 | r_fullyResolved << 2 | r_validMag << 3, r_tAcc, r_nano, r_fixType, r_gnssFixOk | r_diffSoln << 1 | r_psmState << 2 | r_headVehValid << 5 | r_carrSoln << 6, r_reserved | r_confirmedAvai << 5 | r_confirmedDate << 6 | r_confirmedTime << 7, r_numSV, r_lon, r_lat, r_height, r_hMSL, r_hAcc, r_vAcc, r_velN, r_velE, r_velD, r_gSpeed, r_headMot, r_sAcc, r_headAcc, r_pDOP, r_invalidLlh | r_lastCorrectionAge << 1 | r_reserved1 << 5 | r_authTime << 13 | r_nmaFixStatus << 14, r_reserved0, r_headVeh, r_magDec, r_magAcc)
+    return h + _checksum_fletcher16_256(h[2:98]).to_bytes(2, 'little')
 
 
 def _decode_nav_pvt(d: _Buffer) -> NavPvt:
@@ -1835,7 +1823,7 @@ def encode(m: AnyMessage) -> bytes:
     fn = _ENCODERS.get(type(m))
     if fn is None:
         raise _enc(None, None, type(m).__name__, 'type', 'a message of ubx')
-    return bytes(fn(m))
+    return fn(m)  # each encoder returns bytes
 
 
 def validate(m: AnyMessage) -> None:
