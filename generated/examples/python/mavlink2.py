@@ -1581,7 +1581,7 @@ for _value, _sizes, _direction, _fn in _KEYS:
 
 
 _UNIQUE = {key: fns[0] for key, fns in _ALL.items() if len(fns) == 1}
-# the same keyed by the id's bytes as a frame holds them: found without reading a number
+# the same keyed by the id's bytes as a frame of bytes holds them: found without reading a number
 _UNIQUE_RAW = {(value.to_bytes(3, 'little'), size): fn
                for (value, size), fn in _UNIQUE.items() if value >= 0}
 
@@ -1592,7 +1592,7 @@ def decode(data: _Input, direction: Optional[str] = None, key: Optional[_Buffer]
     d = data if data.__class__ is bytes else _as_input(data)
     if key is None and len(d) > 2 and not d[2] & 1:
         # no trailer and no key, the common frame: its message found in one lookup, the trailer's fields None
-        fn = _UNIQUE_RAW.get((d[7:10], len(d))) if direction is None else None
+        fn = _UNIQUE_RAW.get((d[7:10], len(d))) if direction is None and isinstance(d, bytes) else None
         o = fn(d) if fn is not None else _decode_frame(d, direction)
         o.link_id = None
         o.timestamp = None
@@ -1604,8 +1604,12 @@ def decode(data: _Input, direction: Optional[str] = None, key: Optional[_Buffer]
 
 def _decode_frame(d: _Buffer, direction: Optional[str] = None) -> AnyMessage:
     """Decode one frame without its trailer."""
-    if direction is None:
+    if direction is None and isinstance(d, bytes):  # a bytearray's slice is no key
         fn = _UNIQUE_RAW.get((d[7:10], len(d)))
+        if fn is not None:
+            return fn(d)
+    if direction is None and len(d) >= 10:
+        fn = _UNIQUE.get((int.from_bytes(d[7:10], 'little'), len(d)))
         if fn is not None:
             return fn(d)
     if len(d) < 10:

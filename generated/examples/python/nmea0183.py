@@ -1326,14 +1326,20 @@ def _split(text: str) -> tuple[str, str, int]:
         raise _dec(None, None, text[:10], 'prefix', 'a prefix and ' + ',', 0)
     base = 1 + len(head) + 1
     return head, text[base:end], base
-from functools import reduce as _reduce
-from operator import xor as _xor
 
 
 def _line_checksum(text: str) -> int:
     """The XOR of the characters after '$' up to '*'."""
-    if text.isascii():  # a byte a character: XORed in C
-        return _reduce(_xor, text.encode("ascii"), 0)
+    if text.isascii():  # a byte a character: the bytes as one integer, folded in halves to a byte
+        n = 8 * len(text)
+        x = int.from_bytes(text.encode("ascii"), "little")
+        while n > 64:
+            n = (n + 15) >> 4 << 3  # half the bytes, rounded up
+            x = (x >> n) ^ (x & ~(-1 << n))
+        x ^= x >> 32
+        x ^= x >> 16
+        x ^= x >> 8
+        return x & 0xFF
     x = 0
     for ch in text:
         x ^= ord(ch)
