@@ -5,8 +5,9 @@
     python3 -m bench --no-install     # skip `pip install -e .[bench]`
     python3 -m bench --profile        # cProfile of codeword's encode and decode calls, printed
     python3 -m bench --only compiler  # section 5 alone, spliced into the existing RESULTS.md
-    python3 -m bench --only imports   # section 7 alone: importing a module of MAVLink's size
+    python3 -m bench --only imports   # section 9 alone: importing a module of MAVLink's size
     python3 -m bench --only c         # sections 3 and 4 (C on the host and on AVR) alone, likewise
+    python3 -m bench --only examples --smoke  # sections 7 and 8 (the examples against their peers), printed
 """
 
 import argparse
@@ -28,7 +29,8 @@ def main(argv=None):
     parser.add_argument("--smoke", action="store_true", help="one repetition, small inputs, print only")
     parser.add_argument("--no-install", action="store_true", help="do not pip install the bench extra")
     parser.add_argument("--profile", action="store_true", help="profile codeword's per-message calls, print")
-    parser.add_argument("--only", choices=["compiler", "accelerator", "c", "imports"], help="measure one section again, keep the others")
+    parser.add_argument("--only", choices=["compiler", "accelerator", "c", "examples", "imports"],
+                        help="measure one section again, keep the others")
     parser.add_argument("--out", default=str(ROOT / "bench" / "RESULTS.md"))
     parser.add_argument("--stream-mb", type=float, default=50.0, help="size of the mtv4 capture")
     # every size the scaling target names; 5,000 messages take about 2 CPU minutes and under 0.5 GB
@@ -49,7 +51,7 @@ def main(argv=None):
     if args.only == "imports":
         with tempfile.TemporaryDirectory(prefix="codeword-bench-") as tmp:
             results = runner.run_imports(Path(tmp), 1 if args.smoke else 7, 20 if args.smoke else imports.MESSAGES)
-        return _splice(args, 7, imports.section(results, [], runner._met))
+        return _splice(args, 9, imports.section(results, [], runner._met))
     if args.only == "c":
         with tempfile.TemporaryDirectory(prefix="codeword-bench-") as tmp:
             results = runner.run_c(Path(tmp), 1 if args.smoke else 7, 200_000 if args.smoke else int(args.stream_mb * 1e6))
@@ -58,6 +60,16 @@ def main(argv=None):
         results = runner.run_accelerator(1 if args.smoke else 7, 200_000 if args.smoke else int(args.stream_mb * 1e6),
                                          0.002 if args.smoke else timing.TARGET_SECONDS, 1 if args.smoke else 3)
         return _splice(args, 6, runner.accelerator_section(results, []))
+    if args.only == "examples":
+        verdicts: list[bool] = []
+        results = runner.run_examples(1 if args.smoke else 7, 0.002 if args.smoke else timing.TARGET_SECONDS)
+        lines = runner.examples_sections(results, verdicts)
+        if args.smoke:  # the two sections alone
+            print("\n".join(lines))
+            return 0
+        seven = lines[:lines.index("## 8. The examples against their peer libraries")]
+        _splice(args, 7, seven)
+        return _splice(args, 8, lines[len(seven):])
     with tempfile.TemporaryDirectory(prefix="codeword-bench-") as tmp:
         if args.smoke:
             results = runner.run(Path(tmp), repeats=1, stream_bytes=200_000, c_rounds=1,

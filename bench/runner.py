@@ -7,7 +7,7 @@ import sys
 import time
 from pathlib import Path
 
-from bench import accelerated, avr, c_host, imports, messages, peers_c, scaling, streams, timing
+from bench import accelerated, avr, c_host, examples, imports, messages, peers_c, scaling, streams, timing
 
 # The issue's targets.
 FLOOR_MAX = 1.2  # codeword / hand-written, Python, encode and decode
@@ -52,6 +52,8 @@ def run(tmp: Path, repeats, stream_bytes, c_rounds, scaling_sizes, timing_target
                               jobs[k][2], min(jobs[k][3])) for k in jobs}
     _progress("Python with the accelerator", start)
     results["accelerator"] = run_accelerator(repeats, stream_bytes, timing_target, stream_repeats)
+    _progress("the examples against their peer libraries", start)
+    results["examples"] = run_examples(repeats, timing_target)
     _progress("C on the host and on AVR", start)
     mavlink_dir = peers_c.generate_mavlink(tmp / "mavlink")
     cantools_dir = peers_c.generate_cantools(tmp / "cantools")
@@ -245,9 +247,12 @@ def report(r):
 
     lines += c_sections(r, verdicts)
 
-    # 5, 6, 7
+    # 5, 6
     lines += [""] + compiler_section(r, verdicts)
     lines += accelerator_section(r["accelerator"], verdicts)
+
+    # 7, 8, 9
+    lines += [""] + examples_sections(r["examples"], verdicts)
     lines += [""] + imports.section(r["imports"], verdicts, _met)
     lines += ["", "## Summary", "", f"{sum(verdicts)} of {len(verdicts)} targets met; the misses are marked "
               "**NOT met** above.", ""]
@@ -344,8 +349,18 @@ def run_accelerator(repeats, stream_bytes, timing_target=timing.TARGET_SECONDS, 
 
 
 def run_imports(tmp: Path, repeats, messages=imports.MESSAGES):
-    """Section 7 alone (`python3 -m bench --only imports`)."""
+    """Section 9 alone (`python3 -m bench --only imports`)."""
     return imports.measure(tmp, max(3, repeats), messages)
+
+
+def run_examples(repeats, timing_target=timing.TARGET_SECONDS):
+    """Sections 7 and 8: each example against its peer library (`python3 -m bench --only examples`)."""
+    return examples.measure(repeats, timing_target)
+
+
+def examples_sections(r, verdicts) -> list[str]:
+    all_rows, ns = r
+    return examples.nmea_report(all_rows, ns, verdicts, _met) + [""] + examples.report(all_rows, ns, verdicts, _met)
 
 
 def accelerator_section(r, verdicts) -> list[str]:

@@ -147,3 +147,27 @@ def test_the_import_benchmark_times_both_modules_from_bytecode_and_from_source(t
     verdicts = []
     text = "\n".join(imports.section(r, verdicts, runner._met))
     assert "pymavlink common" in text and len(verdicts) == 2
+
+
+def test_every_example_and_its_peer_read_the_same_values_and_write_the_same_bytes():
+    from bench import examples
+    rows = examples.rows()
+    assert examples.check(rows) == []
+    assert {row.example for row in rows} == {"mavlink2", "mavlink1", "ubx", "modbus_rtu", "ipv4", "nmea0183"}
+
+
+def test_an_example_writing_other_bytes_than_its_peer_is_noticed(monkeypatch):
+    from bench import examples
+    rows = [row for row in examples.rows() if row.key == "mavlink2 attitude"]
+    monkeypatch.setattr(examples.mavlink2, "encode", lambda message: b"\xfd")
+    assert examples.check(rows) == ["mavlink2 attitude: encodes differ"] * 3
+
+
+def test_the_examples_sections_time_every_message_and_report_the_targets():
+    from bench import examples, runner
+    verdicts: list[bool] = []
+    lines = runner.examples_sections(runner.run_examples(1, 0.0005), verdicts)
+    assert "## 7. NMEA 0183 against pynmea2" in lines and "## 8. The examples against their peer libraries" in lines
+    assert sum(line.startswith("| nmea0183 | pynmea2 |") for line in lines) == 2 * len(examples.NMEA_LINES)
+    assert any(line.startswith("- mavlink2 decode: peer / codeword") for line in lines)
+    assert len(verdicts) == len(examples.TARGETS) + 1

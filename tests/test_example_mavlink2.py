@@ -132,6 +132,17 @@ def test_a_frame_not_truncated_decodes_too(built):
     assert mod.encode(mod.decode(whole)) == truncated
 
 
+def test_every_bytes_like_form_of_a_frame_decodes_alike(built):
+    """A frame in a bytearray or a memoryview reads as it does in bytes, by module decode
+    and by its class's decode."""
+    mod = load(built / "mavlink2.py")
+    for frame in packed(sample_messages(seed=5)):
+        want = mod.decode(frame)
+        for form in (bytearray(frame), memoryview(frame), memoryview(bytearray(frame))):
+            assert mod.decode(form) == want
+            assert type(want).decode(form) == want
+
+
 def test_pymavlink_accepts_what_codeword_encodes(built):
     mod = load(built / "mavlink2.py")
     parser = mavlink.MAVLink(None)

@@ -162,6 +162,17 @@ def test_a_corrupted_checksum_is_refused(built):
             pynmea2.parse(bad.strip(), check=True)
 
 
+def test_the_line_checksum_of_every_length_is_pynmea2s(built):
+    """The line's checksum, folded over the line as one integer, is the XOR pynmea2 computes
+    character by character, for lines of every length up to past the longest."""
+    import random
+    mod = load(built / "python" / "nmea0183.py")
+    rng = random.Random(183)
+    for n in range(0, 320):
+        body = "".join(chr(rng.randrange(0x20, 0x7F)) for _ in range(n))
+        assert mod._line_checksum(body) == pynmea2.NMEASentence.checksum(body), n
+
+
 # a C driver's round_trip(line): decode, encode, print the decode's code and whether the bytes came back
 ROUND_TRIP_C = r"""
 #include <stdio.h>

@@ -177,6 +177,15 @@ def test_python_reads_what_pyubx2_reads_and_writes_the_same_bytes(built):
         assert mod.encode(mod.decode(frame)) == frame
 
 
+def test_every_bytes_like_form_of_a_frame_decodes_alike(built):
+    """A frame in a bytearray or a memoryview reads as it does in bytes."""
+    mod = load(built / "ubx.py")
+    for frame in sample_frames(seed=5):
+        want = mod.decode(frame)
+        for form in (bytearray(frame), memoryview(frame), memoryview(bytearray(frame))):
+            assert mod.decode(form) == want
+
+
 def test_pyubx2_reads_what_codeword_writes(built):
     mod = load(built / "ubx.py")
     for frame in sample_frames(seed=2):

@@ -1213,7 +1213,7 @@ def encode(m: AnyMessage) -> bytes:
     fn = _ENCODERS.get(type(m))
     if fn is None:
         raise _enc(None, None, type(m).__name__, 'type', 'a message of mtv4')
-    return bytes(fn(m))
+    return fn(m)  # each encoder returns bytes
 
 
 def validate(m: AnyMessage) -> None:

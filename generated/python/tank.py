@@ -549,21 +549,23 @@ _INT = re.compile(r"[+-]?[0-9]+\Z")
 _FLOAT = re.compile(_FLOAT_RE + r"\Z")
 
 
-def _parse_int(token: str, message: str, field: str, offset: int) -> int:
+# The parsers below take the line's tokens, the offset of the first and the token's index
+# rather than the token's offset: an offset is computed only for an error.
+def _parse_int(token: str, message: str, field: str, tokens: list[str], base: int, n: int) -> int:
     if not _INT.match(token):
-        raise _dec(message, field, token, 'syntax', 'a decimal integer', offset)
+        raise _dec(message, field, token, 'syntax', 'a decimal integer', _token_offset(tokens, base, n))
     return _int_of(token)
 
 
-def _parse_float(token: str, message: str, field: str, offset: int) -> float:
+def _parse_float(token: str, message: str, field: str, tokens: list[str], base: int, n: int) -> float:
     if not _FLOAT.match(token):
-        raise _dec(message, field, token, 'syntax', 'a decimal number', offset)
+        raise _dec(message, field, token, 'syntax', 'a decimal number', _token_offset(tokens, base, n))
     digits = _significant(token)
     if digits > 15:
-        raise _dec(message, field, token, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307', offset)
+        raise _dec(message, field, token, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307', _token_offset(tokens, base, n))
     value = float(token)
     if digits and -1e-307 < value < 1e-307:
-        raise _dec(message, field, token, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307', offset)
+        raise _dec(message, field, token, 'precision', 'at most 15 significant digits, and zero or a magnitude of at least 1e-307', _token_offset(tokens, base, n))
     return value
 
 
@@ -590,12 +592,9 @@ def _text_problem(value: str, separator: str, trim: bool) -> Optional[str]:
     return None
 
 
-def _token_offsets(tokens: list[str], base: int) -> list[int]:
-    offsets: list[int] = []
-    for token in tokens:
-        offsets.append(base)
-        base += len(token) + 1
-    return offsets
+def _token_offset(tokens: list[str], base: int, n: int) -> int:
+    """Where token `n` starts, the first starting at `base`."""
+    return base + sum(map(len, tokens[:n])) + n * 1
 
 
 _SYNTAX_telemetry = re.compile(_CHAR_RE + ',' + _INT_RE + ',' + _CHAR_RE + ',' + _FINITE_RE + ',' + _FINITE_RE + ',' + _FINITE_RE + ',' + _FINITE_RE + ',' + _FINITE_RE + ',' + _FINITE_RE + ',' + _FINITE_RE + ',' + _FINITE_RE + ',' + _FINITE_RE + ',' + _FINITE_RE + ',' + _FINITE_RE + ',' + _TEXT_RE + ',' + _TEXT_RE + ',' + _FINITE_RE + ',' + _INT_RE + ',' + _INT_RE + ',' + _INT_RE)
@@ -753,81 +752,81 @@ def _decode_telemetry(head: str, body: str, base: int) -> Telemetry:
     ok = _SYNTAX_telemetry.fullmatch(body) is not None  # well-formed: token syntax checks are skipped
     r_move = (t[0] if ok else t[0].strip())
     if len(r_move) != 1:
-        raise _dec('telemetry', 'move', r_move, 'type', 'one character', _token_offsets(t, base)[0])
+        raise _dec('telemetry', 'move', r_move, 'type', 'one character', _token_offset(t, base, 0))
     e_move = _ENUM_move.get(r_move)
     if e_move is None:
-        raise _dec('telemetry', 'move', r_move, 'enum', 'Move', _token_offsets(t, base)[0], None)
-    r_speed = int(t[1]) if ok else _parse_int(t[1].strip(), 'telemetry', 'speed', _token_offsets(t, base)[1])
+        raise _dec('telemetry', 'move', r_move, 'enum', 'Move', _token_offset(t, base, 0), None)
+    r_speed = int(t[1]) if ok else _parse_int(t[1].strip(), 'telemetry', 'speed', t, base, 1)
     if not 0 <= r_speed <= 100:
-        raise _dec('telemetry', 'speed', r_speed, 'range', '0..100', _token_offsets(t, base)[1], 'TANK-D3')
+        raise _dec('telemetry', 'speed', r_speed, 'range', '0..100', _token_offset(t, base, 1), 'TANK-D3')
     r_value = (t[2] if ok else t[2].strip())
     if len(r_value) != 1:
-        raise _dec('telemetry', 'value', r_value, 'type', 'one character', _token_offsets(t, base)[2])
+        raise _dec('telemetry', 'value', r_value, 'type', 'one character', _token_offset(t, base, 2))
     if not ok:
         bad = _text_problem(r_value, ',', True)
         if bad:
-            raise _dec('telemetry', 'value', r_value, 'text', bad, _token_offsets(t, base)[2], 'TANK-D3')
-    r_lcurr = float(t[3]) if ok else _parse_float(t[3].strip(), 'telemetry', 'lcurr', _token_offsets(t, base)[3])
+            raise _dec('telemetry', 'value', r_value, 'text', bad, _token_offset(t, base, 2), 'TANK-D3')
+    r_lcurr = float(t[3]) if ok else _parse_float(t[3].strip(), 'telemetry', 'lcurr', t, base, 3)
     if not ok and not _isfinite(r_lcurr):
-        raise _dec('telemetry', 'lcurr', r_lcurr, 'finite', 'a finite number', _token_offsets(t, base)[3], None)
-    r_rcurr = float(t[4]) if ok else _parse_float(t[4].strip(), 'telemetry', 'rcurr', _token_offsets(t, base)[4])
+        raise _dec('telemetry', 'lcurr', r_lcurr, 'finite', 'a finite number', _token_offset(t, base, 3), None)
+    r_rcurr = float(t[4]) if ok else _parse_float(t[4].strip(), 'telemetry', 'rcurr', t, base, 4)
     if not ok and not _isfinite(r_rcurr):
-        raise _dec('telemetry', 'rcurr', r_rcurr, 'finite', 'a finite number', _token_offsets(t, base)[4], None)
-    r_accx = float(t[5]) if ok else _parse_float(t[5].strip(), 'telemetry', 'accx', _token_offsets(t, base)[5])
+        raise _dec('telemetry', 'rcurr', r_rcurr, 'finite', 'a finite number', _token_offset(t, base, 4), None)
+    r_accx = float(t[5]) if ok else _parse_float(t[5].strip(), 'telemetry', 'accx', t, base, 5)
     if not ok and not _isfinite(r_accx):
-        raise _dec('telemetry', 'accx', r_accx, 'finite', 'a finite number', _token_offsets(t, base)[5], None)
-    r_accy = float(t[6]) if ok else _parse_float(t[6].strip(), 'telemetry', 'accy', _token_offsets(t, base)[6])
+        raise _dec('telemetry', 'accx', r_accx, 'finite', 'a finite number', _token_offset(t, base, 5), None)
+    r_accy = float(t[6]) if ok else _parse_float(t[6].strip(), 'telemetry', 'accy', t, base, 6)
     if not ok and not _isfinite(r_accy):
-        raise _dec('telemetry', 'accy', r_accy, 'finite', 'a finite number', _token_offsets(t, base)[6], None)
-    r_accz = float(t[7]) if ok else _parse_float(t[7].strip(), 'telemetry', 'accz', _token_offsets(t, base)[7])
+        raise _dec('telemetry', 'accy', r_accy, 'finite', 'a finite number', _token_offset(t, base, 6), None)
+    r_accz = float(t[7]) if ok else _parse_float(t[7].strip(), 'telemetry', 'accz', t, base, 7)
     if not ok and not _isfinite(r_accz):
-        raise _dec('telemetry', 'accz', r_accz, 'finite', 'a finite number', _token_offsets(t, base)[7], None)
-    r_gyrox = float(t[8]) if ok else _parse_float(t[8].strip(), 'telemetry', 'gyrox', _token_offsets(t, base)[8])
+        raise _dec('telemetry', 'accz', r_accz, 'finite', 'a finite number', _token_offset(t, base, 7), None)
+    r_gyrox = float(t[8]) if ok else _parse_float(t[8].strip(), 'telemetry', 'gyrox', t, base, 8)
     if not ok and not _isfinite(r_gyrox):
-        raise _dec('telemetry', 'gyrox', r_gyrox, 'finite', 'a finite number', _token_offsets(t, base)[8], None)
-    r_gyroy = float(t[9]) if ok else _parse_float(t[9].strip(), 'telemetry', 'gyroy', _token_offsets(t, base)[9])
+        raise _dec('telemetry', 'gyrox', r_gyrox, 'finite', 'a finite number', _token_offset(t, base, 8), None)
+    r_gyroy = float(t[9]) if ok else _parse_float(t[9].strip(), 'telemetry', 'gyroy', t, base, 9)
     if not ok and not _isfinite(r_gyroy):
-        raise _dec('telemetry', 'gyroy', r_gyroy, 'finite', 'a finite number', _token_offsets(t, base)[9], None)
-    r_gyroz = float(t[10]) if ok else _parse_float(t[10].strip(), 'telemetry', 'gyroz', _token_offsets(t, base)[10])
+        raise _dec('telemetry', 'gyroy', r_gyroy, 'finite', 'a finite number', _token_offset(t, base, 9), None)
+    r_gyroz = float(t[10]) if ok else _parse_float(t[10].strip(), 'telemetry', 'gyroz', t, base, 10)
     if not ok and not _isfinite(r_gyroz):
-        raise _dec('telemetry', 'gyroz', r_gyroz, 'finite', 'a finite number', _token_offsets(t, base)[10], None)
-    r_magx = float(t[11]) if ok else _parse_float(t[11].strip(), 'telemetry', 'magx', _token_offsets(t, base)[11])
+        raise _dec('telemetry', 'gyroz', r_gyroz, 'finite', 'a finite number', _token_offset(t, base, 10), None)
+    r_magx = float(t[11]) if ok else _parse_float(t[11].strip(), 'telemetry', 'magx', t, base, 11)
     if not ok and not _isfinite(r_magx):
-        raise _dec('telemetry', 'magx', r_magx, 'finite', 'a finite number', _token_offsets(t, base)[11], None)
-    r_magy = float(t[12]) if ok else _parse_float(t[12].strip(), 'telemetry', 'magy', _token_offsets(t, base)[12])
+        raise _dec('telemetry', 'magx', r_magx, 'finite', 'a finite number', _token_offset(t, base, 11), None)
+    r_magy = float(t[12]) if ok else _parse_float(t[12].strip(), 'telemetry', 'magy', t, base, 12)
     if not ok and not _isfinite(r_magy):
-        raise _dec('telemetry', 'magy', r_magy, 'finite', 'a finite number', _token_offsets(t, base)[12], None)
-    r_magz = float(t[13]) if ok else _parse_float(t[13].strip(), 'telemetry', 'magz', _token_offsets(t, base)[13])
+        raise _dec('telemetry', 'magy', r_magy, 'finite', 'a finite number', _token_offset(t, base, 12), None)
+    r_magz = float(t[13]) if ok else _parse_float(t[13].strip(), 'telemetry', 'magz', t, base, 13)
     if not ok and not _isfinite(r_magz):
-        raise _dec('telemetry', 'magz', r_magz, 'finite', 'a finite number', _token_offsets(t, base)[13], None)
+        raise _dec('telemetry', 'magz', r_magz, 'finite', 'a finite number', _token_offset(t, base, 13), None)
     r_lan = (t[14] if ok else t[14].strip())
     if not ok:
         bad = _text_problem(r_lan, ',', True)
         if bad:
-            raise _dec('telemetry', 'lan', r_lan, 'text', bad, _token_offsets(t, base)[14], 'TANK-D5')
+            raise _dec('telemetry', 'lan', r_lan, 'text', bad, _token_offset(t, base, 14), 'TANK-D5')
     if len(r_lan) > 32:
-        raise _dec('telemetry', 'lan', r_lan, 'length', 'at most 32 characters', _token_offsets(t, base)[14])
+        raise _dec('telemetry', 'lan', r_lan, 'length', 'at most 32 characters', _token_offset(t, base, 14))
     r_lon = (t[15] if ok else t[15].strip())
     if not ok:
         bad = _text_problem(r_lon, ',', True)
         if bad:
-            raise _dec('telemetry', 'lon', r_lon, 'text', bad, _token_offsets(t, base)[15], 'TANK-D5')
+            raise _dec('telemetry', 'lon', r_lon, 'text', bad, _token_offset(t, base, 15), 'TANK-D5')
     if len(r_lon) > 32:
-        raise _dec('telemetry', 'lon', r_lon, 'length', 'at most 32 characters', _token_offsets(t, base)[15])
-    r_vbat = float(t[16]) if ok else _parse_float(t[16].strip(), 'telemetry', 'vbat', _token_offsets(t, base)[16])
+        raise _dec('telemetry', 'lon', r_lon, 'length', 'at most 32 characters', _token_offset(t, base, 15))
+    r_vbat = float(t[16]) if ok else _parse_float(t[16].strip(), 'telemetry', 'vbat', t, base, 16)
     if not ok and not _isfinite(r_vbat):
-        raise _dec('telemetry', 'vbat', r_vbat, 'finite', 'a finite number', _token_offsets(t, base)[16], None)
-    r_systemstatus = int(t[17]) if ok else _parse_int(t[17].strip(), 'telemetry', 'systemstatus', _token_offsets(t, base)[17])
+        raise _dec('telemetry', 'vbat', r_vbat, 'finite', 'a finite number', _token_offset(t, base, 16), None)
+    r_systemstatus = int(t[17]) if ok else _parse_int(t[17].strip(), 'telemetry', 'systemstatus', t, base, 17)
     e_systemstatus = _ENUM_system_status.get(r_systemstatus)
     if e_systemstatus is None:
-        raise _dec('telemetry', 'systemstatus', r_systemstatus, 'enum', 'SystemStatus', _token_offsets(t, base)[17], None)
-    r_extid = int(t[18]) if ok else _parse_int(t[18].strip(), 'telemetry', 'extid', _token_offsets(t, base)[18])
+        raise _dec('telemetry', 'systemstatus', r_systemstatus, 'enum', 'SystemStatus', _token_offset(t, base, 17), None)
+    r_extid = int(t[18]) if ok else _parse_int(t[18].strip(), 'telemetry', 'extid', t, base, 18)
     if not 0 <= r_extid <= 255:
-        raise _dec('telemetry', 'extid', r_extid, 'range', '0..255', _token_offsets(t, base)[18], None)
-    r_extstatus = int(t[19]) if ok else _parse_int(t[19].strip(), 'telemetry', 'extstatus', _token_offsets(t, base)[19])
+        raise _dec('telemetry', 'extid', r_extid, 'range', '0..255', _token_offset(t, base, 18), None)
+    r_extstatus = int(t[19]) if ok else _parse_int(t[19].strip(), 'telemetry', 'extstatus', t, base, 19)
     e_extstatus = _ENUM_ext_status.get(r_extstatus)
     if e_extstatus is None:
-        raise _dec('telemetry', 'extstatus', r_extstatus, 'enum', 'ExtStatus', _token_offsets(t, base)[19], None)
+        raise _dec('telemetry', 'extstatus', r_extstatus, 'enum', 'ExtStatus', _token_offset(t, base, 19), None)
     o = _object_new(Telemetry)
     o.move = e_move
     o.speed = r_speed
@@ -927,49 +926,49 @@ def _decode_command(head: str, body: str, base: int) -> Command:
     ok = _SYNTAX_command.fullmatch(body) is not None  # well-formed: token syntax checks are skipped
     r_move = (t[0] if ok else t[0].strip())
     if len(r_move) != 1:
-        raise _dec('command', 'move', r_move, 'type', 'one character', _token_offsets(t, base)[0])
+        raise _dec('command', 'move', r_move, 'type', 'one character', _token_offset(t, base, 0))
     e_move = _ENUM_move.get(r_move)
     if e_move is None:
-        raise _dec('command', 'move', r_move, 'enum', 'Move', _token_offsets(t, base)[0], None)
-    r_speed = int(t[1]) if ok else _parse_int(t[1].strip(), 'command', 'speed', _token_offsets(t, base)[1])
+        raise _dec('command', 'move', r_move, 'enum', 'Move', _token_offset(t, base, 0), None)
+    r_speed = int(t[1]) if ok else _parse_int(t[1].strip(), 'command', 'speed', t, base, 1)
     if not 0 <= r_speed <= 100:
-        raise _dec('command', 'speed', r_speed, 'range', '0..100', _token_offsets(t, base)[1], 'TANK-D3')
+        raise _dec('command', 'speed', r_speed, 'range', '0..100', _token_offset(t, base, 1), 'TANK-D3')
     r_value = (t[2] if ok else t[2].strip())
     if len(r_value) != 1:
-        raise _dec('command', 'value', r_value, 'type', 'one character', _token_offsets(t, base)[2])
+        raise _dec('command', 'value', r_value, 'type', 'one character', _token_offset(t, base, 2))
     if not ok:
         bad = _text_problem(r_value, ',', True)
         if bad:
-            raise _dec('command', 'value', r_value, 'text', bad, _token_offsets(t, base)[2], 'TANK-D3')
-    r_azimutloc = int(t[3]) if ok else _parse_int(t[3].strip(), 'command', 'azimutloc', _token_offsets(t, base)[3])
+            raise _dec('command', 'value', r_value, 'text', bad, _token_offset(t, base, 2), 'TANK-D3')
+    r_azimutloc = int(t[3]) if ok else _parse_int(t[3].strip(), 'command', 'azimutloc', t, base, 3)
     if not -32768 <= r_azimutloc <= 32767:
-        raise _dec('command', 'azimutloc', r_azimutloc, 'range', '-32768..32767', _token_offsets(t, base)[3], None)
-    r_gpio1 = float(t[4]) if ok else _parse_float(t[4].strip(), 'command', 'gpio1', _token_offsets(t, base)[4])
+        raise _dec('command', 'azimutloc', r_azimutloc, 'range', '-32768..32767', _token_offset(t, base, 3), None)
+    r_gpio1 = float(t[4]) if ok else _parse_float(t[4].strip(), 'command', 'gpio1', t, base, 4)
     if not ok and not _isfinite(r_gpio1):
-        raise _dec('command', 'gpio1', r_gpio1, 'finite', 'a finite number', _token_offsets(t, base)[4], None)
-    r_gpio2 = float(t[5]) if ok else _parse_float(t[5].strip(), 'command', 'gpio2', _token_offsets(t, base)[5])
+        raise _dec('command', 'gpio1', r_gpio1, 'finite', 'a finite number', _token_offset(t, base, 4), None)
+    r_gpio2 = float(t[5]) if ok else _parse_float(t[5].strip(), 'command', 'gpio2', t, base, 5)
     if not ok and not _isfinite(r_gpio2):
-        raise _dec('command', 'gpio2', r_gpio2, 'finite', 'a finite number', _token_offsets(t, base)[5], None)
-    r_gpio3 = float(t[6]) if ok else _parse_float(t[6].strip(), 'command', 'gpio3', _token_offsets(t, base)[6])
+        raise _dec('command', 'gpio2', r_gpio2, 'finite', 'a finite number', _token_offset(t, base, 5), None)
+    r_gpio3 = float(t[6]) if ok else _parse_float(t[6].strip(), 'command', 'gpio3', t, base, 6)
     if not ok and not _isfinite(r_gpio3):
-        raise _dec('command', 'gpio3', r_gpio3, 'finite', 'a finite number', _token_offsets(t, base)[6], None)
-    r_gpio4 = float(t[7]) if ok else _parse_float(t[7].strip(), 'command', 'gpio4', _token_offsets(t, base)[7])
+        raise _dec('command', 'gpio3', r_gpio3, 'finite', 'a finite number', _token_offset(t, base, 6), None)
+    r_gpio4 = float(t[7]) if ok else _parse_float(t[7].strip(), 'command', 'gpio4', t, base, 7)
     if not ok and not _isfinite(r_gpio4):
-        raise _dec('command', 'gpio4', r_gpio4, 'finite', 'a finite number', _token_offsets(t, base)[7], None)
-    r_systemstatus = int(t[8]) if ok else _parse_int(t[8].strip(), 'command', 'systemstatus', _token_offsets(t, base)[8])
+        raise _dec('command', 'gpio4', r_gpio4, 'finite', 'a finite number', _token_offset(t, base, 7), None)
+    r_systemstatus = int(t[8]) if ok else _parse_int(t[8].strip(), 'command', 'systemstatus', t, base, 8)
     e_systemstatus = _ENUM_system_status.get(r_systemstatus)
     if e_systemstatus is None:
-        raise _dec('command', 'systemstatus', r_systemstatus, 'enum', 'SystemStatus', _token_offsets(t, base)[8], 'TANK-D2', 'systemstatus 5 (Error) and 6 (Exception) are sent only by the platform / Только с платформы')
+        raise _dec('command', 'systemstatus', r_systemstatus, 'enum', 'SystemStatus', _token_offset(t, base, 8), 'TANK-D2', 'systemstatus 5 (Error) and 6 (Exception) are sent only by the platform / Только с платформы')
     if e_systemstatus not in (0, 1, 2, 3, 4):
-        raise _dec('command', 'systemstatus', r_systemstatus, 'values', '0, 1, 2, 3, 4', _token_offsets(t, base)[8], 'TANK-D2', 'systemstatus 5 (Error) and 6 (Exception) are sent only by the platform / Только с платформы')
+        raise _dec('command', 'systemstatus', r_systemstatus, 'values', '0, 1, 2, 3, 4', _token_offset(t, base, 8), 'TANK-D2', 'systemstatus 5 (Error) and 6 (Exception) are sent only by the platform / Только с платформы')
     if len(t) > 9:
         r_data = (t[9] if ok else t[9].strip())
         if not ok:
             bad = _text_problem(r_data, ',', True)
             if bad:
-                raise _dec('command', 'data', r_data, 'text', bad, _token_offsets(t, base)[9], 'TANK-D1')
+                raise _dec('command', 'data', r_data, 'text', bad, _token_offset(t, base, 9), 'TANK-D1')
         if len(r_data) > 64:
-            raise _dec('command', 'data', r_data, 'length', 'at most 64 characters', _token_offsets(t, base)[9])
+            raise _dec('command', 'data', r_data, 'length', 'at most 64 characters', _token_offset(t, base, 9))
     else:
         r_data = None
     o = _object_new(Command)
@@ -1009,9 +1008,9 @@ def _decode_payload_command(head: str, body: str, base: int) -> PayloadCommand:
     if not ok:
         bad = _text_problem(r_command, '', True)
         if bad:
-            raise _dec('payload_command', 'command', r_command, 'text', bad, _token_offsets(t, base)[0], 'TANK-D7')
+            raise _dec('payload_command', 'command', r_command, 'text', bad, _token_offset(t, base, 0), 'TANK-D7')
     if len(r_command) > 200:
-        raise _dec('payload_command', 'command', r_command, 'length', 'at most 200 characters', _token_offsets(t, base)[0])
+        raise _dec('payload_command', 'command', r_command, 'length', 'at most 200 characters', _token_offset(t, base, 0))
     o = _object_new(PayloadCommand)
     o.command = r_command
     return o
@@ -1040,9 +1039,9 @@ def _decode_payload_reply(head: str, body: str, base: int) -> PayloadReply:
     if not ok:
         bad = _text_problem(r_command, '', True)
         if bad:
-            raise _dec('payload_reply', 'command', r_command, 'text', bad, _token_offsets(t, base)[0], 'TANK-D7')
+            raise _dec('payload_reply', 'command', r_command, 'text', bad, _token_offset(t, base, 0), 'TANK-D7')
     if len(r_command) > 200:
-        raise _dec('payload_reply', 'command', r_command, 'length', 'at most 200 characters', _token_offsets(t, base)[0])
+        raise _dec('payload_reply', 'command', r_command, 'length', 'at most 200 characters', _token_offset(t, base, 0))
     o = _object_new(PayloadReply)
     o.command = r_command
     return o
@@ -1074,22 +1073,22 @@ def _decode_gpio_config(head: str, body: str, base: int) -> GpioConfig:
     if not 4 <= len(t) <= 4:
         raise _dec('gpio_config', None, len(t), 'count', '4 fields', base)
     ok = _SYNTAX_gpio_config.fullmatch(body) is not None  # well-formed: token syntax checks are skipped
-    r_gpio1 = int(t[0]) if ok else _parse_int(t[0].strip(), 'gpio_config', 'gpio1', _token_offsets(t, base)[0])
+    r_gpio1 = int(t[0]) if ok else _parse_int(t[0].strip(), 'gpio_config', 'gpio1', t, base, 0)
     e_gpio1 = _ENUM_gpio_mode.get(r_gpio1)
     if e_gpio1 is None:
-        raise _dec('gpio_config', 'gpio1', r_gpio1, 'enum', 'GpioMode', _token_offsets(t, base)[0], None)
-    r_gpio2 = int(t[1]) if ok else _parse_int(t[1].strip(), 'gpio_config', 'gpio2', _token_offsets(t, base)[1])
+        raise _dec('gpio_config', 'gpio1', r_gpio1, 'enum', 'GpioMode', _token_offset(t, base, 0), None)
+    r_gpio2 = int(t[1]) if ok else _parse_int(t[1].strip(), 'gpio_config', 'gpio2', t, base, 1)
     e_gpio2 = _ENUM_gpio_mode.get(r_gpio2)
     if e_gpio2 is None:
-        raise _dec('gpio_config', 'gpio2', r_gpio2, 'enum', 'GpioMode', _token_offsets(t, base)[1], None)
-    r_gpio3 = int(t[2]) if ok else _parse_int(t[2].strip(), 'gpio_config', 'gpio3', _token_offsets(t, base)[2])
+        raise _dec('gpio_config', 'gpio2', r_gpio2, 'enum', 'GpioMode', _token_offset(t, base, 1), None)
+    r_gpio3 = int(t[2]) if ok else _parse_int(t[2].strip(), 'gpio_config', 'gpio3', t, base, 2)
     e_gpio3 = _ENUM_gpio_mode.get(r_gpio3)
     if e_gpio3 is None:
-        raise _dec('gpio_config', 'gpio3', r_gpio3, 'enum', 'GpioMode', _token_offsets(t, base)[2], None)
-    r_gpio4 = int(t[3]) if ok else _parse_int(t[3].strip(), 'gpio_config', 'gpio4', _token_offsets(t, base)[3])
+        raise _dec('gpio_config', 'gpio3', r_gpio3, 'enum', 'GpioMode', _token_offset(t, base, 2), None)
+    r_gpio4 = int(t[3]) if ok else _parse_int(t[3].strip(), 'gpio_config', 'gpio4', t, base, 3)
     e_gpio4 = _ENUM_gpio_mode.get(r_gpio4)
     if e_gpio4 is None:
-        raise _dec('gpio_config', 'gpio4', r_gpio4, 'enum', 'GpioMode', _token_offsets(t, base)[3], None)
+        raise _dec('gpio_config', 'gpio4', r_gpio4, 'enum', 'GpioMode', _token_offset(t, base, 3), None)
     o = _object_new(GpioConfig)
     o.gpio1 = e_gpio1
     o.gpio2 = e_gpio2
@@ -1135,6 +1134,11 @@ def _decode_as(name: str, data: _Input, fn: Callable[[str, str, int], _T]) -> _T
     return fn(held, body, base)
 
 
+# (prefix, direction) → decoder, of prefixes found before: a line's dispatch is one lookup
+_FOUND: dict[tuple[str, Optional[str]], _Decoder] = {}
+_FOUND_MAX = 1024  # prefixes remembered at most
+
+
 @overload
 def decode(data: _Input, direction: Literal['computer_to_platform']) -> Union[Command, GpioConfig]: ...
 
@@ -1157,12 +1161,17 @@ def decode(data: _Input, direction: Optional[str] = None) -> AnyMessage: ...
 
 def decode(data: _Input, direction: Optional[str] = None) -> AnyMessage:
     """Decode one message, found by its prefix; `direction` is needed only when a prefix is used in several."""
-    text = _as_input(data)
+    text = data if isinstance(data, str) and data.isascii() else _as_input(data)
     prefix, body, base = _split(text)
     held = prefix.strip()
-    fn = _pick(prefix, _PREFIXES.get(held, ()), direction)
+    known = direction is None or direction.__class__ is str
+    fn = _FOUND.get((held, direction)) if known else None
     if fn is None:
-        raise _dec(None, 'prefix', prefix, 'dispatch', ' '.join([*_PREFIXES]), 0)
+        fn = _pick(prefix, _PREFIXES.get(held, ()), direction)
+        if fn is None:
+            raise _dec(None, 'prefix', prefix, 'dispatch', ' '.join([*_PREFIXES]), 0)
+        if known and len(_FOUND) < _FOUND_MAX:
+            _FOUND[(held, direction)] = fn
     return fn(held, body, base)
 
 

@@ -598,6 +598,25 @@ class MessageCode:
         self.output = "str" if view.p.framing.kind == "text" else "bytes"
         self.helpers: list[str] = []  # functions the encoder calls, written before it
         self.repeats = {r.field.name: RepeatCode(self, r) for r in message.wire.repeats}
+        # leaf var → (struct item, its expected bytes, the int.from_bytes call): a constant unpacked
+        # as bytes is compared as bytes, and read as a number only for its error
+        self.const_items: dict[str, tuple[str, bytes, str]] = {}
+
+    def only_checked(self, leaf: Leaf) -> bool:
+        """Whether the decoder uses a leaf's raw value for its constant check alone: no other
+        field, condition or field checksum reads it."""
+        f = leaf.field
+        if f.const is None or f.values or f.reserved or f.counts or f.length_of or f.checksum:
+            return False
+        if self.looped(leaf) is not None:  # an array's elements are checked by its loop
+            return False
+        if any(x.field.checksum and x.field.checksum.over != "bytes" for x in self.leaves):
+            return False
+        gaps = self.m.shortening.gaps if self.m.shortening else ()
+        if any(g.control == f.name for g in gaps):
+            return False
+        return not any(x.field.multiplexed_by and any(m.field == f.name for m in x.field.multiplexed_by.chain)
+                       for x in self.leaves)
 
     def looped(self, leaf: Leaf) -> Optional[RepeatCode]:
         """The code of the Repeat whose elements hold `leaf`, if any."""
@@ -859,6 +878,10 @@ class MessageCode:
             guard = self.sent_guard(leaf, gap_of(self.m, leaf), encoding=False)
             checks = Code()
             expr = self.view.decode_leaf(checks, self.m, leaf, self.sent_offset(leaf), bounded)
+            if leaf.var in self.const_items:  # its bytes compared, its number read for the error only
+                item, want, read = self.const_items[leaf.var]
+                checks.lines = [f"if {item} != {want!r}:", f"    {leaf.var} = {read}",
+                                *("    " + line for line in checks.lines)]
             kept = expr is not None and guard is not None and expr != leaf.var  # read under the guard
             if guard != run.guard and (checks.lines or kept or guard is None):
                 run.close()
@@ -962,8 +985,22 @@ class MessageCode:
     def structs(self) -> list[tuple[str, str]]:
         if self.one_word():
             return []
-        own = [(f"_S_{self.fn}_{n}", s.fmt) for n, s in enumerate(segments_of(self.chunks()))]
+        segments = segments_of(self.chunks())
+        own = [(f"_S_{self.fn}_{n}", s.fmt) for n, s in enumerate(segments)]
+        if len(segments) == 1 and self.appended_checksum_head(segments, self.byte_checksums(), self.truncates()):
+            # the encoder's: the same bytes up to the checksum it appends
+            head = Segment(0, segments[0].chunks[:-1])
+            own.append((f"_S_{self.fn}_h", head.fmt))
         return own + [x for rc in self.repeats.values() for x in rc.structs()]
+
+    def byte_checksums(self) -> list:
+        """(leaf, checksum) of each checksum over the frame's bytes."""
+        return [(leaf, leaf.field.checksum) for leaf in self.leaves
+                if leaf.field.checksum and leaf.field.checksum.over == "bytes"]
+
+    def truncates(self) -> bool:
+        """Whether the encoder leaves bytes out: a payload's trailing zeros, or gaps."""
+        return bool(self.m.shortening and (self.m.shortening.trailing_zeros or self.m.shortening.gaps))
 
     def word_shifts(self) -> list[tuple[Leaf, int]]:
         """(leaf, shift) of every leaf in the frame read as one integer."""
@@ -996,17 +1033,20 @@ class MessageCode:
             c(f"return w.to_bytes({size}, {self.m.wire.order!r})")
             return c.text()
         segments = segments_of(self.chunks())
-        crcs = [(leaf, leaf.field.checksum) for leaf in self.leaves
-                if leaf.field.checksum and leaf.field.checksum.over == "bytes"]
-        truncates = bool(self.m.shortening and (self.m.shortening.trailing_zeros or self.m.shortening.gaps))
+        crcs = self.byte_checksums()
+        truncates = self.truncates()
         single = len(segments) == 1 and not crcs and not truncates
-        if not truncates and self.checksum_last(segments, crcs):
+        head = self.appended_checksum_head(segments, crcs, truncates)
+        if head is not None:  # packed to bytes, cut short, and the checksum appended: no buffer patched
             leaf, cs = crcs[0]
-            values = ", ".join(self.chunk_value(ch) for ch in segments[0].chunks)
-            c(f"h = _S_{self.fn}_0.pack({values})")
+            chunk = segments[-1].chunks[-1]
+            values = ", ".join(self.chunk_value(ch) for seg in segments for ch in seg.chunks if ch is not chunk)
+            c(f"h = {head}.pack({values})")
+            if truncates:
+                self.truncate_head(c)
             order = leaf.field.byte_order or self.view.p.framing.byte_order
-            value = self.view.checksum_call(cs, "h", cs.byte_span[0], cs.byte_span[1], self.m.crc_extra, False)
-            c(f"return h + {value}.to_bytes({segments[1].chunks[0].nbytes}, {order!r})")
+            value = self.view.checksum_call(cs, "h", cs.byte_span[0], cs.byte_span[1], self.m.crc_extra, truncates)
+            c(f"return h + {value}.to_bytes({chunk.nbytes}, {order!r})")
             return c.text()
         if not single:
             c(f"b = bytearray({size})")
@@ -1037,14 +1077,47 @@ class MessageCode:
             c("return bytes(b)")
         return c.text()
 
-    def checksum_last(self, segments: list[Segment], crcs: list) -> bool:
-        """The frame is one struct's bytes and then its one checksum, alone and last, over
-        bytes before it: the checksum is appended to the packed bytes, not patched in."""
-        if len(crcs) != 1 or len(segments) != 2 or len(segments[1].chunks) != 1:
-            return False
-        chunk, (leaf, cs) = segments[1].chunks[0], crcs[0]
-        return (chunk.lone and chunk.repeat is None and chunk.leaves[0][0] is leaf and chunk.start + chunk.nbytes == self.m.size
-                and cs.byte_span[1] <= chunk.start and segments[0].start == 0)
+    def appended_checksum_head(self, segments: list[Segment], crcs: list, truncates: bool) -> Optional[str]:
+        """The struct that packs the frame up to its one checksum, when that checksum is alone
+        and last, over bytes before it (after a payload cut short at its trailing zeros, the
+        payload's end): the checksum is then appended to the packed bytes, not patched in.
+        None otherwise."""
+        if len(crcs) != 1 or not 1 <= len(segments) <= 2 or segments[0].start != 0:
+            return None
+        chunk, (leaf, cs) = segments[-1].chunks[-1], crcs[0]
+        if not (chunk.lone and chunk.repeat is None and chunk.leaves[0][0] is leaf
+                and chunk.start + chunk.nbytes == self.m.size and cs.byte_span[1] <= chunk.start):
+            return None
+        if len(segments) == 2 and len(segments[1].chunks) != 1:
+            return None
+        if truncates:
+            sh = self.m.shortening
+            if sh.gaps or sh.payload[1] != chunk.start or cs.byte_span[1] != chunk.start or not self.m.counts_sent(cs):
+                return None
+            length = self.length_leaf()
+            if length is not None and (length.pos + length.bits) // 8 > sh.payload[0] + sh.least:
+                return None
+        return f"_S_{self.fn}_0" if len(segments) == 2 else f"_S_{self.fn}_h"
+
+    def length_leaf(self) -> Optional[Leaf]:
+        """The leaf of the field counting the payload bytes sent, if the frame has one."""
+        name = self.m.shortening.length_field if self.m.shortening else None
+        return next((x for x in self.leaves if x.field.name == name), None) if name else None
+
+    def truncate_head(self, c: Code) -> None:
+        """The packed bytes `h` without the payload's trailing zeros (keeping the fewest it
+        must carry), the length field counting the bytes sent."""
+        sh = self.m.shortening
+        lo, hi = sh.payload[0] + sh.least, sh.payload[1]
+        c(f"cut = {hi - lo} - len(h[{lo}:{hi}].rstrip(b'\\0'))  # trailing zeros are not sent")
+        c("if cut:")
+        leaf = self.length_leaf()
+        if leaf is None:
+            c(f"    h = h[:{hi} - cut]")
+            return
+        at, n = leaf.pos // 8, leaf.bits // 8
+        order = leaf.field.byte_order or self.view.p.framing.byte_order
+        c(f"    h = b''.join((h[:{at}], ({leaf.field.const} - cut).to_bytes({n}, {order!r}), h[{at + n}:{hi} - cut]))")
 
     def leave_out_gaps(self, c: Code) -> None:
         """Drop the bytes of each gap that the frame does not send, the last gap first so
@@ -1105,7 +1178,9 @@ class MessageCode:
                 return lit(fixed)
             if chunk.code == "s":
                 order = leaf.field.byte_order or self.view.p.framing.byte_order
-                return f"{leaf.var}.to_bytes({chunk.nbytes}, {order!r}, signed={chunk.signed})"
+                if fixed is not None:  # its bytes, written out
+                    return repr((fixed % (1 << (8 * chunk.nbytes))).to_bytes(chunk.nbytes, order))
+                return f"{leaf.var}.to_bytes({chunk.nbytes}, {order!r}{', signed=True' if chunk.signed else ''})"
             return leaf.var
         expr = self.packed(chunk.leaves)
         if chunk.other:  # the fields in the other byte order, as the chunk's integer holds their bytes
@@ -1255,7 +1330,12 @@ class MessageCode:
                 leaf = chunk.leaves[0][0]
                 if chunk.code == "s":
                     order = leaf.field.byte_order or self.view.p.framing.byte_order
-                    c(f"{leaf.var} = int.from_bytes({var}, {order!r}, signed={chunk.signed})")
+                    read = f"int.from_bytes({var}, {order!r}{', signed=True' if chunk.signed else ''})"
+                    if self.only_checked(leaf):
+                        raw = self.view.fixed_raw(leaf.field) % (1 << (8 * chunk.nbytes))
+                        self.const_items[leaf.var] = (var, raw.to_bytes(chunk.nbytes, order), read)
+                    else:
+                        c(f"{leaf.var} = {read}")
                 continue
             if chunk.code == "s":
                 c(f"{var} = int.from_bytes({var}, {chunk.order!r})")
@@ -1511,12 +1591,14 @@ class MessageCode:
         for n, leaf in enumerate(self.text_leaves):
             f = leaf.field
             at = f"{self.m.name!r}, {leaf.dotted!r}"
-            where = f"_token_offsets(t, base)[{n}]"  # computed only for an error
+            where = f"_token_offset(t, base, {n})"  # computed only for an error
+            lazy = f"t, base, {n}"  # what a parser computes it from, for an error
+            held = f"t[{n}].strip()" if fr.trim else f"t[{n}]"
             if f.optional and f.kind == "str" and f.const is None:  # an empty value is an empty str
                 c(f"if len(t) > {n}:")
                 c.indent()
-            elif f.optional:  # an empty value is an absent one
-                c(f"if len(t) > {n} and {f't[{n}].strip()' if fr.trim else f't[{n}]'}:")
+            elif f.optional:  # an empty value is an absent one; every line holds the first `required`
+                c(f"if len(t) > {n} and {held}:" if n >= required else f"if {held}:")
                 c.indent()
             tok = f"(t[{n}] if ok else t[{n}].strip())" if fr.trim else f"t[{n}]"
             slow_tok = f"t[{n}].strip()" if fr.trim else f"t[{n}]"
@@ -1524,11 +1606,12 @@ class MessageCode:
                 c(f"if len(t[{n}]) > {SPELLING_MAX}:")
                 c(f"    raise _dec({at}, t[{n}], 'length', 'a number of at most {SPELLING_MAX} characters', {where})")
             if f.kind == "float":
-                c(f"{leaf.var} = float(t[{n}]) if ok else _parse_float({slow_tok}, {at}, {where})")
-            elif f.fixed_spelling:  # any spelling, rounded to the field's decimals: on every path
-                c(f"{leaf.var} = _parse_fixed({tok}, {f.decimals or 0}, {at}, {where})")
+                c(f"{leaf.var} = float(t[{n}]) if ok else _parse_float({slow_tok}, {at}, {lazy})")
+            elif f.fixed_spelling:  # any spelling, rounded to the field's decimals
+                c(f"{leaf.var} = _fixed_of(t[{n}], {f.decimals or 0}) if ok else "
+                  f"_parse_fixed({slow_tok}, {f.decimals or 0}, {at}, {lazy})")
             elif f.kind in ("uint", "int") or (f.enum is not None and f.enum.kind == "int"):
-                c(f"{leaf.var} = int(t[{n}]) if ok else _parse_int({slow_tok}, {at}, {where})")
+                c(f"{leaf.var} = int(t[{n}]) if ok else _parse_int({slow_tok}, {at}, {lazy})")
             elif f.kind == "char":
                 c(f"{leaf.var} = {tok}")
                 c(f"if len({leaf.var}) != 1:")
@@ -1624,22 +1707,27 @@ def _bit_reversed_hqx(p) -> bool:
     return p.width == 16 and p.poly == 0x1021 and p.refin and p.refout
 
 
-def _stdlib_crc(p, name: str = "") -> Optional[tuple[str, str]]:
-    """(import, call expression on `data`) for a CRC the standard library computes in C:
-    binascii.crc_hqx is poly 0x1021 unreflected from any start value, zlib.crc32 is poly
-    0x04C11DB7 reflected and inverted on the way in and out. Poly 0x1021 reflected (X.25,
-    MAVLink's MCRF4XX, KERMIT) is crc_hqx of the bytes bit-reversed, its result bit-reversed:
-    reflecting every byte in and the register out is the whole of a reflected CRC. None for
-    any other CRC."""
+def _stdlib_crc(p, name: str = "") -> Optional[tuple[str, list[str]]]:
+    """(import, body lines computing the CRC of `data`) for a CRC the standard library
+    computes in C: binascii.crc_hqx is poly 0x1021 unreflected from any start value,
+    zlib.crc32 is poly 0x04C11DB7 reflected and inverted on the way in and out. Poly 0x1021
+    reflected (X.25, MAVLink's MCRF4XX, KERMIT) is crc_hqx of the bytes bit-reversed, its
+    result bit-reversed: reflecting every byte in and the register out is the whole of a
+    reflected CRC. None for any other CRC."""
+    def out(value: str, xorout: int) -> str:
+        return f"{value} ^ {xorout:#x}" if xorout else value
     if p.width == 16 and p.poly == 0x1021 and not p.refin and not p.refout:
-        return "from binascii import crc_hqx as _crc_hqx", f"_crc_hqx(data, {p.init:#x}) ^ {p.xorout:#x}"
+        return "from binascii import crc_hqx as _crc_hqx", [f"return {out(f'_crc_hqx(data, {p.init:#x})', p.xorout)}"]
     if _bit_reversed_hqx(p):
+        table = f"_BITS_REVERSED_{name}"
+        # bytes and bytearray translate themselves; anything else is copied to bytes first
         return ("from binascii import crc_hqx as _crc_hqx",
-                f"_reflected_{name}(_crc_hqx(bytes(data).translate(_BITS_REVERSED_{name}), {p.init:#x})) ^ {p.xorout:#x}")
+                [f"x = _crc_hqx((data if isinstance(data, (bytes, bytearray)) else bytes(data)).translate({table}), {p.init:#x})",
+                 f"return {out(f'({table}[x & 0xFF] << 8 | {table}[x >> 8])', p.xorout)}  # x bit-reversed"])
     if p.width == 32 and p.poly == 0x04C11DB7 and p.refin and p.refout:
         start = reflect(p.init, 32) ^ 0xFFFFFFFF
         return ("from zlib import crc32 as _crc32",
-                f"_crc32(data, {start:#x}) ^ {0xFFFFFFFF ^ p.xorout:#x}")
+                [f"return {out(f'_crc32(data, {start:#x})', 0xFFFFFFFF ^ p.xorout)}"])
     return None
 
 
@@ -1653,16 +1741,12 @@ def _checksum_code(cs) -> str:
           f"refin={p.refin} refout={p.refout} xorout={p.xorout:#x}, computed by the standard library in C")
         c(fast[0])
         if _bit_reversed_hqx(cs.crc):  # a table of each byte bit-reversed, its own so that CRCs never share names
-            table = f"_BITS_REVERSED_{name}"
-            c(f"{table} = bytes(int(f'{{b:08b}}'[::-1], 2) for b in range(256))")
-            c("")
-            c("")
-            c(f"def _reflected_{name}(x: int) -> int:")
-            c(f"    return {table}[x & 0xFF] << 8 | {table}[x >> 8]")
+            c(f"_BITS_REVERSED_{name} = bytes(int(f'{{b:08b}}'[::-1], 2) for b in range(256))")
         c("")
         c("")
         c(f"def _checksum_{name}(data: _Buffer) -> int:")
-        c(f"    return {fast[1]}")
+        for line in fast[1]:
+            c(f"    {line}")
     elif cs.algorithm == "crc":
         p = cs.crc
         mask = (1 << p.width) - 1
@@ -1951,12 +2035,13 @@ class ModuleView(PythonView):
         message's extra byte when the checksum takes one. `cut`: the coverage ends
         `cut` bytes early, with a payload cut short."""
         name = _checksum_name(cs)
+        # a join takes any bytes-like part, and copies once
         if cut:
             if cs.extra:
-                return f"_checksum_{name}(bytes({buf}[{start}:{end} - cut]) + {bytes([extra])!r})"
+                return f"_checksum_{name}(b''.join(({buf}[{start}:{end} - cut], {bytes([extra])!r})))"
             return f"_checksum_{name}({buf}[{start}:{end} - cut])"
         if cs.extra:
-            data, size = f"bytes({buf}[{start}:{end}]) + {bytes([extra])!r}", end - start + 1
+            data, size = f"b''.join(({buf}[{start}:{end}], {bytes([extra])!r}))", end - start + 1
             if _straight_line_crc(cs, size):
                 return f"_checksum_{name}_{size}({data}, 0)"
             return f"_checksum_{name}({data})"
@@ -1971,7 +2056,11 @@ class ModuleView(PythonView):
             # each message's frame sizes as a range: a counted array's are as many as its elements
             keys = [(value, sizes_range(facts["least"].get(name, size), size, facts["steps"].get(name, 1)), direction, name)
                     for value, size, direction, name in facts["frames"]]
-            facts = dict(facts, value_expr=self.read_expr("d", "", facts), sized_frames=keys)
+            facts = dict(facts, value_expr=self.read_expr("d", "", facts), sized_frames=keys, raw_key=None)
+            if facts["bytes"] > 1 and not facts["shift"] and facts["mask"] == (1 << (8 * facts["bytes"])) - 1:
+                # a key of whole bytes is looked up by the bytes themselves, no number read
+                facts["raw_key"] = {"slice": f"d[{facts['first']}:{facts['last']}]", "bytes": facts["bytes"],
+                                    "order": facts["byte_order"]}
         if facts["kind"] == "bits" and self.p.framing.max_bits:  # the word form: a left-aligned int
             facts = dict(facts, word_limit=1 << self.p.framing.max_bits,
                          word_shift=self.p.framing.max_bits - facts["head_bits"])

@@ -1003,11 +1003,18 @@ for _value, _sizes, _direction, _fn in _KEYS:
 
 
 _UNIQUE = {key: fns[0] for key, fns in _ALL.items() if len(fns) == 1}
+# the same keyed by the id's bytes as a frame of bytes holds them: found without reading a number
+_UNIQUE_RAW = {(value.to_bytes(2, 'big'), size): fn
+               for (value, size), fn in _UNIQUE.items() if value >= 0}
 
 
 def decode(data: _Input, direction: Optional[str] = None) -> AnyMessage:
     """Decode one frame; `direction` is needed only when ids are reused across directions."""
     d = data if data.__class__ is bytes else _as_input(data)
+    if direction is None and isinstance(d, bytes):  # a bytearray's slice is no key
+        fn = _UNIQUE_RAW.get((d[0:2], len(d)))
+        if fn is not None:
+            return fn(d)
     if direction is None and len(d) >= 2:
         fn = _UNIQUE.get((int.from_bytes(d[0:2], 'big'), len(d)))
         if fn is not None:
@@ -1122,7 +1129,7 @@ def encode(m: AnyMessage) -> bytes:
     fn = _ENCODERS.get(type(m))
     if fn is None:
         raise _enc(None, None, type(m).__name__, 'type', 'a message of can_mixed')
-    return bytes(fn(m))
+    return fn(m)  # each encoder returns bytes
 
 
 def validate(m: AnyMessage) -> None:

@@ -320,7 +320,9 @@ class Status(_Message):
 AnyMessage = Union[Ping, Read, Write, Status, ]
 """A message of dynamixel2: what encode takes and decode returns."""
 _S_ping_0 = struct.Struct('<BBBBBHBH')
+_S_ping_h = struct.Struct('<BBBBBHB')
 _S_read_0 = struct.Struct('<BBBBBHBHHH')
+_S_read_h = struct.Struct('<BBBBBHBHH')
 _S_write_0 = struct.Struct('<BBBBBHBH64sH')
 _S_status_0 = struct.Struct('<BBBBBHBB64sH')
 
@@ -573,14 +575,11 @@ def unstuff(data: _Buffer) -> bytes:
 
 
 def _encode_ping(m: Ping) -> bytes:
-    r_crc = 0
     r_id = m.id
     if r_id.__class__ is not int or not 0 <= r_id <= 255:
         _int_fault('ping', 'id', r_id, 0, 255, False, None)
-    b = bytearray(10)
-    _S_ping_0.pack_into(b, 0, 255, 255, 253, 0, r_id, 3, 1, r_crc)
-    b[8:10] = _checksum_crc16_8005_0_nn_0_8(b, 0).to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_ping_h.pack(255, 255, 253, 0, r_id, 3, 1)
+    return h + _checksum_crc16_8005_0_nn_0_8(h, 0).to_bytes(2, 'little')
 
 
 def _decode_ping(d: _Buffer) -> Ping:
@@ -611,16 +610,13 @@ def _decode_ping(d: _Buffer) -> Ping:
 
 
 def _encode_read(m: Read) -> bytes:
-    r_crc = 0
     r_id = m.id
     r_address = m.address
     r_data_length = m.data_length
     if (r_id.__class__ is not int or not 0 <= r_id <= 255) or (r_address.__class__ is not int or not 0 <= r_address <= 65535) or (r_data_length.__class__ is not int or not 0 <= r_data_length <= 65535):
         _faults('read', (r_id, r_address, r_data_length, ), (('int', 'id', 0, 255, False, None), ('int', 'address', 0, 65535, False, None), ('int', 'data_length', 0, 65535, False, None)))
-    b = bytearray(14)
-    _S_read_0.pack_into(b, 0, 255, 255, 253, 0, r_id, 7, 2, r_address, r_data_length, r_crc)
-    b[12:14] = _checksum_crc16_8005_0_nn_0_12(b, 0).to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_read_h.pack(255, 255, 253, 0, r_id, 7, 2, r_address, r_data_length)
+    return h + _checksum_crc16_8005_0_nn_0_12(h, 0).to_bytes(2, 'little')
 
 
 def _decode_read(d: _Buffer) -> Read:

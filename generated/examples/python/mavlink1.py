@@ -553,23 +553,26 @@ class CommandLong(_Message):
 AnyMessage = Union[Heartbeat, SysStatus, ParamValue, GpsRawInt, Attitude, CommandLong, ]
 """A message of mavlink1: what encode takes and decode returns."""
 _S_heartbeat_0 = struct.Struct('<BBBBBBIBBBBBH')
+_S_heartbeat_h = struct.Struct('<BBBBBBIBBBBB')
 _S_sys_status_0 = struct.Struct('<BBBBBBIIIHHhHHHHHHbH')
+_S_sys_status_h = struct.Struct('<BBBBBBIIIHHhHHHHHHb')
 _S_param_value_0 = struct.Struct('<BBBBBBfHH16sBH')
+_S_param_value_h = struct.Struct('<BBBBBBfHH16sB')
 _S_gps_raw_int_0 = struct.Struct('<BBBBBBQiiiHHHHBBH')
+_S_gps_raw_int_h = struct.Struct('<BBBBBBQiiiHHHHBB')
 _S_attitude_0 = struct.Struct('<BBBBBBIffffffH')
+_S_attitude_h = struct.Struct('<BBBBBBIffffff')
 _S_command_long_0 = struct.Struct('<BBBBBBfffffffHBBBH')
+_S_command_long_h = struct.Struct('<BBBBBBfffffffHBBB')
 
 # CRC-16/MCRF4XX: width=16 poly=0x1021 init=0xffff refin=True refout=True xorout=0x0, computed by the standard library in C
 from binascii import crc_hqx as _crc_hqx
 _BITS_REVERSED_crc16_1021_ffff_rr_0_extra = bytes(int(f'{b:08b}'[::-1], 2) for b in range(256))
 
 
-def _reflected_crc16_1021_ffff_rr_0_extra(x: int) -> int:
-    return _BITS_REVERSED_crc16_1021_ffff_rr_0_extra[x & 0xFF] << 8 | _BITS_REVERSED_crc16_1021_ffff_rr_0_extra[x >> 8]
-
-
 def _checksum_crc16_1021_ffff_rr_0_extra(data: _Buffer) -> int:
-    return _reflected_crc16_1021_ffff_rr_0_extra(_crc_hqx(bytes(data).translate(_BITS_REVERSED_crc16_1021_ffff_rr_0_extra), 0xffff)) ^ 0x0
+    x = _crc_hqx((data if isinstance(data, (bytes, bytearray)) else bytes(data)).translate(_BITS_REVERSED_crc16_1021_ffff_rr_0_extra), 0xffff)
+    return (_BITS_REVERSED_crc16_1021_ffff_rr_0_extra[x & 0xFF] << 8 | _BITS_REVERSED_crc16_1021_ffff_rr_0_extra[x >> 8])  # x bit-reversed
 
 
 def _as_input(data: object) -> _Buffer:
@@ -585,7 +588,6 @@ def _as_input(data: object) -> _Buffer:
 
 
 def _encode_heartbeat(m: Heartbeat) -> bytes:
-    r_checksum = 0
     r_seq = m.seq
     r_sysid = m.sysid
     r_compid = m.compid
@@ -597,10 +599,8 @@ def _encode_heartbeat(m: Heartbeat) -> bytes:
     r_mavlink_version = m.mavlink_version
     if (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255) or (r_custom_mode.__class__ is not int or not 0 <= r_custom_mode <= 4294967295) or (r_type.__class__ is not int or not 0 <= r_type <= 255) or (r_autopilot.__class__ is not int or not 0 <= r_autopilot <= 255) or (r_base_mode.__class__ is not int or not 0 <= r_base_mode <= 255) or (r_system_status.__class__ is not int or not 0 <= r_system_status <= 255) or (r_mavlink_version.__class__ is not int or not 0 <= r_mavlink_version <= 255):
         _faults('heartbeat', (r_seq, r_sysid, r_compid, r_custom_mode, r_type, r_autopilot, r_base_mode, r_system_status, r_mavlink_version, ), (('int', 'seq', 0, 255, False, None), ('int', 'sysid', 0, 255, False, None), ('int', 'compid', 0, 255, False, None), ('int', 'custom_mode', 0, 4294967295, False, None), ('int', 'type', 0, 255, False, None), ('int', 'autopilot', 0, 255, False, None), ('int', 'base_mode', 0, 255, False, None), ('int', 'system_status', 0, 255, False, None), ('int', 'mavlink_version', 0, 255, False, None)))
-    b = bytearray(17)
-    _S_heartbeat_0.pack_into(b, 0, 254, 9, r_seq, r_sysid, r_compid, 0, r_custom_mode, r_type, r_autopilot, r_base_mode, r_system_status, r_mavlink_version, r_checksum)
-    b[15:17] = _checksum_crc16_1021_ffff_rr_0_extra(bytes(b[1:15]) + b'2').to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_heartbeat_h.pack(254, 9, r_seq, r_sysid, r_compid, 0, r_custom_mode, r_type, r_autopilot, r_base_mode, r_system_status, r_mavlink_version)
+    return h + _checksum_crc16_1021_ffff_rr_0_extra(b''.join((h[1:15], b'2'))).to_bytes(2, 'little')
 
 
 def _decode_heartbeat(d: _Buffer) -> Heartbeat:
@@ -610,7 +610,7 @@ def _decode_heartbeat(d: _Buffer) -> Heartbeat:
     if len(d) != 17:
         raise _dec('heartbeat', None, len(d), 'length', '17 bytes', 0)
     r_stx, r_len, r_seq, r_sysid, r_compid, r_msgid, r_custom_mode, r_type, r_autopilot, r_base_mode, r_system_status, r_mavlink_version, r_checksum, = _S_heartbeat_0.unpack_from(d, 0)
-    x = _checksum_crc16_1021_ffff_rr_0_extra(bytes(d[1:15]) + b'2')
+    x = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((d[1:15], b'2')))
     if r_checksum != x:
         raise _dec('heartbeat', 'checksum', r_checksum, 'checksum', hex(x), 120, None)
     if r_stx != 254:
@@ -633,7 +633,6 @@ def _decode_heartbeat(d: _Buffer) -> Heartbeat:
 
 
 def _encode_sys_status(m: SysStatus) -> bytes:
-    r_checksum = 0
     r_seq = m.seq
     r_sysid = m.sysid
     r_compid = m.compid
@@ -652,10 +651,8 @@ def _encode_sys_status(m: SysStatus) -> bytes:
     r_battery_remaining = m.battery_remaining
     if (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255) or (r_onboard_control_sensors_present.__class__ is not int or not 0 <= r_onboard_control_sensors_present <= 4294967295) or (r_onboard_control_sensors_enabled.__class__ is not int or not 0 <= r_onboard_control_sensors_enabled <= 4294967295) or (r_onboard_control_sensors_health.__class__ is not int or not 0 <= r_onboard_control_sensors_health <= 4294967295) or (r_load.__class__ is not int or not 0 <= r_load <= 65535) or (r_voltage_battery.__class__ is not int or not 0 <= r_voltage_battery <= 65535) or (r_current_battery.__class__ is not int or not -32768 <= r_current_battery <= 32767) or (r_drop_rate_comm.__class__ is not int or not 0 <= r_drop_rate_comm <= 65535) or (r_errors_comm.__class__ is not int or not 0 <= r_errors_comm <= 65535) or (r_errors_count1.__class__ is not int or not 0 <= r_errors_count1 <= 65535) or (r_errors_count2.__class__ is not int or not 0 <= r_errors_count2 <= 65535) or (r_errors_count3.__class__ is not int or not 0 <= r_errors_count3 <= 65535) or (r_errors_count4.__class__ is not int or not 0 <= r_errors_count4 <= 65535) or (r_battery_remaining.__class__ is not int or not -128 <= r_battery_remaining <= 127):
         _faults('sys_status', (r_seq, r_sysid, r_compid, r_onboard_control_sensors_present, r_onboard_control_sensors_enabled, r_onboard_control_sensors_health, r_load, r_voltage_battery, r_current_battery, r_drop_rate_comm, r_errors_comm, r_errors_count1, r_errors_count2, r_errors_count3, r_errors_count4, r_battery_remaining, ), (('int', 'seq', 0, 255, False, None), ('int', 'sysid', 0, 255, False, None), ('int', 'compid', 0, 255, False, None), ('int', 'onboard_control_sensors_present', 0, 4294967295, False, None), ('int', 'onboard_control_sensors_enabled', 0, 4294967295, False, None), ('int', 'onboard_control_sensors_health', 0, 4294967295, False, None), ('int', 'load', 0, 65535, False, None), ('int', 'voltage_battery', 0, 65535, False, None), ('int', 'current_battery', -32768, 32767, False, None), ('int', 'drop_rate_comm', 0, 65535, False, None), ('int', 'errors_comm', 0, 65535, False, None), ('int', 'errors_count1', 0, 65535, False, None), ('int', 'errors_count2', 0, 65535, False, None), ('int', 'errors_count3', 0, 65535, False, None), ('int', 'errors_count4', 0, 65535, False, None), ('int', 'battery_remaining', -128, 127, False, None)))
-    b = bytearray(39)
-    _S_sys_status_0.pack_into(b, 0, 254, 31, r_seq, r_sysid, r_compid, 1, r_onboard_control_sensors_present, r_onboard_control_sensors_enabled, r_onboard_control_sensors_health, r_load, r_voltage_battery, r_current_battery, r_drop_rate_comm, r_errors_comm, r_errors_count1, r_errors_count2, r_errors_count3, r_errors_count4, r_battery_remaining, r_checksum)
-    b[37:39] = _checksum_crc16_1021_ffff_rr_0_extra(bytes(b[1:37]) + b'|').to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_sys_status_h.pack(254, 31, r_seq, r_sysid, r_compid, 1, r_onboard_control_sensors_present, r_onboard_control_sensors_enabled, r_onboard_control_sensors_health, r_load, r_voltage_battery, r_current_battery, r_drop_rate_comm, r_errors_comm, r_errors_count1, r_errors_count2, r_errors_count3, r_errors_count4, r_battery_remaining)
+    return h + _checksum_crc16_1021_ffff_rr_0_extra(b''.join((h[1:37], b'|'))).to_bytes(2, 'little')
 
 
 def _decode_sys_status(d: _Buffer) -> SysStatus:
@@ -665,7 +662,7 @@ def _decode_sys_status(d: _Buffer) -> SysStatus:
     if len(d) != 39:
         raise _dec('sys_status', None, len(d), 'length', '39 bytes', 0)
     r_stx, r_len, r_seq, r_sysid, r_compid, r_msgid, r_onboard_control_sensors_present, r_onboard_control_sensors_enabled, r_onboard_control_sensors_health, r_load, r_voltage_battery, r_current_battery, r_drop_rate_comm, r_errors_comm, r_errors_count1, r_errors_count2, r_errors_count3, r_errors_count4, r_battery_remaining, r_checksum, = _S_sys_status_0.unpack_from(d, 0)
-    x = _checksum_crc16_1021_ffff_rr_0_extra(bytes(d[1:37]) + b'|')
+    x = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((d[1:37], b'|')))
     if r_checksum != x:
         raise _dec('sys_status', 'checksum', r_checksum, 'checksum', hex(x), 296, None)
     if r_stx != 254:
@@ -708,14 +705,11 @@ def _encode_param_value(m: ParamValue) -> bytes:
         if not isinstance(r_param_id, (bytes, bytearray)) or len(r_param_id) != 16:
             raise _enc('param_value', 'param_id', r_param_id, 'length', 'bytes of length 16')
         r_param_id = bytes(r_param_id)
-    r_checksum = 0
     r_param_type = m.param_type
     if r_param_type.__class__ is not int or not 0 <= r_param_type <= 255:
         _int_fault('param_value', 'param_type', r_param_type, 0, 255, False, None)
-    b = bytearray(33)
-    _S_param_value_0.pack_into(b, 0, 254, 25, r_seq, r_sysid, r_compid, 22, r_param_value, r_param_count, r_param_index, r_param_id, r_param_type, r_checksum)
-    b[31:33] = _checksum_crc16_1021_ffff_rr_0_extra(bytes(b[1:31]) + b'\xdc').to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_param_value_h.pack(254, 25, r_seq, r_sysid, r_compid, 22, r_param_value, r_param_count, r_param_index, r_param_id, r_param_type)
+    return h + _checksum_crc16_1021_ffff_rr_0_extra(b''.join((h[1:31], b'\xdc'))).to_bytes(2, 'little')
 
 
 def _decode_param_value(d: _Buffer) -> ParamValue:
@@ -725,7 +719,7 @@ def _decode_param_value(d: _Buffer) -> ParamValue:
     if len(d) != 33:
         raise _dec('param_value', None, len(d), 'length', '33 bytes', 0)
     r_stx, r_len, r_seq, r_sysid, r_compid, r_msgid, r_param_value, r_param_count, r_param_index, r_param_id, r_param_type, r_checksum, = _S_param_value_0.unpack_from(d, 0)
-    x = _checksum_crc16_1021_ffff_rr_0_extra(bytes(d[1:31]) + b'\xdc')
+    x = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((d[1:31], b'\xdc')))
     if r_checksum != x:
         raise _dec('param_value', 'checksum', r_checksum, 'checksum', hex(x), 248, None)
     if r_stx != 254:
@@ -749,7 +743,6 @@ def _decode_param_value(d: _Buffer) -> ParamValue:
 
 
 def _encode_gps_raw_int(m: GpsRawInt) -> bytes:
-    r_checksum = 0
     r_seq = m.seq
     r_sysid = m.sysid
     r_compid = m.compid
@@ -765,10 +758,8 @@ def _encode_gps_raw_int(m: GpsRawInt) -> bytes:
     r_satellites_visible = m.satellites_visible
     if (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255) or (r_time_usec.__class__ is not int or not 0 <= r_time_usec <= 18446744073709551615) or (r_lat.__class__ is not int or not -2147483648 <= r_lat <= 2147483647) or (r_lon.__class__ is not int or not -2147483648 <= r_lon <= 2147483647) or (r_alt.__class__ is not int or not -2147483648 <= r_alt <= 2147483647) or (r_eph.__class__ is not int or not 0 <= r_eph <= 65535) or (r_epv.__class__ is not int or not 0 <= r_epv <= 65535) or (r_vel.__class__ is not int or not 0 <= r_vel <= 65535) or (r_cog.__class__ is not int or not 0 <= r_cog <= 65535) or (r_fix_type.__class__ is not int or not 0 <= r_fix_type <= 255) or (r_satellites_visible.__class__ is not int or not 0 <= r_satellites_visible <= 255):
         _faults('gps_raw_int', (r_seq, r_sysid, r_compid, r_time_usec, r_lat, r_lon, r_alt, r_eph, r_epv, r_vel, r_cog, r_fix_type, r_satellites_visible, ), (('int', 'seq', 0, 255, False, None), ('int', 'sysid', 0, 255, False, None), ('int', 'compid', 0, 255, False, None), ('int', 'time_usec', 0, 18446744073709551615, False, None), ('int', 'lat', -2147483648, 2147483647, False, None), ('int', 'lon', -2147483648, 2147483647, False, None), ('int', 'alt', -2147483648, 2147483647, False, None), ('int', 'eph', 0, 65535, False, None), ('int', 'epv', 0, 65535, False, None), ('int', 'vel', 0, 65535, False, None), ('int', 'cog', 0, 65535, False, None), ('int', 'fix_type', 0, 255, False, None), ('int', 'satellites_visible', 0, 255, False, None)))
-    b = bytearray(38)
-    _S_gps_raw_int_0.pack_into(b, 0, 254, 30, r_seq, r_sysid, r_compid, 24, r_time_usec, r_lat, r_lon, r_alt, r_eph, r_epv, r_vel, r_cog, r_fix_type, r_satellites_visible, r_checksum)
-    b[36:38] = _checksum_crc16_1021_ffff_rr_0_extra(bytes(b[1:36]) + b'\x18').to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_gps_raw_int_h.pack(254, 30, r_seq, r_sysid, r_compid, 24, r_time_usec, r_lat, r_lon, r_alt, r_eph, r_epv, r_vel, r_cog, r_fix_type, r_satellites_visible)
+    return h + _checksum_crc16_1021_ffff_rr_0_extra(b''.join((h[1:36], b'\x18'))).to_bytes(2, 'little')
 
 
 def _decode_gps_raw_int(d: _Buffer) -> GpsRawInt:
@@ -778,7 +769,7 @@ def _decode_gps_raw_int(d: _Buffer) -> GpsRawInt:
     if len(d) != 38:
         raise _dec('gps_raw_int', None, len(d), 'length', '38 bytes', 0)
     r_stx, r_len, r_seq, r_sysid, r_compid, r_msgid, r_time_usec, r_lat, r_lon, r_alt, r_eph, r_epv, r_vel, r_cog, r_fix_type, r_satellites_visible, r_checksum, = _S_gps_raw_int_0.unpack_from(d, 0)
-    x = _checksum_crc16_1021_ffff_rr_0_extra(bytes(d[1:36]) + b'\x18')
+    x = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((d[1:36], b'\x18')))
     if r_checksum != x:
         raise _dec('gps_raw_int', 'checksum', r_checksum, 'checksum', hex(x), 288, None)
     if r_stx != 254:
@@ -805,7 +796,6 @@ def _decode_gps_raw_int(d: _Buffer) -> GpsRawInt:
 
 
 def _encode_attitude(m: Attitude) -> bytes:
-    r_checksum = 0
     r_seq = m.seq
     r_sysid = m.sysid
     r_compid = m.compid
@@ -818,10 +808,8 @@ def _encode_attitude(m: Attitude) -> bytes:
     r_yawspeed = m.yawspeed
     if (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255) or (r_time_boot_ms.__class__ is not int or not 0 <= r_time_boot_ms <= 4294967295) or (r_roll.__class__ is not float or not -3.4028234663852886e38 <= r_roll <= 3.4028234663852886e38) or (r_pitch.__class__ is not float or not -3.4028234663852886e38 <= r_pitch <= 3.4028234663852886e38) or (r_yaw.__class__ is not float or not -3.4028234663852886e38 <= r_yaw <= 3.4028234663852886e38) or (r_rollspeed.__class__ is not float or not -3.4028234663852886e38 <= r_rollspeed <= 3.4028234663852886e38) or (r_pitchspeed.__class__ is not float or not -3.4028234663852886e38 <= r_pitchspeed <= 3.4028234663852886e38) or (r_yawspeed.__class__ is not float or not -3.4028234663852886e38 <= r_yawspeed <= 3.4028234663852886e38):
         _faults('attitude', (r_seq, r_sysid, r_compid, r_time_boot_ms, r_roll, r_pitch, r_yaw, r_rollspeed, r_pitchspeed, r_yawspeed, ), (('int', 'seq', 0, 255, False, None), ('int', 'sysid', 0, 255, False, None), ('int', 'compid', 0, 255, False, None), ('int', 'time_boot_ms', 0, 4294967295, False, None), ('float', 'roll', True), ('float', 'pitch', True), ('float', 'yaw', True), ('float', 'rollspeed', True), ('float', 'pitchspeed', True), ('float', 'yawspeed', True)))
-    b = bytearray(36)
-    _S_attitude_0.pack_into(b, 0, 254, 28, r_seq, r_sysid, r_compid, 30, r_time_boot_ms, r_roll, r_pitch, r_yaw, r_rollspeed, r_pitchspeed, r_yawspeed, r_checksum)
-    b[34:36] = _checksum_crc16_1021_ffff_rr_0_extra(bytes(b[1:34]) + b"'").to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_attitude_h.pack(254, 28, r_seq, r_sysid, r_compid, 30, r_time_boot_ms, r_roll, r_pitch, r_yaw, r_rollspeed, r_pitchspeed, r_yawspeed)
+    return h + _checksum_crc16_1021_ffff_rr_0_extra(b''.join((h[1:34], b"'"))).to_bytes(2, 'little')
 
 
 def _decode_attitude(d: _Buffer) -> Attitude:
@@ -831,7 +819,7 @@ def _decode_attitude(d: _Buffer) -> Attitude:
     if len(d) != 36:
         raise _dec('attitude', None, len(d), 'length', '36 bytes', 0)
     r_stx, r_len, r_seq, r_sysid, r_compid, r_msgid, r_time_boot_ms, r_roll, r_pitch, r_yaw, r_rollspeed, r_pitchspeed, r_yawspeed, r_checksum, = _S_attitude_0.unpack_from(d, 0)
-    x = _checksum_crc16_1021_ffff_rr_0_extra(bytes(d[1:34]) + b"'")
+    x = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((d[1:34], b"'")))
     if r_checksum != x:
         raise _dec('attitude', 'checksum', r_checksum, 'checksum', hex(x), 272, None)
     if r_stx != 254:
@@ -867,7 +855,6 @@ def _decode_attitude(d: _Buffer) -> Attitude:
 
 
 def _encode_command_long(m: CommandLong) -> bytes:
-    r_checksum = 0
     r_seq = m.seq
     r_sysid = m.sysid
     r_compid = m.compid
@@ -884,10 +871,8 @@ def _encode_command_long(m: CommandLong) -> bytes:
     r_confirmation = m.confirmation
     if (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255) or (r_param1.__class__ is not float or not -3.4028234663852886e38 <= r_param1 <= 3.4028234663852886e38) or (r_param2.__class__ is not float or not -3.4028234663852886e38 <= r_param2 <= 3.4028234663852886e38) or (r_param3.__class__ is not float or not -3.4028234663852886e38 <= r_param3 <= 3.4028234663852886e38) or (r_param4.__class__ is not float or not -3.4028234663852886e38 <= r_param4 <= 3.4028234663852886e38) or (r_param5.__class__ is not float or not -3.4028234663852886e38 <= r_param5 <= 3.4028234663852886e38) or (r_param6.__class__ is not float or not -3.4028234663852886e38 <= r_param6 <= 3.4028234663852886e38) or (r_param7.__class__ is not float or not -3.4028234663852886e38 <= r_param7 <= 3.4028234663852886e38) or (r_command.__class__ is not int or not 0 <= r_command <= 65535) or (r_target_system.__class__ is not int or not 0 <= r_target_system <= 255) or (r_target_component.__class__ is not int or not 0 <= r_target_component <= 255) or (r_confirmation.__class__ is not int or not 0 <= r_confirmation <= 255):
         _faults('command_long', (r_seq, r_sysid, r_compid, r_param1, r_param2, r_param3, r_param4, r_param5, r_param6, r_param7, r_command, r_target_system, r_target_component, r_confirmation, ), (('int', 'seq', 0, 255, False, None), ('int', 'sysid', 0, 255, False, None), ('int', 'compid', 0, 255, False, None), ('float', 'param1', True), ('float', 'param2', True), ('float', 'param3', True), ('float', 'param4', True), ('float', 'param5', True), ('float', 'param6', True), ('float', 'param7', True), ('int', 'command', 0, 65535, False, None), ('int', 'target_system', 0, 255, False, None), ('int', 'target_component', 0, 255, False, None), ('int', 'confirmation', 0, 255, False, None)))
-    b = bytearray(41)
-    _S_command_long_0.pack_into(b, 0, 254, 33, r_seq, r_sysid, r_compid, 76, r_param1, r_param2, r_param3, r_param4, r_param5, r_param6, r_param7, r_command, r_target_system, r_target_component, r_confirmation, r_checksum)
-    b[39:41] = _checksum_crc16_1021_ffff_rr_0_extra(bytes(b[1:39]) + b'\x98').to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_command_long_h.pack(254, 33, r_seq, r_sysid, r_compid, 76, r_param1, r_param2, r_param3, r_param4, r_param5, r_param6, r_param7, r_command, r_target_system, r_target_component, r_confirmation)
+    return h + _checksum_crc16_1021_ffff_rr_0_extra(b''.join((h[1:39], b'\x98'))).to_bytes(2, 'little')
 
 
 def _decode_command_long(d: _Buffer) -> CommandLong:
@@ -897,7 +882,7 @@ def _decode_command_long(d: _Buffer) -> CommandLong:
     if len(d) != 41:
         raise _dec('command_long', None, len(d), 'length', '41 bytes', 0)
     r_stx, r_len, r_seq, r_sysid, r_compid, r_msgid, r_param1, r_param2, r_param3, r_param4, r_param5, r_param6, r_param7, r_command, r_target_system, r_target_component, r_confirmation, r_checksum, = _S_command_long_0.unpack_from(d, 0)
-    x = _checksum_crc16_1021_ffff_rr_0_extra(bytes(d[1:39]) + b'\x98')
+    x = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((d[1:39], b'\x98')))
     if r_checksum != x:
         raise _dec('command_long', 'checksum', r_checksum, 'checksum', hex(x), 312, None)
     if r_stx != 254:
@@ -1119,7 +1104,7 @@ def encode(m: AnyMessage) -> bytes:
     fn = _ENCODERS.get(type(m))
     if fn is None:
         raise _enc(None, None, type(m).__name__, 'type', 'a message of mavlink1')
-    return bytes(fn(m))
+    return fn(m)  # each encoder returns bytes
 
 
 def validate(m: AnyMessage) -> None:

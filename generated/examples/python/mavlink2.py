@@ -261,6 +261,8 @@ class _Message(_Record):
         """The message from its wire form; a DecodeError if it is not one. With `key`, the frame
         must be signed with it."""
         d = data if data.__class__ is bytes else _as_input(data)
+        if key is None and len(d) > 2 and not d[2] & 1:  # no trailer
+            return cast(_Msg, _untrailed(_DECODERS[cls](d)))
         body, t = _split_trailer(d)
         return cast(_Msg, _read_trailer(_DECODERS[cls](body), d, len(body), t, key))
 
@@ -720,23 +722,26 @@ class CommandAck(_Message):
 AnyMessage = Union[Heartbeat, SysStatus, ParamValue, GpsRawInt, Attitude, CommandAck, ]
 """A message of mavlink2: what encode takes and decode returns."""
 _S_heartbeat_0 = struct.Struct('<BBBBBBB3sIBBBBBH')
+_S_heartbeat_h = struct.Struct('<BBBBBBB3sIBBBBB')
 _S_sys_status_0 = struct.Struct('<BBBBBBB3sIIIHHhHHHHHHbIIIH')
+_S_sys_status_h = struct.Struct('<BBBBBBB3sIIIHHhHHHHHHbIII')
 _S_param_value_0 = struct.Struct('<BBBBBBB3sfHH16sBH')
+_S_param_value_h = struct.Struct('<BBBBBBB3sfHH16sB')
 _S_gps_raw_int_0 = struct.Struct('<BBBBBBB3sQiiiHHHHBBiIIIIHH')
+_S_gps_raw_int_h = struct.Struct('<BBBBBBB3sQiiiHHHHBBiIIIIH')
 _S_attitude_0 = struct.Struct('<BBBBBBB3sIffffffH')
+_S_attitude_h = struct.Struct('<BBBBBBB3sIffffff')
 _S_command_ack_0 = struct.Struct('<BBBBBBB3sHBBiBBH')
+_S_command_ack_h = struct.Struct('<BBBBBBB3sHBBiBB')
 
 # CRC-16/MCRF4XX: width=16 poly=0x1021 init=0xffff refin=True refout=True xorout=0x0, computed by the standard library in C
 from binascii import crc_hqx as _crc_hqx
 _BITS_REVERSED_crc16_1021_ffff_rr_0_extra = bytes(int(f'{b:08b}'[::-1], 2) for b in range(256))
 
 
-def _reflected_crc16_1021_ffff_rr_0_extra(x: int) -> int:
-    return _BITS_REVERSED_crc16_1021_ffff_rr_0_extra[x & 0xFF] << 8 | _BITS_REVERSED_crc16_1021_ffff_rr_0_extra[x >> 8]
-
-
 def _checksum_crc16_1021_ffff_rr_0_extra(data: _Buffer) -> int:
-    return _reflected_crc16_1021_ffff_rr_0_extra(_crc_hqx(bytes(data).translate(_BITS_REVERSED_crc16_1021_ffff_rr_0_extra), 0xffff)) ^ 0x0
+    x = _crc_hqx((data if isinstance(data, (bytes, bytearray)) else bytes(data)).translate(_BITS_REVERSED_crc16_1021_ffff_rr_0_extra), 0xffff)
+    return (_BITS_REVERSED_crc16_1021_ffff_rr_0_extra[x & 0xFF] << 8 | _BITS_REVERSED_crc16_1021_ffff_rr_0_extra[x >> 8])  # x bit-reversed
 
 
 def _as_input(data: object) -> _Buffer:
@@ -758,8 +763,6 @@ def _encode_heartbeat(m: Heartbeat) -> bytes:
     r_incompat_flags = int(r_incompat_flags)
     if r_incompat_flags < 0 or r_incompat_flags & 0xfe or r_incompat_flags > 0xff:
         raise _enc('heartbeat', 'incompat_flags', r_incompat_flags, 'flags', 'only the bits of incompat_flags', None)
-    r_msgid = 0
-    r_checksum = 0
     r_compat_flags = m.compat_flags
     r_seq = m.seq
     r_sysid = m.sysid
@@ -772,13 +775,11 @@ def _encode_heartbeat(m: Heartbeat) -> bytes:
     r_mavlink_version = m.mavlink_version
     if (r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255) or (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255) or (r_custom_mode.__class__ is not int or not 0 <= r_custom_mode <= 4294967295) or (r_type.__class__ is not int or not 0 <= r_type <= 255) or (r_autopilot.__class__ is not int or not 0 <= r_autopilot <= 255) or (r_base_mode.__class__ is not int or not 0 <= r_base_mode <= 255) or (r_system_status.__class__ is not int or not 0 <= r_system_status <= 255) or (r_mavlink_version.__class__ is not int or not 0 <= r_mavlink_version <= 255):
         _faults('heartbeat', (r_compat_flags, r_seq, r_sysid, r_compid, r_custom_mode, r_type, r_autopilot, r_base_mode, r_system_status, r_mavlink_version, ), (('int', 'compat_flags', 0, 255, False, None), ('int', 'seq', 0, 255, False, None), ('int', 'sysid', 0, 255, False, None), ('int', 'compid', 0, 255, False, None), ('int', 'custom_mode', 0, 4294967295, False, None), ('int', 'type', 0, 255, False, None), ('int', 'autopilot', 0, 255, False, None), ('int', 'base_mode', 0, 255, False, None), ('int', 'system_status', 0, 255, False, None), ('int', 'mavlink_version', 0, 255, False, None)))
-    b = bytearray(21)
-    _S_heartbeat_0.pack_into(b, 0, 253, 9, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, r_msgid.to_bytes(3, 'little', signed=False), r_custom_mode, r_type, r_autopilot, r_base_mode, r_system_status, r_mavlink_version, r_checksum)
-    cut = 8 - len(b[11:19].rstrip(b'\0'))  # trailing zeros are not sent
-    del b[19 - cut:19]
-    b[1:2] = (9 - cut).to_bytes(1, 'little')
-    b[19 - cut:21 - cut] = _checksum_crc16_1021_ffff_rr_0_extra(bytes(b[1:19 - cut]) + b'2').to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_heartbeat_h.pack(253, 9, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, b'\x00\x00\x00', r_custom_mode, r_type, r_autopilot, r_base_mode, r_system_status, r_mavlink_version)
+    cut = 8 - len(h[11:19].rstrip(b'\0'))  # trailing zeros are not sent
+    if cut:
+        h = b''.join((h[:1], (9 - cut).to_bytes(1, 'little'), h[2:19 - cut]))
+    return h + _checksum_crc16_1021_ffff_rr_0_extra(b''.join((h[1:19 - cut], b'2'))).to_bytes(2, 'little')
 
 
 def _decode_heartbeat(d: _Buffer) -> Heartbeat:
@@ -791,8 +792,7 @@ def _decode_heartbeat(d: _Buffer) -> Heartbeat:
     if cut:  # the payload bytes left off read as zeros
         d = b''.join((d[:19 - cut], bytes(cut), d[19 - cut:]))
     r_stx, r_len, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, c0_7, r_custom_mode, r_type, r_autopilot, r_base_mode, r_system_status, r_mavlink_version, r_checksum, = _S_heartbeat_0.unpack_from(d, 0)
-    r_msgid = int.from_bytes(c0_7, 'little', signed=False)
-    x = _checksum_crc16_1021_ffff_rr_0_extra(bytes(s[1:19 - cut]) + b'2')
+    x = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((s[1:19 - cut], b'2')))
     if r_checksum != x:
         raise _dec('heartbeat', 'checksum', r_checksum, 'checksum', hex(x), 152 - 8 * cut, None)
     if r_stx != 253:
@@ -801,8 +801,10 @@ def _decode_heartbeat(d: _Buffer) -> Heartbeat:
         raise _dec('heartbeat', 'len', r_len, 'length', f'{9 - cut} for heartbeat', 8, None)
     if r_incompat_flags & 0xfe:
         raise _dec('heartbeat', 'incompat_flags', r_incompat_flags, 'flags', 'only the bits of incompat_flags', 16, None)
-    if r_msgid != 0:
-        raise _dec('heartbeat', 'msgid', r_msgid, 'const', '0', 56, None)
+    if c0_7 != b'\x00\x00\x00':
+        r_msgid = int.from_bytes(c0_7, 'little')
+        if r_msgid != 0:
+            raise _dec('heartbeat', 'msgid', r_msgid, 'const', '0', 56, None)
     o = _object_new(Heartbeat)
     o.incompat_flags = _FLAGS_incompat_flags[r_incompat_flags]
     o.compat_flags = r_compat_flags
@@ -825,8 +827,6 @@ def _encode_sys_status(m: SysStatus) -> bytes:
     r_incompat_flags = int(r_incompat_flags)
     if r_incompat_flags < 0 or r_incompat_flags & 0xfe or r_incompat_flags > 0xff:
         raise _enc('sys_status', 'incompat_flags', r_incompat_flags, 'flags', 'only the bits of incompat_flags', None)
-    r_msgid = 1
-    r_checksum = 0
     r_compat_flags = m.compat_flags
     r_seq = m.seq
     r_sysid = m.sysid
@@ -849,13 +849,11 @@ def _encode_sys_status(m: SysStatus) -> bytes:
     r_onboard_control_sensors_health_extended = m.onboard_control_sensors_health_extended
     if (r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255) or (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255) or (r_onboard_control_sensors_present.__class__ is not int or not 0 <= r_onboard_control_sensors_present <= 4294967295) or (r_onboard_control_sensors_enabled.__class__ is not int or not 0 <= r_onboard_control_sensors_enabled <= 4294967295) or (r_onboard_control_sensors_health.__class__ is not int or not 0 <= r_onboard_control_sensors_health <= 4294967295) or (r_load.__class__ is not int or not 0 <= r_load <= 65535) or (r_voltage_battery.__class__ is not int or not 0 <= r_voltage_battery <= 65535) or (r_current_battery.__class__ is not int or not -32768 <= r_current_battery <= 32767) or (r_drop_rate_comm.__class__ is not int or not 0 <= r_drop_rate_comm <= 65535) or (r_errors_comm.__class__ is not int or not 0 <= r_errors_comm <= 65535) or (r_errors_count1.__class__ is not int or not 0 <= r_errors_count1 <= 65535) or (r_errors_count2.__class__ is not int or not 0 <= r_errors_count2 <= 65535) or (r_errors_count3.__class__ is not int or not 0 <= r_errors_count3 <= 65535) or (r_errors_count4.__class__ is not int or not 0 <= r_errors_count4 <= 65535) or (r_battery_remaining.__class__ is not int or not -128 <= r_battery_remaining <= 127) or (r_onboard_control_sensors_present_extended.__class__ is not int or not 0 <= r_onboard_control_sensors_present_extended <= 4294967295) or (r_onboard_control_sensors_enabled_extended.__class__ is not int or not 0 <= r_onboard_control_sensors_enabled_extended <= 4294967295) or (r_onboard_control_sensors_health_extended.__class__ is not int or not 0 <= r_onboard_control_sensors_health_extended <= 4294967295):
         _faults('sys_status', (r_compat_flags, r_seq, r_sysid, r_compid, r_onboard_control_sensors_present, r_onboard_control_sensors_enabled, r_onboard_control_sensors_health, r_load, r_voltage_battery, r_current_battery, r_drop_rate_comm, r_errors_comm, r_errors_count1, r_errors_count2, r_errors_count3, r_errors_count4, r_battery_remaining, r_onboard_control_sensors_present_extended, r_onboard_control_sensors_enabled_extended, r_onboard_control_sensors_health_extended, ), (('int', 'compat_flags', 0, 255, False, None), ('int', 'seq', 0, 255, False, None), ('int', 'sysid', 0, 255, False, None), ('int', 'compid', 0, 255, False, None), ('int', 'onboard_control_sensors_present', 0, 4294967295, False, None), ('int', 'onboard_control_sensors_enabled', 0, 4294967295, False, None), ('int', 'onboard_control_sensors_health', 0, 4294967295, False, None), ('int', 'load', 0, 65535, False, None), ('int', 'voltage_battery', 0, 65535, False, None), ('int', 'current_battery', -32768, 32767, False, None), ('int', 'drop_rate_comm', 0, 65535, False, None), ('int', 'errors_comm', 0, 65535, False, None), ('int', 'errors_count1', 0, 65535, False, None), ('int', 'errors_count2', 0, 65535, False, None), ('int', 'errors_count3', 0, 65535, False, None), ('int', 'errors_count4', 0, 65535, False, None), ('int', 'battery_remaining', -128, 127, False, None), ('int', 'onboard_control_sensors_present_extended', 0, 4294967295, False, None), ('int', 'onboard_control_sensors_enabled_extended', 0, 4294967295, False, None), ('int', 'onboard_control_sensors_health_extended', 0, 4294967295, False, None)))
-    b = bytearray(55)
-    _S_sys_status_0.pack_into(b, 0, 253, 43, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, r_msgid.to_bytes(3, 'little', signed=False), r_onboard_control_sensors_present, r_onboard_control_sensors_enabled, r_onboard_control_sensors_health, r_load, r_voltage_battery, r_current_battery, r_drop_rate_comm, r_errors_comm, r_errors_count1, r_errors_count2, r_errors_count3, r_errors_count4, r_battery_remaining, r_onboard_control_sensors_present_extended, r_onboard_control_sensors_enabled_extended, r_onboard_control_sensors_health_extended, r_checksum)
-    cut = 42 - len(b[11:53].rstrip(b'\0'))  # trailing zeros are not sent
-    del b[53 - cut:53]
-    b[1:2] = (43 - cut).to_bytes(1, 'little')
-    b[53 - cut:55 - cut] = _checksum_crc16_1021_ffff_rr_0_extra(bytes(b[1:53 - cut]) + b'|').to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_sys_status_h.pack(253, 43, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, b'\x01\x00\x00', r_onboard_control_sensors_present, r_onboard_control_sensors_enabled, r_onboard_control_sensors_health, r_load, r_voltage_battery, r_current_battery, r_drop_rate_comm, r_errors_comm, r_errors_count1, r_errors_count2, r_errors_count3, r_errors_count4, r_battery_remaining, r_onboard_control_sensors_present_extended, r_onboard_control_sensors_enabled_extended, r_onboard_control_sensors_health_extended)
+    cut = 42 - len(h[11:53].rstrip(b'\0'))  # trailing zeros are not sent
+    if cut:
+        h = b''.join((h[:1], (43 - cut).to_bytes(1, 'little'), h[2:53 - cut]))
+    return h + _checksum_crc16_1021_ffff_rr_0_extra(b''.join((h[1:53 - cut], b'|'))).to_bytes(2, 'little')
 
 
 def _decode_sys_status(d: _Buffer) -> SysStatus:
@@ -868,8 +866,7 @@ def _decode_sys_status(d: _Buffer) -> SysStatus:
     if cut:  # the payload bytes left off read as zeros
         d = b''.join((d[:53 - cut], bytes(cut), d[53 - cut:]))
     r_stx, r_len, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, c0_7, r_onboard_control_sensors_present, r_onboard_control_sensors_enabled, r_onboard_control_sensors_health, r_load, r_voltage_battery, r_current_battery, r_drop_rate_comm, r_errors_comm, r_errors_count1, r_errors_count2, r_errors_count3, r_errors_count4, r_battery_remaining, r_onboard_control_sensors_present_extended, r_onboard_control_sensors_enabled_extended, r_onboard_control_sensors_health_extended, r_checksum, = _S_sys_status_0.unpack_from(d, 0)
-    r_msgid = int.from_bytes(c0_7, 'little', signed=False)
-    x = _checksum_crc16_1021_ffff_rr_0_extra(bytes(s[1:53 - cut]) + b'|')
+    x = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((s[1:53 - cut], b'|')))
     if r_checksum != x:
         raise _dec('sys_status', 'checksum', r_checksum, 'checksum', hex(x), 424 - 8 * cut, None)
     if r_stx != 253:
@@ -878,8 +875,10 @@ def _decode_sys_status(d: _Buffer) -> SysStatus:
         raise _dec('sys_status', 'len', r_len, 'length', f'{43 - cut} for sys_status', 8, None)
     if r_incompat_flags & 0xfe:
         raise _dec('sys_status', 'incompat_flags', r_incompat_flags, 'flags', 'only the bits of incompat_flags', 16, None)
-    if r_msgid != 1:
-        raise _dec('sys_status', 'msgid', r_msgid, 'const', '1', 56, None)
+    if c0_7 != b'\x01\x00\x00':
+        r_msgid = int.from_bytes(c0_7, 'little')
+        if r_msgid != 1:
+            raise _dec('sys_status', 'msgid', r_msgid, 'const', '1', 56, None)
     o = _object_new(SysStatus)
     o.incompat_flags = _FLAGS_incompat_flags[r_incompat_flags]
     o.compat_flags = r_compat_flags
@@ -912,7 +911,6 @@ def _encode_param_value(m: ParamValue) -> bytes:
     r_incompat_flags = int(r_incompat_flags)
     if r_incompat_flags < 0 or r_incompat_flags & 0xfe or r_incompat_flags > 0xff:
         raise _enc('param_value', 'incompat_flags', r_incompat_flags, 'flags', 'only the bits of incompat_flags', None)
-    r_msgid = 22
     r_compat_flags = m.compat_flags
     r_seq = m.seq
     r_sysid = m.sysid
@@ -927,17 +925,14 @@ def _encode_param_value(m: ParamValue) -> bytes:
         if not isinstance(r_param_id, (bytes, bytearray)) or len(r_param_id) != 16:
             raise _enc('param_value', 'param_id', r_param_id, 'length', 'bytes of length 16')
         r_param_id = bytes(r_param_id)
-    r_checksum = 0
     r_param_type = m.param_type
     if r_param_type.__class__ is not int or not 0 <= r_param_type <= 255:
         _int_fault('param_value', 'param_type', r_param_type, 0, 255, False, None)
-    b = bytearray(37)
-    _S_param_value_0.pack_into(b, 0, 253, 25, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, r_msgid.to_bytes(3, 'little', signed=False), r_param_value, r_param_count, r_param_index, r_param_id, r_param_type, r_checksum)
-    cut = 24 - len(b[11:35].rstrip(b'\0'))  # trailing zeros are not sent
-    del b[35 - cut:35]
-    b[1:2] = (25 - cut).to_bytes(1, 'little')
-    b[35 - cut:37 - cut] = _checksum_crc16_1021_ffff_rr_0_extra(bytes(b[1:35 - cut]) + b'\xdc').to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_param_value_h.pack(253, 25, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, b'\x16\x00\x00', r_param_value, r_param_count, r_param_index, r_param_id, r_param_type)
+    cut = 24 - len(h[11:35].rstrip(b'\0'))  # trailing zeros are not sent
+    if cut:
+        h = b''.join((h[:1], (25 - cut).to_bytes(1, 'little'), h[2:35 - cut]))
+    return h + _checksum_crc16_1021_ffff_rr_0_extra(b''.join((h[1:35 - cut], b'\xdc'))).to_bytes(2, 'little')
 
 
 def _decode_param_value(d: _Buffer) -> ParamValue:
@@ -950,8 +945,7 @@ def _decode_param_value(d: _Buffer) -> ParamValue:
     if cut:  # the payload bytes left off read as zeros
         d = b''.join((d[:35 - cut], bytes(cut), d[35 - cut:]))
     r_stx, r_len, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, c0_7, r_param_value, r_param_count, r_param_index, r_param_id, r_param_type, r_checksum, = _S_param_value_0.unpack_from(d, 0)
-    r_msgid = int.from_bytes(c0_7, 'little', signed=False)
-    x = _checksum_crc16_1021_ffff_rr_0_extra(bytes(s[1:35 - cut]) + b'\xdc')
+    x = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((s[1:35 - cut], b'\xdc')))
     if r_checksum != x:
         raise _dec('param_value', 'checksum', r_checksum, 'checksum', hex(x), 280 - 8 * cut, None)
     if r_stx != 253:
@@ -960,8 +954,10 @@ def _decode_param_value(d: _Buffer) -> ParamValue:
         raise _dec('param_value', 'len', r_len, 'length', f'{25 - cut} for param_value', 8, None)
     if r_incompat_flags & 0xfe:
         raise _dec('param_value', 'incompat_flags', r_incompat_flags, 'flags', 'only the bits of incompat_flags', 16, None)
-    if r_msgid != 22:
-        raise _dec('param_value', 'msgid', r_msgid, 'const', '22', 56, None)
+    if c0_7 != b'\x16\x00\x00':
+        r_msgid = int.from_bytes(c0_7, 'little')
+        if r_msgid != 22:
+            raise _dec('param_value', 'msgid', r_msgid, 'const', '22', 56, None)
     if not _isfinite(r_param_value):
         raise _dec('param_value', 'param_value', r_param_value, 'finite', 'a finite number', 80, None)
     o = _object_new(ParamValue)
@@ -985,8 +981,6 @@ def _encode_gps_raw_int(m: GpsRawInt) -> bytes:
     r_incompat_flags = int(r_incompat_flags)
     if r_incompat_flags < 0 or r_incompat_flags & 0xfe or r_incompat_flags > 0xff:
         raise _enc('gps_raw_int', 'incompat_flags', r_incompat_flags, 'flags', 'only the bits of incompat_flags', None)
-    r_msgid = 24
-    r_checksum = 0
     r_compat_flags = m.compat_flags
     r_seq = m.seq
     r_sysid = m.sysid
@@ -1009,13 +1003,11 @@ def _encode_gps_raw_int(m: GpsRawInt) -> bytes:
     r_yaw = m.yaw
     if (r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255) or (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255) or (r_time_usec.__class__ is not int or not 0 <= r_time_usec <= 18446744073709551615) or (r_lat.__class__ is not int or not -2147483648 <= r_lat <= 2147483647) or (r_lon.__class__ is not int or not -2147483648 <= r_lon <= 2147483647) or (r_alt.__class__ is not int or not -2147483648 <= r_alt <= 2147483647) or (r_eph.__class__ is not int or not 0 <= r_eph <= 65535) or (r_epv.__class__ is not int or not 0 <= r_epv <= 65535) or (r_vel.__class__ is not int or not 0 <= r_vel <= 65535) or (r_cog.__class__ is not int or not 0 <= r_cog <= 65535) or (r_fix_type.__class__ is not int or not 0 <= r_fix_type <= 255) or (r_satellites_visible.__class__ is not int or not 0 <= r_satellites_visible <= 255) or (r_alt_ellipsoid.__class__ is not int or not -2147483648 <= r_alt_ellipsoid <= 2147483647) or (r_h_acc.__class__ is not int or not 0 <= r_h_acc <= 4294967295) or (r_v_acc.__class__ is not int or not 0 <= r_v_acc <= 4294967295) or (r_vel_acc.__class__ is not int or not 0 <= r_vel_acc <= 4294967295) or (r_hdg_acc.__class__ is not int or not 0 <= r_hdg_acc <= 4294967295) or (r_yaw.__class__ is not int or not 0 <= r_yaw <= 65535):
         _faults('gps_raw_int', (r_compat_flags, r_seq, r_sysid, r_compid, r_time_usec, r_lat, r_lon, r_alt, r_eph, r_epv, r_vel, r_cog, r_fix_type, r_satellites_visible, r_alt_ellipsoid, r_h_acc, r_v_acc, r_vel_acc, r_hdg_acc, r_yaw, ), (('int', 'compat_flags', 0, 255, False, None), ('int', 'seq', 0, 255, False, None), ('int', 'sysid', 0, 255, False, None), ('int', 'compid', 0, 255, False, None), ('int', 'time_usec', 0, 18446744073709551615, False, None), ('int', 'lat', -2147483648, 2147483647, False, None), ('int', 'lon', -2147483648, 2147483647, False, None), ('int', 'alt', -2147483648, 2147483647, False, None), ('int', 'eph', 0, 65535, False, None), ('int', 'epv', 0, 65535, False, None), ('int', 'vel', 0, 65535, False, None), ('int', 'cog', 0, 65535, False, None), ('int', 'fix_type', 0, 255, False, None), ('int', 'satellites_visible', 0, 255, False, None), ('int', 'alt_ellipsoid', -2147483648, 2147483647, False, None), ('int', 'h_acc', 0, 4294967295, False, None), ('int', 'v_acc', 0, 4294967295, False, None), ('int', 'vel_acc', 0, 4294967295, False, None), ('int', 'hdg_acc', 0, 4294967295, False, None), ('int', 'yaw', 0, 65535, False, None)))
-    b = bytearray(64)
-    _S_gps_raw_int_0.pack_into(b, 0, 253, 52, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, r_msgid.to_bytes(3, 'little', signed=False), r_time_usec, r_lat, r_lon, r_alt, r_eph, r_epv, r_vel, r_cog, r_fix_type, r_satellites_visible, r_alt_ellipsoid, r_h_acc, r_v_acc, r_vel_acc, r_hdg_acc, r_yaw, r_checksum)
-    cut = 51 - len(b[11:62].rstrip(b'\0'))  # trailing zeros are not sent
-    del b[62 - cut:62]
-    b[1:2] = (52 - cut).to_bytes(1, 'little')
-    b[62 - cut:64 - cut] = _checksum_crc16_1021_ffff_rr_0_extra(bytes(b[1:62 - cut]) + b'\x18').to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_gps_raw_int_h.pack(253, 52, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, b'\x18\x00\x00', r_time_usec, r_lat, r_lon, r_alt, r_eph, r_epv, r_vel, r_cog, r_fix_type, r_satellites_visible, r_alt_ellipsoid, r_h_acc, r_v_acc, r_vel_acc, r_hdg_acc, r_yaw)
+    cut = 51 - len(h[11:62].rstrip(b'\0'))  # trailing zeros are not sent
+    if cut:
+        h = b''.join((h[:1], (52 - cut).to_bytes(1, 'little'), h[2:62 - cut]))
+    return h + _checksum_crc16_1021_ffff_rr_0_extra(b''.join((h[1:62 - cut], b'\x18'))).to_bytes(2, 'little')
 
 
 def _decode_gps_raw_int(d: _Buffer) -> GpsRawInt:
@@ -1028,8 +1020,7 @@ def _decode_gps_raw_int(d: _Buffer) -> GpsRawInt:
     if cut:  # the payload bytes left off read as zeros
         d = b''.join((d[:62 - cut], bytes(cut), d[62 - cut:]))
     r_stx, r_len, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, c0_7, r_time_usec, r_lat, r_lon, r_alt, r_eph, r_epv, r_vel, r_cog, r_fix_type, r_satellites_visible, r_alt_ellipsoid, r_h_acc, r_v_acc, r_vel_acc, r_hdg_acc, r_yaw, r_checksum, = _S_gps_raw_int_0.unpack_from(d, 0)
-    r_msgid = int.from_bytes(c0_7, 'little', signed=False)
-    x = _checksum_crc16_1021_ffff_rr_0_extra(bytes(s[1:62 - cut]) + b'\x18')
+    x = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((s[1:62 - cut], b'\x18')))
     if r_checksum != x:
         raise _dec('gps_raw_int', 'checksum', r_checksum, 'checksum', hex(x), 496 - 8 * cut, None)
     if r_stx != 253:
@@ -1038,8 +1029,10 @@ def _decode_gps_raw_int(d: _Buffer) -> GpsRawInt:
         raise _dec('gps_raw_int', 'len', r_len, 'length', f'{52 - cut} for gps_raw_int', 8, None)
     if r_incompat_flags & 0xfe:
         raise _dec('gps_raw_int', 'incompat_flags', r_incompat_flags, 'flags', 'only the bits of incompat_flags', 16, None)
-    if r_msgid != 24:
-        raise _dec('gps_raw_int', 'msgid', r_msgid, 'const', '24', 56, None)
+    if c0_7 != b'\x18\x00\x00':
+        r_msgid = int.from_bytes(c0_7, 'little')
+        if r_msgid != 24:
+            raise _dec('gps_raw_int', 'msgid', r_msgid, 'const', '24', 56, None)
     o = _object_new(GpsRawInt)
     o.incompat_flags = _FLAGS_incompat_flags[r_incompat_flags]
     o.compat_flags = r_compat_flags
@@ -1072,8 +1065,6 @@ def _encode_attitude(m: Attitude) -> bytes:
     r_incompat_flags = int(r_incompat_flags)
     if r_incompat_flags < 0 or r_incompat_flags & 0xfe or r_incompat_flags > 0xff:
         raise _enc('attitude', 'incompat_flags', r_incompat_flags, 'flags', 'only the bits of incompat_flags', None)
-    r_msgid = 30
-    r_checksum = 0
     r_compat_flags = m.compat_flags
     r_seq = m.seq
     r_sysid = m.sysid
@@ -1087,13 +1078,11 @@ def _encode_attitude(m: Attitude) -> bytes:
     r_yawspeed = m.yawspeed
     if (r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255) or (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255) or (r_time_boot_ms.__class__ is not int or not 0 <= r_time_boot_ms <= 4294967295) or (r_roll.__class__ is not float or not -3.4028234663852886e38 <= r_roll <= 3.4028234663852886e38) or (r_pitch.__class__ is not float or not -3.4028234663852886e38 <= r_pitch <= 3.4028234663852886e38) or (r_yaw.__class__ is not float or not -3.4028234663852886e38 <= r_yaw <= 3.4028234663852886e38) or (r_rollspeed.__class__ is not float or not -3.4028234663852886e38 <= r_rollspeed <= 3.4028234663852886e38) or (r_pitchspeed.__class__ is not float or not -3.4028234663852886e38 <= r_pitchspeed <= 3.4028234663852886e38) or (r_yawspeed.__class__ is not float or not -3.4028234663852886e38 <= r_yawspeed <= 3.4028234663852886e38):
         _faults('attitude', (r_compat_flags, r_seq, r_sysid, r_compid, r_time_boot_ms, r_roll, r_pitch, r_yaw, r_rollspeed, r_pitchspeed, r_yawspeed, ), (('int', 'compat_flags', 0, 255, False, None), ('int', 'seq', 0, 255, False, None), ('int', 'sysid', 0, 255, False, None), ('int', 'compid', 0, 255, False, None), ('int', 'time_boot_ms', 0, 4294967295, False, None), ('float', 'roll', True), ('float', 'pitch', True), ('float', 'yaw', True), ('float', 'rollspeed', True), ('float', 'pitchspeed', True), ('float', 'yawspeed', True)))
-    b = bytearray(40)
-    _S_attitude_0.pack_into(b, 0, 253, 28, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, r_msgid.to_bytes(3, 'little', signed=False), r_time_boot_ms, r_roll, r_pitch, r_yaw, r_rollspeed, r_pitchspeed, r_yawspeed, r_checksum)
-    cut = 27 - len(b[11:38].rstrip(b'\0'))  # trailing zeros are not sent
-    del b[38 - cut:38]
-    b[1:2] = (28 - cut).to_bytes(1, 'little')
-    b[38 - cut:40 - cut] = _checksum_crc16_1021_ffff_rr_0_extra(bytes(b[1:38 - cut]) + b"'").to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_attitude_h.pack(253, 28, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, b'\x1e\x00\x00', r_time_boot_ms, r_roll, r_pitch, r_yaw, r_rollspeed, r_pitchspeed, r_yawspeed)
+    cut = 27 - len(h[11:38].rstrip(b'\0'))  # trailing zeros are not sent
+    if cut:
+        h = b''.join((h[:1], (28 - cut).to_bytes(1, 'little'), h[2:38 - cut]))
+    return h + _checksum_crc16_1021_ffff_rr_0_extra(b''.join((h[1:38 - cut], b"'"))).to_bytes(2, 'little')
 
 
 def _decode_attitude(d: _Buffer) -> Attitude:
@@ -1106,8 +1095,7 @@ def _decode_attitude(d: _Buffer) -> Attitude:
     if cut:  # the payload bytes left off read as zeros
         d = b''.join((d[:38 - cut], bytes(cut), d[38 - cut:]))
     r_stx, r_len, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, c0_7, r_time_boot_ms, r_roll, r_pitch, r_yaw, r_rollspeed, r_pitchspeed, r_yawspeed, r_checksum, = _S_attitude_0.unpack_from(d, 0)
-    r_msgid = int.from_bytes(c0_7, 'little', signed=False)
-    x = _checksum_crc16_1021_ffff_rr_0_extra(bytes(s[1:38 - cut]) + b"'")
+    x = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((s[1:38 - cut], b"'")))
     if r_checksum != x:
         raise _dec('attitude', 'checksum', r_checksum, 'checksum', hex(x), 304 - 8 * cut, None)
     if r_stx != 253:
@@ -1116,8 +1104,10 @@ def _decode_attitude(d: _Buffer) -> Attitude:
         raise _dec('attitude', 'len', r_len, 'length', f'{28 - cut} for attitude', 8, None)
     if r_incompat_flags & 0xfe:
         raise _dec('attitude', 'incompat_flags', r_incompat_flags, 'flags', 'only the bits of incompat_flags', 16, None)
-    if r_msgid != 30:
-        raise _dec('attitude', 'msgid', r_msgid, 'const', '30', 56, None)
+    if c0_7 != b'\x1e\x00\x00':
+        r_msgid = int.from_bytes(c0_7, 'little')
+        if r_msgid != 30:
+            raise _dec('attitude', 'msgid', r_msgid, 'const', '30', 56, None)
     if not _isfinite(r_roll):
         raise _dec('attitude', 'roll', r_roll, 'finite', 'a finite number', 112, None)
     if not _isfinite(r_pitch):
@@ -1153,8 +1143,6 @@ def _encode_command_ack(m: CommandAck) -> bytes:
     r_incompat_flags = int(r_incompat_flags)
     if r_incompat_flags < 0 or r_incompat_flags & 0xfe or r_incompat_flags > 0xff:
         raise _enc('command_ack', 'incompat_flags', r_incompat_flags, 'flags', 'only the bits of incompat_flags', None)
-    r_msgid = 77
-    r_checksum = 0
     r_compat_flags = m.compat_flags
     r_seq = m.seq
     r_sysid = m.sysid
@@ -1167,13 +1155,11 @@ def _encode_command_ack(m: CommandAck) -> bytes:
     r_target_component = m.target_component
     if (r_compat_flags.__class__ is not int or not 0 <= r_compat_flags <= 255) or (r_seq.__class__ is not int or not 0 <= r_seq <= 255) or (r_sysid.__class__ is not int or not 0 <= r_sysid <= 255) or (r_compid.__class__ is not int or not 0 <= r_compid <= 255) or (r_command.__class__ is not int or not 0 <= r_command <= 65535) or (r_result.__class__ is not int or not 0 <= r_result <= 255) or (r_progress.__class__ is not int or not 0 <= r_progress <= 255) or (r_result_param2.__class__ is not int or not -2147483648 <= r_result_param2 <= 2147483647) or (r_target_system.__class__ is not int or not 0 <= r_target_system <= 255) or (r_target_component.__class__ is not int or not 0 <= r_target_component <= 255):
         _faults('command_ack', (r_compat_flags, r_seq, r_sysid, r_compid, r_command, r_result, r_progress, r_result_param2, r_target_system, r_target_component, ), (('int', 'compat_flags', 0, 255, False, None), ('int', 'seq', 0, 255, False, None), ('int', 'sysid', 0, 255, False, None), ('int', 'compid', 0, 255, False, None), ('int', 'command', 0, 65535, False, None), ('int', 'result', 0, 255, False, None), ('int', 'progress', 0, 255, False, None), ('int', 'result_param2', -2147483648, 2147483647, False, None), ('int', 'target_system', 0, 255, False, None), ('int', 'target_component', 0, 255, False, None)))
-    b = bytearray(22)
-    _S_command_ack_0.pack_into(b, 0, 253, 10, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, r_msgid.to_bytes(3, 'little', signed=False), r_command, r_result, r_progress, r_result_param2, r_target_system, r_target_component, r_checksum)
-    cut = 9 - len(b[11:20].rstrip(b'\0'))  # trailing zeros are not sent
-    del b[20 - cut:20]
-    b[1:2] = (10 - cut).to_bytes(1, 'little')
-    b[20 - cut:22 - cut] = _checksum_crc16_1021_ffff_rr_0_extra(bytes(b[1:20 - cut]) + b'\x8f').to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_command_ack_h.pack(253, 10, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, b'M\x00\x00', r_command, r_result, r_progress, r_result_param2, r_target_system, r_target_component)
+    cut = 9 - len(h[11:20].rstrip(b'\0'))  # trailing zeros are not sent
+    if cut:
+        h = b''.join((h[:1], (10 - cut).to_bytes(1, 'little'), h[2:20 - cut]))
+    return h + _checksum_crc16_1021_ffff_rr_0_extra(b''.join((h[1:20 - cut], b'\x8f'))).to_bytes(2, 'little')
 
 
 def _decode_command_ack(d: _Buffer) -> CommandAck:
@@ -1186,8 +1172,7 @@ def _decode_command_ack(d: _Buffer) -> CommandAck:
     if cut:  # the payload bytes left off read as zeros
         d = b''.join((d[:20 - cut], bytes(cut), d[20 - cut:]))
     r_stx, r_len, r_incompat_flags, r_compat_flags, r_seq, r_sysid, r_compid, c0_7, r_command, r_result, r_progress, r_result_param2, r_target_system, r_target_component, r_checksum, = _S_command_ack_0.unpack_from(d, 0)
-    r_msgid = int.from_bytes(c0_7, 'little', signed=False)
-    x = _checksum_crc16_1021_ffff_rr_0_extra(bytes(s[1:20 - cut]) + b'\x8f')
+    x = _checksum_crc16_1021_ffff_rr_0_extra(b''.join((s[1:20 - cut], b'\x8f')))
     if r_checksum != x:
         raise _dec('command_ack', 'checksum', r_checksum, 'checksum', hex(x), 160 - 8 * cut, None)
     if r_stx != 253:
@@ -1196,8 +1181,10 @@ def _decode_command_ack(d: _Buffer) -> CommandAck:
         raise _dec('command_ack', 'len', r_len, 'length', f'{10 - cut} for command_ack', 8, None)
     if r_incompat_flags & 0xfe:
         raise _dec('command_ack', 'incompat_flags', r_incompat_flags, 'flags', 'only the bits of incompat_flags', 16, None)
-    if r_msgid != 77:
-        raise _dec('command_ack', 'msgid', r_msgid, 'const', '77', 56, None)
+    if c0_7 != b'M\x00\x00':
+        r_msgid = int.from_bytes(c0_7, 'little')
+        if r_msgid != 77:
+            raise _dec('command_ack', 'msgid', r_msgid, 'const', '77', 56, None)
     o = _object_new(CommandAck)
     o.incompat_flags = _FLAGS_incompat_flags[r_incompat_flags]
     o.compat_flags = r_compat_flags
@@ -1258,18 +1245,33 @@ for _value, _sizes, _direction, _fn in _KEYS:
 
 
 _UNIQUE = {key: fns[0] for key, fns in _ALL.items() if len(fns) == 1}
+# the same keyed by the id's bytes as a frame of bytes holds them: found without reading a number
+_UNIQUE_RAW = {(value.to_bytes(3, 'little'), size): fn
+               for (value, size), fn in _UNIQUE.items() if value >= 0}
 
 
 def decode(data: _Input, direction: Optional[str] = None, key: Optional[_Buffer] = None) -> AnyMessage:
     """Decode one frame; `direction` is needed only when ids are reused across directions.
     With `key`, the frame must carry a trailer whose signature that key makes."""
     d = data if data.__class__ is bytes else _as_input(data)
+    if key is None and len(d) > 2 and not d[2] & 1:
+        # no trailer and no key, the common frame: its message found in one lookup, the trailer's fields None
+        fn = _UNIQUE_RAW.get((d[7:10], len(d))) if direction is None and isinstance(d, bytes) else None
+        o = fn(d) if fn is not None else _decode_frame(d, direction)
+        o.link_id = None
+        o.timestamp = None
+        o.signature = None
+        return o
     body, t = _split_trailer(d)
     return _read_trailer(_decode_frame(body, direction), d, len(body), t, key)
 
 
 def _decode_frame(d: _Buffer, direction: Optional[str] = None) -> AnyMessage:
     """Decode one frame without its trailer."""
+    if direction is None and isinstance(d, bytes):  # a bytearray's slice is no key
+        fn = _UNIQUE_RAW.get((d[7:10], len(d)))
+        if fn is not None:
+            return fn(d)
     if direction is None and len(d) >= 10:
         fn = _UNIQUE.get((int.from_bytes(d[7:10], 'little'), len(d)))
         if fn is not None:
@@ -1406,6 +1408,14 @@ def _signing_key(key: object, error: Callable[..., CodecError]) -> bytes:
     return data
 
 
+def _untrailed(o: _M) -> _M:
+    """`o` of a frame without the trailer: the trailer's fields None."""
+    o.link_id = None
+    o.timestamp = None
+    o.signature = None
+    return o
+
+
 def _read_trailer(o: _M, d: _Buffer, body: int, t: Optional[_Buffer], key: Optional[_Buffer]) -> _M:
     """`o` with the trailer's fields (None where the flag left the trailer out); with `key`,
     the signature checked."""
@@ -1483,7 +1493,7 @@ def encode(m: AnyMessage, key: Optional[_Buffer] = None) -> bytes:
     fn = _ENCODERS.get(type(m))
     if fn is None:
         raise _enc(None, None, type(m).__name__, 'type', 'a message of mavlink2')
-    return _write_trailer(m, bytes(fn(m)), key)
+    return _write_trailer(m, fn(m), key)
 
 
 def validate(m: AnyMessage) -> None:

@@ -387,6 +387,7 @@ _A_write_multiple_registers_6values = struct.Struct('>123H')
 _S_write_multiple_registers_response_0 = struct.Struct('>BBHH')
 _S_write_multiple_registers_response_1 = struct.Struct('<H')
 _S_exception_response_0 = struct.Struct('<BBBH')
+_S_exception_response_h = struct.Struct('>BBB')
 
 # CRC-16/MODBUS: width=16 poly=0x8005 init=0xffff refin=True refout=True xorout=0x0
 _TABLE_crc16_8005_ffff_rr_0: tuple[int, ...] = (
@@ -754,11 +755,8 @@ def _encode_exception_response(m: ExceptionResponse) -> bytes:
     if r_exception_code.__class__ is not ExceptionCode and (not isinstance(r_exception_code, int) or r_exception_code.__class__ is bool or isinstance(r_exception_code, enum.Enum) or r_exception_code not in _VALUES_exception_code):
         raise _enc('exception_response', 'exception_code', r_exception_code, 'enum', 'ExceptionCode', None)
     r_exception_code = _RAW_exception_code[r_exception_code]
-    r_crc = 0
-    b = bytearray(5)
-    _S_exception_response_0.pack_into(b, 0, r_address, r_function, r_exception_code, r_crc)
-    b[3:5] = _checksum_crc16_8005_ffff_rr_0_3(b, 0).to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_exception_response_h.pack(r_address, r_function, r_exception_code)
+    return h + _checksum_crc16_8005_ffff_rr_0_3(h, 0).to_bytes(2, 'little')
 
 
 def _decode_exception_response(d: _Buffer) -> ExceptionResponse:
@@ -988,7 +986,7 @@ def encode(m: AnyMessage) -> bytes:
     fn = _ENCODERS.get(type(m))
     if fn is None:
         raise _enc(None, None, type(m).__name__, 'type', 'a message of modbus_rtu')
-    return bytes(fn(m))
+    return fn(m)  # each encoder returns bytes
 
 
 def validate(m: AnyMessage) -> None:

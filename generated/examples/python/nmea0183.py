@@ -563,9 +563,11 @@ _INT = re.compile(r"[+-]?[0-9]+\Z")
 _FLOAT = re.compile(_FLOAT_RE + r"\Z")
 
 
-def _parse_int(token: str, message: str, field: str, offset: int) -> int:
+# The parsers below take the line's tokens, the offset of the first and the token's index
+# rather than the token's offset: an offset is computed only for an error.
+def _parse_int(token: str, message: str, field: str, tokens: list[str], base: int, n: int) -> int:
     if not _INT.match(token):
-        raise _dec(message, field, token, 'syntax', 'a decimal integer', offset)
+        raise _dec(message, field, token, 'syntax', 'a decimal integer', _token_offset(tokens, base, n))
     return _int_of(token)
 
 
@@ -581,28 +583,39 @@ def _fixed(raw: int, decimals: int, width: int) -> str:
 _FIXED = re.compile(r"([+-]?)([0-9]*)(?:\.([0-9]*))?\Z")
 
 
-def _parse_fixed(token: str, decimals: int, message: str, field: str, offset: int) -> int:
+def _parse_fixed(token: str, decimals: int, message: str, field: str, tokens: list[str], base: int, n: int) -> int:
     """The raw value of a number in any spelling a receiver writes (padded, with any
     number of decimals, signed or not, no exponent) at `decimals` digits after the
     point: further digits round it to the nearest step, halves away from zero."""
     match = _FIXED.match(token)
     if match is None or not (match[2] or match[3]):
-        raise _dec(message, field, token, 'syntax', 'a decimal number (no exponent)', offset)
-    whole, fraction = match[2].lstrip("0"), match[3] or ""
+        raise _dec(message, field, token, 'syntax', 'a decimal number (no exponent)', _token_offset(tokens, base, n))
+    return _fixed_raw(match[1], match[2], match[3] or "", decimals)
+
+
+def _fixed_raw(sign: str, whole: str, fraction: str, decimals: int) -> int:
+    """The raw value of a number's sign, digits before the point and digits after it."""
+    whole = whole.lstrip("0")
     if len(whole) > 12:  # past any 32-bit raw value: left to the range check
-        return -(10 ** 21) if match[1] == "-" else 10 ** 21
+        return -(10 ** 21) if sign == "-" else 10 ** 21
     raw = int(whole + fraction[:decimals].ljust(decimals, "0") or "0")
     if fraction[decimals:decimals + 1] >= "5":
         raw += 1
-    return -raw if match[1] == "-" else raw
+    return -raw if sign == "-" else raw
 
 
-def _token_offsets(tokens: list[str], base: int) -> list[int]:
-    offsets: list[int] = []
-    for token in tokens:
-        offsets.append(base)
-        base += len(token) + 1
-    return offsets
+def _fixed_of(token: str, decimals: int) -> int:
+    """_parse_fixed of a token known to be well-formed (its line matched the message's syntax)."""
+    whole, _, fraction = token.partition(".")
+    if len(fraction) <= decimals and len(whole) <= 12:  # nothing to round, no digit past a raw value
+        return int(whole + fraction.ljust(decimals, "0"))
+    sign = whole[:1] if whole[:1] in ("+", "-") else ""
+    return _fixed_raw(sign, whole[len(sign):], fraction, decimals)
+
+
+def _token_offset(tokens: list[str], base: int, n: int) -> int:
+    """Where token `n` starts, the first starting at `base`."""
+    return base + sum(map(len, tokens[:n])) + n * 1
 
 
 _SYNTAX_gga = re.compile(_FIXED_RE + ',' + '(?:' + _FIXED_RE + ')?' + ',' + '(?:' + _CHAR_RE + ')?' + ',' + '(?:' + _FIXED_RE + ')?' + ',' + '(?:' + _CHAR_RE + ')?' + ',' + _INT_RE + ',' + _FIXED_RE + ',' + '(?:' + _FIXED_RE + ')?' + ',' + '(?:' + _FIXED_RE + ')?' + ',' + '(?:' + _CHAR_RE + ')?' + ',' + '(?:' + _FIXED_RE + ')?' + ',' + '(?:' + _CHAR_RE + ')?' + ',' + '(?:' + _FIXED_RE + ')?' + ',' + '(?:' + _FIXED_RE + ')?')
@@ -752,123 +765,123 @@ def _decode_gga(head: str, body: str, base: int) -> Gga:
     ok = _SYNTAX_gga.fullmatch(body) is not None  # well-formed: token syntax checks are skipped
     sp: dict[str, tuple[Any, str]] = {}  # each number's text, with the raw value it reads as
     if len(t[0]) > 24:
-        raise _dec('gga', 'timestamp', t[0], 'length', 'a number of at most 24 characters', _token_offsets(t, base)[0])
-    r_timestamp = _parse_fixed(t[0], 0, 'gga', 'timestamp', _token_offsets(t, base)[0])
+        raise _dec('gga', 'timestamp', t[0], 'length', 'a number of at most 24 characters', _token_offset(t, base, 0))
+    r_timestamp = _fixed_of(t[0], 0) if ok else _parse_fixed(t[0], 0, 'gga', 'timestamp', t, base, 0)
     if not 0 <= r_timestamp <= 235960:
-        raise _dec('gga', 'timestamp', r_timestamp, 'range', '0..235960', _token_offsets(t, base)[0], 'NMEA-D2')
+        raise _dec('gga', 'timestamp', r_timestamp, 'range', '0..235960', _token_offset(t, base, 0), 'NMEA-D2')
     sp['timestamp'] = (r_timestamp, t[0])
-    if len(t) > 1 and t[1]:
+    if t[1]:
         if len(t[1]) > 24:
-            raise _dec('gga', 'lat', t[1], 'length', 'a number of at most 24 characters', _token_offsets(t, base)[1])
-        r_lat = _parse_fixed(t[1], 5, 'gga', 'lat', _token_offsets(t, base)[1])
+            raise _dec('gga', 'lat', t[1], 'length', 'a number of at most 24 characters', _token_offset(t, base, 1))
+        r_lat = _fixed_of(t[1], 5) if ok else _parse_fixed(t[1], 5, 'gga', 'lat', t, base, 1)
         if not 0 <= r_lat / 100000 <= 9000:
-            raise _dec('gga', 'lat', r_lat, 'range', '0..9000', _token_offsets(t, base)[1], 'NMEA-D2')
+            raise _dec('gga', 'lat', r_lat, 'range', '0..9000', _token_offset(t, base, 1), 'NMEA-D2')
         sp['lat'] = (r_lat, t[1])
     else:
         r_lat = None
-    if len(t) > 2 and t[2]:
+    if t[2]:
         r_lat_dir = t[2]
         if len(r_lat_dir) != 1:
-            raise _dec('gga', 'lat_dir', r_lat_dir, 'type', 'one character', _token_offsets(t, base)[2])
+            raise _dec('gga', 'lat_dir', r_lat_dir, 'type', 'one character', _token_offset(t, base, 2))
         e_lat_dir = _ENUM_north_south.get(r_lat_dir)
         if e_lat_dir is None:
-            raise _dec('gga', 'lat_dir', r_lat_dir, 'enum', 'NorthSouth', _token_offsets(t, base)[2], None)
+            raise _dec('gga', 'lat_dir', r_lat_dir, 'enum', 'NorthSouth', _token_offset(t, base, 2), None)
     else:
         r_lat_dir = None
         e_lat_dir = None
-    if len(t) > 3 and t[3]:
+    if t[3]:
         if len(t[3]) > 24:
-            raise _dec('gga', 'lon', t[3], 'length', 'a number of at most 24 characters', _token_offsets(t, base)[3])
-        r_lon = _parse_fixed(t[3], 5, 'gga', 'lon', _token_offsets(t, base)[3])
+            raise _dec('gga', 'lon', t[3], 'length', 'a number of at most 24 characters', _token_offset(t, base, 3))
+        r_lon = _fixed_of(t[3], 5) if ok else _parse_fixed(t[3], 5, 'gga', 'lon', t, base, 3)
         if not 0 <= r_lon / 100000 <= 18000:
-            raise _dec('gga', 'lon', r_lon, 'range', '0..18000', _token_offsets(t, base)[3], 'NMEA-D2')
+            raise _dec('gga', 'lon', r_lon, 'range', '0..18000', _token_offset(t, base, 3), 'NMEA-D2')
         sp['lon'] = (r_lon, t[3])
     else:
         r_lon = None
-    if len(t) > 4 and t[4]:
+    if t[4]:
         r_lon_dir = t[4]
         if len(r_lon_dir) != 1:
-            raise _dec('gga', 'lon_dir', r_lon_dir, 'type', 'one character', _token_offsets(t, base)[4])
+            raise _dec('gga', 'lon_dir', r_lon_dir, 'type', 'one character', _token_offset(t, base, 4))
         e_lon_dir = _ENUM_east_west.get(r_lon_dir)
         if e_lon_dir is None:
-            raise _dec('gga', 'lon_dir', r_lon_dir, 'enum', 'EastWest', _token_offsets(t, base)[4], None)
+            raise _dec('gga', 'lon_dir', r_lon_dir, 'enum', 'EastWest', _token_offset(t, base, 4), None)
     else:
         r_lon_dir = None
         e_lon_dir = None
     if len(t[5]) > 24:
-        raise _dec('gga', 'gps_qual', t[5], 'length', 'a number of at most 24 characters', _token_offsets(t, base)[5])
-    r_gps_qual = int(t[5]) if ok else _parse_int(t[5], 'gga', 'gps_qual', _token_offsets(t, base)[5])
+        raise _dec('gga', 'gps_qual', t[5], 'length', 'a number of at most 24 characters', _token_offset(t, base, 5))
+    r_gps_qual = int(t[5]) if ok else _parse_int(t[5], 'gga', 'gps_qual', t, base, 5)
     if not 0 <= r_gps_qual <= 8:
-        raise _dec('gga', 'gps_qual', r_gps_qual, 'range', '0..8', _token_offsets(t, base)[5], None)
+        raise _dec('gga', 'gps_qual', r_gps_qual, 'range', '0..8', _token_offset(t, base, 5), None)
     sp['gps_qual'] = (r_gps_qual, t[5])
     if len(t[6]) > 24:
-        raise _dec('gga', 'num_sats', t[6], 'length', 'a number of at most 24 characters', _token_offsets(t, base)[6])
-    r_num_sats = _parse_fixed(t[6], 0, 'gga', 'num_sats', _token_offsets(t, base)[6])
+        raise _dec('gga', 'num_sats', t[6], 'length', 'a number of at most 24 characters', _token_offset(t, base, 6))
+    r_num_sats = _fixed_of(t[6], 0) if ok else _parse_fixed(t[6], 0, 'gga', 'num_sats', t, base, 6)
     if not 0 <= r_num_sats <= 255:
-        raise _dec('gga', 'num_sats', r_num_sats, 'range', '0..255', _token_offsets(t, base)[6], None)
+        raise _dec('gga', 'num_sats', r_num_sats, 'range', '0..255', _token_offset(t, base, 6), None)
     sp['num_sats'] = (r_num_sats, t[6])
-    if len(t) > 7 and t[7]:
+    if t[7]:
         if len(t[7]) > 24:
-            raise _dec('gga', 'horizontal_dil', t[7], 'length', 'a number of at most 24 characters', _token_offsets(t, base)[7])
-        r_horizontal_dil = _parse_fixed(t[7], 1, 'gga', 'horizontal_dil', _token_offsets(t, base)[7])
+            raise _dec('gga', 'horizontal_dil', t[7], 'length', 'a number of at most 24 characters', _token_offset(t, base, 7))
+        r_horizontal_dil = _fixed_of(t[7], 1) if ok else _parse_fixed(t[7], 1, 'gga', 'horizontal_dil', t, base, 7)
         if not 0 <= r_horizontal_dil / 10 <= 99999:
-            raise _dec('gga', 'horizontal_dil', r_horizontal_dil, 'range', '0..99999', _token_offsets(t, base)[7], None)
+            raise _dec('gga', 'horizontal_dil', r_horizontal_dil, 'range', '0..99999', _token_offset(t, base, 7), None)
         sp['horizontal_dil'] = (r_horizontal_dil, t[7])
     else:
         r_horizontal_dil = None
-    if len(t) > 8 and t[8]:
+    if t[8]:
         if len(t[8]) > 24:
-            raise _dec('gga', 'altitude', t[8], 'length', 'a number of at most 24 characters', _token_offsets(t, base)[8])
-        r_altitude = _parse_fixed(t[8], 1, 'gga', 'altitude', _token_offsets(t, base)[8])
+            raise _dec('gga', 'altitude', t[8], 'length', 'a number of at most 24 characters', _token_offset(t, base, 8))
+        r_altitude = _fixed_of(t[8], 1) if ok else _parse_fixed(t[8], 1, 'gga', 'altitude', t, base, 8)
         if not -9999.9 <= r_altitude / 10 <= 99999.9:
-            raise _dec('gga', 'altitude', r_altitude, 'range', '-9999.9..99999.9', _token_offsets(t, base)[8], None)
+            raise _dec('gga', 'altitude', r_altitude, 'range', '-9999.9..99999.9', _token_offset(t, base, 8), None)
         sp['altitude'] = (r_altitude, t[8])
     else:
         r_altitude = None
-    if len(t) > 9 and t[9]:
+    if t[9]:
         r_altitude_units = t[9]
         if len(r_altitude_units) != 1:
-            raise _dec('gga', 'altitude_units', r_altitude_units, 'type', 'one character', _token_offsets(t, base)[9])
+            raise _dec('gga', 'altitude_units', r_altitude_units, 'type', 'one character', _token_offset(t, base, 9))
         e_altitude_units = _ENUM_metres.get(r_altitude_units)
         if e_altitude_units is None:
-            raise _dec('gga', 'altitude_units', r_altitude_units, 'enum', 'Metres', _token_offsets(t, base)[9], None)
+            raise _dec('gga', 'altitude_units', r_altitude_units, 'enum', 'Metres', _token_offset(t, base, 9), None)
     else:
         r_altitude_units = None
         e_altitude_units = None
-    if len(t) > 10 and t[10]:
+    if t[10]:
         if len(t[10]) > 24:
-            raise _dec('gga', 'geo_sep', t[10], 'length', 'a number of at most 24 characters', _token_offsets(t, base)[10])
-        r_geo_sep = _parse_fixed(t[10], 1, 'gga', 'geo_sep', _token_offsets(t, base)[10])
+            raise _dec('gga', 'geo_sep', t[10], 'length', 'a number of at most 24 characters', _token_offset(t, base, 10))
+        r_geo_sep = _fixed_of(t[10], 1) if ok else _parse_fixed(t[10], 1, 'gga', 'geo_sep', t, base, 10)
         if not -9999.9 <= r_geo_sep / 10 <= 9999.9:
-            raise _dec('gga', 'geo_sep', r_geo_sep, 'range', '-9999.9..9999.9', _token_offsets(t, base)[10], None)
+            raise _dec('gga', 'geo_sep', r_geo_sep, 'range', '-9999.9..9999.9', _token_offset(t, base, 10), None)
         sp['geo_sep'] = (r_geo_sep, t[10])
     else:
         r_geo_sep = None
-    if len(t) > 11 and t[11]:
+    if t[11]:
         r_geo_sep_units = t[11]
         if len(r_geo_sep_units) != 1:
-            raise _dec('gga', 'geo_sep_units', r_geo_sep_units, 'type', 'one character', _token_offsets(t, base)[11])
+            raise _dec('gga', 'geo_sep_units', r_geo_sep_units, 'type', 'one character', _token_offset(t, base, 11))
         e_geo_sep_units = _ENUM_metres.get(r_geo_sep_units)
         if e_geo_sep_units is None:
-            raise _dec('gga', 'geo_sep_units', r_geo_sep_units, 'enum', 'Metres', _token_offsets(t, base)[11], None)
+            raise _dec('gga', 'geo_sep_units', r_geo_sep_units, 'enum', 'Metres', _token_offset(t, base, 11), None)
     else:
         r_geo_sep_units = None
         e_geo_sep_units = None
-    if len(t) > 12 and t[12]:
+    if t[12]:
         if len(t[12]) > 24:
-            raise _dec('gga', 'age_gps_data', t[12], 'length', 'a number of at most 24 characters', _token_offsets(t, base)[12])
-        r_age_gps_data = _parse_fixed(t[12], 1, 'gga', 'age_gps_data', _token_offsets(t, base)[12])
+            raise _dec('gga', 'age_gps_data', t[12], 'length', 'a number of at most 24 characters', _token_offset(t, base, 12))
+        r_age_gps_data = _fixed_of(t[12], 1) if ok else _parse_fixed(t[12], 1, 'gga', 'age_gps_data', t, base, 12)
         if not 0 <= r_age_gps_data / 10 <= 99999:
-            raise _dec('gga', 'age_gps_data', r_age_gps_data, 'range', '0..99999', _token_offsets(t, base)[12], None)
+            raise _dec('gga', 'age_gps_data', r_age_gps_data, 'range', '0..99999', _token_offset(t, base, 12), None)
         sp['age_gps_data'] = (r_age_gps_data, t[12])
     else:
         r_age_gps_data = None
-    if len(t) > 13 and t[13]:
+    if t[13]:
         if len(t[13]) > 24:
-            raise _dec('gga', 'ref_station_id', t[13], 'length', 'a number of at most 24 characters', _token_offsets(t, base)[13])
-        r_ref_station_id = _parse_fixed(t[13], 0, 'gga', 'ref_station_id', _token_offsets(t, base)[13])
+            raise _dec('gga', 'ref_station_id', t[13], 'length', 'a number of at most 24 characters', _token_offset(t, base, 13))
+        r_ref_station_id = _fixed_of(t[13], 0) if ok else _parse_fixed(t[13], 0, 'gga', 'ref_station_id', t, base, 13)
         if not 0 <= r_ref_station_id <= 1023:
-            raise _dec('gga', 'ref_station_id', r_ref_station_id, 'range', '0..1023', _token_offsets(t, base)[13], None)
+            raise _dec('gga', 'ref_station_id', r_ref_station_id, 'range', '0..1023', _token_offset(t, base, 13), None)
         sp['ref_station_id'] = (r_ref_station_id, t[13])
     else:
         r_ref_station_id = None
@@ -1013,115 +1026,115 @@ def _decode_rmc(head: str, body: str, base: int) -> Rmc:
     ok = _SYNTAX_rmc.fullmatch(body) is not None  # well-formed: token syntax checks are skipped
     sp: dict[str, tuple[Any, str]] = {}  # each number's text, with the raw value it reads as
     if len(t[0]) > 24:
-        raise _dec('rmc', 'timestamp', t[0], 'length', 'a number of at most 24 characters', _token_offsets(t, base)[0])
-    r_timestamp = _parse_fixed(t[0], 0, 'rmc', 'timestamp', _token_offsets(t, base)[0])
+        raise _dec('rmc', 'timestamp', t[0], 'length', 'a number of at most 24 characters', _token_offset(t, base, 0))
+    r_timestamp = _fixed_of(t[0], 0) if ok else _parse_fixed(t[0], 0, 'rmc', 'timestamp', t, base, 0)
     if not 0 <= r_timestamp <= 235960:
-        raise _dec('rmc', 'timestamp', r_timestamp, 'range', '0..235960', _token_offsets(t, base)[0], 'NMEA-D2')
+        raise _dec('rmc', 'timestamp', r_timestamp, 'range', '0..235960', _token_offset(t, base, 0), 'NMEA-D2')
     sp['timestamp'] = (r_timestamp, t[0])
     r_status = t[1]
     if len(r_status) != 1:
-        raise _dec('rmc', 'status', r_status, 'type', 'one character', _token_offsets(t, base)[1])
+        raise _dec('rmc', 'status', r_status, 'type', 'one character', _token_offset(t, base, 1))
     e_status = _ENUM_validity.get(r_status)
     if e_status is None:
-        raise _dec('rmc', 'status', r_status, 'enum', 'Validity', _token_offsets(t, base)[1], None)
-    if len(t) > 2 and t[2]:
+        raise _dec('rmc', 'status', r_status, 'enum', 'Validity', _token_offset(t, base, 1), None)
+    if t[2]:
         if len(t[2]) > 24:
-            raise _dec('rmc', 'lat', t[2], 'length', 'a number of at most 24 characters', _token_offsets(t, base)[2])
-        r_lat = _parse_fixed(t[2], 5, 'rmc', 'lat', _token_offsets(t, base)[2])
+            raise _dec('rmc', 'lat', t[2], 'length', 'a number of at most 24 characters', _token_offset(t, base, 2))
+        r_lat = _fixed_of(t[2], 5) if ok else _parse_fixed(t[2], 5, 'rmc', 'lat', t, base, 2)
         if not 0 <= r_lat / 100000 <= 9000:
-            raise _dec('rmc', 'lat', r_lat, 'range', '0..9000', _token_offsets(t, base)[2], 'NMEA-D2')
+            raise _dec('rmc', 'lat', r_lat, 'range', '0..9000', _token_offset(t, base, 2), 'NMEA-D2')
         sp['lat'] = (r_lat, t[2])
     else:
         r_lat = None
-    if len(t) > 3 and t[3]:
+    if t[3]:
         r_lat_dir = t[3]
         if len(r_lat_dir) != 1:
-            raise _dec('rmc', 'lat_dir', r_lat_dir, 'type', 'one character', _token_offsets(t, base)[3])
+            raise _dec('rmc', 'lat_dir', r_lat_dir, 'type', 'one character', _token_offset(t, base, 3))
         e_lat_dir = _ENUM_north_south.get(r_lat_dir)
         if e_lat_dir is None:
-            raise _dec('rmc', 'lat_dir', r_lat_dir, 'enum', 'NorthSouth', _token_offsets(t, base)[3], None)
+            raise _dec('rmc', 'lat_dir', r_lat_dir, 'enum', 'NorthSouth', _token_offset(t, base, 3), None)
     else:
         r_lat_dir = None
         e_lat_dir = None
-    if len(t) > 4 and t[4]:
+    if t[4]:
         if len(t[4]) > 24:
-            raise _dec('rmc', 'lon', t[4], 'length', 'a number of at most 24 characters', _token_offsets(t, base)[4])
-        r_lon = _parse_fixed(t[4], 5, 'rmc', 'lon', _token_offsets(t, base)[4])
+            raise _dec('rmc', 'lon', t[4], 'length', 'a number of at most 24 characters', _token_offset(t, base, 4))
+        r_lon = _fixed_of(t[4], 5) if ok else _parse_fixed(t[4], 5, 'rmc', 'lon', t, base, 4)
         if not 0 <= r_lon / 100000 <= 18000:
-            raise _dec('rmc', 'lon', r_lon, 'range', '0..18000', _token_offsets(t, base)[4], 'NMEA-D2')
+            raise _dec('rmc', 'lon', r_lon, 'range', '0..18000', _token_offset(t, base, 4), 'NMEA-D2')
         sp['lon'] = (r_lon, t[4])
     else:
         r_lon = None
-    if len(t) > 5 and t[5]:
+    if t[5]:
         r_lon_dir = t[5]
         if len(r_lon_dir) != 1:
-            raise _dec('rmc', 'lon_dir', r_lon_dir, 'type', 'one character', _token_offsets(t, base)[5])
+            raise _dec('rmc', 'lon_dir', r_lon_dir, 'type', 'one character', _token_offset(t, base, 5))
         e_lon_dir = _ENUM_east_west.get(r_lon_dir)
         if e_lon_dir is None:
-            raise _dec('rmc', 'lon_dir', r_lon_dir, 'enum', 'EastWest', _token_offsets(t, base)[5], None)
+            raise _dec('rmc', 'lon_dir', r_lon_dir, 'enum', 'EastWest', _token_offset(t, base, 5), None)
     else:
         r_lon_dir = None
         e_lon_dir = None
-    if len(t) > 6 and t[6]:
+    if t[6]:
         if len(t[6]) > 24:
-            raise _dec('rmc', 'spd_over_grnd', t[6], 'length', 'a number of at most 24 characters', _token_offsets(t, base)[6])
-        r_spd_over_grnd = _parse_fixed(t[6], 1, 'rmc', 'spd_over_grnd', _token_offsets(t, base)[6])
+            raise _dec('rmc', 'spd_over_grnd', t[6], 'length', 'a number of at most 24 characters', _token_offset(t, base, 6))
+        r_spd_over_grnd = _fixed_of(t[6], 1) if ok else _parse_fixed(t[6], 1, 'rmc', 'spd_over_grnd', t, base, 6)
         if not 0 <= r_spd_over_grnd / 10 <= 999.9:
-            raise _dec('rmc', 'spd_over_grnd', r_spd_over_grnd, 'range', '0..999.9', _token_offsets(t, base)[6], None)
+            raise _dec('rmc', 'spd_over_grnd', r_spd_over_grnd, 'range', '0..999.9', _token_offset(t, base, 6), None)
         sp['spd_over_grnd'] = (r_spd_over_grnd, t[6])
     else:
         r_spd_over_grnd = None
-    if len(t) > 7 and t[7]:
+    if t[7]:
         if len(t[7]) > 24:
-            raise _dec('rmc', 'true_course', t[7], 'length', 'a number of at most 24 characters', _token_offsets(t, base)[7])
-        r_true_course = _parse_fixed(t[7], 1, 'rmc', 'true_course', _token_offsets(t, base)[7])
+            raise _dec('rmc', 'true_course', t[7], 'length', 'a number of at most 24 characters', _token_offset(t, base, 7))
+        r_true_course = _fixed_of(t[7], 1) if ok else _parse_fixed(t[7], 1, 'rmc', 'true_course', t, base, 7)
         if not 0 <= r_true_course / 10 <= 999.9:
-            raise _dec('rmc', 'true_course', r_true_course, 'range', '0..999.9', _token_offsets(t, base)[7], None)
+            raise _dec('rmc', 'true_course', r_true_course, 'range', '0..999.9', _token_offset(t, base, 7), None)
         sp['true_course'] = (r_true_course, t[7])
     else:
         r_true_course = None
     if len(t[8]) > 24:
-        raise _dec('rmc', 'datestamp', t[8], 'length', 'a number of at most 24 characters', _token_offsets(t, base)[8])
-    r_datestamp = _parse_fixed(t[8], 0, 'rmc', 'datestamp', _token_offsets(t, base)[8])
+        raise _dec('rmc', 'datestamp', t[8], 'length', 'a number of at most 24 characters', _token_offset(t, base, 8))
+    r_datestamp = _fixed_of(t[8], 0) if ok else _parse_fixed(t[8], 0, 'rmc', 'datestamp', t, base, 8)
     if not 10100 <= r_datestamp <= 311299:
-        raise _dec('rmc', 'datestamp', r_datestamp, 'range', '10100..311299', _token_offsets(t, base)[8], None)
+        raise _dec('rmc', 'datestamp', r_datestamp, 'range', '10100..311299', _token_offset(t, base, 8), None)
     sp['datestamp'] = (r_datestamp, t[8])
-    if len(t) > 9 and t[9]:
+    if t[9]:
         if len(t[9]) > 24:
-            raise _dec('rmc', 'mag_variation', t[9], 'length', 'a number of at most 24 characters', _token_offsets(t, base)[9])
-        r_mag_variation = _parse_fixed(t[9], 1, 'rmc', 'mag_variation', _token_offsets(t, base)[9])
+            raise _dec('rmc', 'mag_variation', t[9], 'length', 'a number of at most 24 characters', _token_offset(t, base, 9))
+        r_mag_variation = _fixed_of(t[9], 1) if ok else _parse_fixed(t[9], 1, 'rmc', 'mag_variation', t, base, 9)
         if not 0 <= r_mag_variation / 10 <= 999.9:
-            raise _dec('rmc', 'mag_variation', r_mag_variation, 'range', '0..999.9', _token_offsets(t, base)[9], None)
+            raise _dec('rmc', 'mag_variation', r_mag_variation, 'range', '0..999.9', _token_offset(t, base, 9), None)
         sp['mag_variation'] = (r_mag_variation, t[9])
     else:
         r_mag_variation = None
-    if len(t) > 10 and t[10]:
+    if t[10]:
         r_mag_var_dir = t[10]
         if len(r_mag_var_dir) != 1:
-            raise _dec('rmc', 'mag_var_dir', r_mag_var_dir, 'type', 'one character', _token_offsets(t, base)[10])
+            raise _dec('rmc', 'mag_var_dir', r_mag_var_dir, 'type', 'one character', _token_offset(t, base, 10))
         e_mag_var_dir = _ENUM_east_west.get(r_mag_var_dir)
         if e_mag_var_dir is None:
-            raise _dec('rmc', 'mag_var_dir', r_mag_var_dir, 'enum', 'EastWest', _token_offsets(t, base)[10], None)
+            raise _dec('rmc', 'mag_var_dir', r_mag_var_dir, 'enum', 'EastWest', _token_offset(t, base, 10), None)
     else:
         r_mag_var_dir = None
         e_mag_var_dir = None
     if len(t) > 11 and t[11]:
         r_mode = t[11]
         if len(r_mode) != 1:
-            raise _dec('rmc', 'mode', r_mode, 'type', 'one character', _token_offsets(t, base)[11])
+            raise _dec('rmc', 'mode', r_mode, 'type', 'one character', _token_offset(t, base, 11))
         e_mode = _ENUM_faa_mode.get(r_mode)
         if e_mode is None:
-            raise _dec('rmc', 'mode', r_mode, 'enum', 'FaaMode', _token_offsets(t, base)[11], 'NMEA-D3')
+            raise _dec('rmc', 'mode', r_mode, 'enum', 'FaaMode', _token_offset(t, base, 11), 'NMEA-D3')
     else:
         r_mode = None
         e_mode = None
     if len(t) > 12 and t[12]:
         r_nav_status = t[12]
         if len(r_nav_status) != 1:
-            raise _dec('rmc', 'nav_status', r_nav_status, 'type', 'one character', _token_offsets(t, base)[12])
+            raise _dec('rmc', 'nav_status', r_nav_status, 'type', 'one character', _token_offset(t, base, 12))
         e_nav_status = _ENUM_nav_status.get(r_nav_status)
         if e_nav_status is None:
-            raise _dec('rmc', 'nav_status', r_nav_status, 'enum', 'NavStatus', _token_offsets(t, base)[12], 'NMEA-D3')
+            raise _dec('rmc', 'nav_status', r_nav_status, 'enum', 'NavStatus', _token_offset(t, base, 12), 'NMEA-D3')
     else:
         r_nav_status = None
         e_nav_status = None
@@ -1227,73 +1240,73 @@ def _decode_vtg(head: str, body: str, base: int) -> Vtg:
         raise _dec('vtg', None, len(t), 'count', '8..9 fields', base)
     ok = _SYNTAX_vtg.fullmatch(body) is not None  # well-formed: token syntax checks are skipped
     sp: dict[str, tuple[Any, str]] = {}  # each number's text, with the raw value it reads as
-    if len(t) > 0 and t[0]:
+    if t[0]:
         if len(t[0]) > 24:
-            raise _dec('vtg', 'true_track', t[0], 'length', 'a number of at most 24 characters', _token_offsets(t, base)[0])
-        r_true_track = _parse_fixed(t[0], 1, 'vtg', 'true_track', _token_offsets(t, base)[0])
+            raise _dec('vtg', 'true_track', t[0], 'length', 'a number of at most 24 characters', _token_offset(t, base, 0))
+        r_true_track = _fixed_of(t[0], 1) if ok else _parse_fixed(t[0], 1, 'vtg', 'true_track', t, base, 0)
         if not 0 <= r_true_track / 10 <= 999.9:
-            raise _dec('vtg', 'true_track', r_true_track, 'range', '0..999.9', _token_offsets(t, base)[0], None)
+            raise _dec('vtg', 'true_track', r_true_track, 'range', '0..999.9', _token_offset(t, base, 0), None)
         sp['true_track'] = (r_true_track, t[0])
     else:
         r_true_track = None
     r_true_track_sym = t[1]
     if len(r_true_track_sym) != 1:
-        raise _dec('vtg', 'true_track_sym', r_true_track_sym, 'type', 'one character', _token_offsets(t, base)[1])
+        raise _dec('vtg', 'true_track_sym', r_true_track_sym, 'type', 'one character', _token_offset(t, base, 1))
     e_true_track_sym = _ENUM_track_true.get(r_true_track_sym)
     if e_true_track_sym is None:
-        raise _dec('vtg', 'true_track_sym', r_true_track_sym, 'enum', 'TrackTrue', _token_offsets(t, base)[1], None)
-    if len(t) > 2 and t[2]:
+        raise _dec('vtg', 'true_track_sym', r_true_track_sym, 'enum', 'TrackTrue', _token_offset(t, base, 1), None)
+    if t[2]:
         if len(t[2]) > 24:
-            raise _dec('vtg', 'mag_track', t[2], 'length', 'a number of at most 24 characters', _token_offsets(t, base)[2])
-        r_mag_track = _parse_fixed(t[2], 1, 'vtg', 'mag_track', _token_offsets(t, base)[2])
+            raise _dec('vtg', 'mag_track', t[2], 'length', 'a number of at most 24 characters', _token_offset(t, base, 2))
+        r_mag_track = _fixed_of(t[2], 1) if ok else _parse_fixed(t[2], 1, 'vtg', 'mag_track', t, base, 2)
         if not 0 <= r_mag_track / 10 <= 999.9:
-            raise _dec('vtg', 'mag_track', r_mag_track, 'range', '0..999.9', _token_offsets(t, base)[2], None)
+            raise _dec('vtg', 'mag_track', r_mag_track, 'range', '0..999.9', _token_offset(t, base, 2), None)
         sp['mag_track'] = (r_mag_track, t[2])
     else:
         r_mag_track = None
     r_mag_track_sym = t[3]
     if len(r_mag_track_sym) != 1:
-        raise _dec('vtg', 'mag_track_sym', r_mag_track_sym, 'type', 'one character', _token_offsets(t, base)[3])
+        raise _dec('vtg', 'mag_track_sym', r_mag_track_sym, 'type', 'one character', _token_offset(t, base, 3))
     e_mag_track_sym = _ENUM_track_magnetic.get(r_mag_track_sym)
     if e_mag_track_sym is None:
-        raise _dec('vtg', 'mag_track_sym', r_mag_track_sym, 'enum', 'TrackMagnetic', _token_offsets(t, base)[3], None)
-    if len(t) > 4 and t[4]:
+        raise _dec('vtg', 'mag_track_sym', r_mag_track_sym, 'enum', 'TrackMagnetic', _token_offset(t, base, 3), None)
+    if t[4]:
         if len(t[4]) > 24:
-            raise _dec('vtg', 'spd_over_grnd_kts', t[4], 'length', 'a number of at most 24 characters', _token_offsets(t, base)[4])
-        r_spd_over_grnd_kts = _parse_fixed(t[4], 1, 'vtg', 'spd_over_grnd_kts', _token_offsets(t, base)[4])
+            raise _dec('vtg', 'spd_over_grnd_kts', t[4], 'length', 'a number of at most 24 characters', _token_offset(t, base, 4))
+        r_spd_over_grnd_kts = _fixed_of(t[4], 1) if ok else _parse_fixed(t[4], 1, 'vtg', 'spd_over_grnd_kts', t, base, 4)
         if not 0 <= r_spd_over_grnd_kts / 10 <= 999.9:
-            raise _dec('vtg', 'spd_over_grnd_kts', r_spd_over_grnd_kts, 'range', '0..999.9', _token_offsets(t, base)[4], None)
+            raise _dec('vtg', 'spd_over_grnd_kts', r_spd_over_grnd_kts, 'range', '0..999.9', _token_offset(t, base, 4), None)
         sp['spd_over_grnd_kts'] = (r_spd_over_grnd_kts, t[4])
     else:
         r_spd_over_grnd_kts = None
     r_spd_over_grnd_kts_sym = t[5]
     if len(r_spd_over_grnd_kts_sym) != 1:
-        raise _dec('vtg', 'spd_over_grnd_kts_sym', r_spd_over_grnd_kts_sym, 'type', 'one character', _token_offsets(t, base)[5])
+        raise _dec('vtg', 'spd_over_grnd_kts_sym', r_spd_over_grnd_kts_sym, 'type', 'one character', _token_offset(t, base, 5))
     e_spd_over_grnd_kts_sym = _ENUM_speed_knots.get(r_spd_over_grnd_kts_sym)
     if e_spd_over_grnd_kts_sym is None:
-        raise _dec('vtg', 'spd_over_grnd_kts_sym', r_spd_over_grnd_kts_sym, 'enum', 'SpeedKnots', _token_offsets(t, base)[5], None)
-    if len(t) > 6 and t[6]:
+        raise _dec('vtg', 'spd_over_grnd_kts_sym', r_spd_over_grnd_kts_sym, 'enum', 'SpeedKnots', _token_offset(t, base, 5), None)
+    if t[6]:
         if len(t[6]) > 24:
-            raise _dec('vtg', 'spd_over_grnd_kmph', t[6], 'length', 'a number of at most 24 characters', _token_offsets(t, base)[6])
-        r_spd_over_grnd_kmph = _parse_fixed(t[6], 1, 'vtg', 'spd_over_grnd_kmph', _token_offsets(t, base)[6])
+            raise _dec('vtg', 'spd_over_grnd_kmph', t[6], 'length', 'a number of at most 24 characters', _token_offset(t, base, 6))
+        r_spd_over_grnd_kmph = _fixed_of(t[6], 1) if ok else _parse_fixed(t[6], 1, 'vtg', 'spd_over_grnd_kmph', t, base, 6)
         if not 0 <= r_spd_over_grnd_kmph / 10 <= 999.9:
-            raise _dec('vtg', 'spd_over_grnd_kmph', r_spd_over_grnd_kmph, 'range', '0..999.9', _token_offsets(t, base)[6], None)
+            raise _dec('vtg', 'spd_over_grnd_kmph', r_spd_over_grnd_kmph, 'range', '0..999.9', _token_offset(t, base, 6), None)
         sp['spd_over_grnd_kmph'] = (r_spd_over_grnd_kmph, t[6])
     else:
         r_spd_over_grnd_kmph = None
     r_spd_over_grnd_kmph_sym = t[7]
     if len(r_spd_over_grnd_kmph_sym) != 1:
-        raise _dec('vtg', 'spd_over_grnd_kmph_sym', r_spd_over_grnd_kmph_sym, 'type', 'one character', _token_offsets(t, base)[7])
+        raise _dec('vtg', 'spd_over_grnd_kmph_sym', r_spd_over_grnd_kmph_sym, 'type', 'one character', _token_offset(t, base, 7))
     e_spd_over_grnd_kmph_sym = _ENUM_speed_kmh.get(r_spd_over_grnd_kmph_sym)
     if e_spd_over_grnd_kmph_sym is None:
-        raise _dec('vtg', 'spd_over_grnd_kmph_sym', r_spd_over_grnd_kmph_sym, 'enum', 'SpeedKmh', _token_offsets(t, base)[7], None)
+        raise _dec('vtg', 'spd_over_grnd_kmph_sym', r_spd_over_grnd_kmph_sym, 'enum', 'SpeedKmh', _token_offset(t, base, 7), None)
     if len(t) > 8 and t[8]:
         r_faa_mode = t[8]
         if len(r_faa_mode) != 1:
-            raise _dec('vtg', 'faa_mode', r_faa_mode, 'type', 'one character', _token_offsets(t, base)[8])
+            raise _dec('vtg', 'faa_mode', r_faa_mode, 'type', 'one character', _token_offset(t, base, 8))
         e_faa_mode = _ENUM_faa_mode.get(r_faa_mode)
         if e_faa_mode is None:
-            raise _dec('vtg', 'faa_mode', r_faa_mode, 'enum', 'FaaMode', _token_offsets(t, base)[8], 'NMEA-D3')
+            raise _dec('vtg', 'faa_mode', r_faa_mode, 'enum', 'FaaMode', _token_offset(t, base, 8), 'NMEA-D3')
     else:
         r_faa_mode = None
         e_faa_mode = None
@@ -1331,6 +1344,16 @@ def _split(text: str) -> tuple[str, str, int]:
 
 def _line_checksum(text: str) -> int:
     """The XOR of the characters after '$' up to '*'."""
+    if text.isascii():  # a byte a character: the bytes as one integer, folded in halves to a byte
+        n = 8 * len(text)
+        x = int.from_bytes(text.encode("ascii"), "little")
+        while n > 64:
+            n = (n + 15) >> 4 << 3  # half the bytes, rounded up
+            x = (x >> n) ^ (x & ~(-1 << n))
+        x ^= x >> 32
+        x ^= x >> 16
+        x ^= x >> 8
+        return x & 0xFF
     x = 0
     for ch in text:
         x ^= ord(ch)
@@ -1390,6 +1413,11 @@ def _decode_as(name: str, data: _Input, fn: Callable[[str, str, int], _T]) -> _T
     return fn(held, body, base)
 
 
+# (prefix, direction) → decoder, of prefixes found before: a line's dispatch is one lookup
+_FOUND: dict[tuple[str, Optional[str]], _Decoder] = {}
+_FOUND_MAX = 1024  # prefixes remembered at most
+
+
 @overload
 def decode(data: _Input, direction: Literal['receiver_to_host']) -> Union[Gga, Rmc, Vtg]: ...
 
@@ -1400,12 +1428,17 @@ def decode(data: _Input, direction: Optional[str] = None) -> AnyMessage: ...
 
 def decode(data: _Input, direction: Optional[str] = None) -> AnyMessage:
     """Decode one message, found by its prefix; `direction` is needed only when a prefix is used in several."""
-    text = _as_input(data)
+    text = data if isinstance(data, str) and data.isascii() else _as_input(data)
     prefix, body, base = _split(text)
     held = prefix
-    fn = _pick(prefix, _PREFIXES.get(held, ()), direction) or _pick(prefix, _talked(held), direction)
+    known = direction is None or direction.__class__ is str
+    fn = _FOUND.get((held, direction)) if known else None
     if fn is None:
-        raise _dec(None, 'prefix', prefix, 'dispatch', ' '.join([*_PREFIXES, '??GGA', '??RMC', '??VTG']), 0)
+        fn = _pick(prefix, _PREFIXES.get(held, ()), direction) or _pick(prefix, _talked(held), direction)
+        if fn is None:
+            raise _dec(None, 'prefix', prefix, 'dispatch', ' '.join([*_PREFIXES, '??GGA', '??RMC', '??VTG']), 0)
+        if known and len(_FOUND) < _FOUND_MAX:
+            _FOUND[(held, direction)] = fn
     return fn(held, body, base)
 
 

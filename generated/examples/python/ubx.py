@@ -680,11 +680,17 @@ class MonVer(_Message):
 AnyMessage = Union[AckNak, AckAck, CfgRatePoll, CfgRate, NavPosllh, NavPvt, NavSat, MonVer, ]
 """A message of ubx: what encode takes and decode returns."""
 _S_ack_nak_0 = struct.Struct('<BBBBHBBH')
+_S_ack_nak_h = struct.Struct('<BBBBHBB')
 _S_ack_ack_0 = struct.Struct('<BBBBHBBH')
+_S_ack_ack_h = struct.Struct('<BBBBHBB')
 _S_cfg_rate_poll_0 = struct.Struct('<BBBBHH')
+_S_cfg_rate_poll_h = struct.Struct('<BBBBH')
 _S_cfg_rate_0 = struct.Struct('<BBBBHHHHH')
+_S_cfg_rate_h = struct.Struct('<BBBBHHHH')
 _S_nav_posllh_0 = struct.Struct('<BBBBHIiiiiIIH')
+_S_nav_posllh_h = struct.Struct('<BBBBHIiiiiII')
 _S_nav_pvt_0 = struct.Struct('<BBBBHIHBBBBBBIiBBBBiiiiIIiiiiiIIHHIihHH')
+_S_nav_pvt_h = struct.Struct('<BBBBHIHBBBBBBIiBBBBiiiiIIiiiiiIIHHIihH')
 _S_nav_sat_0 = struct.Struct('<BBBBHIBBH384sH')
 _E_nav_sat_2sv_0 = struct.Struct('<BBBbhhBBBB')
 _S_mon_ver_0 = struct.Struct('<BBBBH30s10s300sH')
@@ -712,15 +718,12 @@ def _as_input(data: object) -> _Buffer:
 
 
 def _encode_ack_nak(m: AckNak) -> bytes:
-    r_checksum = 0
     r_clsID = m.clsID
     r_msgID = m.msgID
     if (r_clsID.__class__ is not int or not 0 <= r_clsID <= 255) or (r_msgID.__class__ is not int or not 0 <= r_msgID <= 255):
         _faults('ack_nak', (r_clsID, r_msgID, ), (('int', 'clsID', 0, 255, False, None), ('int', 'msgID', 0, 255, False, None)))
-    b = bytearray(10)
-    _S_ack_nak_0.pack_into(b, 0, 181, 98, 5, 0, 2, r_clsID, r_msgID, r_checksum)
-    b[8:10] = _checksum_fletcher16_256(b[2:8]).to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_ack_nak_h.pack(181, 98, 5, 0, 2, r_clsID, r_msgID)
+    return h + _checksum_fletcher16_256(h[2:8]).to_bytes(2, 'little')
 
 
 def _decode_ack_nak(d: _Buffer) -> AckNak:
@@ -750,15 +753,12 @@ def _decode_ack_nak(d: _Buffer) -> AckNak:
 
 
 def _encode_ack_ack(m: AckAck) -> bytes:
-    r_checksum = 0
     r_clsID = m.clsID
     r_msgID = m.msgID
     if (r_clsID.__class__ is not int or not 0 <= r_clsID <= 255) or (r_msgID.__class__ is not int or not 0 <= r_msgID <= 255):
         _faults('ack_ack', (r_clsID, r_msgID, ), (('int', 'clsID', 0, 255, False, None), ('int', 'msgID', 0, 255, False, None)))
-    b = bytearray(10)
-    _S_ack_ack_0.pack_into(b, 0, 181, 98, 5, 1, 2, r_clsID, r_msgID, r_checksum)
-    b[8:10] = _checksum_fletcher16_256(b[2:8]).to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_ack_ack_h.pack(181, 98, 5, 1, 2, r_clsID, r_msgID)
+    return h + _checksum_fletcher16_256(h[2:8]).to_bytes(2, 'little')
 
 
 def _decode_ack_ack(d: _Buffer) -> AckAck:
@@ -788,11 +788,8 @@ def _decode_ack_ack(d: _Buffer) -> AckAck:
 
 
 def _encode_cfg_rate_poll(m: CfgRatePoll) -> bytes:
-    r_checksum = 0
-    b = bytearray(8)
-    _S_cfg_rate_poll_0.pack_into(b, 0, 181, 98, 6, 8, 0, r_checksum)
-    b[6:8] = _checksum_fletcher16_256(b[2:6]).to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_cfg_rate_poll_h.pack(181, 98, 6, 8, 0)
+    return h + _checksum_fletcher16_256(h[2:6]).to_bytes(2, 'little')
 
 
 def _decode_cfg_rate_poll(d: _Buffer) -> CfgRatePoll:
@@ -820,16 +817,13 @@ def _decode_cfg_rate_poll(d: _Buffer) -> CfgRatePoll:
 
 
 def _encode_cfg_rate(m: CfgRate) -> bytes:
-    r_checksum = 0
     r_measRate = m.measRate
     r_navRate = m.navRate
     r_timeRef = m.timeRef
     if (r_measRate.__class__ is not int or not 0 <= r_measRate <= 65535) or (r_navRate.__class__ is not int or not 0 <= r_navRate <= 65535) or (r_timeRef.__class__ is not int or not 0 <= r_timeRef <= 65535):
         _faults('cfg_rate', (r_measRate, r_navRate, r_timeRef, ), (('int', 'measRate', 0, 65535, False, None), ('int', 'navRate', 0, 65535, False, None), ('int', 'timeRef', 0, 65535, False, None)))
-    b = bytearray(14)
-    _S_cfg_rate_0.pack_into(b, 0, 181, 98, 6, 8, 6, r_measRate, r_navRate, r_timeRef, r_checksum)
-    b[12:14] = _checksum_fletcher16_256(b[2:12]).to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_cfg_rate_h.pack(181, 98, 6, 8, 6, r_measRate, r_navRate, r_timeRef)
+    return h + _checksum_fletcher16_256(h[2:12]).to_bytes(2, 'little')
 
 
 def _decode_cfg_rate(d: _Buffer) -> CfgRate:
@@ -860,7 +854,6 @@ def _decode_cfg_rate(d: _Buffer) -> CfgRate:
 
 
 def _encode_nav_posllh(m: NavPosllh) -> bytes:
-    r_checksum = 0
     r_iTOW = m.iTOW
     r_lon = m.lon
     r_lat = m.lat
@@ -872,10 +865,8 @@ def _encode_nav_posllh(m: NavPosllh) -> bytes:
         _faults('nav_posllh', (r_iTOW, r_lon, r_lat, r_height, r_hMSL, r_hAcc, r_vAcc, ), (('int', 'iTOW', 0, 4294967295, False, None), ('int', 'lon', -214.7483648, 214.7483647, True, None), ('int', 'lat', -214.7483648, 214.7483647, True, None), ('int', 'height', -2147483648, 2147483647, False, None), ('int', 'hMSL', -2147483648, 2147483647, False, None), ('int', 'hAcc', 0, 4294967295, False, None), ('int', 'vAcc', 0, 4294967295, False, None)))
     r_lon = _floor(r_lon / 1e-07 + 0.5)
     r_lat = _floor(r_lat / 1e-07 + 0.5)
-    b = bytearray(36)
-    _S_nav_posllh_0.pack_into(b, 0, 181, 98, 1, 2, 28, r_iTOW, r_lon, r_lat, r_height, r_hMSL, r_hAcc, r_vAcc, r_checksum)
-    b[34:36] = _checksum_fletcher16_256(b[2:34]).to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_nav_posllh_h.pack(181, 98, 1, 2, 28, r_iTOW, r_lon, r_lat, r_height, r_hMSL, r_hAcc, r_vAcc)
+    return h + _checksum_fletcher16_256(h[2:34]).to_bytes(2, 'little')
 
 
 def _decode_nav_posllh(d: _Buffer) -> NavPosllh:
@@ -1009,7 +1000,6 @@ def _encode_nav_pvt(m: NavPvt) -> bytes:
     if r_nmaFixStatus is not True and r_nmaFixStatus is not False and (not isinstance(r_nmaFixStatus, int) or r_nmaFixStatus != 0 and r_nmaFixStatus != 1):
         raise _enc('nav_pvt', 'nmaFixStatus', r_nmaFixStatus, 'type', 'a bool')
     r_nmaFixStatus = 1 if r_nmaFixStatus else 0
-    r_checksum = 0
     r_reserved0 = m.reserved0
     r_headVeh = m.headVeh
     r_magDec = m.magDec
@@ -1019,10 +1009,8 @@ def _encode_nav_pvt(m: NavPvt) -> bytes:
     r_headVeh = _floor(r_headVeh / 1e-05 + 0.5)
     r_magDec = _floor(r_magDec / 0.01 + 0.5)
     r_magAcc = _floor(r_magAcc / 0.01 + 0.5)
-    b = bytearray(100)
-    _S_nav_pvt_0.pack_into(b, 0, 181, 98, 1, 7, 92, r_iTOW, r_year, r_month, r_day, r_hour, r_min, r_second, r_validDate | r_validTime << 1 | r_fullyResolved << 2 | r_validMag << 3, r_tAcc, r_nano, r_fixType, r_gnssFixOk | r_diffSoln << 1 | r_psmState << 2 | r_headVehValid << 5 | r_carrSoln << 6, r_reserved | r_confirmedAvai << 5 | r_confirmedDate << 6 | r_confirmedTime << 7, r_numSV, r_lon, r_lat, r_height, r_hMSL, r_hAcc, r_vAcc, r_velN, r_velE, r_velD, r_gSpeed, r_headMot, r_sAcc, r_headAcc, r_pDOP, r_invalidLlh | r_lastCorrectionAge << 1 | r_reserved1 << 5 | r_authTime << 13 | r_nmaFixStatus << 14, r_reserved0, r_headVeh, r_magDec, r_magAcc, r_checksum)
-    b[98:100] = _checksum_fletcher16_256(b[2:98]).to_bytes(2, 'little')
-    return bytes(b)
+    h = _S_nav_pvt_h.pack(181, 98, 1, 7, 92, r_iTOW, r_year, r_month, r_day, r_hour, r_min, r_second, r_validDate | r_validTime << 1 | r_fullyResolved << 2 | r_validMag << 3, r_tAcc, r_nano, r_fixType, r_gnssFixOk | r_diffSoln << 1 | r_psmState << 2 | r_headVehValid << 5 | r_carrSoln << 6, r_reserved | r_confirmedAvai << 5 | r_confirmedDate << 6 | r_confirmedTime << 7, r_numSV, r_lon, r_lat, r_height, r_hMSL, r_hAcc, r_vAcc, r_velN, r_velE, r_velD, r_gSpeed, r_headMot, r_sAcc, r_headAcc, r_pDOP, r_invalidLlh | r_lastCorrectionAge << 1 | r_reserved1 << 5 | r_authTime << 13 | r_nmaFixStatus << 14, r_reserved0, r_headVeh, r_magDec, r_magAcc)
+    return h + _checksum_fletcher16_256(h[2:98]).to_bytes(2, 'little')
 
 
 def _decode_nav_pvt(d: _Buffer) -> NavPvt:
@@ -1486,11 +1474,18 @@ for _value, _sizes, _direction, _fn in _KEYS:
 
 
 _UNIQUE = {key: fns[0] for key, fns in _ALL.items() if len(fns) == 1}
+# the same keyed by the id's bytes as a frame of bytes holds them: found without reading a number
+_UNIQUE_RAW = {(value.to_bytes(2, 'little'), size): fn
+               for (value, size), fn in _UNIQUE.items() if value >= 0}
 
 
 def decode(data: _Input, direction: Optional[str] = None) -> AnyMessage:
     """Decode one frame; `direction` is needed only when ids are reused across directions."""
     d = data if data.__class__ is bytes else _as_input(data)
+    if direction is None and isinstance(d, bytes):  # a bytearray's slice is no key
+        fn = _UNIQUE_RAW.get((d[2:4], len(d)))
+        if fn is not None:
+            return fn(d)
     if direction is None and len(d) >= 4:
         fn = _UNIQUE.get((int.from_bytes(d[2:4], 'little'), len(d)))
         if fn is not None:
@@ -1619,7 +1614,7 @@ def encode(m: AnyMessage) -> bytes:
     fn = _ENCODERS.get(type(m))
     if fn is None:
         raise _enc(None, None, type(m).__name__, 'type', 'a message of ubx')
-    return bytes(fn(m))
+    return fn(m)  # each encoder returns bytes
 
 
 def validate(m: AnyMessage) -> None:
