@@ -10,7 +10,6 @@ a capture, as MB/s of CPU time and as a ratio to `mavlink_parse_char` measured i
 run, rounds interleaved; the MB/s vary from run to run on a shared machine, the ratios less.
 """
 
-import re
 import subprocess
 import sys
 import tempfile
@@ -20,6 +19,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))  # bench/ is a package at the root
 
 from bench import avr, c_host, peers_c  # noqa: E402
+from protocol_sizes import flash_of  # noqa: E402 - scripts/ is on the path as the script's own folder
 from codeword.targets.c.crc import DEFAULT, METHODS  # noqa: E402
 
 TARGETS = [
@@ -50,12 +50,7 @@ def flash(target, work: Path, source: Path, defines: list[str]) -> int:
     for extra in ([], ["-DSR_HARNESS_ONLY"]):
         elf = work / f"{source.stem}_{label}_{len(extra)}.elf"
         run([*cmd, *defines, *extra, "-I", str(ROOT / "generated" / "c"), str(source), "-o", str(elf)])
-        sections = {}
-        for line in run([size_tool, "-A", str(elf)]).splitlines():
-            m = re.match(r"^(\.\S+)\s+(\d+)\s+\d+\s*$", line)
-            if m:
-                sections[m.group(1)] = int(m.group(2))
-        figures.append(sum(sections.get(s, 0) for s in (".text", ".rodata", ".data")))
+        figures.append(flash_of(size_tool, elf))  # size-report reports either script's ToolError
     return figures[0] - figures[1]
 
 

@@ -71,13 +71,18 @@ def flash(target, work: Path, name: str, includes: list[str], functions: list[st
         src.write_text(PROGRAM.format(includes="\n".join(f'#include "{i}"' for i in includes), keeps=keeps),
                        encoding="utf-8")
         run([*cmd, *flags, str(src), "-o", str(elf)])
-        sections = {}
-        for line in run([size_tool, "-A", str(elf)]).splitlines():
-            m = re.match(r"^(\.\S+)\s+(\d+)\s+\d+\s*$", line)
-            if m:
-                sections[m.group(1)] = int(m.group(2))
-        figures.append(sum(sections.get(s, 0) for s in (".text", ".rodata", ".data")))
+        figures.append(flash_of(size_tool, elf))
     return figures[0] - figures[1]
+
+
+def flash_of(size_tool: str, elf: Path) -> int:
+    """The bytes a program takes in flash: its .text, .rodata and .data (initial values)."""
+    sections = {}
+    for line in run([size_tool, "-A", str(elf)]).splitlines():
+        m = re.match(r"^(\.\S+)\s+(\d+)\s+\d+\s*$", line)
+        if m:
+            sections[m.group(1)] = int(m.group(2))
+    return sum(sections.get(s, 0) for s in (".text", ".rodata", ".data"))
 
 
 def generate_mavlink(out: Path) -> Path:
