@@ -102,3 +102,13 @@ def test_templates_lay_out_and_do_no_arithmetic():
             if arithmetic.search(code):
                 found.append(f"{path.relative_to(ROOT)}: {m.group(0)[:80]}")
     assert found == []
+
+
+def test_every_package_of_the_compiler_is_installed():
+    """pyproject.toml lists the packages a (non-editable) install copies: a package left out
+    works in a checkout and is missing from an installed codeword."""
+    import tomllib
+    listed = set(tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["tool"]["setuptools"]["packages"])
+    found = {".".join(("codeword",) + init.parent.relative_to(COMPILER).parts)
+             for init in COMPILER.rglob("__init__.py") if "__pycache__" not in init.parts}
+    assert found - listed == set()
