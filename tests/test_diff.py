@@ -440,3 +440,34 @@ def test_text_extension_fields_and_keep_empty(tmp_path):
                 " rule: NMEA-D3}\n")
     assert ("message vtg", "writers now end a line after 6 values when the later ones are absent, and readers of "
                            "the old schema need 8") in changes(d, BREAKING)
+
+
+PAYLOAD_FIELD = """codeword: 1
+protocol: tunnelled
+title: a message field named like the envelope's payload
+source: hand-written
+framing:
+  kind: bytes
+  byte_order: little
+  layout:
+    - {name: sync, type: u8, const: 0xA5}
+    - {name: kind, type: u8, dispatch: true}
+    - {payload: true}
+messages:
+  tunnel:
+    id: 1
+    fields:
+      - {name: payload_type, type: u16}
+      - {name: payload, type: u8, count: 4}
+"""
+
+
+def test_a_field_named_payload_is_not_taken_for_the_envelopes_payload(tmp_path):
+    # MAVLink's TUNNEL has a field `payload`; the envelope's payload marker has that name too
+    path = tmp_path / "tunnelled.yaml"
+    path.write_text(PAYLOAD_FIELD, encoding="utf-8")
+    assert compare(compile_schema(path), compile_schema(path)).changes == []
+    wider = tmp_path / "wider.yaml"
+    wider.write_text(PAYLOAD_FIELD.replace("count: 4", "count: 6"), encoding="utf-8")
+    assert ("field payload", "count changed from 4 to 6") in changes(compare(compile_schema(path),
+                                                                            compile_schema(wider)), BREAKING)

@@ -249,10 +249,11 @@ def _counts(before: tuple[Field, ...], after: tuple[Field, ...], out: _Collector
             prefix: str = "") -> list[str]:
     """Arrays whose count changed, reported once each (not element by element); their paths."""
     changed = []
-    old = {f.name: f for f in before}
+    # the envelope's payload marker holds no value: a field may be named `payload` too
+    old = {f.name: f for f in before if not f.is_payload}
     for f in after:
         g = old.get(f.name)
-        if g is None:
+        if g is None or f.is_payload:
             continue
         path = prefix + f.name
         if g.count != f.count:

@@ -31,6 +31,7 @@ from pathlib import Path
 
 from codeword import accelerate
 from codeword.build import build, compile_schema
+from codeword.diff.compare import compare
 from codeword.targets.c.crc import DEFAULT as CRC_DEFAULT, METHODS as CRC_METHOD_LIST
 
 from . import accelerated
@@ -105,6 +106,11 @@ def check_text(text: str, name: str, where: Path, outcome: Outcome,
         outcome.detail = str(result.errors[0]).splitlines()[0]
         return
     protocol = compile_schema(path)
+    outcome.stage = "diff"
+    same = compare(protocol, protocol).changes  # the schema against itself: no change of any kind
+    if same:
+        outcome.detail = f"diff of the schema with itself: {same[0].subject}: {same[0].what}"
+        return
     vectors = json.loads((out / "vectors" / f"{name}.json").read_text(encoding="utf-8"))
     outcome.stage = "python"
     module = _load(out / "python" / f"{name}.py")

@@ -25,6 +25,7 @@ FULL = frozenset({
     "direction_ids",                        # one id (bytes) or prefix (text) used by a message of each direction
     "extension", "truncate",                # bytes: extension fields at a message's end; trailing zeros not sent
     "extension_arrays",                     # bytes: arrays and bytes among the extension fields
+    "payload_name",                         # bytes: a message field named `payload`, as the envelope's marker is
     "little", "field_order",                # byte orders: the framing's, and per field
     "bitfields",                            # fields narrower than a byte, packed
     "arrays",                               # fields of a fixed count: scalars, groups (bytes), bit fields

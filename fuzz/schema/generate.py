@@ -183,6 +183,7 @@ class Generator:
             elif not shortens and not single and not any("length_of" in f for f in layout) \
                     and self.has("counted", 0.25):
                 body["fields"] += self.counted_fields()
+            self.named_payload(body["fields"])
             messages[self.name()] = body
         self.share_an_id(messages, layout)
         self.ids_across_directions(messages)
@@ -562,6 +563,18 @@ class Generator:
         fields = [{"name": self.name(), "type": self.rng.choice(["u8", "u16", "i16", "u32", "i32"]), "extension": True}
                   for _ in range(self.rng.randint(1, 3))]
         return fields + self.extension_arrays()
+
+    def named_payload(self, fields: list[dict]) -> None:
+        """A first field named `payload`, as the envelope's payload marker is (MAVLink's
+        TUNNEL.payload): tools that look fields up by name must not take one for the other."""
+        own = random.Random(f"payload_name {self.seed} {len(self.used)}")
+        if "payload_name" not in self.on or own.random() < 0.8 or "payload" in self.used \
+                or any("start_bit" in f for f in fields):
+            return
+        self.used.add("payload")
+        kind = own.choice(["u8", "u16", "i32"])
+        fields.insert(0, {"name": "payload", "type": kind, "count": own.randint(2, 9)} if own.random() < 0.5
+                      else {"name": "payload", "type": kind})
 
     def extension_arrays(self) -> list[dict]:
         """An array or bytes added as an extension (MAVLink's AUTOPILOT_VERSION.uid2): a frame
