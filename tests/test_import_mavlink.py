@@ -236,3 +236,31 @@ def test_every_dialect_pymavlink_ships_imports_and_resolves(dialect, tmp_path):
         path.write_text(imported.text, encoding="utf-8")
         protocol = compile_schema(path)
         assert len(protocol.messages) == len(imported.messages)
+
+
+def test_diff_of_two_versions_of_a_dialect_names_the_message_whose_wire_changed(tmp_path):
+    """ATTITUDE's yawspeed made an int32_t: its CRC_EXTRA (mavgen's, from pymavlink) and the
+    field's kind change, and nothing else; the same dialect imported twice shows no change."""
+    from codeword.diff import BREAKING, compare
+    for name in ("common.xml", "standard.xml", "minimal.xml"):
+        (tmp_path / name).write_text((DIALECTS / name).read_text(encoding="utf-8"), encoding="utf-8")
+    before = tmp_path / "before.yaml"
+    before.write_text(import_dialect(tmp_path / "common.xml").text, encoding="utf-8")
+    xml = (tmp_path / "common.xml").read_text(encoding="utf-8")
+    start = xml.index('<message id="30" name="ATTITUDE">')
+    end = xml.index("</message>", start)
+    edited = xml[start:end].replace('<field type="float" name="yawspeed"', '<field type="int32_t" name="yawspeed"')
+    assert edited != xml[start:end]
+    (tmp_path / "common.xml").write_text(xml[:start] + edited + xml[end:], encoding="utf-8")
+    after = tmp_path / "after.yaml"
+    after.write_text(import_dialect(tmp_path / "common.xml").text, encoding="utf-8")
+    old, new = compile_schema(before), compile_schema(after)
+    assert compare(old, old).changes == []
+    found = {(c.subject, c.what) for c in compare(old, new).of_kind(BREAKING)}
+    from pymavlink.generator import mavparse  # mavgen's own reading of the edited XML
+    edited_extra = next(m.crc_extra for m in mavparse.MAVXML(str(tmp_path / "common.xml"), "2.0").message
+                        if m.name == "ATTITUDE")
+    assert edited_extra != mavlink2.MAVLink_attitude_message.crc_extra
+    assert found == {("message attitude", f"crc_extra changed from {mavlink2.MAVLink_attitude_message.crc_extra} "
+                                          f"to {edited_extra}"),
+                     ("field yawspeed", "kind changed from 'float' to 'int'")}
