@@ -121,7 +121,7 @@ class Generator:
                     layout.append({"name": "kind", "type": "u8" if layout[-1]["type"] == "u8" else "u4",
                                    "dispatch": True})
                 else:
-                    layout.append({"name": "kind", "type": "u8", "dispatch": True})
+                    layout.append({"name": "kind", "type": self.id_type(), "dispatch": True})
             self.directions = self.has("by_direction", 0.25)
             if self.directions:  # a byte that says the direction, as MSP's `<` and `>`
                 # next to the other dispatch fields: a key is read from at most 4 bytes
@@ -563,6 +563,12 @@ class Generator:
         fields = [{"name": self.name(), "type": self.rng.choice(["u8", "u16", "i16", "u32", "i32"]), "extension": True}
                   for _ in range(self.rng.randint(1, 3))]
         return fields + self.extension_arrays()
+
+    def id_type(self) -> str:
+        """A one-byte id, or one of three bytes (MAVLink 2's msgid): a constant of an odd number
+        of bytes, which decoders compare as bytes."""
+        own = random.Random(f"wide_id {self.seed}")
+        return "u24" if "wide_id" in self.on and own.random() < 0.3 else "u8"
 
     def named_payload(self, fields: list[dict]) -> None:
         """A first field named `payload`, as the envelope's payload marker is (MAVLink's

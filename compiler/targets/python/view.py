@@ -879,8 +879,8 @@ class MessageCode:
             checks = Code()
             expr = self.view.decode_leaf(checks, self.m, leaf, self.sent_offset(leaf), bounded)
             if leaf.var in self.const_items:  # its bytes compared, its number read for the error only
-                item, want, read = self.const_items[leaf.var]
-                checks.lines = [f"if {item} != {want!r}:", f"    {leaf.var} = {read}",
+                item, want, number = self.const_items[leaf.var]
+                checks.lines = [f"if {item} != {want!r}:", f"    {leaf.var} = {number}",
                                 *("    " + line for line in checks.lines)]
             kept = expr is not None and guard is not None and expr != leaf.var  # read under the guard
             if guard != run.guard and (checks.lines or kept or guard is None):
