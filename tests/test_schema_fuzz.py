@@ -60,3 +60,16 @@ def test_the_checks_catch_a_broken_codec(monkeypatch):
     seed = next(s for s in range(FIRST_SEED, FIRST_SEED + 100) if "kind: bytes" in generate(s))
     outcome = check_seed(seed)
     assert outcome.stage == "c" and "C disagrees" in outcome.detail
+
+
+def test_a_seed_that_hangs_is_a_finding_not_a_wait(monkeypatch):
+    import time
+
+    from fuzz.schema import check
+
+    monkeypatch.setattr(check, "SEED_SECONDS", 1)
+    monkeypatch.setattr(check, "generate", lambda seed, features: time.sleep(30))  # a generator that never ends
+    started = time.monotonic()
+    outcome = check.check_seed(1)
+    assert time.monotonic() - started < 10
+    assert (outcome.stage, outcome.detail) == ("generate", "TimeoutError: the seed took over 1 s")

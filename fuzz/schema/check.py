@@ -22,6 +22,7 @@ import json
 import random
 import re
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -73,18 +74,35 @@ class Outcome:
         return f"seed {self.seed}: {self.stage}" + (f": {self.detail}" if self.detail else "")
 
 
+# A seed that takes longer than this hangs somewhere (the generator, a codec, a tool): it is
+# reported as a finding rather than holding up the rest of a run.
+SEED_SECONDS = 1200
+
+
+def _too_long(signum, frame) -> None:
+    raise TimeoutError(f"the seed took over {SEED_SECONDS} s")
+
+
 def check_seed(seed: int, features: frozenset[str] = DEFAULT, keep: Path | None = None,
                c_matrix: str = "rotate") -> Outcome:
     outcome = Outcome(seed)
+    previous = signal.signal(signal.SIGALRM, _too_long)
+    signal.alarm(SEED_SECONDS)
     with tempfile.TemporaryDirectory(prefix=f"fz{seed}-") as tmp:
         where = keep or Path(tmp)
         where.mkdir(parents=True, exist_ok=True)
         try:
-            check_text(generate(seed, features), f"fz{seed}", where, outcome, matrix_points(seed, c_matrix))
+            outcome.stage = "generate"
+            text = generate(seed, features)
+            outcome.stage = "ok"
+            check_text(text, f"fz{seed}", where, outcome, matrix_points(seed, c_matrix))
         except Exception:  # anything but a finding is an internal error somewhere
             outcome.stage = outcome.stage if outcome.stage != "ok" else "internal"
             outcome.detail = traceback.format_exc(limit=-3).strip().splitlines()[-1]
             outcome.notes.append(traceback.format_exc(limit=-6))
+        finally:
+            signal.alarm(0)
+            signal.signal(signal.SIGALRM, previous)
     return outcome
 
 

@@ -54,11 +54,15 @@ class Generator:
         return feature in self.on and self.rng.random() < chance
 
     def name(self) -> str:
-        while True:
+        for _ in range(2000):
             candidate = self.rng.choice(NAMES) + ("" if self.rng.random() < 0.5 else f"_{self.rng.randrange(10)}")
             if candidate not in self.used:
                 self.used.add(candidate)
                 return candidate
+        # every name of the pool is taken (a schema of hundreds of fields): number the others
+        candidate = f"{self.rng.choice(NAMES)}_{len(self.used)}"
+        self.used.add(candidate)
+        return candidate
 
     # -- the document -----------------------------------------------------------------------
     def schema(self) -> dict:
