@@ -222,8 +222,7 @@ _Msg = TypeVar("_Msg", bound="_Message")
 
 
 class _Message(_Record):
-    """What every message class does: encode itself, decode its own wire form. Each message's
-    encoder is set on its class as the method itself (one call, not two)."""
+    """What every message class does: encode itself, decode its own wire form."""
 
     __slots__ = ()
     NAME: ClassVar[str]
