@@ -604,7 +604,8 @@ class Generator:
         """The field as an array of a few elements (as many as fit `room` bits), each
         where the one before it ends; an array holds at most 4096 bytes."""
         counts = [1, 2, 3, 4, 16] + ([8, 12, 40] if self.long else [])
-        count = min(self.rng.choice(counts), max(1, room // width))
+        # nor more than 4096 values in all (the resolver's limit): an element may hold arrays itself
+        count = min(self.rng.choice(counts), max(1, room // width), max(1, 4096 // values_in(element)))
         return {**element, "count": count}, count * width
 
     def binary_field(self) -> tuple[dict, int]:
@@ -976,6 +977,13 @@ class Generator:
         lo = -(1 << (bits - 1)) if field["type"][0] == "i" else 0
         ends = sorted(rng.randint(lo, lo + (1 << bits) - 1) for _ in range(2))
         field["range"] = [end / 10 ** decimals if decimals else end for end in ends]
+
+
+def values_in(field: dict) -> int:
+    """How many values a drawn field holds: one, or its elements' and members' values."""
+    each = sum(values_in(f) for f in field["fields"]) if field.get("type") == "group" else 1
+    count = field.get("count", 1)
+    return each * (count if isinstance(count, int) else 1)
 
 
 def generate(seed: int, features: frozenset[str] = DEFAULT) -> str:
