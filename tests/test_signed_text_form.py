@@ -124,3 +124,50 @@ int main(void) {
 }
 """
     assert scratch.run_c(where, driver) == [want for _, want in WIDE_LINES]
+
+
+LONG = """\
+codeword: 1
+protocol: longt
+title: a text form line longer than 64 chars
+source: hand-written
+framing:
+  kind: bits
+  max_bits: 64
+  byte_order: big
+  text_form: {separator: " ", comment: "#"}
+messages:
+  flags:
+    fields:
+      - {name: tag, type: u2, const: 1, dispatch: true}
+      - {name: bits, type: bool, count: 40}
+      - {name: level, type: u10}
+      - {name: trim, type: i12}
+"""
+
+# tag 1, forty 0/1 values, level at most 1023, trim's bit pattern at most 4095:
+# 1 + 40 + 4 + 4 digits and 42 spaces = 91 chars, 92 with the NUL
+LONG_LINE = "1 " + " ".join("1" * 40) + " 1023 2048"  # level 1023, trim -2048 (bit pattern 2048)
+
+
+def test_the_longest_text_form_line_has_a_buffer_size_in_the_header(tmp_path):
+    where = scratch.render(tmp_path, "longt", LONG)
+    assert "#define LONGT_FLAGS_MAX_TEXT_FORM 92u" in (where / "longt.h").read_text(encoding="utf-8")
+    mod = scratch.load(where / "longt.py")
+    message = mod.Flags(bits=[True] * 40, level=1023, trim=-2048)
+    assert mod.encode_text(message) == LONG_LINE and len(LONG_LINE) == 91
+    driver = """#include <stdio.h>
+#include "longt.h"
+int main(void) {
+    char buf[LONGT_FLAGS_MAX_TEXT_FORM];
+    longt_flags_t m;
+    int i;
+    for (i = 0; i < 40; i++) m.bits[i] = true;
+    m.level = 1023;
+    m.trim = -2048;
+    printf("%d %s\\n", longt_flags_to_text(&m, buf, sizeof buf), buf);
+    printf("%s\\n", cw_error_name(longt_flags_to_text(&m, buf, sizeof buf - 1)));
+    return 0;
+}
+"""
+    assert scratch.run_c(where, driver) == [f"91 {LONG_LINE}", "capacity"]

@@ -20,9 +20,13 @@ extern "C" {
 #define ROUTE_FINGERPRINT "363bd35221c4cf5f"  /* hash of the wire-relevant schema (codeword diff) */
 #define ROUTE_FINGERPRINT32 0x363bd352u  /* its first 32 bits */
 #define ROUTE_START_SIZE 1u  /* bytes */
+#define ROUTE_START_MAX_TEXT_FORM 6u  /* chars, with the NUL: buffer size for route_start_to_text */
 #define ROUTE_OBJECT_SIZE 4u  /* bytes */
+#define ROUTE_OBJECT_MAX_TEXT_FORM 21u  /* chars, with the NUL: buffer size for route_object_to_text */
 #define ROUTE_SCENE_SIZE 4u  /* bytes */
+#define ROUTE_SCENE_MAX_TEXT_FORM 16u  /* chars, with the NUL: buffer size for route_scene_to_text */
 #define ROUTE_END_SIZE 1u  /* bytes */
+#define ROUTE_END_MAX_TEXT_FORM 6u  /* chars, with the NUL: buffer size for route_end_to_text */
 #define ROUTE_MAX_FRAME 4u  /* bytes: largest frame */
 #define ROUTE_WORD_BITS 30u  /* bits in a word */
 
@@ -184,7 +188,7 @@ static inline int route_start_from_word(uint32_t word, route_start_t *m)
     return route_start_decode(b, sizeof b, m);
 }
 
-/* start as a text line: its 3 raw values in decimal, separated by ' '. */
+/* start as a text line: its 3 raw values in decimal, separated by ' '; at most ROUTE_START_MAX_TEXT_FORM - 1 chars and a NUL. */
 static inline int route_start_to_text(const route_start_t *m, char *buf, size_t cap)
 {
     uint8_t r[3] = {0};  /* every value is set by raw; compilers cannot always tell */
@@ -462,7 +466,7 @@ static inline int route_object_from_word(uint32_t word, route_object_t *m)
     return route_object_decode(b, sizeof b, m);
 }
 
-/* object as a text line: its 10 raw values in decimal, separated by ' '. */
+/* object as a text line: its 10 raw values in decimal, separated by ' '; at most ROUTE_OBJECT_MAX_TEXT_FORM - 1 chars and a NUL. */
 static inline int route_object_to_text(const route_object_t *m, char *buf, size_t cap)
 {
     uint8_t r[10] = {0};  /* every value is set by raw; compilers cannot always tell */
@@ -679,7 +683,7 @@ static inline int route_scene_from_word(uint32_t word, route_scene_t *m)
     return route_scene_decode(b, sizeof b, m);
 }
 
-/* scene as a text line: its 6 raw values in decimal, separated by ' '. */
+/* scene as a text line: its 6 raw values in decimal, separated by ' '; at most ROUTE_SCENE_MAX_TEXT_FORM - 1 chars and a NUL. */
 static inline int route_scene_to_text(const route_scene_t *m, char *buf, size_t cap)
 {
     uint16_t r[6] = {0};  /* every value is set by raw; compilers cannot always tell */
@@ -827,7 +831,7 @@ static inline int route_end_from_word(uint32_t word, route_end_t *m)
     return route_end_decode(b, sizeof b, m);
 }
 
-/* end as a text line: its 3 raw values in decimal, separated by ' '. */
+/* end as a text line: its 3 raw values in decimal, separated by ' '; at most ROUTE_END_MAX_TEXT_FORM - 1 chars and a NUL. */
 static inline int route_end_to_text(const route_end_t *m, char *buf, size_t cap)
 {
     uint8_t r[3] = {0};  /* every value is set by raw; compilers cannot always tell */

@@ -28,6 +28,9 @@ def constants(v: CView) -> list[tuple[str, str, str]]:
     for m in p.messages:
         if m.size is not None:
             out.append((v.upper(m.name, "SIZE"), f"{m.size}u", "bytes"))
+        if v.fr.text_form:
+            out.append((v.upper(m.name, "MAX_TEXT_FORM"), f"{v.max_text_form(m) + 1}u",
+                        f"chars, with the NUL: buffer size for {v.fn(m, 'to_text')}"))
         elif v.text:
             out.append((v.upper(m.name, "MAX_TEXT"), f"{v.max_text(m) + 1}u",
                         "chars, with the NUL: buffer size for encode"))

@@ -1085,12 +1085,21 @@ class CView:
         return cwordform.word_functions(self, m)
 
     # -- text form of a bit-packed protocol (a line of decimal raw values) ------------------------
+    def max_text_form(self, m: Message) -> int:
+        """Longest text form line of `m`, without the NUL: each raw value at its width's
+        largest, in decimal, and the separators between them."""
+        wired, raws = self.wired(m)
+        widths = [leaf.field.bits for leaf in wired if leaf.var in raws]
+        return sum(len(str((1 << bits) - 1)) for bits in widths) + \
+            max(0, len(widths) - 1) * len(self.fr.text_form.separator)
+
     def text_form_functions(self, m: Message) -> str:
         tf = self.fr.text_form
         c = Code()
         wired, raws = self.wired(m)
         n = len(raws)
-        c(f"/* {m.name} as a text line: its {n} raw values in decimal, separated by {tf.separator!r}. */")
+        c(f"/* {m.name} as a text line: its {n} raw values in decimal, separated by {tf.separator!r}; "
+          f"at most {self.upper(m.name, 'MAX_TEXT_FORM')} - 1 chars and a NUL. */")
         c(f"static inline int {self.fn(m, 'to_text')}(const {self.tname(m)} *m, char *buf, size_t cap)")
         c("{")
         c.indent()
