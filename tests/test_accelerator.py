@@ -15,6 +15,9 @@ import sys
 from pathlib import Path
 
 import pytest
+import test_conditional_fields as conditional
+import test_counted_bytes as counted
+import test_rest_of_payload as rest
 
 from codeword import accelerate as accel
 from codeword.build import compile_schema
@@ -283,3 +286,47 @@ def test_text_lines_that_may_end_early_are_left_to_python(built):
     for line in ("$GPRMC,123519,A,4807.038,N,01131.000,E,022.4,084.4,230394,003.1,W*6A\r\n",
                  "$GPRMC,083559.00,A,4717.11437,N,00833.91522,E,0.004,77.52,091202,,,A*57\r\n"):
         assert fast.decode(line).to_dict() == pure.decode(line).to_dict() and fast.encode(fast.decode(line)) == line
+
+
+SCHEMAS_WITH_GAPS = {"tele": conditional.SCHEMA, "blob": counted.SCHEMA, "rest": rest.SCHEMA}
+
+
+def worked_frames(name: str, mod) -> list[tuple[bytes, object]]:
+    """[(frame, the message it holds)]: frames worked by hand in the tests of conditional
+    fields, counted bytes and arrays that fill the rest of the payload."""
+    if name == "tele":
+        return [(conditional.frame(payload), message) for payload, message in conditional.messages(mod)]
+    if name == "blob":
+        return [(bytes.fromhex(frame), mod.Chunk(tag=9, data=data)) for data, frame in counted.FRAMES]
+    return [(bytes.fromhex("55 01 06 0102 0a0b 0c0d aa"), mod.Registers(start=0x0102, values=[0x0A0B, 0x0C0D])),
+            (bytes.fromhex("55 02 01 09 aa"), mod.Blob(tag=9, data=b"")),
+            (bytes.fromhex("55 03 02 64 ff aa"), mod.Pairs(pts=[mod.PairsPts(a=100, b=-1)]))]
+
+
+@pytest.mark.parametrize("name", sorted(SCHEMAS_WITH_GAPS))
+def test_values_a_frame_may_leave_out_are_built_in_c(built, tmp_path, name):
+    """Conditional fields (None when absent), counted arrays of groups, counted bytes and
+    arrays that fill the rest of the payload: the compiled decoder builds each message
+    of the hand-worked frames, and agrees with pure Python on every vector."""
+    folder, _ = built
+    schema = tmp_path / f"{name}.yaml"
+    schema.write_text(SCHEMAS_WITH_GAPS[name], encoding="utf-8")
+    out = tmp_path / "out"
+    run = subprocess.run([sys.executable, "-m", "codeword", "build", str(schema), "--out", str(out)],
+                         capture_output=True, text=True)
+    assert run.returncode == 0, run.stdout + run.stderr
+    p = compile_schema(schema)
+    assert all(servable(p, m) for m in p.messages)
+    accel.accelerate([schema], tmp_path, STRICT)
+    fast = load(out / "python" / f"{name}.py", f"{name}_fast_{folder.name}", tmp_path)
+    pure = load(out / "python" / f"{name}.py", f"{name}_pure_{folder.name}", None)
+    assert fast.ACCELERATOR is not None
+    for frame, message in worked_frames(name, fast):
+        decoder = fast.MESSAGES[message.NAME].decode
+        assert type(decoder).__name__ == "builtin_function_or_method"
+        assert decoder(frame) == message and fast.decode(frame) == message
+        assert repr(fast.decode(frame)) == repr(pure.decode(frame))
+    vectors = json.loads((out / "vectors" / f"{name}.json").read_text(encoding="utf-8"))
+    problem, compared = difference(fast, pure, vectors)
+    assert not problem, problem
+    assert compared > len(vectors["valid"])

@@ -3,9 +3,10 @@ its accelerator (kept apart from the view: the Python target needs both)."""
 from __future__ import annotations
 
 import hashlib
+from typing import Optional
 
 from ... import __version__
-from ...model import Field, Message, Protocol
+from ...model import Field, Message, Protocol, field_at
 from ..wire import stream_facts
 
 
@@ -30,26 +31,31 @@ def runs_streams(p: Protocol) -> bool:
 
 def servable(p: Protocol, m: Message) -> bool:
     """Whether every value of the message is built in C exactly as Python builds it."""
-    if p.framing.kind == "text" or m.size is None:  # text lines (of any number of values) are Python's to split
+    if p.framing.kind == "text":  # text lines (of any number of values) are Python's to split
         return False
-    if m.shortening and m.shortening.gaps:  # values that may be absent
-        return False
-    return all(_field_servable(f) for f in m.layout if f.is_member)
+    return all(_field_servable(m, f, top=True) for f in m.layout if f.is_member)
 
 
-def _field_servable(f: Field) -> bool:
-    # values that may be absent (None): the accelerator builds every member of a message;
-    # a multiplexed message is left to Python, which gives None to the fields not selected
-    if f.optional or f.present_if or f.multiplexed_by or f.varies:
+def _field_servable(m: Message, f: Field, top: bool) -> bool:
+    if f.optional or f.one_hot:  # a presence flag C keeps and Python reads otherwise
+        return False
+    # a value a frame may leave out, or an array it carries in part: the C struct says
+    # which and how many from a raw integer the decoder kept (top-level fields only, as
+    # Python reads them)
+    if (f.present_if or f.multiplexed_by or f.varies) and not top:
+        return False
+    if f.present_if and not _raw_member(field_at(m.layout, f.present_if.field), unsigned=True):
+        return False
+    if f.multiplexed_by and not all(_raw_member(field_at(m.layout, x.field)) for x in f.multiplexed_by.chain):
         return False
     if f.kind == "group":
-        return all(_field_servable(x) for x in f.fields if x.is_member)
+        return all(_field_servable(m, x, top=False) for x in f.fields if x.is_member)
     f = f.element
     if f.kind == "bool":
         return f.bits == 1  # Python reads `raw == 1`, C `raw != 0`
     if f.kind in ("float", "bytes"):
         return True
-    if f.kind not in ("uint", "int") or f.one_hot or f.decimals:
+    if f.kind not in ("uint", "int") or f.decimals:
         return False
     if f.enum is not None:
         return f.enum.kind != "char" and f.scale is None and not f.offset
@@ -59,3 +65,9 @@ def _field_servable(f: Field) -> bool:
     if f.scale is None:  # C keeps raw + offset as an integer, Python adds them
         return all(isinstance(x, int) for x in numbers)
     return all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in numbers)
+
+
+def _raw_member(f: Optional[Field], unsigned: bool = False) -> bool:
+    """Whether the C struct holds the field's raw wire integer, as Python tests it."""
+    return f is not None and f.count is None and f.kind in (("uint",) if unsigned else ("uint", "int")) \
+        and f.scale is None and not f.offset and not f.decimals

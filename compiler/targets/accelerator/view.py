@@ -9,8 +9,9 @@ left to Python."""
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Optional
 
-from ...model import Field, Message, Protocol
+from ...model import Field, Message, Protocol, count_member
 from ..c.view import CView
 from ..code import Code
 from ..python.view import PythonView, lit
@@ -95,6 +96,30 @@ class AcceleratorView:
 
     def assign(self, c: Code, m: Message, f: Field, path: tuple, owner: str, cls: str, at: str) -> None:
         slot = self.names.s(cls, f.name)
+        sent = self.sent(m, f)
+        if sent is None:
+            self.assign_value(c, m, f, path, owner, slot, at)
+            return
+        c(f"if ({sent}) {{")  # else None, as Python gives a value the frame leaves out
+        c.indent()
+        self.assign_value(c, m, f, path, owner, slot, at)
+        c.dedent()
+        c("} else {")
+        c(f"    if (acc_set(st, {owner}, {slot}, acc_none()) < 0) goto fail;")
+        c("}")
+
+    def sent(self, m: Message, f: Field) -> Optional[str]:
+        """The C test of whether a conditional or multiplexed field is in the decoded frame,
+        from the raw value of the field that says (None: it always is)."""
+        if f.present_if:
+            gap = next(g for g in m.shortening.gaps if g.field == f.name)
+            return self.c.presence_test(m, gap, f"m->{gap.control}")
+        if f.multiplexed_by:
+            raws = {leaf.var: f"m->{leaf.path[0]}" for leaf in m.wire.leaves if len(leaf.path) == 1}
+            return self.c.multiplex_test(m, f.multiplexed_by, raws)
+        return None
+
+    def assign_value(self, c: Code, m: Message, f: Field, path: tuple, owner: str, slot: str, at: str) -> None:
         if f.count is None:
             if f.kind == "group":
                 group, group_cls = self.local("g"), self.py.group_class(m, path)
@@ -102,12 +127,13 @@ class AcceleratorView:
                 c(f"if (acc_set(st, {owner}, {slot}, {group}) < 0) goto fail;")
                 self.build(c, m, f.fields, path, group, group_cls, at + ".")
             else:
-                c(f"if (acc_set(st, {owner}, {slot}, {self.value(f, at)}) < 0) goto fail;")
+                c(f"if (acc_set(st, {owner}, {slot}, {self.value(f, at, self.in_use(f))}) < 0) goto fail;")
             return
         items, i = self.local("l"), self.local("i")
-        c(f"PyObject *{items} = PyList_New({f.count});")
+        count = self.in_use(f) or str(f.count)
+        c(f"PyObject *{items} = PyList_New({count});")
         c(f"if (acc_set(st, {owner}, {slot}, {items}) < 0) goto fail;")
-        c(f"for (Py_ssize_t {i} = 0; {i} < {f.count}; {i}++) {{")
+        c(f"for (Py_ssize_t {i} = 0; {i} < {count}; {i}++) {{")
         c.indent()
         element = path + (0,)
         item = self.local("g" if f.kind == "group" else "v")
@@ -122,19 +148,26 @@ class AcceleratorView:
         c.dedent()
         c("}")
 
+    @staticmethod
+    def in_use(f: Field) -> Optional[str]:
+        """How many elements (or bytes) of a field that varies the frame carried: its
+        count member (a top-level field's, the only ones served)."""
+        return f"(Py_ssize_t)m->{count_member(f.name)}" if f.varies else None
+
     def local(self, prefix: str) -> str:
         self.count += 1
         return f"{prefix}{self.count}"
 
-    def value(self, f: Field, at: str) -> str:
-        """A C expression giving a leaf's Python value: a new reference, NULL on error."""
+    def value(self, f: Field, at: str, length: Optional[str] = None) -> str:
+        """A C expression giving a leaf's Python value: a new reference, NULL on error
+        (`length`: the bytes in use of a bytes field that varies)."""
         f = f.element
         if f.kind == "bool":
             return f"PyBool_FromLong({at})"
         if f.kind == "float":
             return f"PyFloat_FromDouble((double){at})"
         if f.kind == "bytes":
-            return f"PyBytes_FromStringAndSize((const char *){at}, {f.length})"
+            return f"PyBytes_FromStringAndSize((const char *){at}, {length or f.length})"
         number = self.int_value(f, at)
         if f.enum is not None:
             return f"acc_lookup({self.names.g(f'_ENUM_{f.enum.name}')}, {number})"

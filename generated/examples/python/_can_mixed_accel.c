@@ -29,13 +29,13 @@ const char cw_accel_build[] = "codeword-accelerator-build:" CW_ACCEL_BUILD;
  * tables, the Python decoders), attribute names, numeric constants and where its
  * classes keep each attribute. Each bind() makes one, held by its functions. */
 typedef struct {
-    PyObject *G[8];
-    PyObject *A[14];
-    Py_ssize_t S[14];  /* offset of the slot in the instance; 0: set through setattr */
+    PyObject *G[14];
+    PyObject *A[35];
+    Py_ssize_t S[38];  /* offset of the slot in the instance; 0: set through setattr */
 } acc_state;
 
 /* For each slot: the class and the attribute (indices into G and A). */
-static const unsigned int slot_of[14][2] = {
+static const unsigned int slot_of[38][2] = {
     {0, 0},
     {0, 1},
     {0, 2},
@@ -50,6 +50,30 @@ static const unsigned int slot_of[14][2] = {
     {4, 11},
     {6, 12},
     {6, 13},
+    {8, 14},
+    {8, 15},
+    {8, 16},
+    {8, 17},
+    {8, 18},
+    {8, 19},
+    {8, 20},
+    {8, 21},
+    {8, 22},
+    {8, 23},
+    {8, 24},
+    {8, 25},
+    {10, 26},
+    {10, 27},
+    {10, 28},
+    {10, 29},
+    {10, 30},
+    {10, 31},
+    {10, 32},
+    {10, 33},
+    {10, 34},
+    {12, 26},
+    {12, 27},
+    {12, 28},
 };
 
 #define ACC_CAPSULE "codeword.can_mixed.accelerator"
@@ -107,6 +131,13 @@ static inline int acc_set(const acc_state *st, PyObject *obj, int slot, PyObject
     int rc = PyObject_SetAttr(obj, st->A[slot_of[slot][1]], value);
     Py_DECREF(value);
     return rc;
+}
+
+/* None, a new reference: the value of a field the frame left out. */
+static inline PyObject *acc_none(void)
+{
+    Py_INCREF(Py_None);
+    return Py_None;
 }
 
 static PyObject *build_example_message(const acc_state *st, const can_mixed_example_message_t *m)
@@ -271,6 +302,221 @@ static PyObject *decode_gear(PyObject *self, PyObject *data)
     return build_gear(st, &m);
 }
 
+static PyObject *build_multiplexed(const acc_state *st, const can_mixed_multiplexed_t *m)
+{
+    PyObject *o = acc_new(st->G[8]);
+    if (o == NULL) {
+        return NULL;
+    }
+    if (acc_set(st, o, 14, PyLong_FromUnsignedLongLong((unsigned long long)m->multiplexor)) < 0) goto fail;
+    if ((m->multiplexor == 8u || m->multiplexor == 16u || m->multiplexor == 24u)) {
+        if (acc_set(st, o, 15, PyLong_FromUnsignedLongLong((unsigned long long)m->bit_j)) < 0) goto fail;
+    } else {
+        if (acc_set(st, o, 15, acc_none()) < 0) goto fail;
+    }
+    if ((m->multiplexor == 8u || m->multiplexor == 16u || m->multiplexor == 24u)) {
+        if (acc_set(st, o, 16, PyLong_FromUnsignedLongLong((unsigned long long)m->bit_c)) < 0) goto fail;
+    } else {
+        if (acc_set(st, o, 16, acc_none()) < 0) goto fail;
+    }
+    if ((m->multiplexor == 8u || m->multiplexor == 16u || m->multiplexor == 24u)) {
+        if (acc_set(st, o, 17, PyLong_FromUnsignedLongLong((unsigned long long)m->bit_g)) < 0) goto fail;
+    } else {
+        if (acc_set(st, o, 17, acc_none()) < 0) goto fail;
+    }
+    if ((m->multiplexor == 8u || m->multiplexor == 16u || m->multiplexor == 24u)) {
+        if (acc_set(st, o, 18, PyLong_FromUnsignedLongLong((unsigned long long)m->bit_l)) < 0) goto fail;
+    } else {
+        if (acc_set(st, o, 18, acc_none()) < 0) goto fail;
+    }
+    if (m->multiplexor == 24u) {
+        if (acc_set(st, o, 19, PyLong_FromUnsignedLongLong((unsigned long long)m->bit_a)) < 0) goto fail;
+    } else {
+        if (acc_set(st, o, 19, acc_none()) < 0) goto fail;
+    }
+    if (m->multiplexor == 24u) {
+        if (acc_set(st, o, 20, PyLong_FromUnsignedLongLong((unsigned long long)m->bit_k)) < 0) goto fail;
+    } else {
+        if (acc_set(st, o, 20, acc_none()) < 0) goto fail;
+    }
+    if (m->multiplexor == 24u) {
+        if (acc_set(st, o, 21, PyLong_FromUnsignedLongLong((unsigned long long)m->bit_e)) < 0) goto fail;
+    } else {
+        if (acc_set(st, o, 21, acc_none()) < 0) goto fail;
+    }
+    if (m->multiplexor == 24u) {
+        if (acc_set(st, o, 22, PyLong_FromUnsignedLongLong((unsigned long long)m->bit_d)) < 0) goto fail;
+    } else {
+        if (acc_set(st, o, 22, acc_none()) < 0) goto fail;
+    }
+    if (m->multiplexor == 24u) {
+        if (acc_set(st, o, 23, PyLong_FromUnsignedLongLong((unsigned long long)m->bit_b)) < 0) goto fail;
+    } else {
+        if (acc_set(st, o, 23, acc_none()) < 0) goto fail;
+    }
+    if (m->multiplexor == 24u) {
+        if (acc_set(st, o, 24, PyLong_FromUnsignedLongLong((unsigned long long)m->bit_h)) < 0) goto fail;
+    } else {
+        if (acc_set(st, o, 24, acc_none()) < 0) goto fail;
+    }
+    if (m->multiplexor == 24u) {
+        if (acc_set(st, o, 25, PyLong_FromUnsignedLongLong((unsigned long long)m->bit_f)) < 0) goto fail;
+    } else {
+        if (acc_set(st, o, 25, acc_none()) < 0) goto fail;
+    }
+    return o;
+fail:
+    Py_DECREF(o);
+    return NULL;
+}
+
+static PyObject *decode_multiplexed(PyObject *self, PyObject *data)
+{
+    const acc_state *st = acc_state_of(self);
+    can_mixed_multiplexed_t m;
+    int rc;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (PyBytes_CheckExact(data)) {
+        rc = can_mixed_multiplexed_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
+    } else {
+        Py_buffer view;
+        int plain = acc_plain_bytes(data, &view);
+        if (plain <= 0) {  /* an error, or what Python reads otherwise: Python decides */
+            return plain < 0 ? NULL : PyObject_CallOneArg(st->G[9], data);
+        }
+        rc = can_mixed_multiplexed_decode((const uint8_t *)view.buf, (size_t)view.len, &m);
+        PyBuffer_Release(&view);
+    }
+    if (rc != CW_OK) {  /* the Python decoder says why */
+        return PyObject_CallOneArg(st->G[9], data);
+    }
+    return build_multiplexed(st, &m);
+}
+
+static PyObject *build_extended(const acc_state *st, const can_mixed_extended_t *m)
+{
+    PyObject *o = acc_new(st->G[10]);
+    if (o == NULL) {
+        return NULL;
+    }
+    if (acc_set(st, o, 26, PyLong_FromUnsignedLongLong((unsigned long long)m->s0)) < 0) goto fail;
+    if (m->s0 == 0u) {
+        if (acc_set(st, o, 27, PyLong_FromUnsignedLongLong((unsigned long long)m->s1)) < 0) goto fail;
+    } else {
+        if (acc_set(st, o, 27, acc_none()) < 0) goto fail;
+    }
+    if (m->s0 == 0u && m->s1 == 0u) {
+        if (acc_set(st, o, 28, PyLong_FromLongLong((long long)m->s2)) < 0) goto fail;
+    } else {
+        if (acc_set(st, o, 28, acc_none()) < 0) goto fail;
+    }
+    if (m->s0 == 0u && m->s1 == 0u) {
+        if (acc_set(st, o, 29, PyLong_FromLongLong((long long)m->s3)) < 0) goto fail;
+    } else {
+        if (acc_set(st, o, 29, acc_none()) < 0) goto fail;
+    }
+    if (m->s0 == 0u && m->s1 == 2u) {
+        if (acc_set(st, o, 30, PyLong_FromLongLong((long long)m->s4)) < 0) goto fail;
+    } else {
+        if (acc_set(st, o, 30, acc_none()) < 0) goto fail;
+    }
+    if (m->s0 == 1u) {
+        if (acc_set(st, o, 31, PyLong_FromLongLong((long long)m->s5)) < 0) goto fail;
+    } else {
+        if (acc_set(st, o, 31, acc_none()) < 0) goto fail;
+    }
+    if (acc_set(st, o, 32, PyLong_FromUnsignedLongLong((unsigned long long)m->s6)) < 0) goto fail;
+    if (m->s6 == 1u) {
+        if (acc_set(st, o, 33, PyLong_FromLongLong((long long)m->s7)) < 0) goto fail;
+    } else {
+        if (acc_set(st, o, 33, acc_none()) < 0) goto fail;
+    }
+    if (m->s6 == 2u) {
+        if (acc_set(st, o, 34, PyLong_FromLongLong((long long)m->s8)) < 0) goto fail;
+    } else {
+        if (acc_set(st, o, 34, acc_none()) < 0) goto fail;
+    }
+    return o;
+fail:
+    Py_DECREF(o);
+    return NULL;
+}
+
+static PyObject *decode_extended(PyObject *self, PyObject *data)
+{
+    const acc_state *st = acc_state_of(self);
+    can_mixed_extended_t m;
+    int rc;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (PyBytes_CheckExact(data)) {
+        rc = can_mixed_extended_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
+    } else {
+        Py_buffer view;
+        int plain = acc_plain_bytes(data, &view);
+        if (plain <= 0) {  /* an error, or what Python reads otherwise: Python decides */
+            return plain < 0 ? NULL : PyObject_CallOneArg(st->G[11], data);
+        }
+        rc = can_mixed_extended_decode((const uint8_t *)view.buf, (size_t)view.len, &m);
+        PyBuffer_Release(&view);
+    }
+    if (rc != CW_OK) {  /* the Python decoder says why */
+        return PyObject_CallOneArg(st->G[11], data);
+    }
+    return build_extended(st, &m);
+}
+
+static PyObject *build_shared(const acc_state *st, const can_mixed_shared_t *m)
+{
+    PyObject *o = acc_new(st->G[12]);
+    if (o == NULL) {
+        return NULL;
+    }
+    if (acc_set(st, o, 35, PyLong_FromUnsignedLongLong((unsigned long long)m->s0)) < 0) goto fail;
+    if ((m->s0 == 1u || m->s0 == 3u)) {
+        if (acc_set(st, o, 36, PyLong_FromLongLong((long long)m->s1)) < 0) goto fail;
+    } else {
+        if (acc_set(st, o, 36, acc_none()) < 0) goto fail;
+    }
+    if ((m->s0 >= 2u && m->s0 <= 5u)) {
+        if (acc_set(st, o, 37, PyLong_FromLongLong((long long)m->s2)) < 0) goto fail;
+    } else {
+        if (acc_set(st, o, 37, acc_none()) < 0) goto fail;
+    }
+    return o;
+fail:
+    Py_DECREF(o);
+    return NULL;
+}
+
+static PyObject *decode_shared(PyObject *self, PyObject *data)
+{
+    const acc_state *st = acc_state_of(self);
+    can_mixed_shared_t m;
+    int rc;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (PyBytes_CheckExact(data)) {
+        rc = can_mixed_shared_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
+    } else {
+        Py_buffer view;
+        int plain = acc_plain_bytes(data, &view);
+        if (plain <= 0) {  /* an error, or what Python reads otherwise: Python decides */
+            return plain < 0 ? NULL : PyObject_CallOneArg(st->G[13], data);
+        }
+        rc = can_mixed_shared_decode((const uint8_t *)view.buf, (size_t)view.len, &m);
+        PyBuffer_Release(&view);
+    }
+    if (rc != CW_OK) {  /* the Python decoder says why */
+        return PyObject_CallOneArg(st->G[13], data);
+    }
+    return build_shared(st, &m);
+}
+
 /* The direction code of a StreamDecoder's direction; 0: not one of the protocol's, or
  * not a str (the Python decoder reads a str subclass as no direction). */
 static int acc_direction(PyObject *direction, int *code)
@@ -350,6 +596,15 @@ static PyObject *run_frames(PyObject *self, PyObject *const *args, Py_ssize_t na
         case CAN_MIXED_MSG_GEAR:
             item = build_gear(st, &msg.as.gear);
             break;
+        case CAN_MIXED_MSG_MULTIPLEXED:
+            item = build_multiplexed(st, &msg.as.multiplexed);
+            break;
+        case CAN_MIXED_MSG_EXTENDED:
+            item = build_extended(st, &msg.as.extended);
+            break;
+        case CAN_MIXED_MSG_SHARED:
+            item = build_shared(st, &msg.as.shared);
+            break;
         default:  /* a message decoded in Python */
             return PyLong_FromSsize_t(pos);
         }
@@ -380,6 +635,9 @@ static PyMethodDef decoders[] = {
     {"_decode_wheel_speeds", decode_wheel_speeds, METH_O, NULL},
     {"_decode_steering", decode_steering, METH_O, NULL},
     {"_decode_gear", decode_gear, METH_O, NULL},
+    {"_decode_multiplexed", decode_multiplexed, METH_O, NULL},
+    {"_decode_extended", decode_extended, METH_O, NULL},
+    {"_decode_shared", decode_shared, METH_O, NULL},
     {"_run_frames", (PyCFunction)(void (*)(void))run_frames, METH_FASTCALL, NULL},
     {NULL, NULL, 0, NULL}
 };
@@ -393,10 +651,16 @@ static const char *const global_names[] = {
     "_decode_steering",
     "Gear",
     "_decode_gear",
+    "Multiplexed",
+    "_decode_multiplexed",
+    "Extended",
+    "_decode_extended",
+    "Shared",
+    "_decode_shared",
 };
 
 /* The globals whose instances acc_new makes, and those read as dicts (indices into G). */
-static const unsigned int class_globals[] = { 0, 2, 4, 6, };
+static const unsigned int class_globals[] = { 0, 2, 4, 6, 8, 10, 12, };
 
 /* -1 with TypeError unless every class global is one whose instances object.__new__ makes
  * (so acc_new may: a type, of object's layout and allocation) and every dict global a
@@ -435,6 +699,27 @@ static const char *const attribute_names[] = {
     "valid",
     "gear",
     "mode",
+    "multiplexor",
+    "bit_j",
+    "bit_c",
+    "bit_g",
+    "bit_l",
+    "bit_a",
+    "bit_k",
+    "bit_e",
+    "bit_d",
+    "bit_b",
+    "bit_h",
+    "bit_f",
+    "s0",
+    "s1",
+    "s2",
+    "s3",
+    "s4",
+    "s5",
+    "s6",
+    "s7",
+    "s8",
 };
 
 static void acc_free(PyObject *capsule)

@@ -29,17 +29,23 @@ const char cw_accel_build[] = "codeword-accelerator-build:" CW_ACCEL_BUILD;
  * tables, the Python decoders), attribute names, numeric constants and where its
  * classes keep each attribute. Each bind() makes one, held by its functions. */
 typedef struct {
-    PyObject *G[4];
-    PyObject *A[3];
-    Py_ssize_t S[4];  /* offset of the slot in the instance; 0: set through setattr */
+    PyObject *G[8];
+    PyObject *A[6];
+    Py_ssize_t S[10];  /* offset of the slot in the instance; 0: set through setattr */
 } acc_state;
 
 /* For each slot: the class and the attribute (indices into G and A). */
-static const unsigned int slot_of[4][2] = {
+static const unsigned int slot_of[10][2] = {
     {0, 0},
     {2, 0},
     {2, 1},
     {2, 2},
+    {4, 0},
+    {4, 1},
+    {4, 3},
+    {6, 0},
+    {6, 4},
+    {6, 5},
 };
 
 #define ACC_CAPSULE "codeword.dynamixel2.accelerator"
@@ -177,9 +183,91 @@ static PyObject *decode_read(PyObject *self, PyObject *data)
     return build_read(st, &m);
 }
 
+static PyObject *build_write(const acc_state *st, const dynamixel2_write_t *m)
+{
+    PyObject *o = acc_new(st->G[4]);
+    if (o == NULL) {
+        return NULL;
+    }
+    if (acc_set(st, o, 4, PyLong_FromUnsignedLongLong((unsigned long long)m->id)) < 0) goto fail;
+    if (acc_set(st, o, 5, PyLong_FromUnsignedLongLong((unsigned long long)m->address)) < 0) goto fail;
+    if (acc_set(st, o, 6, PyBytes_FromStringAndSize((const char *)m->data, (Py_ssize_t)m->data_count)) < 0) goto fail;
+    return o;
+fail:
+    Py_DECREF(o);
+    return NULL;
+}
+
+static PyObject *decode_write(PyObject *self, PyObject *data)
+{
+    const acc_state *st = acc_state_of(self);
+    dynamixel2_write_t m;
+    int rc;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (PyBytes_CheckExact(data)) {
+        rc = dynamixel2_write_decode_frame((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
+    } else {
+        Py_buffer view;
+        int plain = acc_plain_bytes(data, &view);
+        if (plain <= 0) {  /* an error, or what Python reads otherwise: Python decides */
+            return plain < 0 ? NULL : PyObject_CallOneArg(st->G[5], data);
+        }
+        rc = dynamixel2_write_decode_frame((const uint8_t *)view.buf, (size_t)view.len, &m);
+        PyBuffer_Release(&view);
+    }
+    if (rc != CW_OK) {  /* the Python decoder says why */
+        return PyObject_CallOneArg(st->G[5], data);
+    }
+    return build_write(st, &m);
+}
+
+static PyObject *build_status(const acc_state *st, const dynamixel2_status_t *m)
+{
+    PyObject *o = acc_new(st->G[6]);
+    if (o == NULL) {
+        return NULL;
+    }
+    if (acc_set(st, o, 7, PyLong_FromUnsignedLongLong((unsigned long long)m->id)) < 0) goto fail;
+    if (acc_set(st, o, 8, PyLong_FromUnsignedLongLong((unsigned long long)m->error)) < 0) goto fail;
+    if (acc_set(st, o, 9, PyBytes_FromStringAndSize((const char *)m->params, (Py_ssize_t)m->params_count)) < 0) goto fail;
+    return o;
+fail:
+    Py_DECREF(o);
+    return NULL;
+}
+
+static PyObject *decode_status(PyObject *self, PyObject *data)
+{
+    const acc_state *st = acc_state_of(self);
+    dynamixel2_status_t m;
+    int rc;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (PyBytes_CheckExact(data)) {
+        rc = dynamixel2_status_decode_frame((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
+    } else {
+        Py_buffer view;
+        int plain = acc_plain_bytes(data, &view);
+        if (plain <= 0) {  /* an error, or what Python reads otherwise: Python decides */
+            return plain < 0 ? NULL : PyObject_CallOneArg(st->G[7], data);
+        }
+        rc = dynamixel2_status_decode_frame((const uint8_t *)view.buf, (size_t)view.len, &m);
+        PyBuffer_Release(&view);
+    }
+    if (rc != CW_OK) {  /* the Python decoder says why */
+        return PyObject_CallOneArg(st->G[7], data);
+    }
+    return build_status(st, &m);
+}
+
 static PyMethodDef decoders[] = {
     {"_decode_ping", decode_ping, METH_O, NULL},
     {"_decode_read", decode_read, METH_O, NULL},
+    {"_decode_write", decode_write, METH_O, NULL},
+    {"_decode_status", decode_status, METH_O, NULL},
     {NULL, NULL, 0, NULL}
 };
 
@@ -188,10 +276,14 @@ static const char *const global_names[] = {
     "_decode_ping",
     "Read",
     "_decode_read",
+    "Write",
+    "_decode_write",
+    "Status",
+    "_decode_status",
 };
 
 /* The globals whose instances acc_new makes, and those read as dicts (indices into G). */
-static const unsigned int class_globals[] = { 0, 2, };
+static const unsigned int class_globals[] = { 0, 2, 4, 6, };
 
 /* -1 with TypeError unless every class global is one whose instances object.__new__ makes
  * (so acc_new may: a type, of object's layout and allocation) and every dict global a
@@ -219,6 +311,9 @@ static const char *const attribute_names[] = {
     "id",
     "address",
     "data_length",
+    "data",
+    "error",
+    "params",
 };
 
 static void acc_free(PyObject *capsule)

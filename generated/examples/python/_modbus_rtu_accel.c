@@ -29,22 +29,28 @@ const char cw_accel_build[] = "codeword-accelerator-build:" CW_ACCEL_BUILD;
  * tables, the Python decoders), attribute names, numeric constants and where its
  * classes keep each attribute. Each bind() makes one, held by its functions. */
 typedef struct {
-    PyObject *G[7];
-    PyObject *A[5];
-    Py_ssize_t S[9];  /* offset of the slot in the instance; 0: set through setattr */
+    PyObject *G[11];
+    PyObject *A[7];
+    Py_ssize_t S[15];  /* offset of the slot in the instance; 0: set through setattr */
 } acc_state;
 
 /* For each slot: the class and the attribute (indices into G and A). */
-static const unsigned int slot_of[9][2] = {
+static const unsigned int slot_of[15][2] = {
     {0, 0},
     {0, 1},
     {0, 2},
     {2, 0},
-    {2, 1},
-    {2, 2},
+    {2, 3},
     {4, 0},
-    {4, 3},
+    {4, 1},
+    {4, 2},
     {4, 4},
+    {6, 0},
+    {6, 1},
+    {6, 2},
+    {8, 0},
+    {8, 5},
+    {8, 6},
 };
 
 #define ACC_CAPSULE "codeword.modbus_rtu.accelerator"
@@ -155,15 +161,107 @@ static PyObject *decode_read_holding_registers(PyObject *self, PyObject *data)
     return build_read_holding_registers(st, &m);
 }
 
-static PyObject *build_write_multiple_registers_response(const acc_state *st, const modbus_rtu_write_multiple_registers_response_t *m)
+static PyObject *build_read_holding_registers_response(const acc_state *st, const modbus_rtu_read_holding_registers_response_t *m)
 {
     PyObject *o = acc_new(st->G[2]);
     if (o == NULL) {
         return NULL;
     }
     if (acc_set(st, o, 3, PyLong_FromUnsignedLongLong((unsigned long long)m->address)) < 0) goto fail;
-    if (acc_set(st, o, 4, PyLong_FromUnsignedLongLong((unsigned long long)m->start)) < 0) goto fail;
-    if (acc_set(st, o, 5, PyLong_FromUnsignedLongLong((unsigned long long)m->quantity)) < 0) goto fail;
+    PyObject *l1 = PyList_New((Py_ssize_t)m->registers_count);
+    if (acc_set(st, o, 4, l1) < 0) goto fail;
+    for (Py_ssize_t i2 = 0; i2 < (Py_ssize_t)m->registers_count; i2++) {
+        PyObject *v3 = PyLong_FromUnsignedLongLong((unsigned long long)m->registers[i2]);
+        if (v3 == NULL) goto fail;
+        PyList_SET_ITEM(l1, i2, v3);
+    }
+    return o;
+fail:
+    Py_DECREF(o);
+    return NULL;
+}
+
+static PyObject *decode_read_holding_registers_response(PyObject *self, PyObject *data)
+{
+    const acc_state *st = acc_state_of(self);
+    modbus_rtu_read_holding_registers_response_t m;
+    int rc;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (PyBytes_CheckExact(data)) {
+        rc = modbus_rtu_read_holding_registers_response_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
+    } else {
+        Py_buffer view;
+        int plain = acc_plain_bytes(data, &view);
+        if (plain <= 0) {  /* an error, or what Python reads otherwise: Python decides */
+            return plain < 0 ? NULL : PyObject_CallOneArg(st->G[3], data);
+        }
+        rc = modbus_rtu_read_holding_registers_response_decode((const uint8_t *)view.buf, (size_t)view.len, &m);
+        PyBuffer_Release(&view);
+    }
+    if (rc != CW_OK) {  /* the Python decoder says why */
+        return PyObject_CallOneArg(st->G[3], data);
+    }
+    return build_read_holding_registers_response(st, &m);
+}
+
+static PyObject *build_write_multiple_registers(const acc_state *st, const modbus_rtu_write_multiple_registers_t *m)
+{
+    PyObject *o = acc_new(st->G[4]);
+    if (o == NULL) {
+        return NULL;
+    }
+    if (acc_set(st, o, 5, PyLong_FromUnsignedLongLong((unsigned long long)m->address)) < 0) goto fail;
+    if (acc_set(st, o, 6, PyLong_FromUnsignedLongLong((unsigned long long)m->start)) < 0) goto fail;
+    if (acc_set(st, o, 7, PyLong_FromUnsignedLongLong((unsigned long long)m->quantity)) < 0) goto fail;
+    PyObject *l4 = PyList_New((Py_ssize_t)m->values_count);
+    if (acc_set(st, o, 8, l4) < 0) goto fail;
+    for (Py_ssize_t i5 = 0; i5 < (Py_ssize_t)m->values_count; i5++) {
+        PyObject *v6 = PyLong_FromUnsignedLongLong((unsigned long long)m->values[i5]);
+        if (v6 == NULL) goto fail;
+        PyList_SET_ITEM(l4, i5, v6);
+    }
+    return o;
+fail:
+    Py_DECREF(o);
+    return NULL;
+}
+
+static PyObject *decode_write_multiple_registers(PyObject *self, PyObject *data)
+{
+    const acc_state *st = acc_state_of(self);
+    modbus_rtu_write_multiple_registers_t m;
+    int rc;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (PyBytes_CheckExact(data)) {
+        rc = modbus_rtu_write_multiple_registers_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
+    } else {
+        Py_buffer view;
+        int plain = acc_plain_bytes(data, &view);
+        if (plain <= 0) {  /* an error, or what Python reads otherwise: Python decides */
+            return plain < 0 ? NULL : PyObject_CallOneArg(st->G[5], data);
+        }
+        rc = modbus_rtu_write_multiple_registers_decode((const uint8_t *)view.buf, (size_t)view.len, &m);
+        PyBuffer_Release(&view);
+    }
+    if (rc != CW_OK) {  /* the Python decoder says why */
+        return PyObject_CallOneArg(st->G[5], data);
+    }
+    return build_write_multiple_registers(st, &m);
+}
+
+static PyObject *build_write_multiple_registers_response(const acc_state *st, const modbus_rtu_write_multiple_registers_response_t *m)
+{
+    PyObject *o = acc_new(st->G[6]);
+    if (o == NULL) {
+        return NULL;
+    }
+    if (acc_set(st, o, 9, PyLong_FromUnsignedLongLong((unsigned long long)m->address)) < 0) goto fail;
+    if (acc_set(st, o, 10, PyLong_FromUnsignedLongLong((unsigned long long)m->start)) < 0) goto fail;
+    if (acc_set(st, o, 11, PyLong_FromUnsignedLongLong((unsigned long long)m->quantity)) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -184,26 +282,26 @@ static PyObject *decode_write_multiple_registers_response(PyObject *self, PyObje
         Py_buffer view;
         int plain = acc_plain_bytes(data, &view);
         if (plain <= 0) {  /* an error, or what Python reads otherwise: Python decides */
-            return plain < 0 ? NULL : PyObject_CallOneArg(st->G[3], data);
+            return plain < 0 ? NULL : PyObject_CallOneArg(st->G[7], data);
         }
         rc = modbus_rtu_write_multiple_registers_response_decode((const uint8_t *)view.buf, (size_t)view.len, &m);
         PyBuffer_Release(&view);
     }
     if (rc != CW_OK) {  /* the Python decoder says why */
-        return PyObject_CallOneArg(st->G[3], data);
+        return PyObject_CallOneArg(st->G[7], data);
     }
     return build_write_multiple_registers_response(st, &m);
 }
 
 static PyObject *build_exception_response(const acc_state *st, const modbus_rtu_exception_response_t *m)
 {
-    PyObject *o = acc_new(st->G[4]);
+    PyObject *o = acc_new(st->G[8]);
     if (o == NULL) {
         return NULL;
     }
-    if (acc_set(st, o, 6, PyLong_FromUnsignedLongLong((unsigned long long)m->address)) < 0) goto fail;
-    if (acc_set(st, o, 7, PyLong_FromUnsignedLongLong((unsigned long long)m->function)) < 0) goto fail;
-    if (acc_set(st, o, 8, acc_lookup(st->G[5], PyLong_FromUnsignedLongLong((unsigned long long)m->exception_code))) < 0) goto fail;
+    if (acc_set(st, o, 12, PyLong_FromUnsignedLongLong((unsigned long long)m->address)) < 0) goto fail;
+    if (acc_set(st, o, 13, PyLong_FromUnsignedLongLong((unsigned long long)m->function)) < 0) goto fail;
+    if (acc_set(st, o, 14, acc_lookup(st->G[9], PyLong_FromUnsignedLongLong((unsigned long long)m->exception_code))) < 0) goto fail;
     return o;
 fail:
     Py_DECREF(o);
@@ -224,13 +322,13 @@ static PyObject *decode_exception_response(PyObject *self, PyObject *data)
         Py_buffer view;
         int plain = acc_plain_bytes(data, &view);
         if (plain <= 0) {  /* an error, or what Python reads otherwise: Python decides */
-            return plain < 0 ? NULL : PyObject_CallOneArg(st->G[6], data);
+            return plain < 0 ? NULL : PyObject_CallOneArg(st->G[10], data);
         }
         rc = modbus_rtu_exception_response_decode((const uint8_t *)view.buf, (size_t)view.len, &m);
         PyBuffer_Release(&view);
     }
     if (rc != CW_OK) {  /* the Python decoder says why */
-        return PyObject_CallOneArg(st->G[6], data);
+        return PyObject_CallOneArg(st->G[10], data);
     }
     return build_exception_response(st, &m);
 }
@@ -313,6 +411,12 @@ static PyObject *run_frames(PyObject *self, PyObject *const *args, Py_ssize_t na
         case MODBUS_RTU_MSG_READ_HOLDING_REGISTERS:
             item = build_read_holding_registers(st, &msg.as.read_holding_registers);
             break;
+        case MODBUS_RTU_MSG_READ_HOLDING_REGISTERS_RESPONSE:
+            item = build_read_holding_registers_response(st, &msg.as.read_holding_registers_response);
+            break;
+        case MODBUS_RTU_MSG_WRITE_MULTIPLE_REGISTERS:
+            item = build_write_multiple_registers(st, &msg.as.write_multiple_registers);
+            break;
         case MODBUS_RTU_MSG_WRITE_MULTIPLE_REGISTERS_RESPONSE:
             item = build_write_multiple_registers_response(st, &msg.as.write_multiple_registers_response);
             break;
@@ -346,6 +450,8 @@ static PyObject *run_frames(PyObject *self, PyObject *const *args, Py_ssize_t na
 
 static PyMethodDef decoders[] = {
     {"_decode_read_holding_registers", decode_read_holding_registers, METH_O, NULL},
+    {"_decode_read_holding_registers_response", decode_read_holding_registers_response, METH_O, NULL},
+    {"_decode_write_multiple_registers", decode_write_multiple_registers, METH_O, NULL},
     {"_decode_write_multiple_registers_response", decode_write_multiple_registers_response, METH_O, NULL},
     {"_decode_exception_response", decode_exception_response, METH_O, NULL},
     {"_run_frames", (PyCFunction)(void (*)(void))run_frames, METH_FASTCALL, NULL},
@@ -355,6 +461,10 @@ static PyMethodDef decoders[] = {
 static const char *const global_names[] = {
     "ReadHoldingRegisters",
     "_decode_read_holding_registers",
+    "ReadHoldingRegistersResponse",
+    "_decode_read_holding_registers_response",
+    "WriteMultipleRegisters",
+    "_decode_write_multiple_registers",
     "WriteMultipleRegistersResponse",
     "_decode_write_multiple_registers_response",
     "ExceptionResponse",
@@ -363,7 +473,7 @@ static const char *const global_names[] = {
 };
 
 /* The globals whose instances acc_new makes, and those read as dicts (indices into G). */
-static const unsigned int class_globals[] = { 0, 2, 4, };
+static const unsigned int class_globals[] = { 0, 2, 4, 6, 8, };
 
 /* -1 with TypeError unless every class global is one whose instances object.__new__ makes
  * (so acc_new may: a type, of object's layout and allocation) and every dict global a
@@ -391,6 +501,8 @@ static const char *const attribute_names[] = {
     "address",
     "start",
     "quantity",
+    "registers",
+    "values",
     "function",
     "exception_code",
 };

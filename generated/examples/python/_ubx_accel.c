@@ -29,13 +29,13 @@ const char cw_accel_build[] = "codeword-accelerator-build:" CW_ACCEL_BUILD;
  * tables, the Python decoders), attribute names, numeric constants and where its
  * classes keep each attribute. Each bind() makes one, held by its functions. */
 typedef struct {
-    PyObject *G[12];
-    PyObject *A[52];
-    Py_ssize_t S[61];  /* offset of the slot in the instance; 0: set through setattr */
+    PyObject *G[18];
+    PyObject *A[85];
+    Py_ssize_t S[96];  /* offset of the slot in the instance; 0: set through setattr */
 } acc_state;
 
 /* For each slot: the class and the attribute (indices into G and A). */
-static const unsigned int slot_of[61][2] = {
+static const unsigned int slot_of[96][2] = {
     {0, 0},
     {0, 1},
     {2, 0},
@@ -97,6 +97,41 @@ static const unsigned int slot_of[61][2] = {
     {10, 49},
     {10, 50},
     {10, 51},
+    {12, 5},
+    {12, 52},
+    {12, 48},
+    {12, 53},
+    {13, 54},
+    {13, 55},
+    {13, 56},
+    {13, 57},
+    {13, 58},
+    {13, 59},
+    {13, 60},
+    {13, 61},
+    {13, 62},
+    {13, 63},
+    {13, 64},
+    {13, 65},
+    {13, 66},
+    {13, 67},
+    {13, 68},
+    {13, 69},
+    {13, 70},
+    {13, 71},
+    {13, 72},
+    {13, 73},
+    {13, 74},
+    {13, 75},
+    {13, 76},
+    {13, 77},
+    {13, 78},
+    {13, 79},
+    {13, 80},
+    {15, 81},
+    {15, 82},
+    {15, 83},
+    {16, 84},
 };
 
 #define ACC_CAPSULE "codeword.ubx.accelerator"
@@ -433,6 +468,127 @@ static PyObject *decode_nav_pvt(PyObject *self, PyObject *data)
     return build_nav_pvt(st, &m);
 }
 
+static PyObject *build_nav_sat(const acc_state *st, const ubx_nav_sat_t *m)
+{
+    PyObject *o = acc_new(st->G[12]);
+    if (o == NULL) {
+        return NULL;
+    }
+    if (acc_set(st, o, 61, PyLong_FromUnsignedLongLong((unsigned long long)m->iTOW)) < 0) goto fail;
+    if (acc_set(st, o, 62, PyLong_FromUnsignedLongLong((unsigned long long)m->version)) < 0) goto fail;
+    if (acc_set(st, o, 63, PyLong_FromUnsignedLongLong((unsigned long long)m->reserved0)) < 0) goto fail;
+    PyObject *l1 = PyList_New((Py_ssize_t)m->sv_count);
+    if (acc_set(st, o, 64, l1) < 0) goto fail;
+    for (Py_ssize_t i2 = 0; i2 < (Py_ssize_t)m->sv_count; i2++) {
+        PyObject *g3 = acc_new(st->G[13]);
+        if (g3 == NULL) goto fail;
+        PyList_SET_ITEM(l1, i2, g3);
+        if (acc_set(st, g3, 65, PyLong_FromUnsignedLongLong((unsigned long long)m->sv[i2].gnssId)) < 0) goto fail;
+        if (acc_set(st, g3, 66, PyLong_FromUnsignedLongLong((unsigned long long)m->sv[i2].svId)) < 0) goto fail;
+        if (acc_set(st, g3, 67, PyLong_FromUnsignedLongLong((unsigned long long)m->sv[i2].cno)) < 0) goto fail;
+        if (acc_set(st, g3, 68, PyLong_FromLongLong((long long)m->sv[i2].elev)) < 0) goto fail;
+        if (acc_set(st, g3, 69, PyLong_FromLongLong((long long)m->sv[i2].azim)) < 0) goto fail;
+        if (acc_set(st, g3, 70, PyFloat_FromDouble((double)m->sv[i2].prRes * 0.1)) < 0) goto fail;
+        if (acc_set(st, g3, 71, PyLong_FromUnsignedLongLong((unsigned long long)m->sv[i2].qualityInd)) < 0) goto fail;
+        if (acc_set(st, g3, 72, PyBool_FromLong(m->sv[i2].svUsed)) < 0) goto fail;
+        if (acc_set(st, g3, 73, PyLong_FromUnsignedLongLong((unsigned long long)m->sv[i2].health)) < 0) goto fail;
+        if (acc_set(st, g3, 74, PyBool_FromLong(m->sv[i2].diffCorr)) < 0) goto fail;
+        if (acc_set(st, g3, 75, PyBool_FromLong(m->sv[i2].smoothed)) < 0) goto fail;
+        if (acc_set(st, g3, 76, PyLong_FromUnsignedLongLong((unsigned long long)m->sv[i2].orbitSource)) < 0) goto fail;
+        if (acc_set(st, g3, 77, PyBool_FromLong(m->sv[i2].ephAvail)) < 0) goto fail;
+        if (acc_set(st, g3, 78, PyBool_FromLong(m->sv[i2].almAvail)) < 0) goto fail;
+        if (acc_set(st, g3, 79, PyBool_FromLong(m->sv[i2].anoAvail)) < 0) goto fail;
+        if (acc_set(st, g3, 80, PyBool_FromLong(m->sv[i2].aopAvail)) < 0) goto fail;
+        if (acc_set(st, g3, 81, PyLong_FromUnsignedLongLong((unsigned long long)m->sv[i2].reserved13)) < 0) goto fail;
+        if (acc_set(st, g3, 82, PyBool_FromLong(m->sv[i2].sbasCorrUsed)) < 0) goto fail;
+        if (acc_set(st, g3, 83, PyBool_FromLong(m->sv[i2].rtcmCorrUsed)) < 0) goto fail;
+        if (acc_set(st, g3, 84, PyBool_FromLong(m->sv[i2].slasCorrUsed)) < 0) goto fail;
+        if (acc_set(st, g3, 85, PyBool_FromLong(m->sv[i2].spartnCorrUsed)) < 0) goto fail;
+        if (acc_set(st, g3, 86, PyBool_FromLong(m->sv[i2].prCorrUsed)) < 0) goto fail;
+        if (acc_set(st, g3, 87, PyBool_FromLong(m->sv[i2].crCorrUsed)) < 0) goto fail;
+        if (acc_set(st, g3, 88, PyBool_FromLong(m->sv[i2].doCorrUsed)) < 0) goto fail;
+        if (acc_set(st, g3, 89, PyBool_FromLong(m->sv[i2].clasCorrUsed)) < 0) goto fail;
+        if (acc_set(st, g3, 90, PyBool_FromLong(m->sv[i2].lppCorrUsed)) < 0) goto fail;
+        if (acc_set(st, g3, 91, PyBool_FromLong(m->sv[i2].hasCorrUsed)) < 0) goto fail;
+    }
+    return o;
+fail:
+    Py_DECREF(o);
+    return NULL;
+}
+
+static PyObject *decode_nav_sat(PyObject *self, PyObject *data)
+{
+    const acc_state *st = acc_state_of(self);
+    ubx_nav_sat_t m;
+    int rc;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (PyBytes_CheckExact(data)) {
+        rc = ubx_nav_sat_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
+    } else {
+        Py_buffer view;
+        int plain = acc_plain_bytes(data, &view);
+        if (plain <= 0) {  /* an error, or what Python reads otherwise: Python decides */
+            return plain < 0 ? NULL : PyObject_CallOneArg(st->G[14], data);
+        }
+        rc = ubx_nav_sat_decode((const uint8_t *)view.buf, (size_t)view.len, &m);
+        PyBuffer_Release(&view);
+    }
+    if (rc != CW_OK) {  /* the Python decoder says why */
+        return PyObject_CallOneArg(st->G[14], data);
+    }
+    return build_nav_sat(st, &m);
+}
+
+static PyObject *build_mon_ver(const acc_state *st, const ubx_mon_ver_t *m)
+{
+    PyObject *o = acc_new(st->G[15]);
+    if (o == NULL) {
+        return NULL;
+    }
+    if (acc_set(st, o, 92, PyBytes_FromStringAndSize((const char *)m->swVersion, 30)) < 0) goto fail;
+    if (acc_set(st, o, 93, PyBytes_FromStringAndSize((const char *)m->hwVersion, 10)) < 0) goto fail;
+    PyObject *l4 = PyList_New((Py_ssize_t)m->ext_count);
+    if (acc_set(st, o, 94, l4) < 0) goto fail;
+    for (Py_ssize_t i5 = 0; i5 < (Py_ssize_t)m->ext_count; i5++) {
+        PyObject *g6 = acc_new(st->G[16]);
+        if (g6 == NULL) goto fail;
+        PyList_SET_ITEM(l4, i5, g6);
+        if (acc_set(st, g6, 95, PyBytes_FromStringAndSize((const char *)m->ext[i5].extension, 30)) < 0) goto fail;
+    }
+    return o;
+fail:
+    Py_DECREF(o);
+    return NULL;
+}
+
+static PyObject *decode_mon_ver(PyObject *self, PyObject *data)
+{
+    const acc_state *st = acc_state_of(self);
+    ubx_mon_ver_t m;
+    int rc;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (PyBytes_CheckExact(data)) {
+        rc = ubx_mon_ver_decode((const uint8_t *)PyBytes_AS_STRING(data), (size_t)PyBytes_GET_SIZE(data), &m);
+    } else {
+        Py_buffer view;
+        int plain = acc_plain_bytes(data, &view);
+        if (plain <= 0) {  /* an error, or what Python reads otherwise: Python decides */
+            return plain < 0 ? NULL : PyObject_CallOneArg(st->G[17], data);
+        }
+        rc = ubx_mon_ver_decode((const uint8_t *)view.buf, (size_t)view.len, &m);
+        PyBuffer_Release(&view);
+    }
+    if (rc != CW_OK) {  /* the Python decoder says why */
+        return PyObject_CallOneArg(st->G[17], data);
+    }
+    return build_mon_ver(st, &m);
+}
+
 /* The direction code of a StreamDecoder's direction; 0: not one of the protocol's, or
  * not a str (the Python decoder reads a str subclass as no direction). */
 static int acc_direction(PyObject *direction, int *code)
@@ -518,6 +674,12 @@ static PyObject *run_frames(PyObject *self, PyObject *const *args, Py_ssize_t na
         case UBX_MSG_NAV_PVT:
             item = build_nav_pvt(st, &msg.as.nav_pvt);
             break;
+        case UBX_MSG_NAV_SAT:
+            item = build_nav_sat(st, &msg.as.nav_sat);
+            break;
+        case UBX_MSG_MON_VER:
+            item = build_mon_ver(st, &msg.as.mon_ver);
+            break;
         default:  /* a message decoded in Python */
             return PyLong_FromSsize_t(pos);
         }
@@ -550,6 +712,8 @@ static PyMethodDef decoders[] = {
     {"_decode_cfg_rate", decode_cfg_rate, METH_O, NULL},
     {"_decode_nav_posllh", decode_nav_posllh, METH_O, NULL},
     {"_decode_nav_pvt", decode_nav_pvt, METH_O, NULL},
+    {"_decode_nav_sat", decode_nav_sat, METH_O, NULL},
+    {"_decode_mon_ver", decode_mon_ver, METH_O, NULL},
     {"_run_frames", (PyCFunction)(void (*)(void))run_frames, METH_FASTCALL, NULL},
     {NULL, NULL, 0, NULL}
 };
@@ -567,10 +731,16 @@ static const char *const global_names[] = {
     "_decode_nav_posllh",
     "NavPvt",
     "_decode_nav_pvt",
+    "NavSat",
+    "NavSatSv",
+    "_decode_nav_sat",
+    "MonVer",
+    "MonVerExt",
+    "_decode_mon_ver",
 };
 
 /* The globals whose instances acc_new makes, and those read as dicts (indices into G). */
-static const unsigned int class_globals[] = { 0, 2, 4, 6, 8, 10, };
+static const unsigned int class_globals[] = { 0, 2, 4, 6, 8, 10, 12, 13, 15, 16, };
 
 /* -1 with TypeError unless every class global is one whose instances object.__new__ makes
  * (so acc_new may: a type, of object's layout and allocation) and every dict global a
@@ -647,6 +817,39 @@ static const char *const attribute_names[] = {
     "headVeh",
     "magDec",
     "magAcc",
+    "version",
+    "sv",
+    "gnssId",
+    "svId",
+    "cno",
+    "elev",
+    "azim",
+    "prRes",
+    "qualityInd",
+    "svUsed",
+    "health",
+    "diffCorr",
+    "smoothed",
+    "orbitSource",
+    "ephAvail",
+    "almAvail",
+    "anoAvail",
+    "aopAvail",
+    "reserved13",
+    "sbasCorrUsed",
+    "rtcmCorrUsed",
+    "slasCorrUsed",
+    "spartnCorrUsed",
+    "prCorrUsed",
+    "crCorrUsed",
+    "doCorrUsed",
+    "clasCorrUsed",
+    "lppCorrUsed",
+    "hasCorrUsed",
+    "swVersion",
+    "hwVersion",
+    "ext",
+    "extension",
 };
 
 static void acc_free(PyObject *capsule)

@@ -8,7 +8,10 @@
 from __future__ import annotations
 
 
+import importlib.machinery
+import importlib.util
 import math
+import os
 
 import struct
 from typing import Any, Callable, ClassVar, Optional, TypeVar, Union, cast
@@ -526,6 +529,39 @@ def _decode_udp(d: _Buffer) -> Udp:
     return o
 
 
+def _accelerator() -> Any:
+    """The compiled decoders `codeword accelerate` built for this module, or None to
+    decode in Python: none built, CODEWORD_PURE_PYTHON set, or built from another
+    version of the schema or of codeword."""
+    if os.environ.get("CODEWORD_PURE_PYTHON"):
+        return None
+    name = '_ipv4_accel'
+    origin = __spec__.origin if __spec__ is not None else None
+    if not origin or not os.path.isfile(origin):  # loaded from no file: no folder to look in
+        return None
+    # only from this module's own folder, never from elsewhere on sys.path
+    here = os.path.dirname(os.path.abspath(origin))
+    found = [path for path in (os.path.join(here, name + suffix) for suffix in importlib.machinery.EXTENSION_SUFFIXES)
+             if os.path.isfile(path)]
+    spec = importlib.util.spec_from_file_location(f"{__package__}.{name}" if __package__ else name, found[0]) \
+        if found else None
+    if spec is None or spec.loader is None:
+        return None
+    try:
+        module = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(module)
+    except ImportError:
+        return None
+    return module if getattr(module, "SOURCE", None) == 'c55ca11207e037a5' else None
+
+
+_run_frames: Optional[Callable[..., int]] = None  # the accelerator's stream loop, if it has one
+ACCELERATOR = _accelerator()
+"""The compiled accelerator in use, or None: every decoder is Python's."""
+if ACCELERATOR is not None:
+    globals().update(ACCELERATOR.bind(globals()))  # compiled decoders in place of Python's
+
+
 # each message's decoder is its class's decode: one call, not two
 setattr(IcmpEchoRequest, "decode", staticmethod(_decode_icmp_echo_request))
 setattr(Udp, "decode", staticmethod(_decode_udp))
@@ -596,6 +632,10 @@ class StreamDecoder:
         spans: list[tuple[int, int]] = []
         base, skipped, direction, resyncing = self.offset, 0, self.direction, self._resyncing
         while True:
+            if _run_frames is not None:  # the compiled accelerator decodes the frames that need no Python
+                moved = _run_frames(buf, pos, direction, out, spans, base)
+                if moved != pos:
+                    pos, resyncing = moved, False
             if end - pos < 4:
                 break
             size = int.from_bytes(buf[pos + 2:pos + 4], 'big') + 0
