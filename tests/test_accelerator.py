@@ -21,6 +21,7 @@ import test_rest_of_payload as rest
 
 from codeword import accelerate as accel
 from codeword.build import compile_schema
+from codeword.targets.accelerator.encode import encodable
 from codeword.targets.accelerator.scope import servable
 from fuzz.schema.accelerated import buffer_difference, damaged, difference, load, stream_state_difference
 
@@ -71,8 +72,12 @@ def test_accelerated_decoding_is_pure_pythons(built, group, schema):
         assert not hasattr(fast, "ACCELERATOR")
         return
     assert fast.ACCELERATOR is not None, f"{p.name}: the accelerator built in {folder} was not used"
+    encoded = {m.name for m in p.messages if encodable(p, m)}
+    assert fast.ACCELERATOR.DECODES == set(served) and fast.ACCELERATOR.ENCODES == encoded
     for name in served:
         assert type(getattr(fast, f"_decode_{name}")).__name__ == "builtin_function_or_method"
+    for name in encoded:
+        assert type(getattr(fast, f"_encode_{name}")).__name__ == "builtin_function_or_method"
     vectors = json.loads((out / "vectors" / f"{p.name}.json").read_text(encoding="utf-8"))
     valid = [bytes.fromhex(case["hex"]) for case in vectors["valid"]]
     # the vectors' frames back to back, with garbage, a damaged frame and a cut one between them

@@ -164,6 +164,63 @@ def stream_state_difference(fast, pure, data: bytes, directions: Iterable[str]) 
     return ""
 
 
+class _Int(int):
+    """An int subclass: no value Python's usual path reads without a conversion."""
+
+
+class _Float(float):
+    pass
+
+
+_OBJECT = object()  # one object for both modules: errors show its repr
+
+
+def hostile_values(value: Any) -> list[Any]:
+    """Values to put in place of a message's `value`: of each class a caller may pass, at
+    and past every width's limits, and the value itself a little changed."""
+    out: list[Any] = [None, True, False, 0, 1, -1, 127, 128, 255, 256, 65535, 65536, 2 ** 31, 2 ** 32, 2 ** 63 - 1,
+                      2 ** 63, 2 ** 64 - 1, 2 ** 64, -2 ** 63, -2 ** 63 - 1, 0.0, -0.0, 0.5, 1.0, -1.5, 1e300,
+                      float("nan"), float("inf"), 3.4028235677973366e38, "x", b"", b"\x00", [], (), _OBJECT,
+                      _Int(1), _Float(1.0)]
+    if isinstance(value, bool) or value is None:
+        return out
+    if isinstance(value, int):
+        out += [value + 1, value - 1, float(value), _Int(value), value * 2 + 1, -value]
+    elif isinstance(value, float):
+        out += [value * (1 + 2 ** -52), -value, value + 0.005, value - 0.005, _Float(value)]
+        out += [int(value)] if value == value and abs(value) != float("inf") else []
+    elif isinstance(value, bytes):
+        out += [value + b"\x00", value[:-1], bytearray(value), value.decode("latin-1")]
+    elif isinstance(value, list):
+        out += [tuple(value), value + value[-1:], value[:-1]] + [[x] + value[1:] for x in (None, 1.5, -1, "x", 2 ** 64)]
+    return out
+
+
+def encode_difference(fast, pure, frames: Iterable[bytes]) -> str:
+    """How the two modules' encoders differ on the messages of `frames` (decoded by each),
+    as they are and with each value in turn replaced (hostile_values); "" if they agree."""
+    for frame in frames:
+        try:
+            a, b = fast.decode(frame), pure.decode(frame)
+        except Exception:  # noqa: BLE001 - only messages are encoded
+            continue
+        for name in [None] + list(type(b)._NAMES):
+            # each module's own value (an enum member of its own class), then the same changes to it
+            pairs = list(zip(*[[getattr(x, name)] + hostile_values(getattr(x, name)) for x in (a, b)])) if name else [(0, 0)]
+            for value_a, value in pairs:
+                if name is not None:
+                    a, b = fast.decode(frame), pure.decode(frame)
+                    setattr(a, name, value_a)
+                    setattr(b, name, value)
+                for call in ("module", "method"):
+                    got = outcome(fast.encode if call == "module" else type(a).encode, a)
+                    expected = outcome(pure.encode if call == "module" else type(b).encode, b)
+                    if got != expected:
+                        return f"{type(b).__name__}.{name} = {value!r} ({call} encode of {frame.hex()}): " \
+                               f"accelerated {got}, pure Python {expected}"
+    return ""
+
+
 def damaged(frame: bytes) -> list[bytes]:
     """The frame with one bit flipped in each byte (in at most 256 bytes spread over a
     longer frame), cut short by one, and one longer."""
@@ -184,6 +241,9 @@ def difference(fast, pure, vectors: dict, streams: Iterable[bytes] = ()) -> tupl
                 return f"{case['name']}: {problem}", compared
             compared += 1
     firsts = {case.get("message"): bytes.fromhex(case["hex"]) for case in reversed(vectors["valid"])}
+    problem = encode_difference(fast, pure, firsts.values())
+    if problem:
+        return problem, compared
     for message, frame in firsts.items():  # one frame of each message, as every kind of object
         problem = buffer_difference(fast, pure, frame, message)
         if problem:

@@ -12,6 +12,8 @@
 #include <Python.h>
 #include <structmember.h>
 #include <float.h>
+#include <math.h>
+#include <string.h>
 
 #if FLT_EVAL_METHOD != 0  /* scaled values are computed in double, rounded as Python rounds them */
 #error "the accelerator needs double arithmetic without excess precision (on x86: SSE2)"
@@ -29,7 +31,7 @@ const char cw_accel_build[] = "codeword-accelerator-build:" CW_ACCEL_BUILD;
  * tables, the Python decoders), attribute names, numeric constants and where its
  * classes keep each attribute. Each bind() makes one, held by its functions. */
 typedef struct {
-    PyObject *G[8];
+    PyObject *G[11];
     PyObject *A[12];
     Py_ssize_t S[23];  /* offset of the slot in the instance; 0: set through setattr */
 } acc_state;
@@ -127,6 +129,33 @@ static inline PyObject *acc_lookup(PyObject *table, PyObject *key)
     PyObject *value = PyObject_GetItem(table, key);
     Py_DECREF(key);
     return value;
+}
+
+/* obj's attribute `slot`, borrowed from the instance's slot; NULL when it is unset or
+ * the class keeps it otherwise (Python then reads it). */
+static inline PyObject *acc_slot(const acc_state *st, PyObject *obj, int slot)
+{
+    return st->S[slot] > 0 ? *(PyObject **)(void *)((char *)obj + st->S[slot]) : NULL;
+}
+
+/* 1 with *out set when v is an int (exactly, or of class `also`) in lo..hi; 0 otherwise,
+ * with no error set. */
+static inline int acc_int(PyObject *v, PyObject *also, long long lo, long long hi, long long *out)
+{
+    int overflow;
+    if (!PyLong_CheckExact(v) && (also == NULL || Py_TYPE(v) != (PyTypeObject *)also)) {
+        return 0;
+    }
+    long long x = PyLong_AsLongLongAndOverflow(v, &overflow);
+    if (overflow || (x == -1 && PyErr_Occurred())) {
+        PyErr_Clear();
+        return 0;
+    }
+    if (x < lo || x > hi) {
+        return 0;
+    }
+    *out = x;
+    return 1;
 }
 
 static PyObject *build_master_control(const acc_state *st, const car_master_control_t *m)
@@ -241,9 +270,96 @@ static PyObject *decode_slave_control(PyObject *self, PyObject *data)
     return build_slave_control(st, &m);
 }
 
-static PyMethodDef decoders[] = {
+/* A slave_control object in its wire form, as _encode_slave_control writes it. */
+static PyObject *encode_slave_control(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    car_slave_control_t m;
+    uint8_t buf[CAR_SLAVE_CONTROL_SIZE];
+    long long i;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[6]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v1 = acc_slot(st, obj, 16);
+    if (v1 == NULL) goto python;
+    if (v1 != Py_True && v1 != Py_False) goto python;
+    m.accept_ir = v1 == Py_True;
+    PyObject *v2 = acc_slot(st, obj, 17);
+    if (v2 == NULL) goto python;
+    if (v2 != Py_True && v2 != Py_False) goto python;
+    m.forward_words = v2 == Py_True;
+    PyObject *v3 = acc_slot(st, obj, 18);
+    if (v3 == NULL) goto python;
+    if (Py_TYPE(v3) != (PyTypeObject *)st->G[1]) goto python;
+    PyObject *v4 = acc_slot(st, v3, 3);
+    if (v4 == NULL) goto python;
+    if (v4 != Py_True && v4 != Py_False) goto python;
+    m.motor.enable = v4 == Py_True;
+    PyObject *v5 = acc_slot(st, v3, 4);
+    if (v5 == NULL) goto python;
+    if (!PyLong_CheckExact(v5) && Py_TYPE(v5) != (PyTypeObject *)st->G[8]) goto python;
+    PyObject *r6 = PyDict_GetItemWithError(st->G[9], v5);
+    if (r6 == NULL || !acc_int(r6, NULL, 0LL, 3LL, &i)) goto python;
+    m.motor.direction = (uint8_t)i;
+    PyObject *v7 = acc_slot(st, v3, 5);
+    if (v7 == NULL) goto python;
+    if (!acc_int(v7, NULL, 0LL, 3LL, &i)) goto python;
+    m.motor.speed = (uint8_t)i;
+    PyObject *v8 = acc_slot(st, v3, 6);
+    if (v8 == NULL) goto python;
+    if (!acc_int(v8, NULL, 0LL, 3LL, &i)) goto python;
+    m.motor.duration = (uint8_t)i;
+    PyObject *v9 = acc_slot(st, obj, 19);
+    if (v9 == NULL) goto python;
+    if (Py_TYPE(v9) != (PyTypeObject *)st->G[3]) goto python;
+    PyObject *v10 = acc_slot(st, v9, 8);
+    if (v10 == NULL) goto python;
+    if (!acc_int(v10, NULL, 0LL, 3LL, &i)) goto python;
+    m.led.led = (uint8_t)i;
+    PyObject *v11 = acc_slot(st, v9, 9);
+    if (v11 == NULL) goto python;
+    if (!acc_int(v11, NULL, 0LL, 3LL, &i)) goto python;
+    m.led.duration = (uint8_t)i;
+    PyObject *v12 = acc_slot(st, obj, 20);
+    if (v12 == NULL) goto python;
+    if (Py_TYPE(v12) != (PyTypeObject *)st->G[4]) goto python;
+    PyObject *v13 = acc_slot(st, v12, 11);
+    if (v13 == NULL) goto python;
+    if (v13 != Py_True && v13 != Py_False) goto python;
+    m.ultrasonic.enable = v13 == Py_True;
+    PyObject *v14 = acc_slot(st, v12, 12);
+    if (v14 == NULL) goto python;
+    if (!acc_int(v14, NULL, 0LL, 3LL, &i)) goto python;
+    m.ultrasonic.radius = (uint8_t)i;
+    PyObject *v15 = acc_slot(st, v12, 13);
+    if (v15 == NULL) goto python;
+    if (!acc_int(v15, NULL, 0LL, 3LL, &i)) goto python;
+    m.ultrasonic.duration = (uint8_t)i;
+    PyObject *v16 = acc_slot(st, obj, 21);
+    if (v16 == NULL) goto python;
+    if (v16 != Py_True && v16 != Py_False) goto python;
+    m.voice = v16 == Py_True;
+    PyObject *v17 = acc_slot(st, obj, 22);
+    if (v17 == NULL) goto python;
+    if (v17 != Py_True && v17 != Py_False) goto python;
+    m.body_sensor = v17 == Py_True;
+    n = car_slave_control_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[10], obj);
+}
+
+static PyMethodDef compiled[] = {
     {"_decode_master_control", decode_master_control, METH_O, NULL},
     {"_decode_slave_control", decode_slave_control, METH_O, NULL},
+    {"_encode_slave_control", encode_slave_control, METH_O, NULL},
     {NULL, NULL, 0, NULL}
 };
 
@@ -256,10 +372,14 @@ static const char *const global_names[] = {
     "_decode_master_control",
     "SlaveControl",
     "_decode_slave_control",
+    "MotorDirection",
+    "_RAW_motor_direction",
+    "_encode_slave_control",
 };
 
 /* The globals whose instances acc_new makes, and those read as dicts (indices into G). */
 static const unsigned int class_globals[] = { 0, 1, 3, 4, 6, };
+static const unsigned int dict_globals[] = { 9, };
 
 /* -1 with TypeError unless every class global is one whose instances object.__new__ makes
  * (so acc_new may: a type, of object's layout and allocation) and every dict global a
@@ -280,6 +400,12 @@ static int acc_check(const acc_state *st)
         Py_DECREF(made);
     }
     Py_DECREF(object_new);
+    for (size_t i = 0; i < sizeof dict_globals / sizeof dict_globals[0]; i++) {
+        if (!PyDict_Check(st->G[dict_globals[i]])) {
+            PyErr_Format(PyExc_TypeError, "bind(): %s is not a dict of the %s module", global_names[dict_globals[i]], ACC_MODULE);
+            return -1;
+        }
+    }
     return 0;
 }
 
@@ -353,8 +479,8 @@ static int acc_fill(acc_state *st, PyObject *module_globals)
     return 0;
 }
 
-/* bind(module_globals) -> {name: decoder}: the decoders for one copy of the module,
- * each in place of the Python function of the same name. */
+/* bind(module_globals) -> {name: decoder or encoder}: the compiled functions for one copy
+ * of the module, each in place of the Python function of the same name. */
 static PyObject *bind(PyObject *self, PyObject *module_globals)
 {
     (void)self;
@@ -372,7 +498,7 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
         return NULL;
     }
     PyObject *out = acc_fill(st, module_globals) < 0 ? NULL : PyDict_New();
-    for (PyMethodDef *def = decoders; out != NULL && def->ml_name != NULL; def++) {
+    for (PyMethodDef *def = compiled; out != NULL && def->ml_name != NULL; def++) {
         PyObject *fn = PyCFunction_New(def, capsule);
         if (fn == NULL || PyDict_SetItemString(out, def->ml_name, fn) < 0) {
             Py_CLEAR(out);
@@ -383,8 +509,17 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
     return out;
 }
 
+/* method(fn) -> fn bound to the object it is read from, as a Python function is: a
+ * compiled encoder as its class's encode method. */
+static PyObject *method(PyObject *self, PyObject *fn)
+{
+    (void)self;
+    return PyInstanceMethod_New(fn);
+}
+
 static PyMethodDef methods[] = {
-    {"bind", bind, METH_O, "bind(module_globals) -> {name: decoder}"},
+    {"bind", bind, METH_O, "bind(module_globals) -> {name: decoder or encoder}"},
+    {"method", method, METH_O, "method(fn) -> fn as a method"},
     {NULL, NULL, 0, NULL}
 };
 
@@ -393,10 +528,34 @@ static struct PyModuleDef module = {
     NULL, NULL, NULL, NULL
 };
 
+/* The messages decoded and encoded in C: the module's DECODES and ENCODES. */
+static const char *const decodes[] = { "master_control", "slave_control", NULL };
+static const char *const encodes[] = { "slave_control", NULL };
+
+static PyObject *acc_names(const char *const *names)
+{
+    PyObject *out = PyList_New(0);
+    for (; out != NULL && *names != NULL; names++) {
+        PyObject *name = PyUnicode_FromString(*names);
+        if (name == NULL || PyList_Append(out, name) < 0) {
+            Py_CLEAR(out);
+        }
+        Py_XDECREF(name);
+    }
+    if (out == NULL) {
+        return NULL;
+    }
+    PyObject *frozen = PyFrozenSet_New(out);
+    Py_DECREF(out);
+    return frozen;
+}
+
 PyMODINIT_FUNC PyInit__car_accel(void)
 {
     PyObject *mod = PyModule_Create(&module);
-    if (mod != NULL && PyModule_AddStringConstant(mod, "SOURCE", "e84da7b18f17c10d") < 0) {
+    if (mod != NULL && (PyModule_AddStringConstant(mod, "SOURCE", "e84da7b18f17c10d") < 0
+                        || PyModule_AddObject(mod, "DECODES", acc_names(decodes)) < 0
+                        || PyModule_AddObject(mod, "ENCODES", acc_names(encodes)) < 0)) {
         Py_CLEAR(mod);
     }
     return mod;

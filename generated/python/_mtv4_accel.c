@@ -12,6 +12,8 @@
 #include <Python.h>
 #include <structmember.h>
 #include <float.h>
+#include <math.h>
+#include <string.h>
 
 #if FLT_EVAL_METHOD != 0  /* scaled values are computed in double, rounded as Python rounds them */
 #error "the accelerator needs double arithmetic without excess precision (on x86: SSE2)"
@@ -29,7 +31,7 @@ const char cw_accel_build[] = "codeword-accelerator-build:" CW_ACCEL_BUILD;
  * tables, the Python decoders), attribute names, numeric constants and where its
  * classes keep each attribute. Each bind() makes one, held by its functions. */
 typedef struct {
-    PyObject *G[12];
+    PyObject *G[19];
     PyObject *A[14];
     Py_ssize_t S[32];  /* offset of the slot in the instance; 0: set through setattr */
 } acc_state;
@@ -136,6 +138,47 @@ static inline PyObject *acc_lookup(PyObject *table, PyObject *key)
     PyObject *value = PyObject_GetItem(table, key);
     Py_DECREF(key);
     return value;
+}
+
+/* obj's attribute `slot`, borrowed from the instance's slot; NULL when it is unset or
+ * the class keeps it otherwise (Python then reads it). */
+static inline PyObject *acc_slot(const acc_state *st, PyObject *obj, int slot)
+{
+    return st->S[slot] > 0 ? *(PyObject **)(void *)((char *)obj + st->S[slot]) : NULL;
+}
+
+/* 1 with *out set when v is an int (exactly, or of class `also`) in lo..hi; 0 otherwise,
+ * with no error set. */
+static inline int acc_int(PyObject *v, PyObject *also, long long lo, long long hi, long long *out)
+{
+    int overflow;
+    if (!PyLong_CheckExact(v) && (also == NULL || Py_TYPE(v) != (PyTypeObject *)also)) {
+        return 0;
+    }
+    long long x = PyLong_AsLongLongAndOverflow(v, &overflow);
+    if (overflow || (x == -1 && PyErr_Occurred())) {
+        PyErr_Clear();
+        return 0;
+    }
+    if (x < lo || x > hi) {
+        return 0;
+    }
+    *out = x;
+    return 1;
+}
+
+/* 1 with *out set when v is a float (exactly) in lo..hi (NaN is not); 0 otherwise. */
+static inline int acc_float(PyObject *v, double lo, double hi, double *out)
+{
+    if (!PyFloat_CheckExact(v)) {
+        return 0;
+    }
+    double x = PyFloat_AS_DOUBLE(v);
+    if (!(x >= lo && x <= hi)) {
+        return 0;
+    }
+    *out = x;
+    return 1;
 }
 
 static PyObject *build_set_wheels_velocities(const acc_state *st, const mtv4_set_wheels_velocities_t *m)
@@ -355,6 +398,266 @@ static PyObject *decode_odometry_reply(PyObject *self, PyObject *data)
     return build_odometry_reply(st, &m);
 }
 
+/* A set_wheels_velocities object in its wire form, as _encode_set_wheels_velocities writes it. */
+static PyObject *encode_set_wheels_velocities(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    mtv4_set_wheels_velocities_t m;
+    uint8_t buf[MTV4_SET_WHEELS_VELOCITIES_SIZE];
+    double d;
+    long long i;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[0]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v1 = acc_slot(st, obj, 0);
+    if (v1 == NULL) goto python;
+    if (!acc_int(v1, NULL, 0LL, 15LL, &i)) goto python;
+    m.group = (uint8_t)i;
+    PyObject *v2 = acc_slot(st, obj, 1);
+    if (v2 == NULL) goto python;
+    if (!acc_int(v2, NULL, 0LL, 1LL, &i)) goto python;
+    m.radio_crc_flag = (uint8_t)i;
+    PyObject *v3 = acc_slot(st, obj, 2);
+    if (v3 == NULL) goto python;
+    if (!acc_int(v3, st->G[12], 0, 65535LL, &i) || (i & ~65535LL)) goto python;
+    if (i == 0 || (i & (i - 1))) goto python;
+    m.robots = (uint16_t)i;
+    PyObject *v4 = acc_slot(st, obj, 3);
+    if (v4 == NULL) goto python;
+    if (!acc_float(v4, -4096.0, 4095.875, &d)) goto python;
+    d = floor((d) / 0.125 + 0.5);
+    if (!(d >= -32768.0 && d <= 32767.0)) goto python;
+    m.vl = (int16_t)d;
+    PyObject *v5 = acc_slot(st, obj, 4);
+    if (v5 == NULL) goto python;
+    if (!acc_float(v5, -4096.0, 4095.875, &d)) goto python;
+    d = floor((d) / 0.125 + 0.5);
+    if (!(d >= -32768.0 && d <= 32767.0)) goto python;
+    m.vr = (int16_t)d;
+    n = mtv4_set_wheels_velocities_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[13], obj);
+}
+
+/* A set_led object in its wire form, as _encode_set_led writes it. */
+static PyObject *encode_set_led(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    mtv4_set_led_t m;
+    uint8_t buf[MTV4_SET_LED_SIZE];
+    long long i;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[3]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v6 = acc_slot(st, obj, 5);
+    if (v6 == NULL) goto python;
+    if (!acc_int(v6, NULL, 0LL, 15LL, &i)) goto python;
+    m.group = (uint8_t)i;
+    PyObject *v7 = acc_slot(st, obj, 6);
+    if (v7 == NULL) goto python;
+    if (!acc_int(v7, NULL, 0LL, 1LL, &i)) goto python;
+    m.radio_crc_flag = (uint8_t)i;
+    PyObject *v8 = acc_slot(st, obj, 7);
+    if (v8 == NULL) goto python;
+    if (!acc_int(v8, st->G[12], 0, 65535LL, &i) || (i & ~65535LL)) goto python;
+    if (i == 0 || (i & (i - 1))) goto python;
+    m.robots = (uint16_t)i;
+    PyObject *v9 = acc_slot(st, obj, 8);
+    if (v9 == NULL) goto python;
+    if (!acc_int(v9, NULL, 0LL, 255LL, &i)) goto python;
+    m.d1 = (uint8_t)i;
+    PyObject *v10 = acc_slot(st, obj, 9);
+    if (v10 == NULL) goto python;
+    if (!acc_int(v10, NULL, 0LL, 255LL, &i)) goto python;
+    m.d2 = (uint8_t)i;
+    PyObject *v11 = acc_slot(st, obj, 10);
+    if (v11 == NULL) goto python;
+    if (!acc_int(v11, NULL, 0LL, 255LL, &i)) goto python;
+    m.d3 = (uint8_t)i;
+    PyObject *v12 = acc_slot(st, obj, 11);
+    if (v12 == NULL) goto python;
+    if (!acc_int(v12, NULL, 0LL, 255LL, &i)) goto python;
+    m.d4 = (uint8_t)i;
+    n = mtv4_set_led_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[14], obj);
+}
+
+/* A set_wheels_velocities_with_odometry object in its wire form, as _encode_set_wheels_velocities_with_odometry writes it. */
+static PyObject *encode_set_wheels_velocities_with_odometry(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    mtv4_set_wheels_velocities_with_odometry_t m;
+    uint8_t buf[MTV4_SET_WHEELS_VELOCITIES_WITH_ODOMETRY_SIZE];
+    double d;
+    long long i;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[5]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v13 = acc_slot(st, obj, 12);
+    if (v13 == NULL) goto python;
+    if (!acc_int(v13, NULL, 0LL, 15LL, &i)) goto python;
+    m.group = (uint8_t)i;
+    PyObject *v14 = acc_slot(st, obj, 13);
+    if (v14 == NULL) goto python;
+    if (!acc_int(v14, NULL, 0LL, 1LL, &i)) goto python;
+    m.radio_crc_flag = (uint8_t)i;
+    PyObject *v15 = acc_slot(st, obj, 14);
+    if (v15 == NULL) goto python;
+    if (!acc_int(v15, st->G[12], 0, 65535LL, &i) || (i & ~65535LL)) goto python;
+    if (i == 0 || (i & (i - 1))) goto python;
+    m.robots = (uint16_t)i;
+    PyObject *v16 = acc_slot(st, obj, 15);
+    if (v16 == NULL) goto python;
+    if (!acc_int(v16, st->G[15], 0, 7LL, &i) || (i & ~7LL)) goto python;
+    m.status = (uint16_t)i;
+    PyObject *v17 = acc_slot(st, obj, 16);
+    if (v17 == NULL) goto python;
+    if (!acc_float(v17, -4096.0, 4095.875, &d)) goto python;
+    d = floor((d) / 0.125 + 0.5);
+    if (!(d >= -32768.0 && d <= 32767.0)) goto python;
+    m.vl = (int16_t)d;
+    PyObject *v18 = acc_slot(st, obj, 17);
+    if (v18 == NULL) goto python;
+    if (!acc_float(v18, -4096.0, 4095.875, &d)) goto python;
+    d = floor((d) / 0.125 + 0.5);
+    if (!(d >= -32768.0 && d <= 32767.0)) goto python;
+    m.vr = (int16_t)d;
+    PyObject *v19 = acc_slot(st, obj, 18);
+    if (v19 == NULL) goto python;
+    if (!acc_float(v19, -3.4028234663852886e38, 3.4028234663852886e38, &d)) goto python;
+    m.x = (float)d;
+    PyObject *v20 = acc_slot(st, obj, 19);
+    if (v20 == NULL) goto python;
+    if (!acc_float(v20, -3.4028234663852886e38, 3.4028234663852886e38, &d)) goto python;
+    m.y = (float)d;
+    PyObject *v21 = acc_slot(st, obj, 20);
+    if (v21 == NULL) goto python;
+    if (!acc_float(v21, -3.4028234663852886e38, 3.4028234663852886e38, &d)) goto python;
+    m.th = (float)d;
+    n = mtv4_set_wheels_velocities_with_odometry_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[16], obj);
+}
+
+/* A ack object in its wire form, as _encode_ack writes it. */
+static PyObject *encode_ack(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    mtv4_ack_t m;
+    uint8_t buf[MTV4_ACK_SIZE];
+    long long i;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[8]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v22 = acc_slot(st, obj, 21);
+    if (v22 == NULL) goto python;
+    if (!acc_int(v22, NULL, 0LL, 15LL, &i)) goto python;
+    m.group = (uint8_t)i;
+    PyObject *v23 = acc_slot(st, obj, 22);
+    if (v23 == NULL) goto python;
+    if (!acc_int(v23, NULL, 0LL, 1LL, &i)) goto python;
+    m.radio_crc_flag = (uint8_t)i;
+    PyObject *v24 = acc_slot(st, obj, 23);
+    if (v24 == NULL) goto python;
+    if (!acc_int(v24, NULL, 0LL, 127LL, &i)) goto python;
+    if (i != 1LL && i != 2LL) goto python;
+    m.command = (uint8_t)i;
+    PyObject *v25 = acc_slot(st, obj, 24);
+    if (v25 == NULL) goto python;
+    if (!acc_int(v25, st->G[12], 0, 65535LL, &i) || (i & ~65535LL)) goto python;
+    if (i == 0 || (i & (i - 1))) goto python;
+    m.robots = (uint16_t)i;
+    n = mtv4_ack_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[17], obj);
+}
+
+/* A odometry_reply object in its wire form, as _encode_odometry_reply writes it. */
+static PyObject *encode_odometry_reply(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    mtv4_odometry_reply_t m;
+    uint8_t buf[MTV4_ODOMETRY_REPLY_SIZE];
+    double d;
+    long long i;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[10]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v26 = acc_slot(st, obj, 25);
+    if (v26 == NULL) goto python;
+    if (!acc_int(v26, NULL, 0LL, 15LL, &i)) goto python;
+    m.group = (uint8_t)i;
+    PyObject *v27 = acc_slot(st, obj, 26);
+    if (v27 == NULL) goto python;
+    if (!acc_int(v27, NULL, 0LL, 1LL, &i)) goto python;
+    m.radio_crc_flag = (uint8_t)i;
+    PyObject *v28 = acc_slot(st, obj, 27);
+    if (v28 == NULL) goto python;
+    if (!acc_int(v28, st->G[12], 0, 65535LL, &i) || (i & ~65535LL)) goto python;
+    if (i == 0 || (i & (i - 1))) goto python;
+    m.robots = (uint16_t)i;
+    PyObject *v29 = acc_slot(st, obj, 28);
+    if (v29 == NULL) goto python;
+    if (!acc_int(v29, NULL, 0LL, 65535LL, &i)) goto python;
+    m.status = (uint16_t)i;
+    PyObject *v30 = acc_slot(st, obj, 29);
+    if (v30 == NULL) goto python;
+    if (!acc_float(v30, -3.4028234663852886e38, 3.4028234663852886e38, &d)) goto python;
+    m.x = (float)d;
+    PyObject *v31 = acc_slot(st, obj, 30);
+    if (v31 == NULL) goto python;
+    if (!acc_float(v31, -3.4028234663852886e38, 3.4028234663852886e38, &d)) goto python;
+    m.y = (float)d;
+    PyObject *v32 = acc_slot(st, obj, 31);
+    if (v32 == NULL) goto python;
+    if (!acc_float(v32, -3.4028234663852886e38, 3.4028234663852886e38, &d)) goto python;
+    m.th = (float)d;
+    n = mtv4_odometry_reply_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[18], obj);
+}
+
 /* The direction code of a StreamDecoder's direction; 0: not one of the protocol's, or
  * not a str (the Python decoder reads a str subclass as no direction). */
 static int acc_direction(PyObject *direction, int *code)
@@ -470,12 +773,17 @@ static PyObject *run_frames(PyObject *self, PyObject *const *args, Py_ssize_t na
     return PyLong_FromSsize_t(pos);
 }
 
-static PyMethodDef decoders[] = {
+static PyMethodDef compiled[] = {
     {"_decode_set_wheels_velocities", decode_set_wheels_velocities, METH_O, NULL},
     {"_decode_set_led", decode_set_led, METH_O, NULL},
     {"_decode_set_wheels_velocities_with_odometry", decode_set_wheels_velocities_with_odometry, METH_O, NULL},
     {"_decode_ack", decode_ack, METH_O, NULL},
     {"_decode_odometry_reply", decode_odometry_reply, METH_O, NULL},
+    {"_encode_set_wheels_velocities", encode_set_wheels_velocities, METH_O, NULL},
+    {"_encode_set_led", encode_set_led, METH_O, NULL},
+    {"_encode_set_wheels_velocities_with_odometry", encode_set_wheels_velocities_with_odometry, METH_O, NULL},
+    {"_encode_ack", encode_ack, METH_O, NULL},
+    {"_encode_odometry_reply", encode_odometry_reply, METH_O, NULL},
     {"_run_frames", (PyCFunction)(void (*)(void))run_frames, METH_FASTCALL, NULL},
     {NULL, NULL, 0, NULL}
 };
@@ -493,6 +801,13 @@ static const char *const global_names[] = {
     "_decode_ack",
     "OdometryReply",
     "_decode_odometry_reply",
+    "Robots",
+    "_encode_set_wheels_velocities",
+    "_encode_set_led",
+    "Status",
+    "_encode_set_wheels_velocities_with_odometry",
+    "_encode_ack",
+    "_encode_odometry_reply",
 };
 
 /* The globals whose instances acc_new makes, and those read as dicts (indices into G). */
@@ -592,8 +907,8 @@ static int acc_fill(acc_state *st, PyObject *module_globals)
     return 0;
 }
 
-/* bind(module_globals) -> {name: decoder}: the decoders for one copy of the module,
- * each in place of the Python function of the same name. */
+/* bind(module_globals) -> {name: decoder or encoder}: the compiled functions for one copy
+ * of the module, each in place of the Python function of the same name. */
 static PyObject *bind(PyObject *self, PyObject *module_globals)
 {
     (void)self;
@@ -611,7 +926,7 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
         return NULL;
     }
     PyObject *out = acc_fill(st, module_globals) < 0 ? NULL : PyDict_New();
-    for (PyMethodDef *def = decoders; out != NULL && def->ml_name != NULL; def++) {
+    for (PyMethodDef *def = compiled; out != NULL && def->ml_name != NULL; def++) {
         PyObject *fn = PyCFunction_New(def, capsule);
         if (fn == NULL || PyDict_SetItemString(out, def->ml_name, fn) < 0) {
             Py_CLEAR(out);
@@ -622,8 +937,17 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
     return out;
 }
 
+/* method(fn) -> fn bound to the object it is read from, as a Python function is: a
+ * compiled encoder as its class's encode method. */
+static PyObject *method(PyObject *self, PyObject *fn)
+{
+    (void)self;
+    return PyInstanceMethod_New(fn);
+}
+
 static PyMethodDef methods[] = {
-    {"bind", bind, METH_O, "bind(module_globals) -> {name: decoder}"},
+    {"bind", bind, METH_O, "bind(module_globals) -> {name: decoder or encoder}"},
+    {"method", method, METH_O, "method(fn) -> fn as a method"},
     {NULL, NULL, 0, NULL}
 };
 
@@ -632,10 +956,34 @@ static struct PyModuleDef module = {
     NULL, NULL, NULL, NULL
 };
 
+/* The messages decoded and encoded in C: the module's DECODES and ENCODES. */
+static const char *const decodes[] = { "set_wheels_velocities", "set_led", "set_wheels_velocities_with_odometry", "ack", "odometry_reply", NULL };
+static const char *const encodes[] = { "set_wheels_velocities", "set_led", "set_wheels_velocities_with_odometry", "ack", "odometry_reply", NULL };
+
+static PyObject *acc_names(const char *const *names)
+{
+    PyObject *out = PyList_New(0);
+    for (; out != NULL && *names != NULL; names++) {
+        PyObject *name = PyUnicode_FromString(*names);
+        if (name == NULL || PyList_Append(out, name) < 0) {
+            Py_CLEAR(out);
+        }
+        Py_XDECREF(name);
+    }
+    if (out == NULL) {
+        return NULL;
+    }
+    PyObject *frozen = PyFrozenSet_New(out);
+    Py_DECREF(out);
+    return frozen;
+}
+
 PyMODINIT_FUNC PyInit__mtv4_accel(void)
 {
     PyObject *mod = PyModule_Create(&module);
-    if (mod != NULL && PyModule_AddStringConstant(mod, "SOURCE", "8188e7c4ae011ba6") < 0) {
+    if (mod != NULL && (PyModule_AddStringConstant(mod, "SOURCE", "8188e7c4ae011ba6") < 0
+                        || PyModule_AddObject(mod, "DECODES", acc_names(decodes)) < 0
+                        || PyModule_AddObject(mod, "ENCODES", acc_names(encodes)) < 0)) {
         Py_CLEAR(mod);
     }
     return mod;

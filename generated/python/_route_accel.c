@@ -12,6 +12,8 @@
 #include <Python.h>
 #include <structmember.h>
 #include <float.h>
+#include <math.h>
+#include <string.h>
 
 #if FLT_EVAL_METHOD != 0  /* scaled values are computed in double, rounded as Python rounds them */
 #error "the accelerator needs double arithmetic without excess precision (on x86: SSE2)"
@@ -29,7 +31,7 @@ const char cw_accel_build[] = "codeword-accelerator-build:" CW_ACCEL_BUILD;
  * tables, the Python decoders), attribute names, numeric constants and where its
  * classes keep each attribute. Each bind() makes one, held by its functions. */
 typedef struct {
-    PyObject *G[9];
+    PyObject *G[15];
     PyObject *A[10];
     Py_ssize_t S[12];  /* offset of the slot in the instance; 0: set through setattr */
 } acc_state;
@@ -116,6 +118,33 @@ static inline PyObject *acc_lookup(PyObject *table, PyObject *key)
     PyObject *value = PyObject_GetItem(table, key);
     Py_DECREF(key);
     return value;
+}
+
+/* obj's attribute `slot`, borrowed from the instance's slot; NULL when it is unset or
+ * the class keeps it otherwise (Python then reads it). */
+static inline PyObject *acc_slot(const acc_state *st, PyObject *obj, int slot)
+{
+    return st->S[slot] > 0 ? *(PyObject **)(void *)((char *)obj + st->S[slot]) : NULL;
+}
+
+/* 1 with *out set when v is an int (exactly, or of class `also`) in lo..hi; 0 otherwise,
+ * with no error set. */
+static inline int acc_int(PyObject *v, PyObject *also, long long lo, long long hi, long long *out)
+{
+    int overflow;
+    if (!PyLong_CheckExact(v) && (also == NULL || Py_TYPE(v) != (PyTypeObject *)also)) {
+        return 0;
+    }
+    long long x = PyLong_AsLongLongAndOverflow(v, &overflow);
+    if (overflow || (x == -1 && PyErr_Occurred())) {
+        PyErr_Clear();
+        return 0;
+    }
+    if (x < lo || x > hi) {
+        return 0;
+    }
+    *out = x;
+    return 1;
 }
 
 static PyObject *build_start(const acc_state *st, const route_start_t *m)
@@ -266,11 +295,157 @@ static PyObject *decode_end(PyObject *self, PyObject *data)
     return build_end(st, &m);
 }
 
-static PyMethodDef decoders[] = {
+/* A start object in its wire form, as _encode_start writes it. */
+static PyObject *encode_start(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    route_start_t m;
+    uint8_t buf[ROUTE_START_SIZE];
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[0]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+
+    n = route_start_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[9], obj);
+}
+
+/* A object object in its wire form, as _encode_object writes it. */
+static PyObject *encode_object(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    route_object_t m;
+    uint8_t buf[ROUTE_OBJECT_SIZE];
+    long long i;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[2]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v1 = acc_slot(st, obj, 0);
+    if (v1 == NULL) goto python;
+    if (!acc_int(v1, NULL, 0LL, 7LL, &i)) goto python;
+    m.ns = (uint8_t)i;
+    PyObject *v2 = acc_slot(st, obj, 1);
+    if (v2 == NULL) goto python;
+    if (!acc_int(v2, NULL, 0LL, 7LL, &i)) goto python;
+    m.nl = (uint8_t)i;
+    PyObject *v3 = acc_slot(st, obj, 2);
+    if (v3 == NULL) goto python;
+    if (!acc_int(v3, NULL, 0LL, 7LL, &i)) goto python;
+    m.no = (uint8_t)i;
+    PyObject *v4 = acc_slot(st, obj, 3);
+    if (v4 == NULL) goto python;
+    if (!acc_int(v4, NULL, 10LL, 17LL, &i)) goto python;
+    m.na = (uint8_t)i;
+    PyObject *v5 = acc_slot(st, obj, 4);
+    if (v5 == NULL) goto python;
+    if (!acc_int(v5, NULL, 1LL, 5LL, &i)) goto python;
+    m.dl = (uint8_t)i;
+    PyObject *v6 = acc_slot(st, obj, 5);
+    if (v6 == NULL) goto python;
+    if (!acc_int(v6, NULL, 0LL, 3LL, &i)) goto python;
+    m.rc = (uint8_t)i;
+    PyObject *v7 = acc_slot(st, obj, 6);
+    if (v7 == NULL) goto python;
+    if (!acc_int(v7, NULL, 1LL, 5LL, &i)) goto python;
+    m.dr = (uint8_t)i;
+    PyObject *v8 = acc_slot(st, obj, 7);
+    if (v8 == NULL) goto python;
+    if (!acc_int(v8, NULL, 1LL, 15LL, &i)) goto python;
+    m.cm = (uint8_t)i;
+    n = route_object_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[10], obj);
+}
+
+/* A scene object in its wire form, as _encode_scene writes it. */
+static PyObject *encode_scene(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    route_scene_t m;
+    uint8_t buf[ROUTE_SCENE_SIZE];
+    long long i;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[4]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v9 = acc_slot(st, obj, 8);
+    if (v9 == NULL) goto python;
+    if (!acc_int(v9, NULL, 0LL, 7LL, &i)) goto python;
+    m.ns = (uint8_t)i;
+    PyObject *v10 = acc_slot(st, obj, 9);
+    if (v10 == NULL) goto python;
+    if (!acc_int(v10, NULL, 0LL, 7LL, &i)) goto python;
+    m.nl = (uint8_t)i;
+    PyObject *v11 = acc_slot(st, obj, 10);
+    if (v11 == NULL) goto python;
+    if (!PyLong_CheckExact(v11) && Py_TYPE(v11) != (PyTypeObject *)st->G[11]) goto python;
+    PyObject *r12 = PyDict_GetItemWithError(st->G[12], v11);
+    if (r12 == NULL || !acc_int(r12, NULL, 0LL, 7LL, &i)) goto python;
+    m.db = (uint8_t)i;
+    PyObject *v13 = acc_slot(st, obj, 11);
+    if (v13 == NULL) goto python;
+    if (!acc_int(v13, NULL, 0LL, 32767LL, &i)) goto python;
+    m.nt = (uint16_t)i;
+    n = route_scene_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[13], obj);
+}
+
+/* A end object in its wire form, as _encode_end writes it. */
+static PyObject *encode_end(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    route_end_t m;
+    uint8_t buf[ROUTE_END_SIZE];
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[7]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+
+    n = route_end_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[14], obj);
+}
+
+static PyMethodDef compiled[] = {
     {"_decode_start", decode_start, METH_O, NULL},
     {"_decode_object", decode_object, METH_O, NULL},
     {"_decode_scene", decode_scene, METH_O, NULL},
     {"_decode_end", decode_end, METH_O, NULL},
+    {"_encode_start", encode_start, METH_O, NULL},
+    {"_encode_object", encode_object, METH_O, NULL},
+    {"_encode_scene", encode_scene, METH_O, NULL},
+    {"_encode_end", encode_end, METH_O, NULL},
     {NULL, NULL, 0, NULL}
 };
 
@@ -284,10 +459,17 @@ static const char *const global_names[] = {
     "_decode_scene",
     "End",
     "_decode_end",
+    "_encode_start",
+    "_encode_object",
+    "PassSide",
+    "_RAW_pass_side",
+    "_encode_scene",
+    "_encode_end",
 };
 
 /* The globals whose instances acc_new makes, and those read as dicts (indices into G). */
 static const unsigned int class_globals[] = { 0, 2, 4, 7, };
+static const unsigned int dict_globals[] = { 12, };
 
 /* -1 with TypeError unless every class global is one whose instances object.__new__ makes
  * (so acc_new may: a type, of object's layout and allocation) and every dict global a
@@ -308,6 +490,12 @@ static int acc_check(const acc_state *st)
         Py_DECREF(made);
     }
     Py_DECREF(object_new);
+    for (size_t i = 0; i < sizeof dict_globals / sizeof dict_globals[0]; i++) {
+        if (!PyDict_Check(st->G[dict_globals[i]])) {
+            PyErr_Format(PyExc_TypeError, "bind(): %s is not a dict of the %s module", global_names[dict_globals[i]], ACC_MODULE);
+            return -1;
+        }
+    }
     return 0;
 }
 
@@ -379,8 +567,8 @@ static int acc_fill(acc_state *st, PyObject *module_globals)
     return 0;
 }
 
-/* bind(module_globals) -> {name: decoder}: the decoders for one copy of the module,
- * each in place of the Python function of the same name. */
+/* bind(module_globals) -> {name: decoder or encoder}: the compiled functions for one copy
+ * of the module, each in place of the Python function of the same name. */
 static PyObject *bind(PyObject *self, PyObject *module_globals)
 {
     (void)self;
@@ -398,7 +586,7 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
         return NULL;
     }
     PyObject *out = acc_fill(st, module_globals) < 0 ? NULL : PyDict_New();
-    for (PyMethodDef *def = decoders; out != NULL && def->ml_name != NULL; def++) {
+    for (PyMethodDef *def = compiled; out != NULL && def->ml_name != NULL; def++) {
         PyObject *fn = PyCFunction_New(def, capsule);
         if (fn == NULL || PyDict_SetItemString(out, def->ml_name, fn) < 0) {
             Py_CLEAR(out);
@@ -409,8 +597,17 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
     return out;
 }
 
+/* method(fn) -> fn bound to the object it is read from, as a Python function is: a
+ * compiled encoder as its class's encode method. */
+static PyObject *method(PyObject *self, PyObject *fn)
+{
+    (void)self;
+    return PyInstanceMethod_New(fn);
+}
+
 static PyMethodDef methods[] = {
-    {"bind", bind, METH_O, "bind(module_globals) -> {name: decoder}"},
+    {"bind", bind, METH_O, "bind(module_globals) -> {name: decoder or encoder}"},
+    {"method", method, METH_O, "method(fn) -> fn as a method"},
     {NULL, NULL, 0, NULL}
 };
 
@@ -419,10 +616,34 @@ static struct PyModuleDef module = {
     NULL, NULL, NULL, NULL
 };
 
+/* The messages decoded and encoded in C: the module's DECODES and ENCODES. */
+static const char *const decodes[] = { "start", "object", "scene", "end", NULL };
+static const char *const encodes[] = { "start", "object", "scene", "end", NULL };
+
+static PyObject *acc_names(const char *const *names)
+{
+    PyObject *out = PyList_New(0);
+    for (; out != NULL && *names != NULL; names++) {
+        PyObject *name = PyUnicode_FromString(*names);
+        if (name == NULL || PyList_Append(out, name) < 0) {
+            Py_CLEAR(out);
+        }
+        Py_XDECREF(name);
+    }
+    if (out == NULL) {
+        return NULL;
+    }
+    PyObject *frozen = PyFrozenSet_New(out);
+    Py_DECREF(out);
+    return frozen;
+}
+
 PyMODINIT_FUNC PyInit__route_accel(void)
 {
     PyObject *mod = PyModule_Create(&module);
-    if (mod != NULL && PyModule_AddStringConstant(mod, "SOURCE", "774f55b3d74bfa7b") < 0) {
+    if (mod != NULL && (PyModule_AddStringConstant(mod, "SOURCE", "774f55b3d74bfa7b") < 0
+                        || PyModule_AddObject(mod, "DECODES", acc_names(decodes)) < 0
+                        || PyModule_AddObject(mod, "ENCODES", acc_names(encodes)) < 0)) {
         Py_CLEAR(mod);
     }
     return mod;

@@ -12,6 +12,8 @@
 #include <Python.h>
 #include <structmember.h>
 #include <float.h>
+#include <math.h>
+#include <string.h>
 
 #if FLT_EVAL_METHOD != 0  /* scaled values are computed in double, rounded as Python rounds them */
 #error "the accelerator needs double arithmetic without excess precision (on x86: SSE2)"
@@ -29,7 +31,7 @@ const char cw_accel_build[] = "codeword-accelerator-build:" CW_ACCEL_BUILD;
  * tables, the Python decoders), attribute names, numeric constants and where its
  * classes keep each attribute. Each bind() makes one, held by its functions. */
 typedef struct {
-    PyObject *G[4];
+    PyObject *G[6];
     PyObject *A[4];
     Py_ssize_t S[8];  /* offset of the slot in the instance; 0: set through setattr */
 } acc_state;
@@ -101,6 +103,33 @@ static inline int acc_set(const acc_state *st, PyObject *obj, int slot, PyObject
     int rc = PyObject_SetAttr(obj, st->A[slot_of[slot][1]], value);
     Py_DECREF(value);
     return rc;
+}
+
+/* obj's attribute `slot`, borrowed from the instance's slot; NULL when it is unset or
+ * the class keeps it otherwise (Python then reads it). */
+static inline PyObject *acc_slot(const acc_state *st, PyObject *obj, int slot)
+{
+    return st->S[slot] > 0 ? *(PyObject **)(void *)((char *)obj + st->S[slot]) : NULL;
+}
+
+/* 1 with *out set when v is an int (exactly, or of class `also`) in lo..hi; 0 otherwise,
+ * with no error set. */
+static inline int acc_int(PyObject *v, PyObject *also, long long lo, long long hi, long long *out)
+{
+    int overflow;
+    if (!PyLong_CheckExact(v) && (also == NULL || Py_TYPE(v) != (PyTypeObject *)also)) {
+        return 0;
+    }
+    long long x = PyLong_AsLongLongAndOverflow(v, &overflow);
+    if (overflow || (x == -1 && PyErr_Occurred())) {
+        PyErr_Clear();
+        return 0;
+    }
+    if (x < lo || x > hi) {
+        return 0;
+    }
+    *out = x;
+    return 1;
 }
 
 static PyObject *build_command(const acc_state *st, const tr24_command_t *m)
@@ -183,6 +212,88 @@ static PyObject *decode_reply(PyObject *self, PyObject *data)
         return PyObject_CallOneArg(st->G[3], data);
     }
     return build_reply(st, &m);
+}
+
+/* A command object in its wire form, as _encode_command writes it. */
+static PyObject *encode_command(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    tr24_command_t m;
+    uint8_t buf[TR24_COMMAND_SIZE];
+    long long i;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[0]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v1 = acc_slot(st, obj, 0);
+    if (v1 == NULL) goto python;
+    if (!acc_int(v1, NULL, 0LL, 1LL, &i)) goto python;
+    m.seq = (uint8_t)i;
+    PyObject *v2 = acc_slot(st, obj, 1);
+    if (v2 == NULL) goto python;
+    if (!acc_int(v2, NULL, 0LL, 255LL, &i)) goto python;
+    m.sender = (uint8_t)i;
+    PyObject *v3 = acc_slot(st, obj, 2);
+    if (v3 == NULL) goto python;
+    if (!acc_int(v3, NULL, 0LL, 255LL, &i)) goto python;
+    m.receiver = (uint8_t)i;
+    PyObject *v4 = acc_slot(st, obj, 3);
+    if (v4 == NULL) goto python;
+    if (!PyBytes_CheckExact(v4)) goto python;
+    Py_ssize_t k5 = PyBytes_GET_SIZE(v4);
+    if (k5 != 7) goto python;
+    memcpy(m.data, PyBytes_AS_STRING(v4), (size_t)k5);
+    n = tr24_command_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[4], obj);
+}
+
+/* A reply object in its wire form, as _encode_reply writes it. */
+static PyObject *encode_reply(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    tr24_reply_t m;
+    uint8_t buf[TR24_REPLY_SIZE];
+    long long i;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[2]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v6 = acc_slot(st, obj, 4);
+    if (v6 == NULL) goto python;
+    if (!acc_int(v6, NULL, 0LL, 1LL, &i)) goto python;
+    m.seq = (uint8_t)i;
+    PyObject *v7 = acc_slot(st, obj, 5);
+    if (v7 == NULL) goto python;
+    if (!acc_int(v7, NULL, 0LL, 255LL, &i)) goto python;
+    m.sender = (uint8_t)i;
+    PyObject *v8 = acc_slot(st, obj, 6);
+    if (v8 == NULL) goto python;
+    if (!acc_int(v8, NULL, 0LL, 255LL, &i)) goto python;
+    m.receiver = (uint8_t)i;
+    PyObject *v9 = acc_slot(st, obj, 7);
+    if (v9 == NULL) goto python;
+    if (!PyBytes_CheckExact(v9)) goto python;
+    Py_ssize_t k10 = PyBytes_GET_SIZE(v9);
+    if (k10 != 7) goto python;
+    memcpy(m.data, PyBytes_AS_STRING(v9), (size_t)k10);
+    n = tr24_reply_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[5], obj);
 }
 
 /* The direction code of a StreamDecoder's direction; 0: not one of the protocol's, or
@@ -291,9 +402,11 @@ static PyObject *run_frames(PyObject *self, PyObject *const *args, Py_ssize_t na
     return PyLong_FromSsize_t(pos);
 }
 
-static PyMethodDef decoders[] = {
+static PyMethodDef compiled[] = {
     {"_decode_command", decode_command, METH_O, NULL},
     {"_decode_reply", decode_reply, METH_O, NULL},
+    {"_encode_command", encode_command, METH_O, NULL},
+    {"_encode_reply", encode_reply, METH_O, NULL},
     {"_run_frames", (PyCFunction)(void (*)(void))run_frames, METH_FASTCALL, NULL},
     {NULL, NULL, 0, NULL}
 };
@@ -303,6 +416,8 @@ static const char *const global_names[] = {
     "_decode_command",
     "Reply",
     "_decode_reply",
+    "_encode_command",
+    "_encode_reply",
 };
 
 /* The globals whose instances acc_new makes, and those read as dicts (indices into G). */
@@ -392,8 +507,8 @@ static int acc_fill(acc_state *st, PyObject *module_globals)
     return 0;
 }
 
-/* bind(module_globals) -> {name: decoder}: the decoders for one copy of the module,
- * each in place of the Python function of the same name. */
+/* bind(module_globals) -> {name: decoder or encoder}: the compiled functions for one copy
+ * of the module, each in place of the Python function of the same name. */
 static PyObject *bind(PyObject *self, PyObject *module_globals)
 {
     (void)self;
@@ -411,7 +526,7 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
         return NULL;
     }
     PyObject *out = acc_fill(st, module_globals) < 0 ? NULL : PyDict_New();
-    for (PyMethodDef *def = decoders; out != NULL && def->ml_name != NULL; def++) {
+    for (PyMethodDef *def = compiled; out != NULL && def->ml_name != NULL; def++) {
         PyObject *fn = PyCFunction_New(def, capsule);
         if (fn == NULL || PyDict_SetItemString(out, def->ml_name, fn) < 0) {
             Py_CLEAR(out);
@@ -422,8 +537,17 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
     return out;
 }
 
+/* method(fn) -> fn bound to the object it is read from, as a Python function is: a
+ * compiled encoder as its class's encode method. */
+static PyObject *method(PyObject *self, PyObject *fn)
+{
+    (void)self;
+    return PyInstanceMethod_New(fn);
+}
+
 static PyMethodDef methods[] = {
-    {"bind", bind, METH_O, "bind(module_globals) -> {name: decoder}"},
+    {"bind", bind, METH_O, "bind(module_globals) -> {name: decoder or encoder}"},
+    {"method", method, METH_O, "method(fn) -> fn as a method"},
     {NULL, NULL, 0, NULL}
 };
 
@@ -432,10 +556,34 @@ static struct PyModuleDef module = {
     NULL, NULL, NULL, NULL
 };
 
+/* The messages decoded and encoded in C: the module's DECODES and ENCODES. */
+static const char *const decodes[] = { "command", "reply", NULL };
+static const char *const encodes[] = { "command", "reply", NULL };
+
+static PyObject *acc_names(const char *const *names)
+{
+    PyObject *out = PyList_New(0);
+    for (; out != NULL && *names != NULL; names++) {
+        PyObject *name = PyUnicode_FromString(*names);
+        if (name == NULL || PyList_Append(out, name) < 0) {
+            Py_CLEAR(out);
+        }
+        Py_XDECREF(name);
+    }
+    if (out == NULL) {
+        return NULL;
+    }
+    PyObject *frozen = PyFrozenSet_New(out);
+    Py_DECREF(out);
+    return frozen;
+}
+
 PyMODINIT_FUNC PyInit__tr24_accel(void)
 {
     PyObject *mod = PyModule_Create(&module);
-    if (mod != NULL && PyModule_AddStringConstant(mod, "SOURCE", "fd70e0c50e5e204c") < 0) {
+    if (mod != NULL && (PyModule_AddStringConstant(mod, "SOURCE", "fd70e0c50e5e204c") < 0
+                        || PyModule_AddObject(mod, "DECODES", acc_names(decodes)) < 0
+                        || PyModule_AddObject(mod, "ENCODES", acc_names(encodes)) < 0)) {
         Py_CLEAR(mod);
     }
     return mod;

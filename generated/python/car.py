@@ -777,6 +777,9 @@ setattr(SlaveControl, "decode", staticmethod(_decode_slave_control))
 _ENCODERS: dict[type[Any], Callable[[Any], bytes]] = {Header: _encode_header, MasterControl: _encode_master_control, SlaveControl: _encode_slave_control, }
 _DECODERS: dict[type[Any], Callable[..., Any]] = {Header: _decode_header, MasterControl: _decode_master_control, SlaveControl: _decode_slave_control, }
 for _cls, _encoder in _ENCODERS.items():  # each encoder is its class's encode method: one call, not two
+    if ACCELERATOR is not None and _cls.NAME in ACCELERATOR.ENCODES:  # compiled: bound as a Python function is
+        setattr(_cls, "encode", ACCELERATOR.method(_encoder))
+        continue
     _encoder.__doc__ = _Message.encode.__doc__
     setattr(_cls, "encode", _encoder)
 MESSAGES: dict[str, type[AnyMessage]] = {'header': Header, 'master_control': MasterControl, 'slave_control': SlaveControl, }

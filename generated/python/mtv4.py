@@ -1203,6 +1203,9 @@ class StreamDecoder:
 _ENCODERS: dict[type[Any], Callable[[Any], bytes]] = {SetWheelsVelocities: _encode_set_wheels_velocities, SetLed: _encode_set_led, SetWheelsVelocitiesWithOdometry: _encode_set_wheels_velocities_with_odometry, Ack: _encode_ack, OdometryReply: _encode_odometry_reply, }
 _DECODERS: dict[type[Any], Callable[..., Any]] = {SetWheelsVelocities: _decode_set_wheels_velocities, SetLed: _decode_set_led, SetWheelsVelocitiesWithOdometry: _decode_set_wheels_velocities_with_odometry, Ack: _decode_ack, OdometryReply: _decode_odometry_reply, }
 for _cls, _encoder in _ENCODERS.items():  # each encoder is its class's encode method: one call, not two
+    if ACCELERATOR is not None and _cls.NAME in ACCELERATOR.ENCODES:  # compiled: bound as a Python function is
+        setattr(_cls, "encode", ACCELERATOR.method(_encoder))
+        continue
     _encoder.__doc__ = _Message.encode.__doc__
     setattr(_cls, "encode", _encoder)
 MESSAGES: dict[str, type[AnyMessage]] = {'set_wheels_velocities': SetWheelsVelocities, 'set_led': SetLed, 'set_wheels_velocities_with_odometry': SetWheelsVelocitiesWithOdometry, 'ack': Ack, 'odometry_reply': OdometryReply, }

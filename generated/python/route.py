@@ -950,6 +950,9 @@ def _as_text_block(text: object) -> str:
 _ENCODERS: dict[type[Any], Callable[[Any], bytes]] = {Start: _encode_start, Object: _encode_object, Scene: _encode_scene, End: _encode_end, }
 _DECODERS: dict[type[Any], Callable[..., Any]] = {Start: _decode_start, Object: _decode_object, Scene: _decode_scene, End: _decode_end, }
 for _cls, _encoder in _ENCODERS.items():  # each encoder is its class's encode method: one call, not two
+    if ACCELERATOR is not None and _cls.NAME in ACCELERATOR.ENCODES:  # compiled: bound as a Python function is
+        setattr(_cls, "encode", ACCELERATOR.method(_encoder))
+        continue
     _encoder.__doc__ = _Message.encode.__doc__
     setattr(_cls, "encode", _encoder)
 _TEXT_ENCODERS: dict[type[Any], Callable[[Any], str]] = {Start: _encode_text_start, Object: _encode_text_object, Scene: _encode_text_scene, End: _encode_text_end, }

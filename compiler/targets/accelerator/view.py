@@ -1,66 +1,22 @@
 """What the compiled accelerator of a protocol's Python module does: for each message
 it can serve, a C function that decodes a frame with the generated C decoder and
-builds the same object the Python decoder builds, value for value.
+builds the same object the Python decoder builds, value for value (and, in
+encode.py, one that encodes it).
 
 A frame the C decoder refuses goes to the Python decoder, so errors are Python's own.
 A message with a value the accelerator cannot build exactly as Python does (text,
-optional and conditional values, frames that may be cut short, one-hot fields) is
-left to Python."""
+optional binary values, one-hot fields: scope.py) is left to Python."""
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 from typing import Optional
 
 from ...model import Field, Message, Protocol, count_member
 from ..c.view import CView
 from ..code import Code
 from ..python.view import PythonView, lit
+from .encode import EncoderView
+from .names import Names
 from .scope import servable
-
-
-@dataclass
-class Names:
-    """The Python objects the C code uses, each given a slot: module globals (classes,
-    tables, the Python decoders), attribute names and numeric constants."""
-
-    globals: list[str] = field(default_factory=list)
-    attributes: list[str] = field(default_factory=list)
-    constants: list[str] = field(default_factory=list)  # Python literals: ints and floats
-    slots: list[tuple[int, int]] = field(default_factory=list)  # (class, attribute): an instance's slot
-    places: dict[tuple[int, object], int] = field(default_factory=dict)  # (table, entry) → index
-    classes: set[int] = field(default_factory=set)  # globals whose instances C makes: bind() checks each
-    dicts: set[int] = field(default_factory=set)  # globals C reads as dicts: bind() checks each
-
-    def _slot(self, table: list, name) -> int:
-        key = (id(table), name)
-        if key not in self.places:
-            self.places[key] = len(table)
-            table.append(name)
-        return self.places[key]
-
-    def g(self, name: str) -> str:
-        return f"st->G[{self._slot(self.globals, name)}]"
-
-    def a(self, name: str) -> str:
-        return f"st->A[{self._slot(self.attributes, name)}]"
-
-    def class_global(self, name: str) -> str:
-        """A class global whose instances the C code makes."""
-        self.classes.add(self._slot(self.globals, name))
-        return self.g(name)
-
-    def dict_global(self, name: str) -> str:
-        """A global the C code reads with the dict API."""
-        self.dicts.add(self._slot(self.globals, name))
-        return self.g(name)
-
-    def s(self, cls: str, attribute: str) -> str:
-        """The index of the slot that holds `attribute` in instances of `cls`."""
-        pair = (self._slot(self.globals, cls), self._slot(self.attributes, attribute))
-        return str(self._slot(self.slots, pair))
-
-    def k(self, literal: str) -> str:
-        return f"st->K[{self._slot(self.constants, literal)}]"
 
 
 class AcceleratorView:
@@ -84,6 +40,9 @@ class AcceleratorView:
                         "pure": self.names.g(f"_decode_{m.name}"), "decode": self.c.fn(m, "decode"),
                         "ctype": self.c.tname(m), "kind": self.c.upper("MSG", m.name), "body": body.text()})
         return out
+
+    def encoders(self) -> list[dict]:
+        return EncoderView(self.p, self.names, self.c, self.py).functions()
 
     def build(self, c: Code, m: Message, fields: tuple[Field, ...], path: tuple, var: str, cls: str,
               member: str) -> None:

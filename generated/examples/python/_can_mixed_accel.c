@@ -12,6 +12,8 @@
 #include <Python.h>
 #include <structmember.h>
 #include <float.h>
+#include <math.h>
+#include <string.h>
 
 #if FLT_EVAL_METHOD != 0  /* scaled values are computed in double, rounded as Python rounds them */
 #error "the accelerator needs double arithmetic without excess precision (on x86: SSE2)"
@@ -29,7 +31,7 @@ const char cw_accel_build[] = "codeword-accelerator-build:" CW_ACCEL_BUILD;
  * tables, the Python decoders), attribute names, numeric constants and where its
  * classes keep each attribute. Each bind() makes one, held by its functions. */
 typedef struct {
-    PyObject *G[14];
+    PyObject *G[21];
     PyObject *A[35];
     Py_ssize_t S[38];  /* offset of the slot in the instance; 0: set through setattr */
 } acc_state;
@@ -138,6 +140,47 @@ static inline PyObject *acc_none(void)
 {
     Py_INCREF(Py_None);
     return Py_None;
+}
+
+/* obj's attribute `slot`, borrowed from the instance's slot; NULL when it is unset or
+ * the class keeps it otherwise (Python then reads it). */
+static inline PyObject *acc_slot(const acc_state *st, PyObject *obj, int slot)
+{
+    return st->S[slot] > 0 ? *(PyObject **)(void *)((char *)obj + st->S[slot]) : NULL;
+}
+
+/* 1 with *out set when v is an int (exactly, or of class `also`) in lo..hi; 0 otherwise,
+ * with no error set. */
+static inline int acc_int(PyObject *v, PyObject *also, long long lo, long long hi, long long *out)
+{
+    int overflow;
+    if (!PyLong_CheckExact(v) && (also == NULL || Py_TYPE(v) != (PyTypeObject *)also)) {
+        return 0;
+    }
+    long long x = PyLong_AsLongLongAndOverflow(v, &overflow);
+    if (overflow || (x == -1 && PyErr_Occurred())) {
+        PyErr_Clear();
+        return 0;
+    }
+    if (x < lo || x > hi) {
+        return 0;
+    }
+    *out = x;
+    return 1;
+}
+
+/* 1 with *out set when v is a float (exactly) in lo..hi (NaN is not); 0 otherwise. */
+static inline int acc_float(PyObject *v, double lo, double hi, double *out)
+{
+    if (!PyFloat_CheckExact(v)) {
+        return 0;
+    }
+    double x = PyFloat_AS_DOUBLE(v);
+    if (!(x >= lo && x <= hi)) {
+        return 0;
+    }
+    *out = x;
+    return 1;
 }
 
 static PyObject *build_example_message(const acc_state *st, const can_mixed_example_message_t *m)
@@ -517,6 +560,396 @@ static PyObject *decode_shared(PyObject *self, PyObject *data)
     return build_shared(st, &m);
 }
 
+/* A example_message object in its wire form, as _encode_example_message writes it. */
+static PyObject *encode_example_message(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    can_mixed_example_message_t m;
+    uint8_t buf[CAN_MIXED_EXAMPLE_MESSAGE_SIZE];
+    double d;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[0]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v1 = acc_slot(st, obj, 0);
+    if (v1 == NULL) goto python;
+    if (!acc_float(v1, 229.52, 270.47, &d)) goto python;
+    d = floor((d - 250.0) / 0.01 + 0.5);
+    if (!(d >= -2048.0 && d <= 2047.0)) goto python;
+    m.temperature = (int16_t)d;
+    PyObject *v2 = acc_slot(st, obj, 1);
+    if (v2 == NULL) goto python;
+    if (!acc_float(v2, 0.0, 6.300000000000001, &d)) goto python;
+    d = floor((d) / 0.1 + 0.5);
+    if (!(d >= 0.0 && d <= 63.0)) goto python;
+    m.average_radius = (uint8_t)d;
+    PyObject *v3 = acc_slot(st, obj, 2);
+    if (v3 == NULL) goto python;
+    if (v3 != Py_True && v3 != Py_False) goto python;
+    m.enable = v3 == Py_True;
+    n = can_mixed_example_message_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[14], obj);
+}
+
+/* A wheel_speeds object in its wire form, as _encode_wheel_speeds writes it. */
+static PyObject *encode_wheel_speeds(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    can_mixed_wheel_speeds_t m;
+    uint8_t buf[CAN_MIXED_WHEEL_SPEEDS_SIZE];
+    double d;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[2]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v4 = acc_slot(st, obj, 3);
+    if (v4 == NULL) goto python;
+    if (!acc_float(v4, 0.0, 819.1500000000001, &d)) goto python;
+    d = floor((d) / 0.05 + 0.5);
+    if (!(d >= 0.0 && d <= 16383.0)) goto python;
+    m.front_left = (uint16_t)d;
+    PyObject *v5 = acc_slot(st, obj, 4);
+    if (v5 == NULL) goto python;
+    if (!acc_float(v5, 0.0, 819.1500000000001, &d)) goto python;
+    d = floor((d) / 0.05 + 0.5);
+    if (!(d >= 0.0 && d <= 16383.0)) goto python;
+    m.front_right = (uint16_t)d;
+    PyObject *v6 = acc_slot(st, obj, 5);
+    if (v6 == NULL) goto python;
+    if (!acc_float(v6, 0.0, 819.1500000000001, &d)) goto python;
+    d = floor((d) / 0.05 + 0.5);
+    if (!(d >= 0.0 && d <= 16383.0)) goto python;
+    m.rear_left = (uint16_t)d;
+    PyObject *v7 = acc_slot(st, obj, 6);
+    if (v7 == NULL) goto python;
+    if (!acc_float(v7, 0.0, 819.1500000000001, &d)) goto python;
+    d = floor((d) / 0.05 + 0.5);
+    if (!(d >= 0.0 && d <= 16383.0)) goto python;
+    m.rear_right = (uint16_t)d;
+    n = can_mixed_wheel_speeds_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[15], obj);
+}
+
+/* A steering object in its wire form, as _encode_steering writes it. */
+static PyObject *encode_steering(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    can_mixed_steering_t m;
+    uint8_t buf[CAN_MIXED_STEERING_SIZE];
+    double d;
+    long long i;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[4]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v8 = acc_slot(st, obj, 7);
+    if (v8 == NULL) goto python;
+    if (!acc_int(v8, NULL, 0LL, 4095LL, &i)) goto python;
+    m.rate = (uint16_t)i;
+    PyObject *v9 = acc_slot(st, obj, 8);
+    if (v9 == NULL) goto python;
+    if (!acc_float(v9, -327.68, 327.67, &d)) goto python;
+    d = floor((d) / 0.01 + 0.5);
+    if (!(d >= -32768.0 && d <= 32767.0)) goto python;
+    m.torque = (int16_t)d;
+    PyObject *v10 = acc_slot(st, obj, 9);
+    if (v10 == NULL) goto python;
+    if (!acc_float(v10, -256.0, 255.5, &d)) goto python;
+    d = floor((d) / 0.5 + 0.5);
+    if (!(d >= -512.0 && d <= 511.0)) goto python;
+    m.angle = (int16_t)d;
+    PyObject *v11 = acc_slot(st, obj, 10);
+    if (v11 == NULL) goto python;
+    if (!acc_int(v11, NULL, 0LL, 15LL, &i)) goto python;
+    m.counter = (uint8_t)i;
+    PyObject *v12 = acc_slot(st, obj, 11);
+    if (v12 == NULL) goto python;
+    if (v12 != Py_True && v12 != Py_False) goto python;
+    m.valid = v12 == Py_True;
+    n = can_mixed_steering_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[16], obj);
+}
+
+/* A gear object in its wire form, as _encode_gear writes it. */
+static PyObject *encode_gear(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    can_mixed_gear_t m;
+    uint8_t buf[CAN_MIXED_GEAR_SIZE];
+    long long i;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[6]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v13 = acc_slot(st, obj, 12);
+    if (v13 == NULL) goto python;
+    if (!acc_int(v13, NULL, 0LL, 7LL, &i)) goto python;
+    m.gear = (uint8_t)i;
+    PyObject *v14 = acc_slot(st, obj, 13);
+    if (v14 == NULL) goto python;
+    if (!acc_int(v14, NULL, 0LL, 15LL, &i)) goto python;
+    m.mode = (uint8_t)i;
+    n = can_mixed_gear_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[17], obj);
+}
+
+/* A multiplexed object in its wire form, as _encode_multiplexed writes it. */
+static PyObject *encode_multiplexed(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    can_mixed_multiplexed_t m;
+    uint8_t buf[CAN_MIXED_MULTIPLEXED_SIZE];
+    long long i;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[8]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v15 = acc_slot(st, obj, 14);
+    if (v15 == NULL) goto python;
+    if (!acc_int(v15, NULL, 0LL, 63LL, &i)) goto python;
+    m.multiplexor = (uint8_t)i;
+    PyObject *v16 = acc_slot(st, obj, 15);
+    if (v16 == NULL) goto python;
+    if (((m.multiplexor == 8u || m.multiplexor == 16u || m.multiplexor == 24u)) != (v16 != Py_None)) goto python;
+    if (v16 != Py_None) {
+        if (!acc_int(v16, NULL, 0LL, 1LL, &i)) goto python;
+        m.bit_j = (uint8_t)i;
+    }
+    PyObject *v17 = acc_slot(st, obj, 16);
+    if (v17 == NULL) goto python;
+    if (((m.multiplexor == 8u || m.multiplexor == 16u || m.multiplexor == 24u)) != (v17 != Py_None)) goto python;
+    if (v17 != Py_None) {
+        if (!acc_int(v17, NULL, 0LL, 1LL, &i)) goto python;
+        m.bit_c = (uint8_t)i;
+    }
+    PyObject *v18 = acc_slot(st, obj, 17);
+    if (v18 == NULL) goto python;
+    if (((m.multiplexor == 8u || m.multiplexor == 16u || m.multiplexor == 24u)) != (v18 != Py_None)) goto python;
+    if (v18 != Py_None) {
+        if (!acc_int(v18, NULL, 0LL, 1LL, &i)) goto python;
+        m.bit_g = (uint8_t)i;
+    }
+    PyObject *v19 = acc_slot(st, obj, 18);
+    if (v19 == NULL) goto python;
+    if (((m.multiplexor == 8u || m.multiplexor == 16u || m.multiplexor == 24u)) != (v19 != Py_None)) goto python;
+    if (v19 != Py_None) {
+        if (!acc_int(v19, NULL, 0LL, 1LL, &i)) goto python;
+        m.bit_l = (uint8_t)i;
+    }
+    PyObject *v20 = acc_slot(st, obj, 19);
+    if (v20 == NULL) goto python;
+    if ((m.multiplexor == 24u) != (v20 != Py_None)) goto python;
+    if (v20 != Py_None) {
+        if (!acc_int(v20, NULL, 0LL, 1LL, &i)) goto python;
+        m.bit_a = (uint8_t)i;
+    }
+    PyObject *v21 = acc_slot(st, obj, 20);
+    if (v21 == NULL) goto python;
+    if ((m.multiplexor == 24u) != (v21 != Py_None)) goto python;
+    if (v21 != Py_None) {
+        if (!acc_int(v21, NULL, 0LL, 1LL, &i)) goto python;
+        m.bit_k = (uint8_t)i;
+    }
+    PyObject *v22 = acc_slot(st, obj, 21);
+    if (v22 == NULL) goto python;
+    if ((m.multiplexor == 24u) != (v22 != Py_None)) goto python;
+    if (v22 != Py_None) {
+        if (!acc_int(v22, NULL, 0LL, 1LL, &i)) goto python;
+        m.bit_e = (uint8_t)i;
+    }
+    PyObject *v23 = acc_slot(st, obj, 22);
+    if (v23 == NULL) goto python;
+    if ((m.multiplexor == 24u) != (v23 != Py_None)) goto python;
+    if (v23 != Py_None) {
+        if (!acc_int(v23, NULL, 0LL, 1LL, &i)) goto python;
+        m.bit_d = (uint8_t)i;
+    }
+    PyObject *v24 = acc_slot(st, obj, 23);
+    if (v24 == NULL) goto python;
+    if ((m.multiplexor == 24u) != (v24 != Py_None)) goto python;
+    if (v24 != Py_None) {
+        if (!acc_int(v24, NULL, 0LL, 1LL, &i)) goto python;
+        m.bit_b = (uint8_t)i;
+    }
+    PyObject *v25 = acc_slot(st, obj, 24);
+    if (v25 == NULL) goto python;
+    if ((m.multiplexor == 24u) != (v25 != Py_None)) goto python;
+    if (v25 != Py_None) {
+        if (!acc_int(v25, NULL, 0LL, 1LL, &i)) goto python;
+        m.bit_h = (uint8_t)i;
+    }
+    PyObject *v26 = acc_slot(st, obj, 25);
+    if (v26 == NULL) goto python;
+    if ((m.multiplexor == 24u) != (v26 != Py_None)) goto python;
+    if (v26 != Py_None) {
+        if (!acc_int(v26, NULL, 0LL, 1LL, &i)) goto python;
+        m.bit_f = (uint8_t)i;
+    }
+    n = can_mixed_multiplexed_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[18], obj);
+}
+
+/* A extended object in its wire form, as _encode_extended writes it. */
+static PyObject *encode_extended(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    can_mixed_extended_t m;
+    uint8_t buf[CAN_MIXED_EXTENDED_SIZE];
+    long long i;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[10]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v27 = acc_slot(st, obj, 26);
+    if (v27 == NULL) goto python;
+    if (!acc_int(v27, NULL, 0LL, 15LL, &i)) goto python;
+    m.s0 = (uint8_t)i;
+    PyObject *v28 = acc_slot(st, obj, 27);
+    if (v28 == NULL) goto python;
+    if ((m.s0 == 0u) != (v28 != Py_None)) goto python;
+    if (v28 != Py_None) {
+        if (!acc_int(v28, NULL, 0LL, 15LL, &i)) goto python;
+        m.s1 = (uint8_t)i;
+    }
+    PyObject *v29 = acc_slot(st, obj, 28);
+    if (v29 == NULL) goto python;
+    if ((m.s0 == 0u && m.s1 == 0u) != (v29 != Py_None)) goto python;
+    if (v29 != Py_None) {
+        if (!acc_int(v29, NULL, -128LL, 127LL, &i)) goto python;
+        m.s2 = (int8_t)i;
+    }
+    PyObject *v30 = acc_slot(st, obj, 29);
+    if (v30 == NULL) goto python;
+    if ((m.s0 == 0u && m.s1 == 0u) != (v30 != Py_None)) goto python;
+    if (v30 != Py_None) {
+        if (!acc_int(v30, NULL, -32768LL, 32767LL, &i)) goto python;
+        m.s3 = (int16_t)i;
+    }
+    PyObject *v31 = acc_slot(st, obj, 30);
+    if (v31 == NULL) goto python;
+    if ((m.s0 == 0u && m.s1 == 2u) != (v31 != Py_None)) goto python;
+    if (v31 != Py_None) {
+        if (!acc_int(v31, NULL, -8388608LL, 8388607LL, &i)) goto python;
+        m.s4 = (int32_t)i;
+    }
+    PyObject *v32 = acc_slot(st, obj, 31);
+    if (v32 == NULL) goto python;
+    if ((m.s0 == 1u) != (v32 != Py_None)) goto python;
+    if (v32 != Py_None) {
+        if (!acc_int(v32, NULL, -134217728LL, 134217727LL, &i)) goto python;
+        m.s5 = (int32_t)i;
+    }
+    PyObject *v33 = acc_slot(st, obj, 32);
+    if (v33 == NULL) goto python;
+    if (!acc_int(v33, NULL, 0LL, 255LL, &i)) goto python;
+    m.s6 = (uint8_t)i;
+    PyObject *v34 = acc_slot(st, obj, 33);
+    if (v34 == NULL) goto python;
+    if ((m.s6 == 1u) != (v34 != Py_None)) goto python;
+    if (v34 != Py_None) {
+        if (!acc_int(v34, NULL, -8388608LL, 8388607LL, &i)) goto python;
+        m.s7 = (int32_t)i;
+    }
+    PyObject *v35 = acc_slot(st, obj, 34);
+    if (v35 == NULL) goto python;
+    if ((m.s6 == 2u) != (v35 != Py_None)) goto python;
+    if (v35 != Py_None) {
+        if (!acc_int(v35, NULL, -128LL, 127LL, &i)) goto python;
+        m.s8 = (int8_t)i;
+    }
+    n = can_mixed_extended_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[19], obj);
+}
+
+/* A shared object in its wire form, as _encode_shared writes it. */
+static PyObject *encode_shared(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    can_mixed_shared_t m;
+    uint8_t buf[CAN_MIXED_SHARED_SIZE];
+    long long i;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[12]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v36 = acc_slot(st, obj, 35);
+    if (v36 == NULL) goto python;
+    if (!acc_int(v36, NULL, 0LL, 15LL, &i)) goto python;
+    m.s0 = (uint8_t)i;
+    PyObject *v37 = acc_slot(st, obj, 36);
+    if (v37 == NULL) goto python;
+    if (((m.s0 == 1u || m.s0 == 3u)) != (v37 != Py_None)) goto python;
+    if (v37 != Py_None) {
+        if (!acc_int(v37, NULL, -8LL, 7LL, &i)) goto python;
+        m.s1 = (int8_t)i;
+    }
+    PyObject *v38 = acc_slot(st, obj, 37);
+    if (v38 == NULL) goto python;
+    if (((m.s0 >= 2u && m.s0 <= 5u)) != (v38 != Py_None)) goto python;
+    if (v38 != Py_None) {
+        if (!acc_int(v38, NULL, -128LL, 127LL, &i)) goto python;
+        m.s2 = (int8_t)i;
+    }
+    n = can_mixed_shared_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[20], obj);
+}
+
 /* The direction code of a StreamDecoder's direction; 0: not one of the protocol's, or
  * not a str (the Python decoder reads a str subclass as no direction). */
 static int acc_direction(PyObject *direction, int *code)
@@ -630,7 +1063,7 @@ static PyObject *run_frames(PyObject *self, PyObject *const *args, Py_ssize_t na
     return PyLong_FromSsize_t(pos);
 }
 
-static PyMethodDef decoders[] = {
+static PyMethodDef compiled[] = {
     {"_decode_example_message", decode_example_message, METH_O, NULL},
     {"_decode_wheel_speeds", decode_wheel_speeds, METH_O, NULL},
     {"_decode_steering", decode_steering, METH_O, NULL},
@@ -638,6 +1071,13 @@ static PyMethodDef decoders[] = {
     {"_decode_multiplexed", decode_multiplexed, METH_O, NULL},
     {"_decode_extended", decode_extended, METH_O, NULL},
     {"_decode_shared", decode_shared, METH_O, NULL},
+    {"_encode_example_message", encode_example_message, METH_O, NULL},
+    {"_encode_wheel_speeds", encode_wheel_speeds, METH_O, NULL},
+    {"_encode_steering", encode_steering, METH_O, NULL},
+    {"_encode_gear", encode_gear, METH_O, NULL},
+    {"_encode_multiplexed", encode_multiplexed, METH_O, NULL},
+    {"_encode_extended", encode_extended, METH_O, NULL},
+    {"_encode_shared", encode_shared, METH_O, NULL},
     {"_run_frames", (PyCFunction)(void (*)(void))run_frames, METH_FASTCALL, NULL},
     {NULL, NULL, 0, NULL}
 };
@@ -657,6 +1097,13 @@ static const char *const global_names[] = {
     "_decode_extended",
     "Shared",
     "_decode_shared",
+    "_encode_example_message",
+    "_encode_wheel_speeds",
+    "_encode_steering",
+    "_encode_gear",
+    "_encode_multiplexed",
+    "_encode_extended",
+    "_encode_shared",
 };
 
 /* The globals whose instances acc_new makes, and those read as dicts (indices into G). */
@@ -777,8 +1224,8 @@ static int acc_fill(acc_state *st, PyObject *module_globals)
     return 0;
 }
 
-/* bind(module_globals) -> {name: decoder}: the decoders for one copy of the module,
- * each in place of the Python function of the same name. */
+/* bind(module_globals) -> {name: decoder or encoder}: the compiled functions for one copy
+ * of the module, each in place of the Python function of the same name. */
 static PyObject *bind(PyObject *self, PyObject *module_globals)
 {
     (void)self;
@@ -796,7 +1243,7 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
         return NULL;
     }
     PyObject *out = acc_fill(st, module_globals) < 0 ? NULL : PyDict_New();
-    for (PyMethodDef *def = decoders; out != NULL && def->ml_name != NULL; def++) {
+    for (PyMethodDef *def = compiled; out != NULL && def->ml_name != NULL; def++) {
         PyObject *fn = PyCFunction_New(def, capsule);
         if (fn == NULL || PyDict_SetItemString(out, def->ml_name, fn) < 0) {
             Py_CLEAR(out);
@@ -807,8 +1254,17 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
     return out;
 }
 
+/* method(fn) -> fn bound to the object it is read from, as a Python function is: a
+ * compiled encoder as its class's encode method. */
+static PyObject *method(PyObject *self, PyObject *fn)
+{
+    (void)self;
+    return PyInstanceMethod_New(fn);
+}
+
 static PyMethodDef methods[] = {
-    {"bind", bind, METH_O, "bind(module_globals) -> {name: decoder}"},
+    {"bind", bind, METH_O, "bind(module_globals) -> {name: decoder or encoder}"},
+    {"method", method, METH_O, "method(fn) -> fn as a method"},
     {NULL, NULL, 0, NULL}
 };
 
@@ -817,10 +1273,34 @@ static struct PyModuleDef module = {
     NULL, NULL, NULL, NULL
 };
 
+/* The messages decoded and encoded in C: the module's DECODES and ENCODES. */
+static const char *const decodes[] = { "example_message", "wheel_speeds", "steering", "gear", "multiplexed", "extended", "shared", NULL };
+static const char *const encodes[] = { "example_message", "wheel_speeds", "steering", "gear", "multiplexed", "extended", "shared", NULL };
+
+static PyObject *acc_names(const char *const *names)
+{
+    PyObject *out = PyList_New(0);
+    for (; out != NULL && *names != NULL; names++) {
+        PyObject *name = PyUnicode_FromString(*names);
+        if (name == NULL || PyList_Append(out, name) < 0) {
+            Py_CLEAR(out);
+        }
+        Py_XDECREF(name);
+    }
+    if (out == NULL) {
+        return NULL;
+    }
+    PyObject *frozen = PyFrozenSet_New(out);
+    Py_DECREF(out);
+    return frozen;
+}
+
 PyMODINIT_FUNC PyInit__can_mixed_accel(void)
 {
     PyObject *mod = PyModule_Create(&module);
-    if (mod != NULL && PyModule_AddStringConstant(mod, "SOURCE", "12010359e49f68d4") < 0) {
+    if (mod != NULL && (PyModule_AddStringConstant(mod, "SOURCE", "12010359e49f68d4") < 0
+                        || PyModule_AddObject(mod, "DECODES", acc_names(decodes)) < 0
+                        || PyModule_AddObject(mod, "ENCODES", acc_names(encodes)) < 0)) {
         Py_CLEAR(mod);
     }
     return mod;

@@ -12,6 +12,8 @@
 #include <Python.h>
 #include <structmember.h>
 #include <float.h>
+#include <math.h>
+#include <string.h>
 
 #if FLT_EVAL_METHOD != 0  /* scaled values are computed in double, rounded as Python rounds them */
 #error "the accelerator needs double arithmetic without excess precision (on x86: SSE2)"
@@ -29,7 +31,7 @@ const char cw_accel_build[] = "codeword-accelerator-build:" CW_ACCEL_BUILD;
  * tables, the Python decoders), attribute names, numeric constants and where its
  * classes keep each attribute. Each bind() makes one, held by its functions. */
 typedef struct {
-    PyObject *G[8];
+    PyObject *G[12];
     PyObject *A[6];
     Py_ssize_t S[10];  /* offset of the slot in the instance; 0: set through setattr */
 } acc_state;
@@ -103,6 +105,33 @@ static inline int acc_set(const acc_state *st, PyObject *obj, int slot, PyObject
     int rc = PyObject_SetAttr(obj, st->A[slot_of[slot][1]], value);
     Py_DECREF(value);
     return rc;
+}
+
+/* obj's attribute `slot`, borrowed from the instance's slot; NULL when it is unset or
+ * the class keeps it otherwise (Python then reads it). */
+static inline PyObject *acc_slot(const acc_state *st, PyObject *obj, int slot)
+{
+    return st->S[slot] > 0 ? *(PyObject **)(void *)((char *)obj + st->S[slot]) : NULL;
+}
+
+/* 1 with *out set when v is an int (exactly, or of class `also`) in lo..hi; 0 otherwise,
+ * with no error set. */
+static inline int acc_int(PyObject *v, PyObject *also, long long lo, long long hi, long long *out)
+{
+    int overflow;
+    if (!PyLong_CheckExact(v) && (also == NULL || Py_TYPE(v) != (PyTypeObject *)also)) {
+        return 0;
+    }
+    long long x = PyLong_AsLongLongAndOverflow(v, &overflow);
+    if (overflow || (x == -1 && PyErr_Occurred())) {
+        PyErr_Clear();
+        return 0;
+    }
+    if (x < lo || x > hi) {
+        return 0;
+    }
+    *out = x;
+    return 1;
 }
 
 static PyObject *build_ping(const acc_state *st, const dynamixel2_ping_t *m)
@@ -263,11 +292,153 @@ static PyObject *decode_status(PyObject *self, PyObject *data)
     return build_status(st, &m);
 }
 
-static PyMethodDef decoders[] = {
+/* A ping object in its wire form, as _encode_ping writes it. */
+static PyObject *encode_ping(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    dynamixel2_ping_t m;
+    uint8_t buf[DYNAMIXEL2_PING_SIZE];
+    long long i;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[0]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v1 = acc_slot(st, obj, 0);
+    if (v1 == NULL) goto python;
+    if (!acc_int(v1, NULL, 0LL, 255LL, &i)) goto python;
+    m.id = (uint8_t)i;
+    n = dynamixel2_ping_encode_frame(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[8], obj);
+}
+
+/* A read object in its wire form, as _encode_read writes it. */
+static PyObject *encode_read(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    dynamixel2_read_t m;
+    uint8_t buf[DYNAMIXEL2_READ_SIZE];
+    long long i;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[2]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v2 = acc_slot(st, obj, 1);
+    if (v2 == NULL) goto python;
+    if (!acc_int(v2, NULL, 0LL, 255LL, &i)) goto python;
+    m.id = (uint8_t)i;
+    PyObject *v3 = acc_slot(st, obj, 2);
+    if (v3 == NULL) goto python;
+    if (!acc_int(v3, NULL, 0LL, 65535LL, &i)) goto python;
+    m.address = (uint16_t)i;
+    PyObject *v4 = acc_slot(st, obj, 3);
+    if (v4 == NULL) goto python;
+    if (!acc_int(v4, NULL, 0LL, 65535LL, &i)) goto python;
+    m.data_length = (uint16_t)i;
+    n = dynamixel2_read_encode_frame(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[9], obj);
+}
+
+/* A write object in its wire form, as _encode_write writes it. */
+static PyObject *encode_write(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    dynamixel2_write_t m;
+    uint8_t buf[DYNAMIXEL2_WRITE_SIZE];
+    long long i;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[4]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v5 = acc_slot(st, obj, 4);
+    if (v5 == NULL) goto python;
+    if (!acc_int(v5, NULL, 0LL, 255LL, &i)) goto python;
+    m.id = (uint8_t)i;
+    PyObject *v6 = acc_slot(st, obj, 5);
+    if (v6 == NULL) goto python;
+    if (!acc_int(v6, NULL, 0LL, 65535LL, &i)) goto python;
+    m.address = (uint16_t)i;
+    PyObject *v7 = acc_slot(st, obj, 6);
+    if (v7 == NULL) goto python;
+    if (!PyBytes_CheckExact(v7)) goto python;
+    Py_ssize_t k8 = PyBytes_GET_SIZE(v7);
+    if (k8 > 64) goto python;
+    memcpy(m.data, PyBytes_AS_STRING(v7), (size_t)k8);
+    m.data_count = (uint8_t)k8;
+    n = dynamixel2_write_encode_frame(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[10], obj);
+}
+
+/* A status object in its wire form, as _encode_status writes it. */
+static PyObject *encode_status(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    dynamixel2_status_t m;
+    uint8_t buf[DYNAMIXEL2_STATUS_SIZE];
+    long long i;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[6]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v9 = acc_slot(st, obj, 7);
+    if (v9 == NULL) goto python;
+    if (!acc_int(v9, NULL, 0LL, 255LL, &i)) goto python;
+    m.id = (uint8_t)i;
+    PyObject *v10 = acc_slot(st, obj, 8);
+    if (v10 == NULL) goto python;
+    if (!acc_int(v10, NULL, 0LL, 255LL, &i)) goto python;
+    m.error = (uint8_t)i;
+    PyObject *v11 = acc_slot(st, obj, 9);
+    if (v11 == NULL) goto python;
+    if (!PyBytes_CheckExact(v11)) goto python;
+    Py_ssize_t k12 = PyBytes_GET_SIZE(v11);
+    if (k12 > 64) goto python;
+    memcpy(m.params, PyBytes_AS_STRING(v11), (size_t)k12);
+    m.params_count = (uint8_t)k12;
+    n = dynamixel2_status_encode_frame(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[11], obj);
+}
+
+static PyMethodDef compiled[] = {
     {"_decode_ping", decode_ping, METH_O, NULL},
     {"_decode_read", decode_read, METH_O, NULL},
     {"_decode_write", decode_write, METH_O, NULL},
     {"_decode_status", decode_status, METH_O, NULL},
+    {"_encode_ping", encode_ping, METH_O, NULL},
+    {"_encode_read", encode_read, METH_O, NULL},
+    {"_encode_write", encode_write, METH_O, NULL},
+    {"_encode_status", encode_status, METH_O, NULL},
     {NULL, NULL, 0, NULL}
 };
 
@@ -280,6 +451,10 @@ static const char *const global_names[] = {
     "_decode_write",
     "Status",
     "_decode_status",
+    "_encode_ping",
+    "_encode_read",
+    "_encode_write",
+    "_encode_status",
 };
 
 /* The globals whose instances acc_new makes, and those read as dicts (indices into G). */
@@ -371,8 +546,8 @@ static int acc_fill(acc_state *st, PyObject *module_globals)
     return 0;
 }
 
-/* bind(module_globals) -> {name: decoder}: the decoders for one copy of the module,
- * each in place of the Python function of the same name. */
+/* bind(module_globals) -> {name: decoder or encoder}: the compiled functions for one copy
+ * of the module, each in place of the Python function of the same name. */
 static PyObject *bind(PyObject *self, PyObject *module_globals)
 {
     (void)self;
@@ -390,7 +565,7 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
         return NULL;
     }
     PyObject *out = acc_fill(st, module_globals) < 0 ? NULL : PyDict_New();
-    for (PyMethodDef *def = decoders; out != NULL && def->ml_name != NULL; def++) {
+    for (PyMethodDef *def = compiled; out != NULL && def->ml_name != NULL; def++) {
         PyObject *fn = PyCFunction_New(def, capsule);
         if (fn == NULL || PyDict_SetItemString(out, def->ml_name, fn) < 0) {
             Py_CLEAR(out);
@@ -401,8 +576,17 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
     return out;
 }
 
+/* method(fn) -> fn bound to the object it is read from, as a Python function is: a
+ * compiled encoder as its class's encode method. */
+static PyObject *method(PyObject *self, PyObject *fn)
+{
+    (void)self;
+    return PyInstanceMethod_New(fn);
+}
+
 static PyMethodDef methods[] = {
-    {"bind", bind, METH_O, "bind(module_globals) -> {name: decoder}"},
+    {"bind", bind, METH_O, "bind(module_globals) -> {name: decoder or encoder}"},
+    {"method", method, METH_O, "method(fn) -> fn as a method"},
     {NULL, NULL, 0, NULL}
 };
 
@@ -411,10 +595,34 @@ static struct PyModuleDef module = {
     NULL, NULL, NULL, NULL
 };
 
+/* The messages decoded and encoded in C: the module's DECODES and ENCODES. */
+static const char *const decodes[] = { "ping", "read", "write", "status", NULL };
+static const char *const encodes[] = { "ping", "read", "write", "status", NULL };
+
+static PyObject *acc_names(const char *const *names)
+{
+    PyObject *out = PyList_New(0);
+    for (; out != NULL && *names != NULL; names++) {
+        PyObject *name = PyUnicode_FromString(*names);
+        if (name == NULL || PyList_Append(out, name) < 0) {
+            Py_CLEAR(out);
+        }
+        Py_XDECREF(name);
+    }
+    if (out == NULL) {
+        return NULL;
+    }
+    PyObject *frozen = PyFrozenSet_New(out);
+    Py_DECREF(out);
+    return frozen;
+}
+
 PyMODINIT_FUNC PyInit__dynamixel2_accel(void)
 {
     PyObject *mod = PyModule_Create(&module);
-    if (mod != NULL && PyModule_AddStringConstant(mod, "SOURCE", "3cf82ddcd063e286") < 0) {
+    if (mod != NULL && (PyModule_AddStringConstant(mod, "SOURCE", "3cf82ddcd063e286") < 0
+                        || PyModule_AddObject(mod, "DECODES", acc_names(decodes)) < 0
+                        || PyModule_AddObject(mod, "ENCODES", acc_names(encodes)) < 0)) {
         Py_CLEAR(mod);
     }
     return mod;

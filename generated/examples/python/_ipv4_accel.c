@@ -12,6 +12,8 @@
 #include <Python.h>
 #include <structmember.h>
 #include <float.h>
+#include <math.h>
+#include <string.h>
 
 #if FLT_EVAL_METHOD != 0  /* scaled values are computed in double, rounded as Python rounds them */
 #error "the accelerator needs double arithmetic without excess precision (on x86: SSE2)"
@@ -29,7 +31,7 @@ const char cw_accel_build[] = "codeword-accelerator-build:" CW_ACCEL_BUILD;
  * tables, the Python decoders), attribute names, numeric constants and where its
  * classes keep each attribute. Each bind() makes one, held by its functions. */
 typedef struct {
-    PyObject *G[4];
+    PyObject *G[6];
     PyObject *A[15];
     Py_ssize_t S[24];  /* offset of the slot in the instance; 0: set through setattr */
 } acc_state;
@@ -117,6 +119,33 @@ static inline int acc_set(const acc_state *st, PyObject *obj, int slot, PyObject
     int rc = PyObject_SetAttr(obj, st->A[slot_of[slot][1]], value);
     Py_DECREF(value);
     return rc;
+}
+
+/* obj's attribute `slot`, borrowed from the instance's slot; NULL when it is unset or
+ * the class keeps it otherwise (Python then reads it). */
+static inline PyObject *acc_slot(const acc_state *st, PyObject *obj, int slot)
+{
+    return st->S[slot] > 0 ? *(PyObject **)(void *)((char *)obj + st->S[slot]) : NULL;
+}
+
+/* 1 with *out set when v is an int (exactly, or of class `also`) in lo..hi; 0 otherwise,
+ * with no error set. */
+static inline int acc_int(PyObject *v, PyObject *also, long long lo, long long hi, long long *out)
+{
+    int overflow;
+    if (!PyLong_CheckExact(v) && (also == NULL || Py_TYPE(v) != (PyTypeObject *)also)) {
+        return 0;
+    }
+    long long x = PyLong_AsLongLongAndOverflow(v, &overflow);
+    if (overflow || (x == -1 && PyErr_Occurred())) {
+        PyErr_Clear();
+        return 0;
+    }
+    if (x < lo || x > hi) {
+        return 0;
+    }
+    *out = x;
+    return 1;
 }
 
 static PyObject *build_icmp_echo_request(const acc_state *st, const ipv4_icmp_echo_request_t *m)
@@ -217,6 +246,154 @@ static PyObject *decode_udp(PyObject *self, PyObject *data)
     return build_udp(st, &m);
 }
 
+/* A icmp_echo_request object in its wire form, as _encode_icmp_echo_request writes it. */
+static PyObject *encode_icmp_echo_request(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    ipv4_icmp_echo_request_t m;
+    uint8_t buf[IPV4_ICMP_ECHO_REQUEST_SIZE];
+    long long i;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[0]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v1 = acc_slot(st, obj, 0);
+    if (v1 == NULL) goto python;
+    if (!acc_int(v1, NULL, 0LL, 63LL, &i)) goto python;
+    m.dscp = (uint8_t)i;
+    PyObject *v2 = acc_slot(st, obj, 1);
+    if (v2 == NULL) goto python;
+    if (!acc_int(v2, NULL, 0LL, 3LL, &i)) goto python;
+    m.ecn = (uint8_t)i;
+    PyObject *v3 = acc_slot(st, obj, 2);
+    if (v3 == NULL) goto python;
+    if (!acc_int(v3, NULL, 0LL, 65535LL, &i)) goto python;
+    m.identification = (uint16_t)i;
+    PyObject *v4 = acc_slot(st, obj, 3);
+    if (v4 == NULL) goto python;
+    if (!acc_int(v4, NULL, 0LL, 7LL, &i)) goto python;
+    m.flags = (uint8_t)i;
+    PyObject *v5 = acc_slot(st, obj, 4);
+    if (v5 == NULL) goto python;
+    if (!acc_int(v5, NULL, 0LL, 8191LL, &i)) goto python;
+    m.fragment_offset = (uint16_t)i;
+    PyObject *v6 = acc_slot(st, obj, 5);
+    if (v6 == NULL) goto python;
+    if (!acc_int(v6, NULL, 0LL, 255LL, &i)) goto python;
+    m.ttl = (uint8_t)i;
+    PyObject *v7 = acc_slot(st, obj, 6);
+    if (v7 == NULL) goto python;
+    if (!acc_int(v7, NULL, 0LL, 4294967295LL, &i)) goto python;
+    m.src = (uint32_t)i;
+    PyObject *v8 = acc_slot(st, obj, 7);
+    if (v8 == NULL) goto python;
+    if (!acc_int(v8, NULL, 0LL, 4294967295LL, &i)) goto python;
+    m.dst = (uint32_t)i;
+    PyObject *v9 = acc_slot(st, obj, 8);
+    if (v9 == NULL) goto python;
+    if (!acc_int(v9, NULL, 0LL, 65535LL, &i)) goto python;
+    m.identifier = (uint16_t)i;
+    PyObject *v10 = acc_slot(st, obj, 9);
+    if (v10 == NULL) goto python;
+    if (!acc_int(v10, NULL, 0LL, 65535LL, &i)) goto python;
+    m.sequence = (uint16_t)i;
+    PyObject *v11 = acc_slot(st, obj, 10);
+    if (v11 == NULL) goto python;
+    if (!PyBytes_CheckExact(v11)) goto python;
+    Py_ssize_t k12 = PyBytes_GET_SIZE(v11);
+    if (k12 > 64) goto python;
+    memcpy(m.data, PyBytes_AS_STRING(v11), (size_t)k12);
+    m.data_count = (uint8_t)k12;
+    n = ipv4_icmp_echo_request_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[4], obj);
+}
+
+/* A udp object in its wire form, as _encode_udp writes it. */
+static PyObject *encode_udp(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    ipv4_udp_t m;
+    uint8_t buf[IPV4_UDP_SIZE];
+    long long i;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[2]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v13 = acc_slot(st, obj, 11);
+    if (v13 == NULL) goto python;
+    if (!acc_int(v13, NULL, 0LL, 63LL, &i)) goto python;
+    m.dscp = (uint8_t)i;
+    PyObject *v14 = acc_slot(st, obj, 12);
+    if (v14 == NULL) goto python;
+    if (!acc_int(v14, NULL, 0LL, 3LL, &i)) goto python;
+    m.ecn = (uint8_t)i;
+    PyObject *v15 = acc_slot(st, obj, 13);
+    if (v15 == NULL) goto python;
+    if (!acc_int(v15, NULL, 0LL, 65535LL, &i)) goto python;
+    m.identification = (uint16_t)i;
+    PyObject *v16 = acc_slot(st, obj, 14);
+    if (v16 == NULL) goto python;
+    if (!acc_int(v16, NULL, 0LL, 7LL, &i)) goto python;
+    m.flags = (uint8_t)i;
+    PyObject *v17 = acc_slot(st, obj, 15);
+    if (v17 == NULL) goto python;
+    if (!acc_int(v17, NULL, 0LL, 8191LL, &i)) goto python;
+    m.fragment_offset = (uint16_t)i;
+    PyObject *v18 = acc_slot(st, obj, 16);
+    if (v18 == NULL) goto python;
+    if (!acc_int(v18, NULL, 0LL, 255LL, &i)) goto python;
+    m.ttl = (uint8_t)i;
+    PyObject *v19 = acc_slot(st, obj, 17);
+    if (v19 == NULL) goto python;
+    if (!acc_int(v19, NULL, 0LL, 4294967295LL, &i)) goto python;
+    m.src = (uint32_t)i;
+    PyObject *v20 = acc_slot(st, obj, 18);
+    if (v20 == NULL) goto python;
+    if (!acc_int(v20, NULL, 0LL, 4294967295LL, &i)) goto python;
+    m.dst = (uint32_t)i;
+    PyObject *v21 = acc_slot(st, obj, 19);
+    if (v21 == NULL) goto python;
+    if (!acc_int(v21, NULL, 0LL, 65535LL, &i)) goto python;
+    m.src_port = (uint16_t)i;
+    PyObject *v22 = acc_slot(st, obj, 20);
+    if (v22 == NULL) goto python;
+    if (!acc_int(v22, NULL, 0LL, 65535LL, &i)) goto python;
+    m.dst_port = (uint16_t)i;
+    PyObject *v23 = acc_slot(st, obj, 21);
+    if (v23 == NULL) goto python;
+    if (!acc_int(v23, NULL, 0LL, 65535LL, &i)) goto python;
+    m.length = (uint16_t)i;
+    PyObject *v24 = acc_slot(st, obj, 22);
+    if (v24 == NULL) goto python;
+    if (!acc_int(v24, NULL, 0LL, 65535LL, &i)) goto python;
+    m.udp_checksum = (uint16_t)i;
+    PyObject *v25 = acc_slot(st, obj, 23);
+    if (v25 == NULL) goto python;
+    if (!PyBytes_CheckExact(v25)) goto python;
+    Py_ssize_t k26 = PyBytes_GET_SIZE(v25);
+    if (k26 > 128) goto python;
+    memcpy(m.data, PyBytes_AS_STRING(v25), (size_t)k26);
+    m.data_count = (uint8_t)k26;
+    n = ipv4_udp_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[5], obj);
+}
+
 /* The direction code of a StreamDecoder's direction; 0: not one of the protocol's, or
  * not a str (the Python decoder reads a str subclass as no direction). */
 static int acc_direction(PyObject *direction, int *code)
@@ -315,9 +492,11 @@ static PyObject *run_frames(PyObject *self, PyObject *const *args, Py_ssize_t na
     return PyLong_FromSsize_t(pos);
 }
 
-static PyMethodDef decoders[] = {
+static PyMethodDef compiled[] = {
     {"_decode_icmp_echo_request", decode_icmp_echo_request, METH_O, NULL},
     {"_decode_udp", decode_udp, METH_O, NULL},
+    {"_encode_icmp_echo_request", encode_icmp_echo_request, METH_O, NULL},
+    {"_encode_udp", encode_udp, METH_O, NULL},
     {"_run_frames", (PyCFunction)(void (*)(void))run_frames, METH_FASTCALL, NULL},
     {NULL, NULL, 0, NULL}
 };
@@ -327,6 +506,8 @@ static const char *const global_names[] = {
     "_decode_icmp_echo_request",
     "Udp",
     "_decode_udp",
+    "_encode_icmp_echo_request",
+    "_encode_udp",
 };
 
 /* The globals whose instances acc_new makes, and those read as dicts (indices into G). */
@@ -427,8 +608,8 @@ static int acc_fill(acc_state *st, PyObject *module_globals)
     return 0;
 }
 
-/* bind(module_globals) -> {name: decoder}: the decoders for one copy of the module,
- * each in place of the Python function of the same name. */
+/* bind(module_globals) -> {name: decoder or encoder}: the compiled functions for one copy
+ * of the module, each in place of the Python function of the same name. */
 static PyObject *bind(PyObject *self, PyObject *module_globals)
 {
     (void)self;
@@ -446,7 +627,7 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
         return NULL;
     }
     PyObject *out = acc_fill(st, module_globals) < 0 ? NULL : PyDict_New();
-    for (PyMethodDef *def = decoders; out != NULL && def->ml_name != NULL; def++) {
+    for (PyMethodDef *def = compiled; out != NULL && def->ml_name != NULL; def++) {
         PyObject *fn = PyCFunction_New(def, capsule);
         if (fn == NULL || PyDict_SetItemString(out, def->ml_name, fn) < 0) {
             Py_CLEAR(out);
@@ -457,8 +638,17 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
     return out;
 }
 
+/* method(fn) -> fn bound to the object it is read from, as a Python function is: a
+ * compiled encoder as its class's encode method. */
+static PyObject *method(PyObject *self, PyObject *fn)
+{
+    (void)self;
+    return PyInstanceMethod_New(fn);
+}
+
 static PyMethodDef methods[] = {
-    {"bind", bind, METH_O, "bind(module_globals) -> {name: decoder}"},
+    {"bind", bind, METH_O, "bind(module_globals) -> {name: decoder or encoder}"},
+    {"method", method, METH_O, "method(fn) -> fn as a method"},
     {NULL, NULL, 0, NULL}
 };
 
@@ -467,10 +657,34 @@ static struct PyModuleDef module = {
     NULL, NULL, NULL, NULL
 };
 
+/* The messages decoded and encoded in C: the module's DECODES and ENCODES. */
+static const char *const decodes[] = { "icmp_echo_request", "udp", NULL };
+static const char *const encodes[] = { "icmp_echo_request", "udp", NULL };
+
+static PyObject *acc_names(const char *const *names)
+{
+    PyObject *out = PyList_New(0);
+    for (; out != NULL && *names != NULL; names++) {
+        PyObject *name = PyUnicode_FromString(*names);
+        if (name == NULL || PyList_Append(out, name) < 0) {
+            Py_CLEAR(out);
+        }
+        Py_XDECREF(name);
+    }
+    if (out == NULL) {
+        return NULL;
+    }
+    PyObject *frozen = PyFrozenSet_New(out);
+    Py_DECREF(out);
+    return frozen;
+}
+
 PyMODINIT_FUNC PyInit__ipv4_accel(void)
 {
     PyObject *mod = PyModule_Create(&module);
-    if (mod != NULL && PyModule_AddStringConstant(mod, "SOURCE", "c55ca11207e037a5") < 0) {
+    if (mod != NULL && (PyModule_AddStringConstant(mod, "SOURCE", "c55ca11207e037a5") < 0
+                        || PyModule_AddObject(mod, "DECODES", acc_names(decodes)) < 0
+                        || PyModule_AddObject(mod, "ENCODES", acc_names(encodes)) < 0)) {
         Py_CLEAR(mod);
     }
     return mod;

@@ -12,6 +12,8 @@
 #include <Python.h>
 #include <structmember.h>
 #include <float.h>
+#include <math.h>
+#include <string.h>
 
 #if FLT_EVAL_METHOD != 0  /* scaled values are computed in double, rounded as Python rounds them */
 #error "the accelerator needs double arithmetic without excess precision (on x86: SSE2)"
@@ -29,7 +31,7 @@ const char cw_accel_build[] = "codeword-accelerator-build:" CW_ACCEL_BUILD;
  * tables, the Python decoders), attribute names, numeric constants and where its
  * classes keep each attribute. Each bind() makes one, held by its functions. */
 typedef struct {
-    PyObject *G[12];
+    PyObject *G[18];
     PyObject *A[55];
     Py_ssize_t S[70];  /* offset of the slot in the instance; 0: set through setattr */
 } acc_state;
@@ -163,6 +165,65 @@ static inline int acc_set(const acc_state *st, PyObject *obj, int slot, PyObject
     int rc = PyObject_SetAttr(obj, st->A[slot_of[slot][1]], value);
     Py_DECREF(value);
     return rc;
+}
+
+/* obj's attribute `slot`, borrowed from the instance's slot; NULL when it is unset or
+ * the class keeps it otherwise (Python then reads it). */
+static inline PyObject *acc_slot(const acc_state *st, PyObject *obj, int slot)
+{
+    return st->S[slot] > 0 ? *(PyObject **)(void *)((char *)obj + st->S[slot]) : NULL;
+}
+
+/* 1 with *out set when v is an int (exactly, or of class `also`) in lo..hi; 0 otherwise,
+ * with no error set. */
+static inline int acc_int(PyObject *v, PyObject *also, long long lo, long long hi, long long *out)
+{
+    int overflow;
+    if (!PyLong_CheckExact(v) && (also == NULL || Py_TYPE(v) != (PyTypeObject *)also)) {
+        return 0;
+    }
+    long long x = PyLong_AsLongLongAndOverflow(v, &overflow);
+    if (overflow || (x == -1 && PyErr_Occurred())) {
+        PyErr_Clear();
+        return 0;
+    }
+    if (x < lo || x > hi) {
+        return 0;
+    }
+    *out = x;
+    return 1;
+}
+
+/* acc_int for an unsigned range past the largest long long. */
+static inline int acc_uint(PyObject *v, unsigned long long lo, unsigned long long hi, unsigned long long *out)
+{
+    if (!PyLong_CheckExact(v)) {
+        return 0;
+    }
+    unsigned long long x = PyLong_AsUnsignedLongLong(v);
+    if (x == (unsigned long long)-1 && PyErr_Occurred()) {
+        PyErr_Clear();
+        return 0;
+    }
+    if (x < lo || x > hi) {
+        return 0;
+    }
+    *out = x;
+    return 1;
+}
+
+/* 1 with *out set when v is a float (exactly) in lo..hi (NaN is not); 0 otherwise. */
+static inline int acc_float(PyObject *v, double lo, double hi, double *out)
+{
+    if (!PyFloat_CheckExact(v)) {
+        return 0;
+    }
+    double x = PyFloat_AS_DOUBLE(v);
+    if (!(x >= lo && x <= hi)) {
+        return 0;
+    }
+    *out = x;
+    return 1;
 }
 
 static PyObject *build_heartbeat(const acc_state *st, const mavlink1_heartbeat_t *m)
@@ -457,6 +518,430 @@ static PyObject *decode_command_long(PyObject *self, PyObject *data)
     return build_command_long(st, &m);
 }
 
+/* A heartbeat object in its wire form, as _encode_heartbeat writes it. */
+static PyObject *encode_heartbeat(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    mavlink1_heartbeat_t m;
+    uint8_t buf[MAVLINK1_HEARTBEAT_SIZE];
+    long long i;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[0]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v1 = acc_slot(st, obj, 0);
+    if (v1 == NULL) goto python;
+    if (!acc_int(v1, NULL, 0LL, 255LL, &i)) goto python;
+    m.seq = (uint8_t)i;
+    PyObject *v2 = acc_slot(st, obj, 1);
+    if (v2 == NULL) goto python;
+    if (!acc_int(v2, NULL, 0LL, 255LL, &i)) goto python;
+    m.sysid = (uint8_t)i;
+    PyObject *v3 = acc_slot(st, obj, 2);
+    if (v3 == NULL) goto python;
+    if (!acc_int(v3, NULL, 0LL, 255LL, &i)) goto python;
+    m.compid = (uint8_t)i;
+    PyObject *v4 = acc_slot(st, obj, 3);
+    if (v4 == NULL) goto python;
+    if (!acc_int(v4, NULL, 0LL, 4294967295LL, &i)) goto python;
+    m.custom_mode = (uint32_t)i;
+    PyObject *v5 = acc_slot(st, obj, 4);
+    if (v5 == NULL) goto python;
+    if (!acc_int(v5, NULL, 0LL, 255LL, &i)) goto python;
+    m.type = (uint8_t)i;
+    PyObject *v6 = acc_slot(st, obj, 5);
+    if (v6 == NULL) goto python;
+    if (!acc_int(v6, NULL, 0LL, 255LL, &i)) goto python;
+    m.autopilot = (uint8_t)i;
+    PyObject *v7 = acc_slot(st, obj, 6);
+    if (v7 == NULL) goto python;
+    if (!acc_int(v7, NULL, 0LL, 255LL, &i)) goto python;
+    m.base_mode = (uint8_t)i;
+    PyObject *v8 = acc_slot(st, obj, 7);
+    if (v8 == NULL) goto python;
+    if (!acc_int(v8, NULL, 0LL, 255LL, &i)) goto python;
+    m.system_status = (uint8_t)i;
+    PyObject *v9 = acc_slot(st, obj, 8);
+    if (v9 == NULL) goto python;
+    if (!acc_int(v9, NULL, 0LL, 255LL, &i)) goto python;
+    m.mavlink_version = (uint8_t)i;
+    n = mavlink1_heartbeat_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[12], obj);
+}
+
+/* A sys_status object in its wire form, as _encode_sys_status writes it. */
+static PyObject *encode_sys_status(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    mavlink1_sys_status_t m;
+    uint8_t buf[MAVLINK1_SYS_STATUS_SIZE];
+    long long i;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[2]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v10 = acc_slot(st, obj, 9);
+    if (v10 == NULL) goto python;
+    if (!acc_int(v10, NULL, 0LL, 255LL, &i)) goto python;
+    m.seq = (uint8_t)i;
+    PyObject *v11 = acc_slot(st, obj, 10);
+    if (v11 == NULL) goto python;
+    if (!acc_int(v11, NULL, 0LL, 255LL, &i)) goto python;
+    m.sysid = (uint8_t)i;
+    PyObject *v12 = acc_slot(st, obj, 11);
+    if (v12 == NULL) goto python;
+    if (!acc_int(v12, NULL, 0LL, 255LL, &i)) goto python;
+    m.compid = (uint8_t)i;
+    PyObject *v13 = acc_slot(st, obj, 12);
+    if (v13 == NULL) goto python;
+    if (!acc_int(v13, NULL, 0LL, 4294967295LL, &i)) goto python;
+    m.onboard_control_sensors_present = (uint32_t)i;
+    PyObject *v14 = acc_slot(st, obj, 13);
+    if (v14 == NULL) goto python;
+    if (!acc_int(v14, NULL, 0LL, 4294967295LL, &i)) goto python;
+    m.onboard_control_sensors_enabled = (uint32_t)i;
+    PyObject *v15 = acc_slot(st, obj, 14);
+    if (v15 == NULL) goto python;
+    if (!acc_int(v15, NULL, 0LL, 4294967295LL, &i)) goto python;
+    m.onboard_control_sensors_health = (uint32_t)i;
+    PyObject *v16 = acc_slot(st, obj, 15);
+    if (v16 == NULL) goto python;
+    if (!acc_int(v16, NULL, 0LL, 65535LL, &i)) goto python;
+    m.load = (uint16_t)i;
+    PyObject *v17 = acc_slot(st, obj, 16);
+    if (v17 == NULL) goto python;
+    if (!acc_int(v17, NULL, 0LL, 65535LL, &i)) goto python;
+    m.voltage_battery = (uint16_t)i;
+    PyObject *v18 = acc_slot(st, obj, 17);
+    if (v18 == NULL) goto python;
+    if (!acc_int(v18, NULL, -32768LL, 32767LL, &i)) goto python;
+    m.current_battery = (int16_t)i;
+    PyObject *v19 = acc_slot(st, obj, 18);
+    if (v19 == NULL) goto python;
+    if (!acc_int(v19, NULL, 0LL, 65535LL, &i)) goto python;
+    m.drop_rate_comm = (uint16_t)i;
+    PyObject *v20 = acc_slot(st, obj, 19);
+    if (v20 == NULL) goto python;
+    if (!acc_int(v20, NULL, 0LL, 65535LL, &i)) goto python;
+    m.errors_comm = (uint16_t)i;
+    PyObject *v21 = acc_slot(st, obj, 20);
+    if (v21 == NULL) goto python;
+    if (!acc_int(v21, NULL, 0LL, 65535LL, &i)) goto python;
+    m.errors_count1 = (uint16_t)i;
+    PyObject *v22 = acc_slot(st, obj, 21);
+    if (v22 == NULL) goto python;
+    if (!acc_int(v22, NULL, 0LL, 65535LL, &i)) goto python;
+    m.errors_count2 = (uint16_t)i;
+    PyObject *v23 = acc_slot(st, obj, 22);
+    if (v23 == NULL) goto python;
+    if (!acc_int(v23, NULL, 0LL, 65535LL, &i)) goto python;
+    m.errors_count3 = (uint16_t)i;
+    PyObject *v24 = acc_slot(st, obj, 23);
+    if (v24 == NULL) goto python;
+    if (!acc_int(v24, NULL, 0LL, 65535LL, &i)) goto python;
+    m.errors_count4 = (uint16_t)i;
+    PyObject *v25 = acc_slot(st, obj, 24);
+    if (v25 == NULL) goto python;
+    if (!acc_int(v25, NULL, -128LL, 127LL, &i)) goto python;
+    m.battery_remaining = (int8_t)i;
+    n = mavlink1_sys_status_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[13], obj);
+}
+
+/* A param_value object in its wire form, as _encode_param_value writes it. */
+static PyObject *encode_param_value(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    mavlink1_param_value_t m;
+    uint8_t buf[MAVLINK1_PARAM_VALUE_SIZE];
+    double d;
+    long long i;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[4]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v26 = acc_slot(st, obj, 25);
+    if (v26 == NULL) goto python;
+    if (!acc_int(v26, NULL, 0LL, 255LL, &i)) goto python;
+    m.seq = (uint8_t)i;
+    PyObject *v27 = acc_slot(st, obj, 26);
+    if (v27 == NULL) goto python;
+    if (!acc_int(v27, NULL, 0LL, 255LL, &i)) goto python;
+    m.sysid = (uint8_t)i;
+    PyObject *v28 = acc_slot(st, obj, 27);
+    if (v28 == NULL) goto python;
+    if (!acc_int(v28, NULL, 0LL, 255LL, &i)) goto python;
+    m.compid = (uint8_t)i;
+    PyObject *v29 = acc_slot(st, obj, 28);
+    if (v29 == NULL) goto python;
+    if (!acc_float(v29, -3.4028234663852886e38, 3.4028234663852886e38, &d)) goto python;
+    m.param_value = (float)d;
+    PyObject *v30 = acc_slot(st, obj, 29);
+    if (v30 == NULL) goto python;
+    if (!acc_int(v30, NULL, 0LL, 65535LL, &i)) goto python;
+    m.param_count = (uint16_t)i;
+    PyObject *v31 = acc_slot(st, obj, 30);
+    if (v31 == NULL) goto python;
+    if (!acc_int(v31, NULL, 0LL, 65535LL, &i)) goto python;
+    m.param_index = (uint16_t)i;
+    PyObject *v32 = acc_slot(st, obj, 31);
+    if (v32 == NULL) goto python;
+    if (!PyBytes_CheckExact(v32)) goto python;
+    Py_ssize_t k33 = PyBytes_GET_SIZE(v32);
+    if (k33 != 16) goto python;
+    memcpy(m.param_id, PyBytes_AS_STRING(v32), (size_t)k33);
+    PyObject *v34 = acc_slot(st, obj, 32);
+    if (v34 == NULL) goto python;
+    if (!acc_int(v34, NULL, 0LL, 255LL, &i)) goto python;
+    m.param_type = (uint8_t)i;
+    n = mavlink1_param_value_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[14], obj);
+}
+
+/* A gps_raw_int object in its wire form, as _encode_gps_raw_int writes it. */
+static PyObject *encode_gps_raw_int(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    mavlink1_gps_raw_int_t m;
+    uint8_t buf[MAVLINK1_GPS_RAW_INT_SIZE];
+    long long i;
+    unsigned long long u;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[6]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v35 = acc_slot(st, obj, 33);
+    if (v35 == NULL) goto python;
+    if (!acc_int(v35, NULL, 0LL, 255LL, &i)) goto python;
+    m.seq = (uint8_t)i;
+    PyObject *v36 = acc_slot(st, obj, 34);
+    if (v36 == NULL) goto python;
+    if (!acc_int(v36, NULL, 0LL, 255LL, &i)) goto python;
+    m.sysid = (uint8_t)i;
+    PyObject *v37 = acc_slot(st, obj, 35);
+    if (v37 == NULL) goto python;
+    if (!acc_int(v37, NULL, 0LL, 255LL, &i)) goto python;
+    m.compid = (uint8_t)i;
+    PyObject *v38 = acc_slot(st, obj, 36);
+    if (v38 == NULL) goto python;
+    if (!acc_uint(v38, 0ULL, 18446744073709551615ULL, &u)) goto python;
+    m.time_usec = (uint64_t)u;
+    PyObject *v39 = acc_slot(st, obj, 37);
+    if (v39 == NULL) goto python;
+    if (!acc_int(v39, NULL, -2147483648LL, 2147483647LL, &i)) goto python;
+    m.lat = (int32_t)i;
+    PyObject *v40 = acc_slot(st, obj, 38);
+    if (v40 == NULL) goto python;
+    if (!acc_int(v40, NULL, -2147483648LL, 2147483647LL, &i)) goto python;
+    m.lon = (int32_t)i;
+    PyObject *v41 = acc_slot(st, obj, 39);
+    if (v41 == NULL) goto python;
+    if (!acc_int(v41, NULL, -2147483648LL, 2147483647LL, &i)) goto python;
+    m.alt = (int32_t)i;
+    PyObject *v42 = acc_slot(st, obj, 40);
+    if (v42 == NULL) goto python;
+    if (!acc_int(v42, NULL, 0LL, 65535LL, &i)) goto python;
+    m.eph = (uint16_t)i;
+    PyObject *v43 = acc_slot(st, obj, 41);
+    if (v43 == NULL) goto python;
+    if (!acc_int(v43, NULL, 0LL, 65535LL, &i)) goto python;
+    m.epv = (uint16_t)i;
+    PyObject *v44 = acc_slot(st, obj, 42);
+    if (v44 == NULL) goto python;
+    if (!acc_int(v44, NULL, 0LL, 65535LL, &i)) goto python;
+    m.vel = (uint16_t)i;
+    PyObject *v45 = acc_slot(st, obj, 43);
+    if (v45 == NULL) goto python;
+    if (!acc_int(v45, NULL, 0LL, 65535LL, &i)) goto python;
+    m.cog = (uint16_t)i;
+    PyObject *v46 = acc_slot(st, obj, 44);
+    if (v46 == NULL) goto python;
+    if (!acc_int(v46, NULL, 0LL, 255LL, &i)) goto python;
+    m.fix_type = (uint8_t)i;
+    PyObject *v47 = acc_slot(st, obj, 45);
+    if (v47 == NULL) goto python;
+    if (!acc_int(v47, NULL, 0LL, 255LL, &i)) goto python;
+    m.satellites_visible = (uint8_t)i;
+    n = mavlink1_gps_raw_int_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[15], obj);
+}
+
+/* A attitude object in its wire form, as _encode_attitude writes it. */
+static PyObject *encode_attitude(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    mavlink1_attitude_t m;
+    uint8_t buf[MAVLINK1_ATTITUDE_SIZE];
+    double d;
+    long long i;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[8]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v48 = acc_slot(st, obj, 46);
+    if (v48 == NULL) goto python;
+    if (!acc_int(v48, NULL, 0LL, 255LL, &i)) goto python;
+    m.seq = (uint8_t)i;
+    PyObject *v49 = acc_slot(st, obj, 47);
+    if (v49 == NULL) goto python;
+    if (!acc_int(v49, NULL, 0LL, 255LL, &i)) goto python;
+    m.sysid = (uint8_t)i;
+    PyObject *v50 = acc_slot(st, obj, 48);
+    if (v50 == NULL) goto python;
+    if (!acc_int(v50, NULL, 0LL, 255LL, &i)) goto python;
+    m.compid = (uint8_t)i;
+    PyObject *v51 = acc_slot(st, obj, 49);
+    if (v51 == NULL) goto python;
+    if (!acc_int(v51, NULL, 0LL, 4294967295LL, &i)) goto python;
+    m.time_boot_ms = (uint32_t)i;
+    PyObject *v52 = acc_slot(st, obj, 50);
+    if (v52 == NULL) goto python;
+    if (!acc_float(v52, -3.4028234663852886e38, 3.4028234663852886e38, &d)) goto python;
+    m.roll = (float)d;
+    PyObject *v53 = acc_slot(st, obj, 51);
+    if (v53 == NULL) goto python;
+    if (!acc_float(v53, -3.4028234663852886e38, 3.4028234663852886e38, &d)) goto python;
+    m.pitch = (float)d;
+    PyObject *v54 = acc_slot(st, obj, 52);
+    if (v54 == NULL) goto python;
+    if (!acc_float(v54, -3.4028234663852886e38, 3.4028234663852886e38, &d)) goto python;
+    m.yaw = (float)d;
+    PyObject *v55 = acc_slot(st, obj, 53);
+    if (v55 == NULL) goto python;
+    if (!acc_float(v55, -3.4028234663852886e38, 3.4028234663852886e38, &d)) goto python;
+    m.rollspeed = (float)d;
+    PyObject *v56 = acc_slot(st, obj, 54);
+    if (v56 == NULL) goto python;
+    if (!acc_float(v56, -3.4028234663852886e38, 3.4028234663852886e38, &d)) goto python;
+    m.pitchspeed = (float)d;
+    PyObject *v57 = acc_slot(st, obj, 55);
+    if (v57 == NULL) goto python;
+    if (!acc_float(v57, -3.4028234663852886e38, 3.4028234663852886e38, &d)) goto python;
+    m.yawspeed = (float)d;
+    n = mavlink1_attitude_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[16], obj);
+}
+
+/* A command_long object in its wire form, as _encode_command_long writes it. */
+static PyObject *encode_command_long(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    mavlink1_command_long_t m;
+    uint8_t buf[MAVLINK1_COMMAND_LONG_SIZE];
+    double d;
+    long long i;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[10]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v58 = acc_slot(st, obj, 56);
+    if (v58 == NULL) goto python;
+    if (!acc_int(v58, NULL, 0LL, 255LL, &i)) goto python;
+    m.seq = (uint8_t)i;
+    PyObject *v59 = acc_slot(st, obj, 57);
+    if (v59 == NULL) goto python;
+    if (!acc_int(v59, NULL, 0LL, 255LL, &i)) goto python;
+    m.sysid = (uint8_t)i;
+    PyObject *v60 = acc_slot(st, obj, 58);
+    if (v60 == NULL) goto python;
+    if (!acc_int(v60, NULL, 0LL, 255LL, &i)) goto python;
+    m.compid = (uint8_t)i;
+    PyObject *v61 = acc_slot(st, obj, 59);
+    if (v61 == NULL) goto python;
+    if (!acc_float(v61, -3.4028234663852886e38, 3.4028234663852886e38, &d)) goto python;
+    m.param1 = (float)d;
+    PyObject *v62 = acc_slot(st, obj, 60);
+    if (v62 == NULL) goto python;
+    if (!acc_float(v62, -3.4028234663852886e38, 3.4028234663852886e38, &d)) goto python;
+    m.param2 = (float)d;
+    PyObject *v63 = acc_slot(st, obj, 61);
+    if (v63 == NULL) goto python;
+    if (!acc_float(v63, -3.4028234663852886e38, 3.4028234663852886e38, &d)) goto python;
+    m.param3 = (float)d;
+    PyObject *v64 = acc_slot(st, obj, 62);
+    if (v64 == NULL) goto python;
+    if (!acc_float(v64, -3.4028234663852886e38, 3.4028234663852886e38, &d)) goto python;
+    m.param4 = (float)d;
+    PyObject *v65 = acc_slot(st, obj, 63);
+    if (v65 == NULL) goto python;
+    if (!acc_float(v65, -3.4028234663852886e38, 3.4028234663852886e38, &d)) goto python;
+    m.param5 = (float)d;
+    PyObject *v66 = acc_slot(st, obj, 64);
+    if (v66 == NULL) goto python;
+    if (!acc_float(v66, -3.4028234663852886e38, 3.4028234663852886e38, &d)) goto python;
+    m.param6 = (float)d;
+    PyObject *v67 = acc_slot(st, obj, 65);
+    if (v67 == NULL) goto python;
+    if (!acc_float(v67, -3.4028234663852886e38, 3.4028234663852886e38, &d)) goto python;
+    m.param7 = (float)d;
+    PyObject *v68 = acc_slot(st, obj, 66);
+    if (v68 == NULL) goto python;
+    if (!acc_int(v68, NULL, 0LL, 65535LL, &i)) goto python;
+    m.command = (uint16_t)i;
+    PyObject *v69 = acc_slot(st, obj, 67);
+    if (v69 == NULL) goto python;
+    if (!acc_int(v69, NULL, 0LL, 255LL, &i)) goto python;
+    m.target_system = (uint8_t)i;
+    PyObject *v70 = acc_slot(st, obj, 68);
+    if (v70 == NULL) goto python;
+    if (!acc_int(v70, NULL, 0LL, 255LL, &i)) goto python;
+    m.target_component = (uint8_t)i;
+    PyObject *v71 = acc_slot(st, obj, 69);
+    if (v71 == NULL) goto python;
+    if (!acc_int(v71, NULL, 0LL, 255LL, &i)) goto python;
+    m.confirmation = (uint8_t)i;
+    n = mavlink1_command_long_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[17], obj);
+}
+
 /* The direction code of a StreamDecoder's direction; 0: not one of the protocol's, or
  * not a str (the Python decoder reads a str subclass as no direction). */
 static int acc_direction(PyObject *direction, int *code)
@@ -567,13 +1052,19 @@ static PyObject *run_frames(PyObject *self, PyObject *const *args, Py_ssize_t na
     return PyLong_FromSsize_t(pos);
 }
 
-static PyMethodDef decoders[] = {
+static PyMethodDef compiled[] = {
     {"_decode_heartbeat", decode_heartbeat, METH_O, NULL},
     {"_decode_sys_status", decode_sys_status, METH_O, NULL},
     {"_decode_param_value", decode_param_value, METH_O, NULL},
     {"_decode_gps_raw_int", decode_gps_raw_int, METH_O, NULL},
     {"_decode_attitude", decode_attitude, METH_O, NULL},
     {"_decode_command_long", decode_command_long, METH_O, NULL},
+    {"_encode_heartbeat", encode_heartbeat, METH_O, NULL},
+    {"_encode_sys_status", encode_sys_status, METH_O, NULL},
+    {"_encode_param_value", encode_param_value, METH_O, NULL},
+    {"_encode_gps_raw_int", encode_gps_raw_int, METH_O, NULL},
+    {"_encode_attitude", encode_attitude, METH_O, NULL},
+    {"_encode_command_long", encode_command_long, METH_O, NULL},
     {"_run_frames", (PyCFunction)(void (*)(void))run_frames, METH_FASTCALL, NULL},
     {NULL, NULL, 0, NULL}
 };
@@ -591,6 +1082,12 @@ static const char *const global_names[] = {
     "_decode_attitude",
     "CommandLong",
     "_decode_command_long",
+    "_encode_heartbeat",
+    "_encode_sys_status",
+    "_encode_param_value",
+    "_encode_gps_raw_int",
+    "_encode_attitude",
+    "_encode_command_long",
 };
 
 /* The globals whose instances acc_new makes, and those read as dicts (indices into G). */
@@ -731,8 +1228,8 @@ static int acc_fill(acc_state *st, PyObject *module_globals)
     return 0;
 }
 
-/* bind(module_globals) -> {name: decoder}: the decoders for one copy of the module,
- * each in place of the Python function of the same name. */
+/* bind(module_globals) -> {name: decoder or encoder}: the compiled functions for one copy
+ * of the module, each in place of the Python function of the same name. */
 static PyObject *bind(PyObject *self, PyObject *module_globals)
 {
     (void)self;
@@ -750,7 +1247,7 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
         return NULL;
     }
     PyObject *out = acc_fill(st, module_globals) < 0 ? NULL : PyDict_New();
-    for (PyMethodDef *def = decoders; out != NULL && def->ml_name != NULL; def++) {
+    for (PyMethodDef *def = compiled; out != NULL && def->ml_name != NULL; def++) {
         PyObject *fn = PyCFunction_New(def, capsule);
         if (fn == NULL || PyDict_SetItemString(out, def->ml_name, fn) < 0) {
             Py_CLEAR(out);
@@ -761,8 +1258,17 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
     return out;
 }
 
+/* method(fn) -> fn bound to the object it is read from, as a Python function is: a
+ * compiled encoder as its class's encode method. */
+static PyObject *method(PyObject *self, PyObject *fn)
+{
+    (void)self;
+    return PyInstanceMethod_New(fn);
+}
+
 static PyMethodDef methods[] = {
-    {"bind", bind, METH_O, "bind(module_globals) -> {name: decoder}"},
+    {"bind", bind, METH_O, "bind(module_globals) -> {name: decoder or encoder}"},
+    {"method", method, METH_O, "method(fn) -> fn as a method"},
     {NULL, NULL, 0, NULL}
 };
 
@@ -771,10 +1277,34 @@ static struct PyModuleDef module = {
     NULL, NULL, NULL, NULL
 };
 
+/* The messages decoded and encoded in C: the module's DECODES and ENCODES. */
+static const char *const decodes[] = { "heartbeat", "sys_status", "param_value", "gps_raw_int", "attitude", "command_long", NULL };
+static const char *const encodes[] = { "heartbeat", "sys_status", "param_value", "gps_raw_int", "attitude", "command_long", NULL };
+
+static PyObject *acc_names(const char *const *names)
+{
+    PyObject *out = PyList_New(0);
+    for (; out != NULL && *names != NULL; names++) {
+        PyObject *name = PyUnicode_FromString(*names);
+        if (name == NULL || PyList_Append(out, name) < 0) {
+            Py_CLEAR(out);
+        }
+        Py_XDECREF(name);
+    }
+    if (out == NULL) {
+        return NULL;
+    }
+    PyObject *frozen = PyFrozenSet_New(out);
+    Py_DECREF(out);
+    return frozen;
+}
+
 PyMODINIT_FUNC PyInit__mavlink1_accel(void)
 {
     PyObject *mod = PyModule_Create(&module);
-    if (mod != NULL && PyModule_AddStringConstant(mod, "SOURCE", "5d1b5e7ef7223307") < 0) {
+    if (mod != NULL && (PyModule_AddStringConstant(mod, "SOURCE", "5d1b5e7ef7223307") < 0
+                        || PyModule_AddObject(mod, "DECODES", acc_names(decodes)) < 0
+                        || PyModule_AddObject(mod, "ENCODES", acc_names(encodes)) < 0)) {
         Py_CLEAR(mod);
     }
     return mod;

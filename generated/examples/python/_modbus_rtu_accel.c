@@ -12,6 +12,8 @@
 #include <Python.h>
 #include <structmember.h>
 #include <float.h>
+#include <math.h>
+#include <string.h>
 
 #if FLT_EVAL_METHOD != 0  /* scaled values are computed in double, rounded as Python rounds them */
 #error "the accelerator needs double arithmetic without excess precision (on x86: SSE2)"
@@ -29,7 +31,7 @@ const char cw_accel_build[] = "codeword-accelerator-build:" CW_ACCEL_BUILD;
  * tables, the Python decoders), attribute names, numeric constants and where its
  * classes keep each attribute. Each bind() makes one, held by its functions. */
 typedef struct {
-    PyObject *G[11];
+    PyObject *G[18];
     PyObject *A[7];
     Py_ssize_t S[15];  /* offset of the slot in the instance; 0: set through setattr */
 } acc_state;
@@ -119,6 +121,33 @@ static inline PyObject *acc_lookup(PyObject *table, PyObject *key)
     PyObject *value = PyObject_GetItem(table, key);
     Py_DECREF(key);
     return value;
+}
+
+/* obj's attribute `slot`, borrowed from the instance's slot; NULL when it is unset or
+ * the class keeps it otherwise (Python then reads it). */
+static inline PyObject *acc_slot(const acc_state *st, PyObject *obj, int slot)
+{
+    return st->S[slot] > 0 ? *(PyObject **)(void *)((char *)obj + st->S[slot]) : NULL;
+}
+
+/* 1 with *out set when v is an int (exactly, or of class `also`) in lo..hi; 0 otherwise,
+ * with no error set. */
+static inline int acc_int(PyObject *v, PyObject *also, long long lo, long long hi, long long *out)
+{
+    int overflow;
+    if (!PyLong_CheckExact(v) && (also == NULL || Py_TYPE(v) != (PyTypeObject *)also)) {
+        return 0;
+    }
+    long long x = PyLong_AsLongLongAndOverflow(v, &overflow);
+    if (overflow || (x == -1 && PyErr_Occurred())) {
+        PyErr_Clear();
+        return 0;
+    }
+    if (x < lo || x > hi) {
+        return 0;
+    }
+    *out = x;
+    return 1;
 }
 
 static PyObject *build_read_holding_registers(const acc_state *st, const modbus_rtu_read_holding_registers_t *m)
@@ -333,6 +362,198 @@ static PyObject *decode_exception_response(PyObject *self, PyObject *data)
     return build_exception_response(st, &m);
 }
 
+/* A read_holding_registers object in its wire form, as _encode_read_holding_registers writes it. */
+static PyObject *encode_read_holding_registers(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    modbus_rtu_read_holding_registers_t m;
+    uint8_t buf[MODBUS_RTU_READ_HOLDING_REGISTERS_SIZE];
+    long long i;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[0]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v1 = acc_slot(st, obj, 0);
+    if (v1 == NULL) goto python;
+    if (!acc_int(v1, NULL, 0LL, 255LL, &i)) goto python;
+    m.address = (uint8_t)i;
+    PyObject *v2 = acc_slot(st, obj, 1);
+    if (v2 == NULL) goto python;
+    if (!acc_int(v2, NULL, 0LL, 65535LL, &i)) goto python;
+    m.start = (uint16_t)i;
+    PyObject *v3 = acc_slot(st, obj, 2);
+    if (v3 == NULL) goto python;
+    if (!acc_int(v3, NULL, 1LL, 125LL, &i)) goto python;
+    m.quantity = (uint16_t)i;
+    n = modbus_rtu_read_holding_registers_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[11], obj);
+}
+
+/* A read_holding_registers_response object in its wire form, as _encode_read_holding_registers_response writes it. */
+static PyObject *encode_read_holding_registers_response(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    modbus_rtu_read_holding_registers_response_t m;
+    uint8_t buf[MODBUS_RTU_READ_HOLDING_REGISTERS_RESPONSE_SIZE];
+    long long i;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[2]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v4 = acc_slot(st, obj, 3);
+    if (v4 == NULL) goto python;
+    if (!acc_int(v4, NULL, 0LL, 255LL, &i)) goto python;
+    m.address = (uint8_t)i;
+    PyObject *v5 = acc_slot(st, obj, 4);
+    if (v5 == NULL) goto python;
+    if (!PyList_CheckExact(v5)) goto python;
+    Py_ssize_t n6 = PyList_GET_SIZE(v5);
+    if (n6 > 125) goto python;
+    m.registers_count = (uint8_t)n6;
+    for (Py_ssize_t i7 = 0; i7 < n6; i7++) {
+        PyObject *e8 = PyList_GET_ITEM(v5, i7);
+        if (!acc_int(e8, NULL, 0LL, 65535LL, &i)) goto python;
+        m.registers[i7] = (uint16_t)i;
+    }
+    n = modbus_rtu_read_holding_registers_response_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[12], obj);
+}
+
+/* A write_multiple_registers object in its wire form, as _encode_write_multiple_registers writes it. */
+static PyObject *encode_write_multiple_registers(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    modbus_rtu_write_multiple_registers_t m;
+    uint8_t buf[MODBUS_RTU_WRITE_MULTIPLE_REGISTERS_SIZE];
+    long long i;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[4]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v9 = acc_slot(st, obj, 5);
+    if (v9 == NULL) goto python;
+    if (!acc_int(v9, NULL, 0LL, 255LL, &i)) goto python;
+    m.address = (uint8_t)i;
+    PyObject *v10 = acc_slot(st, obj, 6);
+    if (v10 == NULL) goto python;
+    if (!acc_int(v10, NULL, 0LL, 65535LL, &i)) goto python;
+    m.start = (uint16_t)i;
+    PyObject *v11 = acc_slot(st, obj, 7);
+    if (v11 == NULL) goto python;
+    if (!acc_int(v11, NULL, 1LL, 123LL, &i)) goto python;
+    m.quantity = (uint16_t)i;
+    PyObject *v12 = acc_slot(st, obj, 8);
+    if (v12 == NULL) goto python;
+    if (!PyList_CheckExact(v12)) goto python;
+    Py_ssize_t n13 = PyList_GET_SIZE(v12);
+    if (n13 > 123) goto python;
+    m.values_count = (uint8_t)n13;
+    for (Py_ssize_t i14 = 0; i14 < n13; i14++) {
+        PyObject *e15 = PyList_GET_ITEM(v12, i14);
+        if (!acc_int(e15, NULL, 0LL, 65535LL, &i)) goto python;
+        m.values[i14] = (uint16_t)i;
+    }
+    n = modbus_rtu_write_multiple_registers_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[13], obj);
+}
+
+/* A write_multiple_registers_response object in its wire form, as _encode_write_multiple_registers_response writes it. */
+static PyObject *encode_write_multiple_registers_response(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    modbus_rtu_write_multiple_registers_response_t m;
+    uint8_t buf[MODBUS_RTU_WRITE_MULTIPLE_REGISTERS_RESPONSE_SIZE];
+    long long i;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[6]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v16 = acc_slot(st, obj, 9);
+    if (v16 == NULL) goto python;
+    if (!acc_int(v16, NULL, 0LL, 255LL, &i)) goto python;
+    m.address = (uint8_t)i;
+    PyObject *v17 = acc_slot(st, obj, 10);
+    if (v17 == NULL) goto python;
+    if (!acc_int(v17, NULL, 0LL, 65535LL, &i)) goto python;
+    m.start = (uint16_t)i;
+    PyObject *v18 = acc_slot(st, obj, 11);
+    if (v18 == NULL) goto python;
+    if (!acc_int(v18, NULL, 0LL, 65535LL, &i)) goto python;
+    m.quantity = (uint16_t)i;
+    n = modbus_rtu_write_multiple_registers_response_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[14], obj);
+}
+
+/* A exception_response object in its wire form, as _encode_exception_response writes it. */
+static PyObject *encode_exception_response(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    modbus_rtu_exception_response_t m;
+    uint8_t buf[MODBUS_RTU_EXCEPTION_RESPONSE_SIZE];
+    long long i;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[8]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v19 = acc_slot(st, obj, 12);
+    if (v19 == NULL) goto python;
+    if (!acc_int(v19, NULL, 0LL, 255LL, &i)) goto python;
+    m.address = (uint8_t)i;
+    PyObject *v20 = acc_slot(st, obj, 13);
+    if (v20 == NULL) goto python;
+    if (!acc_int(v20, NULL, 0LL, 255LL, &i)) goto python;
+    if (i != 129LL && i != 130LL && i != 131LL && i != 132LL && i != 133LL && i != 134LL && i != 143LL && i != 144LL) goto python;
+    m.function = (uint8_t)i;
+    PyObject *v21 = acc_slot(st, obj, 14);
+    if (v21 == NULL) goto python;
+    if (!PyLong_CheckExact(v21) && Py_TYPE(v21) != (PyTypeObject *)st->G[15]) goto python;
+    PyObject *r22 = PyDict_GetItemWithError(st->G[16], v21);
+    if (r22 == NULL || !acc_int(r22, NULL, 0LL, 255LL, &i)) goto python;
+    m.exception_code = (uint8_t)i;
+    n = modbus_rtu_exception_response_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[17], obj);
+}
+
 /* The direction code of a StreamDecoder's direction; 0: not one of the protocol's, or
  * not a str (the Python decoder reads a str subclass as no direction). */
 static int acc_direction(PyObject *direction, int *code)
@@ -448,12 +669,17 @@ static PyObject *run_frames(PyObject *self, PyObject *const *args, Py_ssize_t na
     return PyLong_FromSsize_t(pos);
 }
 
-static PyMethodDef decoders[] = {
+static PyMethodDef compiled[] = {
     {"_decode_read_holding_registers", decode_read_holding_registers, METH_O, NULL},
     {"_decode_read_holding_registers_response", decode_read_holding_registers_response, METH_O, NULL},
     {"_decode_write_multiple_registers", decode_write_multiple_registers, METH_O, NULL},
     {"_decode_write_multiple_registers_response", decode_write_multiple_registers_response, METH_O, NULL},
     {"_decode_exception_response", decode_exception_response, METH_O, NULL},
+    {"_encode_read_holding_registers", encode_read_holding_registers, METH_O, NULL},
+    {"_encode_read_holding_registers_response", encode_read_holding_registers_response, METH_O, NULL},
+    {"_encode_write_multiple_registers", encode_write_multiple_registers, METH_O, NULL},
+    {"_encode_write_multiple_registers_response", encode_write_multiple_registers_response, METH_O, NULL},
+    {"_encode_exception_response", encode_exception_response, METH_O, NULL},
     {"_run_frames", (PyCFunction)(void (*)(void))run_frames, METH_FASTCALL, NULL},
     {NULL, NULL, 0, NULL}
 };
@@ -470,10 +696,18 @@ static const char *const global_names[] = {
     "ExceptionResponse",
     "_ENUM_exception_code",
     "_decode_exception_response",
+    "_encode_read_holding_registers",
+    "_encode_read_holding_registers_response",
+    "_encode_write_multiple_registers",
+    "_encode_write_multiple_registers_response",
+    "ExceptionCode",
+    "_RAW_exception_code",
+    "_encode_exception_response",
 };
 
 /* The globals whose instances acc_new makes, and those read as dicts (indices into G). */
 static const unsigned int class_globals[] = { 0, 2, 4, 6, 8, };
+static const unsigned int dict_globals[] = { 16, };
 
 /* -1 with TypeError unless every class global is one whose instances object.__new__ makes
  * (so acc_new may: a type, of object's layout and allocation) and every dict global a
@@ -494,6 +728,12 @@ static int acc_check(const acc_state *st)
         Py_DECREF(made);
     }
     Py_DECREF(object_new);
+    for (size_t i = 0; i < sizeof dict_globals / sizeof dict_globals[0]; i++) {
+        if (!PyDict_Check(st->G[dict_globals[i]])) {
+            PyErr_Format(PyExc_TypeError, "bind(): %s is not a dict of the %s module", global_names[dict_globals[i]], ACC_MODULE);
+            return -1;
+        }
+    }
     return 0;
 }
 
@@ -562,8 +802,8 @@ static int acc_fill(acc_state *st, PyObject *module_globals)
     return 0;
 }
 
-/* bind(module_globals) -> {name: decoder}: the decoders for one copy of the module,
- * each in place of the Python function of the same name. */
+/* bind(module_globals) -> {name: decoder or encoder}: the compiled functions for one copy
+ * of the module, each in place of the Python function of the same name. */
 static PyObject *bind(PyObject *self, PyObject *module_globals)
 {
     (void)self;
@@ -581,7 +821,7 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
         return NULL;
     }
     PyObject *out = acc_fill(st, module_globals) < 0 ? NULL : PyDict_New();
-    for (PyMethodDef *def = decoders; out != NULL && def->ml_name != NULL; def++) {
+    for (PyMethodDef *def = compiled; out != NULL && def->ml_name != NULL; def++) {
         PyObject *fn = PyCFunction_New(def, capsule);
         if (fn == NULL || PyDict_SetItemString(out, def->ml_name, fn) < 0) {
             Py_CLEAR(out);
@@ -592,8 +832,17 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
     return out;
 }
 
+/* method(fn) -> fn bound to the object it is read from, as a Python function is: a
+ * compiled encoder as its class's encode method. */
+static PyObject *method(PyObject *self, PyObject *fn)
+{
+    (void)self;
+    return PyInstanceMethod_New(fn);
+}
+
 static PyMethodDef methods[] = {
-    {"bind", bind, METH_O, "bind(module_globals) -> {name: decoder}"},
+    {"bind", bind, METH_O, "bind(module_globals) -> {name: decoder or encoder}"},
+    {"method", method, METH_O, "method(fn) -> fn as a method"},
     {NULL, NULL, 0, NULL}
 };
 
@@ -602,10 +851,34 @@ static struct PyModuleDef module = {
     NULL, NULL, NULL, NULL
 };
 
+/* The messages decoded and encoded in C: the module's DECODES and ENCODES. */
+static const char *const decodes[] = { "read_holding_registers", "read_holding_registers_response", "write_multiple_registers", "write_multiple_registers_response", "exception_response", NULL };
+static const char *const encodes[] = { "read_holding_registers", "read_holding_registers_response", "write_multiple_registers", "write_multiple_registers_response", "exception_response", NULL };
+
+static PyObject *acc_names(const char *const *names)
+{
+    PyObject *out = PyList_New(0);
+    for (; out != NULL && *names != NULL; names++) {
+        PyObject *name = PyUnicode_FromString(*names);
+        if (name == NULL || PyList_Append(out, name) < 0) {
+            Py_CLEAR(out);
+        }
+        Py_XDECREF(name);
+    }
+    if (out == NULL) {
+        return NULL;
+    }
+    PyObject *frozen = PyFrozenSet_New(out);
+    Py_DECREF(out);
+    return frozen;
+}
+
 PyMODINIT_FUNC PyInit__modbus_rtu_accel(void)
 {
     PyObject *mod = PyModule_Create(&module);
-    if (mod != NULL && PyModule_AddStringConstant(mod, "SOURCE", "0a396cac0e09bfa2") < 0) {
+    if (mod != NULL && (PyModule_AddStringConstant(mod, "SOURCE", "0a396cac0e09bfa2") < 0
+                        || PyModule_AddObject(mod, "DECODES", acc_names(decodes)) < 0
+                        || PyModule_AddObject(mod, "ENCODES", acc_names(encodes)) < 0)) {
         Py_CLEAR(mod);
     }
     return mod;

@@ -12,6 +12,8 @@
 #include <Python.h>
 #include <structmember.h>
 #include <float.h>
+#include <math.h>
+#include <string.h>
 
 #if FLT_EVAL_METHOD != 0  /* scaled values are computed in double, rounded as Python rounds them */
 #error "the accelerator needs double arithmetic without excess precision (on x86: SSE2)"
@@ -29,7 +31,7 @@ const char cw_accel_build[] = "codeword-accelerator-build:" CW_ACCEL_BUILD;
  * tables, the Python decoders), attribute names, numeric constants and where its
  * classes keep each attribute. Each bind() makes one, held by its functions. */
 typedef struct {
-    PyObject *G[18];
+    PyObject *G[26];
     PyObject *A[85];
     Py_ssize_t S[96];  /* offset of the slot in the instance; 0: set through setattr */
 } acc_state;
@@ -189,6 +191,47 @@ static inline int acc_set(const acc_state *st, PyObject *obj, int slot, PyObject
     int rc = PyObject_SetAttr(obj, st->A[slot_of[slot][1]], value);
     Py_DECREF(value);
     return rc;
+}
+
+/* obj's attribute `slot`, borrowed from the instance's slot; NULL when it is unset or
+ * the class keeps it otherwise (Python then reads it). */
+static inline PyObject *acc_slot(const acc_state *st, PyObject *obj, int slot)
+{
+    return st->S[slot] > 0 ? *(PyObject **)(void *)((char *)obj + st->S[slot]) : NULL;
+}
+
+/* 1 with *out set when v is an int (exactly, or of class `also`) in lo..hi; 0 otherwise,
+ * with no error set. */
+static inline int acc_int(PyObject *v, PyObject *also, long long lo, long long hi, long long *out)
+{
+    int overflow;
+    if (!PyLong_CheckExact(v) && (also == NULL || Py_TYPE(v) != (PyTypeObject *)also)) {
+        return 0;
+    }
+    long long x = PyLong_AsLongLongAndOverflow(v, &overflow);
+    if (overflow || (x == -1 && PyErr_Occurred())) {
+        PyErr_Clear();
+        return 0;
+    }
+    if (x < lo || x > hi) {
+        return 0;
+    }
+    *out = x;
+    return 1;
+}
+
+/* 1 with *out set when v is a float (exactly) in lo..hi (NaN is not); 0 otherwise. */
+static inline int acc_float(PyObject *v, double lo, double hi, double *out)
+{
+    if (!PyFloat_CheckExact(v)) {
+        return 0;
+    }
+    double x = PyFloat_AS_DOUBLE(v);
+    if (!(x >= lo && x <= hi)) {
+        return 0;
+    }
+    *out = x;
+    return 1;
 }
 
 static PyObject *build_ack_nak(const acc_state *st, const ubx_ack_nak_t *m)
@@ -589,6 +632,616 @@ static PyObject *decode_mon_ver(PyObject *self, PyObject *data)
     return build_mon_ver(st, &m);
 }
 
+/* A ack_nak object in its wire form, as _encode_ack_nak writes it. */
+static PyObject *encode_ack_nak(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    ubx_ack_nak_t m;
+    uint8_t buf[UBX_ACK_NAK_SIZE];
+    long long i;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[0]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v1 = acc_slot(st, obj, 0);
+    if (v1 == NULL) goto python;
+    if (!acc_int(v1, NULL, 0LL, 255LL, &i)) goto python;
+    m.clsID = (uint8_t)i;
+    PyObject *v2 = acc_slot(st, obj, 1);
+    if (v2 == NULL) goto python;
+    if (!acc_int(v2, NULL, 0LL, 255LL, &i)) goto python;
+    m.msgID = (uint8_t)i;
+    n = ubx_ack_nak_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[18], obj);
+}
+
+/* A ack_ack object in its wire form, as _encode_ack_ack writes it. */
+static PyObject *encode_ack_ack(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    ubx_ack_ack_t m;
+    uint8_t buf[UBX_ACK_ACK_SIZE];
+    long long i;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[2]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v3 = acc_slot(st, obj, 2);
+    if (v3 == NULL) goto python;
+    if (!acc_int(v3, NULL, 0LL, 255LL, &i)) goto python;
+    m.clsID = (uint8_t)i;
+    PyObject *v4 = acc_slot(st, obj, 3);
+    if (v4 == NULL) goto python;
+    if (!acc_int(v4, NULL, 0LL, 255LL, &i)) goto python;
+    m.msgID = (uint8_t)i;
+    n = ubx_ack_ack_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[19], obj);
+}
+
+/* A cfg_rate_poll object in its wire form, as _encode_cfg_rate_poll writes it. */
+static PyObject *encode_cfg_rate_poll(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    ubx_cfg_rate_poll_t m;
+    uint8_t buf[UBX_CFG_RATE_POLL_SIZE];
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[4]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+
+    n = ubx_cfg_rate_poll_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[20], obj);
+}
+
+/* A cfg_rate object in its wire form, as _encode_cfg_rate writes it. */
+static PyObject *encode_cfg_rate(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    ubx_cfg_rate_t m;
+    uint8_t buf[UBX_CFG_RATE_SIZE];
+    long long i;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[6]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v5 = acc_slot(st, obj, 4);
+    if (v5 == NULL) goto python;
+    if (!acc_int(v5, NULL, 0LL, 65535LL, &i)) goto python;
+    m.measRate = (uint16_t)i;
+    PyObject *v6 = acc_slot(st, obj, 5);
+    if (v6 == NULL) goto python;
+    if (!acc_int(v6, NULL, 0LL, 65535LL, &i)) goto python;
+    m.navRate = (uint16_t)i;
+    PyObject *v7 = acc_slot(st, obj, 6);
+    if (v7 == NULL) goto python;
+    if (!acc_int(v7, NULL, 0LL, 65535LL, &i)) goto python;
+    m.timeRef = (uint16_t)i;
+    n = ubx_cfg_rate_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[21], obj);
+}
+
+/* A nav_posllh object in its wire form, as _encode_nav_posllh writes it. */
+static PyObject *encode_nav_posllh(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    ubx_nav_posllh_t m;
+    uint8_t buf[UBX_NAV_POSLLH_SIZE];
+    double d;
+    long long i;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[8]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v8 = acc_slot(st, obj, 7);
+    if (v8 == NULL) goto python;
+    if (!acc_int(v8, NULL, 0LL, 4294967295LL, &i)) goto python;
+    m.iTOW = (uint32_t)i;
+    PyObject *v9 = acc_slot(st, obj, 8);
+    if (v9 == NULL) goto python;
+    if (!acc_float(v9, -214.7483648, 214.7483647, &d)) goto python;
+    d = floor((d) / 1e-07 + 0.5);
+    if (!(d >= -2147483648.0 && d <= 2147483647.0)) goto python;
+    m.lon = (int32_t)d;
+    PyObject *v10 = acc_slot(st, obj, 9);
+    if (v10 == NULL) goto python;
+    if (!acc_float(v10, -214.7483648, 214.7483647, &d)) goto python;
+    d = floor((d) / 1e-07 + 0.5);
+    if (!(d >= -2147483648.0 && d <= 2147483647.0)) goto python;
+    m.lat = (int32_t)d;
+    PyObject *v11 = acc_slot(st, obj, 10);
+    if (v11 == NULL) goto python;
+    if (!acc_int(v11, NULL, -2147483648LL, 2147483647LL, &i)) goto python;
+    m.height = (int32_t)i;
+    PyObject *v12 = acc_slot(st, obj, 11);
+    if (v12 == NULL) goto python;
+    if (!acc_int(v12, NULL, -2147483648LL, 2147483647LL, &i)) goto python;
+    m.hMSL = (int32_t)i;
+    PyObject *v13 = acc_slot(st, obj, 12);
+    if (v13 == NULL) goto python;
+    if (!acc_int(v13, NULL, 0LL, 4294967295LL, &i)) goto python;
+    m.hAcc = (uint32_t)i;
+    PyObject *v14 = acc_slot(st, obj, 13);
+    if (v14 == NULL) goto python;
+    if (!acc_int(v14, NULL, 0LL, 4294967295LL, &i)) goto python;
+    m.vAcc = (uint32_t)i;
+    n = ubx_nav_posllh_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[22], obj);
+}
+
+/* A nav_pvt object in its wire form, as _encode_nav_pvt writes it. */
+static PyObject *encode_nav_pvt(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    ubx_nav_pvt_t m;
+    uint8_t buf[UBX_NAV_PVT_SIZE];
+    double d;
+    long long i;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[10]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v15 = acc_slot(st, obj, 14);
+    if (v15 == NULL) goto python;
+    if (!acc_int(v15, NULL, 0LL, 4294967295LL, &i)) goto python;
+    m.iTOW = (uint32_t)i;
+    PyObject *v16 = acc_slot(st, obj, 15);
+    if (v16 == NULL) goto python;
+    if (!acc_int(v16, NULL, 0LL, 65535LL, &i)) goto python;
+    m.year = (uint16_t)i;
+    PyObject *v17 = acc_slot(st, obj, 16);
+    if (v17 == NULL) goto python;
+    if (!acc_int(v17, NULL, 0LL, 255LL, &i)) goto python;
+    m.month = (uint8_t)i;
+    PyObject *v18 = acc_slot(st, obj, 17);
+    if (v18 == NULL) goto python;
+    if (!acc_int(v18, NULL, 0LL, 255LL, &i)) goto python;
+    m.day = (uint8_t)i;
+    PyObject *v19 = acc_slot(st, obj, 18);
+    if (v19 == NULL) goto python;
+    if (!acc_int(v19, NULL, 0LL, 255LL, &i)) goto python;
+    m.hour = (uint8_t)i;
+    PyObject *v20 = acc_slot(st, obj, 19);
+    if (v20 == NULL) goto python;
+    if (!acc_int(v20, NULL, 0LL, 255LL, &i)) goto python;
+    m.min = (uint8_t)i;
+    PyObject *v21 = acc_slot(st, obj, 20);
+    if (v21 == NULL) goto python;
+    if (!acc_int(v21, NULL, 0LL, 255LL, &i)) goto python;
+    m.second = (uint8_t)i;
+    PyObject *v22 = acc_slot(st, obj, 21);
+    if (v22 == NULL) goto python;
+    if (v22 != Py_True && v22 != Py_False) goto python;
+    m.validDate = v22 == Py_True;
+    PyObject *v23 = acc_slot(st, obj, 22);
+    if (v23 == NULL) goto python;
+    if (v23 != Py_True && v23 != Py_False) goto python;
+    m.validTime = v23 == Py_True;
+    PyObject *v24 = acc_slot(st, obj, 23);
+    if (v24 == NULL) goto python;
+    if (v24 != Py_True && v24 != Py_False) goto python;
+    m.fullyResolved = v24 == Py_True;
+    PyObject *v25 = acc_slot(st, obj, 24);
+    if (v25 == NULL) goto python;
+    if (v25 != Py_True && v25 != Py_False) goto python;
+    m.validMag = v25 == Py_True;
+    PyObject *v26 = acc_slot(st, obj, 25);
+    if (v26 == NULL) goto python;
+    if (!acc_int(v26, NULL, 0LL, 4294967295LL, &i)) goto python;
+    m.tAcc = (uint32_t)i;
+    PyObject *v27 = acc_slot(st, obj, 26);
+    if (v27 == NULL) goto python;
+    if (!acc_int(v27, NULL, -2147483648LL, 2147483647LL, &i)) goto python;
+    m.nano = (int32_t)i;
+    PyObject *v28 = acc_slot(st, obj, 27);
+    if (v28 == NULL) goto python;
+    if (!acc_int(v28, NULL, 0LL, 255LL, &i)) goto python;
+    m.fixType = (uint8_t)i;
+    PyObject *v29 = acc_slot(st, obj, 28);
+    if (v29 == NULL) goto python;
+    if (v29 != Py_True && v29 != Py_False) goto python;
+    m.gnssFixOk = v29 == Py_True;
+    PyObject *v30 = acc_slot(st, obj, 29);
+    if (v30 == NULL) goto python;
+    if (v30 != Py_True && v30 != Py_False) goto python;
+    m.diffSoln = v30 == Py_True;
+    PyObject *v31 = acc_slot(st, obj, 30);
+    if (v31 == NULL) goto python;
+    if (!acc_int(v31, NULL, 0LL, 7LL, &i)) goto python;
+    m.psmState = (uint8_t)i;
+    PyObject *v32 = acc_slot(st, obj, 31);
+    if (v32 == NULL) goto python;
+    if (v32 != Py_True && v32 != Py_False) goto python;
+    m.headVehValid = v32 == Py_True;
+    PyObject *v33 = acc_slot(st, obj, 32);
+    if (v33 == NULL) goto python;
+    if (!acc_int(v33, NULL, 0LL, 3LL, &i)) goto python;
+    m.carrSoln = (uint8_t)i;
+    PyObject *v34 = acc_slot(st, obj, 33);
+    if (v34 == NULL) goto python;
+    if (!acc_int(v34, NULL, 0LL, 31LL, &i)) goto python;
+    m.reserved = (uint8_t)i;
+    PyObject *v35 = acc_slot(st, obj, 34);
+    if (v35 == NULL) goto python;
+    if (v35 != Py_True && v35 != Py_False) goto python;
+    m.confirmedAvai = v35 == Py_True;
+    PyObject *v36 = acc_slot(st, obj, 35);
+    if (v36 == NULL) goto python;
+    if (v36 != Py_True && v36 != Py_False) goto python;
+    m.confirmedDate = v36 == Py_True;
+    PyObject *v37 = acc_slot(st, obj, 36);
+    if (v37 == NULL) goto python;
+    if (v37 != Py_True && v37 != Py_False) goto python;
+    m.confirmedTime = v37 == Py_True;
+    PyObject *v38 = acc_slot(st, obj, 37);
+    if (v38 == NULL) goto python;
+    if (!acc_int(v38, NULL, 0LL, 255LL, &i)) goto python;
+    m.numSV = (uint8_t)i;
+    PyObject *v39 = acc_slot(st, obj, 38);
+    if (v39 == NULL) goto python;
+    if (!acc_float(v39, -214.7483648, 214.7483647, &d)) goto python;
+    d = floor((d) / 1e-07 + 0.5);
+    if (!(d >= -2147483648.0 && d <= 2147483647.0)) goto python;
+    m.lon = (int32_t)d;
+    PyObject *v40 = acc_slot(st, obj, 39);
+    if (v40 == NULL) goto python;
+    if (!acc_float(v40, -214.7483648, 214.7483647, &d)) goto python;
+    d = floor((d) / 1e-07 + 0.5);
+    if (!(d >= -2147483648.0 && d <= 2147483647.0)) goto python;
+    m.lat = (int32_t)d;
+    PyObject *v41 = acc_slot(st, obj, 40);
+    if (v41 == NULL) goto python;
+    if (!acc_int(v41, NULL, -2147483648LL, 2147483647LL, &i)) goto python;
+    m.height = (int32_t)i;
+    PyObject *v42 = acc_slot(st, obj, 41);
+    if (v42 == NULL) goto python;
+    if (!acc_int(v42, NULL, -2147483648LL, 2147483647LL, &i)) goto python;
+    m.hMSL = (int32_t)i;
+    PyObject *v43 = acc_slot(st, obj, 42);
+    if (v43 == NULL) goto python;
+    if (!acc_int(v43, NULL, 0LL, 4294967295LL, &i)) goto python;
+    m.hAcc = (uint32_t)i;
+    PyObject *v44 = acc_slot(st, obj, 43);
+    if (v44 == NULL) goto python;
+    if (!acc_int(v44, NULL, 0LL, 4294967295LL, &i)) goto python;
+    m.vAcc = (uint32_t)i;
+    PyObject *v45 = acc_slot(st, obj, 44);
+    if (v45 == NULL) goto python;
+    if (!acc_int(v45, NULL, -2147483648LL, 2147483647LL, &i)) goto python;
+    m.velN = (int32_t)i;
+    PyObject *v46 = acc_slot(st, obj, 45);
+    if (v46 == NULL) goto python;
+    if (!acc_int(v46, NULL, -2147483648LL, 2147483647LL, &i)) goto python;
+    m.velE = (int32_t)i;
+    PyObject *v47 = acc_slot(st, obj, 46);
+    if (v47 == NULL) goto python;
+    if (!acc_int(v47, NULL, -2147483648LL, 2147483647LL, &i)) goto python;
+    m.velD = (int32_t)i;
+    PyObject *v48 = acc_slot(st, obj, 47);
+    if (v48 == NULL) goto python;
+    if (!acc_int(v48, NULL, -2147483648LL, 2147483647LL, &i)) goto python;
+    m.gSpeed = (int32_t)i;
+    PyObject *v49 = acc_slot(st, obj, 48);
+    if (v49 == NULL) goto python;
+    if (!acc_float(v49, -21474.83648, 21474.836470000002, &d)) goto python;
+    d = floor((d) / 1e-05 + 0.5);
+    if (!(d >= -2147483648.0 && d <= 2147483647.0)) goto python;
+    m.headMot = (int32_t)d;
+    PyObject *v50 = acc_slot(st, obj, 49);
+    if (v50 == NULL) goto python;
+    if (!acc_int(v50, NULL, 0LL, 4294967295LL, &i)) goto python;
+    m.sAcc = (uint32_t)i;
+    PyObject *v51 = acc_slot(st, obj, 50);
+    if (v51 == NULL) goto python;
+    if (!acc_float(v51, 0.0, 42949.67295, &d)) goto python;
+    d = floor((d) / 1e-05 + 0.5);
+    if (!(d >= 0.0 && d <= 4294967295.0)) goto python;
+    m.headAcc = (uint32_t)d;
+    PyObject *v52 = acc_slot(st, obj, 51);
+    if (v52 == NULL) goto python;
+    if (!acc_float(v52, 0.0, 655.35, &d)) goto python;
+    d = floor((d) / 0.01 + 0.5);
+    if (!(d >= 0.0 && d <= 65535.0)) goto python;
+    m.pDOP = (uint16_t)d;
+    PyObject *v53 = acc_slot(st, obj, 52);
+    if (v53 == NULL) goto python;
+    if (v53 != Py_True && v53 != Py_False) goto python;
+    m.invalidLlh = v53 == Py_True;
+    PyObject *v54 = acc_slot(st, obj, 53);
+    if (v54 == NULL) goto python;
+    if (!acc_int(v54, NULL, 0LL, 15LL, &i)) goto python;
+    m.lastCorrectionAge = (uint8_t)i;
+    PyObject *v55 = acc_slot(st, obj, 54);
+    if (v55 == NULL) goto python;
+    if (!acc_int(v55, NULL, 0LL, 255LL, &i)) goto python;
+    m.reserved1 = (uint8_t)i;
+    PyObject *v56 = acc_slot(st, obj, 55);
+    if (v56 == NULL) goto python;
+    if (v56 != Py_True && v56 != Py_False) goto python;
+    m.authTime = v56 == Py_True;
+    PyObject *v57 = acc_slot(st, obj, 56);
+    if (v57 == NULL) goto python;
+    if (v57 != Py_True && v57 != Py_False) goto python;
+    m.nmaFixStatus = v57 == Py_True;
+    PyObject *v58 = acc_slot(st, obj, 57);
+    if (v58 == NULL) goto python;
+    if (!acc_int(v58, NULL, 0LL, 4294967295LL, &i)) goto python;
+    m.reserved0 = (uint32_t)i;
+    PyObject *v59 = acc_slot(st, obj, 58);
+    if (v59 == NULL) goto python;
+    if (!acc_float(v59, -21474.83648, 21474.836470000002, &d)) goto python;
+    d = floor((d) / 1e-05 + 0.5);
+    if (!(d >= -2147483648.0 && d <= 2147483647.0)) goto python;
+    m.headVeh = (int32_t)d;
+    PyObject *v60 = acc_slot(st, obj, 59);
+    if (v60 == NULL) goto python;
+    if (!acc_float(v60, -327.68, 327.67, &d)) goto python;
+    d = floor((d) / 0.01 + 0.5);
+    if (!(d >= -32768.0 && d <= 32767.0)) goto python;
+    m.magDec = (int16_t)d;
+    PyObject *v61 = acc_slot(st, obj, 60);
+    if (v61 == NULL) goto python;
+    if (!acc_float(v61, 0.0, 655.35, &d)) goto python;
+    d = floor((d) / 0.01 + 0.5);
+    if (!(d >= 0.0 && d <= 65535.0)) goto python;
+    m.magAcc = (uint16_t)d;
+    n = ubx_nav_pvt_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[23], obj);
+}
+
+/* A nav_sat object in its wire form, as _encode_nav_sat writes it. */
+static PyObject *encode_nav_sat(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    ubx_nav_sat_t m;
+    uint8_t buf[UBX_NAV_SAT_SIZE];
+    double d;
+    long long i;
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[12]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v62 = acc_slot(st, obj, 61);
+    if (v62 == NULL) goto python;
+    if (!acc_int(v62, NULL, 0LL, 4294967295LL, &i)) goto python;
+    m.iTOW = (uint32_t)i;
+    PyObject *v63 = acc_slot(st, obj, 62);
+    if (v63 == NULL) goto python;
+    if (!acc_int(v63, NULL, 0LL, 255LL, &i)) goto python;
+    m.version = (uint8_t)i;
+    PyObject *v64 = acc_slot(st, obj, 63);
+    if (v64 == NULL) goto python;
+    if (!acc_int(v64, NULL, 0LL, 65535LL, &i)) goto python;
+    m.reserved0 = (uint16_t)i;
+    PyObject *v65 = acc_slot(st, obj, 64);
+    if (v65 == NULL) goto python;
+    if (!PyList_CheckExact(v65)) goto python;
+    Py_ssize_t n66 = PyList_GET_SIZE(v65);
+    if (n66 > 32) goto python;
+    m.sv_count = (uint8_t)n66;
+    for (Py_ssize_t i67 = 0; i67 < n66; i67++) {
+        PyObject *e68 = PyList_GET_ITEM(v65, i67);
+        if (Py_TYPE(e68) != (PyTypeObject *)st->G[13]) goto python;
+        PyObject *v69 = acc_slot(st, e68, 65);
+        if (v69 == NULL) goto python;
+        if (!acc_int(v69, NULL, 0LL, 255LL, &i)) goto python;
+        m.sv[i67].gnssId = (uint8_t)i;
+        PyObject *v70 = acc_slot(st, e68, 66);
+        if (v70 == NULL) goto python;
+        if (!acc_int(v70, NULL, 0LL, 255LL, &i)) goto python;
+        m.sv[i67].svId = (uint8_t)i;
+        PyObject *v71 = acc_slot(st, e68, 67);
+        if (v71 == NULL) goto python;
+        if (!acc_int(v71, NULL, 0LL, 255LL, &i)) goto python;
+        m.sv[i67].cno = (uint8_t)i;
+        PyObject *v72 = acc_slot(st, e68, 68);
+        if (v72 == NULL) goto python;
+        if (!acc_int(v72, NULL, -128LL, 127LL, &i)) goto python;
+        m.sv[i67].elev = (int8_t)i;
+        PyObject *v73 = acc_slot(st, e68, 69);
+        if (v73 == NULL) goto python;
+        if (!acc_int(v73, NULL, -32768LL, 32767LL, &i)) goto python;
+        m.sv[i67].azim = (int16_t)i;
+        PyObject *v74 = acc_slot(st, e68, 70);
+        if (v74 == NULL) goto python;
+        if (!acc_float(v74, -3276.8, 3276.7000000000003, &d)) goto python;
+        d = floor((d) / 0.1 + 0.5);
+        if (!(d >= -32768.0 && d <= 32767.0)) goto python;
+        m.sv[i67].prRes = (int16_t)d;
+        PyObject *v75 = acc_slot(st, e68, 71);
+        if (v75 == NULL) goto python;
+        if (!acc_int(v75, NULL, 0LL, 7LL, &i)) goto python;
+        m.sv[i67].qualityInd = (uint8_t)i;
+        PyObject *v76 = acc_slot(st, e68, 72);
+        if (v76 == NULL) goto python;
+        if (v76 != Py_True && v76 != Py_False) goto python;
+        m.sv[i67].svUsed = v76 == Py_True;
+        PyObject *v77 = acc_slot(st, e68, 73);
+        if (v77 == NULL) goto python;
+        if (!acc_int(v77, NULL, 0LL, 3LL, &i)) goto python;
+        m.sv[i67].health = (uint8_t)i;
+        PyObject *v78 = acc_slot(st, e68, 74);
+        if (v78 == NULL) goto python;
+        if (v78 != Py_True && v78 != Py_False) goto python;
+        m.sv[i67].diffCorr = v78 == Py_True;
+        PyObject *v79 = acc_slot(st, e68, 75);
+        if (v79 == NULL) goto python;
+        if (v79 != Py_True && v79 != Py_False) goto python;
+        m.sv[i67].smoothed = v79 == Py_True;
+        PyObject *v80 = acc_slot(st, e68, 76);
+        if (v80 == NULL) goto python;
+        if (!acc_int(v80, NULL, 0LL, 7LL, &i)) goto python;
+        m.sv[i67].orbitSource = (uint8_t)i;
+        PyObject *v81 = acc_slot(st, e68, 77);
+        if (v81 == NULL) goto python;
+        if (v81 != Py_True && v81 != Py_False) goto python;
+        m.sv[i67].ephAvail = v81 == Py_True;
+        PyObject *v82 = acc_slot(st, e68, 78);
+        if (v82 == NULL) goto python;
+        if (v82 != Py_True && v82 != Py_False) goto python;
+        m.sv[i67].almAvail = v82 == Py_True;
+        PyObject *v83 = acc_slot(st, e68, 79);
+        if (v83 == NULL) goto python;
+        if (v83 != Py_True && v83 != Py_False) goto python;
+        m.sv[i67].anoAvail = v83 == Py_True;
+        PyObject *v84 = acc_slot(st, e68, 80);
+        if (v84 == NULL) goto python;
+        if (v84 != Py_True && v84 != Py_False) goto python;
+        m.sv[i67].aopAvail = v84 == Py_True;
+        PyObject *v85 = acc_slot(st, e68, 81);
+        if (v85 == NULL) goto python;
+        if (!acc_int(v85, NULL, 0LL, 1LL, &i)) goto python;
+        m.sv[i67].reserved13 = (uint8_t)i;
+        PyObject *v86 = acc_slot(st, e68, 82);
+        if (v86 == NULL) goto python;
+        if (v86 != Py_True && v86 != Py_False) goto python;
+        m.sv[i67].sbasCorrUsed = v86 == Py_True;
+        PyObject *v87 = acc_slot(st, e68, 83);
+        if (v87 == NULL) goto python;
+        if (v87 != Py_True && v87 != Py_False) goto python;
+        m.sv[i67].rtcmCorrUsed = v87 == Py_True;
+        PyObject *v88 = acc_slot(st, e68, 84);
+        if (v88 == NULL) goto python;
+        if (v88 != Py_True && v88 != Py_False) goto python;
+        m.sv[i67].slasCorrUsed = v88 == Py_True;
+        PyObject *v89 = acc_slot(st, e68, 85);
+        if (v89 == NULL) goto python;
+        if (v89 != Py_True && v89 != Py_False) goto python;
+        m.sv[i67].spartnCorrUsed = v89 == Py_True;
+        PyObject *v90 = acc_slot(st, e68, 86);
+        if (v90 == NULL) goto python;
+        if (v90 != Py_True && v90 != Py_False) goto python;
+        m.sv[i67].prCorrUsed = v90 == Py_True;
+        PyObject *v91 = acc_slot(st, e68, 87);
+        if (v91 == NULL) goto python;
+        if (v91 != Py_True && v91 != Py_False) goto python;
+        m.sv[i67].crCorrUsed = v91 == Py_True;
+        PyObject *v92 = acc_slot(st, e68, 88);
+        if (v92 == NULL) goto python;
+        if (v92 != Py_True && v92 != Py_False) goto python;
+        m.sv[i67].doCorrUsed = v92 == Py_True;
+        PyObject *v93 = acc_slot(st, e68, 89);
+        if (v93 == NULL) goto python;
+        if (v93 != Py_True && v93 != Py_False) goto python;
+        m.sv[i67].clasCorrUsed = v93 == Py_True;
+        PyObject *v94 = acc_slot(st, e68, 90);
+        if (v94 == NULL) goto python;
+        if (v94 != Py_True && v94 != Py_False) goto python;
+        m.sv[i67].lppCorrUsed = v94 == Py_True;
+        PyObject *v95 = acc_slot(st, e68, 91);
+        if (v95 == NULL) goto python;
+        if (v95 != Py_True && v95 != Py_False) goto python;
+        m.sv[i67].hasCorrUsed = v95 == Py_True;
+    }
+    n = ubx_nav_sat_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[24], obj);
+}
+
+/* A mon_ver object in its wire form, as _encode_mon_ver writes it. */
+static PyObject *encode_mon_ver(PyObject *self, PyObject *obj)
+{
+    const acc_state *st = acc_state_of(self);
+    ubx_mon_ver_t m;
+    uint8_t buf[UBX_MON_VER_SIZE];
+    int n;
+    if (st == NULL) {
+        return NULL;
+    }
+    if (Py_TYPE(obj) != (PyTypeObject *)st->G[15]) {
+        goto python;
+    }
+    memset(&m, 0, sizeof m);
+    PyObject *v96 = acc_slot(st, obj, 92);
+    if (v96 == NULL) goto python;
+    if (!PyBytes_CheckExact(v96)) goto python;
+    Py_ssize_t k97 = PyBytes_GET_SIZE(v96);
+    if (k97 != 30) goto python;
+    memcpy(m.swVersion, PyBytes_AS_STRING(v96), (size_t)k97);
+    PyObject *v98 = acc_slot(st, obj, 93);
+    if (v98 == NULL) goto python;
+    if (!PyBytes_CheckExact(v98)) goto python;
+    Py_ssize_t k99 = PyBytes_GET_SIZE(v98);
+    if (k99 != 10) goto python;
+    memcpy(m.hwVersion, PyBytes_AS_STRING(v98), (size_t)k99);
+    PyObject *v100 = acc_slot(st, obj, 94);
+    if (v100 == NULL) goto python;
+    if (!PyList_CheckExact(v100)) goto python;
+    Py_ssize_t n101 = PyList_GET_SIZE(v100);
+    if (n101 > 10) goto python;
+    m.ext_count = (uint8_t)n101;
+    for (Py_ssize_t i102 = 0; i102 < n101; i102++) {
+        PyObject *e103 = PyList_GET_ITEM(v100, i102);
+        if (Py_TYPE(e103) != (PyTypeObject *)st->G[16]) goto python;
+        PyObject *v104 = acc_slot(st, e103, 95);
+        if (v104 == NULL) goto python;
+        if (!PyBytes_CheckExact(v104)) goto python;
+        Py_ssize_t k105 = PyBytes_GET_SIZE(v104);
+        if (k105 != 30) goto python;
+        memcpy(m.ext[i102].extension, PyBytes_AS_STRING(v104), (size_t)k105);
+    }
+    n = ubx_mon_ver_encode(&m, buf, sizeof buf);
+    if (n >= 0) {
+        return PyBytes_FromStringAndSize((const char *)buf, n);
+    }
+python:  /* a value Python's usual path does not take, or one C refused: Python encodes it or says why */
+    return PyObject_CallOneArg(st->G[25], obj);
+}
+
 /* The direction code of a StreamDecoder's direction; 0: not one of the protocol's, or
  * not a str (the Python decoder reads a str subclass as no direction). */
 static int acc_direction(PyObject *direction, int *code)
@@ -705,7 +1358,7 @@ static PyObject *run_frames(PyObject *self, PyObject *const *args, Py_ssize_t na
     return PyLong_FromSsize_t(pos);
 }
 
-static PyMethodDef decoders[] = {
+static PyMethodDef compiled[] = {
     {"_decode_ack_nak", decode_ack_nak, METH_O, NULL},
     {"_decode_ack_ack", decode_ack_ack, METH_O, NULL},
     {"_decode_cfg_rate_poll", decode_cfg_rate_poll, METH_O, NULL},
@@ -714,6 +1367,14 @@ static PyMethodDef decoders[] = {
     {"_decode_nav_pvt", decode_nav_pvt, METH_O, NULL},
     {"_decode_nav_sat", decode_nav_sat, METH_O, NULL},
     {"_decode_mon_ver", decode_mon_ver, METH_O, NULL},
+    {"_encode_ack_nak", encode_ack_nak, METH_O, NULL},
+    {"_encode_ack_ack", encode_ack_ack, METH_O, NULL},
+    {"_encode_cfg_rate_poll", encode_cfg_rate_poll, METH_O, NULL},
+    {"_encode_cfg_rate", encode_cfg_rate, METH_O, NULL},
+    {"_encode_nav_posllh", encode_nav_posllh, METH_O, NULL},
+    {"_encode_nav_pvt", encode_nav_pvt, METH_O, NULL},
+    {"_encode_nav_sat", encode_nav_sat, METH_O, NULL},
+    {"_encode_mon_ver", encode_mon_ver, METH_O, NULL},
     {"_run_frames", (PyCFunction)(void (*)(void))run_frames, METH_FASTCALL, NULL},
     {NULL, NULL, 0, NULL}
 };
@@ -737,6 +1398,14 @@ static const char *const global_names[] = {
     "MonVer",
     "MonVerExt",
     "_decode_mon_ver",
+    "_encode_ack_nak",
+    "_encode_ack_ack",
+    "_encode_cfg_rate_poll",
+    "_encode_cfg_rate",
+    "_encode_nav_posllh",
+    "_encode_nav_pvt",
+    "_encode_nav_sat",
+    "_encode_mon_ver",
 };
 
 /* The globals whose instances acc_new makes, and those read as dicts (indices into G). */
@@ -907,8 +1576,8 @@ static int acc_fill(acc_state *st, PyObject *module_globals)
     return 0;
 }
 
-/* bind(module_globals) -> {name: decoder}: the decoders for one copy of the module,
- * each in place of the Python function of the same name. */
+/* bind(module_globals) -> {name: decoder or encoder}: the compiled functions for one copy
+ * of the module, each in place of the Python function of the same name. */
 static PyObject *bind(PyObject *self, PyObject *module_globals)
 {
     (void)self;
@@ -926,7 +1595,7 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
         return NULL;
     }
     PyObject *out = acc_fill(st, module_globals) < 0 ? NULL : PyDict_New();
-    for (PyMethodDef *def = decoders; out != NULL && def->ml_name != NULL; def++) {
+    for (PyMethodDef *def = compiled; out != NULL && def->ml_name != NULL; def++) {
         PyObject *fn = PyCFunction_New(def, capsule);
         if (fn == NULL || PyDict_SetItemString(out, def->ml_name, fn) < 0) {
             Py_CLEAR(out);
@@ -937,8 +1606,17 @@ static PyObject *bind(PyObject *self, PyObject *module_globals)
     return out;
 }
 
+/* method(fn) -> fn bound to the object it is read from, as a Python function is: a
+ * compiled encoder as its class's encode method. */
+static PyObject *method(PyObject *self, PyObject *fn)
+{
+    (void)self;
+    return PyInstanceMethod_New(fn);
+}
+
 static PyMethodDef methods[] = {
-    {"bind", bind, METH_O, "bind(module_globals) -> {name: decoder}"},
+    {"bind", bind, METH_O, "bind(module_globals) -> {name: decoder or encoder}"},
+    {"method", method, METH_O, "method(fn) -> fn as a method"},
     {NULL, NULL, 0, NULL}
 };
 
@@ -947,10 +1625,34 @@ static struct PyModuleDef module = {
     NULL, NULL, NULL, NULL
 };
 
+/* The messages decoded and encoded in C: the module's DECODES and ENCODES. */
+static const char *const decodes[] = { "ack_nak", "ack_ack", "cfg_rate_poll", "cfg_rate", "nav_posllh", "nav_pvt", "nav_sat", "mon_ver", NULL };
+static const char *const encodes[] = { "ack_nak", "ack_ack", "cfg_rate_poll", "cfg_rate", "nav_posllh", "nav_pvt", "nav_sat", "mon_ver", NULL };
+
+static PyObject *acc_names(const char *const *names)
+{
+    PyObject *out = PyList_New(0);
+    for (; out != NULL && *names != NULL; names++) {
+        PyObject *name = PyUnicode_FromString(*names);
+        if (name == NULL || PyList_Append(out, name) < 0) {
+            Py_CLEAR(out);
+        }
+        Py_XDECREF(name);
+    }
+    if (out == NULL) {
+        return NULL;
+    }
+    PyObject *frozen = PyFrozenSet_New(out);
+    Py_DECREF(out);
+    return frozen;
+}
+
 PyMODINIT_FUNC PyInit__ubx_accel(void)
 {
     PyObject *mod = PyModule_Create(&module);
-    if (mod != NULL && PyModule_AddStringConstant(mod, "SOURCE", "807688ab01fb885d") < 0) {
+    if (mod != NULL && (PyModule_AddStringConstant(mod, "SOURCE", "807688ab01fb885d") < 0
+                        || PyModule_AddObject(mod, "DECODES", acc_names(decodes)) < 0
+                        || PyModule_AddObject(mod, "ENCODES", acc_names(encodes)) < 0)) {
         Py_CLEAR(mod);
     }
     return mod;

@@ -1119,6 +1119,9 @@ class StreamDecoder:
 _ENCODERS: dict[type[Any], Callable[[Any], bytes]] = {ExampleMessage: _encode_example_message, WheelSpeeds: _encode_wheel_speeds, Steering: _encode_steering, Gear: _encode_gear, Multiplexed: _encode_multiplexed, Extended: _encode_extended, Shared: _encode_shared, }
 _DECODERS: dict[type[Any], Callable[..., Any]] = {ExampleMessage: _decode_example_message, WheelSpeeds: _decode_wheel_speeds, Steering: _decode_steering, Gear: _decode_gear, Multiplexed: _decode_multiplexed, Extended: _decode_extended, Shared: _decode_shared, }
 for _cls, _encoder in _ENCODERS.items():  # each encoder is its class's encode method: one call, not two
+    if ACCELERATOR is not None and _cls.NAME in ACCELERATOR.ENCODES:  # compiled: bound as a Python function is
+        setattr(_cls, "encode", ACCELERATOR.method(_encoder))
+        continue
     _encoder.__doc__ = _Message.encode.__doc__
     setattr(_cls, "encode", _encoder)
 MESSAGES: dict[str, type[AnyMessage]] = {'example_message': ExampleMessage, 'wheel_speeds': WheelSpeeds, 'steering': Steering, 'gear': Gear, 'multiplexed': Multiplexed, 'extended': Extended, 'shared': Shared, }

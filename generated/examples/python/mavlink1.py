@@ -1094,6 +1094,9 @@ class StreamDecoder:
 _ENCODERS: dict[type[Any], Callable[[Any], bytes]] = {Heartbeat: _encode_heartbeat, SysStatus: _encode_sys_status, ParamValue: _encode_param_value, GpsRawInt: _encode_gps_raw_int, Attitude: _encode_attitude, CommandLong: _encode_command_long, }
 _DECODERS: dict[type[Any], Callable[..., Any]] = {Heartbeat: _decode_heartbeat, SysStatus: _decode_sys_status, ParamValue: _decode_param_value, GpsRawInt: _decode_gps_raw_int, Attitude: _decode_attitude, CommandLong: _decode_command_long, }
 for _cls, _encoder in _ENCODERS.items():  # each encoder is its class's encode method: one call, not two
+    if ACCELERATOR is not None and _cls.NAME in ACCELERATOR.ENCODES:  # compiled: bound as a Python function is
+        setattr(_cls, "encode", ACCELERATOR.method(_encoder))
+        continue
     _encoder.__doc__ = _Message.encode.__doc__
     setattr(_cls, "encode", _encoder)
 MESSAGES: dict[str, type[AnyMessage]] = {'heartbeat': Heartbeat, 'sys_status': SysStatus, 'param_value': ParamValue, 'gps_raw_int': GpsRawInt, 'attitude': Attitude, 'command_long': CommandLong, }

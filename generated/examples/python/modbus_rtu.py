@@ -976,6 +976,9 @@ class StreamDecoder:
 _ENCODERS: dict[type[Any], Callable[[Any], bytes]] = {ReadHoldingRegisters: _encode_read_holding_registers, ReadHoldingRegistersResponse: _encode_read_holding_registers_response, WriteMultipleRegisters: _encode_write_multiple_registers, WriteMultipleRegistersResponse: _encode_write_multiple_registers_response, ExceptionResponse: _encode_exception_response, }
 _DECODERS: dict[type[Any], Callable[..., Any]] = {ReadHoldingRegisters: _decode_read_holding_registers, ReadHoldingRegistersResponse: _decode_read_holding_registers_response, WriteMultipleRegisters: _decode_write_multiple_registers, WriteMultipleRegistersResponse: _decode_write_multiple_registers_response, ExceptionResponse: _decode_exception_response, }
 for _cls, _encoder in _ENCODERS.items():  # each encoder is its class's encode method: one call, not two
+    if ACCELERATOR is not None and _cls.NAME in ACCELERATOR.ENCODES:  # compiled: bound as a Python function is
+        setattr(_cls, "encode", ACCELERATOR.method(_encoder))
+        continue
     _encoder.__doc__ = _Message.encode.__doc__
     setattr(_cls, "encode", _encoder)
 MESSAGES: dict[str, type[AnyMessage]] = {'read_holding_registers': ReadHoldingRegisters, 'read_holding_registers_response': ReadHoldingRegistersResponse, 'write_multiple_registers': WriteMultipleRegisters, 'write_multiple_registers_response': WriteMultipleRegistersResponse, 'exception_response': ExceptionResponse, }

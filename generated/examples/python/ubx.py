@@ -1604,6 +1604,9 @@ class StreamDecoder:
 _ENCODERS: dict[type[Any], Callable[[Any], bytes]] = {AckNak: _encode_ack_nak, AckAck: _encode_ack_ack, CfgRatePoll: _encode_cfg_rate_poll, CfgRate: _encode_cfg_rate, NavPosllh: _encode_nav_posllh, NavPvt: _encode_nav_pvt, NavSat: _encode_nav_sat, MonVer: _encode_mon_ver, }
 _DECODERS: dict[type[Any], Callable[..., Any]] = {AckNak: _decode_ack_nak, AckAck: _decode_ack_ack, CfgRatePoll: _decode_cfg_rate_poll, CfgRate: _decode_cfg_rate, NavPosllh: _decode_nav_posllh, NavPvt: _decode_nav_pvt, NavSat: _decode_nav_sat, MonVer: _decode_mon_ver, }
 for _cls, _encoder in _ENCODERS.items():  # each encoder is its class's encode method: one call, not two
+    if ACCELERATOR is not None and _cls.NAME in ACCELERATOR.ENCODES:  # compiled: bound as a Python function is
+        setattr(_cls, "encode", ACCELERATOR.method(_encoder))
+        continue
     _encoder.__doc__ = _Message.encode.__doc__
     setattr(_cls, "encode", _encoder)
 MESSAGES: dict[str, type[AnyMessage]] = {'ack_nak': AckNak, 'ack_ack': AckAck, 'cfg_rate_poll': CfgRatePoll, 'cfg_rate': CfgRate, 'nav_posllh': NavPosllh, 'nav_pvt': NavPvt, 'nav_sat': NavSat, 'mon_ver': MonVer, }
