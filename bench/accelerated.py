@@ -52,6 +52,11 @@ def contenders(cases):
             raise AssertionError(f"{case.key}: the accelerated decode differs from the pure-Python one")
         out[(case.key, "pure Python")] = pure_call
         out[(case.key, "accelerated")] = call
+        pure_object, fast_object = pure_call(), call()
+        if fast_object.encode() != pure_object.encode() or fast_object.encode() != wire:
+            raise AssertionError(f"{case.key}: the accelerated encode differs from the pure-Python one")
+        out[(case.key, "pure Python encode")] = pure_object.encode
+        out[(case.key, "accelerated encode")] = fast_object.encode
         if case.key == "mtv4":
             module = fast["mtv4"]
             if repr(module.decode(wire)) != repr(pure_call()):
@@ -59,6 +64,7 @@ def contenders(cases):
             out[("mtv4", "accelerated, any message")] = lambda m=module, w=wire: m.decode(w)
             out[("mtv4", "pure Python, any message")] = case.contenders[messages.DISPATCHING].decode
             out[("mtv4", "pymavlink ATTITUDE")] = case.contenders["pymavlink ATTITUDE (40 B)"].decode
+            out[("mtv4", "pymavlink ATTITUDE encode")] = case.contenders["pymavlink ATTITUDE (40 B)"].encode
     return out, fast
 
 
@@ -94,21 +100,27 @@ def report(r, verdicts, met):
     """The section's Markdown lines; appends each target's verdict to `verdicts`."""
     pm, s = r["per_message"], r["streams"]
     lines = ["", "## 6. Python with the compiled accelerator", "",
-             "`codeword accelerate` compiles each binary protocol's decoders from the generated C "
+             "`codeword accelerate` compiles each binary protocol's decoders and encoders from the generated C "
              "(`generated/python/_<name>_accel.c`) into an extension module beside the Python module, "
              "which uses it when it was built from the same schema and decodes in pure Python otherwise. "
              "Decoding per message through the class's `decode`, and `mtv4.decode` finding the message by "
              "its id as pymavlink's `decode` does; then the stream of section 2. "
              "Every accelerated result is checked equal to the pure-Python one before timing. `bench/accelerated.py`.",
-             "", "| message | pure Python ns | accelerated ns | speed-up |", "|---|---:|---:|---:|"]
+             "Encoding through the object's `encode`, the accelerated result checked equal to the "
+             "pure-Python one and to the example's frame.",
+             "", "| message | decode, pure Python ns | accelerated ns | speed-up | encode, pure Python ns | "
+             "accelerated ns | speed-up |", "|---|---:|---:|---:|---:|---:|---:|"]
     for key in NAMES:
         if (key, "accelerated") in pm:
             a, p = pm[(key, "accelerated")], pm[(key, "pure Python")]
-            lines.append(f"| {key} | {p:,.0f} | {a:,.0f} | {p / a:.2f} |")
+            ea, ep = pm[(key, "accelerated encode")], pm[(key, "pure Python encode")]
+            lines.append(f"| {key} | {p:,.0f} | {a:,.0f} | {p / a:.2f} | {ep:,.0f} | {ea:,.0f} | {ep / ea:.2f} |")
     a, p = pm[("mtv4", "accelerated, any message")], pm[("mtv4", "pure Python, any message")]
-    lines.append(f"| mtv4.decode (any message) | {p:,.0f} | {a:,.0f} | {p / a:.2f} |")
-    mav = pm[("mtv4", "pymavlink ATTITUDE")]
-    lines += ["", f"pymavlink decodes ATTITUDE (40 B) in {mav:,.0f} ns.", "",
+    lines.append(f"| mtv4.decode (any message) | {p:,.0f} | {a:,.0f} | {p / a:.2f} | | | |")
+    mav, mav_encode = pm[("mtv4", "pymavlink ATTITUDE")], pm[("mtv4", "pymavlink ATTITUDE encode")]
+    encode_ratio = mav_encode / pm[("mtv4", "accelerated encode")]
+    lines += ["", f"pymavlink decodes ATTITUDE (40 B) in {mav:,.0f} ns and encodes it in {mav_encode:,.0f} ns: "
+                  f"pymavlink encode / accelerated mtv4 encode = {encode_ratio:.2f}.", "",
               "| stream contender | MB/s | stream bytes | good frames sent | found |", "|---|---:|---:|---:|---:|"]
     for name, (mbs, size, sent, found) in s.items():
         lines.append(f"| {name} | {mbs:.2f} | {size:,} | {sent:,} | {found:,} |")
