@@ -10,10 +10,16 @@ from ...model import Field, Message, Protocol, field_at
 from ..wire import stream_facts
 
 
+# What a module asks of its accelerator (bind, method, DECODES, ENCODES): raised with each
+# change to it, so that a module never loads one built for another
+INTERFACE = 2
+
+
 def source_tag(p: Protocol) -> str:
     """What a Python module and its accelerator must both have been made from: the same
-    schema with the same codeword. A module finds a stale accelerator by it and leaves it."""
-    return hashlib.sha256(f"{p.sha256} {__version__}".encode()).hexdigest()[:16]
+    schema with the same codeword, for the same interface. A module finds a stale
+    accelerator by it and leaves it."""
+    return hashlib.sha256(f"{p.sha256} {__version__} {INTERFACE}".encode()).hexdigest()[:16]
 
 
 def serves(p: Protocol) -> bool:
