@@ -233,7 +233,7 @@ def parser() -> argparse.ArgumentParser:
     b.add_argument("--check", action="store_true",
                    help="compare with the files on disk instead of writing; exit 1 if any is stale")
     a = command("accelerate", cmd_accelerate, "compile the optional C accelerators of the Python modules' "
-                "decoders (pure Python where none is built)")
+                "decoders and encoders (pure Python where none is built)")
     a.add_argument("schemas", nargs="*", metavar="SCHEMA",
                    help="schema files or protocol names (default: every schema of the project)")
     a.add_argument("--out", metavar="DIR", help="the build's output folder: accelerators go to DIR/python/")

@@ -231,6 +231,7 @@ class Field:
     signature: Optional["Signature"] = None  # a trailer field holding a keyed hash of the frame
     prefix: bool = False  # text: written in the line's prefix, before the message's id (NMEA's talker)
     keep_empty: Optional[bool] = None  # text, optional: its absent value keeps an empty place (None: the framing's)
+    mavlink_name: Optional[str] = None  # its name in MAVLink's CRC_EXTRA (`extra: mavlink`), where not its own
 
     @property
     def fixed_spelling(self) -> bool:

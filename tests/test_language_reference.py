@@ -53,7 +53,7 @@ def fragments(block: str):
 
 def test_the_reference_shows_every_new_key_in_an_example():
     shown = "\n".join(BLOCKS)
-    for key in ("by_direction:", "crc_extra:", "extra: message", "encoding:", "bit_order:", "fletcher",
+    for key in ("by_direction:", "crc_extra:", "extra: message", "extra: mavlink", "mavlink_name:", "encoding:", "bit_order:", "fletcher",
                 "complement:", "keep_empty:", "start:", "digits:", "decimals:", "width:", "delivery:",
                 "id: {msg_class", "length_of: {from: payload, to: payload}",
                 "count: {from: byte_count, unit: bytes}", "max_count:", "present_if: {field: parts, has: gps}",

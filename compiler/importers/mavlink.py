@@ -9,7 +9,6 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .mavlink_crc import crc_extra
 from .mavlink_framing import DOC, FRAME_FLAG_SETS, FRAME_FLAGS, FRAME_MEMBERS, FRAMING
 from .mavlink_names import member_name, protocol_name, usable
 from .mavlink_xml import Dialect, MavlinkXmlError, XmlEnum, XmlField, XmlMessage, read_dialect
@@ -30,7 +29,6 @@ class ImportedField:
 class ImportedMessage:
     xml: XmlMessage
     name: str
-    crc_extra: int
     fields: list[ImportedField]  # wire order
 
 
@@ -73,8 +71,9 @@ def _header(w: Writer, imported: Imported) -> None:
     w.comment("One schema for the whole dialect, its <include>s resolved into it: a dialect's messages, ids and "
               "enums are only whole with what it includes, and codeword schemas do not include one another.")
     w.comment("Fields are in MAVLink wire order: the base fields sorted by type size, largest first (stable), "
-              "then the extension fields as the XML lists them. crc_extra is MAVLink's hash of the message "
-              "definition, computed as mavgen computes it.")
+              "then the extension fields as the XML lists them. Each message's crc_extra is derived by the "
+              "compiler from its definition as mavgen derives it (`extra: mavlink`); `mavlink_name` keeps "
+              "the name MAVLink hashes where codeword's differs.")
     w.comment("MAVLink enums are open (a receiver takes values it does not know, and dialects add entries), "
               "codeword's are closed: each field names its MAVLink enum in a comment and its doc rather than "
               "with `enum:`/`flags:`, so that every value MAVLink sends decodes. MAVLink sends NaN in some "
@@ -246,8 +245,8 @@ def _message(w: Writer, imported: Imported, message: XmlMessage, name: str, enum
     _lifecycle(w, message.name, message.notes, 2)
     w.key(name, 2)
     w.item("id", message.id, 4)
-    extra = crc_extra(message)
-    w.item("crc_extra", extra, 4)
+    if name.upper() != message.name:
+        w.item("mavlink_name", message.name, 4)
     if message.doc:
         w.prose("doc", message.doc, 4)
     fields = message.wire_fields
@@ -268,7 +267,7 @@ def _message(w: Writer, imported: Imported, message: XmlMessage, name: str, enum
         _field(w, f, fname, enum_names)
     if dropped:
         w.comment(f"MAVLink 1 has no extension fields: {', '.join(f.name for f in dropped)} not imported", 6)
-    imported.messages.append(ImportedMessage(message, name, extra, out))
+    imported.messages.append(ImportedMessage(message, name, out))
 
 
 def _field(w: Writer, f: XmlField, name: str, enum_names: dict[str, str]) -> None:
@@ -297,6 +296,8 @@ def _field(w: Writer, f: XmlField, name: str, enum_names: dict[str, str]) -> Non
         item["type"] = TYPES[f.type]
         if f.array_length:
             item["count"] = f.array_length
+    if name != f.name:
+        item["mavlink_name"] = f.name
     if f.units:
         item["unit"] = f.units
     if f.extension:

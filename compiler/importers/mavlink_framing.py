@@ -43,7 +43,7 @@ framing:
     - {payload: true}
     - name: checksum
       type: u16
-      checksum: {algorithm: CRC-16/MCRF4XX, covers: {from: len, to: payload}, extra: message}
+      checksum: {algorithm: CRC-16/MCRF4XX, covers: {from: len, to: payload}, extra: mavlink}
       doc: X.25 CRC of len..payload, then of the message's CRC_EXTRA byte
 """,
     2: """\
@@ -66,7 +66,7 @@ framing:
     - {payload: true}
     - name: checksum
       type: u16
-      checksum: {algorithm: CRC-16/MCRF4XX, covers: {from: len, to: payload}, extra: message}
+      checksum: {algorithm: CRC-16/MCRF4XX, covers: {from: len, to: payload}, extra: mavlink}
       doc: X.25 CRC of len..payload as sent, then of the message's CRC_EXTRA byte
   trailer:
     present_if: {field: incompat_flags, has: signing}

@@ -94,7 +94,7 @@ class ChecksumsMixin(ResolverBase):
         width = bits if algorithm == "fletcher" or complement else None
         extra = c.get("extra")
         if extra and (algorithm != "crc" or over != "bytes"):
-            self.error(path + ("extra",), "`extra: message` is for a CRC over bytes (MAVLink's CRC_EXTRA)",
+            self.error(path + ("extra",), f"`extra: {extra}` is for a CRC over bytes (MAVLink's CRC_EXTRA)",
                        "drop `extra`, or use a CRC")
         return Checksum(algorithm, over, covers, c.get("parity", "even"), modulo, params,
                         loc=self.loc(*(path + ("covers",))) if "covers" in c else self.loc(*path),

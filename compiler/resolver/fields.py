@@ -131,7 +131,7 @@ class FieldsMixin(ResolverBase):
             if "checksum" in f else None,
             fields=sub_fields, message=text(f.get("message")), rule=f.get("rule"),
             extension=bool(f.get("extension")), counted_by=counted_by, start_bit=f.get("start_bit"),
-            prefix=bool(f.get("prefix")), keep_empty=f.get("keep_empty"),
+            prefix=bool(f.get("prefix")), keep_empty=f.get("keep_empty"), mavlink_name=f.get("mavlink_name"),
             multiplexed_by=self.multiplex_of(f, path),
             count_unit=1 if counted_by is not None else None, present_if=self.condition_of(f, path, allow_payload))
         if field.by_direction:

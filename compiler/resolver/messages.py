@@ -8,6 +8,7 @@ from ..text_prefix import common_prefix, pattern_of
 from ..model import Example, ExpectedError, Field, Framing, Message, places_member
 from .text import text
 from .base import ResolverBase
+from .crc_extra import derived, mavlink_type
 from .layout import key_of, key_read, leaves_of, wire_of
 from .repeats import looped_arrays
 
@@ -75,7 +76,7 @@ class MessagesMixin(ResolverBase):
                 shortening = self.shortening(name, layout, framing, path)
                 self.check_fixed_self_cover(name, layout, shortening)
         self.check_generated_members(name, layout)
-        crc_extra = self.crc_extra(name, m, layout, path)
+        crc_extra = self.crc_extra(name, m, own, layout, path)
         rules = tuple(self.resolve_rule(r, path + ("rules", i), layout)
                       for i, r in enumerate(m.get("rules", [])))
         examples = tuple(self.resolve_example(e, path + ("examples", i))
@@ -112,16 +113,56 @@ class MessagesMixin(ResolverBase):
             if f.kind == "group":
                 self.check_generated_members(name, f.fields)
 
-    def crc_extra(self, name: str, m: dict, layout: tuple[Field, ...], path: tuple) -> Optional[int]:
-        """The byte a CRC with `extra: message` takes after its coverage: every message declares it."""
-        takes = [f.name for f in layout if f.checksum and f.checksum.extra]
-        if takes and "crc_extra" not in m:
-            self.error(path, f"message {name!r} needs `crc_extra`: {takes[0]!r} takes one more byte, "
-                             "the message's", "add crc_extra: <0..255> (MAVLink's CRC_EXTRA)")
-        elif not takes and "crc_extra" in m:
-            self.error(path + ("crc_extra",), f"message {name!r}: no checksum takes its crc_extra",
-                       "drop it, or give the frame's CRC `extra: message`")
-        return m.get("crc_extra") if takes else None
+    def crc_extra(self, name: str, m: dict, own: tuple[Field, ...], layout: tuple[Field, ...],
+                  path: tuple) -> Optional[int]:
+        """The byte a CRC with `extra` takes after its coverage: declared by every message
+        (`extra: message`), or derived from the message's definition as MAVLink derives its
+        CRC_EXTRA (`extra: mavlink`), a declared value then checked against it."""
+        extra = next((f.checksum.extra for f in layout if f.checksum and f.checksum.extra), None)
+        self.check_mavlink_names(name, m, own, path, extra == "mavlink")
+        if extra is None:
+            if "crc_extra" in m:
+                self.error(path + ("crc_extra",), f"message {name!r}: no checksum takes its crc_extra",
+                           "drop it, or give the frame's CRC `extra: message`")
+            return None
+        if extra == "message":
+            if "crc_extra" not in m:
+                self.error(path, f"message {name!r} needs `crc_extra`: the frame's CRC takes one more byte, "
+                                 "the message's", "add crc_extra: <0..255>, or give the CRC `extra: mavlink` "
+                                                  "to derive it as MAVLink does")
+            return m.get("crc_extra")
+        fields = []
+        for f in own:
+            if f.extension:
+                continue
+            spelt = mavlink_type(f)
+            if spelt is None:
+                self.report.error(f.loc, f"message {name!r}: field {f.name!r} has no MAVLink type, so the "
+                                         "message's crc_extra cannot be derived (`extra: mavlink`)",
+                                  "use fields of u8..u64, i8..i64, f32, f64 (or arrays of them) and bytes, or "
+                                  "give the CRC `extra: message` and each message its crc_extra")
+                return m.get("crc_extra")
+            fields.append((spelt[0], f.mavlink_name or f.name, spelt[1]))
+        message_name = m.get("mavlink_name", name.upper())
+        value = derived(message_name, fields)
+        if "crc_extra" in m and m["crc_extra"] != value:
+            said = ", ".join(f"{t} {n}" + (f"[{k}]" if k else "") for t, n, k in fields)
+            self.error(path + ("crc_extra",), f"message {name!r}: crc_extra {m['crc_extra']} is not {value}, "
+                                              f"MAVLink's CRC_EXTRA of its definition ({message_name}: {said})",
+                       f"write crc_extra: {value}, or drop it: the CRC derives it (`extra: mavlink`)")
+        return value
+
+    def check_mavlink_names(self, name: str, m: dict, own: tuple[Field, ...], path: tuple, read: bool) -> None:
+        """`mavlink_name` is read only where a CRC derives crc_extra from it."""
+        if read:
+            return
+        if "mavlink_name" in m:
+            self.error(path + ("mavlink_name",), f"message {name!r}: mavlink_name is read only by a CRC with "
+                                                 "`extra: mavlink`", "drop mavlink_name")
+        for f in own:
+            if f.mavlink_name is not None:
+                self.report.error(f.loc, f"message {name!r}: field {f.name!r}: mavlink_name is read only by a CRC "
+                                         "with `extra: mavlink`", "drop mavlink_name")
 
     def resolve_example(self, e: dict, path: tuple) -> Example:
         raw_hex = None

@@ -18,6 +18,7 @@ FULL = frozenset({
     "internet",                             # bytes: the frame's checksum RFC 1071's, in either byte order, at times in place
     "crc_alias",                            # a CRC named by a catalogue alias with one meaning, in any case
     "complement", "crc_extra",              # a sum's complement, xorout; a CRC's per-message extra byte
+    "derived_crc_extra",                    # bytes: that byte derived from each message as MAVLink's CRC_EXTRA, mavlink_name
     "encoding",                             # SLIP, COBS or HDLC byte stuffing around frames
     "pattern_stuffing",                     # bytes: a byte inserted after a pattern in a span (Dynamixel 2.0)
     "end_marker",                           # bytes: a constant byte after the payload closes each frame

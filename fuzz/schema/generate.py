@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import copy
 import random
+import re
 import string
 from typing import Optional
 
@@ -33,6 +34,25 @@ def fixed_size(fields: list[dict]) -> bool:
         if not fixed_size(f.get("fields", [])):
             return False
     return True
+
+
+MAVLINK_TYPED = re.compile(r"[ui](8|16|32|64)|f(32|64)")
+
+
+def mavlink_typed(f: dict) -> bool:
+    """Whether MAVLink has a type for a generated field (its crc_extra can be derived):
+    an integer of 8..64 bits or a float, an array of at most 255 of them, or bytes of a
+    fixed length; an extension field takes no part."""
+    if f.get("extension"):
+        return True
+    if any(k in f for k in ("present_if", "start_bit", "to_end", "multiplexed_by")):
+        return False
+    count = f.get("count")
+    if count is not None and not (isinstance(count, int) and count <= 255):
+        return False
+    if f.get("type") == "bytes":
+        return isinstance(f.get("length"), int)
+    return bool(MAVLINK_TYPED.fullmatch(str(f.get("type"))))
 
 
 class Generator:
@@ -192,8 +212,9 @@ class Generator:
         self.share_an_id(messages, layout)
         self.ids_across_directions(messages)
         if any(f.get("checksum", {}).get("extra") for f in layout):
-            for body in messages.values():
-                body["crc_extra"] = rng.randrange(256)
+            if not self.derived_crc_extra(layout, messages):
+                for body in messages.values():
+                    body["crc_extra"] = rng.randrange(256)
         if self.has("encoding", 0.4):
             self.encode_frames(framing, messages, ids if not two_keys and not single and id_bits == 8 else None)
         if not any("length_of" in f for f in layout) and "encoding" not in framing and "large_frame" in self.on:
@@ -205,6 +226,25 @@ class Generator:
         self.pattern_stuffing(framing, messages)  # after them: it widens a message they leave as it is
         self.signed_trailer(framing)
         return framing, messages
+
+    def derived_crc_extra(self, layout: list, messages: dict) -> bool:
+        """Where every message's fields have MAVLink types, at times the CRC's extra byte is
+        derived from each message's definition as MAVLink's CRC_EXTRA is (`extra: mavlink`),
+        with some messages and fields under a `mavlink_name`; whether it was."""
+        own = random.Random(f"derived_crc_extra {self.seed}")
+        if "derived_crc_extra" not in self.on or own.random() >= 0.8 or not all(
+                isinstance(body["fields"], list) and all(map(mavlink_typed, body["fields"])) for body in messages.values()):
+            return False
+        for f in layout:
+            if f.get("checksum", {}).get("extra"):
+                f["checksum"]["extra"] = "mavlink"
+        for name, body in messages.items():
+            if own.random() < 0.3:
+                body["mavlink_name"] = f"{name.upper()}_{own.randrange(100)}"
+            for f in body["fields"]:
+                if own.random() < 0.2:
+                    f["mavlink_name"] = f"{f['name']}_{own.choice(['raw', 'mav', 'x'])}"
+        return True
 
     def single_length(self, layout: list[dict]) -> bool:
         """In two schemas of five of one message, a length field before the payload (a lone

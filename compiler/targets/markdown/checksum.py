@@ -264,7 +264,9 @@ def parameters(cs: Checksum) -> list[tuple[str, str]]:
         if c.check is not None:
             rows.append(("check (CRC of ASCII `123456789`)", f"0x{c.check:0{digits}x}"))
         if cs.extra:
-            rows.append(("extra", "each message's crc_extra byte, after the covered bytes"))
+            rows.append(("extra", "each message's crc_extra byte, after the covered bytes"
+                                  + (" (derived from the message's definition as MAVLink's CRC_EXTRA)"
+                                     if cs.extra == "mavlink" else "")))
         return rows
     if cs.algorithm == "sum":
         rows = [("algorithm", "sum of values"), ("modulo", number(cs.modulo) if cs.modulo else "field width")]
