@@ -10,8 +10,11 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
+import pytest
+
 from codeword.build import compile_schema
 from codeword.cli import main
+from codeword.diagnostics import SchemaError
 from codeword.diff import BREAKING, COMPATIBLE, DOCS, compare
 from conftest import DATA, ROOT, SCHEMAS
 
@@ -246,11 +249,26 @@ def test_an_extension_field_at_the_end_is_compatible_a_plain_one_breaks(tmp_path
     d = compare(old, extended)
     assert not d.breaking, d.of_kind(BREAKING)
     assert changes(d, COMPATIBLE) == {("field note", "added as an extension field at bits 152–167")}
-    plain = compile_schema(mavlink2_with(tmp_path, "plain", "      - {name: note, type: u16}"))
+    # a plain field changes HEARTBEAT's CRC_EXTRA, which the schema derives (`extra: mavlink`):
+    # the value it wrote (50) is refused as stale, and left out the derived one is taken,
+    # as pymavlink's own CRC computes it over the fields in the schema's (wire) order
+    from pymavlink.generator.mavcrc import x25crc
+    crc = x25crc()
+    crc.accumulate_str("HEARTBEAT ")
+    for field in ("uint32_t custom_mode", "uint8_t type", "uint8_t autopilot", "uint8_t base_mode",
+                  "uint8_t system_status", "uint8_t mavlink_version", "uint16_t note"):
+        crc.accumulate_str(field + " ")
+    derived = (crc.crc & 0xFF) ^ (crc.crc >> 8)
+    path = mavlink2_with(tmp_path, "plain", "      - {name: note, type: u16}")
+    with pytest.raises(SchemaError, match=f"crc_extra 50 is not {derived}"):
+        compile_schema(path)
+    path.write_text(path.read_text(encoding="utf-8").replace("    crc_extra: 50\n", "", 1), encoding="utf-8")
+    plain = compile_schema(path)
     assert plain.message("heartbeat").shortening is not None
     d = compare(old, plain)
     assert d.breaking
-    assert ("field note", "added at bits 152–167 (16 bits)") in changes(d, BREAKING)
+    assert {("field note", "added at bits 152–167 (16 bits)"),
+            ("message heartbeat", f"crc_extra changed from 50 to {derived}")} <= changes(d, BREAKING)
 
 
 def test_a_message_without_the_new_keys_keeps_its_fingerprint(tmp_path):
