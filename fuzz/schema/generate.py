@@ -212,9 +212,8 @@ class Generator:
         self.share_an_id(messages, layout)
         self.ids_across_directions(messages)
         if any(f.get("checksum", {}).get("extra") for f in layout):
-            if not self.derived_crc_extra(layout, messages):
-                for body in messages.values():
-                    body["crc_extra"] = rng.randrange(256)
+            for body in messages.values():
+                body["crc_extra"] = rng.randrange(256)
         if self.has("encoding", 0.4):
             self.encode_frames(framing, messages, ids if not two_keys and not single and id_bits == 8 else None)
         if not any("length_of" in f for f in layout) and "encoding" not in framing and "large_frame" in self.on:
@@ -225,20 +224,24 @@ class Generator:
             self.multiplexed(messages)
         self.pattern_stuffing(framing, messages)  # after them: it widens a message they leave as it is
         self.signed_trailer(framing)
+        self.derived_crc_extra(layout, messages)  # last: the fields are then those the messages keep
         return framing, messages
 
     def derived_crc_extra(self, layout: list, messages: dict) -> bool:
-        """Where every message's fields have MAVLink types, at times the CRC's extra byte is
-        derived from each message's definition as MAVLink's CRC_EXTRA is (`extra: mavlink`),
-        with some messages and fields under a `mavlink_name`; whether it was."""
+        """Where the CRC takes an extra byte and every message's fields have MAVLink types, at
+        times that byte is derived from each message's definition as MAVLink's CRC_EXTRA is
+        (`extra: mavlink`, the declared values dropped), with some messages and fields under a
+        `mavlink_name`; whether it was."""
         own = random.Random(f"derived_crc_extra {self.seed}")
-        if "derived_crc_extra" not in self.on or own.random() >= 0.8 or not all(
-                isinstance(body["fields"], list) and all(map(mavlink_typed, body["fields"])) for body in messages.values()):
+        if "derived_crc_extra" not in self.on or not any(f.get("checksum", {}).get("extra") for f in layout) \
+                or own.random() >= 0.8 or not all(isinstance(body["fields"], list)
+                                                  and all(map(mavlink_typed, body["fields"])) for body in messages.values()):
             return False
         for f in layout:
             if f.get("checksum", {}).get("extra"):
                 f["checksum"]["extra"] = "mavlink"
         for name, body in messages.items():
+            del body["crc_extra"]  # derived
             if own.random() < 0.3:
                 body["mavlink_name"] = f"{name.upper()}_{own.randrange(100)}"
             for f in body["fields"]:
