@@ -227,18 +227,37 @@ for args in [(), (frame,) * 6, (frame, 0, None, out, spans, 2 ** 70), (frame, 2 
              (frame, 0, None, out, spans, "x"), (frame, 0, None, out, spans, None), (frame, 0, 5, out, spans, 0),
              (frame, 0, None, (), spans, 0), (bytearray(frame), 0, None, out, spans, 0)]:
     attempt(f"_run_frames{tuple(type(a).__name__ for a in args)}", lambda: run_frames(*args))
+message = fast.decode(frame, "host_to_robot")
+unset = object.__new__(type(message))  # its slots never set
+Sub = type("Sub", (type(message),), {"__slots__": ()})
+sub = object.__new__(Sub)
+for field in type(message)._NAMES:
+    setattr(sub, field, getattr(message, field))
 for name, fn in sorted(bind(mine).items()):
     if name.startswith("_decode_"):
         attempt(f"{name}(None)", lambda: fn(None))
+    if name.startswith("_encode_"):
+        for label, value in [("None", None), ("an int", 5), ("another class", Other()), ("unset slots", unset),
+                             ("a subclass", sub), ("the class", type(message))]:
+            attempt(f"{name}({label})", lambda: fn(value))
+# a message class bound in another's place: the encoder reads only objects of the class it is given
+other_cls = next(n for n, c in mine.items() if isinstance(c, type) and hasattr(c, "NAME") and n != cls and
+                 getattr(c, "_NAMES", ()))
+swapped = bind({**mine, cls: mine[other_cls]})
+for name, fn in sorted(swapped.items()):
+    if name.startswith("_encode_"):
+        attempt(f"swapped {name}", lambda: fn(message))
 print("done", flush=True)
 """
 
 
 def test_no_entry_point_crashes_the_interpreter(built, tmp_path):
     """bind() given anything but the module's own globals (a class replaced by an int,
-    a built-in type, the capsule, a class with another's slot descriptors), and the
-    bound stream loop and decoders given hostile arguments: each returns or raises,
-    and bind() refuses every class that is not one whose instances it may fill."""
+    a built-in type, the capsule, a class with another's slot descriptors, another
+    message's class), and the bound stream loop, decoders and encoders given hostile
+    arguments (an object of another class or of a subclass, one whose slots were never
+    set): each returns or raises, and bind() refuses every class that is not one whose
+    instances it may fill."""
     folder, _ = built
     frame = bytes.fromhex(json.loads((ROOT / "generated" / "vectors" / "mtv4.json").read_text())["valid"][0]["hex"])
     run = subprocess.run([sys.executable, "-c", HOSTILE_CALLS, str(ROOT / "generated" / "python" / "mtv4.py"),
