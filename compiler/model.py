@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
+from fractions import Fraction
 from typing import Any, Optional, Union
 
 from .diagnostics import Loc
@@ -272,6 +273,37 @@ class Field:
     @property
     def signed(self) -> bool:
         return self.kind == "int"
+
+    @property
+    def range_bounds(self) -> Optional[tuple[int, int]]:
+        """The stored integers the schema's range allows (None without one): raw ones for a
+        scaled field, whose range a decimal field reads as the decimals it is written in
+        (999.9 at 1 decimal is 9999), else the values themselves. Every target and the
+        vectors take these ends, which agree with the decoders' test of the value."""
+        if self.range is None:
+            return None
+        lo, hi = self.range
+        if self.decimals:
+            lo, hi = Fraction(repr(lo)), Fraction(repr(hi))
+        scale = Fraction(1, 10 ** self.decimals) if self.decimals else \
+            Fraction(self.scale) if self.scale is not None else Fraction(1)
+        off = Fraction(self.offset or 0) if self.scale is not None else Fraction(0)
+        first, last = math.ceil((Fraction(lo) - off) / scale), math.floor((Fraction(hi) - off) / scale)
+        if self.scale is None or self.decimals:
+            return first, last
+        # a scaled value is the double raw * scale + offset, checked against the range as such: the
+        # ends are the raw values whose doubles fall inside it (the exact quotient may miss by one)
+        def value(raw: int) -> float:
+            return raw * self.scale + (self.offset or 0)
+        while value(first - 1) >= lo:
+            first -= 1
+        while value(first) < lo:
+            first += 1
+        while value(last + 1) <= hi:
+            last += 1
+        while value(last) > hi:
+            last -= 1
+        return first, last
 
     @property
     def raw_range(self) -> Optional[tuple[int, int]]:

@@ -233,6 +233,8 @@ class Generator:
         if scale is not None:  # a random raw value is drawn even at an edge
             raw = self.rng.randint(int(lo), int(hi))
             raw = lo if edge == "min" else hi if edge == "max" else raw
+            if f.decimals:  # the value its text shows, as the decoder reads it (999999 at 1 decimal: 99999.9)
+                return raw / 10 ** f.decimals + offset
             return raw * scale + offset
         if edge:
             return lo if edge == "min" else hi if edge == "max" else max(lo, min(hi, 0))
@@ -243,16 +245,11 @@ class Generator:
     @staticmethod
     def integer_bounds(f: Field) -> tuple:
         """(lo, hi, scale, offset): the raw bounds of a scaled field, else the value's."""
-        if f.scale is not None:
-            if f.range is None:  # the width alone limits the value
-                raw_lo, raw_hi = f.raw_range
-            else:
-                lo, hi = f.range
-                raw_lo = -(-(lo - (f.offset or 0)) // f.scale)
-                raw_hi = (hi - (f.offset or 0)) // f.scale
+        if f.scale is not None:  # the width alone limits the value, or the range (exactly: its ends
+            raw_lo, raw_hi = f.range_bounds or f.raw_range  # in floats may cross, 1.1..1.2 at 0.1)
             return raw_lo, raw_hi, f.scale, f.offset or 0
         if f.range is not None:
-            return int(f.range[0]), int(f.range[1]), None, 0
+            return (*f.range_bounds, None, 0)
         lo, hi = f.raw_range
         return lo + int(f.offset or 0), hi + int(f.offset or 0), None, 0
 

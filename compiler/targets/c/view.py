@@ -141,14 +141,10 @@ class CView:
         off = int(f.offset or 0) if f.scale is None else 0
         return raw[0] + off, raw[1] + off
 
-    def raw_bounds(self, f: Field) -> tuple[int, int]:
+    @staticmethod
+    def raw_bounds(f: Field) -> tuple[int, int]:
         """Bounds of the stored integer that the schema's range allows."""
-        lo, hi = f.range
-        if f.decimals:  # the range as the decimals it is written in: 999.9 at 1 decimal is 9999
-            lo, hi = Fraction(repr(lo)), Fraction(repr(hi))
-        scale = Fraction(1, 10 ** f.decimals) if f.decimals else Fraction(f.scale) if f.scale is not None else Fraction(1)
-        off = Fraction(f.offset or 0) if f.scale is not None else Fraction(0)
-        return math.ceil((Fraction(lo) - off) / scale), math.floor((Fraction(hi) - off) / scale)
+        return f.range_bounds
 
     # -- declarations --------------------------------------------------------------------
     def struct_lines(self, fields: tuple[Field, ...], depth: int = 1) -> list[str]:
