@@ -800,12 +800,12 @@ class Generator:
         events = []
         step = 1 if len(stream) <= STREAM_BYTE_BY_BYTE else 997
         for at in range(0, len(stream), step):
-            for item in decoder.feed(stream[at:at + step]):
-                if isinstance(item, self.mod.DecodeError):
-                    events.append({"error": item.rule})
-                else:
-                    events.append({"message": type(item).NAME, "values": plain(item)})
-        return {"name": name, "hex": stream.hex(), "events": events}
+            events += self.events(decoder.feed(stream[at:at + step]))
+        return {"name": name, "hex": stream.hex(), "events": events + self.events(decoder.finish())}
+
+    def events(self, items: list) -> list[dict]:
+        return [{"error": item.rule} if isinstance(item, self.mod.DecodeError) else
+                {"message": type(item).NAME, "values": plain(item)} for item in items]
 
 
 def write_vectors(p: Protocol, module: Any, out: TextIO) -> None:

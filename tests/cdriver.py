@@ -231,6 +231,8 @@ class Driver:
             wires=wires, wire_index={w: i for i, w in enumerate(wires)},
             decimals=self.text and any(leaf.field.kind == "float" for m in p.messages for leaf in m.wire.leaves),
             text=self.text, wire_max=wire_max + 1, self_identifying=p.self_identifying,
+            # a byte stream without an encoding: the frames a stream's last bytes hold come at its end
+            ends_frames=not self.text and not p.framing.encoding,
             len_t="uint16_t" if wire_max < 1 << 16 else "uint32_t",  # frames over 64 KiB need more
             has_dir=p.framing.kind != "bits",  # decode takes a direction (PX_DIR_ANY: any)
             word=self.v.word_bits() is not None and p.framing.kind == "bits",

@@ -36,6 +36,7 @@ from codeword.diff.compare import compare
 from codeword.targets.c.crc import DEFAULT as CRC_DEFAULT, METHODS as CRC_METHOD_LIST
 
 from . import accelerated
+from .stream_end import stream_end_problem
 from .features import DEFAULT
 from .generate import generate
 from .machines import machine_checks
@@ -95,7 +96,7 @@ def check_seed(seed: int, features: frozenset[str] = DEFAULT, keep: Path | None 
             outcome.stage = "generate"
             text = generate(seed, features)
             outcome.stage = "ok"
-            check_text(text, f"fz{seed}", where, outcome, matrix_points(seed, c_matrix))
+            check_text(text, f"fz{seed}", where, outcome, matrix_points(seed, c_matrix), features)
         except Exception:  # anything but a finding is an internal error somewhere
             outcome.stage = outcome.stage if outcome.stage != "ok" else "internal"
             outcome.detail = traceback.format_exc(limit=-3).strip().splitlines()[-1]
@@ -114,7 +115,7 @@ def matrix_points(seed: int, c_matrix: str) -> list[tuple[str, str]]:
 
 
 def check_text(text: str, name: str, where: Path, outcome: Outcome,
-               points: list[tuple[str, str]] | None = None) -> None:
+               points: list[tuple[str, str]] | None = None, features: frozenset[str] = DEFAULT) -> None:
     path = where / f"{name}.yaml"
     path.write_text(text, encoding="utf-8")
     out = where / "out"
@@ -136,6 +137,11 @@ def check_text(text: str, name: str, where: Path, outcome: Outcome,
     if problem:
         outcome.detail = problem
         return
+    if "stream_end" in features:
+        problem = stream_end_problem(module, protocol, vectors)
+        if problem:
+            outcome.detail = problem
+            return
     outcome.stage = "c"
     problem, checks = c_checks(protocol, vectors, out / "c", where, points or [], crc_method(outcome.seed))
     outcome.checks = checks

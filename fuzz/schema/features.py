@@ -39,6 +39,7 @@ FULL = frozenset({
     "mixed_bit_order",                      # bytes: payloads of 1..8 bytes placed by DBC start bit, both orders
     "multiplexed",                          # bytes: placed payloads whose multiplexors select signals sharing bits
     "large_frame",                          # bytes: a message of over 64 KiB (4 KiB fields first)
+    "stream_end",                           # check: whole frames after a false start at a stream's end are decoded
     "signed", "scale", "offset", "range",   # integer options
     "enum", "flags", "bool", "bytes_field", "f32", "f64",
     "f32_range",                            # f32 fields with a range: integer or decimal ends

@@ -19,6 +19,7 @@ from ..c.view import CView
 from ..code import Code
 from ..python.view import PythonView
 from .names import Names
+from .presence import sent_test
 from .scope import servable
 
 
@@ -128,7 +129,7 @@ class EncoderView:
             value = self.local("v")
             c(f"PyObject *{value} = acc_slot(st, {obj}, {self.names.s(cls, f.name)});")
             c(f"if ({value} == NULL) goto python;")
-            sent = self.sent(m, f, member)
+            sent = sent_test(self.c, m, f, member)
             if sent is not None:  # the value is there exactly when the frame sends it
                 c(f"if (({sent}) != ({value} != Py_None)) goto python;")
                 c(f"if ({value} != Py_None) {{")
@@ -137,15 +138,6 @@ class EncoderView:
             if sent is not None:
                 c.dedent()
                 c("}")
-
-    def sent(self, m: Message, f: Field, member: str) -> Optional[str]:
-        if f.present_if:
-            gap = next(g for g in m.shortening.gaps if g.field == f.name)
-            return self.c.presence_test(m, gap, f"{member}{gap.control}")
-        if f.multiplexed_by:
-            raws = {leaf.var: f"{member}{leaf.path[0]}" for leaf in m.wire.leaves if len(leaf.path) == 1}
-            return self.c.multiplex_test(m, f.multiplexed_by, raws)
-        return None
 
     def read_field(self, c: Code, m: Message, f: Field, path: tuple, value: str, at: str) -> None:
         if f.count is None:

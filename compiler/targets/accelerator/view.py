@@ -16,6 +16,7 @@ from ..code import Code
 from ..python.view import PythonView, lit
 from .encode import EncoderView
 from .names import Names
+from .presence import sent_test
 from .scope import servable
 
 
@@ -55,7 +56,7 @@ class AcceleratorView:
 
     def assign(self, c: Code, m: Message, f: Field, path: tuple, owner: str, cls: str, at: str) -> None:
         slot = self.names.s(cls, f.name)
-        sent = self.sent(m, f)
+        sent = sent_test(self.c, m, f, "m->")
         if sent is None:
             self.assign_value(c, m, f, path, owner, slot, at)
             return
@@ -66,17 +67,6 @@ class AcceleratorView:
         c("} else {")
         c(f"    if (acc_set(st, {owner}, {slot}, acc_none()) < 0) goto fail;")
         c("}")
-
-    def sent(self, m: Message, f: Field) -> Optional[str]:
-        """The C test of whether a conditional or multiplexed field is in the decoded frame,
-        from the raw value of the field that says (None: it always is)."""
-        if f.present_if:
-            gap = next(g for g in m.shortening.gaps if g.field == f.name)
-            return self.c.presence_test(m, gap, f"m->{gap.control}")
-        if f.multiplexed_by:
-            raws = {leaf.var: f"m->{leaf.path[0]}" for leaf in m.wire.leaves if len(leaf.path) == 1}
-            return self.c.multiplex_test(m, f.multiplexed_by, raws)
-        return None
 
     def assign_value(self, c: Code, m: Message, f: Field, path: tuple, owner: str, slot: str, at: str) -> None:
         if f.count is None:

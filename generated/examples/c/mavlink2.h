@@ -1719,6 +1719,37 @@ static inline int mavlink2_scan(mavlink2_scan_state_t *s, const uint8_t *buf, si
     }
 }
 
+/* At the end of the stream, on the bytes buf[0..len) mavlink2_scan left: as
+ * mavlink2_scan, but a frame begun there never gets the rest: it is refused
+ * (CW_ERR_LENGTH, unless an error was just returned), its first byte dropped and
+ * the bytes after it read again, so whole frames a false start hid are decoded.
+ * Call again from buf + *used until it returns 0: nothing is left then. */
+static inline int mavlink2_scan_end(mavlink2_scan_state_t *s, const uint8_t *buf, size_t len, size_t *used,
+                                    mavlink2_message_t *out)
+{
+    size_t pos = 0;
+    while (pos < len) {
+        size_t taken;
+        int rc = mavlink2_scan(s, buf + pos, len - pos, &taken, out);
+        pos += taken;
+        if (rc != 0) {
+            *used = pos;
+            return rc;
+        }
+        if (pos < len) {  /* a frame begun at buf[pos] that the stream ends inside */
+            pos += 1u;
+            s->skipped += 1u;
+            if (!s->resyncing) {
+                s->resyncing = true;
+                *used = pos;
+                return CW_ERR_LENGTH;
+            }
+        }
+    }
+    *used = pos;
+    return 0;
+}
+
 /* Byte-at-a-time: feed one byte, then call mavlink2_parser_next until it
  * returns 0. Memory: one maximum frame (77 bytes). */
 typedef struct {
@@ -1757,6 +1788,16 @@ static inline int mavlink2_parser_next(mavlink2_parser_t *p, mavlink2_message_t 
 {
     size_t used;
     int rc = mavlink2_scan(&p->scan, p->buf, p->len, &used, out);
+    mavlink2_parser_drop(p, (uint8_t)used);
+    return rc;
+}
+
+/* The end of the stream: call until it returns 0, as mavlink2_parser_next; the
+ * frames the bytes left over still hold are decoded (mavlink2_scan_end). */
+static inline int mavlink2_parser_finish(mavlink2_parser_t *p, mavlink2_message_t *out)
+{
+    size_t used;
+    int rc = mavlink2_scan_end(&p->scan, p->buf, p->len, &used, out);
     mavlink2_parser_drop(p, (uint8_t)used);
     return rc;
 }

@@ -1367,16 +1367,25 @@ class StreamDecoder:
         return out
 
     def finish(self) -> list[Union[AnyMessage, DecodeError]]:
-        """End of stream: a DecodeError for an incomplete frame left over, if any;
-        its bytes count as skipped."""
-        self.spans = [(self.offset, len(self._buffer))] if self._buffer else []
-        if not self._buffer:
-            return []
-        e = _dec(None, None, len(self._buffer), 'length', 'a whole frame before the end', self.offset * 8)
-        self.skipped += len(self._buffer)
-        self.offset += len(self._buffer)
-        self._buffer = b""
-        return [e]
+        """End of stream. A frame begun in the bytes left over never gets the rest: a
+        DecodeError (unless one was just given), its first byte skipped, and the bytes
+        after it read again, as after a frame that fails its check: whole frames a
+        false start hid are decoded."""
+        out: list[Union[AnyMessage, DecodeError]] = []
+        spans: list[tuple[int, int]] = []
+        while self._buffer:
+            rest = self._buffer
+            if not self._resyncing:
+                out.append(_dec(None, None, len(rest), 'length', 'a whole frame before the end', self.offset * 8))
+                spans.append((self.offset, len(rest)))
+                self._resyncing = True
+            self._buffer = b""
+            self.offset += 1
+            self.skipped += 1
+            out += self.feed(rest[1:])
+            spans += self.spans
+        self.spans = spans
+        return out
 
 _M = TypeVar("_M", bound=AnyMessage)
 _TRAILER = 13  # bytes after the frame when incompat_flags has signing
