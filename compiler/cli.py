@@ -181,6 +181,8 @@ def cmd_diff(args: argparse.Namespace) -> int:
 
 
 def cmd_import(args: argparse.Namespace) -> int:
+    if args.format == "dbc":
+        return _import_dbc(args)
     from .importers.mavlink import import_dialect, write_schema
     from .importers.mavlink_xml import MavlinkXmlError
     try:
@@ -193,6 +195,22 @@ def cmd_import(args: argparse.Namespace) -> int:
         raise UsageError(f"{args.out}: cannot write: {exc.strerror}") from None
     print(f"wrote {path} ({len(imported.messages)} messages, {imported.enum_count} enums, "
           f"{imported.flag_count} flag sets)")
+    return OK
+
+
+def _import_dbc(args: argparse.Namespace) -> int:
+    from .importers.dbc import DbcError, import_database, write_schema
+    try:
+        imported = import_database(Path(args.file))
+    except DbcError as exc:
+        raise UsageError(str(exc)) from None
+    try:
+        path = write_schema(imported, Path(args.out))
+    except OSError as exc:
+        raise UsageError(f"{args.out}: cannot write: {exc.strerror}") from None
+    print(f"wrote {path} ({len(imported.messages)} messages"
+          + (f"; not carried, with a comment at its place: {', '.join(imported.skipped)}" if imported.skipped else "")
+          + ")")
     return OK
 
 
@@ -249,11 +267,13 @@ def parser() -> argparse.ArgumentParser:
     s.add_argument("--write", nargs="?", const="codeword.schema.json", metavar="FILE",
                    help="write it to FILE (default: codeword.schema.json) instead of printing it")
     imp = command("import", cmd_import, "write a codeword schema from a specification in another format")
-    imp.add_argument("format", choices=["mavlink"], help="the format: mavlink (a MAVLink XML dialect)")
-    imp.add_argument("file", metavar="FILE", help="the dialect's XML file; its <include>s are read beside it")
-    imp.add_argument("--out", required=True, metavar="DIR", help="write DIR/<dialect>.yaml")
+    imp.add_argument("format", choices=["mavlink", "dbc"],
+                     help="the format: mavlink (a MAVLink XML dialect) or dbc (a CAN database, read by cantools)")
+    imp.add_argument("file", metavar="FILE", help="the dialect's XML file (its <include>s are read beside it), "
+                                                  "or the DBC file")
+    imp.add_argument("--out", required=True, metavar="DIR", help="write DIR/<dialect>.yaml or DIR/<database>.yaml")
     imp.add_argument("--version", dest="mavlink_version", type=int, choices=[1, 2], default=2,
-                     help="MAVLink 1 or 2 framing (default: 2)")
+                     help="mavlink: MAVLink 1 or 2 framing (default: 2)")
     from .check.command import add_arguments as check_arguments
     check_arguments(command("check", cmd_check, "check data (files, captures, logs) against a schema"), cmd_check)
     from .diff.command import add_arguments as diff_arguments

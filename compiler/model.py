@@ -950,6 +950,7 @@ class Framing:
     line_max: int = 0  # text: the longest line a stream reader holds (resolver/line_bound.py)
     truncate: Optional[str] = None  # bytes: "trailing_zeros", senders drop the payload's trailing zeros
     trailer: Optional[Trailer] = None  # bytes: fields after the frame that a flag puts in
+    can: Optional[str] = None  # "classic" or "fd": a CAN framing, the bytes framing of resolver/can.py
 
 
 @dataclass(frozen=True)

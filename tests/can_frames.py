@@ -3,7 +3,10 @@ the bits none takes, and C statements that check a message's encoder and decoder
 against bytes and values cantools gave."""
 from __future__ import annotations
 
+import math
 import random
+import struct
+import sys
 
 from cdriver import Driver
 from codeword.targets.c.view import CView
@@ -46,6 +49,9 @@ def raw_values(rng: random.Random, message) -> dict:
             selects = sorted({v for x in message.signals if x.multiplexer_signal == s.name for v in x.multiplexer_ids})
             if selects:
                 raw = rng.choice(selects)
+            elif s.is_float:  # SIG_VALTYPE_: a float the signal's width holds exactly
+                out[s.name] = random_float(rng, s.length)
+                return out[s.name]
             else:
                 lo, hi = (-(1 << (s.length - 1)), (1 << (s.length - 1)) - 1) if s.is_signed else (0, (1 << s.length) - 1)
                 raw = rng.choice((lo, hi, 0, rng.randint(lo, hi), rng.randint(lo, hi)))
@@ -53,6 +59,18 @@ def raw_values(rng: random.Random, message) -> dict:
         return out[s.name]
 
     return {s.name: value(s) for s in message.signals if carried(s)}
+
+
+def random_float(rng: random.Random, bits: int) -> float:
+    """A finite float of `bits` (32 or 64) bits: ends, zero, tiny and random ones."""
+    fmt = "<f" if bits == 32 else "<d"
+    while True:
+        raw = rng.getrandbits(bits)
+        value = struct.unpack(fmt, raw.to_bytes(bits // 8, "little"))[0]
+        if math.isfinite(value):
+            break
+    largest = 3.4028234663852886e38 if bits == 32 else sys.float_info.max
+    return rng.choice((value, value, 0.0, -1.5, largest, -largest, 2.0 ** -149 if bits == 32 else 5e-324))
 
 
 def c_case(v: CView, driver: Driver, message, values: dict, frame: bytes, sent: bytes, label: str) -> str:

@@ -238,7 +238,7 @@ class Driver:
             word=self.v.word_bits() is not None and p.framing.kind == "bits",
             word_type="uint64_t" if (self.v.word_bits() or 0) > 32 else "uint32_t",
             text_form=p.framing.text_form is not None,
-            error_const=ERR, sequences=sequences, kept=kept,
+            error_const=ERR, sequences=sequences, kept=kept, can=p.framing.can is not None,
             # an encoded stream's scan consumes every byte; any other leaves less than a frame
             scan_window=f"{p.name.upper()}_STREAM_MAX + 8u" if not p.framing.encoding else "16u",
             scan_left=f"{p.name.upper()}_STREAM_MAX" if not p.framing.encoding else "1u",

@@ -81,10 +81,11 @@ def c_bytes(data: bytes) -> str:
 
 
 
-def conformance_on_host_and_avr(where: Path, name: str, schema: str) -> tuple[int, int]:
+def conformance_on_host_and_avr(where: Path, name: str, schema: str, parts: int = 4) -> tuple[int, int]:
     """Python's vectors of the schema (valid frames, damaged ones, streams) through the
     C conformance driver, on the host with the sanitizers and on an ATmega32 (whose
-    `int` is 16 bits) under simavr: the checks passed on each."""
+    `int` is 16 bits) under simavr, the vectors in `parts` programs that each fit its
+    32 KiB of flash: the checks passed on each."""
     (where / f"{name}.yaml").write_text(schema, encoding="utf-8")
     out = where / "out"
     assert not build([where / f"{name}.yaml"], out, root=where).errors
@@ -95,7 +96,7 @@ def conformance_on_host_and_avr(where: Path, name: str, schema: str) -> tuple[in
     host = passed("\n".join(run_c(where, Driver(protocol).source(vectors))), name)
     avr_gcc, simavr = shutil.which("avr-gcc"), shutil.which("simavr")
     assert avr_gcc and simavr, "avr-gcc and simavr are not installed (.ci/run installs them)"
-    parts, avr = 4, 0
+    avr = 0
     for part in range(parts):
         src, elf = where / f"avr_{part}.c", where / f"avr_{part}.elf"
         src.write_text(Driver(protocol).source(vectors, part, parts), encoding="utf-8")

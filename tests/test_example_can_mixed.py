@@ -1,8 +1,9 @@
 """examples/can_mixed.yaml against cantools loading the equivalent DBC (written here):
 for random values of every message, the data bytes cantools encodes are what
-codeword's Python and C encoders write after the CAN id and length, and both
-decoders read cantools' data, with noise in the unused bits, back to the values
-cantools decodes. Expected bytes and values come from cantools."""
+codeword's Python and C encoders write (`encode_can` gives them with the identifier
+cantools has), and both decoders read cantools' data, with noise in the unused bits,
+back to the values cantools decodes (`decode_can` from the identifier and the data).
+Expected bytes and values come from cantools."""
 from __future__ import annotations
 
 import random
@@ -22,7 +23,8 @@ SCHEMA = Path(__file__).resolve().parent.parent / "examples" / "can_mixed.yaml"
 # The same messages as a DBC: `start|length@order sign (scale,offset)`, @0 Motorola, @1 Intel;
 # `M` a multiplexor, `m<n>` a signal it multiplexes, `m<n>M` both, and SG_MUL_VAL_ the values
 # of a multiplexor that carry each signal (Message1 as in cantools' tests/files/dbc/multiplex.dbc,
-# Extended and Shared as in multiplex_2.dbc, with their multiplexors unsigned and short ids).
+# Extended and Shared as in multiplex_2.dbc, with their multiplexors unsigned and short ids;
+# the float YawRate by SIG_VALTYPE_, 1 for a 32-bit float).
 DBC = """VERSION ""
 
 NS_ :
@@ -53,7 +55,7 @@ BO_ 928 Gear: 2 ECU
  SG_ Gear : 0|3@1+ (1,0) [0|0] "" PCM1
  SG_ Mode : 15|4@0+ (1,0) [0|0] "" PCM1
 
-BO_ 1110 Message1: 8 ECU
+BO_ 2148676694 Message1: 8 ECU
  SG_ BIT_F m24 : 39|1@1+ (1,0) [0|0] "" PCM1
  SG_ BIT_H m24 : 38|1@1+ (1,0) [0|0] "" PCM1
  SG_ BIT_B m24 : 33|1@1+ (1,0) [0|0] "" PCM1
@@ -83,17 +85,17 @@ BO_ 1112 Shared: 8 ECU
  SG_ S1 m1 : 4|4@1- (1,0) [0|0] "" PCM1
  SG_ S0 M : 0|4@1+ (1,0) [0|0] "" PCM1
 
-SG_MUL_VAL_ 1110 BIT_J Multiplexor 8-8, 16-16, 24-24;
-SG_MUL_VAL_ 1110 BIT_C Multiplexor 8-8, 16-16, 24-24;
-SG_MUL_VAL_ 1110 BIT_G Multiplexor 8-8, 16-16, 24-24;
-SG_MUL_VAL_ 1110 BIT_L Multiplexor 8-8, 16-16, 24-24;
-SG_MUL_VAL_ 1110 BIT_A Multiplexor 24-24;
-SG_MUL_VAL_ 1110 BIT_K Multiplexor 24-24;
-SG_MUL_VAL_ 1110 BIT_E Multiplexor 24-24;
-SG_MUL_VAL_ 1110 BIT_D Multiplexor 24-24;
-SG_MUL_VAL_ 1110 BIT_B Multiplexor 24-24;
-SG_MUL_VAL_ 1110 BIT_H Multiplexor 24-24;
-SG_MUL_VAL_ 1110 BIT_F Multiplexor 24-24;
+SG_MUL_VAL_ 2148676694 BIT_J Multiplexor 8-8, 16-16, 24-24;
+SG_MUL_VAL_ 2148676694 BIT_C Multiplexor 8-8, 16-16, 24-24;
+SG_MUL_VAL_ 2148676694 BIT_G Multiplexor 8-8, 16-16, 24-24;
+SG_MUL_VAL_ 2148676694 BIT_L Multiplexor 8-8, 16-16, 24-24;
+SG_MUL_VAL_ 2148676694 BIT_A Multiplexor 24-24;
+SG_MUL_VAL_ 2148676694 BIT_K Multiplexor 24-24;
+SG_MUL_VAL_ 2148676694 BIT_E Multiplexor 24-24;
+SG_MUL_VAL_ 2148676694 BIT_D Multiplexor 24-24;
+SG_MUL_VAL_ 2148676694 BIT_B Multiplexor 24-24;
+SG_MUL_VAL_ 2148676694 BIT_H Multiplexor 24-24;
+SG_MUL_VAL_ 2148676694 BIT_F Multiplexor 24-24;
 SG_MUL_VAL_ 1111 S5 S0 1-1;
 SG_MUL_VAL_ 1111 S1 S0 0-0;
 SG_MUL_VAL_ 1111 S4 S1 2-2;
@@ -103,11 +105,19 @@ SG_MUL_VAL_ 1111 S8 S6 2-2;
 SG_MUL_VAL_ 1111 S7 S6 1-1;
 SG_MUL_VAL_ 1112 S1 S0 1-1, 3-3;
 SG_MUL_VAL_ 1112 S2 S0 2-5;
+
+BO_ 2432634912 ImuRates: 8 ECU
+ SG_ YawRate : 0|32@1- (1,0) [0|0] "deg/s" PCM1
+ SG_ LateralAccel : 32|16@1- (0.01,0) [0|0] "m/s2" PCM1
+ SG_ Status : 55|8@0+ (1,0) [0|0] "" PCM1
+
+SIG_VALTYPE_ 2432634912 YawRate : 1;
 """
 
 # codeword's message for each DBC message, and its field for each signal
 NAMES = {"ExampleMessage": "example_message", "WheelSpeeds": "wheel_speeds", "Steering": "steering", "Gear": "gear",
-         "Message1": "multiplexed", "Extended": "extended", "Shared": "shared"}
+         "Message1": "multiplexed", "Extended": "extended", "Shared": "shared", "ImuRates": "imu_rates"}
+EXTENDED_FLAG = 0x80000000  # in a frame id, as SocketCAN's CAN_EFF_FLAG
 
 
 def snake(name: str) -> str:
@@ -135,17 +145,19 @@ def test_frames_match_cantools_in_python_and_c(built):
     for ref in db.messages:
         ours = protocol.message(NAMES[ref.name])
         cls = module.MESSAGES[ours.name]
-        head = ref.frame_id.to_bytes(2, "big") + bytes([ref.length])
+        frame_id = ref.frame_id | (EXTENDED_FLAG if ref.is_extended_frame else 0)
+        head = frame_id.to_bytes(4, "big") + bytes([ref.length])
         for k in range(60):
             values = raw_values(rng, ref)
             data = ref.encode(values, scaling=True, strict=True)
             mine = {snake(n): x for n, x in values.items()}
             assert cls(**mine).encode() == head + data, (ref.name, values)
+            assert cls(**mine).encode_can() == (frame_id, data), (ref.name, values)
             sent = head + noise(rng, data, as_signals(ref, values))  # noise in the bits of signals not carried too
-            expected = {snake(n): x for n, x in ref.decode(sent[3:], decode_choices=False).items()}
-            got = module.decode(sent)
-            assert {f.name: getattr(got, f.name) for f in ours.members} == \
-                {f.name: expected.get(f.name) for f in ours.members}, (ref.name, sent.hex())
+            expected = {snake(n): x for n, x in ref.decode(sent[5:], decode_choices=False).items()}
+            for got in (module.decode(sent), module.decode_can(frame_id, sent[5:])):
+                assert {f.name: getattr(got, f.name) for f in ours.members} == \
+                    {f.name: expected.get(f.name) for f in ours.members}, (ref.name, sent.hex())
             checks.append(c_case(v, driver, ours, mine, head + data, sent, f"{ref.name} #{k}"))
     lines = run_c(built, C_DRIVER.format(header="can_mixed", cases="\n".join(checks), n=len(checks)))
     assert lines == [f"OK {len(checks)}"], lines[:20]
@@ -154,7 +166,7 @@ def test_frames_match_cantools_in_python_and_c(built):
 def test_conformance_vectors_on_the_host_and_on_atmega32_under_simavr(tmp_path):
     """Edge values, random values and damaged frames (noise in the unused bits among
     them): C agrees with Python on the host and on an 8-bit AVR."""
-    host, avr = conformance_on_host_and_avr(tmp_path, "can_mixed", SCHEMA.read_text(encoding="utf-8"))
+    host, avr = conformance_on_host_and_avr(tmp_path, "can_mixed", SCHEMA.read_text(encoding="utf-8"), parts=8)
     assert host > 100 and avr > 100
 
 

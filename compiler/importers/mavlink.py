@@ -10,7 +10,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from .mavlink_framing import DOC, FRAME_FLAG_SETS, FRAME_FLAGS, FRAME_MEMBERS, FRAMING
-from .mavlink_names import member_name, protocol_name, usable
+from .mavlink_names import member_name, protocol_name
+from .naming import usable
 from .mavlink_xml import Dialect, MavlinkXmlError, XmlEnum, XmlField, XmlMessage, read_dialect
 from .yaml_writer import Writer
 

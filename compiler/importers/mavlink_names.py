@@ -4,26 +4,8 @@ too long, starting with a digit) gets a trailing `_` or is shortened with a hash
 the schema says the original in a comment."""
 from __future__ import annotations
 
-import zlib
-
-from ..names import GENERATED_CLASSES, MAX_NAME_LENGTH, camel, name_problem, protocol_name_problem
-
-
-def shortened(name: str) -> str:
-    """A name cut to the length codeword allows, a hash of the whole keeping it unique."""
-    tag = f"{zlib.crc32(name.encode()) & 0xFFFF:04x}"
-    return f"{name[:MAX_NAME_LENGTH - 5].rstrip('_')}_{tag}"
-
-
-def usable(name: str, taken: frozenset | set = frozenset()) -> str:
-    """`name` (lower case already) or the nearest name codeword accepts and that is not taken."""
-    if len(name) > MAX_NAME_LENGTH:
-        name = shortened(name)
-    if name[:1].isdigit():
-        name = "n" + name
-    while name_problem(name) or name in taken or camel(name) in GENERATED_CLASSES:
-        name = name + "_" if len(name) < MAX_NAME_LENGTH else shortened(name + "x")
-    return name
+from ..names import name_problem, protocol_name_problem
+from .naming import usable
 
 
 def protocol_name(dialect: str) -> str:

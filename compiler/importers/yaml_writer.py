@@ -14,12 +14,23 @@ _PLAIN = re.compile(r"[A-Za-z_][A-Za-z0-9_ ./%()-]*\Z")
 _SPECIAL = frozenset("y n yes no on off true false null ~".split())
 
 
+def number(value: float) -> str:
+    """A finite number as YAML reads it back exactly: an integer plainly, a float with a
+    point (PyYAML takes 1e-05 for a string, 1.0e-05 for a float)."""
+    if isinstance(value, int):
+        return str(value)
+    mantissa, e, exponent = repr(float(value)).partition("e")
+    if e and "." not in mantissa:
+        mantissa += ".0"
+    return mantissa + (f"e{'-' if exponent.startswith('-') else '+'}{exponent.lstrip('+-')}" if e else "")
+
+
 def scalar(value) -> str:
     """One scalar, as YAML text that reads back as `value`."""
     if isinstance(value, bool):
         return "true" if value else "false"
-    if isinstance(value, int):
-        return str(value)
+    if isinstance(value, (int, float)):
+        return number(value)
     text = str(value)
     if _PLAIN.match(text) and text.lower() not in _SPECIAL and not text.endswith(" ") and ": " not in text \
             and " #" not in text:
@@ -74,6 +85,10 @@ class Writer:
         # a folded scalar joins its lines with single spaces: the text's own words back
         self.lines += [inner + line for line in textwrap.wrap(text, WIDTH - len(inner), break_long_words=False,
                                                               break_on_hyphens=False)]
+
+    def code(self, key: str, text: str, indent: int) -> None:
+        """`key: text`, the text written as it is (a hex number, a flow list of numbers)."""
+        self.lines.append(f"{' ' * indent}{key}: {text}")
 
     def flow_item(self, mapping: dict, indent: int) -> None:
         self.lines.append(f"{' ' * indent}- {flow(mapping)}")

@@ -8,6 +8,7 @@ from ..diagnostics import Loc, Reporter
 from ..loader import Document
 from ..model import Enum, FlagSet, Parameter
 from ..names import name_problem
+from . import can
 
 
 INT_TYPE = re.compile(r"^([ui])([0-9]+)$")
@@ -27,7 +28,8 @@ MAX_SCALED_BITS = 53
 class ResolverBase:
     def __init__(self, doc: Document):
         self.doc = doc
-        self.data = doc.data
+        # a CAN framing is read as the bytes framing it stands for
+        self.data, self.can = can.expand(doc.data)
         self.report = Reporter()
         self.enums: dict[str, Enum] = {}
         self.flags: dict[str, FlagSet] = {}

@@ -38,6 +38,8 @@ class FramingMixin(TrailerMixin):
     def resolve_framing(self, fr: dict) -> Framing:
         kind = fr["kind"]
         path = ("framing",)
+        if self.can is not None:
+            self.check_can_framing()
         allowed = {"bits": {"kind", "word_bits", "max_bits", "byte_order", "text_form"},
                    "bytes": {"kind", "layout", "byte_order", "bit_order", "encoding", "accm", "stuffing", "truncate", "trailer"},
                    "text": {"kind", "start", "prefix_separator", "separator", "terminator",
@@ -94,6 +96,7 @@ class FramingMixin(TrailerMixin):
             text_form=TextForm(tf.get("separator", " "), tf.get("comment"), tf.get("checksum_unfilled"))
             if tf else None,
             envelope=envelope, encoding=fr.get("encoding"), truncate=fr.get("truncate"), trailer=trailer,
+            can=self.can,
             accm=fr.get("accm", 0) if fr.get("encoding") == "hdlc" else 0,
             prefix_separator=fr.get("prefix_separator", ":"),
             separator=fr.get("separator", ","), terminator=fr.get("terminator", ";"),

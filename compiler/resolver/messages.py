@@ -42,6 +42,7 @@ class MessagesMixin(ResolverBase):
                                        "with several dispatch fields")
             ids = None
         ids = () if ids is None else tuple(ids) if isinstance(ids, list) else ids if isinstance(ids, dict) else (ids,)
+        ids = self.can_ids(name, m, ids, path)
         own = self.bind_controls(name, own, path)
         own = self.kept_spellings(name, m, own, framing, path)
         payload_bytes = m.get("payload_bytes")
@@ -75,6 +76,8 @@ class MessagesMixin(ResolverBase):
             if framing.kind == "bytes" and bits is not None:
                 shortening = self.shortening(name, layout, framing, path)
                 self.check_fixed_self_cover(name, layout, shortening)
+        if framing.kind != "text":
+            self.check_can_size(name, None if bits is None else (bits + 7) // 8, shortening is not None, path)
         self.check_generated_members(name, layout)
         crc_extra = self.crc_extra(name, m, own, layout, path)
         rules = tuple(self.resolve_rule(r, path + ("rules", i), layout)

@@ -116,10 +116,10 @@ class PlacementMixin(ResolverBase):
                                          "start_bit is an integer or bool of its own bits",
                                   f"drop `{key}`, or place the message's fields one after another")
                 return replace(f, bit_offset=0)
-        if f.kind not in ("uint", "int", "bool"):
+        if f.kind not in ("uint", "int", "bool", "float"):
             self.report.error(f.loc, f"message {name!r}: field {f.name!r} is {f.kind}; a field placed by "
-                                     "start_bit is an integer or bool (a DBC signal)",
-                              "give it an integer type, or place the message's fields one after another")
+                                     "start_bit is an integer, bool or float (a DBC signal)",
+                              "give it an integer or float type, or place the message's fields one after another")
             return replace(f, bit_offset=0)
         f = replace(f, byte_order=f.byte_order or framing.byte_order)
         payload_bits = 8 * payload_bytes

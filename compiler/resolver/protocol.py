@@ -28,13 +28,14 @@ from .rules import RulesMixin
 from .sequences import SequencesMixin
 from .streams import StreamsMixin
 from .stuffing import StuffingMixin
+from .can import CanMixin
 from .delivery import DeliveryMixin
 from .placement import PlacementMixin
 
 
 class Resolver(TypesMixin, FieldsMixin, ChecksumsMixin, FramingMixin, PlacementMixin, MessagesMixin,
                ShorteningMixin, RulesMixin, SequencesMixin, DeliveryMixin, StreamsMixin,
-               StuffingMixin):
+               StuffingMixin, CanMixin):
     """The whole document: each concern's rules come from its mixin module."""
 
     def resolve(self) -> Protocol:

@@ -231,6 +231,9 @@ def python_checks(mod, vectors: dict, text: bool, rng: random.Random) -> str:
         except mod.DecodeError:
             continue
         return f"invalid {case['name']!r} decoded"
+    problem = can_checks(mod, vectors) if hasattr(mod, "decode_can") else ""
+    if problem:
+        return problem
     problem = stream_checks(mod, vectors, frames) if hasattr(mod, "StreamDecoder") else ""
     refused = "" if problem else refusals(mod, objects.values())
     if problem or refused:
@@ -245,6 +248,31 @@ def python_checks(mod, vectors: dict, text: bool, rng: random.Random) -> str:
             again = mod.encode(obj)
             if mod.decode(again) != obj:
                 return f"damaged {bad!r} decodes to {obj!r}, whose encoding decodes differently"
+    return ""
+
+
+def can_checks(mod, vectors: dict) -> str:
+    """A CAN frame given as its identifier and its data decodes to the message its whole
+    frame does, and the message gives back that identifier and data; an invalid frame's
+    data is refused (a DecodeError) or, given as the header says, is the frame refused."""
+    for case in vectors["valid"]:
+        frame = bytes.fromhex(case["hex"])
+        ident, data = int.from_bytes(frame[:4], "big"), frame[5:]
+        obj = mod.decode_can(ident, data)
+        if obj != mod.decode(frame):
+            return f"valid {case['name']!r}: decode_can gives {obj!r}, decode {mod.decode(frame)!r}"
+        canonical = bytes.fromhex(case.get("canonical", case["hex"]))
+        if obj.encode_can() != (int.from_bytes(canonical[:4], "big"), canonical[5:]):
+            return f"valid {case['name']!r}: encode_can gives {obj.encode_can()!r}"
+    for case in vectors["invalid"]:
+        frame = bytes.fromhex(case["hex"])
+        if len(frame) < 5 or frame[4] != len(frame) - 5:
+            continue  # no CAN controller gives a frame whose length is not its data's
+        try:
+            mod.decode_can(int.from_bytes(frame[:4], "big"), frame[5:])
+        except mod.DecodeError:
+            continue
+        return f"invalid {case['name']!r} decoded by decode_can"
     return ""
 
 

@@ -38,6 +38,8 @@ FULL = frozenset({
     "lsb_first",                            # bytes framing: bit fields least significant bit first
     "mixed_bit_order",                      # bytes: payloads of 1..8 bytes placed by DBC start bit, both orders
     "multiplexed",                          # bytes: placed payloads whose multiplexors select signals sharing bits
+    "placed_float",                         # bytes: f32 and f64 fields among those placed by start bit (SIG_VALTYPE_)
+    "can",                                  # CAN framing: standard and extended identifiers, classic and FD lengths
     "large_frame",                          # bytes: a message of over 64 KiB (4 KiB fields first)
     "stream_end",                           # check: whole frames after a false start at a stream's end are decoded
     "signed", "scale", "offset", "range",   # integer options

@@ -13,6 +13,7 @@ from codeword.text_prefix import Pattern, common_prefix
 
 from .features import DEFAULT
 from .machines import MACHINE_SHARE, machine_schema
+from .can import CAN_SHARE, can_schema
 
 CRCS = {8: ["CRC-8/SMBUS", "CRC-8/MAXIM-DOW"], 16: ["CRC-16/XMODEM", "CRC-16/MODBUS", "CRC-16/CMS"],
         32: ["CRC-32/ISO-HDLC"]}
@@ -88,6 +89,8 @@ class Generator:
     def schema(self) -> dict:
         if "machines" in self.on and random.Random(f"machines {self.seed}").random() < MACHINE_SHARE:
             return machine_schema(self)  # its own draw: the other seeds' schemas stay as they were
+        if "can" in self.on and random.Random(f"can framing {self.seed}").random() < CAN_SHARE:
+            return can_schema(self, placed_signals, multiplexed_signals)
         kinds = [k for k in ("bytes", "text", "bits") if k in self.on] or ["bytes"]
         kind = self.rng.choice(kinds)
         doc: dict = {"codeword": 1, "protocol": f"fz{self.seed}", "title": f"fuzz schema {self.seed}",
@@ -277,7 +280,8 @@ class Generator:
                 continue
             size = own.randint(1, 8)
             body["payload_bytes"] = size
-            body["fields"] = placed_signals(own, size)
+            floats = random.Random(f"placed_float {self.seed}") if "placed_float" in self.on else None
+            body["fields"] = placed_signals(own, size, floats)
 
     def multiplexed(self, messages: dict) -> None:
         """In one schema of three, some messages become multiplexed CAN payloads: a
@@ -1121,12 +1125,16 @@ def multiplexed_signals(rng: random.Random, size: int) -> list[dict]:
     return out
 
 
-def placed_signals(rng: random.Random, size: int) -> list[dict]:
-    """Signals that do not overlap in a payload of `size` bytes, at least one."""
+def placed_signals(rng: random.Random, size: int, floats: Optional[random.Random] = None) -> list[dict]:
+    """Signals that do not overlap in a payload of `size` bytes, at least one; with
+    `floats` (a generator of their own), some are f32 or f64 (DBC's SIG_VALTYPE_)."""
     taken: set[int] = set()
     out: list[dict] = []
     for _ in range(10):
         length = min(64, rng.choice((rng.randint(1, 8 * size), rng.randint(1, min(12, 8 * size)))))
+        real = floats is not None and size >= 4 and floats.random() < 0.25
+        if real:
+            length = 64 if size >= 8 and floats.random() < 0.4 else 32
         order = rng.choice(("big", "little"))
         first = rng.randint(0, 8 * size - length)  # in the order's own numbering
         start = first if order == "little" else msb_position(first)
@@ -1137,7 +1145,9 @@ def placed_signals(rng: random.Random, size: int) -> list[dict]:
         signed = length > 1 and rng.random() < 0.5
         field = {"name": f"sig_{len(out)}", "type": f"{'i' if signed else 'u'}{length}", "start_bit": start,
                  "byte_order": order}
-        if length == 1 and rng.random() < 0.5:
+        if real:
+            field["type"] = f"f{length}"
+        elif length == 1 and rng.random() < 0.5:
             field["type"] = "bool"
         elif length <= 53 and rng.random() < 0.3:
             field["scale"] = rng.choice((0.5, 0.25, 2, 0.125))

@@ -10,6 +10,7 @@ from .sequences import sequences_view
 from .stuffing import stuffing_view
 from .text_stream import text_stream_view
 from .trailer import trailer_view
+from ..can import can_view
 from .view import CView, cchar, clit, comment, cstr
 from .wordform import word_type
 from ..render import environment, tidy
@@ -138,7 +139,7 @@ def render(p: Protocol) -> dict[str, str]:
         p=p, v=v, px=v.px, PX=v.PX, fingerprint=fingerprint(p), fingerprint32=f"{fingerprint32(p):#010x}", constants=constants(v), enums=enums(v), flags=flags(v),
         directions=v.directions(), messages=messages, kinds={m["name"]: m["kind"] for m in messages},
         checksums=v.byte_checksums(), crc_methods=crc.METHODS if v.has_crc() else (), crc_default=crc.DEFAULT_METHOD, text=v.text, dispatch=dispatch, stream=v.stream() if fr.kind == "bytes" else {},
-        encoding=encoding, stuffing=stuffing, trailer=trailer_view(p),
+        encoding=encoding, stuffing=stuffing, trailer=trailer_view(p), can=can_view(p),
         largest=largest_on_wire(v, encoding, stuffing),
         wrapped=bool(fr.encoding or fr.stuffing),
         word_bits=v.word_bits(), word_type=word_type(v.word_bits() or 32), text_form=text_form,

@@ -10,6 +10,7 @@ from __future__ import annotations
 import types
 from typing import Optional
 
+from ...can import identifier
 from ...fingerprint import fingerprint, fingerprint32
 from ...model import SPELLING_MAX, Message, Protocol
 from .budget import longest_text_line, transport_views
@@ -41,9 +42,17 @@ def direction_text(p: Protocol, name: Optional[str]) -> str:
     return f"{d.source} → {d.target}" if d else ""
 
 
+def can_spelled(can_id: int) -> str:
+    """A CAN identifier as people write it: `0x123`, or `0x18FEF100` (extended)."""
+    value, extended = identifier(can_id)
+    return f"`0x{value:08X}` (extended)" if extended else f"`0x{value:03X}`"
+
+
 def message_id(p: Protocol, m: Message) -> str:
     if m.id_fields:
         return ", ".join(f"{name} = `{value:#04x}`" for name, value in m.id_fields)
+    if m.ids and p.framing.can:
+        return ", ".join(can_spelled(v) for v in m.ids)
     if m.ids:
         return ", ".join(code(v) if isinstance(v, str) else f"`{v:#04x}`" for v in m.ids)
     if m.dispatch_key:
@@ -158,6 +167,14 @@ def framing_view(p: Protocol, linker: DecisionLinker) -> dict:
                              "accepted by readers; writers always fill it in. In the bit form it must be correct.")
     elif fr.kind == "bytes":
         facts = stream_facts(p)
+        if fr.can:
+            lines.append(("CAN FD frames: up to 64 bytes of data, in the DLC steps 0–8, 12, 16, 20, 24, 32, 48 "
+                          "and 64." if fr.can == "fd" else "Classic CAN frames: up to 8 bytes of data.")
+                         + " A message is found by its arbitration identifier, standard (11-bit) or extended "
+                         "(29-bit), and its data is its payload. In examples and vectors a frame is written as "
+                         "the identifier in four bytes (bit 31 set for an extended one, as SocketCAN's `can_id`), "
+                         "the data length in one byte, then the data; the generated codecs take and give the "
+                         "identifier and the data apart (`decode_can`, `encode_can`).")
         lines.append("Every frame has the same envelope; each message fills its payload. Multi-byte fields are "
                      + ("little endian" if fr.byte_order == "little" else "big endian")
                      + " unless the field table says otherwise; bits within a byte are numbered 7 (MSB) to 0.")

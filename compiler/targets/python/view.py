@@ -12,6 +12,7 @@ from ...crc import reflect
 from ...model import (SPELLING_MAX, Field, Gap, Leaf, Message, Multiplex, Protocol, Rule, Sequence, SequenceItem,
                       field_at, path_name)
 from ...names import camel
+from ..can import can_view
 from ..code import Code, times_over
 from .chunks import Chunk, Segment, access, chunks_of, segments_of
 from .repeats import RepeatCode, blob, elements, named, region
@@ -858,6 +859,8 @@ class MessageCode:
     def unsigned(leaf: Leaf) -> str:
         if leaf.field.kind == "int":
             return f"({leaf.var} & {(1 << leaf.field.bits) - 1:#x})"
+        if leaf.field.kind == "float":  # a float among bit fields (placed by start bit): its IEEE 754 bits
+            return f"_bits_of_float({leaf.var}, {leaf.field.bits})"
         return leaf.var
 
     def build_checks(self, c: Code, bounded: bool, text_form: bool, word: bool = False) -> None:
@@ -1364,6 +1367,8 @@ class MessageCode:
         if leaf.field.kind == "int":
             c(f"if {leaf.var} & {1 << (bits - 1):#x}:")
             c(f"    {leaf.var} -= {1 << bits:#x}")
+        elif leaf.field.kind == "float":
+            c(f"{leaf.var} = _float_of_bits({leaf.var}, {bits})")
 
     # -- the text form of a bits protocol (a text exchange file) --------------------------
     def text_form_functions(self) -> str:
@@ -1699,6 +1704,10 @@ def module_view(p: Protocol) -> dict:
         "wrapped": bool(p.framing.encoding or p.framing.stuffing),
         "decode_overloads": view.decode_signature(), "trailer": trailer_view(p),
         "kept_spellings": any(f.keep_spelling for m in p.messages for f in m.layout) or any(m.keeps_places for m in p.messages),
+        "can": can_view(p),
+        # floats among bit fields are read and written as their IEEE 754 bits
+        "packed_floats": any(run.kind == "packed" and any(x.field.kind == "float" for x in run.leaves)
+                             for m in p.messages for run in m.wire.runs),
     }
 
 

@@ -1,0 +1,264 @@
+"""`codeword import dbc FILE.dbc`: a CAN database as one codeword schema.
+
+cantools reads the file (it is the DBC reader CAN users already trust, lenient where
+real files are); this module writes what it read as a schema a person keeps editing:
+`framing: {kind: can}`, each message at its identifier with its signals placed by
+start bit in their own byte order, scale and offset, units, multiplexing, the nodes as
+roles. What the language has no key for (value tables, minimum and maximum, initial
+values, cycle times and other attributes) is written in the message's or field's doc
+and in comments at its place, never dropped."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Optional
+
+from ..can import FD_LENGTHS
+from ..names import protocol_name_problem
+from .naming import snake, usable
+from .yaml_writer import Writer, number
+
+ENVELOPE_NAMES = frozenset({"can_id", "data_length"})  # the CAN framing's header fields
+
+
+class DbcError(Exception):
+    """A file cantools cannot read as a DBC database."""
+
+
+@dataclass
+class ImportedSignal:
+    name: str  # codeword's
+    signal: Any  # cantools.database.Signal
+
+
+@dataclass
+class Imported:
+    protocol: str
+    path: Path
+    messages: list[str] = field(default_factory=list)  # codeword names, in file order
+    skipped: list[str] = field(default_factory=list)  # what the schema could not carry, in words
+    text: str = ""
+
+
+def import_database(path: Path) -> Imported:
+    """The DBC file at `path` as the text of a codeword schema."""
+    db = _load(Path(path))
+    imported = Imported(_protocol_name(Path(path).stem), Path(path))
+    w = Writer()
+    _header(w, db, imported)
+    roles = _roles(w, db)
+    w.blank()
+    w.key("framing", 0)
+    w.item("kind", "can", 2)
+    if any(m.is_fd or m.length > 8 for m in db.messages):
+        w.item("fd", True, 2)
+    w.blank()
+    w.key("messages", 0)
+    taken: set[str] = set()
+    for message in db.messages:
+        _message(w, message, roles, taken, imported)
+    imported.text = w.text()
+    return imported
+
+
+def write_schema(imported: Imported, out: Path) -> Path:
+    out.mkdir(parents=True, exist_ok=True)
+    path = out / f"{imported.protocol}.yaml"
+    path.write_text(imported.text, encoding="utf-8")
+    return path
+
+
+def _load(path: Path) -> Any:
+    try:
+        import cantools
+    except ImportError:
+        raise DbcError("importing DBC needs cantools: pip install 'codeword[dbc]'") from None
+    try:
+        return cantools.database.load_file(str(path), database_format="dbc", strict=False)
+    except OSError as exc:
+        raise DbcError(f"{path}: cannot read: {exc.strerror or exc}") from None
+    except Exception as exc:  # cantools' parse errors have no common base class
+        raise DbcError(f"{path}: not a DBC database cantools can read: {' '.join(str(exc).split())}") from None
+
+
+def _protocol_name(stem: str) -> str:
+    name = snake(stem)
+    return name if not protocol_name_problem(name) else usable(f"can_{name}")
+
+
+def _header(w: Writer, db: Any, imported: Imported) -> None:
+    w.comment(f"CAN database {imported.path.name}, imported by `codeword import dbc` (read by cantools).")
+    w.comment("Each message is at its identifier (extended: true for a 29-bit one) with its DBC length as "
+              "payload_bytes; each signal is a field at its DBC start bit, in its own byte order (big = "
+              "Motorola, little = Intel). Names are in snake_case; each message's title and each field's doc "
+              "keep the DBC's own name.")
+    w.comment("Not carried as schema keys, kept in docs instead: value tables (VAL_), signal minimum and "
+              "maximum (decoders take every raw value, as cantools does), initial values, cycle times and "
+              "other attributes (BA_).")
+    tables = getattr(db.dbc, "value_tables", None) if db.dbc else None
+    for name, choices in (tables or {}).items():
+        w.comment(f"value table {name} (VAL_TABLE_): " + _choices_text(choices))
+    for name, definition in ((db.dbc.attribute_definitions or {}).items() if db.dbc else ()):
+        kind = getattr(definition, "kind", None) or ""
+        default = getattr(definition, "default_value", None)
+        w.comment(f"attribute {name} ({kind or 'network'} {definition.type_name})"
+                  + (f", default {default}" if default not in (None, "") else ""))
+    w.blank()
+    w.item("codeword", 1, 0)
+    w.item("protocol", imported.protocol, 0)
+    w.item("title", f"CAN database {imported.path.stem}", 0)
+    if db.version:
+        w.item("version", str(db.version), 0)
+    w.item("source", imported.path.name, 0)
+
+
+def _roles(w: Writer, db: Any) -> dict[str, str]:
+    """Writes `roles:`, one for each node; the codeword name of each node."""
+    names: dict[str, str] = {}
+    for node in db.nodes:
+        names[node.name] = usable(snake(node.name), set(names.values()))
+    if not names:
+        return names
+    w.blank()
+    w.key("roles", 0)
+    for node in db.nodes:
+        w.key(names[node.name], 2)
+        w.prose("doc", _doc(node.name, _comment(node.comment), names[node.name]), 4)
+    return names
+
+
+def _message(w: Writer, message: Any, roles: dict[str, str], taken: set[str], imported: Imported) -> None:
+    where = f"message {message.name} (0x{message.frame_id:X})"
+    if message.length not in FD_LENGTHS or message.length == 0:
+        w.comment(f"{where}: {message.length} bytes of data, a length codeword's CAN framing does not carry "
+                  "(1..8, or the CAN FD steps up to 64)", 2)
+        imported.skipped.append(where)
+        return
+    name = usable(snake(message.name), taken)
+    taken.add(name)
+    imported.messages.append(name)
+    w.key(name, 2)
+    w.code("id", f"0x{message.frame_id:X}", 4)
+    if message.is_extended_frame:
+        w.item("extended", True, 4)
+    w.item("title", message.name, 4)
+    doc = _message_doc(message)
+    if doc:
+        w.prose("doc", doc, 4)
+    if message.senders and message.senders[0] in roles:
+        w.item("role", roles[message.senders[0]], 4)
+    w.item("payload_bytes", message.length, 4)
+    w.key("fields", 4)
+    fields: set[str] = set(ENVELOPE_NAMES)
+    names: dict[str, str] = {}
+    for signal in message.signals:
+        names[signal.name] = usable(snake(signal.name), fields)
+        fields.add(names[signal.name])
+    for signal in message.signals:
+        _signal(w, signal, names, where, imported)
+
+
+def _signal(w: Writer, s: Any, names: dict[str, str], where: str, imported: Imported) -> None:
+    name = names[s.name]
+    problem = _unplaceable(s)
+    if problem:
+        w.comment(f"signal {s.name}: {problem}", 6)
+        imported.skipped.append(f"{where} signal {s.name}")
+        return
+    w.item("name", name, 6, first=True)
+    w.item("type", _type(s), 8)
+    w.item("start_bit", s.start, 8)
+    w.item("byte_order", "big" if s.byte_order == "big_endian" else "little", 8)
+    if s.scale != 1 and not s.is_float:
+        w.item("scale", s.scale, 8)
+    if s.offset != 0 and not s.is_float:
+        w.item("offset", s.offset, 8)
+    if s.unit and s.unit.strip():
+        w.item("unit", s.unit.strip(), 8)
+    if s.multiplexer_signal is not None and s.multiplexer_ids:
+        w.key("multiplexed_by", 8)
+        w.item("field", names[s.multiplexer_signal], 10)
+        w.code("values", "[" + ", ".join(str(v) for v in s.multiplexer_ids) + "]", 10)
+    doc = _signal_doc(s, name)
+    if doc:
+        w.prose("doc", doc, 8)
+    if s.is_multiplexer and s.is_signed:
+        w.comment("the DBC gives this multiplexor a sign; codeword's are unsigned (the values it selects "
+                  "are not negative)", 8)
+
+
+def _unplaceable(s: Any) -> Optional[str]:
+    """Why a signal cannot be a field, or None."""
+    if s.is_float and s.length not in (32, 64):
+        return f"a float of {s.length} bits (SIG_VALTYPE_ takes 32 or 64), not carried"
+    if s.is_float and (s.scale != 1 or s.offset != 0):
+        return "a float signal with scale or offset, not carried"
+    if s.length < 1 or s.length > 64 or (s.is_signed and s.length < 2 and not s.is_multiplexer):
+        return f"a {'signed ' if s.is_signed else ''}integer of {s.length} bits, not carried"
+    return None
+
+
+def _type(s: Any) -> str:
+    if s.is_float:
+        return f"f{s.length}"
+    signed = s.is_signed and not s.is_multiplexer
+    return f"{'i' if signed else 'u'}{s.length}"
+
+
+def _comment(comment: Any) -> str:
+    """A DBC comment as one paragraph (cantools gives a string, or one per language)."""
+    if comment is None:
+        return ""
+    if isinstance(comment, dict):
+        comment = next(iter(comment.values()), "")
+    return " ".join(str(comment).split())
+
+
+def _doc(dbc_name: str, comment: str, name: str) -> str:
+    """A doc that names the DBC's own spelling where codeword's differs."""
+    parts = [f"DBC {dbc_name}."] if dbc_name != name else []
+    return " ".join(parts + ([comment] if comment else [])) or dbc_name
+
+
+def _choices_text(choices: Any) -> str:
+    return ", ".join(f"{int(k)} = {v}" for k, v in choices.items())
+
+
+def _message_doc(m: Any) -> str:
+    parts = [_comment(m.comment)] if _comment(m.comment) else []
+    if m.senders:
+        parts.append("Sent by " + ", ".join(m.senders) + ".")
+    if m.cycle_time:
+        parts.append(f"Cycle time {m.cycle_time} ms.")
+    if m.send_type:
+        parts.append(f"Send type {m.send_type}.")
+    attributes = _attributes(m, skip={"GenMsgCycleTime", "GenMsgSendType", "VFrameFormat"})
+    if attributes:
+        parts.append("DBC attributes: " + attributes + ".")
+    return " ".join(parts)
+
+
+def _signal_doc(s: Any, name: str) -> str:
+    parts = [f"DBC {s.name}."] if s.name != name else []
+    if _comment(s.comment):
+        parts.append(_comment(s.comment))
+    if s.choices:
+        parts.append("Values: " + _choices_text(s.choices) + ".")
+    if s.minimum is not None or s.maximum is not None:
+        parts.append(f"Range {number(s.minimum) if s.minimum is not None else '…'} to "
+                     f"{number(s.maximum) if s.maximum is not None else '…'} (DBC minimum and maximum).")
+    if s.raw_initial is not None and s.raw_initial != 0:
+        parts.append(f"Initial raw value {number(s.raw_initial)}.")
+    if s.receivers:
+        parts.append("Received by " + ", ".join(s.receivers) + ".")
+    attributes = _attributes(s, skip={"GenSigStartValue"})
+    if attributes:
+        parts.append("DBC attributes: " + attributes + ".")
+    return " ".join(parts)
+
+
+def _attributes(item: Any, skip: set[str]) -> str:
+    dbc = getattr(item, "dbc", None)
+    if dbc is None or not dbc.attributes:
+        return ""
+    return ", ".join(f"{k} = {a.value}" for k, a in sorted(dbc.attributes.items()) if k not in skip)
