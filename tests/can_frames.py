@@ -111,3 +111,74 @@ int main(void)
     return 0;
 }}
 """
+
+
+class Layout:
+    """Random signals placed in a payload of `size` bytes: a signal multiplexed for some
+    values avoids every bit a signal that may be carried with it takes."""
+
+    def __init__(self, rng: random.Random, size: int):
+        self.rng, self.size, self.signals = rng, size, []
+
+    def place(self, taken: set[int], most: int = 16, mux: bool = False) -> tuple[dict, set[int]] | None:
+        rng = self.rng
+        for _ in range(30):
+            length = rng.randint(1, 3) if mux else rng.randint(1, min(most, 8 * self.size))
+            order = rng.choice(("big_endian", "little_endian"))
+            first = rng.randint(0, 8 * self.size - length)
+            start = first if order == "little_endian" else msb_position(first)
+            bits = set(covered(start, length, order))
+            if not bits & taken:
+                signed = not mux and length > 1 and rng.random() < 0.5
+                return {"name": f"s{len(self.signals)}", "start": start, "length": length, "order": order,
+                        "signed": signed, "mux": None, "ids": None, "is_mux": mux}, bits
+        return None
+
+    def add(self, taken: set[int], mux: dict | None = None, ids: list[int] | None = None,
+            is_mux: bool = False) -> tuple[dict, set[int]] | None:
+        placed = self.place(taken, mux=is_mux)
+        if placed is None:
+            return None
+        sig, bits = placed
+        sig.update(mux=mux and mux["name"], ids=ids)
+        self.signals.append(sig)
+        return sig, bits
+
+    def fill(self, taken: set[int], mux: dict, depth: int) -> set[int]:
+        """Groups of signals for some values of `mux`, each group placed apart from what
+        may be carried with it; the bits every group takes."""
+        rng = self.rng
+        values = rng.sample(range(1 << mux["length"]), min(1 << mux["length"], rng.randint(1, 3)))
+        per = {v: set(taken) for v in values}
+        for v in values:
+            for _ in range(rng.randint(1, 3)):
+                nested = depth < 1 and rng.random() < 0.3
+                got = self.add(per[v], mux, [v], nested)
+                if got is None:
+                    break
+                per[v] |= got[1]
+                if nested:
+                    per[v] = self.fill(per[v], got[0], depth + 1)
+        if len(values) > 1 and rng.random() < 0.6:  # one signal carried for two of the values
+            both = rng.sample(values, 2)
+            got = self.add(per[both[0]] | per[both[1]], mux, sorted(both))
+            if got is not None:
+                for v in both:
+                    per[v] |= got[1]
+        return set().union(*per.values())
+
+
+def random_layout(rng: random.Random, size: int) -> list[dict]:
+    layout = Layout(rng, size)
+    taken: set[int] = set()
+    for _ in range(rng.randint(1, 2)):  # multiplexors side by side, each with plain signals
+        got = layout.add(taken, is_mux=True)
+        if got is None:
+            break
+        taken |= got[1]
+        if rng.random() < 0.5:
+            plain = layout.add(taken)
+            if plain is not None:
+                taken |= plain[1]
+        taken = layout.fill(taken, got[0], 0)
+    return layout.signals

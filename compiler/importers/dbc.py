@@ -9,11 +9,13 @@ values, cycle times and other attributes) is written in the message's or field's
 and in comments at its place, never dropped."""
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Optional
 
 from ..can import FD_LENGTHS
+from ..resolver.placement import msb_position
 from ..names import protocol_name_problem
 from .naming import snake, usable
 from .yaml_writer import Writer, number
@@ -45,7 +47,7 @@ def import_database(path: Path) -> Imported:
     db = _load(Path(path))
     imported = Imported(_protocol_name(Path(path).stem), Path(path))
     w = Writer()
-    _header(w, db, imported)
+    _header(w, db, imported, Path(path).read_text(encoding="latin-1"))
     roles = _roles(w, db)
     w.blank()
     w.key("framing", 0)
@@ -86,7 +88,16 @@ def _protocol_name(stem: str) -> str:
     return name if not protocol_name_problem(name) else usable(f"can_{name}")
 
 
-def _header(w: Writer, db: Any, imported: Imported) -> None:
+# Sections of a DBC file that cantools reads past: each is named in a comment when present.
+UNREAD = (("EV_", "environment variables"), ("ENVVAR_DATA_", "environment variable data"),
+          ("SGTYPE_", "signal types"), ("SIG_TYPE_REF_", "signal type references"),
+          ("CAT_DEF_", "categories"), ("FILTER", "filters"), ("BA_DEF_REL_", "relation attribute definitions"),
+          ("BA_REL_", "relation attributes"), ("BU_SG_REL_", "node-signal relations"),
+          ("BU_EV_REL_", "node-environment relations"), ("BU_BO_REL_", "node-message relations"))
+NETWORK_COMMENT = re.compile(r'^CM_\s+"((?:[^"\\]|\\.)*)"\s*;', re.M)
+
+
+def _header(w: Writer, db: Any, imported: Imported, source: str) -> None:
     w.comment(f"CAN database {imported.path.name}, imported by `codeword import dbc` (read by cantools).")
     w.comment("Each message is at its identifier (extended: true for a 29-bit one) with its DBC length as "
               "payload_bytes; each signal is a field at its DBC start bit, in its own byte order (big = "
@@ -103,6 +114,13 @@ def _header(w: Writer, db: Any, imported: Imported) -> None:
         default = getattr(definition, "default_value", None)
         w.comment(f"attribute {name} ({kind or 'network'} {definition.type_name})"
                   + (f", default {default}" if default not in (None, "") else ""))
+    for name, attribute in ((db.dbc.attributes or {}).items() if db.dbc else ()):
+        w.comment(f"network attribute {name} = {attribute.value}")
+    for keyword, what in UNREAD:
+        count = len(re.findall(rf"^\s*{keyword}\s", source, re.M))
+        if count:
+            w.comment(f"not carried: {count} {keyword} line{'s' if count > 1 else ''} ({what})")
+            imported.skipped.append(f"{keyword} ({what})")
     w.blank()
     w.item("codeword", 1, 0)
     w.item("protocol", imported.protocol, 0)
@@ -110,6 +128,9 @@ def _header(w: Writer, db: Any, imported: Imported) -> None:
     if db.version:
         w.item("version", str(db.version), 0)
     w.item("source", imported.path.name, 0)
+    comment = NETWORK_COMMENT.search(source)
+    if comment:
+        w.prose("doc", " ".join(comment.group(1).split()), 0)
 
 
 def _roles(w: Writer, db: Any) -> dict[str, str]:
@@ -129,9 +150,9 @@ def _roles(w: Writer, db: Any) -> dict[str, str]:
 
 def _message(w: Writer, message: Any, roles: dict[str, str], taken: set[str], imported: Imported) -> None:
     where = f"message {message.name} (0x{message.frame_id:X})"
-    if message.length not in FD_LENGTHS or message.length == 0:
-        w.comment(f"{where}: {message.length} bytes of data, a length codeword's CAN framing does not carry "
-                  "(1..8, or the CAN FD steps up to 64)", 2)
+    if message.length not in FD_LENGTHS or message.length == 0 and message.signals:
+        w.comment(f"{where}: {message.length} bytes of data, a length CAN does not carry "
+                  "(0..8, or the CAN FD steps up to 64)", 2)
         imported.skipped.append(where)
         return
     name = usable(snake(message.name), taken)
@@ -147,24 +168,80 @@ def _message(w: Writer, message: Any, roles: dict[str, str], taken: set[str], im
         w.prose("doc", doc, 4)
     if message.senders and message.senders[0] in roles:
         w.item("role", roles[message.senders[0]], 4)
+    if not message.length:
+        w.code("fields", "[]", 4)
+        return
     w.item("payload_bytes", message.length, 4)
     w.key("fields", 4)
     fields: set[str] = set(ENVELOPE_NAMES)
     names: dict[str, str] = {}
-    for signal in message.signals:
+    signals = _muxes_first(message.signals)
+    for signal in signals:
         names[signal.name] = usable(snake(signal.name), fields)
         fields.add(names[signal.name])
-    for signal in message.signals:
-        _signal(w, signal, names, where, imported)
+    placed: list[Any] = []
+    by_name = {s.name: s for s in signals}
+    for signal in signals:
+        clash = next((other for other in placed if _overlap(signal, other, by_name)), None)
+        if clash is not None:  # cantools reads such a file leniently; codeword refuses overlapping fields
+            w.comment(f"signal {signal.name} ({signal.start}|{signal.length}@{'0' if signal.byte_order == 'big_endian' else '1'}) "
+                      f"takes bits of {clash.name} in frames that carry both: not carried", 6)
+            imported.skipped.append(f"{where} signal {signal.name}")
+            continue
+        if _signal(w, signal, names, where, imported):
+            placed.append(signal)
 
 
-def _signal(w: Writer, s: Any, names: dict[str, str], where: str, imported: Imported) -> None:
+def _muxes_first(signals: list) -> list:
+    """The signals in the file's order, but each after the multiplexor that selects it
+    (cantools sorts them by start bit; a codeword field names an earlier one)."""
+    out: list = []
+    pending = list(signals)
+    while pending:
+        ready = [s for s in pending if s.multiplexer_signal is None
+                 or any(o.name == s.multiplexer_signal for o in out)]
+        if not ready:  # a multiplexor the message does not have: the schema's error names it
+            ready = pending[:1]
+        out.append(ready[0])
+        pending.remove(ready[0])
+    return out
+
+
+def _bits(s: Any) -> set[int]:
+    """The DBC bit numbers a signal takes (bit k is bit k % 8 of byte k // 8)."""
+    if s.byte_order == "little_endian":
+        return set(range(s.start, s.start + s.length))
+    first = msb_position(s.start)
+    return {msb_position(q) for q in range(first, first + s.length)}
+
+
+def _selectors(s: Any, by_name: dict[str, Any]) -> dict[str, set[int]]:
+    """The values of each multiplexor above a signal that a frame carrying it holds."""
+    out: dict[str, set[int]] = {}
+    while s.multiplexer_signal is not None and s.multiplexer_signal not in out:
+        out[s.multiplexer_signal] = set(s.multiplexer_ids or ())
+        s = by_name.get(s.multiplexer_signal)
+        if s is None:
+            break
+    return out
+
+
+def _overlap(a: Any, b: Any, by_name: dict[str, Any]) -> bool:
+    """Whether two signals share bits in a frame that may carry both: signals that one
+    multiplexor (or one above them) selects for different values never meet."""
+    above_a, above_b = _selectors(a, by_name), _selectors(b, by_name)
+    exclusive = any(not values & above_b[mux] for mux, values in above_a.items() if mux in above_b)
+    return not exclusive and bool(_bits(a) & _bits(b))
+
+
+def _signal(w: Writer, s: Any, names: dict[str, str], where: str, imported: Imported) -> bool:
+    """Writes the field of a signal, or a comment saying why there is none; whether it wrote one."""
     name = names[s.name]
     problem = _unplaceable(s)
     if problem:
         w.comment(f"signal {s.name}: {problem}", 6)
         imported.skipped.append(f"{where} signal {s.name}")
-        return
+        return False
     w.item("name", name, 6, first=True)
     w.item("type", _type(s), 8)
     w.item("start_bit", s.start, 8)
@@ -185,6 +262,7 @@ def _signal(w: Writer, s: Any, names: dict[str, str], where: str, imported: Impo
     if s.is_multiplexer and s.is_signed:
         w.comment("the DBC gives this multiplexor a sign; codeword's are unsigned (the values it selects "
                   "are not negative)", 8)
+    return True
 
 
 def _unplaceable(s: Any) -> Optional[str]:
@@ -193,8 +271,8 @@ def _unplaceable(s: Any) -> Optional[str]:
         return f"a float of {s.length} bits (SIG_VALTYPE_ takes 32 or 64), not carried"
     if s.is_float and (s.scale != 1 or s.offset != 0):
         return "a float signal with scale or offset, not carried"
-    if s.length < 1 or s.length > 64 or (s.is_signed and s.length < 2 and not s.is_multiplexer):
-        return f"a {'signed ' if s.is_signed else ''}integer of {s.length} bits, not carried"
+    if s.length < 1 or s.length > 64:
+        return f"an integer of {s.length} bits, not carried"
     return None
 
 
@@ -214,10 +292,15 @@ def _comment(comment: Any) -> str:
     return " ".join(str(comment).split())
 
 
+def _sentence(text: str) -> str:
+    """Text that ends as a sentence does, so that the next one can follow it."""
+    return text if not text or text[-1] in ".!?" else text + "."
+
+
 def _doc(dbc_name: str, comment: str, name: str) -> str:
     """A doc that names the DBC's own spelling where codeword's differs."""
     parts = [f"DBC {dbc_name}."] if dbc_name != name else []
-    return " ".join(parts + ([comment] if comment else [])) or dbc_name
+    return " ".join(parts + ([_sentence(comment)] if comment else [])) or dbc_name
 
 
 def _choices_text(choices: Any) -> str:
@@ -225,7 +308,7 @@ def _choices_text(choices: Any) -> str:
 
 
 def _message_doc(m: Any) -> str:
-    parts = [_comment(m.comment)] if _comment(m.comment) else []
+    parts = [_sentence(_comment(m.comment))] if _comment(m.comment) else []
     if m.senders:
         parts.append("Sent by " + ", ".join(m.senders) + ".")
     if m.cycle_time:
@@ -235,13 +318,15 @@ def _message_doc(m: Any) -> str:
     attributes = _attributes(m, skip={"GenMsgCycleTime", "GenMsgSendType", "VFrameFormat"})
     if attributes:
         parts.append("DBC attributes: " + attributes + ".")
+    for group in m.signal_groups or ():
+        parts.append(f"Signal group {group.name}: {', '.join(group.signal_names)}.")
     return " ".join(parts)
 
 
 def _signal_doc(s: Any, name: str) -> str:
     parts = [f"DBC {s.name}."] if s.name != name else []
     if _comment(s.comment):
-        parts.append(_comment(s.comment))
+        parts.append(_sentence(_comment(s.comment)))
     if s.choices:
         parts.append("Values: " + _choices_text(s.choices) + ".")
     if s.minimum is not None or s.maximum is not None:

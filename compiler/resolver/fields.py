@@ -24,7 +24,7 @@ class FieldsMixin(ResolverBase):
     def int_fits(value: Any, kind: str, bits: int) -> bool:
         if isinstance(value, bool):
             value = int(value)
-        if bits < 1 or kind == "int" and bits < 2:
+        if bits < 1:
             return True  # a width with no values: its own error is reported at the type
         if kind == "int":
             return -(1 << (bits - 1)) <= value <= (1 << (bits - 1)) - 1

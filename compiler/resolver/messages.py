@@ -77,7 +77,8 @@ class MessagesMixin(ResolverBase):
                 shortening = self.shortening(name, layout, framing, path)
                 self.check_fixed_self_cover(name, layout, shortening)
         if framing.kind != "text":
-            self.check_can_size(name, None if bits is None else (bits + 7) // 8, shortening is not None, path)
+            self.check_can_size(name, None if bits is None else (bits + 7) // 8, shortening is not None,
+                                path + (("payload_bytes",) if "payload_bytes" in m else ()))
         self.check_generated_members(name, layout)
         crc_extra = self.crc_extra(name, m, own, layout, path)
         rules = tuple(self.resolve_rule(r, path + ("rules", i), layout)

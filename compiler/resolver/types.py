@@ -66,8 +66,8 @@ class TypesMixin(ResolverBase):
         m = INT_TYPE.match(type_name)
         if m:
             bits = int(m.group(2))
-            if not 1 <= bits <= MAX_INT_BITS or (m.group(1) == "i" and bits < 2):
-                self.error(path, f"integer width {bits} is outside {'2' if m.group(1) == 'i' else '1'}..{MAX_INT_BITS}",
+            if not 1 <= bits <= MAX_INT_BITS:  # i1 holds -1 and 0 (DBC's one-bit signed signals)
+                self.error(path, f"integer width {bits} is outside 1..{MAX_INT_BITS}",
                            "wider values need several fields")
                 return ("uint" if m.group(1) == "u" else "int"), None
             return ("uint" if m.group(1) == "u" else "int"), bits

@@ -725,7 +725,7 @@ class Generator:
         if self.has("wide", 0.15):  # little-endian fields are whole bytes, unless lsb first
             width = rng.choice([40, 48, 56, 64]) if self.little and not self.lsb else rng.randint(33, 64)
         elif "bitfields" in self.on and rng.random() < 0.4:
-            width = rng.randint(2 if signed else 1, 31 if self.lsb else 7)
+            width = rng.randint(1, 31 if self.lsb else 7)  # i1 holds -1 and 0
         else:
             width = rng.choice([8, 16, 24, 32])
         field: dict = {"name": name, "type": f"{'i' if signed else 'u'}{width}"}
@@ -823,8 +823,8 @@ class Generator:
             lo = rng.randrange(width)
             return {"name": name, "type": f"u{width}", "one_hot": True,
                     "range": [lo, rng.randint(lo, width - 1)]}, width
-        signed = room >= 2 and self.has("signed")
-        width = rng.randint(2 if signed else 1, room)
+        signed = self.has("signed")
+        width = rng.randint(1, room)
         field: dict = {"name": name, "type": f"{'i' if signed else 'u'}{width}"}
         if width <= 53 and self.has("scale", 0.2):
             field["scale"] = rng.choice(SCALES)
@@ -1073,7 +1073,7 @@ def multiplexed_signals(rng: random.Random, size: int) -> list[dict]:
             pass  # a multiplexor: plain unsigned
         elif length == 1 and rng.random() < 0.4:
             field["type"] = "bool"
-        elif length > 1 and rng.random() < 0.4:
+        elif rng.random() < 0.4:
             field["type"] = f"i{length}"
         if widest > 3 and field["type"] != "bool" and rng.random() < 0.2:
             field["scale"] = rng.choice((0.5, 0.25, 2))
@@ -1142,12 +1142,12 @@ def placed_signals(rng: random.Random, size: int, floats: Optional[random.Random
         if taken & bits:
             continue
         taken |= bits
-        signed = length > 1 and rng.random() < 0.5
+        signed = rng.random() < 0.5
         field = {"name": f"sig_{len(out)}", "type": f"{'i' if signed else 'u'}{length}", "start_bit": start,
                  "byte_order": order}
         if real:
             field["type"] = f"f{length}"
-        elif length == 1 and rng.random() < 0.5:
+        elif length == 1 and not signed and rng.random() < 0.5:
             field["type"] = "bool"
         elif length <= 53 and rng.random() < 0.3:
             field["scale"] = rng.choice((0.5, 0.25, 2, 0.125))
