@@ -281,7 +281,7 @@ def parser() -> argparse.ArgumentParser:
     from .frames import decode, encode, monitor
     decode.add_arguments(command("decode", decode.run, "decode frames or lines (hex, a capture, a log) into messages"))
     encode.add_arguments(command("encode", encode.run, "encode one message from field values"))
-    monitor.add_arguments(command("monitor", monitor.run, "decode a serial port live, or replay a capture"))
+    monitor.add_arguments(command("monitor", monitor.run, "decode a serial port or a CAN bus live, or replay a capture"))
     return top
 
 

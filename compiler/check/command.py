@@ -19,7 +19,8 @@ def add_arguments(parser: argparse.ArgumentParser, func) -> None:
     parser.add_argument("inputs", nargs="+", metavar="INPUT", help="files to check ('-' for standard input)")
     parser.add_argument("--format", choices=("text", "json"), default="text", help="output format")
     parser.add_argument("--input-format", choices=INPUT_FORMATS, default="auto",
-                        help="raw bytes, hex (one frame per line, or hex words), text; default: guess")
+                        help="raw bytes, hex (one frame per line, or hex words), text, or a CAN log python-can reads "
+                             "(candump -L, ASC, BLF, TRC, CSV); default: guess (a CAN log by its suffix)")
     parser.add_argument("--direction", help="decode frames as sent in this direction of the schema")
     parser.add_argument("--sequence", help="the sequence a bit-packed input holds (default: the schema's first)")
     signing_key.add_arguments(parser, "verify each frame's signature")

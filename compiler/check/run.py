@@ -16,11 +16,12 @@ from ..fingerprint import fingerprint
 from ..model import Protocol
 from ..usage import UsageError
 from ..targets import python as python_target
+from ..frames.can_bus import is_can_log
 from . import sources
 from .sources import Tally
 
 PROGRESS_MIN_BYTES = 4 * 1024 * 1024  # smaller inputs finish before a bar would help
-INPUT_FORMATS = ("auto", "raw", "hex", "text")
+INPUT_FORMATS = ("auto", "raw", "hex", "text", "can-log")
 _HEX_TEXT = re.compile(rb"(?:[0-9a-fA-F\s:,xX]|#[^\n]*)*\Z")
 
 
@@ -46,7 +47,7 @@ class Plan:
     unit: str
 
 
-def plan(p: Protocol, codec, options: Options, sample: bytes) -> Plan:
+def plan(p: Protocol, codec, options: Options, sample: bytes, path: Optional[str] = None) -> Plan:
     """Which reader fits this protocol and this input."""
     fmt = options.input_format
     if options.direction and options.direction not in {d.name for d in p.directions}:
@@ -54,6 +55,10 @@ def plan(p: Protocol, codec, options: Options, sample: bytes) -> Plan:
                          f"(directions: {', '.join(d.name for d in p.directions) or 'none'})")
     looks_hex = bool(sample) and _HEX_TEXT.match(sample) is not None
     kind = p.framing.kind
+    if fmt == "can-log" or fmt == "auto" and path is not None and is_can_log(p, path):
+        if p.framing.can is None:
+            raise UsageError(f"{p.name} is not a CAN protocol: a CAN log holds CAN frames")
+        return Plan(partial(sources.can_log, codec), "can-log", "frame")
     if kind == "text":
         if fmt == "hex":
             raise UsageError(f"{p.name} is a text protocol: give its text, not hex")
@@ -129,7 +134,7 @@ def check(p: Protocol, codec, inputs: list[str], report, options: Options) -> in
     for path in inputs:
         with _open(path) as (fh, size):
             sample = fh.peek(4096)[:4096] if hasattr(fh, "peek") else b""
-            how = plan(p, codec, options, sample)
+            how = plan(p, codec, options, sample, path)
             tally, count = Tally(), 0
             bar = _progress_bar(size, path, options.progress)
             step = bar.update if bar else (lambda n: None)

@@ -132,6 +132,28 @@ def hex_frames(codec, fh: BinaryIO, file: str, tally: Tally, progress: Progress,
             tally.valid += 1
 
 
+def can_log(codec, fh: BinaryIO, file: str, tally: Tally, progress: Progress) -> Iterator[Finding]:
+    """A CAN log python-can reads (candump -L, ASC, BLF...): each frame decoded from its
+    identifier and data; error frames and remote requests are findings too."""
+    from ..frames.can_bus import frame_of, log_messages
+    for message in log_messages(file):
+        tally.read += 1
+        frame_id, data = frame_of(message)
+        if message.is_error_frame or message.is_remote_frame:
+            tally.invalid += 1
+            what = "an error frame" if message.is_error_frame else "a remote request, no data"
+            yield _problem(file, "frame", f"{what} (identifier 0x{message.arbitration_id:X})",
+                           unit=tally.read, actual=f"0x{frame_id:08X}", allowed="a data frame")
+            continue
+        try:
+            codec.decode_can(frame_id, data)
+        except codec.DecodeError as exc:
+            tally.invalid += 1
+            yield from_error(exc, file, tally.read)  # the frame's number places it; the error names the data's byte
+        else:
+            tally.valid += 1
+
+
 def _hex_bytes(text: str) -> bytes | None:
     digits = _HEX_SEPARATORS.sub("", text)
     try:

@@ -8,14 +8,16 @@ import sys
 from .. import signing_key
 from ..usage import UsageError
 from . import output
+from .can_bus import CanDecoder, is_can_log, log_messages
 from .stream import Stream, hex_bytes, open_codec
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("schema", help="schema file, or a protocol name of the project")
     parser.add_argument("inputs", nargs="*", metavar="INPUT",
-                        help="frames in hex, a file (a raw capture, a hex dump or a text log) or '-' "
-                             "for standard input (the default); a text protocol takes lines too")
+                        help="frames in hex, a file (a raw capture, a hex dump or a text log; for a CAN "
+                             "schema also a candump -L, ASC, BLF, TRC or CSV log) or '-' for standard input "
+                             "(the default); a text protocol takes lines too")
     parser.add_argument("--format", choices=output.FORMATS, default="table",
                         help="an aligned table (default), JSON lines or CSV")
     parser.add_argument("--direction", help="decode frames as sent in this direction of the schema")
@@ -29,6 +31,10 @@ def run(args: argparse.Namespace) -> int:
     key = signing_key.signing_key(args, protocol)
     rows, text = [], protocol.framing.kind == "text"
     for source in args.inputs or ["-"]:
+        if is_can_log(protocol, source):  # candump, ASC, BLF...: frames with their identifiers
+            decoder = CanDecoder(protocol, codec)
+            rows += [decoder.row(message) for message in log_messages(source)]
+            continue
         stream = Stream(protocol, codec, args.direction, args.sequence, key)
         data = _input(source, text, protocol.framing.terminator if text else None)
         rows += stream.feed(data) + stream.finish()

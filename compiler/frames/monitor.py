@@ -10,6 +10,7 @@ from typing import BinaryIO, Optional
 
 from .. import signing_key
 from ..usage import UsageError
+from .can_bus import CanDecoder, open_bus
 from .rows import Row
 from .stream import Stream, open_codec
 
@@ -21,6 +22,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     source = parser.add_mutually_exclusive_group(required=True)
     source.add_argument("--port", metavar="DEV", help="serial port (or a pySerial URL such as socket://host:port)")
     source.add_argument("--replay", metavar="FILE", help="read a raw capture instead of a port")
+    source.add_argument("--can", metavar="CHANNEL", help="a CAN bus through python-can (can0, vcan0, ...), "
+                                                         "for a schema of CAN framing")
+    parser.add_argument("--interface", metavar="NAME", help="--can: python-can's interface (socketcan, "
+                                                           "pcan, kvaser, virtual, ...; default: its configuration)")
+    parser.add_argument("--bitrate", type=int, help="--can: the bus's bit rate, for interfaces that set it")
     parser.add_argument("--baud", type=int, default=115200, help="baud rate of the port (default: 115200)")
     parser.add_argument("--direction", help="decode frames as sent in this direction of the schema")
     parser.add_argument("--log", metavar="FILE", help="append the raw bytes read to FILE (for check or decode)")
@@ -50,6 +56,8 @@ class Counts:
 
 def run(args: argparse.Namespace) -> int:
     protocol, codec = open_codec(args.schema)
+    if args.can:
+        return _run_can(args, protocol, codec)
     stream = Stream(protocol, codec, args.direction, key=signing_key.signing_key(args, protocol))
     counts = Counts()
     log = _open_log(args.log)
@@ -77,12 +85,35 @@ def run(args: argparse.Namespace) -> int:
     return 1 if counts.errors or counts.skipped else 0
 
 
-def _show(rows: list[Row], counts: Counts, args: argparse.Namespace) -> None:
+def _run_can(args: argparse.Namespace, protocol, codec) -> int:
+    """Frames of a CAN bus, each decoded from its identifier and data."""
+    if protocol.framing.can is None:
+        raise UsageError(f"{protocol.name} is not a CAN protocol: --can reads a CAN bus")
+    decoder = CanDecoder(protocol, codec)
+    counts = Counts()
+    bus = open_bus(args.can, args.interface, args.bitrate)
+    print(f"monitoring CAN {args.can} (Ctrl-C to stop)", file=sys.stderr, flush=True)
+    deadline = time.monotonic() + args.duration if args.duration is not None else None
+    try:
+        while not _done(args, counts, deadline):
+            message = bus.recv(timeout=0.1)
+            if message is not None:
+                _show([decoder.row(message)], counts, args, stamped=True)
+    except KeyboardInterrupt:
+        pass
+    finally:
+        bus.shutdown()
+    print(f"{counts.frames} frames, {counts.errors} errors", file=sys.stderr)
+    return 1 if counts.errors else 0
+
+
+def _show(rows: list[Row], counts: Counts, args: argparse.Namespace, stamped: bool = False) -> None:
     for row in rows:
         if args.count is not None and counts.rows >= args.count:
             return
         counts.add(row)
-        row.time = datetime.now().isoformat(timespec="milliseconds")
+        if not stamped:  # a CAN frame keeps the time the bus gave it
+            row.time = datetime.now().isoformat(timespec="milliseconds")
         if args.json:
             print(json.dumps(row.as_json(), ensure_ascii=False), flush=True)
         else:
