@@ -93,6 +93,7 @@ class Enum:
     bits: Optional[int]
     members: tuple[EnumMember, ...]
     doc: Optional[Text]
+    open: bool = False  # other values of its type are valid too, kept as numbers
 
     @property
     def values(self) -> tuple:
@@ -304,6 +305,11 @@ class Field:
         while value(last) > hi:
             last -= 1
         return first, last
+
+    @property
+    def closed_enum(self) -> bool:
+        """A field of an enum whose members are its only valid values."""
+        return self.enum is not None and not self.enum.open
 
     @property
     def raw_range(self) -> Optional[tuple[int, int]]:

@@ -180,6 +180,10 @@ class Generator:
             if members is None:
                 members = self.choices[key] = [m for m in f.enum.members
                                                if not f.values or m.value in f.values or m.name in f.values]
+            if f.enum.open and not f.values and (edge or rng.random() < 0.4):  # any value of its width
+                lo, hi = f.raw_range
+                number = {"min": lo, "max": hi}.get(edge, rng.randint(lo, hi))
+                return next((m.name for m in members if m.value == number), number)
             return rng.choice(members).name
         if f.flags is not None:
             bits = [b.name for b in f.flags.members]

@@ -75,7 +75,9 @@ class Driver:
         if f.kind == "bool":
             return "true" if value else "false"
         if f.enum is not None:
-            member = next(m for m in f.enum.members if value in (m.name, m.value))
+            member = next((m for m in f.enum.members if value in (m.name, m.value)), None)
+            if member is None:  # an open enum's other value
+                return int_literal(int(value))
             return self.v.enum_const(f.enum.name, member.name)
         if f.flags is not None:
             mask = 0

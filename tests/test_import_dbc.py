@@ -64,8 +64,14 @@ def plain_signals(rng: random.Random, size: int) -> list[dict]:
 
 
 def cantools_signal(rng: random.Random, s: dict, k: int, nodes: list[str]) -> Signal:
+    choices = None
+    if (s.get("scale", 1), s.get("offset", 0)) == (1, 0) and not s.get("float") and not s["is_mux"] \
+            and s["length"] <= 8 and rng.random() < 0.4:  # a value table, values of the width only
+        lo = -(1 << (s["length"] - 1)) if s["signed"] else 0
+        values = rng.sample(range(lo, lo + (1 << s["length"])), min(3, 1 << s["length"]))
+        choices = {v: rng.choice(("Off", "On", "Not Available", "Error", "Init")) + str(v) for v in values}
     conversion = BaseConversion.factory(scale=s.get("scale", 1), offset=s.get("offset", 0),
-                                        is_float=s.get("float", False))
+                                        is_float=s.get("float", False), choices=choices)
     return Signal(s["name"] if s["is_mux"] or s["mux"] else camel(rng, k), s["start"], s["length"], s["order"],
                   s["signed"] and not s["is_mux"], conversion=conversion, is_multiplexer=s["is_mux"],
                   multiplexer_ids=s["ids"], multiplexer_signal=s["mux"], unit=rng.choice((None, "km/h", "degC")),
@@ -77,12 +83,12 @@ def random_database(rng: random.Random) -> Database:
     messages: list[Message] = []
     used: set[int] = set()  # cantools finds a message by its identifier alone
     while len(messages) < 8:
-        extended = rng.random() < 0.4
+        extended = not messages or rng.random() < 0.4  # the first extended, the second CAN FD: each has both
         frame_id = rng.choice((0, 0x1FFFFFFF if extended else 0x7FF, rng.randint(0, 0x1FFFFFFF if extended else 0x7FF)))
         if frame_id in used:
             continue
         used.add(frame_id)
-        fd = rng.random() < 0.3
+        fd = len(messages) == 1 or rng.random() < 0.3
         size = rng.choice(FD_LENGTHS) if fd else rng.randint(1, 8)
         layout = random_layout(rng, min(size, 8)) if rng.random() < 0.35 else plain_signals(rng, size)
         for s in layout:
@@ -186,7 +192,11 @@ def test_the_hand_written_database_imports_whole(tmp_path):
     assert fields["engine_status"]["throttle_pos"]["byte_order"] == "big"
     assert fields["engine_status"]["running"]["type"] == "i1"  # a one-bit signed signal: -1 or 0
     gear = fields["engine_status"]["gear"]
-    assert "Values: 0 = Neutral, 1 = First, 2 = Second, 8 = Reverse." in gear["doc"]
+    assert gear["enum"] == "gear" and doc["enums"]["gear"] == {  # VAL_: an open enum
+        "type": "u4", "open": True, "values": [{"name": "neutral", "value": 0, "doc": "Neutral"},
+                                               {"name": "first", "value": 1, "doc": "First"},
+                                               {"name": "second", "value": 2, "doc": "Second"},
+                                               {"name": "reverse", "value": 8, "doc": "Reverse"}]}
     assert fields["diagnostics"]["torque"]["multiplexed_by"] == {"field": "mode", "values": [2, 3, 4]}  # 2-4
     assert [f["type"] for f in fields["fd_sensors"].values()] == ["f32", "f64", "u16"]  # SIG_VALTYPE_ 1 and 2
     assert messages["engine_status"]["role"] == "engine"

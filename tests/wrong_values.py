@@ -83,6 +83,12 @@ def wrong_values(codec, obj, path):
         out += [m for cls in vars(codec).values() if isinstance(cls, type) and issubclass(cls, enum.Enum)
                 and cls.__module__ == codec.__name__ and cls is not hint for m in cls][:3]
         out += [Foreign.zero, Foreign.one] if not issubclass(hint, str) else []
+    elif typing.get_origin(hint) is typing.Union and int in typing.get_args(hint):  # an open enum: a member or an int
+        cls = next(a for a in typing.get_args(hint) if a is not int)
+        out += [True, False, 1.5, 1.0, float("nan"), 2 ** 70, -2 ** 70, "1", b"\x01", [1], {}, object()]
+        out += [m for other in vars(codec).values() if isinstance(other, type) and issubclass(other, enum.Enum)
+                and other.__module__ == codec.__name__ and other is not cls for m in other][:3]
+        out += [Foreign.zero, Foreign.one]
     elif hint in WRONG:
         out += WRONG[hint]
     else:

@@ -355,6 +355,10 @@ def _field(a: Placed, b: Placed, out: _Collector, message: str, growth: Optional
     if fa.enum or fb.enum:
         _members({m.value: m.name for m in fa.enum.members} if fa.enum else {},
                  {m.value: m.name for m in fb.enum.members} if fb.enum else {}, add)
+    if fa.enum and fb.enum and fa.enum.open != fb.enum.open:
+        add(COMPATIBLE if fb.enum.open else BREAKING,
+            f"enum {fb.enum.name} now open: a value no member has decodes as its number" if fb.enum.open
+            else f"enum {fb.enum.name} now closed: a value no member has is refused")
     if fa.flags or fb.flags:
         _members({m.bit: m.name for m in fa.flags.members} if fa.flags else {},
                  {m.bit: m.name for m in fb.flags.members} if fb.flags else {}, add, "flag bit")

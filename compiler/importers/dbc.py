@@ -4,9 +4,9 @@ cantools reads the file (it is the DBC reader CAN users already trust, lenient w
 real files are); this module writes what it read as a schema a person keeps editing:
 `framing: {kind: can}`, each message at its identifier with its signals placed by
 start bit in their own byte order, scale and offset, units, multiplexing, the nodes as
-roles. What the language has no key for (value tables, minimum and maximum, initial
-values, cycle times and other attributes) is written in the message's or field's doc
-and in comments at its place, never dropped."""
+roles, value tables as open enums. What the language has no key for (minimum and
+maximum, initial values, cycle times and other attributes) is written in the message's
+or field's doc and in comments at its place, never dropped."""
 from __future__ import annotations
 
 import re
@@ -17,7 +17,7 @@ from typing import Any, Optional
 from ..can import FD_LENGTHS
 from ..resolver.placement import msb_position
 from ..names import protocol_name_problem
-from .naming import snake, usable
+from .naming import distinct, snake, usable
 from .yaml_writer import Writer, number
 
 ENVELOPE_NAMES = frozenset({"can_id", "data_length"})  # the CAN framing's header fields
@@ -49,6 +49,8 @@ def import_database(path: Path) -> Imported:
     w = Writer()
     _header(w, db, imported, Path(path).read_text(encoding="latin-1"))
     roles = _roles(w, db)
+    classes: set[str] = set()  # the Python classes of enums and messages: one name each
+    enums = _value_tables(w, db, classes)
     w.blank()
     w.key("framing", 0)
     w.item("kind", "can", 2)
@@ -58,7 +60,7 @@ def import_database(path: Path) -> Imported:
     w.key("messages", 0)
     taken: set[str] = set()
     for message in db.messages:
-        _message(w, message, roles, taken, imported)
+        _message(w, message, roles, enums, (taken, classes), imported)
     imported.text = w.text()
     return imported
 
@@ -103,9 +105,10 @@ def _header(w: Writer, db: Any, imported: Imported, source: str) -> None:
               "payload_bytes; each signal is a field at its DBC start bit, in its own byte order (big = "
               "Motorola, little = Intel). Names are in snake_case; each message's title and each field's doc "
               "keep the DBC's own name.")
-    w.comment("Not carried as schema keys, kept in docs instead: value tables (VAL_), signal minimum and "
-              "maximum (decoders take every raw value, as cantools does), initial values, cycle times and "
-              "other attributes (BA_).")
+    w.comment("Value tables (VAL_) of unscaled integer signals are open enums: a value the table does not "
+              "name decodes as its number, as cantools reads it. Not carried as schema keys, kept in docs "
+              "instead: other value tables, signal minimum and maximum (decoders take every raw value, as "
+              "cantools does), initial values, cycle times and other attributes (BA_).")
     tables = getattr(db.dbc, "value_tables", None) if db.dbc else None
     for name, choices in (tables or {}).items():
         w.comment(f"value table {name} (VAL_TABLE_): " + _choices_text(choices))
@@ -148,15 +151,55 @@ def _roles(w: Writer, db: Any) -> dict[str, str]:
     return names
 
 
-def _message(w: Writer, message: Any, roles: dict[str, str], taken: set[str], imported: Imported) -> None:
+def _value_tables(w: Writer, db: Any, classes: set[str]) -> dict[tuple[int, str], str]:
+    """Writes `enums:`: an open enum for each value table (VAL_) of an unscaled integer
+    signal whose values its width holds (a receiver takes values the table does not
+    name, as cantools does); signals of one table and type share it, named as the
+    file's VAL_TABLE_ of the same values where there is one. The enum of each
+    (message's id, signal)."""
+    tables = {tuple((int(k), str(v)) for k, v in choices.items()): name
+              for name, choices in ((getattr(db.dbc, "value_tables", None) or {}).items() if db.dbc else ())}
+    names: dict[tuple[str, tuple], str] = {}
+    taken: set[str] = set()
+    out: dict[tuple[int, str], str] = {}
+    for m in db.messages:
+        for s in m.signals:
+            if not s.choices or s.is_float or s.scale != 1 or s.offset != 0 or s.is_multiplexer or _unplaceable(s):
+                continue
+            items = tuple((int(k), str(v)) for k, v in s.choices.items())
+            lo, hi = (-(1 << (s.length - 1)), (1 << (s.length - 1)) - 1) if s.is_signed else (0, (1 << s.length) - 1)
+            if not all(lo <= k <= hi for k, _ in items):
+                continue  # a value the signal cannot carry: the table stays in its doc
+            key = (_type(s), items)
+            if key not in names:
+                names[key] = distinct(snake(tables.get(items, s.name)), taken, classes)
+            out[(id(m), s.name)] = names[key]
+    if not names:
+        return out
+    w.blank()
+    w.key("enums", 0)
+    for (kind, items), name in names.items():
+        w.key(name, 2)
+        w.item("type", kind, 4)
+        w.item("open", True, 4)
+        w.key("values", 4)
+        members: set[str] = set()
+        for value, text in items:
+            member = usable(snake(text), members)
+            members.add(member)
+            w.flow_item({"name": member, "value": value, "doc": text}, 6)
+    return out
+
+
+def _message(w: Writer, message: Any, roles: dict[str, str], enums: dict[tuple[int, str], str],
+             taken: tuple[set[str], set[str]], imported: Imported) -> None:
     where = f"message {message.name} (0x{message.frame_id:X})"
     if message.length not in FD_LENGTHS or message.length == 0 and message.signals:
         w.comment(f"{where}: {message.length} bytes of data, a length CAN does not carry "
                   "(0..8, or the CAN FD steps up to 64)", 2)
         imported.skipped.append(where)
         return
-    name = usable(snake(message.name), taken)
-    taken.add(name)
+    name = distinct(snake(message.name), *taken)
     imported.messages.append(name)
     w.key(name, 2)
     w.code("id", f"0x{message.frame_id:X}", 4)
@@ -188,7 +231,7 @@ def _message(w: Writer, message: Any, roles: dict[str, str], taken: set[str], im
                       f"takes bits of {clash.name} in frames that carry both: not carried", 6)
             imported.skipped.append(f"{where} signal {signal.name}")
             continue
-        if _signal(w, signal, names, where, imported):
+        if _signal(w, signal, names, enums.get((id(message), signal.name)), where, imported):
             placed.append(signal)
 
 
@@ -234,7 +277,7 @@ def _overlap(a: Any, b: Any, by_name: dict[str, Any]) -> bool:
     return not exclusive and bool(_bits(a) & _bits(b))
 
 
-def _signal(w: Writer, s: Any, names: dict[str, str], where: str, imported: Imported) -> bool:
+def _signal(w: Writer, s: Any, names: dict[str, str], enum: Optional[str], where: str, imported: Imported) -> bool:
     """Writes the field of a signal, or a comment saying why there is none; whether it wrote one."""
     name = names[s.name]
     problem = _unplaceable(s)
@@ -252,11 +295,13 @@ def _signal(w: Writer, s: Any, names: dict[str, str], where: str, imported: Impo
         w.item("offset", s.offset, 8)
     if s.unit and s.unit.strip():
         w.item("unit", s.unit.strip(), 8)
+    if enum is not None:
+        w.item("enum", enum, 8)
     if s.multiplexer_signal is not None and s.multiplexer_ids:
         w.key("multiplexed_by", 8)
         w.item("field", names[s.multiplexer_signal], 10)
         w.code("values", "[" + ", ".join(str(v) for v in s.multiplexer_ids) + "]", 10)
-    doc = _signal_doc(s, name)
+    doc = _signal_doc(s, name, enum is None)
     if doc:
         w.prose("doc", doc, 8)
     if s.is_multiplexer and s.is_signed:
@@ -323,11 +368,11 @@ def _message_doc(m: Any) -> str:
     return " ".join(parts)
 
 
-def _signal_doc(s: Any, name: str) -> str:
+def _signal_doc(s: Any, name: str, choices: bool) -> str:
     parts = [f"DBC {s.name}."] if s.name != name else []
     if _comment(s.comment):
         parts.append(_sentence(_comment(s.comment)))
-    if s.choices:
+    if s.choices and choices:  # a table its field's enum does not carry
         parts.append("Values: " + _choices_text(s.choices) + ".")
     if s.minimum is not None or s.maximum is not None:
         parts.append(f"Range {number(s.minimum) if s.minimum is not None else '…'} to "

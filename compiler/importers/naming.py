@@ -35,3 +35,16 @@ def snake(name: str) -> str:
     words = _WORD_BREAK.sub("_", name)
     cleaned = "".join(c if c.isalnum() else "_" for c in words).lower()
     return re.sub("_+", "_", cleaned).strip("_") or "x"
+
+
+def distinct(name: str, taken: set[str], classes: set[str]) -> str:
+    """`name` (snake_case already) as a usable name not taken whose Python class name
+    (CamelCase: s5 and s5_ are both S5) no other message or enum has; both recorded."""
+    found = usable(name, taken)
+    n = 2
+    while camel(found) in classes:
+        found = usable(f"{name}{n}", taken)
+        n += 1
+    taken.add(found)
+    classes.add(camel(found))
+    return found

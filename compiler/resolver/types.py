@@ -39,8 +39,11 @@ class TypesMixin(ResolverBase):
                            f"enum {name!r}: value {value} does not fit in {e['type']}",
                            "widen the enum's type or change the value")
             members.append(EnumMember(m["name"], value, text(m.get("doc"))))
+        if e.get("open") and kind == "char":
+            self.error(path + ("open",), f"enum {name!r}: a char enum is closed (a character that is no "
+                                         "member has no number to keep)", "drop `open`, or give it an integer type")
         return Enum(name, "char" if kind == "char" else "int", bits, tuple(members),
-                    text(e.get("doc")))
+                    text(e.get("doc")), open=bool(e.get("open")) and kind != "char")
 
     def resolve_flags(self, name: str, f: dict) -> FlagSet:
         path = ("flags", name)

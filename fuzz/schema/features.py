@@ -44,6 +44,7 @@ FULL = frozenset({
     "stream_end",                           # check: whole frames after a false start at a stream's end are decoded
     "signed", "scale", "offset", "range",   # integer options
     "enum", "flags", "bool", "bytes_field", "f32", "f64",
+    "open_enum",                            # integer enums whose other values are valid, kept as numbers
     "f32_range",                            # f32 fields with a range: integer or decimal ends
     "collisions",                           # mutants: protocol named like a system header, has_/_count fields
     "wide",                                 # integers of 33..64 bits

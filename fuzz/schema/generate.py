@@ -752,6 +752,8 @@ class Generator:
             return name
         values = rng.sample(range(1 << min(width, 8)), rng.randint(2, min(5, 1 << min(width, 8))))
         self.enums[name] = {"type": f"u{width}", "values": [{"name": self.name(), "value": v} for v in sorted(values)]}
+        if "open_enum" in self.on and random.Random(f"open_enum {self.seed} {name}").random() < 0.35:
+            self.enums[name]["open"] = True  # values no member has decode as numbers
         return name
 
     def flag_set(self, width: int) -> str:

@@ -8,7 +8,7 @@ from ..render import environment, tidy
 from .scope import runs_streams, serves, source_tag
 from .view import AcceleratorView
 
-HELPERS = ("acc_none", "acc_lookup", "acc_flags", "acc_scaled", "acc_slot", "acc_int", "acc_uint", "acc_float")  # written only where a decoder calls them
+HELPERS = ("acc_none", "acc_lookup", "acc_member_or_number", "acc_flags", "acc_scaled", "acc_slot", "acc_int", "acc_uint", "acc_float")  # written only where a decoder calls them
 
 
 def render(p: Protocol) -> dict[str, str]:

@@ -118,6 +118,8 @@ class AcceleratorView:
         if f.kind == "bytes":
             return f"PyBytes_FromStringAndSize((const char *){at}, {length or f.length})"
         number = self.int_value(f, at)
+        if f.enum is not None and f.enum.open:  # a value no member has stays a number
+            return f"acc_member_or_number({self.names.dict_global(f'_ENUM_{f.enum.name}')}, {number})"
         if f.enum is not None:
             return f"acc_lookup({self.names.g(f'_ENUM_{f.enum.name}')}, {number})"
         if f.flags is not None:

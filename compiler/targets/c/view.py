@@ -366,7 +366,7 @@ class CView:
             c("} else {")
             c(f"    {raw} = 0u;")
             c("}")
-        elif f.enum is not None:
+        elif f.closed_enum:
             self.member_check(c, f, v, "enum")
             if f.kind == "int":
                 store_signed()
@@ -497,7 +497,7 @@ class CView:
                 self.fail_if(c, self.f32_outside(v, *f.range), "range")
             return
         # a signed field's raw bits are two's complement: its enum is tested once sign-extended
-        if f.enum is not None and f.kind != "int":
+        if f.closed_enum and f.kind != "int":
             span = enum_span([x.value for x in f.enum.members])
             if span and span[0] >= 0:  # the raw value has f.bits bits: test only the ends it can pass
                 cond = " || ".join(([f"{raw} < {clit(span[0], True)}"] if span[0] > 0 else [])
@@ -534,7 +534,7 @@ class CView:
         else:
             expr = raw
         c(f"{v} = ({r.ctype}){expr};")  # the member holds every value of the wire type
-        if f.enum is not None and f.kind == "int":
+        if f.closed_enum and f.kind == "int":
             cond = self.enum_cond(v, [x.value for x in f.enum.members], r.ctype)
             if cond:
                 self.fail_if(c, cond, "enum")
@@ -1367,9 +1367,9 @@ class CView:
             c(f"{n} = cw_text_len({v}, {r.array}u);")
             self.fail_if(c, f"{n} > {f.max_length}u", "length")
             self.fail_if(c, "!" + self.text_ok(v, n, f.to_end, fr.trim), "text")
-        elif f.enum is not None:
+        elif f.closed_enum:
             self.member_check(c, f, v, "enum")
-        else:
+        else:  # an open enum's value is any integer of its width
             self.member_check(c, f, v, "int")
         if f.keep_spelling:  # a spelling without its NUL within the bound is no spelling received
             n = self.spelling_len(leaf)
@@ -1523,14 +1523,14 @@ class CView:
                     else:
                         lo, hi = self.raw_bounds(f)
                     c(f"rc = cw_parse_int(v.b, v.e, {clit(lo) if lo > -(1 << 31) else 'INT32_MIN'}, {clit(hi) if hi < (1 << 31) - 1 else 'INT32_MAX'}, &value);")
-                if f.enum is not None:
+                if f.closed_enum:
                     c("if (rc == CW_ERR_RANGE) {")
                     c("    return CW_ERR_ENUM;")
                     c("}")
                 c("if (rc != CW_OK) {")
                 c("    return rc;")
                 c("}")
-                if f.enum is not None:
+                if f.closed_enum:
                     self.fail_if(c, " && ".join(f"value != {clit(int(x.value))}" for x in f.enum.members), "enum")
                 elif f.range is None and not wide:
                     cond = self.range_cond("value", *self.stored_range(f), "int32_t")

@@ -295,7 +295,7 @@ def protocol_view(p: Protocol, codec: types.ModuleType) -> dict:
                         "range": f"{number(x.range[0])} … {number(x.range[1])}" if x.range else "",
                         "unit": cell(x.unit or ""), "doc": linker.link(cell(en(x.doc)))} for x in p.parameters],
         "messages": [message_view(p, codec, m, linker) for m in p.messages],
-        "enums": [{"name": e.name, "anchor": anchor("enum", e.name), "doc": cell(with_original(e.doc)),
+        "enums": [{"name": e.name, "anchor": anchor("enum", e.name), "doc": cell(with_original(e.doc)), "open": e.open,
                    "wire": f"u{e.bits}" if e.bits else ("char" if e.kind == "char" else "integer"),
                    "members": [{"value": code(x.value) if isinstance(x.value, str) else str(x.value),
                                 "name": code(x.name), "doc": cell(en(x.doc)),

@@ -178,7 +178,7 @@ def range_text(p: Protocol, f: Field) -> str:
     parts = []
     if f.range is not None:
         parts.append(f"{number(f.range[0])} … {number(f.range[1])}")
-    elif f.raw_range is not None and f.enum is None and f.flags is None and f.kind != "bool":
+    elif f.raw_range is not None and not f.closed_enum and f.flags is None and f.kind != "bool":
         parts.append(f"{number(f.raw_range[0])} … {number(f.raw_range[1])}")
     if f.offset:
         parts.append(f"sent as value − {number(f.offset)}")
@@ -194,7 +194,8 @@ def range_text(p: Protocol, f: Field) -> str:
 def values_text(f: Field) -> str:
     out = []
     if f.enum is not None:
-        out.append(f"enum [{f.enum.name}](#{anchor('enum', f.enum.name)})")
+        out.append(f"enum [{f.enum.name}](#{anchor('enum', f.enum.name)})" + (", other values kept as numbers"
+                                                                            if f.enum.open else ""))
     if f.flags is not None:
         out.append(f"flags [{f.flags.name}](#{anchor('flags', f.flags.name)})")
     if f.exactly_one:

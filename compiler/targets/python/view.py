@@ -58,8 +58,8 @@ class PythonView:
             return f"list[{self.annotation(f.element, message, path)}]"
         if f.kind == "group":
             return self.group_class(message, path)
-        if f.enum:
-            base = self.enum_class(f.enum.name)
+        if f.enum:  # an open enum's other values are kept as numbers
+            base = f"Union[{self.enum_class(f.enum.name)}, int]" if f.enum.open else self.enum_class(f.enum.name)
         elif f.flags:
             base = self.enum_class(f.flags.name)
         else:
@@ -157,7 +157,7 @@ class PythonView:
         if one.kind == "group":
             kind, cls = "group", self.group_class(message, path)
         elif one.enum:
-            kind, cls = "enum", self.enum_class(one.enum.name)
+            kind, cls = "open_enum" if one.enum.open else "enum", self.enum_class(one.enum.name)
         elif one.flags:
             kind, cls = "flags", self.enum_class(one.flags.name)
         else:
@@ -217,6 +217,16 @@ class PythonView:
             c(f"if {v} is not True and {v} is not False and (not isinstance({v}, int) or {v} != 0 and {v} != 1):")
             c(f"    raise _enc({where}, {v}, 'type', 'a bool')")
             c(f"{var} = 1 if {v} else 0")
+        elif f.enum is not None and f.enum.open:  # a member, or any int of the field's width
+            cls = self.enum_class(f.enum.name)
+            lo, hi = f.raw_range
+            c(f"if {v}.__class__ is not {cls} and ({v}.__class__ is not int or not {lo} <= {v} <= {hi}):")
+            c(f"    raise _enc({where}, {v}, 'enum', '{cls} or an int in {lo}..{hi}'{self.user(f)})")
+            if f.values:
+                allowed = tuple(self.enum_value(f, x) for x in f.values)
+                c(f"if {v} not in {lit(allowed)}:")
+                c(f"    raise _enc({where}, {v}, 'values', {', '.join(map(str, allowed))!r}, {f.rule!r}{self.user(f, False)})")
+            c(f"{var} = {v} if {v}.__class__ is int else _RAW_{f.enum.name}[{v}]")
         elif f.enum is not None:
             base = "str" if f.enum.kind == "char" else "int"
             cls = self.enum_class(f.enum.name)
@@ -419,7 +429,11 @@ class PythonView:
             return None
         if f.kind == "bool":
             return f"{var} == 1"
-        if f.enum is not None:
+        if f.enum is not None and f.enum.open:  # a value no member has is kept as its number
+            e = "e_" + var[2:]
+            c(f"{e} = _ENUM_{f.enum.name}.get({var}, {var})")
+            expr = var_checked = e
+        elif f.enum is not None:
             e = "e_" + var[2:]
             c(f"{e} = _ENUM_{f.enum.name}.get({var})")
             c(f"if {e} is None:")
@@ -456,7 +470,7 @@ class PythonView:
             expr = var_checked = var
         else:
             return var
-        if not bounded and not f.range and f.kind in ("uint", "int") and f.enum is None and f.raw_range:
+        if not bounded and not f.range and f.kind in ("uint", "int") and not f.closed_enum and f.raw_range:
             lo, hi = self.logical_limits(f)  # a text token can hold more than the field's width
             c(f"if not {lit(lo)} <= {var_checked} <= {lit(hi)}:")
             c(f"    raise _dec({at}, 'range', '{lit(lo)}..{lit(hi)}', {off}, {f.rule!r}{self.user(f, False)})")
@@ -1705,6 +1719,7 @@ def module_view(p: Protocol) -> dict:
         "decode_overloads": view.decode_signature(), "trailer": trailer_view(p),
         "kept_spellings": any(f.keep_spelling for m in p.messages for f in m.layout) or any(m.keeps_places for m in p.messages),
         "can": can_view(p),
+        "open_enums": any(e.open for e in p.enums),
         # floats among bit fields are read and written as their IEEE 754 bits
         "packed_floats": any(run.kind == "packed" and any(x.field.kind == "float" for x in run.leaves)
                              for m in p.messages for run in m.wire.runs),
