@@ -220,3 +220,45 @@ def test_crc_tables_are_constants_in_the_source(path):
         if isinstance(node, ast.AnnAssign) and node.target.id.startswith(("_TABLE_", "_HIGH16_", "_LOW16_")):
             assert isinstance(node.value, ast.Tuple) and len(node.value.elts) == 256
             assert all(isinstance(x, ast.Constant) for x in node.value.elts)
+
+
+# Features no committed schema uses, each where a type checker once disagreed with the
+# generated code: a conditional group (its presence check narrowed the group to
+# `Group | None` for good), an open enum (`Union[Enum, int]`).
+FEATURES = """codeword: 1
+protocol: typedfeatures
+title: t
+source: s
+flags:
+  parts: {type: u8, bits: [{name: gps, bit: 1}]}
+enums:
+  mode: {type: u8, open: true, values: [{name: idle, value: 0}]}
+framing:
+  kind: bytes
+  layout:
+    - {name: kind, type: u8, dispatch: true}
+    - {name: len, type: u8, length_of: {from: payload, to: payload}}
+    - {payload: true}
+messages:
+  fix:
+    id: 1
+    fields:
+      - {name: have, type: u8, flags: parts}
+      - {name: mode, type: u8, enum: mode}
+      - name: pos
+        type: group
+        present_if: {field: have, has: gps}
+        fields:
+          - {name: lat, type: u16, scale: 0.25}
+          - {name: lon, type: i16}
+"""
+
+
+def test_modules_of_conditional_groups_and_open_enums_type_check(tmp_path, cache):
+    from schema_in_a_test import render
+    render(tmp_path, "typedfeatures", FEATURES)
+    module = tmp_path / "typedfeatures.py"
+    mypy = _mypy([module], tmp_path, cache)
+    assert mypy.returncode == 0, mypy.stdout + mypy.stderr
+    pyright = _pyright([module], tmp_path)
+    assert pyright.returncode == 0, pyright.stdout

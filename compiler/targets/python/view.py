@@ -431,7 +431,8 @@ class PythonView:
             return f"{var} == 1"
         if f.enum is not None and f.enum.open:  # a value no member has is kept as its number
             e = "e_" + var[2:]
-            c(f"{e} = _ENUM_{f.enum.name}.get({var}, {var})")
+            cls = self.enum_class(f.enum.name)
+            c(f"{e} = cast(Union[{cls}, int], _ENUM_{f.enum.name}.get({var}, {var}))")
             expr = var_checked = e
         elif f.enum is not None:
             e = "e_" + var[2:]
@@ -828,8 +829,10 @@ class MessageCode:
         """A group member must be an object of its class (None too where a frame may leave it
         out): its fields are read by name, which fails on anything else with an AttributeError."""
         cls, v = self.view.group_class(self.m, path), self.group_var(path)
-        absent = f"{v} is not None and " if absent_ok else ""
-        c(f"if {absent}{v}.__class__ is not {cls} and not isinstance({v}, {cls}):")
+        if absent_ok:  # tests of its class alone: type checkers narrow a value tested with `is` or isinstance for good
+            c(f"if {v}.__class__ is not {cls} and {v}.__class__ is not None.__class__ and not issubclass({v}.__class__, {cls}):")
+        else:
+            c(f"if {v}.__class__ is not {cls} and not isinstance({v}, {cls}):")
         c(f"    raise _enc({self.m.name!r}, {named(path)}, {v}, 'type', 'a {cls}')")
 
     def check_list(self, c: Code, path: tuple, held: str = "typed") -> None:
@@ -1376,13 +1379,14 @@ class MessageCode:
         bits = leaf.field.bits
         if not bits:
             return
-        c(f"{leaf.var} = ({var} >> {shift}) & {(1 << bits) - 1:#x}" if shift
-          else f"{leaf.var} = {var} & {(1 << bits) - 1:#x}")
+        raw = f"({var} >> {shift}) & {(1 << bits) - 1:#x}" if shift else f"{var} & {(1 << bits) - 1:#x}"
+        if leaf.field.kind == "float":  # a float among bit fields (placed by start bit): its IEEE 754 bits
+            c(f"{leaf.var} = _float_of_bits({raw}, {bits})")
+            return
+        c(f"{leaf.var} = {raw}")
         if leaf.field.kind == "int":
             c(f"if {leaf.var} & {1 << (bits - 1):#x}:")
             c(f"    {leaf.var} -= {1 << bits:#x}")
-        elif leaf.field.kind == "float":
-            c(f"{leaf.var} = _float_of_bits({leaf.var}, {bits})")
 
     # -- the text form of a bits protocol (a text exchange file) --------------------------
     def text_form_functions(self) -> str:

@@ -1014,8 +1014,7 @@ def _decode_imu_rates(d: _Buffer) -> ImuRates:
     c5_0, = _S_imu_rates_1.unpack_from(d, 5)
     c5_0x = int.from_bytes(c5_0.to_bytes(8, 'little'), 'big')
     r_status = (c5_0x >> 8) & 0xff
-    r_yaw_rate = c5_0 & 0xffffffff
-    r_yaw_rate = _float_of_bits(r_yaw_rate, 32)
+    r_yaw_rate = _float_of_bits(c5_0 & 0xffffffff, 32)
     r_lateral_accel = (c5_0 >> 32) & 0xffff
     if r_lateral_accel & 0x8000:
         r_lateral_accel -= 0x10000
