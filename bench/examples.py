@@ -45,6 +45,7 @@ import mavlink2  # noqa: E402
 import modbus_rtu  # noqa: E402
 import nmea0183  # noqa: E402
 import ubx  # noqa: E402
+import can_mixed  # noqa: E402
 del os.environ["CODEWORD_PURE_PYTHON"]
 
 # The issue's targets: peer time / codeword time.
@@ -372,11 +373,88 @@ def _nmea_rows() -> list[Row]:
     return rows
 
 
+# -- CAN: cantools -----------------------------------------------------------------------
+EXTENDED_FLAG = 0x80000000  # a frame id's extended flag, as SocketCAN's
+
+
+def _can_rows() -> list[Row]:
+    """examples/can_mixed.yaml against cantools loading examples/can_mixed.dbc: each side
+    finds the message by its identifier (decode_can, Database.decode_message) and
+    writes a frame's data from values (encode_can, Database.encode_message)."""
+    import cantools
+    db = cantools.database.load_file(str(ROOT / "examples" / "can_mixed.dbc"))
+    rng = random.Random(8)
+    rows = []
+    for ref in db.messages:
+        frame_id = ref.frame_id | (EXTENDED_FLAG if ref.is_extended_frame else 0)
+        values = [_can_values(rng, ref) for _ in range(3)]
+        datas = [ref.encode(v) for v in values]
+        ours = [can_mixed.decode_can(frame_id, d) for d in datas]
+        name = ours[0].NAME
+
+        def problems(ref=ref, frame_id=frame_id, datas=datas, ours=ours):
+            out = []
+            for data, mine in zip(datas, ours):
+                theirs = db.decode_message(ref.frame_id, data, decode_choices=False,
+                                           force_extended_id=ref.is_extended_frame)
+                pairs = [(k, getattr(mine, _snake(k)), v) for k, v in theirs.items()]
+                out += _disagreements(f"can_mixed {ref.name}", pairs)
+                if mine.encode_can() != (frame_id, data):
+                    out.append(f"can_mixed {ref.name}: encodes differ")
+            return out
+
+        rows.append(Row("can_mixed", "cantools", name,
+                        _batch(can_mixed.decode_can, [(frame_id, d) for d in datas]),
+                        _batch(lambda d, ref=ref: db.decode_message(ref.frame_id, d, force_extended_id=ref.is_extended_frame),
+                               [(d,) for d in datas]),
+                        _batch(lambda m: m.encode_can(), [(m,) for m in ours]),
+                        _batch(lambda v, ref=ref: db.encode_message(ref.frame_id, v, force_extended_id=ref.is_extended_frame),
+                               [(v,) for v in values]),
+                        problems))
+    return rows
+
+
+def _snake(name: str) -> str:
+    """can_mixed's field for a DBC signal: BIT_J → bit_j, AverageRadius → average_radius."""
+    if name.isupper():
+        return name.lower()
+    return "".join("_" + c.lower() if c.isupper() and i else c.lower() for i, c in enumerate(name))
+
+
+def _can_values(rng: random.Random, ref) -> dict:
+    """Values of the signals a frame carries, as cantools scales them (the multiplexors'
+    values select signals the message has)."""
+    out: dict = {}
+    by_name = {s.name: s for s in ref.signals}
+
+    def carried(s) -> bool:
+        mux = by_name.get(s.multiplexer_signal)
+        return mux is None or carried(mux) and out.get(mux.name) in s.multiplexer_ids
+
+    for s in ref.signals:  # multiplexors first: a signal's carrying depends on theirs
+        if s.is_multiplexer and s.multiplexer_signal is None:
+            out[s.name] = rng.choice(sorted({v for x in ref.signals if x.multiplexer_signal == s.name
+                                             for v in x.multiplexer_ids}))
+    for s in ref.signals:
+        if s.is_multiplexer and s.multiplexer_signal is not None and carried(s):
+            out[s.name] = rng.choice(sorted({v for x in ref.signals if x.multiplexer_signal == s.name
+                                             for v in x.multiplexer_ids}))
+    for s in ref.signals:
+        if s.name in out or not carried(s):
+            continue
+        if s.is_float:
+            out[s.name] = _f32(rng.uniform(-1e3, 1e3))
+            continue
+        lo, hi = (-(1 << (s.length - 1)), (1 << (s.length - 1)) - 1) if s.is_signed else (0, (1 << s.length) - 1)
+        out[s.name] = s.conversion.raw_to_scaled(rng.randint(lo, hi), decode_choices=False)
+    return out
+
+
 def rows() -> list[Row]:
     from pymavlink.dialects.v10 import common as v10
     from pymavlink.dialects.v20 import common as v20
     return (_mavlink_rows("mavlink2", mavlink2, v20) + _mavlink_rows("mavlink1", mavlink1, v10) + _ubx_rows()
-            + _modbus_rows() + _ipv4_rows() + _nmea_rows())
+            + _modbus_rows() + _ipv4_rows() + _nmea_rows() + _can_rows())
 
 
 def check(all_rows) -> list[str]:

@@ -20,99 +20,12 @@ from schema_in_a_test import build_example, conformance_on_host_and_avr, firmwar
 
 SCHEMA = Path(__file__).resolve().parent.parent / "examples" / "can_mixed.yaml"
 
-# The same messages as a DBC: `start|length@order sign (scale,offset)`, @0 Motorola, @1 Intel;
+# The same messages as a DBC (examples/can_mixed.dbc): `start|length@order sign (scale,offset)`, @0 Motorola, @1 Intel;
 # `M` a multiplexor, `m<n>` a signal it multiplexes, `m<n>M` both, and SG_MUL_VAL_ the values
 # of a multiplexor that carry each signal (Message1 as in cantools' tests/files/dbc/multiplex.dbc,
 # Extended and Shared as in multiplex_2.dbc, with their multiplexors unsigned and short ids;
 # the float YawRate by SIG_VALTYPE_, 1 for a 32-bit float).
-DBC = """VERSION ""
-
-NS_ :
-
-BS_:
-
-BU_: PCM1 ECU
-
-BO_ 496 ExampleMessage: 8 PCM1
- SG_ Temperature : 0|12@0- (0.01,250) [0|0] "degK" ECU
- SG_ AverageRadius : 6|6@0+ (0.1,0) [0|0] "m" ECU
- SG_ Enable : 7|1@0+ (1,0) [0|0] "" ECU
-
-BO_ 512 WheelSpeeds: 8 ECU
- SG_ FrontLeft : 0|14@1+ (0.05,0) [0|0] "km/h" PCM1
- SG_ FrontRight : 14|14@1+ (0.05,0) [0|0] "km/h" PCM1
- SG_ RearLeft : 28|14@1+ (0.05,0) [0|0] "km/h" PCM1
- SG_ RearRight : 42|14@1+ (0.05,0) [0|0] "km/h" PCM1
-
-BO_ 769 Steering: 8 ECU
- SG_ Rate : 3|12@1+ (1,0) [0|0] "deg/s" PCM1
- SG_ Torque : 23|16@0- (0.01,0) [0|0] "Nm" PCM1
- SG_ Angle : 47|10@0- (0.5,0) [0|0] "deg" PCM1
- SG_ Counter : 56|4@1+ (1,0) [0|0] "" PCM1
- SG_ Valid : 60|1@1+ (1,0) [0|0] "" PCM1
-
-BO_ 928 Gear: 2 ECU
- SG_ Gear : 0|3@1+ (1,0) [0|0] "" PCM1
- SG_ Mode : 15|4@0+ (1,0) [0|0] "" PCM1
-
-BO_ 2148676694 Message1: 8 ECU
- SG_ BIT_F m24 : 39|1@1+ (1,0) [0|0] "" PCM1
- SG_ BIT_H m24 : 38|1@1+ (1,0) [0|0] "" PCM1
- SG_ BIT_B m24 : 33|1@1+ (1,0) [0|0] "" PCM1
- SG_ BIT_D m24 : 32|1@1+ (1,0) [0|0] "" PCM1
- SG_ BIT_E m24 : 29|1@1+ (1,0) [0|0] "" PCM1
- SG_ BIT_K m24 : 28|1@1+ (1,0) [0|0] "" PCM1
- SG_ BIT_A m24 : 26|1@1+ (1,0) [0|0] "" PCM1
- SG_ BIT_L m8 : 24|1@1+ (1,0) [0|0] "" PCM1
- SG_ BIT_G m8 : 23|1@1+ (1,0) [0|0] "" PCM1
- SG_ BIT_C m8 : 19|1@1+ (1,0) [0|0] "" PCM1
- SG_ BIT_J m8 : 18|1@1+ (1,0) [0|0] "" PCM1
- SG_ Multiplexor M : 2|6@1+ (1,0) [0|0] "" PCM1
-
-BO_ 1111 Extended: 8 ECU
- SG_ S7 m1 : 40|24@1- (1,0) [0|0] "" PCM1
- SG_ S8 m2 : 40|8@1- (1,0) [0|0] "" PCM1
- SG_ S6 M : 32|8@1+ (1,0) [0|0] "" PCM1
- SG_ S3 m0 : 16|16@1- (1,0) [0|0] "" PCM1
- SG_ S2 m0 : 8|8@1- (1,0) [0|0] "" PCM1
- SG_ S4 m2 : 8|24@1- (1,0) [0|0] "" PCM1
- SG_ S1 m0M : 4|4@1+ (1,0) [0|0] "" PCM1
- SG_ S5 m1 : 4|28@1- (1,0) [0|0] "" PCM1
- SG_ S0 M : 0|4@1+ (1,0) [0|0] "" PCM1
-
-BO_ 1112 Shared: 8 ECU
- SG_ S2 m2 : 8|8@1- (1,0) [0|0] "" PCM1
- SG_ S1 m1 : 4|4@1- (1,0) [0|0] "" PCM1
- SG_ S0 M : 0|4@1+ (1,0) [0|0] "" PCM1
-
-SG_MUL_VAL_ 2148676694 BIT_J Multiplexor 8-8, 16-16, 24-24;
-SG_MUL_VAL_ 2148676694 BIT_C Multiplexor 8-8, 16-16, 24-24;
-SG_MUL_VAL_ 2148676694 BIT_G Multiplexor 8-8, 16-16, 24-24;
-SG_MUL_VAL_ 2148676694 BIT_L Multiplexor 8-8, 16-16, 24-24;
-SG_MUL_VAL_ 2148676694 BIT_A Multiplexor 24-24;
-SG_MUL_VAL_ 2148676694 BIT_K Multiplexor 24-24;
-SG_MUL_VAL_ 2148676694 BIT_E Multiplexor 24-24;
-SG_MUL_VAL_ 2148676694 BIT_D Multiplexor 24-24;
-SG_MUL_VAL_ 2148676694 BIT_B Multiplexor 24-24;
-SG_MUL_VAL_ 2148676694 BIT_H Multiplexor 24-24;
-SG_MUL_VAL_ 2148676694 BIT_F Multiplexor 24-24;
-SG_MUL_VAL_ 1111 S5 S0 1-1;
-SG_MUL_VAL_ 1111 S1 S0 0-0;
-SG_MUL_VAL_ 1111 S4 S1 2-2;
-SG_MUL_VAL_ 1111 S2 S1 0-0;
-SG_MUL_VAL_ 1111 S3 S1 0-0;
-SG_MUL_VAL_ 1111 S8 S6 2-2;
-SG_MUL_VAL_ 1111 S7 S6 1-1;
-SG_MUL_VAL_ 1112 S1 S0 1-1, 3-3;
-SG_MUL_VAL_ 1112 S2 S0 2-5;
-
-BO_ 2432634912 ImuRates: 8 ECU
- SG_ YawRate : 0|32@1- (1,0) [0|0] "deg/s" PCM1
- SG_ LateralAccel : 32|16@1- (0.01,0) [0|0] "m/s2" PCM1
- SG_ Status : 55|8@0+ (1,0) [0|0] "" PCM1
-
-SIG_VALTYPE_ 2432634912 YawRate : 1;
-"""
+DBC = (Path(__file__).resolve().parent.parent / "examples" / "can_mixed.dbc").read_text(encoding="utf-8")
 
 # codeword's message for each DBC message, and its field for each signal
 NAMES = {"ExampleMessage": "example_message", "WheelSpeeds": "wheel_speeds", "Steering": "steering", "Gear": "gear",

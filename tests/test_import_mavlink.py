@@ -320,7 +320,8 @@ def test_the_whole_dialect_passes_its_vectors_in_strict_c(v2, tmp_path):
 
 def test_the_schema_keeps_what_it_cannot_say_in_comments():
     text = import_dialect(COMMON).text
-    assert "# values: MAVLink enum MAV_TYPE (codeword mav_type)" in text
+    assert "# values: MAVLink enum MAV_SYS_STATUS_SENSOR (codeword mav_sys_status_sensor)" in text  # flags: closed
+    assert "enum: mav_type" in text and "type: u8\n    open: true" in text  # an enum: open
     assert "deprecated since" in text and "work in progress" in text
     assert "codeword's floats refuse NaN" in text
     assert "param 1" in text  # MAV_CMD's parameters in its entries' docs

@@ -75,9 +75,10 @@ def _header(w: Writer, imported: Imported) -> None:
               "then the extension fields as the XML lists them. Each message's crc_extra is derived by the "
               "compiler from its definition as mavgen derives it (`extra: mavlink`); `mavlink_name` keeps "
               "the name MAVLink hashes where codeword's differs.")
-    w.comment("MAVLink enums are open (a receiver takes values it does not know, and dialects add entries), "
-              "codeword's are closed: each field names its MAVLink enum in a comment and its doc rather than "
-              "with `enum:`/`flags:`, so that every value MAVLink sends decodes. MAVLink sends NaN in some "
+    w.comment("MAVLink enums are open (a receiver takes values it does not know, and dialects add entries): "
+              "each is an `open: true` enum, and a field of one has `enum:`, so a value no entry names decodes "
+              "as its number. A bitmask enum is a flag set, which is closed: its fields name it in a comment "
+              "and their doc rather than with `flags:`, so that every value MAVLink sends decodes. MAVLink sends NaN in some "
               "float fields for 'unknown'; codeword refuses NaN, which the comments at those fields say.")
     if d.dialect_number is not None:
         w.comment(f"<dialect>{d.dialect_number}</dialect>: the dialect's number.")
@@ -186,6 +187,7 @@ def _enum(w: Writer, enum: XmlEnum, name: str) -> None:
     _lifecycle(w, enum.name, enum.notes, 2)
     w.key(name, 2)
     w.item("type", _type_for([e.value for e in enum.entries]), 4)
+    w.item("open", True, 4)
     if enum.doc:
         w.prose("doc", enum.doc, 4)
     w.key("values", 4)
@@ -239,6 +241,17 @@ def _messages(w: Writer, imported: Imported, enum_names: dict[str, str]) -> None
         _message(w, imported, message, name, enum_names)
 
 
+def _open_enum(imported: Imported, f: XmlField) -> bool:
+    """Whether the field's MAVLink enum is written as an open enum its values fit."""
+    enum = next((e for e in imported.dialect.enums if e.name == f.enum), None)
+    if enum is None or not enum.entries or enum.bitmask and _flag_bits(enum) or f.type not in TYPES \
+            or TYPES[f.type][0] not in "ui":
+        return False
+    bits = int(TYPES[f.type][1:])
+    lo, hi = (-(1 << (bits - 1)), (1 << (bits - 1)) - 1) if TYPES[f.type][0] == "i" else (0, (1 << bits) - 1)
+    return all(lo <= e.value <= hi for e in enum.entries)
+
+
 def _message(w: Writer, imported: Imported, message: XmlMessage, name: str, enum_names: dict[str, str]) -> None:
     v = imported.version
     if name != message.name.lower():
@@ -265,17 +278,17 @@ def _message(w: Writer, imported: Imported, message: XmlMessage, name: str, enum
         fname = usable(f.name, taken)
         taken.add(fname)
         out.append(ImportedField(f, fname))
-        _field(w, f, fname, enum_names)
+        _field(w, f, fname, enum_names, _open_enum(imported, f))
     if dropped:
         w.comment(f"MAVLink 1 has no extension fields: {', '.join(f.name for f in dropped)} not imported", 6)
     imported.messages.append(ImportedMessage(message, name, out))
 
 
-def _field(w: Writer, f: XmlField, name: str, enum_names: dict[str, str]) -> None:
+def _field(w: Writer, f: XmlField, name: str, enum_names: dict[str, str], open_enum: bool) -> None:
     notes = []
     if name != f.name:
         notes.append(f"MAVLink's {f.name}, renamed: codeword refuses {f.name!r} here")
-    if f.enum:
+    if f.enum and not open_enum:
         notes.append(f"values: MAVLink enum {f.enum}" + (f" (codeword {enum_names[f.enum]})" if f.enum in enum_names
                                                          else " (not in this dialect)"))
     if f.display:
@@ -301,12 +314,14 @@ def _field(w: Writer, f: XmlField, name: str, enum_names: dict[str, str]) -> Non
         item["mavlink_name"] = f.name
     if f.units:
         item["unit"] = f.units
+    if open_enum:
+        item["enum"] = enum_names[f.enum]
     if f.extension:
         item["extension"] = True
     doc = f.doc
     if f.type == "char" and f.array_length:
         doc = f"{doc}{' ' if doc else ''}(text, NUL-padded)".strip()
-    if f.enum:
+    if f.enum and not open_enum:
         doc = f"{doc}{' ' if doc else ''}Values: {f.enum}."
     first = True
     for k, value in item.items():

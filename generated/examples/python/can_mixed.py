@@ -1124,19 +1124,25 @@ EXTENDED_FLAG = 0x80000000  # bit 31 of a frame_id: an extended (29-bit) identif
 MAX_DATA = 8  # classic CAN
 
 
+# (frame id, data length) → (the frame's header, the message's decoder)
+_CAN_FRAMES = {(value, size - 5): (value.to_bytes(4, 'big') + bytes((size - 5,)), fn)
+               for (value, size), fn in _UNIQUE.items()}
+
+
 def decode_can(frame_id: int, data: _Buffer) -> AnyMessage:
     """Decode a CAN frame from its identifier (bit 31 set for an extended one) and its
     data; a DecodeError's offset counts bits of the data."""
-    if frame_id.__class__ is not int or not 0 <= frame_id <= 0xFFFFFFFF:
-        raise _dec(None, 'can_id', frame_id, 'range', 'a 32-bit identifier', 0)
-    d = _as_input(data)
-    if len(d) > MAX_DATA:
-        raise _dec(None, 'data_length', len(d), 'length', f'at most {MAX_DATA} bytes of data', 0)
+    d = data if data.__class__ is bytes else bytes(_as_input(data))
+    entry = _CAN_FRAMES.get((frame_id, len(d))) if frame_id.__class__ is int else None
+    if entry is None:  # no message has this identifier and length: say which is wrong
+        if frame_id.__class__ is not int or not 0 <= frame_id <= 0xFFFFFFFF:
+            raise _dec(None, 'can_id', frame_id, 'range', 'a 32-bit identifier', 0)
+        if len(d) > MAX_DATA:
+            raise _dec(None, 'data_length', len(d), 'length', f'at most {MAX_DATA} bytes of data', 0)
+        raise _dec(None, 'can_id', frame_id, 'dispatch', f'a known identifier with {len(d)} bytes of data', 0)
     try:
-        return decode(frame_id.to_bytes(4, 'big') + bytes((len(d),)) + bytes(d))
+        return cast(AnyMessage, entry[1](entry[0] + d))
     except DecodeError as exc:
-        if exc.rule == 'dispatch':
-            raise _dec(None, 'can_id', frame_id, 'dispatch', f'a known identifier with {len(d)} bytes of data', 0) from None
         if exc.offset is not None and exc.offset >= 40:  # from the frame's bits to the data's
             exc.offset -= 40
         raise
