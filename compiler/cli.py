@@ -181,37 +181,30 @@ def cmd_diff(args: argparse.Namespace) -> int:
 
 
 def cmd_import(args: argparse.Namespace) -> int:
+    from .importers import write_schema
+    imported = _imported(args)
+    try:
+        path = write_schema(imported.protocol, imported.text, Path(args.out))
+    except OSError as exc:
+        raise UsageError(f"{args.out}: cannot write: {exc.strerror}") from None
+    print(f"wrote {path} ({imported.summary()})")
+    return OK
+
+
+def _imported(args: argparse.Namespace):
+    """The file of `codeword import` as a schema, or a usage error saying what is wrong with it."""
     if args.format == "dbc":
-        return _import_dbc(args)
-    from .importers.mavlink import import_dialect, write_schema
+        from .importers.dbc import DbcError, import_database
+        try:
+            return import_database(Path(args.file))
+        except DbcError as exc:
+            raise UsageError(str(exc)) from None
+    from .importers.mavlink import import_dialect
     from .importers.mavlink_xml import MavlinkXmlError
     try:
-        imported = import_dialect(Path(args.file), version=args.mavlink_version)
+        return import_dialect(Path(args.file), version=args.mavlink_version)
     except MavlinkXmlError as exc:
         raise UsageError(str(exc)) from None
-    try:
-        path = write_schema(imported, Path(args.out))
-    except OSError as exc:
-        raise UsageError(f"{args.out}: cannot write: {exc.strerror}") from None
-    print(f"wrote {path} ({len(imported.messages)} messages, {imported.enum_count} enums, "
-          f"{imported.flag_count} flag sets)")
-    return OK
-
-
-def _import_dbc(args: argparse.Namespace) -> int:
-    from .importers.dbc import DbcError, import_database, write_schema
-    try:
-        imported = import_database(Path(args.file))
-    except DbcError as exc:
-        raise UsageError(str(exc)) from None
-    try:
-        path = write_schema(imported, Path(args.out))
-    except OSError as exc:
-        raise UsageError(f"{args.out}: cannot write: {exc.strerror}") from None
-    print(f"wrote {path} ({len(imported.messages)} messages"
-          + (f"; not carried, with a comment at its place: {', '.join(imported.skipped)}" if imported.skipped else "")
-          + ")")
-    return OK
 
 
 def _globals(parser: argparse.ArgumentParser, suppress: bool) -> None:

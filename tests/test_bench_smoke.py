@@ -153,7 +153,7 @@ def test_every_example_and_its_peer_read_the_same_values_and_write_the_same_byte
     from bench import examples
     rows = examples.rows()
     assert examples.check(rows) == []
-    assert {row.example for row in rows} == {"mavlink2", "mavlink1", "ubx", "modbus_rtu", "ipv4", "nmea0183"}
+    assert {row.example for row in rows} == {"mavlink2", "mavlink1", "ubx", "modbus_rtu", "ipv4", "nmea0183", "can_mixed"}
 
 
 def test_an_example_writing_other_bytes_than_its_peer_is_noticed(monkeypatch):

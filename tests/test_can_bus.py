@@ -11,6 +11,7 @@ import time
 import can  # a test extra: pip install -e ".[peers]"
 import cantools
 import pytest
+from cantools.database.namedsignalvalue import NamedSignalValue
 
 from codeword.cli import main
 from codeword.importers.dbc import import_database
@@ -47,10 +48,11 @@ def frames() -> list[can.Message]:
 
 
 def expected(message: can.Message) -> dict:
+    """cantools' values, a value table's (an open enum's member) by its name in lower case."""
     db = cantools.database.load_file(POWERTRAIN, strict=False)
-    decoded = db.decode_message(message.arbitration_id, message.data, decode_choices=False,
-                                force_extended_id=message.is_extended_id)
-    return {FIELDS[k]: v for k, v in decoded.items() if k in FIELDS}
+    decoded = db.decode_message(message.arbitration_id, message.data, force_extended_id=message.is_extended_id)
+    return {FIELDS[k]: str(v).lower() if isinstance(v, NamedSignalValue) else v
+            for k, v in decoded.items() if k in FIELDS}
 
 
 @pytest.mark.parametrize("suffix", [".log", ".asc", ".blf"])

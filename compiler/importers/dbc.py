@@ -41,6 +41,10 @@ class Imported:
     skipped: list[str] = field(default_factory=list)  # what the schema could not carry, in words
     text: str = ""
 
+    def summary(self) -> str:
+        carried = f"; not carried, with a comment at its place: {', '.join(self.skipped)}" if self.skipped else ""
+        return f"{len(self.messages)} messages{carried}"
+
 
 def import_database(path: Path) -> Imported:
     """The DBC file at `path` as the text of a codeword schema."""
@@ -63,13 +67,6 @@ def import_database(path: Path) -> Imported:
         _message(w, message, roles, enums, (taken, classes), imported)
     imported.text = w.text()
     return imported
-
-
-def write_schema(imported: Imported, out: Path) -> Path:
-    out.mkdir(parents=True, exist_ok=True)
-    path = out / f"{imported.protocol}.yaml"
-    path.write_text(imported.text, encoding="utf-8")
-    return path
 
 
 def _load(path: Path) -> Any:

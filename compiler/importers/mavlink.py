@@ -43,6 +43,9 @@ class Imported:
     flag_count: int = 0
     text: str = ""
 
+    def summary(self) -> str:
+        return f"{len(self.messages)} messages, {self.enum_count} enums, {self.flag_count} flag sets"
+
 
 def import_dialect(path: Path, version: int = 2) -> Imported:
     """The dialect at `path` as the text of a codeword schema for MAVLink `version` (1 or 2)."""
@@ -56,13 +59,6 @@ def import_dialect(path: Path, version: int = 2) -> Imported:
     _messages(w, imported, enum_names)
     imported.text = w.text()
     return imported
-
-
-def write_schema(imported: Imported, out: Path) -> Path:
-    out.mkdir(parents=True, exist_ok=True)
-    path = out / f"{imported.protocol}.yaml"
-    path.write_text(imported.text, encoding="utf-8")
-    return path
 
 
 def _header(w: Writer, imported: Imported) -> None:
