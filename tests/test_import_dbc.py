@@ -209,16 +209,37 @@ def test_the_hand_written_database_imports_whole(tmp_path):
     assert len(db.messages) == 4
 
 
-def test_the_hand_written_database_matches_cantools(tmp_path):
-    db = cantools.database.load_file(POWERTRAIN, strict=False)
-    for message in db.messages:  # the signal codeword does not carry, as it says
-        message.signals[:] = [s for s in message.signals if s.name != "LegacySpeed"]
+@pytest.mark.parametrize("file", ["powertrain.dbc", "j1939_truck.dbc", "odd_syntax.dbc"])
+def test_hand_written_databases_match_cantools(tmp_path, file):
+    dbc = POWERTRAIN.parent / file
+    db = cantools.database.load_file(dbc, strict=False)
+    name, module, protocol = imported(tmp_path, dbc)
+    carried = {str(f.doc).split(".")[0].removeprefix("DBC ") for m in protocol.messages for f in m.fields if f.doc} \
+        | {f.name for m in protocol.messages for f in m.fields}
+    for message in db.messages:  # a signal codeword does not carry, as its comment says (LegacySpeed)
+        message.signals[:] = [s for s in message.signals if s.name in carried]
         message.refresh(strict=False)
-    name, module, protocol = imported(tmp_path, POWERTRAIN)
-    checks = frame_checks(random.Random("powertrain"), db, name, module, protocol, rounds=30)
+    checks = frame_checks(random.Random(file), db, name, module, protocol, rounds=30)
     lines = run_c(tmp_path, C_DRIVER.format(header=name, cases="\n".join(checks), n=len(checks)).replace(
         "uint8_t buf[16];", "uint8_t buf[80];"))
     assert lines == [f"OK {len(checks)}"], lines[:20]
+
+
+def test_what_cantools_reads_past_is_named_and_odd_spellings_come_through():
+    truck = import_database(POWERTRAIN.parent / "j1939_truck.dbc")
+    assert "# not carried: 1 EV_ line (environment variables)" in truck.text  # not the NS_ list's EV_DATA_
+    assert truck.skipped == ["EV_ (environment variables)"]
+    doc = yaml.safe_load(truck.text)
+    assert doc["messages"]["eec1"]["id"] == 0xCF004FE and doc["messages"]["eec1"]["extended"] is True
+    assert "Signal group Torques: DriversDemandTorque, ActualEngTorque, EngDemandTorque." in \
+        doc["messages"]["eec1"]["doc"]
+    odd = yaml.safe_load(import_database(POWERTRAIN.parent / "odd_syntax.dbc").text)
+    status = {f["name"]: f for f in odd["messages"]["status"]["fields"]}
+    assert status["switch_"]["enum"] == "switch_"  # the VAL_TABLE_'s name; `switch` is a C keyword
+    assert odd["messages"]["status"]["doc"].startswith('Status with "quotes" and a comment over three lines.')
+    assert status["level"]["scale"] == 0.5 and status["level"]["offset"] == -10
+    assert status["code"]["multiplexed_by"] == {"field": "mode", "values": [2]}
+    assert odd["messages"]["ext"]["id"] == 1 and odd["messages"]["ext"]["extended"] is True
 
 
 def test_an_import_is_the_same_every_time():

@@ -117,7 +117,7 @@ def _header(w: Writer, db: Any, imported: Imported, source: str) -> None:
     for name, attribute in ((db.dbc.attributes or {}).items() if db.dbc else ()):
         w.comment(f"network attribute {name} = {attribute.value}")
     for keyword, what in UNREAD:
-        count = len(re.findall(rf"^\s*{keyword}\s", source, re.M))
+        count = len(re.findall(rf"^{keyword}\s+\S", source, re.M))  # a statement, not the NS_ list's entry
         if count:
             w.comment(f"not carried: {count} {keyword} line{'s' if count > 1 else ''} ({what})")
             imported.skipped.append(f"{keyword} ({what})")
