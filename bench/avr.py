@@ -101,14 +101,26 @@ MAVLINK_UNPACK = """\
 """
 
 
-def _codeword(header, typ, size, encode, decode):
+def _codeword(header, typ, size, encode, decode, folder=ROOT / "generated" / "c"):
     body = ENCODE.format(type=typ, size=size, encode=f"{encode}(&m, buf, sizeof buf)")
     return {
         "include": f'#include "{header}"',
         "encode only": body,
         "encode + decode": body + DECODE.format(decode=f"{decode}(buf, len, &m)"),
-        "flags": ["-I", str(ROOT / "generated" / "c")], "sources": [],
+        "flags": ["-I", str(folder)], "sources": [],
     }
+
+
+def _cantools(cantools_dir: Path, database: str, message: str, size: int):
+    """cantools' generated `<database>_<message>_pack` and `_unpack` of one message."""
+    body = ENCODE.format(type=f"struct {database}_{message}_t", size=size,
+                         encode=f"{database}_{message}_pack(buf, &m, sizeof buf)")
+    return {"include": f'#include "{database}.h"', "encode only": body,
+            "encode + decode": body + DECODE.format(decode=f"{database}_{message}_unpack(&m, buf, len)"),
+            "flags": ["-I", str(cantools_dir)], "sources": [str(cantools_dir / f"{database}.c")]}
+
+
+EXAMPLES_C = ROOT / "generated" / "examples" / "c"
 
 
 def rows(mavlink_dir: Path, cantools_dir: Path):
@@ -141,6 +153,16 @@ def rows(mavlink_dir: Path, cantools_dir: Path):
             "sources": []}),
         ("codeword tr24 command (12 B)", _codeword(
             "tr24.h", "tr24_command_t", "TR24_COMMAND_SIZE", "tr24_command_encode", "tr24_command_decode")),
+        # a CAN message of both byte orders and a multiplexed one: codeword's frame holds the
+        # identifier and length (5 bytes) before the 8 bytes of data cantools packs
+        ("codeword can_mixed steering (both byte orders)", _codeword(
+            "can_mixed.h", "can_mixed_steering_t", "CAN_MIXED_STEERING_SIZE", "can_mixed_steering_encode",
+            "can_mixed_steering_decode", EXAMPLES_C)),
+        ("cantools can_mixed Steering (same DBC message)", _cantools(cantools_dir, "can_mixed", "steering", 8)),
+        ("codeword can_mixed extended (multiplexed)", _codeword(
+            "can_mixed.h", "can_mixed_extended_t", "CAN_MIXED_EXTENDED_SIZE", "can_mixed_extended_encode",
+            "can_mixed_extended_decode", EXAMPLES_C)),
+        ("cantools can_mixed Extended (same DBC message)", _cantools(cantools_dir, "can_mixed", "extended", 8)),
     ]
 
 

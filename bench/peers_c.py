@@ -1,5 +1,6 @@
 """Peer C code generated at bench time into a temporary directory (never committed):
-MAVLink's C for common.xml (pymavlink's mavgen) and cantools' C for bench/route_car.dbc."""
+MAVLink's C for common.xml (pymavlink's mavgen) and cantools' C for bench/route_car.dbc and
+examples/can_mixed.dbc."""
 
 import os
 import subprocess
@@ -22,9 +23,14 @@ def generate_mavlink(out: Path) -> Path:
     return out
 
 
+CAN_MIXED_DBC = Path(__file__).resolve().parent.parent / "examples" / "can_mixed.dbc"
+
+
 def generate_cantools(out: Path) -> Path:
-    """route_car.c / route_car.h from bench/route_car.dbc in out/."""
+    """route_car.c / .h from bench/route_car.dbc and can_mixed.c / .h from
+    examples/can_mixed.dbc in out/."""
     out.mkdir(parents=True, exist_ok=True)
-    subprocess.run([sys.executable, "-m", "cantools", "generate_c_source", str(DBC)],
-                   check=True, capture_output=True, cwd=out, env=dict(os.environ))
+    for dbc in (DBC, CAN_MIXED_DBC):
+        subprocess.run([sys.executable, "-m", "cantools", "generate_c_source", str(dbc)],
+                       check=True, capture_output=True, cwd=out, env=dict(os.environ))
     return out
