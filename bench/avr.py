@@ -121,6 +121,23 @@ def _cantools(cantools_dir: Path, database: str, message: str, size: int):
 
 
 EXAMPLES_C = ROOT / "generated" / "examples" / "c"
+# rows of the same message from codeword and from cantools' generated C, compared
+CANTOOLS_PAIRS = (("codeword can_mixed steering (both byte orders)", "cantools can_mixed Steering (same DBC message)"),
+                  ("codeword can_mixed extended (multiplexed)", "cantools can_mixed Extended (same DBC message)"),
+                  ("codeword route object (29-bit record)", "cantools route object (same DBC record)"))
+
+
+def against_cantools(results) -> list[str]:
+    """codeword's flash over cantools' for the same message, each mode (goal: ≤ 1.0)."""
+    flash = {(label, mode): f for label, mode, f, _ in results}
+    out = []
+    for ours, theirs in CANTOOLS_PAIRS:
+        ratios = [f"{mode} {flash[(ours, mode)] / flash[(theirs, mode)]:.2f}×"
+                  for mode in ("encode only", "encode + decode") if (theirs, mode) in flash]
+        met = all(flash[(ours, m)] <= flash[(theirs, m)] for m in ("encode only", "encode + decode"))
+        out.append(f"- {ours.removeprefix('codeword ')}: codeword / cantools flash {', '.join(ratios)} "
+                   f"(goal ≤ 1.0: {'met' if met else '**NOT met**'})")
+    return out
 
 
 def rows(mavlink_dir: Path, cantools_dir: Path):

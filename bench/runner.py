@@ -312,6 +312,12 @@ def c_sections(r, verdicts) -> list[str]:
               "", "| codec | what | flash (B) | static RAM (B) |", "|---|---|---:|---:|"]
     for label, mode, flash, ram in r["avr"]:
         lines.append(f"| {label} | {mode} | {flash:,} | {ram:,} |")
+    lines += [""] + avr.against_cantools(r["avr"]) + [
+        "- where codeword's is larger: its encoders check every value against its field's range and its decoders "
+        "the frame's constants (a CAN frame's identifier and length, 5 bytes of it), where cantools' pack masks "
+        "each value into its bits and its unpack reads the bits it is given; and codeword's encoder first fills "
+        "an array of raw values, one 32-bit word per field, then writes each through a bit-placing helper, "
+        "where cantools' shifts each value straight into its bytes"]
     lines += crc_choice(r["crc_choice"], c)
     return lines
 
