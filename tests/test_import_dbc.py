@@ -205,7 +205,7 @@ def test_the_hand_written_database_imports_whole(tmp_path):
     assert "# value table OnOff (VAL_TABLE_): 1 = On, 0 = Off" in text
     assert "# network attribute BusType = CAN FD" in text
     assert "# signal LegacySpeed (7|8@0) takes bits of EngineSpeed in frames that carry both: not carried" in text
-    assert "Initial raw value 40." in fields["engine_status"]["coolant_temp"]["doc"]
+    assert fields["engine_status"]["coolant_temp"]["default"] == 0  # GenSigStartValue 40, offset -40
     assert len(db.messages) == 4
 
 

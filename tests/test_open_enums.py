@@ -126,3 +126,15 @@ def test_docs_say_the_enum_is_open(tmp_path):
     page = render_protocol(compile_schema(render(tmp_path, "openenum", SCHEMA) / "openenum.yaml"))["docs/openenum.md"]
     assert "Open: a value no member has is valid too, and decoders keep it as its number." in page
     assert "enum [mode](#enum-mode), other values kept as numbers" in page
+
+
+def test_an_open_enums_default_may_be_any_value_of_its_width_but_a_constant_is_a_member(tmp_path):
+    from codeword.diagnostics import SchemaError
+    with_default = SCHEMA.replace("{name: mode, type: u8, enum: mode}", "{name: mode, type: u8, enum: mode, default: 9}")
+    render(tmp_path, "openenum", with_default)
+    codec = load(tmp_path / "openenum.py")
+    assert codec.Status(s=0, modes=[0, 0], lock=codec.Shut.off).mode == 9
+    (tmp_path / "const.yaml").write_text(SCHEMA.replace("{name: mode, type: u8, enum: mode}",
+                                                        "{name: mode, type: u8, enum: mode, const: 9}"))
+    with pytest.raises(SchemaError, match="const 9 is not a member of enum 'mode'"):
+        compile_schema(tmp_path / "const.yaml")

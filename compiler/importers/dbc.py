@@ -4,9 +4,9 @@ cantools reads the file (it is the DBC reader CAN users already trust, lenient w
 real files are); this module writes what it read as a schema a person keeps editing:
 `framing: {kind: can}`, each message at its identifier with its signals placed by
 start bit in their own byte order, scale and offset, units, multiplexing, the nodes as
-roles, value tables as open enums. What the language has no key for (minimum and
-maximum, initial values, cycle times and other attributes) is written in the message's
-or field's doc and in comments at its place, never dropped."""
+roles, value tables as open enums, initial values as defaults. What the language has
+no key for (minimum and maximum, cycle times and other attributes) is written in the
+message's or field's doc and in comments at its place, never dropped."""
 from __future__ import annotations
 
 import re
@@ -103,9 +103,10 @@ def _header(w: Writer, db: Any, imported: Imported, source: str) -> None:
               "Motorola, little = Intel). Names are in snake_case; each message's title and each field's doc "
               "keep the DBC's own name.")
     w.comment("Value tables (VAL_) of unscaled integer signals are open enums: a value the table does not "
-              "name decodes as its number, as cantools reads it. Not carried as schema keys, kept in docs "
-              "instead: other value tables, signal minimum and maximum (decoders take every raw value, as "
-              "cantools does), initial values, cycle times and other attributes (BA_).")
+              "name decodes as its number, as cantools reads it. A signal's initial value (GenSigStartValue) "
+              "is its field's default. Not carried as schema keys, kept in docs instead: other value tables, "
+              "signal minimum and maximum (decoders take every raw value, as cantools does), the initial "
+              "values of multiplexed signals, cycle times and other attributes (BA_).")
     tables = getattr(db.dbc, "value_tables", None) if db.dbc else None
     for name, choices in (tables or {}).items():
         w.comment(f"value table {name} (VAL_TABLE_): " + _choices_text(choices))
@@ -294,6 +295,9 @@ def _signal(w: Writer, s: Any, names: dict[str, str], enum: Optional[str], where
         w.item("unit", s.unit.strip(), 8)
     if enum is not None:
         w.item("enum", enum, 8)
+    initial = _initial(s)
+    if initial is not None:
+        w.item("default", initial, 8)
     if s.multiplexer_signal is not None and s.multiplexer_ids:
         w.key("multiplexed_by", 8)
         w.item("field", names[s.multiplexer_signal], 10)
@@ -305,6 +309,21 @@ def _signal(w: Writer, s: Any, names: dict[str, str], enum: Optional[str], where
         w.comment("the DBC gives this multiplexor a sign; codeword's are unsigned (the values it selects "
                   "are not negative)", 8)
     return True
+
+
+def _initial(s: Any) -> Optional[float]:
+    """A signal's initial value (GenSigStartValue, raw) as the field's default, in
+    physical units; none for 0 (the attribute's usual default), a float signal, or a
+    signal a frame may leave out (multiplexed) or that selects others."""
+    raw = s.raw_initial
+    if raw is None or raw == 0 or s.is_float or s.multiplexer_signal is not None or s.is_multiplexer:
+        return None
+    lo, hi = (-(1 << (s.length - 1)), (1 << (s.length - 1)) - 1) if s.is_signed else (0, (1 << s.length) - 1)
+    if raw != int(raw) or not lo <= raw <= hi:
+        return None  # no value of the signal: its doc keeps it
+    value = int(raw) * s.scale + s.offset
+    return int(value) if float(value).is_integer() and s.scale == int(s.scale) and s.offset == int(s.offset) \
+        else value
 
 
 def _unplaceable(s: Any) -> Optional[str]:
@@ -374,7 +393,7 @@ def _signal_doc(s: Any, name: str, choices: bool) -> str:
     if s.minimum is not None or s.maximum is not None:
         parts.append(f"Range {number(s.minimum) if s.minimum is not None else '…'} to "
                      f"{number(s.maximum) if s.maximum is not None else '…'} (DBC minimum and maximum).")
-    if s.raw_initial is not None and s.raw_initial != 0:
+    if s.raw_initial is not None and s.raw_initial != 0 and _initial(s) is None:
         parts.append(f"Initial raw value {number(s.raw_initial)}.")
     if s.receivers:
         parts.append("Received by " + ", ".join(s.receivers) + ".")

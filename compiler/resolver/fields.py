@@ -502,9 +502,11 @@ class FieldsMixin(ResolverBase):
         kind, bits = f.kind, f.bits
         if f.enum is not None:
             names = {m.name for m in f.enum.members}
-            if value not in names and value not in f.enum.values:
+            if value in names or value in f.enum.values:
+                return
+            if not (f.enum.open and what == "default"):  # an open enum's default may be any value of the width
                 self.error(path, f"field {f.name!r}: {what} {value!r} is not a member of enum {f.enum.name!r}")
-            return
+                return
         if kind in ("uint", "int"):
             if f.one_hot and value is None:
                 return
