@@ -1141,7 +1141,7 @@ def decode_can(frame_id: int, data: _Buffer) -> AnyMessage:
             raise _dec(None, 'data_length', len(d), 'length', f'at most {MAX_DATA} bytes of data', 0)
         raise _dec(None, 'can_id', frame_id, 'dispatch', f'a known identifier with {len(d)} bytes of data', 0)
     try:
-        return cast(AnyMessage, entry[1](entry[0] + d))
+        return entry[1](entry[0] + d)
     except DecodeError as exc:
         if exc.offset is not None and exc.offset >= 40:  # from the frame's bits to the data's
             exc.offset -= 40
