@@ -244,11 +244,13 @@ static inline void cw_put_le32(uint8_t *p, uint32_t v)
 static inline uint32_t cw_get_bits(const uint8_t *p, uint16_t off, uint8_t n)
 {
     uint32_t v = 0;
-    uint8_t i;
-    for (i = 0; i < n; i++) {
-        uint16_t bit = (uint16_t)(off + i);
-        uint8_t byte = p[bit >> 3];
-        v = (uint32_t)(v << 1) | (uint32_t)(((unsigned)byte >> (7u - (bit & 7u))) & 1u);
+    while (n > 0u) {  /* a byte at a time: the bits of the field the byte holds */
+        uint8_t room = (uint8_t)(8u - (off & 7u));
+        uint8_t take = n < room ? n : room;
+        uint8_t chunk = (uint8_t)(((unsigned)p[off >> 3] >> (uint8_t)(room - take)) & ((1u << take) - 1u));
+        v = (uint32_t)(v << take) | chunk;
+        off = (uint16_t)(off + take);
+        n = (uint8_t)(n - take);
     }
     return v;
 }
@@ -256,12 +258,13 @@ static inline uint32_t cw_get_bits(const uint8_t *p, uint16_t off, uint8_t n)
 /* Writes into a zeroed buffer. */
 static inline void cw_put_bits(uint8_t *p, uint16_t off, uint8_t n, uint32_t v)
 {
-    uint8_t i;
-    for (i = 0; i < n; i++) {
-        uint16_t bit = (uint16_t)(off + i);
-        if ((v >> (uint8_t)(n - 1u - i)) & 1u) {
-            p[bit >> 3] = (uint8_t)(p[bit >> 3] | (uint8_t)(0x80u >> (bit & 7u)));
-        }
+    while (n > 0u) {  /* a byte at a time, most significant bits first */
+        uint8_t room = (uint8_t)(8u - (off & 7u));
+        uint8_t take = n < room ? n : room;
+        uint8_t chunk = (uint8_t)((v >> (uint8_t)(n - take)) & ((1u << take) - 1u));
+        p[off >> 3] = (uint8_t)(p[off >> 3] | (uint8_t)(chunk << (uint8_t)(room - take)));
+        off = (uint16_t)(off + take);
+        n = (uint8_t)(n - take);
     }
 }
 
@@ -269,23 +272,26 @@ static inline void cw_put_bits(uint8_t *p, uint16_t off, uint8_t n, uint32_t v)
 static inline uint64_t cw_get_bits_wide(const uint8_t *p, uint16_t off, uint8_t n)
 {
     uint64_t v = 0;
-    uint8_t i;
-    for (i = 0; i < n; i++) {
-        uint16_t bit = (uint16_t)(off + i);
-        uint8_t byte = p[bit >> 3];
-        v = (uint64_t)(v << 1) | (uint64_t)(((unsigned)byte >> (7u - (bit & 7u))) & 1u);
+    while (n > 0u) {  /* a byte at a time: the bits of the field the byte holds */
+        uint8_t room = (uint8_t)(8u - (off & 7u));
+        uint8_t take = n < room ? n : room;
+        uint8_t chunk = (uint8_t)(((unsigned)p[off >> 3] >> (uint8_t)(room - take)) & ((1u << take) - 1u));
+        v = (uint64_t)(v << take) | chunk;
+        off = (uint16_t)(off + take);
+        n = (uint8_t)(n - take);
     }
     return v;
 }
 
 static inline void cw_put_bits_wide(uint8_t *p, uint16_t off, uint8_t n, uint64_t v)
 {
-    uint8_t i;
-    for (i = 0; i < n; i++) {
-        uint16_t bit = (uint16_t)(off + i);
-        if ((v >> (uint8_t)(n - 1u - i)) & 1u) {
-            p[bit >> 3] = (uint8_t)(p[bit >> 3] | (uint8_t)(0x80u >> (bit & 7u)));
-        }
+    while (n > 0u) {  /* a byte at a time, most significant bits first */
+        uint8_t room = (uint8_t)(8u - (off & 7u));
+        uint8_t take = n < room ? n : room;
+        uint8_t chunk = (uint8_t)((v >> (uint8_t)(n - take)) & ((1u << take) - 1u));
+        p[off >> 3] = (uint8_t)(p[off >> 3] | (uint8_t)(chunk << (uint8_t)(room - take)));
+        off = (uint16_t)(off + take);
+        n = (uint8_t)(n - take);
     }
 }
 
@@ -295,12 +301,15 @@ static inline void cw_put_bits_wide(uint8_t *p, uint16_t off, uint8_t n, uint64_
 static inline uint32_t cw_get_bits_lsb(const uint8_t *p, uint16_t off, uint8_t n)
 {
     uint32_t v = 0;
-    uint8_t i;
-    for (i = 0; i < n; i++) {
-        uint16_t bit = (uint16_t)(off + i);
-        if (((unsigned)p[bit >> 3] >> (bit & 7u)) & 1u) {
-            v |= (uint32_t)1u << i;
-        }
+    uint8_t shift = 0;
+    while (n > 0u) {  /* a byte at a time, least significant bits first */
+        uint8_t used = (uint8_t)(off & 7u);
+        uint8_t take = n < (uint8_t)(8u - used) ? n : (uint8_t)(8u - used);
+        uint8_t chunk = (uint8_t)(((unsigned)p[off >> 3] >> used) & ((1u << take) - 1u));
+        v |= (uint32_t)chunk << shift;
+        shift = (uint8_t)(shift + take);
+        off = (uint16_t)(off + take);
+        n = (uint8_t)(n - take);
     }
     return v;
 }
@@ -308,36 +317,43 @@ static inline uint32_t cw_get_bits_lsb(const uint8_t *p, uint16_t off, uint8_t n
 /* Writes into a zeroed buffer. */
 static inline void cw_put_bits_lsb(uint8_t *p, uint16_t off, uint8_t n, uint32_t v)
 {
-    uint8_t i;
-    for (i = 0; i < n; i++) {
-        uint16_t bit = (uint16_t)(off + i);
-        if ((v >> i) & 1u) {
-            p[bit >> 3] = (uint8_t)(p[bit >> 3] | (uint8_t)(1u << (bit & 7u)));
-        }
+    while (n > 0u) {  /* a byte at a time, least significant bits first */
+        uint8_t used = (uint8_t)(off & 7u);
+        uint8_t take = n < (uint8_t)(8u - used) ? n : (uint8_t)(8u - used);
+        uint8_t chunk = (uint8_t)(v & ((1u << take) - 1u));
+        p[off >> 3] = (uint8_t)(p[off >> 3] | (uint8_t)(chunk << used));
+        v >>= take;
+        off = (uint16_t)(off + take);
+        n = (uint8_t)(n - take);
     }
 }
 
 static inline uint64_t cw_get_bits_wide_lsb(const uint8_t *p, uint16_t off, uint8_t n)
 {
     uint64_t v = 0;
-    uint8_t i;
-    for (i = 0; i < n; i++) {
-        uint16_t bit = (uint16_t)(off + i);
-        if (((unsigned)p[bit >> 3] >> (bit & 7u)) & 1u) {
-            v |= (uint64_t)1u << i;
-        }
+    uint8_t shift = 0;
+    while (n > 0u) {  /* a byte at a time, least significant bits first */
+        uint8_t used = (uint8_t)(off & 7u);
+        uint8_t take = n < (uint8_t)(8u - used) ? n : (uint8_t)(8u - used);
+        uint8_t chunk = (uint8_t)(((unsigned)p[off >> 3] >> used) & ((1u << take) - 1u));
+        v |= (uint64_t)chunk << shift;
+        shift = (uint8_t)(shift + take);
+        off = (uint16_t)(off + take);
+        n = (uint8_t)(n - take);
     }
     return v;
 }
 
 static inline void cw_put_bits_wide_lsb(uint8_t *p, uint16_t off, uint8_t n, uint64_t v)
 {
-    uint8_t i;
-    for (i = 0; i < n; i++) {
-        uint16_t bit = (uint16_t)(off + i);
-        if ((v >> i) & 1u) {
-            p[bit >> 3] = (uint8_t)(p[bit >> 3] | (uint8_t)(1u << (bit & 7u)));
-        }
+    while (n > 0u) {  /* a byte at a time, least significant bits first */
+        uint8_t used = (uint8_t)(off & 7u);
+        uint8_t take = n < (uint8_t)(8u - used) ? n : (uint8_t)(8u - used);
+        uint8_t chunk = (uint8_t)(v & ((1u << take) - 1u));
+        p[off >> 3] = (uint8_t)(p[off >> 3] | (uint8_t)(chunk << used));
+        v >>= take;
+        off = (uint16_t)(off + take);
+        n = (uint8_t)(n - take);
     }
 }
 
