@@ -50,3 +50,25 @@ def run(tmp: Path, mavlink_dir: Path, rounds: int, capture_bytes: int):
         if figures[f"parser {key} frames"] != good:
             raise AssertionError(f"C parser {key} found {figures[f'parser {key} frames']} frames, {good} were sent")
     return figures
+
+
+CAN_SOURCE = ROOT / "bench" / "c" / "can_bench.c"
+CAN_MESSAGES = ("steering", "extended")
+
+
+def run_can(tmp: Path, cantools_dir: Path, rounds: int):
+    """{key: ns per call} of bench/c/can_bench.c: can_mixed's messages, codeword's C against
+    cantools'; checks that both wrote the same data."""
+    exe = tmp / "can_bench"
+    subprocess.run(["gcc", *[f for f in CFLAGS if f != "-DMTV4_CRC_TABLE"], "-Wall", "-Wextra",
+                    "-I", str(ROOT / "generated" / "examples" / "c"), "-I", str(cantools_dir), str(CAN_SOURCE),
+                    str(cantools_dir / "cantools_can_mixed.c"), "-o", str(exe)], check=True)
+    out = subprocess.run([str(exe), str(min(max(rounds, 1), 64))], capture_output=True, text=True, check=True).stdout
+    figures = {}
+    for line in out.splitlines():
+        key, value = line.split("\t")
+        figures[key] = float(value)
+    for message in CAN_MESSAGES:
+        if figures[f"{message} agree"] != 1:
+            raise AssertionError(f"can_mixed {message}: codeword's and cantools' C wrote different data")
+    return figures

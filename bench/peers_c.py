@@ -30,7 +30,9 @@ def generate_cantools(out: Path) -> Path:
     """route_car.c / .h from bench/route_car.dbc and can_mixed.c / .h from
     examples/can_mixed.dbc in out/."""
     out.mkdir(parents=True, exist_ok=True)
-    for dbc in (DBC, CAN_MIXED_DBC):
-        subprocess.run([sys.executable, "-m", "cantools", "generate_c_source", str(dbc)],
+    # can_mixed twice: as can_mixed.c for the AVR rows, built alone, and as cantools_can_mixed.c
+    # for the host's program, which includes codeword's can_mixed.h too
+    for dbc, name in ((DBC, []), (CAN_MIXED_DBC, []), (CAN_MIXED_DBC, ["--database-name", "cantools_can_mixed"])):
+        subprocess.run([sys.executable, "-m", "cantools", "generate_c_source", *name, str(dbc)],
                        check=True, capture_output=True, cwd=out, env=dict(os.environ))
     return out

@@ -58,6 +58,7 @@ def run(tmp: Path, repeats, stream_bytes, c_rounds, scaling_sizes, timing_target
     mavlink_dir = peers_c.generate_mavlink(tmp / "mavlink")
     cantools_dir = peers_c.generate_cantools(tmp / "cantools")
     results["c_host"] = c_host.run(tmp, mavlink_dir, c_rounds, min(stream_bytes, 20_000_000))
+    results["c_can"] = c_host.run_can(tmp, cantools_dir, c_rounds)
     results["c_host_bytes"] = min(stream_bytes, 20_000_000)
     results["avr"] = avr.measure(tmp / "avr", mavlink_dir, cantools_dir)
     results["crc_choice"] = avr.crc_choice(tmp / "avr")
@@ -305,6 +306,7 @@ def c_sections(r, verdicts) -> list[str]:
               f"- in-place `mtv4_scan` / `mavlink_parse_char` = {fastest:.2f} with the fastest, `{best}` "
               f"(target ≥ {SCAN_BEST_MIN}): {_met(fastest >= SCAN_BEST_MIN)}"]
 
+    lines += can_c_lines(r["c_can"])
     lines += ["", "## 4. C on AVR", "", avr.__doc__.split("\n\n", 1)[1].replace("\n", " ").strip(), "",
               f"Flags: `{' '.join(avr.CFLAGS)}`; {r['versions']['avr-gcc']}. Figures are bytes above the "
               "empty program; static RAM = `.data` + `.bss`. These programs differ from docs/c-size.md's "
@@ -319,6 +321,24 @@ def c_sections(r, verdicts) -> list[str]:
         "an array of raw values, one 32-bit word per field, then writes each through a bit-placing helper, "
         "where cantools' shifts each value straight into its bytes"]
     lines += crc_choice(r["crc_choice"], c)
+    return lines
+
+
+def can_c_lines(c) -> list[str]:
+    """Section 3's CAN table: codeword's C for examples/can_mixed.yaml against cantools' C
+    for examples/can_mixed.dbc, the same values and data (`bench/c/can_bench.c`)."""
+    lines = ["", "CAN messages (`bench/c/can_bench.c`, gcc -O2): codeword's encoder and decoder of a can_mixed "
+             "message (its frame: the identifier and length, then the 8 bytes of data) against cantools' "
+             "generated `pack` and `unpack` of the same DBC message on the same values and data; medians of "
+             "interleaved batches of CPU time. codeword checks each value's range and the frame's constants; "
+             "cantools masks and reads.", "",
+             "| message | codeword encode ns | cantools pack ns | × | codeword decode ns | cantools unpack ns | × |",
+             "|---|---:|---:|---:|---:|---:|---:|"]
+    for m in c_host.CAN_MESSAGES:
+        ce, te = c[f"{m} codeword encode"], c[f"{m} cantools encode"]
+        cd, td = c[f"{m} codeword decode"], c[f"{m} cantools decode"]
+        lines.append(f"| {m} | {ce:.1f} | {te:.1f} | {te / ce:.2f} | {cd:.1f} | {td:.1f} | {td / cd:.2f} |")
+    lines += ["", "`×` is cantools' time over codeword's: above 1, codeword is faster."]
     return lines
 
 
@@ -340,6 +360,7 @@ def run_c(tmp: Path, c_rounds, stream_bytes):
     mavlink_dir = peers_c.generate_mavlink(tmp / "mavlink")
     cantools_dir = peers_c.generate_cantools(tmp / "cantools")
     results = {"c_host": c_host.run(tmp, mavlink_dir, c_rounds, min(stream_bytes, 20_000_000)),
+               "c_can": c_host.run_can(tmp, cantools_dir, c_rounds),
                "c_host_bytes": min(stream_bytes, 20_000_000), "avr": avr.measure(tmp / "avr", mavlink_dir, cantools_dir),
                "crc_choice": avr.crc_choice(tmp / "avr"), "versions": versions()}
     _progress("done", start)

@@ -54,6 +54,17 @@ def test_host_c_harness_builds_and_generated_and_hand_written_c_agree():
     assert all(figures[f"parser {key} MB/s"] > 0 for key in c_host.PARSERS) and figures["memcpy MB/s"] > 0
 
 
+def test_the_can_harness_builds_and_codeword_and_cantools_write_the_same_data():
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = Path(tmp)
+        figures = c_host.run_can(tmp, peers_c.generate_cantools(tmp / "cantools"), 1)
+    assert all(figures[f"{m} agree"] == 1 for m in c_host.CAN_MESSAGES)  # else run_can raises
+    assert all(figures[f"{m} {side} {op}"] > 0 for m in c_host.CAN_MESSAGES for side in ("codeword", "cantools")
+               for op in ("encode", "decode"))
+    report = runner.can_c_lines(figures)
+    assert sum(line.startswith(("| steering |", "| extended |")) for line in report) == 2
+
+
 def test_the_crc_methods_are_measured_under_simavr_and_reported():
     from bench import avr
     with tempfile.TemporaryDirectory() as tmp:
