@@ -198,7 +198,9 @@ class FramingMixin(TrailerMixin):
             names = [f.name for f in own]
             for f in framing.envelope:
                 if f.name in names and not f.is_payload:
-                    self.error(path, f"message {name!r}: field {f.name!r} is also an envelope field")
+                    self.error(path, f"message {name!r}: field {f.name!r} is also an envelope field"
+                               + (" (a CAN framing's header is can_id and data_length)" if self.can else ""),
+                               f"rename {f.name!r}")
         placed = []
         offset = 0
         for f in frame:
