@@ -62,12 +62,10 @@ class CanDecoder:
     def __init__(self, protocol: Protocol, codec):
         self.codec = codec
         self.fields = units_of(protocol)
-        self.count = 0
 
     def row(self, message: Any) -> Row:
         frame_id, data = frame_of(message)
         raw = frame_bytes(frame_id, data)
-        self.count += 1
         if message.is_error_frame:
             row = Row(None, raw, error="a CAN error frame")
         elif message.is_remote_frame:
