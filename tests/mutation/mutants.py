@@ -88,7 +88,9 @@ MUTANTS = (
         "c-lsb-first-bit-order",
         "C runtime: cw_get_bits_lsb reads each byte's bits from the top (MSB-first)",
         (("templates/c/codeword.h.j2",
-          "        if (((unsigned)p[bit >> 3] >> (bit & 7u)) & 1u) {\n            v |= (uint32_t)1u << i;",
-          "        if (((unsigned)p[bit >> 3] >> (7u - (bit & 7u))) & 1u) {\n            v |= (uint32_t)1u << i;"),),
+          "        uint8_t chunk = (uint8_t)(((unsigned)p[off >> 3] >> used) & ((1u << take) - 1u));\n"
+          "        v |= (uint32_t)chunk << shift;",
+          "        uint8_t chunk = (uint8_t)(((unsigned)p[off >> 3] >> (uint8_t)(8u - used - take)) & ((1u << take) - 1u));\n"
+          "        v |= (uint32_t)chunk << shift;"),),
         ("tests/test_lsb_first.py",)),
 )
