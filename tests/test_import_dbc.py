@@ -257,3 +257,22 @@ def test_the_command_writes_the_schema_and_refuses_what_is_not_a_dbc(tmp_path, c
     assert "not a DBC database cantools can read" in capsys.readouterr().err
     assert main(["import", "dbc", str(tmp_path / "missing.dbc"), "--out", str(tmp_path)]) == 2
     assert "cannot read" in capsys.readouterr().err
+
+
+def test_initial_values_are_defaults_that_encode_the_initial_raw_values(tmp_path):
+    signals = [Signal("Alpha", 0, 8, "little_endian", False, raw_initial=3,
+                      conversion=BaseConversion.factory(scale=0.1, offset=0)),
+               Signal("Beta", 8, 12, "big_endian", True, raw_initial=-7,
+                      conversion=BaseConversion.factory(scale=0.05, offset=-3.3)),
+               Signal("Gamma", 40, 8, "little_endian", False, raw_initial=200),
+               Signal("Delta", 48, 8, "little_endian", False)]  # no initial value: a value to give
+    db = Database(messages=[Message(frame_id=0x10, name="Start", length=8, signals=signals)])
+    dbc = tmp_path / "initial.dbc"
+    dbc.write_text(db.as_dbc_string(), encoding="utf-8")
+    fields = {f["name"]: f for f in yaml.safe_load(import_database(dbc).text)["messages"]["start"]["fields"]}
+    assert (fields["alpha"]["default"], fields["beta"]["default"], fields["gamma"]["default"]) == (0.3, -3.65, 200)
+    assert "default" not in fields["delta"]
+    name, module, _ = imported(tmp_path, dbc)
+    frame_id, data = module.MESSAGES["start"](delta=9).encode_can()
+    raw = cantools.database.load_file(dbc).get_message_by_name("Start").decode(data, scaling=False)
+    assert (frame_id, raw) == (0x10, {"Alpha": 3, "Beta": -7, "Gamma": 200, "Delta": 9})

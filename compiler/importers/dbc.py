@@ -322,8 +322,10 @@ def _initial(s: Any) -> Optional[float]:
     if raw != int(raw) or not lo <= raw <= hi:
         return None  # no value of the signal: its doc keeps it
     value = int(raw) * s.scale + s.offset
-    return int(value) if float(value).is_integer() and s.scale == int(s.scale) and s.offset == int(s.offset) \
-        else value
+    if float(value).is_integer() and s.scale == int(s.scale) and s.offset == int(s.offset):
+        return int(value)
+    short = float(f"{value:.12g}")  # 0.3, not 0.30000000000000004, where it is the same raw value
+    return short if round((short - s.offset) / s.scale) == int(raw) else value
 
 
 def _unplaceable(s: Any) -> Optional[str]:
