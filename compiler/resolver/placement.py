@@ -121,6 +121,8 @@ class PlacementMixin(ResolverBase):
                                      "start_bit is an integer, bool or float (a DBC signal)",
                               "give it an integer or float type, or place the message's fields one after another")
             return replace(f, bit_offset=0)
+        if f.bits is None:  # a width the type refused: its own error says so
+            return replace(f, bit_offset=0)
         f = replace(f, byte_order=f.byte_order or framing.byte_order)
         payload_bits = 8 * payload_bytes
         first = relative_offset(f)

@@ -567,7 +567,8 @@ class Generator:
             size = bits // 8
             if size <= MAX_ARRAY_BYTES:
                 element, unit = {"name": self.name(), "type": "group", "fields": fields}, "elements"
-                max_count = min(max_count, MAX_ARRAY_BYTES // size)  # the whole array within its most
+                # the whole array within its most bytes, and within the 4,096 values an array may hold
+                max_count = min(max_count, MAX_ARRAY_BYTES // size, max(1, 4096 // values_in(element)))
         if element is None:
             element, _ = self.number_field()
             size, unit = int(element["type"][1:]) // 8, rng.choice(["elements", "bytes", 2])
