@@ -165,7 +165,7 @@ def _value_tables(w: Writer, db: Any, classes: set[str]) -> dict[tuple[int, str]
             if not s.choices or s.is_float or s.scale != 1 or s.offset != 0 or s.is_multiplexer or _unplaceable(s):
                 continue
             items = tuple((int(k), str(v)) for k, v in s.choices.items())
-            lo, hi = (-(1 << (s.length - 1)), (1 << (s.length - 1)) - 1) if s.is_signed else (0, (1 << s.length) - 1)
+            lo, hi = _raw_range(s)
             if not all(lo <= k <= hi for k, _ in items):
                 continue  # a value the signal cannot carry: the table stays in its doc
             key = (_type(s), items)
@@ -311,6 +311,11 @@ def _signal(w: Writer, s: Any, names: dict[str, str], enum: Optional[str], where
     return True
 
 
+def _raw_range(s: Any) -> tuple[int, int]:
+    """The raw values a signal's width and sign hold."""
+    return (-(1 << (s.length - 1)), (1 << (s.length - 1)) - 1) if s.is_signed else (0, (1 << s.length) - 1)
+
+
 def _initial(s: Any) -> Optional[float]:
     """A signal's initial value (GenSigStartValue, raw) as the field's default, in
     physical units; none for 0 (the attribute's usual default), a float signal, or a
@@ -318,7 +323,7 @@ def _initial(s: Any) -> Optional[float]:
     raw = s.raw_initial
     if raw is None or raw == 0 or s.is_float or s.multiplexer_signal is not None or s.is_multiplexer:
         return None
-    lo, hi = (-(1 << (s.length - 1)), (1 << (s.length - 1)) - 1) if s.is_signed else (0, (1 << s.length) - 1)
+    lo, hi = _raw_range(s)
     if raw != int(raw) or not lo <= raw <= hi:
         return None  # no value of the signal: its doc keeps it
     value = int(raw) * s.scale + s.offset
