@@ -26,7 +26,11 @@ VALID = b"valid"
 @lru_cache(maxsize=1)
 def _validator() -> jsonschema.Draft202012Validator:
     import jsonschema  # only when a document is checked: importing it is a fair share of a small build
-    return jsonschema.Draft202012Validator(json.loads(SCHEMA_FILE.read_text(encoding="utf-8")))
+    base = jsonschema.Draft202012Validator
+    # an integer is written as one: JSON Schema 2020-12 counts 5.0 (a float in YAML) as an
+    # integer too, which would reach the resolver as a float
+    strict = base.TYPE_CHECKER.redefine("integer", lambda _, x: isinstance(x, int) and not isinstance(x, bool))
+    return jsonschema.validators.extend(base, type_checker=strict)(json.loads(SCHEMA_FILE.read_text(encoding="utf-8")))
 
 
 def _deepest(error: jsonschema.ValidationError) -> jsonschema.ValidationError:
@@ -40,6 +44,9 @@ def _deepest(error: jsonschema.ValidationError) -> jsonschema.ValidationError:
 
 
 def _hint(error: jsonschema.ValidationError) -> str:
+    if isinstance(error.instance, float) and error.instance.is_integer() and _takes(error, "integer"):
+        return "write a whole number without a point or an exponent (5, not 5.0)" + (
+            ", or quote it where a string is meant" if _takes(error, "string") else "")
     if error.validator == "additionalProperties":
         allowed = sorted(error.schema.get("properties", {}))
         return "allowed keys here: " + ", ".join(allowed) if allowed else ""
@@ -50,6 +57,14 @@ def _hint(error: jsonschema.ValidationError) -> str:
     if error.validator in ("oneOf", "anyOf") and isinstance(error.instance, dict):
         return "a text is a string or a map of language codes with `en`; quote values that contain ', ' or ': '"
     return "see docs/schema-language.md"
+
+
+def _takes(error: jsonschema.ValidationError, kind: str) -> bool:
+    """Whether the schema at the error's place takes a value of JSON type `kind`, itself or
+    as one of its alternatives."""
+    spec = error.schema if isinstance(error.schema, dict) else {}
+    return spec.get("type") == kind or any(
+        isinstance(x, dict) and x.get("type") == kind for x in spec.get("oneOf", []) + spec.get("anyOf", []))
 
 
 def structure_errors(doc: Document) -> list[Diagnostic]:
@@ -71,6 +86,8 @@ def _errors(doc: Document) -> list[Diagnostic]:
         error = _deepest(error)
         path = tuple(error.absolute_path)
         message = error.message
+        if isinstance(error.instance, float) and error.instance.is_integer() and _takes(error, "integer"):
+            message = f"{error.instance!r} is not an integer"
         if len(message) > 200:
             message = message[:200] + "…"
         where = ".".join(str(p) for p in path) or "top level"
