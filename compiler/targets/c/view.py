@@ -26,6 +26,7 @@ from .crc import crc_code, methods_check
 from . import repeats as crepeats
 from . import word as cword
 from . import wordform as cwordform
+from .bitbytes import get_expression, put_statements, value_type
 from .pack import Span
 from .errors import CTargetError
 from .scalars import SET_UNUSED, bits_fn, clit, clit_signed, final_step, int_ctype, sign_extend, type_limits, unsigned_type
@@ -814,8 +815,9 @@ class CView:
             c(f"memset(buf + {span.start}, 0, {span.size}u);")
             for piece in span.pieces:
                 if piece.var in raws:
-                    value = raws[piece.var] if piece.bits > 32 or rt != "uint64_t" else f"(uint32_t){raws[piece.var]}"
-                    c(f"{bits_fn('put', piece.bits, span.order_of(piece))}({bits_at(piece.pos)}, {piece.bits}u, {value});")
+                    value = raws[piece.var] if value_type(piece.bits) == rt else f"({value_type(piece.bits)}){raws[piece.var]}"
+                    for line in put_statements("buf", piece.pos, piece.bits, span.order_of(piece), value):
+                        c(line)
 
     def get_span(self, c: Code, span: Span, raws: dict[str, str], rt: str) -> None:
         """Read the raw values of a span (bytes fields are copied by the checks)."""
@@ -836,7 +838,8 @@ class CView:
             c("}")
         else:
             for piece in pieces:
-                c(f"{raws[piece.var]} = ({rt}){bits_fn('get', piece.bits, span.order_of(piece))}({bits_at(piece.pos)}, {piece.bits}u);")
+                value = get_expression("buf", piece.pos, piece.bits, span.order_of(piece))
+                c(f"{raws[piece.var]} = {value if value_type(piece.bits) == rt else f'({rt}){value}'};")
 
     def leave_out_gaps(self, c: Code, m: Message, raws: dict[str, str]) -> None:
         """Drop the bytes of each gap that the frame does not send, the last gap first so the
@@ -988,7 +991,7 @@ class CView:
             if span.kind == "int":
                 got = self.int_get(span.start, span.size, self.order_of(piece.field))
             else:
-                got = f"{bits_fn('get', piece.bits, span.order_of(piece))}({bits_at(piece.pos)}, {piece.bits}u)"
+                got = get_expression("buf", piece.pos, piece.bits, span.order_of(piece))
             if piece.field.checksum.covers_self:  # RFC 1071's receiver check: with the field, the sum is all ones
                 self.fail_if(c, f"{self.byte_checksum_call(piece, m, True, 'sent')} != 0u", "checksum")
                 continue

@@ -338,8 +338,7 @@ class PythonView:
             return ("float", leaf.path[-1], f.bits == 32)
         return None
 
-    @staticmethod
-    def int_raw(f: Field, v: str) -> str:
+    def int_raw(self, f: Field, v: str) -> str:
         """The raw wire integer of the checked logical value in `v`."""
         expr = v
         if f.offset:
