@@ -13,8 +13,10 @@ from .scalars import clit
 
 
 def value_type(bits: int) -> str:
-    """The unsigned type the value is shifted in: never one that promotes to int."""
-    return "uint32_t" if bits <= 32 else "uint64_t"
+    """The unsigned type a value of `bits` bits is shifted in: never one that promotes to a
+    signed int, and no wider than it needs (`unsigned` has 16 bits on an 8-bit MCU, where
+    every wider shift takes several instructions)."""
+    return "unsigned" if bits <= 16 else "uint32_t" if bits <= 32 else "uint64_t"
 
 
 def _byte_shifts(pos: int, bits: int, order: str) -> list[tuple[int, int]]:
@@ -31,10 +33,11 @@ def _shifted(expr: str, shift: int) -> str:
     return f"({expr} >> {shift})" if shift > 0 else f"({expr} << {-shift})" if shift < 0 else expr
 
 
-def put_statements(buf: str, pos: int, bits: int, order: str, value: str) -> list[str]:
-    """Statements that OR `value` (a variable below 2**bits, of value_type(bits)) into the
+def put_statements(buf: str, pos: int, bits: int, order: str, value: str, ctype: str) -> list[str]:
+    """Statements that OR `value` (a variable of C type `ctype`, below 2**bits) into the
     zeroed bytes of `buf` its field takes."""
-    return [f"{buf}[{b}] = (uint8_t)({buf}[{b}] | (uint8_t){_shifted(value, s)});"
+    shifted = value if ctype == value_type(bits) else f"({value_type(bits)}){value}"
+    return [f"{buf}[{b}] = (uint8_t)({buf}[{b}] | (uint8_t){_shifted(shifted, s) if s else value});"
             for b, s in _byte_shifts(pos, bits, order)]
 
 

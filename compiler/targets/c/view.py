@@ -815,8 +815,7 @@ class CView:
             c(f"memset(buf + {span.start}, 0, {span.size}u);")
             for piece in span.pieces:
                 if piece.var in raws:
-                    value = raws[piece.var] if value_type(piece.bits) == rt else f"({value_type(piece.bits)}){raws[piece.var]}"
-                    for line in put_statements("buf", piece.pos, piece.bits, span.order_of(piece), value):
+                    for line in put_statements("buf", piece.pos, piece.bits, span.order_of(piece), raws[piece.var], rt):
                         c(line)
 
     def get_span(self, c: Code, span: Span, raws: dict[str, str], rt: str) -> None:
