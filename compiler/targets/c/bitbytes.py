@@ -33,12 +33,16 @@ def _shifted(expr: str, shift: int) -> str:
     return f"({expr} >> {shift})" if shift > 0 else f"({expr} << {-shift})" if shift < 0 else expr
 
 
-def put_statements(buf: str, pos: int, bits: int, order: str, value: str, ctype: str) -> list[str]:
+def put_statements(buf: str, pos: int, bits: int, order: str, value: str, ctype: str,
+                   cut: bool = False) -> list[str]:
     """Statements that OR `value` (a variable of C type `ctype`, below 2**bits) into the
-    zeroed bytes of `buf` its field takes."""
+    zeroed bytes of `buf` its field takes; `cut`: `cut` bytes before them were left out."""
     shifted = value if ctype == value_type(bits) else f"({value_type(bits)}){value}"
-    return [f"{buf}[{b}] = (uint8_t)({buf}[{b}] | (uint8_t){_shifted(shifted, s) if s else value});"
-            for b, s in _byte_shifts(pos, bits, order)]
+    out = []
+    for b, s in _byte_shifts(pos, bits, order):
+        at = f"{b}u - cut" if cut else b
+        out.append(f"{buf}[{at}] = (uint8_t)({buf}[{at}] | (uint8_t){_shifted(shifted, s) if s else value});")
+    return out
 
 
 def get_expression(buf: str, pos: int, bits: int, order: str) -> str:

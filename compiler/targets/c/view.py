@@ -29,7 +29,7 @@ from . import wordform as cwordform
 from .bitbytes import get_expression, put_statements, value_type
 from .pack import Span
 from .errors import CTargetError
-from .scalars import SET_UNUSED, bits_fn, clit, clit_signed, final_step, int_ctype, sign_extend, type_limits, unsigned_type
+from .scalars import SET_UNUSED, clit, clit_signed, final_step, int_ctype, sign_extend, type_limits, unsigned_type
 from ..wire import (checksum_name, dispatch_facts, encoding_facts, gap_of, gap_reads, stream_facts, text_form_head,
                     text_line_facts, with_head_checks)
 
@@ -796,7 +796,12 @@ class CView:
             if span.kind == "int":
                 c(self.int_put(f"({span.start}u - cut)" if moved else span.start, span.size, self.order_of(piece.field), call))
             else:  # sharing its bytes, whose bits for it are still 0
-                c(f"{bits_fn('put', piece.bits, span.order_of(piece))}({bits_at(piece.pos, moved)}, {piece.bits}u, {call});")
+                vt = value_type(piece.bits)
+                c("{")
+                c(f"    {vt} sum = ({vt}){call};")
+                for line in put_statements("buf", piece.pos, piece.bits, span.order_of(piece), "sum", vt, moved):
+                    c(f"    {line}")
+                c("}")
         c(f"return (int)({m.size}u - cut);" if truncates else f"return {m.size};")
         c.dedent()
         c("}")
@@ -1687,15 +1692,6 @@ class CView:
         return dict(facts, constant=f"CW_{facts['kind'].upper()}", delimiter_c=f"0x{facts['delimiter']:02X}u",
                     accm_c=f"0x{facts['accm']:08X}UL",
                     fill_type=fill_type(facts["frame_max"]))
-
-
-def bits_at(pos: int, cut: bool = False) -> str:
-    """The buffer and bit offset arguments of cw_get_bits/cw_put_bits for a field at bit
-    `pos` of the frame: the byte it starts in and the bit within it, so the helpers'
-    16-bit offsets hold in frames of any size; `cut`: the bytes left out come before it."""
-    byte, bit = divmod(pos, 8)
-    base = f"buf + ({byte}u - cut)" if cut else f"buf + {byte}" if byte else "buf"
-    return f"{base}, {bit}u"
 
 
 def fill_type(most: int) -> str:
