@@ -17,6 +17,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 HEADERS = [ROOT / "generated" / "c", ROOT / "generated" / "examples" / "c"]
 DBC = ROOT / "bench" / "route_car.dbc"
+CAN_MIXED_DBC = ROOT / "examples" / "can_mixed.dbc"  # the DBC of examples/can_mixed.yaml's messages
 
 TARGETS = [
     ("Cortex-M0", ["arm-none-eabi-gcc", "-std=c99", "-Os", "-mcpu=cortex-m0", "-mthumb", "--specs=nosys.specs",
@@ -95,14 +96,16 @@ def generate_mavlink(out: Path) -> Path:
 
 def generate_cantools(out: Path) -> Path:
     out.mkdir(parents=True, exist_ok=True)
-    subprocess.run([sys.executable, "-m", "cantools", "generate_c_source", str(DBC)], check=True,
-                   capture_output=True, cwd=out, env=dict(os.environ))
+    for dbc in (DBC, CAN_MIXED_DBC):
+        subprocess.run([sys.executable, "-m", "cantools", "generate_c_source", str(dbc)], check=True,
+                       capture_output=True, cwd=out, env=dict(os.environ))
     return out
 
 
 def cantools_functions(source: Path) -> list[str]:
+    """The `_pack` and `_unpack` functions of a cantools-generated source."""
     text = source.read_text(encoding="utf-8")
-    return sorted(set(re.findall(r"^int (route_car_\w+_(?:pack|unpack))\(", text, re.M)))
+    return sorted(set(re.findall(rf"^int ({source.stem}_\w+_(?:pack|unpack))\(", text, re.M)))
 
 
 def measure() -> dict:
@@ -134,6 +137,12 @@ def measure() -> dict:
                       "two messages (RouteObject, CarMasterControl)", "route's object and car's master_control",
                       {t[0]: (flash(t, work, "cantools", ["route_car.c"], theirs, ["-I", str(cantools_dir), "-x", "c"]),
                               flash(t, work, "route_car_ours", ["route.h", "car.h"], ours, ["-I", str(HEADERS[0])]))
+                       for t in TARGETS}))
+        theirs = cantools_functions(cantools_dir / "can_mixed.c")
+        peers.append(("cantools C (`generate_c_source`) of examples/can_mixed.dbc: `<m>_pack` and `_unpack` of its "
+                      f"{len(theirs) // 2} messages", "can_mixed",
+                      {t[0]: (flash(t, work, "cantools_can_mixed", ["can_mixed.c"], theirs,
+                                    ["-I", str(cantools_dir), "-x", "c"]), by_name["can_mixed"][t[0]])
                        for t in TARGETS}))
     return {"protocols": rows, "peers": peers}
 

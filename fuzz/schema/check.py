@@ -40,6 +40,7 @@ from .stream_end import stream_end_problem
 from .features import DEFAULT
 from .generate import generate
 from .machines import machine_checks
+from .unused import unused_names
 
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tests"))  # the conformance driver writer, shared with tests/test_c.py
@@ -132,6 +133,10 @@ def check_text(text: str, name: str, where: Path, outcome: Outcome,
         return
     vectors = json.loads((out / "vectors" / f"{name}.json").read_text(encoding="utf-8"))
     outcome.stage = "python"
+    unused = unused_names((out / "python" / f"{name}.py").read_text(encoding="utf-8"))
+    if unused:  # a strict type checker's error in the user's project
+        outcome.detail = f"the module defines and never uses: {', '.join(unused)}"
+        return
     module = _load(out / "python" / f"{name}.py")
     problem = python_checks(module, vectors, protocol.framing.kind == "text", random.Random(outcome.seed))
     if problem:

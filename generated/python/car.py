@@ -12,8 +12,6 @@ import importlib.machinery
 import importlib.util
 import math
 import os
-
-
 from typing import Any, Callable, ClassVar, Optional, TypeVar, Union, cast
 
 _Buffer = Union[bytes, bytearray, "memoryview[int]"]  # what a binary decoder reads

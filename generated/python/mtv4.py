@@ -12,7 +12,6 @@ import importlib.machinery
 import importlib.util
 import math
 import os
-
 import struct
 from typing import Any, Callable, ClassVar, Literal, Optional, TypeVar, Union, cast, overload
 

@@ -13,7 +13,6 @@ import importlib.util
 import math
 import os
 import re
-
 from typing import Any, Callable, ClassVar, Iterator, Optional, TypeVar, Union, cast
 
 _Buffer = Union[bytes, bytearray, "memoryview[int]"]  # what a binary decoder reads
@@ -374,10 +373,7 @@ def _as_input(data: object) -> _Buffer:
 
 
 def _encode_start(m: Start) -> bytes:
-    r_hdr = 3
-    r_kind = 1
-    r_cs = 0
-    r_cs = (r_hdr + r_kind) % 8
+    r_cs = 4
     w: int = r_cs | 0xc8
     return w.to_bytes(1, 'big')
 
@@ -405,11 +401,8 @@ def _decode_start(d: _Buffer) -> Start:
 
 def _raw_start(m: Start) -> tuple[int, ...]:
     """Check a start and return its raw wire values, in wire order."""
-    r_hdr = 3
-    r_kind = 1
-    r_cs = 0
-    r_cs = (r_hdr + r_kind) % 8
-    return (r_hdr, r_kind, r_cs, )
+    r_cs = 4
+    return (3, 1, r_cs, )
 
 
 def _build_start(r_hdr: int, r_kind: int, r_cs: int, text_form: bool = False) -> Start:
@@ -442,8 +435,6 @@ def _decode_text_start(tokens: list[int]) -> Start:
 
 
 def _encode_object(m: Object) -> bytes:
-    r_hdr = 1
-    r_cs = 0
     r_ns = m.ns
     r_nl = m.nl
     r_no = m.no
@@ -455,7 +446,7 @@ def _encode_object(m: Object) -> bytes:
     if (r_ns.__class__ is not int or not 0 <= r_ns <= 7) or (r_nl.__class__ is not int or not 0 <= r_nl <= 7) or (r_no.__class__ is not int or not 0 <= r_no <= 7) or (r_na.__class__ is not int or not 10 <= r_na <= 17) or (r_dl.__class__ is not int or not 1 <= r_dl <= 5) or (r_rc.__class__ is not int or not 0 <= r_rc <= 3) or (r_dr.__class__ is not int or not 1 <= r_dr <= 5) or (r_cm.__class__ is not int or not 1 <= r_cm <= 15):
         _faults('object', (r_ns, r_nl, r_no, r_na, r_dl, r_rc, r_dr, r_cm, ), (('int', 'ns', 0, 7, False, None), ('int', 'nl', 0, 7, False, None), ('int', 'no', 0, 7, False, None), ('int', 'na', 10, 17, False, 'ROUTE-D6'), ('int', 'dl', 1, 5, False, None), ('int', 'rc', 0, 3, False, 'ROUTE-D3'), ('int', 'dr', 1, 5, False, None), ('int', 'cm', 1, 15, False, None)))
     r_na = (r_na - 10)
-    r_cs = (r_hdr + r_ns + r_nl + r_no + r_na + r_dl + r_rc + r_dr + r_cm) % 8
+    r_cs = (r_ns + r_nl + r_no + r_na + r_dl + r_rc + r_dr + r_cm + 1) % 8
     w: int = r_ns << 27 | r_nl << 24 | r_no << 21 | r_na << 18 | r_dl << 15 | r_rc << 13 | r_dr << 10 | r_cm << 6 | r_cs << 3 | 0x40000000
     return w.to_bytes(4, 'big')
 
@@ -504,8 +495,6 @@ def _decode_object(d: _Buffer) -> Object:
 
 def _raw_object(m: Object) -> tuple[int, ...]:
     """Check a object and return its raw wire values, in wire order."""
-    r_hdr = 1
-    r_cs = 0
     r_ns = m.ns
     r_nl = m.nl
     r_no = m.no
@@ -517,8 +506,8 @@ def _raw_object(m: Object) -> tuple[int, ...]:
     if (r_ns.__class__ is not int or not 0 <= r_ns <= 7) or (r_nl.__class__ is not int or not 0 <= r_nl <= 7) or (r_no.__class__ is not int or not 0 <= r_no <= 7) or (r_na.__class__ is not int or not 10 <= r_na <= 17) or (r_dl.__class__ is not int or not 1 <= r_dl <= 5) or (r_rc.__class__ is not int or not 0 <= r_rc <= 3) or (r_dr.__class__ is not int or not 1 <= r_dr <= 5) or (r_cm.__class__ is not int or not 1 <= r_cm <= 15):
         _faults('object', (r_ns, r_nl, r_no, r_na, r_dl, r_rc, r_dr, r_cm, ), (('int', 'ns', 0, 7, False, None), ('int', 'nl', 0, 7, False, None), ('int', 'no', 0, 7, False, None), ('int', 'na', 10, 17, False, 'ROUTE-D6'), ('int', 'dl', 1, 5, False, None), ('int', 'rc', 0, 3, False, 'ROUTE-D3'), ('int', 'dr', 1, 5, False, None), ('int', 'cm', 1, 15, False, None)))
     r_na = (r_na - 10)
-    r_cs = (r_hdr + r_ns + r_nl + r_no + r_na + r_dl + r_rc + r_dr + r_cm) % 8
-    return (r_hdr, r_ns, r_nl, r_no, r_na, r_dl, r_rc, r_dr, r_cm, r_cs, )
+    r_cs = (r_ns + r_nl + r_no + r_na + r_dl + r_rc + r_dr + r_cm + 1) % 8
+    return (1, r_ns, r_nl, r_no, r_na, r_dl, r_rc, r_dr, r_cm, r_cs, )
 
 
 def _build_object(r_hdr: int, r_ns: int, r_nl: int, r_no: int, r_na: int, r_dl: int, r_rc: int, r_dr: int, r_cm: int, r_cs: int, text_form: bool = False) -> Object:
@@ -571,7 +560,6 @@ def _decode_text_object(tokens: list[int]) -> Object:
 
 
 def _encode_scene(m: Scene) -> bytes:
-    r_hdr = 2
     r_ns = m.ns
     r_nl = m.nl
     if (r_ns.__class__ is not int or not 0 <= r_ns <= 7) or (r_nl.__class__ is not int or not 0 <= r_nl <= 7):
@@ -580,11 +568,10 @@ def _encode_scene(m: Scene) -> bytes:
     if r_db.__class__ is not PassSide and (not isinstance(r_db, int) or r_db.__class__ is bool or isinstance(r_db, enum.Enum) or r_db not in _VALUES_pass_side):
         raise _enc('scene', 'db', r_db, 'enum', 'PassSide', None)
     r_db = _RAW_pass_side[r_db]
-    r_cs = 0
     r_nt = m.nt
     if r_nt.__class__ is not int or not 0 <= r_nt <= 32767:
         _int_fault('scene', 'nt', r_nt, 0, 32767, False, None)
-    r_cs = (r_hdr + r_ns + r_nl + r_db + r_nt) % 8
+    r_cs = (r_ns + r_nl + r_db + r_nt + 2) % 8
     w: int = r_ns << 27 | r_nl << 24 | r_db << 21 | r_nt << 6 | r_cs << 3 | 0x80000000
     return w.to_bytes(4, 'big')
 
@@ -622,7 +609,6 @@ def _decode_scene(d: _Buffer) -> Scene:
 
 def _raw_scene(m: Scene) -> tuple[int, ...]:
     """Check a scene and return its raw wire values, in wire order."""
-    r_hdr = 2
     r_ns = m.ns
     r_nl = m.nl
     if (r_ns.__class__ is not int or not 0 <= r_ns <= 7) or (r_nl.__class__ is not int or not 0 <= r_nl <= 7):
@@ -631,12 +617,11 @@ def _raw_scene(m: Scene) -> tuple[int, ...]:
     if r_db.__class__ is not PassSide and (not isinstance(r_db, int) or r_db.__class__ is bool or isinstance(r_db, enum.Enum) or r_db not in _VALUES_pass_side):
         raise _enc('scene', 'db', r_db, 'enum', 'PassSide', None)
     r_db = _RAW_pass_side[r_db]
-    r_cs = 0
     r_nt = m.nt
     if r_nt.__class__ is not int or not 0 <= r_nt <= 32767:
         _int_fault('scene', 'nt', r_nt, 0, 32767, False, None)
-    r_cs = (r_hdr + r_ns + r_nl + r_db + r_nt) % 8
-    return (r_hdr, r_ns, r_nl, r_db, r_nt, r_cs, )
+    r_cs = (r_ns + r_nl + r_db + r_nt + 2) % 8
+    return (2, r_ns, r_nl, r_db, r_nt, r_cs, )
 
 
 def _build_scene(r_hdr: int, r_ns: int, r_nl: int, r_db: int, r_nt: int, r_cs: int, text_form: bool = False) -> Scene:
@@ -682,10 +667,7 @@ def _decode_text_scene(tokens: list[int]) -> Scene:
 
 
 def _encode_end(m: End) -> bytes:
-    r_hdr = 3
-    r_kind = 2
-    r_cs = 0
-    r_cs = (r_hdr + r_kind) % 8
+    r_cs = 5
     w: int = r_cs | 0xd0
     return w.to_bytes(1, 'big')
 
@@ -713,11 +695,8 @@ def _decode_end(d: _Buffer) -> End:
 
 def _raw_end(m: End) -> tuple[int, ...]:
     """Check a end and return its raw wire values, in wire order."""
-    r_hdr = 3
-    r_kind = 2
-    r_cs = 0
-    r_cs = (r_hdr + r_kind) % 8
-    return (r_hdr, r_kind, r_cs, )
+    r_cs = 5
+    return (3, 2, r_cs, )
 
 
 def _build_end(r_hdr: int, r_kind: int, r_cs: int, text_form: bool = False) -> End:

@@ -7,12 +7,10 @@
 """delivery-guaranteed protocol for tr24a radios: codec generated from the tr24 schema."""
 from __future__ import annotations
 
-
 import importlib.machinery
 import importlib.util
 import math
 import os
-
 import struct
 from typing import Any, Callable, ClassVar, Literal, Optional, TypeVar, Union, cast, overload
 

@@ -86,11 +86,9 @@ MUTANTS = (
         ("tests/test_vectors.py", "tests/test_signed_enum.py", "tests/test_bitstruct_oracle.py")),
     Mutant(
         "c-lsb-first-bit-order",
-        "C runtime: cw_get_bits_lsb reads each byte's bits from the top (MSB-first)",
-        (("templates/c/codeword.h.j2",
-          "        uint8_t chunk = (uint8_t)(((unsigned)p[off >> 3] >> used) & ((1u << take) - 1u));\n"
-          "        v |= (uint32_t)chunk << shift;",
-          "        uint8_t chunk = (uint8_t)(((unsigned)p[off >> 3] >> (uint8_t)(8u - used - take)) & ((1u << take) - 1u));\n"
-          "        v |= (uint32_t)chunk << shift;"),),
-        ("tests/test_lsb_first.py",)),
+        "C: a bit field counted least significant bit first is shifted one bit off in each byte",
+        (("compiler/targets/c/bitbytes.py",
+          "return [(b, 8 * b - pos) for b in range(first, last + 1)]",
+          "return [(b, 8 * b - pos + 1) for b in range(first, last + 1)]"),),
+        ("tests/test_c_bit_bytes.py", "tests/test_lsb_first.py")),
 )

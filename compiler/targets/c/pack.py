@@ -10,8 +10,8 @@ A span is one of
   1 to 4 whole bytes, read and written as one integer in the run's byte order
   (big-endian most significant bit first, little-endian least significant first);
 - "bits": bit fields filling more than 4 bytes together, or fields of both bit
-  orders sharing bytes (a payload placed by start_bit), moved bit by bit
-  (cw_put_bits/cw_get_bits, or their _lsb forms, each in its field's order) in
+  orders sharing bytes (a payload placed by start_bit), each moved with a
+  constant shift per byte it touches, in its own bit order (bitbytes.py), in
   bytes zeroed first.
 """
 from __future__ import annotations

@@ -39,13 +39,6 @@ def sign_extend(bits: int) -> str:
     return "cw_sign_extend_wide" if bits > 32 else "cw_sign_extend"
 
 
-def bits_fn(op: str, bits: int, order: str = "big") -> str:
-    """cw_get_bits / cw_put_bits, or their 64-bit forms for fields over 32 bits; the
-    _lsb forms count bits least significant first (a little-endian bit stream)."""
-    name = f"cw_{op}_bits_wide" if bits > 32 else f"cw_{op}_bits"
-    return name + "_lsb" if order == "little" else name
-
-
 def clit(value: int, unsigned: bool = False) -> str:
     """An integer literal that has the intended value on 16-bit-int targets."""
     if value < 0:

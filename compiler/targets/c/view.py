@@ -26,9 +26,10 @@ from .crc import crc_code, methods_check
 from . import repeats as crepeats
 from . import word as cword
 from . import wordform as cwordform
+from .bitbytes import get_expression, put_statements, value_type
 from .pack import Span
 from .errors import CTargetError
-from .scalars import SET_UNUSED, bits_fn, clit, clit_signed, final_step, int_ctype, sign_extend, type_limits, unsigned_type
+from .scalars import SET_UNUSED, clit, clit_signed, final_step, int_ctype, sign_extend, type_limits, unsigned_type
 from ..wire import (checksum_name, dispatch_facts, encoding_facts, gap_of, gap_reads, stream_facts, text_form_head,
                     text_line_facts, with_head_checks)
 
@@ -795,7 +796,12 @@ class CView:
             if span.kind == "int":
                 c(self.int_put(f"({span.start}u - cut)" if moved else span.start, span.size, self.order_of(piece.field), call))
             else:  # sharing its bytes, whose bits for it are still 0
-                c(f"{bits_fn('put', piece.bits, span.order_of(piece))}({bits_at(piece.pos, moved)}, {piece.bits}u, {call});")
+                vt = value_type(piece.bits)
+                c("{")
+                c(f"    {vt} sum = ({vt}){call};")
+                for line in put_statements("buf", piece.pos, piece.bits, span.order_of(piece), "sum", vt, moved):
+                    c(f"    {line}")
+                c("}")
         c(f"return (int)({m.size}u - cut);" if truncates else f"return {m.size};")
         c.dedent()
         c("}")
@@ -814,8 +820,8 @@ class CView:
             c(f"memset(buf + {span.start}, 0, {span.size}u);")
             for piece in span.pieces:
                 if piece.var in raws:
-                    value = raws[piece.var] if piece.bits > 32 or rt != "uint64_t" else f"(uint32_t){raws[piece.var]}"
-                    c(f"{bits_fn('put', piece.bits, span.order_of(piece))}({bits_at(piece.pos)}, {piece.bits}u, {value});")
+                    for line in put_statements("buf", piece.pos, piece.bits, span.order_of(piece), raws[piece.var], rt):
+                        c(line)
 
     def get_span(self, c: Code, span: Span, raws: dict[str, str], rt: str) -> None:
         """Read the raw values of a span (bytes fields are copied by the checks)."""
@@ -836,7 +842,8 @@ class CView:
             c("}")
         else:
             for piece in pieces:
-                c(f"{raws[piece.var]} = ({rt}){bits_fn('get', piece.bits, span.order_of(piece))}({bits_at(piece.pos)}, {piece.bits}u);")
+                value = get_expression("buf", piece.pos, piece.bits, span.order_of(piece))
+                c(f"{raws[piece.var]} = {value if value_type(piece.bits) == rt else f'({rt}){value}'};")
 
     def leave_out_gaps(self, c: Code, m: Message, raws: dict[str, str]) -> None:
         """Drop the bytes of each gap that the frame does not send, the last gap first so the
@@ -988,7 +995,7 @@ class CView:
             if span.kind == "int":
                 got = self.int_get(span.start, span.size, self.order_of(piece.field))
             else:
-                got = f"{bits_fn('get', piece.bits, span.order_of(piece))}({bits_at(piece.pos)}, {piece.bits}u)"
+                got = get_expression("buf", piece.pos, piece.bits, span.order_of(piece))
             if piece.field.checksum.covers_self:  # RFC 1071's receiver check: with the field, the sum is all ones
                 self.fail_if(c, f"{self.byte_checksum_call(piece, m, True, 'sent')} != 0u", "checksum")
                 continue
@@ -1685,15 +1692,6 @@ class CView:
         return dict(facts, constant=f"CW_{facts['kind'].upper()}", delimiter_c=f"0x{facts['delimiter']:02X}u",
                     accm_c=f"0x{facts['accm']:08X}UL",
                     fill_type=fill_type(facts["frame_max"]))
-
-
-def bits_at(pos: int, cut: bool = False) -> str:
-    """The buffer and bit offset arguments of cw_get_bits/cw_put_bits for a field at bit
-    `pos` of the frame: the byte it starts in and the bit within it, so the helpers'
-    16-bit offsets hold in frames of any size; `cut`: the bytes left out come before it."""
-    byte, bit = divmod(pos, 8)
-    base = f"buf + ({byte}u - cut)" if cut else f"buf + {byte}" if byte else "buf"
-    return f"{base}, {bit}u"
 
 
 def fill_type(most: int) -> str:

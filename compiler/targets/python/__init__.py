@@ -4,7 +4,6 @@ from __future__ import annotations
 from ...fingerprint import fingerprint, fingerprint32
 from ...model import Protocol
 from .machines import machines_view
-from .prune import prune
 from .view import module_view
 from ..wire import text_form_head
 from ..accelerator.scope import serves, source_tag
@@ -20,4 +19,4 @@ def render(p: Protocol) -> dict[str, str]:
         docstring=docstring, fingerprint=fingerprint(p), fingerprint32=f"{fingerprint32(p):#010x}",
         text_head=text_form_head(p) if p.framing.text_form and head else [],
         accelerator=source_tag(p) if serves(p) else None, machines=machines_view(p), **view)
-    return {f"python/{p.name}.py": tidy(prune(source), max_blank=2)}
+    return {f"python/{p.name}.py": tidy(source, max_blank=2)}

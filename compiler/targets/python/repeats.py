@@ -125,6 +125,7 @@ class RepeatCode:
         if vector:  # the values are their raw values: packed at once
             fmt = self.segments[0].fmt
             c(f"return struct.pack(f'{fmt[0]}{{len({self.array})}}{fmt[1:]}', *{self.array})")
+            mc.view.calls.use("struct")
         else:
             c("return b")
         return c.text()

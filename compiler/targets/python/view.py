@@ -15,6 +15,7 @@ from ...names import camel
 from ..can import can_view
 from ..code import Code, times_over
 from .chunks import Chunk, Segment, access, chunks_of, segments_of
+from .runtime import Calls
 from .repeats import RepeatCode, blob, elements, named, region
 from .stuffing import stuffing_view
 from .trailer import trailer_view
@@ -37,6 +38,7 @@ class PythonView:
     def __init__(self, protocol: Protocol):
         self.p = protocol
         self.framing = protocol.framing
+        self.calls = Calls()  # the module's helpers that the code written so far calls
 
     # -- names -----------------------------------------------------------------------------
     def class_name(self, message: Message) -> str:
@@ -263,9 +265,10 @@ class PythonView:
             c(f"        raise _enc({where}, {v}, 'range', '{lo}..{hi} or None', {f.rule!r}{self.user(f, False)})")
             c(f"    {var} = 1 << {v}")
         elif f.kind in ("uint", "int") or f.kind == "float" and self.usual_spec(leaf) is not None:
-            test, fault = self.number_check(message, leaf)
+            test, helper, args = self.number_check(message, leaf)
+            self.calls.use(helper)
             c(f"if {test}:")
-            c(f"    {fault}")
+            c(f"    {helper}({args})")
             if f.values:
                 c(f"if {v} not in {lit(tuple(f.values))}:")
                 c(f"    raise _enc({where}, {v}, 'values', {', '.join(map(str, f.values))!r}, {f.rule!r}{self.user(f, False)})")
@@ -276,7 +279,9 @@ class PythonView:
             text = self.p.framing.kind == "text"
             c(f"if {v}.__class__ is not float or not -1.7976931348623157e308 <= {v} <= 1.7976931348623157e308:")
             c(f"    _float_fault({where}, {v}, False)")
+            self.calls.use("_float_fault")
             if text:  # the decimals a C peer's cw_decimal_t holds too
+                self.calls.use("_format_float", "_significant")
                 c(f"{self.float_text(leaf)} = _format_float({v})  # written as it is checked")
                 # a text of 15 characters or fewer cannot hold 16 digits: most are not counted
                 c(f"if len({self.float_text(leaf)}) > 15 and _significant({self.float_text(leaf)}) > 15 "
@@ -299,7 +304,7 @@ class PythonView:
             c(f"    {var} = bytes({v})")
         # text kinds are checked and written by the text writer
 
-    def usual_check(self, message: Message, leaf: Leaf) -> Optional[tuple[str, str]]:
+    def usual_check(self, message: Message, leaf: Leaf) -> Optional[tuple[str, str, str]]:
         """number_check of a number checked by that test alone (then converted): consecutive
         such fields share one test (MessageCode.encode_usual); None for any other field."""
         f = leaf.field
@@ -307,18 +312,18 @@ class PythonView:
             return None
         return self.number_check(message, leaf) if self.usual_spec(leaf) is not None else None
 
-    def number_check(self, message: Message, leaf: Leaf) -> tuple[str, str]:
+    def number_check(self, message: Message, leaf: Leaf) -> tuple[str, str, str]:
         """The test that a number's usual values pass (an integer of its class and in range, a
-        float of its class within its width's limits; NaN fails it too) and the call that raises
-        the error saying what is wrong with any other value."""
+        float of its class within its width's limits; NaN fails it too), and the helper and its
+        arguments that raise the error saying what is wrong with any other value."""
         v, where, spec = leaf.var, f"{message.name!r}, {named(leaf.path)}", self.usual_spec(leaf)
         if spec[0] == "int":
             _, _, lo, hi, number, *_ = spec
             return (f"{v}.__class__ is not {'float' if number else 'int'} or not {lit(lo)} <= {v} <= {lit(hi)}",
-                    f"_int_fault({where}, {v}, {', '.join(map(lit, spec[2:]))})")
+                    "_int_fault", f"{where}, {v}, {', '.join(map(lit, spec[2:]))}")
         limit = "3.4028234663852886e38" if spec[2] else "1.7976931348623157e308"
         return (f"{v}.__class__ is not float or not -{limit} <= {v} <= {limit}",
-                f"_float_fault({where}, {v}, {spec[2]})")
+                "_float_fault", f"{where}, {v}, {spec[2]}")
 
     def usual_spec(self, leaf: Leaf) -> Optional[tuple]:
         """What _faults needs to say what is wrong with a number that failed its usual test:
@@ -333,14 +338,14 @@ class PythonView:
             return ("float", leaf.path[-1], f.bits == 32)
         return None
 
-    @staticmethod
-    def int_raw(f: Field, v: str) -> str:
+    def int_raw(self, f: Field, v: str) -> str:
         """The raw wire integer of the checked logical value in `v`."""
         expr = v
         if f.offset:
             expr = f"({v} - {lit(f.offset)})"
         if f.scale is not None and f.bits >= 53:
             expr = f"_half_up({expr} / {lit(f.scale)})"
+            self.calls.use("_half_up")
         elif f.scale is not None:
             expr = f"_floor({expr} / {lit(f.scale)} + 0.5)"
         elif f.offset and not float(f.offset).is_integer():
@@ -449,6 +454,7 @@ class PythonView:
                 c(f"    raise _dec({at}, 'exactly_one', 'exactly one bit set', {off}, {f.rule!r})")
             if f.exactly_one or self.all_flag_values(f.flags):  # every value it can take is in the table
                 return f"_FLAGS_{f.flags.name}[{var}]"
+            self.calls.use("_flag")
             return f"_FLAGS_{f.flags.name}.get({var}) or _flag({self.enum_class(f.flags.name)}, _FLAGS_{f.flags.name}, {var})"
         elif f.one_hot:
             lo, hi = f.range or (0, f.bits - 1)
@@ -541,16 +547,6 @@ class PythonView:
         return " / ".join([message.en] + [t for _, t in message.translations])
 
 
-_CONSTANT = re.compile(r"^ +(r_\w+) = -?\d+\n", re.M)
-def unread_constants_dropped(function: str) -> str:
-    """A function without the constants it assigns and never reads (a field's fixed
-    value that was written into the packing as a literal)."""
-    for match in reversed(list(_CONSTANT.finditer(function))):
-        if len(re.findall(rf"\b{match.group(1)}\b", function)) == 1:
-            function = function[:match.start()] + function[match.end():]
-    return function
-
-
 class GuardedRun:
     """Consecutive leaves under one guard (an element of a counted array, a conditional field)
     share one `if`, and its `else` sets the raw values of those a frame leaves out."""
@@ -617,6 +613,13 @@ class MessageCode:
         # leaf var → (struct item, its expected bytes, the int.from_bytes call): a constant unpacked
         # as bytes is compared as bytes, and read as a number only for its error
         self.const_items: dict[str, tuple[str, bytes, str]] = {}
+        # while an encoder is written: leaf var → the raw value the schema fixes (a constant,
+        # reserved bits, a length; a checksum until it is computed), written where it is read
+        self.fixed: dict[str, Any] = {}
+
+    def raw(self, leaf: Leaf) -> str:
+        """A leaf's raw value as the encoder reads it: its literal when fixed, else its local."""
+        return lit(self.fixed[leaf.var]) if leaf.var in self.fixed else leaf.var
 
     def only_checked(self, leaf: Leaf) -> bool:
         """Whether the decoder uses a leaf's raw value for its constant check alone: no other
@@ -643,6 +646,7 @@ class MessageCode:
         """Check the object `m` and set every leaf's raw wire value (leaf.var).
         word: the caller packs one integer and computes parity bits from it."""
         self.view.rule_checks(c, self.m, "m", "_enc")
+        self.fixed = {}
         groups: set[tuple] = set()
         run = GuardedRun(c)  # the leaves of one element (or conditional field) share one `if`
         element: Optional[ElementHelper] = None  # an element of a counted array of groups, checked apart
@@ -662,8 +666,8 @@ class MessageCode:
                     ints.append(leaf)
                     continue
                 if leaf.field.checksum or self.view.fixed_raw(leaf.field) is not None:
-                    run.close()  # a fixed value has nothing to check: the numbers around it stay one run
-                    self.view.encode_leaf(c, self.m, leaf)
+                    # nothing to check, and no local: the numbers around it stay one run
+                    self.fixed[leaf.var] = self.view.fixed_raw(leaf.field) or 0
                     continue
             self.encode_usual(c, ints)
             if element is not None and element.path != of:
@@ -732,6 +736,7 @@ class MessageCode:
             cs = leaf.field.checksum
             if cs and cs.over != "bytes" and not (word and cs.algorithm == "parity"):
                 c(f"{leaf.var} = {self.field_checksum(leaf)}")
+                self.fixed.pop(leaf.var, None)  # read from its local from here on
 
     def encode_usual(self, c: Code, ints: list[Leaf]) -> None:
         """Read, check and convert numbers that follow one another (and empty the list): one
@@ -746,7 +751,8 @@ class MessageCode:
             checks = [view.usual_check(self.m, leaf) for leaf in ints]
             for leaf in ints:
                 c(f"{leaf.var} = m.{leaf.dotted}")
-            c("if " + " or ".join(f"({test})" for test, _ in checks) + ":")
+            c("if " + " or ".join(f"({test})" for test, *_ in checks) + ":")
+            view.calls.use("_faults")
             c(f"    _faults({self.m.name!r}, ({''.join(leaf.var + ', ' for leaf in ints)}), "
               f"{lit(tuple(view.usual_spec(leaf) for leaf in ints))})")
             for leaf in ints:
@@ -768,7 +774,7 @@ class MessageCode:
     def presence_test(self, gap, var: Optional[str] = None) -> str:
         """Whether conditional `gap` is sent, from its control field's raw value (`var`, by
         default the control's local)."""
-        cond, var = gap.presence, var or self.first_leaf(gap.control).var
+        cond, var = gap.presence, var or self.raw(self.first_leaf(gap.control))
         full = cond.mask == (1 << self.first_leaf(gap.control).bits) - 1
         value = var if full else f"{var} & {cond.mask:#x}"
         if len(cond.values) == 1:
@@ -779,7 +785,7 @@ class MessageCode:
         """Whether a multiplexed field is in the frame, from its multiplexors' raw values."""
         tests = []
         for x in mux.chain:
-            var = self.first_leaf(x.field).var
+            var = self.raw(self.first_leaf(x.field))
             one = [f"{var} == {lo}" if lo == hi and lo is not None else
                    f"{lo} <= {var} <= {hi}" if lo is not None and hi is not None else
                    f"{var} >= {lo}" if lo is not None else f"{var} <= {hi}" if hi is not None else ""
@@ -846,6 +852,8 @@ class MessageCode:
             c(f"if not isinstance({v}, (list, tuple)) or len({v}) > {count}:")
             c(f"    raise _enc({self.m.name!r}, {named(path)}, {v}, 'count', 'a list of at most {count} values')")
             return
+        if held != "typed":
+            self.view.calls.use("_absent_or_list_of" if held == "absent_ok" else "_is_list_of")
         c(f"if not _absent_or_list_of({v}, {count}):" if held == "absent_ok" else
           f"if not _is_list_of({v}, {count}):" if held == "any" else
           f"if not isinstance({v}, (list, tuple)) or len({v}) != {count}:")
@@ -858,27 +866,41 @@ class MessageCode:
         c.indent()
         c(f'"""Check a {self.m.name} and return its raw wire values, in wire order."""')
         self.raw_checks(c)
-        c(f"return ({''.join(x.var + ', ' for x in self.leaves)})")
+        c(f"return ({''.join(self.raw(x) + ', ' for x in self.leaves)})")
+        self.fixed = {}
         return c.text()
 
     def field_checksum(self, leaf: Leaf) -> str:
         """Expression of a checksum over the raw values of every other field."""
         cs = leaf.field.checksum
-        terms = [self.unsigned(x) for x in self.leaves if x is not leaf]
-        if cs.algorithm == "sum":
-            return f"({' + '.join(terms)}) % {cs.modulo}"
+        others = [x for x in self.leaves if x is not leaf]
+        # the fixed raw values are folded into one number, as the packing folds them
+        known = [self.fixed[x.var] & (1 << x.field.bits) - 1 for x in others if x.var in self.fixed]
+        terms = [self.unsigned(x) for x in others if x.var not in self.fixed]
+        if cs.algorithm == "parity":
+            terms, known = [f"{t}.bit_count()" for t in terms], [k.bit_count() for k in known]
         if cs.algorithm == "xor":
-            return f"({' ^ '.join(terms)}) % {cs.modulo}"
-        flip = " ^ 1" if cs.parity == "odd" else ""
-        return f"({' + '.join(f'{t}.bit_count()' for t in terms)}) & 1{flip}"
+            folded = 0
+            for k in known:
+                folded ^= k
+            op = " ^ "
+        else:
+            folded, op = sum(known), " + "
+        if not terms:  # every value fixed: so is the checksum
+            return lit(folded % cs.modulo if cs.algorithm != "parity" else folded & 1 ^ (cs.parity == "odd"))
+        tail = f"{op}{folded}" if folded else ""
+        if cs.algorithm == "parity":
+            return f"({op.join(terms)}{tail}) & 1{' ^ 1' if cs.parity == 'odd' else ''}"
+        return f"({op.join(terms)}{tail}) % {cs.modulo}"
 
-    @staticmethod
-    def unsigned(leaf: Leaf) -> str:
+    def unsigned(self, leaf: Leaf) -> str:
         if leaf.field.kind == "int":
+            if leaf.var in self.fixed:
+                return lit(self.fixed[leaf.var] & (1 << leaf.field.bits) - 1)
             return f"({leaf.var} & {(1 << leaf.field.bits) - 1:#x})"
         if leaf.field.kind == "float":  # a float among bit fields (placed by start bit): its IEEE 754 bits
-            return f"_bits_of_float({leaf.var}, {leaf.field.bits})"
-        return leaf.var
+            return f"_bits_of_float({self.raw(leaf)}, {leaf.field.bits})"
+        return self.raw(leaf)
 
     def build_checks(self, c: Code, bounded: bool, text_form: bool, word: bool = False) -> None:
         """Check the raw values (leaf.var) and build the object `o`.
@@ -910,6 +932,7 @@ class MessageCode:
             c.lines.extend("    " * c.depth + line for line in checks.lines)
             if kept:
                 c(f"v_{leaf.var[2:]} = _sent({expr})")
+                self.view.calls.use("_sent")
                 run.unsent(f"v_{leaf.var[2:]}", "_ABSENT")
                 expr = f"v_{leaf.var[2:]}"
             if expr is not None:
@@ -1029,11 +1052,9 @@ class MessageCode:
     def encode_bytes_function(self) -> str:
         """_encode_<msg>(m), after the functions that check its elements apart (if any)."""
         self.helpers = []
-        code = self.encode_bytes_body()
+        code = self.encode_bytes_code()
+        self.fixed = {}  # the decoder reads every raw value from its local
         return "\n\n\n".join(self.helpers + [code])
-
-    def encode_bytes_body(self) -> str:
-        return unread_constants_dropped(self.encode_bytes_code())
 
     def encode_bytes_code(self) -> str:
         c = Code()
@@ -1180,6 +1201,8 @@ class MessageCode:
             if not leaf.field.bits:
                 continue
             value = self.view.fixed_raw(leaf.field)
+            if value is None:
+                value = self.fixed.get(leaf.var)  # a checksum not yet computed: zero
             if value is not None:
                 fixed |= (value & ((1 << leaf.field.bits) - 1)) << shift
             else:
@@ -1194,6 +1217,8 @@ class MessageCode:
         if chunk.lone:
             leaf = chunk.leaves[0][0]
             fixed = self.view.fixed_raw(leaf.field)
+            if fixed is None:
+                fixed = self.fixed.get(leaf.var)  # a checksum not yet computed: zero
             if fixed is not None and chunk.code not in ("s", "f", "d") and not chunk.code.endswith("s"):
                 return lit(fixed)
             if chunk.code == "s":
@@ -1201,7 +1226,7 @@ class MessageCode:
                 if fixed is not None:  # its bytes, written out
                     return repr((fixed % (1 << (8 * chunk.nbytes))).to_bytes(chunk.nbytes, order))
                 return f"{leaf.var}.to_bytes({chunk.nbytes}, {order!r}{', signed=True' if chunk.signed else ''})"
-            return leaf.var
+            return self.raw(leaf)
         expr = self.packed(chunk.leaves)
         if chunk.other:  # the fields in the other byte order, as the chunk's integer holds their bytes
             flipped = f"({self.packed(chunk.other)}).to_bytes({chunk.nbytes}, {chunk.other_order!r})"
@@ -1472,6 +1497,7 @@ class MessageCode:
                 forbidden = "" if f.to_end else fr.separator
                 c(f"if not {'_REST_OK' if f.to_end else '_TEXT_OK'}.fullmatch({v}):  # else look closer")
                 c(f"    bad = _text_problem({v}, {forbidden!r}, {fr.trim})")
+                self.view.calls.use("_text_problem")
                 c("    if bad:")
                 c(f"        raise _enc({where}, {v}, 'text', bad, {f.rule!r})")
                 if f.max_length is not None:
@@ -1630,11 +1656,13 @@ class MessageCode:
                 c(f"    raise _dec({at}, t[{n}], 'length', 'a number of at most {SPELLING_MAX} characters', {where})")
             if f.kind == "float":
                 c(f"{leaf.var} = float(t[{n}]) if ok else _parse_float({slow_tok}, {at}, {lazy})")
+                self.view.calls.use("_parse_float")
             elif f.fixed_spelling:  # any spelling, rounded to the field's decimals
                 c(f"{leaf.var} = _fixed_of(t[{n}], {f.decimals or 0}) if ok else "
                   f"_parse_fixed({slow_tok}, {f.decimals or 0}, {at}, {lazy})")
             elif f.kind in ("uint", "int") or (f.enum is not None and f.enum.kind == "int"):
                 c(f"{leaf.var} = int(t[{n}]) if ok else _parse_int({slow_tok}, {at}, {lazy})")
+                self.view.calls.use("_parse_int")
             elif f.kind == "char":
                 c(f"{leaf.var} = {tok}")
                 c(f"if len({leaf.var}) != 1:")
@@ -1645,6 +1673,7 @@ class MessageCode:
                 # what a writer may not emit, a reader does not accept either
                 c("if not ok:")
                 c(f"    bad = _text_problem({leaf.var}, {'' if f.to_end else fr.separator!r}, {fr.trim})")
+                self.view.calls.use("_text_problem")
                 c("    if bad:")
                 c(f"        raise _dec({at}, {leaf.var}, 'text', bad, {where}, {f.rule!r})")
                 if f.max_length is not None:
@@ -1708,14 +1737,14 @@ def module_view(p: Protocol) -> dict:
         if fr.text_form:
             functions += [mc.raw_function(), mc.build_function(), mc.text_form_functions()]
         structs += mc.structs()
-    return {
+    facts = {
         "p": p, "view": view, "codes": codes, "functions": functions, "structs": structs,
         "syntaxes": syntaxes, "text_classes": MessageCode.text_classes(fr) if fr.kind == "text" else {},
         "text_float": TEXT_FLOAT, "line": text_line_facts(p),
         "fixed": any(x.field.fixed_spelling for m in p.messages for x in m.wire.leaves),
         "has_gaps": any(m.shortening and m.shortening.gaps or any(f.multiplexed_by for f in m.layout)
                         for m in p.messages),
-        "classes": view.dataclasses(), "checksums": view.checksum_functions(),
+        "classes": view.dataclasses(),
         "dispatch": view.dispatch_table(), "sequences": [view.sequence_view(s) for s in p.sequences],
         "stream": view.stream_view(), "encoding": view.encoding_view(), "stuffing": stuffing_view(p),
         # frames sent otherwise than the layout describes them: encoders and decoders wrap the frame's own
@@ -1728,6 +1757,28 @@ def module_view(p: Protocol) -> dict:
         "packed_floats": any(run.kind == "packed" and any(x.field.kind == "float" for x in run.leaves)
                              for m in p.messages for run in m.wire.runs),
     }
+    for cs in facts["stuffing"].get("checksums", ()):  # computed again over a frame as sent
+        view.checksum_function(cs["cs"])
+    facts["checksums"] = view.checksum_functions()  # those called, once every caller is written
+    facts["needs"] = _template_calls(facts, view.calls).closure()
+    return facts
+
+
+def _template_calls(facts: dict, calls: Calls) -> Calls:
+    """`calls` with what the template's own parts call, under the conditions that write them."""
+    p, fr, stream = facts["p"], facts["p"].framing, facts["stream"]
+    text_form = facts["dispatch"]["kind"] == "bits" and fr.text_form  # decode_text and decode_lines
+    if fr.kind == "text" or text_form:
+        calls.use("re")
+    if text_form:
+        calls.use("_int_of", "Iterator")
+    if p.enums or p.flags:
+        calls.use("enum")
+    if facts["structs"] or facts["packed_floats"]:
+        calls.use("struct")
+    if stream and not facts["encoding"] and stream.get("by_key") and stream["by_key"].get("counted"):
+        calls.use("Literal")  # the byte order of a count field
+    return calls
 
 
 def _bit_reversed_hqx(p) -> bool:
@@ -1759,7 +1810,9 @@ def _stdlib_crc(p, name: str = "") -> Optional[tuple[str, list[str]]]:
     return None
 
 
-def _checksum_code(cs) -> str:
+def _checksum_code(cs, function: bool = True) -> str:
+    """A checksum's function over any bytes, after the tables it reads; `function` False:
+    a CRC's byte table alone, which the straight-line code of its fixed lengths reads."""
     name = _checksum_name(cs)
     c = Code()
     fast = _stdlib_crc(cs.crc, name) if cs.algorithm == "crc" else None
@@ -1780,9 +1833,11 @@ def _checksum_code(cs) -> str:
         mask = (1 << p.width) - 1
         c(f"# {p.name if p.name != 'custom' else 'CRC'}: width={p.width} poly={p.poly:#x} init={p.init:#x} "
           f"refin={p.refin} refout={p.refout} xorout={p.xorout:#x}")
+        _table_literal(c, name, p)
+        if not function:
+            return c.text()
         if p.refin:
             # Reflected algorithm: shift right with the reflected polynomial.
-            _table_literal(c, name, p)
             init = reflect(p.init, p.width)
             c(f"def _checksum_{name}(data: _Buffer) -> int:")
             c(f"    reg = {init:#x}")
@@ -1794,7 +1849,6 @@ def _checksum_code(cs) -> str:
             c(f"    return reg ^ {p.xorout:#x}")
         else:
             shift = p.width - 8
-            _table_literal(c, name, p)
             c(f"def _checksum_{name}(data: _Buffer) -> int:")
             if p.width >= 8:
                 c(f"    reg = {p.init:#x}")
@@ -2027,56 +2081,69 @@ def _fixed_span_crc_code(cs, name: str, lengths: list[int]) -> str:
 class ModuleView(PythonView):
     """The module-level parts: checksum functions, dispatch, streams, sequences."""
 
+    def __init__(self, protocol: Protocol):
+        super().__init__(protocol)
+        self.sums: dict[str, Any] = {}  # checksum name → the checksum, for each one the code calls
+        self.spans: dict[str, set[int]] = {}  # checksum name → the lengths of its straight-line calls
+
+    def checksum_function(self, cs, size: Optional[int] = None) -> str:
+        """The name of the function computing `cs` over any bytes, or over `size` bytes by
+        code written for that length; noted as called."""
+        name = _checksum_name(cs)
+        self.sums[name] = cs
+        if size is None:
+            self.calls.use(f"_checksum_{name}")
+            return f"_checksum_{name}"
+        self.spans.setdefault(name, set()).add(size)
+        if cs.crc.width < 16:  # its tables are built from the function over any bytes
+            self.calls.use(f"_checksum_{name}")
+        return f"_checksum_{name}_{size}"
 
     def checksum_functions(self) -> list[str]:
-        seen: dict[str, str] = {}
-        spans: dict[str, set[int]] = {}
-        crcs: dict[str, Any] = {}
-        for m in self.p.messages:
-            for f in m.wire.leaves:
-                cs = f.field.checksum
-                if cs and cs.over == "bytes":
-                    if _checksum_name(cs) not in seen:  # written once, however many messages use it
-                        seen[_checksum_name(cs)] = _checksum_code(cs)
-                    truncated = m.shortening and m.shortening.trailing_zeros and m.counts_sent(cs)
-                    start, end = cs.byte_span
-                    if _straight_line_crc(cs, end - start + bool(cs.extra)) and not truncated:
-                        spans.setdefault(_checksum_name(cs), set()).add(end - start + bool(cs.extra))
-                        crcs[_checksum_name(cs)] = cs
-        out = list(seen.values())
-        for name, lengths in spans.items():
-            out.append(_fixed_span_crc_code(crcs[name], name, sorted(lengths)))
+        """The code of each checksum function the module calls, in the order the messages
+        first use them."""
+        order = dict.fromkeys(_checksum_name(x.field.checksum) for m in self.p.messages for x in m.wire.leaves
+                              if x.field.checksum and x.field.checksum.over == "bytes")
+        names = [n for n in order if n in self.sums] + sorted(set(self.sums) - set(order))
+        out = []
+        for name in names:
+            cs, lengths = self.sums[name], sorted(self.spans.get(name, ()))
+            general = f"_checksum_{name}" in self.calls.names
+            pairs = bool(lengths) and cs.crc.width >= 16
+            if general or pairs and any(n % 2 for n in lengths):  # an odd byte takes the byte table
+                out.append(_checksum_code(cs, general))
+            if general and cs.algorithm == "internet" or pairs:
+                self.calls.use("struct")
+        for name in names:
+            if name in self.spans:
+                out.append(_fixed_span_crc_code(self.sums[name], name, sorted(self.spans[name])))
         return out
 
-    @staticmethod
-    def zeroed_checksum_call(cs, buf: str, at: int, cut: bool = False) -> str:
+    def zeroed_checksum_call(self, cs, buf: str, at: int, cut: bool = False) -> str:
         """The value an encoder sends for a checksum that covers itself, at byte `at`: its
         coverage computed with the field's two bytes as zeros."""
         start, end = cs.byte_span
         less = " - cut" if cut else ""
-        return (f"_checksum_{_checksum_name(cs)}(b''.join(({buf}[{start}:{at}], bytes(2), "
+        return (f"{self.checksum_function(cs)}(b''.join(({buf}[{start}:{at}], bytes(2), "
                 f"{buf}[{at + 2}:{end}{less}])))")
 
-    @staticmethod
-    def checksum_call(cs, buf: str, start: int, end: int, extra: Optional[int] = None, cut: bool = False) -> str:
+    def checksum_call(self, cs, buf: str, start: int, end: int, extra: Optional[int] = None, cut: bool = False) -> str:
         """The call that computes checksum cs over buf[start:end], then over the
         message's extra byte when the checksum takes one. `cut`: the coverage ends
         `cut` bytes early, with a payload cut short."""
-        name = _checksum_name(cs)
         # a join takes any bytes-like part, and copies once
         if cut:
             if cs.extra:
-                return f"_checksum_{name}(b''.join(({buf}[{start}:{end} - cut], {bytes([extra])!r})))"
-            return f"_checksum_{name}({buf}[{start}:{end} - cut])"
+                return f"{self.checksum_function(cs)}(b''.join(({buf}[{start}:{end} - cut], {bytes([extra])!r})))"
+            return f"{self.checksum_function(cs)}({buf}[{start}:{end} - cut])"
         if cs.extra:
             data, size = f"b''.join(({buf}[{start}:{end}], {bytes([extra])!r}))", end - start + 1
             if _straight_line_crc(cs, size):
-                return f"_checksum_{name}_{size}({data}, 0)"
-            return f"_checksum_{name}({data})"
+                return f"{self.checksum_function(cs, size)}({data}, 0)"
+            return f"{self.checksum_function(cs)}({data})"
         if _straight_line_crc(cs, end - start):  # straight-line code for this length
-            return f"_checksum_{name}_{end - start}({buf}, {start})"
-        return f"_checksum_{name}({buf}[{start}:{end}])"
-
+            return f"{self.checksum_function(cs, end - start)}({buf}, {start})"
+        return f"{self.checksum_function(cs)}({buf}[{start}:{end}])"
 
     def dispatch_table(self) -> dict:
         facts = dispatch_facts(self.p)
@@ -2103,6 +2170,7 @@ class ModuleView(PythonView):
                 classes = [self.class_name(m) for m in self.p.messages if m.direction == d.name]
                 if classes:
                     returned = f"Union[{', '.join(classes)}]" if len(classes) > 1 else classes[0]
+                    self.calls.use("overload", "Literal")
                     lines += ["@overload", f"def decode(data: _Input, direction: Literal[{d.name!r}]) -> {returned}: ...",
                               "", ""]
         if lines:

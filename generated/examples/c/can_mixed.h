@@ -172,9 +172,11 @@ static inline int can_mixed_example_message_encode(const can_mixed_example_messa
     cw_put_be32(buf + 0, (uint32_t)r[0]);
     buf[4] = (uint8_t)r[1];
     memset(buf + 5, 0, 8u);
-    cw_put_bits(buf + 5, 7u, 12u, r[2]);
-    cw_put_bits(buf + 5, 1u, 6u, r[3]);
-    cw_put_bits(buf + 5, 0u, 1u, r[4]);
+    buf[5] = (uint8_t)(buf[5] | (uint8_t)((unsigned)r[2] >> 11));
+    buf[6] = (uint8_t)(buf[6] | (uint8_t)((unsigned)r[2] >> 3));
+    buf[7] = (uint8_t)(buf[7] | (uint8_t)((unsigned)r[2] << 5));
+    buf[5] = (uint8_t)(buf[5] | (uint8_t)((unsigned)r[3] << 1));
+    buf[5] = (uint8_t)(buf[5] | (uint8_t)((unsigned)r[4] << 7));
     return 13;
 }
 
@@ -202,9 +204,9 @@ static inline int can_mixed_example_message_decode(const uint8_t *buf, size_t le
     }
     r[0] = (uint32_t)cw_get_be32(buf + 0);
     r[1] = (uint32_t)buf[4];
-    r[2] = (uint32_t)cw_get_bits(buf + 5, 7u, 12u);
-    r[3] = (uint32_t)cw_get_bits(buf + 5, 1u, 6u);
-    r[4] = (uint32_t)cw_get_bits(buf + 5, 0u, 1u);
+    r[2] = (uint32_t)((((unsigned)buf[5] << 11) | ((unsigned)buf[6] << 3) | ((unsigned)buf[7] >> 5)) & 0xfffu);
+    r[3] = (uint32_t)(((unsigned)buf[5] >> 1) & 63u);
+    r[4] = (uint32_t)(((unsigned)buf[5] >> 7) & 1u);
     return can_mixed_example_message_check_raw(r, buf, m, false);
 }
 
@@ -292,10 +294,16 @@ static inline int can_mixed_wheel_speeds_encode(const can_mixed_wheel_speeds_t *
     cw_put_be32(buf + 0, (uint32_t)r[0]);
     buf[4] = (uint8_t)r[1];
     memset(buf + 5, 0, 8u);
-    cw_put_bits_lsb(buf + 5, 0u, 14u, r[2]);
-    cw_put_bits_lsb(buf + 6, 6u, 14u, r[3]);
-    cw_put_bits_lsb(buf + 8, 4u, 14u, r[4]);
-    cw_put_bits_lsb(buf + 10, 2u, 14u, r[5]);
+    buf[5] = (uint8_t)(buf[5] | (uint8_t)r[2]);
+    buf[6] = (uint8_t)(buf[6] | (uint8_t)((unsigned)r[2] >> 8));
+    buf[6] = (uint8_t)(buf[6] | (uint8_t)((unsigned)r[3] << 6));
+    buf[7] = (uint8_t)(buf[7] | (uint8_t)((unsigned)r[3] >> 2));
+    buf[8] = (uint8_t)(buf[8] | (uint8_t)((unsigned)r[3] >> 10));
+    buf[8] = (uint8_t)(buf[8] | (uint8_t)((unsigned)r[4] << 4));
+    buf[9] = (uint8_t)(buf[9] | (uint8_t)((unsigned)r[4] >> 4));
+    buf[10] = (uint8_t)(buf[10] | (uint8_t)((unsigned)r[4] >> 12));
+    buf[10] = (uint8_t)(buf[10] | (uint8_t)((unsigned)r[5] << 2));
+    buf[11] = (uint8_t)(buf[11] | (uint8_t)((unsigned)r[5] >> 6));
     return 13;
 }
 
@@ -324,10 +332,10 @@ static inline int can_mixed_wheel_speeds_decode(const uint8_t *buf, size_t len, 
     }
     r[0] = (uint32_t)cw_get_be32(buf + 0);
     r[1] = (uint32_t)buf[4];
-    r[2] = (uint32_t)cw_get_bits_lsb(buf + 5, 0u, 14u);
-    r[3] = (uint32_t)cw_get_bits_lsb(buf + 6, 6u, 14u);
-    r[4] = (uint32_t)cw_get_bits_lsb(buf + 8, 4u, 14u);
-    r[5] = (uint32_t)cw_get_bits_lsb(buf + 10, 2u, 14u);
+    r[2] = (uint32_t)(((unsigned)buf[5] | ((unsigned)buf[6] << 8)) & 0x3fffu);
+    r[3] = (uint32_t)((((unsigned)buf[6] >> 6) | ((unsigned)buf[7] << 2) | ((unsigned)buf[8] << 10)) & 0x3fffu);
+    r[4] = (uint32_t)((((unsigned)buf[8] >> 4) | ((unsigned)buf[9] << 4) | ((unsigned)buf[10] << 12)) & 0x3fffu);
+    r[5] = (uint32_t)((((unsigned)buf[10] >> 2) | ((unsigned)buf[11] << 6)) & 0x3fffu);
     return can_mixed_wheel_speeds_check_raw(r, buf, m, false);
 }
 
@@ -459,11 +467,14 @@ static inline int can_mixed_steering_encode(const can_mixed_steering_t *m, uint8
     cw_put_be32(buf + 0, (uint32_t)r[0]);
     buf[4] = (uint8_t)r[1];
     memset(buf + 5, 0, 8u);
-    cw_put_bits_lsb(buf + 5, 3u, 12u, r[2]);
-    cw_put_bits(buf + 7, 0u, 16u, r[3]);
-    cw_put_bits(buf + 10, 0u, 10u, r[4]);
-    cw_put_bits_lsb(buf + 12, 0u, 4u, r[5]);
-    cw_put_bits_lsb(buf + 12, 4u, 1u, r[6]);
+    buf[5] = (uint8_t)(buf[5] | (uint8_t)((unsigned)r[2] << 3));
+    buf[6] = (uint8_t)(buf[6] | (uint8_t)((unsigned)r[2] >> 5));
+    buf[7] = (uint8_t)(buf[7] | (uint8_t)((unsigned)r[3] >> 8));
+    buf[8] = (uint8_t)(buf[8] | (uint8_t)r[3]);
+    buf[10] = (uint8_t)(buf[10] | (uint8_t)((unsigned)r[4] >> 2));
+    buf[11] = (uint8_t)(buf[11] | (uint8_t)((unsigned)r[4] << 6));
+    buf[12] = (uint8_t)(buf[12] | (uint8_t)r[5]);
+    buf[12] = (uint8_t)(buf[12] | (uint8_t)((unsigned)r[6] << 4));
     return 13;
 }
 
@@ -493,11 +504,11 @@ static inline int can_mixed_steering_decode(const uint8_t *buf, size_t len, can_
     }
     r[0] = (uint32_t)cw_get_be32(buf + 0);
     r[1] = (uint32_t)buf[4];
-    r[2] = (uint32_t)cw_get_bits_lsb(buf + 5, 3u, 12u);
-    r[3] = (uint32_t)cw_get_bits(buf + 7, 0u, 16u);
-    r[4] = (uint32_t)cw_get_bits(buf + 10, 0u, 10u);
-    r[5] = (uint32_t)cw_get_bits_lsb(buf + 12, 0u, 4u);
-    r[6] = (uint32_t)cw_get_bits_lsb(buf + 12, 4u, 1u);
+    r[2] = (uint32_t)((((unsigned)buf[5] >> 3) | ((unsigned)buf[6] << 5)) & 0xfffu);
+    r[3] = (uint32_t)(((unsigned)buf[7] << 8) | (unsigned)buf[8]);
+    r[4] = (uint32_t)((((unsigned)buf[10] << 2) | ((unsigned)buf[11] >> 6)) & 0x3ffu);
+    r[5] = (uint32_t)((unsigned)buf[12] & 15u);
+    r[6] = (uint32_t)(((unsigned)buf[12] >> 4) & 1u);
     return can_mixed_steering_check_raw(r, buf, m, false);
 }
 
@@ -577,8 +588,8 @@ static inline int can_mixed_gear_encode(const can_mixed_gear_t *m, uint8_t *buf,
     cw_put_be32(buf + 0, (uint32_t)r[0]);
     buf[4] = (uint8_t)r[1];
     memset(buf + 5, 0, 2u);
-    cw_put_bits_lsb(buf + 5, 0u, 3u, r[2]);
-    cw_put_bits(buf + 6, 0u, 4u, r[3]);
+    buf[5] = (uint8_t)(buf[5] | (uint8_t)r[2]);
+    buf[6] = (uint8_t)(buf[6] | (uint8_t)((unsigned)r[3] << 4));
     return 7;
 }
 
@@ -605,8 +616,8 @@ static inline int can_mixed_gear_decode(const uint8_t *buf, size_t len, can_mixe
     }
     r[0] = (uint32_t)cw_get_be32(buf + 0);
     r[1] = (uint32_t)buf[4];
-    r[2] = (uint32_t)cw_get_bits_lsb(buf + 5, 0u, 3u);
-    r[3] = (uint32_t)cw_get_bits(buf + 6, 0u, 4u);
+    r[2] = (uint32_t)((unsigned)buf[5] & 7u);
+    r[3] = (uint32_t)(((unsigned)buf[6] >> 4) & 15u);
     return can_mixed_gear_check_raw(r, buf, m, false);
 }
 
@@ -724,18 +735,18 @@ static inline int can_mixed_multiplexed_encode(const can_mixed_multiplexed_t *m,
     cw_put_be32(buf + 0, (uint32_t)r[0]);
     buf[4] = (uint8_t)r[1];
     memset(buf + 5, 0, 8u);
-    cw_put_bits_lsb(buf + 5, 2u, 6u, r[2]);
-    cw_put_bits_lsb(buf + 7, 2u, 1u, r[3]);
-    cw_put_bits_lsb(buf + 7, 3u, 1u, r[4]);
-    cw_put_bits_lsb(buf + 7, 7u, 1u, r[5]);
-    cw_put_bits_lsb(buf + 8, 0u, 1u, r[6]);
-    cw_put_bits_lsb(buf + 8, 2u, 1u, r[7]);
-    cw_put_bits_lsb(buf + 8, 4u, 1u, r[8]);
-    cw_put_bits_lsb(buf + 8, 5u, 1u, r[9]);
-    cw_put_bits_lsb(buf + 9, 0u, 1u, r[10]);
-    cw_put_bits_lsb(buf + 9, 1u, 1u, r[11]);
-    cw_put_bits_lsb(buf + 9, 6u, 1u, r[12]);
-    cw_put_bits_lsb(buf + 9, 7u, 1u, r[13]);
+    buf[5] = (uint8_t)(buf[5] | (uint8_t)((unsigned)r[2] << 2));
+    buf[7] = (uint8_t)(buf[7] | (uint8_t)((unsigned)r[3] << 2));
+    buf[7] = (uint8_t)(buf[7] | (uint8_t)((unsigned)r[4] << 3));
+    buf[7] = (uint8_t)(buf[7] | (uint8_t)((unsigned)r[5] << 7));
+    buf[8] = (uint8_t)(buf[8] | (uint8_t)r[6]);
+    buf[8] = (uint8_t)(buf[8] | (uint8_t)((unsigned)r[7] << 2));
+    buf[8] = (uint8_t)(buf[8] | (uint8_t)((unsigned)r[8] << 4));
+    buf[8] = (uint8_t)(buf[8] | (uint8_t)((unsigned)r[9] << 5));
+    buf[9] = (uint8_t)(buf[9] | (uint8_t)r[10]);
+    buf[9] = (uint8_t)(buf[9] | (uint8_t)((unsigned)r[11] << 1));
+    buf[9] = (uint8_t)(buf[9] | (uint8_t)((unsigned)r[12] << 6));
+    buf[9] = (uint8_t)(buf[9] | (uint8_t)((unsigned)r[13] << 7));
     return 13;
 }
 
@@ -816,18 +827,18 @@ static inline int can_mixed_multiplexed_decode(const uint8_t *buf, size_t len, c
     }
     r[0] = (uint32_t)cw_get_be32(buf + 0);
     r[1] = (uint32_t)buf[4];
-    r[2] = (uint32_t)cw_get_bits_lsb(buf + 5, 2u, 6u);
-    r[3] = (uint32_t)cw_get_bits_lsb(buf + 7, 2u, 1u);
-    r[4] = (uint32_t)cw_get_bits_lsb(buf + 7, 3u, 1u);
-    r[5] = (uint32_t)cw_get_bits_lsb(buf + 7, 7u, 1u);
-    r[6] = (uint32_t)cw_get_bits_lsb(buf + 8, 0u, 1u);
-    r[7] = (uint32_t)cw_get_bits_lsb(buf + 8, 2u, 1u);
-    r[8] = (uint32_t)cw_get_bits_lsb(buf + 8, 4u, 1u);
-    r[9] = (uint32_t)cw_get_bits_lsb(buf + 8, 5u, 1u);
-    r[10] = (uint32_t)cw_get_bits_lsb(buf + 9, 0u, 1u);
-    r[11] = (uint32_t)cw_get_bits_lsb(buf + 9, 1u, 1u);
-    r[12] = (uint32_t)cw_get_bits_lsb(buf + 9, 6u, 1u);
-    r[13] = (uint32_t)cw_get_bits_lsb(buf + 9, 7u, 1u);
+    r[2] = (uint32_t)(((unsigned)buf[5] >> 2) & 63u);
+    r[3] = (uint32_t)(((unsigned)buf[7] >> 2) & 1u);
+    r[4] = (uint32_t)(((unsigned)buf[7] >> 3) & 1u);
+    r[5] = (uint32_t)(((unsigned)buf[7] >> 7) & 1u);
+    r[6] = (uint32_t)((unsigned)buf[8] & 1u);
+    r[7] = (uint32_t)(((unsigned)buf[8] >> 2) & 1u);
+    r[8] = (uint32_t)(((unsigned)buf[8] >> 4) & 1u);
+    r[9] = (uint32_t)(((unsigned)buf[8] >> 5) & 1u);
+    r[10] = (uint32_t)((unsigned)buf[9] & 1u);
+    r[11] = (uint32_t)(((unsigned)buf[9] >> 1) & 1u);
+    r[12] = (uint32_t)(((unsigned)buf[9] >> 6) & 1u);
+    r[13] = (uint32_t)(((unsigned)buf[9] >> 7) & 1u);
     return can_mixed_multiplexed_check_raw(r, buf, m, false);
 }
 
@@ -905,15 +916,23 @@ static inline int can_mixed_extended_encode(const can_mixed_extended_t *m, uint8
     cw_put_be32(buf + 0, (uint32_t)r[0]);
     buf[4] = (uint8_t)r[1];
     memset(buf + 5, 0, 8u);
-    cw_put_bits_lsb(buf + 5, 0u, 4u, r[2]);
-    cw_put_bits_lsb(buf + 5, 4u, 4u, r[3]);
-    cw_put_bits_lsb(buf + 6, 0u, 8u, r[4]);
-    cw_put_bits_lsb(buf + 7, 0u, 16u, r[5]);
-    cw_put_bits_lsb(buf + 6, 0u, 24u, r[6]);
-    cw_put_bits_lsb(buf + 5, 4u, 28u, r[7]);
-    cw_put_bits_lsb(buf + 9, 0u, 8u, r[8]);
-    cw_put_bits_lsb(buf + 10, 0u, 24u, r[9]);
-    cw_put_bits_lsb(buf + 10, 0u, 8u, r[10]);
+    buf[5] = (uint8_t)(buf[5] | (uint8_t)r[2]);
+    buf[5] = (uint8_t)(buf[5] | (uint8_t)((unsigned)r[3] << 4));
+    buf[6] = (uint8_t)(buf[6] | (uint8_t)r[4]);
+    buf[7] = (uint8_t)(buf[7] | (uint8_t)r[5]);
+    buf[8] = (uint8_t)(buf[8] | (uint8_t)((unsigned)r[5] >> 8));
+    buf[6] = (uint8_t)(buf[6] | (uint8_t)r[6]);
+    buf[7] = (uint8_t)(buf[7] | (uint8_t)(r[6] >> 8));
+    buf[8] = (uint8_t)(buf[8] | (uint8_t)(r[6] >> 16));
+    buf[5] = (uint8_t)(buf[5] | (uint8_t)(r[7] << 4));
+    buf[6] = (uint8_t)(buf[6] | (uint8_t)(r[7] >> 4));
+    buf[7] = (uint8_t)(buf[7] | (uint8_t)(r[7] >> 12));
+    buf[8] = (uint8_t)(buf[8] | (uint8_t)(r[7] >> 20));
+    buf[9] = (uint8_t)(buf[9] | (uint8_t)r[8]);
+    buf[10] = (uint8_t)(buf[10] | (uint8_t)r[9]);
+    buf[11] = (uint8_t)(buf[11] | (uint8_t)(r[9] >> 8));
+    buf[12] = (uint8_t)(buf[12] | (uint8_t)(r[9] >> 16));
+    buf[10] = (uint8_t)(buf[10] | (uint8_t)r[10]);
     return 13;
 }
 
@@ -975,15 +994,15 @@ static inline int can_mixed_extended_decode(const uint8_t *buf, size_t len, can_
     }
     r[0] = (uint32_t)cw_get_be32(buf + 0);
     r[1] = (uint32_t)buf[4];
-    r[2] = (uint32_t)cw_get_bits_lsb(buf + 5, 0u, 4u);
-    r[3] = (uint32_t)cw_get_bits_lsb(buf + 5, 4u, 4u);
-    r[4] = (uint32_t)cw_get_bits_lsb(buf + 6, 0u, 8u);
-    r[5] = (uint32_t)cw_get_bits_lsb(buf + 7, 0u, 16u);
-    r[6] = (uint32_t)cw_get_bits_lsb(buf + 6, 0u, 24u);
-    r[7] = (uint32_t)cw_get_bits_lsb(buf + 5, 4u, 28u);
-    r[8] = (uint32_t)cw_get_bits_lsb(buf + 9, 0u, 8u);
-    r[9] = (uint32_t)cw_get_bits_lsb(buf + 10, 0u, 24u);
-    r[10] = (uint32_t)cw_get_bits_lsb(buf + 10, 0u, 8u);
+    r[2] = (uint32_t)((unsigned)buf[5] & 15u);
+    r[3] = (uint32_t)(((unsigned)buf[5] >> 4) & 15u);
+    r[4] = (uint32_t)(unsigned)buf[6];
+    r[5] = (uint32_t)((unsigned)buf[7] | ((unsigned)buf[8] << 8));
+    r[6] = ((uint32_t)buf[6] | ((uint32_t)buf[7] << 8) | ((uint32_t)buf[8] << 16));
+    r[7] = ((((uint32_t)buf[5] >> 4) | ((uint32_t)buf[6] << 4) | ((uint32_t)buf[7] << 12) | ((uint32_t)buf[8] << 20)) & 0xfffffffUL);
+    r[8] = (uint32_t)(unsigned)buf[9];
+    r[9] = ((uint32_t)buf[10] | ((uint32_t)buf[11] << 8) | ((uint32_t)buf[12] << 16));
+    r[10] = (uint32_t)(unsigned)buf[10];
     return can_mixed_extended_check_raw(r, buf, m, false);
 }
 
@@ -1026,9 +1045,9 @@ static inline int can_mixed_shared_encode(const can_mixed_shared_t *m, uint8_t *
     cw_put_be32(buf + 0, (uint32_t)r[0]);
     buf[4] = (uint8_t)r[1];
     memset(buf + 5, 0, 8u);
-    cw_put_bits_lsb(buf + 5, 0u, 4u, r[2]);
-    cw_put_bits_lsb(buf + 5, 4u, 4u, r[3]);
-    cw_put_bits_lsb(buf + 6, 0u, 8u, r[4]);
+    buf[5] = (uint8_t)(buf[5] | (uint8_t)r[2]);
+    buf[5] = (uint8_t)(buf[5] | (uint8_t)((unsigned)r[3] << 4));
+    buf[6] = (uint8_t)(buf[6] | (uint8_t)r[4]);
     return 13;
 }
 
@@ -1064,9 +1083,9 @@ static inline int can_mixed_shared_decode(const uint8_t *buf, size_t len, can_mi
     }
     r[0] = (uint32_t)cw_get_be32(buf + 0);
     r[1] = (uint32_t)buf[4];
-    r[2] = (uint32_t)cw_get_bits_lsb(buf + 5, 0u, 4u);
-    r[3] = (uint32_t)cw_get_bits_lsb(buf + 5, 4u, 4u);
-    r[4] = (uint32_t)cw_get_bits_lsb(buf + 6, 0u, 8u);
+    r[2] = (uint32_t)((unsigned)buf[5] & 15u);
+    r[3] = (uint32_t)(((unsigned)buf[5] >> 4) & 15u);
+    r[4] = (uint32_t)(unsigned)buf[6];
     return can_mixed_shared_check_raw(r, buf, m, false);
 }
 
@@ -1098,9 +1117,13 @@ static inline int can_mixed_imu_rates_encode(const can_mixed_imu_rates_t *m, uin
     cw_put_be32(buf + 0, (uint32_t)r[0]);
     buf[4] = (uint8_t)r[1];
     memset(buf + 5, 0, 8u);
-    cw_put_bits_lsb(buf + 5, 0u, 32u, r[2]);
-    cw_put_bits_lsb(buf + 9, 0u, 16u, r[3]);
-    cw_put_bits(buf + 11, 0u, 8u, r[4]);
+    buf[5] = (uint8_t)(buf[5] | (uint8_t)r[2]);
+    buf[6] = (uint8_t)(buf[6] | (uint8_t)(r[2] >> 8));
+    buf[7] = (uint8_t)(buf[7] | (uint8_t)(r[2] >> 16));
+    buf[8] = (uint8_t)(buf[8] | (uint8_t)(r[2] >> 24));
+    buf[9] = (uint8_t)(buf[9] | (uint8_t)r[3]);
+    buf[10] = (uint8_t)(buf[10] | (uint8_t)((unsigned)r[3] >> 8));
+    buf[11] = (uint8_t)(buf[11] | (uint8_t)r[4]);
     return 13;
 }
 
@@ -1131,9 +1154,9 @@ static inline int can_mixed_imu_rates_decode(const uint8_t *buf, size_t len, can
     }
     r[0] = (uint32_t)cw_get_be32(buf + 0);
     r[1] = (uint32_t)buf[4];
-    r[2] = (uint32_t)cw_get_bits_lsb(buf + 5, 0u, 32u);
-    r[3] = (uint32_t)cw_get_bits_lsb(buf + 9, 0u, 16u);
-    r[4] = (uint32_t)cw_get_bits(buf + 11, 0u, 8u);
+    r[2] = ((uint32_t)buf[5] | ((uint32_t)buf[6] << 8) | ((uint32_t)buf[7] << 16) | ((uint32_t)buf[8] << 24));
+    r[3] = (uint32_t)((unsigned)buf[9] | ((unsigned)buf[10] << 8));
+    r[4] = (uint32_t)(unsigned)buf[11];
     return can_mixed_imu_rates_check_raw(r, buf, m, false);
 }
 

@@ -7,12 +7,10 @@
 """CAN messages mixing Motorola and Intel signals: codec generated from the can_mixed schema."""
 from __future__ import annotations
 
-
 import importlib.machinery
 import importlib.util
 import math
 import os
-
 import struct
 from typing import Any, Callable, ClassVar, Optional, TypeVar, Union, cast
 

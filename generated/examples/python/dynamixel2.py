@@ -7,12 +7,10 @@
 """ROBOTIS DYNAMIXEL Protocol 2.0 (excerpt): codec generated from the dynamixel2 schema."""
 from __future__ import annotations
 
-
 import importlib.machinery
 import importlib.util
 import math
 import os
-
 import struct
 from typing import Any, Callable, ClassVar, Optional, TypeVar, Union, cast
 
@@ -480,12 +478,6 @@ def _checksum_crc16_8005_0_nn_0_12(data: _Buffer, start: int) -> int:
     return r
 
 
-_WORDS_crc16_8005_0_nn_0_73 = struct.Struct('>36HB')
-
-
-_WORDS_crc16_8005_0_nn_0_74 = struct.Struct('>37H')
-
-
 def _as_input(data: object) -> _Buffer:
     if not isinstance(data, (bytes, bytearray, memoryview)):
         raise _dec(None, None, type(data).__name__, 'type', 'bytes')
@@ -656,9 +648,8 @@ def _encode_write(m: Write) -> bytes:
     if not isinstance(r_data, (bytes, bytearray)) or len(r_data) > 64:
         raise _enc('write', 'data', r_data, 'length', 'bytes of length 0..64')
     r_data = bytes(r_data).ljust(64, b'\0')
-    r_crc = 0
     b = bytearray(76)
-    _S_write_0.pack_into(b, 0, 255, 255, 253, 0, r_id, 69, 3, r_address, r_data, r_crc)
+    _S_write_0.pack_into(b, 0, 255, 255, 253, 0, r_id, 69, 3, r_address, r_data, 0)
     lost0 = 64 - len(m.data)
     del b[74 - lost0:74]
     cut = lost0
@@ -714,9 +705,8 @@ def _encode_status(m: Status) -> bytes:
     if not isinstance(r_params, (bytes, bytearray)) or len(r_params) > 64:
         raise _enc('status', 'params', r_params, 'length', 'bytes of length 0..64')
     r_params = bytes(r_params).ljust(64, b'\0')
-    r_crc = 0
     b = bytearray(75)
-    _S_status_0.pack_into(b, 0, 255, 255, 253, 0, r_id, 68, 85, r_error, r_params, r_crc)
+    _S_status_0.pack_into(b, 0, 255, 255, 253, 0, r_id, 68, 85, r_error, r_params, 0)
     lost0 = 64 - len(m.params)
     del b[73 - lost0:73]
     cut = lost0

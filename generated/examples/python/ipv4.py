@@ -7,12 +7,10 @@
 """IPv4 with ICMP echo and UDP (excerpt): codec generated from the ipv4 schema."""
 from __future__ import annotations
 
-
 import importlib.machinery
 import importlib.util
 import math
 import os
-
 import struct
 from typing import Any, Callable, ClassVar, Optional, TypeVar, Union, cast
 
@@ -365,8 +363,6 @@ def _as_input(data: object) -> _Buffer:
 
 
 def _encode_icmp_echo_request(m: IcmpEchoRequest) -> bytes:
-    r_header_checksum = 0
-    r_icmp_checksum = 0
     r_dscp = m.dscp
     r_ecn = m.ecn
     r_identification = m.identification
@@ -384,7 +380,7 @@ def _encode_icmp_echo_request(m: IcmpEchoRequest) -> bytes:
         raise _enc('icmp_echo_request', 'data', r_data, 'length', 'bytes of length 0..64')
     r_data = bytes(r_data).ljust(64, b'\0')
     b = bytearray(92)
-    _S_icmp_echo_request_0.pack_into(b, 0, 0x45, r_dscp << 2 | r_ecn, 92, r_identification, r_flags << 13 | r_fragment_offset, r_ttl, 1, r_header_checksum, r_src, r_dst, 8, 0, r_icmp_checksum, r_identifier, r_sequence, r_data)
+    _S_icmp_echo_request_0.pack_into(b, 0, 0x45, r_dscp << 2 | r_ecn, 92, r_identification, r_flags << 13 | r_fragment_offset, r_ttl, 1, 0, r_src, r_dst, 8, 0, 0, r_identifier, r_sequence, r_data)
     lost0 = 64 - len(m.data)
     del b[92 - lost0:92]
     cut = lost0
@@ -450,7 +446,6 @@ def _decode_icmp_echo_request(d: _Buffer) -> IcmpEchoRequest:
 
 
 def _encode_udp(m: Udp) -> bytes:
-    r_header_checksum = 0
     r_dscp = m.dscp
     r_ecn = m.ecn
     r_identification = m.identification
@@ -470,7 +465,7 @@ def _encode_udp(m: Udp) -> bytes:
         raise _enc('udp', 'data', r_data, 'length', 'bytes of length 0..128')
     r_data = bytes(r_data).ljust(128, b'\0')
     b = bytearray(156)
-    _S_udp_0.pack_into(b, 0, 0x45, r_dscp << 2 | r_ecn, 156, r_identification, r_flags << 13 | r_fragment_offset, r_ttl, 17, r_header_checksum, r_src, r_dst, r_src_port, r_dst_port, r_length, r_udp_checksum, r_data)
+    _S_udp_0.pack_into(b, 0, 0x45, r_dscp << 2 | r_ecn, 156, r_identification, r_flags << 13 | r_fragment_offset, r_ttl, 17, 0, r_src, r_dst, r_src_port, r_dst_port, r_length, r_udp_checksum, r_data)
     lost0 = 128 - len(m.data)
     del b[156 - lost0:156]
     cut = lost0

@@ -7,12 +7,10 @@
 """MAVLink 1 (common, excerpt): codec generated from the mavlink1 schema."""
 from __future__ import annotations
 
-
 import importlib.machinery
 import importlib.util
 import math
 import os
-
 import struct
 from typing import Any, Callable, ClassVar, Optional, TypeVar, Union, cast
 

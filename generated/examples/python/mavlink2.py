@@ -14,7 +14,6 @@ import importlib.machinery
 import importlib.util
 import math
 import os
-
 import struct
 from typing import Any, Callable, ClassVar, Optional, TypeVar, Union, cast
 

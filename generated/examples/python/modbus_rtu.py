@@ -12,7 +12,6 @@ import importlib.machinery
 import importlib.util
 import math
 import os
-
 import struct
 from typing import Any, Callable, ClassVar, Literal, Optional, TypeVar, Union, cast, overload
 
@@ -539,9 +538,6 @@ def _checksum_crc16_8005_ffff_rr_0_6(data: _Buffer, start: int) -> int:
     return r
 
 
-_WORDS_crc16_8005_ffff_rr_0_253 = struct.Struct('<126HB')
-
-
 def _as_input(data: object) -> _Buffer:
     if not isinstance(data, (bytes, bytearray, memoryview)):
         raise _dec(None, None, type(data).__name__, 'type', 'bytes')
@@ -603,10 +599,9 @@ def _encode_read_holding_registers_response(m: ReadHoldingRegistersResponse) -> 
     if not isinstance(g_registers, (list, tuple)) or len(g_registers) > 125:
         raise _enc('read_holding_registers_response', 'registers', g_registers, 'count', 'a list of at most 125 values')
     b_registers = _put_read_holding_registers_response_9registers(g_registers)
-    r_crc = 0
     r_byte_count = len(g_registers) * 2
     b = bytearray(255)
-    _S_read_holding_registers_response_0.pack_into(b, 0, r_address, 3, r_byte_count, b_registers, r_crc)
+    _S_read_holding_registers_response_0.pack_into(b, 0, r_address, 3, r_byte_count, b_registers, 0)
     lost0 = 250 - len(g_registers) * 2
     del b[253 - lost0:253]
     cut = lost0
@@ -664,11 +659,10 @@ def _encode_write_multiple_registers(m: WriteMultipleRegisters) -> bytes:
     if not isinstance(g_values, (list, tuple)) or len(g_values) > 123:
         raise _enc('write_multiple_registers', 'values', g_values, 'count', 'a list of at most 123 values')
     b_values = _put_write_multiple_registers_6values(g_values)
-    r_crc = 0
     r_byte_count = len(g_values) * 2
     b = bytearray(255)
     _S_write_multiple_registers_0.pack_into(b, 0, r_address, 16, r_start, r_quantity, r_byte_count, b_values)
-    _S_write_multiple_registers_1.pack_into(b, 253, r_crc)
+    _S_write_multiple_registers_1.pack_into(b, 253, 0)
     lost0 = 246 - len(g_values) * 2
     del b[253 - lost0:253]
     cut = lost0

@@ -11,7 +11,6 @@ from __future__ import annotations
 import enum
 import math
 import re
-
 from typing import Any, Callable, ClassVar, Literal, Optional, TypeVar, Union, cast, overload
 
 _Buffer = Union[bytes, bytearray, "memoryview[int]"]  # what a binary decoder reads

@@ -7,12 +7,10 @@
 """u-blox UBX (excerpt): codec generated from the ubx schema."""
 from __future__ import annotations
 
-
 import importlib.machinery
 import importlib.util
 import math
 import os
-
 import struct
 from typing import Any, Callable, ClassVar, Optional, TypeVar, Union, cast
 
@@ -1230,10 +1228,9 @@ def _encode_nav_sat(m: NavSat) -> bytes:
     if not isinstance(g_sv, (list, tuple)) or len(g_sv) > 32:
         raise _enc('nav_sat', 'sv', g_sv, 'count', 'a list of at most 32 values')
     b_sv = _put_nav_sat_2sv(g_sv)
-    r_checksum = 0
     r_numSvs = len(g_sv)
     b = bytearray(400)
-    _S_nav_sat_0.pack_into(b, 0, 181, 98, 1, 53, 392, r_iTOW, r_version, r_numSvs, r_reserved0, b_sv, r_checksum)
+    _S_nav_sat_0.pack_into(b, 0, 181, 98, 1, 53, 392, r_iTOW, r_version, r_numSvs, r_reserved0, b_sv, 0)
     lost0 = 384 - len(g_sv) * 12
     del b[398 - lost0:398]
     cut = lost0
@@ -1366,9 +1363,8 @@ def _encode_mon_ver(m: MonVer) -> bytes:
     if not isinstance(g_ext, (list, tuple)) or len(g_ext) > 10:
         raise _enc('mon_ver', 'ext', g_ext, 'count', 'a list of at most 10 values')
     b_ext = _put_mon_ver_3ext(g_ext)
-    r_checksum = 0
     b = bytearray(348)
-    _S_mon_ver_0.pack_into(b, 0, 181, 98, 10, 4, 340, r_swVersion, r_hwVersion, b_ext, r_checksum)
+    _S_mon_ver_0.pack_into(b, 0, 181, 98, 10, 4, 340, r_swVersion, r_hwVersion, b_ext, 0)
     lost0 = 300 - len(g_ext) * 30
     del b[346 - lost0:346]
     cut = lost0
