@@ -11,8 +11,13 @@ from typing import Union
 LARGEST = 3.4028234663852886e38
 
 
-def _nearest(value: float) -> float:
-    """A float next to `value` (`value` within the finite range)."""
+def bits_of(value: float) -> int:
+    """The bit pattern of `value` as a binary32 (rounded to the nearest one)."""
+    return struct.unpack(">I", struct.pack(">f", value))[0]
+
+
+def nearest(value: float) -> float:
+    """The binary32 value nearest `value` (`value` within the finite range)."""
     return struct.unpack(">f", struct.pack(">f", value))[0]
 
 
@@ -34,8 +39,8 @@ def at_most(value: Union[int, float]) -> float:
         return LARGEST
     if value < -LARGEST:
         return -math.inf
-    nearest = _nearest(float(value))  # one of the two floats around value (the int may round twice)
-    return nearest if nearest <= value else _below(nearest)
+    near = nearest(float(value))  # one of the two floats around value (the int may round twice)
+    return near if near <= value else _below(near)
 
 
 def at_least(value: Union[int, float]) -> float:

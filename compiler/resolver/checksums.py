@@ -272,6 +272,13 @@ class ChecksumsMixin(ResolverBase):
         for f in sums:
             if f.checksum.over == "bytes":
                 continue
+            # it adds the other fields' raw integers (a float's IEEE 754 bits): bytes and text hold none
+            odd = next((x for x in walk(layout) if x is not f and x.kind in ("bytes", "str", "char")), None)
+            if odd is not None:
+                self.report.error(f.checksum.loc or f.loc,
+                                  f"message {name!r}: checksum {f.name!r} over every other field adds their "
+                                  f"raw integers; field {odd.name!r} is {odd.kind}",
+                                  "cover bytes with a checksum over bytes, or give the message numbers only")
             for other in sums:
                 if other is not f:
                     self.report.error(f.checksum.loc or f.loc,

@@ -5,6 +5,7 @@ import math
 from dataclasses import replace
 from typing import Any, Optional
 
+from .. import binary32
 from ..model import Field, Multiplex, Presence
 from ..text_prefix import is_prefix_value
 from .text import text
@@ -524,6 +525,8 @@ class FieldsMixin(ResolverBase):
                                  f"(allowed {limit[0]}..{limit[1]})", "widen the field or change the value")
             elif f.range and not f.range[0] <= value <= f.range[1]:
                 self.error(path, f"field {f.name!r}: {what} {value} is outside its range {list(f.range)}")
+        elif kind == "float":
+            self.check_float_value(f, value, path, what)
         elif kind == "bool" and not isinstance(value, bool) and value not in (0, 1):
             self.error(path, f"field {f.name!r}: {what} {value!r} is not a bool")
         elif kind == "char" and not (isinstance(value, str) and len(value) == 1):
@@ -533,6 +536,22 @@ class FieldsMixin(ResolverBase):
         elif kind == "str" and f.max_length is not None and len(value) > f.max_length:
             self.error(path, f"field {f.name!r}: {what} {value!r} is longer than max_length {f.max_length}",
                        "shorten it or raise max_length")
+
+    def check_float_value(self, f: Field, value: Any, path: tuple, what: str) -> None:
+        """A float field's constant, default or allowed value: a finite number its width holds,
+        within its range; a constant exactly, since decoders compare what they read with it."""
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            self.error(path, f"field {f.name!r}: {what} {value!r} is not a number")
+        elif not math.isfinite(value):
+            self.error(path, f"field {f.name!r}: {what} {value!r} is not a finite number")
+        elif f.range and not f.range[0] <= value <= f.range[1]:
+            self.error(path, f"field {f.name!r}: {what} {value} is outside its range {list(f.range)}")
+        elif f.bits == 32 and abs(value) > binary32.LARGEST:
+            self.error(path, f"field {f.name!r}: {what} {value} is beyond a binary32's range",
+                       "make the field f64")
+        elif f.bits == 32 and what == "const" and binary32.nearest(value) != value:
+            self.error(path, f"field {f.name!r}: const {value!r} is no binary32 value; the nearest is "
+                             f"{binary32.nearest(value)!r}", "write that value, or make the field f64")
 
     @staticmethod
     def to_raw(f: Field, value: float) -> float:

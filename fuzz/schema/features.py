@@ -39,6 +39,7 @@ FULL = frozenset({
     "mixed_bit_order",                      # bytes: payloads of 1..8 bytes placed by DBC start bit, both orders
     "multiplexed",                          # bytes: placed payloads whose multiplexors select signals sharing bits
     "placed_float",                         # bytes: f32 and f64 fields among those placed by start bit (SIG_VALTYPE_)
+    "float_const",                          # bytes: f32 and f64 constants, at times under a sum or xor over the fields
     "can",                                  # CAN framing: standard and extended identifiers, classic and FD lengths
     "large_frame",                          # bytes: a message of over 64 KiB (4 KiB fields first)
     "stream_end",                           # check: whole frames after a false start at a stream's end are decoded

@@ -25,6 +25,14 @@ NAMES = ["alpha", "bravo", "charlie", "delta", "echo", "foxtrot", "golf", "hotel
          "kilo", "lima", "mike", "november", "oscar", "papa", "quebec", "romeo", "sierra", "tango"]
 
 
+# constants of each float width, its edges among them: every one a value of that width
+# (an f32 constant that no binary32 holds is refused at its line; the mutants try those)
+FLOAT_CONSTANTS = {
+    "f32": [0.0, -0.0, 1.5, -2.25, 2.0 ** -149, 1.1754943508222875e-38, 3.4028234663852886e38, 0.10000000149011612],
+    "f64": [0.0, -0.0, 0.1, -1e-310, 5e-324, 1.7976931348623157e308, -2.2250738585072014e-308],
+}
+
+
 def fixed_size(fields: list[dict]) -> bool:
     """Whether fields take the same bytes in every frame: nothing counted, sized by another
     field, optional, conditional or filling the rest of the payload, in groups too."""
@@ -211,6 +219,7 @@ class Generator:
                     and self.has("counted", 0.25):
                 body["fields"] += self.counted_fields()
             self.named_payload(body["fields"])
+            self.float_constants(body["fields"], layout)
             messages[self.name()] = body
         self.share_an_id(messages, layout)
         self.ids_across_directions(messages)
@@ -689,6 +698,30 @@ class Generator:
         if choice < 0.46 and "f64" in self.on:
             return self.binary64(name), 64
         return self.integer(name)
+
+    def float_constants(self, fields: list[dict], layout: list[dict]) -> None:
+        """`float_const`: some f32 and f64 fields of a message made constants (their IEEE 754
+        bits on the wire), and at times a sum or xor over the message's fields before them,
+        which adds those bits in. A generator of its own, so other seeds draw as before."""
+        if "float_const" not in self.on:
+            return
+        own = random.Random(f"float_const {self.seed} {len(fields)}")
+        made = False
+        for f in fields:
+            given = {"count", "to_end", "max_count", "present_if", "multiplexed_by", "extension"} & set(f)
+            if f.get("type") in ("f32", "f64") and not given and own.random() < 0.4:  # a scalar always sent
+                f.pop("range", None)
+                f["const"] = own.choice(FLOAT_CONSTANTS[f["type"]] + [own.randint(-99999, 99999) / 8])
+                made = True
+        plain = all(not ({"count", "to_end", "present_if", "extension", "length_of", "counts"} & set(f))
+                    and f.get("type") != "bytes" for f in fields)  # a sum over fields adds numbers
+        checked = any("checksum" in f for f in layout)  # a sum over every field would cover it
+        if made and plain and not checked and own.random() < 0.5:
+            width, name = own.choice([8, 16]), f"field_sum_{len(self.used)}"  # not drawn: the names stay as they were
+            self.used.add(name)
+            fields.insert(0, {"name": name, "type": f"u{width}",
+                              "checksum": {"algorithm": own.choice(["sum", "xor"]), "modulo": 1 << width,
+                                           "over": "fields", "covers": "all"}})
 
     def binary32(self, name: str) -> dict:
         """An f32 field, sometimes with a range: integer ends (C spells them as float

@@ -445,7 +445,10 @@ class CView:
 
     @staticmethod
     def wire_bits(f: Field, value: Any) -> int:
-        """The raw bits of a fixed integer value: a signed one in two's complement."""
+        """The raw bits of a fixed value: a signed integer in two's complement, a float as
+        its IEEE 754 bit pattern."""
+        if f.kind == "float":
+            return binary32.bits_of(value) if f.bits == 32 else binary64.bits_of(value)
         return int(value) & ((1 << f.bits) - 1) if f.kind == "int" and f.bits else int(value)
 
     @staticmethod

@@ -197,7 +197,8 @@ def framing_view(p: Protocol, linker: DecisionLinker) -> dict:
             lines.append("Frames have a fixed size for a link: " + ", ".join(str(s) for s in facts["sizes"])
                          + " bytes with the default parameters.")
         last = slots(p.messages[0])[-1].field
-        if last.const is not None:
+        after = fr.envelope[next(i for i, f in enumerate(fr.envelope) if f.is_payload) + 1:]
+        if after and last.name == after[-1].name and isinstance(last.const, int):  # the envelope's end marker
             lines.append(f"A frame ends with `{last.const:#04x}`.")
         lines.extend(trailer_lines(p))
         if fr.encoding:

@@ -194,6 +194,12 @@ class PythonView:
             return f.const
         return None
 
+    def fixed_or_zero(self, f: Field) -> Any:
+        """A fixed field's raw value, or 0 for a checksum until it is computed (a constant of
+        -0.0 stays one: `or` would take it for zero)."""
+        value = self.fixed_raw(f)
+        return 0 if value is None else value
+
     def encode_leaf(self, c: Code, message: Message, leaf: Leaf, source: str = "",
                     keep_bool: bool = False, maybe_none: bool = False) -> None:
         """Emit code that reads leaf from `m` (or from `source`, its group already read), checks
@@ -203,7 +209,7 @@ class PythonView:
         v = var  # the value is read into the variable that then holds its raw form
         where = f"{message.name!r}, {named(leaf.path)}"
         if f.checksum or self.fixed_raw(f) is not None:
-            c(f"{var} = {lit(self.fixed_raw(f) or 0)}")
+            c(f"{var} = {lit(self.fixed_or_zero(f))}")
             return
         # an enum, flag or bool value is checked and then replaced by its raw int: typed as Any
         # (and a value a frame may leave out, None unless its condition holds: read where it does)
@@ -429,7 +435,10 @@ class PythonView:
             value = f.const
             if f.enum:
                 value = next(m.value for m in f.enum.members if f.const in (m.name, m.value))
-            c(f"if {var} != {lit(value)}:")
+            if f.kind == "float" and value == 0:  # 0.0 and -0.0 are equal, and two values on the wire
+                c(f"if {var} != 0.0 or math.copysign(1.0, {var}) {'<' if math.copysign(1, value) > 0 else '>'} 0:")
+            else:
+                c(f"if {var} != {lit(value)}:")
             c(f"    raise _dec({at}, 'const', {lit(value)!r}, {off}{self.user(f)})")
             return None
         if f.kind == "bool":
@@ -667,7 +676,7 @@ class MessageCode:
                     continue
                 if leaf.field.checksum or self.view.fixed_raw(leaf.field) is not None:
                     # nothing to check, and no local: the numbers around it stay one run
-                    self.fixed[leaf.var] = self.view.fixed_raw(leaf.field) or 0
+                    self.fixed[leaf.var] = self.view.fixed_or_zero(leaf.field)
                     continue
             self.encode_usual(c, ints)
             if element is not None and element.path != of:
@@ -875,8 +884,9 @@ class MessageCode:
         cs = leaf.field.checksum
         others = [x for x in self.leaves if x is not leaf]
         # the fixed raw values are folded into one number, as the packing folds them
-        known = [self.fixed[x.var] & (1 << x.field.bits) - 1 for x in others if x.var in self.fixed]
-        terms = [self.unsigned(x) for x in others if x.var not in self.fixed]
+        folds = [x for x in others if isinstance(self.fixed.get(x.var), int)]
+        known = [self.fixed[x.var] & (1 << x.field.bits) - 1 for x in folds]
+        terms = [self.unsigned(x) for x in others if x not in folds]
         if cs.algorithm == "parity":
             terms, known = [f"{t}.bit_count()" for t in terms], [k.bit_count() for k in known]
         if cs.algorithm == "xor":
@@ -895,10 +905,11 @@ class MessageCode:
 
     def unsigned(self, leaf: Leaf) -> str:
         if leaf.field.kind == "int":
-            if leaf.var in self.fixed:
+            if isinstance(self.fixed.get(leaf.var), int):
                 return lit(self.fixed[leaf.var] & (1 << leaf.field.bits) - 1)
             return f"({leaf.var} & {(1 << leaf.field.bits) - 1:#x})"
         if leaf.field.kind == "float":  # a float among bit fields (placed by start bit): its IEEE 754 bits
+            self.view.calls.use("_bits_of_float")
             return f"_bits_of_float({self.raw(leaf)}, {leaf.field.bits})"
         return self.raw(leaf)
 
@@ -1399,14 +1410,14 @@ class MessageCode:
             for leaf, shift in chunk.leaves:
                 self.extract(c, leaf, var, shift)
 
-    @staticmethod
-    def extract(c: Code, leaf: Leaf, var: str, shift: int) -> None:
+    def extract(self, c: Code, leaf: Leaf, var: str, shift: int) -> None:
         bits = leaf.field.bits
         if not bits:
             return
         raw = f"({var} >> {shift}) & {(1 << bits) - 1:#x}" if shift else f"{var} & {(1 << bits) - 1:#x}"
         if leaf.field.kind == "float":  # a float among bit fields (placed by start bit): its IEEE 754 bits
             c(f"{leaf.var} = _float_of_bits({raw}, {bits})")
+            self.view.calls.use("_float_of_bits")
             return
         c(f"{leaf.var} = {raw}")
         if leaf.field.kind == "int":
@@ -1753,9 +1764,6 @@ def module_view(p: Protocol) -> dict:
         "kept_spellings": any(f.keep_spelling for m in p.messages for f in m.layout) or any(m.keeps_places for m in p.messages),
         "can": can_view(p),
         "open_enums": any(e.open for e in p.enums),
-        # floats among bit fields are read and written as their IEEE 754 bits
-        "packed_floats": any(run.kind == "packed" and any(x.field.kind == "float" for x in run.leaves)
-                             for m in p.messages for run in m.wire.runs),
     }
     for cs in facts["stuffing"].get("checksums", ()):  # computed again over a frame as sent
         view.checksum_function(cs["cs"])
@@ -1774,7 +1782,7 @@ def _template_calls(facts: dict, calls: Calls) -> Calls:
         calls.use("_int_of", "Iterator")
     if p.enums or p.flags:
         calls.use("enum")
-    if facts["structs"] or facts["packed_floats"]:
+    if facts["structs"] or calls.names & {"_float_of_bits", "_bits_of_float"}:  # their tables are structs
         calls.use("struct")
     if stream and not facts["encoding"] and stream.get("by_key") and stream["by_key"].get("counted"):
         calls.use("Literal")  # the byte order of a count field

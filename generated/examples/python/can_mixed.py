@@ -222,7 +222,7 @@ def _float_of_bits(raw: int, bits: int) -> float:
 
 
 def _bits_of_float(value: float, bits: int) -> int:
-    """A float's IEEE 754 bits."""
+    """A float's IEEE 754 bits (among other fields' bits, or summed by a field checksum)."""
     return cast(int, _BITS_STRUCT[bits].unpack(_FLOAT_STRUCT[bits].pack(value))[0])
 
 
