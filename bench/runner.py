@@ -317,9 +317,10 @@ def c_sections(r, verdicts) -> list[str]:
     lines += [""] + avr.against_cantools(r["avr"]) + [
         "- where codeword's is larger: its encoders check every value against its field's range and its decoders "
         "the frame's constants (a CAN frame's identifier and length, 5 bytes of it), where cantools' pack masks "
-        "each value into its bits and its unpack reads the bits it is given; and codeword's encoder first fills "
-        "an array of raw values, one 32-bit word per field, then writes each through a bit-placing helper, "
-        "where cantools' shifts each value straight into its bytes"]
+        "each value into its bits and its unpack reads the bits it is given; a multiplexed message also has each "
+        "value's presence checked against its multiplexors; and codeword's encoder first fills an array of raw "
+        "values, one word as wide as the widest field (the CAN identifier's 32 bits) per field, then shifts each "
+        "into its bytes, where cantools shifts each value of its own width"]
     lines += crc_choice(r["crc_choice"], c)
     return lines
 
