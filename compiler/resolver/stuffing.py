@@ -138,6 +138,8 @@ class StuffingMixin(ResolverBase):
                 continue
             whole = sum(x.bits or 0 for x in env[:i]) % 8 == 0 and (f.bits or 0) % 8 == 0
             if f.length_of:
+                if f.length_of[0] not in index or f.length_of[1] not in index:
+                    continue  # a length of fields the envelope lacks: reported where the length is read
                 lo, hi = index[f.length_of[0]], index[f.length_of[1]]
                 if hi < first or lo > last:
                     continue

@@ -625,6 +625,9 @@ class MessageCode:
         # while an encoder is written: leaf var → the raw value the schema fixes (a constant,
         # reserved bits, a length; a checksum until it is computed), written where it is read
         self.fixed: dict[str, Any] = {}
+        # while a decoder is written: leaf var → the raw value a field checksum reads instead
+        # (a length field of a payload cut short, as if all of it were sent)
+        self.restored: dict[str, str] = {}
 
     def raw(self, leaf: Leaf) -> str:
         """A leaf's raw value as the encoder reads it: its literal when fixed, else its local."""
@@ -884,7 +887,7 @@ class MessageCode:
         cs = leaf.field.checksum
         others = [x for x in self.leaves if x is not leaf]
         # the fixed raw values are folded into one number, as the packing folds them
-        folds = [x for x in others if isinstance(self.fixed.get(x.var), int)]
+        folds = [x for x in others if x.field.kind != "float" and isinstance(self.fixed.get(x.var), int)]
         known = [self.fixed[x.var] & (1 << x.field.bits) - 1 for x in folds]
         terms = [self.unsigned(x) for x in others if x not in folds]
         if cs.algorithm == "parity":
@@ -904,6 +907,8 @@ class MessageCode:
         return f"({op.join(terms)}{tail}) % {cs.modulo}"
 
     def unsigned(self, leaf: Leaf) -> str:
+        if leaf.var in self.restored:
+            return self.restored[leaf.var]
         if leaf.field.kind == "int":
             if isinstance(self.fixed.get(leaf.var), int):
                 return lit(self.fixed[leaf.var] & (1 << leaf.field.bits) - 1)
@@ -1287,7 +1292,11 @@ class MessageCode:
                 c(f"x = {self.view.checksum_call(cs, buf, start, end, self.m.crc_extra, sent)}")
                 c(f"if {leaf.var} != x:")
                 c(f"    raise _dec({self.m.name!r}, {leaf.dotted!r}, {leaf.var}, 'checksum', hex(x), {self.sent_offset(leaf)}, {leaf.field.rule!r})")
+        length = self.length_leaf() if sh else None
+        if length is not None:  # a field checksum counts the length as if the whole payload were sent, as C does
+            self.restored = {length.var: f"({length.var} + cut)"}
         self.build_checks(c, bounded=True, text_form=False, word=self.one_word())
+        self.restored = {}
         c("return o")
         return c.text()
 
