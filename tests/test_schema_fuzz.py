@@ -73,3 +73,18 @@ def test_a_seed_that_hangs_is_a_finding_not_a_wait(monkeypatch):
     outcome = check.check_seed(1)
     assert time.monotonic() - started < 10
     assert (outcome.stage, outcome.detail) == ("generate", "TimeoutError: the seed took over 1 s")
+
+
+# long-run findings, each fixed: a seed or mutant that failed before its fix passes now
+FOUND = {"seeds": (910940,), "mutants": (880684, 910810, 911166)}
+
+
+@pytest.mark.parametrize("seed", FOUND["seeds"])
+def test_a_long_run_finding_builds_and_agrees(seed):
+    outcome = check_seed(seed)
+    assert outcome.ok, outcome.line()
+
+
+@pytest.mark.parametrize("seed", FOUND["mutants"])
+def test_a_long_run_mutant_is_refused_at_a_line_or_builds(seed):
+    assert check_mutant(seed) == ""
