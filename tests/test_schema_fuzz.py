@@ -76,7 +76,7 @@ def test_a_seed_that_hangs_is_a_finding_not_a_wait(monkeypatch):
 
 
 # long-run findings, each fixed: a seed or mutant that failed before its fix passes now
-FOUND = {"seeds": (910940,), "mutants": (880684, 910810, 911166)}
+FOUND = {"seeds": (910940, 940291), "mutants": (880684, 910810, 911166)}
 
 
 @pytest.mark.parametrize("seed", FOUND["seeds"])
@@ -88,3 +88,46 @@ def test_a_long_run_finding_builds_and_agrees(seed):
 @pytest.mark.parametrize("seed", FOUND["mutants"])
 def test_a_long_run_mutant_is_refused_at_a_line_or_builds(seed):
     assert check_mutant(seed) == ""
+
+
+class _Stream:
+    """A stand-in for a generated module's StreamDecoder: it returns the spans it is given."""
+
+    class DecodeError(Exception):
+        pass
+
+    def __init__(self, feed_spans, finish_spans=()):
+        outer = self
+
+        class StreamDecoder:
+            def __init__(self, direction=None):
+                self.spans = []
+
+            def feed(self, data):
+                self.spans = list(feed_spans)
+                return [object() for _ in self.spans]
+
+            def finish(self):
+                self.spans = list(finish_spans)
+                return [object() for _ in self.spans]
+
+        outer.StreamDecoder = StreamDecoder
+
+
+def test_the_stream_end_check_takes_a_frame_inside_the_false_start_but_not_one_lost(monkeypatch):
+    """Seed 940291: seven zero bytes inside a false start are a valid frame of that schema
+    (a message of zeros, its Fletcher checksum zero), which the stream decoder rightly
+    decodes. The check allows a frame there, and still reports a frame sent whole that is
+    not decoded where it was sent, and a frame that reaches past the false start."""
+    from fuzz.schema import stream_end
+
+    monkeypatch.setattr(stream_end, "applies", lambda p: True)
+    frames = ["0102", "0a0b0c0d0e0f", "0304"]  # the longest is cut in half for the false start
+    vectors = {"valid": [{"message": "m", "hex": h} for h in frames]}
+    # stream: 0102 | 0a0b0c (false start, 3 bytes at offset 2) | 0102 (at 5)
+    # (whole frames after it: room = 6 - 3 - 1 = 2 bytes, the shortest first: 0102)
+    whole = [(0, 2), (5, 2)]
+    assert stream_end.stream_end_problem(_Stream(whole), None, vectors) == ""
+    assert stream_end.stream_end_problem(_Stream([(0, 2), (3, 2)], [(5, 2)]), None, vectors) == ""
+    assert "not" in stream_end.stream_end_problem(_Stream([(0, 2)]), None, vectors)
+    assert "not" in stream_end.stream_end_problem(_Stream([(0, 2), (4, 2)]), None, vectors)  # past it
