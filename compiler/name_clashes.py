@@ -44,12 +44,15 @@ def _constants(d: dict[str, Any]) -> Iterator[tuple[str, tuple, str]]:
     # What the C header defines on its own: first, so a schema name that meets one is the clash.
     yield "DIR_ANY", (), "the constant that accepts every direction"
     yield "STREAM_MAX", (), "the constant of the largest frame a stream holds"
+    yield "SELECTED_MESSAGES", (), "the macro that selects the messages a firmware handles"
     for name in d.get("flags", {}) or {}:
         if isinstance(name, str):
             yield f"{name}_ALL".upper(), (), f"the mask of every bit of flag set {name!r}"
     for name in d.get("messages", {}) or {}:
         if isinstance(name, str):
             yield f"MSG_{name}".upper(), ("messages", name), f"message {name!r}"
+            yield f"SELECT_{name}".upper(), ("messages", name), f"the selection macro of message {name!r}"
+            yield f"HANDLES_{name}".upper(), ("messages", name), f"the selection macro of message {name!r}"
     for name in d.get("directions", {}) or {}:
         if isinstance(name, str):
             yield f"DIR_{name}".upper(), ("directions", name), f"direction {name!r}"

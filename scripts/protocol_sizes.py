@@ -28,6 +28,8 @@ TARGETS = [
 
 # The MAVLink messages of examples/mavlink2.yaml, as mavgen names them.
 MAVLINK_MESSAGES = ["heartbeat", "sys_status", "param_value", "gps_raw_int", "attitude", "command_ack"]
+# A firmware's few messages of the whole common.xml dialect (`codeword import mavlink`).
+FIRMWARE_MESSAGES = ["heartbeat", "attitude", "gps_raw_int", "command_long", "param_value"]
 
 PROGRAM = """\
 {includes}
@@ -87,11 +89,45 @@ def flash_of(size_tool: str, elf: Path) -> int:
 
 
 def generate_mavlink(out: Path) -> Path:
-    import pymavlink
-    common = Path(pymavlink.__file__).resolve().parent / "dialects" / "v20" / "common.xml"
     run([sys.executable, "-m", "pymavlink.tools.mavgen", "--lang=C", "--wire-protocol=2.0", f"--output={out}",
-         str(common)])
+         str(common_xml())])
     return out
+
+
+def common_xml() -> Path:
+    import pymavlink
+    return Path(pymavlink.__file__).resolve().parent / "dialects" / "v20" / "common.xml"
+
+
+def import_common(out: Path) -> Path:
+    """The C header of the whole common.xml dialect, imported and built by codeword."""
+    run([sys.executable, "-m", "codeword", "import", "mavlink", str(common_xml()), "--out", str(out)])
+    run([sys.executable, "-m", "codeword", "build", str(out / "common.yaml"), "--out", str(out), "--targets", "c"])
+    return out / "c"
+
+
+def firmware_peers(work: Path, mavlink: Path) -> list:
+    """A firmware of FIRMWARE_MESSAGES over the whole dialect: the byte-at-a-time parser and
+    the messages' encoders and decoders, from codeword's imported common.xml (with the
+    messages selected, and without) and from mavgen's common.xml."""
+    include = import_common(work / "import")
+    ours = ["common_parser_init", "common_parser_feed", "common_parser_next"] + \
+        [f"common_{m}_{op}" for m in FIRMWARE_MESSAGES for op in ("encode", "decode")]
+    selected = ["-DCOMMON_SELECTED_MESSAGES"] + [f"-DCOMMON_SELECT_{m.upper()}" for m in FIRMWARE_MESSAGES]
+    theirs = ["mavlink_parse_char"] + [f"mavlink_msg_{m}_{op}" for m in FIRMWARE_MESSAGES for op in ("pack", "decode")]
+    flags = ["-I", str(mavlink / "common"), "-DMAVLINK_NO_SIGN_PACKET", "-DMAVLINK_NO_SIGNATURE_CHECK"]
+    names = ", ".join(m.upper() for m in FIRMWARE_MESSAGES)
+    rows = []
+    for how, extra in (("selected (`-DCOMMON_SELECTED_MESSAGES` and `-DCOMMON_SELECT_<M>`)", selected),
+                       ("not selected: the dispatching decoder holds all of them", [])):
+        rows.append((f"MAVLink 2 C from mavgen (common.xml), a firmware of {names}: `mavlink_parse_char` and "
+                     "each one's `_pack` and `_decode`, signing compiled out; codeword's imported common.xml: "
+                     f"`common_parser_*` and each one's `_encode` and `_decode`, the messages {how}",
+                     "common (imported)",
+                     {t[0]: (flash(t, work, "mavlink_firmware", ["mavlink.h"], theirs, flags),
+                             flash(t, work, "common_firmware", ["common.h"], ours, ["-I", str(include), *extra]))
+                      for t in TARGETS}))
+    return rows
 
 
 def generate_cantools(out: Path) -> Path:
@@ -130,6 +166,7 @@ def measure() -> dict:
                       "messages and `mavlink_parse_char`, signing compiled out", "mavlink2",
                       {t[0]: (flash(t, work, "mavlink", ["mavlink.h"], theirs, flags), by_name["mavlink2"][t[0]])
                        for t in TARGETS}))
+        peers += firmware_peers(work, mavlink)
         cantools_dir = generate_cantools(work / "cantools")
         theirs = cantools_functions(cantools_dir / "route_car.c")
         ours = [f"{m}_{op}" for m in ("route_object", "car_master_control") for op in ("encode", "decode")]

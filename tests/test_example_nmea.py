@@ -278,6 +278,24 @@ def test_a_changed_value_is_written_in_the_schemas_spelling(built):
     assert mod.encode(fresh) == f"${body}*{pynmea2.NMEASentence.checksum(body):02X}\r\n"
 
 
+def test_a_value_left_as_decoded_keeps_its_text_and_any_other_is_checked(built):
+    """Encode writes a number's received text at once while the field still holds the very
+    value decoded; an equal value of another object keeps the text too (compared as raw
+    values), and any other value is checked as a new one would be."""
+    mod = load(built / "python" / "nmea0183.py")
+    ours = mod.decode(KEPT_SENTENCES[1] + "\r\n")
+    ours.altitude = float("51.6")  # equal, not the object decoded
+    assert mod.encode(ours) == KEPT_SENTENCES[1] + "\r\n"
+    ours.altitude = 1e9
+    with pytest.raises(mod.EncodeError) as err:
+        mod.encode(ours)
+    assert (err.value.field, err.value.rule) == ("altitude", "range")
+    ours.altitude = "51.6"
+    with pytest.raises(mod.EncodeError) as err:
+        mod.encode(ours)
+    assert (err.value.field, err.value.rule) == ("altitude", "type")
+
+
 def test_a_spelling_past_its_bound_is_refused_not_cut(built):
     """A kept number holds at most 24 characters (SPELLING_MAX): a longer one is a `length`
     error naming the field at its offset, in Python; CW_ERR_LENGTH in C."""

@@ -1180,20 +1180,63 @@ static inline int mtv4_odometry_reply_decode(const uint8_t *buf, size_t len, mtv
     return mtv4_odometry_reply_check_raw(r, buf, m, false);
 }
 
+/* Message selection: a firmware that handles a few of the messages defines
+ * MTV4_SELECTED_MESSAGES and MTV4_SELECT_<MESSAGE> for each of them before
+ * including this header. The dispatching encoder and decoder, and the streams over
+ * them, then hold only those messages' code: any other message is CW_ERR_DISPATCH,
+ * as a message of no protocol is. Each message's own functions are always here. */
+#if !defined(MTV4_SELECTED_MESSAGES) || defined(MTV4_SELECT_SET_WHEELS_VELOCITIES)
+#define MTV4_HANDLES_SET_WHEELS_VELOCITIES 1
+#else
+#define MTV4_HANDLES_SET_WHEELS_VELOCITIES 0
+#endif
+#if !defined(MTV4_SELECTED_MESSAGES) || defined(MTV4_SELECT_SET_LED)
+#define MTV4_HANDLES_SET_LED 1
+#else
+#define MTV4_HANDLES_SET_LED 0
+#endif
+#if !defined(MTV4_SELECTED_MESSAGES) || defined(MTV4_SELECT_SET_WHEELS_VELOCITIES_WITH_ODOMETRY)
+#define MTV4_HANDLES_SET_WHEELS_VELOCITIES_WITH_ODOMETRY 1
+#else
+#define MTV4_HANDLES_SET_WHEELS_VELOCITIES_WITH_ODOMETRY 0
+#endif
+#if !defined(MTV4_SELECTED_MESSAGES) || defined(MTV4_SELECT_ACK)
+#define MTV4_HANDLES_ACK 1
+#else
+#define MTV4_HANDLES_ACK 0
+#endif
+#if !defined(MTV4_SELECTED_MESSAGES) || defined(MTV4_SELECT_ODOMETRY_REPLY)
+#define MTV4_HANDLES_ODOMETRY_REPLY 1
+#else
+#define MTV4_HANDLES_ODOMETRY_REPLY 0
+#endif
+
 /* Encodes any message by its kind. */
 static inline int mtv4_encode(const mtv4_message_t *msg, uint8_t *buf, size_t cap)
 {
+    (void)buf;  /* written by a selected message's encoder */
+    (void)cap;
     switch (msg->kind) {
+#if MTV4_HANDLES_SET_WHEELS_VELOCITIES
     case MTV4_MSG_SET_WHEELS_VELOCITIES:
         return mtv4_set_wheels_velocities_encode(&msg->as.set_wheels_velocities, buf, cap);
+#endif
+#if MTV4_HANDLES_SET_LED
     case MTV4_MSG_SET_LED:
         return mtv4_set_led_encode(&msg->as.set_led, buf, cap);
+#endif
+#if MTV4_HANDLES_SET_WHEELS_VELOCITIES_WITH_ODOMETRY
     case MTV4_MSG_SET_WHEELS_VELOCITIES_WITH_ODOMETRY:
         return mtv4_set_wheels_velocities_with_odometry_encode(&msg->as.set_wheels_velocities_with_odometry, buf, cap);
+#endif
+#if MTV4_HANDLES_ACK
     case MTV4_MSG_ACK:
         return mtv4_ack_encode(&msg->as.ack, buf, cap);
+#endif
+#if MTV4_HANDLES_ODOMETRY_REPLY
     case MTV4_MSG_ODOMETRY_REPLY:
         return mtv4_odometry_reply_encode(&msg->as.odometry_reply, buf, cap);
+#endif
     default:
         return CW_ERR_DISPATCH;
     }
@@ -1205,49 +1248,73 @@ static inline int mtv4_decode(const uint8_t *buf, size_t len, int direction, mtv
     uint32_t id;
     int found = 0;
     int matches = 0;
+    (void)direction;  /* tested by the selected messages */
     if (len < 4u) {
         return CW_ERR_LENGTH;
     }
     id = (cw_get_be(buf + 3, 1u) >> 0) & 127u;
+#if MTV4_HANDLES_SET_WHEELS_VELOCITIES
     if (id == 1u && len == 12u && (direction == MTV4_DIR_ANY || direction == MTV4_DIR_HOST_TO_ROBOT)) {
         found = MTV4_MSG_SET_WHEELS_VELOCITIES;
         matches++;
     }
+#endif
+#if MTV4_HANDLES_SET_LED
     if (id == 2u && len == 12u && (direction == MTV4_DIR_ANY || direction == MTV4_DIR_HOST_TO_ROBOT)) {
         found = MTV4_MSG_SET_LED;
         matches++;
     }
+#endif
+#if MTV4_HANDLES_SET_WHEELS_VELOCITIES_WITH_ODOMETRY
     if (id == 3u && len == 26u && (direction == MTV4_DIR_ANY || direction == MTV4_DIR_HOST_TO_ROBOT)) {
         found = MTV4_MSG_SET_WHEELS_VELOCITIES_WITH_ODOMETRY;
         matches++;
     }
+#endif
+#if MTV4_HANDLES_ACK
     if (id == 1u && len == 8u && (direction == MTV4_DIR_ANY || direction == MTV4_DIR_ROBOT_TO_HOST)) {
         found = MTV4_MSG_ACK;
         matches++;
     }
+#endif
+#if MTV4_HANDLES_ACK
     if (id == 2u && len == 8u && (direction == MTV4_DIR_ANY || direction == MTV4_DIR_ROBOT_TO_HOST)) {
         found = MTV4_MSG_ACK;
         matches++;
     }
+#endif
+#if MTV4_HANDLES_ODOMETRY_REPLY
     if (id == 3u && len == 22u && (direction == MTV4_DIR_ANY || direction == MTV4_DIR_ROBOT_TO_HOST)) {
         found = MTV4_MSG_ODOMETRY_REPLY;
         matches++;
     }
+#endif
+    (void)id;  /* tested by no selected message */
     if (matches != 1) {
         return CW_ERR_DISPATCH;
     }
     out->kind = (uint8_t)found;
     switch (found) {
+#if MTV4_HANDLES_SET_WHEELS_VELOCITIES
     case MTV4_MSG_SET_WHEELS_VELOCITIES:
         return mtv4_set_wheels_velocities_decode(buf, len, &out->as.set_wheels_velocities);
+#endif
+#if MTV4_HANDLES_SET_LED
     case MTV4_MSG_SET_LED:
         return mtv4_set_led_decode(buf, len, &out->as.set_led);
+#endif
+#if MTV4_HANDLES_SET_WHEELS_VELOCITIES_WITH_ODOMETRY
     case MTV4_MSG_SET_WHEELS_VELOCITIES_WITH_ODOMETRY:
         return mtv4_set_wheels_velocities_with_odometry_decode(buf, len, &out->as.set_wheels_velocities_with_odometry);
+#endif
+#if MTV4_HANDLES_ACK
     case MTV4_MSG_ACK:
         return mtv4_ack_decode(buf, len, &out->as.ack);
+#endif
+#if MTV4_HANDLES_ODOMETRY_REPLY
     case MTV4_MSG_ODOMETRY_REPLY:
         return mtv4_odometry_reply_decode(buf, len, &out->as.odometry_reply);
+#endif
     default:
         return CW_ERR_DISPATCH;
     }

@@ -873,18 +873,54 @@ static inline int route_end_from_values(const uint64_t *v, size_t count, route_e
     return route_end_check_raw(r, NULL, m, true);
 }
 
+/* Message selection: a firmware that handles a few of the messages defines
+ * ROUTE_SELECTED_MESSAGES and ROUTE_SELECT_<MESSAGE> for each of them before
+ * including this header. The dispatching encoder and decoder, and the streams over
+ * them, then hold only those messages' code: any other message is CW_ERR_DISPATCH,
+ * as a message of no protocol is. Each message's own functions are always here. */
+#if !defined(ROUTE_SELECTED_MESSAGES) || defined(ROUTE_SELECT_START)
+#define ROUTE_HANDLES_START 1
+#else
+#define ROUTE_HANDLES_START 0
+#endif
+#if !defined(ROUTE_SELECTED_MESSAGES) || defined(ROUTE_SELECT_OBJECT)
+#define ROUTE_HANDLES_OBJECT 1
+#else
+#define ROUTE_HANDLES_OBJECT 0
+#endif
+#if !defined(ROUTE_SELECTED_MESSAGES) || defined(ROUTE_SELECT_SCENE)
+#define ROUTE_HANDLES_SCENE 1
+#else
+#define ROUTE_HANDLES_SCENE 0
+#endif
+#if !defined(ROUTE_SELECTED_MESSAGES) || defined(ROUTE_SELECT_END)
+#define ROUTE_HANDLES_END 1
+#else
+#define ROUTE_HANDLES_END 0
+#endif
+
 /* Encodes any message by its kind. */
 static inline int route_encode(const route_message_t *msg, uint8_t *buf, size_t cap)
 {
+    (void)buf;  /* written by a selected message's encoder */
+    (void)cap;
     switch (msg->kind) {
+#if ROUTE_HANDLES_START
     case ROUTE_MSG_START:
         return route_start_encode(&msg->as.start, buf, cap);
+#endif
+#if ROUTE_HANDLES_OBJECT
     case ROUTE_MSG_OBJECT:
         return route_object_encode(&msg->as.object, buf, cap);
+#endif
+#if ROUTE_HANDLES_SCENE
     case ROUTE_MSG_SCENE:
         return route_scene_encode(&msg->as.scene, buf, cap);
+#endif
+#if ROUTE_HANDLES_END
     case ROUTE_MSG_END:
         return route_end_encode(&msg->as.end, buf, cap);
+#endif
     default:
         return CW_ERR_DISPATCH;
     }
@@ -909,16 +945,26 @@ static inline int route_find(uint32_t head)
 
 static inline int route_decode_kind(int kind, const uint8_t *buf, size_t len, route_message_t *out)
 {
+    (void)buf;  /* read by a selected message's decoder */
+    (void)len;
     out->kind = (uint8_t)kind;
     switch (kind) {
+#if ROUTE_HANDLES_START
     case ROUTE_MSG_START:
         return route_start_decode(buf, len, &out->as.start);
+#endif
+#if ROUTE_HANDLES_OBJECT
     case ROUTE_MSG_OBJECT:
         return route_object_decode(buf, len, &out->as.object);
+#endif
+#if ROUTE_HANDLES_SCENE
     case ROUTE_MSG_SCENE:
         return route_scene_decode(buf, len, &out->as.scene);
+#endif
+#if ROUTE_HANDLES_END
     case ROUTE_MSG_END:
         return route_end_decode(buf, len, &out->as.end);
+#endif
     default:
         return CW_ERR_DISPATCH;
     }
@@ -936,22 +982,31 @@ static inline int route_decode(const uint8_t *buf, size_t len, route_message_t *
 /* Decodes a 30-bit word holding one sentence, left-aligned. */
 static inline int route_decode_word(uint32_t word, route_message_t *out)
 {
+    (void)out;  /* written by a selected message's decoder */
     if (word > 1073741823UL) {
         return CW_ERR_RANGE;
     }
     switch (route_find(word >> 22)) {
+#if ROUTE_HANDLES_START
     case ROUTE_MSG_START:
         out->kind = ROUTE_MSG_START;
         return route_start_from_word(word, &out->as.start);
+#endif
+#if ROUTE_HANDLES_OBJECT
     case ROUTE_MSG_OBJECT:
         out->kind = ROUTE_MSG_OBJECT;
         return route_object_from_word(word, &out->as.object);
+#endif
+#if ROUTE_HANDLES_SCENE
     case ROUTE_MSG_SCENE:
         out->kind = ROUTE_MSG_SCENE;
         return route_scene_from_word(word, &out->as.scene);
+#endif
+#if ROUTE_HANDLES_END
     case ROUTE_MSG_END:
         out->kind = ROUTE_MSG_END;
         return route_end_from_word(word, &out->as.end);
+#endif
     default:
         return CW_ERR_DISPATCH;
     }
@@ -1007,14 +1062,22 @@ static inline int route_decode_text(const char *line, size_t len, route_message_
     }
     out->kind = (uint8_t)kind;
     switch (kind) {
+#if ROUTE_HANDLES_START
     case ROUTE_MSG_START:
         return route_start_from_values(v, count, &out->as.start);
+#endif
+#if ROUTE_HANDLES_OBJECT
     case ROUTE_MSG_OBJECT:
         return route_object_from_values(v, count, &out->as.object);
+#endif
+#if ROUTE_HANDLES_SCENE
     case ROUTE_MSG_SCENE:
         return route_scene_from_values(v, count, &out->as.scene);
+#endif
+#if ROUTE_HANDLES_END
     case ROUTE_MSG_END:
         return route_end_from_values(v, count, &out->as.end);
+#endif
     default:
         return CW_ERR_DISPATCH;
     }

@@ -913,20 +913,63 @@ static inline int tank_gpio_config_decode(const char *text, size_t len, tank_gpi
     return cw_text_verdict(text, len, rc);
 }
 
+/* Message selection: a firmware that handles a few of the messages defines
+ * TANK_SELECTED_MESSAGES and TANK_SELECT_<MESSAGE> for each of them before
+ * including this header. The dispatching encoder and decoder, and the streams over
+ * them, then hold only those messages' code: any other message is CW_ERR_DISPATCH,
+ * as a message of no protocol is. Each message's own functions are always here. */
+#if !defined(TANK_SELECTED_MESSAGES) || defined(TANK_SELECT_TELEMETRY)
+#define TANK_HANDLES_TELEMETRY 1
+#else
+#define TANK_HANDLES_TELEMETRY 0
+#endif
+#if !defined(TANK_SELECTED_MESSAGES) || defined(TANK_SELECT_COMMAND)
+#define TANK_HANDLES_COMMAND 1
+#else
+#define TANK_HANDLES_COMMAND 0
+#endif
+#if !defined(TANK_SELECTED_MESSAGES) || defined(TANK_SELECT_PAYLOAD_COMMAND)
+#define TANK_HANDLES_PAYLOAD_COMMAND 1
+#else
+#define TANK_HANDLES_PAYLOAD_COMMAND 0
+#endif
+#if !defined(TANK_SELECTED_MESSAGES) || defined(TANK_SELECT_PAYLOAD_REPLY)
+#define TANK_HANDLES_PAYLOAD_REPLY 1
+#else
+#define TANK_HANDLES_PAYLOAD_REPLY 0
+#endif
+#if !defined(TANK_SELECTED_MESSAGES) || defined(TANK_SELECT_GPIO_CONFIG)
+#define TANK_HANDLES_GPIO_CONFIG 1
+#else
+#define TANK_HANDLES_GPIO_CONFIG 0
+#endif
+
 /* Encodes any message by its kind. */
 static inline int tank_encode(const tank_message_t *msg, char *buf, size_t cap)
 {
+    (void)buf;  /* written by a selected message's encoder */
+    (void)cap;
     switch (msg->kind) {
+#if TANK_HANDLES_TELEMETRY
     case TANK_MSG_TELEMETRY:
         return tank_telemetry_encode(&msg->as.telemetry, buf, cap);
+#endif
+#if TANK_HANDLES_COMMAND
     case TANK_MSG_COMMAND:
         return tank_command_encode(&msg->as.command, buf, cap);
+#endif
+#if TANK_HANDLES_PAYLOAD_COMMAND
     case TANK_MSG_PAYLOAD_COMMAND:
         return tank_payload_command_encode(&msg->as.payload_command, buf, cap);
+#endif
+#if TANK_HANDLES_PAYLOAD_REPLY
     case TANK_MSG_PAYLOAD_REPLY:
         return tank_payload_reply_encode(&msg->as.payload_reply, buf, cap);
+#endif
+#if TANK_HANDLES_GPIO_CONFIG
     case TANK_MSG_GPIO_CONFIG:
         return tank_gpio_config_encode(&msg->as.gpio_config, buf, cap);
+#endif
     default:
         return CW_ERR_DISPATCH;
     }
@@ -938,25 +981,46 @@ static inline int tank_decode(const char *text, size_t len, int direction, tank_
     const char *pb, *pe, *body, *end;
     size_t n;
     int rc = tank_split(text, len, &pb, &pe, &body, &end);
+    (void)out;  /* written by a selected message's decoder */
     if (rc != CW_OK) {
         return cw_text_verdict(text, len, rc);
     }
     n = (size_t)(pe - pb);
     if (n == 1u && memcmp(pb, TANK_TELEMETRY_ID, 1u) == 0 && (direction == TANK_DIR_ANY || direction == TANK_DIR_PLATFORM_TO_COMPUTER)) {
+#if TANK_HANDLES_TELEMETRY
         out->kind = TANK_MSG_TELEMETRY;
         rc = tank_telemetry_parse_body(body, end, &out->as.telemetry);
+#else
+        rc = CW_ERR_DISPATCH;
+#endif
     } else if (n == 1u && memcmp(pb, TANK_COMMAND_ID, 1u) == 0 && (direction == TANK_DIR_ANY || direction == TANK_DIR_COMPUTER_TO_PLATFORM)) {
+#if TANK_HANDLES_COMMAND
         out->kind = TANK_MSG_COMMAND;
         rc = tank_command_parse_body(body, end, &out->as.command);
+#else
+        rc = CW_ERR_DISPATCH;
+#endif
     } else if (n == 1u && memcmp(pb, TANK_PAYLOAD_COMMAND_ID, 1u) == 0 && (direction == TANK_DIR_ANY || direction == TANK_DIR_COMPUTER_TO_PAYLOAD)) {
+#if TANK_HANDLES_PAYLOAD_COMMAND
         out->kind = TANK_MSG_PAYLOAD_COMMAND;
         rc = tank_payload_command_parse_body(body, end, &out->as.payload_command);
+#else
+        rc = CW_ERR_DISPATCH;
+#endif
     } else if (n == 1u && memcmp(pb, TANK_PAYLOAD_REPLY_ID, 1u) == 0 && (direction == TANK_DIR_ANY || direction == TANK_DIR_PAYLOAD_TO_COMPUTER)) {
+#if TANK_HANDLES_PAYLOAD_REPLY
         out->kind = TANK_MSG_PAYLOAD_REPLY;
         rc = tank_payload_reply_parse_body(body, end, &out->as.payload_reply);
+#else
+        rc = CW_ERR_DISPATCH;
+#endif
     } else if (n == 1u && memcmp(pb, TANK_GPIO_CONFIG_ID, 1u) == 0 && (direction == TANK_DIR_ANY || direction == TANK_DIR_COMPUTER_TO_PLATFORM)) {
+#if TANK_HANDLES_GPIO_CONFIG
         out->kind = TANK_MSG_GPIO_CONFIG;
         rc = tank_gpio_config_parse_body(body, end, &out->as.gpio_config);
+#else
+        rc = CW_ERR_DISPATCH;
+#endif
     } else {
         rc = CW_ERR_DISPATCH;
     }

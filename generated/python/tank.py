@@ -324,7 +324,7 @@ class _Message(_Record):
 
     def encode(self) -> str:
         """The message in its wire form; an EncodeError if a value breaks the schema."""
-        return cast(str, _ENCODERS[self.__class__](self))
+        return _ENCODERS[self.__class__](self)
 
     @classmethod
     def decode(cls: type[_Msg], data: _Input) -> _Msg:
@@ -740,7 +740,7 @@ def _encode_telemetry(m: Telemetry) -> str:
     if r_extstatus.__class__ is not ExtStatus and (not isinstance(r_extstatus, int) or r_extstatus.__class__ is bool or isinstance(r_extstatus, enum.Enum) or r_extstatus not in _VALUES_ext_status):
         raise _enc('telemetry', 'extstatus', r_extstatus, 'enum', 'ExtStatus', None)
     r_extstatus = _RAW_ext_status[r_extstatus]
-    return '$:' + ','.join((_ENUM_move[r_move]._value_, str(r_speed), r_value, s_lcurr, s_rcurr, s_accx, s_accy, s_accz, s_gyrox, s_gyroy, s_gyroz, s_magx, s_magy, s_magz, r_lan, r_lon, s_vbat, str(r_systemstatus), str(r_extid), str(r_extstatus), )) + ';'
+    return '$:' + ','.join((r_move, str(r_speed), r_value, s_lcurr, s_rcurr, s_accx, s_accy, s_accz, s_gyrox, s_gyroy, s_gyroz, s_magx, s_magy, s_magz, r_lan, r_lon, s_vbat, str(r_systemstatus), str(r_extid), str(r_extstatus), )) + ';'
 
 
 def _decode_telemetry(head: str, body: str, base: int) -> Telemetry:
@@ -910,7 +910,7 @@ def _encode_command(m: Command) -> str:
         t9 = r_data
     else:
         t9 = None
-    p: list[Any] = [_ENUM_move[r_move]._value_, str(r_speed), r_value, str(r_azimutloc), s_gpio1, s_gpio2, s_gpio3, s_gpio4, str(r_systemstatus), t9]
+    p: list[Any] = [r_move, str(r_speed), r_value, str(r_azimutloc), s_gpio1, s_gpio2, s_gpio3, s_gpio4, str(r_systemstatus), t9]
     k = 9  # the values always written
     while len(p) > k and p[-1] is None:  # absent values at the end are left out, separators and all
         p.pop()
@@ -1252,7 +1252,7 @@ class StreamDecoder:
                      'a message ending in ; before the end', start)]
 
 
-_ENCODERS: dict[type[Any], Callable[[Any], bytes | str]] = {Telemetry: _encode_telemetry, Command: _encode_command, PayloadCommand: _encode_payload_command, PayloadReply: _encode_payload_reply, GpioConfig: _encode_gpio_config, }
+_ENCODERS: dict[type[Any], Callable[[Any], str]] = {Telemetry: _encode_telemetry, Command: _encode_command, PayloadCommand: _encode_payload_command, PayloadReply: _encode_payload_reply, GpioConfig: _encode_gpio_config, }
 _DECODERS: dict[type[Any], Callable[..., Any]] = {Telemetry: _decode_telemetry, Command: _decode_command, PayloadCommand: _decode_payload_command, PayloadReply: _decode_payload_reply, GpioConfig: _decode_gpio_config, }
 for _cls, _encoder in _ENCODERS.items():  # each encoder is its class's encode method: one call, not two
     _encoder.__doc__ = _Message.encode.__doc__
@@ -1265,7 +1265,7 @@ def encode(m: AnyMessage) -> str:
     fn = _ENCODERS.get(type(m))
     if fn is None:
         raise _enc(None, None, type(m).__name__, 'type', 'a message of tank')
-    return str(fn(m))
+    return fn(m)  # each encoder returns the wire form
 
 
 def validate(m: AnyMessage) -> None:

@@ -99,7 +99,8 @@ def message_views(v: CView) -> list[dict]:
             if v.fr.text_form:
                 functions.append(v.text_form_functions(m))
         out.append({"name": m.name, "tname": v.tname(m), "fn": f"{v.px}_{m.name}",
-                    "kind": v.upper("MSG", m.name), "doc": comment(m.title or m.doc or m.name),
+                    "kind": v.upper("MSG", m.name), "handles": v.upper("HANDLES", m.name),
+                    "select": v.upper("SELECT", m.name), "doc": comment(m.title or m.doc or m.name),
                     "struct": v.struct_lines(m.layout) + v.places_lines(m), "functions": [f for f in functions if f],
                     "units": v.unit_helpers(m)})
     return out
@@ -138,6 +139,7 @@ def render(p: Protocol) -> dict[str, str]:
     header = env.get_template("c/protocol.h.j2").render(
         p=p, v=v, px=v.px, PX=v.PX, fingerprint=fingerprint(p), fingerprint32=f"{fingerprint32(p):#010x}", constants=constants(v), enums=enums(v), flags=flags(v),
         directions=v.directions(), messages=messages, kinds={m["name"]: m["kind"] for m in messages},
+        handles={m["name"]: m["handles"] for m in messages},
         checksums=v.byte_checksums(), crc_methods=crc.METHODS if v.has_crc() else (), crc_default=crc.DEFAULT_METHOD, text=v.text, dispatch=dispatch, stream=v.stream() if fr.kind == "bytes" else {},
         encoding=encoding, stuffing=stuffing, trailer=trailer_view(p), can=can_view(p),
         largest=largest_on_wire(v, encoding, stuffing),

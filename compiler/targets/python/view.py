@@ -1498,7 +1498,7 @@ class MessageCode:
         places = self.m.text_places
         least = places.least
         if any(leaf.field.keep_spelling for leaf in self.text_leaves):
-            c("sp = m._spelling or {}  # the text each number was read from, with the raw value it reads as")
+            c("sp = m._spelling or {}  # the text each number was read from, with its raw value and value")
         for n, leaf in enumerate(self.text_leaves):
             f = leaf.field
             where = f"{self.m.name!r}, {leaf.dotted!r}"
@@ -1525,21 +1525,29 @@ class MessageCode:
                     c(f"    raise _enc({where}, {v}, 'length', 'at most {f.max_length} characters')")
                 out = v
             else:
+                if f.keep_spelling:  # the very value decoded: its text as received, checked then
+                    k = "k_" + leaf.var[2:]
+                    c(f"{k} = sp.get({f.name!r})")
+                    c(f"if {k} is not None and {k}[2] is m.{leaf.dotted}:")
+                    c(f"    t{n} = {k}[1]")
+                    c("else:")
+                    c.indent()
                 self.view.encode_leaf(c, self.m, leaf)
                 if f.kind == "float":
                     out = self.view.float_text(leaf)
                 elif f.enum is not None and f.enum.kind == "char":
-                    out = f"_ENUM_{f.enum.name}[{leaf.var}]._value_"
+                    out = leaf.var  # checked: its value's text, or a member, a str of its value
                 elif f.fixed_spelling:
                     out = f"_fixed({leaf.var}, {f.decimals or 0}, {f.width or 0})"
                 else:
                     out = f"str({leaf.var})"
                 if f.keep_spelling:  # as received, while the field holds the value it reads as
-                    k = "k_" + leaf.var[2:]
-                    c(f"{k} = sp.get({f.name!r})")
-                    out = f"({k}[1] if {k} is not None and {k}[0] == {leaf.var} else {out})"
+                    c(f"t{n} = ({k}[1] if {k} is not None and {k}[0] == {leaf.var} else {out})")
+                    c.dedent()
+                    out = f"t{n}"
             if f.optional and f.const is None:  # absent: an empty value, or none at all at the end of the line
-                c(f"t{n} = {out}")
+                if out != f"t{n}":
+                    c(f"t{n} = {out}")
                 c.dedent()
                 c("else:")
                 c(f"    t{n} = {'None' if n >= least else repr('')}")
@@ -1656,7 +1664,7 @@ class MessageCode:
             c(f"ok = _SYNTAX_{self.fn}.fullmatch(body) is not None  # well-formed: token syntax checks are skipped")
         kept = any(leaf.field.keep_spelling for leaf in self.text_leaves)
         if kept:
-            c("sp: dict[str, tuple[Any, str]] = {}  # each number's text, with the raw value it reads as")
+            c("sp: dict[str, tuple[Any, str, Any]] = {}  # each number's text, with its raw value and value")
         for n, leaf in enumerate(self.text_leaves):
             f = leaf.field
             at = f"{self.m.name!r}, {leaf.dotted!r}"
@@ -1700,8 +1708,11 @@ class MessageCode:
                     c(f"if len({leaf.var}) > {f.max_length}:")
                     c(f"    raise _dec({at}, {leaf.var}, 'length', 'at most {f.max_length} characters', {where})")
             expr = self.view.decode_leaf(c, self.m, leaf, where, finite_if="ok")
-            if f.keep_spelling:
-                c(f"sp[{f.name!r}] = ({leaf.var}, t[{n}])")
+            if f.keep_spelling:  # with the value object itself: encode knows it unchanged by identity
+                if expr is not None and expr != leaf.var and not expr.isidentifier():
+                    c(f"d_{leaf.var[2:]} = {expr}")
+                    expr = f"d_{leaf.var[2:]}"
+                c(f"sp[{f.name!r}] = ({leaf.var}, t[{n}], {expr or leaf.var})")
             if f.optional:
                 c.dedent()
                 c("else:")

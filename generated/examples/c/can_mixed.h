@@ -1183,26 +1183,90 @@ static inline int can_mixed_imu_rates_set_lateral_accel_units(can_mixed_imu_rate
     return CW_OK;
 }
 
+/* Message selection: a firmware that handles a few of the messages defines
+ * CAN_MIXED_SELECTED_MESSAGES and CAN_MIXED_SELECT_<MESSAGE> for each of them before
+ * including this header. The dispatching encoder and decoder, and the streams over
+ * them, then hold only those messages' code: any other message is CW_ERR_DISPATCH,
+ * as a message of no protocol is. Each message's own functions are always here. */
+#if !defined(CAN_MIXED_SELECTED_MESSAGES) || defined(CAN_MIXED_SELECT_EXAMPLE_MESSAGE)
+#define CAN_MIXED_HANDLES_EXAMPLE_MESSAGE 1
+#else
+#define CAN_MIXED_HANDLES_EXAMPLE_MESSAGE 0
+#endif
+#if !defined(CAN_MIXED_SELECTED_MESSAGES) || defined(CAN_MIXED_SELECT_WHEEL_SPEEDS)
+#define CAN_MIXED_HANDLES_WHEEL_SPEEDS 1
+#else
+#define CAN_MIXED_HANDLES_WHEEL_SPEEDS 0
+#endif
+#if !defined(CAN_MIXED_SELECTED_MESSAGES) || defined(CAN_MIXED_SELECT_STEERING)
+#define CAN_MIXED_HANDLES_STEERING 1
+#else
+#define CAN_MIXED_HANDLES_STEERING 0
+#endif
+#if !defined(CAN_MIXED_SELECTED_MESSAGES) || defined(CAN_MIXED_SELECT_GEAR)
+#define CAN_MIXED_HANDLES_GEAR 1
+#else
+#define CAN_MIXED_HANDLES_GEAR 0
+#endif
+#if !defined(CAN_MIXED_SELECTED_MESSAGES) || defined(CAN_MIXED_SELECT_MULTIPLEXED)
+#define CAN_MIXED_HANDLES_MULTIPLEXED 1
+#else
+#define CAN_MIXED_HANDLES_MULTIPLEXED 0
+#endif
+#if !defined(CAN_MIXED_SELECTED_MESSAGES) || defined(CAN_MIXED_SELECT_EXTENDED)
+#define CAN_MIXED_HANDLES_EXTENDED 1
+#else
+#define CAN_MIXED_HANDLES_EXTENDED 0
+#endif
+#if !defined(CAN_MIXED_SELECTED_MESSAGES) || defined(CAN_MIXED_SELECT_SHARED)
+#define CAN_MIXED_HANDLES_SHARED 1
+#else
+#define CAN_MIXED_HANDLES_SHARED 0
+#endif
+#if !defined(CAN_MIXED_SELECTED_MESSAGES) || defined(CAN_MIXED_SELECT_IMU_RATES)
+#define CAN_MIXED_HANDLES_IMU_RATES 1
+#else
+#define CAN_MIXED_HANDLES_IMU_RATES 0
+#endif
+
 /* Encodes any message by its kind. */
 static inline int can_mixed_encode(const can_mixed_message_t *msg, uint8_t *buf, size_t cap)
 {
+    (void)buf;  /* written by a selected message's encoder */
+    (void)cap;
     switch (msg->kind) {
+#if CAN_MIXED_HANDLES_EXAMPLE_MESSAGE
     case CAN_MIXED_MSG_EXAMPLE_MESSAGE:
         return can_mixed_example_message_encode(&msg->as.example_message, buf, cap);
+#endif
+#if CAN_MIXED_HANDLES_WHEEL_SPEEDS
     case CAN_MIXED_MSG_WHEEL_SPEEDS:
         return can_mixed_wheel_speeds_encode(&msg->as.wheel_speeds, buf, cap);
+#endif
+#if CAN_MIXED_HANDLES_STEERING
     case CAN_MIXED_MSG_STEERING:
         return can_mixed_steering_encode(&msg->as.steering, buf, cap);
+#endif
+#if CAN_MIXED_HANDLES_GEAR
     case CAN_MIXED_MSG_GEAR:
         return can_mixed_gear_encode(&msg->as.gear, buf, cap);
+#endif
+#if CAN_MIXED_HANDLES_MULTIPLEXED
     case CAN_MIXED_MSG_MULTIPLEXED:
         return can_mixed_multiplexed_encode(&msg->as.multiplexed, buf, cap);
+#endif
+#if CAN_MIXED_HANDLES_EXTENDED
     case CAN_MIXED_MSG_EXTENDED:
         return can_mixed_extended_encode(&msg->as.extended, buf, cap);
+#endif
+#if CAN_MIXED_HANDLES_SHARED
     case CAN_MIXED_MSG_SHARED:
         return can_mixed_shared_encode(&msg->as.shared, buf, cap);
+#endif
+#if CAN_MIXED_HANDLES_IMU_RATES
     case CAN_MIXED_MSG_IMU_RATES:
         return can_mixed_imu_rates_encode(&msg->as.imu_rates, buf, cap);
+#endif
     default:
         return CW_ERR_DISPATCH;
     }
@@ -1219,59 +1283,92 @@ static inline int can_mixed_decode(const uint8_t *buf, size_t len, int direction
         return CW_ERR_LENGTH;
     }
     id = (cw_get_be(buf + 0, 4u) >> 0) & 4294967295u;
+#if CAN_MIXED_HANDLES_EXAMPLE_MESSAGE
     if (id == 496u && len == 13u) {
         found = CAN_MIXED_MSG_EXAMPLE_MESSAGE;
         matches++;
     }
+#endif
+#if CAN_MIXED_HANDLES_WHEEL_SPEEDS
     if (id == 512u && len == 13u) {
         found = CAN_MIXED_MSG_WHEEL_SPEEDS;
         matches++;
     }
+#endif
+#if CAN_MIXED_HANDLES_STEERING
     if (id == 769u && len == 13u) {
         found = CAN_MIXED_MSG_STEERING;
         matches++;
     }
+#endif
+#if CAN_MIXED_HANDLES_GEAR
     if (id == 928u && len == 7u) {
         found = CAN_MIXED_MSG_GEAR;
         matches++;
     }
+#endif
+#if CAN_MIXED_HANDLES_MULTIPLEXED
     if (id == 2148676694u && len == 13u) {
         found = CAN_MIXED_MSG_MULTIPLEXED;
         matches++;
     }
+#endif
+#if CAN_MIXED_HANDLES_EXTENDED
     if (id == 1111u && len == 13u) {
         found = CAN_MIXED_MSG_EXTENDED;
         matches++;
     }
+#endif
+#if CAN_MIXED_HANDLES_SHARED
     if (id == 1112u && len == 13u) {
         found = CAN_MIXED_MSG_SHARED;
         matches++;
     }
+#endif
+#if CAN_MIXED_HANDLES_IMU_RATES
     if (id == 2432634912u && len == 13u) {
         found = CAN_MIXED_MSG_IMU_RATES;
         matches++;
     }
+#endif
+    (void)id;  /* tested by no selected message */
     if (matches != 1) {
         return CW_ERR_DISPATCH;
     }
     out->kind = (uint8_t)found;
     switch (found) {
+#if CAN_MIXED_HANDLES_EXAMPLE_MESSAGE
     case CAN_MIXED_MSG_EXAMPLE_MESSAGE:
         return can_mixed_example_message_decode(buf, len, &out->as.example_message);
+#endif
+#if CAN_MIXED_HANDLES_WHEEL_SPEEDS
     case CAN_MIXED_MSG_WHEEL_SPEEDS:
         return can_mixed_wheel_speeds_decode(buf, len, &out->as.wheel_speeds);
+#endif
+#if CAN_MIXED_HANDLES_STEERING
     case CAN_MIXED_MSG_STEERING:
         return can_mixed_steering_decode(buf, len, &out->as.steering);
+#endif
+#if CAN_MIXED_HANDLES_GEAR
     case CAN_MIXED_MSG_GEAR:
         return can_mixed_gear_decode(buf, len, &out->as.gear);
+#endif
+#if CAN_MIXED_HANDLES_MULTIPLEXED
     case CAN_MIXED_MSG_MULTIPLEXED:
         return can_mixed_multiplexed_decode(buf, len, &out->as.multiplexed);
+#endif
+#if CAN_MIXED_HANDLES_EXTENDED
     case CAN_MIXED_MSG_EXTENDED:
         return can_mixed_extended_decode(buf, len, &out->as.extended);
+#endif
+#if CAN_MIXED_HANDLES_SHARED
     case CAN_MIXED_MSG_SHARED:
         return can_mixed_shared_decode(buf, len, &out->as.shared);
+#endif
+#if CAN_MIXED_HANDLES_IMU_RATES
     case CAN_MIXED_MSG_IMU_RATES:
         return can_mixed_imu_rates_decode(buf, len, &out->as.imu_rates);
+#endif
     default:
         return CW_ERR_DISPATCH;
     }

@@ -1086,18 +1086,54 @@ static inline int dynamixel2_status_decode(const uint8_t *buf, size_t len, dynam
     return dynamixel2_status_decode_frame(frame, (size_t)n, m);
 }
 
+/* Message selection: a firmware that handles a few of the messages defines
+ * DYNAMIXEL2_SELECTED_MESSAGES and DYNAMIXEL2_SELECT_<MESSAGE> for each of them before
+ * including this header. The dispatching encoder and decoder, and the streams over
+ * them, then hold only those messages' code: any other message is CW_ERR_DISPATCH,
+ * as a message of no protocol is. Each message's own functions are always here. */
+#if !defined(DYNAMIXEL2_SELECTED_MESSAGES) || defined(DYNAMIXEL2_SELECT_PING)
+#define DYNAMIXEL2_HANDLES_PING 1
+#else
+#define DYNAMIXEL2_HANDLES_PING 0
+#endif
+#if !defined(DYNAMIXEL2_SELECTED_MESSAGES) || defined(DYNAMIXEL2_SELECT_READ)
+#define DYNAMIXEL2_HANDLES_READ 1
+#else
+#define DYNAMIXEL2_HANDLES_READ 0
+#endif
+#if !defined(DYNAMIXEL2_SELECTED_MESSAGES) || defined(DYNAMIXEL2_SELECT_WRITE)
+#define DYNAMIXEL2_HANDLES_WRITE 1
+#else
+#define DYNAMIXEL2_HANDLES_WRITE 0
+#endif
+#if !defined(DYNAMIXEL2_SELECTED_MESSAGES) || defined(DYNAMIXEL2_SELECT_STATUS)
+#define DYNAMIXEL2_HANDLES_STATUS 1
+#else
+#define DYNAMIXEL2_HANDLES_STATUS 0
+#endif
+
 /* Encodes any message by its kind. */
 static inline int dynamixel2_encode(const dynamixel2_message_t *msg, uint8_t *buf, size_t cap)
 {
+    (void)buf;  /* written by a selected message's encoder */
+    (void)cap;
     switch (msg->kind) {
+#if DYNAMIXEL2_HANDLES_PING
     case DYNAMIXEL2_MSG_PING:
         return dynamixel2_ping_encode(&msg->as.ping, buf, cap);
+#endif
+#if DYNAMIXEL2_HANDLES_READ
     case DYNAMIXEL2_MSG_READ:
         return dynamixel2_read_encode(&msg->as.read, buf, cap);
+#endif
+#if DYNAMIXEL2_HANDLES_WRITE
     case DYNAMIXEL2_MSG_WRITE:
         return dynamixel2_write_encode(&msg->as.write, buf, cap);
+#endif
+#if DYNAMIXEL2_HANDLES_STATUS
     case DYNAMIXEL2_MSG_STATUS:
         return dynamixel2_status_encode(&msg->as.status, buf, cap);
+#endif
     default:
         return CW_ERR_DISPATCH;
     }
@@ -1114,35 +1150,52 @@ static inline int dynamixel2_decode_frame(const uint8_t *buf, size_t len, int di
         return CW_ERR_LENGTH;
     }
     id = (cw_get_be(buf + 7, 1u) >> 0) & 255u;
+#if DYNAMIXEL2_HANDLES_PING
     if (id == 1u && len == 10u) {
         found = DYNAMIXEL2_MSG_PING;
         matches++;
     }
+#endif
+#if DYNAMIXEL2_HANDLES_READ
     if (id == 2u && len == 14u) {
         found = DYNAMIXEL2_MSG_READ;
         matches++;
     }
+#endif
+#if DYNAMIXEL2_HANDLES_WRITE
     if (id == 3u && len >= 12u && len <= 76u) {
         found = DYNAMIXEL2_MSG_WRITE;
         matches++;
     }
+#endif
+#if DYNAMIXEL2_HANDLES_STATUS
     if (id == 85u && len >= 11u && len <= 75u) {
         found = DYNAMIXEL2_MSG_STATUS;
         matches++;
     }
+#endif
+    (void)id;  /* tested by no selected message */
     if (matches != 1) {
         return CW_ERR_DISPATCH;
     }
     out->kind = (uint8_t)found;
     switch (found) {
+#if DYNAMIXEL2_HANDLES_PING
     case DYNAMIXEL2_MSG_PING:
         return dynamixel2_ping_decode_frame(buf, len, &out->as.ping);
+#endif
+#if DYNAMIXEL2_HANDLES_READ
     case DYNAMIXEL2_MSG_READ:
         return dynamixel2_read_decode_frame(buf, len, &out->as.read);
+#endif
+#if DYNAMIXEL2_HANDLES_WRITE
     case DYNAMIXEL2_MSG_WRITE:
         return dynamixel2_write_decode_frame(buf, len, &out->as.write);
+#endif
+#if DYNAMIXEL2_HANDLES_STATUS
     case DYNAMIXEL2_MSG_STATUS:
         return dynamixel2_status_decode_frame(buf, len, &out->as.status);
+#endif
     default:
         return CW_ERR_DISPATCH;
     }

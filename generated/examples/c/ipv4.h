@@ -424,14 +424,36 @@ static inline int ipv4_udp_decode(const uint8_t *buf, size_t len, ipv4_udp_t *m)
     return ipv4_udp_check_raw(r, buf, m, false);
 }
 
+/* Message selection: a firmware that handles a few of the messages defines
+ * IPV4_SELECTED_MESSAGES and IPV4_SELECT_<MESSAGE> for each of them before
+ * including this header. The dispatching encoder and decoder, and the streams over
+ * them, then hold only those messages' code: any other message is CW_ERR_DISPATCH,
+ * as a message of no protocol is. Each message's own functions are always here. */
+#if !defined(IPV4_SELECTED_MESSAGES) || defined(IPV4_SELECT_ICMP_ECHO_REQUEST)
+#define IPV4_HANDLES_ICMP_ECHO_REQUEST 1
+#else
+#define IPV4_HANDLES_ICMP_ECHO_REQUEST 0
+#endif
+#if !defined(IPV4_SELECTED_MESSAGES) || defined(IPV4_SELECT_UDP)
+#define IPV4_HANDLES_UDP 1
+#else
+#define IPV4_HANDLES_UDP 0
+#endif
+
 /* Encodes any message by its kind. */
 static inline int ipv4_encode(const ipv4_message_t *msg, uint8_t *buf, size_t cap)
 {
+    (void)buf;  /* written by a selected message's encoder */
+    (void)cap;
     switch (msg->kind) {
+#if IPV4_HANDLES_ICMP_ECHO_REQUEST
     case IPV4_MSG_ICMP_ECHO_REQUEST:
         return ipv4_icmp_echo_request_encode(&msg->as.icmp_echo_request, buf, cap);
+#endif
+#if IPV4_HANDLES_UDP
     case IPV4_MSG_UDP:
         return ipv4_udp_encode(&msg->as.udp, buf, cap);
+#endif
     default:
         return CW_ERR_DISPATCH;
     }
@@ -448,23 +470,32 @@ static inline int ipv4_decode(const uint8_t *buf, size_t len, int direction, ipv
         return CW_ERR_LENGTH;
     }
     id = (cw_get_be(buf + 9, 1u) >> 0) & 255u;
+#if IPV4_HANDLES_ICMP_ECHO_REQUEST
     if (id == 1u && len >= 28u && len <= 92u) {
         found = IPV4_MSG_ICMP_ECHO_REQUEST;
         matches++;
     }
+#endif
+#if IPV4_HANDLES_UDP
     if (id == 17u && len >= 28u && len <= 156u) {
         found = IPV4_MSG_UDP;
         matches++;
     }
+#endif
+    (void)id;  /* tested by no selected message */
     if (matches != 1) {
         return CW_ERR_DISPATCH;
     }
     out->kind = (uint8_t)found;
     switch (found) {
+#if IPV4_HANDLES_ICMP_ECHO_REQUEST
     case IPV4_MSG_ICMP_ECHO_REQUEST:
         return ipv4_icmp_echo_request_decode(buf, len, &out->as.icmp_echo_request);
+#endif
+#if IPV4_HANDLES_UDP
     case IPV4_MSG_UDP:
         return ipv4_udp_decode(buf, len, &out->as.udp);
+#endif
     default:
         return CW_ERR_DISPATCH;
     }

@@ -1273,22 +1273,72 @@ static inline int mavlink1_command_long_decode(const uint8_t *buf, size_t len, m
     return mavlink1_command_long_check_raw(r, buf, m, false);
 }
 
+/* Message selection: a firmware that handles a few of the messages defines
+ * MAVLINK1_SELECTED_MESSAGES and MAVLINK1_SELECT_<MESSAGE> for each of them before
+ * including this header. The dispatching encoder and decoder, and the streams over
+ * them, then hold only those messages' code: any other message is CW_ERR_DISPATCH,
+ * as a message of no protocol is. Each message's own functions are always here. */
+#if !defined(MAVLINK1_SELECTED_MESSAGES) || defined(MAVLINK1_SELECT_HEARTBEAT)
+#define MAVLINK1_HANDLES_HEARTBEAT 1
+#else
+#define MAVLINK1_HANDLES_HEARTBEAT 0
+#endif
+#if !defined(MAVLINK1_SELECTED_MESSAGES) || defined(MAVLINK1_SELECT_SYS_STATUS)
+#define MAVLINK1_HANDLES_SYS_STATUS 1
+#else
+#define MAVLINK1_HANDLES_SYS_STATUS 0
+#endif
+#if !defined(MAVLINK1_SELECTED_MESSAGES) || defined(MAVLINK1_SELECT_PARAM_VALUE)
+#define MAVLINK1_HANDLES_PARAM_VALUE 1
+#else
+#define MAVLINK1_HANDLES_PARAM_VALUE 0
+#endif
+#if !defined(MAVLINK1_SELECTED_MESSAGES) || defined(MAVLINK1_SELECT_GPS_RAW_INT)
+#define MAVLINK1_HANDLES_GPS_RAW_INT 1
+#else
+#define MAVLINK1_HANDLES_GPS_RAW_INT 0
+#endif
+#if !defined(MAVLINK1_SELECTED_MESSAGES) || defined(MAVLINK1_SELECT_ATTITUDE)
+#define MAVLINK1_HANDLES_ATTITUDE 1
+#else
+#define MAVLINK1_HANDLES_ATTITUDE 0
+#endif
+#if !defined(MAVLINK1_SELECTED_MESSAGES) || defined(MAVLINK1_SELECT_COMMAND_LONG)
+#define MAVLINK1_HANDLES_COMMAND_LONG 1
+#else
+#define MAVLINK1_HANDLES_COMMAND_LONG 0
+#endif
+
 /* Encodes any message by its kind. */
 static inline int mavlink1_encode(const mavlink1_message_t *msg, uint8_t *buf, size_t cap)
 {
+    (void)buf;  /* written by a selected message's encoder */
+    (void)cap;
     switch (msg->kind) {
+#if MAVLINK1_HANDLES_HEARTBEAT
     case MAVLINK1_MSG_HEARTBEAT:
         return mavlink1_heartbeat_encode(&msg->as.heartbeat, buf, cap);
+#endif
+#if MAVLINK1_HANDLES_SYS_STATUS
     case MAVLINK1_MSG_SYS_STATUS:
         return mavlink1_sys_status_encode(&msg->as.sys_status, buf, cap);
+#endif
+#if MAVLINK1_HANDLES_PARAM_VALUE
     case MAVLINK1_MSG_PARAM_VALUE:
         return mavlink1_param_value_encode(&msg->as.param_value, buf, cap);
+#endif
+#if MAVLINK1_HANDLES_GPS_RAW_INT
     case MAVLINK1_MSG_GPS_RAW_INT:
         return mavlink1_gps_raw_int_encode(&msg->as.gps_raw_int, buf, cap);
+#endif
+#if MAVLINK1_HANDLES_ATTITUDE
     case MAVLINK1_MSG_ATTITUDE:
         return mavlink1_attitude_encode(&msg->as.attitude, buf, cap);
+#endif
+#if MAVLINK1_HANDLES_COMMAND_LONG
     case MAVLINK1_MSG_COMMAND_LONG:
         return mavlink1_command_long_encode(&msg->as.command_long, buf, cap);
+#endif
     default:
         return CW_ERR_DISPATCH;
     }
@@ -1305,47 +1355,72 @@ static inline int mavlink1_decode(const uint8_t *buf, size_t len, int direction,
         return CW_ERR_LENGTH;
     }
     id = (cw_get_be(buf + 5, 1u) >> 0) & 255u;
+#if MAVLINK1_HANDLES_HEARTBEAT
     if (id == 0u && len == 17u) {
         found = MAVLINK1_MSG_HEARTBEAT;
         matches++;
     }
+#endif
+#if MAVLINK1_HANDLES_SYS_STATUS
     if (id == 1u && len == 39u) {
         found = MAVLINK1_MSG_SYS_STATUS;
         matches++;
     }
+#endif
+#if MAVLINK1_HANDLES_PARAM_VALUE
     if (id == 22u && len == 33u) {
         found = MAVLINK1_MSG_PARAM_VALUE;
         matches++;
     }
+#endif
+#if MAVLINK1_HANDLES_GPS_RAW_INT
     if (id == 24u && len == 38u) {
         found = MAVLINK1_MSG_GPS_RAW_INT;
         matches++;
     }
+#endif
+#if MAVLINK1_HANDLES_ATTITUDE
     if (id == 30u && len == 36u) {
         found = MAVLINK1_MSG_ATTITUDE;
         matches++;
     }
+#endif
+#if MAVLINK1_HANDLES_COMMAND_LONG
     if (id == 76u && len == 41u) {
         found = MAVLINK1_MSG_COMMAND_LONG;
         matches++;
     }
+#endif
+    (void)id;  /* tested by no selected message */
     if (matches != 1) {
         return CW_ERR_DISPATCH;
     }
     out->kind = (uint8_t)found;
     switch (found) {
+#if MAVLINK1_HANDLES_HEARTBEAT
     case MAVLINK1_MSG_HEARTBEAT:
         return mavlink1_heartbeat_decode(buf, len, &out->as.heartbeat);
+#endif
+#if MAVLINK1_HANDLES_SYS_STATUS
     case MAVLINK1_MSG_SYS_STATUS:
         return mavlink1_sys_status_decode(buf, len, &out->as.sys_status);
+#endif
+#if MAVLINK1_HANDLES_PARAM_VALUE
     case MAVLINK1_MSG_PARAM_VALUE:
         return mavlink1_param_value_decode(buf, len, &out->as.param_value);
+#endif
+#if MAVLINK1_HANDLES_GPS_RAW_INT
     case MAVLINK1_MSG_GPS_RAW_INT:
         return mavlink1_gps_raw_int_decode(buf, len, &out->as.gps_raw_int);
+#endif
+#if MAVLINK1_HANDLES_ATTITUDE
     case MAVLINK1_MSG_ATTITUDE:
         return mavlink1_attitude_decode(buf, len, &out->as.attitude);
+#endif
+#if MAVLINK1_HANDLES_COMMAND_LONG
     case MAVLINK1_MSG_COMMAND_LONG:
         return mavlink1_command_long_decode(buf, len, &out->as.command_long);
+#endif
     default:
         return CW_ERR_DISPATCH;
     }

@@ -1455,22 +1455,72 @@ static inline int mavlink2_command_ack_decode(const uint8_t *buf, size_t len, ma
     return mavlink2_command_ack_check_raw(r, buf, m, false);
 }
 
+/* Message selection: a firmware that handles a few of the messages defines
+ * MAVLINK2_SELECTED_MESSAGES and MAVLINK2_SELECT_<MESSAGE> for each of them before
+ * including this header. The dispatching encoder and decoder, and the streams over
+ * them, then hold only those messages' code: any other message is CW_ERR_DISPATCH,
+ * as a message of no protocol is. Each message's own functions are always here. */
+#if !defined(MAVLINK2_SELECTED_MESSAGES) || defined(MAVLINK2_SELECT_HEARTBEAT)
+#define MAVLINK2_HANDLES_HEARTBEAT 1
+#else
+#define MAVLINK2_HANDLES_HEARTBEAT 0
+#endif
+#if !defined(MAVLINK2_SELECTED_MESSAGES) || defined(MAVLINK2_SELECT_SYS_STATUS)
+#define MAVLINK2_HANDLES_SYS_STATUS 1
+#else
+#define MAVLINK2_HANDLES_SYS_STATUS 0
+#endif
+#if !defined(MAVLINK2_SELECTED_MESSAGES) || defined(MAVLINK2_SELECT_PARAM_VALUE)
+#define MAVLINK2_HANDLES_PARAM_VALUE 1
+#else
+#define MAVLINK2_HANDLES_PARAM_VALUE 0
+#endif
+#if !defined(MAVLINK2_SELECTED_MESSAGES) || defined(MAVLINK2_SELECT_GPS_RAW_INT)
+#define MAVLINK2_HANDLES_GPS_RAW_INT 1
+#else
+#define MAVLINK2_HANDLES_GPS_RAW_INT 0
+#endif
+#if !defined(MAVLINK2_SELECTED_MESSAGES) || defined(MAVLINK2_SELECT_ATTITUDE)
+#define MAVLINK2_HANDLES_ATTITUDE 1
+#else
+#define MAVLINK2_HANDLES_ATTITUDE 0
+#endif
+#if !defined(MAVLINK2_SELECTED_MESSAGES) || defined(MAVLINK2_SELECT_COMMAND_ACK)
+#define MAVLINK2_HANDLES_COMMAND_ACK 1
+#else
+#define MAVLINK2_HANDLES_COMMAND_ACK 0
+#endif
+
 /* Encodes any message by its kind. */
 static inline int mavlink2_encode_frame(const mavlink2_message_t *msg, uint8_t *buf, size_t cap)
 {
+    (void)buf;  /* written by a selected message's encoder */
+    (void)cap;
     switch (msg->kind) {
+#if MAVLINK2_HANDLES_HEARTBEAT
     case MAVLINK2_MSG_HEARTBEAT:
         return mavlink2_heartbeat_encode(&msg->as.heartbeat, buf, cap);
+#endif
+#if MAVLINK2_HANDLES_SYS_STATUS
     case MAVLINK2_MSG_SYS_STATUS:
         return mavlink2_sys_status_encode(&msg->as.sys_status, buf, cap);
+#endif
+#if MAVLINK2_HANDLES_PARAM_VALUE
     case MAVLINK2_MSG_PARAM_VALUE:
         return mavlink2_param_value_encode(&msg->as.param_value, buf, cap);
+#endif
+#if MAVLINK2_HANDLES_GPS_RAW_INT
     case MAVLINK2_MSG_GPS_RAW_INT:
         return mavlink2_gps_raw_int_encode(&msg->as.gps_raw_int, buf, cap);
+#endif
+#if MAVLINK2_HANDLES_ATTITUDE
     case MAVLINK2_MSG_ATTITUDE:
         return mavlink2_attitude_encode(&msg->as.attitude, buf, cap);
+#endif
+#if MAVLINK2_HANDLES_COMMAND_ACK
     case MAVLINK2_MSG_COMMAND_ACK:
         return mavlink2_command_ack_encode(&msg->as.command_ack, buf, cap);
+#endif
     default:
         return CW_ERR_DISPATCH;
     }
@@ -1487,47 +1537,72 @@ static inline int mavlink2_decode_frame(const uint8_t *buf, size_t len, int dire
         return CW_ERR_LENGTH;
     }
     id = (cw_get_le(buf + 7, 3u) >> 0) & 16777215u;
+#if MAVLINK2_HANDLES_HEARTBEAT
     if (id == 0u && len >= 13u && len <= 21u) {
         found = MAVLINK2_MSG_HEARTBEAT;
         matches++;
     }
+#endif
+#if MAVLINK2_HANDLES_SYS_STATUS
     if (id == 1u && len >= 13u && len <= 55u) {
         found = MAVLINK2_MSG_SYS_STATUS;
         matches++;
     }
+#endif
+#if MAVLINK2_HANDLES_PARAM_VALUE
     if (id == 22u && len >= 13u && len <= 37u) {
         found = MAVLINK2_MSG_PARAM_VALUE;
         matches++;
     }
+#endif
+#if MAVLINK2_HANDLES_GPS_RAW_INT
     if (id == 24u && len >= 13u && len <= 64u) {
         found = MAVLINK2_MSG_GPS_RAW_INT;
         matches++;
     }
+#endif
+#if MAVLINK2_HANDLES_ATTITUDE
     if (id == 30u && len >= 13u && len <= 40u) {
         found = MAVLINK2_MSG_ATTITUDE;
         matches++;
     }
+#endif
+#if MAVLINK2_HANDLES_COMMAND_ACK
     if (id == 77u && len >= 13u && len <= 22u) {
         found = MAVLINK2_MSG_COMMAND_ACK;
         matches++;
     }
+#endif
+    (void)id;  /* tested by no selected message */
     if (matches != 1) {
         return CW_ERR_DISPATCH;
     }
     out->kind = (uint8_t)found;
     switch (found) {
+#if MAVLINK2_HANDLES_HEARTBEAT
     case MAVLINK2_MSG_HEARTBEAT:
         return mavlink2_heartbeat_decode(buf, len, &out->as.heartbeat);
+#endif
+#if MAVLINK2_HANDLES_SYS_STATUS
     case MAVLINK2_MSG_SYS_STATUS:
         return mavlink2_sys_status_decode(buf, len, &out->as.sys_status);
+#endif
+#if MAVLINK2_HANDLES_PARAM_VALUE
     case MAVLINK2_MSG_PARAM_VALUE:
         return mavlink2_param_value_decode(buf, len, &out->as.param_value);
+#endif
+#if MAVLINK2_HANDLES_GPS_RAW_INT
     case MAVLINK2_MSG_GPS_RAW_INT:
         return mavlink2_gps_raw_int_decode(buf, len, &out->as.gps_raw_int);
+#endif
+#if MAVLINK2_HANDLES_ATTITUDE
     case MAVLINK2_MSG_ATTITUDE:
         return mavlink2_attitude_decode(buf, len, &out->as.attitude);
+#endif
+#if MAVLINK2_HANDLES_COMMAND_ACK
     case MAVLINK2_MSG_COMMAND_ACK:
         return mavlink2_command_ack_decode(buf, len, &out->as.command_ack);
+#endif
     default:
         return CW_ERR_DISPATCH;
     }

@@ -944,20 +944,63 @@ static inline int modbus_rtu_exception_response_decode(const uint8_t *buf, size_
     return modbus_rtu_exception_response_check_raw(r, buf, m, false);
 }
 
+/* Message selection: a firmware that handles a few of the messages defines
+ * MODBUS_RTU_SELECTED_MESSAGES and MODBUS_RTU_SELECT_<MESSAGE> for each of them before
+ * including this header. The dispatching encoder and decoder, and the streams over
+ * them, then hold only those messages' code: any other message is CW_ERR_DISPATCH,
+ * as a message of no protocol is. Each message's own functions are always here. */
+#if !defined(MODBUS_RTU_SELECTED_MESSAGES) || defined(MODBUS_RTU_SELECT_READ_HOLDING_REGISTERS)
+#define MODBUS_RTU_HANDLES_READ_HOLDING_REGISTERS 1
+#else
+#define MODBUS_RTU_HANDLES_READ_HOLDING_REGISTERS 0
+#endif
+#if !defined(MODBUS_RTU_SELECTED_MESSAGES) || defined(MODBUS_RTU_SELECT_READ_HOLDING_REGISTERS_RESPONSE)
+#define MODBUS_RTU_HANDLES_READ_HOLDING_REGISTERS_RESPONSE 1
+#else
+#define MODBUS_RTU_HANDLES_READ_HOLDING_REGISTERS_RESPONSE 0
+#endif
+#if !defined(MODBUS_RTU_SELECTED_MESSAGES) || defined(MODBUS_RTU_SELECT_WRITE_MULTIPLE_REGISTERS)
+#define MODBUS_RTU_HANDLES_WRITE_MULTIPLE_REGISTERS 1
+#else
+#define MODBUS_RTU_HANDLES_WRITE_MULTIPLE_REGISTERS 0
+#endif
+#if !defined(MODBUS_RTU_SELECTED_MESSAGES) || defined(MODBUS_RTU_SELECT_WRITE_MULTIPLE_REGISTERS_RESPONSE)
+#define MODBUS_RTU_HANDLES_WRITE_MULTIPLE_REGISTERS_RESPONSE 1
+#else
+#define MODBUS_RTU_HANDLES_WRITE_MULTIPLE_REGISTERS_RESPONSE 0
+#endif
+#if !defined(MODBUS_RTU_SELECTED_MESSAGES) || defined(MODBUS_RTU_SELECT_EXCEPTION_RESPONSE)
+#define MODBUS_RTU_HANDLES_EXCEPTION_RESPONSE 1
+#else
+#define MODBUS_RTU_HANDLES_EXCEPTION_RESPONSE 0
+#endif
+
 /* Encodes any message by its kind. */
 static inline int modbus_rtu_encode(const modbus_rtu_message_t *msg, uint8_t *buf, size_t cap)
 {
+    (void)buf;  /* written by a selected message's encoder */
+    (void)cap;
     switch (msg->kind) {
+#if MODBUS_RTU_HANDLES_READ_HOLDING_REGISTERS
     case MODBUS_RTU_MSG_READ_HOLDING_REGISTERS:
         return modbus_rtu_read_holding_registers_encode(&msg->as.read_holding_registers, buf, cap);
+#endif
+#if MODBUS_RTU_HANDLES_READ_HOLDING_REGISTERS_RESPONSE
     case MODBUS_RTU_MSG_READ_HOLDING_REGISTERS_RESPONSE:
         return modbus_rtu_read_holding_registers_response_encode(&msg->as.read_holding_registers_response, buf, cap);
+#endif
+#if MODBUS_RTU_HANDLES_WRITE_MULTIPLE_REGISTERS
     case MODBUS_RTU_MSG_WRITE_MULTIPLE_REGISTERS:
         return modbus_rtu_write_multiple_registers_encode(&msg->as.write_multiple_registers, buf, cap);
+#endif
+#if MODBUS_RTU_HANDLES_WRITE_MULTIPLE_REGISTERS_RESPONSE
     case MODBUS_RTU_MSG_WRITE_MULTIPLE_REGISTERS_RESPONSE:
         return modbus_rtu_write_multiple_registers_response_encode(&msg->as.write_multiple_registers_response, buf, cap);
+#endif
+#if MODBUS_RTU_HANDLES_EXCEPTION_RESPONSE
     case MODBUS_RTU_MSG_EXCEPTION_RESPONSE:
         return modbus_rtu_exception_response_encode(&msg->as.exception_response, buf, cap);
+#endif
     default:
         return CW_ERR_DISPATCH;
     }
@@ -969,73 +1012,109 @@ static inline int modbus_rtu_decode(const uint8_t *buf, size_t len, int directio
     uint32_t id;
     int found = 0;
     int matches = 0;
+    (void)direction;  /* tested by the selected messages */
     if (len < 2u) {
         return CW_ERR_LENGTH;
     }
     id = (cw_get_be(buf + 1, 1u) >> 0) & 255u;
+#if MODBUS_RTU_HANDLES_READ_HOLDING_REGISTERS
     if (id == 3u && len == 8u && (direction == MODBUS_RTU_DIR_ANY || direction == MODBUS_RTU_DIR_TO_SERVER)) {
         found = MODBUS_RTU_MSG_READ_HOLDING_REGISTERS;
         matches++;
     }
+#endif
+#if MODBUS_RTU_HANDLES_READ_HOLDING_REGISTERS_RESPONSE
     if (id == 3u && len >= 5u && len <= 255u && (len - 5u) % 2u == 0u && (direction == MODBUS_RTU_DIR_ANY || direction == MODBUS_RTU_DIR_TO_CLIENT)) {
         found = MODBUS_RTU_MSG_READ_HOLDING_REGISTERS_RESPONSE;
         matches++;
     }
+#endif
+#if MODBUS_RTU_HANDLES_WRITE_MULTIPLE_REGISTERS
     if (id == 16u && len >= 9u && len <= 255u && (len - 9u) % 2u == 0u && (direction == MODBUS_RTU_DIR_ANY || direction == MODBUS_RTU_DIR_TO_SERVER)) {
         found = MODBUS_RTU_MSG_WRITE_MULTIPLE_REGISTERS;
         matches++;
     }
+#endif
+#if MODBUS_RTU_HANDLES_WRITE_MULTIPLE_REGISTERS_RESPONSE
     if (id == 16u && len == 8u && (direction == MODBUS_RTU_DIR_ANY || direction == MODBUS_RTU_DIR_TO_CLIENT)) {
         found = MODBUS_RTU_MSG_WRITE_MULTIPLE_REGISTERS_RESPONSE;
         matches++;
     }
+#endif
+#if MODBUS_RTU_HANDLES_EXCEPTION_RESPONSE
     if (id == 129u && len == 5u && (direction == MODBUS_RTU_DIR_ANY || direction == MODBUS_RTU_DIR_TO_CLIENT)) {
         found = MODBUS_RTU_MSG_EXCEPTION_RESPONSE;
         matches++;
     }
+#endif
+#if MODBUS_RTU_HANDLES_EXCEPTION_RESPONSE
     if (id == 130u && len == 5u && (direction == MODBUS_RTU_DIR_ANY || direction == MODBUS_RTU_DIR_TO_CLIENT)) {
         found = MODBUS_RTU_MSG_EXCEPTION_RESPONSE;
         matches++;
     }
+#endif
+#if MODBUS_RTU_HANDLES_EXCEPTION_RESPONSE
     if (id == 131u && len == 5u && (direction == MODBUS_RTU_DIR_ANY || direction == MODBUS_RTU_DIR_TO_CLIENT)) {
         found = MODBUS_RTU_MSG_EXCEPTION_RESPONSE;
         matches++;
     }
+#endif
+#if MODBUS_RTU_HANDLES_EXCEPTION_RESPONSE
     if (id == 132u && len == 5u && (direction == MODBUS_RTU_DIR_ANY || direction == MODBUS_RTU_DIR_TO_CLIENT)) {
         found = MODBUS_RTU_MSG_EXCEPTION_RESPONSE;
         matches++;
     }
+#endif
+#if MODBUS_RTU_HANDLES_EXCEPTION_RESPONSE
     if (id == 133u && len == 5u && (direction == MODBUS_RTU_DIR_ANY || direction == MODBUS_RTU_DIR_TO_CLIENT)) {
         found = MODBUS_RTU_MSG_EXCEPTION_RESPONSE;
         matches++;
     }
+#endif
+#if MODBUS_RTU_HANDLES_EXCEPTION_RESPONSE
     if (id == 134u && len == 5u && (direction == MODBUS_RTU_DIR_ANY || direction == MODBUS_RTU_DIR_TO_CLIENT)) {
         found = MODBUS_RTU_MSG_EXCEPTION_RESPONSE;
         matches++;
     }
+#endif
+#if MODBUS_RTU_HANDLES_EXCEPTION_RESPONSE
     if (id == 143u && len == 5u && (direction == MODBUS_RTU_DIR_ANY || direction == MODBUS_RTU_DIR_TO_CLIENT)) {
         found = MODBUS_RTU_MSG_EXCEPTION_RESPONSE;
         matches++;
     }
+#endif
+#if MODBUS_RTU_HANDLES_EXCEPTION_RESPONSE
     if (id == 144u && len == 5u && (direction == MODBUS_RTU_DIR_ANY || direction == MODBUS_RTU_DIR_TO_CLIENT)) {
         found = MODBUS_RTU_MSG_EXCEPTION_RESPONSE;
         matches++;
     }
+#endif
+    (void)id;  /* tested by no selected message */
     if (matches != 1) {
         return CW_ERR_DISPATCH;
     }
     out->kind = (uint8_t)found;
     switch (found) {
+#if MODBUS_RTU_HANDLES_READ_HOLDING_REGISTERS
     case MODBUS_RTU_MSG_READ_HOLDING_REGISTERS:
         return modbus_rtu_read_holding_registers_decode(buf, len, &out->as.read_holding_registers);
+#endif
+#if MODBUS_RTU_HANDLES_READ_HOLDING_REGISTERS_RESPONSE
     case MODBUS_RTU_MSG_READ_HOLDING_REGISTERS_RESPONSE:
         return modbus_rtu_read_holding_registers_response_decode(buf, len, &out->as.read_holding_registers_response);
+#endif
+#if MODBUS_RTU_HANDLES_WRITE_MULTIPLE_REGISTERS
     case MODBUS_RTU_MSG_WRITE_MULTIPLE_REGISTERS:
         return modbus_rtu_write_multiple_registers_decode(buf, len, &out->as.write_multiple_registers);
+#endif
+#if MODBUS_RTU_HANDLES_WRITE_MULTIPLE_REGISTERS_RESPONSE
     case MODBUS_RTU_MSG_WRITE_MULTIPLE_REGISTERS_RESPONSE:
         return modbus_rtu_write_multiple_registers_response_decode(buf, len, &out->as.write_multiple_registers_response);
+#endif
+#if MODBUS_RTU_HANDLES_EXCEPTION_RESPONSE
     case MODBUS_RTU_MSG_EXCEPTION_RESPONSE:
         return modbus_rtu_exception_response_decode(buf, len, &out->as.exception_response);
+#endif
     default:
         return CW_ERR_DISPATCH;
     }

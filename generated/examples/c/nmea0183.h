@@ -1900,16 +1900,45 @@ static inline int nmea0183_vtg_set_spd_over_grnd_kmph_units(nmea0183_vtg_t *m, f
     return CW_OK;
 }
 
+/* Message selection: a firmware that handles a few of the messages defines
+ * NMEA0183_SELECTED_MESSAGES and NMEA0183_SELECT_<MESSAGE> for each of them before
+ * including this header. The dispatching encoder and decoder, and the streams over
+ * them, then hold only those messages' code: any other message is CW_ERR_DISPATCH,
+ * as a message of no protocol is. Each message's own functions are always here. */
+#if !defined(NMEA0183_SELECTED_MESSAGES) || defined(NMEA0183_SELECT_GGA)
+#define NMEA0183_HANDLES_GGA 1
+#else
+#define NMEA0183_HANDLES_GGA 0
+#endif
+#if !defined(NMEA0183_SELECTED_MESSAGES) || defined(NMEA0183_SELECT_RMC)
+#define NMEA0183_HANDLES_RMC 1
+#else
+#define NMEA0183_HANDLES_RMC 0
+#endif
+#if !defined(NMEA0183_SELECTED_MESSAGES) || defined(NMEA0183_SELECT_VTG)
+#define NMEA0183_HANDLES_VTG 1
+#else
+#define NMEA0183_HANDLES_VTG 0
+#endif
+
 /* Encodes any message by its kind. */
 static inline int nmea0183_encode(const nmea0183_message_t *msg, char *buf, size_t cap)
 {
+    (void)buf;  /* written by a selected message's encoder */
+    (void)cap;
     switch (msg->kind) {
+#if NMEA0183_HANDLES_GGA
     case NMEA0183_MSG_GGA:
         return nmea0183_gga_encode(&msg->as.gga, buf, cap);
+#endif
+#if NMEA0183_HANDLES_RMC
     case NMEA0183_MSG_RMC:
         return nmea0183_rmc_encode(&msg->as.rmc, buf, cap);
+#endif
+#if NMEA0183_HANDLES_VTG
     case NMEA0183_MSG_VTG:
         return nmea0183_vtg_encode(&msg->as.vtg, buf, cap);
+#endif
     default:
         return CW_ERR_DISPATCH;
     }
@@ -1921,19 +1950,32 @@ static inline int nmea0183_decode(const char *text, size_t len, int direction, n
     const char *pb, *pe, *body, *end;
     size_t n;
     int rc = nmea0183_split(text, len, &pb, &pe, &body, &end);
+    (void)out;  /* written by a selected message's decoder */
     if (rc != CW_OK) {
         return cw_text_verdict(text, len, rc);
     }
     n = (size_t)(pe - pb);
     if (n == 5u && memcmp(pb + 2, NMEA0183_GGA_ID, 3u) == 0 && (direction == NMEA0183_DIR_ANY || direction == NMEA0183_DIR_RECEIVER_TO_HOST)) {
+#if NMEA0183_HANDLES_GGA
         out->kind = NMEA0183_MSG_GGA;
         rc = nmea0183_gga_parse_prefixed(pb, body, end, &out->as.gga);
+#else
+        rc = CW_ERR_DISPATCH;
+#endif
     } else if (n == 5u && memcmp(pb + 2, NMEA0183_RMC_ID, 3u) == 0 && (direction == NMEA0183_DIR_ANY || direction == NMEA0183_DIR_RECEIVER_TO_HOST)) {
+#if NMEA0183_HANDLES_RMC
         out->kind = NMEA0183_MSG_RMC;
         rc = nmea0183_rmc_parse_prefixed(pb, body, end, &out->as.rmc);
+#else
+        rc = CW_ERR_DISPATCH;
+#endif
     } else if (n == 5u && memcmp(pb + 2, NMEA0183_VTG_ID, 3u) == 0 && (direction == NMEA0183_DIR_ANY || direction == NMEA0183_DIR_RECEIVER_TO_HOST)) {
+#if NMEA0183_HANDLES_VTG
         out->kind = NMEA0183_MSG_VTG;
         rc = nmea0183_vtg_parse_prefixed(pb, body, end, &out->as.vtg);
+#else
+        rc = CW_ERR_DISPATCH;
+#endif
     } else {
         rc = CW_ERR_DISPATCH;
     }

@@ -1522,26 +1522,90 @@ static inline int ubx_mon_ver_decode(const uint8_t *buf, size_t len, ubx_mon_ver
     return ubx_mon_ver_check_raw(r, buf, m, false);
 }
 
+/* Message selection: a firmware that handles a few of the messages defines
+ * UBX_SELECTED_MESSAGES and UBX_SELECT_<MESSAGE> for each of them before
+ * including this header. The dispatching encoder and decoder, and the streams over
+ * them, then hold only those messages' code: any other message is CW_ERR_DISPATCH,
+ * as a message of no protocol is. Each message's own functions are always here. */
+#if !defined(UBX_SELECTED_MESSAGES) || defined(UBX_SELECT_ACK_NAK)
+#define UBX_HANDLES_ACK_NAK 1
+#else
+#define UBX_HANDLES_ACK_NAK 0
+#endif
+#if !defined(UBX_SELECTED_MESSAGES) || defined(UBX_SELECT_ACK_ACK)
+#define UBX_HANDLES_ACK_ACK 1
+#else
+#define UBX_HANDLES_ACK_ACK 0
+#endif
+#if !defined(UBX_SELECTED_MESSAGES) || defined(UBX_SELECT_CFG_RATE_POLL)
+#define UBX_HANDLES_CFG_RATE_POLL 1
+#else
+#define UBX_HANDLES_CFG_RATE_POLL 0
+#endif
+#if !defined(UBX_SELECTED_MESSAGES) || defined(UBX_SELECT_CFG_RATE)
+#define UBX_HANDLES_CFG_RATE 1
+#else
+#define UBX_HANDLES_CFG_RATE 0
+#endif
+#if !defined(UBX_SELECTED_MESSAGES) || defined(UBX_SELECT_NAV_POSLLH)
+#define UBX_HANDLES_NAV_POSLLH 1
+#else
+#define UBX_HANDLES_NAV_POSLLH 0
+#endif
+#if !defined(UBX_SELECTED_MESSAGES) || defined(UBX_SELECT_NAV_PVT)
+#define UBX_HANDLES_NAV_PVT 1
+#else
+#define UBX_HANDLES_NAV_PVT 0
+#endif
+#if !defined(UBX_SELECTED_MESSAGES) || defined(UBX_SELECT_NAV_SAT)
+#define UBX_HANDLES_NAV_SAT 1
+#else
+#define UBX_HANDLES_NAV_SAT 0
+#endif
+#if !defined(UBX_SELECTED_MESSAGES) || defined(UBX_SELECT_MON_VER)
+#define UBX_HANDLES_MON_VER 1
+#else
+#define UBX_HANDLES_MON_VER 0
+#endif
+
 /* Encodes any message by its kind. */
 static inline int ubx_encode(const ubx_message_t *msg, uint8_t *buf, size_t cap)
 {
+    (void)buf;  /* written by a selected message's encoder */
+    (void)cap;
     switch (msg->kind) {
+#if UBX_HANDLES_ACK_NAK
     case UBX_MSG_ACK_NAK:
         return ubx_ack_nak_encode(&msg->as.ack_nak, buf, cap);
+#endif
+#if UBX_HANDLES_ACK_ACK
     case UBX_MSG_ACK_ACK:
         return ubx_ack_ack_encode(&msg->as.ack_ack, buf, cap);
+#endif
+#if UBX_HANDLES_CFG_RATE_POLL
     case UBX_MSG_CFG_RATE_POLL:
         return ubx_cfg_rate_poll_encode(&msg->as.cfg_rate_poll, buf, cap);
+#endif
+#if UBX_HANDLES_CFG_RATE
     case UBX_MSG_CFG_RATE:
         return ubx_cfg_rate_encode(&msg->as.cfg_rate, buf, cap);
+#endif
+#if UBX_HANDLES_NAV_POSLLH
     case UBX_MSG_NAV_POSLLH:
         return ubx_nav_posllh_encode(&msg->as.nav_posllh, buf, cap);
+#endif
+#if UBX_HANDLES_NAV_PVT
     case UBX_MSG_NAV_PVT:
         return ubx_nav_pvt_encode(&msg->as.nav_pvt, buf, cap);
+#endif
+#if UBX_HANDLES_NAV_SAT
     case UBX_MSG_NAV_SAT:
         return ubx_nav_sat_encode(&msg->as.nav_sat, buf, cap);
+#endif
+#if UBX_HANDLES_MON_VER
     case UBX_MSG_MON_VER:
         return ubx_mon_ver_encode(&msg->as.mon_ver, buf, cap);
+#endif
     default:
         return CW_ERR_DISPATCH;
     }
@@ -1558,59 +1622,92 @@ static inline int ubx_decode(const uint8_t *buf, size_t len, int direction, ubx_
         return CW_ERR_LENGTH;
     }
     id = (cw_get_le(buf + 2, 2u) >> 0) & 65535u;
+#if UBX_HANDLES_ACK_NAK
     if (id == 5u && len == 10u) {
         found = UBX_MSG_ACK_NAK;
         matches++;
     }
+#endif
+#if UBX_HANDLES_ACK_ACK
     if (id == 261u && len == 10u) {
         found = UBX_MSG_ACK_ACK;
         matches++;
     }
+#endif
+#if UBX_HANDLES_CFG_RATE_POLL
     if (id == 2054u && len == 8u) {
         found = UBX_MSG_CFG_RATE_POLL;
         matches++;
     }
+#endif
+#if UBX_HANDLES_CFG_RATE
     if (id == 2054u && len == 14u) {
         found = UBX_MSG_CFG_RATE;
         matches++;
     }
+#endif
+#if UBX_HANDLES_NAV_POSLLH
     if (id == 513u && len == 36u) {
         found = UBX_MSG_NAV_POSLLH;
         matches++;
     }
+#endif
+#if UBX_HANDLES_NAV_PVT
     if (id == 1793u && len == 100u) {
         found = UBX_MSG_NAV_PVT;
         matches++;
     }
+#endif
+#if UBX_HANDLES_NAV_SAT
     if (id == 13569u && len >= 16u && len <= 400u && (len - 16u) % 12u == 0u) {
         found = UBX_MSG_NAV_SAT;
         matches++;
     }
+#endif
+#if UBX_HANDLES_MON_VER
     if (id == 1034u && len >= 48u && len <= 348u && (len - 48u) % 30u == 0u) {
         found = UBX_MSG_MON_VER;
         matches++;
     }
+#endif
+    (void)id;  /* tested by no selected message */
     if (matches != 1) {
         return CW_ERR_DISPATCH;
     }
     out->kind = (uint8_t)found;
     switch (found) {
+#if UBX_HANDLES_ACK_NAK
     case UBX_MSG_ACK_NAK:
         return ubx_ack_nak_decode(buf, len, &out->as.ack_nak);
+#endif
+#if UBX_HANDLES_ACK_ACK
     case UBX_MSG_ACK_ACK:
         return ubx_ack_ack_decode(buf, len, &out->as.ack_ack);
+#endif
+#if UBX_HANDLES_CFG_RATE_POLL
     case UBX_MSG_CFG_RATE_POLL:
         return ubx_cfg_rate_poll_decode(buf, len, &out->as.cfg_rate_poll);
+#endif
+#if UBX_HANDLES_CFG_RATE
     case UBX_MSG_CFG_RATE:
         return ubx_cfg_rate_decode(buf, len, &out->as.cfg_rate);
+#endif
+#if UBX_HANDLES_NAV_POSLLH
     case UBX_MSG_NAV_POSLLH:
         return ubx_nav_posllh_decode(buf, len, &out->as.nav_posllh);
+#endif
+#if UBX_HANDLES_NAV_PVT
     case UBX_MSG_NAV_PVT:
         return ubx_nav_pvt_decode(buf, len, &out->as.nav_pvt);
+#endif
+#if UBX_HANDLES_NAV_SAT
     case UBX_MSG_NAV_SAT:
         return ubx_nav_sat_decode(buf, len, &out->as.nav_sat);
+#endif
+#if UBX_HANDLES_MON_VER
     case UBX_MSG_MON_VER:
         return ubx_mon_ver_decode(buf, len, &out->as.mon_ver);
+#endif
     default:
         return CW_ERR_DISPATCH;
     }

@@ -992,7 +992,7 @@ def encode(m: AnyMessage) -> bytes:
     fn = _ENCODERS.get(type(m))
     if fn is None:
         raise _enc(None, None, type(m).__name__, 'type', 'a message of modbus_rtu')
-    return fn(m)  # each encoder returns bytes
+    return fn(m)  # each encoder returns the wire form
 
 
 def validate(m: AnyMessage) -> None:

@@ -328,7 +328,7 @@ class _Message(_Record):
 
     def encode(self) -> str:
         """The message in its wire form; an EncodeError if a value breaks the schema."""
-        return cast(str, _ENCODERS[self.__class__](self))
+        return _ENCODERS[self.__class__](self)
 
     @classmethod
     def decode(cls: type[_Msg], data: _Input) -> _Msg:
@@ -385,10 +385,10 @@ class Gga(_Message):
     ref_station_id: Optional[int]
     """differential reference station range 0..1023"""
 
-    _spelling: Optional[dict[str, tuple[Any, str]]]
-    """The text each number was read from, by field name, with the raw value it reads as:
-    encode writes that text while the field holds that value (a new value is written in the
-    field's own spelling). Not part of equality, to_dict or the constructor."""
+    _spelling: Optional[dict[str, tuple[Any, str, Any]]]
+    """The text each number was read from, by field name, with the raw value it reads as and
+    the value decoded: encode writes that text while the field holds that value (a new value
+    is written in the field's own spelling). Not part of equality, to_dict or the constructor."""
 
     def __init__(self, *, talker: str, timestamp: int, gps_qual: int, num_sats: int, lat: Optional[float] = None, lat_dir: Optional[NorthSouth] = None, lon: Optional[float] = None, lon_dir: Optional[EastWest] = None, horizontal_dil: Optional[float] = None, altitude: Optional[float] = None, altitude_units: Optional[Metres] = None, geo_sep: Optional[float] = None, geo_sep_units: Optional[Metres] = None, age_gps_data: Optional[float] = None, ref_station_id: Optional[int] = None) -> None:
         self.talker = talker
@@ -455,10 +455,10 @@ class Rmc(_Message):
     nav_status: Optional[NavStatus]
     """(NMEA-D3)"""
 
-    _spelling: Optional[dict[str, tuple[Any, str]]]
-    """The text each number was read from, by field name, with the raw value it reads as:
-    encode writes that text while the field holds that value (a new value is written in the
-    field's own spelling). Not part of equality, to_dict or the constructor."""
+    _spelling: Optional[dict[str, tuple[Any, str, Any]]]
+    """The text each number was read from, by field name, with the raw value it reads as and
+    the value decoded: encode writes that text while the field holds that value (a new value
+    is written in the field's own spelling). Not part of equality, to_dict or the constructor."""
 
     _places: Optional[int]
     """How many values the line it was decoded from had: encode writes as many (absent ones
@@ -518,10 +518,10 @@ class Vtg(_Message):
     faa_mode: Optional[FaaMode]
     """(NMEA-D3)"""
 
-    _spelling: Optional[dict[str, tuple[Any, str]]]
-    """The text each number was read from, by field name, with the raw value it reads as:
-    encode writes that text while the field holds that value (a new value is written in the
-    field's own spelling). Not part of equality, to_dict or the constructor."""
+    _spelling: Optional[dict[str, tuple[Any, str, Any]]]
+    """The text each number was read from, by field name, with the raw value it reads as and
+    the value decoded: encode writes that text while the field holds that value (a new value
+    is written in the field's own spelling). Not part of equality, to_dict or the constructor."""
 
     _places: Optional[int]
     """How many values the line it was decoded from had: encode writes as many (absent ones
@@ -648,110 +648,143 @@ def _encode_gga(m: Gga) -> str:
         raise _enc('gga', 'talker', h, 'length', '2 characters')
     if _PREFIX_VALUE_RE.fullmatch(h) is None:
         raise _enc('gga', 'talker', h, 'text', 'uppercase letters A-Z')
-    sp = m._spelling or {}  # the text each number was read from, with the raw value it reads as
-    r_timestamp = m.timestamp
-    if r_timestamp.__class__ is not int or not 0 <= r_timestamp <= 235960:
-        _int_fault('gga', 'timestamp', r_timestamp, 0, 235960, False, 'NMEA-D2')
+    sp = m._spelling or {}  # the text each number was read from, with its raw value and value
     k_timestamp = sp.get('timestamp')
+    if k_timestamp is not None and k_timestamp[2] is m.timestamp:
+        t0 = k_timestamp[1]
+    else:
+        r_timestamp = m.timestamp
+        if r_timestamp.__class__ is not int or not 0 <= r_timestamp <= 235960:
+            _int_fault('gga', 'timestamp', r_timestamp, 0, 235960, False, 'NMEA-D2')
+        t0 = (k_timestamp[1] if k_timestamp is not None and k_timestamp[0] == r_timestamp else _fixed(r_timestamp, 0, 6))
     if m.lat is not None:
-        r_lat = m.lat
-        if r_lat.__class__ is not float or not 0 <= r_lat <= 9000:
-            _int_fault('gga', 'lat', r_lat, 0, 9000, True, 'NMEA-D2')
-        r_lat = _floor(r_lat / 1e-05 + 0.5)
         k_lat = sp.get('lat')
-        t1 = (k_lat[1] if k_lat is not None and k_lat[0] == r_lat else _fixed(r_lat, 5, 10))
+        if k_lat is not None and k_lat[2] is m.lat:
+            t1 = k_lat[1]
+        else:
+            r_lat = m.lat
+            if r_lat.__class__ is not float or not 0 <= r_lat <= 9000:
+                _int_fault('gga', 'lat', r_lat, 0, 9000, True, 'NMEA-D2')
+            r_lat = _floor(r_lat / 1e-05 + 0.5)
+            t1 = (k_lat[1] if k_lat is not None and k_lat[0] == r_lat else _fixed(r_lat, 5, 10))
     else:
         t1 = ''
     if m.lat_dir is not None:
         r_lat_dir: Any = m.lat_dir
         if r_lat_dir.__class__ is not NorthSouth and (not isinstance(r_lat_dir, str) or isinstance(r_lat_dir, enum.Enum) or r_lat_dir not in _VALUES_north_south):
             raise _enc('gga', 'lat_dir', r_lat_dir, 'enum', 'NorthSouth', None)
-        t2 = _ENUM_north_south[r_lat_dir]._value_
+        t2 = r_lat_dir
     else:
         t2 = ''
     if m.lon is not None:
-        r_lon = m.lon
-        if r_lon.__class__ is not float or not 0 <= r_lon <= 18000:
-            _int_fault('gga', 'lon', r_lon, 0, 18000, True, 'NMEA-D2')
-        r_lon = _floor(r_lon / 1e-05 + 0.5)
         k_lon = sp.get('lon')
-        t3 = (k_lon[1] if k_lon is not None and k_lon[0] == r_lon else _fixed(r_lon, 5, 11))
+        if k_lon is not None and k_lon[2] is m.lon:
+            t3 = k_lon[1]
+        else:
+            r_lon = m.lon
+            if r_lon.__class__ is not float or not 0 <= r_lon <= 18000:
+                _int_fault('gga', 'lon', r_lon, 0, 18000, True, 'NMEA-D2')
+            r_lon = _floor(r_lon / 1e-05 + 0.5)
+            t3 = (k_lon[1] if k_lon is not None and k_lon[0] == r_lon else _fixed(r_lon, 5, 11))
     else:
         t3 = ''
     if m.lon_dir is not None:
         r_lon_dir: Any = m.lon_dir
         if r_lon_dir.__class__ is not EastWest and (not isinstance(r_lon_dir, str) or isinstance(r_lon_dir, enum.Enum) or r_lon_dir not in _VALUES_east_west):
             raise _enc('gga', 'lon_dir', r_lon_dir, 'enum', 'EastWest', None)
-        t4 = _ENUM_east_west[r_lon_dir]._value_
+        t4 = r_lon_dir
     else:
         t4 = ''
-    r_gps_qual = m.gps_qual
-    if r_gps_qual.__class__ is not int or not 0 <= r_gps_qual <= 8:
-        _int_fault('gga', 'gps_qual', r_gps_qual, 0, 8, False, None)
     k_gps_qual = sp.get('gps_qual')
-    r_num_sats = m.num_sats
-    if r_num_sats.__class__ is not int or not 0 <= r_num_sats <= 255:
-        _int_fault('gga', 'num_sats', r_num_sats, 0, 255, False, None)
+    if k_gps_qual is not None and k_gps_qual[2] is m.gps_qual:
+        t5 = k_gps_qual[1]
+    else:
+        r_gps_qual = m.gps_qual
+        if r_gps_qual.__class__ is not int or not 0 <= r_gps_qual <= 8:
+            _int_fault('gga', 'gps_qual', r_gps_qual, 0, 8, False, None)
+        t5 = (k_gps_qual[1] if k_gps_qual is not None and k_gps_qual[0] == r_gps_qual else str(r_gps_qual))
     k_num_sats = sp.get('num_sats')
+    if k_num_sats is not None and k_num_sats[2] is m.num_sats:
+        t6 = k_num_sats[1]
+    else:
+        r_num_sats = m.num_sats
+        if r_num_sats.__class__ is not int or not 0 <= r_num_sats <= 255:
+            _int_fault('gga', 'num_sats', r_num_sats, 0, 255, False, None)
+        t6 = (k_num_sats[1] if k_num_sats is not None and k_num_sats[0] == r_num_sats else _fixed(r_num_sats, 0, 2))
     if m.horizontal_dil is not None:
-        r_horizontal_dil = m.horizontal_dil
-        if r_horizontal_dil.__class__ is not float or not 0 <= r_horizontal_dil <= 99999:
-            _int_fault('gga', 'horizontal_dil', r_horizontal_dil, 0, 99999, True, None)
-        r_horizontal_dil = _floor(r_horizontal_dil / 0.1 + 0.5)
         k_horizontal_dil = sp.get('horizontal_dil')
-        t7 = (k_horizontal_dil[1] if k_horizontal_dil is not None and k_horizontal_dil[0] == r_horizontal_dil else _fixed(r_horizontal_dil, 1, 0))
+        if k_horizontal_dil is not None and k_horizontal_dil[2] is m.horizontal_dil:
+            t7 = k_horizontal_dil[1]
+        else:
+            r_horizontal_dil = m.horizontal_dil
+            if r_horizontal_dil.__class__ is not float or not 0 <= r_horizontal_dil <= 99999:
+                _int_fault('gga', 'horizontal_dil', r_horizontal_dil, 0, 99999, True, None)
+            r_horizontal_dil = _floor(r_horizontal_dil / 0.1 + 0.5)
+            t7 = (k_horizontal_dil[1] if k_horizontal_dil is not None and k_horizontal_dil[0] == r_horizontal_dil else _fixed(r_horizontal_dil, 1, 0))
     else:
         t7 = ''
     if m.altitude is not None:
-        r_altitude = m.altitude
-        if r_altitude.__class__ is not float or not -9999.9 <= r_altitude <= 99999.9:
-            _int_fault('gga', 'altitude', r_altitude, -9999.9, 99999.9, True, None)
-        r_altitude = _floor(r_altitude / 0.1 + 0.5)
         k_altitude = sp.get('altitude')
-        t8 = (k_altitude[1] if k_altitude is not None and k_altitude[0] == r_altitude else _fixed(r_altitude, 1, 0))
+        if k_altitude is not None and k_altitude[2] is m.altitude:
+            t8 = k_altitude[1]
+        else:
+            r_altitude = m.altitude
+            if r_altitude.__class__ is not float or not -9999.9 <= r_altitude <= 99999.9:
+                _int_fault('gga', 'altitude', r_altitude, -9999.9, 99999.9, True, None)
+            r_altitude = _floor(r_altitude / 0.1 + 0.5)
+            t8 = (k_altitude[1] if k_altitude is not None and k_altitude[0] == r_altitude else _fixed(r_altitude, 1, 0))
     else:
         t8 = ''
     if m.altitude_units is not None:
         r_altitude_units: Any = m.altitude_units
         if r_altitude_units.__class__ is not Metres and (not isinstance(r_altitude_units, str) or isinstance(r_altitude_units, enum.Enum) or r_altitude_units not in _VALUES_metres):
             raise _enc('gga', 'altitude_units', r_altitude_units, 'enum', 'Metres', None)
-        t9 = _ENUM_metres[r_altitude_units]._value_
+        t9 = r_altitude_units
     else:
         t9 = ''
     if m.geo_sep is not None:
-        r_geo_sep = m.geo_sep
-        if r_geo_sep.__class__ is not float or not -9999.9 <= r_geo_sep <= 9999.9:
-            _int_fault('gga', 'geo_sep', r_geo_sep, -9999.9, 9999.9, True, None)
-        r_geo_sep = _floor(r_geo_sep / 0.1 + 0.5)
         k_geo_sep = sp.get('geo_sep')
-        t10 = (k_geo_sep[1] if k_geo_sep is not None and k_geo_sep[0] == r_geo_sep else _fixed(r_geo_sep, 1, 0))
+        if k_geo_sep is not None and k_geo_sep[2] is m.geo_sep:
+            t10 = k_geo_sep[1]
+        else:
+            r_geo_sep = m.geo_sep
+            if r_geo_sep.__class__ is not float or not -9999.9 <= r_geo_sep <= 9999.9:
+                _int_fault('gga', 'geo_sep', r_geo_sep, -9999.9, 9999.9, True, None)
+            r_geo_sep = _floor(r_geo_sep / 0.1 + 0.5)
+            t10 = (k_geo_sep[1] if k_geo_sep is not None and k_geo_sep[0] == r_geo_sep else _fixed(r_geo_sep, 1, 0))
     else:
         t10 = ''
     if m.geo_sep_units is not None:
         r_geo_sep_units: Any = m.geo_sep_units
         if r_geo_sep_units.__class__ is not Metres and (not isinstance(r_geo_sep_units, str) or isinstance(r_geo_sep_units, enum.Enum) or r_geo_sep_units not in _VALUES_metres):
             raise _enc('gga', 'geo_sep_units', r_geo_sep_units, 'enum', 'Metres', None)
-        t11 = _ENUM_metres[r_geo_sep_units]._value_
+        t11 = r_geo_sep_units
     else:
         t11 = ''
     if m.age_gps_data is not None:
-        r_age_gps_data = m.age_gps_data
-        if r_age_gps_data.__class__ is not float or not 0 <= r_age_gps_data <= 99999:
-            _int_fault('gga', 'age_gps_data', r_age_gps_data, 0, 99999, True, None)
-        r_age_gps_data = _floor(r_age_gps_data / 0.1 + 0.5)
         k_age_gps_data = sp.get('age_gps_data')
-        t12 = (k_age_gps_data[1] if k_age_gps_data is not None and k_age_gps_data[0] == r_age_gps_data else _fixed(r_age_gps_data, 1, 0))
+        if k_age_gps_data is not None and k_age_gps_data[2] is m.age_gps_data:
+            t12 = k_age_gps_data[1]
+        else:
+            r_age_gps_data = m.age_gps_data
+            if r_age_gps_data.__class__ is not float or not 0 <= r_age_gps_data <= 99999:
+                _int_fault('gga', 'age_gps_data', r_age_gps_data, 0, 99999, True, None)
+            r_age_gps_data = _floor(r_age_gps_data / 0.1 + 0.5)
+            t12 = (k_age_gps_data[1] if k_age_gps_data is not None and k_age_gps_data[0] == r_age_gps_data else _fixed(r_age_gps_data, 1, 0))
     else:
         t12 = ''
     if m.ref_station_id is not None:
-        r_ref_station_id = m.ref_station_id
-        if r_ref_station_id.__class__ is not int or not 0 <= r_ref_station_id <= 1023:
-            _int_fault('gga', 'ref_station_id', r_ref_station_id, 0, 1023, False, None)
         k_ref_station_id = sp.get('ref_station_id')
-        t13 = (k_ref_station_id[1] if k_ref_station_id is not None and k_ref_station_id[0] == r_ref_station_id else _fixed(r_ref_station_id, 0, 4))
+        if k_ref_station_id is not None and k_ref_station_id[2] is m.ref_station_id:
+            t13 = k_ref_station_id[1]
+        else:
+            r_ref_station_id = m.ref_station_id
+            if r_ref_station_id.__class__ is not int or not 0 <= r_ref_station_id <= 1023:
+                _int_fault('gga', 'ref_station_id', r_ref_station_id, 0, 1023, False, None)
+            t13 = (k_ref_station_id[1] if k_ref_station_id is not None and k_ref_station_id[0] == r_ref_station_id else _fixed(r_ref_station_id, 0, 4))
     else:
         t13 = ''
-    return _line(h + 'GGA,' + ','.join(((k_timestamp[1] if k_timestamp is not None and k_timestamp[0] == r_timestamp else _fixed(r_timestamp, 0, 6)), t1, t2, t3, t4, (k_gps_qual[1] if k_gps_qual is not None and k_gps_qual[0] == r_gps_qual else str(r_gps_qual)), (k_num_sats[1] if k_num_sats is not None and k_num_sats[0] == r_num_sats else _fixed(r_num_sats, 0, 2)), t7, t8, t9, t10, t11, t12, t13, )))
+    return _line(h + 'GGA,' + ','.join((t0, t1, t2, t3, t4, t5, t6, t7, t8, t9, t10, t11, t12, t13, )))
 
 
 def _decode_gga(head: str, body: str, base: int) -> Gga:
@@ -762,22 +795,24 @@ def _decode_gga(head: str, body: str, base: int) -> Gga:
     if not 14 <= len(t) <= 14:
         raise _dec('gga', None, len(t), 'count', '14 fields', base)
     ok = _SYNTAX_gga.fullmatch(body) is not None  # well-formed: token syntax checks are skipped
-    sp: dict[str, tuple[Any, str]] = {}  # each number's text, with the raw value it reads as
+    sp: dict[str, tuple[Any, str, Any]] = {}  # each number's text, with its raw value and value
     if len(t[0]) > 24:
         raise _dec('gga', 'timestamp', t[0], 'length', 'a number of at most 24 characters', _token_offset(t, base, 0))
     r_timestamp = _fixed_of(t[0], 0) if ok else _parse_fixed(t[0], 0, 'gga', 'timestamp', t, base, 0)
     if not 0 <= r_timestamp <= 235960:
         raise _dec('gga', 'timestamp', r_timestamp, 'range', '0..235960', _token_offset(t, base, 0), 'NMEA-D2')
-    sp['timestamp'] = (r_timestamp, t[0])
+    sp['timestamp'] = (r_timestamp, t[0], r_timestamp)
     if t[1]:
         if len(t[1]) > 24:
             raise _dec('gga', 'lat', t[1], 'length', 'a number of at most 24 characters', _token_offset(t, base, 1))
         r_lat = _fixed_of(t[1], 5) if ok else _parse_fixed(t[1], 5, 'gga', 'lat', t, base, 1)
         if not 0 <= r_lat / 100000 <= 9000:
             raise _dec('gga', 'lat', r_lat, 'range', '0..9000', _token_offset(t, base, 1), 'NMEA-D2')
-        sp['lat'] = (r_lat, t[1])
+        d_lat = r_lat / 100000
+        sp['lat'] = (r_lat, t[1], d_lat)
     else:
         r_lat = None
+        d_lat = None
     if t[2]:
         r_lat_dir = t[2]
         if len(r_lat_dir) != 1:
@@ -794,9 +829,11 @@ def _decode_gga(head: str, body: str, base: int) -> Gga:
         r_lon = _fixed_of(t[3], 5) if ok else _parse_fixed(t[3], 5, 'gga', 'lon', t, base, 3)
         if not 0 <= r_lon / 100000 <= 18000:
             raise _dec('gga', 'lon', r_lon, 'range', '0..18000', _token_offset(t, base, 3), 'NMEA-D2')
-        sp['lon'] = (r_lon, t[3])
+        d_lon = r_lon / 100000
+        sp['lon'] = (r_lon, t[3], d_lon)
     else:
         r_lon = None
+        d_lon = None
     if t[4]:
         r_lon_dir = t[4]
         if len(r_lon_dir) != 1:
@@ -812,31 +849,35 @@ def _decode_gga(head: str, body: str, base: int) -> Gga:
     r_gps_qual = int(t[5]) if ok else _parse_int(t[5], 'gga', 'gps_qual', t, base, 5)
     if not 0 <= r_gps_qual <= 8:
         raise _dec('gga', 'gps_qual', r_gps_qual, 'range', '0..8', _token_offset(t, base, 5), None)
-    sp['gps_qual'] = (r_gps_qual, t[5])
+    sp['gps_qual'] = (r_gps_qual, t[5], r_gps_qual)
     if len(t[6]) > 24:
         raise _dec('gga', 'num_sats', t[6], 'length', 'a number of at most 24 characters', _token_offset(t, base, 6))
     r_num_sats = _fixed_of(t[6], 0) if ok else _parse_fixed(t[6], 0, 'gga', 'num_sats', t, base, 6)
     if not 0 <= r_num_sats <= 255:
         raise _dec('gga', 'num_sats', r_num_sats, 'range', '0..255', _token_offset(t, base, 6), None)
-    sp['num_sats'] = (r_num_sats, t[6])
+    sp['num_sats'] = (r_num_sats, t[6], r_num_sats)
     if t[7]:
         if len(t[7]) > 24:
             raise _dec('gga', 'horizontal_dil', t[7], 'length', 'a number of at most 24 characters', _token_offset(t, base, 7))
         r_horizontal_dil = _fixed_of(t[7], 1) if ok else _parse_fixed(t[7], 1, 'gga', 'horizontal_dil', t, base, 7)
         if not 0 <= r_horizontal_dil / 10 <= 99999:
             raise _dec('gga', 'horizontal_dil', r_horizontal_dil, 'range', '0..99999', _token_offset(t, base, 7), None)
-        sp['horizontal_dil'] = (r_horizontal_dil, t[7])
+        d_horizontal_dil = r_horizontal_dil / 10
+        sp['horizontal_dil'] = (r_horizontal_dil, t[7], d_horizontal_dil)
     else:
         r_horizontal_dil = None
+        d_horizontal_dil = None
     if t[8]:
         if len(t[8]) > 24:
             raise _dec('gga', 'altitude', t[8], 'length', 'a number of at most 24 characters', _token_offset(t, base, 8))
         r_altitude = _fixed_of(t[8], 1) if ok else _parse_fixed(t[8], 1, 'gga', 'altitude', t, base, 8)
         if not -9999.9 <= r_altitude / 10 <= 99999.9:
             raise _dec('gga', 'altitude', r_altitude, 'range', '-9999.9..99999.9', _token_offset(t, base, 8), None)
-        sp['altitude'] = (r_altitude, t[8])
+        d_altitude = r_altitude / 10
+        sp['altitude'] = (r_altitude, t[8], d_altitude)
     else:
         r_altitude = None
+        d_altitude = None
     if t[9]:
         r_altitude_units = t[9]
         if len(r_altitude_units) != 1:
@@ -853,9 +894,11 @@ def _decode_gga(head: str, body: str, base: int) -> Gga:
         r_geo_sep = _fixed_of(t[10], 1) if ok else _parse_fixed(t[10], 1, 'gga', 'geo_sep', t, base, 10)
         if not -9999.9 <= r_geo_sep / 10 <= 9999.9:
             raise _dec('gga', 'geo_sep', r_geo_sep, 'range', '-9999.9..9999.9', _token_offset(t, base, 10), None)
-        sp['geo_sep'] = (r_geo_sep, t[10])
+        d_geo_sep = r_geo_sep / 10
+        sp['geo_sep'] = (r_geo_sep, t[10], d_geo_sep)
     else:
         r_geo_sep = None
+        d_geo_sep = None
     if t[11]:
         r_geo_sep_units = t[11]
         if len(r_geo_sep_units) != 1:
@@ -872,33 +915,35 @@ def _decode_gga(head: str, body: str, base: int) -> Gga:
         r_age_gps_data = _fixed_of(t[12], 1) if ok else _parse_fixed(t[12], 1, 'gga', 'age_gps_data', t, base, 12)
         if not 0 <= r_age_gps_data / 10 <= 99999:
             raise _dec('gga', 'age_gps_data', r_age_gps_data, 'range', '0..99999', _token_offset(t, base, 12), None)
-        sp['age_gps_data'] = (r_age_gps_data, t[12])
+        d_age_gps_data = r_age_gps_data / 10
+        sp['age_gps_data'] = (r_age_gps_data, t[12], d_age_gps_data)
     else:
         r_age_gps_data = None
+        d_age_gps_data = None
     if t[13]:
         if len(t[13]) > 24:
             raise _dec('gga', 'ref_station_id', t[13], 'length', 'a number of at most 24 characters', _token_offset(t, base, 13))
         r_ref_station_id = _fixed_of(t[13], 0) if ok else _parse_fixed(t[13], 0, 'gga', 'ref_station_id', t, base, 13)
         if not 0 <= r_ref_station_id <= 1023:
             raise _dec('gga', 'ref_station_id', r_ref_station_id, 'range', '0..1023', _token_offset(t, base, 13), None)
-        sp['ref_station_id'] = (r_ref_station_id, t[13])
+        sp['ref_station_id'] = (r_ref_station_id, t[13], r_ref_station_id)
     else:
         r_ref_station_id = None
     o = _object_new(Gga)
     o.talker = r_talker
     o.timestamp = r_timestamp
-    o.lat = (None if r_lat is None else r_lat / 100000)
+    o.lat = d_lat
     o.lat_dir = e_lat_dir
-    o.lon = (None if r_lon is None else r_lon / 100000)
+    o.lon = d_lon
     o.lon_dir = e_lon_dir
     o.gps_qual = r_gps_qual
     o.num_sats = r_num_sats
-    o.horizontal_dil = (None if r_horizontal_dil is None else r_horizontal_dil / 10)
-    o.altitude = (None if r_altitude is None else r_altitude / 10)
+    o.horizontal_dil = d_horizontal_dil
+    o.altitude = d_altitude
     o.altitude_units = e_altitude_units
-    o.geo_sep = (None if r_geo_sep is None else r_geo_sep / 10)
+    o.geo_sep = d_geo_sep
     o.geo_sep_units = e_geo_sep_units
-    o.age_gps_data = (None if r_age_gps_data is None else r_age_gps_data / 10)
+    o.age_gps_data = d_age_gps_data
     o.ref_station_id = r_ref_station_id
     o._spelling = sp
     return o
@@ -912,99 +957,122 @@ def _encode_rmc(m: Rmc) -> str:
         raise _enc('rmc', 'talker', h, 'length', '2 characters')
     if _PREFIX_VALUE_RE.fullmatch(h) is None:
         raise _enc('rmc', 'talker', h, 'text', 'uppercase letters A-Z')
-    sp = m._spelling or {}  # the text each number was read from, with the raw value it reads as
-    r_timestamp = m.timestamp
-    if r_timestamp.__class__ is not int or not 0 <= r_timestamp <= 235960:
-        _int_fault('rmc', 'timestamp', r_timestamp, 0, 235960, False, 'NMEA-D2')
+    sp = m._spelling or {}  # the text each number was read from, with its raw value and value
     k_timestamp = sp.get('timestamp')
+    if k_timestamp is not None and k_timestamp[2] is m.timestamp:
+        t0 = k_timestamp[1]
+    else:
+        r_timestamp = m.timestamp
+        if r_timestamp.__class__ is not int or not 0 <= r_timestamp <= 235960:
+            _int_fault('rmc', 'timestamp', r_timestamp, 0, 235960, False, 'NMEA-D2')
+        t0 = (k_timestamp[1] if k_timestamp is not None and k_timestamp[0] == r_timestamp else _fixed(r_timestamp, 0, 6))
     r_status: Any = m.status
     if r_status.__class__ is not Validity and (not isinstance(r_status, str) or isinstance(r_status, enum.Enum) or r_status not in _VALUES_validity):
         raise _enc('rmc', 'status', r_status, 'enum', 'Validity', None)
     if m.lat is not None:
-        r_lat = m.lat
-        if r_lat.__class__ is not float or not 0 <= r_lat <= 9000:
-            _int_fault('rmc', 'lat', r_lat, 0, 9000, True, 'NMEA-D2')
-        r_lat = _floor(r_lat / 1e-05 + 0.5)
         k_lat = sp.get('lat')
-        t2 = (k_lat[1] if k_lat is not None and k_lat[0] == r_lat else _fixed(r_lat, 5, 10))
+        if k_lat is not None and k_lat[2] is m.lat:
+            t2 = k_lat[1]
+        else:
+            r_lat = m.lat
+            if r_lat.__class__ is not float or not 0 <= r_lat <= 9000:
+                _int_fault('rmc', 'lat', r_lat, 0, 9000, True, 'NMEA-D2')
+            r_lat = _floor(r_lat / 1e-05 + 0.5)
+            t2 = (k_lat[1] if k_lat is not None and k_lat[0] == r_lat else _fixed(r_lat, 5, 10))
     else:
         t2 = ''
     if m.lat_dir is not None:
         r_lat_dir: Any = m.lat_dir
         if r_lat_dir.__class__ is not NorthSouth and (not isinstance(r_lat_dir, str) or isinstance(r_lat_dir, enum.Enum) or r_lat_dir not in _VALUES_north_south):
             raise _enc('rmc', 'lat_dir', r_lat_dir, 'enum', 'NorthSouth', None)
-        t3 = _ENUM_north_south[r_lat_dir]._value_
+        t3 = r_lat_dir
     else:
         t3 = ''
     if m.lon is not None:
-        r_lon = m.lon
-        if r_lon.__class__ is not float or not 0 <= r_lon <= 18000:
-            _int_fault('rmc', 'lon', r_lon, 0, 18000, True, 'NMEA-D2')
-        r_lon = _floor(r_lon / 1e-05 + 0.5)
         k_lon = sp.get('lon')
-        t4 = (k_lon[1] if k_lon is not None and k_lon[0] == r_lon else _fixed(r_lon, 5, 11))
+        if k_lon is not None and k_lon[2] is m.lon:
+            t4 = k_lon[1]
+        else:
+            r_lon = m.lon
+            if r_lon.__class__ is not float or not 0 <= r_lon <= 18000:
+                _int_fault('rmc', 'lon', r_lon, 0, 18000, True, 'NMEA-D2')
+            r_lon = _floor(r_lon / 1e-05 + 0.5)
+            t4 = (k_lon[1] if k_lon is not None and k_lon[0] == r_lon else _fixed(r_lon, 5, 11))
     else:
         t4 = ''
     if m.lon_dir is not None:
         r_lon_dir: Any = m.lon_dir
         if r_lon_dir.__class__ is not EastWest and (not isinstance(r_lon_dir, str) or isinstance(r_lon_dir, enum.Enum) or r_lon_dir not in _VALUES_east_west):
             raise _enc('rmc', 'lon_dir', r_lon_dir, 'enum', 'EastWest', None)
-        t5 = _ENUM_east_west[r_lon_dir]._value_
+        t5 = r_lon_dir
     else:
         t5 = ''
     if m.spd_over_grnd is not None:
-        r_spd_over_grnd = m.spd_over_grnd
-        if r_spd_over_grnd.__class__ is not float or not 0 <= r_spd_over_grnd <= 999.9:
-            _int_fault('rmc', 'spd_over_grnd', r_spd_over_grnd, 0, 999.9, True, None)
-        r_spd_over_grnd = _floor(r_spd_over_grnd / 0.1 + 0.5)
         k_spd_over_grnd = sp.get('spd_over_grnd')
-        t6 = (k_spd_over_grnd[1] if k_spd_over_grnd is not None and k_spd_over_grnd[0] == r_spd_over_grnd else _fixed(r_spd_over_grnd, 1, 5))
+        if k_spd_over_grnd is not None and k_spd_over_grnd[2] is m.spd_over_grnd:
+            t6 = k_spd_over_grnd[1]
+        else:
+            r_spd_over_grnd = m.spd_over_grnd
+            if r_spd_over_grnd.__class__ is not float or not 0 <= r_spd_over_grnd <= 999.9:
+                _int_fault('rmc', 'spd_over_grnd', r_spd_over_grnd, 0, 999.9, True, None)
+            r_spd_over_grnd = _floor(r_spd_over_grnd / 0.1 + 0.5)
+            t6 = (k_spd_over_grnd[1] if k_spd_over_grnd is not None and k_spd_over_grnd[0] == r_spd_over_grnd else _fixed(r_spd_over_grnd, 1, 5))
     else:
         t6 = ''
     if m.true_course is not None:
-        r_true_course = m.true_course
-        if r_true_course.__class__ is not float or not 0 <= r_true_course <= 999.9:
-            _int_fault('rmc', 'true_course', r_true_course, 0, 999.9, True, None)
-        r_true_course = _floor(r_true_course / 0.1 + 0.5)
         k_true_course = sp.get('true_course')
-        t7 = (k_true_course[1] if k_true_course is not None and k_true_course[0] == r_true_course else _fixed(r_true_course, 1, 5))
+        if k_true_course is not None and k_true_course[2] is m.true_course:
+            t7 = k_true_course[1]
+        else:
+            r_true_course = m.true_course
+            if r_true_course.__class__ is not float or not 0 <= r_true_course <= 999.9:
+                _int_fault('rmc', 'true_course', r_true_course, 0, 999.9, True, None)
+            r_true_course = _floor(r_true_course / 0.1 + 0.5)
+            t7 = (k_true_course[1] if k_true_course is not None and k_true_course[0] == r_true_course else _fixed(r_true_course, 1, 5))
     else:
         t7 = ''
-    r_datestamp = m.datestamp
-    if r_datestamp.__class__ is not int or not 10100 <= r_datestamp <= 311299:
-        _int_fault('rmc', 'datestamp', r_datestamp, 10100, 311299, False, None)
     k_datestamp = sp.get('datestamp')
+    if k_datestamp is not None and k_datestamp[2] is m.datestamp:
+        t8 = k_datestamp[1]
+    else:
+        r_datestamp = m.datestamp
+        if r_datestamp.__class__ is not int or not 10100 <= r_datestamp <= 311299:
+            _int_fault('rmc', 'datestamp', r_datestamp, 10100, 311299, False, None)
+        t8 = (k_datestamp[1] if k_datestamp is not None and k_datestamp[0] == r_datestamp else _fixed(r_datestamp, 0, 6))
     if m.mag_variation is not None:
-        r_mag_variation = m.mag_variation
-        if r_mag_variation.__class__ is not float or not 0 <= r_mag_variation <= 999.9:
-            _int_fault('rmc', 'mag_variation', r_mag_variation, 0, 999.9, True, None)
-        r_mag_variation = _floor(r_mag_variation / 0.1 + 0.5)
         k_mag_variation = sp.get('mag_variation')
-        t9 = (k_mag_variation[1] if k_mag_variation is not None and k_mag_variation[0] == r_mag_variation else _fixed(r_mag_variation, 1, 5))
+        if k_mag_variation is not None and k_mag_variation[2] is m.mag_variation:
+            t9 = k_mag_variation[1]
+        else:
+            r_mag_variation = m.mag_variation
+            if r_mag_variation.__class__ is not float or not 0 <= r_mag_variation <= 999.9:
+                _int_fault('rmc', 'mag_variation', r_mag_variation, 0, 999.9, True, None)
+            r_mag_variation = _floor(r_mag_variation / 0.1 + 0.5)
+            t9 = (k_mag_variation[1] if k_mag_variation is not None and k_mag_variation[0] == r_mag_variation else _fixed(r_mag_variation, 1, 5))
     else:
         t9 = ''
     if m.mag_var_dir is not None:
         r_mag_var_dir: Any = m.mag_var_dir
         if r_mag_var_dir.__class__ is not EastWest and (not isinstance(r_mag_var_dir, str) or isinstance(r_mag_var_dir, enum.Enum) or r_mag_var_dir not in _VALUES_east_west):
             raise _enc('rmc', 'mag_var_dir', r_mag_var_dir, 'enum', 'EastWest', None)
-        t10 = _ENUM_east_west[r_mag_var_dir]._value_
+        t10 = r_mag_var_dir
     else:
         t10 = ''
     if m.mode is not None:
         r_mode: Any = m.mode
         if r_mode.__class__ is not FaaMode and (not isinstance(r_mode, str) or isinstance(r_mode, enum.Enum) or r_mode not in _VALUES_faa_mode):
             raise _enc('rmc', 'mode', r_mode, 'enum', 'FaaMode', 'NMEA-D3')
-        t11 = _ENUM_faa_mode[r_mode]._value_
+        t11 = r_mode
     else:
         t11 = None
     if m.nav_status is not None:
         r_nav_status: Any = m.nav_status
         if r_nav_status.__class__ is not NavStatus and (not isinstance(r_nav_status, str) or isinstance(r_nav_status, enum.Enum) or r_nav_status not in _VALUES_nav_status):
             raise _enc('rmc', 'nav_status', r_nav_status, 'enum', 'NavStatus', 'NMEA-D3')
-        t12 = _ENUM_nav_status[r_nav_status]._value_
+        t12 = r_nav_status
     else:
         t12 = None
-    p: list[Any] = [(k_timestamp[1] if k_timestamp is not None and k_timestamp[0] == r_timestamp else _fixed(r_timestamp, 0, 6)), _ENUM_validity[r_status]._value_, t2, t3, t4, t5, t6, t7, (k_datestamp[1] if k_datestamp is not None and k_datestamp[0] == r_datestamp else _fixed(r_datestamp, 0, 6)), t9, t10, t11, t12]
+    p: list[Any] = [t0, r_status, t2, t3, t4, t5, t6, t7, t8, t9, t10, t11, t12]
     k = m._places if m._places is not None and 11 <= m._places <= 13 else 12
     while len(p) > k and p[-1] is None:  # absent values at the end are left out, separators and all
         p.pop()
@@ -1023,13 +1091,13 @@ def _decode_rmc(head: str, body: str, base: int) -> Rmc:
     if not 11 <= len(t) <= 13:
         raise _dec('rmc', None, len(t), 'count', '11..13 fields', base)
     ok = _SYNTAX_rmc.fullmatch(body) is not None  # well-formed: token syntax checks are skipped
-    sp: dict[str, tuple[Any, str]] = {}  # each number's text, with the raw value it reads as
+    sp: dict[str, tuple[Any, str, Any]] = {}  # each number's text, with its raw value and value
     if len(t[0]) > 24:
         raise _dec('rmc', 'timestamp', t[0], 'length', 'a number of at most 24 characters', _token_offset(t, base, 0))
     r_timestamp = _fixed_of(t[0], 0) if ok else _parse_fixed(t[0], 0, 'rmc', 'timestamp', t, base, 0)
     if not 0 <= r_timestamp <= 235960:
         raise _dec('rmc', 'timestamp', r_timestamp, 'range', '0..235960', _token_offset(t, base, 0), 'NMEA-D2')
-    sp['timestamp'] = (r_timestamp, t[0])
+    sp['timestamp'] = (r_timestamp, t[0], r_timestamp)
     r_status = t[1]
     if len(r_status) != 1:
         raise _dec('rmc', 'status', r_status, 'type', 'one character', _token_offset(t, base, 1))
@@ -1042,9 +1110,11 @@ def _decode_rmc(head: str, body: str, base: int) -> Rmc:
         r_lat = _fixed_of(t[2], 5) if ok else _parse_fixed(t[2], 5, 'rmc', 'lat', t, base, 2)
         if not 0 <= r_lat / 100000 <= 9000:
             raise _dec('rmc', 'lat', r_lat, 'range', '0..9000', _token_offset(t, base, 2), 'NMEA-D2')
-        sp['lat'] = (r_lat, t[2])
+        d_lat = r_lat / 100000
+        sp['lat'] = (r_lat, t[2], d_lat)
     else:
         r_lat = None
+        d_lat = None
     if t[3]:
         r_lat_dir = t[3]
         if len(r_lat_dir) != 1:
@@ -1061,9 +1131,11 @@ def _decode_rmc(head: str, body: str, base: int) -> Rmc:
         r_lon = _fixed_of(t[4], 5) if ok else _parse_fixed(t[4], 5, 'rmc', 'lon', t, base, 4)
         if not 0 <= r_lon / 100000 <= 18000:
             raise _dec('rmc', 'lon', r_lon, 'range', '0..18000', _token_offset(t, base, 4), 'NMEA-D2')
-        sp['lon'] = (r_lon, t[4])
+        d_lon = r_lon / 100000
+        sp['lon'] = (r_lon, t[4], d_lon)
     else:
         r_lon = None
+        d_lon = None
     if t[5]:
         r_lon_dir = t[5]
         if len(r_lon_dir) != 1:
@@ -1080,33 +1152,39 @@ def _decode_rmc(head: str, body: str, base: int) -> Rmc:
         r_spd_over_grnd = _fixed_of(t[6], 1) if ok else _parse_fixed(t[6], 1, 'rmc', 'spd_over_grnd', t, base, 6)
         if not 0 <= r_spd_over_grnd / 10 <= 999.9:
             raise _dec('rmc', 'spd_over_grnd', r_spd_over_grnd, 'range', '0..999.9', _token_offset(t, base, 6), None)
-        sp['spd_over_grnd'] = (r_spd_over_grnd, t[6])
+        d_spd_over_grnd = r_spd_over_grnd / 10
+        sp['spd_over_grnd'] = (r_spd_over_grnd, t[6], d_spd_over_grnd)
     else:
         r_spd_over_grnd = None
+        d_spd_over_grnd = None
     if t[7]:
         if len(t[7]) > 24:
             raise _dec('rmc', 'true_course', t[7], 'length', 'a number of at most 24 characters', _token_offset(t, base, 7))
         r_true_course = _fixed_of(t[7], 1) if ok else _parse_fixed(t[7], 1, 'rmc', 'true_course', t, base, 7)
         if not 0 <= r_true_course / 10 <= 999.9:
             raise _dec('rmc', 'true_course', r_true_course, 'range', '0..999.9', _token_offset(t, base, 7), None)
-        sp['true_course'] = (r_true_course, t[7])
+        d_true_course = r_true_course / 10
+        sp['true_course'] = (r_true_course, t[7], d_true_course)
     else:
         r_true_course = None
+        d_true_course = None
     if len(t[8]) > 24:
         raise _dec('rmc', 'datestamp', t[8], 'length', 'a number of at most 24 characters', _token_offset(t, base, 8))
     r_datestamp = _fixed_of(t[8], 0) if ok else _parse_fixed(t[8], 0, 'rmc', 'datestamp', t, base, 8)
     if not 10100 <= r_datestamp <= 311299:
         raise _dec('rmc', 'datestamp', r_datestamp, 'range', '10100..311299', _token_offset(t, base, 8), None)
-    sp['datestamp'] = (r_datestamp, t[8])
+    sp['datestamp'] = (r_datestamp, t[8], r_datestamp)
     if t[9]:
         if len(t[9]) > 24:
             raise _dec('rmc', 'mag_variation', t[9], 'length', 'a number of at most 24 characters', _token_offset(t, base, 9))
         r_mag_variation = _fixed_of(t[9], 1) if ok else _parse_fixed(t[9], 1, 'rmc', 'mag_variation', t, base, 9)
         if not 0 <= r_mag_variation / 10 <= 999.9:
             raise _dec('rmc', 'mag_variation', r_mag_variation, 'range', '0..999.9', _token_offset(t, base, 9), None)
-        sp['mag_variation'] = (r_mag_variation, t[9])
+        d_mag_variation = r_mag_variation / 10
+        sp['mag_variation'] = (r_mag_variation, t[9], d_mag_variation)
     else:
         r_mag_variation = None
+        d_mag_variation = None
     if t[10]:
         r_mag_var_dir = t[10]
         if len(r_mag_var_dir) != 1:
@@ -1141,14 +1219,14 @@ def _decode_rmc(head: str, body: str, base: int) -> Rmc:
     o.talker = r_talker
     o.timestamp = r_timestamp
     o.status = e_status
-    o.lat = (None if r_lat is None else r_lat / 100000)
+    o.lat = d_lat
     o.lat_dir = e_lat_dir
-    o.lon = (None if r_lon is None else r_lon / 100000)
+    o.lon = d_lon
     o.lon_dir = e_lon_dir
-    o.spd_over_grnd = (None if r_spd_over_grnd is None else r_spd_over_grnd / 10)
-    o.true_course = (None if r_true_course is None else r_true_course / 10)
+    o.spd_over_grnd = d_spd_over_grnd
+    o.true_course = d_true_course
     o.datestamp = r_datestamp
-    o.mag_variation = (None if r_mag_variation is None else r_mag_variation / 10)
+    o.mag_variation = d_mag_variation
     o.mag_var_dir = e_mag_var_dir
     o.mode = e_mode
     o.nav_status = e_nav_status
@@ -1165,50 +1243,62 @@ def _encode_vtg(m: Vtg) -> str:
         raise _enc('vtg', 'talker', h, 'length', '2 characters')
     if _PREFIX_VALUE_RE.fullmatch(h) is None:
         raise _enc('vtg', 'talker', h, 'text', 'uppercase letters A-Z')
-    sp = m._spelling or {}  # the text each number was read from, with the raw value it reads as
+    sp = m._spelling or {}  # the text each number was read from, with its raw value and value
     if m.true_track is not None:
-        r_true_track = m.true_track
-        if r_true_track.__class__ is not float or not 0 <= r_true_track <= 999.9:
-            _int_fault('vtg', 'true_track', r_true_track, 0, 999.9, True, None)
-        r_true_track = _floor(r_true_track / 0.1 + 0.5)
         k_true_track = sp.get('true_track')
-        t0 = (k_true_track[1] if k_true_track is not None and k_true_track[0] == r_true_track else _fixed(r_true_track, 1, 5))
+        if k_true_track is not None and k_true_track[2] is m.true_track:
+            t0 = k_true_track[1]
+        else:
+            r_true_track = m.true_track
+            if r_true_track.__class__ is not float or not 0 <= r_true_track <= 999.9:
+                _int_fault('vtg', 'true_track', r_true_track, 0, 999.9, True, None)
+            r_true_track = _floor(r_true_track / 0.1 + 0.5)
+            t0 = (k_true_track[1] if k_true_track is not None and k_true_track[0] == r_true_track else _fixed(r_true_track, 1, 5))
     else:
         t0 = ''
     r_true_track_sym: Any = m.true_track_sym
     if r_true_track_sym.__class__ is not TrackTrue and (not isinstance(r_true_track_sym, str) or isinstance(r_true_track_sym, enum.Enum) or r_true_track_sym not in _VALUES_track_true):
         raise _enc('vtg', 'true_track_sym', r_true_track_sym, 'enum', 'TrackTrue', None)
     if m.mag_track is not None:
-        r_mag_track = m.mag_track
-        if r_mag_track.__class__ is not float or not 0 <= r_mag_track <= 999.9:
-            _int_fault('vtg', 'mag_track', r_mag_track, 0, 999.9, True, None)
-        r_mag_track = _floor(r_mag_track / 0.1 + 0.5)
         k_mag_track = sp.get('mag_track')
-        t2 = (k_mag_track[1] if k_mag_track is not None and k_mag_track[0] == r_mag_track else _fixed(r_mag_track, 1, 5))
+        if k_mag_track is not None and k_mag_track[2] is m.mag_track:
+            t2 = k_mag_track[1]
+        else:
+            r_mag_track = m.mag_track
+            if r_mag_track.__class__ is not float or not 0 <= r_mag_track <= 999.9:
+                _int_fault('vtg', 'mag_track', r_mag_track, 0, 999.9, True, None)
+            r_mag_track = _floor(r_mag_track / 0.1 + 0.5)
+            t2 = (k_mag_track[1] if k_mag_track is not None and k_mag_track[0] == r_mag_track else _fixed(r_mag_track, 1, 5))
     else:
         t2 = ''
     r_mag_track_sym: Any = m.mag_track_sym
     if r_mag_track_sym.__class__ is not TrackMagnetic and (not isinstance(r_mag_track_sym, str) or isinstance(r_mag_track_sym, enum.Enum) or r_mag_track_sym not in _VALUES_track_magnetic):
         raise _enc('vtg', 'mag_track_sym', r_mag_track_sym, 'enum', 'TrackMagnetic', None)
     if m.spd_over_grnd_kts is not None:
-        r_spd_over_grnd_kts = m.spd_over_grnd_kts
-        if r_spd_over_grnd_kts.__class__ is not float or not 0 <= r_spd_over_grnd_kts <= 999.9:
-            _int_fault('vtg', 'spd_over_grnd_kts', r_spd_over_grnd_kts, 0, 999.9, True, None)
-        r_spd_over_grnd_kts = _floor(r_spd_over_grnd_kts / 0.1 + 0.5)
         k_spd_over_grnd_kts = sp.get('spd_over_grnd_kts')
-        t4 = (k_spd_over_grnd_kts[1] if k_spd_over_grnd_kts is not None and k_spd_over_grnd_kts[0] == r_spd_over_grnd_kts else _fixed(r_spd_over_grnd_kts, 1, 5))
+        if k_spd_over_grnd_kts is not None and k_spd_over_grnd_kts[2] is m.spd_over_grnd_kts:
+            t4 = k_spd_over_grnd_kts[1]
+        else:
+            r_spd_over_grnd_kts = m.spd_over_grnd_kts
+            if r_spd_over_grnd_kts.__class__ is not float or not 0 <= r_spd_over_grnd_kts <= 999.9:
+                _int_fault('vtg', 'spd_over_grnd_kts', r_spd_over_grnd_kts, 0, 999.9, True, None)
+            r_spd_over_grnd_kts = _floor(r_spd_over_grnd_kts / 0.1 + 0.5)
+            t4 = (k_spd_over_grnd_kts[1] if k_spd_over_grnd_kts is not None and k_spd_over_grnd_kts[0] == r_spd_over_grnd_kts else _fixed(r_spd_over_grnd_kts, 1, 5))
     else:
         t4 = ''
     r_spd_over_grnd_kts_sym: Any = m.spd_over_grnd_kts_sym
     if r_spd_over_grnd_kts_sym.__class__ is not SpeedKnots and (not isinstance(r_spd_over_grnd_kts_sym, str) or isinstance(r_spd_over_grnd_kts_sym, enum.Enum) or r_spd_over_grnd_kts_sym not in _VALUES_speed_knots):
         raise _enc('vtg', 'spd_over_grnd_kts_sym', r_spd_over_grnd_kts_sym, 'enum', 'SpeedKnots', None)
     if m.spd_over_grnd_kmph is not None:
-        r_spd_over_grnd_kmph = m.spd_over_grnd_kmph
-        if r_spd_over_grnd_kmph.__class__ is not float or not 0 <= r_spd_over_grnd_kmph <= 999.9:
-            _int_fault('vtg', 'spd_over_grnd_kmph', r_spd_over_grnd_kmph, 0, 999.9, True, None)
-        r_spd_over_grnd_kmph = _floor(r_spd_over_grnd_kmph / 0.1 + 0.5)
         k_spd_over_grnd_kmph = sp.get('spd_over_grnd_kmph')
-        t6 = (k_spd_over_grnd_kmph[1] if k_spd_over_grnd_kmph is not None and k_spd_over_grnd_kmph[0] == r_spd_over_grnd_kmph else _fixed(r_spd_over_grnd_kmph, 1, 5))
+        if k_spd_over_grnd_kmph is not None and k_spd_over_grnd_kmph[2] is m.spd_over_grnd_kmph:
+            t6 = k_spd_over_grnd_kmph[1]
+        else:
+            r_spd_over_grnd_kmph = m.spd_over_grnd_kmph
+            if r_spd_over_grnd_kmph.__class__ is not float or not 0 <= r_spd_over_grnd_kmph <= 999.9:
+                _int_fault('vtg', 'spd_over_grnd_kmph', r_spd_over_grnd_kmph, 0, 999.9, True, None)
+            r_spd_over_grnd_kmph = _floor(r_spd_over_grnd_kmph / 0.1 + 0.5)
+            t6 = (k_spd_over_grnd_kmph[1] if k_spd_over_grnd_kmph is not None and k_spd_over_grnd_kmph[0] == r_spd_over_grnd_kmph else _fixed(r_spd_over_grnd_kmph, 1, 5))
     else:
         t6 = ''
     r_spd_over_grnd_kmph_sym: Any = m.spd_over_grnd_kmph_sym
@@ -1218,10 +1308,10 @@ def _encode_vtg(m: Vtg) -> str:
         r_faa_mode: Any = m.faa_mode
         if r_faa_mode.__class__ is not FaaMode and (not isinstance(r_faa_mode, str) or isinstance(r_faa_mode, enum.Enum) or r_faa_mode not in _VALUES_faa_mode):
             raise _enc('vtg', 'faa_mode', r_faa_mode, 'enum', 'FaaMode', 'NMEA-D3')
-        t8 = _ENUM_faa_mode[r_faa_mode]._value_
+        t8 = r_faa_mode
     else:
         t8 = None
-    p: list[Any] = [t0, _ENUM_track_true[r_true_track_sym]._value_, t2, _ENUM_track_magnetic[r_mag_track_sym]._value_, t4, _ENUM_speed_knots[r_spd_over_grnd_kts_sym]._value_, t6, _ENUM_speed_kmh[r_spd_over_grnd_kmph_sym]._value_, t8]
+    p: list[Any] = [t0, r_true_track_sym, t2, r_mag_track_sym, t4, r_spd_over_grnd_kts_sym, t6, r_spd_over_grnd_kmph_sym, t8]
     k = m._places if m._places is not None and 8 <= m._places <= 9 else 9
     while len(p) > k and p[-1] is None:  # absent values at the end are left out, separators and all
         p.pop()
@@ -1238,16 +1328,18 @@ def _decode_vtg(head: str, body: str, base: int) -> Vtg:
     if not 8 <= len(t) <= 9:
         raise _dec('vtg', None, len(t), 'count', '8..9 fields', base)
     ok = _SYNTAX_vtg.fullmatch(body) is not None  # well-formed: token syntax checks are skipped
-    sp: dict[str, tuple[Any, str]] = {}  # each number's text, with the raw value it reads as
+    sp: dict[str, tuple[Any, str, Any]] = {}  # each number's text, with its raw value and value
     if t[0]:
         if len(t[0]) > 24:
             raise _dec('vtg', 'true_track', t[0], 'length', 'a number of at most 24 characters', _token_offset(t, base, 0))
         r_true_track = _fixed_of(t[0], 1) if ok else _parse_fixed(t[0], 1, 'vtg', 'true_track', t, base, 0)
         if not 0 <= r_true_track / 10 <= 999.9:
             raise _dec('vtg', 'true_track', r_true_track, 'range', '0..999.9', _token_offset(t, base, 0), None)
-        sp['true_track'] = (r_true_track, t[0])
+        d_true_track = r_true_track / 10
+        sp['true_track'] = (r_true_track, t[0], d_true_track)
     else:
         r_true_track = None
+        d_true_track = None
     r_true_track_sym = t[1]
     if len(r_true_track_sym) != 1:
         raise _dec('vtg', 'true_track_sym', r_true_track_sym, 'type', 'one character', _token_offset(t, base, 1))
@@ -1260,9 +1352,11 @@ def _decode_vtg(head: str, body: str, base: int) -> Vtg:
         r_mag_track = _fixed_of(t[2], 1) if ok else _parse_fixed(t[2], 1, 'vtg', 'mag_track', t, base, 2)
         if not 0 <= r_mag_track / 10 <= 999.9:
             raise _dec('vtg', 'mag_track', r_mag_track, 'range', '0..999.9', _token_offset(t, base, 2), None)
-        sp['mag_track'] = (r_mag_track, t[2])
+        d_mag_track = r_mag_track / 10
+        sp['mag_track'] = (r_mag_track, t[2], d_mag_track)
     else:
         r_mag_track = None
+        d_mag_track = None
     r_mag_track_sym = t[3]
     if len(r_mag_track_sym) != 1:
         raise _dec('vtg', 'mag_track_sym', r_mag_track_sym, 'type', 'one character', _token_offset(t, base, 3))
@@ -1275,9 +1369,11 @@ def _decode_vtg(head: str, body: str, base: int) -> Vtg:
         r_spd_over_grnd_kts = _fixed_of(t[4], 1) if ok else _parse_fixed(t[4], 1, 'vtg', 'spd_over_grnd_kts', t, base, 4)
         if not 0 <= r_spd_over_grnd_kts / 10 <= 999.9:
             raise _dec('vtg', 'spd_over_grnd_kts', r_spd_over_grnd_kts, 'range', '0..999.9', _token_offset(t, base, 4), None)
-        sp['spd_over_grnd_kts'] = (r_spd_over_grnd_kts, t[4])
+        d_spd_over_grnd_kts = r_spd_over_grnd_kts / 10
+        sp['spd_over_grnd_kts'] = (r_spd_over_grnd_kts, t[4], d_spd_over_grnd_kts)
     else:
         r_spd_over_grnd_kts = None
+        d_spd_over_grnd_kts = None
     r_spd_over_grnd_kts_sym = t[5]
     if len(r_spd_over_grnd_kts_sym) != 1:
         raise _dec('vtg', 'spd_over_grnd_kts_sym', r_spd_over_grnd_kts_sym, 'type', 'one character', _token_offset(t, base, 5))
@@ -1290,9 +1386,11 @@ def _decode_vtg(head: str, body: str, base: int) -> Vtg:
         r_spd_over_grnd_kmph = _fixed_of(t[6], 1) if ok else _parse_fixed(t[6], 1, 'vtg', 'spd_over_grnd_kmph', t, base, 6)
         if not 0 <= r_spd_over_grnd_kmph / 10 <= 999.9:
             raise _dec('vtg', 'spd_over_grnd_kmph', r_spd_over_grnd_kmph, 'range', '0..999.9', _token_offset(t, base, 6), None)
-        sp['spd_over_grnd_kmph'] = (r_spd_over_grnd_kmph, t[6])
+        d_spd_over_grnd_kmph = r_spd_over_grnd_kmph / 10
+        sp['spd_over_grnd_kmph'] = (r_spd_over_grnd_kmph, t[6], d_spd_over_grnd_kmph)
     else:
         r_spd_over_grnd_kmph = None
+        d_spd_over_grnd_kmph = None
     r_spd_over_grnd_kmph_sym = t[7]
     if len(r_spd_over_grnd_kmph_sym) != 1:
         raise _dec('vtg', 'spd_over_grnd_kmph_sym', r_spd_over_grnd_kmph_sym, 'type', 'one character', _token_offset(t, base, 7))
@@ -1311,13 +1409,13 @@ def _decode_vtg(head: str, body: str, base: int) -> Vtg:
         e_faa_mode = None
     o = _object_new(Vtg)
     o.talker = r_talker
-    o.true_track = (None if r_true_track is None else r_true_track / 10)
+    o.true_track = d_true_track
     o.true_track_sym = e_true_track_sym
-    o.mag_track = (None if r_mag_track is None else r_mag_track / 10)
+    o.mag_track = d_mag_track
     o.mag_track_sym = e_mag_track_sym
-    o.spd_over_grnd_kts = (None if r_spd_over_grnd_kts is None else r_spd_over_grnd_kts / 10)
+    o.spd_over_grnd_kts = d_spd_over_grnd_kts
     o.spd_over_grnd_kts_sym = e_spd_over_grnd_kts_sym
-    o.spd_over_grnd_kmph = (None if r_spd_over_grnd_kmph is None else r_spd_over_grnd_kmph / 10)
+    o.spd_over_grnd_kmph = d_spd_over_grnd_kmph
     o.spd_over_grnd_kmph_sym = e_spd_over_grnd_kmph_sym
     o.faa_mode = e_faa_mode
     o._spelling = sp
@@ -1344,19 +1442,19 @@ def _split(text: str) -> tuple[str, str, int]:
 def _line_checksum(text: str) -> int:
     """The XOR of the characters after '$' up to '*'."""
     if text.isascii():  # a byte a character: the bytes as one integer, folded in halves to a byte
-        n = 8 * len(text)
         x = int.from_bytes(text.encode("ascii"), "little")
-        while n > 64:
-            n = (n + 15) >> 4 << 3  # half the bytes, rounded up
-            x = (x >> n) ^ (x & ~(-1 << n))
-        x ^= x >> 32
-        x ^= x >> 16
-        x ^= x >> 8
+        k = 8 << (len(text) - 1).bit_length()  # its bits, rounded up to a power of two
+        while k > 8:  # the bits above each half are left over, never read again
+            k >>= 1
+            x ^= x >> k
         return x & 0xFF
     x = 0
     for ch in text:
         x ^= ord(ch)
-    return x
+    return x & 0xFF
+
+
+_HEX_BYTE = tuple(format(x, "02X") for x in range(256))  # a checksum as the line writes it
 
 
 def _check_line(text: str, end: int) -> int:
@@ -1364,7 +1462,7 @@ def _check_line(text: str, end: int) -> int:
     at = end - 3
     if at < 1 or text[at:at + 1] != '*':
         raise _dec(None, None, text[max(at, 0):end], 'checksum', '*hh before the terminator (two uppercase hex digits)', max(at, 0))
-    expected = format(_line_checksum(text[1:at]), "02X")
+    expected = _HEX_BYTE[_line_checksum(text[1:at])]
     if text[at + 1:end] != expected:
         raise _dec(None, None, text[at + 1:end], 'checksum', expected, at)
     return at
@@ -1372,7 +1470,7 @@ def _check_line(text: str, end: int) -> int:
 
 def _line(body: str) -> str:
     """The line around a body `<prefix><prefix separator><values>`: start, checksum, terminator."""
-    return '$' + body + '*' + format(_line_checksum(body), "02X") + '\r\n'
+    return '$' + body + '*' + _HEX_BYTE[_line_checksum(body)] + '\r\n'
 
 
 _Decoder = Callable[[str, str, int], AnyMessage]
@@ -1519,7 +1617,7 @@ class StreamDecoder:
                      'a message ending in \r\n before the end', start)]
 
 
-_ENCODERS: dict[type[Any], Callable[[Any], bytes | str]] = {Gga: _encode_gga, Rmc: _encode_rmc, Vtg: _encode_vtg, }
+_ENCODERS: dict[type[Any], Callable[[Any], str]] = {Gga: _encode_gga, Rmc: _encode_rmc, Vtg: _encode_vtg, }
 _DECODERS: dict[type[Any], Callable[..., Any]] = {Gga: _decode_gga, Rmc: _decode_rmc, Vtg: _decode_vtg, }
 for _cls, _encoder in _ENCODERS.items():  # each encoder is its class's encode method: one call, not two
     _encoder.__doc__ = _Message.encode.__doc__
@@ -1532,7 +1630,7 @@ def encode(m: AnyMessage) -> str:
     fn = _ENCODERS.get(type(m))
     if fn is None:
         raise _enc(None, None, type(m).__name__, 'type', 'a message of nmea0183')
-    return str(fn(m))
+    return fn(m)  # each encoder returns the wire form
 
 
 def validate(m: AnyMessage) -> None:
