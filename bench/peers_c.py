@@ -12,6 +12,8 @@ import pymavlink
 from bench.peers import DBC
 
 COMMON_XML = Path(pymavlink.__file__).resolve().parent / "dialects" / "v20" / "common.xml"
+# the dialects imported whole in section 5: common.xml, and all.xml, which includes every other
+DIALECTS = [COMMON_XML, COMMON_XML.with_name("all.xml")]
 
 
 def generate_mavlink(out: Path) -> Path:

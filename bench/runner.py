@@ -66,6 +66,7 @@ def run(tmp: Path, repeats, stream_bytes, c_rounds, scaling_sizes, timing_target
     results["scaling"] = scaling.scaling(tmp / "scaling", scaling_repeats, scaling_sizes)
     results["seeds"] = scaling.seed_build(tmp, 3 if scaling_repeats > 1 else 1)
     results["mavgen"] = scaling.versus_mavgen(tmp / "versus-mavgen", max(1, scaling_repeats), peers_c.COMMON_XML)
+    results["dialects"] = scaling.versus_mavgen_dialects(tmp / "dialects", max(1, scaling_repeats), peers_c.DIALECTS)
     _progress("importing a large module", start)
     results["imports"] = run_imports(tmp / "imports", repeats, import_messages)
     results["versions"] = versions()
@@ -149,6 +150,26 @@ def compiler_section(r, verdicts):
               "edges, random and damaged frames). Loading (compiling) the generated Python and the vectors are "
               "the work mavgen has no counterpart for; the build cache removes both from a build of an unchanged "
               "schema."]
+    if "dialects" in r:
+        lines += dialect_lines(r["dialects"])
+    return lines
+
+
+def dialect_lines(dialects: dict) -> list[str]:
+    """The imported dialects against mavgen: CPU, wall time and peak memory."""
+    lines = ["", "### MAVLink dialects, imported and built, against mavgen", "",
+             "pymavlink's mavgen writing C and Python (MAVLink 2) for a dialect of pymavlink's, in one process, "
+             "against `codeword import mavlink` of the same XML followed by `codeword build --targets c,python` of "
+             "the schema it wrote, in one process, with no build cache; new processes, interleaved rounds, medians. "
+             "Peak memory is the process's high-water mark (VmHWM).", "",
+             "| dialect | mavgen CPU s | codeword CPU s | × | mavgen peak MiB | codeword peak MiB | × |",
+             "|---|---:|---:|---:|---:|---:|---:|"]
+    for name, d in dialects.items():
+        (mc, _mw, mp), (cc, _cw, cp) = d["mavgen"], d["codeword"]
+        lines.append(f"| {name} | {mc:.2f} | {cc:.2f} | {cc / mc:.2f} | {mp:.0f} | {cp:.0f} | {cp / mp:.2f} |")
+    lines += [""] + [f"- {name}: codeword CPU / mavgen CPU = {d['codeword'][0] / d['mavgen'][0]:.2f} (goal ≤ 1.0: "
+                     f"{_met(d['codeword'][0] <= d['mavgen'][0])}); peak memory {d['codeword'][2] / d['mavgen'][2]:.2f}× "
+                     f"(goal ≤ 1.5: {_met(d['codeword'][2] <= 1.5 * d['mavgen'][2])})" for name, d in dialects.items()]
     return lines
 
 
@@ -349,7 +370,8 @@ def run_compiler(tmp: Path, scaling_sizes, scaling_repeats=1):
     _progress("compiler scaling", start)
     results = {"scaling": scaling.scaling(tmp / "scaling", scaling_repeats, scaling_sizes),
                "seeds": scaling.seed_build(tmp, 3 if scaling_repeats > 1 else 1),
-               "mavgen": scaling.versus_mavgen(tmp / "versus-mavgen", max(1, scaling_repeats), peers_c.COMMON_XML)}
+               "mavgen": scaling.versus_mavgen(tmp / "versus-mavgen", max(1, scaling_repeats), peers_c.COMMON_XML),
+               "dialects": scaling.versus_mavgen_dialects(tmp / "dialects", max(1, scaling_repeats), peers_c.DIALECTS)}
     _progress("done", start)
     return results
 

@@ -91,6 +91,48 @@ print(json.dumps({"rc": 0, "seconds": time.perf_counter() - start, "cpu": usage.
 """
 
 
+# One process: mavgen's C and Python for a MAVLink XML, with its peak memory.
+MAVGEN_PEAK_CHILD = MAVGEN_CHILD.replace(
+    'print(json.dumps({"rc": 0,',
+    'peak = next((int(x.split()[1]) for x in open("/proc/self/status") if x.startswith("VmHWM:")), usage.ru_maxrss)\n'
+    'print(json.dumps({"rc": 0, "peak_kib": peak,')
+
+# One process: `codeword import mavlink` of a dialect and the build of its C and Python, as a
+# user who had the XML runs them; the CPU time and peak memory of both.
+IMPORT_BUILD_CHILD = """\
+import json, resource, sys, time
+start = time.perf_counter()
+from codeword.cli import main
+
+xml, out = sys.argv[1], sys.argv[2]
+rc = main(["import", "mavlink", xml, "--out", out])
+if rc == 0:
+    name = xml.rsplit("/", 1)[-1].rsplit(".", 1)[0]
+    rc = main(["build", f"{out}/{name}.yaml", "--out", out, "--targets", "c,python"])
+usage = resource.getrusage(resource.RUSAGE_SELF)
+peak = next((int(x.split()[1]) for x in open("/proc/self/status") if x.startswith("VmHWM:")), usage.ru_maxrss)
+print(json.dumps({"rc": rc, "seconds": time.perf_counter() - start,
+                  "cpu": usage.ru_utime + usage.ru_stime, "peak_kib": peak}))
+"""
+
+
+def versus_mavgen_dialects(tmp: Path, repeats: int, dialects: list[Path]) -> dict:
+    """{dialect: {"mavgen" | "codeword": (CPU s, wall s, peak MiB)}}, medians of interleaved
+    rounds of new processes: mavgen's C and Python for each MAVLink XML, and codeword's
+    import of the same XML with the build of its C and Python (no build cache)."""
+    tmp.mkdir(parents=True, exist_ok=True)
+    out = {}
+    for xml in dialects:
+        samples: dict[str, list] = {"mavgen": [], "codeword": []}
+        for i in range(repeats):
+            samples["mavgen"].append(_child([str(xml), str(tmp / f"mavgen-{xml.stem}-{i}")], tmp, MAVGEN_PEAK_CHILD))
+            samples["codeword"].append(_child([str(xml), str(tmp / f"codeword-{xml.stem}-{i}")], tmp,
+                                              IMPORT_BUILD_CHILD, env=COLD))
+        out[xml.name] = {k: (statistics.median(r["cpu"] for r in v), statistics.median(r["seconds"] for r in v),
+                             statistics.median(r["peak_kib"] for r in v) / 1024) for k, v in samples.items()}
+    return out
+
+
 # One process: a codeword build with the CPU time of each stage (wrapping the stages' functions).
 PHASES_CHILD = """\
 import functools, json, resource, sys, time

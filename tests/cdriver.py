@@ -317,3 +317,79 @@ def firmware_source(p: Protocol, include: bool = True) -> str:
                   f"    int fw_rc = {fn}_decode(fw_frame, fw_n, &fw_m);",
                   f"    return fw_rc < 0 ? fw_rc : {fn}_fw_use(&fw_m);", "}", ""]
     return "\n".join(lines)
+
+
+def selection_applies(p: Protocol) -> bool:
+    """A protocol whose dispatching decoder reads the frames of the vectors as they are:
+    found by id or prefix, not stuffed, signed or carried in CAN frames."""
+    fr = p.framing
+    return p.self_identifying and not fr.encoding and not fr.trailer and fr.can is None and not fr.stuffing
+
+
+def selection_source(p: Protocol, vectors: dict, selected: list[str]) -> str:
+    """A program built with only `selected` messages (`<PX>_SELECTED_MESSAGES`): each valid
+    frame of the vectors through the dispatching decoder is its message where selected
+    (and encodes back to the same frame), CW_ERR_DISPATCH where not, as is encoding a
+    message that is not selected. Prints `SELECTION <px> PASS <checks>` or each failure."""
+    px, PX, text = p.name, p.name.upper(), p.framing.kind == "text"
+    directed = p.framing.kind != "bits"
+    cases = [c for c in vectors["valid"] if "canonical" not in c and "kept" not in c and ("text" in c or "hex" in c)]
+    rows = []
+    for c in cases:
+        wire = c["text"] if text else bytes.fromhex(c["hex"])
+        literal = cstr(wire) if text else "{" + ", ".join(f"0x{b:02x}" for b in wire) + "}"
+        direction = f"{PX}_DIR_{c['direction'].upper()}" if c.get("direction") else f"{PX}_DIR_ANY"
+        kind = f"{PX}_MSG_{c['message'].upper()}"
+        rows.append(f"    {{{literal}, {len(wire)}u, {direction if directed else 0}, {kind}, "
+                    f"{int(c['message'] in selected)}}},")
+    unit = "char" if text else "uint8_t"
+    longest = max((len(c["text"] if text else bytes.fromhex(c["hex"])) for c in cases), default=1)
+    unselected = [m.name for m in p.messages if m.name not in selected]
+    encodes = "\n".join(f"    any.kind = {PX}_MSG_{name.upper()};\n"
+                        f"    checks++;\n"
+                        f"    if ({px}_encode(&any, out, sizeof out) != CW_ERR_DISPATCH) {{\n"
+                        f"        printf(\"FAIL encode {name}\\n\");\n"
+                        f"        failures++;\n"
+                        f"    }}" for name in unselected)
+    return f"""#include <stdio.h>
+#include <string.h>
+#include "{px}.h"
+
+static const struct {{
+    {unit} wire[{longest + 1}];
+    size_t len;
+    int direction;
+    int kind;
+    int selected;
+}} CASES[] = {{
+{chr(10).join(rows) or "    {{0}, 0u, 0, 0, 0},"}
+}};
+
+int main(void)
+{{
+    static {px}_message_t any;
+    static {unit} out[{longest + 16}];
+    unsigned checks = 0, failures = 0;
+    size_t i;
+    for (i = 0; i < {len(rows)}u; i++) {{
+        int rc;
+        memset(&any, 0, sizeof any);
+        rc = {px}_decode(CASES[i].wire, CASES[i].len, {"CASES[i].direction, " if directed else ""}&any);
+        checks++;
+        if (CASES[i].selected ? rc != CW_OK || any.kind != CASES[i].kind : rc != CW_ERR_DISPATCH) {{
+            printf("FAIL decode %u rc=%d\\n", (unsigned)i, rc);
+            failures++;
+        }} else if (CASES[i].selected && ({px}_encode(&any, out, sizeof out) != (int)CASES[i].len
+                                         || memcmp(out, CASES[i].wire, CASES[i].len) != 0)) {{
+            printf("FAIL encode %u\\n", (unsigned)i);
+            failures++;
+        }}
+    }}
+    memset(&any, 0, sizeof any);
+{encodes}
+    if (failures == 0) {{
+        printf("SELECTION {px} PASS %u\\n", checks);
+    }}
+    return failures != 0;
+}}
+"""

@@ -44,7 +44,7 @@ from .unused import unused_names
 
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tests"))  # the conformance driver writer, shared with tests/test_c.py
-from cdriver import Driver, firmware_source  # noqa: E402
+from cdriver import Driver, firmware_source, selection_applies, selection_source  # noqa: E402
 from wrong_values import refusals  # noqa: E402 - shared with tests/test_codec_inputs.py
 
 WARNINGS = ["-std=c99", "-Wall", "-Wextra", "-Wpedantic", "-Wconversion", "-Wsign-conversion", "-Wshadow", "-Werror"]
@@ -150,6 +150,8 @@ def check_text(text: str, name: str, where: Path, outcome: Outcome,
     outcome.stage = "c"
     problem, checks = c_checks(protocol, vectors, out / "c", where, points or [], crc_method(outcome.seed))
     outcome.checks = checks
+    if not problem and "selected_messages" in features:
+        problem = selection_checks(protocol, vectors, out / "c", where, outcome.seed)
     if problem:
         outcome.detail = problem
         return
@@ -366,6 +368,40 @@ def c_checks(protocol, vectors: dict, include: Path, where: Path,
         if built.returncode != 0:
             return f"does not compile with {compiler} {level}: " + _first_error(built.stderr, where), 0
     return "", int(verdict.group(1))
+
+
+def selection_checks(protocol, vectors: dict, include: Path, where: Path, seed: int) -> str:
+    """A firmware that selects some of the messages (`<PX>_SELECTED_MESSAGES`, drawn by
+    seed apart from the schema's draws), and one that selects none: the conformance
+    driver and the firmware unit compile under the strict warnings with each, and where
+    the dispatching decoder reads the vectors' frames as they are, the selected messages'
+    frames decode and encode back and the others are CW_ERR_DISPATCH ("" when all hold)."""
+    px = protocol.name.upper()
+    rng = random.Random(f"selected_messages {seed}")
+    chosen = [m.name for m in protocol.messages if rng.random() < 0.5]
+    for subset in (chosen, []):
+        flags = [f"-D{px}_SELECTED_MESSAGES", *(f"-D{px}_SELECT_{name.upper()}" for name in subset)]
+        path = shutil.which("clang") or shutil.which("gcc")
+        if path is None:
+            return "no C compiler is installed"
+        built = subprocess.run([path, *WARNINGS, "-O2", *flags, "-I", str(include), "-c", str(where / "matrix.c"),
+                                "-o", str(where / "selected.o")], capture_output=True, text=True, timeout=300)
+        if built.returncode != 0:
+            return f"selecting {subset or 'no messages'}: does not compile: " + _first_error(built.stderr, where)
+    if not selection_applies(protocol):
+        return ""
+    src, exe = where / "selection.c", where / "selection"
+    src.write_text(selection_source(protocol, vectors, chosen), encoding="utf-8")
+    flags = [f"-D{px}_SELECTED_MESSAGES", *(f"-D{px}_SELECT_{name.upper()}" for name in chosen)]
+    built = subprocess.run([shutil.which("gcc") or "gcc", *STRICT, *flags, "-I", str(include), str(src), "-o",
+                            str(exe)], capture_output=True, text=True, timeout=300)
+    if built.returncode != 0:
+        return f"selecting {chosen}: does not compile: " + _first_error(built.stderr, where)
+    ran = subprocess.run([str(exe)], capture_output=True, text=True, timeout=120)
+    if ran.returncode != 0 or f"SELECTION {protocol.name} PASS" not in ran.stdout:
+        lines = [x for x in (ran.stdout + ran.stderr).splitlines() if x.strip()]
+        return f"selecting {chosen}: " + " | ".join(lines[:3])
+    return ""
 
 
 def sixteen_bit_sizes(protocol, returncode: int, stderr: str, where: Path) -> str | None:

@@ -43,6 +43,7 @@ FULL = frozenset({
     "can",                                  # CAN framing: standard and extended identifiers, classic and FD lengths
     "large_frame",                          # bytes: a message of over 64 KiB (4 KiB fields first)
     "stream_end",                           # check: whole frames after a false start at a stream's end are decoded
+    "selected_messages",                    # check: C built with some messages selected, and with none
     "signed", "scale", "offset", "range",   # integer options
     "enum", "flags", "bool", "bytes_field", "f32", "f64",
     "open_enum",                            # integer enums whose other values are valid, kept as numbers

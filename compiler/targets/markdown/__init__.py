@@ -282,6 +282,10 @@ def protocol_view(p: Protocol, codec: types.ModuleType) -> dict:
         contents.append("[Spec notes](#spec-notes)")
     if p.history:
         contents.append("[Version history](#version-history)")
+    enum_users: dict[str, list[str]] = {}  # each enum's messages, in the schema's order: one pass over them
+    for m in p.messages:
+        for name in dict.fromkeys(s.field.enum.name for s in slots(m) if s.field.enum is not None):
+            enum_users.setdefault(name, []).append(m.name)
     return {
         "p": p, "name": p.name, "title": cell(en(p.title)), "contents": contents, "overview": overview,
         "title_originals": [(LANGUAGES.get(l, l), cell(t)) for l, t in originals(p.title)],
@@ -301,7 +305,7 @@ def protocol_view(p: Protocol, codec: types.ModuleType) -> dict:
                    "members": [{"value": code(x.value) if isinstance(x.value, str) else str(x.value),
                                 "name": code(x.name), "doc": cell(en(x.doc)),
                                 "original": "; ".join(cell(t) for _, t in originals(x.doc))} for x in e.members],
-                   "used_by": [link_msg(m.name) for m in p.messages if any(s.field.enum is e for s in slots(m))]}
+                   "used_by": [link_msg(name) for name in enum_users.get(e.name, [])]}
                   for e in p.enums],
         "flags": [{"name": fl.name, "anchor": anchor("flags", fl.name), "doc": cell(with_original(fl.doc)),
                    "bits": fl.bits, "mask": f"0x{fl.mask:0{(fl.bits + 3) // 4}x}",

@@ -41,6 +41,7 @@ def slots(m: Message) -> list[Slot]:
     """Every field of the frame in wire order, groups followed by their members;
     a group sits where its first member does."""
     out: list[Slot] = []
+    top = [0]  # the top-level places so far: a field's number in the table
     first_bit: dict[tuple, Optional[int]] = {}
     for leaf in m.wire.leaves:
         for n in range(1, len(leaf.path) + 1):
@@ -55,7 +56,9 @@ def slots(m: Message) -> list[Slot]:
             name = f"{shown}.{f.name}" if shown else f.name
             offset = f.bit_offset if f.bit_offset is not None or m.bits is None else first_bit.get(path)
             # a text line's prefix field sits before the id, at no place of the body
-            index = len([s for s in out if s.depth == 0 and not s.field.prefix]) + 1 if depth == 0 else 0
+            if depth == 0 and not f.prefix:
+                top[0] += 1
+            index = top[0] + (1 if f.prefix else 0) if depth == 0 else 0
             out.append(Slot(name + array_suffix(f), f, offset, index, depth))
             if f.kind == "group":  # an array's members shown once, at its first element
                 walk(f.fields, path + ((0,) if f.count is not None else ()),
