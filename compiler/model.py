@@ -234,6 +234,7 @@ class Field:
     prefix: bool = False  # text: written in the line's prefix, before the message's id (NMEA's talker)
     keep_empty: Optional[bool] = None  # text, optional: its absent value keeps an empty place (None: the framing's)
     mavlink_name: Optional[str] = None  # its name in MAVLink's CRC_EXTRA (`extra: mavlink`), where not its own
+    finite: bool = True  # float: False when NaN and the infinities are values too (sent as they are, NaN as the quiet NaN)
 
     @property
     def fixed_spelling(self) -> bool:

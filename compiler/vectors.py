@@ -269,6 +269,12 @@ class Generator:
             if shape < 0.6:
                 return round(rng.uniform(-1000, 1000), rng.randint(0, 4))
             return float(f"{rng.uniform(-1e6, 1e6):.{rng.randint(1, 15)}g}")
+        if not f.finite:  # its ends are the infinities, and a fifth of the random draws are NaN
+            if edge in ("min", "max"):
+                return -math.inf if edge == "min" else math.inf
+            if not edge and rng.random() < 0.2:  # any NaN, sign and payload too: sent as the quiet NaN
+                return struct.unpack("<d", struct.pack("<Q", 0x7FF0000000000000 | rng.getrandbits(52) | 1
+                                                       | rng.getrandbits(1) << 63))[0]
         if f.bits == 64:
             return self.binary64(f, edge)
         return self.binary32(f, edge)
@@ -612,7 +618,7 @@ class Generator:
             return out
         for leaf in m.wire.leaves:
             f = leaf.field
-            if f.kind != "float" or f.bits != 64 or not f.is_member:
+            if f.kind != "float" or f.bits != 64 or not f.is_member or not f.finite:
                 continue
             outside = list(NON_FINITE)
             if f.range is not None:

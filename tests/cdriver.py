@@ -10,6 +10,7 @@ under test.
 from __future__ import annotations
 
 import json
+import math
 from decimal import Decimal
 from fractions import Fraction
 from pathlib import Path
@@ -95,9 +96,9 @@ class Driver:
                 exp = 0
             return f"{{{number}ULL, {exp}, {'true' if sign else 'false'}}}"
         if f.kind == "float" and f.bits == 64:  # the member is a double or its bits (codeword.h)
-            return f"CW_F64_CONST({bits_of(float(value)):#018x}ULL, {float(value)!r})"
+            return f"CW_F64_CONST({bits_of(float(value)):#018x}ULL, {c_real(float(value))})"
         if f.kind == "float":
-            return repr(float(value)) + "f"
+            return c_real(float(value), "f")
         if f.kind == "char":
             return cchar(value)
         if f.kind == "str":
@@ -285,6 +286,15 @@ class Driver:
             if mine:
                 out.append({"name": s.name, "fn": f"{self.p.name}_{s.name}", "cases": mine})
         return out
+
+
+def c_real(value: float, suffix: str = "") -> str:
+    """A C expression of a float: NaN (the quiet NaN of <math.h>) and the infinities by name."""
+    if value != value:
+        return "NAN"
+    if value in (math.inf, -math.inf):
+        return "INFINITY" if value > 0 else "-INFINITY"
+    return repr(value) + suffix
 
 
 def int_literal(value: int) -> str:

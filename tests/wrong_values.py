@@ -57,8 +57,9 @@ NOT_A_GROUP = [0, 1, True, "x", b"x", {}, (), [], object()]
 NOT_A_LIST = [0, 1, True, "x", b"\x00\x00", {}, object()]
 
 
-def wrong_values(codec, obj, path):
-    """Values of the wrong type, shape or size for the field at `path`."""
+def wrong_values(codec, obj, path, nonfinite=frozenset()):
+    """Values of the wrong type, shape or size for the field at `path`; `nonfinite` names
+    the float fields, as (message, field), whose NaN and infinities are values."""
     hint, current = declared(codec, obj, path)
     args = typing.get_args(hint)
     optional = typing.get_origin(hint) is typing.Union and type(None) in args
@@ -89,6 +90,8 @@ def wrong_values(codec, obj, path):
         out += [m for other in vars(codec).values() if isinstance(other, type) and issubclass(other, enum.Enum)
                 and other.__module__ == codec.__name__ and other is not cls for m in other][:3]
         out += [Foreign.zero, Foreign.one]
+    elif hint is float and (obj.NAME, next(x for x in reversed(path) if isinstance(x, str))) in nonfinite:
+        out += [x for x in WRONG[float] if not isinstance(x, float)]
     elif hint in WRONG:
         out += WRONG[hint]
     else:
@@ -96,12 +99,12 @@ def wrong_values(codec, obj, path):
     return out
 
 
-def refusals(codec, objects) -> str:
+def refusals(codec, objects, nonfinite=frozenset()) -> str:
     """Each member of each object set to each wrong value: "" when every encode raised
     the codec's EncodeError, else what was encoded or what else was raised."""
     for obj in objects:
         for path in member_paths(obj):
-            for value in wrong_values(codec, obj, path):
+            for value in wrong_values(codec, obj, path, nonfinite):
                 where = f"{type(obj).__name__}.{'.'.join(path)} = {value!r:.40}"
                 try:
                     codec.encode(with_value(obj, path, value))

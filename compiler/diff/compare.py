@@ -351,6 +351,9 @@ def _field(a: Placed, b: Placed, out: _Collector, message: str, growth: Optional
         add(BREAKING, "checksum changed" if fa.checksum and fb.checksum else
             "checksum added" if fb.checksum else "checksum removed")
     _range(fa.range, fb.range, add)
+    if fa.kind == fb.kind == "float" and fa.finite != fb.finite:  # as a range widened or narrowed
+        add(COMPATIBLE if not fb.finite else BREAKING,
+            "now holds NaN and the infinities too (widened)" if not fb.finite else "NaN and the infinities now refused")
     _value_set(fa.values, fb.values, "allowed values", add)
     if fa.enum or fb.enum:
         _members({m.value: m.name for m in fa.enum.members} if fa.enum else {},

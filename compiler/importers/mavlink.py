@@ -74,8 +74,9 @@ def _header(w: Writer, imported: Imported) -> None:
     w.comment("MAVLink enums are open (a receiver takes values it does not know, and dialects add entries): "
               "each is an `open: true` enum, and a field of one has `enum:`, so a value no entry names decodes "
               "as its number. A bitmask enum is a flag set, which is closed: its fields name it in a comment "
-              "and their doc rather than with `flags:`, so that every value MAVLink sends decodes. MAVLink sends NaN in some "
-              "float fields for 'unknown'; codeword refuses NaN, which the comments at those fields say.")
+              "and their doc rather than with `flags:`, so that every value MAVLink sends decodes. MAVLink sends NaN in "
+              "float fields for 'unknown' or 'no change', and any float may be one: every float field is "
+              "`finite: false` (NaN and the infinities are values; a NaN is sent as the quiet NaN).")
     if d.dialect_number is not None:
         w.comment(f"<dialect>{d.dialect_number}</dialect>: the dialect's number.")
     for note in d.notes:
@@ -293,8 +294,6 @@ def _field(w: Writer, f: XmlField, name: str, enum_names: dict[str, str], open_e
         notes.append(f'{k}="{value}"')
     if f.version_field:
         notes.append("uint8_t_mavlink_version: the sender writes the dialect's <version> here")
-    if f.type in ("float", "double") and "nan" in f.attributes.get("invalid", "").lower():
-        notes.append("MAVLink sends NaN here for 'no value'; codeword's floats refuse NaN (finite)")
     if f.type == "char" and not f.array_length:
         notes.append("char: one byte, any value (bytes of length 1)")
     for note in notes:
@@ -312,6 +311,8 @@ def _field(w: Writer, f: XmlField, name: str, enum_names: dict[str, str], open_e
         item["unit"] = f.units
     if open_enum:
         item["enum"] = enum_names[f.enum]
+    if f.type in ("float", "double"):
+        item["finite"] = False
     if f.extension:
         item["extension"] = True
     doc = f.doc

@@ -133,6 +133,7 @@ class FieldsMixin(ResolverBase):
             fields=sub_fields, message=text(f.get("message")), rule=f.get("rule"),
             extension=bool(f.get("extension")), counted_by=counted_by, start_bit=f.get("start_bit"),
             prefix=bool(f.get("prefix")), keep_empty=f.get("keep_empty"), mavlink_name=f.get("mavlink_name"),
+            finite=f.get("finite", True) is not False,
             multiplexed_by=self.multiplex_of(f, path),
             count_unit=1 if counted_by is not None else None, present_if=self.condition_of(f, path, allow_payload))
         if field.by_direction:
@@ -387,6 +388,8 @@ class FieldsMixin(ResolverBase):
         if kind == "float" and f.range is not None and self.framing_kind == "text":
             self.error(path + ("range",), f"field {name!r}: a text float cannot have a range yet",
                        "use an integer with a scale, which can")
+        if not f.finite:
+            self.check_not_finite(f, path)
         if kind == "float" and (f.range is not None and not all(math.isfinite(v) for v in f.range)):
             self.error(path + ("range",), f"field {name!r}: range bounds must be finite")
         lo_raw, hi_raw = (f.raw_range or (None, None))
@@ -469,6 +472,25 @@ class FieldsMixin(ResolverBase):
             self.error(path + ("default",), f"field {f.name!r}: an extension field missing from a frame "
                                             f"reads as 0, so its default must be 0, not {f.default!r}",
                        "drop the default, or make it 0")
+
+    def check_not_finite(self, f: Field, path: tuple) -> None:
+        """`finite: false` lets a binary float hold NaN and the infinities (MAVLink sends NaN
+        for "no value"). NaN is no number a range, a list of values or a constant could hold."""
+        at = path + ("finite",)
+        if f.kind != "float":
+            self.error(at, f"field {f.name!r}: finite applies to float fields", "drop `finite`")
+        elif self.framing_kind == "text":
+            self.error(at, f"field {f.name!r}: a text float is a number as written; NaN and the "
+                           "infinities have no spelling in a line", "drop `finite: false`")
+        elif f.range is not None:
+            self.error(at, f"field {f.name!r}: finite: false with a range; NaN is in no range",
+                       "drop the range, or `finite: false`")
+        elif f.values is not None:
+            self.error(at, f"field {f.name!r}: finite: false with values; NaN equals no value",
+                       "drop the values, or `finite: false`")
+        elif f.const is not None:
+            self.error(at, f"field {f.name!r}: finite: false on a constant, which is one finite number",
+                       "drop `finite: false`")
 
     def check_keep_empty(self, f: Field, path: tuple) -> None:
         """A field's own keep_empty says what a writer does with its absent value at the end

@@ -48,6 +48,7 @@ FULL = frozenset({
     "enum", "flags", "bool", "bytes_field", "f32", "f64",
     "open_enum",                            # integer enums whose other values are valid, kept as numbers
     "f32_range",                            # f32 fields with a range: integer or decimal ends
+    "nonfinite",                            # binary f32 and f64 fields that may hold NaN and the infinities
     "collisions",                           # mutants: protocol named like a system header, has_/_count fields
     "wide",                                 # integers of 33..64 bits
     "optional", "str", "char", "text_float", "newline",  # text options

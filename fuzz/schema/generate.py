@@ -95,6 +95,12 @@ class Generator:
 
     # -- the document -----------------------------------------------------------------------
     def schema(self) -> dict:
+        doc = self.drawn()
+        if "nonfinite" in self.on:
+            nonfinite_floats(doc, random.Random(f"nonfinite {self.seed}"))
+        return doc
+
+    def drawn(self) -> dict:
         if "machines" in self.on and random.Random(f"machines {self.seed}").random() < MACHINE_SHARE:
             return machine_schema(self)  # its own draw: the other seeds' schemas stay as they were
         if "can" in self.on and random.Random(f"can framing {self.seed}").random() < CAN_SHARE:
@@ -1072,6 +1078,25 @@ def values_in(field: dict) -> int:
 def generate(seed: int, features: frozenset[str] = DEFAULT) -> str:
     """The YAML text of schema number `seed`."""
     return yaml.safe_dump(Generator(seed, features).schema(), sort_keys=False, allow_unicode=True, width=100)
+
+
+def nonfinite_floats(doc: dict, own: random.Random) -> None:
+    """`nonfinite`: some binary f32 and f64 fields (in groups and arrays too) may hold NaN and
+    the infinities (`finite: false`); those with a range, values or a constant cannot. Drawn
+    from a generator of its own, after the rest: the schemas stay as they were otherwise."""
+    if doc.get("framing", {}).get("kind") == "text":
+        return
+
+    def walk(fields: list) -> None:
+        for f in fields:
+            if not isinstance(f, dict):
+                continue
+            if f.get("type") in ("f32", "f64") and not {"range", "values", "const"} & set(f) and own.random() < 0.4:
+                f["finite"] = False
+            walk(f.get("fields", []))
+
+    for body in (doc.get("messages") or {}).values():
+        walk(body.get("fields", []))
 
 
 def msb_position(start: int) -> int:

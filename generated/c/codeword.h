@@ -310,6 +310,13 @@ static inline bool cw_f32_bits_finite(uint32_t bits)
     return (bits & 0x7F800000UL) != 0x7F800000UL;
 }
 
+/* The bits a float field that may hold NaN sends: any NaN as the quiet NaN
+ * 0x7FC00000 (its sign and payload are not kept), any other value as it is. */
+static inline uint32_t cw_f32_canonical(uint32_t bits)
+{
+    return (bits & 0x7FFFFFFFUL) > 0x7F800000UL ? 0x7FC00000UL : bits;
+}
+
 /* ---- binary64 (f64 fields) ----------------------------------------------- */
 
 /* An f64 field's member is a cw_f64_t. Where the compiler's double is IEEE
@@ -372,6 +379,14 @@ static inline uint64_t cw_f64_to_bits(cw_f64_t v)
 static inline bool cw_f64_bits_finite(uint64_t bits)
 {
     return ((uint16_t)(bits >> 48) & 0x7FF0u) != 0x7FF0u;
+}
+
+/* As cw_f32_canonical: any NaN as the quiet NaN 0x7FF8000000000000. The
+ * fraction is tested in 32-bit halves, for the same avr-gcc. */
+static inline uint64_t cw_f64_canonical(uint64_t bits)
+{
+    bool fraction = ((uint32_t)bits | ((uint32_t)(bits >> 32) & 0x000FFFFFUL)) != 0u;
+    return !cw_f64_bits_finite(bits) && fraction ? 0x7FF8000000000000ULL : bits;
 }
 
 /* The bits of a finite binary64 as an unsigned integer that orders as the

@@ -48,6 +48,16 @@ def _fields_on(m: Message, leaf: Leaf) -> list[Field]:
     return out
 
 
+def number_spec(view: PythonView, leaf: Leaf) -> Optional[tuple]:
+    """The usual test of a number (PythonView.usual_spec); a float that may be NaN is served
+    for its finite values, NaN and the infinities going to Python, which writes them."""
+    spec = view.usual_spec(leaf)
+    f = leaf.field
+    if spec is None and f.kind == "float" and not f.finite:
+        return ("float", leaf.path[-1], f.bits == 32)
+    return spec
+
+
 def _leaf_encodable(view: PythonView, m: Message, leaf: Leaf) -> bool:
     f = leaf.field
     if f.one_hot or f.optional:
@@ -58,7 +68,7 @@ def _leaf_encodable(view: PythonView, m: Message, leaf: Leaf) -> bool:
         return f.enum.kind != "char"
     if f.flags is not None:
         return True
-    spec = view.usual_spec(leaf)
+    spec = number_spec(view, leaf)
     if spec is None:
         return False
     if spec[0] == "float":
@@ -206,7 +216,7 @@ class EncoderView:
     def read_number(self, c: Code, f: Field, value: str, at: str) -> None:
         """A number Python checks by its usual test (PythonView.usual_spec) and converts."""
         ctype = self.c.rep(f).ctype
-        spec = self.py.usual_spec(Leaf(field=f, path=(f.name,), pos=None))
+        spec = number_spec(self.py, Leaf(field=f, path=(f.name,), pos=None))
         if spec[0] == "float":
             self.scratch.add("d")
             limit = "3.4028234663852886e38" if spec[2] else "1.7976931348623157e308"

@@ -341,11 +341,15 @@ class CView:
         r = self.rep(f)
         if f.kind == "bool":
             c(f"{raw} = ({rt}){v};")  # a bool is 0 or 1
+        elif f.kind == "float" and f.bits == 64 and not f.finite:  # NaN sent as the quiet NaN
+            c(f"{raw} = cw_f64_canonical(cw_f64_to_bits({v}));")
         elif f.kind == "float" and f.bits == 64:  # raw values of a message with one are uint64_t
             c(f"{raw} = cw_f64_to_bits({v});")
             self.fail_if(c, f"!cw_f64_bits_finite({raw})", "finite")
             if f.range is not None:
                 self.fail_if(c, self.f64_outside(raw, *f.range), "range")
+        elif f.kind == "float" and not f.finite:
+            store(f"cw_f32_canonical(cw_f32_to_bits({v}))")
         elif f.kind == "float":
             store(f"cw_f32_to_bits({v})")
             c(f"if (!cw_f32_bits_finite({raw if rt == 'uint32_t' else f'(uint32_t){raw}'})) {{")
@@ -489,14 +493,16 @@ class CView:
         if f.kind == "bytes":
             return
         if f.kind == "float" and f.bits == 64:
-            self.fail_if(c, f"!cw_f64_bits_finite({raw})", "finite")
-            c(f"{v} = cw_f64_from_bits({raw});")
+            if f.finite:
+                self.fail_if(c, f"!cw_f64_bits_finite({raw})", "finite")
+            c(f"{v} = cw_f64_from_bits({raw if f.finite else f'cw_f64_canonical({raw})'});")  # any NaN as the quiet one
             if f.range is not None:
                 self.fail_if(c, self.f64_outside(raw, *f.range), "range")
             return
         if f.kind == "float":
-            self.fail_if(c, f"!cw_f32_bits_finite({raw})", "finite")
-            c(f"{v} = cw_f32_from_bits({raw});")
+            if f.finite:
+                self.fail_if(c, f"!cw_f32_bits_finite({raw})", "finite")
+            c(f"{v} = cw_f32_from_bits({raw if f.finite else f'cw_f32_canonical({raw})'});")  # any NaN as the quiet one
             if f.range is not None:
                 self.fail_if(c, self.f32_outside(v, *f.range), "range")
             return

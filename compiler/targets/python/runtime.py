@@ -8,6 +8,7 @@ from __future__ import annotations
 # helpers the template's own helpers call
 _WITHIN = {
     "_faults": ("_int_fault", "_float_fault"),
+    "_nonfinite": ("_float_fault", "struct"),
     "_absent_or_list_of": ("_is_list_of",),
     "_parse_int": ("_int_of",),
     "_parse_float": ("_significant",),

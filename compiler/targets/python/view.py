@@ -281,6 +281,11 @@ class PythonView:
             expr = self.int_raw(f, v) if f.kind != "float" else v
             if expr != var:
                 c(f"{var} = {expr}")
+        elif f.kind == "float" and not f.finite:  # NaN and the infinities too: NaN written as the quiet NaN
+            limit = "3.4028234663852886e38" if f.bits == 32 else "1.7976931348623157e308"
+            c(f"if {v}.__class__ is not float or not -{limit} <= {v} <= {limit}:")
+            c(f"    {v} = _nonfinite({where}, {v}, {f.bits == 32})")
+            self.calls.use("_nonfinite")
         elif f.kind == "float":  # a text's precision or a range is checked before a binary32's limits
             text = self.p.framing.kind == "text"
             c(f"if {v}.__class__ is not float or not -1.7976931348623157e308 <= {v} <= 1.7976931348623157e308:")
@@ -340,7 +345,7 @@ class PythonView:
             lo, hi = f.range if f.range else self.encodable_limits(f)
             return ("int", leaf.path[-1], lo, hi, f.scale is not None, f.rule) + \
                 ((self.user_text(f.message),) if f.message else ())
-        if f.kind == "float" and self.p.framing.kind != "text" and not f.range:
+        if f.kind == "float" and self.p.framing.kind != "text" and not f.range and f.finite:
             return ("float", leaf.path[-1], f.bits == 32)
         return None
 
@@ -481,8 +486,9 @@ class PythonView:
             if f.decimals:  # the value the text shows, correctly rounded, and checked as such
                 expr = var_checked = f"{var} / {10 ** f.decimals}" + (f" + {lit(f.offset)}" if f.offset else "")
         elif f.kind == "float":
-            c(f"if {'not ' + finite_if + ' and ' if finite_if else ''}not _isfinite({var}):")
-            c(f"    raise _dec({at}, 'finite', 'a finite number', {off}, {f.rule!r})")
+            if f.finite:
+                c(f"if {'not ' + finite_if + ' and ' if finite_if else ''}not _isfinite({var}):")
+                c(f"    raise _dec({at}, 'finite', 'a finite number', {off}, {f.rule!r})")
             expr = var_checked = var
         else:
             return var
