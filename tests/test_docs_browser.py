@@ -156,3 +156,66 @@ def test_bit_layouts_fit_a_1280_pixel_window(site, server, browser, name):
         assert visit.page.evaluate(OVERFLOWING_LAYOUTS) == []
     finally:
         visit.close()
+
+
+IMPORTED_PAGE = """() => {
+    let el = document.getElementById("msg-attitude").parentElement.nextElementSibling;
+    const heading = el.textContent, tables = [];
+    for (el = el.nextElementSibling; el && el.tagName !== "H2"; el = el.nextElementSibling) {
+        const t = el.tagName === "TABLE" ? el : el.querySelector("table");
+        if (t) tables.push(t);
+    }
+    const table = tables.find(t => t.querySelector("th").textContent.trim() === "field");
+    table.setAttribute("data-shot", "attitude");
+    const wrap = table.closest(".md-typeset__scrollwrap") || table;
+    const row = [...table.querySelectorAll("tr")].find(r => r.cells[0].textContent.trim() === "roll");
+    const box = wrap.getBoundingClientRect();
+    return {heading: heading, cells: [...row.cells].map(c => c.textContent.trim()),
+            left: box.left, right: box.right,
+            enum_link: !!document.querySelector('a[href="#enum-mav-type"]'),
+            enum_entry: !!document.getElementById("enum-mav-type")};
+}"""
+
+
+def test_an_imported_mavlink_dialect_reads_well_in_a_browser(tmp_path, browser):
+    """MAVLink's common.xml imported and its site built as a user builds it (`codeword
+    build` writes mkdocs.yml; `mkdocs build --strict`): ATTITUDE's field table, seen in
+    Chromium at 1280 pixels, gives each field its unit, its description and its type
+    (its floats may be NaN), fields name their enums by link to an entry of the page, and
+    a screenshot of the table shows it drawn (a PNG of the table's size, not blank)."""
+    from codeword.cli import main as codeword
+
+    pymavlink = pytest.importorskip("pymavlink")
+    common = Path(pymavlink.__file__).parent / "dialects" / "v20" / "common.xml"
+    assert codeword(["import", "mavlink", str(common), "--out", str(tmp_path / "schemas")]) == 0
+    cwd = os.getcwd()
+    try:
+        os.chdir(tmp_path)
+        assert codeword(["build", "--targets", "docs"]) == 0
+    finally:
+        os.chdir(cwd)
+    site = tmp_path / "site"
+    proc = subprocess.run([sys.executable, "-m", "mkdocs", "build", "--strict", "--site-dir", str(site)],
+                          cwd=tmp_path, capture_output=True, text=True, timeout=600)
+    assert proc.returncode == 0, proc.stderr
+    httpd = ThreadingHTTPServer(("127.0.0.1", 0), functools.partial(SimpleHTTPRequestHandler, directory=str(site)))
+    threading.Thread(target=httpd.serve_forever, daemon=True).start()
+    visit = Visit(browser, f"http://127.0.0.1:{httpd.server_port}/common.html#msg-attitude")
+    try:
+        assert [url for url in visit.requests if not is_local(url)] == [] and visit.errors == []
+        seen = visit.page.evaluate(IMPORTED_PAGE)
+        assert seen["heading"].startswith("attitude")
+        assert seen["cells"][0] == "roll" and seen["cells"][4] == "f32 LE" and seen["cells"][6] == "rad"
+        assert "NaN" in seen["cells"][5] and seen["cells"][8] == "Roll angle (-pi..+pi)"
+        assert seen["enum_link"] and seen["enum_entry"]
+        assert 0 <= seen["left"] and seen["right"] <= WIDTH  # the table scrolls within the page, never past it
+        table = visit.page.locator('table[data-shot="attitude"]')
+        # the site's header stays at the top of the window: hidden, so that it covers no row
+        shot = table.screenshot(path=str(tmp_path / "attitude.png"), style=".md-header { visibility: hidden }")
+        width, height = int.from_bytes(shot[16:20], "big"), int.from_bytes(shot[20:24], "big")  # the PNG header
+        box = table.bounding_box()
+        assert shot[:8] == b"\x89PNG\r\n\x1a\n" and (width, height) == (round(box["width"]), round(box["height"]))
+        assert height > 200 and len(set(shot[64:])) > 200  # rows drawn: compressed pixels of many values
+    finally:
+        visit.close()
+        httpd.shutdown()

@@ -140,5 +140,5 @@ def test_the_schema_says_it_in_the_docs_the_fingerprint_and_diff(tmp_path):
     assert ("field a", "NaN and the infinities now refused", "breaking") in narrowed
     from codeword.targets import markdown
     docs = markdown.render(new, load(render(tmp_path, "nanp", SCHEMA) / "nanp.py"))["docs/nanp.md"]
-    assert "NaN and ±∞ too; any NaN is sent as the quiet NaN 0x7FC00000" in docs
-    assert "NaN and ±∞ too; any NaN is sent as the quiet NaN 0x7FF8000000000000" in docs
+    assert "| IEEE-754 binary32 or NaN, ±∞ |" in docs and "| IEEE-754 binary64 or NaN, ±∞ |" in docs
+    assert "a sender sends every NaN as the quiet NaN, `0x7FC00000` in 32 bits and `0x7FF8000000000000` in 64" in docs

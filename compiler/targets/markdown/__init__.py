@@ -252,6 +252,11 @@ def framing_view(p: Protocol, linker: DecisionLinker) -> dict:
                          f"{SPELLING_MAX} characters; a longer one is a `length` error) and writes it back "
                          "unchanged while the value stays, so a line decoded and encoded again is the same "
                          "bytes; a changed value is written in its field's spelling.")
+    if any(x.field.kind == "float" and not x.field.finite for m in p.messages for x in m.wire.leaves):
+        lines.append("A float whose range says `or NaN, ±∞` holds NaN and the infinities too. A receiver takes "
+                     "any NaN, whatever its sign and payload; a sender sends every NaN as the quiet NaN, "
+                     "`0x7FC00000` in 32 bits and `0x7FF8000000000000` in 64 (in the field's byte order), so "
+                     "that a message encodes to one frame.")
     lines.extend(claim["text"] for claim in error_claims(p))
     view["lines"] = [linker.link(x) for x in lines]
     return view

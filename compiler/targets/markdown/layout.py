@@ -189,9 +189,8 @@ def range_text(p: Protocol, f: Field) -> str:
         parts.append(f"step {number(f.scale)}")
     if f.kind == "float" and (f.bits == 32 or p.framing.kind != "text"):
         parts.append(f"IEEE-754 binary{f.bits}")
-    if f.kind == "float" and not f.finite:  # the quiet NaN as its bits, whatever the byte order
-        quiet = "7FC00000" if f.bits == 32 else "7FF8000000000000"
-        parts.append(f"NaN and ±∞ too; any NaN is sent as the quiet NaN 0x{quiet}")
+    if f.kind == "float" and not f.finite:  # the framing section says how a NaN is sent
+        parts[-1] += " or NaN, ±∞"
     if f.kind == "float" and f.bits == 64 and not parts:
         parts.append("any decimal number")
     return "; ".join(parts)
