@@ -28,6 +28,7 @@ FULL = frozenset({
     "extension_arrays",                     # bytes: arrays and bytes among the extension fields
     "payload_name",                         # bytes: a message field named `payload`, as the envelope's marker is
     "wide_id",                              # bytes: a 3-byte message id (MAVLink 2's msgid)
+    "many_messages",                        # bytes, a 3-byte id: 256 to 300 messages (MAVLink's all.xml)
     "little", "field_order",                # byte orders: the framing's, and per field
     "bitfields",                            # fields narrower than a byte, packed
     "arrays",                               # fields of a fixed count: scalars, groups (bytes), bit fields

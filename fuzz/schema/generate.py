@@ -98,6 +98,8 @@ class Generator:
         doc = self.drawn()
         if "nonfinite" in self.on:
             nonfinite_floats(doc, random.Random(f"nonfinite {self.seed}"))
+        if "many_messages" in self.on:
+            many_messages(doc, random.Random(f"many_messages {self.seed}"))
         return doc
 
     def drawn(self) -> dict:
@@ -1078,6 +1080,31 @@ def values_in(field: dict) -> int:
 def generate(seed: int, features: frozenset[str] = DEFAULT) -> str:
     """The YAML text of schema number `seed`."""
     return yaml.safe_dump(Generator(seed, features).schema(), sort_keys=False, allow_unicode=True, width=100)
+
+
+def many_messages(doc: dict, own: random.Random) -> None:
+    """`many_messages`: in a third of the byte framings with a 3-byte id (MAVLink 2's
+    msgid), more messages than a byte counts (256 to 300 in all, as MAVLink's all.xml has):
+    small ones added after those drawn, at ids none has. Drawn from a generator of its own."""
+    framing = doc.get("framing", {})
+    layout = framing.get("layout", [])
+    keys = [f for f in layout if f.get("dispatch")]
+    if framing.get("kind") != "bytes" or framing.get("encoding") or framing.get("stuffing") \
+            or [f.get("type") for f in keys] != ["u24"] or own.random() >= 1 / 3:
+        return
+    messages = doc["messages"]
+    first = next(iter(messages.values()))
+    taken = {body.get("id") for body in messages.values()}
+    extra = next((f["checksum"].get("extra") for f in layout if "checksum" in f), None)
+    for n in range(own.randint(256, 300) - len(messages)):
+        body: dict = {"id": next(i for i in iter(lambda: own.randrange(1 << 24), None) if i not in taken)}
+        taken.add(body["id"])
+        if "direction" in first:
+            body["direction"] = own.choice(["up", "down"])
+        if extra == "message":
+            body["crc_extra"] = own.randrange(256)
+        body["fields"] = [{"name": "value", "type": own.choice(["u8", "i16", "u32"])}]
+        messages[f"many_{n}"] = body
 
 
 def nonfinite_floats(doc: dict, own: random.Random) -> None:

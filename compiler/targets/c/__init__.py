@@ -140,6 +140,7 @@ def render(p: Protocol) -> dict[str, str]:
         p=p, v=v, px=v.px, PX=v.PX, fingerprint=fingerprint(p), fingerprint32=f"{fingerprint32(p):#010x}", constants=constants(v), enums=enums(v), flags=flags(v),
         directions=v.directions(), messages=messages, kinds={m["name"]: m["kind"] for m in messages},
         handles={m["name"]: m["handles"] for m in messages},
+        kind_t="uint8_t" if len(messages) <= 0xFF else "uint16_t",  # <PX>_MSG_* run from 1
         checksums=v.byte_checksums(), crc_methods=crc.METHODS if v.has_crc() else (), crc_default=crc.DEFAULT_METHOD, text=v.text, dispatch=dispatch, stream=v.stream() if fr.kind == "bytes" else {},
         encoding=encoding, stuffing=stuffing, trailer=trailer_view(p), can=can_view(p),
         largest=largest_on_wire(v, encoding, stuffing),
