@@ -329,6 +329,11 @@ def firmware_source(p: Protocol, include: bool = True) -> str:
     return "\n".join(lines)
 
 
+def selection_flags(px: str, names) -> tuple[str, ...]:
+    """The -D flags of a build that selects `names` of protocol `px` (upper case), none if empty."""
+    return (f"-D{px}_SELECTED_MESSAGES", *(f"-D{px}_SELECT_{n.upper()}" for n in names))
+
+
 def selection_applies(p: Protocol) -> bool:
     """A protocol whose dispatching decoder reads the frames of the vectors as they are:
     found by id or prefix, not stuffed, signed or carried in CAN frames."""

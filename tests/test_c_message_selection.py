@@ -11,6 +11,7 @@ from pathlib import Path
 
 import pytest
 
+from cdriver import selection_flags
 from schema_in_a_test import STRICT_WARNINGS, run_c
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -26,10 +27,6 @@ def frames(protocol: str) -> list[dict]:
 
 def c_bytes(hex_text: str) -> str:
     return "{" + ", ".join(f"0x{b:02x}" for b in bytes.fromhex(hex_text)) + "}"
-
-
-def selection_flags(px: str, names) -> tuple[str, ...]:
-    return (f"-D{px}_SELECTED_MESSAGES", *(f"-D{px}_SELECT_{n.upper()}" for n in names))
 
 
 def test_only_the_selected_messages_are_decoded_and_encoded(tmp_path):

@@ -44,7 +44,7 @@ from .unused import unused_names
 
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tests"))  # the conformance driver writer, shared with tests/test_c.py
-from cdriver import Driver, firmware_source, selection_applies, selection_source  # noqa: E402
+from cdriver import Driver, firmware_source, selection_applies, selection_flags, selection_source  # noqa: E402
 from wrong_values import refusals  # noqa: E402 - shared with tests/test_codec_inputs.py
 
 WARNINGS = ["-std=c99", "-Wall", "-Wextra", "-Wpedantic", "-Wconversion", "-Wsign-conversion", "-Wshadow", "-Werror"]
@@ -408,7 +408,7 @@ def selection_checks(protocol, vectors: dict, include: Path, where: Path, seed: 
         return ""
     src, exe = where / "selection.c", where / "selection"
     src.write_text(selection_source(protocol, vectors, chosen), encoding="utf-8")
-    flags = [f"-D{px}_SELECTED_MESSAGES", *(f"-D{px}_SELECT_{name.upper()}" for name in chosen)]
+    flags = selection_flags(px, chosen)
     built = subprocess.run([shutil.which("gcc") or "gcc", *STRICT, *flags, "-I", str(include), str(src), "-o",
                             str(exe)], capture_output=True, text=True, timeout=300)
     if built.returncode != 0:
